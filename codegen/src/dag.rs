@@ -1,0 +1,710 @@
+//! The expression graph: a hash-consed DAG of scalar operations.
+//!
+//! Every scalar quantity of a mechanism (residuals, outputs, their derivatives) is a node of one
+//! graph. Nodes are created bottom-up and de-duplicated, so a node's operands always have smaller
+//! ids than the node itself: ids are a topological order, which lets every traversal below be a
+//! simple loop instead of a recursion (deep expressions cannot overflow the stack).
+//!
+//! Constructors simplify locally (constant folding, `x + 0`, `1 * x`, `x - x`, ...), which keeps
+//! the derivative graphs small: differentiating `l * cos(phi)` with respect to an unrelated
+//! unknown yields the constant zero, and zero terms vanish from the generated code.
+
+use std::collections::HashMap;
+
+/// Index of a node in a [`Graph`].
+#[derive(Clone, Copy, PartialEq, Eq, Hash, PartialOrd, Ord, Debug)]
+pub struct NodeId(pub u32);
+
+impl NodeId {
+    pub fn index(self) -> usize {
+        self.0 as usize
+    }
+}
+
+/// The free variables of the graph.
+#[derive(Clone, Copy, PartialEq, Eq, Hash, PartialOrd, Ord, Debug)]
+pub enum Leaf {
+    /// A design parameter (constant during a sweep).
+    Param(u16),
+    /// A generalized coordinate (crank angle, time, ...).
+    Input(u16),
+    /// A position unknown (link angle, slider coordinate).
+    Unknown(u16),
+    /// First total derivative of an unknown with respect to an input: `dq_u / dx_i`.
+    Tan { unknown: u16, input: u16 },
+    /// Second total derivative `d2q_u / dx_i dx_j` with `i <= j`.
+    Tan2 { unknown: u16, i: u16, j: u16 },
+}
+
+/// Elementary functions of one argument.
+#[derive(Clone, Copy, PartialEq, Eq, Hash, Debug)]
+pub enum Func {
+    Sin,
+    Cos,
+    Tan,
+    Asin,
+    Acos,
+    Atan,
+    Sqrt,
+    Exp,
+    Ln,
+    Abs,
+    /// Sign of the argument (derivative of `abs`); its own derivative is zero.
+    Signum,
+}
+
+impl Func {
+    pub fn eval(self, x: f64) -> f64 {
+        match self {
+            Func::Sin => x.sin(),
+            Func::Cos => x.cos(),
+            Func::Tan => x.tan(),
+            Func::Asin => x.asin(),
+            Func::Acos => x.acos(),
+            Func::Atan => x.atan(),
+            Func::Sqrt => x.sqrt(),
+            Func::Exp => x.exp(),
+            Func::Ln => x.ln(),
+            Func::Abs => x.abs(),
+            Func::Signum => {
+                if x > 0.0 {
+                    1.0
+                } else if x < 0.0 {
+                    -1.0
+                } else {
+                    0.0
+                }
+            }
+        }
+    }
+
+    /// Name of the `f64` method that computes this function.
+    pub fn method(self) -> &'static str {
+        match self {
+            Func::Sin => "sin",
+            Func::Cos => "cos",
+            Func::Tan => "tan",
+            Func::Asin => "asin",
+            Func::Acos => "acos",
+            Func::Atan => "atan",
+            Func::Sqrt => "sqrt",
+            Func::Exp => "exp",
+            Func::Ln => "ln",
+            Func::Abs => "abs",
+            Func::Signum => "signum",
+        }
+    }
+}
+
+/// One node. Constants are stored by their bit pattern so nodes can be hashed.
+#[derive(Clone, Copy, PartialEq, Eq, Hash, Debug)]
+pub enum Op {
+    Const(u64),
+    Leaf(Leaf),
+    Add(NodeId, NodeId),
+    Sub(NodeId, NodeId),
+    Mul(NodeId, NodeId),
+    Div(NodeId, NodeId),
+    Neg(NodeId),
+    Powi(NodeId, i32),
+    Powf(NodeId, NodeId),
+    Func(Func, NodeId),
+    /// `atan2(y, x)`.
+    Atan2(NodeId, NodeId),
+}
+
+impl Op {
+    /// The operands of this node (at most two).
+    pub fn operands(&self) -> impl Iterator<Item = NodeId> {
+        let (a, b) = match *self {
+            Op::Const(_) | Op::Leaf(_) => (None, None),
+            Op::Neg(a) | Op::Powi(a, _) | Op::Func(_, a) => (Some(a), None),
+            Op::Add(a, b)
+            | Op::Sub(a, b)
+            | Op::Mul(a, b)
+            | Op::Div(a, b)
+            | Op::Powf(a, b)
+            | Op::Atan2(a, b) => (Some(a), Some(b)),
+        };
+        a.into_iter().chain(b)
+    }
+}
+
+/// A hash-consed expression graph.
+#[derive(Default, Clone)]
+pub struct Graph {
+    nodes: Vec<Op>,
+    index: HashMap<Op, NodeId>,
+}
+
+/// The largest graph the macro builds; beyond it the declaration is rejected as too large
+/// instead of exhausting the compiler's memory.
+pub const MAX_NODES: usize = 2_000_000;
+
+impl Graph {
+    pub fn new() -> Self {
+        Self::default()
+    }
+
+    pub fn len(&self) -> usize {
+        self.nodes.len()
+    }
+
+    pub fn is_empty(&self) -> bool {
+        self.nodes.is_empty()
+    }
+
+    pub fn op(&self, n: NodeId) -> Op {
+        self.nodes[n.index()]
+    }
+
+    pub fn overflowed(&self) -> bool {
+        self.nodes.len() >= MAX_NODES
+    }
+
+    fn intern(&mut self, op: Op) -> NodeId {
+        if let Some(&id) = self.index.get(&op) {
+            return id;
+        }
+        let id = NodeId(self.nodes.len() as u32);
+        self.nodes.push(op);
+        self.index.insert(op, id);
+        id
+    }
+
+    /// The value of a constant node.
+    pub fn as_const(&self, n: NodeId) -> Option<f64> {
+        match self.op(n) {
+            Op::Const(bits) => Some(f64::from_bits(bits)),
+            _ => None,
+        }
+    }
+
+    pub fn is_zero(&self, n: NodeId) -> bool {
+        self.as_const(n) == Some(0.0)
+    }
+
+    pub fn is_one(&self, n: NodeId) -> bool {
+        self.as_const(n) == Some(1.0)
+    }
+
+    pub fn constant(&mut self, v: f64) -> NodeId {
+        // -0.0 and 0.0 are the same node.
+        let v = if v == 0.0 { 0.0 } else { v };
+        self.intern(Op::Const(v.to_bits()))
+    }
+
+    pub fn zero(&mut self) -> NodeId {
+        self.constant(0.0)
+    }
+
+    pub fn one(&mut self) -> NodeId {
+        self.constant(1.0)
+    }
+
+    pub fn leaf(&mut self, leaf: Leaf) -> NodeId {
+        self.intern(Op::Leaf(leaf))
+    }
+
+    /// Folds a constant result; non-finite results are left unfolded so that the generated code,
+    /// not the compiler, reports them (at run time, with the equation's name).
+    fn fold(&mut self, v: f64) -> Option<NodeId> {
+        v.is_finite().then(|| self.constant(v))
+    }
+
+    pub fn add(&mut self, a: NodeId, b: NodeId) -> NodeId {
+        match (self.as_const(a), self.as_const(b)) {
+            (Some(x), Some(y)) => {
+                if let Some(n) = self.fold(x + y) {
+                    return n;
+                }
+            }
+            (Some(x), None) if x == 0.0 => return b,
+            (None, Some(y)) if y == 0.0 => return a,
+            _ => {}
+        }
+        if let Op::Neg(nb) = self.op(b) {
+            return self.sub(a, nb);
+        }
+        if let Op::Neg(na) = self.op(a) {
+            return self.sub(b, na);
+        }
+        let (a, b) = if a <= b { (a, b) } else { (b, a) };
+        self.intern(Op::Add(a, b))
+    }
+
+    pub fn sub(&mut self, a: NodeId, b: NodeId) -> NodeId {
+        if a == b {
+            return self.zero();
+        }
+        match (self.as_const(a), self.as_const(b)) {
+            (Some(x), Some(y)) => {
+                if let Some(n) = self.fold(x - y) {
+                    return n;
+                }
+            }
+            (Some(x), None) if x == 0.0 => return self.neg(b),
+            (None, Some(y)) if y == 0.0 => return a,
+            _ => {}
+        }
+        if let Op::Neg(nb) = self.op(b) {
+            return self.add(a, nb);
+        }
+        self.intern(Op::Sub(a, b))
+    }
+
+    pub fn neg(&mut self, a: NodeId) -> NodeId {
+        match self.op(a) {
+            Op::Const(bits) => self.constant(-f64::from_bits(bits)),
+            Op::Neg(x) => x,
+            Op::Sub(x, y) => self.intern(Op::Sub(y, x)),
+            Op::Mul(x, y) if self.as_const(x).is_some() => {
+                let c = self.constant(-self.as_const(x).unwrap_or(0.0));
+                self.mul(c, y)
+            }
+            _ => self.intern(Op::Neg(a)),
+        }
+    }
+
+    pub fn mul(&mut self, a: NodeId, b: NodeId) -> NodeId {
+        // Constants go first so the rules below see them in one place.
+        let (a, b) = if self.as_const(b).is_some() && self.as_const(a).is_none() {
+            (b, a)
+        } else {
+            (a, b)
+        };
+        match (self.as_const(a), self.as_const(b)) {
+            (Some(x), Some(y)) => {
+                if let Some(n) = self.fold(x * y) {
+                    return n;
+                }
+            }
+            (Some(x), None) => {
+                if x == 0.0 {
+                    return self.zero();
+                }
+                if x == 1.0 {
+                    return b;
+                }
+                if x == -1.0 {
+                    return self.neg(b);
+                }
+                // c1 * (c2 * y) = (c1 c2) * y
+                if let Op::Mul(c2, y) = self.op(b)
+                    && let Some(c2v) = self.as_const(c2)
+                    && let Some(c) = self.fold(x * c2v)
+                {
+                    return self.mul(c, y);
+                }
+                if let Op::Neg(y) = self.op(b) {
+                    let c = self.constant(-x);
+                    return self.mul(c, y);
+                }
+            }
+            _ => {}
+        }
+        // (-x) * (-y) = x * y; (-x) * y = -(x * y): keeps negations at the top, where add/sub
+        // absorb them.
+        match (self.op(a), self.op(b)) {
+            (Op::Neg(x), Op::Neg(y)) => return self.mul(x, y),
+            (Op::Neg(x), _) => {
+                let m = self.mul(x, b);
+                return self.neg(m);
+            }
+            (_, Op::Neg(y)) => {
+                let m = self.mul(a, y);
+                return self.neg(m);
+            }
+            _ => {}
+        }
+        if a == b && self.as_const(a).is_none() {
+            return self.powi(a, 2);
+        }
+        let (a, b) = if self.as_const(a).is_some() || a <= b {
+            (a, b)
+        } else {
+            (b, a)
+        };
+        self.intern(Op::Mul(a, b))
+    }
+
+    pub fn div(&mut self, a: NodeId, b: NodeId) -> NodeId {
+        if a == b {
+            return self.one();
+        }
+        match (self.as_const(a), self.as_const(b)) {
+            (Some(x), Some(y)) => {
+                if let Some(n) = self.fold(x / y) {
+                    return n;
+                }
+            }
+            (Some(x), None) if x == 0.0 => return self.zero(),
+            (None, Some(y)) if y == 1.0 => return a,
+            (None, Some(y)) if y == -1.0 => return self.neg(a),
+            (None, Some(y)) if y != 0.0 && (1.0 / y).is_finite() && is_power_of_two(y) => {
+                // Division by a power of two is an exact multiplication.
+                let c = self.constant(1.0 / y);
+                return self.mul(c, a);
+            }
+            _ => {}
+        }
+        if let Op::Neg(x) = self.op(a) {
+            let d = self.div(x, b);
+            return self.neg(d);
+        }
+        self.intern(Op::Div(a, b))
+    }
+
+    pub fn powi(&mut self, a: NodeId, n: i32) -> NodeId {
+        match n {
+            0 => return self.one(),
+            1 => return a,
+            _ => {}
+        }
+        if let Some(x) = self.as_const(a)
+            && let Some(c) = self.fold(x.powi(n))
+        {
+            return c;
+        }
+        self.intern(Op::Powi(a, n))
+    }
+
+    pub fn powf(&mut self, a: NodeId, b: NodeId) -> NodeId {
+        if let Some(e) = self.as_const(b) {
+            if e == e.trunc() && e.abs() <= 64.0 {
+                return self.powi(a, e as i32);
+            }
+            if e == 0.5 {
+                return self.func(Func::Sqrt, a);
+            }
+        }
+        if let (Some(x), Some(y)) = (self.as_const(a), self.as_const(b))
+            && let Some(c) = self.fold(x.powf(y))
+        {
+            return c;
+        }
+        self.intern(Op::Powf(a, b))
+    }
+
+    pub fn func(&mut self, f: Func, a: NodeId) -> NodeId {
+        if let Some(x) = self.as_const(a)
+            && let Some(c) = self.fold(f.eval(x))
+        {
+            return c;
+        }
+        match (f, self.op(a)) {
+            (Func::Abs, Op::Func(Func::Abs, _)) => return a,
+            (Func::Signum, Op::Func(Func::Signum, _)) => return a,
+            _ => {}
+        }
+        self.intern(Op::Func(f, a))
+    }
+
+    pub fn atan2(&mut self, y: NodeId, x: NodeId) -> NodeId {
+        if let (Some(yv), Some(xv)) = (self.as_const(y), self.as_const(x))
+            && let Some(c) = self.fold(yv.atan2(xv))
+        {
+            return c;
+        }
+        self.intern(Op::Atan2(y, x))
+    }
+
+    /// All nodes reachable from `roots`, in increasing (topological) order.
+    pub fn reachable(&self, roots: &[NodeId]) -> Vec<NodeId> {
+        let mut seen = vec![false; self.nodes.len()];
+        let mut stack: Vec<NodeId> = roots.to_vec();
+        let mut out = Vec::new();
+        while let Some(n) = stack.pop() {
+            if std::mem::replace(&mut seen[n.index()], true) {
+                continue;
+            }
+            out.push(n);
+            stack.extend(self.op(n).operands());
+        }
+        out.sort_unstable();
+        out
+    }
+
+    /// The leaves a set of roots depends on.
+    pub fn leaves_of(&self, roots: &[NodeId]) -> Vec<Leaf> {
+        self.reachable(roots)
+            .into_iter()
+            .filter_map(|n| match self.op(n) {
+                Op::Leaf(l) => Some(l),
+                _ => None,
+            })
+            .collect()
+    }
+
+    /// Forward-mode differentiation: the tangent of `root` when every leaf `l` moves with
+    /// tangent `seed(l)` (`None` = does not move). Used with different seeds for partial
+    /// derivatives (one unknown seeded with 1), for total derivatives along an input (unknowns
+    /// seeded with their analog leaves `Tan`), and for second derivatives (applied twice).
+    pub fn tangent(&mut self, roots: &[NodeId], seed: &dyn Fn(Leaf) -> Option<NodeId>) -> Vec<NodeId> {
+        let order = self.reachable(roots);
+        let mut memo: HashMap<NodeId, NodeId> = HashMap::with_capacity(order.len());
+        for n in order {
+            let d = self.tangent_of(n, &memo, seed);
+            memo.insert(n, d);
+        }
+        roots.iter().map(|r| memo[r]).collect()
+    }
+
+    fn tangent_of(
+        &mut self,
+        n: NodeId,
+        memo: &HashMap<NodeId, NodeId>,
+        seed: &dyn Fn(Leaf) -> Option<NodeId>,
+    ) -> NodeId {
+        let d = |x: NodeId| memo[&x];
+        match self.op(n) {
+            Op::Const(_) => self.zero(),
+            Op::Leaf(l) => match seed(l) {
+                Some(t) => t,
+                None => self.zero(),
+            },
+            Op::Add(a, b) => self.add(d(a), d(b)),
+            Op::Sub(a, b) => self.sub(d(a), d(b)),
+            Op::Neg(a) => self.neg(d(a)),
+            Op::Mul(a, b) => {
+                let (da, db) = (d(a), d(b));
+                let t1 = self.mul(da, b);
+                let t2 = self.mul(a, db);
+                self.add(t1, t2)
+            }
+            Op::Div(a, b) => {
+                // d(a/b) = (da - (a/b) db) / b: reuses the quotient node itself.
+                let (da, db) = (d(a), d(b));
+                let q_db = self.mul(n, db);
+                let num = self.sub(da, q_db);
+                self.div(num, b)
+            }
+            Op::Powi(a, k) => {
+                let da = d(a);
+                let c = self.constant(k as f64);
+                let p = self.powi(a, k - 1);
+                let cp = self.mul(c, p);
+                self.mul(cp, da)
+            }
+            Op::Powf(a, b) => {
+                // d(a^b) = a^b (db ln a + b da / a)
+                let (da, db) = (d(a), d(b));
+                let ln_a = self.func(Func::Ln, a);
+                let t1 = self.mul(db, ln_a);
+                let b_da = self.mul(b, da);
+                let t2 = self.div(b_da, a);
+                let s = self.add(t1, t2);
+                self.mul(n, s)
+            }
+            Op::Atan2(y, x) => {
+                // d atan2(y, x) = (x dy - y dx) / (x^2 + y^2)
+                let (dy, dx) = (d(y), d(x));
+                let t1 = self.mul(x, dy);
+                let t2 = self.mul(y, dx);
+                let num = self.sub(t1, t2);
+                let x2 = self.powi(x, 2);
+                let y2 = self.powi(y, 2);
+                let den = self.add(x2, y2);
+                self.div(num, den)
+            }
+            Op::Func(f, a) => {
+                let da = d(a);
+                if self.is_zero(da) {
+                    return da;
+                }
+                let factor = match f {
+                    Func::Sin => self.func(Func::Cos, a),
+                    Func::Cos => {
+                        let s = self.func(Func::Sin, a);
+                        self.neg(s)
+                    }
+                    Func::Tan => {
+                        let t2 = self.powi(n, 2);
+                        let one = self.one();
+                        self.add(one, t2)
+                    }
+                    Func::Asin | Func::Acos => {
+                        let one = self.one();
+                        let a2 = self.powi(a, 2);
+                        let r = self.sub(one, a2);
+                        let s = self.func(Func::Sqrt, r);
+                        let inv = self.div(one, s);
+                        if f == Func::Acos { self.neg(inv) } else { inv }
+                    }
+                    Func::Atan => {
+                        let one = self.one();
+                        let a2 = self.powi(a, 2);
+                        let r = self.add(one, a2);
+                        self.div(one, r)
+                    }
+                    Func::Sqrt => {
+                        let two = self.constant(2.0);
+                        let den = self.mul(two, n);
+                        let one = self.one();
+                        self.div(one, den)
+                    }
+                    Func::Exp => n,
+                    Func::Ln => {
+                        let one = self.one();
+                        self.div(one, a)
+                    }
+                    Func::Abs => self.func(Func::Signum, a),
+                    Func::Signum => return self.zero(),
+                };
+                self.mul(factor, da)
+            }
+        }
+    }
+
+    /// Replaces leaves by other nodes (e.g. block unknowns by zero for a linear block's
+    /// constant term), rebuilding every node on the way so simplification applies again.
+    pub fn substitute(&mut self, roots: &[NodeId], map: &dyn Fn(Leaf) -> Option<NodeId>) -> Vec<NodeId> {
+        let order = self.reachable(roots);
+        let mut memo: HashMap<NodeId, NodeId> = HashMap::with_capacity(order.len());
+        for n in order {
+            let m = |x: NodeId| memo[&x];
+            let new = match self.op(n) {
+                Op::Const(_) => n,
+                Op::Leaf(l) => map(l).unwrap_or(n),
+                Op::Add(a, b) => self.add(m(a), m(b)),
+                Op::Sub(a, b) => self.sub(m(a), m(b)),
+                Op::Mul(a, b) => self.mul(m(a), m(b)),
+                Op::Div(a, b) => self.div(m(a), m(b)),
+                Op::Neg(a) => self.neg(m(a)),
+                Op::Powi(a, k) => self.powi(m(a), k),
+                Op::Powf(a, b) => self.powf(m(a), m(b)),
+                Op::Func(f, a) => self.func(f, m(a)),
+                Op::Atan2(a, b) => self.atan2(m(a), m(b)),
+            };
+            memo.insert(n, new);
+        }
+        roots.iter().map(|r| memo[r]).collect()
+    }
+
+    /// Evaluates nodes numerically (used by the macro's own tests and by constant guesses).
+    pub fn eval(&self, roots: &[NodeId], leaf: &dyn Fn(Leaf) -> f64) -> Vec<f64> {
+        let order = self.reachable(roots);
+        let mut val: HashMap<NodeId, f64> = HashMap::with_capacity(order.len());
+        for n in order {
+            let v = |x: NodeId| val[&x];
+            let r = match self.op(n) {
+                Op::Const(bits) => f64::from_bits(bits),
+                Op::Leaf(l) => leaf(l),
+                Op::Add(a, b) => v(a) + v(b),
+                Op::Sub(a, b) => v(a) - v(b),
+                Op::Mul(a, b) => v(a) * v(b),
+                Op::Div(a, b) => v(a) / v(b),
+                Op::Neg(a) => -v(a),
+                Op::Powi(a, k) => v(a).powi(k),
+                Op::Powf(a, b) => v(a).powf(v(b)),
+                Op::Func(f, a) => f.eval(v(a)),
+                Op::Atan2(a, b) => v(a).atan2(v(b)),
+            };
+            val.insert(n, r);
+        }
+        roots.iter().map(|r| val[r]).collect()
+    }
+}
+
+fn is_power_of_two(y: f64) -> bool {
+    let m = y.abs();
+    m.is_normal() && m.log2() == m.log2().trunc()
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn leaves(g: &mut Graph) -> (NodeId, NodeId) {
+        (g.leaf(Leaf::Unknown(0)), g.leaf(Leaf::Param(0)))
+    }
+
+    #[test]
+    fn hash_consing_shares_nodes() {
+        let mut g = Graph::new();
+        let (q, p) = leaves(&mut g);
+        let a = g.mul(p, q);
+        let b = g.mul(q, p);
+        assert_eq!(a, b, "multiplication is commutative in the key");
+        let s1 = g.func(Func::Sin, q);
+        let s2 = g.func(Func::Sin, q);
+        assert_eq!(s1, s2);
+    }
+
+    #[test]
+    fn simplification_removes_trivial_terms() {
+        let mut g = Graph::new();
+        let (q, _) = leaves(&mut g);
+        let zero = g.zero();
+        let one = g.one();
+        assert_eq!(g.add(q, zero), q);
+        assert_eq!(g.mul(one, q), q);
+        assert!(g.is_zero(g.clone().mul(zero, q)));
+        assert!(g.is_zero(g.clone().sub(q, q)));
+        let nq = g.neg(q);
+        assert_eq!(g.neg(nq), q);
+    }
+
+    /// Derivatives against central finite differences of the graph's own evaluation.
+    #[test]
+    fn tangent_matches_finite_differences() {
+        let mut g = Graph::new();
+        let (q, p) = leaves(&mut g);
+        let s = g.func(Func::Sin, q);
+        let c = g.func(Func::Cos, q);
+        let pq = g.mul(p, s);
+        let r = g.div(pq, c);
+        let two = g.constant(2.0);
+        let sq = g.powf(q, two);
+        let e = g.func(Func::Exp, sq);
+        let at = g.atan2(s, e);
+        let l = g.func(Func::Ln, e);
+        let half = g.constant(0.3);
+        let pw = g.powf(p, half);
+        let as_ = g.mul(half, s);
+        let asn = g.func(Func::Asin, as_);
+        let ac = g.func(Func::Acos, as_);
+        let sqr = g.func(Func::Sqrt, e);
+        let t = g.func(Func::Tan, as_);
+        let ab = g.func(Func::Abs, r);
+        let at1 = g.func(Func::Atan, r);
+        let qp = g.powf(p, q);
+        let roots = [r, at, l, pw, asn, ac, sqr, t, ab, at1, qp, e];
+        let one = g.one();
+        let d = g.tangent(&roots, &|leaf| (leaf == Leaf::Unknown(0)).then_some(one));
+        let eval_at = |g: &Graph, qv: f64, nodes: &[NodeId]| {
+            g.eval(nodes, &|l| match l {
+                Leaf::Unknown(0) => qv,
+                Leaf::Param(0) => 1.7,
+                _ => f64::NAN,
+            })
+        };
+        let q0 = 0.4;
+        let h = 1e-6;
+        let plus = eval_at(&g, q0 + h, &roots);
+        let minus = eval_at(&g, q0 - h, &roots);
+        let exact = eval_at(&g, q0, &d);
+        for i in 0..roots.len() {
+            let fd = (plus[i] - minus[i]) / (2.0 * h);
+            assert!(
+                (fd - exact[i]).abs() <= 1e-7 * (1.0 + fd.abs()),
+                "root {i}: fd {fd} vs ad {}",
+                exact[i]
+            );
+        }
+    }
+
+    #[test]
+    fn deep_chains_do_not_recurse() {
+        let mut g = Graph::new();
+        let (q, _) = leaves(&mut g);
+        let mut acc = q;
+        for _ in 0..200_000 {
+            let s = g.func(Func::Sin, acc);
+            acc = g.add(s, q);
+        }
+        let one = g.one();
+        let d = g.tangent(&[acc], &|l| (l == Leaf::Unknown(0)).then_some(one));
+        assert!(g.eval(&d, &|_| 0.1)[0].is_finite());
+    }
+}

@@ -1,0 +1,389 @@
+//! Expressions of the declaration language and their Pratt parser.
+//!
+//! Precedence, loosest first:
+//!
+//! | level | operators | associativity |
+//! |-------|-----------|---------------|
+//! | 1 | `+` `-` | left |
+//! | 2 | `@` (polar vector `length @ angle`) | left |
+//! | 3 | `*` `/` | left |
+//! | 4 | unary `-` | prefix |
+//! | 5 | `^` (power) | right |
+//! | 6 | `.x` `.y` (vector components) | postfix |
+//!
+//! So `a + r @ phi` is `a + (r @ phi)`, `2 * r @ phi` is `(2 * r) @ phi`, and `-x^2` is
+//! `-(x^2)`. An angle that is a sum needs parentheses: `r @ (phi + gamma)`.
+
+use proc_macro2::{Span, TokenStream};
+use quote::quote_spanned;
+use syn::parse::ParseStream;
+use syn::{Ident, Token};
+
+/// The first and last token of a syntax node, so errors can underline the whole node.
+#[derive(Clone, Copy, Debug)]
+pub struct SpanRange {
+    pub start: Span,
+    pub end: Span,
+}
+
+impl SpanRange {
+    pub fn single(span: Span) -> Self {
+        SpanRange { start: span, end: span }
+    }
+
+    pub fn to(self, other: SpanRange) -> Self {
+        SpanRange { start: self.start, end: other.end }
+    }
+
+    /// A `syn::Error` underlining this range.
+    pub fn error(self, message: impl std::fmt::Display) -> syn::Error {
+        // `Error::new_spanned` records the first and last token's spans, which is how a range is
+        // expressed on stable Rust (where `Span::join` is unavailable).
+        let (start, end) = (self.start, self.end);
+        let tokens: TokenStream = quote_spanned!(start=> __a).into_iter().chain(quote_spanned!(end=> __b)).collect();
+        syn::Error::new_spanned(tokens, message)
+    }
+}
+
+#[derive(Clone, Copy, PartialEq, Eq, Debug)]
+pub enum BinOp {
+    Add,
+    Sub,
+    Mul,
+    Div,
+    Pow,
+    /// `length @ angle`.
+    Polar,
+}
+
+impl BinOp {
+    pub fn symbol(self) -> &'static str {
+        match self {
+            BinOp::Add => "+",
+            BinOp::Sub => "-",
+            BinOp::Mul => "*",
+            BinOp::Div => "/",
+            BinOp::Pow => "^",
+            BinOp::Polar => "@",
+        }
+    }
+}
+
+#[derive(Clone, Copy, PartialEq, Eq, Debug)]
+pub enum Component {
+    X,
+    Y,
+}
+
+#[derive(Clone, Debug)]
+pub enum Expr {
+    /// A number literal; `integer` is set when it was written without a decimal point.
+    Num { value: f64, integer: Option<i64>, span: Span },
+    Var(Ident),
+    Neg { op: Span, expr: Box<Expr> },
+    Binary { op: BinOp, op_span: Span, lhs: Box<Expr>, rhs: Box<Expr> },
+    Call { func: Ident, args: Vec<Expr>, close: Span },
+    /// A Cartesian vector `(x, y)`.
+    Tuple { open: Span, x: Box<Expr>, y: Box<Expr>, close: Span },
+    Paren { open: Span, inner: Box<Expr>, close: Span },
+    Field { base: Box<Expr>, component: Component, name: Ident },
+}
+
+impl Expr {
+    pub fn range(&self) -> SpanRange {
+        match self {
+            Expr::Num { span, .. } => SpanRange::single(*span),
+            Expr::Var(id) => SpanRange::single(id.span()),
+            Expr::Neg { op, expr } => SpanRange::single(*op).to(expr.range()),
+            Expr::Binary { lhs, rhs, .. } => lhs.range().to(rhs.range()),
+            Expr::Call { func, close, .. } => SpanRange { start: func.span(), end: *close },
+            Expr::Tuple { open, close, .. } | Expr::Paren { open, close, .. } => {
+                SpanRange { start: *open, end: *close }
+            }
+            Expr::Field { base, name, .. } => base.range().to(SpanRange::single(name.span())),
+        }
+    }
+
+    /// Is this the literal `0` (used for `loop name: a + b - c == 0`)?
+    pub fn is_literal_zero(&self) -> bool {
+        match self {
+            Expr::Num { value, .. } => *value == 0.0,
+            Expr::Paren { inner, .. } => inner.is_literal_zero(),
+            _ => false,
+        }
+    }
+}
+
+/// Deepest expression nesting accepted. Deeper input is rejected with an error instead of
+/// risking the compiler's stack in the recursive parts (parsing, lowering, dropping the tree).
+pub const MAX_DEPTH: usize = 128;
+
+/// Parses one expression, stopping before `==`, `;`, `,` or the end of the input.
+pub fn parse_expr(input: ParseStream) -> syn::Result<Expr> {
+    Parser { depth: 0 }.expr(input, 0)
+}
+
+struct Parser {
+    depth: usize,
+}
+
+/// Binding power of an infix operator at the front of `input`, if one is there.
+fn peek_infix(input: ParseStream) -> Option<(BinOp, u8)> {
+    if input.peek(Token![==]) || input.peek(Token![=>]) {
+        return None;
+    }
+    if input.peek(Token![+]) {
+        Some((BinOp::Add, 1))
+    } else if input.peek(Token![-]) && !input.peek(Token![->]) {
+        Some((BinOp::Sub, 1))
+    } else if input.peek(Token![@]) {
+        Some((BinOp::Polar, 2))
+    } else if input.peek(Token![*]) {
+        Some((BinOp::Mul, 3))
+    } else if input.peek(Token![/]) {
+        Some((BinOp::Div, 3))
+    } else if input.peek(Token![^]) {
+        Some((BinOp::Pow, 5))
+    } else {
+        None
+    }
+}
+
+const PREFIX_NEG: u8 = 4;
+
+impl Parser {
+    fn enter(&mut self, input: ParseStream) -> syn::Result<()> {
+        self.depth += 1;
+        if self.depth > MAX_DEPTH {
+            return Err(input.error(format!(
+                "expression nested more than {MAX_DEPTH} levels deep; split it into named parts with `let`"
+            )));
+        }
+        Ok(())
+    }
+
+    fn expr(&mut self, input: ParseStream, min_bp: u8) -> syn::Result<Expr> {
+        self.enter(input)?;
+        let mut lhs = self.prefix(input)?;
+        // Counts how many operators were chained at this level: a long chain `a + b + c + ...`
+        // builds a left-deep tree, which must respect the depth bound too.
+        let mut chain = 0usize;
+        while let Some((op, bp)) = peek_infix(input) {
+            if bp < min_bp {
+                break;
+            }
+            chain += 1;
+            if self.depth + chain > MAX_DEPTH {
+                return Err(input.error(format!(
+                    "expression has more than {MAX_DEPTH} chained operators; split it into named parts with `let`"
+                )));
+            }
+            let op_span = input.span();
+            match op {
+                BinOp::Add => drop(input.parse::<Token![+]>()?),
+                BinOp::Sub => drop(input.parse::<Token![-]>()?),
+                BinOp::Mul => drop(input.parse::<Token![*]>()?),
+                BinOp::Div => drop(input.parse::<Token![/]>()?),
+                BinOp::Pow => drop(input.parse::<Token![^]>()?),
+                BinOp::Polar => drop(input.parse::<Token![@]>()?),
+            }
+            // Left-associative operators parse their right side one level tighter; `^` is
+            // right-associative and parses its right side at its own level.
+            let rhs_bp = if op == BinOp::Pow { bp } else { bp + 1 };
+            let rhs = if op == BinOp::Pow {
+                // The exponent may carry its own sign: `x^-1`.
+                self.expr(input, rhs_bp.min(PREFIX_NEG))?
+            } else {
+                self.expr(input, rhs_bp)?
+            };
+            lhs = Expr::Binary { op, op_span, lhs: Box::new(lhs), rhs: Box::new(rhs) };
+        }
+        self.depth -= 1;
+        Ok(lhs)
+    }
+
+    fn prefix(&mut self, input: ParseStream) -> syn::Result<Expr> {
+        if input.peek(Token![-]) {
+            let op = input.parse::<Token![-]>()?.span;
+            let expr = self.expr(input, PREFIX_NEG)?;
+            return Ok(Expr::Neg { op, expr: Box::new(expr) });
+        }
+        if input.peek(Token![+]) {
+            return Err(input.error("unary `+` is not supported; write the value without a sign"));
+        }
+        let primary = self.primary(input)?;
+        self.postfix(input, primary)
+    }
+
+    fn postfix(&mut self, input: ParseStream, mut base: Expr) -> syn::Result<Expr> {
+        while input.peek(Token![.]) && !input.peek(Token![..]) {
+            input.parse::<Token![.]>()?;
+            let name: Ident = match input.parse() {
+                Ok(id) => id,
+                Err(_) => return Err(input.error("expected `x` or `y` after `.` (a vector component)")),
+            };
+            let component = match name.to_string().as_str() {
+                "x" => Component::X,
+                "y" => Component::Y,
+                other => {
+                    let hint = if input.peek(syn::token::Paren) {
+                        format!("method calls are not supported: write `{other}(value)` instead of `value.{other}()`")
+                    } else {
+                        format!("a vector has only the components `.x` and `.y`, not `.{other}`")
+                    };
+                    return Err(syn::Error::new(name.span(), hint));
+                }
+            };
+            base = Expr::Field { base: Box::new(base), component, name };
+        }
+        Ok(base)
+    }
+
+    fn primary(&mut self, input: ParseStream) -> syn::Result<Expr> {
+        let look = input.lookahead1();
+        if look.peek(syn::LitInt) {
+            let lit: syn::LitInt = input.parse()?;
+            if !lit.suffix().is_empty() {
+                return Err(syn::Error::new(
+                    lit.span(),
+                    format!("number suffixes are not needed: write `{}` (all values are f64)", lit.base10_digits()),
+                ));
+            }
+            let value: f64 = lit.base10_digits().parse().map_err(|_| syn::Error::new(lit.span(), "invalid number"))?;
+            if !value.is_finite() {
+                return Err(syn::Error::new(lit.span(), "number is too large to be a finite f64"));
+            }
+            let integer = lit.base10_digits().parse::<i64>().ok();
+            return Ok(Expr::Num { value, integer, span: lit.span() });
+        }
+        if look.peek(syn::LitFloat) {
+            let lit: syn::LitFloat = input.parse()?;
+            if !lit.suffix().is_empty() {
+                return Err(syn::Error::new(
+                    lit.span(),
+                    format!("number suffixes are not needed: write `{}` (all values are f64)", lit.base10_digits()),
+                ));
+            }
+            let value: f64 = lit.base10_digits().parse().map_err(|_| syn::Error::new(lit.span(), "invalid number"))?;
+            if !value.is_finite() {
+                return Err(syn::Error::new(lit.span(), "number is too large to be a finite f64"));
+            }
+            return Ok(Expr::Num { value, integer: None, span: lit.span() });
+        }
+        if look.peek(Ident) {
+            let id: Ident = input.parse()?;
+            if input.peek(syn::token::Paren) {
+                let content;
+                let paren = syn::parenthesized!(content in input);
+                let mut args = Vec::new();
+                while !content.is_empty() {
+                    args.push(self.expr(&content, 0)?);
+                    if content.is_empty() {
+                        break;
+                    }
+                    if !content.peek(Token![,]) {
+                        return Err(content.error("expected `,` between function arguments"));
+                    }
+                    content.parse::<Token![,]>()?;
+                }
+                return Ok(Expr::Call { func: id, args, close: paren.span.close() });
+            }
+            return Ok(Expr::Var(id));
+        }
+        if look.peek(syn::token::Paren) {
+            let content;
+            let paren = syn::parenthesized!(content in input);
+            let (open, close) = (paren.span.open(), paren.span.close());
+            if content.is_empty() {
+                return Err(syn::Error::new(
+                    paren.span.join(),
+                    "empty parentheses: write a value `(e)` or a vector `(x, y)`",
+                ));
+            }
+            let first = self.expr(&content, 0)?;
+            if content.is_empty() {
+                return Ok(Expr::Paren { open, inner: Box::new(first), close });
+            }
+            if !content.peek(Token![,]) {
+                return Err(content.error("expected `,` (a vector is written `(x, y)`) or `)`"));
+            }
+            content.parse::<Token![,]>()?;
+            if content.is_empty() {
+                return Err(syn::Error::new(close, "a vector needs two components: `(x, y)`"));
+            }
+            let second = self.expr(&content, 0)?;
+            if content.peek(Token![,]) {
+                content.parse::<Token![,]>()?;
+                if !content.is_empty() {
+                    return Err(content.error("planar vectors have two components: write `(x, y)`"));
+                }
+            }
+            if !content.is_empty() {
+                return Err(content.error("expected `)` after the vector's second component"));
+            }
+            return Ok(Expr::Tuple { open, x: Box::new(first), y: Box::new(second), close });
+        }
+        if input.is_empty() {
+            return Err(input.error("expected an expression"));
+        }
+        Err(look.error())
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use syn::parse::Parser as _;
+
+    fn show(e: &Expr) -> String {
+        match e {
+            Expr::Num { value, .. } => format!("{value}"),
+            Expr::Var(id) => id.to_string(),
+            Expr::Neg { expr, .. } => format!("(-{})", show(expr)),
+            Expr::Binary { op, lhs, rhs, .. } => format!("({} {} {})", show(lhs), op.symbol(), show(rhs)),
+            Expr::Call { func, args, .. } => {
+                format!("{func}({})", args.iter().map(show).collect::<Vec<_>>().join(", "))
+            }
+            Expr::Tuple { x, y, .. } => format!("<{}, {}>", show(x), show(y)),
+            Expr::Paren { inner, .. } => show(inner),
+            Expr::Field { base, component, .. } => format!("{}.{:?}", show(base), component),
+        }
+    }
+
+    fn parse(s: &str) -> String {
+        let ts: TokenStream = s.parse().unwrap();
+        match parse_expr.parse2(ts) {
+            Ok(e) => show(&e),
+            Err(e) => format!("error: {e}"),
+        }
+    }
+
+    #[test]
+    fn precedence() {
+        assert_eq!(parse("a + r @ phi"), "(a + (r @ phi))");
+        assert_eq!(parse("2 * r @ phi"), "((2 * r) @ phi)");
+        assert_eq!(parse("r @ (phi + g)"), "(r @ (phi + g))");
+        assert_eq!(parse("-x^2"), "(-(x ^ 2))");
+        assert_eq!(parse("a^b^c"), "(a ^ (b ^ c))");
+        assert_eq!(parse("a - b - c"), "((a - b) - c)");
+        assert_eq!(parse("a / b * c"), "((a / b) * c)");
+        assert_eq!(parse("x^-1"), "(x ^ (-1))");
+        assert_eq!(parse("(0, e) + r @ p"), "(<0, e> + (r @ p))");
+        assert_eq!(parse("atan2(y, x) * 2"), "(atan2(y, x) * 2)");
+        assert_eq!(parse("(a + b).x"), "(a + b).X");
+        assert_eq!(parse("2 * -x"), "(2 * (-x))");
+    }
+
+    #[test]
+    fn errors_are_reported_not_panicked() {
+        assert!(parse("").starts_with("error"));
+        assert!(parse("(a, b, c)").starts_with("error"));
+        assert!(parse("()").starts_with("error"));
+        assert!(parse("1f32").starts_with("error"));
+        assert!(parse("a.z").starts_with("error"));
+        let deep = format!("{}x{}", "(".repeat(500), ")".repeat(500));
+        assert!(parse(&deep).contains("nested"));
+        let long = vec!["x"; 1000].join(" + ");
+        assert!(parse(&long).contains("chained"));
+    }
+}

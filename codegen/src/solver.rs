@@ -1,0 +1,302 @@
+//! Generation of the straight-line solver functions (flat arrays in, flat arrays out).
+//!
+//! Three variants share one scheduler:
+//! * `Position`: blocks solved in BLT order (Newton per nonlinear block, one linear solve per
+//!   linear block);
+//! * `Fused`: the same, then velocity and acceleration analogs with one factorisation per block
+//!   (the Newton evaluation's Jacobian at the solution is reused, linear blocks reuse their
+//!   position factorisation), then the outputs and their analogs;
+//! * `At`: analogs and outputs at a position given by the caller.
+
+use crate::dag::NodeId;
+use crate::emit::{Names, ScopeKind, ScopeSpec, float, schedule};
+use crate::model::Model;
+use crate::plan::{Plan, pair_index, pairs};
+use proc_macro2::{Literal, TokenStream};
+use quote::{format_ident, quote};
+
+#[derive(Clone, Copy, PartialEq, Eq)]
+pub enum Mode {
+    Position,
+    Fused,
+    At,
+}
+
+fn lit(n: usize) -> Literal {
+    Literal::usize_unsuffixed(n)
+}
+
+/// The body of a solver function with arguments `__x`, `__guess`/`__q` and `__cfg`.
+pub fn solver_body(model: &Model, plan: &Plan, names: &Names, mode: Mode, rt: &TokenStream) -> TokenStream {
+    let g = &model.graph;
+    let nb = plan.blocks.len();
+    let mut scopes: Vec<ScopeSpec> = Vec::new();
+    let mut push = |kind: ScopeKind, roots: Vec<NodeId>| {
+        scopes.push(ScopeSpec { kind, roots });
+        scopes.len() - 1
+    };
+    let res_idx = (mode == Mode::At).then(|| push(ScopeKind::Plain, plan.residuals.clone()));
+    let mut pre_idx = vec![0; nb];
+    let mut loop_idx = vec![0; nb];
+    if mode != Mode::At {
+        for (b, bp) in plan.blocks.iter().enumerate() {
+            let (pre_roots, loop_roots) = if bp.linear {
+                (bp.jac.concat().into_iter().chain(bp.f0.iter().copied()).collect(), Vec::new())
+            } else {
+                (Vec::new(), bp.f.iter().copied().chain(bp.jac.concat()).collect())
+            };
+            pre_idx[b] = push(ScopeKind::Plain, pre_roots);
+            loop_idx[b] = push(ScopeKind::Loop(b), loop_roots);
+        }
+    }
+    let mut vel_idx = vec![0; nb];
+    let mut acc_idx = vec![0; nb];
+    let mut out_idx = 0;
+    if mode != Mode::Position {
+        for (b, bp) in plan.blocks.iter().enumerate() {
+            let mut roots = bp.vel.concat();
+            if mode == Mode::At {
+                roots.extend(bp.jac.concat());
+            }
+            vel_idx[b] = push(ScopeKind::Plain, roots);
+        }
+        for (b, bp) in plan.blocks.iter().enumerate() {
+            acc_idx[b] = push(ScopeKind::Plain, bp.acc.concat());
+        }
+        let roots = plan
+            .outputs
+            .iter()
+            .copied()
+            .chain(plan.out_d1.concat())
+            .chain(plan.out_d2.concat())
+            .collect();
+        out_idx = push(ScopeKind::Plain, roots);
+    }
+    let sched = schedule(g, &plan.level, &scopes);
+    let op = |n: NodeId| names.operand(g, n);
+    let neg = |n: NodeId| {
+        let o = names.operand(g, n);
+        quote!(-(#o))
+    };
+
+    let mut body = TokenStream::new();
+    let inputs = &names.inputs;
+    let params = &names.params;
+    let fields: Vec<_> = model.params.iter().map(|p| &p.name).collect();
+    body.extend(quote! {
+        let [#(#inputs),*] = *__x;
+        #(let #params: f64 = self.#fields;)*
+    });
+    let q_all = &names.unknowns;
+    if let Some(r) = res_idx {
+        let lets = names.lets(g, &sched.lets[r]);
+        let res = plan.residuals.iter().map(|&n| op(n));
+        body.extend(quote! {
+            let [#(#q_all),*] = *__q;
+            #lets
+            let __report = #rt::SolveReport::given(#rt::max_abs([#(#res),*]));
+        });
+    } else {
+        body.extend(quote!(let mut __report = #rt::SolveReport::direct();));
+    }
+
+    // Positions, block by block.
+    if mode != Mode::At {
+        for (b, bp) in plan.blocks.iter().enumerate() {
+            let n = lit(bp.unknowns.len());
+            let bl = lit(b);
+            let qs: Vec<_> = bp.unknowns.iter().map(|&u| &names.unknowns[u]).collect();
+            let pre = names.lets(g, &sched.lets[pre_idx[b]]);
+            body.extend(pre);
+            let jrows: Vec<TokenStream> = bp
+                .jac
+                .iter()
+                .map(|row| {
+                    let r = row.iter().map(|&x| op(x));
+                    quote!([#(#r),*])
+                })
+                .collect();
+            if bp.linear {
+                let lu = format_ident!("__lu{}", b);
+                let scale = bp.jac.iter().zip(&bp.f0).map(|(row, &f0)| {
+                    let r = row.iter().map(|&x| op(x));
+                    let f = op(f0);
+                    quote!(#rt::max_abs([#(#r,)* #f]))
+                });
+                let aug_rows = bp.jac.iter().zip(&bp.f0).map(|(row, &f0)| {
+                    let r = row.iter().map(|&x| op(x));
+                    let f = op(f0);
+                    quote!([#(#r,)* #f])
+                });
+                let rhs = bp.f0.iter().map(|&f| neg(f));
+                body.extend(quote! {
+                    let #lu = #rt::Lu::<#n>::factor(&[#(#jrows),*], [#(#scale),*]);
+                    if !(#lu.pivot_ratio() >= __cfg.singular_tol) {
+                        return Err(self.__singular(#bl, #lu.pivot_ratio(), __cfg, __x, #rt::first_bad_row(&[#(#aug_rows),*])));
+                    }
+                    let [#(#qs),*] = #lu.solve([#(#rhs),*]);
+                });
+            } else {
+                let s = format_ident!("__s{}", b);
+                let l = loop_idx[b];
+                let inner = names.lets(g, &sched.lets[l]);
+                let exports: Vec<_> = sched.exports[l].iter().map(|&n| Names::temp(n)).collect();
+                let k = lit(exports.len());
+                let guess = bp.unknowns.iter().map(|&u| {
+                    let u = lit(u);
+                    quote!(__guess[#u])
+                });
+                let f = bp.f.iter().map(|&x| op(x));
+                body.extend(quote! {
+                    let #s = match #rt::newton::<#n, #k>([#(#guess),*], __cfg, |__z: &[f64; #n]| {
+                        let [#(#qs),*] = *__z;
+                        #inner
+                        #rt::BlockEval { f: [#(#f),*], j: [#(#jrows),*], keep: [#(#exports),*] }
+                    }) {
+                        Ok(s) => s,
+                        Err(e) => return Err(self.__block_failure(#bl, e, __x, __guess)),
+                    };
+                    __report.absorb(&#s);
+                    let [#(#qs),*] = #s.z;
+                    let [#(#exports),*] = #s.eval.keep;
+                });
+            }
+        }
+        if mode == Mode::Position {
+            body.extend(quote!(Ok(([#(#q_all),*], __report))));
+            return body;
+        }
+    }
+
+    // Velocity analogs: one factorisation per block, reused below for accelerations.
+    let ni = plan.ni;
+    body.extend(quote!(let mut __health = #rt::Health::default();));
+    for (b, bp) in plan.blocks.iter().enumerate() {
+        let n = lit(bp.unknowns.len());
+        let bl = lit(b);
+        let lu = format_ident!("__lu{}", b);
+        let rv = format_ident!("__rv{}", b);
+        body.extend(names.lets(g, &sched.lets[vel_idx[b]]));
+        let rows = bp.vel.iter().map(|row| {
+            let r = row.iter().map(|&x| neg(x));
+            quote!([#(#r),*])
+        });
+        body.extend(quote!(let #rv: [[f64; #ni]; #n] = [#(#rows),*];));
+        let need_factor = mode == Mode::At || !bp.linear;
+        if need_factor {
+            let j = if mode == Mode::At {
+                let jrows = bp.jac.iter().map(|row| {
+                    let r = row.iter().map(|&x| op(x));
+                    quote!([#(#r),*])
+                });
+                quote!([#(#jrows),*])
+            } else {
+                let s = format_ident!("__s{}", b);
+                quote!(#s.eval.j)
+            };
+            body.extend(quote! {
+                let __j: [[f64; #n]; #n] = #j;
+                let #lu = #rt::Lu::<#n>::factor_aug(&__j, &#rv);
+                if !(#lu.pivot_ratio() >= __cfg.singular_tol) {
+                    return Err(self.__singular(#bl, #lu.pivot_ratio(), __cfg, __x, #rt::first_bad_row(&__j).or(#rt::first_bad_row(&#rv))));
+                }
+            });
+        }
+        let vs = bp.unknowns.iter().map(|&u| {
+            let v = (0..ni).map(|i| Names::tan(u, i));
+            quote!([#(#v),*])
+        });
+        body.extend(quote! {
+            __health.note(#bl, &#lu);
+            let [#(#vs),*] = #lu.solve_cols(#rv);
+        });
+    }
+    let np = pairs(ni);
+    let npl = lit(np.len());
+    for (b, bp) in plan.blocks.iter().enumerate() {
+        let n = lit(bp.unknowns.len());
+        let lu = format_ident!("__lu{}", b);
+        body.extend(names.lets(g, &sched.lets[acc_idx[b]]));
+        let rows = bp.acc.iter().map(|row| {
+            let r = row.iter().map(|&x| neg(x));
+            quote!([#(#r),*])
+        });
+        let ws = bp.unknowns.iter().map(|&u| {
+            let w = np.iter().map(|&(i, j)| Names::tan2(u, i, j));
+            quote!([#(#w),*])
+        });
+        body.extend(quote! {
+            let __ra: [[f64; #npl]; #n] = [#(#rows),*];
+            let [#(#ws),*] = #lu.solve_cols(__ra);
+        });
+    }
+    body.extend(names.lets(g, &sched.lets[out_idx]));
+
+    let dq = (0..plan.n).map(|u| {
+        let v = (0..ni).map(|i| Names::tan(u, i));
+        quote!([#(#v),*])
+    });
+    let d2q = (0..plan.n).map(|u| {
+        let rows = (0..ni).map(|i| {
+            let w = (0..ni).map(|j| Names::tan2(u, i, j));
+            quote!([#(#w),*])
+        });
+        quote!([#(#rows),*])
+    });
+    let out = plan.outputs.iter().map(|&o| op(o));
+    let dout = plan.out_d1.iter().map(|row| {
+        let r = row.iter().map(|&x| op(x));
+        quote!([#(#r),*])
+    });
+    let d2out = plan.out_d2.iter().map(|row| {
+        let rows = (0..ni).map(|i| {
+            let r = (0..ni).map(|j| op(row[pair_index(ni, i, j)]));
+            quote!([#(#r),*])
+        });
+        quote!([#(#rows),*])
+    });
+    let guess_arg = if mode == Mode::At { quote!(None) } else { quote!(Some(__guess)) };
+    body.extend(quote! {
+        let __kin = #rt::Kin {
+            x: *__x,
+            q: [#(#q_all),*],
+            dq: [#(#dq),*],
+            d2q: [#(#d2q),*],
+            out: [#(#out),*],
+            dout: [#(#dout),*],
+            d2out: [#(#d2out),*],
+            report: __report,
+            health: __health,
+        };
+        if !__kin.all_finite() {
+            return Err(self.__non_finite(&__kin, __x, #guess_arg));
+        }
+        Ok(__kin)
+    });
+    body
+}
+
+/// Straight-line evaluation of some roots (residual, outputs, guesses); returns an array.
+pub fn straight_line(model: &Model, plan: &Plan, names: &Names, roots: &[NodeId], bind_q: bool) -> TokenStream {
+    let g = &model.graph;
+    let sched = schedule(g, &plan.level, &[ScopeSpec { kind: ScopeKind::Plain, roots: roots.to_vec() }]);
+    let lets = names.lets(g, &sched.lets[0]);
+    let inputs = &names.inputs;
+    let params = &names.params;
+    let fields: Vec<_> = model.params.iter().map(|p| &p.name).collect();
+    let q = &names.unknowns;
+    let bind = if bind_q { quote!(let [#(#q),*] = *__q;) } else { quote!() };
+    let vals = roots.iter().map(|&n| names.operand(g, n));
+    quote! {
+        let [#(#inputs),*] = *__x;
+        #(let #params: f64 = self.#fields;)*
+        #bind
+        #lets
+        [#(#vals),*]
+    }
+}
+
+/// The value of each parameter default as a literal.
+pub fn default_literals(values: &[f64]) -> Vec<TokenStream> {
+    values.iter().map(|&v| float(v)).collect()
+}

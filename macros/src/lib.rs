@@ -1,0 +1,11 @@
+//! The `mechanism!` procedural macro of [kinloop](https://docs.rs/kinloop). The logic lives in
+//! `kinloop-codegen` so it can be tested and benchmarked as plain functions; this crate only
+//! adapts it to the compiler.
+
+use proc_macro::TokenStream;
+
+/// Declares a mechanism by its closed vector loops; see the `kinloop` crate documentation.
+#[proc_macro]
+pub fn mechanism(input: TokenStream) -> TokenStream {
+    kinloop_codegen::expand(input.into()).into()
+}

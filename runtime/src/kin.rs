@@ -1,0 +1,149 @@
+//! The kinematic state of a mechanism at one input value, as flat arrays in declaration order.
+//! Generated named structs convert from it; generic code (sweeps, analyses) works on it.
+
+use crate::lu::Lu;
+use crate::newton::SolveReport;
+
+/// How far each block of the decomposition is from singular, and its assembly mode.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Health {
+    /// Bit `b` is set when the Jacobian of block `b` has a negative determinant (blocks beyond
+    /// the 64th are not recorded). A change of these signs along a sweep means a change of
+    /// assembly mode or a passage through a singular position.
+    pub det_signs: u64,
+    /// The smallest row-equilibrated pivot ratio over all blocks (`1` is perfectly conditioned,
+    /// `0` singular).
+    pub min_pivot: f64,
+    /// The block with that smallest pivot ratio.
+    pub weakest_block: usize,
+}
+
+impl Default for Health {
+    fn default() -> Self {
+        Health { det_signs: 0, min_pivot: f64::INFINITY, weakest_block: 0 }
+    }
+}
+
+impl Health {
+    #[doc(hidden)]
+    #[inline]
+    pub fn note<const N: usize>(&mut self, block: usize, lu: &Lu<N>) {
+        if lu.negative_det() && block < 64 {
+            self.det_signs |= 1u64 << block;
+        }
+        let p = lu.pivot_ratio();
+        if p < self.min_pivot {
+            self.min_pivot = p;
+            self.weakest_block = block;
+        }
+    }
+}
+
+/// Positions, velocity analogs and acceleration analogs of the unknowns and of the outputs.
+///
+/// `N` unknowns, `NI` inputs, `NO` output columns (each point contributes `x` and `y`).
+/// Analogs are partial derivatives with respect to the inputs: `dq[u][i] = d q_u / d x_i`,
+/// `d2q[u][i][j] = d2 q_u / d x_i d x_j`.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Kin<const N: usize, const NI: usize, const NO: usize> {
+    pub x: [f64; NI],
+    pub q: [f64; N],
+    pub dq: [[f64; NI]; N],
+    pub d2q: [[[f64; NI]; NI]; N],
+    pub out: [f64; NO],
+    pub dout: [[f64; NI]; NO],
+    pub d2out: [[[f64; NI]; NI]; NO],
+    pub report: SolveReport,
+    pub health: Health,
+}
+
+/// True velocities and accelerations (time derivatives) of unknowns and outputs.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct FlatMotion<const N: usize, const NO: usize> {
+    pub qdot: [f64; N],
+    pub qddot: [f64; N],
+    pub out_dot: [f64; NO],
+    pub out_ddot: [f64; NO],
+}
+
+#[inline]
+fn chain<const NI: usize>(d: &[f64; NI], d2: &[[f64; NI]; NI], w: &[f64; NI], e: &[f64; NI]) -> (f64, f64) {
+    let mut v = 0.0;
+    let mut a = 0.0;
+    for i in 0..NI {
+        v += d[i] * w[i];
+        a += d[i] * e[i];
+        for j in 0..NI {
+            a += d2[i][j] * w[i] * w[j];
+        }
+    }
+    (v, a)
+}
+
+impl<const N: usize, const NI: usize, const NO: usize> Kin<N, NI, NO> {
+    /// True motion from the analogs: `qdot = sum_i q'_i w_i` and
+    /// `qddot = sum_ij q''_ij w_i w_j + sum_i q'_i e_i`, for input speeds `w` and input
+    /// accelerations `e` (for a single input: `v = v_q w`, `a = a_q w^2 + v_q e`).
+    pub fn motion(&self, omega: &[f64; NI], eps: &[f64; NI]) -> FlatMotion<N, NO> {
+        let mut m = FlatMotion { qdot: [0.0; N], qddot: [0.0; N], out_dot: [0.0; NO], out_ddot: [0.0; NO] };
+        for u in 0..N {
+            (m.qdot[u], m.qddot[u]) = chain(&self.dq[u], &self.d2q[u], omega, eps);
+        }
+        for o in 0..NO {
+            (m.out_dot[o], m.out_ddot[o]) = chain(&self.dout[o], &self.d2out[o], omega, eps);
+        }
+        m
+    }
+
+    /// Index of the first non-finite value, as a label for error messages.
+    #[doc(hidden)]
+    pub fn first_non_finite(&self) -> Option<(&'static str, usize)> {
+        if let Some(u) = (0..N).find(|&u| !self.q[u].is_finite()) {
+            return Some(("position", u));
+        }
+        if let Some(u) = (0..N).find(|&u| self.dq[u].iter().any(|v| !v.is_finite())) {
+            return Some(("velocity analog", u));
+        }
+        if let Some(u) = (0..N).find(|&u| self.d2q[u].iter().flatten().any(|v| !v.is_finite())) {
+            return Some(("acceleration analog", u));
+        }
+        if let Some(o) = (0..NO).find(|&o| !self.out[o].is_finite()) {
+            return Some(("output", o));
+        }
+        if let Some(o) = (0..NO).find(|&o| self.dout[o].iter().any(|v| !v.is_finite())) {
+            return Some(("output velocity analog", o));
+        }
+        if let Some(o) = (0..NO).find(|&o| self.d2out[o].iter().flatten().any(|v| !v.is_finite())) {
+            return Some(("output acceleration analog", o));
+        }
+        None
+    }
+
+    /// Fast check that every value is finite (one sum; NaN and infinity propagate).
+    #[doc(hidden)]
+    #[inline]
+    pub fn all_finite(&self) -> bool {
+        let mut s = 0.0;
+        for u in 0..N {
+            s += self.q[u];
+            for i in 0..NI {
+                s += self.dq[u][i];
+                for j in 0..NI {
+                    s += self.d2q[u][i][j];
+                }
+            }
+        }
+        for o in 0..NO {
+            s += self.out[o];
+            for i in 0..NI {
+                s += self.dout[o][i];
+                for j in 0..NI {
+                    s += self.d2out[o][i][j];
+                }
+            }
+        }
+        // A finite sum of finite values; an overflowing sum of huge finite values is re-checked
+        // element by element.
+        s.is_finite() || self.first_non_finite().is_none()
+    }
+}

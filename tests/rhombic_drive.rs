@@ -1,0 +1,186 @@
+//! The asymmetric rhombic drive of SEEDS.md (paper 000, Fig. 1) against the paper's closed
+//! forms, over 3600 crank angles: positions, velocity analogs, acceleration analogs, and the
+//! centres of mass S1, S2, S4 against formulas derived here by hand.
+
+use std::f64::consts::PI;
+
+kinloop::mechanism! {
+    /// Asymmetric rhombic drive with a developed crank (paper 000, Fig. 1).
+    pub struct RhombicDrive {
+        params r_p, r_b, l_p, l_b, e_p, de, gamma, l_as1, psi_s1, l_cs2, l_fs4;
+        input phi1;
+        unknowns phi2 = 0, phi4 = pi, x_c = -l_p, x_f = l_b;
+        loop oabco:   (0, e_p) + r_p @ phi1           == (x_c, 0)  + l_p @ phi2;
+        loop oadff1o: (0, e_p) + r_b @ (phi1 + gamma) == (x_f, de) + l_b @ phi4;
+        point s1 = (0, e_p) + l_as1 @ (phi1 + psi_s1);
+        point s2 = (x_c, 0) + l_cs2 @ phi2;
+        point s4 = (x_f, de) + l_fs4 @ phi4;
+    }
+}
+
+const DRIVE: RhombicDrive = RhombicDrive {
+    r_p: 1.0,
+    r_b: 1.2,
+    l_p: 3.0,
+    l_b: 3.5,
+    e_p: 0.5,
+    de: 0.9,
+    gamma: 0.7,
+    l_as1: 0.4,
+    psi_s1: 0.3,
+    l_cs2: 1.1,
+    l_fs4: 1.6,
+};
+
+/// The published closed form (SEEDS.md 000) plus derived centre-of-mass formulas.
+struct Closed {
+    q: [f64; 4],
+    dq: [f64; 4],
+    d2q: [f64; 4],
+    /// s1, s2, s4 as [x, y] with their first and second analogs.
+    s: [[f64; 2]; 3],
+    ds: [[f64; 2]; 3],
+    d2s: [[f64; 2]; 3],
+}
+
+fn closed(m: &RhombicDrive, phi1: f64) -> Closed {
+    let lam_p = m.r_p / m.l_p;
+    let k_p = m.e_p / m.r_p;
+    let e_b = m.e_p - m.de;
+    let lam_b = m.r_b / m.l_b;
+    let k_b = e_b / m.r_b;
+    let a = phi1 + m.gamma;
+    let s2 = lam_p * (k_p + phi1.sin());
+    let phi2 = s2.asin();
+    let s4 = lam_b * (k_b + a.sin());
+    let phi4 = PI - s4.asin(); // continuous branch with cos(phi4) < 0
+    let (c2, c4) = (phi2.cos(), phi4.cos());
+    let x_c = m.l_p * (lam_p * phi1.cos() - c2);
+    let x_f = m.l_b * (lam_b * a.cos() - c4);
+    let u21 = lam_p * phi1.cos() / c2;
+    let u41 = lam_b * a.cos() / c4;
+    let v_c = m.l_p * (u21 * phi2.sin() - lam_p * phi1.sin());
+    let v_f = m.l_b * (u41 * phi4.sin() - lam_b * a.sin());
+    let e2 = (u21 * u21 * phi2.sin() - lam_p * phi1.sin()) / c2;
+    let e4 = (u41 * u41 * phi4.sin() - lam_b * a.sin()) / c4;
+    let a_c = m.l_p * (e2 * phi2.sin() + u21 * u21 * c2 - lam_p * phi1.cos());
+    let a_f = m.l_b * (e4 * phi4.sin() + u41 * u41 * c4 - lam_b * a.cos());
+
+    // Centres of mass, differentiated by hand (chain rule on the position formulas).
+    let b = phi1 + m.psi_s1;
+    let l1 = m.l_as1;
+    let s1 = [l1 * b.cos(), m.e_p + l1 * b.sin()];
+    let ds1 = [-l1 * b.sin(), l1 * b.cos()];
+    let d2s1 = [-l1 * b.cos(), -l1 * b.sin()];
+    let l2 = m.l_cs2;
+    let s2p = [x_c + l2 * c2, l2 * phi2.sin()];
+    let ds2 = [v_c - l2 * phi2.sin() * u21, l2 * c2 * u21];
+    let d2s2 = [
+        a_c - l2 * c2 * u21 * u21 - l2 * phi2.sin() * e2,
+        -l2 * phi2.sin() * u21 * u21 + l2 * c2 * e2,
+    ];
+    let l4 = m.l_fs4;
+    let s4p = [x_f + l4 * c4, m.de + l4 * phi4.sin()];
+    let ds4 = [v_f - l4 * phi4.sin() * u41, l4 * c4 * u41];
+    let d2s4 = [
+        a_f - l4 * c4 * u41 * u41 - l4 * phi4.sin() * e4,
+        -l4 * phi4.sin() * u41 * u41 + l4 * c4 * e4,
+    ];
+    Closed {
+        q: [phi2, phi4, x_c, x_f],
+        dq: [u21, u41, v_c, v_f],
+        d2q: [e2, e4, a_c, a_f],
+        s: [s1, s2p, s4p],
+        ds: [ds1, ds2, ds4],
+        d2s: [d2s1, d2s2, d2s4],
+    }
+}
+
+/// Relative tolerance, absolute near zero.
+fn close(a: f64, b: f64, rel: f64) -> bool {
+    (a - b).abs() <= rel * b.abs().max(1.0)
+}
+
+#[test]
+fn rhombic_drive_matches_published_closed_form_over_a_full_turn() {
+    let m = DRIVE;
+    let mut guess = m.guess(0.0);
+    let (mut phi2_min, mut phi2_max, mut phi4_min, mut phi4_max) = (f64::MAX, f64::MIN, f64::MAX, f64::MIN);
+    for k in 0..3600 {
+        let phi1 = 2.0 * PI * k as f64 / 3600.0;
+        let st = m.kinematics(phi1, &guess).unwrap_or_else(|e| panic!("phi1 = {phi1}: {e}"));
+        guess = st.q;
+        let c = closed(&m, phi1);
+        let q: [f64; 4] = st.q.into();
+        let dq: [f64; 4] = st.dq.into();
+        let d2q: [f64; 4] = st.d2q.into();
+        for u in 0..4 {
+            let name = RhombicDrive::UNKNOWNS[u];
+            assert!((q[u] - c.q[u]).abs() <= 1e-12, "{name} at {phi1}: {} vs {}", q[u], c.q[u]);
+            assert!(close(dq[u], c.dq[u], 1e-9), "d{name} at {phi1}: {} vs {}", dq[u], c.dq[u]);
+            assert!(close(d2q[u], c.d2q[u], 1e-9), "d2{name} at {phi1}: {} vs {}", d2q[u], c.d2q[u]);
+        }
+        let pts = [(st.out.s1, st.dout.s1, st.d2out.s1), (st.out.s2, st.dout.s2, st.d2out.s2), (st.out.s4, st.dout.s4, st.d2out.s4)];
+        for (p, (s, ds, d2s)) in pts.iter().enumerate() {
+            let got = [[s.x, s.y], [ds.x, ds.y], [d2s.x, d2s.y]];
+            let want = [c.s[p], c.ds[p], c.d2s[p]];
+            for o in 0..3 {
+                for xy in 0..2 {
+                    let tol = if o == 0 { 1e-12 } else { 1e-9 };
+                    assert!(
+                        close(got[o][xy], want[o][xy], tol),
+                        "point {p} order {o} comp {xy} at {phi1}: {} vs {}",
+                        got[o][xy],
+                        want[o][xy]
+                    );
+                }
+            }
+        }
+        phi2_min = phi2_min.min(q[0]);
+        phi2_max = phi2_max.max(q[0]);
+        phi4_min = phi4_min.min(q[1]);
+        phi4_max = phi4_max.max(q[1]);
+    }
+    // SEEDS.md: phi4 runs over 2.911..3.616 rad (partly in the 3rd quadrant, no 2 pi jump) and
+    // phi2 over -0.167..0.524 for these dimensions.
+    assert!((phi4_min - 2.911).abs() < 1e-3 && (phi4_max - 3.616).abs() < 1e-3, "{phi4_min}..{phi4_max}");
+    assert!((phi2_min + 0.167).abs() < 1e-3 && (phi2_max - 0.524).abs() < 1e-3, "{phi2_min}..{phi2_max}");
+}
+
+#[test]
+fn paper_s1_velocity_sign_is_derived_not_copied() {
+    // d/dphi1 of S1.x = l cos(phi1 + psi) is -l sin(phi1 + psi): negative in the first quadrant.
+    let m = DRIVE;
+    let st = m.solve(0.2).unwrap();
+    let expected = -m.l_as1 * (0.2 + m.psi_s1).sin();
+    assert!((st.dout.s1.x - expected).abs() < 1e-14);
+    assert!(st.dout.s1.x < 0.0);
+}
+
+#[test]
+fn true_motion_from_analogs() {
+    let m = DRIVE;
+    let st = m.solve(1.0).unwrap();
+    let (w, e) = (12.0, -3.0);
+    let mo = st.motion(w, e).unwrap();
+    assert!((mo.qdot.x_c - st.dq.x_c * w).abs() < 1e-12);
+    assert!((mo.qddot.x_c - (st.d2q.x_c * w * w + st.dq.x_c * e)).abs() < 1e-10);
+    assert!((mo.out_ddot.s2.y - (st.d2out.s2.y * w * w + st.dout.s2.y * e)).abs() < 1e-10);
+    assert!(st.motion(f64::NAN, 0.0).is_err());
+}
+
+#[test]
+fn decomposition_separates_the_two_groups() {
+    // Working group (phi2 then x_c) and displacer group (phi4 then x_f) are independent; the
+    // slider coordinates appear linearly and are solved in closed form.
+    let blocks = RhombicDrive::BLOCKS;
+    assert_eq!(blocks.len(), 4, "{blocks:?}");
+    for b in blocks {
+        assert_eq!(b.unknowns.len(), 1);
+        let u = b.unknowns[0];
+        assert_eq!(b.linear, u.starts_with("x_"), "{b:?}");
+    }
+    let pos = |n: &str| blocks.iter().position(|b| b.unknowns[0] == n).unwrap();
+    assert!(pos("phi2") < pos("x_c"));
+    assert!(pos("phi4") < pos("x_f"));
+}
