@@ -75,17 +75,11 @@ fn closed(m: &RhombicDrive, phi1: f64) -> Closed {
     let l2 = m.l_cs2;
     let s2p = [x_c + l2 * c2, l2 * phi2.sin()];
     let ds2 = [v_c - l2 * phi2.sin() * u21, l2 * c2 * u21];
-    let d2s2 = [
-        a_c - l2 * c2 * u21 * u21 - l2 * phi2.sin() * e2,
-        -l2 * phi2.sin() * u21 * u21 + l2 * c2 * e2,
-    ];
+    let d2s2 = [a_c - l2 * c2 * u21 * u21 - l2 * phi2.sin() * e2, -l2 * phi2.sin() * u21 * u21 + l2 * c2 * e2];
     let l4 = m.l_fs4;
     let s4p = [x_f + l4 * c4, m.de + l4 * phi4.sin()];
     let ds4 = [v_f - l4 * phi4.sin() * u41, l4 * c4 * u41];
-    let d2s4 = [
-        a_f - l4 * c4 * u41 * u41 - l4 * phi4.sin() * e4,
-        -l4 * phi4.sin() * u41 * u41 + l4 * c4 * e4,
-    ];
+    let d2s4 = [a_f - l4 * c4 * u41 * u41 - l4 * phi4.sin() * e4, -l4 * phi4.sin() * u41 * u41 + l4 * c4 * e4];
     Closed {
         q: [phi2, phi4, x_c, x_f],
         dq: [u21, u41, v_c, v_f],
@@ -120,7 +114,11 @@ fn rhombic_drive_matches_published_closed_form_over_a_full_turn() {
             assert!(close(dq[u], c.dq[u], 1e-9), "d{name} at {phi1}: {} vs {}", dq[u], c.dq[u]);
             assert!(close(d2q[u], c.d2q[u], 1e-9), "d2{name} at {phi1}: {} vs {}", d2q[u], c.d2q[u]);
         }
-        let pts = [(st.out.s1, st.dout.s1, st.d2out.s1), (st.out.s2, st.dout.s2, st.d2out.s2), (st.out.s4, st.dout.s4, st.d2out.s4)];
+        let pts = [
+            (st.out.s1, st.dout.s1, st.d2out.s1),
+            (st.out.s2, st.dout.s2, st.d2out.s2),
+            (st.out.s4, st.dout.s4, st.d2out.s4),
+        ];
         for (p, (s, ds, d2s)) in pts.iter().enumerate() {
             let got = [[s.x, s.y], [ds.x, ds.y], [d2s.x, d2s.y]];
             let want = [c.s[p], c.ds[p], c.d2s[p]];

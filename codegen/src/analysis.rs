@@ -93,20 +93,25 @@ pub fn analyze(model: &Model) -> Result<Vec<Block>, syn::Error> {
         errors.push(syn::Error::new(
             name.span(),
             format!(
-                "`{name}` has {} for {}: its mobility is W = {n_u} + {n_in} - {n_eq} = {mobility}, but {} {} declared; {advice}",
+                "`{name}` has {} for {}: its mobility is W = {n_u} + {n_in} - {n_eq} = {mobility}, but {} declared; {advice}",
                 plural(n_eq, "scalar equation", "scalar equations"),
                 plural(n_u, "unknown", "unknowns"),
                 plural(n_in, "input is", "inputs are"),
-                if n_in == 1 { "" } else { "" },
-            )
-            .replace("  ", " "),
+            ),
         ));
     }
 
     let matching = structure::maximum_matching(&inc, n_u);
     if !matching.is_perfect() {
         let dm = structure::dulmage_mendelsohn(&inc, n_u, &matching);
-        report_imbalance(model, &dm.over_equations, &dm.over_unknowns, &dm.under_unknowns, &dm.under_equations, &mut errors);
+        report_imbalance(
+            model,
+            &dm.over_equations,
+            &dm.over_unknowns,
+            &dm.under_unknowns,
+            &dm.under_equations,
+            &mut errors,
+        );
     }
     if !errors.is_empty() {
         return Err(errors.into_error().unwrap_or_else(|| syn::Error::new(name.span(), "invalid mechanism")));

@@ -119,12 +119,9 @@ impl Op {
         let (a, b) = match *self {
             Op::Const(_) | Op::Leaf(_) => (None, None),
             Op::Neg(a) | Op::Powi(a, _) | Op::Func(_, a) => (Some(a), None),
-            Op::Add(a, b)
-            | Op::Sub(a, b)
-            | Op::Mul(a, b)
-            | Op::Div(a, b)
-            | Op::Powf(a, b)
-            | Op::Atan2(a, b) => (Some(a), Some(b)),
+            Op::Add(a, b) | Op::Sub(a, b) | Op::Mul(a, b) | Op::Div(a, b) | Op::Powf(a, b) | Op::Atan2(a, b) => {
+                (Some(a), Some(b))
+            }
         };
         a.into_iter().chain(b)
     }
@@ -219,8 +216,8 @@ impl Graph {
                     return n;
                 }
             }
-            (Some(x), None) if x == 0.0 => return b,
-            (None, Some(y)) if y == 0.0 => return a,
+            (Some(0.0), None) => return b,
+            (None, Some(0.0)) => return a,
             _ => {}
         }
         if let Op::Neg(nb) = self.op(b) {
@@ -243,8 +240,8 @@ impl Graph {
                     return n;
                 }
             }
-            (Some(x), None) if x == 0.0 => return self.neg(b),
-            (None, Some(y)) if y == 0.0 => return a,
+            (Some(0.0), None) => return self.neg(b),
+            (None, Some(0.0)) => return a,
             _ => {}
         }
         if let Op::Neg(nb) = self.op(b) {
@@ -268,11 +265,7 @@ impl Graph {
 
     pub fn mul(&mut self, a: NodeId, b: NodeId) -> NodeId {
         // Constants go first so the rules below see them in one place.
-        let (a, b) = if self.as_const(b).is_some() && self.as_const(a).is_none() {
-            (b, a)
-        } else {
-            (a, b)
-        };
+        let (a, b) = if self.as_const(b).is_some() && self.as_const(a).is_none() { (b, a) } else { (a, b) };
         match (self.as_const(a), self.as_const(b)) {
             (Some(x), Some(y)) => {
                 if let Some(n) = self.fold(x * y) {
@@ -320,11 +313,7 @@ impl Graph {
         if a == b && self.as_const(a).is_none() {
             return self.powi(a, 2);
         }
-        let (a, b) = if self.as_const(a).is_some() || a <= b {
-            (a, b)
-        } else {
-            (b, a)
-        };
+        let (a, b) = if self.as_const(a).is_some() || a <= b { (a, b) } else { (b, a) };
         self.intern(Op::Mul(a, b))
     }
 
@@ -338,9 +327,9 @@ impl Graph {
                     return n;
                 }
             }
-            (Some(x), None) if x == 0.0 => return self.zero(),
-            (None, Some(y)) if y == 1.0 => return a,
-            (None, Some(y)) if y == -1.0 => return self.neg(a),
+            (Some(0.0), None) => return self.zero(),
+            (None, Some(1.0)) => return a,
+            (None, Some(-1.0)) => return self.neg(a),
             (None, Some(y)) if y != 0.0 && (1.0 / y).is_finite() && is_power_of_two(y) => {
                 // Division by a power of two is an exact multiplication.
                 let c = self.constant(1.0 / y);
@@ -686,11 +675,7 @@ mod tests {
         let exact = eval_at(&g, q0, &d);
         for i in 0..roots.len() {
             let fd = (plus[i] - minus[i]) / (2.0 * h);
-            assert!(
-                (fd - exact[i]).abs() <= 1e-7 * (1.0 + fd.abs()),
-                "root {i}: fd {fd} vs ad {}",
-                exact[i]
-            );
+            assert!((fd - exact[i]).abs() <= 1e-7 * (1.0 + fd.abs()), "root {i}: fd {fd} vs ad {}", exact[i]);
         }
     }
 

@@ -78,15 +78,44 @@ pub enum Component {
 #[derive(Clone, Debug)]
 pub enum Expr {
     /// A number literal; `integer` is set when it was written without a decimal point.
-    Num { value: f64, integer: Option<i64>, span: Span },
+    Num {
+        value: f64,
+        integer: Option<i64>,
+        span: Span,
+    },
     Var(Ident),
-    Neg { op: Span, expr: Box<Expr> },
-    Binary { op: BinOp, op_span: Span, lhs: Box<Expr>, rhs: Box<Expr> },
-    Call { func: Ident, args: Vec<Expr>, close: Span },
+    Neg {
+        op: Span,
+        expr: Box<Expr>,
+    },
+    Binary {
+        op: BinOp,
+        op_span: Span,
+        lhs: Box<Expr>,
+        rhs: Box<Expr>,
+    },
+    Call {
+        func: Ident,
+        args: Vec<Expr>,
+        close: Span,
+    },
     /// A Cartesian vector `(x, y)`.
-    Tuple { open: Span, x: Box<Expr>, y: Box<Expr>, close: Span },
-    Paren { open: Span, inner: Box<Expr>, close: Span },
-    Field { base: Box<Expr>, component: Component, name: Ident },
+    Tuple {
+        open: Span,
+        x: Box<Expr>,
+        y: Box<Expr>,
+        close: Span,
+    },
+    Paren {
+        open: Span,
+        inner: Box<Expr>,
+        close: Span,
+    },
+    Field {
+        base: Box<Expr>,
+        component: Component,
+        name: Ident,
+    },
 }
 
 impl Expr {

@@ -12,11 +12,7 @@ use syn::Attribute;
 use syn::ext::IdentExt;
 
 fn doc_or(docs: &[Attribute], fallback: String) -> TokenStream {
-    if docs.is_empty() {
-        quote!(#[doc = #fallback])
-    } else {
-        quote!(#(#docs)*)
-    }
+    if docs.is_empty() { quote!(#[doc = #fallback]) } else { quote!(#(#docs)*) }
 }
 
 fn plain(id: &Ident) -> String {
@@ -153,6 +149,10 @@ pub fn generate(model: &Model, plan: &Plan) -> TokenStream {
         flat_idents.push(a);
         k += 1;
     }
+    if k == 0 {
+        out_fields.push(quote!(#[doc(hidden)] pub __marker: ::core::marker::PhantomData<T>,));
+        out_from.push(quote!(__marker: ::core::marker::PhantomData));
+    }
     let outputs_doc = format!(
         "Named outputs of [`{name_s}`] (points and scalar outputs); with `T = f64` their values, \
          in [`{name_s}State`] also their analogs."
@@ -240,6 +240,7 @@ pub fn generate(model: &Model, plan: &Plan) -> TokenStream {
                 }
             }
         }
+        #[allow(clippy::all, clippy::pedantic, clippy::nursery)]
         impl #state_ty {
             /// True velocities and accelerations for input speeds `omega` and input
             /// accelerations `eps`: `v = v_q omega`, `a = a_q omega^2 + v_q eps` (summed over
@@ -251,11 +252,11 @@ pub fn generate(model: &Model, plan: &Plan) -> TokenStream {
             ) -> ::core::result::Result<#motion_ty, #rt::Error> {
                 let w: [f64; #nil] = omega.into().into();
                 let e: [f64; #nil] = eps.into().into();
-                for (k, v) in w.iter().chain(e.iter()).enumerate() {
+                for (name, v) in [#(#input_strs),*].iter().chain([#(#input_strs),*].iter()).zip(w.iter().chain(e.iter())) {
                     if !v.is_finite() {
                         return Err(#rt::Error::NonFinite {
                             what: #rt::Quantity::Motion,
-                            name: [#(#input_strs),*][k % #nil],
+                            name,
                             value: *v,
                             at: ::std::boxed::Box::new(#rt::Location {
                                 mechanism: #name_s,
@@ -340,6 +341,7 @@ pub fn generate(model: &Model, plan: &Plan) -> TokenStream {
         #outputs_struct
         #state_struct
 
+        #[allow(clippy::all, clippy::pedantic, clippy::nursery)]
         impl #name {
             /// The mechanism's type name.
             pub const NAME: &'static str = #name_s;
@@ -534,6 +536,7 @@ pub fn generate(model: &Model, plan: &Plan) -> TokenStream {
             }
         }
 
+        #[allow(clippy::all, clippy::pedantic, clippy::nursery)]
         impl #rt::Mechanism<#nl, #nil, #nol> for #name {
             const NAME: &'static str = #name_s;
             const PARAMS: &'static [&'static str] = &[#(#pstrs),*];
@@ -580,17 +583,27 @@ fn lit(n: usize) -> Literal {
 fn named_struct(vis: &syn::Visibility, ty: &Ident, doc: &str, fields: &[&Ident], docs: &[TokenStream]) -> TokenStream {
     let n = lit(fields.len());
     let bind: Vec<Ident> = (0..fields.len()).map(|k| Ident::new(&format!("f{k}"), Span::call_site())).collect();
+    // A struct without fields still mentions `T`.
+    let (marker, marker_init) = if fields.is_empty() {
+        (
+            quote!(#[doc(hidden)] pub __marker: ::core::marker::PhantomData<T>,),
+            quote!(__marker: ::core::marker::PhantomData),
+        )
+    } else {
+        (quote!(), quote!())
+    };
     quote! {
         #[doc = #doc]
         #[derive(Clone, Copy, Debug, Default, PartialEq)]
         #[allow(non_snake_case)]
         #vis struct #ty<T = f64> {
             #(#docs pub #fields: T,)*
+            #marker
         }
         impl<T> ::core::convert::From<[T; #n]> for #ty<T> {
             #[inline]
             fn from([#(#bind),*]: [T; #n]) -> Self {
-                #ty { #(#fields: #bind),* }
+                #ty { #(#fields: #bind,)* #marker_init }
             }
         }
         impl<T> ::core::convert::From<#ty<T>> for [T; #n] {

@@ -126,26 +126,38 @@ fn one_arg(name: &str) -> Option<Func> {
     })
 }
 
-/// Suggests a declared name close to a misspelt one (edit distance at most 2).
+/// Suggests a declared name close to a misspelt one (at most 2 edits, a swap of neighbours
+/// counting as one). Ties are broken by name so the message is deterministic.
 pub fn similar<'a>(name: &str, candidates: impl Iterator<Item = &'a String>) -> Option<&'a String> {
     candidates
         .map(|c| (edit_distance(name, c), c))
-        .filter(|(d, c)| *d <= 2 && *d < c.len().max(name.len()))
-        .min_by_key(|(d, _)| *d)
+        .filter(|(d, c)| *d <= 2 && *d < c.chars().count().max(name.chars().count()))
+        .min_by(|a, b| a.0.cmp(&b.0).then_with(|| a.1.cmp(b.1)))
         .map(|(_, c)| c)
 }
 
+/// Optimal string alignment distance (Levenshtein plus adjacent transpositions).
 fn edit_distance(a: &str, b: &str) -> usize {
+    let a: Vec<char> = a.chars().collect();
     let b: Vec<char> = b.chars().collect();
-    let mut prev: Vec<usize> = (0..=b.len()).collect();
-    for (i, ca) in a.chars().enumerate() {
-        let mut cur = vec![i + 1; b.len() + 1];
-        for (j, cb) in b.iter().enumerate() {
-            cur[j + 1] = (prev[j] + usize::from(ca != *cb)).min(prev[j + 1] + 1).min(cur[j] + 1);
-        }
-        prev = cur;
+    let mut d = vec![vec![0usize; b.len() + 1]; a.len() + 1];
+    for (i, row) in d.iter_mut().enumerate() {
+        row[0] = i;
     }
-    prev[b.len()]
+    for (j, cell) in d[0].iter_mut().enumerate() {
+        *cell = j;
+    }
+    for i in 1..=a.len() {
+        for j in 1..=b.len() {
+            let cost = usize::from(a[i - 1] != b[j - 1]);
+            let mut v = (d[i - 1][j] + 1).min(d[i][j - 1] + 1).min(d[i - 1][j - 1] + cost);
+            if i > 1 && j > 1 && a[i - 1] == b[j - 2] && a[i - 2] == b[j - 1] {
+                v = v.min(d[i - 2][j - 2] + 1);
+            }
+            d[i][j] = v;
+        }
+    }
+    d[a.len()][b.len()]
 }
 
 struct Lowerer {
@@ -224,10 +236,7 @@ pub fn build(def: MechanismDef) -> Result<Model, syn::Error> {
             _ => None,
         };
         if let Some((n, what)) = later {
-            let key = n.to_string();
-            if !lw.scope.symbols.contains_key(&key) {
-                lw.scope.symbols.insert(key, (Symbol::Later(what), n.span()));
-            }
+            lw.scope.symbols.entry(n.to_string()).or_insert_with(|| (Symbol::Later(what), n.span()));
         }
     }
 
@@ -256,12 +265,10 @@ pub fn build(def: MechanismDef) -> Result<Model, syn::Error> {
                 }
             }
             ItemKind::Decls(..) => {}
-            ItemKind::Let { name, value } => {
-                match lw.lower(value) {
-                    Some(v) => lw.define(name, v),
-                    None => lw.poison(name),
-                }
-            }
+            ItemKind::Let { name, value } => match lw.lower(value) {
+                Some(v) => lw.define(name, v),
+                None => lw.poison(name),
+            },
             ItemKind::Point { name, value } => match lw.lower(value) {
                 Some(Val::V(x, y)) => {
                     lw.define(name, Val::V(x, y));
@@ -292,7 +299,10 @@ pub fn build(def: MechanismDef) -> Result<Model, syn::Error> {
                 let is_loop = matches!(item.kind, ItemKind::Loop { .. });
                 let key = name.to_string();
                 if let Some(prev) = seen_item_names.insert(key.clone(), name.span()) {
-                    let mut e = syn::Error::new(name.span(), format!("equation name `{key}` is used twice; give each loop and equation its own name"));
+                    let mut e = syn::Error::new(
+                        name.span(),
+                        format!("equation name `{key}` is used twice; give each loop and equation its own name"),
+                    );
                     e.combine(syn::Error::new(prev, "first used here"));
                     lw.errors.push(e);
                     continue;
@@ -320,7 +330,8 @@ pub fn build(def: MechanismDef) -> Result<Model, syn::Error> {
                          (write `loop {name}: ... == ...;` for a vector loop: two scalar equations)"
                     ))),
                     (_, l, _) => {
-                        let (side, other) = if matches!(l, Val::V(..)) { ("vector", "scalar") } else { ("scalar", "vector") };
+                        let (side, other) =
+                            if matches!(l, Val::V(..)) { ("vector", "scalar") } else { ("scalar", "vector") };
                         lw.errors.push(syn::Error::new(
                             *eq,
                             format!("the left side is a {side} but the right side is a {other}; both sides of `==` must have the same type"),
@@ -368,7 +379,8 @@ impl Lowerer {
         }
         if let Some((prev, span)) = self.scope.symbols.get(&key) {
             let what = describe(*prev);
-            let mut e = syn::Error::new(name.span(), format!("`{key}` is already declared as {what}; names must be unique"));
+            let mut e =
+                syn::Error::new(name.span(), format!("`{key}` is already declared as {what}; names must be unique"));
             e.combine(syn::Error::new(*span, format!("`{key}` first declared here")));
             self.errors.push(e);
             return false;
@@ -390,7 +402,10 @@ impl Lowerer {
                     return;
                 }
                 let what = describe(*prev);
-                let mut e = syn::Error::new(name.span(), format!("`{key}` is already declared as {what}; names must be unique"));
+                let mut e = syn::Error::new(
+                    name.span(),
+                    format!("`{key}` is already declared as {what}; names must be unique"),
+                );
                 e.combine(syn::Error::new(*span, format!("`{key}` first declared here")));
                 self.errors.push(e);
             }
@@ -627,8 +642,7 @@ impl Lowerer {
         let name = func.to_string();
         let known = SCALAR_FUNCTIONS.contains(&name.as_str()) || VECTOR_FUNCTIONS.contains(&name.as_str());
         if !known {
-            let all: Vec<String> =
-                SCALAR_FUNCTIONS.iter().chain(VECTOR_FUNCTIONS).map(|s| (*s).to_string()).collect();
+            let all: Vec<String> = SCALAR_FUNCTIONS.iter().chain(VECTOR_FUNCTIONS).map(|s| (*s).to_string()).collect();
             let hint = match name.as_str() {
                 "log" => "; the natural logarithm is `ln`".to_string(),
                 "powi" | "powf" => "; write `x ^ n` or `pow(x, y)`".to_string(),
@@ -665,7 +679,11 @@ impl Lowerer {
             let span = args.get(arity).map_or(close, |a| a.range().start);
             self.errors.push(syn::Error::new(
                 span,
-                format!("`{name}` takes {arity} argument{}: `{sig}`, but {} were given", if arity == 1 { "" } else { "s" }, args.len()),
+                format!(
+                    "`{name}` takes {arity} argument{}: `{sig}`, but {} were given",
+                    if arity == 1 { "" } else { "s" },
+                    args.len()
+                ),
             ));
             return None;
         }
@@ -683,7 +701,12 @@ impl Lowerer {
             if is_vec != want {
                 ok = false;
                 let (got, hint) = if is_vec {
-                    ("vector", format!("`{name}` takes a scalar here; take a component with `.x`/`.y` or the length with `norm(..)`"))
+                    (
+                        "vector",
+                        format!(
+                            "`{name}` takes a scalar here; take a component with `.x`/`.y` or the length with `norm(..)`"
+                        ),
+                    )
                 } else {
                     ("scalar", format!("`{name}` takes a vector here, e.g. `(x, y)` or `r @ angle`"))
                 };

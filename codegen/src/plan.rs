@@ -153,7 +153,16 @@ pub fn build(model: &mut Model, blocks: &[Block]) -> Plan {
                 acc[r].push(node);
             }
         }
-        plans.push(BlockPlan { unknowns: blk.unknowns.clone(), equations: blk.equations.clone(), linear, f, jac, f0, vel, acc });
+        plans.push(BlockPlan {
+            unknowns: blk.unknowns.clone(),
+            equations: blk.equations.clone(),
+            linear,
+            f,
+            jac,
+            f0,
+            vel,
+            acc,
+        });
     }
 
     let mut out_d1 = vec![Vec::new(); outputs.len()];
@@ -175,11 +184,8 @@ pub fn build(model: &mut Model, blocks: &[Block]) -> Plan {
 
     let zero = g.zero();
     let guesses = model.unknowns.iter().map(|u| u.value.unwrap_or(zero)).collect();
-    let defaults = model
-        .params
-        .iter()
-        .map(|p| p.value.and_then(|v| model.graph.as_const(v)))
-        .collect::<Option<Vec<f64>>>();
+    let defaults =
+        model.params.iter().map(|p| p.value.and_then(|v| model.graph.as_const(v))).collect::<Option<Vec<f64>>>();
 
     let g = &model.graph;
     let mut level = vec![-1i32; g.len()];

@@ -63,13 +63,7 @@ pub fn solver_body(model: &Model, plan: &Plan, names: &Names, mode: Mode, rt: &T
         for (b, bp) in plan.blocks.iter().enumerate() {
             acc_idx[b] = push(ScopeKind::Plain, bp.acc.concat());
         }
-        let roots = plan
-            .outputs
-            .iter()
-            .copied()
-            .chain(plan.out_d1.concat())
-            .chain(plan.out_d2.concat())
-            .collect();
+        let roots = plan.outputs.iter().copied().chain(plan.out_d1.concat()).chain(plan.out_d2.concat()).collect();
         out_idx = push(ScopeKind::Plain, roots);
     }
     let sched = schedule(g, &plan.level, &scopes);

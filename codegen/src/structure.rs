@@ -26,11 +26,7 @@ pub struct Block {
 
 /// The incidence: for each equation, the unknowns its residual depends on.
 pub fn incidence(model: &Model) -> Vec<BTreeSet<usize>> {
-    model
-        .equations
-        .iter()
-        .map(|e| unknowns_of(model, e.residual))
-        .collect()
+    model.equations.iter().map(|e| unknowns_of(model, e.residual)).collect()
 }
 
 pub fn unknowns_of(model: &Model, node: NodeId) -> BTreeSet<usize> {

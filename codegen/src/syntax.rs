@@ -211,7 +211,9 @@ fn parse_def(input: ParseStream) -> Result<MechanismDef, syn::Error> {
     input.parse::<Token![struct]>()?;
     let name: Ident = input.parse()?;
     if input.peek(Token![<]) {
-        return Err(input.error("a mechanism cannot be generic; its parameters are `f64` fields declared with `params`"));
+        return Err(
+            input.error("a mechanism cannot be generic; its parameters are `f64` fields declared with `params`")
+        );
     }
     if !input.peek(syn::token::Brace) {
         return Err(input.error("expected `{` with the mechanism's items"));
@@ -229,7 +231,9 @@ fn parse_def(input: ParseStream) -> Result<MechanismDef, syn::Error> {
         }
     }
     if !input.is_empty() {
-        errors.push(input.error("unexpected tokens after the mechanism's `{ ... }`; declare one mechanism per `mechanism!`"));
+        errors.push(
+            input.error("unexpected tokens after the mechanism's `{ ... }`; declare one mechanism per `mechanism!`"),
+        );
         skip_all(input);
     }
     errors.finish(MechanismDef { docs, options, vis, name, items, body: brace.span.join() })

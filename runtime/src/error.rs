@@ -83,23 +83,13 @@ impl fmt::Display for Quantity {
 pub enum Error {
     /// A parameter, input or guess is NaN or infinite.
     #[error("{what} `{name}` is not finite ({value}) {at}")]
-    NonFinite {
-        what: Quantity,
-        name: &'static str,
-        value: f64,
-        at: Box<Location>,
-    },
+    NonFinite { what: Quantity, name: &'static str, value: f64, at: Box<Location> },
     /// Newton's method reached its iteration limit.
     #[error(
         "Newton's method did not converge in {iterations} iterations {at}: residual {residual:e} \
          in equation `{equation}`; give a closer initial guess or raise `max_iterations`"
     )]
-    NoConvergence {
-        iterations: u32,
-        residual: f64,
-        equation: &'static str,
-        at: Box<Location>,
-    },
+    NoConvergence { iterations: u32, residual: f64, equation: &'static str, at: Box<Location> },
     /// The loops cannot close: the residual stalls at a non-zero minimum where the Jacobian
     /// degenerates (links fully stretched or folded). Typical of link lengths that cannot
     /// assemble at this input.
@@ -107,22 +97,14 @@ pub enum Error {
         "the mechanism cannot be assembled {at}: the loop residual stalls at {residual:e} in \
          equation `{equation}` (the links cannot reach; check the lengths or the input range)"
     )]
-    NoAssembly {
-        residual: f64,
-        equation: &'static str,
-        at: Box<Location>,
-    },
+    NoAssembly { residual: f64, equation: &'static str, at: Box<Location> },
     /// The Jacobian of a block is singular or too ill-conditioned at the solved position: a dead
     /// centre, a limit position of the input, or a change point. Velocity analogs do not exist.
     #[error(
         "singular position {at}: the Jacobian's pivot ratio is {pivot_ratio:e} (below the \
          tolerance {tolerance:e}); this is a dead centre or a limit position"
     )]
-    Singular {
-        pivot_ratio: f64,
-        tolerance: f64,
-        at: Box<Location>,
-    },
+    Singular { pivot_ratio: f64, tolerance: f64, at: Box<Location> },
     /// An expression evaluated to NaN or infinity although every parameter and input is finite:
     /// it left its domain (square root of a negative number, `asin` beyond ±1, division by zero).
     #[error(

@@ -9,13 +9,15 @@ mod kin;
 mod lu;
 mod mechanism;
 mod newton;
+mod table;
 mod vec2;
 
 pub use error::{BlockInfo, Error, Location, Quantity};
 pub use kin::{FlatMotion, Health, Kin};
 pub use lu::{Lu, max_abs};
 pub use mechanism::Mechanism;
-pub use newton::{BlockEval, BlockFailure, NewtonConfig, Solved, SolveReport, Termination, newton};
+pub use newton::{BlockEval, BlockFailure, NewtonConfig, SolveReport, Solved, Termination, newton};
+pub use table::Table;
 pub use vec2::Vec2;
 
 /// Re-exported so generated code and users share one nalgebra version.

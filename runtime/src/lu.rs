@@ -111,6 +111,7 @@ impl<const N: usize> Lu<N> {
 
     /// Solves `J z = b`.
     #[inline]
+    #[allow(clippy::needless_range_loop)] // index loops read like the textbook substitutions
     pub fn solve(&self, b: [f64; N]) -> [f64; N] {
         let mut z = [0.0; N];
         for r in 0..N {

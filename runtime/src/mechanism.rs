@@ -31,7 +31,12 @@ pub trait Mechanism<const N: usize, const NI: usize, const NO: usize> {
     /// Residuals of the equations at `(x, q)`, in declaration order.
     fn residual_flat(&self, x: &[f64; NI], q: &[f64; N]) -> [f64; N];
     /// Solves the positions from a guess.
-    fn position_flat(&self, x: &[f64; NI], guess: &[f64; N], cfg: &NewtonConfig) -> Result<([f64; N], SolveReport), Error>;
+    fn position_flat(
+        &self,
+        x: &[f64; NI],
+        guess: &[f64; N],
+        cfg: &NewtonConfig,
+    ) -> Result<([f64; N], SolveReport), Error>;
     /// Solves positions and computes all analogs and outputs (one factorisation per block).
     fn kinematics_flat(&self, x: &[f64; NI], guess: &[f64; N], cfg: &NewtonConfig) -> Result<Kin<N, NI, NO>, Error>;
     /// Analogs and outputs at a given (already solved) position.

@@ -140,16 +140,27 @@ pub struct Solved<const N: usize, const K: usize> {
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub enum BlockFailure {
     /// A residual or Jacobian entry is not finite; `row` is the block row.
-    NonFinite { row: usize, iterations: u32 },
-    NoConvergence { row: usize, iterations: u32, residual: f64 },
+    NonFinite {
+        row: usize,
+        iterations: u32,
+    },
+    NoConvergence {
+        row: usize,
+        iterations: u32,
+        residual: f64,
+    },
     /// The Jacobian is singular away from a root, or no step decreases the residual.
-    NoAssembly { row: usize, iterations: u32, residual: f64 },
+    NoAssembly {
+        row: usize,
+        iterations: u32,
+        residual: f64,
+    },
 }
 
 fn argmax_abs<const N: usize>(f: &[f64; N]) -> usize {
     let mut k = 0;
     for r in 1..N {
-        if !(f[r].abs() <= f[k].abs()) {
+        if f[r].abs() > f[k].abs() || f[r].is_nan() {
             k = r;
         }
     }
@@ -181,7 +192,14 @@ pub fn newton<const N: usize, const K: usize>(
         let res = max_abs(ev.f);
         // `max_abs` propagates NaN, which fails this test.
         if res <= cfg.residual_tol {
-            return Ok(Solved { z, eval: ev, iterations, evaluations, residual: res, termination: Termination::ResidualTolerance });
+            return Ok(Solved {
+                z,
+                eval: ev,
+                iterations,
+                evaluations,
+                residual: res,
+                termination: Termination::ResidualTolerance,
+            });
         }
         if let Some(row) = first_non_finite(&ev) {
             return Err(BlockFailure::NonFinite { row, iterations });
@@ -194,7 +212,7 @@ pub fn newton<const N: usize, const K: usize>(
             *s = max_abs(ev.j[r]);
         }
         let lu = Lu::factor(&ev.j, scale);
-        if !(lu.pivot_ratio() > cfg.singular_tol * 1e-3) {
+        if lu.pivot_ratio() <= cfg.singular_tol * 1e-3 {
             return Err(BlockFailure::NoAssembly { row: argmax_abs(&ev.f), iterations, residual: res });
         }
         let mut neg_f = ev.f;
@@ -207,7 +225,14 @@ pub fn newton<const N: usize, const K: usize>(
             return Err(BlockFailure::NoAssembly { row: argmax_abs(&ev.f), iterations, residual: res });
         }
         if step <= cfg.step_tol * (1.0 + max_abs(z)) {
-            return Ok(Solved { z, eval: ev, iterations, evaluations, residual: res, termination: Termination::StepTolerance });
+            return Ok(Solved {
+                z,
+                eval: ev,
+                iterations,
+                evaluations,
+                residual: res,
+                termination: Termination::StepTolerance,
+            });
         }
         // Backtracking on the squared residual norm (Armijo with c = 1e-4).
         let phi0 = sum_sq(&ev.f);
@@ -229,7 +254,11 @@ pub fn newton<const N: usize, const K: usize>(
             if t < cfg.min_damping {
                 // No step along the Newton direction reduces the residual: a stationary point of
                 // |f|^2 that is not a root.
-                return Err(BlockFailure::NoAssembly { row: argmax_abs(&ev.f), iterations: iterations + 1, residual: res });
+                return Err(BlockFailure::NoAssembly {
+                    row: argmax_abs(&ev.f),
+                    iterations: iterations + 1,
+                    residual: res,
+                });
             }
         }
         iterations += 1;

@@ -1,0 +1,137 @@
+//! A two-input mechanism: the five-bar linkage driven by two cranks. The analogs are partial
+//! derivatives with respect to both cranks, checked against central finite differences, and the
+//! positions against an independent circle-intersection construction.
+
+kinloop::mechanism! {
+    /// Five-bar linkage: crank `a` at A = (0, 0) (angle `th1`), crank `e` at E = (d, 0) (angle
+    /// `th2`), links `b` from B and `c` from D meeting at the coupler point C.
+    pub struct FiveBar {
+        params a, b, c, d, e;
+        inputs th1, th2;
+        unknowns phi2 = 1.0, phi3 = 2.0;
+        loop abcde: a @ th1 + b @ phi2 == (d, 0) + e @ th2 + c @ phi3;
+        point pc = a @ th1 + b @ phi2;
+        output spread = phi3 - phi2;
+    }
+}
+
+const M: FiveBar = FiveBar { a: 1.0, b: 2.5, c: 2.2, d: 1.5, e: 1.2 };
+
+/// C from the intersection of circle (B, b) and circle (D, c), on the left of B -> D.
+fn coupler_point(m: &FiveBar, th1: f64, th2: f64) -> (f64, f64, f64, f64) {
+    let (bx, by) = (m.a * th1.cos(), m.a * th1.sin());
+    let (dx, dy) = (m.d + m.e * th2.cos(), m.e * th2.sin());
+    let (ux, uy) = (dx - bx, dy - by);
+    let dist = (ux * ux + uy * uy).sqrt();
+    let along = (m.b * m.b - m.c * m.c + dist * dist) / (2.0 * dist);
+    let h = (m.b * m.b - along * along).sqrt();
+    let (cx, cy) = (bx + along * ux / dist - h * uy / dist, by + along * uy / dist + h * ux / dist);
+    (cx, cy, (cy - by).atan2(cx - bx), (cy - dy).atan2(cx - dx))
+}
+
+#[test]
+fn five_bar_positions_match_circle_intersection() {
+    for i in 0..40 {
+        for j in 0..40 {
+            let (t1, t2) = (1.2 + 0.6 * i as f64 / 40.0, 0.8 + 0.6 * j as f64 / 40.0);
+            let st = M.solve([t1, t2]).unwrap();
+            let (cx, cy, p2, p3) = coupler_point(&M, t1, t2);
+            // The construction's own rounding (a square root of a difference) is ~1e-12.
+            assert!(
+                (st.out.pc.x - cx).abs() < 1e-10 && (st.out.pc.y - cy).abs() < 1e-10,
+                "({t1}, {t2}): {:?} vs {cx}, {cy}; {:?}",
+                st.out.pc,
+                st.q
+            );
+            assert!((st.q.phi2 - p2).abs() < 1e-10 && (st.q.phi3 - p3).abs() < 1e-10);
+        }
+    }
+}
+
+#[test]
+fn five_bar_partial_analogs_match_finite_differences() {
+    let h = 1e-4;
+    for (t1, t2) in [(1.3, 0.9), (1.5, 1.1), (1.7, 1.3), (1.25, 1.35)] {
+        let st = M.solve([t1, t2]).unwrap();
+        let q = |a: f64, b: f64| {
+            let s = M.kinematics([a, b], &st.q).unwrap();
+            [s.q.phi2, s.q.phi3, s.out.pc.x, s.out.pc.y, s.out.spread]
+        };
+        let first = [
+            [st.dq.phi2.th1, st.dq.phi3.th1, st.dout.pc.x.th1, st.dout.pc.y.th1, st.dout.spread.th1],
+            [st.dq.phi2.th2, st.dq.phi3.th2, st.dout.pc.x.th2, st.dout.pc.y.th2, st.dout.spread.th2],
+        ];
+        let second = [
+            [
+                [
+                    st.d2q.phi2.th1.th1,
+                    st.d2q.phi3.th1.th1,
+                    st.d2out.pc.x.th1.th1,
+                    st.d2out.pc.y.th1.th1,
+                    st.d2out.spread.th1.th1,
+                ],
+                [
+                    st.d2q.phi2.th1.th2,
+                    st.d2q.phi3.th1.th2,
+                    st.d2out.pc.x.th1.th2,
+                    st.d2out.pc.y.th1.th2,
+                    st.d2out.spread.th1.th2,
+                ],
+            ],
+            [
+                [
+                    st.d2q.phi2.th2.th1,
+                    st.d2q.phi3.th2.th1,
+                    st.d2out.pc.x.th2.th1,
+                    st.d2out.pc.y.th2.th1,
+                    st.d2out.spread.th2.th1,
+                ],
+                [
+                    st.d2q.phi2.th2.th2,
+                    st.d2q.phi3.th2.th2,
+                    st.d2out.pc.x.th2.th2,
+                    st.d2out.pc.y.th2.th2,
+                    st.d2out.spread.th2.th2,
+                ],
+            ],
+        ];
+        let c = q(t1, t2);
+        let shift = |i: usize, s: f64| if i == 0 { (t1 + s, t2) } else { (t1, t2 + s) };
+        for i in 0..2 {
+            let (pa, pb) = shift(i, h);
+            let (ma, mb) = shift(i, -h);
+            let (p, m) = (q(pa, pb), q(ma, mb));
+            for k in 0..5 {
+                let fd = (p[k] - m[k]) / (2.0 * h);
+                assert!((first[i][k] - fd).abs() < 1e-6, "d/dth{} of #{k}: {} vs {fd}", i + 1, first[i][k]);
+                let fd2 = (p[k] - 2.0 * c[k] + m[k]) / (h * h);
+                assert!(
+                    (second[i][i][k] - fd2).abs() < 1e-4,
+                    "d2/dth{}^2 of #{k}: {} vs {fd2}",
+                    i + 1,
+                    second[i][i][k]
+                );
+            }
+        }
+        // Mixed partial by the four-point stencil.
+        let (pp, pm, mp, mm) = (q(t1 + h, t2 + h), q(t1 + h, t2 - h), q(t1 - h, t2 + h), q(t1 - h, t2 - h));
+        for k in 0..5 {
+            let fd = (pp[k] - pm[k] - mp[k] + mm[k]) / (4.0 * h * h);
+            assert!((second[0][1][k] - fd).abs() < 1e-4, "mixed #{k}: {} vs {fd}", second[0][1][k]);
+            assert_eq!(second[0][1][k], second[1][0][k], "second analogs are symmetric");
+        }
+    }
+}
+
+#[test]
+fn five_bar_true_motion_sums_over_inputs() {
+    let st = M.solve([1.4, 1.0]).unwrap();
+    let (w1, w2, e1, e2) = (2.0, -1.5, 0.3, 0.7);
+    let mo = st.motion([w1, w2], [e1, e2]).unwrap();
+    let d = st.dq.phi2;
+    let dd = st.d2q.phi2;
+    let v = d.th1 * w1 + d.th2 * w2;
+    let a = dd.th1.th1 * w1 * w1 + 2.0 * dd.th1.th2 * w1 * w2 + dd.th2.th2 * w2 * w2 + d.th1 * e1 + d.th2 * e2;
+    assert!((mo.qdot.phi2 - v).abs() < 1e-12);
+    assert!((mo.qddot.phi2 - a).abs() < 1e-12);
+}

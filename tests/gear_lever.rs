@@ -1,0 +1,95 @@
+//! The intermittent-motion gear-lever drive of SEEDS.md (paper 001): carrier + planet pin equals
+//! the pin's position along the rocker, `s @ phi` with BOTH the length `s` and the angle `phi`
+//! unknown. Checked against the paper's explicit formulas and against central finite
+//! differences of the solved positions.
+
+use std::f64::consts::PI;
+
+kinloop::mechanism! {
+    /// Gear-lever drive: carrier `l_c` turning by `alpha`, planet pin at `l_p` from the planet
+    /// centre turning by `(1 - u) alpha`, block sliding in a rocker pivoted at O. Angles are
+    /// measured from the Y axis as in the paper: a direction `a` is `(sin a, cos a)`.
+    pub struct GearLever {
+        params l_c, l_p, u;
+        input alpha;
+        unknowns s = l_c + l_p, phi = 0;
+        let pin = (l_c * sin(alpha), l_c * cos(alpha))
+                + (l_p * sin((1 - u) * alpha), l_p * cos((1 - u) * alpha));
+        loop oab: pin == s * (sin(phi), cos(phi));
+        point b = pin;
+    }
+}
+
+/// The paper's explicit formulas (u = z1/z3, L = carrier, l = pin radius).
+fn explicit(big_l: f64, l: f64, u: f64, a: f64) -> [f64; 6] {
+    let w = 1.0 - u;
+    let x = big_l * a.sin() + l * (w * a).sin();
+    let y = big_l * a.cos() + l * (w * a).cos();
+    let xd = big_l * a.cos() + l * w * (w * a).cos();
+    let yd = -big_l * a.sin() - l * w * (w * a).sin();
+    let xdd = -big_l * a.sin() - l * w * w * (w * a).sin();
+    let ydd = -big_l * a.cos() - l * w * w * (w * a).cos();
+    let r2 = x * x + y * y;
+    let omega_r = (xd * y - yd * x) / r2;
+    let eps_r = ((xdd * y - ydd * x) * r2 - 2.0 * (xd * y - yd * x) * (xd * x + yd * y)) / (r2 * r2);
+    // The paper's slip speed V = -(x'x + y'y)/sqrt(x^2 + y^2) is measured towards O; the
+    // distance s = |OB| grows at ds/dalpha = -V.
+    let v_slip = -(xd * x + yd * y) / r2.sqrt();
+    let phi = x.atan2(y); // = arctan(x / y), on the right branch
+    [phi, omega_r, eps_r, r2.sqrt(), -v_slip, x]
+}
+
+fn wrap(a: f64) -> f64 {
+    (a + PI).rem_euclid(2.0 * PI) - PI
+}
+
+#[test]
+fn gear_lever_matches_explicit_formulas_for_all_k() {
+    for k in [1.1, 1.2, 1.3, 1.4, 1.5] {
+        let m = GearLever { l_c: 2.0, l_p: k, u: 3.0 };
+        let mut guess = m.guess(0.0);
+        for i in 0..=720 {
+            let a = 2.0 * PI * i as f64 / 720.0;
+            let st = m.kinematics(a, &guess).unwrap_or_else(|e| panic!("k = {k}, alpha = {a}: {e}"));
+            guess = st.q;
+            let [phi, om, eps, s, ds, x] = explicit(2.0, k, 3.0, a);
+            // Newton stops at max|f| <= 1e-12, which bounds the position error by about 1e-12
+            // times the inverse Jacobian's norm (about 1 here).
+            assert!(wrap(st.q.phi - phi).abs() < 1e-11, "phi at {a}: {} vs {phi}", st.q.phi);
+            assert!((st.q.s - s).abs() < 1e-11);
+            assert!((st.dq.phi - om).abs() <= 1e-9 * om.abs().max(1.0), "omega_r at {a}");
+            assert!((st.d2q.phi - eps).abs() <= 1e-9 * eps.abs().max(1.0), "eps_r at {a}: {} vs {eps}", st.d2q.phi);
+            assert!((st.dq.s - ds).abs() <= 1e-9 * ds.abs().max(1.0), "ds at {a}");
+            assert!((st.out.b.x - x).abs() < 1e-14, "the pin is an explicit output");
+        }
+        // The rocker turns once per carrier turn: the continuous solution gains 2 pi.
+        assert!((guess.phi - 2.0 * PI).abs() < 1e-9, "k = {k}: phi ends at {}", guess.phi);
+    }
+}
+
+#[test]
+fn gear_lever_analogs_match_central_finite_differences() {
+    let m = GearLever { l_c: 2.0, l_p: 1.3, u: 3.0 };
+    let h = 1e-4;
+    for i in 0..50 {
+        let a = 0.05 + 6.2 * i as f64 / 50.0;
+        let st = m.solve(a).unwrap();
+        let at = |x: f64| m.position(x, &st.q).unwrap().0;
+        let (p, c, n) = (at(a + h), st.q, at(a - h));
+        let fd1 = (p.phi - n.phi) / (2.0 * h);
+        let fd2 = (p.phi - 2.0 * c.phi + n.phi) / (h * h);
+        // Truncation error of the central differences is O(h^2 q''') and O(h^2 q'''').
+        assert!((st.dq.phi - fd1).abs() < 1e-6 * st.dq.phi.abs().max(1.0), "at {a}");
+        assert!((st.d2q.phi - fd2).abs() < 1e-4 * st.d2q.phi.abs().max(1.0), "at {a}: {} vs {fd2}", st.d2q.phi);
+        let fds = (p.s - n.s) / (2.0 * h);
+        assert!((st.dq.s - fds).abs() < 1e-6 * st.dq.s.abs().max(1.0));
+    }
+}
+
+#[test]
+fn gear_lever_is_one_coupled_block() {
+    // s and phi appear together in both projections: one 2x2 nonlinear block.
+    assert_eq!(GearLever::BLOCKS.len(), 1);
+    assert_eq!(GearLever::BLOCKS[0].unknowns, &["s", "phi"]);
+    assert!(!GearLever::BLOCKS[0].linear);
+}
