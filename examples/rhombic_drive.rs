@@ -2,13 +2,22 @@
 //! 000, Fig. 1): positions, velocity and acceleration analogs of the pistons and rods, and the
 //! centres of mass, over a full turn of the crank.
 //!
+//! It also locates the extreme positions of the working piston and the displacer exactly (as
+//! roots of their velocity analogs), compares them with the paper's closed forms
+//! `X_F0 = sqrt((L_B + R_B)^2 - e_B^2)`, `X_Fmin = sqrt((L_B - R_B)^2 - e_B^2)` (and their
+//! analogues for the piston, with `e_P`), and prints the strokes and the phase shift between the
+//! piston's and the displacer's extremes.
+//!
 //! Run with `cargo run --release --example rhombic_drive`. It prints a table every 10 degrees,
-//! writes the full sweep as CSV and draws SVG charts into `out/rhombic_drive/`.
+//! writes the full sweep as CSV and draws SVG charts into `out/rhombic_drive/` (the charts into
+//! `$KINLOOP_FIGURES/rhombic_drive/` when that variable is set).
 
 mod common;
 
-use common::{Series, line_chart, out_dir};
+use common::{Series, decimate, figure_dir, line_chart, out_dir};
 use kinloop::Table;
+use kinloop::analysis::Sampled;
+use std::f64::consts::TAU;
 
 kinloop::mechanism! {
     /// Asymmetric rhombic drive with a developed crank: crank arms AB (`r_p`) and AD (`r_b`)
@@ -65,23 +74,57 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
         );
     }
 
-    let range = |f: &dyn Fn(&RhombicDriveState) -> f64| {
-        let v: Vec<f64> = states.iter().map(f).collect();
-        (v.iter().copied().fold(f64::MAX, f64::min), v.iter().copied().fold(f64::MIN, f64::max))
+    // Extreme positions, located as roots of the velocity analogs (dX/dphi1 = 0) on a sweep of
+    // one turn, against the closed forms: crank and rod stretched (outer) or folded (inner).
+    let turn = Sampled::sweep(&drive, 0.0, TAU, 361, drive.guess(0.0).into())?;
+    let xc = turn.range("x_c")?;
+    let xf = turn.range("x_f")?;
+    let e_b = drive.e_p - drive.de;
+    let x_f0 = ((drive.l_b + drive.r_b).powi(2) - e_b * e_b).sqrt();
+    let x_fmin = ((drive.l_b - drive.r_b).powi(2) - e_b * e_b).sqrt();
+    let x_c_outer = -((drive.l_p + drive.r_p).powi(2) - drive.e_p * drive.e_p).sqrt();
+    let x_c_inner = -((drive.l_p - drive.r_p).powi(2) - drive.e_p * drive.e_p).sqrt();
+    // Crank angles there: arm AB points from A = (0, e_P) at C (outer) or away from it (inner);
+    // arm AD likewise towards F = (X_F, de).
+    let deg = |a: f64| a.to_degrees().rem_euclid(360.0);
+    let at_c_outer = deg(f64::atan2(-drive.e_p, x_c_outer));
+    let at_c_inner = deg(f64::atan2(drive.e_p, -x_c_inner));
+    let at_f_outer = deg(f64::atan2(-e_b, x_f0) - drive.gamma);
+    let at_f_inner = deg(f64::atan2(e_b, -x_fmin) - drive.gamma);
+    println!("\nextreme positions (roots of the velocity analogs) vs closed forms:");
+    let show = |name: &str, v: f64, at: f64, closed: f64, closed_at: f64| {
+        println!(
+            "  {name:<20} {v:>16.12} at phi1 = {:>9.5}°   closed form {closed:>16.12} at {closed_at:>9.5}°   (diff {:.1e})",
+            deg(at),
+            (v - closed).abs()
+        )
     };
-    let (c0, c1) = range(&|s| s.q.x_c);
-    let (f0, f1) = range(&|s| s.q.x_f);
-    println!("\npiston stroke    X_C in [{c0:.6}, {c1:.6}]: {:.6}", c1 - c0);
-    println!("displacer stroke X_F in [{f0:.6}, {f1:.6}]: {:.6}", f1 - f0);
+    show("X_C min (outer)", xc.min.value, xc.min.x, x_c_outer, at_c_outer);
+    show("X_C max (inner)", xc.max.value, xc.max.x, x_c_inner, at_c_inner);
+    show("X_F max = X_F0", xf.max.value, xf.max.x, x_f0, at_f_outer);
+    show("X_F min = X_Fmin", xf.min.value, xf.min.x, x_fmin, at_f_inner);
+    println!("piston stroke    {:.12} (closed form {:.12})", xc.span(), x_c_inner - x_c_outer);
+    println!("displacer stroke {:.12} (closed form {:.12})", xf.span(), x_f0 - x_fmin);
+    // Phase shift: crank angle from the piston's extreme to the displacer's corresponding one
+    // (outer to outer, inner to inner: both pistons farthest from, or nearest to, the crank).
+    let shift_outer = deg(xf.max.x - xc.min.x);
+    let shift_inner = deg(xf.min.x - xc.max.x);
+    println!(
+        "phase shift of the extremes: outer {shift_outer:.6}° (closed form {:.6}°), inner {shift_inner:.6}° (closed form {:.6}°)",
+        deg((at_f_outer - at_c_outer).to_radians()),
+        deg((at_f_inner - at_c_inner).to_radians())
+    );
     let s = states.iter().map(|s| s.report.iterations).sum::<u32>();
     println!("Newton iterations over the sweep: {s} ({} solves)", states.len());
 
-    let dir = out_dir("rhombic_drive");
+    let data = out_dir("rhombic_drive");
     let table = Table::from_states::<RhombicDrive, _, _, _>(states.iter().map(|s| &s.flat));
-    table.save_csv(dir.join("sweep.csv"))?;
+    table.save_csv(data.join("sweep.csv"))?;
 
+    // Charts every 0.5 degree (721 points per curve).
+    let dir = figure_dir("rhombic_drive");
     let deg = |f: &dyn Fn(&RhombicDriveState) -> f64| -> Vec<(f64, f64)> {
-        states.iter().map(|s| (s.input.phi1.to_degrees(), f(s))).collect()
+        decimate(&states.iter().map(|s| (s.input.phi1.to_degrees(), f(s))).collect::<Vec<_>>(), 721)
     };
     line_chart(
         &dir.join("positions.svg"),
@@ -128,6 +171,6 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
             Series { label: "S4", points: deg(&|s| s.dout.s4.norm()) },
         ],
     )?;
-    println!("\nwrote {} and 4 charts to {}", dir.join("sweep.csv").display(), dir.display());
+    println!("\nwrote {} and 4 charts to {}", data.join("sweep.csv").display(), dir.display());
     Ok(())
 }

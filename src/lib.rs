@@ -64,6 +64,14 @@
 //! Mistakes are compile errors at the exact place, with what to write instead: unknown names
 //! (with a suggestion), vector/scalar mix-ups, unsupported functions, and structural problems
 //! (equation and unknown counts with the resulting mobility, over- and under-determined parts).
+//! All mistakes of a declaration are reported together. A structural problem is one error at the
+//! mechanism's name — counts, mobility `W = unknowns + inputs - equations`, the over- and
+//! under-determined parts (Dulmage–Mendelsohn) with their equations and unknowns, and what to add
+//! or remove — plus a short error at each loop and unknown involved. An unknown in no equation,
+//! an equation without unknowns and an input that is never used are errors; a parameter that is
+//! never used is a warning (name it `_mass` to keep it on purpose). After an error the macro
+//! still defines the parameter struct and the named types, so code using them adds no
+//! secondary errors.
 //!
 //! ## What is generated
 //!
@@ -79,7 +87,8 @@
 //! * methods on `Name`: `solve`, `kinematics(input, guess)`, `position(input, guess)`,
 //!   `kinematics_at(input, q)`, `outputs`, `residual`, `guess`, `check`, their `_with`
 //!   variants taking a [`NewtonConfig`], and the constants `PARAMS`, `INPUTS`, `UNKNOWNS`,
-//!   `EQUATIONS`, `OUTPUTS`, `BLOCKS` (the block-triangular decomposition);
+//!   `EQUATIONS`, `OUTPUTS`, `BLOCKS` (the block-triangular decomposition) and
+//!   `DECOMPOSITION` (the same in words, see below);
 //! * an implementation of [`Mechanism`] for generic code.
 //!
 //! The equations are ordered into blocks (maximum matching and Tarjan's strongly connected
@@ -87,6 +96,85 @@
 //! Newton with a fixed-size Jacobian, blocks whose unknowns appear linearly (slider coordinates)
 //! by one linear solve. Velocity analogs solve `J q' = -df/dphi` and acceleration analogs
 //! `J q'' = -D2f[(q', 1), (q', 1)]` with one factorisation per block shared by both.
+//!
+//! `Name::BLOCKS` lists the blocks in solve order ([`BlockInfo`]: unknowns, equations, linear),
+//! and `Name::DECOMPOSITION` describes them in words: the counts and the mobility, then one line
+//! per block with its index (the one error locations use), how it is solved (`Newton` iterates,
+//! `linear` is one linear solve), its size, and its unknowns `<-` its scalar equations (`loop.x`,
+//! `loop.y`, or an `eq` name). `#[kinloop(dense)]` solves all unknowns as one block instead (the
+//! results are the same; it exists to compare and to debug).
+//!
+//! ```
+//! kinloop::mechanism! {
+//!     pub struct SliderCrank {
+//!         params r = 1.0, l = 3.0, e = 0.2;
+//!         input phi;
+//!         unknowns psi = 0, x = r + l;
+//!         loop oabo: r @ phi == (x, e) + l @ psi;
+//!     }
+//! }
+//!
+//! // The rod angle comes from the loop's y projection (the slider is not in it), then the
+//! // slider coordinate, which appears linearly, from its x projection in closed form.
+//! assert_eq!(
+//!     SliderCrank::DECOMPOSITION,
+//!     "SliderCrank: 2 unknowns, 2 scalar equations, 1 input (mobility W = 1); 2 blocks in solve order
+//!   block 0 (Newton, 1x1): psi <- oabo.y
+//!   block 1 (linear, 1x1): x <- oabo.x"
+//! );
+//! assert_eq!(SliderCrank::BLOCKS[1].unknowns, ["x"]);
+//! assert!(SliderCrank::BLOCKS[1].linear);
+//! ```
+//!
+//! ## Sweeps, singular positions and assembly modes
+//!
+//! `m.sweep(from, to, samples, &guess)` is a lazy iterator over `samples` equally spaced inputs
+//! (a straight path in input space for several inputs). Between samples it steps adaptively with
+//! a second-order Taylor predictor from the generated analogs and a Newton corrector, and it
+//! **never jumps branches**: a step is accepted only if every block keeps the sign of its
+//! Jacobian determinant (its assembly mode), the corrected position lies near the prediction and
+//! the velocity analogs near theirs. When no step can be made it locates why — a **limit
+//! position** of the input (found by pseudo-arclength continuation where the input reverses) or
+//! a **singular crossing** (a change point where a determinant changes sign) — records a
+//! [`Event`] with the input value, and stops with [`Error::SweepStopped`] (or, with
+//! [`AtSingular::Continue`], passes a crossing). [`Sweep::table`] collects a sweep into a
+//! CSV-ready [`Table`]; [`reachable`] finds the input range reachable on a branch;
+//! [`trace_curve`] follows the whole solution curve through limit positions (e.g. the closed
+//! curve of a non-Grashof four-bar); `m.assembly_modes(input)` lists the distinct assembly modes
+//! so one can be picked by a readable rule ("elbow up": `.into_iter().find(|s| s.out.c.y > 0.0)`).
+//!
+//! ```
+//! kinloop::mechanism! {
+//!     pub struct FourBar {
+//!         params a = 3.0, b = 2.0, c = 2.5, d = 4.0;   // non-Grashof: the input rocks
+//!         input phi;
+//!         unknowns beta = 0.5, gamma = 1.5;
+//!         loop abcd: a @ phi + b @ beta == (d, 0) + c @ gamma;
+//!     }
+//! }
+//! let m = FourBar::default();
+//! let g = m.position(0.0, &m.guess(0.0))?.0;
+//! let mut sweep = m.sweep(0.0, 3.14, 19, &g)?;
+//! let last = sweep.by_ref().find_map(Result::err).expect("the input cannot reach 3.14");
+//! assert!(matches!(last, kinloop::Error::SweepStopped { kind: kinloop::EventKind::LimitPosition, .. }));
+//! let limit = sweep.events()[0].x[0];
+//! // Law of cosines: coupler and rocker are collinear, |BD| = b + c.
+//! let expected = ((9.0 + 16.0 - 4.5f64 * 4.5) / 24.0).acos();
+//! assert!((limit - expected).abs() < 1e-9);
+//! # Ok::<(), kinloop::Error>(())
+//! ```
+//!
+//! ## Parameter sensitivities
+//!
+//! `m.sensitivities(input, &guess)` returns the state and its exact derivatives with respect to
+//! every parameter — of positions, velocity and acceleration analogs and outputs — by the
+//! implicit function theorem on the same block factorisations (`dq/dp = -J^-1 df/dp`; the
+//! analogs' sensitivities differentiate their own equations), all differentiated at compile time.
+//! A parameter name appended to a state path reads as a derivative: `sens.dq.x_c.l_p` is
+//! `d(dX_C/dphi1)/dL_P`. They cost nothing unless requested. [`extremum`] and [`integral`] give
+//! objectives over a whole sweep with exact gradients (extremes by the envelope theorem, with the
+//! gradient of their location), and [`levenberg_marquardt`] uses them for synthesis
+//! (`examples/synthesis.rs`).
 //!
 //! ## Errors
 //!

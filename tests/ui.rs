@@ -1,6 +1,15 @@
-//! Compile-fail tests: every diagnostic of `mechanism!` is pinned by a `.stderr` file.
+//! Compile-fail tests: every diagnostic of `mechanism!` is pinned by a `.stderr` file, one case
+//! per file, in category folders:
+//!
+//! * `syntax/`: the declaration's grammar (missing `;`, `=` for `==`, number suffixes, ...);
+//! * `names/`: name resolution (unknown, duplicate, used before its `let`, unsupported function);
+//! * `types/`: vectors versus scalars (`r @ phi + gamma`, a `loop` of scalars, wrong arity, ...);
+//! * `structure/`: counts and mobility, over- and under-determined parts, unused names;
+//! * `fallback/`: the items emitted next to the errors keep user code free of secondary errors;
+//! * `combined/`: several mistakes in one declaration are all reported at once.
+//!
 //! Regenerate after an intended change with `TRYBUILD=overwrite cargo test --test ui` and review
-//! the diff of every `.stderr`.
+//! the diff of every `.stderr`: each message must say what is wrong, where, and what to write.
 
 #[test]
 fn ui() {

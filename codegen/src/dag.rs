@@ -34,6 +34,20 @@ pub enum Leaf {
     Tan { unknown: u16, input: u16 },
     /// Second total derivative `d2q_u / dx_i dx_j` with `i <= j`.
     Tan2 { unknown: u16, i: u16, j: u16 },
+    /// Sensitivity of a position to a parameter: `dq_u / dp_k`.
+    SensQ { unknown: u16, param: u16 },
+    /// Sensitivity of a velocity analog: `d(dq_u/dx_i) / dp_k`.
+    SensV { unknown: u16, input: u16, param: u16 },
+    /// Sensitivity of an acceleration analog: `d(d2q_u/dx_i dx_j) / dp_k` with `i <= j`.
+    SensA { unknown: u16, i: u16, j: u16, param: u16 },
+}
+
+impl Leaf {
+    /// Leaves that are only known after the position and analog solves (analogs and
+    /// sensitivities), as opposed to parameters, inputs and unknowns.
+    pub fn is_derived(self) -> bool {
+        !matches!(self, Leaf::Param(_) | Leaf::Input(_) | Leaf::Unknown(_))
+    }
 }
 
 /// Elementary functions of one argument.
@@ -345,6 +359,12 @@ impl Graph {
     }
 
     pub fn powi(&mut self, a: NodeId, n: i32) -> NodeId {
+        // Huge integer exponents go through `powf`, so that differentiating them (n - 1, n - 2,
+        // ...) can never overflow the exponent.
+        if n.unsigned_abs() > 1 << 20 {
+            let e = self.constant(n as f64);
+            return self.intern(Op::Powf(a, e));
+        }
         match n {
             0 => return self.one(),
             1 => return a,
@@ -471,7 +491,7 @@ impl Graph {
             Op::Powi(a, k) => {
                 let da = d(a);
                 let c = self.constant(k as f64);
-                let p = self.powi(a, k - 1);
+                let p = self.powi(a, k.saturating_sub(1));
                 let cp = self.mul(c, p);
                 self.mul(cp, da)
             }

@@ -7,7 +7,7 @@
 //! first scope that needs it; values computed inside a Newton closure that later scopes need are
 //! handed out through the evaluation's `keep` array instead of being recomputed.
 
-use crate::dag::{Graph, Leaf, NodeId, Op};
+use crate::dag::{Func, Graph, Leaf, NodeId, Op};
 use proc_macro2::{Ident, Literal, Span, TokenStream};
 use quote::{format_ident, quote};
 use std::collections::HashMap;
@@ -47,6 +47,20 @@ pub fn schedule(g: &Graph, level: &[i32], scopes: &[ScopeSpec]) -> Schedule {
             assigned.insert(n, target);
             stack.extend(g.op(n).operands());
         }
+    }
+    // A sine and a cosine of the same argument are computed together (one `sin_cos`) in the
+    // earlier of their two scopes; the argument is available there, since one of them already is.
+    let pairs: Vec<(NodeId, NodeId)> = assigned
+        .keys()
+        .filter_map(|&n| match g.op(n) {
+            Op::Func(Func::Sin, a) => assigned.keys().find(|&&m| g.op(m) == Op::Func(Func::Cos, a)).map(|&m| (n, m)),
+            _ => None,
+        })
+        .collect();
+    for (sn, cn) in pairs {
+        let first = assigned[&sn].min(assigned[&cn]);
+        assigned.insert(sn, first);
+        assigned.insert(cn, first);
     }
     let mut lets = vec![Vec::new(); scopes.len()];
     for (&n, &s) in &assigned {
@@ -102,6 +116,19 @@ impl Names {
         format_ident!("w{}_{}_{}", u, i, j)
     }
 
+    pub fn sens_q(u: usize, k: usize) -> Ident {
+        format_ident!("sq{}_{}", u, k)
+    }
+
+    pub fn sens_v(u: usize, i: usize, k: usize) -> Ident {
+        format_ident!("sv{}_{}_{}", u, i, k)
+    }
+
+    pub fn sens_a(u: usize, i: usize, j: usize, k: usize) -> Ident {
+        let (i, j) = if i <= j { (i, j) } else { (j, i) };
+        format_ident!("sa{}_{}_{}_{}", u, i, j, k)
+    }
+
     fn leaf(&self, l: Leaf) -> TokenStream {
         match l {
             Leaf::Param(k) => ident_tokens(&self.params[k as usize]),
@@ -109,6 +136,13 @@ impl Names {
             Leaf::Unknown(k) => ident_tokens(&self.unknowns[k as usize]),
             Leaf::Tan { unknown, input } => ident_tokens(&Self::tan(unknown as usize, input as usize)),
             Leaf::Tan2 { unknown, i, j } => ident_tokens(&Self::tan2(unknown as usize, i as usize, j as usize)),
+            Leaf::SensQ { unknown, param } => ident_tokens(&Self::sens_q(unknown as usize, param as usize)),
+            Leaf::SensV { unknown, input, param } => {
+                ident_tokens(&Self::sens_v(unknown as usize, input as usize, param as usize))
+            }
+            Leaf::SensA { unknown, i, j, param } => {
+                ident_tokens(&Self::sens_a(unknown as usize, i as usize, j as usize, param as usize))
+            }
         }
     }
 
@@ -176,13 +210,38 @@ impl Names {
     }
 
     /// `let tN: f64 = ...;` for each node.
+    /// A sine and a cosine of the same argument in one scope become one `sin_cos()` call.
     pub fn lets(&self, g: &Graph, nodes: &[NodeId]) -> TokenStream {
-        let stmts = nodes.iter().map(|&n| {
-            let name = Self::temp(n);
-            let e = self.expr(g, n);
-            quote!(let #name: f64 = #e;)
-        });
-        quote!(#(#stmts)*)
+        let mut cos_of: HashMap<NodeId, NodeId> = HashMap::new();
+        let mut sin_of: HashMap<NodeId, NodeId> = HashMap::new();
+        for &n in nodes {
+            match g.op(n) {
+                Op::Func(Func::Cos, a) => {
+                    cos_of.insert(a, n);
+                }
+                Op::Func(Func::Sin, a) => {
+                    sin_of.insert(a, n);
+                }
+                _ => {}
+            }
+        }
+        let mut out = TokenStream::new();
+        for &n in nodes {
+            match g.op(n) {
+                Op::Func(Func::Sin, a) if cos_of.contains_key(&a) => {
+                    let (s, c) = (Self::temp(n), Self::temp(cos_of[&a]));
+                    let arg = self.operand(g, a);
+                    out.extend(quote!(let (#s, #c): (f64, f64) = #arg.sin_cos();));
+                }
+                Op::Func(Func::Cos, a) if sin_of.contains_key(&a) => {}
+                _ => {
+                    let name = Self::temp(n);
+                    let e = self.expr(g, n);
+                    out.extend(quote!(let #name: f64 = #e;));
+                }
+            }
+        }
+        out
     }
 }
 

@@ -133,6 +133,27 @@ impl Expr {
         }
     }
 
+    /// The expression as source text (with the user's parentheses), for "write ... instead"
+    /// hints in messages.
+    pub fn show(&self) -> String {
+        match self {
+            Expr::Num { value, integer, .. } => match integer {
+                Some(n) => n.to_string(),
+                None => format!("{value:?}"),
+            },
+            Expr::Var(id) => id.to_string(),
+            Expr::Neg { expr, .. } => format!("-{}", expr.show()),
+            Expr::Binary { op: BinOp::Pow, lhs, rhs, .. } => format!("{}^{}", lhs.show(), rhs.show()),
+            Expr::Binary { op, lhs, rhs, .. } => format!("{} {} {}", lhs.show(), op.symbol(), rhs.show()),
+            Expr::Call { func, args, .. } => {
+                format!("{func}({})", args.iter().map(Expr::show).collect::<Vec<_>>().join(", "))
+            }
+            Expr::Tuple { x, y, .. } => format!("({}, {})", x.show(), y.show()),
+            Expr::Paren { inner, .. } => format!("({})", inner.show()),
+            Expr::Field { base, name, .. } => format!("{}.{name}", base.show()),
+        }
+    }
+
     /// Is this the literal `0` (used for `loop name: a + b - c == 0`)?
     pub fn is_literal_zero(&self) -> bool {
         match self {
@@ -245,7 +266,15 @@ impl Parser {
     }
 
     fn postfix(&mut self, input: ParseStream, mut base: Expr) -> syn::Result<Expr> {
+        // A chain `v.x.x.x...` nests too: it must respect the depth bound like operators do.
+        let mut chain = 0usize;
         while input.peek(Token![.]) && !input.peek(Token![..]) {
+            chain += 1;
+            if self.depth + chain > MAX_DEPTH {
+                return Err(input.error(format!(
+                    "expression has more than {MAX_DEPTH} chained `.x`/`.y`; a component of a scalar is an error anyway"
+                )));
+            }
             input.parse::<Token![.]>()?;
             let name: Ident = match input.parse() {
                 Ok(id) => id,
@@ -280,7 +309,10 @@ impl Parser {
             }
             let value: f64 = lit.base10_digits().parse().map_err(|_| syn::Error::new(lit.span(), "invalid number"))?;
             if !value.is_finite() {
-                return Err(syn::Error::new(lit.span(), "number is too large to be a finite f64"));
+                return Err(syn::Error::new(
+                    lit.span(),
+                    "number is too large for an f64 (the largest is about 1.8e308)",
+                ));
             }
             let integer = lit.base10_digits().parse::<i64>().ok();
             return Ok(Expr::Num { value, integer, span: lit.span() });
@@ -295,7 +327,10 @@ impl Parser {
             }
             let value: f64 = lit.base10_digits().parse().map_err(|_| syn::Error::new(lit.span(), "invalid number"))?;
             if !value.is_finite() {
-                return Err(syn::Error::new(lit.span(), "number is too large to be a finite f64"));
+                return Err(syn::Error::new(
+                    lit.span(),
+                    "number is too large for an f64 (the largest is about 1.8e308)",
+                ));
             }
             return Ok(Expr::Num { value, integer: None, span: lit.span() });
         }
@@ -352,10 +387,21 @@ impl Parser {
             }
             return Ok(Expr::Tuple { open, x: Box::new(first), y: Box::new(second), close });
         }
+        const VALUE: &str = "a number, a name, a call `f(x)`, a vector `(x, y)` or `(expression)`";
         if input.is_empty() {
-            return Err(input.error("expected an expression"));
+            return Err(input.error(format!("expected a value: {VALUE}")));
         }
-        Err(look.error())
+        // The operator or token where a value was expected (a joint operator such as `==` whole).
+        let mut found = String::new();
+        let mut cursor = input.cursor();
+        while let Some((tt, next)) = cursor.token_tree() {
+            found.push_str(&tt.to_string().chars().take(24).collect::<String>());
+            match tt {
+                proc_macro2::TokenTree::Punct(p) if p.spacing() == proc_macro2::Spacing::Joint => cursor = next,
+                _ => break,
+            }
+        }
+        Err(input.error(format!("expected a value ({VALUE}), found `{found}`")))
     }
 }
 
@@ -404,6 +450,15 @@ mod tests {
     }
 
     #[test]
+    fn show_round_trips_the_source() {
+        for src in ["a + r @ (phi + g)", "-x^2", "atan2(y, x) * 2", "(a + b).x", "(0, e) - 2.5 * l @ psi"] {
+            let ts: TokenStream = src.parse().unwrap();
+            let e = parse_expr.parse2(ts).unwrap();
+            assert_eq!(e.show(), src);
+        }
+    }
+
+    #[test]
     fn errors_are_reported_not_panicked() {
         assert!(parse("").starts_with("error"));
         assert!(parse("(a, b, c)").starts_with("error"));
@@ -414,5 +469,7 @@ mod tests {
         assert!(parse(&deep).contains("nested"));
         let long = vec!["x"; 1000].join(" + ");
         assert!(parse(&long).contains("chained"));
+        let fields = format!("v{}", ".x".repeat(100_000));
+        assert!(parse(&fields).contains("chained"));
     }
 }

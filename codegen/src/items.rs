@@ -5,7 +5,7 @@
 use crate::emit::Names;
 use crate::model::Model;
 use crate::plan::Plan;
-use crate::solver::{Mode, default_literals, solver_body, straight_line};
+use crate::solver::{Mode, default_literals, jacobian_body, solver_body, straight_line};
 use proc_macro2::{Ident, Literal, Span, TokenStream};
 use quote::{format_ident, quote};
 use syn::Attribute;
@@ -292,6 +292,7 @@ pub fn generate(model: &Model, plan: &Plan) -> TokenStream {
     // ---------------------------------------------------------------- constants
     let eq_strs: Vec<String> = model.equations.iter().map(|e| e.name.clone()).collect();
     let out_strs = model.output_names();
+    let decomposition = crate::describe::decomposition(model, plan);
     let blocks = plan.blocks.iter().map(|b| {
         let us = b.unknowns.iter().map(|&u| &unknown_strs[u]);
         let es = b.equations.iter().map(|&e| &eq_strs[e]);
@@ -306,6 +307,8 @@ pub fn generate(model: &Model, plan: &Plan) -> TokenStream {
     let residual_body = straight_line(model, plan, &names, &plan.residuals, true);
     let outputs_body = straight_line(model, plan, &names, &plan.outputs, true);
     let guess_body = straight_line(model, plan, &names, &plan.guesses, false);
+    let jacobian = jacobian_body(model, plan, &names, &rt);
+    let sens_items = crate::sens_items::generate(model, plan, &names, &rt);
 
     let param_vals = pnames.iter().map(|p| quote!(self.#p));
     let from_params = pnames.iter().enumerate().map(|(k, p)| {
@@ -340,6 +343,7 @@ pub fn generate(model: &Model, plan: &Plan) -> TokenStream {
         #nalgebra_from
         #outputs_struct
         #state_struct
+        #sens_items
 
         #[allow(clippy::all, clippy::pedantic, clippy::nursery)]
         impl #name {
@@ -357,6 +361,9 @@ pub fn generate(model: &Model, plan: &Plan) -> TokenStream {
             pub const OUTPUTS: [&'static str; #nol] = [#(#out_strs),*];
             /// The block-triangular decomposition of the equations, in solve order.
             pub const BLOCKS: &'static [#rt::BlockInfo] = &[#(#blocks),*];
+            /// The decomposition in words: counts and mobility, then one line per block in
+            /// solve order (Newton or linear, size, unknowns `<-` equations).
+            pub const DECOMPOSITION: &'static str = #decomposition;
 
             /// Parameter values in declaration order.
             pub fn param_values(&self) -> [f64; #npl] {
@@ -426,6 +433,29 @@ pub fn generate(model: &Model, plan: &Plan) -> TokenStream {
                 self.__kinematics(&__x, &g, &#rt::NewtonConfig::default()).map(#state_ty::from)
             }
 
+            /// A lazy sweep of `samples` equally spaced inputs from `from` to `to` (both included)
+            /// that never jumps branches: see [`Sweep`](::kinloop::Sweep). `guess` at `from`
+            /// picks the assembly mode.
+            pub fn sweep(
+                &self,
+                from: impl ::core::convert::Into<#inputs_ty>,
+                to: impl ::core::convert::Into<#inputs_ty>,
+                samples: usize,
+                guess: &#unknowns_ty,
+            ) -> ::core::result::Result<#rt::Sweep<'_, Self, #state_ty, #nl, #nil, #nol>, #err> {
+                let from: [f64; #nil] = ::core::convert::Into::<#inputs_ty>::into(from).into();
+                let to: [f64; #nil] = ::core::convert::Into::<#inputs_ty>::into(to).into();
+                #rt::Sweep::new(self, from, to, samples, (*guess).into())
+            }
+
+            /// The distinct assembly modes at `input` (multi-start Newton; see
+            /// [`assembly_modes`](::kinloop::assembly_modes)), e.g. to pick "elbow up" with
+            /// `.into_iter().find(|s| ...)`.
+            pub fn assembly_modes(&self, #inputs_arg) -> ::std::vec::Vec<#state_ty> {
+                #to_x
+                #rt::assembly_modes(self, &__x, 64, &#rt::NewtonConfig::default()).into_iter().map(#state_ty::from).collect()
+            }
+
             /// Output values at a position.
             pub fn outputs(&self, #inputs_arg, q: &#unknowns_ty) -> #outputs_ty {
                 #to_x
@@ -462,6 +492,11 @@ pub fn generate(model: &Model, plan: &Plan) -> TokenStream {
             #lints
             fn __guess(&self, __x: &[f64; #nil]) -> [f64; #nl] {
                 #guess_body
+            }
+
+            #lints
+            fn __jacobian(&self, __x: &[f64; #nil], __q: &[f64; #nl]) -> #rt::Jac<#nl, #nil> {
+                #jacobian
             }
 
             #[cold]
@@ -568,6 +603,9 @@ pub fn generate(model: &Model, plan: &Plan) -> TokenStream {
             }
             fn outputs_flat(&self, x: &[f64; #nil], q: &[f64; #nl]) -> [f64; #nol] {
                 self.__outputs(x, q)
+            }
+            fn jacobian_flat(&self, x: &[f64; #nil], q: &[f64; #nl]) -> #rt::Jac<#nl, #nil> {
+                self.__jacobian(x, q)
             }
             fn check_params(&self) -> ::core::result::Result<(), #err> {
                 self.check()

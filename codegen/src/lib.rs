@@ -13,11 +13,15 @@
 
 pub mod analysis;
 pub mod dag;
+pub mod describe;
+pub mod diag;
 pub mod emit;
 pub mod expr;
+pub mod fallback;
 pub mod items;
 pub mod model;
 pub mod plan;
+pub mod sens_items;
 pub mod solver;
 pub mod structure;
 pub mod syntax;
@@ -28,23 +32,62 @@ use proc_macro2::TokenStream;
 pub struct Analyzed {
     pub model: model::Model,
     pub blocks: Vec<structure::Block>,
+    /// Warnings (unused parameters); they do not stop code generation.
+    pub warnings: Vec<diag::Warning>,
 }
 
-/// Parses and checks a declaration without generating code.
+/// Parses and checks a declaration without generating code. Never panics.
 pub fn analyze(input: TokenStream) -> Result<Analyzed, syn::Error> {
     let def = syntax::parse(input)?;
     let model = model::build(def)?;
     let blocks = analysis::analyze(&model)?;
-    Ok(Analyzed { model, blocks })
+    let warnings = analysis::warnings(&model);
+    Ok(Analyzed { model, blocks, warnings })
 }
 
-/// Expands a `mechanism!` invocation. Errors come back as `compile_error!` invocations.
+/// Expands a `mechanism!` invocation. Never panics. Errors come back as `compile_error!`
+/// invocations, all of them together; once the mechanism's name is known they come with the
+/// fallback items of [`fallback`], so code that uses the mechanism's types adds no secondary
+/// errors.
 pub fn expand(input: TokenStream) -> TokenStream {
-    match analyze(input) {
-        Ok(Analyzed { mut model, blocks }) => {
-            let plan = plan::build(&mut model, &blocks);
-            items::generate(&model, &plan)
+    let (def, syntax_errors) = syntax::parse_recover(input);
+    let Some(def) = def else {
+        return syntax_errors.map(|e| e.to_compile_error()).unwrap_or_default();
+    };
+    let shape = fallback::Shape::of(&def);
+    if let Some(e) = syntax_errors {
+        // Names are not resolved after a syntax error: an item that failed to parse may define
+        // a name that the others use, and every such use would be a misleading error.
+        let mut out = e.to_compile_error();
+        out.extend(shape.items(None));
+        return out;
+    }
+    let mut model = match model::build(def) {
+        Ok(m) => m,
+        Err(e) => {
+            let mut out = e.to_compile_error();
+            out.extend(shape.items(None));
+            return out;
         }
-        Err(e) => e.to_compile_error(),
+    };
+    let warnings = diag::to_tokens(&analysis::warnings(&model), &model.name);
+    match analysis::analyze(&model) {
+        Ok(blocks) => {
+            let plan = plan::build(&mut model, &blocks);
+            let mut out = items::generate(&model, &plan);
+            out.extend(warnings);
+            out
+        }
+        Err(e) => {
+            let defaults = model
+                .params
+                .iter()
+                .map(|p| p.value.and_then(|v| model.graph.as_const(v)))
+                .collect::<Option<Vec<f64>>>();
+            let mut out = e.to_compile_error();
+            out.extend(shape.items(defaults));
+            out.extend(warnings);
+            out
+        }
     }
 }

@@ -18,11 +18,18 @@ pub struct Named {
     pub name: Ident,
     /// Default value (params) or initial guess (unknowns).
     pub value: Option<NodeId>,
+    /// Index of the declaring item (`params ...;`, `unknowns ...;`) in the body: names of one
+    /// item are neighbours in the source, so a diagnostic can underline several at once.
+    pub item: usize,
 }
 
 pub struct Equation {
     /// `loop_name.x`, `loop_name.y` or the `eq` name.
     pub name: String,
+    /// The `loop` or `eq` item's name (shared by a loop's two projections).
+    pub item: Ident,
+    /// Declared with `loop` (a vector equation) rather than `eq`.
+    pub is_loop: bool,
     /// The loop or equation item, for errors about it.
     pub range: SpanRange,
     pub residual: NodeId,
@@ -96,7 +103,8 @@ enum Symbol {
     Input(u16),
     Unknown(u16),
     Let(Val),
-    /// Declared later in the body: using it now is an ordering mistake.
+    /// Declared later in the body by the item with this keyword (`let`, `point`, `output`):
+    /// using it now is an ordering mistake.
     Later(&'static str),
     /// Its definition had an error (already reported): uses stay silent.
     Poisoned,
@@ -129,7 +137,13 @@ fn one_arg(name: &str) -> Option<Func> {
 /// Suggests a declared name close to a misspelt one (at most 2 edits, a swap of neighbours
 /// counting as one). Ties are broken by name so the message is deterministic.
 pub fn similar<'a>(name: &str, candidates: impl Iterator<Item = &'a String>) -> Option<&'a String> {
+    // The distance is quadratic in the lengths: long names get no suggestion.
+    const LONGEST: usize = 64;
+    if name.chars().count() > LONGEST {
+        return None;
+    }
     candidates
+        .filter(|c| c.chars().count() <= LONGEST)
         .map(|c| (edit_distance(name, c), c))
         .filter(|(d, c)| *d <= 2 && *d < c.chars().count().max(name.chars().count()))
         .min_by(|a, b| a.0.cmp(&b.0).then_with(|| a.1.cmp(b.1)))
@@ -183,7 +197,9 @@ pub fn build(def: MechanismDef) -> Result<Model, syn::Error> {
     let mut params: Vec<&Decl> = Vec::new();
     let mut inputs: Vec<&Decl> = Vec::new();
     let mut unknowns: Vec<&Decl> = Vec::new();
-    for item in &items {
+    // Declaration item of each declared name, keyed by the `Decl`'s address.
+    let mut item_of: HashMap<*const Decl, usize> = HashMap::new();
+    for (item_index, item) in items.iter().enumerate() {
         if let ItemKind::Decls(kind, decls) = &item.kind {
             for d in decls {
                 let list = match kind {
@@ -198,6 +214,7 @@ pub fn build(def: MechanismDef) -> Result<Model, syn::Error> {
                     DeclKind::Unknowns => Symbol::Unknown(idx),
                 };
                 if lw.declare(&d.name, sym) {
+                    item_of.insert(d as *const Decl, item_index);
                     list.push(d);
                 }
             }
@@ -230,12 +247,12 @@ pub fn build(def: MechanismDef) -> Result<Model, syn::Error> {
     lw.used_inputs = vec![false; inputs.len()];
     for item in &items {
         let later = match &item.kind {
-            ItemKind::Let { name, .. } => Some((name, "a `let`")),
-            ItemKind::Point { name, .. } => Some((name, "a `point`")),
-            ItemKind::Output { name, .. } => Some((name, "an `output`")),
+            ItemKind::Let { name, .. } => Some((name, "let")),
+            ItemKind::Point { name, .. } => Some((name, "point")),
+            ItemKind::Output { name, .. } => Some((name, "output")),
             _ => None,
         };
-        if let Some((n, what)) = later {
+        if let Some((n, what)) = later.filter(|(n, _)| *n != "pi") {
             lw.scope.symbols.entry(n.to_string()).or_insert_with(|| (Symbol::Later(what), n.span()));
         }
     }
@@ -244,10 +261,9 @@ pub fn build(def: MechanismDef) -> Result<Model, syn::Error> {
     let mut param_out = Vec::new();
     for d in &params {
         let value = d.value.as_ref().and_then(|e| lw.constant(e, "a parameter's default value"));
-        param_out.push(Named { docs: d.docs.clone(), name: d.name.clone(), value });
+        param_out.push(named(d, value, &item_of));
     }
-    let input_out: Vec<Named> =
-        inputs.iter().map(|d| Named { docs: d.docs.clone(), name: d.name.clone(), value: None }).collect();
+    let input_out: Vec<Named> = inputs.iter().map(|d| named(d, None, &item_of)).collect();
 
     let mut unknown_guess: Vec<Option<NodeId>> = vec![None; unknowns.len()];
     let mut equations = Vec::new();
@@ -301,9 +317,9 @@ pub fn build(def: MechanismDef) -> Result<Model, syn::Error> {
                 if let Some(prev) = seen_item_names.insert(key.clone(), name.span()) {
                     let mut e = syn::Error::new(
                         name.span(),
-                        format!("equation name `{key}` is used twice; give each loop and equation its own name"),
+                        format!("the name `{key}` is given to two loops or equations; rename one of them"),
                     );
-                    e.combine(syn::Error::new(prev, "first used here"));
+                    e.combine(syn::Error::new(prev, format!("`{key}` is first used as a name here")));
                     lw.errors.push(e);
                     continue;
                 }
@@ -314,12 +330,14 @@ pub fn build(def: MechanismDef) -> Result<Model, syn::Error> {
                     (true, Val::V(lx, ly), Val::V(rx, ry)) => {
                         let fx = lw.graph.sub(lx, rx);
                         let fy = lw.graph.sub(ly, ry);
-                        equations.push(Equation { name: format!("{key}.x"), range, residual: fx });
-                        equations.push(Equation { name: format!("{key}.y"), range, residual: fy });
+                        let item = name.clone();
+                        equations.push(Equation { name: format!("{key}.x"), item, is_loop, range, residual: fx });
+                        let item = name.clone();
+                        equations.push(Equation { name: format!("{key}.y"), item, is_loop, range, residual: fy });
                     }
                     (false, Val::S(a), Val::S(b)) => {
                         let f = lw.graph.sub(a, b);
-                        equations.push(Equation { name: key, range, residual: f });
+                        equations.push(Equation { name: key, item: name.clone(), is_loop, range, residual: f });
                     }
                     (true, Val::S(_), Val::S(_)) => lw.errors.push(range.error(format!(
                         "`loop {name}` equates two scalars; a loop is a vector equation `vector == vector` \
@@ -332,9 +350,17 @@ pub fn build(def: MechanismDef) -> Result<Model, syn::Error> {
                     (_, l, _) => {
                         let (side, other) =
                             if matches!(l, Val::V(..)) { ("vector", "scalar") } else { ("scalar", "vector") };
+                        let help = if is_loop {
+                            "a `loop` equates two vectors, e.g. `r @ phi == (x, 0) + l @ psi`"
+                        } else {
+                            "an `eq` equates two scalars; take a component with `.x`/`.y` or a length with `norm(..)`"
+                        };
                         lw.errors.push(syn::Error::new(
                             *eq,
-                            format!("the left side is a {side} but the right side is a {other}; both sides of `==` must have the same type"),
+                            format!(
+                                "the left side is a {side} but the right side is a {other}; both sides of `==` \
+                                 must have the same type\nhelp: {help}"
+                            ),
                         ));
                     }
                 }
@@ -345,11 +371,7 @@ pub fn build(def: MechanismDef) -> Result<Model, syn::Error> {
         lw.errors.push(syn::Error::new(name.span(), "the mechanism's expressions are too large for kinloop"));
     }
 
-    let unknown_out = unknowns
-        .iter()
-        .zip(unknown_guess)
-        .map(|(d, value)| Named { docs: d.docs.clone(), name: d.name.clone(), value })
-        .collect();
+    let unknown_out = unknowns.iter().zip(unknown_guess).map(|(d, value)| named(d, value, &item_of)).collect();
     let Lowerer { graph, errors, used_params, used_inputs, .. } = lw;
     errors.finish(Model {
         docs,
@@ -369,19 +391,27 @@ pub fn build(def: MechanismDef) -> Result<Model, syn::Error> {
     })
 }
 
+fn named(d: &Decl, value: Option<NodeId>, item_of: &HashMap<*const Decl, usize>) -> Named {
+    let item = item_of.get(&(d as *const Decl)).copied().unwrap_or(0);
+    Named { docs: d.docs.clone(), name: d.name.clone(), value, item }
+}
+
 impl Lowerer {
     /// Registers a global name; reports a duplicate and returns false.
     fn declare(&mut self, name: &Ident, sym: Symbol) -> bool {
         let key = name.to_string();
         if key == "pi" {
-            self.errors.push(syn::Error::new(name.span(), "`pi` is a built-in constant; choose another name"));
+            self.errors
+                .push(syn::Error::new(name.span(), "`pi` is the built-in constant 3.14159...; choose another name"));
             return false;
         }
         if let Some((prev, span)) = self.scope.symbols.get(&key) {
             let what = describe(*prev);
-            let mut e =
-                syn::Error::new(name.span(), format!("`{key}` is already declared as {what}; names must be unique"));
-            e.combine(syn::Error::new(*span, format!("`{key}` first declared here")));
+            let mut e = syn::Error::new(
+                name.span(),
+                format!("`{key}` is already declared as {what}; names must be unique, rename one of them"),
+            );
+            e.combine(syn::Error::new(*span, format!("`{key}` is first declared here")));
             self.errors.push(e);
             return false;
         }
@@ -392,21 +422,22 @@ impl Lowerer {
     /// Defines a `let`, `point` or `output` name at its position in the body.
     fn define(&mut self, name: &Ident, v: Val) {
         let key = name.to_string();
+        if key == "pi" {
+            self.errors
+                .push(syn::Error::new(name.span(), "`pi` is the built-in constant 3.14159...; choose another name"));
+            return;
+        }
         match self.scope.symbols.get(&key) {
             Some((Symbol::Later(_), _)) | None => {
                 self.scope.symbols.insert(key, (Symbol::Let(v), name.span()));
             }
             Some((prev, span)) => {
-                if key == "pi" {
-                    self.errors.push(syn::Error::new(name.span(), "`pi` is a built-in constant; choose another name"));
-                    return;
-                }
                 let what = describe(*prev);
                 let mut e = syn::Error::new(
                     name.span(),
-                    format!("`{key}` is already declared as {what}; names must be unique"),
+                    format!("`{key}` is already declared as {what}; names must be unique, rename one of them"),
                 );
-                e.combine(syn::Error::new(*span, format!("`{key}` first declared here")));
+                e.combine(syn::Error::new(*span, format!("`{key}` is first declared here")));
                 self.errors.push(e);
             }
         }
@@ -423,7 +454,10 @@ impl Lowerer {
     fn constant(&mut self, e: &Expr, what: &str) -> Option<NodeId> {
         let v = self.lower_scalar(e, what)?;
         if !self.graph.leaves_of(&[v]).is_empty() || self.graph.as_const(v).is_none() {
-            self.errors.push(e.range().error(format!("{what} must be a constant number (it may use `pi`)")));
+            self.errors.push(e.range().error(format!(
+                "{what} must be a constant: write a number such as `2.5` or `pi / 4` \
+                 (it cannot use parameters, inputs or unknowns)"
+            )));
             return None;
         }
         Some(v)
@@ -433,7 +467,8 @@ impl Lowerer {
         let v = self.lower_scalar(e, "an initial guess")?;
         if self.graph.leaves_of(&[v]).iter().any(|l| matches!(l, Leaf::Unknown(_))) {
             self.errors.push(e.range().error(
-                "an initial guess may use parameters and inputs, but not unknowns (they are what is being solved)",
+                "an initial guess cannot use unknowns (they are what is being solved); \
+                 write a number or an expression of parameters and inputs, e.g. `= 0.5` or `= l + r`",
             ));
             return None;
         }
@@ -492,7 +527,10 @@ impl Lowerer {
                 Val::S(_) => {
                     self.errors.push(syn::Error::new(
                         name.span(),
-                        format!("`.{name}` takes a component of a vector, but this is a scalar"),
+                        format!(
+                            "`.{name}` takes a component of a vector, but `{}` is a scalar; remove `.{name}`",
+                            short(&base.show())
+                        ),
                     ));
                     return None;
                 }
@@ -537,9 +575,9 @@ impl Lowerer {
             Some((Symbol::Later(what), span)) => {
                 let mut e = syn::Error::new(
                     id.span(),
-                    format!("`{key}` is used before it is defined; move {what} `{key}` above this line"),
+                    format!("`{key}` is used before it is defined; move `{what} {key} = ...;` above this line"),
                 );
-                e.combine(syn::Error::new(*span, format!("`{key}` is defined here")));
+                e.combine(syn::Error::new(*span, format!("`{what} {key}` is defined here, after its use")));
                 self.errors.push(e);
                 None
             }
@@ -582,11 +620,15 @@ impl Lowerer {
                     kind(r),
                     op.symbol()
                 );
-                if let (Expr::Binary { op: BinOp::Polar, rhs: angle, .. }, Val::V(..), Val::S(_)) = (lhs, l, r) {
-                    let _ = angle;
-                    msg.push_str(
-                        "; `@` binds tighter than `+` and `-`, so an angle that is a sum needs parentheses: `r @ (phi + gamma)`",
-                    );
+                if let (Expr::Binary { op: BinOp::Polar, lhs: len, rhs: angle, .. }, Val::V(..), Val::S(_)) =
+                    (lhs, l, r)
+                {
+                    let fixed = format!("{} @ ({} {} {})", len.show(), angle.show(), op.symbol(), rhs.show());
+                    let example = if fixed.len() <= 60 { fixed } else { "r @ (phi + gamma)".to_string() };
+                    msg.push_str(&format!(
+                        "\nhelp: `@` binds tighter than `+` and `-`, so an angle that is a sum needs \
+                         parentheses: write `{example}`"
+                    ));
                 }
                 self.errors.push(syn::Error::new(op_span, msg));
                 return None;
@@ -630,7 +672,8 @@ impl Lowerer {
             (BinOp::Polar, _, _) => {
                 let side = if matches!(l, Val::V(..)) { lhs } else { rhs };
                 self.errors.push(side.range().error(
-                    "`@` builds a vector from a scalar length and a scalar angle (`length @ angle`), but this is a vector",
+                    "`@` builds a vector from a scalar length and a scalar angle (`length @ angle`), but this is \
+                     a vector; to turn a vector by an angle write `rot(v, angle)`",
                 ));
                 return None;
             }
@@ -680,9 +723,10 @@ impl Lowerer {
             self.errors.push(syn::Error::new(
                 span,
                 format!(
-                    "`{name}` takes {arity} argument{}: `{sig}`, but {} were given",
+                    "`{name}` takes {arity} argument{}: `{sig}`, but {} {} given",
                     if arity == 1 { "" } else { "s" },
-                    args.len()
+                    args.len(),
+                    if args.len() == 1 { "was" } else { "were" }
                 ),
             ));
             return None;
@@ -779,14 +823,23 @@ impl Lowerer {
     }
 }
 
+/// Largest integer exponent turned into `powi`; larger ones stay `powf`. The bound keeps the
+/// exponents of the derivatives (`n - 1`, `n - 2`) far from `i32` overflow.
+pub const MAX_INTEGER_EXPONENT: i64 = 1024;
+
 /// An exponent written as an integer literal (possibly negated) becomes `powi`.
 fn integer_exponent(e: &Expr) -> Option<i32> {
     match e {
-        Expr::Num { integer: Some(n), .. } => i32::try_from(*n).ok(),
+        Expr::Num { integer: Some(n), .. } if n.abs() <= MAX_INTEGER_EXPONENT => i32::try_from(*n).ok(),
         Expr::Neg { expr, .. } => integer_exponent(expr).map(|n| -n),
         Expr::Paren { inner, .. } => integer_exponent(inner),
         _ => None,
     }
+}
+
+/// At most 40 characters of `s`, for quoting source in messages.
+fn short(s: &str) -> String {
+    if s.chars().count() <= 40 { s.to_string() } else { format!("{}...", s.chars().take(40).collect::<String>()) }
 }
 
 fn kind(v: Val) -> &'static str {
@@ -802,7 +855,9 @@ fn describe(s: Symbol) -> &'static str {
         Symbol::Input(_) => "an input",
         Symbol::Unknown(_) => "an unknown",
         Symbol::Let(_) => "a named value",
-        Symbol::Later(what) => what,
+        Symbol::Later("let") => "a `let`",
+        Symbol::Later("point") => "a `point`",
+        Symbol::Later(_) => "an `output`",
         Symbol::Poisoned => "a named value",
     }
 }

@@ -28,6 +28,19 @@ fn lit(n: usize) -> Literal {
 
 /// The body of a solver function with arguments `__x`, `__guess`/`__q` and `__cfg`.
 pub fn solver_body(model: &Model, plan: &Plan, names: &Names, mode: Mode, rt: &TokenStream) -> TokenStream {
+    solver_body_with(model, plan, names, mode, false, rt)
+}
+
+/// [`solver_body`], optionally followed by the parameter sensitivities (returning
+/// `(Kin, Sens)`), which reuse each block's factorisation.
+pub fn solver_body_with(
+    model: &Model,
+    plan: &Plan,
+    names: &Names,
+    mode: Mode,
+    sens: bool,
+    rt: &TokenStream,
+) -> TokenStream {
     let g = &model.graph;
     let nb = plan.blocks.len();
     let mut scopes: Vec<ScopeSpec> = Vec::new();
@@ -41,7 +54,10 @@ pub fn solver_body(model: &Model, plan: &Plan, names: &Names, mode: Mode, rt: &T
     if mode != Mode::At {
         for (b, bp) in plan.blocks.iter().enumerate() {
             let (pre_roots, loop_roots) = if bp.linear {
-                (bp.jac.concat().into_iter().chain(bp.f0.iter().copied()).collect(), Vec::new())
+                (
+                    bp.jac.concat().into_iter().chain(bp.f0.iter().copied()).chain(bp.col_scale.concat()).collect(),
+                    Vec::new(),
+                )
             } else {
                 (Vec::new(), bp.f.iter().copied().chain(bp.jac.concat()).collect())
             };
@@ -51,10 +67,12 @@ pub fn solver_body(model: &Model, plan: &Plan, names: &Names, mode: Mode, rt: &T
     }
     let mut vel_idx = vec![0; nb];
     let mut acc_idx = vec![0; nb];
+    let mut sens_idx = [vec![0; nb], vec![0; nb], vec![0; nb]];
     let mut out_idx = 0;
     if mode != Mode::Position {
         for (b, bp) in plan.blocks.iter().enumerate() {
             let mut roots = bp.vel.concat();
+            roots.extend(bp.col_scale.concat());
             if mode == Mode::At {
                 roots.extend(bp.jac.concat());
             }
@@ -63,11 +81,42 @@ pub fn solver_body(model: &Model, plan: &Plan, names: &Names, mode: Mode, rt: &T
         for (b, bp) in plan.blocks.iter().enumerate() {
             acc_idx[b] = push(ScopeKind::Plain, bp.acc.concat());
         }
-        let roots = plan.outputs.iter().copied().chain(plan.out_d1.concat()).chain(plan.out_d2.concat()).collect();
+        if sens {
+            for (b, bp) in plan.blocks.iter().enumerate() {
+                sens_idx[0][b] = push(ScopeKind::Plain, bp.sens_q.concat());
+            }
+            for (b, bp) in plan.blocks.iter().enumerate() {
+                sens_idx[1][b] = push(ScopeKind::Plain, bp.sens_v.concat());
+            }
+            for (b, bp) in plan.blocks.iter().enumerate() {
+                sens_idx[2][b] = push(ScopeKind::Plain, bp.sens_a.concat());
+            }
+        }
+        let mut roots: Vec<NodeId> =
+            plan.outputs.iter().copied().chain(plan.out_d1.concat()).chain(plan.out_d2.concat()).collect();
+        if sens {
+            roots.extend(plan.out_sq.concat().into_iter().chain(plan.out_sv.concat()).chain(plan.out_sa.concat()));
+        }
         out_idx = push(ScopeKind::Plain, roots);
     }
     let sched = schedule(g, &plan.level, &scopes);
     let op = |n: NodeId| names.operand(g, n);
+    // A 1x1 linear block with a constant, non-zero, finite coefficient.
+    let fixed = |bp: &crate::plan::BlockPlan| -> Option<f64> {
+        if !bp.linear || bp.unknowns.len() != 1 {
+            return None;
+        }
+        g.as_const(bp.jac[0][0]).filter(|c| *c != 0.0 && c.is_finite())
+    };
+    let col_scales = |bp: &crate::plan::BlockPlan| -> Vec<TokenStream> {
+        bp.col_scale
+            .iter()
+            .map(|col| {
+                let c = col.iter().map(|&x| op(x));
+                quote!(#rt::max_abs([#(#c),*]))
+            })
+            .collect()
+    };
     let neg = |n: NodeId| {
         let o = names.operand(g, n);
         quote!(-(#o))
@@ -110,13 +159,18 @@ pub fn solver_body(model: &Model, plan: &Plan, names: &Names, mode: Mode, rt: &T
                     quote!([#(#r),*])
                 })
                 .collect();
-            if bp.linear {
+            if let Some(c) = fixed(bp) {
+                // A constant, non-zero coefficient: one division, never singular.
                 let lu = format_ident!("__lu{}", b);
-                let scale = bp.jac.iter().zip(&bp.f0).map(|(row, &f0)| {
-                    let r = row.iter().map(|&x| op(x));
-                    let f = op(f0);
-                    quote!(#rt::max_abs([#(#r,)* #f]))
+                let c = float(c);
+                let rhs = neg(bp.f0[0]);
+                body.extend(quote! {
+                    let #lu = #rt::Fixed(#c);
+                    let [#(#qs),*] = #lu.solve([#rhs]);
                 });
+            } else if bp.linear {
+                let lu = format_ident!("__lu{}", b);
+                let scale = col_scales(bp);
                 let aug_rows = bp.jac.iter().zip(&bp.f0).map(|(row, &f0)| {
                     let r = row.iter().map(|&x| op(x));
                     let f = op(f0);
@@ -124,7 +178,7 @@ pub fn solver_body(model: &Model, plan: &Plan, names: &Names, mode: Mode, rt: &T
                 });
                 let rhs = bp.f0.iter().map(|&f| neg(f));
                 body.extend(quote! {
-                    let #lu = #rt::Lu::<#n>::factor(&[#(#jrows),*], [#(#scale),*]);
+                    let #lu = #rt::Lu::<#n>::factor_cols(&[#(#jrows),*], [#(#scale),*]);
                     if !(#lu.pivot_ratio() >= __cfg.singular_tol) {
                         return Err(self.__singular(#bl, #lu.pivot_ratio(), __cfg, __x, #rt::first_bad_row(&[#(#aug_rows),*])));
                     }
@@ -176,7 +230,12 @@ pub fn solver_body(model: &Model, plan: &Plan, names: &Names, mode: Mode, rt: &T
             quote!([#(#r),*])
         });
         body.extend(quote!(let #rv: [[f64; #ni]; #n] = [#(#rows),*];));
-        let need_factor = mode == Mode::At || !bp.linear;
+        let fixed_block = fixed(bp);
+        if let (Mode::At, Some(c)) = (mode, fixed_block) {
+            let c = float(c);
+            body.extend(quote!(let #lu = #rt::Fixed(#c);));
+        }
+        let need_factor = (mode == Mode::At || !bp.linear) && fixed_block.is_none();
         if need_factor {
             let j = if mode == Mode::At {
                 let jrows = bp.jac.iter().map(|row| {
@@ -188,9 +247,10 @@ pub fn solver_body(model: &Model, plan: &Plan, names: &Names, mode: Mode, rt: &T
                 let s = format_ident!("__s{}", b);
                 quote!(#s.eval.j)
             };
+            let scale = col_scales(bp);
             body.extend(quote! {
                 let __j: [[f64; #n]; #n] = #j;
-                let #lu = #rt::Lu::<#n>::factor_aug(&__j, &#rv);
+                let #lu = #rt::Lu::<#n>::factor_cols(&__j, [#(#scale),*]);
                 if !(#lu.pivot_ratio() >= __cfg.singular_tol) {
                     return Err(self.__singular(#bl, #lu.pivot_ratio(), __cfg, __x, #rt::first_bad_row(&__j).or(#rt::first_bad_row(&#rv))));
                 }
@@ -223,6 +283,43 @@ pub fn solver_body(model: &Model, plan: &Plan, names: &Names, mode: Mode, rt: &T
             let __ra: [[f64; #npl]; #n] = [#(#rows),*];
             let [#(#ws),*] = #lu.solve_cols(__ra);
         });
+    }
+    // Parameter sensitivities: the same factorisations, one more set of right-hand sides per
+    // stage (positions, first analogs, second analogs), blocks in order.
+    let npar = plan.np;
+    if sens {
+        type Rows = dyn Fn(&crate::plan::BlockPlan) -> &Vec<Vec<NodeId>>;
+        let stages: [(&Rows, Vec<(usize, usize)>); 3] = [
+            (&|bp| &bp.sens_q, vec![(0, 0)]),
+            (&|bp| &bp.sens_v, (0..ni).map(|i| (i, 0)).collect()),
+            (&|bp| &bp.sens_a, pairs(ni)),
+        ];
+        for (stage, (rows_of, slots)) in stages.iter().enumerate() {
+            let width = lit(slots.len() * npar);
+            for (b, bp) in plan.blocks.iter().enumerate() {
+                let n = lit(bp.unknowns.len());
+                let lu = format_ident!("__lu{}", b);
+                body.extend(names.lets(g, &sched.lets[sens_idx[stage][b]]));
+                let rows = rows_of(bp).iter().map(|row| {
+                    let r = row.iter().map(|&x| neg(x));
+                    quote!([#(#r),*])
+                });
+                let binds = bp.unknowns.iter().map(|&u| {
+                    let ids = slots.iter().flat_map(|&(i, j)| {
+                        (0..npar).map(move |k| match stage {
+                            0 => Names::sens_q(u, k),
+                            1 => Names::sens_v(u, i, k),
+                            _ => Names::sens_a(u, i, j, k),
+                        })
+                    });
+                    quote!([#(#ids),*])
+                });
+                body.extend(quote! {
+                    let __rs: [[f64; #width]; #n] = [#(#rows),*];
+                    let [#(#binds),*] = #lu.solve_cols(__rs);
+                });
+            }
+        }
     }
     body.extend(names.lets(g, &sched.lets[out_idx]));
 
@@ -265,7 +362,72 @@ pub fn solver_body(model: &Model, plan: &Plan, names: &Names, mode: Mode, rt: &T
         if !__kin.all_finite() {
             return Err(self.__non_finite(&__kin, __x, #guess_arg));
         }
-        Ok(__kin)
+    });
+    if !sens {
+        body.extend(quote!(Ok(__kin)));
+        return body;
+    }
+    let ks: Vec<usize> = (0..npar).collect();
+    let sq = (0..plan.n).map(|u| {
+        let v = ks.iter().map(|&k| Names::sens_q(u, k));
+        quote!([#(#v),*])
+    });
+    let sv = (0..plan.n).map(|u| {
+        let rows = (0..ni).map(|i| {
+            let v = ks.iter().map(|&k| Names::sens_v(u, i, k));
+            quote!([#(#v),*])
+        });
+        quote!([#(#rows),*])
+    });
+    let sa = (0..plan.n).map(|u| {
+        let rows = (0..ni).map(|i| {
+            let cols = (0..ni).map(|j| {
+                let v = ks.iter().map(|&k| Names::sens_a(u, i, j, k));
+                quote!([#(#v),*])
+            });
+            quote!([#(#cols),*])
+        });
+        quote!([#(#rows),*])
+    });
+    let osq = plan.out_sq.iter().map(|row| {
+        let v = row.iter().map(|&x| op(x));
+        quote!([#(#v),*])
+    });
+    let osv = plan.out_sv.iter().map(|row| {
+        let rows = (0..ni).map(|i| {
+            let v = (0..npar).map(|k| op(row[i * npar + k]));
+            quote!([#(#v),*])
+        });
+        quote!([#(#rows),*])
+    });
+    let osa = plan.out_sa.iter().map(|row| {
+        let rows = (0..ni).map(|i| {
+            let cols = (0..ni).map(|j| {
+                let p = pair_index(ni, i, j);
+                let v = (0..npar).map(|k| op(row[p * npar + k]));
+                quote!([#(#v),*])
+            });
+            quote!([#(#cols),*])
+        });
+        quote!([#(#rows),*])
+    });
+    body.extend(quote! {
+        let __sens = #rt::Sens {
+            q: [#(#sq),*],
+            dq: [#(#sv),*],
+            d2q: [#(#sa),*],
+            out: [#(#osq),*],
+            dout: [#(#osv),*],
+            d2out: [#(#osa),*],
+        };
+        if !__sens.all_finite() {
+            return Err(#rt::Error::Domain {
+                what: "parameter sensitivity of",
+                name: __sens.first_non_finite(&Self::UNKNOWNS, &Self::OUTPUTS),
+                at: ::std::boxed::Box::new(self.__location(__x, None)),
+            });
+        }
+        Ok((__kin, __sens))
     });
     body
 }
@@ -287,6 +449,37 @@ pub fn straight_line(model: &Model, plan: &Plan, names: &Names, roots: &[NodeId]
         #bind
         #lets
         [#(#vals),*]
+    }
+}
+
+/// Residuals, full Jacobian and input derivatives at `(x, q)`, as a `Jac`.
+pub fn jacobian_body(model: &Model, plan: &Plan, names: &Names, rt: &TokenStream) -> TokenStream {
+    let g = &model.graph;
+    let roots: Vec<NodeId> =
+        plan.residuals.iter().copied().chain(plan.jac_full.concat()).chain(plan.fx_full.concat()).collect();
+    let sched = schedule(g, &plan.level, &[ScopeSpec { kind: ScopeKind::Plain, roots }]);
+    let lets = names.lets(g, &sched.lets[0]);
+    let inputs = &names.inputs;
+    let params = &names.params;
+    let fields: Vec<_> = model.params.iter().map(|p| &p.name).collect();
+    let q = &names.unknowns;
+    let op = |n: NodeId| names.operand(g, n);
+    let f = plan.residuals.iter().map(|&n| op(n));
+    let rows = |m: &Vec<Vec<NodeId>>| -> Vec<TokenStream> {
+        m.iter()
+            .map(|row| {
+                let r = row.iter().map(|&n| op(n));
+                quote!([#(#r),*])
+            })
+            .collect()
+    };
+    let (j, fx) = (rows(&plan.jac_full), rows(&plan.fx_full));
+    quote! {
+        let [#(#inputs),*] = *__x;
+        #(let #params: f64 = self.#fields;)*
+        let [#(#q),*] = *__q;
+        #lets
+        #rt::Jac { f: [#(#f),*], j: [#(#j),*], fx: [#(#fx),*] }
     }
 }
 

@@ -270,6 +270,61 @@ mod tests {
         );
     }
 
+    /// Size of a maximum matching by exhaustive search (small graphs only).
+    fn brute_force(inc: &[BTreeSet<usize>], used: &mut Vec<bool>, e: usize) -> usize {
+        if e == inc.len() {
+            return 0;
+        }
+        let mut best = brute_force(inc, used, e + 1);
+        for &u in &inc[e] {
+            if !used[u] {
+                used[u] = true;
+                best = best.max(1 + brute_force(inc, used, e + 1));
+                used[u] = false;
+            }
+        }
+        best
+    }
+
+    #[test]
+    fn matching_is_maximum_and_dm_parts_are_consistent_on_random_graphs() {
+        let mut state = 0x5eed_u64;
+        let mut next = move |n: u64| {
+            state = state.wrapping_mul(6364136223846793005).wrapping_add(1442695040888963407);
+            (state >> 33) % n
+        };
+        for _ in 0..2000 {
+            let (n_eq, n_u) = (next(7) as usize, next(7) as usize);
+            let i: Vec<BTreeSet<usize>> = (0..n_eq).map(|_| (0..n_u).filter(|_| next(3) == 0).collect()).collect();
+            let m = maximum_matching(&i, n_u);
+            let size = m.eq_to_unknown.iter().flatten().count();
+            assert_eq!(size, brute_force(&i, &mut vec![false; n_u], 0), "{i:?}");
+            // The two directions agree and every matched pair is an edge.
+            for (e, u) in m.eq_to_unknown.iter().enumerate() {
+                if let Some(u) = *u {
+                    assert!(i[e].contains(&u));
+                    assert_eq!(m.unknown_to_eq[u], Some(e));
+                }
+            }
+            let d = dulmage_mendelsohn(&i, n_u, &m);
+            // Over-determined: more equations than unknowns by exactly the unmatched equations.
+            let free_eq = m.eq_to_unknown.iter().filter(|x| x.is_none()).count();
+            let free_u = m.unknown_to_eq.iter().filter(|x| x.is_none()).count();
+            assert_eq!(d.over_equations.len(), d.over_unknowns.len() + free_eq, "{i:?}");
+            assert_eq!(d.under_unknowns.len(), d.under_equations.len() + free_u, "{i:?}");
+            assert!(d.over_equations.is_disjoint(&d.under_equations), "{i:?}");
+            assert!(d.over_unknowns.is_disjoint(&d.under_unknowns), "{i:?}");
+            if m.is_perfect() {
+                // The BLT blocks partition unknowns and equations, each block square.
+                let blocks = blt(&i, &m);
+                let mut seen_u: Vec<usize> = blocks.iter().flat_map(|b| b.unknowns.clone()).collect();
+                seen_u.sort_unstable();
+                assert_eq!(seen_u, (0..n_u).collect::<Vec<_>>());
+                assert!(blocks.iter().all(|b| b.unknowns.len() == b.equations.len()));
+            }
+        }
+    }
+
     #[test]
     fn dulmage_mendelsohn_finds_both_parts() {
         // e0, e1 both only in u0 (over-determined); u1, u2 only in e2 (under-determined).

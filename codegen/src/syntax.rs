@@ -130,6 +130,17 @@ impl Errors {
 
 /// Parses a declaration. Never panics; all syntax errors found are combined into one.
 pub fn parse(tokens: TokenStream) -> Result<MechanismDef, syn::Error> {
+    match parse_recover(tokens) {
+        (Some(def), None) => Ok(def),
+        (_, Some(e)) => Err(e),
+        (None, None) => Err(syn::Error::new(Span::call_site(), SHAPE)),
+    }
+}
+
+/// Parses a declaration as far as it goes: the declaration (with the items that parsed) as soon
+/// as its name is known, and the combined syntax errors, if any. The partial declaration lets
+/// the macro emit fallback items next to the errors.
+pub fn parse_recover(tokens: TokenStream) -> (Option<MechanismDef>, Option<syn::Error>) {
     let mut out = None;
     // The parser stores its own verdict in `out`: syn's end-of-input checks cannot then replace
     // the collected errors by a generic "unexpected token" after recovery skipped some tokens.
@@ -140,8 +151,8 @@ pub fn parse(tokens: TokenStream) -> Result<MechanismDef, syn::Error> {
     })
     .parse2(tokens);
     match out {
-        Some(result) => result,
-        None => Err(verdict.err().unwrap_or_else(|| syn::Error::new(Span::call_site(), "empty declaration"))),
+        Some((def, errors)) => (def, errors.into_error()),
+        None => (None, Some(verdict.err().unwrap_or_else(|| syn::Error::new(Span::call_site(), SHAPE)))),
     }
 }
 
@@ -173,12 +184,26 @@ fn skip_item(input: ParseStream) {
 
 const SHAPE: &str = "expected a declaration: `pub struct Name { params ...; input ...; unknowns ...; loop ...; }`";
 
-fn parse_def(input: ParseStream) -> Result<MechanismDef, syn::Error> {
+fn parse_def(input: ParseStream) -> (Option<MechanismDef>, Errors) {
     let mut errors = Errors::default();
+    let def = parse_def_into(input, &mut errors);
+    (def, errors)
+}
+
+/// Parses the declaration, pushing every error into `errors`; returns the declaration once its
+/// name is known (with the items that parsed), `None` before that.
+fn parse_def_into(input: ParseStream, errors: &mut Errors) -> Option<MechanismDef> {
+    let fail = |errors: &mut Errors, e: syn::Error| {
+        errors.push(e);
+        None
+    };
     if input.is_empty() {
-        return Err(input.error(SHAPE));
+        return fail(errors, input.error(SHAPE));
     }
-    let attrs = Attribute::parse_outer(input)?;
+    let attrs = match Attribute::parse_outer(input) {
+        Ok(a) => a,
+        Err(e) => return fail(errors, e),
+    };
     let mut docs = Vec::new();
     let mut options = Options::default();
     for attr in attrs {
@@ -197,38 +222,43 @@ fn parse_def(input: ParseStream) -> Result<MechanismDef, syn::Error> {
                 errors.push(e);
             }
         } else {
-            errors.push(syn::Error::new_spanned(
-                &attr,
-                "only doc comments and `#[kinloop(...)]` are accepted here \
-                 (kinloop derives Clone, Copy, Debug and PartialEq itself)",
-            ));
+            let msg = if attr.path().is_ident("derive") {
+                "remove `#[derive(...)]`: kinloop derives Clone, Copy, Debug and PartialEq itself, \
+                 and implements Default when every parameter has a default value"
+            } else {
+                "only doc comments (`///`) and `#[kinloop(dense)]` are accepted before a mechanism"
+            };
+            errors.push(syn::Error::new_spanned(attr.path(), msg));
         }
     }
-    let vis: Visibility = input.parse()?;
+    let vis: Visibility = match input.parse() {
+        Ok(v) => v,
+        Err(e) => return fail(errors, e),
+    };
     if !input.peek(Token![struct]) {
-        return Err(input.error(SHAPE));
+        return fail(errors, input.error(SHAPE));
     }
-    input.parse::<Token![struct]>()?;
-    let name: Ident = input.parse()?;
+    if let Err(e) = input.parse::<Token![struct]>() {
+        return fail(errors, e);
+    }
+    let name: Ident = match input.parse() {
+        Ok(n) => n,
+        Err(_) => return fail(errors, input.error("expected the mechanism's name: `pub struct Name { ... }`")),
+    };
+    let mut def = MechanismDef { docs, options, vis, name, items: Vec::new(), body: Span::call_site() };
+    def.body = def.name.span();
     if input.peek(Token![<]) {
-        return Err(
-            input.error("a mechanism cannot be generic; its parameters are `f64` fields declared with `params`")
-        );
+        errors.push(input.error(
+            "a mechanism cannot be generic; remove `<...>`: its parameters are `f64` fields declared with `params`",
+        ));
+        return Some(def);
     }
     if !input.peek(syn::token::Brace) {
-        return Err(input.error("expected `{` with the mechanism's items"));
+        errors.push(input.error("expected `{` with the mechanism's items: `pub struct Name { params ...; ... }`"));
+        return Some(def);
     }
-    let content;
-    let brace = syn::braced!(content in input);
-    let mut items = Vec::new();
-    while !content.is_empty() {
-        match parse_item(&content) {
-            Ok(item) => items.push(item),
-            Err(e) => {
-                errors.push(e);
-                skip_item(&content);
-            }
-        }
+    if let Err(e) = parse_body(input, &mut def, errors) {
+        errors.push(e);
     }
     if !input.is_empty() {
         errors.push(
@@ -236,10 +266,29 @@ fn parse_def(input: ParseStream) -> Result<MechanismDef, syn::Error> {
         );
         skip_all(input);
     }
-    errors.finish(MechanismDef { docs, options, vis, name, items, body: brace.span.join() })
+    Some(def)
 }
 
-fn parse_item(input: ParseStream) -> syn::Result<Item> {
+/// Parses `{ items }`, recovering at `;` after an item's error.
+fn parse_body(input: ParseStream, def: &mut MechanismDef, errors: &mut Errors) -> syn::Result<()> {
+    let content;
+    let brace = syn::braced!(content in input);
+    def.body = brace.span.join();
+    while !content.is_empty() {
+        match parse_item(&content, errors) {
+            Ok(item) => def.items.push(item),
+            Err(e) => {
+                errors.push(e);
+                skip_item(&content);
+            }
+        }
+    }
+    Ok(())
+}
+
+/// Parses one item. A missing `;` after a complete item is pushed to `errors` and the item is
+/// kept, so the next item is parsed normally.
+fn parse_item(input: ParseStream, errors: &mut Errors) -> syn::Result<Item> {
     let attrs = Attribute::parse_outer(input)?;
     let mut docs = Vec::new();
     for attr in attrs {
@@ -282,30 +331,74 @@ fn parse_item(input: ParseStream) -> syn::Result<Item> {
         ItemKind::Eq { name, lhs, rhs, eq }
     } else {
         let mut err = look.error();
-        if input.peek(Ident) {
-            err = input.error(
-                "expected an item: `params`, `input`, `inputs`, `unknowns`, `let`, `loop`, `eq`, `point` or `output`",
-            );
+        if let Ok(id) = input.fork().parse::<Ident>() {
+            err = syn::Error::new(id.span(), format!("`{id}` does not start an item; {ITEMS}"));
         }
         return Err(err);
     };
-    expect_semicolon(input)?;
-    Ok(Item { docs, keyword, kind })
+    let item = Item { docs, keyword, kind };
+    if let Err(e) = expect_semicolon(input, &item) {
+        errors.push(e);
+        // Go on at the next item; anything else before it belongs to this broken item.
+        if !at_item_start(input) {
+            skip_item(input);
+        }
+    }
+    Ok(item)
 }
+
+fn at_item_start(input: ParseStream) -> bool {
+    input.peek(kw::params)
+        || input.peek(kw::param)
+        || input.peek(kw::input)
+        || input.peek(kw::inputs)
+        || input.peek(kw::unknowns)
+        || input.peek(kw::unknown)
+        || input.peek(Token![let])
+        || input.peek(Token![loop])
+        || input.peek(kw::eq)
+        || input.peek(kw::point)
+        || input.peek(kw::output)
+        || input.peek(Token![#])
+}
+
+const ITEMS: &str =
+    "an item starts with `params`, `input`, `inputs`, `unknowns`, `let`, `loop`, `eq`, `point` or `output`";
 
 fn skip_keyword(input: ParseStream) -> syn::Result<()> {
     input.parse::<Ident>().map(drop)
 }
 
-fn expect_semicolon(input: ParseStream) -> syn::Result<()> {
+fn expect_semicolon(input: ParseStream, item: &Item) -> syn::Result<()> {
     if input.peek(Token![;]) {
         input.parse::<Token![;]>()?;
         Ok(())
     } else if input.peek(Token![=]) {
         Err(input.error("unexpected `=`: equations are written with `==`"))
     } else {
-        Err(input.error("expected `;` at the end of the item"))
+        // Underline the end of the item that lacks its `;`, not the next item.
+        let keyword = match &item.kind {
+            ItemKind::Decls(DeclKind::Params, _) => "params",
+            ItemKind::Decls(DeclKind::Inputs, _) => "input",
+            ItemKind::Decls(DeclKind::Unknowns, _) => "unknowns",
+            ItemKind::Let { .. } => "let",
+            ItemKind::Loop { .. } => "loop",
+            ItemKind::Eq { .. } => "eq",
+            ItemKind::Point { .. } => "point",
+            ItemKind::Output { .. } => "output",
+        };
+        let next = match input.cursor().token_tree() {
+            Some((tt, _)) => format!(" (before `{}`)", short(&tt.to_string())),
+            None => String::new(),
+        };
+        Err(SpanRange::single(item.range().end)
+            .error(format!("expected `;` at the end of this `{keyword}` item{next}")))
     }
+}
+
+/// At most 24 characters of `s`, for quoting source in messages.
+fn short(s: &str) -> String {
+    if s.chars().count() <= 24 { s.to_string() } else { format!("{}...", s.chars().take(24).collect::<String>()) }
 }
 
 fn parse_decls(input: ParseStream, kind: DeclKind) -> syn::Result<Vec<Decl>> {
@@ -317,9 +410,9 @@ fn parse_decls(input: ParseStream, kind: DeclKind) -> syn::Result<Vec<Decl>> {
         }
         if !input.peek(Ident) {
             return Err(input.error(match kind {
-                DeclKind::Params => "expected a parameter name",
-                DeclKind::Inputs => "expected an input name",
-                DeclKind::Unknowns => "expected an unknown's name",
+                DeclKind::Params => "expected a parameter name: `params a, b = 2.5;`",
+                DeclKind::Inputs => "expected an input name: `input phi;` or `inputs th1, th2;`",
+                DeclKind::Unknowns => "expected an unknown's name: `unknowns psi = 0.3, x;`",
             }));
         }
         let name: Ident = input.parse()?;
@@ -328,12 +421,17 @@ fn parse_decls(input: ParseStream, kind: DeclKind) -> syn::Result<Vec<Decl>> {
             if kind == DeclKind::Inputs {
                 return Err(syn::Error::new(
                     eq.span,
-                    "inputs take no value in the declaration; they are given when the mechanism is solved",
+                    format!(
+                        "an input takes no value here: write `{name}` alone; its value is given when \
+                         the mechanism is solved (`m.solve({name})`)"
+                    ),
                 ));
             }
             Some(parse_expr(input)?)
         } else if input.peek(Token![:]) {
-            return Err(input.error("no type is needed: every parameter, input and unknown is an `f64`"));
+            return Err(input.error(format!(
+                "no type is needed: write `{name}` alone (every parameter, input and unknown is an `f64`)"
+            )));
         } else {
             None
         };
@@ -374,7 +472,14 @@ fn parse_equation(input: ParseStream, what: &str) -> syn::Result<(Ident, Expr, E
     }
     let name: Ident = input.parse()?;
     if !input.peek(Token![:]) || input.peek(Token![::]) {
-        return Err(input.error(format!("expected `:` after the name: `{what} {name}: lhs == rhs;`")));
+        // `loop r @ phi == ...`: the name is missing, the equation starts right away.
+        return Err(syn::Error::new(
+            name.span(),
+            format!(
+                "expected the {what}'s name and `:` before its equation: `{what} name: lhs == rhs;` \
+                 (the name appears in `EQUATIONS` and in error messages)"
+            ),
+        ));
     }
     input.parse::<Token![:]>()?;
     let lhs = parse_expr(input)?;

@@ -75,3 +75,159 @@ pub fn line_chart(
     root.present()?;
     Ok(())
 }
+
+/// Folder for an example's figures: `$KINLOOP_FIGURES/<example>` when that variable is set
+/// (`KINLOOP_FIGURES=docs/figures` regenerates the README gallery), else [`out_dir`].
+#[allow(dead_code)]
+pub fn figure_dir(example: &str) -> PathBuf {
+    match std::env::var_os("KINLOOP_FIGURES") {
+        Some(base) => {
+            let dir = PathBuf::from(base).join(example);
+            std::fs::create_dir_all(&dir).expect("cannot create the figure folder");
+            dir
+        }
+        None => out_dir(example),
+    }
+}
+
+/// At most `max` points of a curve, equally strided, keeping the first and the last (keeps the
+/// committed SVGs small).
+#[allow(dead_code)]
+pub fn decimate(points: &[(f64, f64)], max: usize) -> Vec<(f64, f64)> {
+    if points.len() <= max || max < 2 {
+        return points.to_vec();
+    }
+    let stride = (points.len() - 1).div_ceil(max - 1);
+    let mut out: Vec<(f64, f64)> = points.iter().step_by(stride).copied().collect();
+    if out.last() != points.last() {
+        out.push(points[points.len() - 1]);
+    }
+    out
+}
+
+/// One panel of [`panels`]: its curves, and optional marked points (drawn as circles).
+#[allow(dead_code)]
+pub struct Panel<'a> {
+    pub y_label: &'a str,
+    pub series: Vec<Series<'a>>,
+    pub marks: Vec<(f64, f64)>,
+}
+
+/// Panels stacked vertically over a common x axis (like the papers' multi-curve figures), each
+/// with its own y scale and legend (upper left); every curve is decimated to at most 720 points.
+#[allow(dead_code)]
+pub fn panels(path: &std::path::Path, title: &str, x_label: &str, panels: &[Panel]) -> Result<(), Box<dyn Error>> {
+    let (mut x0, mut x1) = (f64::MAX, f64::MIN);
+    for p in panels {
+        for &(x, _) in p.series.iter().flat_map(|s| s.points.iter()).chain(p.marks.iter()) {
+            if x.is_finite() {
+                x0 = x0.min(x);
+                x1 = x1.max(x);
+            }
+        }
+    }
+    if x0 >= x1 {
+        return Err("nothing to plot".into());
+    }
+    let height = 60 + 260 * panels.len() as u32;
+    let root = SVGBackend::new(path, (900, height)).into_drawing_area();
+    root.fill(&WHITE)?;
+    let root = root.titled(title, ("sans-serif", 22))?;
+    let areas = root.split_evenly((panels.len(), 1));
+    for (k, (p, area)) in panels.iter().zip(areas.iter()).enumerate() {
+        let (mut y0, mut y1) = (f64::MAX, f64::MIN);
+        for &(_, y) in p.series.iter().flat_map(|s| s.points.iter()).chain(p.marks.iter()) {
+            if y.is_finite() {
+                y0 = y0.min(y);
+                y1 = y1.max(y);
+            }
+        }
+        if y0 > y1 {
+            return Err("nothing to plot in a panel".into());
+        }
+        let pad = ((y1 - y0) * 0.06).max(1e-9 * y1.abs().max(1.0));
+        let last = k + 1 == panels.len();
+        let mut chart = ChartBuilder::on(area)
+            .margin(10)
+            .x_label_area_size(if last { 44 } else { 24 })
+            .y_label_area_size(80)
+            .build_cartesian_2d(x0..x1, (y0 - pad)..(y1 + pad))?;
+        let mut mesh = chart.configure_mesh();
+        mesh.y_desc(p.y_label);
+        if last {
+            mesh.x_desc(x_label);
+        }
+        mesh.draw()?;
+        for (j, s) in p.series.iter().enumerate() {
+            let color = COLORS[j % COLORS.len()];
+            chart
+                .draw_series(LineSeries::new(decimate(&s.points, 720), color.stroke_width(2)))?
+                .label(s.label)
+                .legend(move |(x, y)| PathElement::new(vec![(x, y), (x + 20, y)], color.stroke_width(2)));
+        }
+        if !p.marks.is_empty() {
+            chart.draw_series(p.marks.iter().map(|&(x, y)| Circle::new((x, y), 4, BLACK.filled())))?;
+        }
+        chart
+            .configure_series_labels()
+            .background_style(WHITE.mix(0.85))
+            .border_style(BLACK)
+            .position(SeriesLabelPosition::UpperLeft)
+            .draw()?;
+    }
+    root.present()?;
+    Ok(())
+}
+
+/// An x-y chart with equal scales on both axes (paths of points, a linkage drawn at one
+/// position), with optional marked points; every curve is decimated to at most 720 points.
+#[allow(dead_code)]
+pub fn xy_chart(
+    path: &std::path::Path,
+    title: &str,
+    series: &[Series],
+    marks: &[(f64, f64)],
+) -> Result<(), Box<dyn Error>> {
+    let (mut x0, mut x1, mut y0, mut y1) = (f64::MAX, f64::MIN, f64::MAX, f64::MIN);
+    for &(x, y) in series.iter().flat_map(|s| s.points.iter()).chain(marks) {
+        if x.is_finite() && y.is_finite() {
+            x0 = x0.min(x);
+            x1 = x1.max(x);
+            y0 = y0.min(y);
+            y1 = y1.max(y);
+        }
+    }
+    if x0 > x1 {
+        return Err("nothing to plot".into());
+    }
+    // Plot area of about 790 x 400 pixels: widen the narrower range to equal scales.
+    let (w, h) = (790.0, 400.0);
+    let (cx, cy) = ((x0 + x1) / 2.0, (y0 + y1) / 2.0);
+    let scale = ((x1 - x0) / w).max((y1 - y0) / h) * 1.08;
+    let (hx, hy) = (scale * w / 2.0, scale * h / 2.0);
+    let root = SVGBackend::new(path, (900, 520)).into_drawing_area();
+    root.fill(&WHITE)?;
+    let mut chart = ChartBuilder::on(&root)
+        .caption(title, ("sans-serif", 22))
+        .margin(12)
+        .x_label_area_size(44)
+        .y_label_area_size(60)
+        .build_cartesian_2d((cx - hx)..(cx + hx), (cy - hy)..(cy + hy))?;
+    chart.configure_mesh().x_desc("x").y_desc("y").draw()?;
+    for (k, s) in series.iter().enumerate() {
+        let color = COLORS[k % COLORS.len()];
+        chart
+            .draw_series(LineSeries::new(decimate(&s.points, 720), color.stroke_width(2)))?
+            .label(s.label)
+            .legend(move |(x, y)| PathElement::new(vec![(x, y), (x + 20, y)], color.stroke_width(2)));
+    }
+    chart.draw_series(marks.iter().map(|&(x, y)| Circle::new((x, y), 4, BLACK.filled())))?;
+    chart
+        .configure_series_labels()
+        .background_style(WHITE.mix(0.85))
+        .border_style(BLACK)
+        .position(SeriesLabelPosition::UpperRight)
+        .draw()?;
+    root.present()?;
+    Ok(())
+}

@@ -118,6 +118,11 @@ pub enum Error {
         name: &'static str,
         at: Box<Location>,
     },
+    /// A sweep stopped at a singular position it cannot (or is configured not to) pass on its
+    /// branch: a limit position of the input, or a singular crossing. The event, with the
+    /// located input value, is in the sweep's `events()`.
+    #[error("the sweep stopped at a {kind} {at}")]
+    SweepStopped { kind: crate::sweep::EventKind, at: Box<Location> },
     /// A sweep could not stay on its assembly branch (see the sweep's events).
     #[error("{message} {at}")]
     Branch { message: String, at: Box<Location> },
@@ -135,6 +140,7 @@ impl Error {
             | Error::NoAssembly { at, .. }
             | Error::Singular { at, .. }
             | Error::Domain { at, .. }
+            | Error::SweepStopped { at, .. }
             | Error::Branch { at, .. } => Some(at),
             Error::InvalidArgument(_) => None,
         }

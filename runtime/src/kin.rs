@@ -1,7 +1,7 @@
 //! The kinematic state of a mechanism at one input value, as flat arrays in declaration order.
 //! Generated named structs convert from it; generic code (sweeps, analyses) works on it.
 
-use crate::lu::Lu;
+use crate::lu::Factor;
 use crate::newton::SolveReport;
 
 /// How far each block of the decomposition is from singular, and its assembly mode.
@@ -27,7 +27,7 @@ impl Default for Health {
 impl Health {
     #[doc(hidden)]
     #[inline]
-    pub fn note<const N: usize>(&mut self, block: usize, lu: &Lu<N>) {
+    pub fn note(&mut self, block: usize, lu: &impl Factor) {
         if lu.negative_det() && block < 64 {
             self.det_signs |= 1u64 << block;
         }
@@ -55,6 +55,67 @@ pub struct Kin<const N: usize, const NI: usize, const NO: usize> {
     pub d2out: [[[f64; NI]; NI]; NO],
     pub report: SolveReport,
     pub health: Health,
+}
+
+/// Exact sensitivities of a kinematic state with respect to the `NP` parameters (the innermost
+/// index is the parameter): `q[u][k] = d q_u / d p_k`, `dq[u][i][k] = d(d q_u / d x_i) / d p_k`,
+/// `d2q[u][i][j][k]`, and the same for the output columns. Obtained by the implicit function
+/// theorem with the factorisations of the kinematic solve (`dq/dp = -J^-1 df/dp`, and likewise
+/// for the analogs).
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Sens<const N: usize, const NI: usize, const NO: usize, const NP: usize> {
+    pub q: [[f64; NP]; N],
+    pub dq: [[[f64; NP]; NI]; N],
+    pub d2q: [[[[f64; NP]; NI]; NI]; N],
+    pub out: [[f64; NP]; NO],
+    pub dout: [[[f64; NP]; NI]; NO],
+    pub d2out: [[[[f64; NP]; NI]; NI]; NO],
+}
+
+impl<const N: usize, const NI: usize, const NO: usize, const NP: usize> Sens<N, NI, NO, NP> {
+    /// Every value is finite.
+    #[doc(hidden)]
+    pub fn all_finite(&self) -> bool {
+        let f = |v: &f64| v.is_finite();
+        self.q.iter().flatten().all(f)
+            && self.dq.iter().flatten().flatten().all(f)
+            && self.d2q.iter().flatten().flatten().flatten().all(f)
+            && self.out.iter().flatten().all(f)
+            && self.dout.iter().flatten().flatten().all(f)
+            && self.d2out.iter().flatten().flatten().flatten().all(f)
+    }
+
+    /// Name of the first quantity with a non-finite sensitivity.
+    #[doc(hidden)]
+    pub fn first_non_finite(&self, unknowns: &[&'static str], outputs: &[&'static str]) -> &'static str {
+        let f = |v: &f64| !v.is_finite();
+        for u in 0..N {
+            if self.q[u].iter().any(f)
+                || self.dq[u].iter().flatten().any(f)
+                || self.d2q[u].iter().flatten().flatten().any(f)
+            {
+                return unknowns.get(u).copied().unwrap_or("?");
+            }
+        }
+        for o in 0..NO {
+            if self.out[o].iter().any(f)
+                || self.dout[o].iter().flatten().any(f)
+                || self.d2out[o].iter().flatten().flatten().any(f)
+            {
+                return outputs.get(o).copied().unwrap_or("?");
+            }
+        }
+        "?"
+    }
+}
+
+/// Residuals and first derivatives of all equations at one point: `f`, `j[e][u] = df_e/dq_u`,
+/// `fx[e][i] = df_e/dx_i`.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Jac<const N: usize, const NI: usize> {
+    pub f: [f64; N],
+    pub j: [[f64; N]; N],
+    pub fx: [[f64; NI]; N],
 }
 
 /// True velocities and accelerations (time derivatives) of unknowns and outputs.

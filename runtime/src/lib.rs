@@ -4,19 +4,32 @@
 //! Most users depend on the `kinloop` facade crate, which re-exports everything here next to
 //! the `mechanism!` macro.
 
+// Index loops over small fixed-size arrays read like the formulas they implement (matrix rows,
+// unknowns, inputs); iterator chains would obscure them.
+#![allow(clippy::needless_range_loop)]
+
+pub mod analysis;
+mod curve;
 mod error;
 mod kin;
 mod lu;
 mod mechanism;
+mod modes;
 mod newton;
+mod objective;
+mod sweep;
 mod table;
 mod vec2;
 
+pub use curve::{Traced, TracedPoint, trace_curve};
 pub use error::{BlockInfo, Error, Location, Quantity};
-pub use kin::{FlatMotion, Health, Kin};
-pub use lu::{Lu, max_abs};
-pub use mechanism::Mechanism;
+pub use kin::{FlatMotion, Health, Jac, Kin, Sens};
+pub use lu::{Factor, Fixed, Lu, max_abs};
+pub use mechanism::{Mechanism, Sensitivities};
+pub use modes::assembly_modes;
 pub use newton::{BlockEval, BlockFailure, NewtonConfig, SolveReport, Solved, Termination, newton};
+pub use objective::{Extreme, Extremum, LmConfig, LmResult, extremum, integral, levenberg_marquardt};
+pub use sweep::{AtSingular, Event, EventKind, Reach, Sweep, SweepConfig, reachable};
 pub use table::Table;
 pub use vec2::Vec2;
 

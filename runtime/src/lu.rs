@@ -1,42 +1,70 @@
-//! LU factorisation of small fixed-size blocks with row equilibration and a pivot-ratio check.
+//! LU factorisation of small fixed-size blocks with equilibration and a pivot-ratio check.
 //!
 //! nalgebra's LU only reports failure on an exactly zero pivot; near a dead centre the pivots are
-//! tiny but non-zero and the solution is garbage. Here each row is first divided by its scale (the
-//! largest magnitude in the row of the augmented system, supplied by the generated code), so the
-//! smallest pivot of the equilibrated matrix is a dimension-free measure of how close the block
-//! is to singular: [`Lu::pivot_ratio`].
+//! tiny but non-zero and the solution is garbage. Here the matrix is first equilibrated — its
+//! rows and/or columns divided by scales supplied by the caller — so the smallest pivot of the
+//! equilibrated matrix is a dimension-free measure of how close the block is to singular:
+//! [`Lu::pivot_ratio`].
+//!
+//! For loop-closure equations the natural scales are the columns': the derivative of a link
+//! vector `l @ theta` with respect to `theta` has magnitude `l` in every configuration, so
+//! dividing each column by the largest magnitude in the *full* Jacobian column (all equations,
+//! not just the block's) makes the pivots fall to zero exactly at dead centres, limit positions
+//! and change points, whatever the units. The generated code passes those column scales; the
+//! Newton iteration, which only sees its block, scales rows.
 
 use nalgebra::SMatrix;
 
-/// A factorised `N x N` block: `P D J = L U` with `D` the row equilibration.
+/// A factorised `N x N` block: `P D_r J D_c = L U` with `D_r`, `D_c` the equilibrations.
 #[derive(Clone, Copy, Debug)]
 pub struct Lu<const N: usize> {
     lu: SMatrix<f64, N, N>,
     perm: [usize; N],
-    inv_scale: [f64; N],
+    inv_row: [f64; N],
+    inv_col: [f64; N],
     pivot_ratio: f64,
     negative_det: bool,
+    det: f64,
+}
+
+fn inverses<const N: usize>(scale: [f64; N], degenerate: &mut bool) -> [f64; N] {
+    let mut inv = [0.0; N];
+    for k in 0..N {
+        let s = scale[k];
+        inv[k] = if s > 0.0 && s.is_finite() {
+            1.0 / s
+        } else {
+            *degenerate = true;
+            0.0
+        };
+    }
+    inv
 }
 
 impl<const N: usize> Lu<N> {
-    /// Factorises `j` (rows given as arrays). `scale[i]` is the magnitude row `i` is measured
-    /// against; a zero or non-finite scale marks the row as degenerate.
+    /// Factorises `j` (rows given as arrays), dividing row `r` by `row_scale[r]`. A zero or
+    /// non-finite scale marks the matrix as degenerate (pivot ratio 0).
     #[inline]
-    pub fn factor(j: &[[f64; N]; N], scale: [f64; N]) -> Self {
-        let mut lu = SMatrix::<f64, N, N>::zeros();
-        let mut inv_scale = [0.0; N];
+    pub fn factor(j: &[[f64; N]; N], row_scale: [f64; N]) -> Self {
+        Self::factor_scaled(j, row_scale, [1.0; N])
+    }
+
+    /// Factorises `j`, dividing column `c` by `col_scale[c]`.
+    #[inline]
+    pub fn factor_cols(j: &[[f64; N]; N], col_scale: [f64; N]) -> Self {
+        Self::factor_scaled(j, [1.0; N], col_scale)
+    }
+
+    /// Factorises `j` equilibrated by both row and column scales.
+    #[inline]
+    pub fn factor_scaled(j: &[[f64; N]; N], row_scale: [f64; N], col_scale: [f64; N]) -> Self {
         let mut degenerate = false;
+        let inv_row = inverses(row_scale, &mut degenerate);
+        let inv_col = inverses(col_scale, &mut degenerate);
+        let mut lu = SMatrix::<f64, N, N>::zeros();
         for r in 0..N {
-            let s = scale[r];
-            let inv = if s > 0.0 && s.is_finite() {
-                1.0 / s
-            } else {
-                degenerate = true;
-                0.0
-            };
-            inv_scale[r] = inv;
             for c in 0..N {
-                lu[(r, c)] = j[r][c] * inv;
+                lu[(r, c)] = j[r][c] * inv_row[r] * inv_col[c];
             }
         }
         let mut perm = [0usize; N];
@@ -45,6 +73,7 @@ impl<const N: usize> Lu<N> {
         }
         let mut negative_det = false;
         let mut min_pivot = f64::INFINITY;
+        let mut det = 1.0;
         for k in 0..N {
             // Partial pivoting.
             let mut best = k;
@@ -66,6 +95,7 @@ impl<const N: usize> Lu<N> {
                 negative_det = !negative_det;
             }
             min_pivot = min_pivot.min(pivot.abs());
+            det *= pivot;
             if pivot != 0.0 {
                 let inv = 1.0 / pivot;
                 for r in k + 1..N {
@@ -79,28 +109,22 @@ impl<const N: usize> Lu<N> {
             }
         }
         let pivot_ratio = if degenerate || !min_pivot.is_finite() { 0.0 } else { min_pivot };
-        Lu { lu, perm, inv_scale, pivot_ratio, negative_det }
+        let det = if perm_parity_odd(&perm) { -det } else { det };
+        Lu { lu, perm, inv_row, inv_col, pivot_ratio, negative_det, det }
     }
 
-    /// Factorises `j`, scaling each row by its largest magnitude in the augmented system
-    /// `[j | rhs]` (the right-hand sides carry the input's influence, so a block whose own
-    /// Jacobian row vanishes while its input row does not is seen as singular).
-    #[inline]
-    pub fn factor_aug<const M: usize>(j: &[[f64; N]; N], rhs: &[[f64; M]; N]) -> Self {
-        let mut scale = [0.0; N];
-        for r in 0..N {
-            let a = max_abs(j[r]);
-            let b = max_abs(rhs[r]);
-            scale[r] = if a.is_nan() || b.is_nan() { f64::NAN } else { a.max(b) };
-        }
-        Self::factor(j, scale)
-    }
-
-    /// Smallest pivot of the row-equilibrated matrix, in `[0, ~1]`: `0` when singular. `NaN`
+    /// Smallest pivot of the equilibrated matrix, in `[0, ~1]`: `0` when singular. `NaN`
     /// inputs give `0`.
     #[inline]
     pub fn pivot_ratio(&self) -> f64 {
         if self.pivot_ratio.is_nan() { 0.0 } else { self.pivot_ratio }
+    }
+
+    /// Determinant of the equilibrated matrix: a smooth, signed, unit-free measure whose
+    /// zeros are the singular positions (used to locate them along a sweep).
+    #[inline]
+    pub fn det(&self) -> f64 {
+        self.det
     }
 
     /// Sign of the determinant (`true` when negative); the assembly mode of a block.
@@ -116,7 +140,7 @@ impl<const N: usize> Lu<N> {
         let mut z = [0.0; N];
         for r in 0..N {
             let p = self.perm[r];
-            z[r] = b[p] * self.inv_scale[p];
+            z[r] = b[p] * self.inv_row[p];
         }
         for r in 0..N {
             let mut acc = z[r];
@@ -131,6 +155,9 @@ impl<const N: usize> Lu<N> {
                 acc -= self.lu[(r, c)] * z[c];
             }
             z[r] = acc / self.lu[(r, r)];
+        }
+        for c in 0..N {
+            z[c] *= self.inv_col[c];
         }
         z
     }
@@ -153,16 +180,93 @@ impl<const N: usize> Lu<N> {
     }
 }
 
+fn perm_parity_odd<const N: usize>(perm: &[usize; N]) -> bool {
+    let mut seen = [false; N];
+    let mut odd = false;
+    for start in 0..N {
+        if seen[start] {
+            continue;
+        }
+        let mut len = 0;
+        let mut k = start;
+        while !seen[k] {
+            seen[k] = true;
+            k = perm[k];
+            len += 1;
+        }
+        if len % 2 == 0 {
+            odd = !odd;
+        }
+    }
+    odd
+}
+
+/// What [`Health`](crate::Health) reads from a block's factorisation.
+pub trait Factor {
+    /// Smallest pivot of the equilibrated matrix.
+    fn pivot_ratio(&self) -> f64;
+    /// Negative determinant.
+    fn negative_det(&self) -> bool;
+}
+
+impl<const N: usize> Factor for Lu<N> {
+    #[inline]
+    fn pivot_ratio(&self) -> f64 {
+        Lu::pivot_ratio(self)
+    }
+    #[inline]
+    fn negative_det(&self) -> bool {
+        Lu::negative_det(self)
+    }
+}
+
+/// A 1x1 block whose Jacobian is a non-zero constant known at compile time (an unknown that
+/// appears linearly with a constant coefficient, such as a slider coordinate in its loop): it is
+/// solved by one division, never singular.
+#[derive(Clone, Copy, Debug)]
+pub struct Fixed(pub f64);
+
+impl Fixed {
+    /// Solves `c z = b`.
+    #[inline]
+    pub fn solve(&self, b: [f64; 1]) -> [f64; 1] {
+        [b[0] / self.0]
+    }
+
+    /// Solves `c Z = B` for `M` right-hand sides.
+    #[inline]
+    pub fn solve_cols<const M: usize>(&self, b: [[f64; M]; 1]) -> [[f64; M]; 1] {
+        let c = self.0;
+        [b[0].map(|v| v / c)]
+    }
+}
+
+impl Factor for Fixed {
+    #[inline]
+    fn pivot_ratio(&self) -> f64 {
+        1.0
+    }
+    #[inline]
+    fn negative_det(&self) -> bool {
+        self.0 < 0.0
+    }
+}
+
 /// Largest magnitude among `v` (the row scale of the augmented system). `NaN` propagates.
 #[inline]
 pub fn max_abs<const M: usize>(v: [f64; M]) -> f64 {
-    let mut m = 0.0f64;
-    for x in v {
-        let a = x.abs();
-        // Written so that a NaN makes the result NaN (then the row counts as degenerate).
-        m = if a > m || a.is_nan() { a } else { m };
+    if M == 1 {
+        return v[0].abs();
     }
-    m
+    // `f64::max` ignores NaN; the running sum does not, so a NaN anywhere makes the result NaN
+    // (then the row counts as degenerate and a residual as not converged).
+    let mut m = 0.0f64;
+    let mut sum = 0.0f64;
+    for x in v {
+        m = m.max(x.abs());
+        sum += x;
+    }
+    if sum.is_nan() { f64::NAN } else { m }
 }
 
 #[cfg(test)]
@@ -180,8 +284,9 @@ mod tests {
             assert!((z[k] - x[k]).abs() < 1e-14, "{z:?}");
         }
         assert!(lu.pivot_ratio() > 0.1);
-        // det = 0*(1-0) - 2*(1-0) + 1*(0-3) = -5
+        // det = 0*(1-0) - 2*(1-0) + 1*(0-3) = -5; rows scaled by 1/2, 1/1, 1/3.
         assert!(lu.negative_det());
+        assert!((lu.det() - (-5.0 / 6.0)).abs() < 1e-14, "{}", lu.det());
     }
 
     #[test]
@@ -193,6 +298,20 @@ mod tests {
         assert_eq!(lu.pivot_ratio(), 0.0);
         let lu = Lu::<1>::factor(&[[2.0]], [max_abs([2.0, f64::NAN])]);
         assert_eq!(lu.pivot_ratio(), 0.0);
+    }
+
+    #[test]
+    fn column_scaling_solves_and_detects() {
+        // A rotating link's column has constant magnitude: scaling by it exposes the dead
+        // centre where the block's own entry vanishes.
+        let j = [[3.0, 0.5], [0.2, 4.0]];
+        let lu = Lu::<2>::factor_scaled(&j, [1.0, 2.0], [3.0, 4.0]);
+        let x = [0.7, -1.1];
+        let b = [3.0 * 0.7 + 0.5 * -1.1, 0.2 * 0.7 + 4.0 * -1.1];
+        let z = lu.solve(b);
+        assert!((z[0] - x[0]).abs() < 1e-14 && (z[1] - x[1]).abs() < 1e-14, "{z:?}");
+        let dead = Lu::<1>::factor_cols(&[[3.0 * 1e-9]], [3.0]);
+        assert!(dead.pivot_ratio() < 1e-8);
     }
 
     #[test]

@@ -1,0 +1,290 @@
+//! Prints the tables of `BENCHMARKS.md` from one run of the benchmarks: the medians criterion
+//! measured (read from `<target>/criterion/<group>/<bench>/new/estimates.json`) with their ratios
+//! to each group's reference, the Newton iterations per step of every variant, and the size of
+//! the macro's expansions.
+//!
+//! `cargo run --release -p kinloop-bench --bin report [-- [--paired] [CRITERION_DIR]]`. The
+//! criterion directory defaults to `$CARGO_TARGET_DIR/criterion`, else `target/criterion` at the
+//! workspace root. `--paired` adds an interleaved measurement of the same steps (see
+//! [`paired`]), a cross-check of criterion's sequential runs on a shared, noisy machine.
+
+use std::hint::black_box;
+use std::path::{Path, PathBuf};
+use std::time::Instant;
+
+use kinloop_bench::class_four::{self, HandNewton};
+use kinloop_bench::decls::paper_mechanisms;
+use kinloop_bench::expansion::{four_bar_chain, four_bar_chain_dense, size};
+use kinloop_bench::rhombic::{
+    self, ClosedForm, DenseFiniteDifference, DenseHandJacobian, DenseNumDual, Kinloop, KinloopNamed, TwoLoopNewton,
+};
+use kinloop_bench::sweep::{STEPS, Stepper, Sweep, WarmStart, check_sweep};
+
+const RHOMBIC: [&str; 7] = [
+    "closed_form",
+    "kinloop",
+    "kinloop_named",
+    "two_loop_newton",
+    "dense_hand_jacobian",
+    "dense_num_dual",
+    "dense_finite_difference",
+];
+const CLASS_FOUR: [&str; 3] = ["hand_newton", "kinloop", "kinloop_named"];
+
+/// Median and its 95% confidence interval, in nanoseconds.
+#[derive(Clone, Copy, Debug)]
+struct Estimate {
+    median: f64,
+    low: f64,
+    high: f64,
+}
+
+fn estimate(dir: &Path, group: &str, bench: &str) -> Option<Estimate> {
+    let path = dir.join(group).join(bench).join("new").join("estimates.json");
+    let text = std::fs::read_to_string(path).ok()?;
+    let v: serde_json::Value = serde_json::from_str(&text).ok()?;
+    let m = &v["median"];
+    Some(Estimate {
+        median: m["point_estimate"].as_f64()?,
+        low: m["confidence_interval"]["lower_bound"].as_f64()?,
+        high: m["confidence_interval"]["upper_bound"].as_f64()?,
+    })
+}
+
+fn criterion_dir() -> PathBuf {
+    if let Some(d) = std::env::args().skip(1).find(|a| !a.starts_with("--")) {
+        return PathBuf::from(d);
+    }
+    let target = std::env::var_os("CARGO_TARGET_DIR")
+        .map(PathBuf::from)
+        .unwrap_or_else(|| Path::new(env!("CARGO_MANIFEST_DIR")).join("..").join("target"));
+    target.join("criterion")
+}
+
+fn fmt_ns(ns: f64) -> String {
+    if ns >= 1e6 {
+        format!("{:.2} ms", ns / 1e6)
+    } else if ns >= 1e3 {
+        format!("{:.1} µs", ns / 1e3)
+    } else {
+        format!("{ns:.1} ns")
+    }
+}
+
+fn timing_table(dir: &Path, prefix: &str, benches: &[&str], reference: &str) {
+    println!("| variant | warm start | median per step | 95% CI of the median | ratio to `{reference}` |");
+    println!("|---|---|---:|---:|---:|");
+    for policy in WarmStart::ALL {
+        let group = format!("{prefix}_{}", policy.name());
+        let base = estimate(dir, &group, reference);
+        for b in benches {
+            match estimate(dir, &group, b) {
+                Some(e) => {
+                    let ratio = base.map_or("?".to_string(), |r| format!("{:.2}", e.median / r.median));
+                    println!(
+                        "| `{b}` | {} | {} | {} – {} | {ratio} |",
+                        policy.name(),
+                        fmt_ns(e.median),
+                        fmt_ns(e.low),
+                        fmt_ns(e.high)
+                    );
+                }
+                None => println!("| `{b}` | {} | not measured | | |", policy.name()),
+            }
+        }
+    }
+    println!();
+}
+
+fn speedups(dir: &Path) {
+    println!(
+        "| warm start | kinloop / closed form | kinloop / two-loop Newton | num-dual / kinloop | finite differences / kinloop | class IV: kinloop / hand-written |"
+    );
+    println!("|---|---:|---:|---:|---:|---:|");
+    for policy in WarmStart::ALL {
+        let g = format!("rhombic_{}", policy.name());
+        let g4 = format!("class_four_{}", policy.name());
+        let r = |a: Option<Estimate>, b: Option<Estimate>| match (a, b) {
+            (Some(a), Some(b)) => format!("{:.2}", a.median / b.median),
+            _ => "?".to_string(),
+        };
+        let kl = estimate(dir, &g, "kinloop");
+        println!(
+            "| {} | {} | {} | {} | {} | {} |",
+            policy.name(),
+            r(kl, estimate(dir, &g, "closed_form")),
+            r(kl, estimate(dir, &g, "two_loop_newton")),
+            r(estimate(dir, &g, "dense_num_dual"), kl),
+            r(estimate(dir, &g, "dense_finite_difference"), kl),
+            r(estimate(dir, &g4, "kinloop"), estimate(dir, &g4, "hand_newton")),
+        );
+    }
+    println!();
+}
+
+fn iteration_row<S: Stepper<4>, R: Stepper<4>>(name: &str, s: &S, r: &R, guess0: [f64; 4]) {
+    let cells: Vec<String> = WarmStart::ALL
+        .iter()
+        .map(|&policy| match check_sweep(s, r, STEPS, policy, guess0) {
+            Ok(c) => format!(
+                "{:.3} (max {}) | {:.0e} / {:.0e} / {:.0e}",
+                c.mean_iterations, c.max_iterations, c.max_dev[0], c.max_dev[1], c.max_dev[2]
+            ),
+            Err(e) => format!("failed: {e} | "),
+        })
+        .collect();
+    println!("| `{name}` | {} |", cells.join(" | "));
+}
+
+fn iterations() {
+    println!(
+        "| variant | Newton iterations per step, taylor | max deviation q / dq / d2q, taylor | iterations, previous | deviation, previous |"
+    );
+    println!("|---|---:|---:|---:|---:|");
+    let p = rhombic::PARAMS;
+    let g = rhombic::initial_guess(&p);
+    let closed = ClosedForm::new(&p);
+    iteration_row("rhombic: kinloop", &Kinloop::<_, 0>::new(p.kinloop()), &closed, g);
+    iteration_row("rhombic: kinloop_named", &KinloopNamed::new(p.kinloop()), &closed, g);
+    iteration_row("rhombic: two_loop_newton", &TwoLoopNewton { p }, &closed, g);
+    iteration_row("rhombic: dense_hand_jacobian", &DenseHandJacobian { p }, &closed, g);
+    iteration_row("rhombic: dense_num_dual", &DenseNumDual { p }, &closed, g);
+    iteration_row("rhombic: dense_finite_difference", &DenseFiniteDifference { p }, &closed, g);
+    let p4 = class_four::PARAMS;
+    let hand = HandNewton { p: p4 };
+    let g4 = class_four::INITIAL_GUESS;
+    iteration_row("class IV: hand_newton", &hand, &hand, g4);
+    iteration_row("class IV: kinloop", &Kinloop::<_, 0>::new(p4.kinloop()), &hand, g4);
+    println!();
+}
+
+fn sizes(dir: &Path) {
+    println!(
+        "| declaration | scalar equations | expansion time (median) | expanded lines | lines per equation | token trees |"
+    );
+    println!("|---|---:|---:|---:|---:|---:|");
+    for d in paper_mechanisms() {
+        let s = size(d.text);
+        let t = estimate(dir, "expand", d.name).map_or("not measured".to_string(), |e| fmt_ns(e.median));
+        println!(
+            "| `{}` | {} | {t} | {} | {:.0} | {} |",
+            d.name,
+            d.equations,
+            s.lines,
+            s.lines as f64 / d.equations as f64,
+            s.tokens
+        );
+    }
+    println!();
+    println!(
+        "| four-bar chain of k loops | scalar equations | lines (blocks of 2) | lines per equation | lines, `#[kinloop(dense)]` (one block) | expansion time |"
+    );
+    println!("|---|---:|---:|---:|---:|---:|");
+    for k in [1, 2, 4, 8, 16] {
+        let s = size(&four_bar_chain(k));
+        let dense = if k <= 8 { size(&four_bar_chain_dense(k)).lines.to_string() } else { "–".to_string() };
+        let t = estimate(dir, "expand", &format!("FourBarChain{k}")).map_or("–".to_string(), |e| fmt_ns(e.median));
+        println!("| k = {k} | {} | {} | {:.0} | {dense} | {t} |", 2 * k, s.lines, s.lines as f64 / (2 * k) as f64);
+    }
+    println!();
+}
+
+/// A variant timed by [`paired`]: runs `n` steps of its own sweep, returns ns per step.
+type Timed<'a> = (&'static str, Box<dyn FnMut(usize) -> f64 + 'a>);
+
+fn timed<'a, S: Stepper<4>>(name: &'static str, s: &'a S, policy: WarmStart, guess0: [f64; 4]) -> Timed<'a> {
+    let mut sweep = Sweep::start(s, STEPS, policy, guess0).expect("the sweep starts");
+    let run = move |n: usize| {
+        let t = Instant::now();
+        for _ in 0..n {
+            black_box(sweep.advance(s).expect("the sweep goes on"));
+        }
+        t.elapsed().as_nanos() as f64 / n as f64
+    };
+    (name, Box::new(run))
+}
+
+fn median(mut v: Vec<f64>) -> f64 {
+    v.sort_by(f64::total_cmp);
+    v[v.len() / 2]
+}
+
+/// Interleaved timing: in each round every variant runs `n` steps, in an order rotated from
+/// round to round; ratios are taken within a round and their median reported. On a shared
+/// machine this pairs each ratio's numerator and denominator in time, so load that comes and
+/// goes cancels out of the ratio.
+#[allow(clippy::needless_range_loop)] // t[variant][round], filled in a rotated order
+fn paired(title: &str, mut variants: Vec<Timed<'_>>, n: usize, rounds: usize) {
+    let k = variants.len();
+    let mut t = vec![vec![0.0; rounds]; k];
+    for (_, run) in variants.iter_mut() {
+        run(n); // warm-up
+    }
+    for r in 0..rounds {
+        for i in 0..k {
+            let v = (i + r) % k;
+            t[v][r] = (variants[v].1)(n);
+        }
+    }
+    println!("| {title} | median per step | ratio to `{}` (median of per-round ratios) |", variants[0].0);
+    println!("|---|---:|---:|");
+    for v in 0..k {
+        let ratio = median((0..rounds).map(|r| t[v][r] / t[0][r]).collect());
+        println!("| `{}` | {} | {ratio:.2} |", variants[v].0, fmt_ns(median(t[v].clone())));
+    }
+    println!();
+}
+
+fn paired_all(rounds: usize) {
+    let p = rhombic::PARAMS;
+    let g = rhombic::initial_guess(&p);
+    let closed = ClosedForm::new(&p);
+    let kl = Kinloop::<_, 0>::new(p.kinloop());
+    let named = KinloopNamed::new(p.kinloop());
+    let two = TwoLoopNewton { p };
+    let hand = DenseHandJacobian { p };
+    let dual = DenseNumDual { p };
+    let fd = DenseFiniteDifference { p };
+    let p4 = class_four::PARAMS;
+    let hand4 = HandNewton { p: p4 };
+    let kl4 = Kinloop::<_, 0>::new(p4.kinloop());
+    let named4 = class_four::KinloopNamed::new(p4.kinloop());
+    let g4 = class_four::INITIAL_GUESS;
+    for policy in WarmStart::ALL {
+        let variants = vec![
+            timed("closed_form", &closed, policy, g),
+            timed("kinloop", &kl, policy, g),
+            timed("kinloop_named", &named, policy, g),
+            timed("two_loop_newton", &two, policy, g),
+            timed("dense_hand_jacobian", &hand, policy, g),
+            timed("dense_num_dual", &dual, policy, g),
+            timed("dense_finite_difference", &fd, policy, g),
+        ];
+        paired(&format!("rhombic drive, {} warm start", policy.name()), variants, 100_000, rounds);
+        let variants = vec![
+            timed("hand_newton", &hand4, policy, g4),
+            timed("kinloop", &kl4, policy, g4),
+            timed("kinloop_named", &named4, policy, g4),
+        ];
+        paired(&format!("class IV, {} warm start", policy.name()), variants, 50_000, rounds);
+    }
+}
+
+fn main() {
+    let dir = criterion_dir();
+    println!("<!-- generated by `cargo run --release -p kinloop-bench --bin report` from {} -->\n", dir.display());
+    println!("### Rhombic drive (SEEDS.md 000): one full kinematic step\n");
+    timing_table(&dir, "rhombic", &RHOMBIC, "closed_form");
+    println!("### Class IV mechanism (SEEDS.md 003): one full kinematic step of the coupled 4x4 block\n");
+    timing_table(&dir, "class_four", &CLASS_FOUR, "hand_newton");
+    println!("### The ratios of the targets\n");
+    speedups(&dir);
+    println!("### Newton iterations and accuracy over one turn of {STEPS} steps (release build)\n");
+    iterations();
+    println!("### Macro expansion\n");
+    sizes(&dir);
+    if std::env::args().any(|a| a == "--paired") {
+        println!("### Paired (interleaved) timing, 41 rounds\n");
+        paired_all(41);
+    }
+}

@@ -1,0 +1,175 @@
+//! The class IV mechanism of SEEDS.md 003 (one coupled block of four unknowns): kinloop and a
+//! hand-written Newton for that block, with the same tolerance, warm start and outputs.
+
+use kinloop::NewtonConfig;
+
+use crate::decls::{ClassFour, ClassFourUnknowns};
+use crate::linalg::{Lu, max_abs};
+use crate::rhombic::{MAX_ITERATIONS, TOL};
+use crate::sweep::{Failed, Step, Stepper};
+
+/// Parameters of the mechanism (the declaration's defaults).
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Params {
+    pub oa: f64,
+    pub xb: f64,
+    pub yb: f64,
+    pub ac: f64,
+    pub ae: f64,
+    pub alpha_a: f64,
+    pub bd: f64,
+    pub bf: f64,
+    pub alpha_b: f64,
+    pub cd: f64,
+    pub ef: f64,
+}
+
+/// oa=1.0, xb=4.4, yb=0.6, ac=2.3, ae=2.4, alpha_a=0.84, bd=1.6, bf=3.5, alpha_b=0.62, cd=2.0,
+/// ef=3.4.
+pub const PARAMS: Params = Params {
+    oa: 1.0,
+    xb: 4.4,
+    yb: 0.6,
+    ac: 2.3,
+    ae: 2.4,
+    alpha_a: 0.84,
+    bd: 1.6,
+    bf: 3.5,
+    alpha_b: 0.62,
+    cd: 2.0,
+    ef: 3.4,
+};
+
+/// The declared assembly mode `th1, th2, psi1, psi2` (a guess at `phi = 0`).
+pub const INITIAL_GUESS: [f64; 4] = [1.4, 3.0, -0.8, -1.0];
+
+impl Params {
+    /// The kinloop mechanism with these dimensions.
+    pub fn kinloop(&self) -> ClassFour {
+        ClassFour {
+            oa: self.oa,
+            xb: self.xb,
+            yb: self.yb,
+            ac: self.ac,
+            ae: self.ae,
+            alpha_a: self.alpha_a,
+            bd: self.bd,
+            bf: self.bf,
+            alpha_b: self.alpha_b,
+            cd: self.cd,
+            ef: self.ef,
+        }
+    }
+}
+
+/// kinloop through the named API (`kinematics_with` returning `ClassFourState`).
+#[derive(Clone, Copy, Debug)]
+pub struct KinloopNamed {
+    pub m: ClassFour,
+    pub cfg: NewtonConfig,
+}
+
+impl KinloopNamed {
+    pub fn new(m: ClassFour) -> Self {
+        KinloopNamed { m, cfg: NewtonConfig::default() }
+    }
+}
+
+impl Stepper<4> for KinloopNamed {
+    #[inline]
+    fn step(&self, phi: f64, guess: &[f64; 4]) -> Result<Step<4>, Failed> {
+        match self.m.kinematics_with(phi, &ClassFourUnknowns::from(*guess), &self.cfg) {
+            Ok(s) => Ok(Step { q: s.q.into(), dq: s.dq.into(), d2q: s.d2q.into(), iterations: s.report.iterations }),
+            Err(e) => Err(Failed::new(e)),
+        }
+    }
+}
+
+/// The block written by hand: residuals and Jacobian from shared sines and cosines, a 4x4 LU
+/// with partial pivoting per iteration, and at the root one LU shared by the velocity analogs
+/// (`J q' = -df/dphi`) and the acceleration analogs (`J q'' = -D2f[(q', 1), (q', 1)]`, each
+/// polar term `l @ theta` contributing `-l theta'^2 (cos theta, sin theta)`).
+#[derive(Clone, Copy, Debug)]
+pub struct HandNewton {
+    pub p: Params,
+}
+
+/// Sines and cosines of the block's angles at one iterate.
+#[derive(Clone, Copy)]
+struct Trig {
+    s1: f64,
+    c1: f64,
+    s1a: f64,
+    c1a: f64,
+    s2: f64,
+    c2: f64,
+    s2b: f64,
+    c2b: f64,
+    sp1: f64,
+    cp1: f64,
+    sp2: f64,
+    cp2: f64,
+}
+
+impl Stepper<4> for HandNewton {
+    #[inline]
+    fn step(&self, phi: f64, guess: &[f64; 4]) -> Result<Step<4>, Failed> {
+        let p = &self.p;
+        let (sph, cph) = phi.sin_cos();
+        let (ax, ay) = (p.oa * cph, p.oa * sph);
+        let eval = |z: &[f64; 4]| {
+            let [th1, th2, psi1, psi2] = *z;
+            let (s1, c1) = th1.sin_cos();
+            let (s1a, c1a) = (th1 + p.alpha_a).sin_cos();
+            let (s2, c2) = th2.sin_cos();
+            let (s2b, c2b) = (th2 + p.alpha_b).sin_cos();
+            let (sp1, cp1) = psi1.sin_cos();
+            let (sp2, cp2) = psi2.sin_cos();
+            let f = [
+                ax + p.ac * c1 + p.cd * cp1 - p.xb - p.bd * c2,
+                ay + p.ac * s1 + p.cd * sp1 - p.yb - p.bd * s2,
+                ax + p.ae * c1a + p.ef * cp2 - p.xb - p.bf * c2b,
+                ay + p.ae * s1a + p.ef * sp2 - p.yb - p.bf * s2b,
+            ];
+            (f, Trig { s1, c1, s1a, c1a, s2, c2, s2b, c2b, sp1, cp1, sp2, cp2 })
+        };
+        let jacobian = |t: &Trig| {
+            [
+                [-p.ac * t.s1, p.bd * t.s2, -p.cd * t.sp1, 0.0],
+                [p.ac * t.c1, -p.bd * t.c2, p.cd * t.cp1, 0.0],
+                [-p.ae * t.s1a, p.bf * t.s2b, 0.0, -p.ef * t.sp2],
+                [p.ae * t.c1a, -p.bf * t.c2b, 0.0, p.ef * t.cp2],
+            ]
+        };
+        let mut z = *guess;
+        let mut iterations = 0;
+        let (t, lu) = loop {
+            let (f, t) = eval(&z);
+            let res = max_abs(&f);
+            let lu = Lu::factor(jacobian(&t)).ok_or_else(|| Failed::new("hand Newton: singular block"))?;
+            if res <= TOL {
+                break (t, lu);
+            }
+            if !res.is_finite() || iterations >= MAX_ITERATIONS {
+                return Err(Failed::new("hand Newton: no convergence"));
+            }
+            let dz = lu.solve(f.map(|v| -v));
+            for u in 0..4 {
+                z[u] += dz[u];
+            }
+            iterations += 1;
+        };
+        // Velocity analogs: df/dphi = (-oa sin phi, oa cos phi) in both loops.
+        let dq = lu.solve([ay, -ax, ay, -ax]);
+        let [w1, w2, v1, v2] = dq;
+        let (w1, w2, v1, v2) = (w1 * w1, w2 * w2, v1 * v1, v2 * v2);
+        let second = [
+            -ax - p.ac * t.c1 * w1 - p.cd * t.cp1 * v1 + p.bd * t.c2 * w2,
+            -ay - p.ac * t.s1 * w1 - p.cd * t.sp1 * v1 + p.bd * t.s2 * w2,
+            -ax - p.ae * t.c1a * w1 - p.ef * t.cp2 * v2 + p.bf * t.c2b * w2,
+            -ay - p.ae * t.s1a * w1 - p.ef * t.sp2 * v2 + p.bf * t.s2b * w2,
+        ];
+        let d2q = lu.solve(second.map(|v| -v));
+        Ok(Step { q: z, dq, d2q, iterations })
+    }
+}

@@ -1,0 +1,15 @@
+//! Benchmarks of kinloop (GitHub issue 5): the rhombic drive of SEEDS.md 000 against its
+//! hand-written closed form, a hand-written two-loop Newton, and dense Newtons with a
+//! hand-written, num-dual or finite-difference Jacobian; the class IV mechanism of SEEDS.md 003
+//! against a hand-written Newton for its coupled block; and the macro's expansion time and code
+//! size. See `BENCHMARKS.md` at the repository root for how to run them and the results.
+//!
+//! The peers live here (not in the bench targets) so the criterion benchmarks, the accuracy and
+//! allocation tests and the report binary all use the same code.
+
+pub mod class_four;
+pub mod decls;
+pub mod expansion;
+pub mod linalg;
+pub mod rhombic;
+pub mod sweep;

@@ -1,0 +1,186 @@
+//! One step of a sweep: the common interface of kinloop and of every peer, and the warm-start
+//! policies that drive them along a turn of the crank.
+
+use std::f64::consts::TAU;
+
+/// Crank angles per turn in the benchmarks (the 1,000,000 equally spaced angles).
+pub const STEPS: usize = 1_000_000;
+
+/// Positions, velocity analogs and acceleration analogs of the unknowns at one input value.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Step<const N: usize> {
+    pub q: [f64; N],
+    pub dq: [f64; N],
+    pub d2q: [f64; N],
+    /// Newton iterations spent on this step (0 when the warm start already met the tolerance).
+    pub iterations: u32,
+}
+
+/// A failed step (never expected along the benchmark sweeps).
+#[derive(Clone, Debug, PartialEq, Eq)]
+pub struct Failed(pub String);
+
+impl Failed {
+    #[cold]
+    #[inline(never)]
+    pub fn new(why: impl ToString) -> Self {
+        Failed(why.to_string())
+    }
+}
+
+impl std::fmt::Display for Failed {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        f.write_str(&self.0)
+    }
+}
+
+/// One kinematic step: positions (solved from `guess`), velocity and acceleration analogs.
+pub trait Stepper<const N: usize> {
+    /// Whether the step uses the warm start (a closed form does not, and then the sweep
+    /// computes none: the closed form is timed without the predictor's cost).
+    const WARM: bool = true;
+    fn step(&self, phi: f64, guess: &[f64; N]) -> Result<Step<N>, Failed>;
+}
+
+/// How the guess of the next step is made from the previous step.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum WarmStart {
+    /// The previous position `q(phi - h)`.
+    Previous,
+    /// The second-order Taylor predictor `q + q' h + q'' h^2 / 2` from the previous step's
+    /// position and analogs (which every step computes anyway).
+    Taylor,
+}
+
+impl WarmStart {
+    pub const ALL: [WarmStart; 2] = [WarmStart::Taylor, WarmStart::Previous];
+
+    pub fn name(self) -> &'static str {
+        match self {
+            WarmStart::Previous => "previous",
+            WarmStart::Taylor => "taylor",
+        }
+    }
+}
+
+/// Walks the crank through `steps` equally spaced angles per turn, turn after turn, each step
+/// warm-started from the previous one.
+#[derive(Clone, Debug)]
+pub struct Sweep<const N: usize> {
+    steps: usize,
+    k: usize,
+    h: f64,
+    policy: WarmStart,
+    prev: Step<N>,
+}
+
+impl<const N: usize> Sweep<N> {
+    /// Solves the first step at `phi = 0` from `guess0` (the assembly mode).
+    pub fn start<S: Stepper<N>>(s: &S, steps: usize, policy: WarmStart, guess0: [f64; N]) -> Result<Self, Failed> {
+        let first = s.step(0.0, &guess0)?;
+        Ok(Sweep { steps, k: 0, h: TAU / steps as f64, policy, prev: first })
+    }
+
+    /// The step size `h` (radians).
+    pub fn h(&self) -> f64 {
+        self.h
+    }
+
+    /// Index of the current step within the turn.
+    pub fn index(&self) -> usize {
+        self.k
+    }
+
+    /// The current input value.
+    pub fn phi(&self) -> f64 {
+        self.h * self.k as f64
+    }
+
+    /// The current step.
+    pub fn current(&self) -> &Step<N> {
+        &self.prev
+    }
+
+    /// The guess for the next step.
+    #[inline(always)]
+    pub fn guess(&self) -> [f64; N] {
+        let p = &self.prev;
+        match self.policy {
+            WarmStart::Previous => p.q,
+            WarmStart::Taylor => {
+                let h = self.h;
+                std::array::from_fn(|u| p.q[u] + h * (p.dq[u] + 0.5 * h * p.d2q[u]))
+            }
+        }
+    }
+
+    /// Solves the next step (after the last angle of a turn comes the first angle again).
+    #[inline(always)]
+    pub fn advance<S: Stepper<N>>(&mut self, s: &S) -> Result<&Step<N>, Failed> {
+        self.k += 1;
+        if self.k == self.steps {
+            self.k = 0;
+        }
+        let phi = self.h * self.k as f64;
+        let guess = if S::WARM { self.guess() } else { self.prev.q };
+        self.prev = s.step(phi, &guess)?;
+        Ok(&self.prev)
+    }
+}
+
+/// Relative difference, absolute near zero: `|a - b| / max(|b|, 1)`.
+pub fn rel_err(a: f64, b: f64) -> f64 {
+    (a - b).abs() / b.abs().max(1.0)
+}
+
+/// Largest deviations of one step from a reference step: (positions, velocity analogs,
+/// acceleration analogs), each as [`rel_err`].
+pub fn deviation<const N: usize>(got: &Step<N>, want: &Step<N>) -> [f64; 3] {
+    let mut d = [0.0f64; 3];
+    for u in 0..N {
+        d[0] = d[0].max(rel_err(got.q[u], want.q[u]));
+        d[1] = d[1].max(rel_err(got.dq[u], want.dq[u]));
+        d[2] = d[2].max(rel_err(got.d2q[u], want.d2q[u]));
+    }
+    // NaN must not pass as "small".
+    d.map(|v| if v.is_nan() { f64::INFINITY } else { v })
+}
+
+/// Statistics of a checked sweep: a whole turn of `steps` angles.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct SweepCheck {
+    /// Largest deviations from the reference over the turn (see [`deviation`]).
+    pub max_dev: [f64; 3],
+    /// Mean Newton iterations per step.
+    pub mean_iterations: f64,
+    /// Largest Newton iteration count of any step.
+    pub max_iterations: u32,
+}
+
+/// Runs `s` over one whole turn with `policy` from `guess0` and compares every step with
+/// `reference` (a stepper that ignores the guess, e.g. a closed form, or another solver run
+/// side by side with the same policy).
+pub fn check_sweep<const N: usize, S: Stepper<N>, R: Stepper<N>>(
+    s: &S,
+    reference: &R,
+    steps: usize,
+    policy: WarmStart,
+    guess0: [f64; N],
+) -> Result<SweepCheck, Failed> {
+    let mut sweep = Sweep::start(s, steps, policy, guess0)?;
+    let mut ref_sweep = Sweep::start(reference, steps, policy, guess0)?;
+    let mut max_dev = deviation(sweep.current(), ref_sweep.current());
+    let mut total = 0u64;
+    let mut max_iterations = 0;
+    for _ in 1..steps {
+        let got = *sweep.advance(s)?;
+        let want = *ref_sweep.advance(reference)?;
+        let d = deviation(&got, &want);
+        for (m, d) in max_dev.iter_mut().zip(d) {
+            *m = m.max(d);
+        }
+        total += u64::from(got.iterations);
+        max_iterations = max_iterations.max(got.iterations);
+    }
+    Ok(SweepCheck { max_dev, mean_iterations: total as f64 / (steps - 1) as f64, max_iterations })
+}

@@ -1,0 +1,73 @@
+//! Every peer of the benchmarks against the reference before anything is timed: the rhombic
+//! drive's peers against the published closed form, the class IV block's hand-written Newton
+//! against kinloop and against finite differences of its own positions. (The benchmarks repeat
+//! the check over the full 1,000,000-step turn in release mode; here a coarser turn keeps the
+//! debug-mode test fast.)
+
+use kinloop_bench::class_four::{self, HandNewton};
+use kinloop_bench::rhombic::{
+    self, ClosedForm, DenseFiniteDifference, DenseHandJacobian, DenseNumDual, Kinloop, KinloopNamed, TwoLoopNewton,
+};
+use kinloop_bench::sweep::{Stepper, SweepCheck, WarmStart, check_sweep};
+
+const STEPS: usize = 5_000;
+const EXACT: [f64; 3] = [1e-11, 1e-9, 1e-9];
+const DIFFERENCED: [f64; 3] = [1e-11, 1e-6, 1e-5];
+
+fn check<S: Stepper<4>, R: Stepper<4>>(name: &str, s: &S, r: &R, guess0: [f64; 4], tol: [f64; 3]) -> [SweepCheck; 2] {
+    WarmStart::ALL.map(|policy| {
+        let c = check_sweep(s, r, STEPS, policy, guess0).unwrap_or_else(|e| panic!("{name}: {e}"));
+        assert!(c.max_dev.iter().zip(tol).all(|(d, t)| *d <= t), "{name} ({policy:?}): {c:?}");
+        c
+    })
+}
+
+#[test]
+fn rhombic_peers_match_the_closed_form() {
+    let p = rhombic::PARAMS;
+    let g = rhombic::initial_guess(&p);
+    let closed = ClosedForm::new(&p);
+    check("kinloop", &Kinloop::<_, 0>::new(p.kinloop()), &closed, g, EXACT);
+    check("kinloop_named", &KinloopNamed::new(p.kinloop()), &closed, g, EXACT);
+    let [taylor, previous] = check("two_loop_newton", &TwoLoopNewton { p }, &closed, g, EXACT);
+    // The predictor leaves less to iterate than the previous position (at 1,000,000 steps per
+    // turn it leaves nothing: see the benchmarks' checks).
+    assert!(taylor.mean_iterations < previous.mean_iterations, "{taylor:?} {previous:?}");
+    check("dense_hand_jacobian", &DenseHandJacobian { p }, &closed, g, EXACT);
+    check("dense_num_dual", &DenseNumDual { p }, &closed, g, EXACT);
+    check("dense_finite_difference", &DenseFiniteDifference { p }, &closed, g, DIFFERENCED);
+}
+
+#[test]
+fn class_four_hand_newton_matches_kinloop() {
+    let p = class_four::PARAMS;
+    let hand = HandNewton { p };
+    let g = class_four::INITIAL_GUESS;
+    check("kinloop", &Kinloop::<_, 0>::new(p.kinloop()), &hand, g, EXACT);
+    check("kinloop_named", &class_four::KinloopNamed::new(p.kinloop()), &hand, g, EXACT);
+}
+
+#[test]
+fn class_four_hand_analogs_are_derivatives_of_its_positions() {
+    // Central differences of the hand-written solver's own positions and velocity analogs.
+    let hand = HandNewton { p: class_four::PARAMS };
+    let mut q = class_four::INITIAL_GUESS;
+    for k in 0..72 {
+        let phi = k as f64 * std::f64::consts::TAU / 72.0;
+        let s = hand.step(phi, &q).unwrap();
+        q = s.q;
+        let h = 1e-5;
+        let plus = hand.step(phi + h, &q).unwrap();
+        let minus = hand.step(phi - h, &q).unwrap();
+        for u in 0..4 {
+            let dq = (plus.q[u] - minus.q[u]) / (2.0 * h);
+            let d2q = (plus.dq[u] - minus.dq[u]) / (2.0 * h);
+            assert!((dq - s.dq[u]).abs() <= 1e-6 * s.dq[u].abs().max(1.0), "dq[{u}] at {phi}: {dq} vs {}", s.dq[u]);
+            assert!(
+                (d2q - s.d2q[u]).abs() <= 1e-6 * s.d2q[u].abs().max(1.0),
+                "d2q[{u}] at {phi}: {d2q} vs {}",
+                s.d2q[u]
+            );
+        }
+    }
+}

@@ -1,0 +1,62 @@
+//! Snapshot tests of the code `mechanism!` generates, pretty-printed, so that every change to
+//! code generation is reviewed as a readable diff of the `.snap` files in `tests/snapshots/`.
+//!
+//! After an intended change: `INSTA_UPDATE=always cargo test -p kinloop-codegen --test snapshots`
+//! (or `cargo insta review` with cargo-insta installed), then read the diff of every `.snap`.
+
+use proc_macro2::TokenStream;
+
+/// The expansion of `decl`, formatted by prettyplease.
+fn expanded(decl: &str) -> String {
+    let tokens: TokenStream = decl.parse().expect("declaration tokens");
+    let out = kinloop_codegen::expand(tokens);
+    let file: syn::File = syn::parse2(out.clone()).unwrap_or_else(|e| panic!("expansion is not a file: {e}\n{out}"));
+    prettyplease::unparse(&file)
+}
+
+#[test]
+fn offset_slider_crank() {
+    let code = expanded(
+        "/// Offset slider-crank: crank `r`, rod `l`, slider on the line y = e.
+         pub struct SliderCrank {
+             params r = 1.0, l = 3.0, e = 0.2;
+             input phi;
+             unknowns psi = 0, x = r + l;
+             loop oabo: r @ phi == (x, e) + l @ psi;
+             point mid = r @ phi + 0.5 * l @ psi;
+         }",
+    );
+    insta::assert_snapshot!(code);
+}
+
+#[test]
+fn four_bar() {
+    let code = expanded(
+        "/// Four-bar linkage: crank `a`, coupler `b`, rocker `c`, frame `d`.
+         pub struct FourBar {
+             params a, b, c, d;
+             input phi;
+             unknowns beta = 0.5, gamma = 1.5;
+             loop abcd: a @ phi + b @ beta == (d, 0) + c @ gamma;
+             output transmission = gamma - beta;
+         }",
+    );
+    insta::assert_snapshot!(code);
+}
+
+/// A rejected declaration: the `compile_error!`s and the fallback items emitted next to them.
+#[test]
+fn rejected_declaration_fallback() {
+    let code = expanded(
+        "pub struct FourBar {
+             params a = 1.0, b = 3.0, c = 2.5, d = 3.5;
+             input phi;
+             unknowns beta, gamma, delta;
+             loop abcd: a @ phi + b @ beta == (d, 0) + c @ gamma + c @ delta;
+             point coupler = a @ phi + b @ beta;
+         }",
+    );
+    assert!(code.contains("compile_error!"), "{code}");
+    assert!(!code.contains("fn solve"), "the fallback must not pretend to solve:\n{code}");
+    insta::assert_snapshot!(code);
+}

@@ -1,0 +1,113 @@
+//! Limit positions and change points located along sweeps.
+//!
+//! * A non-Grashof four-bar driven by its input link cannot turn fully: the sweep stops at the
+//!   limit position (coupler and rocker collinear) and reports the located input value, which is
+//!   compared with the law of cosines; the reachable range is found both ways; pseudo-arclength
+//!   continuation then traces the whole closed curve through both limits.
+//! * A four-bar at a change point (s + l = p + q) reaches a position where its two assembly
+//!   modes meet: the sweep reports the singular crossing instead of silently changing branch.
+//!
+//! Run with `cargo run --release --example limit_positions`.
+
+mod common;
+
+use common::{Series, line_chart, out_dir};
+use kinloop::{AtSingular, SweepConfig};
+use std::f64::consts::PI;
+
+kinloop::mechanism! {
+    /// Four-bar: input link `a` at A = (0, 0), coupler `b`, rocker `c` at D = (d, 0).
+    pub struct FourBar {
+        params a, b, c, d;
+        input phi;
+        unknowns beta = 0.5, gamma = 1.5;
+        loop abcd: a @ phi + b @ beta == (d, 0) + c @ gamma;
+    }
+}
+
+fn main() -> Result<(), Box<dyn std::error::Error>> {
+    // s + l = 2 + 4 > p + q = 2.5 + 3: non-Grashof.
+    let m = FourBar { a: 3.0, b: 2.0, c: 2.5, d: 4.0 };
+    let g = m.position(0.0, &m.guess(0.0))?.0;
+    println!("Non-Grashof four-bar {m:?}");
+    let mut sweep = m.sweep(0.0, PI, 37, &g)?;
+    let mut last = 0.0;
+    for state in &mut sweep {
+        match state {
+            Ok(s) => last = s.input.phi,
+            Err(e) => println!("  sweep 0 -> pi stopped: {e}"),
+        }
+    }
+    println!("  last sample reached: phi = {:.6} rad ({:.3} deg)", last, last.to_degrees());
+    for ev in sweep.events() {
+        let law = ((m.a * m.a + m.d * m.d - (m.b + m.c).powi(2)) / (2.0 * m.a * m.d)).acos();
+        println!(
+            "  event {:?} at phi = {:.12} rad; law of cosines gives {:.12} (difference {:.1e}); beta = {:.6}, gamma = {:.6}",
+            ev.kind,
+            ev.x[0],
+            law,
+            (ev.x[0] - law).abs(),
+            ev.q[0],
+            ev.q[1]
+        );
+    }
+    let reach = kinloop::reachable(&m, [0.0], [PI], g.into(), 91, SweepConfig::default())?;
+    let lo = reach.lo_event.as_ref().map_or(f64::NAN, |e| e.x[0]);
+    let hi = reach.hi_event.as_ref().map_or(f64::NAN, |e| e.x[0]);
+    println!("  reachable input range on this assembly mode: [{lo:.12}, {hi:.12}] rad");
+
+    let traced = kinloop::trace_curve(&m, [0.0], [PI], g.into(), 0.01, 100_000, &kinloop::NewtonConfig::default())?;
+    println!(
+        "  arclength continuation: {} points, closed = {}, limit positions at {:?}",
+        traced.points.len(),
+        traced.closed,
+        traced.folds.iter().map(|f| format!("{:.12}", f.x[0])).collect::<Vec<_>>()
+    );
+    let dir = out_dir("limit_positions");
+    line_chart(
+        &dir.join("closed_curve.svg"),
+        "Non-Grashof four-bar: the whole closed curve by arclength continuation",
+        "input angle phi [deg]",
+        "angle [deg]",
+        &[
+            Series {
+                label: "coupler beta",
+                points: traced.points.iter().map(|p| (p.x[0].to_degrees(), p.q[0].to_degrees())).collect(),
+            },
+            Series {
+                label: "rocker gamma",
+                points: traced.points.iter().map(|p| (p.x[0].to_degrees(), p.q[1].to_degrees())).collect(),
+            },
+        ],
+    )?;
+
+    // Change point: s + l = 1 + 3 = p + q = 2 + 2.
+    let cp = FourBar { a: 1.0, b: 3.0, c: 2.0, d: 2.0 };
+    let g = cp.position(0.5, &FourBarUnknowns { beta: 0.6, gamma: 1.6 })?.0;
+    println!("\nChange-point four-bar {cp:?}");
+    let mut sweep = cp.sweep(0.5, 7.0, 66, &g)?;
+    if let Some(Err(e)) = sweep.by_ref().find(|s| s.is_err()) {
+        println!("  default sweep stopped: {e}");
+    }
+    for ev in sweep.events() {
+        println!(
+            "  event {:?} at phi = {:.12} (2 pi = {:.12}), block {:?}",
+            ev.kind,
+            ev.x[0],
+            2.0 * PI,
+            ev.block.map(|b| b.0)
+        );
+    }
+    let cfg = SweepConfig { at_singular: AtSingular::Continue, ..SweepConfig::default() };
+    let mut sweep = cp.sweep(0.5, 7.0, 66, &g)?.with_config(cfg);
+    let states: Vec<_> = sweep.by_ref().collect::<Result<_, _>>()?;
+    println!(
+        "  with AtSingular::Continue: {} samples, {} event(s), assembly mode (det signs) {:#b} -> {:#b}",
+        states.len(),
+        sweep.events().len(),
+        states[0].health.det_signs,
+        states[states.len() - 1].health.det_signs
+    );
+    println!("\nwrote {}", dir.join("closed_curve.svg").display());
+    Ok(())
+}

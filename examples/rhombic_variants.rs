@@ -1,0 +1,194 @@
+//! The two structural variants of the rhombic drive whose equations paper 000 does "not give for
+//! lack of space" (SEEDS.md, Figs. 2 and 3), declared from their description only: one crank
+//! AB (radius `r`, centre A = (0, e_p)), the working piston C on the X axis, the displacer F on
+//! the line y = de.
+//!
+//! * Fig. 2, developed displacer rod: rod 4 is a rigid triangle F-B-D (FB = `l_b` at angle
+//!   `phi4`, FD = `l_fd` at the fixed angle `gamma_b` from FB); the working rod 2 (`l_p`) joins
+//!   D to the piston C. Contours OABFF1O and OCDFF1O.
+//! * Fig. 3, developed working rod: rod 2 is a rigid triangle C-B-D (CB = `l_p` at angle
+//!   `phi2`, CD = `l_cd` at the fixed angle `gamma_p` from CB); the displacer rod 4 (`l_b`)
+//!   joins D to the displacer F. Contours OABCO and OF1FDCO.
+//!
+//! For each it prints the strokes, the extreme positions located as roots of the velocity
+//! analogs, and the phase shift between the piston's and the displacer's extremes, and checks
+//! that the third joint placed on the crank pin (D = B) gives back the drive of Fig. 1.
+//!
+//! Run with `cargo run --release --example rhombic_variants`.
+
+#[allow(dead_code)] // not every example uses every helper
+mod common;
+
+use common::{Panel, Series, figure_dir, panels};
+use kinloop::analysis::Sampled;
+use std::f64::consts::TAU;
+
+kinloop::mechanism! {
+    /// Fig. 2: developed displacer rod. Lengths in units of the crank radius.
+    pub struct DisplacerRodDrive {
+        params r = 1.0, l_b = 3.5, l_fd = 2.2, gamma_b = 0.35, l_p = 3.0, e_p = 0.5, de = 0.9;
+        input phi1;
+        unknowns phi4 = pi, x_f = l_b, phi2 = 0, x_c = -l_p;
+        loop oabff1o: (0, e_p) + r @ phi1 == (x_f, de) + l_b @ phi4;
+        loop ocdff1o: (x_c, 0) + l_p @ phi2 == (x_f, de) + l_fd @ (phi4 + gamma_b);
+        /// The third joint of the displacer rod.
+        point d = (x_f, de) + l_fd @ (phi4 + gamma_b);
+    }
+}
+
+kinloop::mechanism! {
+    /// Fig. 3: developed working rod. Lengths in units of the crank radius.
+    pub struct WorkingRodDrive {
+        params r = 1.0, l_p = 3.0, l_cd = 1.8, gamma_p = -0.4, l_b = 3.5, e_p = 0.5, de = -0.4;
+        input phi1;
+        unknowns phi2 = 0, x_c = -l_p, phi4 = pi, x_f = l_b;
+        loop oabco: (0, e_p) + r @ phi1 == (x_c, 0) + l_p @ phi2;
+        loop of1fdco: (x_f, de) + l_b @ phi4 == (x_c, 0) + l_cd @ (phi2 + gamma_p);
+        /// The third joint of the working rod.
+        point d = (x_c, 0) + l_cd @ (phi2 + gamma_p);
+    }
+}
+
+/// Strokes, extremes and phase shift of a drive with unknowns `x_c` and `x_f`.
+fn report<M, const N: usize, const NO: usize>(
+    name: &str,
+    turn: &Sampled<'_, M, N, NO>,
+) -> Result<[f64; 4], Box<dyn std::error::Error>>
+where
+    M: kinloop::Mechanism<N, 1, NO>,
+{
+    let xc = turn.range("x_c")?;
+    let xf = turn.range("x_f")?;
+    let deg = |a: f64| a.to_degrees().rem_euclid(360.0);
+    println!("{name}");
+    println!(
+        "  piston    X_C in [{:.12}, {:.12}] (at phi1 = {:.5}°, {:.5}°): stroke {:.12}",
+        xc.min.value,
+        xc.max.value,
+        deg(xc.min.x),
+        deg(xc.max.x),
+        xc.span()
+    );
+    println!(
+        "  displacer X_F in [{:.12}, {:.12}] (at phi1 = {:.5}°, {:.5}°): stroke {:.12}",
+        xf.min.value,
+        xf.max.value,
+        deg(xf.min.x),
+        deg(xf.max.x),
+        xf.span()
+    );
+    // Outer extremes: the piston farthest left (min X_C), the displacer farthest right (max X_F).
+    let outer = deg(xf.max.x - xc.min.x);
+    let inner = deg(xf.min.x - xc.max.x);
+    println!("  phase shift of the extremes: outer {outer:.6}°, inner {inner:.6}°");
+    Ok([xc.span(), xf.span(), outer, inner])
+}
+
+fn main() -> Result<(), Box<dyn std::error::Error>> {
+    let fig2 = DisplacerRodDrive::default();
+    let fig3 = WorkingRodDrive::default();
+    println!("Rhombic drive variants of paper 000 (lengths in crank radii)\n{fig2:?}\n{fig3:?}\n");
+    let t2 = Sampled::sweep(&fig2, 0.0, TAU, 361, fig2.guess(0.0).into())?;
+    let t3 = Sampled::sweep(&fig3, 0.0, TAU, 361, fig3.guess(0.0).into())?;
+    report("Fig. 2, developed displacer rod:", &t2)?;
+    // The displacer group of Fig. 2 is the one of Fig. 1: the paper's X_F0 and X_Fmin hold.
+    let e_b = fig2.e_p - fig2.de;
+    let xf = t2.range("x_f")?;
+    println!(
+        "  paper: X_F0 = {:.12}, X_Fmin = {:.12}",
+        ((fig2.l_b + fig2.r).powi(2) - e_b * e_b).sqrt(),
+        ((fig2.l_b - fig2.r).powi(2) - e_b * e_b).sqrt()
+    );
+    assert!((xf.max.value - ((fig2.l_b + fig2.r).powi(2) - e_b * e_b).sqrt()).abs() < 1e-12);
+    report("Fig. 3, developed working rod:", &t3)?;
+    let xc = t3.range("x_c")?;
+    println!(
+        "  closed form of the piston group: X_C min = {:.12}, X_C max = {:.12}",
+        -((fig3.l_p + fig3.r).powi(2) - fig3.e_p * fig3.e_p).sqrt(),
+        -((fig3.l_p - fig3.r).powi(2) - fig3.e_p * fig3.e_p).sqrt()
+    );
+    assert!((xc.min.value + ((fig3.l_p + fig3.r).powi(2) - fig3.e_p * fig3.e_p).sqrt()).abs() < 1e-12);
+
+    // Degenerate case: the third joint on the crank pin (D = B) is the drive of Fig. 1 with both
+    // crank arms on one pin (r_p = r_b = r, gamma = 0). Compare with Fig. 1's closed form.
+    let d2 = DisplacerRodDrive { l_fd: fig2.l_b, gamma_b: 0.0, ..fig2 };
+    let d3 = WorkingRodDrive { l_cd: fig3.l_p, gamma_p: 0.0, ..fig3 };
+    let (mut dev2, mut dev3) = (0.0f64, 0.0f64);
+    for s in d2.sweep(0.0, TAU, 361, &d2.guess(0.0))? {
+        let s = s?;
+        let c = fig1_closed(d2.r, d2.l_p, d2.l_b, d2.e_p, d2.de, s.input.phi1);
+        dev2 = dev2.max((s.q.x_c - c[0]).abs()).max((s.q.x_f - c[1]).abs());
+    }
+    for s in d3.sweep(0.0, TAU, 361, &d3.guess(0.0))? {
+        let s = s?;
+        let c = fig1_closed(d3.r, d3.l_p, d3.l_b, d3.e_p, d3.de, s.input.phi1);
+        dev3 = dev3.max((s.q.x_c - c[0]).abs()).max((s.q.x_f - c[1]).abs());
+    }
+    println!("\nthird joint on the crank pin = Fig. 1: largest deviation of X_C, X_F from Fig. 1's closed form");
+    println!("  Fig. 2 with l_fd = l_b, gamma_b = 0: {dev2:.1e};  Fig. 3 with l_cd = l_p, gamma_p = 0: {dev3:.1e}");
+
+    let dir = figure_dir("rhombic_variants");
+    let curve = |states: &[kinloop::Kin<4, 1, 2>], col: usize, order: usize| -> Vec<(f64, f64)> {
+        states.iter().map(|k| (k.x[0].to_degrees(), if order == 0 { k.q[col] } else { k.dq[col][0] })).collect()
+    };
+    let (s2, s3) = (t2.states(), t3.states());
+    // Unknown order: Fig. 2 (phi4, x_f, phi2, x_c), Fig. 3 (phi2, x_c, phi4, x_f).
+    panels(
+        &dir.join("positions.svg"),
+        "Rhombic drive variants: piston X_C and displacer X_F",
+        "crank angle phi1 [deg]",
+        &[
+            Panel {
+                y_label: "Fig. 2 [crank radii]",
+                series: vec![
+                    Series { label: "X_C (working piston)", points: curve(s2, 3, 0) },
+                    Series { label: "X_F (displacer)", points: curve(s2, 1, 0) },
+                ],
+                marks: vec![],
+            },
+            Panel {
+                y_label: "Fig. 3 [crank radii]",
+                series: vec![
+                    Series { label: "X_C (working piston)", points: curve(s3, 1, 0) },
+                    Series { label: "X_F (displacer)", points: curve(s3, 3, 0) },
+                ],
+                marks: vec![],
+            },
+        ],
+    )?;
+    panels(
+        &dir.join("velocity_analogs.svg"),
+        "Rhombic drive variants: velocity analogs dX/dphi1",
+        "crank angle phi1 [deg]",
+        &[
+            Panel {
+                y_label: "Fig. 2",
+                series: vec![
+                    Series { label: "V_qC", points: curve(s2, 3, 1) },
+                    Series { label: "V_qF", points: curve(s2, 1, 1) },
+                ],
+                marks: vec![],
+            },
+            Panel {
+                y_label: "Fig. 3",
+                series: vec![
+                    Series { label: "V_qC", points: curve(s3, 1, 1) },
+                    Series { label: "V_qF", points: curve(s3, 3, 1) },
+                ],
+                marks: vec![],
+            },
+        ],
+    )?;
+    println!("\nwrote positions.svg, velocity_analogs.svg to {}", dir.display());
+    Ok(())
+}
+
+/// Fig. 1's published closed form (SEEDS.md 000) for one crank pin (`r_p = r_b = r`,
+/// `gamma = 0`): `[X_C, X_F]`.
+fn fig1_closed(r: f64, l_p: f64, l_b: f64, e_p: f64, de: f64, phi1: f64) -> [f64; 2] {
+    let (lam_p, lam_b) = (r / l_p, r / l_b);
+    let (k_p, k_b) = (e_p / r, (e_p - de) / r);
+    let phi2 = (lam_p * (k_p + phi1.sin())).asin();
+    let phi4 = std::f64::consts::PI - (lam_b * (k_b + phi1.sin())).asin();
+    [l_p * (lam_p * phi1.cos() - phi2.cos()), l_b * (lam_b * phi1.cos() - phi4.cos())]
+}

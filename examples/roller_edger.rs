@@ -1,0 +1,186 @@
+//! Roller edger (tilter) of a rolling mill, lever-turning mode (SEEDS.md, paper 002): a
+//! hydraulic cylinder pivoted at O1 extends at constant speed, `S1 = V1 t`, so the input is time.
+//! Contour O1 A O3 O1: cylinder 1 (length `S1 + l1`, angle `phi1`) and link 3 (`l3`, turning
+//! about O3, angle `phi3`), frame O1O3 = `l5` at angle `alpha`. Contour O2 B A O3 O2: cylinder 2
+//! (held at length `s2 + l2`, angle `phi2`) and link 4 from B to A (`l4`, angle `phi4`), frame
+//! O2O3 = `l6` at angle `beta`.
+//!
+//! Dimensions (metres, seconds): `l1 = 0.9, l3 = 0.6, l5 = 1.2, alpha = 0.2 rad, V1 = 0.05 m/s,
+//! l2 = 1.0, s2 = 0.1, l4 = 0.7, l6 = 1.4, beta = 0.9 rad`, for `t` from 0 to 6 s.
+//!
+//! It prints the angles, angular velocities and accelerations of all four links against time
+//! (the analogs of a time input are the true angular velocities and accelerations) and their
+//! largest deviations from the closed forms: the law of cosines for contour 1 (with the branch
+//! pair `phi3 = alpha - acos(.)`, `phi1 = alpha + acos(.)`: SEEDS.md prints `phi1 = alpha -
+//! acos(.)`, which belongs to the other assembly mode), and for contour 2 the triangle O2 B A
+//! with velocities and accelerations from its differentiated loop equation.
+//!
+//! Run with `cargo run --release --example roller_edger`.
+
+#[allow(dead_code)] // not every example uses every helper
+mod common;
+
+use common::{Panel, Series, figure_dir, panels};
+use kinloop::analysis::Sampled;
+
+kinloop::mechanism! {
+    /// Lever-turning mode of the roller edger (time input).
+    pub struct RollerEdger {
+        params l1 = 0.9, l3 = 0.6, l5 = 1.2, alpha = 0.2, v1 = 0.05,
+               l2 = 1.0, s2 = 0.1, l4 = 0.7, l6 = 1.4, beta = 0.9;
+        input t;
+        unknowns phi1 = 1.2, phi3 = -0.8, phi2 = 2.0, phi4 = 0.5;
+        let s1 = v1 * t;
+        loop o1ao3:  (s1 + l1) @ phi1 + l3 @ phi3 == l5 @ alpha;
+        loop o2bao3: (s2 + l2) @ phi2 + l4 @ phi4 + l3 @ phi3 == l6 @ beta;
+    }
+}
+
+/// Closed forms: `[phi1, phi3, phi2, phi4]`, each with its first and second time derivatives.
+fn closed(m: &RollerEdger, t: f64) -> [[f64; 3]; 4] {
+    // Contour 1, law of cosines in the triangle O1 A O3.
+    let s = m.v1 * t + m.l1;
+    let (l3, l5, v) = (m.l3, m.l5, m.v1);
+    let c = (l5 * l5 + l3 * l3 - s * s) / (2.0 * l5 * l3);
+    let (dc, ddc) = (-s * v / (l5 * l3), -v * v / (l5 * l3));
+    let r = 1.0 - c * c;
+    let phi3 = [m.alpha - c.acos(), dc / r.sqrt(), ddc / r.sqrt() + dc * dc * c / r.powf(1.5)];
+    let k = l5 * l5 - l3 * l3;
+    let d = s / (2.0 * l5) + k / (2.0 * l5 * s);
+    let dd = v / (2.0 * l5) - k * v / (2.0 * l5 * s * s);
+    let ddd = k * v * v / (l5 * s * s * s);
+    let r = 1.0 - d * d;
+    let phi1 = [m.alpha + d.acos(), -dd / r.sqrt(), -ddd / r.sqrt() - dd * dd * d / r.powf(1.5)];
+
+    // Contour 2: P = O2A = l6 @ beta - l3 @ phi3 is known with its derivatives; the triangle
+    // O2 B A gives phi2 (on the branch with B on the left of O2->A), then phi4 points from B
+    // to A. Differentiating a @ phi2 + l4 @ phi4 = P (a = s2 + l2) and dotting with the
+    // directions e2, e4 of the two links gives the velocities and accelerations.
+    let (p3, w3, e3) = (phi3[0], phi3[1], phi3[2]);
+    let (s3, c3) = p3.sin_cos();
+    let p = [m.l6 * m.beta.cos() - m.l3 * c3, m.l6 * m.beta.sin() - m.l3 * s3];
+    let dp = [m.l3 * w3 * s3, -m.l3 * w3 * c3];
+    let ddp = [m.l3 * (e3 * s3 + w3 * w3 * c3), m.l3 * (-e3 * c3 + w3 * w3 * s3)];
+    let a = m.s2 + m.l2;
+    let dist = p[0].hypot(p[1]);
+    let gamma = ((a * a + dist * dist - m.l4 * m.l4) / (2.0 * a * dist)).acos();
+    let phi2 = p[1].atan2(p[0]) + gamma;
+    let phi4 = (p[1] - a * phi2.sin()).atan2(p[0] - a * phi2.cos());
+    let (e2, e4) = ([phi2.cos(), phi2.sin()], [phi4.cos(), phi4.sin()]);
+    let dot = |u: [f64; 2], v: [f64; 2]| u[0] * v[0] + u[1] * v[1];
+    let sin42 = (phi4 - phi2).sin();
+    let w2 = dot(dp, e4) / (a * sin42);
+    let w4 = -dot(dp, e2) / (m.l4 * sin42);
+    let rhs =
+        [ddp[0] + a * w2 * w2 * e2[0] + m.l4 * w4 * w4 * e4[0], ddp[1] + a * w2 * w2 * e2[1] + m.l4 * w4 * w4 * e4[1]];
+    let acc2 = dot(rhs, e4) / (a * sin42);
+    let acc4 = -dot(rhs, e2) / (m.l4 * sin42);
+    [phi1, phi3, [phi2, w2, acc2], [phi4, w4, acc4]]
+}
+
+fn main() -> Result<(), Box<dyn std::error::Error>> {
+    let m = RollerEdger::default();
+    println!("Roller edger, lever-turning mode (paper 002): {m:?}\n");
+    let states: Vec<_> = m.sweep(0.0, 6.0, 601, &m.guess(0.0))?.collect::<Result<_, _>>()?;
+    println!(
+        "{:>5} {:>9} {:>9} {:>9} {:>9} {:>10} {:>10} {:>10} {:>10} {:>11} {:>11}",
+        "t [s]",
+        "phi1 [°]",
+        "phi3 [°]",
+        "phi2 [°]",
+        "phi4 [°]",
+        "w1 [1/s]",
+        "w3 [1/s]",
+        "w2 [1/s]",
+        "w4 [1/s]",
+        "e1 [1/s2]",
+        "e3 [1/s2]"
+    );
+    for s in states.iter().step_by(50) {
+        println!(
+            "{:>5.1} {:>9.4} {:>9.4} {:>9.4} {:>9.4} {:>10.6} {:>10.6} {:>10.6} {:>10.6} {:>11.3e} {:>11.3e}",
+            s.input.t,
+            s.q.phi1.to_degrees(),
+            s.q.phi3.to_degrees(),
+            s.q.phi2.to_degrees(),
+            s.q.phi4.to_degrees(),
+            s.dq.phi1,
+            s.dq.phi3,
+            s.dq.phi2,
+            s.dq.phi4,
+            s.d2q.phi1,
+            s.d2q.phi3,
+        );
+    }
+
+    // Largest deviations from the closed forms over the 601 instants, per order.
+    let mut dev = [[0.0f64; 3]; 4];
+    for s in &states {
+        let c = closed(&m, s.input.t);
+        let got = [
+            [s.q.phi1, s.dq.phi1, s.d2q.phi1],
+            [s.q.phi3, s.dq.phi3, s.d2q.phi3],
+            [s.q.phi2, s.dq.phi2, s.d2q.phi2],
+            [s.q.phi4, s.dq.phi4, s.d2q.phi4],
+        ];
+        for l in 0..4 {
+            for o in 0..3 {
+                dev[l][o] = dev[l][o].max((got[l][o] - c[l][o]).abs());
+            }
+        }
+    }
+    println!("\nlargest deviation from the closed forms over t = 0 .. 6 s (angle, angular velocity, acceleration):");
+    for (name, d) in ["phi1", "phi3", "phi2", "phi4"].iter().zip(dev) {
+        println!("  {name}: {:.1e} rad, {:.1e} rad/s, {:.1e} rad/s^2", d[0], d[1], d[2]);
+    }
+
+    // Cylinder 1 turns back when it is perpendicular to link 3 (s^2 = l5^2 - l3^2): located as
+    // the maximum of phi1, a root of its angular velocity.
+    let run = Sampled::sweep(&m, 0.0, 6.0, 61, m.guess(0.0).into())?;
+    let top = run.range("phi1")?.max;
+    println!(
+        "cylinder 1 turns back at t = {:.6} s (closed form {:.6} s), phi1 = {:.6}°",
+        top.x,
+        ((m.l5 * m.l5 - m.l3 * m.l3).sqrt() - m.l1) / m.v1,
+        top.value.to_degrees()
+    );
+
+    let dir = figure_dir("roller_edger");
+    let curve = |f: &dyn Fn(&RollerEdgerState) -> f64| states.iter().map(|s| (s.input.t, f(s))).collect::<Vec<_>>();
+    let four = |f: [&dyn Fn(&RollerEdgerState) -> f64; 4]| {
+        ["link 1 (cylinder 1)", "link 3", "link 2 (cylinder 2)", "link 4"]
+            .into_iter()
+            .zip(f)
+            .map(|(label, f)| Series { label, points: curve(f) })
+            .collect::<Vec<_>>()
+    };
+    panels(
+        &dir.join("angles_velocities_accelerations.svg"),
+        "Roller edger (cylinder 1 extending at V1 = 0.05 m/s): link angles and their time derivatives",
+        "time t [s]",
+        &[
+            Panel {
+                y_label: "angle [deg]",
+                series: four([
+                    &|s| s.q.phi1.to_degrees(),
+                    &|s| s.q.phi3.to_degrees(),
+                    &|s| s.q.phi2.to_degrees(),
+                    &|s| s.q.phi4.to_degrees(),
+                ]),
+                marks: vec![],
+            },
+            Panel {
+                y_label: "angular velocity [rad/s]",
+                series: four([&|s| s.dq.phi1, &|s| s.dq.phi3, &|s| s.dq.phi2, &|s| s.dq.phi4]),
+                marks: vec![],
+            },
+            Panel {
+                y_label: "angular acceleration [rad/s^2]",
+                series: four([&|s| s.d2q.phi1, &|s| s.d2q.phi3, &|s| s.d2q.phi2, &|s| s.d2q.phi4]),
+                marks: vec![],
+            },
+        ],
+    )?;
+    println!("\nwrote angles_velocities_accelerations.svg to {}", dir.display());
+    Ok(())
+}

@@ -1,0 +1,141 @@
+//! A hand-written mechanism for the runtime's own doctests and unit tests (the `mechanism!`
+//! macro lives in another crate): the offset slider-crank, with its slider position `x` as the
+//! only unknown. Not part of the public API.
+
+use crate::error::{BlockInfo, Error, Location};
+use crate::kin::{Health, Jac, Kin};
+use crate::mechanism::Mechanism;
+use crate::newton::{NewtonConfig, SolveReport, Termination};
+
+/// Offset slider-crank: crank `r` about the origin at angle `phi`, rod `l`, slider at `(x, e)`
+/// on the right (`x > r cos phi`). Equation `rod`: `(x - r cos phi)^2 + (r sin phi - e)^2 = l^2`.
+/// Output `h = x - r cos phi` (the rod's horizontal projection).
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct SliderCrank {
+    pub r: f64,
+    pub l: f64,
+    pub e: f64,
+}
+
+impl SliderCrank {
+    fn at(&self, phi: f64) -> Box<Location> {
+        Box::new(Location { mechanism: "SliderCrank", inputs: vec![("phi", phi)], block: None })
+    }
+
+    /// The largest and smallest slider positions and the crank angles where they occur, from
+    /// the triangle with the crank and the rod collinear.
+    pub fn dead_centres(&self) -> [(f64, f64); 2] {
+        let outer = ((self.l + self.r).powi(2) - self.e * self.e).sqrt();
+        let inner = ((self.l - self.r).powi(2) - self.e * self.e).sqrt();
+        [(self.e.atan2(outer), outer), ((-self.e).atan2(-inner), inner)]
+    }
+}
+
+impl Mechanism<1, 1, 1> for SliderCrank {
+    const NAME: &'static str = "SliderCrank";
+    const PARAMS: &'static [&'static str] = &["r", "l", "e"];
+    const INPUTS: [&'static str; 1] = ["phi"];
+    const UNKNOWNS: [&'static str; 1] = ["x"];
+    const EQUATIONS: [&'static str; 1] = ["rod"];
+    const OUTPUTS: [&'static str; 1] = ["h"];
+    const BLOCKS: &'static [BlockInfo] = &[BlockInfo { unknowns: &["x"], equations: &["rod"], linear: false }];
+
+    fn param_values(&self) -> Vec<f64> {
+        vec![self.r, self.l, self.e]
+    }
+
+    fn guess_flat(&self, x: &[f64; 1]) -> [f64; 1] {
+        [self.r * x[0].cos() + self.l]
+    }
+
+    fn residual_flat(&self, x: &[f64; 1], q: &[f64; 1]) -> [f64; 1] {
+        let (s, c) = x[0].sin_cos();
+        [(q[0] - self.r * c).powi(2) + (self.r * s - self.e).powi(2) - self.l * self.l]
+    }
+
+    fn position_flat(
+        &self,
+        x: &[f64; 1],
+        guess: &[f64; 1],
+        cfg: &NewtonConfig,
+    ) -> Result<([f64; 1], SolveReport), Error> {
+        self.check_params()?;
+        let mut q = guess[0];
+        for iterations in 0..=cfg.max_iterations {
+            let f = self.residual_flat(x, &[q])[0];
+            let evaluations = iterations + 1;
+            if f.abs() <= cfg.residual_tol {
+                let report = SolveReport {
+                    iterations,
+                    evaluations,
+                    residual: f.abs(),
+                    termination: Termination::ResidualTolerance,
+                };
+                return Ok(([q], report));
+            }
+            let j = 2.0 * (q - self.r * x[0].cos());
+            if j == 0.0 || !f.is_finite() {
+                break;
+            }
+            q -= f / j;
+        }
+        let residual = self.residual_flat(x, &[q])[0].abs();
+        Err(Error::NoAssembly { residual, equation: "rod", at: self.at(x[0]) })
+    }
+
+    fn kinematics_flat(&self, x: &[f64; 1], guess: &[f64; 1], cfg: &NewtonConfig) -> Result<Kin<1, 1, 1>, Error> {
+        let (q, report) = self.position_flat(x, guess, cfg)?;
+        let mut k = self.kinematics_at_flat(x, &q, cfg)?;
+        k.report = report;
+        Ok(k)
+    }
+
+    fn kinematics_at_flat(&self, x: &[f64; 1], q: &[f64; 1], _cfg: &NewtonConfig) -> Result<Kin<1, 1, 1>, Error> {
+        let (r, phi) = (self.r, x[0]);
+        let (sn, cs) = phi.sin_cos();
+        let w = q[0] - r * cs;
+        if w.abs() < 1e-12 * self.l {
+            return Err(Error::Singular { pivot_ratio: 0.0, tolerance: 1e-12, at: self.at(phi) });
+        }
+        // w^2 + s^2 = l^2 with s = r sin phi - e: w' = -s s' / w, w'' = -(s'^2 + s s'' + w'^2) / w.
+        let (s, s1, s2) = (r * sn - self.e, r * cs, -r * sn);
+        let w1 = -s * s1 / w;
+        let w2 = -(s1 * s1 + s * s2 + w1 * w1) / w;
+        Ok(Kin {
+            x: *x,
+            q: *q,
+            dq: [[-r * sn + w1]],
+            d2q: [[[-r * cs + w2]]],
+            out: [w],
+            dout: [[w1]],
+            d2out: [[[w2]]],
+            report: SolveReport::given(self.residual_flat(x, q)[0].abs()),
+            health: Health { det_signs: u64::from(w < 0.0), min_pivot: 1.0, weakest_block: 0 },
+        })
+    }
+
+    fn outputs_flat(&self, x: &[f64; 1], q: &[f64; 1]) -> [f64; 1] {
+        [q[0] - self.r * x[0].cos()]
+    }
+
+    fn jacobian_flat(&self, x: &[f64; 1], q: &[f64; 1]) -> Jac<1, 1> {
+        let (sn, cs) = x[0].sin_cos();
+        let w = q[0] - self.r * cs;
+        let s = self.r * sn - self.e;
+        Jac { f: self.residual_flat(x, q), j: [[2.0 * w]], fx: [[2.0 * w * self.r * sn + 2.0 * s * self.r * cs]] }
+    }
+
+    fn check_params(&self) -> Result<(), Error> {
+        for (name, value) in [("r", self.r), ("l", self.l), ("e", self.e)] {
+            if !value.is_finite() {
+                return Err(Error::NonFinite {
+                    what: crate::error::Quantity::Parameter,
+                    name,
+                    value,
+                    at: Box::new(Location { mechanism: "SliderCrank", inputs: Vec::new(), block: None }),
+                });
+            }
+        }
+        Ok(())
+    }
+}

@@ -1,0 +1,273 @@
+//! A small derivative-free minimiser: the Nelder–Mead simplex method with the dimension-adaptive
+//! coefficients of Gao and Han (2012) (reflection 1, expansion `1 + 2/n`, contraction
+//! `3/4 - 1/(2n)`, shrink `1 - 1/n`), restarts from the best point, and evaluation counting.
+//!
+//! Box constraints (each parameter in a range) are best handled by [`nelder_mead_boxed`], which
+//! searches unconstrained variables mapped into the box, so optima on a face of the box are
+//! reached smoothly. Other constraints (a design that cannot assemble) are expressed by
+//! returning `f64::INFINITY` (or NaN, treated alike) from the objective: such points are never
+//! accepted, and the simplex contracts away from them. The starting point must be feasible.
+//!
+//! Exact parameter gradients from generated sensitivities allow faster gradient methods; this
+//! one needs nothing but values.
+
+/// Settings of [`nelder_mead`].
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct NelderMead {
+    /// Stop after this many objective evaluations (default `2000`).
+    pub max_evaluations: usize,
+    /// Converged when the simplex's objective values differ by at most `f_tol` ...
+    pub f_tol: f64,
+    /// ... and every vertex lies within `x_tol` (in each coordinate) of the best one (defaults
+    /// `1e-12` and `1e-9`).
+    pub x_tol: f64,
+    /// After convergence, rebuild the simplex around the best point (with the initial steps) up
+    /// to this many times, until a restart no longer improves the best value (default `2`). This
+    /// guards against the simplex collapsing before a minimum.
+    pub restarts: usize,
+}
+
+impl Default for NelderMead {
+    fn default() -> Self {
+        NelderMead { max_evaluations: 2000, f_tol: 1e-12, x_tol: 1e-9, restarts: 2 }
+    }
+}
+
+/// The result of [`nelder_mead`].
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Minimum<const P: usize> {
+    /// The best point found.
+    pub x: [f64; P],
+    /// The objective there.
+    pub f: f64,
+    /// Objective evaluations made (every call of the objective, feasible or not).
+    pub evaluations: usize,
+    /// Simplex iterations.
+    pub iterations: usize,
+    /// The tolerances were met (rather than the evaluation limit).
+    pub converged: bool,
+}
+
+/// Minimises `f` over `P` variables from `x0`, with an initial simplex of `x0` and the points
+/// `x0 + step[i] e_i`. See the [module documentation](self).
+///
+/// ```
+/// use kinloop_runtime::analysis::optimize::{NelderMead, nelder_mead};
+/// // Rosenbrock's valley: minimum 0 at (1, 1).
+/// let rosenbrock = |p: &[f64; 2]| (1.0 - p[0]).powi(2) + 100.0 * (p[1] - p[0] * p[0]).powi(2);
+/// let m = nelder_mead(rosenbrock, [-1.2, 1.0], [0.5, 0.5], &NelderMead::default());
+/// assert!(m.converged && (m.x[0] - 1.0).abs() < 1e-6 && (m.x[1] - 1.0).abs() < 1e-6);
+/// assert!(m.f < 1e-12 && m.evaluations < 1000);
+/// ```
+pub fn nelder_mead<const P: usize>(
+    mut f: impl FnMut(&[f64; P]) -> f64,
+    x0: [f64; P],
+    step: [f64; P],
+    cfg: &NelderMead,
+) -> Minimum<P> {
+    let evaluations = std::cell::Cell::new(0usize);
+    let mut eval = |x: &[f64; P]| {
+        evaluations.set(evaluations.get() + 1);
+        let v = f(x);
+        if v.is_nan() { f64::INFINITY } else { v }
+    };
+    let n = P.max(1) as f64;
+    let (alpha, gamma, rho, sigma) = (1.0, 1.0 + 2.0 / n, 0.75 - 0.5 / n, 1.0 - 1.0 / n);
+    let mut best = x0;
+    let mut f_best = eval(&x0);
+    let mut iterations = 0usize;
+    let mut converged;
+    let mut restarts_left = cfg.restarts;
+    loop {
+        // The simplex around the current best point.
+        let mut xs: Vec<[f64; P]> = Vec::with_capacity(P + 1);
+        let mut fs: Vec<f64> = Vec::with_capacity(P + 1);
+        xs.push(best);
+        fs.push(f_best);
+        for i in 0..P {
+            let mut x = best;
+            x[i] += step[i];
+            fs.push(eval(&x));
+            xs.push(x);
+        }
+        let f_start = f_best;
+        converged = false;
+        while evaluations.get() < cfg.max_evaluations {
+            // Order: best first, worst last.
+            let mut idx: Vec<usize> = (0..=P).collect();
+            idx.sort_by(|&a, &b| fs[a].total_cmp(&fs[b]));
+            xs = idx.iter().map(|&i| xs[i]).collect();
+            fs = idx.iter().map(|&i| fs[i]).collect();
+            let spread = fs[P] - fs[0];
+            let size = xs.iter().flat_map(|x| x.iter().zip(&xs[0]).map(|(a, b)| (a - b).abs())).fold(0.0, f64::max);
+            if spread <= cfg.f_tol && size <= cfg.x_tol {
+                converged = true;
+                break;
+            }
+            iterations += 1;
+            let mut c = [0.0; P];
+            for x in &xs[..P] {
+                for k in 0..P {
+                    c[k] += x[k] / n;
+                }
+            }
+            let along = |t: f64| {
+                let mut y = [0.0; P];
+                for k in 0..P {
+                    y[k] = c[k] + t * (xs[P][k] - c[k]);
+                }
+                y
+            };
+            let xr = along(-alpha);
+            let fr = eval(&xr);
+            if fr < fs[0] {
+                let xe = along(-alpha * gamma);
+                let fe = eval(&xe);
+                (xs[P], fs[P]) = if fe < fr { (xe, fe) } else { (xr, fr) };
+                continue;
+            }
+            if fr < fs[P - 1] {
+                (xs[P], fs[P]) = (xr, fr);
+                continue;
+            }
+            // Contraction: outside when the reflected point beats the worst, inside otherwise.
+            let (xc, fc, ok) = if fr < fs[P] {
+                let xc = along(-alpha * rho);
+                let fc = eval(&xc);
+                (xc, fc, fc <= fr)
+            } else {
+                let xc = along(rho);
+                let fc = eval(&xc);
+                (xc, fc, fc < fs[P])
+            };
+            if ok {
+                (xs[P], fs[P]) = (xc, fc);
+                continue;
+            }
+            // Shrink towards the best vertex.
+            for i in 1..=P {
+                for k in 0..P {
+                    xs[i][k] = xs[0][k] + sigma * (xs[i][k] - xs[0][k]);
+                }
+                fs[i] = eval(&xs[i]);
+            }
+        }
+        let i = (0..=P).min_by(|&a, &b| fs[a].total_cmp(&fs[b])).unwrap_or(0);
+        if fs[i] < f_best {
+            (best, f_best) = (xs[i], fs[i]);
+        }
+        let improved = f_start - f_best > cfg.f_tol;
+        if !converged || restarts_left == 0 || (!improved && restarts_left < cfg.restarts) {
+            break;
+        }
+        restarts_left -= 1;
+    }
+    Minimum { x: best, f: f_best, evaluations: evaluations.get(), iterations, converged }
+}
+
+/// Minimises `f` over the box `lo[i] <= x[i] <= hi[i]` by [`nelder_mead`] on unconstrained
+/// variables `u` with `x = lo + (hi - lo) (1 + sin u) / 2` (the transformation of MINUIT): every
+/// trial point lies in the box, and a minimum on a face of the box is a smooth minimum in `u`.
+/// The initial simplex steps are `0.25` rad in `u` (a quarter of the range near the centre).
+/// `x_tol` applies to `u`.
+///
+/// ```
+/// use kinloop_runtime::analysis::optimize::{NelderMead, nelder_mead_boxed};
+/// // (x - 2)^2 + (y + 0.5)^2 over [0, 1] x [-1, 1]: the minimum is on the face x = 1.
+/// let f = |p: &[f64; 2]| (p[0] - 2.0).powi(2) + (p[1] + 0.5).powi(2);
+/// let m = nelder_mead_boxed(f, [0.5, 0.0], [0.0, -1.0], [1.0, 1.0], &NelderMead::default());
+/// assert!((m.x[0] - 1.0).abs() < 1e-9 && (m.x[1] + 0.5).abs() < 1e-6 && m.x[0] <= 1.0);
+/// ```
+pub fn nelder_mead_boxed<const P: usize>(
+    mut f: impl FnMut(&[f64; P]) -> f64,
+    x0: [f64; P],
+    lo: [f64; P],
+    hi: [f64; P],
+    cfg: &NelderMead,
+) -> Minimum<P> {
+    let to_x = |u: &[f64; P]| {
+        let mut x = [0.0; P];
+        for i in 0..P {
+            x[i] = (lo[i] + (hi[i] - lo[i]) * 0.5 * (1.0 + u[i].sin())).clamp(lo[i], hi[i]);
+        }
+        x
+    };
+    let mut u0 = [0.0; P];
+    for i in 0..P {
+        let t = if hi[i] > lo[i] { 2.0 * (x0[i] - lo[i]) / (hi[i] - lo[i]) - 1.0 } else { 0.0 };
+        u0[i] = t.clamp(-1.0, 1.0).asin();
+    }
+    let m = nelder_mead(|u| f(&to_x(u)), u0, [0.25; P], cfg);
+    Minimum { x: to_x(&m.x), ..m }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn rosenbrock_and_a_quadratic_bowl() {
+        let mut calls = 0;
+        let m = nelder_mead(
+            |p: &[f64; 2]| {
+                calls += 1;
+                (1.0 - p[0]).powi(2) + 100.0 * (p[1] - p[0] * p[0]).powi(2)
+            },
+            [-1.2, 1.0],
+            [0.5, 0.5],
+            &NelderMead::default(),
+        );
+        assert!(m.converged);
+        assert!((m.x[0] - 1.0).abs() < 1e-6 && (m.x[1] - 1.0).abs() < 1e-6, "{m:?}");
+        assert_eq!(m.evaluations, calls, "every call is counted");
+
+        // A rotated, badly scaled 5-D quadratic with its minimum at c.
+        let c = [0.3, -1.0, 2.0, 0.5, -0.25];
+        let q = |p: &[f64; 5]| {
+            let d: Vec<f64> = (0..5).map(|i| p[i] - c[i]).collect();
+            (0..5).map(|i| (i + 1) as f64 * d[i].powi(2)).sum::<f64>() + d[0] * d[1] + 0.5 * d[2] * d[4]
+        };
+        let m = nelder_mead(q, [0.0; 5], [0.5; 5], &NelderMead::default());
+        assert!(m.converged, "{m:?}");
+        for i in 0..5 {
+            assert!((m.x[i] - c[i]).abs() < 1e-5, "{m:?}");
+        }
+    }
+
+    #[test]
+    fn infeasible_points_are_avoided() {
+        // Minimise (x - 2)^2 + y^2 subject to x <= 1: the constrained minimum is (1, 0).
+        let f = |p: &[f64; 2]| if p[0] > 1.0 { f64::INFINITY } else { (p[0] - 2.0).powi(2) + p[1] * p[1] };
+        let m = nelder_mead(f, [0.0, 0.5], [0.3, 0.3], &NelderMead::default());
+        assert!(m.x[0] <= 1.0 && (m.x[0] - 1.0).abs() < 1e-6 && m.x[1].abs() < 1e-4, "{m:?}");
+        let nan = |p: &[f64; 1]| if p[0] < 0.0 { f64::NAN } else { (p[0] - 0.5).powi(2) };
+        let m = nelder_mead(nan, [2.0], [1.0], &NelderMead::default());
+        assert!((m.x[0] - 0.5).abs() < 1e-6, "{m:?}");
+    }
+
+    #[test]
+    fn boxed_search_reaches_faces_and_corners() {
+        // The unconstrained minimum (2, -3) lies outside [0, 1] x [-1, 1]: the corner (1, -1).
+        let f = |p: &[f64; 2]| (p[0] - 2.0).powi(2) + (p[1] + 3.0).powi(2) + 0.1 * p[0] * p[1];
+        let m = nelder_mead_boxed(f, [0.2, 0.3], [0.0, -1.0], [1.0, 1.0], &NelderMead::default());
+        assert!((m.x[0] - 1.0).abs() < 1e-9 && (m.x[1] + 1.0).abs() < 1e-9, "{m:?}");
+        // An interior minimum is found as without the box.
+        let g = |p: &[f64; 2]| (p[0] - 0.3).powi(2) + 2.0 * (p[1] - 0.7).powi(2);
+        let m = nelder_mead_boxed(g, [0.9, -0.9], [0.0, -1.0], [1.0, 1.0], &NelderMead::default());
+        assert!((m.x[0] - 0.3).abs() < 1e-6 && (m.x[1] - 0.7).abs() < 1e-6, "{m:?}");
+    }
+
+    #[test]
+    fn the_evaluation_limit_is_respected() {
+        let cfg = NelderMead { max_evaluations: 40, ..NelderMead::default() };
+        let m = nelder_mead(
+            |p: &[f64; 2]| (1.0 - p[0]).powi(2) + 100.0 * (p[1] - p[0] * p[0]).powi(2),
+            [-1.2, 1.0],
+            [0.5, 0.5],
+            &cfg,
+        );
+        assert!(!m.converged);
+        // The last iteration may finish its contraction and shrink: at most P + 2 more.
+        assert!(m.evaluations <= 40 + 2 + 2, "{}", m.evaluations);
+    }
+}

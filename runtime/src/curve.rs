@@ -1,0 +1,447 @@
+//! Pseudo-arclength continuation of the solution curve `f(q, x(sigma)) = 0` along a straight
+//! path in input space, `x(sigma) = from + sigma * u` (`u` the unit direction, `sigma` in input
+//! units). The curve is followed in `y = (q, sigma)`, so it passes through limit positions
+//! (folds, where the input reverses) where a sweep in the input cannot.
+//!
+//! These routines run only on the rare paths (locating an event, tracing a closed curve), so
+//! they use nalgebra's dynamic matrices for the `(N + 1)`-sized bordered systems.
+
+use crate::kin::Jac;
+use crate::lu::{Lu, max_abs};
+use crate::mechanism::Mechanism;
+use crate::newton::NewtonConfig;
+use nalgebra::{DMatrix, DVector};
+
+/// A straight path in input space.
+#[derive(Clone, Copy, Debug)]
+pub(crate) struct Path<const NI: usize> {
+    pub from: [f64; NI],
+    /// `to - from`.
+    pub delta: [f64; NI],
+    /// `|to - from|` (Euclidean).
+    pub len: f64,
+}
+
+impl<const NI: usize> Path<NI> {
+    pub fn new(from: [f64; NI], to: [f64; NI]) -> Self {
+        let mut delta = [0.0; NI];
+        for i in 0..NI {
+            delta[i] = to[i] - from[i];
+        }
+        let len = delta.iter().map(|d| d * d).sum::<f64>().sqrt();
+        Path { from, delta, len }
+    }
+
+    /// Input at fraction `tau` of the path.
+    pub fn at_tau(&self, tau: f64) -> [f64; NI] {
+        let mut x = self.from;
+        for i in 0..NI {
+            x[i] += tau * self.delta[i];
+        }
+        x
+    }
+
+    /// Input at distance `sigma` along the path.
+    pub fn at_sigma(&self, sigma: f64) -> [f64; NI] {
+        self.at_tau(sigma / self.len)
+    }
+}
+
+/// Derivative of `f` along the path per unit `sigma`.
+fn f_sigma<const N: usize, const NI: usize>(jac: &Jac<N, NI>, path: &Path<NI>) -> [f64; N] {
+    let mut out = [0.0; N];
+    for e in 0..N {
+        out[e] = (0..NI).map(|i| jac.fx[e][i] * path.delta[i]).sum::<f64>() / path.len;
+    }
+    out
+}
+
+/// A point of the curve: positions and path coordinate, with its unit tangent.
+#[derive(Clone, Debug)]
+pub(crate) struct CurvePoint<const N: usize> {
+    pub q: [f64; N],
+    pub sigma: f64,
+    /// Unit tangent in `(q, sigma)`; its last component is `d sigma / ds`.
+    pub tangent: DVector<f64>,
+}
+
+impl<const N: usize> CurvePoint<N> {
+    pub fn y(&self) -> DVector<f64> {
+        DVector::from_iterator(N + 1, self.q.iter().copied().chain([self.sigma]))
+    }
+
+    /// `d sigma / ds`: positive while the input advances, zero at a limit position.
+    pub fn dsigma(&self) -> f64 {
+        self.tangent[N]
+    }
+}
+
+fn bordered<const N: usize, const NI: usize>(
+    jac: &Jac<N, NI>,
+    path: &Path<NI>,
+    last_row: &DVector<f64>,
+) -> DMatrix<f64> {
+    let fs = f_sigma(jac, path);
+    let mut a = DMatrix::zeros(N + 1, N + 1);
+    for e in 0..N {
+        for u in 0..N {
+            a[(e, u)] = jac.j[e][u];
+        }
+        a[(e, N)] = fs[e];
+    }
+    for k in 0..=N {
+        a[(N, k)] = last_row[k];
+    }
+    a
+}
+
+/// Unit tangent at `(q, sigma)`, oriented like `prev`.
+pub(crate) fn tangent<M, const N: usize, const NI: usize, const NO: usize>(
+    m: &M,
+    path: &Path<NI>,
+    q: &[f64; N],
+    sigma: f64,
+    prev: &DVector<f64>,
+) -> Option<DVector<f64>>
+where
+    M: Mechanism<N, NI, NO>,
+{
+    let jac = m.jacobian_flat(&path.at_sigma(sigma), q);
+    let a = bordered(&jac, path, prev);
+    let mut rhs = DVector::zeros(N + 1);
+    rhs[N] = 1.0;
+    let t = a.lu().solve(&rhs)?;
+    let norm = t.norm();
+    (norm.is_finite() && norm > 0.0).then(|| t / norm)
+}
+
+/// The tangent at a regular point from the velocity analogs, oriented with increasing sigma.
+pub(crate) fn tangent_from_analogs<const N: usize, const NI: usize>(
+    dq: &[[f64; NI]; N],
+    path: &Path<NI>,
+) -> DVector<f64> {
+    let mut t = DVector::zeros(N + 1);
+    for u in 0..N {
+        t[u] = (0..NI).map(|i| dq[u][i] * path.delta[i]).sum::<f64>() / path.len;
+    }
+    t[N] = 1.0;
+    let n = t.norm();
+    t / n
+}
+
+/// One pseudo-arclength step of length `ds` from `p`: Euler predictor along the tangent, Newton
+/// corrector on `[f(q, sigma); t . (y - y_pred)] = 0`.
+pub(crate) fn arc_step<M, const N: usize, const NI: usize, const NO: usize>(
+    m: &M,
+    path: &Path<NI>,
+    p: &CurvePoint<N>,
+    ds: f64,
+    cfg: &NewtonConfig,
+) -> Option<CurvePoint<N>>
+where
+    M: Mechanism<N, NI, NO>,
+{
+    let y_pred = p.y() + &p.tangent * ds;
+    let mut y = y_pred.clone();
+    for _ in 0..cfg.max_iterations.max(8) {
+        let mut q = [0.0; N];
+        q.copy_from_slice(&y.as_slice()[..N]);
+        let sigma = y[N];
+        let jac = m.jacobian_flat(&path.at_sigma(sigma), &q);
+        let res = max_abs(jac.f);
+        if !res.is_finite() {
+            return None;
+        }
+        let mut g = DVector::zeros(N + 1);
+        for e in 0..N {
+            g[e] = -jac.f[e];
+        }
+        g[N] = -p.tangent.dot(&(&y - &y_pred));
+        if res <= cfg.residual_tol && g[N].abs() <= cfg.residual_tol {
+            let tangent = tangent(m, path, &q, sigma, &p.tangent)?;
+            return Some(CurvePoint { q, sigma, tangent });
+        }
+        let a = bordered(&jac, path, &p.tangent);
+        let dy = a.lu().solve(&g)?;
+        if !dy.iter().all(|v| v.is_finite()) {
+            return None;
+        }
+        y += &dy;
+        if dy.amax() <= cfg.step_tol * (1.0 + y.amax()) {
+            let mut q = [0.0; N];
+            q.copy_from_slice(&y.as_slice()[..N]);
+            let jac = m.jacobian_flat(&path.at_sigma(y[N]), &q);
+            if max_abs(jac.f) <= cfg.residual_tol.max(1e-10) {
+                let tangent = tangent(m, path, &q, y[N], &p.tangent)?;
+                return Some(CurvePoint { q, sigma: y[N], tangent });
+            }
+        }
+    }
+    None
+}
+
+/// Illinois (modified regula falsi) root of `g` on `[a, b]` with `g(a) g(b) <= 0`.
+pub(crate) fn illinois(
+    mut g: impl FnMut(f64) -> Option<f64>,
+    mut a: f64,
+    mut b: f64,
+    mut ga: f64,
+    mut gb: f64,
+    tol: f64,
+) -> Option<f64> {
+    if ga == 0.0 {
+        return Some(a);
+    }
+    if gb == 0.0 {
+        return Some(b);
+    }
+    let mut side = 0i8;
+    for _ in 0..200 {
+        let mut c = (a * gb - b * ga) / (gb - ga);
+        if !c.is_finite() || c <= a.min(b) || c >= a.max(b) {
+            c = 0.5 * (a + b);
+        }
+        let gc = g(c)?;
+        if gc == 0.0 || (b - a).abs() <= tol {
+            return Some(c);
+        }
+        if (gc > 0.0) == (gb > 0.0) {
+            b = c;
+            gb = gc;
+            if side == -1 {
+                ga *= 0.5;
+            }
+            side = -1;
+        } else {
+            a = c;
+            ga = gc;
+            if side == 1 {
+                gb *= 0.5;
+            }
+            side = 1;
+        }
+        if (b - a).abs() <= tol {
+            return Some(0.5 * (a + b));
+        }
+    }
+    Some(0.5 * (a + b))
+}
+
+/// What following the curve found.
+pub(crate) enum Found<const N: usize> {
+    /// A limit position: the input reverses here.
+    Fold(CurvePoint<N>),
+    /// The Jacobian's determinant changes sign here while the input keeps advancing; the second
+    /// point lies just past it on the smooth continuation.
+    Crossing(CurvePoint<N>, CurvePoint<N>),
+}
+
+/// Follows the curve from `start` (tangent oriented with increasing sigma) for at most
+/// `max_arc` of arclength, watching for a limit position (the tangent's sigma component changing
+/// sign) and for a sign change of the Jacobian determinant; locates the first one found.
+pub(crate) fn trace<M, const N: usize, const NI: usize, const NO: usize>(
+    m: &M,
+    path: &Path<NI>,
+    start: &CurvePoint<N>,
+    ds0: f64,
+    max_arc: f64,
+    cfg: &NewtonConfig,
+) -> Option<Found<N>>
+where
+    M: Mechanism<N, NI, NO>,
+{
+    let det_at = |p: &CurvePoint<N>| signed_det(m, &path.at_sigma(p.sigma), &p.q);
+    let mut a = start.clone();
+    let mut det_a = det_at(&a);
+    let mut ds = ds0;
+    let mut walked = 0.0;
+    while walked < max_arc {
+        let Some(b) = arc_step(m, path, &a, ds, cfg) else {
+            ds *= 0.5;
+            if ds < 1e-14 * (1.0 + max_arc) {
+                return None;
+            }
+            continue;
+        };
+        let det_b = det_at(&b);
+        if b.dsigma() <= 0.0 {
+            // Bracketed between a (s = 0) and b (s = ds); solve dsigma/ds = 0 for s.
+            let base = a.clone();
+            let s = illinois(
+                |s| arc_step(m, path, &base, s, cfg).map(|p| p.dsigma()),
+                0.0,
+                ds,
+                a.dsigma(),
+                b.dsigma(),
+                1e-15 * (1.0 + ds),
+            )?;
+            return arc_step(m, path, &base, s, cfg).map(Found::Fold);
+        }
+        if (det_a > 0.0) != (det_b > 0.0) && det_a != 0.0 {
+            // Near a crossing the bordered system is itself nearly singular and a corrector may
+            // fail: the root search then settles for the bracket it has.
+            let base = a.clone();
+            let (mut lo, mut hi) = (0.0, ds);
+            let s = illinois(
+                |s| {
+                    let g = arc_step(m, path, &base, s, cfg).map(|p| det_at(&p));
+                    if let Some(v) = g {
+                        if (v > 0.0) == (det_a > 0.0) { lo = s } else { hi = s }
+                    }
+                    g
+                },
+                0.0,
+                ds,
+                det_a,
+                det_b,
+                1e-15 * (1.0 + ds),
+            )
+            .unwrap_or(0.5 * (lo + hi));
+            let at = arc_step(m, path, &base, s, cfg).unwrap_or_else(|| b.clone());
+            return Some(Found::Crossing(at, b));
+        }
+        walked += ds;
+        a = b;
+        det_a = det_b;
+        ds = (ds * 1.5).min(max_arc);
+    }
+    None
+}
+
+/// Signed determinant of the column-equilibrated full Jacobian at `(x, q)`.
+pub(crate) fn signed_det<M, const N: usize, const NI: usize, const NO: usize>(m: &M, x: &[f64; NI], q: &[f64; N]) -> f64
+where
+    M: Mechanism<N, NI, NO>,
+{
+    equilibrated(m, x, q).det()
+}
+
+/// Smallest pivot of the column-equilibrated full Jacobian at `(x, q)`.
+pub(crate) fn pivot_at<M, const N: usize, const NI: usize, const NO: usize>(m: &M, x: &[f64; NI], q: &[f64; N]) -> f64
+where
+    M: Mechanism<N, NI, NO>,
+{
+    equilibrated(m, x, q).pivot_ratio()
+}
+
+fn equilibrated<M, const N: usize, const NI: usize, const NO: usize>(m: &M, x: &[f64; NI], q: &[f64; N]) -> Lu<N>
+where
+    M: Mechanism<N, NI, NO>,
+{
+    let jac = m.jacobian_flat(x, q);
+    let mut scale = [0.0f64; N];
+    for row in &jac.j {
+        for u in 0..N {
+            scale[u] = scale[u].max(row[u].abs());
+        }
+    }
+    Lu::<N>::factor_cols(&jac.j, scale)
+}
+
+/// One point of a traced solution curve.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct TracedPoint<const N: usize, const NI: usize> {
+    /// Input values.
+    pub x: [f64; NI],
+    /// Positions of the unknowns.
+    pub q: [f64; N],
+    /// `d sigma / ds`: positive while the input advances along the path, negative after a limit
+    /// position reversed it.
+    pub input_rate: f64,
+}
+
+/// A solution curve traced by pseudo-arclength continuation.
+#[derive(Clone, Debug, PartialEq)]
+pub struct Traced<const N: usize, const NI: usize> {
+    /// Points along the curve, about `ds` apart.
+    pub points: Vec<TracedPoint<N, NI>>,
+    /// The limit positions passed (where the input reversed), located precisely.
+    pub folds: Vec<crate::sweep::Event>,
+    /// The curve closed on itself (it came back to its first point).
+    pub closed: bool,
+}
+
+/// Traces the whole solution curve through `guess` at input `from`, moving first towards `to`,
+/// by pseudo-arclength continuation in `(q, input)`: unlike a sweep it passes limit positions,
+/// where the input reverses, so a mechanism whose input cannot make a full turn (a non-Grashof
+/// four-bar driven by a rocking link) yields its complete closed curve. Stops when the curve
+/// closes, leaves the segment between `from - (to - from)` and `to`, or after `max_points`.
+/// Allocates (it returns a `Vec`); use [`Sweep`](crate::Sweep) in hot loops.
+pub fn trace_curve<M, const N: usize, const NI: usize, const NO: usize>(
+    m: &M,
+    from: [f64; NI],
+    to: [f64; NI],
+    guess: [f64; N],
+    ds: f64,
+    max_points: usize,
+    cfg: &NewtonConfig,
+) -> Result<Traced<N, NI>, crate::Error>
+where
+    M: Mechanism<N, NI, NO>,
+{
+    use crate::sweep::{Event, EventKind};
+    let path = Path::new(from, to);
+    if path.len.is_nan() || path.len <= 0.0 || ds.is_nan() || ds <= 0.0 || !ds.is_finite() {
+        return Err(crate::Error::InvalidArgument(
+            "trace_curve needs `to` different from `from` and a positive, finite `ds`".into(),
+        ));
+    }
+    let k0 = m.kinematics_flat(&from, &guess, cfg)?;
+    let start = CurvePoint { q: k0.q, sigma: 0.0, tangent: tangent_from_analogs(&k0.dq, &path) };
+    let start_y = start.y();
+    let point = |p: &CurvePoint<N>| TracedPoint { x: path.at_sigma(p.sigma), q: p.q, input_rate: p.dsigma() };
+    let mut out = Traced { points: vec![point(&start)], folds: Vec::new(), closed: false };
+    let mut p = start;
+    let mut walked = 0.0;
+    let mut step = ds;
+    while out.points.len() < max_points {
+        let Some(next) = arc_step(m, &path, &p, step, cfg) else {
+            step *= 0.5;
+            if step < ds * 1e-6 {
+                return Err(crate::Error::Branch {
+                    message: "pseudo-arclength continuation cannot proceed (the curve bifurcates or ends here)".into(),
+                    at: Box::new(crate::Location {
+                        mechanism: M::NAME,
+                        inputs: M::INPUTS.iter().copied().zip(path.at_sigma(p.sigma)).collect(),
+                        block: None,
+                    }),
+                });
+            }
+            continue;
+        };
+        if (p.dsigma() > 0.0) != (next.dsigma() > 0.0) {
+            let base = p.clone();
+            let (g0, g1) = (p.dsigma(), next.dsigma());
+            if let Some(s) = illinois(
+                |s| arc_step(m, &path, &base, s, cfg).map(|c| c.dsigma()),
+                0.0,
+                step,
+                g0,
+                g1,
+                1e-15 * (1.0 + step),
+            ) && let Some(f) = arc_step(m, &path, &base, s, cfg)
+            {
+                out.folds.push(Event {
+                    kind: EventKind::LimitPosition,
+                    x: path.at_sigma(f.sigma).to_vec(),
+                    tau: f.sigma / path.len,
+                    q: f.q.to_vec(),
+                    block: None,
+                });
+            }
+        }
+        walked += step;
+        let back = (next.y() - &start_y).norm();
+        p = next;
+        if p.sigma > path.len * (1.0 + 1e-12) || p.sigma < -path.len * (1.0 + 1e-12) {
+            break;
+        }
+        if walked > 3.0 * ds && back < 0.75 * ds {
+            out.closed = true;
+            break;
+        }
+        out.points.push(point(&p));
+        step = ds;
+    }
+    Ok(out)
+}

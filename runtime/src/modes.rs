@@ -1,0 +1,73 @@
+//! Assembly modes: the distinct solutions of the position equations at one input.
+
+use crate::kin::Kin;
+use crate::mechanism::Mechanism;
+use crate::newton::NewtonConfig;
+use std::f64::consts::PI;
+
+/// Distance between two angle-or-length values, treating differences of whole turns as equal
+/// (an angle and the same angle plus 2 pi are one configuration).
+fn turn_distance(a: f64, b: f64) -> f64 {
+    let d = (a - b).rem_euclid(2.0 * PI);
+    d.min(2.0 * PI - d)
+}
+
+/// Finds the distinct assembly modes at input `x` by multi-start Newton: the declared guess,
+/// then `starts` deterministic quasi-random starts spread over a full turn around it (and the
+/// guess with every unknown negated, which reaches mirrored slider solutions).
+///
+/// Two solutions are the same mode when their block determinant signs agree and every unknown
+/// agrees modulo whole turns. Modes are sorted by their determinant signs, so the order is
+/// stable. Pick one with a readable rule on the named state, e.g.
+/// `modes.into_iter().find(|s| s.out.c.y > 0.0)` ("elbow up").
+pub fn assembly_modes<M, const N: usize, const NI: usize, const NO: usize>(
+    m: &M,
+    x: &[f64; NI],
+    starts: usize,
+    cfg: &NewtonConfig,
+) -> Vec<Kin<N, NI, NO>>
+where
+    M: Mechanism<N, NI, NO>,
+{
+    let g0 = m.guess_flat(x);
+    let mut found: Vec<Kin<N, NI, NO>> = Vec::new();
+    let try_start = |g: [f64; N], found: &mut Vec<Kin<N, NI, NO>>| {
+        if let Ok(k) = m.kinematics_flat(x, &g, cfg) {
+            let same = found.iter().any(|f| {
+                f.health.det_signs == k.health.det_signs
+                    && (0..N).all(|u| turn_distance(f.q[u], k.q[u]) < 1e-7 * (1.0 + k.q[u].abs()))
+            });
+            if !same {
+                found.push(k);
+            }
+        }
+    };
+    try_start(g0, &mut found);
+    let mut neg = g0;
+    for v in &mut neg {
+        *v = -*v;
+    }
+    try_start(neg, &mut found);
+    // Additive recurrence with irrational steps per unknown (a Kronecker sequence).
+    let alpha: [f64; 8] = [
+        0.618_033_988_749_895,
+        0.414_213_562_373_095,
+        0.732_050_807_568_877,
+        0.236_067_977_499_79,
+        0.645_751_311_064_591,
+        0.316_624_790_355_4,
+        0.605_551_275_463_989,
+        0.123_105_625_617_661,
+    ];
+    for k in 1..=starts {
+        let mut g = g0;
+        for (u, v) in g.iter_mut().enumerate() {
+            let a = alpha[u % 8] + 0.01 * (u / 8) as f64;
+            let frac = (k as f64 * a).fract();
+            *v += (2.0 * frac - 1.0) * PI * (1.0 + 0.25 * v.abs());
+        }
+        try_start(g, &mut found);
+    }
+    found.sort_by(|a, b| a.health.det_signs.cmp(&b.health.det_signs).then(a.q[0].total_cmp(&b.q[0])));
+    found
+}

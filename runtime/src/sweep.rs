@@ -1,0 +1,536 @@
+//! Sweeps over an input range that never jump branches.
+//!
+//! A [`Sweep`] produces the kinematic state at `samples` equally spaced inputs between `from`
+//! and `to` (a straight path in input space; for one input simply a range). Between samples it
+//! steps adaptively: each step predicts the position with the generated analogs (second-order
+//! Taylor, `q + q' h + q'' h^2 / 2`) and corrects with Newton, so in the common case a step
+//! costs one evaluation and at most one Newton iteration.
+//!
+//! **Branch safety.** The branch is identified by the signs of the block Jacobians'
+//! determinants (the assembly mode of each block). A step is accepted only when the corrected
+//! position keeps those signs and lies close to its prediction; otherwise the step is halved. When
+//! a step cannot be made however small, the sweep finds out why:
+//! * a **limit position** (the input cannot advance: a fold of the solution curve), located by
+//!   following the curve by pseudo-arclength continuation to the point where the input reverses;
+//! * a **singular crossing** (a block's determinant changes sign with solutions on both sides: a
+//!   change point / bifurcation), located as the root of the determinant along the path;
+//!
+//! Both are recorded as an [`Event`]; the sweep then stops with [`Error::SweepStopped`] naming the
+//! input value (or, with [`AtSingular::Continue`], passes a crossing and goes on). It never
+//! continues silently on another branch.
+//!
+//! The iterator allocates nothing per step (events are rare and allocate).
+
+use crate::curve::{self, CurvePoint, Found, Path};
+use crate::error::{BlockInfo, Error, Location, Quantity};
+use crate::kin::Kin;
+use crate::mechanism::Mechanism;
+use crate::newton::NewtonConfig;
+use crate::table::Table;
+use std::marker::PhantomData;
+
+/// What a sweep does at a singular crossing (a change point where a block's determinant changes
+/// sign and the mechanism can continue on either branch).
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum AtSingular {
+    /// Record the event and stop with [`Error::SweepStopped`] (default).
+    Stop,
+    /// Record the event and continue on the smooth continuation of the path.
+    Continue,
+}
+
+/// Configuration of a sweep.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct SweepConfig {
+    /// The Newton solver used at every step.
+    pub newton: NewtonConfig,
+    /// Largest internal step as a fraction of the sample spacing (default `1`).
+    pub max_step: f64,
+    /// How many times a step may be halved before the sweep diagnoses a singular position
+    /// (default `40`, i.e. steps down to about `1e-12` of the sample spacing).
+    pub max_halvings: u32,
+    /// A corrected position is accepted only within `corrector_rel` times the predicted change
+    /// plus `corrector_abs` of its prediction (defaults `0.25` and `1e-6`).
+    pub corrector_rel: f64,
+    /// See [`SweepConfig::corrector_rel`].
+    pub corrector_abs: f64,
+    /// Behaviour at a singular crossing.
+    pub at_singular: AtSingular,
+    /// A step is not accepted at a position whose smallest row-equilibrated pivot ratio is below
+    /// this (default `1e-6`): so close to a singular position the residual tolerance no longer
+    /// pins the branch. The sweep then locates the singular position by arclength continuation.
+    pub singular_pivot: f64,
+}
+
+impl Default for SweepConfig {
+    fn default() -> Self {
+        SweepConfig {
+            newton: NewtonConfig::default(),
+            max_step: 1.0,
+            max_halvings: 40,
+            corrector_rel: 0.25,
+            corrector_abs: 1e-6,
+            at_singular: AtSingular::Stop,
+            singular_pivot: 1e-6,
+        }
+    }
+}
+
+/// Kinds of singular positions met along a sweep.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+#[non_exhaustive]
+pub enum EventKind {
+    /// The input cannot advance on this branch: a limit (dead-centre) position of the input, a
+    /// fold of the solution curve where the input reverses.
+    LimitPosition,
+    /// A block's Jacobian is singular with solutions on both sides and its determinant changes
+    /// sign: a change point (bifurcation) where the assembly mode can change.
+    SingularCrossing,
+}
+
+impl std::fmt::Display for EventKind {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        f.write_str(match self {
+            EventKind::LimitPosition => "limit position",
+            EventKind::SingularCrossing => "singular crossing",
+        })
+    }
+}
+
+/// A singular position located along a sweep.
+#[derive(Clone, Debug, PartialEq)]
+pub struct Event {
+    pub kind: EventKind,
+    /// Input values at the event.
+    pub x: Vec<f64>,
+    /// Fraction of the sweep path at the event (`0` at `from`, `1` at `to`).
+    pub tau: f64,
+    /// Positions of the unknowns at the event.
+    pub q: Vec<f64>,
+    /// The block that became singular, if identified, with its index in solve order.
+    pub block: Option<(usize, BlockInfo)>,
+}
+
+/// Why a step was not accepted.
+enum Outcome<const N: usize, const NI: usize, const NO: usize> {
+    Accept(Kin<N, NI, NO>),
+    Flip(Kin<N, NI, NO>),
+    Far,
+    Fail(Error),
+}
+
+/// A lazy sweep (see the crate documentation, "Sweeps"). Items are `Result<S, Error>` with `S`
+/// the state type (the generated `NameState`, or the flat [`Kin`]).
+pub struct Sweep<'m, M, S, const N: usize, const NI: usize, const NO: usize> {
+    m: &'m M,
+    cfg: SweepConfig,
+    path: Path<NI>,
+    samples: usize,
+    next: usize,
+    guess: [f64; N],
+    cur: Option<Kin<N, NI, NO>>,
+    tau: f64,
+    h: f64,
+    signs: u64,
+    events: Vec<Event>,
+    done: bool,
+    _s: PhantomData<fn() -> S>,
+}
+
+fn check_finite(what: &'static str, v: &[f64], mechanism: &'static str) -> Result<(), Error> {
+    match v.iter().find(|x| !x.is_finite()) {
+        Some(&value) => Err(Error::NonFinite {
+            what: Quantity::Range,
+            name: what,
+            value,
+            at: Box::new(Location { mechanism, inputs: Vec::new(), block: None }),
+        }),
+        None => Ok(()),
+    }
+}
+
+impl<'m, M, S, const N: usize, const NI: usize, const NO: usize> Sweep<'m, M, S, N, NI, NO>
+where
+    M: Mechanism<N, NI, NO>,
+    S: From<Kin<N, NI, NO>>,
+{
+    /// A sweep of `samples` equally spaced inputs from `from` to `to` (both included), starting
+    /// from `guess` at `from` (the guess picks the assembly mode).
+    pub fn new(m: &'m M, from: [f64; NI], to: [f64; NI], samples: usize, guess: [f64; N]) -> Result<Self, Error> {
+        check_finite("from", &from, M::NAME)?;
+        check_finite("to", &to, M::NAME)?;
+        if samples == 0 {
+            return Err(Error::InvalidArgument("a sweep needs at least one sample".into()));
+        }
+        let path = Path::new(from, to);
+        if samples > 1 && (path.len.is_nan() || path.len <= 0.0) {
+            return Err(Error::InvalidArgument("a sweep with several samples needs `to` different from `from`".into()));
+        }
+        Ok(Sweep {
+            m,
+            cfg: SweepConfig::default(),
+            path,
+            samples,
+            next: 0,
+            guess,
+            cur: None,
+            tau: 0.0,
+            h: 0.0,
+            signs: 0,
+            events: Vec::new(),
+            done: false,
+            _s: PhantomData,
+        })
+    }
+
+    /// Replaces the configuration.
+    pub fn with_config(mut self, cfg: SweepConfig) -> Self {
+        self.cfg = cfg;
+        self
+    }
+
+    /// Singular positions met so far.
+    pub fn events(&self) -> &[Event] {
+        &self.events
+    }
+
+    /// The last accepted state (the last sample, or the last point before a stop).
+    pub fn last(&self) -> Option<&Kin<N, NI, NO>> {
+        self.cur.as_ref()
+    }
+
+    /// Runs the whole sweep into a [`Table`] (CSV-ready, named columns).
+    pub fn table(mut self) -> Result<Table, Error> {
+        let mut t = Table::new(Table::kin_columns::<M, N, NI, NO>());
+        while let Some(k) = self.next_kin() {
+            t.push(Table::kin_row(&k?));
+        }
+        Ok(t)
+    }
+
+    fn spacing(&self) -> f64 {
+        if self.samples > 1 { 1.0 / (self.samples - 1) as f64 } else { 1.0 }
+    }
+
+    fn location(&self, x: &[f64; NI], block: Option<(usize, BlockInfo)>) -> Box<Location> {
+        Box::new(Location {
+            mechanism: M::NAME,
+            inputs: M::INPUTS.iter().copied().zip(x.iter().copied()).collect(),
+            block,
+        })
+    }
+
+    /// Predicted positions at fraction `tau + dt`.
+    fn predict(&self, k: &Kin<N, NI, NO>, dt: f64) -> [f64; N] {
+        let d = &self.path.delta;
+        let mut q = k.q;
+        for u in 0..N {
+            let mut first = 0.0;
+            let mut second = 0.0;
+            for i in 0..NI {
+                first += k.dq[u][i] * d[i];
+                for j in 0..NI {
+                    second += k.d2q[u][i][j] * d[i] * d[j];
+                }
+            }
+            q[u] += dt * (first + 0.5 * dt * second);
+        }
+        q
+    }
+
+    fn attempt(&self, k: &Kin<N, NI, NO>, tau_new: f64) -> Outcome<N, NI, NO> {
+        let dt = tau_new - self.tau;
+        let pred = self.predict(k, dt);
+        let x = self.path.at_tau(tau_new);
+        match self.m.kinematics_flat(&x, &pred, &self.cfg.newton) {
+            Err(e) => Outcome::Fail(e),
+            Ok(n) => {
+                // Positions must land near their prediction, and the velocity analogs near
+                // theirs: a kink in the analogs means the corrector slid onto another branch
+                // through a singular position (e.g. at a change point) even if the positions
+                // are close.
+                let d = &self.path.delta;
+                let (mut dist, mut change, mut slope_err, mut slope_change, mut slope) =
+                    (0.0f64, 0.0f64, 0.0f64, 0.0f64, 0.0f64);
+                for u in 0..N {
+                    dist = dist.max((n.q[u] - pred[u]).abs());
+                    change = change.max((pred[u] - k.q[u]).abs());
+                    let (mut s0, mut s1, mut curv) = (0.0, 0.0, 0.0);
+                    for i in 0..NI {
+                        s0 += k.dq[u][i] * d[i];
+                        s1 += n.dq[u][i] * d[i];
+                        for j in 0..NI {
+                            curv += k.d2q[u][i][j] * d[i] * d[j];
+                        }
+                    }
+                    slope_err = slope_err.max((s1 - (s0 + curv * dt)).abs());
+                    slope_change = slope_change.max((curv * dt).abs());
+                    slope = slope.max(s0.abs());
+                }
+                let rel = self.cfg.corrector_rel;
+                if n.health.det_signs != self.signs {
+                    Outcome::Flip(n)
+                } else if n.health.min_pivot < self.cfg.singular_pivot {
+                    // Too close to a singular position for the analogs (and thus the branch
+                    // identity) to be trusted: within the residual tolerance the solution can
+                    // slide onto a crossing branch.
+                    Outcome::Far
+                } else if dist > rel * change + self.cfg.corrector_abs
+                    || slope_err > rel * (slope_change + 0.1 * slope) + self.cfg.corrector_abs
+                {
+                    Outcome::Far
+                } else {
+                    Outcome::Accept(n)
+                }
+            }
+        }
+    }
+
+    /// The next sample as a flat state.
+    pub fn next_kin(&mut self) -> Option<Result<Kin<N, NI, NO>, Error>> {
+        if self.done || self.next >= self.samples {
+            return None;
+        }
+        let Some(mut k) = self.cur else {
+            let x = self.path.from;
+            return Some(match self.m.kinematics_flat(&x, &self.guess, &self.cfg.newton) {
+                Ok(k) => {
+                    self.cur = Some(k);
+                    self.signs = k.health.det_signs;
+                    self.h = self.spacing() * self.cfg.max_step;
+                    self.next = 1;
+                    Ok(k)
+                }
+                Err(e) => {
+                    self.done = true;
+                    Err(e)
+                }
+            });
+        };
+        let target = if self.next + 1 == self.samples { 1.0 } else { self.next as f64 * self.spacing() };
+        let h_max = self.spacing() * self.cfg.max_step;
+        let h_min = self.spacing() * 0.5f64.powi(self.cfg.max_halvings as i32);
+        let mut successes = 0u32;
+        while self.tau < target {
+            let step = self.h.min(target - self.tau);
+            let tau_new = if step >= target - self.tau { target } else { self.tau + step };
+            match self.attempt(&k, tau_new) {
+                Outcome::Accept(n) => {
+                    k = n;
+                    self.tau = tau_new;
+                    self.cur = Some(n);
+                    successes += 1;
+                    if successes >= 2 {
+                        self.h = (self.h * 2.0).min(h_max);
+                    }
+                }
+                outcome => {
+                    successes = 0;
+                    self.h = step * 0.5;
+                    if self.h >= h_min {
+                        continue;
+                    }
+                    // The step cannot be made however small: find out why.
+                    match self.diagnose(&k, tau_new, target, outcome) {
+                        Ok(n) => {
+                            // Passed a singular crossing (AtSingular::Continue); `diagnose` set
+                            // `tau` to where the continuation resumed.
+                            k = n;
+                            self.cur = Some(n);
+                            self.signs = n.health.det_signs;
+                            self.h = h_max;
+                        }
+                        Err(e) => {
+                            self.done = true;
+                            return Some(Err(e));
+                        }
+                    }
+                }
+            }
+        }
+        self.next += 1;
+        Some(Ok(k))
+    }
+
+    /// After a crossing: follows the curve from `p` until the Jacobian is well conditioned again
+    /// (so the analogs can be trusted) without passing the sample at `target`; sets `tau` there.
+    fn resume_past(&mut self, mut p: CurvePoint<N>, target: f64) -> Option<Kin<N, NI, NO>> {
+        let path = self.path;
+        let newton = self.cfg.newton;
+        let end = target * path.len;
+        let mut ds = 0.01 * self.spacing() * path.len;
+        for _ in 0..200 {
+            if let Ok(k) = self.m.kinematics_at_flat(&path.at_sigma(p.sigma), &p.q, &newton)
+                && k.health.min_pivot >= self.cfg.singular_pivot * 100.0
+            {
+                self.tau = p.sigma / path.len;
+                return Some(k);
+            }
+            let next = curve::arc_step(self.m, &path, &p, ds, &newton)?;
+            if next.sigma >= end {
+                // Land exactly on the sample, predicting along the curve's tangent.
+                let t_sigma = p.dsigma();
+                let mut guess = p.q;
+                for u in 0..N {
+                    guess[u] += p.tangent[u] / t_sigma * (end - p.sigma);
+                }
+                let k = self.m.kinematics_flat(&path.at_tau(target), &guess, &newton).ok()?;
+                self.tau = target;
+                return Some(k);
+            }
+            p = next;
+            ds *= 1.5;
+        }
+        None
+    }
+
+    /// Explains a step that cannot be made: a limit position, a singular crossing, or another
+    /// failure. Returns the state past a crossing when configured to continue through it.
+    fn diagnose(
+        &mut self,
+        k: &Kin<N, NI, NO>,
+        tau_new: f64,
+        target: f64,
+        outcome: Outcome<N, NI, NO>,
+    ) -> Result<Kin<N, NI, NO>, Error> {
+        let path = self.path;
+        let newton = self.cfg.newton;
+        let weakest = k.health.weakest_block;
+        let block_of = |b: usize| M::BLOCKS.get(b).map(|info| (b, *info));
+
+        // Follow the smooth continuation of the curve by arclength from the last good point: it
+        // passes limit positions (the input reverses) and singular crossings (a determinant
+        // changes sign) that no step in the input can pass.
+        let start =
+            CurvePoint { q: k.q, sigma: self.tau * path.len, tangent: curve::tangent_from_analogs(&k.dq, &path) };
+        let ds0 = ((tau_new - self.tau) * path.len).max(1e-9 * path.len);
+        let reach = (self.spacing() * path.len).max(ds0 * 8.0);
+        match curve::trace(self.m, &path, &start, ds0, reach, &newton) {
+            // A true limit position is singular; a reversal where the Jacobian is regular is a
+            // kink of a non-smooth curve (e.g. through `abs`), reported below as a branch error.
+            Some(Found::Fold(fold)) if curve::pivot_at(self.m, &path.at_sigma(fold.sigma), &fold.q) < 1e-6 => {
+                let tau = fold.sigma / path.len;
+                let x = path.at_tau(tau);
+                let ev = Event {
+                    kind: EventKind::LimitPosition,
+                    x: x.to_vec(),
+                    tau,
+                    q: fold.q.to_vec(),
+                    block: block_of(weakest),
+                };
+                self.events.push(ev);
+                return Err(Error::SweepStopped {
+                    kind: EventKind::LimitPosition,
+                    at: self.location(&x, block_of(weakest)),
+                });
+            }
+            Some(Found::Crossing(at, past)) => {
+                let tau = at.sigma / path.len;
+                let x = path.at_tau(tau);
+                // The block whose determinant sign differs on the far side.
+                let beyond = self.m.kinematics_at_flat(&path.at_sigma(past.sigma), &past.q, &newton).ok();
+                let flipped = beyond.map_or(weakest, |n| (n.health.det_signs ^ self.signs).trailing_zeros() as usize);
+                let ev = Event {
+                    kind: EventKind::SingularCrossing,
+                    x: x.to_vec(),
+                    tau,
+                    q: at.q.to_vec(),
+                    block: block_of(flipped),
+                };
+                self.events.push(ev);
+                if self.cfg.at_singular == AtSingular::Continue
+                    && let Some(n) = self.resume_past(past, target)
+                {
+                    return Ok(n);
+                }
+                return Err(Error::SweepStopped {
+                    kind: EventKind::SingularCrossing,
+                    at: self.location(&x, block_of(flipped)),
+                });
+            }
+            _ => {}
+        }
+
+        // Anything else: report the failure where it happened.
+        let x = path.at_tau(tau_new);
+        Err(match outcome {
+            Outcome::Fail(e) => e,
+            _ => Error::Branch {
+                message: "the sweep cannot stay on its branch: however small the step, the solution jumps or its \
+                          velocity analogs do (the solution curve is not smooth here, or steps land on another solution)"
+                    .into(),
+                at: self.location(&x, block_of(weakest)),
+            },
+        })
+    }
+}
+
+impl<M, S, const N: usize, const NI: usize, const NO: usize> Iterator for Sweep<'_, M, S, N, NI, NO>
+where
+    M: Mechanism<N, NI, NO>,
+    S: From<Kin<N, NI, NO>>,
+{
+    type Item = Result<S, Error>;
+
+    fn next(&mut self) -> Option<Self::Item> {
+        self.next_kin().map(|r| r.map(S::from))
+    }
+
+    fn size_hint(&self) -> (usize, Option<usize>) {
+        (0, Some(self.samples.saturating_sub(self.next)))
+    }
+}
+
+/// The reachable stretch of a path from a starting position, with the limit positions that end
+/// it (or `None` where the path's end is reached first).
+#[derive(Clone, Debug, PartialEq)]
+pub struct Reach {
+    /// Fraction of the path reached backwards (towards `from - (to - from)`), in `[-1, 0]`.
+    pub lo: f64,
+    /// Fraction reached forwards, in `[0, 1]`.
+    pub hi: f64,
+    /// The limit position ending the backward sweep.
+    pub lo_event: Option<Event>,
+    /// The limit position ending the forward sweep.
+    pub hi_event: Option<Event>,
+}
+
+/// Finds how far the input can move from `at` along `+delta` and `-delta` on the assembly mode
+/// of `guess` before a limit position, sweeping both ways with `samples` samples each.
+pub fn reachable<M, const N: usize, const NI: usize, const NO: usize>(
+    m: &M,
+    at: [f64; NI],
+    delta: [f64; NI],
+    guess: [f64; N],
+    samples: usize,
+    cfg: SweepConfig,
+) -> Result<Reach, Error>
+where
+    M: Mechanism<N, NI, NO>,
+{
+    let mut ends = [(0.0, None), (0.0, None)];
+    for (side, sign) in [(0usize, -1.0), (1, 1.0)] {
+        let mut to = at;
+        for i in 0..NI {
+            to[i] += sign * delta[i];
+        }
+        let mut sweep = Sweep::<M, Kin<N, NI, NO>, N, NI, NO>::new(m, at, to, samples.max(2), guess)?.with_config(cfg);
+        let mut reached = 0.0;
+        let mut stopped = None;
+        while let Some(r) = sweep.next_kin() {
+            match r {
+                Ok(_) => reached = sweep.tau,
+                Err(Error::SweepStopped { kind: EventKind::LimitPosition, .. }) => {
+                    stopped = sweep.events.last().cloned();
+                    if let Some(e) = &stopped {
+                        reached = e.tau;
+                    }
+                }
+                Err(e) => return Err(e),
+            }
+        }
+        ends[side] = (sign * reached, stopped);
+    }
+    let [(lo, lo_event), (hi, hi_event)] = ends;
+    Ok(Reach { lo, hi, lo_event, hi_event })
+}

@@ -1,0 +1,127 @@
+//! Every error variant, triggered on purpose: bad input gets a typed error naming what and where,
+//! never a panic, a hang or a silent NaN.
+
+use kinloop::{Error, EventKind, NewtonConfig, Quantity};
+use std::f64::consts::PI;
+
+kinloop::mechanism! {
+    /// Slider-crank driven by its slider: `x` is the input, the crank and rod angles unknown.
+    pub struct SliderDriven {
+        params r, l;
+        input x;
+        unknowns phi = 0.5, psi = 2.5;
+        loop oab: r @ phi - l @ psi == (x, 0);
+        output reach = sqrt(x - 3);
+    }
+}
+
+kinloop::mechanism! {
+    pub struct FourBar {
+        params a, b, c, d;
+        input phi;
+        unknowns beta = 0.5, gamma = 1.5;
+        loop abcd: a @ phi + b @ beta == (d, 0) + c @ gamma;
+    }
+}
+
+kinloop::mechanism! {
+    /// A slider whose position has a kink (abs): its velocity analog jumps at phi = 1.
+    pub struct Kinked {
+        params k;
+        input phi;
+        unknowns s = 0;
+        eq kink: s == k * abs(phi - 1);
+    }
+}
+
+const M: SliderDriven = SliderDriven { r: 1.0, l: 3.0 };
+
+#[test]
+fn non_finite_parameter_input_guess_and_motion() {
+    let bad = SliderDriven { r: f64::NAN, ..M };
+    match bad.solve(3.0) {
+        Err(Error::NonFinite { what: Quantity::Parameter, name: "r", .. }) => {}
+        other => panic!("{other:?}"),
+    }
+    assert!(bad.check().is_err());
+    assert!(M.check().is_ok());
+    match M.solve(f64::INFINITY) {
+        Err(Error::NonFinite { what: Quantity::Input, name: "x", .. }) => {}
+        other => panic!("{other:?}"),
+    }
+    let g = SliderDrivenUnknowns { phi: f64::NAN, psi: 2.0 };
+    match M.kinematics(3.0, &g) {
+        Err(Error::NonFinite { what: Quantity::Guess, name: "phi", .. }) => {}
+        other => panic!("{other:?}"),
+    }
+    let s = M.solve(3.5).unwrap();
+    assert!(matches!(s.motion(f64::NAN, 0.0), Err(Error::NonFinite { what: Quantity::Motion, .. })));
+    assert!(matches!(M.sweep(0.0, f64::NAN, 3, &M.guess(0.0)), Err(Error::NonFinite { what: Quantity::Range, .. })));
+}
+
+#[test]
+fn impossible_assembly_is_no_assembly() {
+    // The slider beyond the reach of crank and rod: the loop cannot close.
+    let e = M.solve(4.5).unwrap_err();
+    assert!(matches!(e, Error::NoAssembly { .. }), "{e}");
+    let msg = e.to_string();
+    assert!(msg.contains("cannot be assembled") && msg.contains("x = 4.5") && msg.contains("block 0"), "{msg}");
+}
+
+#[test]
+fn iteration_cap_is_no_convergence() {
+    let cfg = NewtonConfig::default().with_max_iterations(1);
+    let e = M.kinematics_with(2.5, &SliderDrivenUnknowns { phi: 2.0, psi: 1.0 }, &cfg).unwrap_err();
+    assert!(matches!(e, Error::NoConvergence { iterations: 1, .. }), "{e}");
+}
+
+#[test]
+fn dead_centre_is_singular() {
+    // Fully stretched (x = r + l): the positions exist but the velocity analogs do not.
+    let e = M.kinematics(4.0, &SliderDrivenUnknowns { phi: 0.0, psi: PI }).unwrap_err();
+    match &e {
+        Error::Singular { pivot_ratio, .. } => assert!(*pivot_ratio < 1e-10),
+        other => panic!("{other:?}"),
+    }
+    // Positions alone are fine there.
+    assert!(M.position(4.0, &SliderDrivenUnknowns { phi: 0.0, psi: PI }).is_ok());
+}
+
+#[test]
+fn expression_outside_its_domain_is_domain_error() {
+    // `reach = sqrt(x - 3)` is NaN for x < 3 although the loop closes (2 <= x <= 4).
+    let e = M.solve(2.5).unwrap_err();
+    match &e {
+        Error::Domain { what: "output", name: "reach", .. } => {}
+        other => panic!("{other:?}"),
+    }
+    assert!(e.to_string().contains("reach"));
+    // At x = 3 the value exists but its derivative (1 / (2 sqrt(0))) does not.
+    match M.solve(3.0) {
+        Err(Error::Domain { what: "output velocity analog", name: "reach", .. }) => {}
+        other => panic!("{other:?}"),
+    }
+}
+
+#[test]
+fn limit_position_stops_a_sweep() {
+    let m = FourBar { a: 3.0, b: 2.0, c: 2.5, d: 4.0 };
+    let g = m.position(0.0, &m.guess(0.0)).unwrap().0;
+    let r: Result<Vec<_>, _> = m.sweep(0.0, PI, 19, &g).unwrap().collect();
+    assert!(matches!(r, Err(Error::SweepStopped { kind: EventKind::LimitPosition, .. })));
+}
+
+#[test]
+fn non_smooth_solution_is_a_branch_error() {
+    let m = Kinked { k: 2.0 };
+    let r: Result<Vec<_>, _> = m.sweep(0.0, 2.0, 9, &m.guess(0.0)).unwrap().collect();
+    match r {
+        Err(Error::Branch { at, .. }) => assert!((at.inputs[0].1 - 1.0).abs() < 1e-6, "{at}"),
+        other => panic!("{other:?}"),
+    }
+}
+
+#[test]
+fn zero_samples_is_invalid_argument() {
+    assert!(matches!(M.sweep(2.0, 3.0, 0, &M.guess(2.0)), Err(Error::InvalidArgument(_))));
+}

@@ -1,0 +1,93 @@
+//! Paper 000, Fig. 1 (SEEDS.md), the numbers printed by `examples/rhombic_drive.rs`: extreme
+//! positions of the working piston and the displacer located as roots of their velocity analogs,
+//! against the paper's `X_F0 = sqrt((L_B + R_B)^2 - e_B^2)`, `X_Fmin = sqrt((L_B - R_B)^2 -
+//! e_B^2)` and the same construction for the piston (crank and rod collinear); the crank angles
+//! there from the same triangles; strokes and phase shifts.
+
+use kinloop::analysis::{ExtremeKind, Sampled};
+use std::f64::consts::TAU;
+
+kinloop::mechanism! {
+    /// The drive of the example (same defaults).
+    pub struct RhombicDrive {
+        params r_p = 1.0, r_b = 1.2, l_p = 3.0, l_b = 3.5, e_p = 0.5, de = 0.9, gamma = 0.7,
+               l_as1 = 0.3, psi_s1 = 0.35, l_cs2 = 1.2, l_fs4 = 1.4;
+        input phi1;
+        unknowns phi2 = 0, phi4 = pi, x_c = -l_p, x_f = l_b;
+        loop oabco:   (0, e_p) + r_p @ phi1           == (x_c, 0)  + l_p @ phi2;
+        loop oadff1o: (0, e_p) + r_b @ (phi1 + gamma) == (x_f, de) + l_b @ phi4;
+        point s1 = (0, e_p) + l_as1 @ (phi1 + psi_s1);
+        point s2 = (x_c, 0) + l_cs2 @ phi2;
+        point s4 = (x_f, de) + l_fs4 @ phi4;
+    }
+}
+
+/// Difference of two angles modulo a turn, in (-pi, pi].
+fn angle_diff(a: f64, b: f64) -> f64 {
+    let d = (a - b).rem_euclid(TAU);
+    if d > TAU / 2.0 { d - TAU } else { d }
+}
+
+#[test]
+fn extreme_positions_strokes_and_phase_shift_match_the_closed_forms() {
+    let m = RhombicDrive::default();
+    let turn = Sampled::sweep(&m, 0.0, TAU, 361, m.guess(0.0).into()).unwrap();
+    let xc = turn.range("x_c").unwrap();
+    let xf = turn.range("x_f").unwrap();
+
+    let e_b = m.e_p - m.de;
+    let x_f0 = ((m.l_b + m.r_b).powi(2) - e_b * e_b).sqrt();
+    let x_fmin = ((m.l_b - m.r_b).powi(2) - e_b * e_b).sqrt();
+    let c_outer = -((m.l_p + m.r_p).powi(2) - m.e_p * m.e_p).sqrt();
+    let c_inner = -((m.l_p - m.r_p).powi(2) - m.e_p * m.e_p).sqrt();
+    // The positions carry the Newton tolerance (1e-12 on the loop residual, well conditioned).
+    assert!((xf.max.value - x_f0).abs() < 1e-12, "{} vs {x_f0}", xf.max.value);
+    assert!((xf.min.value - x_fmin).abs() < 1e-12);
+    assert!((xc.min.value - c_outer).abs() < 1e-12);
+    assert!((xc.max.value - c_inner).abs() < 1e-12);
+    assert!((xf.span() - (x_f0 - x_fmin)).abs() < 1e-12 && (xc.span() - (c_inner - c_outer)).abs() < 1e-12);
+
+    // Crank angles: the arm points along (outer) or against (inner) the line from A to the pin.
+    let at = [
+        (xc.min.x, f64::atan2(-m.e_p, c_outer)),
+        (xc.max.x, f64::atan2(m.e_p, -c_inner)),
+        (xf.max.x, f64::atan2(-e_b, x_f0) - m.gamma),
+        (xf.min.x, f64::atan2(e_b, -x_fmin) - m.gamma),
+    ];
+    // A root of the analog (~1e-13 accurate analogs, curvature ~1) is located to ~1e-12; the
+    // independent angle is exact to rounding.
+    for (got, want) in at {
+        assert!(angle_diff(got, want).abs() < 1e-10, "{got} vs {want}");
+    }
+    // The velocity analogs vanish there, and they are the only interior extremes of a turn.
+    let e = turn.extremes("x_f").unwrap();
+    assert_eq!(e.len(), 2);
+    assert!(e.iter().all(|e| e.at.d1.abs() < 1e-12));
+    assert_eq!(e.iter().filter(|e| e.kind == ExtremeKind::Max).count(), 1);
+
+    // Phase shift between corresponding extremes, in degrees modulo a turn.
+    let shift = |a: f64, b: f64| (a - b).to_degrees().rem_euclid(360.0);
+    let outer = shift(xf.max.x, xc.min.x);
+    let inner = shift(xf.min.x, xc.max.x);
+    assert!((outer - shift(at[2].1, at[0].1)).abs() < 1e-8);
+    assert!((inner - shift(at[3].1, at[1].1)).abs() < 1e-8);
+
+    // The numbers the example prints.
+    assert!((x_f0 - 4.682947789587).abs() < 1e-12 && (x_fmin - 2.264950330581).abs() < 1e-12);
+    assert!((c_outer + 3.968626966597).abs() < 1e-12 && (c_inner + 1.936491673104).abs() < 1e-12);
+    assert!((xc.span() - 2.032135293493).abs() < 1e-12 && (xf.span() - 2.417997459006).abs() < 1e-12);
+    assert!((outer - 137.594341).abs() < 1e-6 && (inner - 135.430852).abs() < 1e-6, "{outer} {inner}");
+    assert!((xc.min.x.to_degrees() - 187.18076).abs() < 1e-5 && (xf.max.x.to_degrees() - 324.77510).abs() < 1e-5);
+}
+
+#[test]
+fn extremes_follow_the_drive_when_its_dimensions_change() {
+    // A second, more eccentric drive: the helpers and the closed forms still agree.
+    let m = RhombicDrive { r_b: 0.8, l_b: 2.6, e_p: 0.9, de: -0.3, gamma: 2.1, ..RhombicDrive::default() };
+    let turn = Sampled::sweep(&m, 0.0, TAU, 181, m.guess(0.0).into()).unwrap();
+    let xf = turn.range("x_f").unwrap();
+    let e_b = m.e_p - m.de;
+    assert!((xf.max.value - ((m.l_b + m.r_b).powi(2) - e_b * e_b).sqrt()).abs() < 1e-12);
+    assert!((xf.min.value - ((m.l_b - m.r_b).powi(2) - e_b * e_b).sqrt()).abs() < 1e-12);
+    assert!(angle_diff(xf.max.x, f64::atan2(-e_b, xf.max.value) - m.gamma).abs() < 1e-10);
+}

@@ -1,0 +1,215 @@
+//! Paper 000, Figs. 2 and 3 (SEEDS.md; equations not published), declared as in
+//! `examples/rhombic_variants.rs`: the loops close along a sweep; the analogs agree with finite
+//! differences; positions agree with an independent triangle-by-triangle construction; with the
+//! third joint on the crank pin both reduce to Fig. 1 and match its published closed form
+//! (positions, velocity and acceleration analogs); the strokes the example prints.
+
+use kinloop::NewtonConfig;
+use kinloop::analysis::Sampled;
+use std::f64::consts::{PI, TAU};
+
+kinloop::mechanism! {
+    /// Fig. 2: developed displacer rod.
+    pub struct DisplacerRodDrive {
+        params r = 1.0, l_b = 3.5, l_fd = 2.2, gamma_b = 0.35, l_p = 3.0, e_p = 0.5, de = 0.9;
+        input phi1;
+        unknowns phi4 = pi, x_f = l_b, phi2 = 0, x_c = -l_p;
+        loop oabff1o: (0, e_p) + r @ phi1 == (x_f, de) + l_b @ phi4;
+        loop ocdff1o: (x_c, 0) + l_p @ phi2 == (x_f, de) + l_fd @ (phi4 + gamma_b);
+        point d = (x_f, de) + l_fd @ (phi4 + gamma_b);
+    }
+}
+
+kinloop::mechanism! {
+    /// Fig. 3: developed working rod.
+    pub struct WorkingRodDrive {
+        params r = 1.0, l_p = 3.0, l_cd = 1.8, gamma_p = -0.4, l_b = 3.5, e_p = 0.5, de = -0.4;
+        input phi1;
+        unknowns phi2 = 0, x_c = -l_p, phi4 = pi, x_f = l_b;
+        loop oabco: (0, e_p) + r @ phi1 == (x_c, 0) + l_p @ phi2;
+        loop of1fdco: (x_f, de) + l_b @ phi4 == (x_c, 0) + l_cd @ (phi2 + gamma_p);
+        point d = (x_c, 0) + l_cd @ (phi2 + gamma_p);
+    }
+}
+
+/// Fig. 1's published closed form (SEEDS.md 000) with one crank pin (R_P = R_B = r,
+/// gamma = 0): (positions, velocity analogs, acceleration analogs) of [phi2, phi4, X_C, X_F].
+fn fig1(r: f64, l_p: f64, l_b: f64, e_p: f64, de: f64, phi1: f64) -> [[f64; 4]; 3] {
+    let (lam_p, lam_b) = (r / l_p, r / l_b);
+    let (k_p, k_b) = (e_p / r, (e_p - de) / r);
+    let phi2 = (lam_p * (k_p + phi1.sin())).asin();
+    let phi4 = PI - (lam_b * (k_b + phi1.sin())).asin();
+    let (c2, c4) = (phi2.cos(), phi4.cos());
+    let x_c = l_p * (lam_p * phi1.cos() - c2);
+    let x_f = l_b * (lam_b * phi1.cos() - c4);
+    let u21 = lam_p * phi1.cos() / c2;
+    let u41 = lam_b * phi1.cos() / c4;
+    let v_c = l_p * (u21 * phi2.sin() - lam_p * phi1.sin());
+    let v_f = l_b * (u41 * phi4.sin() - lam_b * phi1.sin());
+    let e2 = (u21 * u21 * phi2.sin() - lam_p * phi1.sin()) / c2;
+    let e4 = (u41 * u41 * phi4.sin() - lam_b * phi1.sin()) / c4;
+    let a_c = l_p * (e2 * phi2.sin() + u21 * u21 * c2 - lam_p * phi1.cos());
+    let a_f = l_b * (e4 * phi4.sin() + u41 * u41 * c4 - lam_b * phi1.cos());
+    [[phi2, phi4, x_c, x_f], [u21, u41, v_c, v_f], [e2, e4, a_c, a_f]]
+}
+
+fn close(a: f64, b: f64, rel: f64) -> bool {
+    (a - b).abs() <= rel * b.abs().max(1.0)
+}
+
+/// A tight solve for finite differences: Newton runs until its step falls below 1e-13 (1 + |q|),
+/// i.e. positions within ~5e-13.
+fn tight() -> NewtonConfig {
+    NewtonConfig::default().with_residual_tol(0.0)
+}
+
+/// Central differences with one Richardson step (h and h/2): (first, second) derivative with
+/// truncation error O(h^4) (~h^4/480 |q^(5)| and less for the second); position errors e
+/// contribute ~e/h and ~5e/h^2.
+fn richardson(f: impl Fn(f64) -> f64, x: f64, h: f64) -> (f64, f64) {
+    let d1 = |h: f64| (f(x + h) - f(x - h)) / (2.0 * h);
+    let d2 = |h: f64| (f(x + h) - 2.0 * f(x) + f(x - h)) / (h * h);
+    ((4.0 * d1(h / 2.0) - d1(h)) / 3.0, (4.0 * d2(h / 2.0) - d2(h)) / 3.0)
+}
+
+#[test]
+fn loops_close_and_positions_match_a_triangle_construction() {
+    let m2 = DisplacerRodDrive::default();
+    for s in m2.sweep(0.0, TAU, 721, &m2.guess(0.0)).unwrap() {
+        let s = s.unwrap();
+        let phi1 = s.input.phi1;
+        assert!(m2.residual(phi1, &s.q).iter().all(|r| r.abs() <= 1e-12), "Fig. 2 at {phi1}");
+        // Independent: the displacer group as in Fig. 1, then D, then the working rod from D.
+        let phi4 = PI - ((m2.e_p + m2.r * phi1.sin() - m2.de) / m2.l_b).asin();
+        let x_f = m2.r * phi1.cos() - m2.l_b * phi4.cos();
+        let (dx, dy) = (x_f + m2.l_fd * (phi4 + m2.gamma_b).cos(), m2.de + m2.l_fd * (phi4 + m2.gamma_b).sin());
+        let phi2 = (dy / m2.l_p).asin();
+        let x_c = dx - m2.l_p * phi2.cos();
+        for (got, want) in [(s.q.phi4, phi4), (s.q.x_f, x_f), (s.q.phi2, phi2), (s.q.x_c, x_c), (s.out.d.x, dx)] {
+            assert!((got - want).abs() < 1e-12, "Fig. 2 at {phi1}: {got} vs {want}");
+        }
+    }
+    let m3 = WorkingRodDrive::default();
+    for s in m3.sweep(0.0, TAU, 721, &m3.guess(0.0)).unwrap() {
+        let s = s.unwrap();
+        let phi1 = s.input.phi1;
+        assert!(m3.residual(phi1, &s.q).iter().all(|r| r.abs() <= 1e-12), "Fig. 3 at {phi1}");
+        let phi2 = ((m3.e_p + m3.r * phi1.sin()) / m3.l_p).asin();
+        let x_c = m3.r * phi1.cos() - m3.l_p * phi2.cos();
+        let (dx, dy) = (x_c + m3.l_cd * (phi2 + m3.gamma_p).cos(), m3.l_cd * (phi2 + m3.gamma_p).sin());
+        let phi4 = PI - ((dy - m3.de) / m3.l_b).asin();
+        let x_f = dx - m3.l_b * phi4.cos();
+        for (got, want) in [(s.q.phi2, phi2), (s.q.x_c, x_c), (s.q.phi4, phi4), (s.q.x_f, x_f), (s.out.d.y, dy)] {
+            assert!((got - want).abs() < 1e-12, "Fig. 3 at {phi1}: {got} vs {want}");
+        }
+    }
+}
+
+#[test]
+fn analogs_match_finite_differences() {
+    let h = 1e-2;
+    let m2 = DisplacerRodDrive::default();
+    let m3 = WorkingRodDrive::default();
+    for i in 0..24 {
+        let phi1 = 0.1 + TAU * i as f64 / 24.0;
+        let s2 = m2.solve(phi1).unwrap();
+        let q2 = |x: f64| -> [f64; 4] { m2.position_with(x, &s2.q, &tight()).unwrap().0.into() };
+        let s3 = m3.solve(phi1).unwrap();
+        let q3 = |x: f64| -> [f64; 4] { m3.position_with(x, &s3.q, &tight()).unwrap().0.into() };
+        let (dq2, d2q2): ([f64; 4], [f64; 4]) = (s2.dq.into(), s2.d2q.into());
+        let (dq3, d2q3): ([f64; 4], [f64; 4]) = (s3.dq.into(), s3.d2q.into());
+        for u in 0..4 {
+            // With h = 1e-2: truncation ~1e-10, position errors 5e-13 give ~5e-11 and ~3e-8.
+            let (f1, f2) = richardson(|x| q2(x)[u], phi1, h);
+            assert!(
+                close(dq2[u], f1, 1e-9),
+                "Fig. 2 d{} at {phi1}: {} vs {f1}",
+                DisplacerRodDrive::UNKNOWNS[u],
+                dq2[u]
+            );
+            assert!(
+                close(d2q2[u], f2, 1e-6),
+                "Fig. 2 d2{} at {phi1}: {} vs {f2}",
+                DisplacerRodDrive::UNKNOWNS[u],
+                d2q2[u]
+            );
+            let (f1, f2) = richardson(|x| q3(x)[u], phi1, h);
+            assert!(close(dq3[u], f1, 1e-9), "Fig. 3 d{} at {phi1}: {} vs {f1}", WorkingRodDrive::UNKNOWNS[u], dq3[u]);
+            assert!(
+                close(d2q3[u], f2, 1e-6),
+                "Fig. 3 d2{} at {phi1}: {} vs {f2}",
+                WorkingRodDrive::UNKNOWNS[u],
+                d2q3[u]
+            );
+        }
+    }
+}
+
+#[test]
+fn third_joint_on_the_crank_pin_reduces_to_fig_1() {
+    let d2 = DisplacerRodDrive { l_fd: 3.5, gamma_b: 0.0, ..DisplacerRodDrive::default() };
+    let d3 = WorkingRodDrive { l_cd: 3.0, gamma_p: 0.0, ..WorkingRodDrive::default() };
+    for s in d2.sweep(0.0, TAU, 721, &d2.guess(0.0)).unwrap() {
+        let s = s.unwrap();
+        let c = fig1(d2.r, d2.l_p, d2.l_b, d2.e_p, d2.de, s.input.phi1);
+        let got = [
+            [s.q.phi2, s.q.phi4, s.q.x_c, s.q.x_f],
+            [s.dq.phi2, s.dq.phi4, s.dq.x_c, s.dq.x_f],
+            [s.d2q.phi2, s.d2q.phi4, s.d2q.x_c, s.d2q.x_f],
+        ];
+        for o in 0..3 {
+            for u in 0..4 {
+                let tol = if o == 0 { 1e-12 } else { 1e-9 };
+                assert!(close(got[o][u], c[o][u], tol), "Fig. 2 order {o} #{u} at {}", s.input.phi1);
+            }
+        }
+    }
+    for s in d3.sweep(0.0, TAU, 721, &d3.guess(0.0)).unwrap() {
+        let s = s.unwrap();
+        let c = fig1(d3.r, d3.l_p, d3.l_b, d3.e_p, d3.de, s.input.phi1);
+        let got = [
+            [s.q.phi2, s.q.phi4, s.q.x_c, s.q.x_f],
+            [s.dq.phi2, s.dq.phi4, s.dq.x_c, s.dq.x_f],
+            [s.d2q.phi2, s.d2q.phi4, s.d2q.x_c, s.d2q.x_f],
+        ];
+        for o in 0..3 {
+            for u in 0..4 {
+                let tol = if o == 0 { 1e-12 } else { 1e-9 };
+                assert!(close(got[o][u], c[o][u], tol), "Fig. 3 order {o} #{u} at {}", s.input.phi1);
+            }
+        }
+    }
+}
+
+#[test]
+fn strokes_and_extremes_printed_by_the_example() {
+    let m2 = DisplacerRodDrive::default();
+    let t2 = Sampled::sweep(&m2, 0.0, TAU, 361, m2.guess(0.0).into()).unwrap();
+    let (c, f) = (t2.range("x_c").unwrap(), t2.range("x_f").unwrap());
+    let e_b = m2.e_p - m2.de;
+    // The displacer group of Fig. 2 is Fig. 1's: the paper's X_F0 and X_Fmin.
+    assert!((f.max.value - ((m2.l_b + m2.r).powi(2) - e_b * e_b).sqrt()).abs() < 1e-12);
+    assert!((f.min.value - ((m2.l_b - m2.r).powi(2) - e_b * e_b).sqrt()).abs() < 1e-12);
+    assert!((c.span() - 2.033697362554).abs() < 1e-12 && (f.span() - 2.014394430352).abs() < 1e-12);
+    assert!((c.min.value + 2.505659450956).abs() < 1e-12 && (c.max.value + 0.471962088402).abs() < 1e-12);
+    // The piston's extremes of Fig. 2 are where its analog vanishes: check against a dense scan
+    // of the triangle construction (independent of the helpers).
+    let x_c = |phi1: f64| {
+        let phi4 = PI - ((m2.e_p + m2.r * phi1.sin() - m2.de) / m2.l_b).asin();
+        let x_f = m2.r * phi1.cos() - m2.l_b * phi4.cos();
+        let (dx, dy) = (x_f + m2.l_fd * (phi4 + m2.gamma_b).cos(), m2.de + m2.l_fd * (phi4 + m2.gamma_b).sin());
+        dx - m2.l_p * (dy / m2.l_p).asin().cos()
+    };
+    let scan = (0..36_000).map(|i| x_c(TAU * i as f64 / 36_000.0)).fold(f64::MIN, f64::max);
+    // The scan misses the maximum by at most (spacing / 2)^2 |X_C''| / 2 ~ 1e-8.
+    assert!(c.max.value >= scan - 1e-14 && c.max.value - scan < 1e-7);
+
+    let m3 = WorkingRodDrive::default();
+    let t3 = Sampled::sweep(&m3, 0.0, TAU, 361, m3.guess(0.0).into()).unwrap();
+    let (c, f) = (t3.range("x_c").unwrap(), t3.range("x_f").unwrap());
+    assert!((c.min.value + ((m3.l_p + m3.r).powi(2) - m3.e_p * m3.e_p).sqrt()).abs() < 1e-12);
+    assert!((c.span() - 2.032135293493).abs() < 1e-12 && (f.span() - 2.095069671043).abs() < 1e-12);
+    let shift = |a: f64, b: f64| (a - b).to_degrees().rem_euclid(360.0);
+    assert!((shift(f.max.x, c.min.x) - 191.013690).abs() < 1e-6);
+    assert!((shift(f.min.x, c.max.x) - 181.973481).abs() < 1e-6);
+}

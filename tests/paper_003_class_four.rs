@@ -1,0 +1,144 @@
+//! Paper 003 (SEEDS.md), as in `examples/class_four.rs`: a class IV mechanism (crank OA,
+//! ternary links CAE and DBF, binary links CD and EF). The coupled group is one block; the loops
+//! close over a full turn; the analogs agree with finite differences; and the positions agree
+//! with the paper's own method, solved independently: track the free angle of link DBF until
+//! the two four-bars close together (here by bisection on the closure of EF).
+
+use kinloop::NewtonConfig;
+use std::f64::consts::{PI, TAU};
+
+kinloop::mechanism! {
+    /// Class IV mechanism (as in the example).
+    pub struct ClassFour {
+        params oa = 1.0, xb = 4.4, yb = 0.6, ac = 2.3, ae = 2.4, alpha_a = 0.84,
+               bd = 1.6, bf = 3.5, alpha_b = 0.62, cd = 2.0, ef = 3.4;
+        input phi;
+        unknowns th1 = 1.4, th2 = 3.0, psi1 = -0.8, psi2 = -1.0;
+        let a = oa @ phi;
+        let b = (xb, yb);
+        loop acdb: a + ac @ th1 + cd @ psi1 == b + bd @ th2;
+        loop aefb: a + ae @ (th1 + alpha_a) + ef @ psi2 == b + bf @ (th2 + alpha_b);
+        point c = a + ac @ th1;
+        point e = a + ae @ (th1 + alpha_a);
+        point d = b + bd @ th2;
+        point f = b + bf @ (th2 + alpha_b);
+    }
+}
+
+fn wrap(a: f64) -> f64 {
+    (a + PI).rem_euclid(TAU) - PI
+}
+
+/// The paper's way, independently: for a trial angle `th2` of link DBF, D and F are known; C is
+/// the intersection of the circles (A, AC) and (D, CD) on the side `side` of A->D; then E
+/// follows from the ternary link CAE, and the trial is right when |EF| = ef. Returns
+/// `(th1, psi1, psi2, |EF| - ef)`.
+fn close_with(m: &ClassFour, phi: f64, th2: f64, side: f64) -> (f64, f64, f64, f64) {
+    let (ax, ay) = (m.oa * phi.cos(), m.oa * phi.sin());
+    let (dx, dy) = (m.xb + m.bd * th2.cos(), m.yb + m.bd * th2.sin());
+    let (ux, uy) = (dx - ax, dy - ay);
+    let dist = ux.hypot(uy);
+    let along = (m.ac * m.ac - m.cd * m.cd + dist * dist) / (2.0 * dist);
+    let h = (m.ac * m.ac - along * along).sqrt();
+    let (cx, cy) = (ax + (along * ux - side * h * uy) / dist, ay + (along * uy + side * h * ux) / dist);
+    let th1 = (cy - ay).atan2(cx - ax);
+    let psi1 = (dy - cy).atan2(dx - cx);
+    let (ex, ey) = (ax + m.ae * (th1 + m.alpha_a).cos(), ay + m.ae * (th1 + m.alpha_a).sin());
+    let (fx, fy) = (m.xb + m.bf * (th2 + m.alpha_b).cos(), m.yb + m.bf * (th2 + m.alpha_b).sin());
+    (th1, psi1, (fy - ey).atan2(fx - ex), (fx - ex).hypot(fy - ey) - m.ef)
+}
+
+#[test]
+fn the_class_four_group_is_one_block() {
+    let b = ClassFour::BLOCKS;
+    assert_eq!(b.len(), 1, "{b:?}");
+    assert_eq!(b[0].unknowns, &["th1", "th2", "psi1", "psi2"]);
+    assert!(!b[0].linear);
+}
+
+#[test]
+fn full_turn_against_the_tracking_solution() {
+    let m = ClassFour::default();
+    let states: Vec<_> = m.sweep(0.0, TAU, 721, &m.guess(0.0)).unwrap().collect::<Result<_, _>>().unwrap();
+    // Which intersection of the circles is this assembly: the side of C from A->D, at the start.
+    let s0 = &states[0];
+    let (ax, ay) = (1.0, 0.0);
+    let cross = (s0.out.d.x - ax) * (s0.out.c.y - ay) - (s0.out.d.y - ay) * (s0.out.c.x - ax);
+    let side = cross.signum();
+    let mut th2 = s0.q.th2 + 0.02; // the tracker's own start, off the solution
+    for s in &states {
+        let phi = s.input.phi;
+        assert!(m.residual(phi, &s.q).iter().all(|r| r.abs() < 1e-12), "loops open at {phi}");
+        // Track: bracket the root of the EF closure near the previous angle, then bisect.
+        let g = |t: f64| close_with(&m, phi, t, side).3;
+        let (mut lo, mut hi) = (th2 - 0.05, th2 + 0.05);
+        assert!(g(lo) * g(hi) < 0.0, "no bracket at {phi}");
+        for _ in 0..200 {
+            let mid = 0.5 * (lo + hi);
+            if (g(mid) < 0.0) == (g(lo) < 0.0) {
+                lo = mid;
+            } else {
+                hi = mid;
+            }
+        }
+        th2 = 0.5 * (lo + hi);
+        let (th1, psi1, psi2, _) = close_with(&m, phi, th2, side);
+        // The solution's sensitivity to the loop residual is ~1 (well conditioned).
+        for (got, want, name) in
+            [(s.q.th1, th1, "th1"), (s.q.th2, th2, "th2"), (s.q.psi1, psi1, "psi1"), (s.q.psi2, psi2, "psi2")]
+        {
+            assert!(wrap(got - want).abs() < 1e-11, "{name} at phi = {phi}: {got} vs {want}");
+        }
+    }
+    // A full turn brings the group back (a crank-driven, fully rotatable linkage).
+    let (a, b) = (states[0].q, states[720].q);
+    assert!((a.th1 - b.th1).abs() < 1e-11 && (a.psi2 - b.psi2).abs() < 1e-11);
+    // Well conditioned throughout.
+    assert!(states.iter().all(|s| s.health.min_pivot > 0.5));
+}
+
+#[test]
+fn analogs_match_finite_differences() {
+    let m = ClassFour::default();
+    // Positions solved until the Newton step is below 1e-13 (1 + |q|); Richardson-extrapolated
+    // central differences with h = 1e-2: truncation ~1e-10, position errors give ~5e-11 and
+    // ~3e-8 on the first and second derivatives.
+    let tight = NewtonConfig::default().with_residual_tol(0.0);
+    let h = 1e-2;
+    for i in 0..36 {
+        let phi = 0.05 + TAU * i as f64 / 36.0;
+        let s = m.solve(phi).unwrap();
+        let q = |x: f64| -> [f64; 4] { m.position_with(x, &s.q, &tight).unwrap().0.into() };
+        let (dq, d2q): ([f64; 4], [f64; 4]) = (s.dq.into(), s.d2q.into());
+        for u in 0..4 {
+            let d1 = |h: f64| (q(phi + h)[u] - q(phi - h)[u]) / (2.0 * h);
+            let d2 = |h: f64| (q(phi + h)[u] - 2.0 * q(phi)[u] + q(phi - h)[u]) / (h * h);
+            let f1 = (4.0 * d1(h / 2.0) - d1(h)) / 3.0;
+            let f2 = (4.0 * d2(h / 2.0) - d2(h)) / 3.0;
+            let name = ClassFour::UNKNOWNS[u];
+            assert!((dq[u] - f1).abs() < 1e-9 * dq[u].abs().max(1.0), "d{name} at {phi}: {} vs {f1}", dq[u]);
+            assert!((d2q[u] - f2).abs() < 1e-6 * d2q[u].abs().max(1.0), "d2{name} at {phi}: {} vs {f2}", d2q[u]);
+        }
+    }
+}
+
+#[test]
+fn numbers_printed_by_the_example() {
+    let m = ClassFour::default();
+    // phi [deg], th1, th2, psi1, psi2 (6 decimals), dth1, dpsi2 (5 decimals).
+    let rows = [
+        (0.0f64, 1.386184, 2.999414, -0.799630, -1.028511, -0.24423, -0.30557),
+        (90.0, 0.847119, 2.635262, -0.739346, -1.209728, -0.31320, 0.07337),
+        (210.0, 0.736356, 2.932193, -0.056062, -0.916115, 0.35536, 0.20341),
+    ];
+    // The example's sweep: 721 samples over a turn, every half degree.
+    let states: Vec<_> = m.sweep(0.0, TAU, 721, &m.guess(0.0)).unwrap().collect::<Result<_, _>>().unwrap();
+    for (deg, th1, th2, psi1, psi2, dth1, dpsi2) in rows {
+        let s = &states[(2.0 * deg) as usize];
+        assert!((s.input.phi - deg.to_radians()).abs() < 1e-12);
+        for (got, want) in [(s.q.th1, th1), (s.q.th2, th2), (s.q.psi1, psi1), (s.q.psi2, psi2)] {
+            assert!((got - want).abs() < 5.1e-7, "at {deg}°: {got} vs {want}");
+        }
+        assert!((s.dq.th1 - dth1).abs() < 5.1e-6 && (s.dq.psi2 - dpsi2).abs() < 5.1e-6, "at {deg}°");
+    }
+}

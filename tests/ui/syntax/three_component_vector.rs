@@ -1,0 +1,11 @@
+kinloop::mechanism! {
+    /// Planar vectors have two components.
+    pub struct SliderCrank {
+        params r, l;
+        input phi;
+        unknowns psi, x;
+        loop oab: r @ phi == (x, 0, 0) + l @ psi;
+    }
+}
+
+fn main() {}
