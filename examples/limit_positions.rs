@@ -11,7 +11,7 @@
 
 mod common;
 
-use common::{Series, line_chart, out_dir};
+use common::{Series, decimate, figure_dir, line_chart};
 use kinloop::{AtSingular, SweepConfig};
 use std::f64::consts::PI;
 
@@ -63,21 +63,18 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
         traced.closed,
         traced.folds.iter().map(|f| format!("{:.12}", f.x[0])).collect::<Vec<_>>()
     );
-    let dir = out_dir("limit_positions");
+    let dir = figure_dir("limit_positions");
+    let curve = |u: usize| -> Vec<(f64, f64)> {
+        traced.points.iter().map(|p| (p.x[0].to_degrees(), p.q[u].to_degrees())).collect()
+    };
     line_chart(
         &dir.join("closed_curve.svg"),
         "Non-Grashof four-bar: the whole closed curve by arclength continuation",
         "input angle phi [deg]",
         "angle [deg]",
         &[
-            Series {
-                label: "coupler beta",
-                points: traced.points.iter().map(|p| (p.x[0].to_degrees(), p.q[0].to_degrees())).collect(),
-            },
-            Series {
-                label: "rocker gamma",
-                points: traced.points.iter().map(|p| (p.x[0].to_degrees(), p.q[1].to_degrees())).collect(),
-            },
+            Series { label: "coupler beta", points: decimate(&curve(0), 600) },
+            Series { label: "rocker gamma", points: decimate(&curve(1), 600) },
         ],
     )?;
 

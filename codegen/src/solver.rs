@@ -195,14 +195,30 @@ pub fn solver_body_with(
                     quote!(__guess[#u])
                 });
                 let f = bp.f.iter().map(|&x| op(x));
+                // The guess is evaluated inline (in a warm-started sweep it usually meets the
+                // tolerance); only when it does not is the iteration called, with the same
+                // evaluation as a closure.
+                let eval_body = quote! {
+                    #inner
+                    #rt::BlockEval::<#n, #k> { f: [#(#f),*], j: [#(#jrows),*], keep: [#(#exports),*] }
+                };
                 body.extend(quote! {
-                    let #s = match #rt::newton::<#n, #k>([#(#guess),*], __cfg, |__z: &[f64; #n]| {
-                        let [#(#qs),*] = *__z;
-                        #inner
-                        #rt::BlockEval { f: [#(#f),*], j: [#(#jrows),*], keep: [#(#exports),*] }
-                    }) {
-                        Ok(s) => s,
-                        Err(e) => return Err(self.__block_failure(#bl, e, __x, __guess)),
+                    let __z0: [f64; #n] = [#(#guess),*];
+                    let __e0 = {
+                        let [#(#qs),*] = __z0;
+                        #eval_body
+                    };
+                    let __r0 = #rt::max_abs(__e0.f);
+                    let #s = if __r0 <= __cfg.residual_tol {
+                        #rt::Solved::at_guess(__z0, __e0, __r0)
+                    } else {
+                        match #rt::iterate::<#n, #k>(__z0, __e0, __cfg, |__z: &[f64; #n]| {
+                            let [#(#qs),*] = *__z;
+                            #eval_body
+                        }) {
+                            Ok(s) => s,
+                            Err(e) => return Err(self.__block_failure(#bl, e, __x, __guess)),
+                        }
                     };
                     __report.absorb(&#s);
                     let [#(#qs),*] = #s.z;
@@ -347,8 +363,8 @@ pub fn solver_body_with(
         quote!([#(#rows),*])
     });
     let guess_arg = if mode == Mode::At { quote!(None) } else { quote!(Some(__guess)) };
-    body.extend(quote! {
-        let __kin = #rt::Kin {
+    let kin = quote! {
+        #rt::Kin {
             x: *__x,
             q: [#(#q_all),*],
             dq: [#(#dq),*],
@@ -358,15 +374,46 @@ pub fn solver_body_with(
             d2out: [#(#d2out),*],
             report: __report,
             health: __health,
-        };
+        }
+    };
+    if !sens {
+        // One sum tells whether every value is finite (NaN and infinity propagate); the state is
+        // built once, in the return value, and examined value by value only on the cold path.
+        let mut terms: Vec<TokenStream> = q_all.iter().map(|q| quote!(#q)).collect();
+        for u in 0..plan.n {
+            for i in 0..ni {
+                let v = Names::tan(u, i);
+                terms.push(quote!(#v));
+                for j in 0..ni {
+                    let w = Names::tan2(u, i, j);
+                    terms.push(quote!(#w));
+                }
+            }
+        }
+        for (o, &out_node) in plan.outputs.iter().enumerate() {
+            terms.push(op(out_node));
+            terms.extend(plan.out_d1[o].iter().map(|&n| op(n)));
+            terms.extend(plan.out_d2[o].iter().map(|&n| op(n)));
+        }
+        let sum = balanced_sum(terms);
+        body.extend(quote! {
+            let __sum: f64 = #sum;
+            if !__sum.is_finite() {
+                let __kin = #kin;
+                if !__kin.all_finite() {
+                    return Err(self.__non_finite(&__kin, __x, #guess_arg));
+                }
+            }
+            Ok(#kin)
+        });
+        return body;
+    }
+    body.extend(quote! {
+        let __kin = #kin;
         if !__kin.all_finite() {
             return Err(self.__non_finite(&__kin, __x, #guess_arg));
         }
     });
-    if !sens {
-        body.extend(quote!(Ok(__kin)));
-        return body;
-    }
     let ks: Vec<usize> = (0..npar).collect();
     let sq = (0..plan.n).map(|u| {
         let v = ks.iter().map(|&k| Names::sens_q(u, k));
@@ -430,6 +477,26 @@ pub fn solver_body_with(
         Ok((__kin, __sens))
     });
     body
+}
+
+/// `a + b + ...` as a balanced tree: its depth (the latency of the dependent additions) grows
+/// like the logarithm of the number of terms instead of linearly.
+fn balanced_sum(mut terms: Vec<TokenStream>) -> TokenStream {
+    if terms.is_empty() {
+        return quote!(0.0);
+    }
+    while terms.len() > 1 {
+        let mut next = Vec::with_capacity(terms.len().div_ceil(2));
+        let mut it = terms.into_iter();
+        while let Some(a) = it.next() {
+            next.push(match it.next() {
+                Some(b) => quote!((#a + #b)),
+                None => a,
+            });
+        }
+        terms = next;
+    }
+    terms.pop().unwrap_or_else(|| quote!(0.0))
 }
 
 /// Straight-line evaluation of some roots (residual, outputs, guesses); returns an array.

@@ -27,7 +27,7 @@ pub use kin::{FlatMotion, Health, Jac, Kin, Sens};
 pub use lu::{Factor, Fixed, Lu, max_abs};
 pub use mechanism::{Mechanism, Sensitivities};
 pub use modes::assembly_modes;
-pub use newton::{BlockEval, BlockFailure, NewtonConfig, SolveReport, Solved, Termination, newton};
+pub use newton::{BlockEval, BlockFailure, NewtonConfig, SolveReport, Solved, Termination, iterate, newton};
 pub use objective::{Extreme, Extremum, LmConfig, LmResult, extremum, integral, levenberg_marquardt};
 pub use sweep::{AtSingular, Event, EventKind, Reach, Sweep, SweepConfig, reachable};
 pub use table::Table;

@@ -13,15 +13,16 @@
 //! and change points, whatever the units. The generated code passes those column scales; the
 //! Newton iteration, which only sees its block, scales rows.
 
-use nalgebra::SMatrix;
-
 /// A factorised `N x N` block: `P D_r J D_c = L U` with `D_r`, `D_c` the equilibrations.
 #[derive(Clone, Copy, Debug)]
 pub struct Lu<const N: usize> {
-    lu: SMatrix<f64, N, N>,
+    /// `L` below the diagonal (unit diagonal implied) and `U` on and above it.
+    lu: [[f64; N]; N],
     perm: [usize; N],
     inv_row: [f64; N],
     inv_col: [f64; N],
+    /// Reciprocals of the pivots, so that solves multiply instead of divide.
+    inv_diag: [f64; N],
     pivot_ratio: f64,
     negative_det: bool,
     det: f64,
@@ -44,27 +45,47 @@ fn inverses<const N: usize>(scale: [f64; N], degenerate: &mut bool) -> [f64; N] 
 impl<const N: usize> Lu<N> {
     /// Factorises `j` (rows given as arrays), dividing row `r` by `row_scale[r]`. A zero or
     /// non-finite scale marks the matrix as degenerate (pivot ratio 0).
-    #[inline]
+    #[inline(always)]
     pub fn factor(j: &[[f64; N]; N], row_scale: [f64; N]) -> Self {
         Self::factor_scaled(j, row_scale, [1.0; N])
     }
 
     /// Factorises `j`, dividing column `c` by `col_scale[c]`.
-    #[inline]
+    #[inline(always)]
     pub fn factor_cols(j: &[[f64; N]; N], col_scale: [f64; N]) -> Self {
         Self::factor_scaled(j, [1.0; N], col_scale)
     }
 
     /// Factorises `j` equilibrated by both row and column scales.
-    #[inline]
+    ///
+    /// The loops run over full ranges with conditions (rather than `k + 1..N`) so that their trip
+    /// counts are constants and the compiler unrolls them completely for small blocks.
+    #[inline(always)]
     pub fn factor_scaled(j: &[[f64; N]; N], row_scale: [f64; N], col_scale: [f64; N]) -> Self {
+        if N == 1 {
+            // A scalar block: the equilibration only measures the pivot; the solve divides by
+            // the unscaled coefficient (which folds away when it is a constant).
+            let (r, c) = (row_scale[0], col_scale[0]);
+            let ok = r > 0.0 && c > 0.0 && r.is_finite() && c.is_finite();
+            let p = if ok { j[0][0] / (r * c) } else { 0.0 };
+            return Lu {
+                lu: *j,
+                perm: [0; N],
+                inv_row: [1.0; N],
+                inv_col: [1.0; N],
+                inv_diag: [1.0 / j[0][0]; N],
+                pivot_ratio: if p.is_finite() { p.abs() } else { 0.0 },
+                negative_det: p < 0.0,
+                det: p,
+            };
+        }
         let mut degenerate = false;
         let inv_row = inverses(row_scale, &mut degenerate);
         let inv_col = inverses(col_scale, &mut degenerate);
-        let mut lu = SMatrix::<f64, N, N>::zeros();
+        let mut lu = [[0.0; N]; N];
         for r in 0..N {
             for c in 0..N {
-                lu[(r, c)] = j[r][c] * inv_row[r] * inv_col[c];
+                lu[r][c] = j[r][c] * inv_row[r] * inv_col[c];
             }
         }
         let mut perm = [0usize; N];
@@ -74,69 +95,76 @@ impl<const N: usize> Lu<N> {
         let mut negative_det = false;
         let mut min_pivot = f64::INFINITY;
         let mut det = 1.0;
+        let mut inv_diag = [0.0; N];
         for k in 0..N {
             // Partial pivoting.
             let mut best = k;
-            let mut best_mag = lu[(k, k)].abs();
-            for r in k + 1..N {
-                let m = lu[(r, k)].abs();
-                if m > best_mag {
+            let mut best_mag = lu[k][k].abs();
+            for r in 0..N {
+                let m = lu[r][k].abs();
+                if r > k && m > best_mag {
                     best = r;
                     best_mag = m;
                 }
             }
             if best != k {
-                lu.swap_rows(k, best);
+                lu.swap(k, best);
                 perm.swap(k, best);
                 negative_det = !negative_det;
+                det = -det;
             }
-            let pivot = lu[(k, k)];
+            let pivot = lu[k][k];
             if pivot < 0.0 {
                 negative_det = !negative_det;
             }
             min_pivot = min_pivot.min(pivot.abs());
             det *= pivot;
-            if pivot != 0.0 {
-                let inv = 1.0 / pivot;
-                for r in k + 1..N {
-                    let factor = lu[(r, k)] * inv;
-                    lu[(r, k)] = factor;
-                    for c in k + 1..N {
-                        let v = lu[(k, c)];
-                        lu[(r, c)] -= factor * v;
+            let inv = 1.0 / pivot;
+            inv_diag[k] = inv;
+            for r in 0..N {
+                if r > k {
+                    let factor = lu[r][k] * inv;
+                    lu[r][k] = factor;
+                    for c in 0..N {
+                        if c > k {
+                            lu[r][c] -= factor * lu[k][c];
+                        }
                     }
                 }
             }
         }
         let pivot_ratio = if degenerate || !min_pivot.is_finite() { 0.0 } else { min_pivot };
-        let det = if perm_parity_odd(&perm) { -det } else { det };
-        Lu { lu, perm, inv_row, inv_col, pivot_ratio, negative_det, det }
+        Lu { lu, perm, inv_row, inv_col, inv_diag, pivot_ratio, negative_det, det }
     }
 
     /// Smallest pivot of the equilibrated matrix, in `[0, ~1]`: `0` when singular. `NaN`
     /// inputs give `0`.
-    #[inline]
+    #[inline(always)]
     pub fn pivot_ratio(&self) -> f64 {
         if self.pivot_ratio.is_nan() { 0.0 } else { self.pivot_ratio }
     }
 
     /// Determinant of the equilibrated matrix: a smooth, signed, unit-free measure whose
     /// zeros are the singular positions (used to locate them along a sweep).
-    #[inline]
+    #[inline(always)]
     pub fn det(&self) -> f64 {
         self.det
     }
 
     /// Sign of the determinant (`true` when negative); the assembly mode of a block.
-    #[inline]
+    #[inline(always)]
     pub fn negative_det(&self) -> bool {
         self.negative_det
     }
 
     /// Solves `J z = b`.
-    #[inline]
-    #[allow(clippy::needless_range_loop)] // index loops read like the textbook substitutions
+    #[inline(always)]
     pub fn solve(&self, b: [f64; N]) -> [f64; N] {
+        if N == 1 {
+            let mut z = b;
+            z[0] *= self.inv_diag[0];
+            return z;
+        }
         let mut z = [0.0; N];
         for r in 0..N {
             let p = self.perm[r];
@@ -144,17 +172,21 @@ impl<const N: usize> Lu<N> {
         }
         for r in 0..N {
             let mut acc = z[r];
-            for c in 0..r {
-                acc -= self.lu[(r, c)] * z[c];
+            for c in 0..N {
+                if c < r {
+                    acc -= self.lu[r][c] * z[c];
+                }
             }
             z[r] = acc;
         }
         for r in (0..N).rev() {
             let mut acc = z[r];
-            for c in r + 1..N {
-                acc -= self.lu[(r, c)] * z[c];
+            for c in 0..N {
+                if c > r {
+                    acc -= self.lu[r][c] * z[c];
+                }
             }
-            z[r] = acc / self.lu[(r, r)];
+            z[r] = acc * self.inv_diag[r];
         }
         for c in 0..N {
             z[c] *= self.inv_col[c];
@@ -163,7 +195,7 @@ impl<const N: usize> Lu<N> {
     }
 
     /// Solves `J Z = B` for `M` right-hand sides given as rows `B[r][m]`.
-    #[inline]
+    #[inline(always)]
     pub fn solve_cols<const M: usize>(&self, b: [[f64; M]; N]) -> [[f64; M]; N] {
         let mut out = [[0.0; M]; N];
         for m in 0..M {
@@ -178,27 +210,6 @@ impl<const N: usize> Lu<N> {
         }
         out
     }
-}
-
-fn perm_parity_odd<const N: usize>(perm: &[usize; N]) -> bool {
-    let mut seen = [false; N];
-    let mut odd = false;
-    for start in 0..N {
-        if seen[start] {
-            continue;
-        }
-        let mut len = 0;
-        let mut k = start;
-        while !seen[k] {
-            seen[k] = true;
-            k = perm[k];
-            len += 1;
-        }
-        if len % 2 == 0 {
-            odd = !odd;
-        }
-    }
-    odd
 }
 
 /// What [`Health`](crate::Health) reads from a block's factorisation.

@@ -135,6 +135,15 @@ pub struct Solved<const N: usize, const K: usize> {
     pub termination: Termination,
 }
 
+impl<const N: usize, const K: usize> Solved<N, K> {
+    /// The guess itself met the tolerance (residual `res`): no iteration.
+    #[doc(hidden)]
+    #[inline(always)]
+    pub fn at_guess(z: [f64; N], eval: BlockEval<N, K>, res: f64) -> Self {
+        Solved { z, eval, iterations: 0, evaluations: 1, residual: res, termination: Termination::ResidualTolerance }
+    }
+}
+
 /// Why a block failed; the generated code adds the location and names.
 #[doc(hidden)]
 #[derive(Clone, Copy, Debug, PartialEq)]
@@ -176,16 +185,43 @@ fn sum_sq<const N: usize>(f: &[f64; N]) -> f64 {
 }
 
 /// Solves one block from the guess `z0`. In the common warm-started case this costs one
-/// evaluation: the guess already satisfies the tolerance and no iteration is made.
+/// evaluation: the guess already satisfies the tolerance and no iteration is made. That check is
+/// inlined into the generated code; the iteration itself is a separate function.
 #[doc(hidden)]
-#[inline]
+#[inline(always)]
 pub fn newton<const N: usize, const K: usize>(
     z0: [f64; N],
     cfg: &NewtonConfig,
     mut eval: impl FnMut(&[f64; N]) -> BlockEval<N, K>,
 ) -> Result<Solved<N, K>, BlockFailure> {
+    let ev = eval(&z0);
+    let res = max_abs(ev.f);
+    // `max_abs` propagates NaN, which fails this test.
+    if res <= cfg.residual_tol {
+        return Ok(Solved {
+            z: z0,
+            eval: ev,
+            iterations: 0,
+            evaluations: 1,
+            residual: res,
+            termination: Termination::ResidualTolerance,
+        });
+    }
+    iterate(z0, ev, cfg, eval)
+}
+
+/// Newton iterations from `z0`, whose evaluation `ev0` did not meet the tolerance. The
+/// generated code evaluates the guess inline and calls this only when it must iterate.
+#[doc(hidden)]
+#[inline(never)]
+pub fn iterate<const N: usize, const K: usize>(
+    z0: [f64; N],
+    ev0: BlockEval<N, K>,
+    cfg: &NewtonConfig,
+    mut eval: impl FnMut(&[f64; N]) -> BlockEval<N, K>,
+) -> Result<Solved<N, K>, BlockFailure> {
     let mut z = z0;
-    let mut ev = eval(&z);
+    let mut ev = ev0;
     let mut evaluations = 1u32;
     let mut iterations = 0u32;
     loop {

@@ -8,11 +8,12 @@
 //! * [`integral`]: the trapezoidal integral of a quantity over a sweep and its exact gradient.
 //! * [`levenberg_marquardt`]: least squares on residuals with a Jacobian, e.g. from the above.
 
+use crate::analysis::{Column, Sampled};
 use crate::error::Error;
 use crate::kin::{Kin, Sens};
 use crate::mechanism::Sensitivities;
 use crate::newton::NewtonConfig;
-use crate::sweep::Sweep;
+use crate::sweep::{Sweep, SweepConfig};
 
 /// Which extremum to find.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
@@ -34,41 +35,8 @@ pub struct Extremum<const NP: usize> {
     pub x_grad: [f64; NP],
 }
 
-/// Selects an unknown or output column by name.
-#[derive(Clone, Copy, Debug, PartialEq, Eq)]
-enum Column {
-    Unknown(usize),
-    Output(usize),
-}
-
-fn column<M, const N: usize, const NO: usize, const NP: usize>(name: &str) -> Result<Column, Error>
-where
-    M: Sensitivities<N, 1, NO, NP>,
-{
-    if let Some(u) = M::UNKNOWNS.iter().position(|n| *n == name) {
-        return Ok(Column::Unknown(u));
-    }
-    if let Some(o) = M::OUTPUTS.iter().position(|n| *n == name) {
-        return Ok(Column::Output(o));
-    }
-    Err(Error::InvalidArgument(format!(
-        "`{name}` is neither an unknown ({}) nor an output column ({}) of `{}`",
-        M::UNKNOWNS.join(", "),
-        M::OUTPUTS.join(", "),
-        M::NAME
-    )))
-}
-
-/// (value, first analog, second analog) of a column.
-fn read<const N: usize, const NO: usize>(k: &Kin<N, 1, NO>, c: Column) -> (f64, f64, f64) {
-    match c {
-        Column::Unknown(u) => (k.q[u], k.dq[u][0], k.d2q[u][0][0]),
-        Column::Output(o) => (k.out[o], k.dout[o][0], k.d2out[o][0][0]),
-    }
-}
-
 /// (d value/dp, d first analog/dp) of a column.
-fn read_sens<const N: usize, const NO: usize, const NP: usize>(
+fn column_sens<const N: usize, const NO: usize, const NP: usize>(
     s: &Sens<N, 1, NO, NP>,
     c: Column,
 ) -> ([f64; NP], [f64; NP]) {
@@ -78,9 +46,10 @@ fn read_sens<const N: usize, const NO: usize, const NP: usize>(
     }
 }
 
-/// Finds the maximum or minimum of the unknown or output `name` over `range` (a sweep of
-/// `samples` points from `guess`, branch-safe), refines it by Newton's method on the velocity
-/// analog (using the acceleration analog), and returns it with its parameter gradients.
+/// Finds the maximum or minimum of the unknown or output `name` over `range` (a branch-safe
+/// sweep of `samples` points from `guess`; the extremes are roots of the velocity analog located
+/// by [`Sampled::range`](crate::analysis::Sampled::range)) and returns it with its parameter
+/// gradients.
 ///
 /// An extremum at an end of the range (where the analog does not vanish) is returned at the end
 /// with `x_grad = 0` and `grad = dq/dp` there.
@@ -96,53 +65,23 @@ pub fn extremum<M, const N: usize, const NO: usize, const NP: usize>(
 where
     M: Sensitivities<N, 1, NO, NP>,
 {
-    let (from, to) = (*range.start(), *range.end());
-    let col = column::<M, N, NO, NP>(name)?;
-    let sign = if which == Extreme::Max { 1.0 } else { -1.0 };
-    let mut best: Option<Kin<N, 1, NO>> = None;
-    let mut best_value = f64::NEG_INFINITY;
-    let mut sweep = Sweep::<M, Kin<N, 1, NO>, N, 1, NO>::new(m, [from], [to], samples.max(3), guess)?;
-    while let Some(k) = sweep.next_kin() {
-        let k = k?;
-        let (v, _, _) = read(&k, col);
-        if sign * v > best_value {
-            best_value = sign * v;
-            best = Some(k);
-        }
-    }
-    let Some(best) = best else { return Err(Error::InvalidArgument("empty range".into())) };
-    // Newton on the velocity analog from the best sample, kept within one sample spacing of it
-    // (the sampled extremum lies between its neighbours).
-    let h = ((to - from) / (samples.max(3) - 1) as f64).abs();
-    let (lo, hi) = ((best.x[0] - h).max(from.min(to)), (best.x[0] + h).min(from.max(to)));
-    let mut k = best;
-    let at_end = |x: f64| (x - from).abs() < 1e-15 * (1.0 + x.abs()) || (x - to).abs() < 1e-15 * (1.0 + x.abs());
-    for _ in 0..50 {
-        let (_, d1, d2) = read(&k, col);
-        if d2 == 0.0 || !d2.is_finite() {
-            break;
-        }
-        let x_new = (k.x[0] - d1 / d2).clamp(lo, hi);
-        let dx = x_new - k.x[0];
-        let mut g = k.q;
-        for u in 0..N {
-            g[u] += k.dq[u][0] * dx + 0.5 * k.d2q[u][0][0] * dx * dx;
-        }
-        k = m.kinematics_flat(&[x_new], &g, cfg)?;
-        if dx.abs() <= 1e-14 * (1.0 + x_new.abs()) {
-            break;
-        }
-    }
-    let (kk, s) = m.sensitivities_at_flat(&k.x, &k.q, cfg)?;
-    let (value, d1, d2) = read(&kk, col);
-    let (grad, dgrad) = read_sens(&s, col);
+    let col = Column::named::<M, N, 1, NO>(name)?;
+    let sweep_cfg = SweepConfig { newton: *cfg, ..SweepConfig::default() };
+    let sampled = Sampled::sweep_with(m, *range.start(), *range.end(), samples.max(3), guess, sweep_cfg)?;
+    let global = sampled.range(name)?;
+    let at = if which == Extreme::Max { global.max } else { global.min };
+    let interior = global.extremes.iter().any(|e| e.at.x == at.x);
+    let k = sampled.at(at.x)?;
+    let (k, s) = m.sensitivities_at_flat(&k.x, &k.q, cfg)?;
+    let jet = col.jet(&k);
+    let (grad, dgrad) = column_sens(&s, col);
     let mut x_grad = [0.0; NP];
-    if !(at_end(kk.x[0]) && d1.abs() > 1e-9) && d2 != 0.0 {
+    if interior && jet.d2 != 0.0 {
         for p in 0..NP {
-            x_grad[p] = -dgrad[p] / d2;
+            x_grad[p] = -dgrad[p] / jet.d2;
         }
     }
-    Ok(Extremum { x: kk.x[0], value, grad, x_grad })
+    Ok(Extremum { x: jet.x, value: jet.value, grad, x_grad })
 }
 
 /// The trapezoidal integral of the unknown or output `name` over a sweep of `samples` points
@@ -160,7 +99,7 @@ pub fn integral<M, const N: usize, const NO: usize, const NP: usize>(
 where
     M: Sensitivities<N, 1, NO, NP>,
 {
-    let col = column::<M, N, NO, NP>(name)?;
+    let col = Column::named::<M, N, 1, NO>(name)?;
     let samples = samples.max(2);
     let h = (to - from) / (samples - 1) as f64;
     let mut value = 0.0;
@@ -171,8 +110,8 @@ where
         let k = k?;
         let w = if i == 0 || i == samples - 1 { 0.5 * h } else { h };
         let (_, s) = m.sensitivities_at_flat(&k.x, &k.q, cfg)?;
-        let (v, _, _) = read(&k, col);
-        let (g, _) = read_sens(&s, col);
+        let v = col.jet(&k).value;
+        let (g, _) = column_sens(&s, col);
         value += w * v;
         for p in 0..NP {
             grad[p] += w * g[p];
