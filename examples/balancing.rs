@@ -61,7 +61,7 @@ kinloop::mechanism! {
 
 /// The required phase shift between the outer dead centres of piston and displacer (second
 /// design problem).
-const PHASE: f64 = PI / 2.0;
+pub const PHASE: f64 = PI / 2.0;
 
 /// Samples per turn: the harmonics of these smooth periodic motions decay geometrically; 128
 /// samples resolve the first ones to rounding.
@@ -70,7 +70,7 @@ const SAMPLES: usize = 128;
 /// The arm angle `delta` that puts the displacer's outer dead centre `PHASE` after the piston's.
 /// Outer dead centres: crank arm along A->C (piston) and along A->F (displacer), with A at
 /// (0, k), C at (-sqrt((gamma + 1)^2 - k^2), 0), F at (sqrt((gamma_b + rho)^2 - e_b^2), k - e_b).
-fn delta_for_phase(m: &Balance) -> f64 {
+pub fn delta_for_phase(m: &Balance) -> f64 {
     let e_b = m.k_b * m.rho;
     let piston = f64::atan2(-m.k, -((m.gamma + 1.0).powi(2) - m.k * m.k).sqrt());
     let displacer = f64::atan2(-e_b, ((m.gamma_b + m.rho).powi(2) - e_b * e_b).sqrt());
@@ -78,21 +78,21 @@ fn delta_for_phase(m: &Balance) -> f64 {
 }
 
 /// The drive with displacer parameters `[rho, gamma_b, k_b, delta]`.
-fn design(p: [f64; 4]) -> Balance {
+pub fn design(p: [f64; 4]) -> Balance {
     Balance { rho: p[0], gamma_b: p[1], k_b: p[2], delta: p[3], ..Balance::default() }
 }
 
 /// The drive with displacer parameters `[rho, gamma_b, k_b]` and `delta` from the phase shift.
-fn phased(p: [f64; 3]) -> Balance {
+pub fn phased(p: [f64; 3]) -> Balance {
     let m = design([p[0], p[1], p[2], 0.0]);
     Balance { delta: delta_for_phase(&m), ..m }
 }
 
-/// Residual unbalance D over a turn; infinite when the design leaves its ranges or the drive
-/// does not assemble over the whole turn.
-fn unbalance(m: &Balance) -> f64 {
+/// Residual unbalance D over a turn of `samples` steps; infinite when the design leaves its
+/// ranges or the drive does not assemble over the whole turn.
+pub fn unbalance(m: &Balance, samples: usize) -> f64 {
     let in_ranges = (0.5..=2.0).contains(&m.rho) && (1.5..=6.0).contains(&m.gamma_b) && (-1.0..=1.0).contains(&m.k_b);
-    let d = || Sampled::sweep(m, 0.0, TAU, SAMPLES + 1, m.guess(0.0).into())?.residual("xc", 1).map(|r| r.max_abs);
+    let d = || Sampled::sweep(m, 0.0, TAU, samples + 1, m.guess(0.0).into())?.residual("xc", 1).map(|r| r.max_abs);
     if in_ranges { d().unwrap_or(f64::INFINITY) } else { f64::INFINITY }
 }
 
@@ -136,7 +136,7 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
     // The paper's trends, on the reference family (symmetric groups, one crank pin).
     let family = |gamma: f64, k: f64| {
         let m = Balance { gamma, k, gamma_b: gamma, k_b: k, ..reference };
-        unbalance(&m)
+        unbalance(&m, SAMPLES)
     };
     let row =
         |xs: &[f64], f: &dyn Fn(f64) -> f64| xs.iter().map(|&x| format!("{:.4e}", f(x))).collect::<Vec<_>>().join("  ");
@@ -151,7 +151,7 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
 
     let (lo, hi) = ([0.5, 1.5, -1.0, -PI], [2.0, 6.0, 1.0, PI]);
     let cfg = NelderMead { max_evaluations: 10_000, f_tol: 1e-12, x_tol: 1e-8, ..NelderMead::default() };
-    let best = nelder_mead_boxed(|p| unbalance(&design(*p)), [1.0, 2.0, 0.3, 0.0], lo, hi, &cfg);
+    let best = nelder_mead_boxed(|p| unbalance(&design(*p), SAMPLES), [1.0, 2.0, 0.3, 0.0], lo, hi, &cfg);
     println!(
         "\nminimum of D over rho, gamma_b, k_b, delta (Nelder-Mead: {} evaluations, converged = {}):",
         best.evaluations, best.converged
@@ -165,7 +165,7 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
     );
 
     let (lo, hi) = ([lo[0], lo[1], lo[2]], [hi[0], hi[1], hi[2]]);
-    let best90 = nelder_mead_boxed(|p| unbalance(&phased(*p)), [1.0, 2.0, 0.3], lo, hi, &cfg);
+    let best90 = nelder_mead_boxed(|p| unbalance(&phased(*p), SAMPLES), [1.0, 2.0, 0.3], lo, hi, &cfg);
     println!(
         "\nwith the phase shift held at {}° (Nelder-Mead: {} evaluations, converged = {}):",
         PHASE.to_degrees(),
@@ -176,29 +176,21 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
     let after = describe("optimum with the phase shift", &phased_optimum)?;
 
     let dir = figure_dir("balancing");
+    let designs = [
+        ("reference design", &before),
+        ("optimum (exact balance)", &balanced),
+        ("optimum with 90° phase shift", &after),
+    ];
+    let series = |curve: fn(&Curves) -> &Vec<(f64, f64)>| {
+        designs.iter().map(|&(label, c)| Series { label, points: curve(c).clone() }).collect()
+    };
     panels(
         &dir.join("centre_of_mass.svg"),
         "Rhombic drive balancing (M' = 1.5): centre of mass X_c of the reciprocating masses",
         "crank angle alpha [deg]",
         &[
-            Panel {
-                y_label: "X_c [crank radii]",
-                series: vec![
-                    Series { label: "reference design", points: before.x_c },
-                    Series { label: "optimum (exact balance)", points: balanced.x_c },
-                    Series { label: "optimum with 90° phase shift", points: after.x_c },
-                ],
-                marks: vec![],
-            },
-            Panel {
-                y_label: "X_c - X_c1",
-                series: vec![
-                    Series { label: "reference design", points: before.residual },
-                    Series { label: "optimum (exact balance)", points: balanced.residual },
-                    Series { label: "optimum with 90° phase shift", points: after.residual },
-                ],
-                marks: vec![],
-            },
+            Panel { y_label: "X_c [crank radii]", series: series(|c| &c.x_c), marks: vec![] },
+            Panel { y_label: "X_c - X_c1", series: series(|c| &c.residual), marks: vec![] },
         ],
     )?;
     println!("\nwrote centre_of_mass.svg to {}", dir.display());

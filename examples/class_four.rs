@@ -88,41 +88,22 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
     let curve = |f: &dyn Fn(&ClassFourState) -> f64| {
         states.iter().map(|s| (s.input.phi.to_degrees(), f(s))).collect::<Vec<_>>()
     };
+    // One panel per order: the four angles, their velocity analogs, their acceleration analogs.
+    let panel = |y_label: &'static str, labels: [&'static str; 4], of: fn(&ClassFourState) -> [f64; 4]| Panel {
+        y_label,
+        series: (0..4).map(|u| Series { label: labels[u], points: curve(&|s| of(s)[u]) }).collect(),
+        marks: vec![],
+    };
     panels(
         &dir.join("angles_and_analogs.svg"),
         "Class IV mechanism: link angles and their velocity analogs",
         "crank angle phi [deg]",
         &[
-            Panel {
-                y_label: "angle [rad]",
-                series: vec![
-                    Series { label: "th1 (AC)", points: curve(&|s| s.q.th1) },
-                    Series { label: "th2 (BD)", points: curve(&|s| s.q.th2) },
-                    Series { label: "psi1 (CD)", points: curve(&|s| s.q.psi1) },
-                    Series { label: "psi2 (EF)", points: curve(&|s| s.q.psi2) },
-                ],
-                marks: vec![],
-            },
-            Panel {
-                y_label: "velocity analog",
-                series: vec![
-                    Series { label: "dth1/dphi", points: curve(&|s| s.dq.th1) },
-                    Series { label: "dth2/dphi", points: curve(&|s| s.dq.th2) },
-                    Series { label: "dpsi1/dphi", points: curve(&|s| s.dq.psi1) },
-                    Series { label: "dpsi2/dphi", points: curve(&|s| s.dq.psi2) },
-                ],
-                marks: vec![],
-            },
-            Panel {
-                y_label: "acceleration analog",
-                series: vec![
-                    Series { label: "d2th1/dphi2", points: curve(&|s| s.d2q.th1) },
-                    Series { label: "d2th2/dphi2", points: curve(&|s| s.d2q.th2) },
-                    Series { label: "d2psi1/dphi2", points: curve(&|s| s.d2q.psi1) },
-                    Series { label: "d2psi2/dphi2", points: curve(&|s| s.d2q.psi2) },
-                ],
-                marks: vec![],
-            },
+            panel("angle [rad]", ["th1 (AC)", "th2 (BD)", "psi1 (CD)", "psi2 (EF)"], |s| s.q.into()),
+            panel("velocity analog", ["dth1/dphi", "dth2/dphi", "dpsi1/dphi", "dpsi2/dphi"], |s| s.dq.into()),
+            panel("acceleration analog", ["d2th1/dphi2", "d2th2/dphi2", "d2psi1/dphi2", "d2psi2/dphi2"], |s| {
+                s.d2q.into()
+            }),
         ],
     )?;
     let path = |f: &dyn Fn(&ClassFourState) -> (f64, f64)| states.iter().map(f).collect::<Vec<_>>();

@@ -20,7 +20,7 @@
 mod common;
 
 use common::{Panel, Series, figure_dir, line_chart, panels};
-use kinloop::analysis::Sampled;
+use kinloop::analysis::{Dwell, Sampled};
 use std::f64::consts::{PI, TAU};
 
 kinloop::mechanism! {
@@ -50,16 +50,20 @@ struct Stop {
     peak_at: f64,
 }
 
-fn stop(k: f64) -> Result<Stop, kinloop::Error> {
-    let m = GearLever { l_p: k, ..GearLever::default() };
+/// The stops (dwells of the rocker) over one carrier turn, and the largest acceleration analog
+/// with the carrier angle where it occurs.
+pub fn stops(m: &GearLever) -> Result<(Vec<Dwell>, (f64, f64)), kinloop::Error> {
     // The turn starts at alpha = -60 degrees, where the pin is nearest the centre and the rocker
     // moves fastest, so the three stops of the turn (around 0, 120 and 240 degrees) lie inside.
     let from = -PI / 3.0;
-    let turn = Sampled::sweep(&m, from, from + TAU, 721, m.guess(from).into())?;
-    let dwells = turn.dwells("phi")?;
+    let turn = Sampled::sweep(m, from, from + TAU, 721, m.guess(from).into())?;
+    Ok((turn.dwells("phi")?, turn.peak(|s| s.d2q[1][0][0])?))
+}
+
+fn stop(k: f64) -> Result<Stop, kinloop::Error> {
+    let (dwells, (peak_at, peak_acc)) = stops(&GearLever { l_p: k, ..GearLever::default() })?;
     assert_eq!(dwells.len(), 3, "three stops per turn for k = {k}");
     let d = dwells[0];
-    let (peak_at, peak_acc) = turn.peak(|s| s.d2q[1][0][0])?;
     Ok(Stop {
         duration: d.duration().to_degrees(),
         swing: d.swing().to_degrees(),

@@ -61,22 +61,16 @@ where
     let xf = turn.range("x_f")?;
     let deg = |a: f64| a.to_degrees().rem_euclid(360.0);
     println!("{name}");
-    println!(
-        "  piston    X_C in [{:.12}, {:.12}] (at phi1 = {:.5}°, {:.5}°): stroke {:.12}",
-        xc.min.value,
-        xc.max.value,
-        deg(xc.min.x),
-        deg(xc.max.x),
-        xc.span()
-    );
-    println!(
-        "  displacer X_F in [{:.12}, {:.12}] (at phi1 = {:.5}°, {:.5}°): stroke {:.12}",
-        xf.min.value,
-        xf.max.value,
-        deg(xf.min.x),
-        deg(xf.max.x),
-        xf.span()
-    );
+    for (what, r) in [("piston    X_C", &xc), ("displacer X_F", &xf)] {
+        println!(
+            "  {what} in [{:.12}, {:.12}] (at phi1 = {:.5}°, {:.5}°): stroke {:.12}",
+            r.min.value,
+            r.max.value,
+            deg(r.min.x),
+            deg(r.max.x),
+            r.span()
+        );
+    }
     // Outer extremes: the piston farthest left (min X_C), the displacer farthest right (max X_F).
     let outer = deg(xf.max.x - xc.min.x);
     let inner = deg(xf.min.x - xc.max.x);
@@ -132,52 +126,30 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
         states.iter().map(|k| (k.x[0].to_degrees(), if order == 0 { k.q[col] } else { k.dq[col][0] })).collect()
     };
     let (s2, s3) = (t2.states(), t3.states());
-    // Unknown order: Fig. 2 (phi4, x_f, phi2, x_c), Fig. 3 (phi2, x_c, phi4, x_f).
+    // One panel per variant with X_C and X_F (order 0) or their velocity analogs (order 1), by
+    // column: the unknowns are (phi4, x_f, phi2, x_c) in Fig. 2, (phi2, x_c, phi4, x_f) in Fig. 3.
+    let panel = |y_label, states, [c, f]: [usize; 2], order, [c_label, f_label]: [&'static str; 2]| Panel {
+        y_label,
+        series: vec![
+            Series { label: c_label, points: curve(states, c, order) },
+            Series { label: f_label, points: curve(states, f, order) },
+        ],
+        marks: vec![],
+    };
+    let (fig2, fig3) = ([3, 1], [1, 3]);
+    let labels = ["X_C (working piston)", "X_F (displacer)"];
     panels(
         &dir.join("positions.svg"),
         "Rhombic drive variants: piston X_C and displacer X_F",
         "crank angle phi1 [deg]",
-        &[
-            Panel {
-                y_label: "Fig. 2 [crank radii]",
-                series: vec![
-                    Series { label: "X_C (working piston)", points: curve(s2, 3, 0) },
-                    Series { label: "X_F (displacer)", points: curve(s2, 1, 0) },
-                ],
-                marks: vec![],
-            },
-            Panel {
-                y_label: "Fig. 3 [crank radii]",
-                series: vec![
-                    Series { label: "X_C (working piston)", points: curve(s3, 1, 0) },
-                    Series { label: "X_F (displacer)", points: curve(s3, 3, 0) },
-                ],
-                marks: vec![],
-            },
-        ],
+        &[panel("Fig. 2 [crank radii]", s2, fig2, 0, labels), panel("Fig. 3 [crank radii]", s3, fig3, 0, labels)],
     )?;
+    let labels = ["V_qC", "V_qF"];
     panels(
         &dir.join("velocity_analogs.svg"),
         "Rhombic drive variants: velocity analogs dX/dphi1",
         "crank angle phi1 [deg]",
-        &[
-            Panel {
-                y_label: "Fig. 2",
-                series: vec![
-                    Series { label: "V_qC", points: curve(s2, 3, 1) },
-                    Series { label: "V_qF", points: curve(s2, 1, 1) },
-                ],
-                marks: vec![],
-            },
-            Panel {
-                y_label: "Fig. 3",
-                series: vec![
-                    Series { label: "V_qC", points: curve(s3, 1, 1) },
-                    Series { label: "V_qF", points: curve(s3, 3, 1) },
-                ],
-                marks: vec![],
-            },
-        ],
+        &[panel("Fig. 2", s2, fig2, 1, labels), panel("Fig. 3", s3, fig3, 1, labels)],
     )?;
     println!("\nwrote positions.svg, velocity_analogs.svg to {}", dir.display());
     Ok(())

@@ -37,7 +37,7 @@ kinloop::mechanism! {
 }
 
 /// Closed forms: `[phi1, phi3, phi2, phi4]`, each with its first and second time derivatives.
-fn closed(m: &RollerEdger, t: f64) -> [[f64; 3]; 4] {
+pub fn closed(m: &RollerEdger, t: f64) -> [[f64; 3]; 4] {
     // Contour 1, law of cosines in the triangle O1 A O3.
     let s = m.v1 * t + m.l1;
     let (l3, l5, v) = (m.l3, m.l5, m.v1);
@@ -78,6 +78,17 @@ fn closed(m: &RollerEdger, t: f64) -> [[f64; 3]; 4] {
     [phi1, phi3, [phi2, w2, acc2], [phi4, w4, acc4]]
 }
 
+/// The solved `[phi1, phi3, phi2, phi4]` with their first and second time derivatives, laid out
+/// as [`closed`].
+pub fn solved(s: &RollerEdgerState) -> [[f64; 3]; 4] {
+    [
+        [s.q.phi1, s.dq.phi1, s.d2q.phi1],
+        [s.q.phi3, s.dq.phi3, s.d2q.phi3],
+        [s.q.phi2, s.dq.phi2, s.d2q.phi2],
+        [s.q.phi4, s.dq.phi4, s.d2q.phi4],
+    ]
+}
+
 fn main() -> Result<(), Box<dyn std::error::Error>> {
     let m = RollerEdger::default();
     println!("Roller edger, lever-turning mode (paper 002): {m:?}\n");
@@ -116,13 +127,7 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
     // Largest deviations from the closed forms over the 601 instants, per order.
     let mut dev = [[0.0f64; 3]; 4];
     for s in &states {
-        let c = closed(&m, s.input.t);
-        let got = [
-            [s.q.phi1, s.dq.phi1, s.d2q.phi1],
-            [s.q.phi3, s.dq.phi3, s.d2q.phi3],
-            [s.q.phi2, s.dq.phi2, s.d2q.phi2],
-            [s.q.phi4, s.dq.phi4, s.d2q.phi4],
-        ];
+        let (c, got) = (closed(&m, s.input.t), solved(s));
         for l in 0..4 {
             for o in 0..3 {
                 dev[l][o] = dev[l][o].max((got[l][o] - c[l][o]).abs());

@@ -176,6 +176,47 @@
 //! gradient of their location), and [`levenberg_marquardt`] uses them for synthesis
 //! (`examples/synthesis.rs`).
 //!
+//! ## Design-space scans
+//!
+//! [`scan`] runs the same sweep over many parameter sets and folds each sweep into one value
+//! (a stroke, the extreme of an output) without keeping its states; `par_scan` (cargo feature
+//! `rayon`) does the same on all cores and returns bitwise the same results in the same order.
+//! A set that fails (cannot be assembled, meets a limit position, non-finite parameters) gives
+//! an [`Error`] in its slot; the others go on. [`ScanSpec`] says what every sweep does and
+//! [`ScanStart`] how it starts (the declared guess by default).
+//!
+//! ```
+//! kinloop::mechanism! {
+//!     pub struct SliderCrank {
+//!         params r, l, e;
+//!         input phi;
+//!         unknowns psi = 0, x = r + l;
+//!         loop oabo: r @ phi == (x, e) + l @ psi;
+//!     }
+//! }
+//! use std::f64::consts::TAU;
+//! use kinloop::{ScanSpec, scan};
+//!
+//! // Rod lengths 2.0, 2.5, ..., and one rod too short to reach the slider's line.
+//! let mut designs: Vec<_> = (0..8).map(|i| SliderCrank { r: 1.0, l: 2.0 + 0.5 * i as f64, e: 0.3 }).collect();
+//! designs.push(SliderCrank { r: 1.0, l: 0.2, e: 0.3 });
+//! let spec = ScanSpec::new([0.0], [TAU], 361);
+//! // Fold each turn into (min, max) of the slider position x (unknown 1).
+//! let extent = |(lo, hi): (f64, f64), _: &SliderCrank, k: &kinloop::Kin<2, 1, 0>| (lo.min(k.q[1]), hi.max(k.q[1]));
+//! let start = |_: &SliderCrank| (f64::INFINITY, f64::NEG_INFINITY);
+//! let results = scan(&designs, &spec, start, extent);
+//! for (m, r) in designs.iter().zip(&results).take(8) {
+//!     let (lo, hi) = *r.as_ref().unwrap();
+//!     let stroke = ((m.l + m.r).powi(2) - m.e * m.e).sqrt() - ((m.l - m.r).powi(2) - m.e * m.e).sqrt();
+//!     assert!((hi - lo - stroke).abs() < 1e-3);   // sampled every degree
+//! }
+//! assert!(matches!(results[8], Err(kinloop::Error::NoAssembly { .. })));
+//!
+//! // The same on all cores (feature `rayon`): bitwise the same results.
+//! #[cfg(feature = "rayon")]
+//! assert_eq!(kinloop::par_scan(&designs, &spec, start, extent), results);
+//! ```
+//!
 //! ## Errors
 //!
 //! Bad input never panics and never yields a silent NaN: see [`Error`] (non-finite parameters or

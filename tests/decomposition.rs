@@ -2,27 +2,17 @@
 //! and its correctness: results with the decomposition equal results without it
 //! (`#[kinloop(dense)]`, every unknown in one Newton block) to 1e-12 over full crank turns.
 
+use kinloop::{Kin, Sensitivities};
 use std::f64::consts::PI;
 
-kinloop::mechanism! {
-    /// Class IV mechanism (SEEDS 003): crank OA, ternary links CAE (at A) and DBF (at B), binary
-    /// links CD, EF.
-    pub struct ClassFour {
-        params oa = 1.0, xb = 4.4, yb = 0.6, ac = 2.3, ae = 2.4, alpha_a = 0.84,
-               bd = 1.6, bf = 3.5, alpha_b = 0.62, cd = 2.0, ef = 3.4;
-        input phi;
-        unknowns th1 = 1.4, th2 = 3.0, psi1 = -0.8, psi2 = -1.0;
-        let a = oa @ phi;
-        let b = (xb, yb);
-        loop acdb: a + ac @ th1 + cd @ psi1 == b + bd @ th2;
-        loop aefb: a + ae @ (th1 + alpha_a) + ef @ psi2 == b + bf @ (th2 + alpha_b);
-        point c = a + ac @ th1;
-        point f = b + bf @ (th2 + alpha_b);
-    }
-}
+#[allow(dead_code)]
+#[path = "../examples/class_four.rs"]
+mod class_four;
+
+use class_four::ClassFour;
 
 kinloop::mechanism! {
-    /// The same class IV mechanism, solved as one dense block.
+    /// The class IV mechanism of `examples/class_four.rs` (SEEDS 003), solved as one dense block.
     #[kinloop(dense)]
     pub struct ClassFourDense {
         params oa = 1.0, xb = 4.4, yb = 0.6, ac = 2.3, ae = 2.4, alpha_a = 0.84,
@@ -34,28 +24,31 @@ kinloop::mechanism! {
         loop acdb: a + ac @ th1 + cd @ psi1 == b + bd @ th2;
         loop aefb: a + ae @ (th1 + alpha_a) + ef @ psi2 == b + bf @ (th2 + alpha_b);
         point c = a + ac @ th1;
+        point e = a + ae @ (th1 + alpha_a);
+        point d = b + bd @ th2;
         point f = b + bf @ (th2 + alpha_b);
     }
 }
 
-kinloop::mechanism! {
-    /// Asymmetric rhombic drive (SEEDS 000, Fig. 1).
-    pub struct Rhombic {
-        params r_p = 1.0, r_b = 1.2, l_p = 3.0, l_b = 3.5, e_p = 0.5, de = 0.9, gamma = 0.7, l_cs2 = 1.1, l_fs4 = 1.6;
-        input phi1;
-        unknowns phi2 = 0, phi4 = pi, x_c = -l_p, x_f = l_b;
-        loop oabco:   (0, e_p) + r_p @ phi1           == (x_c, 0)  + l_p @ phi2;
-        loop oadff1o: (0, e_p) + r_b @ (phi1 + gamma) == (x_f, de) + l_b @ phi4;
-        point s2 = (x_c, 0) + l_cs2 @ phi2;
-        point s4 = (x_f, de) + l_fs4 @ phi4;
-        output stroke_sum = x_c + x_f;
-    }
+/// Declares a mechanism twice from one body: as `$name`, decomposed into blocks, and as
+/// `$dense` with `#[kinloop(dense)]`, so that the two cannot drift apart.
+macro_rules! with_dense_twin {
+    ($(#[doc = $doc:literal])* pub struct $name:ident, $dense:ident { $($body:tt)* }) => {
+        kinloop::mechanism! {
+            $(#[doc = $doc])*
+            pub struct $name { $($body)* }
+        }
+        kinloop::mechanism! {
+            $(#[doc = $doc])*
+            #[kinloop(dense)]
+            pub struct $dense { $($body)* }
+        }
+    };
 }
 
-kinloop::mechanism! {
-    /// The same rhombic drive, solved as one dense block.
-    #[kinloop(dense)]
-    pub struct RhombicDense {
+with_dense_twin! {
+    /// Asymmetric rhombic drive (SEEDS 000, Fig. 1) with a scalar output.
+    pub struct Rhombic, RhombicDense {
         params r_p = 1.0, r_b = 1.2, l_p = 3.0, l_b = 3.5, e_p = 0.5, de = 0.9, gamma = 0.7, l_cs2 = 1.1, l_fs4 = 1.6;
         input phi1;
         unknowns phi2 = 0, phi4 = pi, x_c = -l_p, x_f = l_b;
@@ -83,6 +76,11 @@ fn class_four_is_one_coupled_four_unknown_block() {
     );
     assert_eq!(ClassFourDense::BLOCKS.len(), 1);
     assert!(ClassFourDense::DECOMPOSITION.contains("dense: decomposition disabled"));
+    // The dense twin is the example's mechanism: the same names and parameter values.
+    assert_eq!(ClassFourDense::default().params_flat(), ClassFour::default().params_flat());
+    assert_eq!(ClassFourDense::PARAMS, ClassFour::PARAMS);
+    assert_eq!(ClassFourDense::EQUATIONS, ClassFour::EQUATIONS);
+    assert_eq!(ClassFourDense::OUTPUTS, ClassFour::OUTPUTS);
 }
 
 #[test]
@@ -121,8 +119,17 @@ fn assert_close(what: &str, a: &[f64], b: &[f64], tol: f64) {
     }
 }
 
-fn flat2(v: &[kinloop::Vec2]) -> Vec<f64> {
-    v.iter().flat_map(|p| [p.x, p.y]).collect()
+/// The decomposed and the dense solve agree to 1e-12: positions, analogs, outputs (flat: `x`, `y`
+/// of each point, then the scalar outputs) and the outputs' analogs.
+fn assert_same_as_dense<const N: usize, const NO: usize>(at: &str, a: &Kin<N, 1, NO>, b: &Kin<N, 1, NO>) {
+    let first = |v: &[[f64; 1]]| v.iter().map(|d| d[0]).collect::<Vec<_>>();
+    let second = |v: &[[[f64; 1]; 1]]| v.iter().map(|d| d[0][0]).collect::<Vec<_>>();
+    assert_close(&format!("q {at}"), &a.q, &b.q, 1e-12);
+    assert_close(&format!("dq {at}"), &first(&a.dq), &first(&b.dq), 1e-12);
+    assert_close(&format!("d2q {at}"), &second(&a.d2q), &second(&b.d2q), 1e-12);
+    assert_close(&format!("outputs {at}"), &a.out, &b.out, 1e-12);
+    assert_close(&format!("output analogs {at}"), &first(&a.dout), &first(&b.dout), 1e-12);
+    assert_close(&format!("output acceleration analogs {at}"), &second(&a.d2out), &second(&b.d2out), 1e-12);
 }
 
 #[test]
@@ -135,32 +142,7 @@ fn rhombic_drive_decomposed_equals_dense_over_a_turn() {
         let b = d.kinematics(phi1, &gd).unwrap_or_else(|e| panic!("dense at {phi1}: {e}"));
         gm = a.q;
         gd = b.q;
-        let at = format!("at phi1 = {phi1}");
-        let (qa, qb): ([f64; 4], [f64; 4]) = (a.q.into(), b.q.into());
-        assert_close(&format!("q {at}"), &qa, &qb, 1e-12);
-        let (va, vb): ([f64; 4], [f64; 4]) = (a.dq.into(), b.dq.into());
-        assert_close(&format!("dq {at}"), &va, &vb, 1e-12);
-        let (aa, ab): ([f64; 4], [f64; 4]) = (a.d2q.into(), b.d2q.into());
-        assert_close(&format!("d2q {at}"), &aa, &ab, 1e-12);
-        let out = |s: &RhombicState| {
-            let mut v = flat2(&[s.out.s2, s.out.s4]);
-            v.push(s.out.stroke_sum);
-            v.extend(flat2(&[s.dout.s2, s.dout.s4]));
-            v.push(s.dout.stroke_sum);
-            v.extend(flat2(&[s.d2out.s2, s.d2out.s4]));
-            v.push(s.d2out.stroke_sum);
-            v
-        };
-        let out_dense = |s: &RhombicDenseState| {
-            let mut v = flat2(&[s.out.s2, s.out.s4]);
-            v.push(s.out.stroke_sum);
-            v.extend(flat2(&[s.dout.s2, s.dout.s4]));
-            v.push(s.dout.stroke_sum);
-            v.extend(flat2(&[s.d2out.s2, s.d2out.s4]));
-            v.push(s.d2out.stroke_sum);
-            v
-        };
-        assert_close(&format!("outputs {at}"), &out(&a), &out_dense(&b), 1e-12);
+        assert_same_as_dense(&format!("at phi1 = {phi1}"), &a.flat, &b.flat);
         // The decomposition is not a different answer to the same question only by accident:
         // both satisfy the loops.
         assert!(m.residual(phi1, &a.q).iter().all(|r| r.abs() < 1e-12));
@@ -178,18 +160,8 @@ fn class_four_decomposed_equals_dense_and_assembles_over_a_turn() {
         let a = m.kinematics(phi, &gm).unwrap_or_else(|e| panic!("decomposed at {phi}: {e}"));
         let b = d.kinematics(phi, &gd).unwrap_or_else(|e| panic!("dense at {phi}: {e}"));
         let at = format!("at phi = {phi}");
-        let (qa, qb): ([f64; 4], [f64; 4]) = (a.q.into(), b.q.into());
-        assert_close(&format!("q {at}"), &qa, &qb, 1e-12);
-        let (va, vb): ([f64; 4], [f64; 4]) = (a.dq.into(), b.dq.into());
-        assert_close(&format!("dq {at}"), &va, &vb, 1e-12);
-        let (aa, ab): ([f64; 4], [f64; 4]) = (a.d2q.into(), b.d2q.into());
-        assert_close(&format!("d2q {at}"), &aa, &ab, 1e-12);
-        let (oa, ob) = (flat2(&[a.out.c, a.out.f]), flat2(&[b.out.c, b.out.f]));
-        assert_close(&format!("outputs {at}"), &oa, &ob, 1e-12);
-        let (oa, ob) = (flat2(&[a.dout.c, a.dout.f]), flat2(&[b.dout.c, b.dout.f]));
-        assert_close(&format!("output analogs {at}"), &oa, &ob, 1e-12);
-        let (oa, ob) = (flat2(&[a.d2out.c, a.d2out.f]), flat2(&[b.d2out.c, b.d2out.f]));
-        assert_close(&format!("output acceleration analogs {at}"), &oa, &ob, 1e-12);
+        assert_same_as_dense(&at, &a.flat, &b.flat);
+        let (qa, va, aa): ([f64; 4], [f64; 4], [f64; 4]) = (a.q.into(), a.dq.into(), a.d2q.into());
 
         // Independent check of the analogs: central differences of the positions.
         let plus: [f64; 4] = m.kinematics(phi + h, &a.q).expect("phi + h").q.into();

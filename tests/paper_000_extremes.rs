@@ -1,26 +1,17 @@
-//! Paper 000, Fig. 1 (SEEDS.md), the numbers printed by `examples/rhombic_drive.rs`: extreme
-//! positions of the working piston and the displacer located as roots of their velocity analogs,
-//! against the paper's `X_F0 = sqrt((L_B + R_B)^2 - e_B^2)`, `X_Fmin = sqrt((L_B - R_B)^2 -
-//! e_B^2)` and the same construction for the piston (crank and rod collinear); the crank angles
-//! there from the same triangles; strokes and phase shifts.
+//! Paper 000, Fig. 1 (SEEDS.md), the drive and the numbers printed by
+//! `examples/rhombic_drive.rs`: extreme positions of the working piston and the displacer located
+//! as roots of their velocity analogs, against the paper's `X_F0 = sqrt((L_B + R_B)^2 - e_B^2)`,
+//! `X_Fmin = sqrt((L_B - R_B)^2 - e_B^2)` and the same construction for the piston (crank and rod
+//! collinear); the crank angles there from the same triangles; strokes and phase shifts.
 
 use kinloop::analysis::{ExtremeKind, Sampled};
 use std::f64::consts::TAU;
 
-kinloop::mechanism! {
-    /// The drive of the example (same defaults).
-    pub struct RhombicDrive {
-        params r_p = 1.0, r_b = 1.2, l_p = 3.0, l_b = 3.5, e_p = 0.5, de = 0.9, gamma = 0.7,
-               l_as1 = 0.3, psi_s1 = 0.35, l_cs2 = 1.2, l_fs4 = 1.4;
-        input phi1;
-        unknowns phi2 = 0, phi4 = pi, x_c = -l_p, x_f = l_b;
-        loop oabco:   (0, e_p) + r_p @ phi1           == (x_c, 0)  + l_p @ phi2;
-        loop oadff1o: (0, e_p) + r_b @ (phi1 + gamma) == (x_f, de) + l_b @ phi4;
-        point s1 = (0, e_p) + l_as1 @ (phi1 + psi_s1);
-        point s2 = (x_c, 0) + l_cs2 @ phi2;
-        point s4 = (x_f, de) + l_fs4 @ phi4;
-    }
-}
+#[allow(dead_code)]
+#[path = "../examples/rhombic_drive.rs"]
+mod rhombic_drive;
+
+use rhombic_drive::RhombicDrive;
 
 /// Difference of two angles modulo a turn, in (-pi, pi].
 fn angle_diff(a: f64, b: f64) -> f64 {

@@ -1,36 +1,18 @@
-//! Paper 000, Figs. 2 and 3 (SEEDS.md; equations not published), declared as in
+//! Paper 000, Figs. 2 and 3 (SEEDS.md; equations not published), as declared in
 //! `examples/rhombic_variants.rs`: the loops close along a sweep; the analogs agree with finite
 //! differences; positions agree with an independent triangle-by-triangle construction; with the
 //! third joint on the crank pin both reduce to Fig. 1 and match its published closed form
 //! (positions, velocity and acceleration analogs); the strokes the example prints.
 
-use kinloop::NewtonConfig;
 use kinloop::analysis::Sampled;
+use kinloop::{Kin, NewtonConfig};
 use std::f64::consts::{PI, TAU};
 
-kinloop::mechanism! {
-    /// Fig. 2: developed displacer rod.
-    pub struct DisplacerRodDrive {
-        params r = 1.0, l_b = 3.5, l_fd = 2.2, gamma_b = 0.35, l_p = 3.0, e_p = 0.5, de = 0.9;
-        input phi1;
-        unknowns phi4 = pi, x_f = l_b, phi2 = 0, x_c = -l_p;
-        loop oabff1o: (0, e_p) + r @ phi1 == (x_f, de) + l_b @ phi4;
-        loop ocdff1o: (x_c, 0) + l_p @ phi2 == (x_f, de) + l_fd @ (phi4 + gamma_b);
-        point d = (x_f, de) + l_fd @ (phi4 + gamma_b);
-    }
-}
+#[allow(dead_code)]
+#[path = "../examples/rhombic_variants.rs"]
+mod rhombic_variants;
 
-kinloop::mechanism! {
-    /// Fig. 3: developed working rod.
-    pub struct WorkingRodDrive {
-        params r = 1.0, l_p = 3.0, l_cd = 1.8, gamma_p = -0.4, l_b = 3.5, e_p = 0.5, de = -0.4;
-        input phi1;
-        unknowns phi2 = 0, x_c = -l_p, phi4 = pi, x_f = l_b;
-        loop oabco: (0, e_p) + r @ phi1 == (x_c, 0) + l_p @ phi2;
-        loop of1fdco: (x_f, de) + l_b @ phi4 == (x_c, 0) + l_cd @ (phi2 + gamma_p);
-        point d = (x_c, 0) + l_cd @ (phi2 + gamma_p);
-    }
-}
+use rhombic_variants::{DisplacerRodDrive, WorkingRodDrive};
 
 /// Fig. 1's published closed form (SEEDS.md 000) with one crank pin (R_P = R_B = r,
 /// gamma = 0): (positions, velocity analogs, acceleration analogs) of [phi2, phi4, X_C, X_F].
@@ -145,6 +127,19 @@ fn analogs_match_finite_differences() {
     }
 }
 
+/// Positions, velocity and acceleration analogs of `[phi2, phi4, X_C, X_F]` in a state (flat, its
+/// unknowns in the declared order `unknowns`) against Fig. 1's closed form.
+fn assert_fig1<const NO: usize>(fig: &str, unknowns: [&str; 4], s: &Kin<4, 1, NO>, want: [[f64; 4]; 3]) {
+    let at = ["phi2", "phi4", "x_c", "x_f"].map(|name| unknowns.iter().position(|u| *u == name).unwrap());
+    let got = [at.map(|u| s.q[u]), at.map(|u| s.dq[u][0]), at.map(|u| s.d2q[u][0][0])];
+    for o in 0..3 {
+        for u in 0..4 {
+            let tol = if o == 0 { 1e-12 } else { 1e-9 };
+            assert!(close(got[o][u], want[o][u], tol), "{fig} order {o} #{u} at {}", s.x[0]);
+        }
+    }
+}
+
 #[test]
 fn third_joint_on_the_crank_pin_reduces_to_fig_1() {
     let d2 = DisplacerRodDrive { l_fd: 3.5, gamma_b: 0.0, ..DisplacerRodDrive::default() };
@@ -152,32 +147,12 @@ fn third_joint_on_the_crank_pin_reduces_to_fig_1() {
     for s in d2.sweep(0.0, TAU, 721, &d2.guess(0.0)).unwrap() {
         let s = s.unwrap();
         let c = fig1(d2.r, d2.l_p, d2.l_b, d2.e_p, d2.de, s.input.phi1);
-        let got = [
-            [s.q.phi2, s.q.phi4, s.q.x_c, s.q.x_f],
-            [s.dq.phi2, s.dq.phi4, s.dq.x_c, s.dq.x_f],
-            [s.d2q.phi2, s.d2q.phi4, s.d2q.x_c, s.d2q.x_f],
-        ];
-        for o in 0..3 {
-            for u in 0..4 {
-                let tol = if o == 0 { 1e-12 } else { 1e-9 };
-                assert!(close(got[o][u], c[o][u], tol), "Fig. 2 order {o} #{u} at {}", s.input.phi1);
-            }
-        }
+        assert_fig1("Fig. 2", DisplacerRodDrive::UNKNOWNS, &s.flat, c);
     }
     for s in d3.sweep(0.0, TAU, 721, &d3.guess(0.0)).unwrap() {
         let s = s.unwrap();
         let c = fig1(d3.r, d3.l_p, d3.l_b, d3.e_p, d3.de, s.input.phi1);
-        let got = [
-            [s.q.phi2, s.q.phi4, s.q.x_c, s.q.x_f],
-            [s.dq.phi2, s.dq.phi4, s.dq.x_c, s.dq.x_f],
-            [s.d2q.phi2, s.d2q.phi4, s.d2q.x_c, s.d2q.x_f],
-        ];
-        for o in 0..3 {
-            for u in 0..4 {
-                let tol = if o == 0 { 1e-12 } else { 1e-9 };
-                assert!(close(got[o][u], c[o][u], tol), "Fig. 3 order {o} #{u} at {}", s.input.phi1);
-            }
-        }
+        assert_fig1("Fig. 3", WorkingRodDrive::UNKNOWNS, &s.flat, c);
     }
 }
 

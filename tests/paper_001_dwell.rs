@@ -1,23 +1,22 @@
-//! Paper 001 (SEEDS.md), the numbers printed by `examples/gear_lever.rs`: dwell duration, dwell
-//! quality (rocker swing) and peak acceleration analog for k = 1.1 ... 1.5, from the analysis
+//! Paper 001 (SEEDS.md), the mechanism and numbers of `examples/gear_lever.rs`: dwell duration,
+//! dwell quality (rocker swing) and peak acceleration analog for k = 1.1 ... 1.5, from the analysis
 //! helpers on the generated kinematics, against an independent computation from the paper's
 //! explicit formulas (rocker angle `atan2(x, y)`, `omega_r`, `eps_r`) with bisection and
 //! golden-section search, using the symmetry of the stop about alpha = 0.
 
-use kinloop::analysis::{ExtremeKind, Sampled};
-use std::f64::consts::{PI, TAU};
+use kinloop::analysis::ExtremeKind;
+use std::f64::consts::PI;
 
-kinloop::mechanism! {
-    /// Gear-lever drive (as in the example).
-    pub struct GearLever {
-        params l_c = 2.0, l_p = 1.3, u = 3.0;
-        input alpha;
-        unknowns s = l_c + l_p, phi = 0;
-        let pin = (l_c * sin(alpha), l_c * cos(alpha))
-                + (l_p * sin((1 - u) * alpha), l_p * cos((1 - u) * alpha));
-        loop oab: pin == s * (sin(phi), cos(phi));
-    }
-}
+#[allow(dead_code)]
+#[path = "../examples/gear_lever.rs"]
+mod gear_lever;
+
+use gear_lever::{GearLever, stops};
+
+#[allow(dead_code)] // not every test uses every helper
+mod support;
+
+use support::{argmax, bisect};
 
 /// The paper's explicit formulas for u = 3, L = 2, l = k: rocker angle, omega_r / omega,
 /// eps_r / omega^2.
@@ -34,20 +33,6 @@ fn explicit(k: f64, a: f64) -> (f64, f64, f64) {
     (x.atan2(y), w, e)
 }
 
-fn bisect(f: impl Fn(f64) -> f64, mut lo: f64, mut hi: f64) -> f64 {
-    let flo = f(lo);
-    assert!(flo * f(hi) < 0.0, "no sign change on [{lo}, {hi}]");
-    for _ in 0..200 {
-        let mid = 0.5 * (lo + hi);
-        if (f(mid) < 0.0) == (flo < 0.0) {
-            lo = mid;
-        } else {
-            hi = mid;
-        }
-    }
-    0.5 * (lo + hi)
-}
-
 /// Independent stop characteristics: (duration, swing, peak acceleration analog) in radians.
 fn independent(k: f64) -> (f64, f64, f64) {
     // The rocker angle is odd in alpha: phi(-a) = -phi(a). Near alpha = 0 the rocker runs
@@ -59,30 +44,12 @@ fn independent(k: f64) -> (f64, f64, f64) {
     let a2 = bisect(|a| explicit(k, a).0 + phi1, a1, PI / 3.0);
     // The peak acceleration analog: a dense scan over one stop cycle, refined by golden sections.
     let acc = |a: f64| explicit(k, a).2;
-    let n = 12_000;
-    let best = (0..n).map(|i| 2.0 * PI / 3.0 * i as f64 / n as f64).max_by(|a, b| acc(*a).total_cmp(&acc(*b))).unwrap();
-    let h = 2.0 * PI / 3.0 / n as f64;
-    let (mut lo, mut hi) = (best - h, best + h);
-    let g = (5f64.sqrt() - 1.0) / 2.0;
-    for _ in 0..100 {
-        let (c, d) = (hi - g * (hi - lo), lo + g * (hi - lo));
-        if acc(c) > acc(d) {
-            hi = d;
-        } else {
-            lo = c;
-        }
-    }
-    (2.0 * a2, -2.0 * phi1, acc(0.5 * (lo + hi)))
+    (2.0 * a2, -2.0 * phi1, acc(argmax(acc, 2.0 * PI / 3.0, 12_000)))
 }
 
-/// The example's computation (same calls).
+/// The example's computation for `k` (its `stops`).
 fn with_helpers(k: f64) -> (Vec<kinloop::analysis::Dwell>, (f64, f64)) {
-    let m = GearLever { l_p: k, ..GearLever::default() };
-    let from = -PI / 3.0;
-    let turn = Sampled::sweep(&m, from, from + TAU, 721, m.guess(from).into()).unwrap();
-    let dwells = turn.dwells("phi").unwrap();
-    let peak = turn.peak(|s| s.d2q[1][0][0]).unwrap();
-    (dwells, peak)
+    stops(&GearLever { l_p: k, ..GearLever::default() }).unwrap()
 }
 
 #[test]
@@ -131,9 +98,6 @@ fn dwell_duration_quality_and_peak_acceleration_match_the_explicit_formulas() {
 fn the_stops_do_not_depend_on_size() {
     // Angular results depend on the ratios only: scale every length by 2.5.
     let (a, _) = with_helpers(1.3);
-    let m = GearLever { l_c: 5.0, l_p: 1.3 * 2.5, u: 3.0 };
-    let from = -PI / 3.0;
-    let turn = Sampled::sweep(&m, from, from + TAU, 721, m.guess(from).into()).unwrap();
-    let b = turn.dwells("phi").unwrap();
+    let (b, _) = stops(&GearLever { l_c: 5.0, l_p: 1.3 * 2.5, u: 3.0 }).unwrap();
     assert!((a[0].duration() - b[0].duration()).abs() < 1e-10 && (a[0].swing() - b[0].swing()).abs() < 1e-10);
 }

@@ -1,4 +1,4 @@
-//! Paper 003 (SEEDS.md), as in `examples/class_four.rs`: a class IV mechanism (crank OA,
+//! Paper 003 (SEEDS.md), as declared in `examples/class_four.rs`: a class IV mechanism (crank OA,
 //! ternary links CAE and DBF, binary links CD and EF). The coupled group is one block; the loops
 //! close over a full turn; the analogs agree with finite differences; and the positions agree
 //! with the paper's own method, solved independently: track the free angle of link DBF until
@@ -7,23 +7,16 @@
 use kinloop::NewtonConfig;
 use std::f64::consts::{PI, TAU};
 
-kinloop::mechanism! {
-    /// Class IV mechanism (as in the example).
-    pub struct ClassFour {
-        params oa = 1.0, xb = 4.4, yb = 0.6, ac = 2.3, ae = 2.4, alpha_a = 0.84,
-               bd = 1.6, bf = 3.5, alpha_b = 0.62, cd = 2.0, ef = 3.4;
-        input phi;
-        unknowns th1 = 1.4, th2 = 3.0, psi1 = -0.8, psi2 = -1.0;
-        let a = oa @ phi;
-        let b = (xb, yb);
-        loop acdb: a + ac @ th1 + cd @ psi1 == b + bd @ th2;
-        loop aefb: a + ae @ (th1 + alpha_a) + ef @ psi2 == b + bf @ (th2 + alpha_b);
-        point c = a + ac @ th1;
-        point e = a + ae @ (th1 + alpha_a);
-        point d = b + bd @ th2;
-        point f = b + bf @ (th2 + alpha_b);
-    }
-}
+#[allow(dead_code)]
+#[path = "../examples/class_four.rs"]
+mod class_four;
+
+use class_four::ClassFour;
+
+#[allow(dead_code)] // not every test uses every helper
+mod support;
+
+use support::bisect;
 
 fn wrap(a: f64) -> f64 {
     (a + PI).rem_euclid(TAU) - PI
@@ -71,17 +64,9 @@ fn full_turn_against_the_tracking_solution() {
         assert!(m.residual(phi, &s.q).iter().all(|r| r.abs() < 1e-12), "loops open at {phi}");
         // Track: bracket the root of the EF closure near the previous angle, then bisect.
         let g = |t: f64| close_with(&m, phi, t, side).3;
-        let (mut lo, mut hi) = (th2 - 0.05, th2 + 0.05);
+        let (lo, hi) = (th2 - 0.05, th2 + 0.05);
         assert!(g(lo) * g(hi) < 0.0, "no bracket at {phi}");
-        for _ in 0..200 {
-            let mid = 0.5 * (lo + hi);
-            if (g(mid) < 0.0) == (g(lo) < 0.0) {
-                lo = mid;
-            } else {
-                hi = mid;
-            }
-        }
-        th2 = 0.5 * (lo + hi);
+        th2 = bisect(g, lo, hi);
         let (th1, psi1, psi2, _) = close_with(&m, phi, th2, side);
         // The solution's sensitivity to the loop residual is ~1 (well conditioned).
         for (got, want, name) in

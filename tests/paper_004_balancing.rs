@@ -1,49 +1,23 @@
-//! Paper 004 (SEEDS.md), the model and numbers of `examples/balancing.rs`: the residual
-//! unbalance `D = max |X_c - X_c1|` of the rhombic drive's reciprocating masses, from the
-//! analysis helpers on the generated kinematics, against an independent computation from the
-//! closed-form kinematics of paper 000 (Fourier sums on a fine grid, dense scan of the residual
-//! refined by golden sections); the closed-form optimum (exact balance) found by Nelder–Mead;
-//! the phase-constrained optimum, its phase shift and its local optimality.
+//! Paper 004 (SEEDS.md), the model, functions and numbers of `examples/balancing.rs`: the residual
+//! unbalance `D = max |X_c - X_c1|` of the rhombic drive's reciprocating masses, from the analysis
+//! helpers on the generated kinematics, against an independent computation from the closed-form
+//! kinematics of paper 000 (Fourier sums on a fine grid, dense scan of the residual refined by
+//! golden sections); the closed-form optimum (exact balance) found by Nelder–Mead; the
+//! phase-constrained optimum, its phase shift and its local optimality.
 
 use kinloop::analysis::{NelderMead, Sampled, nelder_mead_boxed};
 use std::f64::consts::{PI, TAU};
 
-kinloop::mechanism! {
-    /// As in the example.
-    pub struct Balance {
-        params gamma = 2.0, k = 0.3, rho = 1.0, gamma_b = 2.0, k_b = 0.3, delta = 0.0, mass_ratio = 1.5;
-        input alpha;
-        unknowns phi2 = 0, phi4 = pi, x_c = -gamma, x_f = gamma_b;
-        loop oabco:   (0, k) + 1 @ alpha             == (x_c, 0) + gamma @ phi2;
-        loop oadff1o: (0, k) + rho @ (alpha + delta) == (x_f, k - k_b * rho) + gamma_b @ phi4;
-        output xc = -(mass_ratio * x_c + x_f) / (mass_ratio + 1);
-    }
-}
+#[allow(dead_code)]
+#[path = "../examples/balancing.rs"]
+mod balancing;
 
-const PHASE: f64 = PI / 2.0;
+use balancing::{Balance, PHASE, design, phased, unbalance};
 
-fn delta_for_phase(m: &Balance) -> f64 {
-    let e_b = m.k_b * m.rho;
-    let piston = f64::atan2(-m.k, -((m.gamma + 1.0).powi(2) - m.k * m.k).sqrt());
-    let displacer = f64::atan2(-e_b, ((m.gamma_b + m.rho).powi(2) - e_b * e_b).sqrt());
-    displacer - piston - PHASE
-}
+#[allow(dead_code)] // not every test uses every helper
+mod support;
 
-fn design(p: [f64; 4]) -> Balance {
-    Balance { rho: p[0], gamma_b: p[1], k_b: p[2], delta: p[3], ..Balance::default() }
-}
-
-fn phased(p: [f64; 3]) -> Balance {
-    let m = design([p[0], p[1], p[2], 0.0]);
-    Balance { delta: delta_for_phase(&m), ..m }
-}
-
-/// D from the helpers, as in the example (`samples` per turn).
-fn unbalance(m: &Balance, samples: usize) -> f64 {
-    let in_ranges = (0.5..=2.0).contains(&m.rho) && (1.5..=6.0).contains(&m.gamma_b) && (-1.0..=1.0).contains(&m.k_b);
-    let d = || Sampled::sweep(m, 0.0, TAU, samples + 1, m.guess(0.0).into())?.residual("xc", 1).map(|r| r.max_abs);
-    if in_ranges { d().unwrap_or(f64::INFINITY) } else { f64::INFINITY }
-}
+use support::argmax;
 
 /// X_c from paper 000's closed form (piston rod to the left, displacer rod to the right).
 fn xc_closed(m: &Balance, a: f64) -> f64 {
@@ -70,20 +44,7 @@ fn d_closed(m: &Balance) -> (f64, f64, f64) {
         b2 += 2.0 * v * (2.0 * a).sin() / n as f64;
     }
     let r = |a: f64| (xc_closed(m, a) - a0 - a1 * a.cos() - b1 * a.sin()).abs();
-    let scan = 20_000;
-    let best = (0..scan).map(|i| TAU * i as f64 / scan as f64).max_by(|x, y| r(*x).total_cmp(&r(*y))).unwrap();
-    let h = TAU / scan as f64;
-    let (mut lo, mut hi) = (best - h, best + h);
-    let g = (5f64.sqrt() - 1.0) / 2.0;
-    for _ in 0..100 {
-        let (c, d) = (hi - g * (hi - lo), lo + g * (hi - lo));
-        if r(c) > r(d) {
-            hi = d;
-        } else {
-            lo = c;
-        }
-    }
-    let at = 0.5 * (lo + hi);
+    let at = argmax(r, TAU, 20_000);
     (r(at), at, a2.hypot(b2))
 }
 

@@ -1,49 +1,17 @@
-//! The roller edger of SEEDS.md (paper 002), driven by time: hydraulic cylinder 1 extends at
-//! constant speed, `S1 = V1 t`. Both contours, against closed forms derived from the triangles
-//! (law of cosines) and their time derivatives derived by hand.
+//! The roller edger of SEEDS.md (paper 002) as declared in `examples/roller_edger.rs`, driven by
+//! time: hydraulic cylinder 1 extends at constant speed, `S1 = V1 t`. Contour 1 against the
+//! example's closed forms (law of cosines and its time derivatives derived by hand; SEEDS.md
+//! prints `phi1 = alpha - acos(d)` next to `phi3 = alpha - acos(c)`, signs of two different
+//! assembly modes: the consistent pair is used), contour 2 against a triangle construction.
 
-kinloop::mechanism! {
-    /// Lever-turning mode of the roller edger. Contour O1 A O3 O1: cylinder 1 (pivot O1, length
-    /// `s1 + l1`) and link 3 (`l3`, turning about O3), frame O1O3 = `l5 @ alpha`. Contour
-    /// O2 B A O3 O2: cylinder 2 (pivot O2, length `s2 + l2`), link 4 from B to A (`l4`), frame
-    /// O2O3 = `l6 @ beta`.
-    pub struct RollerEdger {
-        params l1, l3, l5, alpha, v1, l2, s2, l4, l6, beta;
-        input t;
-        unknowns phi1 = 1.0, phi3 = -1.0, phi2 = 2.0, phi4 = 0.5;
-        let s1 = v1 * t;
-        loop o1ao3:  (s1 + l1) @ phi1 + l3 @ phi3 == l5 @ alpha;
-        loop o2bao3: (s2 + l2) @ phi2 + l4 @ phi4 + l3 @ phi3 == l6 @ beta;
-    }
-}
+#[allow(dead_code)]
+#[path = "../examples/roller_edger.rs"]
+mod roller_edger;
+
+use roller_edger::{RollerEdger, closed, solved};
 
 const M: RollerEdger =
     RollerEdger { l1: 0.9, l3: 0.6, l5: 1.2, alpha: 0.2, v1: 0.05, l2: 1.0, s2: 0.1, l4: 0.7, l6: 1.4, beta: 0.9 };
-
-/// phi3(t) = alpha - acos(c), phi1(t) = alpha + acos(d) with their first and second time
-/// derivatives. (SEEDS.md prints phi1 = alpha - acos(d) next to phi3 = alpha - acos(c); those two
-/// signs describe different assembly modes: with phi1 = alpha - acos(d) the link satisfies
-/// phi3 = alpha + acos(c). The consistent pair is used here.)
-fn contour1(m: &RollerEdger, t: f64) -> [[f64; 3]; 2] {
-    let s = m.v1 * t + m.l1;
-    let (l3, l5, v) = (m.l3, m.l5, m.v1);
-    let c = (l5 * l5 + l3 * l3 - s * s) / (2.0 * l5 * l3);
-    let dc = -s * v / (l5 * l3);
-    let ddc = -v * v / (l5 * l3);
-    let r = 1.0 - c * c;
-    let phi3 = m.alpha - c.acos();
-    let dphi3 = dc / r.sqrt();
-    let ddphi3 = ddc / r.sqrt() + dc * dc * c / r.powf(1.5);
-    let k = l5 * l5 - l3 * l3;
-    let d = s / (2.0 * l5) + k / (2.0 * l5 * s);
-    let dd = v / (2.0 * l5) - k * v / (2.0 * l5 * s * s);
-    let ddd = k * v * v / (l5 * s * s * s);
-    let r = 1.0 - d * d;
-    let phi1 = m.alpha + d.acos();
-    let dphi1 = -dd / r.sqrt();
-    let ddphi1 = -ddd / r.sqrt() - dd * dd * d / r.powf(1.5);
-    [[phi1, dphi1, ddphi1], [phi3, dphi3, ddphi3]]
-}
 
 #[test]
 fn roller_edger_matches_closed_forms_in_time() {
@@ -54,9 +22,7 @@ fn roller_edger_matches_closed_forms_in_time() {
         let t = 6.0 * i as f64 / 400.0;
         let st = M.kinematics(t, &guess).unwrap_or_else(|e| panic!("t = {t}: {e}"));
         guess = st.q;
-        let [c1, c3] = contour1(&M, t);
-        let got1 = [st.q.phi1, st.dq.phi1, st.d2q.phi1];
-        let got3 = [st.q.phi3, st.dq.phi3, st.d2q.phi3];
+        let ([c1, c3, _, _], [got1, got3, _, _]) = (closed(&M, t), solved(&st));
         for o in 0..3 {
             let tol = if o == 0 { 1e-12 } else { 1e-9 };
             assert!(

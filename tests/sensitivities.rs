@@ -1,6 +1,6 @@
 //! Parameter sensitivities of positions, analogs and outputs against central finite differences
-//! over random parameter sets: rhombic drive, gear-lever, class IV mechanism, and a two-input
-//! five-bar.
+//! over random parameter sets: rhombic drive, gear-lever and class IV mechanism (the last two as
+//! declared in the examples), and a two-input five-bar.
 //!
 //! Reference: central differences with relative steps h and h/2 combined by Richardson
 //! extrapolation, (4 D(h/2) - D(h)) / 3, whose truncation error is O(h^4); with h = 1e-4 that is
@@ -23,28 +23,17 @@ kinloop::mechanism! {
     }
 }
 
-kinloop::mechanism! {
-    pub struct GearLever {
-        params l_c, l_p, u;
-        input alpha;
-        unknowns s = l_c + l_p, phi = 0;
-        let pin = (l_c * sin(alpha), l_c * cos(alpha)) + (l_p * sin((1 - u) * alpha), l_p * cos((1 - u) * alpha));
-        loop oab: pin == s * (sin(phi), cos(phi));
-    }
-}
+#[allow(dead_code)]
+#[path = "../examples/gear_lever.rs"]
+mod gear_lever;
 
-kinloop::mechanism! {
-    pub struct ClassFour {
-        params oa, xb, yb, ac, ae, alpha_a, bd, bf, alpha_b, cd, ef;
-        input phi;
-        unknowns th1 = 1.4, th2 = 3.0, psi1 = -0.8, psi2 = -1.0;
-        let a = oa @ phi;
-        let b = (xb, yb);
-        loop acdb: a + ac @ th1 + cd @ psi1 == b + bd @ th2;
-        loop aefb: a + ae @ (th1 + alpha_a) + ef @ psi2 == b + bf @ (th2 + alpha_b);
-        point e = a + ae @ (th1 + alpha_a);
-    }
-}
+// Both examples load `examples/common/mod.rs` (their plotting helpers, unused here).
+#[allow(dead_code, clippy::duplicate_mod)]
+#[path = "../examples/class_four.rs"]
+mod class_four;
+
+use class_four::ClassFour;
+use gear_lever::GearLever;
 
 kinloop::mechanism! {
     pub struct FiveBar {
@@ -160,19 +149,7 @@ fn gear_lever_sensitivities_match_finite_differences() {
 
 #[test]
 fn class_four_sensitivities_match_finite_differences() {
-    let base = ClassFour {
-        oa: 1.0,
-        xb: 4.4,
-        yb: 0.6,
-        ac: 2.3,
-        ae: 2.4,
-        alpha_a: 0.84,
-        bd: 1.6,
-        bf: 3.5,
-        alpha_b: 0.62,
-        cd: 2.0,
-        ef: 3.4,
-    };
+    let base = ClassFour::default();
     let mut rng = Rng(777);
     let mut q = base.position(0.0, &base.guess(0.0)).unwrap().0;
     for k in 0..12 {

@@ -1,9 +1,8 @@
-//! The class IV mechanism of SEEDS.md 003 (one coupled block of four unknowns): kinloop and a
-//! hand-written Newton for that block, with the same tolerance, warm start and outputs.
+//! The class IV mechanism of SEEDS.md 003 (one coupled block of four unknowns): a hand-written
+//! Newton for that block, with the same tolerance, warm start and outputs as kinloop (whose
+//! variants are in [`crate::kinloop_variants`]).
 
-use kinloop::NewtonConfig;
-
-use crate::decls::{ClassFour, ClassFourUnknowns};
+use crate::decls::ClassFour;
 use crate::linalg::{Lu, max_abs};
 use crate::rhombic::{MAX_ITERATIONS, TOL};
 use crate::sweep::{Failed, Step, Stepper};
@@ -58,29 +57,6 @@ impl Params {
             alpha_b: self.alpha_b,
             cd: self.cd,
             ef: self.ef,
-        }
-    }
-}
-
-/// kinloop through the named API (`kinematics_with` returning `ClassFourState`).
-#[derive(Clone, Copy, Debug)]
-pub struct KinloopNamed {
-    pub m: ClassFour,
-    pub cfg: NewtonConfig,
-}
-
-impl KinloopNamed {
-    pub fn new(m: ClassFour) -> Self {
-        KinloopNamed { m, cfg: NewtonConfig::default() }
-    }
-}
-
-impl Stepper<4> for KinloopNamed {
-    #[inline]
-    fn step(&self, phi: f64, guess: &[f64; 4]) -> Result<Step<4>, Failed> {
-        match self.m.kinematics_with(phi, &ClassFourUnknowns::from(*guess), &self.cfg) {
-            Ok(s) => Ok(Step { q: s.q.into(), dq: s.dq.into(), d2q: s.d2q.into(), iterations: s.report.iterations }),
-            Err(e) => Err(Failed::new(e)),
         }
     }
 }

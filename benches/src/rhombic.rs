@@ -1,7 +1,7 @@
-//! The rhombic drive of SEEDS.md 000 solved six ways: the published closed form, kinloop (flat
-//! and named API), a hand-written Newton exploiting the two independent loops, and a dense 4x4
-//! Newton whose Jacobian comes from hand-written derivatives, from num-dual, or from finite
-//! differences.
+//! The peers of kinloop for the rhombic drive of SEEDS.md 000 (kinloop itself is in
+//! [`crate::kinloop_variants`]): the published closed form, a hand-written Newton exploiting the
+//! two independent loops, and a dense 4x4 Newton whose Jacobian comes from hand-written
+//! derivatives, from num-dual, or from finite differences.
 //!
 //! Every Newton here stops at `max |f| <= 1e-12` (kinloop's default), starts from the guess the
 //! sweep hands it, and returns the same outputs: the 4 positions, 4 velocity analogs and 4
@@ -9,11 +9,10 @@
 
 use std::f64::consts::PI;
 
-use kinloop::{Mechanism, NewtonConfig};
 use nalgebra::{SMatrix, SVector};
 use num_dual::{Dual2, DualNum, DualSVec64};
 
-use crate::decls::{RhombicDrive, RhombicDriveUnknowns};
+use crate::decls::RhombicDrive;
 use crate::linalg::max_abs;
 use crate::sweep::{Failed, Step, Stepper};
 
@@ -120,61 +119,6 @@ impl Stepper<4> for ClosedForm {
 }
 
 // ---------------------------------------------------------------------------------------------
-// kinloop.
-
-/// kinloop through the generic [`Mechanism`] trait (`kinematics_flat`: flat arrays); `NO` is
-/// the mechanism's number of output columns.
-#[derive(Clone, Copy, Debug)]
-pub struct Kinloop<M, const NO: usize> {
-    pub m: M,
-    pub cfg: NewtonConfig,
-}
-
-impl<M, const NO: usize> Kinloop<M, NO> {
-    pub fn new(m: M) -> Self {
-        Kinloop { m, cfg: NewtonConfig::default() }
-    }
-}
-
-impl<M: Mechanism<N, 1, NO>, const N: usize, const NO: usize> Stepper<N> for Kinloop<M, NO> {
-    #[inline]
-    fn step(&self, phi: f64, guess: &[f64; N]) -> Result<Step<N>, Failed> {
-        match self.m.kinematics_flat(&[phi], guess, &self.cfg) {
-            Ok(k) => Ok(Step {
-                q: k.q,
-                dq: k.dq.map(|r| r[0]),
-                d2q: k.d2q.map(|r| r[0][0]),
-                iterations: k.report.iterations,
-            }),
-            Err(e) => Err(Failed::new(e)),
-        }
-    }
-}
-
-/// kinloop through the named API (`kinematics_with` returning `RhombicDriveState`).
-#[derive(Clone, Copy, Debug)]
-pub struct KinloopNamed {
-    pub m: RhombicDrive,
-    pub cfg: NewtonConfig,
-}
-
-impl KinloopNamed {
-    pub fn new(m: RhombicDrive) -> Self {
-        KinloopNamed { m, cfg: NewtonConfig::default() }
-    }
-}
-
-impl Stepper<4> for KinloopNamed {
-    #[inline]
-    fn step(&self, phi: f64, guess: &[f64; 4]) -> Result<Step<4>, Failed> {
-        match self.m.kinematics_with(phi, &RhombicDriveUnknowns::from(*guess), &self.cfg) {
-            Ok(s) => Ok(Step { q: s.q.into(), dq: s.dq.into(), d2q: s.d2q.into(), iterations: s.report.iterations }),
-            Err(e) => Err(Failed::new(e)),
-        }
-    }
-}
-
-// ---------------------------------------------------------------------------------------------
 // Hand-written Newton exploiting the two independent loops.
 
 /// Scalar Newton on `f(t)`; `eval` returns `(f, f', sin t, cos t)` so the caller keeps them.
@@ -248,22 +192,6 @@ type V4 = SVector<f64, 4>;
 /// unknowns `phi2, phi4, x_c, x_f`), generic over the number type for num-dual.
 #[inline(always)]
 pub fn residual<D: DualNum<Primitive = f64> + Copy>(p: &Params, phi1: D, q: [D; 4]) -> [D; 4] {
-    let [phi2, phi4, x_c, x_f] = q;
-    let (s1, c1) = phi1.sin_cos();
-    let (sa, ca) = (phi1 + p.gamma).sin_cos();
-    let (s2, c2) = phi2.sin_cos();
-    let (s4, c4) = phi4.sin_cos();
-    [
-        c1 * p.r_p - x_c - c2 * p.l_p,
-        s1 * p.r_p + p.e_p - s2 * p.l_p,
-        ca * p.r_b - x_f - c4 * p.l_b,
-        sa * p.r_b + (p.e_p - p.de) - s4 * p.l_b,
-    ]
-}
-
-/// Plain-f64 residual (the same expression).
-#[inline(always)]
-fn residual_f64(p: &Params, phi1: f64, q: [f64; 4]) -> [f64; 4] {
     let [phi2, phi4, x_c, x_f] = q;
     let (s1, c1) = phi1.sin_cos();
     let (sa, ca) = (phi1 + p.gamma).sin_cos();
@@ -407,13 +335,13 @@ impl Stepper<4> for DenseFiniteDifference {
         let p = &self.p;
         let sqrt_eps = f64::EPSILON.sqrt();
         let (z, j, f, iterations) = dense_newton(*guess, |z| {
-            let f = residual_f64(p, phi1, *z);
+            let f = residual::<f64>(p, phi1, *z);
             let mut j = M4::zeros();
             for c in 0..4 {
                 let mut zc = *z;
                 zc[c] += sqrt_eps * z[c].abs().max(1.0);
                 let h = zc[c] - z[c];
-                let fc = residual_f64(p, phi1, zc);
+                let fc = residual::<f64>(p, phi1, zc);
                 for r in 0..4 {
                     j[(r, c)] = (fc[r] - f[r]) / h;
                 }
@@ -422,14 +350,14 @@ impl Stepper<4> for DenseFiniteDifference {
         })?;
         let hp = sqrt_eps * phi1.abs().max(1.0);
         let phi_h = phi1 + hp;
-        let f_h = residual_f64(p, phi_h, z);
+        let f_h = residual::<f64>(p, phi_h, z);
         let hp = phi_h - phi1;
         let f_phi = std::array::from_fn(|r| (f_h[r] - f[r]) / hp);
         let (dq, d2q) = dense_analogs(&j, f_phi, |dq| {
             // eps^(1/4) balances truncation (~e^2) against rounding (~eps/e^2).
             let e = f64::EPSILON.sqrt().sqrt() / max_abs(dq).max(1.0);
-            let plus = residual_f64(p, phi1 + e, std::array::from_fn(|u| z[u] + e * dq[u]));
-            let minus = residual_f64(p, phi1 - e, std::array::from_fn(|u| z[u] - e * dq[u]));
+            let plus = residual::<f64>(p, phi1 + e, std::array::from_fn(|u| z[u] + e * dq[u]));
+            let minus = residual::<f64>(p, phi1 - e, std::array::from_fn(|u| z[u] - e * dq[u]));
             std::array::from_fn(|r| (plus[r] - 2.0 * f[r] + minus[r]) / (e * e))
         })?;
         Ok(Step { q: z, dq, d2q, iterations })

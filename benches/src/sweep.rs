@@ -121,7 +121,18 @@ impl<const N: usize> Sweep<N> {
         if self.k == self.steps {
             self.k = 0;
         }
-        let phi = self.h * self.k as f64;
+        self.solve_at(s, self.h * self.k as f64)
+    }
+
+    /// Like [`Sweep::advance`], but solves the next step at `phi` instead of at the next angle
+    /// of the turn (to follow another sweep's angles, which may differ from these by rounding).
+    pub fn advance_to<S: Stepper<N>>(&mut self, s: &S, phi: f64) -> Result<&Step<N>, Failed> {
+        self.k = (self.k + 1) % self.steps;
+        self.solve_at(s, phi)
+    }
+
+    #[inline(always)]
+    fn solve_at<S: Stepper<N>>(&mut self, s: &S, phi: f64) -> Result<&Step<N>, Failed> {
         let guess = if S::WARM { self.guess() } else { self.prev.q };
         self.prev = s.step(phi, &guess)?;
         Ok(&self.prev)
@@ -168,13 +179,37 @@ pub fn check_sweep<const N: usize, S: Stepper<N>, R: Stepper<N>>(
     guess0: [f64; N],
 ) -> Result<SweepCheck, Failed> {
     let mut sweep = Sweep::start(s, steps, policy, guess0)?;
+    let first = (sweep.phi(), *sweep.current());
+    check_turn(reference, steps, policy, guess0, first, || {
+        let got = *sweep.advance(s)?;
+        Ok((sweep.phi(), got))
+    })
+}
+
+/// Compares one whole turn of `steps` steps, each `(phi, step)` — `first` at `phi = 0`, then
+/// `steps - 1` from `next` — with `reference` solved at the same angles (warm-started with
+/// `policy` from `guess0`, unless it ignores the guess).
+pub fn check_turn<const N: usize, R: Stepper<N>>(
+    reference: &R,
+    steps: usize,
+    policy: WarmStart,
+    guess0: [f64; N],
+    first: (f64, Step<N>),
+    mut next: impl FnMut() -> Result<(f64, Step<N>), Failed>,
+) -> Result<SweepCheck, Failed> {
+    if first.0 != 0.0 {
+        return Err(Failed::new(format!("the turn starts at {} instead of 0", first.0)));
+    }
     let mut ref_sweep = Sweep::start(reference, steps, policy, guess0)?;
-    let mut max_dev = deviation(sweep.current(), ref_sweep.current());
+    let mut max_dev = deviation(&first.1, ref_sweep.current());
     let mut total = 0u64;
     let mut max_iterations = 0;
     for _ in 1..steps {
-        let got = *sweep.advance(s)?;
-        let want = *ref_sweep.advance(reference)?;
+        let (phi, got) = next()?;
+        let want = *ref_sweep.advance_to(reference, phi)?;
+        if (phi - ref_sweep.phi()).abs() > 1e-12 {
+            return Err(Failed::new(format!("step {} is at {phi} instead of {}", ref_sweep.index(), ref_sweep.phi())));
+        }
         let d = deviation(&got, &want);
         for (m, d) in max_dev.iter_mut().zip(d) {
             *m = m.max(d);

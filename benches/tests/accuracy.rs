@@ -2,12 +2,12 @@
 //! drive's peers against the published closed form, the class IV block's hand-written Newton
 //! against kinloop and against finite differences of its own positions. (The benchmarks repeat
 //! the check over the full 1,000,000-step turn in release mode; here a coarser turn keeps the
-//! debug-mode test fast.)
+//! debug-mode test fast.) kinloop's own sweep is checked the same way, at the angles it samples.
 
+use kinloop::Mechanism;
 use kinloop_bench::class_four::{self, HandNewton};
-use kinloop_bench::rhombic::{
-    self, ClosedForm, DenseFiniteDifference, DenseHandJacobian, DenseNumDual, Kinloop, KinloopNamed, TwoLoopNewton,
-};
+use kinloop_bench::kinloop_variants::{Kinloop, KinloopNamed, check_kinloop_sweep};
+use kinloop_bench::rhombic::{self, ClosedForm, DenseFiniteDifference, DenseHandJacobian, DenseNumDual, TwoLoopNewton};
 use kinloop_bench::sweep::{Stepper, SweepCheck, WarmStart, check_sweep};
 
 const STEPS: usize = 5_000;
@@ -22,6 +22,12 @@ fn check<S: Stepper<4>, R: Stepper<4>>(name: &str, s: &S, r: &R, guess0: [f64; 4
     })
 }
 
+/// kinloop's own sweep (its own Taylor predictor) against the reference at the same angles.
+fn check_sweep_of<M: Mechanism<4, 1, 0>, R: Stepper<4>>(name: &str, m: &M, r: &R, guess0: [f64; 4]) {
+    let c = check_kinloop_sweep(m, r, STEPS, guess0).unwrap_or_else(|e| panic!("{name}: {e}"));
+    assert!(c.max_dev.iter().zip(EXACT).all(|(d, t)| *d <= t), "{name}: {c:?}");
+}
+
 #[test]
 fn rhombic_peers_match_the_closed_form() {
     let p = rhombic::PARAMS;
@@ -29,6 +35,7 @@ fn rhombic_peers_match_the_closed_form() {
     let closed = ClosedForm::new(&p);
     check("kinloop", &Kinloop::<_, 0>::new(p.kinloop()), &closed, g, EXACT);
     check("kinloop_named", &KinloopNamed::new(p.kinloop()), &closed, g, EXACT);
+    check_sweep_of("kinloop_sweep", &p.kinloop(), &closed, g);
     let [taylor, previous] = check("two_loop_newton", &TwoLoopNewton { p }, &closed, g, EXACT);
     // The predictor leaves less to iterate than the previous position (at 1,000,000 steps per
     // turn it leaves nothing: see the benchmarks' checks).
@@ -44,7 +51,8 @@ fn class_four_hand_newton_matches_kinloop() {
     let hand = HandNewton { p };
     let g = class_four::INITIAL_GUESS;
     check("kinloop", &Kinloop::<_, 0>::new(p.kinloop()), &hand, g, EXACT);
-    check("kinloop_named", &class_four::KinloopNamed::new(p.kinloop()), &hand, g, EXACT);
+    check("kinloop_named", &KinloopNamed::new(p.kinloop()), &hand, g, EXACT);
+    check_sweep_of("kinloop_sweep", &p.kinloop(), &hand, g);
 }
 
 #[test]

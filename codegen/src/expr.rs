@@ -173,6 +173,21 @@ pub fn parse_expr(input: ParseStream) -> syn::Result<Expr> {
     Parser { depth: 0 }.expr(input, 0)
 }
 
+/// The value of a number literal (integer or float): finite, without a type suffix.
+fn number(digits: &str, suffix: &str, span: Span) -> syn::Result<f64> {
+    if !suffix.is_empty() {
+        return Err(syn::Error::new(
+            span,
+            format!("number suffixes are not needed: write `{digits}` (all values are f64)"),
+        ));
+    }
+    let value: f64 = digits.parse().map_err(|_| syn::Error::new(span, "invalid number"))?;
+    if !value.is_finite() {
+        return Err(syn::Error::new(span, "number is too large for an f64 (the largest is about 1.8e308)"));
+    }
+    Ok(value)
+}
+
 struct Parser {
     depth: usize,
 }
@@ -301,37 +316,13 @@ impl Parser {
         let look = input.lookahead1();
         if look.peek(syn::LitInt) {
             let lit: syn::LitInt = input.parse()?;
-            if !lit.suffix().is_empty() {
-                return Err(syn::Error::new(
-                    lit.span(),
-                    format!("number suffixes are not needed: write `{}` (all values are f64)", lit.base10_digits()),
-                ));
-            }
-            let value: f64 = lit.base10_digits().parse().map_err(|_| syn::Error::new(lit.span(), "invalid number"))?;
-            if !value.is_finite() {
-                return Err(syn::Error::new(
-                    lit.span(),
-                    "number is too large for an f64 (the largest is about 1.8e308)",
-                ));
-            }
+            let value = number(lit.base10_digits(), lit.suffix(), lit.span())?;
             let integer = lit.base10_digits().parse::<i64>().ok();
             return Ok(Expr::Num { value, integer, span: lit.span() });
         }
         if look.peek(syn::LitFloat) {
             let lit: syn::LitFloat = input.parse()?;
-            if !lit.suffix().is_empty() {
-                return Err(syn::Error::new(
-                    lit.span(),
-                    format!("number suffixes are not needed: write `{}` (all values are f64)", lit.base10_digits()),
-                ));
-            }
-            let value: f64 = lit.base10_digits().parse().map_err(|_| syn::Error::new(lit.span(), "invalid number"))?;
-            if !value.is_finite() {
-                return Err(syn::Error::new(
-                    lit.span(),
-                    "number is too large for an f64 (the largest is about 1.8e308)",
-                ));
-            }
+            let value = number(lit.base10_digits(), lit.suffix(), lit.span())?;
             return Ok(Expr::Num { value, integer: None, span: lit.span() });
         }
         if look.peek(Ident) {

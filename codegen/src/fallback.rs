@@ -10,6 +10,7 @@
 //! errors that explain why.
 
 use crate::expr::Expr;
+use crate::items::params_struct;
 use crate::syntax::{DeclKind, ItemKind, MechanismDef};
 use proc_macro2::{Ident, TokenStream};
 use quote::{format_ident, quote};
@@ -174,13 +175,9 @@ impl Shape {
         } else {
             (quote!(#inputs_ty<f64>), quote!(#inputs_ty<#inputs_ty<f64>>))
         };
+        let params_struct = params_struct(docs, vis, name, pfields);
         quote! {
-            #(#docs)*
-            #[derive(Clone, Copy, Debug, PartialEq)]
-            #[allow(non_snake_case)]
-            #vis struct #name {
-                #(#pfields)*
-            }
+            #params_struct
             #default_impl
             #inputs_struct
             #unknowns_struct

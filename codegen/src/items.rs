@@ -316,26 +316,16 @@ pub fn generate(model: &Model, plan: &Plan) -> TokenStream {
         quote!(#p: v[#k])
     });
 
-    let lints = quote!(#[allow(
-        unused_variables,
-        unused_mut,
-        non_snake_case,
-        clippy::all,
-        clippy::pedantic,
-        clippy::nursery
-    )]);
+    let lints = solver_lints();
 
     let inputs_arg = quote!(input: impl ::core::convert::Into<#inputs_ty>);
     let to_x = quote!(let __x: [f64; #nil] = ::core::convert::Into::<#inputs_ty>::into(input).into(););
     let err = quote!(#rt::Error);
 
+    let params_struct = params_struct(docs, vis, name, pfields);
+
     quote! {
-        #(#docs)*
-        #[derive(Clone, Copy, Debug, PartialEq)]
-        #[allow(non_snake_case)]
-        #vis struct #name {
-            #(#pfields)*
-        }
+        #params_struct
         #default_impl
         #inputs_struct
         #single_from
@@ -614,11 +604,48 @@ pub fn generate(model: &Model, plan: &Plan) -> TokenStream {
     }
 }
 
-fn lit(n: usize) -> Literal {
+pub(crate) fn lit(n: usize) -> Literal {
     Literal::usize_unsuffixed(n)
 }
 
-fn named_struct(vis: &syn::Visibility, ty: &Ident, doc: &str, fields: &[&Ident], docs: &[TokenStream]) -> TokenStream {
+/// The parameter struct: the declaration's docs, visibility and name, with the `fields`.
+pub(crate) fn params_struct(
+    docs: &[Attribute],
+    vis: &syn::Visibility,
+    name: &Ident,
+    fields: impl Iterator<Item = TokenStream>,
+) -> TokenStream {
+    quote! {
+        #(#docs)*
+        #[derive(Clone, Copy, Debug, PartialEq)]
+        #[allow(non_snake_case)]
+        #vis struct #name {
+            #(#fields)*
+        }
+    }
+}
+
+/// Lints allowed on the generated solver functions (straight-line code with generated names).
+pub(crate) fn solver_lints() -> TokenStream {
+    quote!(#[allow(
+        unused_variables,
+        unused_mut,
+        non_snake_case,
+        clippy::all,
+        clippy::pedantic,
+        clippy::nursery
+    )])
+}
+
+/// A struct generic over its element type `T` with one field per name, and its conversions
+/// from and to `[T; n]` in field order.
+pub(crate) fn named_struct(
+    vis: &syn::Visibility,
+    ty: &Ident,
+    doc: &str,
+    fields: &[&Ident],
+    docs: &[TokenStream],
+) -> TokenStream {
     let n = lit(fields.len());
     let bind: Vec<Ident> = (0..fields.len()).map(|k| Ident::new(&format!("f{k}"), Span::call_site())).collect();
     // A struct without fields still mentions `T`.

@@ -397,41 +397,17 @@ fn named(d: &Decl, value: Option<NodeId>, item_of: &HashMap<*const Decl, usize>)
 }
 
 impl Lowerer {
-    /// Registers a global name; reports a duplicate and returns false.
-    fn declare(&mut self, name: &Ident, sym: Symbol) -> bool {
+    /// Reports `name` if it cannot be declared: it is the built-in `pi`, or it names a symbol
+    /// already declared that `replaceable` does not accept. Returns whether it was reported.
+    fn reject(&mut self, name: &Ident, replaceable: fn(&Symbol) -> bool) -> bool {
         let key = name.to_string();
         if key == "pi" {
             self.errors
                 .push(syn::Error::new(name.span(), "`pi` is the built-in constant 3.14159...; choose another name"));
-            return false;
-        }
-        if let Some((prev, span)) = self.scope.symbols.get(&key) {
-            let what = describe(*prev);
-            let mut e = syn::Error::new(
-                name.span(),
-                format!("`{key}` is already declared as {what}; names must be unique, rename one of them"),
-            );
-            e.combine(syn::Error::new(*span, format!("`{key}` is first declared here")));
-            self.errors.push(e);
-            return false;
-        }
-        self.scope.symbols.insert(key, (sym, name.span()));
-        true
-    }
-
-    /// Defines a `let`, `point` or `output` name at its position in the body.
-    fn define(&mut self, name: &Ident, v: Val) {
-        let key = name.to_string();
-        if key == "pi" {
-            self.errors
-                .push(syn::Error::new(name.span(), "`pi` is the built-in constant 3.14159...; choose another name"));
-            return;
+            return true;
         }
         match self.scope.symbols.get(&key) {
-            Some((Symbol::Later(_), _)) | None => {
-                self.scope.symbols.insert(key, (Symbol::Let(v), name.span()));
-            }
-            Some((prev, span)) => {
+            Some((prev, span)) if !replaceable(prev) => {
                 let what = describe(*prev);
                 let mut e = syn::Error::new(
                     name.span(),
@@ -439,7 +415,26 @@ impl Lowerer {
                 );
                 e.combine(syn::Error::new(*span, format!("`{key}` is first declared here")));
                 self.errors.push(e);
+                true
             }
+            _ => false,
+        }
+    }
+
+    /// Registers a global name; reports a duplicate and returns false.
+    fn declare(&mut self, name: &Ident, sym: Symbol) -> bool {
+        if self.reject(name, |_| false) {
+            return false;
+        }
+        self.scope.symbols.insert(name.to_string(), (sym, name.span()));
+        true
+    }
+
+    /// Defines a `let`, `point` or `output` name at its position in the body (where its
+    /// `Symbol::Later` placeholder stands).
+    fn define(&mut self, name: &Ident, v: Val) {
+        if !self.reject(name, |prev| matches!(prev, Symbol::Later(_))) {
+            self.scope.symbols.insert(name.to_string(), (Symbol::Let(v), name.span()));
         }
     }
 

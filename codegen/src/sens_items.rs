@@ -7,16 +7,13 @@
 //! nothing when not requested.
 
 use crate::emit::Names;
+use crate::items::{lit, named_struct, solver_lints};
 use crate::model::Model;
 use crate::plan::Plan;
 use crate::solver::{Mode, solver_body_with};
-use proc_macro2::{Ident, Literal, TokenStream};
+use proc_macro2::{Ident, TokenStream};
 use quote::{format_ident, quote};
 use syn::ext::IdentExt;
-
-fn lit(n: usize) -> Literal {
-    Literal::usize_unsuffixed(n)
-}
 
 pub fn generate(model: &Model, plan: &Plan, names: &Names, rt: &TokenStream) -> TokenStream {
     let name = &model.name;
@@ -32,7 +29,6 @@ pub fn generate(model: &Model, plan: &Plan, names: &Names, rt: &TokenStream) -> 
     let ni = plan.ni;
 
     let fields: Vec<&Ident> = model.params.iter().map(|p| &p.name).collect();
-    let binds: Vec<Ident> = (0..fields.len()).map(|k| format_ident!("f{}", k)).collect();
     let params_doc = format!(
         "One value per parameter of [`{name_s}`]: the innermost level of [`{name_s}Sensitivities`] \
          (`sens.q.x.l` is `d x / d l`)."
@@ -41,16 +37,14 @@ pub fn generate(model: &Model, plan: &Plan, names: &Names, rt: &TokenStream) -> 
         "Exact sensitivities of a [`{name_s}State`] to the parameters: append a parameter name to \
          a state path (`state.dq.u` -> `sens.dq.u.p` is `d(du/dinput)/dp`)."
     );
-    let marker = if fields.is_empty() {
-        (
-            quote!(#[doc(hidden)] pub __marker: ::core::marker::PhantomData<T>,),
-            quote!(__marker: ::core::marker::PhantomData),
-        )
-    } else {
-        (quote!(), quote!())
-    };
-    let (marker_field, marker_init) = marker;
-    let field_docs = fields.iter().map(|f| format!("Parameter `{}`.", f.unraw()));
+    let field_docs: Vec<TokenStream> = fields
+        .iter()
+        .map(|f| {
+            let doc = format!("Parameter `{}`.", f.unraw());
+            quote!(#[doc = #doc])
+        })
+        .collect();
+    let params_struct = named_struct(vis, &params_ty, &params_doc, &fields, &field_docs);
 
     let (vp, ap, conv_v, conv_a) = if ni == 1 {
         (
@@ -71,14 +65,7 @@ pub fn generate(model: &Model, plan: &Plan, names: &Names, rt: &TokenStream) -> 
     let fused = solver_body_with(model, plan, names, Mode::Fused, true, rt);
     let at = solver_body_with(model, plan, names, Mode::At, true, rt);
     let err = quote!(#rt::Error);
-    let lints = quote!(#[allow(
-        unused_variables,
-        unused_mut,
-        non_snake_case,
-        clippy::all,
-        clippy::pedantic,
-        clippy::nursery
-    )]);
+    let lints = solver_lints();
     let pvals = fields.iter().map(|f| quote!(self.#f));
     let from_p = fields.iter().enumerate().map(|(k, f)| {
         let k = lit(k);
@@ -86,25 +73,7 @@ pub fn generate(model: &Model, plan: &Plan, names: &Names, rt: &TokenStream) -> 
     });
 
     quote! {
-        #[doc = #params_doc]
-        #[derive(Clone, Copy, Debug, Default, PartialEq)]
-        #[allow(non_snake_case)]
-        #vis struct #params_ty<T = f64> {
-            #(#[doc = #field_docs] pub #fields: T,)*
-            #marker_field
-        }
-        impl<T> ::core::convert::From<[T; #npl]> for #params_ty<T> {
-            #[inline]
-            fn from([#(#binds),*]: [T; #npl]) -> Self {
-                #params_ty { #(#fields: #binds,)* #marker_init }
-            }
-        }
-        impl<T> ::core::convert::From<#params_ty<T>> for [T; #npl] {
-            #[inline]
-            fn from(v: #params_ty<T>) -> Self {
-                [#(v.#fields),*]
-            }
-        }
+        #params_struct
 
         #[doc = #sens_doc]
         #[derive(Clone, Copy, Debug, PartialEq)]

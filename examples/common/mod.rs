@@ -1,5 +1,6 @@
 //! Helpers shared by the examples: where outputs go, and line charts as SVG.
 
+use plotters::coord::types::RangedCoordf64;
 use plotters::prelude::*;
 use std::error::Error;
 use std::path::PathBuf;
@@ -27,6 +28,50 @@ const COLORS: [RGBColor; 6] = [
     RGBColor(23, 190, 207),
 ];
 
+/// A chart with `f64` axes in an SVG file.
+type Chart<'a, 'b> = ChartContext<'a, SVGBackend<'b>, Cartesian2d<RangedCoordf64, RangedCoordf64>>;
+
+/// Smallest and largest x and y of the points whose coordinates are both finite:
+/// `(x0, x1, y0, y1)`.
+fn bounds<'p>(points: impl Iterator<Item = &'p (f64, f64)>) -> Result<(f64, f64, f64, f64), Box<dyn Error>> {
+    let (mut x0, mut x1, mut y0, mut y1) = (f64::MAX, f64::MIN, f64::MAX, f64::MIN);
+    for &(x, y) in points {
+        if x.is_finite() && y.is_finite() {
+            x0 = x0.min(x);
+            x1 = x1.max(x);
+            y0 = y0.min(y);
+            y1 = y1.max(y);
+        }
+    }
+    if x0 > x1 {
+        return Err("nothing to plot".into());
+    }
+    Ok((x0, x1, y0, y1))
+}
+
+/// Draws the curves in the palette's colours, each decimated to at most `max_points` points,
+/// with their legend entries.
+fn draw_curves<'b: 'a, 'a>(
+    chart: &mut Chart<'a, 'b>,
+    series: &[Series],
+    max_points: usize,
+) -> Result<(), Box<dyn Error>> {
+    for (k, s) in series.iter().enumerate() {
+        let color = COLORS[k % COLORS.len()];
+        chart
+            .draw_series(LineSeries::new(decimate(&s.points, max_points), color.stroke_width(2)))?
+            .label(s.label)
+            .legend(move |(x, y)| PathElement::new(vec![(x, y), (x + 20, y)], color.stroke_width(2)));
+    }
+    Ok(())
+}
+
+/// Draws the legend of the curves at `position`.
+fn draw_legend<'b: 'a, 'a>(chart: &mut Chart<'a, 'b>, position: SeriesLabelPosition) -> Result<(), Box<dyn Error>> {
+    chart.configure_series_labels().background_style(WHITE.mix(0.85)).border_style(BLACK).position(position).draw()?;
+    Ok(())
+}
+
 /// Draws curves into an SVG file with a title, axis labels and a legend.
 pub fn line_chart(
     path: &std::path::Path,
@@ -35,20 +80,7 @@ pub fn line_chart(
     y_label: &str,
     series: &[Series],
 ) -> Result<(), Box<dyn Error>> {
-    let (mut x0, mut x1, mut y0, mut y1) = (f64::MAX, f64::MIN, f64::MAX, f64::MIN);
-    for s in series {
-        for &(x, y) in &s.points {
-            if x.is_finite() && y.is_finite() {
-                x0 = x0.min(x);
-                x1 = x1.max(x);
-                y0 = y0.min(y);
-                y1 = y1.max(y);
-            }
-        }
-    }
-    if x0 > x1 {
-        return Err("nothing to plot".into());
-    }
+    let (x0, x1, y0, y1) = bounds(series.iter().flat_map(|s| &s.points))?;
     let pad = ((y1 - y0) * 0.05).max(1e-9);
     let root = SVGBackend::new(path, (900, 520)).into_drawing_area();
     root.fill(&WHITE)?;
@@ -59,19 +91,8 @@ pub fn line_chart(
         .y_label_area_size(70)
         .build_cartesian_2d(x0..x1, (y0 - pad)..(y1 + pad))?;
     chart.configure_mesh().x_desc(x_label).y_desc(y_label).draw()?;
-    for (k, s) in series.iter().enumerate() {
-        let color = COLORS[k % COLORS.len()];
-        chart
-            .draw_series(LineSeries::new(s.points.iter().copied(), color.stroke_width(2)))?
-            .label(s.label)
-            .legend(move |(x, y)| PathElement::new(vec![(x, y), (x + 20, y)], color.stroke_width(2)));
-    }
-    chart
-        .configure_series_labels()
-        .background_style(WHITE.mix(0.85))
-        .border_style(BLACK)
-        .position(SeriesLabelPosition::UpperRight)
-        .draw()?;
+    draw_curves(&mut chart, series, usize::MAX)?;
+    draw_legend(&mut chart, SeriesLabelPosition::UpperRight)?;
     root.present()?;
     Ok(())
 }
@@ -92,7 +113,6 @@ pub fn figure_dir(example: &str) -> PathBuf {
 
 /// At most `max` points of a curve, equally strided, keeping the first and the last (keeps the
 /// committed SVGs small).
-#[allow(dead_code)]
 pub fn decimate(points: &[(f64, f64)], max: usize) -> Vec<(f64, f64)> {
     if points.len() <= max || max < 2 {
         return points.to_vec();
@@ -158,22 +178,11 @@ pub fn panels(path: &std::path::Path, title: &str, x_label: &str, panels: &[Pane
             mesh.x_desc(x_label);
         }
         mesh.draw()?;
-        for (j, s) in p.series.iter().enumerate() {
-            let color = COLORS[j % COLORS.len()];
-            chart
-                .draw_series(LineSeries::new(decimate(&s.points, 720), color.stroke_width(2)))?
-                .label(s.label)
-                .legend(move |(x, y)| PathElement::new(vec![(x, y), (x + 20, y)], color.stroke_width(2)));
-        }
+        draw_curves(&mut chart, &p.series, 720)?;
         if !p.marks.is_empty() {
             chart.draw_series(p.marks.iter().map(|&(x, y)| Circle::new((x, y), 4, BLACK.filled())))?;
         }
-        chart
-            .configure_series_labels()
-            .background_style(WHITE.mix(0.85))
-            .border_style(BLACK)
-            .position(SeriesLabelPosition::UpperLeft)
-            .draw()?;
+        draw_legend(&mut chart, SeriesLabelPosition::UpperLeft)?;
     }
     root.present()?;
     Ok(())
@@ -188,18 +197,7 @@ pub fn xy_chart(
     series: &[Series],
     marks: &[(f64, f64)],
 ) -> Result<(), Box<dyn Error>> {
-    let (mut x0, mut x1, mut y0, mut y1) = (f64::MAX, f64::MIN, f64::MAX, f64::MIN);
-    for &(x, y) in series.iter().flat_map(|s| s.points.iter()).chain(marks) {
-        if x.is_finite() && y.is_finite() {
-            x0 = x0.min(x);
-            x1 = x1.max(x);
-            y0 = y0.min(y);
-            y1 = y1.max(y);
-        }
-    }
-    if x0 > x1 {
-        return Err("nothing to plot".into());
-    }
+    let (x0, x1, y0, y1) = bounds(series.iter().flat_map(|s| &s.points).chain(marks))?;
     // Plot area of about 790 x 400 pixels: widen the narrower range to equal scales.
     let (w, h) = (790.0, 400.0);
     let (cx, cy) = ((x0 + x1) / 2.0, (y0 + y1) / 2.0);
@@ -214,20 +212,9 @@ pub fn xy_chart(
         .y_label_area_size(60)
         .build_cartesian_2d((cx - hx)..(cx + hx), (cy - hy)..(cy + hy))?;
     chart.configure_mesh().x_desc("x").y_desc("y").draw()?;
-    for (k, s) in series.iter().enumerate() {
-        let color = COLORS[k % COLORS.len()];
-        chart
-            .draw_series(LineSeries::new(decimate(&s.points, 720), color.stroke_width(2)))?
-            .label(s.label)
-            .legend(move |(x, y)| PathElement::new(vec![(x, y), (x + 20, y)], color.stroke_width(2)));
-    }
+    draw_curves(&mut chart, series, 720)?;
     chart.draw_series(marks.iter().map(|&(x, y)| Circle::new((x, y), 4, BLACK.filled())))?;
-    chart
-        .configure_series_labels()
-        .background_style(WHITE.mix(0.85))
-        .border_style(BLACK)
-        .position(SeriesLabelPosition::UpperRight)
-        .draw()?;
+    draw_legend(&mut chart, SeriesLabelPosition::UpperRight)?;
     root.present()?;
     Ok(())
 }

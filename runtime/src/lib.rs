@@ -17,6 +17,7 @@ mod mechanism;
 mod modes;
 mod newton;
 mod objective;
+mod scan;
 mod sweep;
 mod table;
 mod vec2;
@@ -29,6 +30,9 @@ pub use mechanism::{Mechanism, Sensitivities};
 pub use modes::assembly_modes;
 pub use newton::{BlockEval, BlockFailure, NewtonConfig, SolveReport, Solved, Termination, iterate, newton};
 pub use objective::{Extreme, Extremum, LmConfig, LmResult, extremum, integral, levenberg_marquardt};
+#[cfg(feature = "rayon")]
+pub use scan::par_scan;
+pub use scan::{ScanSpec, ScanStart, scan};
 pub use sweep::{AtSingular, Event, EventKind, Reach, Sweep, SweepConfig, reachable};
 pub use table::Table;
 pub use vec2::Vec2;

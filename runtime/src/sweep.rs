@@ -112,9 +112,9 @@ pub struct Event {
 }
 
 /// Why a step was not accepted.
-enum Outcome<const N: usize, const NI: usize, const NO: usize> {
-    Accept(Kin<N, NI, NO>),
-    Flip(Kin<N, NI, NO>),
+enum Outcome {
+    Accept,
+    Flip,
     Far,
     Fail(Error),
 }
@@ -126,6 +126,11 @@ pub struct Sweep<'m, M, S, const N: usize, const NI: usize, const NO: usize> {
     cfg: SweepConfig,
     path: Path<NI>,
     samples: usize,
+    /// Sample spacing as a fraction of the path, and the step bounds derived from it and the
+    /// configuration (computed once: they are needed every step).
+    spacing: f64,
+    h_max: f64,
+    h_min: f64,
     next: usize,
     guess: [f64; N],
     cur: Option<Kin<N, NI, NO>>,
@@ -166,11 +171,15 @@ where
         if samples > 1 && (path.len.is_nan() || path.len <= 0.0) {
             return Err(Error::InvalidArgument("a sweep with several samples needs `to` different from `from`".into()));
         }
-        Ok(Sweep {
+        let spacing = if samples > 1 { 1.0 / (samples - 1) as f64 } else { 1.0 };
+        let mut sweep = Sweep {
             m,
             cfg: SweepConfig::default(),
             path,
             samples,
+            spacing,
+            h_max: 0.0,
+            h_min: 0.0,
             next: 0,
             guess,
             cur: None,
@@ -180,13 +189,21 @@ where
             events: Vec::new(),
             done: false,
             _s: PhantomData,
-        })
+        };
+        sweep.set_step_bounds();
+        Ok(sweep)
     }
 
     /// Replaces the configuration.
     pub fn with_config(mut self, cfg: SweepConfig) -> Self {
         self.cfg = cfg;
+        self.set_step_bounds();
         self
+    }
+
+    fn set_step_bounds(&mut self) {
+        self.h_max = self.spacing * self.cfg.max_step;
+        self.h_min = self.spacing * 0.5f64.powi(self.cfg.max_halvings.min(i32::MAX as u32) as i32);
     }
 
     /// Singular positions met so far.
@@ -209,7 +226,7 @@ where
     }
 
     fn spacing(&self) -> f64 {
-        if self.samples > 1 { 1.0 / (self.samples - 1) as f64 } else { 1.0 }
+        self.spacing
     }
 
     fn location(&self, x: &[f64; NI], block: Option<(usize, BlockInfo)>) -> Box<Location> {
@@ -238,12 +255,14 @@ where
         q
     }
 
-    fn attempt(&self, k: &Kin<N, NI, NO>, tau_new: f64) -> Outcome<N, NI, NO> {
+    /// Solves at `tau_new` from the prediction off `k` and judges the result. The state is
+    /// returned beside the verdict (not inside it) so an accepted one is moved once, into `cur`.
+    fn attempt(&self, k: &Kin<N, NI, NO>, tau_new: f64) -> (Outcome, Option<Kin<N, NI, NO>>) {
         let dt = tau_new - self.tau;
         let pred = self.predict(k, dt);
         let x = self.path.at_tau(tau_new);
         match self.m.kinematics_flat(&x, &pred, &self.cfg.newton) {
-            Err(e) => Outcome::Fail(e),
+            Err(e) => (Outcome::Fail(e), None),
             Ok(n) => {
                 // Positions must land near their prediction, and the velocity analogs near
                 // theirs: a kink in the analogs means the corrector slid onto another branch
@@ -268,8 +287,8 @@ where
                     slope = slope.max(s0.abs());
                 }
                 let rel = self.cfg.corrector_rel;
-                if n.health.det_signs != self.signs {
-                    Outcome::Flip(n)
+                let verdict = if n.health.det_signs != self.signs {
+                    Outcome::Flip
                 } else if n.health.min_pivot < self.cfg.singular_pivot {
                     // Too close to a singular position for the analogs (and thus the branch
                     // identity) to be trusted: within the residual tolerance the solution can
@@ -280,8 +299,9 @@ where
                 {
                     Outcome::Far
                 } else {
-                    Outcome::Accept(n)
-                }
+                    Outcome::Accept
+                };
+                (verdict, Some(n))
             }
         }
     }
@@ -291,13 +311,13 @@ where
         if self.done || self.next >= self.samples {
             return None;
         }
-        let Some(mut k) = self.cur else {
+        let Some(cur) = self.cur.as_ref() else {
             let x = self.path.from;
             return Some(match self.m.kinematics_flat(&x, &self.guess, &self.cfg.newton) {
                 Ok(k) => {
                     self.cur = Some(k);
                     self.signs = k.health.det_signs;
-                    self.h = self.spacing() * self.cfg.max_step;
+                    self.h = self.h_max;
                     self.next = 1;
                     Ok(k)
                 }
@@ -307,49 +327,53 @@ where
                 }
             });
         };
-        let target = if self.next + 1 == self.samples { 1.0 } else { self.next as f64 * self.spacing() };
-        let h_max = self.spacing() * self.cfg.max_step;
-        let h_min = self.spacing() * 0.5f64.powi(self.cfg.max_halvings as i32);
+        let target = if self.next + 1 == self.samples { 1.0 } else { self.next as f64 * self.spacing };
         let mut successes = 0u32;
+        // The state is kept in `self.cur` only (no local copy): every copy of the ~150-byte
+        // state is a memcpy on the per-step path.
+        let mut cur = cur;
         while self.tau < target {
-            let step = self.h.min(target - self.tau);
-            let tau_new = if step >= target - self.tau { target } else { self.tau + step };
-            match self.attempt(&k, tau_new) {
-                Outcome::Accept(n) => {
-                    k = n;
+            let remaining = target - self.tau;
+            // Within a hair of the target, land on it: a full step computed in floating point
+            // may fall short by an ulp and leave a needless tiny step.
+            let (step, tau_new) =
+                if remaining <= self.h * (1.0 + 1e-9) { (remaining, target) } else { (self.h, self.tau + self.h) };
+            let (outcome, state) = self.attempt(cur, tau_new);
+            match outcome {
+                Outcome::Accept => {
                     self.tau = tau_new;
-                    self.cur = Some(n);
+                    self.cur = state;
                     successes += 1;
                     if successes >= 2 {
-                        self.h = (self.h * 2.0).min(h_max);
+                        self.h = (self.h * 2.0).min(self.h_max);
                     }
                 }
                 outcome => {
                     successes = 0;
                     self.h = step * 0.5;
-                    if self.h >= h_min {
-                        continue;
-                    }
-                    // The step cannot be made however small: find out why.
-                    match self.diagnose(&k, tau_new, target, outcome) {
-                        Ok(n) => {
-                            // Passed a singular crossing (AtSingular::Continue); `diagnose` set
-                            // `tau` to where the continuation resumed.
-                            k = n;
-                            self.cur = Some(n);
-                            self.signs = n.health.det_signs;
-                            self.h = h_max;
-                        }
-                        Err(e) => {
-                            self.done = true;
-                            return Some(Err(e));
+                    if self.h < self.h_min {
+                        // The step cannot be made however small: find out why.
+                        let k = *cur;
+                        match self.diagnose(&k, tau_new, target, outcome) {
+                            Ok(n) => {
+                                // Passed a singular crossing (AtSingular::Continue); `diagnose`
+                                // set `tau` to where the continuation resumed.
+                                self.cur = Some(n);
+                                self.signs = n.health.det_signs;
+                                self.h = self.h_max;
+                            }
+                            Err(e) => {
+                                self.done = true;
+                                return Some(Err(e));
+                            }
                         }
                     }
                 }
             }
+            cur = self.cur.as_ref()?;
         }
         self.next += 1;
-        Some(Ok(k))
+        self.cur.map(Ok)
     }
 
     /// After a crossing: follows the curve from `p` until the Jacobian is well conditioned again
@@ -391,7 +415,7 @@ where
         k: &Kin<N, NI, NO>,
         tau_new: f64,
         target: f64,
-        outcome: Outcome<N, NI, NO>,
+        outcome: Outcome,
     ) -> Result<Kin<N, NI, NO>, Error> {
         let path = self.path;
         let newton = self.cfg.newton;

@@ -12,24 +12,33 @@ use std::hint::black_box;
 use std::path::{Path, PathBuf};
 use std::time::Instant;
 
+use kinloop::Mechanism;
 use kinloop_bench::class_four::{self, HandNewton};
 use kinloop_bench::decls::paper_mechanisms;
 use kinloop_bench::expansion::{four_bar_chain, four_bar_chain_dense, size};
-use kinloop_bench::rhombic::{
-    self, ClosedForm, DenseFiniteDifference, DenseHandJacobian, DenseNumDual, Kinloop, KinloopNamed, TwoLoopNewton,
-};
-use kinloop_bench::sweep::{STEPS, Stepper, Sweep, WarmStart, check_sweep};
+use kinloop_bench::kinloop_variants::{Kinloop, KinloopNamed, KinloopSweep, check_kinloop_sweep};
+use kinloop_bench::rhombic::{self, ClosedForm, DenseFiniteDifference, DenseHandJacobian, DenseNumDual, TwoLoopNewton};
+use kinloop_bench::sweep::{Failed, STEPS, Stepper, Sweep, SweepCheck, WarmStart, check_sweep};
 
-const RHOMBIC: [&str; 7] = [
+const RHOMBIC: [&str; 8] = [
     "closed_form",
     "kinloop",
     "kinloop_named",
+    SWEEP,
     "two_loop_newton",
     "dense_hand_jacobian",
     "dense_num_dual",
     "dense_finite_difference",
 ];
-const CLASS_FOUR: [&str; 3] = ["hand_newton", "kinloop", "kinloop_named"];
+const CLASS_FOUR: [&str; 4] = ["hand_newton", "kinloop", "kinloop_named", SWEEP];
+
+/// kinloop's own sweep: it has its own (Taylor) predictor, so it is measured in the taylor
+/// groups only.
+const SWEEP: &str = "kinloop_sweep";
+
+fn measured_with(bench: &str, policy: WarmStart) -> bool {
+    bench != SWEEP || policy == WarmStart::Taylor
+}
 
 /// Median and its 95% confidence interval, in nanoseconds.
 #[derive(Clone, Copy, Debug)]
@@ -77,7 +86,7 @@ fn timing_table(dir: &Path, prefix: &str, benches: &[&str], reference: &str) {
     for policy in WarmStart::ALL {
         let group = format!("{prefix}_{}", policy.name());
         let base = estimate(dir, &group, reference);
-        for b in benches {
+        for b in benches.iter().filter(|b| measured_with(b, policy)) {
             match estimate(dir, &group, b) {
                 Some(e) => {
                     let ratio = base.map_or("?".to_string(), |r| format!("{:.2}", e.median / r.median));
@@ -98,9 +107,9 @@ fn timing_table(dir: &Path, prefix: &str, benches: &[&str], reference: &str) {
 
 fn speedups(dir: &Path) {
     println!(
-        "| warm start | kinloop / closed form | kinloop / two-loop Newton | num-dual / kinloop | finite differences / kinloop | class IV: kinloop / hand-written |"
+        "| warm start | kinloop / closed form | kinloop / two-loop Newton | num-dual / kinloop | finite differences / kinloop | class IV: kinloop / hand-written | kinloop_sweep / closed form | class IV: kinloop_sweep / hand-written |"
     );
-    println!("|---|---:|---:|---:|---:|---:|");
+    println!("|---|---:|---:|---:|---:|---:|---:|---:|");
     for policy in WarmStart::ALL {
         let g = format!("rhombic_{}", policy.name());
         let g4 = format!("class_four_{}", policy.name());
@@ -108,32 +117,50 @@ fn speedups(dir: &Path) {
             (Some(a), Some(b)) => format!("{:.2}", a.median / b.median),
             _ => "?".to_string(),
         };
+        let sweep = |group: &str, reference: &str| {
+            if measured_with(SWEEP, policy) {
+                r(estimate(dir, group, SWEEP), estimate(dir, group, reference))
+            } else {
+                "–".to_string()
+            }
+        };
         let kl = estimate(dir, &g, "kinloop");
         println!(
-            "| {} | {} | {} | {} | {} | {} |",
+            "| {} | {} | {} | {} | {} | {} | {} | {} |",
             policy.name(),
             r(kl, estimate(dir, &g, "closed_form")),
             r(kl, estimate(dir, &g, "two_loop_newton")),
             r(estimate(dir, &g, "dense_num_dual"), kl),
             r(estimate(dir, &g, "dense_finite_difference"), kl),
             r(estimate(dir, &g4, "kinloop"), estimate(dir, &g4, "hand_newton")),
+            sweep(&g, "closed_form"),
+            sweep(&g4, "hand_newton"),
         );
     }
     println!();
 }
 
+/// The iterations and deviations of one warm-start policy: two cells of the table.
+fn iteration_cells(check: Result<SweepCheck, Failed>) -> String {
+    match check {
+        Ok(c) => format!(
+            "{:.3} (max {}) | {:.0e} / {:.0e} / {:.0e}",
+            c.mean_iterations, c.max_iterations, c.max_dev[0], c.max_dev[1], c.max_dev[2]
+        ),
+        Err(e) => format!("failed: {e} | "),
+    }
+}
+
 fn iteration_row<S: Stepper<4>, R: Stepper<4>>(name: &str, s: &S, r: &R, guess0: [f64; 4]) {
-    let cells: Vec<String> = WarmStart::ALL
-        .iter()
-        .map(|&policy| match check_sweep(s, r, STEPS, policy, guess0) {
-            Ok(c) => format!(
-                "{:.3} (max {}) | {:.0e} / {:.0e} / {:.0e}",
-                c.mean_iterations, c.max_iterations, c.max_dev[0], c.max_dev[1], c.max_dev[2]
-            ),
-            Err(e) => format!("failed: {e} | "),
-        })
-        .collect();
+    let cells: Vec<String> =
+        WarmStart::ALL.iter().map(|&policy| iteration_cells(check_sweep(s, r, STEPS, policy, guess0))).collect();
     println!("| `{name}` | {} |", cells.join(" | "));
+}
+
+/// kinloop's sweep: the iterations of the accepted solve of each sample (its own predictor).
+fn iteration_row_sweep<M: Mechanism<4, 1, 0>, R: Stepper<4>>(name: &str, m: &M, r: &R, guess0: [f64; 4]) {
+    let taylor = iteration_cells(check_kinloop_sweep(m, r, STEPS, guess0));
+    println!("| `{name}` | {taylor} | – | – |");
 }
 
 fn iterations() {
@@ -146,6 +173,7 @@ fn iterations() {
     let closed = ClosedForm::new(&p);
     iteration_row("rhombic: kinloop", &Kinloop::<_, 0>::new(p.kinloop()), &closed, g);
     iteration_row("rhombic: kinloop_named", &KinloopNamed::new(p.kinloop()), &closed, g);
+    iteration_row_sweep("rhombic: kinloop_sweep", &p.kinloop(), &closed, g);
     iteration_row("rhombic: two_loop_newton", &TwoLoopNewton { p }, &closed, g);
     iteration_row("rhombic: dense_hand_jacobian", &DenseHandJacobian { p }, &closed, g);
     iteration_row("rhombic: dense_num_dual", &DenseNumDual { p }, &closed, g);
@@ -155,6 +183,7 @@ fn iterations() {
     let g4 = class_four::INITIAL_GUESS;
     iteration_row("class IV: hand_newton", &hand, &hand, g4);
     iteration_row("class IV: kinloop", &Kinloop::<_, 0>::new(p4.kinloop()), &hand, g4);
+    iteration_row_sweep("class IV: kinloop_sweep", &p4.kinloop(), &hand, g4);
     println!();
 }
 
@@ -192,16 +221,31 @@ fn sizes(dir: &Path) {
 /// A variant timed by [`paired`]: runs `n` steps of its own sweep, returns ns per step.
 type Timed<'a> = (&'static str, Box<dyn FnMut(usize) -> f64 + 'a>);
 
-fn timed<'a, S: Stepper<4>>(name: &'static str, s: &'a S, policy: WarmStart, guess0: [f64; 4]) -> Timed<'a> {
-    let mut sweep = Sweep::start(s, STEPS, policy, guess0).expect("the sweep starts");
+/// A variant that runs one step per call of `step`.
+fn timed_steps<'a>(name: &'static str, mut step: impl FnMut() + 'a) -> Timed<'a> {
     let run = move |n: usize| {
         let t = Instant::now();
         for _ in 0..n {
-            black_box(sweep.advance(s).expect("the sweep goes on"));
+            step();
         }
         t.elapsed().as_nanos() as f64 / n as f64
     };
     (name, Box::new(run))
+}
+
+fn timed<'a, S: Stepper<4>>(name: &'static str, s: &'a S, policy: WarmStart, guess0: [f64; 4]) -> Timed<'a> {
+    let mut sweep = Sweep::start(s, STEPS, policy, guess0).expect("the sweep starts");
+    timed_steps(name, move || {
+        black_box(sweep.advance(s).expect("the sweep goes on"));
+    })
+}
+
+/// kinloop's own sweep of `m` (see `KinloopSweep`).
+fn timed_sweep<'a, M: Mechanism<4, 1, 0>>(m: &'a M, guess0: [f64; 4]) -> Timed<'a> {
+    let mut sweep = KinloopSweep::start(m, STEPS, guess0).expect("the sweep starts");
+    timed_steps(SWEEP, move || {
+        black_box(sweep.advance().expect("the sweep goes on"));
+    })
 }
 
 fn median(mut v: Vec<f64>) -> f64 {
@@ -248,10 +292,10 @@ fn paired_all(rounds: usize) {
     let p4 = class_four::PARAMS;
     let hand4 = HandNewton { p: p4 };
     let kl4 = Kinloop::<_, 0>::new(p4.kinloop());
-    let named4 = class_four::KinloopNamed::new(p4.kinloop());
+    let named4 = KinloopNamed::new(p4.kinloop());
     let g4 = class_four::INITIAL_GUESS;
     for policy in WarmStart::ALL {
-        let variants = vec![
+        let mut variants = vec![
             timed("closed_form", &closed, policy, g),
             timed("kinloop", &kl, policy, g),
             timed("kinloop_named", &named, policy, g),
@@ -260,13 +304,17 @@ fn paired_all(rounds: usize) {
             timed("dense_num_dual", &dual, policy, g),
             timed("dense_finite_difference", &fd, policy, g),
         ];
-        paired(&format!("rhombic drive, {} warm start", policy.name()), variants, 100_000, rounds);
-        let variants = vec![
+        let mut variants4 = vec![
             timed("hand_newton", &hand4, policy, g4),
             timed("kinloop", &kl4, policy, g4),
             timed("kinloop_named", &named4, policy, g4),
         ];
-        paired(&format!("class IV, {} warm start", policy.name()), variants, 50_000, rounds);
+        if measured_with(SWEEP, policy) {
+            variants.insert(3, timed_sweep(&kl.m, g));
+            variants4.push(timed_sweep(&kl4.m, g4));
+        }
+        paired(&format!("rhombic drive, {} warm start", policy.name()), variants, 100_000, rounds);
+        paired(&format!("class IV, {} warm start", policy.name()), variants4, 50_000, rounds);
     }
 }
 

@@ -1,0 +1,167 @@
+//! kinloop itself, for both mechanisms, through three of its APIs: the generic flat
+//! [`Mechanism::kinematics_flat`] ([`Kinloop`]), the generated named `kinematics_with`
+//! ([`KinloopNamed`]), and kinloop's own sweep `kinloop::Sweep` ([`KinloopSweep`]).
+
+use std::f64::consts::TAU;
+
+use kinloop::{Kin, Mechanism, NewtonConfig};
+
+use crate::decls::{ClassFour, ClassFourUnknowns, RhombicDrive, RhombicDriveUnknowns};
+use crate::sweep::{Failed, Step, Stepper, SweepCheck, WarmStart, check_turn};
+
+/// The step of kinloop's flat state (one input).
+#[inline(always)]
+fn step_of<const N: usize, const NO: usize>(k: &Kin<N, 1, NO>) -> Step<N> {
+    Step { q: k.q, dq: k.dq.map(|r| r[0]), d2q: k.d2q.map(|r| r[0][0]), iterations: k.report.iterations }
+}
+
+/// kinloop through the generic [`Mechanism`] trait (`kinematics_flat`: flat arrays); `NO` is
+/// the mechanism's number of output columns.
+#[derive(Clone, Copy, Debug)]
+pub struct Kinloop<M, const NO: usize> {
+    pub m: M,
+    pub cfg: NewtonConfig,
+}
+
+impl<M, const NO: usize> Kinloop<M, NO> {
+    pub fn new(m: M) -> Self {
+        Kinloop { m, cfg: NewtonConfig::default() }
+    }
+}
+
+impl<M: Mechanism<N, 1, NO>, const N: usize, const NO: usize> Stepper<N> for Kinloop<M, NO> {
+    #[inline]
+    fn step(&self, phi: f64, guess: &[f64; N]) -> Result<Step<N>, Failed> {
+        match self.m.kinematics_flat(&[phi], guess, &self.cfg) {
+            Ok(k) => Ok(step_of(&k)),
+            Err(e) => Err(Failed::new(e)),
+        }
+    }
+}
+
+/// The generated named API of a mechanism of the benchmarks: `kinematics_with` taking the
+/// named unknowns and returning the named state (`RhombicDriveState`, `ClassFourState`).
+pub trait NamedKinematics {
+    fn named_step(&self, phi: f64, guess: &[f64; 4], cfg: &NewtonConfig) -> Result<Step<4>, kinloop::Error>;
+}
+
+macro_rules! named_kinematics {
+    ($($m:ty => $unknowns:ty),* $(,)?) => {$(
+        impl NamedKinematics for $m {
+            #[inline(always)]
+            fn named_step(&self, phi: f64, guess: &[f64; 4], cfg: &NewtonConfig) -> Result<Step<4>, kinloop::Error> {
+                let s = self.kinematics_with(phi, &<$unknowns>::from(*guess), cfg)?;
+                Ok(Step { q: s.q.into(), dq: s.dq.into(), d2q: s.d2q.into(), iterations: s.report.iterations })
+            }
+        }
+    )*};
+}
+
+named_kinematics!(RhombicDrive => RhombicDriveUnknowns, ClassFour => ClassFourUnknowns);
+
+/// kinloop through the named API (`kinematics_with` returning `RhombicDriveState` or
+/// `ClassFourState`).
+#[derive(Clone, Copy, Debug)]
+pub struct KinloopNamed<M> {
+    pub m: M,
+    pub cfg: NewtonConfig,
+}
+
+impl<M> KinloopNamed<M> {
+    pub fn new(m: M) -> Self {
+        KinloopNamed { m, cfg: NewtonConfig::default() }
+    }
+}
+
+impl<M: NamedKinematics> Stepper<4> for KinloopNamed<M> {
+    #[inline]
+    fn step(&self, phi: f64, guess: &[f64; 4]) -> Result<Step<4>, Failed> {
+        self.m.named_step(phi, guess, &self.cfg).map_err(Failed::new)
+    }
+}
+
+/// kinloop's own sweep (`kinloop::Sweep`, `runtime/src/sweep.rs`, default `SweepConfig`) over
+/// the same turns as the benchmark's [`crate::sweep::Sweep`]: `steps` samples per turn at the
+/// angles `k 2 pi / steps`, `k = 0 .. steps - 1`.
+///
+/// One step is one `next_kin()` of the runtime sweep: its own second-order Taylor predictor, the
+/// full kinematic solve from that guess (positions, velocity and acceleration analogs, as
+/// `kinematics_flat`), and the sweep's **branch-safety checks** on the result (determinant signs
+/// of every block, the smallest pivot ratio, the distance of the corrected position and of its
+/// velocity analogs from their predictions) with the bookkeeping of its adaptive step size. When
+/// a step is not accepted the sweep halves it, so a sample may cost more than one solve
+/// ([`Step::iterations`] counts the Newton iterations of the accepted solve only).
+///
+/// A runtime sweep covers one turn and then ends; the next turn is a new sweep, started from the
+/// last position of the turn. That restart is counted in the step that makes it: `Sweep::new`
+/// plus the first sample of the new turn, which the runtime solves from the previous position
+/// (without a predictor) — once per `steps` steps.
+pub struct KinloopSweep<'m, M: Mechanism<N, 1, NO>, const N: usize, const NO: usize> {
+    m: &'m M,
+    steps: usize,
+    sweep: kinloop::Sweep<'m, M, Kin<N, 1, NO>, N, 1, NO>,
+    phi: f64,
+    current: Step<N>,
+}
+
+impl<'m, M: Mechanism<N, 1, NO>, const N: usize, const NO: usize> KinloopSweep<'m, M, N, NO> {
+    /// Starts the first turn from `guess0` (the assembly mode) and takes its first sample, at
+    /// `phi = 0`.
+    pub fn start(m: &'m M, steps: usize, guess0: [f64; N]) -> Result<Self, Failed> {
+        let mut sweep = Self::turn(m, steps, guess0)?;
+        let k = sweep.next_kin().ok_or_else(|| Failed::new("kinloop sweep: no sample"))?.map_err(Failed::new)?;
+        Ok(KinloopSweep { m, steps, sweep, phi: k.x[0], current: step_of(&k) })
+    }
+
+    /// One turn: `steps` samples from `0` to `(steps - 1) 2 pi / steps`.
+    fn turn(m: &'m M, steps: usize, guess: [f64; N]) -> Result<kinloop::Sweep<'m, M, Kin<N, 1, NO>, N, 1, NO>, Failed> {
+        let last = TAU * (steps - 1) as f64 / steps as f64;
+        kinloop::Sweep::new(m, [0.0], [last], steps, guess).map_err(Failed::new)
+    }
+
+    /// The input value of the current step.
+    pub fn phi(&self) -> f64 {
+        self.phi
+    }
+
+    /// The current step.
+    pub fn current(&self) -> &Step<N> {
+        &self.current
+    }
+
+    /// The next sample (after the last angle of a turn comes the first angle of a new sweep).
+    #[inline(always)]
+    pub fn advance(&mut self) -> Result<&Step<N>, Failed> {
+        let k = match self.sweep.next_kin() {
+            Some(r) => r.map_err(Failed::new)?,
+            None => self.restart()?,
+        };
+        self.phi = k.x[0];
+        self.current = step_of(&k);
+        Ok(&self.current)
+    }
+
+    /// A new turn from the last position, and its first sample.
+    #[cold]
+    #[inline(never)]
+    fn restart(&mut self) -> Result<Kin<N, 1, NO>, Failed> {
+        self.sweep = Self::turn(self.m, self.steps, self.current.q)?;
+        self.sweep.next_kin().ok_or_else(|| Failed::new("kinloop sweep: no sample"))?.map_err(Failed::new)
+    }
+}
+
+/// Runs kinloop's sweep of `m` over one whole turn from `guess0` and compares every sample with
+/// `reference` at the same angle (warm-started by the Taylor predictor, as the runtime sweep is).
+pub fn check_kinloop_sweep<M: Mechanism<N, 1, NO>, R: Stepper<N>, const N: usize, const NO: usize>(
+    m: &M,
+    reference: &R,
+    steps: usize,
+    guess0: [f64; N],
+) -> Result<SweepCheck, Failed> {
+    let mut sweep = KinloopSweep::start(m, steps, guess0)?;
+    let first = (sweep.phi(), *sweep.current());
+    check_turn(reference, steps, WarmStart::Taylor, guess0, first, || {
+        let got = *sweep.advance()?;
+        Ok((sweep.phi(), got))
+    })
+}
