@@ -11,6 +11,11 @@ mod class_four;
 
 use class_four::ClassFour;
 
+#[allow(dead_code)] // not every test uses every helper
+mod support;
+
+use support::close;
+
 kinloop::mechanism! {
     /// The class IV mechanism of `examples/class_four.rs` (SEEDS 003), solved as one dense block.
     #[kinloop(dense)]
@@ -115,7 +120,7 @@ fn rhombic_drive_splits_into_its_groups_with_sliders_in_closed_form() {
 fn assert_close(what: &str, a: &[f64], b: &[f64], tol: f64) {
     assert_eq!(a.len(), b.len());
     for (k, (x, y)) in a.iter().zip(b).enumerate() {
-        assert!((x - y).abs() <= tol * y.abs().max(1.0), "{what}[{k}]: {x} vs {y} (difference {})", (x - y).abs());
+        assert!(close(*x, *y, tol), "{what}[{k}]: {x} vs {y} (difference {})", (x - y).abs());
     }
 }
 

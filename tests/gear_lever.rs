@@ -5,6 +5,11 @@
 
 use std::f64::consts::PI;
 
+#[allow(dead_code)] // not every test uses every helper
+mod support;
+
+use support::wrap;
+
 kinloop::mechanism! {
     /// Gear-lever drive: carrier `l_c` turning by `alpha`, planet pin at `l_p` from the planet
     /// centre turning by `(1 - u) alpha`, block sliding in a rocker pivoted at O. Angles are
@@ -37,10 +42,6 @@ fn explicit(big_l: f64, l: f64, u: f64, a: f64) -> [f64; 6] {
     let v_slip = -(xd * x + yd * y) / r2.sqrt();
     let phi = x.atan2(y); // = arctan(x / y), on the right branch
     [phi, omega_r, eps_r, r2.sqrt(), -v_slip, x]
-}
-
-fn wrap(a: f64) -> f64 {
-    (a + PI).rem_euclid(2.0 * PI) - PI
 }
 
 #[test]

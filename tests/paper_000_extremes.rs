@@ -13,11 +13,10 @@ mod rhombic_drive;
 
 use rhombic_drive::RhombicDrive;
 
-/// Difference of two angles modulo a turn, in (-pi, pi].
-fn angle_diff(a: f64, b: f64) -> f64 {
-    let d = (a - b).rem_euclid(TAU);
-    if d > TAU / 2.0 { d - TAU } else { d }
-}
+#[allow(dead_code)] // not every test uses every helper
+mod support;
+
+use support::wrap;
 
 #[test]
 fn extreme_positions_strokes_and_phase_shift_match_the_closed_forms() {
@@ -48,7 +47,7 @@ fn extreme_positions_strokes_and_phase_shift_match_the_closed_forms() {
     // A root of the analog (~1e-13 accurate analogs, curvature ~1) is located to ~1e-12; the
     // independent angle is exact to rounding.
     for (got, want) in at {
-        assert!(angle_diff(got, want).abs() < 1e-10, "{got} vs {want}");
+        assert!(wrap(got - want).abs() < 1e-10, "{got} vs {want}");
     }
     // The velocity analogs vanish there, and they are the only interior extremes of a turn.
     let e = turn.extremes("x_f").unwrap();
@@ -80,5 +79,5 @@ fn extremes_follow_the_drive_when_its_dimensions_change() {
     let e_b = m.e_p - m.de;
     assert!((xf.max.value - ((m.l_b + m.r_b).powi(2) - e_b * e_b).sqrt()).abs() < 1e-12);
     assert!((xf.min.value - ((m.l_b - m.r_b).powi(2) - e_b * e_b).sqrt()).abs() < 1e-12);
-    assert!(angle_diff(xf.max.x, f64::atan2(-e_b, xf.max.value) - m.gamma).abs() < 1e-10);
+    assert!(wrap(xf.max.x - (f64::atan2(-e_b, xf.max.value) - m.gamma)).abs() < 1e-10);
 }

@@ -14,6 +14,11 @@ mod rhombic_variants;
 
 use rhombic_variants::{DisplacerRodDrive, WorkingRodDrive};
 
+#[allow(dead_code)] // not every test uses every helper
+mod support;
+
+use support::{close, richardson};
+
 /// Fig. 1's published closed form (SEEDS.md 000) with one crank pin (R_P = R_B = r,
 /// gamma = 0): (positions, velocity analogs, acceleration analogs) of [phi2, phi4, X_C, X_F].
 fn fig1(r: f64, l_p: f64, l_b: f64, e_p: f64, de: f64, phi1: f64) -> [[f64; 4]; 3] {
@@ -35,23 +40,10 @@ fn fig1(r: f64, l_p: f64, l_b: f64, e_p: f64, de: f64, phi1: f64) -> [[f64; 4]; 
     [[phi2, phi4, x_c, x_f], [u21, u41, v_c, v_f], [e2, e4, a_c, a_f]]
 }
 
-fn close(a: f64, b: f64, rel: f64) -> bool {
-    (a - b).abs() <= rel * b.abs().max(1.0)
-}
-
 /// A tight solve for finite differences: Newton runs until its step falls below 1e-13 (1 + |q|),
 /// i.e. positions within ~5e-13.
 fn tight() -> NewtonConfig {
     NewtonConfig::default().with_residual_tol(0.0)
-}
-
-/// Central differences with one Richardson step (h and h/2): (first, second) derivative with
-/// truncation error O(h^4) (~h^4/480 |q^(5)| and less for the second); position errors e
-/// contribute ~e/h and ~5e/h^2.
-fn richardson(f: impl Fn(f64) -> f64, x: f64, h: f64) -> (f64, f64) {
-    let d1 = |h: f64| (f(x + h) - f(x - h)) / (2.0 * h);
-    let d2 = |h: f64| (f(x + h) - 2.0 * f(x) + f(x - h)) / (h * h);
-    ((4.0 * d1(h / 2.0) - d1(h)) / 3.0, (4.0 * d2(h / 2.0) - d2(h)) / 3.0)
 }
 
 #[test]

@@ -19,10 +19,11 @@ fn all_links_match_the_closed_forms_over_the_stroke() {
         let (c, got) = (closed(&m, s.input.t), solved(&s));
         for l in 0..4 {
             // Positions within the Newton tolerance (1e-12, well conditioned); the analogs come
-            // from the same factorisation; contour 2 inherits contour 1's error.
-            for (o, tol) in [1e-12, 1e-12, 1e-12].into_iter().enumerate() {
+            // from the same factorisation, to the same tolerance; contour 2 inherits contour 1's
+            // error.
+            for o in 0..3 {
                 assert!(
-                    (got[l][o] - c[l][o]).abs() < tol,
+                    (got[l][o] - c[l][o]).abs() < 1e-12,
                     "link {l}, order {o} at t = {}: {} vs {}",
                     s.input.t,
                     got[l][o],

@@ -5,7 +5,7 @@
 //! the two four-bars close together (here by bisection on the closure of EF).
 
 use kinloop::NewtonConfig;
-use std::f64::consts::{PI, TAU};
+use std::f64::consts::TAU;
 
 #[allow(dead_code)]
 #[path = "../examples/class_four.rs"]
@@ -16,11 +16,7 @@ use class_four::ClassFour;
 #[allow(dead_code)] // not every test uses every helper
 mod support;
 
-use support::bisect;
-
-fn wrap(a: f64) -> f64 {
-    (a + PI).rem_euclid(TAU) - PI
-}
+use support::{bisect, richardson, wrap};
 
 /// The paper's way, independently: for a trial angle `th2` of link DBF, D and F are known; C is
 /// the intersection of the circles (A, AC) and (D, CD) on the side `side` of A->D; then E
@@ -96,10 +92,7 @@ fn analogs_match_finite_differences() {
         let q = |x: f64| -> [f64; 4] { m.position_with(x, &s.q, &tight).unwrap().0.into() };
         let (dq, d2q): ([f64; 4], [f64; 4]) = (s.dq.into(), s.d2q.into());
         for u in 0..4 {
-            let d1 = |h: f64| (q(phi + h)[u] - q(phi - h)[u]) / (2.0 * h);
-            let d2 = |h: f64| (q(phi + h)[u] - 2.0 * q(phi)[u] + q(phi - h)[u]) / (h * h);
-            let f1 = (4.0 * d1(h / 2.0) - d1(h)) / 3.0;
-            let f2 = (4.0 * d2(h / 2.0) - d2(h)) / 3.0;
+            let (f1, f2) = richardson(|x| q(x)[u], phi, h);
             let name = ClassFour::UNKNOWNS[u];
             assert!((dq[u] - f1).abs() < 1e-9 * dq[u].abs().max(1.0), "d{name} at {phi}: {} vs {f1}", dq[u]);
             assert!((d2q[u] - f2).abs() < 1e-6 * d2q[u].abs().max(1.0), "d2{name} at {phi}: {} vs {f2}", d2q[u]);

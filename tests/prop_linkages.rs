@@ -6,6 +6,11 @@
 use proptest::prelude::*;
 use std::f64::consts::PI;
 
+#[allow(dead_code)] // not every test uses every helper
+mod support;
+
+use support::circle_point;
+
 kinloop::mechanism! {
     pub struct FourBar {
         params a, b, c, d;
@@ -33,15 +38,6 @@ kinloop::mechanism! {
         loop abcde: a @ th1 + b @ phi2 == (d, 0) + e @ th2 + c @ phi3;
         point pc = a @ th1 + b @ phi2;
     }
-}
-
-/// C from the circles (B, rb) and (D, rd), on side `side` of B -> D (+1 left, -1 right).
-fn circle_point(bx: f64, by: f64, rb: f64, dx: f64, dy: f64, rd: f64, side: f64) -> (f64, f64) {
-    let (ux, uy) = (dx - bx, dy - by);
-    let dist = ux.hypot(uy);
-    let along = (rb * rb - rd * rd + dist * dist) / (2.0 * dist);
-    let h = (rb * rb - along * along).max(0.0).sqrt();
-    (bx + (along * ux - side * h * uy) / dist, by + (along * uy + side * h * ux) / dist)
 }
 
 fn side_of(bx: f64, by: f64, dx: f64, dy: f64, cx: f64, cy: f64) -> f64 {

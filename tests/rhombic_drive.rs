@@ -10,6 +10,11 @@ mod rhombic_drive;
 
 use rhombic_drive::RhombicDrive;
 
+#[allow(dead_code)] // not every test uses every helper
+mod support;
+
+use support::close;
+
 /// The example's drive, with centres of mass of its own.
 const DRIVE: RhombicDrive = RhombicDrive {
     r_p: 1.0,
@@ -81,11 +86,6 @@ fn closed(m: &RhombicDrive, phi1: f64) -> Closed {
         ds: [ds1, ds2, ds4],
         d2s: [d2s1, d2s2, d2s4],
     }
-}
-
-/// Relative tolerance, absolute near zero.
-fn close(a: f64, b: f64, rel: f64) -> bool {
-    (a - b).abs() <= rel * b.abs().max(1.0)
 }
 
 #[test]

@@ -35,6 +35,11 @@ mod class_four;
 use class_four::ClassFour;
 use gear_lever::GearLever;
 
+#[allow(dead_code)] // not every test uses every helper
+mod support;
+
+use support::close;
+
 kinloop::mechanism! {
     pub struct FiveBar {
         params a, b, c, d, e;
@@ -54,10 +59,6 @@ impl Rng {
         self.0 ^= self.0 << 17;
         (self.0 >> 11) as f64 / (1u64 << 53) as f64
     }
-}
-
-fn close(a: f64, b: f64, tol: f64) -> bool {
-    (a - b).abs() <= tol * b.abs().max(1.0)
 }
 
 /// Compares every sensitivity with Richardson-extrapolated central differences of the state.
@@ -175,7 +176,10 @@ fn five_bar_sensitivities_of_partial_analogs() {
     // The named API reads like the state with a parameter appended.
     let (st, sens) = m.sensitivities([1.3, 0.9], &m.solve([1.3, 0.9]).unwrap().q).unwrap();
     assert_eq!(st.q, m.solve([1.3, 0.9]).unwrap().q);
-    assert!(sens.dq.phi2.th1.b.is_finite() && sens.d2out.pc.y.th1.th2.e.is_finite());
+    // Flat indices: unknowns (phi2, phi3), inputs (th1, th2), outputs (pc.x, pc.y), params
+    // (a, b, c, d, e).
+    assert_eq!(sens.dq.phi2.th1.b, sens.flat.dq[0][0][1]);
+    assert_eq!(sens.d2out.pc.y.th1.th2.e, sens.flat.d2out[1][0][1][4]);
 }
 
 #[test]
@@ -190,5 +194,8 @@ fn named_sensitivities_match_flat() {
     let expected = -st.q.phi2.cos() + 3.0 * st.q.phi2.sin() * sens.q.phi2.l_p;
     assert!((sens.q.x_c.l_p - expected).abs() < 1e-12);
     assert_eq!(sens.out.gap.l_b, sens.q.x_f.l_b - sens.q.x_c.l_b);
-    let _ = <RhombicDrive as Mechanism<4, 1, 5>>::NAME;
+    // Flat, the outputs are the points' x and y, then the scalar output: five of them.
+    assert_eq!(<RhombicDrive as Mechanism<4, 1, 5>>::NAME, "RhombicDrive");
+    assert_eq!(sens.flat.out.len(), 5);
+    assert_eq!(sens.out.gap.l_b, sens.flat.out[4][3]);
 }

@@ -4,6 +4,11 @@
 use kinloop::{AtSingular, Error, EventKind, SweepConfig};
 use std::f64::consts::PI;
 
+#[allow(dead_code)] // not every test uses every helper
+mod support;
+
+use support::circle_point;
+
 kinloop::mechanism! {
     /// Four-bar: crank `a` at A = (0, 0), coupler `b`, rocker `c` at D = (d, 0).
     pub struct FourBar {
@@ -70,12 +75,7 @@ fn reachable_range_of_a_non_grashof_crank() {
 
 /// The independent solution: C from the circles (B, b) and (D, c), on the side given by `side`.
 fn coupler(m: &FourBar, phi: f64, side: f64) -> (f64, f64) {
-    let (bx, by) = (m.a * phi.cos(), m.a * phi.sin());
-    let (ux, uy) = (m.d - bx, -by);
-    let dist = ux.hypot(uy);
-    let along = (m.b * m.b - m.c * m.c + dist * dist) / (2.0 * dist);
-    let h = (m.b * m.b - along * along).max(0.0).sqrt();
-    (bx + along * ux / dist - side * h * uy / dist, by + along * uy / dist + side * h * ux / dist)
+    circle_point(m.a * phi.cos(), m.a * phi.sin(), m.b, m.d, 0.0, m.c, side)
 }
 
 #[test]
@@ -83,11 +83,13 @@ fn near_change_point_four_bar_keeps_its_branch_over_ten_turns() {
     // s + l = 1 + 3 = 4 is just below p + q = 2 + 2.001: a crank-rocker that passes within
     // about sqrt(1e-3) of the other assembly mode twice per turn.
     let m = FourBar { a: 1.0, b: 3.0, c: 2.0, d: 2.001 };
-    let g = m.position(0.0, &kinloop_guess(&m)).unwrap().0;
+    let g = m.position(0.0, &m.guess(0.0)).unwrap().0;
+    // Which intersection kinloop assembled: at phi = 0 the two are mirror images in the x axis.
     let side = {
         let (cx, cy) = (m.a + m.b * g.beta.cos(), m.b * g.beta.sin());
-        let (p, _) = coupler(&m, 0.0, 1.0);
-        if (p - cx).abs() < 1e-9 && cy.is_finite() { 1.0 } else { -1.0 }
+        let (px, py) = coupler(&m, 0.0, 1.0);
+        assert!((px - cx).abs() < 1e-9 && (py.abs() - cy.abs()).abs() < 1e-9, "({cx}, {cy}) vs ({px}, +-{py})");
+        py.signum() * cy.signum()
     };
     let sweep = m.sweep(0.0, 20.0 * PI, 7201, &g).unwrap();
     let mut first = None;
@@ -101,10 +103,6 @@ fn near_change_point_four_bar_keeps_its_branch_over_ten_turns() {
     }
     let (f, l) = (first.unwrap(), last.unwrap());
     assert!((f.beta - l.beta).abs() < 1e-9 && (f.gamma - l.gamma).abs() < 1e-9, "10 turns return to the start");
-}
-
-fn kinloop_guess(m: &FourBar) -> FourBarUnknowns {
-    m.guess(0.0)
 }
 
 #[test]

@@ -17,7 +17,9 @@ use kinloop::Mechanism;
 use kinloop_bench::class_four::{self, HandNewton};
 use kinloop_bench::kinloop_variants::{Kinloop, KinloopNamed, KinloopSweep, check_kinloop_sweep};
 use kinloop_bench::rhombic::{self, ClosedForm, DenseFiniteDifference, DenseHandJacobian, DenseNumDual, TwoLoopNewton};
-use kinloop_bench::sweep::{Failed, STEPS, Step, Stepper, Sweep, SweepCheck, WarmStart, check_sweep};
+use kinloop_bench::sweep::{
+    DIFFERENCED, EXACT, Failed, STEPS, Step, Stepper, Sweep, SweepCheck, WarmStart, check_sweep,
+};
 
 /// Prints a variant's check over a whole turn and asserts its deviations are within `tol`.
 fn assert_check(name: &str, policy: WarmStart, check: Result<SweepCheck, Failed>, tol: [f64; 3]) {
@@ -90,11 +92,6 @@ fn bench_kinloop_sweep<M: Mechanism<4, 1, NO>, R: Stepper<4>, const NO: usize>(
     let mut sweep = KinloopSweep::start(m, STEPS, guess0).unwrap();
     time_step(g, name, || sweep.advance().map(consume));
 }
-
-/// Exact derivatives: positions to the residual tolerance, analogs to rounding.
-const EXACT: [f64; 3] = [1e-11, 1e-9, 1e-9];
-/// Finite differences: the analogs carry the differencing error.
-const DIFFERENCED: [f64; 3] = [1e-11, 1e-6, 1e-5];
 
 fn rhombic_drive(c: &mut Criterion) {
     // Opaque parameters: no variant may fold them into constants.

@@ -168,6 +168,13 @@ pub struct SweepCheck {
     pub max_iterations: u32,
 }
 
+/// Tolerances of [`SweepCheck::max_dev`] for exact derivatives: positions to the residual
+/// tolerance, analogs to rounding.
+pub const EXACT: [f64; 3] = [1e-11, 1e-9, 1e-9];
+/// Tolerances of [`SweepCheck::max_dev`] for finite differences: the analogs carry the
+/// differencing error.
+pub const DIFFERENCED: [f64; 3] = [1e-11, 1e-6, 1e-5];
+
 /// Runs `s` over one whole turn with `policy` from `guess0` and compares every step with
 /// `reference` (a stepper that ignores the guess, e.g. a closed form, or another solver run
 /// side by side with the same policy).

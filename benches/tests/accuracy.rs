@@ -8,11 +8,9 @@ use kinloop::Mechanism;
 use kinloop_bench::class_four::{self, HandNewton};
 use kinloop_bench::kinloop_variants::{Kinloop, KinloopNamed, check_kinloop_sweep};
 use kinloop_bench::rhombic::{self, ClosedForm, DenseFiniteDifference, DenseHandJacobian, DenseNumDual, TwoLoopNewton};
-use kinloop_bench::sweep::{Stepper, SweepCheck, WarmStart, check_sweep};
+use kinloop_bench::sweep::{DIFFERENCED, EXACT, Stepper, SweepCheck, WarmStart, check_sweep};
 
 const STEPS: usize = 5_000;
-const EXACT: [f64; 3] = [1e-11, 1e-9, 1e-9];
-const DIFFERENCED: [f64; 3] = [1e-11, 1e-6, 1e-5];
 
 fn check<S: Stepper<4>, R: Stepper<4>>(name: &str, s: &S, r: &R, guess0: [f64; 4], tol: [f64; 3]) -> [SweepCheck; 2] {
     WarmStart::ALL.map(|policy| {

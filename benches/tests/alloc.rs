@@ -6,8 +6,6 @@
 //! policy driven by this package's `Sweep`, which uses only the public step API. Error paths may
 //! allocate (their `Location` is boxed); they are not exercised here.
 
-use std::alloc::{GlobalAlloc, Layout, System};
-use std::cell::Cell;
 use std::f64::consts::TAU;
 
 use kinloop::{Kin, Mechanism, NewtonConfig};
@@ -17,59 +15,17 @@ use kinloop_bench::kinloop_variants::Kinloop;
 use kinloop_bench::rhombic;
 use kinloop_bench::sweep::{Sweep, WarmStart};
 
-/// Counts the allocations made by the current thread while counting is switched on (tests run
-/// on several threads; each counts only its own).
-struct Counting;
+/// Counts this thread's allocations; shared with the root package's `tests/scan.rs`.
+#[path = "../../tests/support/counting_alloc.rs"]
+mod counting_alloc;
 
-thread_local! {
-    static ON: Cell<bool> = const { Cell::new(false) };
-    static COUNT: Cell<usize> = const { Cell::new(0) };
-}
-
-fn note() {
-    // `try_with`: the allocator may run while a thread's locals are being torn down.
-    let _ = ON.try_with(|on| {
-        if on.get() {
-            let _ = COUNT.try_with(|c| c.set(c.get() + 1));
-        }
-    });
-}
-
-unsafe impl GlobalAlloc for Counting {
-    unsafe fn alloc(&self, layout: Layout) -> *mut u8 {
-        note();
-        unsafe { System.alloc(layout) }
-    }
-    unsafe fn alloc_zeroed(&self, layout: Layout) -> *mut u8 {
-        note();
-        unsafe { System.alloc_zeroed(layout) }
-    }
-    unsafe fn realloc(&self, ptr: *mut u8, layout: Layout, new_size: usize) -> *mut u8 {
-        note();
-        unsafe { System.realloc(ptr, layout, new_size) }
-    }
-    unsafe fn dealloc(&self, ptr: *mut u8, layout: Layout) {
-        unsafe { System.dealloc(ptr, layout) }
-    }
-}
-
-#[global_allocator]
-static ALLOCATOR: Counting = Counting;
-
-/// Allocations made by `f` on this thread.
-fn allocations(f: impl FnOnce()) -> usize {
-    COUNT.with(|c| c.set(0));
-    ON.with(|on| on.set(true));
-    f();
-    ON.with(|on| on.set(false));
-    COUNT.with(|c| c.get())
-}
+use counting_alloc::allocations;
 
 const STEPS: usize = 2_000;
 
 #[test]
 fn the_counter_counts() {
-    let n = allocations(|| {
+    let ((), n) = allocations(|| {
         let v: Vec<u64> = std::hint::black_box(vec![1, 2, 3]);
         assert_eq!(v.len(), 3);
     });
@@ -94,6 +50,7 @@ macro_rules! step_allocations {
                 q = std::hint::black_box(p);
             }
         })
+        .1
     }};
 }
 
@@ -119,7 +76,7 @@ fn warm_started_turns_allocate_nothing() {
         // Starting a sweep solves its first step; iterating it must not allocate.
         let mut sweep = Sweep::start(&kl, STEPS, policy, rhombic::initial_guess(&p)).unwrap();
         let mut sweep4 = Sweep::start(&c4, STEPS, policy, class_four::INITIAL_GUESS).unwrap();
-        let n = allocations(|| {
+        let ((), n) = allocations(|| {
             for _ in 0..2 * STEPS {
                 assert!(std::hint::black_box(sweep.advance(&kl)).is_ok());
                 assert!(std::hint::black_box(sweep4.advance(&c4)).is_ok());
@@ -132,7 +89,7 @@ fn warm_started_turns_allocate_nothing() {
 /// Allocations of iterating a whole sweep (every sample must be `Ok`).
 fn sweep_allocations<T, E: std::fmt::Debug>(mut next: impl FnMut() -> Option<Result<T, E>>) -> usize {
     let mut samples = 0;
-    let n = allocations(|| {
+    let ((), n) = allocations(|| {
         while let Some(r) = next() {
             std::hint::black_box(r.expect("the sweep goes on"));
             samples += 1;

@@ -50,10 +50,17 @@ pub fn schedule(g: &Graph, level: &[i32], scopes: &[ScopeSpec]) -> Schedule {
     }
     // A sine and a cosine of the same argument are computed together (one `sin_cos`) in the
     // earlier of their two scopes; the argument is available there, since one of them already is.
+    let cos_of: HashMap<NodeId, NodeId> = assigned
+        .keys()
+        .filter_map(|&m| match g.op(m) {
+            Op::Func(Func::Cos, a) => Some((a, m)),
+            _ => None,
+        })
+        .collect();
     let pairs: Vec<(NodeId, NodeId)> = assigned
         .keys()
         .filter_map(|&n| match g.op(n) {
-            Op::Func(Func::Sin, a) => assigned.keys().find(|&&m| g.op(m) == Op::Func(Func::Cos, a)).map(|&m| (n, m)),
+            Op::Func(Func::Sin, a) => cos_of.get(&a).map(|&m| (n, m)),
             _ => None,
         })
         .collect();
@@ -210,36 +217,36 @@ impl Names {
     }
 
     /// `let tN: f64 = ...;` for each node.
-    /// A sine and a cosine of the same argument in one scope become one `sin_cos()` call.
+    /// A sine and a cosine of the same argument in one scope become one `sin_cos()` call, at
+    /// the position of whichever of the two comes first (both need only their argument).
     pub fn lets(&self, g: &Graph, nodes: &[NodeId]) -> TokenStream {
-        let mut cos_of: HashMap<NodeId, NodeId> = HashMap::new();
-        let mut sin_of: HashMap<NodeId, NodeId> = HashMap::new();
+        let mut sin_cos: HashMap<NodeId, [Option<NodeId>; 2]> = HashMap::new();
         for &n in nodes {
             match g.op(n) {
-                Op::Func(Func::Cos, a) => {
-                    cos_of.insert(a, n);
-                }
-                Op::Func(Func::Sin, a) => {
-                    sin_of.insert(a, n);
-                }
+                Op::Func(Func::Sin, a) => sin_cos.entry(a).or_default()[0] = Some(n),
+                Op::Func(Func::Cos, a) => sin_cos.entry(a).or_default()[1] = Some(n),
                 _ => {}
             }
         }
+        let mut paired = std::collections::HashSet::new();
         let mut out = TokenStream::new();
         for &n in nodes {
-            match g.op(n) {
-                Op::Func(Func::Sin, a) if cos_of.contains_key(&a) => {
-                    let (s, c) = (Self::temp(n), Self::temp(cos_of[&a]));
-                    let arg = self.operand(g, a);
-                    out.extend(quote!(let (#s, #c): (f64, f64) = #arg.sin_cos();));
-                }
-                Op::Func(Func::Cos, a) if sin_of.contains_key(&a) => {}
-                _ => {
-                    let name = Self::temp(n);
-                    let e = self.expr(g, n);
-                    out.extend(quote!(let #name: f64 = #e;));
-                }
+            if paired.contains(&n) {
+                continue;
             }
+            if let Op::Func(Func::Sin | Func::Cos, a) = g.op(n)
+                && let Some(&[Some(sn), Some(cn)]) = sin_cos.get(&a)
+            {
+                paired.insert(sn);
+                paired.insert(cn);
+                let (s, c) = (Self::temp(sn), Self::temp(cn));
+                let arg = self.operand(g, a);
+                out.extend(quote!(let (#s, #c): (f64, f64) = #arg.sin_cos();));
+                continue;
+            }
+            let name = Self::temp(n);
+            let e = self.expr(g, n);
+            out.extend(quote!(let #name: f64 = #e;));
         }
         out
     }

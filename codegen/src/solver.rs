@@ -195,27 +195,23 @@ pub fn solver_body_with(
                     quote!(__guess[#u])
                 });
                 let f = bp.f.iter().map(|&x| op(x));
-                // The guess is evaluated inline (in a warm-started sweep it usually meets the
-                // tolerance); only when it does not is the iteration called, with the same
-                // evaluation as a closure.
-                let eval_body = quote! {
-                    #inner
-                    #rt::BlockEval::<#n, #k> { f: [#(#f),*], j: [#(#jrows),*], keep: [#(#exports),*] }
-                };
+                // The block's evaluation is one closure: called here at the guess (in a
+                // warm-started sweep the guess usually meets the tolerance; LLVM inlines this
+                // call) and handed to the out-of-line iteration only when it does not.
+                let ev = format_ident!("__eval{}", b);
                 body.extend(quote! {
-                    let __z0: [f64; #n] = [#(#guess),*];
-                    let __e0 = {
-                        let [#(#qs),*] = __z0;
-                        #eval_body
+                    let #ev = |__z: &[f64; #n]| -> #rt::BlockEval<#n, #k> {
+                        let [#(#qs),*] = *__z;
+                        #inner
+                        #rt::BlockEval { f: [#(#f),*], j: [#(#jrows),*], keep: [#(#exports),*] }
                     };
+                    let __z0: [f64; #n] = [#(#guess),*];
+                    let __e0 = #ev(&__z0);
                     let __r0 = #rt::max_abs(__e0.f);
                     let #s = if __r0 <= __cfg.residual_tol {
                         #rt::Solved::at_guess(__z0, __e0, __r0)
                     } else {
-                        match #rt::iterate::<#n, #k>(__z0, __e0, __cfg, |__z: &[f64; #n]| {
-                            let [#(#qs),*] = *__z;
-                            #eval_body
-                        }) {
+                        match #rt::iterate::<#n, #k>(__z0, __e0, __cfg, #ev) {
                             Ok(s) => s,
                             Err(e) => return Err(self.__block_failure(#bl, e, __x, __guess)),
                         }

@@ -227,6 +227,31 @@ pub(crate) fn illinois(
     Some(0.5 * (a + b))
 }
 
+/// The limit position between `base` (arclength `s = 0`) and the curve point `ds` further on,
+/// whose `d sigma / ds` is `dsigma_end` (of the other sign than at `base`): the root of
+/// `d sigma / ds` in `s`.
+fn locate_fold<M, const N: usize, const NI: usize, const NO: usize>(
+    m: &M,
+    path: &Path<NI>,
+    base: &CurvePoint<N>,
+    ds: f64,
+    dsigma_end: f64,
+    cfg: &NewtonConfig,
+) -> Option<CurvePoint<N>>
+where
+    M: Mechanism<N, NI, NO>,
+{
+    let s = illinois(
+        |s| arc_step(m, path, base, s, cfg).map(|p| p.dsigma()),
+        0.0,
+        ds,
+        base.dsigma(),
+        dsigma_end,
+        1e-15 * (1.0 + ds),
+    )?;
+    arc_step(m, path, base, s, cfg)
+}
+
 /// What following the curve found.
 pub(crate) enum Found<const N: usize> {
     /// A limit position: the input reverses here.
@@ -265,17 +290,7 @@ where
         };
         let det_b = det_at(&b);
         if b.dsigma() <= 0.0 {
-            // Bracketed between a (s = 0) and b (s = ds); solve dsigma/ds = 0 for s.
-            let base = a.clone();
-            let s = illinois(
-                |s| arc_step(m, path, &base, s, cfg).map(|p| p.dsigma()),
-                0.0,
-                ds,
-                a.dsigma(),
-                b.dsigma(),
-                1e-15 * (1.0 + ds),
-            )?;
-            return arc_step(m, path, &base, s, cfg).map(Found::Fold);
+            return locate_fold(m, path, &a, ds, b.dsigma(), cfg).map(Found::Fold);
         }
         if (det_a > 0.0) != (det_b > 0.0) && det_a != 0.0 {
             // Near a crossing the bordered system is itself nearly singular and a corrector may
@@ -400,35 +415,15 @@ where
             if step < ds * 1e-6 {
                 return Err(crate::Error::Branch {
                     message: "pseudo-arclength continuation cannot proceed (the curve bifurcates or ends here)".into(),
-                    at: Box::new(crate::Location {
-                        mechanism: M::NAME,
-                        inputs: M::INPUTS.iter().copied().zip(path.at_sigma(p.sigma)).collect(),
-                        block: None,
-                    }),
+                    at: crate::Location::boxed(M::NAME, &M::INPUTS, &path.at_sigma(p.sigma), None),
                 });
             }
             continue;
         };
-        if (p.dsigma() > 0.0) != (next.dsigma() > 0.0) {
-            let base = p.clone();
-            let (g0, g1) = (p.dsigma(), next.dsigma());
-            if let Some(s) = illinois(
-                |s| arc_step(m, &path, &base, s, cfg).map(|c| c.dsigma()),
-                0.0,
-                step,
-                g0,
-                g1,
-                1e-15 * (1.0 + step),
-            ) && let Some(f) = arc_step(m, &path, &base, s, cfg)
-            {
-                out.folds.push(Event {
-                    kind: EventKind::LimitPosition,
-                    x: path.at_sigma(f.sigma).to_vec(),
-                    tau: f.sigma / path.len,
-                    q: f.q.to_vec(),
-                    block: None,
-                });
-            }
+        if (p.dsigma() > 0.0) != (next.dsigma() > 0.0)
+            && let Some(f) = locate_fold(m, &path, &p, step, next.dsigma(), cfg)
+        {
+            out.folds.push(Event::on_curve(EventKind::LimitPosition, &path, &f, None));
         }
         walked += step;
         let back = (next.y() - &start_y).norm();

@@ -25,6 +25,19 @@ pub struct Location {
     pub block: Option<(usize, BlockInfo)>,
 }
 
+impl Location {
+    /// A boxed location of mechanism `mechanism` at the inputs `names = x` (for errors raised
+    /// by generic code: sweeps, continuation).
+    pub(crate) fn boxed(
+        mechanism: &'static str,
+        names: &[&'static str],
+        x: &[f64],
+        block: Option<(usize, BlockInfo)>,
+    ) -> Box<Location> {
+        Box::new(Location { mechanism, inputs: names.iter().copied().zip(x.iter().copied()).collect(), block })
+    }
+}
+
 impl fmt::Display for Location {
     fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
         write!(f, "in `{}`", self.mechanism)?;

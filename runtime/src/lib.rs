@@ -45,12 +45,8 @@ pub use nalgebra;
 #[cold]
 #[inline(never)]
 pub fn block_error(fail: BlockFailure, at: Location) -> Error {
-    let (index, info) = match at.block {
-        Some(b) => b,
-        None => (0, BlockInfo { unknowns: &[], equations: &[], linear: false }),
-    };
-    let name = |row: usize| info.equations.get(row).copied().unwrap_or("?");
-    let _ = index;
+    let equations = at.block.map_or(&[][..], |(_, info)| info.equations);
+    let name = |row: usize| equations.get(row).copied().unwrap_or("?");
     match fail {
         BlockFailure::NonFinite { row, .. } => Error::Domain { what: "equation", name: name(row), at: Box::new(at) },
         BlockFailure::NoConvergence { row, iterations, residual } => {

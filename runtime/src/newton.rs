@@ -198,14 +198,7 @@ pub fn newton<const N: usize, const K: usize>(
     let res = max_abs(ev.f);
     // `max_abs` propagates NaN, which fails this test.
     if res <= cfg.residual_tol {
-        return Ok(Solved {
-            z: z0,
-            eval: ev,
-            iterations: 0,
-            evaluations: 1,
-            residual: res,
-            termination: Termination::ResidualTolerance,
-        });
+        return Ok(Solved::at_guess(z0, ev, res));
     }
     iterate(z0, ev, cfg, eval)
 }

@@ -111,6 +111,19 @@ pub struct Event {
     pub block: Option<(usize, BlockInfo)>,
 }
 
+impl Event {
+    /// The event at curve point `p` of `path`.
+    pub(crate) fn on_curve<const N: usize, const NI: usize>(
+        kind: EventKind,
+        path: &Path<NI>,
+        p: &CurvePoint<N>,
+        block: Option<(usize, BlockInfo)>,
+    ) -> Event {
+        let tau = p.sigma / path.len;
+        Event { kind, x: path.at_tau(tau).to_vec(), tau, q: p.q.to_vec(), block }
+    }
+}
+
 /// Why a step was not accepted.
 enum Outcome {
     Accept,
@@ -148,7 +161,7 @@ fn check_finite(what: &'static str, v: &[f64], mechanism: &'static str) -> Resul
             what: Quantity::Range,
             name: what,
             value,
-            at: Box::new(Location { mechanism, inputs: Vec::new(), block: None }),
+            at: Location::boxed(mechanism, &[], &[], None),
         }),
         None => Ok(()),
     }
@@ -225,41 +238,28 @@ where
         Ok(t)
     }
 
-    fn spacing(&self) -> f64 {
-        self.spacing
-    }
-
-    fn location(&self, x: &[f64; NI], block: Option<(usize, BlockInfo)>) -> Box<Location> {
-        Box::new(Location {
-            mechanism: M::NAME,
-            inputs: M::INPUTS.iter().copied().zip(x.iter().copied()).collect(),
-            block,
-        })
-    }
-
-    /// Predicted positions at fraction `tau + dt`.
-    fn predict(&self, k: &Kin<N, NI, NO>, dt: f64) -> [f64; N] {
-        let d = &self.path.delta;
-        let mut q = k.q;
-        for u in 0..N {
-            let mut first = 0.0;
-            let mut second = 0.0;
-            for i in 0..NI {
-                first += k.dq[u][i] * d[i];
-                for j in 0..NI {
-                    second += k.d2q[u][i][j] * d[i] * d[j];
-                }
-            }
-            q[u] += dt * (first + 0.5 * dt * second);
-        }
-        q
+    fn location(&self, x: &[f64], block: Option<(usize, BlockInfo)>) -> Box<Location> {
+        Location::boxed(M::NAME, &M::INPUTS, x, block)
     }
 
     /// Solves at `tau_new` from the prediction off `k` and judges the result. The state is
     /// returned beside the verdict (not inside it) so an accepted one is moved once, into `cur`.
     fn attempt(&self, k: &Kin<N, NI, NO>, tau_new: f64) -> (Outcome, Option<Kin<N, NI, NO>>) {
         let dt = tau_new - self.tau;
-        let pred = self.predict(k, dt);
+        let d = &self.path.delta;
+        // The analogs along the path, `slope = q' d` and `curv = d^T q'' d`, give the prediction
+        // (second-order Taylor, `q + slope dt + curv dt^2 / 2`) and, below, the expected slope
+        // at the new point; computed once per step.
+        let (mut pred, mut slope0, mut curv) = (k.q, [0.0; N], [0.0; N]);
+        for u in 0..N {
+            for i in 0..NI {
+                slope0[u] += k.dq[u][i] * d[i];
+                for j in 0..NI {
+                    curv[u] += k.d2q[u][i][j] * d[i] * d[j];
+                }
+            }
+            pred[u] += dt * (slope0[u] + 0.5 * dt * curv[u]);
+        }
         let x = self.path.at_tau(tau_new);
         match self.m.kinematics_flat(&x, &pred, &self.cfg.newton) {
             Err(e) => (Outcome::Fail(e), None),
@@ -268,23 +268,18 @@ where
                 // theirs: a kink in the analogs means the corrector slid onto another branch
                 // through a singular position (e.g. at a change point) even if the positions
                 // are close.
-                let d = &self.path.delta;
                 let (mut dist, mut change, mut slope_err, mut slope_change, mut slope) =
                     (0.0f64, 0.0f64, 0.0f64, 0.0f64, 0.0f64);
                 for u in 0..N {
                     dist = dist.max((n.q[u] - pred[u]).abs());
                     change = change.max((pred[u] - k.q[u]).abs());
-                    let (mut s0, mut s1, mut curv) = (0.0, 0.0, 0.0);
+                    let mut s1 = 0.0;
                     for i in 0..NI {
-                        s0 += k.dq[u][i] * d[i];
                         s1 += n.dq[u][i] * d[i];
-                        for j in 0..NI {
-                            curv += k.d2q[u][i][j] * d[i] * d[j];
-                        }
                     }
-                    slope_err = slope_err.max((s1 - (s0 + curv * dt)).abs());
-                    slope_change = slope_change.max((curv * dt).abs());
-                    slope = slope.max(s0.abs());
+                    slope_err = slope_err.max((s1 - (slope0[u] + curv[u] * dt)).abs());
+                    slope_change = slope_change.max((curv[u] * dt).abs());
+                    slope = slope.max(slope0[u].abs());
                 }
                 let rel = self.cfg.corrector_rel;
                 let verdict = if n.health.det_signs != self.signs {
@@ -382,7 +377,7 @@ where
         let path = self.path;
         let newton = self.cfg.newton;
         let end = target * path.len;
-        let mut ds = 0.01 * self.spacing() * path.len;
+        let mut ds = 0.01 * self.spacing * path.len;
         for _ in 0..200 {
             if let Ok(k) = self.m.kinematics_at_flat(&path.at_sigma(p.sigma), &p.q, &newton)
                 && k.health.min_pivot >= self.cfg.singular_pivot * 100.0
@@ -428,48 +423,30 @@ where
         let start =
             CurvePoint { q: k.q, sigma: self.tau * path.len, tangent: curve::tangent_from_analogs(&k.dq, &path) };
         let ds0 = ((tau_new - self.tau) * path.len).max(1e-9 * path.len);
-        let reach = (self.spacing() * path.len).max(ds0 * 8.0);
+        let reach = (self.spacing * path.len).max(ds0 * 8.0);
         match curve::trace(self.m, &path, &start, ds0, reach, &newton) {
             // A true limit position is singular; a reversal where the Jacobian is regular is a
             // kink of a non-smooth curve (e.g. through `abs`), reported below as a branch error.
             Some(Found::Fold(fold)) if curve::pivot_at(self.m, &path.at_sigma(fold.sigma), &fold.q) < 1e-6 => {
-                let tau = fold.sigma / path.len;
-                let x = path.at_tau(tau);
-                let ev = Event {
-                    kind: EventKind::LimitPosition,
-                    x: x.to_vec(),
-                    tau,
-                    q: fold.q.to_vec(),
-                    block: block_of(weakest),
-                };
+                let ev = Event::on_curve(EventKind::LimitPosition, &path, &fold, block_of(weakest));
+                let at = self.location(&ev.x, ev.block);
                 self.events.push(ev);
-                return Err(Error::SweepStopped {
-                    kind: EventKind::LimitPosition,
-                    at: self.location(&x, block_of(weakest)),
-                });
+                return Err(Error::SweepStopped { kind: EventKind::LimitPosition, at });
             }
             Some(Found::Crossing(at, past)) => {
-                let tau = at.sigma / path.len;
-                let x = path.at_tau(tau);
                 // The block whose determinant sign differs on the far side.
                 let beyond = self.m.kinematics_at_flat(&path.at_sigma(past.sigma), &past.q, &newton).ok();
                 let flipped = beyond.map_or(weakest, |n| (n.health.det_signs ^ self.signs).trailing_zeros() as usize);
-                let ev = Event {
-                    kind: EventKind::SingularCrossing,
-                    x: x.to_vec(),
-                    tau,
-                    q: at.q.to_vec(),
-                    block: block_of(flipped),
-                };
-                self.events.push(ev);
+                self.events.push(Event::on_curve(EventKind::SingularCrossing, &path, &at, block_of(flipped)));
                 if self.cfg.at_singular == AtSingular::Continue
                     && let Some(n) = self.resume_past(past, target)
                 {
                     return Ok(n);
                 }
+                let ev = &self.events[self.events.len() - 1];
                 return Err(Error::SweepStopped {
                     kind: EventKind::SingularCrossing,
-                    at: self.location(&x, block_of(flipped)),
+                    at: self.location(&ev.x, ev.block),
                 });
             }
             _ => {}

@@ -1,5 +1,7 @@
 //! Plain numerics for the tests' independent checks (closed forms solved without kinloop).
 
+use std::f64::consts::{PI, TAU};
+
 /// A root of `f` in `[lo, hi]` by bisection; `f` must change sign there.
 pub fn bisect(f: impl Fn(f64) -> f64, mut lo: f64, mut hi: f64) -> f64 {
     let flo = f(lo);
@@ -31,4 +33,32 @@ pub fn argmax(f: impl Fn(f64) -> f64, span: f64, n: usize) -> f64 {
         }
     }
     0.5 * (lo + hi)
+}
+
+/// `|a - b| <= rel * max(1, |b|)`: relative tolerance, absolute near zero.
+pub fn close(a: f64, b: f64, rel: f64) -> bool {
+    (a - b).abs() <= rel * b.abs().max(1.0)
+}
+
+/// An angle wrapped into `[-pi, pi)`.
+pub fn wrap(a: f64) -> f64 {
+    (a + PI).rem_euclid(TAU) - PI
+}
+
+/// Central differences with one Richardson step (h and h/2): (first, second) derivative with
+/// truncation error O(h^4) (~h^4/480 |q^(5)| and less for the second); position errors e
+/// contribute ~e/h and ~5e/h^2.
+pub fn richardson(f: impl Fn(f64) -> f64, x: f64, h: f64) -> (f64, f64) {
+    let d1 = |h: f64| (f(x + h) - f(x - h)) / (2.0 * h);
+    let d2 = |h: f64| (f(x + h) - 2.0 * f(x) + f(x - h)) / (h * h);
+    ((4.0 * d1(h / 2.0) - d1(h)) / 3.0, (4.0 * d2(h / 2.0) - d2(h)) / 3.0)
+}
+
+/// C from the circles (B, rb) and (D, rd), on side `side` of B -> D (+1 left, -1 right).
+pub fn circle_point(bx: f64, by: f64, rb: f64, dx: f64, dy: f64, rd: f64, side: f64) -> (f64, f64) {
+    let (ux, uy) = (dx - bx, dy - by);
+    let dist = ux.hypot(uy);
+    let along = (rb * rb - rd * rd + dist * dist) / (2.0 * dist);
+    let h = (rb * rb - along * along).max(0.0).sqrt();
+    (bx + (along * ux - side * h * uy) / dist, by + (along * uy + side * h * ux) / dist)
 }
