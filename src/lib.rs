@@ -248,3 +248,11 @@ pub use kinloop_runtime::*;
 pub mod __private {
     pub use kinloop_runtime::*;
 }
+
+/// Charts of sweep results as SVG (feature `plot`).
+#[cfg(feature = "plot")]
+pub use kinloop_viz::plot;
+
+/// Drawings and animations of the mechanism as SVG (feature `draw`).
+#[cfg(feature = "draw")]
+pub use kinloop_viz::draw;

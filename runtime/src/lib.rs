@@ -9,6 +9,8 @@
 #![allow(clippy::needless_range_loop)]
 
 pub mod analysis;
+pub mod dynamics;
+pub mod metrics;
 mod curve;
 mod error;
 mod kin;

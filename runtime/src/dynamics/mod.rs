@@ -1,0 +1,1 @@
+//! Machine dynamics (placeholder, being written).

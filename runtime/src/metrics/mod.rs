@@ -1,0 +1,1 @@
+//! Design metrics of mechanisms (placeholder, being written).

@@ -1,0 +1,7 @@
+//! Figures for [kinloop](https://docs.rs/kinloop): charts of sweep results ([`plot`]) and
+//! drawings and animations of the mechanism itself ([`draw`]), written as SVG.
+//!
+//! Reached through the `kinloop` facade with its features `plot` and `draw`.
+
+pub mod draw;
+pub mod plot;

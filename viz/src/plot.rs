@@ -1,0 +1,1 @@
+//! Charts of sweep results (placeholder, being written).
