@@ -1,1 +1,0 @@
-//! Drawings and animations of mechanisms (placeholder, being written).

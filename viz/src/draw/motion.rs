@@ -1,0 +1,123 @@
+//! A recorded motion: the poses of a sweep and the events where it stopped, without the
+//! mechanism's const generics, so one drawing description serves any mechanism.
+
+use super::error::DrawError;
+use kinloop_runtime::{Error, EventKind, Kin, Mechanism, Sweep};
+
+/// One pose of the mechanism: inputs `x`, unknowns `q` and output columns `out`, in
+/// declaration order (as in [`Kin`]).
+#[derive(Clone, Debug, PartialEq)]
+pub struct Pose {
+    /// Input values.
+    pub x: Vec<f64>,
+    /// Unknowns (positions).
+    pub q: Vec<f64>,
+    /// Output columns (`p.x`, `p.y` for each point, then scalar outputs, as declared).
+    pub out: Vec<f64>,
+}
+
+impl<const N: usize, const NI: usize, const NO: usize> From<&Kin<N, NI, NO>> for Pose {
+    fn from(k: &Kin<N, NI, NO>) -> Self {
+        Pose { x: k.x.to_vec(), q: k.q.to_vec(), out: k.out.to_vec() }
+    }
+}
+
+/// A singular position met by the sweep, with the mechanism's pose there.
+#[derive(Clone, Debug, PartialEq)]
+pub struct Marked {
+    /// Limit position or singular crossing.
+    pub kind: EventKind,
+    /// The pose at the located event.
+    pub pose: Pose,
+}
+
+/// The poses of a sweep, in order, and its events (see [`Motion::record`]).
+#[derive(Clone, Debug, PartialEq)]
+pub struct Motion {
+    /// Names of the inputs (`Mechanism::INPUTS`).
+    pub inputs: Vec<String>,
+    /// Names of the output columns (`Mechanism::OUTPUTS`).
+    pub outputs: Vec<String>,
+    /// The samples, in sweep order.
+    pub poses: Vec<Pose>,
+    /// The located events (limit positions, singular crossings), in the order met.
+    pub events: Vec<Marked>,
+    /// The sweep stopped at its last event (rather than passing it or reaching its end).
+    pub stopped: bool,
+}
+
+impl Motion {
+    /// A motion without poses for mechanism `M`, to fill with [`Motion::push`].
+    pub fn empty<M, const N: usize, const NI: usize, const NO: usize>() -> Motion
+    where
+        M: Mechanism<N, NI, NO>,
+    {
+        Motion {
+            inputs: M::INPUTS.iter().map(|s| s.to_string()).collect(),
+            outputs: M::OUTPUTS.iter().map(|s| s.to_string()).collect(),
+            poses: Vec::new(),
+            events: Vec::new(),
+            stopped: false,
+        }
+    }
+
+    /// Appends a pose (e.g. each state of a sweep the caller ran itself).
+    pub fn push(&mut self, pose: impl Into<Pose>) {
+        self.poses.push(pose.into());
+    }
+
+    /// Runs `sweep` of mechanism `m` to its end and records every sample. A stop at a located
+    /// limit position or singular crossing ([`Error::SweepStopped`]) ends the motion there: the
+    /// events are kept with the pose at each (drawn and marked by the drawings) and
+    /// [`Motion::stopped`] is set. Any other failure is [`DrawError::Sweep`].
+    /// See the [module documentation](super) for an example.
+    pub fn record<M, S, const N: usize, const NI: usize, const NO: usize>(
+        m: &M,
+        mut sweep: Sweep<'_, M, S, N, NI, NO>,
+    ) -> Result<Motion, DrawError>
+    where
+        M: Mechanism<N, NI, NO>,
+        S: From<Kin<N, NI, NO>>,
+    {
+        let mut motion = Motion::empty::<M, N, NI, NO>();
+        while let Some(k) = sweep.next_kin() {
+            match k {
+                Ok(k) => motion.push(&k),
+                Err(Error::SweepStopped { .. }) => motion.stopped = true,
+                Err(e) => return Err(DrawError::Sweep(e)),
+            }
+        }
+        for e in sweep.events() {
+            let (Ok(x), Ok(q)) = (<[f64; NI]>::try_from(&e.x[..]), <[f64; N]>::try_from(&e.q[..])) else {
+                continue;
+            };
+            let out = m.outputs_flat(&x, &q).to_vec();
+            motion.events.push(Marked { kind: e.kind, pose: Pose { x: e.x.clone(), q: e.q.clone(), out } });
+        }
+        Ok(motion)
+    }
+
+    /// The samples followed by the event poses: the poses a drawing must fit in its frame.
+    pub(crate) fn all_poses(&self) -> impl Iterator<Item = &Pose> {
+        self.poses.iter().chain(self.events.iter().map(|e| &e.pose))
+    }
+
+    /// The names of the mechanism's points (output column pairs `p.x`, `p.y`).
+    pub fn point_names(&self) -> Vec<String> {
+        self.outputs
+            .iter()
+            .filter_map(|c| c.strip_suffix(".x"))
+            .filter(|p| self.outputs.iter().any(|c| c.strip_suffix(".y") == Some(p)))
+            .map(str::to_string)
+            .collect()
+    }
+
+    /// The output columns of point `name`.
+    pub(crate) fn point_columns(&self, name: &str) -> Result<(usize, usize), DrawError> {
+        let col = |axis: &str| self.outputs.iter().position(|c| *c == format!("{name}.{axis}"));
+        match (col("x"), col("y")) {
+            (Some(ix), Some(iy)) => Ok((ix, iy)),
+            _ => Err(DrawError::UnknownPoint { name: name.to_string(), available: self.point_names() }),
+        }
+    }
+}

@@ -1,0 +1,207 @@
+//! What to draw: a run-time description of the mechanism's links, pivots, sliders and gears,
+//! through points named after the mechanism's outputs, fixed points or expressions of the state.
+
+use super::style::Style;
+use super::view::Canvas;
+use std::fmt;
+use std::sync::Arc;
+
+/// The state of the mechanism at one pose, as flat slices in declaration order: what
+/// [`Pt::expr`] and [`Scalar::expr`] closures read.
+#[derive(Clone, Copy, Debug)]
+pub struct StateRef<'a> {
+    /// Input values (`Mechanism::INPUTS` order).
+    pub x: &'a [f64],
+    /// Unknowns (`Mechanism::UNKNOWNS` order).
+    pub q: &'a [f64],
+    /// Output columns (`Mechanism::OUTPUTS` order).
+    pub out: &'a [f64],
+}
+
+pub(crate) type PointFn = Arc<dyn Fn(&StateRef) -> [f64; 2] + Send + Sync>;
+type ScalarFn = Arc<dyn Fn(&StateRef) -> f64 + Send + Sync>;
+
+/// A point of the drawing, in the mechanism's own units.
+#[derive(Clone)]
+pub enum Pt {
+    /// A `point` output of the mechanism, by name (its output columns `name.x`, `name.y`).
+    Point(String),
+    /// A fixed point.
+    Fixed([f64; 2]),
+    /// An expression of the state (for joints the declaration does not name as points).
+    Expr(PointFn),
+}
+
+impl Pt {
+    /// The mechanism's `point` output `name`.
+    pub fn point(name: impl Into<String>) -> Pt {
+        Pt::Point(name.into())
+    }
+
+    /// A fixed point `(x, y)`.
+    pub fn fixed(x: f64, y: f64) -> Pt {
+        Pt::Fixed([x, y])
+    }
+
+    /// A point computed from the state, e.g. a crank pin `|s| [r * s.x[0].cos(), r * s.x[0].sin()]`.
+    pub fn expr(f: impl Fn(&StateRef) -> [f64; 2] + Send + Sync + 'static) -> Pt {
+        Pt::Expr(Arc::new(f))
+    }
+
+    /// How the point is named in error messages.
+    pub(crate) fn describe(&self) -> String {
+        match self {
+            Pt::Point(n) => format!("point `{n}`"),
+            Pt::Fixed([x, y]) => format!("fixed point ({x}, {y})"),
+            Pt::Expr(_) => "point expression".to_string(),
+        }
+    }
+}
+
+impl fmt::Debug for Pt {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        f.write_str(&self.describe())
+    }
+}
+
+impl From<&str> for Pt {
+    fn from(name: &str) -> Pt {
+        Pt::point(name)
+    }
+}
+
+impl From<[f64; 2]> for Pt {
+    fn from(p: [f64; 2]) -> Pt {
+        Pt::Fixed(p)
+    }
+}
+
+/// An angle (radians, counter-clockwise from the X axis) or another scalar of the drawing:
+/// constant or computed from the state.
+#[derive(Clone)]
+pub enum Scalar {
+    /// A constant.
+    Const(f64),
+    /// An expression of the state.
+    Expr(ScalarFn),
+}
+
+impl Scalar {
+    /// A scalar computed from the state, e.g. a rocker angle `|s| s.q[1]`.
+    pub fn expr(f: impl Fn(&StateRef) -> f64 + Send + Sync + 'static) -> Scalar {
+        Scalar::Expr(Arc::new(f))
+    }
+}
+
+impl fmt::Debug for Scalar {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        match self {
+            Scalar::Const(v) => write!(f, "Const({v})"),
+            Scalar::Expr(_) => f.write_str("Expr(..)"),
+        }
+    }
+}
+
+impl From<f64> for Scalar {
+    fn from(v: f64) -> Scalar {
+        Scalar::Const(v)
+    }
+}
+
+/// One element of a drawing (see the builder methods of [`Drawing`]).
+#[derive(Clone, Debug)]
+pub enum Item {
+    /// A rigid link through points: a bar for two points, a chain of bars or, `closed`, a
+    /// filled polygon (a ternary link). Each point gets a joint circle.
+    Link { through: Vec<Pt>, closed: bool },
+    /// A fixed pivot (frame joint) with ground hatching.
+    Pivot { at: Pt },
+    /// A slider block at `at` on a guide in direction `angle`. A constant angle draws the
+    /// guide (ground line with hatching) over the whole stroke; a moving guide (a rocker) is
+    /// drawn as a link by the caller.
+    Slider { at: Pt, angle: Scalar },
+    /// A gear as its pitch circle of `radius` about `centre`, with a radius marking its turn
+    /// `angle`.
+    Gear { centre: Pt, radius: f64, angle: Scalar },
+    /// A lone joint circle.
+    Joint { at: Pt },
+}
+
+/// A drawing description: what to draw of a mechanism, at any pose.
+///
+/// Items are drawn in the order added (later ones on top), then every joint circle on top of
+/// all. Sizes of strokes, circles and blocks are in pixels, so the picture does not depend on
+/// the mechanism's unit of length.
+#[derive(Clone, Debug, Default)]
+pub struct Drawing {
+    /// The elements, in drawing order.
+    pub items: Vec<Item>,
+    /// Points whose paths (coupler curves) are traced over the motion.
+    pub traces: Vec<Pt>,
+    /// Size of the picture and the part of the plane shown.
+    pub canvas: Canvas,
+    /// Colours and sizes.
+    pub style: Style,
+}
+
+impl Drawing {
+    /// An empty drawing.
+    pub fn new() -> Drawing {
+        Drawing::default()
+    }
+
+    /// A bar or chain of bars through `through`.
+    pub fn link<P: Into<Pt>>(mut self, through: impl IntoIterator<Item = P>) -> Drawing {
+        self.items.push(Item::Link { through: through.into_iter().map(Into::into).collect(), closed: false });
+        self
+    }
+
+    /// A rigid body drawn as the filled polygon through `corners` (a ternary link, a crank
+    /// with two arms).
+    pub fn body<P: Into<Pt>>(mut self, corners: impl IntoIterator<Item = P>) -> Drawing {
+        self.items.push(Item::Link { through: corners.into_iter().map(Into::into).collect(), closed: true });
+        self
+    }
+
+    /// A fixed pivot with ground hatching.
+    pub fn pivot(mut self, at: impl Into<Pt>) -> Drawing {
+        self.items.push(Item::Pivot { at: at.into() });
+        self
+    }
+
+    /// A slider block at `at` moving along direction `angle` (radians from the X axis).
+    pub fn slider(mut self, at: impl Into<Pt>, angle: impl Into<Scalar>) -> Drawing {
+        self.items.push(Item::Slider { at: at.into(), angle: angle.into() });
+        self
+    }
+
+    /// A gear: pitch circle of `radius` (mechanism units) about `centre`, turned by `angle`.
+    pub fn gear(mut self, centre: impl Into<Pt>, radius: f64, angle: impl Into<Scalar>) -> Drawing {
+        self.items.push(Item::Gear { centre: centre.into(), radius, angle: angle.into() });
+        self
+    }
+
+    /// A joint circle at `at`.
+    pub fn joint(mut self, at: impl Into<Pt>) -> Drawing {
+        self.items.push(Item::Joint { at: at.into() });
+        self
+    }
+
+    /// Sets the picture's size and the part of the plane shown.
+    pub fn with_canvas(mut self, canvas: Canvas) -> Drawing {
+        self.canvas = canvas;
+        self
+    }
+
+    /// Sets colours and sizes.
+    pub fn with_style(mut self, style: Style) -> Drawing {
+        self.style = style;
+        self
+    }
+
+    /// Traces the path of `at` over the motion (a coupler curve).
+    pub fn trace(mut self, at: impl Into<Pt>) -> Drawing {
+        self.traces.push(at.into());
+        self
+    }
+}

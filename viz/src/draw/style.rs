@@ -1,0 +1,48 @@
+//! Colours and sizes of drawings, in pixels (independent of the mechanism's unit of length).
+
+/// How a drawing looks. Sizes are pixels; colours are SVG colours.
+#[derive(Clone, Debug, PartialEq)]
+pub struct Style {
+    /// Colour of links, sliders and gears.
+    pub ink: String,
+    /// Fill of bodies (polygons) and slider blocks.
+    pub fill: String,
+    /// Width of link strokes.
+    pub link_width: f64,
+    /// Radius of joint circles.
+    pub joint_radius: f64,
+    /// Length and height of slider blocks.
+    pub block: [f64; 2],
+    /// Colours of the traced paths, used in turn.
+    pub traces: Vec<String>,
+    /// Width of the traced paths.
+    pub trace_width: f64,
+    /// Colour of the poses drawn at events (limit positions, singular crossings).
+    pub event: String,
+    /// Colour of the ground (pivots, guides) and its hatching.
+    pub ground: String,
+}
+
+impl Default for Style {
+    fn default() -> Self {
+        let s = |c: &str| c.to_string();
+        Style {
+            ink: s("#1f3b5a"),
+            fill: s("#9ec1e0"),
+            link_width: 4.0,
+            joint_radius: 3.5,
+            block: [26.0, 14.0],
+            traces: ["#d95f02", "#1b9e77", "#7570b3", "#e7298a", "#66a61e"].map(s).to_vec(),
+            trace_width: 1.5,
+            event: s("#c0143c"),
+            ground: s("#555555"),
+        }
+    }
+}
+
+impl Style {
+    /// The colour of trace `k`.
+    pub(crate) fn trace(&self, k: usize) -> &str {
+        self.traces.get(k % self.traces.len().max(1)).map_or("#d95f02", String::as_str)
+    }
+}

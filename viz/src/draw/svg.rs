@@ -1,0 +1,81 @@
+//! Writing SVG text: numbers rounded to 0.1 px, point lists, and animated attributes.
+
+use std::fmt::Write;
+
+/// A coordinate rounded to 0.1 px, without a trailing `.0` (keeps files small).
+pub(crate) fn num(v: f64) -> String {
+    let r = (v * 10.0).round() / 10.0;
+    // `-0` prints as "-0"; the sum with `0.0` turns it into `+0`.
+    format!("{}", r + 0.0)
+}
+
+/// `x,y x,y ...`
+pub(crate) fn points(pts: &[[f64; 2]]) -> String {
+    let mut s = String::with_capacity(pts.len() * 12);
+    for (i, [x, y]) in pts.iter().enumerate() {
+        if i > 0 {
+            s.push(' ');
+        }
+        let _ = write!(s, "{},{}", num(*x), num(*y));
+    }
+    s
+}
+
+/// `x y` (a translation).
+pub(crate) fn pair([x, y]: [f64; 2]) -> String {
+    format!("{} {}", num(x), num(y))
+}
+
+/// Rotation angles in degrees made continuous (each within 180 of the previous), so an
+/// interpolating animation turns the short way instead of spinning back.
+pub(crate) fn unwrap_degrees(a: &[f64]) -> Vec<f64> {
+    let mut out: Vec<f64> = Vec::with_capacity(a.len());
+    for &v in a {
+        out.push(match out.last() {
+            Some(&prev) => v - 360.0 * ((v - prev) / 360.0).round(),
+            None => v,
+        });
+    }
+    out
+}
+
+/// How an animated attribute is played: the key frames' duration in seconds.
+#[derive(Clone, Copy, Debug)]
+pub(crate) struct Timing {
+    pub seconds: f64,
+}
+
+/// Writes `<animate>` of attribute `attr` through `values` (one per key frame), or nothing
+/// when every value is the same (the element then keeps its static attribute).
+pub(crate) fn animate(out: &mut String, attr: &str, values: &[String], t: Option<Timing>) {
+    let Some(t) = t else { return };
+    if values.windows(2).all(|w| w[0] == w[1]) {
+        return;
+    }
+    let _ = write!(
+        out,
+        r#"<animate attributeName="{attr}" dur="{}s" repeatCount="indefinite" values="{}"/>"#,
+        num(t.seconds),
+        values.join(";")
+    );
+}
+
+/// Writes `<animateTransform>` of `kind` (`translate`, `rotate`) through `values`, or nothing
+/// when every value is the same.
+pub(crate) fn animate_transform(out: &mut String, kind: &str, values: &[String], t: Option<Timing>) {
+    let Some(t) = t else { return };
+    if values.windows(2).all(|w| w[0] == w[1]) {
+        return;
+    }
+    let _ = write!(
+        out,
+        r#"<animateTransform attributeName="transform" type="{kind}" dur="{}s" repeatCount="indefinite" values="{}"/>"#,
+        num(t.seconds),
+        values.join(";")
+    );
+}
+
+/// Escapes text for an SVG text node or attribute.
+pub(crate) fn escape(s: &str) -> String {
+    s.replace('&', "&amp;").replace('<', "&lt;").replace('>', "&gt;").replace('"', "&quot;")
+}
