@@ -1,0 +1,163 @@
+//! Animated SVG: well-formed XML with the expected key frames, traced paths on the closed-form
+//! coupler curve, events drawn at the closed-form limit position, and the same picture for a
+//! mechanism in metres and in millimetres.
+
+use kinloop::EventKind;
+use kinloop_viz::draw::{Animation, Canvas, Drawing, Motion, Pt};
+use std::f64::consts::{PI, TAU};
+
+#[allow(dead_code)] // not every test uses every helper
+mod draw_support;
+
+use draw_support::{FourBar, four_bar_joints, window_px};
+
+const WINDOW: [f64; 4] = [-2.0, -2.0, 6.0, 5.0];
+const WIDTH: f64 = 400.0;
+
+fn four_bar_drawing(m: &FourBar) -> Drawing {
+    let (o, d) = ([0.0, 0.0], [m.d, 0.0]);
+    Drawing::new()
+        .pivot(o)
+        .pivot(d)
+        .link([Pt::from(o), Pt::point("b")])
+        .body(["b", "c", "p"])
+        .link([Pt::point("c"), Pt::from(d)])
+        .trace("p")
+}
+
+fn motion(m: &FourBar, to: f64, samples: usize) -> Motion {
+    Motion::record(m, m.sweep(0.0, to, samples, &m.guess(0.0)).unwrap()).unwrap()
+}
+
+/// Pairs of numbers `x,y x,y` or `x y;x y` as points.
+fn pairs(s: &str, sep: char) -> Vec<[f64; 2]> {
+    s.split(sep)
+        .filter(|p| !p.is_empty())
+        .map(|p| {
+            let v: Vec<f64> = p.split([',', ' ']).map(|n| n.parse().expect("a number")).collect();
+            [v[0], v[1]]
+        })
+        .collect()
+}
+
+#[test]
+fn the_animation_is_well_formed_with_its_key_frames() {
+    let m = FourBar::default();
+    let mo = motion(&m, TAU, 361);
+    let anim = Animation { frames: 90, seconds: 5.0, back_and_forth: false };
+    let svg = four_bar_drawing(&m).animate(&mo, &anim).unwrap();
+    let doc = roxmltree::Document::parse(&svg).expect("well-formed XML");
+    let root = doc.root_element();
+    assert_eq!(root.tag_name().name(), "svg");
+    assert_eq!(root.tag_name().namespace(), Some("http://www.w3.org/2000/svg"));
+    assert!(!svg.contains("script") && !svg.contains("NaN"));
+    let animations: Vec<_> =
+        doc.descendants().filter(|n| matches!(n.tag_name().name(), "animate" | "animateTransform")).collect();
+    // Moving: the crank, the body and the rocker (points), the joints B, C, P (twice: the
+    // crank's end and the body's corner; the body's and the rocker's C), the trace's dot.
+    assert!(animations.len() >= 8, "{} animated attributes", animations.len());
+    for a in &animations {
+        assert_eq!(a.attribute("values").unwrap().split(';').count(), 90, "{a:?}");
+        assert_eq!(a.attribute("dur"), Some("5s"));
+        assert_eq!(a.attribute("repeatCount"), Some("indefinite"));
+    }
+    // Forward and back: 2 k - 1 key frames.
+    let both = four_bar_drawing(&m).animate(&mo, &Animation { back_and_forth: true, ..anim }).unwrap();
+    let doc = roxmltree::Document::parse(&both).unwrap();
+    let a = doc.descendants().find(|n| n.tag_name().name() == "animate").unwrap();
+    assert_eq!(a.attribute("values").unwrap().split(';').count(), 179);
+}
+
+#[test]
+fn key_frames_follow_the_closed_form_motion() {
+    // A lone joint at P with a fixed window: its translations are the closed-form pixels of P
+    // at the key frames' inputs, which are spread evenly over the samples.
+    let m = FourBar::default();
+    let mo = motion(&m, TAU, 361);
+    let canvas = Canvas { width: WIDTH, window: Some(WINDOW), ..Canvas::default() };
+    let anim = Animation { frames: 61, ..Animation::default() };
+    let d = Drawing::new().with_canvas(canvas).joint("p");
+    let svg = d.animate(&mo, &anim).unwrap();
+    let doc = roxmltree::Document::parse(&svg).unwrap();
+    let a = doc.descendants().find(|n| n.tag_name().name() == "animateTransform").unwrap();
+    let values = pairs(a.attribute("values").unwrap(), ';');
+    let keys = d.key_poses(&mo, &anim).unwrap();
+    assert_eq!((values.len(), keys.len(), keys[0], keys[60]), (61, 61, 0, 360));
+    for (v, &k) in values.iter().zip(&keys) {
+        assert_eq!(k % 6, 0, "360 intervals in 60 steps");
+        let want = window_px(WINDOW, WIDTH, four_bar_joints(&m, mo.poses[k].x[0])[2]);
+        // Written rounded to 0.1 px: at most 0.05 px off, plus rounding of the decimal.
+        assert!((v[0] - want[0]).abs() <= 0.0501 && (v[1] - want[1]).abs() <= 0.0501, "{v:?} vs {want:?}");
+    }
+}
+
+#[test]
+fn the_traced_path_is_the_closed_form_coupler_curve() {
+    let m = FourBar::default();
+    let mo = motion(&m, TAU, 121);
+    let canvas = Canvas { width: WIDTH, window: Some(WINDOW), ..Canvas::default() };
+    let svg = four_bar_drawing(&m).with_canvas(canvas).animate(&mo, &Animation::default()).unwrap();
+    let doc = roxmltree::Document::parse(&svg).unwrap();
+    let trace = doc.descendants().find(|n| n.attribute("class") == Some("trace")).expect("a traced path");
+    let pts = pairs(trace.attribute("points").unwrap(), ' ');
+    // Every sample (none falls on the same 0.1 px as its neighbour on this curve).
+    assert_eq!(pts.len(), 121);
+    for (i, p) in pts.iter().enumerate() {
+        let phi = TAU * i as f64 / 120.0;
+        let want = window_px(WINDOW, WIDTH, four_bar_joints(&m, phi)[2]);
+        assert!((p[0] - want[0]).abs() <= 0.0501 && (p[1] - want[1]).abs() <= 0.0501, "sample {i}: {p:?} vs {want:?}");
+    }
+}
+
+#[test]
+fn a_limit_position_is_drawn_and_marked_where_the_closed_form_puts_it() {
+    // Non-Grashof: the crank stops where coupler and rocker are collinear, |BD| = l + k.
+    let m = FourBar { r: 3.0, l: 2.0, k: 2.5, d: 4.0, e: 1.2, delta: 0.9 };
+    let g = m.position(0.0, &m.guess(0.0)).unwrap().0;
+    let mo = Motion::record(&m, m.sweep(0.0, PI, 91, &g).unwrap()).unwrap();
+    assert!(mo.stopped);
+    assert_eq!(mo.events.len(), 1);
+    assert_eq!(mo.events[0].kind, EventKind::LimitPosition);
+    let limit = ((m.r * m.r + m.d * m.d - (m.l + m.k).powi(2)) / (2.0 * m.r * m.d)).acos();
+    let b = [m.r * limit.cos(), m.r * limit.sin()];
+    let c = [m.d + m.k * (b[0] - m.d) / (m.l + m.k), m.k * b[1] / (m.l + m.k)];
+    let window = [-3.0, -2.0, 6.0, 5.0];
+    let canvas = Canvas { width: WIDTH, window: Some(window), ..Canvas::default() };
+    let d = Drawing::new().with_canvas(canvas).joint("c");
+    let anim = Animation { frames: 30, back_and_forth: true, ..Animation::default() };
+    let svg = d.animate(&mo, &anim).unwrap();
+    let doc = roxmltree::Document::parse(&svg).unwrap();
+    let event = doc.descendants().find(|n| n.attribute("class") == Some("event")).expect("the event is drawn");
+    let label = event.descendants().find(|n| n.tag_name().name() == "text").unwrap().text().unwrap();
+    assert_eq!(label, format!("limit position at phi = {limit:.4}"));
+    let ghost = event.descendants().find(|n| n.tag_name().name() == "circle").unwrap();
+    let at = ghost.attribute("transform").unwrap().trim_start_matches("translate(").trim_end_matches(')');
+    let at = pairs(at, ';')[0];
+    let want = window_px(window, WIDTH, c);
+    assert!((at[0] - want[0]).abs() <= 0.0501 && (at[1] - want[1]).abs() <= 0.0501, "{at:?} vs {want:?}");
+    // The animation goes to the event and back: its middle key frame is the event's pose.
+    let moving = doc.descendants().find(|n| n.tag_name().name() == "animateTransform").unwrap();
+    let values = pairs(moving.attribute("values").unwrap(), ';');
+    assert_eq!(values.len(), 59);
+    assert_eq!(values[29], at);
+    assert_eq!(values[0], values[58]);
+}
+
+/// Every number of an SVG document, in order.
+fn numbers(svg: &str) -> Vec<f64> {
+    svg.split(|c: char| !(c.is_ascii_digit() || c == '.' || c == '-')).filter_map(|t| t.parse::<f64>().ok()).collect()
+}
+
+#[test]
+fn metres_and_millimetres_draw_alike() {
+    let m = FourBar::default();
+    let mm = FourBar { r: 1e3 * m.r, l: 1e3 * m.l, k: 1e3 * m.k, d: 1e3 * m.d, e: 1e3 * m.e, ..m };
+    let a = four_bar_drawing(&m).animate(&motion(&m, TAU, 181), &Animation::default()).unwrap();
+    let b = four_bar_drawing(&mm).animate(&motion(&mm, TAU, 181), &Animation::default()).unwrap();
+    let (na, nb) = (numbers(&a), numbers(&b));
+    assert_eq!(na.len(), nb.len());
+    // Pixels agree up to the 0.1 px rounding of a coordinate lying on a rounding boundary.
+    let worst = na.iter().zip(&nb).map(|(x, y)| (x - y).abs()).fold(0.0, f64::max);
+    assert!(worst <= 0.1 + 1e-9, "largest difference {worst} px");
+    println!("{} numbers, largest difference {worst} px", na.len());
+}
