@@ -4,8 +4,8 @@
 //!
 //! Run with `cargo run --release --features draw --example animations -- docs/animations`
 //! (the folder defaults to `out/animations`). Each mechanism gives `<name>.svg`, an animated
-//! SVG that plays in a browser or a README; the four-bar and the class IV mechanism also give
-//! `<name>_exposures.svg`, a static multi-exposure for print.
+//! SVG that plays in a browser or a README; the roller edger, the class IV mechanism and the
+//! four-bar coupler curve also give `<name>_exposures.svg`, a static multi-exposure for print.
 
 use kinloop::draw::{Animation, Drawing, Motion, Pt, Scalar};
 use std::error::Error;
@@ -13,20 +13,20 @@ use std::f64::consts::{FRAC_PI_2, PI, TAU};
 use std::path::{Path, PathBuf};
 
 // The gallery's mechanisms, declared once in their own examples and included here (the only
-// place this example refers to them).
+// place this example refers to them). Each example brings its own `mod common`.
 #[allow(dead_code)]
 #[path = "class_four.rs"]
 mod class_four;
-#[allow(dead_code)]
+#[allow(dead_code, clippy::duplicate_mod)]
 #[path = "gear_lever.rs"]
 mod gear_lever;
-#[allow(dead_code)]
+#[allow(dead_code, clippy::duplicate_mod)]
 #[path = "rhombic_drive.rs"]
 mod rhombic_drive;
-#[allow(dead_code)]
+#[allow(dead_code, clippy::duplicate_mod)]
 #[path = "rhombic_variants.rs"]
 mod rhombic_variants;
-#[allow(dead_code)]
+#[allow(dead_code, clippy::duplicate_mod)]
 #[path = "roller_edger.rs"]
 mod roller_edger;
 
