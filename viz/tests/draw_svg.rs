@@ -2,14 +2,14 @@
 //! coupler curve, events drawn at the closed-form limit position, and the same picture for a
 //! mechanism in metres and in millimetres.
 
-use kinloop::EventKind;
+use kinloop::{AtSingular, EventKind, SweepConfig};
 use kinloop_viz::draw::{Animation, Canvas, Drawing, Motion, Pt};
 use std::f64::consts::{PI, TAU};
 
 #[allow(dead_code)] // not every test uses every helper
 mod draw_support;
 
-use draw_support::{FourBar, four_bar_joints, window_px};
+use draw_support::{FourBar, FourBarUnknowns, four_bar_joints, window_px};
 
 const WINDOW: [f64; 4] = [-2.0, -2.0, 6.0, 5.0];
 const WIDTH: f64 = 400.0;
@@ -141,6 +141,32 @@ fn a_limit_position_is_drawn_and_marked_where_the_closed_form_puts_it() {
     assert_eq!(values.len(), 59);
     assert_eq!(values[29], at);
     assert_eq!(values[0], values[58]);
+}
+
+#[test]
+fn a_singular_crossing_passed_is_drawn_where_the_links_fold() {
+    // Change point (r + l = k + d): at phi = 2 pi the links fold flat, B = (1, 0) and
+    // C = (4, 0) (|BC| = 3, |CD| = 2 with D = (2, 0)). The sweep passes it and goes on.
+    let m = FourBar { r: 1.0, l: 3.0, k: 2.0, d: 2.0, e: 1.0, delta: 0.5 };
+    let g = m.position(0.5, &FourBarUnknowns { beta: 0.6, gamma: 1.6 }).unwrap().0;
+    let cfg = SweepConfig { at_singular: AtSingular::Continue, ..SweepConfig::default() };
+    let mo = Motion::record(&m, m.sweep(0.5, 7.0, 66, &g).unwrap().with_config(cfg)).unwrap();
+    assert!(!mo.stopped);
+    assert_eq!(mo.poses.len(), 66);
+    let crossings: Vec<_> = mo.events.iter().filter(|e| e.kind == EventKind::SingularCrossing).collect();
+    assert_eq!(crossings.len(), 1, "{:?}", mo.events);
+    let window = [-2.0, -4.0, 6.0, 4.0];
+    let canvas = Canvas { width: WIDTH, window: Some(window), ..Canvas::default() };
+    let svg = Drawing::new().with_canvas(canvas).joint("c").animate(&mo, &Animation::default()).unwrap();
+    let doc = roxmltree::Document::parse(&svg).unwrap();
+    let event = doc.descendants().find(|n| n.attribute("class") == Some("event")).expect("the crossing is drawn");
+    let label = event.descendants().find(|n| n.tag_name().name() == "text").unwrap().text().unwrap();
+    assert_eq!(label, format!("singular crossing at phi = {TAU:.4}"));
+    let ghost = event.descendants().find(|n| n.tag_name().name() == "circle").unwrap();
+    let at = ghost.attribute("transform").unwrap().trim_start_matches("translate(").trim_end_matches(')');
+    let want = window_px(window, WIDTH, [4.0, 0.0]);
+    // The crossing is located to the sweep's tolerance (about 1e-9 rad here), far below 0.05 px.
+    assert!(pairs(at, ';')[0].iter().zip(want).all(|(a, w)| (a - w).abs() <= 0.0501), "{at} vs {want:?}");
 }
 
 /// Every number of an SVG document, in order.

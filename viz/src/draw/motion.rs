@@ -61,7 +61,30 @@ impl Motion {
         }
     }
 
-    /// Appends a pose (e.g. each state of a sweep the caller ran itself).
+    /// Appends a pose: to draw the mechanism at any state, or the states of a sweep the caller
+    /// ran itself (`state.flat` of a generated `NameState`, or a [`Kin`]).
+    ///
+    /// ```
+    /// use kinloop_viz::draw::{Drawing, Motion, Pt};
+    ///
+    /// kinloop::mechanism! {
+    ///     pub struct SliderCrank {
+    ///         params r = 1.0, l = 3.0;
+    ///         input phi;
+    ///         unknowns psi = 0, x = r + l;
+    ///         loop oabo: r @ phi == (x, 0) + l @ psi;
+    ///         point b = r @ phi;
+    ///         point c = (x, 0);
+    ///     }
+    /// }
+    /// let m = SliderCrank::default();
+    /// let mut one = Motion::empty::<SliderCrank, 2, 1, 4>();
+    /// one.push(&m.solve(0.7)?.flat);
+    /// let d = Drawing::new().pivot(Pt::fixed(0.0, 0.0)).link([Pt::fixed(0.0, 0.0), Pt::point("b"), Pt::point("c")]).slider("c", 0.0);
+    /// let svg = d.svg(&one, 0)?;
+    /// assert!(svg.starts_with("<svg") && !svg.contains("<animate"));
+    /// # Ok::<(), Box<dyn std::error::Error>>(())
+    /// ```
     pub fn push(&mut self, pose: impl Into<Pose>) {
         self.poses.push(pose.into());
     }
