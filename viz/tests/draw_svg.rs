@@ -187,3 +187,25 @@ fn metres_and_millimetres_draw_alike() {
     assert!(worst <= 0.1 + 1e-9, "largest difference {worst} px");
     println!("{} numbers, largest difference {worst} px", na.len());
 }
+
+#[test]
+fn the_committed_animations_are_well_formed_and_small() {
+    let dir = std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("../docs/animations");
+    let mut animated = 0;
+    for entry in std::fs::read_dir(&dir).expect("docs/animations") {
+        let path = entry.unwrap().path();
+        let svg = std::fs::read_to_string(&path).unwrap();
+        let doc = roxmltree::Document::parse(&svg).unwrap_or_else(|e| panic!("{}: {e}", path.display()));
+        assert_eq!(doc.root_element().tag_name().name(), "svg");
+        assert!(!svg.contains("script") && !svg.contains("NaN") && !svg.contains("inf"), "{}", path.display());
+        assert!(svg.len() < 64 * 1024, "{}: {} bytes", path.display(), svg.len());
+        for a in doc.descendants().filter(|n| matches!(n.tag_name().name(), "animate" | "animateTransform")) {
+            // 60 to 90 key frames a pass (fewer when a sweep stops early), twice less one when
+            // played forward and back.
+            let n = a.attribute("values").unwrap().split(';').count();
+            assert!((60..=179).contains(&n), "{}: {n} key frames", path.display());
+            animated += 1;
+        }
+    }
+    assert!(animated > 0);
+}
