@@ -209,3 +209,30 @@ fn the_committed_animations_are_well_formed_and_small() {
     }
     assert!(animated > 0);
 }
+
+#[test]
+fn a_multi_exposure_shows_evenly_spread_distinct_poses() {
+    // A full turn ends where it began: that pose is shown once, so four exposures of 361
+    // samples show samples 0, 120, 239 and 359 (evenly spread over the 360 distinct ones).
+    let m = FourBar::default();
+    let mo = motion(&m, TAU, 361);
+    let canvas = Canvas { width: WIDTH, window: Some(WINDOW), ..Canvas::default() };
+    let svg = Drawing::new().with_canvas(canvas).joint("p").exposures(&mo, 4).unwrap();
+    let doc = roxmltree::Document::parse(&svg).unwrap();
+    let faint = doc.descendants().filter(|n| n.attribute("opacity").is_some()).count();
+    let circles: Vec<[f64; 2]> = doc
+        .descendants()
+        .filter(|n| n.tag_name().name() == "circle")
+        .map(|n| {
+            pairs(n.attribute("transform").unwrap().trim_start_matches("translate(").trim_end_matches(')'), ';')[0]
+        })
+        .collect();
+    assert_eq!((faint, circles.len()), (3, 4));
+    for (at, k) in circles.iter().zip([0, 120, 239, 359]) {
+        let want = window_px(WINDOW, WIDTH, four_bar_joints(&m, TAU * k as f64 / 360.0)[2]);
+        assert!(
+            (at[0] - want[0]).abs() <= 0.0501 && (at[1] - want[1]).abs() <= 0.0501,
+            "sample {k}: {at:?} vs {want:?}"
+        );
+    }
+}

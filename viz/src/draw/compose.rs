@@ -199,7 +199,11 @@ impl Drawing {
             return Err(DrawError::InvalidSetting("a multi-exposure needs at least one pose".into()));
         }
         let l = self.layers(motion)?;
-        let path = l.scene.path(motion);
+        let mut path = l.scene.path(motion);
+        // A closed motion (a full turn) ends where it began: show that pose once.
+        if path.len() > 1 && l.scene.same_look(path[0], path[path.len() - 1]) {
+            path.pop();
+        }
         let keys = spread(path.len(), count);
         let mut body = String::new();
         l.traces(&mut body);

@@ -17,8 +17,8 @@ pub(crate) enum Shape {
 }
 
 impl Shape {
-    /// The points that must fit in the picture.
-    fn extent(&self, mut add: impl FnMut([f64; 2])) {
+    /// The points that must fit in the picture (and that tell two poses apart).
+    pub(crate) fn extent(&self, mut add: impl FnMut([f64; 2])) {
         match self {
             Shape::Link { pts, .. } => pts.iter().for_each(|p| add(*p)),
             Shape::Pivot { at } | Shape::Slider { at, .. } | Shape::Joint { at } => add(*at),
@@ -181,6 +181,18 @@ impl Scene {
         let frames = frames.iter().map(|f| f.iter().map(|s| s.to_px(&view)).collect()).collect();
         let traced = traced.iter().map(|t| t.iter().map(|p| view.px(*p)).collect()).collect();
         Ok(Scene { view, frames, traced, samples: motion.poses.len() })
+    }
+
+    /// Poses `i` and `j` look the same: every point within 0.05 px (the SVG's rounding).
+    pub fn same_look(&self, i: usize, j: usize) -> bool {
+        let pts = |k: usize| {
+            let mut v = Vec::new();
+            self.frames[k].iter().for_each(|s| s.extent(|p| v.push(p)));
+            v.extend(&self.traced[k]);
+            v
+        };
+        let (a, b) = (pts(i), pts(j));
+        a.len() == b.len() && a.iter().zip(&b).all(|(p, q)| (p[0] - q[0]).abs() <= 0.05 && (p[1] - q[1]).abs() <= 0.05)
     }
 
     /// The poses along the motion's path: the samples, then the event where it stopped.
