@@ -223,28 +223,36 @@ fn write(dir: &Path, name: &str, svg: &str) -> Result<(), Box<dyn Error>> {
 
 type Scene = fn() -> Result<(Drawing, Motion), Box<dyn Error>>;
 
+/// What to write of a mechanism.
+struct Show {
+    name: &'static str,
+    scene: Scene,
+    /// The motion is a full turn that ends where it began (else it plays forward and back).
+    turn: bool,
+    /// Also a static multi-exposure.
+    exposures: bool,
+}
+
 fn main() -> Result<(), Box<dyn Error>> {
     let dir = std::env::args_os().nth(1).map_or_else(|| PathBuf::from("out/animations"), PathBuf::from);
     std::fs::create_dir_all(&dir)?;
-    let scenes: [(&str, Scene, bool); 8] = [
-        ("rhombic_drive", rhombic_drive, false),
-        ("displacer_rod_drive", displacer_rod_drive, false),
-        ("working_rod_drive", working_rod_drive, false),
-        ("gear_lever", gear_lever, false),
-        ("roller_edger", roller_edger, true),
-        ("class_four", class_four, true),
-        ("four_bar_coupler", coupler_curve, true),
-        ("four_bar_limit", limit_position, false),
+    let show = |name, scene: Scene, turn, exposures| Show { name, scene, turn, exposures };
+    let shows = [
+        show("rhombic_drive", rhombic_drive, true, false),
+        show("displacer_rod_drive", displacer_rod_drive, true, false),
+        show("working_rod_drive", working_rod_drive, true, false),
+        show("gear_lever", gear_lever, true, false),
+        show("roller_edger", roller_edger, false, true),
+        show("class_four", class_four, true, true),
+        show("four_bar_coupler", coupler_curve, true, true),
+        show("four_bar_limit", limit_position, false, false),
     ];
-    for (name, scene, exposures) in scenes {
-        let (drawing, motion) = scene()?;
-        // A motion that stops (a limit position) or does not come back (the roller edger's
-        // time range) plays forward and back.
-        let closed = !motion.stopped && name != "roller_edger";
-        let anim = Animation { frames: 90, seconds: 6.0, back_and_forth: !closed };
-        write(&dir, name, &drawing.animate(&motion, &anim)?)?;
-        if exposures {
-            write(&dir, &format!("{name}_exposures"), &drawing.exposures(&motion, 8)?)?;
+    for s in shows {
+        let (drawing, motion) = (s.scene)()?;
+        let anim = Animation { frames: 90, seconds: 6.0, back_and_forth: !s.turn };
+        write(&dir, s.name, &drawing.animate(&motion, &anim)?)?;
+        if s.exposures {
+            write(&dir, &format!("{}_exposures", s.name), &drawing.exposures(&motion, 8)?)?;
         }
     }
     Ok(())

@@ -236,3 +236,43 @@ fn a_multi_exposure_shows_evenly_spread_distinct_poses() {
         );
     }
 }
+
+#[test]
+fn the_animated_trace_grows_with_the_traced_point() {
+    // The trace is redrawn in full colour as a dash as long as the path, shifted so that at
+    // each key frame it covers the curve up to the traced point: the offset is the dash length
+    // minus the closed-form curve's arclength (in pixels) up to that key frame's input.
+    let m = FourBar::default();
+    let mo = motion(&m, TAU, 361);
+    let canvas = Canvas { width: WIDTH, window: Some(WINDOW), ..Canvas::default() };
+    let anim = Animation { frames: 46, ..Animation::default() };
+    let d = four_bar_drawing(&m).with_canvas(canvas);
+    let svg = d.animate(&mo, &anim).unwrap();
+    let doc = roxmltree::Document::parse(&svg).unwrap();
+    let traced = doc.descendants().find(|n| n.attribute("class") == Some("traced")).expect("the growing trace");
+    let dash: Vec<f64> = traced.attribute("stroke-dasharray").unwrap().split(' ').map(|v| v.parse().unwrap()).collect();
+    assert_eq!(dash[0], dash[1]);
+    let offsets: Vec<f64> = traced
+        .children()
+        .find(|n| n.tag_name().name() == "animate")
+        .unwrap()
+        .attribute("values")
+        .unwrap()
+        .split(';')
+        .map(|v| v.parse().unwrap())
+        .collect();
+    let keys = d.key_poses(&mo, &anim).unwrap();
+    assert_eq!(offsets.len(), keys.len());
+    let px: Vec<[f64; 2]> =
+        (0..361).map(|i| window_px(WINDOW, WIDTH, four_bar_joints(&m, TAU * i as f64 / 360.0)[2])).collect();
+    let mut along = vec![0.0];
+    for w in px.windows(2) {
+        along.push(along.last().unwrap() + (w[1][0] - w[0][0]).hypot(w[1][1] - w[0][1]));
+    }
+    assert!(dash[0] >= along[360] && dash[0] <= along[360] + 2.5, "dash {} for a curve of {} px", dash[0], along[360]);
+    for (o, &k) in offsets.iter().zip(&keys) {
+        // The written polyline's points are rounded to 0.1 px, which changes its length by
+        // well under a pixel over 360 segments (the rounding errors mostly cancel).
+        assert!((dash[0] - o - along[k]).abs() < 1.0, "key {k}: drawn {} px of {} px", dash[0] - o, along[k]);
+    }
+}

@@ -5,7 +5,7 @@ use super::motion::Motion;
 use super::scene::{Scene, Shape};
 use super::shapes::{Pen, dot, guide, item, joints};
 use super::spec::Drawing;
-use super::svg::{Timing, escape, num};
+use super::svg::{Timing, animate, escape, num, round};
 use super::view::View;
 use std::fmt::Write;
 
@@ -75,30 +75,52 @@ impl Layers<'_> {
         self.scene.frames[0].len()
     }
 
-    /// The traced paths over the whole motion, consecutive equal pixels merged.
-    fn traces(&self, out: &mut String) {
+    /// The traced paths over the whole motion, consecutive equal pixels merged. Animated
+    /// (`keys` and `timing`), each is drawn faint in full and again in full colour as far as
+    /// the traced point has come at each key frame (a dash as long as the path, shifted).
+    fn traces(&self, out: &mut String, anim: Option<(&[usize], Timing)>) {
         let path = self.scene.path(self.motion);
         for t in 0..self.d.traces.len() {
-            let mut pts = String::new();
-            let mut last = String::new();
-            for &i in &path {
-                let [x, y] = self.scene.traced[i][t];
-                let p = format!("{},{}", num(x), num(y));
-                if p != last {
-                    if !pts.is_empty() {
-                        pts.push(' ');
-                    }
-                    pts.push_str(&p);
-                    last = p;
-                }
-            }
+            let (pts, along) = self.trace_points(&path, t);
+            let (colour, width) = (self.d.style.trace(t), num(self.d.style.trace_width));
+            let opacity = if anim.is_some() { r#" opacity="0.35""# } else { "" };
             let _ = write!(
                 out,
-                r#"<polyline class="trace" points="{pts}" fill="none" stroke="{}" stroke-width="{}" stroke-linejoin="round"/>"#,
-                self.d.style.trace(t),
-                num(self.d.style.trace_width)
+                r#"<polyline class="trace" points="{pts}" fill="none" stroke="{colour}" stroke-width="{width}" stroke-linejoin="round"{opacity}/>"#
             );
+            let Some((keys, timing)) = anim else { continue };
+            let dash = (along.iter().fold(0.0f64, |m, s| m.max(*s)) + 1.0).ceil();
+            let offsets: Vec<String> = keys.iter().map(|&k| num(dash - along[k])).collect();
+            let _ = write!(
+                out,
+                r#"<polyline class="traced" points="{pts}" fill="none" stroke="{colour}" stroke-width="{width}" stroke-linejoin="round" stroke-dasharray="{d} {d}" stroke-dashoffset="{}">"#,
+                offsets[0],
+                d = num(dash)
+            );
+            animate(out, "stroke-dashoffset", &offsets, Some(timing));
+            out.push_str("</polyline>");
         }
+    }
+
+    /// The points of trace `t` along `path` as written (rounded, consecutive equal ones
+    /// merged), and for every pose of the scene the length of that polyline up to it.
+    fn trace_points(&self, path: &[usize], t: usize) -> (String, Vec<f64>) {
+        let mut pts = String::new();
+        let mut along = vec![0.0; self.scene.frames.len()];
+        let (mut length, mut prev) = (0.0, None::<[f64; 2]>);
+        for &i in path {
+            let [x, y] = self.scene.traced[i][t].map(round);
+            if prev != Some([x, y]) {
+                if let Some([px, py]) = prev {
+                    length += (x - px).hypot(y - py);
+                    pts.push(' ');
+                }
+                let _ = write!(pts, "{x},{y}");
+                prev = Some([x, y]);
+            }
+            along[i] = length;
+        }
+        (pts, along)
     }
 
     /// Guides of sliders on fixed directions, over every pose.
@@ -184,7 +206,7 @@ impl Drawing {
             )));
         }
         let mut body = String::new();
-        l.traces(&mut body);
+        l.traces(&mut body, None);
         l.ground(&mut body);
         l.events(&mut body);
         l.mechanism(&mut body, &[pose], &l.pen(None));
@@ -206,7 +228,7 @@ impl Drawing {
         }
         let keys = spread(path.len(), count);
         let mut body = String::new();
-        l.traces(&mut body);
+        l.traces(&mut body, None);
         l.ground(&mut body);
         l.events(&mut body);
         // Earlier poses as thin outlines, fainter the earlier; the last one in full.
@@ -244,7 +266,7 @@ impl Drawing {
         }
         let pen = l.pen(Some(Timing { seconds: anim.seconds }));
         let mut body = String::new();
-        l.traces(&mut body);
+        l.traces(&mut body, Some((&keys, Timing { seconds: anim.seconds })));
         l.ground(&mut body);
         l.events(&mut body);
         l.mechanism(&mut body, &keys, &pen);

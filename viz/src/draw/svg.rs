@@ -2,11 +2,15 @@
 
 use std::fmt::Write;
 
+/// A coordinate rounded to 0.1 px, as written.
+pub(crate) fn round(v: f64) -> f64 {
+    // `-0` would print as "-0"; the sum with `0.0` turns it into `+0`.
+    (v * 10.0).round() / 10.0 + 0.0
+}
+
 /// A coordinate rounded to 0.1 px, without a trailing `.0` (keeps files small).
 pub(crate) fn num(v: f64) -> String {
-    let r = (v * 10.0).round() / 10.0;
-    // `-0` prints as "-0"; the sum with `0.0` turns it into `+0`.
-    format!("{}", r + 0.0)
+    format!("{}", round(v))
 }
 
 /// `x,y x,y ...`
