@@ -107,7 +107,8 @@ pub fn grashof(links: FourBarLinks) -> Result<Grashof, Error> {
             "a four-bar with links {lengths:?} cannot close: the longest is longer than the other three together"
         )));
     }
-    let (k_short, short) = lengths.iter().copied().enumerate().fold((0, f64::MAX), |m, (k, v)| if v < m.1 { (k, v) } else { m });
+    let (k_short, short) =
+        lengths.iter().copied().enumerate().fold((0, f64::MAX), |m, (k, v)| if v < m.1 { (k, v) } else { m });
     let shortest = [Link::Ground, Link::Input, Link::Coupler, Link::Output][k_short];
     let excess = short + longest - (sum - short - longest);
     // A link pivoted to the ground turns fully when the opposite dyad closes at both ends of
@@ -188,8 +189,13 @@ mod tests {
     #[test]
     fn a_parallelogram_is_a_change_point_in_any_unit() {
         for scale in [1e-6, 1e-3, 1.0, 1e3] {
-            let g = grashof(FourBarLinks { ground: 0.3 * scale, input: 0.1 * scale, coupler: 0.3 * scale, output: 0.1 * scale })
-                .unwrap();
+            let g = grashof(FourBarLinks {
+                ground: 0.3 * scale,
+                input: 0.1 * scale,
+                coupler: 0.3 * scale,
+                output: 0.1 * scale,
+            })
+            .unwrap();
             assert_eq!(g.class, GrashofClass::ChangePoint);
             assert!(g.input_turns && g.output_turns, "{g:?}");
         }

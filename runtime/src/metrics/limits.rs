@@ -47,14 +47,28 @@ impl LimitReport {
 impl fmt::Display for LimitReport {
     fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
         let deg = |x: f64| x.to_degrees();
-        writeln!(f, "swept input {:.4} .. {:.4} rad ({:.2} .. {:.2} deg)", self.reached.0, self.reached.1, deg(self.reached.0), deg(self.reached.1))?;
+        writeln!(
+            f,
+            "swept input {:.4} .. {:.4} rad ({:.2} .. {:.2} deg)",
+            self.reached.0,
+            self.reached.1,
+            deg(self.reached.0),
+            deg(self.reached.1)
+        )?;
         for e in &self.events {
             writeln!(f, "  {} of the input at {:.6} rad ({:.3} deg)", e.kind, e.x[0], deg(e.x[0]))?;
         }
         for o in &self.outputs {
             for e in &o.extremes {
                 let kind = if e.kind == crate::analysis::ExtremeKind::Max { "maximum" } else { "minimum" };
-                writeln!(f, "  limit position of {}: {kind} {:.9e} at {:.6} rad ({:.3} deg)", o.column, e.value(), e.x(), deg(e.x()))?;
+                writeln!(
+                    f,
+                    "  limit position of {}: {kind} {:.9e} at {:.6} rad ({:.3} deg)",
+                    o.column,
+                    e.value(),
+                    e.x(),
+                    deg(e.x())
+                )?;
             }
         }
         Ok(())

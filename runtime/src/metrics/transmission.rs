@@ -123,9 +123,7 @@ where
     M: Mechanism<N, 1, NO>,
 {
     let (cc, fc) = (turn.column(coupler)?, turn.column(follower)?);
-    transmission_range(&turn.jets(coupler)?, &turn.jets(follower)?, |x| {
-        turn.at(x).map(|k| (cc.jet(&k), fc.jet(&k)))
-    })
+    transmission_range(&turn.jets(coupler)?, &turn.jets(follower)?, |x| turn.at(x).map(|k| (cc.jet(&k), fc.jet(&k))))
 }
 
 #[cfg(test)]
@@ -154,7 +152,8 @@ mod tests {
         let mut rng = Rng(0x9e37_79b9_7f4a_7c15);
         let mut checked = 0;
         for _ in 0..2000 {
-            let (a, b, c, d) = (rng.uniform(0.2, 3.0), rng.uniform(0.2, 3.0), rng.uniform(0.2, 3.0), rng.uniform(0.2, 3.0));
+            let (a, b, c, d) =
+                (rng.uniform(0.2, 3.0), rng.uniform(0.2, 3.0), rng.uniform(0.2, 3.0), rng.uniform(0.2, 3.0));
             let phi = rng.uniform(-7.0, 7.0);
             let scale = 10f64.powf(rng.uniform(-6.0, 3.0));
             let Some((beta, gamma)) = four_bar(a * scale, b * scale, c * scale, d * scale, phi) else { continue };
@@ -175,7 +174,8 @@ mod tests {
         // d(x) = 1 + 0.7 sin x: its minimum 0.3 (at 3 pi/2) is the smallest transmission angle
         // and it crosses pi/2 (the largest, pi/2) at x = asin((pi/2 - 1)/0.7).
         let coupler = |x: f64| Jet { x, value: 0.5 * x, d1: 0.5, d2: 0.0 };
-        let follower = |x: f64| Jet { x, value: 1.0 + 0.5 * x + 0.7 * x.sin(), d1: 0.5 + 0.7 * x.cos(), d2: -0.7 * x.sin() };
+        let follower =
+            |x: f64| Jet { x, value: 1.0 + 0.5 * x + 0.7 * x.sin(), d1: 0.5 + 0.7 * x.cos(), d2: -0.7 * x.sin() };
         let xs: Vec<f64> = (0..=40).map(|i| i as f64 * std::f64::consts::TAU / 40.0).collect();
         let (c, f): (Vec<Jet>, Vec<Jet>) = xs.iter().map(|&x| (coupler(x), follower(x))).unzip();
         let r = transmission_range(&c, &f, |x| Ok((coupler(x), follower(x)))).unwrap();
