@@ -13,6 +13,8 @@ pub enum PlotError {
     MixedKinds { axis: String, expected: Box<Kind>, series: String, found: Box<Kind> },
     /// An x-y chart with equal scales needs the same kind (and unit) on both axes.
     UnequalAxes { x: Kind, y: Kind },
+    /// A table has no column of that name.
+    MissingColumn { name: String, available: Vec<String> },
     /// Writing the file (or creating its folder) failed.
     Io { path: std::path::PathBuf, source: std::io::Error },
 }
@@ -28,6 +30,9 @@ impl fmt::Display for PlotError {
             ),
             PlotError::UnequalAxes { x, y } => {
                 write!(f, "an x-y chart draws both axes to one scale, so both must hold one kind (x: {x}, y: {y})")
+            }
+            PlotError::MissingColumn { name, available } => {
+                write!(f, "no column `{name}` in the table (columns: {})", available.join(", "))
             }
             PlotError::Io { path, source } => write!(f, "cannot write `{}`: {source}", path.display()),
         }

@@ -1,6 +1,7 @@
 //! What a chart draws: curves (series) and marked points, grouped on value axes (panels).
 
 use super::{Axis, Kind, PlotError};
+use kinloop_runtime::Table;
 
 /// One curve: a label for the legend, the quantity kind of its values and its points `(x, y)`.
 /// A point with a non-finite coordinate breaks the curve (a sweep that stopped, a gap).
@@ -22,6 +23,29 @@ impl Series {
     /// a sweep); the shorter column sets the length.
     pub fn columns(label: &str, kind: Kind, x: &[f64], y: &[f64]) -> Series {
         Series::new(label, kind, x.iter().copied().zip(y.iter().copied()).collect())
+    }
+
+    /// A curve of column `y` against column `x` of a sweep's [`Table`] (names as in
+    /// `Table::kin_columns`: `"phi"`, `"x"`, `"d(x)/d(phi)"`, `"p.x"`), labelled `y`.
+    ///
+    /// ```
+    /// use kinloop_runtime::Table;
+    /// use kinloop_viz::plot::{Kind, Series};
+    /// let mut t = Table::new(vec!["phi".into(), "x".into()]);
+    /// t.push(vec![0.0, 4.0]);
+    /// t.push(vec![0.1, 3.9]);
+    /// let s = Series::from_table(&t, "phi", "x", Kind::length("mm"))?;
+    /// assert_eq!(s.points, [(0.0, 4.0), (0.1, 3.9)]);
+    /// assert!(Series::from_table(&t, "phi", "y", Kind::length("mm")).is_err());
+    /// # Ok::<(), kinloop_viz::plot::PlotError>(())
+    /// ```
+    pub fn from_table(table: &Table, x: &str, y: &str, kind: Kind) -> Result<Series, PlotError> {
+        let column = |name: &str| {
+            table
+                .column(name)
+                .ok_or_else(|| PlotError::MissingColumn { name: name.to_string(), available: table.columns.clone() })
+        };
+        Ok(Series::columns(y, kind, &column(x)?, &column(y)?))
     }
 }
 
