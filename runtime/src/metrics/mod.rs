@@ -5,8 +5,8 @@
 //! | metric | helper | computed from |
 //! |---|---|---|
 //! | transmission angle of a loop | [`transmission_angle`], [`transmission_range`], [`transmission_over`] | the angles of coupler and follower; its minimum located at roots of analogs |
-//! | Grashof class, which link turns fully | [`grashof`] | the four link lengths (closed form) |
-//! | time (quick-return) ratio | [`time_ratio`], [`time_ratio_over`] | the located extremes of an output over one input turn |
+//! | Grashof class, which link turns fully | [`grashof()`] | the four link lengths (closed form) |
+//! | time (quick-return) ratio | [`time_ratio()`], [`time_ratio_over`] | the located extremes of an output over one input turn |
 //! | dead centres and limit positions | [`limit_report`] | the sweep's events and the located extremes of output columns |
 //!
 //! Every metric is dimensionless or an angle: a mechanism in metres, millimetres or micrometres
