@@ -1,1 +1,39 @@
-//! Design metrics of mechanisms (placeholder, being written).
+//! Design metrics every mechanism designer asks for: the transmission angle, the Grashof class
+//! of a four-bar loop, the time (quick-return) ratio, and a report of dead centres and limit
+//! positions along a sweep.
+//!
+//! | metric | helper | computed from |
+//! |---|---|---|
+//! | transmission angle of a loop | [`transmission_angle`], [`transmission_range`], [`transmission_over`] | the angles of coupler and follower; its minimum located at roots of analogs |
+//! | Grashof class, which link turns fully | [`grashof()`] | the four link lengths (closed form) |
+//! | time (quick-return) ratio | [`time_ratio()`], [`time_ratio_over`] | the located extremes of an output over one input turn |
+//! | dead centres and limit positions | [`limit_report`] | the sweep's events and the located extremes of output columns |
+//!
+//! Every metric is dimensionless or an angle: a mechanism in metres, millimetres or micrometres
+//! gives the same values.
+
+pub mod grashof;
+pub mod limits;
+pub mod time_ratio;
+pub mod transmission;
+
+pub use grashof::{FourBarLinks, Grashof, GrashofClass, Link, grashof};
+pub use limits::{LimitReport, OutputLimits, limit_report};
+pub use time_ratio::{TimeRatio, time_ratio, time_ratio_over};
+pub use transmission::{AngleAt, TransmissionRange, transmission_angle, transmission_over, transmission_range};
+
+#[cfg(test)]
+pub(crate) mod test_rng {
+    /// A small deterministic generator (xorshift64) for random designs without a dependency.
+    pub struct Rng(pub u64);
+
+    impl Rng {
+        /// A uniform draw from `[lo, hi)`.
+        pub fn uniform(&mut self, lo: f64, hi: f64) -> f64 {
+            self.0 ^= self.0 << 13;
+            self.0 ^= self.0 >> 7;
+            self.0 ^= self.0 << 17;
+            lo + (hi - lo) * (self.0 >> 11) as f64 / (1u64 << 53) as f64
+        }
+    }
+}

@@ -1,0 +1,211 @@
+//! Grashof classification of a four-bar loop: which links can turn fully.
+//!
+//! With `s` the shortest, `l` the longest and `p`, `q` the other two links, a four-bar is a
+//! Grashof linkage when `s + l < p + q`: the shortest link turns fully relative to every other.
+//! A link turns fully relative to the ground when it or the ground is the shortest. When
+//! `s + l = p + q` (a change-point linkage) the links can line up flat, where the assembly mode
+//! can change; when `s + l > p + q` no link turns fully (a non-Grashof triple rocker).
+
+use crate::error::Error;
+use std::fmt;
+
+/// The four links of a four-bar loop (lengths in any one unit).
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct FourBarLinks {
+    /// The fixed link between the two ground pivots.
+    pub ground: f64,
+    /// The driven (input) link, pivoted to the ground.
+    pub input: f64,
+    /// The coupler joining input and output.
+    pub coupler: f64,
+    /// The output (follower) link, pivoted to the ground.
+    pub output: f64,
+}
+
+/// One link of a four-bar.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum Link {
+    Ground,
+    Input,
+    Coupler,
+    Output,
+}
+
+/// The Grashof class of a four-bar, named from the input's point of view.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum GrashofClass {
+    /// Grashof; the input turns fully, the output rocks.
+    CrankRocker,
+    /// Grashof; the output turns fully, the input rocks.
+    RockerCrank,
+    /// Grashof with the ground the shortest link (drag link): input and output turn fully.
+    DoubleCrank,
+    /// Grashof with the coupler the shortest link: input and output rock, the coupler turns fully.
+    DoubleRocker,
+    /// `s + l = p + q`: the links can line up flat, where the assembly mode can change.
+    ChangePoint,
+    /// Non-Grashof, `s + l > p + q`: no link turns fully.
+    TripleRocker,
+}
+
+impl fmt::Display for GrashofClass {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        f.write_str(match self {
+            GrashofClass::CrankRocker => "crank-rocker",
+            GrashofClass::RockerCrank => "rocker-crank",
+            GrashofClass::DoubleCrank => "double-crank",
+            GrashofClass::DoubleRocker => "Grashof double-rocker",
+            GrashofClass::ChangePoint => "change point",
+            GrashofClass::TripleRocker => "non-Grashof triple-rocker",
+        })
+    }
+}
+
+/// The classification of a four-bar: its class and which links turn fully relative to the ground.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Grashof {
+    pub class: GrashofClass,
+    /// The shortest link (the first of ground, input, coupler, output on a tie).
+    pub shortest: Link,
+    /// `(s + l) - (p + q)` divided by the sum of the four lengths: negative for Grashof
+    /// linkages, zero at a change point, positive for triple rockers (a scale-free margin).
+    pub margin: f64,
+    /// The input turns fully relative to the ground (in a change point: through the flat position).
+    pub input_turns: bool,
+    /// The output turns fully relative to the ground.
+    pub output_turns: bool,
+    /// The coupler turns fully relative to the ground.
+    pub coupler_turns: bool,
+}
+
+/// Classifies a four-bar loop.
+///
+/// Lengths equal to within a few units of rounding (relative to their sum) count as equal,
+/// so a parallelogram declared in any unit is a change point. Errors: a length that is not
+/// finite and positive, or one longer than the other three together (the loop cannot close).
+///
+/// ```
+/// use kinloop_runtime::metrics::{FourBarLinks, GrashofClass, grashof};
+/// let g = grashof(FourBarLinks { ground: 4.0, input: 1.0, coupler: 3.5, output: 3.0 })?;
+/// assert_eq!(g.class, GrashofClass::CrankRocker);
+/// assert!(g.input_turns && !g.output_turns);
+/// let g = grashof(FourBarLinks { ground: 4.0, input: 3.0, coupler: 2.0, output: 2.5 })?;
+/// assert_eq!(g.class, GrashofClass::TripleRocker);
+/// # Ok::<(), kinloop_runtime::Error>(())
+/// ```
+pub fn grashof(links: FourBarLinks) -> Result<Grashof, Error> {
+    let FourBarLinks { ground: d, input: a, coupler: b, output: c } = links;
+    let lengths = [d, a, b, c];
+    if let Some(bad) = lengths.iter().find(|v| !(v.is_finite() && **v > 0.0)) {
+        return Err(Error::InvalidArgument(format!("four-bar link lengths must be finite and positive, got {bad}")));
+    }
+    let sum: f64 = lengths.iter().sum();
+    let tol = 8.0 * f64::EPSILON * sum;
+    let longest = lengths.iter().copied().fold(0.0, f64::max);
+    if longest > sum - longest + tol {
+        return Err(Error::InvalidArgument(format!(
+            "a four-bar with links {lengths:?} cannot close: the longest is longer than the other three together"
+        )));
+    }
+    let (k_short, short) =
+        lengths.iter().copied().enumerate().fold((0, f64::MAX), |m, (k, v)| if v < m.1 { (k, v) } else { m });
+    let shortest = [Link::Ground, Link::Input, Link::Coupler, Link::Output][k_short];
+    let excess = short + longest - (sum - short - longest);
+    // A link pivoted to the ground turns fully when the opposite dyad closes at both ends of
+    // its turn (the diagonal to the other ground pivot is shortest and longest there).
+    let le = |x: f64, y: f64| x <= y + tol;
+    let input_turns = le((b - c).abs(), (d - a).abs()) && le(d + a, b + c);
+    let output_turns = le((a - b).abs(), (d - c).abs()) && le(d + c, a + b);
+    let grashof_or_equal = excess <= tol;
+    let coupler_turns = grashof_or_equal && (shortest == Link::Coupler || shortest == Link::Ground);
+    let class = if excess.abs() <= tol {
+        GrashofClass::ChangePoint
+    } else if excess > 0.0 {
+        GrashofClass::TripleRocker
+    } else {
+        match (input_turns, output_turns) {
+            (true, true) => GrashofClass::DoubleCrank,
+            (true, false) => GrashofClass::CrankRocker,
+            (false, true) => GrashofClass::RockerCrank,
+            (false, false) => GrashofClass::DoubleRocker,
+        }
+    };
+    Ok(Grashof { class, shortest, margin: excess / sum, input_turns, output_turns, coupler_turns })
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::metrics::test_rng::Rng;
+    use std::f64::consts::TAU;
+
+    /// Brute force, independent of the Grashof inequalities: the input turns fully when the
+    /// loop closes at every input angle of a fine grid (the dyad coupler-output spans the
+    /// distance from the input's tip to the output's pivot); likewise for the output.
+    fn turns_by_brute_force(pivot_link: f64, far: f64, near: f64, ground: f64) -> bool {
+        (0..3600).all(|i| {
+            let t = TAU * i as f64 / 3600.0;
+            let e = (ground - pivot_link * t.cos()).hypot(pivot_link * t.sin());
+            e >= (far - near).abs() && e <= far + near
+        })
+    }
+
+    #[test]
+    fn classes_of_random_four_bars_match_brute_force_turning() {
+        let mut rng = Rng(0x2545_f491_4f6c_dd1d);
+        let mut seen = std::collections::HashSet::new();
+        for _ in 0..3000 {
+            let scale = 10f64.powf(rng.uniform(-6.0, 3.0));
+            let l = FourBarLinks {
+                ground: rng.uniform(0.1, 4.0) * scale,
+                input: rng.uniform(0.1, 4.0) * scale,
+                coupler: rng.uniform(0.1, 4.0) * scale,
+                output: rng.uniform(0.1, 4.0) * scale,
+            };
+            let Ok(g) = grashof(l) else { continue };
+            // Skip designs within 1 % of a class boundary, where a 0.1 degree grid cannot decide.
+            if g.margin.abs() < 0.01 {
+                continue;
+            }
+            let input = turns_by_brute_force(l.input, l.coupler, l.output, l.ground);
+            let output = turns_by_brute_force(l.output, l.coupler, l.input, l.ground);
+            assert_eq!((g.input_turns, g.output_turns), (input, output), "{l:?}: {g:?}");
+            let expected = match (g.margin > 0.0, input, output) {
+                (true, _, _) => GrashofClass::TripleRocker,
+                (false, true, true) => GrashofClass::DoubleCrank,
+                (false, true, false) => GrashofClass::CrankRocker,
+                (false, false, true) => GrashofClass::RockerCrank,
+                (false, false, false) => GrashofClass::DoubleRocker,
+            };
+            assert_eq!(g.class, expected, "{l:?}");
+            if g.class == GrashofClass::TripleRocker {
+                assert!(!input && !output && !g.coupler_turns);
+            }
+            seen.insert(g.class.to_string());
+        }
+        assert_eq!(seen.len(), 5, "every non-degenerate class drawn: {seen:?}");
+    }
+
+    #[test]
+    fn a_parallelogram_is_a_change_point_in_any_unit() {
+        for scale in [1e-6, 1e-3, 1.0, 1e3] {
+            let g = grashof(FourBarLinks {
+                ground: 0.3 * scale,
+                input: 0.1 * scale,
+                coupler: 0.3 * scale,
+                output: 0.1 * scale,
+            })
+            .unwrap();
+            assert_eq!(g.class, GrashofClass::ChangePoint);
+            assert!(g.input_turns && g.output_turns, "{g:?}");
+        }
+    }
+
+    #[test]
+    fn bad_lengths_are_errors() {
+        let ok = FourBarLinks { ground: 1.0, input: 1.0, coupler: 1.0, output: 1.0 };
+        assert!(grashof(FourBarLinks { input: f64::NAN, ..ok }).is_err());
+        assert!(grashof(FourBarLinks { input: -1.0, ..ok }).is_err());
+        assert!(grashof(FourBarLinks { ground: 3.5, ..ok }).is_err());
+    }
+}

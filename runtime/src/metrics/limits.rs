@@ -1,0 +1,154 @@
+//! Dead centres and limit positions along a sweep, in one report.
+//!
+//! Two kinds of special positions matter to a designer:
+//!
+//! * **limit positions of the input** (the input cannot advance: a dead centre seen from the
+//!   input, where a non-Grashof crank stops) and **singular crossings** (change points): the
+//!   sweep's [`Event`]s, located by continuation;
+//! * **limit positions of an output** (an extreme of a slider or rocker: a dead centre seen
+//!   from the output, where the output cannot drive the input): the located extremes of the
+//!   output's column.
+
+use crate::analysis::{LocalExtreme, Sampled};
+use crate::error::Error;
+use crate::kin::Kin;
+use crate::mechanism::Mechanism;
+use crate::sweep::{Event, EventKind, Sweep, SweepConfig};
+use std::fmt;
+
+/// The located extremes (limit positions) of one output column.
+#[derive(Clone, Debug, PartialEq)]
+pub struct OutputLimits {
+    /// The unknown or output column.
+    pub column: String,
+    /// Its interior extremes, in increasing input.
+    pub extremes: Vec<LocalExtreme>,
+}
+
+/// Dead centres and limit positions of one sweep.
+#[derive(Clone, Debug, PartialEq)]
+pub struct LimitReport {
+    /// The input range actually swept: `to` when the sweep went through, else where it stopped.
+    pub reached: (f64, f64),
+    /// Events of the sweep: a limit position of the input ends it; singular crossings are
+    /// passed (and listed).
+    pub events: Vec<Event>,
+    /// Extremes of each requested column over the reached range.
+    pub outputs: Vec<OutputLimits>,
+}
+
+impl LimitReport {
+    /// The limit positions of the input (where the sweep could not advance).
+    pub fn input_limits(&self) -> impl Iterator<Item = &Event> {
+        self.events.iter().filter(|e| e.kind == EventKind::LimitPosition)
+    }
+}
+
+impl fmt::Display for LimitReport {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        let deg = |x: f64| x.to_degrees();
+        writeln!(
+            f,
+            "swept input {:.4} .. {:.4} rad ({:.2} .. {:.2} deg)",
+            self.reached.0,
+            self.reached.1,
+            deg(self.reached.0),
+            deg(self.reached.1)
+        )?;
+        for e in &self.events {
+            writeln!(f, "  {} of the input at {:.6} rad ({:.3} deg)", e.kind, e.x[0], deg(e.x[0]))?;
+        }
+        for o in &self.outputs {
+            for e in &o.extremes {
+                let kind = if e.kind == crate::analysis::ExtremeKind::Max { "maximum" } else { "minimum" };
+                writeln!(
+                    f,
+                    "  limit position of {}: {kind} {:.9e} at {:.6} rad ({:.3} deg)",
+                    o.column,
+                    e.value(),
+                    e.x(),
+                    deg(e.x())
+                )?;
+            }
+        }
+        Ok(())
+    }
+}
+
+/// Sweeps a single-input mechanism from `from` to `to` (`samples` equally spaced inputs, from
+/// `guess`, which picks the assembly mode), passing singular crossings, and reports the input's
+/// limit positions and crossings (the sweep's events) and the located extremes of `columns`
+/// over the range reached. A limit position of the input ends the range; it is reported, not
+/// an error.
+///
+/// Errors: a column that is neither an unknown nor an output, a start that cannot be
+/// assembled, a sweep that stops within its first two samples.
+pub fn limit_report<M, const N: usize, const NO: usize>(
+    m: &M,
+    from: f64,
+    to: f64,
+    samples: usize,
+    guess: [f64; N],
+    columns: &[&str],
+) -> Result<LimitReport, Error>
+where
+    M: Mechanism<N, 1, NO>,
+{
+    let cfg = SweepConfig { at_singular: crate::sweep::AtSingular::Continue, ..SweepConfig::default() };
+    let mut sweep = Sweep::<M, Kin<N, 1, NO>, N, 1, NO>::new(m, [from], [to], samples, guess)?.with_config(cfg);
+    let (mut last, mut count) = (from, 0usize);
+    while let Some(step) = sweep.next_kin() {
+        match step {
+            Ok(k) => {
+                last = k.x[0];
+                count += 1;
+            }
+            Err(Error::SweepStopped { kind: EventKind::LimitPosition, .. }) => break,
+            Err(e) => return Err(e),
+        }
+    }
+    let events = sweep.events().to_vec();
+    if count < 3 {
+        return Err(Error::InvalidArgument(format!(
+            "the sweep of `{}` stopped after {count} samples at {last}: nothing to analyse",
+            M::NAME
+        )));
+    }
+    // The same samples over the reached range, kept in memory to locate the extremes.
+    let range = Sampled::sweep_with(m, from, last, count, guess, cfg)?;
+    let outputs = columns
+        .iter()
+        .map(|c| Ok(OutputLimits { column: c.to_string(), extremes: range.extremes(c)? }))
+        .collect::<Result<_, Error>>()?;
+    Ok(LimitReport { reached: (from, last), events, outputs })
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::analysis::ExtremeKind;
+    use crate::analysis::demo::SliderCrank;
+    use std::f64::consts::TAU;
+
+    #[test]
+    fn dead_centres_of_a_slider_crank_against_the_collinear_triangles() {
+        let m = SliderCrank { r: 1.0, l: 3.0, e: 0.5 };
+        let r = limit_report(&m, 0.3, 0.3 + TAU, 73, [3.9], &["x"]).unwrap();
+        assert!(r.events.is_empty());
+        assert_eq!(r.reached, (0.3, 0.3 + TAU));
+        let [(x_out, outer), (x_in, inner)] = m.dead_centres();
+        let e = &r.outputs[0].extremes;
+        assert_eq!(e.len(), 2, "{r}");
+        // The inner dead centre's angle lies in (-pi, 0): one turn later in this range.
+        assert_eq!(e[0].kind, ExtremeKind::Min);
+        assert!((e[0].x() - (x_in + TAU)).abs() < 1e-10 && (e[0].value() - inner).abs() < 1e-12, "{r}");
+        assert!((e[1].x() - (x_out + TAU)).abs() < 1e-10 && (e[1].value() - outer).abs() < 1e-12, "{r}");
+        assert!(r.to_string().contains("limit position of x: minimum"));
+    }
+
+    #[test]
+    fn an_unknown_column_is_an_error() {
+        let m = SliderCrank { r: 1.0, l: 3.0, e: 0.5 };
+        assert!(matches!(limit_report(&m, 0.0, 1.0, 5, [3.9], &["nope"]), Err(Error::InvalidArgument(_))));
+    }
+}

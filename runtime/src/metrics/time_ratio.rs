@@ -1,0 +1,124 @@
+//! The time (quick-return) ratio of an output over one input turn: at a constant input speed,
+//! the input angle spent while the output rises from its minimum to its maximum, against the
+//! angle spent while it falls back.
+
+use crate::analysis::{ExtremeKind, Jet, Sampled, extremes};
+use crate::error::Error;
+use crate::mechanism::Mechanism;
+
+/// The strokes of an output over one input turn, from its located extremes.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct TimeRatio {
+    /// The output's minimum (input, value, analogs).
+    pub min: Jet,
+    /// The output's maximum.
+    pub max: Jet,
+    /// Input angle while the output rises from its minimum to its maximum.
+    pub rising: f64,
+    /// Input angle while it falls back (`period - rising`).
+    pub falling: f64,
+}
+
+impl TimeRatio {
+    /// The time ratio: the slower stroke over the quicker one (`>= 1`; `1` without quick return).
+    pub fn ratio(&self) -> f64 {
+        self.rising.max(self.falling) / self.rising.min(self.falling)
+    }
+}
+
+/// The time ratio of an output sampled over one full period of the input (`samples` in
+/// increasing input, the last one period after the first, e.g. `0 ..= 2 pi`); `eval` gives the
+/// output's jet at any input of the range.
+///
+/// The output must have exactly one maximum and one minimum per turn. They are located as roots
+/// of the velocity analog ([`extremes()`](crate::analysis::extremes::extremes)); an extreme on
+/// the seam (at the first sample, where the analog changes sign across the period) is taken
+/// there. Errors: fewer or more extremes, a range that is not increasing.
+///
+/// ```
+/// use kinloop_runtime::analysis::Jet;
+/// use kinloop_runtime::metrics::time_ratio;
+/// use std::f64::consts::{PI, TAU};
+/// // An output rising for 4 pi / 3 and falling for 2 pi / 3: v(x) = -cos(g(x)), where g
+/// // runs through 0 .. pi while x runs through 0 .. 4 pi / 3, then pi .. 2 pi.
+/// let f = |x: f64| {
+///     let (k, x0, g0) = if x < 4.0 * PI / 3.0 { (0.75, 0.0, 0.0) } else { (1.5, 4.0 * PI / 3.0, PI) };
+///     let g = g0 + k * (x - x0);
+///     Ok(Jet { x, value: -g.cos(), d1: k * g.sin(), d2: k * k * g.cos() })
+/// };
+/// let samples = Jet::sample(f, 0.1, 0.1 + TAU, 72)?;
+/// let t = time_ratio(&samples, f)?;
+/// assert!((t.rising - 4.0 * PI / 3.0).abs() < 1e-12);
+/// assert!((t.ratio() - 2.0).abs() < 1e-11);
+/// # Ok::<(), kinloop_runtime::Error>(())
+/// ```
+pub fn time_ratio(samples: &[Jet], eval: impl FnMut(f64) -> Result<Jet, Error>) -> Result<TimeRatio, Error> {
+    let mut found = extremes(samples, eval)?;
+    let n = samples.len();
+    let (first, last) = (samples[0], samples[n - 1]);
+    let period = last.x - first.x;
+    // Seam: the analog changes sign between the last interval and the first one.
+    let (before, after) = (samples[n - 2].d1, samples[1].d1);
+    if found.len() == 1 && before * after < 0.0 {
+        let kind = if before > 0.0 { ExtremeKind::Max } else { ExtremeKind::Min };
+        let at = if first.d1.abs() <= last.d1.abs() { first } else { Jet { x: first.x, ..last } };
+        found.push(crate::analysis::LocalExtreme { kind, at });
+    }
+    let pick = |k: ExtremeKind| found.iter().filter(|e| e.kind == k).map(|e| e.at).collect::<Vec<_>>();
+    let (maxima, minima) = (pick(ExtremeKind::Max), pick(ExtremeKind::Min));
+    if maxima.len() != 1 || minima.len() != 1 {
+        return Err(Error::InvalidArgument(format!(
+            "a time ratio needs one maximum and one minimum of the output per turn; found {} maxima and {} minima",
+            maxima.len(),
+            minima.len()
+        )));
+    }
+    let (min, max) = (minima[0], maxima[0]);
+    let rising = (max.x - min.x).rem_euclid(period);
+    Ok(TimeRatio { min, max, rising, falling: period - rising })
+}
+
+/// [`time_ratio`] of an unknown or output column of a sweep over one full input turn.
+pub fn time_ratio_over<M, const N: usize, const NO: usize>(
+    turn: &Sampled<'_, M, N, NO>,
+    column: &str,
+) -> Result<TimeRatio, Error>
+where
+    M: Mechanism<N, 1, NO>,
+{
+    let c = turn.column(column)?;
+    time_ratio(&turn.jets(column)?, |x| turn.at(x).map(|k| c.jet(&k)))
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use std::f64::consts::TAU;
+
+    fn offset_cosine(x: f64) -> Result<Jet, Error> {
+        Ok(Jet { x, value: (x - 1.0).cos(), d1: -(x - 1.0).sin(), d2: -(x - 1.0).cos() })
+    }
+
+    #[test]
+    fn an_output_without_quick_return_has_ratio_one() {
+        let s = Jet::sample(offset_cosine, 0.0, TAU, 36).unwrap();
+        let t = time_ratio(&s, offset_cosine).unwrap();
+        assert!((t.max.x - 1.0).abs() < 1e-15 && (t.ratio() - 1.0).abs() < 1e-14, "{t:?}");
+    }
+
+    #[test]
+    fn an_extreme_on_the_seam_is_found() {
+        // Maximum exactly at the first sample x = 1.
+        let s = Jet::sample(offset_cosine, 1.0, 1.0 + TAU, 36).unwrap();
+        let t = time_ratio(&s, offset_cosine).unwrap();
+        assert_eq!(t.max.x, 1.0);
+        assert!((t.rising - TAU / 2.0).abs() < 1e-14);
+    }
+
+    #[test]
+    fn two_maxima_per_turn_are_an_error() {
+        let f = |x: f64| Ok(Jet { x, value: (2.0 * x).cos(), d1: -2.0 * (2.0 * x).sin(), d2: -4.0 * (2.0 * x).cos() });
+        let s = Jet::sample(f, 0.3, 0.3 + TAU, 72).unwrap();
+        assert!(matches!(time_ratio(&s, f), Err(Error::InvalidArgument(_))));
+    }
+}

@@ -1,0 +1,208 @@
+//! The transmission angle of a loop: the acute angle between the coupler and the follower it
+//! drives. Near zero the coupler pushes along the follower and cannot turn it (a dead point);
+//! designers keep its minimum above about 40 degrees.
+
+use crate::analysis::{Jet, Sampled, bracketed_root, extremes};
+use crate::error::Error;
+use crate::mechanism::Mechanism;
+use std::f64::consts::{FRAC_PI_2, PI};
+
+/// The acute angle, in `[0, pi/2]`, between the line of the coupler (at angle `coupler`) and
+/// the line of the follower (at angle `follower`), both in radians from any common reference.
+///
+/// Lines, not directions: the transmission angle does not change when a link is measured from
+/// its other end (an angle plus `pi`).
+///
+/// ```
+/// use kinloop_runtime::metrics::transmission_angle;
+/// use std::f64::consts::PI;
+/// assert!((transmission_angle(0.2, 0.2 + PI / 3.0) - PI / 3.0).abs() < 1e-15);
+/// // 120 degrees between the links is a 60 degree transmission angle.
+/// assert!((transmission_angle(0.2, 0.2 + 2.0 * PI / 3.0) - PI / 3.0).abs() < 1e-15);
+/// ```
+pub fn transmission_angle(coupler: f64, follower: f64) -> f64 {
+    let d = (follower - coupler).rem_euclid(PI);
+    d.min(PI - d).max(0.0)
+}
+
+/// A transmission angle and the input where it occurs.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct AngleAt {
+    /// Input value.
+    pub x: f64,
+    /// Transmission angle there, in `[0, pi/2]` radians.
+    pub angle: f64,
+}
+
+/// The transmission angle over a sweep: its located minimum and maximum, and the dead points
+/// (coupler and follower collinear) crossed.
+#[derive(Clone, Debug, PartialEq)]
+pub struct TransmissionRange {
+    /// The smallest transmission angle over the range (the design figure of merit).
+    pub min: AngleAt,
+    /// The largest transmission angle over the range.
+    pub max: AngleAt,
+    /// Inputs where coupler and follower are collinear (transmission angle zero), increasing.
+    pub dead_points: Vec<f64>,
+}
+
+/// The relative angle `follower - coupler` as a jet.
+fn difference(c: &Jet, f: &Jet) -> Jet {
+    Jet { x: c.x, value: f.value - c.value, d1: f.d1 - c.d1, d2: f.d2 - c.d2 }
+}
+
+/// The transmission angle over a sweep from the jets of the coupler and follower angles sampled
+/// at the same increasing inputs; `eval` gives both jets at any input of the range.
+///
+/// The transmission angle is a fold of the relative angle `d = follower - coupler`, monotone
+/// wherever `d` is monotone and between multiples of `pi/2`. So its extremes lie at the ends,
+/// at the extremes of `d` (roots of its velocity analog, located by
+/// [`extremes()`](crate::analysis::extremes::extremes)) or where `d` crosses a multiple of
+/// `pi/2` (located by [`bracketed_root`]): all are evaluated exactly. As for extremes, two
+/// events closer than one sample spacing are not separated: sample finely enough.
+pub fn transmission_range(
+    coupler: &[Jet],
+    follower: &[Jet],
+    mut eval: impl FnMut(f64) -> Result<(Jet, Jet), Error>,
+) -> Result<TransmissionRange, Error> {
+    if coupler.len() != follower.len() || coupler.iter().zip(follower).any(|(c, f)| c.x != f.x) {
+        return Err(Error::InvalidArgument("coupler and follower must be sampled at the same inputs".into()));
+    }
+    let d: Vec<Jet> = coupler.iter().zip(follower).map(|(c, f)| difference(c, f)).collect();
+    let mut eval_d = |x: f64| eval(x).map(|(c, f)| difference(&c, &f));
+    let mut candidates: Vec<Jet> = d.clone();
+    candidates.extend(extremes(&d, &mut eval_d)?.into_iter().map(|e| e.at));
+    let mut dead_points = Vec::new();
+    // A sample exactly on a multiple of pi/2 (a dead point only when the multiple is even).
+    for j in &d {
+        let k = j.value / FRAC_PI_2;
+        if k.fract() == 0.0 && k.rem_euclid(2.0) == 0.0 {
+            dead_points.push(j.x);
+        }
+    }
+    for w in d.windows(2) {
+        let (lo, hi) = (w[0].value.min(w[1].value), w[0].value.max(w[1].value));
+        // Multiples of pi/2 strictly inside the interval's values.
+        let mut k = (lo / FRAC_PI_2).floor() + 1.0;
+        while k * FRAC_PI_2 < hi {
+            let level = k * FRAC_PI_2;
+            let root = bracketed_root(w[0], w[1], |j| (j.value - level, j.d1), &mut eval_d)?;
+            if k.rem_euclid(2.0) == 0.0 {
+                dead_points.push(root.x);
+            }
+            candidates.push(Jet { value: level, ..root });
+            k += 1.0;
+        }
+    }
+    let at = |j: &Jet| AngleAt { x: j.x, angle: transmission_angle(0.0, j.value) };
+    let mut min = at(&candidates[0]);
+    let mut max = min;
+    for c in candidates.iter().map(at) {
+        if c.angle < min.angle {
+            min = c;
+        }
+        if c.angle > max.angle {
+            max = c;
+        }
+    }
+    dead_points.sort_by(f64::total_cmp);
+    dead_points.dedup();
+    Ok(TransmissionRange { min, max, dead_points })
+}
+
+/// [`transmission_range`] of a sampled sweep, the coupler and follower angles given by the
+/// names of their unknown or output columns.
+///
+/// A name that is neither an unknown nor an output is an [`Error::InvalidArgument`].
+pub fn transmission_over<M, const N: usize, const NO: usize>(
+    turn: &Sampled<'_, M, N, NO>,
+    coupler: &str,
+    follower: &str,
+) -> Result<TransmissionRange, Error>
+where
+    M: Mechanism<N, 1, NO>,
+{
+    let (cc, fc) = (turn.column(coupler)?, turn.column(follower)?);
+    transmission_range(&turn.jets(coupler)?, &turn.jets(follower)?, |x| turn.at(x).map(|k| (cc.jet(&k), fc.jet(&k))))
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    use crate::metrics::test_rng::Rng;
+
+    /// Four-bar `a @ phi + b @ beta == (d, 0) + c @ gamma`, open assembly, in closed form:
+    /// the diagonal from B to D and the triangle B-C-D.
+    fn four_bar(a: f64, b: f64, c: f64, d: f64, phi: f64) -> Option<(f64, f64)> {
+        let (bx, by) = (a * phi.cos(), a * phi.sin());
+        let (ex, ey) = (d - bx, -by);
+        let e = ex.hypot(ey);
+        let cos_t = (b * b + e * e - c * c) / (2.0 * b * e);
+        if !(-1.0..=1.0).contains(&cos_t) {
+            return None;
+        }
+        let beta = ey.atan2(ex) + cos_t.acos();
+        let (cx, cy) = (bx + b * beta.cos(), by + b * beta.sin());
+        Some((beta, (cy).atan2(cx - d)))
+    }
+
+    #[test]
+    fn transmission_angle_matches_the_law_of_cosines_for_random_four_bars() {
+        let mut rng = Rng(0x9e37_79b9_7f4a_7c15);
+        let mut checked = 0;
+        for _ in 0..2000 {
+            let (a, b, c, d) =
+                (rng.uniform(0.2, 3.0), rng.uniform(0.2, 3.0), rng.uniform(0.2, 3.0), rng.uniform(0.2, 3.0));
+            let phi = rng.uniform(-7.0, 7.0);
+            let scale = 10f64.powf(rng.uniform(-6.0, 3.0));
+            let Some((beta, gamma)) = four_bar(a * scale, b * scale, c * scale, d * scale, phi) else { continue };
+            // Interior angle at C between the coupler and the rocker (independent of the angles).
+            let cos_mu = (b * b + c * c - a * a - d * d + 2.0 * a * d * phi.cos()) / (2.0 * b * c);
+            let expected = cos_mu.abs().min(1.0).acos();
+            let got = transmission_angle(beta, gamma);
+            // acos loses accuracy near mu = 0 (slope 1/sin mu): compare cosines there.
+            assert!((got.cos() - cos_mu.abs()).abs() < 1e-12, "{a} {b} {c} {d} {phi}: {got} vs {expected}");
+            assert!((0.0..=FRAC_PI_2).contains(&got));
+            checked += 1;
+        }
+        assert!(checked > 500, "too few assemblable designs: {checked}");
+    }
+
+    #[test]
+    fn transmission_range_locates_the_minimum_of_a_known_relative_angle() {
+        // d(x) = 1 + 0.7 sin x: its minimum 0.3 (at 3 pi/2) is the smallest transmission angle
+        // and it crosses pi/2 (the largest, pi/2) at x = asin((pi/2 - 1)/0.7).
+        let coupler = |x: f64| Jet { x, value: 0.5 * x, d1: 0.5, d2: 0.0 };
+        let follower =
+            |x: f64| Jet { x, value: 1.0 + 0.5 * x + 0.7 * x.sin(), d1: 0.5 + 0.7 * x.cos(), d2: -0.7 * x.sin() };
+        let xs: Vec<f64> = (0..=40).map(|i| i as f64 * std::f64::consts::TAU / 40.0).collect();
+        let (c, f): (Vec<Jet>, Vec<Jet>) = xs.iter().map(|&x| (coupler(x), follower(x))).unzip();
+        let r = transmission_range(&c, &f, |x| Ok((coupler(x), follower(x)))).unwrap();
+        assert!((r.min.angle - 0.3).abs() < 1e-15 && (r.min.x - 1.5 * PI).abs() < 1e-7, "{r:?}");
+        assert!((r.max.angle - FRAC_PI_2).abs() < 1e-15);
+        let first = ((FRAC_PI_2 - 1.0) / 0.7).asin();
+        assert!((r.max.x - first).abs() < 1e-12 || (r.max.x - (PI - first)).abs() < 1e-12, "{r:?}");
+        assert!(r.dead_points.is_empty());
+    }
+
+    #[test]
+    fn dead_points_are_where_the_relative_angle_crosses_a_multiple_of_pi() {
+        // d(x) = x - 1 crosses 0 at x = 1 and pi at 1 + pi.
+        let f = |x: f64| Jet { x, value: x - 1.0, d1: 1.0, d2: 0.0 };
+        let zero = |x: f64| Jet { x, ..Jet::default() };
+        let xs: Vec<f64> = (0..=30).map(|i| i as f64 * 0.2).collect();
+        let (c, fo): (Vec<Jet>, Vec<Jet>) = xs.iter().map(|&x| (zero(x), f(x))).unzip();
+        let r = transmission_range(&c, &fo, |x| Ok((zero(x), f(x)))).unwrap();
+        assert_eq!(r.dead_points.len(), 2);
+        assert!((r.dead_points[0] - 1.0).abs() < 1e-15 && (r.dead_points[1] - 1.0 - PI).abs() < 1e-14);
+        assert_eq!(r.min.angle, 0.0);
+    }
+
+    #[test]
+    fn mismatched_samples_are_an_error() {
+        let j = |x: f64| Jet { x, ..Jet::default() };
+        let r = transmission_range(&[j(0.0), j(1.0)], &[j(0.0), j(2.0)], |x| Ok((j(x), j(x))));
+        assert!(matches!(r, Err(Error::InvalidArgument(_))));
+    }
+}

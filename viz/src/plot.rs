@@ -1,1 +1,0 @@
-//! Charts of sweep results (placeholder, being written).

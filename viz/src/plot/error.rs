@@ -1,0 +1,49 @@
+//! Why a figure could not be made.
+
+use super::Kind;
+use std::fmt;
+
+/// Why a figure could not be made.
+#[derive(Debug)]
+#[non_exhaustive]
+pub enum PlotError {
+    /// No finite point to plot (in the figure, or in the named panel).
+    Empty { what: String },
+    /// A series of another quantity kind than its axis: put it on its own axis (a panel).
+    MixedKinds { axis: String, expected: Box<Kind>, series: String, found: Box<Kind> },
+    /// An x-y chart with equal scales needs the same kind (and unit) on both axes.
+    UnequalAxes { x: Kind, y: Kind },
+    /// A table has no column of that name.
+    MissingColumn { name: String, available: Vec<String> },
+    /// Writing the file (or creating its folder) failed.
+    Io { path: std::path::PathBuf, source: std::io::Error },
+}
+
+impl fmt::Display for PlotError {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        match self {
+            PlotError::Empty { what } => write!(f, "nothing to plot in {what}: no point has finite coordinates"),
+            PlotError::MixedKinds { axis, expected, series, found } => write!(
+                f,
+                "series `{series}` holds {found} but axis `{axis}` holds {expected}: \
+                 an axis holds one quantity kind; give the series its own panel"
+            ),
+            PlotError::UnequalAxes { x, y } => {
+                write!(f, "an x-y chart draws both axes to one scale, so both must hold one kind (x: {x}, y: {y})")
+            }
+            PlotError::MissingColumn { name, available } => {
+                write!(f, "no column `{name}` in the table (columns: {})", available.join(", "))
+            }
+            PlotError::Io { path, source } => write!(f, "cannot write `{}`: {source}", path.display()),
+        }
+    }
+}
+
+impl std::error::Error for PlotError {
+    fn source(&self) -> Option<&(dyn std::error::Error + 'static)> {
+        match self {
+            PlotError::Io { source, .. } => Some(source),
+            _ => None,
+        }
+    }
+}

@@ -1,0 +1,68 @@
+//! Legends, placed to the right of the plot area so that they never cover data.
+
+use super::frame::TICK_FONT;
+use super::svg::Svg;
+
+/// Colours of successive curves (colour-blind-safe, Okabe–Ito order).
+pub(crate) const COLORS: [&str; 7] = ["#0072B2", "#D55E00", "#009E73", "#CC79A7", "#E69F00", "#56B4E9", "#000000"];
+
+/// The colour of curve `k`.
+pub(crate) fn color(k: usize) -> &'static str {
+    COLORS[k % COLORS.len()]
+}
+
+/// Approximate width in pixels of `text` at the tick font size (sans-serif averages about
+/// 0.6 em per character).
+fn text_width(text: &str) -> f64 {
+    0.6 * TICK_FONT * text.chars().count() as f64
+}
+
+/// Longest label shown in full; longer ones are cut with an ellipsis so the plot keeps its room.
+const MAX_CHARS: usize = 40;
+
+/// A label as shown in the legend.
+fn shown(label: &str) -> String {
+    if label.chars().count() <= MAX_CHARS {
+        label.to_string()
+    } else {
+        label.chars().take(MAX_CHARS - 1).chain(['…']).collect()
+    }
+}
+
+/// Width of the legend column for these labels (0 when there is nothing to list).
+pub(crate) fn width<'a>(labels: impl Iterator<Item = &'a str>) -> f64 {
+    let widest = labels
+        .filter(|l| !l.is_empty())
+        .map(|l| text_width(&shown(l)))
+        .fold(None, |m: Option<f64>, w| Some(m.map_or(w, |m| m.max(w))));
+    widest.map_or(0.0, |w| w + 48.0)
+}
+
+/// Draws the legend of `labels` (curve `k` in colour `k`) with its top-left corner at `(x, y)`.
+pub(crate) fn draw(svg: &mut Svg, (x, y): (f64, f64), labels: &[&str], width: f64) {
+    let entries: Vec<(usize, &&str)> = labels.iter().enumerate().filter(|(_, l)| !l.is_empty()).collect();
+    if entries.is_empty() {
+        return;
+    }
+    svg.open("legend");
+    svg.rect("legend-box", (x, y), (width, 10.0 + 20.0 * entries.len() as f64), "white", "#888888");
+    for (row, (k, label)) in entries.iter().enumerate() {
+        let cy = y + 15.0 + 20.0 * row as f64;
+        svg.line("legend-line", (x + 8.0, cy), (x + 30.0, cy), color(*k), 2.0);
+        svg.text("legend-label", x + 36.0, cy + 4.0, TICK_FONT, "start", 0.0, &shown(label));
+    }
+    svg.close();
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn long_labels_are_cut_so_the_legend_stays_narrow() {
+        let long = "a".repeat(200);
+        assert_eq!(shown(&long).chars().count(), MAX_CHARS);
+        assert!(width([long.as_str()].into_iter()) < 0.6 * TICK_FONT * 41.0 + 48.0);
+        assert_eq!(width(["", ""].into_iter()), 0.0);
+    }
+}

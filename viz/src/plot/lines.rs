@@ -1,0 +1,89 @@
+//! Line charts: curves against a common x axis, in one or several stacked panels, each panel
+//! with its own value axis of one quantity kind.
+
+use super::frame::{Frame, LEFT, TITLE_FONT, WIDTH};
+use super::series::bounds;
+use super::svg::Svg;
+use super::ticks::Ticks;
+use super::{Axis, Panel, PlotError, Series, legend};
+
+/// Height of one panel's plot area and the space between panels (x tick labels).
+const PANEL_H: f64 = 250.0;
+const GAP: f64 = 44.0;
+
+/// A line chart of `series` (all of the kind of `y`) against `x`, as an SVG document.
+///
+/// ```
+/// use kinloop_viz::plot::{Axis, Kind, Series, line_chart_svg};
+/// let phi: Vec<f64> = (0..=72).map(|i| i as f64 * std::f64::consts::TAU / 72.0).collect();
+/// let x: Vec<f64> = phi.iter().map(|p| 30.0 * p.cos() + 90.0).collect();
+/// let svg = line_chart_svg(
+///     "Slider",
+///     &Axis::angle("crank angle φ"),
+///     &Axis::length("slider position x", "mm"),
+///     &[Series::columns("x", Kind::length("mm"), &phi, &x)],
+/// )?;
+/// assert!(svg.contains("crank angle φ [°]") && svg.contains(">270<"));
+/// # Ok::<(), kinloop_viz::plot::PlotError>(())
+/// ```
+pub fn line_chart_svg(title: &str, x: &Axis, y: &Axis, series: &[Series]) -> Result<String, PlotError> {
+    let panel = Panel { axis: y.clone(), series: series.to_vec(), marks: Vec::new() };
+    panels_svg(title, x, std::slice::from_ref(&panel))
+}
+
+/// Panels stacked over a common x axis, each with its own value axis, curves, marked points
+/// and legend (right of its plot area), as an SVG document.
+///
+/// Errors: a curve whose kind differs from its panel's axis ([`PlotError::MixedKinds`]), a
+/// figure or panel without a finite point ([`PlotError::Empty`]).
+pub fn panels_svg(title: &str, x: &Axis, panels: &[Panel]) -> Result<String, PlotError> {
+    for p in panels {
+        p.check()?;
+    }
+    let all = panels.iter().flat_map(|p| p.series.iter().flat_map(|s| s.points.iter()).chain(p.marks.iter()));
+    let (x0, x1, _, _) = bounds(all).ok_or_else(|| PlotError::Empty { what: "the figure".into() })?;
+    let xt = Ticks::new(x.kind.shown(x0), x.kind.shown(x1), x.kind.is_angle(), false);
+    let legend_w = legend::width(panels.iter().flat_map(|p| p.series.iter().map(|s| s.label.as_str())));
+    let top = if title.is_empty() { 16.0 } else { 48.0 };
+    let height = top + panels.len() as f64 * (PANEL_H + GAP) + 20.0;
+    let mut svg = Svg::new(WIDTH, height);
+    if !title.is_empty() {
+        svg.text("title", WIDTH / 2.0, 30.0, TITLE_FONT, "middle", 0.0, title);
+    }
+    let plot_w = WIDTH - LEFT - 24.0 - if legend_w > 0.0 { legend_w + 16.0 } else { 0.0 };
+    for (k, p) in panels.iter().enumerate() {
+        let what = || PlotError::Empty { what: format!("the panel `{}`", p.axis.name) };
+        let (_, _, y0, y1) = bounds(p.series.iter().flat_map(|s| s.points.iter()).chain(&p.marks)).ok_or_else(what)?;
+        let (y0, y1) = (p.axis.kind.shown(y0), p.axis.kind.shown(y1));
+        let pad = 0.03 * (y1 - y0);
+        let frame = Frame {
+            x: LEFT,
+            y: top + k as f64 * (PANEL_H + GAP),
+            w: plot_w,
+            h: PANEL_H,
+            xt: xt.clone(),
+            yt: Ticks::new(y0 - pad, y1 + pad, p.axis.kind.is_angle(), true),
+            xk: x.kind.clone(),
+            yk: p.axis.kind.clone(),
+        };
+        draw_panel(&mut svg, &frame, k, p, (k + 1 == panels.len()).then_some(x), legend_w);
+    }
+    Ok(svg.finish())
+}
+
+/// Draws one panel into its frame.
+fn draw_panel(svg: &mut Svg, frame: &Frame, k: usize, p: &Panel, x_title: Option<&Axis>, legend_w: f64) {
+    svg.open("panel");
+    frame.draw(svg, x_title, &p.axis);
+    let clip = format!("area{k}");
+    svg.clip(&clip, (frame.x, frame.y), (frame.w, frame.h));
+    for (c, s) in p.series.iter().enumerate() {
+        svg.curve(&s.label, s.points.iter().map(|&pt| frame.px(pt)), legend::color(c), &clip);
+    }
+    for &m in p.marks.iter().filter(|(x, y)| x.is_finite() && y.is_finite()) {
+        svg.dot("mark", frame.px(m), 4.0, "black");
+    }
+    let labels: Vec<&str> = p.series.iter().map(|s| s.label.as_str()).collect();
+    legend::draw(svg, (frame.right() + 16.0, frame.y), &labels, legend_w);
+    svg.close();
+}

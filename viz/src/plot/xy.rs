@@ -1,0 +1,82 @@
+//! x-y charts with equal scales on both axes: paths of points, a linkage at one position.
+
+use super::frame::{Frame, LEFT, TITLE_FONT, WIDTH};
+use super::series::bounds;
+use super::svg::Svg;
+use super::ticks::Ticks;
+use super::{Axis, PlotError, Series, legend};
+
+/// Largest plot area height in pixels.
+const MAX_H: f64 = 460.0;
+
+/// An x-y chart of `series` and marked points with equal scales on both axes (a circle looks
+/// round), as an SVG document. Both axes must hold the same kind (e.g. lengths in mm), and so
+/// must every curve.
+///
+/// ```
+/// use kinloop_viz::plot::{Axis, Kind, Series, xy_chart_svg};
+/// let circle: Vec<(f64, f64)> = (0..=90).map(|i| (i as f64 / 90.0 * std::f64::consts::TAU).sin_cos()).collect();
+/// let mm = Kind::length("mm");
+/// let svg = xy_chart_svg("Path", &Axis::length("x", "mm"), &Axis::length("y", "mm"),
+///                        &[Series::new("coupler point", mm, circle)], &[(0.0, 0.0)])?;
+/// assert!(svg.contains("y [mm]"));
+/// # Ok::<(), kinloop_viz::plot::PlotError>(())
+/// ```
+pub fn xy_chart_svg(
+    title: &str,
+    x: &Axis,
+    y: &Axis,
+    series: &[Series],
+    marks: &[(f64, f64)],
+) -> Result<String, PlotError> {
+    if x.kind != y.kind {
+        return Err(PlotError::UnequalAxes { x: x.kind.clone(), y: y.kind.clone() });
+    }
+    if let Some(s) = series.iter().find(|s| s.kind != x.kind) {
+        return Err(PlotError::MixedKinds {
+            axis: x.name.clone(),
+            expected: Box::new(x.kind.clone()),
+            series: s.label.clone(),
+            found: Box::new(s.kind.clone()),
+        });
+    }
+    let (x0, x1, y0, y1) = bounds(series.iter().flat_map(|s| s.points.iter()).chain(marks))
+        .ok_or(PlotError::Empty { what: "the figure".into() })?;
+    let k = &x.kind;
+    let (x0, x1, y0, y1) = (k.shown(x0), k.shown(x1), k.shown(y0), k.shown(y1));
+    let legend_w = legend::width(series.iter().map(|s| s.label.as_str()));
+    let w = WIDTH - LEFT - 24.0 - if legend_w > 0.0 { legend_w + 16.0 } else { 0.0 };
+    // Shown units per pixel, with a margin, from the axis that needs more.
+    let mut span = ((x1 - x0) / w).max((y1 - y0) / MAX_H);
+    if span == 0.0 {
+        span = x0.abs().max(y0.abs()).max(1.0) * 0.2 / w;
+    }
+    let scale = 1.08 * span;
+    let h = ((y1 - y0) / scale * 1.08).clamp(MAX_H / 2.0, MAX_H);
+    let (cx, cy) = ((x0 + x1) / 2.0, (y0 + y1) / 2.0);
+    let (hx, hy) = (scale * w / 2.0, scale * h / 2.0);
+    let xt = Ticks::new(cx - hx, cx + hx, k.is_angle(), false);
+    // The same step on both axes: equal scales read best with equal grid squares.
+    let mut yt = Ticks::new(cy - hy, cy + hy, k.is_angle(), false);
+    yt.step = xt.step;
+    yt.values = Ticks::multiples(cy - hy, cy + hy, xt.step);
+    let top = if title.is_empty() { 16.0 } else { 48.0 };
+    let mut svg = Svg::new(WIDTH, top + h + 64.0);
+    if !title.is_empty() {
+        svg.text("title", WIDTH / 2.0, 30.0, TITLE_FONT, "middle", 0.0, title);
+    }
+    let frame = Frame { x: LEFT, y: top, w, h, xt, yt, xk: k.clone(), yk: k.clone() };
+    svg.open("panel");
+    frame.draw(&mut svg, Some(x), y);
+    svg.clip("area0", (frame.x, frame.y), (frame.w, frame.h));
+    for (c, s) in series.iter().enumerate() {
+        svg.curve(&s.label, s.points.iter().map(|&p| frame.px(p)), legend::color(c), "area0");
+    }
+    for &m in marks.iter().filter(|(x, y)| x.is_finite() && y.is_finite()) {
+        svg.dot("mark", frame.px(m), 4.0, "black");
+    }
+    let labels: Vec<&str> = series.iter().map(|s| s.label.as_str()).collect();
+    legend::draw(&mut svg, (frame.right() + 16.0, frame.y), &labels, legend_w);
+    svg.close();
+    Ok(svg.finish())
+}

@@ -1,0 +1,240 @@
+//! Figures parsed back from their SVG: tick labels and axis titles with units, curves placed
+//! where the labelled ticks say (positions read from the drawn tick labels, not from the
+//! library's mapping), legends that cover no data, smooth (fractional) coordinates, errors for
+//! mixed quantity kinds.
+
+use kinloop_viz::plot::{Axis, Kind, Panel, PlotError, Series, line_chart_svg, panels_svg, xy_chart_svg};
+use std::f64::consts::TAU;
+
+/// What a test reads from a figure: per panel, its plot area, tick labels with their pixel
+/// positions, axis titles, legend boxes, curves (as pixel points) and marks.
+#[derive(Default, Debug)]
+struct Parsed {
+    areas: Vec<[f64; 4]>,
+    x_ticks: Vec<Vec<(String, f64)>>,
+    y_ticks: Vec<Vec<(String, f64)>>,
+    titles: Vec<String>,
+    legends: Vec<[f64; 4]>,
+    curves: Vec<Vec<Vec<(f64, f64)>>>,
+    marks: Vec<(f64, f64)>,
+}
+
+fn attr(n: roxmltree::Node, name: &str) -> f64 {
+    n.attribute(name).unwrap_or_else(|| panic!("missing {name}")).parse().unwrap()
+}
+
+/// Subpaths of an SVG path made of `M x,y` and `L x,y` commands.
+fn subpaths(d: &str) -> Vec<Vec<(f64, f64)>> {
+    let mut out: Vec<Vec<(f64, f64)>> = Vec::new();
+    for cmd in d.split_whitespace() {
+        let (op, xy) = cmd.split_at(1);
+        let (x, y) = xy.split_once(',').unwrap();
+        let p = (x.parse().unwrap(), y.parse().unwrap());
+        match op {
+            "M" => out.push(vec![p]),
+            "L" => out.last_mut().unwrap().push(p),
+            _ => panic!("unexpected path command {cmd}"),
+        }
+    }
+    out
+}
+
+fn parse(svg: &str) -> Parsed {
+    let doc = roxmltree::Document::parse(svg).expect("well-formed SVG");
+    let mut p = Parsed::default();
+    for panel in doc.descendants().filter(|n| n.attribute("class") == Some("panel")) {
+        let (mut xt, mut yt, mut curves) = (Vec::new(), Vec::new(), Vec::new());
+        for n in panel.descendants().filter(|n| n.is_element()) {
+            let text = || n.text().unwrap_or("").to_string();
+            match n.attribute("class").unwrap_or("") {
+                "plot-area" => p.areas.push([attr(n, "x"), attr(n, "y"), attr(n, "width"), attr(n, "height")]),
+                "tick-label x" => xt.push((text(), attr(n, "x"))),
+                // The label's baseline sits 4 px below its tick.
+                "tick-label y" => yt.push((text(), attr(n, "y") - 4.0)),
+                "axis-title x" | "axis-title y" => p.titles.push(text()),
+                "legend-box" => p.legends.push([attr(n, "x"), attr(n, "y"), attr(n, "width"), attr(n, "height")]),
+                "curve" => curves.extend(subpaths(n.attribute("d").unwrap())),
+                "mark" => p.marks.push((attr(n, "cx"), attr(n, "cy"))),
+                _ => {}
+            }
+        }
+        p.x_ticks.push(xt);
+        p.y_ticks.push(yt);
+        p.curves.push(curves);
+    }
+    p
+}
+
+/// The linear map from shown values to pixels defined by the first and last labelled ticks.
+fn axis_map(ticks: &[(String, f64)]) -> impl Fn(f64) -> f64 {
+    let (a, b) = (&ticks[0], &ticks[ticks.len() - 1]);
+    let (va, vb): (f64, f64) = (a.0.parse().unwrap(), b.0.parse().unwrap());
+    let (pa, pb) = (a.1, b.1);
+    move |v| pa + (v - va) / (vb - va) * (pb - pa)
+}
+
+fn labels(ticks: &[(String, f64)]) -> Vec<&str> {
+    ticks.iter().map(|t| t.0.as_str()).collect()
+}
+
+fn inside(r: &[f64; 4], (x, y): (f64, f64)) -> bool {
+    x >= r[0] && x <= r[0] + r[2] && y >= r[1] && y <= r[1] + r[3]
+}
+
+fn overlap(a: &[f64; 4], b: &[f64; 4]) -> bool {
+    a[0] < b[0] + b[2] && b[0] < a[0] + a[2] && a[1] < b[1] + b[3] && b[1] < a[1] + a[3]
+}
+
+/// An offset slider-crank in millimetres over one turn in closed form: the slider position,
+/// its velocity analog, and the rod angle.
+fn slider_crank() -> (Vec<f64>, Vec<f64>, Vec<f64>, Vec<f64>) {
+    let (r, l, e) = (40.0, 120.0, 10.0);
+    let phi: Vec<f64> = (0..=360).map(|i| i as f64 * TAU / 360.0).collect();
+    let psi: Vec<f64> = phi.iter().map(|p| ((e - r * p.sin()) / l).asin()).collect();
+    let x: Vec<f64> = phi.iter().zip(&psi).map(|(p, s)| r * p.cos() + l * s.cos()).collect();
+    let dx: Vec<f64> = phi.iter().zip(&psi).map(|(p, s)| -r * p.sin() - r * p.cos() * s.tan()).collect();
+    (phi, x, dx, psi)
+}
+
+fn mm() -> Kind {
+    Kind::length("mm")
+}
+
+#[test]
+fn a_turn_is_ticked_in_degrees_and_every_axis_names_its_unit() {
+    let (phi, x, dx, psi) = slider_crank();
+    let svg = panels_svg(
+        "Offset slider-crank",
+        &Axis::angle("crank angle φ"),
+        &[
+            Panel::new(Axis::length("slider position x", "mm")).with(Series::columns("x", mm(), &phi, &x)),
+            Panel::new(Axis::new("x'", Kind::LengthAnalog("mm".into()))).with(Series::columns(
+                "dx/dφ",
+                Kind::LengthAnalog("mm".into()),
+                &phi,
+                &dx,
+            )),
+            Panel::new(Axis::angle("rod angle ψ")).with(Series::columns("ψ", Kind::Angle, &phi, &psi)),
+        ],
+    )
+    .unwrap();
+    // Kept under the build directory to be looked at (rendered by any SVG viewer).
+    let look = std::path::Path::new(env!("CARGO_TARGET_TMPDIR")).join("plot/slider_crank.svg");
+    kinloop_viz::plot::save(&look, &svg).unwrap();
+    let p = parse(&svg);
+    assert_eq!(p.areas.len(), 3);
+    for ticks in &p.x_ticks {
+        assert_eq!(labels(ticks), ["0", "90", "180", "270", "360"]);
+    }
+    // Titles: one per value axis, and the shared x axis once (under the last panel).
+    assert_eq!(p.titles, ["slider position x [mm]", "x' [mm/rad]", "rod angle ψ [°]", "crank angle φ [°]"]);
+    // The rod angle swings asin((e ± r) / l): -14.5 .. 24.6 degrees, ticked in degree steps.
+    let rod: Vec<f64> = p.y_ticks[2].iter().map(|t| t.0.parse().unwrap()).collect();
+    let step = rod[1] - rod[0];
+    assert!([5.0, 10.0, 15.0].contains(&step), "{rod:?}");
+    assert!(rod[0] <= -14.4 && rod[rod.len() - 1] >= 24.6, "{rod:?}");
+}
+
+#[test]
+fn curves_lie_where_the_labelled_ticks_put_them_with_fractional_coordinates() {
+    let (phi, x, _, _) = slider_crank();
+    let svg = line_chart_svg(
+        "",
+        &Axis::angle("crank angle φ"),
+        &Axis::length("x", "mm"),
+        &[Series::columns("x", mm(), &phi, &x)],
+    )
+    .unwrap();
+    let p = parse(&svg);
+    let (mx, my) = (axis_map(&p.x_ticks[0]), axis_map(&p.y_ticks[0]));
+    let curve = &p.curves[0];
+    assert_eq!(curve.len(), 1);
+    // Every drawn point is a sample (thinning only drops points): find it by its x pixel and
+    // compare with the sample's value through the tick labels' own scale. Coordinates carry
+    // 1/100 pixel (rounding 0.005), the tick labels' positions the same.
+    let nearest = |px: f64| {
+        (0..phi.len())
+            .min_by(|&a, &b| (mx(phi[a].to_degrees()) - px).abs().total_cmp(&(mx(phi[b].to_degrees()) - px).abs()))
+            .unwrap()
+    };
+    for &(px, py) in &curve[0] {
+        let i = nearest(px);
+        assert!((mx(phi[i].to_degrees()) - px).abs() < 0.011, "x pixel {px}");
+        assert!((my(x[i]) - py).abs() < 0.011, "y pixel {py} vs {}", my(x[i]));
+    }
+    let fractional = curve[0].iter().filter(|(x, y)| x.fract() != 0.0 || y.fract() != 0.0).count();
+    assert!(fractional > curve[0].len() / 2, "curve snapped to whole pixels");
+    assert!(curve[0].len() > 100, "a smooth turn keeps many points: {}", curve[0].len());
+}
+
+#[test]
+fn no_legend_covers_data() {
+    let (phi, x, _, _) = slider_crank();
+    let shifted: Vec<f64> = x.iter().map(|v| v + 30.0).collect();
+    let svg = line_chart_svg(
+        "Two strokes",
+        &Axis::angle("crank angle φ"),
+        &Axis::length("x", "mm"),
+        &[Series::columns("slider", mm(), &phi, &x), Series::columns("slider + 30 mm", mm(), &phi, &shifted)],
+    )
+    .unwrap();
+    let circle: Vec<(f64, f64)> =
+        (0..=200).map(|i| (i as f64 * TAU / 200.0).sin_cos()).map(|(s, c)| (40.0 * c, 40.0 * s)).collect();
+    let crank = [Series::new("crank pin", mm(), circle)];
+    let xy = xy_chart_svg("Path", &Axis::length("x", "mm"), &Axis::length("y", "mm"), &crank, &[(0.0, 0.0)]).unwrap();
+    kinloop_viz::plot::save(&std::path::Path::new(env!("CARGO_TARGET_TMPDIR")).join("plot/crank_pin.svg"), &xy)
+        .unwrap();
+    for p in [parse(&svg), parse(&xy)] {
+        assert!(!p.legends.is_empty());
+        for legend in &p.legends {
+            assert!(p.areas.iter().all(|a| !overlap(a, legend)), "legend {legend:?} over a plot area");
+            let mut points = p.curves.iter().flatten().flatten().chain(&p.marks);
+            assert!(points.all(|&q| !inside(legend, q)), "legend covers data");
+        }
+    }
+}
+
+#[test]
+fn an_xy_chart_draws_both_axes_to_one_scale() {
+    let ellipse: Vec<(f64, f64)> =
+        (0..=200).map(|i| (i as f64 * TAU / 200.0).sin_cos()).map(|(s, c)| (300.0 * c, 50.0 * s)).collect();
+    let series = [Series::new("e", mm(), ellipse)];
+    let p = parse(&xy_chart_svg("", &Axis::length("x", "mm"), &Axis::length("y", "mm"), &series, &[]).unwrap());
+    let (mx, my) = (axis_map(&p.x_ticks[0]), axis_map(&p.y_ticks[0]));
+    let (px_per_mm_x, px_per_mm_y) = (mx(100.0) - mx(0.0), my(0.0) - my(100.0));
+    // Tick positions are written to 1/100 pixel over about 700 pixels.
+    assert!((px_per_mm_x - px_per_mm_y).abs() < 1e-4 * px_per_mm_x, "{px_per_mm_x} vs {px_per_mm_y}");
+}
+
+#[test]
+fn a_gap_in_a_sweep_breaks_the_curve() {
+    let pts = vec![(0.0, 1.0), (0.5, 2.0), (1.0, f64::NAN), (1.5, 2.0), (2.0, 1.0)];
+    let series = [Series::new("k", Kind::Dimensionless, pts)];
+    let p = parse(&line_chart_svg("", &Axis::angle("φ"), &Axis::of(Kind::Dimensionless), &series).unwrap());
+    assert_eq!(p.curves[0].len(), 2);
+    assert_eq!(p.titles, ["ratio [-]", "φ [°]"]);
+}
+
+#[test]
+fn mixing_quantity_kinds_on_one_axis_is_an_error() {
+    let (phi, x, _, psi) = slider_crank();
+    let series = vec![Series::columns("x", mm(), &phi, &x), Series::columns("ψ", Kind::Angle, &phi, &psi)];
+    let err = line_chart_svg("", &Axis::angle("φ"), &Axis::length("x", "mm"), &series).unwrap_err();
+    assert!(matches!(err, PlotError::MixedKinds { ref series, .. } if series == "ψ"), "{err}");
+    assert!(err.to_string().contains("own panel"));
+    // The remedy: one panel per kind.
+    let panels = Panel::split_by_kind(series.clone());
+    assert_eq!(panels.len(), 2);
+    let p = parse(&panels_svg("", &Axis::angle("φ"), &panels).unwrap());
+    assert_eq!(p.titles, ["length [mm]", "angle [°]", "φ [°]"]);
+    // Lengths in two units are two kinds, and an x-y chart needs one kind on both axes.
+    assert!(matches!(
+        xy_chart_svg("", &Axis::length("x", "mm"), &Axis::length("y", "m"), &series[..1], &[]),
+        Err(PlotError::UnequalAxes { .. })
+    ));
+    let nothing = [Series::new("nan", Kind::Angle, vec![(f64::NAN, 0.0)])];
+    assert!(matches!(
+        line_chart_svg("", &Axis::angle("φ"), &Axis::of(Kind::Angle), &nothing),
+        Err(PlotError::Empty { .. })
+    ));
+}
