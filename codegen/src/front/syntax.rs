@@ -18,7 +18,8 @@
 //! The parser recovers at `;` after an error, so all syntax errors of a declaration are reported
 //! together.
 
-use crate::expr::{Expr, SpanRange, parse_expr};
+use super::expr::{Expr, SpanRange, parse_expr};
+use super::{limits, names};
 use proc_macro2::{Span, TokenStream};
 use syn::parse::{ParseStream, Parser};
 use syn::{Attribute, Ident, Token, Visibility};
@@ -141,6 +142,22 @@ pub fn parse(tokens: TokenStream) -> Result<MechanismDef, syn::Error> {
 /// as its name is known, and the combined syntax errors, if any. The partial declaration lets
 /// the macro emit fallback items next to the errors.
 pub fn parse_recover(tokens: TokenStream) -> (Option<MechanismDef>, Option<syn::Error>) {
+    // Before syn sees the tokens: its token buffer recurses into every bracket.
+    if let Err(e) = limits::check(&tokens) {
+        return (None, Some(e));
+    }
+    let (def, errors) = parse_tokens(tokens);
+    let Some(mut def) = def else { return (None, errors) };
+    let (name_ok, problems) = names::check(&mut def);
+    let mut all = Errors(errors);
+    for e in problems {
+        all.push(e);
+    }
+    (name_ok.then_some(def), all.into_error())
+}
+
+/// The parser proper, on tokens whose size and depth [`limits::check`] accepted.
+fn parse_tokens(tokens: TokenStream) -> (Option<MechanismDef>, Option<syn::Error>) {
     let mut out = None;
     // The parser stores its own verdict in `out`: syn's end-of-input checks cannot then replace
     // the collected errors by a generic "unexpected token" after recovery skipped some tokens.
