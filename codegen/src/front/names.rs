@@ -9,6 +9,7 @@
 
 use super::syntax::{DeclKind, ItemKind, MechanismDef};
 use syn::Ident;
+use syn::ext::IdentExt;
 
 /// Primitive types: the generated code uses `f64` and the others must not be shadowed either.
 const PRIMITIVES: &[&str] = &[
@@ -27,10 +28,11 @@ const RESERVED: &[&str] = &["gen"];
 
 /// Why `name` cannot name the mechanism, with what to write instead.
 pub fn mechanism_name_problem(name: &Ident) -> Option<String> {
-    let s = name.to_string();
     if let Some(m) = reserved_problem(name, "the mechanism") {
         return Some(m);
     }
+    // `r#f64` names the same type as `f64`.
+    let s = name.unraw().to_string();
     let camel = camel_case(&s);
     let kind = if PRIMITIVES.contains(&s.as_str()) {
         "a primitive type that the generated code uses"
@@ -119,4 +121,43 @@ pub fn check(def: &mut MechanismDef) -> (bool, Vec<syn::Error>) {
         }
     });
     (name_ok, errors)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use proc_macro2::Span;
+
+    fn ident(s: &str) -> Ident {
+        match s.strip_prefix("r#") {
+            Some(raw) => Ident::new_raw(raw, Span::call_site()),
+            None => Ident::new(s, Span::call_site()),
+        }
+    }
+
+    #[test]
+    fn every_primitive_crate_and_type_parameter_is_refused_as_mechanism_name() {
+        for s in PRIMITIVES.iter().chain(CRATES).chain(TYPE_PARAMETERS) {
+            let m = mechanism_name_problem(&ident(s)).unwrap_or_else(|| panic!("`{s}` accepted"));
+            assert!(m.starts_with(&format!("a mechanism cannot be called `{s}`")), "{m}");
+            // The suggestion is itself a valid, accepted name.
+            let suggested = m.rsplit('`').nth(1).expect("a suggested name");
+            assert!(mechanism_name_problem(&ident(suggested)).is_none(), "{suggested}");
+        }
+        assert_eq!(camel_case("f64"), "F64");
+        assert_eq!(camel_case(""), "");
+    }
+
+    #[test]
+    fn reserved_words_are_refused_everywhere_but_raw_identifiers_pass() {
+        let m = reserved_problem(&ident("gen"), "a parameter").expect("refused");
+        assert!(m.contains("`gen_`") && m.contains("`r#gen`"), "{m}");
+        assert!(reserved_problem(&ident("r#gen"), "a parameter").is_none());
+        assert!(mechanism_name_problem(&ident("r#gen")).is_none());
+        assert!(mechanism_name_problem(&ident("r#f64")).is_some(), "a raw `f64` still shadows the type");
+        for fine in ["generator", "Gen", "phi", "F64", "kinloop_arm", "Tt"] {
+            assert!(reserved_problem(&ident(fine), "a parameter").is_none(), "{fine}");
+            assert!(mechanism_name_problem(&ident(fine)).is_none(), "{fine}");
+        }
+    }
 }
