@@ -187,7 +187,7 @@ fn nesting_beyond_the_limit_is_one_error_at_the_first_bracket_too_deep() {
 
 #[test]
 fn the_largest_test_mechanisms_are_far_below_the_size_limit() {
-    // The class IV mechanism with every output: the limit leaves room for fifty of them.
+    // The class IV mechanism with outputs (81 operations): the limit leaves room for over fifty.
     let a = kinloop_codegen::analyze(tokens(
         "pub struct ClassFour {
              params oa = 1.0, xb = 4.4, yb = 0.6, ac = 2.3, ae = 2.4, alpha_a = 0.84,

@@ -511,16 +511,17 @@ fn huge_let_chains_are_bounded() {
         };
         let (out, _) = run_huge("2000 lets", &chain(2000));
         assert!(!out.contains("compile_error"), "2000 lets are a valid declaration");
-        // Two operations per `let`: the limit of 10000 is crossed near the 5000th.
-        for n in [6000, 15_000] {
+        // Two operations per `let`: the limit of 5000 is crossed near the 2500th.
+        for n in [3000, 9000] {
             let (out, _) = run_huge(&format!("{n} lets"), &chain(n));
             assert_eq!(out.matches("compile_error").count(), 1, "{}", &out[..out.len().min(2000)]);
-            assert!(out.contains("more than 10000 distinct operations"), "{}", &out[..out.len().min(2000)]);
+            assert!(out.contains("more than 5000 distinct operations"), "{}", &out[..out.len().min(2000)]);
         }
-        for n in [50_000, 200_000] {
+        // Nine tokens per `let`: beyond 11111 of them the token limit stops everything first.
+        for n in [15_000, 50_000, 200_000] {
             let (out, _) = run_huge(&format!("{n} lets"), &chain(n));
             assert_eq!(out.matches("compile_error").count(), 1);
-            assert!(out.contains("more than 200000 tokens"), "{}", &out[..out.len().min(2000)]);
+            assert!(out.contains("more than 100000 tokens"), "{}", &out[..out.len().min(2000)]);
         }
     });
 }

@@ -96,12 +96,12 @@ impl Model {
 }
 
 /// Most distinct scalar operations the declaration itself may lower to (before
-/// differentiation). Expansion time and generated code grow linearly with it (about 0.3 ms and
+/// differentiation). Expansion time and generated code grow linearly with it (about 0.4 ms and
 /// 250 bytes of code per operation in an unoptimised build, where proc macros usually run):
-/// the limit keeps expansion within seconds, and is some fifty times what the largest
-/// mechanisms of the test suite need. Beyond it the declaration is rejected, at the item that
-/// crosses it.
-pub const MAX_MODEL_NODES: usize = 10_000;
+/// the limit keeps expansion near two seconds and the code near a megabyte, and is sixty times
+/// what a class IV mechanism with its output points needs (81). Beyond it the declaration is
+/// rejected, at the item that crosses it.
+pub const MAX_MODEL_NODES: usize = 5_000;
 
 /// The declared names of the body (pass 1).
 struct Globals<'a> {
