@@ -2,10 +2,11 @@
 //!
 //! [`limits`] first measures the raw tokens without recursion (nesting depth, size), so that no
 //! input can overflow the stack in the recursive parsers behind it; [`syntax`] then parses the
-//! declaration, with [`expr`] for expressions, and [`names`] rejects names the generated code
+//! declaration (one item at a time in `item`), with [`expr`] for expressions, and [`names`] rejects names the generated code
 //! cannot use.
 
 pub mod expr;
+mod item;
 pub mod limits;
 pub mod names;
 pub mod syntax;
