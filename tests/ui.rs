@@ -5,6 +5,8 @@
 //! * `names/`: name resolution (unknown, duplicate, used before its `let`, unsupported function);
 //! * `types/`: vectors versus scalars (`r @ phi + gamma`, a `loop` of scalars, wrong arity, ...);
 //! * `structure/`: counts and mobility, over- and under-determined parts, unused names;
+//! * `limits/`: declarations too deep or too large, rejected before expansion would overflow the
+//!   stack or take too long;
 //! * `fallback/`: the items emitted next to the errors keep user code free of secondary errors;
 //! * `combined/`: several mistakes in one declaration are all reported at once.
 //!

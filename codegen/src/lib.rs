@@ -11,20 +11,23 @@
 //!
 //! [`expand`] never panics: every mistake becomes a `compile_error!` at the user's span.
 
-pub mod analysis;
-pub mod dag;
 pub mod describe;
-pub mod diag;
 pub mod emit;
-pub mod expr;
 pub mod fallback;
+pub mod front;
+pub mod graph;
 pub mod items;
-pub mod model;
 pub mod plan;
+pub mod semantics;
 pub mod sens_items;
 pub mod solver;
 pub mod structure;
-pub mod syntax;
+
+// The first stages under their former paths (`crate::syntax`, `crate::dag`, ...).
+pub use front::{expr, syntax};
+pub use graph::dag;
+pub use semantics::model;
+pub use structure::{analysis, diag};
 
 use proc_macro2::TokenStream;
 

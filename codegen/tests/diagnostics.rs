@@ -113,3 +113,96 @@ fn a_missing_semicolon_loses_no_item() {
     .to_string();
     assert!(out.contains("pub psi"), "{out}");
 }
+
+const SLIDER: &str = "params r, l; input phi; unknowns psi, x; loop c: r @ phi == (x, 0) + l @ psi;";
+
+#[test]
+fn mechanism_names_that_would_shadow_what_the_expansion_uses_are_one_error() {
+    for (name, says) in [
+        ("f64", "it is a primitive type"),
+        ("usize", "it is a primitive type"),
+        ("kinloop", "the name of a crate"),
+        ("core", "the name of a crate"),
+        ("std", "the name of a crate"),
+        ("T", "the type parameter of the generated types"),
+        ("gen", "reserved keyword in Rust 2024"),
+    ] {
+        let src = format!("pub struct {name} {{ {SLIDER} }}");
+        let e = errors(&src);
+        assert_eq!(e.len(), 1, "{name}: {e:#?}");
+        assert!(e[0].contains(says), "{name}: {e:#?}");
+        // No fallback item may use the name: only the error comes out.
+        let out = kinloop_codegen::expand(tokens(&src)).to_string();
+        assert_eq!(out.matches("compile_error").count(), 1, "{name}: {out}");
+        assert!(!out.contains("struct"), "{name}: {out}");
+    }
+    // Names that merely resemble them are fine, and so is the raw identifier of a keyword.
+    for name in ["F64", "Kinloop", "Tee", "Gen", "r#gen"] {
+        assert!(errors(&format!("pub struct {name} {{ {SLIDER} }}")).is_empty(), "{name}");
+    }
+}
+
+#[test]
+fn a_reserved_keyword_as_a_declared_name_is_one_error_per_name() {
+    for (body, what) in [
+        ("params r, l, gen; input phi; unknowns psi, x; loop c: r @ phi == (x, 0) + l @ psi;", "a parameter"),
+        ("params r, l; input gen; unknowns psi, x; loop c: r @ phi == (x, 0) + l @ psi;", "an input"),
+        ("params r, l; input phi; unknowns psi, x, gen; loop c: r @ phi == (x, 0) + l @ psi;", "an unknown"),
+        (&format!("{SLIDER} point gen = (x, 0);"), "a `point`"),
+        (&format!("{SLIDER} output gen = x;"), "an `output`"),
+        (&format!("{SLIDER} let gen = x;"), "a `let`"),
+        ("params r, l; input phi; unknowns psi, x; loop gen: r @ phi == (x, 0) + l @ psi;", "a `loop`"),
+    ] {
+        let src = format!("pub struct S {{ {body} }}");
+        let e = errors(&src);
+        assert_eq!(e.len(), 1, "{what}: {e:#?}");
+        assert!(
+            e[0].starts_with(&format!("`gen` is a reserved keyword in Rust 2024 and cannot name {what}")),
+            "{e:#?}"
+        );
+        assert!(e[0].contains("`gen_`") && e[0].contains("`r#gen`"), "says what to write: {e:#?}");
+        // The fallback items leave the name out (a field `gen` would be one more error).
+        let out = kinloop_codegen::expand(tokens(&src)).to_string();
+        assert_eq!(out.matches("compile_error").count(), 1, "{what}: {out}");
+        assert!(!out.contains(" gen "), "{what}: {out}");
+    }
+    // The raw identifier works end to end.
+    let ok = "pub struct S { params r, l, r#gen = 1.0; input phi; unknowns psi, x;
+              loop c: r @ phi == (x, 0) + l @ psi; output o = r#gen * x; }";
+    assert!(errors(ok).is_empty());
+    assert!(!kinloop_codegen::expand(tokens(ok)).to_string().contains("compile_error"));
+}
+
+#[test]
+fn nesting_beyond_the_limit_is_one_error_at_the_first_bracket_too_deep() {
+    let deep = |n: usize| format!("pub struct S {{ {SLIDER} output o = {}x{}; }}", "(".repeat(n), ")".repeat(n));
+    // The body's braces are level 1: 255 parentheses inside them reach the limit of 256 and
+    // pass this check (the expression parser has its own, smaller limit).
+    let at = errors(&deep(255));
+    assert!(at.iter().all(|m| !m.contains("levels deep, the most kinloop accepts")), "{at:#?}");
+    let over = errors(&deep(256));
+    assert_eq!(over.len(), 1, "{over:#?}");
+    assert!(over[0].starts_with("brackets nested more than 256 levels deep"), "{over:#?}");
+}
+
+#[test]
+fn the_largest_test_mechanisms_are_far_below_the_size_limit() {
+    // The class IV mechanism with outputs (81 operations): the limit leaves room for over fifty.
+    let a = kinloop_codegen::analyze(tokens(
+        "pub struct ClassFour {
+             params oa = 1.0, xb = 4.4, yb = 0.6, ac = 2.3, ae = 2.4, alpha_a = 0.84,
+                    bd = 1.6, bf = 3.5, alpha_b = 0.62, cd = 2.0, ef = 3.4;
+             input phi;
+             unknowns th1 = 1.4, th2 = 3.0, psi1 = -0.8, psi2 = -1.0;
+             let a = oa @ phi;
+             let b = (xb, yb);
+             loop acdb: a + ac @ th1 + cd @ psi1 == b + bd @ th2;
+             loop aefb: a + ae @ (th1 + alpha_a) + ef @ psi2 == b + bf @ (th2 + alpha_b);
+             point c = a + ac @ th1; point d = b + bd @ th2; point e = a + ae @ (th1 + alpha_a);
+             output angle_sum = th1 + th2 + psi1 + psi2;
+         }",
+    ))
+    .unwrap_or_else(|e| panic!("{e}"));
+    let limit = kinloop_codegen::model::MAX_MODEL_NODES;
+    assert!(a.model.graph.len() * 50 < limit, "{} nodes", a.model.graph.len());
+}

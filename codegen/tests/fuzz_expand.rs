@@ -455,3 +455,73 @@ fn extreme_inputs_are_rejected_or_accepted_without_panic() {
         eprintln!("extreme inputs: slowest {:?} ({})", slowest.0, slowest.1);
     });
 }
+
+/// Runs both entry points on a huge input without printing it (printing a token stream
+/// recurses into its groups) and returns the expansion's text and the time both took.
+fn run_huge(what: &str, src: &str) -> (String, Duration) {
+    let ts: TokenStream = src.parse().unwrap_or_else(|e| panic!("{what}: {e}"));
+    let start = Instant::now();
+    let analyzed = catch_unwind(AssertUnwindSafe(|| kinloop_codegen::analyze(ts.clone()).err().map(|e| e.to_string())));
+    let expanded = catch_unwind(AssertUnwindSafe(|| kinloop_codegen::expand(ts)));
+    let elapsed = start.elapsed();
+    assert!(analyzed.is_ok(), "`analyze` panicked on {what}");
+    let out = expanded.unwrap_or_else(|_| panic!("`expand` panicked on {what}")).to_string();
+    assert!(elapsed < PER_INPUT, "{what} took {elapsed:?} (bound {PER_INPUT:?})");
+    eprintln!("{what}: {elapsed:?}");
+    (out, elapsed)
+}
+
+/// Brackets nested far beyond any parser's recursion: rejected by one error naming the limit,
+/// before syn's recursive token buffer sees them (which would overflow the stack and abort the
+/// compiler).
+#[test]
+fn deep_nesting_is_one_error_without_stack_overflow() {
+    with_compiler_stack(|| {
+        let decl = |body: &str| format!("pub struct M {{ params r, l; input phi; unknowns psi, x; {body} }}");
+        for n in [50_000, 1_000_000] {
+            for (open, close) in [("(", ")"), ("[", "]"), ("{", "}"), ("sin(", ")")] {
+                let deep = format!("{}x{}", open.repeat(n), close.repeat(n));
+                for (place, src) in [
+                    ("expression", decl(&format!("output o = {deep};"))),
+                    ("body", format!("pub struct M {deep}")),
+                    ("attribute", format!("#[kinloop{deep}] pub struct M {{}}")),
+                ] {
+                    let what = format!("{n} nested `{open}` in the {place}");
+                    let (out, _) = run_huge(&what, &src);
+                    assert_eq!(out.matches("compile_error").count(), 1, "{what}: {out}");
+                    assert!(out.contains("nested more than 256 levels deep"), "{what}: {out}");
+                }
+            }
+        }
+    });
+}
+
+/// Long chains of `let`s: accepted while small, then one error naming the limit that is hit
+/// (the size of the lowered declaration, then the number of tokens), always within the bound.
+#[test]
+fn huge_let_chains_are_bounded() {
+    with_compiler_stack(|| {
+        let chain = |n: usize| {
+            let lets: String = (1..n).map(|k| format!("let v{k} = v{} * 1.0001 + r;", k - 1)).collect();
+            format!(
+                "pub struct M {{ params r, l; input phi; unknowns psi, x; let v0 = x; {lets} \
+                 loop c: r @ phi == (v{}, 0) + l @ psi; }}",
+                n - 1
+            )
+        };
+        let (out, _) = run_huge("2000 lets", &chain(2000));
+        assert!(!out.contains("compile_error"), "2000 lets are a valid declaration");
+        // Two operations per `let`: the limit of 5000 is crossed near the 2500th.
+        for n in [3000, 9000] {
+            let (out, _) = run_huge(&format!("{n} lets"), &chain(n));
+            assert_eq!(out.matches("compile_error").count(), 1, "{}", &out[..out.len().min(2000)]);
+            assert!(out.contains("more than 5000 distinct operations"), "{}", &out[..out.len().min(2000)]);
+        }
+        // Nine tokens per `let`: beyond 11111 of them the token limit stops everything first.
+        for n in [15_000, 50_000, 200_000] {
+            let (out, _) = run_huge(&format!("{n} lets"), &chain(n));
+            assert_eq!(out.matches("compile_error").count(), 1);
+            assert!(out.contains("more than 100000 tokens"), "{}", &out[..out.len().min(2000)]);
+        }
+    });
+}

@@ -346,37 +346,7 @@ impl Parser {
             return Ok(Expr::Var(id));
         }
         if look.peek(syn::token::Paren) {
-            let content;
-            let paren = syn::parenthesized!(content in input);
-            let (open, close) = (paren.span.open(), paren.span.close());
-            if content.is_empty() {
-                return Err(syn::Error::new(
-                    paren.span.join(),
-                    "empty parentheses: write a value `(e)` or a vector `(x, y)`",
-                ));
-            }
-            let first = self.expr(&content, 0)?;
-            if content.is_empty() {
-                return Ok(Expr::Paren { open, inner: Box::new(first), close });
-            }
-            if !content.peek(Token![,]) {
-                return Err(content.error("expected `,` (a vector is written `(x, y)`) or `)`"));
-            }
-            content.parse::<Token![,]>()?;
-            if content.is_empty() {
-                return Err(syn::Error::new(close, "a vector needs two components: `(x, y)`"));
-            }
-            let second = self.expr(&content, 0)?;
-            if content.peek(Token![,]) {
-                content.parse::<Token![,]>()?;
-                if !content.is_empty() {
-                    return Err(content.error("planar vectors have two components: write `(x, y)`"));
-                }
-            }
-            if !content.is_empty() {
-                return Err(content.error("expected `)` after the vector's second component"));
-            }
-            return Ok(Expr::Tuple { open, x: Box::new(first), y: Box::new(second), close });
+            return self.paren_or_vector(input);
         }
         const VALUE: &str = "a number, a name, a call `f(x)`, a vector `(x, y)` or `(expression)`";
         if input.is_empty() {
@@ -393,6 +363,41 @@ impl Parser {
             }
         }
         Err(input.error(format!("expected a value ({VALUE}), found `{found}`")))
+    }
+
+    /// `(expression)` or a vector `(x, y)`.
+    fn paren_or_vector(&mut self, input: ParseStream) -> syn::Result<Expr> {
+        let content;
+        let paren = syn::parenthesized!(content in input);
+        let (open, close) = (paren.span.open(), paren.span.close());
+        if content.is_empty() {
+            return Err(syn::Error::new(
+                paren.span.join(),
+                "empty parentheses: write a value `(e)` or a vector `(x, y)`",
+            ));
+        }
+        let first = self.expr(&content, 0)?;
+        if content.is_empty() {
+            return Ok(Expr::Paren { open, inner: Box::new(first), close });
+        }
+        if !content.peek(Token![,]) {
+            return Err(content.error("expected `,` (a vector is written `(x, y)`) or `)`"));
+        }
+        content.parse::<Token![,]>()?;
+        if content.is_empty() {
+            return Err(syn::Error::new(close, "a vector needs two components: `(x, y)`"));
+        }
+        let second = self.expr(&content, 0)?;
+        if content.peek(Token![,]) {
+            content.parse::<Token![,]>()?;
+            if !content.is_empty() {
+                return Err(content.error("planar vectors have two components: write `(x, y)`"));
+            }
+        }
+        if !content.is_empty() {
+            return Err(content.error("expected `)` after the vector's second component"));
+        }
+        Ok(Expr::Tuple { open, x: Box::new(first), y: Box::new(second), close })
     }
 }
 

@@ -1,0 +1,229 @@
+//! Parsing one item of a declaration's body (`params ...;`, `let ...;`, `loop ...;`, ...), with
+//! the messages that say what to write instead.
+
+use super::expr::{Expr, SpanRange, parse_expr};
+use super::syntax::{Decl, DeclKind, Errors, Item, ItemKind, skip_item};
+use proc_macro2::Span;
+use syn::parse::ParseStream;
+use syn::{Attribute, Ident, Token};
+
+mod kw {
+    syn::custom_keyword!(params);
+    syn::custom_keyword!(param);
+    syn::custom_keyword!(input);
+    syn::custom_keyword!(inputs);
+    syn::custom_keyword!(unknowns);
+    syn::custom_keyword!(unknown);
+    syn::custom_keyword!(point);
+    syn::custom_keyword!(output);
+    syn::custom_keyword!(eq);
+    syn::custom_keyword!(dense);
+}
+
+/// Parses one item. A missing `;` after a complete item is pushed to `errors` and the item is
+/// kept, so the next item is parsed normally.
+pub(super) fn parse_item(input: ParseStream, errors: &mut Errors) -> syn::Result<Item> {
+    let attrs = Attribute::parse_outer(input)?;
+    let mut docs = Vec::new();
+    for attr in attrs {
+        if attr.path().is_ident("doc") {
+            docs.push(attr);
+        } else {
+            return Err(syn::Error::new_spanned(&attr, "only doc comments (`///`) are accepted before an item"));
+        }
+    }
+    let keyword = input.span();
+    let look = input.lookahead1();
+    let kind = if look.peek(kw::params) || look.peek(kw::param) {
+        skip_keyword(input)?;
+        ItemKind::Decls(DeclKind::Params, parse_decls(input, DeclKind::Params)?)
+    } else if look.peek(kw::input) || look.peek(kw::inputs) {
+        skip_keyword(input)?;
+        ItemKind::Decls(DeclKind::Inputs, parse_decls(input, DeclKind::Inputs)?)
+    } else if look.peek(kw::unknowns) || look.peek(kw::unknown) {
+        skip_keyword(input)?;
+        ItemKind::Decls(DeclKind::Unknowns, parse_decls(input, DeclKind::Unknowns)?)
+    } else if look.peek(Token![let]) {
+        input.parse::<Token![let]>()?;
+        let (name, value) = parse_binding(input, "let")?;
+        ItemKind::Let { name, value }
+    } else if look.peek(kw::point) {
+        input.parse::<kw::point>()?;
+        let (name, value) = parse_binding(input, "point")?;
+        ItemKind::Point { name, value }
+    } else if look.peek(kw::output) {
+        input.parse::<kw::output>()?;
+        let (name, value) = parse_binding(input, "output")?;
+        ItemKind::Output { name, value }
+    } else if look.peek(Token![loop]) {
+        input.parse::<Token![loop]>()?;
+        let (name, lhs, rhs, eq) = parse_equation(input, "loop")?;
+        ItemKind::Loop { name, lhs, rhs, eq }
+    } else if look.peek(kw::eq) {
+        input.parse::<kw::eq>()?;
+        let (name, lhs, rhs, eq) = parse_equation(input, "eq")?;
+        ItemKind::Eq { name, lhs, rhs, eq }
+    } else {
+        let mut err = look.error();
+        if let Ok(id) = input.fork().parse::<Ident>() {
+            err = syn::Error::new(id.span(), format!("`{id}` does not start an item; {ITEMS}"));
+        }
+        return Err(err);
+    };
+    let item = Item { docs, keyword, kind };
+    if let Err(e) = expect_semicolon(input, &item) {
+        errors.push(e);
+        // Go on at the next item; anything else before it belongs to this broken item.
+        if !at_item_start(input) {
+            skip_item(input);
+        }
+    }
+    Ok(item)
+}
+
+fn at_item_start(input: ParseStream) -> bool {
+    input.peek(kw::params)
+        || input.peek(kw::param)
+        || input.peek(kw::input)
+        || input.peek(kw::inputs)
+        || input.peek(kw::unknowns)
+        || input.peek(kw::unknown)
+        || input.peek(Token![let])
+        || input.peek(Token![loop])
+        || input.peek(kw::eq)
+        || input.peek(kw::point)
+        || input.peek(kw::output)
+        || input.peek(Token![#])
+}
+
+const ITEMS: &str =
+    "an item starts with `params`, `input`, `inputs`, `unknowns`, `let`, `loop`, `eq`, `point` or `output`";
+
+fn skip_keyword(input: ParseStream) -> syn::Result<()> {
+    input.parse::<Ident>().map(drop)
+}
+
+fn expect_semicolon(input: ParseStream, item: &Item) -> syn::Result<()> {
+    if input.peek(Token![;]) {
+        input.parse::<Token![;]>()?;
+        Ok(())
+    } else if input.peek(Token![=]) {
+        Err(input.error("unexpected `=`: equations are written with `==`"))
+    } else {
+        // Underline the end of the item that lacks its `;`, not the next item.
+        let keyword = match &item.kind {
+            ItemKind::Decls(DeclKind::Params, _) => "params",
+            ItemKind::Decls(DeclKind::Inputs, _) => "input",
+            ItemKind::Decls(DeclKind::Unknowns, _) => "unknowns",
+            ItemKind::Let { .. } => "let",
+            ItemKind::Loop { .. } => "loop",
+            ItemKind::Eq { .. } => "eq",
+            ItemKind::Point { .. } => "point",
+            ItemKind::Output { .. } => "output",
+        };
+        let next = match input.cursor().token_tree() {
+            Some((tt, _)) => format!(" (before `{}`)", short(&tt.to_string())),
+            None => String::new(),
+        };
+        Err(SpanRange::single(item.range().end)
+            .error(format!("expected `;` at the end of this `{keyword}` item{next}")))
+    }
+}
+
+/// At most 24 characters of `s`, for quoting source in messages.
+fn short(s: &str) -> String {
+    if s.chars().count() <= 24 { s.to_string() } else { format!("{}...", s.chars().take(24).collect::<String>()) }
+}
+
+fn parse_decls(input: ParseStream, kind: DeclKind) -> syn::Result<Vec<Decl>> {
+    let mut decls = Vec::new();
+    loop {
+        let attrs = Attribute::parse_outer(input)?;
+        if let Some(bad) = attrs.iter().find(|a| !a.path().is_ident("doc")) {
+            return Err(syn::Error::new_spanned(bad, "only doc comments (`///`) are accepted before a name"));
+        }
+        if !input.peek(Ident) {
+            return Err(input.error(match kind {
+                DeclKind::Params => "expected a parameter name: `params a, b = 2.5;`",
+                DeclKind::Inputs => "expected an input name: `input phi;` or `inputs th1, th2;`",
+                DeclKind::Unknowns => "expected an unknown's name: `unknowns psi = 0.3, x;`",
+            }));
+        }
+        let name: Ident = input.parse()?;
+        let value = if input.peek(Token![=]) && !input.peek(Token![==]) {
+            let eq = input.parse::<Token![=]>()?;
+            if kind == DeclKind::Inputs {
+                return Err(syn::Error::new(
+                    eq.span,
+                    format!(
+                        "an input takes no value here: write `{name}` alone; its value is given when \
+                         the mechanism is solved (`m.solve({name})`)"
+                    ),
+                ));
+            }
+            Some(parse_expr(input)?)
+        } else if input.peek(Token![:]) {
+            return Err(input.error(format!(
+                "no type is needed: write `{name}` alone (every parameter, input and unknown is an `f64`)"
+            )));
+        } else {
+            None
+        };
+        decls.push(Decl { docs: attrs, name, value });
+        if input.peek(Token![,]) {
+            input.parse::<Token![,]>()?;
+            if input.peek(Token![;]) {
+                break;
+            }
+        } else {
+            break;
+        }
+    }
+    Ok(decls)
+}
+
+fn parse_binding(input: ParseStream, what: &str) -> syn::Result<(Ident, Expr)> {
+    if !input.peek(Ident) {
+        return Err(input.error(format!("expected a name: `{what} name = expression;`")));
+    }
+    let name: Ident = input.parse()?;
+    if input.peek(Token![:]) {
+        return Err(input.error(format!("no type is needed: write `{what} {name} = expression;`")));
+    }
+    if !input.peek(Token![=]) || input.peek(Token![==]) {
+        return Err(input.error(format!("expected `=`: `{what} {name} = expression;`")));
+    }
+    input.parse::<Token![=]>()?;
+    let value = parse_expr(input)?;
+    Ok((name, value))
+}
+
+fn parse_equation(input: ParseStream, what: &str) -> syn::Result<(Ident, Expr, Expr, Span)> {
+    if !input.peek(Ident) {
+        return Err(input.error(format!(
+            "expected the equation's name: `{what} name: lhs == rhs;` (names appear in error messages)"
+        )));
+    }
+    let name: Ident = input.parse()?;
+    if !input.peek(Token![:]) || input.peek(Token![::]) {
+        // `loop r @ phi == ...`: the name is missing, the equation starts right away.
+        return Err(syn::Error::new(
+            name.span(),
+            format!(
+                "expected the {what}'s name and `:` before its equation: `{what} name: lhs == rhs;` \
+                 (the name appears in `EQUATIONS` and in error messages)"
+            ),
+        ));
+    }
+    input.parse::<Token![:]>()?;
+    let lhs = parse_expr(input)?;
+    if input.peek(Token![=]) && !input.peek(Token![==]) {
+        return Err(input.error("expected `==`: an equation is written `lhs == rhs`"));
+    }
+    if !input.peek(Token![==]) {
+        return Err(input.error(format!("expected `==`: `{what} {name}: lhs == rhs;`")));
+    }
+    let eq = input.parse::<Token![==]>()?.spans[0];
+    let rhs = parse_expr(input)?;
+    Ok((name, lhs, rhs, eq))
+}

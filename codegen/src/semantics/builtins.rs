@@ -1,0 +1,177 @@
+//! The one table of built-in functions: name, arguments (how many, scalar or vector), result
+//! and how each is lowered. Lowering, arity and argument checks, did-you-mean suggestions and
+//! the function list in error messages all read [`BUILTINS`]; a test checks that the crate
+//! documentation lists every entry.
+
+use crate::dag::Func;
+
+/// Whether a value is a scalar or a planar vector.
+#[derive(Clone, Copy, PartialEq, Eq, Debug)]
+pub enum Kind {
+    Scalar,
+    Vector,
+}
+
+impl Kind {
+    pub fn name(self) -> &'static str {
+        match self {
+            Kind::Scalar => "scalar",
+            Kind::Vector => "vector",
+        }
+    }
+}
+
+/// How a call is turned into graph nodes.
+#[derive(Clone, Copy, PartialEq, Eq, Debug)]
+pub enum Lowering {
+    /// An elementary function of one scalar.
+    Unary(Func),
+    /// `atan2(y, x)`.
+    Atan2,
+    /// `pow(base, exponent)`: an integer literal exponent becomes `powi`.
+    Pow,
+    /// `sqrt(a^2 + b^2)`.
+    Hypot,
+    /// Length of a vector.
+    Norm,
+    /// Direction angle of a vector, `atan2(y, x)`.
+    Angle,
+    Dot,
+    /// The z component of the cross product.
+    Cross,
+    /// A vector turned by an angle.
+    Rot,
+}
+
+/// One built-in function.
+#[derive(Debug)]
+pub struct Builtin {
+    pub name: &'static str,
+    /// The arguments: their names (shown in the signature) and kinds. The arity is their number.
+    pub args: &'static [(&'static str, Kind)],
+    pub result: Kind,
+    pub lowering: Lowering,
+}
+
+const fn unary(name: &'static str, f: Func) -> Builtin {
+    Builtin { name, args: &[("x", Kind::Scalar)], result: Kind::Scalar, lowering: Lowering::Unary(f) }
+}
+
+const S: Kind = Kind::Scalar;
+const V: Kind = Kind::Vector;
+
+/// Every function a declaration may call, scalar functions first, in the order the
+/// documentation lists them.
+pub static BUILTINS: &[Builtin] = &[
+    unary("sin", Func::Sin),
+    unary("cos", Func::Cos),
+    unary("tan", Func::Tan),
+    unary("asin", Func::Asin),
+    unary("acos", Func::Acos),
+    unary("atan", Func::Atan),
+    Builtin { name: "atan2", args: &[("y", S), ("x", S)], result: S, lowering: Lowering::Atan2 },
+    unary("sqrt", Func::Sqrt),
+    unary("exp", Func::Exp),
+    unary("ln", Func::Ln),
+    unary("abs", Func::Abs),
+    Builtin { name: "pow", args: &[("base", S), ("exponent", S)], result: S, lowering: Lowering::Pow },
+    Builtin { name: "hypot", args: &[("a", S), ("b", S)], result: S, lowering: Lowering::Hypot },
+    Builtin { name: "norm", args: &[("vector", V)], result: S, lowering: Lowering::Norm },
+    Builtin { name: "dot", args: &[("vector", V), ("vector", V)], result: S, lowering: Lowering::Dot },
+    Builtin { name: "cross", args: &[("vector", V), ("vector", V)], result: S, lowering: Lowering::Cross },
+    Builtin { name: "angle", args: &[("vector", V)], result: S, lowering: Lowering::Angle },
+    Builtin { name: "rot", args: &[("vector", V), ("angle", S)], result: V, lowering: Lowering::Rot },
+];
+
+/// Names often tried for which the table has another spelling, with what to write instead.
+pub const HINTS: &[(&str, &str)] = &[
+    ("log", "the natural logarithm is `ln`"),
+    ("powi", "write `x ^ n` or `pow(x, y)`"),
+    ("powf", "write `x ^ n` or `pow(x, y)`"),
+    ("sqr", "write `x ^ 2`"),
+    ("atan2d", "angles are in radians (write `30 * pi / 180`)"),
+    ("sind", "angles are in radians (write `30 * pi / 180`)"),
+    ("cosd", "angles are in radians (write `30 * pi / 180`)"),
+];
+
+/// The built-in function called `name`.
+pub fn lookup(name: &str) -> Option<&'static Builtin> {
+    BUILTINS.iter().find(|b| b.name == name)
+}
+
+impl Builtin {
+    pub fn arity(&self) -> usize {
+        self.args.len()
+    }
+
+    /// Takes a vector argument (listed with the vector functions).
+    pub fn takes_vector(&self) -> bool {
+        self.args.iter().any(|(_, k)| *k == Kind::Vector)
+    }
+
+    /// How a call is written: `atan2(y, x)`.
+    pub fn signature(&self) -> String {
+        let args: Vec<&str> = self.args.iter().map(|(n, _)| *n).collect();
+        format!("{}({})", self.name, args.join(", "))
+    }
+}
+
+/// The names of the functions for messages: `sin, cos, ...; for vectors: norm, ...`.
+pub fn listing() -> String {
+    let names = |vector: bool| {
+        BUILTINS.iter().filter(|b| b.takes_vector() == vector).map(|b| b.name).collect::<Vec<_>>().join(", ")
+    };
+    format!("{}; for vectors: {}", names(false), names(true))
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn names_are_unique_and_found() {
+        for (k, b) in BUILTINS.iter().enumerate() {
+            assert!(BUILTINS[..k].iter().all(|o| o.name != b.name), "`{}` twice", b.name);
+            assert!(std::ptr::eq(lookup(b.name).expect("found"), b));
+            assert!(!b.args.is_empty() && b.arity() <= 2, "`{}`", b.name);
+        }
+        assert!(lookup("log").is_none());
+        // A hint is only for names the table does not have.
+        assert!(HINTS.iter().all(|(n, _)| lookup(n).is_none()));
+    }
+
+    #[test]
+    fn signatures_and_kinds() {
+        let sig = |n: &str| lookup(n).map(Builtin::signature);
+        assert_eq!(sig("atan2").as_deref(), Some("atan2(y, x)"));
+        assert_eq!(sig("rot").as_deref(), Some("rot(vector, angle)"));
+        assert_eq!(sig("sin").as_deref(), Some("sin(x)"));
+        let rot = lookup("rot").expect("rot");
+        assert_eq!((rot.args[0].1, rot.args[1].1, rot.result), (V, S, V));
+        // The vector functions are exactly those that take a vector; only `rot` returns one.
+        let returns_vector: Vec<&str> = BUILTINS.iter().filter(|b| b.result == V).map(|b| b.name).collect();
+        assert_eq!(returns_vector, ["rot"]);
+    }
+
+    #[test]
+    fn listing_keeps_scalar_and_vector_groups() {
+        assert_eq!(
+            listing(),
+            "sin, cos, tan, asin, acos, atan, atan2, sqrt, exp, ln, abs, pow, hypot; \
+             for vectors: norm, dot, cross, angle, rot"
+        );
+    }
+
+    /// The user documentation (crate docs and README) names every built-in function.
+    #[test]
+    fn documentation_lists_every_builtin() {
+        let root = concat!(env!("CARGO_MANIFEST_DIR"), "/..");
+        for file in ["src/lib.rs", "README.md"] {
+            let text = std::fs::read_to_string(format!("{root}/{file}")).expect("readable documentation");
+            for b in BUILTINS {
+                let listed = text.split(|c: char| !c.is_ascii_alphanumeric()).any(|w| w == b.name);
+                assert!(listed, "{file} does not mention the built-in function `{}`", b.name);
+            }
+        }
+    }
+}

@@ -1,0 +1,134 @@
+//! Calls of built-in functions: checked and lowered from the table in [`super::builtins`].
+
+use super::builtins::{self, Builtin, HINTS, Kind, Lowering};
+use super::lower::{Lowerer, Val, integer_exponent};
+use super::suggest::similar;
+use crate::dag::{Func, Graph, NodeId};
+use crate::expr::Expr;
+use proc_macro2::Span;
+use syn::Ident;
+
+impl Lowerer {
+    pub(super) fn call(&mut self, func: &Ident, args: &[Expr], close: Span) -> Option<Val> {
+        let Some(builtin) = builtins::lookup(&func.to_string()) else {
+            self.errors.push(unsupported(func));
+            return None;
+        };
+        if args.len() != builtin.arity() {
+            self.errors.push(wrong_arity(builtin, args, close));
+            return None;
+        }
+        let vals: Vec<Option<Val>> = args.iter().map(|a| self.lower(a)).collect();
+        let vals: Vec<Val> = vals.into_iter().collect::<Option<_>>()?;
+        let mut ok = true;
+        for ((v, a), (_, want)) in vals.iter().zip(args).zip(builtin.args) {
+            let got = if matches!(v, Val::V(..)) { Kind::Vector } else { Kind::Scalar };
+            if got != *want {
+                ok = false;
+                self.errors.push(wrong_kind(builtin, a, got));
+            }
+        }
+        if !ok {
+            return None;
+        }
+        let exponent = args.get(1).and_then(integer_exponent);
+        Some(lower_builtin(&mut self.graph, builtin.lowering, &vals, exponent))
+    }
+}
+
+fn unsupported(func: &Ident) -> syn::Error {
+    let name = func.to_string();
+    let all: Vec<String> = builtins::BUILTINS.iter().map(|b| b.name.to_string()).collect();
+    let hint = match HINTS.iter().find(|(n, _)| *n == name) {
+        Some((_, h)) => format!("; {h}"),
+        None => match similar(&name, all.iter()) {
+            Some(s) => format!("; did you mean `{s}`?"),
+            None => String::new(),
+        },
+    };
+    syn::Error::new(
+        func.span(),
+        format!("unsupported function `{name}`{hint}\navailable functions: {}", builtins::listing()),
+    )
+}
+
+fn wrong_arity(b: &Builtin, args: &[Expr], close: Span) -> syn::Error {
+    let arity = b.arity();
+    let span = args.get(arity).map_or(close, |a| a.range().start);
+    syn::Error::new(
+        span,
+        format!(
+            "`{}` takes {arity} argument{}: `{}`, but {} {} given",
+            b.name,
+            if arity == 1 { "" } else { "s" },
+            b.signature(),
+            args.len(),
+            if args.len() == 1 { "was" } else { "were" }
+        ),
+    )
+}
+
+fn wrong_kind(b: &Builtin, arg: &Expr, got: Kind) -> syn::Error {
+    let name = b.name;
+    let hint = match got {
+        Kind::Vector => {
+            format!("`{name}` takes a scalar here; take a component with `.x`/`.y` or the length with `norm(..)`")
+        }
+        Kind::Scalar => format!("`{name}` takes a vector here, e.g. `(x, y)` or `r @ angle`"),
+    };
+    arg.range().error(format!("this argument is a {}: {hint}", got.name()))
+}
+
+/// The nodes of a call whose arguments have the kinds the table gives. `exponent` is the
+/// second argument when it is written as an integer literal (`pow(x, 3)` becomes `powi`).
+fn lower_builtin(g: &mut Graph, how: Lowering, vals: &[Val], exponent: Option<i32>) -> Val {
+    let s = |k: usize| match vals[k] {
+        Val::S(a) | Val::V(a, _) => a,
+    };
+    let v = |k: usize| match vals[k] {
+        Val::V(x, y) => (x, y),
+        Val::S(a) => (a, a),
+    };
+    Val::S(match how {
+        Lowering::Unary(f) => g.func(f, s(0)),
+        Lowering::Atan2 => g.atan2(s(0), s(1)),
+        Lowering::Pow => match exponent {
+            Some(n) => g.powi(s(0), n),
+            None => g.powf(s(0), s(1)),
+        },
+        Lowering::Hypot => length(g, s(0), s(1)),
+        Lowering::Norm => length(g, v(0).0, v(0).1),
+        Lowering::Angle => g.atan2(v(0).1, v(0).0),
+        Lowering::Dot => {
+            let ((ax, ay), (bx, by)) = (v(0), v(1));
+            let p = g.mul(ax, bx);
+            let q = g.mul(ay, by);
+            g.add(p, q)
+        }
+        Lowering::Cross => {
+            let ((ax, ay), (bx, by)) = (v(0), v(1));
+            let p = g.mul(ax, by);
+            let q = g.mul(ay, bx);
+            g.sub(p, q)
+        }
+        Lowering::Rot => return rotate(g, v(0), s(1)),
+    })
+}
+
+/// `sqrt(a^2 + b^2)`.
+fn length(g: &mut Graph, a: NodeId, b: NodeId) -> NodeId {
+    let a2 = g.powi(a, 2);
+    let b2 = g.powi(b, 2);
+    let sum = g.add(a2, b2);
+    g.func(Func::Sqrt, sum)
+}
+
+/// The vector `(x, y)` turned by the angle `t`.
+fn rotate(g: &mut Graph, (x, y): (NodeId, NodeId), t: NodeId) -> Val {
+    let (c, sn) = (g.func(Func::Cos, t), g.func(Func::Sin, t));
+    let xc = g.mul(x, c);
+    let ys = g.mul(y, sn);
+    let xs = g.mul(x, sn);
+    let yc = g.mul(y, c);
+    Val::V(g.sub(xc, ys), g.add(xs, yc))
+}

@@ -1,0 +1,244 @@
+//! Lowering expressions into the graph, with the vector/scalar type checks of operators.
+
+use super::scope::Scope;
+use crate::dag::{Func, Graph, Leaf, NodeId};
+use crate::expr::{BinOp, Component, Expr};
+use crate::syntax::Errors;
+use proc_macro2::Span;
+
+/// The type of a lowered expression.
+#[derive(Clone, Copy)]
+pub enum Val {
+    S(NodeId),
+    V(NodeId, NodeId),
+}
+
+impl Val {
+    pub(super) fn kind_name(self) -> &'static str {
+        match self {
+            Val::S(_) => "scalar",
+            Val::V(..) => "vector",
+        }
+    }
+}
+
+/// The state of model building: the graph being built, the names in scope and the errors found.
+pub struct Lowerer {
+    pub(super) graph: Graph,
+    pub(super) scope: Scope,
+    pub(super) errors: Errors,
+    pub(super) used_params: Vec<bool>,
+    pub(super) used_inputs: Vec<bool>,
+}
+
+/// Largest integer exponent turned into `powi`; larger ones stay `powf`. The bound keeps the
+/// exponents of the derivatives (`n - 1`, `n - 2`) far from `i32` overflow.
+pub const MAX_INTEGER_EXPONENT: i64 = 1024;
+
+/// An exponent written as an integer literal (possibly negated) becomes `powi`.
+pub(super) fn integer_exponent(e: &Expr) -> Option<i32> {
+    match e {
+        Expr::Num { integer: Some(n), .. } if n.abs() <= MAX_INTEGER_EXPONENT => i32::try_from(*n).ok(),
+        Expr::Neg { expr, .. } => integer_exponent(expr).map(|n| -n),
+        Expr::Paren { inner, .. } => integer_exponent(inner),
+        _ => None,
+    }
+}
+
+/// At most 40 characters of `s`, for quoting source in messages.
+fn short(s: &str) -> String {
+    if s.chars().count() <= 40 { s.to_string() } else { format!("{}...", s.chars().take(40).collect::<String>()) }
+}
+
+impl Lowerer {
+    pub(super) fn new() -> Self {
+        Lowerer {
+            graph: Graph::new(),
+            scope: Scope::default(),
+            errors: Errors::default(),
+            used_params: Vec::new(),
+            used_inputs: Vec::new(),
+        }
+    }
+
+    /// A constant scalar (a parameter's default value).
+    pub(super) fn constant(&mut self, e: &Expr, what: &str) -> Option<NodeId> {
+        let v = self.lower_scalar(e, what)?;
+        if !self.graph.leaves_of(&[v]).is_empty() || self.graph.as_const(v).is_none() {
+            self.errors.push(e.range().error(format!(
+                "{what} must be a constant: write a number such as `2.5` or `pi / 4` \
+                 (it cannot use parameters, inputs or unknowns)"
+            )));
+            return None;
+        }
+        Some(v)
+    }
+
+    /// An unknown's initial guess: any scalar that does not use unknowns.
+    pub(super) fn guess(&mut self, e: &Expr) -> Option<NodeId> {
+        let v = self.lower_scalar(e, "an initial guess")?;
+        if self.graph.leaves_of(&[v]).iter().any(|l| matches!(l, Leaf::Unknown(_))) {
+            self.errors.push(e.range().error(
+                "an initial guess cannot use unknowns (they are what is being solved); \
+                 write a number or an expression of parameters and inputs, e.g. `= 0.5` or `= l + r`",
+            ));
+            return None;
+        }
+        Some(v)
+    }
+
+    fn lower_scalar(&mut self, e: &Expr, what: &str) -> Option<NodeId> {
+        match self.lower(e)? {
+            Val::S(v) => Some(v),
+            Val::V(..) => {
+                self.errors.push(e.range().error(format!("{what} must be a scalar, but this is a vector")));
+                None
+            }
+        }
+    }
+
+    /// Lowers both sides of an equation; a literal `0` facing a vector is the zero vector.
+    pub(super) fn lower_equation(&mut self, lhs: &Expr, rhs: &Expr) -> (Option<Val>, Option<Val>) {
+        let zero_like = |g: &mut Graph, v: Val| {
+            let z = g.zero();
+            match v {
+                Val::S(_) => Val::S(z),
+                Val::V(..) => Val::V(z, z),
+            }
+        };
+        match (lhs.is_literal_zero(), rhs.is_literal_zero()) {
+            (true, false) => {
+                let r = self.lower(rhs);
+                (r.map(|v| zero_like(&mut self.graph, v)), r)
+            }
+            (false, true) => {
+                let l = self.lower(lhs);
+                (l, l.map(|v| zero_like(&mut self.graph, v)))
+            }
+            _ => (self.lower(lhs), self.lower(rhs)),
+        }
+    }
+
+    pub(super) fn lower(&mut self, e: &Expr) -> Option<Val> {
+        let g = &mut self.graph;
+        Some(match e {
+            Expr::Num { value, .. } => Val::S(g.constant(*value)),
+            Expr::Var(id) => return self.lookup(id),
+            Expr::Paren { inner, .. } => return self.lower(inner),
+            Expr::Neg { expr, .. } => match self.lower(expr)? {
+                Val::S(a) => Val::S(self.graph.neg(a)),
+                Val::V(x, y) => Val::V(self.graph.neg(x), self.graph.neg(y)),
+            },
+            Expr::Tuple { x, y, .. } => {
+                let xs = self.lower_component(x);
+                let ys = self.lower_component(y);
+                Val::V(xs?, ys?)
+            }
+            Expr::Field { base, component, name } => return self.field(base, *component, name),
+            Expr::Binary { op, op_span, lhs, rhs } => {
+                let l = self.lower(lhs);
+                let r = self.lower(rhs);
+                let (l, r) = (l?, r?);
+                return self.binary(*op, *op_span, (lhs, rhs), l, r);
+            }
+            Expr::Call { func, args, close } => return self.call(func, args, *close),
+        })
+    }
+
+    fn field(&mut self, base: &Expr, component: Component, name: &syn::Ident) -> Option<Val> {
+        match self.lower(base)? {
+            Val::V(x, y) => Some(Val::S(if component == Component::X { x } else { y })),
+            Val::S(_) => {
+                self.errors.push(syn::Error::new(
+                    name.span(),
+                    format!(
+                        "`.{name}` takes a component of a vector, but `{}` is a scalar; remove `.{name}`",
+                        short(&base.show())
+                    ),
+                ));
+                None
+            }
+        }
+    }
+
+    fn lower_component(&mut self, e: &Expr) -> Option<NodeId> {
+        match self.lower(e)? {
+            Val::S(v) => Some(v),
+            Val::V(..) => {
+                self.errors.push(e.range().error("a vector's component must be a scalar; `(x, y)` takes two numbers"));
+                None
+            }
+        }
+    }
+
+    /// A binary operator on lowered operands `l` and `r` (written as `sides`).
+    fn binary(&mut self, op: BinOp, op_span: Span, sides: (&Expr, &Expr), l: Val, r: Val) -> Option<Val> {
+        let g = &mut self.graph;
+        let res = match (op, l, r) {
+            (BinOp::Add, Val::S(a), Val::S(b)) => Val::S(g.add(a, b)),
+            (BinOp::Add, Val::V(ax, ay), Val::V(bx, by)) => Val::V(g.add(ax, bx), g.add(ay, by)),
+            (BinOp::Sub, Val::S(a), Val::S(b)) => Val::S(g.sub(a, b)),
+            (BinOp::Sub, Val::V(ax, ay), Val::V(bx, by)) => Val::V(g.sub(ax, bx), g.sub(ay, by)),
+            (BinOp::Mul, Val::S(a), Val::S(b)) => Val::S(g.mul(a, b)),
+            (BinOp::Mul, Val::S(a), Val::V(x, y)) | (BinOp::Mul, Val::V(x, y), Val::S(a)) => {
+                Val::V(g.mul(a, x), g.mul(a, y))
+            }
+            (BinOp::Div, Val::S(a), Val::S(b)) => Val::S(g.div(a, b)),
+            (BinOp::Div, Val::V(x, y), Val::S(a)) => Val::V(g.div(x, a), g.div(y, a)),
+            (BinOp::Pow, Val::S(a), Val::S(b)) => match integer_exponent(sides.1) {
+                Some(n) => Val::S(g.powi(a, n)),
+                None => Val::S(g.powf(a, b)),
+            },
+            (BinOp::Polar, Val::S(len), Val::S(angle)) => {
+                let c = g.func(Func::Cos, angle);
+                let s = g.func(Func::Sin, angle);
+                Val::V(g.mul(len, c), g.mul(len, s))
+            }
+            _ => {
+                let e = binary_type_error(op, op_span, sides, l, r);
+                self.errors.push(e);
+                return None;
+            }
+        };
+        Some(res)
+    }
+}
+
+/// The error for operands of the wrong types, with what to write instead.
+fn binary_type_error(op: BinOp, op_span: Span, (lhs, rhs): (&Expr, &Expr), l: Val, r: Val) -> syn::Error {
+    match op {
+        BinOp::Add | BinOp::Sub => {
+            let verb = if op == BinOp::Add { "add" } else { "subtract" };
+            let mut msg = format!(
+                "cannot {verb} a {} and a {}: both sides of `{}` must be scalars or both vectors",
+                l.kind_name(),
+                r.kind_name(),
+                op.symbol()
+            );
+            if let (Expr::Binary { op: BinOp::Polar, lhs: len, rhs: angle, .. }, Val::V(..), Val::S(_)) = (lhs, l, r) {
+                let fixed = format!("{} @ ({} {} {})", len.show(), angle.show(), op.symbol(), rhs.show());
+                let example = if fixed.len() <= 60 { fixed } else { "r @ (phi + gamma)".to_string() };
+                msg.push_str(&format!(
+                    "\nhelp: `@` binds tighter than `+` and `-`, so an angle that is a sum needs \
+                     parentheses: write `{example}`"
+                ));
+            }
+            syn::Error::new(op_span, msg)
+        }
+        BinOp::Mul => {
+            syn::Error::new(op_span, "cannot multiply two vectors with `*`; write `dot(a, b)` or `cross(a, b)`")
+        }
+        BinOp::Div => rhs.range().error("cannot divide by a vector; the divisor must be a scalar"),
+        BinOp::Pow => syn::Error::new(
+            op_span,
+            "`^` raises a scalar to a scalar power; for the length of a vector write `norm(v)`",
+        ),
+        BinOp::Polar => {
+            let side = if matches!(l, Val::V(..)) { lhs } else { rhs };
+            side.range().error(
+                "`@` builds a vector from a scalar length and a scalar angle (`length @ angle`), but this is \
+                 a vector; to turn a vector by an angle write `rot(v, angle)`",
+            )
+        }
+    }
+}

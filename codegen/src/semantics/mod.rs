@@ -1,0 +1,10 @@
+//! From syntax to a checked model: names resolved ([`scope`]), vector/scalar types checked and
+//! every expression lowered into one graph ([`lower`], with the built-in functions of
+//! [`builtins`]), assembled by [`model`].
+
+pub mod builtins;
+mod calls;
+pub mod lower;
+pub mod model;
+mod scope;
+pub mod suggest;

@@ -1,0 +1,361 @@
+//! The checked model of a mechanism: names resolved, vector/scalar types checked, and every
+//! equation and output lowered to nodes of one expression [`Graph`].
+
+use super::lower::{Lowerer, Val};
+use super::scope::Symbol;
+use crate::dag::{Graph, NodeId};
+use crate::expr::{Expr, SpanRange};
+use crate::syntax::{Decl, DeclKind, Item, ItemKind, MechanismDef, Options};
+use proc_macro2::Span;
+use std::collections::HashMap;
+use syn::{Attribute, Ident, Visibility};
+
+pub use super::lower::MAX_INTEGER_EXPONENT;
+pub use super::suggest::similar;
+
+/// Most unknowns (and equations) one mechanism may declare.
+pub const MAX_UNKNOWNS: usize = 256;
+/// Most inputs one mechanism may declare.
+pub const MAX_INPUTS: usize = 6;
+
+pub struct Named {
+    pub docs: Vec<Attribute>,
+    pub name: Ident,
+    /// Default value (params) or initial guess (unknowns).
+    pub value: Option<NodeId>,
+    /// Index of the declaring item (`params ...;`, `unknowns ...;`) in the body: names of one
+    /// item are neighbours in the source, so a diagnostic can underline several at once.
+    pub item: usize,
+}
+
+pub struct Equation {
+    /// `loop_name.x`, `loop_name.y` or the `eq` name.
+    pub name: String,
+    /// The `loop` or `eq` item's name (shared by a loop's two projections).
+    pub item: Ident,
+    /// Declared with `loop` (a vector equation) rather than `eq`.
+    pub is_loop: bool,
+    /// The loop or equation item, for errors about it.
+    pub range: SpanRange,
+    pub residual: NodeId,
+}
+
+pub struct Point {
+    pub docs: Vec<Attribute>,
+    pub name: Ident,
+    pub x: NodeId,
+    pub y: NodeId,
+}
+
+pub struct Scalar {
+    pub docs: Vec<Attribute>,
+    pub name: Ident,
+    pub value: NodeId,
+}
+
+/// What the rest of the macro works on.
+pub struct Model {
+    pub docs: Vec<Attribute>,
+    pub options: Options,
+    pub vis: Visibility,
+    pub name: Ident,
+    pub body: Span,
+    pub params: Vec<Named>,
+    pub inputs: Vec<Named>,
+    pub unknowns: Vec<Named>,
+    pub equations: Vec<Equation>,
+    pub points: Vec<Point>,
+    pub scalars: Vec<Scalar>,
+    pub graph: Graph,
+    /// Parameters and inputs that nothing uses (reported as errors by the structure analysis).
+    pub used_params: Vec<bool>,
+    pub used_inputs: Vec<bool>,
+}
+
+impl Model {
+    /// Output columns in order: each point's x and y, then each scalar output.
+    pub fn output_nodes(&self) -> Vec<NodeId> {
+        let mut v = Vec::new();
+        for p in &self.points {
+            v.push(p.x);
+            v.push(p.y);
+        }
+        v.extend(self.scalars.iter().map(|s| s.value));
+        v
+    }
+
+    pub fn output_names(&self) -> Vec<String> {
+        let mut v = Vec::new();
+        for p in &self.points {
+            v.push(format!("{}.x", p.name));
+            v.push(format!("{}.y", p.name));
+        }
+        v.extend(self.scalars.iter().map(|s| s.name.to_string()));
+        v
+    }
+}
+
+/// Most distinct scalar operations the declaration itself may lower to (before
+/// differentiation). Expansion time and generated code grow linearly with it (about 0.4 ms and
+/// 250 bytes of code per operation in an unoptimised build, where proc macros usually run):
+/// the limit keeps expansion near two seconds and the code near a megabyte, and is sixty times
+/// what a class IV mechanism with its output points needs (81). Beyond it the declaration is
+/// rejected, at the item that crosses it.
+pub const MAX_MODEL_NODES: usize = 5_000;
+
+/// The declared names of the body (pass 1).
+struct Globals<'a> {
+    params: Vec<&'a Decl>,
+    inputs: Vec<&'a Decl>,
+    unknowns: Vec<&'a Decl>,
+    /// Declaration item of each declared name, keyed by the `Decl`'s address.
+    item_of: HashMap<*const Decl, usize>,
+}
+
+/// What lowering the items in order produces (pass 2).
+#[derive(Default)]
+struct Lowered {
+    unknown_guess: Vec<Option<NodeId>>,
+    equations: Vec<Equation>,
+    points: Vec<Point>,
+    scalars: Vec<Scalar>,
+    /// Names of the `loop` and `eq` items seen so far, where first given.
+    item_names: HashMap<String, Span>,
+}
+
+/// Builds the model; all semantic errors found are returned together.
+pub fn build(def: MechanismDef) -> Result<Model, syn::Error> {
+    let MechanismDef { docs, options, vis, name, items, body } = def;
+    let mut lw = Lowerer::new();
+    let mut globals = declare_globals(&mut lw, &items);
+    check_counts(&mut lw, &mut globals, &name);
+    lw.used_params = vec![false; globals.params.len()];
+    lw.used_inputs = vec![false; globals.inputs.len()];
+    for item in &items {
+        match &item.kind {
+            ItemKind::Let { name, .. } => lw.declare_later(name, "let"),
+            ItemKind::Point { name, .. } => lw.declare_later(name, "point"),
+            ItemKind::Output { name, .. } => lw.declare_later(name, "output"),
+            _ => {}
+        }
+    }
+    let params = globals
+        .params
+        .iter()
+        .map(|d| {
+            let value = d.value.as_ref().and_then(|e| lw.constant(e, "a parameter's default value"));
+            named(d, value, &globals.item_of)
+        })
+        .collect();
+    let inputs = globals.inputs.iter().map(|d| named(d, None, &globals.item_of)).collect();
+    let mut out = Lowered { unknown_guess: vec![None; globals.unknowns.len()], ..Lowered::default() };
+    for item in &items {
+        lower_item(&mut lw, &globals, item, &mut out);
+        if lw.graph.len() > MAX_MODEL_NODES {
+            lw.errors.push(item.range().error(format!(
+                "the declaration is too large: up to here it takes more than {MAX_MODEL_NODES} distinct \
+                 operations, the most kinloop accepts; split the mechanism into smaller ones"
+            )));
+            break;
+        }
+    }
+    if lw.graph.overflowed() {
+        lw.errors.push(syn::Error::new(name.span(), "the mechanism's expressions are too large for kinloop"));
+    }
+    let unknowns =
+        globals.unknowns.iter().zip(out.unknown_guess).map(|(d, value)| named(d, value, &globals.item_of)).collect();
+    let Lowerer { graph, errors, used_params, used_inputs, .. } = lw;
+    let (equations, points, scalars) = (out.equations, out.points, out.scalars);
+    errors.finish(Model {
+        docs,
+        options,
+        vis,
+        name,
+        body,
+        params,
+        inputs,
+        unknowns,
+        equations,
+        points,
+        scalars,
+        graph,
+        used_params,
+        used_inputs,
+    })
+}
+
+/// Pass 1: the global declarations (params, inputs, unknowns), duplicates reported.
+fn declare_globals<'a>(lw: &mut Lowerer, items: &'a [Item]) -> Globals<'a> {
+    let mut g = Globals { params: Vec::new(), inputs: Vec::new(), unknowns: Vec::new(), item_of: HashMap::new() };
+    for (item_index, item) in items.iter().enumerate() {
+        let ItemKind::Decls(kind, decls) = &item.kind else { continue };
+        for d in decls {
+            let list = match kind {
+                DeclKind::Params => &mut g.params,
+                DeclKind::Inputs => &mut g.inputs,
+                DeclKind::Unknowns => &mut g.unknowns,
+            };
+            let idx = list.len() as u16;
+            let sym = match kind {
+                DeclKind::Params => Symbol::Param(idx),
+                DeclKind::Inputs => Symbol::Input(idx),
+                DeclKind::Unknowns => Symbol::Unknown(idx),
+            };
+            if lw.declare(&d.name, sym) {
+                g.item_of.insert(d as *const Decl, item_index);
+                list.push(d);
+            }
+        }
+    }
+    g
+}
+
+/// The limits on inputs and unknowns, and the one input every mechanism needs.
+fn check_counts(lw: &mut Lowerer, g: &mut Globals, name: &Ident) {
+    if g.inputs.len() > MAX_INPUTS {
+        lw.errors.push(syn::Error::new(
+            g.inputs[MAX_INPUTS].name.span(),
+            format!("kinloop supports at most {MAX_INPUTS} inputs per mechanism"),
+        ));
+        g.inputs.truncate(MAX_INPUTS);
+    }
+    if g.unknowns.len() > MAX_UNKNOWNS {
+        lw.errors.push(syn::Error::new(
+            g.unknowns[MAX_UNKNOWNS].name.span(),
+            format!("kinloop supports at most {MAX_UNKNOWNS} unknowns per mechanism"),
+        ));
+        g.unknowns.truncate(MAX_UNKNOWNS);
+    }
+    if g.inputs.is_empty() {
+        lw.errors.push(syn::Error::new(
+            name.span(),
+            format!(
+                "mechanism `{name}` declares no input; add the generalized coordinate, e.g. `input phi1;` \
+                 (or `input t;` for a time-driven mechanism)"
+            ),
+        ));
+    }
+}
+
+fn named(d: &Decl, value: Option<NodeId>, item_of: &HashMap<*const Decl, usize>) -> Named {
+    let item = item_of.get(&(d as *const Decl)).copied().unwrap_or(0);
+    Named { docs: d.docs.clone(), name: d.name.clone(), value, item }
+}
+
+/// Pass 2: one item at its place in the body.
+fn lower_item(lw: &mut Lowerer, g: &Globals, item: &Item, out: &mut Lowered) {
+    match &item.kind {
+        ItemKind::Decls(DeclKind::Unknowns, decls) => {
+            for d in decls.iter().filter(|d| d.value.is_some()) {
+                let Some(idx) = g.unknowns.iter().position(|u| std::ptr::eq(*u, d)) else { continue };
+                out.unknown_guess[idx] = d.value.as_ref().and_then(|e| lw.guess(e));
+            }
+        }
+        ItemKind::Decls(..) => {}
+        ItemKind::Let { name, value } => match lw.lower(value) {
+            Some(v) => lw.define(name, v),
+            None => lw.poison(name),
+        },
+        ItemKind::Point { name, value } => lower_point(lw, item, name, value, out),
+        ItemKind::Output { name, value } => lower_output(lw, item, name, value, out),
+        ItemKind::Loop { name, lhs, rhs, eq } | ItemKind::Eq { name, lhs, rhs, eq } => {
+            lower_equation_item(lw, item, name, (lhs, rhs, *eq), out)
+        }
+    }
+}
+
+fn lower_point(lw: &mut Lowerer, item: &Item, name: &Ident, value: &Expr, out: &mut Lowered) {
+    match lw.lower(value) {
+        Some(Val::V(x, y)) => {
+            lw.define(name, Val::V(x, y));
+            out.points.push(Point { docs: item.docs.clone(), name: name.clone(), x, y });
+        }
+        Some(Val::S(_)) => {
+            lw.poison(name);
+            lw.errors.push(value.range().error(format!(
+                "`point {name}` needs a vector, but this is a scalar; for a scalar output write `output {name} = ...;`"
+            )));
+        }
+        None => lw.poison(name),
+    }
+}
+
+fn lower_output(lw: &mut Lowerer, item: &Item, name: &Ident, value: &Expr, out: &mut Lowered) {
+    match lw.lower(value) {
+        Some(Val::S(v)) => {
+            lw.define(name, Val::S(v));
+            out.scalars.push(Scalar { docs: item.docs.clone(), name: name.clone(), value: v });
+        }
+        Some(Val::V(..)) => {
+            lw.poison(name);
+            lw.errors.push(value.range().error(format!(
+                "`output {name}` needs a scalar, but this is a vector; for a vector output write `point {name} = ...;`"
+            )));
+        }
+        None => lw.poison(name),
+    }
+}
+
+/// A `loop` (two scalar equations) or an `eq` (one).
+fn lower_equation_item(lw: &mut Lowerer, item: &Item, name: &Ident, eq: (&Expr, &Expr, Span), out: &mut Lowered) {
+    let (lhs, rhs, eq_span) = eq;
+    let is_loop = matches!(item.kind, ItemKind::Loop { .. });
+    let key = name.to_string();
+    if let Some(prev) = out.item_names.insert(key.clone(), name.span()) {
+        let mut e = syn::Error::new(
+            name.span(),
+            format!("the name `{key}` is given to two loops or equations; rename one of them"),
+        );
+        e.combine(syn::Error::new(prev, format!("`{key}` is first used as a name here")));
+        lw.errors.push(e);
+        return;
+    }
+    let range = item.range();
+    let (Some(l), Some(r)) = lw.lower_equation(lhs, rhs) else { return };
+    let mut push = |eq_name: String, residual: NodeId| {
+        out.equations.push(Equation { name: eq_name, item: name.clone(), is_loop, range, residual })
+    };
+    match (is_loop, l, r) {
+        (true, Val::V(lx, ly), Val::V(rx, ry)) => {
+            let fx = lw.graph.sub(lx, rx);
+            let fy = lw.graph.sub(ly, ry);
+            push(format!("{key}.x"), fx);
+            push(format!("{key}.y"), fy);
+        }
+        (false, Val::S(a), Val::S(b)) => {
+            let f = lw.graph.sub(a, b);
+            push(key, f);
+        }
+        _ => lw.errors.push(equation_type_error(is_loop, name, (range, eq_span), l, r)),
+    }
+}
+
+/// Both sides of `==` lowered, but with types that fit neither a `loop` nor an `eq`.
+fn equation_type_error(is_loop: bool, name: &Ident, (range, eq): (SpanRange, Span), l: Val, r: Val) -> syn::Error {
+    match (is_loop, l, r) {
+        (true, Val::S(_), Val::S(_)) => range.error(format!(
+            "`loop {name}` equates two scalars; a loop is a vector equation `vector == vector` \
+             (write `eq {name}: ... == ...;` for a scalar equation)"
+        )),
+        (false, Val::V(..), Val::V(..)) => range.error(format!(
+            "`eq {name}` equates two vectors; an `eq` is one scalar equation \
+             (write `loop {name}: ... == ...;` for a vector loop: two scalar equations)"
+        )),
+        _ => {
+            let help = if is_loop {
+                "a `loop` equates two vectors, e.g. `r @ phi == (x, 0) + l @ psi`"
+            } else {
+                "an `eq` equates two scalars; take a component with `.x`/`.y` or a length with `norm(..)`"
+            };
+            syn::Error::new(
+                eq,
+                format!(
+                    "the left side is a {} but the right side is a {}; both sides of `==` \
+                     must have the same type\nhelp: {help}",
+                    l.kind_name(),
+                    r.kind_name()
+                ),
+            )
+        }
+    }
+}

@@ -1,0 +1,154 @@
+//! Names in scope while lowering: declaring, defining in order, and resolving each use.
+
+use super::lower::{Lowerer, Val};
+use super::suggest::similar;
+use crate::dag::Leaf;
+use proc_macro2::Span;
+use std::collections::HashMap;
+use syn::Ident;
+
+#[derive(Clone, Copy)]
+pub(super) enum Symbol {
+    Param(u16),
+    Input(u16),
+    Unknown(u16),
+    Let(Val),
+    /// Declared later in the body by the item with this keyword (`let`, `point`, `output`):
+    /// using it now is an ordering mistake.
+    Later(&'static str),
+    /// Its definition had an error (already reported): uses stay silent.
+    Poisoned,
+}
+
+#[derive(Default)]
+pub(super) struct Scope {
+    pub(super) symbols: HashMap<String, (Symbol, Span)>,
+}
+
+fn describe(s: Symbol) -> &'static str {
+    match s {
+        Symbol::Param(_) => "a parameter",
+        Symbol::Input(_) => "an input",
+        Symbol::Unknown(_) => "an unknown",
+        Symbol::Let(_) => "a named value",
+        Symbol::Later("let") => "a `let`",
+        Symbol::Later("point") => "a `point`",
+        Symbol::Later(_) => "an `output`",
+        Symbol::Poisoned => "a named value",
+    }
+}
+
+impl Lowerer {
+    /// Reports `name` if it cannot be declared: it is the built-in `pi`, or it names a symbol
+    /// already declared that `replaceable` does not accept. Returns whether it was reported.
+    fn reject(&mut self, name: &Ident, replaceable: fn(&Symbol) -> bool) -> bool {
+        let key = name.to_string();
+        if key == "pi" {
+            self.errors
+                .push(syn::Error::new(name.span(), "`pi` is the built-in constant 3.14159...; choose another name"));
+            return true;
+        }
+        match self.scope.symbols.get(&key) {
+            Some((prev, span)) if !replaceable(prev) => {
+                let what = describe(*prev);
+                let mut e = syn::Error::new(
+                    name.span(),
+                    format!("`{key}` is already declared as {what}; names must be unique, rename one of them"),
+                );
+                e.combine(syn::Error::new(*span, format!("`{key}` is first declared here")));
+                self.errors.push(e);
+                true
+            }
+            _ => false,
+        }
+    }
+
+    /// Registers a global name; reports a duplicate and returns false.
+    pub(super) fn declare(&mut self, name: &Ident, sym: Symbol) -> bool {
+        if self.reject(name, |_| false) {
+            return false;
+        }
+        self.scope.symbols.insert(name.to_string(), (sym, name.span()));
+        true
+    }
+
+    /// Marks a `let`, `point` or `output` name as defined further down, so that a use above
+    /// its definition is reported as an ordering mistake rather than an unknown name.
+    pub(super) fn declare_later(&mut self, name: &Ident, what: &'static str) {
+        if name != "pi" {
+            self.scope.symbols.entry(name.to_string()).or_insert_with(|| (Symbol::Later(what), name.span()));
+        }
+    }
+
+    /// Defines a `let`, `point` or `output` name at its position in the body (where its
+    /// `Symbol::Later` placeholder stands).
+    pub(super) fn define(&mut self, name: &Ident, v: Val) {
+        if !self.reject(name, |prev| matches!(prev, Symbol::Later(_))) {
+            self.scope.symbols.insert(name.to_string(), (Symbol::Let(v), name.span()));
+        }
+    }
+
+    /// Marks a name whose definition failed, so its uses add no further errors.
+    pub(super) fn poison(&mut self, name: &Ident) {
+        let key = name.to_string();
+        if let Some((Symbol::Later(_), _)) | None = self.scope.symbols.get(&key) {
+            self.scope.symbols.insert(key, (Symbol::Poisoned, name.span()));
+        }
+    }
+
+    /// The value of a name where it is used.
+    pub(super) fn lookup(&mut self, id: &Ident) -> Option<Val> {
+        let key = id.to_string();
+        let g = &mut self.graph;
+        match self.scope.symbols.get(&key) {
+            Some((Symbol::Param(i), _)) => {
+                self.used_params[*i as usize] = true;
+                Some(Val::S(g.leaf(Leaf::Param(*i))))
+            }
+            Some((Symbol::Input(i), _)) => {
+                if let Some(u) = self.used_inputs.get_mut(*i as usize) {
+                    *u = true;
+                }
+                Some(Val::S(g.leaf(Leaf::Input(*i))))
+            }
+            Some((Symbol::Unknown(i), _)) => Some(Val::S(g.leaf(Leaf::Unknown(*i)))),
+            Some((Symbol::Let(v), _)) => Some(*v),
+            Some((Symbol::Poisoned, _)) => None,
+            Some((Symbol::Later(what), span)) => {
+                let mut e = syn::Error::new(
+                    id.span(),
+                    format!("`{key}` is used before it is defined; move `{what} {key} = ...;` above this line"),
+                );
+                e.combine(syn::Error::new(*span, format!("`{what} {key}` is defined here, after its use")));
+                self.errors.push(e);
+                None
+            }
+            None if key == "pi" => Some(Val::S(g.constant(std::f64::consts::PI))),
+            None => {
+                self.unknown_name(id);
+                None
+            }
+        }
+    }
+
+    fn unknown_name(&mut self, id: &Ident) {
+        let key = id.to_string();
+        let names: Vec<String> = self
+            .scope
+            .symbols
+            .iter()
+            .filter(|(_, (s, _))| !matches!(s, Symbol::Later(_)))
+            .map(|(k, _)| k.clone())
+            .collect();
+        let hint = match similar(&key, names.iter()) {
+            Some(s) => format!("; did you mean `{s}`?"),
+            None => String::new(),
+        };
+        self.errors.push(syn::Error::new(
+            id.span(),
+            format!(
+                "unknown name `{key}`{hint} (declare it with `params`, `input`, `unknowns` or `let` before using it)"
+            ),
+        ));
+    }
+}

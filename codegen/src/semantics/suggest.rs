@@ -1,0 +1,66 @@
+//! Did-you-mean suggestions for misspelt names.
+
+/// Suggests a candidate close to a misspelt name (at most 2 edits, a swap of neighbours
+/// counting as one). Ties are broken by name so the message is deterministic.
+pub fn similar<'a>(name: &str, candidates: impl Iterator<Item = &'a String>) -> Option<&'a String> {
+    // The distance is quadratic in the lengths: long names get no suggestion.
+    const LONGEST: usize = 64;
+    if name.chars().count() > LONGEST {
+        return None;
+    }
+    candidates
+        .filter(|c| c.chars().count() <= LONGEST)
+        .map(|c| (edit_distance(name, c), c))
+        .filter(|(d, c)| *d <= 2 && *d < c.chars().count().max(name.chars().count()))
+        .min_by(|a, b| a.0.cmp(&b.0).then_with(|| a.1.cmp(b.1)))
+        .map(|(_, c)| c)
+}
+
+/// Optimal string alignment distance (Levenshtein plus adjacent transpositions).
+fn edit_distance(a: &str, b: &str) -> usize {
+    let a: Vec<char> = a.chars().collect();
+    let b: Vec<char> = b.chars().collect();
+    let mut d = vec![vec![0usize; b.len() + 1]; a.len() + 1];
+    for (i, row) in d.iter_mut().enumerate() {
+        row[0] = i;
+    }
+    for (j, cell) in d[0].iter_mut().enumerate() {
+        *cell = j;
+    }
+    for i in 1..=a.len() {
+        for j in 1..=b.len() {
+            let cost = usize::from(a[i - 1] != b[j - 1]);
+            let mut v = (d[i - 1][j] + 1).min(d[i][j - 1] + 1).min(d[i - 1][j - 1] + cost);
+            if i > 1 && j > 1 && a[i - 1] == b[j - 2] && a[i - 2] == b[j - 1] {
+                v = v.min(d[i - 2][j - 2] + 1);
+            }
+            d[i][j] = v;
+        }
+    }
+    d[a.len()][b.len()]
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn distances_by_hand() {
+        assert_eq!(edit_distance("", "abc"), 3);
+        assert_eq!(edit_distance("kitten", "sitting"), 3);
+        assert_eq!(edit_distance("ab", "ba"), 1, "a swap of neighbours is one edit");
+        assert_eq!(edit_distance("psi", "psi"), 0);
+    }
+
+    #[test]
+    fn suggestions_are_close_and_deterministic() {
+        let names: Vec<String> = ["beta", "gamma", "delta", "sin", "sign"].iter().map(|s| s.to_string()).collect();
+        assert_eq!(similar("gamam", names.iter()).map(String::as_str), Some("gamma"));
+        assert_eq!(similar("zzzzzz", names.iter()), None);
+        // `sinn` is one edit from `sin` and from `sign`: the tie goes to the first by name.
+        assert_eq!(similar("sinn", names.iter()).map(String::as_str), Some("sign"));
+        // A one-letter name is never "close" to another one-letter name.
+        let short: Vec<String> = vec!["a".into()];
+        assert_eq!(similar("b", short.iter()), None);
+    }
+}

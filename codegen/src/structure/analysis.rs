@@ -1,0 +1,147 @@
+//! Structural checks with diagnostics at the user's spans: counts and mobility, unknowns and
+//! equations that do not take part, Dulmage–Mendelsohn over/under-determined parts, unused
+//! names, and the block decomposition used by code generation.
+//!
+//! How the diagnostics are laid out (compile errors cannot carry notes on stable Rust, so every
+//! underlined place is an error of its own):
+//!
+//! * A mistake local to one name gets one error there: an unknown that appears in no equation,
+//!   a loop or equation without unknowns, an input that drives nothing.
+//! * A structural imbalance gets **one primary error** at the mechanism's name, which states the
+//!   counts and the mobility once, names the over- and under-determined parts with their
+//!   equations and unknowns, and says what to add or remove; then **one short note per place**
+//!   (each loop or equation of a part, each run of neighbouring unknowns) that points back to it.
+//!   Names already reported by a local error above are left out of the notes.
+//! * An unused parameter is a warning (see [`warnings`]).
+
+use crate::diag::Warning;
+use crate::model::Model;
+use crate::structure::{self, Block};
+use crate::syntax::Errors;
+use std::collections::BTreeSet;
+
+/// Checks the structure and returns the blocks in solve order.
+pub fn analyze(model: &Model) -> Result<Vec<Block>, syn::Error> {
+    let n_eq = model.equations.len();
+    let n_u = model.unknowns.len();
+    let inc = structure::incidence(model);
+    let mut errors = Errors::default();
+    let empty = equations_without_unknowns(model, &inc, &mut errors);
+    let isolated = unknowns_in_no_equation(model, &inc, &mut errors);
+    unused_inputs(model, &mut errors);
+
+    // ------------------------------------------------------------------ counts and DM
+    // The structural summary comes first: it is at the mechanism's name, above everything else.
+    let matching = structure::maximum_matching(&inc, n_u);
+    let mut structural = Errors::default();
+    if n_eq != n_u || !matching.is_perfect() {
+        let dm = structure::dulmage_mendelsohn(&inc, n_u, &matching);
+        super::imbalance::report(model, &dm, &empty, &isolated, &mut structural);
+    }
+    if let Some(mut e) = structural.into_error() {
+        if let Some(local) = errors.into_error() {
+            e.combine(local);
+        }
+        return Err(e);
+    }
+    if let Some(e) = errors.into_error() {
+        return Err(e);
+    }
+    if model.options.dense.is_some() {
+        let all: Vec<usize> = (0..n_u).collect();
+        return Ok(if n_u == 0 { Vec::new() } else { vec![Block { unknowns: all.clone(), equations: all }] });
+    }
+    Ok(structure::blt(&inc, &matching))
+}
+
+/// Equations without unknowns, reported once per item (a loop's x and y share the item).
+fn equations_without_unknowns(model: &Model, inc: &[BTreeSet<usize>], errors: &mut Errors) -> BTreeSet<usize> {
+    let n_eq = model.equations.len();
+    let empty: BTreeSet<usize> = (0..n_eq).filter(|&e| inc[e].is_empty()).collect();
+    let mut reported_items = BTreeSet::new();
+    for &e in &empty {
+        let eq = &model.equations[e];
+        if !reported_items.insert(eq.item.to_string()) {
+            continue;
+        }
+        let both = eq.is_loop && (0..n_eq).filter(|&k| model.equations[k].item == eq.item).all(|k| empty.contains(&k));
+        let what = if !eq.is_loop {
+            format!("`eq {}` contains no unknown", eq.item)
+        } else if both {
+            format!("`loop {}` contains no unknown", eq.item)
+        } else {
+            let axis = if eq.name.ends_with(".x") { "x" } else { "y" };
+            format!("the {axis} projection of `loop {}` (`{}`) contains no unknown", eq.item, eq.name)
+        };
+        errors.push(eq.range.error(format!(
+            "{what}: it only relates parameters and inputs, so it cannot be solved for anything\n\
+             help: remove it, or declare the quantity it should determine with `unknowns`"
+        )));
+    }
+    empty
+}
+
+/// Unknowns that appear in no equation.
+fn unknowns_in_no_equation(model: &Model, inc: &[BTreeSet<usize>], errors: &mut Errors) -> BTreeSet<usize> {
+    let n_u = model.unknowns.len();
+    let mut appears = vec![false; n_u];
+    for s in inc {
+        for &u in s {
+            appears[u] = true;
+        }
+    }
+    let isolated: BTreeSet<usize> = (0..n_u).filter(|&u| !appears[u]).collect();
+    for &u in &isolated {
+        let unk = &model.unknowns[u].name;
+        errors.push(syn::Error::new(
+            unk.span(),
+            format!(
+                "unknown `{unk}` appears in no `loop` or `eq`, so nothing determines it\n\
+                 help: use it in a loop or equation, or remove it (a value computed from the others \
+                 is a `let`, a `point` or an `output`)"
+            ),
+        ));
+    }
+    isolated
+}
+
+/// Inputs nothing depends on.
+fn unused_inputs(model: &Model, errors: &mut Errors) {
+    for (i, used) in model.used_inputs.iter().enumerate() {
+        if !used {
+            let inp = &model.inputs[i].name;
+            errors.push(syn::Error::new(
+                inp.span(),
+                format!(
+                    "input `{inp}` is never used, so nothing moves with it\n\
+                     help: use it in a loop, an equation or a `let`, or remove it"
+                ),
+            ));
+        }
+    }
+}
+
+/// Unused parameters. They are warnings, not errors, by choice: the mechanism is still well
+/// posed (unlike with an unused input, which would claim a degree of freedom nothing moves
+/// with), and a parameter may be kept on purpose for the user's own computations (a mass, a
+/// speed); refusing to compile would be wrong. Procedural macros cannot emit warnings on stable
+/// Rust, so they reach the user as a `deprecated` lint at the parameter's name (see
+/// [`crate::diag`]), which `-D warnings` turns into an error like any warning. A parameter whose
+/// name starts with `_` is never reported, as in Rust.
+pub fn warnings(model: &Model) -> Vec<Warning> {
+    model
+        .used_params
+        .iter()
+        .zip(&model.params)
+        .filter(|(used, p)| !**used && !p.name.to_string().starts_with('_'))
+        .map(|(_, p)| Warning {
+            span: p.name.span(),
+            tag: format!("unused_parameter_{}", p.name),
+            message: format!(
+                "parameter `{}` is used in no loop, equation, `let` or output; remove it, \
+                 or name it `_{}` to keep it on purpose",
+                p.name, p.name
+            ),
+        })
+        .collect()
+}

@@ -1,0 +1,242 @@
+//! The diagnosis of a structurally singular system: one primary error at the mechanism's name
+//! (counts, mobility, the over- and under-determined parts, what to add or remove), then one
+//! short note per place that takes part.
+
+use super::Imbalance;
+use crate::expr::SpanRange;
+use crate::model::Model;
+use crate::syntax::Errors;
+use std::collections::BTreeSet;
+
+fn plural(n: usize, one: &str, many: &str) -> String {
+    format!("{n} {}", if n == 1 { one } else { many })
+}
+
+/// Most names a list in a message spells out; the rest are counted.
+const LIST_MAX: usize = 8;
+
+/// `` `a`, `b`, `c` `` (at most [`LIST_MAX`] names, then "and N more").
+fn list(names: impl Iterator<Item = String>) -> String {
+    let names: Vec<String> = names.collect();
+    let mut out = names.iter().take(LIST_MAX).map(|n| format!("`{n}`")).collect::<Vec<_>>().join(", ");
+    if names.len() > LIST_MAX {
+        out.push_str(&format!(" and {} more", names.len() - LIST_MAX));
+    }
+    out
+}
+
+/// `loop name` or `eq name`, as the user wrote the item.
+fn item_label(model: &Model, e: usize) -> String {
+    let eq = &model.equations[e];
+    format!("{} {}", if eq.is_loop { "loop" } else { "eq" }, eq.item)
+}
+
+/// The primary error at the mechanism's name and the notes at each place of the parts.
+pub(super) fn report(
+    model: &Model,
+    dm: &Imbalance,
+    empty: &BTreeSet<usize>,
+    isolated: &BTreeSet<usize>,
+    errors: &mut Errors,
+) {
+    let name = &model.name;
+    let n_eq = model.equations.len();
+    let n_u = model.unknowns.len();
+    // What the local errors above have not explained yet.
+    let over_notes: Vec<usize> = dm.over_equations.iter().copied().filter(|e| !empty.contains(e)).collect();
+    let under_notes: Vec<usize> = dm.under_unknowns.iter().copied().filter(|u| !isolated.contains(u)).collect();
+    if n_eq == n_u && over_notes.is_empty() && under_notes.is_empty() {
+        return;
+    }
+
+    let mut msg = summary(model);
+    let mut help = Vec::new();
+    if !dm.over_equations.is_empty() {
+        help.push(over_part(model, dm, over_notes.is_empty(), &mut msg));
+    }
+    if !dm.under_unknowns.is_empty() {
+        help.push(under_part(model, dm, under_notes.is_empty(), &mut msg));
+    }
+    for h in help {
+        msg.push_str("\nhelp: ");
+        msg.push_str(&h);
+    }
+    errors.push(syn::Error::new(name.span(), msg));
+
+    notes(model, dm, &over_notes, &under_notes, errors);
+}
+
+/// The headline with the counts, and the mobility.
+fn summary(model: &Model) -> String {
+    let name = &model.name;
+    let (n_eq, n_u, n_in) = (model.equations.len(), model.unknowns.len(), model.inputs.len());
+    let eqs = |n: usize| plural(n, "scalar equation", "scalar equations");
+    let unks = |n: usize| plural(n, "unknown", "unknowns");
+    let headline = if n_eq < n_u {
+        format!("`{name}` is under-determined: {} for {}", eqs(n_eq), unks(n_u))
+    } else if n_eq > n_u {
+        format!("`{name}` is over-determined: {} for {}", eqs(n_eq), unks(n_u))
+    } else {
+        format!(
+            "`{name}` is structurally singular: {} for {}, but they do not pair up \
+             (some equations fix too many unknowns, others too few)",
+            eqs(n_eq),
+            unks(n_u)
+        )
+    };
+    let mobility = n_u as i64 + n_in as i64 - n_eq as i64;
+    let verdict = if mobility == n_in as i64 {
+        format!("as declared ({})", plural(n_in, "input", "inputs"))
+    } else {
+        format!("but {} declared", plural(n_in, "input is", "inputs are"))
+    };
+    format!(
+        "{headline}\nmobility W = {} + {} - {} = {mobility}, {verdict}",
+        plural(n_u, "unknown", "unknowns"),
+        plural(n_in, "input", "inputs"),
+        plural(n_eq, "equation", "equations")
+    )
+}
+
+/// Names of equations (`eq_names`) and unknowns (`u_names`), as a message lists them.
+fn namers(model: &Model) -> (impl Fn(&BTreeSet<usize>) -> String + '_, impl Fn(&BTreeSet<usize>) -> String + '_) {
+    (
+        |s: &BTreeSet<usize>| list(s.iter().map(|&e| model.equations[e].name.clone())),
+        |s: &BTreeSet<usize>| list(s.iter().map(|&u| model.unknowns[u].name.to_string())),
+    )
+}
+
+/// Describes the over-determined part in `msg`; returns the help line. `explained`: every
+/// equation of it already has its own error (no unknown at all).
+fn over_part(model: &Model, dm: &Imbalance, explained: bool, msg: &mut String) -> String {
+    let (eq_names, u_names) = namers(model);
+    let eqs = |n: usize| plural(n, "scalar equation", "scalar equations");
+    let surplus = dm.over_equations.len().saturating_sub(dm.over_unknowns.len()).max(1);
+    let verb = if dm.over_equations.len() == 1 { "involves" } else { "involve" };
+    if dm.over_unknowns.is_empty() {
+        msg.push_str(&format!(
+            "\nover-determined part: {} {} {verb} no unknown",
+            plural(dm.over_equations.len(), "equation", "equations"),
+            eq_names(&dm.over_equations)
+        ));
+    } else {
+        msg.push_str(&format!(
+            "\nover-determined part: {} {} {verb} only {} {}",
+            plural(dm.over_equations.len(), "equation", "equations"),
+            eq_names(&dm.over_equations),
+            plural(dm.over_unknowns.len(), "unknown", "unknowns"),
+            u_names(&dm.over_unknowns)
+        ));
+    }
+    if explained {
+        // Only equations without unknowns: their own errors say what to do.
+        format!("remove {} (see the errors below)", eq_names(&dm.over_equations))
+    } else {
+        format!(
+            "remove {} of the over-determined part (a loop that repeats another contour?), \
+             or turn {} it uses into {}",
+            eqs(surplus),
+            plural(surplus, "parameter", "parameters"),
+            if surplus == 1 { "an unknown" } else { "unknowns" }
+        )
+    }
+}
+
+/// Describes the under-determined part in `msg`; returns the help line. `explained`: every
+/// unknown of it already has its own error (in no equation at all).
+fn under_part(model: &Model, dm: &Imbalance, explained: bool, msg: &mut String) -> String {
+    let (eq_names, u_names) = namers(model);
+    let eqs = |n: usize| plural(n, "scalar equation", "scalar equations");
+    let missing = dm.under_unknowns.len().saturating_sub(dm.under_equations.len()).max(1);
+    let verb = if dm.under_unknowns.len() == 1 { "appears" } else { "appear" };
+    if dm.under_equations.is_empty() {
+        msg.push_str(&format!(
+            "\nunder-determined part: {} {} {verb} in no equation",
+            plural(dm.under_unknowns.len(), "unknown", "unknowns"),
+            u_names(&dm.under_unknowns)
+        ));
+    } else {
+        msg.push_str(&format!(
+            "\nunder-determined part: {} {} {verb} in only {} {}",
+            plural(dm.under_unknowns.len(), "unknown", "unknowns"),
+            u_names(&dm.under_unknowns),
+            plural(dm.under_equations.len(), "equation", "equations"),
+            eq_names(&dm.under_equations)
+        ));
+    }
+    if explained {
+        // Only unknowns in no equation: their own errors say what to do.
+        format!(
+            "use {} in a loop or equation, or remove {} (see the errors below)",
+            u_names(&dm.under_unknowns),
+            if dm.under_unknowns.len() == 1 { "it" } else { "them" }
+        )
+    } else {
+        format!(
+            "add {} involving the under-determined unknowns (a `loop` gives two, an `eq` one), \
+             or turn {} of them into {}",
+            eqs(missing),
+            missing,
+            if missing == 1 { "an input" } else { "inputs" }
+        )
+    }
+}
+
+/// One short note per loop or equation of each part and per run of under-determined unknowns,
+/// each pointing back to the primary error.
+fn notes(model: &Model, dm: &Imbalance, over_notes: &[usize], under_notes: &[usize], errors: &mut Errors) {
+    let name = &model.name;
+    let n_eq = model.equations.len();
+    // Notes: each loop or equation of the over-determined part, once per item.
+    let see = format!("see the error at `{name}`");
+    let in_part = |e: usize, part: &BTreeSet<usize>| {
+        let label = item_label(model, e);
+        let eq = &model.equations[e];
+        let members: Vec<usize> = (0..n_eq).filter(|&k| model.equations[k].item == eq.item).collect();
+        if eq.is_loop && !members.iter().all(|k| part.contains(k)) {
+            // One projection of a loop: say which.
+            format!("`{label}` (its equation `{}`)", eq.name)
+        } else {
+            format!("`{label}`")
+        }
+    };
+    let mut seen = BTreeSet::new();
+    for &e in over_notes {
+        if seen.insert(model.equations[e].item.to_string()) {
+            let what = in_part(e, &dm.over_equations);
+            errors.push(model.equations[e].range.error(format!("{what} is in the over-determined part ({see})")));
+        }
+    }
+    // Notes: runs of neighbouring under-determined unknowns of one declaration, underlined
+    // together, then the loops and equations of the under-determined part.
+    for run in runs(model, under_notes) {
+        let (first, last) = (&model.unknowns[run[0]].name, &model.unknowns[run[run.len() - 1]].name);
+        let range = SpanRange { start: first.span(), end: last.span() };
+        let names = list(run.iter().map(|&u| model.unknowns[u].name.to_string()));
+        let verb = if run.len() == 1 { "is" } else { "are" };
+        errors.push(range.error(format!("{names} {verb} not determined: in the under-determined part ({see})")));
+    }
+    let mut seen = BTreeSet::new();
+    for &e in &dm.under_equations {
+        if seen.insert(model.equations[e].item.to_string()) {
+            let what = in_part(e, &dm.under_equations);
+            errors.push(model.equations[e].range.error(format!("{what} is in the under-determined part ({see})")));
+        }
+    }
+}
+
+/// Splits sorted unknown indices into runs that are consecutive in one declaration item.
+fn runs(model: &Model, unknowns: &[usize]) -> Vec<Vec<usize>> {
+    let mut out: Vec<Vec<usize>> = Vec::new();
+    for &u in unknowns {
+        match out.last_mut() {
+            Some(run)
+                if run.last().is_some_and(|&p| p + 1 == u && model.unknowns[p].item == model.unknowns[u].item) =>
+            {
+                run.push(u)
+            }
+            _ => out.push(vec![u]),
+        }
+    }
+    out
+}

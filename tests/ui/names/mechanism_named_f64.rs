@@ -1,0 +1,10 @@
+kinloop::mechanism! {
+    pub struct f64 {
+        params r, l;
+        input phi;
+        unknowns psi, x;
+        loop oab: r @ phi == (x, 0) + l @ psi;
+    }
+}
+
+fn main() {}
