@@ -7,9 +7,9 @@
 //! they use nalgebra's dynamic matrices for the `(N + 1)`-sized bordered systems.
 
 use crate::kin::Jac;
-use crate::lu::{Lu, max_abs};
+use crate::lu::Lu;
 use crate::mechanism::Mechanism;
-use crate::newton::NewtonConfig;
+use crate::newton::{NewtonConfig, system_residual};
 use nalgebra::{DMatrix, DVector};
 
 /// A straight path in input space.
@@ -148,7 +148,8 @@ where
         q.copy_from_slice(&y.as_slice()[..N]);
         let sigma = y[N];
         let jac = m.jacobian_flat(&path.at_sigma(sigma), &q);
-        let res = max_abs(jac.f);
+        // Scale-free: each residual relative to its row's magnitude.
+        let res = system_residual(&jac.f, &jac.j);
         if !res.is_finite() {
             return None;
         }
@@ -157,7 +158,7 @@ where
             g[e] = -jac.f[e];
         }
         g[N] = -p.tangent.dot(&(&y - &y_pred));
-        if res <= cfg.residual_tol && g[N].abs() <= cfg.residual_tol {
+        if res <= cfg.residual_tol && g[N].abs() <= cfg.residual_tol * (1.0 + ds.abs()) {
             let tangent = tangent(m, path, &q, sigma, &p.tangent)?;
             return Some(CurvePoint { q, sigma, tangent });
         }
@@ -171,7 +172,8 @@ where
             let mut q = [0.0; N];
             q.copy_from_slice(&y.as_slice()[..N]);
             let jac = m.jacobian_flat(&path.at_sigma(y[N]), &q);
-            if max_abs(jac.f) <= cfg.residual_tol.max(1e-10) {
+            // The step is at the rounding floor: accept a residual up to its floor.
+            if system_residual(&jac.f, &jac.j) <= 1e3 * cfg.residual_tol {
                 let tangent = tangent(m, path, &q, y[N], &p.tangent)?;
                 return Some(CurvePoint { q, sigma: y[N], tangent });
             }

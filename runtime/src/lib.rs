@@ -26,7 +26,7 @@ mod vec2;
 
 pub use curve::{Traced, TracedPoint, trace_curve};
 pub use error::{BlockInfo, Error, Location, Quantity};
-pub use kin::{FlatMotion, Health, Jac, Kin, Sens};
+pub use kin::{DetSigns, FlatMotion, Health, Jac, Kin, Sens};
 pub use lu::{Factor, Fixed, Lu, max_abs};
 pub use mechanism::{Mechanism, Sensitivities};
 pub use modes::assembly_modes;
@@ -57,6 +57,12 @@ pub fn block_error(fail: BlockFailure, at: Location) -> Error {
         BlockFailure::NoAssembly { row, residual, .. } => {
             Error::NoAssembly { residual, equation: name(row), at: Box::new(at) }
         }
+        BlockFailure::Singular { pivot_ratio, tolerance, .. } => {
+            Error::Singular { pivot_ratio, tolerance, at: Box::new(at) }
+        }
+        BlockFailure::InvalidConfig { field } => Error::InvalidArgument(format!(
+            "NewtonConfig::{field} is out of its valid range (see its documentation), {at}"
+        )),
     }
 }
 

@@ -3,8 +3,21 @@
 //! The configuration ([`NewtonConfig`]) is separate from the problem (the block's generated
 //! evaluation closure) and the outcome carries its diagnostics ([`SolveReport`]): iterations,
 //! evaluations, final residual and why it stopped.
+//!
+//! **Scale-free tests.** Every test is made in the units of the problem: residual `i` is divided
+//! by its row magnitude `scale_i` (see [`BlockEval::scale`]), a step in unknown `j` by that
+//! unknown's magnitude, and the pivots of the factorisation are those of the row-equilibrated
+//! Jacobian. A mechanism in metres, millimetres or micrometres therefore stops at the same
+//! relative accuracy.
+//!
+//! **No silent wrong answer.** Whatever stops the iteration, the final scaled residual is
+//! checked; the last Newton correction is applied (a prediction that already meets the
+//! tolerance is still corrected once); a root reached with linear convergence (the signature
+//! of a singular Jacobian at the root) is reported as singular, not returned as an inaccurate
+//! success.
 
-use crate::lu::{Lu, max_abs};
+use crate::error::Error;
+use crate::lu::Lu;
 
 /// Tolerances and limits of the Newton solver.
 ///
@@ -12,19 +25,26 @@ use crate::lu::{Lu, max_abs};
 /// use kinloop_runtime::NewtonConfig;
 /// let cfg = NewtonConfig::default().with_residual_tol(1e-10).with_max_iterations(20);
 /// assert_eq!(cfg.max_iterations, 20);
+/// assert!(cfg.validate().is_ok());
+/// assert!(NewtonConfig::default().with_residual_tol(f64::INFINITY).validate().is_err());
 /// ```
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct NewtonConfig {
-    /// Converged when the largest residual magnitude `max |f|` is at most this (default `1e-12`).
+    /// Converged when every residual is at most this fraction of its row magnitude,
+    /// `max_i |f_i| / scale_i <= residual_tol` (default `1e-12`; valid range `(0, 1e-3]`).
     pub residual_tol: f64,
-    /// Also converged when a full Newton step is at most `step_tol * (1 + max |q|)` (default
-    /// `1e-13`): the residual is then at the rounding floor of the problem's scale.
+    /// Also stops when a full Newton step is at most this fraction of each unknown's magnitude
+    /// (default `1e-13`; valid range `[0, 1e-3]`); the step is then applied and the scaled
+    /// residual must still be within `1000 * residual_tol` (the rounding floor of rows whose
+    /// terms are much larger than their derivatives).
     pub step_tol: f64,
-    /// Iteration cap per block (default `50`).
+    /// Iteration cap per block (default `50`; at most `10_000`).
     pub max_iterations: u32,
-    /// A block whose row-equilibrated pivot ratio falls below this is singular (default `1e-10`).
+    /// A block whose row-equilibrated pivot ratio falls below this is singular (default
+    /// `1e-10`; valid range `[0, 1)`).
     pub singular_tol: f64,
-    /// Smallest damping factor of the backtracking line search (default `2^-12`).
+    /// Smallest damping factor of the backtracking line search (default `2^-12`; valid range
+    /// `[1e-12, 1)`).
     pub min_damping: f64,
 }
 
@@ -61,6 +81,44 @@ impl NewtonConfig {
         self.singular_tol = tol;
         self
     }
+    /// Sets [`NewtonConfig::min_damping`].
+    pub fn with_min_damping(mut self, t: f64) -> Self {
+        self.min_damping = t;
+        self
+    }
+
+    /// The first field outside its valid range (NaN is outside every range).
+    pub fn invalid_field(&self) -> Option<&'static str> {
+        let within = |v: f64, lo: f64, hi: f64, lo_open: bool| (if lo_open { v > lo } else { v >= lo }) && v <= hi;
+        if !within(self.residual_tol, 0.0, 1e-3, true) {
+            Some("residual_tol")
+        } else if !within(self.step_tol, 0.0, 1e-3, false) {
+            Some("step_tol")
+        } else if self.max_iterations > 10_000 {
+            Some("max_iterations")
+        } else if !(within(self.singular_tol, 0.0, 1.0, false) && self.singular_tol < 1.0) {
+            Some("singular_tol")
+        } else if !(within(self.min_damping, 1e-12, 1.0, false) && self.min_damping < 1.0) {
+            Some("min_damping")
+        } else {
+            None
+        }
+    }
+
+    /// Checks every field: `Error::InvalidArgument` names the first one out of range.
+    pub fn validate(&self) -> Result<(), Error> {
+        match self.invalid_field() {
+            None => Ok(()),
+            Some(field) => Err(invalid_config(field, self)),
+        }
+    }
+}
+
+/// The error for a configuration field out of range.
+pub(crate) fn invalid_config(field: &str, cfg: &NewtonConfig) -> Error {
+    Error::InvalidArgument(format!(
+        "NewtonConfig::{field} is out of its valid range (see its documentation): {cfg:?}"
+    ))
 }
 
 /// Why a solve stopped successfully.
@@ -69,9 +127,9 @@ impl NewtonConfig {
 pub enum Termination {
     /// Every block was solved in closed form (linear blocks only).
     Direct,
-    /// The residual fell below `residual_tol`.
+    /// The scaled residual fell below `residual_tol`.
     ResidualTolerance,
-    /// The Newton step fell below `step_tol` (the residual is at its rounding floor).
+    /// The scaled Newton step fell below `step_tol` (the residual is at its rounding floor).
     StepTolerance,
     /// The position was given by the caller, not solved (`kinematics_at`).
     Given,
@@ -80,11 +138,13 @@ pub enum Termination {
 /// Diagnostics of a position solve, summed over the blocks of the decomposition.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct SolveReport {
-    /// Newton iterations over all blocks (0 when the guess already satisfied the equations).
+    /// Newton iterations over all blocks (0 when the guess already satisfied the equations and
+    /// only its correction was applied).
     pub iterations: u32,
     /// Residual evaluations over all blocks (including line-search trials).
     pub evaluations: u32,
-    /// Largest final residual magnitude over the iterated blocks.
+    /// Largest scaled residual (`|f_i| / scale_i`) over the iterated blocks, before the last
+    /// correction; for a given position (`kinematics_at`), the largest unscaled residual.
     pub residual: f64,
     /// The weakest reason any block stopped (`StepTolerance` over `ResidualTolerance` over
     /// `Direct`).
@@ -112,13 +172,21 @@ impl SolveReport {
     }
 }
 
-/// One evaluation of a block: residuals, Jacobian rows, and intermediate values the generated
-/// code keeps for later stages (so they are not recomputed after convergence).
+/// One evaluation of a block: residuals, Jacobian rows, the rows' magnitudes, and intermediate
+/// values the generated code keeps for later stages (so they are not recomputed after
+/// convergence).
 #[doc(hidden)]
 #[derive(Clone, Copy, Debug)]
 pub struct BlockEval<const N: usize, const K: usize> {
     pub f: [f64; N],
     pub j: [[f64; N]; N],
+    /// Magnitude of each row: the sum of the absolute values of the terms of the equation (for
+    /// a loop projection, about the sum of its link lengths), in the equation's unit. Residual
+    /// `i` is judged relative to it. A value that is not positive and finite (generated code
+    /// that does not provide it yet passes `0`) is replaced by the runtime's fallback, the row
+    /// sum `sum_j |J_ij|` (exact for angle unknowns, whose natural scale is one radian; for
+    /// length unknowns it is off by the unit of length, so generated magnitudes are preferred).
+    pub scale: [f64; N],
     pub keep: [f64; K],
 }
 
@@ -127,7 +195,9 @@ pub struct BlockEval<const N: usize, const K: usize> {
 #[derive(Clone, Copy, Debug)]
 pub struct Solved<const N: usize, const K: usize> {
     pub z: [f64; N],
-    /// The evaluation at `z` (its Jacobian is reused for the analogs).
+    /// The evaluation at `z`, or (after the free correction of an accepted guess) at the point
+    /// one Newton step before `z`: its Jacobian and kept values then differ from those at `z`
+    /// by the order of the residual tolerance.
     pub eval: BlockEval<N, K>,
     pub iterations: u32,
     pub evaluations: u32,
@@ -135,42 +205,102 @@ pub struct Solved<const N: usize, const K: usize> {
     pub termination: Termination,
 }
 
-impl<const N: usize, const K: usize> Solved<N, K> {
-    /// The guess itself met the tolerance (residual `res`): no iteration.
-    #[doc(hidden)]
-    #[inline(always)]
-    pub fn at_guess(z: [f64; N], eval: BlockEval<N, K>, res: f64) -> Self {
-        Solved { z, eval, iterations: 0, evaluations: 1, residual: res, termination: Termination::ResidualTolerance }
-    }
-}
-
 /// Why a block failed; the generated code adds the location and names.
 #[doc(hidden)]
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub enum BlockFailure {
     /// A residual or Jacobian entry is not finite; `row` is the block row.
-    NonFinite {
-        row: usize,
-        iterations: u32,
-    },
-    NoConvergence {
-        row: usize,
-        iterations: u32,
-        residual: f64,
-    },
-    /// The Jacobian is singular away from a root, or no step decreases the residual.
-    NoAssembly {
-        row: usize,
-        iterations: u32,
-        residual: f64,
-    },
+    NonFinite { row: usize, iterations: u32 },
+    /// The iteration cap was reached while the residual still decreased.
+    NoConvergence { row: usize, iterations: u32, residual: f64 },
+    /// The iteration stalled at a stationary point of the squared residual that is not a root
+    /// (no descent direction, scaled residual clearly non-zero): the loops cannot close there.
+    NoAssembly { row: usize, iterations: u32, residual: f64 },
+    /// The Jacobian is singular at (or the iteration converged only linearly to) a root: a
+    /// singular position, where the solution is not determined to working accuracy.
+    Singular { row: usize, iterations: u32, residual: f64, pivot_ratio: f64, tolerance: f64 },
+    /// A configuration field is out of range (see [`NewtonConfig::invalid_field`]).
+    InvalidConfig { field: &'static str },
 }
 
-fn argmax_abs<const N: usize>(f: &[f64; N]) -> usize {
+/// A scaled residual above this at a stall means the loops do not close there (not merely a
+/// root reached slowly): far above any rounding floor, far below the residual of a mechanism
+/// that visibly cannot assemble.
+const STALL_RESIDUAL: f64 = 1e-8;
+
+/// The scaled residual may exceed `residual_tol` by this factor when the iteration stops on the
+/// step test (rows whose terms are much larger than their derivatives have a higher floor).
+const FLOOR_FACTOR: f64 = 1e3;
+
+/// A final step this large relative to the previous one means linear, not quadratic,
+/// convergence.
+const LINEAR_CONTRACTION: f64 = 0.1;
+
+/// The row magnitudes of an evaluation (see [`BlockEval::scale`]).
+#[inline(always)]
+fn row_scales<const N: usize, const K: usize>(ev: &BlockEval<N, K>) -> [f64; N] {
+    let mut s = [0.0; N];
+    for r in 0..N {
+        let given = ev.scale[r];
+        s[r] = if given > 0.0 && given < f64::INFINITY {
+            given
+        } else {
+            let mut sum = 0.0;
+            for c in 0..N {
+                sum += ev.j[r][c].abs();
+            }
+            sum
+        };
+    }
+    s
+}
+
+/// `max_i |f_i| / s_i`; NaN propagates, a non-zero residual over a zero scale is infinite.
+#[inline(always)]
+fn scaled_residual<const N: usize>(f: &[f64; N], s: &[f64; N]) -> f64 {
+    let mut m = 0.0f64;
+    for r in 0..N {
+        let a = f[r].abs();
+        let v = if a == 0.0 { 0.0 } else { a / s[r] };
+        if v > m || v.is_nan() {
+            m = v;
+        }
+    }
+    m
+}
+
+/// `max_j |dz_j| / max(|z_j|, 1)`: steps relative to each unknown's magnitude (one radian for
+/// angles); NaN propagates.
+#[inline(always)]
+fn scaled_step<const N: usize>(dz: &[f64; N], z: &[f64; N]) -> f64 {
+    let mut m = 0.0f64;
+    for c in 0..N {
+        let v = dz[c].abs() / z[c].abs().max(1.0);
+        if v > m || v.is_nan() {
+            m = v;
+        }
+    }
+    m
+}
+
+/// The scaled residual of a full system (continuation, event location), with the fallback row
+/// magnitudes `sum_j |J_ij|` (see [`BlockEval::scale`]).
+pub(crate) fn system_residual<const N: usize>(f: &[f64; N], j: &[[f64; N]; N]) -> f64 {
+    let mut s = [0.0; N];
+    for r in 0..N {
+        s[r] = j[r].iter().map(|v| v.abs()).sum();
+    }
+    scaled_residual(f, &s)
+}
+
+fn argmax_scaled<const N: usize>(f: &[f64; N], s: &[f64; N]) -> usize {
     let mut k = 0;
-    for r in 1..N {
-        if f[r].abs() > f[k].abs() || f[r].is_nan() {
+    let mut best = -1.0;
+    for r in 0..N {
+        let v = f[r].abs() / s[r];
+        if v > best || v.is_nan() {
             k = r;
+            best = if v.is_nan() { f64::INFINITY } else { v };
         }
     }
     k
@@ -180,13 +310,21 @@ fn first_non_finite<const N: usize, const K: usize>(ev: &BlockEval<N, K>) -> Opt
     (0..N).find(|&r| !ev.f[r].is_finite() || ev.j[r].iter().any(|v| !v.is_finite()))
 }
 
-fn sum_sq<const N: usize>(f: &[f64; N]) -> f64 {
-    f.iter().map(|v| v * v).sum()
+/// The Newton step `-J^-1 f` with `J` equilibrated by the row magnitudes, and the pivot ratio.
+#[inline(always)]
+fn newton_step<const N: usize, const K: usize>(ev: &BlockEval<N, K>, s: &[f64; N]) -> ([f64; N], f64) {
+    let lu = Lu::factor(&ev.j, *s);
+    let mut neg_f = ev.f;
+    for v in &mut neg_f {
+        *v = -*v;
+    }
+    (lu.solve(neg_f), lu.pivot_ratio())
 }
 
 /// Solves one block from the guess `z0`. In the common warm-started case this costs one
-/// evaluation: the guess already satisfies the tolerance and no iteration is made. That check is
-/// inlined into the generated code; the iteration itself is a separate function.
+/// evaluation and one small factorisation: the guess already meets the tolerance and is
+/// corrected once by the Newton step (its Jacobian is the one the analogs use). The iteration
+/// itself is a separate, out-of-line function.
 #[doc(hidden)]
 #[inline(always)]
 pub fn newton<const N: usize, const K: usize>(
@@ -195,16 +333,33 @@ pub fn newton<const N: usize, const K: usize>(
     mut eval: impl FnMut(&[f64; N]) -> BlockEval<N, K>,
 ) -> Result<Solved<N, K>, BlockFailure> {
     let ev = eval(&z0);
-    let res = max_abs(ev.f);
-    // `max_abs` propagates NaN, which fails this test.
-    if res <= cfg.residual_tol {
-        return Ok(Solved::at_guess(z0, ev, res));
+    let s = row_scales(&ev);
+    let rho = scaled_residual(&ev.f, &s);
+    // NaN fails both tests; an out-of-range tolerance is diagnosed by `iterate`.
+    if rho <= cfg.residual_tol && cfg.residual_tol <= 1e-3 {
+        let (dz, pivot) = newton_step(&ev, &s);
+        if pivot > cfg.singular_tol {
+            let mut z = z0;
+            for c in 0..N {
+                z[c] += dz[c];
+            }
+            if scaled_step(&dz, &z0) <= cfg.residual_tol.sqrt() {
+                return Ok(Solved {
+                    z,
+                    eval: ev,
+                    iterations: 0,
+                    evaluations: 1,
+                    residual: rho,
+                    termination: Termination::ResidualTolerance,
+                });
+            }
+        }
     }
     iterate(z0, ev, cfg, eval)
 }
 
-/// Newton iterations from `z0`, whose evaluation `ev0` did not meet the tolerance. The
-/// generated code evaluates the guess inline and calls this only when it must iterate.
+/// Newton iterations from `z0`, whose evaluation is `ev0`. The generated code calls it through
+/// [`newton`] when the guess does not meet the tolerance.
 #[doc(hidden)]
 #[inline(never)]
 pub fn iterate<const N: usize, const K: usize>(
@@ -213,85 +368,241 @@ pub fn iterate<const N: usize, const K: usize>(
     cfg: &NewtonConfig,
     mut eval: impl FnMut(&[f64; N]) -> BlockEval<N, K>,
 ) -> Result<Solved<N, K>, BlockFailure> {
-    let mut z = z0;
-    let mut ev = ev0;
-    let mut evaluations = 1u32;
-    let mut iterations = 0u32;
+    if let Some(field) = cfg.invalid_field() {
+        return Err(BlockFailure::InvalidConfig { field });
+    }
+    let mut it = Iter { z: z0, ev: ev0, iterations: 0, evaluations: 1, prev_step: f64::INFINITY, slow_run: 0, rho_mark: f64::INFINITY };
     loop {
-        let res = max_abs(ev.f);
-        // `max_abs` propagates NaN, which fails this test.
-        if res <= cfg.residual_tol {
-            return Ok(Solved {
-                z,
-                eval: ev,
-                iterations,
-                evaluations,
-                residual: res,
-                termination: Termination::ResidualTolerance,
+        if let Some(row) = first_non_finite(&it.ev) {
+            return Err(BlockFailure::NonFinite { row, iterations: it.iterations });
+        }
+        let s = row_scales(&it.ev);
+        let rho = scaled_residual(&it.ev.f, &s);
+        let (dz, pivot) = newton_step(&it.ev, &s);
+        let step = scaled_step(&dz, &it.z);
+        let converged = rho <= cfg.residual_tol;
+        let at_floor = step <= cfg.step_tol && rho <= FLOOR_FACTOR * cfg.residual_tol;
+        if converged || at_floor {
+            let termination = if converged { Termination::ResidualTolerance } else { Termination::StepTolerance };
+            return it.finish(dz, step, pivot, rho, &s, termination, cfg, &mut eval);
+        }
+        if it.iterations >= cfg.max_iterations {
+            let row = argmax_scaled(&it.ev.f, &s);
+            // Over the second half of the iterations the residual did not even halve: it
+            // crawls into a minimum that is not a root.
+            if rho > STALL_RESIDUAL && rho > 0.5 * it.rho_mark {
+                return Err(BlockFailure::NoAssembly { row, iterations: it.iterations, residual: rho });
+            }
+            return Err(BlockFailure::NoConvergence { row, iterations: it.iterations, residual: rho });
+        }
+        if it.iterations == cfg.max_iterations / 2 {
+            it.rho_mark = rho;
+        }
+        let newton_ok = pivot > cfg.singular_tol * 1e-3 && step.is_finite();
+        let moved = (newton_ok && it.search(&dz, &s, cfg, &mut eval)) || it.descend(&s, cfg, &mut eval);
+        if !moved {
+            return Err(it.stalled(rho, pivot, &s, cfg));
+        }
+        let slow = newton_ok && step > LINEAR_CONTRACTION * it.prev_step;
+        it.slow_run = if slow { it.slow_run + 1 } else { 0 };
+        it.prev_step = if newton_ok { step } else { f64::INFINITY };
+        it.iterations += 1;
+    }
+}
+
+/// The state of an iteration.
+struct Iter<const N: usize, const K: usize> {
+    z: [f64; N],
+    ev: BlockEval<N, K>,
+    iterations: u32,
+    evaluations: u32,
+    /// Scaled length of the previous full Newton step (infinite after a gradient step).
+    prev_step: f64,
+    /// How many consecutive Newton steps each kept more than `LINEAR_CONTRACTION` of the
+    /// previous one (linear convergence).
+    slow_run: u32,
+    /// The scaled residual half way through the iteration budget.
+    rho_mark: f64,
+}
+
+impl<const N: usize, const K: usize> Iter<N, K> {
+    /// Ends a converged iteration: diagnoses linear convergence (a singular root), then applies
+    /// the last correction `dz` and re-evaluates there (so the Jacobian and kept values match
+    /// the returned position).
+    #[allow(clippy::too_many_arguments)]
+    fn finish(
+        mut self,
+        dz: [f64; N],
+        step: f64,
+        pivot: f64,
+        rho: f64,
+        s: &[f64; N],
+        termination: Termination,
+        cfg: &NewtonConfig,
+        eval: &mut impl FnMut(&[f64; N]) -> BlockEval<N, K>,
+    ) -> Result<Solved<N, K>, BlockFailure> {
+        // The position is known to about the last step of a linearly converging iteration (the
+        // residual of a row can round to zero before the unknowns settle).
+        let visible = FLOOR_FACTOR * cfg.residual_tol.max(cfg.step_tol);
+        let slow = self.prev_step.is_finite() && step > LINEAR_CONTRACTION * self.prev_step;
+        let singular_root = !step.is_finite()
+            || (slow && step > visible)
+            || (self.slow_run >= 2 && self.prev_step.is_finite() && self.prev_step > visible);
+        if singular_root && self.iterations > 0 {
+            // Newton converges quadratically to a regular root; linearly (each step a fixed
+            // fraction of the previous one) only where the Jacobian is singular at the root,
+            // and the position is then only known to about the size of the last step.
+            return Err(BlockFailure::Singular {
+                row: argmax_scaled(&self.ev.f, s),
+                iterations: self.iterations,
+                residual: rho,
+                pivot_ratio: pivot,
+                tolerance: cfg.singular_tol,
             });
         }
-        if let Some(row) = first_non_finite(&ev) {
-            return Err(BlockFailure::NonFinite { row, iterations });
+        if step.is_finite() && step > 0.0 {
+            let mut z = self.z;
+            for c in 0..N {
+                z[c] += dz[c];
+            }
+            let ev = eval(&z);
+            self.evaluations += 1;
+            let s1 = row_scales(&ev);
+            let rho1 = scaled_residual(&ev.f, &s1);
+            // Keep the correction unless it made things worse (rounding noise near a
+            // singular position); NaN fails the test.
+            if rho1 <= rho.max(cfg.residual_tol) {
+                self.z = z;
+                self.ev = ev;
+            }
         }
-        if iterations >= cfg.max_iterations {
-            return Err(BlockFailure::NoConvergence { row: argmax_abs(&ev.f), iterations, residual: res });
+        Ok(Solved {
+            z: self.z,
+            eval: self.ev,
+            iterations: self.iterations,
+            evaluations: self.evaluations,
+            residual: rho,
+            termination,
+        })
+    }
+
+    /// Backtracking (Armijo, `c = 1e-4`) along `dz` on the squared scaled residual; moves and
+    /// returns `true` on success.
+    fn search(
+        &mut self,
+        dz: &[f64; N],
+        s: &[f64; N],
+        cfg: &NewtonConfig,
+        eval: &mut impl FnMut(&[f64; N]) -> BlockEval<N, K>,
+    ) -> bool {
+        let phi0 = sum_sq_scaled(&self.ev.f, s);
+        // The slope of phi along dz is -2 phi0 for a Newton step; for another direction it is
+        // 2 g.dz with g = J^T D^-2 f.
+        let slope = directional_slope(&self.ev, s, dz);
+        if !(slope < 0.0) {
+            return false;
         }
-        let mut scale = [0.0; N];
-        for (r, s) in scale.iter_mut().enumerate() {
-            *s = max_abs(ev.j[r]);
-        }
-        let lu = Lu::factor(&ev.j, scale);
-        if lu.pivot_ratio() <= cfg.singular_tol * 1e-3 {
-            return Err(BlockFailure::NoAssembly { row: argmax_abs(&ev.f), iterations, residual: res });
-        }
-        let mut neg_f = ev.f;
-        for v in &mut neg_f {
-            *v = -*v;
-        }
-        let dz = lu.solve(neg_f);
-        let step = max_abs(dz);
-        if !step.is_finite() {
-            return Err(BlockFailure::NoAssembly { row: argmax_abs(&ev.f), iterations, residual: res });
-        }
-        if step <= cfg.step_tol * (1.0 + max_abs(z)) {
-            return Ok(Solved {
-                z,
-                eval: ev,
-                iterations,
-                evaluations,
-                residual: res,
-                termination: Termination::StepTolerance,
-            });
-        }
-        // Backtracking on the squared residual norm (Armijo with c = 1e-4).
-        let phi0 = sum_sq(&ev.f);
         let mut t = 1.0f64;
-        loop {
-            let mut trial = z;
-            for r in 0..N {
-                trial[r] += t * dz[r];
+        while t >= cfg.min_damping {
+            let mut trial = self.z;
+            for c in 0..N {
+                trial[c] += t * dz[c];
             }
             let ev_t = eval(&trial);
-            evaluations += 1;
-            let phi = sum_sq(&ev_t.f);
-            if phi <= (1.0 - 2e-4 * t) * phi0 {
-                z = trial;
-                ev = ev_t;
-                break;
+            self.evaluations += 1;
+            let phi = sum_sq_scaled(&ev_t.f, s);
+            if phi <= phi0 + 1e-4 * t * slope {
+                self.z = trial;
+                self.ev = ev_t;
+                return true;
             }
             t *= 0.5;
-            if t < cfg.min_damping {
-                // No step along the Newton direction reduces the residual: a stationary point of
-                // |f|^2 that is not a root.
-                return Err(BlockFailure::NoAssembly {
-                    row: argmax_abs(&ev.f),
-                    iterations: iterations + 1,
-                    residual: res,
-                });
+        }
+        false
+    }
+
+    /// Where the Newton step fails (singular Jacobian, no decrease), Levenberg-Marquardt steps
+    /// of increasing damping, down to steepest descent: they leave saddles of the squared
+    /// residual that a far guess can lead to. Returns `true` when one decreased the residual.
+    fn descend(
+        &mut self,
+        s: &[f64; N],
+        cfg: &NewtonConfig,
+        eval: &mut impl FnMut(&[f64; N]) -> BlockEval<N, K>,
+    ) -> bool {
+        let (a, g) = normal_equations(&self.ev, s);
+        let trace: f64 = (0..N).map(|k| a[k][k]).sum();
+        if !(trace > 0.0 && trace.is_finite()) {
+            return false;
+        }
+        for mu in [1e-9, 1e-6, 1e-3, 1.0] {
+            let mut damped = a;
+            for k in 0..N {
+                damped[k][k] += mu * trace;
+            }
+            let lu = Lu::factor(&damped, [1.0; N]);
+            let mut neg_g = g;
+            for v in &mut neg_g {
+                *v = -*v;
+            }
+            let dz = lu.solve(neg_g);
+            if dz.iter().all(|v| v.is_finite()) && self.search(&dz, s, cfg, eval) {
+                return true;
             }
         }
-        iterations += 1;
+        false
     }
+
+    /// Why no step decreases the residual: at a root the Jacobian is singular (a singular
+    /// position); away from one the loops cannot close here.
+    fn stalled(&self, rho: f64, pivot: f64, s: &[f64; N], cfg: &NewtonConfig) -> BlockFailure {
+        let row = argmax_scaled(&self.ev.f, s);
+        let iterations = self.iterations;
+        if rho <= STALL_RESIDUAL {
+            BlockFailure::Singular { row, iterations, residual: rho, pivot_ratio: pivot, tolerance: cfg.singular_tol }
+        } else {
+            BlockFailure::NoAssembly { row, iterations, residual: rho }
+        }
+    }
+}
+
+fn sum_sq_scaled<const N: usize>(f: &[f64; N], s: &[f64; N]) -> f64 {
+    let mut acc = 0.0;
+    for r in 0..N {
+        let v = f[r] / s[r];
+        acc += v * v;
+    }
+    if acc.is_nan() { f64::INFINITY } else { acc }
+}
+
+/// `d/dt |D^-1 f(z + t dz)|^2` at `t = 0`: `2 (D^-1 f) . (D^-1 J dz)`.
+fn directional_slope<const N: usize, const K: usize>(ev: &BlockEval<N, K>, s: &[f64; N], dz: &[f64; N]) -> f64 {
+    let mut acc = 0.0;
+    for r in 0..N {
+        let mut jd = 0.0;
+        for c in 0..N {
+            jd += ev.j[r][c] * dz[c];
+        }
+        acc += ev.f[r] * jd / (s[r] * s[r]);
+    }
+    2.0 * acc
+}
+
+/// `A = (D^-1 J)^T (D^-1 J)` and `g = (D^-1 J)^T D^-1 f` with `D` the row magnitudes.
+fn normal_equations<const N: usize, const K: usize>(ev: &BlockEval<N, K>, s: &[f64; N]) -> ([[f64; N]; N], [f64; N]) {
+    let mut a = [[0.0; N]; N];
+    let mut g = [0.0; N];
+    for r in 0..N {
+        let w = 1.0 / s[r];
+        for c in 0..N {
+            let jrc = ev.j[r][c] * w;
+            g[c] += jrc * ev.f[r] * w;
+            for k in 0..N {
+                a[c][k] += jrc * ev.j[r][k] * w;
+            }
+        }
+    }
+    (a, g)
 }
 
 #[cfg(test)]
@@ -299,9 +610,14 @@ mod tests {
     use super::*;
 
     fn circle(z: &[f64; 2]) -> BlockEval<2, 0> {
-        // x^2 + y^2 = 4, y = x^3  (root near (1.26, 1.97)... solved numerically)
+        // x^2 + y^2 = 4, y = x^3 (root near (1.03, 1.72), solved numerically).
         let [x, y] = *z;
-        BlockEval { f: [x * x + y * y - 4.0, y - x * x * x], j: [[2.0 * x, 2.0 * y], [-3.0 * x * x, 1.0]], keep: [] }
+        BlockEval {
+            f: [x * x + y * y - 4.0, y - x * x * x],
+            j: [[2.0 * x, 2.0 * y], [-3.0 * x * x, 1.0]],
+            scale: [x * x + y * y + 4.0, y.abs() + (x * x * x).abs()],
+            keep: [],
+        }
     }
 
     #[test]
@@ -310,8 +626,9 @@ mod tests {
         assert!(s.residual <= 1e-12);
         assert!(s.iterations > 0 && s.iterations < 10, "{}", s.iterations);
         let [x, y] = s.z;
-        assert!((x * x + y * y - 4.0).abs() < 1e-12 && (y - x.powi(3)).abs() < 1e-12);
-        // Warm start: no iteration at all.
+        // After the last correction the residual is at the rounding floor (a few ulps of 4).
+        assert!((x * x + y * y - 4.0).abs() < 4.0 * 4.0 * f64::EPSILON && (y - x.powi(3)).abs() < 8.0 * f64::EPSILON);
+        // Warm start: no iteration at all, one evaluation.
         let again = newton(s.z, &NewtonConfig::default(), circle).unwrap();
         assert_eq!(again.iterations, 0);
         assert_eq!(again.evaluations, 1);
@@ -320,14 +637,14 @@ mod tests {
     #[test]
     fn impossible_system_is_no_assembly_not_a_hang() {
         // x^2 + 1 = 0 has no real root: Newton heads for the minimum at x = 0 where J = 0.
-        let f = |z: &[f64; 1]| BlockEval { f: [z[0] * z[0] + 1.0], j: [[2.0 * z[0]]], keep: [] };
+        let f = |z: &[f64; 1]| BlockEval { f: [z[0] * z[0] + 1.0], j: [[2.0 * z[0]]], scale: [z[0] * z[0] + 1.0], keep: [] };
         let e = newton([0.7], &NewtonConfig::default(), f).unwrap_err();
-        assert!(matches!(e, BlockFailure::NoAssembly { .. } | BlockFailure::NoConvergence { .. }), "{e:?}");
+        assert!(matches!(e, BlockFailure::NoAssembly { .. }), "{e:?}");
     }
 
     #[test]
     fn nan_is_reported() {
-        let f = |z: &[f64; 1]| BlockEval { f: [z[0].sqrt() - 1.0], j: [[0.5 / z[0].sqrt()]], keep: [] };
+        let f = |z: &[f64; 1]| BlockEval { f: [z[0].sqrt() - 1.0], j: [[0.5 / z[0].sqrt()]], scale: [0.0], keep: [] };
         let e = newton([-1.0], &NewtonConfig::default(), f).unwrap_err();
         assert!(matches!(e, BlockFailure::NonFinite { row: 0, .. }));
     }
@@ -337,5 +654,51 @@ mod tests {
         let cfg = NewtonConfig::default().with_max_iterations(1);
         let e = newton([10.0, 10.0], &cfg, circle).unwrap_err();
         assert!(matches!(e, BlockFailure::NoConvergence { iterations: 1, .. }), "{e:?}");
+    }
+
+    /// `x^2 = 0`: the Jacobian vanishes at the root, Newton halves the error each step. The
+    /// root must come back as singular, not as an inaccurate success.
+    #[test]
+    fn singular_root_reached_linearly_is_singular() {
+        let f = |z: &[f64; 1]| BlockEval { f: [z[0] * z[0]], j: [[2.0 * z[0]]], scale: [1.0], keep: [] };
+        let e = newton([1.0], &NewtonConfig::default(), f).unwrap_err();
+        assert!(matches!(e, BlockFailure::Singular { .. }), "{e:?}");
+    }
+
+    /// The same circle in units a billion times smaller: the same iterations and the same
+    /// relative answer (an absolute residual test would accept the guess as it is).
+    #[test]
+    fn tests_are_unit_free() {
+        let k = 1e-9;
+        let small = |z: &[f64; 2]| {
+            let ev = circle(&[z[0], z[1] / k]);
+            // Scale the second unknown: y' = k y; rows scaled by k.
+            BlockEval {
+                f: [ev.f[0] * k, ev.f[1] * k],
+                j: [[ev.j[0][0] * k, ev.j[0][1]], [ev.j[1][0] * k, ev.j[1][1]]],
+                scale: [ev.scale[0] * k, ev.scale[1] * k],
+                keep: [],
+            }
+        };
+        let a = newton([1.0, 1.0], &NewtonConfig::default(), circle).unwrap();
+        let b = newton([1.0, k], &NewtonConfig::default(), small).unwrap();
+        assert_eq!(a.iterations, b.iterations);
+        assert!((a.z[0] - b.z[0]).abs() <= 4.0 * f64::EPSILON, "{:?} {:?}", a.z, b.z);
+        assert!((a.z[1] - b.z[1] / k).abs() <= 8.0 * f64::EPSILON * a.z[1], "{:?} {:?}", a.z, b.z);
+    }
+
+    #[test]
+    fn out_of_range_configurations_are_named() {
+        for (cfg, field) in [
+            (NewtonConfig::default().with_residual_tol(f64::INFINITY), "residual_tol"),
+            (NewtonConfig::default().with_residual_tol(f64::NAN), "residual_tol"),
+            (NewtonConfig::default().with_step_tol(-1.0), "step_tol"),
+            (NewtonConfig::default().with_singular_tol(f64::NAN), "singular_tol"),
+            (NewtonConfig::default().with_min_damping(0.0), "min_damping"),
+        ] {
+            assert_eq!(cfg.invalid_field(), Some(field));
+            let e = newton([1.0, 1.0], &cfg, circle).unwrap_err();
+            assert_eq!(e, BlockFailure::InvalidConfig { field });
+        }
     }
 }

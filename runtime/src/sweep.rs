@@ -23,7 +23,7 @@
 
 use crate::curve::{self, CurvePoint, Found, Path};
 use crate::error::{BlockInfo, Error, Location, Quantity};
-use crate::kin::Kin;
+use crate::kin::{DetSigns, Kin};
 use crate::mechanism::Mechanism;
 use crate::newton::NewtonConfig;
 use crate::table::Table;
@@ -72,6 +72,50 @@ impl Default for SweepConfig {
             corrector_abs: 1e-6,
             at_singular: AtSingular::Stop,
             singular_pivot: 1e-6,
+        }
+    }
+}
+
+impl SweepConfig {
+    /// The first field outside its valid range (NaN is outside every range), including the
+    /// fields of [`SweepConfig::newton`].
+    pub fn invalid_field(&self) -> Option<&'static str> {
+        let finite_positive = |v: f64| v > 0.0 && v < f64::INFINITY;
+        if let Some(field) = self.newton.invalid_field() {
+            Some(field)
+        } else if !(finite_positive(self.max_step) && self.max_step <= 1.0) {
+            Some("max_step")
+        } else if !(1..=60).contains(&self.max_halvings) {
+            Some("max_halvings")
+        } else if !finite_positive(self.corrector_rel) {
+            Some("corrector_rel")
+        } else if !(self.corrector_abs >= 0.0 && self.corrector_abs < f64::INFINITY) {
+            Some("corrector_abs")
+        } else if !(self.singular_pivot >= 0.0 && self.singular_pivot < 1.0) {
+            Some("singular_pivot")
+        } else {
+            None
+        }
+    }
+
+    /// Checks every field: `Error::InvalidArgument` names the first one out of range
+    /// (`max_step` in `(0, 1]`, `max_halvings` in `1..=60`, `corrector_rel` positive and finite,
+    /// `corrector_abs` non-negative and finite, `singular_pivot` in `[0, 1)`, and the Newton
+    /// configuration's ranges).
+    ///
+    /// ```
+    /// use kinloop_runtime::SweepConfig;
+    /// assert!(SweepConfig::default().validate().is_ok());
+    /// let bad = SweepConfig { max_step: 0.0, ..SweepConfig::default() };
+    /// assert!(bad.validate().unwrap_err().to_string().contains("max_step"));
+    /// ```
+    pub fn validate(&self) -> Result<(), Error> {
+        let prefix = if self.newton.invalid_field().is_some() { "newton." } else { "" };
+        match self.invalid_field() {
+            None => Ok(()),
+            Some(field) => Err(Error::InvalidArgument(format!(
+                "SweepConfig::{prefix}{field} is out of its valid range (see its documentation): {self:?}"
+            ))),
         }
     }
 }
@@ -149,7 +193,9 @@ pub struct Sweep<'m, M, S, const N: usize, const NI: usize, const NO: usize> {
     cur: Option<Kin<N, NI, NO>>,
     tau: f64,
     h: f64,
-    signs: u64,
+    signs: DetSigns,
+    /// A configuration or range error found by `with_config`, returned by the first `next`.
+    invalid: Option<Error>,
     events: Vec<Event>,
     done: bool,
     _s: PhantomData<fn() -> S>,
@@ -198,7 +244,8 @@ where
             cur: None,
             tau: 0.0,
             h: 0.0,
-            signs: 0,
+            signs: DetSigns::default(),
+            invalid: None,
             events: Vec::new(),
             done: false,
             _s: PhantomData,
@@ -208,9 +255,17 @@ where
     }
 
     /// Replaces the configuration.
+    ///
+    /// An invalid configuration (see [`SweepConfig::validate`]) makes the first item an
+    /// [`Error::InvalidArgument`] naming the field.
     pub fn with_config(mut self, cfg: SweepConfig) -> Self {
-        self.cfg = cfg;
-        self.set_step_bounds();
+        match cfg.validate() {
+            Ok(()) => {
+                self.cfg = cfg;
+                self.set_step_bounds();
+            }
+            Err(e) => self.invalid = Some(e),
+        }
         self
     }
 
@@ -305,6 +360,10 @@ where
     pub fn next_kin(&mut self) -> Option<Result<Kin<N, NI, NO>, Error>> {
         if self.done || self.next >= self.samples {
             return None;
+        }
+        if let Some(e) = self.invalid.take() {
+            self.done = true;
+            return Some(Err(e));
         }
         let Some(cur) = self.cur.as_ref() else {
             let x = self.path.from;
@@ -436,7 +495,7 @@ where
             Some(Found::Crossing(at, past)) => {
                 // The block whose determinant sign differs on the far side.
                 let beyond = self.m.kinematics_at_flat(&path.at_sigma(past.sigma), &past.q, &newton).ok();
-                let flipped = beyond.map_or(weakest, |n| (n.health.det_signs ^ self.signs).trailing_zeros() as usize);
+                let flipped = beyond.and_then(|n| n.health.det_signs.first_difference(&self.signs)).unwrap_or(weakest);
                 self.events.push(Event::on_curve(EventKind::SingularCrossing, &path, &at, block_of(flipped)));
                 if self.cfg.at_singular == AtSingular::Continue
                     && let Some(n) = self.resume_past(past, target)

@@ -110,7 +110,7 @@ impl Mechanism<1, 1, 1> for SliderCrank {
             dout: [[w1]],
             d2out: [[[w2]]],
             report: SolveReport::given(self.residual_flat(x, q)[0].abs()),
-            health: Health { det_signs: u64::from(w < 0.0), min_pivot: 1.0, weakest_block: 0 },
+            health: { let mut h = Health { min_pivot: 1.0, ..Health::default() }; if w < 0.0 { h.det_signs.set_negative(0); } h },
         })
     }
 
