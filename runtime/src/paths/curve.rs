@@ -6,10 +6,11 @@
 //! These routines run only on the rare paths (locating an event, tracing a closed curve), so
 //! they use nalgebra's dynamic matrices for the `(N + 1)`-sized bordered systems.
 
+use crate::events::{BlockInfo, Event, EventKind};
 use crate::kin::Jac;
-use crate::lu::Lu;
 use crate::mechanism::Mechanism;
-use crate::newton::{NewtonConfig, system_residual};
+use crate::solvers::lu::Lu;
+use crate::solvers::newton::{NewtonConfig, system_residual};
 use nalgebra::{DMatrix, DVector};
 
 /// A straight path in input space.
@@ -28,7 +29,13 @@ impl<const NI: usize> Path<NI> {
         for i in 0..NI {
             delta[i] = to[i] - from[i];
         }
-        let len = delta.iter().map(|d| d * d).sum::<f64>().sqrt();
+        // Scaled so that a range near the largest `f64` does not overflow its length.
+        let big = delta.iter().fold(0.0f64, |m, d| m.max(d.abs()));
+        let len = if big > 0.0 && big.is_finite() {
+            big * delta.iter().map(|d| (d / big) * (d / big)).sum::<f64>().sqrt()
+        } else {
+            big
+        };
         Path { from, delta, len }
     }
 
@@ -45,6 +52,17 @@ impl<const NI: usize> Path<NI> {
     pub fn at_sigma(&self, sigma: f64) -> [f64; NI] {
         self.at_tau(sigma / self.len)
     }
+}
+
+/// The event of kind `kind` at curve point `p` of `path`.
+pub(crate) fn event_at<const N: usize, const NI: usize>(
+    kind: EventKind,
+    path: &Path<NI>,
+    p: &CurvePoint<N>,
+    block: Option<(usize, BlockInfo)>,
+) -> Event {
+    let tau = p.sigma / path.len;
+    Event { kind, x: path.at_tau(tau).to_vec(), tau, q: p.q.to_vec(), block }
 }
 
 /// Derivative of `f` along the path per unit `sigma`.
@@ -277,6 +295,9 @@ pub(crate) fn trace<M, const N: usize, const NI: usize, const NO: usize>(
 where
     M: Mechanism<N, NI, NO>,
 {
+    if !(ds0 > 0.0 && ds0.is_finite() && max_arc.is_finite()) {
+        return None;
+    }
     let det_at = |p: &CurvePoint<N>| signed_det(m, &path.at_sigma(p.sigma), &p.q);
     let mut a = start.clone();
     let mut det_a = det_at(&a);
@@ -373,7 +394,7 @@ pub struct Traced<const N: usize, const NI: usize> {
     /// Points along the curve, about `ds` apart.
     pub points: Vec<TracedPoint<N, NI>>,
     /// The limit positions passed (where the input reversed), located precisely.
-    pub folds: Vec<crate::sweep::Event>,
+    pub folds: Vec<Event>,
     /// The curve closed on itself (it came back to its first point).
     pub closed: bool,
 }
@@ -396,9 +417,9 @@ pub fn trace_curve<M, const N: usize, const NI: usize, const NO: usize>(
 where
     M: Mechanism<N, NI, NO>,
 {
-    use crate::sweep::{Event, EventKind};
+    cfg.validate()?;
     let path = Path::new(from, to);
-    if path.len.is_nan() || path.len <= 0.0 || ds.is_nan() || ds <= 0.0 || !ds.is_finite() {
+    if !path.len.is_finite() || path.len.is_nan() || path.len <= 0.0 || ds.is_nan() || ds <= 0.0 || !ds.is_finite() {
         return Err(crate::Error::InvalidArgument(
             "trace_curve needs `to` different from `from` and a positive, finite `ds`".into(),
         ));
@@ -425,7 +446,7 @@ where
         if (p.dsigma() > 0.0) != (next.dsigma() > 0.0)
             && let Some(f) = locate_fold(m, &path, &p, step, next.dsigma(), cfg)
         {
-            out.folds.push(Event::on_curve(EventKind::LimitPosition, &path, &f, None));
+            out.folds.push(event_at(EventKind::LimitPosition, &path, &f, None));
         }
         walked += step;
         let back = (next.y() - &start_y).norm();

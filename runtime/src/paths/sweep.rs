@@ -21,11 +21,12 @@
 //!
 //! The iterator allocates nothing per step (events are rare and allocate).
 
-use crate::curve::{self, CurvePoint, Found, Path};
-use crate::error::{BlockInfo, Error, Location, Quantity};
+use super::curve::{self, CurvePoint, Found, Path};
+use crate::error::{Error, Quantity};
+use crate::events::{BlockInfo, Event, EventKind, Location};
 use crate::kin::{DetSigns, Kin};
 use crate::mechanism::Mechanism;
-use crate::newton::NewtonConfig;
+use crate::solvers::newton::NewtonConfig;
 use crate::table::Table;
 use std::marker::PhantomData;
 
@@ -120,53 +121,9 @@ impl SweepConfig {
     }
 }
 
-/// Kinds of singular positions met along a sweep.
-#[derive(Clone, Copy, Debug, PartialEq, Eq)]
-#[non_exhaustive]
-pub enum EventKind {
-    /// The input cannot advance on this branch: a limit (dead-centre) position of the input, a
-    /// fold of the solution curve where the input reverses.
-    LimitPosition,
-    /// A block's Jacobian is singular with solutions on both sides and its determinant changes
-    /// sign: a change point (bifurcation) where the assembly mode can change.
-    SingularCrossing,
-}
-
-impl std::fmt::Display for EventKind {
-    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
-        f.write_str(match self {
-            EventKind::LimitPosition => "limit position",
-            EventKind::SingularCrossing => "singular crossing",
-        })
-    }
-}
-
-/// A singular position located along a sweep.
-#[derive(Clone, Debug, PartialEq)]
-pub struct Event {
-    pub kind: EventKind,
-    /// Input values at the event.
-    pub x: Vec<f64>,
-    /// Fraction of the sweep path at the event (`0` at `from`, `1` at `to`).
-    pub tau: f64,
-    /// Positions of the unknowns at the event.
-    pub q: Vec<f64>,
-    /// The block that became singular, if identified, with its index in solve order.
-    pub block: Option<(usize, BlockInfo)>,
-}
-
-impl Event {
-    /// The event at curve point `p` of `path`.
-    pub(crate) fn on_curve<const N: usize, const NI: usize>(
-        kind: EventKind,
-        path: &Path<NI>,
-        p: &CurvePoint<N>,
-        block: Option<(usize, BlockInfo)>,
-    ) -> Event {
-        let tau = p.sigma / path.len;
-        Event { kind, x: path.at_tau(tau).to_vec(), tau, q: p.q.to_vec(), block }
-    }
-}
+/// Bound on the internal steps between two samples (attempts, accepted or not): a sweep never
+/// loops without bound.
+const MAX_ATTEMPTS_PER_SAMPLE: u32 = 100_000;
 
 /// Why a step was not accepted.
 enum Outcome {
@@ -227,6 +184,11 @@ where
             return Err(Error::InvalidArgument("a sweep needs at least one sample".into()));
         }
         let path = Path::new(from, to);
+        if !path.len.is_finite() {
+            return Err(Error::InvalidArgument(
+                "the sweep's range `to - from` overflows (its length is not finite)".into(),
+            ));
+        }
         if samples > 1 && (path.len.is_nan() || path.len <= 0.0) {
             return Err(Error::InvalidArgument("a sweep with several samples needs `to` different from `from`".into()));
         }
@@ -356,6 +318,36 @@ where
         }
     }
 
+    /// The first sample, solved from the guess.
+    fn first_sample(&mut self) -> Result<Kin<N, NI, NO>, Error> {
+        let x = self.path.from;
+        match self.m.kinematics_flat(&x, &self.guess, &self.cfg.newton) {
+            Ok(k) => {
+                self.cur = Some(k);
+                self.signs = k.health.det_signs;
+                self.h = self.h_max;
+                self.next = 1;
+                Ok(k)
+            }
+            Err(e) => {
+                self.done = true;
+                Err(e)
+            }
+        }
+    }
+
+    /// The error of a sweep that exhausted its step budget between two samples.
+    #[cold]
+    fn no_progress(&self) -> Error {
+        Error::Branch {
+            message: format!(
+                "the sweep made no progress towards the next sample in {MAX_ATTEMPTS_PER_SAMPLE} steps \
+                 (the solution curve is too rough for the sample spacing)"
+            ),
+            at: self.location(&self.path.at_tau(self.tau), None),
+        }
+    }
+
     /// The next sample as a flat state.
     pub fn next_kin(&mut self) -> Option<Result<Kin<N, NI, NO>, Error>> {
         if self.done || self.next >= self.samples {
@@ -366,27 +358,20 @@ where
             return Some(Err(e));
         }
         let Some(cur) = self.cur.as_ref() else {
-            let x = self.path.from;
-            return Some(match self.m.kinematics_flat(&x, &self.guess, &self.cfg.newton) {
-                Ok(k) => {
-                    self.cur = Some(k);
-                    self.signs = k.health.det_signs;
-                    self.h = self.h_max;
-                    self.next = 1;
-                    Ok(k)
-                }
-                Err(e) => {
-                    self.done = true;
-                    Err(e)
-                }
-            });
+            return Some(self.first_sample());
         };
         let target = if self.next + 1 == self.samples { 1.0 } else { self.next as f64 * self.spacing };
         let mut successes = 0u32;
         // The state is kept in `self.cur` only (no local copy): every copy of the ~150-byte
         // state is a memcpy on the per-step path.
         let mut cur = cur;
+        let mut attempts = 0u32;
         while self.tau < target {
+            attempts += 1;
+            if attempts > MAX_ATTEMPTS_PER_SAMPLE {
+                self.done = true;
+                return Some(Err(self.no_progress()));
+            }
             let remaining = target - self.tau;
             // Within a hair of the target, land on it: a full step computed in floating point
             // may fall short by an ulp and leave a needless tiny step.
@@ -487,7 +472,7 @@ where
             // A true limit position is singular; a reversal where the Jacobian is regular is a
             // kink of a non-smooth curve (e.g. through `abs`), reported below as a branch error.
             Some(Found::Fold(fold)) if curve::pivot_at(self.m, &path.at_sigma(fold.sigma), &fold.q) < 1e-6 => {
-                let ev = Event::on_curve(EventKind::LimitPosition, &path, &fold, block_of(weakest));
+                let ev = curve::event_at(EventKind::LimitPosition, &path, &fold, block_of(weakest));
                 let at = self.location(&ev.x, ev.block);
                 self.events.push(ev);
                 return Err(Error::SweepStopped { kind: EventKind::LimitPosition, at });
@@ -496,7 +481,7 @@ where
                 // The block whose determinant sign differs on the far side.
                 let beyond = self.m.kinematics_at_flat(&path.at_sigma(past.sigma), &past.q, &newton).ok();
                 let flipped = beyond.and_then(|n| n.health.det_signs.first_difference(&self.signs)).unwrap_or(weakest);
-                self.events.push(Event::on_curve(EventKind::SingularCrossing, &path, &at, block_of(flipped)));
+                self.events.push(curve::event_at(EventKind::SingularCrossing, &path, &at, block_of(flipped)));
                 if self.cfg.at_singular == AtSingular::Continue
                     && let Some(n) = self.resume_past(past, target)
                 {

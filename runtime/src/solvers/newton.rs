@@ -17,7 +17,7 @@
 //! success.
 
 use crate::error::Error;
-use crate::lu::Lu;
+use crate::solvers::lu::Lu;
 
 /// Tolerances and limits of the Newton solver.
 ///
@@ -31,12 +31,14 @@ use crate::lu::Lu;
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct NewtonConfig {
     /// Converged when every residual is at most this fraction of its row magnitude,
-    /// `max_i |f_i| / scale_i <= residual_tol` (default `1e-12`; valid range `(0, 1e-3]`).
+    /// `max_i |f_i| / scale_i <= residual_tol` (default `1e-12`; valid range `[0, 1e-3]`; `0`
+    /// iterates down to the rounding floor).
     pub residual_tol: f64,
     /// Also stops when a full Newton step is at most this fraction of each unknown's magnitude
-    /// (default `1e-13`; valid range `[0, 1e-3]`); the step is then applied and the scaled
-    /// residual must still be within `1000 * residual_tol` (the rounding floor of rows whose
-    /// terms are much larger than their derivatives).
+    /// (default `1e-13`; valid range `[0, 1e-3]`), or when the residual stops decreasing; the
+    /// step is then applied and the scaled residual must still be within
+    /// `1000 * max(residual_tol, 16 eps)` (the rounding floor of rows whose terms are much
+    /// larger than their derivatives, e.g. near a limit position).
     pub step_tol: f64,
     /// Iteration cap per block (default `50`; at most `10_000`).
     pub max_iterations: u32,
@@ -90,7 +92,7 @@ impl NewtonConfig {
     /// The first field outside its valid range (NaN is outside every range).
     pub fn invalid_field(&self) -> Option<&'static str> {
         let within = |v: f64, lo: f64, hi: f64, lo_open: bool| (if lo_open { v > lo } else { v >= lo }) && v <= hi;
-        if !within(self.residual_tol, 0.0, 1e-3, true) {
+        if !within(self.residual_tol, 0.0, 1e-3, false) {
             Some("residual_tol")
         } else if !within(self.step_tol, 0.0, 1e-3, false) {
             Some("step_tol")
@@ -116,9 +118,7 @@ impl NewtonConfig {
 
 /// The error for a configuration field out of range.
 pub(crate) fn invalid_config(field: &str, cfg: &NewtonConfig) -> Error {
-    Error::InvalidArgument(format!(
-        "NewtonConfig::{field} is out of its valid range (see its documentation): {cfg:?}"
-    ))
+    Error::InvalidArgument(format!("NewtonConfig::{field} is out of its valid range (see its documentation): {cfg:?}"))
 }
 
 /// Why a solve stopped successfully.
@@ -338,12 +338,17 @@ pub fn newton<const N: usize, const K: usize>(
     // NaN fails both tests; an out-of-range tolerance is diagnosed by `iterate`.
     if rho <= cfg.residual_tol && cfg.residual_tol <= 1e-3 {
         let (dz, pivot) = newton_step(&ev, &s);
-        if pivot > cfg.singular_tol {
+        let step = scaled_step(&dz, &z0);
+        if pivot > cfg.singular_tol && step <= cfg.residual_tol.sqrt() {
+            // A correction within the rounding of the unknowns is noise: keeping the guess
+            // then makes a solve from a solution return it unchanged.
             let mut z = z0;
-            for c in 0..N {
-                z[c] += dz[c];
+            if step > 4.0 * f64::EPSILON {
+                for c in 0..N {
+                    z[c] += dz[c];
+                }
             }
-            if scaled_step(&dz, &z0) <= cfg.residual_tol.sqrt() {
+            {
                 return Ok(Solved {
                     z,
                     eval: ev,
@@ -371,7 +376,16 @@ pub fn iterate<const N: usize, const K: usize>(
     if let Some(field) = cfg.invalid_field() {
         return Err(BlockFailure::InvalidConfig { field });
     }
-    let mut it = Iter { z: z0, ev: ev0, iterations: 0, evaluations: 1, prev_step: f64::INFINITY, slow_run: 0, rho_mark: f64::INFINITY };
+    let mut it = Iter {
+        z: z0,
+        ev: ev0,
+        iterations: 0,
+        evaluations: 1,
+        prev_step: f64::INFINITY,
+        slow_run: 0,
+        rho_mark: f64::INFINITY,
+        prev_rho: f64::INFINITY,
+    };
     loop {
         if let Some(row) = first_non_finite(&it.ev) {
             return Err(BlockFailure::NonFinite { row, iterations: it.iterations });
@@ -381,7 +395,11 @@ pub fn iterate<const N: usize, const K: usize>(
         let (dz, pivot) = newton_step(&it.ev, &s);
         let step = scaled_step(&dz, &it.z);
         let converged = rho <= cfg.residual_tol;
-        let at_floor = step <= cfg.step_tol && rho <= FLOOR_FACTOR * cfg.residual_tol;
+        // At the rounding floor the step no longer shrinks below `step_tol` or the residual no
+        // longer decreases (a singular root still divides it by about four per iteration).
+        let stagnant = rho >= 0.5 * it.prev_rho;
+        let floor = FLOOR_FACTOR * cfg.residual_tol.max(16.0 * f64::EPSILON);
+        let at_floor = (step <= cfg.step_tol || stagnant) && rho <= floor;
         if converged || at_floor {
             let termination = if converged { Termination::ResidualTolerance } else { Termination::StepTolerance };
             return it.finish(dz, step, pivot, rho, &s, termination, cfg, &mut eval);
@@ -390,7 +408,7 @@ pub fn iterate<const N: usize, const K: usize>(
             let row = argmax_scaled(&it.ev.f, &s);
             // Over the second half of the iterations the residual did not even halve: it
             // crawls into a minimum that is not a root.
-            if rho > STALL_RESIDUAL && rho > 0.5 * it.rho_mark {
+            if cfg.max_iterations >= 8 && rho > STALL_RESIDUAL && rho > 0.5 * it.rho_mark {
                 return Err(BlockFailure::NoAssembly { row, iterations: it.iterations, residual: rho });
             }
             return Err(BlockFailure::NoConvergence { row, iterations: it.iterations, residual: rho });
@@ -399,13 +417,20 @@ pub fn iterate<const N: usize, const K: usize>(
             it.rho_mark = rho;
         }
         let newton_ok = pivot > cfg.singular_tol * 1e-3 && step.is_finite();
-        let moved = (newton_ok && it.search(&dz, &s, cfg, &mut eval)) || it.descend(&s, cfg, &mut eval);
+        // At the rounding floor only the Newton step is worth trying.
+        let moved =
+            (newton_ok && it.search(&dz, &s, cfg, &mut eval)) || (rho > floor && it.descend(&s, cfg, &mut eval));
         if !moved {
+            if rho <= floor {
+                // No step decreases a residual already at its rounding floor.
+                return it.finish(dz, step, pivot, rho, &s, Termination::StepTolerance, cfg, &mut eval);
+            }
             return Err(it.stalled(rho, pivot, &s, cfg));
         }
         let slow = newton_ok && step > LINEAR_CONTRACTION * it.prev_step;
         it.slow_run = if slow { it.slow_run + 1 } else { 0 };
         it.prev_step = if newton_ok { step } else { f64::INFINITY };
+        it.prev_rho = rho;
         it.iterations += 1;
     }
 }
@@ -423,6 +448,8 @@ struct Iter<const N: usize, const K: usize> {
     slow_run: u32,
     /// The scaled residual half way through the iteration budget.
     rho_mark: f64,
+    /// The scaled residual at the previous iterate.
+    prev_rho: f64,
 }
 
 impl<const N: usize, const K: usize> Iter<N, K> {
@@ -637,7 +664,12 @@ mod tests {
     #[test]
     fn impossible_system_is_no_assembly_not_a_hang() {
         // x^2 + 1 = 0 has no real root: Newton heads for the minimum at x = 0 where J = 0.
-        let f = |z: &[f64; 1]| BlockEval { f: [z[0] * z[0] + 1.0], j: [[2.0 * z[0]]], scale: [z[0] * z[0] + 1.0], keep: [] };
+        let f = |z: &[f64; 1]| BlockEval {
+            f: [z[0] * z[0] + 1.0],
+            j: [[2.0 * z[0]]],
+            scale: [z[0] * z[0] + 1.0],
+            keep: [],
+        };
         let e = newton([0.7], &NewtonConfig::default(), f).unwrap_err();
         assert!(matches!(e, BlockFailure::NoAssembly { .. }), "{e:?}");
     }

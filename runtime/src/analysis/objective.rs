@@ -12,8 +12,8 @@ use crate::analysis::{Column, Sampled};
 use crate::error::Error;
 use crate::kin::{Kin, Sens};
 use crate::mechanism::Sensitivities;
-use crate::newton::NewtonConfig;
-use crate::sweep::{Sweep, SweepConfig};
+use crate::paths::sweep::{Sweep, SweepConfig};
+use crate::solvers::newton::NewtonConfig;
 
 /// Which extremum to find.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
@@ -119,121 +119,4 @@ where
         i += 1;
     }
     Ok((value, grad))
-}
-
-/// Settings of [`levenberg_marquardt`].
-#[derive(Clone, Copy, Debug, PartialEq)]
-pub struct LmConfig {
-    /// Stop when the residual norm falls below this (default `1e-10`).
-    pub tol: f64,
-    /// Stop after this many evaluations (default `200`).
-    pub max_evaluations: usize,
-    /// Initial damping (default `1e-3`).
-    pub lambda: f64,
-}
-
-impl Default for LmConfig {
-    fn default() -> Self {
-        LmConfig { tol: 1e-10, max_evaluations: 200, lambda: 1e-3 }
-    }
-}
-
-/// Result of [`levenberg_marquardt`]: the solution and its diagnostics.
-#[derive(Clone, Debug, PartialEq)]
-pub struct LmResult<const P: usize> {
-    pub x: [f64; P],
-    /// Euclidean norm of the residuals at `x`.
-    pub residual: f64,
-    /// Accepted steps.
-    pub iterations: usize,
-    /// Residual-and-Jacobian evaluations (each one full objective evaluation).
-    pub evaluations: usize,
-    /// The norm after every accepted step (for printing the convergence).
-    pub history: Vec<f64>,
-    /// `true` when the norm reached `tol`.
-    pub converged: bool,
-}
-
-/// Minimises `|r(x)|^2` for `R` residuals in `P` variables by Levenberg–Marquardt, with the
-/// Jacobian supplied by `f` (e.g. from generated sensitivities). Steps solve
-/// `(J^T J + lambda diag(J^T J)) dx = -J^T r`; a failed evaluation (e.g. a design that cannot
-/// assemble) counts as a rejected step.
-pub fn levenberg_marquardt<const R: usize, const P: usize>(
-    mut f: impl FnMut(&[f64; P]) -> Result<([f64; R], [[f64; P]; R]), Error>,
-    x0: [f64; P],
-    cfg: &LmConfig,
-) -> Result<LmResult<P>, Error> {
-    let norm = |r: &[f64; R]| r.iter().map(|v| v * v).sum::<f64>().sqrt();
-    let (mut r, mut jac) = f(&x0)?;
-    let mut x = x0;
-    let mut evaluations = 1;
-    let mut lambda = cfg.lambda;
-    let mut history = vec![norm(&r)];
-    let mut iterations = 0;
-    while norm(&r) > cfg.tol && evaluations < cfg.max_evaluations {
-        // Normal equations (P is small).
-        let mut a = nalgebra::DMatrix::<f64>::zeros(P, P);
-        let mut g = nalgebra::DVector::<f64>::zeros(P);
-        for i in 0..P {
-            for j in 0..P {
-                a[(i, j)] = (0..R).map(|k| jac[k][i] * jac[k][j]).sum();
-            }
-            g[i] = -(0..R).map(|k| jac[k][i] * r[k]).sum::<f64>();
-        }
-        let mut accepted = false;
-        while !accepted && evaluations < cfg.max_evaluations {
-            let mut damped = a.clone();
-            for i in 0..P {
-                damped[(i, i)] += lambda * a[(i, i)].max(1e-12);
-            }
-            let Some(dx) = damped.lu().solve(&g) else {
-                lambda *= 10.0;
-                continue;
-            };
-            let mut trial = x;
-            for i in 0..P {
-                trial[i] += dx[i];
-            }
-            evaluations += 1;
-            match f(&trial) {
-                Ok((rt, jt)) if norm(&rt) < norm(&r) => {
-                    x = trial;
-                    r = rt;
-                    jac = jt;
-                    lambda = (lambda * 0.3).max(1e-12);
-                    accepted = true;
-                }
-                _ => lambda *= 10.0,
-            }
-            if lambda > 1e12 {
-                break;
-            }
-        }
-        if !accepted {
-            break;
-        }
-        iterations += 1;
-        history.push(norm(&r));
-    }
-    let residual = norm(&r);
-    Ok(LmResult { x, residual, iterations, evaluations, history, converged: residual <= cfg.tol })
-}
-
-#[cfg(test)]
-mod tests {
-    use super::*;
-
-    #[test]
-    fn lm_solves_a_nonlinear_system() {
-        // x^2 + y^2 = 4, x y = 1 from (2, 0.1).
-        let f = |v: &[f64; 2]| {
-            let [x, y] = *v;
-            Ok(([x * x + y * y - 4.0, x * y - 1.0], [[2.0 * x, 2.0 * y], [y, x]]))
-        };
-        let r = levenberg_marquardt(f, [2.0, 0.1], &LmConfig::default()).unwrap();
-        assert!(r.converged, "{r:?}");
-        let [x, y] = r.x;
-        assert!((x * x + y * y - 4.0).abs() < 1e-9 && (x * y - 1.0).abs() < 1e-9);
-        assert!(r.evaluations < 30);
-    }
 }
