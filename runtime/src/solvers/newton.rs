@@ -283,12 +283,14 @@ fn scaled_step<const N: usize>(dz: &[f64; N], z: &[f64; N]) -> f64 {
     m
 }
 
-/// The scaled residual of a full system (continuation, event location), with the fallback row
-/// magnitudes `sum_j |J_ij|` (see [`BlockEval::scale`]).
-pub(crate) fn system_residual<const N: usize>(f: &[f64; N], j: &[[f64; N]; N]) -> f64 {
+/// The scaled residual of a full system (continuation, event location): each residual relative
+/// to the fallback row magnitude `sum_j |J_ij| + |extra_i|` (see [`BlockEval::scale`]), where
+/// `extra` holds further derivatives of the row (e.g. along the input path, which keeps the
+/// magnitude away from zero at a limit position).
+pub(crate) fn system_residual<const N: usize>(f: &[f64; N], j: &[[f64; N]; N], extra: &[f64; N]) -> f64 {
     let mut s = [0.0; N];
     for r in 0..N {
-        s[r] = j[r].iter().map(|v| v.abs()).sum();
+        s[r] = j[r].iter().map(|v| v.abs()).sum::<f64>() + extra[r].abs();
     }
     scaled_residual(f, &s)
 }
