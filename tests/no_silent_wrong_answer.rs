@@ -186,3 +186,44 @@ fn invalid_newton_configurations_are_named() {
         }
     }
 }
+
+#[test]
+fn limit_positions_are_located_alike_at_every_scale() {
+    // Non-Grashof four-bar: the crank stops where coupler and rocker stretch (law of cosines).
+    let base = FourBar { a: 3.0, b: 1.0, c: 1.5, d: 3.0 };
+    let phi_lim = ((base.a * base.a + base.d * base.d - (base.b + base.c).powi(2)) / (2.0 * base.a * base.d)).acos();
+    for k in [1e-3, 1.0, 1e6] {
+        let m = FourBar { a: base.a * k, b: base.b * k, c: base.c * k, d: base.d * k };
+        let exact = closed_form(&base, 0.2, 1.0).unwrap();
+        let mut s = m.sweep(0.2, 1.5, 14, &FourBarUnknowns { beta: exact[0], gamma: exact[1] }).unwrap();
+        let stop = s.by_ref().find_map(|r| r.err()).expect("the limit stops the sweep");
+        assert!(
+            matches!(stop, Error::SweepStopped { kind: kinloop::EventKind::LimitPosition, .. }),
+            "scale {k}: {stop}"
+        );
+        let at = s.events()[0].x[0];
+        // The fold is located to about sqrt(eps) in the input (the curve is flat there in phi).
+        assert!((at - phi_lim).abs() < 1e-9, "scale {k}: limit at {at}, law of cosines {phi_lim}");
+    }
+}
+
+proptest::proptest! {
+    #![proptest_config(proptest::prelude::ProptestConfig::with_cases(300))]
+    /// Whatever the guess (near or tens of radians away) every `Ok` satisfies the loop to a few
+    /// ulps of its magnitude, and is one of the two closed-form assemblies.
+    #[test]
+    fn every_ok_has_a_small_scaled_residual(
+        phi in 0.0..6.3f64,
+        g0 in -60.0..60.0f64,
+        g1 in -60.0..60.0f64,
+        scale in proptest::sample::select(vec![1e-6, 1.0, 1e4]),
+    ) {
+        let m = FourBar { a: CRANK_ROCKER.a * scale, b: CRANK_ROCKER.b * scale, c: CRANK_ROCKER.c * scale, d: CRANK_ROCKER.d * scale };
+        if let Ok(k) = m.kinematics_flat(&[phi], &[g0, g1], &NewtonConfig::default()) {
+            proptest::prop_assert!(scaled_residual(&m, phi, &k.q) <= 1e-12, "{:?}", k.q);
+            let want = [1.0, -1.0].map(|s| closed_form(&CRANK_ROCKER, phi, s).unwrap());
+            let tol = |v: f64| 8.0 * f64::EPSILON * v.abs().max(PI);
+            proptest::prop_assert!(want.iter().any(|w| (0..2).all(|u| angle_err(k.q[u], w[u]) <= tol(k.q[u]))), "{:?} vs {want:?}", k.q);
+        }
+    }
+}

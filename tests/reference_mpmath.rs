@@ -133,8 +133,9 @@ fn check<M: Mechanism<N, 1, NO>, const N: usize, const NO: usize>(
     let last = &reference.rows[reference.rows.len() - 1];
     let mut guess = [0.0; N];
     guess.copy_from_slice(&first[1..1 + N]);
-    let sweep = kinloop::Sweep::<M, Kin<N, 1, NO>, N, 1, NO>::new(m, [first[0]], [last[0]], reference.rows.len(), guess)
-        .unwrap();
+    let sweep =
+        kinloop::Sweep::<M, Kin<N, 1, NO>, N, 1, NO>::new(m, [first[0]], [last[0]], reference.rows.len(), guess)
+            .unwrap();
     for (i, k) in sweep.enumerate() {
         let k = k.unwrap_or_else(|e| panic!("{name} sweep sample {i}: {e}"));
         assert!((k.x[0] - reference.rows[i][0]).abs() <= 4.0 * f64::EPSILON * 7.0, "{name} sample {i} at {:?}", k.x);

@@ -78,7 +78,7 @@ impl Health {
         }
         let p = lu.pivot_ratio();
         // NaN counts as singular.
-        if !(p >= self.min_pivot) {
+        if p < self.min_pivot || p.is_nan() {
             self.min_pivot = if p.is_nan() { 0.0 } else { p };
             self.weakest_block = block;
         }

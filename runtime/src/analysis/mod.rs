@@ -451,4 +451,19 @@ mod tests {
         assert!((turn.at(1.0)?.q[0] - (1f64.cos() + (9.0 - 1f64.sin().powi(2)).sqrt())).abs() < 1e-12);
         Ok(())
     }
+
+    /// A turn that starts (and so ends) at the outer dead centre: the analog there rounds to a
+    /// tiny non-zero value, and that end used to be reported as an extreme, twice.
+    #[test]
+    fn a_range_starting_at_a_dead_centre_reports_only_interior_extremes() {
+        let m = SliderCrank { r: 1.0, l: 3.0, e: 0.5 };
+        let outer = (4.0f64.powi(2) - 0.25).sqrt();
+        let start = 0.5f64.atan2(outer);
+        let turn = Sampled::sweep(&m, start, start + std::f64::consts::TAU, 37, [outer]).unwrap();
+        let e = turn.extremes("x").unwrap();
+        assert_eq!(e.len(), 1, "{e:?}");
+        assert_eq!(e[0].kind, ExtremeKind::Min);
+        // The inner dead centre: crank and rod folded, x = sqrt((l - r)^2 - e^2).
+        assert!((e[0].value() - (4.0f64 - 0.25).sqrt()).abs() < 1e-12, "{e:?}");
+    }
 }

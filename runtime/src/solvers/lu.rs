@@ -118,7 +118,7 @@ impl<const N: usize> Lu<N> {
                 negative_det = !negative_det;
             }
             // `f64::min` would skip a NaN pivot; a NaN must never pass as a regular pivot.
-            if !(pivot.abs() >= min_pivot) {
+            if pivot.abs() < min_pivot || pivot.is_nan() {
                 min_pivot = pivot.abs();
             }
             det *= pivot;

@@ -528,7 +528,7 @@ impl<const N: usize, const K: usize> Iter<N, K> {
         // The slope of phi along dz is -2 phi0 for a Newton step; for another direction it is
         // 2 g.dz with g = J^T D^-2 f.
         let slope = directional_slope(&self.ev, s, dz);
-        if !(slope < 0.0) {
+        if slope.is_nan() || slope >= 0.0 {
             return false;
         }
         let mut t = 1.0f64;
