@@ -64,6 +64,7 @@ pub struct Health {
 }
 
 impl Default for Health {
+    #[inline]
     fn default() -> Self {
         Health { det_signs: DetSigns::default(), min_pivot: f64::INFINITY, weakest_block: 0 }
     }

@@ -4,3 +4,4 @@
 
 pub mod lu;
 pub mod newton;
+mod newton_config;
