@@ -1,12 +1,11 @@
-//! Objectives over a whole sweep with exact parameter gradients, and a small
-//! Levenberg–Marquardt solver for synthesis.
+//! Objectives over a whole sweep with exact parameter gradients (for synthesis with
+//! [`LevenbergMarquardt`](super::optimize::LevenbergMarquardt)).
 //!
 //! * [`extremum`]: the maximum or minimum of a quantity over an input range, located as a root
 //!   of its velocity analog, with the gradient of its value (by the envelope theorem,
 //!   `d max / dp = d q / dp` at the extremum, since `dq/dx = 0` there) and of its location
 //!   (`dx*/dp = -(d q' / dp) / q''`).
 //! * [`integral`]: the trapezoidal integral of a quantity over a sweep and its exact gradient.
-//! * [`levenberg_marquardt`]: least squares on residuals with a Jacobian, e.g. from the above.
 
 use crate::analysis::{Column, Sampled};
 use crate::error::Error;
