@@ -242,6 +242,7 @@ pub fn newton<const N: usize, const K: usize>(
 /// Newton iterations from `z0`, whose evaluation is `ev0`. The generated code calls it through
 /// [`newton`] when the guess does not meet the tolerance.
 #[doc(hidden)]
+#[cold]
 #[inline(never)]
 pub fn iterate<const N: usize, const K: usize>(
     z0: [f64; N],
