@@ -11,9 +11,10 @@
 
 use super::{Minimum, Stop};
 
-/// Derivative-free minimiser: the Nelder–Mead simplex method (see the [module
-/// documentation](self)). The configuration is apart from the problem: build it once, then
-/// [`minimize`](NelderMead::minimize) any objective.
+/// Derivative-free minimiser: the Nelder–Mead simplex method with the dimension-adaptive
+/// coefficients of Gao and Han, restarts and evaluation counting. Infeasible points are marked
+/// by an infinite (or NaN) objective. The configuration is apart from the problem: build it
+/// once, then [`minimize`](NelderMead::minimize) any objective.
 ///
 /// ```
 /// use kinloop_runtime::analysis::optimize::NelderMead;
