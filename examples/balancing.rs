@@ -42,7 +42,7 @@
 mod common;
 
 use common::{Panel, Series, figure_dir, panels};
-use kinloop::analysis::{NelderMead, Sampled, nelder_mead_boxed};
+use kinloop::analysis::{NelderMead, Sampled};
 use std::f64::consts::{PI, TAU};
 
 kinloop::mechanism! {
@@ -151,10 +151,11 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
 
     let (lo, hi) = ([0.5, 1.5, -1.0, -PI], [2.0, 6.0, 1.0, PI]);
     let cfg = NelderMead { max_evaluations: 10_000, f_tol: 1e-12, x_tol: 1e-8, ..NelderMead::default() };
-    let best = nelder_mead_boxed(|p| unbalance(&design(*p), SAMPLES), [1.0, 2.0, 0.3, 0.0], lo, hi, &cfg);
+    let best = cfg.minimize_boxed(|p| unbalance(&design(*p), SAMPLES), [1.0, 2.0, 0.3, 0.0], lo, hi);
     println!(
         "\nminimum of D over rho, gamma_b, k_b, delta (Nelder-Mead: {} evaluations, converged = {}):",
-        best.evaluations, best.converged
+        best.evaluations,
+        best.converged()
     );
     let optimum = design(best.x);
     let balanced = describe("optimum", &optimum)?;
@@ -165,12 +166,12 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
     );
 
     let (lo, hi) = ([lo[0], lo[1], lo[2]], [hi[0], hi[1], hi[2]]);
-    let best90 = nelder_mead_boxed(|p| unbalance(&phased(*p), SAMPLES), [1.0, 2.0, 0.3], lo, hi, &cfg);
+    let best90 = cfg.minimize_boxed(|p| unbalance(&phased(*p), SAMPLES), [1.0, 2.0, 0.3], lo, hi);
     println!(
         "\nwith the phase shift held at {}° (Nelder-Mead: {} evaluations, converged = {}):",
         PHASE.to_degrees(),
         best90.evaluations,
-        best90.converged
+        best90.converged()
     );
     let phased_optimum = phased(best90.x);
     let after = describe("optimum with the phase shift", &phased_optimum)?;

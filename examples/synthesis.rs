@@ -10,8 +10,8 @@
 //!
 //! Run with `cargo run --release --example synthesis`.
 
-use kinloop::analysis::optimize::{NelderMead, nelder_mead};
-use kinloop::{Error, Extreme, LmConfig, NewtonConfig, Sensitivities, extremum, levenberg_marquardt};
+use kinloop::analysis::optimize::{LevenbergMarquardt, Minimum, NelderMead};
+use kinloop::{Error, Extreme, NewtonConfig, Sensitivities, extremum};
 use std::f64::consts::PI;
 
 kinloop::mechanism! {
@@ -73,22 +73,22 @@ pub fn problem() -> Result<([f64; 2], [f64; 2]), Error> {
 }
 
 /// Levenberg-Marquardt on the two residuals with the exact Jacobian from the sensitivities.
-pub fn gradient_run(start: [f64; 2], target: [f64; 2]) -> Result<kinloop::LmResult<2>, Error> {
+pub fn gradient_run(start: [f64; 2], target: [f64; 2]) -> Result<Minimum<2>, Error> {
     let residuals = |x: &[f64; 2]| -> Result<([f64; 2], [[f64; 2]; 2]), Error> {
         let (v, j) = characteristics(x)?;
         Ok(([v[0] - target[0], v[1] - target[1]], j))
     };
-    levenberg_marquardt(residuals, start, &LmConfig { tol: 1e-10, ..LmConfig::default() })
+    LevenbergMarquardt::default().with_tol(1e-10).minimize(residuals, start)
 }
 
 /// Nelder-Mead on the squared residual norm (values only), from the same start.
-pub fn derivative_free_run(start: [f64; 2], target: [f64; 2]) -> kinloop::analysis::optimize::Minimum<2> {
+pub fn derivative_free_run(start: [f64; 2], target: [f64; 2]) -> Minimum<2> {
     let objective = |x: &[f64; 2]| match characteristics(x) {
         Ok(([l, r], _)) => (l - target[0]).powi(2) + (r - target[1]).powi(2),
         Err(_) => f64::INFINITY, // a design that cannot assemble
     };
     let cfg = NelderMead { max_evaluations: 5000, f_tol: 1e-20, x_tol: 1e-10, restarts: 2 };
-    nelder_mead(objective, start, [0.1, 0.05], &cfg)
+    cfg.minimize(objective, start, [0.1, 0.05])
 }
 
 fn main() -> Result<(), Box<dyn std::error::Error>> {
@@ -111,7 +111,7 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
         phase.to_degrees(),
         ratio
     );
-    println!("  {} objective evaluations (values and gradients), converged: {}\n", lm.evaluations, lm.converged);
+    println!("  {} objective evaluations (values and gradients), converged: {}\n", lm.evaluations, lm.converged());
 
     let nm = derivative_free_run(start, target);
     let ([phase, ratio], _) = characteristics(&nm.x)?;
@@ -122,13 +122,17 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
         nm.x[1],
         phase.to_degrees(),
         ratio,
-        nm.f.sqrt()
+        nm.value.sqrt()
     );
-    println!("  {} objective evaluations, converged: {}", nm.evaluations, nm.converged);
+    println!("  {} objective evaluations, converged: {}", nm.evaluations, nm.converged());
     println!(
         "\nevaluations to |r| <= 1e-10: gradient {} vs derivative-free {}",
         lm.evaluations,
-        if nm.f.sqrt() <= 1e-10 { nm.evaluations.to_string() } else { format!("not reached in {}", nm.evaluations) }
+        if nm.value.sqrt() <= 1e-10 {
+            nm.evaluations.to_string()
+        } else {
+            format!("not reached in {}", nm.evaluations)
+        }
     );
     Ok(())
 }

@@ -173,7 +173,7 @@
 //! A parameter name appended to a state path reads as a derivative: `sens.dq.x_c.l_p` is
 //! `d(dX_C/dphi1)/dL_P`. They cost nothing unless requested. [`extremum`] and [`integral`] give
 //! objectives over a whole sweep with exact gradients (extremes by the envelope theorem, with the
-//! gradient of their location), and [`levenberg_marquardt`] uses them for synthesis
+//! gradient of their location), and [`LevenbergMarquardt`](analysis::optimize::LevenbergMarquardt) uses them for synthesis
 //! (`examples/synthesis.rs`).
 //!
 //! ## Design-space scans

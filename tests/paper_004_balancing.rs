@@ -5,7 +5,7 @@
 //! golden sections); the closed-form optimum (exact balance) found by Nelder–Mead; the
 //! phase-constrained optimum, its phase shift and its local optimality.
 
-use kinloop::analysis::{NelderMead, Sampled, nelder_mead_boxed};
+use kinloop::analysis::{NelderMead, Sampled};
 use std::f64::consts::{PI, TAU};
 
 #[allow(dead_code)]
@@ -101,12 +101,12 @@ fn nelder_mead_finds_the_exact_balance() {
     // D grows linearly away from its zero, so f_tol = 1e-10 means a simplex within ~1e-10.
     let cfg = NelderMead { max_evaluations: 3000, f_tol: 1e-10, x_tol: 1e-8, ..NelderMead::default() };
     let (lo, hi) = ([0.5, 1.5, -1.0, -PI], [2.0, 6.0, 1.0, PI]);
-    let best = nelder_mead_boxed(|p| unbalance(&design(*p), 32), [1.3, 2.7, 0.2, 0.1], lo, hi, &cfg);
-    assert!(best.converged, "{best:?}");
+    let best = cfg.minimize_boxed(|p| unbalance(&design(*p), 32), [1.3, 2.7, 0.2, 0.1], lo, hi);
+    assert!(best.converged(), "{best:?}");
     for (got, want) in best.x.iter().zip([1.5, 3.0, 0.3, 0.0]) {
         assert!((got - want).abs() < 1e-6, "{best:?}");
     }
-    assert!(best.f < 1e-9);
+    assert!(best.value < 1e-9);
 }
 
 #[test]

@@ -32,7 +32,7 @@ fn gradient_synthesis_beats_derivative_free_and_meets_the_requirement() {
     assert!((p0 - p_k).abs() < 1e-9 && (r0 - r_k).abs() < 1e-9, "start: {p0} {r0} vs {p_k} {r_k}");
 
     let lm = gradient_run(start, target).unwrap();
-    assert!(lm.converged, "{lm:?}");
+    assert!(lm.converged(), "{lm:?}");
     let (phase, ratio) = closed_form(&drive(&lm.x));
     assert!((phase - target[0]).abs() < 1e-9 && (ratio - target[1]).abs() < 1e-9, "{phase} {ratio} vs {target:?}");
 

@@ -266,7 +266,7 @@ pub fn generate(model: &Model, plan: &Plan) -> TokenStream {
                         });
                     }
                 }
-                let m = self.flat.motion(&w, &e);
+                let m = self.flat.checked_motion::<#name>(&w, &e)?;
                 Ok(#motion_ty {
                     qdot: m.qdot.into(),
                     qddot: m.qddot.into(),

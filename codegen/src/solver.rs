@@ -203,18 +203,12 @@ pub fn solver_body_with(
                     let #ev = |__z: &[f64; #n]| -> #rt::BlockEval<#n, #k> {
                         let [#(#qs),*] = *__z;
                         #inner
-                        #rt::BlockEval { f: [#(#f),*], j: [#(#jrows),*], keep: [#(#exports),*] }
+                        #rt::BlockEval { f: [#(#f),*], j: [#(#jrows),*], scale: [0.0; #n], keep: [#(#exports),*] }
                     };
                     let __z0: [f64; #n] = [#(#guess),*];
-                    let __e0 = #ev(&__z0);
-                    let __r0 = #rt::max_abs(__e0.f);
-                    let #s = if __r0 <= __cfg.residual_tol {
-                        #rt::Solved::at_guess(__z0, __e0, __r0)
-                    } else {
-                        match #rt::iterate::<#n, #k>(__z0, __e0, __cfg, #ev) {
-                            Ok(s) => s,
-                            Err(e) => return Err(self.__block_failure(#bl, e, __x, __guess)),
-                        }
+                    let #s = match #rt::newton::<#n, #k>(__z0, __cfg, #ev) {
+                        Ok(s) => s,
+                        Err(e) => return Err(self.__block_failure(#bl, e, __x, __guess)),
                     };
                     __report.absorb(&#s);
                     let [#(#qs),*] = #s.z;

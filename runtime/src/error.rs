@@ -1,66 +1,12 @@
-//! Typed errors. Every failure carries where it happened: the mechanism, the input values, and
-//! (for solver failures) the block of the decomposition with its unknowns and equations.
+//! Typed errors. Every failure carries where it happened (a [`Location`]): the mechanism, the
+//! input values, and (for solver failures) the block of the decomposition with its unknowns and
+//! equations.
 
+use crate::events::EventKind;
 use std::fmt;
 
-/// Static description of one block of a mechanism's block-triangular decomposition.
-#[derive(Clone, Copy, Debug, PartialEq, Eq)]
-pub struct BlockInfo {
-    /// Unknowns solved in this block (declaration order).
-    pub unknowns: &'static [&'static str],
-    /// Scalar equations of this block (`loop.x`, `loop.y` or an `eq` name).
-    pub equations: &'static [&'static str],
-    /// The block's unknowns appear linearly: it is solved in closed form, without iteration.
-    pub linear: bool,
-}
-
-/// Where an error happened.
-#[derive(Clone, Debug, PartialEq)]
-pub struct Location {
-    /// Name of the mechanism type.
-    pub mechanism: &'static str,
-    /// Values of the inputs (generalized coordinates) when it happened.
-    pub inputs: Vec<(&'static str, f64)>,
-    /// The block being solved, with its index in solve order, if the error concerns one.
-    pub block: Option<(usize, BlockInfo)>,
-}
-
-impl Location {
-    /// A boxed location of mechanism `mechanism` at the inputs `names = x` (for errors raised
-    /// by generic code: sweeps, continuation).
-    pub(crate) fn boxed(
-        mechanism: &'static str,
-        names: &[&'static str],
-        x: &[f64],
-        block: Option<(usize, BlockInfo)>,
-    ) -> Box<Location> {
-        Box::new(Location { mechanism, inputs: names.iter().copied().zip(x.iter().copied()).collect(), block })
-    }
-}
-
-impl fmt::Display for Location {
-    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
-        write!(f, "in `{}`", self.mechanism)?;
-        if !self.inputs.is_empty() {
-            write!(f, " at ")?;
-            for (k, (name, value)) in self.inputs.iter().enumerate() {
-                if k > 0 {
-                    write!(f, ", ")?;
-                }
-                write!(f, "{name} = {value}")?;
-            }
-        }
-        if let Some((index, info)) = &self.block {
-            write!(
-                f,
-                " (block {index}: unknowns {}; equations {})",
-                info.unknowns.join(", "),
-                info.equations.join(", ")
-            )?;
-        }
-        Ok(())
-    }
-}
+// Where errors happen is described by the event vocabulary (kept importable from here).
+pub use crate::events::{BlockInfo, Location};
 
 /// What kind of value was not finite.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
@@ -131,11 +77,21 @@ pub enum Error {
         name: &'static str,
         at: Box<Location>,
     },
+    /// A result overflowed although every value given was finite (e.g. accelerations for input
+    /// speeds near the largest `f64`).
+    #[error("the {what} `{name}` overflows {at}: the given speeds or accelerations are too large")]
+    Overflow {
+        /// `"velocity"`, `"acceleration"`, `"output velocity"` or `"output acceleration"`.
+        what: &'static str,
+        /// Name of the unknown or output column.
+        name: &'static str,
+        at: Box<Location>,
+    },
     /// A sweep stopped at a singular position it cannot (or is configured not to) pass on its
     /// branch: a limit position of the input, or a singular crossing. The event, with the
     /// located input value, is in the sweep's `events()`.
     #[error("the sweep stopped at a {kind} {at}")]
-    SweepStopped { kind: crate::sweep::EventKind, at: Box<Location> },
+    SweepStopped { kind: EventKind, at: Box<Location> },
     /// A sweep could not stay on its assembly branch (see the sweep's events).
     #[error("{message} {at}")]
     Branch { message: String, at: Box<Location> },
@@ -153,6 +109,7 @@ impl Error {
             | Error::NoAssembly { at, .. }
             | Error::Singular { at, .. }
             | Error::Domain { at, .. }
+            | Error::Overflow { at, .. }
             | Error::SweepStopped { at, .. }
             | Error::Branch { at, .. } => Some(at),
             Error::InvalidArgument(_) => None,

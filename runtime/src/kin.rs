@@ -1,16 +1,61 @@
 //! The kinematic state of a mechanism at one input value, as flat arrays in declaration order.
 //! Generated named structs convert from it; generic code (sweeps, analyses) works on it.
 
-use crate::lu::Factor;
-use crate::newton::SolveReport;
+use crate::error::{Error, Location};
+use crate::mechanism::Mechanism;
+use crate::solvers::lu::Factor;
+use crate::solvers::newton::SolveReport;
+
+/// The signs of the block determinants along a decomposition: one bit per block (blocks are
+/// folded onto the 256 bits by their index modulo 256, so a change of any single block's sign
+/// always changes the set, whatever the number of blocks).
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, PartialOrd, Ord, Hash)]
+pub struct DetSigns([u64; 4]);
+
+impl DetSigns {
+    /// Records block `block` as having a negative determinant.
+    #[inline]
+    pub fn set_negative(&mut self, block: usize) {
+        let b = block % 256;
+        self.0[b / 64] ^= 1u64 << (b % 64);
+    }
+
+    /// Whether block `block` (below 256) has a negative determinant.
+    pub fn is_negative(&self, block: usize) -> bool {
+        let b = block % 256;
+        self.0[b / 64] >> (b % 64) & 1 == 1
+    }
+
+    /// The first block whose sign differs between `self` and `other`.
+    pub fn first_difference(&self, other: &DetSigns) -> Option<usize> {
+        (0..4).find_map(|w| {
+            let d = self.0[w] ^ other.0[w];
+            (d != 0).then(|| w * 64 + d.trailing_zeros() as usize)
+        })
+    }
+}
+
+impl std::fmt::Binary for DetSigns {
+    /// The bits, most significant block first (without leading zero words).
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        let top = (0..4).rev().find(|&w| self.0[w] != 0).unwrap_or(0);
+        if f.alternate() {
+            f.write_str("0b")?;
+        }
+        write!(f, "{:b}", self.0[top])?;
+        for w in (0..top).rev() {
+            write!(f, "{:064b}", self.0[w])?;
+        }
+        Ok(())
+    }
+}
 
 /// How far each block of the decomposition is from singular, and its assembly mode.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct Health {
-    /// Bit `b` is set when the Jacobian of block `b` has a negative determinant (blocks beyond
-    /// the 64th are not recorded). A change of these signs along a sweep means a change of
-    /// assembly mode or a passage through a singular position.
-    pub det_signs: u64,
+    /// The blocks whose Jacobian has a negative determinant. A change of these signs along a
+    /// sweep means a change of assembly mode or a passage through a singular position.
+    pub det_signs: DetSigns,
     /// The smallest row-equilibrated pivot ratio over all blocks (`1` is perfectly conditioned,
     /// `0` singular).
     pub min_pivot: f64,
@@ -19,8 +64,9 @@ pub struct Health {
 }
 
 impl Default for Health {
+    #[inline]
     fn default() -> Self {
-        Health { det_signs: 0, min_pivot: f64::INFINITY, weakest_block: 0 }
+        Health { det_signs: DetSigns::default(), min_pivot: f64::INFINITY, weakest_block: 0 }
     }
 }
 
@@ -28,12 +74,13 @@ impl Health {
     #[doc(hidden)]
     #[inline]
     pub fn note(&mut self, block: usize, lu: &impl Factor) {
-        if lu.negative_det() && block < 64 {
-            self.det_signs |= 1u64 << block;
+        if lu.negative_det() {
+            self.det_signs.set_negative(block);
         }
         let p = lu.pivot_ratio();
-        if p < self.min_pivot {
-            self.min_pivot = p;
+        // NaN counts as singular.
+        if p < self.min_pivot || p.is_nan() {
+            self.min_pivot = if p.is_nan() { 0.0 } else { p };
             self.weakest_block = block;
         }
     }
@@ -154,6 +201,32 @@ impl<const N: usize, const NI: usize, const NO: usize> Kin<N, NI, NO> {
             (m.out_dot[o], m.out_ddot[o]) = chain(&self.dout[o], &self.d2out[o], omega, eps);
         }
         m
+    }
+
+    /// [`Kin::motion`], checked: an `Error::Overflow` naming the first unknown or output
+    /// whose velocity or acceleration is not finite (the analogs are finite, so only huge
+    /// speeds or accelerations can cause it).
+    pub fn checked_motion<M: Mechanism<N, NI, NO>>(
+        &self,
+        omega: &[f64; NI],
+        eps: &[f64; NI],
+    ) -> Result<FlatMotion<N, NO>, Error> {
+        let m = self.motion(omega, eps);
+        let bad = |v: &[f64]| v.iter().position(|x| !x.is_finite());
+        let found = [
+            ("velocity", bad(&m.qdot), &M::UNKNOWNS[..]),
+            ("acceleration", bad(&m.qddot), &M::UNKNOWNS[..]),
+            ("output velocity", bad(&m.out_dot), &M::OUTPUTS[..]),
+            ("output acceleration", bad(&m.out_ddot), &M::OUTPUTS[..]),
+        ]
+        .into_iter()
+        .find_map(|(what, index, names)| index.map(|i| (what, names.get(i).copied().unwrap_or("?"))));
+        match found {
+            None => Ok(m),
+            Some((what, name)) => {
+                Err(Error::Overflow { what, name, at: Location::boxed(M::NAME, &M::INPUTS, &self.x, None) })
+            }
+        }
     }
 
     /// Index of the first non-finite value, as a label for error messages.

@@ -9,33 +9,33 @@
 #![allow(clippy::needless_range_loop)]
 
 pub mod analysis;
-mod curve;
 pub mod dynamics;
 mod error;
+pub mod events;
 mod kin;
-mod lu;
 mod mechanism;
 pub mod metrics;
-mod modes;
-mod newton;
-mod objective;
-mod scan;
-mod sweep;
+pub mod paths;
+pub mod solvers;
 mod table;
 mod vec2;
 
-pub use curve::{Traced, TracedPoint, trace_curve};
-pub use error::{BlockInfo, Error, Location, Quantity};
-pub use kin::{FlatMotion, Health, Jac, Kin, Sens};
+// Short paths inside the crate for the modules every part uses.
+use solvers::{lu, newton};
+
+pub use analysis::objective::{Extreme, Extremum, extremum, integral};
+pub use error::{Error, Quantity};
+pub use events::{BlockInfo, Event, EventKind, Location};
+pub use kin::{DetSigns, FlatMotion, Health, Jac, Kin, Sens};
 pub use lu::{Factor, Fixed, Lu, max_abs};
 pub use mechanism::{Mechanism, Sensitivities};
-pub use modes::assembly_modes;
 pub use newton::{BlockEval, BlockFailure, NewtonConfig, SolveReport, Solved, Termination, iterate, newton};
-pub use objective::{Extreme, Extremum, LmConfig, LmResult, extremum, integral, levenberg_marquardt};
+pub use paths::curve::{Traced, TracedPoint, trace_curve};
+pub use paths::modes::assembly_modes;
 #[cfg(feature = "rayon")]
-pub use scan::par_scan;
-pub use scan::{ScanSpec, ScanStart, scan};
-pub use sweep::{AtSingular, Event, EventKind, Reach, Sweep, SweepConfig, reachable};
+pub use paths::scan::par_scan;
+pub use paths::scan::{ScanSpec, ScanStart, scan};
+pub use paths::sweep::{AtSingular, Reach, Sweep, SweepConfig, reachable};
 pub use table::Table;
 pub use vec2::Vec2;
 
@@ -57,6 +57,12 @@ pub fn block_error(fail: BlockFailure, at: Location) -> Error {
         BlockFailure::NoAssembly { row, residual, .. } => {
             Error::NoAssembly { residual, equation: name(row), at: Box::new(at) }
         }
+        BlockFailure::Singular { pivot_ratio, tolerance, .. } => {
+            Error::Singular { pivot_ratio, tolerance, at: Box::new(at) }
+        }
+        BlockFailure::InvalidConfig { field } => Error::InvalidArgument(format!(
+            "NewtonConfig::{field} is out of its valid range (see its documentation), {at}"
+        )),
     }
 }
 

@@ -1,11 +1,12 @@
-//! A hand-written mechanism for the runtime's own doctests and unit tests (the `mechanism!`
+//! A hand-written mechanism for the runtime's own unit tests (the `mechanism!`
 //! macro lives in another crate): the offset slider-crank, with its slider position `x` as the
 //! only unknown. Not part of the public API.
 
-use crate::error::{BlockInfo, Error, Location};
+use crate::error::Error;
+use crate::events::{BlockInfo, Location};
 use crate::kin::{Health, Jac, Kin};
 use crate::mechanism::Mechanism;
-use crate::newton::{NewtonConfig, SolveReport, Termination};
+use crate::solvers::newton::{NewtonConfig, SolveReport, Termination};
 
 /// Offset slider-crank: crank `r` about the origin at angle `phi`, rod `l`, slider at `(x, e)`
 /// on the right (`x > r cos phi`). Equation `rod`: `(x - r cos phi)^2 + (r sin phi - e)^2 = l^2`.
@@ -110,7 +111,13 @@ impl Mechanism<1, 1, 1> for SliderCrank {
             dout: [[w1]],
             d2out: [[[w2]]],
             report: SolveReport::given(self.residual_flat(x, q)[0].abs()),
-            health: Health { det_signs: u64::from(w < 0.0), min_pivot: 1.0, weakest_block: 0 },
+            health: {
+                let mut h = Health { min_pivot: 1.0, ..Health::default() };
+                if w < 0.0 {
+                    h.det_signs.set_negative(0);
+                }
+                h
+            },
         })
     }
 

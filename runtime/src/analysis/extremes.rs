@@ -192,11 +192,26 @@ pub fn extremes(samples: &[Jet], mut eval: impl FnMut(f64) -> Result<Jet, Error>
                 // The analog is exactly zero at the samples between: take the middle one.
                 samples[(i + k) / 2]
             };
-            out.push(LocalExtreme { kind, at });
+            // Only interior extremes: a range that starts or ends at an extreme (its analog
+            // rounded to a tiny non-zero value there) does not report that end.
+            if !at_an_end(samples, at.x) {
+                out.push(LocalExtreme { kind, at });
+            }
         }
         i = k;
     }
     Ok(out)
+}
+
+/// `x` is one of the ends of the sampled range, to within rounding of the located root (a
+/// millionth of the first or last sample spacing).
+fn at_an_end(samples: &[Jet], x: f64) -> bool {
+    let n = samples.len();
+    if n < 2 {
+        return true;
+    }
+    let (first, last) = (samples[0].x, samples[n - 1].x);
+    (x - first).abs() <= 1e-6 * (samples[1].x - first) || (last - x).abs() <= 1e-6 * (last - samples[n - 2].x)
 }
 
 /// The global minimum and maximum of a sampled quantity over its range, with its located local

@@ -20,11 +20,10 @@
 //! | dwells of a progressive output | [`Sampled::dwells`] | extremes plus band crossings (see [`dwell`]) |
 //! | harmonics over a cycle | [`Sampled::fourier`] | trapezoidal rule, exact for trigonometric polynomials |
 //! | residual unbalance `max |v - v_1|` | [`Sampled::residual`] | extremes of the residual |
-//! | design optimisation without gradients | [`nelder_mead`], [`nelder_mead_boxed`] | Nelder–Mead simplex (in a box: MINUIT's sine transformation) |
+//! | design optimisation without gradients | [`NelderMead`] (`minimize`, `minimize_boxed`) | Nelder–Mead simplex (in a box: MINUIT's sine transformation) |
 //!
-//! ```
+//! ```ignore
 //! use kinloop_runtime::analysis::Sampled;
-//! # use kinloop_runtime::analysis::demo::SliderCrank;
 //! use std::f64::consts::TAU;
 //! // `SliderCrank` stands for any mechanism declared with `kinloop::mechanism!` (here an offset
 //! // slider-crank written by hand: crank 1, rod 3, offset 0.5, one unknown `x`).
@@ -41,24 +40,25 @@
 //! # Ok::<(), kinloop_runtime::Error>(())
 //! ```
 
-#[doc(hidden)]
-pub mod demo;
+#[cfg(test)]
+mod demo;
 pub mod dwell;
 pub mod extremes;
 pub mod fourier;
+pub mod objective;
 pub mod optimize;
 pub mod unbalance;
 
 pub use dwell::{Dwell, dwells};
 pub use extremes::{ExtremeKind, GlobalRange, LocalExtreme, bracketed_root, extremes, global_range, maximize};
 pub use fourier::{Fourier, fourier};
-pub use optimize::{Minimum, NelderMead, nelder_mead, nelder_mead_boxed};
+pub use optimize::{LevenbergMarquardt, Minimum, NelderMead, Stop};
 pub use unbalance::{Residual, residual};
 
 use crate::error::Error;
 use crate::kin::Kin;
 use crate::mechanism::Mechanism;
-use crate::sweep::{Sweep, SweepConfig};
+use crate::paths::sweep::{Sweep, SweepConfig};
 
 /// A smooth quantity at one point: its value and its first and second derivatives with respect
 /// to `x` (for a mechanism: position, velocity analog and acceleration analog at input `x`).
@@ -144,9 +144,8 @@ impl Column {
 /// quantity (e.g. one crank turn, `samples - 1` equal intervals, the last sample repeating the
 /// first).
 ///
-/// ```
+/// ```ignore
 /// use kinloop_runtime::analysis::{ExtremeKind, Sampled};
-/// # use kinloop_runtime::analysis::demo::SliderCrank;
 /// use std::f64::consts::TAU;
 /// let m = SliderCrank { r: 1.0, l: 3.0, e: 0.0 };            // a centred slider-crank
 /// let turn = Sampled::sweep(&m, 0.0, TAU, 37, [4.0])?;
@@ -406,5 +405,65 @@ mod tests {
         }
         assert!((v - best.1).abs() < 1e-6 * best.1 && v >= best.1 - 1e-12, "{v} vs {}", best.1);
         assert!((x - best.0).abs() < 1e-3);
+    }
+
+    /// The example of the documentation above, run against the hand-written slider-crank.
+    #[test]
+    fn module_documentation_example() -> Result<(), crate::Error> {
+        use crate::analysis::Sampled;
+        use crate::analysis::demo::SliderCrank;
+        use std::f64::consts::TAU;
+        // `SliderCrank` stands for any mechanism declared with `kinloop::mechanism!` (here an offset
+        // slider-crank written by hand: crank 1, rod 3, offset 0.5, one unknown `x`).
+        let m = SliderCrank { r: 1.0, l: 3.0, e: 0.5 };
+        let turn = Sampled::sweep(&m, 0.0, TAU, 73, [3.9])?; // every 5 degrees, one turn
+        let x = turn.range("x")?; // dead centres, located exactly
+        let outer = (4.0f64.powi(2) - 0.25).sqrt(); // crank and rod stretched
+        let inner = (2.0f64.powi(2) - 0.25).sqrt(); // crank and rod folded
+        assert!((x.max.value - outer).abs() < 1e-12 && (x.min.value - inner).abs() < 1e-12);
+        assert!((x.max.x - 0.5f64.atan2(outer)).abs() < 1e-10);
+        assert!((x.span() - (outer - inner)).abs() < 1e-12); // the stroke
+        let harmonics = turn.fourier("x", 4)?; // x = a0 + a1 cos phi + ...
+        assert!((harmonics.a[0] - 1.0).abs() < 1e-12); // the crank's own cos phi
+        Ok(())
+    }
+
+    /// The example of the documentation above, run against the hand-written slider-crank.
+    #[test]
+    fn sampled_documentation_example() -> Result<(), crate::Error> {
+        use crate::analysis::demo::SliderCrank;
+        use crate::analysis::{ExtremeKind, Sampled};
+        use std::f64::consts::TAU;
+        let m = SliderCrank { r: 1.0, l: 3.0, e: 0.0 }; // a centred slider-crank
+        let turn = Sampled::sweep(&m, 0.0, TAU, 37, [4.0])?;
+        // Dead centres at 0 and 180 degrees (the first at the start of the range is not interior).
+        let e = turn.extremes("x")?;
+        assert_eq!(e.len(), 1);
+        assert_eq!(e[0].kind, ExtremeKind::Min);
+        assert!((e[0].x() - TAU / 2.0).abs() < 1e-10 && (e[0].value() - 2.0).abs() < 1e-12);
+        // The largest acceleration analog |x''| = r + r^2/l at the outer dead centre.
+        let (at, peak) = turn.peak(|k| k.d2q[0][0][0].abs())?;
+        assert!((peak - (1.0 + 1.0 / 3.0)).abs() < 1e-12 && at.cos() > 1.0 - 1e-12);
+        // After the first harmonic, what remains is mostly the second, about r^2 / (4 l) cos 2 phi.
+        let r = turn.residual("x", 1)?;
+        assert!((r.max_abs - 1.0 / 12.0).abs() < 5e-3);
+        // Any state of the range, on the sweep's branch.
+        assert!((turn.at(1.0)?.q[0] - (1f64.cos() + (9.0 - 1f64.sin().powi(2)).sqrt())).abs() < 1e-12);
+        Ok(())
+    }
+
+    /// A turn that starts (and so ends) at the outer dead centre: the analog there rounds to a
+    /// tiny non-zero value, and that end used to be reported as an extreme, twice.
+    #[test]
+    fn a_range_starting_at_a_dead_centre_reports_only_interior_extremes() {
+        let m = SliderCrank { r: 1.0, l: 3.0, e: 0.5 };
+        let outer = (4.0f64.powi(2) - 0.25).sqrt();
+        let start = 0.5f64.atan2(outer);
+        let turn = Sampled::sweep(&m, start, start + std::f64::consts::TAU, 37, [outer]).unwrap();
+        let e = turn.extremes("x").unwrap();
+        assert_eq!(e.len(), 1, "{e:?}");
+        assert_eq!(e[0].kind, ExtremeKind::Min);
+        // The inner dead centre: crank and rod folded, x = sqrt((l - r)^2 - e^2).
+        assert!((e[0].value() - (4.0f64 - 0.25).sqrt()).abs() < 1e-12, "{e:?}");
     }
 }

@@ -6,10 +6,11 @@
 //! These routines run only on the rare paths (locating an event, tracing a closed curve), so
 //! they use nalgebra's dynamic matrices for the `(N + 1)`-sized bordered systems.
 
+use crate::events::{BlockInfo, Event, EventKind};
 use crate::kin::Jac;
-use crate::lu::{Lu, max_abs};
 use crate::mechanism::Mechanism;
-use crate::newton::NewtonConfig;
+use crate::solvers::lu::Lu;
+use crate::solvers::newton::{NewtonConfig, system_residual};
 use nalgebra::{DMatrix, DVector};
 
 /// A straight path in input space.
@@ -28,7 +29,13 @@ impl<const NI: usize> Path<NI> {
         for i in 0..NI {
             delta[i] = to[i] - from[i];
         }
-        let len = delta.iter().map(|d| d * d).sum::<f64>().sqrt();
+        // Scaled so that a range near the largest `f64` does not overflow its length.
+        let big = delta.iter().fold(0.0f64, |m, d| m.max(d.abs()));
+        let len = if big > 0.0 && big.is_finite() {
+            big * delta.iter().map(|d| (d / big) * (d / big)).sum::<f64>().sqrt()
+        } else {
+            big
+        };
         Path { from, delta, len }
     }
 
@@ -45,6 +52,17 @@ impl<const NI: usize> Path<NI> {
     pub fn at_sigma(&self, sigma: f64) -> [f64; NI] {
         self.at_tau(sigma / self.len)
     }
+}
+
+/// The event of kind `kind` at curve point `p` of `path`.
+pub(crate) fn event_at<const N: usize, const NI: usize>(
+    kind: EventKind,
+    path: &Path<NI>,
+    p: &CurvePoint<N>,
+    block: Option<(usize, BlockInfo)>,
+) -> Event {
+    let tau = p.sigma / path.len;
+    Event { kind, x: path.at_tau(tau).to_vec(), tau, q: p.q.to_vec(), block }
 }
 
 /// Derivative of `f` along the path per unit `sigma`.
@@ -148,7 +166,8 @@ where
         q.copy_from_slice(&y.as_slice()[..N]);
         let sigma = y[N];
         let jac = m.jacobian_flat(&path.at_sigma(sigma), &q);
-        let res = max_abs(jac.f);
+        // Scale-free: each residual relative to its row's magnitude.
+        let res = system_residual(&jac.f, &jac.j, &f_sigma(&jac, path));
         if !res.is_finite() {
             return None;
         }
@@ -157,7 +176,7 @@ where
             g[e] = -jac.f[e];
         }
         g[N] = -p.tangent.dot(&(&y - &y_pred));
-        if res <= cfg.residual_tol && g[N].abs() <= cfg.residual_tol {
+        if res <= cfg.residual_tol && g[N].abs() <= cfg.residual_tol * (1.0 + ds.abs()) {
             let tangent = tangent(m, path, &q, sigma, &p.tangent)?;
             return Some(CurvePoint { q, sigma, tangent });
         }
@@ -171,7 +190,9 @@ where
             let mut q = [0.0; N];
             q.copy_from_slice(&y.as_slice()[..N]);
             let jac = m.jacobian_flat(&path.at_sigma(y[N]), &q);
-            if max_abs(jac.f) <= cfg.residual_tol.max(1e-10) {
+            // The step is at the rounding floor: accept a residual up to its floor.
+            if system_residual(&jac.f, &jac.j, &f_sigma(&jac, path)) <= 1e3 * cfg.residual_tol.max(16.0 * f64::EPSILON)
+            {
                 let tangent = tangent(m, path, &q, y[N], &p.tangent)?;
                 return Some(CurvePoint { q, sigma: y[N], tangent });
             }
@@ -275,6 +296,9 @@ pub(crate) fn trace<M, const N: usize, const NI: usize, const NO: usize>(
 where
     M: Mechanism<N, NI, NO>,
 {
+    if !(ds0 > 0.0 && ds0.is_finite() && max_arc.is_finite()) {
+        return None;
+    }
     let det_at = |p: &CurvePoint<N>| signed_det(m, &path.at_sigma(p.sigma), &p.q);
     let mut a = start.clone();
     let mut det_a = det_at(&a);
@@ -371,7 +395,7 @@ pub struct Traced<const N: usize, const NI: usize> {
     /// Points along the curve, about `ds` apart.
     pub points: Vec<TracedPoint<N, NI>>,
     /// The limit positions passed (where the input reversed), located precisely.
-    pub folds: Vec<crate::sweep::Event>,
+    pub folds: Vec<Event>,
     /// The curve closed on itself (it came back to its first point).
     pub closed: bool,
 }
@@ -394,9 +418,9 @@ pub fn trace_curve<M, const N: usize, const NI: usize, const NO: usize>(
 where
     M: Mechanism<N, NI, NO>,
 {
-    use crate::sweep::{Event, EventKind};
+    cfg.validate()?;
     let path = Path::new(from, to);
-    if path.len.is_nan() || path.len <= 0.0 || ds.is_nan() || ds <= 0.0 || !ds.is_finite() {
+    if !path.len.is_finite() || path.len.is_nan() || path.len <= 0.0 || ds.is_nan() || ds <= 0.0 || !ds.is_finite() {
         return Err(crate::Error::InvalidArgument(
             "trace_curve needs `to` different from `from` and a positive, finite `ds`".into(),
         ));
@@ -423,7 +447,7 @@ where
         if (p.dsigma() > 0.0) != (next.dsigma() > 0.0)
             && let Some(f) = locate_fold(m, &path, &p, step, next.dsigma(), cfg)
         {
-            out.folds.push(Event::on_curve(EventKind::LimitPosition, &path, &f, None));
+            out.folds.push(event_at(EventKind::LimitPosition, &path, &f, None));
         }
         walked += step;
         let back = (next.y() - &start_y).norm();

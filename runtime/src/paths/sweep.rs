@@ -21,11 +21,12 @@
 //!
 //! The iterator allocates nothing per step (events are rare and allocate).
 
-use crate::curve::{self, CurvePoint, Found, Path};
-use crate::error::{BlockInfo, Error, Location, Quantity};
-use crate::kin::Kin;
+use super::curve::{self, CurvePoint, Found, Path};
+use crate::error::{Error, Quantity};
+use crate::events::{BlockInfo, Event, EventKind, Location};
+use crate::kin::{DetSigns, Kin};
 use crate::mechanism::Mechanism;
-use crate::newton::NewtonConfig;
+use crate::solvers::newton::NewtonConfig;
 use crate::table::Table;
 use std::marker::PhantomData;
 
@@ -76,53 +77,53 @@ impl Default for SweepConfig {
     }
 }
 
-/// Kinds of singular positions met along a sweep.
-#[derive(Clone, Copy, Debug, PartialEq, Eq)]
-#[non_exhaustive]
-pub enum EventKind {
-    /// The input cannot advance on this branch: a limit (dead-centre) position of the input, a
-    /// fold of the solution curve where the input reverses.
-    LimitPosition,
-    /// A block's Jacobian is singular with solutions on both sides and its determinant changes
-    /// sign: a change point (bifurcation) where the assembly mode can change.
-    SingularCrossing,
-}
+impl SweepConfig {
+    /// The first field outside its valid range (NaN is outside every range), including the
+    /// fields of [`SweepConfig::newton`].
+    pub fn invalid_field(&self) -> Option<&'static str> {
+        let finite_positive = |v: f64| v > 0.0 && v < f64::INFINITY;
+        if let Some(field) = self.newton.invalid_field() {
+            Some(field)
+        } else if !(finite_positive(self.max_step) && self.max_step <= 1.0) {
+            Some("max_step")
+        } else if !(1..=60).contains(&self.max_halvings) {
+            Some("max_halvings")
+        } else if !finite_positive(self.corrector_rel) {
+            Some("corrector_rel")
+        } else if !(self.corrector_abs >= 0.0 && self.corrector_abs < f64::INFINITY) {
+            Some("corrector_abs")
+        } else if !(self.singular_pivot >= 0.0 && self.singular_pivot < 1.0) {
+            Some("singular_pivot")
+        } else {
+            None
+        }
+    }
 
-impl std::fmt::Display for EventKind {
-    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
-        f.write_str(match self {
-            EventKind::LimitPosition => "limit position",
-            EventKind::SingularCrossing => "singular crossing",
-        })
+    /// Checks every field: `Error::InvalidArgument` names the first one out of range
+    /// (`max_step` in `(0, 1]`, `max_halvings` in `1..=60`, `corrector_rel` positive and finite,
+    /// `corrector_abs` non-negative and finite, `singular_pivot` in `[0, 1)`, and the Newton
+    /// configuration's ranges).
+    ///
+    /// ```
+    /// use kinloop_runtime::SweepConfig;
+    /// assert!(SweepConfig::default().validate().is_ok());
+    /// let bad = SweepConfig { max_step: 0.0, ..SweepConfig::default() };
+    /// assert!(bad.validate().unwrap_err().to_string().contains("max_step"));
+    /// ```
+    pub fn validate(&self) -> Result<(), Error> {
+        let prefix = if self.newton.invalid_field().is_some() { "newton." } else { "" };
+        match self.invalid_field() {
+            None => Ok(()),
+            Some(field) => Err(Error::InvalidArgument(format!(
+                "SweepConfig::{prefix}{field} is out of its valid range (see its documentation): {self:?}"
+            ))),
+        }
     }
 }
 
-/// A singular position located along a sweep.
-#[derive(Clone, Debug, PartialEq)]
-pub struct Event {
-    pub kind: EventKind,
-    /// Input values at the event.
-    pub x: Vec<f64>,
-    /// Fraction of the sweep path at the event (`0` at `from`, `1` at `to`).
-    pub tau: f64,
-    /// Positions of the unknowns at the event.
-    pub q: Vec<f64>,
-    /// The block that became singular, if identified, with its index in solve order.
-    pub block: Option<(usize, BlockInfo)>,
-}
-
-impl Event {
-    /// The event at curve point `p` of `path`.
-    pub(crate) fn on_curve<const N: usize, const NI: usize>(
-        kind: EventKind,
-        path: &Path<NI>,
-        p: &CurvePoint<N>,
-        block: Option<(usize, BlockInfo)>,
-    ) -> Event {
-        let tau = p.sigma / path.len;
-        Event { kind, x: path.at_tau(tau).to_vec(), tau, q: p.q.to_vec(), block }
-    }
-}
+/// Bound on the internal steps between two samples (attempts, accepted or not): a sweep never
+/// loops without bound.
+const MAX_ATTEMPTS_PER_SAMPLE: u32 = 100_000;
 
 /// Why a step was not accepted.
 enum Outcome {
@@ -149,7 +150,9 @@ pub struct Sweep<'m, M, S, const N: usize, const NI: usize, const NO: usize> {
     cur: Option<Kin<N, NI, NO>>,
     tau: f64,
     h: f64,
-    signs: u64,
+    signs: DetSigns,
+    /// A configuration or range error found by `with_config`, returned by the first `next`.
+    invalid: Option<Error>,
     events: Vec<Event>,
     done: bool,
     _s: PhantomData<fn() -> S>,
@@ -181,6 +184,11 @@ where
             return Err(Error::InvalidArgument("a sweep needs at least one sample".into()));
         }
         let path = Path::new(from, to);
+        if !path.len.is_finite() {
+            return Err(Error::InvalidArgument(
+                "the sweep's range `to - from` overflows (its length is not finite)".into(),
+            ));
+        }
         if samples > 1 && (path.len.is_nan() || path.len <= 0.0) {
             return Err(Error::InvalidArgument("a sweep with several samples needs `to` different from `from`".into()));
         }
@@ -198,7 +206,8 @@ where
             cur: None,
             tau: 0.0,
             h: 0.0,
-            signs: 0,
+            signs: DetSigns::default(),
+            invalid: None,
             events: Vec::new(),
             done: false,
             _s: PhantomData,
@@ -208,9 +217,17 @@ where
     }
 
     /// Replaces the configuration.
+    ///
+    /// An invalid configuration (see [`SweepConfig::validate`]) makes the first item an
+    /// [`Error::InvalidArgument`] naming the field.
     pub fn with_config(mut self, cfg: SweepConfig) -> Self {
-        self.cfg = cfg;
-        self.set_step_bounds();
+        match cfg.validate() {
+            Ok(()) => {
+                self.cfg = cfg;
+                self.set_step_bounds();
+            }
+            Err(e) => self.invalid = Some(e),
+        }
         self
     }
 
@@ -301,33 +318,60 @@ where
         }
     }
 
+    /// The first sample, solved from the guess.
+    fn first_sample(&mut self) -> Result<Kin<N, NI, NO>, Error> {
+        let x = self.path.from;
+        match self.m.kinematics_flat(&x, &self.guess, &self.cfg.newton) {
+            Ok(k) => {
+                self.cur = Some(k);
+                self.signs = k.health.det_signs;
+                self.h = self.h_max;
+                self.next = 1;
+                Ok(k)
+            }
+            Err(e) => {
+                self.done = true;
+                Err(e)
+            }
+        }
+    }
+
+    /// The error of a sweep that exhausted its step budget between two samples.
+    #[cold]
+    fn no_progress(&self) -> Error {
+        Error::Branch {
+            message: format!(
+                "the sweep made no progress towards the next sample in {MAX_ATTEMPTS_PER_SAMPLE} steps \
+                 (the solution curve is too rough for the sample spacing)"
+            ),
+            at: self.location(&self.path.at_tau(self.tau), None),
+        }
+    }
+
     /// The next sample as a flat state.
     pub fn next_kin(&mut self) -> Option<Result<Kin<N, NI, NO>, Error>> {
         if self.done || self.next >= self.samples {
             return None;
         }
+        if let Some(e) = self.invalid.take() {
+            self.done = true;
+            return Some(Err(e));
+        }
         let Some(cur) = self.cur.as_ref() else {
-            let x = self.path.from;
-            return Some(match self.m.kinematics_flat(&x, &self.guess, &self.cfg.newton) {
-                Ok(k) => {
-                    self.cur = Some(k);
-                    self.signs = k.health.det_signs;
-                    self.h = self.h_max;
-                    self.next = 1;
-                    Ok(k)
-                }
-                Err(e) => {
-                    self.done = true;
-                    Err(e)
-                }
-            });
+            return Some(self.first_sample());
         };
         let target = if self.next + 1 == self.samples { 1.0 } else { self.next as f64 * self.spacing };
         let mut successes = 0u32;
         // The state is kept in `self.cur` only (no local copy): every copy of the ~150-byte
         // state is a memcpy on the per-step path.
         let mut cur = cur;
+        let mut attempts = 0u32;
         while self.tau < target {
+            attempts += 1;
+            if attempts > MAX_ATTEMPTS_PER_SAMPLE {
+                self.done = true;
+                return Some(Err(self.no_progress()));
+            }
             let remaining = target - self.tau;
             // Within a hair of the target, land on it: a full step computed in floating point
             // may fall short by an ulp and leave a needless tiny step.
@@ -428,7 +472,7 @@ where
             // A true limit position is singular; a reversal where the Jacobian is regular is a
             // kink of a non-smooth curve (e.g. through `abs`), reported below as a branch error.
             Some(Found::Fold(fold)) if curve::pivot_at(self.m, &path.at_sigma(fold.sigma), &fold.q) < 1e-6 => {
-                let ev = Event::on_curve(EventKind::LimitPosition, &path, &fold, block_of(weakest));
+                let ev = curve::event_at(EventKind::LimitPosition, &path, &fold, block_of(weakest));
                 let at = self.location(&ev.x, ev.block);
                 self.events.push(ev);
                 return Err(Error::SweepStopped { kind: EventKind::LimitPosition, at });
@@ -436,8 +480,8 @@ where
             Some(Found::Crossing(at, past)) => {
                 // The block whose determinant sign differs on the far side.
                 let beyond = self.m.kinematics_at_flat(&path.at_sigma(past.sigma), &past.q, &newton).ok();
-                let flipped = beyond.map_or(weakest, |n| (n.health.det_signs ^ self.signs).trailing_zeros() as usize);
-                self.events.push(Event::on_curve(EventKind::SingularCrossing, &path, &at, block_of(flipped)));
+                let flipped = beyond.and_then(|n| n.health.det_signs.first_difference(&self.signs)).unwrap_or(weakest);
+                self.events.push(curve::event_at(EventKind::SingularCrossing, &path, &at, block_of(flipped)));
                 if self.cfg.at_singular == AtSingular::Continue
                     && let Some(n) = self.resume_past(past, target)
                 {

@@ -18,7 +18,7 @@
 use crate::error::Error;
 use crate::kin::Kin;
 use crate::mechanism::Mechanism;
-use crate::sweep::{Sweep, SweepConfig};
+use crate::paths::sweep::{Sweep, SweepConfig};
 use std::fmt;
 
 /// How each sweep of a scan starts: the initial guess at the start of the range, which picks

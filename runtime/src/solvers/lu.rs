@@ -117,7 +117,10 @@ impl<const N: usize> Lu<N> {
             if pivot < 0.0 {
                 negative_det = !negative_det;
             }
-            min_pivot = min_pivot.min(pivot.abs());
+            // `f64::min` would skip a NaN pivot; a NaN must never pass as a regular pivot.
+            if pivot.abs() < min_pivot || pivot.is_nan() {
+                min_pivot = pivot.abs();
+            }
             det *= pivot;
             let inv = 1.0 / pivot;
             inv_diag[k] = inv;
@@ -308,6 +311,9 @@ mod tests {
         let lu = Lu::<2>::factor(&[[f64::NAN, 0.0], [0.0, 1.0]], [1.0, 1.0]);
         assert_eq!(lu.pivot_ratio(), 0.0);
         let lu = Lu::<1>::factor(&[[2.0]], [max_abs([2.0, f64::NAN])]);
+        assert_eq!(lu.pivot_ratio(), 0.0);
+        // A NaN pivot after a regular one (f64::min would keep the regular one).
+        let lu = Lu::<3>::factor(&[[4.0, 0.0, 0.0], [0.0, 1.0, 0.0], [0.0, 0.0, f64::NAN]], [4.0, 1.0, 1.0]);
         assert_eq!(lu.pivot_ratio(), 0.0);
     }
 

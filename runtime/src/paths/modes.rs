@@ -2,7 +2,7 @@
 
 use crate::kin::Kin;
 use crate::mechanism::Mechanism;
-use crate::newton::NewtonConfig;
+use crate::solvers::newton::NewtonConfig;
 use std::f64::consts::PI;
 
 /// Distance between two angle-or-length values, treating differences of whole turns as equal

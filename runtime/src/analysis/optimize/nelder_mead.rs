@@ -1,0 +1,294 @@
+//! The Nelder–Mead simplex method with the dimension-adaptive coefficients of Gao and Han
+//! (2012) (reflection 1, expansion `1 + 2/n`, contraction `3/4 - 1/(2n)`, shrink `1 - 1/n`),
+//! restarts from the best point, and evaluation counting.
+//!
+//! Box constraints (each parameter in a range) are best handled by
+//! [`NelderMead::minimize_boxed`], which searches unconstrained variables mapped into the box,
+//! so optima on a face of the box are reached smoothly. Other constraints (a design that cannot
+//! assemble) are expressed by returning `f64::INFINITY` (or NaN, treated alike) from the
+//! objective: such points are never accepted, and the simplex contracts away from them. The
+//! starting point must be feasible.
+
+use super::{Minimum, Stop};
+
+/// Derivative-free minimiser: the Nelder–Mead simplex method with the dimension-adaptive
+/// coefficients of Gao and Han, restarts and evaluation counting. Infeasible points are marked
+/// by an infinite (or NaN) objective. The configuration is apart from the problem: build it
+/// once, then [`minimize`](NelderMead::minimize) any objective.
+///
+/// ```
+/// use kinloop_runtime::analysis::optimize::NelderMead;
+/// // Rosenbrock's valley: minimum 0 at (1, 1).
+/// let rosenbrock = |p: &[f64; 2]| (1.0 - p[0]).powi(2) + 100.0 * (p[1] - p[0] * p[0]).powi(2);
+/// let m = NelderMead::default().minimize(rosenbrock, [-1.2, 1.0], [0.5, 0.5]);
+/// assert!(m.converged() && (m.x[0] - 1.0).abs() < 1e-6 && (m.x[1] - 1.0).abs() < 1e-6);
+/// assert!(m.value < 1e-12 && m.evaluations < 1000);
+/// ```
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct NelderMead {
+    /// Stop after this many objective evaluations (default `2000`).
+    pub max_evaluations: usize,
+    /// Converged when the simplex's objective values differ by at most `f_tol` ...
+    pub f_tol: f64,
+    /// ... and every vertex lies within `x_tol` (in each coordinate) of the best one (defaults
+    /// `1e-12` and `1e-9`).
+    pub x_tol: f64,
+    /// After convergence, rebuild the simplex around the best point (with the initial steps) up
+    /// to this many times, until a restart no longer improves the best value (default `2`). This
+    /// guards against the simplex collapsing before a minimum.
+    pub restarts: usize,
+}
+
+impl Default for NelderMead {
+    fn default() -> Self {
+        NelderMead { max_evaluations: 2000, f_tol: 1e-12, x_tol: 1e-9, restarts: 2 }
+    }
+}
+
+/// The simplex: vertices and their objective values.
+struct Simplex<const P: usize> {
+    xs: Vec<[f64; P]>,
+    fs: Vec<f64>,
+}
+
+impl NelderMead {
+    /// Sets [`NelderMead::max_evaluations`].
+    pub fn with_max_evaluations(mut self, n: usize) -> Self {
+        self.max_evaluations = n;
+        self
+    }
+    /// Sets [`NelderMead::f_tol`] and [`NelderMead::x_tol`].
+    pub fn with_tolerances(mut self, f_tol: f64, x_tol: f64) -> Self {
+        self.f_tol = f_tol;
+        self.x_tol = x_tol;
+        self
+    }
+    /// Sets [`NelderMead::restarts`].
+    pub fn with_restarts(mut self, n: usize) -> Self {
+        self.restarts = n;
+        self
+    }
+
+    /// Minimises `f` over `P` variables from `x0`, with an initial simplex of `x0` and the
+    /// points `x0 + step[i] e_i`. `value` is `f(x)`; `history` the best value after each round
+    /// (the first search and every restart).
+    pub fn minimize<const P: usize>(
+        &self,
+        mut f: impl FnMut(&[f64; P]) -> f64,
+        x0: [f64; P],
+        step: [f64; P],
+    ) -> Minimum<P> {
+        let evaluations = std::cell::Cell::new(0usize);
+        let mut eval = |x: &[f64; P]| {
+            evaluations.set(evaluations.get() + 1);
+            let v = f(x);
+            if v.is_nan() { f64::INFINITY } else { v }
+        };
+        let mut best = x0;
+        let mut f_best = eval(&x0);
+        let mut iterations = 0usize;
+        let mut converged;
+        let mut restarts_left = self.restarts;
+        let mut history = vec![f_best];
+        loop {
+            let f_start = f_best;
+            let mut s = Simplex { xs: vec![best], fs: vec![f_best] };
+            for i in 0..P {
+                let mut x = best;
+                x[i] += step[i];
+                s.fs.push(eval(&x));
+                s.xs.push(x);
+            }
+            converged = self.search(&mut s, &mut eval, &evaluations, &mut iterations);
+            let i = (0..=P).min_by(|&a, &b| s.fs[a].total_cmp(&s.fs[b])).unwrap_or(0);
+            if s.fs[i] < f_best {
+                (best, f_best) = (s.xs[i], s.fs[i]);
+            }
+            history.push(f_best);
+            let improved = f_start - f_best > self.f_tol;
+            if !converged || restarts_left == 0 || (!improved && restarts_left < self.restarts) {
+                break;
+            }
+            restarts_left -= 1;
+        }
+        let termination = if converged { Stop::Converged } else { Stop::MaxEvaluations };
+        Minimum { x: best, value: f_best, evaluations: evaluations.get(), iterations, termination, history }
+    }
+
+    /// Simplex iterations until the tolerances are met (`true`) or the evaluations run out.
+    fn search<const P: usize>(
+        &self,
+        s: &mut Simplex<P>,
+        eval: &mut impl FnMut(&[f64; P]) -> f64,
+        evaluations: &std::cell::Cell<usize>,
+        iterations: &mut usize,
+    ) -> bool {
+        let n = P.max(1) as f64;
+        let (alpha, gamma, rho, sigma) = (1.0, 1.0 + 2.0 / n, 0.75 - 0.5 / n, 1.0 - 1.0 / n);
+        loop {
+            // Order: best first, worst last.
+            let mut idx: Vec<usize> = (0..=P).collect();
+            idx.sort_by(|&a, &b| s.fs[a].total_cmp(&s.fs[b]));
+            s.xs = idx.iter().map(|&i| s.xs[i]).collect();
+            s.fs = idx.iter().map(|&i| s.fs[i]).collect();
+            let (xs, fs) = (&mut s.xs, &mut s.fs);
+            let spread = fs[P] - fs[0];
+            let size = xs.iter().flat_map(|x| x.iter().zip(&xs[0]).map(|(a, b)| (a - b).abs())).fold(0.0, f64::max);
+            if spread <= self.f_tol && size <= self.x_tol {
+                return true;
+            }
+            if evaluations.get() >= self.max_evaluations {
+                return false;
+            }
+            *iterations += 1;
+            let mut c = [0.0; P];
+            for x in &xs[..P] {
+                for k in 0..P {
+                    c[k] += x[k] / n;
+                }
+            }
+            let worst = xs[P];
+            let along = |t: f64| {
+                let mut y = [0.0; P];
+                for k in 0..P {
+                    y[k] = c[k] + t * (worst[k] - c[k]);
+                }
+                y
+            };
+            let mut ev = |x: &[f64; P]| eval(x);
+            let xr = along(-alpha);
+            let fr = ev(&xr);
+            if fr < fs[0] {
+                let xe = along(-alpha * gamma);
+                let fe = ev(&xe);
+                (xs[P], fs[P]) = if fe < fr { (xe, fe) } else { (xr, fr) };
+                continue;
+            }
+            if fr < fs[P - 1] {
+                (xs[P], fs[P]) = (xr, fr);
+                continue;
+            }
+            // Contraction: outside when the reflected point beats the worst, inside otherwise.
+            let t = if fr < fs[P] { -alpha * rho } else { rho };
+            let xc = along(t);
+            let fc = ev(&xc);
+            if (fr < fs[P] && fc <= fr) || (fr >= fs[P] && fc < fs[P]) {
+                (xs[P], fs[P]) = (xc, fc);
+                continue;
+            }
+            // Shrink towards the best vertex.
+            for i in 1..=P {
+                for k in 0..P {
+                    xs[i][k] = xs[0][k] + sigma * (xs[i][k] - xs[0][k]);
+                }
+                fs[i] = ev(&xs[i]);
+            }
+        }
+    }
+
+    /// Minimises `f` over the box `lo[i] <= x[i] <= hi[i]` by [`NelderMead::minimize`] on
+    /// unconstrained variables `u` with `x = lo + (hi - lo) (1 + sin u) / 2` (the transformation
+    /// of MINUIT): every trial point lies in the box, and a minimum on a face of the box is a
+    /// smooth minimum in `u`. The initial simplex steps are `0.25` rad in `u` (a quarter of the
+    /// range near the centre). `x_tol` applies to `u`.
+    ///
+    /// ```
+    /// use kinloop_runtime::analysis::optimize::NelderMead;
+    /// // (x - 2)^2 + (y + 0.5)^2 over [0, 1] x [-1, 1]: the minimum is on the face x = 1.
+    /// let f = |p: &[f64; 2]| (p[0] - 2.0).powi(2) + (p[1] + 0.5).powi(2);
+    /// let m = NelderMead::default().minimize_boxed(f, [0.5, 0.0], [0.0, -1.0], [1.0, 1.0]);
+    /// assert!((m.x[0] - 1.0).abs() < 1e-9 && (m.x[1] + 0.5).abs() < 1e-6 && m.x[0] <= 1.0);
+    /// ```
+    pub fn minimize_boxed<const P: usize>(
+        &self,
+        mut f: impl FnMut(&[f64; P]) -> f64,
+        x0: [f64; P],
+        lo: [f64; P],
+        hi: [f64; P],
+    ) -> Minimum<P> {
+        let to_x = |u: &[f64; P]| {
+            let mut x = [0.0; P];
+            for i in 0..P {
+                x[i] = (lo[i] + (hi[i] - lo[i]) * 0.5 * (1.0 + u[i].sin())).clamp(lo[i], hi[i]);
+            }
+            x
+        };
+        let mut u0 = [0.0; P];
+        for i in 0..P {
+            let t = if hi[i] > lo[i] { 2.0 * (x0[i] - lo[i]) / (hi[i] - lo[i]) - 1.0 } else { 0.0 };
+            u0[i] = t.clamp(-1.0, 1.0).asin();
+        }
+        let m = self.minimize(|u| f(&to_x(u)), u0, [0.25; P]);
+        Minimum { x: to_x(&m.x), ..m }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn rosenbrock_and_a_quadratic_bowl() {
+        let mut calls = 0;
+        let m = NelderMead::default().minimize(
+            |p: &[f64; 2]| {
+                calls += 1;
+                (1.0 - p[0]).powi(2) + 100.0 * (p[1] - p[0] * p[0]).powi(2)
+            },
+            [-1.2, 1.0],
+            [0.5, 0.5],
+        );
+        assert!(m.converged());
+        assert!((m.x[0] - 1.0).abs() < 1e-6 && (m.x[1] - 1.0).abs() < 1e-6, "{m:?}");
+        assert_eq!(m.evaluations, calls, "every call is counted");
+
+        // A rotated, badly scaled 5-D quadratic with its minimum at c.
+        let c = [0.3, -1.0, 2.0, 0.5, -0.25];
+        let q = |p: &[f64; 5]| {
+            let d: Vec<f64> = (0..5).map(|i| p[i] - c[i]).collect();
+            (0..5).map(|i| (i + 1) as f64 * d[i].powi(2)).sum::<f64>() + d[0] * d[1] + 0.5 * d[2] * d[4]
+        };
+        let m = NelderMead::default().minimize(q, [0.0; 5], [0.5; 5]);
+        assert!(m.converged(), "{m:?}");
+        for i in 0..5 {
+            assert!((m.x[i] - c[i]).abs() < 1e-5, "{m:?}");
+        }
+    }
+
+    #[test]
+    fn infeasible_points_are_avoided() {
+        // Minimise (x - 2)^2 + y^2 subject to x <= 1: the constrained minimum is (1, 0).
+        let f = |p: &[f64; 2]| if p[0] > 1.0 { f64::INFINITY } else { (p[0] - 2.0).powi(2) + p[1] * p[1] };
+        let m = NelderMead::default().minimize(f, [0.0, 0.5], [0.3, 0.3]);
+        assert!(m.x[0] <= 1.0 && (m.x[0] - 1.0).abs() < 1e-6 && m.x[1].abs() < 1e-4, "{m:?}");
+        let nan = |p: &[f64; 1]| if p[0] < 0.0 { f64::NAN } else { (p[0] - 0.5).powi(2) };
+        let m = NelderMead::default().minimize(nan, [2.0], [1.0]);
+        assert!((m.x[0] - 0.5).abs() < 1e-6, "{m:?}");
+    }
+
+    #[test]
+    fn boxed_search_reaches_faces_and_corners() {
+        // The unconstrained minimum (2, -3) lies outside [0, 1] x [-1, 1]: the corner (1, -1).
+        let f = |p: &[f64; 2]| (p[0] - 2.0).powi(2) + (p[1] + 3.0).powi(2) + 0.1 * p[0] * p[1];
+        let m = NelderMead::default().minimize_boxed(f, [0.2, 0.3], [0.0, -1.0], [1.0, 1.0]);
+        assert!((m.x[0] - 1.0).abs() < 1e-9 && (m.x[1] + 1.0).abs() < 1e-9, "{m:?}");
+        // An interior minimum is found as without the box.
+        let g = |p: &[f64; 2]| (p[0] - 0.3).powi(2) + 2.0 * (p[1] - 0.7).powi(2);
+        let m = NelderMead::default().minimize_boxed(g, [0.9, -0.9], [0.0, -1.0], [1.0, 1.0]);
+        assert!((m.x[0] - 0.3).abs() < 1e-6 && (m.x[1] - 0.7).abs() < 1e-6, "{m:?}");
+    }
+
+    #[test]
+    fn the_evaluation_limit_is_respected() {
+        let cfg = NelderMead::default().with_max_evaluations(40);
+        let m = cfg.minimize(
+            |p: &[f64; 2]| (1.0 - p[0]).powi(2) + 100.0 * (p[1] - p[0] * p[0]).powi(2),
+            [-1.2, 1.0],
+            [0.5, 0.5],
+        );
+        assert!(!m.converged());
+        assert_eq!(m.termination, Stop::MaxEvaluations);
+        // The last iteration may finish its contraction and shrink: at most P + 2 more.
+        assert!(m.evaluations <= 40 + 2 + 2, "{}", m.evaluations);
+    }
+}

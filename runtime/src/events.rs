@@ -1,0 +1,99 @@
+//! Where things happen: the blocks of a decomposition, locations of errors, and the singular
+//! positions (events) met along a path. This vocabulary depends on nothing else in the crate,
+//! so errors, sweeps and continuation can all name it.
+
+use std::fmt;
+
+/// Static description of one block of a mechanism's block-triangular decomposition.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub struct BlockInfo {
+    /// Unknowns solved in this block (declaration order).
+    pub unknowns: &'static [&'static str],
+    /// Scalar equations of this block (`loop.x`, `loop.y` or an `eq` name).
+    pub equations: &'static [&'static str],
+    /// The block's unknowns appear linearly: it is solved in closed form, without iteration.
+    pub linear: bool,
+}
+
+/// Where an error happened.
+#[derive(Clone, Debug, PartialEq)]
+pub struct Location {
+    /// Name of the mechanism type.
+    pub mechanism: &'static str,
+    /// Values of the inputs (generalized coordinates) when it happened.
+    pub inputs: Vec<(&'static str, f64)>,
+    /// The block being solved, with its index in solve order, if the error concerns one.
+    pub block: Option<(usize, BlockInfo)>,
+}
+
+impl Location {
+    /// A boxed location of mechanism `mechanism` at the inputs `names = x` (for errors raised
+    /// by generic code: sweeps, continuation).
+    pub(crate) fn boxed(
+        mechanism: &'static str,
+        names: &[&'static str],
+        x: &[f64],
+        block: Option<(usize, BlockInfo)>,
+    ) -> Box<Location> {
+        Box::new(Location { mechanism, inputs: names.iter().copied().zip(x.iter().copied()).collect(), block })
+    }
+}
+
+impl fmt::Display for Location {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        write!(f, "in `{}`", self.mechanism)?;
+        if !self.inputs.is_empty() {
+            write!(f, " at ")?;
+            for (k, (name, value)) in self.inputs.iter().enumerate() {
+                if k > 0 {
+                    write!(f, ", ")?;
+                }
+                write!(f, "{name} = {value}")?;
+            }
+        }
+        if let Some((index, info)) = &self.block {
+            write!(
+                f,
+                " (block {index}: unknowns {}; equations {})",
+                info.unknowns.join(", "),
+                info.equations.join(", ")
+            )?;
+        }
+        Ok(())
+    }
+}
+
+/// Kinds of singular positions met along a sweep.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+#[non_exhaustive]
+pub enum EventKind {
+    /// The input cannot advance on this branch: a limit (dead-centre) position of the input, a
+    /// fold of the solution curve where the input reverses.
+    LimitPosition,
+    /// A block's Jacobian is singular with solutions on both sides and its determinant changes
+    /// sign: a change point (bifurcation) where the assembly mode can change.
+    SingularCrossing,
+}
+
+impl fmt::Display for EventKind {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        f.write_str(match self {
+            EventKind::LimitPosition => "limit position",
+            EventKind::SingularCrossing => "singular crossing",
+        })
+    }
+}
+
+/// A singular position located along a sweep.
+#[derive(Clone, Debug, PartialEq)]
+pub struct Event {
+    pub kind: EventKind,
+    /// Input values at the event.
+    pub x: Vec<f64>,
+    /// Fraction of the sweep path at the event (`0` at `from`, `1` at `to`).
+    pub tau: f64,
+    /// Positions of the unknowns at the event.
+    pub q: Vec<f64>,
+    /// The block that became singular, if identified, with its index in solve order.
+    pub block: Option<(usize, BlockInfo)>,
+}

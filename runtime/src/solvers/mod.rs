@@ -1,0 +1,7 @@
+//! Solvers of one square block: damped Newton's method with scale-free tests and its
+//! diagnostics ([`newton`]), and the equilibrated LU factorisation of small fixed-size blocks
+//! that Newton, the analogs and the sensitivities share ([`lu`]).
+
+pub mod lu;
+pub mod newton;
+mod newton_config;

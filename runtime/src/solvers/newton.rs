@@ -1,0 +1,613 @@
+//! Damped Newton's method for one square block, with diagnostics.
+//!
+//! The configuration ([`NewtonConfig`]) is separate from the problem (the block's generated
+//! evaluation closure) and the outcome carries its diagnostics ([`SolveReport`]): iterations,
+//! evaluations, final residual and why it stopped.
+//!
+//! **Scale-free tests.** Every test is made in the units of the problem: residual `i` is divided
+//! by its row magnitude `scale_i` (see [`BlockEval::scale`]), a step in unknown `j` by that
+//! unknown's magnitude, and the pivots of the factorisation are those of the row-equilibrated
+//! Jacobian. A mechanism in metres, millimetres or micrometres therefore stops at the same
+//! relative accuracy.
+//!
+//! **No silent wrong answer.** Whatever stops the iteration, the final scaled residual is
+//! checked; the last Newton correction is applied (a prediction that already meets the
+//! tolerance is still corrected once); a root reached with linear convergence (the signature
+//! of a singular Jacobian at the root) is reported as singular, not returned as an inaccurate
+//! success.
+
+pub use super::newton_config::{NewtonConfig, SolveReport, Termination};
+use crate::solvers::lu::Lu;
+
+/// One evaluation of a block: residuals, Jacobian rows, the rows' magnitudes, and intermediate
+/// values the generated code keeps for later stages (so they are not recomputed after
+/// convergence).
+#[doc(hidden)]
+#[derive(Clone, Copy, Debug)]
+pub struct BlockEval<const N: usize, const K: usize> {
+    pub f: [f64; N],
+    pub j: [[f64; N]; N],
+    /// Magnitude of each row: the sum of the absolute values of the terms of the equation (for
+    /// a loop projection, about the sum of its link lengths), in the equation's unit. Residual
+    /// `i` is judged relative to it. A value that is not positive and finite (generated code
+    /// that does not provide it yet passes `0`) is replaced by the runtime's fallback, the row
+    /// sum `sum_j |J_ij|` (exact for angle unknowns, whose natural scale is one radian; for
+    /// length unknowns it is off by the unit of length, so generated magnitudes are preferred).
+    pub scale: [f64; N],
+    pub keep: [f64; K],
+}
+
+/// A converged block.
+#[doc(hidden)]
+#[derive(Clone, Copy, Debug)]
+pub struct Solved<const N: usize, const K: usize> {
+    pub z: [f64; N],
+    /// The evaluation at `z`, or (after the free correction of an accepted guess) at the point
+    /// one Newton step before `z`: its Jacobian and kept values then differ from those at `z`
+    /// by the order of the residual tolerance.
+    pub eval: BlockEval<N, K>,
+    pub iterations: u32,
+    pub evaluations: u32,
+    pub residual: f64,
+    pub termination: Termination,
+}
+
+/// Why a block failed; the generated code adds the location and names.
+#[doc(hidden)]
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub enum BlockFailure {
+    /// A residual or Jacobian entry is not finite; `row` is the block row.
+    NonFinite { row: usize, iterations: u32 },
+    /// The iteration cap was reached while the residual still decreased.
+    NoConvergence { row: usize, iterations: u32, residual: f64 },
+    /// The iteration stalled at a stationary point of the squared residual that is not a root
+    /// (no descent direction, scaled residual clearly non-zero): the loops cannot close there.
+    NoAssembly { row: usize, iterations: u32, residual: f64 },
+    /// The Jacobian is singular at (or the iteration converged only linearly to) a root: a
+    /// singular position, where the solution is not determined to working accuracy.
+    Singular { row: usize, iterations: u32, residual: f64, pivot_ratio: f64, tolerance: f64 },
+    /// A configuration field is out of range (see [`NewtonConfig::invalid_field`]).
+    InvalidConfig { field: &'static str },
+}
+
+/// A scaled residual above this at a stall means the loops do not close there (not merely a
+/// root reached slowly): far above any rounding floor, far below the residual of a mechanism
+/// that visibly cannot assemble.
+const STALL_RESIDUAL: f64 = 1e-8;
+
+/// The scaled residual may exceed `residual_tol` by this factor when the iteration stops on the
+/// step test (rows whose terms are much larger than their derivatives have a higher floor).
+const FLOOR_FACTOR: f64 = 1e3;
+
+/// The largest scaled correction applied to an accepted guess without iterating (larger ones,
+/// from an ill-conditioned block, are iterated and checked).
+const MAX_FREE_CORRECTION: f64 = 1e-6;
+
+/// A final step this large relative to the previous one means linear, not quadratic,
+/// convergence.
+const LINEAR_CONTRACTION: f64 = 0.1;
+
+/// The row magnitudes of an evaluation (see [`BlockEval::scale`]).
+#[inline(always)]
+fn row_scales<const N: usize, const K: usize>(ev: &BlockEval<N, K>) -> [f64; N] {
+    let mut s = [0.0; N];
+    for r in 0..N {
+        let given = ev.scale[r];
+        s[r] = if given > 0.0 && given < f64::INFINITY {
+            given
+        } else {
+            let mut sum = 0.0;
+            for c in 0..N {
+                sum += ev.j[r][c].abs();
+            }
+            sum
+        };
+    }
+    s
+}
+
+/// `max_i |f_i| / s_i`; NaN propagates, a non-zero residual over a zero scale is infinite.
+#[inline(always)]
+fn scaled_residual<const N: usize>(f: &[f64; N], s: &[f64; N]) -> f64 {
+    let mut m = 0.0f64;
+    for r in 0..N {
+        let a = f[r].abs();
+        let v = if a == 0.0 { 0.0 } else { a / s[r] };
+        if v > m || v.is_nan() {
+            m = v;
+        }
+    }
+    m
+}
+
+/// `max_j |dz_j| / max(|z_j|, 1)`: steps relative to each unknown's magnitude (one radian for
+/// angles); NaN propagates.
+#[inline(always)]
+fn scaled_step<const N: usize>(dz: &[f64; N], z: &[f64; N]) -> f64 {
+    let mut m = 0.0f64;
+    for c in 0..N {
+        let v = dz[c].abs() / z[c].abs().max(1.0);
+        if v > m || v.is_nan() {
+            m = v;
+        }
+    }
+    m
+}
+
+/// The scaled residual of a full system (continuation, event location): each residual relative
+/// to the fallback row magnitude `sum_j |J_ij| + |extra_i|` (see [`BlockEval::scale`]), where
+/// `extra` holds further derivatives of the row (e.g. along the input path, which keeps the
+/// magnitude away from zero at a limit position).
+pub(crate) fn system_residual<const N: usize>(f: &[f64; N], j: &[[f64; N]; N], extra: &[f64; N]) -> f64 {
+    let mut s = [0.0; N];
+    for r in 0..N {
+        s[r] = j[r].iter().map(|v| v.abs()).sum::<f64>() + extra[r].abs();
+    }
+    scaled_residual(f, &s)
+}
+
+fn argmax_scaled<const N: usize>(f: &[f64; N], s: &[f64; N]) -> usize {
+    let mut k = 0;
+    let mut best = -1.0;
+    for r in 0..N {
+        let v = f[r].abs() / s[r];
+        if v > best || v.is_nan() {
+            k = r;
+            best = if v.is_nan() { f64::INFINITY } else { v };
+        }
+    }
+    k
+}
+
+fn first_non_finite<const N: usize, const K: usize>(ev: &BlockEval<N, K>) -> Option<usize> {
+    (0..N).find(|&r| !ev.f[r].is_finite() || ev.j[r].iter().any(|v| !v.is_finite()))
+}
+
+/// The Newton step `-J^-1 f` with `J` equilibrated by the row magnitudes, and the pivot ratio.
+#[inline(always)]
+fn newton_step<const N: usize, const K: usize>(ev: &BlockEval<N, K>, s: &[f64; N]) -> ([f64; N], f64) {
+    let lu = Lu::factor(&ev.j, *s);
+    let mut neg_f = ev.f;
+    for v in &mut neg_f {
+        *v = -*v;
+    }
+    (lu.solve(neg_f), lu.pivot_ratio())
+}
+
+/// The guess `z0` corrected by one Newton step with the Jacobian of its evaluation `ev`, or
+/// `None` when that Jacobian is near singular or the step is not small (then it iterates). A
+/// correction within the rounding of the unknowns is noise: the guess is kept, so a solve from
+/// a solution returns it unchanged.
+#[inline(always)]
+fn free_correction<const N: usize, const K: usize>(
+    ev: &BlockEval<N, K>,
+    s: &[f64; N],
+    z0: [f64; N],
+    cfg: &NewtonConfig,
+) -> Option<[f64; N]> {
+    let (dz, pivot) = if N == 1 {
+        // A scalar block needs no factorisation: the row-equilibrated pivot is `|J| / s`.
+        let j = ev.j[0][0];
+        let mut dz = [0.0; N];
+        dz[0] = -ev.f[0] / j;
+        (dz, j.abs() / s[0])
+    } else {
+        newton_step(ev, s)
+    };
+    let step = scaled_step(&dz, &z0);
+    // NaN fails both tests.
+    if !(pivot > cfg.singular_tol && step <= MAX_FREE_CORRECTION) {
+        return None;
+    }
+    let mut z = z0;
+    if step > 4.0 * f64::EPSILON {
+        for c in 0..N {
+            z[c] += dz[c];
+        }
+    }
+    Some(z)
+}
+
+/// Solves one block from the guess `z0`. In the common warm-started case this costs one
+/// evaluation and one small factorisation: the guess already meets the tolerance and is
+/// corrected once by the Newton step (its Jacobian is the one the analogs use). The iteration
+/// itself is a separate, out-of-line function.
+#[doc(hidden)]
+#[inline(always)]
+pub fn newton<const N: usize, const K: usize>(
+    z0: [f64; N],
+    cfg: &NewtonConfig,
+    mut eval: impl FnMut(&[f64; N]) -> BlockEval<N, K>,
+) -> Result<Solved<N, K>, BlockFailure> {
+    let ev = eval(&z0);
+    let s = row_scales(&ev);
+    let rho = scaled_residual(&ev.f, &s);
+    // NaN fails both tests; an out-of-range tolerance is diagnosed by `iterate`.
+    if rho <= cfg.residual_tol
+        && cfg.residual_tol <= 1e-3
+        && let Some(z) = free_correction(&ev, &s, z0, cfg)
+    {
+        return Ok(Solved {
+            z,
+            eval: ev,
+            iterations: 0,
+            evaluations: 1,
+            residual: rho,
+            termination: Termination::ResidualTolerance,
+        });
+    }
+    iterate(z0, ev, cfg, eval)
+}
+
+/// Newton iterations from `z0`, whose evaluation is `ev0`. The generated code calls it through
+/// [`newton`] when the guess does not meet the tolerance.
+#[doc(hidden)]
+#[cold]
+#[inline(never)]
+pub fn iterate<const N: usize, const K: usize>(
+    z0: [f64; N],
+    ev0: BlockEval<N, K>,
+    cfg: &NewtonConfig,
+    mut eval: impl FnMut(&[f64; N]) -> BlockEval<N, K>,
+) -> Result<Solved<N, K>, BlockFailure> {
+    if let Some(field) = cfg.invalid_field() {
+        return Err(BlockFailure::InvalidConfig { field });
+    }
+    let mut it = Iter {
+        z: z0,
+        ev: ev0,
+        iterations: 0,
+        evaluations: 1,
+        prev_step: f64::INFINITY,
+        slow_run: 0,
+        rho_mark: f64::INFINITY,
+        prev_rho: f64::INFINITY,
+    };
+    loop {
+        if let Some(row) = first_non_finite(&it.ev) {
+            return Err(BlockFailure::NonFinite { row, iterations: it.iterations });
+        }
+        let s = row_scales(&it.ev);
+        let rho = scaled_residual(&it.ev.f, &s);
+        let (dz, pivot) = newton_step(&it.ev, &s);
+        let step = scaled_step(&dz, &it.z);
+        let converged = rho <= cfg.residual_tol;
+        // At the rounding floor the step no longer shrinks below `step_tol` or the residual no
+        // longer decreases (a singular root still divides it by about four per iteration).
+        let stagnant = rho >= 0.5 * it.prev_rho;
+        let floor = FLOOR_FACTOR * cfg.residual_tol.max(16.0 * f64::EPSILON);
+        let at_floor = (step <= cfg.step_tol || stagnant) && rho <= floor;
+        if converged || at_floor {
+            let termination = if converged { Termination::ResidualTolerance } else { Termination::StepTolerance };
+            return it.finish(dz, step, pivot, rho, &s, termination, cfg, &mut eval);
+        }
+        if it.iterations >= cfg.max_iterations {
+            let row = argmax_scaled(&it.ev.f, &s);
+            // Over the second half of the iterations the residual did not even halve: it
+            // crawls into a minimum that is not a root.
+            if cfg.max_iterations >= 8 && rho > STALL_RESIDUAL && rho > 0.5 * it.rho_mark {
+                return Err(BlockFailure::NoAssembly { row, iterations: it.iterations, residual: rho });
+            }
+            return Err(BlockFailure::NoConvergence { row, iterations: it.iterations, residual: rho });
+        }
+        if it.iterations == cfg.max_iterations / 2 {
+            it.rho_mark = rho;
+        }
+        let newton_ok = pivot > cfg.singular_tol * 1e-3 && step.is_finite();
+        // At the rounding floor only the Newton step is worth trying.
+        let moved =
+            (newton_ok && it.search(&dz, &s, cfg, &mut eval)) || (rho > floor && it.descend(&s, cfg, &mut eval));
+        if !moved {
+            if rho <= floor {
+                // No step decreases a residual already at its rounding floor.
+                return it.finish(dz, step, pivot, rho, &s, Termination::StepTolerance, cfg, &mut eval);
+            }
+            return Err(it.stalled(rho, pivot, &s, cfg));
+        }
+        let slow = newton_ok && step > LINEAR_CONTRACTION * it.prev_step;
+        it.slow_run = if slow { it.slow_run + 1 } else { 0 };
+        it.prev_step = if newton_ok { step } else { f64::INFINITY };
+        it.prev_rho = rho;
+        it.iterations += 1;
+    }
+}
+
+/// The state of an iteration.
+struct Iter<const N: usize, const K: usize> {
+    z: [f64; N],
+    ev: BlockEval<N, K>,
+    iterations: u32,
+    evaluations: u32,
+    /// Scaled length of the previous full Newton step (infinite after a gradient step).
+    prev_step: f64,
+    /// How many consecutive Newton steps each kept more than `LINEAR_CONTRACTION` of the
+    /// previous one (linear convergence).
+    slow_run: u32,
+    /// The scaled residual half way through the iteration budget.
+    rho_mark: f64,
+    /// The scaled residual at the previous iterate.
+    prev_rho: f64,
+}
+
+impl<const N: usize, const K: usize> Iter<N, K> {
+    /// Ends a converged iteration: diagnoses linear convergence (a singular root), then applies
+    /// the last correction `dz` and re-evaluates there (so the Jacobian and kept values match
+    /// the returned position).
+    #[allow(clippy::too_many_arguments)]
+    fn finish(
+        mut self,
+        dz: [f64; N],
+        step: f64,
+        pivot: f64,
+        rho: f64,
+        s: &[f64; N],
+        termination: Termination,
+        cfg: &NewtonConfig,
+        eval: &mut impl FnMut(&[f64; N]) -> BlockEval<N, K>,
+    ) -> Result<Solved<N, K>, BlockFailure> {
+        // The position is known to about the last step of a linearly converging iteration (the
+        // residual of a row can round to zero before the unknowns settle).
+        let visible = FLOOR_FACTOR * cfg.residual_tol.max(cfg.step_tol);
+        let slow = self.prev_step.is_finite() && step > LINEAR_CONTRACTION * self.prev_step;
+        let singular_root = !step.is_finite()
+            || (slow && step > visible)
+            || (self.slow_run >= 2 && self.prev_step.is_finite() && self.prev_step > visible);
+        if singular_root && self.iterations > 0 {
+            // Newton converges quadratically to a regular root; linearly (each step a fixed
+            // fraction of the previous one) only where the Jacobian is singular at the root,
+            // and the position is then only known to about the size of the last step.
+            return Err(BlockFailure::Singular {
+                row: argmax_scaled(&self.ev.f, s),
+                iterations: self.iterations,
+                residual: rho,
+                pivot_ratio: pivot,
+                tolerance: cfg.singular_tol,
+            });
+        }
+        if step.is_finite() && step > 0.0 {
+            let mut z = self.z;
+            for c in 0..N {
+                z[c] += dz[c];
+            }
+            let ev = eval(&z);
+            self.evaluations += 1;
+            let s1 = row_scales(&ev);
+            let rho1 = scaled_residual(&ev.f, &s1);
+            // Keep the correction unless it made things worse (rounding noise near a
+            // singular position); NaN fails the test.
+            if rho1 <= rho.max(cfg.residual_tol) {
+                self.z = z;
+                self.ev = ev;
+            }
+        }
+        Ok(Solved {
+            z: self.z,
+            eval: self.ev,
+            iterations: self.iterations,
+            evaluations: self.evaluations,
+            residual: rho,
+            termination,
+        })
+    }
+
+    /// Backtracking (Armijo, `c = 1e-4`) along `dz` on the squared scaled residual; moves and
+    /// returns `true` on success.
+    fn search(
+        &mut self,
+        dz: &[f64; N],
+        s: &[f64; N],
+        cfg: &NewtonConfig,
+        eval: &mut impl FnMut(&[f64; N]) -> BlockEval<N, K>,
+    ) -> bool {
+        let phi0 = sum_sq_scaled(&self.ev.f, s);
+        // The slope of phi along dz is -2 phi0 for a Newton step; for another direction it is
+        // 2 g.dz with g = J^T D^-2 f.
+        let slope = directional_slope(&self.ev, s, dz);
+        if slope.is_nan() || slope >= 0.0 {
+            return false;
+        }
+        let mut t = 1.0f64;
+        while t >= cfg.min_damping {
+            let mut trial = self.z;
+            for c in 0..N {
+                trial[c] += t * dz[c];
+            }
+            let ev_t = eval(&trial);
+            self.evaluations += 1;
+            let phi = sum_sq_scaled(&ev_t.f, s);
+            if phi <= phi0 + 1e-4 * t * slope {
+                self.z = trial;
+                self.ev = ev_t;
+                return true;
+            }
+            t *= 0.5;
+        }
+        false
+    }
+
+    /// Where the Newton step fails (singular Jacobian, no decrease), Levenberg-Marquardt steps
+    /// of increasing damping, down to steepest descent: they leave saddles of the squared
+    /// residual that a far guess can lead to. Returns `true` when one decreased the residual.
+    fn descend(
+        &mut self,
+        s: &[f64; N],
+        cfg: &NewtonConfig,
+        eval: &mut impl FnMut(&[f64; N]) -> BlockEval<N, K>,
+    ) -> bool {
+        let (a, g) = normal_equations(&self.ev, s);
+        let trace: f64 = (0..N).map(|k| a[k][k]).sum();
+        if !(trace > 0.0 && trace.is_finite()) {
+            return false;
+        }
+        for mu in [1e-9, 1e-6, 1e-3, 1.0] {
+            let mut damped = a;
+            for k in 0..N {
+                damped[k][k] += mu * trace;
+            }
+            let lu = Lu::factor(&damped, [1.0; N]);
+            let mut neg_g = g;
+            for v in &mut neg_g {
+                *v = -*v;
+            }
+            let dz = lu.solve(neg_g);
+            if dz.iter().all(|v| v.is_finite()) && self.search(&dz, s, cfg, eval) {
+                return true;
+            }
+        }
+        false
+    }
+
+    /// Why no step decreases the residual: at a root the Jacobian is singular (a singular
+    /// position); away from one the loops cannot close here.
+    fn stalled(&self, rho: f64, pivot: f64, s: &[f64; N], cfg: &NewtonConfig) -> BlockFailure {
+        let row = argmax_scaled(&self.ev.f, s);
+        let iterations = self.iterations;
+        if rho <= STALL_RESIDUAL {
+            BlockFailure::Singular { row, iterations, residual: rho, pivot_ratio: pivot, tolerance: cfg.singular_tol }
+        } else {
+            BlockFailure::NoAssembly { row, iterations, residual: rho }
+        }
+    }
+}
+
+fn sum_sq_scaled<const N: usize>(f: &[f64; N], s: &[f64; N]) -> f64 {
+    let mut acc = 0.0;
+    for r in 0..N {
+        let v = f[r] / s[r];
+        acc += v * v;
+    }
+    if acc.is_nan() { f64::INFINITY } else { acc }
+}
+
+/// `d/dt |D^-1 f(z + t dz)|^2` at `t = 0`: `2 (D^-1 f) . (D^-1 J dz)`.
+fn directional_slope<const N: usize, const K: usize>(ev: &BlockEval<N, K>, s: &[f64; N], dz: &[f64; N]) -> f64 {
+    let mut acc = 0.0;
+    for r in 0..N {
+        let mut jd = 0.0;
+        for c in 0..N {
+            jd += ev.j[r][c] * dz[c];
+        }
+        acc += ev.f[r] * jd / (s[r] * s[r]);
+    }
+    2.0 * acc
+}
+
+/// `A = (D^-1 J)^T (D^-1 J)` and `g = (D^-1 J)^T D^-1 f` with `D` the row magnitudes.
+fn normal_equations<const N: usize, const K: usize>(ev: &BlockEval<N, K>, s: &[f64; N]) -> ([[f64; N]; N], [f64; N]) {
+    let mut a = [[0.0; N]; N];
+    let mut g = [0.0; N];
+    for r in 0..N {
+        let w = 1.0 / s[r];
+        for c in 0..N {
+            let jrc = ev.j[r][c] * w;
+            g[c] += jrc * ev.f[r] * w;
+            for k in 0..N {
+                a[c][k] += jrc * ev.j[r][k] * w;
+            }
+        }
+    }
+    (a, g)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn circle(z: &[f64; 2]) -> BlockEval<2, 0> {
+        // x^2 + y^2 = 4, y = x^3 (root near (1.03, 1.72), solved numerically).
+        let [x, y] = *z;
+        BlockEval {
+            f: [x * x + y * y - 4.0, y - x * x * x],
+            j: [[2.0 * x, 2.0 * y], [-3.0 * x * x, 1.0]],
+            scale: [x * x + y * y + 4.0, y.abs() + (x * x * x).abs()],
+            keep: [],
+        }
+    }
+
+    #[test]
+    fn converges_quadratically_and_reports() {
+        let s = newton([1.0, 1.0], &NewtonConfig::default(), circle).unwrap();
+        assert!(s.residual <= 1e-12);
+        assert!(s.iterations > 0 && s.iterations < 10, "{}", s.iterations);
+        let [x, y] = s.z;
+        // After the last correction the residual is at the rounding floor (a few ulps of 4).
+        assert!((x * x + y * y - 4.0).abs() < 4.0 * 4.0 * f64::EPSILON && (y - x.powi(3)).abs() < 8.0 * f64::EPSILON);
+        // Warm start: no iteration at all, one evaluation.
+        let again = newton(s.z, &NewtonConfig::default(), circle).unwrap();
+        assert_eq!(again.iterations, 0);
+        assert_eq!(again.evaluations, 1);
+    }
+
+    #[test]
+    fn impossible_system_is_no_assembly_not_a_hang() {
+        // x^2 + 1 = 0 has no real root: Newton heads for the minimum at x = 0 where J = 0.
+        let f = |z: &[f64; 1]| BlockEval {
+            f: [z[0] * z[0] + 1.0],
+            j: [[2.0 * z[0]]],
+            scale: [z[0] * z[0] + 1.0],
+            keep: [],
+        };
+        let e = newton([0.7], &NewtonConfig::default(), f).unwrap_err();
+        assert!(matches!(e, BlockFailure::NoAssembly { .. }), "{e:?}");
+    }
+
+    #[test]
+    fn nan_is_reported() {
+        let f = |z: &[f64; 1]| BlockEval { f: [z[0].sqrt() - 1.0], j: [[0.5 / z[0].sqrt()]], scale: [0.0], keep: [] };
+        let e = newton([-1.0], &NewtonConfig::default(), f).unwrap_err();
+        assert!(matches!(e, BlockFailure::NonFinite { row: 0, .. }));
+    }
+
+    #[test]
+    fn iteration_cap_is_respected() {
+        let cfg = NewtonConfig::default().with_max_iterations(1);
+        let e = newton([10.0, 10.0], &cfg, circle).unwrap_err();
+        assert!(matches!(e, BlockFailure::NoConvergence { iterations: 1, .. }), "{e:?}");
+    }
+
+    /// `x^2 = 0`: the Jacobian vanishes at the root, Newton halves the error each step. The
+    /// root must come back as singular, not as an inaccurate success.
+    #[test]
+    fn singular_root_reached_linearly_is_singular() {
+        let f = |z: &[f64; 1]| BlockEval { f: [z[0] * z[0]], j: [[2.0 * z[0]]], scale: [1.0], keep: [] };
+        let e = newton([1.0], &NewtonConfig::default(), f).unwrap_err();
+        assert!(matches!(e, BlockFailure::Singular { .. }), "{e:?}");
+    }
+
+    /// The same circle in units a billion times smaller: the same iterations and the same
+    /// relative answer (an absolute residual test would accept the guess as it is).
+    #[test]
+    fn tests_are_unit_free() {
+        let k = 1e-9;
+        let small = |z: &[f64; 2]| {
+            let ev = circle(&[z[0], z[1] / k]);
+            // Scale the second unknown: y' = k y; rows scaled by k.
+            BlockEval {
+                f: [ev.f[0] * k, ev.f[1] * k],
+                j: [[ev.j[0][0] * k, ev.j[0][1]], [ev.j[1][0] * k, ev.j[1][1]]],
+                scale: [ev.scale[0] * k, ev.scale[1] * k],
+                keep: [],
+            }
+        };
+        let a = newton([1.0, 1.0], &NewtonConfig::default(), circle).unwrap();
+        let b = newton([1.0, k], &NewtonConfig::default(), small).unwrap();
+        assert_eq!(a.iterations, b.iterations);
+        assert!((a.z[0] - b.z[0]).abs() <= 4.0 * f64::EPSILON, "{:?} {:?}", a.z, b.z);
+        assert!((a.z[1] - b.z[1] / k).abs() <= 8.0 * f64::EPSILON * a.z[1], "{:?} {:?}", a.z, b.z);
+    }
+
+    #[test]
+    fn out_of_range_configurations_are_named() {
+        for (cfg, field) in [
+            (NewtonConfig::default().with_residual_tol(f64::INFINITY), "residual_tol"),
+            (NewtonConfig::default().with_residual_tol(f64::NAN), "residual_tol"),
+            (NewtonConfig::default().with_step_tol(-1.0), "step_tol"),
+            (NewtonConfig::default().with_singular_tol(f64::NAN), "singular_tol"),
+            (NewtonConfig::default().with_min_damping(0.0), "min_damping"),
+        ] {
+            assert_eq!(cfg.invalid_field(), Some(field));
+            let e = newton([1.0, 1.0], &cfg, circle).unwrap_err();
+            assert_eq!(e, BlockFailure::InvalidConfig { field });
+        }
+    }
+}

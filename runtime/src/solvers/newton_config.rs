@@ -1,0 +1,158 @@
+//! The configuration of the Newton solver and the diagnostics of a position solve, apart from
+//! the iteration itself (see [`newton`](super::newton)).
+
+use super::newton::Solved;
+use crate::error::Error;
+
+/// Tolerances and limits of the Newton solver.
+///
+/// ```
+/// use kinloop_runtime::NewtonConfig;
+/// let cfg = NewtonConfig::default().with_residual_tol(1e-10).with_max_iterations(20);
+/// assert_eq!(cfg.max_iterations, 20);
+/// assert!(cfg.validate().is_ok());
+/// assert!(NewtonConfig::default().with_residual_tol(f64::INFINITY).validate().is_err());
+/// ```
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct NewtonConfig {
+    /// Converged when every residual is at most this fraction of its row magnitude,
+    /// `max_i |f_i| / scale_i <= residual_tol` (default `1e-12`; valid range `[0, 1e-3]`; `0`
+    /// iterates down to the rounding floor).
+    pub residual_tol: f64,
+    /// Also stops when a full Newton step is at most this fraction of each unknown's magnitude
+    /// (default `1e-13`; valid range `[0, 1e-3]`), or when the residual stops decreasing; the
+    /// step is then applied and the scaled residual must still be within
+    /// `1000 * max(residual_tol, 16 eps)` (the rounding floor of rows whose terms are much
+    /// larger than their derivatives, e.g. near a limit position).
+    pub step_tol: f64,
+    /// Iteration cap per block (default `50`; at most `10_000`).
+    pub max_iterations: u32,
+    /// A block whose row-equilibrated pivot ratio falls below this is singular (default
+    /// `1e-10`; valid range `[0, 1)`).
+    pub singular_tol: f64,
+    /// Smallest damping factor of the backtracking line search (default `2^-12`; valid range
+    /// `[1e-12, 1)`).
+    pub min_damping: f64,
+}
+
+impl Default for NewtonConfig {
+    fn default() -> Self {
+        NewtonConfig {
+            residual_tol: 1e-12,
+            step_tol: 1e-13,
+            max_iterations: 50,
+            singular_tol: 1e-10,
+            min_damping: 1.0 / 4096.0,
+        }
+    }
+}
+
+impl NewtonConfig {
+    /// Sets [`NewtonConfig::residual_tol`].
+    pub fn with_residual_tol(mut self, tol: f64) -> Self {
+        self.residual_tol = tol;
+        self
+    }
+    /// Sets [`NewtonConfig::step_tol`].
+    pub fn with_step_tol(mut self, tol: f64) -> Self {
+        self.step_tol = tol;
+        self
+    }
+    /// Sets [`NewtonConfig::max_iterations`].
+    pub fn with_max_iterations(mut self, n: u32) -> Self {
+        self.max_iterations = n;
+        self
+    }
+    /// Sets [`NewtonConfig::singular_tol`].
+    pub fn with_singular_tol(mut self, tol: f64) -> Self {
+        self.singular_tol = tol;
+        self
+    }
+    /// Sets [`NewtonConfig::min_damping`].
+    pub fn with_min_damping(mut self, t: f64) -> Self {
+        self.min_damping = t;
+        self
+    }
+
+    /// The first field outside its valid range (NaN is outside every range).
+    pub fn invalid_field(&self) -> Option<&'static str> {
+        let within = |v: f64, lo: f64, hi: f64, lo_open: bool| (if lo_open { v > lo } else { v >= lo }) && v <= hi;
+        if !within(self.residual_tol, 0.0, 1e-3, false) {
+            Some("residual_tol")
+        } else if !within(self.step_tol, 0.0, 1e-3, false) {
+            Some("step_tol")
+        } else if self.max_iterations > 10_000 {
+            Some("max_iterations")
+        } else if !(within(self.singular_tol, 0.0, 1.0, false) && self.singular_tol < 1.0) {
+            Some("singular_tol")
+        } else if !(within(self.min_damping, 1e-12, 1.0, false) && self.min_damping < 1.0) {
+            Some("min_damping")
+        } else {
+            None
+        }
+    }
+
+    /// Checks every field: `Error::InvalidArgument` names the first one out of range.
+    pub fn validate(&self) -> Result<(), Error> {
+        match self.invalid_field() {
+            None => Ok(()),
+            Some(field) => Err(invalid_config(field, self)),
+        }
+    }
+}
+
+/// The error for a configuration field out of range.
+pub(crate) fn invalid_config(field: &str, cfg: &NewtonConfig) -> Error {
+    Error::InvalidArgument(format!("NewtonConfig::{field} is out of its valid range (see its documentation): {cfg:?}"))
+}
+
+/// Why a solve stopped successfully.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, PartialOrd, Ord, Hash)]
+#[non_exhaustive]
+pub enum Termination {
+    /// Every block was solved in closed form (linear blocks only).
+    Direct,
+    /// The scaled residual fell below `residual_tol`.
+    ResidualTolerance,
+    /// The scaled Newton step fell below `step_tol` (the residual is at its rounding floor).
+    StepTolerance,
+    /// The position was given by the caller, not solved (`kinematics_at`).
+    Given,
+}
+
+/// Diagnostics of a position solve, summed over the blocks of the decomposition.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct SolveReport {
+    /// Newton iterations over all blocks (0 when the guess already satisfied the equations and
+    /// only its correction was applied).
+    pub iterations: u32,
+    /// Residual evaluations over all blocks (including line-search trials).
+    pub evaluations: u32,
+    /// Largest scaled residual (`|f_i| / scale_i`) over the iterated blocks, before the last
+    /// correction; for a given position (`kinematics_at`), the largest unscaled residual.
+    pub residual: f64,
+    /// The weakest reason any block stopped (`StepTolerance` over `ResidualTolerance` over
+    /// `Direct`).
+    pub termination: Termination,
+}
+
+impl SolveReport {
+    #[doc(hidden)]
+    pub fn direct() -> Self {
+        SolveReport { iterations: 0, evaluations: 0, residual: 0.0, termination: Termination::Direct }
+    }
+
+    #[doc(hidden)]
+    pub fn given(residual: f64) -> Self {
+        SolveReport { iterations: 0, evaluations: 1, residual, termination: Termination::Given }
+    }
+
+    #[doc(hidden)]
+    #[inline]
+    pub fn absorb<const N: usize, const K: usize>(&mut self, s: &Solved<N, K>) {
+        self.iterations += s.iterations;
+        self.evaluations += s.evaluations;
+        self.residual = self.residual.max(s.residual);
+        self.termination = self.termination.max(s.termination);
+    }
+}

@@ -1,0 +1,229 @@
+//! Regression tests of the point solver: every `Ok` is accurate, every error names what
+//! happened. Each test is named after the defect it guards. References are independent of the
+//! solver: circle-intersection closed forms computed here, and loop magnitudes (sums of link
+//! lengths) for residuals.
+
+use kinloop::{Error, Mechanism, NewtonConfig};
+use std::f64::consts::PI;
+
+kinloop::mechanism! {
+    /// Four-bar: crank `a` at A = (0, 0), coupler `b`, rocker `c` at D = (d, 0).
+    pub struct FourBar {
+        params a, b, c, d;
+        input phi;
+        unknowns beta = 0.5, gamma = 1.5;
+        loop abcd: a @ phi + b @ beta == (d, 0) + c @ gamma;
+    }
+}
+
+/// Coupler and rocker angles from the intersection of circle (B, b) and circle (D, c), on the
+/// side `side = +1` (left of B -> D) or `-1`. `None` where the circles do not meet.
+fn closed_form(m: &FourBar, phi: f64, side: f64) -> Option<[f64; 2]> {
+    let (bx, by) = (m.a * phi.cos(), m.a * phi.sin());
+    let (ux, uy) = (m.d - bx, -by);
+    let dist = ux.hypot(uy);
+    let along = (m.b * m.b - m.c * m.c + dist * dist) / (2.0 * dist);
+    let h2 = m.b * m.b - along * along;
+    if h2 < 0.0 {
+        return None;
+    }
+    let h = side * h2.sqrt();
+    let (cx, cy) = (bx + (along * ux - h * uy) / dist, by + (along * uy + h * ux) / dist);
+    Some([(cy - by).atan2(cx - bx), cy.atan2(cx - m.d)])
+}
+
+/// Angle difference modulo whole turns.
+fn angle_err(a: f64, b: f64) -> f64 {
+    let d = (a - b).rem_euclid(2.0 * PI);
+    d.min(2.0 * PI - d)
+}
+
+/// Largest residual relative to the loop's magnitude (the sum of its link lengths): the
+/// rounding floor of the loop equation is a few ulps of it.
+fn scaled_residual(m: &FourBar, phi: f64, q: &[f64; 2]) -> f64 {
+    let r = m.residual_flat(&[phi], q);
+    r[0].abs().max(r[1].abs()) / (m.a + m.b + m.c + m.d)
+}
+
+const CRANK_ROCKER: FourBar = FourBar { a: 1.0, b: 3.0, c: 2.5, d: 3.2 };
+
+#[test]
+fn ok_with_a_large_residual_is_impossible() {
+    // A guess 1e15 radians out: the Newton step test alone used to end the iteration with a
+    // residual of several length units and return Ok.
+    match CRANK_ROCKER.kinematics_flat(&[0.3], &[1e15, 1.5], &NewtonConfig::default()) {
+        Ok(k) => assert!(scaled_residual(&CRANK_ROCKER, 0.3, &k.q) <= 1e-12, "{k:?}"),
+        Err(e) => assert!(matches!(e, Error::NoConvergence { .. } | Error::NoAssembly { .. }), "{e}"),
+    }
+}
+
+#[test]
+fn a_guess_within_tolerance_is_still_corrected() {
+    // A guess off by 1e-13 rad has a residual below 1e-12 (the old absolute stop): it used to
+    // come back unchanged. Corrected once, it is exact to rounding.
+    let m = CRANK_ROCKER;
+    for phi in [0.0, 0.7, 2.0, 4.0] {
+        let exact = closed_form(&m, phi, 1.0).unwrap();
+        let guess = [exact[0] + 1e-13, exact[1] - 1e-13];
+        let k = m.kinematics_flat(&[phi], &guess, &NewtonConfig::default()).unwrap();
+        for u in 0..2 {
+            // Rounding of the closed form and of the solver: a few ulps of the angles (~3).
+            assert!(angle_err(k.q[u], exact[u]) <= 4e-15, "phi {phi}: {:?} vs {exact:?}", k.q);
+        }
+    }
+}
+
+#[test]
+fn a_change_point_reached_slowly_is_singular_not_inaccurate() {
+    // (1, 2, 1, 2) at phi = 0 lies folded on the ground line: the Jacobian is singular at the
+    // root, Newton converges linearly and stopped 1.5e-6 rad short, returning Ok.
+    let m = FourBar { a: 1.0, b: 2.0, c: 1.0, d: 2.0 };
+    match m.kinematics_flat(&[0.0], &[0.5, 1.5], &NewtonConfig::default()) {
+        Err(Error::Singular { .. }) => {}
+        Ok(k) => panic!("a singular position returned as Ok: {:?}", k.q),
+        Err(e) => panic!("wrong error kind: {e}"),
+    }
+}
+
+#[test]
+fn an_exact_solution_near_a_singular_position_is_not_no_assembly() {
+    // Coupler and rocker a million times the crank: nearly parallel, pivot ratio ~1e-6.
+    let m = FourBar { a: 1.0, b: 1e6, c: 1e6, d: 1.0 };
+    let phi = 1.0;
+    let exact = closed_form(&m, phi, 1.0).unwrap();
+    match m.kinematics_flat(&[phi], &exact, &NewtonConfig::default()) {
+        Ok(k) => {
+            // Condition ~1e6: the angles are determined to ~1e6 ulps of the residual floor.
+            for u in 0..2 {
+                assert!(angle_err(k.q[u], exact[u]) <= 1e-9, "{:?} vs {exact:?}", k.q);
+            }
+        }
+        Err(e) => assert!(matches!(e, Error::Singular { .. }), "{e}"),
+    }
+}
+
+#[test]
+fn near_a_limit_from_the_limit_configuration_is_not_no_assembly() {
+    // Non-Grashof: coupler and rocker stretch (|BD| = b + c) at phi_lim; the input 1e-9 rad
+    // before it, from the stretched configuration as guess, used to report NoAssembly.
+    let m = FourBar { a: 3.0, b: 1.0, c: 1.5, d: 3.0 };
+    let phi_lim = ((m.a * m.a + m.d * m.d - (m.b + m.c).powi(2)) / (2.0 * m.a * m.d)).acos();
+    let (bx, by) = (m.a * phi_lim.cos(), m.a * phi_lim.sin());
+    let dir = (-by).atan2(m.d - bx);
+    let phi = phi_lim - 1e-9;
+    match m.kinematics_flat(&[phi], &[dir, dir + PI], &NewtonConfig::default()) {
+        Ok(k) => {
+            assert!(scaled_residual(&m, phi, &k.q) <= 1e-12, "{k:?}");
+            let want = [1.0, -1.0].map(|s| closed_form(&m, phi, s).unwrap());
+            // Within sqrt(1e-9) of the fold the solution is known to ~1e-16 / 1e-4.5.
+            assert!(want.iter().any(|w| (0..2).all(|u| angle_err(k.q[u], w[u]) <= 1e-9)), "{:?} vs {want:?}", k.q);
+        }
+        Err(e) => assert!(matches!(e, Error::Singular { .. } | Error::NoConvergence { .. }), "{e}"),
+    }
+}
+
+#[test]
+fn unreachable_input_is_still_no_assembly() {
+    // The same four-bar 0.1 rad beyond its limit cannot close.
+    let m = FourBar { a: 3.0, b: 1.0, c: 1.5, d: 3.0 };
+    let phi_lim = ((m.a * m.a + m.d * m.d - (m.b + m.c).powi(2)) / (2.0 * m.a * m.d)).acos();
+    let e = m.kinematics_flat(&[phi_lim + 0.1], &[-0.5, 2.0], &NewtonConfig::default()).unwrap_err();
+    assert!(matches!(e, Error::NoAssembly { .. }), "{e}");
+}
+
+#[test]
+fn far_guesses_at_reachable_inputs_never_claim_no_assembly() {
+    // A deterministic grid of far guesses (the issue measured 11 NoAssembly in 9,000).
+    let m = CRANK_ROCKER;
+    let mut counts = [0usize; 3];
+    for i in 0..30 {
+        let phi = i as f64 * 2.0 * PI / 30.0;
+        for j in 0..30 {
+            let g = [-20.0 + 40.0 * ((j * 7) % 30) as f64 / 29.0, -20.0 + 40.0 * j as f64 / 29.0];
+            match m.kinematics_flat(&[phi], &g, &NewtonConfig::default()) {
+                Ok(k) => {
+                    assert!(scaled_residual(&m, phi, &k.q) <= 1e-12, "{k:?}");
+                    let want = [1.0, -1.0].map(|s| closed_form(&m, phi, s).unwrap());
+                    // Angles come back modulo turns: their rounding grows with their magnitude.
+                    let tol = |v: f64| 8.0 * f64::EPSILON * v.abs().max(PI);
+                    assert!(want.iter().any(|w| (0..2).all(|u| angle_err(k.q[u], w[u]) <= tol(k.q[u]))), "{:?}", k.q);
+                    counts[0] += 1;
+                }
+                Err(Error::NoAssembly { .. }) => panic!("NoAssembly at a reachable input {phi} from {g:?}"),
+                Err(_) => counts[1] += 1,
+            }
+        }
+    }
+    assert!(counts[0] >= 850, "{counts:?}");
+}
+
+#[test]
+fn unit_free_acceptance() {
+    // The same crank-rocker in metres and in picometres: a guess 0.1 rad off is never
+    // accepted as it is, and the angles agree to rounding.
+    for k in [1.0, 1e-12, 1e6] {
+        let m = FourBar { a: CRANK_ROCKER.a * k, b: CRANK_ROCKER.b * k, c: CRANK_ROCKER.c * k, d: CRANK_ROCKER.d * k };
+        let exact = closed_form(&CRANK_ROCKER, 0.7, 1.0).unwrap();
+        let s = m.kinematics_flat(&[0.7], &[exact[0] + 0.1, exact[1] + 0.1], &NewtonConfig::default()).unwrap();
+        assert!(s.report.iterations > 0, "scale {k}: guess accepted as it is");
+        for u in 0..2 {
+            assert!(angle_err(s.q[u], exact[u]) <= 4e-15, "scale {k}: {:?} vs {exact:?}", s.q);
+        }
+    }
+}
+
+#[test]
+fn invalid_newton_configurations_are_named() {
+    let s = CRANK_ROCKER.guess(0.3);
+    for (cfg, field) in [
+        (NewtonConfig { residual_tol: f64::INFINITY, ..NewtonConfig::default() }, "residual_tol"),
+        (NewtonConfig { residual_tol: f64::NAN, ..NewtonConfig::default() }, "residual_tol"),
+        (NewtonConfig { min_damping: 0.0, ..NewtonConfig::default() }, "min_damping"),
+    ] {
+        match CRANK_ROCKER.kinematics_with(0.3, &s, &cfg) {
+            Err(Error::InvalidArgument(msg)) => assert!(msg.contains(field), "{msg}"),
+            other => panic!("{other:?}"),
+        }
+    }
+}
+
+#[test]
+fn limit_positions_are_located_alike_at_every_scale() {
+    // Non-Grashof four-bar: the crank stops where coupler and rocker stretch (law of cosines).
+    let base = FourBar { a: 3.0, b: 1.0, c: 1.5, d: 3.0 };
+    let phi_lim = ((base.a * base.a + base.d * base.d - (base.b + base.c).powi(2)) / (2.0 * base.a * base.d)).acos();
+    for k in [1e-3, 1.0, 1e6] {
+        let m = FourBar { a: base.a * k, b: base.b * k, c: base.c * k, d: base.d * k };
+        let exact = closed_form(&base, 0.2, 1.0).unwrap();
+        let mut s = m.sweep(0.2, 1.5, 14, &FourBarUnknowns { beta: exact[0], gamma: exact[1] }).unwrap();
+        let stop = s.by_ref().find_map(|r| r.err()).expect("the limit stops the sweep");
+        assert!(
+            matches!(stop, Error::SweepStopped { kind: kinloop::EventKind::LimitPosition, .. }),
+            "scale {k}: {stop}"
+        );
+        let at = s.events()[0].x[0];
+        // The fold is located to about sqrt(eps) in the input (the curve is flat there in phi).
+        assert!((at - phi_lim).abs() < 1e-9, "scale {k}: limit at {at}, law of cosines {phi_lim}");
+    }
+}
+
+proptest::proptest! {
+    #![proptest_config(proptest::prelude::ProptestConfig::with_cases(300))]
+    /// Whatever the guess (near or tens of radians away) every `Ok` satisfies the loop to a few
+    /// ulps of its magnitude, and is one of the two closed-form assemblies.
+    #[test]
+    fn every_ok_has_a_small_scaled_residual(
+        phi in 0.0..6.3f64,
+        g0 in -60.0..60.0f64,
+        g1 in -60.0..60.0f64,
+        scale in proptest::sample::select(vec![1e-6, 1.0, 1e4]),
+    ) {
+        let m = FourBar { a: CRANK_ROCKER.a * scale, b: CRANK_ROCKER.b * scale, c: CRANK_ROCKER.c * scale, d: CRANK_ROCKER.d * scale };
+        if let Ok(k) = m.kinematics_flat(&[phi], &[g0, g1], &NewtonConfig::default()) {
+            proptest::prop_assert!(scaled_residual(&m, phi, &k.q) <= 1e-12, "{:?}", k.q);
+            let want = [1.0, -1.0].map(|s| closed_form(&CRANK_ROCKER, phi, s).unwrap());
+            let tol = |v: f64| 8.0 * f64::EPSILON * v.abs().max(PI);
+            proptest::prop_assert!(want.iter().any(|w| (0..2).all(|u| angle_err(k.q[u], w[u]) <= tol(k.q[u]))), "{:?} vs {want:?}", k.q);
+        }
+    }
+}

@@ -1,0 +1,127 @@
+"""High-precision references for tests/reference_mpmath.rs (50 significant digits, mpmath).
+
+Independent of kinloop: each mechanism's loop equations are written out here by hand, solved by
+mpmath's multidimensional Newton (findroot) at 50 digits, and differentiated along the input by
+central differences at 50 digits (h = 1e-12: truncation ~h^2 = 1e-24, cancellation ~1e-50/h^2 =
+1e-26). Positions, velocity and acceleration analogs of the unknowns and of the points are written
+with 17 significant digits, one row per input value, continuing the branch from row to row.
+
+Run: python3 tests/reference/generate.py   (writes tests/reference/*.csv)
+"""
+import os
+from mpmath import mp, mpf, cos, sin, pi, findroot, matrix
+
+mp.dps = 50
+H = mpf("1e-12")
+HERE = os.path.dirname(os.path.abspath(__file__))
+
+
+def e(angle):
+    return cos(angle), sin(angle)
+
+
+def four_bar():
+    a, b, c, d, p, alpha = mpf(1), mpf(3), mpf("2.5"), mpf("3.2"), mpf("1.5"), mpf("0.6")
+
+    def loops(q, phi):
+        beta, gamma = q
+        return [a * cos(phi) + b * cos(beta) - d - c * cos(gamma), a * sin(phi) + b * sin(beta) - c * sin(gamma)]
+
+    def points(q, phi):
+        beta, _ = q
+        return [a * cos(phi) + p * cos(beta + alpha), a * sin(phi) + p * sin(beta + alpha)]
+
+    return "four_bar", loops, points, [0.5, 1.5], [2 * pi * k / 24 for k in range(25)]
+
+
+def slider_crank():
+    r, l, ecc = mpf(1), mpf(3), mpf("0.5")
+
+    def loops(q, phi):
+        psi, x = q
+        return [r * cos(phi) + l * cos(psi) - x, r * sin(phi) + l * sin(psi) - ecc]
+
+    def points(q, phi):
+        return []
+
+    return "slider_crank", loops, points, [0.1, 3.9], [2 * pi * k / 24 for k in range(25)]
+
+
+def watt_six_bar():
+    a, b, c, d = mpf(1), mpf(3), mpf("2.5"), mpf("3.2")
+    c2, delta, e5, f6, gx, gy = mpf(2), mpf("0.5"), mpf("3.5"), mpf("2.5"), mpf(6), mpf(1)
+
+    def loops(q, phi):
+        beta, gamma, th5, th6 = q
+        return [
+            a * cos(phi) + b * cos(beta) - d - c * cos(gamma),
+            a * sin(phi) + b * sin(beta) - c * sin(gamma),
+            d + c2 * cos(gamma + delta) + e5 * cos(th5) - gx - f6 * cos(th6),
+            c2 * sin(gamma + delta) + e5 * sin(th5) - gy - f6 * sin(th6),
+        ]
+
+    def points(q, phi):
+        beta, gamma, th5, th6 = q
+        return [d + c2 * cos(gamma + delta) + e5 * cos(th5), c2 * sin(gamma + delta) + e5 * sin(th5)]
+
+    return "watt_six_bar", loops, points, [0.5, 1.5, 0.3, 1.6], [2 * pi * k / 24 for k in range(25)]
+
+
+def class_four():
+    oa, xb, yb, ac, ae, alpha_a = mpf(1), mpf("4.4"), mpf("0.6"), mpf("2.3"), mpf("2.4"), mpf("0.84")
+    bd, bf, alpha_b, cd, ef = mpf("1.6"), mpf("3.5"), mpf("0.62"), mpf(2), mpf("3.4")
+
+    def loops(q, phi):
+        th1, th2, psi1, psi2 = q
+        ax, ay = oa * cos(phi), oa * sin(phi)
+        return [
+            ax + ac * cos(th1) + cd * cos(psi1) - xb - bd * cos(th2),
+            ay + ac * sin(th1) + cd * sin(psi1) - yb - bd * sin(th2),
+            ax + ae * cos(th1 + alpha_a) + ef * cos(psi2) - xb - bf * cos(th2 + alpha_b),
+            ay + ae * sin(th1 + alpha_a) + ef * sin(psi2) - yb - bf * sin(th2 + alpha_b),
+        ]
+
+    def points(q, phi):
+        th1, th2, psi1, psi2 = q
+        return [oa * cos(phi) + ac * cos(th1), oa * sin(phi) + ac * sin(th1)]
+
+    return "class_four", loops, points, [1.4, 3.0, -0.8, -1.0], [2 * pi * k / 24 for k in range(25)]
+
+
+def solve(loops, phi, guess):
+    q = findroot(lambda *q: loops(list(q), phi), [mpf(g) for g in guess], tol=mpf(10) ** -45, maxsteps=200)
+    q = [q] if not isinstance(q, matrix) else [q[i] for i in range(len(guess))]
+    res = max(abs(v) for v in loops(q, phi))
+    assert res < mpf(10) ** -40, res
+    return q
+
+
+def row(loops, points, phi, guess):
+    q0 = solve(loops, phi, guess)
+    qp = solve(loops, phi + H, q0)
+    qm = solve(loops, phi - H, q0)
+    p0, pp, pm = points(q0, phi), points(qp, phi + H), points(qm, phi - H)
+    dq = [(a - b) / (2 * H) for a, b in zip(qp, qm)]
+    d2q = [(a - 2 * m + b) / H**2 for a, m, b in zip(qp, q0, qm)]
+    dp = [(a - b) / (2 * H) for a, b in zip(pp, pm)]
+    d2p = [(a - 2 * m + b) / H**2 for a, m, b in zip(pp, p0, pm)]
+    return q0, [phi] + q0 + dq + d2q + p0 + dp + d2p
+
+
+def main():
+    for name, loops, points, guess, angles in [four_bar(), slider_crank(), watt_six_bar(), class_four()]:
+        n, npts = len(guess), len(points([mpf(g) for g in guess], mpf(0)))
+        header = ["phi"] + [f"q{u}" for u in range(n)] + [f"dq{u}" for u in range(n)] + [f"d2q{u}" for u in range(n)]
+        header += [f"p{k}" for k in range(npts)] + [f"dp{k}" for k in range(npts)] + [f"d2p{k}" for k in range(npts)]
+        lines = [",".join(header)]
+        q = guess
+        for phi in angles:
+            q, values = row(loops, points, phi, q)
+            lines.append(",".join(mp.nstr(v, 17, min_fixed=0, max_fixed=0) for v in values))
+        with open(os.path.join(HERE, f"{name}.csv"), "w") as out:
+            out.write("\n".join(lines) + "\n")
+        print(name, len(lines) - 1, "rows")
+
+
+if __name__ == "__main__":
+    main()
