@@ -13,7 +13,8 @@ use crate::analysis::{LocalExtreme, Sampled};
 use crate::error::Error;
 use crate::kin::Kin;
 use crate::mechanism::Mechanism;
-use crate::sweep::{Event, EventKind, Sweep, SweepConfig};
+use crate::events::{Event, EventKind};
+use crate::paths::sweep::{AtSingular, Sweep, SweepConfig};
 use std::fmt;
 
 /// The located extremes (limit positions) of one output column.
@@ -94,7 +95,7 @@ pub fn limit_report<M, const N: usize, const NO: usize>(
 where
     M: Mechanism<N, 1, NO>,
 {
-    let cfg = SweepConfig { at_singular: crate::sweep::AtSingular::Continue, ..SweepConfig::default() };
+    let cfg = SweepConfig { at_singular: AtSingular::Continue, ..SweepConfig::default() };
     let mut sweep = Sweep::<M, Kin<N, 1, NO>, N, 1, NO>::new(m, [from], [to], samples, guess)?.with_config(cfg);
     let (mut last, mut count) = (from, 0usize);
     while let Some(step) = sweep.next_kin() {
