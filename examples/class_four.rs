@@ -13,30 +13,9 @@
 //!
 //! Run with `cargo run --release --example class_four`.
 
-#[allow(dead_code)] // not every example uses every helper
-mod common;
-
-use common::{Panel, Series, figure_dir, panels, xy_chart};
+use kinloop_examples::{Panel, Series, figure_dir, panels, xy_chart};
+use kinloop_fixtures::{ClassFour, ClassFourState};
 use std::f64::consts::TAU;
-
-kinloop::mechanism! {
-    /// Class IV mechanism: crank OA, ternary links CAE (at A) and DBF (at B), binary links CD, EF.
-    pub struct ClassFour {
-        params oa = 1.0, xb = 4.4, yb = 0.6, ac = 2.3, ae = 2.4, alpha_a = 0.84,
-               bd = 1.6, bf = 3.5, alpha_b = 0.62, cd = 2.0, ef = 3.4;
-        input phi;
-        unknowns th1 = 1.4, th2 = 3.0, psi1 = -0.8, psi2 = -1.0;
-        let a = oa @ phi;
-        let b = (xb, yb);
-        loop acdb: a + ac @ th1 + cd @ psi1 == b + bd @ th2;
-        loop aefb: a + ae @ (th1 + alpha_a) + ef @ psi2 == b + bf @ (th2 + alpha_b);
-        /// Joints of the group.
-        point c = a + ac @ th1;
-        point e = a + ae @ (th1 + alpha_a);
-        point d = b + bd @ th2;
-        point f = b + bf @ (th2 + alpha_b);
-    }
-}
 
 fn main() -> Result<(), Box<dyn std::error::Error>> {
     let m = ClassFour::default();

@@ -17,26 +17,9 @@
 //!
 //! Run with `cargo run --release --example gear_lever`.
 
-mod common;
-
-use common::{Panel, Series, figure_dir, line_chart, panels};
-use kinloop::analysis::{Dwell, Sampled};
-use std::f64::consts::{PI, TAU};
-
-kinloop::mechanism! {
-    /// Gear-lever drive: carrier `l_c` turning by `alpha`, planet pin at `l_p` from the planet
-    /// centre turning by `(1 - u) alpha`, block sliding in a rocker pivoted at O (distance `s`
-    /// from O, rocker angle `phi`). Angles from the Y axis as in the paper: direction `a` is
-    /// `(sin a, cos a)`.
-    pub struct GearLever {
-        params l_c = 2.0, l_p = 1.3, u = 3.0;
-        input alpha;
-        unknowns s = l_c + l_p, phi = 0;
-        let pin = (l_c * sin(alpha), l_c * cos(alpha))
-                + (l_p * sin((1 - u) * alpha), l_p * cos((1 - u) * alpha));
-        loop oab: pin == s * (sin(phi), cos(phi));
-    }
-}
+use kinloop_examples::{Panel, Series, figure_dir, line_chart, panels};
+use kinloop_fixtures::gear_lever::{GearLever, GearLeverState, stops};
+use std::f64::consts::TAU;
 
 /// What the paper's Fig. 3 shows for one `k`.
 struct Stop {
@@ -48,16 +31,6 @@ struct Stop {
     /// degrees modulo the 120° stop cycle; by symmetry the smallest is its negative).
     peak_acc: f64,
     peak_at: f64,
-}
-
-/// The stops (dwells of the rocker) over one carrier turn, and the largest acceleration analog
-/// with the carrier angle where it occurs.
-pub fn stops(m: &GearLever) -> Result<(Vec<Dwell>, (f64, f64)), kinloop::Error> {
-    // The turn starts at alpha = -60 degrees, where the pin is nearest the centre and the rocker
-    // moves fastest, so the three stops of the turn (around 0, 120 and 240 degrees) lie inside.
-    let from = -PI / 3.0;
-    let turn = Sampled::sweep(m, from, from + TAU, 721, m.guess(from).into())?;
-    Ok((turn.dwells("phi")?, turn.peak(|s| s.d2q[1][0][0])?))
 }
 
 fn stop(k: f64) -> Result<Stop, kinloop::Error> {

@@ -9,21 +9,10 @@
 //!
 //! Run with `cargo run --release --example limit_positions`.
 
-mod common;
-
-use common::{Series, decimate, figure_dir, line_chart};
+use kinloop_examples::{Series, decimate, figure_dir, line_chart};
 use kinloop::{AtSingular, SweepConfig};
+use kinloop_fixtures::{FourBar, FourBarUnknowns};
 use std::f64::consts::PI;
-
-kinloop::mechanism! {
-    /// Four-bar: input link `a` at A = (0, 0), coupler `b`, rocker `c` at D = (d, 0).
-    pub struct FourBar {
-        params a, b, c, d;
-        input phi;
-        unknowns beta = 0.5, gamma = 1.5;
-        loop abcd: a @ phi + b @ beta == (d, 0) + c @ gamma;
-    }
-}
 
 fn main() -> Result<(), Box<dyn std::error::Error>> {
     // s + l = 2 + 4 > p + q = 2.5 + 3: non-Grashof.

@@ -12,33 +12,11 @@
 //! writes the full sweep as CSV and draws SVG charts into `out/rhombic_drive/` (the charts into
 //! `$KINLOOP_FIGURES/rhombic_drive/` when that variable is set).
 
-mod common;
-
-use common::{Series, decimate, figure_dir, line_chart, out_dir};
+use kinloop_examples::{Series, decimate, figure_dir, line_chart, out_dir};
 use kinloop::Table;
+use kinloop_fixtures::{RhombicDrive, RhombicDriveState};
 use kinloop::analysis::Sampled;
 use std::f64::consts::TAU;
-
-kinloop::mechanism! {
-    /// Asymmetric rhombic drive with a developed crank: crank arms AB (`r_p`) and AD (`r_b`)
-    /// rigidly joined at angle `gamma`, centre A at (0, e_p); working rod BC (`l_p`) to the
-    /// piston C on the X axis; displacer rod DF (`l_b`) to the displacer F on the line y = de.
-    pub struct RhombicDrive {
-        params r_p = 1.0, r_b = 1.2, l_p = 3.0, l_b = 3.5, e_p = 0.5, de = 0.9, gamma = 0.7,
-               l_as1 = 0.3, psi_s1 = 0.35, l_cs2 = 1.2, l_fs4 = 1.4;
-        input phi1;
-        // Assembly mode: working rod to the left (cos phi2 > 0), displacer rod to the right.
-        unknowns phi2 = 0, phi4 = pi, x_c = -l_p, x_f = l_b;
-        loop oabco:   (0, e_p) + r_p @ phi1           == (x_c, 0)  + l_p @ phi2;
-        loop oadff1o: (0, e_p) + r_b @ (phi1 + gamma) == (x_f, de) + l_b @ phi4;
-        /// Centre of mass of the crank.
-        point s1 = (0, e_p) + l_as1 @ (phi1 + psi_s1);
-        /// Centre of mass of the working rod.
-        point s2 = (x_c, 0) + l_cs2 @ phi2;
-        /// Centre of mass of the displacer rod.
-        point s4 = (x_f, de) + l_fs4 @ phi4;
-    }
-}
 
 fn main() -> Result<(), Box<dyn std::error::Error>> {
     let drive = RhombicDrive::default();

@@ -16,38 +16,10 @@
 //!
 //! Run with `cargo run --release --example rhombic_variants`.
 
-#[allow(dead_code)] // not every example uses every helper
-mod common;
-
-use common::{Panel, Series, figure_dir, panels};
+use kinloop_examples::{Panel, Series, figure_dir, panels};
 use kinloop::analysis::Sampled;
+use kinloop_fixtures::{DisplacerRodDrive, WorkingRodDrive};
 use std::f64::consts::TAU;
-
-kinloop::mechanism! {
-    /// Fig. 2: developed displacer rod. Lengths in units of the crank radius.
-    pub struct DisplacerRodDrive {
-        params r = 1.0, l_b = 3.5, l_fd = 2.2, gamma_b = 0.35, l_p = 3.0, e_p = 0.5, de = 0.9;
-        input phi1;
-        unknowns phi4 = pi, x_f = l_b, phi2 = 0, x_c = -l_p;
-        loop oabff1o: (0, e_p) + r @ phi1 == (x_f, de) + l_b @ phi4;
-        loop ocdff1o: (x_c, 0) + l_p @ phi2 == (x_f, de) + l_fd @ (phi4 + gamma_b);
-        /// The third joint of the displacer rod.
-        point d = (x_f, de) + l_fd @ (phi4 + gamma_b);
-    }
-}
-
-kinloop::mechanism! {
-    /// Fig. 3: developed working rod. Lengths in units of the crank radius.
-    pub struct WorkingRodDrive {
-        params r = 1.0, l_p = 3.0, l_cd = 1.8, gamma_p = -0.4, l_b = 3.5, e_p = 0.5, de = -0.4;
-        input phi1;
-        unknowns phi2 = 0, x_c = -l_p, phi4 = pi, x_f = l_b;
-        loop oabco: (0, e_p) + r @ phi1 == (x_c, 0) + l_p @ phi2;
-        loop of1fdco: (x_f, de) + l_b @ phi4 == (x_c, 0) + l_cd @ (phi2 + gamma_p);
-        /// The third joint of the working rod.
-        point d = (x_c, 0) + l_cd @ (phi2 + gamma_p);
-    }
-}
 
 /// Strokes, extremes and phase shift of a drive with unknowns `x_c` and `x_f`.
 fn report<M, const N: usize, const NO: usize>(

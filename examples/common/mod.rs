@@ -1,4 +1,5 @@
-//! Helpers shared by the examples: where outputs go, and line charts as SVG.
+//! Helpers shared by the examples (the library of the `kinloop-examples` package): where
+//! outputs go, and line charts as SVG.
 
 use plotters::coord::types::RangedCoordf64;
 use plotters::prelude::*;
@@ -99,7 +100,6 @@ pub fn line_chart(
 
 /// Folder for an example's figures: `$KINLOOP_FIGURES/<example>` when that variable is set
 /// (`KINLOOP_FIGURES=docs/figures` regenerates the README gallery), else [`out_dir`].
-#[allow(dead_code)]
 pub fn figure_dir(example: &str) -> PathBuf {
     match std::env::var_os("KINLOOP_FIGURES") {
         Some(base) => {
@@ -126,7 +126,6 @@ pub fn decimate(points: &[(f64, f64)], max: usize) -> Vec<(f64, f64)> {
 }
 
 /// One panel of [`panels`]: its curves, and optional marked points (drawn as circles).
-#[allow(dead_code)]
 pub struct Panel<'a> {
     pub y_label: &'a str,
     pub series: Vec<Series<'a>>,
@@ -135,7 +134,6 @@ pub struct Panel<'a> {
 
 /// Panels stacked vertically over a common x axis (like the papers' multi-curve figures), each
 /// with its own y scale and legend (upper left); every curve is decimated to at most 720 points.
-#[allow(dead_code)]
 pub fn panels(path: &std::path::Path, title: &str, x_label: &str, panels: &[Panel]) -> Result<(), Box<dyn Error>> {
     let (mut x0, mut x1) = (f64::MAX, f64::MIN);
     for p in panels {
@@ -190,7 +188,6 @@ pub fn panels(path: &std::path::Path, title: &str, x_label: &str, panels: &[Pane
 
 /// An x-y chart with equal scales on both axes (paths of points, a linkage drawn at one
 /// position), with optional marked points; every curve is decimated to at most 720 points.
-#[allow(dead_code)]
 pub fn xy_chart(
     path: &std::path::Path,
     title: &str,
