@@ -2,18 +2,7 @@
 //! derivatives with respect to both cranks, checked against central finite differences, and the
 //! positions against an independent circle-intersection construction.
 
-kinloop::mechanism! {
-    /// Five-bar linkage: crank `a` at A = (0, 0) (angle `th1`), crank `e` at E = (d, 0) (angle
-    /// `th2`), links `b` from B and `c` from D meeting at the coupler point C.
-    pub struct FiveBar {
-        params a, b, c, d, e;
-        inputs th1, th2;
-        unknowns phi2 = 1.0, phi3 = 2.0;
-        loop abcde: a @ th1 + b @ phi2 == (d, 0) + e @ th2 + c @ phi3;
-        point pc = a @ th1 + b @ phi2;
-        output spread = phi3 - phi2;
-    }
-}
+use kinloop_fixtures::FiveBar;
 
 const M: FiveBar = FiveBar { a: 1.0, b: 2.5, c: 2.2, d: 1.5, e: 1.2 };
 

@@ -8,11 +8,7 @@ use kinloop::analysis::Sampled;
 use kinloop::{Kin, NewtonConfig};
 use std::f64::consts::{PI, TAU};
 
-#[allow(dead_code)]
-#[path = "../examples/rhombic_variants.rs"]
-mod rhombic_variants;
-
-use rhombic_variants::{DisplacerRodDrive, WorkingRodDrive};
+use kinloop_fixtures::{DisplacerRodDrive, WorkingRodDrive};
 
 #[allow(dead_code)] // not every test uses every helper
 mod support;

@@ -7,11 +7,7 @@
 use kinloop::analysis::ExtremeKind;
 use std::f64::consts::PI;
 
-#[allow(dead_code)]
-#[path = "../examples/gear_lever.rs"]
-mod gear_lever;
-
-use gear_lever::{GearLever, stops};
+use kinloop_fixtures::gear_lever::{GearLever, stops};
 
 #[allow(dead_code)] // not every test uses every helper
 mod support;

@@ -4,11 +4,7 @@
 //! 1; the triangle O2 B A and its differentiated loop equation for contour 2), and against the
 //! numbers the example prints.
 
-#[allow(dead_code)]
-#[path = "../examples/roller_edger.rs"]
-mod roller_edger;
-
-use roller_edger::{RollerEdger, closed, solved};
+use kinloop_fixtures::roller_edger::{RollerEdger, closed, solved};
 
 #[test]
 fn all_links_match_the_closed_forms_over_the_stroke() {

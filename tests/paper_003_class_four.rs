@@ -7,11 +7,7 @@
 use kinloop::NewtonConfig;
 use std::f64::consts::TAU;
 
-#[allow(dead_code)]
-#[path = "../examples/class_four.rs"]
-mod class_four;
-
-use class_four::ClassFour;
+use kinloop_fixtures::ClassFour;
 
 #[allow(dead_code)] // not every test uses every helper
 mod support;

@@ -8,11 +8,7 @@
 use kinloop::analysis::{NelderMead, Sampled, nelder_mead_boxed};
 use std::f64::consts::{PI, TAU};
 
-#[allow(dead_code)]
-#[path = "../examples/balancing.rs"]
-mod balancing;
-
-use balancing::{Balance, PHASE, design, phased, unbalance};
+use kinloop_fixtures::balancing::{Balance, PHASE, design, phased, unbalance};
 
 #[allow(dead_code)] // not every test uses every helper
 mod support;

@@ -4,11 +4,7 @@
 
 use std::f64::consts::PI;
 
-#[allow(dead_code)]
-#[path = "../examples/rhombic_drive.rs"]
-mod rhombic_drive;
-
-use rhombic_drive::RhombicDrive;
+use kinloop_fixtures::RhombicDrive;
 
 #[allow(dead_code)] // not every test uses every helper
 mod support;
