@@ -1,4 +1,4 @@
-//! External balancing of the asymmetric rhombic drive (SEEDS.md, paper 004): the centre of mass
+//! External balancing of the asymmetric rhombic drive (`docs/papers.md`, paper 004): the centre of mass
 //! of the reciprocating masses over a crank turn, its Fourier harmonics, the residual unbalance
 //! after counterweights cancel the first harmonic, and the dimensionless design that minimises
 //! it for a given mass ratio.
@@ -19,7 +19,7 @@
 //! D = max over a turn of |X_c - X_c1|            (residual unbalance, in crank radii)
 //! ```
 //!
-//! **Design problem.** SEEDS.md names the paper's parameters (rod-length ratio `gamma`,
+//! **Design problem.** The paper names the paper's parameters (rod-length ratio `gamma`,
 //! relative eccentricity, a parameter `k`, mass ratio `M'`) without defining all of them; this
 //! example reads its "typical case k = 0.3, gamma = 2" as the working group `gamma = 2`,
 //! `k = 0.3`, held fixed, and takes as reference design the symmetric rhombic arrangement: both
@@ -38,8 +38,8 @@
 //!
 //! Run with `cargo run --release --example balancing`.
 
-use kinloop_examples::{Panel, Series, figure_dir, panels};
 use kinloop::analysis::{NelderMead, Sampled, nelder_mead_boxed};
+use kinloop_examples::{Panel, Series, figure_dir, panels};
 use kinloop_fixtures::balancing::{Balance, PHASE, SAMPLES, design, phased, unbalance};
 use std::f64::consts::{PI, TAU};
 

@@ -1,4 +1,4 @@
-//! A planar mechanism of class IV (SEEDS.md, paper 003): input crank OA, and an Assur group of
+//! A planar mechanism of class IV (`docs/papers.md`, paper 003): input crank OA, and an Assur group of
 //! class IV made of two ternary links, C-A-E (pinned to the crank at A) and D-B-F (pinned to the
 //! frame at B), joined by the binary links CD and EF. The closed contour C-D-F-E cannot be
 //! solved loop by loop: both loops ACDB and AEFB must close together. The paper tracks the free

@@ -1,4 +1,4 @@
-//! Intermittent-motion gear-lever drive (SEEDS.md, paper 001): a planet gear rolling inside a
+//! Intermittent-motion gear-lever drive (`docs/papers.md`, paper 001): a planet gear rolling inside a
 //! fixed gear (`u = z1/z3 = 3`) carries a pin in the slot of a rocker pivoted at the centre. The
 //! pin traces a prolate hypocycloid with three loops; in each loop the rocker swings back a
 //! little: three stops per carrier turn.

@@ -9,8 +9,8 @@
 //!
 //! Run with `cargo run --release --example limit_positions`.
 
-use kinloop_examples::{Series, decimate, figure_dir, line_chart};
 use kinloop::{AtSingular, SweepConfig};
+use kinloop_examples::{Series, decimate, figure_dir, line_chart};
 use kinloop_fixtures::{FourBar, FourBarUnknowns};
 use std::f64::consts::PI;
 

@@ -1,5 +1,5 @@
-//! Kinematic analysis of the asymmetric rhombic drive of a Stirling engine (SEEDS.md, paper
-//! 000, Fig. 1): positions, velocity and acceleration analogs of the pistons and rods, and the
+//! Kinematic analysis of the asymmetric rhombic drive of a Stirling engine (`docs/papers.md`,
+//! paper 000, Fig. 1): positions, velocity and acceleration analogs of the pistons and rods, and the
 //! centres of mass, over a full turn of the crank.
 //!
 //! It also locates the extreme positions of the working piston and the displacer exactly (as
@@ -12,10 +12,10 @@
 //! writes the full sweep as CSV and draws SVG charts into `out/rhombic_drive/` (the charts into
 //! `$KINLOOP_FIGURES/rhombic_drive/` when that variable is set).
 
-use kinloop_examples::{Series, decimate, figure_dir, line_chart, out_dir};
 use kinloop::Table;
-use kinloop_fixtures::{RhombicDrive, RhombicDriveState};
 use kinloop::analysis::Sampled;
+use kinloop_examples::{Series, decimate, figure_dir, line_chart, out_dir};
+use kinloop_fixtures::{RhombicDrive, RhombicDriveState};
 use std::f64::consts::TAU;
 
 fn main() -> Result<(), Box<dyn std::error::Error>> {

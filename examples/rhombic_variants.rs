@@ -1,5 +1,5 @@
 //! The two structural variants of the rhombic drive whose equations paper 000 does "not give for
-//! lack of space" (SEEDS.md, Figs. 2 and 3), declared from their description only: one crank
+//! lack of space" (`docs/papers.md`, paper 000, Figs. 2 and 3), declared from their description only: one crank
 //! AB (radius `r`, centre A = (0, e_p)), the working piston C on the X axis, the displacer F on
 //! the line y = de.
 //!
@@ -16,8 +16,8 @@
 //!
 //! Run with `cargo run --release --example rhombic_variants`.
 
-use kinloop_examples::{Panel, Series, figure_dir, panels};
 use kinloop::analysis::Sampled;
+use kinloop_examples::{Panel, Series, figure_dir, panels};
 use kinloop_fixtures::{DisplacerRodDrive, WorkingRodDrive};
 use std::f64::consts::TAU;
 
@@ -127,7 +127,7 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
     Ok(())
 }
 
-/// Fig. 1's published closed form (SEEDS.md 000) for one crank pin (`r_p = r_b = r`,
+/// Fig. 1's published closed form (paper 000) for one crank pin (`r_p = r_b = r`,
 /// `gamma = 0`): `[X_C, X_F]`.
 fn fig1_closed(r: f64, l_p: f64, l_b: f64, e_p: f64, de: f64, phi1: f64) -> [f64; 2] {
     let (lam_p, lam_b) = (r / l_p, r / l_b);

@@ -1,4 +1,4 @@
-//! Roller edger (tilter) of a rolling mill, lever-turning mode (SEEDS.md, paper 002): a
+//! Roller edger (tilter) of a rolling mill, lever-turning mode (`docs/papers.md`, paper 002): a
 //! hydraulic cylinder pivoted at O1 extends at constant speed, `S1 = V1 t`, so the input is time.
 //! Contour O1 A O3 O1: cylinder 1 (length `S1 + l1`, angle `phi1`) and link 3 (`l3`, turning
 //! about O3, angle `phi3`), frame O1O3 = `l5` at angle `alpha`. Contour O2 B A O3 O2: cylinder 2
@@ -11,14 +11,14 @@
 //! It prints the angles, angular velocities and accelerations of all four links against time
 //! (the analogs of a time input are the true angular velocities and accelerations) and their
 //! largest deviations from the closed forms: the law of cosines for contour 1 (with the branch
-//! pair `phi3 = alpha - acos(.)`, `phi1 = alpha + acos(.)`: SEEDS.md prints `phi1 = alpha -
+//! pair `phi3 = alpha - acos(.)`, `phi1 = alpha + acos(.)`: the paper prints `phi1 = alpha -
 //! acos(.)`, which belongs to the other assembly mode), and for contour 2 the triangle O2 B A
 //! with velocities and accelerations from its differentiated loop equation.
 //!
 //! Run with `cargo run --release --example roller_edger`.
 
-use kinloop_examples::{Panel, Series, figure_dir, panels};
 use kinloop::analysis::Sampled;
+use kinloop_examples::{Panel, Series, figure_dir, panels};
 use kinloop_fixtures::roller_edger::{RollerEdger, RollerEdgerState, closed, solved};
 
 fn main() -> Result<(), Box<dyn std::error::Error>> {

@@ -1,4 +1,4 @@
-//! Gradient-based synthesis of a Stirling rhombic drive (SEEDS.md, paper 000) with exact
+//! Gradient-based synthesis of a Stirling rhombic drive (`docs/papers.md`, paper 000) with exact
 //! parameter sensitivities, compared with a derivative-free search from the same start.
 //!
 //! Requirement: the displacer must reach its outer dead centre a given crank angle after the

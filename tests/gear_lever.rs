@@ -1,4 +1,4 @@
-//! The intermittent-motion gear-lever drive of SEEDS.md (paper 001): carrier + planet pin equals
+//! The intermittent-motion gear-lever drive of paper 001 (`docs/papers.md`): carrier + planet pin equals
 //! the pin's position along the rocker, `s @ phi` with BOTH the length `s` and the angle `phi`
 //! unknown. Checked against the paper's explicit formulas and against central finite
 //! differences of the solved positions.

@@ -63,7 +63,8 @@ fn extreme_positions_strokes_and_phase_shift_match_the_closed_forms() {
     // positions (each slider-crank's triangle solved for the slider): values exact to rounding,
     // locations to ~1e-13 (see `stationary`).
     let x_c = |a: f64| m.r_p * a.cos() - (m.l_p.powi(2) - (m.e_p + m.r_p * a.sin()).powi(2)).sqrt();
-    let x_f = |a: f64| m.r_b * (a + m.gamma).cos() + (m.l_b.powi(2) - (e_b + m.r_b * (a + m.gamma).sin()).powi(2)).sqrt();
+    let x_f =
+        |a: f64| m.r_b * (a + m.gamma).cos() + (m.l_b.powi(2) - (e_b + m.r_b * (a + m.gamma).sin()).powi(2)).sqrt();
     let explicit: [(&dyn Fn(f64) -> f64, f64, f64); 4] =
         [(&x_c, at[0].1, c_outer), (&x_c, at[1].1, c_inner), (&x_f, at[2].1, x_f0), (&x_f, at[3].1, x_fmin)];
     let mut found = [0.0; 4];

@@ -1,4 +1,4 @@
-//! Paper 001 (SEEDS.md), the mechanism and numbers of `examples/gear_lever.rs`: dwell duration,
+//! Paper 001 (`docs/papers.md`), the mechanism and numbers of `examples/gear_lever.rs`: dwell duration,
 //! dwell quality (rocker swing) and peak acceleration analog for k = 1.1 ... 1.5, from the analysis
 //! helpers on the generated kinematics, against an independent computation from the paper's
 //! explicit formulas (rocker angle `atan2(x, y)`, `omega_r`, `eps_r`) with bisection and

@@ -71,7 +71,11 @@ fn all_links_match_a_construction_with_differentiated_time() {
                 // The construction's own rounding (square roots of differences) is ~1e-14; the
                 // Newton tolerance 1e-12 bounds the solved angles.
                 let tol = [1e-11, 1e-10, 1e-9][order];
-                assert!((got[l][order] - want).abs() < tol, "link {l} order {order} at {t}: {} vs {want}", got[l][order]);
+                assert!(
+                    (got[l][order] - want).abs() < tol,
+                    "link {l} order {order} at {t}: {} vs {want}",
+                    got[l][order]
+                );
                 assert!((c[l][order] - want).abs() < tol, "closed form, link {l} order {order} at {t}");
             }
         }

@@ -1,4 +1,4 @@
-//! The asymmetric rhombic drive of SEEDS.md (paper 000, Fig. 1), as declared in
+//! The asymmetric rhombic drive of paper 000 (`docs/papers.md`, Fig. 1), as declared in
 //! `examples/rhombic_drive.rs`, against the paper's closed forms, over 3600 crank angles: positions, velocity analogs, acceleration analogs, and the
 //! centres of mass S1, S2, S4 against formulas derived here by hand.
 
@@ -26,7 +26,7 @@ const DRIVE: RhombicDrive = RhombicDrive {
     l_fs4: 1.6,
 };
 
-/// The published closed form (SEEDS.md 000) plus derived centre-of-mass formulas.
+/// The published closed form (paper 000) plus derived centre-of-mass formulas.
 struct Closed {
     q: [f64; 4],
     dq: [f64; 4],
@@ -128,7 +128,7 @@ fn rhombic_drive_matches_published_closed_form_over_a_full_turn() {
         phi4_min = phi4_min.min(q[1]);
         phi4_max = phi4_max.max(q[1]);
     }
-    // SEEDS.md: phi4 runs over 2.911..3.616 rad (partly in the 3rd quadrant, no 2 pi jump) and
+    // The paper: phi4 runs over 2.911..3.616 rad (partly in the 3rd quadrant, no 2 pi jump) and
     // phi2 over -0.167..0.524 for these dimensions.
     assert!((phi4_min - 2.911).abs() < 1e-3 && (phi4_max - 3.616).abs() < 1e-3, "{phi4_min}..{phi4_max}");
     assert!((phi2_min + 0.167).abs() < 1e-3 && (phi2_max - 0.524).abs() < 1e-3, "{phi2_min}..{phi2_max}");

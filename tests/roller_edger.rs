@@ -1,6 +1,6 @@
-//! The roller edger of SEEDS.md (paper 002) as declared in `examples/roller_edger.rs`, driven by
-//! time: hydraulic cylinder 1 extends at constant speed, `S1 = V1 t`. Contour 1 against the
-//! example's closed forms (law of cosines and its time derivatives derived by hand; SEEDS.md
+//! The roller edger of paper 002 (`docs/papers.md`), the gallery's mechanism, driven by time:
+//! hydraulic cylinder 1 extends at constant speed, `S1 = V1 t`. Contour 1 against the closed
+//! forms (law of cosines and its time derivatives derived by hand; the paper
 //! prints `phi1 = alpha - acos(d)` next to `phi3 = alpha - acos(c)`, signs of two different
 //! assembly modes: the consistent pair is used), contour 2 against a triangle construction.
 

@@ -92,8 +92,11 @@ enum Expect {
 /// 29th stopping at a limit position, one with a NaN rod; drawn from the fixtures' strategies,
 /// which stay clear of the boundaries between these cases.
 fn designs(n: usize) -> (Vec<SliderCrank>, Vec<Expect>) {
-    let (turning, unassemblable, limited) =
-        (sample(turning_slider_crank(), n, 5), sample(unassemblable_slider_crank(), n, 6), sample(limited_slider_crank(), n, 7));
+    let (turning, unassemblable, limited) = (
+        sample(turning_slider_crank(), n, 5),
+        sample(unassemblable_slider_crank(), n, 6),
+        sample(limited_slider_crank(), n, 7),
+    );
     (0..n)
         .map(|i| {
             if i == 100 {

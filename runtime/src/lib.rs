@@ -9,13 +9,13 @@
 #![allow(clippy::needless_range_loop)]
 
 pub mod analysis;
-pub mod dynamics;
-pub mod metrics;
 mod curve;
+pub mod dynamics;
 mod error;
 mod kin;
 mod lu;
 mod mechanism;
+pub mod metrics;
 mod modes;
 mod newton;
 mod objective;
