@@ -79,17 +79,18 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
     // crank arms on one pin (r_p = r_b = r, gamma = 0). Compare with Fig. 1's closed form.
     let d2 = DisplacerRodDrive { l_fd: fig2.l_b, gamma_b: 0.0, ..fig2 };
     let d3 = WorkingRodDrive { l_cd: fig3.l_p, gamma_p: 0.0, ..fig3 };
-    let (mut dev2, mut dev3) = (0.0f64, 0.0f64);
-    for s in d2.sweep(0.0, TAU, 361, &d2.guess(0.0))? {
-        let s = s?;
-        let c = fig1_closed(d2.r, d2.l_p, d2.l_b, d2.e_p, d2.de, s.input.phi1);
-        dev2 = dev2.max((s.q.x_c - c[0]).abs()).max((s.q.x_f - c[1]).abs());
-    }
-    for s in d3.sweep(0.0, TAU, 361, &d3.guess(0.0))? {
-        let s = s?;
-        let c = fig1_closed(d3.r, d3.l_p, d3.l_b, d3.e_p, d3.de, s.input.phi1);
-        dev3 = dev3.max((s.q.x_c - c[0]).abs()).max((s.q.x_f - c[1]).abs());
-    }
+    // Largest deviation of (phi1, X_C, X_F) samples from Fig. 1 with dimensions [r, l_p, l_b, e_p, de].
+    let deviation = |[r, l_p, l_b, e_p, de]: [f64; 5], samples: Vec<(f64, f64, f64)>| {
+        let dev = |(phi1, x_c, x_f): (f64, f64, f64)| {
+            let c = fig1_closed(r, l_p, l_b, e_p, de, phi1);
+            (x_c - c[0]).abs().max((x_f - c[1]).abs())
+        };
+        samples.into_iter().map(dev).fold(0.0f64, f64::max)
+    };
+    let s2 = d2.sweep(0.0, TAU, 361, &d2.guess(0.0))?.map(|s| s.map(|s| (s.input.phi1, s.q.x_c, s.q.x_f)));
+    let dev2 = deviation([d2.r, d2.l_p, d2.l_b, d2.e_p, d2.de], s2.collect::<Result<_, _>>()?);
+    let s3 = d3.sweep(0.0, TAU, 361, &d3.guess(0.0))?.map(|s| s.map(|s| (s.input.phi1, s.q.x_c, s.q.x_f)));
+    let dev3 = deviation([d3.r, d3.l_p, d3.l_b, d3.e_p, d3.de], s3.collect::<Result<_, _>>()?);
     println!("\nthird joint on the crank pin = Fig. 1: largest deviation of X_C, X_F from Fig. 1's closed form");
     println!("  Fig. 2 with l_fd = l_b, gamma_b = 0: {dev2:.1e};  Fig. 3 with l_cd = l_p, gamma_p = 0: {dev3:.1e}");
 
@@ -109,20 +110,15 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
         marks: vec![],
     };
     let (fig2, fig3) = ([3, 1], [1, 3]);
-    let labels = ["X_C (working piston)", "X_F (displacer)"];
-    panels(
-        &dir.join("positions.svg"),
-        "Rhombic drive variants: piston X_C and displacer X_F",
-        "crank angle phi1 [deg]",
-        &[panel("Fig. 2 [crank radii]", s2, fig2, 0, labels), panel("Fig. 3 [crank radii]", s3, fig3, 0, labels)],
-    )?;
-    let labels = ["V_qC", "V_qF"];
-    panels(
-        &dir.join("velocity_analogs.svg"),
-        "Rhombic drive variants: velocity analogs dX/dphi1",
-        "crank angle phi1 [deg]",
-        &[panel("Fig. 2", s2, fig2, 1, labels), panel("Fig. 3", s3, fig3, 1, labels)],
-    )?;
+    let figures = [
+        ("positions.svg", "piston X_C and displacer X_F", ["Fig. 2 [crank radii]", "Fig. 3 [crank radii]"]),
+        ("velocity_analogs.svg", "velocity analogs dX/dphi1", ["Fig. 2", "Fig. 3"]),
+    ];
+    let labels = [["X_C (working piston)", "X_F (displacer)"], ["V_qC", "V_qF"]];
+    for (order, (file, what, [y2, y3])) in figures.into_iter().enumerate() {
+        let both = [panel(y2, s2, fig2, order, labels[order]), panel(y3, s3, fig3, order, labels[order])];
+        panels(&dir.join(file), &format!("Rhombic drive variants: {what}"), "crank angle phi1 [deg]", &both)?;
+    }
     println!("\nwrote positions.svg, velocity_analogs.svg to {}", dir.display());
     Ok(())
 }

@@ -7,19 +7,7 @@ use kinloop_fixtures::RhombicDrive;
 use std::f64::consts::PI;
 
 /// The gallery drive (its centres of mass do not enter the objectives).
-const M: RhombicDrive = RhombicDrive {
-    r_p: 1.0,
-    r_b: 1.2,
-    l_p: 3.0,
-    l_b: 3.5,
-    e_p: 0.5,
-    de: 0.9,
-    gamma: 0.7,
-    l_as1: 0.3,
-    psi_s1: 0.35,
-    l_cs2: 1.2,
-    l_fs4: 1.4,
-};
+const M: RhombicDrive = kinloop_fixtures::rhombic::GALLERY_DRIVE;
 
 /// `docs/papers.md`, paper 000: X_F0 = sqrt((L_B + R_B)^2 - e_B^2), X_Fmin = sqrt((L_B - R_B)^2 - e_B^2).
 fn closed_extremes(m: &RhombicDrive) -> (f64, f64) {

@@ -5,6 +5,7 @@
 use std::f64::consts::PI;
 
 use kinloop_fixtures::RhombicDrive;
+use kinloop_fixtures::rhombic::GALLERY_DRIVE;
 
 #[allow(dead_code)] // not every test uses every helper
 mod support;
@@ -12,19 +13,7 @@ mod support;
 use support::close;
 
 /// The example's drive, with centres of mass of its own.
-const DRIVE: RhombicDrive = RhombicDrive {
-    r_p: 1.0,
-    r_b: 1.2,
-    l_p: 3.0,
-    l_b: 3.5,
-    e_p: 0.5,
-    de: 0.9,
-    gamma: 0.7,
-    l_as1: 0.4,
-    psi_s1: 0.3,
-    l_cs2: 1.1,
-    l_fs4: 1.6,
-};
+const DRIVE: RhombicDrive = RhombicDrive { l_as1: 0.4, psi_s1: 0.3, l_cs2: 1.1, l_fs4: 1.6, ..GALLERY_DRIVE };
 
 /// The published closed form (paper 000) plus derived centre-of-mass formulas.
 struct Closed {

@@ -116,6 +116,12 @@ fn designs(n: usize) -> (Vec<SliderCrank>, Vec<Expect>) {
         .unzip()
 }
 
+/// The designs among the first `n` that turn fully.
+fn turning_designs(n: usize) -> Vec<SliderCrank> {
+    let (ms, ex) = designs(n);
+    ms.into_iter().zip(ex).filter(|(_, e)| matches!(e, Expect::Turn)).map(|(m, _)| m).collect()
+}
+
 /// Closed forms of a full turn on the declared branch (`psi` near 0, the rod pointing from the
 /// slider towards +x): `sin psi = (r sin phi - e) / l`, so `psi` spans
 /// `asin((-r - e) / l) ..= asin((r - e) / l)`; the slider is farthest from the crank's centre
@@ -194,9 +200,7 @@ fn scan_matches_closed_forms_and_par_scan_matches_scan_bitwise() {
 
 #[test]
 fn scan_allocates_only_its_result() {
-    let (ms, ex) = designs(60);
-    let turns: Vec<SliderCrank> =
-        ms.iter().zip(&ex).filter(|(_, e)| matches!(e, Expect::Turn)).map(|(m, _)| *m).collect();
+    let turns = turning_designs(60);
     let spec = ScanSpec::new([0.0], [TAU], SAMPLES);
     let (results, n) = allocations(|| scan(&turns, &spec, init, fold));
     assert!(results.iter().all(|r| r.as_ref().is_ok_and(|a| a.samples == SAMPLES)));
@@ -239,9 +243,7 @@ fn par_scan_runs_on_the_rayon_pool() {
 fn the_start_policy_picks_the_branch() {
     // The mirrored branch (psi near pi, the slider on the crank's +x side) from a computed guess
     // and from a fixed one: x spans the closed forms' mirror image.
-    let (ms, ex) = designs(60);
-    let turns: Vec<SliderCrank> =
-        ms.iter().zip(&ex).filter(|(_, e)| matches!(e, Expect::Turn)).map(|(m, _)| *m).collect();
+    let turns = turning_designs(60);
     let with = ScanSpec::new([0.0], [TAU], SAMPLES).start(ScanStart::With(|m: &SliderCrank| [PI + m.e / m.l, m.l]));
     let fixed = ScanSpec::new([0.0], [TAU], SAMPLES).start(ScanStart::Guess([3.0, 1.0]));
     for spec in [with, fixed] {

@@ -40,29 +40,26 @@ where
             (4.0 * d2 - d1) / 3.0
         };
         let name = M::PARAMS[p];
-        for u in 0..N {
-            let un = M::UNKNOWNS[u];
-            let f = fd(&|k| k.q[u]);
-            assert!(close(s.q[u][p], f, 1e-7), "d{un}/d{name}: {} vs {f}", s.q[u][p]);
+        // Quantity v: the unknowns, then the outputs (flat order), in the state and in `s`.
+        let of = |v: usize| if v < N { M::UNKNOWNS[v] } else { M::OUTPUTS[v - N] };
+        let value = |k: &Kin<N, NI, NO>, v: usize| if v < N { k.q[v] } else { k.out[v - N] };
+        let first = |k: &Kin<N, NI, NO>, v: usize, i: usize| if v < N { k.dq[v][i] } else { k.dout[v - N][i] };
+        let second = |k: &Kin<N, NI, NO>, v: usize, i: usize, j: usize| {
+            if v < N { k.d2q[v][i][j] } else { k.d2out[v - N][i][j] }
+        };
+        for v in 0..N + NO {
+            let vn = of(v);
+            let got = if v < N { s.q[v][p] } else { s.out[v - N][p] };
+            let f = fd(&|k| value(k, v));
+            assert!(close(got, f, 1e-7), "d{vn}/d{name}: {got} vs {f}");
             for i in 0..NI {
-                let f = fd(&|k| k.dq[u][i]);
-                assert!(close(s.dq[u][i][p], f, 1e-7), "d(d{un}/dx{i})/d{name}: {} vs {f}", s.dq[u][i][p]);
+                let got = if v < N { s.dq[v][i][p] } else { s.dout[v - N][i][p] };
+                let f = fd(&|k| first(k, v, i));
+                assert!(close(got, f, 1e-7), "d(d{vn}/dx{i})/d{name}: {got} vs {f}");
                 for j in 0..NI {
-                    let f = fd(&|k| k.d2q[u][i][j]);
-                    assert!(close(s.d2q[u][i][j][p], f, 1e-7), "d(d2{un})/d{name}: {} vs {f}", s.d2q[u][i][j][p]);
-                }
-            }
-        }
-        for o in 0..NO {
-            let on = M::OUTPUTS[o];
-            let f = fd(&|k| k.out[o]);
-            assert!(close(s.out[o][p], f, 1e-7), "d{on}/d{name}: {} vs {f}", s.out[o][p]);
-            for i in 0..NI {
-                let f = fd(&|k| k.dout[o][i]);
-                assert!(close(s.dout[o][i][p], f, 1e-7), "d(d{on})/d{name}: {} vs {f}", s.dout[o][i][p]);
-                for j in 0..NI {
-                    let f = fd(&|k| k.d2out[o][i][j]);
-                    assert!(close(s.d2out[o][i][j][p], f, 1e-7), "d(d2{on})/d{name}: {} vs {f}", s.d2out[o][i][j][p]);
+                    let got = if v < N { s.d2q[v][i][j][p] } else { s.d2out[v - N][i][j][p] };
+                    let f = fd(&|k| second(k, v, i, j));
+                    assert!(close(got, f, 1e-7), "d(d2{vn}/dx{i}dx{j})/d{name}: {got} vs {f}");
                 }
             }
         }

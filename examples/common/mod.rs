@@ -73,6 +73,33 @@ fn draw_legend<'b: 'a, 'a>(chart: &mut Chart<'a, 'b>, position: SeriesLabelPosit
     Ok(())
 }
 
+/// A 900 x 520 SVG file with one titled chart over `ranges`, axes labelled `(x, y)` with a
+/// y label area `width` pixels wide: the curves, each decimated to at most `max_points` points,
+/// the marked points as dots, and the legend upper right.
+fn single_chart(
+    path: &std::path::Path,
+    title: &str,
+    (x_label, y_label, width): (&str, &str, u32),
+    (xs, ys): (std::ops::Range<f64>, std::ops::Range<f64>),
+    (series, max_points): (&[Series], usize),
+    marks: &[(f64, f64)],
+) -> Result<(), Box<dyn Error>> {
+    let root = SVGBackend::new(path, (900, 520)).into_drawing_area();
+    root.fill(&WHITE)?;
+    let mut chart = ChartBuilder::on(&root)
+        .caption(title, ("sans-serif", 22))
+        .margin(12)
+        .x_label_area_size(44)
+        .y_label_area_size(width)
+        .build_cartesian_2d(xs, ys)?;
+    chart.configure_mesh().x_desc(x_label).y_desc(y_label).draw()?;
+    draw_curves(&mut chart, series, max_points)?;
+    chart.draw_series(marks.iter().map(|&(x, y)| Circle::new((x, y), 4, BLACK.filled())))?;
+    draw_legend(&mut chart, SeriesLabelPosition::UpperRight)?;
+    root.present()?;
+    Ok(())
+}
+
 /// Draws curves into an SVG file with a title, axis labels and a legend.
 pub fn line_chart(
     path: &std::path::Path,
@@ -83,19 +110,8 @@ pub fn line_chart(
 ) -> Result<(), Box<dyn Error>> {
     let (x0, x1, y0, y1) = bounds(series.iter().flat_map(|s| &s.points))?;
     let pad = ((y1 - y0) * 0.05).max(1e-9);
-    let root = SVGBackend::new(path, (900, 520)).into_drawing_area();
-    root.fill(&WHITE)?;
-    let mut chart = ChartBuilder::on(&root)
-        .caption(title, ("sans-serif", 22))
-        .margin(12)
-        .x_label_area_size(44)
-        .y_label_area_size(70)
-        .build_cartesian_2d(x0..x1, (y0 - pad)..(y1 + pad))?;
-    chart.configure_mesh().x_desc(x_label).y_desc(y_label).draw()?;
-    draw_curves(&mut chart, series, usize::MAX)?;
-    draw_legend(&mut chart, SeriesLabelPosition::UpperRight)?;
-    root.present()?;
-    Ok(())
+    let ranges = (x0..x1, (y0 - pad)..(y1 + pad));
+    single_chart(path, title, (x_label, y_label, 70), ranges, (series, usize::MAX), &[])
 }
 
 /// Folder for an example's figures: `$KINLOOP_FIGURES/<example>` when that variable is set
@@ -200,18 +216,6 @@ pub fn xy_chart(
     let (cx, cy) = ((x0 + x1) / 2.0, (y0 + y1) / 2.0);
     let scale = ((x1 - x0) / w).max((y1 - y0) / h) * 1.08;
     let (hx, hy) = (scale * w / 2.0, scale * h / 2.0);
-    let root = SVGBackend::new(path, (900, 520)).into_drawing_area();
-    root.fill(&WHITE)?;
-    let mut chart = ChartBuilder::on(&root)
-        .caption(title, ("sans-serif", 22))
-        .margin(12)
-        .x_label_area_size(44)
-        .y_label_area_size(60)
-        .build_cartesian_2d((cx - hx)..(cx + hx), (cy - hy)..(cy + hy))?;
-    chart.configure_mesh().x_desc("x").y_desc("y").draw()?;
-    draw_curves(&mut chart, series, 720)?;
-    chart.draw_series(marks.iter().map(|&(x, y)| Circle::new((x, y), 4, BLACK.filled())))?;
-    draw_legend(&mut chart, SeriesLabelPosition::UpperRight)?;
-    root.present()?;
-    Ok(())
+    let ranges = ((cx - hx)..(cx + hx), (cy - hy)..(cy + hy));
+    single_chart(path, title, ("x", "y", 60), ranges, (series, 720), marks)
 }
