@@ -65,10 +65,10 @@ fn extreme_positions_strokes_and_phase_shift_match_the_closed_forms() {
     let x_c = |a: f64| m.r_p * a.cos() - (m.l_p.powi(2) - (m.e_p + m.r_p * a.sin()).powi(2)).sqrt();
     let x_f =
         |a: f64| m.r_b * (a + m.gamma).cos() + (m.l_b.powi(2) - (e_b + m.r_b * (a + m.gamma).sin()).powi(2)).sqrt();
-    let explicit: [(&dyn Fn(f64) -> f64, f64, f64); 4] =
-        [(&x_c, at[0].1, c_outer), (&x_c, at[1].1, c_inner), (&x_f, at[2].1, x_f0), (&x_f, at[3].1, x_fmin)];
+    let position = |k: usize, a: f64| if k < 2 { x_c(a) } else { x_f(a) };
     let mut found = [0.0; 4];
-    for (k, (f, want_at, want)) in explicit.into_iter().enumerate() {
+    for (k, ((_, want_at), want)) in at.into_iter().zip([c_outer, c_inner, x_f0, x_fmin]).enumerate() {
+        let f = |a: f64| position(k, a);
         found[k] = stationary(f, want_at - 0.3, want_at + 0.3);
         assert!((f(found[k]) - want).abs() < 1e-12, "extreme {k}: {} vs {want}", f(found[k]));
         assert!(wrap(found[k] - want_at).abs() < 1e-10, "extreme {k} at {} vs {want_at}", found[k]);
