@@ -18,9 +18,21 @@ use kinloop_examples::{Series, decimate, figure_dir, line_chart, out_dir};
 use kinloop_fixtures::{RhombicDrive, RhombicDriveState};
 use std::f64::consts::TAU;
 
-fn main() -> Result<(), Box<dyn std::error::Error>> {
-    let drive = RhombicDrive::default();
+type Result<T> = std::result::Result<T, Box<dyn std::error::Error>>;
 
+fn main() -> Result<()> {
+    let drive = RhombicDrive::default();
+    let states = full_turn(&drive)?;
+    println!("Rhombic drive (paper 000, Fig. 1): {:?}\n", drive);
+    print_table(&states);
+    report_extremes(&drive)?;
+    let s = states.iter().map(|s| s.report.iterations).sum::<u32>();
+    println!("Newton iterations over the sweep: {s} ({} solves)", states.len());
+    write_outputs(&states)
+}
+
+/// A full turn in steps of 0.1 degree.
+fn full_turn(drive: &RhombicDrive) -> Result<Vec<RhombicDriveState>> {
     // A full turn in steps of 0.1 degree, each solve warm-started from the previous position
     // so the drive stays in the declared assembly mode.
     let mut guess = drive.guess(0.0);
@@ -31,8 +43,11 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
         guess = state.q;
         states.push(state);
     }
+    Ok(states)
+}
 
-    println!("Rhombic drive (paper 000, Fig. 1): {:?}\n", drive);
+/// The table every 10 degrees.
+fn print_table(states: &[RhombicDriveState]) {
     println!(
         "{:>6} {:>9} {:>9} {:>9} {:>9} {:>9} {:>9} {:>8} {:>8}",
         "phi1", "X_C", "X_F", "V_qC", "V_qF", "a_qC", "a_qF", "U21", "U41"
@@ -51,10 +66,13 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
             s.dq.phi4,
         );
     }
+}
 
+/// Extreme positions, strokes and phase shifts against the closed forms.
+fn report_extremes(drive: &RhombicDrive) -> Result<()> {
     // Extreme positions, located as roots of the velocity analogs (dX/dphi1 = 0) on a sweep of
     // one turn, against the closed forms: crank and rod stretched (outer) or folded (inner).
-    let turn = Sampled::sweep(&drive, 0.0, TAU, 361, drive.guess(0.0).into())?;
+    let turn = Sampled::sweep(drive, 0.0, TAU, 361, drive.guess(0.0).into())?;
     let xc = turn.range("x_c")?;
     let xf = turn.range("x_f")?;
     let e_b = drive.e_p - drive.de;
@@ -92,9 +110,11 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
         deg((at_f_outer - at_c_outer).to_radians()),
         deg((at_f_inner - at_c_inner).to_radians())
     );
-    let s = states.iter().map(|s| s.report.iterations).sum::<u32>();
-    println!("Newton iterations over the sweep: {s} ({} solves)", states.len());
+    Ok(())
+}
 
+/// The sweep as CSV and its charts as SVG.
+fn write_outputs(states: &[RhombicDriveState]) -> Result<()> {
     let data = out_dir("rhombic_drive");
     let table = Table::from_states::<RhombicDrive, _, _, _>(states.iter().map(|s| &s.flat));
     table.save_csv(data.join("sweep.csv"))?;
