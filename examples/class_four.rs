@@ -63,6 +63,14 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
         (last.psi2 - first.psi2).abs()
     );
 
+    let dir = draw(&m, &states)?;
+    println!("\nwrote angles_and_analogs.svg, joint_paths.svg to {}", dir.display());
+    Ok(())
+}
+
+/// Link angles with their analogs, and the joints' paths with the linkage drawn at 30 degrees;
+/// returns the folder they went to.
+fn draw(m: &ClassFour, states: &[ClassFourState]) -> Result<std::path::PathBuf, Box<dyn std::error::Error>> {
     let dir = figure_dir("class_four");
     let curve = |f: &dyn Fn(&ClassFourState) -> f64| {
         states.iter().map(|s| (s.input.phi.to_degrees(), f(s))).collect::<Vec<_>>()
@@ -103,6 +111,5 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
         ],
         &[o, b],
     )?;
-    println!("\nwrote angles_and_analogs.svg, joint_paths.svg to {}", dir.display());
-    Ok(())
+    Ok(dir)
 }

@@ -71,6 +71,16 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
     }
     println!("(planet: the dwell measured on a main shaft turning with the planet, u times the carrier dwell)");
 
+    let dir = figure_dir("gear_lever");
+    draw_stops_against_k(&dir, marks)?;
+    draw_rocker_motion(&dir, &ks)?;
+    println!("\nwrote dwell_vs_k.svg, rocker_k13.svg, rocker_angle.svg to {}", dir.display());
+    Ok(())
+}
+
+/// The paper's Fig. 3: the stop characteristics against `k` on a fine grid, with the table's `k`
+/// marked.
+fn draw_stops_against_k(dir: &std::path::Path, marks: [Vec<(f64, f64)>; 3]) -> Result<(), Box<dyn std::error::Error>> {
     // Fig. 3: the same against k on a fine grid.
     let mut curves = [Vec::new(), Vec::new(), Vec::new()];
     for i in 0..=50 {
@@ -80,7 +90,6 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
         curves[1].push((k, s.swing));
         curves[2].push((k, s.peak_acc));
     }
-    let dir = figure_dir("gear_lever");
     let [c0, c1, c2] = curves;
     let [m0, m1, m2] = marks;
     panels(
@@ -105,7 +114,11 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
             },
         ],
     )?;
+    Ok(())
+}
 
+/// The paper's Fig. 2 for k = 1.3, and the rocker angle for every `k` of the table.
+fn draw_rocker_motion(dir: &std::path::Path, ks: &[f64]) -> Result<(), Box<dyn std::error::Error>> {
     // Fig. 2 for k = 1.3, and the rocker angle for every k.
     let m = GearLever { l_p: 1.3, ..GearLever::default() };
     let states: Vec<_> = m.sweep(0.0, TAU, 721, &m.guess(0.0))?.collect::<Result<_, _>>()?;
@@ -135,7 +148,7 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
         ],
     )?;
     let mut all = Vec::new();
-    for k in ks {
+    for &k in ks {
         let m = GearLever { l_p: k, ..GearLever::default() };
         let pts = m
             .sweep(0.0, TAU, 721, &m.guess(0.0))?
@@ -151,6 +164,5 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
         "rocker angle phi [deg]",
         &all.into_iter().zip(&labels).map(|((_, p), l)| Series { label: l, points: p }).collect::<Vec<_>>(),
     )?;
-    println!("\nwrote dwell_vs_k.svg, rocker_k13.svg, rocker_angle.svg to {}", dir.display());
     Ok(())
 }

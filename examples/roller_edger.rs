@@ -82,6 +82,14 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
         top.value.to_degrees()
     );
 
+    let dir = draw(&states)?;
+    println!("\nwrote angles_velocities_accelerations.svg to {}", dir.display());
+    Ok(())
+}
+
+/// The paper's figure: link angles, angular velocities and accelerations against time; returns
+/// the folder it went to.
+fn draw(states: &[RollerEdgerState]) -> Result<std::path::PathBuf, Box<dyn std::error::Error>> {
     let dir = figure_dir("roller_edger");
     let curve = |f: &dyn Fn(&RollerEdgerState) -> f64| states.iter().map(|s| (s.input.t, f(s))).collect::<Vec<_>>();
     let four = |f: [&dyn Fn(&RollerEdgerState) -> f64; 4]| {
@@ -118,6 +126,5 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
             },
         ],
     )?;
-    println!("\nwrote angles_velocities_accelerations.svg to {}", dir.display());
-    Ok(())
+    Ok(dir)
 }
