@@ -2,7 +2,7 @@
 //! rhombic drive and its two variants, the gear-lever drive, the roller edger, the class IV
 //! mechanism, and four-bars (a coupler curve, and a rocker stopping at its limit position).
 //!
-//! Run with `cargo run --release --features draw --example animations -- docs/animations`
+//! Run with `cargo run --release -p kinloop-examples --example animations -- docs/animations`
 //! (the folder defaults to `out/animations`). Each mechanism gives `<name>.svg`, an animated
 //! SVG that plays in a browser or a README; the roller edger, the class IV mechanism and the
 //! four-bar coupler curve also give `<name>_exposures.svg`, a static multi-exposure for print.
@@ -12,29 +12,10 @@ use std::error::Error;
 use std::f64::consts::{FRAC_PI_2, PI, TAU};
 use std::path::{Path, PathBuf};
 
-// The gallery's mechanisms, declared once in their own examples and included here (the only
-// place this example refers to them). Each example brings its own `mod common`.
-#[allow(dead_code)]
-#[path = "class_four.rs"]
-mod class_four;
-#[allow(dead_code, clippy::duplicate_mod)]
-#[path = "gear_lever.rs"]
-mod gear_lever;
-#[allow(dead_code, clippy::duplicate_mod)]
-#[path = "rhombic_drive.rs"]
-mod rhombic_drive;
-#[allow(dead_code, clippy::duplicate_mod)]
-#[path = "rhombic_variants.rs"]
-mod rhombic_variants;
-#[allow(dead_code, clippy::duplicate_mod)]
-#[path = "roller_edger.rs"]
-mod roller_edger;
-
-use class_four::ClassFour;
-use gear_lever::GearLever;
-use rhombic_drive::RhombicDrive;
-use rhombic_variants::{DisplacerRodDrive, WorkingRodDrive};
-use roller_edger::RollerEdger;
+// The gallery's mechanisms, declared once in the fixtures crate.
+use kinloop_fixtures::gear_lever::GearLever;
+use kinloop_fixtures::roller_edger::RollerEdger;
+use kinloop_fixtures::{ClassFour, DisplacerRodDrive, RhombicDrive, WorkingRodDrive};
 
 kinloop::mechanism! {
     /// Four-bar: crank `r` at O = (0, 0), coupler BC of length `l` carrying the point P at

@@ -1,4 +1,4 @@
-//! A planar mechanism of class IV (SEEDS.md, paper 003): input crank OA, and an Assur group of
+//! A planar mechanism of class IV (`docs/papers.md`, paper 003): input crank OA, and an Assur group of
 //! class IV made of two ternary links, C-A-E (pinned to the crank at A) and D-B-F (pinned to the
 //! frame at B), joined by the binary links CD and EF. The closed contour C-D-F-E cannot be
 //! solved loop by loop: both loops ACDB and AEFB must close together. The paper tracks the free
@@ -13,30 +13,9 @@
 //!
 //! Run with `cargo run --release --example class_four`.
 
-#[allow(dead_code)] // not every example uses every helper
-mod common;
-
-use common::{Panel, Series, figure_dir, panels, xy_chart};
+use kinloop_examples::{Panel, Series, figure_dir, panels, xy_chart};
+use kinloop_fixtures::{ClassFour, ClassFourState};
 use std::f64::consts::TAU;
-
-kinloop::mechanism! {
-    /// Class IV mechanism: crank OA, ternary links CAE (at A) and DBF (at B), binary links CD, EF.
-    pub struct ClassFour {
-        params oa = 1.0, xb = 4.4, yb = 0.6, ac = 2.3, ae = 2.4, alpha_a = 0.84,
-               bd = 1.6, bf = 3.5, alpha_b = 0.62, cd = 2.0, ef = 3.4;
-        input phi;
-        unknowns th1 = 1.4, th2 = 3.0, psi1 = -0.8, psi2 = -1.0;
-        let a = oa @ phi;
-        let b = (xb, yb);
-        loop acdb: a + ac @ th1 + cd @ psi1 == b + bd @ th2;
-        loop aefb: a + ae @ (th1 + alpha_a) + ef @ psi2 == b + bf @ (th2 + alpha_b);
-        /// Joints of the group.
-        point c = a + ac @ th1;
-        point e = a + ae @ (th1 + alpha_a);
-        point d = b + bd @ th2;
-        point f = b + bf @ (th2 + alpha_b);
-    }
-}
 
 fn main() -> Result<(), Box<dyn std::error::Error>> {
     let m = ClassFour::default();
@@ -84,6 +63,14 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
         (last.psi2 - first.psi2).abs()
     );
 
+    let dir = draw(&m, &states)?;
+    println!("\nwrote angles_and_analogs.svg, joint_paths.svg to {}", dir.display());
+    Ok(())
+}
+
+/// Link angles with their analogs, and the joints' paths with the linkage drawn at 30 degrees;
+/// returns the folder they went to.
+fn draw(m: &ClassFour, states: &[ClassFourState]) -> Result<std::path::PathBuf, Box<dyn std::error::Error>> {
     let dir = figure_dir("class_four");
     let curve = |f: &dyn Fn(&ClassFourState) -> f64| {
         states.iter().map(|s| (s.input.phi.to_degrees(), f(s))).collect::<Vec<_>>()
@@ -124,6 +111,5 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
         ],
         &[o, b],
     )?;
-    println!("\nwrote angles_and_analogs.svg, joint_paths.svg to {}", dir.display());
-    Ok(())
+    Ok(dir)
 }

@@ -1,4 +1,4 @@
-//! Intermittent-motion gear-lever drive (SEEDS.md, paper 001): a planet gear rolling inside a
+//! Intermittent-motion gear-lever drive (`docs/papers.md`, paper 001): a planet gear rolling inside a
 //! fixed gear (`u = z1/z3 = 3`) carries a pin in the slot of a rocker pivoted at the centre. The
 //! pin traces a prolate hypocycloid with three loops; in each loop the rocker swings back a
 //! little: three stops per carrier turn.
@@ -17,26 +17,9 @@
 //!
 //! Run with `cargo run --release --example gear_lever`.
 
-mod common;
-
-use common::{Panel, Series, figure_dir, line_chart, panels};
-use kinloop::analysis::{Dwell, Sampled};
-use std::f64::consts::{PI, TAU};
-
-kinloop::mechanism! {
-    /// Gear-lever drive: carrier `l_c` turning by `alpha`, planet pin at `l_p` from the planet
-    /// centre turning by `(1 - u) alpha`, block sliding in a rocker pivoted at O (distance `s`
-    /// from O, rocker angle `phi`). Angles from the Y axis as in the paper: direction `a` is
-    /// `(sin a, cos a)`.
-    pub struct GearLever {
-        params l_c = 2.0, l_p = 1.3, u = 3.0;
-        input alpha;
-        unknowns s = l_c + l_p, phi = 0;
-        let pin = (l_c * sin(alpha), l_c * cos(alpha))
-                + (l_p * sin((1 - u) * alpha), l_p * cos((1 - u) * alpha));
-        loop oab: pin == s * (sin(phi), cos(phi));
-    }
-}
+use kinloop_examples::{Panel, Series, figure_dir, line_chart, panels};
+use kinloop_fixtures::gear_lever::{GearLever, GearLeverState, stops};
+use std::f64::consts::TAU;
 
 /// What the paper's Fig. 3 shows for one `k`.
 struct Stop {
@@ -48,16 +31,6 @@ struct Stop {
     /// degrees modulo the 120° stop cycle; by symmetry the smallest is its negative).
     peak_acc: f64,
     peak_at: f64,
-}
-
-/// The stops (dwells of the rocker) over one carrier turn, and the largest acceleration analog
-/// with the carrier angle where it occurs.
-pub fn stops(m: &GearLever) -> Result<(Vec<Dwell>, (f64, f64)), kinloop::Error> {
-    // The turn starts at alpha = -60 degrees, where the pin is nearest the centre and the rocker
-    // moves fastest, so the three stops of the turn (around 0, 120 and 240 degrees) lie inside.
-    let from = -PI / 3.0;
-    let turn = Sampled::sweep(m, from, from + TAU, 721, m.guess(from).into())?;
-    Ok((turn.dwells("phi")?, turn.peak(|s| s.d2q[1][0][0])?))
 }
 
 fn stop(k: f64) -> Result<Stop, kinloop::Error> {
@@ -98,6 +71,16 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
     }
     println!("(planet: the dwell measured on a main shaft turning with the planet, u times the carrier dwell)");
 
+    let dir = figure_dir("gear_lever");
+    draw_stops_against_k(&dir, marks)?;
+    draw_rocker_motion(&dir, &ks)?;
+    println!("\nwrote dwell_vs_k.svg, rocker_k13.svg, rocker_angle.svg to {}", dir.display());
+    Ok(())
+}
+
+/// The paper's Fig. 3: the stop characteristics against `k` on a fine grid, with the table's `k`
+/// marked.
+fn draw_stops_against_k(dir: &std::path::Path, marks: [Vec<(f64, f64)>; 3]) -> Result<(), Box<dyn std::error::Error>> {
     // Fig. 3: the same against k on a fine grid.
     let mut curves = [Vec::new(), Vec::new(), Vec::new()];
     for i in 0..=50 {
@@ -107,7 +90,6 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
         curves[1].push((k, s.swing));
         curves[2].push((k, s.peak_acc));
     }
-    let dir = figure_dir("gear_lever");
     let [c0, c1, c2] = curves;
     let [m0, m1, m2] = marks;
     panels(
@@ -132,7 +114,11 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
             },
         ],
     )?;
+    Ok(())
+}
 
+/// The paper's Fig. 2 for k = 1.3, and the rocker angle for every `k` of the table.
+fn draw_rocker_motion(dir: &std::path::Path, ks: &[f64]) -> Result<(), Box<dyn std::error::Error>> {
     // Fig. 2 for k = 1.3, and the rocker angle for every k.
     let m = GearLever { l_p: 1.3, ..GearLever::default() };
     let states: Vec<_> = m.sweep(0.0, TAU, 721, &m.guess(0.0))?.collect::<Result<_, _>>()?;
@@ -162,7 +148,7 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
         ],
     )?;
     let mut all = Vec::new();
-    for k in ks {
+    for &k in ks {
         let m = GearLever { l_p: k, ..GearLever::default() };
         let pts = m
             .sweep(0.0, TAU, 721, &m.guess(0.0))?
@@ -178,6 +164,5 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
         "rocker angle phi [deg]",
         &all.into_iter().zip(&labels).map(|((_, p), l)| Series { label: l, points: p }).collect::<Vec<_>>(),
     )?;
-    println!("\nwrote dwell_vs_k.svg, rocker_k13.svg, rocker_angle.svg to {}", dir.display());
     Ok(())
 }

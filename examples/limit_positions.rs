@@ -9,21 +9,10 @@
 //!
 //! Run with `cargo run --release --example limit_positions`.
 
-mod common;
-
-use common::{Series, decimate, figure_dir, line_chart};
 use kinloop::{AtSingular, SweepConfig};
+use kinloop_examples::{Series, decimate, figure_dir, line_chart};
+use kinloop_fixtures::{FourBar, FourBarUnknowns};
 use std::f64::consts::PI;
-
-kinloop::mechanism! {
-    /// Four-bar: input link `a` at A = (0, 0), coupler `b`, rocker `c` at D = (d, 0).
-    pub struct FourBar {
-        params a, b, c, d;
-        input phi;
-        unknowns beta = 0.5, gamma = 1.5;
-        loop abcd: a @ phi + b @ beta == (d, 0) + c @ gamma;
-    }
-}
 
 fn main() -> Result<(), Box<dyn std::error::Error>> {
     // s + l = 2 + 4 > p + q = 2.5 + 3: non-Grashof.
@@ -78,6 +67,14 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
         ],
     )?;
 
+    change_point()?;
+    println!("\nwrote {}", dir.join("closed_curve.svg").display());
+    Ok(())
+}
+
+/// A four-bar at a change point: the sweep stops at the singular crossing, or passes it when told
+/// to and changes the assembly mode.
+fn change_point() -> Result<(), Box<dyn std::error::Error>> {
     // Change point: s + l = 1 + 3 = p + q = 2 + 2.
     let cp = FourBar { a: 1.0, b: 3.0, c: 2.0, d: 2.0 };
     let g = cp.position(0.5, &FourBarUnknowns { beta: 0.6, gamma: 1.6 })?.0;
@@ -105,6 +102,5 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
         states[0].health.det_signs,
         states[states.len() - 1].health.det_signs
     );
-    println!("\nwrote {}", dir.join("closed_curve.svg").display());
     Ok(())
 }

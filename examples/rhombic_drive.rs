@@ -1,5 +1,5 @@
-//! Kinematic analysis of the asymmetric rhombic drive of a Stirling engine (SEEDS.md, paper
-//! 000, Fig. 1): positions, velocity and acceleration analogs of the pistons and rods, and the
+//! Kinematic analysis of the asymmetric rhombic drive of a Stirling engine (`docs/papers.md`,
+//! paper 000, Fig. 1): positions, velocity and acceleration analogs of the pistons and rods, and the
 //! centres of mass, over a full turn of the crank.
 //!
 //! It also locates the extreme positions of the working piston and the displacer exactly (as
@@ -12,37 +12,27 @@
 //! writes the full sweep as CSV and draws SVG charts into `out/rhombic_drive/` (the charts into
 //! `$KINLOOP_FIGURES/rhombic_drive/` when that variable is set).
 
-mod common;
-
-use common::{Series, decimate, figure_dir, line_chart, out_dir};
 use kinloop::Table;
 use kinloop::analysis::Sampled;
+use kinloop_examples::{Series, decimate, figure_dir, line_chart, out_dir};
+use kinloop_fixtures::{RhombicDrive, RhombicDriveState};
 use std::f64::consts::TAU;
 
-kinloop::mechanism! {
-    /// Asymmetric rhombic drive with a developed crank: crank arms AB (`r_p`) and AD (`r_b`)
-    /// rigidly joined at angle `gamma`, centre A at (0, e_p); working rod BC (`l_p`) to the
-    /// piston C on the X axis; displacer rod DF (`l_b`) to the displacer F on the line y = de.
-    pub struct RhombicDrive {
-        params r_p = 1.0, r_b = 1.2, l_p = 3.0, l_b = 3.5, e_p = 0.5, de = 0.9, gamma = 0.7,
-               l_as1 = 0.3, psi_s1 = 0.35, l_cs2 = 1.2, l_fs4 = 1.4;
-        input phi1;
-        // Assembly mode: working rod to the left (cos phi2 > 0), displacer rod to the right.
-        unknowns phi2 = 0, phi4 = pi, x_c = -l_p, x_f = l_b;
-        loop oabco:   (0, e_p) + r_p @ phi1           == (x_c, 0)  + l_p @ phi2;
-        loop oadff1o: (0, e_p) + r_b @ (phi1 + gamma) == (x_f, de) + l_b @ phi4;
-        /// Centre of mass of the crank.
-        point s1 = (0, e_p) + l_as1 @ (phi1 + psi_s1);
-        /// Centre of mass of the working rod.
-        point s2 = (x_c, 0) + l_cs2 @ phi2;
-        /// Centre of mass of the displacer rod.
-        point s4 = (x_f, de) + l_fs4 @ phi4;
-    }
+type Result<T> = std::result::Result<T, Box<dyn std::error::Error>>;
+
+fn main() -> Result<()> {
+    let drive = RhombicDrive::default();
+    let states = full_turn(&drive)?;
+    println!("Rhombic drive (paper 000, Fig. 1): {:?}\n", drive);
+    print_table(&states);
+    report_extremes(&drive)?;
+    let s = states.iter().map(|s| s.report.iterations).sum::<u32>();
+    println!("Newton iterations over the sweep: {s} ({} solves)", states.len());
+    write_outputs(&states)
 }
 
-fn main() -> Result<(), Box<dyn std::error::Error>> {
-    let drive = RhombicDrive::default();
-
+/// A full turn in steps of 0.1 degree.
+fn full_turn(drive: &RhombicDrive) -> Result<Vec<RhombicDriveState>> {
     // A full turn in steps of 0.1 degree, each solve warm-started from the previous position
     // so the drive stays in the declared assembly mode.
     let mut guess = drive.guess(0.0);
@@ -53,8 +43,11 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
         guess = state.q;
         states.push(state);
     }
+    Ok(states)
+}
 
-    println!("Rhombic drive (paper 000, Fig. 1): {:?}\n", drive);
+/// The table every 10 degrees.
+fn print_table(states: &[RhombicDriveState]) {
     println!(
         "{:>6} {:>9} {:>9} {:>9} {:>9} {:>9} {:>9} {:>8} {:>8}",
         "phi1", "X_C", "X_F", "V_qC", "V_qF", "a_qC", "a_qF", "U21", "U41"
@@ -73,10 +66,13 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
             s.dq.phi4,
         );
     }
+}
 
+/// Extreme positions, strokes and phase shifts against the closed forms.
+fn report_extremes(drive: &RhombicDrive) -> Result<()> {
     // Extreme positions, located as roots of the velocity analogs (dX/dphi1 = 0) on a sweep of
     // one turn, against the closed forms: crank and rod stretched (outer) or folded (inner).
-    let turn = Sampled::sweep(&drive, 0.0, TAU, 361, drive.guess(0.0).into())?;
+    let turn = Sampled::sweep(drive, 0.0, TAU, 361, drive.guess(0.0).into())?;
     let xc = turn.range("x_c")?;
     let xf = turn.range("x_f")?;
     let e_b = drive.e_p - drive.de;
@@ -114,9 +110,11 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
         deg((at_f_outer - at_c_outer).to_radians()),
         deg((at_f_inner - at_c_inner).to_radians())
     );
-    let s = states.iter().map(|s| s.report.iterations).sum::<u32>();
-    println!("Newton iterations over the sweep: {s} ({} solves)", states.len());
+    Ok(())
+}
 
+/// The sweep as CSV and its charts as SVG.
+fn write_outputs(states: &[RhombicDriveState]) -> Result<()> {
     let data = out_dir("rhombic_drive");
     let table = Table::from_states::<RhombicDrive, _, _, _>(states.iter().map(|s| &s.flat));
     table.save_csv(data.join("sweep.csv"))?;

@@ -1,5 +1,5 @@
 //! The two structural variants of the rhombic drive whose equations paper 000 does "not give for
-//! lack of space" (SEEDS.md, Figs. 2 and 3), declared from their description only: one crank
+//! lack of space" (`docs/papers.md`, paper 000, Figs. 2 and 3), declared from their description only: one crank
 //! AB (radius `r`, centre A = (0, e_p)), the working piston C on the X axis, the displacer F on
 //! the line y = de.
 //!
@@ -16,38 +16,10 @@
 //!
 //! Run with `cargo run --release --example rhombic_variants`.
 
-#[allow(dead_code)] // not every example uses every helper
-mod common;
-
-use common::{Panel, Series, figure_dir, panels};
 use kinloop::analysis::Sampled;
+use kinloop_examples::{Panel, Series, figure_dir, panels};
+use kinloop_fixtures::{DisplacerRodDrive, WorkingRodDrive};
 use std::f64::consts::TAU;
-
-kinloop::mechanism! {
-    /// Fig. 2: developed displacer rod. Lengths in units of the crank radius.
-    pub struct DisplacerRodDrive {
-        params r = 1.0, l_b = 3.5, l_fd = 2.2, gamma_b = 0.35, l_p = 3.0, e_p = 0.5, de = 0.9;
-        input phi1;
-        unknowns phi4 = pi, x_f = l_b, phi2 = 0, x_c = -l_p;
-        loop oabff1o: (0, e_p) + r @ phi1 == (x_f, de) + l_b @ phi4;
-        loop ocdff1o: (x_c, 0) + l_p @ phi2 == (x_f, de) + l_fd @ (phi4 + gamma_b);
-        /// The third joint of the displacer rod.
-        point d = (x_f, de) + l_fd @ (phi4 + gamma_b);
-    }
-}
-
-kinloop::mechanism! {
-    /// Fig. 3: developed working rod. Lengths in units of the crank radius.
-    pub struct WorkingRodDrive {
-        params r = 1.0, l_p = 3.0, l_cd = 1.8, gamma_p = -0.4, l_b = 3.5, e_p = 0.5, de = -0.4;
-        input phi1;
-        unknowns phi2 = 0, x_c = -l_p, phi4 = pi, x_f = l_b;
-        loop oabco: (0, e_p) + r @ phi1 == (x_c, 0) + l_p @ phi2;
-        loop of1fdco: (x_f, de) + l_b @ phi4 == (x_c, 0) + l_cd @ (phi2 + gamma_p);
-        /// The third joint of the working rod.
-        point d = (x_c, 0) + l_cd @ (phi2 + gamma_p);
-    }
-}
 
 /// Strokes, extremes and phase shift of a drive with unknowns `x_c` and `x_f`.
 fn report<M, const N: usize, const NO: usize>(
@@ -107,17 +79,18 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
     // crank arms on one pin (r_p = r_b = r, gamma = 0). Compare with Fig. 1's closed form.
     let d2 = DisplacerRodDrive { l_fd: fig2.l_b, gamma_b: 0.0, ..fig2 };
     let d3 = WorkingRodDrive { l_cd: fig3.l_p, gamma_p: 0.0, ..fig3 };
-    let (mut dev2, mut dev3) = (0.0f64, 0.0f64);
-    for s in d2.sweep(0.0, TAU, 361, &d2.guess(0.0))? {
-        let s = s?;
-        let c = fig1_closed(d2.r, d2.l_p, d2.l_b, d2.e_p, d2.de, s.input.phi1);
-        dev2 = dev2.max((s.q.x_c - c[0]).abs()).max((s.q.x_f - c[1]).abs());
-    }
-    for s in d3.sweep(0.0, TAU, 361, &d3.guess(0.0))? {
-        let s = s?;
-        let c = fig1_closed(d3.r, d3.l_p, d3.l_b, d3.e_p, d3.de, s.input.phi1);
-        dev3 = dev3.max((s.q.x_c - c[0]).abs()).max((s.q.x_f - c[1]).abs());
-    }
+    // Largest deviation of (phi1, X_C, X_F) samples from Fig. 1 with dimensions [r, l_p, l_b, e_p, de].
+    let deviation = |[r, l_p, l_b, e_p, de]: [f64; 5], samples: Vec<(f64, f64, f64)>| {
+        let dev = |(phi1, x_c, x_f): (f64, f64, f64)| {
+            let c = fig1_closed(r, l_p, l_b, e_p, de, phi1);
+            (x_c - c[0]).abs().max((x_f - c[1]).abs())
+        };
+        samples.into_iter().map(dev).fold(0.0f64, f64::max)
+    };
+    let s2 = d2.sweep(0.0, TAU, 361, &d2.guess(0.0))?.map(|s| s.map(|s| (s.input.phi1, s.q.x_c, s.q.x_f)));
+    let dev2 = deviation([d2.r, d2.l_p, d2.l_b, d2.e_p, d2.de], s2.collect::<Result<_, _>>()?);
+    let s3 = d3.sweep(0.0, TAU, 361, &d3.guess(0.0))?.map(|s| s.map(|s| (s.input.phi1, s.q.x_c, s.q.x_f)));
+    let dev3 = deviation([d3.r, d3.l_p, d3.l_b, d3.e_p, d3.de], s3.collect::<Result<_, _>>()?);
     println!("\nthird joint on the crank pin = Fig. 1: largest deviation of X_C, X_F from Fig. 1's closed form");
     println!("  Fig. 2 with l_fd = l_b, gamma_b = 0: {dev2:.1e};  Fig. 3 with l_cd = l_p, gamma_p = 0: {dev3:.1e}");
 
@@ -137,25 +110,20 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
         marks: vec![],
     };
     let (fig2, fig3) = ([3, 1], [1, 3]);
-    let labels = ["X_C (working piston)", "X_F (displacer)"];
-    panels(
-        &dir.join("positions.svg"),
-        "Rhombic drive variants: piston X_C and displacer X_F",
-        "crank angle phi1 [deg]",
-        &[panel("Fig. 2 [crank radii]", s2, fig2, 0, labels), panel("Fig. 3 [crank radii]", s3, fig3, 0, labels)],
-    )?;
-    let labels = ["V_qC", "V_qF"];
-    panels(
-        &dir.join("velocity_analogs.svg"),
-        "Rhombic drive variants: velocity analogs dX/dphi1",
-        "crank angle phi1 [deg]",
-        &[panel("Fig. 2", s2, fig2, 1, labels), panel("Fig. 3", s3, fig3, 1, labels)],
-    )?;
+    let figures = [
+        ("positions.svg", "piston X_C and displacer X_F", ["Fig. 2 [crank radii]", "Fig. 3 [crank radii]"]),
+        ("velocity_analogs.svg", "velocity analogs dX/dphi1", ["Fig. 2", "Fig. 3"]),
+    ];
+    let labels = [["X_C (working piston)", "X_F (displacer)"], ["V_qC", "V_qF"]];
+    for (order, (file, what, [y2, y3])) in figures.into_iter().enumerate() {
+        let both = [panel(y2, s2, fig2, order, labels[order]), panel(y3, s3, fig3, order, labels[order])];
+        panels(&dir.join(file), &format!("Rhombic drive variants: {what}"), "crank angle phi1 [deg]", &both)?;
+    }
     println!("\nwrote positions.svg, velocity_analogs.svg to {}", dir.display());
     Ok(())
 }
 
-/// Fig. 1's published closed form (SEEDS.md 000) for one crank pin (`r_p = r_b = r`,
+/// Fig. 1's published closed form (paper 000) for one crank pin (`r_p = r_b = r`,
 /// `gamma = 0`): `[X_C, X_F]`.
 fn fig1_closed(r: f64, l_p: f64, l_b: f64, e_p: f64, de: f64, phi1: f64) -> [f64; 2] {
     let (lam_p, lam_b) = (r / l_p, r / l_b);

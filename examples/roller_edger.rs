@@ -1,4 +1,4 @@
-//! Roller edger (tilter) of a rolling mill, lever-turning mode (SEEDS.md, paper 002): a
+//! Roller edger (tilter) of a rolling mill, lever-turning mode (`docs/papers.md`, paper 002): a
 //! hydraulic cylinder pivoted at O1 extends at constant speed, `S1 = V1 t`, so the input is time.
 //! Contour O1 A O3 O1: cylinder 1 (length `S1 + l1`, angle `phi1`) and link 3 (`l3`, turning
 //! about O3, angle `phi3`), frame O1O3 = `l5` at angle `alpha`. Contour O2 B A O3 O2: cylinder 2
@@ -11,83 +11,15 @@
 //! It prints the angles, angular velocities and accelerations of all four links against time
 //! (the analogs of a time input are the true angular velocities and accelerations) and their
 //! largest deviations from the closed forms: the law of cosines for contour 1 (with the branch
-//! pair `phi3 = alpha - acos(.)`, `phi1 = alpha + acos(.)`: SEEDS.md prints `phi1 = alpha -
+//! pair `phi3 = alpha - acos(.)`, `phi1 = alpha + acos(.)`: the paper prints `phi1 = alpha -
 //! acos(.)`, which belongs to the other assembly mode), and for contour 2 the triangle O2 B A
 //! with velocities and accelerations from its differentiated loop equation.
 //!
 //! Run with `cargo run --release --example roller_edger`.
 
-#[allow(dead_code)] // not every example uses every helper
-mod common;
-
-use common::{Panel, Series, figure_dir, panels};
 use kinloop::analysis::Sampled;
-
-kinloop::mechanism! {
-    /// Lever-turning mode of the roller edger (time input).
-    pub struct RollerEdger {
-        params l1 = 0.9, l3 = 0.6, l5 = 1.2, alpha = 0.2, v1 = 0.05,
-               l2 = 1.0, s2 = 0.1, l4 = 0.7, l6 = 1.4, beta = 0.9;
-        input t;
-        unknowns phi1 = 1.2, phi3 = -0.8, phi2 = 2.0, phi4 = 0.5;
-        let s1 = v1 * t;
-        loop o1ao3:  (s1 + l1) @ phi1 + l3 @ phi3 == l5 @ alpha;
-        loop o2bao3: (s2 + l2) @ phi2 + l4 @ phi4 + l3 @ phi3 == l6 @ beta;
-    }
-}
-
-/// Closed forms: `[phi1, phi3, phi2, phi4]`, each with its first and second time derivatives.
-pub fn closed(m: &RollerEdger, t: f64) -> [[f64; 3]; 4] {
-    // Contour 1, law of cosines in the triangle O1 A O3.
-    let s = m.v1 * t + m.l1;
-    let (l3, l5, v) = (m.l3, m.l5, m.v1);
-    let c = (l5 * l5 + l3 * l3 - s * s) / (2.0 * l5 * l3);
-    let (dc, ddc) = (-s * v / (l5 * l3), -v * v / (l5 * l3));
-    let r = 1.0 - c * c;
-    let phi3 = [m.alpha - c.acos(), dc / r.sqrt(), ddc / r.sqrt() + dc * dc * c / r.powf(1.5)];
-    let k = l5 * l5 - l3 * l3;
-    let d = s / (2.0 * l5) + k / (2.0 * l5 * s);
-    let dd = v / (2.0 * l5) - k * v / (2.0 * l5 * s * s);
-    let ddd = k * v * v / (l5 * s * s * s);
-    let r = 1.0 - d * d;
-    let phi1 = [m.alpha + d.acos(), -dd / r.sqrt(), -ddd / r.sqrt() - dd * dd * d / r.powf(1.5)];
-
-    // Contour 2: P = O2A = l6 @ beta - l3 @ phi3 is known with its derivatives; the triangle
-    // O2 B A gives phi2 (on the branch with B on the left of O2->A), then phi4 points from B
-    // to A. Differentiating a @ phi2 + l4 @ phi4 = P (a = s2 + l2) and dotting with the
-    // directions e2, e4 of the two links gives the velocities and accelerations.
-    let (p3, w3, e3) = (phi3[0], phi3[1], phi3[2]);
-    let (s3, c3) = p3.sin_cos();
-    let p = [m.l6 * m.beta.cos() - m.l3 * c3, m.l6 * m.beta.sin() - m.l3 * s3];
-    let dp = [m.l3 * w3 * s3, -m.l3 * w3 * c3];
-    let ddp = [m.l3 * (e3 * s3 + w3 * w3 * c3), m.l3 * (-e3 * c3 + w3 * w3 * s3)];
-    let a = m.s2 + m.l2;
-    let dist = p[0].hypot(p[1]);
-    let gamma = ((a * a + dist * dist - m.l4 * m.l4) / (2.0 * a * dist)).acos();
-    let phi2 = p[1].atan2(p[0]) + gamma;
-    let phi4 = (p[1] - a * phi2.sin()).atan2(p[0] - a * phi2.cos());
-    let (e2, e4) = ([phi2.cos(), phi2.sin()], [phi4.cos(), phi4.sin()]);
-    let dot = |u: [f64; 2], v: [f64; 2]| u[0] * v[0] + u[1] * v[1];
-    let sin42 = (phi4 - phi2).sin();
-    let w2 = dot(dp, e4) / (a * sin42);
-    let w4 = -dot(dp, e2) / (m.l4 * sin42);
-    let rhs =
-        [ddp[0] + a * w2 * w2 * e2[0] + m.l4 * w4 * w4 * e4[0], ddp[1] + a * w2 * w2 * e2[1] + m.l4 * w4 * w4 * e4[1]];
-    let acc2 = dot(rhs, e4) / (a * sin42);
-    let acc4 = -dot(rhs, e2) / (m.l4 * sin42);
-    [phi1, phi3, [phi2, w2, acc2], [phi4, w4, acc4]]
-}
-
-/// The solved `[phi1, phi3, phi2, phi4]` with their first and second time derivatives, laid out
-/// as [`closed`].
-pub fn solved(s: &RollerEdgerState) -> [[f64; 3]; 4] {
-    [
-        [s.q.phi1, s.dq.phi1, s.d2q.phi1],
-        [s.q.phi3, s.dq.phi3, s.d2q.phi3],
-        [s.q.phi2, s.dq.phi2, s.d2q.phi2],
-        [s.q.phi4, s.dq.phi4, s.d2q.phi4],
-    ]
-}
+use kinloop_examples::{Panel, Series, figure_dir, panels};
+use kinloop_fixtures::roller_edger::{RollerEdger, RollerEdgerState, closed, solved};
 
 fn main() -> Result<(), Box<dyn std::error::Error>> {
     let m = RollerEdger::default();
@@ -150,6 +82,14 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
         top.value.to_degrees()
     );
 
+    let dir = draw(&states)?;
+    println!("\nwrote angles_velocities_accelerations.svg to {}", dir.display());
+    Ok(())
+}
+
+/// The paper's figure: link angles, angular velocities and accelerations against time; returns
+/// the folder it went to.
+fn draw(states: &[RollerEdgerState]) -> Result<std::path::PathBuf, Box<dyn std::error::Error>> {
     let dir = figure_dir("roller_edger");
     let curve = |f: &dyn Fn(&RollerEdgerState) -> f64| states.iter().map(|s| (s.input.t, f(s))).collect::<Vec<_>>();
     let four = |f: [&dyn Fn(&RollerEdgerState) -> f64; 4]| {
@@ -186,6 +126,5 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
             },
         ],
     )?;
-    println!("\nwrote angles_velocities_accelerations.svg to {}", dir.display());
-    Ok(())
+    Ok(dir)
 }

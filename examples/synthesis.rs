@@ -1,4 +1,4 @@
-//! Gradient-based synthesis of a Stirling rhombic drive (SEEDS.md, paper 000) with exact
+//! Gradient-based synthesis of a Stirling rhombic drive (`docs/papers.md`, paper 000) with exact
 //! parameter sensitivities, compared with a derivative-free search from the same start.
 //!
 //! Requirement: the displacer must reach its outer dead centre a given crank angle after the
@@ -10,6 +10,7 @@
 //!
 //! Run with `cargo run --release --example synthesis`.
 
+<<<<<<< HEAD
 use kinloop::analysis::optimize::{LevenbergMarquardt, Minimum, NelderMead};
 use kinloop::{Error, Extreme, NewtonConfig, Sensitivities, extremum};
 use std::f64::consts::PI;
@@ -90,6 +91,9 @@ pub fn derivative_free_run(start: [f64; 2], target: [f64; 2]) -> Minimum<2> {
     let cfg = NelderMead { max_evaluations: 5000, f_tol: 1e-20, x_tol: 1e-10, restarts: 2 };
     cfg.minimize(objective, start, [0.1, 0.05])
 }
+=======
+use kinloop_fixtures::synthesis::{characteristics, derivative_free_run, gradient_run, problem};
+>>>>>>> fixtures
 
 fn main() -> Result<(), Box<dyn std::error::Error>> {
     let (start, target) = problem()?;

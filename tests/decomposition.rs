@@ -1,69 +1,19 @@
 //! The block decomposition (maximum matching + Tarjan's BLT order) of the papers' mechanisms,
 //! and its correctness: results with the decomposition equal results without it
-//! (`#[kinloop(dense)]`, every unknown in one Newton block) to 1e-12 over full crank turns.
+//! (`#[kinloop(dense)]`, every unknown in one Newton block) to 1e-12 over full crank turns, and
+//! both agree with independent references: the acceleration analogs with Richardson-extrapolated
+//! central differences of the velocity analogs, the velocity analogs with differences of the
+//! positions.
 
 use kinloop::{Kin, Sensitivities};
 use std::f64::consts::PI;
 
-#[allow(dead_code)]
-#[path = "../examples/class_four.rs"]
-mod class_four;
-
-use class_four::ClassFour;
+use kinloop_fixtures::{ClassFour, ClassFourDense, RhombicDrive, RhombicDriveDense};
 
 #[allow(dead_code)] // not every test uses every helper
 mod support;
 
-use support::close;
-
-kinloop::mechanism! {
-    /// The class IV mechanism of `examples/class_four.rs` (SEEDS 003), solved as one dense block.
-    #[kinloop(dense)]
-    pub struct ClassFourDense {
-        params oa = 1.0, xb = 4.4, yb = 0.6, ac = 2.3, ae = 2.4, alpha_a = 0.84,
-               bd = 1.6, bf = 3.5, alpha_b = 0.62, cd = 2.0, ef = 3.4;
-        input phi;
-        unknowns th1 = 1.4, th2 = 3.0, psi1 = -0.8, psi2 = -1.0;
-        let a = oa @ phi;
-        let b = (xb, yb);
-        loop acdb: a + ac @ th1 + cd @ psi1 == b + bd @ th2;
-        loop aefb: a + ae @ (th1 + alpha_a) + ef @ psi2 == b + bf @ (th2 + alpha_b);
-        point c = a + ac @ th1;
-        point e = a + ae @ (th1 + alpha_a);
-        point d = b + bd @ th2;
-        point f = b + bf @ (th2 + alpha_b);
-    }
-}
-
-/// Declares a mechanism twice from one body: as `$name`, decomposed into blocks, and as
-/// `$dense` with `#[kinloop(dense)]`, so that the two cannot drift apart.
-macro_rules! with_dense_twin {
-    ($(#[doc = $doc:literal])* pub struct $name:ident, $dense:ident { $($body:tt)* }) => {
-        kinloop::mechanism! {
-            $(#[doc = $doc])*
-            pub struct $name { $($body)* }
-        }
-        kinloop::mechanism! {
-            $(#[doc = $doc])*
-            #[kinloop(dense)]
-            pub struct $dense { $($body)* }
-        }
-    };
-}
-
-with_dense_twin! {
-    /// Asymmetric rhombic drive (SEEDS 000, Fig. 1) with a scalar output.
-    pub struct Rhombic, RhombicDense {
-        params r_p = 1.0, r_b = 1.2, l_p = 3.0, l_b = 3.5, e_p = 0.5, de = 0.9, gamma = 0.7, l_cs2 = 1.1, l_fs4 = 1.6;
-        input phi1;
-        unknowns phi2 = 0, phi4 = pi, x_c = -l_p, x_f = l_b;
-        loop oabco:   (0, e_p) + r_p @ phi1           == (x_c, 0)  + l_p @ phi2;
-        loop oadff1o: (0, e_p) + r_b @ (phi1 + gamma) == (x_f, de) + l_b @ phi4;
-        point s2 = (x_c, 0) + l_cs2 @ phi2;
-        point s4 = (x_f, de) + l_fs4 @ phi4;
-        output stroke_sum = x_c + x_f;
-    }
-}
+use support::{close, richardson_first};
 
 #[test]
 fn class_four_is_one_coupled_four_unknown_block() {
@@ -81,7 +31,7 @@ fn class_four_is_one_coupled_four_unknown_block() {
     );
     assert_eq!(ClassFourDense::BLOCKS.len(), 1);
     assert!(ClassFourDense::DECOMPOSITION.contains("dense: decomposition disabled"));
-    // The dense twin is the example's mechanism: the same names and parameter values.
+    // The dense twin is the gallery's mechanism: the same names and parameter values.
     assert_eq!(ClassFourDense::default().params_flat(), ClassFour::default().params_flat());
     assert_eq!(ClassFourDense::PARAMS, ClassFour::PARAMS);
     assert_eq!(ClassFourDense::EQUATIONS, ClassFour::EQUATIONS);
@@ -90,8 +40,8 @@ fn class_four_is_one_coupled_four_unknown_block() {
 
 #[test]
 fn rhombic_drive_splits_into_its_groups_with_sliders_in_closed_form() {
-    let blocks = Rhombic::BLOCKS;
-    assert_eq!(blocks.len(), 4, "{}", Rhombic::DECOMPOSITION);
+    let blocks = RhombicDrive::BLOCKS;
+    assert_eq!(blocks.len(), 4, "{}", RhombicDrive::DECOMPOSITION);
     // Each block is one unknown from one loop: the working group (oabco: phi2, x_c) and the
     // displacer group (oadff1o: phi4, x_f) never share a block.
     for b in blocks {
@@ -106,14 +56,17 @@ fn rhombic_drive_splits_into_its_groups_with_sliders_in_closed_form() {
     // The rod angle comes from the y projection (the slider is not in it), the slider from x.
     assert_eq!(blocks[at("phi2")].equations, &["oabco.y"]);
     assert_eq!(blocks[at("x_c")].equations, &["oabco.x"]);
-    let text = Rhombic::DECOMPOSITION;
-    assert!(text.starts_with("Rhombic: 4 unknowns, 4 scalar equations, 1 input (mobility W = 1); 4 blocks"), "{text}");
+    let text = RhombicDrive::DECOMPOSITION;
+    assert!(
+        text.starts_with("RhombicDrive: 4 unknowns, 4 scalar equations, 1 input (mobility W = 1); 4 blocks"),
+        "{text}"
+    );
     assert!(text.contains("(Newton, 1x1): phi2 <- oabco.y"), "{text}");
     assert!(text.contains("(linear, 1x1): x_f <- oadff1o.x"), "{text}");
     assert_eq!(text.lines().count(), 5, "{text}");
 
-    assert_eq!(RhombicDense::BLOCKS.len(), 1);
-    assert_eq!(RhombicDense::BLOCKS[0].unknowns.len(), 4);
+    assert_eq!(RhombicDriveDense::BLOCKS.len(), 1);
+    assert_eq!(RhombicDriveDense::BLOCKS[0].unknowns.len(), 4);
 }
 
 /// `|a - b| <= tol * max(1, |b|)`, with a message naming what differs.
@@ -139,7 +92,7 @@ fn assert_same_as_dense<const N: usize, const NO: usize>(at: &str, a: &Kin<N, 1,
 
 #[test]
 fn rhombic_drive_decomposed_equals_dense_over_a_turn() {
-    let (m, d) = (Rhombic::default(), RhombicDense::default());
+    let (m, d) = (RhombicDrive::default(), RhombicDriveDense::default());
     let (mut gm, mut gd) = (m.guess(0.0), d.guess(0.0));
     for k in 0..=720 {
         let phi1 = 2.0 * PI * k as f64 / 720.0;
@@ -184,4 +137,40 @@ fn class_four_decomposed_equals_dense_and_assembles_over_a_turn() {
     // Back to the start after a full turn.
     let (end, start): ([f64; 4], [f64; 4]) = (gm.into(), first.q.into());
     assert_close("q after a full turn", &end, &start, 1e-9);
+}
+
+/// Richardson-extrapolated central differences of the velocity analogs (of the unknowns and of
+/// the outputs) against the acceleration analogs, at `samples` inputs over a turn. The velocity
+/// analogs are exact to rounding (~1e-15), so with h = 1e-2 the truncation (~h^4/30 |q^(5)| ~
+/// 1e-10 here) dominates and the reference is good to ~1e-9, relative (absolute near zero).
+fn assert_second_analogs_match_differences<M, const N: usize, const NO: usize>(m: &M, guess: [f64; N], samples: usize)
+where
+    M: kinloop::Mechanism<N, 1, NO>,
+{
+    let h = 1e-2;
+    let mut q = guess;
+    for k in 0..samples {
+        let x = 0.05 + 2.0 * PI * k as f64 / samples as f64;
+        let s = m.kinematics_flat(&[x], &q, &Default::default()).unwrap();
+        q = s.q;
+        let at = |x: f64| m.kinematics_flat(&[x], &s.q, &Default::default()).unwrap();
+        for u in 0..N {
+            let fd = richardson_first(|x| at(x).dq[u][0], x, h);
+            assert!(close(s.d2q[u][0][0], fd, 1e-8), "d2{} at {x}: {} vs {fd}", M::UNKNOWNS[u], s.d2q[u][0][0]);
+        }
+        for o in 0..NO {
+            let fd = richardson_first(|x| at(x).dout[o][0], x, h);
+            assert!(close(s.d2out[o][0][0], fd, 1e-8), "d2 output {o} at {x}: {} vs {fd}", s.d2out[o][0][0]);
+        }
+    }
+}
+
+#[test]
+fn acceleration_analogs_are_differences_of_the_velocity_analogs() {
+    let (r, rd) = (RhombicDrive::default(), RhombicDriveDense::default());
+    assert_second_analogs_match_differences(&r, r.guess(0.05).into(), 48);
+    assert_second_analogs_match_differences(&rd, rd.guess(0.05).into(), 48);
+    let (c, cd) = (ClassFour::default(), ClassFourDense::default());
+    assert_second_analogs_match_differences(&c, c.solve(0.05).unwrap().q.into(), 48);
+    assert_second_analogs_match_differences(&cd, cd.solve(0.05).unwrap().q.into(), 48);
 }

@@ -2,6 +2,7 @@
 //! never a panic, a hang or a silent NaN.
 
 use kinloop::{Error, EventKind, NewtonConfig, Quantity};
+use kinloop_fixtures::FourBar;
 use std::f64::consts::PI;
 
 kinloop::mechanism! {
@@ -12,15 +13,6 @@ kinloop::mechanism! {
         unknowns phi = 0.5, psi = 2.5;
         loop oab: r @ phi - l @ psi == (x, 0);
         output reach = sqrt(x - 3);
-    }
-}
-
-kinloop::mechanism! {
-    pub struct FourBar {
-        params a, b, c, d;
-        input phi;
-        unknowns beta = 0.5, gamma = 1.5;
-        loop abcd: a @ phi + b @ beta == (d, 0) + c @ gamma;
     }
 }
 

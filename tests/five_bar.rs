@@ -2,18 +2,7 @@
 //! derivatives with respect to both cranks, checked against central finite differences, and the
 //! positions against an independent circle-intersection construction.
 
-kinloop::mechanism! {
-    /// Five-bar linkage: crank `a` at A = (0, 0) (angle `th1`), crank `e` at E = (d, 0) (angle
-    /// `th2`), links `b` from B and `c` from D meeting at the coupler point C.
-    pub struct FiveBar {
-        params a, b, c, d, e;
-        inputs th1, th2;
-        unknowns phi2 = 1.0, phi3 = 2.0;
-        loop abcde: a @ th1 + b @ phi2 == (d, 0) + e @ th2 + c @ phi3;
-        point pc = a @ th1 + b @ phi2;
-        output spread = phi3 - phi2;
-    }
-}
+use kinloop_fixtures::FiveBar;
 
 const M: FiveBar = FiveBar { a: 1.0, b: 2.5, c: 2.2, d: 1.5, e: 1.2 };
 
@@ -57,44 +46,13 @@ fn five_bar_partial_analogs_match_finite_differences() {
             let s = M.kinematics([a, b], &st.q).unwrap();
             [s.q.phi2, s.q.phi3, s.out.pc.x, s.out.pc.y, s.out.spread]
         };
-        let first = [
-            [st.dq.phi2.th1, st.dq.phi3.th1, st.dout.pc.x.th1, st.dout.pc.y.th1, st.dout.spread.th1],
-            [st.dq.phi2.th2, st.dq.phi3.th2, st.dout.pc.x.th2, st.dout.pc.y.th2, st.dout.spread.th2],
-        ];
-        let second = [
-            [
-                [
-                    st.d2q.phi2.th1.th1,
-                    st.d2q.phi3.th1.th1,
-                    st.d2out.pc.x.th1.th1,
-                    st.d2out.pc.y.th1.th1,
-                    st.d2out.spread.th1.th1,
-                ],
-                [
-                    st.d2q.phi2.th1.th2,
-                    st.d2q.phi3.th1.th2,
-                    st.d2out.pc.x.th1.th2,
-                    st.d2out.pc.y.th1.th2,
-                    st.d2out.spread.th1.th2,
-                ],
-            ],
-            [
-                [
-                    st.d2q.phi2.th2.th1,
-                    st.d2q.phi3.th2.th1,
-                    st.d2out.pc.x.th2.th1,
-                    st.d2out.pc.y.th2.th1,
-                    st.d2out.spread.th2.th1,
-                ],
-                [
-                    st.d2q.phi2.th2.th2,
-                    st.d2q.phi3.th2.th2,
-                    st.d2out.pc.x.th2.th2,
-                    st.d2out.pc.y.th2.th2,
-                    st.d2out.spread.th2.th2,
-                ],
-            ],
-        ];
+        // Quantity k: the unknowns phi2, phi3, then the outputs pc.x, pc.y, spread (flat order).
+        let f = &st.flat;
+        let first = |i: usize, k: usize| if k < 2 { f.dq[k][i] } else { f.dout[k - 2][i] };
+        let second = |i: usize, j: usize, k: usize| if k < 2 { f.d2q[k][i][j] } else { f.d2out[k - 2][i][j] };
+        // The flat layout is the named one.
+        assert_eq!((first(1, 4), first(0, 1)), (st.dout.spread.th2, st.dq.phi3.th1));
+        assert_eq!((second(0, 1, 2), second(1, 1, 0)), (st.d2out.pc.x.th1.th2, st.d2q.phi2.th2.th2));
         let c = q(t1, t2);
         let shift = |i: usize, s: f64| if i == 0 { (t1 + s, t2) } else { (t1, t2 + s) };
         for i in 0..2 {
@@ -103,13 +61,13 @@ fn five_bar_partial_analogs_match_finite_differences() {
             let (p, m) = (q(pa, pb), q(ma, mb));
             for k in 0..5 {
                 let fd = (p[k] - m[k]) / (2.0 * h);
-                assert!((first[i][k] - fd).abs() < 1e-6, "d/dth{} of #{k}: {} vs {fd}", i + 1, first[i][k]);
+                assert!((first(i, k) - fd).abs() < 1e-6, "d/dth{} of #{k}: {} vs {fd}", i + 1, first(i, k));
                 let fd2 = (p[k] - 2.0 * c[k] + m[k]) / (h * h);
                 assert!(
-                    (second[i][i][k] - fd2).abs() < 1e-4,
+                    (second(i, i, k) - fd2).abs() < 1e-4,
                     "d2/dth{}^2 of #{k}: {} vs {fd2}",
                     i + 1,
-                    second[i][i][k]
+                    second(i, i, k)
                 );
             }
         }
@@ -117,8 +75,8 @@ fn five_bar_partial_analogs_match_finite_differences() {
         let (pp, pm, mp, mm) = (q(t1 + h, t2 + h), q(t1 + h, t2 - h), q(t1 - h, t2 + h), q(t1 - h, t2 - h));
         for k in 0..5 {
             let fd = (pp[k] - pm[k] - mp[k] + mm[k]) / (4.0 * h * h);
-            assert!((second[0][1][k] - fd).abs() < 1e-4, "mixed #{k}: {} vs {fd}", second[0][1][k]);
-            assert_eq!(second[0][1][k], second[1][0][k], "second analogs are symmetric");
+            assert!((second(0, 1, k) - fd).abs() < 1e-4, "mixed #{k}: {} vs {fd}", second(0, 1, k));
+            assert_eq!(second(0, 1, k), second(1, 0, k), "second analogs are symmetric");
         }
     }
 }

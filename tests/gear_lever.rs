@@ -1,29 +1,15 @@
-//! The intermittent-motion gear-lever drive of SEEDS.md (paper 001): carrier + planet pin equals
+//! The intermittent-motion gear-lever drive of paper 001 (`docs/papers.md`): carrier + planet pin equals
 //! the pin's position along the rocker, `s @ phi` with BOTH the length `s` and the angle `phi`
 //! unknown. Checked against the paper's explicit formulas and against central finite
 //! differences of the solved positions.
 
+use kinloop_fixtures::gear_lever::GearLever;
 use std::f64::consts::PI;
 
 #[allow(dead_code)] // not every test uses every helper
 mod support;
 
 use support::wrap;
-
-kinloop::mechanism! {
-    /// Gear-lever drive: carrier `l_c` turning by `alpha`, planet pin at `l_p` from the planet
-    /// centre turning by `(1 - u) alpha`, block sliding in a rocker pivoted at O. Angles are
-    /// measured from the Y axis as in the paper: a direction `a` is `(sin a, cos a)`.
-    pub struct GearLever {
-        params l_c, l_p, u;
-        input alpha;
-        unknowns s = l_c + l_p, phi = 0;
-        let pin = (l_c * sin(alpha), l_c * cos(alpha))
-                + (l_p * sin((1 - u) * alpha), l_p * cos((1 - u) * alpha));
-        loop oab: pin == s * (sin(phi), cos(phi));
-        point b = pin;
-    }
-}
 
 /// The paper's explicit formulas (u = z1/z3, L = carrier, l = pin radius).
 fn explicit(big_l: f64, l: f64, u: f64, a: f64) -> [f64; 6] {

@@ -3,22 +3,13 @@
 //! and the integral of an output.
 
 use kinloop::{Extreme, NewtonConfig, extremum, integral};
+use kinloop_fixtures::RhombicDrive;
 use std::f64::consts::PI;
 
-kinloop::mechanism! {
-    pub struct RhombicDrive {
-        params r_p, r_b, l_p, l_b, e_p, de, gamma;
-        input phi1;
-        unknowns phi2 = 0, phi4 = pi, x_c = -l_p, x_f = l_b;
-        loop oabco:   (0, e_p) + r_p @ phi1           == (x_c, 0)  + l_p @ phi2;
-        loop oadff1o: (0, e_p) + r_b @ (phi1 + gamma) == (x_f, de) + l_b @ phi4;
-        output xf2 = x_f ^ 2;
-    }
-}
+/// The gallery drive (its centres of mass do not enter the objectives).
+const M: RhombicDrive = kinloop_fixtures::rhombic::GALLERY_DRIVE;
 
-const M: RhombicDrive = RhombicDrive { r_p: 1.0, r_b: 1.2, l_p: 3.0, l_b: 3.5, e_p: 0.5, de: 0.9, gamma: 0.7 };
-
-/// SEEDS.md 000: X_F0 = sqrt((L_B + R_B)^2 - e_B^2), X_Fmin = sqrt((L_B - R_B)^2 - e_B^2).
+/// `docs/papers.md`, paper 000: X_F0 = sqrt((L_B + R_B)^2 - e_B^2), X_Fmin = sqrt((L_B - R_B)^2 - e_B^2).
 fn closed_extremes(m: &RhombicDrive) -> (f64, f64) {
     let e_b = m.e_p - m.de;
     (((m.l_b + m.r_b).powi(2) - e_b * e_b).sqrt(), ((m.l_b - m.r_b).powi(2) - e_b * e_b).sqrt())
@@ -40,8 +31,9 @@ fn displacer_extremes_match_the_paper_with_gradients() {
     assert!((min.grad[l] - (M.l_b - M.r_b) / x1).abs() < 1e-9);
     let e = RhombicDrive::PARAMS.iter().position(|p| *p == "e_p").unwrap();
     assert!((max.grad[e] - (-e_b / x0)).abs() < 1e-9);
-    // The extremum's location moves as finite differences say.
-    for p in 0..7 {
+    // The extremum's location moves as finite differences say (the centres of mass, the last
+    // four parameters, do not move it: their gradients vanish).
+    for p in 0..RhombicDrive::PARAMS.len() {
         let h = 1e-5;
         let at = |s: f64| {
             let mut v = M.param_values();
@@ -65,16 +57,18 @@ fn displacer_extremes_match_the_paper_with_gradients() {
 #[test]
 fn integral_of_an_output_and_its_gradient() {
     let cfg = NewtonConfig::default();
-    let (v, g) = integral(&M, "xf2", 0.0, 2.0 * PI, 181, M.guess(0.0).into(), &cfg).unwrap();
-    // Independent: trapezoid over the closed-form X_F.
+    let (v, g) = integral(&M, "gap", 0.0, 2.0 * PI, 181, M.guess(0.0).into(), &cfg).unwrap();
+    // Independent: trapezoid over the closed-form gap X_F - X_C.
     let e_b = M.e_p - M.de;
-    let xf = |m: &RhombicDrive, phi: f64| {
+    let gap = |m: &RhombicDrive, phi: f64| {
         let s4 = (e_b + m.r_b * (phi + m.gamma).sin()) / m.l_b;
-        m.r_b * (phi + m.gamma).cos() + m.l_b * (1.0 - s4 * s4).sqrt()
+        let s2 = (m.e_p + m.r_p * phi.sin()) / m.l_p;
+        let x_f = m.r_b * (phi + m.gamma).cos() + m.l_b * (1.0 - s4 * s4).sqrt();
+        x_f - (m.r_p * phi.cos() - m.l_p * (1.0 - s2 * s2).sqrt())
     };
     let h = 2.0 * PI / 180.0;
     let reference: f64 =
-        (0..=180).map(|k| if k == 0 || k == 180 { 0.5 } else { 1.0 } * h * xf(&M, k as f64 * h).powi(2)).sum();
+        (0..=180).map(|k| if k == 0 || k == 180 { 0.5 } else { 1.0 } * h * gap(&M, k as f64 * h)).sum();
     assert!((v - reference).abs() < 1e-10, "{v} vs {reference}");
     let l = RhombicDrive::PARAMS.iter().position(|p| *p == "l_b").unwrap();
     let dh = 1e-6;
@@ -82,8 +76,8 @@ fn integral_of_an_output_and_its_gradient() {
     mp.l_b += dh;
     let mut mm = M;
     mm.l_b -= dh;
-    let fd = (integral(&mp, "xf2", 0.0, 2.0 * PI, 181, mp.guess(0.0).into(), &cfg).unwrap().0
-        - integral(&mm, "xf2", 0.0, 2.0 * PI, 181, mm.guess(0.0).into(), &cfg).unwrap().0)
+    let fd = (integral(&mp, "gap", 0.0, 2.0 * PI, 181, mp.guess(0.0).into(), &cfg).unwrap().0
+        - integral(&mm, "gap", 0.0, 2.0 * PI, 181, mm.guess(0.0).into(), &cfg).unwrap().0)
         / (2.0 * dh);
     assert!((g[l] - fd).abs() < 1e-6 * fd.abs(), "{} vs {fd}", g[l]);
     assert!(integral(&M, "nope", 0.0, 1.0, 3, M.guess(0.0).into(), &cfg).is_err());

@@ -1,22 +1,19 @@
-//! Paper 000, Fig. 1 (SEEDS.md), the drive and the numbers printed by
-//! `examples/rhombic_drive.rs`: extreme positions of the working piston and the displacer located
-//! as roots of their velocity analogs, against the paper's `X_F0 = sqrt((L_B + R_B)^2 - e_B^2)`,
-//! `X_Fmin = sqrt((L_B - R_B)^2 - e_B^2)` and the same construction for the piston (crank and rod
-//! collinear); the crank angles there from the same triangles; strokes and phase shifts.
+//! Paper 000, Fig. 1 (`docs/papers.md`), the drive of `examples/rhombic_drive.rs`: extreme
+//! positions of the working piston and the displacer located as roots of their velocity analogs,
+//! against the paper's `X_F0 = sqrt((L_B + R_B)^2 - e_B^2)`, `X_Fmin = sqrt((L_B - R_B)^2 -
+//! e_B^2)` and the same construction for the piston (crank and rod collinear); the crank angles
+//! there from the same triangles; strokes and phase shifts. The closed forms themselves are
+//! checked against the stationary points of the explicit slider-crank positions.
 
 use kinloop::analysis::{ExtremeKind, Sampled};
 use std::f64::consts::TAU;
 
-#[allow(dead_code)]
-#[path = "../examples/rhombic_drive.rs"]
-mod rhombic_drive;
-
-use rhombic_drive::RhombicDrive;
+use kinloop_fixtures::RhombicDrive;
 
 #[allow(dead_code)] // not every test uses every helper
 mod support;
 
-use support::wrap;
+use support::{stationary, wrap};
 
 #[test]
 fn extreme_positions_strokes_and_phase_shift_match_the_closed_forms() {
@@ -62,12 +59,24 @@ fn extreme_positions_strokes_and_phase_shift_match_the_closed_forms() {
     assert!((outer - shift(at[2].1, at[0].1)).abs() < 1e-8);
     assert!((inner - shift(at[3].1, at[1].1)).abs() < 1e-8);
 
-    // The numbers the example prints.
-    assert!((x_f0 - 4.682947789587).abs() < 1e-12 && (x_fmin - 2.264950330581).abs() < 1e-12);
-    assert!((c_outer + 3.968626966597).abs() < 1e-12 && (c_inner + 1.936491673104).abs() < 1e-12);
-    assert!((xc.span() - 2.032135293493).abs() < 1e-12 && (xf.span() - 2.417997459006).abs() < 1e-12);
-    assert!((outer - 137.594341).abs() < 1e-6 && (inner - 135.430852).abs() < 1e-6, "{outer} {inner}");
-    assert!((xc.min.x.to_degrees() - 187.18076).abs() < 1e-5 && (xf.max.x.to_degrees() - 324.77510).abs() < 1e-5);
+    // The closed forms the example prints, against the stationary points of the explicit
+    // positions (each slider-crank's triangle solved for the slider): values exact to rounding,
+    // locations to ~1e-13 (see `stationary`).
+    let x_c = |a: f64| m.r_p * a.cos() - (m.l_p.powi(2) - (m.e_p + m.r_p * a.sin()).powi(2)).sqrt();
+    let x_f =
+        |a: f64| m.r_b * (a + m.gamma).cos() + (m.l_b.powi(2) - (e_b + m.r_b * (a + m.gamma).sin()).powi(2)).sqrt();
+    let position = |k: usize, a: f64| if k < 2 { x_c(a) } else { x_f(a) };
+    let mut found = [0.0; 4];
+    for (k, ((_, want_at), want)) in at.into_iter().zip([c_outer, c_inner, x_f0, x_fmin]).enumerate() {
+        let f = |a: f64| position(k, a);
+        found[k] = stationary(f, want_at - 0.3, want_at + 0.3);
+        assert!((f(found[k]) - want).abs() < 1e-12, "extreme {k}: {} vs {want}", f(found[k]));
+        assert!(wrap(found[k] - want_at).abs() < 1e-10, "extreme {k} at {} vs {want_at}", found[k]);
+    }
+    // Strokes and phase shifts from the explicit positions alone.
+    assert!((xc.span() - (x_c(found[1]) - x_c(found[0]))).abs() < 1e-12);
+    assert!((xf.span() - (x_f(found[2]) - x_f(found[3]))).abs() < 1e-12);
+    assert!((outer - shift(found[2], found[0])).abs() < 1e-8 && (inner - shift(found[3], found[1])).abs() < 1e-8);
 }
 
 #[test]

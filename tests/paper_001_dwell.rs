@@ -1,4 +1,4 @@
-//! Paper 001 (SEEDS.md), the mechanism and numbers of `examples/gear_lever.rs`: dwell duration,
+//! Paper 001 (`docs/papers.md`), the mechanism and numbers of `examples/gear_lever.rs`: dwell duration,
 //! dwell quality (rocker swing) and peak acceleration analog for k = 1.1 ... 1.5, from the analysis
 //! helpers on the generated kinematics, against an independent computation from the paper's
 //! explicit formulas (rocker angle `atan2(x, y)`, `omega_r`, `eps_r`) with bisection and
@@ -7,11 +7,7 @@
 use kinloop::analysis::ExtremeKind;
 use std::f64::consts::PI;
 
-#[allow(dead_code)]
-#[path = "../examples/gear_lever.rs"]
-mod gear_lever;
-
-use gear_lever::{GearLever, stops};
+use kinloop_fixtures::gear_lever::{GearLever, stops};
 
 #[allow(dead_code)] // not every test uses every helper
 mod support;

@@ -3,6 +3,8 @@
 //! independent closed-form constructions, analogs against central finite differences, and
 //! periodicity over ten turns without a branch change.
 
+use kinloop_fixtures::strategies::{crank_rocker, five_bar, turning_slider_crank};
+use kinloop_fixtures::{FiveBar, FourBar, SliderCrank};
 use proptest::prelude::*;
 use std::f64::consts::PI;
 
@@ -10,35 +12,6 @@ use std::f64::consts::PI;
 mod support;
 
 use support::circle_point;
-
-kinloop::mechanism! {
-    pub struct FourBar {
-        params a, b, c, d;
-        input phi;
-        unknowns beta = 0.5, gamma = 1.5;
-        loop abcd: a @ phi + b @ beta == (d, 0) + c @ gamma;
-        point pc = a @ phi + b @ beta;
-    }
-}
-
-kinloop::mechanism! {
-    pub struct SliderCrank {
-        params r, l, e;
-        input phi;
-        unknowns psi = 0, x = -l;
-        loop oabo: r @ phi == (x, e) + l @ psi;
-    }
-}
-
-kinloop::mechanism! {
-    pub struct FiveBar {
-        params a, b, c, d, e;
-        inputs th1, th2;
-        unknowns phi2 = 1.2, phi3 = 1.9;
-        loop abcde: a @ th1 + b @ phi2 == (d, 0) + e @ th2 + c @ phi3;
-        point pc = a @ th1 + b @ phi2;
-    }
-}
 
 fn side_of(bx: f64, by: f64, dx: f64, dy: f64, cx: f64, cy: f64) -> f64 {
     ((dx - bx) * (cy - by) - (dy - by) * (cx - bx)).signum()
@@ -53,11 +26,8 @@ proptest! {
 
     /// Grashof crank-rockers (the crank is the shortest link and s + l < p + q).
     #[test]
-    fn crank_rockers(a in 0.3f64..1.0, b in 1.5f64..4.0, c in 1.5f64..4.0, d in 1.5f64..4.0, probe in 0.0f64..1.0) {
-        let (s, l) = (a, b.max(c).max(d));
-        let pq = b + c + d - l;
-        prop_assume!(s + l < pq - 0.2);
-        let m = FourBar { a, b, c, d };
+    fn crank_rockers(m in crank_rocker(), probe in 0.0f64..1.0) {
+        let FourBar { a, b, c, d } = m;
         let modes = m.assembly_modes(0.0);
         prop_assert_eq!(modes.len(), 2);
         let start = modes[0];
@@ -91,9 +61,8 @@ proptest! {
 
     /// Offset slider-cranks against the closed form sin(psi) = (r sin(phi) - e) / l.
     #[test]
-    fn slider_cranks(r in 0.3f64..1.5, extra in 0.3f64..3.0, e in -0.5f64..0.5, probe in 0.0f64..1.0) {
-        let l = r + e.abs() + extra;
-        let m = SliderCrank { r, l, e };
+    fn slider_cranks(m in turning_slider_crank(), probe in 0.0f64..1.0) {
+        let SliderCrank { r, l, e } = m;
         let g = m.guess(0.0);
         for st in m.sweep(0.0, 2.0 * PI, 121, &g).unwrap() {
             let st = st.unwrap();
@@ -124,12 +93,8 @@ proptest! {
     /// a + e + d < b + c): a sweep along a line in the (th1, th2) plane, partial analogs against
     /// central differences.
     #[test]
-    fn five_bars(a in 0.3f64..0.8, e in 0.3f64..0.8, gap in 0.3f64..1.0, c in 2.0f64..3.0, db in -0.08f64..0.08,
-                 k1 in -2.0f64..2.0, k2 in -2.0f64..2.0) {
-        let d = a + e + gap;
-        let b = c + db;
-        prop_assume!(a + e + d < b + c - 0.2);
-        let m = FiveBar { a, b, c, d, e };
+    fn five_bars(m in five_bar(), k1 in -2.0f64..2.0, k2 in -2.0f64..2.0) {
+        let FiveBar { a, b, c, d, e } = m;
         let start = m.solve([0.3, 0.2]).unwrap();
         let side = side_of(a * 0.3f64.cos(), a * 0.3f64.sin(), d + e * 0.2f64.cos(), e * 0.2f64.sin(), start.out.pc.x, start.out.pc.y);
         let to = [0.8 + k1 * PI, 0.5 + k2 * PI];

@@ -1,14 +1,11 @@
-//! The asymmetric rhombic drive of SEEDS.md (paper 000, Fig. 1), as declared in
+//! The asymmetric rhombic drive of paper 000 (`docs/papers.md`, Fig. 1), as declared in
 //! `examples/rhombic_drive.rs`, against the paper's closed forms, over 3600 crank angles: positions, velocity analogs, acceleration analogs, and the
 //! centres of mass S1, S2, S4 against formulas derived here by hand.
 
 use std::f64::consts::PI;
 
-#[allow(dead_code)]
-#[path = "../examples/rhombic_drive.rs"]
-mod rhombic_drive;
-
-use rhombic_drive::RhombicDrive;
+use kinloop_fixtures::RhombicDrive;
+use kinloop_fixtures::rhombic::GALLERY_DRIVE;
 
 #[allow(dead_code)] // not every test uses every helper
 mod support;
@@ -16,21 +13,9 @@ mod support;
 use support::close;
 
 /// The example's drive, with centres of mass of its own.
-const DRIVE: RhombicDrive = RhombicDrive {
-    r_p: 1.0,
-    r_b: 1.2,
-    l_p: 3.0,
-    l_b: 3.5,
-    e_p: 0.5,
-    de: 0.9,
-    gamma: 0.7,
-    l_as1: 0.4,
-    psi_s1: 0.3,
-    l_cs2: 1.1,
-    l_fs4: 1.6,
-};
+const DRIVE: RhombicDrive = RhombicDrive { l_as1: 0.4, psi_s1: 0.3, l_cs2: 1.1, l_fs4: 1.6, ..GALLERY_DRIVE };
 
-/// The published closed form (SEEDS.md 000) plus derived centre-of-mass formulas.
+/// The published closed form (paper 000) plus derived centre-of-mass formulas.
 struct Closed {
     q: [f64; 4],
     dq: [f64; 4],
@@ -132,7 +117,7 @@ fn rhombic_drive_matches_published_closed_form_over_a_full_turn() {
         phi4_min = phi4_min.min(q[1]);
         phi4_max = phi4_max.max(q[1]);
     }
-    // SEEDS.md: phi4 runs over 2.911..3.616 rad (partly in the 3rd quadrant, no 2 pi jump) and
+    // The paper: phi4 runs over 2.911..3.616 rad (partly in the 3rd quadrant, no 2 pi jump) and
     // phi2 over -0.167..0.524 for these dimensions.
     assert!((phi4_min - 2.911).abs() < 1e-3 && (phi4_max - 3.616).abs() < 1e-3, "{phi4_min}..{phi4_max}");
     assert!((phi2_min + 0.167).abs() < 1e-3 && (phi2_max - 0.524).abs() < 1e-3, "{phi2_min}..{phi2_max}");

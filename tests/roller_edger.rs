@@ -1,14 +1,10 @@
-//! The roller edger of SEEDS.md (paper 002) as declared in `examples/roller_edger.rs`, driven by
-//! time: hydraulic cylinder 1 extends at constant speed, `S1 = V1 t`. Contour 1 against the
-//! example's closed forms (law of cosines and its time derivatives derived by hand; SEEDS.md
+//! The roller edger of paper 002 (`docs/papers.md`), the gallery's mechanism, driven by time:
+//! hydraulic cylinder 1 extends at constant speed, `S1 = V1 t`. Contour 1 against the closed
+//! forms (law of cosines and its time derivatives derived by hand; the paper
 //! prints `phi1 = alpha - acos(d)` next to `phi3 = alpha - acos(c)`, signs of two different
 //! assembly modes: the consistent pair is used), contour 2 against a triangle construction.
 
-#[allow(dead_code)]
-#[path = "../examples/roller_edger.rs"]
-mod roller_edger;
-
-use roller_edger::{RollerEdger, closed, solved};
+use kinloop_fixtures::roller_edger::{RollerEdger, closed, solved};
 
 const M: RollerEdger =
     RollerEdger { l1: 0.9, l3: 0.6, l5: 1.2, alpha: 0.2, v1: 0.05, l2: 1.0, s2: 0.1, l4: 0.7, l6: 1.4, beta: 0.9 };

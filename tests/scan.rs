@@ -11,6 +11,8 @@
 //! nothing per set or per sample: only its result vector.
 
 use kinloop::{Error, EventKind, Kin, ScanSpec, ScanStart, par_scan, scan};
+use kinloop_fixtures::SliderCrank;
+use kinloop_fixtures::strategies::{limited_slider_crank, sample, turning_slider_crank, unassemblable_slider_crank};
 use std::collections::HashSet;
 use std::f64::consts::{PI, TAU};
 use std::sync::Mutex;
@@ -20,16 +22,6 @@ use std::thread::{self, ThreadId};
 mod counting_alloc;
 
 use counting_alloc::allocations;
-
-kinloop::mechanism! {
-    /// Offset slider-crank: crank `r` at the origin, rod `l`, slider C = (x, e) on the line y = e.
-    pub struct SliderCrank {
-        params r, l, e;
-        input phi;
-        unknowns psi = 0, x = r + l;
-        loop oabo: r @ phi == (x, e) + l @ psi;
-    }
-}
 
 /// Samples per turn (every half degree).
 const SAMPLES: usize = 721;
@@ -96,48 +88,38 @@ enum Expect {
     NonFinite,
 }
 
-/// Deterministic pseudo-random numbers in `[0, 1)` (SplitMix64).
-struct Rng(u64);
-
-impl Rng {
-    fn next(&mut self) -> f64 {
-        self.0 = self.0.wrapping_add(0x9E37_79B9_7F4A_7C15);
-        let mut z = self.0;
-        z = (z ^ (z >> 30)).wrapping_mul(0xBF58_476D_1CE4_E5B9);
-        z = (z ^ (z >> 27)).wrapping_mul(0x94D0_49BB_1331_11EB);
-        ((z ^ (z >> 31)) >> 11) as f64 / (1u64 << 53) as f64
-    }
+/// `n` designs with what each must give: mostly full turns, every 23rd unassemblable, every
+/// 29th stopping at a limit position, one with a NaN rod; drawn from the fixtures' strategies,
+/// which stay clear of the boundaries between these cases.
+fn designs(n: usize) -> (Vec<SliderCrank>, Vec<Expect>) {
+    let (turning, unassemblable, limited) = (
+        sample(turning_slider_crank(), n, 5),
+        sample(unassemblable_slider_crank(), n, 6),
+        sample(limited_slider_crank(), n, 7),
+    );
+    (0..n)
+        .map(|i| {
+            if i == 100 {
+                (SliderCrank { r: 1.0, l: f64::NAN, e: 0.1 }, Expect::NonFinite)
+            } else if i % 23 == 11 {
+                (unassemblable[i], Expect::NoAssembly)
+            } else if i % 29 == 17 {
+                // |e| = l - 0.3 < l, and r + |e| > l: r sin(phi) - e reaches -sign(e) l first (the
+                // other bound needs r >= l + |e| > r), where sin(phi) = -sign(e) 0.3 / r.
+                let m = limited[i];
+                let s = 0.3 / m.r;
+                (m, Expect::Limit(if m.e > 0.0 { PI + s.asin() } else { s.asin() }))
+            } else {
+                (turning[i], Expect::Turn)
+            }
+        })
+        .unzip()
 }
 
-/// `n` designs with what each must give: mostly full turns, every 23rd unassemblable, every
-/// 29th stopping at a limit position, one with a NaN rod. All stay clear of the boundaries
-/// between these cases.
-fn designs(n: usize) -> (Vec<SliderCrank>, Vec<Expect>) {
-    let mut rng = Rng(5);
-    let (mut ms, mut ex) = (Vec::new(), Vec::new());
-    for i in 0..n {
-        let sign = if rng.next() < 0.5 { -1.0 } else { 1.0 };
-        let (m, e) = if i == 100 {
-            (SliderCrank { r: 1.0, l: f64::NAN, e: 0.1 }, Expect::NonFinite)
-        } else if i % 23 == 11 {
-            let l = 0.5 + rng.next();
-            (SliderCrank { r: 0.5 + rng.next(), l, e: sign * (l + 0.2 + rng.next()) }, Expect::NoAssembly)
-        } else if i % 29 == 17 {
-            // |e| = l - 0.3 < l, and r + |e| > l: r sin(phi) - e reaches -sign * l first (the
-            // other bound needs r >= l + |e| > r), where sin(phi) = -sign * 0.3 / r.
-            let (r, l) = (1.0 + rng.next(), 1.5 + rng.next());
-            let s = 0.3 / r;
-            let limit = if sign > 0.0 { PI + s.asin() } else { s.asin() };
-            (SliderCrank { r, l, e: sign * (l - 0.3) }, Expect::Limit(limit))
-        } else {
-            let r = 0.5 + 1.5 * rng.next();
-            let e = sign * 0.8 * rng.next();
-            (SliderCrank { r, l: r + e.abs() + 0.3 + 2.0 * rng.next(), e }, Expect::Turn)
-        };
-        ms.push(m);
-        ex.push(e);
-    }
-    (ms, ex)
+/// The designs among the first `n` that turn fully.
+fn turning_designs(n: usize) -> Vec<SliderCrank> {
+    let (ms, ex) = designs(n);
+    ms.into_iter().zip(ex).filter(|(_, e)| matches!(e, Expect::Turn)).map(|(m, _)| m).collect()
 }
 
 /// Closed forms of a full turn on the declared branch (`psi` near 0, the rod pointing from the
@@ -155,9 +137,10 @@ fn closed_form(m: &SliderCrank) -> Acc {
 }
 
 /// Extremes from a sweep (Taylor-refined, see [`Extremes`]) against the closed forms. The
-/// refinement's error is of order `|v'''| (h/2)^3`: at most 1.7e-8 over these designs (the
-/// samples alone are off by up to 1.8e-5, so the tolerance also proves the analogs reach the
-/// fold). The extremes of `psi` lie on samples (`phi = pi/2, 3pi/2`) and agree to rounding.
+/// refinement's error is of order `|v'''| (h/2)^3`: at most 8e-9 over the whole range of the
+/// turning strategy (3000 designs, from the closed forms; the samples alone are off by up to
+/// 2.3e-5, so the tolerance also proves the analogs reach the fold). The extremes of `psi` lie
+/// on samples (`phi = pi/2, 3pi/2`) and agree to rounding.
 const TOL: f64 = 1e-7;
 
 fn check_results(ms: &[SliderCrank], ex: &[Expect], results: &[Result<Acc, Error>]) {
@@ -218,9 +201,7 @@ fn scan_matches_closed_forms_and_par_scan_matches_scan_bitwise() {
 
 #[test]
 fn scan_allocates_only_its_result() {
-    let (ms, ex) = designs(60);
-    let turns: Vec<SliderCrank> =
-        ms.iter().zip(&ex).filter(|(_, e)| matches!(e, Expect::Turn)).map(|(m, _)| *m).collect();
+    let turns = turning_designs(60);
     let spec = ScanSpec::new([0.0], [TAU], SAMPLES);
     let (results, n) = allocations(|| scan(&turns, &spec, init, fold));
     assert!(results.iter().all(|r| r.as_ref().is_ok_and(|a| a.samples == SAMPLES)));
@@ -263,9 +244,7 @@ fn par_scan_runs_on_the_rayon_pool() {
 fn the_start_policy_picks_the_branch() {
     // The mirrored branch (psi near pi, the slider on the crank's +x side) from a computed guess
     // and from a fixed one: x spans the closed forms' mirror image.
-    let (ms, ex) = designs(60);
-    let turns: Vec<SliderCrank> =
-        ms.iter().zip(&ex).filter(|(_, e)| matches!(e, Expect::Turn)).map(|(m, _)| *m).collect();
+    let turns = turning_designs(60);
     let with = ScanSpec::new([0.0], [TAU], SAMPLES).start(ScanStart::With(|m: &SliderCrank| [PI + m.e / m.l, m.l]));
     let fixed = ScanSpec::new([0.0], [TAU], SAMPLES).start(ScanStart::Guess([3.0, 1.0]));
     for spec in [with, fixed] {

@@ -1,6 +1,6 @@
 //! Parameter sensitivities of positions, analogs and outputs against central finite differences
-//! over random parameter sets: rhombic drive, gear-lever and class IV mechanism (the last two as
-//! declared in the examples), and a two-input five-bar.
+//! over random parameter sets (drawn from the fixtures' proptest strategies): rhombic drive,
+//! gear-lever and class IV mechanism of the gallery, and a two-input five-bar.
 //!
 //! Reference: central differences with relative steps h and h/2 combined by Richardson
 //! extrapolation, (4 D(h/2) - D(h)) / 3, whose truncation error is O(h^4); with h = 1e-4 that is
@@ -9,57 +9,14 @@
 //! while any wrong term shows up at O(1).
 
 use kinloop::{Kin, Mechanism, NewtonConfig, Sens, Sensitivities};
-
-kinloop::mechanism! {
-    pub struct RhombicDrive {
-        params r_p, r_b, l_p, l_b, e_p, de, gamma, l_cs2, l_fs4;
-        input phi1;
-        unknowns phi2 = 0, phi4 = pi, x_c = -l_p, x_f = l_b;
-        loop oabco:   (0, e_p) + r_p @ phi1           == (x_c, 0)  + l_p @ phi2;
-        loop oadff1o: (0, e_p) + r_b @ (phi1 + gamma) == (x_f, de) + l_b @ phi4;
-        point s2 = (x_c, 0) + l_cs2 @ phi2;
-        point s4 = (x_f, de) + l_fs4 @ phi4;
-        output gap = x_f - x_c;
-    }
-}
-
-#[allow(dead_code)]
-#[path = "../examples/gear_lever.rs"]
-mod gear_lever;
-
-// Both examples load `examples/common/mod.rs` (their plotting helpers, unused here).
-#[allow(dead_code, clippy::duplicate_mod)]
-#[path = "../examples/class_four.rs"]
-mod class_four;
-
-use class_four::ClassFour;
-use gear_lever::GearLever;
+use kinloop_fixtures::strategies::{gear_lever, rhombic_drive, sample};
+use kinloop_fixtures::{ClassFour, FiveBar, RhombicDrive};
+use proptest::prelude::*;
 
 #[allow(dead_code)] // not every test uses every helper
 mod support;
 
 use support::close;
-
-kinloop::mechanism! {
-    pub struct FiveBar {
-        params a, b, c, d, e;
-        inputs th1, th2;
-        unknowns phi2 = 1.2, phi3 = 1.9;
-        loop abcde: a @ th1 + b @ phi2 == (d, 0) + e @ th2 + c @ phi3;
-        point pc = a @ th1 + b @ phi2;
-    }
-}
-
-/// A tiny deterministic generator (xorshift) for parameter perturbations.
-struct Rng(u64);
-impl Rng {
-    fn next(&mut self) -> f64 {
-        self.0 ^= self.0 << 13;
-        self.0 ^= self.0 >> 7;
-        self.0 ^= self.0 << 17;
-        (self.0 >> 11) as f64 / (1u64 << 53) as f64
-    }
-}
 
 /// Compares every sensitivity with Richardson-extrapolated central differences of the state.
 fn check<M, const N: usize, const NI: usize, const NO: usize, const NP: usize>(m: &M, x: [f64; NI], guess: [f64; N])
@@ -83,29 +40,26 @@ where
             (4.0 * d2 - d1) / 3.0
         };
         let name = M::PARAMS[p];
-        for u in 0..N {
-            let un = M::UNKNOWNS[u];
-            let f = fd(&|k| k.q[u]);
-            assert!(close(s.q[u][p], f, 1e-7), "d{un}/d{name}: {} vs {f}", s.q[u][p]);
+        // Quantity v: the unknowns, then the outputs (flat order), in the state and in `s`.
+        let of = |v: usize| if v < N { M::UNKNOWNS[v] } else { M::OUTPUTS[v - N] };
+        let value = |k: &Kin<N, NI, NO>, v: usize| if v < N { k.q[v] } else { k.out[v - N] };
+        let first = |k: &Kin<N, NI, NO>, v: usize, i: usize| if v < N { k.dq[v][i] } else { k.dout[v - N][i] };
+        let second = |k: &Kin<N, NI, NO>, v: usize, i: usize, j: usize| {
+            if v < N { k.d2q[v][i][j] } else { k.d2out[v - N][i][j] }
+        };
+        for v in 0..N + NO {
+            let vn = of(v);
+            let got = if v < N { s.q[v][p] } else { s.out[v - N][p] };
+            let f = fd(&|k| value(k, v));
+            assert!(close(got, f, 1e-7), "d{vn}/d{name}: {got} vs {f}");
             for i in 0..NI {
-                let f = fd(&|k| k.dq[u][i]);
-                assert!(close(s.dq[u][i][p], f, 1e-7), "d(d{un}/dx{i})/d{name}: {} vs {f}", s.dq[u][i][p]);
+                let got = if v < N { s.dq[v][i][p] } else { s.dout[v - N][i][p] };
+                let f = fd(&|k| first(k, v, i));
+                assert!(close(got, f, 1e-7), "d(d{vn}/dx{i})/d{name}: {got} vs {f}");
                 for j in 0..NI {
-                    let f = fd(&|k| k.d2q[u][i][j]);
-                    assert!(close(s.d2q[u][i][j][p], f, 1e-7), "d(d2{un})/d{name}: {} vs {f}", s.d2q[u][i][j][p]);
-                }
-            }
-        }
-        for o in 0..NO {
-            let on = M::OUTPUTS[o];
-            let f = fd(&|k| k.out[o]);
-            assert!(close(s.out[o][p], f, 1e-7), "d{on}/d{name}: {} vs {f}", s.out[o][p]);
-            for i in 0..NI {
-                let f = fd(&|k| k.dout[o][i]);
-                assert!(close(s.dout[o][i][p], f, 1e-7), "d(d{on})/d{name}: {} vs {f}", s.dout[o][i][p]);
-                for j in 0..NI {
-                    let f = fd(&|k| k.d2out[o][i][j]);
-                    assert!(close(s.d2out[o][i][j][p], f, 1e-7), "d(d2{on})/d{name}: {} vs {f}", s.d2out[o][i][j][p]);
+                    let got = if v < N { s.d2q[v][i][j][p] } else { s.d2out[v - N][i][j][p] };
+                    let f = fd(&|k| second(k, v, i, j));
+                    assert!(close(got, f, 1e-7), "d(d2{vn}/dx{i}dx{j})/d{name}: {got} vs {f}");
                 }
             }
         }
@@ -118,20 +72,7 @@ where
 
 #[test]
 fn rhombic_drive_sensitivities_match_finite_differences() {
-    let mut rng = Rng(0x9e37_79b9_7f4a_7c15);
-    for _ in 0..25 {
-        let m = RhombicDrive {
-            r_p: 0.8 + 0.4 * rng.next(),
-            r_b: 1.0 + 0.4 * rng.next(),
-            l_p: 2.5 + rng.next(),
-            l_b: 3.0 + rng.next(),
-            e_p: 0.2 + 0.5 * rng.next(),
-            de: 0.6 + 0.5 * rng.next(),
-            gamma: 0.3 + rng.next(),
-            l_cs2: 0.5 + rng.next(),
-            l_fs4: 0.5 + rng.next(),
-        };
-        let phi = std::f64::consts::TAU * rng.next();
+    for (m, phi) in sample((rhombic_drive(), 0.0..std::f64::consts::TAU), 25, 1) {
         let g = m.position(phi, &m.guess(phi)).unwrap().0;
         check(&m, [phi], g.into());
     }
@@ -139,10 +80,7 @@ fn rhombic_drive_sensitivities_match_finite_differences() {
 
 #[test]
 fn gear_lever_sensitivities_match_finite_differences() {
-    let mut rng = Rng(12345);
-    for _ in 0..25 {
-        let m = GearLever { l_c: 2.0, l_p: 1.1 + 0.4 * rng.next(), u: 2.5 + rng.next() };
-        let a = std::f64::consts::TAU * rng.next();
+    for (m, a) in sample((gear_lever(), 0.0..std::f64::consts::TAU), 25, 2) {
         let g = m.position(a, &m.guess(a)).unwrap().0;
         check(&m, [a], g.into());
     }
@@ -151,14 +89,14 @@ fn gear_lever_sensitivities_match_finite_differences() {
 #[test]
 fn class_four_sensitivities_match_finite_differences() {
     let base = ClassFour::default();
-    let mut rng = Rng(777);
     let mut q = base.position(0.0, &base.guess(0.0)).unwrap().0;
-    for k in 0..12 {
+    let factors = sample(prop::array::uniform11(0.99f64..1.01), 12, 3);
+    for (k, f) in factors.iter().enumerate() {
         let phi = 0.5 * k as f64;
         q = base.position(phi, &q).unwrap().0;
         let mut v = base.param_values();
-        for x in &mut v {
-            *x *= 1.0 + 0.02 * (rng.next() - 0.5);
+        for (x, f) in v.iter_mut().zip(f) {
+            *x *= f;
         }
         let m = ClassFour::from_param_values(v);
         let g = m.position(phi, &q).unwrap().0;
@@ -184,8 +122,7 @@ fn five_bar_sensitivities_of_partial_analogs() {
 
 #[test]
 fn named_sensitivities_match_flat() {
-    let m =
-        RhombicDrive { r_p: 1.0, r_b: 1.2, l_p: 3.0, l_b: 3.5, e_p: 0.5, de: 0.9, gamma: 0.7, l_cs2: 1.2, l_fs4: 1.4 };
+    let m = RhombicDrive::default();
     let (st, sens) = m.sensitivities(0.4, &m.guess(0.4)).unwrap();
     let (_, at) = m.sensitivities_at(0.4, &st.q).unwrap();
     assert_eq!(sens.flat, at.flat);
@@ -194,8 +131,8 @@ fn named_sensitivities_match_flat() {
     let expected = -st.q.phi2.cos() + 3.0 * st.q.phi2.sin() * sens.q.phi2.l_p;
     assert!((sens.q.x_c.l_p - expected).abs() < 1e-12);
     assert_eq!(sens.out.gap.l_b, sens.q.x_f.l_b - sens.q.x_c.l_b);
-    // Flat, the outputs are the points' x and y, then the scalar output: five of them.
-    assert_eq!(<RhombicDrive as Mechanism<4, 1, 5>>::NAME, "RhombicDrive");
-    assert_eq!(sens.flat.out.len(), 5);
-    assert_eq!(sens.out.gap.l_b, sens.flat.out[4][3]);
+    // Flat, the outputs are the points' x and y (s1, s2, s4), then the scalar output: seven.
+    assert_eq!(<RhombicDrive as Mechanism<4, 1, 7>>::NAME, "RhombicDrive");
+    assert_eq!(sens.flat.out.len(), 7);
+    assert_eq!(sens.out.gap.l_b, sens.flat.out[6][3]);
 }

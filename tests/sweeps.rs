@@ -2,23 +2,13 @@
 //! modes, tables.
 
 use kinloop::{AtSingular, Error, EventKind, SweepConfig};
+use kinloop_fixtures::{FourBar, FourBarUnknowns};
 use std::f64::consts::PI;
 
 #[allow(dead_code)] // not every test uses every helper
 mod support;
 
 use support::circle_point;
-
-kinloop::mechanism! {
-    /// Four-bar: crank `a` at A = (0, 0), coupler `b`, rocker `c` at D = (d, 0).
-    pub struct FourBar {
-        params a, b, c, d;
-        input phi;
-        unknowns beta = 0.5, gamma = 1.5;
-        loop abcd: a @ phi + b @ beta == (d, 0) + c @ gamma;
-        point pc = a @ phi + b @ beta;
-    }
-}
 
 /// The crank angles where coupler and rocker are collinear: `|BD| = b + c` or `|b - c|`.
 fn limit_angles(m: &FourBar) -> Vec<f64> {

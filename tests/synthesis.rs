@@ -1,13 +1,10 @@
-//! The synthesis example (issue 7): the gradient run reaches the requirement in fewer objective
+//! The synthesis example: the gradient run reaches the requirement in fewer objective
 //! evaluations than the derivative-free run, and the design it finds meets the requirement by
-//! the paper's closed-form dead-centre positions (SEEDS.md 000), independent of kinloop.
+//! the paper's closed-form dead-centre positions (paper 000), independent of kinloop.
 
-#[allow(dead_code)]
-#[path = "../examples/synthesis.rs"]
-mod synthesis;
-
+use kinloop_fixtures::RhombicDrive;
+use kinloop_fixtures::synthesis::{self, derivative_free_run, drive, gradient_run, problem};
 use std::f64::consts::PI;
-use synthesis::{RhombicDrive, derivative_free_run, drive, gradient_run, problem};
 
 /// Outer dead centres from the triangle A, crank pin, slider (crank and rod collinear): the
 /// piston's X_C = -sqrt((L_P + R_P)^2 - e_P^2) when the crank points from A (0, e_P) to C; the

@@ -1,4 +1,4 @@
-//! The class IV mechanism of SEEDS.md 003 (one coupled block of four unknowns): a hand-written
+//! The class IV mechanism of paper 003 (one coupled block of four unknowns): a hand-written
 //! Newton for that block, with the same tolerance, warm start and outputs as kinloop (whose
 //! variants are in [`crate::kinloop_variants`]).
 

@@ -1,6 +1,6 @@
-//! Benchmarks of kinloop (GitHub issue 5): the rhombic drive of SEEDS.md 000 against its
+//! Benchmarks of kinloop: the rhombic drive of paper 000 against its
 //! hand-written closed form, a hand-written two-loop Newton, and dense Newtons with a
-//! hand-written, num-dual or finite-difference Jacobian; the class IV mechanism of SEEDS.md 003
+//! hand-written, num-dual or finite-difference Jacobian; the class IV mechanism of paper 003
 //! against a hand-written Newton for its coupled block; and the macro's expansion time and code
 //! size. See `BENCHMARKS.md` at the repository root for how to run them and the results.
 //!

@@ -1,4 +1,4 @@
-//! The peers of kinloop for the rhombic drive of SEEDS.md 000 (kinloop itself is in
+//! The peers of kinloop for the rhombic drive of paper 000 (kinloop itself is in
 //! [`crate::kinloop_variants`]): the published closed form, a hand-written Newton exploiting the
 //! two independent loops, and a dense 4x4 Newton whose Jacobian comes from hand-written
 //! derivatives, from num-dual, or from finite differences.
@@ -33,7 +33,7 @@ pub struct Params {
     pub gamma: f64,
 }
 
-/// The dimensions: r_p=1.0, r_b=1.2, l_p=3.0, l_b=3.5, e_p=0.5, de=0.9, gamma=0.7.
+/// The gallery's dimensions: r_p=1.0, r_b=1.2, l_p=3.0, l_b=3.5, e_p=0.5, de=0.9, gamma=0.7.
 pub const PARAMS: Params = Params { r_p: 1.0, r_b: 1.2, l_p: 3.0, l_b: 3.5, e_p: 0.5, de: 0.9, gamma: 0.7 };
 
 /// The assembly mode at `phi1 = 0` (the declared guess: rods to the left of the pistons).
@@ -59,7 +59,7 @@ impl Params {
 // ---------------------------------------------------------------------------------------------
 // The published closed form (the limit).
 
-/// The closed form of SEEDS.md 000 written by hand, with the ratios precomputed once:
+/// The closed form of paper 000 written by hand, with the ratios precomputed once:
 /// `sin(phi2) = lambda_P (k_P + sin(phi1))`, `phi4 = pi - asin(...)` (the continuous branch),
 /// cosines by square roots, and the paper's analog formulas. It ignores the warm start.
 #[derive(Clone, Copy, Debug)]

@@ -3,7 +3,7 @@
 
 use std::f64::consts::TAU;
 
-/// Crank angles per turn in the benchmarks (the 1,000,000 equally spaced angles).
+/// Crank angles per turn in the benchmarks (1,000,000 equally spaced angles).
 pub const STEPS: usize = 1_000_000;
 
 /// Positions, velocity analogs and acceleration analogs of the unknowns at one input value.

@@ -1,4 +1,5 @@
-//! Helpers shared by the examples: where outputs go, and line charts as SVG.
+//! Helpers shared by the examples (the library of the `kinloop-examples` package): where
+//! outputs go, and line charts as SVG.
 
 use plotters::coord::types::RangedCoordf64;
 use plotters::prelude::*;
@@ -72,6 +73,33 @@ fn draw_legend<'b: 'a, 'a>(chart: &mut Chart<'a, 'b>, position: SeriesLabelPosit
     Ok(())
 }
 
+/// A 900 x 520 SVG file with one titled chart over `ranges`, axes labelled `(x, y)` with a
+/// y label area `width` pixels wide: the curves, each decimated to at most `max_points` points,
+/// the marked points as dots, and the legend upper right.
+fn single_chart(
+    path: &std::path::Path,
+    title: &str,
+    (x_label, y_label, width): (&str, &str, u32),
+    (xs, ys): (std::ops::Range<f64>, std::ops::Range<f64>),
+    (series, max_points): (&[Series], usize),
+    marks: &[(f64, f64)],
+) -> Result<(), Box<dyn Error>> {
+    let root = SVGBackend::new(path, (900, 520)).into_drawing_area();
+    root.fill(&WHITE)?;
+    let mut chart = ChartBuilder::on(&root)
+        .caption(title, ("sans-serif", 22))
+        .margin(12)
+        .x_label_area_size(44)
+        .y_label_area_size(width)
+        .build_cartesian_2d(xs, ys)?;
+    chart.configure_mesh().x_desc(x_label).y_desc(y_label).draw()?;
+    draw_curves(&mut chart, series, max_points)?;
+    chart.draw_series(marks.iter().map(|&(x, y)| Circle::new((x, y), 4, BLACK.filled())))?;
+    draw_legend(&mut chart, SeriesLabelPosition::UpperRight)?;
+    root.present()?;
+    Ok(())
+}
+
 /// Draws curves into an SVG file with a title, axis labels and a legend.
 pub fn line_chart(
     path: &std::path::Path,
@@ -82,24 +110,12 @@ pub fn line_chart(
 ) -> Result<(), Box<dyn Error>> {
     let (x0, x1, y0, y1) = bounds(series.iter().flat_map(|s| &s.points))?;
     let pad = ((y1 - y0) * 0.05).max(1e-9);
-    let root = SVGBackend::new(path, (900, 520)).into_drawing_area();
-    root.fill(&WHITE)?;
-    let mut chart = ChartBuilder::on(&root)
-        .caption(title, ("sans-serif", 22))
-        .margin(12)
-        .x_label_area_size(44)
-        .y_label_area_size(70)
-        .build_cartesian_2d(x0..x1, (y0 - pad)..(y1 + pad))?;
-    chart.configure_mesh().x_desc(x_label).y_desc(y_label).draw()?;
-    draw_curves(&mut chart, series, usize::MAX)?;
-    draw_legend(&mut chart, SeriesLabelPosition::UpperRight)?;
-    root.present()?;
-    Ok(())
+    let ranges = (x0..x1, (y0 - pad)..(y1 + pad));
+    single_chart(path, title, (x_label, y_label, 70), ranges, (series, usize::MAX), &[])
 }
 
 /// Folder for an example's figures: `$KINLOOP_FIGURES/<example>` when that variable is set
 /// (`KINLOOP_FIGURES=docs/figures` regenerates the README gallery), else [`out_dir`].
-#[allow(dead_code)]
 pub fn figure_dir(example: &str) -> PathBuf {
     match std::env::var_os("KINLOOP_FIGURES") {
         Some(base) => {
@@ -126,7 +142,6 @@ pub fn decimate(points: &[(f64, f64)], max: usize) -> Vec<(f64, f64)> {
 }
 
 /// One panel of [`panels`]: its curves, and optional marked points (drawn as circles).
-#[allow(dead_code)]
 pub struct Panel<'a> {
     pub y_label: &'a str,
     pub series: Vec<Series<'a>>,
@@ -135,7 +150,6 @@ pub struct Panel<'a> {
 
 /// Panels stacked vertically over a common x axis (like the papers' multi-curve figures), each
 /// with its own y scale and legend (upper left); every curve is decimated to at most 720 points.
-#[allow(dead_code)]
 pub fn panels(path: &std::path::Path, title: &str, x_label: &str, panels: &[Panel]) -> Result<(), Box<dyn Error>> {
     let (mut x0, mut x1) = (f64::MAX, f64::MIN);
     for p in panels {
@@ -190,7 +204,6 @@ pub fn panels(path: &std::path::Path, title: &str, x_label: &str, panels: &[Pane
 
 /// An x-y chart with equal scales on both axes (paths of points, a linkage drawn at one
 /// position), with optional marked points; every curve is decimated to at most 720 points.
-#[allow(dead_code)]
 pub fn xy_chart(
     path: &std::path::Path,
     title: &str,
@@ -203,18 +216,6 @@ pub fn xy_chart(
     let (cx, cy) = ((x0 + x1) / 2.0, (y0 + y1) / 2.0);
     let scale = ((x1 - x0) / w).max((y1 - y0) / h) * 1.08;
     let (hx, hy) = (scale * w / 2.0, scale * h / 2.0);
-    let root = SVGBackend::new(path, (900, 520)).into_drawing_area();
-    root.fill(&WHITE)?;
-    let mut chart = ChartBuilder::on(&root)
-        .caption(title, ("sans-serif", 22))
-        .margin(12)
-        .x_label_area_size(44)
-        .y_label_area_size(60)
-        .build_cartesian_2d((cx - hx)..(cx + hx), (cy - hy)..(cy + hy))?;
-    chart.configure_mesh().x_desc("x").y_desc("y").draw()?;
-    draw_curves(&mut chart, series, 720)?;
-    chart.draw_series(marks.iter().map(|&(x, y)| Circle::new((x, y), 4, BLACK.filled())))?;
-    draw_legend(&mut chart, SeriesLabelPosition::UpperRight)?;
-    root.present()?;
-    Ok(())
+    let ranges = ((cx - hx)..(cx + hx), (cy - hy)..(cy + hy));
+    single_chart(path, title, ("x", "y", 60), ranges, (series, 720), marks)
 }

@@ -35,6 +35,13 @@ pub fn argmax(f: impl Fn(f64) -> f64, span: f64, n: usize) -> f64 {
     0.5 * (lo + hi)
 }
 
+/// Where `f` is stationary in `[lo, hi]`: a root of its Richardson-extrapolated central
+/// difference (step 1e-3, truncation ~1e-15 |f^(5)|, rounding ~1e-13 |f|) by bisection; the
+/// derivative must change sign there. Located to ~1e-13 / |f''|.
+pub fn stationary(f: impl Fn(f64) -> f64, lo: f64, hi: f64) -> f64 {
+    bisect(|x| richardson_first(&f, x, 1e-3), lo, hi)
+}
+
 /// `|a - b| <= rel * max(1, |b|)`: relative tolerance, absolute near zero.
 pub fn close(a: f64, b: f64, rel: f64) -> bool {
     (a - b).abs() <= rel * b.abs().max(1.0)
@@ -49,9 +56,15 @@ pub fn wrap(a: f64) -> f64 {
 /// truncation error O(h^4) (~h^4/480 |q^(5)| and less for the second); position errors e
 /// contribute ~e/h and ~5e/h^2.
 pub fn richardson(f: impl Fn(f64) -> f64, x: f64, h: f64) -> (f64, f64) {
-    let d1 = |h: f64| (f(x + h) - f(x - h)) / (2.0 * h);
     let d2 = |h: f64| (f(x + h) - 2.0 * f(x) + f(x - h)) / (h * h);
-    ((4.0 * d1(h / 2.0) - d1(h)) / 3.0, (4.0 * d2(h / 2.0) - d2(h)) / 3.0)
+    (richardson_first(&f, x, h), (4.0 * d2(h / 2.0) - d2(h)) / 3.0)
+}
+
+/// The first derivative of `f` at `x` by central differences with one Richardson step (h and
+/// h/2): truncation error ~h^4/480 |f^(5)|; errors e in the values contribute ~e/h.
+pub fn richardson_first(f: impl Fn(f64) -> f64, x: f64, h: f64) -> f64 {
+    let d1 = |h: f64| (f(x + h) - f(x - h)) / (2.0 * h);
+    (4.0 * d1(h / 2.0) - d1(h)) / 3.0
 }
 
 /// C from the circles (B, rb) and (D, rd), on side `side` of B -> D (+1 left, -1 right).
