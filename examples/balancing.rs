@@ -38,17 +38,9 @@
 //!
 //! Run with `cargo run --release --example balancing`.
 
-<<<<<<< HEAD
-#[allow(dead_code)] // not every example uses every helper
-mod common;
-
-use common::{Panel, Series, figure_dir, panels};
 use kinloop::analysis::{NelderMead, Sampled};
-=======
-use kinloop::analysis::{NelderMead, Sampled, nelder_mead_boxed};
 use kinloop_examples::{Panel, Series, figure_dir, panels};
 use kinloop_fixtures::balancing::{Balance, PHASE, SAMPLES, design, phased, unbalance};
->>>>>>> fixtures
 use std::f64::consts::{PI, TAU};
 
 /// X_c and its residual X_c - X_c1 against the crank angle in degrees.

@@ -4,7 +4,6 @@
 
 use kinloop_runtime::Table;
 use kinloop_runtime::analysis::Sampled;
-use kinloop_runtime::analysis::demo::SliderCrank;
 use kinloop_viz::plot::{Axis, Kind, Panel, Series, panels_svg};
 use std::f64::consts::TAU;
 
@@ -23,13 +22,22 @@ fn at(t: &[(f64, f64)], v: f64) -> f64 {
     t[0].1 + (v - t[0].0) / (t[1].0 - t[0].0) * (t[1].1 - t[0].1)
 }
 
+kinloop::mechanism! {
+    /// Offset slider-crank: crank `r` at the origin, rod `l`, slider C = (x, e) on the crank's
+    /// side of the line y = e.
+    pub struct SliderCrank {
+        params r, l, e;
+        input phi;
+        unknowns psi = 0, x = r + l;
+        loop oabc: r @ phi + l @ psi == (x, e);
+    }
+}
+
 #[test]
 fn dead_centres_are_marked_where_the_closed_form_puts_them() {
-    // In metres: the demo's squared closure equation meets the solver's absolute residual
-    // tolerance at rounding level for lengths of order 100.
     let m = SliderCrank { r: 0.03, l: 0.1, e: 0.012 };
-    let turn = Sampled::sweep(&m, 0.0, TAU, 181, [0.13]).unwrap();
-    let table = Table::from_states::<SliderCrank, 1, 1, 1>(turn.states());
+    let turn = Sampled::sweep(&m, 0.0, TAU, 181, [0.0, 0.13]).unwrap();
+    let table = Table::from_states::<SliderCrank, 2, 1, 0>(turn.states());
     let range = turn.range("x").unwrap();
     let metre = Kind::length("m");
     let panel = Panel::new(Axis::length("slider position x", "m"))
@@ -50,7 +58,7 @@ fn dead_centres_are_marked_where_the_closed_form_puts_them() {
         .map(|n| (n.attribute("cx").unwrap().parse().unwrap(), n.attribute("cy").unwrap().parse().unwrap()))
         .collect();
     // Outer dead centre: crank and rod stretched, x = sqrt((l + r)^2 - e^2) at atan2(e, x);
-    // inner: folded, x = sqrt((l - r)^2 - e^2) at pi + atan2(e, x) (demo module's triangles).
+    // inner: folded, x = sqrt((l - r)^2 - e^2) at pi + atan2(e, x) (the crank and rod triangles).
     let outer = (0.13f64.powi(2) - 0.012f64.powi(2)).sqrt();
     let inner = (0.07f64.powi(2) - 0.012f64.powi(2)).sqrt();
     let expected =
