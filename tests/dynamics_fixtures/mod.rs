@@ -82,9 +82,15 @@ pub fn configuration<M, const N: usize, const NO: usize>(m: &M, bodies: &[Body],
 where
     M: Mechanism<N, 1, NO>,
 {
-    let (q, _) = m.position_flat(&[x], guess, &NewtonConfig::default()).expect("position solve");
+    let (q, _) = m.position_flat(&[x], guess, &tight()).expect("position solve");
     let out = m.outputs_flat(&[x], &q);
     bodies.iter().flat_map(|b| [coord(&q, &out, b.com[0]), coord(&q, &out, b.com[1]), angle(x, &q, b.rotation)]).collect()
+}
+
+/// Newton converged to rounding: differences of positions divide their errors by h or h^2, so
+/// the default residual tolerance (1e-12) would dominate the references.
+pub fn tight() -> NewtonConfig {
+    NewtonConfig::default().with_residual_tol(1e-300).with_step_tol(1e-15)
 }
 
 /// First derivative of a vector function by central differences at `h` and `h / 2`, one
