@@ -21,6 +21,13 @@ pub fn index(names: &[&str], name: &str) -> usize {
 /// working piston C and the displacer F, plus a gas force on the piston that depends on its
 /// position.
 pub fn rhombic_model(gravity: [f64; 2]) -> MassModel<4, 1, 6> {
+    let xc = index(&<RhombicDrive as Mechanism<4, 1, 6>>::UNKNOWNS, "x_c");
+    let at = [Coord::Unknown(xc), Coord::Fixed(0.0)];
+    rhombic_bodies(gravity).with_force("gas", at, move |k, _| [gas_force(k.q[xc]), 0.0]).expect("a valid load")
+}
+
+/// The bodies of [`rhombic_model`] without the gas force.
+pub fn rhombic_bodies(gravity: [f64; 2]) -> MassModel<4, 1, 6> {
     let out = |n| Coord::Output(index(&<RhombicDrive as Mechanism<4, 1, 6>>::OUTPUTS, n));
     let unknown = |n| index(&<RhombicDrive as Mechanism<4, 1, 6>>::UNKNOWNS, n);
     let de = RhombicDrive::default().de;
@@ -44,11 +51,6 @@ pub fn rhombic_model(gravity: [f64; 2]) -> MassModel<4, 1, 6> {
         .and_then(|m| {
             let com = [Coord::Unknown(unknown("x_f")), Coord::Fixed(de)];
             m.with_body(Body { name: "displacer", mass: 1.1, com, inertia: 0.0, rotation: Rotation::None })
-        })
-        .and_then(|m| {
-            let at = [Coord::Unknown(unknown("x_c")), Coord::Fixed(0.0)];
-            let xc = unknown("x_c");
-            m.with_force("gas", at, move |k, _| [gas_force(k.q[xc]), 0.0])
         })
         .expect("a valid model")
 }

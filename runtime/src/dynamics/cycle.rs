@@ -72,6 +72,12 @@ pub struct Flywheel {
     pub mechanism_inertia: f64,
     /// Inertia to add on the input shaft: `total - mechanism`, or 0 when the mechanism suffices.
     pub flywheel: f64,
+    /// The inertia to add by the energy equation with the mechanism's variable inertia kept; see
+    /// [`Cycle::flywheel`].
+    pub exact: f64,
+    /// The input speed at the cycle's first angle on the steady cycle with the
+    /// [`Flywheel::exact`] flywheel (a start for a simulation of that cycle).
+    pub start_speed: f64,
 }
 
 /// Inverse dynamics over a turn: solves the kinematics at `samples` angles from `phi0` (on the
@@ -151,6 +157,11 @@ impl Cycle {
     /// mechanism's inertia variation is thereby neglected (its error is of the order of
     /// `(J_max - J_min) / J_total` in delta; a simulation with [`simulate`](super::simulate)
     /// checks the result). Loads depending on speed are taken at the law's speeds.
+    ///
+    /// [`Flywheel::exact`] keeps the variable inertia: on a steady cycle the energy equation
+    /// `1/2 (J_fly + J(phi)) omega(phi)^2 = E_0 + E(phi)` gives the speed at every angle; `E_0` is
+    /// set (by bisection) so that `(omega_max + omega_min) / 2 = omega_m`, and `J_fly` (by
+    /// bisection) so that the fluctuation is `delta`, both over the samples.
     pub fn flywheel(&self, delta: f64) -> Result<Flywheel, DynamicsError> {
         if !(delta > 0.0 && delta < 2.0) {
             return Err(DynamicsError::BadValue { what: "coefficient of speed fluctuation", value: delta, why: "must lie in (0, 2)" });
@@ -158,15 +169,14 @@ impl Cycle {
         let n = self.points.len() as f64;
         let mean_torque = -self.points.iter().map(|p| p.load).sum::<f64>() / n;
         let omega_m = self.points.iter().map(|p| p.omega).sum::<f64>() / n;
-        let h = TAU / n;
-        let (mut e, mut lo, mut hi) = (0.0f64, 0.0f64, 0.0f64);
-        for (j, p) in self.points.iter().enumerate() {
-            let next = &self.points[(j + 1) % self.points.len()];
-            e += 0.5 * h * (2.0 * mean_torque + p.load + next.load);
-            lo = lo.min(e);
-            hi = hi.max(e);
+        if !(omega_m > 0.0) {
+            return Err(DynamicsError::BadValue { what: "mean speed", value: omega_m, why: "must be positive" });
         }
-        let energy_swing = hi - lo;
+        let work = self.work(mean_torque);
+        let lo = work.iter().copied().fold(f64::INFINITY, f64::min);
+        let energy_swing = work.iter().copied().fold(f64::NEG_INFINITY, f64::max) - lo;
+        let exact = self.exact_flywheel(&work, omega_m, delta);
+        let (_, e0) = self.fluctuation(&work, exact, omega_m);
         let total_inertia = energy_swing / (delta * omega_m * omega_m);
         let mechanism_inertia = self.points.iter().map(|p| p.inertia).sum::<f64>() / n;
         Ok(Flywheel {
@@ -175,6 +185,69 @@ impl Cycle {
             total_inertia,
             mechanism_inertia,
             flywheel: (total_inertia - mechanism_inertia).max(0.0),
+            exact,
+            start_speed: (2.0 * (e0 + work[0]) / (exact + self.points[0].inertia)).sqrt(),
         })
+    }
+
+    /// The work `E(phi_j) = int_0^phi_j (M_m + Q) dphi` of a constant driving torque `M_m` and
+    /// the loads at the samples (trapezoidal rule).
+    fn work(&self, mean_torque: f64) -> Vec<f64> {
+        let h = TAU / self.points.len() as f64;
+        let mut e = 0.0;
+        let mut work = Vec::with_capacity(self.points.len());
+        for (j, p) in self.points.iter().enumerate() {
+            work.push(e);
+            let next = &self.points[(j + 1) % self.points.len()];
+            e += 0.5 * h * (2.0 * mean_torque + p.load + next.load);
+        }
+        work
+    }
+
+    /// `(omega_max, omega_min)` over the samples for flywheel `j_fly` and energy level `e0`.
+    fn speed_range(&self, work: &[f64], j_fly: f64, e0: f64) -> (f64, f64) {
+        let (mut hi, mut lo) = (0.0f64, f64::INFINITY);
+        for (p, w) in self.points.iter().zip(work) {
+            let omega = (2.0 * (e0 + w) / (j_fly + p.inertia)).max(0.0).sqrt();
+            hi = hi.max(omega);
+            lo = lo.min(omega);
+        }
+        (hi, lo)
+    }
+
+    /// Fluctuation `(omega_max - omega_min) / omega_m` with flywheel `j_fly` at mean speed
+    /// `omega_m`, and the energy level `E_0` giving that mean speed (found by bisection: the mean
+    /// speed grows with it).
+    fn fluctuation(&self, work: &[f64], j_fly: f64, omega_m: f64) -> (f64, f64) {
+        let j_max = self.points.iter().map(|p| p.inertia).fold(0.0, f64::max) + j_fly;
+        let mut lo = -work.iter().copied().fold(f64::INFINITY, f64::min);
+        // At this level the slowest point already turns at omega_m or faster.
+        let mut hi = lo + 0.5 * j_max * omega_m * omega_m;
+        for _ in 0..80 {
+            let mid = 0.5 * (lo + hi);
+            let (a, b) = self.speed_range(work, j_fly, mid);
+            if 0.5 * (a + b) < omega_m { lo = mid } else { hi = mid }
+        }
+        let e0 = 0.5 * (lo + hi);
+        let (a, b) = self.speed_range(work, j_fly, e0);
+        ((a - b) / omega_m, e0)
+    }
+
+    /// The flywheel giving fluctuation `delta` (0 when the mechanism alone stays within it);
+    /// the fluctuation falls as the flywheel grows.
+    fn exact_flywheel(&self, work: &[f64], omega_m: f64, delta: f64) -> f64 {
+        if self.fluctuation(work, 0.0, omega_m).0 <= delta {
+            return 0.0;
+        }
+        let mut hi = self.points.iter().map(|p| p.inertia).fold(0.0, f64::max).max(f64::MIN_POSITIVE);
+        while self.fluctuation(work, hi, omega_m).0 > delta && hi < f64::MAX / 4.0 {
+            hi *= 2.0;
+        }
+        let mut lo = 0.0;
+        for _ in 0..100 {
+            let mid = 0.5 * (lo + hi);
+            if self.fluctuation(work, mid, omega_m).0 > delta { lo = mid } else { hi = mid }
+        }
+        0.5 * (lo + hi)
     }
 }
