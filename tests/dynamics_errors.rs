@@ -3,7 +3,9 @@
 //! machine without inertia, and bad arguments; each converts into `kinloop::Error`.
 
 use kinloop::Mechanism;
-use kinloop::dynamics::{Body, Coord, DynamicsError, MassModel, OdeConfig, Rotation, RunConfig, SpeedLaw, inverse_cycle, simulate};
+use kinloop::dynamics::{
+    Body, Coord, DynamicsError, MassModel, OdeConfig, Rotation, RunConfig, SpeedLaw, inverse_cycle, simulate,
+};
 
 kinloop::mechanism! {
     /// Slider-crank with the rod's midpoint as a point (columns 0 and 1).
@@ -24,9 +26,13 @@ fn body(mass: f64, inertia: f64) -> Body {
 
 #[test]
 fn bad_masses_and_inertias() {
-    for (mass, inertia, quantity) in
-        [(-1.0, 0.1, "mass"), (f64::NAN, 0.1, "mass"), (f64::INFINITY, 0.1, "mass"), (1.0, -0.1, "moment of inertia"), (1.0, f64::NAN, "moment of inertia")]
-    {
+    for (mass, inertia, quantity) in [
+        (-1.0, 0.1, "mass"),
+        (f64::NAN, 0.1, "mass"),
+        (f64::INFINITY, 0.1, "mass"),
+        (1.0, -0.1, "moment of inertia"),
+        (1.0, f64::NAN, "moment of inertia"),
+    ] {
         let err = Model::new().with_body(body(mass, inertia)).err().unwrap();
         assert!(matches!(err, DynamicsError::BadMass { body: "rod", quantity: q, .. } if q == quantity), "{err}");
         // Into the crate's error, with the message kept.
@@ -50,17 +56,24 @@ fn indices_out_of_range() {
             "{err}"
         );
     }
-    let err = Model::new().with_constant_force("push", [Coord::Output(9), Coord::Fixed(0.0)], [1.0, 0.0]).err().unwrap();
+    let err =
+        Model::new().with_constant_force("push", [Coord::Output(9), Coord::Fixed(0.0)], [1.0, 0.0]).err().unwrap();
     assert!(matches!(err, DynamicsError::IndexOutOfRange { owner: "load", name: "push", index: 9, len: 2, .. }));
     let err = Model::new().with_constant_torque("twist", Rotation::Input(3), 1.0).err().unwrap();
     assert!(matches!(err, DynamicsError::IndexOutOfRange { owner: "load", what: "input", .. }));
-    let err = Model::new().with_body(Body { com: [Coord::Fixed(f64::NAN), Coord::Output(0)], ..body(1.0, 0.0) }).err().unwrap();
+    let err = Model::new()
+        .with_body(Body { com: [Coord::Fixed(f64::NAN), Coord::Output(0)], ..body(1.0, 0.0) })
+        .err()
+        .unwrap();
     assert!(matches!(err, DynamicsError::BadValue { what: "fixed coordinate", .. }));
 }
 
 #[test]
 fn bad_loads_and_gravity() {
-    assert!(matches!(Model::new().with_constant_torque("twist", Rotation::None, 1.0), Err(DynamicsError::TorqueOnSlider { name: "twist" })));
+    assert!(matches!(
+        Model::new().with_constant_torque("twist", Rotation::None, 1.0),
+        Err(DynamicsError::TorqueOnSlider { name: "twist" })
+    ));
     assert!(matches!(Model::new().with_gravity([0.0, f64::NAN]), Err(DynamicsError::BadValue { what: "gravity", .. })));
     assert!(matches!(
         Model::new().with_constant_force("push", [Coord::Output(0); 2], [f64::INFINITY, 0.0]),
@@ -70,7 +83,9 @@ fn bad_loads_and_gravity() {
     let m = SliderCrank::default();
     let model = Model::new()
         .with_body(body(1.0, 0.1))
-        .and_then(|md| md.with_force("gas", [Coord::Unknown(1), Coord::Fixed(0.0)], |k, _| [(k.q[1] - 3.5).sqrt(), 0.0]))
+        .and_then(|md| {
+            md.with_force("gas", [Coord::Unknown(1), Coord::Fixed(0.0)], |k, _| [(k.q[1] - 3.5).sqrt(), 0.0])
+        })
         .unwrap();
     let err = inverse_cycle(&m, &model, SpeedLaw::Constant(1.0), 0.0, 36, m.guess_flat(&[0.0]), [0.0; 2]).unwrap_err();
     assert!(matches!(&err, DynamicsError::NonFiniteLoad { name: "gas", x, .. } if x.len() == 1), "{err}");
@@ -81,7 +96,10 @@ fn bad_arguments_and_a_machine_without_inertia() {
     let m = SliderCrank::default();
     let model = Model::new().with_body(body(1.0, 0.1)).unwrap();
     let g = m.guess_flat(&[0.0]);
-    assert!(matches!(inverse_cycle(&m, &model, SpeedLaw::Constant(1.0), 0.0, 3, g, [0.0; 2]), Err(DynamicsError::BadValue { .. })));
+    assert!(matches!(
+        inverse_cycle(&m, &model, SpeedLaw::Constant(1.0), 0.0, 3, g, [0.0; 2]),
+        Err(DynamicsError::BadValue { .. })
+    ));
     let nan = |_: f64| (f64::NAN, 0.0);
     assert!(matches!(
         inverse_cycle(&m, &model, SpeedLaw::Varying(&nan), 0.0, 36, g, [0.0; 2]),
@@ -95,7 +113,10 @@ fn bad_arguments_and_a_machine_without_inertia() {
         simulate(&m, model, |_, _, _| 1.0, start, t_end, g, cfg, |_, _| false)
     };
     let cfg = RunConfig::default();
-    assert!(matches!(run(&model, &RunConfig { flywheel: -1.0, ..cfg }, [0.0, 1.0], 1.0), Err(DynamicsError::BadValue { .. })));
+    assert!(matches!(
+        run(&model, &RunConfig { flywheel: -1.0, ..cfg }, [0.0, 1.0], 1.0),
+        Err(DynamicsError::BadValue { .. })
+    ));
     assert!(matches!(run(&model, &cfg, [f64::NAN, 1.0], 1.0), Err(DynamicsError::BadValue { .. })));
     assert!(matches!(run(&model, &cfg, [0.0, 1.0], -1.0), Err(DynamicsError::BadValue { what: "end time", .. })));
     let bad_tol = RunConfig { ode: OdeConfig { rtol: 0.0, ..cfg.ode }, ..cfg };

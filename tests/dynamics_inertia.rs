@@ -142,10 +142,8 @@ fn five_bar_velocity_terms_satisfy_lagrange() {
         let dm_d1 = derivative(|t| mass_at([t, th2]), th1, 1e-3);
         let dm_d2 = derivative(|t| mass_at([th1, t]), th2, 1e-3);
         let quad = |d: &[f64]| 0.5 * (d[0] * w[0] * w[0] + (d[1] + d[2]) * w[0] * w[1] + d[3] * w[1] * w[1]);
-        let reference = [
-            dm_dt[0] * w[0] + dm_dt[1] * w[1] - quad(&dm_d1),
-            dm_dt[2] * w[0] + dm_dt[3] * w[1] - quad(&dm_d2),
-        ];
+        let reference =
+            [dm_dt[0] * w[0] + dm_dt[1] * w[1] - quad(&dm_d1), dm_dt[2] * w[0] + dm_dt[3] * w[1] - quad(&dm_d2)];
         let d = model.dynamics(&k, &w).unwrap();
         let h = d.velocity_terms(&w);
         for i in 0..2 {

@@ -33,7 +33,8 @@ fn lagrange_terms(drive: &RhombicDrive, gravity: [f64; 2], phi: f64, omega: f64,
     let j_slope = derivative(|x| vec![reduced_inertia_fd(drive, bodies, x, guess)], phi, 1e-3)[0];
     let v = derivative(|x| configuration(drive, bodies, x, guess), phi, 1e-3);
     // Virtual work of gravity on each body and of the gas force on the piston (body 3, x).
-    let mut q: f64 = bodies.iter().enumerate().map(|(i, b)| b.mass * (gravity[0] * v[3 * i] + gravity[1] * v[3 * i + 1])).sum();
+    let mut q: f64 =
+        bodies.iter().enumerate().map(|(i, b)| b.mass * (gravity[0] * v[3 * i] + gravity[1] * v[3 * i + 1])).sum();
     let x_c = configuration(drive, bodies, phi, guess)[9];
     q += gas_force(x_c) * v[9];
     (momentum, 0.5 * j_slope * omega * omega, q)
@@ -45,7 +46,8 @@ fn rhombic_driving_torque_satisfies_lagrange_equation() {
     let gravity = [0.0, -9.81];
     let model = rhombic_model(gravity);
     let law = |phi: f64| (1.3 * (1.0 + 0.2 * phi.sin()), 1.3 * 0.2 * phi.cos());
-    let cycle = inverse_cycle(&drive, &model, SpeedLaw::Varying(&law), 0.0, 36, drive.guess_flat(&[0.0]), [0.0, 0.0]).unwrap();
+    let cycle =
+        inverse_cycle(&drive, &model, SpeedLaw::Varying(&law), 0.0, 36, drive.guess_flat(&[0.0]), [0.0, 0.0]).unwrap();
     let scale = cycle.points.iter().map(|p| p.torque.abs()).fold(0.0, f64::max);
     let mut guess = drive.guess_flat(&[0.0]);
     for p in &cycle.points {
@@ -89,11 +91,20 @@ fn slider_crank_torque_matches_classical_closed_form() {
     let piston = [Coord::Unknown(x_col), Coord::Fixed(e)];
     // A massless rod: the classical reciprocating-mass model.
     let model = MassModel::new()
-        .with_body(Body { name: "crank", mass: 4.0, com: [Coord::Fixed(0.0); 2], inertia: 0.3, rotation: Rotation::Input(0) })
-        .and_then(|md| md.with_body(Body { name: "piston", mass: m, com: piston, inertia: 0.0, rotation: Rotation::None }))
+        .with_body(Body {
+            name: "crank",
+            mass: 4.0,
+            com: [Coord::Fixed(0.0); 2],
+            inertia: 0.3,
+            rotation: Rotation::Input(0),
+        })
+        .and_then(|md| {
+            md.with_body(Body { name: "piston", mass: m, com: piston, inertia: 0.0, rotation: Rotation::None })
+        })
         .and_then(|md| md.with_force("gas", piston, move |k, _| [piston_gas(k.q[x_col]), 0.0]))
         .unwrap();
-    let cycle = inverse_cycle(&sc, &model, SpeedLaw::Constant(omega), 0.1, 720, sc.guess_flat(&[0.1]), [0.0; 2]).unwrap();
+    let cycle =
+        inverse_cycle(&sc, &model, SpeedLaw::Constant(omega), 0.1, 720, sc.guess_flat(&[0.1]), [0.0; 2]).unwrap();
     let closed = |phi: f64| {
         let (u, du, d2u) = (r * phi.sin() - e, r * phi.cos(), -r * phi.sin());
         let s = (l * l - u * u).sqrt();

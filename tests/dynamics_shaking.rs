@@ -21,7 +21,8 @@ fn shaking_force_is_mass_times_centre_of_mass_acceleration() {
     let total = model.total_mass();
     let law = |phi: f64| (2.0 * (1.0 + 0.3 * phi.cos()), -2.0 * 0.3 * phi.sin());
     let about = [0.4, -0.2];
-    let cycle = inverse_cycle(&drive, &model, SpeedLaw::Varying(&law), 0.05, 36, drive.guess_flat(&[0.05]), about).unwrap();
+    let cycle =
+        inverse_cycle(&drive, &model, SpeedLaw::Varying(&law), 0.05, 36, drive.guess_flat(&[0.05]), about).unwrap();
     let mut guess = drive.guess_flat(&[0.05]);
     let scale = cycle.points.iter().map(|p| p.shaking.force[0].hypot(p.shaking.force[1])).fold(0.0, f64::max);
     for p in &cycle.points {
@@ -36,7 +37,13 @@ fn shaking_force_is_mass_times_centre_of_mass_acceleration() {
         for k in 0..2 {
             let a = d2[k] * p.omega * p.omega + d1[k] * p.eps;
             // Second differences: rounding ~ eps / h^2 ~ 2e-10 relative.
-            assert!((p.shaking.force[k] + total * a).abs() <= 1e-8 * scale, "phi {}: {:?} vs {} (scale {scale})", p.phi, p.shaking.force[k], -total * a);
+            assert!(
+                (p.shaking.force[k] + total * a).abs() <= 1e-8 * scale,
+                "phi {}: {:?} vs {} (scale {scale})",
+                p.phi,
+                p.shaking.force[k],
+                -total * a
+            );
         }
     }
     // The moment: -dH/dt with H = sum m (r - O) x v + J theta' along phi(t).
@@ -58,7 +65,13 @@ fn shaking_force_is_mass_times_centre_of_mass_acceleration() {
         };
         let dh_dt = derivative(momentum, 0.0, 2e-3)[0];
         let moment_scale = cycle.points.iter().map(|p| p.shaking.moment.abs()).fold(0.0, f64::max);
-        assert!((p.shaking.moment + dh_dt).abs() <= 1e-7 * moment_scale, "phi {}: {} vs {}", p.phi, p.shaking.moment, -dh_dt);
+        assert!(
+            (p.shaking.moment + dh_dt).abs() <= 1e-7 * moment_scale,
+            "phi {}: {} vs {}",
+            p.phi,
+            p.shaking.moment,
+            -dh_dt
+        );
     }
 }
 
@@ -117,7 +130,13 @@ fn slider_crank_shaking_harmonics_match_closed_form() {
     let (mass, omega, n) = (1.7, 80.0, 256);
     let x = index_of_x();
     let model = MassModel::new()
-        .with_body(Body { name: "piston", mass, com: [Coord::Unknown(x), Coord::Fixed(0.0)], inertia: 0.0, rotation: Rotation::None })
+        .with_body(Body {
+            name: "piston",
+            mass,
+            com: [Coord::Unknown(x), Coord::Fixed(0.0)],
+            inertia: 0.0,
+            rotation: Rotation::None,
+        })
         .unwrap();
     let cycle = inverse_cycle(&m, &model, SpeedLaw::Constant(omega), 0.0, n, m.guess_flat(&[0.0]), [0.0; 2]).unwrap();
     let [fx, fy, _] = cycle.shaking_harmonics(4).unwrap();
@@ -129,7 +148,8 @@ fn slider_crank_shaking_harmonics_match_closed_form() {
         -mass * omega * omega * (-m.r * phi.cos() + d2s)
     };
     let coefficient = |k: usize, trig: fn(f64) -> f64| {
-        (0..n).map(|j| closed(TAU * j as f64 / n as f64) * trig(TAU * (k * j) as f64 / n as f64)).sum::<f64>() * 2.0 / n as f64
+        (0..n).map(|j| closed(TAU * j as f64 / n as f64) * trig(TAU * (k * j) as f64 / n as f64)).sum::<f64>() * 2.0
+            / n as f64
     };
     assert!((fx.a[0] - scale).abs() <= 1e-12 * scale, "{} vs {scale}", fx.a[0]);
     assert!((fx.a[1] - coefficient(2, f64::cos)).abs() <= 1e-12 * scale);

@@ -7,12 +7,12 @@
 mod dynamics_fixtures;
 
 use dynamics_fixtures::{RhombicDrive, rhombic_bodies, rhombic_model};
+use kinloop::Mechanism;
 use kinloop::analysis::Sampled;
 use kinloop::dynamics::{
     Body, Coord, DynamicsError, MassModel, OdeConfig, Rotation, RunConfig, SpeedLaw, Trajectory, dopri5, inverse_cycle,
     simulate,
 };
-use kinloop::Mechanism;
 use std::f64::consts::{PI, TAU};
 
 #[test]
@@ -71,9 +71,16 @@ fn free_rhombic_drive_conserves_energy_over_100_turns() {
     let cfg = RunConfig { ode: OdeConfig { rtol: 1e-13, atol: 1e-13, ..Default::default() }, ..Default::default() };
     let omega0 = 12.0;
     let e0 = energy_at(&drive, &model, 0.0, omega0);
-    let run = simulate(&drive, &model, |_, _, _| 0.0, [0.0, omega0], 1e3, drive.guess_flat(&[0.0]), &cfg, |_, y| {
-        y[0] >= 100.0 * TAU
-    })
+    let run = simulate(
+        &drive,
+        &model,
+        |_, _, _| 0.0,
+        [0.0, omega0],
+        1e3,
+        drive.guess_flat(&[0.0]),
+        &cfg,
+        |_, y| y[0] >= 100.0 * TAU,
+    )
     .unwrap();
     let [phi, omega] = run.end;
     assert!(phi >= 100.0 * TAU, "reached only {} turns", phi / TAU);
@@ -102,13 +109,22 @@ fn flywheel_gives_the_required_speed_fluctuation() {
     let drive = RhombicDrive::default();
     let model = rhombic_model([0.0, 0.0]);
     let (omega_m, delta) = (10.0, 1.0 / 50.0);
-    let cycle = inverse_cycle(&drive, &model, SpeedLaw::Constant(omega_m), 0.0, 3600, drive.guess_flat(&[0.0]), [0.0; 2]).unwrap();
+    let cycle =
+        inverse_cycle(&drive, &model, SpeedLaw::Constant(omega_m), 0.0, 3600, drive.guess_flat(&[0.0]), [0.0; 2])
+            .unwrap();
     let fw = cycle.flywheel(delta).unwrap();
     assert!(fw.exact > 0.0 && fw.flywheel > 0.0);
     let cfg = RunConfig { flywheel: fw.exact, ..Default::default() };
-    let run = simulate(&drive, &model, |_, _, _| fw.mean_torque, [0.0, fw.start_speed], 1e3, drive.guess_flat(&[0.0]), &cfg, |_, y| {
-        y[0] >= 2.5 * TAU
-    })
+    let run = simulate(
+        &drive,
+        &model,
+        |_, _, _| fw.mean_torque,
+        [0.0, fw.start_speed],
+        1e3,
+        drive.guess_flat(&[0.0]),
+        &cfg,
+        |_, y| y[0] >= 2.5 * TAU,
+    )
     .unwrap();
     let (hi, lo) = speed_range(&run, TAU);
     eprintln!(
@@ -131,10 +147,17 @@ fn flywheel_gives_the_required_speed_fluctuation() {
 fn energy_method_is_exact_for_constant_inertia() {
     let sc = SliderCrank::default();
     let model = MassModel::new()
-        .with_body(Body { name: "crank", mass: 1.0, com: [Coord::Fixed(0.0); 2], inertia: 0.5, rotation: Rotation::Input(0) })
+        .with_body(Body {
+            name: "crank",
+            mass: 1.0,
+            com: [Coord::Fixed(0.0); 2],
+            inertia: 0.5,
+            rotation: Rotation::Input(0),
+        })
         .and_then(|m| m.with_torque("load", Rotation::Input(0), |k, _| 3.0 * k.x[0].sin() + (2.0 * k.x[0]).sin()))
         .unwrap();
-    let cycle = inverse_cycle(&sc, &model, SpeedLaw::Constant(20.0), 0.0, 3600, sc.guess_flat(&[0.0]), [0.0; 2]).unwrap();
+    let cycle =
+        inverse_cycle(&sc, &model, SpeedLaw::Constant(20.0), 0.0, 3600, sc.guess_flat(&[0.0]), [0.0; 2]).unwrap();
     let fw = cycle.flywheel(0.02).unwrap();
     // Work of the load from its closed-form integral, E = 3 (1 - cos phi) + (1 - cos 2 phi) / 2,
     // its swing taken over the same angles (the trapezoidal work is accurate to ~1e-7).
@@ -165,12 +188,28 @@ kinloop::mechanism! {
 fn run_up_from_rest_reaches_the_synchronous_speed_on_average() {
     let sc = SliderCrank::default();
     let model = MassModel::new()
-        .with_body(Body { name: "crank", mass: 1.0, com: [Coord::Fixed(0.0); 2], inertia: 2.0, rotation: Rotation::Input(0) })
-        .and_then(|m| m.with_body(Body { name: "piston", mass: 0.8, com: [Coord::Unknown(1), Coord::Fixed(0.3)], inertia: 0.0, rotation: Rotation::None }))
+        .with_body(Body {
+            name: "crank",
+            mass: 1.0,
+            com: [Coord::Fixed(0.0); 2],
+            inertia: 2.0,
+            rotation: Rotation::Input(0),
+        })
+        .and_then(|m| {
+            m.with_body(Body {
+                name: "piston",
+                mass: 0.8,
+                com: [Coord::Unknown(1), Coord::Fixed(0.3)],
+                inertia: 0.0,
+                rotation: Rotation::None,
+            })
+        })
         .unwrap();
     let (m_s, omega_s) = (40.0, 6.0);
     let motor = move |_: f64, _: f64, omega: f64| m_s * (1.0 - omega / omega_s);
-    let run = simulate(&sc, &model, motor, [0.0, 0.0], 60.0, sc.guess_flat(&[0.0]), &RunConfig::default(), |_, _| false).unwrap();
+    let run =
+        simulate(&sc, &model, motor, [0.0, 0.0], 60.0, sc.guess_flat(&[0.0]), &RunConfig::default(), |_, _| false)
+            .unwrap();
     let last = run.end[0] - TAU;
     let (mut num, mut den) = (0.0, 0.0);
     for s in &run.steps {
@@ -203,11 +242,26 @@ kinloop::mechanism! {
 fn running_into_a_limit_position_is_a_typed_error() {
     let m = Rocker::default();
     let model = MassModel::new()
-        .with_body(Body { name: "input", mass: 0.0, com: [Coord::Fixed(0.0); 2], inertia: 1.0, rotation: Rotation::Input(0) })
-        .and_then(|md| md.with_body(Body { name: "coupler", mass: 1.0, com: [Coord::Output(0), Coord::Output(1)], inertia: 0.3, rotation: Rotation::Unknown(0) }))
+        .with_body(Body {
+            name: "input",
+            mass: 0.0,
+            com: [Coord::Fixed(0.0); 2],
+            inertia: 1.0,
+            rotation: Rotation::Input(0),
+        })
+        .and_then(|md| {
+            md.with_body(Body {
+                name: "coupler",
+                mass: 1.0,
+                com: [Coord::Output(0), Coord::Output(1)],
+                inertia: 0.3,
+                rotation: Rotation::Unknown(0),
+            })
+        })
         .unwrap();
     let g = m.position_flat(&[0.0], &m.guess_flat(&[0.0]), &Default::default()).unwrap().0;
-    let err = simulate(&m, &model, |_, _, _| 1.0, [0.0, 1.0], 100.0, g, &RunConfig::default(), |_, _| false).unwrap_err();
+    let err =
+        simulate(&m, &model, |_, _, _| 1.0, [0.0, 1.0], 100.0, g, &RunConfig::default(), |_, _| false).unwrap_err();
     // The limit position is where |BD| = b + c (law of cosines).
     let limit = ((9.0 + 16.0 - 4.5f64 * 4.5) / 24.0).acos();
     match &err {

@@ -34,15 +34,33 @@ pub fn rhombic_bodies(gravity: [f64; 2]) -> MassModel<4, 1, 6> {
     MassModel::new()
         .with_gravity(gravity)
         .and_then(|m| {
-            m.with_body(Body { name: "crank", mass: 2.0, com: [out("s1.x"), out("s1.y")], inertia: 0.05, rotation: Rotation::Input(0) })
+            m.with_body(Body {
+                name: "crank",
+                mass: 2.0,
+                com: [out("s1.x"), out("s1.y")],
+                inertia: 0.05,
+                rotation: Rotation::Input(0),
+            })
         })
         .and_then(|m| {
             let rotation = Rotation::Unknown(unknown("phi2"));
-            m.with_body(Body { name: "working rod", mass: 0.8, com: [out("s2.x"), out("s2.y")], inertia: 0.6, rotation })
+            m.with_body(Body {
+                name: "working rod",
+                mass: 0.8,
+                com: [out("s2.x"), out("s2.y")],
+                inertia: 0.6,
+                rotation,
+            })
         })
         .and_then(|m| {
             let rotation = Rotation::Unknown(unknown("phi4"));
-            m.with_body(Body { name: "displacer rod", mass: 0.9, com: [out("s4.x"), out("s4.y")], inertia: 0.9, rotation })
+            m.with_body(Body {
+                name: "displacer rod",
+                mass: 0.9,
+                com: [out("s4.x"), out("s4.y")],
+                inertia: 0.9,
+                rotation,
+            })
         })
         .and_then(|m| {
             let com = [Coord::Unknown(unknown("x_c")), Coord::Fixed(0.0)];
@@ -86,7 +104,10 @@ where
 {
     let (q, _) = m.position_flat(&[x], guess, &tight()).expect("position solve");
     let out = m.outputs_flat(&[x], &q);
-    bodies.iter().flat_map(|b| [coord(&q, &out, b.com[0]), coord(&q, &out, b.com[1]), angle(x, &q, b.rotation)]).collect()
+    bodies
+        .iter()
+        .flat_map(|b| [coord(&q, &out, b.com[0]), coord(&q, &out, b.com[1]), angle(x, &q, b.rotation)])
+        .collect()
 }
 
 /// Newton converged to rounding: differences of positions divide their errors by h or h^2, so
@@ -118,5 +139,9 @@ where
     M: Mechanism<N, 1, NO>,
 {
     let v = derivative(|x| configuration(m, bodies, x, guess), x, 1e-3);
-    bodies.iter().enumerate().map(|(i, b)| b.mass * (v[3 * i].powi(2) + v[3 * i + 1].powi(2)) + b.inertia * v[3 * i + 2].powi(2)).sum()
+    bodies
+        .iter()
+        .enumerate()
+        .map(|(i, b)| b.mass * (v[3 * i].powi(2) + v[3 * i + 1].powi(2)) + b.inertia * v[3 * i + 2].powi(2))
+        .sum()
 }

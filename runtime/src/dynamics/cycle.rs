@@ -164,12 +164,16 @@ impl Cycle {
     /// bisection) so that the fluctuation is `delta`, both over the samples.
     pub fn flywheel(&self, delta: f64) -> Result<Flywheel, DynamicsError> {
         if !(delta > 0.0 && delta < 2.0) {
-            return Err(DynamicsError::BadValue { what: "coefficient of speed fluctuation", value: delta, why: "must lie in (0, 2)" });
+            return Err(DynamicsError::BadValue {
+                what: "coefficient of speed fluctuation",
+                value: delta,
+                why: "must lie in (0, 2)",
+            });
         }
         let n = self.points.len() as f64;
         let mean_torque = -self.points.iter().map(|p| p.load).sum::<f64>() / n;
         let omega_m = self.points.iter().map(|p| p.omega).sum::<f64>() / n;
-        if !(omega_m > 0.0) {
+        if omega_m.is_nan() || omega_m <= 0.0 {
             return Err(DynamicsError::BadValue { what: "mean speed", value: omega_m, why: "must be positive" });
         }
         let work = self.work(mean_torque);

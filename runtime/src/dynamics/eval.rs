@@ -97,7 +97,7 @@ impl<const NI: usize> Dynamics<NI> {
                 d -= l[j][k] * l[j][k];
             }
             let scale = self.mass[j][j].abs();
-            if !(d > 1e-13 * scale) || !d.is_finite() {
+            if !d.is_finite() || d <= 1e-13 * scale {
                 return Err(DynamicsError::SingularMass { x: x.to_vec(), pivot: d });
             }
             let d = d.sqrt();

@@ -193,13 +193,19 @@ impl<const N: usize, const NI: usize, const NO: usize> MassModel<N, NI, NO> {
     }
 }
 
-fn check_point<const N: usize, const NO: usize>(owner: &'static str, name: &'static str, p: Point) -> Result<(), DynamicsError> {
+fn check_point<const N: usize, const NO: usize>(
+    owner: &'static str,
+    name: &'static str,
+    p: Point,
+) -> Result<(), DynamicsError> {
     for c in p {
         let (what, index, len) = match c {
             Coord::Output(c) => ("output column", c, NO),
             Coord::Unknown(u) => ("unknown", u, N),
             Coord::Fixed(v) if v.is_finite() => continue,
-            Coord::Fixed(v) => return Err(DynamicsError::BadValue { what: "fixed coordinate", value: v, why: "must be finite" }),
+            Coord::Fixed(v) => {
+                return Err(DynamicsError::BadValue { what: "fixed coordinate", value: v, why: "must be finite" });
+            }
         };
         if index >= len {
             return Err(DynamicsError::IndexOutOfRange { owner, name, what, index, len });

@@ -186,7 +186,7 @@ fn check_config(t0: f64, t_end: f64, cfg: &OdeConfig) -> Result<(), DynamicsErro
     if !(cfg.atol > 0.0 && cfg.atol.is_finite()) {
         return bad("absolute tolerance", cfg.atol, "must be positive and finite");
     }
-    if !(cfg.h_max > 0.0) {
+    if cfg.h_max.is_nan() || cfg.h_max <= 0.0 {
         return bad("largest step", cfg.h_max, "must be positive");
     }
     Ok(())

@@ -74,7 +74,11 @@ where
     M: Mechanism<N, 1, NO>,
 {
     if !(cfg.flywheel >= 0.0 && cfg.flywheel.is_finite()) {
-        return Err(DynamicsError::BadValue { what: "flywheel inertia", value: cfg.flywheel, why: "must be finite, not negative" });
+        return Err(DynamicsError::BadValue {
+            what: "flywheel inertia",
+            value: cfg.flywheel,
+            why: "must be finite, not negative",
+        });
     }
     for v in start {
         if !v.is_finite() {
