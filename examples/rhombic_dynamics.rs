@@ -27,7 +27,9 @@ mod rhombic_drive;
 
 use common::{Series, figure_dir, line_chart, out_dir};
 use kinloop::Table;
-use kinloop::dynamics::{Body, Coord, MassModel, Rotation, RunConfig, SpeedLaw, inverse_cycle, simulate};
+use kinloop::dynamics::{
+    Body, Coord, Cycle, CyclePoint, MassModel, Rotation, RunConfig, SpeedLaw, Trajectory, inverse_cycle, simulate,
+};
 use kinloop::{Kin, Mechanism};
 use rhombic_drive::RhombicDrive;
 use std::f64::consts::{PI, TAU};
@@ -153,7 +155,47 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
     let omega = 1500.0 * TAU / 60.0;
     let guess = drive.guess_flat(&[0.0]);
     let cycle = inverse_cycle(&drive, &hot, SpeedLaw::Constant(omega), 0.0, 3600, guess, [0.0, drive.e_p])?;
+    print_cycle(&cycle, omega)?;
 
+    let fw = cycle.flywheel(1.0 / 50.0)?;
+    println!(
+        "\nflywheel for delta = 1/50: energy swing {:.3} J, mean mechanism inertia {:.3e} kg m2;\n  \
+         energy method {:.4e} kg m2, energy equation (variable J kept) {:.4e} kg m2",
+        fw.energy_swing, fw.mechanism_inertia, fw.flywheel, fw.exact
+    );
+    // The energy method takes J as its mean; here 1/2 (J_max - J_min) omega^2 is of the order of
+    // the gas work's swing, so only the energy equation gives the fluctuation asked for.
+    let check = simulate(
+        &drive,
+        &hot,
+        |_, _, _| fw.mean_torque,
+        [0.0, fw.start_speed],
+        1.0,
+        guess,
+        &RunConfig { flywheel: fw.exact, ..Default::default() },
+        |_, y| y[0] >= 2.0 * TAU,
+    )?;
+    let speeds: Vec<f64> = check
+        .steps
+        .iter()
+        .flat_map(|s| (0..10).map(move |k| s.at(s.t0 + s.h * k as f64 / 10.0)))
+        .filter(|y| y[0] >= TAU)
+        .map(|y| y[1])
+        .collect();
+    let (hi, lo) = speeds.iter().fold((f64::MIN, f64::MAX), |(h, l), &w| (h.max(w), l.min(w)));
+    println!(
+        "  simulated steady cycle with it: delta = {:.5}, mean speed {:.2} rad/s ({:.2} target)",
+        (hi - lo) / omega,
+        (hi + lo) / 2.0,
+        omega
+    );
+
+    let run = run_up(&drive, omega, fw.exact)?;
+    write_outputs(&cycle, &run)
+}
+
+/// The table every 30 degrees, the mean torque and the harmonics of the shaking force.
+fn print_cycle(cycle: &Cycle, omega: f64) -> Result<(), Box<dyn std::error::Error>> {
     println!(
         "Rhombic drive as a Stirling engine at 1500 rpm (crank radius 20 mm, mean pressure 1 MPa, 900 K / 320 K)\n"
     );
@@ -186,44 +228,17 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
         msh.amplitude(1),
         msh.amplitude(2)
     );
+    Ok(())
+}
 
-    let fw = cycle.flywheel(1.0 / 50.0)?;
-    println!(
-        "\nflywheel for delta = 1/50: energy swing {:.3} J, mean mechanism inertia {:.3e} kg m2;\n  \
-         energy method {:.4e} kg m2, energy equation (variable J kept) {:.4e} kg m2",
-        fw.energy_swing, fw.mechanism_inertia, fw.flywheel, fw.exact
-    );
-    let check = simulate(
-        &drive,
-        &hot,
-        |_, _, _| fw.mean_torque,
-        [0.0, fw.start_speed],
-        1.0,
-        guess,
-        &RunConfig { flywheel: fw.exact, ..Default::default() },
-        |_, y| y[0] >= 2.0 * TAU,
-    )?;
-    let speeds: Vec<f64> = check
-        .steps
-        .iter()
-        .flat_map(|s| (0..10).map(move |k| s.at(s.t0 + s.h * k as f64 / 10.0)))
-        .filter(|y| y[0] >= TAU)
-        .map(|y| y[1])
-        .collect();
-    let (hi, lo) = speeds.iter().fold((f64::MIN, f64::MAX), |(h, l), &w| (h.max(w), l.min(w)));
-    println!(
-        "  simulated steady cycle with it: delta = {:.5}, mean speed {:.2} rad/s ({:.2} target)",
-        (hi - lo) / omega,
-        (hi + lo) / 2.0,
-        omega
-    );
-
-    // Run-up of the cold engine (the gas is a spring) under the motor.
-    let cold = model(&drive, Gas::new(&drive, 320.0, 1.0e6));
-    let (m_s, omega_s) = (6.0, omega);
+/// Run-up of the cold engine (no temperature difference: the gas is a spring) from rest under
+/// the motor `M = M_s (1 - omega / omega_s)`, with the flywheel `j_fly`, for 3 s.
+fn run_up(drive: &RhombicDrive, omega_s: f64, j_fly: f64) -> Result<Trajectory, Box<dyn std::error::Error>> {
+    let cold = model(drive, Gas::new(drive, 320.0, 1.0e6));
+    let m_s = 6.0;
     let motor = move |_: f64, _: f64, w: f64| m_s * (1.0 - w / omega_s);
-    let cfg = RunConfig { flywheel: fw.exact, ..Default::default() };
-    let run = simulate(&drive, &cold, motor, [0.0, 0.0], 3.0, guess, &cfg, |_, _| false)?;
+    let cfg = RunConfig { flywheel: j_fly, ..Default::default() };
+    let run = simulate(drive, &cold, motor, [0.0, 0.0], 3.0, drive.guess_flat(&[0.0]), &cfg, |_, _| false)?;
     let t95 = run.steps.iter().find(|s| s.at(s.t1())[1] >= 0.95 * omega_s).map_or(f64::NAN, |s| s.t1());
     println!("\nrun-up from rest (cold engine, flywheel above, motor {m_s} Nm stall, {omega_s:.1} rad/s synchronous):");
     println!(
@@ -233,8 +248,7 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
         run.end[0] / TAU,
         run.steps.len()
     );
-
-    write_outputs(&cycle, &run)
+    Ok(run)
 }
 
 fn write_outputs(
@@ -266,7 +280,7 @@ fn write_outputs(
     r.save_csv(data.join("runup.csv"))?;
 
     let dir = figure_dir("rhombic_dynamics");
-    let deg = |f: &dyn Fn(&kinloop::dynamics::CyclePoint) -> f64| -> Vec<(f64, f64)> {
+    let deg = |f: &dyn Fn(&CyclePoint) -> f64| -> Vec<(f64, f64)> {
         cycle.points.iter().step_by(5).map(|p| (p.phi.to_degrees(), f(p))).collect()
     };
     line_chart(

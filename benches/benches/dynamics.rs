@@ -27,8 +27,20 @@ fn model() -> MassModel<4, 1, 6> {
         Body { name: "crank", mass: 2.0, com: out(0), inertia: 0.05, rotation: Rotation::Input(0) },
         Body { name: "working rod", mass: 0.8, com: out(1), inertia: 0.6, rotation: Rotation::Unknown(0) },
         Body { name: "displacer rod", mass: 0.9, com: out(2), inertia: 0.9, rotation: Rotation::Unknown(1) },
-        Body { name: "piston", mass: 1.5, com: [Coord::Unknown(2), Coord::Fixed(0.0)], inertia: 0.0, rotation: Rotation::None },
-        Body { name: "displacer", mass: 1.1, com: [Coord::Unknown(3), Coord::Fixed(0.9)], inertia: 0.0, rotation: Rotation::None },
+        Body {
+            name: "piston",
+            mass: 1.5,
+            com: [Coord::Unknown(2), Coord::Fixed(0.0)],
+            inertia: 0.0,
+            rotation: Rotation::None,
+        },
+        Body {
+            name: "displacer",
+            mass: 1.1,
+            com: [Coord::Unknown(3), Coord::Fixed(0.9)],
+            inertia: 0.0,
+            rotation: Rotation::None,
+        },
     ];
     let mut m = MassModel::new().with_gravity([0.0, -9.81]).unwrap();
     for b in bodies {
