@@ -151,3 +151,30 @@ fn five_bar_velocity_terms_satisfy_lagrange() {
         }
     }
 }
+
+/// Forward dynamics inverts inverse dynamics: the accelerations from `M eps = tau + Q - h`
+/// (Cholesky) reproduce the `eps` whose driving forces `tau` inverse dynamics gave, to the
+/// conditioning of `M` times rounding.
+#[test]
+fn five_bar_forward_dynamics_inverts_inverse_dynamics() {
+    let m = FiveBar::default();
+    let model = five_bar_model().with_gravity([0.0, -9.81]).unwrap();
+    let cfg = tight();
+    for (th1, th2) in [(1.3, 0.9), (1.5, 1.1), (1.7, 1.3)] {
+        let k = m.kinematics_flat(&[th1, th2], &m.guess_flat(&[th1, th2]), &cfg).unwrap();
+        let (w, eps) = ([1.7, -0.9], [0.4, 2.5]);
+        let d = model.dynamics(&k, &w).unwrap();
+        let tau = d.drive(&w, &eps);
+        let back = d.accelerations(&k.x, &w, &tau).unwrap();
+        for i in 0..2 {
+            assert!((back[i] - eps[i]).abs() <= 1e-12 * eps[0].abs().max(eps[1].abs()), "{back:?} vs {eps:?}");
+        }
+    }
+    // A model without mass has a singular mass matrix: a typed error, not a NaN.
+    let k = m.kinematics_flat(&[1.3, 0.9], &m.guess_flat(&[1.3, 0.9]), &cfg).unwrap();
+    let d = MassModel::<2, 2, 8>::new().dynamics(&k, &[0.0; 2]).unwrap();
+    assert!(matches!(
+        d.accelerations(&k.x, &[0.0; 2], &[1.0; 2]),
+        Err(kinloop::dynamics::DynamicsError::SingularMass { .. })
+    ));
+}
