@@ -178,3 +178,49 @@ fn five_bar_forward_dynamics_inverts_inverse_dynamics() {
         Err(kinloop::dynamics::DynamicsError::SingularMass { .. })
     ));
 }
+
+/// Scale-free: the same drive in metres and in micrometres (lengths times 1e6, the fixed
+/// displacer line too) has `J` and `dJ/dphi` times 1e12, gravity's generalised force times
+/// 1e6, to rounding.
+#[test]
+fn reduced_inertia_scales_with_length_squared() {
+    let d = RhombicDrive::default();
+    let s = 1e6;
+    let big = RhombicDrive {
+        r_p: s * d.r_p,
+        r_b: s * d.r_b,
+        l_p: s * d.l_p,
+        l_b: s * d.l_b,
+        e_p: s * d.e_p,
+        de: s * d.de,
+        l_as1: s * d.l_as1,
+        l_cs2: s * d.l_cs2,
+        l_fs4: s * d.l_fs4,
+        ..d
+    };
+    let small_model = dynamics_fixtures::rhombic_bodies([0.0, -9.81]);
+    let big_model = scaled_bodies(&small_model, s);
+    let (mut g_small, mut g_big) = (d.guess_flat(&[0.0]), big.guess_flat(&[0.0]));
+    for j in 0..36 {
+        let phi = j as f64 * 10f64.to_radians() + 0.03;
+        let ks = d.kinematics_flat(&[phi], &g_small, &tight()).unwrap();
+        let kb = big.kinematics_flat(&[phi], &g_big, &tight()).unwrap();
+        (g_small, g_big) = (ks.q, kb.q);
+        let (a, b) = (small_model.dynamics(&ks, &[1.0]).unwrap(), big_model.dynamics(&kb, &[1.0]).unwrap());
+        assert!((b.reduced_inertia() / (s * s) - a.reduced_inertia()).abs() <= 1e-12 * a.reduced_inertia());
+        let slope_scale = a.reduced_inertia();
+        assert!((b.reduced_inertia_slope() / (s * s) - a.reduced_inertia_slope()).abs() <= 1e-12 * slope_scale);
+        assert!((b.forces[0] / s - a.forces[0]).abs() <= 1e-12 * a.forces[0].abs().max(1.0));
+    }
+}
+
+/// The bodies of `model` for lengths times `s`: inertias times `s^2`, fixed coordinates times
+/// `s`.
+fn scaled_bodies(model: &MassModel<4, 1, 6>, s: f64) -> MassModel<4, 1, 6> {
+    let scale = |c: Coord| if let Coord::Fixed(v) = c { Coord::Fixed(s * v) } else { c };
+    let mut m = MassModel::new().with_gravity(model.gravity_vector()).unwrap();
+    for b in model.bodies() {
+        m = m.with_body(Body { inertia: b.inertia * s * s, com: b.com.map(scale), ..*b }).unwrap();
+    }
+    m
+}
