@@ -1,0 +1,321 @@
+//! Dynamics of the rhombic drive of `examples/rhombic_drive.rs`, sized as a small Stirling
+//! engine (crank radius 20 mm, bore 40 mm) with plausible masses and a Schmidt-type gas model:
+//! the gas pressure follows from the compression and expansion volumes, which the working
+//! piston and the displacer set, so the force on the piston is a function of the state.
+//!
+//! It computes, from the same kinematic analogs the kinematic example prints:
+//! * the driving torque over a turn at 1500 rpm, `M = J eps + 1/2 J' omega^2 - Q`;
+//! * the shaking force on the frame and its first two harmonics, and the shaking moment;
+//! * the flywheel for a coefficient of speed fluctuation delta = 1/50 (energy method and the
+//!   energy equation with the variable inertia kept), checked by a simulation of the cycle;
+//! * the run-up of the cold engine (no temperature difference: the gas acts as a spring) from
+//!   rest under an induction-motor-like characteristic `M = M_s (1 - omega / omega_s)`.
+//!
+//! Run with `cargo run --release --example rhombic_dynamics`. It prints tables and writes CSV
+//! and SVG charts into `out/rhombic_dynamics/` (the charts into
+//! `$KINLOOP_FIGURES/rhombic_dynamics/` when that variable is set).
+
+// The included kinematic example loads `common` for itself, privately; this example needs it too.
+#![allow(clippy::duplicate_mod)]
+
+mod common;
+
+// The declaration lives in the kinematic example; this is its one include here.
+#[allow(dead_code)]
+#[path = "rhombic_drive.rs"]
+mod rhombic_drive;
+
+use common::{Series, figure_dir, line_chart, out_dir};
+use kinloop::Table;
+use kinloop::dynamics::{
+    Body, Coord, Cycle, CyclePoint, MassModel, Rotation, RunConfig, SpeedLaw, Trajectory, inverse_cycle, simulate,
+};
+use kinloop::{Kin, Mechanism};
+use rhombic_drive::RhombicDrive;
+use std::f64::consts::{PI, TAU};
+
+/// Lengths of the example's drive scaled to metres (crank radius 20 mm).
+fn engine() -> RhombicDrive {
+    let s = 0.02;
+    let d = RhombicDrive::default();
+    RhombicDrive {
+        r_p: s * d.r_p,
+        r_b: s * d.r_b,
+        l_p: s * d.l_p,
+        l_b: s * d.l_b,
+        e_p: s * d.e_p,
+        de: s * d.de,
+        l_as1: s * d.l_as1,
+        l_cs2: s * d.l_cs2,
+        l_fs4: s * d.l_fs4,
+        ..d
+    }
+}
+
+/// Schmidt-type gas model: a fixed amount of gas in a cold space (behind the working piston
+/// and the cold end of the displacer) and a hot space (the displacer's hot end), each with a
+/// dead volume; `p = m R / (V_c / T_c + V_h / T_h)`. The working piston has a buffer pressure
+/// equal to the mean on its other side.
+#[derive(Clone, Copy)]
+struct Gas {
+    area: f64,
+    t_hot: f64,
+    t_cold: f64,
+    dead: f64,
+    /// Extreme positions of the piston and displacer (the volumes are zero-based there).
+    x_c_min: f64,
+    x_f_max: f64,
+    x_f_min: f64,
+    /// `m R`, set for the mean pressure.
+    mass_r: f64,
+    buffer: f64,
+}
+
+impl Gas {
+    fn new(drive: &RhombicDrive, t_hot: f64, mean_pressure: f64) -> Gas {
+        let sweep =
+            kinloop::analysis::Sampled::sweep(drive, 0.0, TAU, 721, drive.guess_flat(&[0.0])).expect("a full turn");
+        let xs = |u: usize| sweep.states().iter().map(move |k| k.q[u]);
+        let (xc, xf) = (index(&RhombicDrive::UNKNOWNS, "x_c"), index(&RhombicDrive::UNKNOWNS, "x_f"));
+        let mut gas = Gas {
+            area: PI * 0.04 * 0.04 / 4.0,
+            t_hot,
+            t_cold: 320.0,
+            dead: 3e-5,
+            x_c_min: xs(xc).fold(f64::INFINITY, f64::min),
+            x_f_max: xs(xf).fold(f64::NEG_INFINITY, f64::max),
+            x_f_min: xs(xf).fold(f64::INFINITY, f64::min),
+            mass_r: 1.0,
+            buffer: 0.0,
+        };
+        let mean = sweep.states().iter().map(|k| gas.pressure(k.q[xc], k.q[xf])).sum::<f64>() / 721.0;
+        gas.mass_r = mean_pressure / mean;
+        gas.buffer = mean_pressure;
+        gas
+    }
+
+    fn pressure(&self, x_c: f64, x_f: f64) -> f64 {
+        let cold = self.dead + self.area * ((x_c - self.x_c_min) + (self.x_f_max - x_f));
+        let hot = self.dead + self.area * (x_f - self.x_f_min);
+        self.mass_r / (cold / self.t_cold + hot / self.t_hot)
+    }
+}
+
+fn index(names: &[&str], name: &str) -> usize {
+    names.iter().position(|n| *n == name).expect("a declared name")
+}
+
+/// Crank, rods, piston and displacer (kg, kg m^2), and the gas force on the piston.
+fn model(drive: &RhombicDrive, gas: Gas) -> MassModel<4, 1, 6> {
+    let out = |n| Coord::Output(index(&RhombicDrive::OUTPUTS, n));
+    let (xc, xf) = (index(&RhombicDrive::UNKNOWNS, "x_c"), index(&RhombicDrive::UNKNOWNS, "x_f"));
+    let rod = |l: f64, m: f64| m * l * l / 12.0;
+    let bodies = [
+        Body { name: "crank", mass: 0.8, com: [out("s1.x"), out("s1.y")], inertia: 2e-4, rotation: Rotation::Input(0) },
+        Body {
+            name: "working rod",
+            mass: 0.15,
+            com: [out("s2.x"), out("s2.y")],
+            inertia: rod(drive.l_p, 0.15),
+            rotation: Rotation::Unknown(0),
+        },
+        Body {
+            name: "displacer rod",
+            mass: 0.18,
+            com: [out("s4.x"), out("s4.y")],
+            inertia: rod(drive.l_b, 0.18),
+            rotation: Rotation::Unknown(1),
+        },
+        Body {
+            name: "piston",
+            mass: 0.45,
+            com: [Coord::Unknown(xc), Coord::Fixed(0.0)],
+            inertia: 0.0,
+            rotation: Rotation::None,
+        },
+        Body {
+            name: "displacer",
+            mass: 0.3,
+            com: [Coord::Unknown(xf), Coord::Fixed(drive.de)],
+            inertia: 0.0,
+            rotation: Rotation::None,
+        },
+    ];
+    let mut m = MassModel::new();
+    for b in bodies {
+        m = m.with_body(b).expect("valid bodies");
+    }
+    let force = move |k: &Kin<4, 1, 6>, _: &[f64; 1]| [(gas.pressure(k.q[xc], k.q[xf]) - gas.buffer) * gas.area, 0.0];
+    m.with_force("gas on the working piston", [Coord::Unknown(xc), Coord::Fixed(0.0)], force).expect("a valid load")
+}
+
+fn main() -> Result<(), Box<dyn std::error::Error>> {
+    let drive = engine();
+    let hot = model(&drive, Gas::new(&drive, 900.0, 1.0e6));
+    let omega = 1500.0 * TAU / 60.0;
+    let guess = drive.guess_flat(&[0.0]);
+    let cycle = inverse_cycle(&drive, &hot, SpeedLaw::Constant(omega), 0.0, 3600, guess, [0.0, drive.e_p])?;
+    print_cycle(&cycle, omega)?;
+
+    let fw = cycle.flywheel(1.0 / 50.0)?;
+    println!(
+        "\nflywheel for delta = 1/50: energy swing {:.3} J, mean mechanism inertia {:.3e} kg m2;\n  \
+         energy method {:.4e} kg m2, energy equation (variable J kept) {:.4e} kg m2",
+        fw.energy_swing, fw.mechanism_inertia, fw.flywheel, fw.exact
+    );
+    // The energy method takes J as its mean; here 1/2 (J_max - J_min) omega^2 is of the order of
+    // the gas work's swing, so only the energy equation gives the fluctuation asked for.
+    let check = simulate(
+        &drive,
+        &hot,
+        |_, _, _| fw.mean_torque,
+        [0.0, fw.start_speed],
+        1.0,
+        guess,
+        &RunConfig { flywheel: fw.exact, ..Default::default() },
+        |_, y| y[0] >= 2.0 * TAU,
+    )?;
+    let speeds: Vec<f64> = check
+        .steps
+        .iter()
+        .flat_map(|s| (0..10).map(move |k| s.at(s.t0 + s.h * k as f64 / 10.0)))
+        .filter(|y| y[0] >= TAU)
+        .map(|y| y[1])
+        .collect();
+    let (hi, lo) = speeds.iter().fold((f64::MIN, f64::MAX), |(h, l), &w| (h.max(w), l.min(w)));
+    println!(
+        "  simulated steady cycle with it: delta = {:.5}, mean speed {:.2} rad/s ({:.2} target)",
+        (hi - lo) / omega,
+        (hi + lo) / 2.0,
+        omega
+    );
+
+    let run = run_up(&drive, omega, fw.exact)?;
+    write_outputs(&cycle, &run)
+}
+
+/// The table every 30 degrees, the mean torque and the harmonics of the shaking force.
+fn print_cycle(cycle: &Cycle, omega: f64) -> Result<(), Box<dyn std::error::Error>> {
+    println!(
+        "Rhombic drive as a Stirling engine at 1500 rpm (crank radius 20 mm, mean pressure 1 MPa, 900 K / 320 K)\n"
+    );
+    println!(
+        "{:>6} {:>12} {:>12} {:>10} {:>10} {:>10} {:>10} {:>10}",
+        "phi", "J [kg m2]", "dJ/dphi", "Q [Nm]", "M [Nm]", "Fx [N]", "Fy [N]", "Msh [Nm]"
+    );
+    for p in cycle.points.iter().step_by(300) {
+        println!(
+            "{:>5.0}° {:>12.4e} {:>12.4e} {:>10.3} {:>10.3} {:>10.2} {:>10.2} {:>10.3}",
+            p.phi.to_degrees(),
+            p.inertia,
+            p.inertia_slope,
+            p.load,
+            p.torque,
+            p.shaking.force[0],
+            p.shaking.force[1],
+            p.shaking.moment
+        );
+    }
+    let torque = cycle.torque_harmonics(4)?;
+    println!("\nmean driving torque {:.4} Nm (indicated power {:.1} W)", torque.a0, -torque.a0 * omega);
+    let [fx, fy, msh] = cycle.shaking_harmonics(2)?;
+    println!(
+        "shaking force harmonics (amplitudes): x {:.2} N, {:.2} N; y {:.2} N, {:.2} N; moment {:.3}, {:.3} Nm",
+        fx.amplitude(1),
+        fx.amplitude(2),
+        fy.amplitude(1),
+        fy.amplitude(2),
+        msh.amplitude(1),
+        msh.amplitude(2)
+    );
+    Ok(())
+}
+
+/// Run-up of the cold engine (no temperature difference: the gas is a spring) from rest under
+/// the motor `M = M_s (1 - omega / omega_s)`, with the flywheel `j_fly`, for 3 s.
+fn run_up(drive: &RhombicDrive, omega_s: f64, j_fly: f64) -> Result<Trajectory, Box<dyn std::error::Error>> {
+    let cold = model(drive, Gas::new(drive, 320.0, 1.0e6));
+    let m_s = 6.0;
+    let motor = move |_: f64, _: f64, w: f64| m_s * (1.0 - w / omega_s);
+    let cfg = RunConfig { flywheel: j_fly, ..Default::default() };
+    let run = simulate(drive, &cold, motor, [0.0, 0.0], 3.0, drive.guess_flat(&[0.0]), &cfg, |_, _| false)?;
+    let t95 = run.steps.iter().find(|s| s.at(s.t1())[1] >= 0.95 * omega_s).map_or(f64::NAN, |s| s.t1());
+    println!("\nrun-up from rest (cold engine, flywheel above, motor {m_s} Nm stall, {omega_s:.1} rad/s synchronous):");
+    println!(
+        "  95 % of synchronous speed after {t95:.2} s; at {:.0} s: {:.2} rad/s, {:.0} turns, {} steps",
+        run.t_end,
+        run.end[1],
+        run.end[0] / TAU,
+        run.steps.len()
+    );
+    Ok(run)
+}
+
+fn write_outputs(
+    cycle: &kinloop::dynamics::Cycle,
+    run: &kinloop::dynamics::Trajectory,
+) -> Result<(), Box<dyn std::error::Error>> {
+    let data = out_dir("rhombic_dynamics");
+    let mut t = Table::new(["phi", "J", "dJ_dphi", "Q", "M", "Fx", "Fy", "Msh"].map(String::from).to_vec());
+    for p in &cycle.points {
+        t.push(vec![
+            p.phi,
+            p.inertia,
+            p.inertia_slope,
+            p.load,
+            p.torque,
+            p.shaking.force[0],
+            p.shaking.force[1],
+            p.shaking.moment,
+        ]);
+    }
+    t.save_csv(data.join("cycle.csv"))?;
+    let mut r = Table::new(["t", "phi", "omega"].map(String::from).to_vec());
+    let samples = 3000;
+    for k in 0..=samples {
+        let time = run.t_end * k as f64 / samples as f64;
+        let [phi, w] = run.at(time);
+        r.push(vec![time, phi, w]);
+    }
+    r.save_csv(data.join("runup.csv"))?;
+
+    let dir = figure_dir("rhombic_dynamics");
+    let deg = |f: &dyn Fn(&CyclePoint) -> f64| -> Vec<(f64, f64)> {
+        cycle.points.iter().step_by(5).map(|p| (p.phi.to_degrees(), f(p))).collect()
+    };
+    line_chart(
+        &dir.join("torque.svg"),
+        "Driving torque at 1500 rpm",
+        "crank angle [deg]",
+        "torque [Nm]",
+        &[
+            Series { label: "driving torque M", points: deg(&|p| p.torque) },
+            Series { label: "gas torque Q", points: deg(&|p| p.load) },
+        ],
+    )?;
+    line_chart(
+        &dir.join("shaking.svg"),
+        "Shaking force on the frame at 1500 rpm",
+        "crank angle [deg]",
+        "force [N]",
+        &[
+            Series { label: "Fx", points: deg(&|p| p.shaking.force[0]) },
+            Series { label: "Fy", points: deg(&|p| p.shaking.force[1]) },
+        ],
+    )?;
+    let speed: Vec<(f64, f64)> = (0..=600)
+        .map(|k| {
+            let time = run.t_end * k as f64 / 600.0;
+            (time, run.at(time)[1])
+        })
+        .collect();
+    line_chart(
+        &dir.join("runup.svg"),
+        "Run-up from rest under the motor",
+        "time [s]",
+        "crank speed [rad/s]",
+        &[Series { label: "omega", points: speed }],
+    )?;
+    println!("\nwrote cycle.csv and runup.csv to {} and 3 charts to {}", data.display(), dir.display());
+    Ok(())
+}

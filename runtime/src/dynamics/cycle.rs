@@ -1,0 +1,257 @@
+//! Inverse dynamics of a one-input machine over a turn of its input: the driving torque for a
+//! given speed law, the shaking force and moment, their harmonics, and flywheel sizing.
+
+use super::error::DynamicsError;
+use super::eval::Shaking;
+use super::model::MassModel;
+use crate::analysis::Sampled;
+use crate::analysis::fourier::{Fourier, fourier};
+use crate::mechanism::Mechanism;
+use std::f64::consts::TAU;
+
+/// How the input turns over the cycle.
+#[derive(Clone, Copy)]
+pub enum SpeedLaw<'a> {
+    /// Constant input speed `omega` (rad per unit time).
+    Constant(f64),
+    /// `phi -> (omega, d omega / d phi)`; the input acceleration is `omega d omega / d phi`.
+    Varying(&'a dyn Fn(f64) -> (f64, f64)),
+}
+
+impl SpeedLaw<'_> {
+    /// `(omega, eps)` at input angle `phi`.
+    pub fn at(&self, phi: f64) -> (f64, f64) {
+        match self {
+            SpeedLaw::Constant(w) => (*w, 0.0),
+            SpeedLaw::Varying(f) => {
+                let (w, dw) = f(phi);
+                (w, w * dw)
+            }
+        }
+    }
+}
+
+/// The dynamics at one input angle of the cycle.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct CyclePoint {
+    /// Input angle.
+    pub phi: f64,
+    /// Input speed.
+    pub omega: f64,
+    /// Input acceleration.
+    pub eps: f64,
+    /// Reduced moment of inertia `J(phi)`.
+    pub inertia: f64,
+    /// `dJ/dphi`.
+    pub inertia_slope: f64,
+    /// Generalised force of loads and gravity, `Q` (a torque on the input).
+    pub load: f64,
+    /// Driving torque `M = J eps + 1/2 J' omega^2 - Q`.
+    pub torque: f64,
+    /// Shaking force and moment on the frame.
+    pub shaking: Shaking,
+}
+
+/// Inverse dynamics at `samples` equally spaced angles of one turn `[phi0, phi0 + 2 pi)`.
+#[derive(Clone, Debug, PartialEq)]
+pub struct Cycle {
+    /// The points, in increasing angle.
+    pub points: Vec<CyclePoint>,
+}
+
+/// Sizing of a flywheel by the energy method; see [`Cycle::flywheel`].
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Flywheel {
+    /// The constant driving torque that balances the loads over the cycle, `-mean Q`.
+    pub mean_torque: f64,
+    /// Largest swing of the work of the driving torque and the loads, `dE_max`.
+    pub energy_swing: f64,
+    /// Reduced inertia the machine needs in total, `dE_max / (delta omega_m^2)`.
+    pub total_inertia: f64,
+    /// Mean reduced inertia of the mechanism itself over the cycle.
+    pub mechanism_inertia: f64,
+    /// Inertia to add on the input shaft: `total - mechanism`, or 0 when the mechanism suffices.
+    pub flywheel: f64,
+    /// The inertia to add by the energy equation with the mechanism's variable inertia kept; see
+    /// [`Cycle::flywheel`].
+    pub exact: f64,
+    /// The input speed at the cycle's first angle on the steady cycle with the
+    /// [`Flywheel::exact`] flywheel (a start for a simulation of that cycle).
+    pub start_speed: f64,
+}
+
+/// Inverse dynamics over a turn: solves the kinematics at `samples` angles from `phi0` (on the
+/// assembly branch of `guess`), evaluates the model and the speed law there; shaking moments
+/// are taken about the frame point `about`.
+pub fn inverse_cycle<M, const N: usize, const NO: usize>(
+    m: &M,
+    model: &MassModel<N, 1, NO>,
+    law: SpeedLaw<'_>,
+    phi0: f64,
+    samples: usize,
+    guess: [f64; N],
+    about: [f64; 2],
+) -> Result<Cycle, DynamicsError>
+where
+    M: Mechanism<N, 1, NO>,
+{
+    if samples < 8 {
+        return Err(DynamicsError::BadValue { what: "samples", value: samples as f64, why: "need at least 8" });
+    }
+    let turn = Sampled::sweep(m, phi0, phi0 + TAU, samples + 1, guess).map_err(DynamicsError::kin)?;
+    let mut points = Vec::with_capacity(samples);
+    for k in &turn.states()[..samples] {
+        let phi = k.x[0];
+        let (omega, eps) = law.at(phi);
+        if !(omega.is_finite() && eps.is_finite()) {
+            return Err(DynamicsError::BadValue { what: "speed law", value: omega + eps, why: "must be finite" });
+        }
+        let d = model.dynamics(k, &[omega])?;
+        points.push(CyclePoint {
+            phi,
+            omega,
+            eps,
+            inertia: d.reduced_inertia(),
+            inertia_slope: d.reduced_inertia_slope(),
+            load: d.forces[0],
+            torque: d.drive(&[omega], &[eps])[0],
+            shaking: model.shaking(k, &[omega], &[eps], about),
+        });
+    }
+    Ok(Cycle { points })
+}
+
+impl Cycle {
+    fn series(&self, f: impl Fn(&CyclePoint) -> f64, harmonics: usize) -> Result<Fourier, DynamicsError> {
+        let v: Vec<f64> = self.points.iter().map(f).collect();
+        fourier(&v, self.points[0].phi, TAU, harmonics).map_err(DynamicsError::kin)
+    }
+
+    /// Fourier series of the driving torque up to `harmonics` (the mean is `a0`).
+    pub fn torque_harmonics(&self, harmonics: usize) -> Result<Fourier, DynamicsError> {
+        self.series(|p| p.torque, harmonics)
+    }
+
+    /// Fourier series of the shaking force components `x`, `y` and of the shaking moment.
+    pub fn shaking_harmonics(&self, harmonics: usize) -> Result<[Fourier; 3], DynamicsError> {
+        Ok([
+            self.series(|p| p.shaking.force[0], harmonics)?,
+            self.series(|p| p.shaking.force[1], harmonics)?,
+            self.series(|p| p.shaking.moment, harmonics)?,
+        ])
+    }
+
+    /// Mean driving torque over the cycle.
+    pub fn mean_torque(&self) -> f64 {
+        self.points.iter().map(|p| p.torque).sum::<f64>() / self.points.len() as f64
+    }
+
+    /// Flywheel for a coefficient of speed fluctuation `delta = (omega_max - omega_min) /
+    /// omega_m` by the energy method, with `omega_m` the mean speed of the cycle's law.
+    ///
+    /// A constant driving torque `M_m = -mean Q` balances the loads over a steady cycle. The
+    /// work `E(phi) = int (M_m + Q) dphi` (trapezoidal rule over the samples) swings by
+    /// `dE_max = max E - min E`, and the kinetic energy `1/2 J omega^2` must absorb it with
+    /// `omega` within `omega_m (1 ± delta / 2)`, so `J_total = dE_max / (delta omega_m^2)`. The
+    /// mechanism supplies its mean reduced inertia; the flywheel provides the rest. The
+    /// mechanism's inertia variation is thereby neglected (its error is of the order of
+    /// `(J_max - J_min) / J_total` in delta; a simulation with [`simulate`](super::simulate)
+    /// checks the result). Loads depending on speed are taken at the law's speeds.
+    ///
+    /// [`Flywheel::exact`] keeps the variable inertia: on a steady cycle the energy equation
+    /// `1/2 (J_fly + J(phi)) omega(phi)^2 = E_0 + E(phi)` gives the speed at every angle; `E_0` is
+    /// set (by bisection) so that `(omega_max + omega_min) / 2 = omega_m`, and `J_fly` (by
+    /// bisection) so that the fluctuation is `delta`, both over the samples.
+    pub fn flywheel(&self, delta: f64) -> Result<Flywheel, DynamicsError> {
+        if !(delta > 0.0 && delta < 2.0) {
+            return Err(DynamicsError::BadValue {
+                what: "coefficient of speed fluctuation",
+                value: delta,
+                why: "must lie in (0, 2)",
+            });
+        }
+        let n = self.points.len() as f64;
+        let mean_torque = -self.points.iter().map(|p| p.load).sum::<f64>() / n;
+        let omega_m = self.points.iter().map(|p| p.omega).sum::<f64>() / n;
+        if omega_m.is_nan() || omega_m <= 0.0 {
+            return Err(DynamicsError::BadValue { what: "mean speed", value: omega_m, why: "must be positive" });
+        }
+        let work = self.work(mean_torque);
+        let lo = work.iter().copied().fold(f64::INFINITY, f64::min);
+        let energy_swing = work.iter().copied().fold(f64::NEG_INFINITY, f64::max) - lo;
+        let exact = self.exact_flywheel(&work, omega_m, delta);
+        let (_, e0) = self.fluctuation(&work, exact, omega_m);
+        let total_inertia = energy_swing / (delta * omega_m * omega_m);
+        let mechanism_inertia = self.points.iter().map(|p| p.inertia).sum::<f64>() / n;
+        Ok(Flywheel {
+            mean_torque,
+            energy_swing,
+            total_inertia,
+            mechanism_inertia,
+            flywheel: (total_inertia - mechanism_inertia).max(0.0),
+            exact,
+            start_speed: (2.0 * (e0 + work[0]) / (exact + self.points[0].inertia)).sqrt(),
+        })
+    }
+
+    /// The work `E(phi_j) = int_0^phi_j (M_m + Q) dphi` of a constant driving torque `M_m` and
+    /// the loads at the samples (trapezoidal rule).
+    fn work(&self, mean_torque: f64) -> Vec<f64> {
+        let h = TAU / self.points.len() as f64;
+        let mut e = 0.0;
+        let mut work = Vec::with_capacity(self.points.len());
+        for (j, p) in self.points.iter().enumerate() {
+            work.push(e);
+            let next = &self.points[(j + 1) % self.points.len()];
+            e += 0.5 * h * (2.0 * mean_torque + p.load + next.load);
+        }
+        work
+    }
+
+    /// `(omega_max, omega_min)` over the samples for flywheel `j_fly` and energy level `e0`.
+    fn speed_range(&self, work: &[f64], j_fly: f64, e0: f64) -> (f64, f64) {
+        let (mut hi, mut lo) = (0.0f64, f64::INFINITY);
+        for (p, w) in self.points.iter().zip(work) {
+            let omega = (2.0 * (e0 + w) / (j_fly + p.inertia)).max(0.0).sqrt();
+            hi = hi.max(omega);
+            lo = lo.min(omega);
+        }
+        (hi, lo)
+    }
+
+    /// Fluctuation `(omega_max - omega_min) / omega_m` with flywheel `j_fly` at mean speed
+    /// `omega_m`, and the energy level `E_0` giving that mean speed (found by bisection: the mean
+    /// speed grows with it).
+    fn fluctuation(&self, work: &[f64], j_fly: f64, omega_m: f64) -> (f64, f64) {
+        let j_max = self.points.iter().map(|p| p.inertia).fold(0.0, f64::max) + j_fly;
+        let mut lo = -work.iter().copied().fold(f64::INFINITY, f64::min);
+        // At this level the slowest point already turns at omega_m or faster.
+        let mut hi = lo + 0.5 * j_max * omega_m * omega_m;
+        for _ in 0..80 {
+            let mid = 0.5 * (lo + hi);
+            let (a, b) = self.speed_range(work, j_fly, mid);
+            if 0.5 * (a + b) < omega_m { lo = mid } else { hi = mid }
+        }
+        let e0 = 0.5 * (lo + hi);
+        let (a, b) = self.speed_range(work, j_fly, e0);
+        ((a - b) / omega_m, e0)
+    }
+
+    /// The flywheel giving fluctuation `delta` (0 when the mechanism alone stays within it);
+    /// the fluctuation falls as the flywheel grows.
+    fn exact_flywheel(&self, work: &[f64], omega_m: f64, delta: f64) -> f64 {
+        if self.fluctuation(work, 0.0, omega_m).0 <= delta {
+            return 0.0;
+        }
+        let mut hi = self.points.iter().map(|p| p.inertia).fold(0.0, f64::max).max(f64::MIN_POSITIVE);
+        while self.fluctuation(work, hi, omega_m).0 > delta && hi < f64::MAX / 4.0 {
+            hi *= 2.0;
+        }
+        let mut lo = 0.0;
+        for _ in 0..100 {
+            let mid = 0.5 * (lo + hi);
+            if self.fluctuation(work, mid, omega_m).0 > delta { lo = mid } else { hi = mid }
+        }
+        0.5 * (lo + hi)
+    }
+}

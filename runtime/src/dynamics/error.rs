@@ -1,0 +1,113 @@
+//! Errors of the dynamics layer: a bad mass model, a load that is not finite, a mass matrix that
+//! is not positive definite, a kinematic solve that fails on the way (limit or singular position),
+//! and integrator failures. Each converts into [`crate::Error`].
+
+use crate::error::Error;
+
+/// What went wrong in a dynamic analysis; see the [module documentation](self).
+#[derive(Clone, Debug, PartialEq, thiserror::Error)]
+#[non_exhaustive]
+pub enum DynamicsError {
+    /// A mass or a moment of inertia is negative, NaN or infinite.
+    #[error("the {quantity} of body `{body}` is {value}: it must be finite and not negative")]
+    BadMass {
+        /// The body's name.
+        body: &'static str,
+        /// `"mass"` or `"moment of inertia"`.
+        quantity: &'static str,
+        /// The offending value.
+        value: f64,
+    },
+    /// An index of the kinematic state is out of range.
+    #[error("{owner} `{name}` refers to {what} {index}, but the mechanism has only {len}")]
+    IndexOutOfRange {
+        /// `"body"` or `"load"`.
+        owner: &'static str,
+        /// The body's or the load's name.
+        name: &'static str,
+        /// `"output column"`, `"unknown"` or `"input"`.
+        what: &'static str,
+        /// The offending index.
+        index: usize,
+        /// How many there are.
+        len: usize,
+    },
+    /// A constant of the model (gravity, a load, a speed, a tolerance) is not finite or out of
+    /// its range.
+    #[error("invalid {what}: {value} ({why})")]
+    BadValue {
+        /// What the value is.
+        what: &'static str,
+        /// The value.
+        value: f64,
+        /// What it must be.
+        why: &'static str,
+    },
+    /// A torque is applied to a body that does not rotate (a slider).
+    #[error("the torque `{name}` acts on no angle: give it an unknown or an input to act on")]
+    TorqueOnSlider {
+        /// The load's name.
+        name: &'static str,
+    },
+    /// A force or torque law returned NaN or infinity.
+    #[error("the load `{name}` is not finite ({value}) at input {x:?}")]
+    NonFiniteLoad {
+        /// The load's name (`"drive"` for a drive torque law).
+        name: &'static str,
+        /// The value returned.
+        value: f64,
+        /// The inputs where it happened.
+        x: Vec<f64>,
+    },
+    /// The mass matrix (the reduced moment of inertia for one input) is not positive definite:
+    /// the machine has no inertia in some direction of motion at this position.
+    #[error("the mass matrix is not positive definite at input {x:?} (pivot {pivot:e}); give the machine mass")]
+    SingularMass {
+        /// The inputs where it happened.
+        x: Vec<f64>,
+        /// The smallest pivot of its Cholesky factorisation.
+        pivot: f64,
+    },
+    /// The kinematic solve failed (a limit position, a singular position, no assembly), at
+    /// time `t` of a simulation (NaN outside a simulation).
+    #[error("kinematics failed at t = {t}: {source}")]
+    Kinematics {
+        /// Time of the simulation when it happened (NaN when not simulating).
+        t: f64,
+        /// The kinematic error, with its location.
+        source: Error,
+    },
+    /// The integrator's step fell below the resolution of the time: the motion is singular
+    /// (or the tolerance is unreachable).
+    #[error("the integration step fell to {h:e} at t = {t}: the motion is singular here")]
+    StepTooSmall {
+        /// Time reached.
+        t: f64,
+        /// The step size.
+        h: f64,
+    },
+    /// The integrator made its maximum number of steps.
+    #[error("the integration made {steps} steps and reached only t = {t}; raise `max_steps`")]
+    TooManySteps {
+        /// Steps made.
+        steps: usize,
+        /// Time reached.
+        t: f64,
+    },
+}
+
+impl From<DynamicsError> for Error {
+    fn from(e: DynamicsError) -> Error {
+        match e {
+            DynamicsError::Kinematics { source, .. } => source,
+            other => Error::InvalidArgument(other.to_string()),
+        }
+    }
+}
+
+impl DynamicsError {
+    /// A kinematic failure outside a simulation.
+    pub(crate) fn kin(source: Error) -> Self {
+        DynamicsError::Kinematics { t: f64::NAN, source }
+    }
+}

@@ -1,0 +1,202 @@
+//! The explicit Runge–Kutta method of Dormand and Prince, order 5 with an embedded order-4
+//! error estimate, adaptive steps, and Shampine's order-4 dense output (Hairer, Nørsett and
+//! Wanner, *Solving Ordinary Differential Equations I*, section II.5 and II.6), on fixed-size
+//! state arrays.
+//!
+//! Why not a crate: the established pure-Rust integrators either pin another nalgebra major
+//! version (compiling a second copy of it into every build of the workspace) or take a
+//! right-hand side that cannot fail, whereas here every evaluation solves the kinematics, which
+//! fails at a limit or singular position and must stop the integration with that typed error.
+//! The method is short; it works on `[f64; D]` so a step allocates nothing, and it is tested
+//! against closed-form solutions in `tests/dynamics_simulation.rs`.
+
+use super::error::DynamicsError;
+
+/// Tolerances and limits of [`dopri5`].
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct OdeConfig {
+    /// Relative tolerance per step.
+    pub rtol: f64,
+    /// Absolute tolerance per step (in the units of the state).
+    pub atol: f64,
+    /// Largest step (infinity for none).
+    pub h_max: f64,
+    /// Most steps (accepted and rejected) before [`DynamicsError::TooManySteps`].
+    pub max_steps: usize,
+}
+
+impl Default for OdeConfig {
+    fn default() -> Self {
+        OdeConfig { rtol: 1e-10, atol: 1e-10, h_max: f64::INFINITY, max_steps: 10_000_000 }
+    }
+}
+
+/// One accepted step, with its dense-output interpolant.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct DenseStep<const D: usize> {
+    /// Start of the step.
+    pub t0: f64,
+    /// Step size.
+    pub h: f64,
+    /// Shampine's interpolation coefficients.
+    r: [[f64; D]; 5],
+}
+
+impl<const D: usize> DenseStep<D> {
+    /// The state at `t` inside the step (order-4 accurate; exact at both ends).
+    pub fn at(&self, t: f64) -> [f64; D] {
+        let s = (t - self.t0) / self.h;
+        let s1 = 1.0 - s;
+        let r = &self.r;
+        let mut y = [0.0; D];
+        for i in 0..D {
+            y[i] = r[0][i] + s * (r[1][i] + s1 * (r[2][i] + s * (r[3][i] + s1 * r[4][i])));
+        }
+        y
+    }
+
+    /// End of the step.
+    pub fn t1(&self) -> f64 {
+        self.t0 + self.h
+    }
+}
+
+const C: [f64; 5] = [1.0 / 5.0, 3.0 / 10.0, 4.0 / 5.0, 8.0 / 9.0, 1.0];
+const A2: [f64; 1] = [1.0 / 5.0];
+const A3: [f64; 2] = [3.0 / 40.0, 9.0 / 40.0];
+const A4: [f64; 3] = [44.0 / 45.0, -56.0 / 15.0, 32.0 / 9.0];
+const A5: [f64; 4] = [19372.0 / 6561.0, -25360.0 / 2187.0, 64448.0 / 6561.0, -212.0 / 729.0];
+const A6: [f64; 5] = [9017.0 / 3168.0, -355.0 / 33.0, 46732.0 / 5247.0, 49.0 / 176.0, -5103.0 / 18656.0];
+/// Weights of the order-5 solution (k2 has weight 0).
+const B: [f64; 6] = [35.0 / 384.0, 0.0, 500.0 / 1113.0, 125.0 / 192.0, -2187.0 / 6784.0, 11.0 / 84.0];
+/// Error weights (difference of the order-5 and order-4 solutions), k1 ..= k7.
+const E: [f64; 7] =
+    [71.0 / 57600.0, 0.0, -71.0 / 16695.0, 71.0 / 1920.0, -17253.0 / 339200.0, 22.0 / 525.0, -1.0 / 40.0];
+/// Shampine's dense-output weights, k1 ..= k7.
+const DENSE: [f64; 7] = [
+    -12715105075.0 / 11282082432.0,
+    0.0,
+    87487479700.0 / 32700410799.0,
+    -10690763975.0 / 1880347072.0,
+    701980252875.0 / 199316789632.0,
+    -1453857185.0 / 822651844.0,
+    69997945.0 / 29380423.0,
+];
+
+/// `y + h sum_s a_s k_s`.
+#[inline]
+fn combine<const D: usize>(y: &[f64; D], h: f64, a: &[f64], k: &[[f64; D]; 7]) -> [f64; D] {
+    let mut out = *y;
+    for i in 0..D {
+        let mut s = 0.0;
+        for (j, aj) in a.iter().enumerate() {
+            s += aj * k[j][i];
+        }
+        out[i] += h * s;
+    }
+    out
+}
+
+/// Weighted RMS norm of `v` with scales `atol + rtol max(|y0|, |y1|)`.
+fn norm<const D: usize>(v: &[f64; D], y0: &[f64; D], y1: &[f64; D], cfg: &OdeConfig) -> f64 {
+    let mut s = 0.0;
+    for i in 0..D {
+        let sc = cfg.atol + cfg.rtol * y0[i].abs().max(y1[i].abs());
+        s += (v[i] / sc).powi(2);
+    }
+    (s / D as f64).sqrt()
+}
+
+/// Integrates `y' = f(t, y)` from `(t0, y0)` to `t_end > t0`. After every accepted step,
+/// `on_step(step, y_end)` is called; it returns `true` to stop there. Returns the time and the
+/// state reached. An error of `f` or `on_step` stops the integration and is returned.
+pub fn dopri5<const D: usize>(
+    mut f: impl FnMut(f64, &[f64; D]) -> Result<[f64; D], DynamicsError>,
+    t0: f64,
+    y0: [f64; D],
+    t_end: f64,
+    cfg: &OdeConfig,
+    mut on_step: impl FnMut(&DenseStep<D>, &[f64; D]) -> Result<bool, DynamicsError>,
+) -> Result<(f64, [f64; D]), DynamicsError> {
+    check_config(t0, t_end, cfg)?;
+    let (mut t, mut y) = (t0, y0);
+    let mut k = [[0.0; D]; 7];
+    k[0] = f(t, &y)?;
+    let mut h = initial_step(&y, &k[0], t_end - t0, cfg);
+    for _ in 0..cfg.max_steps {
+        let last = t + h >= t_end;
+        if last {
+            h = t_end - t;
+        }
+        if h <= 8.0 * f64::EPSILON * t.abs().max(t_end - t0) {
+            return Err(DynamicsError::StepTooSmall { t, h });
+        }
+        k[1] = f(t + C[0] * h, &combine(&y, h, &A2, &k))?;
+        k[2] = f(t + C[1] * h, &combine(&y, h, &A3, &k))?;
+        k[3] = f(t + C[2] * h, &combine(&y, h, &A4, &k))?;
+        k[4] = f(t + C[3] * h, &combine(&y, h, &A5, &k))?;
+        k[5] = f(t + C[4] * h, &combine(&y, h, &A6, &k))?;
+        let y1 = combine(&y, h, &B, &k);
+        let t1 = if last { t_end } else { t + h };
+        k[6] = f(t1, &y1)?;
+        let err = norm(&combine(&[0.0; D], h, &E, &k), &y, &y1, cfg);
+        if !err.is_finite() {
+            h *= 0.2;
+            continue;
+        }
+        let grow = if err == 0.0 { 5.0 } else { (0.9 * err.powf(-0.2)).clamp(0.2, 5.0) };
+        if err > 1.0 {
+            h *= grow.min(1.0);
+            continue;
+        }
+        let step = dense(t, h, &y, &y1, &k);
+        (t, y) = (t1, y1);
+        k[0] = k[6];
+        if on_step(&step, &y)? || last {
+            return Ok((t, y));
+        }
+        h = (h * grow).min(cfg.h_max);
+    }
+    Err(DynamicsError::TooManySteps { steps: cfg.max_steps, t })
+}
+
+/// Shampine's interpolant of the step from `(t, y0)` to `y1`.
+fn dense<const D: usize>(t: f64, h: f64, y0: &[f64; D], y1: &[f64; D], k: &[[f64; D]; 7]) -> DenseStep<D> {
+    let mut r = [[0.0; D]; 5];
+    for i in 0..D {
+        let dy = y1[i] - y0[i];
+        let b = h * k[0][i] - dy;
+        r[0][i] = y0[i];
+        r[1][i] = dy;
+        r[2][i] = b;
+        r[3][i] = dy - h * k[6][i] - b;
+        r[4][i] = h * DENSE.iter().zip(k).map(|(d, ks)| d * ks[i]).sum::<f64>();
+    }
+    DenseStep { t0: t, h, r }
+}
+
+fn check_config(t0: f64, t_end: f64, cfg: &OdeConfig) -> Result<(), DynamicsError> {
+    let bad = |what, value, why| Err(DynamicsError::BadValue { what, value, why });
+    if !(t0.is_finite() && t_end.is_finite() && t_end > t0) {
+        return bad("end time", t_end, "must be finite and after the start");
+    }
+    if !(cfg.rtol > 0.0 && cfg.rtol.is_finite()) {
+        return bad("relative tolerance", cfg.rtol, "must be positive and finite");
+    }
+    if !(cfg.atol > 0.0 && cfg.atol.is_finite()) {
+        return bad("absolute tolerance", cfg.atol, "must be positive and finite");
+    }
+    if cfg.h_max.is_nan() || cfg.h_max <= 0.0 {
+        return bad("largest step", cfg.h_max, "must be positive");
+    }
+    Ok(())
+}
+
+/// A first step from the size of the state and of its derivative (Hairer's heuristic without
+/// the second trial evaluation).
+fn initial_step<const D: usize>(y: &[f64; D], f0: &[f64; D], span: f64, cfg: &OdeConfig) -> f64 {
+    let d0 = norm(y, y, y, cfg);
+    let d1 = norm(f0, y, y, cfg);
+    let h = if d0 < 1e-5 || d1 < 1e-5 { 1e-6 * span } else { 0.01 * d0 / d1 };
+    h.min(cfg.h_max).min(span)
+}

@@ -1,0 +1,109 @@
+//! Forward simulation of a one-input machine:
+//! `(J(phi) + J_fly) phi'' + 1/2 J'(phi) phi'^2 = M_drive(t, phi, phi') + Q(phi, phi')`,
+//! integrated by [`dopri5`] with the kinematics solved at every evaluation (warm-started from
+//! the previous one, so the machine stays on its assembly branch).
+
+use super::error::DynamicsError;
+use super::model::MassModel;
+use super::ode::{DenseStep, OdeConfig, dopri5};
+use crate::mechanism::Mechanism;
+use crate::newton::NewtonConfig;
+
+/// Settings of [`simulate`].
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct RunConfig {
+    /// Integrator tolerances (the state is `[phi, omega]`).
+    pub ode: OdeConfig,
+    /// Newton settings of the kinematic solves.
+    pub newton: NewtonConfig,
+    /// Moment of inertia of a flywheel on the input shaft (added to `J`).
+    pub flywheel: f64,
+}
+
+impl Default for RunConfig {
+    fn default() -> Self {
+        RunConfig { ode: OdeConfig::default(), newton: NewtonConfig::default(), flywheel: 0.0 }
+    }
+}
+
+/// The simulated motion: every accepted step with its dense output.
+#[derive(Clone, Debug, PartialEq)]
+pub struct Trajectory {
+    /// The accepted steps in time order.
+    pub steps: Vec<DenseStep<2>>,
+    /// Time reached.
+    pub t_end: f64,
+    /// `[phi, omega]` reached.
+    pub end: [f64; 2],
+}
+
+impl Trajectory {
+    /// `[phi, omega]` at time `t` (clamped to the simulated interval), from the dense output.
+    pub fn at(&self, t: f64) -> [f64; 2] {
+        if self.steps.is_empty() {
+            return self.end;
+        }
+        let i = self.steps.partition_point(|s| s.t1() < t).min(self.steps.len() - 1);
+        let s = &self.steps[i];
+        s.at(t.clamp(s.t0, s.t1()))
+    }
+}
+
+/// Simulates from `phi0` at speed `omega0` for `t_end` time units, `guess` choosing the
+/// assembly branch at `phi0`. `drive(t, phi, omega)` is the driving torque on the input (a motor
+/// characteristic; `|_, _, _| 0.0` for none). `stop(t, [phi, omega])` is asked after every step
+/// and ends the run early when it returns `true`.
+///
+/// Errors: a kinematic failure (limit or singular position, no assembly) as
+/// [`DynamicsError::Kinematics`] with the time; a reduced inertia that is not positive as
+/// [`DynamicsError::SingularMass`]; a drive or load that is not finite as
+/// [`DynamicsError::NonFiniteLoad`]; integrator failures. Besides the recorded trajectory (one
+/// entry per accepted step, amortised growth), a step allocates nothing.
+#[allow(clippy::too_many_arguments)]
+pub fn simulate<M, const N: usize, const NO: usize>(
+    m: &M,
+    model: &MassModel<N, 1, NO>,
+    drive: impl Fn(f64, f64, f64) -> f64,
+    start: [f64; 2],
+    t_end: f64,
+    guess: [f64; N],
+    cfg: &RunConfig,
+    mut stop: impl FnMut(f64, &[f64; 2]) -> bool,
+) -> Result<Trajectory, DynamicsError>
+where
+    M: Mechanism<N, 1, NO>,
+{
+    if !(cfg.flywheel >= 0.0 && cfg.flywheel.is_finite()) {
+        return Err(DynamicsError::BadValue {
+            what: "flywheel inertia",
+            value: cfg.flywheel,
+            why: "must be finite, not negative",
+        });
+    }
+    for v in start {
+        if !v.is_finite() {
+            return Err(DynamicsError::BadValue { what: "initial state", value: v, why: "must be finite" });
+        }
+    }
+    let mut q = guess;
+    let rhs = |t: f64, y: &[f64; 2]| -> Result<[f64; 2], DynamicsError> {
+        let [phi, omega] = *y;
+        let k = m.kinematics_flat(&[phi], &q, &cfg.newton).map_err(|source| DynamicsError::Kinematics { t, source })?;
+        q = k.q;
+        let d = model.dynamics(&k, &[omega])?;
+        let tau = drive(t, phi, omega);
+        if !tau.is_finite() {
+            return Err(DynamicsError::NonFiniteLoad { name: "drive", value: tau, x: vec![phi] });
+        }
+        let mut d = d;
+        d.mass[0][0] += cfg.flywheel;
+        let eps = d.accelerations(&[phi], &[omega], &[tau])?;
+        Ok([omega, eps[0]])
+    };
+    let mut steps = Vec::new();
+    let (t, end) = dopri5(rhs, 0.0, start, t_end, &cfg.ode, |s, y| {
+        steps.push(*s);
+        Ok(stop(s.t1(), y))
+    })?;
+    Ok(Trajectory { steps, t_end: t, end })
+}

@@ -1,0 +1,133 @@
+//! Bad input to the dynamics layer gives typed errors, never a panic or a silent NaN: bad
+//! masses and inertias, indices out of range, torques on sliders, loads that return NaN, a
+//! machine without inertia, and bad arguments; each converts into `kinloop::Error`.
+
+use kinloop::Mechanism;
+use kinloop::dynamics::{
+    Body, Coord, DynamicsError, MassModel, OdeConfig, Rotation, RunConfig, SpeedLaw, inverse_cycle, simulate,
+};
+
+kinloop::mechanism! {
+    /// Slider-crank with the rod's midpoint as a point (columns 0 and 1).
+    pub struct SliderCrank {
+        params r = 1.0, l = 3.0;
+        input phi;
+        unknowns psi = pi, x = r + l;
+        loop oabo: r @ phi == (x, 0) + l @ psi;
+        point mid = r @ phi - 0.5 * l @ psi;
+    }
+}
+
+type Model = MassModel<2, 1, 2>;
+
+fn body(mass: f64, inertia: f64) -> Body {
+    Body { name: "rod", mass, com: [Coord::Output(0), Coord::Output(1)], inertia, rotation: Rotation::Unknown(0) }
+}
+
+#[test]
+fn bad_masses_and_inertias() {
+    for (mass, inertia, quantity) in [
+        (-1.0, 0.1, "mass"),
+        (f64::NAN, 0.1, "mass"),
+        (f64::INFINITY, 0.1, "mass"),
+        (1.0, -0.1, "moment of inertia"),
+        (1.0, f64::NAN, "moment of inertia"),
+    ] {
+        let err = Model::new().with_body(body(mass, inertia)).err().unwrap();
+        assert!(matches!(err, DynamicsError::BadMass { body: "rod", quantity: q, .. } if q == quantity), "{err}");
+        // Into the crate's error, with the message kept.
+        let e: kinloop::Error = err.into();
+        assert!(matches!(&e, kinloop::Error::InvalidArgument(m) if m.contains("rod")), "{e}");
+    }
+}
+
+#[test]
+fn indices_out_of_range() {
+    let cases: [(Body, &str, usize); 4] = [
+        (Body { com: [Coord::Output(2), Coord::Output(1)], ..body(1.0, 0.1) }, "output column", 2),
+        (Body { com: [Coord::Unknown(0), Coord::Unknown(5)], ..body(1.0, 0.1) }, "unknown", 5),
+        (Body { rotation: Rotation::Unknown(2), ..body(1.0, 0.1) }, "unknown", 2),
+        (Body { rotation: Rotation::Input(1), ..body(1.0, 0.1) }, "input", 1),
+    ];
+    for (b, what, index) in cases {
+        let err = Model::new().with_body(b).err().unwrap();
+        assert!(
+            matches!(err, DynamicsError::IndexOutOfRange { owner: "body", what: w, index: i, .. } if w == what && i == index),
+            "{err}"
+        );
+    }
+    let err =
+        Model::new().with_constant_force("push", [Coord::Output(9), Coord::Fixed(0.0)], [1.0, 0.0]).err().unwrap();
+    assert!(matches!(err, DynamicsError::IndexOutOfRange { owner: "load", name: "push", index: 9, len: 2, .. }));
+    let err = Model::new().with_constant_torque("twist", Rotation::Input(3), 1.0).err().unwrap();
+    assert!(matches!(err, DynamicsError::IndexOutOfRange { owner: "load", what: "input", .. }));
+    let err = Model::new()
+        .with_body(Body { com: [Coord::Fixed(f64::NAN), Coord::Output(0)], ..body(1.0, 0.0) })
+        .err()
+        .unwrap();
+    assert!(matches!(err, DynamicsError::BadValue { what: "fixed coordinate", .. }));
+}
+
+#[test]
+fn bad_loads_and_gravity() {
+    assert!(matches!(
+        Model::new().with_constant_torque("twist", Rotation::None, 1.0),
+        Err(DynamicsError::TorqueOnSlider { name: "twist" })
+    ));
+    assert!(matches!(Model::new().with_gravity([0.0, f64::NAN]), Err(DynamicsError::BadValue { what: "gravity", .. })));
+    assert!(matches!(
+        Model::new().with_constant_force("push", [Coord::Output(0); 2], [f64::INFINITY, 0.0]),
+        Err(DynamicsError::BadValue { what: "force", .. })
+    ));
+    // A force law returning NaN at some positions: caught where it happens.
+    let m = SliderCrank::default();
+    let model = Model::new()
+        .with_body(body(1.0, 0.1))
+        .and_then(|md| {
+            md.with_force("gas", [Coord::Unknown(1), Coord::Fixed(0.0)], |k, _| [(k.q[1] - 3.5).sqrt(), 0.0])
+        })
+        .unwrap();
+    let err = inverse_cycle(&m, &model, SpeedLaw::Constant(1.0), 0.0, 36, m.guess_flat(&[0.0]), [0.0; 2]).unwrap_err();
+    assert!(matches!(&err, DynamicsError::NonFiniteLoad { name: "gas", x, .. } if x.len() == 1), "{err}");
+}
+
+#[test]
+fn bad_arguments_and_a_machine_without_inertia() {
+    let m = SliderCrank::default();
+    let model = Model::new().with_body(body(1.0, 0.1)).unwrap();
+    let g = m.guess_flat(&[0.0]);
+    assert!(matches!(
+        inverse_cycle(&m, &model, SpeedLaw::Constant(1.0), 0.0, 3, g, [0.0; 2]),
+        Err(DynamicsError::BadValue { .. })
+    ));
+    let nan = |_: f64| (f64::NAN, 0.0);
+    assert!(matches!(
+        inverse_cycle(&m, &model, SpeedLaw::Varying(&nan), 0.0, 36, g, [0.0; 2]),
+        Err(DynamicsError::BadValue { what: "speed law", .. })
+    ));
+    let cycle = inverse_cycle(&m, &model, SpeedLaw::Constant(1.0), 0.0, 36, g, [0.0; 2]).unwrap();
+    for delta in [0.0, -0.1, f64::NAN, 2.5] {
+        assert!(matches!(cycle.flywheel(delta), Err(DynamicsError::BadValue { .. })));
+    }
+    let run = |model: &Model, cfg: &RunConfig, start: [f64; 2], t_end: f64| {
+        simulate(&m, model, |_, _, _| 1.0, start, t_end, g, cfg, |_, _| false)
+    };
+    let cfg = RunConfig::default();
+    assert!(matches!(
+        run(&model, &RunConfig { flywheel: -1.0, ..cfg }, [0.0, 1.0], 1.0),
+        Err(DynamicsError::BadValue { .. })
+    ));
+    assert!(matches!(run(&model, &cfg, [f64::NAN, 1.0], 1.0), Err(DynamicsError::BadValue { .. })));
+    assert!(matches!(run(&model, &cfg, [0.0, 1.0], -1.0), Err(DynamicsError::BadValue { what: "end time", .. })));
+    let bad_tol = RunConfig { ode: OdeConfig { rtol: 0.0, ..cfg.ode }, ..cfg };
+    assert!(matches!(run(&model, &bad_tol, [0.0, 1.0], 1.0), Err(DynamicsError::BadValue { .. })));
+    // No mass at all: the reduced inertia is zero, the motion undefined.
+    let empty = Model::new();
+    assert!(matches!(run(&empty, &cfg, [0.0, 1.0], 1.0), Err(DynamicsError::SingularMass { .. })));
+    // A drive that is not finite.
+    let err = simulate(&m, &model, |_, _, _| f64::NAN, [0.0, 1.0], 1.0, g, &cfg, |_, _| false).unwrap_err();
+    assert!(matches!(err, DynamicsError::NonFiniteLoad { name: "drive", .. }));
+    // Too few steps allowed.
+    let short = RunConfig { ode: OdeConfig { max_steps: 3, ..cfg.ode }, ..cfg };
+    assert!(matches!(run(&model, &short, [0.0, 1.0], 100.0), Err(DynamicsError::TooManySteps { steps: 3, .. })));
+}
