@@ -11,27 +11,17 @@
 //! * the run-up of the cold engine (no temperature difference: the gas acts as a spring) from
 //!   rest under an induction-motor-like characteristic `M = M_s (1 - omega / omega_s)`.
 //!
-//! Run with `cargo run --release --example rhombic_dynamics`. It prints tables and writes CSV
+//! Run with `cargo run --release -p kinloop-examples --example rhombic_dynamics`. It prints tables and writes CSV
 //! and SVG charts into `out/rhombic_dynamics/` (the charts into
 //! `$KINLOOP_FIGURES/rhombic_dynamics/` when that variable is set).
 
-// The included kinematic example loads `common` for itself, privately; this example needs it too.
-#![allow(clippy::duplicate_mod)]
-
-mod common;
-
-// The declaration lives in the kinematic example; this is its one include here.
-#[allow(dead_code)]
-#[path = "rhombic_drive.rs"]
-mod rhombic_drive;
-
-use common::{Series, figure_dir, line_chart, out_dir};
 use kinloop::Table;
 use kinloop::dynamics::{
     Body, Coord, Cycle, CyclePoint, MassModel, Rotation, RunConfig, SpeedLaw, Trajectory, inverse_cycle, simulate,
 };
 use kinloop::{Kin, Mechanism};
-use rhombic_drive::RhombicDrive;
+use kinloop_examples::{Series, figure_dir, line_chart, out_dir};
+use kinloop_fixtures::RhombicDrive;
 use std::f64::consts::{PI, TAU};
 
 /// Lengths of the example's drive scaled to metres (crank radius 20 mm).
@@ -106,7 +96,7 @@ fn index(names: &[&str], name: &str) -> usize {
 }
 
 /// Crank, rods, piston and displacer (kg, kg m^2), and the gas force on the piston.
-fn model(drive: &RhombicDrive, gas: Gas) -> MassModel<4, 1, 6> {
+fn model(drive: &RhombicDrive, gas: Gas) -> MassModel<4, 1, 7> {
     let out = |n| Coord::Output(index(&RhombicDrive::OUTPUTS, n));
     let (xc, xf) = (index(&RhombicDrive::UNKNOWNS, "x_c"), index(&RhombicDrive::UNKNOWNS, "x_f"));
     let rod = |l: f64, m: f64| m * l * l / 12.0;
@@ -145,7 +135,7 @@ fn model(drive: &RhombicDrive, gas: Gas) -> MassModel<4, 1, 6> {
     for b in bodies {
         m = m.with_body(b).expect("valid bodies");
     }
-    let force = move |k: &Kin<4, 1, 6>, _: &[f64; 1]| [(gas.pressure(k.q[xc], k.q[xf]) - gas.buffer) * gas.area, 0.0];
+    let force = move |k: &Kin<4, 1, 7>, _: &[f64; 1]| [(gas.pressure(k.q[xc], k.q[xf]) - gas.buffer) * gas.area, 0.0];
     m.with_force("gas on the working piston", [Coord::Unknown(xc), Coord::Fixed(0.0)], force).expect("a valid load")
 }
 

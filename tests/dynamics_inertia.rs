@@ -216,7 +216,7 @@ fn reduced_inertia_scales_with_length_squared() {
 
 /// The bodies of `model` for lengths times `s`: inertias times `s^2`, fixed coordinates times
 /// `s`.
-fn scaled_bodies(model: &MassModel<4, 1, 6>, s: f64) -> MassModel<4, 1, 6> {
+fn scaled_bodies(model: &MassModel<4, 1, 7>, s: f64) -> MassModel<4, 1, 7> {
     let scale = |c: Coord| if let Coord::Fixed(v) = c { Coord::Fixed(s * v) } else { c };
     let mut m = MassModel::new().with_gravity(model.gravity_vector()).unwrap();
     for b in model.bodies() {

@@ -58,7 +58,7 @@ fn dopri5_matches_closed_forms() {
 /// The kinetic energy at `(phi, omega)`: it needs the solved positions there, on the branch of
 /// the run, reached by a sweep from 0 over one turn plus the final angle modulo a turn (the
 /// drive repeats every turn).
-fn energy_at(drive: &RhombicDrive, model: &MassModel<4, 1, 6>, phi: f64, omega: f64) -> f64 {
+fn energy_at(drive: &RhombicDrive, model: &MassModel<4, 1, 7>, phi: f64, omega: f64) -> f64 {
     let sweep = Sampled::sweep(drive, 0.0, TAU + phi.rem_euclid(TAU), 721, drive.guess_flat(&[0.0])).unwrap();
     let k = sweep.states().last().unwrap();
     model.kinetic_energy(k, &[omega])

@@ -21,7 +21,7 @@ use kinloop_bench::decls::RhombicDrivePaper;
 
 const STEPS: usize = 1_000_000;
 
-fn model() -> MassModel<4, 1, 6> {
+fn model() -> MassModel<4, 1, 7> {
     let out = |c: usize| [Coord::Output(2 * c), Coord::Output(2 * c + 1)];
     let bodies = [
         Body { name: "crank", mass: 2.0, com: out(0), inertia: 0.05, rotation: Rotation::Input(0) },
@@ -46,7 +46,7 @@ fn model() -> MassModel<4, 1, 6> {
     for b in bodies {
         m = m.with_body(b).unwrap();
     }
-    m.with_force("gas", [Coord::Unknown(2), Coord::Fixed(0.0)], |k: &Kin<4, 1, 6>, _: &[f64; 1]| {
+    m.with_force("gas", [Coord::Unknown(2), Coord::Fixed(0.0)], |k: &Kin<4, 1, 7>, _: &[f64; 1]| {
         [-20.0 / (k.q[2] + 4.6).powi(2), 0.0]
     })
     .unwrap()
@@ -79,7 +79,7 @@ fn bench(c: &mut Criterion) {
         })
     });
     let mut q = drive.guess_flat(&[0.0]);
-    let states: Vec<Kin<4, 1, 6>> = (0..3600)
+    let states: Vec<Kin<4, 1, 7>> = (0..3600)
         .map(|j| {
             let k = drive.kinematics_flat(&[j as f64 * std::f64::consts::TAU / 3600.0], &q, &cfg).unwrap();
             q = k.q;

@@ -1,16 +1,12 @@
-//! Shared by the dynamics tests: the rhombic drive (declared once, in
-//! `examples/rhombic_drive.rs`) with a mass model, and the independent references built from
+//! Shared by the dynamics tests: the rhombic drive (declared once, in the
+//! fixtures crate) with a mass model, and the independent references built from
 //! solved positions only (no analogs): configurations of the bodies, Richardson-extrapolated
 //! central differences, kinetic energy and virtual work.
 
 use kinloop::dynamics::{Body, Coord, MassModel, Rotation};
 use kinloop::{Mechanism, NewtonConfig};
 
-#[allow(dead_code)]
-#[path = "../../examples/rhombic_drive.rs"]
-pub mod rhombic_drive;
-
-pub use rhombic_drive::RhombicDrive;
+pub use kinloop_fixtures::RhombicDrive;
 
 /// Index of a named output column or unknown of a mechanism.
 pub fn index(names: &[&str], name: &str) -> usize {
@@ -20,16 +16,16 @@ pub fn index(names: &[&str], name: &str) -> usize {
 /// The drive of the example with plausible masses (kg, kg·length²): crank, two rods, the
 /// working piston C and the displacer F, plus a gas force on the piston that depends on its
 /// position.
-pub fn rhombic_model(gravity: [f64; 2]) -> MassModel<4, 1, 6> {
-    let xc = index(&<RhombicDrive as Mechanism<4, 1, 6>>::UNKNOWNS, "x_c");
+pub fn rhombic_model(gravity: [f64; 2]) -> MassModel<4, 1, 7> {
+    let xc = index(&<RhombicDrive as Mechanism<4, 1, 7>>::UNKNOWNS, "x_c");
     let at = [Coord::Unknown(xc), Coord::Fixed(0.0)];
     rhombic_bodies(gravity).with_force("gas", at, move |k, _| [gas_force(k.q[xc]), 0.0]).expect("a valid load")
 }
 
 /// The bodies of [`rhombic_model`] without the gas force.
-pub fn rhombic_bodies(gravity: [f64; 2]) -> MassModel<4, 1, 6> {
-    let out = |n| Coord::Output(index(&<RhombicDrive as Mechanism<4, 1, 6>>::OUTPUTS, n));
-    let unknown = |n| index(&<RhombicDrive as Mechanism<4, 1, 6>>::UNKNOWNS, n);
+pub fn rhombic_bodies(gravity: [f64; 2]) -> MassModel<4, 1, 7> {
+    let out = |n| Coord::Output(index(&<RhombicDrive as Mechanism<4, 1, 7>>::OUTPUTS, n));
+    let unknown = |n| index(&<RhombicDrive as Mechanism<4, 1, 7>>::UNKNOWNS, n);
     let de = RhombicDrive::default().de;
     MassModel::new()
         .with_gravity(gravity)

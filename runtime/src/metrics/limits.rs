@@ -11,9 +11,9 @@
 
 use crate::analysis::{LocalExtreme, Sampled};
 use crate::error::Error;
+use crate::events::{Event, EventKind};
 use crate::kin::Kin;
 use crate::mechanism::Mechanism;
-use crate::events::{Event, EventKind};
 use crate::paths::sweep::{AtSingular, Sweep, SweepConfig};
 use std::fmt;
 
