@@ -17,7 +17,7 @@ use std::time::Duration;
 use criterion::{Criterion, criterion_group, criterion_main};
 use kinloop::dynamics::{Body, Coord, MassModel, Rotation};
 use kinloop::{Kin, Mechanism, NewtonConfig};
-use kinloop_bench::decls::RhombicDrivePaper;
+use kinloop_fixtures::RhombicDrive as RhombicDrivePaper;
 
 const STEPS: usize = 1_000_000;
 

@@ -41,7 +41,7 @@
 //! ```
 
 #[cfg(test)]
-mod demo;
+pub(crate) mod demo;
 pub mod dwell;
 pub mod extremes;
 pub mod fourier;
