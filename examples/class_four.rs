@@ -21,6 +21,7 @@ use std::f64::consts::TAU;
 
 kinloop::mechanism! {
     /// Class IV mechanism: crank OA, ternary links CAE (at A) and DBF (at B), binary links CD, EF.
+    #[kinloop(sensitivities)]
     pub struct ClassFour {
         params oa = 1.0, xb = 4.4, yb = 0.6, ac = 2.3, ae = 2.4, alpha_a = 0.84,
                bd = 1.6, bf = 3.5, alpha_b = 0.62, cd = 2.0, ef = 3.4;

@@ -28,6 +28,7 @@ kinloop::mechanism! {
     /// centre turning by `(1 - u) alpha`, block sliding in a rocker pivoted at O (distance `s`
     /// from O, rocker angle `phi`). Angles from the Y axis as in the paper: direction `a` is
     /// `(sin a, cos a)`.
+    #[kinloop(sensitivities)]
     pub struct GearLever {
         params l_c = 2.0, l_p = 1.3, u = 3.0;
         input alpha;

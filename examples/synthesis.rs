@@ -16,6 +16,7 @@ use std::f64::consts::PI;
 
 kinloop::mechanism! {
     /// Asymmetric rhombic drive with a developed crank (paper 000, Fig. 1).
+    #[kinloop(sensitivities)]
     pub struct RhombicDrive {
         params r_p = 1.0, r_b = 1.2, l_p = 3.0, l_b = 3.5, e_p = 0.5, de = 0.9, gamma = 0.7;
         input phi1;

@@ -244,9 +244,10 @@ extern crate self as kinloop;
 pub use kinloop_macros::mechanism;
 pub use kinloop_runtime::*;
 
+/// What code expanded by [`mechanism!`] names (and nothing else); not for use by hand.
 #[doc(hidden)]
-pub mod __private {
-    pub use kinloop_runtime::*;
+pub mod __gen {
+    pub use kinloop_runtime::generated::*;
 }
 
 /// Charts of sweep results as SVG (feature `plot`).

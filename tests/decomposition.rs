@@ -19,6 +19,7 @@ use support::close;
 kinloop::mechanism! {
     /// The class IV mechanism of `examples/class_four.rs` (SEEDS 003), solved as one dense block.
     #[kinloop(dense)]
+    #[kinloop(sensitivities)]
     pub struct ClassFourDense {
         params oa = 1.0, xb = 4.4, yb = 0.6, ac = 2.3, ae = 2.4, alpha_a = 0.84,
                bd = 1.6, bf = 3.5, alpha_b = 0.62, cd = 2.0, ef = 3.4;

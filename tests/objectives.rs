@@ -6,6 +6,7 @@ use kinloop::{Extreme, NewtonConfig, extremum, integral};
 use std::f64::consts::PI;
 
 kinloop::mechanism! {
+    #[kinloop(sensitivities)]
     pub struct RhombicDrive {
         params r_p, r_b, l_p, l_b, e_p, de, gamma;
         input phi1;

@@ -11,6 +11,7 @@
 use kinloop::{Kin, Mechanism, NewtonConfig, Sens, Sensitivities};
 
 kinloop::mechanism! {
+    #[kinloop(sensitivities)]
     pub struct RhombicDrive {
         params r_p, r_b, l_p, l_b, e_p, de, gamma, l_cs2, l_fs4;
         input phi1;
@@ -41,6 +42,7 @@ mod support;
 use support::close;
 
 kinloop::mechanism! {
+    #[kinloop(sensitivities)]
     pub struct FiveBar {
         params a, b, c, d, e;
         inputs th1, th2;

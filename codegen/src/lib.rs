@@ -6,23 +6,21 @@
 //!    hash-consed expression graph ([`dag`]);
 //! 3. [`analysis`] checks the structure (counts, mobility, Dulmage–Mendelsohn diagnosis) and
 //!    orders the equations into blocks ([`structure`]);
-//! 4. [`plan`] differentiates the graph symbolically (compile-time forward-mode AD);
-//! 5. [`items`] and [`solver`] emit straight-line Rust.
+//! 4. [`plan`] differentiates the graph symbolically (compile-time forward-mode AD), one small
+//!    pass per kind of derivative;
+//! 5. [`emit`] writes what depends on the declaration: the named types, the straight-line
+//!    kernels and the constants (everything else is generic code in the runtime).
 //!
 //! [`expand`] never panics: every mistake becomes a `compile_error!` at the user's span.
 
 pub mod analysis;
 pub mod dag;
-pub mod describe;
 pub mod diag;
 pub mod emit;
 pub mod expr;
 pub mod fallback;
-pub mod items;
 pub mod model;
 pub mod plan;
-pub mod sens_items;
-pub mod solver;
 pub mod structure;
 pub mod syntax;
 
@@ -73,19 +71,15 @@ pub fn expand(input: TokenStream) -> TokenStream {
     let warnings = diag::to_tokens(&analysis::warnings(&model), &model.name);
     match analysis::analyze(&model) {
         Ok(blocks) => {
-            let plan = plan::build(&mut model, &blocks);
-            let mut out = items::generate(&model, &plan);
+            let sensitivities = model.options.sensitivities.is_some();
+            let plan = plan::build(&mut model, &blocks, sensitivities);
+            let mut out = emit::generate(&model, &plan);
             out.extend(warnings);
             out
         }
         Err(e) => {
-            let defaults = model
-                .params
-                .iter()
-                .map(|p| p.value.and_then(|v| model.graph.as_const(v)))
-                .collect::<Option<Vec<f64>>>();
             let mut out = e.to_compile_error();
-            out.extend(shape.items(defaults));
+            out.extend(shape.items(plan::model_defaults(&model)));
             out.extend(warnings);
             out
         }

@@ -1,0 +1,189 @@
+//! Everything the code expanded by `mechanism!` names, and nothing else.
+//!
+//! A generated mechanism holds only what depends on its declaration: its named types, its
+//! straight-line kernels and its constants. What is the same for every mechanism lives here, once:
+//! the named API as default methods of [`Named`] and [`NamedSensitivities`], the cold paths that
+//! build errors, and the linear-algebra and Newton pieces the kernels call. The facade re-exports
+//! this module as `kinloop::__gen`; it is not meant to be used by hand and may change between
+//! versions.
+
+pub use crate::error::{BlockInfo, Error};
+pub use crate::kin::{FlatMotion, Health, Jac, Kin, Sens};
+pub use crate::lu::{Fixed, Lu, max_abs};
+pub use crate::mechanism::{Mechanism, Named, NamedSensitivities, Sensitivities, SensitivitiesRequested};
+pub use crate::newton::{BlockEval, BlockFailure, NewtonConfig, SolveReport, Solved, iterate};
+pub use crate::sweep::Sweep;
+pub use crate::vec2::Vec2;
+pub use nalgebra::SVector;
+
+use crate::error::{Location, Quantity};
+
+/// Where an error of mechanism `M` happened: its inputs `x` and, if any, the block.
+#[cold]
+#[inline(never)]
+pub fn location<M, const N: usize, const NI: usize, const NO: usize>(x: &[f64; NI], block: Option<usize>) -> Location
+where
+    M: Mechanism<N, NI, NO>,
+{
+    Location {
+        mechanism: M::NAME,
+        inputs: M::INPUTS.iter().copied().zip(x.iter().copied()).collect(),
+        block: block.and_then(|b| M::BLOCKS.get(b).map(|i| (b, *i))),
+    }
+}
+
+/// Finds the first non-finite value among named values (parameters, inputs, guesses).
+pub fn first_non_finite(names: &[&'static str], values: &[f64]) -> Option<(&'static str, f64)> {
+    names.iter().zip(values).find(|(_, v)| !v.is_finite()).map(|(n, v)| (*n, *v))
+}
+
+/// The first row holding a non-finite value (cold-path diagnosis of a failed factorisation).
+#[cold]
+pub fn first_bad_row<const M: usize, const R: usize>(rows: &[[f64; M]; R]) -> Option<usize> {
+    rows.iter().position(|r| r.iter().any(|v| !v.is_finite()))
+}
+
+/// The first non-finite parameter, input or guess of `m`, as an error: a bad value given by the
+/// caller explains a failure better than the failure itself.
+#[cold]
+#[inline(never)]
+pub fn bad_values<M, const N: usize, const NI: usize, const NO: usize>(
+    m: &M,
+    x: &[f64; NI],
+    guess: Option<&[f64; N]>,
+) -> Option<Error>
+where
+    M: Mechanism<N, NI, NO>,
+{
+    let at = || Box::new(location::<M, N, NI, NO>(x, None));
+    let values = m.param_values();
+    let found = first_non_finite(M::PARAMS, &values)
+        .map(|bad| (Quantity::Parameter, bad))
+        .or_else(|| first_non_finite(&M::INPUTS, x).map(|bad| (Quantity::Input, bad)))
+        .or_else(|| guess.and_then(|g| first_non_finite(&M::UNKNOWNS, g)).map(|bad| (Quantity::Guess, bad)));
+    found.map(|(what, (name, value))| Error::NonFinite { what, name, value, at: at() })
+}
+
+/// The error for a Newton block that failed (`fail`), unless a bad value explains it.
+#[cold]
+#[inline(never)]
+pub fn block_failure<M, const N: usize, const NI: usize, const NO: usize>(
+    m: &M,
+    block: usize,
+    fail: BlockFailure,
+    x: &[f64; NI],
+    guess: &[f64; N],
+) -> Error
+where
+    M: Mechanism<N, NI, NO>,
+{
+    if let Some(e) = bad_values::<M, N, NI, NO>(m, x, Some(guess)) {
+        return e;
+    }
+    block_error(fail, location::<M, N, NI, NO>(x, Some(block)))
+}
+
+/// Builds the error for a failed block at a known location.
+#[cold]
+#[inline(never)]
+pub fn block_error(fail: BlockFailure, at: Location) -> Error {
+    let equations = at.block.map_or(&[][..], |(_, info)| info.equations);
+    let name = |row: usize| equations.get(row).copied().unwrap_or("?");
+    match fail {
+        BlockFailure::NonFinite { row, .. } => Error::Domain { what: "equation", name: name(row), at: Box::new(at) },
+        BlockFailure::NoConvergence { row, iterations, residual } => {
+            Error::NoConvergence { iterations, residual, equation: name(row), at: Box::new(at) }
+        }
+        BlockFailure::NoAssembly { row, residual, .. } => {
+            Error::NoAssembly { residual, equation: name(row), at: Box::new(at) }
+        }
+    }
+}
+
+/// The error for a block whose factorisation failed: a bad value, an equation outside its
+/// domain (`bad_row`, a non-finite row), or a singular position.
+#[cold]
+#[inline(never)]
+pub fn singular<M, const N: usize, const NI: usize, const NO: usize>(
+    m: &M,
+    block: usize,
+    pivot_ratio: f64,
+    cfg: &NewtonConfig,
+    x: &[f64; NI],
+    bad_row: Option<usize>,
+) -> Error
+where
+    M: Mechanism<N, NI, NO>,
+{
+    if let Some(e) = bad_values::<M, N, NI, NO>(m, x, None) {
+        return e;
+    }
+    let at = Box::new(location::<M, N, NI, NO>(x, Some(block)));
+    if let Some(row) = bad_row {
+        let name = M::BLOCKS.get(block).and_then(|b| b.equations.get(row)).copied().unwrap_or("?");
+        return Error::Domain { what: "equation", name, at };
+    }
+    Error::Singular { pivot_ratio, tolerance: cfg.singular_tol, at }
+}
+
+/// The error for a kinematic state holding a non-finite value, unless a bad value explains it.
+#[cold]
+#[inline(never)]
+pub fn non_finite<M, const N: usize, const NI: usize, const NO: usize>(
+    m: &M,
+    kin: &Kin<N, NI, NO>,
+    guess: Option<&[f64; N]>,
+) -> Error
+where
+    M: Mechanism<N, NI, NO>,
+{
+    if let Some(e) = bad_values::<M, N, NI, NO>(m, &kin.x, guess) {
+        return e;
+    }
+    let (what, index) = kin.first_non_finite().unwrap_or(("value", 0));
+    let name = if what.starts_with("output") { M::OUTPUTS.get(index) } else { M::UNKNOWNS.get(index) };
+    Error::Domain { what, name: name.copied().unwrap_or("?"), at: Box::new(location::<M, N, NI, NO>(&kin.x, None)) }
+}
+
+/// Checks the kinematic state `kin` and its sensitivities `sens`: both are returned when every
+/// value is finite, otherwise the error naming the first bad one.
+#[allow(clippy::type_complexity)]
+pub fn checked_sensitivities<M, const N: usize, const NI: usize, const NO: usize, const NP: usize>(
+    m: &M,
+    kin: Kin<N, NI, NO>,
+    sens: Sens<N, NI, NO, NP>,
+    guess: Option<&[f64; N]>,
+) -> Result<(Kin<N, NI, NO>, Sens<N, NI, NO, NP>), Error>
+where
+    M: Mechanism<N, NI, NO>,
+{
+    if !kin.all_finite() {
+        return Err(non_finite::<M, N, NI, NO>(m, &kin, guess));
+    }
+    if !sens.all_finite() {
+        return Err(Error::Domain {
+            what: "parameter sensitivity of",
+            name: sens.first_non_finite(&M::UNKNOWNS, &M::OUTPUTS),
+            at: Box::new(location::<M, N, NI, NO>(&kin.x, None)),
+        });
+    }
+    Ok((kin, sens))
+}
+
+/// True velocities and accelerations of a state of mechanism `M`, after checking that the
+/// input speeds `omega` and accelerations `eps` are finite.
+pub fn motion<M, const N: usize, const NI: usize, const NO: usize>(
+    kin: &Kin<N, NI, NO>,
+    omega: [f64; NI],
+    eps: [f64; NI],
+) -> Result<FlatMotion<N, NO>, Error>
+where
+    M: Mechanism<N, NI, NO>,
+{
+    let names = M::INPUTS.iter().chain(M::INPUTS.iter());
+    if let Some((name, value)) = names.zip(omega.iter().chain(eps.iter())).find(|(_, v)| !v.is_finite()) {
+        let at = Box::new(location::<M, N, NI, NO>(&kin.x, None));
+        return Err(Error::NonFinite { what: Quantity::Motion, name, value: *value, at });
+    }
+    Ok(kin.motion(&omega, &eps))
+}
