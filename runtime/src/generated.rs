@@ -145,6 +145,22 @@ where
     Error::Domain { what, name: name.copied().unwrap_or("?"), at: Box::new(location::<M, N, NI, NO>(&kin.x, None)) }
 }
 
+/// The kinematic state `kin` when every value is finite, otherwise the error naming the first
+/// bad one. `sum` is the sum of all values, computed by the kernel: when it is finite (the usual
+/// case) so is every value, and nothing else is examined.
+#[inline(always)]
+pub fn checked<M, const N: usize, const NI: usize, const NO: usize>(
+    m: &M,
+    kin: Kin<N, NI, NO>,
+    sum: f64,
+    guess: Option<&[f64; N]>,
+) -> Result<Kin<N, NI, NO>, Error>
+where
+    M: Mechanism<N, NI, NO>,
+{
+    if sum.is_finite() || kin.all_finite() { Ok(kin) } else { Err(non_finite::<M, N, NI, NO>(m, &kin, guess)) }
+}
+
 /// Checks the kinematic state `kin` and its sensitivities `sens`: both are returned when every
 /// value is finite, otherwise the error naming the first bad one.
 #[allow(clippy::type_complexity)]
@@ -187,3 +203,155 @@ where
     }
     Ok(kin.motion(&omega, &eps))
 }
+
+/// The part of a generated mechanism that depends only on its type names and sizes: the
+/// inherent named API as one-line forwarders to [`Named`] (so that `m.solve(x)` needs no import),
+/// `state.motion(omega, eps)`, and the conversions of the named types to and from nalgebra
+/// vectors and [`FlatMotion`]. Invoked once per mechanism by the expansion of `mechanism!`.
+#[doc(hidden)]
+#[macro_export]
+macro_rules! __named_api {
+    ($name:ident, $inputs:ident, $unknowns:ident, $outputs:ident, $state:ident, $motion:ident, $n:literal, $ni:literal, $no:literal) => {
+        impl $crate::Named<$n, $ni, $no> for $name {
+            type Inputs = $inputs;
+            type Unknowns = $unknowns;
+            type Outputs = $outputs;
+            type State = $state;
+        }
+
+        /// The named API (see [`Named`](::kinloop::Named), where each method is described).
+        impl $name {
+            /// Checks that every parameter is finite.
+            pub fn check(&self) -> ::core::result::Result<(), $crate::Error> {
+                <Self as $crate::Named<$n, $ni, $no>>::check(self)
+            }
+
+            /// The declared initial guess (assembly mode) at `input`.
+            pub fn guess(&self, input: impl ::core::convert::Into<$inputs>) -> $unknowns {
+                <Self as $crate::Named<$n, $ni, $no>>::guess(self, input)
+            }
+
+            /// Residuals of the scalar equations (named by `EQUATIONS`) at a position.
+            pub fn residual(&self, input: impl ::core::convert::Into<$inputs>, q: &$unknowns) -> [f64; $n] {
+                <Self as $crate::Named<$n, $ni, $no>>::residual(self, input, q)
+            }
+
+            /// Output values at a position.
+            pub fn outputs(&self, input: impl ::core::convert::Into<$inputs>, q: &$unknowns) -> $outputs {
+                <Self as $crate::Named<$n, $ni, $no>>::outputs(self, input, q)
+            }
+
+            /// Solves the positions by Newton's method from `guess` (which picks the assembly
+            /// mode), with the default [`NewtonConfig`](::kinloop::NewtonConfig).
+            pub fn position(
+                &self,
+                input: impl ::core::convert::Into<$inputs>,
+                guess: &$unknowns,
+            ) -> ::core::result::Result<($unknowns, $crate::SolveReport), $crate::Error> {
+                <Self as $crate::Named<$n, $ni, $no>>::position(self, input, guess)
+            }
+
+            /// [`Self::position`] with an explicit solver configuration.
+            pub fn position_with(
+                &self,
+                input: impl ::core::convert::Into<$inputs>,
+                guess: &$unknowns,
+                cfg: &$crate::NewtonConfig,
+            ) -> ::core::result::Result<($unknowns, $crate::SolveReport), $crate::Error> {
+                <Self as $crate::Named<$n, $ni, $no>>::position_with(self, input, guess, cfg)
+            }
+
+            /// Positions, velocity and acceleration analogs, and outputs, solved from `guess`.
+            pub fn kinematics(
+                &self,
+                input: impl ::core::convert::Into<$inputs>,
+                guess: &$unknowns,
+            ) -> ::core::result::Result<$state, $crate::Error> {
+                <Self as $crate::Named<$n, $ni, $no>>::kinematics(self, input, guess)
+            }
+
+            /// [`Self::kinematics`] with an explicit solver configuration.
+            #[inline]
+            pub fn kinematics_with(
+                &self,
+                input: impl ::core::convert::Into<$inputs>,
+                guess: &$unknowns,
+                cfg: &$crate::NewtonConfig,
+            ) -> ::core::result::Result<$state, $crate::Error> {
+                <Self as $crate::Named<$n, $ni, $no>>::kinematics_with(self, input, guess, cfg)
+            }
+
+            /// Analogs and outputs at a position the caller already solved.
+            pub fn kinematics_at(
+                &self,
+                input: impl ::core::convert::Into<$inputs>,
+                q: &$unknowns,
+            ) -> ::core::result::Result<$state, $crate::Error> {
+                <Self as $crate::Named<$n, $ni, $no>>::kinematics_at(self, input, q)
+            }
+
+            /// Full kinematics at `input`, starting from the declared initial guess.
+            pub fn solve(
+                &self,
+                input: impl ::core::convert::Into<$inputs>,
+            ) -> ::core::result::Result<$state, $crate::Error> {
+                <Self as $crate::Named<$n, $ni, $no>>::solve(self, input)
+            }
+
+            /// A lazy sweep of `samples` equally spaced inputs from `from` to `to` (both
+            /// included) that never jumps branches: see [`Sweep`](::kinloop::Sweep). `guess` at
+            /// `from` picks the assembly mode.
+            #[allow(clippy::type_complexity)]
+            pub fn sweep(
+                &self,
+                from: impl ::core::convert::Into<$inputs>,
+                to: impl ::core::convert::Into<$inputs>,
+                samples: usize,
+                guess: &$unknowns,
+            ) -> ::core::result::Result<$crate::Sweep<'_, Self, $state, $n, $ni, $no>, $crate::Error> {
+                <Self as $crate::Named<$n, $ni, $no>>::sweep(self, from, to, samples, guess)
+            }
+
+            /// The distinct assembly modes at `input` (multi-start Newton; see
+            /// [`assembly_modes`](::kinloop::assembly_modes)), e.g. to pick "elbow up" with
+            /// `.into_iter().find(|s| ...)`.
+            pub fn assembly_modes(&self, input: impl ::core::convert::Into<$inputs>) -> ::std::vec::Vec<$state> {
+                <Self as $crate::Named<$n, $ni, $no>>::assembly_modes(self, input)
+            }
+        }
+
+        impl $state {
+            /// True velocities and accelerations for input speeds `omega` and input
+            /// accelerations `eps`: `v = v_q omega`, `a = a_q omega^2 + v_q eps` (summed over
+            /// inputs for several inputs). For a time input pass `omega = 1`, `eps = 0`.
+            pub fn motion(
+                &self,
+                omega: impl ::core::convert::Into<$inputs>,
+                eps: impl ::core::convert::Into<$inputs>,
+            ) -> ::core::result::Result<$motion, $crate::Error> {
+                let w = ::core::convert::Into::<$inputs>::into(omega).into();
+                let e = ::core::convert::Into::<$inputs>::into(eps).into();
+                $crate::generated::motion::<$name, $n, $ni, $no>(&self.flat, w, e).map(|m| $motion {
+                    qdot: m.qdot.into(),
+                    qddot: m.qddot.into(),
+                    out_dot: m.out_dot.into(),
+                    out_ddot: m.out_ddot.into(),
+                })
+            }
+        }
+
+        impl ::core::convert::From<$crate::nalgebra::SVector<f64, $n>> for $unknowns<f64> {
+            fn from(v: $crate::nalgebra::SVector<f64, $n>) -> Self {
+                <[f64; $n]>::from(v).into()
+            }
+        }
+
+        impl ::core::convert::From<$unknowns<f64>> for $crate::nalgebra::SVector<f64, $n> {
+            fn from(v: $unknowns<f64>) -> Self {
+                <[f64; $n]>::from(v).into()
+            }
+        }
+    };
+}
+
+pub use crate::__named_api as named_api;

@@ -29,8 +29,11 @@ pub trait Mechanism<const N: usize, const NI: usize, const NO: usize> {
     fn param_values(&self) -> Vec<f64>;
     /// The declared initial guess at input `x`.
     fn guess_flat(&self, x: &[f64; NI]) -> [f64; N];
-    /// Residuals of the equations at `(x, q)`, in declaration order.
-    fn residual_flat(&self, x: &[f64; NI], q: &[f64; N]) -> [f64; N];
+    /// Residuals of the equations at `(x, q)`, in declaration order (by default those of
+    /// [`Mechanism::jacobian_flat`]).
+    fn residual_flat(&self, x: &[f64; NI], q: &[f64; N]) -> [f64; N] {
+        self.jacobian_flat(x, q).f
+    }
     /// Solves the positions from a guess.
     fn position_flat(
         &self,

@@ -11,11 +11,10 @@
 //!
 //! With `sens`, the parameter sensitivities follow on the same factorisations.
 
-use super::names::{Names, float};
+use super::names::{Names, float_arg};
 use super::schedule::{Schedule, ScopeKind, ScopeSpec, schedule};
-use super::{Dims, lit, runtime};
+use super::{lit, runtime};
 use crate::dag::{Graph, Leaf, NodeId};
-use crate::model::Model;
 use crate::plan::{BlockPlan, Plan, Stages, pair_index, pairs};
 use proc_macro2::{Ident, TokenStream};
 use quote::{format_ident, quote};
@@ -57,8 +56,6 @@ struct Kernel<'a> {
     sched: Schedule,
     scopes: Scopes,
     rt: TokenStream,
-    /// `::<Self, N, NI, NO>` for the runtime's generic cold paths.
-    turbo: TokenStream,
     /// The leaves the kernel reads.
     used: HashSet<Leaf>,
 }
@@ -124,16 +121,13 @@ fn plan_scopes(plan: &Plan, mode: Mode, sens: bool) -> Scopes {
 
 /// The body of a solver kernel with arguments `__x`, `__guess` (or `__q` in mode `At`) and
 /// `__cfg`, returning a `Kin` (or `(Kin, Sens)` with `sens`).
-pub fn solver_body(model: &Model, plan: &Plan, names: &Names, mode: Mode, sens: bool) -> TokenStream {
+pub fn solver_body(plan: &Plan, names: &Names, mode: Mode, sens: bool) -> TokenStream {
     let scopes = plan_scopes(plan, mode, sens);
     let g = &plan.graph;
     let sched = schedule(g, &plan.level, &scopes.specs);
-    let d = Dims::of(plan);
-    let (nl, nil, nol) = (d.n, d.ni, d.no);
-    let turbo = quote!(::<Self, #nl, #nil, #nol>);
     let used = used_leaves(g, &scopes.specs);
-    let mut body = prologue(model, names, &used);
-    let k = Kernel { plan, g, names, mode, sched, scopes, rt: runtime(), turbo, used };
+    let mut body = prologue(names, &used);
+    let k = Kernel { plan, g, names, mode, sched, scopes, rt: runtime(), used };
     body.extend(k.start());
     if mode != Mode::At {
         for b in 0..plan.blocks.len() {
@@ -177,17 +171,9 @@ fn bind_used(ids: &[Ident], used: impl Fn(usize) -> bool, from: TokenStream) -> 
     quote!(let [#(#pats),*] = *#from;)
 }
 
-/// Binds the inputs and the parameters the kernel reads to locals.
-fn prologue(model: &Model, names: &Names, used: &HashSet<Leaf>) -> TokenStream {
-    let inputs = bind_used(&names.inputs, |k| used.contains(&Leaf::Input(k as u16)), quote!(__x));
-    let params = model.params.iter().zip(&names.params).enumerate().filter_map(|(k, (p, local))| {
-        let field = &p.name;
-        used.contains(&Leaf::Param(k as u16)).then(|| quote!(let #local: f64 = self.#field;))
-    });
-    quote! {
-        #inputs
-        #(#params)*
-    }
+/// Binds the inputs the kernel reads to locals (parameters are read as `self.a`).
+fn prologue(names: &Names, used: &HashSet<Leaf>) -> TokenStream {
+    bind_used(&names.inputs, |k| used.contains(&Leaf::Input(k as u16)), quote!(__x))
 }
 
 /// Binds the unknowns the kernel reads from `__q`.
@@ -251,7 +237,7 @@ impl Kernel<'_> {
         let (rt, lu) = (&self.rt, format_ident!("__lu{}", b));
         if let Some(c) = self.fixed(bp) {
             // A constant, non-zero coefficient: one division, never singular.
-            let (c, rhs) = (float(c), self.op(bp.rhs0[0]));
+            let (c, rhs) = (float_arg(c), self.op(bp.rhs0[0]));
             out.extend(quote! {
                 let #lu = #rt::Fixed(#c);
                 let [#(#qs),*] = #lu.solve([#rhs]);
@@ -265,7 +251,7 @@ impl Kernel<'_> {
     }
 
     fn linear_block(&self, b: usize, bp: &BlockPlan, qs: &[&Ident]) -> TokenStream {
-        let (rt, turbo) = (&self.rt, &self.turbo);
+        let rt = &self.rt;
         let (n, bl, lu) = (lit(bp.unknowns.len()), lit(b), format_ident!("__lu{}", b));
         let scale = self.col_scales(bp);
         let jrows = self.names.rows(self.g, &bp.jac);
@@ -276,18 +262,18 @@ impl Kernel<'_> {
         quote! {
             let #lu = #rt::Lu::<#n>::factor_cols(&#jrows, [#(#scale),*]);
             if !(#lu.pivot_ratio() >= __cfg.singular_tol) {
-                return Err(#rt::singular #turbo(self, #bl, #lu.pivot_ratio(), __cfg, __x, #rt::first_bad_row(&#aug)));
+                return Err(#rt::singular(self, #bl, #lu.pivot_ratio(), __cfg, __x, #rt::first_bad_row(&#aug)));
             }
             let [#(#qs),*] = #lu.solve([#(#rhs),*]);
         }
     }
 
     fn newton_block(&self, b: usize, bp: &BlockPlan, qs: &[&Ident]) -> TokenStream {
-        let (rt, turbo) = (&self.rt, &self.turbo);
+        let rt = &self.rt;
         let (n, bl) = (lit(bp.unknowns.len()), lit(b));
         let l = self.scopes.newton[b];
         let inner = self.lets(l);
-        let exports: Vec<Ident> = self.sched.exports[l].iter().map(|&x| Names::temp(x)).collect();
+        let exports: Vec<Ident> = self.sched.exports[l].iter().map(|&x| self.names.temp(x)).collect();
         let k = lit(exports.len());
         let guess = bp.unknowns.iter().map(|&u| {
             let u = lit(u);
@@ -313,7 +299,7 @@ impl Kernel<'_> {
             } else {
                 match #rt::iterate::<#n, #k>(__z0, __e0, __cfg, #ev) {
                     Ok(s) => s,
-                    Err(e) => return Err(#rt::block_failure #turbo(self, #bl, e, __x, __guess)),
+                    Err(e) => return Err(#rt::block_failure(self, #bl, e, __x, __guess)),
                 }
             };
             __report.absorb(&#s);
@@ -326,7 +312,7 @@ impl Kernel<'_> {
     /// (the factorisation is reused for accelerations and sensitivities).
     fn velocity_block(&self, b: usize) -> TokenStream {
         let bp = &self.plan.blocks[b];
-        let (rt, turbo) = (&self.rt, &self.turbo);
+        let rt = &self.rt;
         let (n, ni, bl) = (lit(bp.unknowns.len()), lit(self.plan.ni), lit(b));
         let (lu, rv) = (format_ident!("__lu{}", b), format_ident!("__rv{}", b));
         let mut out = self.lets(self.scopes.vel[b]);
@@ -334,7 +320,7 @@ impl Kernel<'_> {
         out.extend(quote!(let #rv: [[f64; #ni]; #n] = #rows;));
         let fixed = self.fixed(bp);
         if let (Mode::At, Some(c)) = (self.mode, fixed) {
-            let c = float(c);
+            let c = float_arg(c);
             out.extend(quote!(let #lu = #rt::Fixed(#c);));
         }
         if (self.mode == Mode::At || !bp.linear) && fixed.is_none() {
@@ -350,7 +336,7 @@ impl Kernel<'_> {
                 let #lu = #rt::Lu::<#n>::factor_cols(&__j, [#(#scale),*]);
                 if !(#lu.pivot_ratio() >= __cfg.singular_tol) {
                     let bad = #rt::first_bad_row(&__j).or(#rt::first_bad_row(&#rv));
-                    return Err(#rt::singular #turbo(self, #bl, #lu.pivot_ratio(), __cfg, __x, bad));
+                    return Err(#rt::singular(self, #bl, #lu.pivot_ratio(), __cfg, __x, bad));
                 }
             });
         }
@@ -461,7 +447,8 @@ impl Kernel<'_> {
     }
 
     /// Returns the state; one sum tells whether every value is finite (NaN and infinity
-    /// propagate), and the state is examined value by value only on the cold path.
+    /// propagate), and the state is examined value by value only on the cold path (in the
+    /// runtime's `checked`).
     fn finish(&self) -> TokenStream {
         let (plan, names) = (self.plan, self.names);
         let ni = plan.ni;
@@ -481,16 +468,10 @@ impl Kernel<'_> {
             terms.extend(names.operands(self.g, &plan.out_d1[o]));
             terms.extend(names.operands(self.g, &plan.out_d2[o]));
         }
-        let (sum, kin, rt, turbo, guess) = (balanced_sum(terms), self.kin(), &self.rt, &self.turbo, self.guess_arg());
+        let (sum, kin, rt, guess) = (balanced_sum(terms), self.kin(), &self.rt, self.guess_arg());
         quote! {
             let __sum: f64 = #sum;
-            if !__sum.is_finite() {
-                let __kin = #kin;
-                if !__kin.all_finite() {
-                    return Err(#rt::non_finite #turbo(self, &__kin, #guess));
-                }
-            }
-            Ok(#kin)
+            #rt::checked(self, #kin, __sum, #guess)
         }
     }
 
@@ -536,11 +517,9 @@ impl Kernel<'_> {
             quote!([#(#rows),*])
         });
         let (kin, guess) = (self.kin(), self.guess_arg());
-        let Dims { n, ni, no, np } = Dims::of(plan);
-        let turbo = quote!(::<Self, #n, #ni, #no, #np>);
         quote! {
             let __sens = #rt::Sens { q: [#(#sq),*], dq: [#(#sv),*], d2q: [#(#sa),*], out: #osq, dout: [#(#osv),*], d2out: [#(#osa),*] };
-            #rt::checked_sensitivities #turbo(self, #kin, __sens, #guess)
+            #rt::checked_sensitivities(self, #kin, __sens, #guess)
         }
     }
 }
@@ -567,14 +546,14 @@ fn balanced_sum(mut terms: Vec<TokenStream>) -> TokenStream {
 
 /// Straight-line evaluation of some roots (residual, outputs, guesses), returning an array;
 /// `with_q` binds the unknowns from `__q`.
-pub fn straight_line(model: &Model, plan: &Plan, names: &Names, roots: &[NodeId], with_q: bool) -> TokenStream {
+pub fn straight_line(plan: &Plan, names: &Names, roots: &[NodeId], with_q: bool) -> TokenStream {
     let g = &plan.graph;
     let sched = schedule(g, &plan.level, &[ScopeSpec { kind: ScopeKind::Plain, roots: roots.to_vec() }]);
     let lets = names.lets(g, &sched, &sched.lets[0]);
     let used: HashSet<Leaf> = g.leaves_of(roots).into_iter().collect();
     let bind = if with_q { bind_q(names, &used) } else { quote!() };
     let vals = names.operands(g, roots);
-    let mut body = prologue(model, names, &used);
+    let mut body = prologue(names, &used);
     body.extend(quote! {
         #bind
         #lets
@@ -584,7 +563,7 @@ pub fn straight_line(model: &Model, plan: &Plan, names: &Names, roots: &[NodeId]
 }
 
 /// Residuals, full Jacobian and input derivatives at `(x, q)`, as a `Jac`.
-pub fn jacobian_body(model: &Model, plan: &Plan, names: &Names) -> TokenStream {
+pub fn jacobian_body(plan: &Plan, names: &Names) -> TokenStream {
     let g = &plan.graph;
     let roots: Vec<NodeId> =
         plan.residuals.iter().copied().chain(plan.jac_full.concat()).chain(plan.fx_full.concat()).collect();
@@ -594,7 +573,7 @@ pub fn jacobian_body(model: &Model, plan: &Plan, names: &Names) -> TokenStream {
     let (q, rt) = (bind_q(names, &used), runtime());
     let f = names.operands(g, &plan.residuals);
     let (j, fx) = (names.rows(g, &plan.jac_full), names.rows(g, &plan.fx_full));
-    let mut body = prologue(model, names, &used);
+    let mut body = prologue(names, &used);
     body.extend(quote! {
         #q
         #lets

@@ -1,22 +1,27 @@
 //! Names of the locals in generated code, and the `let` statements that compute graph nodes.
 //!
-//! Leaves read like the quantities they hold: `p_a` (parameter `a`), `x_phi` (input), `q_beta`
+//! Leaves read like the quantities they hold: `self.a` (parameter `a`), `x_phi` (input), `q_beta`
 //! (unknown), `dq_beta_phi` (`d beta / d phi`), `d2q_beta_phi_phi`, and for the sensitivities
 //! to parameter `a` `sq_beta_a`, `sdq_beta_phi_a`, `sd2q_beta_phi_phi_a`. Should two such names
 //! coincide (names containing underscores can), the derived names fall back to indices
-//! (`dq0_1`). Anonymous subexpressions are `t` and their node number.
+//! (`dq0_1`). Temporaries that are a declared quantity are named after it: the residual of
+//! `loop abcd` on X is `r_abcd_x`, its derivative by `beta` `j_abcd_x_beta`, by input `phi`
+//! `fx_abcd_x_phi`, the x coordinate of `point p` `out_p_x`; anonymous subexpressions are `t`
+//! and their node number.
 
 use super::schedule::Schedule;
 use crate::dag::{Graph, Leaf, NodeId, Op};
 use crate::model::Model;
+use crate::plan::Plan;
 use proc_macro2::{Ident, Literal, Span, TokenStream};
 use quote::{format_ident, quote};
-use std::collections::HashSet;
+use std::collections::{HashMap, HashSet};
 use syn::ext::IdentExt;
 
 /// Names of leaves and temporaries in generated code.
 pub struct Names {
-    pub params: Vec<Ident>,
+    /// Parameters are read from the mechanism where they are used (`self.a`).
+    pub params: Vec<TokenStream>,
     pub inputs: Vec<Ident>,
     pub unknowns: Vec<Ident>,
     /// Plain names of unknowns, inputs and parameters, for the derived names.
@@ -25,6 +30,8 @@ pub struct Names {
     p: Vec<String>,
     /// Derived names are readable (no two coincide).
     readable: bool,
+    /// Temporaries named after the declared quantity they are.
+    roles: HashMap<NodeId, Ident>,
 }
 
 fn plain(id: &Ident) -> String {
@@ -36,20 +43,29 @@ fn lower(i: usize, j: usize) -> (usize, usize) {
 }
 
 impl Names {
-    pub fn new(model: &Model) -> Names {
+    pub fn new(model: &Model, plan: &Plan) -> Names {
         let u: Vec<String> = model.unknowns.iter().map(|x| plain(&x.name)).collect();
         let i: Vec<String> = model.inputs.iter().map(|x| plain(&x.name)).collect();
         let p: Vec<String> = model.params.iter().map(|x| plain(&x.name)).collect();
         let mut names = Names {
-            params: p.iter().map(|s| format_ident!("p_{}", s)).collect(),
+            params: model
+                .params
+                .iter()
+                .map(|x| {
+                    let f = &x.name;
+                    quote!(self.#f)
+                })
+                .collect(),
             inputs: i.iter().map(|s| format_ident!("x_{}", s)).collect(),
             unknowns: u.iter().map(|s| format_ident!("q_{}", s)).collect(),
             u,
             i,
             p,
             readable: true,
+            roles: HashMap::new(),
         };
         names.readable = names.distinct();
+        names.roles = roles(model, plan);
         names
     }
 
@@ -72,8 +88,9 @@ impl Names {
         all
     }
 
-    pub fn temp(n: NodeId) -> Ident {
-        format_ident!("t{}", n.0)
+    /// The local holding node `n`: its role's name, or `t` and its number.
+    pub fn temp(&self, n: NodeId) -> Ident {
+        self.roles.get(&n).cloned().unwrap_or_else(|| format_ident!("t{}", n.0))
     }
 
     /// `d q_u / d x_i`.
@@ -115,10 +132,10 @@ impl Names {
         }
     }
 
-    fn leaf(&self, l: Leaf) -> Ident {
+    fn leaf(&self, l: Leaf) -> TokenStream {
         let us = |x: u16| x as usize;
-        match l {
-            Leaf::Param(k) => self.params[us(k)].clone(),
+        let id = match l {
+            Leaf::Param(k) => return self.params[us(k)].clone(),
             Leaf::Input(k) => self.inputs[us(k)].clone(),
             Leaf::Unknown(k) => self.unknowns[us(k)].clone(),
             Leaf::Tan { unknown, input } => self.tan(us(unknown), us(input)),
@@ -126,19 +143,17 @@ impl Names {
             Leaf::SensQ { unknown, param } => self.sens_q(us(unknown), us(param)),
             Leaf::SensV { unknown, input, param } => self.sens_v(us(unknown), us(input), us(param)),
             Leaf::SensA { unknown, i, j, param } => self.sens_a(us(unknown), us(i), us(j), us(param)),
-        }
+        };
+        quote!(#id)
     }
 
     /// A node as an operand: a literal, a leaf's local, or a temporary.
     pub fn operand(&self, g: &Graph, n: NodeId) -> TokenStream {
         match g.op(n) {
             Op::Const(bits) => float(f64::from_bits(bits)),
-            Op::Leaf(l) => {
-                let id = self.leaf(l);
-                quote!(#id)
-            }
+            Op::Leaf(l) => self.leaf(l),
             _ => {
-                let id = Self::temp(n);
+                let id = self.temp(n);
                 quote!(#id)
             }
         }
@@ -197,7 +212,7 @@ impl Names {
         for &n in nodes {
             if let Some(&(sn, cn)) = sched.sin_cos.get(&n) {
                 if done.insert(sn) {
-                    let (s, c) = (Self::temp(sn), Self::temp(cn));
+                    let (s, c) = (self.temp(sn), self.temp(cn));
                     let arg = match g.op(sn) {
                         Op::Func(_, a) => self.operand(g, a),
                         _ => self.operand(g, sn),
@@ -206,11 +221,39 @@ impl Names {
                 }
                 continue;
             }
-            let (name, e) = (Self::temp(n), self.expr(g, n));
+            let (name, e) = (self.temp(n), self.expr(g, n));
             out.extend(quote!(let #name: f64 = #e;));
         }
         out
     }
+}
+
+/// Names of the temporaries that are declared quantities (see the module docs), each name
+/// given once: should two quantities spell the same (`eq a_x` next to `loop a`), the later one
+/// stays anonymous.
+fn roles(model: &Model, plan: &Plan) -> HashMap<NodeId, Ident> {
+    let g = &plan.graph;
+    let snake = |s: &str| s.replace('.', "_");
+    let u: Vec<String> = model.unknowns.iter().map(|x| plain(&x.name)).collect();
+    let i: Vec<String> = model.inputs.iter().map(|x| plain(&x.name)).collect();
+    let mut named: Vec<(NodeId, String)> = Vec::new();
+    for (e, eq) in model.equations.iter().enumerate() {
+        let eqn = snake(&eq.name);
+        named.push((plan.residuals[e], format!("r_{eqn}")));
+        named.extend(plan.jac_full[e].iter().zip(&u).map(|(&n, u)| (n, format!("j_{eqn}_{u}"))));
+        named.extend(plan.fx_full[e].iter().zip(&i).map(|(&n, i)| (n, format!("fx_{eqn}_{i}"))));
+    }
+    let outs = model.output_names();
+    named.extend(plan.outputs.iter().zip(&outs).map(|(&n, o)| (n, format!("out_{}", snake(o)))));
+    let mut taken = HashSet::new();
+    let mut roles = HashMap::new();
+    for (n, name) in named {
+        if matches!(g.op(n), Op::Const(_) | Op::Leaf(_)) || roles.contains_key(&n) || !taken.insert(name.clone()) {
+            continue;
+        }
+        roles.insert(n, format_ident!("{}", name));
+    }
+    roles
 }
 
 fn binary(a: TokenStream, op: TokenStream, b: TokenStream) -> TokenStream {
@@ -232,4 +275,10 @@ pub fn float(v: f64) -> TokenStream {
     }
     let lit = Literal::f64_suffixed(v.abs());
     if v.is_sign_negative() && v != 0.0 { quote!((-#lit)) } else { quote!(#lit) }
+}
+
+/// A finite `f64` literal as a function argument: negative values without parentheses.
+pub fn float_arg(v: f64) -> TokenStream {
+    let lit = Literal::f64_suffixed(v.abs());
+    if v.is_sign_negative() && v != 0.0 { quote!(-#lit) } else { quote!(#lit) }
 }

@@ -78,11 +78,11 @@ fn types(model: &Model, plan: &Plan, t: &Types) -> TokenStream {
 
 /// The `Sensitivities` kernels, `NamedSensitivities`, and the inherent forwarders.
 fn kernels(model: &Model, plan: &Plan, t: &Types) -> TokenStream {
-    let (rt, name, names) = (runtime(), &t.name, Names::new(model));
+    let (rt, name, names) = (runtime(), &t.name, Names::new(model, plan));
     let Types { inputs, unknowns, state, sens, .. } = t;
     let Dims { n, ni, no, np } = Dims::of(plan);
-    let fused = solver_body(model, plan, &names, Mode::Fused, true);
-    let at = solver_body(model, plan, &names, Mode::At, true);
+    let fused = solver_body(plan, &names, Mode::Fused, true);
+    let at = solver_body(plan, &names, Mode::At, true);
     let lints = kernel_lints();
     let pnames: Vec<_> = model.params.iter().map(|p| &p.name).collect();
     let named = quote!(<Self as #rt::NamedSensitivities<#n, #ni, #no, #np>>);

@@ -91,10 +91,10 @@ pub fn items(s: &Surface, t: &Types) -> TokenStream {
     out
 }
 
-/// A single input from a number (`m.solve(0.3)`); unknowns from and to nalgebra vectors.
+/// A single input from a number (`m.solve(0.3)`).
 fn array_conversions(s: &Surface, t: &Types) -> TokenStream {
-    let (rt, inputs, unknowns, nl) = (runtime(), &t.inputs, &t.unknowns, lit(s.unknowns.len()));
-    let single = match s.inputs.as_slice() {
+    let inputs = &t.inputs;
+    match s.inputs.as_slice() {
         [one] => {
             let i = &one.name;
             quote! {
@@ -106,19 +106,6 @@ fn array_conversions(s: &Surface, t: &Types) -> TokenStream {
             }
         }
         _ => quote!(),
-    };
-    quote! {
-        #single
-        impl ::core::convert::From<#rt::SVector<f64, #nl>> for #unknowns<f64> {
-            fn from(v: #rt::SVector<f64, #nl>) -> Self {
-                <[f64; #nl]>::from(v).into()
-            }
-        }
-        impl ::core::convert::From<#unknowns<f64>> for #rt::SVector<f64, #nl> {
-            fn from(v: #unknowns<f64>) -> Self {
-                <[f64; #nl]>::from(v).into()
-            }
-        }
     }
 }
 
@@ -132,13 +119,14 @@ fn params_struct(s: &Surface) -> TokenStream {
     });
     let default = match &s.defaults {
         Some(values) if values.len() == s.params.len() => {
-            let names = s.params.iter().map(|f| &f.name);
+            let names: Vec<&Ident> = s.params.iter().map(|f| &f.name).collect();
             let values = values.iter().map(|&v| super::names::float(v));
             quote! {
                 impl ::core::default::Default for #name {
                     /// The parameter values declared in the mechanism.
                     fn default() -> Self {
-                        #name { #(#names: #values),* }
+                        let [#(#names),*] = [#(#values),*];
+                        #name { #(#names),* }
                     }
                 }
             }
@@ -342,11 +330,6 @@ fn state_struct(s: &Surface, t: &Types) -> TokenStream {
             pub out_dot: #outputs,
             /// Accelerations of the outputs.
             pub out_ddot: #outputs,
-        }
-        impl ::core::convert::From<#rt::FlatMotion<#nl, #nol>> for #motion {
-            fn from(m: #rt::FlatMotion<#nl, #nol>) -> Self {
-                #motion { qdot: m.qdot.into(), qddot: m.qddot.into(), out_dot: m.out_dot.into(), out_ddot: m.out_ddot.into() }
-            }
         }
     }
 }
