@@ -203,6 +203,8 @@ impl Kernel<'_> {
                     let __report = #rt::SolveReport::given(#rt::max_abs([#(#res),*]));
                 }
             }
+            // Only Newton blocks add to the report.
+            None if self.plan.blocks.iter().all(|b| b.linear) => quote!(let __report = #rt::SolveReport::direct();),
             None => quote!(let mut __report = #rt::SolveReport::direct();),
         }
     }
@@ -572,12 +574,32 @@ pub fn jacobian_body(plan: &Plan, names: &Names) -> TokenStream {
     let lets = names.lets(g, &sched, &sched.lets[0]);
     let (q, rt) = (bind_q(names, &used), runtime());
     let f = names.operands(g, &plan.residuals);
-    let (j, fx) = (names.rows(g, &plan.jac_full), names.rows(g, &plan.fx_full));
+    let (n, ni) = (lit(plan.n), lit(plan.ni));
+    let (j, fx) = (sparse_entries(plan, names, &plan.jac_full, "j"), sparse_entries(plan, names, &plan.fx_full, "fx"));
     let mut body = prologue(names, &used);
     body.extend(quote! {
         #q
         #lets
-        #rt::Jac { f: [#(#f),*], j: #j, fx: #fx }
+        let mut __jac = #rt::Jac { f: [#(#f),*], j: [[0.0; #n]; #n], fx: [[0.0; #ni]; #n] };
+        #j
+        #fx
+        __jac
     });
     body
+}
+
+/// `__jac.field[r][c] = value;` for the structurally non-zero entries of a matrix only: a
+/// Jacobian is sparse (a few entries per row), and writing all `n^2` of them would make the
+/// generated code, and its compile time, grow with the square of the size.
+fn sparse_entries(plan: &Plan, names: &Names, rows: &[Vec<NodeId>], field: &str) -> TokenStream {
+    let g = &plan.graph;
+    let field = format_ident!("{}", field);
+    let mut out = TokenStream::new();
+    for (r, row) in rows.iter().enumerate() {
+        for (c, &node) in row.iter().enumerate().filter(|&(_, &node)| !g.is_zero(node)) {
+            let (r, c, v) = (lit(r), lit(c), names.operand(g, node));
+            out.extend(quote!(__jac.#field[#r][#c] = #v;));
+        }
+    }
+    out
 }

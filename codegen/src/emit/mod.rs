@@ -82,10 +82,10 @@ impl Dims {
 }
 
 /// Lints allowed on the kernels, each because of what the generator writes: locals named after
-/// the user's names (`p_L1`), parameters and inputs bound whether or not a kernel uses them, and
-/// the user's literals, which may look like an approximation of a constant (`3.14`).
+/// the user's names (`q_X_C`), and the user's literals, which may look like an approximation of
+/// a constant (`3.14`).
 pub(crate) fn kernel_lints() -> TokenStream {
-    quote!(#[allow(non_snake_case, unused_variables, clippy::approx_constant)])
+    quote!(#[allow(non_snake_case, clippy::approx_constant)])
 }
 
 /// Every item of an accepted declaration.

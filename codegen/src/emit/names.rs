@@ -233,7 +233,8 @@ impl Names {
 /// stays anonymous.
 fn roles(model: &Model, plan: &Plan) -> HashMap<NodeId, Ident> {
     let g = &plan.graph;
-    let snake = |s: &str| s.replace('.', "_");
+    // Equation and output names may hold raw identifiers (`r#match.x`).
+    let snake = |s: &str| s.replace("r#", "").replace('.', "_");
     let u: Vec<String> = model.unknowns.iter().map(|x| plain(&x.name)).collect();
     let i: Vec<String> = model.inputs.iter().map(|x| plain(&x.name)).collect();
     let mut named: Vec<(NodeId, String)> = Vec::new();
@@ -248,10 +249,11 @@ fn roles(model: &Model, plan: &Plan) -> HashMap<NodeId, Ident> {
     let mut taken = HashSet::new();
     let mut roles = HashMap::new();
     for (n, name) in named {
-        if matches!(g.op(n), Op::Const(_) | Op::Leaf(_)) || roles.contains_key(&n) || !taken.insert(name.clone()) {
+        let anonymous = matches!(g.op(n), Op::Const(_) | Op::Leaf(_)) || roles.contains_key(&n);
+        if anonymous || syn::parse_str::<Ident>(&name).is_err() || !taken.insert(name.clone()) {
             continue;
         }
-        roles.insert(n, format_ident!("{}", name));
+        roles.insert(n, Ident::new(&name, Span::call_site()));
     }
     roles
 }
