@@ -8,20 +8,20 @@
 //! versions.
 
 pub use crate::error::{BlockInfo, Error};
-pub use crate::kin::{FlatMotion, Health, Jac, Kin, Sens};
+pub use crate::kin::{Health, Jac, Kin, Sens};
 pub use crate::lu::{Fixed, Lu, max_abs};
-pub use crate::mechanism::{Mechanism, Named, NamedSensitivities, Sensitivities, SensitivitiesRequested};
-pub use crate::newton::{BlockEval, BlockFailure, NewtonConfig, SolveReport, Solved, iterate};
-pub use crate::sweep::Sweep;
+pub use crate::mechanism::{Mechanism, NamedSensitivities, Sensitivities, SensitivitiesRequested};
+pub use crate::newton::{BlockEval, NewtonConfig, SolveReport, Solved, iterate};
 pub use crate::vec2::Vec2;
-pub use nalgebra::SVector;
 
 use crate::error::{Location, Quantity};
+use crate::kin::FlatMotion;
+use crate::newton::BlockFailure;
 
 /// Where an error of mechanism `M` happened: its inputs `x` and, if any, the block.
 #[cold]
 #[inline(never)]
-pub fn location<M, const N: usize, const NI: usize, const NO: usize>(x: &[f64; NI], block: Option<usize>) -> Location
+fn location<M, const N: usize, const NI: usize, const NO: usize>(x: &[f64; NI], block: Option<usize>) -> Location
 where
     M: Mechanism<N, NI, NO>,
 {
@@ -33,7 +33,7 @@ where
 }
 
 /// Finds the first non-finite value among named values (parameters, inputs, guesses).
-pub fn first_non_finite(names: &[&'static str], values: &[f64]) -> Option<(&'static str, f64)> {
+fn first_non_finite(names: &[&'static str], values: &[f64]) -> Option<(&'static str, f64)> {
     names.iter().zip(values).find(|(_, v)| !v.is_finite()).map(|(n, v)| (*n, *v))
 }
 
@@ -47,7 +47,7 @@ pub fn first_bad_row<const M: usize, const R: usize>(rows: &[[f64; M]; R]) -> Op
 /// caller explains a failure better than the failure itself.
 #[cold]
 #[inline(never)]
-pub fn bad_values<M, const N: usize, const NI: usize, const NO: usize>(
+fn bad_values<M, const N: usize, const NI: usize, const NO: usize>(
     m: &M,
     x: &[f64; NI],
     guess: Option<&[f64; N]>,
@@ -86,7 +86,7 @@ where
 /// Builds the error for a failed block at a known location.
 #[cold]
 #[inline(never)]
-pub fn block_error(fail: BlockFailure, at: Location) -> Error {
+fn block_error(fail: BlockFailure, at: Location) -> Error {
     let equations = at.block.map_or(&[][..], |(_, info)| info.equations);
     let name = |row: usize| equations.get(row).copied().unwrap_or("?");
     match fail {
@@ -129,7 +129,7 @@ where
 /// The error for a kinematic state holding a non-finite value, unless a bad value explains it.
 #[cold]
 #[inline(never)]
-pub fn non_finite<M, const N: usize, const NI: usize, const NO: usize>(
+fn non_finite<M, const N: usize, const NI: usize, const NO: usize>(
     m: &M,
     kin: &Kin<N, NI, NO>,
     guess: Option<&[f64; N]>,
@@ -205,7 +205,8 @@ where
 }
 
 /// The part of a generated mechanism that depends only on its type names and sizes: the
-/// inherent named API as one-line forwarders to [`Named`] (so that `m.solve(x)` needs no import),
+/// inherent named API as one-line forwarders to [`Named`](crate::Named) (so that `m.solve(x)`
+/// needs no import),
 /// `state.motion(omega, eps)`, and the conversions of the named types to and from nalgebra
 /// vectors and [`FlatMotion`]. Invoked once per mechanism by the expansion of `mechanism!`.
 #[doc(hidden)]
