@@ -33,6 +33,7 @@
 //! ```text
 //! /// doc comment                            (kept on the generated struct)
 //! #[kinloop(dense)]                          optional: solve all unknowns as one block
+//! #[kinloop(sensitivities)]                  optional: also generate parameter sensitivities
 //! pub struct Name {
 //!     params a, b = 2.5, c;                  design parameters (f64 fields; optional defaults)
 //!     input phi;                             generalized coordinate(s): `inputs th1, th2;`
@@ -78,7 +79,7 @@
 //! For `pub struct Name { ... }`:
 //!
 //! * `Name`: the parameters as public `f64` fields (and `Default` when every parameter has a
-//!   default value);
+//!   default value, or when there are no parameters);
 //! * `NameInputs<T>`, `NameUnknowns<T>`, `NameOutputs<T>`: named fields (points are
 //!   [`Vec2`]), convertible from and to arrays (and nalgebra vectors for the unknowns);
 //! * `NameState`: positions `q`, velocity analogs `dq`, acceleration analogs `d2q`, outputs
@@ -89,7 +90,24 @@
 //!   variants taking a [`NewtonConfig`], and the constants `PARAMS`, `INPUTS`, `UNKNOWNS`,
 //!   `EQUATIONS`, `OUTPUTS`, `BLOCKS` (the block-triangular decomposition) and
 //!   `DECOMPOSITION` (the same in words, see below);
-//! * an implementation of [`Mechanism`] for generic code.
+//! * implementations of [`Mechanism`] (the flat, generated kernels) and [`Named`] (the same
+//!   API by name) for generic code. The methods above are the same for every mechanism: they
+//!   live once in [`Named`] and the generated ones only forward to it, so calling them needs no
+//!   import.
+//!
+//! ```
+//! kinloop::mechanism! {
+//!     /// A slider driven through a fixed cam profile: no parameters, and still `Default`.
+//!     pub struct Cam {
+//!         input phi;
+//!         unknowns x = 1;
+//!         eq follower: x == 2 + 0.5 * sin(phi);
+//!     }
+//! }
+//! let s = Cam::default().solve(0.3)?;
+//! assert!((s.dq.x - 0.5 * 0.3f64.cos()).abs() < 1e-12);
+//! # Ok::<(), kinloop::Error>(())
+//! ```
 //!
 //! The equations are ordered into blocks (maximum matching and Tarjan's strongly connected
 //! components, i.e. the block-lower-triangular form): each block is solved by its own small
@@ -166,12 +184,15 @@
 //!
 //! ## Parameter sensitivities
 //!
-//! `m.sensitivities(input, &guess)` returns the state and its exact derivatives with respect to
+//! Declared with `#[kinloop(sensitivities)]` (they are generated only on request: they are the
+//! larger part of the generated code), a mechanism also has `m.sensitivities(input, &guess)`,
+//! which returns the state and its exact derivatives with respect to
 //! every parameter — of positions, velocity and acceleration analogs and outputs — by the
 //! implicit function theorem on the same block factorisations (`dq/dp = -J^-1 df/dp`; the
 //! analogs' sensitivities differentiate their own equations), all differentiated at compile time.
 //! A parameter name appended to a state path reads as a derivative: `sens.dq.x_c.l_p` is
-//! `d(dX_C/dphi1)/dL_P`. They cost nothing unless requested. [`extremum`] and [`integral`] give
+//! `d(dX_C/dphi1)/dL_P`. They cost nothing unless requested; calling `sensitivities` on a
+//! mechanism declared without the attribute is a compile error that says to add it. [`extremum`] and [`integral`] give
 //! objectives over a whole sweep with exact gradients (extremes by the envelope theorem, with the
 //! gradient of their location), and [`LevenbergMarquardt`](analysis::optimize::LevenbergMarquardt) uses them for synthesis
 //! (`examples/synthesis.rs`).
@@ -244,9 +265,10 @@ extern crate self as kinloop;
 pub use kinloop_macros::mechanism;
 pub use kinloop_runtime::*;
 
+/// What code expanded by [`mechanism!`] names (and nothing else); not for use by hand.
 #[doc(hidden)]
-pub mod __private {
-    pub use kinloop_runtime::*;
+pub mod __gen {
+    pub use kinloop_runtime::generated::*;
 }
 
 /// Charts of sweep results as SVG (feature `plot`).

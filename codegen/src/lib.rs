@@ -1,26 +1,26 @@
 //! Everything behind kinloop's `mechanism!` macro, as plain functions over
-//! `proc_macro2::TokenStream` so they can be tested, fuzzed and benchmarked outside a compiler:
+//! `proc_macro2::TokenStream` so they can be tested, fuzzed and benchmarked outside a compiler.
+//! The folders are the pipeline's stages:
 //!
-//! 1. [`syntax`] parses the declaration (with a Pratt parser for expressions, [`expr`]);
-//! 2. [`model`] resolves names, checks vector/scalar types and lowers everything into one
-//!    hash-consed expression graph ([`dag`]);
-//! 3. [`analysis`] checks the structure (counts, mobility, Dulmage–Mendelsohn diagnosis) and
-//!    orders the equations into blocks ([`structure`]);
-//! 4. [`plan`] differentiates the graph symbolically (compile-time forward-mode AD);
-//! 5. [`items`] and [`solver`] emit straight-line Rust.
+//! 1. [`front`] parses the declaration ([`syntax`], with a Pratt parser for expressions,
+//!    [`expr`]) after checking its size and nesting without recursion;
+//! 2. [`semantics`] resolves names, checks vector/scalar types against one table of built-in
+//!    functions and lowers everything into one hash-consed expression graph ([`graph`]);
+//! 3. [`structure`] checks the structure (counts, mobility, Dulmage–Mendelsohn diagnosis) and
+//!    orders the equations into blocks (block-lower-triangular form);
+//! 4. [`plan`] differentiates the graph symbolically (compile-time forward-mode AD), one small
+//!    pass per kind of derivative;
+//! 5. [`emit`] writes what depends on the declaration: the named types, the straight-line
+//!    kernels and the constants (everything else is generic code in the runtime).
 //!
 //! [`expand`] never panics: every mistake becomes a `compile_error!` at the user's span.
 
-pub mod describe;
 pub mod emit;
 pub mod fallback;
 pub mod front;
 pub mod graph;
-pub mod items;
 pub mod plan;
 pub mod semantics;
-pub mod sens_items;
-pub mod solver;
 pub mod structure;
 
 // The first stages under their former paths (`crate::syntax`, `crate::dag`, ...).
@@ -76,19 +76,15 @@ pub fn expand(input: TokenStream) -> TokenStream {
     let warnings = diag::to_tokens(&analysis::warnings(&model), &model.name);
     match analysis::analyze(&model) {
         Ok(blocks) => {
-            let plan = plan::build(&mut model, &blocks);
-            let mut out = items::generate(&model, &plan);
+            let sensitivities = model.options.sensitivities.is_some();
+            let plan = plan::build(&mut model, &blocks, sensitivities);
+            let mut out = emit::generate(&model, &plan);
             out.extend(warnings);
             out
         }
         Err(e) => {
-            let defaults = model
-                .params
-                .iter()
-                .map(|p| p.value.and_then(|v| model.graph.as_const(v)))
-                .collect::<Option<Vec<f64>>>();
             let mut out = e.to_compile_error();
-            out.extend(shape.items(defaults));
+            out.extend(shape.items(plan::model_defaults(&model)));
             out.extend(warnings);
             out
         }

@@ -5,8 +5,7 @@
 use crate::events::EventKind;
 use std::fmt;
 
-// Where errors happen is described by the event vocabulary (kept importable from here).
-pub use crate::events::{BlockInfo, Location};
+use crate::events::Location;
 
 /// What kind of value was not finite.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]

@@ -1,7 +1,8 @@
 //! The kinematic state of a mechanism at one input value, as flat arrays in declaration order.
 //! Generated named structs convert from it; generic code (sweeps, analyses) works on it.
 
-use crate::error::{Error, Location};
+use crate::error::Error;
+use crate::events::Location;
 use crate::mechanism::Mechanism;
 use crate::solvers::lu::Factor;
 use crate::solvers::newton::SolveReport;

@@ -12,6 +12,8 @@ pub mod analysis;
 pub mod dynamics;
 mod error;
 pub mod events;
+#[doc(hidden)]
+pub mod generated;
 mod kin;
 mod mechanism;
 pub mod metrics;
@@ -28,7 +30,7 @@ pub use error::{Error, Quantity};
 pub use events::{BlockInfo, Event, EventKind, Location};
 pub use kin::{DetSigns, FlatMotion, Health, Jac, Kin, Sens};
 pub use lu::{Factor, Fixed, Lu, max_abs};
-pub use mechanism::{Mechanism, Sensitivities};
+pub use mechanism::{Mechanism, Named, NamedSensitivities, Sensitivities};
 pub use newton::{BlockEval, BlockFailure, NewtonConfig, SolveReport, Solved, Termination, iterate, newton};
 pub use paths::curve::{Traced, TracedPoint, trace_curve};
 pub use paths::modes::assembly_modes;
@@ -41,40 +43,3 @@ pub use vec2::Vec2;
 
 /// Re-exported so generated code and users share one nalgebra version.
 pub use nalgebra;
-
-/// Builds the error for a failed block (called by generated code on the cold path).
-#[doc(hidden)]
-#[cold]
-#[inline(never)]
-pub fn block_error(fail: BlockFailure, at: Location) -> Error {
-    let equations = at.block.map_or(&[][..], |(_, info)| info.equations);
-    let name = |row: usize| equations.get(row).copied().unwrap_or("?");
-    match fail {
-        BlockFailure::NonFinite { row, .. } => Error::Domain { what: "equation", name: name(row), at: Box::new(at) },
-        BlockFailure::NoConvergence { row, iterations, residual } => {
-            Error::NoConvergence { iterations, residual, equation: name(row), at: Box::new(at) }
-        }
-        BlockFailure::NoAssembly { row, residual, .. } => {
-            Error::NoAssembly { residual, equation: name(row), at: Box::new(at) }
-        }
-        BlockFailure::Singular { pivot_ratio, tolerance, .. } => {
-            Error::Singular { pivot_ratio, tolerance, at: Box::new(at) }
-        }
-        BlockFailure::InvalidConfig { field } => Error::InvalidArgument(format!(
-            "NewtonConfig::{field} is out of its valid range (see its documentation), {at}"
-        )),
-    }
-}
-
-/// The first row holding a non-finite value (cold-path diagnosis of a failed factorisation).
-#[doc(hidden)]
-#[cold]
-pub fn first_bad_row<const M: usize, const R: usize>(rows: &[[f64; M]; R]) -> Option<usize> {
-    rows.iter().position(|r| r.iter().any(|v| !v.is_finite()))
-}
-
-/// Finds the first non-finite value among named values (parameters, inputs, guesses).
-#[doc(hidden)]
-pub fn first_non_finite(names: &[&'static str], values: &[f64]) -> Option<(&'static str, f64)> {
-    names.iter().zip(values).find(|(_, v)| !v.is_finite()).map(|(n, v)| (*n, *v))
-}

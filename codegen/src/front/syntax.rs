@@ -40,6 +40,8 @@ pub struct MechanismDef {
 pub struct Options {
     /// `#[kinloop(dense)]`: solve every unknown in one block.
     pub dense: Option<Span>,
+    /// `#[kinloop(sensitivities)]`: also generate the parameter sensitivities.
+    pub sensitivities: Option<Span>,
 }
 
 /// A declared name with its doc comments and optional `= value`.
@@ -219,8 +221,14 @@ fn parse_def_into(input: ParseStream, errors: &mut Errors) -> Option<MechanismDe
                 if meta.path.is_ident("dense") {
                     options.dense = Some(meta.path.get_ident().map_or(Span::call_site(), Ident::span));
                     Ok(())
+                } else if meta.path.is_ident("sensitivities") {
+                    options.sensitivities = Some(meta.path.get_ident().map_or(Span::call_site(), Ident::span));
+                    Ok(())
                 } else {
-                    Err(meta.error("unknown kinloop option; the supported option is `#[kinloop(dense)]`"))
+                    Err(meta.error(
+                        "unknown kinloop option; the supported options are `#[kinloop(dense)]` and \
+                         `#[kinloop(sensitivities)]`",
+                    ))
                 }
             });
             if let Err(e) = res {
@@ -231,7 +239,8 @@ fn parse_def_into(input: ParseStream, errors: &mut Errors) -> Option<MechanismDe
                 "remove `#[derive(...)]`: kinloop derives Clone, Copy, Debug and PartialEq itself, \
                  and implements Default when every parameter has a default value"
             } else {
-                "only doc comments (`///`) and `#[kinloop(dense)]` are accepted before a mechanism"
+                "only doc comments (`///`) and `#[kinloop(...)]` options (`dense`, `sensitivities`) are \
+                 accepted before a mechanism"
             };
             errors.push(syn::Error::new_spanned(attr.path(), msg));
         }

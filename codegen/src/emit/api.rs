@@ -1,0 +1,127 @@
+//! The mechanism's implementation of the runtime traits (`Mechanism` with the kernels, `Named`
+//! with the named types), its constants, and its inherent methods: one-line forwarders into the
+//! runtime's generic code, so that `m.solve(x)` needs no import.
+
+use super::kernels::{Mode, jacobian_body, solver_body, straight_line};
+use super::names::Names;
+use super::{Dims, Types, kernel_lints, runtime};
+use crate::model::Model;
+use crate::plan::Plan;
+use proc_macro2::TokenStream;
+use quote::quote;
+use syn::ext::IdentExt;
+
+/// Every item implementing the mechanism.
+pub fn items(model: &Model, plan: &Plan, t: &Types) -> TokenStream {
+    let mut out = constants(model, plan, t);
+    out.extend(forwarders(t, &Dims::of(plan)));
+    out.extend(mechanism_impl(model, plan, t));
+    out
+}
+
+/// The constants and the parameter conversions.
+fn constants(model: &Model, plan: &Plan, t: &Types) -> TokenStream {
+    let (rt, name, plain) = (runtime(), &t.name, &t.plain);
+    let Dims { n, ni, no, np } = Dims::of(plan);
+    let strs = |ids: Vec<&proc_macro2::Ident>| ids.into_iter().map(|i| i.unraw().to_string()).collect::<Vec<_>>();
+    let pnames: Vec<_> = model.params.iter().map(|p| &p.name).collect();
+    let pstrs = strs(pnames.clone());
+    let istrs = strs(model.inputs.iter().map(|p| &p.name).collect());
+    let ustrs = strs(model.unknowns.iter().map(|p| &p.name).collect());
+    let estrs: Vec<String> = model.equations.iter().map(|e| e.name.clone()).collect();
+    let ostrs = model.output_names();
+    let decomposition = super::describe::decomposition(model, plan);
+    let blocks = plan.blocks.iter().map(|b| {
+        let us = b.unknowns.iter().map(|&u| &ustrs[u]);
+        let es = b.equations.iter().map(|&e| &estrs[e]);
+        let linear = b.linear;
+        quote!(#rt::BlockInfo { unknowns: &[#(#us),*], equations: &[#(#es),*], linear: #linear })
+    });
+    quote! {
+        impl #name {
+            /// The mechanism's type name.
+            pub const NAME: &'static str = #plain;
+            /// Parameter names, in declaration order.
+            pub const PARAMS: [&'static str; #np] = [#(#pstrs),*];
+            /// Input names.
+            pub const INPUTS: [&'static str; #ni] = [#(#istrs),*];
+            /// Unknown names.
+            pub const UNKNOWNS: [&'static str; #n] = [#(#ustrs),*];
+            /// Scalar equation names: `loop.x` and `loop.y` for each loop, the `eq` names.
+            pub const EQUATIONS: [&'static str; #n] = [#(#estrs),*];
+            /// Output columns: `point.x`, `point.y` for each point, then scalar outputs.
+            pub const OUTPUTS: [&'static str; #no] = [#(#ostrs),*];
+            /// The block-triangular decomposition of the equations, in solve order.
+            pub const BLOCKS: &'static [#rt::BlockInfo] = &[#(#blocks),*];
+            /// The decomposition in words: counts and mobility, then one line per block in
+            /// solve order (Newton or linear, size, unknowns `<-` equations).
+            pub const DECOMPOSITION: &'static str = #decomposition;
+
+            /// Parameter values in declaration order.
+            pub fn param_values(&self) -> [f64; #np] {
+                [#(self.#pnames),*]
+            }
+
+            /// Builds the mechanism from parameter values in declaration order.
+            pub fn from_param_values([#(#pnames),*]: [f64; #np]) -> Self {
+                #name { #(#pnames),* }
+            }
+        }
+    }
+}
+
+/// The inherent named API (forwarders to the runtime's `Named`), `state.motion` and the
+/// conversions that depend only on the type names: one invocation of the runtime's macro.
+fn forwarders(t: &Types, d: &Dims) -> TokenStream {
+    let rt = runtime();
+    let Types { name, inputs, unknowns, outputs, state, motion, .. } = t;
+    let Dims { n, ni, no, .. } = d;
+    quote!(#rt::named_api!(#name, #inputs, #unknowns, #outputs, #state, #motion, #n, #ni, #no);)
+}
+
+/// `Mechanism` for the mechanism: its constants and kernels (the residuals are those of
+/// `jacobian_flat`).
+fn mechanism_impl(model: &Model, plan: &Plan, t: &Types) -> TokenStream {
+    let (rt, name, names) = (runtime(), &t.name, Names::new(model, plan));
+    let Dims { n, ni, no, .. } = Dims::of(plan);
+    let position = solver_body(plan, &names, Mode::Position, false);
+    let fused = solver_body(plan, &names, Mode::Fused, false);
+    let at = solver_body(plan, &names, Mode::At, false);
+    let outputs_body = straight_line(plan, &names, &plan.outputs, true);
+    let guess = straight_line(plan, &names, &plan.guesses, false);
+    let jacobian = jacobian_body(plan, &names);
+    let lints = kernel_lints();
+    let (x, q, g, cfg) = (
+        quote!(__x: &[f64; #ni]),
+        quote!(__q: &[f64; #n]),
+        quote!(__guess: &[f64; #n]),
+        quote!(__cfg: &#rt::NewtonConfig),
+    );
+    let kin = quote!(::core::result::Result<#rt::Kin<#n, #ni, #no>, #rt::Error>);
+    quote! {
+        #lints
+        impl #rt::Mechanism<#n, #ni, #no> for #name {
+            const NAME: &'static str = #name::NAME;
+            const PARAMS: &'static [&'static str] = &#name::PARAMS;
+            const INPUTS: [&'static str; #ni] = #name::INPUTS;
+            const UNKNOWNS: [&'static str; #n] = #name::UNKNOWNS;
+            const EQUATIONS: [&'static str; #n] = #name::EQUATIONS;
+            const OUTPUTS: [&'static str; #no] = #name::OUTPUTS;
+            const BLOCKS: &'static [#rt::BlockInfo] = #name::BLOCKS;
+
+            fn param_values(&self) -> ::std::vec::Vec<f64> {
+                #name::param_values(self).to_vec()
+            }
+            fn guess_flat(&self, #x) -> [f64; #n] { #guess }
+            fn outputs_flat(&self, #x, #q) -> [f64; #no] { #outputs_body }
+            fn jacobian_flat(&self, #x, #q) -> #rt::Jac<#n, #ni> { #jacobian }
+            #[inline]
+            fn position_flat(&self, #x, #g, #cfg) -> ::core::result::Result<([f64; #n], #rt::SolveReport), #rt::Error> {
+                #position
+            }
+            #[inline]
+            fn kinematics_flat(&self, #x, #g, #cfg) -> #kin { #fused }
+            fn kinematics_at_flat(&self, #x, #q, #cfg) -> #kin { #at }
+        }
+    }
+}

@@ -1,0 +1,598 @@
+//! The straight-line kernels: flat arrays in, flat arrays out. Everything else a mechanism
+//! offers is generic runtime code built on them.
+//!
+//! The solver kernels share one scheduler and differ by [`Mode`]:
+//! * `Position`: blocks solved in BLT order (Newton per nonlinear block, one linear solve per
+//!   linear block);
+//! * `Fused`: the same, then velocity and acceleration analogs with one factorisation per block
+//!   (the Newton evaluation's Jacobian at the solution is reused, linear blocks reuse their
+//!   position factorisation), then the outputs and their analogs;
+//! * `At`: analogs and outputs at a position given by the caller.
+//!
+//! With `sens`, the parameter sensitivities follow on the same factorisations.
+
+use super::names::{Names, float_arg};
+use super::schedule::{Schedule, ScopeKind, ScopeSpec, schedule};
+use super::{lit, runtime};
+use crate::dag::{Graph, Leaf, NodeId};
+use crate::plan::{BlockPlan, Plan, Stages, pair_index, pairs};
+use proc_macro2::{Ident, TokenStream};
+use quote::{format_ident, quote};
+use std::collections::HashSet;
+
+#[derive(Clone, Copy, PartialEq, Eq)]
+pub enum Mode {
+    Position,
+    Fused,
+    At,
+}
+
+/// Scope indices of a solver kernel, per block.
+#[derive(Default)]
+struct Scopes {
+    specs: Vec<ScopeSpec>,
+    residual: Option<usize>,
+    pre: Vec<usize>,
+    newton: Vec<usize>,
+    vel: Vec<usize>,
+    acc: Vec<usize>,
+    sens: [Vec<usize>; 3],
+    out: usize,
+}
+
+impl Scopes {
+    fn push(&mut self, kind: ScopeKind, roots: Vec<NodeId>) -> usize {
+        self.specs.push(ScopeSpec { kind, roots });
+        self.specs.len() - 1
+    }
+}
+
+/// The pieces of a solver kernel being generated.
+struct Kernel<'a> {
+    plan: &'a Plan,
+    g: &'a Graph,
+    names: &'a Names,
+    mode: Mode,
+    sched: Schedule,
+    scopes: Scopes,
+    rt: TokenStream,
+    /// The leaves the kernel reads.
+    used: HashSet<Leaf>,
+}
+
+/// A sensitivity stage's right-hand sides per row.
+fn stage_rows(s: &Stages, stage: usize) -> &Vec<Vec<NodeId>> {
+    [&s.q, &s.v, &s.a][stage]
+}
+
+fn plan_scopes(plan: &Plan, mode: Mode, sens: bool) -> Scopes {
+    let mut s = Scopes::default();
+    if mode == Mode::At {
+        s.residual = Some(s.push(ScopeKind::Plain, plan.residuals.clone()));
+    } else {
+        for (b, bp) in plan.blocks.iter().enumerate() {
+            let (pre, newton) = if bp.linear {
+                (
+                    bp.jac.concat().into_iter().chain(bp.rhs0.iter().copied()).chain(bp.col_scale.concat()).collect(),
+                    vec![],
+                )
+            } else {
+                (Vec::new(), bp.f.iter().copied().chain(bp.jac.concat()).collect())
+            };
+            let p = s.push(ScopeKind::Plain, pre);
+            s.pre.push(p);
+            let l = s.push(ScopeKind::Loop(b), newton);
+            s.newton.push(l);
+        }
+    }
+    if mode == Mode::Position {
+        return s;
+    }
+    for bp in &plan.blocks {
+        let mut roots = bp.vel.concat();
+        roots.extend(bp.col_scale.concat());
+        if mode == Mode::At {
+            roots.extend(bp.jac.concat());
+        }
+        let v = s.push(ScopeKind::Plain, roots);
+        s.vel.push(v);
+    }
+    for bp in &plan.blocks {
+        let a = s.push(ScopeKind::Plain, bp.acc.concat());
+        s.acc.push(a);
+    }
+    let mut out: Vec<NodeId> =
+        plan.outputs.iter().copied().chain(plan.out_d1.concat()).chain(plan.out_d2.concat()).collect();
+    if sens {
+        for stage in 0..3 {
+            for bp in &plan.blocks {
+                let roots = bp.sens.as_ref().map(|st| stage_rows(st, stage).concat()).unwrap_or_default();
+                let k = s.push(ScopeKind::Plain, roots);
+                s.sens[stage].push(k);
+            }
+        }
+        if let Some(os) = &plan.out_sens {
+            out.extend(os.q.concat().into_iter().chain(os.v.concat()).chain(os.a.concat()));
+        }
+    }
+    s.out = s.push(ScopeKind::Plain, out);
+    s
+}
+
+/// The body of a solver kernel with arguments `__x`, `__guess` (or `__q` in mode `At`) and
+/// `__cfg`, returning a `Kin` (or `(Kin, Sens)` with `sens`).
+pub fn solver_body(plan: &Plan, names: &Names, mode: Mode, sens: bool) -> TokenStream {
+    let scopes = plan_scopes(plan, mode, sens);
+    let g = &plan.graph;
+    let sched = schedule(g, &plan.level, &scopes.specs);
+    let used = used_leaves(g, &scopes.specs);
+    let mut body = prologue(names, &used);
+    let k = Kernel { plan, g, names, mode, sched, scopes, rt: runtime(), used };
+    body.extend(k.start());
+    if mode != Mode::At {
+        for b in 0..plan.blocks.len() {
+            body.extend(k.position_block(b));
+        }
+        if mode == Mode::Position {
+            let q = &names.unknowns;
+            body.extend(quote!(::core::result::Result::Ok(([#(#q),*], __report))));
+            return body;
+        }
+    }
+    let rt = &k.rt;
+    body.extend(quote!(let mut __health = #rt::Health::default();));
+    for b in 0..plan.blocks.len() {
+        body.extend(k.velocity_block(b));
+    }
+    for b in 0..plan.blocks.len() {
+        body.extend(k.acceleration_block(b));
+    }
+    if sens {
+        for stage in 0..3 {
+            for b in 0..plan.blocks.len() {
+                body.extend(k.sensitivity_block(stage, b));
+            }
+        }
+    }
+    body.extend(names.lets(g, &k.sched, &k.sched.lets[k.scopes.out]));
+    body.extend(if sens { k.finish_sensitivities() } else { k.finish() });
+    body
+}
+
+/// The leaves a kernel reads, from the roots of all its scopes.
+fn used_leaves(g: &Graph, specs: &[ScopeSpec]) -> HashSet<Leaf> {
+    let roots: Vec<NodeId> = specs.iter().flat_map(|s| s.roots.iter().copied()).collect();
+    g.leaves_of(&roots).into_iter().collect()
+}
+
+/// `let [a, _, c] = *from;` binding only the used elements.
+fn bind_used(ids: &[Ident], used: impl Fn(usize) -> bool, from: TokenStream) -> TokenStream {
+    let pats = ids.iter().enumerate().map(|(k, id)| if used(k) { quote!(#id) } else { quote!(_) });
+    quote!(let [#(#pats),*] = *#from;)
+}
+
+/// Binds the inputs the kernel reads to locals (parameters are read as `self.a`).
+fn prologue(names: &Names, used: &HashSet<Leaf>) -> TokenStream {
+    bind_used(&names.inputs, |k| used.contains(&Leaf::Input(k as u16)), quote!(__x))
+}
+
+/// Binds the unknowns the kernel reads from `__q`.
+fn bind_q(names: &Names, used: &HashSet<Leaf>) -> TokenStream {
+    bind_used(&names.unknowns, |k| used.contains(&Leaf::Unknown(k as u16)), quote!(__q))
+}
+
+impl Kernel<'_> {
+    fn lets(&self, scope: usize) -> TokenStream {
+        self.names.lets(self.g, &self.sched, &self.sched.lets[scope])
+    }
+
+    fn op(&self, n: NodeId) -> TokenStream {
+        self.names.operand(self.g, n)
+    }
+
+    /// The solve report: the caller's position's residual (mode `At`), or filled by the blocks.
+    fn start(&self) -> TokenStream {
+        let rt = &self.rt;
+        match self.scopes.residual {
+            Some(r) => {
+                let (q, lets) = (bind_q(self.names, &self.used), self.lets(r));
+                let res = self.names.operands(self.g, &self.plan.residuals);
+                quote! {
+                    #q
+                    #lets
+                    let __report = #rt::SolveReport::given(#rt::max_abs([#(#res),*]));
+                }
+            }
+            // Only Newton blocks add to the report.
+            None if self.plan.blocks.iter().all(|b| b.linear) => quote!(let __report = #rt::SolveReport::direct();),
+            None => quote!(let mut __report = #rt::SolveReport::direct();),
+        }
+    }
+
+    /// A 1x1 linear block with a constant, non-zero, finite coefficient.
+    fn fixed(&self, bp: &BlockPlan) -> Option<f64> {
+        if !bp.linear || bp.unknowns.len() != 1 {
+            return None;
+        }
+        self.g.as_const(bp.jac[0][0]).filter(|c| *c != 0.0 && c.is_finite())
+    }
+
+    fn col_scales(&self, bp: &BlockPlan) -> Vec<TokenStream> {
+        let rt = &self.rt;
+        bp.col_scale
+            .iter()
+            .map(|col| {
+                let c = self.names.operands(self.g, col);
+                quote!(#rt::max_abs([#(#c),*]))
+            })
+            .collect()
+    }
+
+    fn unknowns_of(&self, bp: &BlockPlan) -> Vec<&Ident> {
+        bp.unknowns.iter().map(|&u| &self.names.unknowns[u]).collect()
+    }
+
+    fn position_block(&self, b: usize) -> TokenStream {
+        let bp = &self.plan.blocks[b];
+        let mut out = self.lets(self.scopes.pre[b]);
+        let qs = self.unknowns_of(bp);
+        let (rt, lu) = (&self.rt, format_ident!("__lu{}", b));
+        if let Some(c) = self.fixed(bp) {
+            // A constant, non-zero coefficient: one division, never singular.
+            let (c, rhs) = (float_arg(c), self.op(bp.rhs0[0]));
+            out.extend(quote! {
+                let #lu = #rt::Fixed(#c);
+                let [#(#qs),*] = #lu.solve([#rhs]);
+            });
+        } else if bp.linear {
+            out.extend(self.linear_block(b, bp, &qs));
+        } else {
+            out.extend(self.newton_block(b, bp, &qs));
+        }
+        out
+    }
+
+    fn linear_block(&self, b: usize, bp: &BlockPlan, qs: &[&Ident]) -> TokenStream {
+        let rt = &self.rt;
+        let (n, bl, lu) = (lit(bp.unknowns.len()), lit(b), format_ident!("__lu{}", b));
+        let scale = self.col_scales(bp);
+        let jrows = self.names.rows(self.g, &bp.jac);
+        let aug: Vec<Vec<NodeId>> =
+            bp.jac.iter().zip(&bp.rhs0).map(|(row, &r)| row.iter().copied().chain([r]).collect()).collect();
+        let aug = self.names.rows(self.g, &aug);
+        let rhs = self.names.operands(self.g, &bp.rhs0);
+        quote! {
+            let #lu = #rt::Lu::<#n>::factor_cols(&#jrows, [#(#scale),*]);
+            if !(#lu.pivot_ratio() >= __cfg.singular_tol) {
+                return Err(#rt::singular(self, #bl, #lu.pivot_ratio(), __cfg, __x, #rt::first_bad_row(&#aug)));
+            }
+            let [#(#qs),*] = #lu.solve([#(#rhs),*]);
+        }
+    }
+
+    fn newton_block(&self, b: usize, bp: &BlockPlan, qs: &[&Ident]) -> TokenStream {
+        let rt = &self.rt;
+        let (n, bl) = (lit(bp.unknowns.len()), lit(b));
+        let l = self.scopes.newton[b];
+        let inner = self.lets(l);
+        let exports: Vec<Ident> = self.sched.exports[l].iter().map(|&x| self.names.temp(x)).collect();
+        let k = lit(exports.len());
+        let guess = bp.unknowns.iter().map(|&u| {
+            let u = lit(u);
+            quote!(__guess[#u])
+        });
+        let f = self.names.operands(self.g, &bp.f);
+        let jrows = self.names.rows(self.g, &bp.jac);
+        let (s, ev) = (format_ident!("__s{}", b), format_ident!("__eval{}", b));
+        // The block's evaluation is one closure handed to the runtime's Newton, which checks
+        // the guess, corrects it at least once and always checks the final residual.
+        quote! {
+            let #ev = |__z: &[f64; #n]| -> #rt::BlockEval<#n, #k> {
+                let [#(#qs),*] = *__z;
+                #inner
+                #rt::BlockEval { f: [#(#f),*], j: #jrows, scale: [0.0; #n], keep: [#(#exports),*] }
+            };
+            let __z0: [f64; #n] = [#(#guess),*];
+            let #s = match #rt::newton::<#n, #k>(__z0, __cfg, #ev) {
+                Ok(s) => s,
+                Err(e) => return Err(#rt::block_failure(self, #bl, e, __x, __guess)),
+            };
+            __report.absorb(&#s);
+            let [#(#qs),*] = #s.z;
+            let [#(#exports),*] = #s.eval.keep;
+        }
+    }
+
+    /// Velocity analogs of block `b`, factorising its Jacobian when the position solve did not
+    /// (the factorisation is reused for accelerations and sensitivities).
+    fn velocity_block(&self, b: usize) -> TokenStream {
+        let bp = &self.plan.blocks[b];
+        let rt = &self.rt;
+        let (n, ni, bl) = (lit(bp.unknowns.len()), lit(self.plan.ni), lit(b));
+        let (lu, rv) = (format_ident!("__lu{}", b), format_ident!("__rv{}", b));
+        let mut out = self.lets(self.scopes.vel[b]);
+        let rows = self.names.rows(self.g, &bp.vel);
+        out.extend(quote!(let #rv: [[f64; #ni]; #n] = #rows;));
+        let fixed = self.fixed(bp);
+        if let (Mode::At, Some(c)) = (self.mode, fixed) {
+            let c = float_arg(c);
+            out.extend(quote!(let #lu = #rt::Fixed(#c);));
+        }
+        if (self.mode == Mode::At || !bp.linear) && fixed.is_none() {
+            let j = if self.mode == Mode::At {
+                self.names.rows(self.g, &bp.jac)
+            } else {
+                let s = format_ident!("__s{}", b);
+                quote!(#s.eval.j)
+            };
+            let scale = self.col_scales(bp);
+            out.extend(quote! {
+                let __j: [[f64; #n]; #n] = #j;
+                let #lu = #rt::Lu::<#n>::factor_cols(&__j, [#(#scale),*]);
+                if !(#lu.pivot_ratio() >= __cfg.singular_tol) {
+                    let bad = #rt::first_bad_row(&__j).or(#rt::first_bad_row(&#rv));
+                    return Err(#rt::singular(self, #bl, #lu.pivot_ratio(), __cfg, __x, bad));
+                }
+            });
+        }
+        let vs = bp.unknowns.iter().map(|&u| {
+            let v = (0..self.plan.ni).map(|i| self.names.tan(u, i));
+            quote!([#(#v),*])
+        });
+        out.extend(quote! {
+            __health.note(#bl, &#lu);
+            let [#(#vs),*] = #lu.solve_cols(#rv);
+        });
+        out
+    }
+
+    fn acceleration_block(&self, b: usize) -> TokenStream {
+        let bp = &self.plan.blocks[b];
+        let np = pairs(self.plan.ni);
+        let (n, npl, lu) = (lit(bp.unknowns.len()), lit(np.len()), format_ident!("__lu{}", b));
+        let mut out = self.lets(self.scopes.acc[b]);
+        let rows = self.names.rows(self.g, &bp.acc);
+        let ws = bp.unknowns.iter().map(|&u| {
+            let w = np.iter().map(|&(i, j)| self.names.tan2(u, i, j));
+            quote!([#(#w),*])
+        });
+        out.extend(quote! {
+            let __ra: [[f64; #npl]; #n] = #rows;
+            let [#(#ws),*] = #lu.solve_cols(__ra);
+        });
+        out
+    }
+
+    /// Parameter sensitivities of block `b` at `stage` (positions, first or second analogs):
+    /// the same factorisation, one more set of right-hand sides.
+    fn sensitivity_block(&self, stage: usize, b: usize) -> TokenStream {
+        let bp = &self.plan.blocks[b];
+        let Some(st) = &bp.sens else { return TokenStream::new() };
+        let (ni, npar) = (self.plan.ni, self.plan.np);
+        let slots: Vec<(usize, usize)> = match stage {
+            0 => vec![(0, 0)],
+            1 => (0..ni).map(|i| (i, 0)).collect(),
+            _ => pairs(ni),
+        };
+        let (n, width, lu) = (lit(bp.unknowns.len()), lit(slots.len() * npar), format_ident!("__lu{}", b));
+        let mut out = self.lets(self.scopes.sens[stage][b]);
+        let rows = self.names.rows(self.g, stage_rows(st, stage));
+        let binds = bp.unknowns.iter().map(|&u| {
+            let ids = slots.iter().flat_map(|&(i, j)| {
+                (0..npar).map(move |k| match stage {
+                    0 => self.names.sens_q(u, k),
+                    1 => self.names.sens_v(u, i, k),
+                    _ => self.names.sens_a(u, i, j, k),
+                })
+            });
+            quote!([#(#ids),*])
+        });
+        out.extend(quote! {
+            let __rs: [[f64; #width]; #n] = #rows;
+            let [#(#binds),*] = #lu.solve_cols(__rs);
+        });
+        out
+    }
+
+    /// The `Kin` value from the locals.
+    fn kin(&self) -> TokenStream {
+        let (plan, names, rt, ni) = (self.plan, self.names, &self.rt, self.plan.ni);
+        let q = &names.unknowns;
+        let dq = (0..plan.n).map(|u| {
+            let v = (0..ni).map(|i| names.tan(u, i));
+            quote!([#(#v),*])
+        });
+        let d2q = (0..plan.n).map(|u| {
+            let rows = (0..ni).map(|i| {
+                let w = (0..ni).map(|j| names.tan2(u, i, j));
+                quote!([#(#w),*])
+            });
+            quote!([#(#rows),*])
+        });
+        let out = names.operands(self.g, &plan.outputs);
+        let dout = names.rows(self.g, &plan.out_d1);
+        let d2: Vec<TokenStream> = plan.out_d2.iter().map(|row| self.by_pairs(row, 1, 0)).collect();
+        quote! {
+            #rt::Kin {
+                x: *__x,
+                q: [#(#q),*],
+                dq: [#(#dq),*],
+                d2q: [#(#d2q),*],
+                out: [#(#out),*],
+                dout: #dout,
+                d2out: [#(#d2),*],
+                report: __report,
+                health: __health,
+            }
+        }
+    }
+
+    /// `[[row[p(i, j) * stride + k]]]` over input pairs, as an `ni x ni` array.
+    fn by_pairs(&self, row: &[NodeId], stride: usize, k: usize) -> TokenStream {
+        let ni = self.plan.ni;
+        let rows = (0..ni).map(|i| {
+            let r = (0..ni).map(|j| self.op(row[pair_index(ni, i, j) * stride + k]));
+            quote!([#(#r),*])
+        });
+        quote!([#(#rows),*])
+    }
+
+    fn guess_arg(&self) -> TokenStream {
+        if self.mode == Mode::At { quote!(None) } else { quote!(Some(__guess)) }
+    }
+
+    /// Returns the state; one sum tells whether every value is finite (NaN and infinity
+    /// propagate), and the state is examined value by value only on the cold path (in the
+    /// runtime's `checked`).
+    fn finish(&self) -> TokenStream {
+        let (plan, names) = (self.plan, self.names);
+        let ni = plan.ni;
+        let mut terms: Vec<TokenStream> = names.unknowns.iter().map(|q| quote!(#q)).collect();
+        for u in 0..plan.n {
+            for i in 0..ni {
+                let v = names.tan(u, i);
+                terms.push(quote!(#v));
+                terms.extend((0..ni).map(|j| {
+                    let w = names.tan2(u, i, j);
+                    quote!(#w)
+                }));
+            }
+        }
+        for (o, &node) in plan.outputs.iter().enumerate() {
+            terms.push(self.op(node));
+            terms.extend(names.operands(self.g, &plan.out_d1[o]));
+            terms.extend(names.operands(self.g, &plan.out_d2[o]));
+        }
+        let (sum, kin, rt, guess) = (balanced_sum(terms), self.kin(), &self.rt, self.guess_arg());
+        quote! {
+            let __sum: f64 = #sum;
+            #rt::checked(self, #kin, __sum, #guess)
+        }
+    }
+
+    /// Returns the state and its sensitivities, checked.
+    fn finish_sensitivities(&self) -> TokenStream {
+        let (plan, names, rt) = (self.plan, self.names, &self.rt);
+        let (ni, npar) = (plan.ni, plan.np);
+        let params = |f: &dyn Fn(usize) -> Ident| {
+            let v = (0..npar).map(f);
+            quote!([#(#v),*])
+        };
+        let sq = (0..plan.n).map(|u| params(&|k| names.sens_q(u, k)));
+        let sv = (0..plan.n).map(|u| {
+            let rows = (0..ni).map(|i| params(&|k| names.sens_v(u, i, k)));
+            quote!([#(#rows),*])
+        });
+        let sa = (0..plan.n).map(|u| {
+            let rows = (0..ni).map(|i| {
+                let cols = (0..ni).map(|j| params(&|k| names.sens_a(u, i, j, k)));
+                quote!([#(#cols),*])
+            });
+            quote!([#(#rows),*])
+        });
+        let empty = Stages { q: Vec::new(), v: Vec::new(), a: Vec::new() };
+        let os = plan.out_sens.as_ref().unwrap_or(&empty);
+        let osq = names.rows(self.g, &os.q);
+        let osv = os.v.iter().map(|row| {
+            let rows = (0..ni).map(|i| {
+                let v = names.operands(self.g, &row[i * npar..(i + 1) * npar]);
+                quote!([#(#v),*])
+            });
+            quote!([#(#rows),*])
+        });
+        let osa = os.a.iter().map(|row| {
+            let rows = (0..ni).map(|i| {
+                let cols = (0..ni).map(|j| {
+                    let p = pair_index(ni, i, j);
+                    let v = names.operands(self.g, &row[p * npar..(p + 1) * npar]);
+                    quote!([#(#v),*])
+                });
+                quote!([#(#cols),*])
+            });
+            quote!([#(#rows),*])
+        });
+        let (kin, guess) = (self.kin(), self.guess_arg());
+        quote! {
+            let __sens = #rt::Sens { q: [#(#sq),*], dq: [#(#sv),*], d2q: [#(#sa),*], out: #osq, dout: [#(#osv),*], d2out: [#(#osa),*] };
+            #rt::checked_sensitivities(self, #kin, __sens, #guess)
+        }
+    }
+}
+
+/// `a + b + ...` as a balanced tree: its depth (the latency of the dependent additions) grows
+/// like the logarithm of the number of terms instead of linearly.
+fn balanced_sum(mut terms: Vec<TokenStream>) -> TokenStream {
+    if terms.is_empty() {
+        return quote!(0.0);
+    }
+    while terms.len() > 1 {
+        let mut next = Vec::with_capacity(terms.len().div_ceil(2));
+        let mut it = terms.into_iter();
+        while let Some(a) = it.next() {
+            next.push(match it.next() {
+                Some(b) => quote!((#a + #b)),
+                None => a,
+            });
+        }
+        terms = next;
+    }
+    terms.pop().unwrap_or_else(|| quote!(0.0))
+}
+
+/// Straight-line evaluation of some roots (residual, outputs, guesses), returning an array;
+/// `with_q` binds the unknowns from `__q`.
+pub fn straight_line(plan: &Plan, names: &Names, roots: &[NodeId], with_q: bool) -> TokenStream {
+    let g = &plan.graph;
+    let sched = schedule(g, &plan.level, &[ScopeSpec { kind: ScopeKind::Plain, roots: roots.to_vec() }]);
+    let lets = names.lets(g, &sched, &sched.lets[0]);
+    let used: HashSet<Leaf> = g.leaves_of(roots).into_iter().collect();
+    let bind = if with_q { bind_q(names, &used) } else { quote!() };
+    let vals = names.operands(g, roots);
+    let mut body = prologue(names, &used);
+    body.extend(quote! {
+        #bind
+        #lets
+        [#(#vals),*]
+    });
+    body
+}
+
+/// Residuals, full Jacobian and input derivatives at `(x, q)`, as a `Jac`.
+pub fn jacobian_body(plan: &Plan, names: &Names) -> TokenStream {
+    let g = &plan.graph;
+    let roots: Vec<NodeId> =
+        plan.residuals.iter().copied().chain(plan.jac_full.concat()).chain(plan.fx_full.concat()).collect();
+    let used: HashSet<Leaf> = g.leaves_of(&roots).into_iter().collect();
+    let sched = schedule(g, &plan.level, &[ScopeSpec { kind: ScopeKind::Plain, roots }]);
+    let lets = names.lets(g, &sched, &sched.lets[0]);
+    let (q, rt) = (bind_q(names, &used), runtime());
+    let f = names.operands(g, &plan.residuals);
+    let (n, ni) = (lit(plan.n), lit(plan.ni));
+    let (j, fx) = (sparse_entries(plan, names, &plan.jac_full, "j"), sparse_entries(plan, names, &plan.fx_full, "fx"));
+    let mut body = prologue(names, &used);
+    body.extend(quote! {
+        #q
+        #lets
+        let mut __jac = #rt::Jac { f: [#(#f),*], j: [[0.0; #n]; #n], fx: [[0.0; #ni]; #n] };
+        #j
+        #fx
+        __jac
+    });
+    body
+}
+
+/// `__jac.field[r][c] = value;` for the structurally non-zero entries of a matrix only: a
+/// Jacobian is sparse (a few entries per row), and writing all `n^2` of them would make the
+/// generated code, and its compile time, grow with the square of the size.
+fn sparse_entries(plan: &Plan, names: &Names, rows: &[Vec<NodeId>], field: &str) -> TokenStream {
+    let g = &plan.graph;
+    let field = format_ident!("{}", field);
+    let mut out = TokenStream::new();
+    for (r, row) in rows.iter().enumerate() {
+        for (c, &node) in row.iter().enumerate().filter(|&(_, &node)| !g.is_zero(node)) {
+            let (r, c, v) = (lit(r), lit(c), names.operand(g, node));
+            out.extend(quote!(__jac.#field[#r][#c] = #v;));
+        }
+    }
+    out
+}

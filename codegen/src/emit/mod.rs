@@ -1,0 +1,102 @@
+//! Emission of Rust from a [`Plan`]: only what depends on the declaration.
+//!
+//! * [`schedule`] places each graph node in the scope of a kernel that first needs it (and
+//!   pairs a sine with the cosine of the same argument);
+//! * [`names`] names the locals and renders nodes as `let` statements;
+//! * [`kernels`] emits the straight-line kernels (positions, analogs, outputs, Jacobians);
+//! * [`surface`] declares the named types (also emitted by the fallback after an error);
+//! * [`api`] implements the runtime traits with the kernels and the constants, and forwards the
+//!   inherent methods to the runtime's generic code;
+//! * [`sensitivities`] adds the sensitivity types and kernels when they were requested;
+//! * [`describe`] writes the decomposition in words.
+//!
+//! Generated code reaches the runtime through `::kinloop::__gen` only.
+
+pub mod api;
+pub mod describe;
+pub mod kernels;
+pub mod names;
+pub mod schedule;
+pub mod sensitivities;
+pub mod surface;
+
+use crate::model::Model;
+use crate::plan::Plan;
+use proc_macro2::{Ident, Literal, TokenStream};
+use quote::{format_ident, quote};
+use syn::ext::IdentExt;
+
+/// The path generated code uses to reach the runtime.
+pub fn runtime() -> TokenStream {
+    quote!(::kinloop::__gen)
+}
+
+pub(crate) fn lit(n: usize) -> Literal {
+    Literal::usize_unsuffixed(n)
+}
+
+/// The names of the generated types of mechanism `name`.
+pub struct Types {
+    pub name: Ident,
+    /// The name without `r#`, for messages and derived names.
+    pub plain: String,
+    pub inputs: Ident,
+    pub unknowns: Ident,
+    pub outputs: Ident,
+    pub state: Ident,
+    pub motion: Ident,
+    pub params: Ident,
+    pub sens: Ident,
+}
+
+impl Types {
+    pub fn of(name: &Ident) -> Types {
+        let plain = name.unraw().to_string();
+        let t = |suffix: &str| format_ident!("{}{}", plain, suffix);
+        Types {
+            name: name.clone(),
+            inputs: t("Inputs"),
+            unknowns: t("Unknowns"),
+            outputs: t("Outputs"),
+            state: t("State"),
+            motion: t("Motion"),
+            params: t("Params"),
+            sens: t("Sensitivities"),
+            plain,
+        }
+    }
+}
+
+/// The sizes of a mechanism as literals: unknowns, inputs, outputs, parameters.
+pub struct Dims {
+    pub n: Literal,
+    pub ni: Literal,
+    pub no: Literal,
+    pub np: Literal,
+}
+
+impl Dims {
+    pub fn of(plan: &Plan) -> Dims {
+        Dims { n: lit(plan.n), ni: lit(plan.ni), no: lit(plan.outputs.len()), np: lit(plan.np) }
+    }
+}
+
+/// Lints allowed on the kernels, each because of what the generator writes: locals named after
+/// the user's names (`q_X_C`), and the user's literals, which may look like an approximation of
+/// a constant (`3.14`).
+pub(crate) fn kernel_lints() -> TokenStream {
+    quote!(#[allow(non_snake_case, clippy::approx_constant)])
+}
+
+/// Every item of an accepted declaration.
+pub fn generate(model: &Model, plan: &Plan) -> TokenStream {
+    let types = Types::of(&model.name);
+    let mut out = surface::items(&surface::Surface::of_model(model, plan.defaults.clone()), &types);
+    out.extend(api::items(model, plan, &types));
+    if plan.has_sensitivities() {
+        out.extend(sensitivities::items(model, plan, &types));
+    } else {
+        out.extend(sensitivities::absent(&types));
+    }
+    out
+}

@@ -1,0 +1,286 @@
+//! Names of the locals in generated code, and the `let` statements that compute graph nodes.
+//!
+//! Leaves read like the quantities they hold: `self.a` (parameter `a`), `x_phi` (input), `q_beta`
+//! (unknown), `dq_beta_phi` (`d beta / d phi`), `d2q_beta_phi_phi`, and for the sensitivities
+//! to parameter `a` `sq_beta_a`, `sdq_beta_phi_a`, `sd2q_beta_phi_phi_a`. Should two such names
+//! coincide (names containing underscores can), the derived names fall back to indices
+//! (`dq0_1`). Temporaries that are a declared quantity are named after it: the residual of
+//! `loop abcd` on X is `r_abcd_x`, its derivative by `beta` `j_abcd_x_beta`, by input `phi`
+//! `fx_abcd_x_phi`, the x coordinate of `point p` `out_p_x`; anonymous subexpressions are `t`
+//! and their node number.
+
+use super::schedule::Schedule;
+use crate::dag::{Graph, Leaf, NodeId, Op};
+use crate::model::Model;
+use crate::plan::Plan;
+use proc_macro2::{Ident, Literal, Span, TokenStream};
+use quote::{format_ident, quote};
+use std::collections::{HashMap, HashSet};
+use syn::ext::IdentExt;
+
+/// Names of leaves and temporaries in generated code.
+pub struct Names {
+    /// Parameters are read from the mechanism where they are used (`self.a`).
+    pub params: Vec<TokenStream>,
+    pub inputs: Vec<Ident>,
+    pub unknowns: Vec<Ident>,
+    /// Plain names of unknowns, inputs and parameters, for the derived names.
+    u: Vec<String>,
+    i: Vec<String>,
+    p: Vec<String>,
+    /// Derived names are readable (no two coincide).
+    readable: bool,
+    /// Temporaries named after the declared quantity they are.
+    roles: HashMap<NodeId, Ident>,
+}
+
+fn plain(id: &Ident) -> String {
+    id.unraw().to_string()
+}
+
+fn lower(i: usize, j: usize) -> (usize, usize) {
+    if i <= j { (i, j) } else { (j, i) }
+}
+
+impl Names {
+    pub fn new(model: &Model, plan: &Plan) -> Names {
+        let u: Vec<String> = model.unknowns.iter().map(|x| plain(&x.name)).collect();
+        let i: Vec<String> = model.inputs.iter().map(|x| plain(&x.name)).collect();
+        let p: Vec<String> = model.params.iter().map(|x| plain(&x.name)).collect();
+        let mut names = Names {
+            params: model
+                .params
+                .iter()
+                .map(|x| {
+                    let f = &x.name;
+                    quote!(self.#f)
+                })
+                .collect(),
+            inputs: i.iter().map(|s| format_ident!("x_{}", s)).collect(),
+            unknowns: u.iter().map(|s| format_ident!("q_{}", s)).collect(),
+            u,
+            i,
+            p,
+            readable: true,
+            roles: HashMap::new(),
+        };
+        names.readable = names.distinct();
+        names.roles = roles(model, plan);
+        names
+    }
+
+    /// Whether the readable derived names are all distinct.
+    fn distinct(&self) -> bool {
+        let (nu, ni, np) = (self.u.len(), self.i.len(), self.p.len());
+        let mut seen = HashSet::new();
+        let mut all = true;
+        for u in 0..nu {
+            for i in 0..ni {
+                all &= seen.insert(self.tan(u, i).to_string());
+                for j in i..ni {
+                    all &= seen.insert(self.tan2(u, i, j).to_string());
+                    all &= (0..np).all(|k| seen.insert(self.sens_a(u, i, j, k).to_string()));
+                }
+                all &= (0..np).all(|k| seen.insert(self.sens_v(u, i, k).to_string()));
+            }
+            all &= (0..np).all(|k| seen.insert(self.sens_q(u, k).to_string()));
+        }
+        all
+    }
+
+    /// The local holding node `n`: its role's name, or `t` and its number.
+    pub fn temp(&self, n: NodeId) -> Ident {
+        self.roles.get(&n).cloned().unwrap_or_else(|| format_ident!("t{}", n.0))
+    }
+
+    /// `d q_u / d x_i`.
+    pub fn tan(&self, u: usize, i: usize) -> Ident {
+        if self.readable { format_ident!("dq_{}_{}", self.u[u], self.i[i]) } else { format_ident!("dq{}_{}", u, i) }
+    }
+
+    /// `d2 q_u / d x_i d x_j`.
+    pub fn tan2(&self, u: usize, i: usize, j: usize) -> Ident {
+        let (i, j) = lower(i, j);
+        if self.readable {
+            format_ident!("d2q_{}_{}_{}", self.u[u], self.i[i], self.i[j])
+        } else {
+            format_ident!("d2q{}_{}_{}", u, i, j)
+        }
+    }
+
+    /// `d q_u / d p_k`.
+    pub fn sens_q(&self, u: usize, k: usize) -> Ident {
+        if self.readable { format_ident!("sq_{}_{}", self.u[u], self.p[k]) } else { format_ident!("sq{}_{}", u, k) }
+    }
+
+    /// `d (d q_u / d x_i) / d p_k`.
+    pub fn sens_v(&self, u: usize, i: usize, k: usize) -> Ident {
+        if self.readable {
+            format_ident!("sdq_{}_{}_{}", self.u[u], self.i[i], self.p[k])
+        } else {
+            format_ident!("sdq{}_{}_{}", u, i, k)
+        }
+    }
+
+    /// `d (d2 q_u / d x_i d x_j) / d p_k`.
+    pub fn sens_a(&self, u: usize, i: usize, j: usize, k: usize) -> Ident {
+        let (i, j) = lower(i, j);
+        if self.readable {
+            format_ident!("sd2q_{}_{}_{}_{}", self.u[u], self.i[i], self.i[j], self.p[k])
+        } else {
+            format_ident!("sd2q{}_{}_{}_{}", u, i, j, k)
+        }
+    }
+
+    fn leaf(&self, l: Leaf) -> TokenStream {
+        let us = |x: u16| x as usize;
+        let id = match l {
+            Leaf::Param(k) => return self.params[us(k)].clone(),
+            Leaf::Input(k) => self.inputs[us(k)].clone(),
+            Leaf::Unknown(k) => self.unknowns[us(k)].clone(),
+            Leaf::Tan { unknown, input } => self.tan(us(unknown), us(input)),
+            Leaf::Tan2 { unknown, i, j } => self.tan2(us(unknown), us(i), us(j)),
+            Leaf::SensQ { unknown, param } => self.sens_q(us(unknown), us(param)),
+            Leaf::SensV { unknown, input, param } => self.sens_v(us(unknown), us(input), us(param)),
+            Leaf::SensA { unknown, i, j, param } => self.sens_a(us(unknown), us(i), us(j), us(param)),
+        };
+        quote!(#id)
+    }
+
+    /// A node as an operand: a literal, a leaf's local, or a temporary.
+    pub fn operand(&self, g: &Graph, n: NodeId) -> TokenStream {
+        match g.op(n) {
+            Op::Const(bits) => float(f64::from_bits(bits)),
+            Op::Leaf(l) => self.leaf(l),
+            _ => {
+                let id = self.temp(n);
+                quote!(#id)
+            }
+        }
+    }
+
+    /// Operands of several nodes, e.g. for an array literal.
+    pub fn operands<'a>(&'a self, g: &'a Graph, nodes: &'a [NodeId]) -> impl Iterator<Item = TokenStream> + 'a {
+        nodes.iter().map(move |&n| self.operand(g, n))
+    }
+
+    /// Nested rows `[[a, b], [c, d]]` of node operands.
+    pub fn rows(&self, g: &Graph, rows: &[Vec<NodeId>]) -> TokenStream {
+        let r = rows.iter().map(|row| {
+            let v = self.operands(g, row);
+            quote!([#(#v),*])
+        });
+        quote!([#(#r),*])
+    }
+
+    /// The expression computing node `n` from its operands.
+    pub fn expr(&self, g: &Graph, n: NodeId) -> TokenStream {
+        let o = |x: NodeId| self.operand(g, x);
+        match g.op(n) {
+            Op::Const(_) | Op::Leaf(_) => self.operand(g, n),
+            Op::Add(a, b) => binary(o(a), quote!(+), o(b)),
+            Op::Sub(a, b) => binary(o(a), quote!(-), o(b)),
+            Op::Mul(a, b) => binary(o(a), quote!(*), o(b)),
+            Op::Div(a, b) => binary(o(a), quote!(/), o(b)),
+            Op::Neg(a) => {
+                let a = o(a);
+                quote!(-#a)
+            }
+            Op::Powi(a, 2) => {
+                let a = o(a);
+                quote!(#a * #a)
+            }
+            Op::Powi(a, -1) => {
+                let a = o(a);
+                quote!(1.0 / #a)
+            }
+            Op::Powi(a, k) => {
+                let (a, k) = (o(a), Literal::i32_unsuffixed(k));
+                quote!(#a.powi(#k))
+            }
+            Op::Powf(a, b) => method(o(a), "powf", Some(o(b))),
+            Op::Func(f, a) => method(o(a), f.method(), None),
+            Op::Atan2(y, x) => method(o(y), "atan2", Some(o(x))),
+        }
+    }
+
+    /// `let tN: f64 = ...;` for each node, in order. A sine and a cosine paired by the schedule
+    /// become one `sin_cos()` call, at the place of whichever of the two comes first.
+    pub fn lets(&self, g: &Graph, sched: &Schedule, nodes: &[NodeId]) -> TokenStream {
+        let mut done = HashSet::new();
+        let mut out = TokenStream::new();
+        for &n in nodes {
+            if let Some(&(sn, cn)) = sched.sin_cos.get(&n) {
+                if done.insert(sn) {
+                    let (s, c) = (self.temp(sn), self.temp(cn));
+                    let arg = match g.op(sn) {
+                        Op::Func(_, a) => self.operand(g, a),
+                        _ => self.operand(g, sn),
+                    };
+                    out.extend(quote!(let (#s, #c): (f64, f64) = #arg.sin_cos();));
+                }
+                continue;
+            }
+            let (name, e) = (self.temp(n), self.expr(g, n));
+            out.extend(quote!(let #name: f64 = #e;));
+        }
+        out
+    }
+}
+
+/// Names of the temporaries that are declared quantities (see the module docs), each name
+/// given once: should two quantities spell the same (`eq a_x` next to `loop a`), the later one
+/// stays anonymous.
+fn roles(model: &Model, plan: &Plan) -> HashMap<NodeId, Ident> {
+    let g = &plan.graph;
+    // Equation and output names may hold raw identifiers (`r#match.x`).
+    let snake = |s: &str| s.replace("r#", "").replace('.', "_");
+    let u: Vec<String> = model.unknowns.iter().map(|x| plain(&x.name)).collect();
+    let i: Vec<String> = model.inputs.iter().map(|x| plain(&x.name)).collect();
+    let mut named: Vec<(NodeId, String)> = Vec::new();
+    for (e, eq) in model.equations.iter().enumerate() {
+        let eqn = snake(&eq.name);
+        named.push((plan.residuals[e], format!("r_{eqn}")));
+        named.extend(plan.jac_full[e].iter().zip(&u).map(|(&n, u)| (n, format!("j_{eqn}_{u}"))));
+        named.extend(plan.fx_full[e].iter().zip(&i).map(|(&n, i)| (n, format!("fx_{eqn}_{i}"))));
+    }
+    let outs = model.output_names();
+    named.extend(plan.outputs.iter().zip(&outs).map(|(&n, o)| (n, format!("out_{}", snake(o)))));
+    let mut taken = HashSet::new();
+    let mut roles = HashMap::new();
+    for (n, name) in named {
+        let anonymous = matches!(g.op(n), Op::Const(_) | Op::Leaf(_)) || roles.contains_key(&n);
+        if anonymous || syn::parse_str::<Ident>(&name).is_err() || !taken.insert(name.clone()) {
+            continue;
+        }
+        roles.insert(n, Ident::new(&name, Span::call_site()));
+    }
+    roles
+}
+
+fn binary(a: TokenStream, op: TokenStream, b: TokenStream) -> TokenStream {
+    quote!(#a #op #b)
+}
+
+fn method(receiver: TokenStream, name: &str, arg: Option<TokenStream>) -> TokenStream {
+    let m = Ident::new(name, Span::call_site());
+    quote!(#receiver.#m(#arg))
+}
+
+/// An `f64` literal; negative values are parenthesised so they can be method receivers.
+pub fn float(v: f64) -> TokenStream {
+    if v.is_nan() {
+        return quote!(f64::NAN);
+    }
+    if v.is_infinite() {
+        return if v > 0.0 { quote!(f64::INFINITY) } else { quote!(f64::NEG_INFINITY) };
+    }
+    let lit = Literal::f64_suffixed(v.abs());
+    if v.is_sign_negative() && v != 0.0 { quote!((-#lit)) } else { quote!(#lit) }
+}
+
+/// A finite `f64` literal as a function argument: negative values without parentheses.
+pub fn float_arg(v: f64) -> TokenStream {
+    let lit = Literal::f64_suffixed(v.abs());
+    if v.is_sign_negative() && v != 0.0 { quote!(-#lit) } else { quote!(#lit) }
+}

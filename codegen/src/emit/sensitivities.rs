@@ -1,0 +1,143 @@
+//! The parameter-sensitivity API, generated under `#[kinloop(sensitivities)]` only:
+//! `NameParams<T>` (one field per parameter), `NameSensitivities` (named sensitivities of
+//! positions, analogs and outputs), the `Sensitivities` kernels (the kinematic solve followed by
+//! one more set of right-hand sides per block and stage, on the same factorisations) and the
+//! `sensitivities` / `sensitivities_at` forwarders.
+//!
+//! Without the attribute, [`absent`] declares the two methods with a bound no type satisfies,
+//! so calling them is a compile error that says to add the attribute.
+
+use super::kernels::{Mode, solver_body};
+use super::names::Names;
+use super::surface::{Field, analog_conversions, analog_types, named_struct};
+use super::{Dims, Types, kernel_lints, runtime};
+use crate::model::Model;
+use crate::plan::Plan;
+use proc_macro2::TokenStream;
+use quote::quote;
+
+/// Every sensitivity item of a mechanism declared with `#[kinloop(sensitivities)]`.
+pub fn items(model: &Model, plan: &Plan, t: &Types) -> TokenStream {
+    let mut out = types(model, plan, t);
+    out.extend(kernels(model, plan, t));
+    out
+}
+
+/// `NameParams` and `NameSensitivities` (from a flat `Sens`).
+fn types(model: &Model, plan: &Plan, t: &Types) -> TokenStream {
+    let (rt, vis, plain) = (runtime(), &model.vis, &t.plain);
+    let Types { inputs, unknowns, outputs, params, sens, .. } = t;
+    let Dims { n, ni, no, np } = Dims::of(plan);
+    let params_doc = format!(
+        "One value per parameter of [`{plain}`]: the innermost level of [`{plain}Sensitivities`] \
+         (`sens.q.x.l` is `d x / d l`)."
+    );
+    let sens_doc = format!(
+        "Exact sensitivities of a [`{plain}State`] to the parameters: append a parameter name to a \
+         state path (`state.dq.u` -> `sens.dq.u.p` is `d(du/dinput)/dp`)."
+    );
+    let fields: Vec<Field> = model.params.iter().map(|p| Field::new(&[], &p.name)).collect();
+    let params_struct = named_struct(vis, params, &params_doc, &fields, "Parameter");
+    let (vp, ap) = analog_types(plan.ni, inputs, quote!(#params<f64>));
+    let (conv_v, conv_a) = analog_conversions(plan.ni, inputs, quote!([f64; #np]), Some(quote!(#params::from)));
+    quote! {
+        #params_struct
+        #[doc = #sens_doc]
+        #[derive(Clone, Copy, Debug, PartialEq)]
+        #vis struct #sens {
+            /// `d q / d p`.
+            pub q: #unknowns<#params<f64>>,
+            /// Sensitivities of the velocity analogs.
+            pub dq: #unknowns<#vp>,
+            /// Sensitivities of the acceleration analogs.
+            pub d2q: #unknowns<#ap>,
+            /// Sensitivities of the outputs.
+            pub out: #outputs<#params<f64>>,
+            /// Sensitivities of the outputs' velocity analogs.
+            pub dout: #outputs<#vp>,
+            /// Sensitivities of the outputs' acceleration analogs.
+            pub d2out: #outputs<#ap>,
+            /// The same values as flat arrays (parameter innermost).
+            pub flat: #rt::Sens<#n, #ni, #no, #np>,
+        }
+        impl ::core::convert::From<#rt::Sens<#n, #ni, #no, #np>> for #sens {
+            fn from(s: #rt::Sens<#n, #ni, #no, #np>) -> Self {
+                #sens {
+                    q: #unknowns::from(s.q.map(#params::from)),
+                    dq: #unknowns::from(s.dq.map(#conv_v)),
+                    d2q: #unknowns::from(s.d2q.map(#conv_a)),
+                    out: #outputs::from(s.out.map(#params::from)),
+                    dout: #outputs::from(s.dout.map(#conv_v)),
+                    d2out: #outputs::from(s.d2out.map(#conv_a)),
+                    flat: s,
+                }
+            }
+        }
+    }
+}
+
+/// The `Sensitivities` kernels, `NamedSensitivities`, and the inherent forwarders.
+fn kernels(model: &Model, plan: &Plan, t: &Types) -> TokenStream {
+    let (rt, name, names) = (runtime(), &t.name, Names::new(model, plan));
+    let Types { inputs, unknowns, state, sens, .. } = t;
+    let Dims { n, ni, no, np } = Dims::of(plan);
+    let fused = solver_body(plan, &names, Mode::Fused, true);
+    let at = solver_body(plan, &names, Mode::At, true);
+    let lints = kernel_lints();
+    let pnames: Vec<_> = model.params.iter().map(|p| &p.name).collect();
+    let named = quote!(<Self as #rt::NamedSensitivities<#n, #ni, #no, #np>>);
+    let input = quote!(input: impl ::core::convert::Into<#inputs>);
+    let ret = quote!(::core::result::Result<(#state, #sens), #rt::Error>);
+    let (x, cfg) = (quote!(__x: &[f64; #ni]), quote!(__cfg: &#rt::NewtonConfig));
+    let flat = quote!(::core::result::Result<(#rt::Kin<#n, #ni, #no>, #rt::Sens<#n, #ni, #no, #np>), #rt::Error>);
+    quote! {
+        impl #name {
+            /// Solves the kinematics from `guess` and the exact sensitivities of positions,
+            /// analogs and outputs to every parameter (implicit function theorem on the same
+            /// factorisations). Costs a few extra solves per block; `kinematics` does none of it.
+            pub fn sensitivities(&self, #input, guess: &#unknowns) -> #ret { #named::sensitivities(self, input, guess) }
+            /// [`Self::sensitivities`] at a position the caller already solved.
+            pub fn sensitivities_at(&self, #input, q: &#unknowns) -> #ret { #named::sensitivities_at(self, input, q) }
+        }
+        #lints
+        impl #rt::Sensitivities<#n, #ni, #no, #np> for #name {
+            fn params_flat(&self) -> [f64; #np] {
+                [#(self.#pnames),*]
+            }
+            fn with_params_flat(&self, p: [f64; #np]) -> Self {
+                #name::from_param_values(p)
+            }
+            fn sensitivities_flat(&self, #x, __guess: &[f64; #n], #cfg) -> #flat { #fused }
+            fn sensitivities_at_flat(&self, #x, __q: &[f64; #n], #cfg) -> #flat { #at }
+        }
+        impl #rt::NamedSensitivities<#n, #ni, #no, #np> for #name {
+            type Sens = #sens;
+        }
+    }
+}
+
+/// `sensitivities` and `sensitivities_at` of a mechanism declared without
+/// `#[kinloop(sensitivities)]`: a bound no type satisfies, whose diagnostic says what to add.
+pub fn absent(t: &Types) -> TokenStream {
+    let rt = runtime();
+    let Types { name, inputs, unknowns, .. } = t;
+    let stub = |method: TokenStream, arg: TokenStream| {
+        quote! {
+            /// Not generated: declare the mechanism with `#[kinloop(sensitivities)]`.
+            #[doc(hidden)]
+            pub fn #method<I: ::core::convert::Into<#inputs>>(&self, _input: I, #arg: &#unknowns) -> ::core::convert::Infallible
+            where
+                Self: #rt::SensitivitiesRequested<I>,
+            {
+                #rt::SensitivitiesRequested::<I>::absurd(*self)
+            }
+        }
+    };
+    let (s, s_at) = (stub(quote!(sensitivities), quote!(_guess)), stub(quote!(sensitivities_at), quote!(_q)));
+    quote! {
+        impl #name {
+            #s
+            #s_at
+        }
+    }
+}

@@ -1,0 +1,337 @@
+//! The named types of a mechanism: the parameter struct, `NameInputs`, `NameUnknowns`,
+//! `NameOutputs` (generic over the element type so analogs reuse them), `NameState` and
+//! `NameMotion`, with their conversions from and to flat arrays.
+//!
+//! They depend only on the declared names, so the fallback after a rejected declaration emits
+//! the same items from the syntax ([`Surface`] is built from either).
+
+use super::{Types, lit, runtime};
+use crate::model::Model;
+use proc_macro2::{Ident, Span, TokenStream};
+use quote::quote;
+use syn::ext::IdentExt;
+use syn::{Attribute, Visibility};
+
+/// A declared name and its doc comments.
+pub struct Field {
+    pub docs: Vec<Attribute>,
+    pub name: Ident,
+}
+
+impl Field {
+    pub fn new(docs: &[Attribute], name: &Ident) -> Field {
+        Field { docs: docs.to_vec(), name: name.clone() }
+    }
+
+    /// The doc comments, or `fallback` with the field's name when there are none.
+    fn doc(&self, kind: &str) -> TokenStream {
+        if self.docs.is_empty() {
+            let d = format!("{kind} `{}`.", self.name.unraw());
+            quote!(#[doc = #d])
+        } else {
+            let d = &self.docs;
+            quote!(#(#d)*)
+        }
+    }
+}
+
+/// The declared names of a mechanism.
+pub struct Surface {
+    pub docs: Vec<Attribute>,
+    pub vis: Visibility,
+    pub name: Ident,
+    pub params: Vec<Field>,
+    /// Default values of the parameters, when every one has one (`Default`).
+    pub defaults: Option<Vec<f64>>,
+    pub inputs: Vec<Field>,
+    pub unknowns: Vec<Field>,
+    pub points: Vec<Field>,
+    pub scalars: Vec<Field>,
+}
+
+impl Surface {
+    pub fn of_model(m: &Model, defaults: Option<Vec<f64>>) -> Surface {
+        Surface {
+            docs: m.docs.clone(),
+            vis: m.vis.clone(),
+            name: m.name.clone(),
+            params: m.params.iter().map(|p| Field::new(&p.docs, &p.name)).collect(),
+            defaults,
+            inputs: m.inputs.iter().map(|p| Field::new(&p.docs, &p.name)).collect(),
+            unknowns: m.unknowns.iter().map(|p| Field::new(&p.docs, &p.name)).collect(),
+            points: m.points.iter().map(|p| Field::new(&p.docs, &p.name)).collect(),
+            scalars: m.scalars.iter().map(|p| Field::new(&p.docs, &p.name)).collect(),
+        }
+    }
+
+    /// Number of flat output columns: `x`, `y` per point, then the scalars.
+    pub fn n_outputs(&self) -> usize {
+        2 * self.points.len() + self.scalars.len()
+    }
+}
+
+/// Every named type of `s` with its conversions.
+pub fn items(s: &Surface, t: &Types) -> TokenStream {
+    let plain = &t.plain;
+    let inputs_doc = format!(
+        "Inputs (generalized coordinates) of [`{plain}`]. With `T = f64` the input values; for a \
+         mechanism with several inputs, analogs hold one `{plain}Inputs` of partial derivatives \
+         per quantity."
+    );
+    let unknowns_doc = format!(
+        "Unknowns of [`{plain}`] by name: positions (`T = f64`), and their velocity and \
+         acceleration analogs in [`{plain}State`]."
+    );
+    let mut out = params_struct(s);
+    out.extend(named_struct(&s.vis, &t.inputs, &inputs_doc, &s.inputs, "Input"));
+    out.extend(named_struct(&s.vis, &t.unknowns, &unknowns_doc, &s.unknowns, "Unknown"));
+    out.extend(array_conversions(s, t));
+    out.extend(outputs_struct(s, t));
+    out.extend(state_struct(s, t));
+    out
+}
+
+/// A single input from a number (`m.solve(0.3)`).
+fn array_conversions(s: &Surface, t: &Types) -> TokenStream {
+    let inputs = &t.inputs;
+    match s.inputs.as_slice() {
+        [one] => {
+            let i = &one.name;
+            quote! {
+                impl ::core::convert::From<f64> for #inputs<f64> {
+                    fn from(v: f64) -> Self {
+                        #inputs { #i: v }
+                    }
+                }
+            }
+        }
+        _ => quote!(),
+    }
+}
+
+/// The parameter struct, and `Default` when every parameter has a default (also when there
+/// are no parameters).
+fn params_struct(s: &Surface) -> TokenStream {
+    let Surface { docs, vis, name, .. } = s;
+    let fields = s.params.iter().map(|f| {
+        let (d, n) = (f.doc("Parameter"), &f.name);
+        quote!(#d pub #n: f64,)
+    });
+    let default = match &s.defaults {
+        Some(values) if values.len() == s.params.len() => {
+            let names: Vec<&Ident> = s.params.iter().map(|f| &f.name).collect();
+            let values = values.iter().map(|&v| super::names::float(v));
+            // `let [] = [];` would leave the element type to infer.
+            let bind = (!names.is_empty()).then(|| quote!(let [#(#names),*] = [#(#values),*];));
+            quote! {
+                impl ::core::default::Default for #name {
+                    /// The parameter values declared in the mechanism.
+                    fn default() -> Self {
+                        #bind
+                        #name { #(#names),* }
+                    }
+                }
+            }
+        }
+        _ => quote!(),
+    };
+    quote! {
+        #(#docs)*
+        #[derive(Clone, Copy, Debug, PartialEq)]
+        #[allow(non_snake_case)]
+        #vis struct #name {
+            #(#fields)*
+        }
+        #default
+    }
+}
+
+/// A struct generic over its element type `T` with one field per name, and its conversions
+/// from and to `[T; n]` in field order.
+pub fn named_struct(vis: &Visibility, ty: &Ident, doc: &str, fields: &[Field], kind: &str) -> TokenStream {
+    let n = lit(fields.len());
+    let names: Vec<&Ident> = fields.iter().map(|f| &f.name).collect();
+    let docs = fields.iter().map(|f| f.doc(kind));
+    let bind: Vec<Ident> = (0..fields.len()).map(|k| Ident::new(&format!("f{k}"), Span::call_site())).collect();
+    // A struct without fields still mentions `T`.
+    let (marker, marker_init) = if fields.is_empty() {
+        (
+            quote!(#[doc(hidden)] pub __marker: ::core::marker::PhantomData<T>,),
+            quote!(__marker: ::core::marker::PhantomData),
+        )
+    } else {
+        (quote!(), quote!())
+    };
+    quote! {
+        #[doc = #doc]
+        #[derive(Clone, Copy, Debug, Default, PartialEq)]
+        #[allow(non_snake_case)]
+        #vis struct #ty<T = f64> {
+            #(#docs pub #names: T,)*
+            #marker
+        }
+        impl<T> ::core::convert::From<[T; #n]> for #ty<T> {
+            #[inline]
+            fn from([#(#bind),*]: [T; #n]) -> Self {
+                #ty { #(#names: #bind,)* #marker_init }
+            }
+        }
+        impl<T> ::core::convert::From<#ty<T>> for [T; #n] {
+            #[inline]
+            fn from(v: #ty<T>) -> Self {
+                [#(v.#names),*]
+            }
+        }
+    }
+}
+
+/// Outputs: points are `Vec2<T>`, scalars `T`; flat order is x, y per point then scalars.
+fn outputs_struct(s: &Surface, t: &Types) -> TokenStream {
+    let (rt, vis, ty, plain) = (runtime(), &s.vis, &t.outputs, &t.plain);
+    let (mut fields, mut from, mut into, mut flat) = (Vec::new(), Vec::new(), Vec::new(), Vec::new());
+    let o = |k: usize| Ident::new(&format!("o{k}"), Span::call_site());
+    for p in &s.points {
+        let (d, f, a, b) = (p.doc("Point"), &p.name, o(flat.len()), o(flat.len() + 1));
+        fields.push(quote!(#d pub #f: #rt::Vec2<T>,));
+        from.push(quote!(#f: #rt::Vec2 { x: #a, y: #b }));
+        into.extend([quote!(v.#f.x), quote!(v.#f.y)]);
+        flat.extend([a, b]);
+    }
+    for p in &s.scalars {
+        let (d, f, a) = (p.doc("Output"), &p.name, o(flat.len()));
+        fields.push(quote!(#d pub #f: T,));
+        from.push(quote!(#f: #a));
+        into.push(quote!(v.#f));
+        flat.push(a);
+    }
+    if flat.is_empty() {
+        fields.push(quote!(#[doc(hidden)] pub __marker: ::core::marker::PhantomData<T>,));
+        from.push(quote!(__marker: ::core::marker::PhantomData));
+    }
+    let nol = lit(flat.len());
+    let doc = format!(
+        "Named outputs of [`{plain}`] (points and scalar outputs); with `T = f64` their values, in \
+         [`{plain}State`] also their analogs."
+    );
+    quote! {
+        #[doc = #doc]
+        #[derive(Clone, Copy, Debug, Default, PartialEq)]
+        #[allow(non_snake_case)]
+        #vis struct #ty<T = f64> {
+            #(#fields)*
+        }
+        impl<T> ::core::convert::From<[T; #nol]> for #ty<T> {
+            fn from([#(#flat),*]: [T; #nol]) -> Self {
+                #ty { #(#from),* }
+            }
+        }
+        impl<T> ::core::convert::From<#ty<T>> for [T; #nol] {
+            fn from(v: #ty<T>) -> Self {
+                [#(#into),*]
+            }
+        }
+    }
+}
+
+/// Element types of the first and second analogs: scalars for one input, per-input structs
+/// (`dq.u.i`, `d2q.u.i.j`) for several.
+pub fn analog_types(ni: usize, inputs: &Ident, elem: TokenStream) -> (TokenStream, TokenStream) {
+    if ni == 1 { (elem.clone(), elem) } else { (quote!(#inputs<#elem>), quote!(#inputs<#inputs<#elem>>)) }
+}
+
+/// Conversions of flat analog rows (`[flat; NI]`, `[[flat; NI]; NI]`) to the analog element
+/// types of [`analog_types`]; `elem` converts one innermost value (`None`: it is kept).
+pub fn analog_conversions(
+    ni: usize,
+    inputs: &Ident,
+    flat: TokenStream,
+    elem: Option<TokenStream>,
+) -> (TokenStream, TokenStream) {
+    let nil = lit(ni);
+    match (ni, elem) {
+        (1, Some(e)) => (quote!(|r: [#flat; 1]| #e(r[0])), quote!(|r: [[#flat; 1]; 1]| #e(r[0][0]))),
+        (1, None) => (quote!(|r: [#flat; 1]| r[0]), quote!(|r: [[#flat; 1]; 1]| r[0][0])),
+        (_, Some(e)) => (
+            quote!(|r: [#flat; #nil]| #inputs::from(r.map(#e))),
+            quote!(|r: [[#flat; #nil]; #nil]| #inputs::from(r.map(|s| #inputs::from(s.map(#e))))),
+        ),
+        (_, None) => (
+            quote!(#inputs::<f64>::from),
+            quote!(|r: [[#flat; #nil]; #nil]| #inputs::from(r.map(#inputs::<f64>::from))),
+        ),
+    }
+}
+
+/// `NameState` (from a flat `Kin`) and `NameMotion`.
+fn state_struct(s: &Surface, t: &Types) -> TokenStream {
+    let (rt, vis, plain) = (runtime(), &s.vis, &t.plain);
+    let Types { inputs, unknowns, outputs, state, motion, .. } = t;
+    let ni = s.inputs.len();
+    let (nl, nil, nol) = (lit(s.unknowns.len()), lit(ni), lit(s.n_outputs()));
+    let (v_ty, a_ty) = analog_types(ni, inputs, quote!(f64));
+    let (conv_v, conv_a) = analog_conversions(ni, inputs, quote!(f64), None);
+    let analog_doc = match s.inputs.first() {
+        Some(i) if ni == 1 => format!("`d/d{}`", i.name.unraw()),
+        _ => "partial derivatives: `dq.u.i` is `d u / d i`".to_string(),
+    };
+    let state_doc = format!(
+        "Kinematic state of [`{plain}`] at one input value: positions, velocity analogs \
+         ({analog_doc}), acceleration analogs, and the same for every output."
+    );
+    let motion_doc = format!("True velocities and accelerations of [`{plain}`] (time derivatives).");
+    quote! {
+        #[doc = #state_doc]
+        #[derive(Clone, Copy, Debug, PartialEq)]
+        #vis struct #state {
+            /// The input values.
+            pub input: #inputs,
+            /// Positions of the unknowns.
+            pub q: #unknowns,
+            /// Velocity analogs (first derivatives with respect to the inputs).
+            pub dq: #unknowns<#v_ty>,
+            /// Acceleration analogs (second derivatives with respect to the inputs).
+            pub d2q: #unknowns<#a_ty>,
+            /// Output values.
+            pub out: #outputs,
+            /// Velocity analogs of the outputs.
+            pub dout: #outputs<#v_ty>,
+            /// Acceleration analogs of the outputs.
+            pub d2out: #outputs<#a_ty>,
+            /// Diagnostics of the position solve.
+            pub report: #rt::SolveReport,
+            /// Conditioning and assembly mode of each block.
+            pub health: #rt::Health,
+            /// The same values as flat arrays in declaration order (for generic code).
+            pub flat: #rt::Kin<#nl, #nil, #nol>,
+        }
+        impl ::core::convert::From<#rt::Kin<#nl, #nil, #nol>> for #state {
+            #[inline]
+            fn from(k: #rt::Kin<#nl, #nil, #nol>) -> Self {
+                #state {
+                    input: #inputs::from(k.x),
+                    q: #unknowns::from(k.q),
+                    dq: #unknowns::from(k.dq.map(#conv_v)),
+                    d2q: #unknowns::from(k.d2q.map(#conv_a)),
+                    out: #outputs::from(k.out),
+                    dout: #outputs::from(k.dout.map(#conv_v)),
+                    d2out: #outputs::from(k.d2out.map(#conv_a)),
+                    report: k.report,
+                    health: k.health,
+                    flat: k,
+                }
+            }
+        }
+        #[doc = #motion_doc]
+        #[derive(Clone, Copy, Debug, PartialEq)]
+        #vis struct #motion {
+            /// Velocities of the unknowns.
+            pub qdot: #unknowns,
+            /// Accelerations of the unknowns.
+            pub qddot: #unknowns,
+            /// Velocities of the outputs.
+            pub out_dot: #outputs,
+            /// Accelerations of the outputs.
+            pub out_ddot: #outputs,
+        }
+    }
+}

@@ -1,0 +1,366 @@
+//! Everything the code expanded by `mechanism!` names, and nothing else.
+//!
+//! A generated mechanism holds only what depends on its declaration: its named types, its
+//! straight-line kernels and its constants. What is the same for every mechanism lives here, once:
+//! the named API as default methods of [`Named`] and [`NamedSensitivities`], the cold paths that
+//! build errors, and the linear-algebra and Newton pieces the kernels call. The facade re-exports
+//! this module as `kinloop::__gen`; it is not meant to be used by hand and may change between
+//! versions.
+
+pub use crate::error::Error;
+pub use crate::events::BlockInfo;
+pub use crate::kin::{Health, Jac, Kin, Sens};
+pub use crate::lu::{Fixed, Lu, max_abs};
+pub use crate::mechanism::{Mechanism, NamedSensitivities, Sensitivities, SensitivitiesRequested};
+pub use crate::newton::{BlockEval, NewtonConfig, SolveReport, Solved, newton};
+pub use crate::vec2::Vec2;
+
+use crate::error::Quantity;
+use crate::events::Location;
+use crate::kin::FlatMotion;
+use crate::newton::BlockFailure;
+
+/// Where an error of mechanism `M` happened: its inputs `x` and, if any, the block.
+#[cold]
+#[inline(never)]
+fn location<M, const N: usize, const NI: usize, const NO: usize>(x: &[f64; NI], block: Option<usize>) -> Location
+where
+    M: Mechanism<N, NI, NO>,
+{
+    Location {
+        mechanism: M::NAME,
+        inputs: M::INPUTS.iter().copied().zip(x.iter().copied()).collect(),
+        block: block.and_then(|b| M::BLOCKS.get(b).map(|i| (b, *i))),
+    }
+}
+
+/// Finds the first non-finite value among named values (parameters, inputs, guesses).
+fn first_non_finite(names: &[&'static str], values: &[f64]) -> Option<(&'static str, f64)> {
+    names.iter().zip(values).find(|(_, v)| !v.is_finite()).map(|(n, v)| (*n, *v))
+}
+
+/// The first row holding a non-finite value (cold-path diagnosis of a failed factorisation).
+#[cold]
+pub fn first_bad_row<const M: usize, const R: usize>(rows: &[[f64; M]; R]) -> Option<usize> {
+    rows.iter().position(|r| r.iter().any(|v| !v.is_finite()))
+}
+
+/// The first non-finite parameter, input or guess of `m`, as an error: a bad value given by the
+/// caller explains a failure better than the failure itself.
+#[cold]
+#[inline(never)]
+fn bad_values<M, const N: usize, const NI: usize, const NO: usize>(
+    m: &M,
+    x: &[f64; NI],
+    guess: Option<&[f64; N]>,
+) -> Option<Error>
+where
+    M: Mechanism<N, NI, NO>,
+{
+    let at = || Box::new(location::<M, N, NI, NO>(x, None));
+    let values = m.param_values();
+    let found = first_non_finite(M::PARAMS, &values)
+        .map(|bad| (Quantity::Parameter, bad))
+        .or_else(|| first_non_finite(&M::INPUTS, x).map(|bad| (Quantity::Input, bad)))
+        .or_else(|| guess.and_then(|g| first_non_finite(&M::UNKNOWNS, g)).map(|bad| (Quantity::Guess, bad)));
+    found.map(|(what, (name, value))| Error::NonFinite { what, name, value, at: at() })
+}
+
+/// The error for a Newton block that failed (`fail`), unless a bad value explains it.
+#[cold]
+#[inline(never)]
+pub fn block_failure<M, const N: usize, const NI: usize, const NO: usize>(
+    m: &M,
+    block: usize,
+    fail: BlockFailure,
+    x: &[f64; NI],
+    guess: &[f64; N],
+) -> Error
+where
+    M: Mechanism<N, NI, NO>,
+{
+    if let Some(e) = bad_values::<M, N, NI, NO>(m, x, Some(guess)) {
+        return e;
+    }
+    block_error(fail, location::<M, N, NI, NO>(x, Some(block)))
+}
+
+/// Builds the error for a failed block at a known location.
+#[cold]
+#[inline(never)]
+fn block_error(fail: BlockFailure, at: Location) -> Error {
+    let equations = at.block.map_or(&[][..], |(_, info)| info.equations);
+    let name = |row: usize| equations.get(row).copied().unwrap_or("?");
+    match fail {
+        BlockFailure::NonFinite { row, .. } => Error::Domain { what: "equation", name: name(row), at: Box::new(at) },
+        BlockFailure::NoConvergence { row, iterations, residual } => {
+            Error::NoConvergence { iterations, residual, equation: name(row), at: Box::new(at) }
+        }
+        BlockFailure::NoAssembly { row, residual, .. } => {
+            Error::NoAssembly { residual, equation: name(row), at: Box::new(at) }
+        }
+        BlockFailure::Singular { pivot_ratio, tolerance, .. } => {
+            Error::Singular { pivot_ratio, tolerance, at: Box::new(at) }
+        }
+        BlockFailure::InvalidConfig { field } => Error::InvalidArgument(format!(
+            "NewtonConfig::{field} is out of its valid range (see its documentation), {at}"
+        )),
+    }
+}
+
+/// The error for a block whose factorisation failed: a bad value, an equation outside its
+/// domain (`bad_row`, a non-finite row), or a singular position.
+#[cold]
+#[inline(never)]
+pub fn singular<M, const N: usize, const NI: usize, const NO: usize>(
+    m: &M,
+    block: usize,
+    pivot_ratio: f64,
+    cfg: &NewtonConfig,
+    x: &[f64; NI],
+    bad_row: Option<usize>,
+) -> Error
+where
+    M: Mechanism<N, NI, NO>,
+{
+    if let Some(e) = bad_values::<M, N, NI, NO>(m, x, None) {
+        return e;
+    }
+    let at = Box::new(location::<M, N, NI, NO>(x, Some(block)));
+    if let Some(row) = bad_row {
+        let name = M::BLOCKS.get(block).and_then(|b| b.equations.get(row)).copied().unwrap_or("?");
+        return Error::Domain { what: "equation", name, at };
+    }
+    Error::Singular { pivot_ratio, tolerance: cfg.singular_tol, at }
+}
+
+/// The error for a kinematic state holding a non-finite value, unless a bad value explains it.
+#[cold]
+#[inline(never)]
+fn non_finite<M, const N: usize, const NI: usize, const NO: usize>(
+    m: &M,
+    kin: &Kin<N, NI, NO>,
+    guess: Option<&[f64; N]>,
+) -> Error
+where
+    M: Mechanism<N, NI, NO>,
+{
+    if let Some(e) = bad_values::<M, N, NI, NO>(m, &kin.x, guess) {
+        return e;
+    }
+    let (what, index) = kin.first_non_finite().unwrap_or(("value", 0));
+    let name = if what.starts_with("output") { M::OUTPUTS.get(index) } else { M::UNKNOWNS.get(index) };
+    Error::Domain { what, name: name.copied().unwrap_or("?"), at: Box::new(location::<M, N, NI, NO>(&kin.x, None)) }
+}
+
+/// The kinematic state `kin` when every value is finite, otherwise the error naming the first
+/// bad one. `sum` is the sum of all values, computed by the kernel: when it is finite (the usual
+/// case) so is every value, and nothing else is examined.
+#[inline(always)]
+pub fn checked<M, const N: usize, const NI: usize, const NO: usize>(
+    m: &M,
+    kin: Kin<N, NI, NO>,
+    sum: f64,
+    guess: Option<&[f64; N]>,
+) -> Result<Kin<N, NI, NO>, Error>
+where
+    M: Mechanism<N, NI, NO>,
+{
+    if sum.is_finite() || kin.all_finite() { Ok(kin) } else { Err(non_finite::<M, N, NI, NO>(m, &kin, guess)) }
+}
+
+/// Checks the kinematic state `kin` and its sensitivities `sens`: both are returned when every
+/// value is finite, otherwise the error naming the first bad one.
+#[allow(clippy::type_complexity)]
+pub fn checked_sensitivities<M, const N: usize, const NI: usize, const NO: usize, const NP: usize>(
+    m: &M,
+    kin: Kin<N, NI, NO>,
+    sens: Sens<N, NI, NO, NP>,
+    guess: Option<&[f64; N]>,
+) -> Result<(Kin<N, NI, NO>, Sens<N, NI, NO, NP>), Error>
+where
+    M: Mechanism<N, NI, NO>,
+{
+    if !kin.all_finite() {
+        return Err(non_finite::<M, N, NI, NO>(m, &kin, guess));
+    }
+    if !sens.all_finite() {
+        return Err(Error::Domain {
+            what: "parameter sensitivity of",
+            name: sens.first_non_finite(&M::UNKNOWNS, &M::OUTPUTS),
+            at: Box::new(location::<M, N, NI, NO>(&kin.x, None)),
+        });
+    }
+    Ok((kin, sens))
+}
+
+/// True velocities and accelerations of a state of mechanism `M`, after checking that the
+/// input speeds `omega` and accelerations `eps` are finite.
+pub fn motion<M, const N: usize, const NI: usize, const NO: usize>(
+    kin: &Kin<N, NI, NO>,
+    omega: [f64; NI],
+    eps: [f64; NI],
+) -> Result<FlatMotion<N, NO>, Error>
+where
+    M: Mechanism<N, NI, NO>,
+{
+    let names = M::INPUTS.iter().chain(M::INPUTS.iter());
+    if let Some((name, value)) = names.zip(omega.iter().chain(eps.iter())).find(|(_, v)| !v.is_finite()) {
+        let at = Box::new(location::<M, N, NI, NO>(&kin.x, None));
+        return Err(Error::NonFinite { what: Quantity::Motion, name, value: *value, at });
+    }
+    kin.checked_motion::<M>(&omega, &eps)
+}
+
+/// The part of a generated mechanism that depends only on its type names and sizes: the
+/// inherent named API as one-line forwarders to [`Named`](crate::Named) (so that `m.solve(x)`
+/// needs no import),
+/// `state.motion(omega, eps)`, and the conversions of the named types to and from nalgebra
+/// vectors and [`FlatMotion`]. Invoked once per mechanism by the expansion of `mechanism!`.
+#[doc(hidden)]
+#[macro_export]
+macro_rules! __named_api {
+    ($name:ident, $inputs:ident, $unknowns:ident, $outputs:ident, $state:ident, $motion:ident, $n:literal, $ni:literal, $no:literal) => {
+        impl $crate::Named<$n, $ni, $no> for $name {
+            type Inputs = $inputs;
+            type Unknowns = $unknowns;
+            type Outputs = $outputs;
+            type State = $state;
+        }
+
+        /// The named API (see [`Named`](::kinloop::Named), where each method is described).
+        impl $name {
+            /// Checks that every parameter is finite.
+            pub fn check(&self) -> ::core::result::Result<(), $crate::Error> {
+                <Self as $crate::Named<$n, $ni, $no>>::check(self)
+            }
+
+            /// The declared initial guess (assembly mode) at `input`.
+            pub fn guess(&self, input: impl ::core::convert::Into<$inputs>) -> $unknowns {
+                <Self as $crate::Named<$n, $ni, $no>>::guess(self, input)
+            }
+
+            /// Residuals of the scalar equations (named by `EQUATIONS`) at a position.
+            pub fn residual(&self, input: impl ::core::convert::Into<$inputs>, q: &$unknowns) -> [f64; $n] {
+                <Self as $crate::Named<$n, $ni, $no>>::residual(self, input, q)
+            }
+
+            /// Output values at a position.
+            pub fn outputs(&self, input: impl ::core::convert::Into<$inputs>, q: &$unknowns) -> $outputs {
+                <Self as $crate::Named<$n, $ni, $no>>::outputs(self, input, q)
+            }
+
+            /// Solves the positions by Newton's method from `guess` (which picks the assembly
+            /// mode), with the default [`NewtonConfig`](::kinloop::NewtonConfig).
+            pub fn position(
+                &self,
+                input: impl ::core::convert::Into<$inputs>,
+                guess: &$unknowns,
+            ) -> ::core::result::Result<($unknowns, $crate::SolveReport), $crate::Error> {
+                <Self as $crate::Named<$n, $ni, $no>>::position(self, input, guess)
+            }
+
+            /// [`Self::position`] with an explicit solver configuration.
+            pub fn position_with(
+                &self,
+                input: impl ::core::convert::Into<$inputs>,
+                guess: &$unknowns,
+                cfg: &$crate::NewtonConfig,
+            ) -> ::core::result::Result<($unknowns, $crate::SolveReport), $crate::Error> {
+                <Self as $crate::Named<$n, $ni, $no>>::position_with(self, input, guess, cfg)
+            }
+
+            /// Positions, velocity and acceleration analogs, and outputs, solved from `guess`.
+            pub fn kinematics(
+                &self,
+                input: impl ::core::convert::Into<$inputs>,
+                guess: &$unknowns,
+            ) -> ::core::result::Result<$state, $crate::Error> {
+                <Self as $crate::Named<$n, $ni, $no>>::kinematics(self, input, guess)
+            }
+
+            /// [`Self::kinematics`] with an explicit solver configuration.
+            #[inline]
+            pub fn kinematics_with(
+                &self,
+                input: impl ::core::convert::Into<$inputs>,
+                guess: &$unknowns,
+                cfg: &$crate::NewtonConfig,
+            ) -> ::core::result::Result<$state, $crate::Error> {
+                <Self as $crate::Named<$n, $ni, $no>>::kinematics_with(self, input, guess, cfg)
+            }
+
+            /// Analogs and outputs at a position the caller already solved.
+            pub fn kinematics_at(
+                &self,
+                input: impl ::core::convert::Into<$inputs>,
+                q: &$unknowns,
+            ) -> ::core::result::Result<$state, $crate::Error> {
+                <Self as $crate::Named<$n, $ni, $no>>::kinematics_at(self, input, q)
+            }
+
+            /// Full kinematics at `input`, starting from the declared initial guess.
+            pub fn solve(
+                &self,
+                input: impl ::core::convert::Into<$inputs>,
+            ) -> ::core::result::Result<$state, $crate::Error> {
+                <Self as $crate::Named<$n, $ni, $no>>::solve(self, input)
+            }
+
+            /// A lazy sweep of `samples` equally spaced inputs from `from` to `to` (both
+            /// included) that never jumps branches: see [`Sweep`](::kinloop::Sweep). `guess` at
+            /// `from` picks the assembly mode.
+            #[allow(clippy::type_complexity)]
+            pub fn sweep(
+                &self,
+                from: impl ::core::convert::Into<$inputs>,
+                to: impl ::core::convert::Into<$inputs>,
+                samples: usize,
+                guess: &$unknowns,
+            ) -> ::core::result::Result<$crate::Sweep<'_, Self, $state, $n, $ni, $no>, $crate::Error> {
+                <Self as $crate::Named<$n, $ni, $no>>::sweep(self, from, to, samples, guess)
+            }
+
+            /// The distinct assembly modes at `input` (multi-start Newton; see
+            /// [`assembly_modes`](::kinloop::assembly_modes)), e.g. to pick "elbow up" with
+            /// `.into_iter().find(|s| ...)`.
+            pub fn assembly_modes(&self, input: impl ::core::convert::Into<$inputs>) -> ::std::vec::Vec<$state> {
+                <Self as $crate::Named<$n, $ni, $no>>::assembly_modes(self, input)
+            }
+        }
+
+        impl $state {
+            /// True velocities and accelerations for input speeds `omega` and input
+            /// accelerations `eps`: `v = v_q omega`, `a = a_q omega^2 + v_q eps` (summed over
+            /// inputs for several inputs). For a time input pass `omega = 1`, `eps = 0`.
+            pub fn motion(
+                &self,
+                omega: impl ::core::convert::Into<$inputs>,
+                eps: impl ::core::convert::Into<$inputs>,
+            ) -> ::core::result::Result<$motion, $crate::Error> {
+                let w = ::core::convert::Into::<$inputs>::into(omega).into();
+                let e = ::core::convert::Into::<$inputs>::into(eps).into();
+                $crate::generated::motion::<$name, $n, $ni, $no>(&self.flat, w, e).map(|m| $motion {
+                    qdot: m.qdot.into(),
+                    qddot: m.qddot.into(),
+                    out_dot: m.out_dot.into(),
+                    out_ddot: m.out_ddot.into(),
+                })
+            }
+        }
+
+        impl ::core::convert::From<$crate::nalgebra::SVector<f64, $n>> for $unknowns<f64> {
+            fn from(v: $crate::nalgebra::SVector<f64, $n>) -> Self {
+                <[f64; $n]>::from(v).into()
+            }
+        }
+
+        impl ::core::convert::From<$unknowns<f64>> for $crate::nalgebra::SVector<f64, $n> {
+            fn from(v: $unknowns<f64>) -> Self {
+                <[f64; $n]>::from(v).into()
+            }
+        }
+    };
+}
+
+pub use crate::__named_api as named_api;
