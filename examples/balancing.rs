@@ -36,14 +36,14 @@
 //! harmonics of piston and displacer then add up instead of cancelling, and the optimum lies on
 //! the bounds of the ranges.
 //!
-//! Run with `cargo run --release --example balancing`.
+//! Run with `cargo run --release -p kinloop-examples --example balancing`.
 
 use kinloop::analysis::{NelderMead, Sampled};
-use kinloop_examples::{Panel, Series, figure_dir, panels};
+use kinloop::plot::{self, Axis, Kind, Panel, Series};
 use kinloop_fixtures::balancing::{Balance, PHASE, SAMPLES, design, phased, unbalance};
 use std::f64::consts::{PI, TAU};
 
-/// X_c and its residual X_c - X_c1 against the crank angle in degrees.
+/// X_c and its residual X_c - X_c1 against the crank angle (radians).
 struct Curves {
     x_c: Vec<(f64, f64)>,
     residual: Vec<(f64, f64)>,
@@ -67,8 +67,8 @@ fn describe(name: &str, m: &Balance) -> Result<Curves, Box<dyn std::error::Error
     let xc = turn.column("xc")?;
     let jets: Vec<_> = turn.states().iter().map(|k| xc.jet(k)).collect();
     Ok(Curves {
-        x_c: jets.iter().map(|j| (j.x.to_degrees(), j.value)).collect(),
-        residual: jets.iter().map(|j| (j.x.to_degrees(), j.value - r.fourier.eval_upto(1, j.x).0)).collect(),
+        x_c: jets.iter().map(|j| (j.x, j.value)).collect(),
+        residual: jets.iter().map(|j| (j.x, j.value - r.fourier.eval_upto(1, j.x).0)).collect(),
     })
 }
 
@@ -123,23 +123,24 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
     let phased_optimum = phased(best90.x);
     let after = describe("optimum with the phase shift", &phased_optimum)?;
 
-    let dir = figure_dir("balancing");
+    let dir = plot::figure_dir("balancing")?;
     let designs = [
         ("reference design", &before),
         ("optimum (exact balance)", &balanced),
         ("optimum with 90° phase shift", &after),
     ];
-    let series = |curve: fn(&Curves) -> &Vec<(f64, f64)>| {
-        designs.iter().map(|&(label, c)| Series { label, points: curve(c).clone() }).collect()
+    // Lengths in units of the working crank radius r = 1.
+    let length = Kind::length("units of r");
+    let panel = |name: &str, curve: fn(&Curves) -> &Vec<(f64, f64)>| {
+        designs.iter().fold(Panel::new(Axis::new(name, length.clone())), |p, &(label, c)| {
+            p.with(Series::new(label, length.clone(), curve(c).clone()))
+        })
     };
-    panels(
+    plot::panels(
         &dir.join("centre_of_mass.svg"),
-        "Rhombic drive balancing (M' = 1.5): centre of mass X_c of the reciprocating masses",
-        "crank angle alpha [deg]",
-        &[
-            Panel { y_label: "X_c [crank radii]", series: series(|c| &c.x_c), marks: vec![] },
-            Panel { y_label: "X_c - X_c1", series: series(|c| &c.residual), marks: vec![] },
-        ],
+        "Rhombic drive balancing (M' = 1.5): centre of mass of the reciprocating masses",
+        &Axis::angle("crank angle α"),
+        &[panel("centre of mass X_c", |c| &c.x_c), panel("residual X_c − X_c1", |c| &c.residual)],
     )?;
     println!("\nwrote centre_of_mass.svg to {}", dir.display());
     Ok(())

@@ -11,9 +11,9 @@
 //! EF = 3.4. Unknowns: `th1` (direction of AC), `th2` (direction of BD), `psi1` (CD), `psi2`
 //! (EF).
 //!
-//! Run with `cargo run --release --example class_four`.
+//! Run with `cargo run --release -p kinloop-examples --example class_four`.
 
-use kinloop_examples::{Panel, Series, figure_dir, panels, xy_chart};
+use kinloop::plot::{self, Axis, Kind, Panel, Series};
 use kinloop_fixtures::{ClassFour, ClassFourState};
 use std::f64::consts::TAU;
 
@@ -68,46 +68,58 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
     Ok(())
 }
 
+/// Lengths are in units of the crank OA.
+const UNIT: &str = "units of OA";
+
 /// Link angles with their analogs, and the joints' paths with the linkage drawn at 30 degrees;
 /// returns the folder they went to.
 fn draw(m: &ClassFour, states: &[ClassFourState]) -> Result<std::path::PathBuf, Box<dyn std::error::Error>> {
-    let dir = figure_dir("class_four");
-    let curve = |f: &dyn Fn(&ClassFourState) -> f64| {
-        states.iter().map(|s| (s.input.phi.to_degrees(), f(s))).collect::<Vec<_>>()
-    };
+    let dir = plot::figure_dir("class_four")?;
     // One panel per order: the four angles, their velocity analogs, their acceleration analogs.
-    let panel = |y_label: &'static str, labels: [&'static str; 4], of: fn(&ClassFourState) -> [f64; 4]| Panel {
-        y_label,
-        series: (0..4).map(|u| Series { label: labels[u], points: curve(&|s| of(s)[u]) }).collect(),
-        marks: vec![],
+    let panel = |axis: Axis, labels: [&str; 4], of: fn(&ClassFourState) -> [f64; 4]| {
+        (0..4).fold(Panel::new(axis.clone()), |p, u| {
+            let points = states.iter().map(|s| (s.input.phi, of(s)[u])).collect();
+            p.with(Series::new(labels[u], axis.kind.clone(), points))
+        })
     };
-    panels(
+    plot::panels(
         &dir.join("angles_and_analogs.svg"),
-        "Class IV mechanism: link angles and their velocity analogs",
-        "crank angle phi [deg]",
+        "Class IV mechanism: link angles and their velocity and acceleration analogs",
+        &Axis::angle("crank angle φ"),
         &[
-            panel("angle [rad]", ["th1 (AC)", "th2 (BD)", "psi1 (CD)", "psi2 (EF)"], |s| s.q.into()),
-            panel("velocity analog", ["dth1/dphi", "dth2/dphi", "dpsi1/dphi", "dpsi2/dphi"], |s| s.dq.into()),
-            panel("acceleration analog", ["d2th1/dphi2", "d2th2/dphi2", "d2psi1/dphi2", "d2psi2/dphi2"], |s| {
-                s.d2q.into()
-            }),
+            panel(Axis::angle("link angle"), ["θ1 (AC)", "θ2 (BD)", "ψ1 (CD)", "ψ2 (EF)"], |s| s.q.into()),
+            panel(
+                Axis::new("velocity analog", Kind::AngleAnalog),
+                ["dθ1/dφ", "dθ2/dφ", "dψ1/dφ", "dψ2/dφ"],
+                |s| s.dq.into(),
+            ),
+            panel(
+                Axis::new("acceleration analog", Kind::AngleAnalog2),
+                ["d²θ1/dφ²", "d²θ2/dφ²", "d²ψ1/dφ²", "d²ψ2/dφ²"],
+                |s| s.d2q.into(),
+            ),
         ],
     )?;
-    let path = |f: &dyn Fn(&ClassFourState) -> (f64, f64)| states.iter().map(f).collect::<Vec<_>>();
+    let length = Kind::length(UNIT);
+    let path = |label: &str, f: fn(&ClassFourState) -> (f64, f64)| {
+        Series::new(label, length.clone(), states.iter().map(f).collect())
+    };
     // The linkage drawn at phi = 30 degrees: O-A, triangle A-C-E, C-D, triangle D-B-F, E-F.
     let s = &states[60];
     let (o, a, b) = ((0.0, 0.0), (s.input.phi.cos(), s.input.phi.sin()), (m.xb, m.yb));
     let [c, d, e, f] = [s.out.c, s.out.d, s.out.e, s.out.f].map(|p| (p.x, p.y));
-    xy_chart(
+    plot::xy_chart(
         &dir.join("joint_paths.svg"),
-        "Class IV mechanism: paths of the joints over a crank turn (linkage at phi = 30°)",
+        "Class IV mechanism: paths of the joints over a crank turn (linkage at φ = 30°)",
+        &Axis::length("x", UNIT),
+        &Axis::length("y", UNIT),
         &[
-            Series { label: "linkage at phi = 30°", points: vec![o, a, c, e, a, c, d, b, f, d, f, e] },
-            Series { label: "A (crank pin)", points: path(&|s| (s.input.phi.cos(), s.input.phi.sin())) },
-            Series { label: "C", points: path(&|s| (s.out.c.x, s.out.c.y)) },
-            Series { label: "E", points: path(&|s| (s.out.e.x, s.out.e.y)) },
-            Series { label: "D (arc about B)", points: path(&|s| (s.out.d.x, s.out.d.y)) },
-            Series { label: "F (arc about B)", points: path(&|s| (s.out.f.x, s.out.f.y)) },
+            Series::new("linkage at φ = 30°", length.clone(), vec![o, a, c, e, a, c, d, b, f, d, f, e]),
+            path("A (crank pin)", |s| (s.input.phi.cos(), s.input.phi.sin())),
+            path("C", |s| (s.out.c.x, s.out.c.y)),
+            path("E", |s| (s.out.e.x, s.out.e.y)),
+            path("D (arc about B)", |s| (s.out.d.x, s.out.d.y)),
+            path("F (arc about B)", |s| (s.out.f.x, s.out.f.y)),
         ],
         &[o, b],
     )?;

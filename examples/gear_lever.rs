@@ -15,9 +15,9 @@
 //! carrier degrees and as a share of the 120° stop cycle; its quality is the swing, in degrees
 //! and as a share of the rocker's 120° travel per stop cycle.
 //!
-//! Run with `cargo run --release --example gear_lever`.
+//! Run with `cargo run --release -p kinloop-examples --example gear_lever`.
 
-use kinloop_examples::{Panel, Series, figure_dir, line_chart, panels};
+use kinloop::plot::{self, Axis, Kind, Panel, Series};
 use kinloop_fixtures::gear_lever::{GearLever, GearLeverState, stops};
 use std::f64::consts::TAU;
 
@@ -65,13 +65,13 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
             s.peak_acc,
             s.peak_at
         );
-        marks[0].push((k, s.duration));
-        marks[1].push((k, s.swing));
+        marks[0].push((k, s.duration.to_radians()));
+        marks[1].push((k, s.swing.to_radians()));
         marks[2].push((k, s.peak_acc));
     }
     println!("(planet: the dwell measured on a main shaft turning with the planet, u times the carrier dwell)");
 
-    let dir = figure_dir("gear_lever");
+    let dir = plot::figure_dir("gear_lever")?;
     draw_stops_against_k(&dir, marks)?;
     draw_rocker_motion(&dir, &ks)?;
     println!("\nwrote dwell_vs_k.svg, rocker_k13.svg, rocker_angle.svg to {}", dir.display());
@@ -79,39 +79,32 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
 }
 
 /// The paper's Fig. 3: the stop characteristics against `k` on a fine grid, with the table's `k`
-/// marked.
+/// marked (angles in radians, the plot shows degrees).
 fn draw_stops_against_k(dir: &std::path::Path, marks: [Vec<(f64, f64)>; 3]) -> Result<(), Box<dyn std::error::Error>> {
-    // Fig. 3: the same against k on a fine grid.
     let mut curves = [Vec::new(), Vec::new(), Vec::new()];
     for i in 0..=50 {
         let k = 1.05 + 0.01 * i as f64;
         let s = stop(k)?;
-        curves[0].push((k, s.duration));
-        curves[1].push((k, s.swing));
+        curves[0].push((k, s.duration.to_radians()));
+        curves[1].push((k, s.swing.to_radians()));
         curves[2].push((k, s.peak_acc));
     }
     let [c0, c1, c2] = curves;
     let [m0, m1, m2] = marks;
-    panels(
+    plot::panels(
         &dir.join("dwell_vs_k.svg"),
-        "Gear-lever drive (u = 3): stop characteristics against k = l/r (dots: k = 1.1 ... 1.5)",
-        "pin radius k = l/r",
+        "Gear-lever drive (u = 3): stops against k = l/r (dots: k = 1.1 ... 1.5)",
+        &Axis::new("pin radius ratio k = l/r", Kind::Dimensionless),
         &[
-            Panel {
-                y_label: "dwell [carrier deg]",
-                series: vec![Series { label: "dwell duration", points: c0 }],
-                marks: m0,
-            },
-            Panel {
-                y_label: "swing [deg]",
-                series: vec![Series { label: "rocker swing in the stop", points: c1 }],
-                marks: m1,
-            },
-            Panel {
-                y_label: "max eps_r/omega^2",
-                series: vec![Series { label: "peak acceleration analog", points: c2 }],
-                marks: m2,
-            },
+            Panel::new(Axis::angle("dwell duration (carrier)"))
+                .with(Series::new("dwell duration", Kind::Angle, c0))
+                .with_marks(m0),
+            Panel::new(Axis::angle("rocker swing in the stop"))
+                .with(Series::new("rocker swing", Kind::Angle, c1))
+                .with_marks(m1),
+            Panel::new(Axis::new("peak ε_r/ω²", Kind::AngleAnalog2))
+                .with(Series::new("peak acceleration analog", Kind::AngleAnalog2, c2))
+                .with_marks(m2),
         ],
     )?;
     Ok(())
@@ -119,32 +112,25 @@ fn draw_stops_against_k(dir: &std::path::Path, marks: [Vec<(f64, f64)>; 3]) -> R
 
 /// The paper's Fig. 2 for k = 1.3, and the rocker angle for every `k` of the table.
 fn draw_rocker_motion(dir: &std::path::Path, ks: &[f64]) -> Result<(), Box<dyn std::error::Error>> {
-    // Fig. 2 for k = 1.3, and the rocker angle for every k.
     let m = GearLever { l_p: 1.3, ..GearLever::default() };
     let states: Vec<_> = m.sweep(0.0, TAU, 721, &m.guess(0.0))?.collect::<Result<_, _>>()?;
-    let curve = |f: &dyn Fn(&GearLeverState) -> f64| -> Vec<(f64, f64)> {
-        states.iter().map(|s| (s.input.alpha.to_degrees(), f(s))).collect()
+    let curve = |label: &str, kind: Kind, f: fn(&GearLeverState) -> f64| {
+        Series::new(label, kind, states.iter().map(|s| (s.input.alpha, f(s))).collect())
     };
-    panels(
+    let carrier = Axis::angle("carrier angle α");
+    plot::panels(
         &dir.join("rocker_k13.svg"),
         "Gear-lever drive, k = 1.3: rocker angle, velocity and acceleration analogs",
-        "carrier angle alpha [deg]",
+        &carrier,
         &[
-            Panel {
-                y_label: "phi [deg]",
-                series: vec![Series { label: "rocker angle", points: curve(&|s| s.q.phi.to_degrees()) }],
-                marks: vec![],
-            },
-            Panel {
-                y_label: "omega_r / omega",
-                series: vec![Series { label: "velocity analog", points: curve(&|s| s.dq.phi) }],
-                marks: vec![],
-            },
-            Panel {
-                y_label: "eps_r / omega^2",
-                series: vec![Series { label: "acceleration analog", points: curve(&|s| s.d2q.phi) }],
-                marks: vec![],
-            },
+            Panel::new(Axis::angle("rocker angle φ")).with(curve("rocker angle", Kind::Angle, |s| s.q.phi)),
+            Panel::new(Axis::new("ω_r/ω", Kind::AngleAnalog))
+                .with(curve("velocity analog", Kind::AngleAnalog, |s| s.dq.phi)),
+            Panel::new(Axis::new("ε_r/ω²", Kind::AngleAnalog2)).with(curve(
+                "acceleration analog",
+                Kind::AngleAnalog2,
+                |s| s.d2q.phi,
+            )),
         ],
     )?;
     let mut all = Vec::new();
@@ -152,17 +138,16 @@ fn draw_rocker_motion(dir: &std::path::Path, ks: &[f64]) -> Result<(), Box<dyn s
         let m = GearLever { l_p: k, ..GearLever::default() };
         let pts = m
             .sweep(0.0, TAU, 721, &m.guess(0.0))?
-            .map(|s| s.map(|s| (s.input.alpha.to_degrees(), s.q.phi.to_degrees())))
+            .map(|s| s.map(|s| (s.input.alpha, s.q.phi)))
             .collect::<Result<Vec<_>, _>>()?;
-        all.push((k, pts));
+        all.push(Series::new(&format!("k = {k}"), Kind::Angle, pts));
     }
-    let labels: Vec<String> = ks.iter().map(|k| format!("k = {k}")).collect();
-    line_chart(
+    plot::line_chart(
         &dir.join("rocker_angle.svg"),
         "Gear-lever drive: rocker angle over a carrier turn",
-        "carrier angle alpha [deg]",
-        "rocker angle phi [deg]",
-        &all.into_iter().zip(&labels).map(|((_, p), l)| Series { label: l, points: p }).collect::<Vec<_>>(),
+        &carrier,
+        &Axis::angle("rocker angle φ"),
+        &all,
     )?;
     Ok(())
 }

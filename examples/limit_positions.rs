@@ -7,10 +7,10 @@
 //! * A four-bar at a change point (s + l = p + q) reaches a position where its two assembly
 //!   modes meet: the sweep reports the singular crossing instead of silently changing branch.
 //!
-//! Run with `cargo run --release --example limit_positions`.
+//! Run with `cargo run --release -p kinloop-examples --example limit_positions`.
 
+use kinloop::plot::{self, Axis, Kind, Panel, Series};
 use kinloop::{AtSingular, SweepConfig};
-use kinloop_examples::{Series, decimate, figure_dir, line_chart};
 use kinloop_fixtures::{FourBar, FourBarUnknowns};
 use std::f64::consts::PI;
 
@@ -52,19 +52,21 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
         traced.closed,
         traced.folds.iter().map(|f| format!("{:.12}", f.x[0])).collect::<Vec<_>>()
     );
-    let dir = figure_dir("limit_positions");
-    let curve = |u: usize| -> Vec<(f64, f64)> {
-        traced.points.iter().map(|p| (p.x[0].to_degrees(), p.q[u].to_degrees())).collect()
+    let dir = plot::figure_dir("limit_positions")?;
+    let curve = |label: &str, u: usize| {
+        let points: Vec<(f64, f64)> = traced.points.iter().map(|p| (p.x[0], p.q[u])).collect();
+        Series::new(label, Kind::Angle, plot::decimate(&points, 600))
     };
-    line_chart(
+    // The limit positions (dots) on both curves.
+    let folds = traced.folds.iter().flat_map(|f| [(f.x[0], f.q[0]), (f.x[0], f.q[1])]);
+    plot::panels(
         &dir.join("closed_curve.svg"),
-        "Non-Grashof four-bar: the whole closed curve by arclength continuation",
-        "input angle phi [deg]",
-        "angle [deg]",
-        &[
-            Series { label: "coupler beta", points: decimate(&curve(0), 600) },
-            Series { label: "rocker gamma", points: decimate(&curve(1), 600) },
-        ],
+        "Non-Grashof four-bar: closed curve by continuation (dots: limit positions)",
+        &Axis::angle("input angle φ"),
+        &[Panel::new(Axis::angle("link angle"))
+            .with(curve("coupler β", 0))
+            .with(curve("rocker γ", 1))
+            .with_marks(folds)],
     )?;
 
     change_point()?;

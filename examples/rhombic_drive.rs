@@ -8,13 +8,13 @@
 //! analogues for the piston, with `e_P`), and prints the strokes and the phase shift between the
 //! piston's and the displacer's extremes.
 //!
-//! Run with `cargo run --release --example rhombic_drive`. It prints a table every 10 degrees,
+//! Run with `cargo run --release -p kinloop-examples --example rhombic_drive`. It prints a table every 10 degrees,
 //! writes the full sweep as CSV and draws SVG charts into `out/rhombic_drive/` (the charts into
 //! `$KINLOOP_FIGURES/rhombic_drive/` when that variable is set).
 
 use kinloop::Table;
 use kinloop::analysis::Sampled;
-use kinloop_examples::{Series, decimate, figure_dir, line_chart, out_dir};
+use kinloop::plot::{self, Axis, Kind, Panel, Series};
 use kinloop_fixtures::{RhombicDrive, RhombicDriveState};
 use std::f64::consts::TAU;
 
@@ -113,60 +113,70 @@ fn report_extremes(drive: &RhombicDrive) -> Result<()> {
     Ok(())
 }
 
+/// Lengths of the drive are in units of the working crank radius (`r_P = 1`).
+const UNIT: &str = "units of r_P";
+
 /// The sweep as CSV and its charts as SVG.
 fn write_outputs(states: &[RhombicDriveState]) -> Result<()> {
-    let data = out_dir("rhombic_drive");
+    let data = plot::out_dir("rhombic_drive")?;
     let table = Table::from_states::<RhombicDrive, _, _, _>(states.iter().map(|s| &s.flat));
     table.save_csv(data.join("sweep.csv"))?;
 
-    // Charts every 0.5 degree (721 points per curve).
-    let dir = figure_dir("rhombic_drive");
-    let deg = |f: &dyn Fn(&RhombicDriveState) -> f64| -> Vec<(f64, f64)> {
-        decimate(&states.iter().map(|s| (s.input.phi1.to_degrees(), f(s))).collect::<Vec<_>>(), 721)
+    let dir = plot::figure_dir("rhombic_drive")?;
+    let crank = Axis::angle("crank angle φ1");
+    // A column of the sweep against the crank angle, with its legend label.
+    let column = |name: &str, kind: Kind, label: &str| -> Result<Series> {
+        Ok(Series { label: label.to_string(), ..Series::from_table(&table, "phi1", name, kind)? })
     };
-    line_chart(
+    let length = Kind::length(UNIT);
+    let (v_len, a_len) = (Kind::LengthAnalog(UNIT.into()), Kind::LengthAnalog2(UNIT.into()));
+    plot::line_chart(
         &dir.join("positions.svg"),
         "Rhombic drive: piston and displacer positions",
-        "crank angle phi1 [deg]",
-        "position [length]",
-        &[
-            Series { label: "X_C (working piston)", points: deg(&|s| s.q.x_c) },
-            Series { label: "X_F (displacer)", points: deg(&|s| s.q.x_f) },
-        ],
+        &crank,
+        &Axis::length("position X", UNIT),
+        &[column("x_c", length.clone(), "X_C (working piston)")?, column("x_f", length, "X_F (displacer)")?],
     )?;
-    line_chart(
+    // Pistons (lengths) and rods (angles) have analogs of different kinds: one panel each.
+    plot::panels(
         &dir.join("velocity_analogs.svg"),
-        "Velocity analogs dX/dphi1 and transmission ratios",
-        "crank angle phi1 [deg]",
-        "analog",
+        "Rhombic drive: velocity analogs",
+        &crank,
         &[
-            Series { label: "V_qC", points: deg(&|s| s.dq.x_c) },
-            Series { label: "V_qF", points: deg(&|s| s.dq.x_f) },
-            Series { label: "U21", points: deg(&|s| s.dq.phi2) },
-            Series { label: "U41", points: deg(&|s| s.dq.phi4) },
+            Panel::new(Axis::new("dX/dφ1", v_len.clone()))
+                .with(column("d(x_c)/d(phi1)", v_len.clone(), "V_qC (working piston)")?)
+                .with(column("d(x_f)/d(phi1)", v_len, "V_qF (displacer)")?),
+            Panel::new(Axis::new("U = dφ/dφ1", Kind::AngleAnalog))
+                .with(column("d(phi2)/d(phi1)", Kind::AngleAnalog, "U21 (working rod)")?)
+                .with(column("d(phi4)/d(phi1)", Kind::AngleAnalog, "U41 (displacer rod)")?),
         ],
     )?;
-    line_chart(
+    plot::panels(
         &dir.join("acceleration_analogs.svg"),
-        "Acceleration analogs d2X/dphi1^2",
-        "crank angle phi1 [deg]",
-        "analog",
+        "Rhombic drive: acceleration analogs",
+        &crank,
         &[
-            Series { label: "a_qC", points: deg(&|s| s.d2q.x_c) },
-            Series { label: "a_qF", points: deg(&|s| s.d2q.x_f) },
-            Series { label: "eps_q2", points: deg(&|s| s.d2q.phi2) },
-            Series { label: "eps_q4", points: deg(&|s| s.d2q.phi4) },
+            Panel::new(Axis::new("d²X/dφ1²", a_len.clone()))
+                .with(column("d2(x_c)/d(phi1)^2", a_len.clone(), "a_qC (working piston)")?)
+                .with(column("d2(x_f)/d(phi1)^2", a_len, "a_qF (displacer)")?),
+            Panel::new(Axis::new("ε_q = d²φ/dφ1²", Kind::AngleAnalog2))
+                .with(column("d2(phi2)/d(phi1)^2", Kind::AngleAnalog2, "ε_q2 (working rod)")?)
+                .with(column("d2(phi4)/d(phi1)^2", Kind::AngleAnalog2, "ε_q4 (displacer rod)")?),
         ],
     )?;
-    line_chart(
+    // Speed analog of a centre of mass: the length of its velocity analog vector.
+    let speed = |label: &str, of: fn(&RhombicDriveState) -> f64| {
+        Series::new(label, Kind::LengthAnalog(UNIT.into()), states.iter().map(|s| (s.input.phi1, of(s))).collect())
+    };
+    plot::line_chart(
         &dir.join("centres_of_mass_speed.svg"),
-        "Centres of mass: magnitude of the velocity analog |v_qS|",
-        "crank angle phi1 [deg]",
-        "|v_qS|",
+        "Rhombic drive: speed analogs of the centres of mass",
+        &crank,
+        &Axis::new("|dS/dφ1|", Kind::LengthAnalog(UNIT.into())),
         &[
-            Series { label: "S1", points: deg(&|s| s.dout.s1.norm()) },
-            Series { label: "S2", points: deg(&|s| s.dout.s2.norm()) },
-            Series { label: "S4", points: deg(&|s| s.dout.s4.norm()) },
+            speed("S1 (crank)", |s| s.dout.s1.norm()),
+            speed("S2 (working rod)", |s| s.dout.s2.norm()),
+            speed("S4 (displacer rod)", |s| s.dout.s4.norm()),
         ],
     )?;
     println!("\nwrote {} and 4 charts to {}", data.join("sweep.csv").display(), dir.display());

@@ -14,10 +14,10 @@
 //! analogs, and the phase shift between the piston's and the displacer's extremes, and checks
 //! that the third joint placed on the crank pin (D = B) gives back the drive of Fig. 1.
 //!
-//! Run with `cargo run --release --example rhombic_variants`.
+//! Run with `cargo run --release -p kinloop-examples --example rhombic_variants`.
 
 use kinloop::analysis::Sampled;
-use kinloop_examples::{Panel, Series, figure_dir, panels};
+use kinloop::plot::{self, Axis, Kind, Panel, Series};
 use kinloop_fixtures::{DisplacerRodDrive, WorkingRodDrive};
 use std::f64::consts::TAU;
 
@@ -94,30 +94,46 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
     println!("\nthird joint on the crank pin = Fig. 1: largest deviation of X_C, X_F from Fig. 1's closed form");
     println!("  Fig. 2 with l_fd = l_b, gamma_b = 0: {dev2:.1e};  Fig. 3 with l_cd = l_p, gamma_p = 0: {dev3:.1e}");
 
-    let dir = figure_dir("rhombic_variants");
-    let curve = |states: &[kinloop::Kin<4, 1, 2>], col: usize, order: usize| -> Vec<(f64, f64)> {
-        states.iter().map(|k| (k.x[0].to_degrees(), if order == 0 { k.q[col] } else { k.dq[col][0] })).collect()
+    draw(t2.states(), t3.states())?;
+    Ok(())
+}
+
+/// Lengths of both variants are in units of the crank radius (`r = 1`).
+const UNIT: &str = "units of r";
+
+/// X_C and X_F (order 0) or their velocity analogs (order 1) of both variants, one panel per
+/// variant: the unknowns are (phi4, x_f, phi2, x_c) in Fig. 2, (phi2, x_c, phi4, x_f) in Fig. 3.
+fn draw(s2: &[kinloop::Kin<4, 1, 2>], s3: &[kinloop::Kin<4, 1, 2>]) -> Result<(), Box<dyn std::error::Error>> {
+    let dir = plot::figure_dir("rhombic_variants")?;
+    let curve = |label: &str, kind: &Kind, states: &[kinloop::Kin<4, 1, 2>], col: usize, order: usize| {
+        let value = |k: &kinloop::Kin<4, 1, 2>| if order == 0 { k.q[col] } else { k.dq[col][0] };
+        Series::new(label, kind.clone(), states.iter().map(|k| (k.x[0], value(k))).collect())
     };
-    let (s2, s3) = (t2.states(), t3.states());
-    // One panel per variant with X_C and X_F (order 0) or their velocity analogs (order 1), by
-    // column: the unknowns are (phi4, x_f, phi2, x_c) in Fig. 2, (phi2, x_c, phi4, x_f) in Fig. 3.
-    let panel = |y_label, states, [c, f]: [usize; 2], order, [c_label, f_label]: [&'static str; 2]| Panel {
-        y_label,
-        series: vec![
-            Series { label: c_label, points: curve(states, c, order) },
-            Series { label: f_label, points: curve(states, f, order) },
-        ],
-        marks: vec![],
-    };
-    let (fig2, fig3) = ([3, 1], [1, 3]);
     let figures = [
-        ("positions.svg", "piston X_C and displacer X_F", ["Fig. 2 [crank radii]", "Fig. 3 [crank radii]"]),
-        ("velocity_analogs.svg", "velocity analogs dX/dphi1", ["Fig. 2", "Fig. 3"]),
+        (
+            "positions.svg",
+            "piston X_C and displacer X_F",
+            "X",
+            Kind::length(UNIT),
+            ["X_C (working piston)", "X_F (displacer)"],
+        ),
+        (
+            "velocity_analogs.svg",
+            "velocity analogs dX/dφ1",
+            "dX/dφ1",
+            Kind::LengthAnalog(UNIT.into()),
+            ["V_qC", "V_qF"],
+        ),
     ];
-    let labels = [["X_C (working piston)", "X_F (displacer)"], ["V_qC", "V_qF"]];
-    for (order, (file, what, [y2, y3])) in figures.into_iter().enumerate() {
-        let both = [panel(y2, s2, fig2, order, labels[order]), panel(y3, s3, fig3, order, labels[order])];
-        panels(&dir.join(file), &format!("Rhombic drive variants: {what}"), "crank angle phi1 [deg]", &both)?;
+    for (order, (file, what, y, kind, [c_label, f_label])) in figures.into_iter().enumerate() {
+        let panel = |fig: &str, states, [c, f]: [usize; 2]| {
+            Panel::new(Axis::new(&format!("{fig}: {y}"), kind.clone()))
+                .with(curve(c_label, &kind, states, c, order))
+                .with(curve(f_label, &kind, states, f, order))
+        };
+        let both = [panel("Fig. 2", s2, [3, 1]), panel("Fig. 3", s3, [1, 3])];
+        let title = format!("Rhombic drive variants: {what}");
+        plot::panels(&dir.join(file), &title, &Axis::angle("crank angle φ1"), &both)?;
     }
     println!("\nwrote positions.svg, velocity_analogs.svg to {}", dir.display());
     Ok(())

@@ -15,10 +15,10 @@
 //! acos(.)`, which belongs to the other assembly mode), and for contour 2 the triangle O2 B A
 //! with velocities and accelerations from its differentiated loop equation.
 //!
-//! Run with `cargo run --release --example roller_edger`.
+//! Run with `cargo run --release -p kinloop-examples --example roller_edger`.
 
 use kinloop::analysis::Sampled;
-use kinloop_examples::{Panel, Series, figure_dir, panels};
+use kinloop::plot::{self, Axis, Kind, Panel, Series};
 use kinloop_fixtures::roller_edger::{RollerEdger, RollerEdgerState, closed, solved};
 
 fn main() -> Result<(), Box<dyn std::error::Error>> {
@@ -90,40 +90,30 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
 /// The paper's figure: link angles, angular velocities and accelerations against time; returns
 /// the folder it went to.
 fn draw(states: &[RollerEdgerState]) -> Result<std::path::PathBuf, Box<dyn std::error::Error>> {
-    let dir = figure_dir("roller_edger");
-    let curve = |f: &dyn Fn(&RollerEdgerState) -> f64| states.iter().map(|s| (s.input.t, f(s))).collect::<Vec<_>>();
-    let four = |f: [&dyn Fn(&RollerEdgerState) -> f64; 4]| {
-        ["link 1 (cylinder 1)", "link 3", "link 2 (cylinder 2)", "link 4"]
-            .into_iter()
-            .zip(f)
-            .map(|(label, f)| Series { label, points: curve(f) })
-            .collect::<Vec<_>>()
+    let dir = plot::figure_dir("roller_edger")?;
+    let kind = |quantity: &str, unit: &str| Kind::Other { quantity: quantity.into(), unit: unit.into() };
+    let (velocity, acceleration) = (kind("angular velocity", "rad/s"), kind("angular acceleration", "rad/s²"));
+    // One panel per order, each with the four links.
+    let panel = |axis: Axis, of: [fn(&RollerEdgerState) -> f64; 4]| {
+        let links = ["link 1 (cylinder 1)", "link 3", "link 2 (cylinder 2)", "link 4"];
+        links.into_iter().zip(of).fold(Panel::new(axis.clone()), |p, (label, f)| {
+            p.with(Series::new(label, axis.kind.clone(), states.iter().map(|s| (s.input.t, f(s))).collect()))
+        })
     };
-    panels(
+    plot::panels(
         &dir.join("angles_velocities_accelerations.svg"),
-        "Roller edger (cylinder 1 extending at V1 = 0.05 m/s): link angles and their time derivatives",
-        "time t [s]",
+        "Roller edger (V1 = 0.05 m/s): link angles and their rates",
+        &Axis::new("time t", kind("time", "s")),
         &[
-            Panel {
-                y_label: "angle [deg]",
-                series: four([
-                    &|s| s.q.phi1.to_degrees(),
-                    &|s| s.q.phi3.to_degrees(),
-                    &|s| s.q.phi2.to_degrees(),
-                    &|s| s.q.phi4.to_degrees(),
-                ]),
-                marks: vec![],
-            },
-            Panel {
-                y_label: "angular velocity [rad/s]",
-                series: four([&|s| s.dq.phi1, &|s| s.dq.phi3, &|s| s.dq.phi2, &|s| s.dq.phi4]),
-                marks: vec![],
-            },
-            Panel {
-                y_label: "angular acceleration [rad/s^2]",
-                series: four([&|s| s.d2q.phi1, &|s| s.d2q.phi3, &|s| s.d2q.phi2, &|s| s.d2q.phi4]),
-                marks: vec![],
-            },
+            panel(Axis::angle("link angle"), [|s| s.q.phi1, |s| s.q.phi3, |s| s.q.phi2, |s| s.q.phi4]),
+            panel(
+                Axis::new("angular velocity", velocity),
+                [|s| s.dq.phi1, |s| s.dq.phi3, |s| s.dq.phi2, |s| s.dq.phi4],
+            ),
+            panel(
+                Axis::new("angular acceleration", acceleration),
+                [|s| s.d2q.phi1, |s| s.d2q.phi3, |s| s.d2q.phi2, |s| s.d2q.phi4],
+            ),
         ],
     )?;
     Ok(dir)

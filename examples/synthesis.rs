@@ -8,7 +8,7 @@
 //! sensitivities there: by the envelope theorem `d(stroke)/dp` is `dX/dp` at the extremes, and
 //! the extremes move by `dphi*/dp = -(dX'/dp) / X''`.
 //!
-//! Run with `cargo run --release --example synthesis`.
+//! Run with `cargo run --release -p kinloop-examples --example synthesis`.
 
 use kinloop_fixtures::synthesis::{characteristics, derivative_free_run, gradient_run, problem};
 
