@@ -2,7 +2,8 @@
 //! `docs/figures` is shown, and each figure reads at a glance: axis titles name their unit (no
 //! placeholder), angle axes are in degrees ticked in divisions of a turn (every 90 degrees over
 //! a whole turn), legends sit beside the plot area (never on the data), and curves keep
-//! fractional coordinates (no pixel staircase). The figures are parsed back from the SVG files themselves.
+//! fractional coordinates (no pixel staircase). The figures are parsed back from the SVG files
+//! themselves.
 
 use std::path::{Path, PathBuf};
 
