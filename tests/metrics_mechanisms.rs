@@ -4,6 +4,7 @@
 
 use kinloop::analysis::Sampled;
 use kinloop::metrics::{FourBarLinks, GrashofClass, grashof, limit_report, time_ratio_over, transmission_over};
+use kinloop_fixtures::FourBar;
 use proptest::prelude::*;
 use std::f64::consts::{FRAC_PI_2, PI, TAU};
 
@@ -16,15 +17,6 @@ kinloop::mechanism! {
         unknowns psi = 1.5, s = d, x = 0, u = h + d;
         loop pin: r @ phi == (0, -d) + s @ psi;
         loop ram: (x, h) == (0, -d) + u @ psi;
-    }
-}
-
-kinloop::mechanism! {
-    pub struct FourBar {
-        params a, b, c, d;
-        input phi;
-        unknowns beta = 0.5, gamma = 1.5;
-        loop abcd: a @ phi + b @ beta == (d, 0) + c @ gamma;
     }
 }
 
