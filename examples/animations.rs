@@ -68,36 +68,33 @@ fn rhombic_drive() -> Result<(Drawing, Motion), Box<dyn Error>> {
 
 fn displacer_rod_drive() -> Result<(Drawing, Motion), Box<dyn Error>> {
     let m = DisplacerRodDrive::default();
-    let u = DisplacerRodDrive::UNKNOWNS;
-    let (a, r) = ([0.0, m.e_p], m.r);
-    let b = Pt::expr(move |s| polar(a, r, s.x[0]));
-    let (c, f) = (on_line(col(&u, "x_c"), 0.0), on_line(col(&u, "x_f"), m.de));
-    let drawing = Drawing::new()
-        .pivot(a)
-        .slider(c.clone(), 0.0)
-        .slider(f.clone(), 0.0)
-        .link([Pt::from(a), b.clone()])
-        .body([b, f, Pt::point("d")])
-        .link([Pt::point("d"), c])
-        .trace("d");
+    let drawing = developed_rod_drive(m.e_p, m.r, m.de, &DisplacerRodDrive::UNKNOWNS, false);
     Ok((drawing, Motion::record(&m, m.sweep(0.0, TAU, 361, &m.guess(0.0))?)?))
 }
 
 fn working_rod_drive() -> Result<(Drawing, Motion), Box<dyn Error>> {
     let m = WorkingRodDrive::default();
-    let u = WorkingRodDrive::UNKNOWNS;
-    let (a, r) = ([0.0, m.e_p], m.r);
-    let b = Pt::expr(move |s| polar(a, r, s.x[0]));
-    let (c, f) = (on_line(col(&u, "x_c"), 0.0), on_line(col(&u, "x_f"), m.de));
-    let drawing = Drawing::new()
-        .pivot(a)
-        .slider(c.clone(), 0.0)
-        .slider(f.clone(), 0.0)
-        .link([Pt::from(a), b.clone()])
-        .body([b, c, Pt::point("d")])
-        .link([Pt::point("d"), f])
-        .trace("d");
+    let drawing = developed_rod_drive(m.e_p, m.r, m.de, &WorkingRodDrive::UNKNOWNS, true);
     Ok((drawing, Motion::record(&m, m.sweep(0.0, TAU, 361, &m.guess(0.0))?)?))
+}
+
+/// The two variants with a developed rod: crank `r` about A = (0, e_p), pistons C (on y = 0)
+/// and F (on y = de); the developed rod is a triangle through the crank pin B, the third joint
+/// D and the piston it drives (C for the working rod, F for the displacer rod), the other
+/// piston hangs from D by a plain link.
+fn developed_rod_drive(e_p: f64, r: f64, de: f64, u: &[&str], on_working_piston: bool) -> Drawing {
+    let a = [0.0, e_p];
+    let b = Pt::expr(move |s| polar(a, r, s.x[0]));
+    let (c, f) = (on_line(col(u, "x_c"), 0.0), on_line(col(u, "x_f"), de));
+    let (body_piston, linked_piston) = if on_working_piston { (c.clone(), f.clone()) } else { (f.clone(), c.clone()) };
+    Drawing::new()
+        .pivot(a)
+        .slider(c, 0.0)
+        .slider(f, 0.0)
+        .link([Pt::from(a), b.clone()])
+        .body([b, body_piston, Pt::point("d")])
+        .link([Pt::point("d"), linked_piston])
+        .trace("d")
 }
 
 /// The gear-lever drive: a planet of pitch radius `l_c / (u - 1)` rolls inside a fixed ring
