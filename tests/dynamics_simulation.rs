@@ -13,7 +13,7 @@ use kinloop::dynamics::{
     Body, Coord, DynamicsError, MassModel, OdeConfig, Rotation, RunConfig, SpeedLaw, Trajectory, dopri5, inverse_cycle,
     simulate,
 };
-use std::f64::consts::{PI, TAU};
+use std::f64::consts::TAU;
 
 #[test]
 fn dopri5_matches_closed_forms() {
