@@ -19,8 +19,8 @@
 //! and SVG charts into `out/rhombic_dynamics/` (the charts into
 //! `$KINLOOP_FIGURES/rhombic_dynamics/` when that variable is set).
 
-use kinloop::Table;
 use kinloop::Mechanism;
+use kinloop::Table;
 use kinloop::dynamics::{Cycle, CyclePoint, Load, RunConfig, SpeedLaw, Trajectory, inverse_cycle, simulate};
 use kinloop_examples::{Series, figure_dir, line_chart, out_dir};
 use kinloop_fixtures::StirlingEngine;
@@ -60,7 +60,11 @@ fn engine() -> StirlingEngine {
 /// hot end at `t_hot`): the volumes are zero-based at the extreme positions of the piston and
 /// the displacer over a turn, and the amount of gas is set for the mean pressure
 /// `mean_pressure`, which is also the buffer pressure on the piston's other side.
-fn with_gas(drive: StirlingEngine, t_hot: f64, mean_pressure: f64) -> Result<StirlingEngine, Box<dyn std::error::Error>> {
+fn with_gas(
+    drive: StirlingEngine,
+    t_hot: f64,
+    mean_pressure: f64,
+) -> Result<StirlingEngine, Box<dyn std::error::Error>> {
     let sweep = kinloop::analysis::Sampled::sweep(&drive, 0.0, TAU, 721, drive.guess_flat(&[0.0]))?;
     let xs = |u: usize| sweep.states().iter().map(move |k| k.q[u]);
     let (xc, xf) = (index(&StirlingEngine::UNKNOWNS, "x_c"), index(&StirlingEngine::UNKNOWNS, "x_f"));
@@ -244,7 +248,8 @@ fn write_outputs(
         ],
     )?;
     let [fx, fy, msh] = cycle.shaking_harmonics(8)?;
-    let orders = |h: &kinloop::analysis::Fourier| -> Vec<(f64, f64)> { (1..=8).map(|n| (n as f64, h.amplitude(n))).collect() };
+    let orders =
+        |h: &kinloop::analysis::Fourier| -> Vec<(f64, f64)> { (1..=8).map(|n| (n as f64, h.amplitude(n))).collect() };
     line_chart(
         &dir.join("shaking_harmonics.svg"),
         "Harmonics of the shaking force and moment at 1500 rpm",

@@ -132,7 +132,13 @@ fn declared_points_and_angles_map_to_the_state() {
             inertia: 0.01,
             rotation: Rotation::Unknown(0),
         },
-        Body { name: "piston", mass: 0.5, com: [Coord::Unknown(1), Coord::Fixed(0.0)], inertia: 0.0, rotation: Rotation::None },
+        Body {
+            name: "piston",
+            mass: 0.5,
+            com: [Coord::Unknown(1), Coord::Fixed(0.0)],
+            inertia: 0.0,
+            rotation: Rotation::None,
+        },
     ];
     assert_eq!(model.bodies(), &expected);
     assert_eq!(model.gravity_vector(), [0.0, -9.81]);

@@ -48,9 +48,8 @@ pub(super) fn parse_body(input: ParseStream) -> syn::Result<BodyDef> {
             }
             "turns" => {
                 if !input.peek(Ident) {
-                    return Err(input.error(
-                        "expected the angle the body turns with: `turns phi2` (an input or an angle unknown)",
-                    ));
+                    return Err(input
+                        .error("expected the angle the body turns with: `turns phi2` (an input or an angle unknown)"));
                 }
                 let angle: Ident = input.parse()?;
                 end = angle.span();
@@ -61,7 +60,9 @@ pub(super) fn parse_body(input: ParseStream) -> syn::Result<BodyDef> {
             _ => {
                 return Err(syn::Error::new(
                     clause.span(),
-                    format!("`{clause}` is not a property of a body; expected `mass`, `com`, `inertia` or `turns`: {BODY}"),
+                    format!(
+                        "`{clause}` is not a property of a body; expected `mass`, `com`, `inertia` or `turns`: {BODY}"
+                    ),
                 ));
             }
         }

@@ -1,8 +1,8 @@
 //! Parsing one item of a declaration's body (`params ...;`, `let ...;`, `loop ...;`, ...), with
 //! the messages that say what to write instead.
 
-use super::expr::{Expr, SpanRange, parse_expr};
 use super::dynamics::{parse_body, parse_force, parse_torque};
+use super::expr::{Expr, SpanRange, parse_expr};
 use super::syntax::{Decl, DeclKind, Errors, Item, ItemKind, skip_item};
 use proc_macro2::Span;
 use syn::parse::ParseStream;
@@ -119,8 +119,7 @@ fn at_item_start(input: ParseStream) -> bool {
         || input.peek(Token![#])
 }
 
-const ITEMS: &str =
-    "an item starts with `params`, `input`, `inputs`, `unknowns`, `let`, `loop`, `eq`, `point`, `output`, \
+const ITEMS: &str = "an item starts with `params`, `input`, `inputs`, `unknowns`, `let`, `loop`, `eq`, `point`, `output`, \
      `body`, `force`, `torque` or `gravity`";
 
 fn skip_keyword(input: ParseStream) -> syn::Result<()> {

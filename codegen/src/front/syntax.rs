@@ -64,19 +64,48 @@ pub enum DeclKind {
 
 pub enum ItemKind {
     Decls(DeclKind, Vec<Decl>),
-    Let { name: Ident, value: Expr },
-    Loop { name: Ident, lhs: Expr, rhs: Expr, eq: Span },
-    Eq { name: Ident, lhs: Expr, rhs: Expr, eq: Span },
-    Point { name: Ident, value: Expr },
-    Output { name: Ident, value: Expr },
+    Let {
+        name: Ident,
+        value: Expr,
+    },
+    Loop {
+        name: Ident,
+        lhs: Expr,
+        rhs: Expr,
+        eq: Span,
+    },
+    Eq {
+        name: Ident,
+        lhs: Expr,
+        rhs: Expr,
+        eq: Span,
+    },
+    Point {
+        name: Ident,
+        value: Expr,
+    },
+    Output {
+        name: Ident,
+        value: Expr,
+    },
     /// `body name: mass m, com s, inertia j, turns phi;` (`inertia` and `turns` optional).
     Body(BodyDef),
     /// `force name at point = vector;`
-    Force { name: Ident, at: Expr, value: Expr },
+    Force {
+        name: Ident,
+        at: Expr,
+        value: Expr,
+    },
     /// `torque name on angle = scalar;`
-    Torque { name: Ident, on: Ident, value: Expr },
+    Torque {
+        name: Ident,
+        on: Ident,
+        value: Expr,
+    },
     /// `gravity vector;`
-    Gravity { value: Expr },
+    Gravity {
+        value: Expr,
+    },
 }
 
 /// A rigid body of the machine's dynamics.

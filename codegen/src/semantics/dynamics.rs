@@ -122,16 +122,17 @@ impl Pending {
 
     pub(super) fn force(&mut self, lw: &mut Lowerer, name: &Ident, at: &Expr, value: &Expr) {
         let at = point(lw, at, "the point a force acts at");
-        let value = match lw.lower(value) {
-            Some(Val::V(x, y)) => Some([x, y]),
-            Some(Val::S(_)) => {
-                lw.errors.push(value.range().error(format!(
-                    "force `{name}` needs a vector `(fx, fy)` or `f @ angle`, but this is a scalar"
-                )));
-                None
-            }
-            None => None,
-        };
+        let value =
+            match lw.lower(value) {
+                Some(Val::V(x, y)) => Some([x, y]),
+                Some(Val::S(_)) => {
+                    lw.errors.push(value.range().error(format!(
+                        "force `{name}` needs a vector `(fx, fy)` or `f @ angle`, but this is a scalar"
+                    )));
+                    None
+                }
+                None => None,
+            };
         if let (Some(at), Some(value)) = (at, value) {
             self.forces.push((name.clone(), at, value));
         }
@@ -159,13 +160,17 @@ impl Pending {
             return;
         }
         match lw.lower(value) {
-            Some(Val::V(x, y)) if depends_on_state(&lw.graph, &[x, y]) => lw.errors.push(value.range().error(
-                "gravity must be an expression of parameters (it cannot change with inputs or unknowns)",
-            )),
+            Some(Val::V(x, y)) if depends_on_state(&lw.graph, &[x, y]) => lw.errors.push(
+                value
+                    .range()
+                    .error("gravity must be an expression of parameters (it cannot change with inputs or unknowns)"),
+            ),
             Some(Val::V(x, y)) => self.gravity = Some([x, y]),
-            Some(Val::S(_)) => lw.errors.push(value.range().error(
-                "gravity is a vector, e.g. `gravity (0, -g);` with y pointing up, but this is a scalar",
-            )),
+            Some(Val::S(_)) => lw.errors.push(
+                value
+                    .range()
+                    .error("gravity is a vector, e.g. `gravity (0, -g);` with y pointing up, but this is a scalar"),
+            ),
             None => {}
         }
     }
