@@ -75,22 +75,24 @@ pub fn items(model: &Model, plan: &Plan, t: &Types) -> TokenStream {
     let kin = quote!(&#rt::Kin<#n, #ni, #no>);
     let forces = d.forces.iter().map(|f| {
         let (fname, cx, cy) = (&f.name, coord(&f.at[0]), coord(&f.at[1]));
-        let body = law(g, &names, &f.value);
+        let (outside, inside) = law(g, &names, &f.value);
         let [fx, fy] = f.value.map(|v| names.operand(g, v));
         quote! {
+            #outside
             let __model = __model.with_force(#fname, [#cx, #cy], move |__k: #kin, _: &[f64; #ni]| -> [f64; 2] {
-                #body
+                #inside
                 [#fx, #fy]
             })?;
         }
     });
     let torques = d.torques.iter().map(|t| {
         let (tname, on) = (&t.name, angle(t.on));
-        let body = law(g, &names, &[t.value]);
+        let (outside, inside) = law(g, &names, &[t.value]);
         let value = names.operand(g, t.value);
         quote! {
+            #outside
             let __model = __model.with_torque(#tname, #on, move |__k: #kin, _: &[f64; #ni]| -> f64 {
-                #body
+                #inside
                 #value
             })?;
         }
@@ -143,8 +145,10 @@ fn angle(a: AngleModel) -> TokenStream {
     }
 }
 
-/// Straight-line code computing `roots`, reading the inputs and unknowns from the state `__k`.
-fn law(g: &Graph, names: &Names, roots: &[NodeId]) -> TokenStream {
+/// Straight-line code computing `roots` from the state `__k`: `(outside, inside)`. What
+/// depends on the parameters only is computed once, outside the closure (which captures it);
+/// inside, the inputs and unknowns are read from the state and the rest is computed.
+fn law(g: &Graph, names: &Names, roots: &[NodeId]) -> (TokenStream, TokenStream) {
     let reads = g.leaves_of(roots).into_iter().filter_map(|l| match l {
         Leaf::Input(i) => {
             let (local, i) = (&names.inputs[i as usize], lit(i as usize));
@@ -156,8 +160,22 @@ fn law(g: &Graph, names: &Names, roots: &[NodeId]) -> TokenStream {
         }
         _ => None,
     });
-    let body = lets(g, names, roots);
-    quote!(#(#reads)* #body)
+    let level = vec![0; g.len()];
+    let sched = schedule(g, &level, &[ScopeSpec { kind: ScopeKind::Plain, roots: roots.to_vec() }]);
+    let (inside, _): (Vec<NodeId>, Vec<NodeId>) = sched.lets[0].iter().partition(|&&n| depends_on_state(g, n));
+    // The parameter-only operands of the state-dependent nodes (and parameter-only roots).
+    let hoisted: Vec<NodeId> = inside
+        .iter()
+        .flat_map(|&n| g.op(n).operands().collect::<Vec<_>>())
+        .chain(roots.iter().copied())
+        .filter(|&n| !depends_on_state(g, n))
+        .collect();
+    let inside_lets = names.lets(g, &sched, &inside);
+    (lets(g, names, &hoisted), quote!(#(#reads)* #inside_lets))
+}
+
+fn depends_on_state(g: &Graph, n: NodeId) -> bool {
+    g.leaves_of(&[n]).iter().any(|l| matches!(l, Leaf::Input(_) | Leaf::Unknown(_)))
 }
 
 /// `let` statements for the nodes `roots` need, in order, each once.
