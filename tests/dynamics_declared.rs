@@ -146,3 +146,41 @@ fn declared_points_and_angles_map_to_the_state() {
     assert_eq!(names, ["gas", "friction"]);
     let _: &MassModel<2, 1, 2> = &model;
 }
+
+/// Scale-free: the engine in millimetres (consistent units kg, mm, s: lengths times 1e3,
+/// moments of inertia, pressures times areas and torques rescaled accordingly) gives the same
+/// dynamics times the unit's factor: J, dJ/dphi and Q (energies per radian) times 1e6.
+#[test]
+fn declared_dynamics_are_scale_free() {
+    let m = Engine::default();
+    let mm = Engine {
+        r: m.r * 1e3,
+        l: m.l * 1e3,
+        l_s: m.l_s * 1e3,
+        j_rod: m.j_rod * 1e6,
+        j_crank: m.j_crank * 1e6,
+        area: m.area * 1e6,
+        p0: m.p0 * 1e-3,
+        c: m.c * 1e6,
+        g: m.g * 1e3,
+        ..m
+    };
+    let (model_m, model_mm) = (m.mass_model().unwrap(), mm.mass_model().unwrap());
+    let (mut guess_m, mut guess_mm) = (m.guess_flat(&[0.0]), mm.guess_flat(&[0.0]));
+    let mut worst: f64 = 0.0;
+    for step in 0..36 {
+        let phi = step as f64 * 10f64.to_radians();
+        let k_m = m.kinematics_flat(&[phi], &guess_m, &NewtonConfig::default()).unwrap();
+        let k_mm = mm.kinematics_flat(&[phi], &guess_mm, &NewtonConfig::default()).unwrap();
+        (guess_m, guess_mm) = (k_m.q, k_mm.q);
+        let (a, b) = (model_m.dynamics(&k_m, &[30.0]).unwrap(), model_mm.dynamics(&k_mm, &[30.0]).unwrap());
+        let rel = |x: f64, y: f64, scale: f64| (y / 1e6 - x).abs() / scale;
+        worst = worst
+            .max(rel(a.reduced_inertia(), b.reduced_inertia(), a.reduced_inertia()))
+            .max(rel(a.reduced_inertia_slope(), b.reduced_inertia_slope(), a.reduced_inertia()))
+            .max(rel(a.forces[0], b.forces[0], m.p0 * m.area * m.r));
+    }
+    // Each quantity is a short sum of products of f64 values that differ by exact powers of ten
+    // only up to rounding (1e3 and 1e-3 are not exact binary scalings): a few ulps.
+    assert!(worst < 1e-13, "relative difference {worst:e}");
+}
