@@ -3,6 +3,10 @@
 //! the gas pressure follows from the compression and expansion volumes, which the working
 //! piston and the displacer set, so the force on the piston is a function of the state.
 //!
+//! The engine is declared once, with its masses and its gas force, in `mechanism!`
+//! (`kinloop_fixtures::StirlingEngine`: the fixtures' rhombic drive plus `body` and `force`
+//! items); `drive.mass_model()` gives the model every computation below runs on.
+//!
 //! It computes, from the same kinematic analogs the kinematic example prints:
 //! * the driving torque over a turn at 1500 rpm, `M = J eps + 1/2 J' omega^2 - Q`;
 //! * the shaking force on the frame and its first two harmonics, and the shaking moment;
@@ -15,133 +19,82 @@
 //! and SVG charts into `out/rhombic_dynamics/` (the charts into
 //! `$KINLOOP_FIGURES/rhombic_dynamics/` when that variable is set).
 
+use kinloop::Mechanism;
 use kinloop::Table;
-use kinloop::dynamics::{
-    Body, Coord, Cycle, CyclePoint, MassModel, Rotation, RunConfig, SpeedLaw, Trajectory, inverse_cycle, simulate,
-};
-use kinloop::{Kin, Mechanism};
+use kinloop::dynamics::{Cycle, CyclePoint, Load, RunConfig, SpeedLaw, Trajectory, inverse_cycle, simulate};
 use kinloop_examples::{Series, figure_dir, line_chart, out_dir};
-use kinloop_fixtures::RhombicDrive;
+use kinloop_fixtures::StirlingEngine;
 use std::f64::consts::{PI, TAU};
 
-/// Lengths of the example's drive scaled to metres (crank radius 20 mm).
-fn engine() -> RhombicDrive {
+/// The example's drive scaled to metres (crank radius 20 mm), with its masses (kg) and moments
+/// of inertia (kg m^2; the rods as slender bars), no gas yet: the declaration of
+/// [`StirlingEngine`] (the fixtures' rhombic drive plus its bodies and gas force).
+fn engine() -> StirlingEngine {
     let s = 0.02;
-    let d = RhombicDrive::default();
-    RhombicDrive {
+    let d = StirlingEngine::default();
+    let (l_p, l_b) = (s * d.l_p, s * d.l_b);
+    let rod = |l: f64, m: f64| m * l * l / 12.0;
+    StirlingEngine {
         r_p: s * d.r_p,
         r_b: s * d.r_b,
-        l_p: s * d.l_p,
-        l_b: s * d.l_b,
+        l_p,
+        l_b,
         e_p: s * d.e_p,
         de: s * d.de,
         l_as1: s * d.l_as1,
         l_cs2: s * d.l_cs2,
         l_fs4: s * d.l_fs4,
+        m_crank: 0.8,
+        j_crank: 2e-4,
+        m_rod2: 0.15,
+        j_rod2: rod(l_p, 0.15),
+        m_rod4: 0.18,
+        j_rod4: rod(l_b, 0.18),
+        m_piston: 0.45,
+        m_displacer: 0.3,
         ..d
     }
 }
 
-/// Schmidt-type gas model: a fixed amount of gas in a cold space (behind the working piston
-/// and the cold end of the displacer) and a hot space (the displacer's hot end), each with a
-/// dead volume; `p = m R / (V_c / T_c + V_h / T_h)`. The working piston has a buffer pressure
-/// equal to the mean on its other side.
-#[derive(Clone, Copy)]
-struct Gas {
-    area: f64,
+/// The engine with its Schmidt-type gas (bore 40 mm, dead volumes 30 cm^3, cold end at 320 K,
+/// hot end at `t_hot`): the volumes are zero-based at the extreme positions of the piston and
+/// the displacer over a turn, and the amount of gas is set for the mean pressure
+/// `mean_pressure`, which is also the buffer pressure on the piston's other side.
+fn with_gas(
+    drive: StirlingEngine,
     t_hot: f64,
-    t_cold: f64,
-    dead: f64,
-    /// Extreme positions of the piston and displacer (the volumes are zero-based there).
-    x_c_min: f64,
-    x_f_max: f64,
-    x_f_min: f64,
-    /// `m R`, set for the mean pressure.
-    mass_r: f64,
-    buffer: f64,
-}
-
-impl Gas {
-    fn new(drive: &RhombicDrive, t_hot: f64, mean_pressure: f64) -> Gas {
-        let sweep =
-            kinloop::analysis::Sampled::sweep(drive, 0.0, TAU, 721, drive.guess_flat(&[0.0])).expect("a full turn");
-        let xs = |u: usize| sweep.states().iter().map(move |k| k.q[u]);
-        let (xc, xf) = (index(&RhombicDrive::UNKNOWNS, "x_c"), index(&RhombicDrive::UNKNOWNS, "x_f"));
-        let mut gas = Gas {
-            area: PI * 0.04 * 0.04 / 4.0,
-            t_hot,
-            t_cold: 320.0,
-            dead: 3e-5,
-            x_c_min: xs(xc).fold(f64::INFINITY, f64::min),
-            x_f_max: xs(xf).fold(f64::NEG_INFINITY, f64::max),
-            x_f_min: xs(xf).fold(f64::INFINITY, f64::min),
-            mass_r: 1.0,
-            buffer: 0.0,
-        };
-        let mean = sweep.states().iter().map(|k| gas.pressure(k.q[xc], k.q[xf])).sum::<f64>() / 721.0;
-        gas.mass_r = mean_pressure / mean;
-        gas.buffer = mean_pressure;
-        gas
-    }
-
-    fn pressure(&self, x_c: f64, x_f: f64) -> f64 {
-        let cold = self.dead + self.area * ((x_c - self.x_c_min) + (self.x_f_max - x_f));
-        let hot = self.dead + self.area * (x_f - self.x_f_min);
-        self.mass_r / (cold / self.t_cold + hot / self.t_hot)
-    }
+    mean_pressure: f64,
+) -> Result<StirlingEngine, Box<dyn std::error::Error>> {
+    let sweep = kinloop::analysis::Sampled::sweep(&drive, 0.0, TAU, 721, drive.guess_flat(&[0.0]))?;
+    let xs = |u: usize| sweep.states().iter().map(move |k| k.q[u]);
+    let (xc, xf) = (index(&StirlingEngine::UNKNOWNS, "x_c"), index(&StirlingEngine::UNKNOWNS, "x_f"));
+    let unit = StirlingEngine {
+        area: PI * 0.04 * 0.04 / 4.0,
+        t_hot,
+        t_cold: 320.0,
+        dead: 3e-5,
+        x_c_min: xs(xc).fold(f64::INFINITY, f64::min),
+        x_f_max: xs(xf).fold(f64::NEG_INFINITY, f64::max),
+        x_f_min: xs(xf).fold(f64::INFINITY, f64::min),
+        mass_r: 1.0,
+        buffer: 0.0,
+        ..drive
+    };
+    // The declared gas force over the area is the pressure; with m R = 1, its mean over a turn
+    // gives the m R of the mean pressure asked for.
+    let model = unit.mass_model()?;
+    let Some(Load::Force { law, .. }) = model.loads().first() else { return Err("the gas force is declared".into()) };
+    let mean = sweep.states().iter().map(|k| law(k, &[0.0])[0] / unit.area).sum::<f64>() / 721.0;
+    Ok(StirlingEngine { mass_r: mean_pressure / mean, buffer: mean_pressure, ..unit })
 }
 
 fn index(names: &[&str], name: &str) -> usize {
     names.iter().position(|n| *n == name).expect("a declared name")
 }
 
-/// Crank, rods, piston and displacer (kg, kg m^2), and the gas force on the piston.
-fn model(drive: &RhombicDrive, gas: Gas) -> MassModel<4, 1, 7> {
-    let out = |n| Coord::Output(index(&RhombicDrive::OUTPUTS, n));
-    let (xc, xf) = (index(&RhombicDrive::UNKNOWNS, "x_c"), index(&RhombicDrive::UNKNOWNS, "x_f"));
-    let rod = |l: f64, m: f64| m * l * l / 12.0;
-    let bodies = [
-        Body { name: "crank", mass: 0.8, com: [out("s1.x"), out("s1.y")], inertia: 2e-4, rotation: Rotation::Input(0) },
-        Body {
-            name: "working rod",
-            mass: 0.15,
-            com: [out("s2.x"), out("s2.y")],
-            inertia: rod(drive.l_p, 0.15),
-            rotation: Rotation::Unknown(0),
-        },
-        Body {
-            name: "displacer rod",
-            mass: 0.18,
-            com: [out("s4.x"), out("s4.y")],
-            inertia: rod(drive.l_b, 0.18),
-            rotation: Rotation::Unknown(1),
-        },
-        Body {
-            name: "piston",
-            mass: 0.45,
-            com: [Coord::Unknown(xc), Coord::Fixed(0.0)],
-            inertia: 0.0,
-            rotation: Rotation::None,
-        },
-        Body {
-            name: "displacer",
-            mass: 0.3,
-            com: [Coord::Unknown(xf), Coord::Fixed(drive.de)],
-            inertia: 0.0,
-            rotation: Rotation::None,
-        },
-    ];
-    let mut m = MassModel::new();
-    for b in bodies {
-        m = m.with_body(b).expect("valid bodies");
-    }
-    let force = move |k: &Kin<4, 1, 7>, _: &[f64; 1]| [(gas.pressure(k.q[xc], k.q[xf]) - gas.buffer) * gas.area, 0.0];
-    m.with_force("gas on the working piston", [Coord::Unknown(xc), Coord::Fixed(0.0)], force).expect("a valid load")
-}
-
 fn main() -> Result<(), Box<dyn std::error::Error>> {
-    let drive = engine();
-    let hot = model(&drive, Gas::new(&drive, 900.0, 1.0e6));
+    let drive = with_gas(engine(), 900.0, 1.0e6)?;
+    let hot = drive.mass_model()?;
     let omega = 1500.0 * TAU / 60.0;
     let guess = drive.guess_flat(&[0.0]);
     let cycle = inverse_cycle(&drive, &hot, SpeedLaw::Constant(omega), 0.0, 3600, guess, [0.0, drive.e_p])?;
@@ -180,7 +133,7 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
         omega
     );
 
-    let run = run_up(&drive, omega, fw.exact)?;
+    let run = run_up(omega, fw.exact)?;
     write_outputs(&cycle, &run)
 }
 
@@ -223,8 +176,9 @@ fn print_cycle(cycle: &Cycle, omega: f64) -> Result<(), Box<dyn std::error::Erro
 
 /// Run-up of the cold engine (no temperature difference: the gas is a spring) from rest under
 /// the motor `M = M_s (1 - omega / omega_s)`, with the flywheel `j_fly`, for 3 s.
-fn run_up(drive: &RhombicDrive, omega_s: f64, j_fly: f64) -> Result<Trajectory, Box<dyn std::error::Error>> {
-    let cold = model(drive, Gas::new(drive, 320.0, 1.0e6));
+fn run_up(omega_s: f64, j_fly: f64) -> Result<Trajectory, Box<dyn std::error::Error>> {
+    let drive = &with_gas(engine(), 320.0, 1.0e6)?;
+    let cold = drive.mass_model()?;
     let m_s = 6.0;
     let motor = move |_: f64, _: f64, w: f64| m_s * (1.0 - w / omega_s);
     let cfg = RunConfig { flywheel: j_fly, ..Default::default() };
@@ -293,6 +247,20 @@ fn write_outputs(
             Series { label: "Fy", points: deg(&|p| p.shaking.force[1]) },
         ],
     )?;
+    let [fx, fy, msh] = cycle.shaking_harmonics(8)?;
+    let orders =
+        |h: &kinloop::analysis::Fourier| -> Vec<(f64, f64)> { (1..=8).map(|n| (n as f64, h.amplitude(n))).collect() };
+    line_chart(
+        &dir.join("shaking_harmonics.svg"),
+        "Harmonics of the shaking force and moment at 1500 rpm",
+        "order (multiple of the crank speed)",
+        "amplitude [N], [Nm]",
+        &[
+            Series { label: "Fx [N]", points: orders(&fx) },
+            Series { label: "Fy [N]", points: orders(&fy) },
+            Series { label: "moment [Nm]", points: orders(&msh) },
+        ],
+    )?;
     let speed: Vec<(f64, f64)> = (0..=600)
         .map(|k| {
             let time = run.t_end * k as f64 / 600.0;
@@ -306,6 +274,6 @@ fn write_outputs(
         "crank speed [rad/s]",
         &[Series { label: "omega", points: speed }],
     )?;
-    println!("\nwrote cycle.csv and runup.csv to {} and 3 charts to {}", data.display(), dir.display());
+    println!("\nwrote cycle.csv and runup.csv to {} and 4 charts to {}", data.display(), dir.display());
     Ok(())
 }

@@ -43,6 +43,10 @@
 //!     eq name: scalar == scalar;             one scalar equation
 //!     point p = vector;                      named output point (x, y) and its analogs
 //!     output w = scalar;                     named scalar output and its analogs
+//!     body b: mass m, com p, inertia j, turns q1;   dynamics: a rigid body (see below)
+//!     force f at p = vector;                 a force at a point, an expression of the state
+//!     torque t on q1 = scalar;               a torque on an input or an angle unknown
+//!     gravity vector;                        the gravitational acceleration, e.g. `(0, -g)`
 //! }
 //! ```
 //!
@@ -61,6 +65,44 @@
 //!   second derivative).
 //! * The initial guesses choose the assembly mode (branch); pass another guess at run time to
 //!   pick another branch, or warm-start each solve from the previous position along a sweep.
+//!
+//! * Machine dynamics: `body name: mass m, com p, inertia j, turns angle;` declares a rigid
+//!   body — its mass and moment of inertia about the centre of mass are expressions of the
+//!   parameters (`inertia` defaults to 0), its centre of mass `com` a declared `point` or
+//!   `(x, y)` of unknowns, outputs and constants (`com (x_c, 0)` for a slider), and `turns`
+//!   names the input or angle unknown it rotates with (none for a slider). `force name at p =
+//!   (fx, fy);` and `torque name on angle = scalar;` are loads: expressions of parameters,
+//!   inputs and unknowns, evaluated by generated straight-line code; `gravity (0, -g);` sets
+//!   gravity. The macro then generates `m.mass_model()`, the runtime's
+//!   [`dynamics::MassModel`] for the reduced inertia, inverse dynamics, shaking forces, flywheel
+//!   and simulation. A negative literal mass or inertia, a mass that changes with the state,
+//!   `turns` or `on` a parameter or a length unknown, and a point with no analogs of its own
+//!   are compile errors; negative or non-finite values given at run time are typed errors.
+//!
+//! ```
+//! kinloop::mechanism! {
+//!     /// A slider-crank with its rod and piston, a gas force and gravity.
+//!     pub struct Engine {
+//!         params r = 0.05, l = 0.2, m_rod = 2.0, j_rod = 0.01, m_p = 0.5, p = 300.0;
+//!         input phi;
+//!         unknowns beta = 0, x = 0.25;
+//!         loop abc: r @ phi + l @ beta == (x, 0);
+//!         point s2 = r @ phi + 0.3 * l @ beta;
+//!         body rod: mass m_rod, com s2, inertia j_rod, turns beta;
+//!         body piston: mass m_p, com (x, 0);
+//!         force gas at (x, 0) = (p * (r + l) / x, 0);
+//!         gravity (0, -9.81);
+//!     }
+//! }
+//! use kinloop::Mechanism;
+//! let engine = Engine::default();
+//! let model = engine.mass_model()?;
+//! let k = engine.kinematics_flat(&[0.5], &engine.guess_flat(&[0.5]), &Default::default())?;
+//! let d = model.dynamics(&k, &[100.0])?; // at 100 rad/s
+//! let torque = d.drive(&[100.0], &[0.0])[0]; // J eps + 1/2 J' omega^2 - Q at constant speed
+//! assert!(d.reduced_inertia() > 0.0 && torque.is_finite());
+//! # Ok::<(), Box<dyn std::error::Error>>(())
+//! ```
 //!
 //! Mistakes are compile errors at the exact place, with what to write instead: unknown names
 //! (with a suggestion), vector/scalar mix-ups, unsupported functions, and structural problems

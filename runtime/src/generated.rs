@@ -7,6 +7,7 @@
 //! this module as `kinloop::__gen`; it is not meant to be used by hand and may change between
 //! versions.
 
+pub use crate::dynamics::{Body, Coord, DynamicsError, MassModel, Rotation};
 pub use crate::error::Error;
 pub use crate::events::BlockInfo;
 pub use crate::kin::{Health, Jac, Kin, Sens};

@@ -6,24 +6,29 @@
 use kinloop::dynamics::{Body, Coord, MassModel, Rotation};
 use kinloop::{Mechanism, NewtonConfig};
 
-pub use kinloop_fixtures::RhombicDrive;
+pub use kinloop_fixtures::{RhombicDrive, StirlingEngine};
 
 /// Index of a named output column or unknown of a mechanism.
 pub fn index(names: &[&str], name: &str) -> usize {
     names.iter().position(|n| *n == name).unwrap_or_else(|| panic!("no column `{name}`"))
 }
 
-/// The drive of the example with plausible masses (kg, kg·length²): crank, two rods, the
-/// working piston C and the displacer F, plus a gas force on the piston that depends on its
-/// position.
+/// The drive with plausible masses (kg, kg·length²): crank, two rods, the working piston C and
+/// the displacer F as declared by [`StirlingEngine`] (its default masses, no gas), plus a gas
+/// force on the piston that depends on its position.
 pub fn rhombic_model(gravity: [f64; 2]) -> MassModel<4, 1, 7> {
     let xc = index(&<RhombicDrive as Mechanism<4, 1, 7>>::UNKNOWNS, "x_c");
     let at = [Coord::Unknown(xc), Coord::Fixed(0.0)];
     rhombic_bodies(gravity).with_force("gas", at, move |k, _| [gas_force(k.q[xc]), 0.0]).expect("a valid load")
 }
 
-/// The bodies of [`rhombic_model`] without the gas force.
+/// The bodies of [`rhombic_model`] without the gas force, from the declaration.
 pub fn rhombic_bodies(gravity: [f64; 2]) -> MassModel<4, 1, 7> {
+    StirlingEngine::default().mass_model().and_then(|m| m.with_gravity(gravity)).expect("a valid model")
+}
+
+/// The same bodies built by hand, by index: the independent check of the declaration.
+pub fn rhombic_bodies_by_hand(gravity: [f64; 2]) -> MassModel<4, 1, 7> {
     let out = |n| Coord::Output(index(&<RhombicDrive as Mechanism<4, 1, 7>>::OUTPUTS, n));
     let unknown = |n| index(&<RhombicDrive as Mechanism<4, 1, 7>>::UNKNOWNS, n);
     let de = RhombicDrive::default().de;

@@ -8,12 +8,14 @@
 //! * [`api`] implements the runtime traits with the kernels and the constants, and forwards the
 //!   inherent methods to the runtime's generic code;
 //! * [`sensitivities`] adds the sensitivity types and kernels when they were requested;
-//! * [`describe`] writes the decomposition in words.
+//! * [`describe`] writes the decomposition in words;
+//! * [`dynamics`] builds the declared bodies and loads into the runtime's mass model.
 //!
 //! Generated code reaches the runtime through `::kinloop::__gen` only.
 
 pub mod api;
 pub mod describe;
+pub mod dynamics;
 pub mod kernels;
 pub mod names;
 pub mod schedule;
@@ -93,6 +95,7 @@ pub fn generate(model: &Model, plan: &Plan) -> TokenStream {
     let types = Types::of(&model.name);
     let mut out = surface::items(&surface::Surface::of_model(model, plan.defaults.clone()), &types);
     out.extend(api::items(model, plan, &types));
+    out.extend(dynamics::items(model, plan, &types));
     if plan.has_sensitivities() {
         out.extend(sensitivities::items(model, plan, &types));
     } else {

@@ -1,13 +1,14 @@
 //! Parsing one item of a declaration's body (`params ...;`, `let ...;`, `loop ...;`, ...), with
 //! the messages that say what to write instead.
 
+use super::dynamics::{parse_body, parse_force, parse_torque};
 use super::expr::{Expr, SpanRange, parse_expr};
 use super::syntax::{Decl, DeclKind, Errors, Item, ItemKind, skip_item};
 use proc_macro2::Span;
 use syn::parse::ParseStream;
 use syn::{Attribute, Ident, Token};
 
-mod kw {
+pub(super) mod kw {
     syn::custom_keyword!(params);
     syn::custom_keyword!(param);
     syn::custom_keyword!(input);
@@ -18,6 +19,12 @@ mod kw {
     syn::custom_keyword!(output);
     syn::custom_keyword!(eq);
     syn::custom_keyword!(dense);
+    syn::custom_keyword!(body);
+    syn::custom_keyword!(force);
+    syn::custom_keyword!(torque);
+    syn::custom_keyword!(gravity);
+    syn::custom_keyword!(at);
+    syn::custom_keyword!(on);
 }
 
 /// Parses one item. A missing `;` after a complete item is pushed to `errors` and the item is
@@ -63,6 +70,18 @@ pub(super) fn parse_item(input: ParseStream, errors: &mut Errors) -> syn::Result
         input.parse::<kw::eq>()?;
         let (name, lhs, rhs, eq) = parse_equation(input, "eq")?;
         ItemKind::Eq { name, lhs, rhs, eq }
+    } else if look.peek(kw::body) {
+        input.parse::<kw::body>()?;
+        ItemKind::Body(parse_body(input)?)
+    } else if look.peek(kw::force) {
+        input.parse::<kw::force>()?;
+        parse_force(input)?
+    } else if look.peek(kw::torque) {
+        input.parse::<kw::torque>()?;
+        parse_torque(input)?
+    } else if look.peek(kw::gravity) {
+        input.parse::<kw::gravity>()?;
+        ItemKind::Gravity { value: parse_expr(input)? }
     } else {
         let mut err = look.error();
         if let Ok(id) = input.fork().parse::<Ident>() {
@@ -93,11 +112,15 @@ fn at_item_start(input: ParseStream) -> bool {
         || input.peek(kw::eq)
         || input.peek(kw::point)
         || input.peek(kw::output)
+        || input.peek(kw::body)
+        || input.peek(kw::force)
+        || input.peek(kw::torque)
+        || input.peek(kw::gravity)
         || input.peek(Token![#])
 }
 
-const ITEMS: &str =
-    "an item starts with `params`, `input`, `inputs`, `unknowns`, `let`, `loop`, `eq`, `point` or `output`";
+const ITEMS: &str = "an item starts with `params`, `input`, `inputs`, `unknowns`, `let`, `loop`, `eq`, `point`, `output`, \
+     `body`, `force`, `torque` or `gravity`";
 
 fn skip_keyword(input: ParseStream) -> syn::Result<()> {
     input.parse::<Ident>().map(drop)
@@ -120,6 +143,10 @@ fn expect_semicolon(input: ParseStream, item: &Item) -> syn::Result<()> {
             ItemKind::Eq { .. } => "eq",
             ItemKind::Point { .. } => "point",
             ItemKind::Output { .. } => "output",
+            ItemKind::Body(_) => "body",
+            ItemKind::Force { .. } => "force",
+            ItemKind::Torque { .. } => "torque",
+            ItemKind::Gravity { .. } => "gravity",
         };
         let next = match input.cursor().token_tree() {
             Some((tt, _)) => format!(" (before `{}`)", short(&tt.to_string())),

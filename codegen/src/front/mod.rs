@@ -5,6 +5,7 @@
 //! declaration (one item at a time in `item`), with [`expr`] for expressions, and [`names`] rejects names the generated code
 //! cannot use.
 
+mod dynamics;
 pub mod expr;
 mod item;
 pub mod limits;

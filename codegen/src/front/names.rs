@@ -76,6 +76,7 @@ fn item_name(kind: &ItemKind) -> Option<(&Ident, &'static str)> {
         ItemKind::Output { name, .. } => Some((name, "an `output`")),
         ItemKind::Loop { name, .. } => Some((name, "a `loop`")),
         ItemKind::Eq { name, .. } => Some((name, "an `eq`")),
+        ItemKind::Body(_) | ItemKind::Force { .. } | ItemKind::Torque { .. } | ItemKind::Gravity { .. } => None,
     }
 }
 

@@ -12,6 +12,10 @@
 //!     eq name: scalar == scalar;       // one scalar equation
 //!     point name = vec;                // named output point (x, y)
 //!     output name = scalar;            // named scalar output
+//!     body name: mass m, com p, inertia j, turns angle;   // dynamics: a rigid body
+//!     force name at p = vec;           // a force at a point (an expression of the state)
+//!     torque name on angle = scalar;   // a torque on an input or an angle unknown
+//!     gravity vec;                     // the gravitational acceleration
 //! }
 //! ```
 //!
@@ -60,11 +64,60 @@ pub enum DeclKind {
 
 pub enum ItemKind {
     Decls(DeclKind, Vec<Decl>),
-    Let { name: Ident, value: Expr },
-    Loop { name: Ident, lhs: Expr, rhs: Expr, eq: Span },
-    Eq { name: Ident, lhs: Expr, rhs: Expr, eq: Span },
-    Point { name: Ident, value: Expr },
-    Output { name: Ident, value: Expr },
+    Let {
+        name: Ident,
+        value: Expr,
+    },
+    Loop {
+        name: Ident,
+        lhs: Expr,
+        rhs: Expr,
+        eq: Span,
+    },
+    Eq {
+        name: Ident,
+        lhs: Expr,
+        rhs: Expr,
+        eq: Span,
+    },
+    Point {
+        name: Ident,
+        value: Expr,
+    },
+    Output {
+        name: Ident,
+        value: Expr,
+    },
+    /// `body name: mass m, com s, inertia j, turns phi;` (`inertia` and `turns` optional).
+    Body(BodyDef),
+    /// `force name at point = vector;`
+    Force {
+        name: Ident,
+        at: Expr,
+        value: Expr,
+    },
+    /// `torque name on angle = scalar;`
+    Torque {
+        name: Ident,
+        on: Ident,
+        value: Expr,
+    },
+    /// `gravity vector;`
+    Gravity {
+        value: Expr,
+    },
+}
+
+/// A rigid body of the machine's dynamics.
+pub struct BodyDef {
+    pub name: Ident,
+    pub mass: Expr,
+    pub com: Expr,
+    pub inertia: Option<Expr>,
+    /// The angle the body turns with (none for a slider).
+    pub turns: Option<Ident>,
+    /// The last token of the item, for errors about the whole body.
+    pub end: Span,
 }
 
 pub struct Item {
@@ -87,6 +140,10 @@ impl Item {
                 start.to(value.range())
             }
             ItemKind::Loop { rhs, .. } | ItemKind::Eq { rhs, .. } => start.to(rhs.range()),
+            ItemKind::Body(b) => start.to(SpanRange::single(b.end)),
+            ItemKind::Force { value, .. } | ItemKind::Torque { value, .. } | ItemKind::Gravity { value } => {
+                start.to(value.range())
+            }
         }
     }
 }

@@ -1,6 +1,7 @@
 //! The checked model of a mechanism: names resolved, vector/scalar types checked, and every
 //! equation and output lowered to nodes of one expression [`Graph`].
 
+use super::dynamics::{DynamicsModel, Pending};
 use super::lower::{Lowerer, Val};
 use super::scope::Symbol;
 use crate::dag::{Graph, NodeId};
@@ -70,6 +71,8 @@ pub struct Model {
     /// Parameters and inputs that nothing uses (reported as errors by the structure analysis).
     pub used_params: Vec<bool>,
     pub used_inputs: Vec<bool>,
+    /// Bodies, loads and gravity (`body`, `force`, `torque`, `gravity`), if declared.
+    pub dynamics: DynamicsModel,
 }
 
 impl Model {
@@ -121,6 +124,7 @@ struct Lowered {
     scalars: Vec<Scalar>,
     /// Names of the `loop` and `eq` items seen so far, where first given.
     item_names: HashMap<String, Span>,
+    dynamics: Pending,
 }
 
 /// Builds the model; all semantic errors found are returned together.
@@ -162,6 +166,16 @@ pub fn build(def: MechanismDef) -> Result<Model, syn::Error> {
     if lw.graph.overflowed() {
         lw.errors.push(syn::Error::new(name.span(), "the mechanism's expressions are too large for kinloop"));
     }
+    let kinematics: Vec<NodeId> = out
+        .equations
+        .iter()
+        .map(|e| e.residual)
+        .chain(out.points.iter().flat_map(|p| [p.x, p.y]))
+        .chain(out.scalars.iter().map(|s| s.value))
+        .collect();
+    let columns: Vec<NodeId> =
+        out.points.iter().flat_map(|p| [p.x, p.y]).chain(out.scalars.iter().map(|s| s.value)).collect();
+    let dynamics = std::mem::take(&mut out.dynamics).resolve(&mut lw, &columns, &kinematics);
     let unknowns =
         globals.unknowns.iter().zip(out.unknown_guess).map(|(d, value)| named(d, value, &globals.item_of)).collect();
     let Lowerer { graph, errors, used_params, used_inputs, .. } = lw;
@@ -181,6 +195,7 @@ pub fn build(def: MechanismDef) -> Result<Model, syn::Error> {
         graph,
         used_params,
         used_inputs,
+        dynamics,
     })
 }
 
@@ -261,6 +276,10 @@ fn lower_item(lw: &mut Lowerer, g: &Globals, item: &Item, out: &mut Lowered) {
         ItemKind::Loop { name, lhs, rhs, eq } | ItemKind::Eq { name, lhs, rhs, eq } => {
             lower_equation_item(lw, item, name, (lhs, rhs, *eq), out)
         }
+        ItemKind::Body(b) => out.dynamics.body(lw, b),
+        ItemKind::Force { name, at, value } => out.dynamics.force(lw, name, at, value),
+        ItemKind::Torque { name, on, value } => out.dynamics.torque(lw, name, on, value),
+        ItemKind::Gravity { value } => out.dynamics.gravity(lw, value, item.keyword),
     }
 }
 

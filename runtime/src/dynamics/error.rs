@@ -86,6 +86,24 @@ pub enum DynamicsError {
         /// The step size.
         h: f64,
     },
+    /// A simulation's step collapsed: the motion is singular at input `x`. Approaching a limit
+    /// position, the reduced moment of inertia grows without bound (like `1 / (x_limit - x)`),
+    /// the speed falls to zero in finite time and the input stops being a coordinate of the
+    /// motion; the step collapses there before a kinematic solve fails.
+    #[error(
+        "the motion is singular at input {x:?}, speed {speed:?} (t = {t}): the integration step fell to {h:e}; \
+         is this a limit position?"
+    )]
+    SingularMotion {
+        /// Time reached.
+        t: f64,
+        /// The step size.
+        h: f64,
+        /// The inputs reached (the last accepted state).
+        x: Vec<f64>,
+        /// The input speeds there.
+        speed: Vec<f64>,
+    },
     /// The integrator made its maximum number of steps.
     #[error("the integration made {steps} steps and reached only t = {t}; raise `max_steps`")]
     TooManySteps {

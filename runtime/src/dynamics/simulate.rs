@@ -55,7 +55,9 @@ impl Trajectory {
 /// and ends the run early when it returns `true`.
 ///
 /// Errors: a kinematic failure (limit or singular position, no assembly) as
-/// [`DynamicsError::Kinematics`] with the time; a reduced inertia that is not positive as
+/// [`DynamicsError::Kinematics`] with the time; a step that collapses (approaching a limit
+/// position, where the reduced inertia grows without bound) as
+/// [`DynamicsError::SingularMotion`] with the input reached; a reduced inertia that is not positive as
 /// [`DynamicsError::SingularMass`]; a drive or load that is not finite as
 /// [`DynamicsError::NonFiniteLoad`]; integrator failures. Besides the recorded trajectory (one
 /// entry per accepted step, amortised growth), a step allocates nothing.
@@ -101,9 +103,18 @@ where
         Ok([omega, eps[0]])
     };
     let mut steps = Vec::new();
-    let (t, end) = dopri5(rhs, 0.0, start, t_end, &cfg.ode, |s, y| {
+    let mut reached = start;
+    let run = dopri5(rhs, 0.0, start, t_end, &cfg.ode, |s, y| {
         steps.push(*s);
+        reached = *y;
         Ok(stop(s.t1(), y))
-    })?;
-    Ok(Trajectory { steps, t_end: t, end })
+    });
+    match run {
+        Ok((t, end)) => Ok(Trajectory { steps, t_end: t, end }),
+        // Say where: the input and speed of the last accepted step.
+        Err(DynamicsError::StepTooSmall { t, h }) => {
+            Err(DynamicsError::SingularMotion { t, h, x: vec![reached[0]], speed: vec![reached[1]] })
+        }
+        Err(e) => Err(e),
+    }
 }

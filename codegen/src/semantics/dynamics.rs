@@ -1,0 +1,303 @@
+//! The machine's dynamics in the model: bodies, forces, torques and gravity, their expressions
+//! lowered into the one graph, their points and angles resolved against the kinematic state.
+//!
+//! Items are lowered in body order ([`Pending`]); their points are resolved once every output
+//! is known ([`resolve`]): a point coordinate is an unknown (a slider's coordinate), a constant
+//! of the parameters, or a column of a declared `point` or `output`. Anything else would need
+//! its own analogs, so the message asks to declare it as a `point`.
+
+use super::lower::{Lowerer, Val};
+use super::scope::Symbol;
+use crate::dag::{Func, Graph, Leaf, NodeId, Op};
+use crate::expr::{Expr, SpanRange};
+use crate::syntax::BodyDef;
+use proc_macro2::Span;
+use std::collections::{HashMap, HashSet};
+use syn::Ident;
+
+/// A coordinate of a point, read from the kinematic state.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub enum CoordModel {
+    /// Output column.
+    Output(usize),
+    /// Unknown.
+    Unknown(usize),
+    /// A constant: an expression of the parameters.
+    Fixed(NodeId),
+}
+
+/// The angle a body turns with or a torque acts on.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum AngleModel {
+    Unknown(usize),
+    Input(usize),
+    None,
+}
+
+pub struct BodyModel {
+    pub name: String,
+    /// Expressions of the parameters.
+    pub mass: NodeId,
+    pub inertia: NodeId,
+    pub com: [CoordModel; 2],
+    pub turns: AngleModel,
+}
+
+pub struct ForceModel {
+    pub name: String,
+    pub at: [CoordModel; 2],
+    /// Expressions of parameters, inputs and unknowns.
+    pub value: [NodeId; 2],
+}
+
+pub struct TorqueModel {
+    pub name: String,
+    pub on: AngleModel,
+    pub value: NodeId,
+}
+
+/// The dynamics declared with a mechanism (empty when none is).
+#[derive(Default)]
+pub struct DynamicsModel {
+    pub bodies: Vec<BodyModel>,
+    pub forces: Vec<ForceModel>,
+    pub torques: Vec<TorqueModel>,
+    /// Expressions of the parameters.
+    pub gravity: Option<[NodeId; 2]>,
+}
+
+impl DynamicsModel {
+    pub fn is_declared(&self) -> bool {
+        !(self.bodies.is_empty() && self.forces.is_empty() && self.torques.is_empty() && self.gravity.is_none())
+    }
+}
+
+/// A point lowered, waiting for the outputs to be known.
+struct PendingPoint {
+    x: NodeId,
+    y: NodeId,
+    range: SpanRange,
+    /// The source, for the message that asks to declare it as a point.
+    shown: String,
+}
+
+struct PendingBody {
+    name: Ident,
+    mass: NodeId,
+    inertia: NodeId,
+    com: PendingPoint,
+    turns: AngleModel,
+}
+
+/// Dynamics items lowered in body order.
+#[derive(Default)]
+pub(super) struct Pending {
+    bodies: Vec<PendingBody>,
+    forces: Vec<(Ident, PendingPoint, [NodeId; 2])>,
+    torques: Vec<TorqueModel>,
+    gravity: Option<[NodeId; 2]>,
+    /// Angles named by `turns` and `on`, checked against the equations once all are lowered.
+    angles: Vec<(Ident, AngleModel)>,
+}
+
+impl Pending {
+    pub(super) fn body(&mut self, lw: &mut Lowerer, b: &BodyDef) {
+        let mass = parameter_value(lw, &b.mass, "the mass");
+        let inertia = match &b.inertia {
+            Some(e) => parameter_value(lw, e, "the moment of inertia"),
+            None => Some(lw.graph.zero()),
+        };
+        let com = point(lw, &b.com, "a centre of mass");
+        let turns = match &b.turns {
+            Some(a) => angle(lw, a, "turns"),
+            None => Some(AngleModel::None),
+        };
+        if let Some(a) = &b.turns {
+            self.angles.extend(turns.map(|t| (a.clone(), t)));
+        }
+        if let (Some(mass), Some(inertia), Some(com), Some(turns)) = (mass, inertia, com, turns) {
+            self.bodies.push(PendingBody { name: b.name.clone(), mass, inertia, com, turns });
+        }
+    }
+
+    pub(super) fn force(&mut self, lw: &mut Lowerer, name: &Ident, at: &Expr, value: &Expr) {
+        let at = point(lw, at, "the point a force acts at");
+        let value =
+            match lw.lower(value) {
+                Some(Val::V(x, y)) => Some([x, y]),
+                Some(Val::S(_)) => {
+                    lw.errors.push(value.range().error(format!(
+                        "force `{name}` needs a vector `(fx, fy)` or `f @ angle`, but this is a scalar"
+                    )));
+                    None
+                }
+                None => None,
+            };
+        if let (Some(at), Some(value)) = (at, value) {
+            self.forces.push((name.clone(), at, value));
+        }
+    }
+
+    pub(super) fn torque(&mut self, lw: &mut Lowerer, name: &Ident, on: &Ident, value: &Expr) {
+        let angle = angle(lw, on, "on");
+        self.angles.extend(angle.map(|a| (on.clone(), a)));
+        let value = match lw.lower(value) {
+            Some(Val::S(v)) => Some(v),
+            Some(Val::V(..)) => {
+                lw.errors.push(value.range().error(format!("torque `{name}` needs a scalar, but this is a vector")));
+                None
+            }
+            None => None,
+        };
+        if let (Some(on), Some(value)) = (angle, value) {
+            self.torques.push(TorqueModel { name: name.to_string(), on, value });
+        }
+    }
+
+    pub(super) fn gravity(&mut self, lw: &mut Lowerer, value: &Expr, keyword: Span) {
+        if self.gravity.is_some() {
+            lw.errors.push(syn::Error::new(keyword, "`gravity` is given twice; keep one"));
+            return;
+        }
+        match lw.lower(value) {
+            Some(Val::V(x, y)) if depends_on_state(&lw.graph, &[x, y]) => lw.errors.push(
+                value
+                    .range()
+                    .error("gravity must be an expression of parameters (it cannot change with inputs or unknowns)"),
+            ),
+            Some(Val::V(x, y)) => self.gravity = Some([x, y]),
+            Some(Val::S(_)) => lw.errors.push(
+                value
+                    .range()
+                    .error("gravity is a vector, e.g. `gravity (0, -g);` with y pointing up, but this is a scalar"),
+            ),
+            None => {}
+        }
+    }
+
+    /// Resolves the points against the output columns and checks the angles.
+    pub(super) fn resolve(self, lw: &mut Lowerer, outputs: &[NodeId], kinematics: &[NodeId]) -> DynamicsModel {
+        let columns: HashMap<NodeId, usize> = outputs.iter().enumerate().rev().map(|(c, &n)| (n, c)).collect();
+        let angles = angle_leaves(&lw.graph, kinematics);
+        for (id, a) in &self.angles {
+            let leaf = match a {
+                AngleModel::Unknown(u) => Leaf::Unknown(*u as u16),
+                AngleModel::Input(i) => Leaf::Input(*i as u16),
+                AngleModel::None => continue,
+            };
+            if !angles.contains(&leaf) {
+                lw.errors.push(syn::Error::new(
+                    id.span(),
+                    format!(
+                        "`{id}` is not an angle: it appears in no angle of the loops (the right of `@`, or \
+                         sin, cos, tan); a body that only slides has no `turns`, a torque acts on an angle"
+                    ),
+                ));
+            }
+        }
+        let coords = |lw: &mut Lowerer, p: &PendingPoint, what: &str| -> Option<[CoordModel; 2]> {
+            let c = [coord(&lw.graph, &columns, p.x), coord(&lw.graph, &columns, p.y)];
+            if let [Some(x), Some(y)] = c {
+                return Some([x, y]);
+            }
+            lw.errors.push(p.range.error(format!(
+                "{what} must be a declared point, or `(x, y)` of unknowns, outputs and constants: \
+                 declare it with `point name = {};` and write its name here",
+                p.shown
+            )));
+            None
+        };
+        let mut model = DynamicsModel { gravity: self.gravity, torques: self.torques, ..Default::default() };
+        for b in self.bodies {
+            if let Some(com) = coords(lw, &b.com, "a centre of mass") {
+                let (name, mass, inertia, turns) = (b.name.to_string(), b.mass, b.inertia, b.turns);
+                model.bodies.push(BodyModel { name, mass, inertia, com, turns });
+            }
+        }
+        for (name, at, value) in self.forces {
+            if let Some(at) = coords(lw, &at, "the point a force acts at") {
+                model.forces.push(ForceModel { name: name.to_string(), at, value });
+            }
+        }
+        model
+    }
+}
+
+/// A mass or a moment of inertia: a scalar of the parameters, not a negative constant.
+fn parameter_value(lw: &mut Lowerer, e: &Expr, what: &str) -> Option<NodeId> {
+    let v = match lw.lower(e)? {
+        Val::S(v) => v,
+        Val::V(..) => {
+            lw.errors.push(e.range().error(format!("{what} of a body is a scalar, but this is a vector")));
+            return None;
+        }
+    };
+    if depends_on_state(&lw.graph, &[v]) {
+        lw.errors.push(e.range().error(format!(
+            "{what} of a body must be an expression of parameters (it cannot change with inputs or unknowns)"
+        )));
+        return None;
+    }
+    match lw.graph.as_const(v) {
+        Some(c) if c < 0.0 || !c.is_finite() => {
+            lw.errors.push(e.range().error(format!(
+                "{what} of a body cannot be {c}: it must be finite and not negative; write its magnitude"
+            )));
+            None
+        }
+        _ => Some(v),
+    }
+}
+
+fn point(lw: &mut Lowerer, e: &Expr, what: &str) -> Option<PendingPoint> {
+    match lw.lower(e)? {
+        Val::V(x, y) => Some(PendingPoint { x, y, range: e.range(), shown: e.show() }),
+        Val::S(_) => {
+            lw.errors.push(e.range().error(format!(
+                "{what} is a point (a vector), but this is a scalar: write a declared `point` or `(x, y)`"
+            )));
+            None
+        }
+    }
+}
+
+/// The input or unknown `id` names (`clause` is `turns` or `on`, for the message).
+fn angle(lw: &mut Lowerer, id: &Ident, clause: &str) -> Option<AngleModel> {
+    let found = lw.scope.symbols.get(&id.to_string()).map(|(s, _)| *s);
+    let what = match found {
+        Some(Symbol::Unknown(u)) => return Some(AngleModel::Unknown(u as usize)),
+        Some(Symbol::Input(i)) => return Some(AngleModel::Input(i as usize)),
+        Some(Symbol::Param(_)) => "a parameter",
+        Some(Symbol::Let(_) | Symbol::Later(_) | Symbol::Poisoned) => "a named value",
+        None => "not declared",
+    };
+    lw.errors.push(syn::Error::new(
+        id.span(),
+        format!("`{clause} {id}`: `{id}` is {what}; `{clause}` takes an input or an angle unknown"),
+    ));
+    None
+}
+
+fn depends_on_state(g: &Graph, roots: &[NodeId]) -> bool {
+    g.leaves_of(roots).iter().any(|l| matches!(l, Leaf::Input(_) | Leaf::Unknown(_)))
+}
+
+fn coord(g: &Graph, columns: &HashMap<NodeId, usize>, n: NodeId) -> Option<CoordModel> {
+    match g.op(n) {
+        Op::Leaf(Leaf::Unknown(u)) => Some(CoordModel::Unknown(u as usize)),
+        _ if !depends_on_state(g, &[n]) => Some(CoordModel::Fixed(n)),
+        _ => columns.get(&n).map(|&c| CoordModel::Output(c)),
+    }
+}
+
+/// The inputs and unknowns that appear in the argument of a trigonometric function of the
+/// kinematics: the angles.
+fn angle_leaves(g: &Graph, kinematics: &[NodeId]) -> HashSet<Leaf> {
+    let mut out = HashSet::new();
+    for n in g.reachable(kinematics) {
+        if let Op::Func(Func::Sin | Func::Cos | Func::Tan, a) = g.op(n) {
+            out.extend(g.leaves_of(&[a]));
+        }
+    }
+    out
+}
