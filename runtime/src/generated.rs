@@ -12,7 +12,7 @@ pub use crate::events::BlockInfo;
 pub use crate::kin::{Health, Jac, Kin, Sens};
 pub use crate::lu::{Fixed, Lu, max_abs};
 pub use crate::mechanism::{Mechanism, NamedSensitivities, Sensitivities, SensitivitiesRequested};
-pub use crate::newton::{BlockEval, NewtonConfig, SolveReport, Solved, newton};
+pub use crate::newton::{BlockEval, BlockFailure, NewtonConfig, SolveReport, Solved, newton};
 pub use crate::vec2::Vec2;
 
 use crate::error::Quantity;
