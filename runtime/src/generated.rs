@@ -18,7 +18,6 @@ pub use crate::vec2::Vec2;
 use crate::error::Quantity;
 use crate::events::Location;
 use crate::kin::FlatMotion;
-use crate::newton::BlockFailure;
 
 /// Where an error of mechanism `M` happened: its inputs `x` and, if any, the block.
 #[cold]
