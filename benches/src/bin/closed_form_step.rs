@@ -7,7 +7,8 @@
 //!   `four-bar-sweep`, `gear-lever-hand`, `gear-lever-point`, `gear-lever-sweep` (the hand
 //!   closed forms of `kinloop_bench::hand`);
 //! * class IV block (Newton): `class-four-hand` (the hand-written Newton), `class-four-point`,
-//!   `class-four-sweep`.
+//!   `class-four-sweep`, and `class-four-hand-taylor`, `class-four-point-taylor` warm-started by
+//!   the benchmarks' second-order predictor instead of the previous position.
 //!
 //! Instructions per step = difference of the totals of two runs with different `STEPS`, divided
 //! by the difference of the steps (the setup cancels).
@@ -38,7 +39,11 @@ kinloop::mechanism! {
 const TURN: usize = 720;
 
 fn steps_of<S: Stepper<N>, const N: usize>(s: &S, guess: [f64; N], steps: usize) -> f64 {
-    let mut sweep = Sweep::start(s, TURN, WarmStart::Previous, guess).expect("start");
+    policy_steps(s, WarmStart::Previous, guess, steps)
+}
+
+fn policy_steps<S: Stepper<N>, const N: usize>(s: &S, policy: WarmStart, guess: [f64; N], steps: usize) -> f64 {
+    let mut sweep = Sweep::start(s, TURN, policy, guess).expect("start");
     let mut acc = 0.0;
     for _ in 0..steps {
         acc += black_box(sweep.advance(s).expect("step")).q[0];
@@ -86,6 +91,10 @@ fn main() {
         "gear-lever-sweep" => sweep_of(&gear, gg, steps),
         "class-four-hand" => steps_of(&HandNewton { p: c4 }, g4, steps),
         "class-four-point" => steps_of(&Kinloop::<ClassFour, 0>::new(c4.kinloop()), g4, steps),
+        "class-four-hand-taylor" => policy_steps(&HandNewton { p: c4 }, WarmStart::Taylor, g4, steps),
+        "class-four-point-taylor" => {
+            policy_steps(&Kinloop::<ClassFour, 0>::new(c4.kinloop()), WarmStart::Taylor, g4, steps)
+        }
         "class-four-sweep" => sweep_of(&c4.kinloop(), g4, steps),
         other => panic!("unknown variant {other} (see the module documentation)"),
     };

@@ -166,6 +166,10 @@ pub fn solve(rec: &Recognised, cx: &Context) -> TokenStream {
     // The guess only picks the branch and the turn, through comparisons that a NaN would
     // silently answer: it is checked first.
     let guesses = rec.form.angles().into_iter().chain(others_of(&rec.form)).map(guess);
+    let angles = (0..rec.form.angles().len()).map(|k| {
+        let k = Literal::usize_unsuffixed(k);
+        quote!(__out[#k].abs())
+    });
     quote! {
         let [#(#outs),*]: [f64; #k] = {
             if !(0.0 #(+ #guesses)*).is_finite() {
@@ -175,6 +179,14 @@ pub fn solve(rec: &Recognised, cx: &Context) -> TokenStream {
             // A NaN here comes from the inputs, parameters, guess or a coefficient's domain.
             if !__out.iter().sum::<f64>().is_finite() {
                 return Err(#rt::block_failure(self, #bl, #rt::BlockFailure::NonFinite { row: 0, iterations: 0 }, __x, __guess));
+            }
+            // On the guess's turn an angle is a large number when the guess is: beyond the
+            // precision Newton's residual floor accepts (1000 times the tolerance, at least
+            // 16 eps), its own rounding would be a wrong answer.
+            let __big: f64 = 0.0f64 #(.max(#angles))*;
+            if !(__big * f64::EPSILON <= 1000.0 * __cfg.residual_tol.max(16.0 * f64::EPSILON)) {
+                let __fail = #rt::BlockFailure::NoConvergence { row: 0, iterations: 0, residual: __big * f64::EPSILON };
+                return Err(#rt::block_failure(self, #bl, __fail, __x, __guess));
             }
             __out
         };

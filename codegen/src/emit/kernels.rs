@@ -212,8 +212,30 @@ impl Kernel<'_> {
                 }
             }
             // Only Newton blocks add to the report.
-            None if self.plan.blocks.iter().all(|b| b.linear || b.closed.is_some()) => quote!(let __report = #rt::SolveReport::direct();),
+            None if self.plan.blocks.iter().all(|b| b.linear || b.closed.is_some()) => {
+                let mut out = self.closed_config_check();
+                out.extend(quote!(let __report = #rt::SolveReport::direct();));
+                out
+            }
             None => quote!(let mut __report = #rt::SolveReport::direct();),
+        }
+    }
+
+    /// Closed-form hook: without a Newton block nothing else reads the configuration, which is
+    /// still checked (an invalid one is an error whichever way the blocks are solved).
+    fn closed_config_check(&self) -> TokenStream {
+        let rt = &self.rt;
+        match self.plan.blocks.iter().position(|b| b.closed.is_some()) {
+            Some(b) => {
+                let b = lit(b);
+                quote! {
+                    if let Some(field) = __cfg.invalid_field() {
+                        let __fail = #rt::BlockFailure::InvalidConfig { field };
+                        return Err(#rt::block_failure(self, #b, __fail, __x, __guess));
+                    }
+                }
+            }
+            None => TokenStream::new(),
         }
     }
 
