@@ -39,7 +39,7 @@ impl Stepper<2> for FourBarClosed {
         let e2 = ex * ex + ey * ey;
         let along = (b * b - c * c + e2) / (2.0 * e2);
         let h2 = b * b / e2 - along * along;
-        if !(h2 >= 0.0) {
+        if h2.is_nan() || h2 < 0.0 {
             return Err(Failed::new("four-bar closed form: no assembly"));
         }
         let h = if self.left { h2.sqrt() } else { -h2.sqrt() };
@@ -96,7 +96,7 @@ impl Stepper<2> for GearLeverClosed {
         let dp = [self.l_c * ca + self.l_p * k * ck, -self.l_c * sa - self.l_p * k * sk];
         let ddp = [-self.l_c * sa - self.l_p * k * k * sk, -self.l_c * ca - self.l_p * k * k * ck];
         let s2 = p[0] * p[0] + p[1] * p[1];
-        if !(s2 > 0.0) {
+        if s2.is_nan() || s2 <= 0.0 {
             return Err(Failed::new("gear-lever closed form: the pin is on the pivot"));
         }
         let s = s2.sqrt();

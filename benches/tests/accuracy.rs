@@ -106,12 +106,17 @@ fn differences_agree<S: Stepper<2>>(s: &S) {
     let h = 1e-4;
     for k in 0..72 {
         let phi = k as f64 * std::f64::consts::TAU / 72.0 + 0.01;
-        let (at, plus, minus) = (s.step(phi, &[0.0; 2]).unwrap(), s.step(phi + h, &[0.0; 2]).unwrap(), s.step(phi - h, &[0.0; 2]).unwrap());
+        let (at, plus, minus) =
+            (s.step(phi, &[0.0; 2]).unwrap(), s.step(phi + h, &[0.0; 2]).unwrap(), s.step(phi - h, &[0.0; 2]).unwrap());
         for u in 0..2 {
             let dq = (plus.q[u] - minus.q[u]) / (2.0 * h);
             let d2q = (plus.q[u] - 2.0 * at.q[u] + minus.q[u]) / (h * h);
             assert!((dq - at.dq[u]).abs() <= 1e-6 * at.dq[u].abs().max(1.0), "dq[{u}] at {phi}: {dq} vs {}", at.dq[u]);
-            assert!((d2q - at.d2q[u]).abs() <= 1e-5 * at.d2q[u].abs().max(1.0), "d2q[{u}] at {phi}: {d2q} vs {}", at.d2q[u]);
+            assert!(
+                (d2q - at.d2q[u]).abs() <= 1e-5 * at.d2q[u].abs().max(1.0),
+                "d2q[{u}] at {phi}: {d2q} vs {}",
+                at.d2q[u]
+            );
         }
     }
 }

@@ -11,9 +11,9 @@ use super::recognise::{ClosedForm, Recognised};
 use crate::dag::{Graph, NodeId};
 use crate::emit::names::float;
 use crate::plan::Plan;
-use std::collections::HashSet;
 use proc_macro2::{Ident, Literal, TokenStream};
 use quote::{format_ident, quote};
+use std::collections::HashSet;
 
 /// What the solve of block `block` needs from the surrounding generated function.
 pub struct Context<'a> {

@@ -132,7 +132,8 @@ pub fn solver_body(plan: &Plan, names: &Names, mode: Mode, sens: bool) -> TokenS
     let g = &plan.graph;
     let mut sched = schedule(g, &plan.level, &scopes.specs);
     // Closed-form hook: the sines and cosines of closed-form angles come from their solve.
-    let closed_trig = if mode == Mode::At { HashSet::new() } else { crate::closed_form::emit::take_trig(plan, &mut sched.lets) };
+    let closed_trig =
+        if mode == Mode::At { HashSet::new() } else { crate::closed_form::emit::take_trig(plan, &mut sched.lets) };
     let used = used_leaves(g, &scopes.specs);
     let mut body = prologue(names, &used);
     let k = Kernel { plan, g, names, mode, sched, scopes, rt: runtime(), used, closed_trig };
