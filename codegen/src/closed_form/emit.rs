@@ -26,6 +26,7 @@ pub struct Context<'a> {
     /// The name to bind a graph node (the `sin`/`cos` of an angle) that later code reads, or
     /// `None` when nothing reads it.
     pub bind: &'a dyn Fn(NodeId) -> Option<Ident>,
+    /// The block's index, for its errors.
     pub block: usize,
     /// Path of the runtime's hidden re-exports.
     pub rt: &'a TokenStream,
