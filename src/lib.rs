@@ -33,6 +33,7 @@
 //! ```text
 //! /// doc comment                            (kept on the generated struct)
 //! #[kinloop(dense)]                          optional: solve all unknowns as one block
+//! #[kinloop(newton)]                         optional: Newton even where a closed form exists
 //! #[kinloop(sensitivities)]                  optional: also generate parameter sensitivities
 //! pub struct Name {
 //!     params a, b = 2.5, c;                  design parameters (f64 fields; optional defaults)
@@ -154,15 +155,22 @@
 //! The equations are ordered into blocks (maximum matching and Tarjan's strongly connected
 //! components, i.e. the block-lower-triangular form): each block is solved by its own small
 //! Newton with a fixed-size Jacobian, blocks whose unknowns appear linearly (slider coordinates)
-//! by one linear solve. Velocity analogs solve `J q' = -df/dphi` and acceleration analogs
+//! by one linear solve, and blocks that are classical Assur groups (a rod angle, an RRR dyad, a
+//! slotted rocker, an RRP group) in closed form. Velocity analogs solve `J q' = -df/dphi` and acceleration analogs
 //! `J q'' = -D2f[(q', 1), (q', 1)]` with one factorisation per block shared by both.
 //!
 //! `Name::BLOCKS` lists the blocks in solve order ([`BlockInfo`]: unknowns, equations, linear),
 //! and `Name::DECOMPOSITION` describes them in words: the counts and the mobility, then one line
-//! per block with its index (the one error locations use), how it is solved (`Newton` iterates,
-//! `linear` is one linear solve), its size, and its unknowns `<-` its scalar equations (`loop.x`,
-//! `loop.y`, or an `eq` name). `#[kinloop(dense)]` solves all unknowns as one block instead (the
-//! results are the same; it exists to compare and to debug).
+//! per block with its index (the one error locations use), how it is solved, and its unknowns
+//! `<-` its scalar equations (`loop.x`, `loop.y`, or an `eq` name). A block that is a classical
+//! Assur group is solved in closed form, without iteration (`closed form, angle equation`: one
+//! angle from `a cos q + b sin q = c`; `closed form, RRR dyad`: circle intersection; `closed
+//! form, length and angle`: a slotted rocker; `closed form, angle and slider`: an RRP group),
+//! on the assembly mode of the guess (the sign of the block's Jacobian determinant there) and
+//! on the guess's turn; `linear, NxN` is one linear solve; `Newton, NxN` iterates.
+//! `#[kinloop(dense)]` solves all unknowns as one block instead, `#[kinloop(newton)]` uses
+//! Newton for every nonlinear block (the results are the same; both exist to compare and to
+//! debug).
 //!
 //! ```
 //! kinloop::mechanism! {
@@ -179,7 +187,7 @@
 //! assert_eq!(
 //!     SliderCrank::DECOMPOSITION,
 //!     "SliderCrank: 2 unknowns, 2 scalar equations, 1 input (mobility W = 1); 2 blocks in solve order
-//!   block 0 (Newton, 1x1): psi <- oabo.y
+//!   block 0 (closed form, angle equation): psi <- oabo.y
 //!   block 1 (linear, 1x1): x <- oabo.x"
 //! );
 //! assert_eq!(SliderCrank::BLOCKS[1].unknowns, ["x"]);

@@ -61,7 +61,7 @@ fn rhombic_drive_splits_into_its_groups_with_sliders_in_closed_form() {
         text.starts_with("RhombicDrive: 4 unknowns, 4 scalar equations, 1 input (mobility W = 1); 4 blocks"),
         "{text}"
     );
-    assert!(text.contains("(Newton, 1x1): phi2 <- oabco.y"), "{text}");
+    assert!(text.contains("(closed form, angle equation): phi2 <- oabco.y"), "{text}");
     assert!(text.contains("(linear, 1x1): x_f <- oadff1o.x"), "{text}");
     assert_eq!(text.lines().count(), 5, "{text}");
 

@@ -7,6 +7,8 @@ use std::f64::consts::PI;
 
 kinloop::mechanism! {
     /// Slider-crank driven by its slider: `x` is the input, the crank and rod angles unknown.
+    /// Solved by Newton (its dyad has a closed form): the iteration errors below are Newton's.
+    #[kinloop(newton)]
     pub struct SliderDriven {
         params r, l;
         input x;

@@ -16,6 +16,18 @@ kinloop::mechanism! {
     }
 }
 
+kinloop::mechanism! {
+    /// The same four-bar solved by Newton (`FourBar`'s dyad is solved in closed form): for the
+    /// tests of Newton's own acceptance.
+    #[kinloop(newton)]
+    pub struct FourBarNewton {
+        params a, b, c, d;
+        input phi;
+        unknowns beta = 0.5, gamma = 1.5;
+        loop abcd: a @ phi + b @ beta == (d, 0) + c @ gamma;
+    }
+}
+
 /// Coupler and rocker angles from the intersection of circle (B, b) and circle (D, c), on the
 /// side `side = +1` (left of B -> D) or `-1`. `None` where the circles do not meet.
 fn closed_form(m: &FourBar, phi: f64, side: f64) -> Option<[f64; 2]> {
@@ -164,10 +176,14 @@ fn unit_free_acceptance() {
     for k in [1.0, 1e-12, 1e6] {
         let m = FourBar { a: CRANK_ROCKER.a * k, b: CRANK_ROCKER.b * k, c: CRANK_ROCKER.c * k, d: CRANK_ROCKER.d * k };
         let exact = closed_form(&CRANK_ROCKER, 0.7, 1.0).unwrap();
-        let s = m.kinematics_flat(&[0.7], &[exact[0] + 0.1, exact[1] + 0.1], &NewtonConfig::default()).unwrap();
-        assert!(s.report.iterations > 0, "scale {k}: guess accepted as it is");
+        let guess = [exact[0] + 0.1, exact[1] + 0.1];
+        let s = m.kinematics_flat(&[0.7], &guess, &NewtonConfig::default()).unwrap();
+        let n = FourBarNewton { a: m.a, b: m.b, c: m.c, d: m.d };
+        let sn = n.kinematics_flat(&[0.7], &guess, &NewtonConfig::default()).unwrap();
+        assert!(sn.report.iterations > 0, "scale {k}: guess accepted as it is");
         for u in 0..2 {
             assert!(angle_err(s.q[u], exact[u]) <= 4e-15, "scale {k}: {:?} vs {exact:?}", s.q);
+            assert!(angle_err(sn.q[u], exact[u]) <= 4e-15, "scale {k}, Newton: {:?} vs {exact:?}", sn.q);
         }
     }
 }

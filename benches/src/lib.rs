@@ -10,6 +10,7 @@
 pub mod class_four;
 pub mod decls;
 pub mod expansion;
+pub mod hand;
 pub mod kinloop_variants;
 pub mod linalg;
 pub mod rhombic;

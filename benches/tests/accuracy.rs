@@ -6,6 +6,7 @@
 
 use kinloop::Mechanism;
 use kinloop_bench::class_four::{self, HandNewton};
+use kinloop_bench::hand::{FourBarClosed, GearLeverClosed};
 use kinloop_bench::kinloop_variants::{Kinloop, KinloopNamed, check_kinloop_sweep};
 use kinloop_bench::rhombic::{self, ClosedForm, DenseFiniteDifference, DenseHandJacobian, DenseNumDual, TwoLoopNewton};
 use kinloop_bench::sweep::{DIFFERENCED, EXACT, Stepper, SweepCheck, WarmStart, check_sweep};
@@ -73,6 +74,48 @@ fn class_four_hand_analogs_are_derivatives_of_its_positions() {
                 (d2q - s.d2q[u]).abs() <= 1e-6 * s.d2q[u].abs().max(1.0),
                 "d2q[{u}] at {phi}: {d2q} vs {}",
                 s.d2q[u]
+            );
+        }
+    }
+}
+
+/// The hand-written closed forms of the four-bar and of the gear-lever rocker (the references
+/// of their timings) against kinloop over a turn, and their analogs against central differences
+/// of their own positions (step 1e-4: truncation ~1e-8, rounding ~1e-12 / 1e-8 for `q''`).
+#[test]
+fn hand_closed_forms_match_kinloop_and_their_own_differences() {
+    let four_bar = kinloop_fixtures::FourBar { a: 1.0, b: 3.0, c: 2.5, d: 3.2 };
+    let four_hand = FourBarClosed { a: 1.0, b: 3.0, c: 2.5, d: 3.2, left: true };
+    let g = four_bar.solve(0.0).unwrap().q.into();
+    for policy in WarmStart::ALL {
+        let c = check_sweep(&Kinloop::<_, 2>::new(four_bar), &four_hand, STEPS, policy, g).unwrap();
+        assert!(c.max_dev.iter().zip(EXACT).all(|(d, t)| *d <= t), "four-bar ({policy:?}): {c:?}");
+    }
+    let gear = kinloop_fixtures::gear_lever::GearLever::default();
+    let gear_hand = GearLeverClosed { l_c: gear.l_c, l_p: gear.l_p, u: gear.u };
+    let g = gear.solve(0.0).unwrap().q.into();
+    for policy in WarmStart::ALL {
+        let c = check_sweep(&Kinloop::<_, 2>::new(gear), &gear_hand, STEPS, policy, g).unwrap();
+        assert!(c.max_dev.iter().zip(EXACT).all(|(d, t)| *d <= t), "gear lever ({policy:?}): {c:?}");
+    }
+    differences_agree(&four_hand);
+    differences_agree(&gear_hand);
+}
+
+fn differences_agree<S: Stepper<2>>(s: &S) {
+    let h = 1e-4;
+    for k in 0..72 {
+        let phi = k as f64 * std::f64::consts::TAU / 72.0 + 0.01;
+        let (at, plus, minus) =
+            (s.step(phi, &[0.0; 2]).unwrap(), s.step(phi + h, &[0.0; 2]).unwrap(), s.step(phi - h, &[0.0; 2]).unwrap());
+        for u in 0..2 {
+            let dq = (plus.q[u] - minus.q[u]) / (2.0 * h);
+            let d2q = (plus.q[u] - 2.0 * at.q[u] + minus.q[u]) / (h * h);
+            assert!((dq - at.dq[u]).abs() <= 1e-6 * at.dq[u].abs().max(1.0), "dq[{u}] at {phi}: {dq} vs {}", at.dq[u]);
+            assert!(
+                (d2q - at.d2q[u]).abs() <= 1e-5 * at.d2q[u].abs().max(1.0),
+                "d2q[{u}] at {phi}: {d2q} vs {}",
+                at.d2q[u]
             );
         }
     }

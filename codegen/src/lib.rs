@@ -15,6 +15,7 @@
 //!
 //! [`expand`] never panics: every mistake becomes a `compile_error!` at the user's span.
 
+pub mod closed_form;
 pub mod emit;
 pub mod fallback;
 pub mod front;

@@ -44,6 +44,43 @@ fn four_bar() {
     insta::assert_snapshot!(code);
 }
 
+/// Closed forms: the four-bar's coupler and rocker by circle intersection (one square root,
+/// the branch from the sign of the cross product at the guess), the Jacobian only for the
+/// analogs, and no `sin_cos` of the solved angles.
+#[test]
+fn closed_form_rrr_dyad() {
+    let code = expanded(
+        "/// Four-bar linkage: crank `a`, coupler `b`, rocker `c`, frame `d`.
+         pub struct FourBar {
+             params a = 1.0, b = 3.0, c = 2.5, d = 3.2;
+             input phi;
+             unknowns beta = 0.5, gamma = 1.5;
+             loop abcd: a @ phi + b @ beta == (d, 0) + c @ gamma;
+         }",
+    );
+    assert!(code.contains("closed form, RRR dyad"), "{code}");
+    insta::assert_snapshot!(code);
+}
+
+/// Closed forms: an inclined slide couples the rod angle and the slider in one block (angle
+/// from the slider-free combination of the two projections, then the slider); a slotted rocker
+/// gets its length and angle from the crank pin.
+#[test]
+fn closed_form_angle_slider_and_length_angle() {
+    let code = expanded(
+        "/// Slider-crank on an inclined slide, and a slotted rocker on the same crank.
+         pub struct Tilted {
+             params r = 1.0, l = 2.6, tilt = 0.5, h = 1.8;
+             input phi;
+             unknowns psi = 0, x = 3, s = 2.8, theta = 1.57;
+             loop slide: r @ phi == x @ tilt + l @ psi;
+             loop slot: (0, h) + r @ phi == s @ theta;
+         }",
+    );
+    assert!(code.contains("closed form, angle and slider") && code.contains("closed form, length and angle"), "{code}");
+    insta::assert_snapshot!(code);
+}
+
 /// A rejected declaration: the `compile_error!`s and the fallback items emitted next to them.
 #[test]
 fn rejected_declaration_fallback() {

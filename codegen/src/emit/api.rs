@@ -54,7 +54,7 @@ fn constants(model: &Model, plan: &Plan, t: &Types) -> TokenStream {
             /// The block-triangular decomposition of the equations, in solve order.
             pub const BLOCKS: &'static [#rt::BlockInfo] = &[#(#blocks),*];
             /// The decomposition in words: counts and mobility, then one line per block in
-            /// solve order (Newton or linear, size, unknowns `<-` equations).
+            /// solve order (closed form, Newton or linear, unknowns `<-` equations).
             pub const DECOMPOSITION: &'static str = #decomposition;
 
             /// Parameter values in declaration order.

@@ -3,14 +3,15 @@
 //!
 //! ```text
 //! SliderCrank: 2 unknowns, 2 scalar equations, 1 input (mobility W = 1); 2 blocks in solve order
-//!   block 0 (Newton, 1x1): psi <- oabo.y
+//!   block 0 (closed form, angle equation): psi <- oabo.y
 //!   block 1 (linear, 1x1): x <- oabo.x
 //! ```
 //!
 //! One line per block, in solve order (the index is the one of `Name::BLOCKS` and of the
-//! runtime's error locations): how it is solved (`Newton` iterates, `linear` is one linear solve
-//! because the block's unknowns appear linearly), its size, its unknowns and its scalar
-//! equations (`loop.x`, `loop.y`, or an `eq` name).
+//! runtime's error locations): how it is solved (`closed form, ...` names the recognised Assur
+//! group, `Newton, NxN` iterates, `linear, NxN` is one linear solve because the block's
+//! unknowns appear linearly), its unknowns and its scalar equations (`loop.x`, `loop.y`, or an
+//! `eq` name).
 
 use crate::model::Model;
 use crate::plan::Plan;
@@ -43,10 +44,13 @@ pub fn decomposition(model: &Model, plan: &Plan) -> String {
             b.unknowns.iter().map(|&u| syn::ext::IdentExt::unraw(&model.unknowns[u].name).to_string()).collect();
         let equations: Vec<&str> = b.equations.iter().map(|&e| model.equations[e].name.as_str()).collect();
         s.push_str(&format!(
-            "\n  block {k} ({}, {}x{}): {} <- {}",
-            if b.linear { "linear" } else { "Newton" },
-            b.equations.len(),
-            b.unknowns.len(),
+            "\n  block {k} ({}): {} <- {}",
+            // Closed-form hook: how the block is solved.
+            match (&b.closed, b.linear) {
+                (Some(c), _) => c.form.describe().to_string(),
+                (None, true) => format!("linear, {}x{}", b.equations.len(), b.unknowns.len()),
+                (None, false) => format!("Newton, {}x{}", b.equations.len(), b.unknowns.len()),
+            },
             unknowns.join(", "),
             equations.join(", ")
         ));

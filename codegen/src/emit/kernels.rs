@@ -58,6 +58,8 @@ struct Kernel<'a> {
     rt: TokenStream,
     /// The leaves the kernel reads.
     used: HashSet<Leaf>,
+    /// Closed-form hook: the `sin`/`cos` nodes that closed-form solves define.
+    closed_trig: HashSet<NodeId>,
 }
 
 /// A sensitivity stage's right-hand sides per row.
@@ -71,7 +73,10 @@ fn plan_scopes(plan: &Plan, mode: Mode, sens: bool) -> Scopes {
         s.residual = Some(s.push(ScopeKind::Plain, plan.residuals.clone()));
     } else {
         for (b, bp) in plan.blocks.iter().enumerate() {
-            let (pre, newton) = if bp.linear {
+            let (pre, newton) = if let Some(c) = &bp.closed {
+                // Closed-form hook: the coefficients before the solve, no Newton closure.
+                (c.form.coefficients(), vec![])
+            } else if bp.linear {
                 (
                     bp.jac.concat().into_iter().chain(bp.rhs0.iter().copied()).chain(bp.col_scale.concat()).collect(),
                     vec![],
@@ -91,7 +96,8 @@ fn plan_scopes(plan: &Plan, mode: Mode, sens: bool) -> Scopes {
     for bp in &plan.blocks {
         let mut roots = bp.vel.concat();
         roots.extend(bp.col_scale.concat());
-        if mode == Mode::At {
+        // Closed-form hook: no Newton evaluation to reuse, the Jacobian is computed here.
+        if mode == Mode::At || bp.closed.is_some() {
             roots.extend(bp.jac.concat());
         }
         let v = s.push(ScopeKind::Plain, roots);
@@ -124,10 +130,13 @@ fn plan_scopes(plan: &Plan, mode: Mode, sens: bool) -> Scopes {
 pub fn solver_body(plan: &Plan, names: &Names, mode: Mode, sens: bool) -> TokenStream {
     let scopes = plan_scopes(plan, mode, sens);
     let g = &plan.graph;
-    let sched = schedule(g, &plan.level, &scopes.specs);
+    let mut sched = schedule(g, &plan.level, &scopes.specs);
+    // Closed-form hook: the sines and cosines of closed-form angles come from their solve.
+    let closed_trig =
+        if mode == Mode::At { HashSet::new() } else { crate::closed_form::emit::take_trig(plan, &mut sched.lets) };
     let used = used_leaves(g, &scopes.specs);
     let mut body = prologue(names, &used);
-    let k = Kernel { plan, g, names, mode, sched, scopes, rt: runtime(), used };
+    let k = Kernel { plan, g, names, mode, sched, scopes, rt: runtime(), used, closed_trig };
     body.extend(k.start());
     if mode != Mode::At {
         for b in 0..plan.blocks.len() {
@@ -204,8 +213,30 @@ impl Kernel<'_> {
                 }
             }
             // Only Newton blocks add to the report.
-            None if self.plan.blocks.iter().all(|b| b.linear) => quote!(let __report = #rt::SolveReport::direct();),
+            None if self.plan.blocks.iter().all(|b| b.linear || b.closed.is_some()) => {
+                let mut out = self.closed_config_check();
+                out.extend(quote!(let __report = #rt::SolveReport::direct();));
+                out
+            }
             None => quote!(let mut __report = #rt::SolveReport::direct();),
+        }
+    }
+
+    /// Closed-form hook: without a Newton block nothing else reads the configuration, which is
+    /// still checked (an invalid one is an error whichever way the blocks are solved).
+    fn closed_config_check(&self) -> TokenStream {
+        let rt = &self.rt;
+        match self.plan.blocks.iter().position(|b| b.closed.is_some()) {
+            Some(b) => {
+                let b = lit(b);
+                quote! {
+                    if let Some(field) = __cfg.invalid_field() {
+                        let __fail = #rt::BlockFailure::InvalidConfig { field };
+                        return Err(#rt::block_failure(self, #b, __fail, __x, __guess));
+                    }
+                }
+            }
+            None => TokenStream::new(),
         }
     }
 
@@ -246,6 +277,9 @@ impl Kernel<'_> {
             });
         } else if bp.linear {
             out.extend(self.linear_block(b, bp, &qs));
+        } else if let Some(c) = &bp.closed {
+            // Closed-form hook: the block's closed-form solve instead of Newton.
+            out.extend(self.closed_block(b, c));
         } else {
             out.extend(self.newton_block(b, bp, &qs));
         }
@@ -303,6 +337,21 @@ impl Kernel<'_> {
         }
     }
 
+    /// Closed-form hook: the straight-line solve of a recognised block.
+    fn closed_block(&self, b: usize, c: &crate::closed_form::Recognised) -> TokenStream {
+        let op = |n: NodeId| self.op(n);
+        let bind = |n: NodeId| self.closed_trig.contains(&n).then(|| self.names.temp(n));
+        let cx = crate::closed_form::emit::Context {
+            graph: self.g,
+            op: &op,
+            unknowns: &self.names.unknowns,
+            bind: &bind,
+            block: b,
+            rt: &self.rt,
+        };
+        crate::closed_form::emit::solve(c, &cx)
+    }
+
     /// Velocity analogs of block `b`, factorising its Jacobian when the position solve did not
     /// (the factorisation is reused for accelerations and sensitivities).
     fn velocity_block(&self, b: usize) -> TokenStream {
@@ -319,7 +368,8 @@ impl Kernel<'_> {
             out.extend(quote!(let #lu = #rt::Fixed(#c);));
         }
         if (self.mode == Mode::At || !bp.linear) && fixed.is_none() {
-            let j = if self.mode == Mode::At {
+            // Closed-form hook: a closed-form block has no Newton evaluation to read.
+            let j = if self.mode == Mode::At || bp.closed.is_some() {
                 self.names.rows(self.g, &bp.jac)
             } else {
                 let s = format_ident!("__s{}", b);

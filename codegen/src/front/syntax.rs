@@ -3,6 +3,7 @@
 //! ```text
 //! /// docs
 //! #[kinloop(dense)]                    // optional: no block decomposition
+//! #[kinloop(newton)]                   // optional: no closed-form blocks
 //! pub struct Name {
 //!     params a, b = 1.0, c;            // design parameters (optional default values)
 //!     input phi;                       // or: inputs th1, th2;
@@ -46,6 +47,9 @@ pub struct Options {
     pub dense: Option<Span>,
     /// `#[kinloop(sensitivities)]`: also generate the parameter sensitivities.
     pub sensitivities: Option<Span>,
+    /// `#[kinloop(newton)]`: solve every nonlinear block by Newton, even where a closed form
+    /// exists (closed-form hook: the option).
+    pub newton: Option<Span>,
 }
 
 /// A declared name with its doc comments and optional `= value`.
@@ -281,10 +285,14 @@ fn parse_def_into(input: ParseStream, errors: &mut Errors) -> Option<MechanismDe
                 } else if meta.path.is_ident("sensitivities") {
                     options.sensitivities = Some(meta.path.get_ident().map_or(Span::call_site(), Ident::span));
                     Ok(())
+                } else if meta.path.is_ident("newton") {
+                    // Closed-form hook: the option forcing Newton.
+                    options.newton = Some(meta.path.get_ident().map_or(Span::call_site(), Ident::span));
+                    Ok(())
                 } else {
                     Err(meta.error(
-                        "unknown kinloop option; the supported options are `#[kinloop(dense)]` and \
-                         `#[kinloop(sensitivities)]`",
+                        "unknown kinloop option; the supported options are `#[kinloop(dense)]`, \
+                         `#[kinloop(newton)]` and `#[kinloop(sensitivities)]`",
                     ))
                 }
             });
@@ -296,7 +304,7 @@ fn parse_def_into(input: ParseStream, errors: &mut Errors) -> Option<MechanismDe
                 "remove `#[derive(...)]`: kinloop derives Clone, Copy, Debug and PartialEq itself, \
                  and implements Default when every parameter has a default value"
             } else {
-                "only doc comments (`///`) and `#[kinloop(...)]` options (`dense`, `sensitivities`) are \
+                "only doc comments (`///`) and `#[kinloop(...)]` options (`dense`, `newton`, `sensitivities`) are \
                  accepted before a mechanism"
             };
             errors.push(syn::Error::new_spanned(attr.path(), msg));

@@ -48,6 +48,8 @@ pub struct BlockPlan {
     pub acc: Vec<Vec<NodeId>>,
     /// Right-hand sides of the parameter sensitivities, when requested.
     pub sens: Option<Stages>,
+    /// Closed-form hook: the block's closed-form solve, when it has one (else Newton or linear).
+    pub closed: Option<crate::closed_form::Recognised>,
 }
 
 /// Right-hand sides (per row) or values (per output) of the parameter sensitivities, by stage:
@@ -137,6 +139,13 @@ pub fn build(model: &mut Model, blocks: &[Block], with_sensitivities: bool) -> P
     let full = positions::full_jacobians(&mut g, &residuals, n, ni);
     let mut plans: Vec<BlockPlan> =
         blocks.iter().map(|blk| positions::block(&mut g, blk, &residuals, &full.0)).collect();
+    // Closed-form hook: every nonlinear block that is a classical Assur group, unless
+    // `#[kinloop(newton)]` (recognition adds graph nodes: before the levels are computed).
+    if model.options.newton.is_none() {
+        for (bp, blk) in plans.iter_mut().zip(blocks).filter(|(bp, _)| !bp.linear) {
+            bp.closed = crate::closed_form::recognise(&mut g, blk, &bp.f, np);
+        }
+    }
     let mut firsts = Vec::new();
     for (b, bp) in plans.iter_mut().enumerate() {
         firsts.push(analogs::block(&mut g, &seeds, b, bp));

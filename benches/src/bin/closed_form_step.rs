@@ -1,0 +1,102 @@
+//! Kinematic steps for instruction counts under callgrind: `closed_form_step VARIANT STEPS` runs
+//! `STEPS` steps of turns of 720 (0.5 degree) with one of
+//! * rhombic drive: `hand` (the paper's closed form written by hand), `point` (kinloop's
+//!   `kinematics_flat` from the previous position: closed-form blocks), `newton` (the same with
+//!   `#[kinloop(newton)]`), `sweep` (kinloop's own `Sweep`), `newton-sweep`;
+//! * four-bar with its coupler point, gear-lever rocker: `four-bar-hand`, `four-bar-point`,
+//!   `four-bar-sweep`, `gear-lever-hand`, `gear-lever-point`, `gear-lever-sweep` (the hand
+//!   closed forms of `kinloop_bench::hand`);
+//! * class IV block (Newton): `class-four-hand` (the hand-written Newton), `class-four-point`,
+//!   `class-four-sweep`, and `class-four-hand-taylor`, `class-four-point-taylor` warm-started by
+//!   the benchmarks' second-order predictor instead of the previous position.
+//!
+//! Instructions per step = difference of the totals of two runs with different `STEPS`, divided
+//! by the difference of the steps (the setup cancels).
+
+use std::hint::black_box;
+
+use kinloop_bench::class_four::{self, HandNewton};
+use kinloop_bench::decls::{ClassFour, RhombicDrive};
+use kinloop_bench::hand::{FourBarClosed, GearLeverClosed};
+use kinloop_bench::kinloop_variants::{Kinloop, KinloopSweep};
+use kinloop_bench::rhombic::{ClosedForm, PARAMS, initial_guess};
+use kinloop_bench::sweep::{Stepper, Sweep, WarmStart};
+use kinloop_fixtures::FourBar;
+use kinloop_fixtures::gear_lever::GearLever;
+
+kinloop::mechanism! {
+    /// The rhombic drive of the benchmarks, solved by Newton in every block.
+    #[kinloop(newton)]
+    pub struct RhombicNewton {
+        params r_p = 1.0, r_b = 1.2, l_p = 3.0, l_b = 3.5, e_p = 0.5, de = 0.9, gamma = 0.7;
+        input phi1;
+        unknowns phi2 = 0, phi4 = pi, x_c = -l_p, x_f = l_b;
+        loop oabco:   (0, e_p) + r_p @ phi1           == (x_c, 0)  + l_p @ phi2;
+        loop oadff1o: (0, e_p) + r_b @ (phi1 + gamma) == (x_f, de) + l_b @ phi4;
+    }
+}
+
+const TURN: usize = 720;
+
+fn steps_of<S: Stepper<N>, const N: usize>(s: &S, guess: [f64; N], steps: usize) -> f64 {
+    policy_steps(s, WarmStart::Previous, guess, steps)
+}
+
+fn policy_steps<S: Stepper<N>, const N: usize>(s: &S, policy: WarmStart, guess: [f64; N], steps: usize) -> f64 {
+    let mut sweep = Sweep::start(s, TURN, policy, guess).expect("start");
+    let mut acc = 0.0;
+    for _ in 0..steps {
+        acc += black_box(sweep.advance(s).expect("step")).q[0];
+    }
+    acc
+}
+
+fn sweep_of<M: kinloop::Mechanism<N, 1, NO>, const N: usize, const NO: usize>(
+    m: &M,
+    guess: [f64; N],
+    steps: usize,
+) -> f64 {
+    let mut s = KinloopSweep::start(m, TURN, guess).expect("start");
+    let mut acc = 0.0;
+    for _ in 0..steps {
+        acc += black_box(s.advance().expect("step")).q[0];
+    }
+    acc
+}
+
+fn main() {
+    let args: Vec<String> = std::env::args().collect();
+    let variant = args.get(1).map_or("point", String::as_str);
+    let steps: usize = args.get(2).and_then(|s| s.parse().ok()).unwrap_or(10_000);
+    let m = PARAMS.kinloop();
+    let g = initial_guess(&PARAMS);
+    let four = FourBar { a: 1.0, b: 3.0, c: 2.5, d: 3.2 };
+    let four_hand = FourBarClosed { a: 1.0, b: 3.0, c: 2.5, d: 3.2, left: true };
+    let gear = GearLever::default();
+    let gear_hand = GearLeverClosed { l_c: gear.l_c, l_p: gear.l_p, u: gear.u };
+    let gf: [f64; 2] = four.solve(0.0).expect("four-bar assembles").q.into();
+    let gg: [f64; 2] = gear.solve(0.0).expect("gear lever assembles").q.into();
+    let (c4, g4) = (class_four::PARAMS, class_four::INITIAL_GUESS);
+    let acc = match variant {
+        "hand" => steps_of(&ClosedForm::new(&PARAMS), g, steps),
+        "point" => steps_of(&Kinloop::<RhombicDrive, 0>::new(m), g, steps),
+        "newton" => steps_of(&Kinloop::<RhombicNewton, 0>::new(RhombicNewton::default()), g, steps),
+        "sweep" => sweep_of(&m, g, steps),
+        "newton-sweep" => sweep_of(&RhombicNewton::default(), g, steps),
+        "four-bar-hand" => steps_of(&four_hand, gf, steps),
+        "four-bar-point" => steps_of(&Kinloop::<FourBar, 2>::new(four), gf, steps),
+        "four-bar-sweep" => sweep_of(&four, gf, steps),
+        "gear-lever-hand" => steps_of(&gear_hand, gg, steps),
+        "gear-lever-point" => steps_of(&Kinloop::<GearLever, 2>::new(gear), gg, steps),
+        "gear-lever-sweep" => sweep_of(&gear, gg, steps),
+        "class-four-hand" => steps_of(&HandNewton { p: c4 }, g4, steps),
+        "class-four-point" => steps_of(&Kinloop::<ClassFour, 0>::new(c4.kinloop()), g4, steps),
+        "class-four-hand-taylor" => policy_steps(&HandNewton { p: c4 }, WarmStart::Taylor, g4, steps),
+        "class-four-point-taylor" => {
+            policy_steps(&Kinloop::<ClassFour, 0>::new(c4.kinloop()), WarmStart::Taylor, g4, steps)
+        }
+        "class-four-sweep" => sweep_of(&c4.kinloop(), g4, steps),
+        other => panic!("unknown variant {other} (see the module documentation)"),
+    };
+    println!("{variant}: {steps} steps, checksum {acc}");
+}

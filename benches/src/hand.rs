@@ -1,0 +1,111 @@
+//! Closed forms written by hand for the linkages whose generated solve is a closed form: the
+//! four-bar with its coupler point (circle intersection) and the gear-lever rocker (the polar
+//! angle and length of the planet pin). Each computes what the generated kinematics computes:
+//! positions, velocity and acceleration analogs of the unknowns and of the output point.
+
+use crate::sweep::{Failed, Step, Stepper};
+use std::f64::consts::TAU;
+use std::hint::black_box;
+
+/// `q` moved by whole turns to the turn of `guess` (a sweep's angles stay continuous).
+#[inline]
+fn on_turn(q: f64, guess: f64) -> f64 {
+    q + TAU * ((guess - q) / TAU).round()
+}
+
+/// The four-bar of the fixtures (`kinloop_fixtures::FourBar`: crank `a` at the origin, coupler
+/// `b`, rocker `c` pivoted at `(d, 0)`, coupler point `pc` = joint C) by circle intersection, on
+/// the side of the line B -> D given by `left`. The coupler point and its analogs go through
+/// `black_box`, so they are computed as the generated code computes them.
+#[derive(Clone, Copy, Debug)]
+pub struct FourBarClosed {
+    pub a: f64,
+    pub b: f64,
+    pub c: f64,
+    pub d: f64,
+    /// C on the left of B -> D.
+    pub left: bool,
+}
+
+impl Stepper<2> for FourBarClosed {
+    const WARM: bool = false;
+
+    #[inline]
+    fn step(&self, phi: f64, guess: &[f64; 2]) -> Result<Step<2>, Failed> {
+        let (a, b, c) = (self.a, self.b, self.c);
+        let (s1, c1) = phi.sin_cos();
+        let (bx, by) = (a * c1, a * s1);
+        let (ex, ey) = (self.d - bx, -by);
+        let e2 = ex * ex + ey * ey;
+        let along = (b * b - c * c + e2) / (2.0 * e2);
+        let h2 = b * b / e2 - along * along;
+        if h2.is_nan() || h2 < 0.0 {
+            return Err(Failed::new("four-bar closed form: no assembly"));
+        }
+        let h = if self.left { h2.sqrt() } else { -h2.sqrt() };
+        // C - B = along (D - B) + h perp(D - B).
+        let (ux, uy) = (along * ex - h * ey, along * ey + h * ex);
+        let (cb, sb) = (ux / b, uy / b);
+        let (cx, cy) = (bx + ux, by + uy);
+        let (cg, sg) = ((cx - self.d) / c, cy / c);
+        let beta = on_turn(sb.atan2(cb), guess[0]);
+        let gamma = on_turn(sg.atan2(cg), guess[1]);
+        // a phi' e^{i phi} + b beta' e^{i beta} = c gamma' e^{i gamma}, projected.
+        let sbg = sb * cg - cb * sg;
+        let w_b = -a * (s1 * cg - c1 * sg) / (b * sbg);
+        let w_g = -a * (s1 * cb - c1 * sb) / (c * sbg);
+        // R = -a e^{i phi} - b beta'^2 e^{i beta} + c gamma'^2 e^{i gamma}.
+        let rx = -bx - b * w_b * w_b * cb + c * w_g * w_g * cg;
+        let ry = -by - b * w_b * w_b * sb + c * w_g * w_g * sg;
+        let e_b = (rx * cg + ry * sg) / (b * sbg);
+        let e_g = (rx * cb + ry * sb) / (c * sbg);
+        let point = [
+            cx,
+            cy,
+            -by - b * w_b * sb,
+            bx + b * w_b * cb,
+            -bx - b * e_b * sb - b * w_b * w_b * cb,
+            -by + b * e_b * cb - b * w_b * w_b * sb,
+        ];
+        black_box(point);
+        Ok(Step { q: [beta, gamma], dq: [w_b, w_g], d2q: [e_b, e_g], iterations: 0 })
+    }
+}
+
+/// The gear-lever drive of the fixtures (`kinloop_fixtures::gear_lever::GearLever`): the pin
+/// `P = l_c (sin a, cos a) + l_p (sin k a, cos k a)` with `k = 1 - u`, the rocker angle
+/// `phi = atan2(P_x, P_y)` and the block's distance `s = |P|` (on the side `s > 0`), with the
+/// analogs of the polar coordinates; the pin and its analogs go through `black_box`. Angles are
+/// moved to the guess's turn, as a sweep needs (both closed forms here do).
+#[derive(Clone, Copy, Debug)]
+pub struct GearLeverClosed {
+    pub l_c: f64,
+    pub l_p: f64,
+    pub u: f64,
+}
+
+impl Stepper<2> for GearLeverClosed {
+    const WARM: bool = false;
+
+    #[inline]
+    fn step(&self, alpha: f64, guess: &[f64; 2]) -> Result<Step<2>, Failed> {
+        let k = 1.0 - self.u;
+        let (sa, ca) = alpha.sin_cos();
+        let (sk, ck) = (k * alpha).sin_cos();
+        let p = [self.l_c * sa + self.l_p * sk, self.l_c * ca + self.l_p * ck];
+        let dp = [self.l_c * ca + self.l_p * k * ck, -self.l_c * sa - self.l_p * k * sk];
+        let ddp = [-self.l_c * sa - self.l_p * k * k * sk, -self.l_c * ca - self.l_p * k * k * ck];
+        let s2 = p[0] * p[0] + p[1] * p[1];
+        if s2.is_nan() || s2 <= 0.0 {
+            return Err(Failed::new("gear-lever closed form: the pin is on the pivot"));
+        }
+        let s = s2.sqrt();
+        let phi = on_turn(p[0].atan2(p[1]), guess[1]);
+        let ds = (p[0] * dp[0] + p[1] * dp[1]) / s;
+        let dphi = (dp[0] * p[1] - p[0] * dp[1]) / s2;
+        let dds = (dp[0] * dp[0] + dp[1] * dp[1] + p[0] * ddp[0] + p[1] * ddp[1] - ds * ds) / s;
+        let ddphi = (ddp[0] * p[1] - p[0] * ddp[1]) / s2 - 2.0 * dphi * ds / s;
+        black_box([p, dp, ddp]);
+        Ok(Step { q: [s, phi], dq: [ds, dphi], d2q: [dds, ddphi], iterations: 0 })
+    }
+}

@@ -1,0 +1,430 @@
+//! The straight-line closed-form solve of one recognised block.
+//!
+//! Every form reduces to one equation `a cos q + b sin q = c` in one angle, whose two roots are
+//! `(cos q, sin q) = (a c ∓ b d, b c ± a d) / (a² + b²)` with `d = sqrt(a² + b² - c²)`: the cosine
+//! and sine come from the equation itself (no `sin_cos` of the solution), `q` from one `atan2`
+//! (one `asin` or `acos` when a coefficient is zero), moved by whole turns to the guess's turn. The root is chosen so that the derivative `h'` of the angle
+//! equation (proportional, with a fixed sign, to the block's Jacobian determinant) has the sign
+//! it has at the guess. With `h = a cos q + b sin q - c`, `h' = ∓ d` at the two roots.
+
+use super::recognise::{ClosedForm, Recognised};
+use crate::dag::{Graph, NodeId};
+use crate::emit::names::float;
+use crate::plan::Plan;
+use proc_macro2::{Ident, Literal, TokenStream};
+use quote::{format_ident, quote};
+use std::collections::HashSet;
+
+/// What the solve of block `block` needs from the surrounding generated function.
+pub struct Context<'a> {
+    /// The expression graph, for the coefficients that are constants.
+    pub graph: &'a Graph,
+    /// A coefficient node as an operand (a literal, a leaf or a temporary computed before).
+    pub op: &'a dyn Fn(NodeId) -> TokenStream,
+    /// Names of all unknowns; the solve binds the block's own.
+    pub unknowns: &'a [Ident],
+    /// The name to bind a graph node (the `sin`/`cos` of an angle) that later code reads, or
+    /// `None` when nothing reads it.
+    pub bind: &'a dyn Fn(NodeId) -> Option<Ident>,
+    /// The block's index, for its errors.
+    pub block: usize,
+    /// Path of the runtime's hidden re-exports.
+    pub rt: &'a TokenStream,
+}
+
+/// A value of the generated code: a constant known at expansion time or an expression. The
+/// arithmetic below folds constants and drops the terms of zero coefficients (the compiler may
+/// not: `0.0 * x` is not `0.0` for every `x`), so a link along an axis costs no multiplications.
+#[derive(Clone)]
+enum V {
+    C(f64),
+    E(TokenStream),
+}
+
+impl quote::ToTokens for V {
+    fn to_tokens(&self, out: &mut TokenStream) {
+        match self {
+            V::C(c) => out.extend(float(*c)),
+            V::E(t) => out.extend(t.clone()),
+        }
+    }
+}
+
+fn neg(a: &V) -> V {
+    match a {
+        V::C(x) => V::C(-x),
+        V::E(t) => V::E(quote!((-#t))),
+    }
+}
+
+fn mul(a: &V, b: &V) -> V {
+    match (a, b) {
+        (V::C(x), V::C(y)) => V::C(x * y),
+        (V::C(z), _) | (_, V::C(z)) if *z == 0.0 => V::C(0.0),
+        (V::C(o), e) | (e, V::C(o)) if *o == 1.0 => e.clone(),
+        (V::C(m), e) | (e, V::C(m)) if *m == -1.0 => neg(e),
+        _ => V::E(quote!((#a * #b))),
+    }
+}
+
+fn add(a: &V, b: &V) -> V {
+    match (a, b) {
+        (V::C(x), V::C(y)) => V::C(x + y),
+        (V::C(z), e) | (e, V::C(z)) if *z == 0.0 => e.clone(),
+        _ => V::E(quote!((#a + #b))),
+    }
+}
+
+fn sub(a: &V, b: &V) -> V {
+    match (a, b) {
+        (V::C(x), V::C(y)) => V::C(x - y),
+        (e, V::C(z)) if *z == 0.0 => e.clone(),
+        (V::C(z), e) if *z == 0.0 => neg(e),
+        _ => V::E(quote!((#a - #b))),
+    }
+}
+
+/// `a · x` for pairs `(a, x)`.
+fn dot(terms: &[(&V, &V)]) -> V {
+    terms.iter().fold(V::C(0.0), |acc, (a, x)| add(&acc, &mul(a, x)))
+}
+
+/// Binds a non-constant value to a local `name` (emitted into `out`).
+fn bind(out: &mut TokenStream, name: &str, v: V) -> V {
+    match v {
+        V::C(_) => v,
+        V::E(t) => {
+            let id = format_ident!("{}", name);
+            out.extend(quote!(let #id: f64 = #t;));
+            V::E(quote!(#id))
+        }
+    }
+}
+
+fn local(name: &str) -> V {
+    let id = format_ident!("{}", name);
+    V::E(quote!(#id))
+}
+
+impl Context<'_> {
+    fn v(&self, n: NodeId) -> V {
+        match self.graph.as_const(n) {
+            Some(c) => V::C(c),
+            None => V::E((self.op)(n)),
+        }
+    }
+
+    fn m(&self, m: &[[NodeId; 2]; 2]) -> [[V; 2]; 2] {
+        m.map(|r| r.map(|n| self.v(n)))
+    }
+
+    fn failure(&self, fail: TokenStream) -> TokenStream {
+        let (rt, bl) = (self.rt, Literal::usize_unsuffixed(self.block));
+        quote! {
+            let __fail = if __d2.is_nan() {
+                #rt::BlockFailure::NonFinite { row: 0, iterations: 0 }
+            } else {
+                #rt::BlockFailure::NoAssembly { row: 0, iterations: 0, residual: #fail }
+            };
+            return Err(#rt::block_failure(self, #bl, __fail, __x, __guess));
+        }
+    }
+}
+
+/// The `let` statements solving the block: binds its unknowns (and the bound sines and
+/// cosines), returns a `NoAssembly` error from the enclosing function when there is no real
+/// root.
+pub fn solve(rec: &Recognised, cx: &Context) -> TokenStream {
+    let guess = |u: usize| {
+        let u = Literal::usize_unsuffixed(u);
+        quote!(__guess[#u])
+    };
+    let body: TokenStream = match &rec.form {
+        ClosedForm::AngleEquation { angle, a, b, c } => {
+            angle_equation(&cx.v(*a), &cx.v(*b), &cx.v(*c), &guess(*angle), cx)
+        }
+        ClosedForm::Dyad { angles, m, reflect, e } => dyad(m, reflect[0], e, &guess(angles[0]), &guess(angles[1]), cx),
+        ClosedForm::PolarLength { angle, length, w, e } => polar(w, e, &guess(*angle), &guess(*length), cx),
+        ClosedForm::AngleSlider { angle, m, d, e, .. } => angle_slider(m, d, e, &guess(*angle), cx),
+    };
+    // Unknowns: the angles, then the slider or length; then each angle's cosine and sine.
+    let mut outs: Vec<TokenStream> = Vec::new();
+    for u in rec.form.angles().into_iter().chain(others_of(&rec.form)) {
+        let q = &cx.unknowns[u];
+        outs.push(quote!(#q));
+    }
+    for [s, c] in &rec.sin_cos {
+        for n in [c, s] {
+            outs.push(match (cx.bind)(*n) {
+                Some(t) => quote!(#t),
+                None => quote!(_),
+            });
+        }
+    }
+    let k = Literal::usize_unsuffixed(outs.len());
+    let bl = Literal::usize_unsuffixed(cx.block);
+    let rt = cx.rt;
+    // The guess only picks the branch and the turn, through comparisons that a NaN would
+    // silently answer: it is checked first.
+    let guesses = rec.form.angles().into_iter().chain(others_of(&rec.form)).map(guess);
+    let angles = (0..rec.form.angles().len()).map(|k| {
+        let k = Literal::usize_unsuffixed(k);
+        quote!(__out[#k].abs())
+    });
+    quote! {
+        let [#(#outs),*]: [f64; #k] = {
+            if !(0.0 #(+ #guesses)*).is_finite() {
+                return Err(#rt::block_failure(self, #bl, #rt::BlockFailure::NonFinite { row: 0, iterations: 0 }, __x, __guess));
+            }
+            #body
+            // A NaN here comes from the inputs, parameters, guess or a coefficient's domain.
+            if !__out.iter().sum::<f64>().is_finite() {
+                return Err(#rt::block_failure(self, #bl, #rt::BlockFailure::NonFinite { row: 0, iterations: 0 }, __x, __guess));
+            }
+            // On the guess's turn an angle is a large number when the guess is: beyond the
+            // precision Newton's residual floor accepts (1000 times the tolerance, at least
+            // 16 eps), its own rounding would be a wrong answer.
+            let __big: f64 = 0.0f64 #(.max(#angles))*;
+            if !(__big * f64::EPSILON <= 1000.0 * __cfg.residual_tol.max(16.0 * f64::EPSILON)) {
+                let __fail = #rt::BlockFailure::NoConvergence { row: 0, iterations: 0, residual: __big * f64::EPSILON };
+                return Err(#rt::block_failure(self, #bl, __fail, __x, __guess));
+            }
+            __out
+        };
+    }
+}
+
+/// The block's unknowns that are not angles (a length or a slider).
+fn others_of(form: &ClosedForm) -> Option<usize> {
+    match form {
+        ClosedForm::PolarLength { length, .. } => Some(*length),
+        ClosedForm::AngleSlider { slider, .. } => Some(*slider),
+        ClosedForm::AngleEquation { .. } | ClosedForm::Dyad { .. } => None,
+    }
+}
+
+/// Binds `__cq`, `__sq`: the root of `a cos q + b sin q = c` with `h' = -d < 0`, or with
+/// `h' = d > 0` when `flip` holds.
+fn root(out: &mut TokenStream, a: &V, b: &V, c: &V, flip: &TokenStream, cx: &Context) {
+    let r2 = bind(out, "__r2", add(&mul(a, a), &mul(b, b)));
+    let d2 = sub(&r2, &mul(c, c));
+    let fail = cx.failure(quote!(#c.abs() - #r2.sqrt()));
+    out.extend(quote! {
+        let __d2: f64 = #d2;
+        if !(__d2 >= 0.0 && #r2 > 0.0) {
+            // No real root: the links cannot reach (or a coefficient is not finite).
+            #fail
+        }
+        let __d: f64 = if #flip { -__d2.sqrt() } else { __d2.sqrt() };
+    });
+    let d = local("__d");
+    let inv = bind(out, "__inv", V::E(quote!((1.0 / #r2))));
+    let cq = mul(&sub(&mul(a, c), &mul(b, &d)), &inv);
+    let sq = mul(&add(&mul(b, c), &mul(a, &d)), &inv);
+    out.extend(quote!(let __cq: f64 = #cq; let __sq: f64 = #sq;));
+}
+
+/// `round(x)` (half away from zero) by a conversion to an integer: no libm call. Exact for
+/// `|x| < 2^52`; beyond that the guess is meaningless as an angle anyway.
+fn turns(x: TokenStream) -> TokenStream {
+    quote! {{
+        let __t: f64 = #x;
+        (__t + 0.5f64.copysign(__t)) as i64 as f64
+    }}
+}
+
+/// `angle` moved by whole turns to the turn of `guess`.
+fn on_turn(angle: TokenStream, guess: &TokenStream) -> TokenStream {
+    let k = turns(quote!((#guess - __q) * (1.0 / ::core::f64::consts::TAU)));
+    quote! {{
+        let __q: f64 = #angle;
+        __q + ::core::f64::consts::TAU * #k
+    }}
+}
+
+/// `atan2(s, c)` moved by whole turns to the turn of `guess`.
+fn unwrapped(s: TokenStream, c: TokenStream, guess: &TokenStream) -> TokenStream {
+    on_turn(quote!(#s.atan2(#c)), guess)
+}
+
+/// `g` reduced to `[-pi, pi]` (for the signs of its sine and cosine without libm).
+fn reduced(g: &TokenStream) -> TokenStream {
+    let k = turns(quote!(#g * (1.0 / ::core::f64::consts::TAU)));
+    quote!((#g - ::core::f64::consts::TAU * #k))
+}
+
+/// The sign rule for one angle: `h' = b cos g - a sin g > 0` at the guess `g`. With one
+/// coefficient zero only the sign of the other function matters, read off `g` reduced to one
+/// turn (no libm call; at the boundaries the guess sits on a limit position where both roots
+/// meet).
+fn flip_at_guess(a: &V, b: &V, g: &TokenStream) -> TokenStream {
+    let zero = |v: &V| matches!(v, V::C(z) if *z == 0.0);
+    if zero(a) {
+        let t = reduced(g);
+        quote!((#b > 0.0) == (#t.abs() < ::core::f64::consts::FRAC_PI_2))
+    } else if zero(b) {
+        let t = reduced(g);
+        quote!((#a > 0.0) == (#t < 0.0))
+    } else {
+        quote! {{
+            let (__sg, __cg): (f64, f64) = #g.sin_cos();
+            #b * __cg - #a * __sg > 0.0
+        }}
+    }
+}
+
+fn angle_equation(a: &V, b: &V, c: &V, g: &TokenStream, cx: &Context) -> TokenStream {
+    let flip = flip_at_guess(a, b, g);
+    let mut out = quote!(let __flip: bool = #flip;);
+    root(&mut out, a, b, c, &quote!(__flip), cx);
+    let zero = |v: &V| matches!(v, V::C(z) if *z == 0.0);
+    // `b sin q = c`: `asin` of the sine on the cosine's side (cheaper than `atan2`); `a cos q
+    // = c` likewise with `acos`.
+    let q = if zero(a) {
+        on_turn(
+            quote!(if __cq >= 0.0 {
+                __sq.clamp(-1.0, 1.0).asin()
+            } else {
+                ::core::f64::consts::PI - __sq.clamp(-1.0, 1.0).asin()
+            }),
+            g,
+        )
+    } else if zero(b) {
+        on_turn(quote!(if __sq >= 0.0 { __cq.clamp(-1.0, 1.0).acos() } else { -__cq.clamp(-1.0, 1.0).acos() }), g)
+    } else {
+        unwrapped(quote!(__sq), quote!(__cq), g)
+    };
+    out.extend(quote!(let __out: [f64; 3] = [#q, __cq, __sq];));
+    out
+}
+
+/// Circle intersection: `|e + m0 c0| = |m1 c1| = l1` is linear in `c0 = (cos q0, sin q0)`:
+/// `(m0ᵀ e) · c0 = (l1² - l0² - |e|²) / 2`; then `c1 = -m1ᵀ (e + m0 c0) / l1²`. At the roots
+/// the determinant is `-ε1 h'` (`ε` = +1 for a rotation, -1 for a reflection); at the guess it
+/// is `ε0 ε1 (u0 × u1)` with `u_i = m_i c_i`, so the root keeps `-h'` of the sign `ε0 (u0 × u1)`.
+fn dyad(
+    m: &[[[NodeId; 2]; 2]; 2],
+    reflect0: bool,
+    e: &[NodeId; 2],
+    g0: &TokenStream,
+    g1: &TokenStream,
+    cx: &Context,
+) -> TokenStream {
+    let (a, b) = (cx.m(&m[0]), cx.m(&m[1]));
+    let e = e.map(|n| cx.v(n));
+    let mut out = quote! {
+        let (__s0g, __c0g): (f64, f64) = #g0.sin_cos();
+        let (__s1g, __c1g): (f64, f64) = #g1.sin_cos();
+    };
+    let (c0g, s0g, c1g, s1g) = (local("__c0g"), local("__s0g"), local("__c1g"), local("__s1g"));
+    let u0 = [dot(&[(&a[0][0], &c0g), (&a[0][1], &s0g)]), dot(&[(&a[1][0], &c0g), (&a[1][1], &s0g)])];
+    let u1 = [dot(&[(&b[0][0], &c1g), (&b[0][1], &s1g)]), dot(&[(&b[1][0], &c1g), (&b[1][1], &s1g)])];
+    let cross = sub(&mul(&u0[0], &u1[1]), &mul(&u0[1], &u1[0]));
+    let flip = if reflect0 { quote!(__cross > 0.0) } else { quote!(__cross < 0.0) };
+    out.extend(quote!(let __cross: f64 = #cross; let __flip: bool = #flip;));
+    let ca = bind(&mut out, "__a", dot(&[(&a[0][0], &e[0]), (&a[1][0], &e[1])]));
+    let cb = bind(&mut out, "__b", dot(&[(&a[0][1], &e[0]), (&a[1][1], &e[1])]));
+    let l0 = dot(&[(&a[0][0], &a[0][0]), (&a[1][0], &a[1][0])]);
+    let l1 = bind(&mut out, "__l1", dot(&[(&b[0][0], &b[0][0]), (&b[1][0], &b[1][0])]));
+    let ee = dot(&[(&e[0], &e[0]), (&e[1], &e[1])]);
+    let cc = bind(&mut out, "__c", mul(&V::C(0.5), &sub(&sub(&l1, &l0), &ee)));
+    root(&mut out, &ca, &cb, &cc, &quote!(__flip), cx);
+    let (cq, sq) = (local("__cq"), local("__sq"));
+    let vx = bind(&mut out, "__vx", add(&e[0], &dot(&[(&a[0][0], &cq), (&a[0][1], &sq)])));
+    let vy = bind(&mut out, "__vy", add(&e[1], &dot(&[(&a[1][0], &cq), (&a[1][1], &sq)])));
+    let il1 = bind(&mut out, "__il1", V::E(quote!((-1.0 / #l1))));
+    let c1 = mul(&dot(&[(&b[0][0], &vx), (&b[1][0], &vy)]), &il1);
+    let s1 = mul(&dot(&[(&b[0][1], &vx), (&b[1][1], &vy)]), &il1);
+    let q0 = unwrapped(quote!(__sq), quote!(__cq), g0);
+    let q1 = unwrapped(quote!(__s1), quote!(__c1), g1);
+    out.extend(quote! {
+        let __c1: f64 = #c1;
+        let __s1: f64 = #s1;
+        let __out: [f64; 6] = [#q0, #q1, __cq, __sq, __c1, __s1];
+    });
+    out
+}
+
+/// `s w(q) + e = 0`: `w(q) ∥ e` gives `q` up to a half turn, `s = -(w·e) / |w|²`; the half turn
+/// that keeps the guessed length's sign.
+fn polar(w: &[[NodeId; 2]; 2], e: &[NodeId; 2], gq: &TokenStream, gs: &TokenStream, cx: &Context) -> TokenStream {
+    let w = cx.m(w);
+    let e = e.map(|n| cx.v(n));
+    let mut out = TokenStream::new();
+    let a = bind(&mut out, "__a", sub(&mul(&w[0][0], &e[1]), &mul(&w[1][0], &e[0])));
+    let b = bind(&mut out, "__b", sub(&mul(&w[0][1], &e[1]), &mul(&w[1][1], &e[0])));
+    let r2 = add(&mul(&a, &a), &mul(&b, &b));
+    let (e0, e1) = (&e[0], &e[1]);
+    let fail = cx.failure(quote!(#e0.abs().max(#e1.abs())));
+    out.extend(quote! {
+        let __d2: f64 = #r2;
+        if !(__d2 > 0.0) {
+            // The length would be zero: its angle is undetermined.
+            #fail
+        }
+        let __ir: f64 = 1.0 / __d2.sqrt();
+    });
+    let ir = local("__ir");
+    let (c0, s0) = (mul(&b, &ir), neg(&mul(&a, &ir)));
+    out.extend(quote!(let (mut __cq, mut __sq): (f64, f64) = (#c0, #s0);));
+    let (cq, sq) = (local("__cq"), local("__sq"));
+    let w0 = bind(&mut out, "__w0", dot(&[(&w[0][0], &cq), (&w[0][1], &sq)]));
+    let w1 = bind(&mut out, "__w1", dot(&[(&w[1][0], &cq), (&w[1][1], &sq)]));
+    let num = dot(&[(&w0, &e[0]), (&w1, &e[1])]);
+    let den = dot(&[(&w0, &w0), (&w1, &w1)]);
+    let q = unwrapped(quote!(__sq), quote!(__cq), gq);
+    out.extend(quote! {
+        let mut __s: f64 = -#num / #den;
+        if __s * #gs < 0.0 {
+            __s = -__s;
+            __cq = -__cq;
+            __sq = -__sq;
+        }
+        let __out: [f64; 4] = [#q, __s, __cq, __sq];
+    });
+    out
+}
+
+/// `m c + d s + e = 0`: the combination `d1 row0 - d0 row1` is free of `s` (and its derivative
+/// in `q` is the block's determinant); then `s` by projection on `d`.
+fn angle_slider(m: &[[NodeId; 2]; 2], d: &[NodeId; 2], e: &[NodeId; 2], gq: &TokenStream, cx: &Context) -> TokenStream {
+    let m = cx.m(m);
+    let d = d.map(|n| cx.v(n));
+    let e = e.map(|n| cx.v(n));
+    let mut out = TokenStream::new();
+    let a = bind(&mut out, "__a", sub(&mul(&d[1], &m[0][0]), &mul(&d[0], &m[1][0])));
+    let b = bind(&mut out, "__b", sub(&mul(&d[1], &m[0][1]), &mul(&d[0], &m[1][1])));
+    let c = bind(&mut out, "__c", sub(&mul(&d[0], &e[1]), &mul(&d[1], &e[0])));
+    let flip = flip_at_guess(&a, &b, gq);
+    out.extend(quote!(let __flip: bool = #flip;));
+    root(&mut out, &a, &b, &c, &quote!(__flip), cx);
+    let (cq, sq) = (local("__cq"), local("__sq"));
+    let r0 = add(&dot(&[(&m[0][0], &cq), (&m[0][1], &sq)]), &e[0]);
+    let r1 = add(&dot(&[(&m[1][0], &cq), (&m[1][1], &sq)]), &e[1]);
+    let num = dot(&[(&d[0], &r0), (&d[1], &r1)]);
+    let den = dot(&[(&d[0], &d[0]), (&d[1], &d[1])]);
+    let q = unwrapped(quote!(__sq), quote!(__cq), gq);
+    out.extend(quote! {
+        let __s: f64 = -#num / #den;
+        let __out: [f64; 4] = [#q, __s, __cq, __sq];
+    });
+    out
+}
+
+/// Removes the `sin`/`cos` nodes of closed-form angles from the scheduled `let`s (their solve
+/// defines them) and returns those that were scheduled (some later code reads them).
+pub fn take_trig(plan: &Plan, lets: &mut [Vec<NodeId>]) -> HashSet<NodeId> {
+    let provided: HashSet<NodeId> =
+        plan.blocks.iter().filter_map(|bp| bp.closed.as_ref()).flat_map(|c| c.sin_cos.concat()).collect();
+    let mut bound = HashSet::new();
+    for l in lets {
+        l.retain(|n| {
+            let p = provided.contains(n);
+            if p {
+                bound.insert(*n);
+            }
+            !p
+        });
+    }
+    bound
+}

@@ -1,0 +1,26 @@
+//! Closed-form solutions of the blocks that are classical Assur groups.
+//!
+//! Newton with an LU solves every nonlinear block in general; a block whose position problem
+//! has a closed form is solved by that form instead ([`recognise`] proves the pattern on the
+//! expression graph at compile time, [`emit`] writes the straight-line solve):
+//!
+//! * one unknown angle in one equation `a cos q + b sin q = c` (a rod's angle from one
+//!   projection of its loop): two roots by one square root;
+//! * two unknown angles of one loop (an RRR dyad): circle intersection;
+//! * an unknown length and its angle (`s @ phi == V`, a slotted rocker): `s = ±|V|`;
+//! * an angle and a slider coordinate coupled in one block (RRP): the angle from the equation
+//!   free of the slider, then the slider linearly.
+//!
+//! The root is the assembly mode of the guess: the sign of the block's Jacobian determinant at
+//! the guess picks it (for a length and its angle, the sign of the guessed length), and angles
+//! are unwrapped to the guess's turn, so sweeps (which pass the previous position as the guess)
+//! stay on their branch. The analogs still come from the block's Jacobian (one factorisation),
+//! which reads the sines and cosines of the unknown angles that the closed form produced.
+
+pub mod emit;
+pub mod recognise;
+
+pub use recognise::{ClosedForm, Recognised, recognise};
+
+#[cfg(test)]
+mod tests;
