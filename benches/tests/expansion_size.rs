@@ -1,0 +1,34 @@
+//! The generated code stays lean: a four-bar with a coupler point expands to at most 600
+//! formatted lines without parameter sensitivities, and grows linearly with the number of loops.
+
+use kinloop_bench::expansion::{four_bar_chain, size};
+
+const COUPLER_FOUR_BAR: &str = "
+    /// Four-bar with a coupler point.
+    pub struct CouplerFourBar {
+        params a, b, c, d, e, f;
+        input phi;
+        unknowns beta = 0.5, gamma = 1.5;
+        loop abcd: a @ phi + b @ beta == (d, 0) + c @ gamma;
+        point p = a @ phi + e @ (beta + f);
+    }
+";
+
+#[test]
+fn a_four_bar_with_a_coupler_point_expands_to_at_most_600_lines() {
+    let lean = size(COUPLER_FOUR_BAR);
+    println!("four-bar with a coupler point: {} lines, {} token trees", lean.lines, lean.tokens);
+    assert!(lean.lines <= 600, "{} lines", lean.lines);
+    let with_sens = size(&COUPLER_FOUR_BAR.replace("/// Four-bar", "#[kinloop(sensitivities)]\n/// Four-bar"));
+    println!("with sensitivities: {} lines", with_sens.lines);
+    assert!(with_sens.lines > lean.lines, "sensitivities are generated only on request");
+}
+
+#[test]
+fn expansion_grows_linearly_with_the_number_of_loops() {
+    let (small, large) = (size(&four_bar_chain(8)), size(&four_bar_chain(32)));
+    println!("8 loops: {} lines, 32 loops: {} lines", small.lines, large.lines);
+    // Four times the loops: at most 4.5 times the code (a fixed part plus a linear part; a
+    // quadratic term would give ~16 times).
+    assert!((large.tokens as f64) <= 4.5 * small.tokens as f64, "{small:?} -> {large:?}");
+}
