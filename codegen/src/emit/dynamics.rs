@@ -12,10 +12,20 @@ use super::{Dims, Types, kernel_lints, lit, runtime};
 use crate::dag::{Graph, Leaf, NodeId};
 use crate::model::Model;
 use crate::plan::Plan;
-use crate::semantics::dynamics::{AngleModel, CoordModel};
+use crate::semantics::dynamics::{AngleModel, BodyModel, CoordModel, ForceModel, TorqueModel};
 use proc_macro2::TokenStream;
 use quote::{format_ident, quote};
 use syn::ext::IdentExt;
+
+/// What the pieces of `mass_model` share: the graph, operand names and the runtime path.
+struct Ctx<'a> {
+    rt: TokenStream,
+    g: &'a Graph,
+    names: Names,
+    /// The type of the state the load laws read, `&Kin<N, NI, NO>`.
+    kin: TokenStream,
+    ni: TokenStream,
+}
 
 /// `mass_model` when the declaration has dynamics items, nothing otherwise.
 pub fn items(model: &Model, plan: &Plan, t: &Types) -> TokenStream {
@@ -23,80 +33,30 @@ pub fn items(model: &Model, plan: &Plan, t: &Types) -> TokenStream {
     if !d.is_declared() {
         return TokenStream::new();
     }
-    let (rt, g, name) = (runtime(), &plan.graph, &t.name);
+    let (rt, name) = (runtime(), &t.name);
     let Dims { n, ni, no, .. } = Dims::of(plan);
     let mut names = Names::new(model, plan);
     let params: Vec<_> = model.params.iter().map(|p| format_ident!("__p_{}", p.name.unraw().to_string())).collect();
     names.params = params.iter().map(|p| quote!(#p)).collect();
-    let mut constants: Vec<NodeId> = d.gravity.iter().flatten().copied().collect();
-    for b in &d.bodies {
-        constants.extend([b.mass, b.inertia]);
-        constants.extend(b.com.iter().filter_map(fixed));
-    }
-    constants.extend(d.forces.iter().flat_map(|f| f.at.iter().filter_map(fixed)));
+    let kin = quote!(&#rt::Kin<#n, #ni, #no>);
+    let cx = Ctx { rt: rt.clone(), g: &plan.graph, names, kin, ni: quote!(#ni) };
+    let constants = constant_nodes(model);
     let mut all = constants.clone();
     all.extend(d.forces.iter().flat_map(|f| f.value));
     all.extend(d.torques.iter().map(|t| t.value));
-    let bind = g.leaves_of(&all).into_iter().filter_map(|l| match l {
+    let bind = cx.g.leaves_of(&all).into_iter().filter_map(|l| match l {
         Leaf::Param(k) => {
             let (local, field) = (&params[k as usize], &model.params[k as usize].name);
             Some(quote!(let #local: f64 = self.#field;))
         }
         _ => None,
     });
-    let constant_lets = lets(g, &names, &constants);
-    let coord = |c: &CoordModel| match *c {
-        CoordModel::Output(c) => {
-            let c = lit(c);
-            quote!(#rt::Coord::Output(#c))
-        }
-        CoordModel::Unknown(u) => {
-            let u = lit(u);
-            quote!(#rt::Coord::Unknown(#u))
-        }
-        CoordModel::Fixed(v) => {
-            let v = names.operand(g, v);
-            quote!(#rt::Coord::Fixed(#v))
-        }
-    };
+    let constant_lets = lets(cx.g, &cx.names, &constants);
     let gravity = d.gravity.map(|[x, y]| {
-        let (x, y) = (names.operand(g, x), names.operand(g, y));
+        let (x, y) = (cx.names.operand(cx.g, x), cx.names.operand(cx.g, y));
         quote!(let __model = __model.with_gravity([#x, #y])?;)
     });
-    let bodies = d.bodies.iter().map(|b| {
-        let (bname, mass, inertia) = (&b.name, names.operand(g, b.mass), names.operand(g, b.inertia));
-        let (cx, cy, rotation) = (coord(&b.com[0]), coord(&b.com[1]), angle(b.turns));
-        quote! {
-            let __model = __model.with_body(#rt::Body {
-                name: #bname, mass: #mass, com: [#cx, #cy], inertia: #inertia, rotation: #rotation,
-            })?;
-        }
-    });
-    let kin = quote!(&#rt::Kin<#n, #ni, #no>);
-    let forces = d.forces.iter().map(|f| {
-        let (fname, cx, cy) = (&f.name, coord(&f.at[0]), coord(&f.at[1]));
-        let (outside, inside) = law(g, &names, &f.value);
-        let [fx, fy] = f.value.map(|v| names.operand(g, v));
-        quote! {
-            #outside
-            let __model = __model.with_force(#fname, [#cx, #cy], move |__k: #kin, _: &[f64; #ni]| -> [f64; 2] {
-                #inside
-                [#fx, #fy]
-            })?;
-        }
-    });
-    let torques = d.torques.iter().map(|t| {
-        let (tname, on) = (&t.name, angle(t.on));
-        let (outside, inside) = law(g, &names, &[t.value]);
-        let value = names.operand(g, t.value);
-        quote! {
-            #outside
-            let __model = __model.with_torque(#tname, #on, move |__k: #kin, _: &[f64; #ni]| -> f64 {
-                #inside
-                #value
-            })?;
-        }
-    });
+    let (bodies, forces, torques) = (bodies(&cx, model), forces(&cx, model), torques(&cx, model));
     let lints = kernel_lints();
     quote! {
         #lints
@@ -121,6 +81,89 @@ pub fn items(model: &Model, plan: &Plan, t: &Types) -> TokenStream {
             }
         }
     }
+}
+
+/// The nodes computed once when the model is built: gravity, masses, inertias and constant
+/// coordinates.
+fn constant_nodes(model: &Model) -> Vec<NodeId> {
+    let d = &model.dynamics;
+    let mut constants: Vec<NodeId> = d.gravity.iter().flatten().copied().collect();
+    for b in &d.bodies {
+        constants.extend([b.mass, b.inertia]);
+        constants.extend(b.com.iter().filter_map(fixed));
+    }
+    constants.extend(d.forces.iter().flat_map(|f| f.at.iter().filter_map(fixed)));
+    constants
+}
+
+/// A coordinate of a centre of mass or load point as the runtime's `Coord`.
+fn coord(cx: &Ctx, c: &CoordModel) -> TokenStream {
+    let rt = &cx.rt;
+    match *c {
+        CoordModel::Output(c) => {
+            let c = lit(c);
+            quote!(#rt::Coord::Output(#c))
+        }
+        CoordModel::Unknown(u) => {
+            let u = lit(u);
+            quote!(#rt::Coord::Unknown(#u))
+        }
+        CoordModel::Fixed(v) => {
+            let v = cx.names.operand(cx.g, v);
+            quote!(#rt::Coord::Fixed(#v))
+        }
+    }
+}
+
+/// One `with_body` per declared body.
+fn bodies(cx: &Ctx, model: &Model) -> Vec<TokenStream> {
+    let (rt, g) = (&cx.rt, cx.g);
+    let body = |b: &BodyModel| {
+        let (bname, mass, inertia) = (&b.name, cx.names.operand(g, b.mass), cx.names.operand(g, b.inertia));
+        let (px, py, rotation) = (coord(cx, &b.com[0]), coord(cx, &b.com[1]), angle(b.turns));
+        quote! {
+            let __model = __model.with_body(#rt::Body {
+                name: #bname, mass: #mass, com: [#px, #py], inertia: #inertia, rotation: #rotation,
+            })?;
+        }
+    };
+    model.dynamics.bodies.iter().map(body).collect()
+}
+
+/// One `with_force` per declared force, its law a closure of straight-line code.
+fn forces(cx: &Ctx, model: &Model) -> Vec<TokenStream> {
+    let (g, kin, ni) = (cx.g, &cx.kin, &cx.ni);
+    let force = |f: &ForceModel| {
+        let (fname, px, py) = (&f.name, coord(cx, &f.at[0]), coord(cx, &f.at[1]));
+        let (outside, inside) = law(g, &cx.names, &f.value);
+        let [fx, fy] = f.value.map(|v| cx.names.operand(g, v));
+        quote! {
+            #outside
+            let __model = __model.with_force(#fname, [#px, #py], move |__k: #kin, _: &[f64; #ni]| -> [f64; 2] {
+                #inside
+                [#fx, #fy]
+            })?;
+        }
+    };
+    model.dynamics.forces.iter().map(force).collect()
+}
+
+/// One `with_torque` per declared torque, its law a closure of straight-line code.
+fn torques(cx: &Ctx, model: &Model) -> Vec<TokenStream> {
+    let (g, kin, ni) = (cx.g, &cx.kin, &cx.ni);
+    let torque = |t: &TorqueModel| {
+        let (tname, on) = (&t.name, angle(t.on));
+        let (outside, inside) = law(g, &cx.names, &[t.value]);
+        let value = cx.names.operand(g, t.value);
+        quote! {
+            #outside
+            let __model = __model.with_torque(#tname, #on, move |__k: #kin, _: &[f64; #ni]| -> f64 {
+                #inside
+                #value
+            })?;
+        }
+    };
+    model.dynamics.torques.iter().map(torque).collect()
 }
 
 fn fixed(c: &CoordModel) -> Option<NodeId> {

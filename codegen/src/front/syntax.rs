@@ -272,44 +272,7 @@ fn parse_def_into(input: ParseStream, errors: &mut Errors) -> Option<MechanismDe
         Ok(a) => a,
         Err(e) => return fail(errors, e),
     };
-    let mut docs = Vec::new();
-    let mut options = Options::default();
-    for attr in attrs {
-        if attr.path().is_ident("doc") {
-            docs.push(attr);
-        } else if attr.path().is_ident("kinloop") {
-            let res = attr.parse_nested_meta(|meta| {
-                if meta.path.is_ident("dense") {
-                    options.dense = Some(meta.path.get_ident().map_or(Span::call_site(), Ident::span));
-                    Ok(())
-                } else if meta.path.is_ident("sensitivities") {
-                    options.sensitivities = Some(meta.path.get_ident().map_or(Span::call_site(), Ident::span));
-                    Ok(())
-                } else if meta.path.is_ident("newton") {
-                    // Closed-form hook: the option forcing Newton.
-                    options.newton = Some(meta.path.get_ident().map_or(Span::call_site(), Ident::span));
-                    Ok(())
-                } else {
-                    Err(meta.error(
-                        "unknown kinloop option; the supported options are `#[kinloop(dense)]`, \
-                         `#[kinloop(newton)]` and `#[kinloop(sensitivities)]`",
-                    ))
-                }
-            });
-            if let Err(e) = res {
-                errors.push(e);
-            }
-        } else {
-            let msg = if attr.path().is_ident("derive") {
-                "remove `#[derive(...)]`: kinloop derives Clone, Copy, Debug and PartialEq itself, \
-                 and implements Default when every parameter has a default value"
-            } else {
-                "only doc comments (`///`) and `#[kinloop(...)]` options (`dense`, `newton`, `sensitivities`) are \
-                 accepted before a mechanism"
-            };
-            errors.push(syn::Error::new_spanned(attr.path(), msg));
-        }
-    }
+    let (docs, options) = split_attributes(attrs, errors);
     let vis: Visibility = match input.parse() {
         Ok(v) => v,
         Err(e) => return fail(errors, e),
@@ -346,6 +309,51 @@ fn parse_def_into(input: ParseStream, errors: &mut Errors) -> Option<MechanismDe
         skip_all(input);
     }
     Some(def)
+}
+
+/// Splits the attributes before a mechanism into its doc comments and its `#[kinloop(...)]`
+/// options, pushing an error for any other attribute.
+fn split_attributes(attrs: Vec<Attribute>, errors: &mut Errors) -> (Vec<Attribute>, Options) {
+    let mut docs = Vec::new();
+    let mut options = Options::default();
+    for attr in attrs {
+        if attr.path().is_ident("doc") {
+            docs.push(attr);
+        } else if attr.path().is_ident("kinloop") {
+            if let Err(e) = attr.parse_nested_meta(|meta| parse_option(&meta, &mut options)) {
+                errors.push(e);
+            }
+        } else {
+            let msg = if attr.path().is_ident("derive") {
+                "remove `#[derive(...)]`: kinloop derives Clone, Copy, Debug and PartialEq itself, \
+                 and implements Default when every parameter has a default value"
+            } else {
+                "only doc comments (`///`) and `#[kinloop(...)]` options (`dense`, `newton`, `sensitivities`) are \
+                 accepted before a mechanism"
+            };
+            errors.push(syn::Error::new_spanned(attr.path(), msg));
+        }
+    }
+    (docs, options)
+}
+
+/// One option of `#[kinloop(...)]`, recorded with its span.
+fn parse_option(meta: &syn::meta::ParseNestedMeta, options: &mut Options) -> syn::Result<()> {
+    let span = meta.path.get_ident().map_or(Span::call_site(), Ident::span);
+    if meta.path.is_ident("dense") {
+        options.dense = Some(span);
+    } else if meta.path.is_ident("sensitivities") {
+        options.sensitivities = Some(span);
+    } else if meta.path.is_ident("newton") {
+        // Closed-form hook: the option forcing Newton.
+        options.newton = Some(span);
+    } else {
+        return Err(meta.error(
+            "unknown kinloop option; the supported options are `#[kinloop(dense)]`, \
+             `#[kinloop(newton)]` and `#[kinloop(sensitivities)]`",
+        ));
+    }
+    Ok(())
 }
 
 /// Parses `{ items }`, recovering at `;` after an item's error.
