@@ -260,6 +260,8 @@
 //! let bad = FourBar { a: f64::NAN, ..m };
 //! assert!(matches!(bad.solve(0.0), Err(kinloop::Error::NonFinite { .. })));
 //! ```
+#![warn(missing_docs)]
+
 extern crate self as kinloop;
 
 pub use kinloop_macros::mechanism;

@@ -87,6 +87,7 @@ impl fmt::Display for EventKind {
 /// A singular position located along a sweep.
 #[derive(Clone, Debug, PartialEq)]
 pub struct Event {
+    /// What was met.
     pub kind: EventKind,
     /// Input values at the event.
     pub x: Vec<f64>,

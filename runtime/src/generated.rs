@@ -10,15 +10,14 @@
 pub use crate::error::Error;
 pub use crate::events::BlockInfo;
 pub use crate::kin::{Health, Jac, Kin, Sens};
-pub use crate::lu::{Fixed, Lu, max_abs};
+pub use crate::lu::{Factor, Fixed, Lu, max_abs};
 pub use crate::mechanism::{Mechanism, NamedSensitivities, Sensitivities, SensitivitiesRequested};
-pub use crate::newton::{BlockEval, NewtonConfig, SolveReport, Solved, newton};
+pub use crate::newton::{BlockEval, BlockFailure, NewtonConfig, SolveReport, Solved, newton};
 pub use crate::vec2::Vec2;
 
 use crate::error::Quantity;
 use crate::events::Location;
 use crate::kin::FlatMotion;
-use crate::newton::BlockFailure;
 
 /// Where an error of mechanism `M` happened: its inputs `x` and, if any, the block.
 #[cold]

@@ -13,7 +13,9 @@
 /// ```
 #[derive(Clone, Copy, Debug, Default, PartialEq)]
 pub struct Vec2<T = f64> {
+    /// X component.
     pub x: T,
+    /// Y component.
     pub y: T,
 }
 

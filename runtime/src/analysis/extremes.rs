@@ -27,6 +27,7 @@ pub enum ExtremeKind {
 /// A local extreme of a quantity: where its velocity analog vanishes and changes sign.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct LocalExtreme {
+    /// A maximum or a minimum.
     pub kind: ExtremeKind,
     /// The quantity, its (vanishing) velocity analog and its acceleration analog at the extreme.
     pub at: Jet,
