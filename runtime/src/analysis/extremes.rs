@@ -17,6 +17,7 @@ use crate::error::Error;
 
 /// Whether a local extreme is a maximum or a minimum.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
+#[non_exhaustive]
 pub enum ExtremeKind {
     /// The velocity analog changes sign from positive to negative.
     Max,

@@ -14,6 +14,7 @@ use crate::error::Error;
 /// assert!(NewtonConfig::default().with_residual_tol(f64::INFINITY).validate().is_err());
 /// ```
 #[derive(Clone, Copy, Debug, PartialEq)]
+#[non_exhaustive]
 pub struct NewtonConfig {
     /// Converged when every residual is at most this fraction of its row magnitude,
     /// `max_i |f_i| / scale_i <= residual_tol` (default `1e-12`; valid range `[0, 1e-3]`; `0`
