@@ -18,6 +18,7 @@ use std::path::Path;
 /// assert_eq!(String::from_utf8(csv).unwrap(), "t,x\n0,1.5\n0.1,1.25\n");
 /// ```
 #[derive(Clone, Debug, Default, PartialEq)]
+#[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
 pub struct Table {
     /// Column names.
     pub columns: Vec<String>,

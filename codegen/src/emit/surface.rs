@@ -135,12 +135,15 @@ fn params_struct(s: &Surface) -> TokenStream {
         }
         _ => quote!(),
     };
+    let rt = runtime();
     quote! {
-        #(#docs)*
-        #[derive(Clone, Copy, Debug, PartialEq)]
-        #[allow(non_snake_case)]
-        #vis struct #name {
-            #(#fields)*
+        #rt::serde_derive! {
+            #(#docs)*
+            #[derive(Clone, Copy, Debug, PartialEq)]
+            #[allow(non_snake_case)]
+            #vis struct #name {
+                #(#fields)*
+            }
         }
         #default
     }
@@ -162,13 +165,16 @@ pub fn named_struct(vis: &Visibility, ty: &Ident, doc: &str, fields: &[Field], k
     } else {
         (quote!(), quote!())
     };
+    let rt = runtime();
     quote! {
-        #[doc = #doc]
-        #[derive(Clone, Copy, Debug, Default, PartialEq)]
-        #[allow(non_snake_case)]
-        #vis struct #ty<T = f64> {
-            #(#docs pub #names: T,)*
-            #marker
+        #rt::serde_derive! {
+            #[doc = #doc]
+            #[derive(Clone, Copy, Debug, Default, PartialEq)]
+            #[allow(non_snake_case)]
+            #vis struct #ty<T = f64> {
+                #(#docs pub #names: T,)*
+                #marker
+            }
         }
         impl<T> ::core::convert::From<[T; #n]> for #ty<T> {
             #[inline]
@@ -214,11 +220,13 @@ fn outputs_struct(s: &Surface, t: &Types) -> TokenStream {
          [`{plain}State`] also their analogs."
     );
     quote! {
-        #[doc = #doc]
-        #[derive(Clone, Copy, Debug, Default, PartialEq)]
-        #[allow(non_snake_case)]
-        #vis struct #ty<T = f64> {
-            #(#fields)*
+        #rt::serde_derive! {
+            #[doc = #doc]
+            #[derive(Clone, Copy, Debug, Default, PartialEq)]
+            #[allow(non_snake_case)]
+            #vis struct #ty<T = f64> {
+                #(#fields)*
+            }
         }
         impl<T> ::core::convert::From<[T; #nol]> for #ty<T> {
             fn from([#(#flat),*]: [T; #nol]) -> Self {

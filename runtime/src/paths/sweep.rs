@@ -33,6 +33,7 @@ use std::marker::PhantomData;
 /// What a sweep does at a singular crossing (a change point where a block's determinant changes
 /// sign and the mechanism can continue on either branch).
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
+#[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
 #[non_exhaustive]
 pub enum AtSingular {
     /// Record the event and stop with [`Error::SweepStopped`] (default).
@@ -54,6 +55,7 @@ pub enum AtSingular {
 /// assert!(cfg.validate().is_ok());
 /// ```
 #[derive(Clone, Copy, Debug, PartialEq)]
+#[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
 #[non_exhaustive]
 pub struct SweepConfig {
     /// The Newton solver used at every step.
