@@ -53,7 +53,13 @@
 //!   `r @ (phi + gamma)`.
 //! * Scalars: numbers, `+ - * /`, unary `-`, powers `x ^ 2` (an integer exponent becomes
 //!   `powi`), `pi`, and the functions `sin cos tan asin acos atan atan2(y, x) sqrt exp ln abs
-//!   pow(x, y) hypot(a, b)`; for vectors `norm(v) dot(a, b) cross(a, b) angle(v) rot(v, theta)`.
+//!   pow(x, y) hypot(a, b) deg(degrees)`; for vectors `norm(v) dot(a, b) cross(a, b) angle(v)
+//!   rot(v, theta)`.
+//! * **Angles are in radians** everywhere: in the declaration (`@`, `sin`, `rot`, initial
+//!   guesses), in the inputs passed at run time, in every result (`s.q.phi2`, analogs per radian)
+//!   and in the CSV columns (`phi [rad]`). Write an angle in degrees as `deg(30)` in a
+//!   declaration and as `kinloop::deg(30.0)` in Rust; `30°` is not valid Rust and does not
+//!   compile. A guess written in degrees by mistake (`phi2 = 30`) is a guess of 30 rad.
 //! * A loop's right side may be `0` (the zero vector): `loop c: a + b - c == 0;`.
 //! * Time can be the input: `input t; let s1 = v1 * t;` (the analogs are then time derivatives).
 //! * Several inputs make a multi-degree-of-freedom mechanism; the analogs are partial

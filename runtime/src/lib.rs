@@ -10,6 +10,7 @@
 #![warn(missing_docs)]
 
 pub mod analysis;
+mod angles;
 pub mod dynamics;
 mod error;
 pub mod events;
@@ -27,6 +28,7 @@ mod vec2;
 use solvers::{lu, newton};
 
 pub use analysis::objective::{Extreme, Extremum, extremum, integral};
+pub use angles::{deg, to_deg};
 pub use error::{Error, Quantity};
 pub use events::{BlockInfo, Event, EventKind, Location};
 pub use kin::{DetSigns, FlatMotion, Health, Jac, Kin, Sens};
