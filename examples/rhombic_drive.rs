@@ -116,7 +116,11 @@ fn report_extremes(drive: &RhombicDrive) -> Result<()> {
 /// The sweep as CSV and its charts as SVG.
 fn write_outputs(states: &[RhombicDriveState]) -> Result<()> {
     let data = out_dir("rhombic_drive");
-    let table = Table::from_states::<RhombicDrive, _, _, _>(states.iter().map(|s| &s.flat));
+    // Units in the CSV header: angles in radians, lengths in the drive's unit of length.
+    let units = [("phi1", "rad"), ("phi2", "rad"), ("phi4", "rad"), ("x_c", "length"), ("x_f", "length")];
+    let points = [("s1", "length"), ("s2", "length"), ("s4", "length"), ("gap", "length")];
+    let table = Table::from_states::<RhombicDrive, _, _, _>(states.iter().map(|s| &s.flat))
+        .with_units(&[&units[..], &points[..]].concat());
     table.save_csv(data.join("sweep.csv"))?;
 
     // Charts every 0.5 degree (721 points per curve).

@@ -22,6 +22,7 @@ pub mod metrics;
 pub mod paths;
 mod solvers;
 mod table;
+mod table_units;
 mod vec2;
 
 // Short paths inside the crate for the modules every part uses.
