@@ -163,7 +163,7 @@ mod tests {
     fn listing_keeps_scalar_and_vector_groups() {
         assert_eq!(
             listing(),
-            "sin, cos, tan, asin, acos, atan, atan2, sqrt, exp, ln, abs, pow, hypot; \
+            "sin, cos, tan, asin, acos, atan, atan2, sqrt, exp, ln, abs, pow, hypot, deg; \
              for vectors: norm, dot, cross, angle, rot"
         );
     }
