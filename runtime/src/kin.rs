@@ -14,6 +14,18 @@ use crate::solvers::newton::SolveReport;
 pub struct DetSigns([u64; 4]);
 
 impl DetSigns {
+    /// The four words of bits (block `b` is bit `b % 64` of word `b / 64`).
+    #[cfg_attr(not(feature = "serde"), allow(dead_code))]
+    pub(crate) fn words(&self) -> [u64; 4] {
+        self.0
+    }
+
+    /// The signs from their four words.
+    #[cfg_attr(not(feature = "serde"), allow(dead_code))]
+    pub(crate) fn from_words(words: [u64; 4]) -> Self {
+        DetSigns(words)
+    }
+
     /// Records block `block` as having a negative determinant.
     #[inline]
     pub fn set_negative(&mut self, block: usize) {
@@ -53,6 +65,7 @@ impl std::fmt::Binary for DetSigns {
 
 /// How far each block of the decomposition is from singular, and its assembly mode.
 #[derive(Clone, Copy, Debug, PartialEq)]
+#[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
 pub struct Health {
     /// The blocks whose Jacobian has a negative determinant. A change of these signs along a
     /// sweep means a change of assembly mode or a passage through a singular position.
@@ -92,6 +105,10 @@ impl Health {
 /// `N` unknowns, `NI` inputs, `NO` output columns (each point contributes `x` and `y`).
 /// Analogs are partial derivatives with respect to the inputs: `dq[u][i] = d q_u / d x_i`,
 /// `d2q[u][i][j] = d2 q_u / d x_i d x_j`.
+///
+/// With the feature `serde` a state serializes as nested sequences and reads back only into a
+/// mechanism of the same sizes. A non-finite value (`health.min_pivot` is infinite when no block
+/// was factorised) needs a format that holds infinities: JSON writes it as `null`.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct Kin<const N: usize, const NI: usize, const NO: usize> {
     /// Input values (generalized coordinates), in declaration order.

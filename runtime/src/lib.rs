@@ -17,6 +17,8 @@ pub mod events;
 #[doc(hidden)]
 pub mod generated;
 mod kin;
+#[cfg(feature = "serde")]
+mod kin_serde;
 mod mechanism;
 pub mod metrics;
 pub mod paths;

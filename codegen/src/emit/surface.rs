@@ -287,7 +287,11 @@ fn state_struct(s: &Surface, t: &Types) -> TokenStream {
          ({analog_doc}), acceleration analogs, and the same for every output."
     );
     let motion_doc = format!("True velocities and accelerations of [`{plain}`] (time derivatives).");
+    // A state serializes as its flat `Kin` (the named fields repeat its values).
+    let kin = format!("::kinloop::__gen::Kin<{}, {ni}, {}>", s.unknowns.len(), s.n_outputs());
     quote! {
+        #rt::serde_derive! {
+        #[serde_as(from = #kin, into = #kin)]
         #[doc = #state_doc]
         #[derive(Clone, Copy, Debug, PartialEq)]
         #vis struct #state {
@@ -312,6 +316,13 @@ fn state_struct(s: &Surface, t: &Types) -> TokenStream {
             /// The same values as flat arrays in declaration order (for generic code).
             pub flat: #rt::Kin<#nl, #nil, #nol>,
         }
+        }
+        impl ::core::convert::From<#state> for #rt::Kin<#nl, #nil, #nol> {
+            #[inline]
+            fn from(s: #state) -> Self {
+                s.flat
+            }
+        }
         impl ::core::convert::From<#rt::Kin<#nl, #nil, #nol>> for #state {
             #[inline]
             fn from(k: #rt::Kin<#nl, #nil, #nol>) -> Self {
@@ -329,6 +340,7 @@ fn state_struct(s: &Surface, t: &Types) -> TokenStream {
                 }
             }
         }
+        #rt::serde_derive! {
         #[doc = #motion_doc]
         #[derive(Clone, Copy, Debug, PartialEq)]
         #vis struct #motion {
@@ -340,6 +352,7 @@ fn state_struct(s: &Surface, t: &Types) -> TokenStream {
             pub out_dot: #outputs,
             /// Accelerations of the outputs.
             pub out_ddot: #outputs,
+        }
         }
     }
 }
