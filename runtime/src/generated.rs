@@ -324,6 +324,17 @@ macro_rules! __named_api {
                 <Self as $crate::Named<$n, $ni, $no>>::sweep(self, from, to, samples, guess)
             }
 
+            /// The states at the given inputs, in their order, without jumping branches (see
+            /// [`Named::sweep_at`](::kinloop::Named::sweep_at)); `guess` at the first input
+            /// picks the assembly mode.
+            pub fn sweep_at<I: ::core::convert::Into<$inputs>>(
+                &self,
+                inputs: impl ::core::iter::IntoIterator<Item = I>,
+                guess: &$unknowns,
+            ) -> ::core::result::Result<::std::vec::Vec<$state>, $crate::Error> {
+                <Self as $crate::Named<$n, $ni, $no>>::sweep_at(self, inputs, guess)
+            }
+
             /// The distinct assembly modes at `input` (multi-start Newton; see
             /// [`assembly_modes`](::kinloop::assembly_modes)), e.g. to pick "elbow up" with
             /// `.into_iter().find(|s| ...)`.
