@@ -244,6 +244,20 @@
 //! assert_eq!(kinloop::par_scan(&designs, &spec, start, extent), results);
 //! ```
 //!
+//! ## Given inputs, tables, CSV and interchange
+//!
+//! `m.sweep_at([0.1, 0.15, 0.9, 2.5], &guess)` follows the mechanism through a given list of
+//! inputs (uneven, far apart or repeated) with the same branch guarantees as a sweep, and returns
+//! the states in order. [`Table`] collects states under named columns; `with_units(&[("phi",
+//! "rad"), ("x_c", "mm")])` gives every column its unit (the analogs their quotients,
+//! `d(x_c)/d(phi) [mm/rad]`), which the CSV header carries; `Table::read_csv` reads it back.
+//! [`Vec2`] adds, subtracts, scales and converts to `nalgebra::Vector2` (and, with the feature
+//! `mint`, `mint::Vector2`). With the feature `serde`, parameter sets, named positions and
+//! outputs, states, tables, events and configurations implement `Serialize` and `Deserialize`
+//! (the generated structs name serde through `kinloop`, so no serde dependency is needed).
+//! Configurations ([`SweepConfig`], [`NewtonConfig`], the optimisers) are built from their
+//! defaults with `with_*` methods: `SweepConfig::default().with_max_step(0.5)`.
+//!
 //! ## Errors
 //!
 //! Bad input never panics and never yields a silent NaN: see [`Error`] (non-finite parameters or
