@@ -2,7 +2,7 @@
 //!
 //! A generated mechanism holds only what depends on its declaration: its named types, its
 //! straight-line kernels and its constants. What is the same for every mechanism lives here, once:
-//! the named API as default methods of [`Named`] and [`NamedSensitivities`], the cold paths that
+//! the named API as default methods of [`Named`](crate::Named) and [`NamedSensitivities`], the cold paths that
 //! build errors, and the linear-algebra and Newton pieces the kernels call. The facade re-exports
 //! this module as `kinloop::__gen`; it is not meant to be used by hand and may change between
 //! versions.
