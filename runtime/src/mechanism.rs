@@ -27,6 +27,12 @@ pub trait Mechanism<const N: usize, const NI: usize, const NO: usize> {
     const BLOCKS: &'static [BlockInfo];
 
     /// Parameter values in declaration order.
+    ///
+    /// A `Vec` rather than `[f64; NP]`: the trait is generic over the three sizes every generic
+    /// caller needs (unknowns, inputs, outputs), and a fourth for the parameters would burden
+    /// every sweep, scan and table for this cold-path use (naming a non-finite parameter).
+    /// Mechanisms declared with `#[kinloop(sensitivities)]` give the array through
+    /// [`Sensitivities::params_flat`].
     fn param_values(&self) -> Vec<f64>;
     /// The declared initial guess at input `x`.
     fn guess_flat(&self, x: &[f64; NI]) -> [f64; N];
