@@ -1,6 +1,5 @@
-//! The CSV of a table, read back with the csv crate itself (an independent parser of the format)
-//! and with `Table::read_csv`: same names, units and bits.
-
+//! The CSV of a table: its header against the expected names and units, its values read back
+//! with the csv crate's reader and with `Table::read_csv`, bit for bit.
 use kinloop_runtime::Table;
 
 fn sample() -> Table {
