@@ -1,5 +1,6 @@
 //! The CSV of a table: its header against the expected names and units, its values read back
 //! with the csv crate's reader and with `Table::read_csv`, bit for bit.
+
 use kinloop_runtime::Table;
 
 fn sample() -> Table {
