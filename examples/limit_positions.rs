@@ -94,7 +94,7 @@ fn change_point() -> Result<(), Box<dyn std::error::Error>> {
             ev.block.map(|b| b.0)
         );
     }
-    let cfg = SweepConfig { at_singular: AtSingular::Continue, ..SweepConfig::default() };
+    let cfg = SweepConfig::default().with_at_singular(AtSingular::Continue);
     let mut sweep = cp.sweep(0.5, 7.0, 66, &g)?.with_config(cfg);
     let states: Vec<_> = sweep.by_ref().collect::<Result<_, _>>()?;
     println!(

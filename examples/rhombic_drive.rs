@@ -119,7 +119,11 @@ const UNIT: &str = "units of r_P";
 /// The sweep as CSV and its charts as SVG.
 fn write_outputs(states: &[RhombicDriveState]) -> Result<()> {
     let data = plot::out_dir("rhombic_drive")?;
-    let table = Table::from_states::<RhombicDrive, _, _, _>(states.iter().map(|s| &s.flat));
+    // Units in the CSV header: angles in radians, lengths in the drive's unit of length.
+    let units = [("phi1", "rad"), ("phi2", "rad"), ("phi4", "rad"), ("x_c", "units of r_P"), ("x_f", "units of r_P")];
+    let points = [("s1", "units of r_P"), ("s2", "units of r_P"), ("s4", "units of r_P"), ("gap", "units of r_P")];
+    let table = Table::from_states::<RhombicDrive, _, _, _>(states.iter().map(|s| &s.flat))
+        .with_units(&[&units[..], &points[..]].concat());
     table.save_csv(data.join("sweep.csv"))?;
 
     let dir = plot::figure_dir("rhombic_drive")?;

@@ -115,7 +115,7 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
         [0.0, fw.start_speed],
         1.0,
         guess,
-        &RunConfig { flywheel: fw.exact, ..Default::default() },
+        &RunConfig::default().with_flywheel(fw.exact),
         |_, y| y[0] >= 2.0 * TAU,
     )?;
     let speeds: Vec<f64> = check
@@ -181,7 +181,7 @@ fn run_up(omega_s: f64, j_fly: f64) -> Result<Trajectory, Box<dyn std::error::Er
     let cold = drive.mass_model()?;
     let m_s = 6.0;
     let motor = move |_: f64, _: f64, w: f64| m_s * (1.0 - w / omega_s);
-    let cfg = RunConfig { flywheel: j_fly, ..Default::default() };
+    let cfg = RunConfig::default().with_flywheel(j_fly);
     let run = simulate(drive, &cold, motor, [0.0, 0.0], 3.0, drive.guess_flat(&[0.0]), &cfg, |_, _| false)?;
     let t95 = run.steps.iter().find(|s| s.at(s.t1())[1] >= 0.95 * omega_s).map_or(f64::NAN, |s| s.t1());
     println!("\nrun-up from rest (cold engine, flywheel above, motor {m_s} Nm stall, {omega_s:.1} rad/s synchronous):");

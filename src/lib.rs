@@ -58,7 +58,13 @@
 //!   `r @ (phi + gamma)`.
 //! * Scalars: numbers, `+ - * /`, unary `-`, powers `x ^ 2` (an integer exponent becomes
 //!   `powi`), `pi`, and the functions `sin cos tan asin acos atan atan2(y, x) sqrt exp ln abs
-//!   pow(x, y) hypot(a, b)`; for vectors `norm(v) dot(a, b) cross(a, b) angle(v) rot(v, theta)`.
+//!   pow(x, y) hypot(a, b) deg(degrees)`; for vectors `norm(v) dot(a, b) cross(a, b) angle(v)
+//!   rot(v, theta)`.
+//! * **Angles are in radians** everywhere: in the declaration (`@`, `sin`, `rot`, initial
+//!   guesses), in the inputs passed at run time, in every result (`s.q.phi2`, analogs per radian)
+//!   and in the CSV columns (`phi [rad]`). Write an angle in degrees as `deg(30)` in a
+//!   declaration and as `kinloop::deg(30.0)` in Rust; `30°` is not valid Rust and does not
+//!   compile. A guess written in degrees by mistake (`phi2 = 30`) is a guess of 30 rad.
 //! * A loop's right side may be `0` (the zero vector): `loop c: a + b - c == 0;`.
 //! * Time can be the input: `input t; let s1 = v1 * t;` (the analogs are then time derivatives).
 //! * Several inputs make a multi-degree-of-freedom mechanism; the analogs are partial
@@ -288,6 +294,20 @@
 //! assert_eq!(kinloop::par_scan(&designs, &spec, start, extent), results);
 //! ```
 //!
+//! ## Given inputs, tables, CSV and interchange
+//!
+//! `m.sweep_at([0.1, 0.15, 0.9, 2.5], &guess)` follows the mechanism through a given list of
+//! inputs (uneven, far apart or repeated) with the same branch guarantees as a sweep, and returns
+//! the states in order. [`Table`] collects states under named columns; `with_units(&[("phi",
+//! "rad"), ("x_c", "mm")])` gives every column its unit (the analogs their quotients,
+//! `d(x_c)/d(phi) [mm/rad]`), which the CSV header carries; `Table::read_csv` reads it back.
+//! [`Vec2`] adds, subtracts, scales and converts to `nalgebra::Vector2` (and, with the feature
+//! `mint`, `mint::Vector2`). With the feature `serde`, parameter sets, named positions and
+//! outputs, states, tables, events and configurations implement `Serialize` and `Deserialize`
+//! (the generated structs name serde through `kinloop`, so no serde dependency is needed).
+//! Configurations ([`SweepConfig`], [`NewtonConfig`], the optimisers) are built from their
+//! defaults with `with_*` methods: `SweepConfig::default().with_max_step(0.5)`.
+//!
 //! ## Errors
 //!
 //! Bad input never panics and never yields a silent NaN: see [`Error`] (non-finite parameters or
@@ -310,6 +330,8 @@
 //! let bad = FourBar { a: f64::NAN, ..m };
 //! assert!(matches!(bad.solve(0.0), Err(kinloop::Error::NonFinite { .. })));
 //! ```
+#![warn(missing_docs)]
+
 extern crate self as kinloop;
 
 pub use kinloop_macros::mechanism;

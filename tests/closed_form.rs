@@ -174,7 +174,7 @@ with_newton_twin! {
 
 /// The Newton twin's configuration: iterate to rounding level.
 fn tight() -> NewtonConfig {
-    NewtonConfig { residual_tol: 1e-14, step_tol: 1e-16, ..Default::default() }
+    NewtonConfig::default().with_residual_tol(1e-14).with_step_tol(1e-16)
 }
 
 /// `|a - b| <= tol * max(1, |b|)`: angles absolutely, lengths relative to their size.
@@ -232,7 +232,7 @@ where
         }
         let sa: Vec<Kin<N, NI, NO>> =
             Sweep::new(a, from, to, samples + 1, mode.q).unwrap().collect::<Result<_, _>>().unwrap();
-        let newton = SweepConfig { newton: tight(), ..Default::default() };
+        let newton = SweepConfig::default().with_newton(tight());
         let sb: Vec<Kin<N, NI, NO>> = Sweep::new(b, from, to, samples + 1, mode.q)
             .unwrap()
             .with_config(newton)

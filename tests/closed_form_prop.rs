@@ -52,10 +52,7 @@ with_newton_twin! {
 
 /// The Newton twin iterates to rounding level, so both paths may be compared tightly.
 fn newton_sweep() -> SweepConfig {
-    SweepConfig {
-        newton: NewtonConfig { residual_tol: 1e-14, step_tol: 1e-16, ..Default::default() },
-        ..Default::default()
-    }
+    SweepConfig::default().with_newton(NewtonConfig::default().with_residual_tol(1e-14).with_step_tol(1e-16))
 }
 
 /// A sweep's samples (input, positions) until it stops, its events, and whether it stopped.

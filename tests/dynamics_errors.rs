@@ -4,7 +4,7 @@
 
 use kinloop::Mechanism;
 use kinloop::dynamics::{
-    Body, Coord, DynamicsError, MassModel, OdeConfig, Rotation, RunConfig, SpeedLaw, inverse_cycle, simulate,
+    Body, Coord, DynamicsError, MassModel, Rotation, RunConfig, SpeedLaw, inverse_cycle, simulate,
 };
 
 kinloop::mechanism! {
@@ -113,13 +113,10 @@ fn bad_arguments_and_a_machine_without_inertia() {
         simulate(&m, model, |_, _, _| 1.0, start, t_end, g, cfg, |_, _| false)
     };
     let cfg = RunConfig::default();
-    assert!(matches!(
-        run(&model, &RunConfig { flywheel: -1.0, ..cfg }, [0.0, 1.0], 1.0),
-        Err(DynamicsError::BadValue { .. })
-    ));
+    assert!(matches!(run(&model, &cfg.with_flywheel(-1.0), [0.0, 1.0], 1.0), Err(DynamicsError::BadValue { .. })));
     assert!(matches!(run(&model, &cfg, [f64::NAN, 1.0], 1.0), Err(DynamicsError::BadValue { .. })));
     assert!(matches!(run(&model, &cfg, [0.0, 1.0], -1.0), Err(DynamicsError::BadValue { what: "end time", .. })));
-    let bad_tol = RunConfig { ode: OdeConfig { rtol: 0.0, ..cfg.ode }, ..cfg };
+    let bad_tol = cfg.with_ode(cfg.ode.with_tolerances(0.0, cfg.ode.atol));
     assert!(matches!(run(&model, &bad_tol, [0.0, 1.0], 1.0), Err(DynamicsError::BadValue { .. })));
     // No mass at all: the reduced inertia is zero, the motion undefined.
     let empty = Model::new();
@@ -128,6 +125,6 @@ fn bad_arguments_and_a_machine_without_inertia() {
     let err = simulate(&m, &model, |_, _, _| f64::NAN, [0.0, 1.0], 1.0, g, &cfg, |_, _| false).unwrap_err();
     assert!(matches!(err, DynamicsError::NonFiniteLoad { name: "drive", .. }));
     // Too few steps allowed.
-    let short = RunConfig { ode: OdeConfig { max_steps: 3, ..cfg.ode }, ..cfg };
+    let short = cfg.with_ode(cfg.ode.with_max_steps(3));
     assert!(matches!(run(&model, &short, [0.0, 1.0], 100.0), Err(DynamicsError::TooManySteps { steps: 3, .. })));
 }

@@ -17,7 +17,7 @@ use std::f64::consts::TAU;
 
 #[test]
 fn dopri5_matches_closed_forms() {
-    let cfg = OdeConfig { rtol: 1e-11, atol: 1e-11, ..Default::default() };
+    let cfg = OdeConfig::default().with_tolerances(1e-11, 1e-11);
     // Harmonic oscillator over ten periods: y = (cos t, -sin t).
     let mut worst_dense: f64 = 0.0;
     let (t, y) = dopri5(
@@ -68,7 +68,7 @@ fn energy_at(drive: &RhombicDrive, model: &MassModel<4, 1, 7>, phi: f64, omega: 
 fn free_rhombic_drive_conserves_energy_over_100_turns() {
     let drive = RhombicDrive::default();
     let model = rhombic_bodies([0.0, 0.0]);
-    let cfg = RunConfig { ode: OdeConfig { rtol: 1e-13, atol: 1e-13, ..Default::default() }, ..Default::default() };
+    let cfg = RunConfig::default().with_ode(OdeConfig::default().with_tolerances(1e-13, 1e-13));
     let omega0 = 12.0;
     let e0 = energy_at(&drive, &model, 0.0, omega0);
     let run = simulate(
@@ -114,7 +114,7 @@ fn flywheel_gives_the_required_speed_fluctuation() {
             .unwrap();
     let fw = cycle.flywheel(delta).unwrap();
     assert!(fw.exact > 0.0 && fw.flywheel > 0.0);
-    let cfg = RunConfig { flywheel: fw.exact, ..Default::default() };
+    let cfg = RunConfig::default().with_flywheel(fw.exact);
     let run = simulate(
         &drive,
         &model,

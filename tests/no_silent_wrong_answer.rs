@@ -192,9 +192,9 @@ fn unit_free_acceptance() {
 fn invalid_newton_configurations_are_named() {
     let s = CRANK_ROCKER.guess(0.3);
     for (cfg, field) in [
-        (NewtonConfig { residual_tol: f64::INFINITY, ..NewtonConfig::default() }, "residual_tol"),
-        (NewtonConfig { residual_tol: f64::NAN, ..NewtonConfig::default() }, "residual_tol"),
-        (NewtonConfig { min_damping: 0.0, ..NewtonConfig::default() }, "min_damping"),
+        (NewtonConfig::default().with_residual_tol(f64::INFINITY), "residual_tol"),
+        (NewtonConfig::default().with_residual_tol(f64::NAN), "residual_tol"),
+        (NewtonConfig::default().with_min_damping(0.0), "min_damping"),
     ] {
         match CRANK_ROCKER.kinematics_with(0.3, &s, &cfg) {
             Err(Error::InvalidArgument(msg)) => assert!(msg.contains(field), "{msg}"),

@@ -62,10 +62,10 @@ fn invalid_sweep_configurations_are_named_up_front() {
     let mut newton_inf = d;
     newton_inf.newton.residual_tol = f64::INFINITY;
     for (cfg, field) in [
-        (SweepConfig { max_step: 0.0, ..d }, "max_step"),
-        (SweepConfig { max_step: f64::NAN, ..d }, "max_step"),
-        (SweepConfig { corrector_rel: f64::NAN, ..d }, "corrector_rel"),
-        (SweepConfig { max_halvings: 0, ..d }, "max_halvings"),
+        (d.with_max_step(0.0), "max_step"),
+        (d.with_max_step(f64::NAN), "max_step"),
+        (d.with_corrector(f64::NAN, d.corrector_abs), "corrector_rel"),
+        (d.with_max_halvings(0), "max_halvings"),
         (newton_inf, "newton.residual_tol"),
     ] {
         let first = within(60, move || m.sweep(0.0, 1.0, 3, &g).unwrap().with_config(cfg).next());
@@ -182,7 +182,7 @@ fn a_branch_flip_in_block_seventy_is_caught() {
     assert!(index >= 64, "{index}");
     assert!(ev.x[0].abs() < 1e-9, "{:?}", ev.x);
     // Passing it, the mode of block 70 is seen to change.
-    let cfg = SweepConfig { at_singular: AtSingular::Continue, ..SweepConfig::default() };
+    let cfg = SweepConfig::default().with_at_singular(AtSingular::Continue);
     let all: Vec<_> = m.sweep(1.0, -1.0, 5, &g).unwrap().with_config(cfg).collect::<Result<_, _>>().unwrap();
     let (first, last) = (all[0].health.det_signs, all[4].health.det_signs);
     assert_eq!(first.first_difference(&last), Some(index));

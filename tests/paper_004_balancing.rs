@@ -109,7 +109,7 @@ fn nelder_mead_finds_the_exact_balance() {
     // From a start away from it (coarser sampling keeps the debug build quick: at the optimum all
     // harmonics above the first vanish, so the sampling does not move it).
     // D grows linearly away from its zero, so f_tol = 1e-10 means a simplex within ~1e-10.
-    let cfg = NelderMead { max_evaluations: 3000, f_tol: 1e-10, x_tol: 1e-8, ..NelderMead::default() };
+    let cfg = NelderMead::default().with_max_evaluations(3000).with_tolerances(1e-10, 1e-8);
     let (lo, hi) = ([0.5, 1.5, -1.0, -PI], [2.0, 6.0, 1.0, PI]);
     let best = cfg.minimize_boxed(|p| unbalance(&design(*p), 32), [1.3, 2.7, 0.2, 0.1], lo, hi);
     assert!(best.converged(), "{best:?}");

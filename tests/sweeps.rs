@@ -108,7 +108,7 @@ fn change_point_crossing_is_located_and_never_silent() {
     assert!((ev.x[0] - 2.0 * PI).abs() < 1e-9, "crossing at {}", ev.x[0]);
 
     // Configured to continue, the sweep passes the change point and records it.
-    let cfg = SweepConfig { at_singular: AtSingular::Continue, ..SweepConfig::default() };
+    let cfg = SweepConfig::default().with_at_singular(AtSingular::Continue);
     let mut sweep = m.sweep(0.5, 7.0, 66, &g).unwrap().with_config(cfg);
     let all: Vec<_> = sweep.by_ref().collect::<Result<_, _>>().unwrap();
     assert_eq!(all.len(), 66);

@@ -41,13 +41,31 @@ impl fmt::Display for Quantity {
 pub enum Error {
     /// A parameter, input or guess is NaN or infinite.
     #[error("{what} `{name}` is not finite ({value}) {at}")]
-    NonFinite { what: Quantity, name: &'static str, value: f64, at: Box<Location> },
+    NonFinite {
+        /// Which kind of value.
+        what: Quantity,
+        /// Its declared name.
+        name: &'static str,
+        /// The value given.
+        value: f64,
+        /// Where.
+        at: Box<Location>,
+    },
     /// Newton's method reached its iteration limit.
     #[error(
         "Newton's method did not converge in {iterations} iterations {at}: residual {residual:e} \
          in equation `{equation}`; give a closer initial guess or raise `max_iterations`"
     )]
-    NoConvergence { iterations: u32, residual: f64, equation: &'static str, at: Box<Location> },
+    NoConvergence {
+        /// Iterations performed.
+        iterations: u32,
+        /// Largest scaled residual at the end.
+        residual: f64,
+        /// The equation with the largest residual.
+        equation: &'static str,
+        /// Where.
+        at: Box<Location>,
+    },
     /// The loops cannot close: the residual stalls at a non-zero minimum where the Jacobian
     /// degenerates (links fully stretched or folded). Typical of link lengths that cannot
     /// assemble at this input.
@@ -55,14 +73,28 @@ pub enum Error {
         "the mechanism cannot be assembled {at}: the loop residual stalls at {residual:e} in \
          equation `{equation}` (the links cannot reach; check the lengths or the input range)"
     )]
-    NoAssembly { residual: f64, equation: &'static str, at: Box<Location> },
+    NoAssembly {
+        /// The scaled residual where it stalled.
+        residual: f64,
+        /// The equation with the largest residual.
+        equation: &'static str,
+        /// Where.
+        at: Box<Location>,
+    },
     /// The Jacobian of a block is singular or too ill-conditioned at the solved position: a dead
     /// centre, a limit position of the input, or a change point. Velocity analogs do not exist.
     #[error(
         "singular position {at}: the Jacobian's pivot ratio is {pivot_ratio:e} (below the \
          tolerance {tolerance:e}); this is a dead centre or a limit position"
     )]
-    Singular { pivot_ratio: f64, tolerance: f64, at: Box<Location> },
+    Singular {
+        /// Smallest row-equilibrated pivot ratio of the block's Jacobian.
+        pivot_ratio: f64,
+        /// The tolerance it fell below (`NewtonConfig::singular_tol`).
+        tolerance: f64,
+        /// Where.
+        at: Box<Location>,
+    },
     /// An expression evaluated to NaN or infinity although every parameter and input is finite:
     /// it left its domain (square root of a negative number, `asin` beyond ±1, division by zero).
     #[error(
@@ -74,6 +106,7 @@ pub enum Error {
         what: &'static str,
         /// Name of the equation, unknown or output column.
         name: &'static str,
+        /// Where.
         at: Box<Location>,
     },
     /// A result overflowed although every value given was finite (e.g. accelerations for input
@@ -84,16 +117,27 @@ pub enum Error {
         what: &'static str,
         /// Name of the unknown or output column.
         name: &'static str,
+        /// Where.
         at: Box<Location>,
     },
     /// A sweep stopped at a singular position it cannot (or is configured not to) pass on its
     /// branch: a limit position of the input, or a singular crossing. The event, with the
     /// located input value, is in the sweep's `events()`.
     #[error("the sweep stopped at a {kind} {at}")]
-    SweepStopped { kind: EventKind, at: Box<Location> },
+    SweepStopped {
+        /// What was met.
+        kind: EventKind,
+        /// Where (the located input value).
+        at: Box<Location>,
+    },
     /// A sweep could not stay on its assembly branch (see the sweep's events).
     #[error("{message} {at}")]
-    Branch { message: String, at: Box<Location> },
+    Branch {
+        /// What went wrong.
+        message: String,
+        /// Where.
+        at: Box<Location>,
+    },
     /// An argument outside its valid range (e.g. a sweep with zero samples).
     #[error("invalid argument: {0}")]
     InvalidArgument(String),

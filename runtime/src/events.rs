@@ -6,6 +6,7 @@ use std::fmt;
 
 /// Static description of one block of a mechanism's block-triangular decomposition.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
+#[cfg_attr(feature = "serde", derive(serde::Serialize))]
 pub struct BlockInfo {
     /// Unknowns solved in this block (declaration order).
     pub unknowns: &'static [&'static str],
@@ -65,6 +66,7 @@ impl fmt::Display for Location {
 
 /// Kinds of singular positions met along a sweep.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
+#[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
 #[non_exhaustive]
 pub enum EventKind {
     /// The input cannot advance on this branch: a limit (dead-centre) position of the input, a
@@ -85,8 +87,13 @@ impl fmt::Display for EventKind {
 }
 
 /// A singular position located along a sweep.
+///
+/// With the feature `serde` it serializes completely; the block's static description is not
+/// read back (`block` deserializes as `None`), since it names the mechanism's own equations.
 #[derive(Clone, Debug, PartialEq)]
+#[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
 pub struct Event {
+    /// What was met.
     pub kind: EventKind,
     /// Input values at the event.
     pub x: Vec<f64>,
@@ -95,5 +102,6 @@ pub struct Event {
     /// Positions of the unknowns at the event.
     pub q: Vec<f64>,
     /// The block that became singular, if identified, with its index in solve order.
+    #[cfg_attr(feature = "serde", serde(skip_deserializing))]
     pub block: Option<(usize, BlockInfo)>,
 }

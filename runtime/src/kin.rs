@@ -14,6 +14,18 @@ use crate::solvers::newton::SolveReport;
 pub struct DetSigns([u64; 4]);
 
 impl DetSigns {
+    /// The four words of bits (block `b` is bit `b % 64` of word `b / 64`).
+    #[cfg_attr(not(feature = "serde"), allow(dead_code))]
+    pub(crate) fn words(&self) -> [u64; 4] {
+        self.0
+    }
+
+    /// The signs from their four words.
+    #[cfg_attr(not(feature = "serde"), allow(dead_code))]
+    pub(crate) fn from_words(words: [u64; 4]) -> Self {
+        DetSigns(words)
+    }
+
     /// Records block `block` as having a negative determinant.
     #[inline]
     pub fn set_negative(&mut self, block: usize) {
@@ -53,6 +65,7 @@ impl std::fmt::Binary for DetSigns {
 
 /// How far each block of the decomposition is from singular, and its assembly mode.
 #[derive(Clone, Copy, Debug, PartialEq)]
+#[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
 pub struct Health {
     /// The blocks whose Jacobian has a negative determinant. A change of these signs along a
     /// sweep means a change of assembly mode or a passage through a singular position.
@@ -92,16 +105,29 @@ impl Health {
 /// `N` unknowns, `NI` inputs, `NO` output columns (each point contributes `x` and `y`).
 /// Analogs are partial derivatives with respect to the inputs: `dq[u][i] = d q_u / d x_i`,
 /// `d2q[u][i][j] = d2 q_u / d x_i d x_j`.
+///
+/// With the feature `serde` a state serializes as nested sequences and reads back only into a
+/// mechanism of the same sizes. A non-finite value (`health.min_pivot` is infinite when no block
+/// was factorised) needs a format that holds infinities: JSON writes it as `null`.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct Kin<const N: usize, const NI: usize, const NO: usize> {
+    /// Input values (generalized coordinates), in declaration order.
     pub x: [f64; NI],
+    /// Positions of the unknowns (angles in radians, lengths in the parameters' unit).
     pub q: [f64; N],
+    /// Velocity analogs `dq[u][i] = d q_u / d x_i`.
     pub dq: [[f64; NI]; N],
+    /// Acceleration analogs `d2q[u][i][j] = d2 q_u / d x_i d x_j`.
     pub d2q: [[[f64; NI]; NI]; N],
+    /// Output columns (a point contributes its `x` and `y`).
     pub out: [f64; NO],
+    /// First analogs of the output columns.
     pub dout: [[f64; NI]; NO],
+    /// Second analogs of the output columns.
     pub d2out: [[[f64; NI]; NI]; NO],
+    /// Diagnostics of the position solve.
     pub report: SolveReport,
+    /// Conditioning of the blocks at this position (pivot ratios, determinant signs).
     pub health: Health,
 }
 
@@ -112,11 +138,17 @@ pub struct Kin<const N: usize, const NI: usize, const NO: usize> {
 /// for the analogs).
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct Sens<const N: usize, const NI: usize, const NO: usize, const NP: usize> {
+    /// `d q_u / d p_k`.
     pub q: [[f64; NP]; N],
+    /// `d(d q_u / d x_i) / d p_k`.
     pub dq: [[[f64; NP]; NI]; N],
+    /// `d(d2 q_u / d x_i d x_j) / d p_k`.
     pub d2q: [[[[f64; NP]; NI]; NI]; N],
+    /// `d out_o / d p_k`.
     pub out: [[f64; NP]; NO],
+    /// `d(d out_o / d x_i) / d p_k`.
     pub dout: [[[f64; NP]; NI]; NO],
+    /// `d(d2 out_o / d x_i d x_j) / d p_k`.
     pub d2out: [[[[f64; NP]; NI]; NI]; NO],
 }
 
@@ -161,17 +193,24 @@ impl<const N: usize, const NI: usize, const NO: usize, const NP: usize> Sens<N, 
 /// `fx[e][i] = df_e/dx_i`.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct Jac<const N: usize, const NI: usize> {
+    /// Residuals `f_e`.
     pub f: [f64; N],
+    /// Jacobian with respect to the unknowns, `j[e][u] = df_e/dq_u`.
     pub j: [[f64; N]; N],
+    /// Jacobian with respect to the inputs, `fx[e][i] = df_e/dx_i`.
     pub fx: [[f64; NI]; N],
 }
 
 /// True velocities and accelerations (time derivatives) of unknowns and outputs.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct FlatMotion<const N: usize, const NO: usize> {
+    /// Velocities of the unknowns.
     pub qdot: [f64; N],
+    /// Accelerations of the unknowns.
     pub qddot: [f64; N],
+    /// Velocities of the output columns.
     pub out_dot: [f64; NO],
+    /// Accelerations of the output columns.
     pub out_ddot: [f64; NO],
 }
 

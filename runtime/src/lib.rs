@@ -7,31 +7,36 @@
 // Index loops over small fixed-size arrays read like the formulas they implement (matrix rows,
 // unknowns, inputs); iterator chains would obscure them.
 #![allow(clippy::needless_range_loop)]
+#![warn(missing_docs)]
 
 pub mod analysis;
+mod angles;
 pub mod dynamics;
 mod error;
 pub mod events;
 #[doc(hidden)]
 pub mod generated;
 mod kin;
+#[cfg(feature = "serde")]
+mod kin_serde;
 mod mechanism;
 pub mod metrics;
 pub mod paths;
-pub mod solvers;
+mod solvers;
 mod table;
+mod table_units;
 mod vec2;
 
 // Short paths inside the crate for the modules every part uses.
 use solvers::{lu, newton};
 
 pub use analysis::objective::{Extreme, Extremum, extremum, integral};
+pub use angles::{deg, to_deg};
 pub use error::{Error, Quantity};
 pub use events::{BlockInfo, Event, EventKind, Location};
 pub use kin::{DetSigns, FlatMotion, Health, Jac, Kin, Sens};
-pub use lu::{Factor, Fixed, Lu, max_abs};
 pub use mechanism::{Mechanism, Named, NamedSensitivities, Sensitivities};
-pub use newton::{BlockEval, BlockFailure, NewtonConfig, SolveReport, Solved, Termination, iterate, newton};
+pub use newton::{NewtonConfig, SolveReport, Termination};
 pub use paths::curve::{Traced, TracedPoint, trace_curve};
 pub use paths::modes::assembly_modes;
 #[cfg(feature = "rayon")]

@@ -27,6 +27,12 @@ pub trait Mechanism<const N: usize, const NI: usize, const NO: usize> {
     const BLOCKS: &'static [BlockInfo];
 
     /// Parameter values in declaration order.
+    ///
+    /// A `Vec` rather than `[f64; NP]`: the trait is generic over the three sizes every generic
+    /// caller needs (unknowns, inputs, outputs), and a fourth for the parameters would burden
+    /// every sweep, scan and table for this cold-path use (naming a non-finite parameter).
+    /// Mechanisms declared with `#[kinloop(sensitivities)]` give the array through
+    /// [`Sensitivities::params_flat`].
     fn param_values(&self) -> Vec<f64>;
     /// The declared initial guess at input `x`.
     fn guess_flat(&self, x: &[f64; NI]) -> [f64; N];
@@ -190,6 +196,31 @@ pub trait Named<const N: usize, const NI: usize, const NO: usize>: Mechanism<N, 
         Sweep::new(self, from.into().into(), to.into().into(), samples, (*guess).into())
     }
 
+    /// The states at the given inputs, in their order, followed along the path through them
+    /// without jumping branches: each stretch between consecutive inputs is a [`Sweep`] with its
+    /// own step control, so inputs may be unevenly spaced, far apart or repeated (measured input
+    /// angles, a motion law). `guess` at the first input picks the assembly mode. The first error
+    /// stops it (a limit position between two inputs is located as in a sweep).
+    fn sweep_at<I: Into<Self::Inputs>>(
+        &self,
+        inputs: impl IntoIterator<Item = I>,
+        guess: &Self::Unknowns,
+    ) -> Result<Vec<Self::State>, Error> {
+        let mut states = Vec::new();
+        let mut prev: Option<Kin<N, NI, NO>> = None;
+        for input in inputs {
+            let x: [f64; NI] = input.into().into();
+            let k = match prev {
+                Some(p) if p.x == x => p,
+                Some(p) => stretch_end(Sweep::<Self, Kin<N, NI, NO>, N, NI, NO>::new(self, p.x, x, 2, p.q)?, 2)?,
+                None => stretch_end(Sweep::<Self, Kin<N, NI, NO>, N, NI, NO>::new(self, x, x, 1, (*guess).into())?, 1)?,
+            };
+            states.push(Self::State::from(k));
+            prev = Some(k);
+        }
+        Ok(states)
+    }
+
     /// The distinct assembly modes at `input` (multi-start Newton; see
     /// [`assembly_modes`](crate::assembly_modes)), e.g. to pick "elbow up" with
     /// `.into_iter().find(|s| ...)`.
@@ -200,6 +231,21 @@ pub trait Named<const N: usize, const NI: usize, const NO: usize>: Mechanism<N, 
             .map(Self::State::from)
             .collect()
     }
+}
+
+/// The last of the `samples` states of a sweep (its first error, if any).
+fn stretch_end<M, const N: usize, const NI: usize, const NO: usize>(
+    mut sweep: Sweep<'_, M, Kin<N, NI, NO>, N, NI, NO>,
+    samples: usize,
+) -> Result<Kin<N, NI, NO>, Error>
+where
+    M: Mechanism<N, NI, NO>,
+{
+    let mut last = None;
+    for _ in 0..samples {
+        last = Some(sweep.next_kin().ok_or_else(|| Error::InvalidArgument("a sweep ended early".into()))??);
+    }
+    last.ok_or_else(|| Error::InvalidArgument("a sweep without samples".into()))
 }
 
 /// Why `sensitivities` does not compile on a mechanism declared without them: the generated

@@ -1,11 +1,14 @@
-//! A table of kinematic states with named columns, and its CSV export.
+//! A table of kinematic states with named columns and units, and its CSV export and import.
 
 use crate::kin::Kin;
 use crate::mechanism::Mechanism;
+use crate::table_units;
 use std::io::{self, Write};
 use std::path::Path;
 
-/// Rows of numbers under named columns (one row per input value of a sweep).
+/// Rows of numbers under named columns (one row per input value of a sweep), with optional
+/// units written into the CSV header (`phi [rad]`, `x_c [mm]`, `d(x_c)/d(phi) [mm/rad]`).
+/// Angles are always in radians.
 ///
 /// ```
 /// use kinloop_runtime::Table;
@@ -16,19 +19,34 @@ use std::path::Path;
 /// let mut csv = Vec::new();
 /// t.write_csv(&mut csv).unwrap();
 /// assert_eq!(String::from_utf8(csv).unwrap(), "t,x\n0,1.5\n0.1,1.25\n");
+///
+/// // Units of the base quantities; the analog columns get theirs from them.
+/// let mut s = Table::new(vec!["phi".into(), "x_c".into(), "d(x_c)/d(phi)".into()]);
+/// s.push(vec![0.5, 1.0, -0.25]);
+/// let s = s.with_units(&[("phi", "rad"), ("x_c", "mm")]);
+/// let mut csv = Vec::new();
+/// s.write_csv(&mut csv).unwrap();
+/// assert!(String::from_utf8(csv.clone()).unwrap().starts_with("phi [rad],x_c [mm],d(x_c)/d(phi) [mm/rad]\n"));
+/// assert_eq!(Table::read_csv(&csv[..]).unwrap(), s);
 /// ```
 #[derive(Clone, Debug, Default, PartialEq)]
+#[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
 pub struct Table {
     /// Column names.
     pub columns: Vec<String>,
     /// Rows, each as long as `columns`.
     pub rows: Vec<Vec<f64>>,
+    /// Unit of each column (`""` for none; a missing entry is none), written into the CSV
+    /// header as `name [unit]`.
+    #[cfg_attr(feature = "serde", serde(default))]
+    pub units: Vec<String>,
 }
 
 impl Table {
     /// An empty table with these columns.
     pub fn new(columns: Vec<String>) -> Self {
-        Table { columns, rows: Vec::new() }
+        let units = vec![String::new(); columns.len()];
+        Table { columns, rows: Vec::new(), units }
     }
 
     /// Appends a row (it must have one value per column).
@@ -48,15 +66,61 @@ impl Table {
         Some(self.rows.iter().map(|r| r.get(k).copied().unwrap_or(f64::NAN)).collect())
     }
 
-    /// Writes the table as CSV (header line, then one line per row; shortest round-trip
-    /// formatting of every value).
-    pub fn write_csv(&self, mut w: impl Write) -> io::Result<()> {
-        writeln!(w, "{}", self.columns.iter().map(|c| csv_field(c)).collect::<Vec<_>>().join(","))?;
+    /// A column's values by name, converted from radians to degrees (for an angle column).
+    pub fn column_deg(&self, name: &str) -> Option<Vec<f64>> {
+        Some(self.column(name)?.into_iter().map(crate::to_deg).collect())
+    }
+
+    /// The unit of a column (`""` when none is known).
+    pub fn unit(&self, name: &str) -> Option<&str> {
+        let k = self.index(name)?;
+        Some(self.units.get(k).map_or("", String::as_str))
+    }
+
+    /// The table with units for its columns, from the units of the base quantities
+    /// (`("phi", "rad")`, `("x_c", "mm")`, a point `("p", "mm")` for `p.x` and `p.y`): the analog
+    /// columns get the quotients (`d(x_c)/d(phi)` in `mm/rad`, `d2(x_c)/d(phi)^2` in
+    /// `mm/rad^2`). Columns whose quantities have no unit given keep none.
+    pub fn with_units(mut self, base: &[(&str, &str)]) -> Self {
+        self.units = self.columns.iter().map(|c| table_units::derive(c, base)).collect();
+        self
+    }
+
+    /// Writes the table as CSV (header line with the units, then one line per row; shortest
+    /// round-trip formatting of every value, so reading it back gives the same bits).
+    pub fn write_csv(&self, w: impl Write) -> io::Result<()> {
+        let mut out = csv::WriterBuilder::new().terminator(csv::Terminator::Any(b'\n')).from_writer(w);
+        let header = self
+            .columns
+            .iter()
+            .enumerate()
+            .map(|(k, c)| table_units::header(c, self.units.get(k).map_or("", String::as_str)));
+        out.write_record(header.collect::<Vec<_>>())?;
         for row in &self.rows {
-            let line = row.iter().map(|v| v.to_string()).collect::<Vec<_>>().join(",");
-            writeln!(w, "{line}")?;
+            out.write_record(row.iter().map(|v| v.to_string()))?;
         }
-        Ok(())
+        out.flush()
+    }
+
+    /// Reads a table written by [`Table::write_csv`] (or any CSV with a header line and numeric
+    /// fields; `nan`, `inf` and `-inf` as Rust writes them): a field that is not a number is an
+    /// `InvalidData` error naming its line and column.
+    pub fn read_csv(r: impl io::Read) -> io::Result<Table> {
+        let mut input = csv::ReaderBuilder::new().has_headers(true).from_reader(r);
+        let (columns, units) = input.headers()?.iter().map(table_units::split_header).unzip();
+        let mut t = Table { columns, rows: Vec::new(), units };
+        for (line, record) in input.records().enumerate() {
+            let record = record?;
+            let row = record.iter().enumerate().map(|(k, field)| {
+                field.trim().parse::<f64>().map_err(|_| {
+                    let column = t.columns.get(k).map_or("?", String::as_str);
+                    let message = format!("CSV line {}: `{field}` in column `{column}` is not a number", line + 2);
+                    io::Error::new(io::ErrorKind::InvalidData, message)
+                })
+            });
+            t.rows.push(row.collect::<io::Result<Vec<f64>>>()?);
+        }
+        Ok(t)
     }
 
     /// Writes the table as a CSV file, creating missing parent directories.
@@ -130,8 +194,4 @@ impl Table {
         }
         t
     }
-}
-
-fn csv_field(s: &str) -> String {
-    if s.contains([',', '"', '\n']) { format!("\"{}\"", s.replace('"', "\"\"")) } else { s.to_string() }
 }

@@ -3,5 +3,7 @@
 //!
 //! Reached through the `kinloop` facade with its features `plot` and `draw`.
 
+#![warn(missing_docs)]
+
 pub mod draw;
 pub mod plot;

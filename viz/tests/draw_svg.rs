@@ -149,7 +149,7 @@ fn a_singular_crossing_passed_is_drawn_where_the_links_fold() {
     // C = (4, 0) (|BC| = 3, |CD| = 2 with D = (2, 0)). The sweep passes it and goes on.
     let m = FourBar { r: 1.0, l: 3.0, k: 2.0, d: 2.0, e: 1.0, delta: 0.5 };
     let g = m.position(0.5, &FourBarUnknowns { beta: 0.6, gamma: 1.6 }).unwrap().0;
-    let cfg = SweepConfig { at_singular: AtSingular::Continue, ..SweepConfig::default() };
+    let cfg = SweepConfig::default().with_at_singular(AtSingular::Continue);
     let mo = Motion::record(&m, m.sweep(0.5, 7.0, 66, &g).unwrap().with_config(cfg)).unwrap();
     assert!(!mo.stopped);
     assert_eq!(mo.poses.len(), 66);

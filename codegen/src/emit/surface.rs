@@ -135,12 +135,15 @@ fn params_struct(s: &Surface) -> TokenStream {
         }
         _ => quote!(),
     };
+    let rt = runtime();
     quote! {
-        #(#docs)*
-        #[derive(Clone, Copy, Debug, PartialEq)]
-        #[allow(non_snake_case)]
-        #vis struct #name {
-            #(#fields)*
+        #rt::serde_derive! {
+            #(#docs)*
+            #[derive(Clone, Copy, Debug, PartialEq)]
+            #[allow(non_snake_case)]
+            #vis struct #name {
+                #(#fields)*
+            }
         }
         #default
     }
@@ -162,13 +165,16 @@ pub fn named_struct(vis: &Visibility, ty: &Ident, doc: &str, fields: &[Field], k
     } else {
         (quote!(), quote!())
     };
+    let rt = runtime();
     quote! {
-        #[doc = #doc]
-        #[derive(Clone, Copy, Debug, Default, PartialEq)]
-        #[allow(non_snake_case)]
-        #vis struct #ty<T = f64> {
-            #(#docs pub #names: T,)*
-            #marker
+        #rt::serde_derive! {
+            #[doc = #doc]
+            #[derive(Clone, Copy, Debug, Default, PartialEq)]
+            #[allow(non_snake_case)]
+            #vis struct #ty<T = f64> {
+                #(#docs pub #names: T,)*
+                #marker
+            }
         }
         impl<T> ::core::convert::From<[T; #n]> for #ty<T> {
             #[inline]
@@ -214,11 +220,13 @@ fn outputs_struct(s: &Surface, t: &Types) -> TokenStream {
          [`{plain}State`] also their analogs."
     );
     quote! {
-        #[doc = #doc]
-        #[derive(Clone, Copy, Debug, Default, PartialEq)]
-        #[allow(non_snake_case)]
-        #vis struct #ty<T = f64> {
-            #(#fields)*
+        #rt::serde_derive! {
+            #[doc = #doc]
+            #[derive(Clone, Copy, Debug, Default, PartialEq)]
+            #[allow(non_snake_case)]
+            #vis struct #ty<T = f64> {
+                #(#fields)*
+            }
         }
         impl<T> ::core::convert::From<[T; #nol]> for #ty<T> {
             fn from([#(#flat),*]: [T; #nol]) -> Self {
@@ -279,7 +287,11 @@ fn state_struct(s: &Surface, t: &Types) -> TokenStream {
          ({analog_doc}), acceleration analogs, and the same for every output."
     );
     let motion_doc = format!("True velocities and accelerations of [`{plain}`] (time derivatives).");
+    // A state serializes as its flat `Kin` (the named fields repeat its values).
+    let kin = format!("::kinloop::__gen::Kin<{}, {ni}, {}>", s.unknowns.len(), s.n_outputs());
     quote! {
+        #rt::serde_derive! {
+        #[serde_as(from = #kin, into = #kin)]
         #[doc = #state_doc]
         #[derive(Clone, Copy, Debug, PartialEq)]
         #vis struct #state {
@@ -304,6 +316,13 @@ fn state_struct(s: &Surface, t: &Types) -> TokenStream {
             /// The same values as flat arrays in declaration order (for generic code).
             pub flat: #rt::Kin<#nl, #nil, #nol>,
         }
+        }
+        impl ::core::convert::From<#state> for #rt::Kin<#nl, #nil, #nol> {
+            #[inline]
+            fn from(s: #state) -> Self {
+                s.flat
+            }
+        }
         impl ::core::convert::From<#rt::Kin<#nl, #nil, #nol>> for #state {
             #[inline]
             fn from(k: #rt::Kin<#nl, #nil, #nol>) -> Self {
@@ -321,6 +340,7 @@ fn state_struct(s: &Surface, t: &Types) -> TokenStream {
                 }
             }
         }
+        #rt::serde_derive! {
         #[doc = #motion_doc]
         #[derive(Clone, Copy, Debug, PartialEq)]
         #vis struct #motion {
@@ -332,6 +352,7 @@ fn state_struct(s: &Surface, t: &Types) -> TokenStream {
             pub out_dot: #outputs,
             /// Accelerations of the outputs.
             pub out_ddot: #outputs,
+        }
         }
     }
 }

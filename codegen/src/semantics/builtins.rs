@@ -41,6 +41,8 @@ pub enum Lowering {
     Cross,
     /// A vector turned by an angle.
     Rot,
+    /// An angle written in degrees, in radians: `x * (pi / 180)`.
+    Degrees,
 }
 
 /// One built-in function.
@@ -76,6 +78,7 @@ pub static BUILTINS: &[Builtin] = &[
     unary("abs", Func::Abs),
     Builtin { name: "pow", args: &[("base", S), ("exponent", S)], result: S, lowering: Lowering::Pow },
     Builtin { name: "hypot", args: &[("a", S), ("b", S)], result: S, lowering: Lowering::Hypot },
+    Builtin { name: "deg", args: &[("degrees", S)], result: S, lowering: Lowering::Degrees },
     Builtin { name: "norm", args: &[("vector", V)], result: S, lowering: Lowering::Norm },
     Builtin { name: "dot", args: &[("vector", V), ("vector", V)], result: S, lowering: Lowering::Dot },
     Builtin { name: "cross", args: &[("vector", V), ("vector", V)], result: S, lowering: Lowering::Cross },
@@ -89,9 +92,12 @@ pub const HINTS: &[(&str, &str)] = &[
     ("powi", "write `x ^ n` or `pow(x, y)`"),
     ("powf", "write `x ^ n` or `pow(x, y)`"),
     ("sqr", "write `x ^ 2`"),
-    ("atan2d", "angles are in radians (write `30 * pi / 180`)"),
-    ("sind", "angles are in radians (write `30 * pi / 180`)"),
-    ("cosd", "angles are in radians (write `30 * pi / 180`)"),
+    ("atan2d", "angles are in radians: write `atan2(y, x)` (and `deg(30)` for 30 degrees)"),
+    ("sind", "angles are in radians: write `sin(deg(30))` for the sine of 30 degrees"),
+    ("cosd", "angles are in radians: write `cos(deg(30))` for the cosine of 30 degrees"),
+    ("tand", "angles are in radians: write `tan(deg(30))` for the tangent of 30 degrees"),
+    ("degrees", "write `deg(30)` for 30 degrees in radians"),
+    ("radians", "angles are in radians already; `deg(30)` converts 30 degrees"),
 ];
 
 /// The built-in function called `name`.
@@ -157,7 +163,7 @@ mod tests {
     fn listing_keeps_scalar_and_vector_groups() {
         assert_eq!(
             listing(),
-            "sin, cos, tan, asin, acos, atan, atan2, sqrt, exp, ln, abs, pow, hypot; \
+            "sin, cos, tan, asin, acos, atan, atan2, sqrt, exp, ln, abs, pow, hypot, deg; \
              for vectors: norm, dot, cross, angle, rot"
         );
     }

@@ -112,6 +112,10 @@ fn lower_builtin(g: &mut Graph, how: Lowering, vals: &[Val], exponent: Option<i3
             g.sub(p, q)
         }
         Lowering::Rot => return rotate(g, v(0), s(1)),
+        Lowering::Degrees => {
+            let per_degree = g.constant(std::f64::consts::PI / 180.0);
+            g.mul(s(0), per_degree)
+        }
     })
 }
 

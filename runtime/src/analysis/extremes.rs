@@ -17,6 +17,7 @@ use crate::error::Error;
 
 /// Whether a local extreme is a maximum or a minimum.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
+#[non_exhaustive]
 pub enum ExtremeKind {
     /// The velocity analog changes sign from positive to negative.
     Max,
@@ -27,6 +28,7 @@ pub enum ExtremeKind {
 /// A local extreme of a quantity: where its velocity analog vanishes and changes sign.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct LocalExtreme {
+    /// A maximum or a minimum.
     pub kind: ExtremeKind,
     /// The quantity, its (vanishing) velocity analog and its acceleration analog at the extreme.
     pub at: Jet,

@@ -64,9 +64,13 @@ use crate::paths::sweep::{Sweep, SweepConfig};
 /// to `x` (for a mechanism: position, velocity analog and acceleration analog at input `x`).
 #[derive(Clone, Copy, Debug, Default, PartialEq)]
 pub struct Jet {
+    /// The input value.
     pub x: f64,
+    /// The quantity at `x`.
     pub value: f64,
+    /// Its first derivative with respect to the input.
     pub d1: f64,
+    /// Its second derivative with respect to the input.
     pub d2: f64,
 }
 

@@ -17,7 +17,9 @@ use crate::solvers::newton::NewtonConfig;
 /// Which extremum to find.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub enum Extreme {
+    /// The largest value.
     Max,
+    /// The smallest value.
     Min,
 }
 

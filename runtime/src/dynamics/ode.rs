@@ -14,6 +14,7 @@ use super::error::DynamicsError;
 
 /// Tolerances and limits of [`dopri5`].
 #[derive(Clone, Copy, Debug, PartialEq)]
+#[non_exhaustive]
 pub struct OdeConfig {
     /// Relative tolerance per step.
     pub rtol: f64,
@@ -28,6 +29,25 @@ pub struct OdeConfig {
 impl Default for OdeConfig {
     fn default() -> Self {
         OdeConfig { rtol: 1e-10, atol: 1e-10, h_max: f64::INFINITY, max_steps: 10_000_000 }
+    }
+}
+
+impl OdeConfig {
+    /// Sets [`OdeConfig::rtol`] and [`OdeConfig::atol`].
+    pub fn with_tolerances(mut self, rtol: f64, atol: f64) -> Self {
+        self.rtol = rtol;
+        self.atol = atol;
+        self
+    }
+    /// Sets [`OdeConfig::h_max`].
+    pub fn with_h_max(mut self, h_max: f64) -> Self {
+        self.h_max = h_max;
+        self
+    }
+    /// Sets [`OdeConfig::max_steps`].
+    pub fn with_max_steps(mut self, n: usize) -> Self {
+        self.max_steps = n;
+        self
     }
 }
 

@@ -11,6 +11,7 @@ use crate::newton::NewtonConfig;
 
 /// Settings of [`simulate`].
 #[derive(Clone, Copy, Debug, PartialEq)]
+#[non_exhaustive]
 pub struct RunConfig {
     /// Integrator tolerances (the state is `[phi, omega]`).
     pub ode: OdeConfig,
@@ -23,6 +24,24 @@ pub struct RunConfig {
 impl Default for RunConfig {
     fn default() -> Self {
         RunConfig { ode: OdeConfig::default(), newton: NewtonConfig::default(), flywheel: 0.0 }
+    }
+}
+
+impl RunConfig {
+    /// Sets [`RunConfig::ode`].
+    pub fn with_ode(mut self, ode: OdeConfig) -> Self {
+        self.ode = ode;
+        self
+    }
+    /// Sets [`RunConfig::newton`].
+    pub fn with_newton(mut self, newton: NewtonConfig) -> Self {
+        self.newton = newton;
+        self
+    }
+    /// Sets [`RunConfig::flywheel`].
+    pub fn with_flywheel(mut self, inertia: f64) -> Self {
+        self.flywheel = inertia;
+        self
     }
 }
 

@@ -25,9 +25,13 @@ pub struct FourBarLinks {
 /// One link of a four-bar.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub enum Link {
+    /// The frame, between the two fixed pivots.
     Ground,
+    /// The driven crank.
     Input,
+    /// The link joining input and output.
     Coupler,
+    /// The follower (rocker or crank).
     Output,
 }
 
@@ -64,6 +68,7 @@ impl fmt::Display for GrashofClass {
 /// The classification of a four-bar: its class and which links turn fully relative to the ground.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct Grashof {
+    /// Grashof, non-Grashof or change point.
     pub class: GrashofClass,
     /// The shortest link (the first of ground, input, coupler, output on a tie).
     pub shortest: Link,

@@ -67,7 +67,9 @@ impl<M, const N: usize> ScanStart<M, N> {
 }
 
 /// What every sweep of a scan does: `samples` equally spaced inputs from `from` to `to` (both
-/// included, as in [`Sweep::new`]), starting as `start` says, with `config`.
+/// included, as in [`Sweep::new`]), starting as `start` says, with `config`. Built with
+/// [`ScanSpec::new`] and the builder methods.
+#[non_exhaustive]
 pub struct ScanSpec<M, const N: usize, const NI: usize> {
     /// Inputs at the first sample.
     pub from: [f64; NI],

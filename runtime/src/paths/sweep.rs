@@ -33,6 +33,8 @@ use std::marker::PhantomData;
 /// What a sweep does at a singular crossing (a change point where a block's determinant changes
 /// sign and the mechanism can continue on either branch).
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
+#[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
+#[non_exhaustive]
 pub enum AtSingular {
     /// Record the event and stop with [`Error::SweepStopped`] (default).
     Stop,
@@ -40,8 +42,21 @@ pub enum AtSingular {
     Continue,
 }
 
-/// Configuration of a sweep.
+/// Configuration of a sweep, built from the default with the `with_*` methods.
+///
+/// ```
+/// use kinloop_runtime::{AtSingular, NewtonConfig, SweepConfig};
+/// let cfg = SweepConfig::default()
+///     .with_newton(NewtonConfig::default().with_residual_tol(1e-14))
+///     .with_max_step(0.5)
+///     .with_at_singular(AtSingular::Continue);
+/// assert_eq!(cfg.max_step, 0.5);
+/// assert_eq!(cfg.newton.residual_tol, 1e-14);
+/// assert!(cfg.validate().is_ok());
+/// ```
 #[derive(Clone, Copy, Debug, PartialEq)]
+#[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
+#[non_exhaustive]
 pub struct SweepConfig {
     /// The Newton solver used at every step.
     pub newton: NewtonConfig,
@@ -78,6 +93,38 @@ impl Default for SweepConfig {
 }
 
 impl SweepConfig {
+    /// Sets [`SweepConfig::newton`].
+    pub fn with_newton(mut self, newton: NewtonConfig) -> Self {
+        self.newton = newton;
+        self
+    }
+    /// Sets [`SweepConfig::max_step`].
+    pub fn with_max_step(mut self, fraction: f64) -> Self {
+        self.max_step = fraction;
+        self
+    }
+    /// Sets [`SweepConfig::max_halvings`].
+    pub fn with_max_halvings(mut self, n: u32) -> Self {
+        self.max_halvings = n;
+        self
+    }
+    /// Sets [`SweepConfig::corrector_rel`] and [`SweepConfig::corrector_abs`].
+    pub fn with_corrector(mut self, rel: f64, abs: f64) -> Self {
+        self.corrector_rel = rel;
+        self.corrector_abs = abs;
+        self
+    }
+    /// Sets [`SweepConfig::at_singular`].
+    pub fn with_at_singular(mut self, at_singular: AtSingular) -> Self {
+        self.at_singular = at_singular;
+        self
+    }
+    /// Sets [`SweepConfig::singular_pivot`].
+    pub fn with_singular_pivot(mut self, ratio: f64) -> Self {
+        self.singular_pivot = ratio;
+        self
+    }
+
     /// The first field outside its valid range (NaN is outside every range), including the
     /// fields of [`SweepConfig::newton`].
     pub fn invalid_field(&self) -> Option<&'static str> {
@@ -107,7 +154,7 @@ impl SweepConfig {
     /// ```
     /// use kinloop_runtime::SweepConfig;
     /// assert!(SweepConfig::default().validate().is_ok());
-    /// let bad = SweepConfig { max_step: 0.0, ..SweepConfig::default() };
+    /// let bad = SweepConfig::default().with_max_step(0.0);
     /// assert!(bad.validate().unwrap_err().to_string().contains("max_step"));
     /// ```
     pub fn validate(&self) -> Result<(), Error> {

@@ -14,6 +14,8 @@ use crate::error::Error;
 /// assert!(NewtonConfig::default().with_residual_tol(f64::INFINITY).validate().is_err());
 /// ```
 #[derive(Clone, Copy, Debug, PartialEq)]
+#[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
+#[non_exhaustive]
 pub struct NewtonConfig {
     /// Converged when every residual is at most this fraction of its row magnitude,
     /// `max_i |f_i| / scale_i <= residual_tol` (default `1e-12`; valid range `[0, 1e-3]`; `0`
@@ -108,6 +110,7 @@ pub(crate) fn invalid_config(field: &str, cfg: &NewtonConfig) -> Error {
 
 /// Why a solve stopped successfully.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, PartialOrd, Ord, Hash)]
+#[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
 #[non_exhaustive]
 pub enum Termination {
     /// Every block was solved in closed form (linear blocks only).
@@ -122,6 +125,7 @@ pub enum Termination {
 
 /// Diagnostics of a position solve, summed over the blocks of the decomposition.
 #[derive(Clone, Copy, Debug, PartialEq)]
+#[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
 pub struct SolveReport {
     /// Newton iterations over all blocks (0 when the guess already satisfied the equations and
     /// only its correction was applied).

@@ -113,18 +113,41 @@ impl From<f64> for Scalar {
 pub enum Item {
     /// A rigid link through points: a bar for two points, a chain of bars or, `closed`, a
     /// filled polygon (a ternary link). Each point gets a joint circle.
-    Link { through: Vec<Pt>, closed: bool },
+    Link {
+        /// The points the link joins.
+        through: Vec<Pt>,
+        /// Fill the polygon through the points.
+        closed: bool,
+    },
     /// A fixed pivot (frame joint) with ground hatching.
-    Pivot { at: Pt },
+    Pivot {
+        /// The pivot's position.
+        at: Pt,
+    },
     /// A slider block at `at` on a guide in direction `angle`. A constant angle draws the
     /// guide (ground line with hatching) over the whole stroke; a moving guide (a rocker) is
     /// drawn as a link by the caller.
-    Slider { at: Pt, angle: Scalar },
+    Slider {
+        /// The block's position.
+        at: Pt,
+        /// Direction of the guide (radians).
+        angle: Scalar,
+    },
     /// A gear as its pitch circle of `radius` about `centre`, with a radius marking its turn
     /// `angle`.
-    Gear { centre: Pt, radius: f64, angle: Scalar },
+    Gear {
+        /// The gear's centre.
+        centre: Pt,
+        /// Its pitch radius.
+        radius: f64,
+        /// Its turn angle (radians).
+        angle: Scalar,
+    },
     /// A lone joint circle.
-    Joint { at: Pt },
+    Joint {
+        /// The joint's position.
+        at: Pt,
+    },
 }
 
 /// A drawing description: what to draw of a mechanism, at any pose.

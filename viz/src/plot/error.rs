@@ -8,15 +8,42 @@ use std::fmt;
 #[non_exhaustive]
 pub enum PlotError {
     /// No finite point to plot (in the figure, or in the named panel).
-    Empty { what: String },
+    Empty {
+        /// The figure or panel.
+        what: String,
+    },
     /// A series of another quantity kind than its axis: put it on its own axis (a panel).
-    MixedKinds { axis: String, expected: Box<Kind>, series: String, found: Box<Kind> },
+    MixedKinds {
+        /// Name of the axis.
+        axis: String,
+        /// The axis's kind.
+        expected: Box<Kind>,
+        /// Label of the series.
+        series: String,
+        /// The series's kind.
+        found: Box<Kind>,
+    },
     /// An x-y chart with equal scales needs the same kind (and unit) on both axes.
-    UnequalAxes { x: Kind, y: Kind },
+    UnequalAxes {
+        /// Kind of the x axis.
+        x: Kind,
+        /// Kind of the y axis.
+        y: Kind,
+    },
     /// A table has no column of that name.
-    MissingColumn { name: String, available: Vec<String> },
+    MissingColumn {
+        /// The name asked for.
+        name: String,
+        /// The table's columns.
+        available: Vec<String>,
+    },
     /// Writing the file (or creating its folder) failed.
-    Io { path: std::path::PathBuf, source: std::io::Error },
+    Io {
+        /// The file.
+        path: std::path::PathBuf,
+        /// The I/O error.
+        source: std::io::Error,
+    },
 }
 
 impl fmt::Display for PlotError {

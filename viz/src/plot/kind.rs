@@ -27,7 +27,12 @@ pub enum Kind {
     /// A pure number (a ratio, a count) [-].
     Dimensionless,
     /// Any other quantity, with its name (`"force"`) and unit (`"N"`).
-    Other { quantity: String, unit: String },
+    Other {
+        /// The quantity's name.
+        quantity: String,
+        /// Its unit.
+        unit: String,
+    },
 }
 
 impl Kind {
@@ -84,7 +89,9 @@ impl fmt::Display for Kind {
 /// An axis: what it shows (a name such as `"crank angle φ"`) and the kind of its values.
 #[derive(Clone, Debug, PartialEq)]
 pub struct Axis {
+    /// What the axis shows.
     pub name: String,
+    /// The kind of its values.
     pub kind: Kind,
 }
 

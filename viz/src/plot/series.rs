@@ -7,9 +7,11 @@ use kinloop_runtime::Table;
 /// A point with a non-finite coordinate breaks the curve (a sweep that stopped, a gap).
 #[derive(Clone, Debug, PartialEq)]
 pub struct Series {
+    /// Legend label.
     pub label: String,
     /// Kind of the `y` values (for an x-y chart, of both coordinates).
     pub kind: Kind,
+    /// The points `(x, y)`.
     pub points: Vec<(f64, f64)>,
 }
 
@@ -52,8 +54,11 @@ impl Series {
 /// A value axis with its curves and marked points (drawn as dots): one panel of a figure.
 #[derive(Clone, Debug, PartialEq)]
 pub struct Panel {
+    /// The value axis.
     pub axis: Axis,
+    /// The curves on it.
     pub series: Vec<Series>,
+    /// Marked points `(x, y)`.
     pub marks: Vec<(f64, f64)>,
 }
 

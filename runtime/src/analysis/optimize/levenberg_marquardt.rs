@@ -19,6 +19,7 @@ use crate::error::Error;
 /// assert!(m.converged() && m.value <= 1e-12);
 /// ```
 #[derive(Clone, Copy, Debug, PartialEq)]
+#[non_exhaustive]
 pub struct LevenbergMarquardt {
     /// Converged when the residual norm falls below this (default `1e-10`).
     pub tol: f64,

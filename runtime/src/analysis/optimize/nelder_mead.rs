@@ -25,6 +25,7 @@ use super::{Minimum, Stop};
 /// assert!(m.value < 1e-12 && m.evaluations < 1000);
 /// ```
 #[derive(Clone, Copy, Debug, PartialEq)]
+#[non_exhaustive]
 pub struct NelderMead {
     /// Stop after this many objective evaluations (default `2000`).
     pub max_evaluations: usize,

@@ -1,0 +1,106 @@
+//! Serialize and Deserialize of the flat kinematic state (feature `serde`). serde has no
+//! implementations for arrays of a generic length, so a state goes through nested sequences;
+//! reading one back checks every length against the mechanism's sizes.
+
+use crate::kin::{DetSigns, Health, Kin};
+use crate::solvers::newton::SolveReport;
+use serde::{Deserialize, Serialize};
+
+/// The serialized form of [`Kin`]: the same fields as nested sequences.
+#[derive(Serialize, Deserialize)]
+pub(crate) struct KinRepr {
+    x: Vec<f64>,
+    q: Vec<f64>,
+    dq: Vec<Vec<f64>>,
+    d2q: Vec<Vec<Vec<f64>>>,
+    out: Vec<f64>,
+    dout: Vec<Vec<f64>>,
+    d2out: Vec<Vec<Vec<f64>>>,
+    report: SolveReport,
+    health: Health,
+}
+
+fn to_vec2<const A: usize, const B: usize>(v: &[[f64; B]; A]) -> Vec<Vec<f64>> {
+    v.iter().map(|r| r.to_vec()).collect()
+}
+
+fn to_vec3<const A: usize, const B: usize, const C: usize>(v: &[[[f64; C]; B]; A]) -> Vec<Vec<Vec<f64>>> {
+    v.iter().map(to_vec2).collect()
+}
+
+/// `v` as an array of length `N`, or the error naming `field`.
+fn array<T, const N: usize>(v: Vec<T>, field: &str) -> Result<[T; N], String> {
+    let len = v.len();
+    v.try_into().map_err(|_| format!("`{field}` has {len} entries where the mechanism has {N}"))
+}
+
+fn array2<const A: usize, const B: usize>(v: Vec<Vec<f64>>, field: &str) -> Result<[[f64; B]; A], String> {
+    let rows: Result<Vec<[f64; B]>, String> = v.into_iter().map(|r| array(r, field)).collect();
+    array(rows?, field)
+}
+
+fn array3<const A: usize, const B: usize, const C: usize>(
+    v: Vec<Vec<Vec<f64>>>,
+    field: &str,
+) -> Result<[[[f64; C]; B]; A], String> {
+    let rows: Result<Vec<[[f64; C]; B]>, String> = v.into_iter().map(|r| array2(r, field)).collect();
+    array(rows?, field)
+}
+
+impl<const N: usize, const NI: usize, const NO: usize> From<Kin<N, NI, NO>> for KinRepr {
+    fn from(k: Kin<N, NI, NO>) -> Self {
+        KinRepr {
+            x: k.x.to_vec(),
+            q: k.q.to_vec(),
+            dq: to_vec2(&k.dq),
+            d2q: to_vec3(&k.d2q),
+            out: k.out.to_vec(),
+            dout: to_vec2(&k.dout),
+            d2out: to_vec3(&k.d2out),
+            report: k.report,
+            health: k.health,
+        }
+    }
+}
+
+impl<const N: usize, const NI: usize, const NO: usize> TryFrom<KinRepr> for Kin<N, NI, NO> {
+    type Error = String;
+    fn try_from(r: KinRepr) -> Result<Self, String> {
+        Ok(Kin {
+            x: array(r.x, "x")?,
+            q: array(r.q, "q")?,
+            dq: array2(r.dq, "dq")?,
+            d2q: array3(r.d2q, "d2q")?,
+            out: array(r.out, "out")?,
+            dout: array2(r.dout, "dout")?,
+            d2out: array3(r.d2out, "d2out")?,
+            report: r.report,
+            health: r.health,
+        })
+    }
+}
+
+impl<const N: usize, const NI: usize, const NO: usize> Serialize for Kin<N, NI, NO> {
+    fn serialize<S: serde::Serializer>(&self, s: S) -> Result<S::Ok, S::Error> {
+        KinRepr::from(*self).serialize(s)
+    }
+}
+
+impl<'de, const N: usize, const NI: usize, const NO: usize> Deserialize<'de> for Kin<N, NI, NO> {
+    fn deserialize<D: serde::Deserializer<'de>>(d: D) -> Result<Self, D::Error> {
+        Kin::try_from(KinRepr::deserialize(d)?).map_err(serde::de::Error::custom)
+    }
+}
+
+// The determinant signs as their four words.
+impl Serialize for DetSigns {
+    fn serialize<S: serde::Serializer>(&self, s: S) -> Result<S::Ok, S::Error> {
+        self.words().serialize(s)
+    }
+}
+
+impl<'de> Deserialize<'de> for DetSigns {
+    fn deserialize<D: serde::Deserializer<'de>>(d: D) -> Result<Self, D::Error> {
+        <[u64; 4]>::deserialize(d).map(DetSigns::from_words)
+    }
+}

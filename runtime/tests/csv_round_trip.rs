@@ -1,0 +1,54 @@
+//! The CSV of a table: its header against the expected names and units, its values read back
+//! with the csv crate's reader and with `Table::read_csv`, bit for bit.
+
+use kinloop_runtime::Table;
+
+fn sample() -> Table {
+    let columns = ["phi", "x_c", "d(x_c)/d(phi)", "d2(x_c)/d(phi)^2", "note, quoted", "p.y"];
+    let mut t = Table::new(columns.iter().map(|c| c.to_string()).collect());
+    t.push(vec![0.0, 1.0 / 3.0, -2.0 / 7.0, 0.1 + 0.2, f64::NAN, 5e-324]);
+    t.push(vec![std::f64::consts::PI, -1e300, f64::INFINITY, -0.0, 1.0, f64::MAX]);
+    t.with_units(&[("phi", "rad"), ("x_c", "mm"), ("p", "mm")])
+}
+
+#[test]
+fn header_carries_units_and_the_csv_crate_reads_it() {
+    let t = sample();
+    let mut bytes = Vec::new();
+    t.write_csv(&mut bytes).unwrap();
+    let mut reader = csv::Reader::from_reader(&bytes[..]);
+    let header: Vec<String> = reader.headers().unwrap().iter().map(String::from).collect();
+    assert_eq!(
+        header,
+        ["phi [rad]", "x_c [mm]", "d(x_c)/d(phi) [mm/rad]", "d2(x_c)/d(phi)^2 [mm/rad^2]", "note, quoted", "p.y [mm]"]
+    );
+    let rows: Vec<Vec<f64>> =
+        reader.records().map(|r| r.unwrap().iter().map(|f| f.parse::<f64>().unwrap()).collect()).collect();
+    assert_eq!(rows.len(), 2);
+    for (read, written) in rows.iter().flatten().zip(t.rows.iter().flatten()) {
+        assert!(read.to_bits() == written.to_bits() || (read.is_nan() && written.is_nan()), "{read} vs {written}");
+    }
+}
+
+#[test]
+fn read_csv_restores_the_table() {
+    let t = sample();
+    let mut bytes = Vec::new();
+    t.write_csv(&mut bytes).unwrap();
+    let back = Table::read_csv(&bytes[..]).unwrap();
+    assert_eq!(back.columns, t.columns);
+    assert_eq!(back.units, t.units);
+    assert_eq!(back.unit("d(x_c)/d(phi)"), Some("mm/rad"));
+    for (read, written) in back.rows.iter().flatten().zip(t.rows.iter().flatten()) {
+        assert!(read.to_bits() == written.to_bits() || (read.is_nan() && written.is_nan()));
+    }
+    // Degrees on request, from radians.
+    assert_eq!(back.column_deg("phi").unwrap(), vec![0.0, 180.0]);
+}
+
+#[test]
+fn a_field_that_is_not_a_number_is_a_typed_error() {
+    let err = Table::read_csv("a,b\n1,2\n3,x\n".as_bytes()).unwrap_err();
+    assert_eq!(err.kind(), std::io::ErrorKind::InvalidData);
+    assert!(err.to_string().contains("line 3") && err.to_string().contains("column `b`"), "{err}");
+}

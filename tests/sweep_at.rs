@@ -1,0 +1,47 @@
+//! A sweep over a given, unevenly spaced list of inputs, checked against the four-bar's closed
+//! form (intersection of two circles) on one assembly branch throughout.
+
+use kinloop_fixtures::FourBar;
+use std::f64::consts::TAU;
+
+/// Joint C of the four-bar by the law of cosines, on the branch `side` (+1 or -1).
+fn joint_c(m: &FourBar, phi: f64, side: f64) -> (f64, f64) {
+    let (bx, by) = (m.a * phi.cos(), m.a * phi.sin());
+    let (ux, uy) = (m.d - bx, -by);
+    let l = ux.hypot(uy);
+    let alpha = ((m.b * m.b + l * l - m.c * m.c) / (2.0 * m.b * l)).acos();
+    let t = uy.atan2(ux) + side * alpha;
+    (bx + m.b * t.cos(), by + m.b * t.sin())
+}
+
+#[test]
+fn uneven_inputs_stay_on_one_branch() {
+    // A crank-rocker: the crank turns fully, no limit position of the input.
+    let m = FourBar { a: 1.0, b: 3.0, c: 2.5, d: 3.0 };
+    // Quadratically spaced over two turns, with a repeat and a long jump back.
+    let mut inputs: Vec<f64> = (0..=40).map(|k| 2.0 * TAU * (k as f64 / 40.0).powi(2)).collect();
+    inputs.insert(5, inputs[5]);
+    inputs.push(0.25);
+    let g = m.guess(inputs[0]);
+    let states = m.sweep_at(inputs.iter().copied(), &g).unwrap();
+    assert_eq!(states.len(), inputs.len());
+    let first = states[0].out.pc;
+    let side = if (joint_c(&m, inputs[0], 1.0).1 - first.y).abs() < 1e-9 { 1.0 } else { -1.0 };
+    for (s, &phi) in states.iter().zip(&inputs) {
+        assert_eq!(s.input.phi, phi);
+        let (cx, cy) = joint_c(&m, phi, side);
+        // Lengths of order 3: a few ulps of the closed form's rounding.
+        assert!((s.out.pc.x - cx).abs() < 1e-12 && (s.out.pc.y - cy).abs() < 1e-12, "phi = {phi}");
+    }
+}
+
+#[test]
+fn a_limit_position_between_inputs_is_a_typed_error() {
+    // A double rocker: the crank cannot pass phi where |BD| = b + c.
+    let m = FourBar { a: 2.0, b: 1.0, c: 1.5, d: 3.0 };
+    let g = m.position(0.3, &m.guess(0.3)).unwrap().0;
+    let err = m.sweep_at([0.3, 0.5, 3.0], &g).unwrap_err();
+    assert!(matches!(err, kinloop::Error::SweepStopped { .. } | kinloop::Error::Branch { .. }), "{err}");
+    // No inputs, no states.
+    assert!(m.sweep_at(Vec::<f64>::new(), &g).unwrap().is_empty());
+}
