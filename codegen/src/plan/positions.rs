@@ -48,5 +48,7 @@ pub fn block(g: &mut Graph, blk: &Block, residuals: &[NodeId], jac_full: &[Vec<N
         vel: Vec::new(),
         acc: Vec::new(),
         sens: None,
+        scale: Vec::new(),
+        unit: Vec::new(),
     }
 }

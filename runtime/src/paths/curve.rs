@@ -167,7 +167,7 @@ where
         let sigma = y[N];
         let jac = m.jacobian_flat(&path.at_sigma(sigma), &q);
         // Scale-free: each residual relative to its row's magnitude.
-        let res = system_residual(&jac.f, &jac.j, &f_sigma(&jac, path));
+        let res = system_residual(&jac.f, &jac.j, &f_sigma(&jac, path), &jac.scale);
         if !res.is_finite() {
             return None;
         }
@@ -191,7 +191,7 @@ where
             q.copy_from_slice(&y.as_slice()[..N]);
             let jac = m.jacobian_flat(&path.at_sigma(y[N]), &q);
             // The step is at the rounding floor: accept a residual up to its floor.
-            if system_residual(&jac.f, &jac.j, &f_sigma(&jac, path)) <= 1e3 * cfg.residual_tol.max(16.0 * f64::EPSILON)
+            if system_residual(&jac.f, &jac.j, &f_sigma(&jac, path), &jac.scale) <= 1e3 * cfg.residual_tol.max(16.0 * f64::EPSILON)
             {
                 let tangent = tangent(m, path, &q, y[N], &p.tangent)?;
                 return Some(CurvePoint { q, sigma: y[N], tangent });
