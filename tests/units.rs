@@ -127,8 +127,7 @@ fn sweeps<M: Mechanism<N, NI, NO>, const N: usize, const NI: usize, const NO: us
     let run = |k: f64| {
         let m = (c.at)(k);
         let (from, to, n) = c.sweep;
-        let mut s =
-            kinloop::Sweep::<M, Kin<N, NI, NO>, N, NI, NO>::new(&m, from, to, n, m.guess_flat(&from)).unwrap();
+        let mut s = kinloop::Sweep::<M, Kin<N, NI, NO>, N, NI, NO>::new(&m, from, to, n, m.guess_flat(&from)).unwrap();
         let states: Vec<Result<Kin<N, NI, NO>, Error>> = s.by_ref().collect();
         (states, s.events().to_vec())
     };
@@ -318,10 +317,7 @@ fn limit_position_is_located_at_the_same_input_at_every_scale() {
             .unwrap()
             .with_config(SweepConfig::default());
         let stop = s.by_ref().find_map(|r| r.err());
-        assert!(
-            matches!(stop, Some(Error::SweepStopped { kind: EventKind::LimitPosition, .. })),
-            "k={k}: {stop:?}"
-        );
+        assert!(matches!(stop, Some(Error::SweepStopped { kind: EventKind::LimitPosition, .. })), "k={k}: {stop:?}");
         found.push(s.events()[0].x[0]);
     }
     let spread = found.iter().map(|x| (x - found[3]).abs()).fold(0.0, f64::max);

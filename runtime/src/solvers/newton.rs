@@ -140,9 +140,11 @@ fn scaled_step<const N: usize>(dz: &[f64; N], z: &[f64; N], unit: &[f64; N]) -> 
 }
 
 /// The scaled residual of a full system (continuation, event location): each residual relative
-/// to its generated row magnitude `scale` (see [`BlockEval::scale`]); where none is known, to
-/// `sum_j |J_ij| + |extra_i|`, where `extra` holds further derivatives of the row (e.g. along
-/// the input path, which keeps that fallback away from zero at a limit position).
+/// to the larger of its generated row magnitude `scale` (see [`BlockEval::scale`]) and
+/// `sum_j |J_ij| + |extra_i|`, where `extra` holds further derivatives of the row (along the
+/// input path). The second keeps the test attainable where every term of a row vanishes at a
+/// branch point (e.g. `s^2 - x^2` at the origin), where the continuation's absolute step test
+/// stops before a residual relative to the vanishing magnitude is reached.
 pub(crate) fn system_residual<const N: usize>(
     f: &[f64; N],
     j: &[[f64; N]; N],
@@ -151,11 +153,9 @@ pub(crate) fn system_residual<const N: usize>(
 ) -> f64 {
     let mut s = [0.0; N];
     for r in 0..N {
-        s[r] = if scale[r] > 0.0 && scale[r] < f64::INFINITY {
-            scale[r]
-        } else {
-            j[r].iter().map(|v| v.abs()).sum::<f64>() + extra[r].abs()
-        };
+        let derivatives = j[r].iter().map(|v| v.abs()).sum::<f64>() + extra[r].abs();
+        // NaN in `scale` leaves `derivatives`.
+        s[r] = if scale[r] > derivatives { scale[r] } else { derivatives };
     }
     scaled_residual(f, &s)
 }
@@ -569,7 +569,13 @@ mod tests {
 
     #[test]
     fn nan_is_reported() {
-        let f = |z: &[f64; 1]| BlockEval { f: [z[0].sqrt() - 1.0], j: [[0.5 / z[0].sqrt()]], scale: [0.0], unit: [1.0], keep: [] };
+        let f = |z: &[f64; 1]| BlockEval {
+            f: [z[0].sqrt() - 1.0],
+            j: [[0.5 / z[0].sqrt()]],
+            scale: [0.0],
+            unit: [1.0],
+            keep: [],
+        };
         let e = newton([-1.0], &NewtonConfig::default(), f).unwrap_err();
         assert!(matches!(e, BlockFailure::NonFinite { row: 0, .. }));
     }
