@@ -12,6 +12,9 @@
 //! rounding of `k` times each parameter amplified by the mechanism's condition), `1e-14` of the
 //! mechanism's size for lengths, and `1e-12` for the inputs at events.
 
+// The loops walk several parallel fixed-size arrays (states, dimensions) by one index.
+#![allow(clippy::needless_range_loop)]
+
 use kinloop::{Error, EventKind, Kin, Mechanism, NewtonConfig, Sensitivities, SweepConfig};
 use kinloop_fixtures::{ClassFour, DisplacerRodDrive, FiveBar, FourBar, SliderCrank};
 use std::f64::consts::PI;
