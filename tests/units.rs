@@ -330,3 +330,36 @@ fn limit_position_is_located_at_the_same_input_at_every_scale() {
     // Located to about sqrt(eps) in the input (the curve is flat there in phi).
     assert!(off <= 1e-9, "{found:?} vs {exact}");
 }
+
+kinloop::mechanism! {
+    /// Offset slider-crank by the rod-length equation alone: one equation in the slider
+    /// position `x`, a block of one length unknown (whose Jacobian row sum says nothing about
+    /// the equation's unit).
+    pub struct RodLength {
+        params r, l, e;
+        input phi;
+        unknowns x = l;
+        eq rod: (x - r * cos(phi)) ^ 2 + (r * sin(phi) - e) ^ 2 == l * l;
+    }
+}
+
+/// A one-unknown block in a length: from guesses `1e-4` relative off, the slider position at
+/// every scale equals `k` times the closed form `r cos phi + sqrt(l^2 - (r sin phi - e)^2)`.
+#[test]
+fn one_length_unknown_block_is_unit_free() {
+    let (r, l, e) = (1.0f64, 3.2f64, 0.4f64);
+    let mut worst = 0.0f64;
+    for k in SCALES {
+        let m = RodLength { r: r * k, l: l * k, e: e * k };
+        for i in 0..12 {
+            let phi = 0.3 + 2.0 * PI * i as f64 / 12.0;
+            let exact = r * phi.cos() + (l * l - (r * phi.sin() - e).powi(2)).sqrt();
+            for off in [1e-4, -1e-4, 1e-9] {
+                let got = m.kinematics_flat(&[phi], &[exact * k * (1.0 + off)], &NewtonConfig::default()).unwrap();
+                worst = worst.max((got.q[0] / k - exact).abs() / (r + l + e));
+            }
+        }
+    }
+    eprintln!("one length unknown: {worst:.1e}");
+    assert!(worst <= LENGTH_TOL, "{worst:e}");
+}
