@@ -189,3 +189,52 @@ fn a_branch_flip_in_block_seventy_is_caught() {
     assert!((all[4].q.s70 - -1.0).abs() < 1e-14, "{}", all[4].q.s70);
     let _ = <ManyBlocks as Mechanism<71, 1, 0>>::BLOCKS;
 }
+
+/// Five-bar with equal cranks (`a = e = 1`) and equal links (`b = c = 2`): where the cranks'
+/// joints B and D coincide (`cos th1 = d / 2`, `th2 = pi - th1`, from `|B - (d, 0)| = e`),
+/// the Jacobian and `[J | dF/dx]` are both singular, and branches cross: the motion goes on.
+/// The continuation used to leave that point on the crossing branch, whose input reverses, and
+/// reported a limit position that `AtSingular::Continue` could not pass.
+#[test]
+fn five_bar_coincident_joints_are_a_crossing_not_a_limit_position() {
+    use kinloop::{Kin, Mechanism};
+    use kinloop_fixtures::FiveBar;
+    let m = FiveBar { a: 1.0, b: 2.0, c: 2.0, d: 1.5, e: 1.0 };
+    let th1 = (m.d / 2.0).acos();
+    let star = [th1, std::f64::consts::PI - th1];
+    let from = [2.0, 1.0];
+    let sweep = |to: [f64; 2], at_singular: AtSingular, samples: usize, guess: [f64; 2]| {
+        let cfg = SweepConfig::default().with_at_singular(at_singular);
+        let mut s = kinloop::Sweep::<FiveBar, Kin<2, 2, 3>, 2, 2, 3>::new(&m, from, to, samples, guess)
+            .unwrap()
+            .with_config(cfg);
+        let states: Vec<_> = s.by_ref().collect();
+        (states, s.events().to_vec())
+    };
+    // The residual of a state relative to the loop's magnitude (the sum of its lengths).
+    let size = m.a + m.b + m.c + m.d + m.e;
+    let closes = |k: &Kin<2, 2, 3>| m.residual_flat(&k.x, &k.q).iter().all(|r| r.abs() <= 1e-12 * size);
+    let through = [2.0 * star[0] - from[0], 2.0 * star[1] - from[1]];
+    let modes = kinloop::Named::assembly_modes(&m, from);
+    assert_eq!(modes.len(), 2);
+    for mode in &modes {
+        let guess = [mode.q.phi2, mode.q.phi3];
+        for samples in [2, 64] {
+            let (states, events) = sweep(through, AtSingular::Stop, samples, guess);
+            let stop = states.iter().find_map(|r| r.as_ref().err());
+            assert!(matches!(stop, Some(Error::SweepStopped { kind: EventKind::SingularCrossing, .. })), "{stop:?}");
+            assert_eq!(events.len(), 1);
+            // A branch point is located to about `sqrt(eps)` in the input (the determinant and
+            // the path's rate both vanish there to first order only along some directions).
+            assert!((events[0].x[0] - star[0]).abs() < 1e-7, "{events:?} vs {star:?}");
+            assert!((events[0].x[1] - star[1]).abs() < 1e-7, "{events:?} vs {star:?}");
+            let (states, events) = sweep(through, AtSingular::Continue, samples, guess);
+            assert_eq!(states.len(), samples);
+            assert!(states.iter().all(|r| r.as_ref().is_ok_and(closes)), "{states:?}");
+            assert_eq!(events.iter().map(|e| e.kind).collect::<Vec<_>>(), [EventKind::SingularCrossing]);
+        }
+        // A path 0.01 rad aside passes near the point with no event.
+        let (states, events) = sweep([through[0] + 0.01, through[1] + 0.01], AtSingular::Stop, 64, guess);
+        assert!(states.iter().all(|r| r.as_ref().is_ok_and(closes)) && events.is_empty(), "{events:?}");
+    }
+}

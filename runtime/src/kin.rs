@@ -190,7 +190,8 @@ impl<const N: usize, const NI: usize, const NO: usize, const NP: usize> Sens<N, 
 }
 
 /// Residuals and first derivatives of all equations at one point: `f`, `j[e][u] = df_e/dq_u`,
-/// `fx[e][i] = df_e/dx_i`.
+/// `fx[e][i] = df_e/dx_i`, and the magnitude of each equation's terms `scale[e]` (the unit its
+/// residual is judged in; see `BlockEval::scale`; `0` where none is known).
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct Jac<const N: usize, const NI: usize> {
     /// Residuals `f_e`.
@@ -199,6 +200,9 @@ pub struct Jac<const N: usize, const NI: usize> {
     pub j: [[f64; N]; N],
     /// Jacobian with respect to the inputs, `fx[e][i] = df_e/dx_i`.
     pub fx: [[f64; NI]; N],
+    /// Magnitude of each equation's terms (the sum of the link lengths of a loop projection):
+    /// the scale residuals are judged against, so that tests do not depend on the unit of length.
+    pub scale: [f64; N],
 }
 
 /// True velocities and accelerations (time derivatives) of unknowns and outputs.

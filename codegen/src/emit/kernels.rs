@@ -82,7 +82,8 @@ fn plan_scopes(plan: &Plan, mode: Mode, sens: bool) -> Scopes {
                     vec![],
                 )
             } else {
-                (Vec::new(), bp.f.iter().copied().chain(bp.jac.concat()).collect())
+                let scales = bp.scale.iter().chain(&bp.unit).copied();
+                (Vec::new(), bp.f.iter().copied().chain(bp.jac.concat()).chain(scales).collect())
             };
             let p = s.push(ScopeKind::Plain, pre);
             s.pre.push(p);
@@ -317,6 +318,7 @@ impl Kernel<'_> {
         });
         let f = self.names.operands(self.g, &bp.f);
         let jrows = self.names.rows(self.g, &bp.jac);
+        let (scale, unit) = (self.names.operands(self.g, &bp.scale), self.names.operands(self.g, &bp.unit));
         let (s, ev) = (format_ident!("__s{}", b), format_ident!("__eval{}", b));
         // The block's evaluation is one closure handed to the runtime's Newton, which checks
         // the guess, corrects it at least once and always checks the final residual.
@@ -324,7 +326,7 @@ impl Kernel<'_> {
             let #ev = |__z: &[f64; #n]| -> #rt::BlockEval<#n, #k> {
                 let [#(#qs),*] = *__z;
                 #inner
-                #rt::BlockEval { f: [#(#f),*], j: #jrows, scale: [0.0; #n], keep: [#(#exports),*] }
+                #rt::BlockEval { f: [#(#f),*], j: #jrows, scale: [#(#scale),*], unit: [#(#unit),*], keep: [#(#exports),*] }
             };
             let __z0: [f64; #n] = [#(#guess),*];
             let #s = match #rt::newton::<#n, #k>(__z0, __cfg, #ev) {
@@ -610,20 +612,20 @@ pub fn straight_line(plan: &Plan, names: &Names, roots: &[NodeId], with_q: bool)
 /// Residuals, full Jacobian and input derivatives at `(x, q)`, as a `Jac`.
 pub fn jacobian_body(plan: &Plan, names: &Names) -> TokenStream {
     let g = &plan.graph;
-    let roots: Vec<NodeId> =
-        plan.residuals.iter().copied().chain(plan.jac_full.concat()).chain(plan.fx_full.concat()).collect();
+    let roots = plan.residuals.iter().copied().chain(plan.jac_full.concat()).chain(plan.fx_full.concat());
+    let roots: Vec<NodeId> = roots.chain(plan.scale_full.iter().copied()).collect();
     let used: HashSet<Leaf> = g.leaves_of(&roots).into_iter().collect();
     let sched = schedule(g, &plan.level, &[ScopeSpec { kind: ScopeKind::Plain, roots }]);
     let lets = names.lets(g, &sched, &sched.lets[0]);
     let (q, rt) = (bind_q(names, &used), runtime());
-    let f = names.operands(g, &plan.residuals);
+    let (f, scale) = (names.operands(g, &plan.residuals), names.operands(g, &plan.scale_full));
     let (n, ni) = (lit(plan.n), lit(plan.ni));
     let (j, fx) = (sparse_entries(plan, names, &plan.jac_full, "j"), sparse_entries(plan, names, &plan.fx_full, "fx"));
     let mut body = prologue(names, &used);
     body.extend(quote! {
         #q
         #lets
-        let mut __jac = #rt::Jac { f: [#(#f),*], j: [[0.0; #n]; #n], fx: [[0.0; #ni]; #n] };
+        let mut __jac = #rt::Jac { f: [#(#f),*], j: [[0.0; #n]; #n], fx: [[0.0; #ni]; #n], scale: [#(#scale),*] };
         #j
         #fx
         __jac

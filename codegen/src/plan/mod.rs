@@ -9,13 +9,16 @@
 //!   acceleration analogs solve `J_bb q''_b = -T_j T_i f_b`, again with the block's own second
 //!   analogs set to zero: the second directional derivative of `f` along `(q', 1)` ([`analogs`]);
 //! * the outputs' analogs follow by the chain rule ([`outputs`]);
-//! * parameter sensitivities, only when the declaration asks for them ([`sensitivities`]).
+//! * parameter sensitivities, only when the declaration asks for them ([`sensitivities`]);
+//! * the magnitude of every equation's terms and the unit of every unknown, in which the
+//!   runtime's convergence tests are made ([`magnitudes`]).
 //!
 //! The analogs themselves are leaves of the graph (`Tan`, `Tan2`, ...), created by [`seeds`].
 //! Each pass adds nodes to the graph; [`build`] runs them in order and returns a [`Plan`] that
 //! owns the finished graph and is not changed afterwards.
 
 pub mod analogs;
+pub mod magnitudes;
 pub mod outputs;
 pub mod positions;
 pub mod seeds;
@@ -50,6 +53,10 @@ pub struct BlockPlan {
     pub sens: Option<Stages>,
     /// Closed-form hook: the block's closed-form solve, when it has one (else Newton or linear).
     pub closed: Option<crate::closed_form::Recognised>,
+    /// Per row: the magnitude of the equation's terms (see [`magnitudes`]).
+    pub scale: Vec<NodeId>,
+    /// Per block unknown: the unit its Newton steps are judged in (see [`magnitudes`]).
+    pub unit: Vec<NodeId>,
 }
 
 /// Right-hand sides (per row) or values (per output) of the parameter sensitivities, by stage:
@@ -82,6 +89,8 @@ pub struct Plan {
     pub jac_full: Vec<Vec<NodeId>>,
     /// `fx_full[e][i] = d f_e / d x_i`.
     pub fx_full: Vec<Vec<NodeId>>,
+    /// `scale_full[e]`: the magnitude of equation `e`'s terms (see [`magnitudes`]).
+    pub scale_full: Vec<NodeId>,
     /// Parameter defaults, when every parameter has one.
     pub defaults: Option<Vec<f64>>,
     /// Per node: highest block whose unknowns it depends on (`-1`: none).
@@ -146,6 +155,11 @@ pub fn build(model: &mut Model, blocks: &[Block], with_sensitivities: bool) -> P
             bp.closed = crate::closed_form::recognise(&mut g, blk, &bp.f, np);
         }
     }
+    let mut mags = magnitudes::Magnitudes::new(&g, &residuals);
+    for bp in plans.iter_mut() {
+        (bp.scale, bp.unit) = mags.block(&mut g, bp);
+    }
+    let scale_full = residuals.iter().map(|&r| mags.of(&mut g, r)).collect();
     let mut firsts = Vec::new();
     for (b, bp) in plans.iter_mut().enumerate() {
         firsts.push(analogs::block(&mut g, &seeds, b, bp));
@@ -175,6 +189,7 @@ pub fn build(model: &mut Model, blocks: &[Block], with_sensitivities: bool) -> P
         guesses,
         jac_full: full.0,
         fx_full: full.1,
+        scale_full,
         defaults,
         level,
     }

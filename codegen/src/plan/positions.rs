@@ -49,5 +49,7 @@ pub fn block(g: &mut Graph, blk: &Block, residuals: &[NodeId], jac_full: &[Vec<N
         acc: Vec::new(),
         sens: None,
         closed: None,
+        scale: Vec::new(),
+        unit: Vec::new(),
     }
 }

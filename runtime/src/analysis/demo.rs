@@ -129,7 +129,14 @@ impl Mechanism<1, 1, 1> for SliderCrank {
         let (sn, cs) = x[0].sin_cos();
         let w = q[0] - self.r * cs;
         let s = self.r * sn - self.e;
-        Jac { f: self.residual_flat(x, q), j: [[2.0 * w]], fx: [[2.0 * w * self.r * sn + 2.0 * s * self.r * cs]] }
+        // Terms of `w^2 + s^2 - l^2`, each bounded by the squared sum of the lengths.
+        let scale = [(q[0].abs() + self.r.abs() + self.e.abs()).powi(2) + self.l * self.l];
+        Jac {
+            f: self.residual_flat(x, q),
+            j: [[2.0 * w]],
+            fx: [[2.0 * w * self.r * sn + 2.0 * s * self.r * cs]],
+            scale,
+        }
     }
 
     fn check_params(&self) -> Result<(), Error> {

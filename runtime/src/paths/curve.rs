@@ -161,13 +161,17 @@ where
 {
     let y_pred = p.y() + &p.tangent * ds;
     let mut y = y_pred.clone();
+    // A point meeting the tolerance is corrected once more (free accuracy where Newton
+    // converges quadratically, needed near singular points where the tolerance leaves the
+    // position loose), then accepted the next time it meets the tolerance.
+    let mut corrected = false;
     for _ in 0..cfg.max_iterations.max(8) {
         let mut q = [0.0; N];
         q.copy_from_slice(&y.as_slice()[..N]);
         let sigma = y[N];
         let jac = m.jacobian_flat(&path.at_sigma(sigma), &q);
-        // Scale-free: each residual relative to its row's magnitude.
-        let res = system_residual(&jac.f, &jac.j, &f_sigma(&jac, path));
+        // Each residual relative to its row's magnitude (see `system_residual`).
+        let res = system_residual(&jac.f, &jac.j, &f_sigma(&jac, path), &jac.scale);
         if !res.is_finite() {
             return None;
         }
@@ -176,10 +180,11 @@ where
             g[e] = -jac.f[e];
         }
         g[N] = -p.tangent.dot(&(&y - &y_pred));
-        if res <= cfg.residual_tol && g[N].abs() <= cfg.residual_tol * (1.0 + ds.abs()) {
+        if res <= cfg.residual_tol && g[N].abs() <= cfg.residual_tol * (1.0 + ds.abs()) && corrected {
             let tangent = tangent(m, path, &q, sigma, &p.tangent)?;
             return Some(CurvePoint { q, sigma, tangent });
         }
+        corrected |= res <= cfg.residual_tol;
         let a = bordered(&jac, path, &p.tangent);
         let dy = a.lu().solve(&g)?;
         if !dy.iter().all(|v| v.is_finite()) {
@@ -191,7 +196,8 @@ where
             q.copy_from_slice(&y.as_slice()[..N]);
             let jac = m.jacobian_flat(&path.at_sigma(y[N]), &q);
             // The step is at the rounding floor: accept a residual up to its floor.
-            if system_residual(&jac.f, &jac.j, &f_sigma(&jac, path)) <= 1e3 * cfg.residual_tol.max(16.0 * f64::EPSILON)
+            if system_residual(&jac.f, &jac.j, &f_sigma(&jac, path), &jac.scale)
+                <= 1e3 * cfg.residual_tol.max(16.0 * f64::EPSILON)
             {
                 let tangent = tangent(m, path, &q, y[N], &p.tangent)?;
                 return Some(CurvePoint { q, sigma: y[N], tangent });
@@ -273,6 +279,80 @@ where
     arc_step(m, path, base, s, cfg)
 }
 
+/// Whether the augmented Jacobian `[J | dF/dsigma]` at `p` has full rank `N`: its smallest
+/// singular value, with rows scaled by their magnitudes and columns by their largest entry, is
+/// not negligible. At a limit position `J` alone is singular and the augmented matrix is not
+/// (the input cannot go on); where both are singular branches cross.
+fn augmented_full_rank<M, const N: usize, const NI: usize, const NO: usize>(
+    m: &M,
+    path: &Path<NI>,
+    p: &CurvePoint<N>,
+) -> bool
+where
+    M: Mechanism<N, NI, NO>,
+{
+    let jac = m.jacobian_flat(&path.at_sigma(p.sigma), &p.q);
+    let fs = f_sigma(&jac, path);
+    let mut a = DMatrix::zeros(N, N + 1);
+    for e in 0..N {
+        let row = jac.scale[e];
+        let row = if row > 0.0 && row.is_finite() { row } else { 1.0 };
+        for u in 0..N {
+            a[(e, u)] = jac.j[e][u] / row;
+        }
+        a[(e, N)] = fs[e] / row;
+    }
+    for c in 0..=N {
+        let big = a.column(c).amax();
+        if big > 0.0 {
+            a.column_mut(c).unscale_mut(big);
+        }
+    }
+    let sv = a.svd(false, false).singular_values;
+    let (lo, hi) = (sv.min(), sv.max());
+    // A fold located to about the rounding of `s` leaves a smallest singular value of order
+    // one; a crossing, one of the order of the distance to it (`sqrt(eps)` at most).
+    hi > 0.0 && lo > RANK_TOL * hi
+}
+
+/// Relative singular value below which the augmented Jacobian is rank deficient.
+const RANK_TOL: f64 = 1e-6;
+
+/// The point past the branch point `at` that the path tangent at `a` continues to: solved at
+/// fixed input from the straight (tangent) prediction, beyond `at` by up to eight times the
+/// distance from `a` to it, with the far side's determinant sign.
+fn straight_past<M, const N: usize, const NI: usize, const NO: usize>(
+    m: &M,
+    path: &Path<NI>,
+    a: &CurvePoint<N>,
+    at: &CurvePoint<N>,
+    cfg: &NewtonConfig,
+) -> Option<CurvePoint<N>>
+where
+    M: Mechanism<N, NI, NO>,
+{
+    let rate = a.dsigma();
+    let gap = at.sigma - a.sigma;
+    if !(rate > 0.0 && gap > 0.0) {
+        return None;
+    }
+    let det_a = signed_det(m, &path.at_sigma(a.sigma), &a.q);
+    for k in [1.0, 2.0, 4.0, 8.0] {
+        let sigma = at.sigma + k * gap;
+        let mut guess = a.q;
+        for u in 0..N {
+            guess[u] += a.tangent[u] / rate * (sigma - a.sigma);
+        }
+        let Ok(n) = m.kinematics_flat(&path.at_sigma(sigma), &guess, cfg) else { continue };
+        if (signed_det(m, &path.at_sigma(sigma), &n.q) > 0.0) == (det_a > 0.0) {
+            continue;
+        }
+        let tangent = tangent_from_analogs(&n.dq, path);
+        return Some(CurvePoint { q: n.q, sigma, tangent });
+    }
+    None
+}
+
 /// What following the curve found.
 pub(crate) enum Found<const N: usize> {
     /// A limit position: the input reverses here.
@@ -314,7 +394,14 @@ where
         };
         let det_b = det_at(&b);
         if b.dsigma() <= 0.0 {
-            return locate_fold(m, path, &a, ds, b.dsigma(), cfg).map(Found::Fold);
+            let fold = locate_fold(m, path, &a, ds, b.dsigma(), cfg)?;
+            // Where `[J | dF/dsigma]` loses rank too, the input is not stopped: several
+            // branches meet (e.g. two coincident joints), and the one the path tangent
+            // continues goes on.
+            if !augmented_full_rank(m, path, &fold) {
+                return straight_past(m, path, &a, &fold, cfg).map(|past| Found::Crossing(fold, past));
+            }
+            return Some(Found::Fold(fold));
         }
         if (det_a > 0.0) != (det_b > 0.0) && det_a != 0.0 {
             // Near a crossing the bordered system is itself nearly singular and a corrector may

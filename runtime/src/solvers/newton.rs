@@ -27,13 +27,17 @@ use crate::solvers::lu::Lu;
 pub struct BlockEval<const N: usize, const K: usize> {
     pub f: [f64; N],
     pub j: [[f64; N]; N],
-    /// Magnitude of each row: the sum of the absolute values of the terms of the equation (for
-    /// a loop projection, about the sum of its link lengths), in the equation's unit. Residual
-    /// `i` is judged relative to it. A value that is not positive and finite (generated code
-    /// that does not provide it yet passes `0`) is replaced by the runtime's fallback, the row
-    /// sum `sum_j |J_ij|` (exact for angle unknowns, whose natural scale is one radian; for
-    /// length unknowns it is off by the unit of length, so generated magnitudes are preferred).
+    /// Magnitude of each row: a structural bound of the equation's terms (for a loop
+    /// projection, the sum of its link lengths), in the equation's unit, generated for every
+    /// equation. Residual `i` is judged relative to it. A value that is not positive and finite
+    /// (a hand-written block that has none, or a degenerate mechanism whose terms all vanish)
+    /// is replaced by the row sum `sum_j |J_ij|`, which is right for angle unknowns only.
     pub scale: [f64; N],
+    /// The unit of each unknown: one radian for an angle, the magnitude of the rows it appears
+    /// in per unit of its Jacobian entry otherwise (a slider coordinate: its loop's lengths). A
+    /// step `dz_j` is judged relative to `max(|z_j|, unit_j)`; a value that is not positive and
+    /// finite counts as `1`.
+    pub unit: [f64; N],
     pub keep: [f64; K],
 }
 
@@ -120,13 +124,14 @@ fn scaled_residual<const N: usize>(f: &[f64; N], s: &[f64; N]) -> f64 {
     m
 }
 
-/// `max_j |dz_j| / max(|z_j|, 1)`: steps relative to each unknown's magnitude (one radian for
-/// angles); NaN propagates.
+/// `max_j |dz_j| / max(|z_j|, unit_j)`: steps relative to each unknown's magnitude, in its own
+/// unit (see [`BlockEval::unit`]); NaN propagates.
 #[inline(always)]
-fn scaled_step<const N: usize>(dz: &[f64; N], z: &[f64; N]) -> f64 {
+fn scaled_step<const N: usize>(dz: &[f64; N], z: &[f64; N], unit: &[f64; N]) -> f64 {
     let mut m = 0.0f64;
     for c in 0..N {
-        let v = dz[c].abs() / z[c].abs().max(1.0);
+        let u = if unit[c] > 0.0 && unit[c] < f64::INFINITY { unit[c] } else { 1.0 };
+        let v = dz[c].abs() / z[c].abs().max(u);
         if v > m || v.is_nan() {
             m = v;
         }
@@ -135,13 +140,22 @@ fn scaled_step<const N: usize>(dz: &[f64; N], z: &[f64; N]) -> f64 {
 }
 
 /// The scaled residual of a full system (continuation, event location): each residual relative
-/// to the fallback row magnitude `sum_j |J_ij| + |extra_i|` (see [`BlockEval::scale`]), where
-/// `extra` holds further derivatives of the row (e.g. along the input path, which keeps the
-/// magnitude away from zero at a limit position).
-pub(crate) fn system_residual<const N: usize>(f: &[f64; N], j: &[[f64; N]; N], extra: &[f64; N]) -> f64 {
+/// to the larger of its generated row magnitude `scale` (see [`BlockEval::scale`]) and
+/// `sum_j |J_ij| + |extra_i|`, where `extra` holds further derivatives of the row (along the
+/// input path). The second keeps the test attainable where every term of a row vanishes at a
+/// branch point (e.g. `s^2 - x^2` at the origin), where the continuation's absolute step test
+/// stops before a residual relative to the vanishing magnitude is reached.
+pub(crate) fn system_residual<const N: usize>(
+    f: &[f64; N],
+    j: &[[f64; N]; N],
+    extra: &[f64; N],
+    scale: &[f64; N],
+) -> f64 {
     let mut s = [0.0; N];
     for r in 0..N {
-        s[r] = j[r].iter().map(|v| v.abs()).sum::<f64>() + extra[r].abs();
+        let derivatives = j[r].iter().map(|v| v.abs()).sum::<f64>() + extra[r].abs();
+        // NaN in `scale` leaves `derivatives`.
+        s[r] = if scale[r] > derivatives { scale[r] } else { derivatives };
     }
     scaled_residual(f, &s)
 }
@@ -194,7 +208,7 @@ fn free_correction<const N: usize, const K: usize>(
     } else {
         newton_step(ev, s)
     };
-    let step = scaled_step(&dz, &z0);
+    let step = scaled_step(&dz, &z0, &ev.unit);
     // NaN fails both tests.
     if !(pivot > cfg.singular_tol && step <= MAX_FREE_CORRECTION) {
         return None;
@@ -270,7 +284,7 @@ pub fn iterate<const N: usize, const K: usize>(
         let s = row_scales(&it.ev);
         let rho = scaled_residual(&it.ev.f, &s);
         let (dz, pivot) = newton_step(&it.ev, &s);
-        let step = scaled_step(&dz, &it.z);
+        let step = scaled_step(&dz, &it.z, &it.ev.unit);
         let converged = rho <= cfg.residual_tol;
         // At the rounding floor the step no longer shrinks below `step_tol` or the residual no
         // longer decreases (a singular root still divides it by about four per iteration).
@@ -520,6 +534,7 @@ mod tests {
             f: [x * x + y * y - 4.0, y - x * x * x],
             j: [[2.0 * x, 2.0 * y], [-3.0 * x * x, 1.0]],
             scale: [x * x + y * y + 4.0, y.abs() + (x * x * x).abs()],
+            unit: [1.0; 2],
             keep: [],
         }
     }
@@ -545,6 +560,7 @@ mod tests {
             f: [z[0] * z[0] + 1.0],
             j: [[2.0 * z[0]]],
             scale: [z[0] * z[0] + 1.0],
+            unit: [1.0],
             keep: [],
         };
         let e = newton([0.7], &NewtonConfig::default(), f).unwrap_err();
@@ -553,7 +569,13 @@ mod tests {
 
     #[test]
     fn nan_is_reported() {
-        let f = |z: &[f64; 1]| BlockEval { f: [z[0].sqrt() - 1.0], j: [[0.5 / z[0].sqrt()]], scale: [0.0], keep: [] };
+        let f = |z: &[f64; 1]| BlockEval {
+            f: [z[0].sqrt() - 1.0],
+            j: [[0.5 / z[0].sqrt()]],
+            scale: [0.0],
+            unit: [1.0],
+            keep: [],
+        };
         let e = newton([-1.0], &NewtonConfig::default(), f).unwrap_err();
         assert!(matches!(e, BlockFailure::NonFinite { row: 0, .. }));
     }
@@ -569,7 +591,7 @@ mod tests {
     /// root must come back as singular, not as an inaccurate success.
     #[test]
     fn singular_root_reached_linearly_is_singular() {
-        let f = |z: &[f64; 1]| BlockEval { f: [z[0] * z[0]], j: [[2.0 * z[0]]], scale: [1.0], keep: [] };
+        let f = |z: &[f64; 1]| BlockEval { f: [z[0] * z[0]], j: [[2.0 * z[0]]], scale: [1.0], unit: [1.0], keep: [] };
         let e = newton([1.0], &NewtonConfig::default(), f).unwrap_err();
         assert!(matches!(e, BlockFailure::Singular { .. }), "{e:?}");
     }
@@ -586,6 +608,7 @@ mod tests {
                 f: [ev.f[0] * k, ev.f[1] * k],
                 j: [[ev.j[0][0] * k, ev.j[0][1]], [ev.j[1][0] * k, ev.j[1][1]]],
                 scale: [ev.scale[0] * k, ev.scale[1] * k],
+                unit: [1.0, k],
                 keep: [],
             }
         };
