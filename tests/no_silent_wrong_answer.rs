@@ -4,17 +4,8 @@
 //! lengths) for residuals.
 
 use kinloop::{Error, Mechanism, NewtonConfig};
+use kinloop_fixtures::{FourBar, FourBarUnknowns};
 use std::f64::consts::PI;
-
-kinloop::mechanism! {
-    /// Four-bar: crank `a` at A = (0, 0), coupler `b`, rocker `c` at D = (d, 0).
-    pub struct FourBar {
-        params a, b, c, d;
-        input phi;
-        unknowns beta = 0.5, gamma = 1.5;
-        loop abcd: a @ phi + b @ beta == (d, 0) + c @ gamma;
-    }
-}
 
 kinloop::mechanism! {
     /// The same four-bar solved by Newton (`FourBar`'s dyad is solved in closed form): for the
