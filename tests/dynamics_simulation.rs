@@ -268,8 +268,8 @@ fn running_into_a_limit_position_is_a_typed_error() {
     // 1 / sqrt(limit - phi)): with the energy E bounded (E ~ 2 here: the start's 1/2 J w^2 plus
     // the drive's work over 1.4 rad), the speed falls like sqrt(2 E (limit - phi) / K) and
     // reaches zero in finite time, where the input stops being a coordinate of the motion. The
-    // step collapses there before any kinematic solve fails, so the error is the singular
-    // motion, located. Where it stops: (1) limit - phi ~ K w^2 / (2 E) with the speed w at the
+    // step collapses there, unless a kinematic solve fails first, so the error is the singular
+    // motion or the singular position, located. Where it stops: (1) limit - phi ~ K w^2 / (2 E) with the speed w at the
     // last step (~1e-6, measured), ~1e-12 for K / E of order one; (2) a kinematic solve accepts
     // residuals up to its tolerance (1e-12) and may sit that far (divided by the links' lengths,
     // 2 to 4) beyond the fold. Both are ~1e-12; 1e-9 leaves three orders for the constants.
@@ -279,6 +279,14 @@ fn running_into_a_limit_position_is_a_typed_error() {
             assert!(t.is_finite() && (limit - x[0]).abs() < 1e-9, "{err}");
             assert!(speed[0].abs() < 1e-3, "the speed must fall to zero at the limit: {err}");
         }
-        other => panic!("expected a singular motion, got {other}"),
+        // With the rocker's dyad solved in closed form, the kinematic solve may meet the fold
+        // first (its discriminant vanishes there): a typed singular position, located as
+        // precisely.
+        DynamicsError::Kinematics { t, source } => {
+            let at = source.location().map(|l| l.inputs[0].1).unwrap_or(f64::NAN);
+            assert!(t.is_finite() && (limit - at).abs() < 1e-9, "{err}");
+            assert!(matches!(source, kinloop::Error::Singular { .. } | kinloop::Error::NoAssembly { .. }), "{err}");
+        }
+        other => panic!("expected a singular motion or position, got {other}"),
     }
 }
