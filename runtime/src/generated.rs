@@ -13,8 +13,8 @@ pub use crate::events::BlockInfo;
 pub use crate::kin::{Health, Jac, Kin, Sens};
 pub use crate::lu::{Fixed, Lu, max_abs};
 pub use crate::mechanism::{Mechanism, NamedSensitivities, Sensitivities, SensitivitiesRequested};
-pub use crate::solvers::closed::{acos_on_side, asin_on_side, check_closed, check_guess, dyad_roots, polar_norm, reduce_turn, root_offset, unwrap_to_turn};
 pub use crate::newton::{BlockEval, BlockFailure, NewtonConfig, SolveReport, Solved, newton};
+pub use crate::solvers::closed::*;
 pub use crate::vec2::Vec2;
 
 use crate::error::Quantity;

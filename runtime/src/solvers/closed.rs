@@ -102,10 +102,8 @@ pub fn dyad_roots(a: f64, b: f64, c: f64, flip: bool) -> Result<(f64, f64), Bloc
 /// undetermined; the residual is the offset's size).
 #[inline]
 pub fn polar_norm(d2: f64, e0: f64, e1: f64) -> Result<f64, BlockFailure> {
-    if !(d2 > 0.0) {
-        return Err(no_root(d2, e0.abs().max(e1.abs())));
-    }
-    Ok(1.0 / d2.sqrt())
+    // Written so that a NaN fails.
+    if d2 > 0.0 { Ok(1.0 / d2.sqrt()) } else { Err(no_root(d2, e0.abs().max(e1.abs()))) }
 }
 
 /// The checks of a closed-form solution `out` whose first `angles` entries are angles: every
@@ -119,10 +117,11 @@ pub fn check_closed<const K: usize>(out: &[f64; K], angles: usize, cfg: &NewtonC
         return Err(BlockFailure::NonFinite { row: 0, iterations: 0 });
     }
     let big = out[..angles].iter().fold(0.0f64, |m, q| m.max(q.abs()));
-    if !(big * f64::EPSILON <= 1000.0 * cfg.residual_tol.max(16.0 * f64::EPSILON)) {
-        return Err(BlockFailure::NoConvergence { row: 0, iterations: 0, residual: big * f64::EPSILON });
+    if big * f64::EPSILON <= 1000.0 * cfg.residual_tol.max(16.0 * f64::EPSILON) {
+        Ok(())
+    } else {
+        Err(BlockFailure::NoConvergence { row: 0, iterations: 0, residual: big * f64::EPSILON })
     }
-    Ok(())
 }
 
 #[cfg(test)]
@@ -143,9 +142,13 @@ mod tests {
 
     #[test]
     fn no_real_root_is_a_typed_failure() {
-        assert!(matches!(dyad_roots(1.0, 0.0, 2.0, false), Err(BlockFailure::NoAssembly { residual, .. }) if residual == 1.0));
+        assert!(
+            matches!(dyad_roots(1.0, 0.0, 2.0, false), Err(BlockFailure::NoAssembly { residual, .. }) if residual == 1.0)
+        );
         assert!(matches!(dyad_roots(f64::NAN, 0.0, 0.0, false), Err(BlockFailure::NonFinite { .. })));
-        assert!(matches!(polar_norm(0.0, 3.0, -4.0), Err(BlockFailure::NoAssembly { residual, .. }) if residual == 4.0));
+        assert!(
+            matches!(polar_norm(0.0, 3.0, -4.0), Err(BlockFailure::NoAssembly { residual, .. }) if residual == 4.0)
+        );
     }
 
     #[test]
