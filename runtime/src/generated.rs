@@ -14,6 +14,7 @@ pub use crate::kin::{Health, Jac, Kin, Sens};
 pub use crate::lu::{Factor, Fixed, Lu, max_abs};
 pub use crate::mechanism::{Mechanism, NamedSensitivities, Sensitivities, SensitivitiesRequested};
 pub use crate::newton::{BlockEval, BlockFailure, NewtonConfig, SolveReport, Solved, newton};
+pub use crate::solvers::closed::*;
 pub use crate::vec2::Vec2;
 
 /// serde, for the derives of generated types (feature `serde`): users need no serde dependency.

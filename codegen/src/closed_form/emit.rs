@@ -3,9 +3,15 @@
 //! Every form reduces to one equation `a cos q + b sin q = c` in one angle, whose two roots are
 //! `(cos q, sin q) = (a c ∓ b d, b c ± a d) / (a² + b²)` with `d = sqrt(a² + b² - c²)`: the cosine
 //! and sine come from the equation itself (no `sin_cos` of the solution), `q` from one `atan2`
-//! (one `asin` or `acos` when a coefficient is zero), moved by whole turns to the guess's turn. The root is chosen so that the derivative `h'` of the angle
-//! equation (proportional, with a fixed sign, to the block's Jacobian determinant) has the sign
-//! it has at the guess. With `h = a cos q + b sin q - c`, `h' = ∓ d` at the two roots.
+//! (one `asin` or `acos` when a coefficient is zero), moved by whole turns to the guess's turn.
+//! The root is chosen so that the derivative `h'` of the angle equation (proportional, with a
+//! fixed sign, to the block's Jacobian determinant) has the sign it has at the guess. With
+//! `h = a cos q + b sin q - c`, `h' = ∓ d` at the two roots.
+//!
+//! What is the same for every block (the root, the unwrap to the guess's turn, the checks and
+//! their failures) is a call of the runtime's `solvers::closed` functions, which perform the
+//! operations this code would, in the same order; only the coefficients, specific to the
+//! block, are emitted inline (with their constants folded).
 
 use super::recognise::{ClosedForm, Recognised};
 use crate::dag::{Graph, NodeId};
@@ -117,23 +123,11 @@ impl Context<'_> {
     fn m(&self, m: &[[NodeId; 2]; 2]) -> [[V; 2]; 2] {
         m.map(|r| r.map(|n| self.v(n)))
     }
-
-    fn failure(&self, fail: TokenStream) -> TokenStream {
-        let (rt, bl) = (self.rt, Literal::usize_unsuffixed(self.block));
-        quote! {
-            let __fail = if __d2.is_nan() {
-                #rt::BlockFailure::NonFinite { row: 0, iterations: 0 }
-            } else {
-                #rt::BlockFailure::NoAssembly { row: 0, iterations: 0, residual: #fail }
-            };
-            return Err(#rt::block_failure(self, #bl, __fail, __x, __guess));
-        }
-    }
 }
 
 /// The `let` statements solving the block: binds its unknowns (and the bound sines and
 /// cosines), returns a `NoAssembly` error from the enclosing function when there is no real
-/// root.
+/// root. Inside the solve, `__fail` adds the block's location to a runtime `BlockFailure`.
 pub fn solve(rec: &Recognised, cx: &Context) -> TokenStream {
     let guess = |u: usize| {
         let u = Literal::usize_unsuffixed(u);
@@ -167,28 +161,15 @@ pub fn solve(rec: &Recognised, cx: &Context) -> TokenStream {
     // The guess only picks the branch and the turn, through comparisons that a NaN would
     // silently answer: it is checked first.
     let guesses = rec.form.angles().into_iter().chain(others_of(&rec.form)).map(guess);
-    let angles = (0..rec.form.angles().len()).map(|k| {
-        let k = Literal::usize_unsuffixed(k);
-        quote!(__out[#k].abs())
-    });
+    let angles = Literal::usize_unsuffixed(rec.form.angles().len());
+    // The closure only captures references: it is `Copy`, one per block. A non-finite guess
+    // makes the guesses' sum non-finite.
     quote! {
         let [#(#outs),*]: [f64; #k] = {
-            if !(0.0 #(+ #guesses)*).is_finite() {
-                return Err(#rt::block_failure(self, #bl, #rt::BlockFailure::NonFinite { row: 0, iterations: 0 }, __x, __guess));
-            }
+            let __fail = |f| #rt::block_failure(self, #bl, f, __x, __guess);
+            #rt::check_guess(#(#guesses)+*).map_err(__fail)?;
             #body
-            // A NaN here comes from the inputs, parameters, guess or a coefficient's domain.
-            if !__out.iter().sum::<f64>().is_finite() {
-                return Err(#rt::block_failure(self, #bl, #rt::BlockFailure::NonFinite { row: 0, iterations: 0 }, __x, __guess));
-            }
-            // On the guess's turn an angle is a large number when the guess is: beyond the
-            // precision Newton's residual floor accepts (1000 times the tolerance, at least
-            // 16 eps), its own rounding would be a wrong answer.
-            let __big: f64 = 0.0f64 #(.max(#angles))*;
-            if !(__big * f64::EPSILON <= 1000.0 * __cfg.residual_tol.max(16.0 * f64::EPSILON)) {
-                let __fail = #rt::BlockFailure::NoConvergence { row: 0, iterations: 0, residual: __big * f64::EPSILON };
-                return Err(#rt::block_failure(self, #bl, __fail, __x, __guess));
-            }
+            #rt::check_closed(&__out, #angles, __cfg).map_err(__fail)?;
             __out
         };
     }
@@ -204,18 +185,18 @@ fn others_of(form: &ClosedForm) -> Option<usize> {
 }
 
 /// Binds `__cq`, `__sq`: the root of `a cos q + b sin q = c` with `h' = -d < 0`, or with
-/// `h' = d > 0` when `flip` holds.
+/// `h' = d > 0` when `flip` holds. With no constant coefficient this is the runtime's
+/// `dyad_roots`; otherwise the same formulas with the constants folded.
 fn root(out: &mut TokenStream, a: &V, b: &V, c: &V, flip: &TokenStream, cx: &Context) {
+    let rt = cx.rt;
+    if let (V::E(_), V::E(_), V::E(_)) = (a, b, c) {
+        out.extend(quote!(let (__cq, __sq) = #rt::dyad_roots(#a, #b, #c, #flip).map_err(__fail)?;));
+        return;
+    }
     let r2 = bind(out, "__r2", add(&mul(a, a), &mul(b, b)));
     let d2 = sub(&r2, &mul(c, c));
-    let fail = cx.failure(quote!(#c.abs() - #r2.sqrt()));
     out.extend(quote! {
-        let __d2: f64 = #d2;
-        if !(__d2 >= 0.0 && #r2 > 0.0) {
-            // No real root: the links cannot reach (or a coefficient is not finite).
-            #fail
-        }
-        let __d: f64 = if #flip { -__d2.sqrt() } else { __d2.sqrt() };
+        let __d: f64 = #rt::root_offset(#d2, #r2, #c, #flip).map_err(__fail)?;
     });
     let d = local("__d");
     let inv = bind(out, "__inv", V::E(quote!((1.0 / #r2))));
@@ -224,47 +205,28 @@ fn root(out: &mut TokenStream, a: &V, b: &V, c: &V, flip: &TokenStream, cx: &Con
     out.extend(quote!(let __cq: f64 = #cq; let __sq: f64 = #sq;));
 }
 
-/// `round(x)` (half away from zero) by a conversion to an integer: no libm call. Exact for
-/// `|x| < 2^52`; beyond that the guess is meaningless as an angle anyway.
-fn turns(x: TokenStream) -> TokenStream {
-    quote! {{
-        let __t: f64 = #x;
-        (__t + 0.5f64.copysign(__t)) as i64 as f64
-    }}
-}
-
 /// `angle` moved by whole turns to the turn of `guess`.
-fn on_turn(angle: TokenStream, guess: &TokenStream) -> TokenStream {
-    let k = turns(quote!((#guess - __q) * (1.0 / ::core::f64::consts::TAU)));
-    quote! {{
-        let __q: f64 = #angle;
-        __q + ::core::f64::consts::TAU * #k
-    }}
+fn on_turn(angle: TokenStream, guess: &TokenStream, cx: &Context) -> TokenStream {
+    let rt = cx.rt;
+    quote!(#rt::unwrap_to_turn(#angle, #guess))
 }
 
 /// `atan2(s, c)` moved by whole turns to the turn of `guess`.
-fn unwrapped(s: TokenStream, c: TokenStream, guess: &TokenStream) -> TokenStream {
-    on_turn(quote!(#s.atan2(#c)), guess)
-}
-
-/// `g` reduced to `[-pi, pi]` (for the signs of its sine and cosine without libm).
-fn reduced(g: &TokenStream) -> TokenStream {
-    let k = turns(quote!(#g * (1.0 / ::core::f64::consts::TAU)));
-    quote!((#g - ::core::f64::consts::TAU * #k))
+fn unwrapped(s: TokenStream, c: TokenStream, guess: &TokenStream, cx: &Context) -> TokenStream {
+    on_turn(quote!(#s.atan2(#c)), guess, cx)
 }
 
 /// The sign rule for one angle: `h' = b cos g - a sin g > 0` at the guess `g`. With one
 /// coefficient zero only the sign of the other function matters, read off `g` reduced to one
 /// turn (no libm call; at the boundaries the guess sits on a limit position where both roots
 /// meet).
-fn flip_at_guess(a: &V, b: &V, g: &TokenStream) -> TokenStream {
+fn flip_at_guess(a: &V, b: &V, g: &TokenStream, cx: &Context) -> TokenStream {
     let zero = |v: &V| matches!(v, V::C(z) if *z == 0.0);
+    let rt = cx.rt;
     if zero(a) {
-        let t = reduced(g);
-        quote!((#b > 0.0) == (#t.abs() < ::core::f64::consts::FRAC_PI_2))
+        quote!((#b > 0.0) == (#rt::reduce_turn(#g).abs() < ::core::f64::consts::FRAC_PI_2))
     } else if zero(b) {
-        let t = reduced(g);
-        quote!((#a > 0.0) == (#t < 0.0))
+        quote!((#a > 0.0) == (#rt::reduce_turn(#g) < 0.0))
     } else {
         quote! {{
             let (__sg, __cg): (f64, f64) = #g.sin_cos();
@@ -274,25 +236,19 @@ fn flip_at_guess(a: &V, b: &V, g: &TokenStream) -> TokenStream {
 }
 
 fn angle_equation(a: &V, b: &V, c: &V, g: &TokenStream, cx: &Context) -> TokenStream {
-    let flip = flip_at_guess(a, b, g);
+    let flip = flip_at_guess(a, b, g, cx);
     let mut out = quote!(let __flip: bool = #flip;);
     root(&mut out, a, b, c, &quote!(__flip), cx);
     let zero = |v: &V| matches!(v, V::C(z) if *z == 0.0);
     // `b sin q = c`: `asin` of the sine on the cosine's side (cheaper than `atan2`); `a cos q
     // = c` likewise with `acos`.
+    let rt = cx.rt;
     let q = if zero(a) {
-        on_turn(
-            quote!(if __cq >= 0.0 {
-                __sq.clamp(-1.0, 1.0).asin()
-            } else {
-                ::core::f64::consts::PI - __sq.clamp(-1.0, 1.0).asin()
-            }),
-            g,
-        )
+        on_turn(quote!(#rt::asin_on_side(__sq, __cq)), g, cx)
     } else if zero(b) {
-        on_turn(quote!(if __sq >= 0.0 { __cq.clamp(-1.0, 1.0).acos() } else { -__cq.clamp(-1.0, 1.0).acos() }), g)
+        on_turn(quote!(#rt::acos_on_side(__cq, __sq)), g, cx)
     } else {
-        unwrapped(quote!(__sq), quote!(__cq), g)
+        unwrapped(quote!(__sq), quote!(__cq), g, cx)
     };
     out.extend(quote!(let __out: [f64; 3] = [#q, __cq, __sq];));
     out
@@ -335,8 +291,8 @@ fn dyad(
     let il1 = bind(&mut out, "__il1", V::E(quote!((-1.0 / #l1))));
     let c1 = mul(&dot(&[(&b[0][0], &vx), (&b[1][0], &vy)]), &il1);
     let s1 = mul(&dot(&[(&b[0][1], &vx), (&b[1][1], &vy)]), &il1);
-    let q0 = unwrapped(quote!(__sq), quote!(__cq), g0);
-    let q1 = unwrapped(quote!(__s1), quote!(__c1), g1);
+    let q0 = unwrapped(quote!(__sq), quote!(__cq), g0, cx);
+    let q1 = unwrapped(quote!(__s1), quote!(__c1), g1, cx);
     out.extend(quote! {
         let __c1: f64 = #c1;
         let __s1: f64 = #s1;
@@ -354,16 +310,8 @@ fn polar(w: &[[NodeId; 2]; 2], e: &[NodeId; 2], gq: &TokenStream, gs: &TokenStre
     let a = bind(&mut out, "__a", sub(&mul(&w[0][0], &e[1]), &mul(&w[1][0], &e[0])));
     let b = bind(&mut out, "__b", sub(&mul(&w[0][1], &e[1]), &mul(&w[1][1], &e[0])));
     let r2 = add(&mul(&a, &a), &mul(&b, &b));
-    let (e0, e1) = (&e[0], &e[1]);
-    let fail = cx.failure(quote!(#e0.abs().max(#e1.abs())));
-    out.extend(quote! {
-        let __d2: f64 = #r2;
-        if !(__d2 > 0.0) {
-            // The length would be zero: its angle is undetermined.
-            #fail
-        }
-        let __ir: f64 = 1.0 / __d2.sqrt();
-    });
+    let (e0, e1, rt) = (&e[0], &e[1], cx.rt);
+    out.extend(quote!(let __ir: f64 = #rt::polar_norm(#r2, #e0, #e1).map_err(__fail)?;));
     let ir = local("__ir");
     let (c0, s0) = (mul(&b, &ir), neg(&mul(&a, &ir)));
     out.extend(quote!(let (mut __cq, mut __sq): (f64, f64) = (#c0, #s0);));
@@ -372,7 +320,7 @@ fn polar(w: &[[NodeId; 2]; 2], e: &[NodeId; 2], gq: &TokenStream, gs: &TokenStre
     let w1 = bind(&mut out, "__w1", dot(&[(&w[1][0], &cq), (&w[1][1], &sq)]));
     let num = dot(&[(&w0, &e[0]), (&w1, &e[1])]);
     let den = dot(&[(&w0, &w0), (&w1, &w1)]);
-    let q = unwrapped(quote!(__sq), quote!(__cq), gq);
+    let q = unwrapped(quote!(__sq), quote!(__cq), gq, cx);
     out.extend(quote! {
         let mut __s: f64 = -#num / #den;
         if __s * #gs < 0.0 {
@@ -395,7 +343,7 @@ fn angle_slider(m: &[[NodeId; 2]; 2], d: &[NodeId; 2], e: &[NodeId; 2], gq: &Tok
     let a = bind(&mut out, "__a", sub(&mul(&d[1], &m[0][0]), &mul(&d[0], &m[1][0])));
     let b = bind(&mut out, "__b", sub(&mul(&d[1], &m[0][1]), &mul(&d[0], &m[1][1])));
     let c = bind(&mut out, "__c", sub(&mul(&d[0], &e[1]), &mul(&d[1], &e[0])));
-    let flip = flip_at_guess(&a, &b, gq);
+    let flip = flip_at_guess(&a, &b, gq, cx);
     out.extend(quote!(let __flip: bool = #flip;));
     root(&mut out, &a, &b, &c, &quote!(__flip), cx);
     let (cq, sq) = (local("__cq"), local("__sq"));
@@ -403,7 +351,7 @@ fn angle_slider(m: &[[NodeId; 2]; 2], d: &[NodeId; 2], e: &[NodeId; 2], gq: &Tok
     let r1 = add(&dot(&[(&m[1][0], &cq), (&m[1][1], &sq)]), &e[1]);
     let num = dot(&[(&d[0], &r0), (&d[1], &r1)]);
     let den = dot(&[(&d[0], &d[0]), (&d[1], &d[1])]);
-    let q = unwrapped(quote!(__sq), quote!(__cq), gq);
+    let q = unwrapped(quote!(__sq), quote!(__cq), gq, cx);
     out.extend(quote! {
         let __s: f64 = -#num / #den;
         let __out: [f64; 4] = [#q, __s, __cq, __sq];

@@ -2,6 +2,7 @@
 //! diagnostics ([`newton`]), and the equilibrated LU factorisation of small fixed-size blocks
 //! that Newton, the analogs and the sensitivities share ([`lu`]).
 
+pub mod closed;
 pub mod lu;
 pub mod newton;
 mod newton_config;

@@ -1,0 +1,173 @@
+//! The generic steps of a closed-form block solve, shared by every generated closed form: the
+//! root of `a cos q + b sin q = c`, an angle moved to its guess's turn, and the checks of the
+//! guess and of the result.
+//!
+//! The generated code calls these with the operations the macro used to emit inline, in the same
+//! order, so the results are bit-for-bit those of the inline code. A failure is returned as a
+//! [`BlockFailure`]; the generated code adds the mechanism's location to it.
+
+use super::newton::{BlockFailure, NewtonConfig};
+use core::f64::consts::{PI, TAU};
+
+/// `round(x)` (half away from zero) by a conversion to an integer: no libm call. Exact for
+/// `|x| < 2^52`; beyond that the value is meaningless as a number of turns anyway (and the
+/// precision check of [`check_closed`] rejects such angles).
+#[inline]
+fn whole_turns(x: f64) -> f64 {
+    (x + 0.5f64.copysign(x)) as i64 as f64
+}
+
+/// `q` moved by whole turns to the turn of `guess` (the nearest angle `q + 2πk` to `guess`).
+///
+/// ```
+/// use kinloop_runtime::solvers::closed::unwrap_to_turn;
+/// use std::f64::consts::TAU;
+/// assert!((unwrap_to_turn(0.5, 0.4 + 3.0 * TAU) - (0.5 + 3.0 * TAU)).abs() < 1e-12);
+/// assert_eq!(unwrap_to_turn(0.5, 0.4), 0.5);
+/// ```
+#[inline]
+pub fn unwrap_to_turn(q: f64, guess: f64) -> f64 {
+    q + TAU * whole_turns((guess - q) * (1.0 / TAU))
+}
+
+/// `g` reduced to `[-π, π]` (the signs of its sine and cosine without libm).
+#[inline]
+pub fn reduce_turn(g: f64) -> f64 {
+    g - TAU * whole_turns(g * (1.0 / TAU))
+}
+
+/// The angle of sine `s` on the side of cosine `c` by `asin` (cheaper than `atan2` when `s` and
+/// `c` come from `b sin q = c`), in `[-π/2, 3π/2]`.
+#[inline]
+pub fn asin_on_side(s: f64, c: f64) -> f64 {
+    if c >= 0.0 { s.clamp(-1.0, 1.0).asin() } else { PI - s.clamp(-1.0, 1.0).asin() }
+}
+
+/// The angle of cosine `c` on the side of sine `s` by `acos`, in `[-π, π]`.
+#[inline]
+pub fn acos_on_side(c: f64, s: f64) -> f64 {
+    if s >= 0.0 { c.clamp(-1.0, 1.0).acos() } else { -c.clamp(-1.0, 1.0).acos() }
+}
+
+/// The guess only picks the branch and the turn, through comparisons that a NaN would silently
+/// answer: `guess_sum`, the sum of the block's guesses, must be finite.
+#[inline]
+pub fn check_guess(guess_sum: f64) -> Result<(), BlockFailure> {
+    if guess_sum.is_finite() { Ok(()) } else { Err(BlockFailure::NonFinite { row: 0, iterations: 0 }) }
+}
+
+/// Why `a cos q + b sin q = c` has no real root, given `d2 = a² + b² - c²` and `r2 = a² + b²`:
+/// a coefficient that is not finite, or links that cannot reach (residual `|c| - r`).
+#[cold]
+#[inline(never)]
+fn no_root(d2: f64, residual: f64) -> BlockFailure {
+    if d2.is_nan() {
+        BlockFailure::NonFinite { row: 0, iterations: 0 }
+    } else {
+        BlockFailure::NoAssembly { row: 0, iterations: 0, residual }
+    }
+}
+
+/// `±sqrt(d2)` for the root of `a cos q + b sin q = c` with `d2 = r2 - c²`, `r2 = a² + b²`: the
+/// square root, negated when `flip` holds, or the failure when there is no real root.
+#[inline]
+pub fn root_offset(d2: f64, r2: f64, c: f64, flip: bool) -> Result<f64, BlockFailure> {
+    if !(d2 >= 0.0 && r2 > 0.0) {
+        return Err(no_root(d2, c.abs() - r2.sqrt()));
+    }
+    Ok(if flip { -d2.sqrt() } else { d2.sqrt() })
+}
+
+/// `(cos q, sin q)` of the root of `a cos q + b sin q = c` with `h' = -d < 0` (`h = a cos q +
+/// b sin q - c`, `d = sqrt(a² + b² - c²)`), or with `h' = d > 0` when `flip` holds:
+/// `((a c - b d) / r², (b c + a d) / r²)`.
+///
+/// ```
+/// use kinloop_runtime::solvers::closed::dyad_roots;
+/// // cos q + sin q = 1: q = π/2 (h' = cos q - sin q = -1 < 0) or q = 0 (h' = 1 > 0).
+/// assert_eq!(dyad_roots(1.0, 1.0, 1.0, false).unwrap(), (0.0, 1.0));
+/// assert_eq!(dyad_roots(1.0, 1.0, 1.0, true).unwrap(), (1.0, 0.0));
+/// assert!(dyad_roots(1.0, 1.0, 2.0, false).is_err());
+/// ```
+#[inline]
+pub fn dyad_roots(a: f64, b: f64, c: f64, flip: bool) -> Result<(f64, f64), BlockFailure> {
+    let r2 = a * a + b * b;
+    let d = root_offset(r2 - c * c, r2, c, flip)?;
+    let inv = 1.0 / r2;
+    Ok(((a * c - b * d) * inv, (b * c + a * d) * inv))
+}
+
+/// `1 / sqrt(d2)`, the normalisation of the direction `(a, b)` with `d2 = a² + b²` of a polar
+/// length along offset `(e0, e1)`, or the failure when the length would be zero (its angle is
+/// undetermined; the residual is the offset's size).
+#[inline]
+pub fn polar_norm(d2: f64, e0: f64, e1: f64) -> Result<f64, BlockFailure> {
+    // Written so that a NaN fails.
+    if d2 > 0.0 { Ok(1.0 / d2.sqrt()) } else { Err(no_root(d2, e0.abs().max(e1.abs()))) }
+}
+
+/// The checks of a closed-form solution `out` whose first `angles` entries are angles: every
+/// entry finite (a NaN comes from the inputs, parameters, guess or a coefficient's domain), and
+/// every angle small enough to be accurate. On the guess's turn an angle is a large number when
+/// the guess is: beyond the precision Newton's residual floor accepts (1000 times the tolerance,
+/// at least 16 eps), its own rounding would be a wrong answer.
+#[inline]
+pub fn check_closed<const K: usize>(out: &[f64; K], angles: usize, cfg: &NewtonConfig) -> Result<(), BlockFailure> {
+    if !out.iter().sum::<f64>().is_finite() {
+        return Err(BlockFailure::NonFinite { row: 0, iterations: 0 });
+    }
+    let big = out[..angles].iter().fold(0.0f64, |m, q| m.max(q.abs()));
+    if big * f64::EPSILON <= 1000.0 * cfg.residual_tol.max(16.0 * f64::EPSILON) {
+        Ok(())
+    } else {
+        Err(BlockFailure::NoConvergence { row: 0, iterations: 0, residual: big * f64::EPSILON })
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// The root satisfies the equation and has the requested sign of `h' = b cos q - a sin q`.
+    #[test]
+    fn dyad_roots_solve_the_equation_on_the_requested_branch() {
+        let (a, b, c) = (0.3, -1.7, 0.9);
+        for flip in [false, true] {
+            let (cq, sq) = dyad_roots(a, b, c, flip).unwrap();
+            assert!((a * cq + b * sq - c).abs() < 1e-15);
+            assert!((cq * cq + sq * sq - 1.0).abs() < 1e-15);
+            assert_eq!(b * cq - a * sq > 0.0, flip);
+        }
+    }
+
+    #[test]
+    fn no_real_root_is_a_typed_failure() {
+        assert!(
+            matches!(dyad_roots(1.0, 0.0, 2.0, false), Err(BlockFailure::NoAssembly { residual, .. }) if residual == 1.0)
+        );
+        assert!(matches!(dyad_roots(f64::NAN, 0.0, 0.0, false), Err(BlockFailure::NonFinite { .. })));
+        assert!(
+            matches!(polar_norm(0.0, 3.0, -4.0), Err(BlockFailure::NoAssembly { residual, .. }) if residual == 4.0)
+        );
+    }
+
+    #[test]
+    fn angles_move_to_the_guess_turn_and_are_reduced_to_one_turn() {
+        let q = unwrap_to_turn(-3.0, 3.0 - 5.0 * TAU);
+        assert!((q - (-3.0 - 4.0 * TAU)).abs() < 1e-12, "{q}");
+        assert!((reduce_turn(1.0 + 7.0 * TAU) - 1.0).abs() < 1e-12);
+        assert!((asin_on_side(0.5, -1.0) - 5.0 * PI / 6.0).abs() < 1e-15);
+        assert!((acos_on_side(0.5, -1.0) + PI / 3.0).abs() < 1e-15);
+    }
+
+    #[test]
+    fn checks_reject_non_finite_values_and_imprecise_angles() {
+        let cfg = NewtonConfig::default();
+        assert!(check_guess(f64::NAN).is_err() && check_guess(1.0).is_ok());
+        assert!(check_closed(&[1.0, 0.5, f64::INFINITY], 1, &cfg).is_err());
+        assert!(check_closed(&[1.0, 0.5, 0.8], 1, &cfg).is_ok());
+        assert!(matches!(check_closed(&[1e9, 0.5], 1, &cfg), Err(BlockFailure::NoConvergence { .. })));
+        // Only the angles count: a large length is accurate.
+        assert!(check_closed(&[1.0, 1e9], 1, &cfg).is_ok());
+    }
+}
