@@ -20,7 +20,7 @@ fn whole_turns(x: f64) -> f64 {
 /// `q` moved by whole turns to the turn of `guess` (the nearest angle `q + 2πk` to `guess`).
 ///
 /// ```
-/// use kinloop_runtime::solvers::closed::unwrap_to_turn;
+/// use kinloop_runtime::generated::unwrap_to_turn;
 /// use std::f64::consts::TAU;
 /// assert!((unwrap_to_turn(0.5, 0.4 + 3.0 * TAU) - (0.5 + 3.0 * TAU)).abs() < 1e-12);
 /// assert_eq!(unwrap_to_turn(0.5, 0.4), 0.5);
@@ -83,7 +83,7 @@ pub fn root_offset(d2: f64, r2: f64, c: f64, flip: bool) -> Result<f64, BlockFai
 /// `((a c - b d) / r², (b c + a d) / r²)`.
 ///
 /// ```
-/// use kinloop_runtime::solvers::closed::dyad_roots;
+/// use kinloop_runtime::generated::dyad_roots;
 /// // cos q + sin q = 1: q = π/2 (h' = cos q - sin q = -1 < 0) or q = 0 (h' = 1 > 0).
 /// assert_eq!(dyad_roots(1.0, 1.0, 1.0, false).unwrap(), (0.0, 1.0));
 /// assert_eq!(dyad_roots(1.0, 1.0, 1.0, true).unwrap(), (1.0, 0.0));
