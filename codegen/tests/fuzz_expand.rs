@@ -29,7 +29,7 @@ const SEEDS: &[&str] = &[
          loop abcd: a @ phi + b @ beta == (d, 0) + c @ gamma;
          output tr = atan2(sin(gamma - beta), cos(gamma - beta)) ^ 2 + hypot(a, b) / sqrt(abs(c));
      }",
-    // Rhombic drive (SEEDS 000): two independent groups.
+    // Rhombic drive (paper 000): two independent groups.
     "#[kinloop(dense)]
      pub struct RhombicDrive {
          params r_p, r_b, l_p, l_b, e_p, de, gamma, l_cs2;
@@ -39,7 +39,7 @@ const SEEDS: &[&str] = &[
          loop oadff1o: (0, e_p) + r_b @ (phi1 + gamma) == (x_f, de) + l_b @ phi4;
          point s2 = (x_c, 0) + l_cs2 @ phi2;
      }",
-    // Class IV mechanism (SEEDS 003): one coupled block.
+    // Class IV mechanism (paper 003): one coupled block.
     "pub struct ClassFour {
          params oa = 1.0, xb = 4.4, yb = 0.6, ac = 2.3, ae = 2.4, alpha_a = 0.84,
                 bd = 1.6, bf = 3.5, alpha_b = 0.62, cd = 2.0, ef = 3.4;

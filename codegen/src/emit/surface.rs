@@ -273,7 +273,7 @@ pub fn analog_conversions(
 /// `NameState` (from a flat `Kin`) and `NameMotion`.
 fn state_struct(s: &Surface, t: &Types) -> TokenStream {
     let (rt, vis, plain) = (runtime(), &s.vis, &t.plain);
-    let Types { inputs, unknowns, outputs, state, motion, .. } = t;
+    let Types { inputs, unknowns, outputs, state, .. } = t;
     let ni = s.inputs.len();
     let (nl, nil, nol) = (lit(s.unknowns.len()), lit(ni), lit(s.n_outputs()));
     let (v_ty, a_ty) = analog_types(ni, inputs, quote!(f64));
@@ -286,7 +286,7 @@ fn state_struct(s: &Surface, t: &Types) -> TokenStream {
         "Kinematic state of [`{plain}`] at one input value: positions, velocity analogs \
          ({analog_doc}), acceleration analogs, and the same for every output."
     );
-    let motion_doc = format!("True velocities and accelerations of [`{plain}`] (time derivatives).");
+    let motion_struct = motion_struct(s, t);
     // A state serializes as its flat `Kin` (the named fields repeat its values).
     let kin = format!("::kinloop::__gen::Kin<{}, {ni}, {}>", s.unknowns.len(), s.n_outputs());
     quote! {
@@ -340,6 +340,16 @@ fn state_struct(s: &Surface, t: &Types) -> TokenStream {
                 }
             }
         }
+        #motion_struct
+    }
+}
+
+/// `NameMotion`: true velocities and accelerations.
+fn motion_struct(s: &Surface, t: &Types) -> TokenStream {
+    let (rt, vis, plain) = (runtime(), &s.vis, &t.plain);
+    let Types { unknowns, outputs, motion, .. } = t;
+    let motion_doc = format!("True velocities and accelerations of [`{plain}`] (time derivatives).");
+    quote! {
         #rt::serde_derive! {
         #[doc = #motion_doc]
         #[derive(Clone, Copy, Debug, PartialEq)]

@@ -1,6 +1,6 @@
 //! Residual unbalance: what remains of a periodic quantity after its lowest harmonics are
 //! removed (balanced), e.g. the centre of mass of a mechanism's reciprocating masses after
-//! counterweights cancel its first harmonic (SEEDS.md, paper 004):
+//! counterweights cancel its first harmonic (`docs/papers.md`, paper 004):
 //!
 //! ```text
 //! D = max over a cycle of |v(x) - v_m(x)|,     v_m = a0 + sum_{k=1..m} a_k cos kθ + b_k sin kθ
