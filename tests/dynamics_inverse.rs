@@ -19,7 +19,9 @@
 #[allow(dead_code)]
 mod dynamics_fixtures;
 
-use dynamics_fixtures::{RhombicDrive, configuration, derivative, gas_force, index, reduced_inertia_fd, rhombic_model};
+use dynamics_fixtures::{
+    RhombicDrive, SliderCrank, configuration, derivative, gas_force, index, reduced_inertia_fd, rhombic_model,
+};
 use kinloop::Mechanism;
 use kinloop::dynamics::{Body, Coord, MassModel, Rotation, SpeedLaw, inverse_cycle};
 use std::f64::consts::TAU;
@@ -68,16 +70,6 @@ fn rhombic_driving_torque_satisfies_lagrange_equation() {
     }
 }
 
-kinloop::mechanism! {
-    /// Offset slider-crank: crank `r` at the origin, rod `l`, piston on the line y = e.
-    pub struct SliderCrank {
-        params r = 1.0, l = 3.5, e = 0.3;
-        input phi;
-        unknowns psi = pi, x = r + l;
-        loop oabo: r @ phi == (x, e) + l @ psi;
-    }
-}
-
 /// Gas force on the piston along x (towards the crank), a function of its position.
 fn piston_gas(x: f64) -> f64 {
     -3.0 / (x - 1.5).powi(2)
@@ -87,7 +79,7 @@ fn piston_gas(x: f64) -> f64 {
 fn slider_crank_torque_matches_classical_closed_form() {
     let sc = SliderCrank::default();
     let (r, l, e, m, omega) = (sc.r, sc.l, sc.e, 2.5, 40.0);
-    let x_col = index(&<SliderCrank as Mechanism<2, 1, 0>>::UNKNOWNS, "x");
+    let x_col = index(&<SliderCrank as Mechanism<2, 1, 2>>::UNKNOWNS, "x");
     let piston = [Coord::Unknown(x_col), Coord::Fixed(e)];
     // A massless rod: the classical reciprocating-mass model.
     let model = MassModel::new()

@@ -6,7 +6,7 @@
 #[allow(dead_code)]
 mod dynamics_fixtures;
 
-use dynamics_fixtures::{RhombicDrive, rhombic_bodies, rhombic_model};
+use dynamics_fixtures::{RhombicDrive, SliderCrank, rhombic_bodies, rhombic_model};
 use kinloop::Mechanism;
 use kinloop::analysis::Sampled;
 use kinloop::dynamics::{
@@ -146,14 +146,7 @@ fn flywheel_gives_the_required_speed_fluctuation() {
 #[test]
 fn energy_method_is_exact_for_constant_inertia() {
     let sc = SliderCrank::default();
-    let model = MassModel::new()
-        .with_body(Body {
-            name: "crank",
-            mass: 1.0,
-            com: [Coord::Fixed(0.0); 2],
-            inertia: 0.5,
-            rotation: Rotation::Input(0),
-        })
+    let model = crank_model(0.5)
         .and_then(|m| m.with_torque("load", Rotation::Input(0), |k, _| 3.0 * k.x[0].sin() + (2.0 * k.x[0]).sin()))
         .unwrap();
     let cycle =
@@ -170,31 +163,13 @@ fn energy_method_is_exact_for_constant_inertia() {
     assert!((fw.total_inertia - swing / (0.02 * 400.0)).abs() < 1e-6 * fw.total_inertia);
 }
 
-kinloop::mechanism! {
-    /// Offset slider-crank with the crank pin as a point.
-    pub struct SliderCrank {
-        params r = 1.0, l = 3.5, e = 0.3;
-        input phi;
-        unknowns psi = pi, x = r + l;
-        loop oabo: r @ phi == (x, e) + l @ psi;
-        point pin = r @ phi;
-    }
-}
-
 /// From rest under `M = M_s (1 - omega / omega_s)` and viscous friction nowhere: on the
 /// periodic steady state the motor does no net work over a turn, so the angle-averaged speed
 /// `int omega dphi / 2 pi = int omega^2 dt / int omega dt` equals `omega_s`.
 #[test]
 fn run_up_from_rest_reaches_the_synchronous_speed_on_average() {
     let sc = SliderCrank::default();
-    let model = MassModel::new()
-        .with_body(Body {
-            name: "crank",
-            mass: 1.0,
-            com: [Coord::Fixed(0.0); 2],
-            inertia: 2.0,
-            rotation: Rotation::Input(0),
-        })
+    let model = crank_model(2.0)
         .and_then(|m| {
             m.with_body(Body {
                 name: "piston",
@@ -289,4 +264,16 @@ fn running_into_a_limit_position_is_a_typed_error() {
         }
         other => panic!("expected a singular motion or position, got {other}"),
     }
+}
+
+/// A crank of moment of inertia `inertia` about its axis (centre of mass on the axis), turning
+/// with the input.
+fn crank_model(inertia: f64) -> Result<MassModel<2, 1, 2>, DynamicsError> {
+    MassModel::new().with_body(Body {
+        name: "crank",
+        mass: 1.0,
+        com: [Coord::Fixed(0.0); 2],
+        inertia,
+        rotation: Rotation::Input(0),
+    })
 }

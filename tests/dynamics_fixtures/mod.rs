@@ -146,3 +146,15 @@ where
         .map(|(i, b)| b.mass * (v[3 * i].powi(2) + v[3 * i + 1].powi(2)) + b.inertia * v[3 * i + 2].powi(2))
         .sum()
 }
+
+kinloop::mechanism! {
+    /// Offset slider-crank: crank `r` at the origin, rod `l`, piston on the line y = e; the
+    /// crank pin as a point.
+    pub struct SliderCrank {
+        params r = 1.0, l = 3.5, e = 0.3;
+        input phi;
+        unknowns psi = pi, x = r + l;
+        loop oabo: r @ phi == (x, e) + l @ psi;
+        point pin = r @ phi;
+    }
+}
