@@ -1,41 +1,56 @@
 //! Everything behind kinloop's `mechanism!` macro, as plain functions over
-//! `proc_macro2::TokenStream` so they can be tested, fuzzed and benchmarked outside a compiler.
-//! The folders are the pipeline's stages:
+//! `proc_macro2::TokenStream` so they can be tested, fuzzed and benchmarked outside a compiler:
+//! [`expand`] is what the macro runs; [`analyze`] stops after the checks and returns the checked
+//! [`model`], the solve order in [`Block`]s and the warnings ([`diag`]).
 //!
-//! 1. [`front`] parses the declaration ([`syntax`], with a Pratt parser for expressions,
-//!    [`expr`]) after checking its size and nesting without recursion;
-//! 2. [`semantics`] resolves names, checks vector/scalar types against one table of built-in
-//!    functions and lowers everything into one hash-consed expression graph ([`graph`]);
-//! 3. [`structure`] checks the structure (counts, mobility, Dulmage–Mendelsohn diagnosis) and
+//! The pipeline's stages are the crate's private folders:
+//!
+//! 1. `front` parses the declaration (`syntax`, with a Pratt parser for expressions, `expr`)
+//!    after checking its size and nesting without recursion;
+//! 2. `semantics` resolves names, checks vector/scalar types against one table of built-in
+//!    functions and lowers everything into one hash-consed expression graph (`graph`);
+//! 3. `structure` checks the structure (counts, mobility, Dulmage–Mendelsohn diagnosis) and
 //!    orders the equations into blocks (block-lower-triangular form);
-//! 4. [`plan`] differentiates the graph symbolically (compile-time forward-mode AD), one small
-//!    pass per kind of derivative;
-//! 5. [`emit`] writes what depends on the declaration: the named types, the straight-line
+//! 4. `plan` differentiates the graph symbolically (compile-time forward-mode AD), one small
+//!    pass per kind of derivative, and finds the blocks with a closed-form solution
+//!    (`closed_form`: classical Assur groups);
+//! 5. `emit` writes what depends on the declaration: the named types, the straight-line
 //!    kernels and the constants (everything else is generic code in the runtime).
 //!
-//! [`expand`] never panics: every mistake becomes a `compile_error!` at the user's span.
+//! [`expand`] never panics: every mistake becomes a `compile_error!` at the user's span, with
+//! the named types of the mechanism still declared (`fallback`) so that the user's code around
+//! it adds no secondary errors.
 
-pub mod closed_form;
-pub mod emit;
-pub mod fallback;
-pub mod front;
-pub mod graph;
-pub mod plan;
-pub mod semantics;
-pub mod structure;
+#![warn(missing_docs)]
+
+// The stages are private: the crate's interface is `expand` (what the macro runs) and `analyze`
+// (for tests and tools), so the pipeline can change without breaking anyone.
+pub(crate) mod closed_form;
+pub(crate) mod emit;
+pub(crate) mod fallback;
+pub(crate) mod front;
+pub(crate) mod graph;
+pub(crate) mod plan;
+pub(crate) mod semantics;
+pub(crate) mod structure;
 
 // The first stages under their former paths (`crate::syntax`, `crate::dag`, ...).
-pub use front::{expr, syntax};
-pub use graph::dag;
+pub(crate) use front::{expr, syntax};
+pub(crate) use graph::dag;
+pub(crate) use structure::analysis;
+// What `analyze` returns is public: the checked model, the blocks and the warnings.
 pub use semantics::model;
-pub use structure::{analysis, diag};
+pub use structure::{Block, diag};
 
 use proc_macro2::TokenStream;
 
 /// What analysis produced, for tests and tools.
 pub struct Analyzed {
+    /// The checked model: names resolved, equations and outputs lowered to one graph.
     pub model: model::Model,
-    pub blocks: Vec<structure::Block>,
+    /// The blocks in solve order (block-lower-triangular form): each block's unknowns are
+    /// solved together from its equations, once the blocks before it are solved.
+    pub blocks: Vec<Block>,
     /// Warnings (unused parameters); they do not stop code generation.
     pub warnings: Vec<diag::Warning>,
 }
@@ -51,8 +66,8 @@ pub fn analyze(input: TokenStream) -> Result<Analyzed, syn::Error> {
 
 /// Expands a `mechanism!` invocation. Never panics. Errors come back as `compile_error!`
 /// invocations, all of them together; once the mechanism's name is known they come with the
-/// fallback items of [`fallback`], so code that uses the mechanism's types adds no secondary
-/// errors.
+/// mechanism's named types, declared from the syntax alone, so code that uses those types adds
+/// no secondary errors.
 pub fn expand(input: TokenStream) -> TokenStream {
     let (def, syntax_errors) = syntax::parse_recover(input);
     let Some(def) = def else {

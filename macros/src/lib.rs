@@ -2,6 +2,8 @@
 //! `kinloop-codegen` so it can be tested and benchmarked as plain functions; this crate only
 //! adapts it to the compiler.
 
+#![warn(missing_docs)]
+
 use proc_macro::TokenStream;
 
 /// Declares a mechanism by its closed vector loops; see the `kinloop` crate documentation.

@@ -20,7 +20,7 @@
 pub mod emit;
 pub mod recognise;
 
-pub use recognise::{ClosedForm, Recognised, recognise};
+pub use recognise::{Recognised, recognise};
 
 #[cfg(test)]
 mod tests;

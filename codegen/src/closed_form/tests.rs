@@ -3,7 +3,7 @@
 //! points (the residual evaluated directly, not through the recognition), and near-misses that
 //! look alike but have no such closed form keep Newton.
 
-use super::{ClosedForm, recognise};
+use super::recognise::{ClosedForm, recognise};
 use crate::dag::{Graph, Leaf, NodeId};
 
 /// The closed forms of the declaration's blocks, in solve order (`None`: Newton or linear).

@@ -164,10 +164,6 @@ impl Errors {
         }
     }
 
-    pub fn is_empty(&self) -> bool {
-        self.0.is_none()
-    }
-
     pub fn finish<T>(self, value: T) -> Result<T, syn::Error> {
         match self.0 {
             Some(e) => Err(e),

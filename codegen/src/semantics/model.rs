@@ -1,5 +1,5 @@
 //! The checked model of a mechanism: names resolved, vector/scalar types checked, and every
-//! equation and output lowered to nodes of one expression [`Graph`].
+//! equation and output lowered to nodes of one expression graph.
 
 use super::dynamics::{DynamicsModel, Pending};
 use super::lower::{Lowerer, Val};
@@ -11,16 +11,16 @@ use proc_macro2::Span;
 use std::collections::HashMap;
 use syn::{Attribute, Ident, Visibility};
 
-pub use super::lower::MAX_INTEGER_EXPONENT;
-pub use super::suggest::similar;
-
 /// Most unknowns (and equations) one mechanism may declare.
 pub const MAX_UNKNOWNS: usize = 256;
 /// Most inputs one mechanism may declare.
 pub const MAX_INPUTS: usize = 6;
 
+/// A declared parameter, input or unknown.
 pub struct Named {
+    /// Its doc comments, copied onto the generated field that holds it.
     pub docs: Vec<Attribute>,
+    /// The name as written, with its span for diagnostics.
     pub name: Ident,
     /// Default value (params) or initial guess (unknowns).
     pub value: Option<NodeId>,
@@ -29,6 +29,7 @@ pub struct Named {
     pub item: usize,
 }
 
+/// One scalar equation: a projection of a `loop` (x or y) or an `eq`.
 pub struct Equation {
     /// `loop_name.x`, `loop_name.y` or the `eq` name.
     pub name: String,
@@ -38,38 +39,62 @@ pub struct Equation {
     pub is_loop: bool,
     /// The loop or equation item, for errors about it.
     pub range: SpanRange,
+    /// Node of the residual `lhs - rhs`: the equation holds where it is zero.
     pub residual: NodeId,
 }
 
+/// A `point` output: a named point of the mechanism, two output columns (`name.x`, `name.y`).
 pub struct Point {
+    /// Its doc comments, copied onto the generated field.
     pub docs: Vec<Attribute>,
+    /// The point's name.
     pub name: Ident,
+    /// Node of the x coordinate, an expression of parameters, inputs and unknowns.
     pub x: NodeId,
+    /// Node of the y coordinate.
     pub y: NodeId,
 }
 
+/// An `output`: a named scalar of the mechanism, one output column.
 pub struct Scalar {
+    /// Its doc comments, copied onto the generated field.
     pub docs: Vec<Attribute>,
+    /// The output's name.
     pub name: Ident,
+    /// Node of its value, an expression of parameters, inputs and unknowns.
     pub value: NodeId,
 }
 
-/// What the rest of the macro works on.
+/// What the rest of the macro works on: the declaration with its names resolved, and every
+/// equation and output a node of one expression graph.
 pub struct Model {
+    /// The doc comments on the declaration, copied onto the generated struct.
     pub docs: Vec<Attribute>,
+    /// The `#[kinloop(...)]` options.
     pub options: Options,
+    /// The visibility of the declared struct, given to every generated type.
     pub vis: Visibility,
+    /// The mechanism's name: the generated struct, and the prefix of its other types.
     pub name: Ident,
+    /// Span of the `{ ... }` body, for errors about what is missing from it.
     pub body: Span,
+    /// The design parameters (`params`), in declaration order.
     pub params: Vec<Named>,
+    /// The inputs (`input`, `inputs`): the driven coordinates, one per degree of freedom.
     pub inputs: Vec<Named>,
+    /// The unknowns, solved from the equations for given parameters and inputs.
     pub unknowns: Vec<Named>,
+    /// The scalar equations, two per loop, in declaration order.
     pub equations: Vec<Equation>,
+    /// The `point` outputs.
     pub points: Vec<Point>,
+    /// The `output` scalars.
     pub scalars: Vec<Scalar>,
+    /// The hash-consed expression graph every node above lives in.
     pub graph: Graph,
-    /// Parameters and inputs that nothing uses (reported as errors by the structure analysis).
+    /// Whether each parameter is used (an unused one is a warning, not an error).
     pub used_params: Vec<bool>,
+    /// Whether each input is used (an unused input is an error of the structure analysis).
     pub used_inputs: Vec<bool>,
     /// Bodies, loads and gravity (`body`, `force`, `torque`, `gravity`), if declared.
     pub dynamics: DynamicsModel,
@@ -87,6 +112,8 @@ impl Model {
         v
     }
 
+    /// Names of the output columns, in the order of [`Model::output_nodes`]: `p.x`, `p.y` for
+    /// a point `p`, the name for a scalar.
     pub fn output_names(&self) -> Vec<String> {
         let mut v = Vec::new();
         for p in &self.points {
@@ -128,7 +155,7 @@ struct Lowered {
 }
 
 /// Builds the model; all semantic errors found are returned together.
-pub fn build(def: MechanismDef) -> Result<Model, syn::Error> {
+pub(crate) fn build(def: MechanismDef) -> Result<Model, syn::Error> {
     let MechanismDef { docs, options, vis, name, items, body } = def;
     let mut lw = Lowerer::new();
     let mut globals = declare_globals(&mut lw, &items);

@@ -6,9 +6,9 @@ use std::collections::BTreeSet;
 /// One block of the BLT decomposition.
 #[derive(Clone, Debug, PartialEq, Eq)]
 pub struct Block {
-    /// Unknown indices, in declaration order.
+    /// Indices of the block's unknowns in the model's unknowns, in declaration order.
     pub unknowns: Vec<usize>,
-    /// Equation indices, in declaration order.
+    /// Indices of the block's equations in the model's equations, in declaration order.
     pub equations: Vec<usize>,
 }
 

@@ -22,9 +22,11 @@ use quote::{quote, quote_spanned};
 
 /// A warning at one span.
 pub struct Warning {
+    /// Where the compiler points: the offending token in the declaration.
     pub span: Span,
     /// Name of the deprecated constant, shown first by the compiler (a valid identifier).
     pub tag: String,
+    /// The text after the constant's name: what is wrong and what to do.
     pub message: String,
 }
 

@@ -20,7 +20,7 @@ mod matching;
 
 pub use blt::{Block, blt};
 pub use dm::{Imbalance, dulmage_mendelsohn};
-pub use matching::{Matching, maximum_matching};
+pub use matching::maximum_matching;
 
 use crate::dag::{Leaf, NodeId};
 use crate::model::Model;
