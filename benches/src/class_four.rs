@@ -10,16 +10,27 @@ use crate::sweep::{Failed, Step, Stepper};
 /// Parameters of the mechanism (the declaration's defaults).
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct Params {
+    /// Crank OA.
     pub oa: f64,
+    /// x of the frame pivot B.
     pub xb: f64,
+    /// y of the frame pivot B.
     pub yb: f64,
+    /// Side AC of the ternary link C-A-E.
     pub ac: f64,
+    /// Side AE of the ternary link C-A-E.
     pub ae: f64,
+    /// Angle from AC to AE (radians).
     pub alpha_a: f64,
+    /// Side BD of the ternary link D-B-F.
     pub bd: f64,
+    /// Side BF of the ternary link D-B-F.
     pub bf: f64,
+    /// Angle from BD to BF (radians).
     pub alpha_b: f64,
+    /// Binary link CD.
     pub cd: f64,
+    /// Binary link EF.
     pub ef: f64,
 }
 
@@ -67,6 +78,7 @@ impl Params {
 /// polar term `l @ theta` contributing `-l theta'^2 (cos theta, sin theta)`).
 #[derive(Clone, Copy, Debug)]
 pub struct HandNewton {
+    /// The mechanism's dimensions.
     pub p: Params,
 }
 

@@ -31,8 +31,11 @@ pub use kinloop_fixtures::class_four::{
 /// A declaration of the benchmarks: its name, its text, and its number of scalar equations.
 #[derive(Clone, Copy, Debug)]
 pub struct Declaration {
+    /// The mechanism's name, as the report prints it.
     pub name: &'static str,
+    /// The declaration's text, expanded by the expansion benchmark.
     pub text: &'static str,
+    /// Its number of scalar equations (two per loop), for the report's size column.
     pub equations: usize,
 }
 

@@ -19,9 +19,13 @@ fn on_turn(q: f64, guess: f64) -> f64 {
 /// `black_box`, so they are computed as the generated code computes them.
 #[derive(Clone, Copy, Debug)]
 pub struct FourBarClosed {
+    /// Crank length.
     pub a: f64,
+    /// Coupler length.
     pub b: f64,
+    /// Rocker length.
     pub c: f64,
+    /// Distance between the frame pivots.
     pub d: f64,
     /// C on the left of B -> D.
     pub left: bool,
@@ -79,8 +83,12 @@ impl Stepper<2> for FourBarClosed {
 /// moved to the guess's turn, as a sweep needs (both closed forms here do).
 #[derive(Clone, Copy, Debug)]
 pub struct GearLeverClosed {
+    /// Length of the carrier.
     pub l_c: f64,
+    /// Distance of the planet pin from the planet's centre.
     pub l_p: f64,
+    /// Gear ratio: the pin's arm on the planet turns by `(1 - u) a` when the carrier turns by
+    /// `a`.
     pub u: f64,
 }
 

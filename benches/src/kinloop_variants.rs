@@ -19,11 +19,14 @@ fn step_of<const N: usize, const NO: usize>(k: &Kin<N, 1, NO>) -> Step<N> {
 /// the mechanism's number of output columns.
 #[derive(Clone, Copy, Debug)]
 pub struct Kinloop<M, const NO: usize> {
+    /// The mechanism (its parameter values).
     pub m: M,
+    /// The Newton settings of every solve.
     pub cfg: NewtonConfig,
 }
 
 impl<M, const NO: usize> Kinloop<M, NO> {
+    /// `m` with the default Newton settings.
     pub fn new(m: M) -> Self {
         Kinloop { m, cfg: NewtonConfig::default() }
     }
@@ -42,6 +45,8 @@ impl<M: Mechanism<N, 1, NO>, const N: usize, const NO: usize> Stepper<N> for Kin
 /// The generated named API of a mechanism of the benchmarks: `kinematics_with` taking the
 /// named unknowns and returning the named state (`RhombicDriveState`, `ClassFourState`).
 pub trait NamedKinematics {
+    /// One kinematic solve at input `phi` from `guess` through `kinematics_with`, converted
+    /// from and to flat arrays outside the timed kinematics.
     fn named_step(&self, phi: f64, guess: &[f64; 4], cfg: &NewtonConfig) -> Result<Step<4>, kinloop::Error>;
 }
 
@@ -63,11 +68,14 @@ named_kinematics!(RhombicDrive => RhombicDriveUnknowns, ClassFour => ClassFourUn
 /// `ClassFourState`).
 #[derive(Clone, Copy, Debug)]
 pub struct KinloopNamed<M> {
+    /// The mechanism (its parameter values).
     pub m: M,
+    /// The Newton settings of every solve.
     pub cfg: NewtonConfig,
 }
 
 impl<M> KinloopNamed<M> {
+    /// `m` with the default Newton settings.
     pub fn new(m: M) -> Self {
         KinloopNamed { m, cfg: NewtonConfig::default() }
     }

@@ -7,6 +7,8 @@
 //! The peers live here (not in the bench targets) so the criterion benchmarks, the accuracy and
 //! allocation tests and the report binary all use the same code.
 
+#![warn(missing_docs)]
+
 pub mod class_four;
 pub mod decls;
 pub mod expansion;

@@ -24,12 +24,19 @@ pub const MAX_ITERATIONS: u32 = 50;
 /// Parameters of the drive.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct Params {
+    /// Crank arm AB of the working piston.
     pub r_p: f64,
+    /// Crank arm AD of the displacer.
     pub r_b: f64,
+    /// Working rod BC.
     pub l_p: f64,
+    /// Displacer rod DF.
     pub l_b: f64,
+    /// Height of the crank centre A above the working piston's line.
     pub e_p: f64,
+    /// Height of the displacer's line above the working piston's.
     pub de: f64,
+    /// Angle between the two crank arms (radians).
     pub gamma: f64,
 }
 
@@ -74,6 +81,7 @@ pub struct ClosedForm {
 }
 
 impl ClosedForm {
+    /// Precomputes the ratios of the drive `p`.
     pub fn new(p: &Params) -> Self {
         let e_b = p.e_p - p.de;
         ClosedForm {
@@ -143,6 +151,7 @@ fn newton1(mut t: f64, eval: impl Fn(f64) -> (f64, f64, f64, f64)) -> Result<(f6
 /// implicitly differentiated projections.
 #[derive(Clone, Copy, Debug)]
 pub struct TwoLoopNewton {
+    /// The drive's dimensions.
     pub p: Params,
 }
 
@@ -249,6 +258,7 @@ fn dense_analogs(
 /// Dense 4x4 Newton with the Jacobian, `df/dphi1` and the second-order term derived by hand.
 #[derive(Clone, Copy, Debug)]
 pub struct DenseHandJacobian {
+    /// The drive's dimensions.
     pub p: Params,
 }
 
@@ -296,6 +306,7 @@ impl Stepper<4> for DenseHandJacobian {
 /// second-order term `D2f[(q', 1), (q', 1)]` is one `Dual2` evaluation along `(q', 1)`.
 #[derive(Clone, Copy, Debug)]
 pub struct DenseNumDual {
+    /// The drive's dimensions.
     pub p: Params,
 }
 
@@ -326,6 +337,7 @@ impl Stepper<4> for DenseNumDual {
 /// difference along `(q', 1)`.
 #[derive(Clone, Copy, Debug)]
 pub struct DenseFiniteDifference {
+    /// The drive's dimensions.
     pub p: Params,
 }
 

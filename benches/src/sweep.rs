@@ -9,8 +9,11 @@ pub const STEPS: usize = 1_000_000;
 /// Positions, velocity analogs and acceleration analogs of the unknowns at one input value.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct Step<const N: usize> {
+    /// Positions of the unknowns.
     pub q: [f64; N],
+    /// Velocity analogs `dq/dphi`.
     pub dq: [f64; N],
+    /// Acceleration analogs `d2q/dphi2`.
     pub d2q: [f64; N],
     /// Newton iterations spent on this step (0 when the warm start already met the tolerance).
     pub iterations: u32,
@@ -21,6 +24,7 @@ pub struct Step<const N: usize> {
 pub struct Failed(pub String);
 
 impl Failed {
+    /// A failure that says why; cold, so building it costs the steps that succeed nothing.
     #[cold]
     #[inline(never)]
     pub fn new(why: impl ToString) -> Self {
@@ -39,6 +43,8 @@ pub trait Stepper<const N: usize> {
     /// Whether the step uses the warm start (a closed form does not, and then the sweep
     /// computes none: the closed form is timed without the predictor's cost).
     const WARM: bool = true;
+    /// Positions at input `phi`, solved from `guess`, with their velocity and acceleration
+    /// analogs.
     fn step(&self, phi: f64, guess: &[f64; N]) -> Result<Step<N>, Failed>;
 }
 
@@ -53,8 +59,10 @@ pub enum WarmStart {
 }
 
 impl WarmStart {
+    /// Both policies, in the report's order.
     pub const ALL: [WarmStart; 2] = [WarmStart::Taylor, WarmStart::Previous];
 
+    /// The policy's name in benchmark ids and the report.
     pub fn name(self) -> &'static str {
         match self {
             WarmStart::Previous => "previous",
