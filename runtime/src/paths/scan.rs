@@ -5,7 +5,7 @@
 //! (a stroke, the largest transmission angle, the peak of an acceleration analog, ...) without
 //! keeping the states: a scan allocates its result vector and nothing else per set or per sample
 //! (unless `init` or `fold` do; errors carry a boxed location). [`scan`] runs the sets one after
-//! the other; [`par_scan`] (cargo feature `rayon`) runs them on all cores with rayon's work
+//! the other; `par_scan` (cargo feature `rayon`) runs them on all cores with rayon's work
 //! stealing and returns bitwise the same results in the same order.
 //!
 //! Each set succeeds or fails on its own: a parameter set that cannot be assembled, that meets a

@@ -11,7 +11,7 @@
 //! * [`Drawing::animate`]: an animated SVG (SMIL, no script: it plays in browsers and in a
 //!   README on a code host) with the traced paths;
 //! * [`Drawing::exposures`]: a static multi-exposure for print;
-//! * [`Drawing::svg`]: the mechanism at one pose; [`png`] renders it (feature `png`).
+//! * [`Drawing::svg`]: the mechanism at one pose; the module `png` renders it (feature `png`).
 //!
 //! Where a sweep stopped at a limit position or passed a singular crossing, the drawing shows
 //! the mechanism at the located event as a dashed ghost, labelled with its kind and input.
