@@ -62,9 +62,11 @@
 //!   rot(v, theta)`.
 //! * **Angles are in radians** everywhere: in the declaration (`@`, `sin`, `rot`, initial
 //!   guesses), in the inputs passed at run time, in every result (`s.q.phi2`, analogs per radian)
-//!   and in the CSV columns (`phi [rad]`). Write an angle in degrees as `deg(30)` in a
-//!   declaration and as `kinloop::deg(30.0)` in Rust; `30°` is not valid Rust and does not
-//!   compile. A guess written in degrees by mistake (`phi2 = 30`) is a guess of 30 rad.
+//!   and in tables and their CSV files (label the columns with [`Table::with_units`]:
+//!   `phi [rad]`). Write an angle in degrees as `deg(30)` in a declaration and as
+//!   `kinloop::deg(30.0)` in Rust, and read one in degrees with [`to_deg`] or
+//!   [`Table::column_deg`]; `30°` is not valid Rust and does not compile. A guess written in
+//!   degrees by mistake (`phi2 = 30`) is a guess of 30 rad.
 //! * A loop's right side may be `0` (the zero vector): `loop c: a + b - c == 0;`.
 //! * Time can be the input: `input t; let s1 = v1 * t;` (the analogs are then time derivatives).
 //! * Several inputs make a multi-degree-of-freedom mechanism; the analogs are partial
@@ -128,17 +130,22 @@
 //! For `pub struct Name { ... }`:
 //!
 //! * `Name`: the parameters as public `f64` fields (and `Default` when every parameter has a
-//!   default value, or when there are no parameters);
+//!   default value, or when there are no parameters), with `param_values()` and
+//!   `from_param_values([...])` in declaration order;
 //! * `NameInputs<T>`, `NameUnknowns<T>`, `NameOutputs<T>`: named fields (points are
-//!   [`Vec2`]), convertible from and to arrays (and nalgebra vectors for the unknowns);
-//! * `NameState`: positions `q`, velocity analogs `dq`, acceleration analogs `d2q`, outputs
-//!   `out`, `dout`, `d2out`, the solver [`SolveReport`] and the blocks' [`Health`];
-//!   `state.motion(omega, eps)` gives true velocities and accelerations (`NameMotion`);
-//! * methods on `Name`: `solve`, `kinematics(input, guess)`, `position(input, guess)`,
-//!   `kinematics_at(input, q)`, `outputs`, `residual`, `guess`, `check`, their `_with`
-//!   variants taking a [`NewtonConfig`], and the constants `PARAMS`, `INPUTS`, `UNKNOWNS`,
-//!   `EQUATIONS`, `OUTPUTS`, `BLOCKS` (the block-triangular decomposition) and
-//!   `DECOMPOSITION` (the same in words, see below);
+//!   [`Vec2`]), convertible from and to arrays (and nalgebra vectors for the unknowns); with
+//!   one input, a plain `f64` converts to `NameInputs`, so `m.solve(0.3)` works;
+//! * `NameState`: the inputs `input`, positions `q`, velocity analogs `dq`, acceleration analogs
+//!   `d2q`, outputs `out`, `dout`, `d2out`, the solver [`SolveReport`], the blocks' [`Health`]
+//!   and the same values as a flat [`Kin`] (`flat`); `state.motion(omega, eps)` gives true
+//!   velocities and accelerations (`NameMotion`);
+//! * methods on `Name`: `solve(input)`, `kinematics(input, guess)`, `position(input, guess)`,
+//!   `kinematics_at(input, q)`, `outputs`, `residual`, `guess`, `check`, `position_with` and
+//!   `kinematics_with` taking a [`NewtonConfig`], `sweep`, `sweep_at` and `assembly_modes`
+//!   (see below), `sensitivities` when requested and `mass_model` when bodies are declared;
+//!   and the constants `NAME`, `PARAMS`, `INPUTS`, `UNKNOWNS`, `EQUATIONS`, `OUTPUTS`,
+//!   `BLOCKS` (the block-triangular decomposition) and `DECOMPOSITION` (the same in words, see
+//!   below);
 //! * implementations of [`Mechanism`] (the flat, generated kernels) and [`Named`] (the same
 //!   API by name) for generic code. The methods above are the same for every mechanism: they
 //!   live once in [`Named`] and the generated ones only forward to it, so calling them needs no
@@ -209,7 +216,7 @@
 //! Jacobian determinant (its assembly mode), the corrected position lies near the prediction and
 //! the velocity analogs near theirs. When no step can be made it locates why — a **limit
 //! position** of the input (found by pseudo-arclength continuation where the input reverses) or
-//! a **singular crossing** (a change point where a determinant changes sign) — records a
+//! a **singular crossing** (a change point where a determinant changes sign) — records an
 //! [`Event`] with the input value, and stops with [`Error::SweepStopped`] (or, with
 //! [`AtSingular::Continue`], passes a crossing). [`Sweep::table`] collects a sweep into a
 //! CSV-ready [`Table`]; [`reachable`] finds the input range reachable on a branch;
@@ -308,11 +315,23 @@
 //! Configurations ([`SweepConfig`], [`NewtonConfig`], the optimisers) are built from their
 //! defaults with `with_*` methods: `SweepConfig::default().with_max_step(0.5)`.
 //!
+//! ## Analysis, metrics, dynamics and features
+//!
+//! [`analysis`] answers questions about a sweep by column (extremes, strokes, dwells,
+//! harmonics, unbalance) and optimises designs; [`metrics`] gives the designer's figures
+//! (transmission angle, Grashof class, time ratio, dead centres and limit positions);
+//! [`dynamics`] works on the mass model of a machine (reduced inertia, inverse dynamics,
+//! flywheel, simulation). Cargo features add `plot` (`kinloop::plot`, charts of sweep results
+//! as SVG), `draw` (`kinloop::draw`, drawings and animations of the mechanism as SVG), `rayon`
+//! (`par_scan`), `mint` and `serde` (see above).
+//!
 //! ## Errors
 //!
 //! Bad input never panics and never yields a silent NaN: see [`Error`] (non-finite parameters or
 //! inputs, no convergence, a mechanism that cannot be assembled, a singular position, an
-//! expression outside its domain), each carrying the mechanism, the input values and the block.
+//! expression outside its domain, an overflow, a sweep stopped at a singular position, an
+//! invalid argument). Every error but an invalid argument carries a [`Location`]: the mechanism, the
+//! input values and, where one is concerned, the block.
 //!
 //! ```
 //! kinloop::mechanism! {

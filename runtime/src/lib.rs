@@ -1,5 +1,16 @@
-//! Runtime of [kinloop](https://docs.rs/kinloop): Newton solvers, the flat kinematic state,
-//! errors, and the interface generated mechanisms implement.
+//! Runtime of [kinloop](https://docs.rs/kinloop): the interface generated mechanisms implement
+//! ([`Mechanism`], the flat kernels, and [`Named`], the typed API on top of them), and the
+//! generic code every mechanism shares:
+//!
+//! * the flat kinematic state [`Kin`] and the typed [`Error`]s;
+//! * the position solves, configured by [`NewtonConfig`] and reported by [`SolveReport`] (the
+//!   block solvers themselves are private: generated code reaches them through a hidden
+//!   module);
+//! * branch-safe sweeps, continuation through limit positions, assembly modes and scans
+//!   ([`paths`], with [`Sweep`], [`trace_curve`], [`assembly_modes`] and [`scan`] re-exported),
+//!   and the [`Event`]s they locate;
+//! * [`Table`]s with units and CSV, [`Vec2`], angle conversions ([`deg`], [`to_deg`]);
+//! * [`analysis`] of sweeps, design [`metrics`], machine [`dynamics`].
 //!
 //! Most users depend on the `kinloop` facade crate, which re-exports everything here next to
 //! the `mechanism!` macro.
