@@ -22,15 +22,19 @@ use syn::{Ident, Token};
 /// The first and last token of a syntax node, so errors can underline the whole node.
 #[derive(Clone, Copy, Debug)]
 pub struct SpanRange {
+    /// Span of the first token.
     pub start: Span,
+    /// Span of the last token.
     pub end: Span,
 }
 
 impl SpanRange {
+    /// The range of one token.
     pub fn single(span: Span) -> Self {
         SpanRange { start: span, end: span }
     }
 
+    /// From the start of `self` to the end of `other`.
     pub fn to(self, other: SpanRange) -> Self {
         SpanRange { start: self.start, end: other.end }
     }
@@ -45,18 +49,25 @@ impl SpanRange {
     }
 }
 
+/// A binary operator.
 #[derive(Clone, Copy, PartialEq, Eq, Debug)]
 pub enum BinOp {
+    /// `a + b` (scalars or vectors).
     Add,
+    /// `a - b` (scalars or vectors).
     Sub,
+    /// `a * b` (a scalar times a scalar or a vector).
     Mul,
+    /// `a / b` (a scalar or a vector over a scalar).
     Div,
+    /// `a ^ b` (scalars).
     Pow,
     /// `length @ angle`.
     Polar,
 }
 
 impl BinOp {
+    /// The operator as written.
     pub fn symbol(self) -> &'static str {
         match self {
             BinOp::Add => "+",
@@ -69,56 +80,90 @@ impl BinOp {
     }
 }
 
+/// A component of a vector, `.x` or `.y`.
 #[derive(Clone, Copy, PartialEq, Eq, Debug)]
 pub enum Component {
+    /// `.x`.
     X,
+    /// `.y`.
     Y,
 }
 
+/// An expression of the declaration language, as parsed (types are checked later, when it is
+/// lowered to the graph).
 #[derive(Clone, Debug)]
 pub enum Expr {
     /// A number literal; `integer` is set when it was written without a decimal point.
     Num {
+        /// Its value.
         value: f64,
+        /// Its value when it is an integer literal (exponents of `powi`).
         integer: Option<i64>,
+        /// Where it is written.
         span: Span,
     },
+    /// A name: parameter, input, unknown, `let`, `pi`, or an undeclared name reported later.
     Var(Ident),
+    /// Unary minus.
     Neg {
+        /// The `-` token.
         op: Span,
+        /// The negated expression.
         expr: Box<Expr>,
     },
+    /// A binary operation.
     Binary {
+        /// The operator.
         op: BinOp,
+        /// The operator's token.
         op_span: Span,
+        /// The left operand.
         lhs: Box<Expr>,
+        /// The right operand.
         rhs: Box<Expr>,
     },
+    /// A call of a built-in function.
     Call {
+        /// The function's name.
         func: Ident,
+        /// The arguments.
         args: Vec<Expr>,
+        /// The closing parenthesis.
         close: Span,
     },
     /// A Cartesian vector `(x, y)`.
     Tuple {
+        /// The opening parenthesis.
         open: Span,
+        /// The x component.
         x: Box<Expr>,
+        /// The y component.
         y: Box<Expr>,
+        /// The closing parenthesis.
         close: Span,
     },
+    /// A parenthesised expression, kept so that messages show the user's parentheses.
     Paren {
+        /// The opening parenthesis.
         open: Span,
+        /// The expression inside.
         inner: Box<Expr>,
+        /// The closing parenthesis.
         close: Span,
     },
+    /// A vector component, `v.x` or `v.y`.
     Field {
+        /// The vector.
         base: Box<Expr>,
+        /// Which component.
         component: Component,
+        /// The component's name as written.
         name: Ident,
     },
 }
 
 impl Expr {
+    /// The tokens the expression spans, for errors about it.
     pub fn range(&self) -> SpanRange {
         match self {
             Expr::Num { span, .. } => SpanRange::single(*span),

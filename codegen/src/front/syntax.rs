@@ -32,15 +32,21 @@ use syn::{Attribute, Ident, Token, Visibility};
 
 /// A whole declaration.
 pub struct MechanismDef {
+    /// Doc comments on the declaration, for the generated struct.
     pub docs: Vec<Attribute>,
+    /// The `#[kinloop(...)]` options.
     pub options: Options,
+    /// Visibility of the struct, given to every generated type.
     pub vis: Visibility,
+    /// The mechanism's name.
     pub name: Ident,
+    /// The body's items, in order.
     pub items: Vec<Item>,
     /// Span of the `{ ... }` body, for errors about what is missing from it.
     pub body: Span,
 }
 
+/// The `#[kinloop(...)]` options, each with the span of its word (for errors about it).
 #[derive(Default)]
 pub struct Options {
     /// `#[kinloop(dense)]`: solve every unknown in one block.
@@ -54,69 +60,108 @@ pub struct Options {
 
 /// A declared name with its doc comments and optional `= value`.
 pub struct Decl {
+    /// Doc comments on the name, for the generated field.
     pub docs: Vec<Attribute>,
+    /// The declared name.
     pub name: Ident,
+    /// Default value (parameters) or initial guess (unknowns), if given.
     pub value: Option<Expr>,
 }
 
+/// Which list a declaration item declares.
 #[derive(Clone, Copy, PartialEq, Eq, Debug)]
 pub enum DeclKind {
+    /// `params`: design parameters.
     Params,
+    /// `input`, `inputs`: the driven coordinates.
     Inputs,
+    /// `unknowns`: solved from the equations.
     Unknowns,
 }
 
+/// What one item of the body declares.
 pub enum ItemKind {
+    /// `params`, `input(s)` or `unknowns` with their names.
     Decls(DeclKind, Vec<Decl>),
+    /// `let name = expr;`: a named intermediate value.
     Let {
+        /// The name.
         name: Ident,
+        /// The value, a scalar or a vector.
         value: Expr,
     },
+    /// `loop name: vector == vector;`: one vector loop, two scalar equations.
     Loop {
+        /// The loop's name.
         name: Ident,
+        /// The left side.
         lhs: Expr,
+        /// The right side (`0` for the zero vector).
         rhs: Expr,
+        /// The `==` token.
         eq: Span,
     },
+    /// `eq name: scalar == scalar;`: one scalar equation.
     Eq {
+        /// The equation's name.
         name: Ident,
+        /// The left side.
         lhs: Expr,
+        /// The right side.
         rhs: Expr,
+        /// The `==` token.
         eq: Span,
     },
+    /// `point name = vector;`: an output point.
     Point {
+        /// The point's name.
         name: Ident,
+        /// Its position.
         value: Expr,
     },
+    /// `output name = scalar;`: a scalar output.
     Output {
+        /// The output's name.
         name: Ident,
+        /// Its value.
         value: Expr,
     },
     /// `body name: mass m, com s, inertia j, turns phi;` (`inertia` and `turns` optional).
     Body(BodyDef),
     /// `force name at point = vector;`
     Force {
+        /// The force's name.
         name: Ident,
+        /// The point it acts at.
         at: Expr,
+        /// The force vector.
         value: Expr,
     },
     /// `torque name on angle = scalar;`
     Torque {
+        /// The torque's name.
         name: Ident,
+        /// The input or angle unknown it acts on.
         on: Ident,
+        /// The torque.
         value: Expr,
     },
     /// `gravity vector;`
     Gravity {
+        /// The gravitational acceleration.
         value: Expr,
     },
 }
 
 /// A rigid body of the machine's dynamics.
 pub struct BodyDef {
+    /// The body's name.
     pub name: Ident,
+    /// Its mass, an expression of the parameters.
     pub mass: Expr,
+    /// Its centre of mass, a point.
     pub com: Expr,
+    /// Its moment of inertia about the centre of mass (zero when not given).
     pub inertia: Option<Expr>,
     /// The angle the body turns with (none for a slider).
     pub turns: Option<Ident>,
@@ -124,10 +169,13 @@ pub struct BodyDef {
     pub end: Span,
 }
 
+/// One item of the body, with its doc comments.
 pub struct Item {
+    /// Doc comments on the item (kept on the fields of points and outputs).
     pub docs: Vec<Attribute>,
     /// The item's keyword (`loop`, `params`, ...).
     pub keyword: Span,
+    /// What the item declares.
     pub kind: ItemKind,
 }
 
@@ -157,6 +205,7 @@ impl Item {
 pub struct Errors(Option<syn::Error>);
 
 impl Errors {
+    /// Adds an error to the others.
     pub fn push(&mut self, e: syn::Error) {
         match &mut self.0 {
             Some(all) => all.combine(e),
@@ -164,6 +213,7 @@ impl Errors {
         }
     }
 
+    /// `value` if no error was pushed, else all the errors combined.
     pub fn finish<T>(self, value: T) -> Result<T, syn::Error> {
         match self.0 {
             Some(e) => Err(e),
@@ -171,6 +221,7 @@ impl Errors {
         }
     }
 
+    /// The combined errors, if any.
     pub fn into_error(self) -> Option<syn::Error> {
         self.0
     }

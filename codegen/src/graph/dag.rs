@@ -16,6 +16,7 @@ use std::collections::HashMap;
 pub struct NodeId(pub u32);
 
 impl NodeId {
+    /// The position of the node in the graph's node list.
     pub fn index(self) -> usize {
         self.0 as usize
     }
@@ -53,21 +54,32 @@ impl Leaf {
 /// Elementary functions of one argument.
 #[derive(Clone, Copy, PartialEq, Eq, Hash, Debug)]
 pub enum Func {
+    /// `sin x`.
     Sin,
+    /// `cos x`.
     Cos,
+    /// `tan x`.
     Tan,
+    /// `asin x`.
     Asin,
+    /// `acos x`.
     Acos,
+    /// `atan x`.
     Atan,
+    /// `sqrt x`.
     Sqrt,
+    /// `exp x`.
     Exp,
+    /// Natural logarithm `ln x`.
     Ln,
+    /// `|x|`.
     Abs,
     /// Sign of the argument (derivative of `abs`); its own derivative is zero.
     Signum,
 }
 
 impl Func {
+    /// The function's value at `x`, for constant folding and the macro's numeric checks.
     pub fn eval(self, x: f64) -> f64 {
         match self {
             Func::Sin => x.sin(),
@@ -113,15 +125,25 @@ impl Func {
 /// One node. Constants are stored by their bit pattern so nodes can be hashed.
 #[derive(Clone, Copy, PartialEq, Eq, Hash, Debug)]
 pub enum Op {
+    /// A constant, as the bits of its `f64`.
     Const(u64),
+    /// A free variable: parameter, input, unknown, analog or sensitivity.
     Leaf(Leaf),
+    /// `a + b`.
     Add(NodeId, NodeId),
+    /// `a - b`.
     Sub(NodeId, NodeId),
+    /// `a * b`.
     Mul(NodeId, NodeId),
+    /// `a / b`.
     Div(NodeId, NodeId),
+    /// `-a`.
     Neg(NodeId),
+    /// `a` to an integer power (`powi`).
     Powi(NodeId, i32),
+    /// `a` to a power `b` that is not a small integer constant (`powf`).
     Powf(NodeId, NodeId),
+    /// An elementary function of one argument.
     Func(Func, NodeId),
     /// `atan2(y, x)`.
     Atan2(NodeId, NodeId),
@@ -153,22 +175,27 @@ pub struct Graph {
 pub const MAX_NODES: usize = 2_000_000;
 
 impl Graph {
+    /// An empty graph.
     pub fn new() -> Self {
         Self::default()
     }
 
+    /// The number of distinct nodes (the size the declaration's limits are measured in).
     pub fn len(&self) -> usize {
         self.nodes.len()
     }
 
+    /// Whether the graph has no node.
     pub fn is_empty(&self) -> bool {
         self.nodes.is_empty()
     }
 
+    /// The operation of node `n`.
     pub fn op(&self, n: NodeId) -> Op {
         self.nodes[n.index()]
     }
 
+    /// Whether the graph reached [`MAX_NODES`]; the model then rejects the declaration as too large.
     pub fn overflowed(&self) -> bool {
         self.nodes.len() >= MAX_NODES
     }
@@ -191,28 +218,34 @@ impl Graph {
         }
     }
 
+    /// Whether `n` is the constant zero.
     pub fn is_zero(&self, n: NodeId) -> bool {
         self.as_const(n) == Some(0.0)
     }
 
+    /// Whether `n` is the constant one.
     pub fn is_one(&self, n: NodeId) -> bool {
         self.as_const(n) == Some(1.0)
     }
 
+    /// The node of a constant (`-0.0` and `0.0` are one node).
     pub fn constant(&mut self, v: f64) -> NodeId {
         // -0.0 and 0.0 are the same node.
         let v = if v == 0.0 { 0.0 } else { v };
         self.intern(Op::Const(v.to_bits()))
     }
 
+    /// The constant zero.
     pub fn zero(&mut self) -> NodeId {
         self.constant(0.0)
     }
 
+    /// The constant one.
     pub fn one(&mut self) -> NodeId {
         self.constant(1.0)
     }
 
+    /// The node of a free variable.
     pub fn leaf(&mut self, leaf: Leaf) -> NodeId {
         self.intern(Op::Leaf(leaf))
     }
@@ -223,6 +256,8 @@ impl Graph {
         v.is_finite().then(|| self.constant(v))
     }
 
+    /// `a + b`, simplified: constants folded, zero dropped, a negated operand turned into a subtraction,
+    /// operands ordered so that `a + b` and `b + a` are one node.
     pub fn add(&mut self, a: NodeId, b: NodeId) -> NodeId {
         match (self.as_const(a), self.as_const(b)) {
             (Some(x), Some(y)) => {
@@ -244,6 +279,7 @@ impl Graph {
         self.intern(Op::Add(a, b))
     }
 
+    /// `a - b`, simplified: `x - x = 0`, constants folded, zero dropped, `a - (-b) = a + b`.
     pub fn sub(&mut self, a: NodeId, b: NodeId) -> NodeId {
         if a == b {
             return self.zero();
@@ -264,6 +300,8 @@ impl Graph {
         self.intern(Op::Sub(a, b))
     }
 
+    /// `-a`, simplified: constants folded, `-(-x) = x`, `-(x - y) = y - x`, the sign moved into a
+    /// constant factor.
     pub fn neg(&mut self, a: NodeId) -> NodeId {
         match self.op(a) {
             Op::Const(bits) => self.constant(-f64::from_bits(bits)),
@@ -277,6 +315,8 @@ impl Graph {
         }
     }
 
+    /// `a * b`, simplified: constants folded and gathered in front, multiplications by 0, 1 and -1
+    /// removed, negations lifted to the top, `x * x = x^2`, operands ordered.
     pub fn mul(&mut self, a: NodeId, b: NodeId) -> NodeId {
         // Constants go first so the rules below see them in one place.
         let (a, b) = if self.as_const(b).is_some() && self.as_const(a).is_none() { (b, a) } else { (a, b) };
@@ -331,6 +371,8 @@ impl Graph {
         self.intern(Op::Mul(a, b))
     }
 
+    /// `a / b`, simplified: `x / x = 1`, constants folded, division by 1, -1 or a power of two
+    /// turned into an exact multiplication, negations lifted.
     pub fn div(&mut self, a: NodeId, b: NodeId) -> NodeId {
         if a == b {
             return self.one();
@@ -358,6 +400,7 @@ impl Graph {
         self.intern(Op::Div(a, b))
     }
 
+    /// `a^n` for an integer `n`: `x^0 = 1`, `x^1 = x`, constants folded; huge exponents become `powf`.
     pub fn powi(&mut self, a: NodeId, n: i32) -> NodeId {
         // Huge integer exponents go through `powf`, so that differentiating them (n - 1, n - 2,
         // ...) can never overflow the exponent.
@@ -378,6 +421,8 @@ impl Graph {
         self.intern(Op::Powi(a, n))
     }
 
+    /// `a^b`: an integer constant exponent (up to 64) becomes `powi`, `x^0.5` becomes `sqrt`, constants
+    /// folded.
     pub fn powf(&mut self, a: NodeId, b: NodeId) -> NodeId {
         if let Some(e) = self.as_const(b) {
             if e == e.trunc() && e.abs() <= 64.0 {
@@ -395,6 +440,7 @@ impl Graph {
         self.intern(Op::Powf(a, b))
     }
 
+    /// `f(a)`: constants folded, `abs(abs x) = abs x` and `signum(signum x) = signum x`.
     pub fn func(&mut self, f: Func, a: NodeId) -> NodeId {
         if let Some(x) = self.as_const(a)
             && let Some(c) = self.fold(f.eval(x))
@@ -409,6 +455,7 @@ impl Graph {
         self.intern(Op::Func(f, a))
     }
 
+    /// `atan2(y, x)`, folded when both are constants.
     pub fn atan2(&mut self, y: NodeId, x: NodeId) -> NodeId {
         if let (Some(yv), Some(xv)) = (self.as_const(y), self.as_const(x))
             && let Some(c) = self.fold(yv.atan2(xv))
