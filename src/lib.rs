@@ -330,8 +330,8 @@
 //! Bad input never panics and never yields a silent NaN: see [`Error`] (non-finite parameters or
 //! inputs, no convergence, a mechanism that cannot be assembled, a singular position, an
 //! expression outside its domain, an overflow, a sweep stopped at a singular position, an
-//! invalid argument). Every error but an invalid argument carries a [`Location`]: the mechanism, the
-//! input values and, where one is concerned, the block.
+//! invalid argument). Every error but an invalid argument carries a [`Location`]: the mechanism,
+//! the input values and, where one is concerned, the block.
 //!
 //! ```
 //! kinloop::mechanism! {

@@ -46,6 +46,7 @@ pub struct Shape {
 }
 
 impl Shape {
+    /// Collects the names of `def` (as far as it parsed).
     pub fn of(def: &MechanismDef) -> Shape {
         let mut s = Surface {
             docs: def.docs.clone(),

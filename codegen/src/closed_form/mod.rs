@@ -1,8 +1,8 @@
 //! Closed-form solutions of the blocks that are classical Assur groups.
 //!
 //! Newton with an LU solves every nonlinear block in general; a block whose position problem
-//! has a closed form is solved by that form instead ([`recognise`] proves the pattern on the
-//! expression graph at compile time, [`emit`] writes the straight-line solve):
+//! has a closed form is solved by that form instead ([`recognise`](mod@recognise) proves the
+//! pattern on the expression graph at compile time, [`emit`] writes the straight-line solve):
 //!
 //! * one unknown angle in one equation `a cos q + b sin q = c` (a rod's angle from one
 //!   projection of its loop): two roots by one square root;

@@ -22,7 +22,9 @@ use syn::ext::IdentExt;
 pub struct Names {
     /// Parameters are read from the mechanism where they are used (`self.a`).
     pub params: Vec<TokenStream>,
+    /// Locals holding the inputs (`x_phi`).
     pub inputs: Vec<Ident>,
+    /// Locals holding the unknowns (`q_beta`).
     pub unknowns: Vec<Ident>,
     /// Plain names of unknowns, inputs and parameters, for the derived names.
     u: Vec<String>,
@@ -43,6 +45,7 @@ fn lower(i: usize, j: usize) -> (usize, usize) {
 }
 
 impl Names {
+    /// The names of `model`'s leaves, and of the temporaries named after the quantities in `plan`.
     pub fn new(model: &Model, plan: &Plan) -> Names {
         let u: Vec<String> = model.unknowns.iter().map(|x| plain(&x.name)).collect();
         let i: Vec<String> = model.inputs.iter().map(|x| plain(&x.name)).collect();

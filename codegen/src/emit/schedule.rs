@@ -9,6 +9,7 @@
 use crate::dag::{Func, Graph, NodeId, Op};
 use std::collections::HashMap;
 
+/// Where a scope's code runs.
 #[derive(Clone, Copy, PartialEq, Eq, Debug)]
 pub enum ScopeKind {
     /// Straight-line code.
@@ -17,11 +18,15 @@ pub enum ScopeKind {
     Loop(usize),
 }
 
+/// What one scope of a generated function must compute.
 pub struct ScopeSpec {
+    /// Where it runs.
     pub kind: ScopeKind,
+    /// The nodes it needs (its results).
     pub roots: Vec<NodeId>,
 }
 
+/// The nodes of each scope, and what the scopes hand to each other.
 pub struct Schedule {
     /// Nodes computed in each scope, in topological order.
     pub lets: Vec<Vec<NodeId>>,
@@ -32,6 +37,11 @@ pub struct Schedule {
     pub sin_cos: HashMap<NodeId, (NodeId, NodeId)>,
 }
 
+/// Places every node needed by `scopes` in the first scope that needs it (a node of a `Loop`
+/// scope that does not depend on the block's unknowns moves to the scope before), pairs sines
+/// with cosines, and lists what each loop scope must hand out. `level` is
+/// [`Plan::level`](crate::plan::Plan::level):
+/// the highest block whose unknowns each node depends on.
 pub fn schedule(g: &Graph, level: &[i32], scopes: &[ScopeSpec]) -> Schedule {
     let mut assigned: HashMap<NodeId, usize> = HashMap::new();
     for (s, spec) in scopes.iter().enumerate() {

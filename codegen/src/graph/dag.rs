@@ -195,7 +195,8 @@ impl Graph {
         self.nodes[n.index()]
     }
 
-    /// Whether the graph reached [`MAX_NODES`]; the model then rejects the declaration as too large.
+    /// Whether the graph reached [`MAX_NODES`]; the model then rejects the declaration as too
+    /// large.
     pub fn overflowed(&self) -> bool {
         self.nodes.len() >= MAX_NODES
     }
@@ -256,8 +257,8 @@ impl Graph {
         v.is_finite().then(|| self.constant(v))
     }
 
-    /// `a + b`, simplified: constants folded, zero dropped, a negated operand turned into a subtraction,
-    /// operands ordered so that `a + b` and `b + a` are one node.
+    /// `a + b`, simplified: constants folded, zero dropped, a negated operand turned into a
+    /// subtraction, operands ordered so that `a + b` and `b + a` are one node.
     pub fn add(&mut self, a: NodeId, b: NodeId) -> NodeId {
         match (self.as_const(a), self.as_const(b)) {
             (Some(x), Some(y)) => {
@@ -400,7 +401,8 @@ impl Graph {
         self.intern(Op::Div(a, b))
     }
 
-    /// `a^n` for an integer `n`: `x^0 = 1`, `x^1 = x`, constants folded; huge exponents become `powf`.
+    /// `a^n` for an integer `n`: `x^0 = 1`, `x^1 = x`, constants folded; huge exponents become
+    /// `powf`.
     pub fn powi(&mut self, a: NodeId, n: i32) -> NodeId {
         // Huge integer exponents go through `powf`, so that differentiating them (n - 1, n - 2,
         // ...) can never overflow the exponent.
@@ -421,8 +423,8 @@ impl Graph {
         self.intern(Op::Powi(a, n))
     }
 
-    /// `a^b`: an integer constant exponent (up to 64) becomes `powi`, `x^0.5` becomes `sqrt`, constants
-    /// folded.
+    /// `a^b`: an integer constant exponent (up to 64) becomes `powi`, `x^0.5` becomes `sqrt`,
+    /// constants folded.
     pub fn powf(&mut self, a: NodeId, b: NodeId) -> NodeId {
         if let Some(e) = self.as_const(b) {
             if e == e.trunc() && e.abs() <= 64.0 {

@@ -31,7 +31,9 @@ use seeds::Seeds;
 
 /// Everything computed for one block of the decomposition.
 pub struct BlockPlan {
+    /// The block's unknowns (indices into the model's unknowns).
     pub unknowns: Vec<usize>,
+    /// The block's equations (indices into the model's equations).
     pub equations: Vec<usize>,
     /// `J_bb` does not depend on the block's unknowns: solved by one linear solve.
     pub linear: bool,
@@ -62,20 +64,29 @@ pub struct BlockPlan {
 /// Right-hand sides (per row) or values (per output) of the parameter sensitivities, by stage:
 /// `q[r][k]`, `v[r][i * np + k]`, `a[r][p * np + k]` for parameter `k`, input `i`, input pair `p`.
 pub struct Stages {
+    /// Position stage, per parameter.
     pub q: Vec<Vec<NodeId>>,
+    /// Velocity-analog stage, per input and parameter.
     pub v: Vec<Vec<NodeId>>,
+    /// Acceleration-analog stage, per input pair and parameter.
     pub a: Vec<Vec<NodeId>>,
 }
 
 /// The finished plan; it owns the graph every `NodeId` refers to.
 pub struct Plan {
+    /// The finished expression graph.
     pub graph: Graph,
+    /// Number of unknowns (and scalar equations).
     pub n: usize,
+    /// Number of inputs.
     pub ni: usize,
     /// Number of parameters.
     pub np: usize,
+    /// The blocks in solve order.
     pub blocks: Vec<BlockPlan>,
+    /// Residuals of all equations, in declaration order.
     pub residuals: Vec<NodeId>,
+    /// Output columns: each point's x and y, then each scalar output.
     pub outputs: Vec<NodeId>,
     /// `out_d1[o][i]`.
     pub out_d1: Vec<Vec<NodeId>>,
@@ -109,6 +120,7 @@ pub fn pairs(ni: usize) -> Vec<(usize, usize)> {
     (0..ni).flat_map(|i| (i..ni).map(move |j| (i, j))).collect()
 }
 
+/// Index of the input pair `(i, j)` (in either order) among [`pairs`].
 pub fn pair_index(ni: usize, i: usize, j: usize) -> usize {
     let (i, j) = if i <= j { (i, j) } else { (j, i) };
     pairs(ni).iter().position(|&p| p == (i, j)).unwrap_or(0)

@@ -7,9 +7,11 @@ use crate::structure::Block;
 
 /// Leaves of the derived quantities, and which block solves each unknown.
 pub struct Seeds {
+    /// The constant one: the seed of the input (or parameter) being differentiated along.
     pub one: NodeId,
     ni: usize,
     np: usize,
+    /// `block_of[u]`: the index of the block that solves unknown `u`.
     pub block_of: Vec<usize>,
     /// `tan[u][i]`: first analog `d q_u / d x_i`.
     tan: Vec<Vec<NodeId>>,
@@ -27,6 +29,8 @@ fn ordered(i: usize, j: usize) -> (u16, u16) {
 }
 
 impl Seeds {
+    /// The leaves for `n` unknowns, `ni` inputs and `np` parameters (the sensitivity leaves only
+    /// when `sens`).
     pub fn new(g: &mut Graph, n: usize, ni: usize, np: usize, blocks: &[Block], sens: bool) -> Seeds {
         let mut block_of = vec![0usize; n];
         for (b, blk) in blocks.iter().enumerate() {

@@ -8,11 +8,14 @@ use crate::dag::Func;
 /// Whether a value is a scalar or a planar vector.
 #[derive(Clone, Copy, PartialEq, Eq, Debug)]
 pub enum Kind {
+    /// A real number.
     Scalar,
+    /// A planar vector `(x, y)`.
     Vector,
 }
 
 impl Kind {
+    /// The kind's name in messages.
     pub fn name(self) -> &'static str {
         match self {
             Kind::Scalar => "scalar",
@@ -36,6 +39,7 @@ pub enum Lowering {
     Norm,
     /// Direction angle of a vector, `atan2(y, x)`.
     Angle,
+    /// The dot product of two vectors.
     Dot,
     /// The z component of the cross product.
     Cross,
@@ -48,6 +52,7 @@ pub enum Lowering {
 /// One built-in function.
 #[derive(Debug)]
 pub struct Builtin {
+    /// The name a declaration calls it by.
     pub name: &'static str,
     /// The arguments: their names (shown in the signature) and kinds. The arity is their number.
     pub args: &'static [(&'static str, Kind)],
@@ -55,6 +60,7 @@ pub struct Builtin {
     /// as the list of signatures, and the tests check it.
     #[cfg_attr(not(test), expect(dead_code, reason = "the lowering determines the result's kind"))]
     pub result: Kind,
+    /// How a call is lowered into the graph.
     pub lowering: Lowering,
 }
 
@@ -109,6 +115,7 @@ pub fn lookup(name: &str) -> Option<&'static Builtin> {
 }
 
 impl Builtin {
+    /// The number of arguments.
     pub fn arity(&self) -> usize {
         self.args.len()
     }

@@ -2,9 +2,9 @@
 //! lowered into the one graph, their points and angles resolved against the kinematic state.
 //!
 //! Items are lowered in body order ([`Pending`]); their points are resolved once every output
-//! is known ([`resolve`]): a point coordinate is an unknown (a slider's coordinate), a constant
-//! of the parameters, or a column of a declared `point` or `output`. Anything else would need
-//! its own analogs, so the message asks to declare it as a `point`.
+//! is known ([`resolve`](Pending::resolve)): a point coordinate is an unknown (a slider's
+//! coordinate), a constant of the parameters, or a column of a declared `point` or `output`.
+//! Anything else would need its own analogs, so the message asks to declare it as a `point`.
 
 use super::lower::{Lowerer, Val};
 use super::scope::Symbol;
@@ -29,44 +29,63 @@ pub enum CoordModel {
 /// The angle a body turns with or a torque acts on.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub enum AngleModel {
+    /// The unknown with this index (an angle of the loops).
     Unknown(usize),
+    /// The input with this index.
     Input(usize),
+    /// No angle: a body that only slides.
     None,
 }
 
+/// A rigid body: its mass and inertia, where its centre of mass is, what it turns with.
 pub struct BodyModel {
+    /// The body's name (for messages at run time).
     pub name: String,
     /// Expressions of the parameters.
     pub mass: NodeId,
+    /// Moment of inertia about the centre of mass (the constant zero when not declared).
     pub inertia: NodeId,
+    /// The centre of mass's coordinates.
     pub com: [CoordModel; 2],
+    /// The angle the body turns with.
     pub turns: AngleModel,
 }
 
+/// A force at a point.
 pub struct ForceModel {
+    /// The force's name.
     pub name: String,
+    /// The point it acts at.
     pub at: [CoordModel; 2],
     /// Expressions of parameters, inputs and unknowns.
     pub value: [NodeId; 2],
 }
 
+/// A torque on an input or an angle unknown.
 pub struct TorqueModel {
+    /// The torque's name.
     pub name: String,
+    /// The angle it acts on.
     pub on: AngleModel,
+    /// The torque, an expression of parameters, inputs and unknowns.
     pub value: NodeId,
 }
 
 /// The dynamics declared with a mechanism (empty when none is).
 #[derive(Default)]
 pub struct DynamicsModel {
+    /// The rigid bodies.
     pub bodies: Vec<BodyModel>,
+    /// The forces.
     pub forces: Vec<ForceModel>,
+    /// The torques.
     pub torques: Vec<TorqueModel>,
     /// Expressions of the parameters.
     pub gravity: Option<[NodeId; 2]>,
 }
 
 impl DynamicsModel {
+    /// Whether anything of the dynamics is declared (then `mass_model` is generated).
     pub fn is_declared(&self) -> bool {
         !(self.bodies.is_empty() && self.forces.is_empty() && self.torques.is_empty() && self.gravity.is_none())
     }

@@ -9,7 +9,9 @@ use proc_macro2::Span;
 /// The type of a lowered expression.
 #[derive(Clone, Copy)]
 pub enum Val {
+    /// A scalar: one node.
     S(NodeId),
+    /// A vector: the nodes of its x and y components.
     V(NodeId, NodeId),
 }
 

@@ -16,6 +16,8 @@ pub struct Imbalance {
     pub under_equations: BTreeSet<usize>,
 }
 
+/// The Dulmage–Mendelsohn decomposition of the incidence `inc` (per equation, its unknowns)
+/// from a maximum matching `m`: the over- and under-determined parts.
 pub fn dulmage_mendelsohn(inc: &[BTreeSet<usize>], n_unknowns: usize, m: &Matching) -> Imbalance {
     // Unknown -> equations containing it.
     let mut rev: Vec<Vec<usize>> = vec![Vec::new(); n_unknowns];

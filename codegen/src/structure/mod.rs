@@ -31,6 +31,7 @@ pub fn incidence(model: &Model) -> Vec<BTreeSet<usize>> {
     model.equations.iter().map(|e| unknowns_of(model, e.residual)).collect()
 }
 
+/// The unknowns a node of the graph depends on.
 pub fn unknowns_of(model: &Model, node: NodeId) -> BTreeSet<usize> {
     model
         .graph
