@@ -248,16 +248,18 @@
 //! ## Parameter sensitivities
 //!
 //! Declared with `#[kinloop(sensitivities)]` (they are generated only on request: they are the
-//! larger part of the generated code), a mechanism also has `m.sensitivities(input, &guess)`,
-//! which returns the state and its exact derivatives with respect to
-//! every parameter — of positions, velocity and acceleration analogs and outputs — by the
-//! implicit function theorem on the same block factorisations (`dq/dp = -J^-1 df/dp`; the
-//! analogs' sensitivities differentiate their own equations), all differentiated at compile time.
-//! A parameter name appended to a state path reads as a derivative: `sens.dq.x_c.l_p` is
-//! `d(dX_C/dphi1)/dL_P`. They cost nothing unless requested; calling `sensitivities` on a
-//! mechanism declared without the attribute is a compile error that says to add it. [`extremum`] and [`integral`] give
-//! objectives over a whole sweep with exact gradients (extremes by the envelope theorem, with the
-//! gradient of their location), and [`LevenbergMarquardt`](analysis::optimize::LevenbergMarquardt) uses them for synthesis
+//! larger part of the generated code), a mechanism also has `m.sensitivities(input, &guess)`
+//! (and `sensitivities_at(input, &q)` at a solved position), which returns the state and its
+//! exact derivatives with respect to every parameter (`NameSensitivities`, whose innermost level
+//! is a `NameParams`: one value per parameter) — of positions, velocity and acceleration analogs
+//! and outputs — by the implicit function theorem on the same block factorisations
+//! (`dq/dp = -J^-1 df/dp`; the analogs' sensitivities differentiate their own equations), all
+//! differentiated at compile time. A parameter name appended to a state path reads as a
+//! derivative: `sens.dq.x_c.l_p` is `d(dX_C/dphi1)/dL_P`. They cost nothing unless requested;
+//! calling `sensitivities` on a mechanism declared without the attribute is a compile error that
+//! says to add it. [`extremum`] and [`integral`] give objectives over a whole sweep with exact
+//! gradients (extremes by the envelope theorem, with the gradient of their location), and
+//! [`LevenbergMarquardt`](analysis::optimize::LevenbergMarquardt) uses them for synthesis
 //! (`examples/synthesis.rs`).
 //!
 //! ## Design-space scans

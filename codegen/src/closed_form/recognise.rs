@@ -67,7 +67,9 @@ impl ClosedForm {
 /// `sin_cos` on the angle.
 #[derive(Clone, Debug, PartialEq)]
 pub struct Recognised {
+    /// The block's closed form.
     pub form: ClosedForm,
+    /// Per angle: the graph's `[sin q, cos q]` nodes, defined by the solve.
     pub sin_cos: Vec<[NodeId; 2]>,
 }
 

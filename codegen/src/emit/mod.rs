@@ -39,19 +39,28 @@ pub(crate) fn lit(n: usize) -> Literal {
 
 /// The names of the generated types of mechanism `name`.
 pub struct Types {
+    /// The mechanism's name as declared (the parameter struct).
     pub name: Ident,
     /// The name without `r#`, for messages and derived names.
     pub plain: String,
+    /// `NameInputs`.
     pub inputs: Ident,
+    /// `NameUnknowns`.
     pub unknowns: Ident,
+    /// `NameOutputs`.
     pub outputs: Ident,
+    /// `NameState`.
     pub state: Ident,
+    /// `NameMotion`.
     pub motion: Ident,
+    /// `NameParams` (one value per parameter, in the sensitivities).
     pub params: Ident,
+    /// `NameSensitivities`.
     pub sens: Ident,
 }
 
 impl Types {
+    /// The type names of mechanism `name`.
     pub fn of(name: &Ident) -> Types {
         let plain = name.unraw().to_string();
         let t = |suffix: &str| format_ident!("{}{}", plain, suffix);
@@ -71,13 +80,18 @@ impl Types {
 
 /// The sizes of a mechanism as literals: unknowns, inputs, outputs, parameters.
 pub struct Dims {
+    /// Number of unknowns (and scalar equations).
     pub n: Literal,
+    /// Number of inputs.
     pub ni: Literal,
+    /// Number of outputs.
     pub no: Literal,
+    /// Number of parameters.
     pub np: Literal,
 }
 
 impl Dims {
+    /// The sizes of `plan`.
     pub fn of(plan: &Plan) -> Dims {
         Dims { n: lit(plan.n), ni: lit(plan.ni), no: lit(plan.outputs.len()), np: lit(plan.np) }
     }
