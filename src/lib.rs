@@ -142,7 +142,7 @@
 //! * methods on `Name`: `solve(input)`, `kinematics(input, guess)`, `position(input, guess)`,
 //!   `kinematics_at(input, q)`, `outputs`, `residual`, `guess`, `check`, `position_with` and
 //!   `kinematics_with` taking a [`NewtonConfig`], `sweep`, `sweep_at` and `assembly_modes`
-//!   (see below), `sensitivities` when requested and `mass_model` when bodies are declared;
+//!   (see below), `sensitivities` when requested and `mass_model` when dynamics is declared;
 //!   and the constants `NAME`, `PARAMS`, `INPUTS`, `UNKNOWNS`, `EQUATIONS`, `OUTPUTS`,
 //!   `BLOCKS` (the block-triangular decomposition) and `DECOMPOSITION` (the same in words, see
 //!   below);
@@ -331,8 +331,8 @@
 //!
 //! Bad input never panics and never yields a silent NaN: see [`Error`] (non-finite parameters or
 //! inputs, no convergence, a mechanism that cannot be assembled, a singular position, an
-//! expression outside its domain, an overflow, a sweep stopped at a singular position, an
-//! invalid argument). Every error but an invalid argument carries a [`Location`]: the mechanism,
+//! expression outside its domain, an overflow, a sweep stopped at a singular position or unable
+//! to stay on its branch, an invalid argument). Every error but an invalid argument carries a [`Location`]: the mechanism,
 //! the input values and, where one is concerned, the block.
 //!
 //! ```
