@@ -4,5 +4,7 @@
 
 pub mod curve;
 pub mod modes;
+pub mod outcome;
 pub mod scan;
 pub mod sweep;
+pub mod trace;
