@@ -202,6 +202,10 @@ pub struct Sweep<'m, M, S, const N: usize, const NI: usize, const NO: usize> {
     h_min: f64,
     next: usize,
     guess: [f64; N],
+    /// The first sample's position: the continuation that locates events measures arclength
+    /// in the units there (fixed for the sweep, and taken where the sweep is regular: at a
+    /// singular position a unit derived from the terms' magnitudes can degenerate).
+    first_q: [f64; N],
     cur: Option<Kin<N, NI, NO>>,
     tau: f64,
     h: f64,
@@ -268,6 +272,7 @@ where
             h_min: 0.0,
             next: 0,
             guess,
+            first_q: guess,
             cur: None,
             tau: 0.0,
             h: 0.0,
@@ -408,6 +413,7 @@ where
         match self.m.kinematics_flat(&x, &self.guess, &self.cfg.newton) {
             Ok(k) => {
                 self.cur = Some(k);
+                self.first_q = k.q;
                 self.signs = k.health.det_signs;
                 self.h = self.h_max;
                 self.next = 1;
@@ -550,7 +556,7 @@ where
         // passes limit positions (the input reverses) and singular crossings (a determinant
         // changes sign) that no step in the input can pass.
         // Arclength in scaled coordinates (see `Metric`): the same steps in any unit of length.
-        let metric = Metric::at(self.m, &path, &k.x, &k.q);
+        let metric = Metric::at(self.m, &path, &path.from, &self.first_q);
         let tangent = curve::tangent_from_analogs(&k.dq, &path, &metric);
         let start = CurvePoint { q: k.q, sigma: self.tau * path.len, tangent };
         let ds0 = ((tau_new - self.tau) * path.len).max(1e-9 * path.len) / metric.sigma;
