@@ -41,10 +41,11 @@ pub use mechanism::{Mechanism, Named, NamedSensitivities, Sensitivities};
 pub use newton::{NewtonConfig, SolveReport, Termination};
 pub use paths::modes::assembly_modes;
 pub use paths::outcome::{Stop, SweepResult};
+pub use paths::reach::{Reach, reachable};
 #[cfg(feature = "rayon")]
 pub use paths::scan::par_scan;
 pub use paths::scan::{ScanSpec, ScanStart, scan};
-pub use paths::sweep::{AtSingular, Reach, Sweep, SweepConfig, reachable};
+pub use paths::sweep::{AtSingular, Sweep, SweepConfig};
 pub use paths::trace::{TraceOptions, Traced, TracedPoint, trace_curve};
 pub use table::Table;
 pub use vec2::Vec2;

@@ -22,7 +22,7 @@
 //! The iterator allocates nothing per step (events are rare and allocate).
 
 use super::curve::{self, CurvePoint, Found, Metric, Path};
-use super::outcome::{Stop, SweepResult};
+use super::outcome::SweepResult;
 use crate::error::{Error, Quantity};
 use crate::events::{BlockInfo, Event, EventKind, Location};
 use crate::kin::{DetSigns, Kin};
@@ -619,67 +619,63 @@ where
     }
 }
 
-/// The reachable stretch of the input from a starting value on one assembly mode, in input
-/// values, with the limit positions that end it (`None` where the end of the searched range is
-/// reached first). `X` is the input type: `[f64; NI]` from [`reachable`], the generated
-/// `NameInputs` from [`Named::reachable`](crate::Named::reachable).
-#[derive(Clone, Debug, PartialEq)]
-#[non_exhaustive]
-pub struct Reach<X> {
-    /// The input where the backward stretch (towards `at - delta`) ends.
-    pub from: X,
-    /// The input where the forward stretch (towards `at + delta`) ends.
-    pub to: X,
-    /// The limit position ending the backward stretch.
-    pub from_event: Option<Event>,
-    /// The limit position ending the forward stretch.
-    pub to_event: Option<Event>,
-}
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::analysis::demo::SliderCrank;
+    use crate::kin::Jac;
+    use crate::newton::SolveReport;
 
-impl<X> Reach<X> {
-    /// The same reach with the inputs converted (e.g. to named inputs).
-    pub fn map_inputs<Y>(self, mut f: impl FnMut(X) -> Y) -> Reach<Y> {
-        Reach { from: f(self.from), to: f(self.to), from_event: self.from_event, to_event: self.to_event }
-    }
-}
+    /// A hand-written mechanism claiming more blocks than the determinant signs can track.
+    struct TooManyBlocks(SliderCrank);
 
-/// Finds how far the input can move from `at` towards `at + delta` and `at - delta` on the
-/// assembly mode of `guess` before a limit position, sweeping both ways with `samples` samples
-/// each (with the mechanism's [`Mechanism::solver_config`]), and answers in input values.
-///
-/// Errors: those of the sweeps, except the limit positions that end them (a singular crossing
-/// that the configuration stops at is an error).
-pub fn reachable<M, const N: usize, const NI: usize, const NO: usize>(
-    m: &M,
-    at: [f64; NI],
-    delta: [f64; NI],
-    guess: [f64; N],
-    samples: usize,
-) -> Result<Reach<[f64; NI]>, Error>
-where
-    M: Mechanism<N, NI, NO>,
-{
-    let mut ends = [(at, None), (at, None)];
-    for (side, sign) in [(0usize, -1.0), (1, 1.0)] {
-        let mut to = at;
-        for i in 0..NI {
-            to[i] += sign * delta[i];
+    const BLOCK: BlockInfo = BlockInfo { unknowns: &["x"], equations: &["rod"], linear: false };
+
+    impl Mechanism<1, 1, 1> for TooManyBlocks {
+        const NAME: &'static str = "TooManyBlocks";
+        const PARAMS: &'static [&'static str] = SliderCrank::PARAMS;
+        const INPUTS: [&'static str; 1] = SliderCrank::INPUTS;
+        const UNKNOWNS: [&'static str; 1] = SliderCrank::UNKNOWNS;
+        const EQUATIONS: [&'static str; 1] = SliderCrank::EQUATIONS;
+        const OUTPUTS: [&'static str; 1] = SliderCrank::OUTPUTS;
+        const BLOCKS: &'static [BlockInfo] = &[BLOCK; DetSigns::CAPACITY + 1];
+
+        fn param_values(&self) -> Vec<f64> {
+            self.0.param_values()
         }
-        let run = Sweep::<M, Kin<N, NI, NO>, N, NI, NO>::new(m, at, to, samples.max(2), guess)?.run();
-        let last = run.states.last().map_or(at, |k| k.x);
-        ends[side] = match run.stop {
-            Stop::Completed => (last, None),
-            Stop::LimitPosition(ev) => {
-                let mut x = last;
-                x.copy_from_slice(&ev.x);
-                (x, Some(ev))
-            }
-            _ => match run.into_result() {
-                Err(e) => return Err(e),
-                Ok(states) => (states.last().map_or(at, |k| k.x), None),
-            },
-        };
+        fn guess_flat(&self, x: &[f64; 1]) -> [f64; 1] {
+            self.0.guess_flat(x)
+        }
+        fn position_flat(
+            &self,
+            x: &[f64; 1],
+            g: &[f64; 1],
+            c: &NewtonConfig,
+        ) -> Result<([f64; 1], SolveReport), Error> {
+            self.0.position_flat(x, g, c)
+        }
+        fn kinematics_flat(&self, x: &[f64; 1], g: &[f64; 1], c: &NewtonConfig) -> Result<Kin<1, 1, 1>, Error> {
+            self.0.kinematics_flat(x, g, c)
+        }
+        fn kinematics_at_flat(&self, x: &[f64; 1], q: &[f64; 1], c: &NewtonConfig) -> Result<Kin<1, 1, 1>, Error> {
+            self.0.kinematics_at_flat(x, q, c)
+        }
+        fn outputs_flat(&self, x: &[f64; 1], q: &[f64; 1]) -> [f64; 1] {
+            self.0.outputs_flat(x, q)
+        }
+        fn jacobian_flat(&self, x: &[f64; 1], q: &[f64; 1]) -> Jac<1, 1> {
+            self.0.jacobian_flat(x, q)
+        }
     }
-    let [(from, from_event), (to, to_event)] = ends;
-    Ok(Reach { from, to, from_event, to_event })
+
+    /// Beyond 256 blocks a change of assembly mode could go unseen: such a sweep is refused.
+    #[test]
+    fn a_sweep_of_more_blocks_than_the_signs_track_is_refused() {
+        let m = TooManyBlocks(SliderCrank { r: 1.0, l: 3.0, e: 0.5 });
+        let g = m.guess_flat(&[0.0]);
+        let err = Sweep::<_, Kin<1, 1, 1>, 1, 1, 1>::new(&m, [0.0], [1.0], 3, g).err().expect("refused");
+        assert!(matches!(&err, Error::InvalidArgument(msg) if msg.contains("257 blocks")), "{err}");
+        // The same mechanism with its real single block sweeps.
+        assert!(Sweep::<_, Kin<1, 1, 1>, 1, 1, 1>::new(&m.0, [0.0], [1.0], 3, g).is_ok());
+    }
 }
