@@ -161,3 +161,23 @@ fn trace_options_are_validated_naming_the_field() {
     assert_eq!(t.points.len(), 5);
     assert!(!t.closed);
 }
+
+#[test]
+fn a_scan_uses_each_mechanism_configuration_unless_it_gives_one() {
+    use kinloop::{Kin, ScanSpec, scan};
+    // The change-point four-bar meets a crossing at 2 pi: configured to continue, its sweep
+    // completes; by default it stops there.
+    let m = FourBar { a: 1.0, b: 3.0, c: 2.0, d: 2.0 };
+    let g = m.position(0.5, &FourBarUnknowns { beta: 0.6, gamma: 1.6 }).unwrap().0;
+    let plain = m.with_config(SweepConfig::default()).unwrap();
+    let cont = m.with_config(SweepConfig::default().with_at_singular(AtSingular::Continue)).unwrap();
+    let spec = ScanSpec::new([0.5], [7.0], 66).start(kinloop::ScanStart::Guess(g.into()));
+    let count = |_: &_| 0usize;
+    let fold = |n: usize, _: &_, _: &Kin<2, 1, 2>| n + 1;
+    let results = scan(&[plain, cont], &spec, count, fold);
+    assert!(matches!(results[0], Err(Error::SweepStopped { kind: EventKind::SingularCrossing, .. })), "{results:?}");
+    assert_eq!(results[1], Ok(66));
+    // A configuration in the spec applies to every set.
+    let results = scan(&[plain, cont], &spec.with_config(SweepConfig::default()), count, fold);
+    assert!(results.iter().all(Result::is_err), "{results:?}");
+}
