@@ -40,12 +40,11 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
             ev.q[1]
         );
     }
-    let reach = kinloop::reachable(&m, [0.0], [PI], g.into(), 91, SweepConfig::default())?;
-    let lo = reach.lo_event.as_ref().map_or(f64::NAN, |e| e.x[0]);
-    let hi = reach.hi_event.as_ref().map_or(f64::NAN, |e| e.x[0]);
+    let reach = m.reachable(0.0, PI, &g, 91)?;
+    let (lo, hi) = (reach.from.phi, reach.to.phi);
     println!("  reachable input range on this assembly mode: [{lo:.12}, {hi:.12}] rad");
 
-    let traced = kinloop::trace_curve(&m, [0.0], [PI], g.into(), 0.01, 100_000, &kinloop::NewtonConfig::default())?;
+    let traced = m.trace_curve(0.0, PI, &g, &kinloop::TraceOptions::default())?;
     println!(
         "  arclength continuation: {} points, closed = {}, limit positions at {:?}",
         traced.points.len(),

@@ -218,11 +218,21 @@
 //! position** of the input (found by pseudo-arclength continuation where the input reverses) or
 //! a **singular crossing** (a change point where a determinant changes sign) — records an
 //! [`Event`] with the input value, and stops with [`Error::SweepStopped`] (or, with
-//! [`AtSingular::Continue`], passes a crossing). [`Sweep::table`] collects a sweep into a
-//! CSV-ready [`Table`]; [`reachable`] finds the input range reachable on a branch;
-//! [`trace_curve`] follows the whole solution curve through limit positions (e.g. the closed
-//! curve of a non-Grashof four-bar); `m.assembly_modes(input)` lists the distinct assembly modes
-//! so one can be picked by a readable rule ("elbow up": `.into_iter().find(|s| s.out.c.y > 0.0)`).
+//! [`AtSingular::Continue`], passes a crossing). [`Sweep::run`] runs it to its end and returns a
+//! [`SweepResult`]: the states up to where it ended, the [`Stop`] (completed, a limit position
+//! or a singular crossing with its located [`Event`], or the error) and the events met.
+//! [`Sweep::table`] collects a sweep into a CSV-ready [`Table`]; `m.reachable(at, delta, &guess,
+//! samples)` finds the input range reachable on a branch, in input values ([`Reach`]);
+//! `m.trace_curve(from, to, &guess, &TraceOptions::default())` follows the whole solution curve
+//! through limit positions (e.g. the closed curve of a non-Grashof four-bar);
+//! `m.assembly_modes(input)` lists the distinct assembly modes so one can be picked by a readable
+//! rule ("elbow up": `.into_iter().find(|s| s.out.c.y > 0.0)`). Arclength continuation measures
+//! angles in radians and lengths in units of the mechanism's size, so events are located at the
+//! same inputs whatever the unit of length.
+//!
+//! `m.with_config(cfg)` gives the mechanism its own solver configuration (a [`SweepConfig`] or
+//! a [`NewtonConfig`], validated once): the [`Configured`] mechanism uses it in every solve,
+//! sweep, reachable range, assembly-mode search and trace (its methods are those of [`Named`]).
 //!
 //! ```
 //! kinloop::mechanism! {
@@ -242,6 +252,26 @@
 //! // Law of cosines: coupler and rocker are collinear, |BD| = b + c.
 //! let expected = ((9.0 + 16.0 - 4.5f64 * 4.5) / 24.0).acos();
 //! assert!((limit - expected).abs() < 1e-9);
+//!
+//! // The whole run at once: the states before the limit position and where it is.
+//! let run = m.sweep(0.0, 3.14, 19, &g)?.run();
+//! assert_eq!(run.states.len(), 8); // 0, 10, ..., 70 degrees
+//! let kinloop::Stop::LimitPosition(at) = &run.stop else { panic!("{:?}", run.stop) };
+//! assert!((at.x[0] - expected).abs() < 1e-9);
+//! // The reachable range on this assembly mode, in input values.
+//! let reach = m.reachable(0.0, 3.14, &g, 19)?;
+//! assert!((reach.to.phi - expected).abs() < 1e-9 && (reach.from.phi + expected).abs() < 1e-9);
+//! // The closed curve through both limit positions.
+//! let curve = m.trace_curve(0.0, 3.14, &g, &kinloop::TraceOptions::default().with_ds(0.05))?;
+//! assert!(curve.closed && curve.folds.len() == 2);
+//!
+//! // A mechanism-wide configuration, validated once and used by every call.
+//! use kinloop::{Named, NewtonConfig, SweepConfig};
+//! let bad = m.with_config(NewtonConfig::default().with_residual_tol(-1.0)).unwrap_err();
+//! assert!(bad.to_string().contains("newton.residual_tol"));
+//! let fine = m.with_config(SweepConfig::default().with_max_step(0.25))?;
+//! let run = fine.sweep(0.0, 3.14, 19, &g)?.run();
+//! assert!((run.stop.event().unwrap().x[0] - expected).abs() < 1e-9);
 //! # Ok::<(), kinloop::Error>(())
 //! ```
 //!
@@ -307,7 +337,8 @@
 //!
 //! `m.sweep_at([0.1, 0.15, 0.9, 2.5], &guess)` follows the mechanism through a given list of
 //! inputs (uneven, far apart or repeated) with the same branch guarantees as a sweep, and returns
-//! the states in order. [`Table`] collects states under named columns; `with_units(&[("phi",
+//! a [`SweepResult`]: the states in order, why it stopped and the events met (`.into_result()?`
+//! for the states alone). [`Table`] collects states under named columns; `with_units(&[("phi",
 //! "rad"), ("x_c", "mm")])` gives every column its unit (the analogs their quotients,
 //! `d(x_c)/d(phi) [mm/rad]`), which the CSV header carries; `Table::read_csv` reads it back.
 //! [`Vec2`] adds, subtracts, scales and converts to `nalgebra::Vector2` (and, with the feature

@@ -23,7 +23,9 @@ fn uneven_inputs_stay_on_one_branch() {
     inputs.insert(5, inputs[5]);
     inputs.push(0.25);
     let g = m.guess(inputs[0]);
-    let states = m.sweep_at(inputs.iter().copied(), &g).unwrap();
+    let run = m.sweep_at(inputs.iter().copied(), &g);
+    assert!(run.is_completed() && run.events.is_empty(), "{:?}", run.stop);
+    let states = run.into_result().unwrap();
     assert_eq!(states.len(), inputs.len());
     let first = states[0].out.pc;
     let side = if (joint_c(&m, inputs[0], 1.0).1 - first.y).abs() < 1e-9 { 1.0 } else { -1.0 };
@@ -40,8 +42,19 @@ fn a_limit_position_between_inputs_is_a_typed_error() {
     // A double rocker: the crank cannot pass phi where |BD| = b + c.
     let m = FourBar { a: 2.0, b: 1.0, c: 1.5, d: 3.0 };
     let g = m.position(0.3, &m.guess(0.3)).unwrap().0;
-    let err = m.sweep_at([0.3, 0.5, 3.0], &g).unwrap_err();
-    assert!(matches!(err, kinloop::Error::SweepStopped { .. } | kinloop::Error::Branch { .. }), "{err}");
+    let run = m.sweep_at([0.3, 0.5, 3.0], &g);
+    // The two inputs before the limit position are kept; the stop says where it is: where
+    // |BD| = b + c, by the law of cosines.
+    assert_eq!(run.states.len(), 2);
+    let (a, b, c, d) = (m.a, m.b, m.c, m.d);
+    let limit = ((a * a + d * d - (b + c) * (b + c)) / (2.0 * a * d)).acos();
+    match &run.stop {
+        kinloop::Stop::LimitPosition(ev) => assert!((ev.x[0] - limit).abs() < 1e-9, "{ev:?} vs {limit}"),
+        other => panic!("{other:?}"),
+    }
+    assert_eq!(run.events.len(), 1);
+    let err = run.into_result().unwrap_err();
+    assert!(matches!(err, kinloop::Error::SweepStopped { .. }), "{err}");
     // No inputs, no states.
-    assert!(m.sweep_at(Vec::<f64>::new(), &g).unwrap().is_empty());
+    assert!(m.sweep_at(Vec::<f64>::new(), &g).into_result().unwrap().is_empty());
 }

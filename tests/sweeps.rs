@@ -56,11 +56,15 @@ fn reachable_range_of_a_non_grashof_crank() {
     let m = FourBar { a: 3.0, b: 2.0, c: 2.5, d: 4.0 };
     let lim = limit_angles(&m)[0];
     let g = m.position(0.0, &m.guess(0.0)).unwrap().0;
-    let r = kinloop::reachable(&m, [0.0], [PI], g.into(), 91, SweepConfig::default()).unwrap();
-    let lo = r.lo_event.expect("limit below").x[0];
-    let hi = r.hi_event.expect("limit above").x[0];
+    let r = m.reachable(0.0, PI, &g, 91).unwrap();
+    let (lo, hi) = (r.from.phi, r.to.phi);
     assert!((hi - lim).abs() < 1e-9 && (lo + lim).abs() < 1e-9, "[{lo}, {hi}] vs +-{lim}");
-    assert!((r.hi * PI - hi).abs() < 1e-9);
+    // The ends are the located limit positions themselves.
+    assert_eq!(r.to_event.expect("limit above").x[0], hi);
+    assert_eq!(r.from_event.expect("limit below").x[0], lo);
+    // The flat form answers in the same input values.
+    let flat = kinloop::reachable(&m, [0.0], [PI], g.into(), 91).unwrap();
+    assert_eq!((flat.from, flat.to), ([lo], [hi]));
 }
 
 /// The independent solution: C from the circles (B, b) and (D, c), on the side given by `side`.
@@ -176,8 +180,7 @@ fn arclength_traces_the_whole_closed_curve_of_a_non_grashof_four_bar() {
     let m = FourBar { a: 3.0, b: 2.0, c: 2.5, d: 4.0 };
     let lim = limit_angles(&m)[0];
     let g = m.position(0.0, &m.guess(0.0)).unwrap().0;
-    let cfg = kinloop::NewtonConfig::default();
-    let t = kinloop::trace_curve(&m, [0.0], [PI], g.into(), 0.02, 100_000, &cfg).unwrap();
+    let t = m.trace_curve(0.0, PI, &g, &kinloop::TraceOptions::default().with_ds(0.02)).unwrap();
     assert!(t.closed, "the curve closes on itself");
     assert_eq!(t.folds.len(), 2, "{:?}", t.folds);
     let mut at: Vec<f64> = t.folds.iter().map(|f| f.x[0]).collect();

@@ -363,3 +363,95 @@ fn one_length_unknown_block_is_unit_free() {
     eprintln!("one length unknown: {worst:.1e}");
     assert!(worst <= LENGTH_TOL, "{worst:e}");
 }
+
+kinloop::mechanism! {
+    /// Non-Grashof four-bar (rocking input) with the abscissa of its coupler point as a length
+    /// unknown: the continuation's tangent and arclength combine the angle input, two angle
+    /// unknowns and a length, which must not be weighed in the unit of length.
+    pub struct RockerWithPoint {
+        params a, b, c, d, p;
+        input phi;
+        unknowns beta = 0.5, gamma = 1.5, xp = a;
+        loop abcd: a @ phi + b @ beta == (d, 0) + c @ gamma;
+        eq px: xp == a * cos(phi) + p * cos(beta);
+    }
+}
+
+fn rocker(k: f64) -> RockerWithPoint {
+    RockerWithPoint { a: 3.0 * k, b: 2.0 * k, c: 2.5 * k, d: 4.0 * k, p: 1.2 * k }
+}
+
+/// The law of cosines: the rocker's limit positions are at `+-phi_lim`, where coupler and
+/// rocker stretch out (`|BD| = b + c`).
+fn rocker_limit() -> f64 {
+    let (a, b, c, d) = (3.0f64, 2.0, 2.5, 4.0);
+    ((a * a + d * d - (b + c) * (b + c)) / (2.0 * a * d)).acos()
+}
+
+/// The largest difference between two traces: angles and inputs absolute, the length `xp`
+/// divided by the scale and relative to the mechanism's size.
+fn trace_diff(t: &kinloop::Traced<3, 1>, k: f64, r: &kinloop::Traced<3, 1>) -> f64 {
+    let size = 3.0 + 2.0 + 2.5 + 4.0 + 1.2;
+    let mut worst = 0.0f64;
+    for (p, q) in t.points.iter().zip(&r.points) {
+        worst = worst.max((p.x[0] - q.x[0]).abs()).max((p.q[0] - q.q[0]).abs()).max((p.q[1] - q.q[1]).abs());
+        worst = worst.max((p.q[2] / k - q.q[2]).abs() / size);
+    }
+    for (f, g) in t.folds.iter().zip(&r.folds) {
+        worst = worst.max((f.x[0] - g.x[0]).abs());
+    }
+    worst
+}
+
+/// `trace_curve` follows the same closed curve with the same points (arclength in scaled
+/// coordinates) and finds the same limit positions at every scale.
+#[test]
+fn traced_curve_is_unit_free() {
+    let opts = kinloop::TraceOptions::default().with_ds(0.02);
+    let trace = |k: f64| {
+        let m = rocker(k);
+        let g = m.position(0.0, &m.guess(0.0)).unwrap().0;
+        m.trace_curve(0.0, PI, &g, &opts).unwrap()
+    };
+    let reference = trace(1.0);
+    assert!(reference.closed && reference.folds.len() == 2, "{} points", reference.points.len());
+    let lim = rocker_limit();
+    for f in &reference.folds {
+        assert!((f.x[0].abs() - lim).abs() < 1e-9, "{:?} vs +-{lim}", f.x);
+    }
+    let mut worst = 0.0f64;
+    for k in SCALES {
+        let t = trace(k);
+        assert!(t.closed && t.folds.len() == 2, "k={k}");
+        assert_eq!(t.points.len(), reference.points.len(), "k={k}");
+        worst = worst.max(trace_diff(&t, k, &reference));
+    }
+    eprintln!("traced curve over scales: {worst:.1e}");
+    assert!(worst <= EVENT_TOL, "{worst:e}");
+}
+
+/// Event location (the sweep's continuation to its limit position) and `reachable` give the
+/// same inputs at every scale, also with a length among the unknowns.
+#[test]
+fn limit_positions_and_reach_are_unit_free_with_a_length_unknown() {
+    let (mut stops, mut reaches) = (Vec::new(), Vec::new());
+    for k in SCALES {
+        let m = rocker(k);
+        let g = m.position(0.0, &m.guess(0.0)).unwrap().0;
+        let run = m.sweep(0.0, PI, 181, &g).unwrap().run();
+        match &run.stop {
+            kinloop::Stop::LimitPosition(ev) => stops.push(ev.x[0]),
+            other => panic!("k={k}: {other:?}"),
+        }
+        let reach = m.reachable(0.0, PI, &g, 91).unwrap();
+        reaches.push((reach.from.phi, reach.to.phi));
+    }
+    let lim = rocker_limit();
+    let spread = stops.iter().map(|x| (x - stops[3]).abs()).fold(0.0, f64::max);
+    let reach_spread =
+        reaches.iter().map(|r| (r.0 - reaches[3].0).abs().max((r.1 - reaches[3].1).abs())).fold(0.0, f64::max);
+    eprintln!("limit positions over scales: sweep {spread:.1e}, reachable {reach_spread:.1e}");
+    assert!(spread <= EVENT_TOL && reach_spread <= EVENT_TOL, "{stops:?} {reaches:?}");
+    // Located to about sqrt(eps) in the input (the curve is flat there in phi).
+    assert!((stops[3] - lim).abs() <= 1e-9 && (reaches[3].1 - lim).abs() <= 1e-9 && (reaches[3].0 + lim).abs() <= 1e-9);
+}

@@ -333,8 +333,42 @@ macro_rules! __named_api {
                 &self,
                 inputs: impl ::core::iter::IntoIterator<Item = I>,
                 guess: &$unknowns,
-            ) -> ::core::result::Result<::std::vec::Vec<$state>, $crate::Error> {
+            ) -> $crate::SweepResult<$state> {
                 <Self as $crate::Named<$n, $ni, $no>>::sweep_at(self, inputs, guess)
+            }
+
+            /// This mechanism with its own solver configuration, used by every solve, sweep and
+            /// trace of the result (see [`Named::with_config`](::kinloop::Named::with_config)).
+            pub fn with_config(
+                self,
+                config: impl ::core::convert::Into<$crate::SweepConfig>,
+            ) -> ::core::result::Result<$crate::Configured<Self>, $crate::Error> {
+                <Self as $crate::Named<$n, $ni, $no>>::with_config(self, config)
+            }
+
+            /// How far the input can move from `at` towards `at + delta` and `at - delta`
+            /// before a limit position, in input values (see
+            /// [`Named::reachable`](::kinloop::Named::reachable)).
+            pub fn reachable(
+                &self,
+                at: impl ::core::convert::Into<$inputs>,
+                delta: impl ::core::convert::Into<$inputs>,
+                guess: &$unknowns,
+                samples: usize,
+            ) -> ::core::result::Result<$crate::Reach<$inputs>, $crate::Error> {
+                <Self as $crate::Named<$n, $ni, $no>>::reachable(self, at, delta, guess, samples)
+            }
+
+            /// The whole solution curve through limit positions (see
+            /// [`Named::trace_curve`](::kinloop::Named::trace_curve)).
+            pub fn trace_curve(
+                &self,
+                from: impl ::core::convert::Into<$inputs>,
+                to: impl ::core::convert::Into<$inputs>,
+                guess: &$unknowns,
+                opts: &$crate::TraceOptions,
+            ) -> ::core::result::Result<$crate::Traced<$n, $ni>, $crate::Error> {
+                <Self as $crate::Named<$n, $ni, $no>>::trace_curve(self, from, to, guess, opts)
             }
 
             /// The distinct assembly modes at `input` (multi-start Newton; see

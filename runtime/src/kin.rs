@@ -7,13 +7,18 @@ use crate::mechanism::Mechanism;
 use crate::solvers::lu::Factor;
 use crate::solvers::newton::SolveReport;
 
-/// The signs of the block determinants along a decomposition: one bit per block (blocks are
-/// folded onto the 256 bits by their index modulo 256, so a change of any single block's sign
-/// always changes the set, whatever the number of blocks).
+/// The signs of the block determinants along a decomposition: one bit per block, exact for up to
+/// [`DetSigns::CAPACITY`] blocks. `mechanism!` refuses more than 256 unknowns, and every block
+/// solves at least one, so a generated mechanism never has more blocks; sweeps refuse a
+/// hand-written [`Mechanism`] that declares more (`Error::InvalidArgument`), whose further
+/// blocks would otherwise go unwatched.
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq, PartialOrd, Ord, Hash)]
 pub struct DetSigns([u64; 4]);
 
 impl DetSigns {
+    /// The most blocks whose signs are recorded.
+    pub const CAPACITY: usize = 256;
+
     /// The four words of bits (block `b` is bit `b % 64` of word `b / 64`).
     #[cfg_attr(not(feature = "serde"), allow(dead_code))]
     pub(crate) fn words(&self) -> [u64; 4] {
@@ -26,17 +31,18 @@ impl DetSigns {
         DetSigns(words)
     }
 
-    /// Records block `block` as having a negative determinant.
+    /// Records block `block` as having a negative determinant (a block at or beyond
+    /// [`DetSigns::CAPACITY`] is not recorded: no decomposition the crate accepts has one).
     #[inline]
     pub fn set_negative(&mut self, block: usize) {
-        let b = block % 256;
-        self.0[b / 64] ^= 1u64 << (b % 64);
+        if let Some(word) = self.0.get_mut(block / 64) {
+            *word ^= 1u64 << (block % 64);
+        }
     }
 
-    /// Whether block `block` (below 256) has a negative determinant.
+    /// Whether block `block` has a negative determinant (`false` beyond the capacity).
     pub fn is_negative(&self, block: usize) -> bool {
-        let b = block % 256;
-        self.0[b / 64] >> (b % 64) & 1 == 1
+        self.0.get(block / 64).is_some_and(|w| w >> (block % 64) & 1 == 1)
     }
 
     /// The first block whose sign differs between `self` and `other`.
@@ -191,7 +197,8 @@ impl<const N: usize, const NI: usize, const NO: usize, const NP: usize> Sens<N, 
 
 /// Residuals and first derivatives of all equations at one point: `f`, `j[e][u] = df_e/dq_u`,
 /// `fx[e][i] = df_e/dx_i`, and the magnitude of each equation's terms `scale[e]` (the unit its
-/// residual is judged in; see `BlockEval::scale`; `0` where none is known).
+/// residual is judged in; see `BlockEval::scale`; `0` where none is known), with the units of
+/// the unknowns and inputs.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct Jac<const N: usize, const NI: usize> {
     /// Residuals `f_e`.
@@ -203,6 +210,13 @@ pub struct Jac<const N: usize, const NI: usize> {
     /// Magnitude of each equation's terms (the sum of the link lengths of a loop projection):
     /// the scale residuals are judged against, so that tests do not depend on the unit of length.
     pub scale: [f64; N],
+    /// The unit of each unknown: one radian for an angle, the magnitude of the rows it appears
+    /// in per unit of its Jacobian entry otherwise (a slider coordinate: its loop's lengths).
+    /// Continuation measures arclength in these units, so it does not depend on the unit of
+    /// length. A value that is not positive and finite counts as `1`.
+    pub unit: [f64; N],
+    /// The unit of each input, by the same rule (one radian for an angle input).
+    pub input_unit: [f64; NI],
 }
 
 /// True velocities and accelerations (time derivatives) of unknowns and outputs.
@@ -323,5 +337,39 @@ impl<const N: usize, const NI: usize, const NO: usize> Kin<N, NI, NO> {
         // A finite sum of finite values; an overflowing sum of huge finite values is re-checked
         // element by element.
         s.is_finite() || self.first_non_finite().is_none()
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::DetSigns;
+
+    /// A flip in any one of the 256 blocks is seen and named, also together with a flip in
+    /// any other block (nothing folds onto another block's bit).
+    #[test]
+    fn every_block_up_to_the_capacity_has_its_own_sign() {
+        for b in 0..DetSigns::CAPACITY {
+            let mut s = DetSigns::default();
+            s.set_negative(b);
+            assert!(s.is_negative(b));
+            assert_eq!(s.first_difference(&DetSigns::default()), Some(b));
+            for other in [0, 63, 64, 127, 128, 191, 192, 255].into_iter().filter(|&o| o != b) {
+                let mut two = s;
+                two.set_negative(other);
+                assert!(two.is_negative(b) && two.is_negative(other), "{b} {other}");
+                assert_eq!(two.first_difference(&s), Some(other));
+            }
+        }
+    }
+
+    /// Beyond the capacity nothing is recorded: in particular block 256 does not toggle
+    /// block 0 (flips in blocks `b` and `b + 256` used to cancel).
+    #[test]
+    fn a_block_beyond_the_capacity_does_not_alias_block_zero() {
+        let mut s = DetSigns::default();
+        s.set_negative(0);
+        s.set_negative(DetSigns::CAPACITY);
+        assert!(s.is_negative(0) && !s.is_negative(DetSigns::CAPACITY));
+        assert_eq!(s.first_difference(&DetSigns::default()), Some(0));
     }
 }

@@ -22,6 +22,7 @@
 
 pub mod analysis;
 mod angles;
+mod configured;
 pub mod dynamics;
 mod error;
 pub mod events;
@@ -43,17 +44,20 @@ use solvers::{lu, newton};
 
 pub use analysis::objective::{Extreme, Extremum, extremum, integral};
 pub use angles::{deg, to_deg};
+pub use configured::Configured;
 pub use error::{Error, Quantity};
 pub use events::{BlockInfo, Event, EventKind, Location};
 pub use kin::{DetSigns, FlatMotion, Health, Jac, Kin, Sens};
 pub use mechanism::{Mechanism, Named, NamedSensitivities, Sensitivities};
 pub use newton::{NewtonConfig, SolveReport, Termination};
-pub use paths::curve::{Traced, TracedPoint, trace_curve};
 pub use paths::modes::assembly_modes;
+pub use paths::outcome::{Stop, SweepResult};
+pub use paths::reach::{Reach, reachable};
 #[cfg(feature = "rayon")]
 pub use paths::scan::par_scan;
 pub use paths::scan::{ScanSpec, ScanStart, scan};
-pub use paths::sweep::{AtSingular, Reach, Sweep, SweepConfig, reachable};
+pub use paths::sweep::{AtSingular, Sweep, SweepConfig};
+pub use paths::trace::{TraceOptions, Traced, TracedPoint, trace_curve};
 pub use table::Table;
 pub use vec2::Vec2;
 

@@ -3,7 +3,7 @@
 //! exactly).
 #![cfg(feature = "serde")]
 
-use kinloop_runtime::{AtSingular, Event, EventKind, NewtonConfig, SweepConfig, Table, Vec2};
+use kinloop_runtime::{AtSingular, Event, EventKind, NewtonConfig, SweepConfig, Table, TraceOptions, Vec2};
 use serde::Serialize;
 use serde::de::DeserializeOwned;
 
@@ -23,6 +23,9 @@ fn configurations_round_trip() {
     assert_eq!(json["max_step"], 0.3);
     assert_eq!(json["newton"]["max_iterations"], 7);
     assert_eq!(json["at_singular"], "Continue");
+    for opts in [TraceOptions::default(), TraceOptions::default().with_ds(0.03).with_newton(newton)] {
+        assert_eq!(round_trip(&opts), opts);
+    }
 }
 
 #[test]

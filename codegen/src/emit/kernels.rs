@@ -613,19 +613,28 @@ pub fn straight_line(plan: &Plan, names: &Names, roots: &[NodeId], with_q: bool)
 pub fn jacobian_body(plan: &Plan, names: &Names) -> TokenStream {
     let g = &plan.graph;
     let roots = plan.residuals.iter().copied().chain(plan.jac_full.concat()).chain(plan.fx_full.concat());
-    let roots: Vec<NodeId> = roots.chain(plan.scale_full.iter().copied()).collect();
+    let units = plan.unit_full.iter().chain(&plan.input_unit).copied();
+    let roots: Vec<NodeId> = roots.chain(plan.scale_full.iter().copied()).chain(units).collect();
     let used: HashSet<Leaf> = g.leaves_of(&roots).into_iter().collect();
     let sched = schedule(g, &plan.level, &[ScopeSpec { kind: ScopeKind::Plain, roots }]);
     let lets = names.lets(g, &sched, &sched.lets[0]);
     let (q, rt) = (bind_q(names, &used), runtime());
     let (f, scale) = (names.operands(g, &plan.residuals), names.operands(g, &plan.scale_full));
+    let (unit, input_unit) = (names.operands(g, &plan.unit_full), names.operands(g, &plan.input_unit));
     let (n, ni) = (lit(plan.n), lit(plan.ni));
     let (j, fx) = (sparse_entries(plan, names, &plan.jac_full, "j"), sparse_entries(plan, names, &plan.fx_full, "fx"));
     let mut body = prologue(names, &used);
     body.extend(quote! {
         #q
         #lets
-        let mut __jac = #rt::Jac { f: [#(#f),*], j: [[0.0; #n]; #n], fx: [[0.0; #ni]; #n], scale: [#(#scale),*] };
+        let mut __jac = #rt::Jac {
+            f: [#(#f),*],
+            j: [[0.0; #n]; #n],
+            fx: [[0.0; #ni]; #n],
+            scale: [#(#scale),*],
+            unit: [#(#unit),*],
+            input_unit: [#(#input_unit),*],
+        };
         #j
         #fx
         __jac

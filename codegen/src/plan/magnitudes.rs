@@ -98,6 +98,22 @@ impl Magnitudes {
         }
     }
 
+    /// The unit of input `i` over the full system (continuation measures arclength in it): one
+    /// radian for an angle, otherwise `M(f_r) / M(df_r/dx_i)` from the first equation `r` whose
+    /// input derivative `fx[r][i]` is not structurally zero (one when there is none).
+    pub fn input_unit(&mut self, g: &mut Graph, residuals: &[NodeId], fx: &[Vec<NodeId>], i: usize) -> NodeId {
+        if self.angles.contains(&Leaf::Input(i as u16)) {
+            return g.one();
+        }
+        match (0..residuals.len()).find(|&r| !g.is_zero(fx[r][i])) {
+            Some(r) => {
+                let (f, d) = (self.of(g, residuals[r]), self.of(g, fx[r][i]));
+                g.div(f, d)
+            }
+            None => g.one(),
+        }
+    }
+
     /// The row magnitudes and unknown units of one block: `(scale per row, unit per unknown)`.
     pub fn block(&mut self, g: &mut Graph, bp: &BlockPlan) -> (Vec<NodeId>, Vec<NodeId>) {
         let scale: Vec<NodeId> = bp.f.iter().map(|&f| self.of(g, f)).collect();

@@ -102,6 +102,10 @@ pub struct Plan {
     pub fx_full: Vec<Vec<NodeId>>,
     /// `scale_full[e]`: the magnitude of equation `e`'s terms (see [`magnitudes`]).
     pub scale_full: Vec<NodeId>,
+    /// `unit_full[u]`: the unit of unknown `u` (its block's, see [`magnitudes`]).
+    pub unit_full: Vec<NodeId>,
+    /// `input_unit[i]`: the unit of input `i` (see [`magnitudes::Magnitudes::input_unit`]).
+    pub input_unit: Vec<NodeId>,
     /// Parameter defaults, when every parameter has one.
     pub defaults: Option<Vec<f64>>,
     /// Per node: highest block whose unknowns it depends on (`-1`: none).
@@ -172,6 +176,13 @@ pub fn build(model: &mut Model, blocks: &[Block], with_sensitivities: bool) -> P
         (bp.scale, bp.unit) = mags.block(&mut g, bp);
     }
     let scale_full = residuals.iter().map(|&r| mags.of(&mut g, r)).collect();
+    let mut unit_full = vec![g.one(); n];
+    for bp in &plans {
+        for (c, &u) in bp.unknowns.iter().enumerate() {
+            unit_full[u] = bp.unit[c];
+        }
+    }
+    let input_unit = (0..ni).map(|i| mags.input_unit(&mut g, &residuals, &full.1, i)).collect();
     let mut firsts = Vec::new();
     for (b, bp) in plans.iter_mut().enumerate() {
         firsts.push(analogs::block(&mut g, &seeds, b, bp));
@@ -202,6 +213,8 @@ pub fn build(model: &mut Model, blocks: &[Block], with_sensitivities: bool) -> P
         jac_full: full.0,
         fx_full: full.1,
         scale_full,
+        unit_full,
+        input_unit,
         defaults,
         level,
     }

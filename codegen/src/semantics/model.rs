@@ -11,7 +11,9 @@ use proc_macro2::Span;
 use std::collections::HashMap;
 use syn::{Attribute, Ident, Visibility};
 
-/// Most unknowns (and equations) one mechanism may declare.
+/// Most unknowns (and equations) one mechanism may declare. Every block of the decomposition
+/// solves at least one unknown, so this also bounds the blocks: the runtime records the sign of
+/// every block's determinant in 256 bits (`DetSigns`), exactly, and must not see more blocks.
 pub const MAX_UNKNOWNS: usize = 256;
 /// Most inputs one mechanism may declare.
 pub const MAX_INPUTS: usize = 6;
@@ -264,7 +266,10 @@ fn check_counts(lw: &mut Lowerer, g: &mut Globals, name: &Ident) {
     if g.unknowns.len() > MAX_UNKNOWNS {
         lw.errors.push(syn::Error::new(
             g.unknowns[MAX_UNKNOWNS].name.span(),
-            format!("kinloop supports at most {MAX_UNKNOWNS} unknowns per mechanism"),
+            format!(
+                "kinloop supports at most {MAX_UNKNOWNS} unknowns per mechanism (so at most {MAX_UNKNOWNS} blocks, \
+                 each tracked for a change of assembly mode); split the mechanism into smaller ones"
+            ),
         ));
         g.unknowns.truncate(MAX_UNKNOWNS);
     }

@@ -136,6 +136,10 @@ impl Mechanism<1, 1, 1> for SliderCrank {
             j: [[2.0 * w]],
             fx: [[2.0 * w * self.r * sn + 2.0 * s * self.r * cs]],
             scale,
+            // The slider position is a length: its unit is the row's magnitude per unit of
+            // `df/dx` (`2 (|x| + r + e)`), i.e. about the size of the mechanism.
+            unit: [scale[0] / (2.0 * (q[0].abs() + self.r.abs() + self.e.abs()))],
+            input_unit: [1.0],
         }
     }
 

@@ -3,6 +3,13 @@
 //! units). The curve is followed in `y = (q, sigma)`, so it passes through limit positions
 //! (folds, where the input reverses) where a sweep in the input cannot.
 //!
+//! **Unit-free.** Arclength, tangents and the corrector's tests are measured in scaled
+//! coordinates `z = (q_u / unit_u, sigma / unit_sigma)` with the units the generated code gives
+//! every unknown and input ([`Jac::unit`], [`Jac::input_unit`]: one radian for an angle, the
+//! mechanism's size for a length), fixed at the start of a trace (`Metric`). A mechanism in
+//! metres, millimetres or micrometres is therefore followed with the same steps and its events
+//! are located at the same inputs; angles and lengths never mix in one norm.
+//!
 //! These routines run only on the rare paths (locating an event, tracing a closed curve), so
 //! they use nalgebra's dynamic matrices for the `(N + 1)`-sized bordered systems.
 
@@ -54,6 +61,49 @@ impl<const NI: usize> Path<NI> {
     }
 }
 
+/// A unit that is not positive and finite counts as one.
+fn sane(unit: f64) -> f64 {
+    if unit > 0.0 && unit < f64::INFINITY { unit } else { 1.0 }
+}
+
+/// The units of the continuation's coordinates: `q_u` is measured in `unit[u]`, the path
+/// coordinate `sigma` in `sigma`. Fixed for a whole trace, so that one arclength is used
+/// throughout.
+#[derive(Clone, Copy, Debug)]
+pub(crate) struct Metric<const N: usize> {
+    pub unit: [f64; N],
+    pub sigma: f64,
+}
+
+impl<const N: usize> Metric<N> {
+    /// The units at `(x, q)` on `path`: the generated units of the unknowns, and for `sigma`
+    /// the path's length over its length measured in input units (the input's own unit for a
+    /// single input).
+    pub fn at<M, const NI: usize, const NO: usize>(m: &M, path: &Path<NI>, x: &[f64; NI], q: &[f64; N]) -> Self
+    where
+        M: Mechanism<N, NI, NO>,
+    {
+        let jac = m.jacobian_flat(x, q);
+        let mut unit = jac.unit;
+        for u in &mut unit {
+            *u = sane(*u);
+        }
+        // `|delta ./ input_unit|`, scaled like `Path::new` so that it cannot overflow.
+        let mut scaled = [0.0; NI];
+        for i in 0..NI {
+            scaled[i] = path.delta[i] / sane(jac.input_unit[i]);
+        }
+        let big = scaled.iter().fold(0.0f64, |m, d| m.max(d.abs()));
+        let norm = if big > 0.0 && big.is_finite() {
+            big * scaled.iter().map(|d| (d / big) * (d / big)).sum::<f64>().sqrt()
+        } else {
+            0.0
+        };
+        let sigma = if norm > 0.0 { sane(path.len / norm) } else { 1.0 };
+        Metric { unit, sigma }
+    }
+}
+
 /// The event of kind `kind` at curve point `p` of `path`.
 pub(crate) fn event_at<const N: usize, const NI: usize>(
     kind: EventKind,
@@ -79,44 +129,69 @@ fn f_sigma<const N: usize, const NI: usize>(jac: &Jac<N, NI>, path: &Path<NI>) -
 pub(crate) struct CurvePoint<const N: usize> {
     pub q: [f64; N],
     pub sigma: f64,
-    /// Unit tangent in `(q, sigma)`; its last component is `d sigma / ds`.
+    /// Unit tangent in the scaled coordinates `z` (see [`Metric`]); its last component is
+    /// `d (sigma / unit_sigma) / ds`.
     pub tangent: DVector<f64>,
 }
 
 impl<const N: usize> CurvePoint<N> {
-    pub fn y(&self) -> DVector<f64> {
-        DVector::from_iterator(N + 1, self.q.iter().copied().chain([self.sigma]))
+    /// The point in scaled coordinates.
+    pub fn z(&self, metric: &Metric<N>) -> DVector<f64> {
+        DVector::from_iterator(N + 1, (0..N).map(|u| self.q[u] / metric.unit[u]).chain([self.sigma / metric.sigma]))
     }
 
-    /// `d sigma / ds`: positive while the input advances, zero at a limit position.
+    /// The rate of the path coordinate along the curve: positive while the input advances,
+    /// zero at a limit position.
     pub fn dsigma(&self) -> f64 {
         self.tangent[N]
     }
+
+    /// `d q_u / d sigma` along the tangent (finite away from limit positions).
+    pub fn dq_dsigma(&self, u: usize, metric: &Metric<N>) -> f64 {
+        self.tangent[u] * metric.unit[u] / (self.tangent[N] * metric.sigma)
+    }
 }
 
+/// The physical `(q, sigma)` of scaled coordinates `z`.
+fn unscale<const N: usize>(z: &DVector<f64>, metric: &Metric<N>) -> ([f64; N], f64) {
+    let mut q = [0.0; N];
+    for u in 0..N {
+        q[u] = z[u] * metric.unit[u];
+    }
+    (q, z[N] * metric.sigma)
+}
+
+/// The bordered Jacobian in scaled coordinates (columns times their units, rows over their
+/// magnitudes, so that its entries are dimensionless) with `last_row` appended, and the
+/// scaled residuals `-f_e / scale_e` as the first `N` entries of the right-hand side.
 fn bordered<const N: usize, const NI: usize>(
     jac: &Jac<N, NI>,
     path: &Path<NI>,
+    metric: &Metric<N>,
     last_row: &DVector<f64>,
-) -> DMatrix<f64> {
+) -> (DMatrix<f64>, DVector<f64>) {
     let fs = f_sigma(jac, path);
     let mut a = DMatrix::zeros(N + 1, N + 1);
+    let mut rhs = DVector::zeros(N + 1);
     for e in 0..N {
+        let row = sane(jac.scale[e]);
         for u in 0..N {
-            a[(e, u)] = jac.j[e][u];
+            a[(e, u)] = jac.j[e][u] * metric.unit[u] / row;
         }
-        a[(e, N)] = fs[e];
+        a[(e, N)] = fs[e] * metric.sigma / row;
+        rhs[e] = -jac.f[e] / row;
     }
     for k in 0..=N {
         a[(N, k)] = last_row[k];
     }
-    a
+    (a, rhs)
 }
 
-/// Unit tangent at `(q, sigma)`, oriented like `prev`.
+/// Unit tangent (scaled coordinates) at `(q, sigma)`, oriented like `prev`.
 pub(crate) fn tangent<M, const N: usize, const NI: usize, const NO: usize>(
     m: &M,
     path: &Path<NI>,
+    metric: &Metric<N>,
     q: &[f64; N],
     sigma: f64,
     prev: &DVector<f64>,
@@ -125,7 +200,7 @@ where
     M: Mechanism<N, NI, NO>,
 {
     let jac = m.jacobian_flat(&path.at_sigma(sigma), q);
-    let a = bordered(&jac, path, prev);
+    let (a, _) = bordered(&jac, path, metric, prev);
     let mut rhs = DVector::zeros(N + 1);
     rhs[N] = 1.0;
     let t = a.lu().solve(&rhs)?;
@@ -133,25 +208,29 @@ where
     (norm.is_finite() && norm > 0.0).then(|| t / norm)
 }
 
-/// The tangent at a regular point from the velocity analogs, oriented with increasing sigma.
+/// The tangent (scaled coordinates) at a regular point from the velocity analogs, oriented
+/// with increasing sigma.
 pub(crate) fn tangent_from_analogs<const N: usize, const NI: usize>(
     dq: &[[f64; NI]; N],
     path: &Path<NI>,
+    metric: &Metric<N>,
 ) -> DVector<f64> {
     let mut t = DVector::zeros(N + 1);
     for u in 0..N {
-        t[u] = (0..NI).map(|i| dq[u][i] * path.delta[i]).sum::<f64>() / path.len;
+        let dq_dsigma = (0..NI).map(|i| dq[u][i] * path.delta[i]).sum::<f64>() / path.len;
+        t[u] = dq_dsigma * metric.sigma / metric.unit[u];
     }
     t[N] = 1.0;
     let n = t.norm();
     t / n
 }
 
-/// One pseudo-arclength step of length `ds` from `p`: Euler predictor along the tangent, Newton
-/// corrector on `[f(q, sigma); t . (y - y_pred)] = 0`.
+/// One pseudo-arclength step of length `ds` (scaled coordinates) from `p`: Euler predictor
+/// along the tangent, Newton corrector on `[f(q, sigma); t . (z - z_pred)] = 0`.
 pub(crate) fn arc_step<M, const N: usize, const NI: usize, const NO: usize>(
     m: &M,
     path: &Path<NI>,
+    metric: &Metric<N>,
     p: &CurvePoint<N>,
     ds: f64,
     cfg: &NewtonConfig,
@@ -159,48 +238,42 @@ pub(crate) fn arc_step<M, const N: usize, const NI: usize, const NO: usize>(
 where
     M: Mechanism<N, NI, NO>,
 {
-    let y_pred = p.y() + &p.tangent * ds;
-    let mut y = y_pred.clone();
+    let z_pred = p.z(metric) + &p.tangent * ds;
+    let mut z = z_pred.clone();
     // A point meeting the tolerance is corrected once more (free accuracy where Newton
     // converges quadratically, needed near singular points where the tolerance leaves the
     // position loose), then accepted the next time it meets the tolerance.
     let mut corrected = false;
     for _ in 0..cfg.max_iterations.max(8) {
-        let mut q = [0.0; N];
-        q.copy_from_slice(&y.as_slice()[..N]);
-        let sigma = y[N];
+        let (q, sigma) = unscale(&z, metric);
         let jac = m.jacobian_flat(&path.at_sigma(sigma), &q);
         // Each residual relative to its row's magnitude (see `system_residual`).
         let res = system_residual(&jac.f, &jac.j, &f_sigma(&jac, path), &jac.scale);
         if !res.is_finite() {
             return None;
         }
-        let mut g = DVector::zeros(N + 1);
-        for e in 0..N {
-            g[e] = -jac.f[e];
-        }
-        g[N] = -p.tangent.dot(&(&y - &y_pred));
+        let (a, mut g) = bordered(&jac, path, metric, &p.tangent);
+        g[N] = -p.tangent.dot(&(&z - &z_pred));
+        // Both tests are dimensionless: `g[N]` is a distance in scaled coordinates.
         if res <= cfg.residual_tol && g[N].abs() <= cfg.residual_tol * (1.0 + ds.abs()) && corrected {
-            let tangent = tangent(m, path, &q, sigma, &p.tangent)?;
+            let tangent = tangent(m, path, metric, &q, sigma, &p.tangent)?;
             return Some(CurvePoint { q, sigma, tangent });
         }
         corrected |= res <= cfg.residual_tol;
-        let a = bordered(&jac, path, &p.tangent);
-        let dy = a.lu().solve(&g)?;
-        if !dy.iter().all(|v| v.is_finite()) {
+        let dz = a.lu().solve(&g)?;
+        if !dz.iter().all(|v| v.is_finite()) {
             return None;
         }
-        y += &dy;
-        if dy.amax() <= cfg.step_tol * (1.0 + y.amax()) {
-            let mut q = [0.0; N];
-            q.copy_from_slice(&y.as_slice()[..N]);
-            let jac = m.jacobian_flat(&path.at_sigma(y[N]), &q);
+        z += &dz;
+        if dz.amax() <= cfg.step_tol * (1.0 + z.amax()) {
+            let (q, sigma) = unscale(&z, metric);
+            let jac = m.jacobian_flat(&path.at_sigma(sigma), &q);
             // The step is at the rounding floor: accept a residual up to its floor.
             if system_residual(&jac.f, &jac.j, &f_sigma(&jac, path), &jac.scale)
                 <= 1e3 * cfg.residual_tol.max(16.0 * f64::EPSILON)
             {
-                let tangent = tangent(m, path, &q, y[N], &p.tangent)?;
-                return Some(CurvePoint { q, sigma: y[N], tangent });
+                let tangent = tangent(m, path, metric, &q, sigma, &p.tangent)?;
+                return Some(CurvePoint { q, sigma, tangent });
             }
         }
     }
@@ -257,9 +330,10 @@ pub(crate) fn illinois(
 /// The limit position between `base` (arclength `s = 0`) and the curve point `ds` further on,
 /// whose `d sigma / ds` is `dsigma_end` (of the other sign than at `base`): the root of
 /// `d sigma / ds` in `s`.
-fn locate_fold<M, const N: usize, const NI: usize, const NO: usize>(
+pub(crate) fn locate_fold<M, const N: usize, const NI: usize, const NO: usize>(
     m: &M,
     path: &Path<NI>,
+    metric: &Metric<N>,
     base: &CurvePoint<N>,
     ds: f64,
     dsigma_end: f64,
@@ -269,14 +343,14 @@ where
     M: Mechanism<N, NI, NO>,
 {
     let s = illinois(
-        |s| arc_step(m, path, base, s, cfg).map(|p| p.dsigma()),
+        |s| arc_step(m, path, metric, base, s, cfg).map(|p| p.dsigma()),
         0.0,
         ds,
         base.dsigma(),
         dsigma_end,
         1e-15 * (1.0 + ds),
     )?;
-    arc_step(m, path, base, s, cfg)
+    arc_step(m, path, metric, base, s, cfg)
 }
 
 /// Whether the augmented Jacobian `[J | dF/dsigma]` at `p` has full rank `N`: its smallest
@@ -324,6 +398,7 @@ const RANK_TOL: f64 = 1e-6;
 fn straight_past<M, const N: usize, const NI: usize, const NO: usize>(
     m: &M,
     path: &Path<NI>,
+    metric: &Metric<N>,
     a: &CurvePoint<N>,
     at: &CurvePoint<N>,
     cfg: &NewtonConfig,
@@ -341,13 +416,13 @@ where
         let sigma = at.sigma + k * gap;
         let mut guess = a.q;
         for u in 0..N {
-            guess[u] += a.tangent[u] / rate * (sigma - a.sigma);
+            guess[u] += a.dq_dsigma(u, metric) * (sigma - a.sigma);
         }
         let Ok(n) = m.kinematics_flat(&path.at_sigma(sigma), &guess, cfg) else { continue };
         if (signed_det(m, &path.at_sigma(sigma), &n.q) > 0.0) == (det_a > 0.0) {
             continue;
         }
-        let tangent = tangent_from_analogs(&n.dq, path);
+        let tangent = tangent_from_analogs(&n.dq, path, metric);
         return Some(CurvePoint { q: n.q, sigma, tangent });
     }
     None
@@ -368,6 +443,7 @@ pub(crate) enum Found<const N: usize> {
 pub(crate) fn trace<M, const N: usize, const NI: usize, const NO: usize>(
     m: &M,
     path: &Path<NI>,
+    metric: &Metric<N>,
     start: &CurvePoint<N>,
     ds0: f64,
     max_arc: f64,
@@ -385,7 +461,7 @@ where
     let mut ds = ds0;
     let mut walked = 0.0;
     while walked < max_arc {
-        let Some(b) = arc_step(m, path, &a, ds, cfg) else {
+        let Some(b) = arc_step(m, path, metric, &a, ds, cfg) else {
             ds *= 0.5;
             if ds < 1e-14 * (1.0 + max_arc) {
                 return None;
@@ -394,12 +470,12 @@ where
         };
         let det_b = det_at(&b);
         if b.dsigma() <= 0.0 {
-            let fold = locate_fold(m, path, &a, ds, b.dsigma(), cfg)?;
+            let fold = locate_fold(m, path, metric, &a, ds, b.dsigma(), cfg)?;
             // Where `[J | dF/dsigma]` loses rank too, the input is not stopped: several
             // branches meet (e.g. two coincident joints), and the one the path tangent
             // continues goes on.
             if !augmented_full_rank(m, path, &fold) {
-                return straight_past(m, path, &a, &fold, cfg).map(|past| Found::Crossing(fold, past));
+                return straight_past(m, path, metric, &a, &fold, cfg).map(|past| Found::Crossing(fold, past));
             }
             return Some(Found::Fold(fold));
         }
@@ -410,7 +486,7 @@ where
             let (mut lo, mut hi) = (0.0, ds);
             let s = illinois(
                 |s| {
-                    let g = arc_step(m, path, &base, s, cfg).map(|p| det_at(&p));
+                    let g = arc_step(m, path, metric, &base, s, cfg).map(|p| det_at(&p));
                     if let Some(v) = g {
                         if (v > 0.0) == (det_a > 0.0) { lo = s } else { hi = s }
                     }
@@ -423,7 +499,7 @@ where
                 1e-15 * (1.0 + ds),
             )
             .unwrap_or(0.5 * (lo + hi));
-            let at = arc_step(m, path, &base, s, cfg).unwrap_or_else(|| b.clone());
+            let at = arc_step(m, path, metric, &base, s, cfg).unwrap_or_else(|| b.clone());
             return Some(Found::Crossing(at, b));
         }
         walked += ds;
@@ -462,92 +538,4 @@ where
         }
     }
     Lu::<N>::factor_cols(&jac.j, scale)
-}
-
-/// One point of a traced solution curve.
-#[derive(Clone, Copy, Debug, PartialEq)]
-pub struct TracedPoint<const N: usize, const NI: usize> {
-    /// Input values.
-    pub x: [f64; NI],
-    /// Positions of the unknowns.
-    pub q: [f64; N],
-    /// `d sigma / ds`: positive while the input advances along the path, negative after a limit
-    /// position reversed it.
-    pub input_rate: f64,
-}
-
-/// A solution curve traced by pseudo-arclength continuation.
-#[derive(Clone, Debug, PartialEq)]
-pub struct Traced<const N: usize, const NI: usize> {
-    /// Points along the curve, about `ds` apart.
-    pub points: Vec<TracedPoint<N, NI>>,
-    /// The limit positions passed (where the input reversed), located precisely.
-    pub folds: Vec<Event>,
-    /// The curve closed on itself (it came back to its first point).
-    pub closed: bool,
-}
-
-/// Traces the whole solution curve through `guess` at input `from`, moving first towards `to`,
-/// by pseudo-arclength continuation in `(q, input)`: unlike a sweep it passes limit positions,
-/// where the input reverses, so a mechanism whose input cannot make a full turn (a non-Grashof
-/// four-bar driven by a rocking link) yields its complete closed curve. Stops when the curve
-/// closes, leaves the segment between `from - (to - from)` and `to`, or after `max_points`.
-/// Allocates (it returns a `Vec`); use [`Sweep`](crate::Sweep) in hot loops.
-pub fn trace_curve<M, const N: usize, const NI: usize, const NO: usize>(
-    m: &M,
-    from: [f64; NI],
-    to: [f64; NI],
-    guess: [f64; N],
-    ds: f64,
-    max_points: usize,
-    cfg: &NewtonConfig,
-) -> Result<Traced<N, NI>, crate::Error>
-where
-    M: Mechanism<N, NI, NO>,
-{
-    cfg.validate()?;
-    let path = Path::new(from, to);
-    if !path.len.is_finite() || path.len.is_nan() || path.len <= 0.0 || ds.is_nan() || ds <= 0.0 || !ds.is_finite() {
-        return Err(crate::Error::InvalidArgument(
-            "trace_curve needs `to` different from `from` and a positive, finite `ds`".into(),
-        ));
-    }
-    let k0 = m.kinematics_flat(&from, &guess, cfg)?;
-    let start = CurvePoint { q: k0.q, sigma: 0.0, tangent: tangent_from_analogs(&k0.dq, &path) };
-    let start_y = start.y();
-    let point = |p: &CurvePoint<N>| TracedPoint { x: path.at_sigma(p.sigma), q: p.q, input_rate: p.dsigma() };
-    let mut out = Traced { points: vec![point(&start)], folds: Vec::new(), closed: false };
-    let mut p = start;
-    let mut walked = 0.0;
-    let mut step = ds;
-    while out.points.len() < max_points {
-        let Some(next) = arc_step(m, &path, &p, step, cfg) else {
-            step *= 0.5;
-            if step < ds * 1e-6 {
-                return Err(crate::Error::Branch {
-                    message: "pseudo-arclength continuation cannot proceed (the curve bifurcates or ends here)".into(),
-                    at: crate::Location::boxed(M::NAME, &M::INPUTS, &path.at_sigma(p.sigma), None),
-                });
-            }
-            continue;
-        };
-        if (p.dsigma() > 0.0) != (next.dsigma() > 0.0)
-            && let Some(f) = locate_fold(m, &path, &p, step, next.dsigma(), cfg)
-        {
-            out.folds.push(event_at(EventKind::LimitPosition, &path, &f, None));
-        }
-        walked += step;
-        let back = (next.y() - &start_y).norm();
-        p = next;
-        if p.sigma > path.len * (1.0 + 1e-12) || p.sigma < -path.len * (1.0 + 1e-12) {
-            break;
-        }
-        if walked > 3.0 * ds && back < 0.75 * ds {
-            out.closed = true;
-            break;
-        }
-        out.points.push(point(&p));
-        step = ds;
-    }
-    Ok(out)
 }

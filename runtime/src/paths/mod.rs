@@ -1,8 +1,12 @@
-//! Following a mechanism along its inputs: sweeps that never jump branches ([`sweep`]),
-//! pseudo-arclength continuation through limit positions ([`curve`]), design-space scans
-//! ([`scan`]) and the search for assembly modes ([`modes`]).
+//! Following a mechanism along its inputs: sweeps that never jump branches ([`sweep`]) and their
+//! results with the reason they stopped ([`outcome`]), pseudo-arclength continuation through
+//! limit positions ([`curve`], [`trace`]), the reachable input range ([`reach`]), design-space
+//! scans ([`scan`]) and the search for assembly modes ([`modes`]).
 
 pub mod curve;
 pub mod modes;
+pub mod outcome;
+pub mod reach;
 pub mod scan;
 pub mod sweep;
+pub mod trace;

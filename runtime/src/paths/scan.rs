@@ -67,7 +67,8 @@ impl<M, const N: usize> ScanStart<M, N> {
 }
 
 /// What every sweep of a scan does: `samples` equally spaced inputs from `from` to `to` (both
-/// included, as in [`Sweep::new`]), starting as `start` says, with `config`. Built with
+/// included, as in [`Sweep::new`]), starting as `start` says, with `config` (or each
+/// mechanism's own, [`Mechanism::solver_config`]). Built with
 /// [`ScanSpec::new`] and the builder methods.
 #[non_exhaustive]
 pub struct ScanSpec<M, const N: usize, const NI: usize> {
@@ -79,8 +80,10 @@ pub struct ScanSpec<M, const N: usize, const NI: usize> {
     pub samples: usize,
     /// The initial guess at `from`.
     pub start: ScanStart<M, N>,
-    /// The sweeps' configuration.
-    pub config: SweepConfig,
+    /// The sweeps' configuration; `None` (default): each mechanism's own
+    /// ([`Mechanism::solver_config`]: the defaults, or a [`Configured`](crate::Configured)
+    /// mechanism's).
+    pub config: Option<SweepConfig>,
 }
 
 impl<M, const N: usize, const NI: usize> Clone for ScanSpec<M, N, NI> {
@@ -105,9 +108,9 @@ impl<M, const N: usize, const NI: usize> fmt::Debug for ScanSpec<M, N, NI> {
 
 impl<M, const N: usize, const NI: usize> ScanSpec<M, N, NI> {
     /// Sweeps of `samples` inputs from `from` to `to`, each starting from the mechanism's
-    /// declared guess ([`ScanStart::Declared`]), with the default [`SweepConfig`].
+    /// declared guess ([`ScanStart::Declared`]), with each mechanism's configuration.
     pub fn new(from: [f64; NI], to: [f64; NI], samples: usize) -> Self {
-        ScanSpec { from, to, samples, start: ScanStart::Declared, config: SweepConfig::default() }
+        ScanSpec { from, to, samples, start: ScanStart::Declared, config: None }
     }
 
     /// Replaces the starting guess policy.
@@ -116,9 +119,9 @@ impl<M, const N: usize, const NI: usize> ScanSpec<M, N, NI> {
         self
     }
 
-    /// Replaces the sweeps' configuration.
+    /// Gives every sweep this configuration (instead of each mechanism's own).
     pub fn with_config(mut self, config: SweepConfig) -> Self {
-        self.config = config;
+        self.config = Some(config);
         self
     }
 }
@@ -136,8 +139,10 @@ where
     F: Fn(A, &M, &Kin<N, NI, NO>) -> A,
 {
     let guess = spec.start.guess::<NI, NO>(m, &spec.from);
-    let mut sweep = Sweep::<M, Kin<N, NI, NO>, N, NI, NO>::new(m, spec.from, spec.to, spec.samples, guess)?
-        .with_config(spec.config);
+    let mut sweep = Sweep::<M, Kin<N, NI, NO>, N, NI, NO>::new(m, spec.from, spec.to, spec.samples, guess)?;
+    if let Some(config) = spec.config {
+        sweep = sweep.with_config(config);
+    }
     let mut acc = init(m);
     while let Some(k) = sweep.next_kin() {
         acc = fold(acc, m, &k?);

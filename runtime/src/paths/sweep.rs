@@ -21,7 +21,8 @@
 //!
 //! The iterator allocates nothing per step (events are rare and allocate).
 
-use super::curve::{self, CurvePoint, Found, Path};
+use super::curve::{self, CurvePoint, Found, Metric, Path};
+use super::outcome::SweepResult;
 use crate::error::{Error, Quantity};
 use crate::events::{BlockInfo, Event, EventKind, Location};
 use crate::kin::{DetSigns, Kin};
@@ -76,6 +77,13 @@ pub struct SweepConfig {
     /// this (default `1e-6`): so close to a singular position the residual tolerance no longer
     /// pins the branch. The sweep then locates the singular position by arclength continuation.
     pub singular_pivot: f64,
+}
+
+/// The sweep defaults with this Newton configuration.
+impl From<NewtonConfig> for SweepConfig {
+    fn from(newton: NewtonConfig) -> Self {
+        SweepConfig::default().with_newton(newton)
+    }
 }
 
 impl Default for SweepConfig {
@@ -194,6 +202,10 @@ pub struct Sweep<'m, M, S, const N: usize, const NI: usize, const NO: usize> {
     h_min: f64,
     next: usize,
     guess: [f64; N],
+    /// The first sample's position: the continuation that locates events measures arclength
+    /// in the units there (fixed for the sweep, and taken where the sweep is regular: at a
+    /// singular position a unit derived from the terms' magnitudes can degenerate).
+    first_q: [f64; N],
     cur: Option<Kin<N, NI, NO>>,
     tau: f64,
     h: f64,
@@ -223,12 +235,22 @@ where
     S: From<Kin<N, NI, NO>>,
 {
     /// A sweep of `samples` equally spaced inputs from `from` to `to` (both included), starting
-    /// from `guess` at `from` (the guess picks the assembly mode).
+    /// from `guess` at `from` (the guess picks the assembly mode), with the mechanism's solver
+    /// configuration ([`Mechanism::solver_config`]: the defaults, or the one a
+    /// [`Configured`](crate::Configured) mechanism carries).
     pub fn new(m: &'m M, from: [f64; NI], to: [f64; NI], samples: usize, guess: [f64; N]) -> Result<Self, Error> {
         check_finite("from", &from, M::NAME)?;
         check_finite("to", &to, M::NAME)?;
         if samples == 0 {
             return Err(Error::InvalidArgument("a sweep needs at least one sample".into()));
+        }
+        if M::BLOCKS.len() > DetSigns::CAPACITY {
+            return Err(Error::InvalidArgument(format!(
+                "`{}` has {} blocks; a sweep watches the assembly mode of at most {} (split the mechanism)",
+                M::NAME,
+                M::BLOCKS.len(),
+                DetSigns::CAPACITY
+            )));
         }
         let path = Path::new(from, to);
         if !path.len.is_finite() {
@@ -250,6 +272,7 @@ where
             h_min: 0.0,
             next: 0,
             guess,
+            first_q: guess,
             cur: None,
             tau: 0.0,
             h: 0.0,
@@ -260,7 +283,7 @@ where
             _s: PhantomData,
         };
         sweep.set_step_bounds();
-        Ok(sweep)
+        Ok(sweep.with_config(m.solver_config()))
     }
 
     /// Replaces the configuration.
@@ -271,6 +294,7 @@ where
         match cfg.validate() {
             Ok(()) => {
                 self.cfg = cfg;
+                self.invalid = None;
                 self.set_step_bounds();
             }
             Err(e) => self.invalid = Some(e),
@@ -291,6 +315,24 @@ where
     /// The last accepted state (the last sample, or the last point before a stop).
     pub fn last(&self) -> Option<&Kin<N, NI, NO>> {
         self.cur.as_ref()
+    }
+
+    /// Runs the whole sweep: the states up to where it ended, why and where it ended, and the
+    /// singular positions met (see [`SweepResult`]).
+    pub fn run(mut self) -> SweepResult<S> {
+        // Bounded: a sweep of a huge sample count grows its vector as it goes.
+        let mut states = Vec::with_capacity(self.samples.min(1 << 16));
+        let mut error = None;
+        while let Some(r) = self.next_kin() {
+            match r {
+                Ok(k) => states.push(S::from(k)),
+                Err(e) => {
+                    error = Some(e);
+                    break;
+                }
+            }
+        }
+        SweepResult::new(states, error, self.events)
     }
 
     /// Runs the whole sweep into a [`Table`] (CSV-ready, named columns).
@@ -371,6 +413,7 @@ where
         match self.m.kinematics_flat(&x, &self.guess, &self.cfg.newton) {
             Ok(k) => {
                 self.cur = Some(k);
+                self.first_q = k.q;
                 self.signs = k.health.det_signs;
                 self.h = self.h_max;
                 self.next = 1;
@@ -464,11 +507,13 @@ where
 
     /// After a crossing: follows the curve from `p` until the Jacobian is well conditioned again
     /// (so the analogs can be trusted) without passing the sample at `target`; sets `tau` there.
-    fn resume_past(&mut self, mut p: CurvePoint<N>, target: f64) -> Option<Kin<N, NI, NO>> {
+    /// `p`'s tangent is in the scaled coordinates of `metric`.
+    fn resume_past(&mut self, mut p: CurvePoint<N>, target: f64, metric: &Metric<N>) -> Option<Kin<N, NI, NO>> {
         let path = self.path;
         let newton = self.cfg.newton;
         let end = target * path.len;
-        let mut ds = 0.01 * self.spacing * path.len;
+        // In the continuation's scaled arclength (see `Metric`).
+        let mut ds = 0.01 * self.spacing * path.len / metric.sigma;
         for _ in 0..200 {
             if let Ok(k) = self.m.kinematics_at_flat(&path.at_sigma(p.sigma), &p.q, &newton)
                 && k.health.min_pivot >= self.cfg.singular_pivot * 100.0
@@ -476,13 +521,12 @@ where
                 self.tau = p.sigma / path.len;
                 return Some(k);
             }
-            let next = curve::arc_step(self.m, &path, &p, ds, &newton)?;
+            let next = curve::arc_step(self.m, &path, metric, &p, ds, &newton)?;
             if next.sigma >= end {
                 // Land exactly on the sample, predicting along the curve's tangent.
-                let t_sigma = p.dsigma();
                 let mut guess = p.q;
                 for u in 0..N {
-                    guess[u] += p.tangent[u] / t_sigma * (end - p.sigma);
+                    guess[u] += p.dq_dsigma(u, metric) * (end - p.sigma);
                 }
                 let k = self.m.kinematics_flat(&path.at_tau(target), &guess, &newton).ok()?;
                 self.tau = target;
@@ -511,11 +555,13 @@ where
         // Follow the smooth continuation of the curve by arclength from the last good point: it
         // passes limit positions (the input reverses) and singular crossings (a determinant
         // changes sign) that no step in the input can pass.
-        let start =
-            CurvePoint { q: k.q, sigma: self.tau * path.len, tangent: curve::tangent_from_analogs(&k.dq, &path) };
-        let ds0 = ((tau_new - self.tau) * path.len).max(1e-9 * path.len);
-        let reach = (self.spacing * path.len).max(ds0 * 8.0);
-        match curve::trace(self.m, &path, &start, ds0, reach, &newton) {
+        // Arclength in scaled coordinates (see `Metric`): the same steps in any unit of length.
+        let metric = Metric::at(self.m, &path, &path.from, &self.first_q);
+        let tangent = curve::tangent_from_analogs(&k.dq, &path, &metric);
+        let start = CurvePoint { q: k.q, sigma: self.tau * path.len, tangent };
+        let ds0 = ((tau_new - self.tau) * path.len).max(1e-9 * path.len) / metric.sigma;
+        let reach = (self.spacing * path.len / metric.sigma).max(ds0 * 8.0);
+        match curve::trace(self.m, &path, &metric, &start, ds0, reach, &newton) {
             // A true limit position is singular; a reversal where the Jacobian is regular is a
             // kink of a non-smooth curve (e.g. through `abs`), reported below as a branch error.
             Some(Found::Fold(fold)) if curve::pivot_at(self.m, &path.at_sigma(fold.sigma), &fold.q) < 1e-6 => {
@@ -530,7 +576,7 @@ where
                 let flipped = beyond.and_then(|n| n.health.det_signs.first_difference(&self.signs)).unwrap_or(weakest);
                 self.events.push(curve::event_at(EventKind::SingularCrossing, &path, &at, block_of(flipped)));
                 if self.cfg.at_singular == AtSingular::Continue
-                    && let Some(n) = self.resume_past(past, target)
+                    && let Some(n) = self.resume_past(past, target, &metric)
                 {
                     return Ok(n);
                 }
@@ -573,56 +619,63 @@ where
     }
 }
 
-/// The reachable stretch of a path from a starting position, with the limit positions that end
-/// it (or `None` where the path's end is reached first).
-#[derive(Clone, Debug, PartialEq)]
-pub struct Reach {
-    /// Fraction of the path reached backwards (towards `from - (to - from)`), in `[-1, 0]`.
-    pub lo: f64,
-    /// Fraction reached forwards, in `[0, 1]`.
-    pub hi: f64,
-    /// The limit position ending the backward sweep.
-    pub lo_event: Option<Event>,
-    /// The limit position ending the forward sweep.
-    pub hi_event: Option<Event>,
-}
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::analysis::demo::SliderCrank;
+    use crate::kin::Jac;
+    use crate::newton::SolveReport;
 
-/// Finds how far the input can move from `at` along `+delta` and `-delta` on the assembly mode
-/// of `guess` before a limit position, sweeping both ways with `samples` samples each.
-pub fn reachable<M, const N: usize, const NI: usize, const NO: usize>(
-    m: &M,
-    at: [f64; NI],
-    delta: [f64; NI],
-    guess: [f64; N],
-    samples: usize,
-    cfg: SweepConfig,
-) -> Result<Reach, Error>
-where
-    M: Mechanism<N, NI, NO>,
-{
-    let mut ends = [(0.0, None), (0.0, None)];
-    for (side, sign) in [(0usize, -1.0), (1, 1.0)] {
-        let mut to = at;
-        for i in 0..NI {
-            to[i] += sign * delta[i];
+    /// A hand-written mechanism claiming more blocks than the determinant signs can track.
+    struct TooManyBlocks(SliderCrank);
+
+    const BLOCK: BlockInfo = BlockInfo { unknowns: &["x"], equations: &["rod"], linear: false };
+
+    impl Mechanism<1, 1, 1> for TooManyBlocks {
+        const NAME: &'static str = "TooManyBlocks";
+        const PARAMS: &'static [&'static str] = SliderCrank::PARAMS;
+        const INPUTS: [&'static str; 1] = SliderCrank::INPUTS;
+        const UNKNOWNS: [&'static str; 1] = SliderCrank::UNKNOWNS;
+        const EQUATIONS: [&'static str; 1] = SliderCrank::EQUATIONS;
+        const OUTPUTS: [&'static str; 1] = SliderCrank::OUTPUTS;
+        const BLOCKS: &'static [BlockInfo] = &[BLOCK; DetSigns::CAPACITY + 1];
+
+        fn param_values(&self) -> Vec<f64> {
+            self.0.param_values()
         }
-        let mut sweep = Sweep::<M, Kin<N, NI, NO>, N, NI, NO>::new(m, at, to, samples.max(2), guess)?.with_config(cfg);
-        let mut reached = 0.0;
-        let mut stopped = None;
-        while let Some(r) = sweep.next_kin() {
-            match r {
-                Ok(_) => reached = sweep.tau,
-                Err(Error::SweepStopped { kind: EventKind::LimitPosition, .. }) => {
-                    stopped = sweep.events.last().cloned();
-                    if let Some(e) = &stopped {
-                        reached = e.tau;
-                    }
-                }
-                Err(e) => return Err(e),
-            }
+        fn guess_flat(&self, x: &[f64; 1]) -> [f64; 1] {
+            self.0.guess_flat(x)
         }
-        ends[side] = (sign * reached, stopped);
+        fn position_flat(
+            &self,
+            x: &[f64; 1],
+            g: &[f64; 1],
+            c: &NewtonConfig,
+        ) -> Result<([f64; 1], SolveReport), Error> {
+            self.0.position_flat(x, g, c)
+        }
+        fn kinematics_flat(&self, x: &[f64; 1], g: &[f64; 1], c: &NewtonConfig) -> Result<Kin<1, 1, 1>, Error> {
+            self.0.kinematics_flat(x, g, c)
+        }
+        fn kinematics_at_flat(&self, x: &[f64; 1], q: &[f64; 1], c: &NewtonConfig) -> Result<Kin<1, 1, 1>, Error> {
+            self.0.kinematics_at_flat(x, q, c)
+        }
+        fn outputs_flat(&self, x: &[f64; 1], q: &[f64; 1]) -> [f64; 1] {
+            self.0.outputs_flat(x, q)
+        }
+        fn jacobian_flat(&self, x: &[f64; 1], q: &[f64; 1]) -> Jac<1, 1> {
+            self.0.jacobian_flat(x, q)
+        }
     }
-    let [(lo, lo_event), (hi, hi_event)] = ends;
-    Ok(Reach { lo, hi, lo_event, hi_event })
+
+    /// Beyond 256 blocks a change of assembly mode could go unseen: such a sweep is refused.
+    #[test]
+    fn a_sweep_of_more_blocks_than_the_signs_track_is_refused() {
+        let m = TooManyBlocks(SliderCrank { r: 1.0, l: 3.0, e: 0.5 });
+        let g = m.guess_flat(&[0.0]);
+        let err = Sweep::<_, Kin<1, 1, 1>, 1, 1, 1>::new(&m, [0.0], [1.0], 3, g).err().expect("refused");
+        assert!(matches!(&err, Error::InvalidArgument(msg) if msg.contains("257 blocks")), "{err}");
+        // The same mechanism with its real single block sweeps.
+        assert!(Sweep::<_, Kin<1, 1, 1>, 1, 1, 1>::new(&m.0, [0.0], [1.0], 3, g).is_ok());
+    }
 }

@@ -1,0 +1,74 @@
+//! How far the input can move on one assembly mode ([`reachable`], answering in input values
+//! with [`Reach`]).
+
+use super::outcome::Stop;
+use super::sweep::Sweep;
+use crate::error::Error;
+use crate::events::Event;
+use crate::kin::Kin;
+use crate::mechanism::Mechanism;
+
+/// The reachable stretch of the input from a starting value on one assembly mode, in input
+/// values, with the limit positions that end it (`None` where the end of the searched range is
+/// reached first). `X` is the input type: `[f64; NI]` from [`reachable`], the generated
+/// `NameInputs` from [`Named::reachable`](crate::Named::reachable).
+#[derive(Clone, Debug, PartialEq)]
+#[non_exhaustive]
+pub struct Reach<X> {
+    /// The input where the backward stretch (towards `at - delta`) ends.
+    pub from: X,
+    /// The input where the forward stretch (towards `at + delta`) ends.
+    pub to: X,
+    /// The limit position ending the backward stretch.
+    pub from_event: Option<Event>,
+    /// The limit position ending the forward stretch.
+    pub to_event: Option<Event>,
+}
+
+impl<X> Reach<X> {
+    /// The same reach with the inputs converted (e.g. to named inputs).
+    pub fn map_inputs<Y>(self, mut f: impl FnMut(X) -> Y) -> Reach<Y> {
+        Reach { from: f(self.from), to: f(self.to), from_event: self.from_event, to_event: self.to_event }
+    }
+}
+
+/// Finds how far the input can move from `at` towards `at + delta` and `at - delta` on the
+/// assembly mode of `guess` before a limit position, sweeping both ways with `samples` samples
+/// each (with the mechanism's [`Mechanism::solver_config`]), and answers in input values.
+///
+/// Errors: those of the sweeps, except the limit positions that end them (a singular crossing
+/// that the configuration stops at is an error).
+pub fn reachable<M, const N: usize, const NI: usize, const NO: usize>(
+    m: &M,
+    at: [f64; NI],
+    delta: [f64; NI],
+    guess: [f64; N],
+    samples: usize,
+) -> Result<Reach<[f64; NI]>, Error>
+where
+    M: Mechanism<N, NI, NO>,
+{
+    let mut ends = [(at, None), (at, None)];
+    for (side, sign) in [(0usize, -1.0), (1, 1.0)] {
+        let mut to = at;
+        for i in 0..NI {
+            to[i] += sign * delta[i];
+        }
+        let run = Sweep::<M, Kin<N, NI, NO>, N, NI, NO>::new(m, at, to, samples.max(2), guess)?.run();
+        let last = run.states.last().map_or(at, |k| k.x);
+        ends[side] = match run.stop {
+            Stop::Completed => (last, None),
+            Stop::LimitPosition(ev) => {
+                let mut x = last;
+                x.copy_from_slice(&ev.x);
+                (x, Some(ev))
+            }
+            _ => match run.into_result() {
+                Err(e) => return Err(e),
+                Ok(states) => (states.last().map_or(at, |k| k.x), None),
+            },
+        };
+    }
+    let [(from, from_event), (to, to_event)] = ends;
+    Ok(Reach { from, to, from_event, to_event })
+}

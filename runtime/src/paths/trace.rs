@@ -1,0 +1,173 @@
+//! Tracing a whole solution curve through its limit positions ([`trace_curve`], configured by
+//! [`TraceOptions`]).
+
+use super::curve::{CurvePoint, Metric, Path, arc_step, event_at, locate_fold, tangent_from_analogs};
+use crate::error::Error;
+use crate::events::{Event, EventKind, Location};
+use crate::mechanism::Mechanism;
+use crate::solvers::newton::NewtonConfig;
+
+/// Options of [`trace_curve`], built from the default with the `with_*` methods.
+///
+/// ```
+/// use kinloop_runtime::{NewtonConfig, TraceOptions};
+/// let opts = TraceOptions::default().with_ds(0.02).with_max_points(10_000);
+/// assert!(opts.validate().is_ok());
+/// let bad = TraceOptions::default().with_ds(-1.0);
+/// assert!(bad.validate().unwrap_err().to_string().contains("TraceOptions::ds"));
+/// ```
+#[derive(Clone, Copy, Debug, PartialEq)]
+#[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
+#[non_exhaustive]
+pub struct TraceOptions {
+    /// Arclength between points (default `0.01`), measured in scaled coordinates: angles in
+    /// radians, lengths in units of the mechanism's size (the magnitude of the loops they
+    /// appear in), so the spacing does not depend on the unit of length. `0.01` gives points
+    /// about 0.01 rad apart on a curve dominated by angles.
+    pub ds: f64,
+    /// Most points returned (default `100_000`).
+    pub max_points: usize,
+    /// The corrector's Newton configuration; `None` (default): the mechanism's
+    /// ([`Mechanism::solver_config`]).
+    pub newton: Option<NewtonConfig>,
+}
+
+impl Default for TraceOptions {
+    fn default() -> Self {
+        TraceOptions { ds: 0.01, max_points: 100_000, newton: None }
+    }
+}
+
+impl TraceOptions {
+    /// Sets [`TraceOptions::ds`].
+    pub fn with_ds(mut self, ds: f64) -> Self {
+        self.ds = ds;
+        self
+    }
+    /// Sets [`TraceOptions::max_points`].
+    pub fn with_max_points(mut self, n: usize) -> Self {
+        self.max_points = n;
+        self
+    }
+    /// Sets [`TraceOptions::newton`].
+    pub fn with_newton(mut self, newton: NewtonConfig) -> Self {
+        self.newton = Some(newton);
+        self
+    }
+
+    /// The first field outside its valid range (`ds` positive and finite, `max_points` at
+    /// least 1, and the Newton configuration's ranges, as `newton.<field>`).
+    pub fn invalid_field(&self) -> Option<String> {
+        if !(self.ds > 0.0 && self.ds < f64::INFINITY) {
+            Some("ds".into())
+        } else if self.max_points == 0 {
+            Some("max_points".into())
+        } else {
+            self.newton.and_then(|n| n.invalid_field()).map(|f| format!("newton.{f}"))
+        }
+    }
+
+    /// Checks every field: `Error::InvalidArgument` names the first one out of range.
+    pub fn validate(&self) -> Result<(), Error> {
+        match self.invalid_field() {
+            None => Ok(()),
+            Some(field) => Err(Error::InvalidArgument(format!(
+                "TraceOptions::{field} is out of its valid range (see its documentation): {self:?}"
+            ))),
+        }
+    }
+}
+
+/// One point of a traced solution curve.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct TracedPoint<const N: usize, const NI: usize> {
+    /// Input values.
+    pub x: [f64; NI],
+    /// Positions of the unknowns.
+    pub q: [f64; N],
+    /// The rate of the input along the curve (the path coordinate's share of the unit tangent,
+    /// in scaled coordinates): positive while the input advances along the path, negative after
+    /// a limit position reversed it, zero at one.
+    pub input_rate: f64,
+}
+
+/// A solution curve traced by pseudo-arclength continuation.
+#[derive(Clone, Debug, PartialEq)]
+pub struct Traced<const N: usize, const NI: usize> {
+    /// Points along the curve, about `ds` apart.
+    pub points: Vec<TracedPoint<N, NI>>,
+    /// The limit positions passed (where the input reversed), located precisely.
+    pub folds: Vec<Event>,
+    /// The curve closed on itself (it came back to its first point).
+    pub closed: bool,
+}
+
+/// Traces the whole solution curve through `guess` at input `from`, moving first towards `to`,
+/// by pseudo-arclength continuation in `(q, input)`: unlike a sweep it passes limit positions,
+/// where the input reverses, so a mechanism whose input cannot make a full turn (a non-Grashof
+/// four-bar driven by a rocking link) yields its complete closed curve. Stops when the curve
+/// closes, leaves the segment between `from - (to - from)` and `to`, or after
+/// [`TraceOptions::max_points`]. Arclength is measured in scaled coordinates (see
+/// [`TraceOptions::ds`]): the same points in any unit of length.
+/// Allocates (it returns a `Vec`); use [`Sweep`](crate::Sweep) in hot loops.
+///
+/// Errors: `InvalidArgument` for invalid options (naming the field) or `to == from`; the
+/// errors of the first solve at `from`; `Branch` where the continuation cannot proceed.
+pub fn trace_curve<M, const N: usize, const NI: usize, const NO: usize>(
+    m: &M,
+    from: [f64; NI],
+    to: [f64; NI],
+    guess: [f64; N],
+    opts: &TraceOptions,
+) -> Result<Traced<N, NI>, Error>
+where
+    M: Mechanism<N, NI, NO>,
+{
+    opts.validate()?;
+    let cfg = opts.newton.unwrap_or(m.solver_config().newton);
+    cfg.validate()?;
+    let path = Path::new(from, to);
+    if !(path.len > 0.0 && path.len.is_finite()) {
+        return Err(Error::InvalidArgument(
+            "trace_curve needs finite `from` and `to` with `to` different from `from`".into(),
+        ));
+    }
+    let k0 = m.kinematics_flat(&from, &guess, &cfg)?;
+    let metric = Metric::at(m, &path, &from, &k0.q);
+    let start = CurvePoint { q: k0.q, sigma: 0.0, tangent: tangent_from_analogs(&k0.dq, &path, &metric) };
+    let start_z = start.z(&metric);
+    let point = |p: &CurvePoint<N>| TracedPoint { x: path.at_sigma(p.sigma), q: p.q, input_rate: p.dsigma() };
+    let mut out = Traced { points: vec![point(&start)], folds: Vec::new(), closed: false };
+    let (ds, mut p, mut walked) = (opts.ds, start, 0.0);
+    let mut step = ds;
+    while out.points.len() < opts.max_points {
+        let Some(next) = arc_step(m, &path, &metric, &p, step, &cfg) else {
+            step *= 0.5;
+            if step < ds * 1e-6 {
+                return Err(Error::Branch {
+                    message: "pseudo-arclength continuation cannot proceed (the curve bifurcates or ends here)".into(),
+                    at: Location::boxed(M::NAME, &M::INPUTS, &path.at_sigma(p.sigma), None),
+                });
+            }
+            continue;
+        };
+        if (p.dsigma() > 0.0) != (next.dsigma() > 0.0)
+            && let Some(f) = locate_fold(m, &path, &metric, &p, step, next.dsigma(), &cfg)
+        {
+            out.folds.push(event_at(EventKind::LimitPosition, &path, &f, None));
+        }
+        walked += step;
+        let back = (next.z(&metric) - &start_z).norm();
+        p = next;
+        if p.sigma > path.len * (1.0 + 1e-12) || p.sigma < -path.len * (1.0 + 1e-12) {
+            break;
+        }
+        if walked > 3.0 * ds && back < 0.75 * ds {
+            out.closed = true;
+            break;
+        }
+        out.points.push(point(&p));
+        step = ds;
+    }
+    Ok(out)
+}
