@@ -16,21 +16,22 @@
 //!
 //! Run with `cargo run --release -p kinloop-examples --example rhombic_variants`.
 
-use kinloop::analysis::Sampled;
+use kinloop::analysis::{Column, Sampled};
 use kinloop::plot::{self, Axis, Kind, Panel, Series};
 use kinloop_fixtures::{DisplacerRodDrive, WorkingRodDrive};
 use std::f64::consts::TAU;
 
-/// Strokes, extremes and phase shift of a drive with unknowns `x_c` and `x_f`.
+/// Strokes, extremes and phase shift of a drive with piston `x_c` and displacer `x_f`.
 fn report<M, const N: usize, const NO: usize>(
     name: &str,
     turn: &Sampled<'_, M, N, NO>,
+    [x_c, x_f]: [Column<M>; 2],
 ) -> Result<[f64; 4], Box<dyn std::error::Error>>
 where
     M: kinloop::Mechanism<N, 1, NO>,
 {
-    let xc = turn.range("x_c")?;
-    let xf = turn.range("x_f")?;
+    let xc = turn.range(x_c)?;
+    let xf = turn.range(x_f)?;
     let deg = |a: f64| a.to_degrees().rem_euclid(360.0);
     println!("{name}");
     for (what, r) in [("piston    X_C", &xc), ("displacer X_F", &xf)] {
@@ -56,18 +57,18 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
     println!("Rhombic drive variants of paper 000 (lengths in crank radii)\n{fig2:?}\n{fig3:?}\n");
     let t2 = Sampled::sweep(&fig2, 0.0, TAU, 361, fig2.guess(0.0).into())?;
     let t3 = Sampled::sweep(&fig3, 0.0, TAU, 361, fig3.guess(0.0).into())?;
-    report("Fig. 2, developed displacer rod:", &t2)?;
+    report("Fig. 2, developed displacer rod:", &t2, [DisplacerRodDrive::COL.x_c, DisplacerRodDrive::COL.x_f])?;
     // The displacer group of Fig. 2 is the one of Fig. 1: the paper's X_F0 and X_Fmin hold.
     let e_b = fig2.e_p - fig2.de;
-    let xf = t2.range("x_f")?;
+    let xf = t2.range(DisplacerRodDrive::COL.x_f)?;
     println!(
         "  paper: X_F0 = {:.12}, X_Fmin = {:.12}",
         ((fig2.l_b + fig2.r).powi(2) - e_b * e_b).sqrt(),
         ((fig2.l_b - fig2.r).powi(2) - e_b * e_b).sqrt()
     );
     assert!((xf.max.value - ((fig2.l_b + fig2.r).powi(2) - e_b * e_b).sqrt()).abs() < 1e-12);
-    report("Fig. 3, developed working rod:", &t3)?;
-    let xc = t3.range("x_c")?;
+    report("Fig. 3, developed working rod:", &t3, [WorkingRodDrive::COL.x_c, WorkingRodDrive::COL.x_f])?;
+    let xc = t3.range(WorkingRodDrive::COL.x_c)?;
     println!(
         "  closed form of the piston group: X_C min = {:.12}, X_C max = {:.12}",
         -((fig3.l_p + fig3.r).powi(2) - fig3.e_p * fig3.e_p).sqrt(),

@@ -7,10 +7,12 @@
 //! this module as `kinloop::__gen`; it is not meant to be used by hand and may change between
 //! versions.
 
+pub use crate::analysis::{Column, ColumnIndex};
 pub use crate::dynamics::{Body, Coord, DynamicsError, MassModel, Rotation};
 pub use crate::error::Error;
 pub use crate::events::BlockInfo;
 pub use crate::kin::{Health, Jac, Kin, Sens};
+pub use crate::kinds::QuantityKind;
 pub use crate::lu::{Factor, Fixed, Lu, max_abs};
 pub use crate::mechanism::{Mechanism, NamedSensitivities, Sensitivities, SensitivitiesRequested};
 pub use crate::newton::{BlockEval, BlockFailure, NewtonConfig, SolveReport, Solved, newton};

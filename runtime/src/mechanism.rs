@@ -3,6 +3,7 @@
 use crate::error::{Error, Quantity};
 use crate::events::{BlockInfo, Location};
 use crate::kin::{Jac, Kin, Sens};
+use crate::kinds::QuantityKind;
 use crate::newton::{NewtonConfig, SolveReport};
 use crate::paths::sweep::Sweep;
 
@@ -25,6 +26,13 @@ pub trait Mechanism<const N: usize, const NI: usize, const NO: usize> {
     const OUTPUTS: [&'static str; NO];
     /// The block-triangular decomposition, in solve order.
     const BLOCKS: &'static [BlockInfo];
+    /// The kind of quantity of each input (angle, length, ...), as inferred by `mechanism!`;
+    /// by default not inferred ([`QuantityKind::Other`]), for hand-written implementations.
+    const INPUT_KINDS: [QuantityKind; NI] = [QuantityKind::Other; NI];
+    /// The kind of quantity of each unknown (see [`Mechanism::INPUT_KINDS`]).
+    const UNKNOWN_KINDS: [QuantityKind; N] = [QuantityKind::Other; N];
+    /// The kind of quantity of each output column (see [`Mechanism::INPUT_KINDS`]).
+    const OUTPUT_KINDS: [QuantityKind; NO] = [QuantityKind::Other; NO];
 
     /// Parameter values in declaration order.
     ///

@@ -22,6 +22,11 @@ pub(crate) fn derive(column: &str, base: &[(&str, &str)]) -> String {
     unit_of(column).unwrap_or("").to_string()
 }
 
+/// Whether `column` is an analog column (`d(n)/d(i)`, `d2(n)/...`) rather than a base quantity.
+pub(crate) fn is_analog(column: &str) -> bool {
+    analog(column).is_some()
+}
+
 /// The input of `d(i)`.
 fn inner(s: &str) -> Option<&str> {
     s.strip_prefix("d(")?.strip_suffix(')')

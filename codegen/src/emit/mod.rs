@@ -47,6 +47,8 @@ pub struct Types {
     pub outputs: Ident,
     pub state: Ident,
     pub motion: Ident,
+    /// `NameColumns`: the typed column handles of `Name::COL`.
+    pub columns: Ident,
     pub params: Ident,
     pub sens: Ident,
 }
@@ -62,6 +64,7 @@ impl Types {
             outputs: t("Outputs"),
             state: t("State"),
             motion: t("Motion"),
+            columns: t("Columns"),
             params: t("Params"),
             sens: t("Sensitivities"),
             plain,
