@@ -256,10 +256,11 @@ where
             (None, None) => unreachable!("a Sampled holds at least three states"),
         };
         let near = &self.states[j];
-        if self.s[j] == s {
+        let x = self.line.point(s);
+        // The sample itself (its parameter may differ from `s` in the last bit).
+        if self.s[j] == s || near.x == x {
             return Ok(*near);
         }
-        let x = self.line.point(s);
         let mut step = Sweep::<M, Kin<N, NI, NO>, N, NI, NO>::new(self.m, near.x, x, 2, near.q)?.with_config(self.cfg);
         let _start = step.next_kin().transpose()?;
         step.next_kin().unwrap_or_else(|| Err(Error::InvalidArgument("empty refinement sweep".into())))
