@@ -106,6 +106,7 @@ impl Jet {
 mod tests {
     use super::demo::SliderCrank;
     use super::*;
+    use crate::mechanism::Mechanism;
     use std::f64::consts::{PI, TAU};
 
     const X: Column<SliderCrank> = SliderCrank::COL.x;

@@ -134,7 +134,7 @@ mod tests {
     #[test]
     fn dead_centres_of_a_slider_crank_against_the_collinear_triangles() {
         let m = SliderCrank { r: 1.0, l: 3.0, e: 0.5 };
-        let r = limit_report(&m, 0.3, 0.3 + TAU, 73, [3.9], &["x"]).unwrap();
+        let r = limit_report(&m, 0.3, 0.3 + TAU, 73, [3.9], &[SliderCrank::COL.x]).unwrap();
         assert!(r.events.is_empty());
         assert_eq!(r.reached, (0.3, 0.3 + TAU));
         let [(x_out, outer), (x_in, inner)] = m.dead_centres();
