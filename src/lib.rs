@@ -240,21 +240,21 @@
 //!
 //! ## Analysis over a sweep: typed columns, one input or several
 //!
-//! [`analysis::Sampled`] runs a branch-safe sweep once and answers questions about any column:
-//! extremes located as roots of the velocity analog, the global range (dead centres, stroke),
-//! dwells, Fourier coefficients, residual unbalance, peaks. Columns are the typed handles that
-//! `mechanism!` generates in `Name::COL`, with the state's paths (`FourBar::COL.beta`,
-//! `FourBar::COL.p.x`, an input `FourBar::COL.phi`): a misspelled column or a column of another
-//! mechanism is a compile error, not a run-time one. [`analysis::Column::named`] looks a column
-//! up by a name known only at run time (the dynamic fallback).
+//! `m.sampled(from, to, samples, &guess)` ([`analysis::Sampled`]) runs a branch-safe sweep once
+//! and answers questions about any column: extremes located as roots of the velocity analog,
+//! the global range (dead centres, stroke), dwells, Fourier coefficients, residual unbalance,
+//! peaks. Columns are the typed handles that `mechanism!` generates in `Name::COL`, with the
+//! state's paths (`FourBar::COL.beta`, `FourBar::COL.p.x`, an input `FourBar::COL.phi`): a
+//! misspelled column or a column of another mechanism is a compile error, not a run-time one.
+//! [`analysis::Column::named`] looks a column up by a name known only at run time (the dynamic
+//! fallback).
 //!
-//! With several inputs, [`analysis::Sampled::path`] samples the straight path from `from` to
-//! `to` in input space; every quantity is then a function of the path parameter (the fraction
-//! of the path, or an input chosen with `.along(Name::COL.input)`), its derivatives the analog
-//! tensors contracted with the path's direction.
+//! With several inputs, it samples the straight path from `from` to `to` in input space
+//! ([`analysis::Sampled::path`]); every quantity is then a function of the path parameter (the
+//! fraction of the path, or an input chosen with `.along(Name::COL.input)`), its derivatives
+//! the analog tensors contracted with the path's direction.
 //!
 //! ```
-//! use kinloop::analysis::Sampled;
 //! use std::f64::consts::{PI, TAU};
 //! kinloop::mechanism! {
 //!     pub struct SliderCrank {
@@ -265,7 +265,7 @@
 //!     }
 //! }
 //! let m = SliderCrank::default();
-//! let turn = Sampled::sweep(&m, -0.5, TAU - 0.5, 73, m.guess(-0.5).into())?;
+//! let turn = m.sampled(-0.5, TAU - 0.5, 73, &m.guess(-0.5))?;    // or Sampled::sweep(&m, ...)
 //! let x = turn.range(SliderCrank::COL.x)?;        // dead centres at 0 and pi
 //! assert!((x.max.value - 4.0).abs() < 1e-12 && x.max.x.abs() < 1e-9);
 //! assert!((x.min.value - 2.0).abs() < 1e-12 && (x.min.x - PI).abs() < 1e-9);
@@ -284,7 +284,7 @@
 //! // Both cranks turn, the second half as fast as the first; parameter: th1.
 //! let m = FiveBar::default();
 //! let from = [0.0, 0.5 * PI];
-//! let run = Sampled::path(&m, from, [PI, PI], 61, m.guess(from).into())?.along(FiveBar::COL.th1)?;
+//! let run = m.sampled(from, [PI, PI], 61, &m.guess(from))?.along(FiveBar::COL.th1)?;
 //! let top = run.range(FiveBar::COL.p.y)?.max;       // d(p.y)/d(th1) along the path vanishes there
 //! let k = run.at(top.x)?;
 //! assert!((k.x[1] - (0.5 * PI + 0.5 * top.x)).abs() < 1e-12);

@@ -328,6 +328,18 @@ macro_rules! __named_api {
                 <Self as $crate::Named<$n, $ni, $no>>::sweep(self, from, to, samples, guess)
             }
 
+            /// A sweep kept in memory for analysis by column (`Name::COL.x`): extremes, ranges,
+            /// dwells, harmonics (see [`Named::sampled`](::kinloop::Named::sampled)).
+            pub fn sampled(
+                &self,
+                from: impl ::core::convert::Into<$inputs>,
+                to: impl ::core::convert::Into<$inputs>,
+                samples: usize,
+                guess: &$unknowns,
+            ) -> ::core::result::Result<$crate::analysis::Sampled<'_, Self, $n, $no, $ni>, $crate::Error> {
+                <Self as $crate::Named<$n, $ni, $no>>::sampled(self, from, to, samples, guess)
+            }
+
             /// The states at the given inputs, in their order, without jumping branches (see
             /// [`Named::sweep_at`](::kinloop::Named::sweep_at)); `guess` at the first input
             /// picks the assembly mode.

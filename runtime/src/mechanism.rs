@@ -204,6 +204,21 @@ pub trait Named<const N: usize, const NI: usize, const NO: usize>: Mechanism<N, 
         Sweep::new(self, from.into().into(), to.into().into(), samples, (*guess).into())
     }
 
+    /// `samples` equally spaced points of the straight path from `from` to `to`, solved by a
+    /// branch-safe sweep from `guess` and kept in memory for analysis by column
+    /// (`Name::COL.x`): see [`Sampled`](crate::analysis::Sampled). The path parameter is the
+    /// input itself for one input ([`Sampled::sweep`](crate::analysis::Sampled::sweep)), the
+    /// fraction of the path for several ([`Sampled::path`](crate::analysis::Sampled::path)).
+    fn sampled(
+        &self,
+        from: impl Into<Self::Inputs>,
+        to: impl Into<Self::Inputs>,
+        samples: usize,
+        guess: &Self::Unknowns,
+    ) -> Result<crate::analysis::Sampled<'_, Self, N, NO, NI>, Error> {
+        crate::analysis::Sampled::natural(self, from.into().into(), to.into().into(), samples, (*guess).into())
+    }
+
     /// The states at the given inputs, in their order, followed along the path through them
     /// without jumping branches: each stretch between consecutive inputs is a [`Sweep`] with its
     /// own step control, so inputs may be unevenly spaced, far apart or repeated (measured input

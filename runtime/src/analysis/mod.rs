@@ -145,6 +145,10 @@ mod tests {
             assert!((k.q[0] - x_of(x)).abs() < 1e-12);
         }
         assert!(turn.at(7.0).is_err());
+        // The input as a column: its value is the path parameter, its own analog 1.
+        for j in turn.jets(SliderCrank::COL.phi).unwrap() {
+            assert_eq!((j.value, j.d1, j.d2), (j.x, 1.0, 0.0));
+        }
         assert!(Column::<SliderCrank>::named("nope").is_err());
         assert_eq!(Column::<SliderCrank>::named("h").unwrap(), SliderCrank::COL.h);
         assert_eq!(Column::<SliderCrank>::named("phi").unwrap().index(), ColumnIndex::Input(0));

@@ -27,7 +27,7 @@ impl<const NI: usize> Line<NI> {
     /// The same path with input `k` as its parameter (it must increase along the path).
     fn along(self, k: usize, name: &str) -> Result<Self, Error> {
         let run = self.to[k] - self.from[k];
-        if !(run > 0.0) {
+        if run.partial_cmp(&0.0) != Some(std::cmp::Ordering::Greater) {
             return Err(Error::InvalidArgument(format!(
                 "input `{name}` must increase along the path to be its parameter (it goes from {} to {})",
                 self.from[k], self.to[k]
@@ -184,6 +184,19 @@ where
         let line = Line::fraction(from, to);
         let s = states.iter().map(|k| line.param(&k.x)).collect();
         Ok(Sampled { m, states, s, line, cfg })
+    }
+
+    /// [`Sampled::path`] with the input as the parameter when there is one input (as
+    /// [`Sampled::sweep`]).
+    pub(crate) fn natural(
+        m: &'m M,
+        from: [f64; NI],
+        to: [f64; NI],
+        samples: usize,
+        guess: [f64; N],
+    ) -> Result<Self, Error> {
+        let s = Self::path(m, from, to, samples, guess)?;
+        if NI == 1 { s.reparametrised(|l| l.along(0, M::INPUTS.first().copied().unwrap_or("?"))) } else { Ok(s) }
     }
 
     /// The same samples with input `input` (`Name::COL.th1`) as the path parameter: jets are
