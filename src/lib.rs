@@ -261,7 +261,7 @@
 //!         params r = 1.0, l = 3.0;
 //!         input phi;
 //!         unknowns psi = 0, x = r + l;
-//!         loop oabo: r @ phi == (x, 0) + l @ psi;
+//!         loop oabc: r @ phi + l @ psi == (x, 0);
 //!     }
 //! }
 //! let m = SliderCrank::default();
@@ -299,7 +299,7 @@
 //! #         params r = 1.0, l = 3.0;
 //! #         input phi;
 //! #         unknowns psi = 0, x = r + l;
-//! #         loop oabo: r @ phi == (x, 0) + l @ psi;
+//! #         loop oabc: r @ phi + l @ psi == (x, 0);
 //! #     }
 //! # }
 //! # let m = SliderCrank::default();

@@ -23,6 +23,17 @@ kinloop::mechanism! {
     }
 }
 
+kinloop::mechanism! {
+    /// A time input inside a sine (`sin(w t)`): `w t` is an angle, but neither factor alone is.
+    pub struct Oscillator {
+        params w = 2.0, a = 0.5, l = 1.0, h = 2.0;
+        input t;
+        unknowns y = 0, th = 0, x = h - l;
+        eq follow: y == a * sin(w * t);
+        loop rod: (x, 0) + l @ th == (h, y);
+    }
+}
+
 /// The header of a table's CSV, read by the `csv` crate: column name -> unit.
 fn header(t: &Table) -> HashMap<String, String> {
     let mut bytes = Vec::new();
@@ -57,6 +68,9 @@ fn kinds_are_inferred_from_the_declaration() {
     // kinloop names, nor a length times a parameter whose kind is unknown.
     assert_eq!(Kinds::UNKNOWN_KINDS, [Other, Length]);
     assert_eq!(Kinds::OUTPUT_KINDS, [Dimensionless, Angle, Length, Other, Other]);
+    assert_eq!(Oscillator::INPUT_KINDS, [Other]);
+    // `y` and `x` are terms of the loop's projections: lengths; `th` turns inside `cos`.
+    assert_eq!(Oscillator::UNKNOWN_KINDS, [Length, Angle, Length]);
     // The trait carries the same constants for generic code.
     assert_eq!(<Kinds as Mechanism<2, 1, 5>>::OUTPUT_KINDS, Kinds::OUTPUT_KINDS);
 }

@@ -191,8 +191,9 @@ fn product(a: Dim, b: Dim, sign: i32) -> Dim {
         // times a length is an arc length).
         (_, Dim::Angle) if sign == -1 => Dim::Other,
         (Dim::Angle | Dim::Num | Dim::L(0), Dim::Angle) | (Dim::Angle, Dim::L(0)) => Dim::Other,
+        // Checked: a declaration may raise a length to any power.
         _ => match (a.power(), b.power()) {
-            (Some(p), Some(q)) => Dim::L(p + sign * q),
+            (Some(p), Some(q)) => q.checked_mul(sign).and_then(|q| p.checked_add(q)).map_or(Dim::Other, Dim::L),
             _ => Dim::Other,
         },
     }

@@ -237,7 +237,7 @@ mod tests {
         assert_eq!(e[0].kind, ExtremeKind::Min);
         assert!((e[0].x() - TAU / 2.0).abs() < 1e-10 && (e[0].value() - 2.0).abs() < 1e-12);
         // The largest acceleration analog |x''| = r + r^2/l at the outer dead centre.
-        let (at, peak) = turn.peak(|k| k.d2q[0][0][0].abs())?;
+        let (at, peak) = turn.peak_of(SliderCrank::COL.x, |j| j.d2.abs())?;
         assert!((peak - (1.0 + 1.0 / 3.0)).abs() < 1e-12 && at.cos() > 1.0 - 1e-12);
         // After the first harmonic, what remains is mostly the second, about r^2 / (4 l) cos 2 phi.
         let r = turn.residual(X, 1)?;
