@@ -79,6 +79,9 @@ impl<const NI: usize> Line<NI> {
 ///   [`Sampled::along`]; the derivatives along the path are the analog tensors contracted with
 ///   the path's direction `d` (`dq/ds = dq[u][i] d_i`, `d2q/ds2 = d2q[u][i][j] d_i d_j`).
 ///
+/// The number of inputs `NI` comes last and defaults to one, so that `Sampled<'_, M, N, NO>`
+/// is the single-input type (`N` unknowns, `NO` output columns, as in `Mechanism<N, NI, NO>`).
+///
 /// For [`Sampled::fourier`] and [`Sampled::residual`] the range must be one period of the
 /// quantity (e.g. one crank turn, `samples - 1` equal intervals, the last sample repeating the
 /// first).
