@@ -52,8 +52,8 @@ struct Curves {
 /// Prints a design's harmonics and D; returns its curves over the turn.
 fn describe(name: &str, m: &Balance) -> Result<Curves, Box<dyn std::error::Error>> {
     let turn = Sampled::sweep(m, 0.0, TAU, SAMPLES + 1, m.guess(0.0).into())?;
-    let f = turn.fourier("xc", 6)?;
-    let r = turn.residual("xc", 1)?;
+    let f = turn.fourier(Balance::COL.xc, 6)?;
+    let r = turn.residual(Balance::COL.xc, 1)?;
     println!(
         "{name}: rho = {:.6}, gamma_b = {:.6}, k_b = {:.6}, delta = {:.6}°",
         m.rho,
@@ -64,8 +64,7 @@ fn describe(name: &str, m: &Balance) -> Result<Curves, Box<dyn std::error::Error
     let amps: Vec<String> = (1..=6).map(|k| format!("{:.3e}", f.amplitude(k))).collect();
     println!("  harmonic amplitudes of X_c (1..6): {}", amps.join(", "));
     println!("  residual unbalance D = {:.6e} at alpha = {:.3}°", r.max_abs, r.at.x.to_degrees());
-    let xc = turn.column("xc")?;
-    let jets: Vec<_> = turn.states().iter().map(|k| xc.jet(k)).collect();
+    let jets = turn.jets(Balance::COL.xc)?;
     Ok(Curves {
         x_c: jets.iter().map(|j| (j.x, j.value)).collect(),
         residual: jets.iter().map(|j| (j.x, j.value - r.fourier.eval_upto(1, j.x).0)).collect(),

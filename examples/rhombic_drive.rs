@@ -73,8 +73,8 @@ fn report_extremes(drive: &RhombicDrive) -> Result<()> {
     // Extreme positions, located as roots of the velocity analogs (dX/dphi1 = 0) on a sweep of
     // one turn, against the closed forms: crank and rod stretched (outer) or folded (inner).
     let turn = Sampled::sweep(drive, 0.0, TAU, 361, drive.guess(0.0).into())?;
-    let xc = turn.range("x_c")?;
-    let xf = turn.range("x_f")?;
+    let xc = turn.range(RhombicDrive::COL.x_c)?;
+    let xf = turn.range(RhombicDrive::COL.x_f)?;
     let e_b = drive.e_p - drive.de;
     let x_f0 = ((drive.l_b + drive.r_b).powi(2) - e_b * e_b).sqrt();
     let x_fmin = ((drive.l_b - drive.r_b).powi(2) - e_b * e_b).sqrt();
@@ -119,11 +119,9 @@ const UNIT: &str = "units of r_P";
 /// The sweep as CSV and its charts as SVG.
 fn write_outputs(states: &[RhombicDriveState]) -> Result<()> {
     let data = plot::out_dir("rhombic_drive")?;
-    // Units in the CSV header: angles in radians, lengths in the drive's unit of length.
-    let units = [("phi1", "rad"), ("phi2", "rad"), ("phi4", "rad"), ("x_c", "units of r_P"), ("x_f", "units of r_P")];
-    let points = [("s1", "units of r_P"), ("s2", "units of r_P"), ("s4", "units of r_P"), ("gap", "units of r_P")];
-    let table = Table::from_states::<RhombicDrive, _, _, _>(states.iter().map(|s| &s.flat))
-        .with_units(&[&units[..], &points[..]].concat());
+    // Units in the CSV header, inferred by the macro: angles in radians, lengths in the drive's
+    // unit of length (which only we know).
+    let table = Table::from_states::<RhombicDrive, _, _, _>(states.iter().map(|s| &s.flat)).with_length_unit(UNIT);
     table.save_csv(data.join("sweep.csv"))?;
 
     let dir = plot::figure_dir("rhombic_drive")?;

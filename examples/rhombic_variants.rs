@@ -16,21 +16,22 @@
 //!
 //! Run with `cargo run --release -p kinloop-examples --example rhombic_variants`.
 
-use kinloop::analysis::Sampled;
+use kinloop::analysis::{Column, Sampled};
 use kinloop::plot::{self, Axis, Kind, Panel, Series};
 use kinloop_fixtures::{DisplacerRodDrive, WorkingRodDrive};
 use std::f64::consts::TAU;
 
-/// Strokes, extremes and phase shift of a drive with unknowns `x_c` and `x_f`.
+/// Strokes, extremes and phase shift of a drive with piston `x_c` and displacer `x_f`.
 fn report<M, const N: usize, const NO: usize>(
     name: &str,
     turn: &Sampled<'_, M, N, NO>,
+    [x_c, x_f]: [Column<M>; 2],
 ) -> Result<[f64; 4], Box<dyn std::error::Error>>
 where
     M: kinloop::Mechanism<N, 1, NO>,
 {
-    let xc = turn.range("x_c")?;
-    let xf = turn.range("x_f")?;
+    let xc = turn.range(x_c)?;
+    let xf = turn.range(x_f)?;
     let deg = |a: f64| a.to_degrees().rem_euclid(360.0);
     println!("{name}");
     for (what, r) in [("piston    X_C", &xc), ("displacer X_F", &xf)] {
@@ -56,18 +57,18 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
     println!("Rhombic drive variants of paper 000 (lengths in crank radii)\n{fig2:?}\n{fig3:?}\n");
     let t2 = Sampled::sweep(&fig2, 0.0, TAU, 361, fig2.guess(0.0).into())?;
     let t3 = Sampled::sweep(&fig3, 0.0, TAU, 361, fig3.guess(0.0).into())?;
-    report("Fig. 2, developed displacer rod:", &t2)?;
+    report("Fig. 2, developed displacer rod:", &t2, [DisplacerRodDrive::COL.x_c, DisplacerRodDrive::COL.x_f])?;
     // The displacer group of Fig. 2 is the one of Fig. 1: the paper's X_F0 and X_Fmin hold.
     let e_b = fig2.e_p - fig2.de;
-    let xf = t2.range("x_f")?;
+    let xf = t2.range(DisplacerRodDrive::COL.x_f)?;
     println!(
         "  paper: X_F0 = {:.12}, X_Fmin = {:.12}",
         ((fig2.l_b + fig2.r).powi(2) - e_b * e_b).sqrt(),
         ((fig2.l_b - fig2.r).powi(2) - e_b * e_b).sqrt()
     );
     assert!((xf.max.value - ((fig2.l_b + fig2.r).powi(2) - e_b * e_b).sqrt()).abs() < 1e-12);
-    report("Fig. 3, developed working rod:", &t3)?;
-    let xc = t3.range("x_c")?;
+    report("Fig. 3, developed working rod:", &t3, [WorkingRodDrive::COL.x_c, WorkingRodDrive::COL.x_f])?;
+    let xc = t3.range(WorkingRodDrive::COL.x_c)?;
     println!(
         "  closed form of the piston group: X_C min = {:.12}, X_C max = {:.12}",
         -((fig3.l_p + fig3.r).powi(2) - fig3.e_p * fig3.e_p).sqrt(),
@@ -94,21 +95,35 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
     println!("\nthird joint on the crank pin = Fig. 1: largest deviation of X_C, X_F from Fig. 1's closed form");
     println!("  Fig. 2 with l_fd = l_b, gamma_b = 0: {dev2:.1e};  Fig. 3 with l_cd = l_p, gamma_p = 0: {dev3:.1e}");
 
-    draw(t2.states(), t3.states())?;
+    draw(&t2, &t3)?;
     Ok(())
 }
 
 /// Lengths of both variants are in units of the crank radius (`r = 1`).
 const UNIT: &str = "units of r";
 
-/// X_C and X_F (order 0) or their velocity analogs (order 1) of both variants, one panel per
-/// variant: the unknowns are (phi4, x_f, phi2, x_c) in Fig. 2, (phi2, x_c, phi4, x_f) in Fig. 3.
-fn draw(s2: &[kinloop::Kin<4, 1, 2>], s3: &[kinloop::Kin<4, 1, 2>]) -> Result<(), Box<dyn std::error::Error>> {
-    let dir = plot::figure_dir("rhombic_variants")?;
-    let curve = |label: &str, kind: &Kind, states: &[kinloop::Kin<4, 1, 2>], col: usize, order: usize| {
-        let value = |k: &kinloop::Kin<4, 1, 2>| if order == 0 { k.q[col] } else { k.dq[col][0] };
-        Series::new(label, kind.clone(), states.iter().map(|k| (k.x[0], value(k))).collect())
+/// One variant's panel: X_C and X_F (order 0) or their velocity analogs (order 1), by column.
+fn panel<M: kinloop::Mechanism<4, 1, 2>>(
+    axis: Axis,
+    turn: &Sampled<'_, M, 4, 2>,
+    [(c_label, c), (f_label, f)]: [(&str, Column<M>); 2],
+    order: usize,
+) -> Result<Panel, kinloop::Error> {
+    let kind = axis.kind.clone();
+    let curve = |label: &str, col| -> Result<Series, kinloop::Error> {
+        let points = turn.jets(col)?.iter().map(|j| (j.x, if order == 0 { j.value } else { j.d1 })).collect();
+        Ok(Series::new(label, kind.clone(), points))
     };
+    Ok(Panel::new(axis).with(curve(c_label, c)?).with(curve(f_label, f)?))
+}
+
+/// X_C and X_F (order 0) or their velocity analogs (order 1) of both variants, one panel per
+/// variant.
+fn draw(
+    t2: &Sampled<'_, DisplacerRodDrive, 4, 2>,
+    t3: &Sampled<'_, WorkingRodDrive, 4, 2>,
+) -> Result<(), Box<dyn std::error::Error>> {
+    let dir = plot::figure_dir("rhombic_variants")?;
     let figures = [
         (
             "positions.svg",
@@ -125,13 +140,14 @@ fn draw(s2: &[kinloop::Kin<4, 1, 2>], s3: &[kinloop::Kin<4, 1, 2>]) -> Result<()
             ["V_qC", "V_qF"],
         ),
     ];
-    for (order, (file, what, y, kind, [c_label, f_label])) in figures.into_iter().enumerate() {
-        let panel = |fig: &str, states, [c, f]: [usize; 2]| {
-            Panel::new(Axis::new(&format!("{fig}: {y}"), kind.clone()))
-                .with(curve(c_label, &kind, states, c, order))
-                .with(curve(f_label, &kind, states, f, order))
-        };
-        let both = [panel("Fig. 2", s2, [3, 1]), panel("Fig. 3", s3, [1, 3])];
+    for (order, (file, what, y, kind, [c, f])) in figures.into_iter().enumerate() {
+        let axis = |fig: &str| Axis::new(&format!("{fig}: {y}"), kind.clone());
+        let (c2, f2) = (DisplacerRodDrive::COL.x_c, DisplacerRodDrive::COL.x_f);
+        let (c3, f3) = (WorkingRodDrive::COL.x_c, WorkingRodDrive::COL.x_f);
+        let both = [
+            panel(axis("Fig. 2"), t2, [(c, c2), (f, f2)], order)?,
+            panel(axis("Fig. 3"), t3, [(c, c3), (f, f3)], order)?,
+        ];
         let title = format!("Rhombic drive variants: {what}");
         plot::panels(&dir.join(file), &title, &Axis::angle("crank angle φ1"), &both)?;
     }

@@ -275,6 +275,75 @@
 //! # Ok::<(), kinloop::Error>(())
 //! ```
 //!
+//! ## Analysis over a sweep: typed columns, one input or several
+//!
+//! `m.sampled(from, to, samples, &guess)` ([`analysis::Sampled`]) runs a branch-safe sweep once
+//! and answers questions about any column: extremes located as roots of the velocity analog,
+//! the global range (dead centres, stroke), dwells, Fourier coefficients, residual unbalance,
+//! peaks. Columns are the typed handles that `mechanism!` generates in `Name::COL`, with the
+//! state's paths (`FourBar::COL.beta`, `FourBar::COL.p.x`, an input `FourBar::COL.phi`): a
+//! misspelled column or a column of another mechanism is a compile error, not a run-time one.
+//! [`analysis::Column::named`] looks a column up by a name known only at run time (the dynamic
+//! fallback).
+//!
+//! With several inputs, it samples the straight path from `from` to `to` in input space
+//! ([`analysis::Sampled::path`]); every quantity is then a function of the path parameter (the
+//! fraction of the path, or an input chosen with `.along(Name::COL.input)`), its derivatives
+//! the analog tensors contracted with the path's direction.
+//!
+//! ```
+//! use std::f64::consts::{PI, TAU};
+//! kinloop::mechanism! {
+//!     pub struct SliderCrank {
+//!         params r = 1.0, l = 3.0;
+//!         input phi;
+//!         unknowns psi = 0, x = r + l;
+//!         loop oabc: r @ phi + l @ psi == (x, 0);
+//!     }
+//! }
+//! let m = SliderCrank::default();
+//! let turn = m.sampled(-0.5, TAU - 0.5, 73, &m.guess(-0.5))?;    // or Sampled::sweep(&m, ...)
+//! let x = turn.range(SliderCrank::COL.x)?;        // dead centres at 0 and pi
+//! assert!((x.max.value - 4.0).abs() < 1e-12 && x.max.x.abs() < 1e-9);
+//! assert!((x.min.value - 2.0).abs() < 1e-12 && (x.min.x - PI).abs() < 1e-9);
+//! assert!((x.span() - 2.0).abs() < 1e-12);         // the stroke 2 r
+//!
+//! kinloop::mechanism! {
+//!     /// A five-bar: two cranks (inputs) joined by two links meeting at `p`.
+//!     pub struct FiveBar {
+//!         params a = 1.0, b = 2.5, c = 2.5, d = 1.0, e = 2.0;
+//!         inputs th1, th2;
+//!         unknowns al = 1.2, be = 2.0;
+//!         loop l: a @ th1 + b @ al == (e, 0) + d @ th2 + c @ be;
+//!         point p = a @ th1 + b @ al;
+//!     }
+//! }
+//! // Both cranks turn, the second half as fast as the first; parameter: th1.
+//! let m = FiveBar::default();
+//! let from = [0.0, 0.5 * PI];
+//! let run = m.sampled(from, [PI, PI], 61, &m.guess(from))?.along(FiveBar::COL.th1)?;
+//! let top = run.range(FiveBar::COL.p.y)?.max;       // d(p.y)/d(th1) along the path vanishes there
+//! let k = run.at(top.x)?;
+//! assert!((k.x[1] - (0.5 * PI + 0.5 * top.x)).abs() < 1e-12);
+//! assert!((k.dout[1][0] + 0.5 * k.dout[1][1]).abs() < 1e-9);
+//! # Ok::<(), kinloop::Error>(())
+//! ```
+//!
+//! ```compile_fail
+//! # use kinloop::analysis::Sampled;
+//! # kinloop::mechanism! {
+//! #     pub struct SliderCrank {
+//! #         params r = 1.0, l = 3.0;
+//! #         input phi;
+//! #         unknowns psi = 0, x = r + l;
+//! #         loop oabc: r @ phi + l @ psi == (x, 0);
+//! #     }
+//! # }
+//! # let m = SliderCrank::default();
+//! # let turn = Sampled::sweep(&m, 0.0, 6.0, 73, m.guess(0.0).into()).unwrap();
+//! let x = turn.range(SliderCrank::COL.xc); // no column `xc`: a compile error
+//! ```
+//!
 //! ## Parameter sensitivities
 //!
 //! Declared with `#[kinloop(sensitivities)]` (they are generated only on request: they are the
@@ -338,9 +407,12 @@
 //! `m.sweep_at([0.1, 0.15, 0.9, 2.5], &guess)` follows the mechanism through a given list of
 //! inputs (uneven, far apart or repeated) with the same branch guarantees as a sweep, and returns
 //! a [`SweepResult`]: the states in order, why it stopped and the events met (`.into_result()?`
-//! for the states alone). [`Table`] collects states under named columns; `with_units(&[("phi",
-//! "rad"), ("x_c", "mm")])` gives every column its unit (the analogs their quotients,
-//! `d(x_c)/d(phi) [mm/rad]`), which the CSV header carries; `Table::read_csv` reads it back.
+//! for the states alone). [`Table`] collects states under named columns with their units in the
+//! CSV header, inferred by `mechanism!` (angles `phi [rad]`, lengths `x_c [length unit]`, the
+//! analogs their quotients `d(x_c)/d(phi) [length unit/rad]`; a column whose kind cannot be
+//! inferred, such as a time input, gets none: see [`QuantityKind`]); `with_length_unit("mm")`
+//! names the unit of length and `with_units(&[("t", "s")])` sets any; `Table::read_csv` reads
+//! the table back.
 //! [`Vec2`] adds, subtracts, scales and converts to `nalgebra::Vector2` (and, with the feature
 //! `mint`, `mint::Vector2`). With the feature `serde`, parameter sets, named positions and
 //! outputs, states, tables, events and configurations implement `Serialize` and `Deserialize`

@@ -35,14 +35,14 @@ fn quick_return_ratio_of_a_crank_shaper_matches_its_closed_form_in_any_unit() {
         // Start away from the extremes (anywhere works; the seam is handled too).
         let turn = Sampled::sweep(&m, 0.2, 0.2 + TAU, 181, m.guess(0.2).into()).unwrap();
         let alpha = (r / d).asin();
-        for column in ["psi", "x"] {
+        for column in [CrankShaper::COL.psi, CrankShaper::COL.x] {
             let t = time_ratio_over(&turn, column).unwrap();
             // Extremes are located to rounding (roots of the velocity analog), the ratio to a
             // few ulps times its condition.
             assert!((t.ratio() - shaper_ratio(r, d)).abs() < 1e-10 * shaper_ratio(r, d), "{column}: {t:?}");
             assert!((t.rising + t.falling - TAU).abs() < 1e-12);
         }
-        let psi = time_ratio_over(&turn, "psi").unwrap();
+        let psi = time_ratio_over(&turn, CrankShaper::COL.psi).unwrap();
         assert!((psi.max.value - (FRAC_PI_2 + alpha)).abs() < 1e-12, "{psi:?}");
         assert!((psi.min.value - (FRAC_PI_2 - alpha)).abs() < 1e-12);
         // The lever rises (psi grows) while the crank runs the long way round, pi + 2 alpha.
@@ -81,7 +81,7 @@ proptest! {
         let m = FourBar { a: a * k, b: b * k, c: c * k, d: d * k };
         let guess = four_bar_at(m.a, m.b, m.c, m.d, 0.0).unwrap();
         let turn = Sampled::sweep(&m, 0.0, TAU, 181, guess).unwrap();
-        let mu = transmission_over(&turn, "beta", "gamma").unwrap();
+        let mu = transmission_over(&turn, FourBar::COL.beta, FourBar::COL.gamma).unwrap();
         let cos_mu = |phi: f64| (b * b + c * c - a * a - d * d + 2.0 * a * d * phi.cos()) / (2.0 * b * c);
         let worst = cos_mu(0.0).abs().max(cos_mu(PI).abs());
         // The solver stops at an absolute residual of 1e-12 (length units): angles then carry
@@ -93,7 +93,7 @@ proptest! {
         prop_assert!(at_dead_centre(mu.min.x), "{:?}", mu);
         prop_assert!(mu.dead_points.is_empty());
 
-        let limits = limit_report(&m, 0.0, TAU, 181, guess, &["gamma"]).unwrap();
+        let limits = limit_report(&m, 0.0, TAU, 181, guess, &[FourBar::COL.gamma]).unwrap();
         prop_assert!(limits.events.is_empty() && limits.reached.1 == TAU);
         let theta = |e: f64| ((d * d + c * c - e * e) / (2.0 * d * c)).acos();
         let swing = (theta(b - a) - theta(b + a)).abs();

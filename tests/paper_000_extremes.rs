@@ -19,8 +19,8 @@ use support::{stationary, wrap};
 fn extreme_positions_strokes_and_phase_shift_match_the_closed_forms() {
     let m = RhombicDrive::default();
     let turn = Sampled::sweep(&m, 0.0, TAU, 361, m.guess(0.0).into()).unwrap();
-    let xc = turn.range("x_c").unwrap();
-    let xf = turn.range("x_f").unwrap();
+    let xc = turn.range(RhombicDrive::COL.x_c).unwrap();
+    let xf = turn.range(RhombicDrive::COL.x_f).unwrap();
 
     let e_b = m.e_p - m.de;
     let x_f0 = ((m.l_b + m.r_b).powi(2) - e_b * e_b).sqrt();
@@ -47,7 +47,7 @@ fn extreme_positions_strokes_and_phase_shift_match_the_closed_forms() {
         assert!(wrap(got - want).abs() < 1e-10, "{got} vs {want}");
     }
     // The velocity analogs vanish there, and they are the only interior extremes of a turn.
-    let e = turn.extremes("x_f").unwrap();
+    let e = turn.extremes(RhombicDrive::COL.x_f).unwrap();
     assert_eq!(e.len(), 2);
     assert!(e.iter().all(|e| e.at.d1.abs() < 1e-12));
     assert_eq!(e.iter().filter(|e| e.kind == ExtremeKind::Max).count(), 1);
@@ -84,7 +84,7 @@ fn extremes_follow_the_drive_when_its_dimensions_change() {
     // A second, more eccentric drive: the helpers and the closed forms still agree.
     let m = RhombicDrive { r_b: 0.8, l_b: 2.6, e_p: 0.9, de: -0.3, gamma: 2.1, ..RhombicDrive::default() };
     let turn = Sampled::sweep(&m, 0.0, TAU, 181, m.guess(0.0).into()).unwrap();
-    let xf = turn.range("x_f").unwrap();
+    let xf = turn.range(RhombicDrive::COL.x_f).unwrap();
     let e_b = m.e_p - m.de;
     assert!((xf.max.value - ((m.l_b + m.r_b).powi(2) - e_b * e_b).sqrt()).abs() < 1e-12);
     assert!((xf.min.value - ((m.l_b - m.r_b).powi(2) - e_b * e_b).sqrt()).abs() < 1e-12);

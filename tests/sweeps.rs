@@ -139,7 +139,8 @@ fn sweep_table_has_named_columns() {
     let mut csv = Vec::new();
     table.write_csv(&mut csv).unwrap();
     let text = String::from_utf8(csv).unwrap();
-    assert!(text.starts_with("phi,beta,gamma,d(beta)/d(phi),"));
+    // Units inferred by the macro: the input and the link angles in radians.
+    assert!(text.starts_with("phi [rad],beta [rad],gamma [rad],d(beta)/d(phi) [rad/rad],"), "{text:.80}");
     assert_eq!(text.lines().count(), 74);
 }
 

@@ -8,7 +8,9 @@
 //! * `limits/`: declarations too deep or too large, rejected before expansion would overflow the
 //!   stack or take too long;
 //! * `fallback/`: the items emitted next to the errors keep user code free of secondary errors;
-//! * `combined/`: several mistakes in one declaration are all reported at once.
+//! * `combined/`: several mistakes in one declaration are all reported at once;
+//! * `analysis/`: the generated typed columns (`Name::COL.x`) make a misspelled column, or a
+//!   column of another mechanism, a compile error.
 //!
 //! Regenerate after an intended change with `TRYBUILD=overwrite cargo test --test ui` and review
 //! the diff of every `.stderr`: each message must say what is wrong, where, and what to write.

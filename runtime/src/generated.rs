@@ -7,10 +7,12 @@
 //! this module as `kinloop::__gen`; it is not meant to be used by hand and may change between
 //! versions.
 
+pub use crate::analysis::{Column, ColumnIndex};
 pub use crate::dynamics::{Body, Coord, DynamicsError, MassModel, Rotation};
 pub use crate::error::Error;
 pub use crate::events::BlockInfo;
 pub use crate::kin::{Health, Jac, Kin, Sens};
+pub use crate::kinds::QuantityKind;
 pub use crate::lu::{Factor, Fixed, Lu, max_abs};
 pub use crate::mechanism::{Mechanism, NamedSensitivities, Sensitivities, SensitivitiesRequested};
 pub use crate::newton::{BlockEval, BlockFailure, NewtonConfig, SolveReport, Solved, newton};
@@ -324,6 +326,18 @@ macro_rules! __named_api {
                 guess: &$unknowns,
             ) -> ::core::result::Result<$crate::Sweep<'_, Self, $state, $n, $ni, $no>, $crate::Error> {
                 <Self as $crate::Named<$n, $ni, $no>>::sweep(self, from, to, samples, guess)
+            }
+
+            /// A sweep kept in memory for analysis by column (`Name::COL.x`): extremes, ranges,
+            /// dwells, harmonics (see [`Named::sampled`](::kinloop::Named::sampled)).
+            pub fn sampled(
+                &self,
+                from: impl ::core::convert::Into<$inputs>,
+                to: impl ::core::convert::Into<$inputs>,
+                samples: usize,
+                guess: &$unknowns,
+            ) -> ::core::result::Result<$crate::analysis::Sampled<'_, Self, $n, $no, $ni>, $crate::Error> {
+                <Self as $crate::Named<$n, $ni, $no>>::sampled(self, from, to, samples, guess)
             }
 
             /// The states at the given inputs, in their order, without jumping branches (see

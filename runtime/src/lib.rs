@@ -31,6 +31,7 @@ pub mod generated;
 mod kin;
 #[cfg(feature = "serde")]
 mod kin_serde;
+mod kinds;
 mod mechanism;
 pub mod metrics;
 pub mod paths;
@@ -48,6 +49,7 @@ pub use configured::Configured;
 pub use error::{Error, Quantity};
 pub use events::{BlockInfo, Event, EventKind, Location};
 pub use kin::{DetSigns, FlatMotion, Health, Jac, Kin, Sens};
+pub use kinds::{LENGTH_UNIT, QuantityKind};
 pub use mechanism::{Mechanism, Named, NamedSensitivities, Sensitivities};
 pub use newton::{NewtonConfig, SolveReport, Termination};
 pub use paths::modes::assembly_modes;

@@ -4,6 +4,7 @@ use crate::configured::Configured;
 use crate::error::{Error, Quantity};
 use crate::events::{BlockInfo, Location};
 use crate::kin::{Jac, Kin, Sens};
+use crate::kinds::QuantityKind;
 use crate::newton::{NewtonConfig, SolveReport};
 use crate::paths::outcome::SweepResult;
 use crate::paths::reach::Reach;
@@ -29,6 +30,13 @@ pub trait Mechanism<const N: usize, const NI: usize, const NO: usize> {
     const OUTPUTS: [&'static str; NO];
     /// The block-triangular decomposition, in solve order.
     const BLOCKS: &'static [BlockInfo];
+    /// The kind of quantity of each input (angle, length, ...), as inferred by `mechanism!`;
+    /// by default not inferred ([`QuantityKind::Other`]), for hand-written implementations.
+    const INPUT_KINDS: [QuantityKind; NI] = [QuantityKind::Other; NI];
+    /// The kind of quantity of each unknown (see [`Mechanism::INPUT_KINDS`]).
+    const UNKNOWN_KINDS: [QuantityKind; N] = [QuantityKind::Other; N];
+    /// The kind of quantity of each output column (see [`Mechanism::INPUT_KINDS`]).
+    const OUTPUT_KINDS: [QuantityKind; NO] = [QuantityKind::Other; NO];
 
     /// Parameter values in declaration order.
     ///
@@ -213,6 +221,21 @@ pub trait Named<const N: usize, const NI: usize, const NO: usize>: Mechanism<N, 
         guess: &Self::Unknowns,
     ) -> Result<Sweep<'_, Self, Self::State, N, NI, NO>, Error> {
         Sweep::new(self, from.into().into(), to.into().into(), samples, (*guess).into())
+    }
+
+    /// `samples` equally spaced points of the straight path from `from` to `to`, solved by a
+    /// branch-safe sweep from `guess` and kept in memory for analysis by column
+    /// (`Name::COL.x`): see [`Sampled`](crate::analysis::Sampled). The path parameter is the
+    /// input itself for one input ([`Sampled::sweep`](crate::analysis::Sampled::sweep)), the
+    /// fraction of the path for several ([`Sampled::path`](crate::analysis::Sampled::path)).
+    fn sampled(
+        &self,
+        from: impl Into<Self::Inputs>,
+        to: impl Into<Self::Inputs>,
+        samples: usize,
+        guess: &Self::Unknowns,
+    ) -> Result<crate::analysis::Sampled<'_, Self, N, NO, NI>, Error> {
+        crate::analysis::Sampled::natural(self, from.into().into(), to.into().into(), samples, (*guess).into())
     }
 
     /// The states at the given inputs, in their order, followed along the path through them

@@ -80,10 +80,62 @@ impl Table {
     /// The table with units for its columns, from the units of the base quantities
     /// (`("phi", "rad")`, `("x_c", "mm")`, a point `("p", "mm")` for `p.x` and `p.y`): the analog
     /// columns get the quotients (`d(x_c)/d(phi)` in `mm/rad`, `d2(x_c)/d(phi)^2` in
-    /// `mm/rad^2`). Columns whose quantities have no unit given keep none.
+    /// `mm/rad^2`). Quantities not given keep the unit their column had (inferred by
+    /// [`Table::from_states`], or none).
     pub fn with_units(mut self, base: &[(&str, &str)]) -> Self {
-        self.units = self.columns.iter().map(|c| table_units::derive(c, base)).collect();
+        let had: Vec<(String, String)> = self
+            .columns
+            .iter()
+            .zip(&self.units)
+            .filter(|(c, u)| !u.is_empty() && !table_units::is_analog(c))
+            .map(|(c, u)| (c.clone(), u.clone()))
+            .collect();
+        // The units given come first: they win over those the columns had.
+        let mut all: Vec<(&str, &str)> = base.to_vec();
+        all.extend(had.iter().map(|(c, u)| (c.as_str(), u.as_str())));
+        self.units = self.columns.iter().map(|c| table_units::derive(c, &all)).collect();
         self
+    }
+
+    /// The table with the unit of length `unit` (`"mm"`) in place of the placeholder
+    /// [`LENGTH_UNIT`](crate::LENGTH_UNIT) that [`Table::from_states`] writes for lengths (kinloop
+    /// does not know the unit of the parameters).
+    ///
+    /// ```
+    /// use kinloop_runtime::Table;
+    /// let mut t = Table::new(vec!["phi".into(), "x_c".into(), "d(x_c)/d(phi)".into()]);
+    /// t.push(vec![0.5, 1.0, -0.25]);
+    /// let t = t.with_units(&[("phi", "rad"), ("x_c", kinloop_runtime::LENGTH_UNIT)]);
+    /// assert_eq!(t.unit("d(x_c)/d(phi)"), Some("length unit/rad"));
+    /// let t = t.with_length_unit("mm");
+    /// assert_eq!(t.unit("x_c"), Some("mm"));
+    /// assert_eq!(t.unit("d(x_c)/d(phi)"), Some("mm/rad"));
+    /// ```
+    pub fn with_length_unit(self, unit: &str) -> Self {
+        let lengths: Vec<String> = self
+            .columns
+            .iter()
+            .zip(&self.units)
+            .filter(|(c, u)| u.as_str() == crate::LENGTH_UNIT && !table_units::is_analog(c))
+            .map(|(c, _)| c.clone())
+            .collect();
+        let base: Vec<(&str, &str)> = lengths.iter().map(|c| (c.as_str(), unit)).collect();
+        self.with_units(&base)
+    }
+
+    /// The table with the units of mechanism `M`'s columns as `mechanism!` inferred them
+    /// ([`Mechanism::INPUT_KINDS`], [`Mechanism::UNKNOWN_KINDS`], [`Mechanism::OUTPUT_KINDS`]):
+    /// angles in `rad`, lengths in [`LENGTH_UNIT`](crate::LENGTH_UNIT), their analogs the
+    /// quotients; columns of a kind not inferred get none.
+    pub fn with_units_of<M, const N: usize, const NI: usize, const NO: usize>(self) -> Self
+    where
+        M: Mechanism<N, NI, NO>,
+    {
+        let inputs = M::INPUTS.iter().zip(M::INPUT_KINDS);
+        let unknowns = M::UNKNOWNS.iter().zip(M::UNKNOWN_KINDS);
+        let outputs = M::OUTPUTS.iter().zip(M::OUTPUT_KINDS);
+        let base: Vec<(&str, &str)> = inputs.chain(unknowns).chain(outputs).map(|(n, k)| (*n, k.unit())).collect();
+        self.with_units(&base)
     }
 
     /// Writes the table as CSV (header line with the units, then one line per row; shortest
@@ -181,7 +233,9 @@ impl Table {
         r
     }
 
-    /// A table of kinematic states of mechanism `M`.
+    /// A table of kinematic states of mechanism `M`, with the units inferred by `mechanism!` in
+    /// its header (see [`Table::with_units_of`]; [`Table::with_length_unit`] names the unit of
+    /// length, [`Table::with_units`] overrides any).
     pub fn from_states<'a, M, const N: usize, const NI: usize, const NO: usize>(
         states: impl IntoIterator<Item = &'a Kin<N, NI, NO>>,
     ) -> Self
@@ -192,6 +246,6 @@ impl Table {
         for k in states {
             t.push(Self::kin_row(k));
         }
-        t
+        t.with_units_of::<M, N, NI, NO>()
     }
 }

@@ -6,7 +6,8 @@
 pub(crate) fn derive(column: &str, base: &[(&str, &str)]) -> String {
     let unit_of = |name: &str| {
         let stem = name.split_once('.').map_or(name, |(p, _)| p);
-        base.iter().find(|(n, _)| *n == name || *n == stem).map(|(_, u)| *u)
+        // An empty unit is none: the column's kind is not known.
+        base.iter().find(|(n, _)| *n == name || *n == stem).map(|(_, u)| *u).filter(|u| !u.is_empty())
     };
     if let Some((num, den)) = analog(column) {
         let Some(top) = unit_of(num) else { return String::new() };
@@ -20,6 +21,11 @@ pub(crate) fn derive(column: &str, base: &[(&str, &str)]) -> String {
         };
     }
     unit_of(column).unwrap_or("").to_string()
+}
+
+/// Whether `column` is an analog column (`d(n)/d(i)`, `d2(n)/...`) rather than a base quantity.
+pub(crate) fn is_analog(column: &str) -> bool {
+    analog(column).is_some()
 }
 
 /// The input of `d(i)`.

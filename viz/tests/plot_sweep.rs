@@ -38,7 +38,7 @@ fn dead_centres_are_marked_where_the_closed_form_puts_them() {
     let m = SliderCrank { r: 0.03, l: 0.1, e: 0.012 };
     let turn = Sampled::sweep(&m, 0.0, TAU, 181, [0.0, 0.13]).unwrap();
     let table = Table::from_states::<SliderCrank, 2, 1, 0>(turn.states());
-    let range = turn.range("x").unwrap();
+    let range = turn.range(SliderCrank::COL.x).unwrap();
     let metre = Kind::length("m");
     let panel = Panel::new(Axis::length("slider position x", "m"))
         .with(Series::from_table(&table, "phi", "x", metre).unwrap())

@@ -7,6 +7,7 @@ use super::names::Names;
 use super::{Dims, Types, kernel_lints, runtime};
 use crate::model::Model;
 use crate::plan::Plan;
+use crate::plan::kinds::Kind;
 use proc_macro2::TokenStream;
 use quote::quote;
 use syn::ext::IdentExt;
@@ -31,6 +32,7 @@ fn constants(model: &Model, plan: &Plan, t: &Types) -> TokenStream {
     let estrs: Vec<String> = model.equations.iter().map(|e| e.name.clone()).collect();
     let ostrs = model.output_names();
     let decomposition = super::describe::decomposition(model, plan);
+    let kinds = kind_constants(model, plan);
     let blocks = plan.blocks.iter().map(|b| {
         let us = b.unknowns.iter().map(|&u| &ustrs[u]);
         let es = b.equations.iter().map(|&e| &estrs[e]);
@@ -53,6 +55,7 @@ fn constants(model: &Model, plan: &Plan, t: &Types) -> TokenStream {
             pub const OUTPUTS: [&'static str; #no] = [#(#ostrs),*];
             /// The block-triangular decomposition of the equations, in solve order.
             pub const BLOCKS: &'static [#rt::BlockInfo] = &[#(#blocks),*];
+            #kinds
             /// The decomposition in words: counts and mobility, then one line per block in
             /// solve order (closed form, Newton or linear, unknowns `<-` equations).
             pub const DECOMPOSITION: &'static str = #decomposition;
@@ -67,6 +70,31 @@ fn constants(model: &Model, plan: &Plan, t: &Types) -> TokenStream {
                 #name { #(#pnames),* }
             }
         }
+    }
+}
+
+/// `INPUT_KINDS`, `UNKNOWN_KINDS`, `OUTPUT_KINDS`: the kind of quantity of every column (see
+/// [`crate::plan::kinds`]).
+fn kind_constants(model: &Model, plan: &Plan) -> TokenStream {
+    let rt = runtime();
+    let Dims { n, ni, no, .. } = Dims::of(plan);
+    let kinds = crate::plan::kinds::classify(model, &plan.graph, &plan.residuals, &plan.outputs);
+    let list = |ks: &[Kind]| {
+        let ks = ks.iter().map(|k| {
+            let v = proc_macro2::Ident::new(&format!("{k:?}"), proc_macro2::Span::call_site());
+            quote!(#rt::QuantityKind::#v)
+        });
+        quote!([#(#ks),*])
+    };
+    let (i, u, o) = (list(&kinds.inputs), list(&kinds.unknowns), list(&kinds.outputs));
+    quote! {
+        /// The kind of quantity of each input (angle, length, ...), inferred from the
+        /// declaration: the units of a table's CSV header.
+        pub const INPUT_KINDS: [#rt::QuantityKind; #ni] = #i;
+        /// The kind of quantity of each unknown, inferred from the declaration.
+        pub const UNKNOWN_KINDS: [#rt::QuantityKind; #n] = #u;
+        /// The kind of quantity of each output column, inferred from the declaration.
+        pub const OUTPUT_KINDS: [#rt::QuantityKind; #no] = #o;
     }
 }
 
@@ -108,6 +136,9 @@ fn mechanism_impl(model: &Model, plan: &Plan, t: &Types) -> TokenStream {
             const EQUATIONS: [&'static str; #n] = #name::EQUATIONS;
             const OUTPUTS: [&'static str; #no] = #name::OUTPUTS;
             const BLOCKS: &'static [#rt::BlockInfo] = #name::BLOCKS;
+            const INPUT_KINDS: [#rt::QuantityKind; #ni] = #name::INPUT_KINDS;
+            const UNKNOWN_KINDS: [#rt::QuantityKind; #n] = #name::UNKNOWN_KINDS;
+            const OUTPUT_KINDS: [#rt::QuantityKind; #no] = #name::OUTPUT_KINDS;
 
             fn param_values(&self) -> ::std::vec::Vec<f64> {
                 #name::param_values(self).to_vec()

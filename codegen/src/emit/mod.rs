@@ -53,6 +53,8 @@ pub struct Types {
     pub state: Ident,
     /// `NameMotion`.
     pub motion: Ident,
+    /// `NameColumns`: the typed column handles of `Name::COL`.
+    pub columns: Ident,
     /// `NameParams` (one value per parameter, in the sensitivities).
     pub params: Ident,
     /// `NameSensitivities`.
@@ -71,6 +73,7 @@ impl Types {
             outputs: t("Outputs"),
             state: t("State"),
             motion: t("Motion"),
+            columns: t("Columns"),
             params: t("Params"),
             sens: t("Sensitivities"),
             plain,

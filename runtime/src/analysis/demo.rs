@@ -2,6 +2,7 @@
 //! macro lives in another crate): the offset slider-crank, with its slider position `x` as the
 //! only unknown. Not part of the public API.
 
+use crate::analysis::{Column, ColumnIndex};
 use crate::error::Error;
 use crate::events::{BlockInfo, Location};
 use crate::kin::{Health, Jac, Kin};
@@ -18,7 +19,21 @@ pub struct SliderCrank {
     pub e: f64,
 }
 
+/// Its typed columns, as `mechanism!` generates them (`SliderCrank::COL.x`).
+#[derive(Clone, Copy, Debug)]
+pub struct SliderCrankColumns {
+    pub phi: Column<SliderCrank>,
+    pub x: Column<SliderCrank>,
+    pub h: Column<SliderCrank>,
+}
+
 impl SliderCrank {
+    pub const COL: SliderCrankColumns = SliderCrankColumns {
+        phi: Column::__generated(ColumnIndex::Input(0), "phi"),
+        x: Column::__generated(ColumnIndex::Unknown(0), "x"),
+        h: Column::__generated(ColumnIndex::Output(0), "h"),
+    };
+
     fn at(&self, phi: f64) -> Box<Location> {
         Box::new(Location { mechanism: "SliderCrank", inputs: vec![("phi", phi)], block: None })
     }

@@ -9,9 +9,10 @@
 //!   [`extremes()`](extremes::extremes), [`global_range`], [`dwells()`](dwell::dwells),
 //!   [`fourier()`](fourier::fourier), [`residual`], [`maximize`].
 //! * **A mechanism's unknown or output column** over a sweep: [`Sampled`] runs a branch-safe
-//!   sweep of a single-input mechanism once and answers the same questions by column name
-//!   (`"x_f"`, `"s2.x"`), evaluating the generated analogs between samples, warm-started from
-//!   the nearest sample so the refinement stays on the sweep's branch.
+//!   sweep (one input, or several moving along a straight path) once and answers the same
+//!   questions by column, given as the generated typed handle (`Name::COL.x_f`,
+//!   `Name::COL.s2.x`; see [`Column`]), evaluating the generated analogs between samples,
+//!   warm-started from the nearest sample so the refinement stays on the sweep's branch.
 //!
 //! | question | helper | how it is located |
 //! |---|---|---|
@@ -29,17 +30,18 @@
 //! // slider-crank written by hand: crank 1, rod 3, offset 0.5, one unknown `x`).
 //! let m = SliderCrank { r: 1.0, l: 3.0, e: 0.5 };
 //! let turn = Sampled::sweep(&m, 0.0, TAU, 73, [3.9])?;       // every 5 degrees, one turn
-//! let x = turn.range("x")?;                                  // dead centres, located exactly
+//! let x = turn.range(X)?;                                  // dead centres, located exactly
 //! let outer = (4.0f64.powi(2) - 0.25).sqrt();                 // crank and rod stretched
 //! let inner = (2.0f64.powi(2) - 0.25).sqrt();                 // crank and rod folded
 //! assert!((x.max.value - outer).abs() < 1e-12 && (x.min.value - inner).abs() < 1e-12);
 //! assert!((x.max.x - 0.5f64.atan2(outer)).abs() < 1e-10);
 //! assert!((x.span() - (outer - inner)).abs() < 1e-12);        // the stroke
-//! let harmonics = turn.fourier("x", 4)?;                      // x = a0 + a1 cos phi + ...
+//! let harmonics = turn.fourier(X, 4)?;                      // x = a0 + a1 cos phi + ...
 //! assert!((harmonics.a[0] - 1.0).abs() < 1e-12);              // the crank's own cos phi
 //! # Ok::<(), kinloop_runtime::Error>(())
 //! ```
 
+mod column;
 #[cfg(test)]
 pub(crate) mod demo;
 pub mod dwell;
@@ -47,7 +49,11 @@ pub mod extremes;
 pub mod fourier;
 pub mod objective;
 pub mod optimize;
+mod sampled;
 pub mod unbalance;
+
+pub use column::{Column, ColumnIndex};
+pub use sampled::Sampled;
 
 pub use dwell::{Dwell, dwells};
 pub use extremes::{ExtremeKind, GlobalRange, LocalExtreme, bracketed_root, extremes, global_range, maximize};
@@ -56,9 +62,6 @@ pub use optimize::{LevenbergMarquardt, Minimum, NelderMead, Stop};
 pub use unbalance::{Residual, residual};
 
 use crate::error::Error;
-use crate::kin::Kin;
-use crate::mechanism::Mechanism;
-use crate::paths::sweep::{Sweep, SweepConfig};
 
 /// A smooth quantity at one point: its value and its first and second derivatives with respect
 /// to `x` (for a mechanism: position, velocity analog and acceleration analog at input `x`).
@@ -99,231 +102,14 @@ impl Jet {
     }
 }
 
-/// An unknown or an output column of a mechanism, by index in declaration order.
-#[derive(Clone, Copy, Debug, PartialEq, Eq)]
-pub enum Column {
-    /// Index into `Mechanism::UNKNOWNS`.
-    Unknown(usize),
-    /// Index into `Mechanism::OUTPUTS` (`"p.x"`, `"p.y"` for a point `p`, or a scalar output).
-    Output(usize),
-}
-
-impl Column {
-    /// The unknown or output column called `name`.
-    pub fn named<M, const N: usize, const NI: usize, const NO: usize>(name: &str) -> Result<Column, Error>
-    where
-        M: Mechanism<N, NI, NO>,
-    {
-        if let Some(u) = M::UNKNOWNS.iter().position(|n| *n == name) {
-            return Ok(Column::Unknown(u));
-        }
-        if let Some(o) = M::OUTPUTS.iter().position(|n| *n == name) {
-            return Ok(Column::Output(o));
-        }
-        Err(Error::InvalidArgument(format!(
-            "`{name}` is neither an unknown ({}) nor an output column ({}) of `{}`",
-            M::UNKNOWNS.join(", "),
-            M::OUTPUTS.join(", "),
-            M::NAME
-        )))
-    }
-
-    /// The column's value and analogs in a single-input state.
-    pub fn jet<const N: usize, const NO: usize>(self, k: &Kin<N, 1, NO>) -> Jet {
-        let (value, d1, d2) = match self {
-            Column::Unknown(u) => (k.q[u], k.dq[u][0], k.d2q[u][0][0]),
-            Column::Output(o) => (k.out[o], k.dout[o][0], k.d2out[o][0][0]),
-        };
-        Jet { x: k.x[0], value, d1, d2 }
-    }
-}
-
-/// A branch-safe sweep of a single-input mechanism, kept in memory and analysed column by
-/// column: extremes located as roots of the velocity analog, dwells, Fourier coefficients,
-/// residual unbalance. Between samples the mechanism is solved again (warm-started from the
-/// nearest sample and stepped there by a two-sample [`Sweep`], so the refinement never leaves the
-/// sweep's branch).
-///
-/// For [`Sampled::fourier`] and [`Sampled::residual`] the range must be one period of the
-/// quantity (e.g. one crank turn, `samples - 1` equal intervals, the last sample repeating the
-/// first).
-///
-/// ```ignore
-/// use kinloop_runtime::analysis::{ExtremeKind, Sampled};
-/// use std::f64::consts::TAU;
-/// let m = SliderCrank { r: 1.0, l: 3.0, e: 0.0 };            // a centred slider-crank
-/// let turn = Sampled::sweep(&m, 0.0, TAU, 37, [4.0])?;
-/// // Dead centres at 0 and 180 degrees (the first at the start of the range is not interior).
-/// let e = turn.extremes("x")?;
-/// assert_eq!(e.len(), 1);
-/// assert_eq!(e[0].kind, ExtremeKind::Min);
-/// assert!((e[0].x() - TAU / 2.0).abs() < 1e-10 && (e[0].value() - 2.0).abs() < 1e-12);
-/// // The largest acceleration analog |x''| = r + r^2/l at the outer dead centre.
-/// let (at, peak) = turn.peak(|k| k.d2q[0][0][0].abs())?;
-/// assert!((peak - (1.0 + 1.0 / 3.0)).abs() < 1e-12 && at.cos() > 1.0 - 1e-12);
-/// // After the first harmonic, what remains is mostly the second, about r^2 / (4 l) cos 2 phi.
-/// let r = turn.residual("x", 1)?;
-/// assert!((r.max_abs - 1.0 / 12.0).abs() < 5e-3);
-/// // Any state of the range, on the sweep's branch.
-/// assert!((turn.at(1.0)?.q[0] - (1f64.cos() + (9.0 - 1f64.sin().powi(2)).sqrt())).abs() < 1e-12);
-/// # Ok::<(), kinloop_runtime::Error>(())
-/// ```
-pub struct Sampled<'m, M, const N: usize, const NO: usize> {
-    m: &'m M,
-    states: Vec<Kin<N, 1, NO>>,
-    cfg: SweepConfig,
-}
-
-impl<'m, M, const N: usize, const NO: usize> Sampled<'m, M, N, NO>
-where
-    M: Mechanism<N, 1, NO>,
-{
-    /// Sweeps `samples` equally spaced inputs from `from` to `to > from` (both included) from
-    /// `guess` at `from` (which picks the assembly mode).
-    pub fn sweep(m: &'m M, from: f64, to: f64, samples: usize, guess: [f64; N]) -> Result<Self, Error> {
-        Self::sweep_with(m, from, to, samples, guess, SweepConfig::default())
-    }
-
-    /// [`Sampled::sweep`] with a sweep configuration (also used for every refinement).
-    pub fn sweep_with(
-        m: &'m M,
-        from: f64,
-        to: f64,
-        samples: usize,
-        guess: [f64; N],
-        cfg: SweepConfig,
-    ) -> Result<Self, Error> {
-        if from.partial_cmp(&to) != Some(std::cmp::Ordering::Less) || samples < 3 {
-            return Err(Error::InvalidArgument(format!(
-                "Sampled needs from < to and at least 3 samples (got {from} .. {to}, {samples} samples)"
-            )));
-        }
-        let mut sweep = Sweep::<M, Kin<N, 1, NO>, N, 1, NO>::new(m, [from], [to], samples, guess)?.with_config(cfg);
-        let mut states = Vec::with_capacity(samples);
-        while let Some(k) = sweep.next_kin() {
-            states.push(k?);
-        }
-        Ok(Sampled { m, states, cfg })
-    }
-
-    /// The sampled states, in increasing input.
-    pub fn states(&self) -> &[Kin<N, 1, NO>] {
-        &self.states
-    }
-
-    /// The mechanism.
-    pub fn mechanism(&self) -> &'m M {
-        self.m
-    }
-
-    /// The unknown or output column called `name`.
-    pub fn column(&self, name: &str) -> Result<Column, Error> {
-        Column::named::<M, N, 1, NO>(name)
-    }
-
-    /// The samples of a column as jets.
-    pub fn jets(&self, name: &str) -> Result<Vec<Jet>, Error> {
-        let c = self.column(name)?;
-        Ok(self.states.iter().map(|k| c.jet(k)).collect())
-    }
-
-    /// The state at any input `x` of the range, on the sweep's branch.
-    pub fn at(&self, x: f64) -> Result<Kin<N, 1, NO>, Error> {
-        let (first, last) = (self.states[0].x[0], self.states[self.states.len() - 1].x[0]);
-        let slack = 1e-9 * (last - first);
-        if !(x >= first - slack && x <= last + slack) {
-            return Err(Error::InvalidArgument(format!("x = {x} lies outside the sampled range [{first}, {last}]")));
-        }
-        // The nearest sample.
-        let i = self.states.partition_point(|k| k.x[0] < x);
-        let near = match (i.checked_sub(1), self.states.get(i)) {
-            (Some(j), Some(k)) if (x - self.states[j].x[0]).abs() <= (k.x[0] - x).abs() => &self.states[j],
-            (_, Some(k)) => k,
-            (Some(j), None) => &self.states[j],
-            (None, None) => unreachable!("a Sampled holds at least three states"),
-        };
-        if near.x[0] == x {
-            return Ok(*near);
-        }
-        let mut step = Sweep::<M, Kin<N, 1, NO>, N, 1, NO>::new(self.m, near.x, [x], 2, near.q)?.with_config(self.cfg);
-        let _start = step.next_kin().transpose()?;
-        step.next_kin().unwrap_or_else(|| Err(Error::InvalidArgument("empty refinement sweep".into())))
-    }
-
-    fn eval(&self, c: Column) -> impl FnMut(f64) -> Result<Jet, Error> + '_ {
-        move |x| self.at(x).map(|k| c.jet(&k))
-    }
-
-    /// The local extremes of a column (interior roots of its velocity analog), in increasing
-    /// input; see [`extremes()`](extremes::extremes).
-    pub fn extremes(&self, name: &str) -> Result<Vec<LocalExtreme>, Error> {
-        let c = self.column(name)?;
-        extremes::extremes(&self.jets(name)?, self.eval(c))
-    }
-
-    /// The global minimum and maximum of a column over the range (interior extremes or ends),
-    /// e.g. the dead centres and stroke of a slider; see [`global_range`].
-    pub fn range(&self, name: &str) -> Result<GlobalRange, Error> {
-        let c = self.column(name)?;
-        global_range(&self.jets(name)?, self.eval(c))
-    }
-
-    /// The dwells of a progressive column; see [`dwell`] for the definition.
-    pub fn dwells(&self, name: &str) -> Result<Vec<Dwell>, Error> {
-        let c = self.column(name)?;
-        dwell::dwells(&self.jets(name)?, self.eval(c))
-    }
-
-    /// The maximum of a derived quantity `f(state)` (e.g. the magnitude of an acceleration
-    /// analog) over the range: the best sample, refined by Brent's derivative-free search
-    /// between its neighbours. Returns `(x, f)`. For a minimum, maximise `-f`.
-    pub fn peak(&self, f: impl Fn(&Kin<N, 1, NO>) -> f64) -> Result<(f64, f64), Error> {
-        let values: Vec<f64> = self.states.iter().map(&f).collect();
-        let best = (0..values.len()).max_by(|&a, &b| values[a].total_cmp(&values[b])).unwrap_or(0);
-        let lo = self.states[best.saturating_sub(1)].x[0];
-        let hi = self.states[(best + 1).min(self.states.len() - 1)].x[0];
-        let (x, v) = maximize(lo, hi, |x| self.at(x).map(|k| f(&k)))?;
-        // Brent returns an interior point; the sample itself may be better (at an end of the range).
-        Ok(if v >= values[best] { (x, v) } else { (self.states[best].x[0], values[best]) })
-    }
-
-    /// Checks that a column returns to its starting value over the range (one period).
-    fn periodic(&self, name: &str) -> Result<Vec<Jet>, Error> {
-        let jets = self.jets(name)?;
-        let (a, b) = (jets[0].value, jets[jets.len() - 1].value);
-        let scale = jets.iter().map(|j| j.value.abs()).fold(1.0, f64::max);
-        if (a - b).abs() > 1e-9 * scale {
-            return Err(Error::InvalidArgument(format!(
-                "`{name}` is not periodic over the sweep ({a} at the start, {b} at the end): sweep exactly one cycle"
-            )));
-        }
-        Ok(jets)
-    }
-
-    /// Fourier coefficients of a column up to `harmonics`, the sweep being one period (`n + 1`
-    /// samples, the last repeating the first); see [`fourier()`](fourier::fourier).
-    pub fn fourier(&self, name: &str, harmonics: usize) -> Result<Fourier, Error> {
-        let jets = self.periodic(name)?;
-        let n = jets.len() - 1;
-        let values: Vec<f64> = jets[..n].iter().map(|j| j.value).collect();
-        fourier::fourier(&values, jets[0].x, jets[n].x - jets[0].x, harmonics)
-    }
-
-    /// The residual of a column after removing its mean and harmonics `1 ..= removed`, and its
-    /// largest magnitude over the period (the residual unbalance `D` for `removed = 1`); see
-    /// [`unbalance`].
-    pub fn residual(&self, name: &str, removed: usize) -> Result<Residual, Error> {
-        let c = self.column(name)?;
-        let jets = self.periodic(name)?;
-        unbalance::residual(&jets, self.eval(c), removed)
-    }
-}
-
 #[cfg(test)]
 mod tests {
     use super::demo::SliderCrank;
     use super::*;
+    use crate::mechanism::Mechanism;
     use std::f64::consts::{PI, TAU};
+
+    const X: Column<SliderCrank> = SliderCrank::COL.x;
 
     const M: SliderCrank = SliderCrank { r: 1.0, l: 2.5, e: 0.7 };
 
@@ -336,7 +122,7 @@ mod tests {
     #[test]
     fn dead_centres_of_an_offset_slider_crank() {
         let turn = Sampled::sweep(&M, 0.0, TAU, 37, [3.0]).unwrap();
-        let r = turn.range("x").unwrap();
+        let r = turn.range(X).unwrap();
         let [(a_out, outer), (a_in, inner)] = M.dead_centres();
         assert!((r.max.value - outer).abs() < 1e-12, "{} vs {outer}", r.max.value);
         assert!((r.min.value - inner).abs() < 1e-12);
@@ -344,7 +130,7 @@ mod tests {
         assert!((r.max.x - a_out).abs() < 1e-10, "{} vs {a_out}", r.max.x);
         assert!((r.min.x - a_in.rem_euclid(TAU)).abs() < 1e-10, "{} vs {a_in}", r.min.x);
         assert!(r.max.d1.abs() < 1e-12 && r.min.d1.abs() < 1e-12);
-        let e = turn.extremes("x").unwrap();
+        let e = turn.extremes(X).unwrap();
         assert_eq!(e.len(), 2);
         assert_eq!(e[0].kind, ExtremeKind::Max);
         // The offset makes the return stroke quicker than the working stroke.
@@ -359,15 +145,20 @@ mod tests {
             assert!((k.q[0] - x_of(x)).abs() < 1e-12);
         }
         assert!(turn.at(7.0).is_err());
-        assert!(turn.column("nope").is_err());
-        assert_eq!(turn.column("h").unwrap(), Column::Output(0));
+        // The input as a column: its value is the path parameter, its own analog 1.
+        for j in turn.jets(SliderCrank::COL.phi).unwrap() {
+            assert_eq!((j.value, j.d1, j.d2), (j.x, 1.0, 0.0));
+        }
+        assert!(Column::<SliderCrank>::named("nope").is_err());
+        assert_eq!(Column::<SliderCrank>::named("h").unwrap(), SliderCrank::COL.h);
+        assert_eq!(Column::<SliderCrank>::named("phi").unwrap().index(), ColumnIndex::Input(0));
         assert!(Sampled::sweep(&M, 1.0, 0.0, 10, [3.0]).is_err());
     }
 
     #[test]
     fn fourier_and_residual_of_the_slider_position() {
         let turn = Sampled::sweep(&M, 0.0, TAU, 129, [3.0]).unwrap();
-        let f = turn.fourier("x", 8).unwrap();
+        let f = turn.fourier(X, 8).unwrap();
         // Independent coefficients: trapezoidal sums of the closed form on a 4x finer grid.
         let n = 512;
         let xs: Vec<f64> = (0..n).map(|j| x_of(TAU * j as f64 / n as f64)).collect();
@@ -377,7 +168,7 @@ mod tests {
             assert!((f.a[k] - g.a[k]).abs() < 1e-12 && (f.b[k] - g.b[k]).abs() < 1e-12, "harmonic {}", k + 1);
         }
         // The residual after the first harmonic, against a dense scan of the closed form.
-        let r = turn.residual("x", 1).unwrap();
+        let r = turn.residual(X, 1).unwrap();
         let c1 = |x: f64| g.eval_upto(1, x).0;
         let mut best = (0.0, 0.0f64);
         for i in 0..20_000 {
@@ -391,7 +182,7 @@ mod tests {
         assert!((r.max_abs - exact).abs() < 1e-12, "{} vs {exact}", r.max_abs);
         // The unknown x returns to its value: periodic. Not so over half a turn.
         let half = Sampled::sweep(&M, 0.0, PI, 9, [3.0]).unwrap();
-        assert!(half.fourier("x", 2).is_err());
+        assert!(half.fourier(X, 2).is_err());
     }
 
     #[test]
@@ -421,13 +212,13 @@ mod tests {
         // slider-crank written by hand: crank 1, rod 3, offset 0.5, one unknown `x`).
         let m = SliderCrank { r: 1.0, l: 3.0, e: 0.5 };
         let turn = Sampled::sweep(&m, 0.0, TAU, 73, [3.9])?; // every 5 degrees, one turn
-        let x = turn.range("x")?; // dead centres, located exactly
+        let x = turn.range(X)?; // dead centres, located exactly
         let outer = (4.0f64.powi(2) - 0.25).sqrt(); // crank and rod stretched
         let inner = (2.0f64.powi(2) - 0.25).sqrt(); // crank and rod folded
         assert!((x.max.value - outer).abs() < 1e-12 && (x.min.value - inner).abs() < 1e-12);
         assert!((x.max.x - 0.5f64.atan2(outer)).abs() < 1e-10);
         assert!((x.span() - (outer - inner)).abs() < 1e-12); // the stroke
-        let harmonics = turn.fourier("x", 4)?; // x = a0 + a1 cos phi + ...
+        let harmonics = turn.fourier(X, 4)?; // x = a0 + a1 cos phi + ...
         assert!((harmonics.a[0] - 1.0).abs() < 1e-12); // the crank's own cos phi
         Ok(())
     }
@@ -441,15 +232,15 @@ mod tests {
         let m = SliderCrank { r: 1.0, l: 3.0, e: 0.0 }; // a centred slider-crank
         let turn = Sampled::sweep(&m, 0.0, TAU, 37, [4.0])?;
         // Dead centres at 0 and 180 degrees (the first at the start of the range is not interior).
-        let e = turn.extremes("x")?;
+        let e = turn.extremes(X)?;
         assert_eq!(e.len(), 1);
         assert_eq!(e[0].kind, ExtremeKind::Min);
         assert!((e[0].x() - TAU / 2.0).abs() < 1e-10 && (e[0].value() - 2.0).abs() < 1e-12);
         // The largest acceleration analog |x''| = r + r^2/l at the outer dead centre.
-        let (at, peak) = turn.peak(|k| k.d2q[0][0][0].abs())?;
+        let (at, peak) = turn.peak_of(SliderCrank::COL.x, |j| j.d2.abs())?;
         assert!((peak - (1.0 + 1.0 / 3.0)).abs() < 1e-12 && at.cos() > 1.0 - 1e-12);
         // After the first harmonic, what remains is mostly the second, about r^2 / (4 l) cos 2 phi.
-        let r = turn.residual("x", 1)?;
+        let r = turn.residual(X, 1)?;
         assert!((r.max_abs - 1.0 / 12.0).abs() < 5e-3);
         // Any state of the range, on the sweep's branch.
         assert!((turn.at(1.0)?.q[0] - (1f64.cos() + (9.0 - 1f64.sin().powi(2)).sqrt())).abs() < 1e-12);
@@ -464,7 +255,7 @@ mod tests {
         let outer = (4.0f64.powi(2) - 0.25).sqrt();
         let start = 0.5f64.atan2(outer);
         let turn = Sampled::sweep(&m, start, start + std::f64::consts::TAU, 37, [outer]).unwrap();
-        let e = turn.extremes("x").unwrap();
+        let e = turn.extremes(X).unwrap();
         assert_eq!(e.len(), 1, "{e:?}");
         assert_eq!(e[0].kind, ExtremeKind::Min);
         // The inner dead centre: crank and rod folded, x = sqrt((l - r)^2 - e^2).

@@ -7,7 +7,7 @@
 //!   (`dx*/dp = -(d q' / dp) / q''`).
 //! * [`integral`]: the trapezoidal integral of a quantity over a sweep and its exact gradient.
 
-use crate::analysis::{Column, Sampled};
+use crate::analysis::{Column, ColumnIndex, Sampled};
 use crate::error::Error;
 use crate::kin::{Kin, Sens};
 use crate::mechanism::Sensitivities;
@@ -37,17 +37,19 @@ pub struct Extremum<const NP: usize> {
 }
 
 /// (d value/dp, d first analog/dp) of a column.
-fn column_sens<const N: usize, const NO: usize, const NP: usize>(
+fn column_sens<M, const N: usize, const NO: usize, const NP: usize>(
     s: &Sens<N, 1, NO, NP>,
-    c: Column,
+    c: Column<M>,
 ) -> ([f64; NP], [f64; NP]) {
-    match c {
-        Column::Unknown(u) => (s.q[u], s.dq[u][0]),
-        Column::Output(o) => (s.out[o], s.dout[o][0]),
+    match c.index() {
+        // An input does not depend on the parameters.
+        ColumnIndex::Input(_) => ([0.0; NP], [0.0; NP]),
+        ColumnIndex::Unknown(u) => (s.q[u], s.dq[u][0]),
+        ColumnIndex::Output(o) => (s.out[o], s.dout[o][0]),
     }
 }
 
-/// Finds the maximum or minimum of the unknown or output `name` over `range` (a branch-safe
+/// Finds the maximum or minimum of the column `col` (`Name::COL.x_f`) over `range` (a branch-safe
 /// sweep of `samples` points from `guess`; the extremes are roots of the velocity analog located
 /// by [`Sampled::range`](crate::analysis::Sampled::range)) and returns it with its parameter
 /// gradients.
@@ -56,7 +58,7 @@ fn column_sens<const N: usize, const NO: usize, const NP: usize>(
 /// with `x_grad = 0` and `grad = dq/dp` there.
 pub fn extremum<M, const N: usize, const NO: usize, const NP: usize>(
     m: &M,
-    name: &str,
+    col: Column<M>,
     which: Extreme,
     range: std::ops::RangeInclusive<f64>,
     samples: usize,
@@ -66,10 +68,9 @@ pub fn extremum<M, const N: usize, const NO: usize, const NP: usize>(
 where
     M: Sensitivities<N, 1, NO, NP>,
 {
-    let col = Column::named::<M, N, 1, NO>(name)?;
     let sweep_cfg = SweepConfig { newton: *cfg, ..SweepConfig::default() };
     let sampled = Sampled::sweep_with(m, *range.start(), *range.end(), samples.max(3), guess, sweep_cfg)?;
-    let global = sampled.range(name)?;
+    let global = sampled.range(col)?;
     let at = if which == Extreme::Max { global.max } else { global.min };
     let interior = global.extremes.iter().any(|e| e.at.x == at.x);
     let k = sampled.at(at.x)?;
@@ -85,12 +86,12 @@ where
     Ok(Extremum { x: jet.x, value: jet.value, grad, x_grad })
 }
 
-/// The trapezoidal integral of the unknown or output `name` over a sweep of `samples` points
+/// The trapezoidal integral of the column `col` (`Name::COL.gap`) over a sweep of `samples` points
 /// from `from` to `to`, and its exact parameter gradient (the derivative of the same quadrature).
 /// For a periodic quantity over a full period the trapezoidal rule is spectrally accurate.
 pub fn integral<M, const N: usize, const NO: usize, const NP: usize>(
     m: &M,
-    name: &str,
+    col: Column<M>,
     from: f64,
     to: f64,
     samples: usize,
@@ -100,7 +101,7 @@ pub fn integral<M, const N: usize, const NO: usize, const NP: usize>(
 where
     M: Sensitivities<N, 1, NO, NP>,
 {
-    let col = Column::named::<M, N, 1, NO>(name)?;
+    let col = col.check::<N, 1, NO>()?;
     let samples = samples.max(2);
     let h = (to - from) / (samples - 1) as f64;
     let mut value = 0.0;

@@ -9,7 +9,7 @@
 //!   from the output, where the output cannot drive the input): the located extremes of the
 //!   output's column.
 
-use crate::analysis::{LocalExtreme, Sampled};
+use crate::analysis::{Column, LocalExtreme, Sampled};
 use crate::error::Error;
 use crate::events::{Event, EventKind};
 use crate::kin::Kin;
@@ -82,7 +82,7 @@ impl fmt::Display for LimitReport {
 /// over the range reached. A limit position of the input ends the range; it is reported, not
 /// an error.
 ///
-/// Errors: a column that is neither an unknown nor an output, a start that cannot be
+/// Columns are the generated handles (`Name::COL.x_c`). Errors: a start that cannot be
 /// assembled, a sweep that stops within its first two samples.
 pub fn limit_report<M, const N: usize, const NO: usize>(
     m: &M,
@@ -90,7 +90,7 @@ pub fn limit_report<M, const N: usize, const NO: usize>(
     to: f64,
     samples: usize,
     guess: [f64; N],
-    columns: &[&str],
+    columns: &[Column<M>],
 ) -> Result<LimitReport, Error>
 where
     M: Mechanism<N, 1, NO>,
@@ -119,7 +119,7 @@ where
     let range = Sampled::sweep_with(m, from, last, count, guess, cfg)?;
     let outputs = columns
         .iter()
-        .map(|c| Ok(OutputLimits { column: c.to_string(), extremes: range.extremes(c)? }))
+        .map(|&c| Ok(OutputLimits { column: c.name().to_string(), extremes: range.extremes(c)? }))
         .collect::<Result<_, Error>>()?;
     Ok(LimitReport { reached: (from, last), events, outputs })
 }
@@ -134,7 +134,7 @@ mod tests {
     #[test]
     fn dead_centres_of_a_slider_crank_against_the_collinear_triangles() {
         let m = SliderCrank { r: 1.0, l: 3.0, e: 0.5 };
-        let r = limit_report(&m, 0.3, 0.3 + TAU, 73, [3.9], &["x"]).unwrap();
+        let r = limit_report(&m, 0.3, 0.3 + TAU, 73, [3.9], &[SliderCrank::COL.x]).unwrap();
         assert!(r.events.is_empty());
         assert_eq!(r.reached, (0.3, 0.3 + TAU));
         let [(x_out, outer), (x_in, inner)] = m.dead_centres();
@@ -148,8 +148,9 @@ mod tests {
     }
 
     #[test]
-    fn an_unknown_column_is_an_error() {
+    fn a_column_outside_the_mechanism_is_an_error() {
         let m = SliderCrank { r: 1.0, l: 3.0, e: 0.5 };
-        assert!(matches!(limit_report(&m, 0.0, 1.0, 5, [3.9], &["nope"]), Err(Error::InvalidArgument(_))));
+        let bad = Column::__generated(crate::analysis::ColumnIndex::Unknown(3), "bad");
+        assert!(matches!(limit_report(&m, 0.0, 1.0, 5, [3.9], &[bad]), Err(Error::InvalidArgument(_))));
     }
 }

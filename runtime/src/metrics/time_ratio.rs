@@ -2,7 +2,7 @@
 //! the input angle spent while the output rises from its minimum to its maximum, against the
 //! angle spent while it falls back.
 
-use crate::analysis::{ExtremeKind, Jet, Sampled, extremes};
+use crate::analysis::{Column, ExtremeKind, Jet, Sampled, extremes};
 use crate::error::Error;
 use crate::mechanism::Mechanism;
 
@@ -78,16 +78,15 @@ pub fn time_ratio(samples: &[Jet], eval: impl FnMut(f64) -> Result<Jet, Error>) 
     Ok(TimeRatio { min, max, rising, falling: period - rising })
 }
 
-/// [`time_ratio`] of an unknown or output column of a sweep over one full input turn.
+/// [`time_ratio`] of a column (`Name::COL.psi`) of a sweep over one full input turn.
 pub fn time_ratio_over<M, const N: usize, const NO: usize>(
     turn: &Sampled<'_, M, N, NO>,
-    column: &str,
+    column: Column<M>,
 ) -> Result<TimeRatio, Error>
 where
     M: Mechanism<N, 1, NO>,
 {
-    let c = turn.column(column)?;
-    time_ratio(&turn.jets(column)?, |x| turn.at(x).map(|k| c.jet(&k)))
+    time_ratio(&turn.jets(column)?, |x| turn.jet_at(column, x))
 }
 
 #[cfg(test)]

@@ -2,7 +2,7 @@
 //! drives. Near zero the coupler pushes along the follower and cannot turn it (a dead point);
 //! designers keep its minimum above about 40 degrees.
 
-use crate::analysis::{Jet, Sampled, bracketed_root, extremes};
+use crate::analysis::{Column, Jet, Sampled, bracketed_root, extremes};
 use crate::error::Error;
 use crate::mechanism::Mechanism;
 use std::f64::consts::{FRAC_PI_2, PI};
@@ -110,20 +110,18 @@ pub fn transmission_range(
     Ok(TransmissionRange { min, max, dead_points })
 }
 
-/// [`transmission_range`] of a sampled sweep, the coupler and follower angles given by the
-/// names of their unknown or output columns.
-///
-/// A name that is neither an unknown nor an output is an [`Error::InvalidArgument`].
+/// [`transmission_range`] of a sampled sweep, the coupler and follower angles given by their
+/// columns (`Name::COL.beta`, `Name::COL.gamma`).
 pub fn transmission_over<M, const N: usize, const NO: usize>(
     turn: &Sampled<'_, M, N, NO>,
-    coupler: &str,
-    follower: &str,
+    coupler: Column<M>,
+    follower: Column<M>,
 ) -> Result<TransmissionRange, Error>
 where
     M: Mechanism<N, 1, NO>,
 {
-    let (cc, fc) = (turn.column(coupler)?, turn.column(follower)?);
-    transmission_range(&turn.jets(coupler)?, &turn.jets(follower)?, |x| turn.at(x).map(|k| (cc.jet(&k), fc.jet(&k))))
+    let (cj, fj) = (turn.jets(coupler)?, turn.jets(follower)?);
+    transmission_range(&cj, &fj, |x| turn.at(x).map(|k| (coupler.jet(&k), follower.jet(&k))))
 }
 
 #[cfg(test)]

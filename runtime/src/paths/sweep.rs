@@ -335,13 +335,14 @@ where
         SweepResult::new(states, error, self.events)
     }
 
-    /// Runs the whole sweep into a [`Table`] (CSV-ready, named columns).
+    /// Runs the whole sweep into a [`Table`] (CSV-ready, named columns, inferred units: see
+    /// [`Table::with_units_of`]).
     pub fn table(mut self) -> Result<Table, Error> {
         let mut t = Table::new(Table::kin_columns::<M, N, NI, NO>());
         while let Some(k) = self.next_kin() {
             t.push(Table::kin_row(&k?));
         }
-        Ok(t)
+        Ok(t.with_units_of::<M, N, NI, NO>())
     }
 
     fn location(&self, x: &[f64], block: Option<(usize, BlockInfo)>) -> Box<Location> {

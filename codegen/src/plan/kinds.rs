@@ -1,0 +1,200 @@
+//! The kind of quantity of every input, unknown and output column (angle, length,
+//! dimensionless, or not inferred), from which the runtime writes units into CSV headers.
+//!
+//! **Leaves** (parameters, inputs, unknowns) are classified top-down from places whose kind is
+//! certain: the argument of a sine, cosine or tangent is an angle; a loop projection and a
+//! point coordinate are lengths. The expected kind passes through sums, differences, negation
+//! and `abs`, and through a product or quotient only onto a factor whose partner is a pure
+//! number (a constant, a sine, ...): in `l @ th` the length `l` multiplies `cos(th)`, in
+//! `2 phi` the angle `phi` a constant, but in `sin(k t)` neither `k` nor `t` is known to be an
+//! angle. A leaf reached as two different kinds is not classified.
+//!
+//! **Scalar outputs** get the kind of their expression, computed bottom-up with lengths
+//! carrying a power (`L^k`): `atan2` of two lengths is an angle, a difference of lengths a
+//! length, a ratio of lengths dimensionless, `sqrt` of a sum of squares of lengths a length.
+//! Whatever does not follow from the classified leaves is [`Kind::Other`]: nothing is guessed.
+
+use crate::dag::{Func, Graph, Leaf, NodeId, Op};
+use crate::model::Model;
+use std::collections::{HashMap, HashSet};
+
+/// The kind of quantity of a column.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
+pub enum Kind {
+    Angle,
+    Length,
+    Dimensionless,
+    Other,
+}
+
+/// The kinds of a mechanism's columns, in declaration order.
+pub struct Kinds {
+    pub inputs: Vec<Kind>,
+    pub unknowns: Vec<Kind>,
+    /// Per flat output column: `x`, `y` per point, then the scalars.
+    pub outputs: Vec<Kind>,
+}
+
+/// Classifies the columns of `model`, whose expressions are nodes of `g`.
+pub fn classify(model: &Model, g: &Graph, residuals: &[NodeId], outputs: &[NodeId]) -> Kinds {
+    let leaves = leaf_kinds(model, g, residuals, outputs);
+    let of = |l: Leaf| leaves.get(&l).copied().flatten().unwrap_or(Kind::Other);
+    let inputs = (0..model.inputs.len()).map(|i| of(Leaf::Input(i as u16))).collect();
+    let unknowns = (0..model.unknowns.len()).map(|u| of(Leaf::Unknown(u as u16))).collect();
+    let n_point_columns = 2 * model.points.len();
+    let scalars = &outputs[n_point_columns.min(outputs.len())..];
+    let dims = dimensions(g, scalars, &of);
+    let mut out = vec![Kind::Length; n_point_columns];
+    out.extend(scalars.iter().map(|s| dims[s].kind()));
+    Kinds { inputs, unknowns, outputs: out }
+}
+
+/// The kind of every classified leaf (`None`: reached as two different kinds).
+fn leaf_kinds(model: &Model, g: &Graph, residuals: &[NodeId], outputs: &[NodeId]) -> HashMap<Leaf, Option<Kind>> {
+    let roots: Vec<NodeId> = residuals.iter().chain(outputs).copied().collect();
+    let mut start: Vec<(NodeId, Kind)> = Vec::new();
+    for n in g.reachable(&roots) {
+        if let Op::Func(Func::Sin | Func::Cos | Func::Tan, a) = g.op(n) {
+            start.push((a, Kind::Angle));
+        }
+    }
+    let loops = model.equations.iter().zip(residuals).filter(|(e, _)| e.is_loop);
+    start.extend(loops.map(|(_, &r)| (r, Kind::Length)));
+    start.extend(outputs.iter().take(2 * model.points.len()).map(|&p| (p, Kind::Length)));
+    let mut kinds: HashMap<Leaf, Option<Kind>> = HashMap::new();
+    let mut seen: HashSet<(NodeId, Kind)> = HashSet::new();
+    let mut stack = start;
+    while let Some((n, kind)) = stack.pop() {
+        if !seen.insert((n, kind)) {
+            continue;
+        }
+        match g.op(n) {
+            Op::Leaf(l @ (Leaf::Param(_) | Leaf::Input(_) | Leaf::Unknown(_))) => {
+                let entry = kinds.entry(l).or_insert(Some(kind));
+                if *entry != Some(kind) {
+                    *entry = None;
+                }
+            }
+            Op::Add(a, b) | Op::Sub(a, b) => stack.extend([(a, kind), (b, kind)]),
+            Op::Neg(a) | Op::Func(Func::Abs, a) => stack.push((a, kind)),
+            Op::Mul(a, b) if pure_number(g, a, 8) => stack.push((b, kind)),
+            Op::Mul(a, b) | Op::Div(a, b) if pure_number(g, b, 8) => stack.push((a, kind)),
+            _ => {}
+        }
+    }
+    kinds
+}
+
+/// Whether `n` is a pure number: a constant, a sine, cosine or tangent, or products, quotients
+/// and powers of those (looked at to `depth` levels).
+fn pure_number(g: &Graph, n: NodeId, depth: u32) -> bool {
+    if depth == 0 {
+        return false;
+    }
+    match g.op(n) {
+        Op::Const(_) | Op::Func(Func::Sin | Func::Cos | Func::Tan | Func::Signum, _) => true,
+        Op::Neg(a) | Op::Powi(a, _) => pure_number(g, a, depth - 1),
+        Op::Mul(a, b) | Op::Div(a, b) => pure_number(g, a, depth - 1) && pure_number(g, b, depth - 1),
+        _ => false,
+    }
+}
+
+/// The dimension of an expression: a number, an angle, a power of length, or unknown.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+enum Dim {
+    Num,
+    Angle,
+    L(i32),
+    Other,
+}
+
+impl Dim {
+    fn kind(self) -> Kind {
+        match self {
+            Dim::Angle => Kind::Angle,
+            Dim::L(1) => Kind::Length,
+            Dim::Num | Dim::L(0) => Kind::Dimensionless,
+            _ => Kind::Other,
+        }
+    }
+
+    /// The power of length in a product (an angle is a pure number there).
+    fn power(self) -> Option<i32> {
+        match self {
+            Dim::Num | Dim::Angle => Some(0),
+            Dim::L(k) => Some(k),
+            Dim::Other => None,
+        }
+    }
+
+    /// Dimensionless (a number, an angle or `L^0`): a valid argument of `exp`, `asin`, ...
+    fn unitless(self) -> bool {
+        self.power() == Some(0)
+    }
+}
+
+/// The dimension of every node reachable from `roots`, bottom-up.
+fn dimensions(g: &Graph, roots: &[NodeId], leaf: &dyn Fn(Leaf) -> Kind) -> HashMap<NodeId, Dim> {
+    let mut dim: HashMap<NodeId, Dim> = HashMap::new();
+    // Ids are a topological order: operands come first.
+    for n in g.reachable(roots) {
+        let d = |a: NodeId| dim[&a];
+        let v = match g.op(n) {
+            Op::Const(_) => Dim::Num,
+            Op::Leaf(l) => match leaf(l) {
+                Kind::Angle => Dim::Angle,
+                Kind::Length => Dim::L(1),
+                Kind::Dimensionless => Dim::L(0),
+                Kind::Other => Dim::Other,
+            },
+            Op::Add(a, b) | Op::Sub(a, b) => sum(d(a), d(b)),
+            Op::Neg(a) | Op::Func(Func::Abs, a) => d(a),
+            Op::Mul(a, b) => product(d(a), d(b), 1),
+            Op::Div(a, b) => product(d(a), d(b), -1),
+            Op::Powi(a, k) => match d(a) {
+                Dim::Num => Dim::Num,
+                Dim::Angle if k == 1 => Dim::Angle,
+                Dim::L(p) => p.checked_mul(k).map_or(Dim::Other, Dim::L),
+                _ => Dim::Other,
+            },
+            Op::Func(Func::Sqrt, a) => match d(a) {
+                Dim::Num => Dim::Num,
+                Dim::L(p) if p % 2 == 0 => Dim::L(p / 2),
+                _ => Dim::Other,
+            },
+            Op::Func(Func::Signum, _) => Dim::Num,
+            Op::Func(Func::Asin | Func::Acos | Func::Atan, a) if d(a).unitless() => Dim::Angle,
+            Op::Func(_, a) if d(a).unitless() => Dim::L(0),
+            Op::Atan2(y, x) if sum(d(y), d(x)) != Dim::Other => Dim::Angle,
+            _ => Dim::Other,
+        };
+        dim.insert(n, v);
+    }
+    dim
+}
+
+/// The dimension of a sum: both terms alike (a number adopts the other's).
+fn sum(a: Dim, b: Dim) -> Dim {
+    match (a, b) {
+        (Dim::Num, x) | (x, Dim::Num) => x,
+        (x, y) if x == y => x,
+        _ => Dim::Other,
+    }
+}
+
+/// The dimension of `a * b^sign` (`sign` = 1 or -1).
+fn product(a: Dim, b: Dim, sign: i32) -> Dim {
+    match (a, b) {
+        (x, Dim::Num) => x,
+        (Dim::Num, Dim::Angle) if sign == 1 => Dim::Angle,
+        // Per radian, a squared angle, an angle times a ratio: no unit kinloop writes (an angle
+        // times a length is an arc length).
+        (_, Dim::Angle) if sign == -1 => Dim::Other,
+        (Dim::Angle | Dim::Num | Dim::L(0), Dim::Angle) | (Dim::Angle, Dim::L(0)) => Dim::Other,
+        // Checked: a declaration may raise a length to any power.
+        _ => match (a.power(), b.power()) {
+            (Some(p), Some(q)) => q.checked_mul(sign).and_then(|q| p.checked_add(q)).map_or(Dim::Other, Dim::L),
+            _ => Dim::Other,
+        },
+    }
+}

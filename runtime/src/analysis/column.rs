@@ -1,0 +1,186 @@
+//! Typed handles of a mechanism's columns (an input, an unknown or an output column), as the
+//! analysis helpers take them.
+//!
+//! `mechanism!` generates one handle per column of every mechanism, reached through the
+//! constant `Name::COL` (`FourBar::COL.beta`, `FourBar::COL.cp.x`: the same paths as the
+//! state's `s.q.beta`, `s.out.cp.x`). A handle carries its mechanism in its type, so a column
+//! of one mechanism cannot be given to a [`Sampled`](super::Sampled) of another, and a
+//! misspelled column is a compile error. [`Column::named`] is the dynamic fallback, for names
+//! that only exist at run time (a command line, a configuration file).
+
+use crate::error::Error;
+use crate::kin::Kin;
+use crate::mechanism::Mechanism;
+use std::fmt;
+use std::marker::PhantomData;
+
+/// Which flat array a column lives in, and its index there (declaration order).
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
+pub enum ColumnIndex {
+    /// Index into `Mechanism::INPUTS` (the value of an input, its own analog is 1).
+    Input(usize),
+    /// Index into `Mechanism::UNKNOWNS`.
+    Unknown(usize),
+    /// Index into `Mechanism::OUTPUTS` (`p.x`, `p.y` for a point `p`, or a scalar output).
+    Output(usize),
+}
+
+/// An input, unknown or output column of mechanism `M`: generated as `Name::COL.field`, or
+/// looked up by name at run time with [`Column::named`].
+pub struct Column<M> {
+    index: ColumnIndex,
+    name: &'static str,
+    _m: PhantomData<fn() -> M>,
+}
+
+// Written by hand: derives would require `M: Clone`, `M: Debug`, ... of the mechanism.
+impl<M> Clone for Column<M> {
+    fn clone(&self) -> Self {
+        *self
+    }
+}
+impl<M> Copy for Column<M> {}
+impl<M> PartialEq for Column<M> {
+    fn eq(&self, other: &Self) -> bool {
+        self.index == other.index
+    }
+}
+impl<M> Eq for Column<M> {}
+impl<M> fmt::Debug for Column<M> {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        write!(f, "Column({}: {:?})", self.name, self.index)
+    }
+}
+
+/// The column's name (`beta`, `cp.x`).
+impl<M> fmt::Display for Column<M> {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        f.write_str(self.name)
+    }
+}
+
+impl<M> Column<M> {
+    /// For the expansion of `mechanism!` only: the index is trusted to belong to `M`.
+    #[doc(hidden)]
+    pub const fn __generated(index: ColumnIndex, name: &'static str) -> Self {
+        Column { index, name, _m: PhantomData }
+    }
+
+    /// The column's flat array and index.
+    pub fn index(self) -> ColumnIndex {
+        self.index
+    }
+
+    /// The column's name as in the flat name lists (`"beta"`, `"cp.x"`).
+    pub fn name(self) -> &'static str {
+        self.name
+    }
+
+    /// The input, unknown or output column called `name` (`"beta"`, `"cp.x"`): the dynamic
+    /// fallback of the generated `Name::COL.beta`, for names known only at run time. A name
+    /// that is none of them is an [`Error::InvalidArgument`] listing the columns.
+    ///
+    /// ```ignore
+    /// let beta = Column::<FourBar>::named("beta")?;
+    /// assert_eq!(beta, FourBar::COL.beta);
+    /// ```
+    pub fn named<const N: usize, const NI: usize, const NO: usize>(name: &str) -> Result<Self, Error>
+    where
+        M: Mechanism<N, NI, NO>,
+    {
+        let find = |names: &[&'static str]| names.iter().position(|n| *n == name);
+        let index = find(&M::INPUTS)
+            .map(ColumnIndex::Input)
+            .or_else(|| find(&M::UNKNOWNS).map(ColumnIndex::Unknown))
+            .or_else(|| find(&M::OUTPUTS).map(ColumnIndex::Output));
+        match index {
+            Some(index) => Ok(Column::__generated(index, Self::name_at::<N, NI, NO>(index))),
+            None => Err(Error::InvalidArgument(format!(
+                "`{name}` is no column of `{}`: inputs {}; unknowns {}; outputs {}",
+                M::NAME,
+                M::INPUTS.join(", "),
+                M::UNKNOWNS.join(", "),
+                M::OUTPUTS.join(", ")
+            ))),
+        }
+    }
+
+    /// The name of a column index of `M` (`"?"` outside its ranges).
+    fn name_at<const N: usize, const NI: usize, const NO: usize>(index: ColumnIndex) -> &'static str
+    where
+        M: Mechanism<N, NI, NO>,
+    {
+        let name = match index {
+            ColumnIndex::Input(i) => M::INPUTS.get(i),
+            ColumnIndex::Unknown(u) => M::UNKNOWNS.get(u),
+            ColumnIndex::Output(o) => M::OUTPUTS.get(o),
+        };
+        name.copied().unwrap_or("?")
+    }
+
+    /// Checks that the index lies within `M`'s columns (always so for generated handles and
+    /// [`Column::named`]): helpers call it before indexing a state.
+    pub(crate) fn check<const N: usize, const NI: usize, const NO: usize>(self) -> Result<Self, Error>
+    where
+        M: Mechanism<N, NI, NO>,
+    {
+        let ok = match self.index {
+            ColumnIndex::Input(i) => i < NI,
+            ColumnIndex::Unknown(u) => u < N,
+            ColumnIndex::Output(o) => o < NO,
+        };
+        if ok {
+            Ok(self)
+        } else {
+            Err(Error::InvalidArgument(format!("column {self:?} does not exist in `{}`", M::NAME)))
+        }
+    }
+
+    /// The column's value in a state.
+    pub fn value<const N: usize, const NI: usize, const NO: usize>(self, k: &Kin<N, NI, NO>) -> f64 {
+        match self.index {
+            ColumnIndex::Input(i) => k.x[i],
+            ColumnIndex::Unknown(u) => k.q[u],
+            ColumnIndex::Output(o) => k.out[o],
+        }
+    }
+
+    /// Its velocity analogs in a state: the derivative with respect to each input.
+    pub fn gradient<const N: usize, const NI: usize, const NO: usize>(self, k: &Kin<N, NI, NO>) -> [f64; NI] {
+        match self.index {
+            ColumnIndex::Input(i) => std::array::from_fn(|j| if i == j { 1.0 } else { 0.0 }),
+            ColumnIndex::Unknown(u) => k.dq[u],
+            ColumnIndex::Output(o) => k.dout[o],
+        }
+    }
+
+    /// Its acceleration analogs in a state: the second derivative with respect to each pair of
+    /// inputs (an input's own are zero).
+    pub fn hessian<const N: usize, const NI: usize, const NO: usize>(self, k: &Kin<N, NI, NO>) -> [[f64; NI]; NI] {
+        match self.index {
+            ColumnIndex::Input(_) => [[0.0; NI]; NI],
+            ColumnIndex::Unknown(u) => k.d2q[u],
+            ColumnIndex::Output(o) => k.d2out[o],
+        }
+    }
+
+    /// The column along a straight path through state `k` at path parameter `s`, the inputs
+    /// moving by `dir` per unit of `s`: value, `d/ds = g . dir` and `d2/ds2 = dir . H . dir`
+    /// (a straight path has no curvature term).
+    pub fn jet_along<const N: usize, const NI: usize, const NO: usize>(
+        self,
+        k: &Kin<N, NI, NO>,
+        s: f64,
+        dir: &[f64; NI],
+    ) -> super::Jet {
+        let (g, h) = (self.gradient(k), self.hessian(k));
+        let d1 = (0..NI).map(|i| g[i] * dir[i]).sum();
+        let d2 = (0..NI).map(|i| (0..NI).map(|j| h[i][j] * dir[j]).sum::<f64>() * dir[i]).sum();
+        super::Jet { x: s, value: self.value(k), d1, d2 }
+    }
+
+    /// The column's value and analogs in a single-input state, as a function of the input.
+    pub fn jet<const N: usize, const NO: usize>(self, k: &Kin<N, 1, NO>) -> super::Jet {
+        self.jet_along(k, k.x[0], &[1.0])
+    }
+}

@@ -1,0 +1,39 @@
+//! What kind of quantity a column holds, as inferred by `mechanism!` from the declaration:
+//! the source of the units in a table's CSV header.
+
+/// The kind of quantity of an input, unknown or output column.
+///
+/// `mechanism!` infers it from the declared equations: a leaf that is a term (possibly scaled by
+/// numbers or sines and cosines) of a trigonometric argument is an angle, of a loop projection a
+/// length; points are lengths; a scalar output gets the kind of its expression when its
+/// dimension follows from those (`atan2(..)` an angle, a difference of lengths a length, a ratio
+/// of lengths dimensionless). Anything else is [`QuantityKind::Other`]: kinloop does not guess
+/// (a time input, a dimensionless factor multiplying a length).
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
+#[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
+#[non_exhaustive]
+pub enum QuantityKind {
+    /// An angle, in radians.
+    Angle,
+    /// A length, in the unit of the parameters' lengths (which kinloop does not know).
+    Length,
+    /// A pure number (a ratio of lengths, a sine).
+    Dimensionless,
+    /// Not inferred: no unit is written.
+    Other,
+}
+
+/// The unit written for a length when the table was not told the unit of length.
+pub const LENGTH_UNIT: &str = "length unit";
+
+impl QuantityKind {
+    /// The unit written into a CSV header: `rad`, [`LENGTH_UNIT`], `1`, or `""` (none).
+    pub const fn unit(self) -> &'static str {
+        match self {
+            QuantityKind::Angle => "rad",
+            QuantityKind::Length => LENGTH_UNIT,
+            QuantityKind::Dimensionless => "1",
+            QuantityKind::Other => "",
+        }
+    }
+}

@@ -1,0 +1,117 @@
+//! The kind of quantity `mechanism!` infers for every column (angle, length, dimensionless, or
+//! not inferred), and the units it puts into a table's CSV header, read back with the `csv`
+//! crate (not the runtime's reader).
+
+use kinloop::QuantityKind::{Angle, Dimensionless, Length, Other};
+use kinloop::{Mechanism, Table};
+use kinloop_fixtures::roller_edger::RollerEdger;
+use kinloop_fixtures::{FiveBar, RhombicDrive};
+use std::collections::HashMap;
+
+kinloop::mechanism! {
+    /// A slider at `u l` along a rod turned by `phi`, and outputs of each kind.
+    pub struct Kinds {
+        params l = 2.0, h = 0.5, k = 3.0;
+        input phi;
+        unknowns u = 0.5, y = 1.0;
+        loop rod: u * l @ phi == (h, y);
+        output ratio = y / h;
+        output angle = atan2(y, h);
+        output reach = sqrt(h ^ 2 + y ^ 2);
+        output mixed = y + phi;
+        output scaled = k * y;
+    }
+}
+
+kinloop::mechanism! {
+    /// A time input inside a sine (`sin(w t)`): `w t` is an angle, but neither factor alone is.
+    pub struct Oscillator {
+        params w = 2.0, a = 0.5, l = 1.0, h = 2.0;
+        input t;
+        unknowns y = 0, th = 0, x = h - l;
+        eq follow: y == a * sin(w * t);
+        loop rod: (x, 0) + l @ th == (h, y);
+    }
+}
+
+/// The header of a table's CSV, read by the `csv` crate: column name -> unit.
+fn header(t: &Table) -> HashMap<String, String> {
+    let mut bytes = Vec::new();
+    t.write_csv(&mut bytes).unwrap();
+    let mut r = csv::Reader::from_reader(&bytes[..]);
+    let fields: Vec<String> = r.headers().unwrap().iter().map(str::to_string).collect();
+    assert_eq!(fields.len(), t.columns.len());
+    assert_eq!(r.records().count(), t.rows.len());
+    fields
+        .iter()
+        .map(|f| match f.strip_suffix(']').and_then(|f| f.split_once(" [")) {
+            Some((name, unit)) => (name.to_string(), unit.to_string()),
+            None => (f.clone(), String::new()),
+        })
+        .collect()
+}
+
+#[test]
+fn kinds_are_inferred_from_the_declaration() {
+    assert_eq!(RhombicDrive::INPUT_KINDS, [Angle]);
+    assert_eq!(RhombicDrive::UNKNOWN_KINDS, [Angle, Angle, Length, Length]);
+    // Three points (x, y each), then `gap = x_f - x_c`.
+    assert_eq!(RhombicDrive::OUTPUT_KINDS, [Length; 7]);
+    assert_eq!(FiveBar::INPUT_KINDS, [Angle, Angle]);
+    // `spread = phi3 - phi2`: a difference of angles.
+    assert_eq!(FiveBar::OUTPUT_KINDS, [Length, Length, Angle]);
+    // Time drives the roller edger (`s1 = v1 t`): neither an angle nor a length.
+    assert_eq!(RollerEdger::INPUT_KINDS, [Other]);
+    assert_eq!(RollerEdger::UNKNOWN_KINDS, [Angle; 4]);
+    // `u` multiplies `l`, and neither is inferred (one is a ratio, but nothing says which); `y`
+    // and `h` are lengths; the outputs by their expressions; a length plus an angle is nothing
+    // kinloop names, nor a length times a parameter whose kind is unknown.
+    assert_eq!(Kinds::UNKNOWN_KINDS, [Other, Length]);
+    assert_eq!(Kinds::OUTPUT_KINDS, [Dimensionless, Angle, Length, Other, Other]);
+    assert_eq!(Oscillator::INPUT_KINDS, [Other]);
+    // `y` and `x` are terms of the loop's projections: lengths; `th` turns inside `cos`.
+    assert_eq!(Oscillator::UNKNOWN_KINDS, [Length, Angle, Length]);
+    // The trait carries the same constants for generic code.
+    assert_eq!(<Kinds as Mechanism<2, 1, 5>>::OUTPUT_KINDS, Kinds::OUTPUT_KINDS);
+}
+
+#[test]
+fn csv_headers_carry_the_inferred_units() {
+    let m = RhombicDrive::default();
+    let states: Vec<_> = m.sweep(0.0, 1.0, 5, &m.guess(0.0)).unwrap().map(Result::unwrap).collect();
+    let table = Table::from_states::<RhombicDrive, _, _, _>(states.iter().map(|s| &s.flat));
+    let h = header(&table);
+    assert_eq!(h["phi1"], "rad");
+    assert_eq!(h["phi2"], "rad");
+    assert_eq!(h["x_c"], "length unit");
+    assert_eq!(h["s2.x"], "length unit");
+    assert_eq!(h["gap"], "length unit");
+    assert_eq!(h["d(phi2)/d(phi1)"], "rad/rad");
+    assert_eq!(h["d(x_c)/d(phi1)"], "length unit/rad");
+    assert_eq!(h["d2(x_c)/d(phi1)^2"], "length unit/rad^2");
+    assert_eq!(h["d2(s2.y)/d(phi1)^2"], "length unit/rad^2");
+    // Naming the unit of length replaces the placeholder everywhere, angles stay radians.
+    let h = header(&table.clone().with_length_unit("mm"));
+    assert_eq!((h["x_c"].as_str(), h["d(s2.x)/d(phi1)"].as_str(), h["phi2"].as_str()), ("mm", "mm/rad", "rad"));
+    // What the table reads back is what it wrote.
+    let mut bytes = Vec::new();
+    table.write_csv(&mut bytes).unwrap();
+    assert_eq!(Table::read_csv(&bytes[..]).unwrap(), table);
+}
+
+#[test]
+fn units_of_two_inputs_a_time_input_and_overrides() {
+    let m = FiveBar::default();
+    let table = m.sweep([1.2, 0.8], [1.5, 1.1], 3, &m.guess([1.2, 0.8])).unwrap().table().unwrap();
+    let h = header(&table);
+    assert_eq!(h["d2(pc.x)/d(th1)d(th2)"], "length unit/rad^2");
+    assert_eq!(h["d(spread)/d(th2)"], "rad/rad");
+    let m = RollerEdger::default();
+    let table = m.sweep(0.0, 1.0, 3, &m.guess(0.0)).unwrap().table().unwrap();
+    let h = header(&table);
+    // No unit is claimed for a quantity kinloop cannot classify...
+    assert_eq!((h["t"].as_str(), h["d(phi1)/d(t)"].as_str(), h["phi1"].as_str()), ("", "", "rad"));
+    // ... until the user states it; the inferred units stay.
+    let h = header(&table.with_units(&[("t", "s")]));
+    assert_eq!((h["t"].as_str(), h["d(phi1)/d(t)"].as_str(), h["d2(phi1)/d(t)^2"].as_str()), ("s", "rad/s", "rad/s^2"));
+}
