@@ -438,7 +438,7 @@ pub(crate) enum Found<const N: usize> {
 }
 
 /// Follows the curve from `start` (tangent oriented with increasing sigma) for at most
-/// `max_arc` of arclength, watching for a limit position (the tangent's sigma component changing
+/// `max_arc` of arclength (`ds0` and `max_arc` in the scaled coordinates of `metric`), watching for a limit position (the tangent's sigma component changing
 /// sign) and for a sign change of the Jacobian determinant; locates the first one found.
 pub(crate) fn trace<M, const N: usize, const NI: usize, const NO: usize>(
     m: &M,
