@@ -237,6 +237,16 @@ macro_rules! __named_api {
 
         /// The named API (see [`Named`](::kinloop::Named), where each method is described).
         impl $name {
+            /// The kind of quantity of each input (angle, length, ...), inferred from the
+            /// declaration (the units of a table's CSV header).
+            pub const INPUT_KINDS: [$crate::QuantityKind; $ni] = <Self as $crate::Mechanism<$n, $ni, $no>>::INPUT_KINDS;
+            /// The kind of quantity of each unknown, inferred from the declaration.
+            pub const UNKNOWN_KINDS: [$crate::QuantityKind; $n] =
+                <Self as $crate::Mechanism<$n, $ni, $no>>::UNKNOWN_KINDS;
+            /// The kind of quantity of each output column, inferred from the declaration.
+            pub const OUTPUT_KINDS: [$crate::QuantityKind; $no] =
+                <Self as $crate::Mechanism<$n, $ni, $no>>::OUTPUT_KINDS;
+
             /// Checks that every parameter is finite.
             pub fn check(&self) -> ::core::result::Result<(), $crate::Error> {
                 <Self as $crate::Named<$n, $ni, $no>>::check(self)
@@ -463,3 +473,56 @@ macro_rules! __serde_derive {
 }
 
 pub use crate::__serde_derive as serde_derive;
+
+/// `NameColumns` and the constant `Name::COL` of a generated mechanism: one typed
+/// [`Column`] handle per input, unknown, point coordinate and scalar output, each with its
+/// name and its index in the flat arrays (given by the expansion of `mechanism!`).
+#[doc(hidden)]
+#[macro_export]
+macro_rules! __columns {
+    ($vis:vis $name:ident, $columns:ident;
+     inputs $($i:ident $is:literal $ii:literal),*;
+     unknowns $($u:ident $us:literal $ui:literal),*;
+     points $($p:ident $px:literal $py:literal $pi:literal),*;
+     outputs $($o:ident $os:literal $oi:literal),*) => {
+        #[doc = concat!("The columns of [`", stringify!($name), "`] as typed handles for the analysis helpers \
+            (`kinloop::analysis::Sampled`): `", stringify!($name), "::COL.name`, `", stringify!($name), "::COL.point.x`.")]
+        #[derive(Clone, Copy, Debug)]
+        #[allow(non_snake_case)]
+        $vis struct $columns {
+            $(#[doc = concat!("Input `", $is, "`.")] pub $i: $crate::analysis::Column<$name>,)*
+            $(#[doc = concat!("Unknown `", $us, "`.")] pub $u: $crate::analysis::Column<$name>,)*
+            $(#[doc = concat!("Point `", $px, "`, `", $py, "`.")] pub $p: $crate::Vec2<$crate::analysis::Column<$name>>,)*
+            $(#[doc = concat!("Output `", $os, "`.")] pub $o: $crate::analysis::Column<$name>,)*
+        }
+        impl $name {
+            #[doc = concat!("Every column of [`", stringify!($name), "`] as a typed analysis handle (see [`",
+                stringify!($columns), "`]).")]
+            pub const COL: $columns = {
+                use $crate::analysis::{Column as C, ColumnIndex as I};
+                $columns {
+                    $($i: C::__generated(I::Input($ii), $is),)*
+                    $($u: C::__generated(I::Unknown($ui), $us),)*
+                    $($p: $crate::Vec2 { x: C::__generated(I::Output($pi), $px), y: C::__generated(I::Output($pi + 1), $py) },)*
+                    $($o: C::__generated(I::Output($oi), $os),)*
+                }
+            };
+        }
+    };
+}
+#[doc(hidden)]
+pub use crate::__columns as columns;
+
+/// The kinds of quantity of a generated mechanism's columns in its `Mechanism` implementation,
+/// from one letter each (see [`QuantityKind`]): `kinds!(NI b"a", N b"al", NO b"ll")`.
+#[doc(hidden)]
+#[macro_export]
+macro_rules! __kinds {
+    ($ni:literal $i:literal, $n:literal $u:literal, $no:literal $o:literal) => {
+        const INPUT_KINDS: [$crate::QuantityKind; $ni] = $crate::QuantityKind::__from_codes($i);
+        const UNKNOWN_KINDS: [$crate::QuantityKind; $n] = $crate::QuantityKind::__from_codes($u);
+        const OUTPUT_KINDS: [$crate::QuantityKind; $no] = $crate::QuantityKind::__from_codes($o);
+    };
+}
+#[doc(hidden)]
+pub use crate::__kinds as kinds;

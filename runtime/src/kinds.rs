@@ -27,6 +27,24 @@ pub enum QuantityKind {
 pub const LENGTH_UNIT: &str = "length unit";
 
 impl QuantityKind {
+    /// For the expansion of `mechanism!`: kinds from one letter each (`a`ngle, `l`ength,
+    /// `d`imensionless, anything else not inferred), to keep the generated code short.
+    #[doc(hidden)]
+    pub const fn __from_codes<const K: usize>(codes: &[u8; K]) -> [QuantityKind; K] {
+        let mut out = [QuantityKind::Other; K];
+        let mut i = 0;
+        while i < K {
+            out[i] = match codes[i] {
+                b'a' => QuantityKind::Angle,
+                b'l' => QuantityKind::Length,
+                b'd' => QuantityKind::Dimensionless,
+                _ => QuantityKind::Other,
+            };
+            i += 1;
+        }
+        out
+    }
+
     /// The unit written into a CSV header: `rad`, [`LENGTH_UNIT`], `1`, or `""` (none).
     pub const fn unit(self) -> &'static str {
         match self {

@@ -32,7 +32,6 @@ fn constants(model: &Model, plan: &Plan, t: &Types) -> TokenStream {
     let estrs: Vec<String> = model.equations.iter().map(|e| e.name.clone()).collect();
     let ostrs = model.output_names();
     let decomposition = super::describe::decomposition(model, plan);
-    let kinds = kind_constants(model, plan);
     let blocks = plan.blocks.iter().map(|b| {
         let us = b.unknowns.iter().map(|&u| &ustrs[u]);
         let es = b.equations.iter().map(|&e| &estrs[e]);
@@ -55,7 +54,6 @@ fn constants(model: &Model, plan: &Plan, t: &Types) -> TokenStream {
             pub const OUTPUTS: [&'static str; #no] = [#(#ostrs),*];
             /// The block-triangular decomposition of the equations, in solve order.
             pub const BLOCKS: &'static [#rt::BlockInfo] = &[#(#blocks),*];
-            #kinds
             /// The decomposition in words: counts and mobility, then one line per block in
             /// solve order (closed form, Newton or linear, unknowns `<-` equations).
             pub const DECOMPOSITION: &'static str = #decomposition;
@@ -73,29 +71,27 @@ fn constants(model: &Model, plan: &Plan, t: &Types) -> TokenStream {
     }
 }
 
-/// `INPUT_KINDS`, `UNKNOWN_KINDS`, `OUTPUT_KINDS`: the kind of quantity of every column (see
-/// [`crate::plan::kinds`]).
+/// `INPUT_KINDS`, `UNKNOWN_KINDS`, `OUTPUT_KINDS` of the `Mechanism` implementation: the kind
+/// of quantity of every column (see [`crate::plan::kinds`]), one letter each, written out by
+/// the runtime's macro (the inherent constants forward to them).
 fn kind_constants(model: &Model, plan: &Plan) -> TokenStream {
     let rt = runtime();
     let Dims { n, ni, no, .. } = Dims::of(plan);
     let kinds = crate::plan::kinds::classify(model, &plan.graph, &plan.residuals, &plan.outputs);
     let list = |ks: &[Kind]| {
-        let ks = ks.iter().map(|k| {
-            let v = proc_macro2::Ident::new(&format!("{k:?}"), proc_macro2::Span::call_site());
-            quote!(#rt::QuantityKind::#v)
-        });
-        quote!([#(#ks),*])
+        let codes: String = ks
+            .iter()
+            .map(|k| match k {
+                Kind::Angle => 'a',
+                Kind::Length => 'l',
+                Kind::Dimensionless => 'd',
+                Kind::Other => 'o',
+            })
+            .collect();
+        proc_macro2::Literal::byte_string(codes.as_bytes())
     };
     let (i, u, o) = (list(&kinds.inputs), list(&kinds.unknowns), list(&kinds.outputs));
-    quote! {
-        /// The kind of quantity of each input (angle, length, ...), inferred from the
-        /// declaration: the units of a table's CSV header.
-        pub const INPUT_KINDS: [#rt::QuantityKind; #ni] = #i;
-        /// The kind of quantity of each unknown, inferred from the declaration.
-        pub const UNKNOWN_KINDS: [#rt::QuantityKind; #n] = #u;
-        /// The kind of quantity of each output column, inferred from the declaration.
-        pub const OUTPUT_KINDS: [#rt::QuantityKind; #no] = #o;
-    }
+    quote!(#rt::kinds!(#ni #i, #n #u, #no #o);)
 }
 
 /// The inherent named API (forwarders to the runtime's `Named`), `state.motion` and the
@@ -119,6 +115,7 @@ fn mechanism_impl(model: &Model, plan: &Plan, t: &Types) -> TokenStream {
     let guess = straight_line(plan, &names, &plan.guesses, false);
     let jacobian = jacobian_body(plan, &names);
     let lints = kernel_lints();
+    let kinds = kind_constants(model, plan);
     let (x, q, g, cfg) = (
         quote!(__x: &[f64; #ni]),
         quote!(__q: &[f64; #n]),
@@ -136,9 +133,7 @@ fn mechanism_impl(model: &Model, plan: &Plan, t: &Types) -> TokenStream {
             const EQUATIONS: [&'static str; #n] = #name::EQUATIONS;
             const OUTPUTS: [&'static str; #no] = #name::OUTPUTS;
             const BLOCKS: &'static [#rt::BlockInfo] = #name::BLOCKS;
-            const INPUT_KINDS: [#rt::QuantityKind; #ni] = #name::INPUT_KINDS;
-            const UNKNOWN_KINDS: [#rt::QuantityKind; #n] = #name::UNKNOWN_KINDS;
-            const OUTPUT_KINDS: [#rt::QuantityKind; #no] = #name::OUTPUT_KINDS;
+            #kinds
 
             fn param_values(&self) -> ::std::vec::Vec<f64> {
                 #name::param_values(self).to_vec()

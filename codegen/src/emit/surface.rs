@@ -93,51 +93,30 @@ pub fn items(s: &Surface, t: &Types) -> TokenStream {
 }
 
 /// `NameColumns` and the constant `Name::COL`: one typed analysis handle per input, unknown
-/// and output column, with the state's paths (`COL.beta`, `COL.cp.x`).
+/// and output column, with the state's paths (`COL.beta`, `COL.cp.x`); written by the runtime's
+/// macro from the names and flat indices.
 fn columns_struct(s: &Surface, t: &Types) -> TokenStream {
-    let (rt, vis, name, ty, plain) = (runtime(), &s.vis, &t.name, &t.columns, &t.plain);
-    let (mut fields, mut values) = (Vec::new(), Vec::new());
-    let handle = |kind: &str, index: usize, column: String| {
-        let (kind, index) = (Ident::new(kind, Span::call_site()), lit(index));
-        quote!(#rt::Column::__generated(#rt::ColumnIndex::#kind(#index), #column))
+    let (rt, vis, name, ty) = (runtime(), &s.vis, &t.name, &t.columns);
+    let named = |fields: &[Field]| -> Vec<TokenStream> {
+        let entry = |(k, f): (usize, &Field)| {
+            let (n, plain, k) = (&f.name, f.name.unraw().to_string(), lit(k));
+            quote!(#n #plain #k)
+        };
+        fields.iter().enumerate().map(entry).collect()
     };
-    let groups = [(&s.inputs, "Input", "Input"), (&s.unknowns, "Unknown", "Unknown")];
-    for (list, kind, doc) in groups {
-        for (k, f) in list.iter().enumerate() {
-            let (d, n) = (f.doc(doc), &f.name);
-            fields.push(quote!(#d pub #n: #rt::Column<#name>,));
-            let h = handle(kind, k, n.unraw().to_string());
-            values.push(quote!(#n: #h));
-        }
-    }
-    for (k, f) in s.points.iter().enumerate() {
-        let (d, n, plain) = (f.doc("Point"), &f.name, f.name.unraw().to_string());
-        fields.push(quote!(#d pub #n: #rt::Vec2<#rt::Column<#name>>,));
-        let (x, y) = (handle("Output", 2 * k, format!("{plain}.x")), handle("Output", 2 * k + 1, format!("{plain}.y")));
-        values.push(quote!(#n: #rt::Vec2 { x: #x, y: #y }));
-    }
-    for (k, f) in s.scalars.iter().enumerate() {
-        let (d, n) = (f.doc("Output"), &f.name);
-        fields.push(quote!(#d pub #n: #rt::Column<#name>,));
-        let h = handle("Output", 2 * s.points.len() + k, n.unraw().to_string());
-        values.push(quote!(#n: #h));
-    }
-    let doc = format!(
-        "The columns of [`{plain}`] as typed handles for the analysis helpers \
-         (`kinloop::analysis::Sampled`): `{plain}::COL.name`, `{plain}::COL.point.x`."
-    );
-    let col_doc = format!("Every column of [`{plain}`] as a typed analysis handle (see [`{plain}Columns`]).");
+    let (inputs, unknowns) = (named(&s.inputs), named(&s.unknowns));
+    let points = s.points.iter().enumerate().map(|(k, f)| {
+        let (n, plain) = (&f.name, f.name.unraw());
+        let (x, y, k) = (format!("{plain}.x"), format!("{plain}.y"), lit(2 * k));
+        quote!(#n #x #y #k)
+    });
+    let scalars = s.scalars.iter().enumerate().map(|(k, f)| {
+        let (n, plain, k) = (&f.name, f.name.unraw().to_string(), lit(2 * s.points.len() + k));
+        quote!(#n #plain #k)
+    });
     quote! {
-        #[doc = #doc]
-        #[derive(Clone, Copy, Debug)]
-        #[allow(non_snake_case)]
-        #vis struct #ty {
-            #(#fields)*
-        }
-        impl #name {
-            #[doc = #col_doc]
-            pub const COL: #ty = #ty { #(#values),* };
-        }
+        #rt::columns!(#vis #name, #ty; inputs #(#inputs),*; unknowns #(#unknowns),*;
+            points #(#points),*; outputs #(#scalars),*);
     }
 }
 
