@@ -188,13 +188,13 @@ fn first_non_finite<const N: usize, const K: usize>(ev: &BlockEval<N, K>) -> Opt
 #[inline(always)]
 fn newton_step<const N: usize, const K: usize>(ev: &BlockEval<N, K>, s: &[f64; N]) -> ([f64; N], f64) {
     if N == 1 {
-        // A scalar block needs no factorisation: the row-equilibrated pivot is `|J| / s`
-        // (`0` where it is not finite, as for a factorised block).
+        // A scalar block needs no factorisation: the row-equilibrated pivot is `|J| / s` (NaN
+        // when both vanish, which fails every test and is reported as 0; a non-finite `J` is
+        // caught by the callers).
         let j = ev.j[0][0];
         let mut dz = [0.0; N];
         dz[0] = -ev.f[0] / j;
-        let pivot = j.abs() / s[0];
-        return (dz, if pivot.is_finite() { pivot } else { 0.0 });
+        return (dz, j.abs() / s[0]);
     }
     let lu = Lu::factor(&ev.j, *s);
     let mut neg_f = ev.f;
@@ -435,7 +435,7 @@ impl<const N: usize, const K: usize> Iter<N, K> {
             row: argmax_scaled(&self.ev.f, s),
             iterations: self.iterations,
             residual: rho,
-            pivot_ratio: pivot,
+            pivot_ratio: if pivot.is_nan() { 0.0 } else { pivot },
             tolerance: cfg.singular_tol,
         }
     }
@@ -566,7 +566,8 @@ impl<const N: usize, const K: usize> Iter<N, K> {
         let row = argmax_scaled(&self.ev.f, s);
         let iterations = self.iterations;
         if rho <= STALL_RESIDUAL {
-            BlockFailure::Singular { row, iterations, residual: rho, pivot_ratio: pivot, tolerance: cfg.singular_tol }
+            let pivot_ratio = if pivot.is_nan() { 0.0 } else { pivot };
+            BlockFailure::Singular { row, iterations, residual: rho, pivot_ratio, tolerance: cfg.singular_tol }
         } else {
             BlockFailure::NoAssembly { row, iterations, residual: rho }
         }
