@@ -1,8 +1,9 @@
-//! Kinematic steps for instruction counts under callgrind: `closed_form_step VARIANT STEPS` runs
-//! `STEPS` steps of turns of 720 (0.5 degree) with one of
+//! Kinematic steps for instruction counts under callgrind: `closed_form_step VARIANT STEPS [TURN]`
+//! runs `STEPS` steps of turns of `TURN` steps (default 720: 0.5 degree) with one of
 //! * rhombic drive: `hand` (the paper's closed form written by hand), `point` (kinloop's
 //!   `kinematics_flat` from the previous position: closed-form blocks), `newton` (the same with
-//!   `#[kinloop(newton)]`), `sweep` (kinloop's own `Sweep`), `newton-sweep`;
+//!   `#[kinloop(newton)]`), `newton-taylor` (that, warm-started by the benchmarks' second-order
+//!   predictor), `sweep` (kinloop's own `Sweep`), `newton-sweep`;
 //! * four-bar with its coupler point, gear-lever rocker: `four-bar-hand`, `four-bar-point`,
 //!   `four-bar-sweep`, `gear-lever-hand`, `gear-lever-point`, `gear-lever-sweep` (the hand
 //!   closed forms of `kinloop_bench::hand`);
@@ -36,14 +37,21 @@ kinloop::mechanism! {
     }
 }
 
+/// Steps per turn unless a third argument gives another number (the criterion benchmarks use
+/// 1000000, where a Taylor prediction already meets Newton's tolerance).
 const TURN: usize = 720;
+
+/// The steps per turn: the third argument, or [`TURN`].
+fn turn() -> usize {
+    std::env::args().nth(3).and_then(|s| s.parse().ok()).unwrap_or(TURN)
+}
 
 fn steps_of<S: Stepper<N>, const N: usize>(s: &S, guess: [f64; N], steps: usize) -> f64 {
     policy_steps(s, WarmStart::Previous, guess, steps)
 }
 
 fn policy_steps<S: Stepper<N>, const N: usize>(s: &S, policy: WarmStart, guess: [f64; N], steps: usize) -> f64 {
-    let mut sweep = Sweep::start(s, TURN, policy, guess).expect("start");
+    let mut sweep = Sweep::start(s, turn(), policy, guess).expect("start");
     let mut acc = 0.0;
     for _ in 0..steps {
         acc += black_box(sweep.advance(s).expect("step")).q[0];
@@ -56,7 +64,7 @@ fn sweep_of<M: kinloop::Mechanism<N, 1, NO>, const N: usize, const NO: usize>(
     guess: [f64; N],
     steps: usize,
 ) -> f64 {
-    let mut s = KinloopSweep::start(m, TURN, guess).expect("start");
+    let mut s = KinloopSweep::start(m, turn(), guess).expect("start");
     let mut acc = 0.0;
     for _ in 0..steps {
         acc += black_box(s.advance().expect("step")).q[0];
@@ -82,6 +90,9 @@ fn main() {
         "point" => steps_of(&Kinloop::<RhombicDrive, 0>::new(m), g, steps),
         "newton" => steps_of(&Kinloop::<RhombicNewton, 0>::new(RhombicNewton::default()), g, steps),
         "sweep" => sweep_of(&m, g, steps),
+        "newton-taylor" => {
+            policy_steps(&Kinloop::<RhombicNewton, 0>::new(RhombicNewton::default()), WarmStart::Taylor, g, steps)
+        }
         "newton-sweep" => sweep_of(&RhombicNewton::default(), g, steps),
         "four-bar-hand" => steps_of(&four_hand, gf, steps),
         "four-bar-point" => steps_of(&Kinloop::<FourBar, 2>::new(four), gf, steps),

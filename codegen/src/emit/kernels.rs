@@ -495,7 +495,8 @@ impl Kernel<'_> {
 
     /// Returns the state; one sum tells whether every value is finite (NaN and infinity
     /// propagate), and the state is examined value by value only on the cold path (in the
-    /// runtime's `checked`).
+    /// runtime's `checked`). The usual path returns the state itself (passed through `checked`,
+    /// the ~200-byte state was copied once more).
     fn finish(&self) -> TokenStream {
         let (plan, names) = (self.plan, self.names);
         let ni = plan.ni;
@@ -518,7 +519,11 @@ impl Kernel<'_> {
         let (sum, kin, rt, guess) = (balanced_sum(terms), self.kin(), &self.rt, self.guess_arg());
         quote! {
             let __sum: f64 = #sum;
-            #rt::checked(self, #kin, __sum, #guess)
+            let __kin = #kin;
+            if !__sum.is_finite() {
+                return #rt::checked(self, __kin, __sum, #guess);
+            }
+            ::core::result::Result::Ok(__kin)
         }
     }
 

@@ -461,7 +461,11 @@ where
     let mut ds = ds0;
     let mut walked = 0.0;
     while walked < max_arc {
-        let Some(b) = arc_step(m, path, metric, &a, ds, cfg) else {
+        // A step whose tangent turns sharply has left the curve being followed: at a branch
+        // point (e.g. two coincident joints) the corrector can land on a crossing curve, along
+        // which the input may not move at all. A smaller step stays on the curve; a larger one
+        // later jumps the branch point onto the curve's smooth continuation.
+        let Some(b) = arc_step(m, path, metric, &a, ds, cfg).filter(|b| a.tangent.dot(&b.tangent) >= MIN_TURN_COS) else {
             ds *= 0.5;
             if ds < 1e-14 * (1.0 + max_arc) {
                 return None;
@@ -509,6 +513,11 @@ where
     }
     None
 }
+
+/// Smallest cosine of the angle between the unit tangents at the two ends of an accepted
+/// continuation step (about 26 degrees): a smooth curve turns less over a step small against its
+/// radius of curvature, a step landing on another curve through a branch point turns more.
+const MIN_TURN_COS: f64 = 0.9;
 
 /// Signed determinant of the column-equilibrated full Jacobian at `(x, q)`.
 pub(crate) fn signed_det<M, const N: usize, const NI: usize, const NO: usize>(m: &M, x: &[f64; NI], q: &[f64; N]) -> f64

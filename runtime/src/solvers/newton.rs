@@ -87,6 +87,13 @@ const FLOOR_FACTOR: f64 = 1e3;
 /// from an ill-conditioned block, are iterated and checked).
 const MAX_FREE_CORRECTION: f64 = 1e-6;
 
+/// The largest scaled final correction of an iteration applied without evaluating the block
+/// again: a few rounding units, below which the values the generated code keeps from the last
+/// evaluation (sines and cosines of the unknowns, from which later unknowns and outputs are
+/// computed) are as accurate as new ones. A larger correction is checked by a new evaluation
+/// (and undone if it made the residual worse).
+const MAX_UNCHECKED_CORRECTION: f64 = 16.0 * f64::EPSILON;
+
 /// A final step this large relative to the previous one means linear, not quadratic,
 /// convergence.
 const LINEAR_CONTRACTION: f64 = 0.1;
@@ -180,6 +187,15 @@ fn first_non_finite<const N: usize, const K: usize>(ev: &BlockEval<N, K>) -> Opt
 /// The Newton step `-J^-1 f` with `J` equilibrated by the row magnitudes, and the pivot ratio.
 #[inline(always)]
 fn newton_step<const N: usize, const K: usize>(ev: &BlockEval<N, K>, s: &[f64; N]) -> ([f64; N], f64) {
+    if N == 1 {
+        // A scalar block needs no factorisation: the row-equilibrated pivot is `|J| / s` (NaN
+        // when both vanish, which fails every test and is reported as 0; a non-finite `J` is
+        // caught by the callers).
+        let j = ev.j[0][0];
+        let mut dz = [0.0; N];
+        dz[0] = -ev.f[0] / j;
+        return (dz, j.abs() / s[0]);
+    }
     let lu = Lu::factor(&ev.j, *s);
     let mut neg_f = ev.f;
     for v in &mut neg_f {
@@ -199,15 +215,7 @@ fn free_correction<const N: usize, const K: usize>(
     z0: [f64; N],
     cfg: &NewtonConfig,
 ) -> Option<[f64; N]> {
-    let (dz, pivot) = if N == 1 {
-        // A scalar block needs no factorisation: the row-equilibrated pivot is `|J| / s`.
-        let j = ev.j[0][0];
-        let mut dz = [0.0; N];
-        dz[0] = -ev.f[0] / j;
-        (dz, j.abs() / s[0])
-    } else {
-        newton_step(ev, s)
-    };
+    let (dz, pivot) = newton_step(ev, s);
     let step = scaled_step(&dz, &z0, &ev.unit);
     // NaN fails both tests.
     if !(pivot > cfg.singular_tol && step <= MAX_FREE_CORRECTION) {
@@ -255,6 +263,10 @@ pub fn newton<const N: usize, const K: usize>(
 
 /// Newton iterations from `z0`, whose evaluation is `ev0`. The generated code calls it through
 /// [`newton`] when the guess does not meet the tolerance.
+///
+/// The common path (a full Newton step accepted, then convergence) runs in this one function on
+/// local values, so the evaluations stay in registers; the rare paths (backtracking, descent,
+/// failures, a final correction that must be checked) are out of line.
 #[doc(hidden)]
 #[cold]
 #[inline(never)]
@@ -267,6 +279,7 @@ pub fn iterate<const N: usize, const K: usize>(
     if let Some(field) = cfg.invalid_field() {
         return Err(BlockFailure::InvalidConfig { field });
     }
+    let floor = FLOOR_FACTOR * cfg.residual_tol.max(16.0 * f64::EPSILON);
     let mut it = Iter {
         z: z0,
         ev: ev0,
@@ -289,20 +302,13 @@ pub fn iterate<const N: usize, const K: usize>(
         // At the rounding floor the step no longer shrinks below `step_tol` or the residual no
         // longer decreases (a singular root still divides it by about four per iteration).
         let stagnant = rho >= 0.5 * it.prev_rho;
-        let floor = FLOOR_FACTOR * cfg.residual_tol.max(16.0 * f64::EPSILON);
         let at_floor = (step <= cfg.step_tol || stagnant) && rho <= floor;
         if converged || at_floor {
             let termination = if converged { Termination::ResidualTolerance } else { Termination::StepTolerance };
             return it.finish(dz, step, pivot, rho, &s, termination, cfg, &mut eval);
         }
         if it.iterations >= cfg.max_iterations {
-            let row = argmax_scaled(&it.ev.f, &s);
-            // Over the second half of the iterations the residual did not even halve: it
-            // crawls into a minimum that is not a root.
-            if cfg.max_iterations >= 8 && rho > STALL_RESIDUAL && rho > 0.5 * it.rho_mark {
-                return Err(BlockFailure::NoAssembly { row, iterations: it.iterations, residual: rho });
-            }
-            return Err(BlockFailure::NoConvergence { row, iterations: it.iterations, residual: rho });
+            return Err(it.capped(rho, &s, cfg));
         }
         if it.iterations == cfg.max_iterations / 2 {
             it.rho_mark = rho;
@@ -310,7 +316,7 @@ pub fn iterate<const N: usize, const K: usize>(
         let newton_ok = pivot > cfg.singular_tol * 1e-3 && step.is_finite();
         // At the rounding floor only the Newton step is worth trying.
         let moved =
-            (newton_ok && it.search(&dz, &s, cfg, &mut eval)) || (rho > floor && it.descend(&s, cfg, &mut eval));
+            (newton_ok && it.full_step(&dz, &s, cfg, &mut eval)) || (rho > floor && it.descend(&s, cfg, &mut eval));
         if !moved {
             if rho <= floor {
                 // No step decreases a residual already at its rounding floor.
@@ -345,9 +351,11 @@ struct Iter<const N: usize, const K: usize> {
 
 impl<const N: usize, const K: usize> Iter<N, K> {
     /// Ends a converged iteration: diagnoses linear convergence (a singular root), then applies
-    /// the last correction `dz` and re-evaluates there (so the Jacobian and kept values match
-    /// the returned position).
+    /// the last correction `dz`. A correction far below the tolerance is applied as it is; a
+    /// larger one is checked by a new evaluation (so the Jacobian and kept values match the
+    /// returned position) and undone if it made the residual worse.
     #[allow(clippy::too_many_arguments)]
+    #[inline(always)]
     fn finish(
         mut self,
         dz: [f64; N],
@@ -370,28 +378,17 @@ impl<const N: usize, const K: usize> Iter<N, K> {
             // Newton converges quadratically to a regular root; linearly (each step a fixed
             // fraction of the previous one) only where the Jacobian is singular at the root,
             // and the position is then only known to about the size of the last step.
-            return Err(BlockFailure::Singular {
-                row: argmax_scaled(&self.ev.f, s),
-                iterations: self.iterations,
-                residual: rho,
-                pivot_ratio: pivot,
-                tolerance: cfg.singular_tol,
-            });
+            return Err(self.singular(rho, pivot, s, cfg));
         }
         if step.is_finite() && step > 0.0 {
-            let mut z = self.z;
-            for c in 0..N {
-                z[c] += dz[c];
-            }
-            let ev = eval(&z);
-            self.evaluations += 1;
-            let s1 = row_scales(&ev);
-            let rho1 = scaled_residual(&ev.f, &s1);
-            // Keep the correction unless it made things worse (rounding noise near a
-            // singular position); NaN fails the test.
-            if rho1 <= rho.max(cfg.residual_tol) {
-                self.z = z;
-                self.ev = ev;
+            if pivot > cfg.singular_tol && step <= MAX_UNCHECKED_CORRECTION {
+                // A quadratically converging iteration often ends with a correction at the
+                // rounding level: the last evaluation holds at `z` to rounding.
+                for c in 0..N {
+                    self.z[c] += dz[c];
+                }
+            } else {
+                self.checked_correction(&dz, rho, cfg, eval);
             }
         }
         Ok(Solved {
@@ -404,9 +401,63 @@ impl<const N: usize, const K: usize> Iter<N, K> {
         })
     }
 
-    /// Backtracking (Armijo, `c = 1e-4`) along `dz` on the squared scaled residual; moves and
-    /// returns `true` on success.
-    fn search(
+    /// Applies the final correction `dz` after evaluating there, unless it made the residual
+    /// worse than `rho` (rounding noise near a singular position).
+    #[cold]
+    #[inline(never)]
+    fn checked_correction(
+        &mut self,
+        dz: &[f64; N],
+        rho: f64,
+        cfg: &NewtonConfig,
+        eval: &mut impl FnMut(&[f64; N]) -> BlockEval<N, K>,
+    ) {
+        let mut z = self.z;
+        for c in 0..N {
+            z[c] += dz[c];
+        }
+        let ev = eval(&z);
+        self.evaluations += 1;
+        let s1 = row_scales(&ev);
+        let rho1 = scaled_residual(&ev.f, &s1);
+        // NaN fails the test.
+        if rho1 <= rho.max(cfg.residual_tol) {
+            self.z = z;
+            self.ev = ev;
+        }
+    }
+
+    /// The failure of a root reached with linear convergence.
+    #[cold]
+    #[inline(never)]
+    fn singular(&self, rho: f64, pivot: f64, s: &[f64; N], cfg: &NewtonConfig) -> BlockFailure {
+        BlockFailure::Singular {
+            row: argmax_scaled(&self.ev.f, s),
+            iterations: self.iterations,
+            residual: rho,
+            pivot_ratio: if pivot.is_nan() { 0.0 } else { pivot },
+            tolerance: cfg.singular_tol,
+        }
+    }
+
+    /// The failure at the iteration cap: over the second half of the iterations the residual
+    /// did not even halve (it crawls into a minimum that is not a root), or it still decreased.
+    #[cold]
+    #[inline(never)]
+    fn capped(&self, rho: f64, s: &[f64; N], cfg: &NewtonConfig) -> BlockFailure {
+        let row = argmax_scaled(&self.ev.f, s);
+        let iterations = self.iterations;
+        if cfg.max_iterations >= 8 && rho > STALL_RESIDUAL && rho > 0.5 * self.rho_mark {
+            return BlockFailure::NoAssembly { row, iterations, residual: rho };
+        }
+        BlockFailure::NoConvergence { row, iterations, residual: rho }
+    }
+
+    /// The full Newton step `dz` when it decreases the squared scaled residual enough (Armijo,
+    /// `c = 1e-4`), otherwise backtracking along it ([`Iter::search`]); moves and returns `true`
+    /// on success.
+    #[inline(always)]
+    fn full_step(
         &mut self,
         dz: &[f64; N],
         s: &[f64; N],
@@ -414,13 +465,42 @@ impl<const N: usize, const K: usize> Iter<N, K> {
         eval: &mut impl FnMut(&[f64; N]) -> BlockEval<N, K>,
     ) -> bool {
         let phi0 = sum_sq_scaled(&self.ev.f, s);
-        // The slope of phi along dz is -2 phi0 for a Newton step; for another direction it is
-        // 2 g.dz with g = J^T D^-2 f.
+        // The slope of phi along dz is -2 phi0 for a Newton step; computed, so that an
+        // inaccurate solve is caught (it is not a descent direction).
         let slope = directional_slope(&self.ev, s, dz);
         if slope.is_nan() || slope >= 0.0 {
             return false;
         }
-        let mut t = 1.0f64;
+        let mut trial = self.z;
+        for c in 0..N {
+            trial[c] += dz[c];
+        }
+        let ev_t = eval(&trial);
+        self.evaluations += 1;
+        if sum_sq_scaled(&ev_t.f, s) <= phi0 + 1e-4 * slope {
+            self.z = trial;
+            self.ev = ev_t;
+            return true;
+        }
+        self.search(dz, s, phi0, slope, 0.5, cfg, eval)
+    }
+
+    /// Backtracking (Armijo, `c = 1e-4`) along `dz` on the squared scaled residual from the
+    /// damping `t` down to the configured minimum, given its value `phi0` and `slope` at the
+    /// current iterate; moves and returns `true` on success.
+    #[allow(clippy::too_many_arguments)]
+    #[cold]
+    #[inline(never)]
+    fn search(
+        &mut self,
+        dz: &[f64; N],
+        s: &[f64; N],
+        phi0: f64,
+        slope: f64,
+        mut t: f64,
+        cfg: &NewtonConfig,
+        eval: &mut impl FnMut(&[f64; N]) -> BlockEval<N, K>,
+    ) -> bool {
         while t >= cfg.min_damping {
             let mut trial = self.z;
             for c in 0..N {
@@ -442,6 +522,8 @@ impl<const N: usize, const K: usize> Iter<N, K> {
     /// Where the Newton step fails (singular Jacobian, no decrease), Levenberg-Marquardt steps
     /// of increasing damping, down to steepest descent: they leave saddles of the squared
     /// residual that a far guess can lead to. Returns `true` when one decreased the residual.
+    #[cold]
+    #[inline(never)]
     fn descend(
         &mut self,
         s: &[f64; N],
@@ -464,7 +546,12 @@ impl<const N: usize, const K: usize> Iter<N, K> {
                 *v = -*v;
             }
             let dz = lu.solve(neg_g);
-            if dz.iter().all(|v| v.is_finite()) && self.search(&dz, s, cfg, eval) {
+            if !dz.iter().all(|v| v.is_finite()) {
+                continue;
+            }
+            let phi0 = sum_sq_scaled(&self.ev.f, s);
+            let slope = directional_slope(&self.ev, s, &dz);
+            if !(slope.is_nan() || slope >= 0.0) && self.search(&dz, s, phi0, slope, 1.0, cfg, eval) {
                 return true;
             }
         }
@@ -473,11 +560,14 @@ impl<const N: usize, const K: usize> Iter<N, K> {
 
     /// Why no step decreases the residual: at a root the Jacobian is singular (a singular
     /// position); away from one the loops cannot close here.
+    #[cold]
+    #[inline(never)]
     fn stalled(&self, rho: f64, pivot: f64, s: &[f64; N], cfg: &NewtonConfig) -> BlockFailure {
         let row = argmax_scaled(&self.ev.f, s);
         let iterations = self.iterations;
         if rho <= STALL_RESIDUAL {
-            BlockFailure::Singular { row, iterations, residual: rho, pivot_ratio: pivot, tolerance: cfg.singular_tol }
+            let pivot_ratio = if pivot.is_nan() { 0.0 } else { pivot };
+            BlockFailure::Singular { row, iterations, residual: rho, pivot_ratio, tolerance: cfg.singular_tol }
         } else {
             BlockFailure::NoAssembly { row, iterations, residual: rho }
         }
