@@ -335,3 +335,124 @@ impl<const N: usize, const NLU: usize> BlockFactor<N> for SparseLu<N, NLU> {
         self.solve(b)
     }
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn leak<T: Copy>(v: Vec<T>) -> &'static [T] {
+        Box::leak(v.into_boxed_slice())
+    }
+
+    fn odd(p: &[usize]) -> bool {
+        let mut inversions = 0;
+        for i in 0..p.len() {
+            inversions += (i + 1..p.len()).filter(|&j| p[j] < p[i]).count();
+        }
+        inversions % 2 == 1
+    }
+
+    /// The tables of a full `N x N` pattern eliminated with pivots `(prow[k], pcol[k])`.
+    fn full_pattern<const N: usize>(prow: [usize; N], pcol: [usize; N]) -> &'static SparsePattern {
+        let (mut row_at, mut col_at) = ([0; N], [0; N]);
+        for k in 0..N {
+            row_at[prow[k]] = k;
+            col_at[pcol[k]] = k;
+        }
+        let slot = |i: usize, j: usize| (i * N + j) as u32;
+        let (mut l_slot, mut l_row, mut u_slot, mut u_col, mut upd) = (vec![], vec![], vec![], vec![], vec![]);
+        let (mut l_ptr, mut u_ptr) = (vec![0u32], vec![0u32]);
+        for k in 0..N {
+            for i in k + 1..N {
+                l_slot.push(slot(i, k));
+                l_row.push(i as u16);
+                u_slot.push(slot(k, i));
+                u_col.push(i as u16);
+                upd.extend((k + 1..N).map(|j| slot(i, j)));
+            }
+            l_ptr.push(l_slot.len() as u32);
+            u_ptr.push(u_slot.len() as u32);
+        }
+        Box::leak(Box::new(SparsePattern {
+            row_ptr: leak((0..=N).map(|r| (r * N) as u32).collect()),
+            col: leak((0..N * N).map(|e| (e % N) as u16).collect()),
+            slot: leak((0..N * N).map(|e| slot(row_at[e / N], col_at[e % N])).collect()),
+            prow: leak(prow.iter().map(|&r| r as u16).collect()),
+            pcol: leak(pcol.iter().map(|&c| c as u16).collect()),
+            odd: odd(&prow) ^ odd(&pcol),
+            diag: leak((0..N).map(|k| slot(k, k)).collect()),
+            l_ptr: leak(l_ptr),
+            l_slot: leak(l_slot),
+            l_row: leak(l_row),
+            u_ptr: leak(u_ptr),
+            u_slot: leak(u_slot),
+            u_col: leak(u_col),
+            upd: leak(upd),
+        }))
+    }
+
+    fn sparse<const N: usize, const NN: usize>(
+        j: &[[f64; N]; N],
+        pattern: &'static SparsePattern,
+    ) -> SparseJac<N, NN, NN> {
+        SparseJac::new(std::array::from_fn(|e| j[e / N][e % N]), pattern)
+    }
+
+    /// A matrix whose entries `(prow[k], pcol[k])` dominate their columns, with mixed signs.
+    const J: [[f64; 4]; 4] =
+        [[0.3, -5.0, 0.2, 0.1], [4.0, 0.5, -0.3, 0.2], [0.1, 0.2, -0.4, 6.0], [-0.2, 0.3, 3.0, 0.4]];
+    const PROW: [usize; 4] = [1, 0, 3, 2];
+    const PCOL: [usize; 4] = [0, 1, 2, 3];
+
+    #[test]
+    fn static_order_solves_like_the_dense_lu() {
+        let p = full_pattern(PROW, PCOL);
+        let (rows, cols) = ([2.0, 1.0, 4.0, 0.5], [3.0, 5.0, 2.0, 6.0]);
+        let s = sparse::<4, 16>(&J, p).factor_scaled(rows, cols);
+        let d = Lu::factor_scaled(&J, rows, cols);
+        assert!(!s.is_dense());
+        let b = [1.0, -2.0, 0.5, 3.0];
+        let (zs, zd) = (s.solve(b), d.solve(b));
+        for k in 0..4 {
+            assert!((zs[k] - zd[k]).abs() <= 1e-14 * zd[k].abs().max(1.0), "{zs:?} {zd:?}");
+        }
+        // The same matrix: the same determinant and sign.
+        assert_eq!(s.negative_det(), d.negative_det());
+        assert!((s.det() - d.det()).abs() <= 1e-14 * d.det().abs(), "{} {}", s.det(), d.det());
+        assert!(s.pivot_ratio() > 0.1 && d.pivot_ratio() > 0.1);
+        let cols2 = s.solve_cols([[1.0, 0.0], [-2.0, 0.0], [0.5, 0.0], [3.0, 1.0]]);
+        assert_eq!(cols2.map(|r| r[0]), zs);
+    }
+
+    #[test]
+    fn a_weak_static_pivot_falls_back_to_the_dense_lu() {
+        // The static pivot (1, 0) is below a tenth of its column's largest entry.
+        let mut j = J;
+        j[1][0] = 0.01;
+        let p = full_pattern(PROW, PCOL);
+        let s = sparse::<4, 16>(&j, p).factor_cols([1.0; 4]);
+        let d = Lu::factor_cols(&j, [1.0; 4]);
+        assert!(s.is_dense());
+        assert_eq!(s.solve([1.0, 2.0, 3.0, 4.0]), d.solve([1.0, 2.0, 3.0, 4.0]));
+        assert_eq!((s.pivot_ratio(), s.det(), s.negative_det()), (d.pivot_ratio(), d.det(), d.negative_det()));
+    }
+
+    #[test]
+    fn non_finite_entries_and_degenerate_scales_are_singular() {
+        let p = full_pattern(PROW, PCOL);
+        let mut j = J;
+        j[2][1] = f64::NAN;
+        assert_eq!(sparse::<4, 16>(&j, p).factor_cols([1.0; 4]).pivot_ratio(), 0.0);
+        assert_eq!(sparse::<4, 16>(&j, p).first_bad_row(), Some(2));
+        assert_eq!(sparse::<4, 16>(&J, p).factor_cols([1.0, 0.0, 1.0, 1.0]).pivot_ratio(), 0.0);
+    }
+
+    #[test]
+    fn the_newton_view_of_the_matrix() {
+        let s = sparse::<4, 16>(&J, full_pattern(PROW, PCOL));
+        assert_eq!(s.to_dense(), J);
+        assert_eq!(s.first(), J[0][0]);
+        assert_eq!(s.row_abs_sum(1), 5.0);
+        assert_eq!(s.mul(&[1.0, 0.0, 0.0, 1.0]), J.map(|r| r[0] + r[3]));
+    }
+}
