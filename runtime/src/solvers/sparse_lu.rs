@@ -194,9 +194,10 @@ impl<const N: usize, const NLU: usize> SparseLu<N, NLU> {
             det: if p.odd { -1.0 } else { 1.0 },
             dense: None,
         };
-        for r in 0..N {
-            for e in j.entries(r) {
-                f.lu[p.slot[e] as usize] = j.v[e] * inv_row[r] * inv_col[p.col[e] as usize];
+        for (r, &ir) in inv_row.iter().enumerate() {
+            let e = j.entries(r);
+            for ((&s, &c), &v) in p.slot[e.clone()].iter().zip(&p.col[e.clone()]).zip(&j.v[e]) {
+                f.lu[s as usize] = v * ir * inv_col[c as usize];
             }
         }
         match f.eliminate() {
@@ -211,14 +212,15 @@ impl<const N: usize, const NLU: usize> SparseLu<N, NLU> {
     /// (or zero, or not finite) pivot.
     fn eliminate(&mut self) -> Option<f64> {
         let p = self.pattern;
-        let (lu, mut next, mut min_pivot) = (&mut self.lu, 0usize, f64::INFINITY);
+        let (lu, mut upd, mut min_pivot) = (&mut self.lu, p.upd.iter(), f64::INFINITY);
         for k in 0..N {
             let pivot = lu[p.diag[k] as usize];
-            let lower = p.l_ptr[k] as usize..p.l_ptr[k + 1] as usize;
+            let lower = &p.l_slot[p.l_ptr[k] as usize..p.l_ptr[k + 1] as usize];
+            let upper = &p.u_slot[p.u_ptr[k] as usize..p.u_ptr[k + 1] as usize];
             let mut col_max = 0.0f64;
-            for t in lower.clone() {
+            for &s in lower {
                 // NaN propagates (`f64::max` would drop it).
-                let a = lu[p.l_slot[t] as usize].abs();
+                let a = lu[s as usize].abs();
                 if a > col_max || a.is_nan() {
                     col_max = a;
                 }
@@ -234,13 +236,12 @@ impl<const N: usize, const NLU: usize> SparseLu<N, NLU> {
             }
             let inv = 1.0 / pivot;
             self.inv_diag[k] = inv;
-            let upper = p.u_ptr[k] as usize..p.u_ptr[k + 1] as usize;
-            for t in lower {
-                let li = lu[p.l_slot[t] as usize] * inv;
-                lu[p.l_slot[t] as usize] = li;
-                for s in upper.clone() {
-                    lu[p.upd[next] as usize] -= li * lu[p.u_slot[s] as usize];
-                    next += 1;
+            for &s in lower {
+                let li = lu[s as usize] * inv;
+                lu[s as usize] = li;
+                // `zip` takes the next `upper.len()` targets (it asks `upper` first).
+                for (&u, &t) in upper.iter().zip(upd.by_ref()) {
+                    lu[t as usize] -= li * lu[u as usize];
                 }
             }
         }
@@ -286,15 +287,15 @@ impl<const N: usize, const NLU: usize> SparseLu<N, NLU> {
             *zk = b[r] * self.inv_row[r];
         }
         for k in 0..N {
-            let zk = z[k];
-            for t in p.l_ptr[k] as usize..p.l_ptr[k + 1] as usize {
-                z[p.l_row[t] as usize] -= lu[p.l_slot[t] as usize] * zk;
+            let (zk, l) = (z[k], p.l_ptr[k] as usize..p.l_ptr[k + 1] as usize);
+            for (&s, &i) in p.l_slot[l.clone()].iter().zip(&p.l_row[l]) {
+                z[i as usize] -= lu[s as usize] * zk;
             }
         }
         for k in (0..N).rev() {
-            let mut acc = z[k];
-            for t in p.u_ptr[k] as usize..p.u_ptr[k + 1] as usize {
-                acc -= lu[p.u_slot[t] as usize] * z[p.u_col[t] as usize];
+            let (mut acc, u) = (z[k], p.u_ptr[k] as usize..p.u_ptr[k + 1] as usize);
+            for (&s, &j) in p.u_slot[u.clone()].iter().zip(&p.u_col[u]) {
+                acc -= lu[s as usize] * z[j as usize];
             }
             z[k] = acc * self.inv_diag[k];
         }
