@@ -86,6 +86,10 @@ fn the_ring_matches_its_dense_twin_along_a_turn() {
             d.health.min_pivot
         );
     }
+    let ratios = |v: &[State]| {
+        v.iter().map(|s| s.health.min_pivot).fold((f64::INFINITY, 0.0f64), |(a, b), p| (a.min(p), b.max(p)))
+    };
+    println!("pivot ratios along the turn: sparse {:?}, dense {:?}", ratios(&sparse), ratios(&dense));
     println!("worst differences sparse - dense: q {:.1e}, dq {:.1e}, d2q {:.1e}", w[0], w[1], w[2]);
     assert!(w.iter().all(|&v| v <= 1e-12), "{w:?}");
 }
