@@ -132,6 +132,13 @@ fn the_rings_analogs_are_central_differences_of_its_positions() {
             w[1] = w[1].max(diff(s.d2q[u][0][0], (p.dq[u][0] - n.dq[u][0]) / (2.0 * h)));
         }
     }
+    // The analogs at a given position (their own factorisation of the sparse block) are the
+    // same numbers.
+    for s in turn(&m, 4) {
+        let at = m.kinematics_at_flat(&s.x, &s.q, &cfg).expect("regular");
+        assert!(worst(&s, &at).iter().all(|&v| v <= 1e-12), "{:?}", worst(&s, &at));
+        assert_eq!(at.health.det_signs, s.health.det_signs);
+    }
     println!("worst differences against central differences: dq {:.1e}, d2q {:.1e}", w[0], w[1]);
     assert!(w.iter().all(|&v| v <= 1e-8), "{w:?}");
 }

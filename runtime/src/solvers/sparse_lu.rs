@@ -96,7 +96,9 @@ fn inverses<const N: usize>(scale: [f64; N], degenerate: &mut bool) -> [f64; N] 
     let mut inv = [0.0; N];
     for k in 0..N {
         let s = scale[k];
-        inv[k] = if s > 0.0 && s.is_finite() {
+        // Two float comparisons (NaN fails both): cheaper than `is_finite` on the bits, and this
+        // runs for every row and column of every factorisation.
+        inv[k] = if s > 0.0 && s < f64::INFINITY {
             1.0 / s
         } else {
             *degenerate = true;
@@ -226,10 +228,11 @@ impl<const N: usize, const NLU: usize> SparseLu<N, NLU> {
                 }
             }
             // NaN fails the test (the dense factorisation reports it).
-            if !(pivot.abs() >= THRESHOLD * col_max && pivot != 0.0 && pivot.is_finite()) {
+            let magnitude = pivot.abs();
+            if !(magnitude >= THRESHOLD * col_max && magnitude > 0.0 && magnitude < f64::INFINITY) {
                 return None;
             }
-            min_pivot = min_pivot.min(pivot.abs());
+            min_pivot = min_pivot.min(magnitude);
             self.det *= pivot;
             if pivot < 0.0 {
                 self.negative_det = !self.negative_det;
