@@ -32,7 +32,7 @@
 //!
 //! ```text
 //! /// doc comment                            (kept on the generated struct)
-//! #[kinloop(dense)]                          optional: solve all unknowns as one block
+//! #[kinloop(dense)]                          optional: solve all unknowns as one dense block
 //! #[kinloop(newton)]                         optional: Newton even where a closed form exists
 //! #[kinloop(sensitivities)]                  optional: also generate parameter sensitivities
 //! pub struct Name {
@@ -180,8 +180,11 @@
 //! angle from `a cos q + b sin q = c`; `closed form, RRR dyad`: circle intersection; `closed
 //! form, length and angle`: a slotted rocker; `closed form, angle and slider`: an RRP group),
 //! on the assembly mode of the guess (the sign of the block's Jacobian determinant there) and
-//! on the guess's turn; `linear, NxN` is one linear solve; `Newton, NxN` iterates.
-//! `#[kinloop(dense)]` solves all unknowns as one block instead, `#[kinloop(newton)]` uses
+//! on the guess's turn; `linear, NxN` is one linear solve; `Newton, NxN` iterates;
+//! `Newton, NxN sparse (K non-zeros)` iterates on a large coupled block (16 unknowns or more,
+//! a sparse Jacobian) whose LU follows its sparsity: an elimination order fixed at compile time,
+//! every pivot checked at run time, a dense LU where one is weak.
+//! `#[kinloop(dense)]` solves all unknowns as one block with dense LU instead, `#[kinloop(newton)]` uses
 //! Newton for every nonlinear block (the results are the same; both exist to compare and to
 //! debug).
 //!

@@ -45,11 +45,23 @@ pub fn size(text: &str) -> Size {
 /// of loop `i - 1`): `2k` equations in `k` blocks of two, for the growth of the generated code
 /// with the number of equations.
 pub fn four_bar_chain(k: usize) -> String {
-    let mut s = String::from("pub struct Chain {\n    params a = 1.0, b = 3.0, c = 2.5, d = 3.2;\n    input phi;\n");
+    loops("Chain", k, "phi".to_string())
+}
+
+/// The same `k` loops closed into a ring through a differential: the first loop is driven by
+/// `(phi + v_(k-1)) / 2` (see [`crate::ring`]), which couples all `2k` unknowns into one sparse
+/// Newton block.
+pub fn four_bar_ring(k: usize) -> String {
+    loops("Ring", k, format!("(0.5 * (phi + v{}))", k.saturating_sub(1)))
+}
+
+/// `k` four-bar loops, each driven by the rocker of the one before, the first by `first`.
+fn loops(name: &str, k: usize, first: String) -> String {
+    let mut s = format!("pub struct {name} {{\n    params a = 1.0, b = 3.0, c = 2.5, d = 3.2;\n    input phi;\n");
     let unknowns: Vec<String> = (0..k).map(|i| format!("u{i} = 0.6, v{i} = 1.9")).collect();
     s += &format!("    unknowns {};\n", unknowns.join(", "));
     for i in 0..k {
-        let driver = if i == 0 { "phi".to_string() } else { format!("v{}", i - 1) };
+        let driver = if i == 0 { first.clone() } else { format!("v{}", i - 1) };
         s += &format!("    loop l{i}: a @ {driver} + b @ u{i} == (d, 0) + c @ v{i};\n");
     }
     s += "}\n";

@@ -13,6 +13,7 @@ use kinloop_bench::class_four;
 use kinloop_bench::decls::ClassFourUnknowns;
 use kinloop_bench::kinloop_variants::Kinloop;
 use kinloop_bench::rhombic;
+use kinloop_bench::ring::Ring;
 use kinloop_bench::sweep::{Sweep, WarmStart};
 
 /// Counts this thread's allocations; shared with the root package's `tests/scan.rs`.
@@ -64,6 +65,15 @@ fn rhombic_drive_steps_allocate_nothing() {
 #[test]
 fn class_four_steps_allocate_nothing() {
     let n = step_allocations!(class_four::PARAMS.kinloop(), ClassFourUnknowns::from(class_four::INITIAL_GUESS));
+    assert_eq!(n, 0, "{n} allocations in {STEPS} steps");
+}
+
+/// The ring of 64 loops: one sparse Newton block of 128 unknowns (its dense fallback, taken only
+/// where a static pivot is weak, is never needed along the turn).
+#[test]
+fn sparse_ring_steps_allocate_nothing() {
+    let m = Ring::default();
+    let n = step_allocations!(m, m.guess(0.0));
     assert_eq!(n, 0, "{n} allocations in {STEPS} steps");
 }
 

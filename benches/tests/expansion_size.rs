@@ -1,7 +1,8 @@
 //! The generated code stays lean: a four-bar with a coupler point expands to at most 600
-//! formatted lines without parameter sensitivities, and grows linearly with the number of loops.
+//! formatted lines without parameter sensitivities, and grows linearly with the number of loops,
+//! in series and in a ring (one coupled sparse block).
 
-use kinloop_bench::expansion::{four_bar_chain, size};
+use kinloop_bench::expansion::{four_bar_chain, four_bar_ring, size};
 
 const COUPLER_FOUR_BAR: &str = "
     /// Four-bar with a coupler point.
@@ -31,4 +32,20 @@ fn expansion_grows_linearly_with_the_number_of_loops() {
     // Four times the loops: at most 4.5 times the code (a fixed part plus a linear part; a
     // quadratic term would give ~16 times).
     assert!((large.tokens as f64) <= 4.5 * small.tokens as f64, "{small:?} -> {large:?}");
+}
+
+/// A ring of `k` loops is one Newton block of `2k` unknowns: emitted as its structural non-zeros
+/// and the tables of its sparse factorisation, the code grows linearly with `k` (a dense
+/// Jacobian literal alone would grow as `k^2`: 4 times the code per doubling).
+#[test]
+fn a_coupled_ring_expands_linearly_with_the_number_of_loops() {
+    let sizes: Vec<_> = [8, 16, 32, 64].into_iter().map(|k| (k, size(&four_bar_ring(k)))).collect();
+    for (k, s) in &sizes {
+        println!("ring of {k} loops: {} lines, {} token trees", s.lines, s.tokens);
+    }
+    for w in sizes.windows(2) {
+        let ((_, a), (_, b)) = (w[0], w[1]);
+        // Twice the loops: at most 2.1 times the code (a fixed part plus a linear part).
+        assert!(b.tokens as f64 <= 2.1 * a.tokens as f64 && b.lines as f64 <= 2.1 * a.lines as f64, "{a:?} -> {b:?}");
+    }
 }

@@ -15,8 +15,10 @@ pub use crate::kin::{Health, Jac, Kin, Sens};
 pub use crate::kinds::QuantityKind;
 pub use crate::lu::{Factor, Fixed, Lu, max_abs};
 pub use crate::mechanism::{Mechanism, NamedSensitivities, Sensitivities, SensitivitiesRequested};
-pub use crate::newton::{BlockEval, BlockFailure, NewtonConfig, SolveReport, Solved, newton};
+pub use crate::newton::{BlockEval, BlockFailure, NewtonConfig, SolveReport, Solved, newton, newton_with};
 pub use crate::solvers::closed::*;
+pub use crate::solvers::jacobian::{BlockFactor, BlockJacobian};
+pub use crate::solvers::sparse_lu::{SparseJac, SparseLu, SparsePattern};
 pub use crate::vec2::Vec2;
 
 /// serde, for the derives of generated types (feature `serde`): users need no serde dependency.

@@ -9,7 +9,10 @@
 //!   closed forms of `kinloop_bench::hand`);
 //! * class IV block (Newton): `class-four-hand` (the hand-written Newton), `class-four-point`,
 //!   `class-four-sweep`, and `class-four-hand-taylor`, `class-four-point-taylor` warm-started by
-//!   the benchmarks' second-order predictor instead of the previous position.
+//!   the benchmarks' second-order predictor instead of the previous position;
+//! * ring of 64 four-bar loops closed through a differential (one Newton block of 128
+//!   unknowns): `ring-point` (sparse factorisation), `ring-dense-point` (its `#[kinloop(dense)]`
+//!   twin), against `series-point`, the same 64 loops in series (closed-form dyads).
 //!
 //! Instructions per step = difference of the totals of two runs with different `STEPS`, divided
 //! by the difference of the steps (the setup cancels).
@@ -21,6 +24,7 @@ use kinloop_bench::decls::{ClassFour, RhombicDrive};
 use kinloop_bench::hand::{FourBarClosed, GearLeverClosed};
 use kinloop_bench::kinloop_variants::{Kinloop, KinloopSweep};
 use kinloop_bench::rhombic::{ClosedForm, PARAMS, initial_guess};
+use kinloop_bench::ring::{Ring, RingDense, Series};
 use kinloop_bench::sweep::{Stepper, Sweep, WarmStart};
 use kinloop_fixtures::FourBar;
 use kinloop_fixtures::gear_lever::GearLever;
@@ -72,6 +76,16 @@ fn sweep_of<M: kinloop::Mechanism<N, 1, NO>, const N: usize, const NO: usize>(
     acc
 }
 
+/// The ring's position at input 0.
+fn ring_guess() -> [f64; 128] {
+    Ring::default().solve(0.0).expect("the ring assembles").q.into()
+}
+
+/// The series' position at input 0.
+fn series_guess() -> [f64; 128] {
+    Series::default().solve(0.0).expect("the series assembles").q.into()
+}
+
 fn main() {
     let args: Vec<String> = std::env::args().collect();
     let variant = args.get(1).map_or("point", String::as_str);
@@ -107,6 +121,9 @@ fn main() {
             policy_steps(&Kinloop::<ClassFour, 0>::new(c4.kinloop()), WarmStart::Taylor, g4, steps)
         }
         "class-four-sweep" => sweep_of(&c4.kinloop(), g4, steps),
+        "ring-point" => steps_of(&Kinloop::<Ring, 0>::new(Ring::default()), ring_guess(), steps),
+        "ring-dense-point" => steps_of(&Kinloop::<RingDense, 0>::new(RingDense::default()), ring_guess(), steps),
+        "series-point" => steps_of(&Kinloop::<Series, 0>::new(Series::default()), series_guess(), steps),
         other => panic!("unknown variant {other} (see the module documentation)"),
     };
     println!("{variant}: {steps} steps, checksum {acc}");

@@ -9,7 +9,8 @@
 //!
 //! One line per block, in solve order (the index is the one of `Name::BLOCKS` and of the
 //! runtime's error locations): how it is solved (`closed form, ...` names the recognised Assur
-//! group, `Newton, NxN` iterates, `linear, NxN` is one linear solve because the block's
+//! group, `Newton, NxN` iterates (`Newton, NxN sparse (K non-zeros)`: a large block
+//! factorised along its sparsity), `linear, NxN` is one linear solve because the block's
 //! unknowns appear linearly), its unknowns and its scalar equations (`loop.x`, `loop.y`, or an
 //! `eq` name).
 
@@ -49,7 +50,15 @@ pub fn decomposition(model: &Model, plan: &Plan) -> String {
             match (&b.closed, b.linear) {
                 (Some(c), _) => c.form.describe().to_string(),
                 (None, true) => format!("linear, {}x{}", b.equations.len(), b.unknowns.len()),
-                (None, false) => format!("Newton, {}x{}", b.equations.len(), b.unknowns.len()),
+                (None, false) => match &b.sparse {
+                    Some(sp) => format!(
+                        "Newton, {}x{} sparse ({} non-zeros)",
+                        b.equations.len(),
+                        b.unknowns.len(),
+                        sp.entries.len()
+                    ),
+                    None => format!("Newton, {}x{}", b.equations.len(), b.unknowns.len()),
+                },
             },
             unknowns.join(", "),
             equations.join(", ")

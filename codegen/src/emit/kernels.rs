@@ -13,6 +13,7 @@
 
 use super::names::{Names, float_arg};
 use super::schedule::{Schedule, ScopeKind, ScopeSpec, schedule};
+use super::sparse;
 use super::{lit, runtime};
 use crate::dag::{Graph, Leaf, NodeId};
 use crate::plan::{BlockPlan, Plan, Stages, pair_index, pairs};
@@ -317,19 +318,30 @@ impl Kernel<'_> {
             quote!(__guess[#u])
         });
         let f = self.names.operands(self.g, &bp.f);
-        let jrows = self.names.rows(self.g, &bp.jac);
         let (scale, unit) = (self.names.operands(self.g, &bp.scale), self.names.operands(self.g, &bp.unit));
         let (s, ev) = (format_ident!("__s{}", b), format_ident!("__eval{}", b));
+        // A large sparse block: its non-zeros only, and Newton over its sparse factorisation.
+        let (pattern, ty, jrows, newton) = match &bp.sparse {
+            Some(sp) => (
+                sparse::pattern_item(sp, b, rt),
+                sparse::jac_type(sp, bp.unknowns.len(), rt),
+                sparse::jac_value(sp, b, self.g, self.names, &bp.jac, rt),
+                quote!(#rt::newton_with),
+            ),
+            None => (TokenStream::new(), quote!(), self.names.rows(self.g, &bp.jac), quote!(#rt::newton::<#n, #k>)),
+        };
+        let ty = if bp.sparse.is_some() { quote!(#rt::BlockEval<#n, #k, #ty>) } else { quote!(#rt::BlockEval<#n, #k>) };
         // The block's evaluation is one closure handed to the runtime's Newton, which checks
         // the guess, corrects it at least once and always checks the final residual.
         quote! {
-            let #ev = |__z: &[f64; #n]| -> #rt::BlockEval<#n, #k> {
+            #pattern
+            let #ev = |__z: &[f64; #n]| -> #ty {
                 let [#(#qs),*] = *__z;
                 #inner
                 #rt::BlockEval { f: [#(#f),*], j: #jrows, scale: [#(#scale),*], unit: [#(#unit),*], keep: [#(#exports),*] }
             };
             let __z0: [f64; #n] = [#(#guess),*];
-            let #s = match #rt::newton::<#n, #k>(__z0, __cfg, #ev) {
+            let #s = match #newton(__z0, __cfg, #ev) {
                 Ok(s) => s,
                 Err(e) => return Err(#rt::block_failure(self, #bl, e, __x, __guess)),
             };
@@ -369,7 +381,9 @@ impl Kernel<'_> {
             let c = float_arg(c);
             out.extend(quote!(let #lu = #rt::Fixed(#c);));
         }
-        if (self.mode == Mode::At || !bp.linear) && fixed.is_none() {
+        if let Some(sp) = &bp.sparse {
+            out.extend(self.sparse_factor(b, sp, &rv));
+        } else if (self.mode == Mode::At || !bp.linear) && fixed.is_none() {
             // Closed-form hook: a closed-form block has no Newton evaluation to read.
             let j = if self.mode == Mode::At || bp.closed.is_some() {
                 self.names.rows(self.g, &bp.jac)
@@ -396,6 +410,28 @@ impl Kernel<'_> {
             let [#(#vs),*] = #lu.solve_cols(#rv);
         });
         out
+    }
+
+    /// The factorisation of a sparse block for its analogs: the Newton evaluation's Jacobian,
+    /// or (mode `At`) its non-zeros at the given position.
+    fn sparse_factor(&self, b: usize, sp: &crate::plan::sparse::Sparse, rv: &Ident) -> TokenStream {
+        let (bp, rt, bl) = (&self.plan.blocks[b], &self.rt, lit(b));
+        let (lu, scale) = (format_ident!("__lu{}", b), self.col_scales(bp));
+        let (pattern, j) = if self.mode == Mode::At {
+            (sparse::pattern_item(sp, b, rt), sparse::jac_value(sp, b, self.g, self.names, &bp.jac, rt))
+        } else {
+            let s = format_ident!("__s{}", b);
+            (TokenStream::new(), quote!(#s.eval.j))
+        };
+        quote! {
+            #pattern
+            let __j = #j;
+            let #lu = __j.factor_cols([#(#scale),*]);
+            if !(#lu.pivot_ratio() >= __cfg.singular_tol) {
+                let bad = __j.first_bad_row().or(#rt::first_bad_row(&#rv));
+                return Err(#rt::singular(self, #bl, #lu.pivot_ratio(), __cfg, __x, bad));
+            }
+        }
     }
 
     fn acceleration_block(&self, b: usize) -> TokenStream {

@@ -8,6 +8,7 @@
 //! * [`api`] implements the runtime traits with the kernels and the constants, and forwards the
 //!   inherent methods to the runtime's generic code;
 //! * [`sensitivities`] adds the sensitivity types and kernels when they were requested;
+//! * [`sparse`] emits the tables and Jacobians of large sparse Newton blocks;
 //! * [`describe`] writes the decomposition in words;
 //! * [`dynamics`] builds the declared bodies and loads into the runtime's mass model.
 //!
@@ -20,6 +21,7 @@ pub mod kernels;
 pub mod names;
 pub mod schedule;
 pub mod sensitivities;
+pub mod sparse;
 pub mod surface;
 
 use crate::model::Model;

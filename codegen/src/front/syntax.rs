@@ -2,7 +2,7 @@
 //!
 //! ```text
 //! /// docs
-//! #[kinloop(dense)]                    // optional: no block decomposition
+//! #[kinloop(dense)]                    // optional: no block decomposition, dense LU
 //! #[kinloop(newton)]                   // optional: no closed-form blocks
 //! pub struct Name {
 //!     params a, b = 1.0, c;            // design parameters (optional default values)
@@ -49,7 +49,7 @@ pub struct MechanismDef {
 /// The `#[kinloop(...)]` options, each with the span of its word (for errors about it).
 #[derive(Default)]
 pub struct Options {
-    /// `#[kinloop(dense)]`: solve every unknown in one block.
+    /// `#[kinloop(dense)]`: solve every unknown in one block, with a dense LU.
     pub dense: Option<Span>,
     /// `#[kinloop(sensitivities)]`: also generate the parameter sensitivities.
     pub sensitivities: Option<Span>,

@@ -24,6 +24,7 @@ pub mod outputs;
 pub mod positions;
 pub mod seeds;
 pub mod sensitivities;
+pub mod sparse;
 
 use crate::dag::{Graph, Leaf, NodeId, Op};
 use crate::model::Model;
@@ -56,6 +57,8 @@ pub struct BlockPlan {
     pub sens: Option<Stages>,
     /// Closed-form hook: the block's closed-form solve, when it has one (else Newton or linear).
     pub closed: Option<crate::closed_form::Recognised>,
+    /// A large sparse Newton block's symbolic factorisation (see [`sparse`]); `None`: dense.
+    pub sparse: Option<sparse::Sparse>,
     /// Per row: the magnitude of the equation's terms (see [`magnitudes`]).
     pub scale: Vec<NodeId>,
     /// Per block unknown: the unit its Newton steps are judged in (see [`magnitudes`]).
@@ -170,6 +173,12 @@ pub fn build(model: &mut Model, blocks: &[Block], with_sensitivities: bool) -> P
     if model.options.newton.is_none() {
         for (bp, blk) in plans.iter_mut().zip(blocks).filter(|(bp, _)| !bp.linear) {
             bp.closed = crate::closed_form::recognise(&mut g, blk, &bp.f, np);
+        }
+    }
+    // Large sparse Newton blocks, unless `#[kinloop(dense)]` asks for dense everything.
+    if model.options.dense.is_none() {
+        for bp in plans.iter_mut().filter(|bp| !bp.linear && bp.closed.is_none()) {
+            bp.sparse = sparse::analyse(&g, &bp.jac);
         }
     }
     let mut mags = magnitudes::Magnitudes::new(&g, &residuals);

@@ -49,6 +49,7 @@ pub fn block(g: &mut Graph, blk: &Block, residuals: &[NodeId], jac_full: &[Vec<N
         acc: Vec::new(),
         sens: None,
         closed: None,
+        sparse: None,
         scale: Vec::new(),
         unit: Vec::new(),
     }

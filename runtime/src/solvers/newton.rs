@@ -17,16 +17,18 @@
 //! success.
 
 pub use super::newton_config::{NewtonConfig, SolveReport, Termination};
-use crate::solvers::lu::Lu;
+use crate::solvers::jacobian::{BlockFactor, BlockJacobian};
+use crate::solvers::lu::{Factor, Lu};
 
 /// One evaluation of a block: residuals, Jacobian rows, the rows' magnitudes, and intermediate
 /// values the generated code keeps for later stages (so they are not recomputed after
 /// convergence).
 #[doc(hidden)]
 #[derive(Clone, Copy, Debug)]
-pub struct BlockEval<const N: usize, const K: usize> {
+pub struct BlockEval<const N: usize, const K: usize, J = [[f64; N]; N]> {
     pub f: [f64; N],
-    pub j: [[f64; N]; N],
+    /// The Jacobian: dense rows, or a sparse block's non-zeros (see [`BlockJacobian`]).
+    pub j: J,
     /// Magnitude of each row: a structural bound of the equation's terms (for a loop
     /// projection, the sum of its link lengths), in the equation's unit, generated for every
     /// equation. Residual `i` is judged relative to it. A value that is not positive and finite
@@ -44,12 +46,12 @@ pub struct BlockEval<const N: usize, const K: usize> {
 /// A converged block.
 #[doc(hidden)]
 #[derive(Clone, Copy, Debug)]
-pub struct Solved<const N: usize, const K: usize> {
+pub struct Solved<const N: usize, const K: usize, J = [[f64; N]; N]> {
     pub z: [f64; N],
     /// The evaluation at `z`, or (after the free correction of an accepted guess) at the point
     /// one Newton step before `z`: its Jacobian and kept values then differ from those at `z`
     /// by the order of the residual tolerance.
-    pub eval: BlockEval<N, K>,
+    pub eval: BlockEval<N, K, J>,
     pub iterations: u32,
     pub evaluations: u32,
     pub residual: f64,
@@ -100,19 +102,11 @@ const LINEAR_CONTRACTION: f64 = 0.1;
 
 /// The row magnitudes of an evaluation (see [`BlockEval::scale`]).
 #[inline(always)]
-fn row_scales<const N: usize, const K: usize>(ev: &BlockEval<N, K>) -> [f64; N] {
+fn row_scales<const N: usize, const K: usize, J: BlockJacobian<N>>(ev: &BlockEval<N, K, J>) -> [f64; N] {
     let mut s = [0.0; N];
     for r in 0..N {
         let given = ev.scale[r];
-        s[r] = if given > 0.0 && given < f64::INFINITY {
-            given
-        } else {
-            let mut sum = 0.0;
-            for c in 0..N {
-                sum += ev.j[r][c].abs();
-            }
-            sum
-        };
+        s[r] = if given > 0.0 && given < f64::INFINITY { given } else { ev.j.row_abs_sum(r) };
     }
     s
 }
@@ -180,28 +174,31 @@ fn argmax_scaled<const N: usize>(f: &[f64; N], s: &[f64; N]) -> usize {
     k
 }
 
-fn first_non_finite<const N: usize, const K: usize>(ev: &BlockEval<N, K>) -> Option<usize> {
-    (0..N).find(|&r| !ev.f[r].is_finite() || ev.j[r].iter().any(|v| !v.is_finite()))
+fn first_non_finite<const N: usize, const K: usize, J: BlockJacobian<N>>(ev: &BlockEval<N, K, J>) -> Option<usize> {
+    (0..N).find(|&r| !ev.f[r].is_finite() || !ev.j.row_finite(r))
 }
 
 /// The Newton step `-J^-1 f` with `J` equilibrated by the row magnitudes, and the pivot ratio.
 #[inline(always)]
-fn newton_step<const N: usize, const K: usize>(ev: &BlockEval<N, K>, s: &[f64; N]) -> ([f64; N], f64) {
+fn newton_step<const N: usize, const K: usize, J: BlockJacobian<N>>(
+    ev: &BlockEval<N, K, J>,
+    s: &[f64; N],
+) -> ([f64; N], f64) {
     if N == 1 {
         // A scalar block needs no factorisation: the row-equilibrated pivot is `|J| / s` (NaN
         // when both vanish, which fails every test and is reported as 0; a non-finite `J` is
         // caught by the callers).
-        let j = ev.j[0][0];
+        let j = ev.j.first();
         let mut dz = [0.0; N];
         dz[0] = -ev.f[0] / j;
         return (dz, j.abs() / s[0]);
     }
-    let lu = Lu::factor(&ev.j, *s);
+    let lu = ev.j.factor_rows(*s);
     let mut neg_f = ev.f;
     for v in &mut neg_f {
         *v = -*v;
     }
-    (lu.solve(neg_f), lu.pivot_ratio())
+    (lu.solve_block(neg_f), lu.pivot_ratio())
 }
 
 /// The guess `z0` corrected by one Newton step with the Jacobian of its evaluation `ev`, or
@@ -209,8 +206,8 @@ fn newton_step<const N: usize, const K: usize>(ev: &BlockEval<N, K>, s: &[f64; N
 /// correction within the rounding of the unknowns is noise: the guess is kept, so a solve from
 /// a solution returns it unchanged.
 #[inline(always)]
-fn free_correction<const N: usize, const K: usize>(
-    ev: &BlockEval<N, K>,
+fn free_correction<const N: usize, const K: usize, J: BlockJacobian<N>>(
+    ev: &BlockEval<N, K, J>,
     s: &[f64; N],
     z0: [f64; N],
     cfg: &NewtonConfig,
@@ -239,8 +236,19 @@ fn free_correction<const N: usize, const K: usize>(
 pub fn newton<const N: usize, const K: usize>(
     z0: [f64; N],
     cfg: &NewtonConfig,
-    mut eval: impl FnMut(&[f64; N]) -> BlockEval<N, K>,
+    eval: impl FnMut(&[f64; N]) -> BlockEval<N, K>,
 ) -> Result<Solved<N, K>, BlockFailure> {
+    newton_with(z0, cfg, eval)
+}
+
+/// [`newton`] for any representation of the Jacobian (a sparse block's non-zeros).
+#[doc(hidden)]
+#[inline(always)]
+pub fn newton_with<const N: usize, const K: usize, J: BlockJacobian<N>>(
+    z0: [f64; N],
+    cfg: &NewtonConfig,
+    mut eval: impl FnMut(&[f64; N]) -> BlockEval<N, K, J>,
+) -> Result<Solved<N, K, J>, BlockFailure> {
     let ev = eval(&z0);
     let s = row_scales(&ev);
     let rho = scaled_residual(&ev.f, &s);
@@ -270,12 +278,12 @@ pub fn newton<const N: usize, const K: usize>(
 #[doc(hidden)]
 #[cold]
 #[inline(never)]
-pub fn iterate<const N: usize, const K: usize>(
+pub fn iterate<const N: usize, const K: usize, J: BlockJacobian<N>>(
     z0: [f64; N],
-    ev0: BlockEval<N, K>,
+    ev0: BlockEval<N, K, J>,
     cfg: &NewtonConfig,
-    mut eval: impl FnMut(&[f64; N]) -> BlockEval<N, K>,
-) -> Result<Solved<N, K>, BlockFailure> {
+    mut eval: impl FnMut(&[f64; N]) -> BlockEval<N, K, J>,
+) -> Result<Solved<N, K, J>, BlockFailure> {
     if let Some(field) = cfg.invalid_field() {
         return Err(BlockFailure::InvalidConfig { field });
     }
@@ -333,9 +341,9 @@ pub fn iterate<const N: usize, const K: usize>(
 }
 
 /// The state of an iteration.
-struct Iter<const N: usize, const K: usize> {
+struct Iter<const N: usize, const K: usize, J> {
     z: [f64; N],
-    ev: BlockEval<N, K>,
+    ev: BlockEval<N, K, J>,
     iterations: u32,
     evaluations: u32,
     /// Scaled length of the previous full Newton step (infinite after a gradient step).
@@ -349,7 +357,7 @@ struct Iter<const N: usize, const K: usize> {
     prev_rho: f64,
 }
 
-impl<const N: usize, const K: usize> Iter<N, K> {
+impl<const N: usize, const K: usize, J: BlockJacobian<N>> Iter<N, K, J> {
     /// Ends a converged iteration: diagnoses linear convergence (a singular root), then applies
     /// the last correction `dz`. A correction far below the tolerance is applied as it is; a
     /// larger one is checked by a new evaluation (so the Jacobian and kept values match the
@@ -365,8 +373,8 @@ impl<const N: usize, const K: usize> Iter<N, K> {
         s: &[f64; N],
         termination: Termination,
         cfg: &NewtonConfig,
-        eval: &mut impl FnMut(&[f64; N]) -> BlockEval<N, K>,
-    ) -> Result<Solved<N, K>, BlockFailure> {
+        eval: &mut impl FnMut(&[f64; N]) -> BlockEval<N, K, J>,
+    ) -> Result<Solved<N, K, J>, BlockFailure> {
         // The position is known to about the last step of a linearly converging iteration (the
         // residual of a row can round to zero before the unknowns settle).
         let visible = FLOOR_FACTOR * cfg.residual_tol.max(cfg.step_tol);
@@ -462,7 +470,7 @@ impl<const N: usize, const K: usize> Iter<N, K> {
         dz: &[f64; N],
         s: &[f64; N],
         cfg: &NewtonConfig,
-        eval: &mut impl FnMut(&[f64; N]) -> BlockEval<N, K>,
+        eval: &mut impl FnMut(&[f64; N]) -> BlockEval<N, K, J>,
     ) -> bool {
         let phi0 = sum_sq_scaled(&self.ev.f, s);
         // The slope of phi along dz is -2 phi0 for a Newton step; computed, so that an
@@ -528,7 +536,7 @@ impl<const N: usize, const K: usize> Iter<N, K> {
         &mut self,
         s: &[f64; N],
         cfg: &NewtonConfig,
-        eval: &mut impl FnMut(&[f64; N]) -> BlockEval<N, K>,
+        eval: &mut impl FnMut(&[f64; N]) -> BlockEval<N, K, J>,
     ) -> bool {
         let (a, g) = normal_equations(&self.ev, s);
         let trace: f64 = (0..N).map(|k| a[k][k]).sum();
@@ -584,29 +592,34 @@ fn sum_sq_scaled<const N: usize>(f: &[f64; N], s: &[f64; N]) -> f64 {
 }
 
 /// `d/dt |D^-1 f(z + t dz)|^2` at `t = 0`: `2 (D^-1 f) . (D^-1 J dz)`.
-fn directional_slope<const N: usize, const K: usize>(ev: &BlockEval<N, K>, s: &[f64; N], dz: &[f64; N]) -> f64 {
+fn directional_slope<const N: usize, const K: usize, J: BlockJacobian<N>>(
+    ev: &BlockEval<N, K, J>,
+    s: &[f64; N],
+    dz: &[f64; N],
+) -> f64 {
+    let jd = ev.j.mul(dz);
     let mut acc = 0.0;
     for r in 0..N {
-        let mut jd = 0.0;
-        for c in 0..N {
-            jd += ev.j[r][c] * dz[c];
-        }
-        acc += ev.f[r] * jd / (s[r] * s[r]);
+        acc += ev.f[r] * jd[r] / (s[r] * s[r]);
     }
     2.0 * acc
 }
 
 /// `A = (D^-1 J)^T (D^-1 J)` and `g = (D^-1 J)^T D^-1 f` with `D` the row magnitudes.
-fn normal_equations<const N: usize, const K: usize>(ev: &BlockEval<N, K>, s: &[f64; N]) -> ([[f64; N]; N], [f64; N]) {
+fn normal_equations<const N: usize, const K: usize, J: BlockJacobian<N>>(
+    ev: &BlockEval<N, K, J>,
+    s: &[f64; N],
+) -> ([[f64; N]; N], [f64; N]) {
+    let j = ev.j.to_dense();
     let mut a = [[0.0; N]; N];
     let mut g = [0.0; N];
     for r in 0..N {
         let w = 1.0 / s[r];
         for c in 0..N {
-            let jrc = ev.j[r][c] * w;
+            let jrc = j[r][c] * w;
             g[c] += jrc * ev.f[r] * w;
             for k in 0..N {
-                a[c][k] += jrc * ev.j[r][k] * w;
+                a[c][k] += jrc * j[r][k] * w;
             }
         }
     }

@@ -153,7 +153,7 @@ impl SolveReport {
 
     #[doc(hidden)]
     #[inline]
-    pub fn absorb<const N: usize, const K: usize>(&mut self, s: &Solved<N, K>) {
+    pub fn absorb<const N: usize, const K: usize, J>(&mut self, s: &Solved<N, K, J>) {
         self.iterations += s.iterations;
         self.evaluations += s.evaluations;
         self.residual = self.residual.max(s.residual);

@@ -1,0 +1,83 @@
+//! What Newton's method and the analog solves need from a block's Jacobian, so that one
+//! iteration serves both representations: dense rows (`[[f64; N]; N]`, small blocks) and the
+//! structural non-zeros of a large sparse block ([`SparseJac`](super::sparse_lu::SparseJac)).
+
+use super::lu::{Factor, Lu};
+
+/// A factorised block Jacobian: solves and the pivot diagnostics of [`Factor`].
+#[doc(hidden)]
+pub trait BlockFactor<const N: usize>: Factor {
+    /// Solves `J z = b`.
+    fn solve_block(&self, b: [f64; N]) -> [f64; N];
+}
+
+/// A block Jacobian as Newton's method reads it.
+#[doc(hidden)]
+pub trait BlockJacobian<const N: usize>: Copy {
+    /// Its factorisation.
+    type Factor: BlockFactor<N>;
+    /// Factorises the matrix with row `r` divided by `row_scale[r]`.
+    fn factor_rows(&self, row_scale: [f64; N]) -> Self::Factor;
+    /// `sum_c |J_rc|`.
+    fn row_abs_sum(&self, r: usize) -> f64;
+    /// Whether every entry of row `r` is finite.
+    fn row_finite(&self, r: usize) -> bool;
+    /// `J dz`.
+    fn mul(&self, dz: &[f64; N]) -> [f64; N];
+    /// The entry `J_00` (the whole matrix of a scalar block).
+    fn first(&self) -> f64;
+    /// The matrix as dense rows (cold paths only: Levenberg-Marquardt steps).
+    fn to_dense(&self) -> [[f64; N]; N];
+}
+
+impl<const N: usize> BlockFactor<N> for Lu<N> {
+    #[inline(always)]
+    fn solve_block(&self, b: [f64; N]) -> [f64; N] {
+        self.solve(b)
+    }
+}
+
+impl<const N: usize> BlockJacobian<N> for [[f64; N]; N] {
+    type Factor = Lu<N>;
+
+    #[inline(always)]
+    fn factor_rows(&self, row_scale: [f64; N]) -> Lu<N> {
+        Lu::factor(self, row_scale)
+    }
+
+    #[inline(always)]
+    fn row_abs_sum(&self, r: usize) -> f64 {
+        let mut sum = 0.0;
+        for c in 0..N {
+            sum += self[r][c].abs();
+        }
+        sum
+    }
+
+    #[inline(always)]
+    fn row_finite(&self, r: usize) -> bool {
+        self[r].iter().all(|v| v.is_finite())
+    }
+
+    #[inline(always)]
+    fn mul(&self, dz: &[f64; N]) -> [f64; N] {
+        let mut out = [0.0; N];
+        for r in 0..N {
+            let mut acc = 0.0;
+            for c in 0..N {
+                acc += self[r][c] * dz[c];
+            }
+            out[r] = acc;
+        }
+        out
+    }
+
+    #[inline(always)]
+    fn first(&self) -> f64 {
+        self[0][0]
+    }
+
+    fn to_dense(&self) -> [[f64; N]; N] {
+        *self
+    }
+}
