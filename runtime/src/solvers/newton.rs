@@ -418,7 +418,7 @@ impl<const N: usize, const K: usize, J: BlockJacobian<N>> Iter<N, K, J> {
         dz: &[f64; N],
         rho: f64,
         cfg: &NewtonConfig,
-        eval: &mut impl FnMut(&[f64; N]) -> BlockEval<N, K>,
+        eval: &mut impl FnMut(&[f64; N]) -> BlockEval<N, K, J>,
     ) {
         let mut z = self.z;
         for c in 0..N {
@@ -507,7 +507,7 @@ impl<const N: usize, const K: usize, J: BlockJacobian<N>> Iter<N, K, J> {
         slope: f64,
         mut t: f64,
         cfg: &NewtonConfig,
-        eval: &mut impl FnMut(&[f64; N]) -> BlockEval<N, K>,
+        eval: &mut impl FnMut(&[f64; N]) -> BlockEval<N, K, J>,
     ) -> bool {
         while t >= cfg.min_damping {
             let mut trial = self.z;
