@@ -516,9 +516,15 @@ impl Kernel<'_> {
             terms.extend(names.operands(self.g, &plan.out_d2[o]));
         }
         let (sum, kin, rt, guess) = (balanced_sum(terms), self.kin(), &self.rt, self.guess_arg());
+        // The state is built in the returned value on the hot path (a state built once and
+        // passed to the check is copied into the result: a memcpy per step).
         quote! {
             let __sum: f64 = #sum;
-            #rt::checked(self, #kin, __sum, #guess)
+            if __sum.is_finite() {
+                ::core::result::Result::Ok(#kin)
+            } else {
+                #rt::checked(self, #kin, __sum, #guess)
+            }
         }
     }
 
