@@ -9,12 +9,15 @@
 use super::newton::{BlockFailure, NewtonConfig};
 use core::f64::consts::{PI, TAU};
 
-/// `round(x)` (half away from zero) by a conversion to an integer: no libm call. Exact for
-/// `|x| < 2^52`; beyond that the value is meaningless as a number of turns anyway (and the
-/// precision check of [`check_closed`] rejects such angles).
+/// `x` rounded to the nearest integer (ties to even) by the addition and subtraction of
+/// `1.5 · 2^52`, where the spacing of doubles is 1: two additions, no libm call and no integer
+/// conversion. Exact for `|x| < 2^51`; beyond that the value is meaningless as a number of turns
+/// anyway (a large number near `x`: the precision check of [`check_closed`] rejects such angles).
+/// A NaN stays NaN.
 #[inline]
 fn whole_turns(x: f64) -> f64 {
-    (x + 0.5f64.copysign(x)) as i64 as f64
+    const ROUND: f64 = 6_755_399_441_055_744.0;
+    (x + ROUND) - ROUND
 }
 
 /// `q` moved by whole turns to the turn of `guess` (the nearest angle `q + 2πk` to `guess`).
@@ -149,6 +152,17 @@ mod tests {
         assert!(
             matches!(polar_norm(0.0, 3.0, -4.0), Err(BlockFailure::NoAssembly { residual, .. }) if residual == 4.0)
         );
+    }
+
+    #[test]
+    fn whole_turns_round_to_the_nearest_integer() {
+        for (x, want) in [(0.4, 0.0), (0.6, 1.0), (-0.6, -1.0), (-2.3, -2.0), (1e15 + 0.75, 1e15 + 1.0), (-7.0, -7.0)] {
+            assert_eq!(whole_turns(x), want, "{x}");
+        }
+        assert_eq!(whole_turns(-0.2), 0.0);
+        assert!(whole_turns(f64::NAN).is_nan());
+        // Far beyond any representable turn count: still a large number, never a small one.
+        assert!(whole_turns(1e300) > 1e299 && whole_turns(-1e300) < -1e299);
     }
 
     #[test]

@@ -64,17 +64,21 @@ impl<const N: usize> Lu<N> {
     pub fn factor_scaled(j: &[[f64; N]; N], row_scale: [f64; N], col_scale: [f64; N]) -> Self {
         if N == 1 {
             // A scalar block: the equilibration only measures the pivot; the solve divides by
-            // the unscaled coefficient (which folds away when it is a constant).
-            let (r, c) = (row_scale[0], col_scale[0]);
-            let ok = r > 0.0 && c > 0.0 && r.is_finite() && c.is_finite();
-            let p = if ok { j[0][0] / (r * c) } else { 0.0 };
+            // the unscaled coefficient (which folds away when it is a constant). The product
+            // of the scales is positive and finite for valid scales (it is the column scale
+            // itself for `factor_cols`); two comparisons reject zero, negative, infinite and
+            // NaN scales, and a scale product out of range, as degenerate.
+            let rc = row_scale[0] * col_scale[0];
+            let p = if rc > 0.0 && rc < f64::INFINITY { j[0][0] / rc } else { 0.0 };
+            let ratio = p.abs();
             return Lu {
                 lu: *j,
                 perm: [0; N],
                 inv_row: [1.0; N],
                 inv_col: [1.0; N],
                 inv_diag: [1.0 / j[0][0]; N],
-                pivot_ratio: if p.is_finite() { p.abs() } else { 0.0 },
+                // A NaN or infinite pivot counts as singular.
+                pivot_ratio: if ratio < f64::INFINITY { ratio } else { 0.0 },
                 negative_det: p < 0.0,
                 det: p,
             };
