@@ -419,8 +419,6 @@ where
     }
 
     /// The next sample as a flat state.
-    // Inlined into its caller, the returned state is read where it lies (no copy of it).
-    #[inline]
     pub fn next_kin(&mut self) -> Option<Result<Kin<N, NI, NO>, Error>> {
         if self.done || self.next >= self.samples {
             return None;
@@ -449,7 +447,7 @@ where
             // Solved and judged in place: an accepted state is moved once, into `cur` (every
             // copy of the ~180-byte state is a memcpy on the per-step path).
             let p = self.predict(&self.cur, tau_new - self.tau);
-            let solved = self.m.kinematics_flat(&self.path.at_tau(tau_new), &p.q, &self.cfg.newton);
+            let solved = self.m.kinematics_step_flat(&self.path.at_tau(tau_new), &p.q, &self.cfg.newton);
             let outcome = match &solved {
                 Ok(n) => self.judge(&self.cur.q, n, &p),
                 Err(_) => Outcome::Fail,
