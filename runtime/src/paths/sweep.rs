@@ -419,6 +419,8 @@ where
     }
 
     /// The next sample as a flat state.
+    // Inlined into its caller, the returned state is read where it lies (no copy of it).
+    #[inline]
     pub fn next_kin(&mut self) -> Option<Result<Kin<N, NI, NO>, Error>> {
         if self.done || self.next >= self.samples {
             return None;
