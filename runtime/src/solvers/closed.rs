@@ -70,9 +70,13 @@ pub const SIN_COS_COARSE_ERR: f64 = 1e-10;
 /// ```
 #[inline]
 pub fn sin_cos_coarse(x: f64) -> (f64, f64) {
-    if !(x.abs() <= 1e4) {
-        return libm_sin_cos(x);
-    }
+    // NaN fails the comparison too.
+    if x.abs() <= 1e4 { sin_cos_reduced(x) } else { libm_sin_cos(x) }
+}
+
+/// [`sin_cos_coarse`] for `|x| <= 1e4`.
+#[inline]
+fn sin_cos_reduced(x: f64) -> (f64, f64) {
     // Quadrant `k` and the remainder `r` in about `[-π/4, π/4]` (its rounding is about an ulp
     // of `x` plus `k` times that of π/2: below 1e-11 for `|x| <= 1e4`).
     let k = whole_turns(x * core::f64::consts::FRAC_2_PI);
