@@ -243,14 +243,9 @@ fn flip_at_guess(a: &V, b: &V, g: &TokenStream, cx: &Context) -> TokenStream {
         // The sign from libm-free sines and cosines when it is certain (beyond their error
         // bound), otherwise from libm's: the same decision either way.
         let bound = add(&abs(a), &abs(b));
-        quote! {{
-            let __h_at = |(__sg, __cg): (f64, f64)| -> f64 { #b * __cg - #a * __sg };
-            let mut __h: f64 = __h_at(#rt::sin_cos_coarse(#g));
-            if !(__h.abs() > 3.0 * #rt::SIN_COS_COARSE_ERR * #bound) {
-                __h = __h_at(#g.sin_cos());
-            }
-            __h > 0.0
-        }}
+        quote! {
+            #rt::sign_at_guess(#g, 3.0 * #bound, |(__sg, __cg)| #b * __cg - #a * __sg) > 0.0
+        }
     }
 }
 
@@ -300,11 +295,7 @@ fn dyad(
     let bound = mul(&abs_sum(&a), &abs_sum(&b));
     let rt = cx.rt;
     let mut out = quote! {
-        let __cross_at = |(__s0g, __c0g): (f64, f64), (__s1g, __c1g): (f64, f64)| -> f64 { #cross };
-        let mut __cross: f64 = __cross_at(#rt::sin_cos_coarse(#g0), #rt::sin_cos_coarse(#g1));
-        if !(__cross.abs() > 5.0 * #rt::SIN_COS_COARSE_ERR * #bound) {
-            __cross = __cross_at(#g0.sin_cos(), #g1.sin_cos());
-        }
+        let __cross: f64 = #rt::sign_at_guesses([#g0, #g1], 5.0 * #bound, |[(__s0g, __c0g), (__s1g, __c1g)]| #cross);
         let __flip: bool = #flip;
     };
     let ca = bind(&mut out, "__a", dot(&[(&a[0][0], &e[0]), (&a[1][0], &e[1])]));

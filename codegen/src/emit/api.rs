@@ -100,7 +100,7 @@ fn mechanism_impl(model: &Model, plan: &Plan, t: &Types) -> TokenStream {
         quote!(__guess: &[f64; #n]),
         quote!(__cfg: &#rt::NewtonConfig),
     );
-    let kin = quote!(::core::result::Result<#rt::Kin<#n, #ni, #no>, #rt::Error>);
+    let kin = quote!(#rt::KinResult<#n, #ni, #no>);
     // A small mechanism's kernel is always inlined into a sweep's step (the sweep's loop holds
     // it: no call, the state written in place); `kinematics_flat` is the same kernel, inlined
     // where the compiler chooses. A large one is not copied.

@@ -520,11 +520,7 @@ impl Kernel<'_> {
         // passed to the check is copied into the result: a memcpy per step).
         quote! {
             let __sum: f64 = #sum;
-            if __sum.is_finite() {
-                ::core::result::Result::Ok(#kin)
-            } else {
-                #rt::checked(self, #kin, __sum, #guess)
-            }
+            #rt::checked_with(self, __sum, #guess, || #kin)
         }
     }
 

@@ -101,6 +101,30 @@ fn sin_cos_reduced(x: f64) -> (f64, f64) {
     }
 }
 
+/// `f` of the sines and cosines of the angles `g`, with a sign that is certain: `f` of their
+/// [`sin_cos_coarse`] values when its magnitude exceeds `bound · SIN_COS_COARSE_ERR` (the caller's
+/// bound on the error of `f` per unit error of a sine or cosine), otherwise `f` of libm's. The
+/// sign is therefore the one libm's values give.
+///
+/// ```
+/// use kinloop_runtime::generated::sign_at_guesses;
+/// // sin(g1 - g0) > 0 for g0 = 0.1, g1 = 0.2; a bound of 2 (two terms of unit factors).
+/// let v = sign_at_guesses([0.1, 0.2], 2.0, |[(s0, c0), (s1, c1)]| s1 * c0 - c1 * s0);
+/// assert!(v > 0.0);
+/// ```
+#[inline(always)]
+pub fn sign_at_guesses<const K: usize>(g: [f64; K], bound: f64, f: impl Fn([(f64, f64); K]) -> f64) -> f64 {
+    let v = f(g.map(sin_cos_coarse));
+    // A NaN bound or value takes libm's path.
+    if v.abs() > bound * SIN_COS_COARSE_ERR { v } else { f(g.map(f64::sin_cos)) }
+}
+
+/// [`sign_at_guesses`] for one angle.
+#[inline(always)]
+pub fn sign_at_guess(g: f64, bound: f64, f: impl Fn((f64, f64)) -> f64) -> f64 {
+    sign_at_guesses([g], bound, |[sc]| f(sc))
+}
+
 /// libm's `sin_cos`, out of line: the rare path of [`sin_cos_coarse`].
 #[cold]
 #[inline(never)]
