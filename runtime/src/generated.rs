@@ -178,6 +178,25 @@ where
     if sum.is_finite() || kin.all_finite() { Ok(kin) } else { Err(non_finite::<M, N, NI, NO>(m, &kin, guess)) }
 }
 
+/// The result of a kinematic kernel (a short name keeps the expansions short).
+pub type KinResult<const N: usize, const NI: usize, const NO: usize> = Result<Kin<N, NI, NO>, Error>;
+
+/// [`checked`] with the state built by `kin` where it is returned: when `sum` is finite (the
+/// usual case) the state is built directly in the result, without the copy that passing a built
+/// state would make.
+#[inline(always)]
+pub fn checked_with<M, const N: usize, const NI: usize, const NO: usize>(
+    m: &M,
+    sum: f64,
+    guess: Option<&[f64; N]>,
+    kin: impl FnOnce() -> Kin<N, NI, NO>,
+) -> Result<Kin<N, NI, NO>, Error>
+where
+    M: Mechanism<N, NI, NO>,
+{
+    if sum.is_finite() { Ok(kin()) } else { checked(m, kin(), sum, guess) }
+}
+
 /// Checks the kinematic state `kin` and its sensitivities `sens`: both are returned when every
 /// value is finite, otherwise the error naming the first bad one.
 #[allow(clippy::type_complexity)]

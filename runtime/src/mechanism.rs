@@ -69,6 +69,19 @@ pub trait Mechanism<const N: usize, const NI: usize, const NO: usize> {
     ) -> Result<([f64; N], SolveReport), Error>;
     /// Solves positions and computes all analogs and outputs (one factorisation per block).
     fn kinematics_flat(&self, x: &[f64; NI], guess: &[f64; N], cfg: &NewtonConfig) -> Result<Kin<N, NI, NO>, Error>;
+    /// [`Mechanism::kinematics_flat`] as a sweep's step calls it: the same state. The macro
+    /// makes it the kernel itself, always inlined, for a small mechanism, so that a sweep's loop
+    /// holds the kernel (no call, and the state is written where the sweep keeps it).
+    #[doc(hidden)]
+    #[inline]
+    fn kinematics_step_flat(
+        &self,
+        x: &[f64; NI],
+        guess: &[f64; N],
+        cfg: &NewtonConfig,
+    ) -> Result<Kin<N, NI, NO>, Error> {
+        self.kinematics_flat(x, guess, cfg)
+    }
     /// Analogs and outputs at a given (already solved) position.
     fn kinematics_at_flat(&self, x: &[f64; NI], q: &[f64; N], cfg: &NewtonConfig) -> Result<Kin<N, NI, NO>, Error>;
     /// Output values at `(x, q)`.

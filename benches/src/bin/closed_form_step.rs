@@ -50,10 +50,14 @@ fn turn() -> usize {
     std::env::args().nth(3).and_then(|s| s.parse().ok()).unwrap_or(TURN)
 }
 
+// Each variant's loop is a function of its own: the compiler's inlining decisions inside one
+// variant do not depend on how large the other variants make `main`.
+#[inline(never)]
 fn steps_of<S: Stepper<N>, const N: usize>(s: &S, guess: [f64; N], steps: usize) -> f64 {
     policy_steps(s, WarmStart::Previous, guess, steps)
 }
 
+#[inline(never)]
 fn policy_steps<S: Stepper<N>, const N: usize>(s: &S, policy: WarmStart, guess: [f64; N], steps: usize) -> f64 {
     let mut sweep = Sweep::start(s, turn(), policy, guess).expect("start");
     let mut acc = 0.0;
@@ -63,6 +67,7 @@ fn policy_steps<S: Stepper<N>, const N: usize>(s: &S, policy: WarmStart, guess: 
     acc
 }
 
+#[inline(never)]
 fn sweep_of<M: kinloop::Mechanism<N, 1, NO>, const N: usize, const NO: usize>(
     m: &M,
     guess: [f64; N],

@@ -90,6 +90,18 @@ fn sub(a: &V, b: &V) -> V {
     }
 }
 
+fn abs(a: &V) -> V {
+    match a {
+        V::C(x) => V::C(x.abs()),
+        V::E(t) => V::E(quote!(#t.abs())),
+    }
+}
+
+/// The sum of the magnitudes of the entries of `m` (a bound on `|m c|` for a unit vector `c`).
+fn abs_sum(m: &[[V; 2]; 2]) -> V {
+    m.iter().flatten().fold(V::C(0.0), |acc, v| add(&acc, &abs(v)))
+}
+
 /// `a · x` for pairs `(a, x)`.
 fn dot(terms: &[(&V, &V)]) -> V {
     terms.iter().fold(V::C(0.0), |acc, (a, x)| add(&acc, &mul(a, x)))
@@ -228,10 +240,12 @@ fn flip_at_guess(a: &V, b: &V, g: &TokenStream, cx: &Context) -> TokenStream {
     } else if zero(b) {
         quote!((#a > 0.0) == (#rt::reduce_turn(#g) < 0.0))
     } else {
-        quote! {{
-            let (__sg, __cg): (f64, f64) = #g.sin_cos();
-            #b * __cg - #a * __sg > 0.0
-        }}
+        // The sign from libm-free sines and cosines when it is certain (beyond their error
+        // bound), otherwise from libm's: the same decision either way.
+        let bound = add(&abs(a), &abs(b));
+        quote! {
+            #rt::sign_at_guess(#g, 3.0 * #bound, |(__sg, __cg)| #b * __cg - #a * __sg) > 0.0
+        }
     }
 }
 
@@ -268,16 +282,22 @@ fn dyad(
 ) -> TokenStream {
     let (a, b) = (cx.m(&m[0]), cx.m(&m[1]));
     let e = e.map(|n| cx.v(n));
-    let mut out = quote! {
-        let (__s0g, __c0g): (f64, f64) = #g0.sin_cos();
-        let (__s1g, __c1g): (f64, f64) = #g1.sin_cos();
-    };
     let (c0g, s0g, c1g, s1g) = (local("__c0g"), local("__s0g"), local("__c1g"), local("__s1g"));
     let u0 = [dot(&[(&a[0][0], &c0g), (&a[0][1], &s0g)]), dot(&[(&a[1][0], &c0g), (&a[1][1], &s0g)])];
     let u1 = [dot(&[(&b[0][0], &c1g), (&b[0][1], &s1g)]), dot(&[(&b[1][0], &c1g), (&b[1][1], &s1g)])];
     let cross = sub(&mul(&u0[0], &u1[1]), &mul(&u0[1], &u1[0]));
     let flip = if reflect0 { quote!(__cross > 0.0) } else { quote!(__cross < 0.0) };
-    out.extend(quote!(let __cross: f64 = #cross; let __flip: bool = #flip;));
+    // The cross product from libm-free sines and cosines of the guesses (within `δ` each): its
+    // error is below `4 δ |a| |b|` (`|m|` = sum of the magnitudes of its entries), so beyond
+    // `5 δ |a| |b|` its sign is certain; otherwise it is recomputed from libm's `sin_cos`. The
+    // root chosen is the same either way, and a sweep's guesses are rarely that close to a
+    // singular position.
+    let bound = mul(&abs_sum(&a), &abs_sum(&b));
+    let rt = cx.rt;
+    let mut out = quote! {
+        let __cross: f64 = #rt::sign_at_guesses([#g0, #g1], 5.0 * #bound, |[(__s0g, __c0g), (__s1g, __c1g)]| #cross);
+        let __flip: bool = #flip;
+    };
     let ca = bind(&mut out, "__a", dot(&[(&a[0][0], &e[0]), (&a[1][0], &e[1])]));
     let cb = bind(&mut out, "__b", dot(&[(&a[0][1], &e[0]), (&a[1][1], &e[1])]));
     let l0 = dot(&[(&a[0][0], &a[0][0]), (&a[1][0], &a[1][0])]);

@@ -103,6 +103,9 @@ fn forwarders(t: &Types, d: &Dims) -> TokenStream {
     quote!(#rt::named_api!(#name, #inputs, #unknowns, #outputs, #state, #motion, #n, #ni, #no);)
 }
 
+/// Mechanisms with at most this many unknowns have their kernel inlined into a sweep's step.
+const SWEEP_INLINE_MAX_UNKNOWNS: usize = 8;
+
 /// `Mechanism` for the mechanism: its constants and kernels (the residuals are those of
 /// `jacobian_flat`).
 fn mechanism_impl(model: &Model, plan: &Plan, t: &Types) -> TokenStream {
@@ -122,7 +125,23 @@ fn mechanism_impl(model: &Model, plan: &Plan, t: &Types) -> TokenStream {
         quote!(__guess: &[f64; #n]),
         quote!(__cfg: &#rt::NewtonConfig),
     );
-    let kin = quote!(::core::result::Result<#rt::Kin<#n, #ni, #no>, #rt::Error>);
+    let kin = quote!(#rt::KinResult<#n, #ni, #no>);
+    // A small mechanism's kernel is always inlined into a sweep's step (the sweep's loop holds
+    // it: no call, the state written in place); `kinematics_flat` is the same kernel, inlined
+    // where the compiler chooses. A large one is not copied.
+    let fused_fns = if plan.n <= SWEEP_INLINE_MAX_UNKNOWNS {
+        quote! {
+            #[inline(always)]
+            fn kinematics_step_flat(&self, #x, #g, #cfg) -> #kin { #fused }
+            #[inline]
+            fn kinematics_flat(&self, #x, #g, #cfg) -> #kin { self.kinematics_step_flat(__x, __guess, __cfg) }
+        }
+    } else {
+        quote! {
+            #[inline]
+            fn kinematics_flat(&self, #x, #g, #cfg) -> #kin { #fused }
+        }
+    };
     quote! {
         #lints
         impl #rt::Mechanism<#n, #ni, #no> for #name {
@@ -145,8 +164,7 @@ fn mechanism_impl(model: &Model, plan: &Plan, t: &Types) -> TokenStream {
             fn position_flat(&self, #x, #g, #cfg) -> ::core::result::Result<([f64; #n], #rt::SolveReport), #rt::Error> {
                 #position
             }
-            #[inline]
-            fn kinematics_flat(&self, #x, #g, #cfg) -> #kin { #fused }
+            #fused_fns
             fn kinematics_at_flat(&self, #x, #q, #cfg) -> #kin { #at }
         }
     }

@@ -553,13 +553,11 @@ impl Kernel<'_> {
             terms.extend(names.operands(self.g, &plan.out_d2[o]));
         }
         let (sum, kin, rt, guess) = (balanced_sum(terms), self.kin(), &self.rt, self.guess_arg());
+        // The state is built in the returned value on the hot path (a state built once and
+        // passed to the check is copied into the result: a memcpy per step).
         quote! {
             let __sum: f64 = #sum;
-            let __kin = #kin;
-            if !__sum.is_finite() {
-                return #rt::checked(self, __kin, __sum, #guess);
-            }
-            ::core::result::Result::Ok(__kin)
+            #rt::checked_with(self, __sum, #guess, || #kin)
         }
     }
 

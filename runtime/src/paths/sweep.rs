@@ -25,9 +25,9 @@ use super::curve::{self, CurvePoint, Found, Metric, Path};
 use super::outcome::SweepResult;
 use crate::error::{Error, Quantity};
 use crate::events::{BlockInfo, Event, EventKind, Location};
-use crate::kin::{DetSigns, Kin};
+use crate::kin::{DetSigns, Health, Kin};
 use crate::mechanism::Mechanism;
-use crate::solvers::newton::NewtonConfig;
+use crate::solvers::newton::{NewtonConfig, SolveReport};
 use crate::table::Table;
 use std::marker::PhantomData;
 
@@ -180,12 +180,21 @@ impl SweepConfig {
 /// loops without bound.
 const MAX_ATTEMPTS_PER_SAMPLE: u32 = 100_000;
 
+/// A step's prediction (see `Sweep::predict`).
+struct Prediction<const N: usize> {
+    q: [f64; N],
+    slope0: [f64; N],
+    curv: [f64; N],
+    dt: f64,
+}
+
 /// Why a step was not accepted.
 enum Outcome {
     Accept,
     Flip,
     Far,
-    Fail(Error),
+    /// The solve failed (its error is the solve's result).
+    Fail,
 }
 
 /// A lazy sweep (see the crate documentation, "Sweeps"). Items are `Result<S, Error>` with `S`
@@ -206,7 +215,10 @@ pub struct Sweep<'m, M, S, const N: usize, const NI: usize, const NO: usize> {
     /// in the units there (fixed for the sweep, and taken where the sweep is regular: at a
     /// singular position a unit derived from the terms' magnitudes can degenerate).
     first_q: [f64; N],
-    cur: Option<Kin<N, NI, NO>>,
+    /// The last accepted state, valid once `started` (not an `Option`: taking a state out of
+    /// one and putting it back are copies of the ~180-byte state on the per-step path).
+    cur: Kin<N, NI, NO>,
+    started: bool,
     tau: f64,
     h: f64,
     signs: DetSigns,
@@ -273,7 +285,18 @@ where
             next: 0,
             guess,
             first_q: guess,
-            cur: None,
+            cur: Kin {
+                x: [0.0; NI],
+                q: [0.0; N],
+                dq: [[0.0; NI]; N],
+                d2q: [[[0.0; NI]; NI]; N],
+                out: [0.0; NO],
+                dout: [[0.0; NI]; NO],
+                d2out: [[[0.0; NI]; NI]; NO],
+                report: SolveReport::direct(),
+                health: Health::default(),
+            },
+            started: false,
             tau: 0.0,
             h: 0.0,
             signs: DetSigns::default(),
@@ -314,7 +337,7 @@ where
 
     /// The last accepted state (the last sample, or the last point before a stop).
     pub fn last(&self) -> Option<&Kin<N, NI, NO>> {
-        self.cur.as_ref()
+        self.started.then_some(&self.cur)
     }
 
     /// Runs the whole sweep: the states up to where it ended, why and where it ended, and the
@@ -349,62 +372,61 @@ where
         Location::boxed(M::NAME, &M::INPUTS, x, block)
     }
 
-    /// Solves at `tau_new` from the prediction off `k` and judges the result. The state is
-    /// returned beside the verdict (not inside it) so an accepted one is moved once, into `cur`.
-    fn attempt(&self, k: &Kin<N, NI, NO>, tau_new: f64) -> (Outcome, Option<Kin<N, NI, NO>>) {
-        let dt = tau_new - self.tau;
+    /// The prediction for a step of `dt` (a fraction of the path) from `k`, with the analogs
+    /// along the path it uses: `slope = q' d` and `curv = d^T q'' d` give the second-order
+    /// Taylor prediction `q + slope dt + curv dt^2 / 2` and, in [`Sweep::judge`], the expected
+    /// slope at the new point. Computed once per step.
+    #[inline(always)]
+    fn predict(&self, k: &Kin<N, NI, NO>, dt: f64) -> Prediction<N> {
         let d = &self.path.delta;
-        // The analogs along the path, `slope = q' d` and `curv = d^T q'' d`, give the prediction
-        // (second-order Taylor, `q + slope dt + curv dt^2 / 2`) and, below, the expected slope
-        // at the new point; computed once per step.
-        let (mut pred, mut slope0, mut curv) = (k.q, [0.0; N], [0.0; N]);
+        let mut p = Prediction { q: k.q, slope0: [0.0; N], curv: [0.0; N], dt };
         for u in 0..N {
             for i in 0..NI {
-                slope0[u] += k.dq[u][i] * d[i];
+                p.slope0[u] += k.dq[u][i] * d[i];
                 for j in 0..NI {
-                    curv[u] += k.d2q[u][i][j] * d[i] * d[j];
+                    p.curv[u] += k.d2q[u][i][j] * d[i] * d[j];
                 }
             }
-            pred[u] += dt * (slope0[u] + 0.5 * dt * curv[u]);
+            p.q[u] += dt * (p.slope0[u] + 0.5 * dt * p.curv[u]);
         }
-        let x = self.path.at_tau(tau_new);
-        match self.m.kinematics_flat(&x, &pred, &self.cfg.newton) {
-            Err(e) => (Outcome::Fail(e), None),
-            Ok(n) => {
-                // Positions must land near their prediction, and the velocity analogs near
-                // theirs: a kink in the analogs means the corrector slid onto another branch
-                // through a singular position (e.g. at a change point) even if the positions
-                // are close.
-                let (mut dist, mut change, mut slope_err, mut slope_change, mut slope) =
-                    (0.0f64, 0.0f64, 0.0f64, 0.0f64, 0.0f64);
-                for u in 0..N {
-                    dist = dist.max((n.q[u] - pred[u]).abs());
-                    change = change.max((pred[u] - k.q[u]).abs());
-                    let mut s1 = 0.0;
-                    for i in 0..NI {
-                        s1 += n.dq[u][i] * d[i];
-                    }
-                    slope_err = slope_err.max((s1 - (slope0[u] + curv[u] * dt)).abs());
-                    slope_change = slope_change.max((curv[u] * dt).abs());
-                    slope = slope.max(slope0[u].abs());
-                }
-                let rel = self.cfg.corrector_rel;
-                let verdict = if n.health.det_signs != self.signs {
-                    Outcome::Flip
-                } else if n.health.min_pivot < self.cfg.singular_pivot {
-                    // Too close to a singular position for the analogs (and thus the branch
-                    // identity) to be trusted: within the residual tolerance the solution can
-                    // slide onto a crossing branch.
-                    Outcome::Far
-                } else if dist > rel * change + self.cfg.corrector_abs
-                    || slope_err > rel * (slope_change + 0.1 * slope) + self.cfg.corrector_abs
-                {
-                    Outcome::Far
-                } else {
-                    Outcome::Accept
-                };
-                (verdict, Some(n))
+        p
+    }
+
+    /// Judges the state `n` solved from the prediction `p` off the previous position `q0`.
+    ///
+    /// Positions must land near their prediction, and the velocity analogs near theirs: a kink
+    /// in the analogs means the corrector slid onto another branch through a singular position
+    /// (e.g. at a change point) even if the positions are close.
+    #[inline(always)]
+    fn judge(&self, q0: &[f64; N], n: &Kin<N, NI, NO>, p: &Prediction<N>) -> Outcome {
+        let d = &self.path.delta;
+        let (mut dist, mut change, mut slope_err, mut slope_change, mut slope) =
+            (0.0f64, 0.0f64, 0.0f64, 0.0f64, 0.0f64);
+        for u in 0..N {
+            dist = dist.max((n.q[u] - p.q[u]).abs());
+            change = change.max((p.q[u] - q0[u]).abs());
+            let mut s1 = 0.0;
+            for i in 0..NI {
+                s1 += n.dq[u][i] * d[i];
             }
+            slope_err = slope_err.max((s1 - (p.slope0[u] + p.curv[u] * p.dt)).abs());
+            slope_change = slope_change.max((p.curv[u] * p.dt).abs());
+            slope = slope.max(p.slope0[u].abs());
+        }
+        let rel = self.cfg.corrector_rel;
+        if n.health.det_signs != self.signs {
+            Outcome::Flip
+        } else if n.health.min_pivot < self.cfg.singular_pivot {
+            // Too close to a singular position for the analogs (and thus the branch identity)
+            // to be trusted: within the residual tolerance the solution can slide onto a
+            // crossing branch.
+            Outcome::Far
+        } else if dist > rel * change + self.cfg.corrector_abs
+            || slope_err > rel * (slope_change + 0.1 * slope) + self.cfg.corrector_abs
+        {
+            Outcome::Far
+        } else {
+            Outcome::Accept
         }
     }
 
@@ -413,7 +435,8 @@ where
         let x = self.path.from;
         match self.m.kinematics_flat(&x, &self.guess, &self.cfg.newton) {
             Ok(k) => {
-                self.cur = Some(k);
+                self.cur = k;
+                self.started = true;
                 self.first_q = k.q;
                 self.signs = k.health.det_signs;
                 self.h = self.h_max;
@@ -440,6 +463,8 @@ where
     }
 
     /// The next sample as a flat state.
+    // Inlined into its caller, the returned state is read where it lies (no copy of it).
+    #[inline]
     pub fn next_kin(&mut self) -> Option<Result<Kin<N, NI, NO>, Error>> {
         if self.done || self.next >= self.samples {
             return None;
@@ -448,14 +473,11 @@ where
             self.done = true;
             return Some(Err(e));
         }
-        let Some(cur) = self.cur.as_ref() else {
+        if !self.started {
             return Some(self.first_sample());
-        };
+        }
         let target = if self.next + 1 == self.samples { 1.0 } else { self.next as f64 * self.spacing };
         let mut successes = 0u32;
-        // The state is kept in `self.cur` only (no local copy): every copy of the ~150-byte
-        // state is a memcpy on the per-step path.
-        let mut cur = cur;
         let mut attempts = 0u32;
         while self.tau < target {
             attempts += 1;
@@ -468,11 +490,20 @@ where
             // may fall short by an ulp and leave a needless tiny step.
             let (step, tau_new) =
                 if remaining <= self.h * (1.0 + 1e-9) { (remaining, target) } else { (self.h, self.tau + self.h) };
-            let (outcome, state) = self.attempt(cur, tau_new);
+            // Solved and judged in place: an accepted state is moved once, into `cur` (every
+            // copy of the ~180-byte state is a memcpy on the per-step path).
+            let p = self.predict(&self.cur, tau_new - self.tau);
+            let solved = self.m.kinematics_step_flat(&self.path.at_tau(tau_new), &p.q, &self.cfg.newton);
+            let outcome = match &solved {
+                Ok(n) => self.judge(&self.cur.q, n, &p),
+                Err(_) => Outcome::Fail,
+            };
             match outcome {
                 Outcome::Accept => {
                     self.tau = tau_new;
-                    self.cur = state;
+                    if let Ok(n) = &solved {
+                        self.cur = *n;
+                    }
                     successes += 1;
                     if successes >= 2 {
                         self.h = (self.h * 2.0).min(self.h_max);
@@ -483,12 +514,12 @@ where
                     self.h = step * 0.5;
                     if self.h < self.h_min {
                         // The step cannot be made however small: find out why.
-                        let k = *cur;
-                        match self.diagnose(&k, tau_new, target, outcome) {
+                        let k = self.cur;
+                        match self.diagnose(&k, tau_new, target, outcome, solved.err()) {
                             Ok(n) => {
                                 // Passed a singular crossing (AtSingular::Continue); `diagnose`
                                 // set `tau` to where the continuation resumed.
-                                self.cur = Some(n);
+                                self.cur = n;
                                 self.signs = n.health.det_signs;
                                 self.h = self.h_max;
                             }
@@ -500,10 +531,9 @@ where
                     }
                 }
             }
-            cur = self.cur.as_ref()?;
         }
         self.next += 1;
-        self.cur.map(Ok)
+        Some(Ok(self.cur))
     }
 
     /// After a crossing: follows the curve from `p` until the Jacobian is well conditioned again
@@ -540,13 +570,15 @@ where
     }
 
     /// Explains a step that cannot be made: a limit position, a singular crossing, or another
-    /// failure. Returns the state past a crossing when configured to continue through it.
+    /// failure (`failure`: the solve's error when `outcome` is [`Outcome::Fail`]). Returns the
+    /// state past a crossing when configured to continue through it.
     fn diagnose(
         &mut self,
         k: &Kin<N, NI, NO>,
         tau_new: f64,
         target: f64,
         outcome: Outcome,
+        failure: Option<Error>,
     ) -> Result<Kin<N, NI, NO>, Error> {
         let path = self.path;
         let newton = self.cfg.newton;
@@ -592,8 +624,8 @@ where
 
         // Anything else: report the failure where it happened.
         let x = path.at_tau(tau_new);
-        Err(match outcome {
-            Outcome::Fail(e) => e,
+        Err(match (outcome, failure) {
+            (Outcome::Fail, Some(e)) => e,
             _ => Error::Branch {
                 message: "the sweep cannot stay on its branch: however small the step, the solution jumps or its \
                           velocity analogs do (the solution curve is not smooth here, or steps land on another solution)"

@@ -9,12 +9,15 @@
 use super::newton::{BlockFailure, NewtonConfig};
 use core::f64::consts::{PI, TAU};
 
-/// `round(x)` (half away from zero) by a conversion to an integer: no libm call. Exact for
-/// `|x| < 2^52`; beyond that the value is meaningless as a number of turns anyway (and the
-/// precision check of [`check_closed`] rejects such angles).
+/// `x` rounded to the nearest integer (ties to even) by the addition and subtraction of
+/// `1.5 · 2^52`, where the spacing of doubles is 1: two additions, no libm call and no integer
+/// conversion. Exact for `|x| < 2^51`; beyond that the value is meaningless as a number of turns
+/// anyway (a large number near `x`: the precision check of [`check_closed`] rejects such angles).
+/// A NaN stays NaN.
 #[inline]
 fn whole_turns(x: f64) -> f64 {
-    (x + 0.5f64.copysign(x)) as i64 as f64
+    const ROUND: f64 = 6_755_399_441_055_744.0;
+    (x + ROUND) - ROUND
 }
 
 /// `q` moved by whole turns to the turn of `guess` (the nearest angle `q + 2πk` to `guess`).
@@ -47,6 +50,86 @@ pub fn asin_on_side(s: f64, c: f64) -> f64 {
 #[inline]
 pub fn acos_on_side(c: f64, s: f64) -> f64 {
     if s >= 0.0 { c.clamp(-1.0, 1.0).acos() } else { -c.clamp(-1.0, 1.0).acos() }
+}
+
+/// Bound on the absolute error of [`sin_cos_coarse`] (each of the sine and the cosine): the
+/// Taylor remainders on `[-π/4, π/4]` are below `5e-13`; the reduction's rounding grows with
+/// `|x|` to about `1e-11` at `|x| = 1e4` (the unit test measures 7.8e-12 there); the bound keeps
+/// a margin of 10.
+pub const SIN_COS_COARSE_ERR: f64 = 1e-10;
+
+/// Sine and cosine of `x` within [`SIN_COS_COARSE_ERR`] without libm, for choosing a root by a
+/// sign: a sign decided from these values is the exact one whenever the quantity exceeds its
+/// error bound, and the generated code recomputes it with libm's `sin_cos` otherwise. Beyond
+/// `|x| = 1e4` (and for NaN) this is libm's `sin_cos`.
+///
+/// ```
+/// use kinloop_runtime::generated::{SIN_COS_COARSE_ERR, sin_cos_coarse};
+/// let (s, c) = sin_cos_coarse(2.5);
+/// assert!((s - 2.5f64.sin()).abs() < SIN_COS_COARSE_ERR && (c - 2.5f64.cos()).abs() < SIN_COS_COARSE_ERR);
+/// ```
+#[inline]
+pub fn sin_cos_coarse(x: f64) -> (f64, f64) {
+    // NaN fails the comparison too.
+    if x.abs() <= 1e4 { sin_cos_reduced(x) } else { libm_sin_cos(x) }
+}
+
+/// [`sin_cos_coarse`] for `|x| <= 1e4`.
+#[inline]
+fn sin_cos_reduced(x: f64) -> (f64, f64) {
+    // Quadrant `k` and the remainder `r` in about `[-π/4, π/4]` (its rounding is about an ulp
+    // of `x` plus `k` times that of π/2: below 1e-11 for `|x| <= 1e4`).
+    let k = whole_turns(x * core::f64::consts::FRAC_2_PI);
+    let r = x - k * core::f64::consts::FRAC_PI_2;
+    let r2 = r * r;
+    // Taylor polynomials: the first omitted terms are `r^13 / 13!` and `r^14 / 14!`.
+    let sr = r
+        * (1.0
+            + r2 * (-1.0 / 6.0
+                + r2 * (1.0 / 120.0 + r2 * (-1.0 / 5040.0 + r2 * (1.0 / 362_880.0 + r2 * (-1.0 / 39_916_800.0))))));
+    let cr = 1.0
+        + r2 * (-0.5
+            + r2 * (1.0 / 24.0
+                + r2 * (-1.0 / 720.0
+                    + r2 * (1.0 / 40_320.0 + r2 * (-1.0 / 3_628_800.0 + r2 * (1.0 / 479_001_600.0))))));
+    // `x = r + k π/2`: rotate `(sin r, cos r)` by `k` quarter turns.
+    match (k as i64) & 3 {
+        0 => (sr, cr),
+        1 => (cr, -sr),
+        2 => (-sr, -cr),
+        _ => (-cr, sr),
+    }
+}
+
+/// `f` of the sines and cosines of the angles `g`, with a sign that is certain: `f` of their
+/// [`sin_cos_coarse`] values when its magnitude exceeds `bound · SIN_COS_COARSE_ERR` (the caller's
+/// bound on the error of `f` per unit error of a sine or cosine), otherwise `f` of libm's. The
+/// sign is therefore the one libm's values give.
+///
+/// ```
+/// use kinloop_runtime::generated::sign_at_guesses;
+/// // sin(g1 - g0) > 0 for g0 = 0.1, g1 = 0.2; a bound of 2 (two terms of unit factors).
+/// let v = sign_at_guesses([0.1, 0.2], 2.0, |[(s0, c0), (s1, c1)]| s1 * c0 - c1 * s0);
+/// assert!(v > 0.0);
+/// ```
+#[inline(always)]
+pub fn sign_at_guesses<const K: usize>(g: [f64; K], bound: f64, f: impl Fn([(f64, f64); K]) -> f64) -> f64 {
+    let v = f(g.map(sin_cos_coarse));
+    // A NaN bound or value takes libm's path.
+    if v.abs() > bound * SIN_COS_COARSE_ERR { v } else { f(g.map(f64::sin_cos)) }
+}
+
+/// [`sign_at_guesses`] for one angle.
+#[inline(always)]
+pub fn sign_at_guess(g: f64, bound: f64, f: impl Fn((f64, f64)) -> f64) -> f64 {
+    sign_at_guesses([g], bound, |[sc]| f(sc))
+}
+
+/// libm's `sin_cos`, out of line: the rare path of [`sin_cos_coarse`].
+#[cold]
+#[inline(never)]
+fn libm_sin_cos(x: f64) -> (f64, f64) {
+    x.sin_cos()
 }
 
 /// The guess only picks the branch and the turn, through comparisons that a NaN would silently
@@ -149,6 +232,46 @@ mod tests {
         assert!(
             matches!(polar_norm(0.0, 3.0, -4.0), Err(BlockFailure::NoAssembly { residual, .. }) if residual == 4.0)
         );
+    }
+
+    /// Against libm over the whole range where no libm is called, densely near the quadrant
+    /// boundaries (where the reduction switches) and at large arguments (where it is least
+    /// accurate): every error well inside the documented bound.
+    #[test]
+    fn coarse_sine_and_cosine_stay_within_their_bound() {
+        let mut worst = 0.0f64;
+        let mut check = |x: f64| {
+            let (s, c) = sin_cos_coarse(x);
+            let (se, ce) = x.sin_cos();
+            worst = worst.max((s - se).abs()).max((c - ce).abs());
+        };
+        for i in -200_000..=200_000 {
+            check(i as f64 * 0.05);
+            check(i as f64 * 0.0000371);
+        }
+        for k in -6400..=6400 {
+            let b = k as f64 * core::f64::consts::FRAC_PI_4;
+            for d in [-1e-9, -1e-15, 0.0, 1e-15, 1e-9] {
+                check(b + d);
+            }
+        }
+        for x in [1e4, -1e4, 9999.999, 1e4 + 1.0, 1e9, -3e15] {
+            check(x);
+        }
+        assert!(worst < SIN_COS_COARSE_ERR / 10.0, "{worst:e}");
+        let (s, c) = sin_cos_coarse(f64::NAN);
+        assert!(s.is_nan() && c.is_nan());
+    }
+
+    #[test]
+    fn whole_turns_round_to_the_nearest_integer() {
+        for (x, want) in [(0.4, 0.0), (0.6, 1.0), (-0.6, -1.0), (-2.3, -2.0), (1e15 + 0.75, 1e15 + 1.0), (-7.0, -7.0)] {
+            assert_eq!(whole_turns(x), want, "{x}");
+        }
+        assert_eq!(whole_turns(-0.2), 0.0);
+        assert!(whole_turns(f64::NAN).is_nan());
+        // Far beyond any representable turn count: still a large number, never a small one.
+        assert!(whole_turns(1e300) > 1e299 && whole_turns(-1e300) < -1e299);
     }
 
     #[test]

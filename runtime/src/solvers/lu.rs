@@ -65,21 +65,34 @@ impl<const N: usize> Lu<N> {
     pub fn factor_scaled(j: &[[f64; N]; N], row_scale: [f64; N], col_scale: [f64; N]) -> Self {
         if N == 1 {
             // A scalar block: the equilibration only measures the pivot; the solve divides by
-            // the unscaled coefficient (which folds away when it is a constant).
-            let (r, c) = (row_scale[0], col_scale[0]);
-            let ok = r > 0.0 && r < f64::INFINITY && c > 0.0 && c < f64::INFINITY;
-            let p = if ok { j[0][0] / (r * c) } else { 0.0 };
+            // the unscaled coefficient (which folds away when it is a constant). The product
+            // of the scales is positive and finite for valid scales (it is the column scale
+            // itself for `factor_cols`); two comparisons reject zero, negative, infinite and
+            // NaN scales, and a scale product out of range, as degenerate.
+            let rc = row_scale[0] * col_scale[0];
+            let p = if rc > 0.0 && rc < f64::INFINITY { j[0][0] / rc } else { 0.0 };
+            let ratio = p.abs();
             return Lu {
                 lu: *j,
                 perm: [0; N],
                 inv_row: [1.0; N],
                 inv_col: [1.0; N],
                 inv_diag: [1.0 / j[0][0]; N],
-                pivot_ratio: if p.is_finite() { p.abs() } else { 0.0 },
+                // A NaN or infinite pivot counts as singular.
+                pivot_ratio: if ratio < f64::INFINITY { ratio } else { 0.0 },
                 negative_det: p < 0.0,
                 det: p,
             };
         }
+        if N == 2 {
+            return Self::factor_2x2(j, row_scale, col_scale);
+        }
+        Self::factor_general(j, row_scale, col_scale)
+    }
+
+    /// [`Lu::factor_scaled`] for any size: partial pivoting on the equilibrated matrix.
+    #[inline(always)]
+    fn factor_general(j: &[[f64; N]; N], row_scale: [f64; N], col_scale: [f64; N]) -> Self {
         let mut degenerate = false;
         let inv_row = inverses(row_scale, &mut degenerate);
         let inv_col = inverses(col_scale, &mut degenerate);
@@ -139,6 +152,50 @@ impl<const N: usize> Lu<N> {
         }
         let pivot_ratio = if degenerate || !min_pivot.is_finite() { 0.0 } else { min_pivot };
         Lu { lu, perm, inv_row, inv_col, inv_diag, pivot_ratio, negative_det, det }
+    }
+
+    /// The 2x2 case of [`Lu::factor_scaled`] (every closed-form dyad, slotted rocker and angle
+    /// with a slider is one): the operations of the general elimination in the same order, so
+    /// the results are bit-for-bit the same, with the row exchange a selection instead of the
+    /// loops' searches and index bookkeeping.
+    #[inline(always)]
+    fn factor_2x2(j: &[[f64; N]; N], row_scale: [f64; N], col_scale: [f64; N]) -> Self {
+        let mut degenerate = false;
+        let inv_row = inverses(row_scale, &mut degenerate);
+        let inv_col = inverses(col_scale, &mut degenerate);
+        let e = |r: usize, c: usize| j[r][c] * inv_row[r] * inv_col[c];
+        // Partial pivoting: the second row leads when its first entry is larger (a NaN never
+        // is, as in the general search).
+        let swap = e(1, 0).abs() > e(0, 0).abs();
+        let (top, bottom) = if swap { (1, 0) } else { (0, 1) };
+        let (p0, u01, l0, l1) = (e(top, 0), e(top, 1), e(bottom, 0), e(bottom, 1));
+        let inv0 = 1.0 / p0;
+        let factor = l0 * inv0;
+        let p1 = l1 - factor * u01;
+        // The general loop's running minimum from infinity: the first pivot's magnitude (a NaN
+        // included), then the second's when smaller or NaN.
+        let mut min_pivot = p0.abs();
+        if p1.abs() < min_pivot || p1.is_nan() {
+            min_pivot = p1.abs();
+        }
+        let mut lu = [[0.0; N]; N];
+        (lu[0][0], lu[0][1], lu[1][0], lu[1][1]) = (p0, u01, factor, p1);
+        let mut perm = [0usize; N];
+        perm[0] = top;
+        perm[1] = bottom;
+        let mut inv_diag = [0.0; N];
+        inv_diag[0] = inv0;
+        inv_diag[1] = 1.0 / p1;
+        Lu {
+            lu,
+            perm,
+            inv_row,
+            inv_col,
+            inv_diag,
+            pivot_ratio: if degenerate || !min_pivot.is_finite() { 0.0 } else { min_pivot },
+            negative_det: swap ^ (p0 < 0.0) ^ (p1 < 0.0),
+            det: (if swap { -1.0 } else { 1.0 }) * p0 * p1,
+        }
     }
 
     /// Smallest pivot of the equilibrated matrix, in `[0, ~1]`: `0` when singular. `NaN`
@@ -302,6 +359,50 @@ mod tests {
         // det = 0*(1-0) - 2*(1-0) + 1*(0-3) = -5; rows scaled by 1/2, 1/1, 1/3.
         assert!(lu.negative_det());
         assert!((lu.det() - (-5.0 / 6.0)).abs() < 1e-14, "{}", lu.det());
+    }
+
+    /// The bits of every field of a factorisation, to compare two bit for bit.
+    fn bits(lu: &Lu<2>) -> Vec<u64> {
+        let f = [
+            lu.lu.concat(),
+            lu.inv_row.to_vec(),
+            lu.inv_col.to_vec(),
+            lu.inv_diag.to_vec(),
+            vec![lu.pivot_ratio, lu.det],
+        ];
+        // Any NaN is the same NaN (its sign bit is not a result).
+        let mut v: Vec<u64> = f.concat().iter().map(|x| if x.is_nan() { u64::MAX } else { x.to_bits() }).collect();
+        v.extend(lu.perm.iter().map(|&p| p as u64));
+        v.push(u64::from(lu.negative_det));
+        v
+    }
+
+    /// The unrolled 2x2 factorisation is the general elimination, bit for bit, on regular,
+    /// singular, row-exchanging, negative, zero, infinite and NaN entries and scales.
+    #[test]
+    fn the_2x2_case_is_the_general_elimination() {
+        let values = [0.0, -0.0, 1.0, -2.5, 3.0e-7, 7.0e5, 1.0 + 1e-14, f64::INFINITY, f64::NAN];
+        let scales = [1.0, 2.0, 0.0, -1.0, 1e-300, f64::INFINITY, f64::NAN];
+        let mut n = 0usize;
+        for (i, &a) in values.iter().enumerate() {
+            for (k, &b) in values.iter().enumerate() {
+                let (c, d) = (values[(i + 3 * k + 1) % values.len()], values[(2 * i + k + 5) % values.len()]);
+                let j = [[a, b], [c, d]];
+                for (r, &s) in scales.iter().enumerate() {
+                    let rows = [1.0, s];
+                    let cols = [scales[(r + i) % scales.len()], 0.5];
+                    let fast = Lu::<2>::factor_scaled(&j, rows, cols);
+                    let general = Lu::<2>::factor_general(&j, rows, cols);
+                    assert_eq!(bits(&fast), bits(&general), "{j:?} {rows:?} {cols:?}");
+                    let rhs = [b - 1.0, a + 0.25];
+                    let (zf, zg) = (fast.solve(rhs), general.solve(rhs));
+                    let canon = |z: [f64; 2]| z.map(|x| if x.is_nan() { u64::MAX } else { x.to_bits() });
+                    assert_eq!(canon(zf), canon(zg));
+                    n += 1;
+                }
+            }
+        }
+        assert_eq!(n, 9 * 9 * 7);
     }
 
     #[test]

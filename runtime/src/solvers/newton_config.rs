@@ -77,7 +77,26 @@ impl NewtonConfig {
     }
 
     /// The first field outside its valid range (NaN is outside every range).
+    #[inline]
     pub fn invalid_field(&self) -> Option<&'static str> {
+        // Every step of a closed-form mechanism checks its configuration: the common valid case
+        // is one branch-free conjunction (NaN fails every comparison); the field is named on the
+        // cold path.
+        let valid = (self.residual_tol >= 0.0)
+            & (self.residual_tol <= 1e-3)
+            & (self.step_tol >= 0.0)
+            & (self.step_tol <= 1e-3)
+            & (self.max_iterations <= 10_000)
+            & (self.singular_tol >= 0.0)
+            & (self.singular_tol < 1.0)
+            & (self.min_damping >= 1e-12)
+            & (self.min_damping < 1.0);
+        if valid { None } else { self.first_invalid_field() }
+    }
+
+    #[cold]
+    #[inline(never)]
+    fn first_invalid_field(&self) -> Option<&'static str> {
         let within = |v: f64, lo: f64, hi: f64, lo_open: bool| (if lo_open { v > lo } else { v >= lo }) && v <= hi;
         if !within(self.residual_tol, 0.0, 1e-3, false) {
             Some("residual_tol")
