@@ -547,3 +547,25 @@ macro_rules! __kinds {
 }
 #[doc(hidden)]
 pub use crate::__kinds as kinds;
+
+/// The names and the decomposition of a generated mechanism in its `Mechanism` implementation,
+/// from the inherent constants of the same names, and its parameter values as a `Vec`:
+/// `mechanism_consts!(Name, N, NI, NO)`. One line of expansion instead of nine.
+#[doc(hidden)]
+#[macro_export]
+macro_rules! __mechanism_consts {
+    ($name:ident, $n:literal, $ni:literal, $no:literal) => {
+        const NAME: &'static str = $name::NAME;
+        const PARAMS: &'static [&'static str] = &$name::PARAMS;
+        const INPUTS: [&'static str; $ni] = $name::INPUTS;
+        const UNKNOWNS: [&'static str; $n] = $name::UNKNOWNS;
+        const EQUATIONS: [&'static str; $n] = $name::EQUATIONS;
+        const OUTPUTS: [&'static str; $no] = $name::OUTPUTS;
+        const BLOCKS: &'static [$crate::BlockInfo] = $name::BLOCKS;
+        fn param_values(&self) -> ::std::vec::Vec<f64> {
+            $name::param_values(self).to_vec()
+        }
+    };
+}
+#[doc(hidden)]
+pub use crate::__mechanism_consts as mechanism_consts;

@@ -145,18 +145,8 @@ fn mechanism_impl(model: &Model, plan: &Plan, t: &Types) -> TokenStream {
     quote! {
         #lints
         impl #rt::Mechanism<#n, #ni, #no> for #name {
-            const NAME: &'static str = #name::NAME;
-            const PARAMS: &'static [&'static str] = &#name::PARAMS;
-            const INPUTS: [&'static str; #ni] = #name::INPUTS;
-            const UNKNOWNS: [&'static str; #n] = #name::UNKNOWNS;
-            const EQUATIONS: [&'static str; #n] = #name::EQUATIONS;
-            const OUTPUTS: [&'static str; #no] = #name::OUTPUTS;
-            const BLOCKS: &'static [#rt::BlockInfo] = #name::BLOCKS;
+            #rt::mechanism_consts!(#name, #n, #ni, #no);
             #kinds
-
-            fn param_values(&self) -> ::std::vec::Vec<f64> {
-                #name::param_values(self).to_vec()
-            }
             fn guess_flat(&self, #x) -> [f64; #n] { #guess }
             fn outputs_flat(&self, #x, #q) -> [f64; #no] { #outputs_body }
             fn jacobian_flat(&self, #x, #q) -> #rt::Jac<#n, #ni> { #jacobian }
