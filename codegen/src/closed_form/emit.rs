@@ -231,7 +231,9 @@ fn unwrapped(s: TokenStream, c: TokenStream, guess: &TokenStream, cx: &Context) 
 /// The sign rule for one angle: `h' = b cos g - a sin g > 0` at the guess `g`. With one
 /// coefficient zero only the sign of the other function matters, read off `g` reduced to one
 /// turn (no libm call; at the boundaries the guess sits on a limit position where both roots
-/// meet).
+/// meet). Otherwise `h'` from libm-free sines and cosines, whose error is below
+/// `(|a| + |b|) δ`, when it exceeds three times that, else from libm's (the runtime's
+/// `sign_at_guess`).
 fn flip_at_guess(a: &V, b: &V, g: &TokenStream, cx: &Context) -> TokenStream {
     let zero = |v: &V| matches!(v, V::C(z) if *z == 0.0);
     let rt = cx.rt;
