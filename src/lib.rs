@@ -14,7 +14,7 @@
 //!     pub struct SliderCrank {
 //!         params r = 1.0, l = 3.0, e = 0.2;
 //!         input phi;
-//!         unknowns psi = 0, x = r + l;
+//!         unknowns psi = pi, x = r + l;   // rod from the slider back to the crank pin
 //!         loop oabo: r @ phi == (x, e) + l @ psi;
 //!         point mid = r @ phi + 0.5 * l @ psi;
 //!     }
@@ -193,7 +193,7 @@
 //!     pub struct SliderCrank {
 //!         params r = 1.0, l = 3.0, e = 0.2;
 //!         input phi;
-//!         unknowns psi = 0, x = r + l;
+//!         unknowns psi = pi, x = r + l;   // rod from the slider back to the crank pin
 //!         loop oabo: r @ phi == (x, e) + l @ psi;
 //!     }
 //! }
@@ -378,7 +378,7 @@
 //!     pub struct SliderCrank {
 //!         params r, l, e;
 //!         input phi;
-//!         unknowns psi = 0, x = r + l;
+//!         unknowns psi = pi, x = r + l;   // rod from the slider back to the crank pin
 //!         loop oabo: r @ phi == (x, e) + l @ psi;
 //!     }
 //! }
