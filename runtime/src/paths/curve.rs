@@ -465,7 +465,8 @@ where
         // point (e.g. two coincident joints) the corrector can land on a crossing curve, along
         // which the input may not move at all. A smaller step stays on the curve; a larger one
         // later jumps the branch point onto the curve's smooth continuation.
-        let Some(b) = arc_step(m, path, metric, &a, ds, cfg).filter(|b| a.tangent.dot(&b.tangent) >= MIN_TURN_COS) else {
+        let Some(b) = arc_step(m, path, metric, &a, ds, cfg).filter(|b| a.tangent.dot(&b.tangent) >= MIN_TURN_COS)
+        else {
             ds *= 0.5;
             if ds < 1e-14 * (1.0 + max_arc) {
                 return None;
