@@ -48,9 +48,8 @@ pub struct BlockEval<const N: usize, const K: usize, J = [[f64; N]; N]> {
 #[derive(Clone, Copy, Debug)]
 pub struct Solved<const N: usize, const K: usize, J = [[f64; N]; N]> {
     pub z: [f64; N],
-    /// The evaluation at `z`, or (after the free correction of an accepted guess) at the point
-    /// one Newton step before `z`: its Jacobian and kept values then differ from those at `z`
-    /// by the order of the residual tolerance.
+    /// The evaluation at `z`, or (after a correction at the rounding level, applied without a
+    /// new evaluation) at a point within a few rounding units of `z`.
     pub eval: BlockEval<N, K, J>,
     pub iterations: u32,
     pub evaluations: u32,
@@ -201,17 +200,17 @@ fn newton_step<const N: usize, const K: usize, J: BlockJacobian<N>>(
     (lu.solve_block(neg_f), lu.pivot_ratio())
 }
 
-/// The guess `z0` corrected by one Newton step with the Jacobian of its evaluation `ev`, or
-/// `None` when that Jacobian is near singular or the step is not small (then it iterates). A
-/// correction within the rounding of the unknowns is noise: the guess is kept, so a solve from
-/// a solution returns it unchanged.
+/// The guess `z0` corrected by one Newton step with the Jacobian of its evaluation `ev`, and the
+/// step's scaled size, or `None` when that Jacobian is near singular or the step is not small
+/// (then it iterates). A correction within the rounding of the unknowns is noise: the guess is
+/// kept, so a solve from a solution returns it unchanged.
 #[inline(always)]
 fn free_correction<const N: usize, const K: usize, J: BlockJacobian<N>>(
     ev: &BlockEval<N, K, J>,
     s: &[f64; N],
     z0: [f64; N],
     cfg: &NewtonConfig,
-) -> Option<[f64; N]> {
+) -> Option<([f64; N], f64)> {
     let (dz, pivot) = newton_step(ev, s);
     let step = scaled_step(&dz, &z0, &ev.unit);
     // NaN fails both tests.
@@ -224,7 +223,28 @@ fn free_correction<const N: usize, const K: usize, J: BlockJacobian<N>>(
             z[c] += dz[c];
         }
     }
-    Some(z)
+    Some((z, step))
+}
+
+/// The accepted guess `z0` (evaluation `ev0`, scaled residual `rho0`) corrected to `z` by a step
+/// above the rounding level: evaluated again at `z`, so that the Jacobian and the values the
+/// generated code keeps (sines and cosines of the unknowns, which later unknowns and outputs are
+/// computed from) describe the returned position. A correction that made the residual worse (at
+/// the rounding level) is undone.
+#[cold]
+#[inline(never)]
+fn checked_free_correction<const N: usize, const K: usize, J: BlockJacobian<N>>(
+    z0: [f64; N],
+    ev0: BlockEval<N, K, J>,
+    rho0: f64,
+    z: [f64; N],
+    s: &[f64; N],
+    eval: &mut impl FnMut(&[f64; N]) -> BlockEval<N, K, J>,
+) -> Solved<N, K, J> {
+    let ev = eval(&z);
+    let rho = scaled_residual(&ev.f, s);
+    let (z, eval, residual) = if rho <= rho0 { (z, ev, rho) } else { (z0, ev0, rho0) };
+    Solved { z, eval, iterations: 0, evaluations: 2, residual, termination: Termination::ResidualTolerance }
 }
 
 /// Solves one block from the guess `z0`. In the common warm-started case this costs one
@@ -255,8 +275,11 @@ pub fn newton_with<const N: usize, const K: usize, J: BlockJacobian<N>>(
     // NaN fails both tests; an out-of-range tolerance is diagnosed by `iterate`.
     if rho <= cfg.residual_tol
         && cfg.residual_tol <= 1e-3
-        && let Some(z) = free_correction(&ev, &s, z0, cfg)
+        && let Some((z, step)) = free_correction(&ev, &s, z0, cfg)
     {
+        if step > MAX_UNCHECKED_CORRECTION {
+            return Ok(checked_free_correction(z0, ev, rho, z, &s, &mut eval));
+        }
         return Ok(Solved {
             z,
             eval: ev,
