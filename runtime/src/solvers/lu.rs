@@ -28,11 +28,14 @@ pub struct Lu<const N: usize> {
     det: f64,
 }
 
-fn inverses<const N: usize>(scale: [f64; N], degenerate: &mut bool) -> [f64; N] {
+/// The reciprocals of the equilibration scales; a zero, negative, infinite or NaN scale gives 0
+/// and marks the factorisation `degenerate`. Two float comparisons per scale (NaN fails both):
+/// cheaper than `is_finite` on the bits, and this runs for every row and column of every
+/// factorisation, dense or sparse.
+pub(crate) fn inverses<const N: usize>(scale: [f64; N], degenerate: &mut bool) -> [f64; N] {
     let mut inv = [0.0; N];
     for k in 0..N {
         let s = scale[k];
-        // Two comparisons: NaN and infinity fail them.
         inv[k] = if s > 0.0 && s < f64::INFINITY {
             1.0 / s
         } else {

@@ -17,7 +17,7 @@
 //! that was used.
 
 use super::jacobian::{BlockFactor, BlockJacobian};
-use super::lu::{Factor, Lu};
+use super::lu::{Factor, Lu, inverses};
 
 /// A static pivot below this fraction of the largest entry of its column in the active
 /// submatrix sends the block to the dense factorisation (0.1 is the customary threshold of
@@ -90,22 +90,6 @@ pub struct SparseLu<const N: usize, const NLU: usize> {
     /// The dense fallback (on the heap: it is `N^2` values, and needed only near singular
     /// positions or for unusual values).
     dense: Option<Box<Lu<N>>>,
-}
-
-fn inverses<const N: usize>(scale: [f64; N], degenerate: &mut bool) -> [f64; N] {
-    let mut inv = [0.0; N];
-    for k in 0..N {
-        let s = scale[k];
-        // Two float comparisons (NaN fails both): cheaper than `is_finite` on the bits, and this
-        // runs for every row and column of every factorisation.
-        inv[k] = if s > 0.0 && s < f64::INFINITY {
-            1.0 / s
-        } else {
-            *degenerate = true;
-            0.0
-        };
-    }
-    inv
 }
 
 impl<const N: usize, const NNZ: usize, const NLU: usize> SparseJac<N, NNZ, NLU> {
