@@ -200,9 +200,9 @@ fn newton_step<const N: usize, const K: usize, J: BlockJacobian<N>>(
     (lu.solve_block(neg_f), lu.pivot_ratio())
 }
 
-/// The guess `z0` corrected by one Newton step with the Jacobian of its evaluation `ev`, and the
-/// step's scaled size, or `None` when that Jacobian is near singular or the step is not small
-/// (then it iterates). A correction within the rounding of the unknowns is noise: the guess is
+/// The guess `z0` corrected by one Newton step `dz` with the Jacobian of its evaluation `ev`,
+/// with the step and its scaled size, or `None` when that Jacobian is near singular or the step
+/// is not small (then it iterates). A correction within the rounding of the unknowns is noise: the guess is
 /// kept, so a solve from a solution returns it unchanged.
 #[inline(always)]
 fn free_correction<const N: usize, const K: usize, J: BlockJacobian<N>>(
@@ -210,7 +210,7 @@ fn free_correction<const N: usize, const K: usize, J: BlockJacobian<N>>(
     s: &[f64; N],
     z0: [f64; N],
     cfg: &NewtonConfig,
-) -> Option<([f64; N], f64)> {
+) -> Option<([f64; N], [f64; N], f64)> {
     let (dz, pivot) = newton_step(ev, s);
     let step = scaled_step(&dz, &z0, &ev.unit);
     // NaN fails both tests.
@@ -223,27 +223,43 @@ fn free_correction<const N: usize, const K: usize, J: BlockJacobian<N>>(
             z[c] += dz[c];
         }
     }
-    Some((z, step))
+    Some((z, dz, step))
 }
 
-/// The accepted guess `z0` (evaluation `ev0`, scaled residual `rho0`) corrected to `z` by a step
-/// above the rounding level: evaluated again at `z`, so that the Jacobian and the values the
+/// The position `z + dz` and its evaluation and scaled residual, when that residual is at most
+/// `bound` (NaN fails): a final correction is kept only if it did not make things worse
+/// (rounding noise near a singular position can).
+#[inline(always)]
+fn evaluated_correction<const N: usize, const K: usize, J: BlockJacobian<N>>(
+    z: &[f64; N],
+    dz: &[f64; N],
+    bound: f64,
+    eval: &mut impl FnMut(&[f64; N]) -> BlockEval<N, K, J>,
+) -> Option<([f64; N], BlockEval<N, K, J>, f64)> {
+    let mut z1 = *z;
+    for c in 0..N {
+        z1[c] += dz[c];
+    }
+    let ev = eval(&z1);
+    let rho = scaled_residual(&ev.f, &row_scales(&ev));
+    (rho <= bound).then_some((z1, ev, rho))
+}
+
+/// The accepted guess `z0` (evaluation `ev0`, scaled residual `rho0`) corrected by `dz`, a step
+/// above the rounding level: evaluated again there, so that the Jacobian and the values the
 /// generated code keeps (sines and cosines of the unknowns, which later unknowns and outputs are
-/// computed from) describe the returned position. A correction that made the residual worse (at
-/// the rounding level) is undone.
+/// computed from) describe the returned position; undone if it made the residual worse (the
+/// guess already met the tolerance).
 #[cold]
 #[inline(never)]
 fn checked_free_correction<const N: usize, const K: usize, J: BlockJacobian<N>>(
     z0: [f64; N],
     ev0: BlockEval<N, K, J>,
     rho0: f64,
-    z: [f64; N],
-    s: &[f64; N],
+    dz: &[f64; N],
     eval: &mut impl FnMut(&[f64; N]) -> BlockEval<N, K, J>,
 ) -> Solved<N, K, J> {
-    let ev = eval(&z);
-    let rho = scaled_residual(&ev.f, s);
-    let (z, eval, residual) = if rho <= rho0 { (z, ev, rho) } else { (z0, ev0, rho0) };
+    let (z, eval, residual) = evaluated_correction(&z0, dz, rho0, eval).unwrap_or((z0, ev0, rho0));
     Solved { z, eval, iterations: 0, evaluations: 2, residual, termination: Termination::ResidualTolerance }
 }
 
@@ -275,10 +291,10 @@ pub fn newton_with<const N: usize, const K: usize, J: BlockJacobian<N>>(
     // NaN fails both tests; an out-of-range tolerance is diagnosed by `iterate`.
     if rho <= cfg.residual_tol
         && cfg.residual_tol <= 1e-3
-        && let Some((z, step)) = free_correction(&ev, &s, z0, cfg)
+        && let Some((z, dz, step)) = free_correction(&ev, &s, z0, cfg)
     {
         if step > MAX_UNCHECKED_CORRECTION {
-            return Ok(checked_free_correction(z0, ev, rho, z, &s, &mut eval));
+            return Ok(checked_free_correction(z0, ev, rho, &dz, &mut eval));
         }
         return Ok(Solved {
             z,
@@ -443,16 +459,8 @@ impl<const N: usize, const K: usize, J: BlockJacobian<N>> Iter<N, K, J> {
         cfg: &NewtonConfig,
         eval: &mut impl FnMut(&[f64; N]) -> BlockEval<N, K, J>,
     ) {
-        let mut z = self.z;
-        for c in 0..N {
-            z[c] += dz[c];
-        }
-        let ev = eval(&z);
         self.evaluations += 1;
-        let s1 = row_scales(&ev);
-        let rho1 = scaled_residual(&ev.f, &s1);
-        // NaN fails the test.
-        if rho1 <= rho.max(cfg.residual_tol) {
+        if let Some((z, ev, _)) = evaluated_correction(&self.z, dz, rho.max(cfg.residual_tol), eval) {
             self.z = z;
             self.ev = ev;
         }
