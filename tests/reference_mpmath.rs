@@ -141,6 +141,45 @@ fn check<M: Mechanism<N, 1, NO>, const N: usize, const NO: usize>(
         assert!((k.x[0] - reference.rows[i][0]).abs() <= 4.0 * f64::EPSILON * 7.0, "{name} sample {i} at {:?}", k.x);
         compare(name, &reference, i, &k, lengths, length);
     }
+    fine_sweep(name, m, &reference, lengths, length);
+}
+
+/// Sub-samples per reference row in [`fine_sweep`]: 0.25 degree apart, where a sweep advances
+/// the sines and cosines of its inputs by rotation (below 1.8 degrees) instead of libm.
+const FINE: usize = 60;
+
+/// A sweep of `FINE` samples per reference row: at the reference rows it matches the reference
+/// as the coarse sweep does, and every sample matches a point solve at the same input (libm's
+/// sines and cosines) within the same tolerances: the rotated values cost no precision.
+fn fine_sweep<M: Mechanism<N, 1, NO>, const N: usize, const NO: usize>(
+    name: &str,
+    m: &M,
+    reference: &Reference,
+    lengths: &[usize],
+    length: f64,
+) {
+    let (first, last) = (&reference.rows[0], &reference.rows[reference.rows.len() - 1]);
+    let mut guess = [0.0; N];
+    guess.copy_from_slice(&first[1..1 + N]);
+    let samples = (reference.rows.len() - 1) * FINE + 1;
+    let sweep = kinloop::Sweep::<M, Kin<N, 1, NO>, N, 1, NO>::new(m, [first[0]], [last[0]], samples, guess).unwrap();
+    let cfg = NewtonConfig::default();
+    let mut worst = [0.0f64; 2];
+    for (i, k) in sweep.enumerate() {
+        let k = k.unwrap_or_else(|e| panic!("{name} fine sweep sample {i}: {e}"));
+        if i % FINE == 0 {
+            compare(name, reference, i / FINE, &k, lengths, length);
+        }
+        let point = m.kinematics_flat(&k.x, &k.q, &cfg).unwrap_or_else(|e| panic!("{name} point {i}: {e}"));
+        for u in 0..N {
+            let scale = if lengths.contains(&u) { length } else { 1.0 };
+            worst[0] = worst[0].max((k.q[u] - point.q[u]).abs() / scale);
+            let d_scale = reference.column_max(1 + N + u).max(reference.column_max(1 + 2 * N + u));
+            worst[1] = worst[1].max((k.dq[u][0] - point.dq[u][0]).abs() / d_scale);
+            worst[1] = worst[1].max((k.d2q[u][0][0] - point.d2q[u][0][0]).abs() / d_scale);
+        }
+    }
+    assert!(worst[0] <= 1e-14 && worst[1] <= 1e-12, "{name}: fine sweep vs point solves {worst:?}");
 }
 
 #[test]

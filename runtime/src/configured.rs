@@ -6,6 +6,7 @@ use crate::kin::{Jac, Kin};
 use crate::mechanism::{Mechanism, Named};
 use crate::newton::{NewtonConfig, SolveReport};
 use crate::paths::sweep::SweepConfig;
+use crate::trig::InputTrig;
 
 /// A mechanism that carries its solver configuration: every solve, sweep, reachable range,
 /// assembly-mode search and curve trace of it uses that configuration wherever no explicit one
@@ -81,6 +82,16 @@ where
     #[inline]
     fn kinematics_flat(&self, x: &[f64; NI], guess: &[f64; N], cfg: &NewtonConfig) -> Result<Kin<N, NI, NO>, Error> {
         self.mechanism.kinematics_flat(x, guess, cfg)
+    }
+    #[inline]
+    fn kinematics_step_flat<T: InputTrig>(
+        &self,
+        x: &[f64; NI],
+        guess: &[f64; N],
+        cfg: &NewtonConfig,
+        trig: &mut T,
+    ) -> Result<Kin<N, NI, NO>, Error> {
+        self.mechanism.kinematics_step_flat(x, guess, cfg, trig)
     }
     fn kinematics_at_flat(&self, x: &[f64; NI], q: &[f64; N], cfg: &NewtonConfig) -> Result<Kin<N, NI, NO>, Error> {
         self.mechanism.kinematics_at_flat(x, q, cfg)

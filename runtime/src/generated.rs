@@ -19,6 +19,7 @@ pub use crate::newton::{BlockEval, BlockFailure, NewtonConfig, SolveReport, Solv
 pub use crate::solvers::closed::*;
 pub use crate::solvers::jacobian::{BlockFactor, BlockJacobian};
 pub use crate::solvers::sparse_lu::{SparseJac, SparseLu, SparsePattern};
+pub use crate::trig::{InputTrig, Libm};
 pub use crate::vec2::Vec2;
 
 /// serde, for the derives of generated types (feature `serde`): users need no serde dependency.

@@ -38,6 +38,7 @@ pub mod paths;
 mod solvers;
 mod table;
 mod table_units;
+mod trig;
 mod vec2;
 
 // Short paths inside the crate for the modules every part uses.

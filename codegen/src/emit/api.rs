@@ -112,7 +112,6 @@ fn mechanism_impl(model: &Model, plan: &Plan, t: &Types) -> TokenStream {
     let (rt, name, names) = (runtime(), &t.name, Names::new(model, plan));
     let Dims { n, ni, no, .. } = Dims::of(plan);
     let position = solver_body(plan, &names, Mode::Position, false);
-    let fused = solver_body(plan, &names, Mode::Fused, false);
     let at = solver_body(plan, &names, Mode::At, false);
     let outputs_body = straight_line(plan, &names, &plan.outputs, true);
     let guess = straight_line(plan, &names, &plan.guesses, false);
@@ -129,14 +128,20 @@ fn mechanism_impl(model: &Model, plan: &Plan, t: &Types) -> TokenStream {
     // A small mechanism's kernel is always inlined into a sweep's step (the sweep's loop holds
     // it: no call, the state written in place); `kinematics_flat` is the same kernel, inlined
     // where the compiler chooses. A large one is not copied.
+    // The sweep's kernel asks its cache for the sines and cosines free of the unknowns (it
+    // advances them by rotation); `kinematics_flat` gives it libm.
     let fused_fns = if plan.n <= SWEEP_INLINE_MAX_UNKNOWNS {
+        let fused = solver_body(plan, &names.with_input_trig(plan), Mode::Fused, false);
         quote! {
             #[inline(always)]
-            fn kinematics_step_flat(&self, #x, #g, #cfg) -> #kin { #fused }
+            fn kinematics_step_flat<T: #rt::InputTrig>(&self, #x, #g, #cfg, __trig: &mut T) -> #kin { #fused }
             #[inline]
-            fn kinematics_flat(&self, #x, #g, #cfg) -> #kin { self.kinematics_step_flat(__x, __guess, __cfg) }
+            fn kinematics_flat(&self, #x, #g, #cfg) -> #kin {
+                self.kinematics_step_flat(__x, __guess, __cfg, &mut #rt::Libm)
+            }
         }
     } else {
+        let fused = solver_body(plan, &names, Mode::Fused, false);
         quote! {
             #[inline]
             fn kinematics_flat(&self, #x, #g, #cfg) -> #kin { #fused }

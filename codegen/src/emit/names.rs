@@ -10,7 +10,7 @@
 //! and their node number.
 
 use super::schedule::Schedule;
-use crate::dag::{Graph, Leaf, NodeId, Op};
+use crate::dag::{Func, Graph, Leaf, NodeId, Op};
 use crate::model::Model;
 use crate::plan::Plan;
 use proc_macro2::{Ident, Literal, Span, TokenStream};
@@ -19,6 +19,7 @@ use std::collections::{HashMap, HashSet};
 use syn::ext::IdentExt;
 
 /// Names of leaves and temporaries in generated code.
+#[derive(Clone)]
 pub struct Names {
     /// Parameters are read from the mechanism where they are used (`self.a`).
     pub params: Vec<TokenStream>,
@@ -34,6 +35,9 @@ pub struct Names {
     readable: bool,
     /// Temporaries named after the declared quantity they are.
     roles: HashMap<NodeId, Ident>,
+    /// Sines whose argument is free of the unknowns, with their slot: in a sweep's kernel their
+    /// `sin_cos` is asked of the sweep's cache `__trig` (see [`Names::with_input_trig`]).
+    trig_slots: HashMap<NodeId, usize>,
 }
 
 fn plain(id: &Ident) -> String {
@@ -66,10 +70,24 @@ impl Names {
             p,
             readable: true,
             roles: HashMap::new(),
+            trig_slots: HashMap::new(),
         };
         names.readable = names.distinct();
         names.roles = roles(model, plan);
         names
+    }
+
+    /// These names for a sweep's kernel: every sine and cosine computed together whose argument
+    /// depends on no unknown (the inputs' angles, `phi + gamma`, parameter angles) is asked of
+    /// the kernel's `__trig: &mut impl InputTrig`, one slot per argument, so that a sweep can
+    /// advance it by rotation instead of calling libm.
+    pub fn with_input_trig(&self, plan: &Plan) -> Names {
+        let g = &plan.graph;
+        let sines = (0..g.len()).map(|k| NodeId(k as u32)).filter(|&n| match g.op(n) {
+            Op::Func(Func::Sin, a) => plan.level[a.index()] < 0 && !matches!(g.op(a), Op::Const(_)),
+            _ => false,
+        });
+        Names { trig_slots: sines.enumerate().map(|(slot, n)| (n, slot)).collect(), ..self.clone() }
     }
 
     /// Whether the readable derived names are all distinct.
@@ -220,7 +238,13 @@ impl Names {
                         Op::Func(_, a) => self.operand(g, a),
                         _ => self.operand(g, sn),
                     };
-                    out.extend(quote!(let (#s, #c): (f64, f64) = #arg.sin_cos();));
+                    out.extend(match self.trig_slots.get(&sn) {
+                        Some(&slot) => {
+                            let slot = Literal::usize_unsuffixed(slot);
+                            quote!(let (#s, #c): (f64, f64) = __trig.sin_cos(#slot, #arg);)
+                        }
+                        None => quote!(let (#s, #c): (f64, f64) = #arg.sin_cos();),
+                    });
                 }
                 continue;
             }

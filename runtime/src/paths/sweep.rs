@@ -29,6 +29,7 @@ use crate::kin::{DetSigns, Health, Kin};
 use crate::mechanism::Mechanism;
 use crate::solvers::newton::{NewtonConfig, SolveReport};
 use crate::table::Table;
+use crate::trig::Rotating;
 use std::marker::PhantomData;
 
 /// What a sweep does at a singular crossing (a change point where a block's determinant changes
@@ -222,6 +223,9 @@ pub struct Sweep<'m, M, S, const N: usize, const NI: usize, const NO: usize> {
     tau: f64,
     h: f64,
     signs: DetSigns,
+    /// The sines and cosines of the kernel's input arguments, advanced by rotation from step to
+    /// step (libm only to re-synchronise: see [`Rotating`]).
+    trig: Rotating,
     /// A configuration or range error found by `with_config`, returned by the first `next`.
     invalid: Option<Error>,
     events: Vec<Event>,
@@ -300,6 +304,7 @@ where
             tau: 0.0,
             h: 0.0,
             signs: DetSigns::default(),
+            trig: Rotating::default(),
             invalid: None,
             events: Vec::new(),
             done: false,
@@ -493,7 +498,8 @@ where
             // Solved and judged in place: an accepted state is moved once, into `cur` (every
             // copy of the ~180-byte state is a memcpy on the per-step path).
             let p = self.predict(&self.cur, tau_new - self.tau);
-            let solved = self.m.kinematics_step_flat(&self.path.at_tau(tau_new), &p.q, &self.cfg.newton);
+            let x = self.path.at_tau(tau_new);
+            let solved = self.m.kinematics_step_flat(&x, &p.q, &self.cfg.newton, &mut self.trig);
             let outcome = match &solved {
                 Ok(n) => self.judge(&self.cur.q, n, &p),
                 Err(_) => Outcome::Fail,
