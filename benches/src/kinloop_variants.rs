@@ -140,12 +140,19 @@ impl<'m, M: Mechanism<N, 1, NO>, const N: usize, const NO: usize> KinloopSweep<'
     /// The next sample (after the last angle of a turn comes the first angle of a new sweep).
     #[inline(always)]
     pub fn advance(&mut self) -> Result<&Step<N>, Failed> {
-        let k = match self.sweep.next_kin() {
-            Some(r) => r.map_err(Failed::new)?,
-            None => self.restart()?,
-        };
-        self.phi = k.x[0];
-        self.current = step_of(&k);
+        // The sample is read where the sweep keeps it (no copy of the state).
+        match self.sweep.next_ref() {
+            Some(Ok(k)) => {
+                self.phi = k.x[0];
+                self.current = step_of(k);
+            }
+            Some(Err(e)) => return Err(Failed::new(e)),
+            None => {
+                let k = self.restart()?;
+                self.phi = k.x[0];
+                self.current = step_of(&k);
+            }
+        }
         Ok(&self.current)
     }
 

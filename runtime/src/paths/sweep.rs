@@ -184,6 +184,8 @@ const MAX_ATTEMPTS_PER_SAMPLE: u32 = 100_000;
 /// A step's prediction (see `Sweep::predict`).
 struct Prediction<const N: usize> {
     q: [f64; N],
+    /// The largest predicted change of an unknown, `max |q - q0|`.
+    change: f64,
     slope0: [f64; N],
     curv: [f64; N],
     dt: f64,
@@ -384,7 +386,7 @@ where
     #[inline(always)]
     fn predict(&self, k: &Kin<N, NI, NO>, dt: f64) -> Prediction<N> {
         let d = &self.path.delta;
-        let mut p = Prediction { q: k.q, slope0: [0.0; N], curv: [0.0; N], dt };
+        let mut p = Prediction { q: k.q, change: 0.0, slope0: [0.0; N], curv: [0.0; N], dt };
         for u in 0..N {
             for i in 0..NI {
                 p.slope0[u] += k.dq[u][i] * d[i];
@@ -392,24 +394,24 @@ where
                     p.curv[u] += k.d2q[u][i][j] * d[i] * d[j];
                 }
             }
-            p.q[u] += dt * (p.slope0[u] + 0.5 * dt * p.curv[u]);
+            let change = dt * (p.slope0[u] + 0.5 * dt * p.curv[u]);
+            p.q[u] += change;
+            p.change = p.change.max(change.abs());
         }
         p
     }
 
-    /// Judges the state `n` solved from the prediction `p` off the previous position `q0`.
+    /// Judges the state `n` solved from the prediction `p`.
     ///
     /// Positions must land near their prediction, and the velocity analogs near theirs: a kink
     /// in the analogs means the corrector slid onto another branch through a singular position
     /// (e.g. at a change point) even if the positions are close.
     #[inline(always)]
-    fn judge(&self, q0: &[f64; N], n: &Kin<N, NI, NO>, p: &Prediction<N>) -> Outcome {
+    fn judge(&self, n: &Kin<N, NI, NO>, p: &Prediction<N>) -> Outcome {
         let d = &self.path.delta;
-        let (mut dist, mut change, mut slope_err, mut slope_change, mut slope) =
-            (0.0f64, 0.0f64, 0.0f64, 0.0f64, 0.0f64);
+        let (mut dist, mut slope_err, mut slope_change, mut slope) = (0.0f64, 0.0f64, 0.0f64, 0.0f64);
         for u in 0..N {
             dist = dist.max((n.q[u] - p.q[u]).abs());
-            change = change.max((p.q[u] - q0[u]).abs());
             let mut s1 = 0.0;
             for i in 0..NI {
                 s1 += n.dq[u][i] * d[i];
@@ -426,7 +428,7 @@ where
             // to be trusted: within the residual tolerance the solution can slide onto a
             // crossing branch.
             Outcome::Far
-        } else if dist > rel * change + self.cfg.corrector_abs
+        } else if dist > rel * p.change + self.cfg.corrector_abs
             || slope_err > rel * (slope_change + 0.1 * slope) + self.cfg.corrector_abs
         {
             Outcome::Far
@@ -435,8 +437,8 @@ where
         }
     }
 
-    /// The first sample, solved from the guess.
-    fn first_sample(&mut self) -> Result<Kin<N, NI, NO>, Error> {
+    /// The first sample, solved from the guess (kept as the last accepted state).
+    fn first_sample(&mut self) -> Result<(), Error> {
         let x = self.path.from;
         match self.m.kinematics_flat(&x, &self.guess, &self.cfg.newton) {
             Ok(k) => {
@@ -446,7 +448,7 @@ where
                 self.signs = k.health.det_signs;
                 self.h = self.h_max;
                 self.next = 1;
-                Ok(k)
+                Ok(())
             }
             Err(e) => {
                 self.done = true;
@@ -467,10 +469,17 @@ where
         }
     }
 
-    /// The next sample as a flat state.
-    // Inlined into its caller, the returned state is read where it lies (no copy of it).
+    /// The next sample as a flat state (a copy of [`Sweep::next_ref`]'s).
     #[inline]
     pub fn next_kin(&mut self) -> Option<Result<Kin<N, NI, NO>, Error>> {
+        self.next_ref().map(|r| r.copied())
+    }
+
+    /// The next sample, lent: the sweep's own copy of the state, valid until the next call
+    /// (reading it where it lies saves copying the state of every sample). The same states as
+    /// [`Sweep::next_kin`] and the iterator.
+    #[inline]
+    pub fn next_ref(&mut self) -> Option<Result<&Kin<N, NI, NO>, Error>> {
         if self.done || self.next >= self.samples {
             return None;
         }
@@ -479,7 +488,7 @@ where
             return Some(Err(e));
         }
         if !self.started {
-            return Some(self.first_sample());
+            return Some(self.first_sample().map(|()| &self.cur));
         }
         let target = if self.next + 1 == self.samples { 1.0 } else { self.next as f64 * self.spacing };
         let mut successes = 0u32;
@@ -501,7 +510,7 @@ where
             let x = self.path.at_tau(tau_new);
             let solved = self.m.kinematics_step_flat(&x, &p.q, &self.cfg.newton, &mut self.trig);
             let outcome = match &solved {
-                Ok(n) => self.judge(&self.cur.q, n, &p),
+                Ok(n) => self.judge(n, &p),
                 Err(_) => Outcome::Fail,
             };
             match outcome {
@@ -539,7 +548,7 @@ where
             }
         }
         self.next += 1;
-        Some(Ok(self.cur))
+        Some(Ok(&self.cur))
     }
 
     /// After a crossing: follows the curve from `p` until the Jacobian is well conditioned again
@@ -704,6 +713,25 @@ mod tests {
         }
         fn jacobian_flat(&self, x: &[f64; 1], q: &[f64; 1]) -> Jac<1, 1> {
             self.0.jacobian_flat(x, q)
+        }
+    }
+
+    /// The lent states are the iterator's, sample by sample, and the end is the same.
+    #[test]
+    fn lent_states_are_the_iterated_ones() {
+        let m = SliderCrank { r: 1.0, l: 3.0, e: 0.5 };
+        let g = m.guess_flat(&[0.0]);
+        let owned: Vec<Kin<1, 1, 1>> =
+            Sweep::<_, Kin<1, 1, 1>, 1, 1, 1>::new(&m, [0.0], [6.0], 200, g).unwrap().map(Result::unwrap).collect();
+        let mut sweep = Sweep::<_, Kin<1, 1, 1>, 1, 1, 1>::new(&m, [0.0], [6.0], 200, g).unwrap();
+        let mut lent = Vec::new();
+        while let Some(k) = sweep.next_ref() {
+            lent.push(*k.unwrap());
+        }
+        assert_eq!(owned.len(), 200);
+        assert_eq!(lent.len(), 200);
+        for (a, b) in owned.iter().zip(&lent) {
+            assert_eq!((a.x, a.q, a.dq, a.d2q, a.out), (b.x, b.q, b.dq, b.d2q, b.out));
         }
     }
 
