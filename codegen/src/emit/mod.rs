@@ -17,6 +17,7 @@
 pub mod api;
 pub mod describe;
 pub mod dynamics;
+mod group_lets;
 pub mod kernels;
 pub mod names;
 pub mod schedule;
@@ -120,5 +121,6 @@ pub fn generate(model: &Model, plan: &Plan) -> TokenStream {
     } else {
         out.extend(sensitivities::absent(&types));
     }
-    out
+    // Kernels of thousands of temporaries: `let`s regrouped so rustc's debug information fits.
+    group_lets::group_lets(out)
 }
