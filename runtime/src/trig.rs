@@ -55,12 +55,24 @@ struct Slot {
 #[derive(Clone, Copy, Debug)]
 pub struct Rotating {
     slots: [Slot; SLOTS],
+    /// Every value from libm (see [`Rotating::exact`]).
+    exact: bool,
 }
 
 impl Default for Rotating {
     fn default() -> Self {
         // A NaN argument makes the first call of every slot go to libm.
-        Rotating { slots: [Slot { arg: f64::NAN, sin: 0.0, cos: 1.0, age: 0 }; SLOTS] }
+        Rotating { slots: [Slot { arg: f64::NAN, sin: 0.0, cos: 1.0, age: 0 }; SLOTS], exact: false }
+    }
+}
+
+impl Rotating {
+    /// Whether the following calls take every value from libm: near a singular position the
+    /// positions amplify the last bits of the inputs' sines and cosines, and there a few units
+    /// in the last place more (a rotation's) would cost precision a point solve has.
+    #[inline(always)]
+    pub fn exact(&mut self, exact: bool) {
+        self.exact = exact;
     }
 }
 
@@ -84,7 +96,7 @@ impl InputTrig for Rotating {
         if d == 0.0 {
             return (s.sin, s.cos);
         }
-        if d.abs() <= MAX_ROTATION && s.age < RESYNC {
+        if d.abs() <= MAX_ROTATION && s.age < RESYNC && !self.exact {
             let (sd, cm1) = small_sin_cosm1(d);
             let (sin, cos) = (s.sin, s.cos);
             s.sin = sin + (sin * cm1 + cos * sd);
@@ -147,6 +159,20 @@ mod tests {
         // After a NaN the slot recovers with libm's values.
         assert_eq!(cache.sin_cos(3, 0.2), 0.2f64.sin_cos());
         assert_eq!(Libm.sin_cos(0, 1.5), 1.5f64.sin_cos());
+    }
+
+    /// An exact cache computes every new argument with libm.
+    #[test]
+    fn an_exact_cache_is_libm() {
+        let (mut exact, mut rotating) = (Rotating::default(), Rotating::default());
+        exact.exact(true);
+        let mut differs = 0;
+        for k in 0..RESYNC {
+            let arg = 1.0 + 0.001 * f64::from(k);
+            assert_eq!(exact.sin_cos(0, arg), arg.sin_cos());
+            differs += usize::from(rotating.sin_cos(0, arg) != arg.sin_cos());
+        }
+        assert!(differs > 0, "the other cache rotates (and differs in the last bits somewhere)");
     }
 
     /// Slots are independent, and a repeated argument returns the stored values unchanged.

@@ -181,6 +181,12 @@ impl SweepConfig {
 /// loops without bound.
 const MAX_ATTEMPTS_PER_SAMPLE: u32 = 100_000;
 
+/// The inputs' sines and cosines are advanced by rotation (a few units in the last place off
+/// libm's) only from a position whose smallest pivot ratio is at least this: there the positions
+/// amplify them at most about tenfold, staying within `1e-14` of the loop's size. Nearer a
+/// singular position they come from libm, as in a point solve.
+const ROTATE_MIN_PIVOT: f64 = 0.1;
+
 /// A step's prediction (see `Sweep::predict`).
 struct Prediction<const N: usize> {
     q: [f64; N],
@@ -508,6 +514,7 @@ where
             // copy of the ~180-byte state is a memcpy on the per-step path).
             let p = self.predict(&self.cur, tau_new - self.tau);
             let x = self.path.at_tau(tau_new);
+            self.trig.exact(self.cur.health.min_pivot < ROTATE_MIN_PIVOT);
             let solved = self.m.kinematics_step_flat(&x, &p.q, &self.cfg.newton, &mut self.trig);
             let outcome = match &solved {
                 Ok(n) => self.judge(n, &p),
