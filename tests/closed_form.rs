@@ -358,3 +358,46 @@ fn closed_forms_are_scale_free() {
         }
     }
 }
+
+/// Where the two circles of a dyad coincide (the five-bar's crank joints B and D at the same
+/// point, links `b = c`), every angle closes the loop (`phi3 = phi2`, any `phi2`): the position
+/// is not determined, and the closed form reports the same typed `Singular` error as Newton,
+/// for the same block, from any guess (not `NoAssembly`: the loop does close). Coaxial cranks
+/// (`d = 0`) of equal length at equal angles make the joints coincide exactly in floating point.
+#[test]
+fn coincident_joints_are_singular_through_the_closed_form_and_newton() {
+    let (a, b, d) = (1.0, 2.0, 0.0);
+    let closed = FiveBar { a, b, c: b, d, e: a };
+    let newton = FiveBarNewton { a, b, c: b, d, e: a };
+    let block = |e: &Error| match e {
+        Error::Singular { pivot_ratio, at, .. } => {
+            assert!(*pivot_ratio < 1e-8, "{e}");
+            at.block.as_ref().map(|(k, _)| *k)
+        }
+        _ => panic!("not a singular position: {e}"),
+    };
+    for th in [0.7, -2.0, 3.0] {
+        let x = [th, th];
+        for guess in [[1.0, 2.0], [0.3, 0.3], [th + 0.2, th - 2.5]] {
+            let at = format!("th = {th}, guess {guess:?}");
+            let cfg = NewtonConfig::default();
+            let ec = closed.kinematics_flat(&x, &guess, &cfg).unwrap_err();
+            let en = newton.kinematics_flat(&x, &guess, &cfg).unwrap_err();
+            assert_eq!(block(&ec), Some(0), "closed form {at}: {ec}");
+            assert_eq!(block(&en), Some(0), "Newton {at}: {en}");
+            // Positions alone: Newton's position solve accepts a guess that already closes the
+            // loop (`phi2 = phi3`) without factorising; from the others it meets the singularity.
+            let ec = closed.position_flat(&x, &guess, &cfg).unwrap_err();
+            assert_eq!(block(&ec), Some(0), "closed-form position {at}: {ec}");
+            if guess[0] != guess[1] {
+                let en = newton.position_flat(&x, &guess, &cfg).unwrap_err();
+                assert_eq!(block(&en), Some(0), "Newton position {at}: {en}");
+            }
+        }
+    }
+    // Off the coincidence by a hair, the dyad has its two isolated solutions again (whose
+    // analogs are ill-conditioned: a singular position too, but one that closes at one angle).
+    let near = FiveBar { d: 1e-3, ..closed };
+    let k = near.position_flat(&[0.7, 0.7], &[1.0, 2.0], &NewtonConfig::default());
+    assert!(k.is_ok(), "{k:?}");
+}

@@ -139,7 +139,7 @@ impl Context<'_> {
 
 /// The `let` statements solving the block: binds its unknowns (and the bound sines and
 /// cosines), returns a `NoAssembly` error from the enclosing function when there is no real
-/// root. Inside the solve, `__fail` adds the block's location to a runtime `BlockFailure`.
+/// root, a `Singular` one when every angle is a root. Inside the solve, `__fail` adds the block's location to a runtime `BlockFailure`.
 pub fn solve(rec: &Recognised, cx: &Context) -> TokenStream {
     let guess = |u: usize| {
         let u = Literal::usize_unsuffixed(u);
@@ -202,13 +202,13 @@ fn others_of(form: &ClosedForm) -> Option<usize> {
 fn root(out: &mut TokenStream, a: &V, b: &V, c: &V, flip: &TokenStream, cx: &Context) {
     let rt = cx.rt;
     if let (V::E(_), V::E(_), V::E(_)) = (a, b, c) {
-        out.extend(quote!(let (__cq, __sq) = #rt::dyad_roots(#a, #b, #c, #flip).map_err(__fail)?;));
+        out.extend(quote!(let (__cq, __sq) = #rt::dyad_roots(#a, #b, #c, #flip, __cfg).map_err(__fail)?;));
         return;
     }
     let r2 = bind(out, "__r2", add(&mul(a, a), &mul(b, b)));
     let d2 = sub(&r2, &mul(c, c));
     out.extend(quote! {
-        let __d: f64 = #rt::root_offset(#d2, #r2, #c, #flip).map_err(__fail)?;
+        let __d: f64 = #rt::root_offset(#d2, #r2, #c, #flip, __cfg).map_err(__fail)?;
     });
     let d = local("__d");
     let inv = bind(out, "__inv", V::E(quote!((1.0 / #r2))));
@@ -333,7 +333,7 @@ fn polar(w: &[[NodeId; 2]; 2], e: &[NodeId; 2], gq: &TokenStream, gs: &TokenStre
     let b = bind(&mut out, "__b", sub(&mul(&w[0][1], &e[1]), &mul(&w[1][1], &e[0])));
     let r2 = add(&mul(&a, &a), &mul(&b, &b));
     let (e0, e1, rt) = (&e[0], &e[1], cx.rt);
-    out.extend(quote!(let __ir: f64 = #rt::polar_norm(#r2, #e0, #e1).map_err(__fail)?;));
+    out.extend(quote!(let __ir: f64 = #rt::polar_norm(#r2, #e0, #e1, __cfg).map_err(__fail)?;));
     let ir = local("__ir");
     let (c0, s0) = (mul(&b, &ir), neg(&mul(&a, &ir)));
     out.extend(quote!(let (mut __cq, mut __sq): (f64, f64) = (#c0, #s0);));

@@ -139,24 +139,36 @@ pub fn check_guess(guess_sum: f64) -> Result<(), BlockFailure> {
     if guess_sum.is_finite() { Ok(()) } else { Err(BlockFailure::NonFinite { row: 0, iterations: 0 }) }
 }
 
-/// Why `a cos q + b sin q = c` has no real root, given `d2 = a² + b² - c²` and `r2 = a² + b²`:
-/// a coefficient that is not finite, or links that cannot reach (residual `|c| - r`).
+/// Why `a cos q + b sin q = c` has no single root, given `d2 = a² + b² - c²` and `r2 = a² + b²`:
+/// a coefficient that is not finite; an equation that every angle satisfies (`a = b = c = 0`:
+/// coincident circles of equal radii, the position is not determined, a singular position as
+/// Newton reports it); or links that cannot reach (residual `|c| - r`).
 #[cold]
 #[inline(never)]
-fn no_root(d2: f64, residual: f64) -> BlockFailure {
+fn no_root(d2: f64, r2: f64, c: f64, cfg: &NewtonConfig) -> BlockFailure {
     if d2.is_nan() {
         BlockFailure::NonFinite { row: 0, iterations: 0 }
+    } else if r2 == 0.0 && c == 0.0 {
+        undetermined(cfg)
     } else {
-        BlockFailure::NoAssembly { row: 0, iterations: 0, residual }
+        BlockFailure::NoAssembly { row: 0, iterations: 0, residual: c.abs() - r2.sqrt() }
     }
 }
 
+/// The failure of a block whose equations hold for every value of an angle: singular, with a
+/// zero pivot ratio (its Jacobian's columns are parallel there).
+#[cold]
+#[inline(never)]
+fn undetermined(cfg: &NewtonConfig) -> BlockFailure {
+    BlockFailure::Singular { row: 0, iterations: 0, residual: 0.0, pivot_ratio: 0.0, tolerance: cfg.singular_tol }
+}
+
 /// `±sqrt(d2)` for the root of `a cos q + b sin q = c` with `d2 = r2 - c²`, `r2 = a² + b²`: the
-/// square root, negated when `flip` holds, or the failure when there is no real root.
+/// square root, negated when `flip` holds, or the failure when there is no single real root.
 #[inline]
-pub fn root_offset(d2: f64, r2: f64, c: f64, flip: bool) -> Result<f64, BlockFailure> {
+pub fn root_offset(d2: f64, r2: f64, c: f64, flip: bool, cfg: &NewtonConfig) -> Result<f64, BlockFailure> {
     if !(d2 >= 0.0 && r2 > 0.0) {
-        return Err(no_root(d2, c.abs() - r2.sqrt()));
+        return Err(no_root(d2, r2, c, cfg));
     }
     Ok(if flip { -d2.sqrt() } else { d2.sqrt() })
 }
@@ -167,26 +179,29 @@ pub fn root_offset(d2: f64, r2: f64, c: f64, flip: bool) -> Result<f64, BlockFai
 ///
 /// ```
 /// use kinloop_runtime::generated::dyad_roots;
+/// use kinloop_runtime::NewtonConfig;
+/// let cfg = NewtonConfig::default();
 /// // cos q + sin q = 1: q = π/2 (h' = cos q - sin q = -1 < 0) or q = 0 (h' = 1 > 0).
-/// assert_eq!(dyad_roots(1.0, 1.0, 1.0, false).unwrap(), (0.0, 1.0));
-/// assert_eq!(dyad_roots(1.0, 1.0, 1.0, true).unwrap(), (1.0, 0.0));
-/// assert!(dyad_roots(1.0, 1.0, 2.0, false).is_err());
+/// assert_eq!(dyad_roots(1.0, 1.0, 1.0, false, &cfg).unwrap(), (0.0, 1.0));
+/// assert_eq!(dyad_roots(1.0, 1.0, 1.0, true, &cfg).unwrap(), (1.0, 0.0));
+/// assert!(dyad_roots(1.0, 1.0, 2.0, false, &cfg).is_err());
 /// ```
 #[inline]
-pub fn dyad_roots(a: f64, b: f64, c: f64, flip: bool) -> Result<(f64, f64), BlockFailure> {
+pub fn dyad_roots(a: f64, b: f64, c: f64, flip: bool, cfg: &NewtonConfig) -> Result<(f64, f64), BlockFailure> {
     let r2 = a * a + b * b;
-    let d = root_offset(r2 - c * c, r2, c, flip)?;
+    let d = root_offset(r2 - c * c, r2, c, flip, cfg)?;
     let inv = 1.0 / r2;
     Ok(((a * c - b * d) * inv, (b * c + a * d) * inv))
 }
 
 /// `1 / sqrt(d2)`, the normalisation of the direction `(a, b)` with `d2 = a² + b²` of a polar
-/// length along offset `(e0, e1)`, or the failure when the length would be zero (its angle is
-/// undetermined; the residual is the offset's size).
+/// length along offset `(e0, e1)`, or the failure when there is no direction: a zero offset
+/// (a zero length, whose angle every value satisfies: singular) or a direction that vanishes
+/// although the offset does not (it cannot be reached; the residual is the offset's size).
 #[inline]
-pub fn polar_norm(d2: f64, e0: f64, e1: f64) -> Result<f64, BlockFailure> {
+pub fn polar_norm(d2: f64, e0: f64, e1: f64, cfg: &NewtonConfig) -> Result<f64, BlockFailure> {
     // Written so that a NaN fails.
-    if d2 > 0.0 { Ok(1.0 / d2.sqrt()) } else { Err(no_root(d2, e0.abs().max(e1.abs()))) }
+    if d2 > 0.0 { Ok(1.0 / d2.sqrt()) } else { Err(no_root(d2, 0.0, e0.abs().max(e1.abs()), cfg)) }
 }
 
 /// The checks of a closed-form solution `out` whose first `angles` entries are angles: every
@@ -216,7 +231,7 @@ mod tests {
     fn dyad_roots_solve_the_equation_on_the_requested_branch() {
         let (a, b, c) = (0.3, -1.7, 0.9);
         for flip in [false, true] {
-            let (cq, sq) = dyad_roots(a, b, c, flip).unwrap();
+            let (cq, sq) = dyad_roots(a, b, c, flip, &NewtonConfig::default()).unwrap();
             assert!((a * cq + b * sq - c).abs() < 1e-15);
             assert!((cq * cq + sq * sq - 1.0).abs() < 1e-15);
             assert_eq!(b * cq - a * sq > 0.0, flip);
@@ -225,13 +240,32 @@ mod tests {
 
     #[test]
     fn no_real_root_is_a_typed_failure() {
+        let cfg = NewtonConfig::default();
         assert!(
-            matches!(dyad_roots(1.0, 0.0, 2.0, false), Err(BlockFailure::NoAssembly { residual, .. }) if residual == 1.0)
+            matches!(dyad_roots(1.0, 0.0, 2.0, false, &cfg), Err(BlockFailure::NoAssembly { residual, .. }) if residual == 1.0)
         );
-        assert!(matches!(dyad_roots(f64::NAN, 0.0, 0.0, false), Err(BlockFailure::NonFinite { .. })));
+        assert!(matches!(dyad_roots(f64::NAN, 0.0, 0.0, false, &cfg), Err(BlockFailure::NonFinite { .. })));
         assert!(
-            matches!(polar_norm(0.0, 3.0, -4.0), Err(BlockFailure::NoAssembly { residual, .. }) if residual == 4.0)
+            matches!(polar_norm(0.0, 3.0, -4.0, &cfg), Err(BlockFailure::NoAssembly { residual, .. }) if residual == 4.0)
         );
+        // Concentric circles of different radii: `0 = c` with `c` non-zero cannot hold.
+        assert!(matches!(dyad_roots(0.0, 0.0, 0.5, true, &cfg), Err(BlockFailure::NoAssembly { .. })));
+    }
+
+    /// An equation every angle satisfies (`0 cos q + 0 sin q = 0`: coincident circles of equal
+    /// radii; a zero length along a zero offset) determines no position: singular, as Newton
+    /// reports it, with the configured tolerance; not "cannot be assembled".
+    #[test]
+    fn an_equation_every_angle_satisfies_is_singular() {
+        let cfg = NewtonConfig::default().with_singular_tol(1e-9);
+        for f in [dyad_roots(0.0, 0.0, 0.0, false, &cfg).map(|_| 0.0), polar_norm(0.0, 0.0, -0.0, &cfg)] {
+            match f {
+                Err(BlockFailure::Singular { pivot_ratio, tolerance, .. }) => {
+                    assert_eq!((pivot_ratio, tolerance), (0.0, 1e-9));
+                }
+                other => panic!("{other:?}"),
+            }
+        }
     }
 
     /// Against libm over the whole range where no libm is called, densely near the quadrant
