@@ -97,11 +97,6 @@ fn abs(a: &V) -> V {
     }
 }
 
-/// The sum of the magnitudes of the entries of `m` (a bound on `|m c|` for a unit vector `c`).
-fn abs_sum(m: &[[V; 2]; 2]) -> V {
-    m.iter().flatten().fold(V::C(0.0), |acc, v| add(&acc, &abs(v)))
-}
-
 /// `a · x` for pairs `(a, x)`.
 fn dot(terms: &[(&V, &V)]) -> V {
     terms.iter().fold(V::C(0.0), |acc, (a, x)| add(&acc, &mul(a, x)))
@@ -149,7 +144,7 @@ pub fn solve(rec: &Recognised, cx: &Context) -> TokenStream {
         ClosedForm::AngleEquation { angle, a, b, c } => {
             angle_equation(&cx.v(*a), &cx.v(*b), &cx.v(*c), &guess(*angle), cx)
         }
-        ClosedForm::Dyad { angles, m, reflect, e } => dyad(m, reflect[0], e, &guess(angles[0]), &guess(angles[1]), cx),
+        ClosedForm::Dyad { angles, m, reflect, e } => dyad(m, *reflect, e, &guess(angles[0]), &guess(angles[1]), cx),
         ClosedForm::PolarLength { angle, length, w, e } => polar(w, e, &guess(*angle), &guess(*length), cx),
         ClosedForm::AngleSlider { angle, m, d, e, .. } => angle_slider(m, d, e, &guess(*angle), cx),
     };
@@ -274,9 +269,18 @@ fn angle_equation(a: &V, b: &V, c: &V, g: &TokenStream, cx: &Context) -> TokenSt
 /// `(m0ᵀ e) · c0 = (l1² - l0² - |e|²) / 2`; then `c1 = -m1ᵀ (e + m0 c0) / l1²`. At the roots
 /// the determinant is `-ε1 h'` (`ε` = +1 for a rotation, -1 for a reflection); at the guess it
 /// is `ε0 ε1 (u0 × u1)` with `u_i = m_i c_i`, so the root keeps `-h'` of the sign `ε0 (u0 × u1)`.
+///
+/// The cross product is one function of one angle: `u0 × u1 = c0ᵀ K c1` with `K = m0ᵀ J m1`
+/// (`J` the quarter turn `[[0, 1], [-1, 0]]`) a scaled rotation when `m0`, `m1` are both
+/// rotations or both reflections (`K11 = K00`, `K10 = -K01`), a scaled reflection otherwise, so
+/// `u0 × u1 = K00 cos σ + K01 sin σ` with `σ = q1 - q0`, or `σ = q1 + q0` respectively: its
+/// sign is that of [`flip_at_guess`]'s rule for one angle (no `sin_cos` at all when `K00` or
+/// `K01` is zero, as for links without a constant offset angle). A sign read off `σ` reduced
+/// to one turn can differ from libm's only where the guess is singular to rounding (parallel
+/// links), where neither assembly mode is the guess's.
 fn dyad(
     m: &[[[NodeId; 2]; 2]; 2],
-    reflect0: bool,
+    reflect: [bool; 2],
     e: &[NodeId; 2],
     g0: &TokenStream,
     g1: &TokenStream,
@@ -284,20 +288,21 @@ fn dyad(
 ) -> TokenStream {
     let (a, b) = (cx.m(&m[0]), cx.m(&m[1]));
     let e = e.map(|n| cx.v(n));
-    let (c0g, s0g, c1g, s1g) = (local("__c0g"), local("__s0g"), local("__c1g"), local("__s1g"));
-    let u0 = [dot(&[(&a[0][0], &c0g), (&a[0][1], &s0g)]), dot(&[(&a[1][0], &c0g), (&a[1][1], &s0g)])];
-    let u1 = [dot(&[(&b[0][0], &c1g), (&b[0][1], &s1g)]), dot(&[(&b[1][0], &c1g), (&b[1][1], &s1g)])];
-    let cross = sub(&mul(&u0[0], &u1[1]), &mul(&u0[1], &u1[0]));
-    let flip = if reflect0 { quote!(__cross > 0.0) } else { quote!(__cross < 0.0) };
-    // The cross product from libm-free sines and cosines of the guesses (within `δ` each): its
-    // error is below `4 δ |a| |b|` (`|m|` = sum of the magnitudes of its entries), so beyond
-    // `5 δ |a| |b|` its sign is certain; otherwise it is recomputed from libm's `sin_cos`. The
-    // root chosen is the same either way, and a sweep's guesses are rarely that close to a
-    // singular position.
-    let bound = mul(&abs_sum(&a), &abs_sum(&b));
+    let k = |i: usize, j: usize| sub(&mul(&a[0][i], &b[1][j]), &mul(&a[1][i], &b[0][j]));
+    let (k00, k01) = (k(0, 0), k(0, 1));
+    let sigma = if reflect[0] == reflect[1] { quote!((#g1 - #g0)) } else { quote!((#g1 + #g0)) };
+    // The root keeps `-h'` of the sign `ε0 (u0 × u1)`: `flip` when `ε0 (u0 × u1) < 0`, i.e.
+    // when `h'(σ) = b cos σ - a sin σ > 0` with `(a, b) = ±(K01, -K00)`.
+    let (ca, cb) = if reflect[0] { (neg(&k01), k00) } else { (k01, neg(&k00)) };
     let rt = cx.rt;
+    let flip = if matches!(cb, V::C(z) if z == 0.0) {
+        // `h' = -a sin σ`: `σ` reduced to one turn has the sign of its sine (the product is
+        // zero, no flip, for parallel links, where the sine is zero too).
+        quote!(((#ca) * #rt::reduce_turn(#sigma)) < 0.0)
+    } else {
+        flip_at_guess(&ca, &cb, &sigma, cx)
+    };
     let mut out = quote! {
-        let __cross: f64 = #rt::sign_at_guesses([#g0, #g1], 5.0 * #bound, |[(__s0g, __c0g), (__s1g, __c1g)]| #cross);
         let __flip: bool = #flip;
     };
     let ca = bind(&mut out, "__a", dot(&[(&a[0][0], &e[0]), (&a[1][0], &e[1])]));

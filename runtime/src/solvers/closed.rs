@@ -68,14 +68,14 @@ pub const SIN_COS_COARSE_ERR: f64 = 1e-10;
 /// let (s, c) = sin_cos_coarse(2.5);
 /// assert!((s - 2.5f64.sin()).abs() < SIN_COS_COARSE_ERR && (c - 2.5f64.cos()).abs() < SIN_COS_COARSE_ERR);
 /// ```
-#[inline]
+#[inline(always)]
 pub fn sin_cos_coarse(x: f64) -> (f64, f64) {
     // NaN fails the comparison too.
     if x.abs() <= 1e4 { sin_cos_reduced(x) } else { libm_sin_cos(x) }
 }
 
 /// [`sin_cos_coarse`] for `|x| <= 1e4`.
-#[inline]
+#[inline(always)]
 fn sin_cos_reduced(x: f64) -> (f64, f64) {
     // Quadrant `k` and the remainder `r` in about `[-π/4, π/4]` (its rounding is about an ulp
     // of `x` plus `k` times that of π/2: below 1e-11 for `|x| <= 1e4`).
@@ -101,31 +101,24 @@ fn sin_cos_reduced(x: f64) -> (f64, f64) {
     }
 }
 
-/// `f` of the sines and cosines of the angles `g`, with a sign that is certain: `f` of their
+/// `f` of the sine and cosine of the angle `g`, with a sign that is certain: `f` of their
 /// [`sin_cos_coarse`] values when its magnitude exceeds `bound · SIN_COS_COARSE_ERR` (the caller's
-/// bound on the error of `f` per unit error of a sine or cosine), otherwise `f` of libm's. The
+/// bound on the error of `f` per unit error of the sine or cosine), otherwise `f` of libm's. The
 /// sign is therefore the one libm's values give.
 ///
 /// ```
-/// use kinloop_runtime::generated::sign_at_guesses;
-/// // sin(g1 - g0) > 0 for g0 = 0.1, g1 = 0.2; a bound of 2 (two terms of unit factors).
-/// let v = sign_at_guesses([0.1, 0.2], 2.0, |[(s0, c0), (s1, c1)]| s1 * c0 - c1 * s0);
-/// assert!(v > 0.0);
+/// use kinloop_runtime::generated::sign_at_guess;
+/// // sin(g) - cos(g) > 0 for g = 1; a bound of 2 (two terms of unit factors).
+/// assert!(sign_at_guess(1.0, 2.0, |(s, c)| s - c) > 0.0);
 /// ```
 #[inline(always)]
-pub fn sign_at_guesses<const K: usize>(g: [f64; K], bound: f64, f: impl Fn([(f64, f64); K]) -> f64) -> f64 {
-    let v = f(g.map(sin_cos_coarse));
-    // A NaN bound or value takes libm's path.
-    if v.abs() > bound * SIN_COS_COARSE_ERR { v } else { f(g.map(f64::sin_cos)) }
-}
-
-/// [`sign_at_guesses`] for one angle.
-#[inline(always)]
 pub fn sign_at_guess(g: f64, bound: f64, f: impl Fn((f64, f64)) -> f64) -> f64 {
-    sign_at_guesses([g], bound, |[sc]| f(sc))
+    let v = f(sin_cos_coarse(g));
+    // A NaN bound or value takes libm's path.
+    if v.abs() > bound * SIN_COS_COARSE_ERR { v } else { f(libm_sin_cos(g)) }
 }
 
-/// libm's `sin_cos`, out of line: the rare path of [`sin_cos_coarse`].
+/// libm's `sin_cos`, out of line: the rare paths of [`sin_cos_coarse`] and [`sign_at_guess`].
 #[cold]
 #[inline(never)]
 fn libm_sin_cos(x: f64) -> (f64, f64) {
