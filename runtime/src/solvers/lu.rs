@@ -276,6 +276,41 @@ impl<const N: usize> Lu<N> {
     }
 }
 
+impl Lu<1> {
+    /// [`Lu::factor_cols`] of the scalar block `[[col[k]]]` whose column scale is the largest
+    /// magnitude in `col`, the full Jacobian column the entry belongs to (`max_abs(col)`, as
+    /// the generated code passes it): the same pivot ratio, determinant sign, determinant and
+    /// solves (unit test) with fewer checks. Because `|col[k]| <= max_abs(col)`, the pivot is in
+    /// `[-1, 1]` or NaN, and NaN exactly where the general path finds a degenerate scale (zero:
+    /// the whole column is zero, or not finite), except that an infinite scale with a finite
+    /// entry gives a zero pivot, as there. [`Lu::pivot_ratio`] reads a NaN as 0; only the
+    /// determinant of such a degenerate block differs (NaN instead of 0).
+    #[inline(always)]
+    pub fn factor_in_col<const M: usize>(col: [f64; M], k: usize) -> Self {
+        let j = [[col[k]]];
+        // The largest magnitude, NaN when any entry is NaN (as `max_abs`): a select that keeps
+        // the running maximum on a NaN, and a sum that the NaN reaches.
+        let (mut m, mut sum) = (0.0f64, -0.0f64);
+        for x in col {
+            let a = x.abs();
+            m = if a > m { a } else { m };
+            sum += x;
+        }
+        let scale = if sum.is_nan() { f64::NAN } else { m };
+        let p = j[0][0] / scale;
+        Lu {
+            lu: j,
+            perm: [0],
+            inv_row: [1.0],
+            inv_col: [1.0],
+            inv_diag: [1.0 / j[0][0]],
+            pivot_ratio: p.abs(),
+            negative_det: p < 0.0,
+            det: p,
+        }
+    }
+}
+
 /// What [`Health`](crate::Health) reads from a block's factorisation.
 pub trait Factor {
     /// Smallest pivot of the equilibrated matrix.
@@ -406,6 +441,39 @@ mod tests {
             }
         }
         assert_eq!(n, 9 * 9 * 7);
+    }
+
+    /// The scalar factorisation inside its column is the general one with the column scale
+    /// `max_abs(col)`: the same pivot ratio, determinant sign and solves on regular, zero,
+    /// signed-zero, tiny, huge, infinite and NaN entries; the same determinant wherever the
+    /// scale is valid.
+    #[test]
+    fn the_scalar_in_its_column_is_the_general_factorisation() {
+        let values = [0.0, -0.0, 1.0, -2.5, 3.0e-7, -7.0e5, 1e-310, 1e308, f64::INFINITY, f64::NEG_INFINITY, f64::NAN];
+        let canon = |x: f64| if x.is_nan() { u64::MAX } else { x.to_bits() };
+        let mut n = 0;
+        for &a in &values {
+            for &b in &values {
+                for &c in &values {
+                    let col = [a, b, c];
+                    for k in 0..3 {
+                        let fast = Lu::<1>::factor_in_col(col, k);
+                        let general = Lu::<1>::factor_cols(&[[col[k]]], [max_abs(col)]);
+                        let at = format!("{col:?} {k}");
+                        assert_eq!(fast.pivot_ratio().to_bits(), general.pivot_ratio().to_bits(), "{at}");
+                        assert_eq!(fast.negative_det(), general.negative_det(), "{at}");
+                        if general.pivot_ratio() > 0.0 {
+                            assert_eq!(fast.det().to_bits(), general.det().to_bits(), "{at}");
+                        }
+                        for rhs in [1.5, -0.0, f64::INFINITY] {
+                            assert_eq!(canon(fast.solve([rhs])[0]), canon(general.solve([rhs])[0]), "{at}");
+                        }
+                        n += 1;
+                    }
+                }
+            }
+        }
+        assert_eq!(n, 11 * 11 * 11 * 3);
     }
 
     #[test]
