@@ -166,15 +166,19 @@ pub fn solve(rec: &Recognised, cx: &Context) -> TokenStream {
     let bl = Literal::usize_unsuffixed(cx.block);
     let rt = cx.rt;
     // The guess only picks the branch and the turn, through comparisons that a NaN would
-    // silently answer: it is checked first.
-    let guesses = rec.form.angles().into_iter().chain(others_of(&rec.form)).map(guess);
+    // silently answer. An angle's guess reaches the angle (moved to the guess's turn, it is
+    // non-finite too) and `check_closed` rejects it; a length's or a slider's is checked first.
+    let guess_check = others_of(&rec.form).map(|_| {
+        let guesses = rec.form.angles().into_iter().chain(others_of(&rec.form)).map(guess);
+        quote!(#rt::check_guess(#(#guesses)+*).map_err(__fail)?;)
+    });
     let angles = Literal::usize_unsuffixed(rec.form.angles().len());
     // The closure only captures references: it is `Copy`, one per block. A non-finite guess
     // makes the guesses' sum non-finite.
     quote! {
         let [#(#outs),*]: [f64; #k] = {
             let __fail = |f| #rt::block_failure(self, #bl, f, __x, __guess);
-            #rt::check_guess(#(#guesses)+*).map_err(__fail)?;
+            #guess_check
             #body
             #rt::check_closed(&__out, #angles, __cfg).map_err(__fail)?;
             __out

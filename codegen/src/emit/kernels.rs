@@ -261,19 +261,30 @@ impl Kernel<'_> {
             .collect()
     }
 
-    /// The factorisation of a block whose Jacobian `jrows` is evaluated from the graph: for a
-    /// scalar block, read off the Jacobian column its entry belongs to (the runtime's
-    /// `Lu::factor_in_col`: the general one with fewer checks) when the entry is among the
-    /// column's non-zero entries; otherwise the general `factor_cols` with `scale`.
+    /// The factorisation of a block whose Jacobian `jrows` is evaluated from the graph, read off
+    /// the Jacobian columns its entries belong to (the runtime's `Lu::factor_in_col` for a
+    /// scalar block whose entry is among the column's non-zero entries, `Lu::factor_in_cols`
+    /// for a 2x2 block: the general factorisation with fewer checks); otherwise the general
+    /// `factor_cols` with `scale`.
     fn factor(&self, bp: &BlockPlan, jrows: &TokenStream, scale: &[TokenStream]) -> TokenStream {
         let (rt, n) = (&self.rt, lit(bp.unknowns.len()));
         let k = (bp.unknowns.len() == 1).then(|| bp.col_scale[0].iter().position(|&e| e == bp.jac[0][0])).flatten();
-        match k {
-            Some(k) => {
+        match (bp.unknowns.len(), k) {
+            (1, Some(k)) => {
                 let (col, k) = (self.names.operands(self.g, &bp.col_scale[0]), lit(k));
                 quote!(#rt::Lu::<1>::factor_in_col([#(#col),*], #k))
             }
-            None => quote!(#rt::Lu::<#n>::factor_cols(&#jrows, [#(#scale),*])),
+            (2, _) => {
+                // Both columns padded with zeros to one length (a zero changes no maximum).
+                let len = bp.col_scale.iter().map(Vec::len).max().unwrap_or(0);
+                let cols = bp.col_scale.iter().map(|c| {
+                    let mut v: Vec<TokenStream> = self.names.operands(self.g, c).collect();
+                    v.resize(len, quote!(0.0));
+                    quote!([#(#v),*])
+                });
+                quote!(#rt::Lu::<2>::factor_in_cols(&#jrows, [#(#cols),*]))
+            }
+            _ => quote!(#rt::Lu::<#n>::factor_cols(&#jrows, [#(#scale),*])),
         }
     }
 

@@ -126,7 +126,9 @@ fn libm_sin_cos(x: f64) -> (f64, f64) {
 }
 
 /// The guess only picks the branch and the turn, through comparisons that a NaN would silently
-/// answer: `guess_sum`, the sum of the block's guesses, must be finite.
+/// answer: `guess_sum`, the sum of the block's guesses, must be finite. (A guess of an angle
+/// needs no check of its own: the angle is moved to its turn, which makes it non-finite too,
+/// and [`check_closed`] rejects it.)
 #[inline]
 pub fn check_guess(guess_sum: f64) -> Result<(), BlockFailure> {
     if guess_sum.is_finite() { Ok(()) } else { Err(BlockFailure::NonFinite { row: 0, iterations: 0 }) }
@@ -207,12 +209,17 @@ pub fn check_closed<const K: usize>(out: &[f64; K], angles: usize, cfg: &NewtonC
     if !out.iter().sum::<f64>().is_finite() {
         return Err(BlockFailure::NonFinite { row: 0, iterations: 0 });
     }
-    let big = out[..angles].iter().fold(0.0f64, |m, q| m.max(q.abs()));
-    if big * f64::EPSILON <= 1000.0 * cfg.residual_tol.max(16.0 * f64::EPSILON) {
-        Ok(())
-    } else {
-        Err(BlockFailure::NoConvergence { row: 0, iterations: 0, residual: big * f64::EPSILON })
-    }
+    // Each angle against the limit: the test of their largest magnitude, without the maximum.
+    let limit = 1000.0 * cfg.residual_tol.max(16.0 * f64::EPSILON);
+    if out[..angles].iter().all(|q| q.abs() * f64::EPSILON <= limit) { Ok(()) } else { Err(imprecise(&out[..angles])) }
+}
+
+/// The failure of angles too large to be accurate: the rounding of the largest.
+#[cold]
+#[inline(never)]
+fn imprecise(angles: &[f64]) -> BlockFailure {
+    let big = angles.iter().fold(0.0f64, |m, q| m.max(q.abs()));
+    BlockFailure::NoConvergence { row: 0, iterations: 0, residual: big * f64::EPSILON }
 }
 
 #[cfg(test)]
