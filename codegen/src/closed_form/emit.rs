@@ -210,9 +210,19 @@ fn root(out: &mut TokenStream, a: &V, b: &V, c: &V, flip: &TokenStream, cx: &Con
         let __d: f64 = #rt::root_offset(#d2, #r2, #c, #flip, __cfg).map_err(__fail)?;
     });
     let d = local("__d");
-    let inv = bind(out, "__inv", V::E(quote!((1.0 / #r2))));
-    let cq = mul(&sub(&mul(a, c), &mul(b, &d)), &inv);
-    let sq = mul(&add(&mul(b, c), &mul(a, &d)), &inv);
+    let zero = |v: &V| matches!(v, V::C(z) if *z == 0.0);
+    // With one coefficient zero the formulas divide by the other, not by its square: `b sin q
+    // = c` gives `(cos q, sin q) = (-d / b, c / b)`, `a cos q = c` gives `(c / a, d / a)`.
+    let (cq, sq) = if zero(a) {
+        let ib = bind(out, "__ib", V::E(quote!((1.0 / #b))));
+        (neg(&mul(&d, &ib)), mul(c, &ib))
+    } else if zero(b) {
+        let ia = bind(out, "__ia", V::E(quote!((1.0 / #a))));
+        (mul(c, &ia), mul(&d, &ia))
+    } else {
+        let inv = bind(out, "__inv", V::E(quote!((1.0 / #r2))));
+        (mul(&sub(&mul(a, c), &mul(b, &d)), &inv), mul(&add(&mul(b, c), &mul(a, &d)), &inv))
+    };
     out.extend(quote!(let __cq: f64 = #cq; let __sq: f64 = #sq;));
 }
 
@@ -251,16 +261,26 @@ fn flip_at_guess(a: &V, b: &V, g: &TokenStream, cx: &Context) -> TokenStream {
 }
 
 fn angle_equation(a: &V, b: &V, c: &V, g: &TokenStream, cx: &Context) -> TokenStream {
+    let zero = |v: &V| matches!(v, V::C(z) if *z == 0.0);
+    let rt = cx.rt;
+    if zero(a) {
+        // `b sin q = c`: the root's cosine has the sign of the guess's (`h' = b cos q` keeps
+        // its sign), so `asin` of the sine on the guess's side of the vertical, moved to its
+        // turn by the reduction the sign rule made (the rule of `flip_at_guess`).
+        let mut out = quote! {
+            let __r: f64 = #rt::reduce_turn(#g);
+            let __right: bool = __r.abs() < ::core::f64::consts::FRAC_PI_2;
+            let __flip: bool = (#b > 0.0) == __right;
+        };
+        root(&mut out, a, b, c, &quote!(__flip), cx);
+        out.extend(quote!(let __out: [f64; 3] = [#rt::asin_near(__sq, __right, __r, #g), __cq, __sq];));
+        return out;
+    }
     let flip = flip_at_guess(a, b, g, cx);
     let mut out = quote!(let __flip: bool = #flip;);
     root(&mut out, a, b, c, &quote!(__flip), cx);
-    let zero = |v: &V| matches!(v, V::C(z) if *z == 0.0);
-    // `b sin q = c`: `asin` of the sine on the cosine's side (cheaper than `atan2`); `a cos q
-    // = c` likewise with `acos`.
-    let rt = cx.rt;
-    let q = if zero(a) {
-        on_turn(quote!(#rt::asin_on_side(__sq, __cq)), g, cx)
-    } else if zero(b) {
+    // `a cos q = c`: `acos` of the cosine on the sine's side (cheaper than `atan2`).
+    let q = if zero(b) {
         on_turn(quote!(#rt::acos_on_side(__cq, __sq)), g, cx)
     } else {
         unwrapped(quote!(__sq), quote!(__cq), g, cx)

@@ -39,11 +39,29 @@ pub fn reduce_turn(g: f64) -> f64 {
     g - TAU * whole_turns(g * (1.0 / TAU))
 }
 
-/// The angle of sine `s` on the side of cosine `c` by `asin` (cheaper than `atan2` when `s` and
-/// `c` come from `b sin q = c`), in `[-π/2, 3π/2]`.
+/// The angle of sine `s` nearest to the guess `g` on its side of the vertical (`right`: the
+/// guess's cosine is positive), given `r = reduce_turn(g)`, with `right = |r| < π/2`: `asin`
+/// or its supplement, moved to the guess's turn by `g - r`, the whole turns the reduction took
+/// off (no second reduction, as [`unwrap_to_turn`] would make).
+///
+/// ```
+/// use kinloop_runtime::generated::{asin_near, reduce_turn};
+/// use std::f64::consts::{PI, TAU};
+/// let g = 2.8 - 3.0 * TAU; // left of the vertical, three turns down
+/// let r = reduce_turn(g);
+/// assert!((asin_near(0.5, r.abs() < PI / 2.0, r, g) - (5.0 * PI / 6.0 - 3.0 * TAU)).abs() < 1e-13);
+/// ```
 #[inline]
-pub fn asin_on_side(s: f64, c: f64) -> f64 {
-    if c >= 0.0 { s.clamp(-1.0, 1.0).asin() } else { PI - s.clamp(-1.0, 1.0).asin() }
+pub fn asin_near(s: f64, right: bool, r: f64, g: f64) -> f64 {
+    let base = s.clamp(-1.0, 1.0).asin();
+    let side = if right {
+        base
+    } else if r > 0.0 {
+        PI - base
+    } else {
+        -PI - base
+    };
+    (g - r) + side
 }
 
 /// The angle of cosine `c` on the side of sine `s` by `acos`, in `[-π, π]`.
@@ -313,8 +331,31 @@ mod tests {
         let q = unwrap_to_turn(-3.0, 3.0 - 5.0 * TAU);
         assert!((q - (-3.0 - 4.0 * TAU)).abs() < 1e-12, "{q}");
         assert!((reduce_turn(1.0 + 7.0 * TAU) - 1.0).abs() < 1e-12);
-        assert!((asin_on_side(0.5, -1.0) - 5.0 * PI / 6.0).abs() < 1e-15);
+        assert!((asin_near(0.5, false, 2.0, 2.0) - 5.0 * PI / 6.0).abs() < 1e-15);
         assert!((acos_on_side(0.5, -1.0) + PI / 3.0).abs() < 1e-15);
+    }
+
+    /// `asin_near` is the angle of the given sine whose cosine has the sign of the guess's,
+    /// on the guess's turn (within half a turn of it), over guesses of many turns and sines
+    /// up to ±1; the same as `asin` or its supplement moved by `unwrap_to_turn`.
+    #[test]
+    fn asin_near_keeps_the_guess_side_and_turn() {
+        for i in -400..=400 {
+            let g = i as f64 * 0.0731 + 0.01;
+            let r = reduce_turn(g);
+            let right = r.abs() < PI / 2.0;
+            for k in -10..=10 {
+                let s = k as f64 / 10.0;
+                let q = asin_near(s, right, r, g);
+                assert!((q.sin() - s).abs() < 1e-13, "{g} {s}: {q}");
+                assert!((q - g).abs() <= PI + 1e-12, "{g} {s}: {q}");
+                if g.cos().abs() > 1e-9 && s.abs() < 1.0 {
+                    assert_eq!(q.cos() > 0.0, g.cos() > 0.0, "{g} {s}: {q}");
+                }
+                let side = if right { s.asin() } else { PI - s.asin() };
+                assert!((q - unwrap_to_turn(side, g)).abs() < 1e-12, "{g} {s}: {q}");
+            }
+        }
     }
 
     #[test]
