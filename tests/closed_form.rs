@@ -172,6 +172,18 @@ with_newton_twin! {
     }
 }
 
+with_newton_twin! {
+    /// A dyad whose links carry constant offset angles, the second written with its components
+    /// swapped (a reflection of its angle): the branch rule's `K00 cos σ + K01 sin σ` with both
+    /// coefficients non-zero and `σ = q1 + q0`.
+    pub struct OffsetDyad, OffsetDyadNewton {
+        params a = 1.0, b = 3.0, c = 2.5, d = 3.2, alpha = 0.4, delta = -0.3;
+        input phi;
+        unknowns u = 0.1, v = 1.2;
+        loop l: a @ phi + b @ (u + alpha) == (d, 0) + c * (sin(v + delta), cos(v + delta));
+    }
+}
+
 /// The Newton twin's configuration: iterate to rounding level.
 fn tight() -> NewtonConfig {
     NewtonConfig::default().with_residual_tol(1e-14).with_step_tol(1e-16)
@@ -295,6 +307,12 @@ fn slider_cranks_and_slotted_rocker_agree_with_newton() {
     assert_eq!(agree_over(&SliderCrank::default(), &SliderCrankNewton::default(), [0.0], [TAU], 720), 2);
     assert_eq!(agree_over(&TiltedSlider::default(), &TiltedSliderNewton::default(), [0.0], [TAU], 720), 2);
     assert_eq!(agree_over(&SlottedRocker::default(), &SlottedRockerNewton::default(), [0.0], [TAU], 720), 2);
+}
+
+#[test]
+fn a_dyad_with_offset_and_reflected_links_agrees_with_newton() {
+    assert!(OffsetDyad::DECOMPOSITION.contains("closed form, RRR dyad"), "{}", OffsetDyad::DECOMPOSITION);
+    assert_eq!(agree_over(&OffsetDyad::default(), &OffsetDyadNewton::default(), [0.0], [TAU], 720), 2);
 }
 
 #[test]
