@@ -172,6 +172,18 @@ with_newton_twin! {
     }
 }
 
+with_newton_twin! {
+    /// A dyad whose links carry constant offset angles, the second written with its components
+    /// swapped (a reflection of its angle): the branch rule's `K00 cos σ + K01 sin σ` with both
+    /// coefficients non-zero and `σ = q1 + q0`.
+    pub struct OffsetDyad, OffsetDyadNewton {
+        params a = 1.0, b = 3.0, c = 2.5, d = 3.2, alpha = 0.4, delta = -0.3;
+        input phi;
+        unknowns u = 0.1, v = 1.2;
+        loop l: a @ phi + b @ (u + alpha) == (d, 0) + c * (sin(v + delta), cos(v + delta));
+    }
+}
+
 /// The Newton twin's configuration: iterate to rounding level.
 fn tight() -> NewtonConfig {
     NewtonConfig::default().with_residual_tol(1e-14).with_step_tol(1e-16)
@@ -298,6 +310,12 @@ fn slider_cranks_and_slotted_rocker_agree_with_newton() {
 }
 
 #[test]
+fn a_dyad_with_offset_and_reflected_links_agrees_with_newton() {
+    assert!(OffsetDyad::DECOMPOSITION.contains("closed form, RRR dyad"), "{}", OffsetDyad::DECOMPOSITION);
+    assert_eq!(agree_over(&OffsetDyad::default(), &OffsetDyadNewton::default(), [0.0], [TAU], 720), 2);
+}
+
+#[test]
 fn five_bar_agrees_with_newton_along_a_path_of_both_inputs() {
     let n = agree_over(&FiveBar::default(), &FiveBarNewton::default(), [0.2, 0.1], [1.4, 0.9], 400);
     assert_eq!(n, 2);
@@ -357,4 +375,47 @@ fn closed_forms_are_scale_free() {
             assert!((x.q.gamma - y.q.gamma).abs() < 1e-14 * x.q.gamma.abs().max(1.0), "{scale} {phi}");
         }
     }
+}
+
+/// Where the two circles of a dyad coincide (the five-bar's crank joints B and D at the same
+/// point, links `b = c`), every angle closes the loop (`phi3 = phi2`, any `phi2`): the position
+/// is not determined, and the closed form reports the same typed `Singular` error as Newton,
+/// for the same block, from any guess (not `NoAssembly`: the loop does close). Coaxial cranks
+/// (`d = 0`) of equal length at equal angles make the joints coincide exactly in floating point.
+#[test]
+fn coincident_joints_are_singular_through_the_closed_form_and_newton() {
+    let (a, b, d) = (1.0, 2.0, 0.0);
+    let closed = FiveBar { a, b, c: b, d, e: a };
+    let newton = FiveBarNewton { a, b, c: b, d, e: a };
+    let block = |e: &Error| match e {
+        Error::Singular { pivot_ratio, at, .. } => {
+            assert!(*pivot_ratio < 1e-8, "{e}");
+            at.block.as_ref().map(|(k, _)| *k)
+        }
+        _ => panic!("not a singular position: {e}"),
+    };
+    for th in [0.7, -2.0, 3.0] {
+        let x = [th, th];
+        for guess in [[1.0, 2.0], [0.3, 0.3], [th + 0.2, th - 2.5]] {
+            let at = format!("th = {th}, guess {guess:?}");
+            let cfg = NewtonConfig::default();
+            let ec = closed.kinematics_flat(&x, &guess, &cfg).unwrap_err();
+            let en = newton.kinematics_flat(&x, &guess, &cfg).unwrap_err();
+            assert_eq!(block(&ec), Some(0), "closed form {at}: {ec}");
+            assert_eq!(block(&en), Some(0), "Newton {at}: {en}");
+            // Positions alone: Newton's position solve accepts a guess that already closes the
+            // loop (`phi2 = phi3`) without factorising; from the others it meets the singularity.
+            let ec = closed.position_flat(&x, &guess, &cfg).unwrap_err();
+            assert_eq!(block(&ec), Some(0), "closed-form position {at}: {ec}");
+            if guess[0] != guess[1] {
+                let en = newton.position_flat(&x, &guess, &cfg).unwrap_err();
+                assert_eq!(block(&en), Some(0), "Newton position {at}: {en}");
+            }
+        }
+    }
+    // Off the coincidence by a hair, the dyad has its two isolated solutions again (whose
+    // analogs are ill-conditioned: a singular position too, but one that closes at one angle).
+    let near = FiveBar { d: 1e-3, ..closed };
+    let k = near.position_flat(&[0.7, 0.7], &[1.0, 2.0], &NewtonConfig::default());
+    assert!(k.is_ok(), "{k:?}");
 }

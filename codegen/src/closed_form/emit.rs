@@ -97,11 +97,6 @@ fn abs(a: &V) -> V {
     }
 }
 
-/// The sum of the magnitudes of the entries of `m` (a bound on `|m c|` for a unit vector `c`).
-fn abs_sum(m: &[[V; 2]; 2]) -> V {
-    m.iter().flatten().fold(V::C(0.0), |acc, v| add(&acc, &abs(v)))
-}
-
 /// `a · x` for pairs `(a, x)`.
 fn dot(terms: &[(&V, &V)]) -> V {
     terms.iter().fold(V::C(0.0), |acc, (a, x)| add(&acc, &mul(a, x)))
@@ -139,7 +134,7 @@ impl Context<'_> {
 
 /// The `let` statements solving the block: binds its unknowns (and the bound sines and
 /// cosines), returns a `NoAssembly` error from the enclosing function when there is no real
-/// root. Inside the solve, `__fail` adds the block's location to a runtime `BlockFailure`.
+/// root, a `Singular` one when every angle is a root. Inside the solve, `__fail` adds the block's location to a runtime `BlockFailure`.
 pub fn solve(rec: &Recognised, cx: &Context) -> TokenStream {
     let guess = |u: usize| {
         let u = Literal::usize_unsuffixed(u);
@@ -149,7 +144,7 @@ pub fn solve(rec: &Recognised, cx: &Context) -> TokenStream {
         ClosedForm::AngleEquation { angle, a, b, c } => {
             angle_equation(&cx.v(*a), &cx.v(*b), &cx.v(*c), &guess(*angle), cx)
         }
-        ClosedForm::Dyad { angles, m, reflect, e } => dyad(m, reflect[0], e, &guess(angles[0]), &guess(angles[1]), cx),
+        ClosedForm::Dyad { angles, m, reflect, e } => dyad(m, *reflect, e, &guess(angles[0]), &guess(angles[1]), cx),
         ClosedForm::PolarLength { angle, length, w, e } => polar(w, e, &guess(*angle), &guess(*length), cx),
         ClosedForm::AngleSlider { angle, m, d, e, .. } => angle_slider(m, d, e, &guess(*angle), cx),
     };
@@ -171,15 +166,19 @@ pub fn solve(rec: &Recognised, cx: &Context) -> TokenStream {
     let bl = Literal::usize_unsuffixed(cx.block);
     let rt = cx.rt;
     // The guess only picks the branch and the turn, through comparisons that a NaN would
-    // silently answer: it is checked first.
-    let guesses = rec.form.angles().into_iter().chain(others_of(&rec.form)).map(guess);
+    // silently answer. An angle's guess reaches the angle (moved to the guess's turn, it is
+    // non-finite too) and `check_closed` rejects it; a length's or a slider's is checked first.
+    let guess_check = others_of(&rec.form).map(|_| {
+        let guesses = rec.form.angles().into_iter().chain(others_of(&rec.form)).map(guess);
+        quote!(#rt::check_guess(#(#guesses)+*).map_err(__fail)?;)
+    });
     let angles = Literal::usize_unsuffixed(rec.form.angles().len());
     // The closure only captures references: it is `Copy`, one per block. A non-finite guess
     // makes the guesses' sum non-finite.
     quote! {
         let [#(#outs),*]: [f64; #k] = {
             let __fail = |f| #rt::block_failure(self, #bl, f, __x, __guess);
-            #rt::check_guess(#(#guesses)+*).map_err(__fail)?;
+            #guess_check
             #body
             #rt::check_closed(&__out, #angles, __cfg).map_err(__fail)?;
             __out
@@ -202,18 +201,28 @@ fn others_of(form: &ClosedForm) -> Option<usize> {
 fn root(out: &mut TokenStream, a: &V, b: &V, c: &V, flip: &TokenStream, cx: &Context) {
     let rt = cx.rt;
     if let (V::E(_), V::E(_), V::E(_)) = (a, b, c) {
-        out.extend(quote!(let (__cq, __sq) = #rt::dyad_roots(#a, #b, #c, #flip).map_err(__fail)?;));
+        out.extend(quote!(let (__cq, __sq) = #rt::dyad_roots(#a, #b, #c, #flip, __cfg).map_err(__fail)?;));
         return;
     }
     let r2 = bind(out, "__r2", add(&mul(a, a), &mul(b, b)));
     let d2 = sub(&r2, &mul(c, c));
     out.extend(quote! {
-        let __d: f64 = #rt::root_offset(#d2, #r2, #c, #flip).map_err(__fail)?;
+        let __d: f64 = #rt::root_offset(#d2, #r2, #c, #flip, __cfg).map_err(__fail)?;
     });
     let d = local("__d");
-    let inv = bind(out, "__inv", V::E(quote!((1.0 / #r2))));
-    let cq = mul(&sub(&mul(a, c), &mul(b, &d)), &inv);
-    let sq = mul(&add(&mul(b, c), &mul(a, &d)), &inv);
+    let zero = |v: &V| matches!(v, V::C(z) if *z == 0.0);
+    // With one coefficient zero the formulas divide by the other, not by its square: `b sin q
+    // = c` gives `(cos q, sin q) = (-d / b, c / b)`, `a cos q = c` gives `(c / a, d / a)`.
+    let (cq, sq) = if zero(a) {
+        let ib = bind(out, "__ib", V::E(quote!((1.0 / #b))));
+        (neg(&mul(&d, &ib)), mul(c, &ib))
+    } else if zero(b) {
+        let ia = bind(out, "__ia", V::E(quote!((1.0 / #a))));
+        (mul(c, &ia), mul(&d, &ia))
+    } else {
+        let inv = bind(out, "__inv", V::E(quote!((1.0 / #r2))));
+        (mul(&sub(&mul(a, c), &mul(b, &d)), &inv), mul(&add(&mul(b, c), &mul(a, &d)), &inv))
+    };
     out.extend(quote!(let __cq: f64 = #cq; let __sq: f64 = #sq;));
 }
 
@@ -252,16 +261,26 @@ fn flip_at_guess(a: &V, b: &V, g: &TokenStream, cx: &Context) -> TokenStream {
 }
 
 fn angle_equation(a: &V, b: &V, c: &V, g: &TokenStream, cx: &Context) -> TokenStream {
+    let zero = |v: &V| matches!(v, V::C(z) if *z == 0.0);
+    let rt = cx.rt;
+    if zero(a) {
+        // `b sin q = c`: the root's cosine has the sign of the guess's (`h' = b cos q` keeps
+        // its sign), so `asin` of the sine on the guess's side of the vertical, moved to its
+        // turn by the reduction the sign rule made (the rule of `flip_at_guess`).
+        let mut out = quote! {
+            let __r: f64 = #rt::reduce_turn(#g);
+            let __right: bool = __r.abs() < ::core::f64::consts::FRAC_PI_2;
+            let __flip: bool = (#b > 0.0) == __right;
+        };
+        root(&mut out, a, b, c, &quote!(__flip), cx);
+        out.extend(quote!(let __out: [f64; 3] = [#rt::asin_near(__sq, __right, __r, #g), __cq, __sq];));
+        return out;
+    }
     let flip = flip_at_guess(a, b, g, cx);
     let mut out = quote!(let __flip: bool = #flip;);
     root(&mut out, a, b, c, &quote!(__flip), cx);
-    let zero = |v: &V| matches!(v, V::C(z) if *z == 0.0);
-    // `b sin q = c`: `asin` of the sine on the cosine's side (cheaper than `atan2`); `a cos q
-    // = c` likewise with `acos`.
-    let rt = cx.rt;
-    let q = if zero(a) {
-        on_turn(quote!(#rt::asin_on_side(__sq, __cq)), g, cx)
-    } else if zero(b) {
+    // `a cos q = c`: `acos` of the cosine on the sine's side (cheaper than `atan2`).
+    let q = if zero(b) {
         on_turn(quote!(#rt::acos_on_side(__cq, __sq)), g, cx)
     } else {
         unwrapped(quote!(__sq), quote!(__cq), g, cx)
@@ -274,9 +293,18 @@ fn angle_equation(a: &V, b: &V, c: &V, g: &TokenStream, cx: &Context) -> TokenSt
 /// `(m0ᵀ e) · c0 = (l1² - l0² - |e|²) / 2`; then `c1 = -m1ᵀ (e + m0 c0) / l1²`. At the roots
 /// the determinant is `-ε1 h'` (`ε` = +1 for a rotation, -1 for a reflection); at the guess it
 /// is `ε0 ε1 (u0 × u1)` with `u_i = m_i c_i`, so the root keeps `-h'` of the sign `ε0 (u0 × u1)`.
+///
+/// The cross product is one function of one angle: `u0 × u1 = c0ᵀ K c1` with `K = m0ᵀ J m1`
+/// (`J` the quarter turn `[[0, 1], [-1, 0]]`) a scaled rotation when `m0`, `m1` are both
+/// rotations or both reflections (`K11 = K00`, `K10 = -K01`), a scaled reflection otherwise, so
+/// `u0 × u1 = K00 cos σ + K01 sin σ` with `σ = q1 - q0`, or `σ = q1 + q0` respectively: its
+/// sign is that of [`flip_at_guess`]'s rule for one angle (no `sin_cos` at all when `K00` or
+/// `K01` is zero, as for links without a constant offset angle). A sign read off `σ` reduced
+/// to one turn can differ from libm's only where the guess is singular to rounding (parallel
+/// links), where neither assembly mode is the guess's.
 fn dyad(
     m: &[[[NodeId; 2]; 2]; 2],
-    reflect0: bool,
+    reflect: [bool; 2],
     e: &[NodeId; 2],
     g0: &TokenStream,
     g1: &TokenStream,
@@ -284,20 +312,21 @@ fn dyad(
 ) -> TokenStream {
     let (a, b) = (cx.m(&m[0]), cx.m(&m[1]));
     let e = e.map(|n| cx.v(n));
-    let (c0g, s0g, c1g, s1g) = (local("__c0g"), local("__s0g"), local("__c1g"), local("__s1g"));
-    let u0 = [dot(&[(&a[0][0], &c0g), (&a[0][1], &s0g)]), dot(&[(&a[1][0], &c0g), (&a[1][1], &s0g)])];
-    let u1 = [dot(&[(&b[0][0], &c1g), (&b[0][1], &s1g)]), dot(&[(&b[1][0], &c1g), (&b[1][1], &s1g)])];
-    let cross = sub(&mul(&u0[0], &u1[1]), &mul(&u0[1], &u1[0]));
-    let flip = if reflect0 { quote!(__cross > 0.0) } else { quote!(__cross < 0.0) };
-    // The cross product from libm-free sines and cosines of the guesses (within `δ` each): its
-    // error is below `4 δ |a| |b|` (`|m|` = sum of the magnitudes of its entries), so beyond
-    // `5 δ |a| |b|` its sign is certain; otherwise it is recomputed from libm's `sin_cos`. The
-    // root chosen is the same either way, and a sweep's guesses are rarely that close to a
-    // singular position.
-    let bound = mul(&abs_sum(&a), &abs_sum(&b));
+    let k = |i: usize, j: usize| sub(&mul(&a[0][i], &b[1][j]), &mul(&a[1][i], &b[0][j]));
+    let (k00, k01) = (k(0, 0), k(0, 1));
+    let sigma = if reflect[0] == reflect[1] { quote!((#g1 - #g0)) } else { quote!((#g1 + #g0)) };
+    // The root keeps `-h'` of the sign `ε0 (u0 × u1)`: `flip` when `ε0 (u0 × u1) < 0`, i.e.
+    // when `h'(σ) = b cos σ - a sin σ > 0` with `(a, b) = ±(K01, -K00)`.
+    let (ca, cb) = if reflect[0] { (neg(&k01), k00) } else { (k01, neg(&k00)) };
     let rt = cx.rt;
+    let flip = if matches!(cb, V::C(z) if z == 0.0) {
+        // `h' = -a sin σ`: `σ` reduced to one turn has the sign of its sine (the product is
+        // zero, no flip, for parallel links, where the sine is zero too).
+        quote!(((#ca) * #rt::reduce_turn(#sigma)) < 0.0)
+    } else {
+        flip_at_guess(&ca, &cb, &sigma, cx)
+    };
     let mut out = quote! {
-        let __cross: f64 = #rt::sign_at_guesses([#g0, #g1], 5.0 * #bound, |[(__s0g, __c0g), (__s1g, __c1g)]| #cross);
         let __flip: bool = #flip;
     };
     let ca = bind(&mut out, "__a", dot(&[(&a[0][0], &e[0]), (&a[1][0], &e[1])]));
@@ -333,7 +362,7 @@ fn polar(w: &[[NodeId; 2]; 2], e: &[NodeId; 2], gq: &TokenStream, gs: &TokenStre
     let b = bind(&mut out, "__b", sub(&mul(&w[0][1], &e[1]), &mul(&w[1][1], &e[0])));
     let r2 = add(&mul(&a, &a), &mul(&b, &b));
     let (e0, e1, rt) = (&e[0], &e[1], cx.rt);
-    out.extend(quote!(let __ir: f64 = #rt::polar_norm(#r2, #e0, #e1).map_err(__fail)?;));
+    out.extend(quote!(let __ir: f64 = #rt::polar_norm(#r2, #e0, #e1, __cfg).map_err(__fail)?;));
     let ir = local("__ir");
     let (c0, s0) = (mul(&b, &ir), neg(&mul(&a, &ir)));
     out.extend(quote!(let (mut __cq, mut __sq): (f64, f64) = (#c0, #s0);));

@@ -261,6 +261,33 @@ impl Kernel<'_> {
             .collect()
     }
 
+    /// The factorisation of a block whose Jacobian `jrows` is evaluated from the graph, read off
+    /// the Jacobian columns its entries belong to (the runtime's `Lu::factor_in_col` for a
+    /// scalar block whose entry is among the column's non-zero entries, `Lu::factor_in_cols`
+    /// for a 2x2 block: the general factorisation with fewer checks); otherwise the general
+    /// `factor_cols` with `scale`.
+    fn factor(&self, bp: &BlockPlan, jrows: &TokenStream, scale: &[TokenStream]) -> TokenStream {
+        let (rt, n) = (&self.rt, lit(bp.unknowns.len()));
+        let k = (bp.unknowns.len() == 1).then(|| bp.col_scale[0].iter().position(|&e| e == bp.jac[0][0])).flatten();
+        match (bp.unknowns.len(), k) {
+            (1, Some(k)) => {
+                let (col, k) = (self.names.operands(self.g, &bp.col_scale[0]), lit(k));
+                quote!(#rt::Lu::<1>::factor_in_col([#(#col),*], #k))
+            }
+            (2, _) => {
+                // Both columns padded with zeros to one length (a zero changes no maximum).
+                let len = bp.col_scale.iter().map(Vec::len).max().unwrap_or(0);
+                let cols = bp.col_scale.iter().map(|c| {
+                    let mut v: Vec<TokenStream> = self.names.operands(self.g, c).collect();
+                    v.resize(len, quote!(0.0));
+                    quote!([#(#v),*])
+                });
+                quote!(#rt::Lu::<2>::factor_in_cols(&#jrows, [#(#cols),*]))
+            }
+            _ => quote!(#rt::Lu::<#n>::factor_cols(&#jrows, [#(#scale),*])),
+        }
+    }
+
     fn unknowns_of(&self, bp: &BlockPlan) -> Vec<&Ident> {
         bp.unknowns.iter().map(|&u| &self.names.unknowns[u]).collect()
     }
@@ -290,15 +317,16 @@ impl Kernel<'_> {
 
     fn linear_block(&self, b: usize, bp: &BlockPlan, qs: &[&Ident]) -> TokenStream {
         let rt = &self.rt;
-        let (n, bl, lu) = (lit(bp.unknowns.len()), lit(b), format_ident!("__lu{}", b));
+        let (bl, lu) = (lit(b), format_ident!("__lu{}", b));
         let scale = self.col_scales(bp);
         let jrows = self.names.rows(self.g, &bp.jac);
         let aug: Vec<Vec<NodeId>> =
             bp.jac.iter().zip(&bp.rhs0).map(|(row, &r)| row.iter().copied().chain([r]).collect()).collect();
         let aug = self.names.rows(self.g, &aug);
         let rhs = self.names.operands(self.g, &bp.rhs0);
+        let factor = self.factor(bp, &jrows, &scale);
         quote! {
-            let #lu = #rt::Lu::<#n>::factor_cols(&#jrows, [#(#scale),*]);
+            let #lu = #factor;
             if !(#lu.pivot_ratio() >= __cfg.singular_tol) {
                 return Err(#rt::singular(self, #bl, #lu.pivot_ratio(), __cfg, __x, #rt::first_bad_row(&#aug)));
             }
@@ -385,16 +413,22 @@ impl Kernel<'_> {
             out.extend(self.sparse_factor(b, sp, &rv));
         } else if (self.mode == Mode::At || !bp.linear) && fixed.is_none() {
             // Closed-form hook: a closed-form block has no Newton evaluation to read.
-            let j = if self.mode == Mode::At || bp.closed.is_some() {
+            let from_graph = self.mode == Mode::At || bp.closed.is_some();
+            let j = if from_graph {
                 self.names.rows(self.g, &bp.jac)
             } else {
                 let s = format_ident!("__s{}", b);
                 quote!(#s.eval.j)
             };
             let scale = self.col_scales(bp);
+            let factor = if from_graph {
+                self.factor(bp, &quote!(__j), &scale)
+            } else {
+                quote!(#rt::Lu::<#n>::factor_cols(&__j, [#(#scale),*]))
+            };
             out.extend(quote! {
                 let __j: [[f64; #n]; #n] = #j;
-                let #lu = #rt::Lu::<#n>::factor_cols(&__j, [#(#scale),*]);
+                let #lu = #factor;
                 if !(#lu.pivot_ratio() >= __cfg.singular_tol) {
                     let bad = #rt::first_bad_row(&__j).or(#rt::first_bad_row(&#rv));
                     return Err(#rt::singular(self, #bl, #lu.pivot_ratio(), __cfg, __x, bad));

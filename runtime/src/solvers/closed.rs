@@ -39,11 +39,29 @@ pub fn reduce_turn(g: f64) -> f64 {
     g - TAU * whole_turns(g * (1.0 / TAU))
 }
 
-/// The angle of sine `s` on the side of cosine `c` by `asin` (cheaper than `atan2` when `s` and
-/// `c` come from `b sin q = c`), in `[-π/2, 3π/2]`.
+/// The angle of sine `s` nearest to the guess `g` on its side of the vertical (`right`: the
+/// guess's cosine is positive), given `r = reduce_turn(g)`, with `right = |r| < π/2`: `asin`
+/// or its supplement, moved to the guess's turn by `g - r`, the whole turns the reduction took
+/// off (no second reduction, as [`unwrap_to_turn`] would make).
+///
+/// ```
+/// use kinloop_runtime::generated::{asin_near, reduce_turn};
+/// use std::f64::consts::{PI, TAU};
+/// let g = 2.8 - 3.0 * TAU; // left of the vertical, three turns down
+/// let r = reduce_turn(g);
+/// assert!((asin_near(0.5, r.abs() < PI / 2.0, r, g) - (5.0 * PI / 6.0 - 3.0 * TAU)).abs() < 1e-13);
+/// ```
 #[inline]
-pub fn asin_on_side(s: f64, c: f64) -> f64 {
-    if c >= 0.0 { s.clamp(-1.0, 1.0).asin() } else { PI - s.clamp(-1.0, 1.0).asin() }
+pub fn asin_near(s: f64, right: bool, r: f64, g: f64) -> f64 {
+    let base = s.clamp(-1.0, 1.0).asin();
+    let side = if right {
+        base
+    } else if r > 0.0 {
+        PI - base
+    } else {
+        -PI - base
+    };
+    (g - r) + side
 }
 
 /// The angle of cosine `c` on the side of sine `s` by `acos`, in `[-π, π]`.
@@ -68,14 +86,14 @@ pub const SIN_COS_COARSE_ERR: f64 = 1e-10;
 /// let (s, c) = sin_cos_coarse(2.5);
 /// assert!((s - 2.5f64.sin()).abs() < SIN_COS_COARSE_ERR && (c - 2.5f64.cos()).abs() < SIN_COS_COARSE_ERR);
 /// ```
-#[inline]
+#[inline(always)]
 pub fn sin_cos_coarse(x: f64) -> (f64, f64) {
     // NaN fails the comparison too.
     if x.abs() <= 1e4 { sin_cos_reduced(x) } else { libm_sin_cos(x) }
 }
 
 /// [`sin_cos_coarse`] for `|x| <= 1e4`.
-#[inline]
+#[inline(always)]
 fn sin_cos_reduced(x: f64) -> (f64, f64) {
     // Quadrant `k` and the remainder `r` in about `[-π/4, π/4]` (its rounding is about an ulp
     // of `x` plus `k` times that of π/2: below 1e-11 for `|x| <= 1e4`).
@@ -101,31 +119,24 @@ fn sin_cos_reduced(x: f64) -> (f64, f64) {
     }
 }
 
-/// `f` of the sines and cosines of the angles `g`, with a sign that is certain: `f` of their
+/// `f` of the sine and cosine of the angle `g`, with a sign that is certain: `f` of their
 /// [`sin_cos_coarse`] values when its magnitude exceeds `bound · SIN_COS_COARSE_ERR` (the caller's
-/// bound on the error of `f` per unit error of a sine or cosine), otherwise `f` of libm's. The
+/// bound on the error of `f` per unit error of the sine or cosine), otherwise `f` of libm's. The
 /// sign is therefore the one libm's values give.
 ///
 /// ```
-/// use kinloop_runtime::generated::sign_at_guesses;
-/// // sin(g1 - g0) > 0 for g0 = 0.1, g1 = 0.2; a bound of 2 (two terms of unit factors).
-/// let v = sign_at_guesses([0.1, 0.2], 2.0, |[(s0, c0), (s1, c1)]| s1 * c0 - c1 * s0);
-/// assert!(v > 0.0);
+/// use kinloop_runtime::generated::sign_at_guess;
+/// // sin(g) - cos(g) > 0 for g = 1; a bound of 2 (two terms of unit factors).
+/// assert!(sign_at_guess(1.0, 2.0, |(s, c)| s - c) > 0.0);
 /// ```
 #[inline(always)]
-pub fn sign_at_guesses<const K: usize>(g: [f64; K], bound: f64, f: impl Fn([(f64, f64); K]) -> f64) -> f64 {
-    let v = f(g.map(sin_cos_coarse));
-    // A NaN bound or value takes libm's path.
-    if v.abs() > bound * SIN_COS_COARSE_ERR { v } else { f(g.map(f64::sin_cos)) }
-}
-
-/// [`sign_at_guesses`] for one angle.
-#[inline(always)]
 pub fn sign_at_guess(g: f64, bound: f64, f: impl Fn((f64, f64)) -> f64) -> f64 {
-    sign_at_guesses([g], bound, |[sc]| f(sc))
+    let v = f(sin_cos_coarse(g));
+    // A NaN bound or value takes libm's path.
+    if v.abs() > bound * SIN_COS_COARSE_ERR { v } else { f(libm_sin_cos(g)) }
 }
 
-/// libm's `sin_cos`, out of line: the rare path of [`sin_cos_coarse`].
+/// libm's `sin_cos`, out of line: the rare paths of [`sin_cos_coarse`] and [`sign_at_guess`].
 #[cold]
 #[inline(never)]
 fn libm_sin_cos(x: f64) -> (f64, f64) {
@@ -133,30 +144,44 @@ fn libm_sin_cos(x: f64) -> (f64, f64) {
 }
 
 /// The guess only picks the branch and the turn, through comparisons that a NaN would silently
-/// answer: `guess_sum`, the sum of the block's guesses, must be finite.
+/// answer: `guess_sum`, the sum of the block's guesses, must be finite. (A guess of an angle
+/// needs no check of its own: the angle is moved to its turn, which makes it non-finite too,
+/// and [`check_closed`] rejects it.)
 #[inline]
 pub fn check_guess(guess_sum: f64) -> Result<(), BlockFailure> {
     if guess_sum.is_finite() { Ok(()) } else { Err(BlockFailure::NonFinite { row: 0, iterations: 0 }) }
 }
 
-/// Why `a cos q + b sin q = c` has no real root, given `d2 = a² + b² - c²` and `r2 = a² + b²`:
-/// a coefficient that is not finite, or links that cannot reach (residual `|c| - r`).
+/// Why `a cos q + b sin q = c` has no single root, given `d2 = a² + b² - c²` and `r2 = a² + b²`:
+/// a coefficient that is not finite; an equation that every angle satisfies (`a = b = c = 0`:
+/// coincident circles of equal radii, the position is not determined, a singular position as
+/// Newton reports it); or links that cannot reach (residual `|c| - r`).
 #[cold]
 #[inline(never)]
-fn no_root(d2: f64, residual: f64) -> BlockFailure {
+fn no_root(d2: f64, r2: f64, c: f64, cfg: &NewtonConfig) -> BlockFailure {
     if d2.is_nan() {
         BlockFailure::NonFinite { row: 0, iterations: 0 }
+    } else if r2 == 0.0 && c == 0.0 {
+        undetermined(cfg)
     } else {
-        BlockFailure::NoAssembly { row: 0, iterations: 0, residual }
+        BlockFailure::NoAssembly { row: 0, iterations: 0, residual: c.abs() - r2.sqrt() }
     }
 }
 
+/// The failure of a block whose equations hold for every value of an angle: singular, with a
+/// zero pivot ratio (its Jacobian's columns are parallel there).
+#[cold]
+#[inline(never)]
+fn undetermined(cfg: &NewtonConfig) -> BlockFailure {
+    BlockFailure::Singular { row: 0, iterations: 0, residual: 0.0, pivot_ratio: 0.0, tolerance: cfg.singular_tol }
+}
+
 /// `±sqrt(d2)` for the root of `a cos q + b sin q = c` with `d2 = r2 - c²`, `r2 = a² + b²`: the
-/// square root, negated when `flip` holds, or the failure when there is no real root.
+/// square root, negated when `flip` holds, or the failure when there is no single real root.
 #[inline]
-pub fn root_offset(d2: f64, r2: f64, c: f64, flip: bool) -> Result<f64, BlockFailure> {
+pub fn root_offset(d2: f64, r2: f64, c: f64, flip: bool, cfg: &NewtonConfig) -> Result<f64, BlockFailure> {
     if !(d2 >= 0.0 && r2 > 0.0) {
-        return Err(no_root(d2, c.abs() - r2.sqrt()));
+        return Err(no_root(d2, r2, c, cfg));
     }
     Ok(if flip { -d2.sqrt() } else { d2.sqrt() })
 }
@@ -167,26 +192,29 @@ pub fn root_offset(d2: f64, r2: f64, c: f64, flip: bool) -> Result<f64, BlockFai
 ///
 /// ```
 /// use kinloop_runtime::generated::dyad_roots;
+/// use kinloop_runtime::NewtonConfig;
+/// let cfg = NewtonConfig::default();
 /// // cos q + sin q = 1: q = π/2 (h' = cos q - sin q = -1 < 0) or q = 0 (h' = 1 > 0).
-/// assert_eq!(dyad_roots(1.0, 1.0, 1.0, false).unwrap(), (0.0, 1.0));
-/// assert_eq!(dyad_roots(1.0, 1.0, 1.0, true).unwrap(), (1.0, 0.0));
-/// assert!(dyad_roots(1.0, 1.0, 2.0, false).is_err());
+/// assert_eq!(dyad_roots(1.0, 1.0, 1.0, false, &cfg).unwrap(), (0.0, 1.0));
+/// assert_eq!(dyad_roots(1.0, 1.0, 1.0, true, &cfg).unwrap(), (1.0, 0.0));
+/// assert!(dyad_roots(1.0, 1.0, 2.0, false, &cfg).is_err());
 /// ```
 #[inline]
-pub fn dyad_roots(a: f64, b: f64, c: f64, flip: bool) -> Result<(f64, f64), BlockFailure> {
+pub fn dyad_roots(a: f64, b: f64, c: f64, flip: bool, cfg: &NewtonConfig) -> Result<(f64, f64), BlockFailure> {
     let r2 = a * a + b * b;
-    let d = root_offset(r2 - c * c, r2, c, flip)?;
+    let d = root_offset(r2 - c * c, r2, c, flip, cfg)?;
     let inv = 1.0 / r2;
     Ok(((a * c - b * d) * inv, (b * c + a * d) * inv))
 }
 
 /// `1 / sqrt(d2)`, the normalisation of the direction `(a, b)` with `d2 = a² + b²` of a polar
-/// length along offset `(e0, e1)`, or the failure when the length would be zero (its angle is
-/// undetermined; the residual is the offset's size).
+/// length along offset `(e0, e1)`, or the failure when there is no direction: a zero offset
+/// (a zero length, whose angle every value satisfies: singular) or a direction that vanishes
+/// although the offset does not (it cannot be reached; the residual is the offset's size).
 #[inline]
-pub fn polar_norm(d2: f64, e0: f64, e1: f64) -> Result<f64, BlockFailure> {
+pub fn polar_norm(d2: f64, e0: f64, e1: f64, cfg: &NewtonConfig) -> Result<f64, BlockFailure> {
     // Written so that a NaN fails.
-    if d2 > 0.0 { Ok(1.0 / d2.sqrt()) } else { Err(no_root(d2, e0.abs().max(e1.abs()))) }
+    if d2 > 0.0 { Ok(1.0 / d2.sqrt()) } else { Err(no_root(d2, 0.0, e0.abs().max(e1.abs()), cfg)) }
 }
 
 /// The checks of a closed-form solution `out` whose first `angles` entries are angles: every
@@ -199,12 +227,17 @@ pub fn check_closed<const K: usize>(out: &[f64; K], angles: usize, cfg: &NewtonC
     if !out.iter().sum::<f64>().is_finite() {
         return Err(BlockFailure::NonFinite { row: 0, iterations: 0 });
     }
-    let big = out[..angles].iter().fold(0.0f64, |m, q| m.max(q.abs()));
-    if big * f64::EPSILON <= 1000.0 * cfg.residual_tol.max(16.0 * f64::EPSILON) {
-        Ok(())
-    } else {
-        Err(BlockFailure::NoConvergence { row: 0, iterations: 0, residual: big * f64::EPSILON })
-    }
+    // Each angle against the limit: the test of their largest magnitude, without the maximum.
+    let limit = 1000.0 * cfg.residual_tol.max(16.0 * f64::EPSILON);
+    if out[..angles].iter().all(|q| q.abs() * f64::EPSILON <= limit) { Ok(()) } else { Err(imprecise(&out[..angles])) }
+}
+
+/// The failure of angles too large to be accurate: the rounding of the largest.
+#[cold]
+#[inline(never)]
+fn imprecise(angles: &[f64]) -> BlockFailure {
+    let big = angles.iter().fold(0.0f64, |m, q| m.max(q.abs()));
+    BlockFailure::NoConvergence { row: 0, iterations: 0, residual: big * f64::EPSILON }
 }
 
 #[cfg(test)]
@@ -216,7 +249,7 @@ mod tests {
     fn dyad_roots_solve_the_equation_on_the_requested_branch() {
         let (a, b, c) = (0.3, -1.7, 0.9);
         for flip in [false, true] {
-            let (cq, sq) = dyad_roots(a, b, c, flip).unwrap();
+            let (cq, sq) = dyad_roots(a, b, c, flip, &NewtonConfig::default()).unwrap();
             assert!((a * cq + b * sq - c).abs() < 1e-15);
             assert!((cq * cq + sq * sq - 1.0).abs() < 1e-15);
             assert_eq!(b * cq - a * sq > 0.0, flip);
@@ -225,13 +258,32 @@ mod tests {
 
     #[test]
     fn no_real_root_is_a_typed_failure() {
+        let cfg = NewtonConfig::default();
         assert!(
-            matches!(dyad_roots(1.0, 0.0, 2.0, false), Err(BlockFailure::NoAssembly { residual, .. }) if residual == 1.0)
+            matches!(dyad_roots(1.0, 0.0, 2.0, false, &cfg), Err(BlockFailure::NoAssembly { residual, .. }) if residual == 1.0)
         );
-        assert!(matches!(dyad_roots(f64::NAN, 0.0, 0.0, false), Err(BlockFailure::NonFinite { .. })));
+        assert!(matches!(dyad_roots(f64::NAN, 0.0, 0.0, false, &cfg), Err(BlockFailure::NonFinite { .. })));
         assert!(
-            matches!(polar_norm(0.0, 3.0, -4.0), Err(BlockFailure::NoAssembly { residual, .. }) if residual == 4.0)
+            matches!(polar_norm(0.0, 3.0, -4.0, &cfg), Err(BlockFailure::NoAssembly { residual, .. }) if residual == 4.0)
         );
+        // Concentric circles of different radii: `0 = c` with `c` non-zero cannot hold.
+        assert!(matches!(dyad_roots(0.0, 0.0, 0.5, true, &cfg), Err(BlockFailure::NoAssembly { .. })));
+    }
+
+    /// An equation every angle satisfies (`0 cos q + 0 sin q = 0`: coincident circles of equal
+    /// radii; a zero length along a zero offset) determines no position: singular, as Newton
+    /// reports it, with the configured tolerance; not "cannot be assembled".
+    #[test]
+    fn an_equation_every_angle_satisfies_is_singular() {
+        let cfg = NewtonConfig::default().with_singular_tol(1e-9);
+        for f in [dyad_roots(0.0, 0.0, 0.0, false, &cfg).map(|_| 0.0), polar_norm(0.0, 0.0, -0.0, &cfg)] {
+            match f {
+                Err(BlockFailure::Singular { pivot_ratio, tolerance, .. }) => {
+                    assert_eq!((pivot_ratio, tolerance), (0.0, 1e-9));
+                }
+                other => panic!("{other:?}"),
+            }
+        }
     }
 
     /// Against libm over the whole range where no libm is called, densely near the quadrant
@@ -279,8 +331,31 @@ mod tests {
         let q = unwrap_to_turn(-3.0, 3.0 - 5.0 * TAU);
         assert!((q - (-3.0 - 4.0 * TAU)).abs() < 1e-12, "{q}");
         assert!((reduce_turn(1.0 + 7.0 * TAU) - 1.0).abs() < 1e-12);
-        assert!((asin_on_side(0.5, -1.0) - 5.0 * PI / 6.0).abs() < 1e-15);
+        assert!((asin_near(0.5, false, 2.0, 2.0) - 5.0 * PI / 6.0).abs() < 1e-15);
         assert!((acos_on_side(0.5, -1.0) + PI / 3.0).abs() < 1e-15);
+    }
+
+    /// `asin_near` is the angle of the given sine whose cosine has the sign of the guess's,
+    /// on the guess's turn (within half a turn of it), over guesses of many turns and sines
+    /// up to ±1; the same as `asin` or its supplement moved by `unwrap_to_turn`.
+    #[test]
+    fn asin_near_keeps_the_guess_side_and_turn() {
+        for i in -400..=400 {
+            let g = i as f64 * 0.0731 + 0.01;
+            let r = reduce_turn(g);
+            let right = r.abs() < PI / 2.0;
+            for k in -10..=10 {
+                let s = k as f64 / 10.0;
+                let q = asin_near(s, right, r, g);
+                assert!((q.sin() - s).abs() < 1e-13, "{g} {s}: {q}");
+                assert!((q - g).abs() <= PI + 1e-12, "{g} {s}: {q}");
+                if g.cos().abs() > 1e-9 && s.abs() < 1.0 {
+                    assert_eq!(q.cos() > 0.0, g.cos() > 0.0, "{g} {s}: {q}");
+                }
+                let side = if right { s.asin() } else { PI - s.asin() };
+                assert!((q - unwrap_to_turn(side, g)).abs() < 1e-12, "{g} {s}: {q}");
+            }
+        }
     }
 
     #[test]

@@ -166,6 +166,12 @@ impl<const N: usize> Lu<N> {
         let mut degenerate = false;
         let inv_row = inverses(row_scale, &mut degenerate);
         let inv_col = inverses(col_scale, &mut degenerate);
+        Self::factor_2x2_with(j, inv_row, inv_col, degenerate)
+    }
+
+    /// [`Lu::factor_2x2`] from the reciprocals of the scales; `degenerate` when one was invalid.
+    #[inline(always)]
+    fn factor_2x2_with(j: &[[f64; N]; N], inv_row: [f64; N], inv_col: [f64; N], degenerate: bool) -> Self {
         let e = |r: usize, c: usize| j[r][c] * inv_row[r] * inv_col[c];
         // Partial pivoting: the second row leads when its first entry is larger (a NaN never
         // is, as in the general search).
@@ -177,10 +183,9 @@ impl<const N: usize> Lu<N> {
         let p1 = l1 - factor * u01;
         // The general loop's running minimum from infinity: the first pivot's magnitude (a NaN
         // included), then the second's when smaller or NaN.
-        let mut min_pivot = p0.abs();
-        if p1.abs() < min_pivot || p1.is_nan() {
-            min_pivot = p1.abs();
-        }
+        // One select: the second when smaller or NaN (the comparison fails for a NaN). A NaN
+        // first pivot makes the second NaN too (through `factor`), so it is never lost.
+        let min_pivot = if p1.abs() >= p0.abs() { p0.abs() } else { p1.abs() };
         let mut lu = [[0.0; N]; N];
         (lu[0][0], lu[0][1], lu[1][0], lu[1][1]) = (p0, u01, factor, p1);
         let mut perm = [0usize; N];
@@ -229,6 +234,30 @@ impl<const N: usize> Lu<N> {
             z[0] *= self.inv_diag[0];
             return z;
         }
+        if N == 2 {
+            return self.solve_2x2(b);
+        }
+        self.solve_general(b)
+    }
+
+    /// The 2x2 case of [`Lu::solve`]: the general substitutions' operations in the same order
+    /// (bit for bit: unit test), with the row exchange a selection instead of indexed loads.
+    #[inline(always)]
+    fn solve_2x2(&self, b: [f64; N]) -> [f64; N] {
+        let swap = self.perm[0] != 0;
+        let (top, bottom) = if swap { (1, 0) } else { (0, 1) };
+        let z0 = b[top] * self.inv_row[top];
+        let z1 = (b[bottom] * self.inv_row[bottom] - self.lu[1][0] * z0) * self.inv_diag[1];
+        let z0 = (z0 - self.lu[0][1] * z1) * self.inv_diag[0];
+        let mut z = [0.0; N];
+        z[0] = z0 * self.inv_col[0];
+        z[1] = z1 * self.inv_col[1];
+        z
+    }
+
+    /// [`Lu::solve`] for any size: forward and back substitution.
+    #[inline(always)]
+    fn solve_general(&self, b: [f64; N]) -> [f64; N] {
         let mut z = [0.0; N];
         for r in 0..N {
             let p = self.perm[r];
@@ -273,6 +302,61 @@ impl<const N: usize> Lu<N> {
             }
         }
         out
+    }
+}
+
+/// [`max_abs`] of a Jacobian column, bit for bit, in fewer instructions: the running maximum
+/// is a select that keeps it on a NaN (one `maxsd`, where `f64::max` needs a NaN fix-up), and a
+/// NaN anywhere still reaches the sum.
+#[inline(always)]
+fn column_max<const M: usize>(col: [f64; M]) -> f64 {
+    let (mut m, mut sum) = (0.0f64, -0.0f64);
+    for x in col {
+        let a = x.abs();
+        m = if a > m { a } else { m };
+        sum += x;
+    }
+    if sum.is_nan() { f64::NAN } else { m }
+}
+
+impl Lu<2> {
+    /// [`Lu::factor_cols`] of the 2x2 block `j` whose column `c` is scaled by the largest
+    /// magnitude in `cols[c]`, the full Jacobian column (its non-zero entries, padded with
+    /// zeros to a common length): bit for bit the general factorisation wherever the scales
+    /// are valid (unit test). A column scale that is zero, infinite or NaN is not screened: its
+    /// reciprocal makes that column of the equilibrated matrix zero or NaN, so a pivot is zero
+    /// or NaN and [`Lu::pivot_ratio`] is 0 as in the general path (only the other fields of
+    /// such a degenerate factorisation differ).
+    #[inline(always)]
+    pub fn factor_in_cols<const M: usize>(j: &[[f64; 2]; 2], cols: [[f64; M]; 2]) -> Self {
+        let inv_col = cols.map(|c| 1.0 / column_max(c));
+        Self::factor_2x2_with(j, [1.0; 2], inv_col, false)
+    }
+}
+
+impl Lu<1> {
+    /// [`Lu::factor_cols`] of the scalar block `[[col[k]]]` whose column scale is the largest
+    /// magnitude in `col`, the full Jacobian column the entry belongs to (`max_abs(col)`, as
+    /// the generated code passes it): the same pivot ratio, determinant sign, determinant and
+    /// solves (unit test) with fewer checks. Because `|col[k]| <= max_abs(col)`, the pivot is in
+    /// `[-1, 1]` or NaN, and NaN exactly where the general path finds a degenerate scale (zero:
+    /// the whole column is zero, or not finite), except that an infinite scale with a finite
+    /// entry gives a zero pivot, as there. [`Lu::pivot_ratio`] reads a NaN as 0; only the
+    /// determinant of such a degenerate block differs (NaN instead of 0).
+    #[inline(always)]
+    pub fn factor_in_col<const M: usize>(col: [f64; M], k: usize) -> Self {
+        let j = [[col[k]]];
+        let p = j[0][0] / column_max(col);
+        Lu {
+            lu: j,
+            perm: [0],
+            inv_row: [1.0],
+            inv_col: [1.0],
+            inv_diag: [1.0 / j[0][0]],
+            pivot_ratio: p.abs(),
+            negative_det: p < 0.0,
+            det: p,
+        }
     }
 }
 
@@ -398,14 +482,80 @@ mod tests {
                     let general = Lu::<2>::factor_general(&j, rows, cols);
                     assert_eq!(bits(&fast), bits(&general), "{j:?} {rows:?} {cols:?}");
                     let rhs = [b - 1.0, a + 0.25];
-                    let (zf, zg) = (fast.solve(rhs), general.solve(rhs));
+                    let (zf, zg) = (fast.solve(rhs), general.solve_general(rhs));
                     let canon = |z: [f64; 2]| z.map(|x| if x.is_nan() { u64::MAX } else { x.to_bits() });
                     assert_eq!(canon(zf), canon(zg));
+                    assert_eq!(canon(general.solve(rhs)), canon(zg));
                     n += 1;
                 }
             }
         }
         assert_eq!(n, 9 * 9 * 7);
+    }
+
+    /// The scalar factorisation inside its column is the general one with the column scale
+    /// `max_abs(col)`: the same pivot ratio, determinant sign and solves on regular, zero,
+    /// signed-zero, tiny, huge, infinite and NaN entries; the same determinant wherever the
+    /// scale is valid.
+    #[test]
+    fn the_scalar_in_its_column_is_the_general_factorisation() {
+        let values = [0.0, -0.0, 1.0, -2.5, 3.0e-7, -7.0e5, 1e-310, 1e308, f64::INFINITY, f64::NEG_INFINITY, f64::NAN];
+        let canon = |x: f64| if x.is_nan() { u64::MAX } else { x.to_bits() };
+        let mut n = 0;
+        for &a in &values {
+            for &b in &values {
+                for &c in &values {
+                    let col = [a, b, c];
+                    for k in 0..3 {
+                        let fast = Lu::<1>::factor_in_col(col, k);
+                        let general = Lu::<1>::factor_cols(&[[col[k]]], [max_abs(col)]);
+                        let at = format!("{col:?} {k}");
+                        assert_eq!(fast.pivot_ratio().to_bits(), general.pivot_ratio().to_bits(), "{at}");
+                        assert_eq!(fast.negative_det(), general.negative_det(), "{at}");
+                        if general.pivot_ratio() > 0.0 {
+                            assert_eq!(fast.det().to_bits(), general.det().to_bits(), "{at}");
+                        }
+                        for rhs in [1.5, -0.0, f64::INFINITY] {
+                            assert_eq!(canon(fast.solve([rhs])[0]), canon(general.solve([rhs])[0]), "{at}");
+                        }
+                        n += 1;
+                    }
+                }
+            }
+        }
+        assert_eq!(n, 11 * 11 * 11 * 3);
+    }
+
+    /// The 2x2 factorisation inside its Jacobian columns is the general one with the scales
+    /// `max_abs` of the columns: bit for bit wherever the scales are valid, and the same zero
+    /// pivot ratio wherever one is not (a zero, infinite or NaN column).
+    #[test]
+    fn the_2x2_in_its_columns_is_the_general_factorisation() {
+        let values = [0.0, -0.0, 1.0, -2.5, 3.0e-7, 7.0e5, 1e-310, f64::INFINITY, f64::NAN];
+        let mut n = 0usize;
+        for (i, &a) in values.iter().enumerate() {
+            for (k, &b) in values.iter().enumerate() {
+                for &x in &values {
+                    let (c, d) = (values[(i + 3 * k + 1) % 9], values[(2 * i + k + 5) % 9]);
+                    let j = [[a, b], [c, d]];
+                    // Column 0 holds the block's entries and one more row's; column 1 only its own.
+                    let cols = [[a, c, x], [b, d, 0.0]];
+                    let fast = Lu::<2>::factor_in_cols(&j, cols);
+                    let general = Lu::<2>::factor_cols(&j, [max_abs(cols[0]), max_abs(cols[1])]);
+                    let at = format!("{j:?} {cols:?}");
+                    assert_eq!(fast.pivot_ratio().to_bits(), general.pivot_ratio().to_bits(), "{at}");
+                    let valid = cols.iter().all(|c| {
+                        let s = max_abs(*c);
+                        s > 0.0 && s < f64::INFINITY
+                    });
+                    if valid {
+                        assert_eq!(bits(&fast), bits(&general), "{at}");
+                    }
+                    n += usize::from(valid);
+                }
+            }
+        }
+        assert!(n > 100, "{n} valid cases");
     }
 
     #[test]
