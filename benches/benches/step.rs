@@ -123,7 +123,16 @@ fn rhombic_drive(c: &mut Criterion) {
         bench(&mut g, "two_loop_newton", &TwoLoopNewton { p }, &closed, policy, guess0, EXACT, STEPS);
         bench(&mut g, "dense_hand_jacobian", &DenseHandJacobian { p }, &closed, policy, guess0, EXACT, STEPS);
         bench(&mut g, "dense_num_dual", &DenseNumDual { p }, &closed, policy, guess0, EXACT, STEPS);
-        bench(&mut g, "dense_finite_difference", &DenseFiniteDifference { p }, &closed, policy, guess0, DIFFERENCED, STEPS);
+        bench(
+            &mut g,
+            "dense_finite_difference",
+            &DenseFiniteDifference { p },
+            &closed,
+            policy,
+            guess0,
+            DIFFERENCED,
+            STEPS,
+        );
         g.finish();
     }
 }
