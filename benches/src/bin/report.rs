@@ -520,3 +520,40 @@ fn main() {
         paired_closed_form(41);
     }
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn parse(text: &str) -> Result<HashMap<String, f64>, String> {
+        let path = std::env::temp_dir().join(format!("kinloop-report-callgrind-{}.txt", std::process::id()));
+        std::fs::write(&path, text).unwrap();
+        let counts = read_callgrind(&path);
+        std::fs::remove_file(&path).unwrap();
+        counts
+    }
+
+    #[test]
+    fn callgrind_counts_are_read_from_variant_lines() {
+        let counts = parse("# a comment\n\nhand 575\n  four-bar-point   991  \n").unwrap();
+        assert_eq!(counts.len(), 2);
+        assert_eq!(counts["hand"], 575.0);
+        assert_eq!(counts["four-bar-point"], 991.0);
+    }
+
+    #[test]
+    fn malformed_callgrind_lines_are_errors_naming_the_line() {
+        for bad in ["hand\n", "hand 575 extra\n", "hand many\n", "hand NaN\n", "hand -3\n"] {
+            let e = parse(&format!("point 813\n{bad}")).unwrap_err();
+            assert!(e.starts_with("line 2:"), "{bad:?}: {e}");
+        }
+    }
+
+    #[test]
+    fn every_closed_form_row_starts_with_its_reference() {
+        for row in &CLOSED_FORM_ROWS {
+            assert!(["closed_form", "hand_newton"].contains(&row.variants[0].0), "{}", row.group);
+            assert!(row.variants[1..].iter().all(|(b, _)| !["closed_form", "hand_newton"].contains(b)));
+        }
+    }
+}
