@@ -453,38 +453,96 @@ fn paired_all(rounds: usize) {
     }
 }
 
-/// One closed-form row timed by [`paired`]: the hand closed form `hand`, kinloop's point step
-/// from the previous position and kinloop's own sweep, along turns of [`TURN_720`] steps.
-fn paired_row<M: Mechanism<N, 1, NO>, H: Stepper<N>, const N: usize, const NO: usize>(
-    title: &str,
-    m: M,
-    hand: &H,
-    guess0: [f64; N],
-    rounds: usize,
-) {
-    let policy = WarmStart::Previous;
-    let kl = Kinloop::<M, NO>::new(m);
-    let variants = vec![
-        timed_turn("closed_form", hand, policy, guess0, TURN_720),
-        timed_turn("kinloop", &kl, policy, guess0, TURN_720),
-        timed_sweep(&kl.m, guess0, TURN_720),
-    ];
-    paired(&format!("{title}, {TURN_720} steps a turn"), variants, 100_000, rounds);
+/// What is done with each closed-form row (see [`closed_form_rows`]).
+trait RowVisitor {
+    /// One row: the mechanism `m` as kinloop solves it, its hand closed form `hand`, and the
+    /// position at input 0.
+    fn row<M: Mechanism<N, 1, NO>, H: Stepper<N>, const N: usize, const NO: usize>(
+        &mut self,
+        title: &str,
+        m: M,
+        hand: &H,
+        guess0: [f64; N],
+    );
+}
+
+/// Visits the three closed-form rows with the mechanism values of `closed_form_step` and of the
+/// criterion groups.
+fn closed_form_rows(v: &mut impl RowVisitor) {
+    let p = rhombic::PARAMS;
+    v.row("rhombic drive", p.kinloop(), &ClosedForm::new(&p), rhombic::initial_guess(&p));
+    let four = FourBar { a: 1.0, b: 3.0, c: 2.5, d: 3.2 };
+    let four_hand = FourBarClosed { a: four.a, b: four.b, c: four.c, d: four.d, left: true };
+    let g: [f64; 2] = four.solve(0.0).expect("the four-bar assembles").q.into();
+    v.row("four-bar with its coupler point", four, &four_hand, g);
+    let gear = GearLever::default();
+    let gear_hand = GearLeverClosed { l_c: gear.l_c, l_p: gear.l_p, u: gear.u };
+    let g: [f64; 2] = gear.solve(0.0).expect("the gear lever assembles").q.into();
+    v.row("gear-lever rocker", gear, &gear_hand, g);
+}
+
+/// Times each closed-form row by [`paired`]: the hand closed form, kinloop's point step from
+/// the previous position and kinloop's own sweep, along turns of [`TURN_720`] steps.
+struct PairedRows(usize);
+
+impl RowVisitor for PairedRows {
+    fn row<M: Mechanism<N, 1, NO>, H: Stepper<N>, const N: usize, const NO: usize>(
+        &mut self,
+        title: &str,
+        m: M,
+        hand: &H,
+        guess0: [f64; N],
+    ) {
+        let policy = WarmStart::Previous;
+        let kl = Kinloop::<M, NO>::new(m);
+        let variants = vec![
+            timed_turn("closed_form", hand, policy, guess0, TURN_720),
+            timed_turn("kinloop", &kl, policy, guess0, TURN_720),
+            timed_sweep(&kl.m, guess0, TURN_720),
+        ];
+        paired(&format!("{title}, {TURN_720} steps a turn"), variants, 100_000, self.0);
+    }
+}
+
+/// Prints the iterations and deviations from the hand closed form of kinloop's point step
+/// (previous position) and of its own sweep over one turn of [`TURN_720`] steps.
+struct CheckedRows;
+
+impl RowVisitor for CheckedRows {
+    fn row<M: Mechanism<N, 1, NO>, H: Stepper<N>, const N: usize, const NO: usize>(
+        &mut self,
+        title: &str,
+        m: M,
+        hand: &H,
+        guess0: [f64; N],
+    ) {
+        let kl = Kinloop::<M, NO>::new(m);
+        let point = check_sweep(&kl, hand, TURN_720, WarmStart::Previous, guess0);
+        println!("| {title}: `kinloop` | {} |", iteration_cells(point));
+        println!("| {title}: `{SWEEP}` | {} |", iteration_cells(check_kinloop_sweep(&kl.m, hand, TURN_720, guess0)));
+    }
+}
+
+/// The closed-form rows and the class IV block at [`TURN_720`] steps a turn, checked against
+/// their hand references over one turn.
+fn iterations_720() {
+    println!("| variant | Newton iterations per step | max deviation q / dq / d2q |");
+    println!("|---|---:|---:|");
+    closed_form_rows(&mut CheckedRows);
+    let p4 = class_four::PARAMS;
+    let (hand4, g4) = (HandNewton { p: p4 }, class_four::INITIAL_GUESS);
+    let kl4 = Kinloop::<_, 0>::new(p4.kinloop());
+    let check = check_sweep(&kl4, &hand4, TURN_720, WarmStart::Previous, g4);
+    println!("| class IV block: `kinloop` | {} |", iteration_cells(check));
+    let check = check_sweep(&hand4, &hand4, TURN_720, WarmStart::Previous, g4);
+    println!("| class IV block: `hand_newton` | {} |", iteration_cells(check));
+    println!();
 }
 
 /// The closed-form rows and the class IV block at [`TURN_720`] steps a turn (the mechanism
 /// values of `closed_form_step` and of the criterion groups).
 fn paired_closed_form(rounds: usize) {
-    let p = rhombic::PARAMS;
-    paired_row("rhombic drive", p.kinloop(), &ClosedForm::new(&p), rhombic::initial_guess(&p), rounds);
-    let four = FourBar { a: 1.0, b: 3.0, c: 2.5, d: 3.2 };
-    let four_hand = FourBarClosed { a: four.a, b: four.b, c: four.c, d: four.d, left: true };
-    let g: [f64; 2] = four.solve(0.0).expect("the four-bar assembles").q.into();
-    paired_row("four-bar with its coupler point", four, &four_hand, g, rounds);
-    let gear = GearLever::default();
-    let gear_hand = GearLeverClosed { l_c: gear.l_c, l_p: gear.l_p, u: gear.u };
-    let g: [f64; 2] = gear.solve(0.0).expect("the gear lever assembles").q.into();
-    paired_row("gear-lever rocker", gear, &gear_hand, g, rounds);
+    closed_form_rows(&mut PairedRows(rounds));
     let p4 = class_four::PARAMS;
     let (hand4, kl4, g4) = (HandNewton { p: p4 }, Kinloop::<_, 0>::new(p4.kinloop()), class_four::INITIAL_GUESS);
     let variants = vec![
@@ -512,6 +570,8 @@ fn main() {
     speedups(&dir);
     println!("### Newton iterations and accuracy over one turn of {STEPS} steps (release build)\n");
     iterations();
+    println!("### Closed-form rows: iterations and accuracy over one turn of {TURN_720} steps (release build)\n");
+    iterations_720();
     println!("### Macro expansion\n");
     sizes(&dir);
     if args.paired {
