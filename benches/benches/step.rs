@@ -3,7 +3,8 @@
 //! Every variant of a group runs in this one binary, one after the other; each is first
 //! checked over a whole turn against the reference (the closed form for the rhombic drive, the
 //! hand-written Newton for the class IV block) with the same warm-start policy. `kinloop_sweep`
-//! (in the taylor groups only) is kinloop's own `Sweep`: see [`bench_kinloop_sweep`].
+//! (in the taylor groups and the closed-form rows) is kinloop's own `Sweep`: see
+//! [`bench_kinloop_sweep`].
 //!
 //! * `rhombic_*`, `class_four_*`: 1,000,000 steps a turn, both warm-start policies;
 //! * `closed_form_rhombic`, `closed_form_four_bar`, `closed_form_gear_lever`: the closed-form
