@@ -1,9 +1,16 @@
-//! One kinematic step (positions + velocity analogs + acceleration analogs of the 4 unknowns)
-//! at the next of 1,000,000 equally spaced crank angles per turn, warm-started from the previous
-//! step. Every variant of a group runs in this one binary, one after the other; each is first
+//! One kinematic step (positions + velocity analogs + acceleration analogs of the unknowns)
+//! at the next of equally spaced crank angles per turn, warm-started from the previous step.
+//! Every variant of a group runs in this one binary, one after the other; each is first
 //! checked over a whole turn against the reference (the closed form for the rhombic drive, the
 //! hand-written Newton for the class IV block) with the same warm-start policy. `kinloop_sweep`
-//! (in the taylor groups only) is kinloop's own `Sweep`: see [`bench_kinloop_sweep`].
+//! (in the taylor groups and the closed-form rows) is kinloop's own `Sweep`: see
+//! [`bench_kinloop_sweep`].
+//!
+//! * `rhombic_*`, `class_four_*`: 1,000,000 steps a turn, both warm-start policies;
+//! * `closed_form_rhombic`, `closed_form_four_bar`, `closed_form_gear_lever`: the closed-form
+//!   rows of the callgrind harness `closed_form_step` (720 steps a turn, previous position, the
+//!   hand closed forms, kinloop's point step and kinloop's own `Sweep`), see
+//!   [`closed_form_row`]; `class_four_720_previous`: the class IV block on that turn.
 //!
 //! `cargo bench -p kinloop-bench --bench step`; `cargo run --release -p kinloop-bench --bin
 //! report` then prints the table of medians and ratios.
@@ -15,11 +22,14 @@ use criterion::measurement::WallTime;
 use criterion::{BenchmarkGroup, Criterion, criterion_group, criterion_main};
 use kinloop::Mechanism;
 use kinloop_bench::class_four::{self, HandNewton};
+use kinloop_bench::hand::{FourBarClosed, GearLeverClosed};
 use kinloop_bench::kinloop_variants::{Kinloop, KinloopNamed, KinloopSweep, check_kinloop_sweep};
 use kinloop_bench::rhombic::{self, ClosedForm, DenseFiniteDifference, DenseHandJacobian, DenseNumDual, TwoLoopNewton};
 use kinloop_bench::sweep::{
     DIFFERENCED, EXACT, Failed, STEPS, Step, Stepper, Sweep, SweepCheck, WarmStart, check_sweep,
 };
+use kinloop_fixtures::FourBar;
+use kinloop_fixtures::gear_lever::GearLever;
 
 /// Prints a variant's check over a whole turn and asserts its deviations are within `tol`.
 fn assert_check(name: &str, policy: WarmStart, check: Result<SweepCheck, Failed>, tol: [f64; 3]) {
@@ -53,23 +63,25 @@ fn time_step(g: &mut BenchmarkGroup<'_, WallTime>, name: &str, mut advance: impl
 
 /// Hands a step to the optimiser as used.
 #[inline(always)]
-fn consume(step: &Step<4>) {
+fn consume<const N: usize>(step: &Step<N>) {
     black_box(step);
 }
 
-/// Checks `s` over a whole turn against `reference`, then times one step.
+/// Checks `s` over a whole turn of `steps` steps against `reference`, then times one step of
+/// such turns.
 #[allow(clippy::too_many_arguments)]
-fn bench<S: Stepper<4>, R: Stepper<4>>(
+fn bench<S: Stepper<N>, R: Stepper<N>, const N: usize>(
     g: &mut BenchmarkGroup<'_, WallTime>,
     name: &str,
     s: &S,
     reference: &R,
     policy: WarmStart,
-    guess0: [f64; 4],
+    guess0: [f64; N],
     tol: [f64; 3],
+    steps: usize,
 ) {
-    assert_check(name, policy, check_sweep(s, reference, STEPS, policy, guess0), tol);
-    let mut sweep = Sweep::start(s, STEPS, policy, guess0).unwrap();
+    assert_check(name, policy, check_sweep(s, reference, steps, policy, guess0), tol);
+    let mut sweep = Sweep::start(s, steps, policy, guess0).unwrap();
     time_step(g, name, || sweep.advance(s).map(consume));
 }
 
@@ -78,18 +90,19 @@ fn bench<S: Stepper<4>, R: Stepper<4>>(
 /// `reference` at the angles it samples, with the same tolerances as `kinloop`; then one step is
 /// timed like every other variant: one `KinloopSweep::advance`, i.e. one `next_kin()` of the
 /// runtime sweep (prediction, the full solve of positions and analogs, and the sweep's
-/// branch-safety checks of every step). The runtime sweep ends after a turn of 1,000,000 samples;
+/// branch-safety checks of every step). The runtime sweep ends after a turn of `steps` samples;
 /// the new sweep for the next turn is created inside the timed loop, so its cost is counted
-/// (amortised over the 1,000,000 steps of a turn; see [`KinloopSweep`]).
-fn bench_kinloop_sweep<M: Mechanism<4, 1, NO>, R: Stepper<4>, const NO: usize>(
+/// (amortised over the `steps` steps of a turn; see [`KinloopSweep`]).
+fn bench_kinloop_sweep<M: Mechanism<N, 1, NO>, R: Stepper<N>, const N: usize, const NO: usize>(
     g: &mut BenchmarkGroup<'_, WallTime>,
     m: &M,
     reference: &R,
-    guess0: [f64; 4],
+    guess0: [f64; N],
+    steps: usize,
 ) {
     let name = "kinloop_sweep";
-    assert_check(name, WarmStart::Taylor, check_kinloop_sweep(m, reference, STEPS, guess0), EXACT);
-    let mut sweep = KinloopSweep::start(m, STEPS, guess0).unwrap();
+    assert_check(name, WarmStart::Taylor, check_kinloop_sweep(m, reference, steps, guess0), EXACT);
+    let mut sweep = KinloopSweep::start(m, steps, guess0).unwrap();
     time_step(g, name, || sweep.advance().map(consume));
 }
 
@@ -102,16 +115,25 @@ fn rhombic_drive(c: &mut Criterion) {
     let named = KinloopNamed::new(p.kinloop());
     for policy in WarmStart::ALL {
         let mut g = c.benchmark_group(format!("rhombic_{}", policy.name()));
-        bench(&mut g, "closed_form", &closed, &closed, policy, guess0, EXACT);
-        bench(&mut g, "kinloop", &kl, &closed, policy, guess0, EXACT);
-        bench(&mut g, "kinloop_named", &named, &closed, policy, guess0, EXACT);
+        bench(&mut g, "closed_form", &closed, &closed, policy, guess0, EXACT, STEPS);
+        bench(&mut g, "kinloop", &kl, &closed, policy, guess0, EXACT, STEPS);
+        bench(&mut g, "kinloop_named", &named, &closed, policy, guess0, EXACT, STEPS);
         if policy == WarmStart::Taylor {
-            bench_kinloop_sweep::<_, _, 0>(&mut g, &kl.m, &closed, guess0);
+            bench_kinloop_sweep::<_, _, 4, 0>(&mut g, &kl.m, &closed, guess0, STEPS);
         }
-        bench(&mut g, "two_loop_newton", &TwoLoopNewton { p }, &closed, policy, guess0, EXACT);
-        bench(&mut g, "dense_hand_jacobian", &DenseHandJacobian { p }, &closed, policy, guess0, EXACT);
-        bench(&mut g, "dense_num_dual", &DenseNumDual { p }, &closed, policy, guess0, EXACT);
-        bench(&mut g, "dense_finite_difference", &DenseFiniteDifference { p }, &closed, policy, guess0, DIFFERENCED);
+        bench(&mut g, "two_loop_newton", &TwoLoopNewton { p }, &closed, policy, guess0, EXACT, STEPS);
+        bench(&mut g, "dense_hand_jacobian", &DenseHandJacobian { p }, &closed, policy, guess0, EXACT, STEPS);
+        bench(&mut g, "dense_num_dual", &DenseNumDual { p }, &closed, policy, guess0, EXACT, STEPS);
+        bench(
+            &mut g,
+            "dense_finite_difference",
+            &DenseFiniteDifference { p },
+            &closed,
+            policy,
+            guess0,
+            DIFFERENCED,
+            STEPS,
+        );
         g.finish();
     }
 }
@@ -124,14 +146,68 @@ fn class_four_block(c: &mut Criterion) {
     let named = KinloopNamed::new(p.kinloop());
     for policy in WarmStart::ALL {
         let mut g = c.benchmark_group(format!("class_four_{}", policy.name()));
-        bench(&mut g, "hand_newton", &hand, &hand, policy, guess0, EXACT);
-        bench(&mut g, "kinloop", &kl, &hand, policy, guess0, EXACT);
-        bench(&mut g, "kinloop_named", &named, &hand, policy, guess0, EXACT);
+        bench(&mut g, "hand_newton", &hand, &hand, policy, guess0, EXACT, STEPS);
+        bench(&mut g, "kinloop", &kl, &hand, policy, guess0, EXACT, STEPS);
+        bench(&mut g, "kinloop_named", &named, &hand, policy, guess0, EXACT, STEPS);
         if policy == WarmStart::Taylor {
-            bench_kinloop_sweep::<_, _, 0>(&mut g, &kl.m, &hand, guess0);
+            bench_kinloop_sweep::<_, _, 4, 0>(&mut g, &kl.m, &hand, guess0, STEPS);
         }
         g.finish();
     }
+}
+
+/// Steps per turn of the closed-form rows (0.5 degree): the turn of the callgrind harness
+/// `closed_form_step`, so both measure the same steps.
+const TURN_720: usize = 720;
+
+/// One closed-form row at [`TURN_720`] steps a turn, each variant checked over a whole turn
+/// against the hand closed form `hand` first: `closed_form` (the hand closed form, which ignores
+/// the guess), `kinloop` (the generated point step `kinematics_flat` from the previous position)
+/// and `kinloop_sweep` (one sample of kinloop's own `Sweep`).
+fn closed_form_row<M: Mechanism<N, 1, NO>, H: Stepper<N>, const N: usize, const NO: usize>(
+    c: &mut Criterion,
+    group: &str,
+    m: M,
+    hand: &H,
+    guess0: [f64; N],
+) {
+    let mut g = c.benchmark_group(group);
+    let policy = WarmStart::Previous;
+    let kl = Kinloop::<M, NO>::new(m);
+    bench(&mut g, "closed_form", hand, hand, policy, guess0, EXACT, TURN_720);
+    bench(&mut g, "kinloop", &kl, hand, policy, guess0, EXACT, TURN_720);
+    bench_kinloop_sweep(&mut g, &kl.m, hand, guess0, TURN_720);
+    g.finish();
+}
+
+/// The closed-form rows: the rhombic drive, the four-bar with its coupler point and the
+/// gear-lever rocker against their closed forms written by hand, with the mechanism values of
+/// `closed_form_step` (passed through `black_box`, as in the other groups).
+fn closed_form_blocks(c: &mut Criterion) {
+    let p = black_box(rhombic::PARAMS);
+    closed_form_row(c, "closed_form_rhombic", p.kinloop(), &ClosedForm::new(&p), rhombic::initial_guess(&p));
+    let four = black_box(FourBar { a: 1.0, b: 3.0, c: 2.5, d: 3.2 });
+    let four_hand = FourBarClosed { a: four.a, b: four.b, c: four.c, d: four.d, left: true };
+    let g: [f64; 2] = four.solve(0.0).expect("the four-bar assembles").q.into();
+    closed_form_row(c, "closed_form_four_bar", four, &four_hand, g);
+    let gear = black_box(GearLever::default());
+    let gear_hand = GearLeverClosed { l_c: gear.l_c, l_p: gear.l_p, u: gear.u };
+    let g: [f64; 2] = gear.solve(0.0).expect("the gear lever assembles").q.into();
+    closed_form_row(c, "closed_form_gear_lever", gear, &gear_hand, g);
+}
+
+/// The class IV block (Newton) at [`TURN_720`] steps a turn from the previous position: the
+/// hand-written Newton and kinloop's point step, as `class-four-hand` and `class-four-point` of
+/// `closed_form_step`.
+fn class_four_720(c: &mut Criterion) {
+    let p = black_box(class_four::PARAMS);
+    let guess0 = class_four::INITIAL_GUESS;
+    let hand = HandNewton { p };
+    let policy = WarmStart::Previous;
+    let mut g = c.benchmark_group("class_four_720_previous");
+    bench(&mut g, "hand_newton", &hand, &hand, policy, guess0, EXACT, TURN_720);
+    bench(&mut g, "kinloop", &Kinloop::<_, 0>::new(p.kinloop()), &hand, policy, guess0, EXACT, TURN_720);
+    g.finish();
 }
 
 fn config() -> Criterion {
@@ -145,6 +221,6 @@ fn config() -> Criterion {
 criterion_group! {
     name = step;
     config = config();
-    targets = rhombic_drive, class_four_block
+    targets = rhombic_drive, class_four_block, closed_form_blocks, class_four_720
 }
 criterion_main!(step);

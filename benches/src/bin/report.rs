@@ -3,11 +3,15 @@
 //! to each group's reference, the Newton iterations per step of every variant, and the size of
 //! the macro's expansions.
 //!
-//! `cargo run --release -p kinloop-bench --bin report [-- [--paired] [CRITERION_DIR]]`. The
-//! criterion directory defaults to `$CARGO_TARGET_DIR/criterion`, else `target/criterion` at the
-//! workspace root. `--paired` adds an interleaved measurement of the same steps (see
-//! [`paired`]), a cross-check of criterion's sequential runs on a shared, noisy machine.
+//! `cargo run --release -p kinloop-bench --bin report [-- [--paired] [--callgrind FILE]
+//! [CRITERION_DIR]]`. The criterion directory defaults to `$CARGO_TARGET_DIR/criterion`, else
+//! `target/criterion` at the workspace root. `--paired` adds an interleaved measurement of the
+//! same steps (see [`paired`]), a cross-check of criterion's sequential runs on a shared, noisy
+//! machine. `--callgrind FILE` puts the instructions per step of the closed-form rows (the
+//! output of `benches/callgrind.sh`, lines `VARIANT COUNT` naming variants of
+//! `closed_form_step`) beside their criterion times.
 
+use std::collections::HashMap;
 use std::hint::black_box;
 use std::path::{Path, PathBuf};
 use std::time::Instant;
@@ -16,9 +20,12 @@ use kinloop::Mechanism;
 use kinloop_bench::class_four::{self, HandNewton};
 use kinloop_bench::decls::paper_mechanisms;
 use kinloop_bench::expansion::{four_bar_chain, four_bar_chain_dense, size};
+use kinloop_bench::hand::{FourBarClosed, GearLeverClosed};
 use kinloop_bench::kinloop_variants::{Kinloop, KinloopNamed, KinloopSweep, check_kinloop_sweep};
 use kinloop_bench::rhombic::{self, ClosedForm, DenseFiniteDifference, DenseHandJacobian, DenseNumDual, TwoLoopNewton};
 use kinloop_bench::sweep::{Failed, STEPS, Stepper, Sweep, SweepCheck, WarmStart, check_sweep};
+use kinloop_fixtures::FourBar;
+use kinloop_fixtures::gear_lever::GearLever;
 
 const RHOMBIC: [&str; 8] = [
     "closed_form",
@@ -60,10 +67,36 @@ fn estimate(dir: &Path, group: &str, bench: &str) -> Option<Estimate> {
     })
 }
 
-fn criterion_dir() -> PathBuf {
-    if let Some(d) = std::env::args().skip(1).find(|a| !a.starts_with("--")) {
-        return PathBuf::from(d);
+/// The command line: `[--paired] [--callgrind FILE] [CRITERION_DIR]`.
+struct Args {
+    paired: bool,
+    callgrind: Option<PathBuf>,
+    dir: PathBuf,
+}
+
+fn args() -> Args {
+    let mut a = Args { paired: false, callgrind: None, dir: default_criterion_dir() };
+    let mut it = std::env::args().skip(1);
+    while let Some(arg) = it.next() {
+        match arg.as_str() {
+            "--paired" => a.paired = true,
+            "--callgrind" => match it.next() {
+                Some(f) => a.callgrind = Some(PathBuf::from(f)),
+                None => exit_with("--callgrind needs a file (the output of benches/callgrind.sh)"),
+            },
+            other if other.starts_with("--") => exit_with(&format!("unknown option {other}")),
+            dir => a.dir = PathBuf::from(dir),
+        }
     }
+    a
+}
+
+fn exit_with(why: &str) -> ! {
+    eprintln!("report: {why}\nusage: report [--paired] [--callgrind FILE] [CRITERION_DIR]");
+    std::process::exit(2)
+}
+
+fn default_criterion_dir() -> PathBuf {
     let target = std::env::var_os("CARGO_TARGET_DIR")
         .map(PathBuf::from)
         .unwrap_or_else(|| Path::new(env!("CARGO_MANIFEST_DIR")).join("..").join("target"));
@@ -136,6 +169,92 @@ fn speedups(dir: &Path) {
             sweep(&g, "closed_form"),
             sweep(&g4, "hand_newton"),
         );
+    }
+    println!();
+}
+
+/// Steps per turn of the closed-form rows (0.5 degree): the turn of the callgrind harness
+/// `closed_form_step`, whose variants measure the same steps.
+const TURN_720: usize = 720;
+
+/// A closed-form row: its criterion group, its mechanism, and each variant's bench id beside
+/// the same variant of `closed_form_step` (the reference first).
+struct Row {
+    group: &'static str,
+    mechanism: &'static str,
+    variants: &'static [(&'static str, &'static str)],
+}
+
+const CLOSED_FORM_ROWS: [Row; 4] = [
+    Row {
+        group: "closed_form_rhombic",
+        mechanism: "rhombic drive",
+        variants: &[("closed_form", "hand"), ("kinloop", "point"), (SWEEP, "sweep")],
+    },
+    Row {
+        group: "closed_form_four_bar",
+        mechanism: "four-bar with its coupler point",
+        variants: &[("closed_form", "four-bar-hand"), ("kinloop", "four-bar-point"), (SWEEP, "four-bar-sweep")],
+    },
+    Row {
+        group: "closed_form_gear_lever",
+        mechanism: "gear-lever rocker",
+        variants: &[("closed_form", "gear-lever-hand"), ("kinloop", "gear-lever-point"), (SWEEP, "gear-lever-sweep")],
+    },
+    Row {
+        group: "class_four_720_previous",
+        mechanism: "class IV block (Newton)",
+        variants: &[("hand_newton", "class-four-hand"), ("kinloop", "class-four-point")],
+    },
+];
+
+/// Instructions per step of the variants of `closed_form_step`: the lines `VARIANT COUNT` that
+/// `benches/callgrind.sh` prints (blank lines and `#` comments are skipped).
+fn read_callgrind(path: &Path) -> Result<HashMap<String, f64>, String> {
+    let text = std::fs::read_to_string(path).map_err(|e| e.to_string())?;
+    let mut counts = HashMap::new();
+    for (i, line) in text.lines().enumerate().map(|(i, l)| (i, l.trim())) {
+        if line.is_empty() || line.starts_with('#') {
+            continue;
+        }
+        let mut words = line.split_whitespace();
+        match (words.next(), words.next().map(str::parse::<f64>), words.next()) {
+            (Some(variant), Some(Ok(n)), None) if n.is_finite() && n > 0.0 => {
+                counts.insert(variant.to_string(), n);
+            }
+            _ => return Err(format!("line {}: expected `VARIANT INSTRUCTIONS_PER_STEP`, got `{line}`", i + 1)),
+        }
+    }
+    Ok(counts)
+}
+
+/// The closed-form rows: criterion's median with its ratio to the row's reference, beside the
+/// callgrind instructions per step of the same variant with their ratio (when a file of counts
+/// was given).
+fn closed_form_table(dir: &Path, callgrind: Option<&HashMap<String, f64>>) {
+    println!(
+        "| mechanism | variant | `closed_form_step` variant | median per step | 95% CI of the median | ratio to the reference | instructions per step | ratio to the reference |"
+    );
+    println!("|---|---|---|---:|---:|---:|---:|---:|");
+    let instr = |v: &str| callgrind.and_then(|c| c.get(v).copied());
+    for row in &CLOSED_FORM_ROWS {
+        let (reference, reference_cg) = row.variants[0];
+        let base = estimate(dir, row.group, reference);
+        for &(bench, cg) in row.variants {
+            let time = match estimate(dir, row.group, bench) {
+                Some(e) => {
+                    let ratio = base.map_or("?".to_string(), |r| format!("{:.2}", e.median / r.median));
+                    format!("{} | {} – {} | {ratio}", fmt_ns(e.median), fmt_ns(e.low), fmt_ns(e.high))
+                }
+                None => "not measured | | ".to_string(),
+            };
+            let count = match (instr(cg), instr(reference_cg)) {
+                (Some(n), Some(r)) => format!("{n:.0} | {:.2}", n / r),
+                (Some(n), None) => format!("{n:.0} | ?"),
+                (None, _) => "– | –".to_string(),
+            };
+            println!("| {} | `{bench}` | `{cg}` | {time} | {count} |", row.mechanism);
+        }
     }
     println!();
 }
@@ -233,16 +352,32 @@ fn timed_steps<'a>(name: &'static str, mut step: impl FnMut() + 'a) -> Timed<'a>
     (name, Box::new(run))
 }
 
-fn timed<'a, S: Stepper<4>>(name: &'static str, s: &'a S, policy: WarmStart, guess0: [f64; 4]) -> Timed<'a> {
-    let mut sweep = Sweep::start(s, STEPS, policy, guess0).expect("the sweep starts");
+/// `s` along turns of `steps` steps with `policy`.
+fn timed_turn<'a, S: Stepper<N>, const N: usize>(
+    name: &'static str,
+    s: &'a S,
+    policy: WarmStart,
+    guess0: [f64; N],
+    steps: usize,
+) -> Timed<'a> {
+    let mut sweep = Sweep::start(s, steps, policy, guess0).expect("the sweep starts");
     timed_steps(name, move || {
         black_box(sweep.advance(s).expect("the sweep goes on"));
     })
 }
 
-/// kinloop's own sweep of `m` (see `KinloopSweep`).
-fn timed_sweep<'a, M: Mechanism<4, 1, 0>>(m: &'a M, guess0: [f64; 4]) -> Timed<'a> {
-    let mut sweep = KinloopSweep::start(m, STEPS, guess0).expect("the sweep starts");
+/// `s` along turns of [`STEPS`] steps with `policy`.
+fn timed<'a, S: Stepper<4>>(name: &'static str, s: &'a S, policy: WarmStart, guess0: [f64; 4]) -> Timed<'a> {
+    timed_turn(name, s, policy, guess0, STEPS)
+}
+
+/// kinloop's own sweep of `m` (see `KinloopSweep`) over turns of `steps` samples.
+fn timed_sweep<'a, M: Mechanism<N, 1, NO>, const N: usize, const NO: usize>(
+    m: &'a M,
+    guess0: [f64; N],
+    steps: usize,
+) -> Timed<'a> {
+    let mut sweep = KinloopSweep::start(m, steps, guess0).expect("the sweep starts");
     timed_steps(SWEEP, move || {
         black_box(sweep.advance().expect("the sweep goes on"));
     })
@@ -310,29 +445,175 @@ fn paired_all(rounds: usize) {
             timed("kinloop_named", &named4, policy, g4),
         ];
         if measured_with(SWEEP, policy) {
-            variants.insert(3, timed_sweep(&kl.m, g));
-            variants4.push(timed_sweep(&kl4.m, g4));
+            variants.insert(3, timed_sweep(&kl.m, g, STEPS));
+            variants4.push(timed_sweep(&kl4.m, g4, STEPS));
         }
         paired(&format!("rhombic drive, {} warm start", policy.name()), variants, 100_000, rounds);
         paired(&format!("class IV, {} warm start", policy.name()), variants4, 50_000, rounds);
     }
 }
 
+/// What is done with each closed-form row (see [`closed_form_rows`]).
+trait RowVisitor {
+    /// One row: the mechanism `m` as kinloop solves it, its hand closed form `hand`, and the
+    /// position at input 0.
+    fn row<M: Mechanism<N, 1, NO>, H: Stepper<N>, const N: usize, const NO: usize>(
+        &mut self,
+        title: &str,
+        m: M,
+        hand: &H,
+        guess0: [f64; N],
+    );
+}
+
+/// Visits the three closed-form rows with the mechanism values of `closed_form_step` and of the
+/// criterion groups.
+fn closed_form_rows(v: &mut impl RowVisitor) {
+    let p = rhombic::PARAMS;
+    v.row("rhombic drive", p.kinloop(), &ClosedForm::new(&p), rhombic::initial_guess(&p));
+    let four = FourBar { a: 1.0, b: 3.0, c: 2.5, d: 3.2 };
+    let four_hand = FourBarClosed { a: four.a, b: four.b, c: four.c, d: four.d, left: true };
+    let g: [f64; 2] = four.solve(0.0).expect("the four-bar assembles").q.into();
+    v.row("four-bar with its coupler point", four, &four_hand, g);
+    let gear = GearLever::default();
+    let gear_hand = GearLeverClosed { l_c: gear.l_c, l_p: gear.l_p, u: gear.u };
+    let g: [f64; 2] = gear.solve(0.0).expect("the gear lever assembles").q.into();
+    v.row("gear-lever rocker", gear, &gear_hand, g);
+}
+
+/// Times each closed-form row by [`paired`]: the hand closed form, kinloop's point step from
+/// the previous position and kinloop's own sweep, along turns of [`TURN_720`] steps.
+struct PairedRows(usize);
+
+impl RowVisitor for PairedRows {
+    fn row<M: Mechanism<N, 1, NO>, H: Stepper<N>, const N: usize, const NO: usize>(
+        &mut self,
+        title: &str,
+        m: M,
+        hand: &H,
+        guess0: [f64; N],
+    ) {
+        let policy = WarmStart::Previous;
+        let kl = Kinloop::<M, NO>::new(m);
+        let variants = vec![
+            timed_turn("closed_form", hand, policy, guess0, TURN_720),
+            timed_turn("kinloop", &kl, policy, guess0, TURN_720),
+            timed_sweep(&kl.m, guess0, TURN_720),
+        ];
+        paired(&format!("{title}, {TURN_720} steps a turn"), variants, 100_000, self.0);
+    }
+}
+
+/// Prints the iterations and deviations from the hand closed form of kinloop's point step
+/// (previous position) and of its own sweep over one turn of [`TURN_720`] steps.
+struct CheckedRows;
+
+impl RowVisitor for CheckedRows {
+    fn row<M: Mechanism<N, 1, NO>, H: Stepper<N>, const N: usize, const NO: usize>(
+        &mut self,
+        title: &str,
+        m: M,
+        hand: &H,
+        guess0: [f64; N],
+    ) {
+        let kl = Kinloop::<M, NO>::new(m);
+        let point = check_sweep(&kl, hand, TURN_720, WarmStart::Previous, guess0);
+        println!("| {title}: `kinloop` | {} |", iteration_cells(point));
+        println!("| {title}: `{SWEEP}` | {} |", iteration_cells(check_kinloop_sweep(&kl.m, hand, TURN_720, guess0)));
+    }
+}
+
+/// The closed-form rows and the class IV block at [`TURN_720`] steps a turn, checked against
+/// their hand references over one turn.
+fn iterations_720() {
+    println!("| variant | Newton iterations per step | max deviation q / dq / d2q |");
+    println!("|---|---:|---:|");
+    closed_form_rows(&mut CheckedRows);
+    let p4 = class_four::PARAMS;
+    let (hand4, g4) = (HandNewton { p: p4 }, class_four::INITIAL_GUESS);
+    let kl4 = Kinloop::<_, 0>::new(p4.kinloop());
+    let check = check_sweep(&kl4, &hand4, TURN_720, WarmStart::Previous, g4);
+    println!("| class IV block: `kinloop` | {} |", iteration_cells(check));
+    let check = check_sweep(&hand4, &hand4, TURN_720, WarmStart::Previous, g4);
+    println!("| class IV block: `hand_newton` | {} |", iteration_cells(check));
+    println!();
+}
+
+/// The closed-form rows and the class IV block at [`TURN_720`] steps a turn (the mechanism
+/// values of `closed_form_step` and of the criterion groups).
+fn paired_closed_form(rounds: usize) {
+    closed_form_rows(&mut PairedRows(rounds));
+    let p4 = class_four::PARAMS;
+    let (hand4, kl4, g4) = (HandNewton { p: p4 }, Kinloop::<_, 0>::new(p4.kinloop()), class_four::INITIAL_GUESS);
+    let variants = vec![
+        timed_turn("hand_newton", &hand4, WarmStart::Previous, g4, TURN_720),
+        timed_turn("kinloop", &kl4, WarmStart::Previous, g4, TURN_720),
+    ];
+    paired(&format!("class IV, previous warm start, {TURN_720} steps a turn"), variants, 50_000, rounds);
+}
+
 fn main() {
-    let dir = criterion_dir();
+    let args = args();
+    let dir = args.dir.clone();
+    let callgrind = args
+        .callgrind
+        .as_deref()
+        .map(|f| read_callgrind(f).unwrap_or_else(|e| exit_with(&format!("cannot read {}: {e}", f.display()))));
     println!("<!-- generated by `cargo run --release -p kinloop-bench --bin report` from {} -->\n", dir.display());
     println!("### Rhombic drive (paper 000): one full kinematic step\n");
     timing_table(&dir, "rhombic", &RHOMBIC, "closed_form");
     println!("### Class IV mechanism (paper 003): one full kinematic step of the coupled 4x4 block\n");
     timing_table(&dir, "class_four", &CLASS_FOUR, "hand_newton");
+    println!("### Closed-form rows: criterion time and callgrind instructions, {TURN_720} steps a turn\n");
+    closed_form_table(&dir, callgrind.as_ref());
     println!("### The ratios of the targets\n");
     speedups(&dir);
     println!("### Newton iterations and accuracy over one turn of {STEPS} steps (release build)\n");
     iterations();
+    println!("### Closed-form rows: iterations and accuracy over one turn of {TURN_720} steps (release build)\n");
+    iterations_720();
     println!("### Macro expansion\n");
     sizes(&dir);
-    if std::env::args().any(|a| a == "--paired") {
+    if args.paired {
         println!("### Paired (interleaved) timing, 41 rounds\n");
         paired_all(41);
+        paired_closed_form(41);
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn parse(text: &str) -> Result<HashMap<String, f64>, String> {
+        let path = std::env::temp_dir().join(format!("kinloop-report-callgrind-{}.txt", std::process::id()));
+        std::fs::write(&path, text).unwrap();
+        let counts = read_callgrind(&path);
+        std::fs::remove_file(&path).unwrap();
+        counts
+    }
+
+    #[test]
+    fn callgrind_counts_are_read_from_variant_lines() {
+        let counts = parse("# a comment\n\nhand 575\n  four-bar-point   991  \n").unwrap();
+        assert_eq!(counts.len(), 2);
+        assert_eq!(counts["hand"], 575.0);
+        assert_eq!(counts["four-bar-point"], 991.0);
+    }
+
+    #[test]
+    fn malformed_callgrind_lines_are_errors_naming_the_line() {
+        for bad in ["hand\n", "hand 575 extra\n", "hand many\n", "hand NaN\n", "hand -3\n"] {
+            let e = parse(&format!("point 813\n{bad}")).unwrap_err();
+            assert!(e.starts_with("line 2:"), "{bad:?}: {e}");
+        }
+    }
+
+    #[test]
+    fn every_closed_form_row_starts_with_its_reference() {
+        for row in &CLOSED_FORM_ROWS {
+            assert!(["closed_form", "hand_newton"].contains(&row.variants[0].0), "{}", row.group);
+            assert!(row.variants[1..].iter().all(|(b, _)| !["closed_form", "hand_newton"].contains(b)));
+        }
     }
 }
