@@ -586,7 +586,10 @@ mod tests {
     use super::*;
 
     fn parse(text: &str) -> Result<HashMap<String, f64>, String> {
-        let path = std::env::temp_dir().join(format!("kinloop-report-callgrind-{}.txt", std::process::id()));
+        // One file per call: the tests run in parallel threads of one process.
+        static CALLS: std::sync::atomic::AtomicUsize = std::sync::atomic::AtomicUsize::new(0);
+        let call = CALLS.fetch_add(1, std::sync::atomic::Ordering::Relaxed);
+        let path = std::env::temp_dir().join(format!("kinloop-report-callgrind-{}-{call}.txt", std::process::id()));
         std::fs::write(&path, text).unwrap();
         let counts = read_callgrind(&path);
         std::fs::remove_file(&path).unwrap();
