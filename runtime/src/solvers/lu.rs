@@ -79,11 +79,12 @@ pub(crate) fn solve_row_scaled<const N: usize>(
 ) -> ([f64; N], f64) {
     let mut degenerate = false;
     let inv_row = inverses(row_scale, &mut degenerate);
-    let mut a = [[0.0; N]; N];
+    // Scaled in place: no zero-filled array to overwrite.
+    let mut a = *j;
     let mut b = [0.0; N];
     for r in 0..N {
         for c in 0..N {
-            a[r][c] = j[r][c] * inv_row[r];
+            a[r][c] *= inv_row[r];
         }
         b[r] = -f[r] * inv_row[r];
     }
@@ -191,10 +192,11 @@ impl<const N: usize> Lu<N> {
         let mut degenerate = false;
         let inv_row = inverses(row_scale, &mut degenerate);
         let inv_col = inverses(col_scale, &mut degenerate);
-        let mut lu = [[0.0; N]; N];
+        // Scaled in place: no zero-filled array to overwrite.
+        let mut lu = *j;
         for r in 0..N {
             for c in 0..N {
-                lu[r][c] = j[r][c] * inv_row[r] * inv_col[c];
+                lu[r][c] = lu[r][c] * inv_row[r] * inv_col[c];
             }
         }
         let mut perm = [0usize; N];

@@ -340,7 +340,7 @@ pub fn newton_with<const N: usize, const K: usize, J: BlockJacobian<N>>(
     cfg: &NewtonConfig,
     mut eval: impl FnMut(&[f64; N]) -> BlockEval<N, K, J>,
 ) -> Result<Solved<N, K, J>, BlockFailure> {
-    let ev = eval(&z0);
+    let mut ev = eval(&z0);
     let s = row_scales(&ev);
     let rho = scaled_residual(&ev.f, &s);
     // NaN fails both tests; an out-of-range tolerance is diagnosed by `iterate`.
@@ -360,21 +360,23 @@ pub fn newton_with<const N: usize, const K: usize, J: BlockJacobian<N>>(
             termination: Termination::ResidualTolerance,
         });
     }
-    iterate(z0, ev, cfg, eval)
+    // By reference: the iteration updates the evaluation where it is, without a copy.
+    iterate(z0, &mut ev, cfg, eval)
 }
 
-/// Newton iterations from `z0`, whose evaluation is `ev0`. The generated code calls it through
+/// Newton iterations from `z0`, whose evaluation is `ev0` (updated in place: each accepted
+/// step's evaluation is written over it, never copied). The generated code calls it through
 /// [`newton`] when the guess does not meet the tolerance.
 ///
-/// The common path (a full Newton step accepted, then convergence) runs in this one function on
-/// local values, so the evaluations stay in registers; the rare paths (backtracking, descent,
-/// failures, a final correction that must be checked) are out of line.
+/// The common path (a full Newton step accepted, then convergence) runs in this one function;
+/// the rare paths (backtracking, descent, failures, a final correction that must be checked)
+/// are out of line.
 #[doc(hidden)]
 #[cold]
 #[inline(never)]
 pub fn iterate<const N: usize, const K: usize, J: BlockJacobian<N>>(
     z0: [f64; N],
-    mut ev0: BlockEval<N, K, J>,
+    ev0: &mut BlockEval<N, K, J>,
     cfg: &NewtonConfig,
     mut eval: impl FnMut(&[f64; N]) -> BlockEval<N, K, J>,
 ) -> Result<Solved<N, K, J>, BlockFailure> {
@@ -384,8 +386,7 @@ pub fn iterate<const N: usize, const K: usize, J: BlockJacobian<N>>(
     let floor = FLOOR_FACTOR * cfg.residual_tol.max(16.0 * f64::EPSILON);
     let mut it = Iter {
         z: z0,
-        // The argument itself, not a copy: the iteration updates it in place.
-        ev: &mut ev0,
+        ev: ev0,
         iterations: 0,
         evaluations: 1,
         prev_step: f64::INFINITY,
