@@ -523,9 +523,10 @@ mod tests {
             // Mostly finite entries (every row exchange pattern), sometimes a special value.
             let v = |r: usize, c: usize| {
                 let k = seed * 31 + r * 11 + c * 5;
-                if k % 17 == 0 { pick(k) } else { ((k * 7919) % 1000) as f64 / 97.0 - 5.0 }
+                if k.is_multiple_of(17) { pick(k) } else { ((k * 7919) % 1000) as f64 / 97.0 - 5.0 }
             };
-            let sc = |r: usize| if seed % 9 == 0 { scales[(seed / 9 + r) % scales.len()] } else { 1.0 + r as f64 };
+            let sc =
+                |r: usize| if seed.is_multiple_of(9) { scales[(seed / 9 + r) % scales.len()] } else { 1.0 + r as f64 };
             check::<3>(
                 std::array::from_fn(|r| std::array::from_fn(|c| v(r, c))),
                 [v(3, 0), v(3, 1), v(3, 2)],

@@ -340,7 +340,7 @@ pub fn newton_with<const N: usize, const K: usize, J: BlockJacobian<N>>(
     cfg: &NewtonConfig,
     mut eval: impl FnMut(&[f64; N]) -> BlockEval<N, K, J>,
 ) -> Result<Solved<N, K, J>, BlockFailure> {
-    let mut ev = eval(&z0);
+    let ev = eval(&z0);
     let s = row_scales(&ev);
     let rho = scaled_residual(&ev.f, &s);
     // NaN fails both tests; an out-of-range tolerance is diagnosed by `iterate`.
@@ -360,8 +360,9 @@ pub fn newton_with<const N: usize, const K: usize, J: BlockJacobian<N>>(
             termination: Termination::ResidualTolerance,
         });
     }
-    // By reference: the iteration updates the evaluation where it is, without a copy.
-    iterate(z0, &mut ev, cfg, eval)
+    // By value: the accepted guess's path keeps the evaluation in registers (a reference would
+    // keep it in memory there).
+    iterate(z0, ev, cfg, eval)
 }
 
 /// Newton iterations from `z0`, whose evaluation is `ev0` (updated in place: each accepted
@@ -376,7 +377,7 @@ pub fn newton_with<const N: usize, const K: usize, J: BlockJacobian<N>>(
 #[inline(never)]
 pub fn iterate<const N: usize, const K: usize, J: BlockJacobian<N>>(
     z0: [f64; N],
-    ev0: &mut BlockEval<N, K, J>,
+    mut ev0: BlockEval<N, K, J>,
     cfg: &NewtonConfig,
     mut eval: impl FnMut(&[f64; N]) -> BlockEval<N, K, J>,
 ) -> Result<Solved<N, K, J>, BlockFailure> {
@@ -386,7 +387,8 @@ pub fn iterate<const N: usize, const K: usize, J: BlockJacobian<N>>(
     let floor = FLOOR_FACTOR * cfg.residual_tol.max(16.0 * f64::EPSILON);
     let mut it = Iter {
         z: z0,
-        ev: ev0,
+        // The argument itself, not a copy: the iteration updates it in place.
+        ev: &mut ev0,
         iterations: 0,
         evaluations: 1,
         prev_step: f64::INFINITY,
