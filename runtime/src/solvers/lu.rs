@@ -29,9 +29,9 @@ pub struct Lu<const N: usize> {
 }
 
 /// The reciprocals of the equilibration scales; a zero, negative, infinite or NaN scale gives 0
-/// and marks the factorisation `degenerate`. Two float comparisons per scale (NaN fails both),
-/// all the reciprocals computed, and one branch for the whole set: this runs for every row and
-/// column of every factorisation, dense or sparse, and the scales are almost always valid.
+/// and marks the factorisation `degenerate`. All the reciprocals are computed, and one test
+/// ([`all_positive_finite`]) and one branch decide for the whole set: this runs for every row
+/// and column of every factorisation, dense or sparse, and the scales are almost always valid.
 #[inline(always)]
 pub(crate) fn inverses<const N: usize>(scale: [f64; N], degenerate: &mut bool) -> [f64; N] {
     let mut inv = [0.0; N];
@@ -544,6 +544,33 @@ mod tests {
             [1e-9, -2e-9, 3e-10, 0.0],
             [9.0, 6.0, 12.0, 9.0],
         );
+    }
+
+    /// The one-comparison test of a set of scales is the two comparisons of each.
+    #[test]
+    fn positive_finite_sets() {
+        let tiny = f64::from_bits(1);
+        let values = [
+            1.0,
+            0.0,
+            -0.0,
+            -1.0,
+            tiny,
+            -tiny,
+            f64::MIN_POSITIVE,
+            f64::MAX,
+            f64::MIN,
+            f64::INFINITY,
+            -f64::INFINITY,
+            f64::NAN,
+        ];
+        for &a in &values {
+            assert_eq!(all_positive_finite(&[a]), a > 0.0 && a < f64::INFINITY, "{a:e}");
+            for &b in &values {
+                let both = [a, b].iter().all(|&v| v > 0.0 && v < f64::INFINITY);
+                assert_eq!(all_positive_finite(&[a, b, 2.5]), both, "{a:e} {b:e}");
+            }
+        }
     }
 
     #[test]
