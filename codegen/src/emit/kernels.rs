@@ -347,7 +347,7 @@ impl Kernel<'_> {
         });
         let f = self.names.operands(self.g, &bp.f);
         let (scale, unit) = (self.names.operands(self.g, &bp.scale), self.names.operands(self.g, &bp.unit));
-        let (s, ev) = (format_ident!("__s{}", b), format_ident!("__eval{}", b));
+        let (s, ev, r) = (format_ident!("__s{}", b), format_ident!("__eval{}", b), format_ident!("__r{}", b));
         // A large sparse block: its non-zeros only, and Newton over its sparse factorisation.
         let (pattern, ty, jrows, newton) = match &bp.sparse {
             Some(sp) => (
@@ -369,11 +369,14 @@ impl Kernel<'_> {
                 #rt::BlockEval { f: [#(#f),*], j: #jrows, scale: [#(#scale),*], unit: [#(#unit),*], keep: [#(#exports),*] }
             };
             let __z0: [f64; #n] = [#(#guess),*];
-            let #s = match #newton(__z0, __cfg, #ev) {
+            // Borrowed, not moved out of the result: the solved block (its evaluation included)
+            // is not copied again.
+            let #r = #newton(__z0, __cfg, #ev);
+            let #s = match &#r {
                 Ok(s) => s,
-                Err(e) => return Err(#rt::block_failure(self, #bl, e, __x, __guess)),
+                Err(e) => return Err(#rt::block_failure(self, #bl, *e, __x, __guess)),
             };
-            __report.absorb(&#s);
+            __report.absorb(#s);
             let [#(#qs),*] = #s.z;
             let [#(#exports),*] = #s.eval.keep;
         }

@@ -2,7 +2,7 @@
 //! iteration serves both representations: dense rows (`[[f64; N]; N]`, small blocks) and the
 //! structural non-zeros of a large sparse block ([`SparseJac`](super::sparse_lu::SparseJac)).
 
-use super::lu::{Factor, Lu};
+use super::lu::{Factor, Lu, solve_row_scaled};
 
 /// A factorised block Jacobian: solves and the pivot diagnostics of [`Factor`].
 #[doc(hidden)]
@@ -18,10 +18,22 @@ pub trait BlockJacobian<const N: usize>: Copy {
     type Factor: BlockFactor<N>;
     /// Factorises the matrix with row `r` divided by `row_scale[r]`.
     fn factor_rows(&self, row_scale: [f64; N]) -> Self::Factor;
+    /// The Newton step `-J^-1 f` with row `r` divided by `row_scale[r]`, and the smallest pivot
+    /// of that row-equilibrated matrix ([`Factor::pivot_ratio`] of [`Self::factor_rows`]).
+    #[inline(always)]
+    fn newton_step(&self, f: &[f64; N], row_scale: [f64; N]) -> ([f64; N], f64) {
+        let lu = self.factor_rows(row_scale);
+        (lu.solve_block(f.map(|v| -v)), lu.pivot_ratio())
+    }
     /// `sum_c |J_rc|`.
     fn row_abs_sum(&self, r: usize) -> f64;
     /// Whether every entry of row `r` is finite.
     fn row_finite(&self, r: usize) -> bool;
+    /// Whether every entry is finite.
+    #[inline(always)]
+    fn finite(&self) -> bool {
+        (0..N).all(|r| self.row_finite(r))
+    }
     /// `J dz`.
     fn mul(&self, dz: &[f64; N]) -> [f64; N];
     /// The entry `J_00` (the whole matrix of a scalar block).
@@ -45,6 +57,12 @@ impl<const N: usize> BlockJacobian<N> for [[f64; N]; N] {
         Lu::factor(self, row_scale)
     }
 
+    /// Eliminates the right-hand side with the matrix: no factorisation is kept.
+    #[inline(always)]
+    fn newton_step(&self, f: &[f64; N], row_scale: [f64; N]) -> ([f64; N], f64) {
+        solve_row_scaled(self, f, row_scale)
+    }
+
     #[inline(always)]
     fn row_abs_sum(&self, r: usize) -> f64 {
         let mut sum = 0.0;
@@ -57,6 +75,18 @@ impl<const N: usize> BlockJacobian<N> for [[f64; N]; N] {
     #[inline(always)]
     fn row_finite(&self, r: usize) -> bool {
         self[r].iter().all(|v| v.is_finite())
+    }
+
+    /// One test for the whole matrix (no branch per entry).
+    #[inline(always)]
+    fn finite(&self) -> bool {
+        let mut finite = true;
+        for r in 0..N {
+            for c in 0..N {
+                finite &= self[r][c].abs() < f64::INFINITY;
+            }
+        }
+        finite
     }
 
     #[inline(always)]

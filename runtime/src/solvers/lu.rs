@@ -29,21 +29,113 @@ pub struct Lu<const N: usize> {
 }
 
 /// The reciprocals of the equilibration scales; a zero, negative, infinite or NaN scale gives 0
-/// and marks the factorisation `degenerate`. Two float comparisons per scale (NaN fails both):
-/// cheaper than `is_finite` on the bits, and this runs for every row and column of every
-/// factorisation, dense or sparse.
+/// and marks the factorisation `degenerate`. All the reciprocals are computed, and one test
+/// ([`all_positive_finite`]) and one branch decide for the whole set: this runs for every row
+/// and column of every factorisation, dense or sparse, and the scales are almost always valid.
+#[inline(always)]
 pub(crate) fn inverses<const N: usize>(scale: [f64; N], degenerate: &mut bool) -> [f64; N] {
     let mut inv = [0.0; N];
     for k in 0..N {
-        let s = scale[k];
-        inv[k] = if s > 0.0 && s < f64::INFINITY {
-            1.0 / s
-        } else {
-            *degenerate = true;
-            0.0
-        };
+        inv[k] = 1.0 / scale[k];
+    }
+    if !all_positive_finite(&scale) {
+        *degenerate = true;
+        return invalid_inverses(scale);
     }
     inv
+}
+
+/// Whether every value is positive and finite: their bit patterns lie in `1 ..= f64::MAX`, so
+/// one subtraction and one unsigned maximum per value and a single comparison test them all
+/// (zero, negative values and `-0` wrap or carry the sign bit; infinity and NaN lie above).
+#[inline(always)]
+pub(crate) fn all_positive_finite<const N: usize>(v: &[f64; N]) -> bool {
+    let mut worst = 0u64;
+    for x in v {
+        worst = worst.max(x.to_bits().wrapping_sub(1));
+    }
+    worst < f64::MAX.to_bits()
+}
+
+/// [`inverses`] of a set with an invalid scale: those give 0.
+#[cold]
+#[inline(never)]
+fn invalid_inverses<const N: usize>(scale: [f64; N]) -> [f64; N] {
+    scale.map(|s| if s > 0.0 && s < f64::INFINITY { 1.0 / s } else { 0.0 })
+}
+
+/// Solves `J x = -f` with the rows of `J` divided by `row_scale`, and returns `x` with the
+/// smallest pivot of the row-equilibrated matrix (0 when degenerate or not finite, as
+/// [`Lu::pivot_ratio`]): the Newton step of a dense block. The same operations in the same
+/// order as [`Lu::factor`] followed by [`Lu::solve`] of `-f` (so the results are bit for bit
+/// the same), without the factorisation's record (permutation, determinant, column scales):
+/// the right-hand side is eliminated with the matrix.
+#[inline(always)]
+#[allow(clippy::neg_cmp_op_on_partial_ord)] // the negation is what lets NaN through
+pub(crate) fn solve_row_scaled<const N: usize>(
+    j: &[[f64; N]; N],
+    f: &[f64; N],
+    row_scale: [f64; N],
+) -> ([f64; N], f64) {
+    let mut degenerate = false;
+    let inv_row = inverses(row_scale, &mut degenerate);
+    // Scaled in place: no zero-filled array to overwrite.
+    let mut a = *j;
+    let mut b = [0.0; N];
+    for r in 0..N {
+        for c in 0..N {
+            a[r][c] *= inv_row[r];
+        }
+        b[r] = -f[r] * inv_row[r];
+    }
+    let mut min_pivot = f64::INFINITY;
+    let mut inv_diag = [0.0; N];
+    for k in 0..N {
+        let mut best = k;
+        let mut best_mag = a[k][k].abs();
+        for r in 0..N {
+            let m = a[r][k].abs();
+            if r > k && m > best_mag {
+                best = r;
+                best_mag = m;
+            }
+        }
+        if best != k {
+            a.swap(k, best);
+            b.swap(k, best);
+        }
+        let pivot = a[k][k];
+        // `f64::min` would skip a NaN pivot; a NaN must never pass as a regular pivot (the
+        // negated comparison holds for a smaller magnitude and for NaN).
+        if !(pivot.abs() >= min_pivot) {
+            min_pivot = pivot.abs();
+        }
+        let inv = 1.0 / pivot;
+        inv_diag[k] = inv;
+        for r in 0..N {
+            if r > k {
+                let factor = a[r][k] * inv;
+                for c in 0..N {
+                    if c > k {
+                        a[r][c] -= factor * a[k][c];
+                    }
+                }
+                b[r] -= factor * b[k];
+            }
+        }
+    }
+    let mut x = b;
+    for r in (0..N).rev() {
+        let mut acc = x[r];
+        for c in 0..N {
+            if c > r {
+                acc -= a[r][c] * x[c];
+            }
+        }
+        x[r] = acc * inv_diag[r];
+    }
+    let ratio = if degenerate || !min_pivot.is_finite() { 0.0 } else { min_pivot };
+    (x, ratio)
 }
 
 impl<const N: usize> Lu<N> {
@@ -95,14 +187,16 @@ impl<const N: usize> Lu<N> {
 
     /// [`Lu::factor_scaled`] for any size: partial pivoting on the equilibrated matrix.
     #[inline(always)]
+    #[allow(clippy::neg_cmp_op_on_partial_ord)] // the negation is what lets NaN through
     fn factor_general(j: &[[f64; N]; N], row_scale: [f64; N], col_scale: [f64; N]) -> Self {
         let mut degenerate = false;
         let inv_row = inverses(row_scale, &mut degenerate);
         let inv_col = inverses(col_scale, &mut degenerate);
-        let mut lu = [[0.0; N]; N];
+        // Scaled in place: no zero-filled array to overwrite.
+        let mut lu = *j;
         for r in 0..N {
             for c in 0..N {
-                lu[r][c] = j[r][c] * inv_row[r] * inv_col[c];
+                lu[r][c] = lu[r][c] * inv_row[r] * inv_col[c];
             }
         }
         let mut perm = [0usize; N];
@@ -134,8 +228,9 @@ impl<const N: usize> Lu<N> {
             if pivot < 0.0 {
                 negative_det = !negative_det;
             }
-            // `f64::min` would skip a NaN pivot; a NaN must never pass as a regular pivot.
-            if pivot.abs() < min_pivot || pivot.is_nan() {
+            // `f64::min` would skip a NaN pivot; a NaN must never pass as a regular pivot (the
+            // negated comparison holds for a smaller magnitude and for NaN).
+            if !(pivot.abs() >= min_pivot) {
                 min_pivot = pivot.abs();
             }
             det *= pivot;
@@ -556,6 +651,76 @@ mod tests {
             }
         }
         assert!(n > 100, "{n} valid cases");
+    }
+
+    /// The Newton step's elimination with its right-hand side is the factorisation followed by
+    /// the solve, bit for bit (step and pivot ratio), on regular, row-exchanging, singular,
+    /// infinite and NaN matrices and degenerate scales, for 3x3 and 4x4 blocks.
+    #[test]
+    fn the_newton_step_is_the_factorisation_and_solve() {
+        fn check<const N: usize>(j: [[f64; N]; N], f: [f64; N], s: [f64; N]) {
+            let canon = |x: f64| if x.is_nan() { u64::MAX } else { x.to_bits() };
+            let (x, ratio) = solve_row_scaled(&j, &f, s);
+            let lu = Lu::factor(&j, s);
+            let z = lu.solve(f.map(|v| -v));
+            assert_eq!(x.map(canon), z.map(canon), "{j:?} {f:?} {s:?}");
+            assert_eq!(canon(ratio), canon(lu.pivot_ratio()), "{j:?} {s:?}");
+        }
+        let values = [0.0, 1.0, -2.5, 3.0e-7, 7.0e5, 1.0 + 1e-14, -0.75, 4.25, f64::INFINITY, f64::NAN];
+        let scales = [1.0, 2.0, 0.3, 0.0, f64::INFINITY, f64::NAN];
+        let pick = |k: usize| values[(k * 7 + k / 3) % values.len()];
+        for seed in 0..400usize {
+            // Mostly finite entries (every row exchange pattern), sometimes a special value.
+            let v = |r: usize, c: usize| {
+                let k = seed * 31 + r * 11 + c * 5;
+                if k.is_multiple_of(17) { pick(k) } else { ((k * 7919) % 1000) as f64 / 97.0 - 5.0 }
+            };
+            let sc =
+                |r: usize| if seed.is_multiple_of(9) { scales[(seed / 9 + r) % scales.len()] } else { 1.0 + r as f64 };
+            check::<3>(
+                std::array::from_fn(|r| std::array::from_fn(|c| v(r, c))),
+                [v(3, 0), v(3, 1), v(3, 2)],
+                [sc(0), sc(1), sc(2)],
+            );
+            check::<4>(
+                std::array::from_fn(|r| std::array::from_fn(|c| v(r, c))),
+                [v(4, 0), v(4, 1), v(4, 2), v(4, 3)],
+                [sc(0), sc(1), sc(2), sc(3)],
+            );
+        }
+        // The class IV block's sparsity (structural zeros) at a regular position.
+        check::<4>(
+            [[-1.2, 0.8, -1.9, 0.0], [2.0, -1.4, 0.6, 0.0], [-2.2, 3.1, 0.0, -0.5], [0.9, -1.6, 0.0, 3.3]],
+            [1e-9, -2e-9, 3e-10, 0.0],
+            [9.0, 6.0, 12.0, 9.0],
+        );
+    }
+
+    /// The one-comparison test of a set of scales is the two comparisons of each.
+    #[test]
+    fn positive_finite_sets() {
+        let tiny = f64::from_bits(1);
+        let values = [
+            1.0,
+            0.0,
+            -0.0,
+            -1.0,
+            tiny,
+            -tiny,
+            f64::MIN_POSITIVE,
+            f64::MAX,
+            f64::MIN,
+            f64::INFINITY,
+            -f64::INFINITY,
+            f64::NAN,
+        ];
+        for &a in &values {
+            assert_eq!(all_positive_finite(&[a]), a > 0.0 && a < f64::INFINITY, "{a:e}");
+            for &b in &values {
+                let both = [a, b].iter().all(|&v| v > 0.0 && v < f64::INFINITY);
+                assert_eq!(all_positive_finite(&[a, b, 2.5]), both, "{a:e} {b:e}");
+            }
+        }
     }
 
     #[test]

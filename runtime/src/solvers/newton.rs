@@ -17,8 +17,8 @@
 //! success.
 
 pub use super::newton_config::{NewtonConfig, SolveReport, Termination};
-use crate::solvers::jacobian::{BlockFactor, BlockJacobian};
-use crate::solvers::lu::{Factor, Lu};
+use crate::solvers::jacobian::BlockJacobian;
+use crate::solvers::lu::{Lu, all_positive_finite};
 
 /// One evaluation of a block: residuals, Jacobian rows, the rows' magnitudes, and intermediate
 /// values the generated code keeps for later stages (so they are not recomputed after
@@ -99,9 +99,17 @@ const MAX_UNCHECKED_CORRECTION: f64 = 16.0 * f64::EPSILON;
 /// convergence.
 const LINEAR_CONTRACTION: f64 = 0.1;
 
-/// The row magnitudes of an evaluation (see [`BlockEval::scale`]).
+/// The row magnitudes of an evaluation (see [`BlockEval::scale`]): the generated ones when they
+/// are all valid (one branch for the set), otherwise row by row.
 #[inline(always)]
 fn row_scales<const N: usize, const K: usize, J: BlockJacobian<N>>(ev: &BlockEval<N, K, J>) -> [f64; N] {
+    if all_positive_finite(&ev.scale) { ev.scale } else { fallback_row_scales(ev) }
+}
+
+/// [`row_scales`] where a generated magnitude is missing or degenerate: the row sum replaces it.
+#[cold]
+#[inline(never)]
+fn fallback_row_scales<const N: usize, const K: usize, J: BlockJacobian<N>>(ev: &BlockEval<N, K, J>) -> [f64; N] {
     let mut s = [0.0; N];
     for r in 0..N {
         let given = ev.scale[r];
@@ -110,29 +118,67 @@ fn row_scales<const N: usize, const K: usize, J: BlockJacobian<N>>(ev: &BlockEva
     s
 }
 
+/// The units of the unknowns (see [`BlockEval::unit`]): the generated ones when they are all
+/// valid (one branch for the set), otherwise `1` for each invalid one.
+#[inline(always)]
+fn units<const N: usize>(unit: &[f64; N]) -> [f64; N] {
+    if all_positive_finite(unit) { *unit } else { fallback_units(unit) }
+}
+
+/// [`units`] with an invalid unit.
+#[cold]
+#[inline(never)]
+fn fallback_units<const N: usize>(unit: &[f64; N]) -> [f64; N] {
+    unit.map(|u| if u > 0.0 && u < f64::INFINITY { u } else { 1.0 })
+}
+
 /// `max_i |f_i| / s_i`; NaN propagates, a non-zero residual over a zero scale is infinite.
 #[inline(always)]
+#[allow(clippy::neg_cmp_op_on_partial_ord)] // the negation is what lets NaN through
 fn scaled_residual<const N: usize>(f: &[f64; N], s: &[f64; N]) -> f64 {
     let mut m = 0.0f64;
     for r in 0..N {
         let a = f[r].abs();
         let v = if a == 0.0 { 0.0 } else { a / s[r] };
-        if v > m || v.is_nan() {
+        // Larger, or NaN (which then propagates).
+        if !(v <= m) {
             m = v;
         }
     }
     m
 }
 
+/// [`scaled_residual`] and [`sum_sq_scaled`] in one pass (one division per row).
+#[allow(clippy::neg_cmp_op_on_partial_ord)] // the negation is what lets NaN through
+#[inline(always)]
+fn scaled_norms<const N: usize>(f: &[f64; N], s: &[f64; N]) -> (f64, f64) {
+    let mut m = 0.0f64;
+    let mut acc = 0.0;
+    for r in 0..N {
+        let v = f[r] / s[r];
+        // `|f / s| = |f| / s` for the positive scales; a zero residual counts as zero even over
+        // a zero scale.
+        let a = if f[r] == 0.0 { 0.0 } else { v.abs() };
+        // Larger, or NaN (which then propagates).
+        if !(a <= m) {
+            m = a;
+        }
+        acc += v * v;
+    }
+    (m, if acc.is_nan() { f64::INFINITY } else { acc })
+}
+
 /// `max_j |dz_j| / max(|z_j|, unit_j)`: steps relative to each unknown's magnitude, in its own
 /// unit (see [`BlockEval::unit`]); NaN propagates.
 #[inline(always)]
+#[allow(clippy::neg_cmp_op_on_partial_ord)] // the negation is what lets NaN through
 fn scaled_step<const N: usize>(dz: &[f64; N], z: &[f64; N], unit: &[f64; N]) -> f64 {
+    let u = units(unit);
     let mut m = 0.0f64;
     for c in 0..N {
-        let u = if unit[c] > 0.0 && unit[c] < f64::INFINITY { unit[c] } else { 1.0 };
-        let v = dz[c].abs() / z[c].abs().max(u);
-        if v > m || v.is_nan() {
+        let v = dz[c].abs() / z[c].abs().max(u[c]);
+        // Larger, or NaN (which then propagates).
+        if !(v <= m) {
             m = v;
         }
     }
@@ -173,7 +219,21 @@ fn argmax_scaled<const N: usize>(f: &[f64; N], s: &[f64; N]) -> usize {
     k
 }
 
+/// The first row with a residual or Jacobian entry that is not finite: one test for the whole
+/// evaluation, and the search only when it fails.
+#[inline(always)]
 fn first_non_finite<const N: usize, const K: usize, J: BlockJacobian<N>>(ev: &BlockEval<N, K, J>) -> Option<usize> {
+    let mut finite = true;
+    for r in 0..N {
+        finite &= ev.f[r].abs() < f64::INFINITY;
+    }
+    if finite && ev.j.finite() { None } else { non_finite_row(ev) }
+}
+
+/// [`first_non_finite`] where an entry is not finite.
+#[cold]
+#[inline(never)]
+fn non_finite_row<const N: usize, const K: usize, J: BlockJacobian<N>>(ev: &BlockEval<N, K, J>) -> Option<usize> {
     (0..N).find(|&r| !ev.f[r].is_finite() || !ev.j.row_finite(r))
 }
 
@@ -192,12 +252,7 @@ fn newton_step<const N: usize, const K: usize, J: BlockJacobian<N>>(
         dz[0] = -ev.f[0] / j;
         return (dz, j.abs() / s[0]);
     }
-    let lu = ev.j.factor_rows(*s);
-    let mut neg_f = ev.f;
-    for v in &mut neg_f {
-        *v = -*v;
-    }
-    (lu.solve_block(neg_f), lu.pivot_ratio())
+    ev.j.newton_step(&ev.f, *s)
 }
 
 /// The guess `z0` corrected by one Newton step `dz` with the Jacobian of its evaluation `ev`,
@@ -305,21 +360,24 @@ pub fn newton_with<const N: usize, const K: usize, J: BlockJacobian<N>>(
             termination: Termination::ResidualTolerance,
         });
     }
+    // By value: the accepted guess's path keeps the evaluation in registers (a reference would
+    // keep it in memory there).
     iterate(z0, ev, cfg, eval)
 }
 
-/// Newton iterations from `z0`, whose evaluation is `ev0`. The generated code calls it through
+/// Newton iterations from `z0`, whose evaluation is `ev0` (updated in place: each accepted
+/// step's evaluation is written over it, never copied). The generated code calls it through
 /// [`newton`] when the guess does not meet the tolerance.
 ///
-/// The common path (a full Newton step accepted, then convergence) runs in this one function on
-/// local values, so the evaluations stay in registers; the rare paths (backtracking, descent,
-/// failures, a final correction that must be checked) are out of line.
+/// The common path (a full Newton step accepted, then convergence) runs in this one function;
+/// the rare paths (backtracking, descent, failures, a final correction that must be checked)
+/// are out of line.
 #[doc(hidden)]
 #[cold]
 #[inline(never)]
 pub fn iterate<const N: usize, const K: usize, J: BlockJacobian<N>>(
     z0: [f64; N],
-    ev0: BlockEval<N, K, J>,
+    mut ev0: BlockEval<N, K, J>,
     cfg: &NewtonConfig,
     mut eval: impl FnMut(&[f64; N]) -> BlockEval<N, K, J>,
 ) -> Result<Solved<N, K, J>, BlockFailure> {
@@ -329,7 +387,8 @@ pub fn iterate<const N: usize, const K: usize, J: BlockJacobian<N>>(
     let floor = FLOOR_FACTOR * cfg.residual_tol.max(16.0 * f64::EPSILON);
     let mut it = Iter {
         z: z0,
-        ev: ev0,
+        // The argument itself, not a copy: the iteration updates it in place.
+        ev: &mut ev0,
         iterations: 0,
         evaluations: 1,
         prev_step: f64::INFINITY,
@@ -338,12 +397,12 @@ pub fn iterate<const N: usize, const K: usize, J: BlockJacobian<N>>(
         prev_rho: f64::INFINITY,
     };
     loop {
-        if let Some(row) = first_non_finite(&it.ev) {
+        if let Some(row) = first_non_finite(it.ev) {
             return Err(BlockFailure::NonFinite { row, iterations: it.iterations });
         }
-        let s = row_scales(&it.ev);
-        let rho = scaled_residual(&it.ev.f, &s);
-        let (dz, pivot) = newton_step(&it.ev, &s);
+        let s = row_scales(it.ev);
+        let (rho, phi) = scaled_norms(&it.ev.f, &s);
+        let (dz, pivot) = newton_step(it.ev, &s);
         let step = scaled_step(&dz, &it.z, &it.ev.unit);
         let converged = rho <= cfg.residual_tol;
         // At the rounding floor the step no longer shrinks below `step_tol` or the residual no
@@ -362,8 +421,8 @@ pub fn iterate<const N: usize, const K: usize, J: BlockJacobian<N>>(
         }
         let newton_ok = pivot > cfg.singular_tol * 1e-3 && step.is_finite();
         // At the rounding floor only the Newton step is worth trying.
-        let moved =
-            (newton_ok && it.full_step(&dz, &s, cfg, &mut eval)) || (rho > floor && it.descend(&s, cfg, &mut eval));
+        let moved = (newton_ok && it.full_step(&dz, &s, phi, cfg, &mut eval))
+            || (rho > floor && it.descend(&s, cfg, &mut eval));
         if !moved {
             if rho <= floor {
                 // No step decreases a residual already at its rounding floor.
@@ -380,9 +439,10 @@ pub fn iterate<const N: usize, const K: usize, J: BlockJacobian<N>>(
 }
 
 /// The state of an iteration.
-struct Iter<const N: usize, const K: usize, J> {
+struct Iter<'e, const N: usize, const K: usize, J> {
     z: [f64; N],
-    ev: BlockEval<N, K, J>,
+    /// The evaluation at `z`.
+    ev: &'e mut BlockEval<N, K, J>,
     iterations: u32,
     evaluations: u32,
     /// Scaled length of the previous full Newton step (infinite after a gradient step).
@@ -396,7 +456,7 @@ struct Iter<const N: usize, const K: usize, J> {
     prev_rho: f64,
 }
 
-impl<const N: usize, const K: usize, J: BlockJacobian<N>> Iter<N, K, J> {
+impl<const N: usize, const K: usize, J: BlockJacobian<N>> Iter<'_, N, K, J> {
     /// Ends a converged iteration: diagnoses linear convergence (a singular root), then applies
     /// the last correction `dz`. A correction far below the tolerance is applied as it is; a
     /// larger one is checked by a new evaluation (so the Jacobian and kept values match the
@@ -440,7 +500,7 @@ impl<const N: usize, const K: usize, J: BlockJacobian<N>> Iter<N, K, J> {
         }
         Ok(Solved {
             z: self.z,
-            eval: self.ev,
+            eval: *self.ev,
             iterations: self.iterations,
             evaluations: self.evaluations,
             residual: rho,
@@ -462,7 +522,7 @@ impl<const N: usize, const K: usize, J: BlockJacobian<N>> Iter<N, K, J> {
         self.evaluations += 1;
         if let Some((z, ev, _)) = evaluated_correction(&self.z, dz, rho.max(cfg.residual_tol), eval) {
             self.z = z;
-            self.ev = ev;
+            *self.ev = ev;
         }
     }
 
@@ -500,13 +560,13 @@ impl<const N: usize, const K: usize, J: BlockJacobian<N>> Iter<N, K, J> {
         &mut self,
         dz: &[f64; N],
         s: &[f64; N],
+        phi0: f64,
         cfg: &NewtonConfig,
         eval: &mut impl FnMut(&[f64; N]) -> BlockEval<N, K, J>,
     ) -> bool {
-        let phi0 = sum_sq_scaled(&self.ev.f, s);
         // The slope of phi along dz is -2 phi0 for a Newton step; computed, so that an
         // inaccurate solve is caught (it is not a descent direction).
-        let slope = directional_slope(&self.ev, s, dz);
+        let slope = directional_slope(self.ev, s, dz);
         if slope.is_nan() || slope >= 0.0 {
             return false;
         }
@@ -514,14 +574,38 @@ impl<const N: usize, const K: usize, J: BlockJacobian<N>> Iter<N, K, J> {
         for c in 0..N {
             trial[c] += dz[c];
         }
-        let ev_t = eval(&trial);
+        // Evaluated in place (no copy of the evaluation on the common path, the step accepted);
+        // a rejected step's evaluation is replaced by the backtracking's or restored.
+        *self.ev = eval(&trial);
         self.evaluations += 1;
-        if sum_sq_scaled(&ev_t.f, s) <= phi0 + 1e-4 * slope {
+        if sum_sq_scaled(&self.ev.f, s) <= phi0 + 1e-4 * slope {
             self.z = trial;
-            self.ev = ev_t;
             return true;
         }
-        self.search(dz, s, phi0, slope, 0.5, cfg, eval)
+        self.rejected(dz, s, phi0, slope, cfg, eval)
+    }
+
+    /// After a rejected full step (its evaluation in `self.ev`): backtracking from half the
+    /// step; if that fails too, the evaluation at the unmoved `z` is restored (evaluated again:
+    /// the same position gives the same values), which the callers' fallbacks read.
+    #[allow(clippy::too_many_arguments)]
+    #[cold]
+    #[inline(never)]
+    fn rejected(
+        &mut self,
+        dz: &[f64; N],
+        s: &[f64; N],
+        phi0: f64,
+        slope: f64,
+        cfg: &NewtonConfig,
+        eval: &mut impl FnMut(&[f64; N]) -> BlockEval<N, K, J>,
+    ) -> bool {
+        if self.search(dz, s, phi0, slope, 0.5, cfg, eval) {
+            return true;
+        }
+        *self.ev = eval(&self.z);
+        self.evaluations += 1;
+        false
     }
 
     /// Backtracking (Armijo, `c = 1e-4`) along `dz` on the squared scaled residual from the
@@ -550,7 +634,7 @@ impl<const N: usize, const K: usize, J: BlockJacobian<N>> Iter<N, K, J> {
             let phi = sum_sq_scaled(&ev_t.f, s);
             if phi <= phi0 + 1e-4 * t * slope {
                 self.z = trial;
-                self.ev = ev_t;
+                *self.ev = ev_t;
                 return true;
             }
             t *= 0.5;
@@ -569,7 +653,7 @@ impl<const N: usize, const K: usize, J: BlockJacobian<N>> Iter<N, K, J> {
         cfg: &NewtonConfig,
         eval: &mut impl FnMut(&[f64; N]) -> BlockEval<N, K, J>,
     ) -> bool {
-        let (a, g) = normal_equations(&self.ev, s);
+        let (a, g) = normal_equations(self.ev, s);
         let trace: f64 = (0..N).map(|k| a[k][k]).sum();
         if !(trace > 0.0 && trace.is_finite()) {
             return false;
@@ -589,7 +673,7 @@ impl<const N: usize, const K: usize, J: BlockJacobian<N>> Iter<N, K, J> {
                 continue;
             }
             let phi0 = sum_sq_scaled(&self.ev.f, s);
-            let slope = directional_slope(&self.ev, s, &dz);
+            let slope = directional_slope(self.ev, s, &dz);
             if !(slope.is_nan() || slope >= 0.0) && self.search(&dz, s, phi0, slope, 1.0, cfg, eval) {
                 return true;
             }
