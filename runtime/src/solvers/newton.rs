@@ -281,23 +281,32 @@ fn free_correction<const N: usize, const K: usize, J: BlockJacobian<N>>(
     Some((z, dz, step))
 }
 
-/// The position `z + dz` and its evaluation and scaled residual, when that residual is at most
-/// `bound` (NaN fails): a final correction is kept only if it did not make things worse
-/// (rounding noise near a singular position can).
+/// Moves `z` (evaluated as `ev`) to `z + dz` and its evaluation, and returns the scaled residual
+/// there, when that residual is at most `bound` (NaN fails); otherwise leaves both as they are:
+/// a final correction is kept only if it did not make things worse (rounding noise near a
+/// singular position can). The new evaluation is moved into `ev` once (a large block's
+/// evaluation is kilobytes).
 #[inline(always)]
 fn evaluated_correction<const N: usize, const K: usize, J: BlockJacobian<N>>(
-    z: &[f64; N],
+    z: &mut [f64; N],
+    ev: &mut BlockEval<N, K, J>,
     dz: &[f64; N],
     bound: f64,
     eval: &mut impl FnMut(&[f64; N]) -> BlockEval<N, K, J>,
-) -> Option<([f64; N], BlockEval<N, K, J>, f64)> {
+) -> Option<f64> {
     let mut z1 = *z;
     for c in 0..N {
         z1[c] += dz[c];
     }
-    let ev = eval(&z1);
-    let rho = scaled_residual(&ev.f, &row_scales(&ev));
-    (rho <= bound).then_some((z1, ev, rho))
+    let ev1 = eval(&z1);
+    let rho = scaled_residual(&ev1.f, &row_scales(&ev1));
+    if rho <= bound {
+        *z = z1;
+        *ev = ev1;
+        Some(rho)
+    } else {
+        None
+    }
 }
 
 /// The accepted guess `z0` (evaluation `ev0`, scaled residual `rho0`) corrected by `dz`, a step
@@ -314,8 +323,9 @@ fn checked_free_correction<const N: usize, const K: usize, J: BlockJacobian<N>>(
     dz: &[f64; N],
     eval: &mut impl FnMut(&[f64; N]) -> BlockEval<N, K, J>,
 ) -> Solved<N, K, J> {
-    let (z, eval, residual) = evaluated_correction(&z0, dz, rho0, eval).unwrap_or((z0, ev0, rho0));
-    Solved { z, eval, iterations: 0, evaluations: 2, residual, termination: Termination::ResidualTolerance }
+    let (mut z, mut ev) = (z0, ev0);
+    let residual = evaluated_correction(&mut z, &mut ev, dz, rho0, eval).unwrap_or(rho0);
+    Solved { z, eval: ev, iterations: 0, evaluations: 2, residual, termination: Termination::ResidualTolerance }
 }
 
 /// Solves one block from the guess `z0`. In the common warm-started case this costs one
@@ -520,10 +530,7 @@ impl<const N: usize, const K: usize, J: BlockJacobian<N>> Iter<'_, N, K, J> {
         eval: &mut impl FnMut(&[f64; N]) -> BlockEval<N, K, J>,
     ) {
         self.evaluations += 1;
-        if let Some((z, ev, _)) = evaluated_correction(&self.z, dz, rho.max(cfg.residual_tol), eval) {
-            self.z = z;
-            *self.ev = ev;
-        }
+        evaluated_correction(&mut self.z, self.ev, dz, rho.max(cfg.residual_tol), eval);
     }
 
     /// The failure of a root reached with linear convergence.
