@@ -88,7 +88,7 @@ fn bench<S: Stepper<N>, R: Stepper<N>, const N: usize>(
 /// kinloop's own sweep (`kinloop::Sweep`, default `SweepConfig`), in the taylor group since it
 /// predicts with its own second-order Taylor predictor. It is checked over a whole turn against
 /// `reference` at the angles it samples, with the same tolerances as `kinloop`; then one step is
-/// timed like every other variant: one `KinloopSweep::advance`, i.e. one `next_kin()` of the
+/// timed like every other variant: one `KinloopSweep::advance`, i.e. one `next_ref()` of the
 /// runtime sweep (prediction, the full solve of positions and analogs, and the sweep's
 /// branch-safety checks of every step). The runtime sweep ends after a turn of `steps` samples;
 /// the new sweep for the next turn is created inside the timed loop, so its cost is counted

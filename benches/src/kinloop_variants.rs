@@ -92,9 +92,9 @@ impl<M: NamedKinematics> Stepper<4> for KinloopNamed<M> {
 /// the same turns as the benchmark's [`crate::sweep::Sweep`]: `steps` samples per turn at the
 /// angles `k 2 pi / steps`, `k = 0 .. steps - 1`.
 ///
-/// One step is one `next_kin()` of the runtime sweep: its own second-order Taylor predictor, the
-/// full kinematic solve from that guess (positions, velocity and acceleration analogs, as
-/// `kinematics_flat`), and the sweep's **branch-safety checks** on the result (determinant signs
+/// One step is one `next_ref()` of the runtime sweep (the state read where the sweep keeps it):
+/// its own second-order Taylor predictor, the full kinematic solve from that guess (positions,
+/// velocity and acceleration analogs, as `kinematics_flat`), and the sweep's **branch-safety checks** on the result (determinant signs
 /// of every block, the smallest pivot ratio, the distance of the corrected position and of its
 /// velocity analogs from their predictions) with the bookkeeping of its adaptive step size. When
 /// a step is not accepted the sweep halves it, so a sample may cost more than one solve
