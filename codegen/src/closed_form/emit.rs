@@ -134,7 +134,8 @@ impl Context<'_> {
 
 /// The `let` statements solving the block: binds its unknowns (and the bound sines and
 /// cosines), returns a `NoAssembly` error from the enclosing function when there is no real
-/// root, a `Singular` one when every angle is a root. Inside the solve, `__fail` adds the block's location to a runtime `BlockFailure`.
+/// root, a `Singular` one when every angle is a root. Inside the solve, `__fail` adds the
+/// block's location to a runtime `BlockFailure`.
 pub fn solve(rec: &Recognised, cx: &Context) -> TokenStream {
     let guess = |u: usize| {
         let u = Literal::usize_unsuffixed(u);

@@ -64,6 +64,37 @@ fn invalid_inverses<const N: usize>(scale: [f64; N]) -> [f64; N] {
     scale.map(|s| if s > 0.0 && s < f64::INFINITY { 1.0 / s } else { 0.0 })
 }
 
+/// Partial pivoting: the row at or below `k` with the largest magnitude in column `k` (the
+/// first on ties; a NaN never wins).
+#[inline(always)]
+fn pivot_row<const N: usize>(a: &[[f64; N]; N], k: usize) -> usize {
+    let mut best = k;
+    let mut best_mag = a[k][k].abs();
+    for r in 0..N {
+        let m = a[r][k].abs();
+        if r > k && m > best_mag {
+            best = r;
+            best_mag = m;
+        }
+    }
+    best
+}
+
+/// Back substitution through the upper triangle of `u` (its diagonal as the reciprocals
+/// `inv_diag`), in place.
+#[inline(always)]
+fn back_substitute<const N: usize>(u: &[[f64; N]; N], inv_diag: &[f64; N], z: &mut [f64; N]) {
+    for r in (0..N).rev() {
+        let mut acc = z[r];
+        for c in 0..N {
+            if c > r {
+                acc -= u[r][c] * z[c];
+            }
+        }
+        z[r] = acc * inv_diag[r];
+    }
+}
+
 /// Solves `J x = -f` with the rows of `J` divided by `row_scale`, and returns `x` with the
 /// smallest pivot of the row-equilibrated matrix (0 when degenerate or not finite, as
 /// [`Lu::pivot_ratio`]): the Newton step of a dense block. The same operations in the same
@@ -91,15 +122,7 @@ pub(crate) fn solve_row_scaled<const N: usize>(
     let mut min_pivot = f64::INFINITY;
     let mut inv_diag = [0.0; N];
     for k in 0..N {
-        let mut best = k;
-        let mut best_mag = a[k][k].abs();
-        for r in 0..N {
-            let m = a[r][k].abs();
-            if r > k && m > best_mag {
-                best = r;
-                best_mag = m;
-            }
-        }
+        let best = pivot_row(&a, k);
         if best != k {
             a.swap(k, best);
             b.swap(k, best);
@@ -125,15 +148,7 @@ pub(crate) fn solve_row_scaled<const N: usize>(
         }
     }
     let mut x = b;
-    for r in (0..N).rev() {
-        let mut acc = x[r];
-        for c in 0..N {
-            if c > r {
-                acc -= a[r][c] * x[c];
-            }
-        }
-        x[r] = acc * inv_diag[r];
-    }
+    back_substitute(&a, &inv_diag, &mut x);
     let ratio = if degenerate || !min_pivot.is_finite() { 0.0 } else { min_pivot };
     (x, ratio)
 }
@@ -208,16 +223,7 @@ impl<const N: usize> Lu<N> {
         let mut det = 1.0;
         let mut inv_diag = [0.0; N];
         for k in 0..N {
-            // Partial pivoting.
-            let mut best = k;
-            let mut best_mag = lu[k][k].abs();
-            for r in 0..N {
-                let m = lu[r][k].abs();
-                if r > k && m > best_mag {
-                    best = r;
-                    best_mag = m;
-                }
-            }
+            let best = pivot_row(&lu, k);
             if best != k {
                 lu.swap(k, best);
                 perm.swap(k, best);
@@ -367,15 +373,7 @@ impl<const N: usize> Lu<N> {
             }
             z[r] = acc;
         }
-        for r in (0..N).rev() {
-            let mut acc = z[r];
-            for c in 0..N {
-                if c > r {
-                    acc -= self.lu[r][c] * z[c];
-                }
-            }
-            z[r] = acc * self.inv_diag[r];
-        }
+        back_substitute(&self.lu, &self.inv_diag, &mut z);
         for c in 0..N {
             z[c] *= self.inv_col[c];
         }
@@ -400,20 +398,6 @@ impl<const N: usize> Lu<N> {
     }
 }
 
-/// [`max_abs`] of a Jacobian column, bit for bit, in fewer instructions: the running maximum
-/// is a select that keeps it on a NaN (one `maxsd`, where `f64::max` needs a NaN fix-up), and a
-/// NaN anywhere still reaches the sum.
-#[inline(always)]
-fn column_max<const M: usize>(col: [f64; M]) -> f64 {
-    let (mut m, mut sum) = (0.0f64, -0.0f64);
-    for x in col {
-        let a = x.abs();
-        m = if a > m { a } else { m };
-        sum += x;
-    }
-    if sum.is_nan() { f64::NAN } else { m }
-}
-
 impl Lu<2> {
     /// [`Lu::factor_cols`] of the 2x2 block `j` whose column `c` is scaled by the largest
     /// magnitude in `cols[c]`, the full Jacobian column (its non-zero entries, padded with
@@ -424,7 +408,7 @@ impl Lu<2> {
     /// such a degenerate factorisation differ).
     #[inline(always)]
     pub fn factor_in_cols<const M: usize>(j: &[[f64; 2]; 2], cols: [[f64; M]; 2]) -> Self {
-        let inv_col = cols.map(|c| 1.0 / column_max(c));
+        let inv_col = cols.map(|c| 1.0 / max_abs(c));
         Self::factor_2x2_with(j, [1.0; 2], inv_col, false)
     }
 }
@@ -441,7 +425,7 @@ impl Lu<1> {
     #[inline(always)]
     pub fn factor_in_col<const M: usize>(col: [f64; M], k: usize) -> Self {
         let j = [[col[k]]];
-        let p = j[0][0] / column_max(col);
+        let p = j[0][0] / max_abs(col);
         Lu {
             lu: j,
             perm: [0],
@@ -506,18 +490,17 @@ impl Factor for Fixed {
     }
 }
 
-/// Largest magnitude among `v` (the row scale of the augmented system). `NaN` propagates.
+/// Largest magnitude among `v` (a row or column scale). `NaN` propagates.
 #[inline]
 pub fn max_abs<const M: usize>(v: [f64; M]) -> f64 {
-    if M == 1 {
-        return v[0].abs();
-    }
-    // `f64::max` ignores NaN; the running sum does not, so a NaN anywhere makes the result NaN
-    // (then the row counts as degenerate and a residual as not converged).
-    let mut m = 0.0f64;
-    let mut sum = 0.0f64;
+    // The running maximum is a select that keeps it on a NaN (one `maxsd`, where `f64::max`
+    // needs a NaN fix-up); the running sum does not skip a NaN, so a NaN anywhere makes the
+    // result NaN (then the row counts as degenerate and a residual as not converged). From
+    // `-0.0`, the additive identity, the first addition folds away.
+    let (mut m, mut sum) = (0.0f64, -0.0f64);
     for x in v {
-        m = m.max(x.abs());
+        let a = x.abs();
+        m = if a > m { a } else { m };
         sum += x;
     }
     if sum.is_nan() { f64::NAN } else { m }
