@@ -75,6 +75,9 @@ pub trait Mechanism<const N: usize, const NI: usize, const NO: usize> {
     /// cache advances them by rotation). The macro makes it the kernel itself, always inlined,
     /// for a small mechanism, so that a sweep's loop holds the kernel (no call, and the state is
     /// written where the sweep keeps it); `kinematics_flat` is then this with libm's values.
+    ///
+    /// `cfg` must be valid ([`NewtonConfig::validate`]): a sweep checks its configuration once,
+    /// and a kernel without a Newton block does not check it again at every step.
     #[doc(hidden)]
     #[inline]
     fn kinematics_step_flat<T: InputTrig>(

@@ -36,6 +36,8 @@ pub struct Context<'a> {
     pub block: usize,
     /// Path of the runtime's hidden re-exports.
     pub rt: &'a TokenStream,
+    /// The kernel has a sweep's cache `__trig` to ask the angles of (see [`angle_of`]).
+    pub trig: bool,
 }
 
 /// A value of the generated code: a constant known at expansion time or an expression. The
@@ -137,17 +139,12 @@ impl Context<'_> {
 /// root, a `Singular` one when every angle is a root. Inside the solve, `__fail` adds the
 /// block's location to a runtime `BlockFailure`.
 pub fn solve(rec: &Recognised, cx: &Context) -> TokenStream {
-    let guess = |u: usize| {
-        let u = Literal::usize_unsuffixed(u);
-        quote!(__guess[#u])
-    };
+    let guess = guess_of;
     let body: TokenStream = match &rec.form {
-        ClosedForm::AngleEquation { angle, a, b, c } => {
-            angle_equation(&cx.v(*a), &cx.v(*b), &cx.v(*c), &guess(*angle), cx)
-        }
-        ClosedForm::Dyad { angles, m, reflect, e } => dyad(m, *reflect, e, &guess(angles[0]), &guess(angles[1]), cx),
-        ClosedForm::PolarLength { angle, length, w, e } => polar(w, e, &guess(*angle), &guess(*length), cx),
-        ClosedForm::AngleSlider { angle, m, d, e, .. } => angle_slider(m, d, e, &guess(*angle), cx),
+        ClosedForm::AngleEquation { angle, a, b, c } => angle_equation(&cx.v(*a), &cx.v(*b), &cx.v(*c), *angle, cx),
+        ClosedForm::Dyad { angles, m, reflect, e } => dyad(m, *reflect, e, *angles, cx),
+        ClosedForm::PolarLength { angle, length, w, e } => polar(w, e, *angle, &guess(*length), cx),
+        ClosedForm::AngleSlider { angle, m, d, e, .. } => angle_slider(m, d, e, *angle, cx),
     };
     // Unknowns: the angles, then the slider or length; then each angle's cosine and sine.
     let mut outs: Vec<TokenStream> = Vec::new();
@@ -233,9 +230,27 @@ fn on_turn(angle: TokenStream, guess: &TokenStream, cx: &Context) -> TokenStream
     quote!(#rt::unwrap_to_turn(#angle, #guess))
 }
 
-/// `atan2(s, c)` moved by whole turns to the turn of `guess`.
-fn unwrapped(s: TokenStream, c: TokenStream, guess: &TokenStream, cx: &Context) -> TokenStream {
-    on_turn(quote!(#s.atan2(#c)), guess, cx)
+/// The angle of unknown `u` with sine `s` and cosine `c`, which `exact` computes (by libm, on
+/// the turn of the guess `__guess[u]`). In a sweep's kernel it is asked of the cache `__trig`,
+/// which may advance it from its last exact value instead (`InputTrig::angle`).
+fn angle_of(u: usize, s: TokenStream, c: TokenStream, exact: TokenStream, cx: &Context) -> TokenStream {
+    if !cx.trig {
+        return exact;
+    }
+    let k = Literal::usize_unsuffixed(u);
+    quote!(__trig.angle(#k, #s, #c, __guess[#k], || #exact))
+}
+
+/// `atan2(s, c)` of unknown `u`, moved by whole turns to the turn of its guess.
+fn unwrapped(u: usize, s: TokenStream, c: TokenStream, cx: &Context) -> TokenStream {
+    let g = guess_of(u);
+    angle_of(u, s.clone(), c.clone(), on_turn(quote!(#s.atan2(#c)), &g, cx), cx)
+}
+
+/// The guess of unknown `u`.
+fn guess_of(u: usize) -> TokenStream {
+    let u = Literal::usize_unsuffixed(u);
+    quote!(__guess[#u])
 }
 
 /// The sign rule for one angle: `h' = b cos g - a sin g > 0` at the guess `g`. With one
@@ -261,9 +276,10 @@ fn flip_at_guess(a: &V, b: &V, g: &TokenStream, cx: &Context) -> TokenStream {
     }
 }
 
-fn angle_equation(a: &V, b: &V, c: &V, g: &TokenStream, cx: &Context) -> TokenStream {
+fn angle_equation(a: &V, b: &V, c: &V, u: usize, cx: &Context) -> TokenStream {
     let zero = |v: &V| matches!(v, V::C(z) if *z == 0.0);
     let rt = cx.rt;
+    let g = &guess_of(u);
     if zero(a) {
         // `b sin q = c`: the root's cosine has the sign of the guess's (`h' = b cos q` keeps
         // its sign), so `asin` of the sine on the guess's side of the vertical, moved to its
@@ -274,7 +290,8 @@ fn angle_equation(a: &V, b: &V, c: &V, g: &TokenStream, cx: &Context) -> TokenSt
             let __flip: bool = (#b > 0.0) == __right;
         };
         root(&mut out, a, b, c, &quote!(__flip), cx);
-        out.extend(quote!(let __out: [f64; 3] = [#rt::asin_near(__sq, __right, __r, #g), __cq, __sq];));
+        let q = angle_of(u, quote!(__sq), quote!(__cq), quote!(#rt::asin_near(__sq, __right, __r, #g)), cx);
+        out.extend(quote!(let __out: [f64; 3] = [#q, __cq, __sq];));
         return out;
     }
     let flip = flip_at_guess(a, b, g, cx);
@@ -282,9 +299,10 @@ fn angle_equation(a: &V, b: &V, c: &V, g: &TokenStream, cx: &Context) -> TokenSt
     root(&mut out, a, b, c, &quote!(__flip), cx);
     // `a cos q = c`: `acos` of the cosine on the sine's side (cheaper than `atan2`).
     let q = if zero(b) {
-        on_turn(quote!(#rt::acos_on_side(__cq, __sq)), g, cx)
+        let exact = on_turn(quote!(#rt::acos_on_side(__cq, __sq)), g, cx);
+        angle_of(u, quote!(__sq), quote!(__cq), exact, cx)
     } else {
-        unwrapped(quote!(__sq), quote!(__cq), g, cx)
+        unwrapped(u, quote!(__sq), quote!(__cq), cx)
     };
     out.extend(quote!(let __out: [f64; 3] = [#q, __cq, __sq];));
     out
@@ -307,10 +325,10 @@ fn dyad(
     m: &[[[NodeId; 2]; 2]; 2],
     reflect: [bool; 2],
     e: &[NodeId; 2],
-    g0: &TokenStream,
-    g1: &TokenStream,
+    angles: [usize; 2],
     cx: &Context,
 ) -> TokenStream {
+    let (g0, g1) = (guess_of(angles[0]), guess_of(angles[1]));
     let (a, b) = (cx.m(&m[0]), cx.m(&m[1]));
     let e = e.map(|n| cx.v(n));
     let k = |i: usize, j: usize| sub(&mul(&a[0][i], &b[1][j]), &mul(&a[1][i], &b[0][j]));
@@ -343,8 +361,8 @@ fn dyad(
     let il1 = bind(&mut out, "__il1", V::E(quote!((-1.0 / #l1))));
     let c1 = mul(&dot(&[(&b[0][0], &vx), (&b[1][0], &vy)]), &il1);
     let s1 = mul(&dot(&[(&b[0][1], &vx), (&b[1][1], &vy)]), &il1);
-    let q0 = unwrapped(quote!(__sq), quote!(__cq), g0, cx);
-    let q1 = unwrapped(quote!(__s1), quote!(__c1), g1, cx);
+    let q0 = unwrapped(angles[0], quote!(__sq), quote!(__cq), cx);
+    let q1 = unwrapped(angles[1], quote!(__s1), quote!(__c1), cx);
     out.extend(quote! {
         let __c1: f64 = #c1;
         let __s1: f64 = #s1;
@@ -355,7 +373,7 @@ fn dyad(
 
 /// `s w(q) + e = 0`: `w(q) ∥ e` gives `q` up to a half turn, `s = -(w·e) / |w|²`; the half turn
 /// that keeps the guessed length's sign.
-fn polar(w: &[[NodeId; 2]; 2], e: &[NodeId; 2], gq: &TokenStream, gs: &TokenStream, cx: &Context) -> TokenStream {
+fn polar(w: &[[NodeId; 2]; 2], e: &[NodeId; 2], u: usize, gs: &TokenStream, cx: &Context) -> TokenStream {
     let w = cx.m(w);
     let e = e.map(|n| cx.v(n));
     let mut out = TokenStream::new();
@@ -372,7 +390,7 @@ fn polar(w: &[[NodeId; 2]; 2], e: &[NodeId; 2], gq: &TokenStream, gs: &TokenStre
     let w1 = bind(&mut out, "__w1", dot(&[(&w[1][0], &cq), (&w[1][1], &sq)]));
     let num = dot(&[(&w0, &e[0]), (&w1, &e[1])]);
     let den = dot(&[(&w0, &w0), (&w1, &w1)]);
-    let q = unwrapped(quote!(__sq), quote!(__cq), gq, cx);
+    let q = unwrapped(u, quote!(__sq), quote!(__cq), cx);
     out.extend(quote! {
         let mut __s: f64 = -#num / #den;
         if __s * #gs < 0.0 {
@@ -387,7 +405,7 @@ fn polar(w: &[[NodeId; 2]; 2], e: &[NodeId; 2], gq: &TokenStream, gs: &TokenStre
 
 /// `m c + d s + e = 0`: the combination `d1 row0 - d0 row1` is free of `s` (and its derivative
 /// in `q` is the block's determinant); then `s` by projection on `d`.
-fn angle_slider(m: &[[NodeId; 2]; 2], d: &[NodeId; 2], e: &[NodeId; 2], gq: &TokenStream, cx: &Context) -> TokenStream {
+fn angle_slider(m: &[[NodeId; 2]; 2], d: &[NodeId; 2], e: &[NodeId; 2], u: usize, cx: &Context) -> TokenStream {
     let m = cx.m(m);
     let d = d.map(|n| cx.v(n));
     let e = e.map(|n| cx.v(n));
@@ -395,7 +413,7 @@ fn angle_slider(m: &[[NodeId; 2]; 2], d: &[NodeId; 2], e: &[NodeId; 2], gq: &Tok
     let a = bind(&mut out, "__a", sub(&mul(&d[1], &m[0][0]), &mul(&d[0], &m[1][0])));
     let b = bind(&mut out, "__b", sub(&mul(&d[1], &m[0][1]), &mul(&d[0], &m[1][1])));
     let c = bind(&mut out, "__c", sub(&mul(&d[0], &e[1]), &mul(&d[1], &e[0])));
-    let flip = flip_at_guess(&a, &b, gq, cx);
+    let flip = flip_at_guess(&a, &b, &guess_of(u), cx);
     out.extend(quote!(let __flip: bool = #flip;));
     root(&mut out, &a, &b, &c, &quote!(__flip), cx);
     let (cq, sq) = (local("__cq"), local("__sq"));
@@ -403,7 +421,7 @@ fn angle_slider(m: &[[NodeId; 2]; 2], d: &[NodeId; 2], e: &[NodeId; 2], gq: &Tok
     let r1 = add(&dot(&[(&m[1][0], &cq), (&m[1][1], &sq)]), &e[1]);
     let num = dot(&[(&d[0], &r0), (&d[1], &r1)]);
     let den = dot(&[(&d[0], &d[0]), (&d[1], &d[1])]);
-    let q = unwrapped(quote!(__sq), quote!(__cq), gq, cx);
+    let q = unwrapped(u, quote!(__sq), quote!(__cq), cx);
     out.extend(quote! {
         let __s: f64 = -#num / #den;
         let __out: [f64; 4] = [#q, __s, __cq, __sq];

@@ -2,7 +2,7 @@
 //! with the named types), its constants, and its inherent methods: one-line forwarders into the
 //! runtime's generic code, so that `m.solve(x)` needs no import.
 
-use super::kernels::{Mode, jacobian_body, solver_body, straight_line};
+use super::kernels::{Mode, closed_config_check, jacobian_body, solver_body, straight_line};
 use super::names::Names;
 use super::{Dims, Types, kernel_lints, runtime};
 use crate::model::Model;
@@ -132,11 +132,14 @@ fn mechanism_impl(model: &Model, plan: &Plan, t: &Types) -> TokenStream {
     // advances them by rotation); `kinematics_flat` gives it libm.
     let fused_fns = if plan.n <= SWEEP_INLINE_MAX_UNKNOWNS {
         let fused = solver_body(plan, &names.with_input_trig(plan), Mode::Fused, false);
+        // The sweep's kernel is given a configuration checked once per sweep.
+        let check = closed_config_check(plan);
         quote! {
             #[inline(always)]
             fn kinematics_step_flat<T: #rt::InputTrig>(&self, #x, #g, #cfg, __trig: &mut T) -> #kin { #fused }
             #[inline]
             fn kinematics_flat(&self, #x, #g, #cfg) -> #kin {
+                #check
                 self.kinematics_step_flat(__x, __guess, __cfg, &mut #rt::Libm)
             }
         }

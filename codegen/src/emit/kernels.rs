@@ -192,6 +192,28 @@ fn bind_q(names: &Names, used: &HashSet<Leaf>) -> TokenStream {
     bind_used(&names.unknowns, |k| used.contains(&Leaf::Unknown(k as u16)), quote!(__q))
 }
 
+/// Closed-form hook: without a Newton block nothing else reads the configuration, which is
+/// still checked (an invalid one is an error whichever way the blocks are solved). Empty when a
+/// Newton block checks it.
+pub fn closed_config_check(plan: &Plan) -> TokenStream {
+    let rt = runtime();
+    if !plan.blocks.iter().all(|b| b.linear || b.closed.is_some()) {
+        return TokenStream::new();
+    }
+    match plan.blocks.iter().position(|b| b.closed.is_some()) {
+        Some(b) => {
+            let b = lit(b);
+            quote! {
+                if let Some(field) = __cfg.invalid_field() {
+                    let __fail = #rt::BlockFailure::InvalidConfig { field };
+                    return Err(#rt::block_failure(self, #b, __fail, __x, __guess));
+                }
+            }
+        }
+        None => TokenStream::new(),
+    }
+}
+
 impl Kernel<'_> {
     fn lets(&self, scope: usize) -> TokenStream {
         self.names.lets(self.g, &self.sched, &self.sched.lets[scope])
@@ -216,29 +238,13 @@ impl Kernel<'_> {
             }
             // Only Newton blocks add to the report.
             None if self.plan.blocks.iter().all(|b| b.linear || b.closed.is_some()) => {
-                let mut out = self.closed_config_check();
+                // A sweep's kernel is given the configuration the sweep checked once.
+                let mut out =
+                    if self.names.sweep_kernel() { TokenStream::new() } else { closed_config_check(self.plan) };
                 out.extend(quote!(let __report = #rt::SolveReport::direct();));
                 out
             }
             None => quote!(let mut __report = #rt::SolveReport::direct();),
-        }
-    }
-
-    /// Closed-form hook: without a Newton block nothing else reads the configuration, which is
-    /// still checked (an invalid one is an error whichever way the blocks are solved).
-    fn closed_config_check(&self) -> TokenStream {
-        let rt = &self.rt;
-        match self.plan.blocks.iter().position(|b| b.closed.is_some()) {
-            Some(b) => {
-                let b = lit(b);
-                quote! {
-                    if let Some(field) = __cfg.invalid_field() {
-                        let __fail = #rt::BlockFailure::InvalidConfig { field };
-                        return Err(#rt::block_failure(self, #b, __fail, __x, __guess));
-                    }
-                }
-            }
-            None => TokenStream::new(),
         }
     }
 
@@ -393,6 +399,7 @@ impl Kernel<'_> {
             bind: &bind,
             block: b,
             rt: &self.rt,
+            trig: self.names.sweep_kernel(),
         };
         crate::closed_form::emit::solve(c, &cx)
     }

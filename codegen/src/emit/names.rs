@@ -38,6 +38,8 @@ pub struct Names {
     /// Sines whose argument is free of the unknowns, with their slot: in a sweep's kernel their
     /// `sin_cos` is asked of the sweep's cache `__trig` (see [`Names::with_input_trig`]).
     trig_slots: HashMap<NodeId, usize>,
+    /// A sweep's kernel: closed-form angles are asked of `__trig` too.
+    sweep_kernel: bool,
 }
 
 fn plain(id: &Ident) -> String {
@@ -71,6 +73,7 @@ impl Names {
             readable: true,
             roles: HashMap::new(),
             trig_slots: HashMap::new(),
+            sweep_kernel: false,
         };
         names.readable = names.distinct();
         names.roles = roles(model, plan);
@@ -80,14 +83,21 @@ impl Names {
     /// These names for a sweep's kernel: every sine and cosine computed together whose argument
     /// depends on no unknown (the inputs' angles, `phi + gamma`, parameter angles) is asked of
     /// the kernel's `__trig: &mut impl InputTrig`, one slot per argument, so that a sweep can
-    /// advance it by rotation instead of calling libm.
+    /// advance it by rotation instead of calling libm. The angles of closed-form blocks are asked
+    /// of it too (see [`Names::sweep_kernel`]).
     pub fn with_input_trig(&self, plan: &Plan) -> Names {
         let g = &plan.graph;
         let sines = (0..g.len()).map(|k| NodeId(k as u32)).filter(|&n| match g.op(n) {
             Op::Func(Func::Sin, a) => plan.level[a.index()] < 0 && !matches!(g.op(a), Op::Const(_)),
             _ => false,
         });
-        Names { trig_slots: sines.enumerate().map(|(slot, n)| (n, slot)).collect(), ..self.clone() }
+        Names { trig_slots: sines.enumerate().map(|(slot, n)| (n, slot)).collect(), sweep_kernel: true, ..self.clone() }
+    }
+
+    /// Names of a sweep's kernel (made by [`Names::with_input_trig`]): its closed-form blocks ask
+    /// `__trig` for their angles, by the unknown's index.
+    pub fn sweep_kernel(&self) -> bool {
+        self.sweep_kernel
     }
 
     /// Whether the readable derived names are all distinct.

@@ -190,11 +190,14 @@ const ROTATE_MIN_PIVOT: f64 = 0.1;
 /// A step's prediction (see `Sweep::predict`).
 struct Prediction<const N: usize> {
     q: [f64; N],
-    /// The largest predicted change of an unknown, `max |q - q0|`.
-    change: f64,
-    slope0: [f64; N],
-    curv: [f64; N],
-    dt: f64,
+    /// The predicted slopes `dq/dtau` at the new point.
+    slope1: [f64; N],
+    /// How far the solved position may be from `q`: `corrector_rel` times the largest predicted
+    /// change of an unknown, plus `corrector_abs`.
+    max_dist: f64,
+    /// How far the solved slopes may be from `slope1`: `corrector_rel` times the largest change
+    /// of a slope plus a tenth of the largest slope, plus `corrector_abs`.
+    max_slope_err: f64,
 }
 
 /// Why a step was not accepted.
@@ -387,24 +390,32 @@ where
 
     /// The prediction for a step of `dt` (a fraction of the path) from `k`, with the analogs
     /// along the path it uses: `slope = q' d` and `curv = d^T q'' d` give the second-order
-    /// Taylor prediction `q + slope dt + curv dt^2 / 2` and, in [`Sweep::judge`], the expected
-    /// slope at the new point. Computed once per step.
+    /// Taylor prediction `q + slope dt + curv dt^2 / 2` and, for [`Sweep::judge`], the expected
+    /// slope at the new point `slope + curv dt` and the bounds of both deviations. Computed once
+    /// per step.
     #[inline(always)]
     fn predict(&self, k: &Kin<N, NI, NO>, dt: f64) -> Prediction<N> {
         let d = &self.path.delta;
-        let mut p = Prediction { q: k.q, change: 0.0, slope0: [0.0; N], curv: [0.0; N], dt };
-        for u in 0..N {
+        let (mut change, mut slope_change, mut slope) = (0.0f64, 0.0f64, 0.0f64);
+        let mut q = k.q;
+        let slope1 = core::array::from_fn(|u| {
+            let mut slope0 = 0.0;
+            let mut curv = 0.0;
             for i in 0..NI {
-                p.slope0[u] += k.dq[u][i] * d[i];
+                slope0 += k.dq[u][i] * d[i];
                 for j in 0..NI {
-                    p.curv[u] += k.d2q[u][i][j] * d[i] * d[j];
+                    curv += k.d2q[u][i][j] * d[i] * d[j];
                 }
             }
-            let change = dt * (p.slope0[u] + 0.5 * dt * p.curv[u]);
-            p.q[u] += change;
-            p.change = p.change.max(change.abs());
-        }
-        p
+            let du = dt * (slope0 + 0.5 * dt * curv);
+            q[u] += du;
+            change = change.max(du.abs());
+            slope_change = slope_change.max((curv * dt).abs());
+            slope = slope.max(slope0.abs());
+            slope0 + curv * dt
+        });
+        let (rel, abs) = (self.cfg.corrector_rel, self.cfg.corrector_abs);
+        Prediction { q, slope1, max_dist: rel * change + abs, max_slope_err: rel * (slope_change + 0.1 * slope) + abs }
     }
 
     /// Judges the state `n` solved from the prediction `p`.
@@ -415,18 +426,15 @@ where
     #[inline(always)]
     fn judge(&self, n: &Kin<N, NI, NO>, p: &Prediction<N>) -> Outcome {
         let d = &self.path.delta;
-        let (mut dist, mut slope_err, mut slope_change, mut slope) = (0.0f64, 0.0f64, 0.0f64, 0.0f64);
+        let (mut dist, mut slope_err) = (0.0f64, 0.0f64);
         for u in 0..N {
             dist = dist.max((n.q[u] - p.q[u]).abs());
             let mut s1 = 0.0;
             for i in 0..NI {
                 s1 += n.dq[u][i] * d[i];
             }
-            slope_err = slope_err.max((s1 - (p.slope0[u] + p.curv[u] * p.dt)).abs());
-            slope_change = slope_change.max((p.curv[u] * p.dt).abs());
-            slope = slope.max(p.slope0[u].abs());
+            slope_err = slope_err.max((s1 - p.slope1[u]).abs());
         }
-        let rel = self.cfg.corrector_rel;
         if n.health.det_signs != self.signs {
             Outcome::Flip
         } else if n.health.min_pivot < self.cfg.singular_pivot {
@@ -434,9 +442,7 @@ where
             // to be trusted: within the residual tolerance the solution can slide onto a
             // crossing branch.
             Outcome::Far
-        } else if dist > rel * p.change + self.cfg.corrector_abs
-            || slope_err > rel * (slope_change + 0.1 * slope) + self.cfg.corrector_abs
-        {
+        } else if dist > p.max_dist || slope_err > p.max_slope_err {
             Outcome::Far
         } else {
             Outcome::Accept
