@@ -163,11 +163,12 @@ impl InputTrig for Rotating {
         (s.sin, s.cos)
     }
 
-    /// `q = q_a + asin(sin(q - q_a))` from the slot's anchor `q_a`, with `sin(q - q_a) = s cos q_a
-    /// - c sin q_a` (well conditioned: its rounding is about an ulp of 1, whatever the angle), when
-    /// that is within [`ANCHOR_RANGE`] on the anchor's side (`cos(q - q_a) > 0`) and the result
-    /// near the guess. The anchor is libm's angle, so errors do not accumulate: the result is
-    /// within about 1e-15 of libm's. Otherwise, and when exact, libm's (the new anchor).
+    /// `q = q_a + asin(x)` from the slot's anchor `q_a`, with `x = sin(q - q_a) = s cos q_a -
+    /// c sin q_a` (well conditioned: its rounding is about an ulp of 1, whatever the angle), when
+    /// `|x|` is within [`ANCHOR_RANGE`] on the anchor's side (`cos(q - q_a) > 0`) and the result
+    /// is near the guess. The anchor is libm's angle, so errors do not accumulate: the result is
+    /// within a few ulps of libm's. Otherwise, and when exact (near a singular position, where a
+    /// rod's cosine is small and carries the root's rounding), libm's, which becomes the anchor.
     #[inline(always)]
     fn angle(&mut self, slot: usize, s: f64, c: f64, guess: f64, exact: impl FnOnce() -> f64) -> f64 {
         let Some(a) = self.anchors.get_mut(slot) else {
