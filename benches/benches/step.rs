@@ -22,14 +22,12 @@ use criterion::measurement::WallTime;
 use criterion::{BenchmarkGroup, Criterion, criterion_group, criterion_main};
 use kinloop::Mechanism;
 use kinloop_bench::class_four::{self, HandNewton};
-use kinloop_bench::hand::{FourBarClosed, GearLeverClosed};
+use kinloop_bench::hand::{FOUR_BAR, FourBarClosed, GearLeverClosed, gear_lever};
 use kinloop_bench::kinloop_variants::{Kinloop, KinloopNamed, KinloopSweep, check_kinloop_sweep};
 use kinloop_bench::rhombic::{self, ClosedForm, DenseFiniteDifference, DenseHandJacobian, DenseNumDual, TwoLoopNewton};
 use kinloop_bench::sweep::{
     DIFFERENCED, EXACT, Failed, STEPS, Step, Stepper, Sweep, SweepCheck, WarmStart, check_sweep,
 };
-use kinloop_fixtures::FourBar;
-use kinloop_fixtures::gear_lever::GearLever;
 
 /// Prints a variant's check over a whole turn and asserts its deviations are within `tol`.
 fn assert_check(name: &str, policy: WarmStart, check: Result<SweepCheck, Failed>, tol: [f64; 3]) {
@@ -186,12 +184,12 @@ fn closed_form_row<M: Mechanism<N, 1, NO>, H: Stepper<N>, const N: usize, const 
 fn closed_form_blocks(c: &mut Criterion) {
     let p = black_box(rhombic::PARAMS);
     closed_form_row(c, "closed_form_rhombic", p.kinloop(), &ClosedForm::new(&p), rhombic::initial_guess(&p));
-    let four = black_box(FourBar { a: 1.0, b: 3.0, c: 2.5, d: 3.2 });
-    let four_hand = FourBarClosed { a: four.a, b: four.b, c: four.c, d: four.d, left: true };
+    let four = black_box(FOUR_BAR);
+    let four_hand = FourBarClosed::of(&four);
     let g: [f64; 2] = four.solve(0.0).expect("the four-bar assembles").q.into();
     closed_form_row(c, "closed_form_four_bar", four, &four_hand, g);
-    let gear = black_box(GearLever::default());
-    let gear_hand = GearLeverClosed { l_c: gear.l_c, l_p: gear.l_p, u: gear.u };
+    let gear = black_box(gear_lever());
+    let gear_hand = GearLeverClosed::of(&gear);
     let g: [f64; 2] = gear.solve(0.0).expect("the gear lever assembles").q.into();
     closed_form_row(c, "closed_form_gear_lever", gear, &gear_hand, g);
 }

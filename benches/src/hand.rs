@@ -4,8 +4,19 @@
 //! positions, velocity and acceleration analogs of the unknowns and of the output point.
 
 use crate::sweep::{Failed, Step, Stepper};
+use kinloop_fixtures::FourBar;
+use kinloop_fixtures::gear_lever::GearLever;
 use std::f64::consts::TAU;
 use std::hint::black_box;
+
+/// The four-bar of the closed-form rows (`closed_form_step`, the criterion groups and the
+/// report measure this one).
+pub const FOUR_BAR: FourBar = FourBar { a: 1.0, b: 3.0, c: 2.5, d: 3.2 };
+
+/// The gear-lever drive of the closed-form rows: the fixtures' default.
+pub fn gear_lever() -> GearLever {
+    GearLever::default()
+}
 
 /// `q` moved by whole turns to the turn of `guess` (a sweep's angles stay continuous).
 #[inline]
@@ -29,6 +40,13 @@ pub struct FourBarClosed {
     pub d: f64,
     /// C on the left of B -> D.
     pub left: bool,
+}
+
+impl FourBarClosed {
+    /// The closed form of the four-bar `m`, on the assembly mode of the rows (C left of B -> D).
+    pub fn of(m: &FourBar) -> Self {
+        FourBarClosed { a: m.a, b: m.b, c: m.c, d: m.d, left: true }
+    }
 }
 
 impl Stepper<2> for FourBarClosed {
@@ -90,6 +108,13 @@ pub struct GearLeverClosed {
     /// Gear ratio: the pin's arm on the planet turns by `(1 - u) a` when the carrier turns by
     /// `a`.
     pub u: f64,
+}
+
+impl GearLeverClosed {
+    /// The closed form of the gear-lever drive `m`.
+    pub fn of(m: &GearLever) -> Self {
+        GearLeverClosed { l_c: m.l_c, l_p: m.l_p, u: m.u }
+    }
 }
 
 impl Stepper<2> for GearLeverClosed {

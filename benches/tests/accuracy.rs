@@ -6,7 +6,7 @@
 
 use kinloop::Mechanism;
 use kinloop_bench::class_four::{self, HandNewton};
-use kinloop_bench::hand::{FourBarClosed, GearLeverClosed};
+use kinloop_bench::hand::{FOUR_BAR, FourBarClosed, GearLeverClosed, gear_lever};
 use kinloop_bench::kinloop_variants::{Kinloop, KinloopNamed, check_kinloop_sweep};
 use kinloop_bench::rhombic::{self, ClosedForm, DenseFiniteDifference, DenseHandJacobian, DenseNumDual, TwoLoopNewton};
 use kinloop_bench::sweep::{DIFFERENCED, EXACT, Stepper, SweepCheck, WarmStart, check_sweep};
@@ -84,15 +84,15 @@ fn class_four_hand_analogs_are_derivatives_of_its_positions() {
 /// of their own positions (step 1e-4: truncation ~1e-8, rounding ~1e-12 / 1e-8 for `q''`).
 #[test]
 fn hand_closed_forms_match_kinloop_and_their_own_differences() {
-    let four_bar = kinloop_fixtures::FourBar { a: 1.0, b: 3.0, c: 2.5, d: 3.2 };
-    let four_hand = FourBarClosed { a: 1.0, b: 3.0, c: 2.5, d: 3.2, left: true };
+    let four_bar = FOUR_BAR;
+    let four_hand = FourBarClosed::of(&four_bar);
     let g = four_bar.solve(0.0).unwrap().q.into();
     for policy in WarmStart::ALL {
         let c = check_sweep(&Kinloop::<_, 2>::new(four_bar), &four_hand, STEPS, policy, g).unwrap();
         assert!(c.max_dev.iter().zip(EXACT).all(|(d, t)| *d <= t), "four-bar ({policy:?}): {c:?}");
     }
-    let gear = kinloop_fixtures::gear_lever::GearLever::default();
-    let gear_hand = GearLeverClosed { l_c: gear.l_c, l_p: gear.l_p, u: gear.u };
+    let gear = gear_lever();
+    let gear_hand = GearLeverClosed::of(&gear);
     let g = gear.solve(0.0).unwrap().q.into();
     for policy in WarmStart::ALL {
         let c = check_sweep(&Kinloop::<_, 2>::new(gear), &gear_hand, STEPS, policy, g).unwrap();

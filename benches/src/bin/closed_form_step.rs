@@ -21,7 +21,7 @@ use std::hint::black_box;
 
 use kinloop_bench::class_four::{self, HandNewton};
 use kinloop_bench::decls::{ClassFour, RhombicDrive};
-use kinloop_bench::hand::{FourBarClosed, GearLeverClosed};
+use kinloop_bench::hand::{FOUR_BAR, FourBarClosed, GearLeverClosed, gear_lever};
 use kinloop_bench::kinloop_variants::{Kinloop, KinloopSweep};
 use kinloop_bench::rhombic::{ClosedForm, PARAMS, initial_guess};
 use kinloop_bench::ring::{Ring, RingDense, Series};
@@ -97,10 +97,10 @@ fn main() {
     let steps: usize = args.get(2).and_then(|s| s.parse().ok()).unwrap_or(10_000);
     let m = PARAMS.kinloop();
     let g = initial_guess(&PARAMS);
-    let four = FourBar { a: 1.0, b: 3.0, c: 2.5, d: 3.2 };
-    let four_hand = FourBarClosed { a: 1.0, b: 3.0, c: 2.5, d: 3.2, left: true };
-    let gear = GearLever::default();
-    let gear_hand = GearLeverClosed { l_c: gear.l_c, l_p: gear.l_p, u: gear.u };
+    let four = FOUR_BAR;
+    let four_hand = FourBarClosed::of(&four);
+    let gear = gear_lever();
+    let gear_hand = GearLeverClosed::of(&gear);
     let gf: [f64; 2] = four.solve(0.0).expect("four-bar assembles").q.into();
     let gg: [f64; 2] = gear.solve(0.0).expect("gear lever assembles").q.into();
     let (c4, g4) = (class_four::PARAMS, class_four::INITIAL_GUESS);

@@ -20,12 +20,10 @@ use kinloop::Mechanism;
 use kinloop_bench::class_four::{self, HandNewton};
 use kinloop_bench::decls::paper_mechanisms;
 use kinloop_bench::expansion::{four_bar_chain, four_bar_chain_dense, size};
-use kinloop_bench::hand::{FourBarClosed, GearLeverClosed};
+use kinloop_bench::hand::{FOUR_BAR, FourBarClosed, GearLeverClosed, gear_lever};
 use kinloop_bench::kinloop_variants::{Kinloop, KinloopNamed, KinloopSweep, check_kinloop_sweep};
 use kinloop_bench::rhombic::{self, ClosedForm, DenseFiniteDifference, DenseHandJacobian, DenseNumDual, TwoLoopNewton};
 use kinloop_bench::sweep::{Failed, STEPS, Stepper, Sweep, SweepCheck, WarmStart, check_sweep};
-use kinloop_fixtures::FourBar;
-use kinloop_fixtures::gear_lever::GearLever;
 
 const RHOMBIC: [&str; 8] = [
     "closed_form",
@@ -471,12 +469,12 @@ trait RowVisitor {
 fn closed_form_rows(v: &mut impl RowVisitor) {
     let p = rhombic::PARAMS;
     v.row("rhombic drive", p.kinloop(), &ClosedForm::new(&p), rhombic::initial_guess(&p));
-    let four = FourBar { a: 1.0, b: 3.0, c: 2.5, d: 3.2 };
-    let four_hand = FourBarClosed { a: four.a, b: four.b, c: four.c, d: four.d, left: true };
+    let four = FOUR_BAR;
+    let four_hand = FourBarClosed::of(&four);
     let g: [f64; 2] = four.solve(0.0).expect("the four-bar assembles").q.into();
     v.row("four-bar with its coupler point", four, &four_hand, g);
-    let gear = GearLever::default();
-    let gear_hand = GearLeverClosed { l_c: gear.l_c, l_p: gear.l_p, u: gear.u };
+    let gear = gear_lever();
+    let gear_hand = GearLeverClosed::of(&gear);
     let g: [f64; 2] = gear.solve(0.0).expect("the gear lever assembles").q.into();
     v.row("gear-lever rocker", gear, &gear_hand, g);
 }
