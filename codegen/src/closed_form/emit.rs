@@ -139,11 +139,10 @@ impl Context<'_> {
 /// root, a `Singular` one when every angle is a root. Inside the solve, `__fail` adds the
 /// block's location to a runtime `BlockFailure`.
 pub fn solve(rec: &Recognised, cx: &Context) -> TokenStream {
-    let guess = guess_of;
     let body: TokenStream = match &rec.form {
         ClosedForm::AngleEquation { angle, a, b, c } => angle_equation(&cx.v(*a), &cx.v(*b), &cx.v(*c), *angle, cx),
         ClosedForm::Dyad { angles, m, reflect, e } => dyad(m, *reflect, e, *angles, cx),
-        ClosedForm::PolarLength { angle, length, w, e } => polar(w, e, *angle, &guess(*length), cx),
+        ClosedForm::PolarLength { angle, length, w, e } => polar(w, e, *angle, &guess_of(*length), cx),
         ClosedForm::AngleSlider { angle, m, d, e, .. } => angle_slider(m, d, e, *angle, cx),
     };
     // Unknowns: the angles, then the slider or length; then each angle's cosine and sine.
@@ -167,7 +166,7 @@ pub fn solve(rec: &Recognised, cx: &Context) -> TokenStream {
     // silently answer. An angle's guess reaches the angle (moved to the guess's turn, it is
     // non-finite too) and `check_closed` rejects it; a length's or a slider's is checked first.
     let guess_check = others_of(&rec.form).map(|_| {
-        let guesses = rec.form.angles().into_iter().chain(others_of(&rec.form)).map(guess);
+        let guesses = rec.form.angles().into_iter().chain(others_of(&rec.form)).map(guess_of);
         quote!(#rt::check_guess(#(#guesses)+*).map_err(__fail)?;)
     });
     let angles = Literal::usize_unsuffixed(rec.form.angles().len());
