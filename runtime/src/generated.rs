@@ -15,7 +15,9 @@ pub use crate::kin::{Health, Jac, Kin, Sens};
 pub use crate::kinds::QuantityKind;
 pub use crate::lu::{Factor, Fixed, Lu, max_abs};
 pub use crate::mechanism::{Mechanism, NamedSensitivities, Sensitivities, SensitivitiesRequested};
-pub use crate::newton::{BlockEval, BlockFailure, NewtonConfig, SolveReport, Solved, newton, newton_with};
+pub use crate::newton::{
+    BlockEval, BlockFailure, NewtonConfig, SolveReport, Solved, newton, newton_keeping_lu, newton_with,
+};
 pub use crate::solvers::closed::*;
 pub use crate::solvers::jacobian::{BlockFactor, BlockJacobian};
 pub use crate::solvers::sparse_lu::{SparseJac, SparseLu, SparsePattern};

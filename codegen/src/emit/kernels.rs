@@ -364,6 +364,18 @@ impl Kernel<'_> {
             ),
             None => (TokenStream::new(), quote!(), self.names.rows(self.g, &bp.jac), quote!(#rt::newton::<#n, #k>)),
         };
+        // A block that keeps the final factorisation for its analogs: the runtime writes it
+        // into the analogs' `__lu{b}`.
+        let lu = format_ident!("__lu{}", b);
+        let (slot, newton, lu_arg) = if self.keeps_lu(bp) {
+            (
+                quote!(let mut #lu = #rt::Lu::<#n>::unfactored();),
+                quote!(#rt::newton_keeping_lu::<#n, #k>),
+                quote!(, &mut #lu),
+            )
+        } else {
+            (TokenStream::new(), newton, TokenStream::new())
+        };
         let ty = if bp.sparse.is_some() { quote!(#rt::BlockEval<#n, #k, #ty>) } else { quote!(#rt::BlockEval<#n, #k>) };
         // The block's evaluation is one closure handed to the runtime's Newton, which checks
         // the guess, corrects it at least once and always checks the final residual.
@@ -375,9 +387,10 @@ impl Kernel<'_> {
                 #rt::BlockEval { f: [#(#f),*], j: #jrows, scale: [#(#scale),*], unit: [#(#unit),*], keep: [#(#exports),*] }
             };
             let __z0: [f64; #n] = [#(#guess),*];
+            #slot
             // Borrowed, not moved out of the result: the solved block (its evaluation included)
             // is not copied again.
-            let #r = #newton(__z0, __cfg, #ev);
+            let #r = #newton(__z0, __cfg, #ev #lu_arg);
             let #s = match &#r {
                 Ok(s) => s,
                 Err(e) => return Err(#rt::block_failure(self, #bl, *e, __x, __guess)),
@@ -386,6 +399,22 @@ impl Kernel<'_> {
             let [#(#qs),*] = #s.z;
             let [#(#exports),*] = #s.eval.keep;
         }
+    }
+
+    /// Whether a dense Newton block's analogs (the fused kernel's) reuse the factorisation of
+    /// its final correction: when every non-zero entry of its unknowns' Jacobian columns is one
+    /// of the block's own entries, the column magnitudes the analogs equilibrate by are known
+    /// inside the block's evaluation, so the runtime can factorise exactly as the analogs
+    /// would (a later block's entry in such a column would not be known yet). Not a sparse
+    /// block: a large block's final correction is above the rounding level and evaluated again
+    /// (the ring of coupled loops: every solve), so a kept factorisation would be made again
+    /// there, and moving one costs more than it saves (measured).
+    fn keeps_lu(&self, bp: &BlockPlan) -> bool {
+        self.mode == Mode::Fused
+            && bp.sparse.is_none()
+            && !bp.linear
+            && bp.closed.is_none()
+            && bp.col_scale.iter().enumerate().all(|(c, col)| col.iter().all(|e| bp.jac.iter().any(|row| row[c] == *e)))
     }
 
     /// Closed-form hook: the straight-line solve of a recognised block.
@@ -431,14 +460,19 @@ impl Kernel<'_> {
                 quote!(#s.eval.j)
             };
             let scale = self.col_scales(bp);
+            // The factorisation the runtime made at the block's final evaluation, when it kept
+            // it; otherwise made here.
             let factor = if from_graph {
-                self.factor(bp, &quote!(__j), &scale)
+                let f = self.factor(bp, &quote!(__j), &scale);
+                quote!(let #lu = #f;)
+            } else if self.keeps_lu(bp) {
+                TokenStream::new()
             } else {
-                quote!(#rt::Lu::<#n>::factor_cols(&__j, [#(#scale),*]))
+                quote!(let #lu = #rt::Lu::<#n>::factor_cols(&__j, [#(#scale),*]);)
             };
             out.extend(quote! {
                 let __j: [[f64; #n]; #n] = #j;
-                let #lu = #factor;
+                #factor
                 if !(#lu.pivot_ratio() >= __cfg.singular_tol) {
                     let bad = #rt::first_bad_row(&__j).or(#rt::first_bad_row(&#rv));
                     return Err(#rt::singular(self, #bl, #lu.pivot_ratio(), __cfg, __x, bad));

@@ -200,33 +200,69 @@ impl<const N: usize> Lu<N> {
         Self::factor_general(j, row_scale, col_scale)
     }
 
+    /// A placeholder to factorise into (see `newton_keeping_lu`): every field zero, so that
+    /// read as it is it is singular ([`Lu::pivot_ratio`] 0).
+    #[doc(hidden)]
+    #[inline(always)]
+    pub const fn unfactored() -> Self {
+        Lu {
+            lu: [[0.0; N]; N],
+            perm: [0; N],
+            inv_row: [0.0; N],
+            inv_col: [0.0; N],
+            inv_diag: [0.0; N],
+            pivot_ratio: 0.0,
+            negative_det: false,
+            det: 0.0,
+        }
+    }
+
     /// [`Lu::factor_scaled`] for any size: partial pivoting on the equilibrated matrix.
     #[inline(always)]
-    #[allow(clippy::neg_cmp_op_on_partial_ord)] // the negation is what lets NaN through
     fn factor_general(j: &[[f64; N]; N], row_scale: [f64; N], col_scale: [f64; N]) -> Self {
+        let mut lu = Self::unfactored();
+        lu.refactor_general(j, row_scale, col_scale);
+        lu
+    }
+
+    /// [`Lu::factor_cols`] written over `self`: made where it is kept, since moving a
+    /// factorisation of 3 or more unknowns is a copy of `N^2 + 5N` words (a smaller one is
+    /// made and moved).
+    #[doc(hidden)]
+    #[inline(always)]
+    pub fn refactor_cols(&mut self, j: &[[f64; N]; N], col_scale: [f64; N]) {
+        if N <= 2 {
+            *self = Self::factor_cols(j, col_scale);
+        } else {
+            self.refactor_general(j, [1.0; N], col_scale);
+        }
+    }
+
+    /// [`Lu::factor_general`] written over `self` (every field is set).
+    #[inline(always)]
+    #[allow(clippy::neg_cmp_op_on_partial_ord)] // the negation is what lets NaN through
+    fn refactor_general(&mut self, j: &[[f64; N]; N], row_scale: [f64; N], col_scale: [f64; N]) {
         let mut degenerate = false;
-        let inv_row = inverses(row_scale, &mut degenerate);
-        let inv_col = inverses(col_scale, &mut degenerate);
-        // Scaled in place: no zero-filled array to overwrite.
-        let mut lu = *j;
+        self.inv_row = inverses(row_scale, &mut degenerate);
+        self.inv_col = inverses(col_scale, &mut degenerate);
+        let (inv_row, inv_col) = (self.inv_row, self.inv_col);
+        let lu = &mut self.lu;
         for r in 0..N {
             for c in 0..N {
-                lu[r][c] = lu[r][c] * inv_row[r] * inv_col[c];
+                lu[r][c] = j[r][c] * inv_row[r] * inv_col[c];
             }
         }
-        let mut perm = [0usize; N];
-        for (k, p) in perm.iter_mut().enumerate() {
+        for (k, p) in self.perm.iter_mut().enumerate() {
             *p = k;
         }
         let mut negative_det = false;
         let mut min_pivot = f64::INFINITY;
         let mut det = 1.0;
-        let mut inv_diag = [0.0; N];
         for k in 0..N {
-            let best = pivot_row(&lu, k);
+            let best = pivot_row(lu, k);
             if best != k {
                 lu.swap(k, best);
-                perm.swap(k, best);
+                self.perm.swap(k, best);
                 negative_det = !negative_det;
                 det = -det;
             }
@@ -241,7 +277,7 @@ impl<const N: usize> Lu<N> {
             }
             det *= pivot;
             let inv = 1.0 / pivot;
-            inv_diag[k] = inv;
+            self.inv_diag[k] = inv;
             for r in 0..N {
                 if r > k {
                     let factor = lu[r][k] * inv;
@@ -254,8 +290,9 @@ impl<const N: usize> Lu<N> {
                 }
             }
         }
-        let pivot_ratio = if degenerate || !min_pivot.is_finite() { 0.0 } else { min_pivot };
-        Lu { lu, perm, inv_row, inv_col, inv_diag, pivot_ratio, negative_det, det }
+        self.pivot_ratio = if degenerate || !min_pivot.is_finite() { 0.0 } else { min_pivot };
+        self.negative_det = negative_det;
+        self.det = det;
     }
 
     /// The 2x2 case of [`Lu::factor_scaled`] (every closed-form dyad, slotted rocker and angle

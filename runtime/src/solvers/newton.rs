@@ -15,10 +15,15 @@
 //! tolerance is still corrected once); a root reached with linear convergence (the signature
 //! of a singular Jacobian at the root) is reported as singular, not returned as an inaccurate
 //! success.
+//!
+//! **One factorisation at the root.** The last correction is made at the evaluation the block
+//! returns, whose Jacobian the analogs factorise. [`newton_keeping_lu`] makes that correction
+//! with the analogs' own factorisation (columns divided by their magnitudes) and hands it over,
+//! so a block factorises its Jacobian at the root once, as a hand-written solver would.
 
 pub use super::newton_config::{NewtonConfig, SolveReport, Termination};
 use crate::solvers::jacobian::BlockJacobian;
-use crate::solvers::lu::{Lu, all_positive_finite};
+use crate::solvers::lu::{Lu, all_positive_finite, max_abs};
 
 /// One evaluation of a block: residuals, Jacobian rows, the rows' magnitudes, and intermediate
 /// values the generated code keeps for later stages (so they are not recomputed after
@@ -94,6 +99,11 @@ const MAX_FREE_CORRECTION: f64 = 1e-6;
 /// computed) are as accurate as new ones. A larger correction is checked by a new evaluation
 /// (and undone if it made the residual worse).
 const MAX_UNCHECKED_CORRECTION: f64 = 16.0 * f64::EPSILON;
+
+/// The smallest pivot of a row-equilibrated factorisation from which its Newton step is taken
+/// to be exact to rounding (the residual `J dz + f` is then a few rounding units of the
+/// equations' magnitudes, far below what the descent test can see).
+const ACCURATE_PIVOT: f64 = 1e-3;
 
 /// A final step this large relative to the previous one means linear, not quadratic,
 /// convergence.
@@ -219,18 +229,27 @@ fn argmax_scaled<const N: usize>(f: &[f64; N], s: &[f64; N]) -> usize {
     k
 }
 
-/// The first row with a residual or Jacobian entry that is not finite: one test for the whole
-/// evaluation, and the search only when it fails.
+/// Where a residual is not finite, the first row with a residual or Jacobian entry that is
+/// not: one test for the residuals, and the search only when it fails. The Jacobian is tested
+/// where the iteration stops ([`jacobian_non_finite`]): a non-finite entry on the way can at
+/// worst spoil a step, which the descent test and the final checks catch.
 #[inline(always)]
-fn first_non_finite<const N: usize, const K: usize, J: BlockJacobian<N>>(ev: &BlockEval<N, K, J>) -> Option<usize> {
+fn residual_non_finite<const N: usize, const K: usize, J: BlockJacobian<N>>(ev: &BlockEval<N, K, J>) -> Option<usize> {
     let mut finite = true;
     for r in 0..N {
         finite &= ev.f[r].abs() < f64::INFINITY;
     }
-    if finite && ev.j.finite() { None } else { non_finite_row(ev) }
+    if finite { None } else { non_finite_row(ev) }
 }
 
-/// [`first_non_finite`] where an entry is not finite.
+/// Where a Jacobian entry is not finite, the first row with a residual or Jacobian entry that
+/// is not (one test for the matrix).
+#[inline(always)]
+fn jacobian_non_finite<const N: usize, const K: usize, J: BlockJacobian<N>>(ev: &BlockEval<N, K, J>) -> Option<usize> {
+    if ev.j.finite() { None } else { non_finite_row(ev) }
+}
+
+/// [`residual_non_finite`] and [`jacobian_non_finite`] where an entry is not finite.
 #[cold]
 #[inline(never)]
 fn non_finite_row<const N: usize, const K: usize, J: BlockJacobian<N>>(ev: &BlockEval<N, K, J>) -> Option<usize> {
@@ -265,11 +284,13 @@ fn free_correction<const N: usize, const K: usize, J: BlockJacobian<N>>(
     s: &[f64; N],
     z0: [f64; N],
     cfg: &NewtonConfig,
+    last: &mut impl LastStep<N, K, J>,
 ) -> Option<([f64; N], [f64; N], f64)> {
-    let (dz, pivot) = newton_step(ev, s);
+    let (dz, pivot) = last.correction(ev, s);
     let step = scaled_step(&dz, &z0, &ev.unit);
     // NaN fails both tests.
     if !(pivot > cfg.singular_tol && step <= MAX_FREE_CORRECTION) {
+        last.forget();
         return None;
     }
     let mut z = z0;
@@ -322,9 +343,11 @@ fn checked_free_correction<const N: usize, const K: usize, J: BlockJacobian<N>>(
     rho0: f64,
     dz: &[f64; N],
     eval: &mut impl FnMut(&[f64; N]) -> BlockEval<N, K, J>,
+    last: &mut impl LastStep<N, K, J>,
 ) -> Solved<N, K, J> {
     let (mut z, mut ev) = (z0, ev0);
     let residual = evaluated_correction(&mut z, &mut ev, dz, rho0, eval).unwrap_or(rho0);
+    last.keep(&ev);
     Solved { z, eval: ev, iterations: 0, evaluations: 2, residual, termination: Termination::ResidualTolerance }
 }
 
@@ -348,7 +371,36 @@ pub fn newton<const N: usize, const K: usize>(
 pub fn newton_with<const N: usize, const K: usize, J: BlockJacobian<N>>(
     z0: [f64; N],
     cfg: &NewtonConfig,
+    eval: impl FnMut(&[f64; N]) -> BlockEval<N, K, J>,
+) -> Result<Solved<N, K, J>, BlockFailure> {
+    newton_last(z0, cfg, eval, &mut RowSteps)
+}
+
+/// [`newton`] that also writes into `lu` the factorisation the analogs use: `J` with each
+/// column divided by its largest magnitude ([`Lu::factor_cols`]) at the returned evaluation.
+/// It is the one that made the final correction, or (where the iteration did not end with
+/// one, or a final correction was evaluated again) one made there. For a block whose Jacobian
+/// columns have no entries outside the block, the analogs reuse it instead of factorising the
+/// same matrix again. Written in place: a factorisation moved through the result would be
+/// copied.
+#[doc(hidden)]
+#[inline(always)]
+pub fn newton_keeping_lu<const N: usize, const K: usize>(
+    z0: [f64; N],
+    cfg: &NewtonConfig,
+    eval: impl FnMut(&[f64; N]) -> BlockEval<N, K>,
+    lu: &mut Lu<N>,
+) -> Result<Solved<N, K>, BlockFailure> {
+    newton_last(z0, cfg, eval, &mut KeptLu { lu, valid: false })
+}
+
+/// [`newton_with`] whose correction at a converged iterate comes from `last`.
+#[inline(always)]
+fn newton_last<const N: usize, const K: usize, J: BlockJacobian<N>>(
+    z0: [f64; N],
+    cfg: &NewtonConfig,
     mut eval: impl FnMut(&[f64; N]) -> BlockEval<N, K, J>,
+    last: &mut impl LastStep<N, K, J>,
 ) -> Result<Solved<N, K, J>, BlockFailure> {
     let ev = eval(&z0);
     let s = row_scales(&ev);
@@ -356,11 +408,13 @@ pub fn newton_with<const N: usize, const K: usize, J: BlockJacobian<N>>(
     // NaN fails both tests; an out-of-range tolerance is diagnosed by `iterate`.
     if rho <= cfg.residual_tol
         && cfg.residual_tol <= 1e-3
-        && let Some((z, dz, step)) = free_correction(&ev, &s, z0, cfg)
+        && let Some((z, dz, step)) = free_correction(&ev, &s, z0, cfg, last)
     {
         if step > MAX_UNCHECKED_CORRECTION {
-            return Ok(checked_free_correction(z0, ev, rho, &dz, &mut eval));
+            last.forget();
+            return Ok(checked_free_correction(z0, ev, rho, &dz, &mut eval, last));
         }
+        last.keep(&ev);
         return Ok(Solved {
             z,
             eval: ev,
@@ -372,24 +426,90 @@ pub fn newton_with<const N: usize, const K: usize, J: BlockJacobian<N>>(
     }
     // By value: the accepted guess's path keeps the evaluation in registers (a reference would
     // keep it in memory there).
-    iterate(z0, ev, cfg, eval)
+    iterate(z0, ev, cfg, eval, last)
+}
+
+/// How the correction at a converged iterate is computed: the step that ends the iteration,
+/// applied to the returned position.
+#[doc(hidden)]
+pub trait LastStep<const N: usize, const K: usize, J> {
+    /// The correction `-J^-1 f` at `ev` (rows scaled by `s`) and the smallest pivot of its
+    /// factorisation.
+    fn correction(&mut self, ev: &BlockEval<N, K, J>, s: &[f64; N]) -> ([f64; N], f64);
+    /// The evaluation last corrected is not the one returned: nothing it factorised is valid.
+    fn forget(&mut self);
+    /// Makes what is kept describe `ev`, the returned evaluation.
+    fn keep(&mut self, ev: &BlockEval<N, K, J>);
+}
+
+/// The iteration's own row-equilibrated step; nothing is kept.
+#[doc(hidden)]
+pub struct RowSteps;
+
+impl<const N: usize, const K: usize, J: BlockJacobian<N>> LastStep<N, K, J> for RowSteps {
+    #[inline(always)]
+    fn correction(&mut self, ev: &BlockEval<N, K, J>, s: &[f64; N]) -> ([f64; N], f64) {
+        newton_step(ev, s)
+    }
+    #[inline(always)]
+    fn forget(&mut self) {}
+    #[inline(always)]
+    fn keep(&mut self, _ev: &BlockEval<N, K, J>) {}
+}
+
+/// The correction from the factorisation the analogs use: the Jacobian with each column
+/// divided by its largest magnitude ([`Lu::factor_cols`]), written to `lu`. Its pivot ratio is
+/// the one [`Health`](crate::Health) reads, so the correction is applied unchecked exactly where
+/// the analogs will accept the factorisation.
+struct KeptLu<'a, const N: usize> {
+    lu: &'a mut Lu<N>,
+    /// Whether `lu` is the factorisation of the evaluation last corrected.
+    valid: bool,
+}
+
+impl<const N: usize, const K: usize> LastStep<N, K, [[f64; N]; N]> for KeptLu<'_, N> {
+    #[inline(always)]
+    fn correction(&mut self, ev: &BlockEval<N, K>, _s: &[f64; N]) -> ([f64; N], f64) {
+        refactor_columns(self.lu, ev);
+        self.valid = true;
+        (self.lu.solve(ev.f.map(|v| -v)), self.lu.pivot_ratio())
+    }
+    #[inline(always)]
+    fn forget(&mut self) {
+        self.valid = false;
+    }
+    #[inline(always)]
+    fn keep(&mut self, ev: &BlockEval<N, K>) {
+        if !self.valid {
+            refactor_columns(self.lu, ev);
+        }
+    }
+}
+
+/// The analogs' factorisation of an evaluation's Jacobian, written over `lu`: each column
+/// divided by its largest magnitude (a structural zero changes no maximum).
+#[inline(always)]
+fn refactor_columns<const N: usize, const K: usize>(lu: &mut Lu<N>, ev: &BlockEval<N, K>) {
+    let cols: [f64; N] = core::array::from_fn(|c| max_abs(ev.j.map(|row| row[c])));
+    lu.refactor_cols(&ev.j, cols);
 }
 
 /// Newton iterations from `z0`, whose evaluation is `ev0` (updated in place: each accepted
 /// step's evaluation is written over it, never copied). The generated code calls it through
-/// [`newton`] when the guess does not meet the tolerance.
+/// [`newton`] when the guess does not meet the tolerance; the correction at a converged
+/// iterate comes from `last`.
 ///
 /// The common path (a full Newton step accepted, then convergence) runs in this one function;
 /// the rare paths (backtracking, descent, failures, a final correction that must be checked)
 /// are out of line.
-#[doc(hidden)]
 #[cold]
 #[inline(never)]
-pub fn iterate<const N: usize, const K: usize, J: BlockJacobian<N>>(
+fn iterate<const N: usize, const K: usize, J: BlockJacobian<N>>(
     z0: [f64; N],
     mut ev0: BlockEval<N, K, J>,
     cfg: &NewtonConfig,
     mut eval: impl FnMut(&[f64; N]) -> BlockEval<N, K, J>,
+    last: &mut impl LastStep<N, K, J>,
 ) -> Result<Solved<N, K, J>, BlockFailure> {
     if let Some(field) = cfg.invalid_field() {
         return Err(BlockFailure::InvalidConfig { field });
@@ -407,21 +527,25 @@ pub fn iterate<const N: usize, const K: usize, J: BlockJacobian<N>>(
         prev_rho: f64::INFINITY,
     };
     loop {
-        if let Some(row) = first_non_finite(it.ev) {
+        if let Some(row) = residual_non_finite(it.ev) {
             return Err(BlockFailure::NonFinite { row, iterations: it.iterations });
         }
         let s = row_scales(it.ev);
         let (rho, phi) = scaled_norms(&it.ev.f, &s);
+        if rho <= cfg.residual_tol {
+            // Converged: the last correction, from the factorisation `last` keeps.
+            let (dz, pivot) = last.correction(it.ev, &s);
+            let step = scaled_step(&dz, &it.z, &it.ev.unit);
+            return it.finish(dz, step, pivot, rho, &s, Termination::ResidualTolerance, cfg, &mut eval, last);
+        }
         let (dz, pivot) = newton_step(it.ev, &s);
         let step = scaled_step(&dz, &it.z, &it.ev.unit);
-        let converged = rho <= cfg.residual_tol;
         // At the rounding floor the step no longer shrinks below `step_tol` or the residual no
         // longer decreases (a singular root still divides it by about four per iteration).
         let stagnant = rho >= 0.5 * it.prev_rho;
-        let at_floor = (step <= cfg.step_tol || stagnant) && rho <= floor;
-        if converged || at_floor {
-            let termination = if converged { Termination::ResidualTolerance } else { Termination::StepTolerance };
-            return it.finish(dz, step, pivot, rho, &s, termination, cfg, &mut eval);
+        if (step <= cfg.step_tol || stagnant) && rho <= floor {
+            last.forget();
+            return it.finish(dz, step, pivot, rho, &s, Termination::StepTolerance, cfg, &mut eval, last);
         }
         if it.iterations >= cfg.max_iterations {
             return Err(it.capped(rho, &s, cfg));
@@ -431,12 +555,13 @@ pub fn iterate<const N: usize, const K: usize, J: BlockJacobian<N>>(
         }
         let newton_ok = pivot > cfg.singular_tol * 1e-3 && step.is_finite();
         // At the rounding floor only the Newton step is worth trying.
-        let moved = (newton_ok && it.full_step(&dz, &s, phi, cfg, &mut eval))
+        let moved = (newton_ok && it.full_step(&dz, pivot, &s, phi, cfg, &mut eval))
             || (rho > floor && it.descend(&s, cfg, &mut eval));
         if !moved {
             if rho <= floor {
                 // No step decreases a residual already at its rounding floor.
-                return it.finish(dz, step, pivot, rho, &s, Termination::StepTolerance, cfg, &mut eval);
+                last.forget();
+                return it.finish(dz, step, pivot, rho, &s, Termination::StepTolerance, cfg, &mut eval, last);
             }
             return Err(it.stalled(rho, pivot, &s, cfg));
         }
@@ -483,7 +608,11 @@ impl<const N: usize, const K: usize, J: BlockJacobian<N>> Iter<'_, N, K, J> {
         termination: Termination,
         cfg: &NewtonConfig,
         eval: &mut impl FnMut(&[f64; N]) -> BlockEval<N, K, J>,
+        last: &mut impl LastStep<N, K, J>,
     ) -> Result<Solved<N, K, J>, BlockFailure> {
+        if let Some(row) = jacobian_non_finite(self.ev) {
+            return Err(BlockFailure::NonFinite { row, iterations: self.iterations });
+        }
         // The position is known to about the last step of a linearly converging iteration (the
         // residual of a row can round to zero before the unknowns settle).
         let visible = FLOOR_FACTOR * cfg.residual_tol.max(cfg.step_tol);
@@ -505,9 +634,11 @@ impl<const N: usize, const K: usize, J: BlockJacobian<N>> Iter<'_, N, K, J> {
                     self.z[c] += dz[c];
                 }
             } else {
+                last.forget();
                 self.checked_correction(&dz, rho, cfg, eval);
             }
         }
+        last.keep(self.ev);
         Ok(Solved {
             z: self.z,
             eval: *self.ev,
@@ -551,6 +682,9 @@ impl<const N: usize, const K: usize, J: BlockJacobian<N>> Iter<'_, N, K, J> {
     #[cold]
     #[inline(never)]
     fn capped(&self, rho: f64, s: &[f64; N], cfg: &NewtonConfig) -> BlockFailure {
+        if let Some(row) = jacobian_non_finite(self.ev) {
+            return BlockFailure::NonFinite { row, iterations: self.iterations };
+        }
         let row = argmax_scaled(&self.ev.f, s);
         let iterations = self.iterations;
         if cfg.max_iterations >= 8 && rho > STALL_RESIDUAL && rho > 0.5 * self.rho_mark {
@@ -559,21 +693,24 @@ impl<const N: usize, const K: usize, J: BlockJacobian<N>> Iter<'_, N, K, J> {
         BlockFailure::NoConvergence { row, iterations, residual: rho }
     }
 
-    /// The full Newton step `dz` when it decreases the squared scaled residual enough (Armijo,
-    /// `c = 1e-4`), otherwise backtracking along it ([`Iter::search`]); moves and returns `true`
-    /// on success.
+    /// The full Newton step `dz` (from a factorisation whose smallest pivot is `pivot`) when it
+    /// decreases the squared scaled residual enough (Armijo, `c = 1e-4`), otherwise backtracking
+    /// along it ([`Iter::search`]); moves and returns `true` on success.
     #[inline(always)]
+    #[allow(clippy::too_many_arguments)]
     fn full_step(
         &mut self,
         dz: &[f64; N],
+        pivot: f64,
         s: &[f64; N],
         phi0: f64,
         cfg: &NewtonConfig,
         eval: &mut impl FnMut(&[f64; N]) -> BlockEval<N, K, J>,
     ) -> bool {
-        // The slope of phi along dz is -2 phi0 for a Newton step; computed, so that an
-        // inaccurate solve is caught (it is not a descent direction).
-        let slope = directional_slope(self.ev, s, dz);
+        // The slope of phi along dz is -2 phi0 for a Newton step. A well-conditioned
+        // factorisation solves to rounding, so that is its slope; otherwise it is computed, so
+        // that an inaccurate solve is caught (it is not a descent direction).
+        let slope = if pivot >= ACCURATE_PIVOT { -2.0 * phi0 } else { directional_slope(self.ev, s, dz) };
         if slope.is_nan() || slope >= 0.0 {
             return false;
         }
@@ -693,6 +830,9 @@ impl<const N: usize, const K: usize, J: BlockJacobian<N>> Iter<'_, N, K, J> {
     #[cold]
     #[inline(never)]
     fn stalled(&self, rho: f64, pivot: f64, s: &[f64; N], cfg: &NewtonConfig) -> BlockFailure {
+        if let Some(row) = jacobian_non_finite(self.ev) {
+            return BlockFailure::NonFinite { row, iterations: self.iterations };
+        }
         let row = argmax_scaled(&self.ev.f, s);
         let iterations = self.iterations;
         if rho <= STALL_RESIDUAL {
@@ -778,6 +918,62 @@ mod tests {
         assert_eq!(again.evaluations, 1);
     }
 
+    /// `x^2 + y^2 + z^2 = 3`, `x = y z`, `z = x y`: a 3x3 block (the general factorisation)
+    /// with a regular root at `(1, 1, 1)`.
+    fn sphere(z: &[f64; 3]) -> BlockEval<3, 0> {
+        let [x, y, w] = *z;
+        BlockEval {
+            f: [x * x + y * y + w * w - 3.0, x - y * w, w - x * y],
+            j: [[2.0 * x, 2.0 * y, 2.0 * w], [1.0, -w, -y], [-y, -x, 1.0]],
+            scale: [x * x + y * y + w * w + 3.0, x.abs() + (y * w).abs(), w.abs() + (x * y).abs()],
+            unit: [1.0; 3],
+            keep: [],
+        }
+    }
+
+    /// The factorisation `newton_keeping_lu` leaves is, bit for bit, the analogs' own of the
+    /// returned evaluation (columns divided by their largest magnitudes), whichever way the
+    /// solve ended: a guess corrected once, an iteration converged on its residual, or one
+    /// stopped on its step test (no residual tolerance can be met) that never made a
+    /// correction from it. The position is the row-equilibrated iteration's to rounding.
+    #[test]
+    fn the_kept_factorisation_is_the_analogs_own() {
+        fn check<const N: usize>(
+            guess: [f64; N],
+            cfg: &NewtonConfig,
+            eval: impl Fn(&[f64; N]) -> BlockEval<N, 0> + Copy,
+        ) -> Termination {
+            let mut kept = Lu::unfactored();
+            let s = newton_keeping_lu(guess, cfg, eval, &mut kept).unwrap();
+            let cols: [f64; N] = core::array::from_fn(|c| max_abs(s.eval.j.map(|row| row[c])));
+            let own = Lu::factor_cols(&s.eval.j, cols);
+            assert_eq!(kept.pivot_ratio().to_bits(), own.pivot_ratio().to_bits());
+            assert_eq!(kept.det().to_bits(), own.det().to_bits());
+            assert_eq!(kept.negative_det(), own.negative_det());
+            assert!(kept.pivot_ratio() > 0.01, "{}", kept.pivot_ratio());
+            for k in 0..N {
+                let mut e = [0.0; N];
+                e[k] = 1.0;
+                assert_eq!(kept.solve(e).map(f64::to_bits), own.solve(e).map(f64::to_bits));
+            }
+            let rows = newton(guess, cfg, eval).unwrap();
+            for c in 0..N {
+                assert!((s.z[c] - rows.z[c]).abs() <= 4.0 * f64::EPSILON, "{:?} {:?}", s.z, rows.z);
+            }
+            s.termination
+        }
+        let cfg = NewtonConfig::default();
+        let root = newton([1.0, 1.0], &cfg, circle).unwrap().z;
+        for guess in [[1.0, 1.0], [1.5, 0.5], root] {
+            assert_eq!(check(guess, &cfg, circle), Termination::ResidualTolerance);
+        }
+        for guess in [[1.2, 0.9, 1.1], [1.0, 1.0, 1.0], [1.0 + 1e-9, 1.0, 1.0 - 1e-9]] {
+            assert_eq!(check(guess, &cfg, sphere), Termination::ResidualTolerance);
+        }
+        let unreachable = NewtonConfig { residual_tol: 0.0, ..cfg };
+        assert_eq!(check([1.2, 0.9, 1.1], &unreachable, sphere), Termination::StepTolerance);
+    }
+
     #[test]
     fn impossible_system_is_no_assembly_not_a_hang() {
         // x^2 + 1 = 0 has no real root: Newton heads for the minimum at x = 0 where J = 0.
@@ -803,6 +999,31 @@ mod tests {
         };
         let e = newton([-1.0], &NewtonConfig::default(), f).unwrap_err();
         assert!(matches!(e, BlockFailure::NonFinite { row: 0, .. }));
+    }
+
+    /// A Jacobian that is not finite where the iteration stops is reported, although the
+    /// residuals are finite: at a root (`x^(1/3)` at 0, where `d/dx` is infinite) and where no
+    /// step can be taken (a NaN slope).
+    #[test]
+    fn a_jacobian_not_finite_where_it_stops_is_reported() {
+        let cube_root = |z: &[f64; 2]| BlockEval {
+            f: [z[0].cbrt(), z[1] - 1.0],
+            j: [[1.0 / (3.0 * z[0].cbrt().powi(2)), 0.0], [0.0, 1.0]],
+            scale: [1.0, 1.0],
+            unit: [1.0; 2],
+            keep: [],
+        };
+        let e = newton([0.0, 2.0], &NewtonConfig::default(), cube_root).unwrap_err();
+        assert!(matches!(e, BlockFailure::NonFinite { row: 0, .. }), "{e:?}");
+        let nan_slope = |z: &[f64; 2]| BlockEval {
+            f: [z[0] - 3.0, z[1] - 1.0],
+            j: [[1.0, 0.0], [f64::NAN, 1.0]],
+            scale: [1.0, 1.0],
+            unit: [1.0; 2],
+            keep: [],
+        };
+        let e = newton([0.0, 0.0], &NewtonConfig::default(), nan_slope).unwrap_err();
+        assert!(matches!(e, BlockFailure::NonFinite { row: 1, iterations: 0 }), "{e:?}");
     }
 
     #[test]
