@@ -282,11 +282,12 @@ fn newton_step<const N: usize, const K: usize, J: BlockJacobian<N>>(
 fn free_correction<const N: usize, const K: usize, J: BlockJacobian<N>>(
     ev: &BlockEval<N, K, J>,
     s: &[f64; N],
+    rho: f64,
     z0: [f64; N],
     cfg: &NewtonConfig,
     last: &mut impl LastStep<N, K, J>,
 ) -> Option<([f64; N], [f64; N], f64)> {
-    let (dz, pivot) = last.correction(ev, s);
+    let (dz, pivot) = last.correction(ev, s, rho);
     let step = scaled_step(&dz, &z0, &ev.unit);
     // NaN fails both tests.
     if !(pivot > cfg.singular_tol && step <= MAX_FREE_CORRECTION) {
@@ -408,7 +409,7 @@ fn newton_last<const N: usize, const K: usize, J: BlockJacobian<N>>(
     // NaN fails both tests; an out-of-range tolerance is diagnosed by `iterate`.
     if rho <= cfg.residual_tol
         && cfg.residual_tol <= 1e-3
-        && let Some((z, dz, step)) = free_correction(&ev, &s, z0, cfg, last)
+        && let Some((z, dz, step)) = free_correction(&ev, &s, rho, z0, cfg, last)
     {
         if step > MAX_UNCHECKED_CORRECTION {
             last.forget();
@@ -433,9 +434,9 @@ fn newton_last<const N: usize, const K: usize, J: BlockJacobian<N>>(
 /// applied to the returned position.
 #[doc(hidden)]
 pub trait LastStep<const N: usize, const K: usize, J> {
-    /// The correction `-J^-1 f` at `ev` (rows scaled by `s`) and the smallest pivot of its
-    /// factorisation.
-    fn correction(&mut self, ev: &BlockEval<N, K, J>, s: &[f64; N]) -> ([f64; N], f64);
+    /// The correction `-J^-1 f` at `ev` (rows scaled by `s`, scaled residual `rho`) and the
+    /// smallest pivot of its factorisation.
+    fn correction(&mut self, ev: &BlockEval<N, K, J>, s: &[f64; N], rho: f64) -> ([f64; N], f64);
     /// The evaluation last corrected is not the one returned: nothing it factorised is valid.
     fn forget(&mut self);
     /// Makes what is kept describe `ev`, the returned evaluation.
@@ -448,7 +449,7 @@ pub struct RowSteps;
 
 impl<const N: usize, const K: usize, J: BlockJacobian<N>> LastStep<N, K, J> for RowSteps {
     #[inline(always)]
-    fn correction(&mut self, ev: &BlockEval<N, K, J>, s: &[f64; N]) -> ([f64; N], f64) {
+    fn correction(&mut self, ev: &BlockEval<N, K, J>, s: &[f64; N], _rho: f64) -> ([f64; N], f64) {
         newton_step(ev, s)
     }
     #[inline(always)]
@@ -469,7 +470,16 @@ struct KeptLu<'a, const N: usize> {
 
 impl<const N: usize, const K: usize> LastStep<N, K, [[f64; N]; N]> for KeptLu<'_, N> {
     #[inline(always)]
-    fn correction(&mut self, ev: &BlockEval<N, K>, _s: &[f64; N]) -> ([f64; N], f64) {
+    fn correction(&mut self, ev: &BlockEval<N, K>, s: &[f64; N], rho: f64) -> ([f64; N], f64) {
+        if rho > MAX_UNCHECKED_CORRECTION {
+            // A residual above the rounding level means, for all but an ill-conditioned block,
+            // a correction above it too, which is checked by a new evaluation whose Jacobian
+            // the analogs then need factorised: a factorisation kept here would be discarded.
+            // The cheaper row-equilibrated step instead; `keep` factorises what is returned
+            // (whichever way the guess goes, only the cost differs).
+            self.valid = false;
+            return newton_step(ev, s);
+        }
         refactor_columns(self.lu, ev);
         self.valid = true;
         (self.lu.solve(ev.f.map(|v| -v)), self.lu.pivot_ratio())
@@ -534,7 +544,7 @@ fn iterate<const N: usize, const K: usize, J: BlockJacobian<N>>(
         let (rho, phi) = scaled_norms(&it.ev.f, &s);
         if rho <= cfg.residual_tol {
             // Converged: the last correction, from the factorisation `last` keeps.
-            let (dz, pivot) = last.correction(it.ev, &s);
+            let (dz, pivot) = last.correction(it.ev, &s, rho);
             let step = scaled_step(&dz, &it.z, &it.ev.unit);
             return it.finish(dz, step, pivot, rho, &s, Termination::ResidualTolerance, cfg, &mut eval, last);
         }
