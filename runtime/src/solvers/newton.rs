@@ -7,8 +7,9 @@
 //! **Scale-free tests.** Every test is made in the units of the problem: residual `i` is divided
 //! by its row magnitude `scale_i` (see [`BlockEval::scale`]), a step in unknown `j` by that
 //! unknown's magnitude, and the pivots of the factorisation are those of the row-equilibrated
-//! Jacobian. A mechanism in metres, millimetres or micrometres therefore stops at the same
-//! relative accuracy.
+//! Jacobian (of the column-equilibrated one for a final correction made with the analogs'
+//! factorisation, below). A mechanism in metres, millimetres or micrometres therefore stops at
+//! the same relative accuracy.
 //!
 //! **No silent wrong answer.** Whatever stops the iteration, the final scaled residual is
 //! checked; the last Newton correction is applied (a prediction that already meets the
@@ -432,8 +433,7 @@ fn newton_last<const N: usize, const K: usize, J: BlockJacobian<N>>(
 
 /// How the correction at a converged iterate is computed: the step that ends the iteration,
 /// applied to the returned position.
-#[doc(hidden)]
-pub trait LastStep<const N: usize, const K: usize, J> {
+trait LastStep<const N: usize, const K: usize, J> {
     /// The correction `-J^-1 f` at `ev` (rows scaled by `s`, scaled residual `rho`) and the
     /// smallest pivot of its factorisation.
     fn correction(&mut self, ev: &BlockEval<N, K, J>, s: &[f64; N], rho: f64) -> ([f64; N], f64);
@@ -444,8 +444,7 @@ pub trait LastStep<const N: usize, const K: usize, J> {
 }
 
 /// The iteration's own row-equilibrated step; nothing is kept.
-#[doc(hidden)]
-pub struct RowSteps;
+struct RowSteps;
 
 impl<const N: usize, const K: usize, J: BlockJacobian<N>> LastStep<N, K, J> for RowSteps {
     #[inline(always)]
