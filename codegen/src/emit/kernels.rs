@@ -64,6 +64,12 @@ struct Kernel<'a> {
 }
 
 /// A sensitivity stage's right-hand sides per row.
+/// The slot holding Newton block `b`'s evaluation (`__ev{b}`: residuals, Jacobian, kept
+/// values), which the runtime's iteration updates in place.
+fn evaluation_ident(b: usize) -> Ident {
+    format_ident!("__ev{}", b)
+}
+
 fn stage_rows(s: &Stages, stage: usize) -> &Vec<Vec<NodeId>> {
     [&s.q, &s.v, &s.a][stage]
 }
@@ -354,6 +360,7 @@ impl Kernel<'_> {
         let f = self.names.operands(self.g, &bp.f);
         let (scale, unit) = (self.names.operands(self.g, &bp.scale), self.names.operands(self.g, &bp.unit));
         let (s, ev, r) = (format_ident!("__s{}", b), format_ident!("__eval{}", b), format_ident!("__r{}", b));
+        let at = evaluation_ident(b);
         // A large sparse block: its non-zeros only, and Newton over its sparse factorisation.
         let (pattern, ty, jrows, newton) = match &bp.sparse {
             Some(sp) => (
@@ -387,17 +394,18 @@ impl Kernel<'_> {
                 #rt::BlockEval { f: [#(#f),*], j: #jrows, scale: [#(#scale),*], unit: [#(#unit),*], keep: [#(#exports),*] }
             };
             let __z0: [f64; #n] = [#(#guess),*];
+            // The guess evaluated here, into the slot the iteration updates in place: the
+            // block's evaluation is never copied into or out of the solver.
+            let mut #at = #ev(&__z0);
             #slot
-            // Borrowed, not moved out of the result: the solved block (its evaluation included)
-            // is not copied again.
-            let #r = #newton(__z0, __cfg, #ev #lu_arg);
+            let #r = #newton(__z0, &mut #at, __cfg, #ev #lu_arg);
             let #s = match &#r {
                 Ok(s) => s,
                 Err(e) => return Err(#rt::block_failure(self, #bl, *e, __x, __guess)),
             };
             __report.absorb(#s);
             let [#(#qs),*] = #s.z;
-            let [#(#exports),*] = #s.eval.keep;
+            let [#(#exports),*] = #at.keep;
         }
     }
 
@@ -456,8 +464,8 @@ impl Kernel<'_> {
             let j = if from_graph {
                 self.names.rows(self.g, &bp.jac)
             } else {
-                let s = format_ident!("__s{}", b);
-                quote!(#s.eval.j)
+                let at = evaluation_ident(b);
+                quote!(#at.j)
             };
             let scale = self.col_scales(bp);
             // The factorisation the runtime made at the block's final evaluation, when it kept
@@ -498,8 +506,8 @@ impl Kernel<'_> {
         let (pattern, j) = if self.mode == Mode::At {
             (sparse::pattern_item(sp, b, rt), sparse::jac_value(sp, b, self.g, self.names, &bp.jac, rt))
         } else {
-            let s = format_ident!("__s{}", b);
-            (TokenStream::new(), quote!(#s.eval.j))
+            let at = evaluation_ident(b);
+            (TokenStream::new(), quote!(#at.j))
         };
         quote! {
             #pattern

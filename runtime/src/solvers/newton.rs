@@ -49,14 +49,13 @@ pub struct BlockEval<const N: usize, const K: usize, J = [[f64; N]; N]> {
     pub keep: [f64; K],
 }
 
-/// A converged block.
+/// A converged block. Its evaluation is the caller's (see [`newton`]): at `z`, or (after a
+/// correction at the rounding level, applied without a new evaluation) at a point within a few
+/// rounding units of `z`.
 #[doc(hidden)]
 #[derive(Clone, Copy, Debug)]
-pub struct Solved<const N: usize, const K: usize, J = [[f64; N]; N]> {
+pub struct Solved<const N: usize> {
     pub z: [f64; N],
-    /// The evaluation at `z`, or (after a correction at the rounding level, applied without a
-    /// new evaluation) at a point within a few rounding units of `z`.
-    pub eval: BlockEval<N, K, J>,
     pub iterations: u32,
     pub evaluations: u32,
     pub residual: f64,
@@ -341,30 +340,35 @@ fn evaluated_correction<const N: usize, const K: usize, J: BlockJacobian<N>>(
 #[inline(never)]
 fn checked_free_correction<const N: usize, const K: usize, J: BlockJacobian<N>>(
     z0: [f64; N],
-    ev0: BlockEval<N, K, J>,
+    ev: &mut BlockEval<N, K, J>,
     rho0: f64,
     dz: &[f64; N],
     eval: &mut impl FnMut(&[f64; N]) -> BlockEval<N, K, J>,
     last: &mut impl LastStep<N, K, J>,
-) -> Solved<N, K, J> {
-    let (mut z, mut ev) = (z0, ev0);
-    let residual = evaluated_correction(&mut z, &mut ev, dz, rho0, eval).unwrap_or(rho0);
-    last.keep(&ev);
-    Solved { z, eval: ev, iterations: 0, evaluations: 2, residual, termination: Termination::ResidualTolerance }
+) -> Solved<N> {
+    let mut z = z0;
+    let residual = evaluated_correction(&mut z, ev, dz, rho0, eval).unwrap_or(rho0);
+    last.keep(ev);
+    Solved { z, iterations: 0, evaluations: 2, residual, termination: Termination::ResidualTolerance }
 }
 
-/// Solves one block from the guess `z0`. In the common warm-started case this costs one
-/// evaluation and one small factorisation: the guess already meets the tolerance and is
-/// corrected once by the Newton step (its Jacobian is the one the analogs use). The iteration
-/// itself is a separate, out-of-line function.
+/// Solves one block from the guess `z0`, whose evaluation the caller has made into `ev`: the
+/// iteration updates it in place (each accepted step's evaluation is written over it), and on
+/// return it is the evaluation at the returned position ([`Solved`]). The caller's slot, not a
+/// value moved through the result: a block's evaluation is hundreds of bytes (a large sparse
+/// block's, kilobytes). In the common warm-started case this costs one evaluation and one small
+/// factorisation: the guess already meets the tolerance and is corrected once by the Newton step
+/// (its Jacobian is the one the analogs use). The iteration itself is a separate, out-of-line
+/// function.
 #[doc(hidden)]
 #[inline(always)]
 pub fn newton<const N: usize, const K: usize>(
     z0: [f64; N],
+    ev: &mut BlockEval<N, K>,
     cfg: &NewtonConfig,
     eval: impl FnMut(&[f64; N]) -> BlockEval<N, K>,
-) -> Result<Solved<N, K>, BlockFailure> {
-    newton_with(z0, cfg, eval)
+) -> Result<Solved<N>, BlockFailure> {
+    newton_with(z0, ev, cfg, eval)
 }
 
 /// [`newton`] for any representation of the Jacobian (a sparse block's non-zeros).
@@ -372,10 +376,11 @@ pub fn newton<const N: usize, const K: usize>(
 #[inline(always)]
 pub fn newton_with<const N: usize, const K: usize, J: BlockJacobian<N>>(
     z0: [f64; N],
+    ev: &mut BlockEval<N, K, J>,
     cfg: &NewtonConfig,
     eval: impl FnMut(&[f64; N]) -> BlockEval<N, K, J>,
-) -> Result<Solved<N, K, J>, BlockFailure> {
-    newton_last(z0, cfg, eval, &mut RowSteps)
+) -> Result<Solved<N>, BlockFailure> {
+    newton_last(z0, ev, cfg, eval, &mut RowSteps)
 }
 
 /// [`newton`] that also writes into `lu` the factorisation the analogs use: `J` with each
@@ -389,45 +394,43 @@ pub fn newton_with<const N: usize, const K: usize, J: BlockJacobian<N>>(
 #[inline(always)]
 pub fn newton_keeping_lu<const N: usize, const K: usize>(
     z0: [f64; N],
+    ev: &mut BlockEval<N, K>,
     cfg: &NewtonConfig,
     eval: impl FnMut(&[f64; N]) -> BlockEval<N, K>,
     lu: &mut Lu<N>,
-) -> Result<Solved<N, K>, BlockFailure> {
-    newton_last(z0, cfg, eval, &mut KeptLu { lu, valid: false })
+) -> Result<Solved<N>, BlockFailure> {
+    newton_last(z0, ev, cfg, eval, &mut KeptLu { lu, valid: false })
 }
 
 /// [`newton_with`] whose correction at a converged iterate comes from `last`.
 #[inline(always)]
 fn newton_last<const N: usize, const K: usize, J: BlockJacobian<N>>(
     z0: [f64; N],
+    ev: &mut BlockEval<N, K, J>,
     cfg: &NewtonConfig,
     mut eval: impl FnMut(&[f64; N]) -> BlockEval<N, K, J>,
     last: &mut impl LastStep<N, K, J>,
-) -> Result<Solved<N, K, J>, BlockFailure> {
-    let ev = eval(&z0);
-    let s = row_scales(&ev);
+) -> Result<Solved<N>, BlockFailure> {
+    let s = row_scales(ev);
     let rho = scaled_residual(&ev.f, &s);
     // NaN fails both tests; an out-of-range tolerance is diagnosed by `iterate`.
     if rho <= cfg.residual_tol
         && cfg.residual_tol <= 1e-3
-        && let Some((z, dz, step)) = free_correction(&ev, &s, rho, z0, cfg, last)
+        && let Some((z, dz, step)) = free_correction(ev, &s, rho, z0, cfg, last)
     {
         if step > MAX_UNCHECKED_CORRECTION {
             last.forget();
             return Ok(checked_free_correction(z0, ev, rho, &dz, &mut eval, last));
         }
-        last.keep(&ev);
+        last.keep(ev);
         return Ok(Solved {
             z,
-            eval: ev,
             iterations: 0,
             evaluations: 1,
             residual: rho,
             termination: Termination::ResidualTolerance,
         });
     }
-    // By value: the accepted guess's path keeps the evaluation in registers (a reference would
-    // keep it in memory there).
     iterate(z0, ev, cfg, eval, last)
 }
 
@@ -503,7 +506,7 @@ fn refactor_columns<const N: usize, const K: usize>(lu: &mut Lu<N>, ev: &BlockEv
     lu.refactor_cols(&ev.j, cols);
 }
 
-/// Newton iterations from `z0`, whose evaluation is `ev0` (updated in place: each accepted
+/// Newton iterations from `z0`, whose evaluation is `ev` (updated in place: each accepted
 /// step's evaluation is written over it, never copied). The generated code calls it through
 /// [`newton`] when the guess does not meet the tolerance; the correction at a converged
 /// iterate comes from `last`.
@@ -515,19 +518,19 @@ fn refactor_columns<const N: usize, const K: usize>(lu: &mut Lu<N>, ev: &BlockEv
 #[inline(never)]
 fn iterate<const N: usize, const K: usize, J: BlockJacobian<N>>(
     z0: [f64; N],
-    mut ev0: BlockEval<N, K, J>,
+    ev: &mut BlockEval<N, K, J>,
     cfg: &NewtonConfig,
     mut eval: impl FnMut(&[f64; N]) -> BlockEval<N, K, J>,
     last: &mut impl LastStep<N, K, J>,
-) -> Result<Solved<N, K, J>, BlockFailure> {
+) -> Result<Solved<N>, BlockFailure> {
     if let Some(field) = cfg.invalid_field() {
         return Err(BlockFailure::InvalidConfig { field });
     }
     let floor = FLOOR_FACTOR * cfg.residual_tol.max(16.0 * f64::EPSILON);
     let mut it = Iter {
         z: z0,
-        // The argument itself, not a copy: the iteration updates it in place.
-        ev: &mut ev0,
+        // The caller's evaluation, not a copy: the iteration updates it in place.
+        ev,
         iterations: 0,
         evaluations: 1,
         prev_step: f64::INFINITY,
@@ -618,7 +621,7 @@ impl<const N: usize, const K: usize, J: BlockJacobian<N>> Iter<'_, N, K, J> {
         cfg: &NewtonConfig,
         eval: &mut impl FnMut(&[f64; N]) -> BlockEval<N, K, J>,
         last: &mut impl LastStep<N, K, J>,
-    ) -> Result<Solved<N, K, J>, BlockFailure> {
+    ) -> Result<Solved<N>, BlockFailure> {
         if let Some(row) = jacobian_non_finite(self.ev) {
             return Err(BlockFailure::NonFinite { row, iterations: self.iterations });
         }
@@ -648,14 +651,7 @@ impl<const N: usize, const K: usize, J: BlockJacobian<N>> Iter<'_, N, K, J> {
             }
         }
         last.keep(self.ev);
-        Ok(Solved {
-            z: self.z,
-            eval: *self.ev,
-            iterations: self.iterations,
-            evaluations: self.evaluations,
-            residual: rho,
-            termination,
-        })
+        Ok(Solved { z: self.z, iterations: self.iterations, evaluations: self.evaluations, residual: rho, termination })
     }
 
     /// Applies the final correction `dz` after evaluating there, unless it made the residual
@@ -901,6 +897,17 @@ fn normal_equations<const N: usize, const K: usize, J: BlockJacobian<N>>(
 mod tests {
     use super::*;
 
+    /// [`newton`] from `z0` with the evaluation made as the generated code makes it (into the
+    /// caller's slot); the solved block and its final evaluation.
+    fn solve<const N: usize, const K: usize>(
+        z0: [f64; N],
+        cfg: &NewtonConfig,
+        mut eval: impl FnMut(&[f64; N]) -> BlockEval<N, K>,
+    ) -> Result<(Solved<N>, BlockEval<N, K>), BlockFailure> {
+        let mut ev = eval(&z0);
+        newton(z0, &mut ev, cfg, eval).map(|s| (s, ev))
+    }
+
     fn circle(z: &[f64; 2]) -> BlockEval<2, 0> {
         // x^2 + y^2 = 4, y = x^3 (root near (1.03, 1.72), solved numerically).
         let [x, y] = *z;
@@ -915,14 +922,14 @@ mod tests {
 
     #[test]
     fn converges_quadratically_and_reports() {
-        let s = newton([1.0, 1.0], &NewtonConfig::default(), circle).unwrap();
+        let (s, _) = solve([1.0, 1.0], &NewtonConfig::default(), circle).unwrap();
         assert!(s.residual <= 1e-12);
         assert!(s.iterations > 0 && s.iterations < 10, "{}", s.iterations);
         let [x, y] = s.z;
         // After the last correction the residual is at the rounding floor (a few ulps of 4).
         assert!((x * x + y * y - 4.0).abs() < 4.0 * 4.0 * f64::EPSILON && (y - x.powi(3)).abs() < 8.0 * f64::EPSILON);
         // Warm start: no iteration at all, one evaluation.
-        let again = newton(s.z, &NewtonConfig::default(), circle).unwrap();
+        let (again, _) = solve(s.z, &NewtonConfig::default(), circle).unwrap();
         assert_eq!(again.iterations, 0);
         assert_eq!(again.evaluations, 1);
     }
@@ -953,9 +960,10 @@ mod tests {
             eval: impl Fn(&[f64; N]) -> BlockEval<N, 0> + Copy,
         ) -> Termination {
             let mut kept = Lu::unfactored();
-            let s = newton_keeping_lu(guess, cfg, eval, &mut kept).unwrap();
-            let cols: [f64; N] = core::array::from_fn(|c| max_abs(s.eval.j.map(|row| row[c])));
-            let own = Lu::factor_cols(&s.eval.j, cols);
+            let mut ev = eval(&guess);
+            let s = newton_keeping_lu(guess, &mut ev, cfg, eval, &mut kept).unwrap();
+            let cols: [f64; N] = core::array::from_fn(|c| max_abs(ev.j.map(|row| row[c])));
+            let own = Lu::factor_cols(&ev.j, cols);
             assert_eq!(kept.pivot_ratio().to_bits(), own.pivot_ratio().to_bits());
             assert_eq!(kept.det().to_bits(), own.det().to_bits());
             assert_eq!(kept.negative_det(), own.negative_det());
@@ -965,14 +973,14 @@ mod tests {
                 e[k] = 1.0;
                 assert_eq!(kept.solve(e).map(f64::to_bits), own.solve(e).map(f64::to_bits));
             }
-            let rows = newton(guess, cfg, eval).unwrap();
+            let (rows, _) = solve(guess, cfg, eval).unwrap();
             for c in 0..N {
                 assert!((s.z[c] - rows.z[c]).abs() <= 4.0 * f64::EPSILON, "{:?} {:?}", s.z, rows.z);
             }
             s.termination
         }
         let cfg = NewtonConfig::default();
-        let root = newton([1.0, 1.0], &cfg, circle).unwrap().z;
+        let root = solve([1.0, 1.0], &cfg, circle).unwrap().0.z;
         for guess in [[1.0, 1.0], [1.5, 0.5], root] {
             assert_eq!(check(guess, &cfg, circle), Termination::ResidualTolerance);
         }
@@ -993,7 +1001,7 @@ mod tests {
             unit: [1.0],
             keep: [],
         };
-        let e = newton([0.7], &NewtonConfig::default(), f).unwrap_err();
+        let e = solve([0.7], &NewtonConfig::default(), f).unwrap_err();
         assert!(matches!(e, BlockFailure::NoAssembly { .. }), "{e:?}");
     }
 
@@ -1006,7 +1014,7 @@ mod tests {
             unit: [1.0],
             keep: [],
         };
-        let e = newton([-1.0], &NewtonConfig::default(), f).unwrap_err();
+        let e = solve([-1.0], &NewtonConfig::default(), f).unwrap_err();
         assert!(matches!(e, BlockFailure::NonFinite { row: 0, .. }));
     }
 
@@ -1022,7 +1030,7 @@ mod tests {
             unit: [1.0; 2],
             keep: [],
         };
-        let e = newton([0.0, 2.0], &NewtonConfig::default(), cube_root).unwrap_err();
+        let e = solve([0.0, 2.0], &NewtonConfig::default(), cube_root).unwrap_err();
         assert!(matches!(e, BlockFailure::NonFinite { row: 0, .. }), "{e:?}");
         let nan_slope = |z: &[f64; 2]| BlockEval {
             f: [z[0] - 3.0, z[1] - 1.0],
@@ -1031,14 +1039,14 @@ mod tests {
             unit: [1.0; 2],
             keep: [],
         };
-        let e = newton([0.0, 0.0], &NewtonConfig::default(), nan_slope).unwrap_err();
+        let e = solve([0.0, 0.0], &NewtonConfig::default(), nan_slope).unwrap_err();
         assert!(matches!(e, BlockFailure::NonFinite { row: 1, iterations: 0 }), "{e:?}");
     }
 
     #[test]
     fn iteration_cap_is_respected() {
         let cfg = NewtonConfig::default().with_max_iterations(1);
-        let e = newton([10.0, 10.0], &cfg, circle).unwrap_err();
+        let e = solve([10.0, 10.0], &cfg, circle).unwrap_err();
         assert!(matches!(e, BlockFailure::NoConvergence { iterations: 1, .. }), "{e:?}");
     }
 
@@ -1047,7 +1055,7 @@ mod tests {
     #[test]
     fn singular_root_reached_linearly_is_singular() {
         let f = |z: &[f64; 1]| BlockEval { f: [z[0] * z[0]], j: [[2.0 * z[0]]], scale: [1.0], unit: [1.0], keep: [] };
-        let e = newton([1.0], &NewtonConfig::default(), f).unwrap_err();
+        let e = solve([1.0], &NewtonConfig::default(), f).unwrap_err();
         assert!(matches!(e, BlockFailure::Singular { .. }), "{e:?}");
     }
 
@@ -1067,8 +1075,8 @@ mod tests {
                 keep: [],
             }
         };
-        let a = newton([1.0, 1.0], &NewtonConfig::default(), circle).unwrap();
-        let b = newton([1.0, k], &NewtonConfig::default(), small).unwrap();
+        let (a, _) = solve([1.0, 1.0], &NewtonConfig::default(), circle).unwrap();
+        let (b, _) = solve([1.0, k], &NewtonConfig::default(), small).unwrap();
         assert_eq!(a.iterations, b.iterations);
         assert!((a.z[0] - b.z[0]).abs() <= 4.0 * f64::EPSILON, "{:?} {:?}", a.z, b.z);
         assert!((a.z[1] - b.z[1] / k).abs() <= 8.0 * f64::EPSILON * a.z[1], "{:?} {:?}", a.z, b.z);
@@ -1084,7 +1092,7 @@ mod tests {
             (NewtonConfig::default().with_min_damping(0.0), "min_damping"),
         ] {
             assert_eq!(cfg.invalid_field(), Some(field));
-            let e = newton([1.0, 1.0], &cfg, circle).unwrap_err();
+            let e = solve([1.0, 1.0], &cfg, circle).unwrap_err();
             assert_eq!(e, BlockFailure::InvalidConfig { field });
         }
     }

@@ -172,7 +172,7 @@ impl SolveReport {
 
     #[doc(hidden)]
     #[inline]
-    pub fn absorb<const N: usize, const K: usize, J>(&mut self, s: &Solved<N, K, J>) {
+    pub fn absorb<const N: usize>(&mut self, s: &Solved<N>) {
         self.iterations += s.iterations;
         self.evaluations += s.evaluations;
         self.residual = self.residual.max(s.residual);
