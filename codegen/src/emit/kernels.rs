@@ -63,13 +63,13 @@ struct Kernel<'a> {
     closed_trig: HashSet<NodeId>,
 }
 
-/// A sensitivity stage's right-hand sides per row.
 /// The slot holding Newton block `b`'s evaluation (`__ev{b}`: residuals, Jacobian, kept
 /// values), which the runtime's iteration updates in place.
 fn evaluation_ident(b: usize) -> Ident {
     format_ident!("__ev{}", b)
 }
 
+/// A sensitivity stage's right-hand sides per row.
 fn stage_rows(s: &Stages, stage: usize) -> &Vec<Vec<NodeId>> {
     [&s.q, &s.v, &s.a][stage]
 }
@@ -414,9 +414,9 @@ impl Kernel<'_> {
     /// of the block's own entries, the column magnitudes the analogs equilibrate by are known
     /// inside the block's evaluation, so the runtime can factorise exactly as the analogs
     /// would (a later block's entry in such a column would not be known yet). Not a sparse
-    /// block: a large block's final correction is above the rounding level and evaluated again
-    /// (the ring of coupled loops: every solve), so a kept factorisation would be made again
-    /// there, and moving one costs more than it saves (measured).
+    /// block: the ring of coupled loops ends every solve with a final correction above the
+    /// rounding level, which is evaluated again, so a kept factorisation was made again there,
+    /// and moving a sparse one cost more than it saved (measured on the ring).
     fn keeps_lu(&self, bp: &BlockPlan) -> bool {
         self.mode == Mode::Fused
             && bp.sparse.is_none()
