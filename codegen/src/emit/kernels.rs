@@ -422,7 +422,11 @@ impl Kernel<'_> {
             && bp.sparse.is_none()
             && !bp.linear
             && bp.closed.is_none()
-            && bp.col_scale.iter().enumerate().all(|(c, col)| col.iter().all(|e| bp.jac.iter().any(|row| row[c] == *e)))
+            && bp
+                .col_scale
+                .iter()
+                .enumerate()
+                .all(|(c, col)| col.iter().all(|e| bp.jac.iter().any(|row| row.get(c) == Some(e))))
     }
 
     /// Closed-form hook: the straight-line solve of a recognised block.

@@ -228,9 +228,8 @@ impl<const N: usize> Lu<N> {
     /// [`Lu::factor_cols`] written over `self`: made where it is kept, since moving a
     /// factorisation of 3 or more unknowns is a copy of `N^2 + 5N` words (a smaller one is
     /// made and moved).
-    #[doc(hidden)]
     #[inline(always)]
-    pub fn refactor_cols(&mut self, j: &[[f64; N]; N], col_scale: [f64; N]) {
+    pub(crate) fn refactor_cols(&mut self, j: &[[f64; N]; N], col_scale: [f64; N]) {
         if N <= 2 {
             *self = Self::factor_cols(j, col_scale);
         } else {
