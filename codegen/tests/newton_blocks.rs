@@ -1,18 +1,24 @@
 //! Which Newton blocks hand their final factorisation to their analogs: those whose unknowns'
 //! Jacobian columns have no entry outside the block (the column magnitudes the analogs
-//! equilibrate by are then known when the block is solved).
+//! equilibrate by are then known when the block is solved). And which make the magnitudes their
+//! tests judge in once per solve: those whose magnitudes do not depend on their unknowns.
 
 use proc_macro2::TokenStream;
 
 /// The statement that solves block `b` in the kernel a point solve and a sweep call
 /// (`kinematics_step_flat`), as expanded text without whitespace.
 fn newton_call(decl: &str, b: usize) -> String {
+    let kernel = fused_kernel(decl);
+    let at = kernel.find(&format!("let__r{b}=")).unwrap_or_else(|| panic!("no Newton call for block {b}"));
+    kernel[at..at + kernel[at..].find(';').expect("end of statement")].to_string()
+}
+
+/// The fused kernel of `decl` to its end, as expanded text without whitespace.
+fn fused_kernel(decl: &str) -> String {
     let tokens: TokenStream = decl.parse().expect("declaration tokens");
     let file: syn::File = syn::parse2(kinloop_codegen::expand(tokens)).expect("expansion is a file");
     let code = prettyplease::unparse(&file);
-    let kernel = &code[code.find("fn kinematics_step_flat").expect("the fused kernel")..];
-    let at = kernel.find(&format!("let __r{b} = ")).unwrap_or_else(|| panic!("no Newton call for block {b}"));
-    kernel[at..at + kernel[at..].find(';').expect("end of statement")].split_whitespace().collect()
+    code[code.find("fn kinematics_step_flat").expect("the fused kernel")..].split_whitespace().collect()
 }
 
 /// A four-bar whose coupler carries a second dyad, both solved by Newton: the coupler angle
@@ -36,4 +42,35 @@ fn a_block_with_its_columns_inside_keeps_its_factorisation() {
 fn a_block_whose_columns_reach_a_later_block_factorises_again() {
     let call = newton_call(WATT, 0);
     assert!(call.contains("::newton::<2,") && !call.contains("__lu0"), "{call}");
+}
+
+/// A slotted rocker: the slider's distance `s` is a length of its own loop, so the loop's
+/// magnitude depends on it.
+const ROCKER: &str = "#[kinloop(newton)]
+    pub struct Rocker {
+        params a = 1.0, d = 2.0;
+        input phi;
+        unknowns s = 2.5, psi = 0.3;
+        loop l: a @ phi == (d, 0) + s @ psi;
+    }";
+
+#[test]
+fn magnitudes_free_of_the_unknowns_are_made_once_per_solve() {
+    let kernel = fused_kernel(WATT);
+    for b in 0..2 {
+        let made = kernel.find(&format!("let__mag{b}=::kinloop::__gen::Magnitudes::new(")).expect("made once");
+        let evaluation = kernel.find(&format!("let__eval{b}=")).expect("the evaluation closure");
+        assert!(made > evaluation, "made after the closure is defined, outside it");
+        let call = newton_call(WATT, b);
+        assert!(call.contains(&format!("__eval{b},&__mag{b}")), "{call}");
+    }
+    assert!(!kernel.contains("scale:") && !kernel.contains("unit:"), "no magnitudes in the evaluations");
+}
+
+#[test]
+fn magnitudes_that_depend_on_the_unknowns_come_from_each_evaluation() {
+    let call = newton_call(ROCKER, 0);
+    assert!(call.contains("&|__e:&::kinloop::__gen::BlockEval<2,6>|::kinloop::__gen::Magnitudes::new("), "{call}");
+    assert!(call.contains("[__e.keep[2],__e.keep[3]],[__e.keep[4],__e.keep[5]]"), "{call}");
+    assert!(!fused_kernel(ROCKER).contains("let__mag0"), "nothing made once");
 }

@@ -16,7 +16,7 @@ pub use crate::kinds::QuantityKind;
 pub use crate::lu::{Factor, Fixed, Lu, max_abs};
 pub use crate::mechanism::{Mechanism, NamedSensitivities, Sensitivities, SensitivitiesRequested};
 pub use crate::newton::{
-    BlockEval, BlockFailure, NewtonConfig, SolveReport, Solved, newton, newton_keeping_lu, newton_with,
+    BlockEval, BlockFailure, Magnitudes, NewtonConfig, SolveReport, Solved, newton, newton_keeping_lu, newton_with,
 };
 pub use crate::solvers::closed::*;
 pub use crate::solvers::jacobian::{BlockFactor, BlockJacobian};

@@ -197,7 +197,7 @@ impl<const N: usize, const NI: usize, const NO: usize, const NP: usize> Sens<N, 
 
 /// Residuals and first derivatives of all equations at one point: `f`, `j[e][u] = df_e/dq_u`,
 /// `fx[e][i] = df_e/dx_i`, and the magnitude of each equation's terms `scale[e]` (the unit its
-/// residual is judged in; see `BlockEval::scale`; `0` where none is known), with the units of
+/// residual is judged in; see `Magnitudes`; `0` where none is known), with the units of
 /// the unknowns and inputs.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct Jac<const N: usize, const NI: usize> {

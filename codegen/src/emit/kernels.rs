@@ -69,6 +69,26 @@ fn evaluation_ident(b: usize) -> Ident {
     format_ident!("__ev{}", b)
 }
 
+/// Whether a dense Newton block's analogs (the fused kernel's) reuse the factorisation of
+/// its final correction: when every non-zero entry of its unknowns' Jacobian columns is one
+/// of the block's own entries, the column magnitudes the analogs equilibrate by are known
+/// inside the block's evaluation, so the runtime can factorise exactly as the analogs
+/// would (a later block's entry in such a column would not be known yet). Not a sparse
+/// block: the ring of coupled loops ends every solve with a final correction above the
+/// rounding level, which is evaluated again, so a kept factorisation was made again there,
+/// and moving a sparse one cost more than it saved (measured on the ring).
+fn keeps_lu(mode: Mode, bp: &BlockPlan) -> bool {
+    mode == Mode::Fused
+        && bp.sparse.is_none()
+        && !bp.linear
+        && bp.closed.is_none()
+        && bp
+            .col_scale
+            .iter()
+            .enumerate()
+            .all(|(c, col)| col.iter().all(|e| bp.jac.iter().any(|row| row.get(c) == Some(e))))
+}
+
 /// A sensitivity stage's right-hand sides per row.
 fn stage_rows(s: &Stages, stage: usize) -> &Vec<Vec<NodeId>> {
     [&s.q, &s.v, &s.a][stage]
@@ -103,7 +123,10 @@ fn plan_scopes(plan: &Plan, mode: Mode, sens: bool) -> Scopes {
     }
     for bp in &plan.blocks {
         let mut roots = bp.vel.concat();
-        roots.extend(bp.col_scale.concat());
+        // A block that keeps its factorisation needs no column magnitudes of its own.
+        if !keeps_lu(mode, bp) {
+            roots.extend(bp.col_scale.concat());
+        }
         // Closed-form hook: no Newton evaluation to reuse, the Jacobian is computed here.
         if mode == Mode::At || bp.closed.is_some() {
             roots.extend(bp.jac.concat());
@@ -351,14 +374,24 @@ impl Kernel<'_> {
         let (n, bl) = (lit(bp.unknowns.len()), lit(b));
         let l = self.scopes.newton[b];
         let inner = self.lets(l);
-        let exports: Vec<Ident> = self.sched.exports[l].iter().map(|&x| self.names.temp(x)).collect();
-        let k = lit(exports.len());
+        let (scale, unit) = (self.names.operands(self.g, &bp.scale), self.names.operands(self.g, &bp.unit));
+        let (scale, unit): (Vec<TokenStream>, Vec<TokenStream>) = (scale.collect(), unit.collect());
+        // The magnitudes the tests judge in: made once for the solve when they do not depend on
+        // the block's unknowns (link lengths), otherwise kept from every evaluation after the
+        // values later scopes read.
+        let fixed = bp.scale.iter().chain(&bp.unit).all(|m| self.plan.level[m.index()] < b as i32);
+        let kept_mags: Vec<&TokenStream> = if fixed { Vec::new() } else { scale.iter().chain(&unit).collect() };
+        // What later scopes read from the evaluation: a dense Jacobian entry from `j`, where the
+        // evaluation holds it anyway; the rest through `keep` (each kept value is a store per
+        // evaluation).
+        let (from_j, kept) = self.exports_of(b, l);
+        let exports: Vec<Ident> = kept.iter().map(|&x| self.names.temp(x)).collect();
+        let k = lit(exports.len() + kept_mags.len());
         let guess = bp.unknowns.iter().map(|&u| {
             let u = lit(u);
             quote!(__guess[#u])
         });
         let f = self.names.operands(self.g, &bp.f);
-        let (scale, unit) = (self.names.operands(self.g, &bp.scale), self.names.operands(self.g, &bp.unit));
         let (s, ev, r) = (format_ident!("__s{}", b), format_ident!("__eval{}", b), format_ident!("__r{}", b));
         let at = evaluation_ident(b);
         // A large sparse block: its non-zeros only, and Newton over its sparse factorisation.
@@ -384,6 +417,25 @@ impl Kernel<'_> {
             (TokenStream::new(), newton, TokenStream::new())
         };
         let ty = if bp.sparse.is_some() { quote!(#rt::BlockEval<#n, #k, #ty>) } else { quote!(#rt::BlockEval<#n, #k>) };
+        let mag = format_ident!("__mag{}", b);
+        let (mags_once, mags) = if fixed {
+            (quote!(let #mag = #rt::Magnitudes::new([#(#scale),*], [#(#unit),*]);), quote!(&#mag))
+        } else {
+            let nb = bp.unknowns.len();
+            let at = |k: usize| {
+                let k = lit(exports.len() + k);
+                quote!(__e.keep[#k])
+            };
+            let (s, u) = ((0..nb).map(at), (nb..2 * nb).map(at));
+            (TokenStream::new(), quote!(&|__e: &#ty| #rt::Magnitudes::new([#(#s),*], [#(#u),*])))
+        };
+        // The kept magnitudes are not read after the solve.
+        let take_keep = if exports.is_empty() {
+            TokenStream::new()
+        } else {
+            let unkept = kept_mags.iter().map(|_| quote!(_));
+            quote!(let [#(#exports,)* #(#unkept),*] = #at.keep;)
+        };
         // The block's evaluation is one closure handed to the runtime's Newton, which checks
         // the guess, corrects it at least once and always checks the final residual.
         quote! {
@@ -391,42 +443,49 @@ impl Kernel<'_> {
             let #ev = |__z: &[f64; #n]| -> #ty {
                 let [#(#qs),*] = *__z;
                 #inner
-                #rt::BlockEval { f: [#(#f),*], j: #jrows, scale: [#(#scale),*], unit: [#(#unit),*], keep: [#(#exports),*] }
+                #rt::BlockEval { f: [#(#f),*], j: #jrows, keep: [#(#exports,)* #(#kept_mags),*] }
             };
+            #mags_once
             let __z0: [f64; #n] = [#(#guess),*];
             // The guess evaluated here, into the slot the iteration updates in place: the
             // block's evaluation is never copied into or out of the solver.
             let mut #at = #ev(&__z0);
             #slot
-            let #r = #newton(__z0, &mut #at, __cfg, #ev #lu_arg);
+            let #r = #newton(__z0, &mut #at, __cfg, #ev, #mags #lu_arg);
             let #s = match &#r {
                 Ok(s) => s,
                 Err(e) => return Err(#rt::block_failure(self, #bl, *e, __x, __guess)),
             };
             __report.absorb(#s);
             let [#(#qs),*] = #s.z;
-            let [#(#exports),*] = #at.keep;
+            #take_keep
+            #(#from_j)*
         }
     }
 
-    /// Whether a dense Newton block's analogs (the fused kernel's) reuse the factorisation of
-    /// its final correction: when every non-zero entry of its unknowns' Jacobian columns is one
-    /// of the block's own entries, the column magnitudes the analogs equilibrate by are known
-    /// inside the block's evaluation, so the runtime can factorise exactly as the analogs
-    /// would (a later block's entry in such a column would not be known yet). Not a sparse
-    /// block: the ring of coupled loops ends every solve with a final correction above the
-    /// rounding level, which is evaluated again, so a kept factorisation was made again there,
-    /// and moving a sparse one cost more than it saved (measured on the ring).
+    /// The values Newton block `b`'s loop scope `l` hands to later scopes: bindings read from
+    /// the final evaluation's dense Jacobian `j` for those that are entries of it, and the
+    /// nodes of the rest, which go through `keep`.
+    fn exports_of(&self, b: usize, l: usize) -> (Vec<TokenStream>, Vec<NodeId>) {
+        let (bp, at) = (&self.plan.blocks[b], evaluation_ident(b));
+        let mut from_j = Vec::new();
+        let mut kept = Vec::new();
+        for &x in &self.sched.exports[l] {
+            let entry = bp.jac.iter().enumerate().find_map(|(r, row)| row.iter().position(|&e| e == x).map(|c| (r, c)));
+            match entry {
+                Some((r, c)) if bp.sparse.is_none() => {
+                    let (id, r, c) = (self.names.temp(x), lit(r), lit(c));
+                    from_j.push(quote!(let #id: f64 = #at.j[#r][#c];));
+                }
+                _ => kept.push(x),
+            }
+        }
+        (from_j, kept)
+    }
+
+    /// [`keeps_lu`] in this kernel's mode.
     fn keeps_lu(&self, bp: &BlockPlan) -> bool {
-        self.mode == Mode::Fused
-            && bp.sparse.is_none()
-            && !bp.linear
-            && bp.closed.is_none()
-            && bp
-                .col_scale
-                .iter()
-                .enumerate()
-                .all(|(c, col)| col.iter().all(|e| bp.jac.iter().any(|row| row.get(c) == Some(e))))
+        keeps_lu(self.mode, bp)
     }
 
     /// Closed-form hook: the straight-line solve of a recognised block.

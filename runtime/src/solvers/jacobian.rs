@@ -2,7 +2,7 @@
 //! iteration serves both representations: dense rows (`[[f64; N]; N]`, small blocks) and the
 //! structural non-zeros of a large sparse block ([`SparseJac`](super::sparse_lu::SparseJac)).
 
-use super::lu::{Factor, Lu, solve_row_scaled};
+use super::lu::{Factor, Lu, RowScales, solve_row_scaled};
 
 /// A factorised block Jacobian: solves and the pivot diagnostics of [`Factor`].
 #[doc(hidden)]
@@ -18,11 +18,11 @@ pub trait BlockJacobian<const N: usize>: Copy {
     type Factor: BlockFactor<N>;
     /// Factorises the matrix with row `r` divided by `row_scale[r]`.
     fn factor_rows(&self, row_scale: [f64; N]) -> Self::Factor;
-    /// The Newton step `-J^-1 f` with row `r` divided by `row_scale[r]`, and the smallest pivot
+    /// The Newton step `-J^-1 f` with row `r` divided by `rows.s[r]`, and the smallest pivot
     /// of that row-equilibrated matrix ([`Factor::pivot_ratio`] of [`Self::factor_rows`]).
     #[inline(always)]
-    fn newton_step(&self, f: &[f64; N], row_scale: [f64; N]) -> ([f64; N], f64) {
-        let lu = self.factor_rows(row_scale);
+    fn newton_step(&self, f: &[f64; N], rows: &RowScales<N>) -> ([f64; N], f64) {
+        let lu = self.factor_rows(rows.s);
         (lu.solve_block(f.map(|v| -v)), lu.pivot_ratio())
     }
     /// `sum_c |J_rc|`.
@@ -59,8 +59,8 @@ impl<const N: usize> BlockJacobian<N> for [[f64; N]; N] {
 
     /// Eliminates the right-hand side with the matrix: no factorisation is kept.
     #[inline(always)]
-    fn newton_step(&self, f: &[f64; N], row_scale: [f64; N]) -> ([f64; N], f64) {
-        solve_row_scaled(self, f, row_scale)
+    fn newton_step(&self, f: &[f64; N], rows: &RowScales<N>) -> ([f64; N], f64) {
+        solve_row_scaled(self, f, rows)
     }
 
     #[inline(always)]

@@ -95,7 +95,31 @@ fn back_substitute<const N: usize>(u: &[[f64; N]; N], inv_diag: &[f64; N], z: &m
     }
 }
 
-/// Solves `J x = -f` with the rows of `J` divided by `row_scale`, and returns `x` with the
+/// A Newton iteration's row equilibration: the scales, their reciprocals (as [`inverses`]
+/// gives them) and whether one was invalid. A block whose row magnitudes do not depend on its
+/// unknowns makes it once per solve.
+#[doc(hidden)]
+#[derive(Clone, Copy, Debug)]
+pub struct RowScales<const N: usize> {
+    /// Row `r` is divided by `s[r]`.
+    pub s: [f64; N],
+    /// `1 / s`, 0 where `s` is invalid.
+    pub inv: [f64; N],
+    /// Whether a scale is zero, negative, infinite or NaN (the factorisation is then degenerate).
+    pub degenerate: bool,
+}
+
+impl<const N: usize> RowScales<N> {
+    /// The equilibration by `s`.
+    #[inline(always)]
+    pub fn new(s: [f64; N]) -> Self {
+        let mut degenerate = false;
+        let inv = inverses(s, &mut degenerate);
+        RowScales { s, inv, degenerate }
+    }
+}
+
+/// Solves `J x = -f` with the rows of `J` divided by `rows.s`, and returns `x` with the
 /// smallest pivot of the row-equilibrated matrix (0 when degenerate or not finite, as
 /// [`Lu::pivot_ratio`]): the Newton step of a dense block. The same operations in the same
 /// order as [`Lu::factor`] followed by [`Lu::solve`] of `-f` (so the results are bit for bit
@@ -106,10 +130,9 @@ fn back_substitute<const N: usize>(u: &[[f64; N]; N], inv_diag: &[f64; N], z: &m
 pub(crate) fn solve_row_scaled<const N: usize>(
     j: &[[f64; N]; N],
     f: &[f64; N],
-    row_scale: [f64; N],
+    rows: &RowScales<N>,
 ) -> ([f64; N], f64) {
-    let mut degenerate = false;
-    let inv_row = inverses(row_scale, &mut degenerate);
+    let (inv_row, degenerate) = (rows.inv, rows.degenerate);
     // Scaled in place: no zero-filled array to overwrite.
     let mut a = *j;
     let mut b = [0.0; N];
@@ -679,7 +702,7 @@ mod tests {
     fn the_newton_step_is_the_factorisation_and_solve() {
         fn check<const N: usize>(j: [[f64; N]; N], f: [f64; N], s: [f64; N]) {
             let canon = |x: f64| if x.is_nan() { u64::MAX } else { x.to_bits() };
-            let (x, ratio) = solve_row_scaled(&j, &f, s);
+            let (x, ratio) = solve_row_scaled(&j, &f, &RowScales::new(s));
             let lu = Lu::factor(&j, s);
             let z = lu.solve(f.map(|v| -v));
             assert_eq!(x.map(canon), z.map(canon), "{j:?} {f:?} {s:?}");

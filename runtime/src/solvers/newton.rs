@@ -5,7 +5,7 @@
 //! evaluations, final residual and why it stopped.
 //!
 //! **Scale-free tests.** Every test is made in the units of the problem: residual `i` is divided
-//! by its row magnitude `scale_i` (see [`BlockEval::scale`]), a step in unknown `j` by that
+//! by its row magnitude `scale_i` (see [`Magnitudes`]), a step in unknown `j` by that
 //! unknown's magnitude, and the pivots of the factorisation are those of the row-equilibrated
 //! Jacobian (of the column-equilibrated one for a final correction made with the analogs'
 //! factorisation, below). A mechanism in metres, millimetres or micrometres therefore stops at
@@ -21,32 +21,114 @@
 //! returns, whose Jacobian the analogs factorise. [`newton_keeping_lu`] makes that correction
 //! with the analogs' own factorisation (columns divided by their magnitudes) and hands it over,
 //! so a block factorises its Jacobian at the root once, as a hand-written solver would.
+//!
+//! **Magnitudes made once.** The magnitudes of a loop of links of given lengths do not depend on
+//! the block's unknowns: the generated code makes them, checks them and takes the reciprocals of
+//! the row magnitudes once per solve, and the evaluations carry only residuals, Jacobian and kept
+//! values. A block whose magnitudes depend on its unknowns (a slider's distance is a length of
+//! its loop) keeps them with each evaluation.
 
 pub use super::newton_config::{NewtonConfig, SolveReport, Termination};
 use crate::solvers::jacobian::BlockJacobian;
-use crate::solvers::lu::{Lu, all_positive_finite, max_abs};
+use crate::solvers::lu::{Lu, RowScales, all_positive_finite, max_abs};
 
-/// One evaluation of a block: residuals, Jacobian rows, the rows' magnitudes, and intermediate
-/// values the generated code keeps for later stages (so they are not recomputed after
-/// convergence).
+/// One evaluation of a block: residuals, Jacobian rows, and intermediate values the generated
+/// code keeps for later stages (so they are not recomputed after convergence).
 #[doc(hidden)]
 #[derive(Clone, Copy, Debug)]
 pub struct BlockEval<const N: usize, const K: usize, J = [[f64; N]; N]> {
     pub f: [f64; N],
     /// The Jacobian: dense rows, or a sparse block's non-zeros (see [`BlockJacobian`]).
     pub j: J,
-    /// Magnitude of each row: a structural bound of the equation's terms (for a loop
-    /// projection, the sum of its link lengths), in the equation's unit, generated for every
-    /// equation. Residual `i` is judged relative to it. A value that is not positive and finite
-    /// (a hand-written block that has none, or a degenerate mechanism whose terms all vanish)
-    /// is replaced by the row sum `sum_j |J_ij|`, which is right for angle unknowns only.
-    pub scale: [f64; N],
+    pub keep: [f64; K],
+}
+
+/// The magnitudes a block's tests judge it in. The generated code makes them once per solve
+/// when they do not depend on the block's unknowns (every loop of links of given lengths), and
+/// from each evaluation otherwise (a slider coordinate's magnitude is its own).
+#[doc(hidden)]
+#[derive(Clone, Copy, Debug)]
+pub struct Magnitudes<const N: usize> {
+    /// The row equilibration by the magnitude of each row: a structural bound of the
+    /// equation's terms (for a loop projection, the sum of its link lengths), in the equation's
+    /// unit, generated for every equation. Residual `i` is judged relative to it. Where one is
+    /// not positive and finite (`degenerate`: a hand-written block that has none, or a
+    /// degenerate mechanism whose terms all vanish) the row sums `sum_j |J_ij|` of each
+    /// evaluation replace the invalid ones, which is right for angle unknowns only.
+    rows: RowScales<N>,
     /// The unit of each unknown: one radian for an angle, the magnitude of the rows it appears
     /// in per unit of its Jacobian entry otherwise (a slider coordinate: its loop's lengths). A
     /// step `dz_j` is judged relative to `max(|z_j|, unit_j)`; a value that is not positive and
-    /// finite counts as `1`.
-    pub unit: [f64; N],
-    pub keep: [f64; K],
+    /// finite counts as `1` (replaced here).
+    unit: [f64; N],
+}
+
+impl<const N: usize> Magnitudes<N> {
+    /// The row magnitudes `scale` and the units `unit` of the unknowns, checked once.
+    #[inline(always)]
+    pub fn new(scale: [f64; N], unit: [f64; N]) -> Self {
+        Magnitudes { rows: RowScales::new(scale), unit: units(&unit) }
+    }
+}
+
+/// Where a block's magnitudes come from: made once for the solve ([`Magnitudes`] itself), or
+/// made from each evaluation (a closure).
+#[doc(hidden)]
+pub trait MagnitudesOf<const N: usize, const K: usize, J> {
+    /// The magnitudes of every evaluation, when they are the same for all.
+    fn fixed(&self) -> Option<&Magnitudes<N>>;
+    /// The magnitudes at the evaluation `ev`.
+    fn of(&self, ev: &BlockEval<N, K, J>) -> Magnitudes<N>;
+}
+
+impl<const N: usize, const K: usize, J> MagnitudesOf<N, K, J> for Magnitudes<N> {
+    #[inline(always)]
+    fn fixed(&self) -> Option<&Magnitudes<N>> {
+        Some(self)
+    }
+    #[inline(always)]
+    fn of(&self, _ev: &BlockEval<N, K, J>) -> Magnitudes<N> {
+        *self
+    }
+}
+
+impl<const N: usize, const K: usize, J, F: Fn(&BlockEval<N, K, J>) -> Magnitudes<N>> MagnitudesOf<N, K, J> for F {
+    #[inline(always)]
+    fn fixed(&self) -> Option<&Magnitudes<N>> {
+        None
+    }
+    #[inline(always)]
+    fn of(&self, ev: &BlockEval<N, K, J>) -> Magnitudes<N> {
+        self(ev)
+    }
+}
+
+/// The magnitudes `$mags` gives at the evaluation `$ev`: those made once, or made into
+/// `$current` (the caller's slot, left uninitialised for fixed magnitudes: nothing is copied).
+macro_rules! magnitudes_at {
+    ($mags:expr, $ev:expr, $current:ident) => {
+        match $mags.fixed() {
+            Some(m) => m,
+            None => {
+                $current = $mags.of($ev);
+                &$current
+            }
+        }
+    };
+}
+
+/// The row equilibration of the magnitudes `$m` at the evaluation `$ev`: `$m`'s own when its
+/// scales are all valid (one branch for the set), otherwise made row by row into `$fallback`
+/// (the caller's slot, left uninitialised on the common path).
+macro_rules! rows_at {
+    ($m:expr, $ev:expr, $fallback:ident) => {
+        if $m.rows.degenerate {
+            $fallback = fallback_rows(&$m.rows.s, $ev);
+            &$fallback
+        } else {
+            &$m.rows
+        }
+    };
 }
 
 /// A converged block. Its evaluation is the caller's (see [`newton`]): at `z`, or (after a
@@ -109,26 +191,22 @@ const ACCURATE_PIVOT: f64 = 1e-3;
 /// convergence.
 const LINEAR_CONTRACTION: f64 = 0.1;
 
-/// The row magnitudes of an evaluation (see [`BlockEval::scale`]): the generated ones when they
-/// are all valid (one branch for the set), otherwise row by row.
-#[inline(always)]
-fn row_scales<const N: usize, const K: usize, J: BlockJacobian<N>>(ev: &BlockEval<N, K, J>) -> [f64; N] {
-    if all_positive_finite(&ev.scale) { ev.scale } else { fallback_row_scales(ev) }
-}
-
-/// [`row_scales`] where a generated magnitude is missing or degenerate: the row sum replaces it.
+/// `rows_at!` where a generated magnitude is missing or degenerate: the row sum replaces it.
 #[cold]
 #[inline(never)]
-fn fallback_row_scales<const N: usize, const K: usize, J: BlockJacobian<N>>(ev: &BlockEval<N, K, J>) -> [f64; N] {
+fn fallback_rows<const N: usize, const K: usize, J: BlockJacobian<N>>(
+    scale: &[f64; N],
+    ev: &BlockEval<N, K, J>,
+) -> RowScales<N> {
     let mut s = [0.0; N];
     for r in 0..N {
-        let given = ev.scale[r];
+        let given = scale[r];
         s[r] = if given > 0.0 && given < f64::INFINITY { given } else { ev.j.row_abs_sum(r) };
     }
-    s
+    RowScales::new(s)
 }
 
-/// The units of the unknowns (see [`BlockEval::unit`]): the generated ones when they are all
+/// The units of the unknowns (see [`Magnitudes::unit`]): the generated ones when they are all
 /// valid (one branch for the set), otherwise `1` for each invalid one.
 #[inline(always)]
 fn units<const N: usize>(unit: &[f64; N]) -> [f64; N] {
@@ -158,35 +236,45 @@ fn scaled_residual<const N: usize>(f: &[f64; N], s: &[f64; N]) -> f64 {
     m
 }
 
-/// [`scaled_residual`] and [`sum_sq_scaled`] in one pass (one division per row).
+/// [`scaled_residual`] and [`sum_sq_scaled`] in one pass (one division per row). With valid
+/// scales the maximum skips a NaN (one `maxsd`): the sum of squares, which the callers test,
+/// catches it.
 #[allow(clippy::neg_cmp_op_on_partial_ord)] // the negation is what lets NaN through
 #[inline(always)]
-fn scaled_norms<const N: usize>(f: &[f64; N], s: &[f64; N]) -> (f64, f64) {
+fn scaled_norms<const N: usize>(f: &[f64; N], rows: &RowScales<N>) -> (f64, f64) {
+    let s = &rows.s;
     let mut m = 0.0f64;
     let mut acc = 0.0;
-    for r in 0..N {
-        let v = f[r] / s[r];
-        // `|f / s| = |f| / s` for the positive scales; a zero residual counts as zero even over
-        // a zero scale.
-        let a = if f[r] == 0.0 { 0.0 } else { v.abs() };
-        // Larger, or NaN (which then propagates).
-        if !(a <= m) {
-            m = a;
+    if rows.degenerate {
+        for r in 0..N {
+            let v = f[r] / s[r];
+            // A zero residual counts as zero even over a zero scale.
+            let a = if f[r] == 0.0 { 0.0 } else { v.abs() };
+            // Larger, or NaN.
+            if !(a <= m) {
+                m = a;
+            }
+            acc += v * v;
         }
-        acc += v * v;
+    } else {
+        for r in 0..N {
+            let v = f[r] / s[r];
+            let a = v.abs();
+            m = if a > m { a } else { m };
+            acc += v * v;
+        }
     }
     (m, if acc.is_nan() { f64::INFINITY } else { acc })
 }
 
 /// `max_j |dz_j| / max(|z_j|, unit_j)`: steps relative to each unknown's magnitude, in its own
-/// unit (see [`BlockEval::unit`]); NaN propagates.
+/// unit (see [`Magnitudes::unit`], checked); NaN propagates.
 #[inline(always)]
 #[allow(clippy::neg_cmp_op_on_partial_ord)] // the negation is what lets NaN through
 fn scaled_step<const N: usize>(dz: &[f64; N], z: &[f64; N], unit: &[f64; N]) -> f64 {
-    let u = units(unit);
     let mut m = 0.0f64;
     for c in 0..N {
-        let v = dz[c].abs() / z[c].abs().max(u[c]);
+        let v = dz[c].abs() / z[c].abs().max(unit[c]);
         // Larger, or NaN (which then propagates).
         if !(v <= m) {
             m = v;
@@ -196,7 +284,7 @@ fn scaled_step<const N: usize>(dz: &[f64; N], z: &[f64; N], unit: &[f64; N]) -> 
 }
 
 /// The scaled residual of a full system (continuation, event location): each residual relative
-/// to the larger of its generated row magnitude `scale` (see [`BlockEval::scale`]) and
+/// to the larger of its generated row magnitude `scale` (see [`Magnitudes::scale`]) and
 /// `sum_j |J_ij| + |extra_i|`, where `extra` holds further derivatives of the row (along the
 /// input path). The second keeps the test attainable where every term of a row vanishes at a
 /// branch point (e.g. `s^2 - x^2` at the origin), where the continuation's absolute step test
@@ -260,7 +348,7 @@ fn non_finite_row<const N: usize, const K: usize, J: BlockJacobian<N>>(ev: &Bloc
 #[inline(always)]
 fn newton_step<const N: usize, const K: usize, J: BlockJacobian<N>>(
     ev: &BlockEval<N, K, J>,
-    s: &[f64; N],
+    rows: &RowScales<N>,
 ) -> ([f64; N], f64) {
     if N == 1 {
         // A scalar block needs no factorisation: the row-equilibrated pivot is `|J| / s` (NaN
@@ -269,9 +357,9 @@ fn newton_step<const N: usize, const K: usize, J: BlockJacobian<N>>(
         let j = ev.j.first();
         let mut dz = [0.0; N];
         dz[0] = -ev.f[0] / j;
-        return (dz, j.abs() / s[0]);
+        return (dz, j.abs() / rows.s[0]);
     }
-    ev.j.newton_step(&ev.f, *s)
+    ev.j.newton_step(&ev.f, rows)
 }
 
 /// The guess `z0` corrected by one Newton step `dz` with the Jacobian of its evaluation `ev`,
@@ -281,14 +369,15 @@ fn newton_step<const N: usize, const K: usize, J: BlockJacobian<N>>(
 #[inline(always)]
 fn free_correction<const N: usize, const K: usize, J: BlockJacobian<N>>(
     ev: &BlockEval<N, K, J>,
-    s: &[f64; N],
+    rows: &RowScales<N>,
+    unit: &[f64; N],
     rho: f64,
     z0: [f64; N],
     cfg: &NewtonConfig,
     last: &mut impl LastStep<N, K, J>,
 ) -> Option<([f64; N], [f64; N], f64)> {
-    let (dz, pivot) = last.correction(ev, s, rho);
-    let step = scaled_step(&dz, &z0, &ev.unit);
+    let (dz, pivot) = last.correction(ev, rows, rho);
+    let step = scaled_step(&dz, &z0, unit);
     // NaN fails both tests.
     if !(pivot > cfg.singular_tol && step <= MAX_FREE_CORRECTION) {
         return None;
@@ -314,13 +403,16 @@ fn evaluated_correction<const N: usize, const K: usize, J: BlockJacobian<N>>(
     dz: &[f64; N],
     bound: f64,
     eval: &mut impl FnMut(&[f64; N]) -> BlockEval<N, K, J>,
+    mags: &impl MagnitudesOf<N, K, J>,
 ) -> Option<f64> {
     let mut z1 = *z;
     for c in 0..N {
         z1[c] += dz[c];
     }
     let ev1 = eval(&z1);
-    let rho = scaled_residual(&ev1.f, &row_scales(&ev1));
+    let (current, fallback);
+    let m = magnitudes_at!(mags, &ev1, current);
+    let rho = scaled_residual(&ev1.f, &rows_at!(m, &ev1, fallback).s);
     if rho <= bound {
         *z = z1;
         *ev = ev1;
@@ -343,10 +435,11 @@ fn checked_free_correction<const N: usize, const K: usize, J: BlockJacobian<N>>(
     rho0: f64,
     dz: &[f64; N],
     eval: &mut impl FnMut(&[f64; N]) -> BlockEval<N, K, J>,
+    mags: &impl MagnitudesOf<N, K, J>,
     last: &mut impl LastStep<N, K, J>,
 ) -> Solved<N> {
     let mut z = z0;
-    let residual = evaluated_correction(&mut z, ev, dz, rho0, eval).unwrap_or(rho0);
+    let residual = evaluated_correction(&mut z, ev, dz, rho0, eval, mags).unwrap_or(rho0);
     last.keep(ev);
     Solved { z, iterations: 0, evaluations: 2, residual, termination: Termination::ResidualTolerance }
 }
@@ -366,8 +459,9 @@ pub fn newton<const N: usize, const K: usize>(
     ev: &mut BlockEval<N, K>,
     cfg: &NewtonConfig,
     eval: impl FnMut(&[f64; N]) -> BlockEval<N, K>,
+    mags: &impl MagnitudesOf<N, K, [[f64; N]; N]>,
 ) -> Result<Solved<N>, BlockFailure> {
-    newton_with(z0, ev, cfg, eval)
+    newton_with(z0, ev, cfg, eval, mags)
 }
 
 /// [`newton`] for any representation of the Jacobian (a sparse block's non-zeros).
@@ -378,8 +472,9 @@ pub fn newton_with<const N: usize, const K: usize, J: BlockJacobian<N>>(
     ev: &mut BlockEval<N, K, J>,
     cfg: &NewtonConfig,
     eval: impl FnMut(&[f64; N]) -> BlockEval<N, K, J>,
+    mags: &impl MagnitudesOf<N, K, J>,
 ) -> Result<Solved<N>, BlockFailure> {
-    newton_last(z0, ev, cfg, eval, &mut RowSteps)
+    newton_last(z0, ev, cfg, eval, mags, &mut RowSteps)
 }
 
 /// [`newton`] that also writes into `lu` the factorisation the analogs use: `J` with each
@@ -396,9 +491,10 @@ pub fn newton_keeping_lu<const N: usize, const K: usize>(
     ev: &mut BlockEval<N, K>,
     cfg: &NewtonConfig,
     eval: impl FnMut(&[f64; N]) -> BlockEval<N, K>,
+    mags: &impl MagnitudesOf<N, K, [[f64; N]; N]>,
     lu: &mut Lu<N>,
 ) -> Result<Solved<N>, BlockFailure> {
-    newton_last(z0, ev, cfg, eval, &mut KeptLu { lu, valid: false })
+    newton_last(z0, ev, cfg, eval, mags, &mut KeptLu { lu, valid: false })
 }
 
 /// [`newton_with`] whose correction at a converged iterate comes from `last`.
@@ -408,18 +504,21 @@ fn newton_last<const N: usize, const K: usize, J: BlockJacobian<N>>(
     ev: &mut BlockEval<N, K, J>,
     cfg: &NewtonConfig,
     mut eval: impl FnMut(&[f64; N]) -> BlockEval<N, K, J>,
+    mags: &impl MagnitudesOf<N, K, J>,
     last: &mut impl LastStep<N, K, J>,
 ) -> Result<Solved<N>, BlockFailure> {
-    let s = row_scales(ev);
-    let rho = scaled_residual(&ev.f, &s);
+    let (current, fallback);
+    let m = magnitudes_at!(mags, ev, current);
+    let rows = rows_at!(m, ev, fallback);
+    let rho = scaled_residual(&ev.f, &rows.s);
     // NaN fails both tests; an out-of-range tolerance is diagnosed by `iterate`.
     if rho <= cfg.residual_tol
         && cfg.residual_tol <= 1e-3
-        && let Some((z, dz, step)) = free_correction(ev, &s, rho, z0, cfg, last)
+        && let Some((z, dz, step)) = free_correction(ev, rows, &m.unit, rho, z0, cfg, last)
     {
         if step > MAX_UNCHECKED_CORRECTION {
             last.forget();
-            return Ok(checked_free_correction(z0, ev, rho, &dz, &mut eval, last));
+            return Ok(checked_free_correction(z0, ev, rho, &dz, &mut eval, mags, last));
         }
         last.keep(ev);
         return Ok(Solved {
@@ -430,7 +529,7 @@ fn newton_last<const N: usize, const K: usize, J: BlockJacobian<N>>(
             termination: Termination::ResidualTolerance,
         });
     }
-    iterate(z0, ev, cfg, eval, last)
+    iterate(z0, ev, cfg, eval, mags, last, rho)
 }
 
 /// How the correction at a converged iterate is computed: the step that ends the iteration,
@@ -439,9 +538,9 @@ fn newton_last<const N: usize, const K: usize, J: BlockJacobian<N>>(
 /// ends otherwise has kept nothing and says so (`forget` again: measured 12 instructions
 /// cheaper on the class IV block than leaving `keep` to test it), and `keep` makes it.
 trait LastStep<const N: usize, const K: usize, J> {
-    /// The correction `-J^-1 f` at `ev` (rows scaled by `s`, scaled residual `rho`) and the
-    /// smallest pivot of its factorisation.
-    fn correction(&mut self, ev: &BlockEval<N, K, J>, s: &[f64; N], rho: f64) -> ([f64; N], f64);
+    /// The correction `-J^-1 f` at `ev` (rows equilibrated by `rows`, scaled residual `rho`)
+    /// and the smallest pivot of its factorisation.
+    fn correction(&mut self, ev: &BlockEval<N, K, J>, rows: &RowScales<N>, rho: f64) -> ([f64; N], f64);
     /// The evaluation last corrected is not the one returned: nothing it factorised is valid.
     fn forget(&mut self);
     /// Makes what is kept describe `ev`, the returned evaluation.
@@ -453,8 +552,8 @@ struct RowSteps;
 
 impl<const N: usize, const K: usize, J: BlockJacobian<N>> LastStep<N, K, J> for RowSteps {
     #[inline(always)]
-    fn correction(&mut self, ev: &BlockEval<N, K, J>, s: &[f64; N], _rho: f64) -> ([f64; N], f64) {
-        newton_step(ev, s)
+    fn correction(&mut self, ev: &BlockEval<N, K, J>, rows: &RowScales<N>, _rho: f64) -> ([f64; N], f64) {
+        newton_step(ev, rows)
     }
     #[inline(always)]
     fn forget(&mut self) {}
@@ -474,7 +573,7 @@ struct KeptLu<'a, const N: usize> {
 
 impl<const N: usize, const K: usize> LastStep<N, K, [[f64; N]; N]> for KeptLu<'_, N> {
     #[inline(always)]
-    fn correction(&mut self, ev: &BlockEval<N, K>, s: &[f64; N], rho: f64) -> ([f64; N], f64) {
+    fn correction(&mut self, ev: &BlockEval<N, K>, rows: &RowScales<N>, rho: f64) -> ([f64; N], f64) {
         if rho > MAX_UNCHECKED_CORRECTION {
             // A residual above the rounding level means, for all but an ill-conditioned block,
             // a correction above it too, which is checked by a new evaluation whose Jacobian
@@ -482,7 +581,7 @@ impl<const N: usize, const K: usize> LastStep<N, K, [[f64; N]; N]> for KeptLu<'_
             // The cheaper row-equilibrated step instead; `keep` factorises what is returned
             // (whichever way the guess goes, only the cost differs).
             self.valid = false;
-            return newton_step(ev, s);
+            return newton_step(ev, rows);
         }
         refactor_columns(self.lu, ev);
         self.valid = true;
@@ -518,12 +617,15 @@ fn refactor_columns<const N: usize, const K: usize>(lu: &mut Lu<N>, ev: &BlockEv
 /// are out of line.
 #[cold]
 #[inline(never)]
+#[allow(clippy::neg_cmp_op_on_partial_ord)] // the negation is what lets NaN through
 fn iterate<const N: usize, const K: usize, J: BlockJacobian<N>>(
     z0: [f64; N],
     ev: &mut BlockEval<N, K, J>,
     cfg: &NewtonConfig,
     mut eval: impl FnMut(&[f64; N]) -> BlockEval<N, K, J>,
+    mags: &impl MagnitudesOf<N, K, J>,
     last: &mut impl LastStep<N, K, J>,
+    rho0: f64,
 ) -> Result<Solved<N>, BlockFailure> {
     if let Some(field) = cfg.invalid_field() {
         return Err(BlockFailure::InvalidConfig { field });
@@ -539,45 +641,61 @@ fn iterate<const N: usize, const K: usize, J: BlockJacobian<N>>(
         slow_run: 0,
         rho_mark: f64::INFINITY,
         prev_rho: f64::INFINITY,
+        judged: None,
     };
     loop {
-        if let Some(row) = residual_non_finite(it.ev) {
+        let (current, fallback);
+        let m = magnitudes_at!(mags, it.ev, current);
+        let rows = rows_at!(m, it.ev, fallback);
+        let s = &rows.s;
+        // The guess's scaled residual is the caller's; an iterate reached by a full step in
+        // fixed scales was judged by that step.
+        let (rho, phi) = match it.judged.take() {
+            Some(judged) => judged,
+            None if it.iterations == 0 => (rho0, sum_sq_scaled(&it.ev.f, s)),
+            None => scaled_norms(&it.ev.f, rows),
+        };
+        // A residual that is not finite makes the sum of squares infinite or NaN (which it
+        // reports as infinite); so does an overflow, for which the search finds no row.
+        if !(phi < f64::INFINITY)
+            && let Some(row) = residual_non_finite(it.ev)
+        {
             return Err(BlockFailure::NonFinite { row, iterations: it.iterations });
         }
-        let s = row_scales(it.ev);
-        let (rho, phi) = scaled_norms(&it.ev.f, &s);
         if rho <= cfg.residual_tol {
             // Converged: the last correction, from the factorisation `last` keeps.
-            let (dz, pivot) = last.correction(it.ev, &s, rho);
-            let step = scaled_step(&dz, &it.z, &it.ev.unit);
-            return it.finish(dz, step, pivot, rho, &s, Termination::ResidualTolerance, cfg, &mut eval, last);
+            let (dz, pivot) = last.correction(it.ev, rows, rho);
+            let step = scaled_step(&dz, &it.z, &m.unit);
+            return it.finish(dz, step, pivot, rho, s, Termination::ResidualTolerance, cfg, &mut eval, mags, last);
         }
-        let (dz, pivot) = newton_step(it.ev, &s);
-        let step = scaled_step(&dz, &it.z, &it.ev.unit);
+        let (dz, pivot) = newton_step(it.ev, rows);
+        let step = scaled_step(&dz, &it.z, &m.unit);
         // At the rounding floor the step no longer shrinks below `step_tol` or the residual no
         // longer decreases (a singular root still divides it by about four per iteration).
         let stagnant = rho >= 0.5 * it.prev_rho;
         if (step <= cfg.step_tol || stagnant) && rho <= floor {
             last.forget();
-            return it.finish(dz, step, pivot, rho, &s, Termination::StepTolerance, cfg, &mut eval, last);
+            return it.finish(dz, step, pivot, rho, s, Termination::StepTolerance, cfg, &mut eval, mags, last);
         }
         if it.iterations >= cfg.max_iterations {
-            return Err(it.capped(rho, &s, cfg));
+            return Err(it.capped(rho, s, cfg));
         }
         if it.iterations == cfg.max_iterations / 2 {
             it.rho_mark = rho;
         }
         let newton_ok = pivot > cfg.singular_tol * 1e-3 && step.is_finite();
         // At the rounding floor only the Newton step is worth trying.
-        let moved = (newton_ok && it.full_step(&dz, pivot, &s, phi, cfg, &mut eval))
-            || (rho > floor && it.descend(&s, cfg, &mut eval));
+        // Fixed magnitudes with valid scales (not the row sums that replace invalid ones).
+        let fixed_rows = mags.fixed().is_some_and(|m| !m.rows.degenerate);
+        let moved = (newton_ok && it.full_step(&dz, pivot, rows, fixed_rows, phi, cfg, &mut eval))
+            || (rho > floor && it.descend(s, cfg, &mut eval));
         if !moved {
             if rho <= floor {
                 // No step decreases a residual already at its rounding floor.
                 last.forget();
-                return it.finish(dz, step, pivot, rho, &s, Termination::StepTolerance, cfg, &mut eval, last);
+                return it.finish(dz, step, pivot, rho, s, Termination::StepTolerance, cfg, &mut eval, mags, last);
             }
-            return Err(it.stalled(rho, pivot, &s, cfg));
+            return Err(it.stalled(rho, pivot, s, cfg));
         }
         let slow = newton_ok && step > LINEAR_CONTRACTION * it.prev_step;
         it.slow_run = if slow { it.slow_run + 1 } else { 0 };
@@ -603,6 +721,9 @@ struct Iter<'e, const N: usize, const K: usize, J> {
     rho_mark: f64,
     /// The scaled residual at the previous iterate.
     prev_rho: f64,
+    /// The scaled residual and sum of squares of the current iterate, when the full step that
+    /// reached it computed them in scales the next iteration uses too.
+    judged: Option<(f64, f64)>,
 }
 
 impl<const N: usize, const K: usize, J: BlockJacobian<N>> Iter<'_, N, K, J> {
@@ -622,6 +743,7 @@ impl<const N: usize, const K: usize, J: BlockJacobian<N>> Iter<'_, N, K, J> {
         termination: Termination,
         cfg: &NewtonConfig,
         eval: &mut impl FnMut(&[f64; N]) -> BlockEval<N, K, J>,
+        mags: &impl MagnitudesOf<N, K, J>,
         last: &mut impl LastStep<N, K, J>,
     ) -> Result<Solved<N>, BlockFailure> {
         if let Some(row) = jacobian_non_finite(self.ev) {
@@ -649,7 +771,7 @@ impl<const N: usize, const K: usize, J: BlockJacobian<N>> Iter<'_, N, K, J> {
                 }
             } else {
                 last.forget();
-                self.checked_correction(&dz, rho, cfg, eval);
+                self.checked_correction(&dz, rho, cfg, eval, mags);
             }
         }
         last.keep(self.ev);
@@ -666,9 +788,10 @@ impl<const N: usize, const K: usize, J: BlockJacobian<N>> Iter<'_, N, K, J> {
         rho: f64,
         cfg: &NewtonConfig,
         eval: &mut impl FnMut(&[f64; N]) -> BlockEval<N, K, J>,
+        mags: &impl MagnitudesOf<N, K, J>,
     ) {
         self.evaluations += 1;
-        evaluated_correction(&mut self.z, self.ev, dz, rho.max(cfg.residual_tol), eval);
+        evaluated_correction(&mut self.z, self.ev, dz, rho.max(cfg.residual_tol), eval, mags);
     }
 
     /// The failure of a root reached with linear convergence.
@@ -709,11 +832,13 @@ impl<const N: usize, const K: usize, J: BlockJacobian<N>> Iter<'_, N, K, J> {
         &mut self,
         dz: &[f64; N],
         pivot: f64,
-        s: &[f64; N],
+        rows: &RowScales<N>,
+        fixed_rows: bool,
         phi0: f64,
         cfg: &NewtonConfig,
         eval: &mut impl FnMut(&[f64; N]) -> BlockEval<N, K, J>,
     ) -> bool {
+        let s = &rows.s;
         // The slope of phi along dz is -2 phi0 for a Newton step. A well-conditioned
         // factorisation solves to rounding, so that is its slope; otherwise it is computed, so
         // that an inaccurate solve is caught (it is not a descent direction).
@@ -729,8 +854,11 @@ impl<const N: usize, const K: usize, J: BlockJacobian<N>> Iter<'_, N, K, J> {
         // a rejected step's evaluation is replaced by the backtracking's or restored.
         *self.ev = eval(&trial);
         self.evaluations += 1;
-        if sum_sq_scaled(&self.ev.f, s) <= phi0 + 1e-4 * slope {
+        let (rho, phi) = scaled_norms(&self.ev.f, rows);
+        if phi <= phi0 + 1e-4 * slope {
             self.z = trial;
+            // In scales that stay the same, the next iteration's test of this iterate.
+            self.judged = if fixed_rows { Some((rho, phi)) } else { None };
             return true;
         }
         self.rejected(dz, s, phi0, slope, cfg, eval)
@@ -907,19 +1035,37 @@ mod tests {
         mut eval: impl FnMut(&[f64; N]) -> BlockEval<N, K>,
     ) -> Result<(Solved<N>, BlockEval<N, K>), BlockFailure> {
         let mut ev = eval(&z0);
-        newton(z0, &mut ev, cfg, eval).map(|s| (s, ev))
+        newton(z0, &mut ev, cfg, eval, &mags).map(|s| (s, ev))
     }
 
-    fn circle(z: &[f64; 2]) -> BlockEval<2, 0> {
+    /// An evaluation whose magnitudes depend on the unknowns: `scale` and `unit` kept after
+    /// each other, as the generated code keeps such magnitudes (`K = 2 N`).
+    fn varying<const N: usize, const K: usize>(
+        f: [f64; N],
+        j: [[f64; N]; N],
+        scale: [f64; N],
+        unit: [f64; N],
+    ) -> BlockEval<N, K> {
+        let mut keep = [0.0; K];
+        keep[..N].copy_from_slice(&scale);
+        keep[N..2 * N].copy_from_slice(&unit);
+        BlockEval { f, j, keep }
+    }
+
+    /// The magnitudes [`varying`] keeps.
+    fn mags<const N: usize, const K: usize>(ev: &BlockEval<N, K>) -> Magnitudes<N> {
+        Magnitudes::new(core::array::from_fn(|r| ev.keep[r]), core::array::from_fn(|c| ev.keep[N + c]))
+    }
+
+    fn circle(z: &[f64; 2]) -> BlockEval<2, 4> {
         // x^2 + y^2 = 4, y = x^3 (root near (1.03, 1.72), solved numerically).
         let [x, y] = *z;
-        BlockEval {
-            f: [x * x + y * y - 4.0, y - x * x * x],
-            j: [[2.0 * x, 2.0 * y], [-3.0 * x * x, 1.0]],
-            scale: [x * x + y * y + 4.0, y.abs() + (x * x * x).abs()],
-            unit: [1.0; 2],
-            keep: [],
-        }
+        varying(
+            [x * x + y * y - 4.0, y - x * x * x],
+            [[2.0 * x, 2.0 * y], [-3.0 * x * x, 1.0]],
+            [x * x + y * y + 4.0, y.abs() + (x * x * x).abs()],
+            [1.0; 2],
+        )
     }
 
     #[test]
@@ -938,15 +1084,14 @@ mod tests {
 
     /// `x^2 + y^2 + z^2 = 3`, `x = y z`, `z = x y`: a 3x3 block (the general factorisation)
     /// with a regular root at `(1, 1, 1)`.
-    fn sphere(z: &[f64; 3]) -> BlockEval<3, 0> {
+    fn sphere(z: &[f64; 3]) -> BlockEval<3, 6> {
         let [x, y, w] = *z;
-        BlockEval {
-            f: [x * x + y * y + w * w - 3.0, x - y * w, w - x * y],
-            j: [[2.0 * x, 2.0 * y, 2.0 * w], [1.0, -w, -y], [-y, -x, 1.0]],
-            scale: [x * x + y * y + w * w + 3.0, x.abs() + (y * w).abs(), w.abs() + (x * y).abs()],
-            unit: [1.0; 3],
-            keep: [],
-        }
+        varying(
+            [x * x + y * y + w * w - 3.0, x - y * w, w - x * y],
+            [[2.0 * x, 2.0 * y, 2.0 * w], [1.0, -w, -y], [-y, -x, 1.0]],
+            [x * x + y * y + w * w + 3.0, x.abs() + (y * w).abs(), w.abs() + (x * y).abs()],
+            [1.0; 3],
+        )
     }
 
     /// The factorisation `newton_keeping_lu` leaves is, bit for bit, the analogs' own of the
@@ -956,14 +1101,14 @@ mod tests {
     /// correction from it. The position is the row-equilibrated iteration's to rounding.
     #[test]
     fn the_kept_factorisation_is_the_analogs_own() {
-        fn check<const N: usize>(
+        fn check<const N: usize, const K: usize>(
             guess: [f64; N],
             cfg: &NewtonConfig,
-            eval: impl Fn(&[f64; N]) -> BlockEval<N, 0> + Copy,
+            eval: impl Fn(&[f64; N]) -> BlockEval<N, K> + Copy,
         ) -> Termination {
             let mut kept = Lu::unfactored();
             let mut ev = eval(&guess);
-            let s = newton_keeping_lu(guess, &mut ev, cfg, eval, &mut kept).unwrap();
+            let s = newton_keeping_lu(guess, &mut ev, cfg, eval, &mags, &mut kept).unwrap();
             let cols: [f64; N] = core::array::from_fn(|c| max_abs(ev.j.map(|row| row[c])));
             let own = Lu::factor_cols(&ev.j, cols);
             assert_eq!(kept.pivot_ratio().to_bits(), own.pivot_ratio().to_bits());
@@ -993,29 +1138,47 @@ mod tests {
         assert_eq!(check([1.2, 0.9, 1.1], &unreachable, sphere), Termination::StepTolerance);
     }
 
+    /// Magnitudes made once for the solve (as the generated code makes those free of the
+    /// unknowns) and the same magnitudes read from every evaluation give the same solve, bit
+    /// for bit, and so does an invalid scale replaced by the row sums of each evaluation.
+    #[test]
+    fn magnitudes_made_once_are_those_of_every_evaluation() {
+        for scale in [[3.0, 0.25], [0.0, 2.0], [f64::NAN, f64::INFINITY]] {
+            let eval = |z: &[f64; 2]| {
+                let ev = circle(z);
+                varying::<2, 4>(ev.f, ev.j, scale, [1.0, 0.0])
+            };
+            let cfg = NewtonConfig::default();
+            for guess in [[1.0, 1.0], [1.5, 0.5], [1.03, 1.72]] {
+                let (each, ev_each) = solve(guess, &cfg, eval).unwrap();
+                let once = Magnitudes::new(scale, [1.0, 0.0]);
+                let mut ev_once = eval(&guess);
+                let s = newton(guess, &mut ev_once, &cfg, eval, &once).unwrap();
+                assert_eq!(s.z.map(f64::to_bits), each.z.map(f64::to_bits), "{scale:?} {guess:?}");
+                assert_eq!((s.iterations, s.evaluations), (each.iterations, each.evaluations));
+                assert_eq!(
+                    s.residual.to_bits(),
+                    each.residual.to_bits(),
+                    "{scale:?} {guess:?} {} {}",
+                    s.residual,
+                    each.residual
+                );
+                assert_eq!(ev_once.f, ev_each.f);
+            }
+        }
+    }
+
     #[test]
     fn impossible_system_is_no_assembly_not_a_hang() {
         // x^2 + 1 = 0 has no real root: Newton heads for the minimum at x = 0 where J = 0.
-        let f = |z: &[f64; 1]| BlockEval {
-            f: [z[0] * z[0] + 1.0],
-            j: [[2.0 * z[0]]],
-            scale: [z[0] * z[0] + 1.0],
-            unit: [1.0],
-            keep: [],
-        };
+        let f = |z: &[f64; 1]| varying::<1, 2>([z[0] * z[0] + 1.0], [[2.0 * z[0]]], [z[0] * z[0] + 1.0], [1.0]);
         let e = solve([0.7], &NewtonConfig::default(), f).unwrap_err();
         assert!(matches!(e, BlockFailure::NoAssembly { .. }), "{e:?}");
     }
 
     #[test]
     fn nan_is_reported() {
-        let f = |z: &[f64; 1]| BlockEval {
-            f: [z[0].sqrt() - 1.0],
-            j: [[0.5 / z[0].sqrt()]],
-            scale: [0.0],
-            unit: [1.0],
-            keep: [],
-        };
+        let f = |z: &[f64; 1]| varying::<1, 2>([z[0].sqrt() - 1.0], [[0.5 / z[0].sqrt()]], [0.0], [1.0]);
         let e = solve([-1.0], &NewtonConfig::default(), f).unwrap_err();
         assert!(matches!(e, BlockFailure::NonFinite { row: 0, .. }));
     }
@@ -1025,21 +1188,18 @@ mod tests {
     /// step can be taken (a NaN slope).
     #[test]
     fn a_jacobian_not_finite_where_it_stops_is_reported() {
-        let cube_root = |z: &[f64; 2]| BlockEval {
-            f: [z[0].cbrt(), z[1] - 1.0],
-            j: [[1.0 / (3.0 * z[0].cbrt().powi(2)), 0.0], [0.0, 1.0]],
-            scale: [1.0, 1.0],
-            unit: [1.0; 2],
-            keep: [],
+        let cube_root = |z: &[f64; 2]| {
+            varying::<2, 4>(
+                [z[0].cbrt(), z[1] - 1.0],
+                [[1.0 / (3.0 * z[0].cbrt().powi(2)), 0.0], [0.0, 1.0]],
+                [1.0, 1.0],
+                [1.0; 2],
+            )
         };
         let e = solve([0.0, 2.0], &NewtonConfig::default(), cube_root).unwrap_err();
         assert!(matches!(e, BlockFailure::NonFinite { row: 0, .. }), "{e:?}");
-        let nan_slope = |z: &[f64; 2]| BlockEval {
-            f: [z[0] - 3.0, z[1] - 1.0],
-            j: [[1.0, 0.0], [f64::NAN, 1.0]],
-            scale: [1.0, 1.0],
-            unit: [1.0; 2],
-            keep: [],
+        let nan_slope = |z: &[f64; 2]| {
+            varying::<2, 4>([z[0] - 3.0, z[1] - 1.0], [[1.0, 0.0], [f64::NAN, 1.0]], [1.0, 1.0], [1.0; 2])
         };
         let e = solve([0.0, 0.0], &NewtonConfig::default(), nan_slope).unwrap_err();
         assert!(matches!(e, BlockFailure::NonFinite { row: 1, iterations: 0 }), "{e:?}");
@@ -1056,7 +1216,7 @@ mod tests {
     /// root must come back as singular, not as an inaccurate success.
     #[test]
     fn singular_root_reached_linearly_is_singular() {
-        let f = |z: &[f64; 1]| BlockEval { f: [z[0] * z[0]], j: [[2.0 * z[0]]], scale: [1.0], unit: [1.0], keep: [] };
+        let f = |z: &[f64; 1]| varying::<1, 2>([z[0] * z[0]], [[2.0 * z[0]]], [1.0], [1.0]);
         let e = solve([1.0], &NewtonConfig::default(), f).unwrap_err();
         assert!(matches!(e, BlockFailure::Singular { .. }), "{e:?}");
     }
@@ -1069,13 +1229,12 @@ mod tests {
         let small = |z: &[f64; 2]| {
             let ev = circle(&[z[0], z[1] / k]);
             // Scale the second unknown: y' = k y; rows scaled by k.
-            BlockEval {
-                f: [ev.f[0] * k, ev.f[1] * k],
-                j: [[ev.j[0][0] * k, ev.j[0][1]], [ev.j[1][0] * k, ev.j[1][1]]],
-                scale: [ev.scale[0] * k, ev.scale[1] * k],
-                unit: [1.0, k],
-                keep: [],
-            }
+            varying::<2, 4>(
+                [ev.f[0] * k, ev.f[1] * k],
+                [[ev.j[0][0] * k, ev.j[0][1]], [ev.j[1][0] * k, ev.j[1][1]]],
+                [ev.keep[0] * k, ev.keep[1] * k],
+                [1.0, k],
+            )
         };
         let (a, _) = solve([1.0, 1.0], &NewtonConfig::default(), circle).unwrap();
         let (b, _) = solve([1.0, k], &NewtonConfig::default(), small).unwrap();
