@@ -545,6 +545,9 @@ trait LastStep<const N: usize, const K: usize, J> {
     fn forget(&mut self);
     /// Makes what is kept describe `ev`, the returned evaluation.
     fn keep(&mut self, ev: &BlockEval<N, K, J>);
+    /// Whether what the last correction factorised shows the current evaluation's Jacobian to
+    /// be finite (then it need not be scanned).
+    fn finite_jacobian(&self) -> bool;
 }
 
 /// The iteration's own row-equilibrated step; nothing is kept.
@@ -559,6 +562,10 @@ impl<const N: usize, const K: usize, J: BlockJacobian<N>> LastStep<N, K, J> for 
     fn forget(&mut self) {}
     #[inline(always)]
     fn keep(&mut self, _ev: &BlockEval<N, K, J>) {}
+    #[inline(always)]
+    fn finite_jacobian(&self) -> bool {
+        false
+    }
 }
 
 /// The correction from the factorisation the analogs use: the Jacobian with each column
@@ -596,6 +603,12 @@ impl<const N: usize, const K: usize> LastStep<N, K, [[f64; N]; N]> for KeptLu<'_
         if !self.valid {
             refactor_columns(self.lu, ev);
         }
+    }
+    /// A positive pivot ratio means every column magnitude was positive and finite, and a
+    /// column with an infinite or NaN entry has an infinite or NaN magnitude ([`max_abs`]).
+    #[inline(always)]
+    fn finite_jacobian(&self) -> bool {
+        self.valid && self.lu.pivot_ratio() > 0.0
     }
 }
 
@@ -746,7 +759,9 @@ impl<const N: usize, const K: usize, J: BlockJacobian<N>> Iter<'_, N, K, J> {
         mags: &impl MagnitudesOf<N, K, J>,
         last: &mut impl LastStep<N, K, J>,
     ) -> Result<Solved<N>, BlockFailure> {
-        if let Some(row) = jacobian_non_finite(self.ev) {
+        if !last.finite_jacobian()
+            && let Some(row) = jacobian_non_finite(self.ev)
+        {
             return Err(BlockFailure::NonFinite { row, iterations: self.iterations });
         }
         // The position is known to about the last step of a linearly converging iteration (the
@@ -1198,6 +1213,11 @@ mod tests {
         };
         let e = solve([0.0, 2.0], &NewtonConfig::default(), cube_root).unwrap_err();
         assert!(matches!(e, BlockFailure::NonFinite { row: 0, .. }), "{e:?}");
+        // The same where the final correction is made with the analogs' factorisation (which
+        // vouches for a finite Jacobian only through a positive pivot ratio).
+        let (mut ev, mut kept) = (cube_root(&[0.0, 2.0]), Lu::unfactored());
+        let e = newton_keeping_lu([0.0, 2.0], &mut ev, &NewtonConfig::default(), cube_root, &mags, &mut kept);
+        assert!(matches!(e, Err(BlockFailure::NonFinite { row: 0, .. })), "{e:?}");
         let nan_slope = |z: &[f64; 2]| {
             varying::<2, 4>([z[0] - 3.0, z[1] - 1.0], [[1.0, 0.0], [f64::NAN, 1.0]], [1.0, 1.0], [1.0; 2])
         };
