@@ -20,6 +20,9 @@ pub struct Lu<const N: usize> {
     lu: [[f64; N]; N],
     perm: [usize; N],
     inv_row: [f64; N],
+    /// Whether `inv_row` is anything but ones: the analogs' factorisations scale columns only,
+    /// and their solves then skip the multiplications by one.
+    rows_scaled: bool,
     inv_col: [f64; N],
     /// Reciprocals of the pivots, so that solves multiply instead of divide.
     inv_diag: [f64; N],
@@ -209,6 +212,7 @@ impl<const N: usize> Lu<N> {
                 lu: *j,
                 perm: [0; N],
                 inv_row: [1.0; N],
+                rows_scaled: false,
                 inv_col: [1.0; N],
                 inv_diag: [1.0 / j[0][0]; N],
                 // A NaN or infinite pivot counts as singular.
@@ -232,6 +236,7 @@ impl<const N: usize> Lu<N> {
             lu: [[0.0; N]; N],
             perm: [0; N],
             inv_row: [0.0; N],
+            rows_scaled: true,
             inv_col: [0.0; N],
             inv_diag: [0.0; N],
             pivot_ratio: 0.0,
@@ -266,6 +271,8 @@ impl<const N: usize> Lu<N> {
     fn refactor_general(&mut self, j: &[[f64; N]; N], row_scale: [f64; N], col_scale: [f64; N]) {
         let mut degenerate = false;
         self.inv_row = inverses(row_scale, &mut degenerate);
+        // A constant set of ones (the analogs' factorisations) folds to `false`.
+        self.rows_scaled = self.inv_row != [1.0; N];
         self.inv_col = inverses(col_scale, &mut degenerate);
         let (inv_row, inv_col) = (self.inv_row, self.inv_col);
         let lu = &mut self.lu;
@@ -358,6 +365,7 @@ impl<const N: usize> Lu<N> {
             lu,
             perm,
             inv_row,
+            rows_scaled: true,
             inv_col,
             inv_diag,
             pivot_ratio: if degenerate || !min_pivot.is_finite() { 0.0 } else { min_pivot },
@@ -419,9 +427,16 @@ impl<const N: usize> Lu<N> {
     #[inline(always)]
     fn solve_general(&self, b: [f64; N]) -> [f64; N] {
         let mut z = [0.0; N];
-        for r in 0..N {
-            let p = self.perm[r];
-            z[r] = b[p] * self.inv_row[p];
+        if self.rows_scaled {
+            for r in 0..N {
+                let p = self.perm[r];
+                z[r] = b[p] * self.inv_row[p];
+            }
+        } else {
+            // The same values: a multiplication by one is exact.
+            for r in 0..N {
+                z[r] = b[self.perm[r]];
+            }
         }
         for r in 0..N {
             let mut acc = z[r];
@@ -489,6 +504,7 @@ impl Lu<1> {
             lu: j,
             perm: [0],
             inv_row: [1.0],
+            rows_scaled: false,
             inv_col: [1.0],
             inv_diag: [1.0 / j[0][0]],
             pivot_ratio: p.abs(),
