@@ -274,7 +274,10 @@ fn scaled_norms<const N: usize>(f: &[f64; N], rows: &RowScales<N>) -> (f64, f64)
 fn scaled_step<const N: usize>(dz: &[f64; N], z: &[f64; N], unit: &[f64; N]) -> f64 {
     let mut m = 0.0f64;
     for c in 0..N {
-        let v = dz[c].abs() / z[c].abs().max(unit[c]);
+        // The larger of `|z|` and the unit (a NaN `z` gives the unit, as `f64::max` would), one
+        // `maxsd` where `f64::max` also tests for NaN.
+        let (a, u) = (z[c].abs(), unit[c]);
+        let v = dz[c].abs() / if a > u { a } else { u };
         // Larger, or NaN (which then propagates).
         if !(v <= m) {
             m = v;
@@ -284,7 +287,7 @@ fn scaled_step<const N: usize>(dz: &[f64; N], z: &[f64; N], unit: &[f64; N]) -> 
 }
 
 /// The scaled residual of a full system (continuation, event location): each residual relative
-/// to the larger of its generated row magnitude `scale` (see [`Magnitudes::scale`]) and
+/// to the larger of its generated row magnitude `scale` (see [`Magnitudes`]) and
 /// `sum_j |J_ij| + |extra_i|`, where `extra` holds further derivatives of the row (along the
 /// input path). The second keeps the test attainable where every term of a row vanishes at a
 /// branch point (e.g. `s^2 - x^2` at the origin), where the continuation's absolute step test
