@@ -220,20 +220,26 @@ fn fallback_units<const N: usize>(unit: &[f64; N]) -> [f64; N] {
     unit.map(|u| if u > 0.0 && u < f64::INFINITY { u } else { 1.0 })
 }
 
+/// The largest of the values `v` (each non-negative or NaN), or NaN when one is NaN: per value a
+/// select (one `maxsd`, which skips a NaN) and an addition (which does not), where a maximum
+/// that keeps a NaN costs a comparison and a blend.
+#[inline(always)]
+fn largest<const N: usize>(v: [f64; N]) -> f64 {
+    let (mut m, mut sum) = (0.0f64, 0.0f64);
+    for x in v {
+        m = if x > m { x } else { m };
+        sum += x;
+    }
+    if sum.is_nan() { f64::NAN } else { m }
+}
+
 /// `max_i |f_i| / s_i`; NaN propagates, a non-zero residual over a zero scale is infinite.
 #[inline(always)]
-#[allow(clippy::neg_cmp_op_on_partial_ord)] // the negation is what lets NaN through
 fn scaled_residual<const N: usize>(f: &[f64; N], s: &[f64; N]) -> f64 {
-    let mut m = 0.0f64;
-    for r in 0..N {
+    largest::<N>(core::array::from_fn(|r| {
         let a = f[r].abs();
-        let v = if a == 0.0 { 0.0 } else { a / s[r] };
-        // Larger, or NaN (which then propagates).
-        if !(v <= m) {
-            m = v;
-        }
-    }
-    m
+        if a == 0.0 { 0.0 } else { a / s[r] }
+    }))
 }
 
 /// [`scaled_residual`] and [`sum_sq_scaled`] in one pass (one division per row). With valid
@@ -270,20 +276,13 @@ fn scaled_norms<const N: usize>(f: &[f64; N], rows: &RowScales<N>) -> (f64, f64)
 /// `max_j |dz_j| / max(|z_j|, unit_j)`: steps relative to each unknown's magnitude, in its own
 /// unit (see [`Magnitudes::unit`], checked); NaN propagates.
 #[inline(always)]
-#[allow(clippy::neg_cmp_op_on_partial_ord)] // the negation is what lets NaN through
 fn scaled_step<const N: usize>(dz: &[f64; N], z: &[f64; N], unit: &[f64; N]) -> f64 {
-    let mut m = 0.0f64;
-    for c in 0..N {
+    largest::<N>(core::array::from_fn(|c| {
         // The larger of `|z|` and the unit (a NaN `z` gives the unit, as `f64::max` would), one
         // `maxsd` where `f64::max` also tests for NaN.
         let (a, u) = (z[c].abs(), unit[c]);
-        let v = dz[c].abs() / if a > u { a } else { u };
-        // Larger, or NaN (which then propagates).
-        if !(v <= m) {
-            m = v;
-        }
-    }
-    m
+        dz[c].abs() / if a > u { a } else { u }
+    }))
 }
 
 /// The scaled residual of a full system (continuation, event location): each residual relative
