@@ -365,7 +365,8 @@ impl<const N: usize> Lu<N> {
             lu,
             perm,
             inv_row,
-            rows_scaled: true,
+            // As the general factorisation records it (the 2x2 solve does not read it).
+            rows_scaled: inv_row != [1.0; N],
             inv_col,
             inv_diag,
             pivot_ratio: if degenerate || !min_pivot.is_finite() { 0.0 } else { min_pivot },
