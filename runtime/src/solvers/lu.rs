@@ -255,26 +255,38 @@ impl<const N: usize> Lu<N> {
 
     /// [`Lu::factor_cols`] written over `self`: made where it is kept, since moving a
     /// factorisation of 3 or more unknowns is a copy of `N^2 + 5N` words (a smaller one is
-    /// made and moved).
+    /// made and moved). `col_scale` holds the columns' largest magnitudes ([`max_abs`]), which
+    /// are not screened, as in [`Lu::factor_in_cols`]: one that is zero, infinite or NaN makes
+    /// its column of the equilibrated matrix NaN or zero, so a pivot is NaN or zero and
+    /// [`Lu::pivot_ratio`] is 0 as in the screened factorisation (only the other fields of such
+    /// a degenerate factorisation differ).
     #[inline(always)]
     pub(crate) fn refactor_cols(&mut self, j: &[[f64; N]; N], col_scale: [f64; N]) {
         if N <= 2 {
             *self = Self::factor_cols(j, col_scale);
         } else {
-            self.refactor_general(j, [1.0; N], col_scale);
+            self.refactor_with(j, [1.0; N], col_scale.map(|s| 1.0 / s), false);
         }
     }
 
     /// [`Lu::factor_general`] written over `self` (every field is set).
     #[inline(always)]
-    #[allow(clippy::neg_cmp_op_on_partial_ord)] // the negation is what lets NaN through
     fn refactor_general(&mut self, j: &[[f64; N]; N], row_scale: [f64; N], col_scale: [f64; N]) {
         let mut degenerate = false;
-        self.inv_row = inverses(row_scale, &mut degenerate);
+        let inv_row = inverses(row_scale, &mut degenerate);
+        let inv_col = inverses(col_scale, &mut degenerate);
+        self.refactor_with(j, inv_row, inv_col, degenerate);
+    }
+
+    /// The elimination of [`Lu::refactor_general`] from the reciprocals of the scales;
+    /// `degenerate` when one was invalid.
+    #[inline(always)]
+    #[allow(clippy::neg_cmp_op_on_partial_ord)] // the negation is what lets NaN through
+    fn refactor_with(&mut self, j: &[[f64; N]; N], inv_row: [f64; N], inv_col: [f64; N], degenerate: bool) {
+        self.inv_row = inv_row;
         // A constant set of ones (the analogs' factorisations) folds to `false`.
-        self.rows_scaled = self.inv_row != [1.0; N];
-        self.inv_col = inverses(col_scale, &mut degenerate);
-        let (inv_row, inv_col) = (self.inv_row, self.inv_col);
+        self.rows_scaled = inv_row != [1.0; N];
+        self.inv_col = inv_col;
         let lu = &mut self.lu;
         for r in 0..N {
             for c in 0..N {
@@ -616,6 +628,55 @@ mod tests {
         v.extend(lu.perm.iter().map(|&p| p as u64));
         v.push(u64::from(lu.negative_det));
         v
+    }
+
+    /// The kept factorisation with unscreened column magnitudes (`refactor_cols`, 3x3 and 4x4) is
+    /// the screened `factor_cols`, bit for bit, wherever the magnitudes are valid, and where one
+    /// is not (a zero column, an infinite or NaN entry, a NaN or zero magnitude) its pivot ratio
+    /// is 0 as the screened one's.
+    #[test]
+    fn unscreened_column_magnitudes_give_the_screened_pivot_ratio() {
+        fn check<const N: usize>(j: [[f64; N]; N], cols: [f64; N]) {
+            let canon = |x: f64| if x.is_nan() { u64::MAX } else { x.to_bits() };
+            let screened = Lu::factor_cols(&j, cols);
+            let mut kept = Lu::unfactored();
+            kept.refactor_cols(&j, cols);
+            assert_eq!(canon(kept.pivot_ratio()), canon(screened.pivot_ratio()), "{j:?} {cols:?}");
+            if cols.iter().all(|&c| c > 0.0 && c < f64::INFINITY) {
+                assert_eq!(canon(kept.det()), canon(screened.det()), "{j:?}");
+                assert_eq!(kept.negative_det(), screened.negative_det(), "{j:?}");
+                for k in 0..N {
+                    let mut e = [0.0; N];
+                    e[k] = 1.0;
+                    assert_eq!(kept.solve(e).map(canon), screened.solve(e).map(canon), "{j:?}");
+                }
+            } else {
+                assert_eq!(kept.pivot_ratio(), 0.0, "{j:?} {cols:?}");
+            }
+        }
+        // The columns' largest magnitudes as the Newton iteration takes them (plain maxima).
+        fn magnitudes<const N: usize>(j: &[[f64; N]; N]) -> [f64; N] {
+            core::array::from_fn(|c| j.iter().fold(0.0f64, |m, row| if row[c].abs() > m { row[c].abs() } else { m }))
+        }
+        let specials = [0.0, f64::INFINITY, f64::NEG_INFINITY, f64::NAN, 1e-310, 1e308];
+        for seed in 0..300usize {
+            let mut j: [[f64; 4]; 4] =
+                core::array::from_fn(|r| core::array::from_fn(|c| ((seed * 31 + r * 7 + c * 13) % 17) as f64 - 8.0));
+            if seed % 3 == 0 {
+                j[seed % 4][(seed / 4) % 4] = specials[(seed / 16) % specials.len()];
+            }
+            if seed % 7 == 0 {
+                for row in &mut j {
+                    row[seed % 4] = 0.0;
+                }
+            }
+            check(j, magnitudes(&j));
+            let j3: [[f64; 3]; 3] = core::array::from_fn(|r| core::array::from_fn(|c| j[r][c]));
+            check(j3, magnitudes(&j3));
+            // A magnitude that is NaN or zero although the column is not.
+            check(j, [f64::NAN, 1.0, 1.0, 1.0]);
+            check(j, [1.0, 0.0, 1.0, 1.0]);
+        }
     }
 
     /// The unrolled 2x2 factorisation is the general elimination, bit for bit, on regular,

@@ -30,7 +30,7 @@
 
 pub use super::newton_config::{NewtonConfig, SolveReport, Termination};
 use crate::solvers::jacobian::BlockJacobian;
-use crate::solvers::lu::{Lu, RowScales, all_positive_finite, max_abs};
+use crate::solvers::lu::{Lu, RowScales, all_positive_finite};
 
 /// One evaluation of a block: residuals, Jacobian rows, and intermediate values the generated
 /// code keeps for later stages (so they are not recomputed after convergence).
@@ -603,8 +603,8 @@ impl<const N: usize, const K: usize> LastStep<N, K, [[f64; N]; N]> for KeptLu<'_
             refactor_columns(self.lu, ev);
         }
     }
-    /// A positive pivot ratio means every column magnitude was positive and finite, and a
-    /// column with an infinite or NaN entry has an infinite or NaN magnitude ([`max_abs`]).
+    /// A positive pivot ratio means the equilibrated Jacobian had neither a NaN entry nor a
+    /// column with an infinite one ([`refactor_columns`]).
     #[inline(always)]
     fn finite_jacobian(&self) -> bool {
         self.valid && self.lu.pivot_ratio() > 0.0
@@ -612,10 +612,21 @@ impl<const N: usize, const K: usize> LastStep<N, K, [[f64; N]; N]> for KeptLu<'_
 }
 
 /// The analogs' factorisation of an evaluation's Jacobian, written over `lu`: each column
-/// divided by its largest magnitude (a structural zero changes no maximum).
+/// divided by its largest magnitude (a structural zero changes no maximum). The magnitudes are
+/// plain maxima (one select per entry), neither screened nor NaN-tested: an infinite entry
+/// zeroes its column (and is itself NaN there), a NaN entry stays NaN in the equilibrated
+/// matrix, and either way a pivot is zero or NaN and the pivot ratio 0 ([`Lu::refactor_cols`]);
+/// for a finite Jacobian they are `max_abs`'s, bit for bit.
 #[inline(always)]
 fn refactor_columns<const N: usize, const K: usize>(lu: &mut Lu<N>, ev: &BlockEval<N, K>) {
-    let cols: [f64; N] = core::array::from_fn(|c| max_abs(ev.j.map(|row| row[c])));
+    let cols: [f64; N] = core::array::from_fn(|c| {
+        let mut m = 0.0f64;
+        for row in &ev.j {
+            let a = row[c].abs();
+            m = if a > m { a } else { m };
+        }
+        m
+    });
     lu.refactor_cols(&ev.j, cols);
 }
 
@@ -1040,6 +1051,7 @@ fn normal_equations<const N: usize, const K: usize, J: BlockJacobian<N>>(
 #[cfg(test)]
 mod tests {
     use super::*;
+    use crate::solvers::lu::max_abs;
 
     /// [`newton`] from `z0` with the evaluation made as the generated code makes it (into the
     /// caller's slot); the solved block and its final evaluation.
@@ -1217,6 +1229,18 @@ mod tests {
         let (mut ev, mut kept) = (cube_root(&[0.0, 2.0]), Lu::unfactored());
         let e = newton_keeping_lu([0.0, 2.0], &mut ev, &NewtonConfig::default(), cube_root, &mags, &mut kept);
         assert!(matches!(e, Err(BlockFailure::NonFinite { row: 0, .. })), "{e:?}");
+        // A 3x3 block (the general factorisation, whose column magnitudes are not screened):
+        // an infinite or NaN entry, anywhere, at a root the guess already meets.
+        for (r, c, bad) in [(0, 0, f64::INFINITY), (2, 1, f64::NAN), (1, 2, f64::NEG_INFINITY), (2, 2, f64::NAN)] {
+            let block = move |z: &[f64; 3]| {
+                let mut j = [[2.0, 0.5, 0.0], [0.0, 3.0, 1.0], [1.0, 0.0, 4.0]];
+                j[r][c] = bad;
+                varying::<3, 6>([z[0] - 1.0, z[1] - 2.0, z[2] - 3.0], j, [1.0; 3], [1.0; 3])
+            };
+            let (mut ev, mut kept) = (block(&[1.0, 2.0, 3.0]), Lu::unfactored());
+            let e = newton_keeping_lu([1.0, 2.0, 3.0], &mut ev, &NewtonConfig::default(), block, &mags, &mut kept);
+            assert!(matches!(e, Err(BlockFailure::NonFinite { row, .. }) if row == r), "{r} {c}: {e:?}");
+        }
         let nan_slope = |z: &[f64; 2]| {
             varying::<2, 4>([z[0] - 3.0, z[1] - 1.0], [[1.0, 0.0], [f64::NAN, 1.0]], [1.0, 1.0], [1.0; 2])
         };
