@@ -379,7 +379,8 @@ impl Kernel<'_> {
         // The magnitudes the tests judge in: made once for the solve when they do not depend on
         // the block's unknowns (link lengths), otherwise kept from every evaluation after the
         // values later scopes read.
-        let fixed = bp.scale.iter().chain(&bp.unit).all(|m| self.plan.level[m.index()] < b as i32);
+        let fixed =
+            bp.scale.iter().chain(&bp.unit).all(|m| self.plan.level.get(m.index()).is_some_and(|&l| l < b as i32));
         let kept_mags: Vec<&TokenStream> = if fixed { Vec::new() } else { scale.iter().chain(&unit).collect() };
         // What later scopes read from the evaluation: a dense Jacobian entry from `j`, where the
         // evaluation holds it anyway; the rest through `keep` (each kept value is a store per
