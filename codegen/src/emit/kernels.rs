@@ -408,7 +408,7 @@ impl Kernel<'_> {
         // A block that keeps the final factorisation for its analogs: the runtime writes it
         // into the analogs' `__lu{b}`.
         let lu = format_ident!("__lu{}", b);
-        let (slot, newton, lu_arg) = if self.keeps_lu(bp) {
+        let (slot, newton, lu_arg) = if keeps_lu(self.mode, bp) {
             (
                 quote!(let mut #lu = #rt::Lu::<#n>::unfactored();),
                 quote!(#rt::newton_keeping_lu::<#n, #k>),
@@ -484,11 +484,6 @@ impl Kernel<'_> {
         (from_j, kept)
     }
 
-    /// [`keeps_lu`] in this kernel's mode.
-    fn keeps_lu(&self, bp: &BlockPlan) -> bool {
-        keeps_lu(self.mode, bp)
-    }
-
     /// Closed-form hook: the straight-line solve of a recognised block.
     fn closed_block(&self, b: usize, c: &crate::closed_form::Recognised) -> TokenStream {
         let op = |n: NodeId| self.op(n);
@@ -537,7 +532,7 @@ impl Kernel<'_> {
             let factor = if from_graph {
                 let f = self.factor(bp, &quote!(__j), &scale);
                 quote!(let #lu = #f;)
-            } else if self.keeps_lu(bp) {
+            } else if keeps_lu(self.mode, bp) {
                 TokenStream::new()
             } else {
                 quote!(let #lu = #rt::Lu::<#n>::factor_cols(&__j, [#(#scale),*]);)

@@ -578,17 +578,23 @@ impl Factor for Fixed {
     }
 }
 
-/// Largest magnitude among `v` (a row or column scale). `NaN` propagates.
+/// Largest magnitude among `v` (a row or column scale, a residual), or NaN when an entry is
+/// NaN: [`largest`] of the magnitudes.
 #[inline]
 pub fn max_abs<const M: usize>(v: [f64; M]) -> f64 {
-    // The running maximum is a select that keeps it on a NaN (one `maxsd`, where `f64::max`
-    // needs a NaN fix-up); the running sum does not skip a NaN, so a NaN anywhere makes the
-    // result NaN (then the row counts as degenerate and a residual as not converged). From
-    // `-0.0`, the additive identity, the first addition folds away.
+    largest(v.map(f64::abs))
+}
+
+/// The largest of the values `v` (each non-negative or NaN), or NaN when one is NaN: per value a
+/// select (one `maxsd`, which skips a NaN, where `f64::max` needs a NaN fix-up) and an addition
+/// (which does not skip it), where a maximum that keeps a NaN costs a comparison and a blend.
+/// A NaN anywhere makes the result NaN (then a row counts as degenerate and a residual as not
+/// converged). From `-0.0`, the additive identity, the first addition folds away.
+#[inline(always)]
+pub(crate) fn largest<const M: usize>(v: [f64; M]) -> f64 {
     let (mut m, mut sum) = (0.0f64, -0.0f64);
     for x in v {
-        let a = x.abs();
-        m = if a > m { a } else { m };
+        m = if x > m { x } else { m };
         sum += x;
     }
     if sum.is_nan() { f64::NAN } else { m }

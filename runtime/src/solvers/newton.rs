@@ -30,7 +30,7 @@
 
 pub use super::newton_config::{NewtonConfig, SolveReport, Termination};
 use crate::solvers::jacobian::BlockJacobian;
-use crate::solvers::lu::{Lu, RowScales, all_positive_finite};
+use crate::solvers::lu::{Lu, RowScales, all_positive_finite, largest};
 
 /// One evaluation of a block: residuals, Jacobian rows, and intermediate values the generated
 /// code keeps for later stages (so they are not recomputed after convergence).
@@ -218,19 +218,6 @@ fn units<const N: usize>(unit: &[f64; N]) -> [f64; N] {
 #[inline(never)]
 fn fallback_units<const N: usize>(unit: &[f64; N]) -> [f64; N] {
     unit.map(|u| if u > 0.0 && u < f64::INFINITY { u } else { 1.0 })
-}
-
-/// The largest of the values `v` (each non-negative or NaN), or NaN when one is NaN: per value a
-/// select (one `maxsd`, which skips a NaN) and an addition (which does not), where a maximum
-/// that keeps a NaN costs a comparison and a blend.
-#[inline(always)]
-fn largest<const N: usize>(v: [f64; N]) -> f64 {
-    let (mut m, mut sum) = (0.0f64, 0.0f64);
-    for x in v {
-        m = if x > m { x } else { m };
-        sum += x;
-    }
-    if sum.is_nan() { f64::NAN } else { m }
 }
 
 /// `max_i |f_i| / s_i`; NaN propagates, a non-zero residual over a zero scale is infinite.
@@ -654,6 +641,9 @@ fn iterate<const N: usize, const K: usize, J: BlockJacobian<N>>(
         return Err(BlockFailure::InvalidConfig { field });
     }
     let floor = FLOOR_FACTOR * cfg.residual_tol.max(16.0 * f64::EPSILON);
+    // Fixed magnitudes with valid scales (not the row sums that replace invalid ones): every
+    // iterate is judged in the same scales.
+    let fixed_rows = mags.fixed().is_some_and(|m| !m.rows.degenerate);
     let mut it = Iter {
         z: z0,
         // The caller's evaluation, not a copy: the iteration updates it in place.
@@ -708,8 +698,6 @@ fn iterate<const N: usize, const K: usize, J: BlockJacobian<N>>(
         }
         let newton_ok = pivot > cfg.singular_tol * 1e-3 && step.is_finite();
         // At the rounding floor only the Newton step is worth trying.
-        // Fixed magnitudes with valid scales (not the row sums that replace invalid ones).
-        let fixed_rows = mags.fixed().is_some_and(|m| !m.rows.degenerate);
         let moved = (newton_ok && it.full_step(&dz, pivot, rows, fixed_rows, phi, cfg, &mut eval))
             || (rho > floor && it.descend(s, cfg, &mut eval));
         if !moved {
