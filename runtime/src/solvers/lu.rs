@@ -579,7 +579,7 @@ impl Factor for Fixed {
 }
 
 /// Largest magnitude among `v` (a row or column scale, a residual), or NaN when an entry is
-/// NaN: [`largest`] of the magnitudes.
+/// NaN: `largest` of the magnitudes.
 #[inline]
 pub fn max_abs<const M: usize>(v: [f64; M]) -> f64 {
     largest(v.map(f64::abs))
