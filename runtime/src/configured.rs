@@ -2,7 +2,7 @@
 
 use crate::error::Error;
 use crate::events::BlockInfo;
-use crate::kin::{Jac, Kin};
+use crate::kin::{Jac, Kin, KinSink};
 use crate::mechanism::{Mechanism, Named};
 use crate::newton::{NewtonConfig, SolveReport};
 use crate::paths::sweep::SweepConfig;
@@ -84,14 +84,15 @@ where
         self.mechanism.kinematics_flat(x, guess, cfg)
     }
     #[inline]
-    fn kinematics_step_flat<T: InputTrig>(
+    fn kinematics_step_sink<T: InputTrig, S: KinSink<N, NI, NO>>(
         &self,
         x: &[f64; NI],
         guess: &[f64; N],
         cfg: &NewtonConfig,
         trig: &mut T,
-    ) -> Result<Kin<N, NI, NO>, Error> {
-        self.mechanism.kinematics_step_flat(x, guess, cfg, trig)
+        sink: S,
+    ) -> Result<S::Out, Error> {
+        self.mechanism.kinematics_step_sink(x, guess, cfg, trig, sink)
     }
     fn kinematics_at_flat(&self, x: &[f64; NI], q: &[f64; N], cfg: &NewtonConfig) -> Result<Kin<N, NI, NO>, Error> {
         self.mechanism.kinematics_at_flat(x, q, cfg)

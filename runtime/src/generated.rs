@@ -11,7 +11,7 @@ pub use crate::analysis::{Column, ColumnIndex};
 pub use crate::dynamics::{Body, Coord, DynamicsError, MassModel, Rotation};
 pub use crate::error::Error;
 pub use crate::events::BlockInfo;
-pub use crate::kin::{Health, Jac, Kin, Sens};
+pub use crate::kin::{ByValue, Health, Jac, Kin, KinSink, Sens};
 pub use crate::kinds::QuantityKind;
 pub use crate::lu::{Factor, Fixed, Lu, max_abs};
 pub use crate::mechanism::{Mechanism, NamedSensitivities, Sensitivities, SensitivitiesRequested};
@@ -19,6 +19,7 @@ pub use crate::newton::{
     BlockEval, BlockFailure, Magnitudes, NewtonConfig, SolveReport, Solved, newton, newton_keeping_lu, newton_with,
 };
 pub use crate::solvers::closed::*;
+pub use crate::solvers::inverse2::Inverse2;
 pub use crate::solvers::jacobian::{BlockFactor, BlockJacobian};
 pub use crate::solvers::sparse_lu::{SparseJac, SparseLu, SparsePattern};
 pub use crate::trig::{InputTrig, Libm};
@@ -184,20 +185,22 @@ where
 /// The result of a kinematic kernel (a short name keeps the expansions short).
 pub type KinResult<const N: usize, const NI: usize, const NO: usize> = Result<Kin<N, NI, NO>, Error>;
 
-/// [`checked`] with the state built by `kin` where it is returned: when `sum` is finite (the
-/// usual case) the state is built directly in the result, without the copy that passing a built
-/// state would make.
+/// [`checked`] with the state built by `kin` where `sink` puts it: when `sum` is finite (the
+/// usual case) the state is built directly in the result or in the caller's slot, without the
+/// copy that passing a built state would make.
 #[inline(always)]
-pub fn checked_with<M, const N: usize, const NI: usize, const NO: usize>(
+pub fn checked_with<M, S, const N: usize, const NI: usize, const NO: usize>(
     m: &M,
     sum: f64,
     guess: Option<&[f64; N]>,
+    sink: S,
     kin: impl FnOnce() -> Kin<N, NI, NO>,
-) -> Result<Kin<N, NI, NO>, Error>
+) -> Result<S::Out, Error>
 where
     M: Mechanism<N, NI, NO>,
+    S: KinSink<N, NI, NO>,
 {
-    if sum.is_finite() { Ok(kin()) } else { checked(m, kin(), sum, guess) }
+    if sum.is_finite() { Ok(sink.put(kin)) } else { checked(m, kin(), sum, guess).map(|k| sink.put(|| k)) }
 }
 
 /// Checks the kinematic state `kin` and its sensitivities `sens`: both are returned when every

@@ -106,6 +106,38 @@ impl Health {
     }
 }
 
+/// Where a kernel puts the state it computes: returned by value ([`ByValue`], a point solve), or
+/// written into a state the caller owns (`&mut Kin`, a sweep's spare slot: the fields are stored
+/// where the sweep keeps them, with no copy of the whole state afterwards).
+#[doc(hidden)]
+pub trait KinSink<const N: usize, const NI: usize, const NO: usize> {
+    /// What the kernel returns on success.
+    type Out;
+    /// Puts the state `kin` builds.
+    fn put(self, kin: impl FnOnce() -> Kin<N, NI, NO>) -> Self::Out;
+}
+
+/// The state returned by value.
+#[doc(hidden)]
+#[derive(Clone, Copy, Debug)]
+pub struct ByValue;
+
+impl<const N: usize, const NI: usize, const NO: usize> KinSink<N, NI, NO> for ByValue {
+    type Out = Kin<N, NI, NO>;
+    #[inline(always)]
+    fn put(self, kin: impl FnOnce() -> Kin<N, NI, NO>) -> Kin<N, NI, NO> {
+        kin()
+    }
+}
+
+impl<const N: usize, const NI: usize, const NO: usize> KinSink<N, NI, NO> for &mut Kin<N, NI, NO> {
+    type Out = ();
+    #[inline(always)]
+    fn put(self, kin: impl FnOnce() -> Kin<N, NI, NO>) {
+        *self = kin();
+    }
+}
+
 /// Positions, velocity analogs and acceleration analogs of the unknowns and of the outputs.
 ///
 /// `N` unknowns, `NI` inputs, `NO` output columns (each point contributes `x` and `y`).

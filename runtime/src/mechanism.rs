@@ -3,7 +3,7 @@
 use crate::configured::Configured;
 use crate::error::{Error, Quantity};
 use crate::events::{BlockInfo, Location};
-use crate::kin::{Jac, Kin, Sens};
+use crate::kin::{ByValue, Jac, Kin, KinSink, Sens};
 use crate::kinds::QuantityKind;
 use crate::newton::{NewtonConfig, SolveReport};
 use crate::paths::outcome::SweepResult;
@@ -79,7 +79,7 @@ pub trait Mechanism<const N: usize, const NI: usize, const NO: usize> {
     /// `cfg` must be valid ([`NewtonConfig::validate`]): a sweep checks its configuration once,
     /// and a kernel without a Newton block does not check it again at every step.
     #[doc(hidden)]
-    #[inline]
+    #[inline(always)]
     fn kinematics_step_flat<T: InputTrig>(
         &self,
         x: &[f64; NI],
@@ -87,8 +87,24 @@ pub trait Mechanism<const N: usize, const NI: usize, const NO: usize> {
         cfg: &NewtonConfig,
         trig: &mut T,
     ) -> Result<Kin<N, NI, NO>, Error> {
+        self.kinematics_step_sink(x, guess, cfg, trig, ByValue)
+    }
+    /// [`Mechanism::kinematics_step_flat`] with the state put where `sink` says: returned, or
+    /// written into a state of the caller's (a sweep solves into its spare slot). The macro
+    /// makes this the kernel; by default it is [`Mechanism::kinematics_flat`].
+    #[doc(hidden)]
+    #[inline]
+    fn kinematics_step_sink<T: InputTrig, S: KinSink<N, NI, NO>>(
+        &self,
+        x: &[f64; NI],
+        guess: &[f64; N],
+        cfg: &NewtonConfig,
+        trig: &mut T,
+        sink: S,
+    ) -> Result<S::Out, Error> {
         let _ = trig;
-        self.kinematics_flat(x, guess, cfg)
+        let kin = self.kinematics_flat(x, guess, cfg)?;
+        Ok(sink.put(|| kin))
     }
     /// Analogs and outputs at a given (already solved) position.
     fn kinematics_at_flat(&self, x: &[f64; NI], q: &[f64; N], cfg: &NewtonConfig) -> Result<Kin<N, NI, NO>, Error>;

@@ -136,7 +136,9 @@ fn mechanism_impl(model: &Model, plan: &Plan, t: &Types) -> TokenStream {
         let check = closed_config_check(plan);
         quote! {
             #[inline(always)]
-            fn kinematics_step_flat<T: #rt::InputTrig>(&self, #x, #g, #cfg, __trig: &mut T) -> #kin { #fused }
+            fn kinematics_step_sink<T: #rt::InputTrig, S: #rt::KinSink<#n, #ni, #no>>(
+                &self, #x, #g, #cfg, __trig: &mut T, __sink: S,
+            ) -> ::core::result::Result<S::Out, #rt::Error> { #fused }
             #[inline]
             fn kinematics_flat(&self, #x, #g, #cfg) -> #kin {
                 #check

@@ -317,7 +317,7 @@ impl Kernel<'_> {
                     v.resize(len, quote!(0.0));
                     quote!([#(#v),*])
                 });
-                quote!(#rt::Lu::<2>::factor_in_cols(&#jrows, [#(#cols),*]))
+                quote!(#rt::Inverse2::in_cols(&#jrows, [#(#cols),*]))
             }
             _ => quote!(#rt::Lu::<#n>::factor_cols(&#jrows, [#(#scale),*])),
         }
@@ -698,11 +698,13 @@ impl Kernel<'_> {
             terms.extend(names.operands(self.g, &plan.out_d2[o]));
         }
         let (sum, kin, rt, guess) = (balanced_sum(terms), self.kin(), &self.rt, self.guess_arg());
-        // The state is built in the returned value on the hot path (a state built once and
-        // passed to the check is copied into the result: a memcpy per step).
+        // The state is built where it goes on the hot path: in the returned value, or in a
+        // sweep's slot (`__sink`). A state built once and passed to the check is copied into the
+        // result: a memcpy per step.
+        let sink = if names.sweep_kernel() { quote!(__sink) } else { quote!(#rt::ByValue) };
         quote! {
             let __sum: f64 = #sum;
-            #rt::checked_with(self, __sum, #guess, || #kin)
+            #rt::checked_with(self, __sum, #guess, #sink, || #kin)
         }
     }
 

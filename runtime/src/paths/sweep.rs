@@ -227,9 +227,11 @@ pub struct Sweep<'m, M, S, const N: usize, const NI: usize, const NO: usize> {
     /// in the units there (fixed for the sweep, and taken where the sweep is regular: at a
     /// singular position a unit derived from the terms' magnitudes can degenerate).
     first_q: [f64; N],
-    /// The last accepted state, valid once `started` (not an `Option`: taking a state out of
-    /// one and putting it back are copies of the ~180-byte state on the per-step path).
-    cur: Kin<N, NI, NO>,
+    /// The last accepted state (`states[at]`, valid once `started`) and the slot the next step
+    /// is solved into: an accepted step only flips `at`, where moving the ~180-byte state into
+    /// place would copy it at every step (nor is either slot an `Option`, for the same reason).
+    states: [Kin<N, NI, NO>; 2],
+    at: bool,
     started: bool,
     tau: f64,
     h: f64,
@@ -300,7 +302,7 @@ where
             next: 0,
             guess,
             first_q: guess,
-            cur: Kin {
+            states: [Kin {
                 x: [0.0; NI],
                 q: [0.0; N],
                 dq: [[0.0; NI]; N],
@@ -310,7 +312,8 @@ where
                 d2out: [[[0.0; NI]; NI]; NO],
                 report: SolveReport::direct(),
                 health: Health::default(),
-            },
+            }; 2],
+            at: false,
             started: false,
             tau: 0.0,
             h: 0.0,
@@ -353,7 +356,13 @@ where
 
     /// The last accepted state (the last sample, or the last point before a stop).
     pub fn last(&self) -> Option<&Kin<N, NI, NO>> {
-        self.started.then_some(&self.cur)
+        self.started.then_some(self.cur())
+    }
+
+    /// The last accepted state.
+    #[inline(always)]
+    fn cur(&self) -> &Kin<N, NI, NO> {
+        &self.states[usize::from(self.at)]
     }
 
     /// Runs the whole sweep: the states up to where it ended, why and where it ended, and the
@@ -454,7 +463,7 @@ where
         let x = self.path.from;
         match self.m.kinematics_flat(&x, &self.guess, &self.cfg.newton) {
             Ok(k) => {
-                self.cur = k;
+                self.states[usize::from(self.at)] = k;
                 self.started = true;
                 self.first_q = k.q;
                 self.signs = k.health.det_signs;
@@ -500,7 +509,7 @@ where
             return Some(Err(e));
         }
         if !self.started {
-            return Some(self.first_sample().map(|()| &self.cur));
+            return Some(self.first_sample().map(|()| self.cur()));
         }
         let target = if self.next + 1 == self.samples { 1.0 } else { self.next as f64 * self.spacing };
         let mut successes = 0u32;
@@ -516,22 +525,22 @@ where
             // may fall short by an ulp and leave a needless tiny step.
             let (step, tau_new) =
                 if remaining <= self.h * (1.0 + 1e-9) { (remaining, target) } else { (self.h, self.tau + self.h) };
-            // Solved and judged in place: an accepted state is moved once, into `cur` (every
+            // Solved into the spare slot and judged there: an accepted state is not moved (every
             // copy of the ~180-byte state is a memcpy on the per-step path).
-            let p = self.predict(&self.cur, tau_new - self.tau);
+            let p = self.predict(self.cur(), tau_new - self.tau);
             let x = self.path.at_tau(tau_new);
-            self.trig.exact(self.cur.health.min_pivot < ROTATE_MIN_PIVOT);
-            let solved = self.m.kinematics_step_flat(&x, &p.q, &self.cfg.newton, &mut self.trig);
+            self.trig.exact(self.cur().health.min_pivot < ROTATE_MIN_PIVOT);
+            let spare = usize::from(!self.at);
+            let solved =
+                self.m.kinematics_step_sink(&x, &p.q, &self.cfg.newton, &mut self.trig, &mut self.states[spare]);
             let outcome = match &solved {
-                Ok(n) => self.judge(n, &p),
+                Ok(()) => self.judge(&self.states[spare], &p),
                 Err(_) => Outcome::Fail,
             };
             match outcome {
                 Outcome::Accept => {
                     self.tau = tau_new;
-                    if let Ok(n) = &solved {
-                        self.cur = *n;
-                    }
+                    self.at = !self.at;
                     successes += 1;
                     if successes >= 2 {
                         self.h = (self.h * 2.0).min(self.h_max);
@@ -542,12 +551,12 @@ where
                     self.h = step * 0.5;
                     if self.h < self.h_min {
                         // The step cannot be made however small: find out why.
-                        let k = self.cur;
+                        let k = *self.cur();
                         match self.diagnose(&k, tau_new, target, outcome, solved.err()) {
                             Ok(n) => {
                                 // Passed a singular crossing (AtSingular::Continue); `diagnose`
                                 // set `tau` to where the continuation resumed.
-                                self.cur = n;
+                                self.states[usize::from(self.at)] = n;
                                 self.signs = n.health.det_signs;
                                 self.h = self.h_max;
                             }
@@ -561,7 +570,7 @@ where
             }
         }
         self.next += 1;
-        Some(Ok(&self.cur))
+        Some(Ok(self.cur()))
     }
 
     /// After a crossing: follows the curve from `p` until the Jacobian is well conditioned again
