@@ -6,7 +6,7 @@
 use proc_macro2::TokenStream;
 
 /// The statement that solves block `b` in the kernel a point solve and a sweep call
-/// (`kinematics_step_flat`), as expanded text without whitespace.
+/// (`kinematics_step_sink`), as expanded text without whitespace.
 fn newton_call(decl: &str, b: usize) -> String {
     let kernel = fused_kernel(decl);
     let at = kernel.find(&format!("let__r{b}=")).unwrap_or_else(|| panic!("no Newton call for block {b}"));
@@ -18,7 +18,7 @@ fn fused_kernel(decl: &str) -> String {
     let tokens: TokenStream = decl.parse().expect("declaration tokens");
     let file: syn::File = syn::parse2(kinloop_codegen::expand(tokens)).expect("expansion is a file");
     let code = prettyplease::unparse(&file);
-    code[code.find("fn kinematics_step_flat").expect("the fused kernel")..].split_whitespace().collect()
+    code[code.find("fn kinematics_step_sink").expect("the fused kernel")..].split_whitespace().collect()
 }
 
 /// A four-bar whose coupler carries a second dyad, both solved by Newton: the coupler angle

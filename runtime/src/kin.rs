@@ -97,10 +97,11 @@ impl Health {
         if lu.negative_det() {
             self.det_signs.set_negative(block);
         }
+        // Never NaN: every factorisation reports a NaN pivot as 0, singular.
         let p = lu.pivot_ratio();
-        // NaN counts as singular.
-        if p < self.min_pivot || p.is_nan() {
-            self.min_pivot = if p.is_nan() { 0.0 } else { p };
+        debug_assert!(!p.is_nan(), "a factorisation's pivot ratio is never NaN");
+        if p < self.min_pivot {
+            self.min_pivot = p;
             self.weakest_block = block;
         }
     }

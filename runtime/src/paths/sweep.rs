@@ -511,7 +511,9 @@ where
         if !self.started {
             return Some(self.first_sample().map(|()| self.cur()));
         }
-        let target = if self.next + 1 == self.samples { 1.0 } else { self.next as f64 * self.spacing };
+        // Through `i64`: one conversion instruction, where `usize` to `f64` takes several (the
+        // same value: a sample index is far below 2^53).
+        let target = if self.next + 1 == self.samples { 1.0 } else { self.next as i64 as f64 * self.spacing };
         let mut successes = 0u32;
         let mut attempts = 0u32;
         while self.tau < target {

@@ -529,7 +529,8 @@ impl Lu<1> {
 
 /// What [`Health`](crate::Health) reads from a block's factorisation.
 pub trait Factor {
-    /// Smallest pivot of the equilibrated matrix.
+    /// Smallest pivot of the equilibrated matrix: never NaN (a NaN pivot, from a NaN entry or
+    /// scale, is reported as 0, singular).
     fn pivot_ratio(&self) -> f64;
     /// Negative determinant.
     fn negative_det(&self) -> bool;
