@@ -45,6 +45,15 @@ impl DetSigns {
         self.0.get(block / 64).is_some_and(|w| w >> (block % 64) & 1 == 1)
     }
 
+    /// Whether the signs of the first `blocks` blocks (at most [`DetSigns::CAPACITY`]) agree:
+    /// only the words holding them are compared (one for up to 64 blocks; `blocks` is a
+    /// mechanism's constant, so the loop unrolls to those words).
+    #[inline(always)]
+    pub(crate) fn same_for(&self, other: &DetSigns, blocks: usize) -> bool {
+        let words = blocks.div_ceil(64).min(4);
+        (0..words).all(|w| self.0[w] == other.0[w])
+    }
+
     /// The first block whose sign differs between `self` and `other`.
     pub fn first_difference(&self, other: &DetSigns) -> Option<usize> {
         (0..4).find_map(|w| {

@@ -444,7 +444,7 @@ where
             }
             slope_err = slope_err.max((s1 - p.slope1[u]).abs());
         }
-        if n.health.det_signs != self.signs {
+        if !n.health.det_signs.same_for(&self.signs, M::BLOCKS.len()) {
             Outcome::Flip
         } else if n.health.min_pivot < self.cfg.singular_pivot {
             // Too close to a singular position for the analogs (and thus the branch identity)
@@ -504,9 +504,10 @@ where
         if self.done || self.next >= self.samples {
             return None;
         }
-        if let Some(e) = self.invalid.take() {
+        // Tested before it is taken: `take` would store `None` at every sample.
+        if self.invalid.is_some() {
             self.done = true;
-            return Some(Err(e));
+            return self.invalid.take().map(Err);
         }
         if !self.started {
             return Some(self.first_sample().map(|()| self.cur()));
