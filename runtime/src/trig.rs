@@ -87,13 +87,20 @@ struct Anchor {
     cos: f64,
 }
 
+impl Anchor {
+    /// No anchor: a zero sine and cosine send every angle to libm.
+    const INVALID: Anchor = Anchor { q: f64::NAN, sin: 0.0, cos: 0.0 };
+}
+
 /// A sweep's cache of the sines and cosines of its kernel's input arguments, and of the anchors
 /// of its closed-form angles (see the module documentation).
 #[derive(Clone, Copy, Debug)]
 pub struct Rotating {
     slots: [Slot; SLOTS],
     anchors: [Anchor; SLOTS],
-    /// Every value from libm (see [`Rotating::exact`]).
+    /// Every value from libm (see [`Rotating::exact`]): while it holds, every slot is kept at
+    /// the age that sends it to libm and every anchor is invalid, so the per-call paths need not
+    /// test it.
     exact: bool,
 }
 
@@ -103,7 +110,7 @@ impl Default for Rotating {
         // A zero anchor (sine and cosine both 0) sends the first call of every angle to libm.
         Rotating {
             slots: [Slot { arg: f64::NAN, sin: 0.0, cos: 1.0, age: 0 }; SLOTS],
-            anchors: [Anchor { q: f64::NAN, sin: 0.0, cos: 0.0 }; SLOTS],
+            anchors: [Anchor::INVALID; SLOTS],
             exact: false,
         }
     }
@@ -115,7 +122,23 @@ impl Rotating {
     /// in the last place more (a rotation's) would cost precision a point solve has.
     #[inline(always)]
     pub fn exact(&mut self, exact: bool) {
+        if exact {
+            self.to_libm();
+        }
         self.exact = exact;
+    }
+
+    /// Sends the next call of every slot and angle to libm: rare (near singular positions), so
+    /// out of the sweep's loop.
+    #[cold]
+    #[inline(never)]
+    fn to_libm(&mut self) {
+        for s in &mut self.slots {
+            s.age = RESYNC;
+        }
+        for a in &mut self.anchors {
+            *a = Anchor::INVALID;
+        }
     }
 }
 
@@ -150,7 +173,7 @@ impl InputTrig for Rotating {
         if d == 0.0 {
             return (s.sin, s.cos);
         }
-        if d.abs() <= MAX_ROTATION && s.age < RESYNC && !self.exact {
+        if d.abs() <= MAX_ROTATION && s.age < RESYNC {
             let (sd, cm1) = small_sin_cosm1(d);
             let (sin, cos) = (s.sin, s.cos);
             s.sin = sin + (sin * cm1 + cos * sd);
@@ -159,7 +182,8 @@ impl InputTrig for Rotating {
         } else {
             // Also a NaN `d`: the first call, or a non-finite argument (libm's NaN, as ever).
             (s.sin, s.cos) = arg.sin_cos();
-            s.age = 0;
+            // An exact cache stays at the age that calls libm.
+            s.age = if self.exact { RESYNC } else { 0 };
         }
         s.arg = arg;
         (s.sin, s.cos)
@@ -179,14 +203,15 @@ impl InputTrig for Rotating {
         let x = s * a.cos - c * a.sin;
         let y = c * a.cos + s * a.sin;
         // NaN fails every comparison.
-        if x.abs() <= ANCHOR_RANGE && y > 0.0 && !self.exact {
+        if x.abs() <= ANCHOR_RANGE && y > 0.0 {
             let q = a.q + small_asin(x);
             if (q - guess).abs() <= ANCHOR_NEAR_GUESS {
                 return q;
             }
         }
         let q = exact();
-        if q.is_finite() {
+        // An exact cache keeps no anchor.
+        if q.is_finite() && !self.exact {
             *a = Anchor { q, sin: s, cos: c };
         }
         q
