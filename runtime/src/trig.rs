@@ -123,7 +123,7 @@ impl Rotating {
     #[inline(always)]
     pub fn exact(&mut self, exact: bool) {
         if exact {
-            self.to_libm();
+            self.send_to_libm();
         }
         self.exact = exact;
     }
@@ -132,7 +132,7 @@ impl Rotating {
     /// out of the sweep's loop.
     #[cold]
     #[inline(never)]
-    fn to_libm(&mut self) {
+    fn send_to_libm(&mut self) {
         for s in &mut self.slots {
             s.age = RESYNC;
         }
