@@ -2,7 +2,7 @@
 //! `reachable` in input values and `trace_curve`'s options, checked against closed forms (the law
 //! of cosines for a four-bar's limit positions) and against the behaviour without them.
 
-use kinloop::{AtSingular, Error, EventKind, Named, NewtonConfig, Stop, SweepConfig, TraceOptions};
+use kinloop::{AtSingular, Error, EventKind, Kin, Named, NewtonConfig, Stop, Sweep, SweepConfig, TraceOptions};
 use kinloop_fixtures::{FourBar, FourBarInputs, FourBarUnknowns};
 use std::f64::consts::PI;
 
@@ -180,4 +180,43 @@ fn a_scan_uses_each_mechanism_configuration_unless_it_gives_one() {
     // A configuration in the spec applies to every set.
     let results = scan(&[plain, cont], &spec.with_config(SweepConfig::default()), count, fold);
     assert!(results.iter().all(Result::is_err), "{results:?}");
+}
+
+/// The sweep solves each step into its spare slot and keeps the last accepted state in the
+/// other. While sampling, its last state is the sample it returned. At the stop it is the last
+/// point it accepted on the way to the limit position: not one of the steps it rejected there
+/// (halved ever smaller until it diagnosed the limit, each rejected for a pivot ratio below
+/// `singular_pivot` or as a failed solve beyond the limit), so on the sweep's branch, at a
+/// pivot ratio it accepts, between the last sample and the limit, and closing the loop.
+#[test]
+fn rejected_steps_leave_the_last_accepted_state() {
+    let m = rocker();
+    let g = m.position(0.0, &m.guess(0.0)).unwrap().0;
+    let mut sweep: Sweep<FourBar, Kin<2, 1, 2>, 2, 1, 2> = Sweep::new(&m, [0.0], [PI], 181, g.into()).unwrap();
+    // (Called as `Sweep::last`: by method syntax `Iterator::last`, which takes the sweep by
+    // value, is found first.)
+    let first = sweep.next_kin().unwrap().unwrap();
+    let mut returned = first;
+    let err = loop {
+        match sweep.next_kin() {
+            Some(Ok(k)) => {
+                assert_eq!(Sweep::last(&sweep), Some(&k));
+                returned = k;
+            }
+            Some(Err(e)) => break e,
+            None => panic!("the double rocker cannot turn to pi"),
+        }
+    };
+    assert!(matches!(err, Error::SweepStopped { kind: EventKind::LimitPosition, .. }), "{err}");
+    let lim = limit(&m);
+    assert!(returned.x[0] < lim && returned.x[0] > lim - PI / 180.0);
+    let last = *Sweep::last(&sweep).unwrap();
+    assert!(last.x[0] >= returned.x[0] && last.x[0] < lim, "{} {} {lim}", last.x[0], returned.x[0]);
+    assert_eq!(last.health.det_signs, first.health.det_signs);
+    assert!(last.health.min_pivot >= SweepConfig::default().singular_pivot, "{:?}", last.health);
+    // The loop closes: a phi + b beta = (d, 0) + c gamma.
+    let (phi, [beta, gamma]) = (last.x[0], last.q);
+    let rx = m.a * phi.cos() + m.b * beta.cos() - m.d - m.c * gamma.cos();
+    let ry = m.a * phi.sin() + m.b * beta.sin() - m.c * gamma.sin();
+    assert!(rx.abs().max(ry.abs()) < 1e-12 * m.d, "{rx:e} {ry:e}");
 }

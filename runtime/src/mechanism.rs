@@ -72,9 +72,8 @@ pub trait Mechanism<const N: usize, const NI: usize, const NO: usize> {
     fn kinematics_flat(&self, x: &[f64; NI], guess: &[f64; N], cfg: &NewtonConfig) -> Result<Kin<N, NI, NO>, Error>;
     /// [`Mechanism::kinematics_flat`] as a sweep's step calls it: the same state, with the
     /// sines and cosines of the arguments free of the unknowns taken from `trig` (a sweep's
-    /// cache advances them by rotation). The macro makes it the kernel itself, always inlined,
-    /// for a small mechanism, so that a sweep's loop holds the kernel (no call, and the state is
-    /// written where the sweep keeps it); `kinematics_flat` is then this with libm's values.
+    /// cache advances them by rotation): [`Mechanism::kinematics_step_sink`] returning the
+    /// state. `kinematics_flat` of a small generated mechanism is this with libm's values.
     ///
     /// `cfg` must be valid ([`NewtonConfig::validate`]): a sweep checks its configuration once,
     /// and a kernel without a Newton block does not check it again at every step.
@@ -91,7 +90,12 @@ pub trait Mechanism<const N: usize, const NI: usize, const NO: usize> {
     }
     /// [`Mechanism::kinematics_step_flat`] with the state put where `sink` says: returned, or
     /// written into a state of the caller's (a sweep solves into its spare slot). The macro
-    /// makes this the kernel; by default it is [`Mechanism::kinematics_flat`].
+    /// makes this the kernel itself, always inlined, for a small mechanism, so that a sweep's
+    /// loop holds the kernel (no call) and the kernel stores the state's fields where the sweep
+    /// keeps it (no copy); by default it is [`Mechanism::kinematics_flat`], whose state is
+    /// then put.
+    ///
+    /// `cfg` must be valid, as for [`Mechanism::kinematics_step_flat`].
     #[doc(hidden)]
     #[inline]
     fn kinematics_step_sink<T: InputTrig, S: KinSink<N, NI, NO>>(
