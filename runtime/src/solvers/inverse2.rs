@@ -138,7 +138,9 @@ mod tests {
     /// entry, a NaN in the column beyond the block, a singular block.
     #[test]
     fn degenerate_blocks_have_pivot_ratio_zero() {
-        let cases: [([[f64; 2]; 2], [[f64; 3]; 2]); 6] = [
+        // Each case: the block, and its two Jacobian columns (with a third entry beyond it).
+        type Case = ([[f64; 2]; 2], [[f64; 3]; 2]);
+        let cases: [Case; 6] = [
             ([[0.0, 1.0], [0.0, 2.0]], [[0.0, 0.0, 0.0], [1.0, 2.0, 0.0]]),
             ([[1.0, 0.0], [2.0, 0.0]], [[1.0, 2.0, 0.0], [0.0, 0.0, 0.0]]),
             ([[f64::INFINITY, 1.0], [1.0, 2.0]], [[f64::INFINITY, 1.0, 0.0], [1.0, 2.0, 0.0]]),
