@@ -310,10 +310,20 @@ impl Kernel<'_> {
                 quote!(#rt::Lu::<1>::factor_in_col([#(#col),*], #k))
             }
             (2, _) => {
-                // Both columns padded with zeros to one length (a zero changes no maximum).
-                let len = bp.col_scale.iter().map(Vec::len).max().unwrap_or(0);
-                let cols = bp.col_scale.iter().map(|c| {
-                    let mut v: Vec<TokenStream> = self.names.operands(self.g, c).collect();
+                // Each column's entries beyond the block (the rows of later blocks), both padded
+                // with zeros to one length (a zero changes no maximum and no sum).
+                let beyond: Vec<Vec<TokenStream>> = bp
+                    .col_scale
+                    .iter()
+                    .enumerate()
+                    .map(|(c, col)| {
+                        let own = [bp.jac[0][c], bp.jac[1][c]];
+                        let rest: Vec<NodeId> = col.iter().copied().filter(|e| !own.contains(e)).collect();
+                        self.names.operands(self.g, &rest).collect()
+                    })
+                    .collect();
+                let len = beyond.iter().map(Vec::len).max().unwrap_or(0);
+                let cols = beyond.into_iter().map(|mut v| {
                     v.resize(len, quote!(0.0));
                     quote!([#(#v),*])
                 });

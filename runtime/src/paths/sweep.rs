@@ -408,8 +408,10 @@ where
         let (mut change, mut slope_change, mut slope) = (0.0f64, 0.0f64, 0.0f64);
         let mut q = k.q;
         let slope1 = core::array::from_fn(|u| {
-            let mut slope0 = 0.0;
-            let mut curv = 0.0;
+            // From -0.0, the additive identity: the first addition folds away (from 0.0 it is an
+            // `addsd` per sum, which `0.0 + -0.0 = 0.0` keeps).
+            let mut slope0 = -0.0;
+            let mut curv = -0.0;
             for i in 0..NI {
                 slope0 += k.dq[u][i] * d[i];
                 for j in 0..NI {
@@ -438,7 +440,8 @@ where
         let (mut dist, mut slope_err) = (0.0f64, 0.0f64);
         for u in 0..N {
             dist = dist.max((n.q[u] - p.q[u]).abs());
-            let mut s1 = 0.0;
+            // From -0.0, as in `predict`.
+            let mut s1 = -0.0;
             for i in 0..NI {
                 s1 += n.dq[u][i] * d[i];
             }

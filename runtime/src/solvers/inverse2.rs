@@ -14,44 +14,47 @@ use super::lu::Factor;
 /// LU (see the module documentation).
 #[derive(Clone, Copy, Debug)]
 pub struct Inverse2 {
+    /// `[[d, b], [c, a]] / det` for `J = [[a, b], [c, d]]`: `J⁻¹` with its off-diagonal signs
+    /// flipped (see [`Inverse2::solve`]).
     inv: [[f64; 2]; 2],
     pivot_ratio: f64,
     negative_det: bool,
 }
 
 impl Inverse2 {
-    /// The inverse of `j`, whose column `c` is equilibrated by the largest magnitude in
-    /// `cols[c]`, the full Jacobian column (its non-zero entries, padded with zeros), as
-    /// [`Lu::factor_in_cols`](super::lu::Lu::factor_in_cols) does.
+    /// The inverse of `j`, whose column `c` is equilibrated by the largest magnitude among its
+    /// two entries and `beyond[c]`, the column's further non-zero entries in the full Jacobian
+    /// (the rows of later blocks, padded with zeros): the magnitudes
+    /// [`Lu::factor_in_cols`](super::lu::Lu::factor_in_cols) takes from the whole columns.
     ///
     /// The LU's first pivot is the larger entry of the first column, `t / m0` with `t =
     /// max(|j00|, |j10|)` and `m0`, `m1` the columns' magnitudes; the second is the
     /// equilibrated determinant over the first, `|det| / (t m1)`. A zero, infinite or NaN
-    /// magnitude or entry gives pivot ratio 0, as there.
+    /// magnitude or entry gives pivot ratio 0, as there: one of the block's own makes a pivot
+    /// NaN (through `t`, the determinant or a magnitude), one beyond it the sum of those entries.
     #[inline(always)]
-    pub fn in_cols<const M: usize>(j: &[[f64; 2]; 2], cols: [[f64; M]; 2]) -> Self {
+    pub fn in_cols<const K: usize>(j: &[[f64; 2]; 2], beyond: [[f64; K]; 2]) -> Self {
         let [[a, b], [c, d]] = *j;
         let det = a * d - b * c;
         let id = 1.0 / det;
-        let (aa, ac) = (a.abs(), c.abs());
-        let top = if ac > aa { ac } else { aa };
-        // The columns' magnitudes by selects, which skip a NaN; the sum of all entries does not.
-        let (mut m, mut sum) = ([0.0f64; 2], 0.0);
+        let select_max = |x: f64, y: f64| if x > y { x } else { y };
+        let top = select_max(c.abs(), a.abs());
+        // The columns' magnitudes by selects, which skip a NaN; the sum of the entries beyond the
+        // block does not (a block without any, the usual case, has no sum to make).
+        let (mut m, mut sum) = ([top, select_max(d.abs(), b.abs())], 0.0);
         for k in 0..2 {
-            for v in cols[k] {
-                let x = v.abs();
-                m[k] = if x > m[k] { x } else { m[k] };
+            for v in beyond[k] {
+                m[k] = select_max(v.abs(), m[k]);
                 sum += v;
             }
         }
         let p0 = top / m[0];
         let p1 = det.abs() / (top * m[1]);
         let smaller = if p1 < p0 { p1 } else { p0 };
-        // A NaN or infinite pivot (a zero or infinite magnitude, a non-finite entry of the
-        // block) or a NaN or infinite entry anywhere in the columns fails the test, however the
-        // selections went: pivot ratio 0, as the LU's.
+        // A NaN or infinite pivot, or a NaN or infinite entry beyond the block, fails the test,
+        // however the selections went: pivot ratio 0, as the LU's.
         let pivot_ratio = if p0 + p1 + 0.0 * sum < f64::INFINITY { smaller } else { 0.0 };
-        Inverse2 { inv: [[d * id, -b * id], [-c * id, a * id]], pivot_ratio, negative_det: det < 0.0 }
+        Inverse2 { inv: [[d * id, b * id], [c * id, a * id]], pivot_ratio, negative_det: det < 0.0 }
     }
 
     /// Smallest pivot of the equilibrated matrix, in `[0, ~1]`: `0` when singular.
@@ -63,8 +66,10 @@ impl Inverse2 {
     /// Solves `J z = r`.
     #[inline(always)]
     pub fn solve(&self, r: [f64; 2]) -> [f64; 2] {
+        // `inv` holds the inverse's off-diagonal entries with their signs flipped (a subtraction
+        // here instead of a negation per entry when it is made).
         let [[i00, i01], [i10, i11]] = self.inv;
-        [i00 * r[0] + i01 * r[1], i10 * r[0] + i11 * r[1]]
+        [i00 * r[0] - i01 * r[1], i11 * r[1] - i10 * r[0]]
     }
 
     /// Solves `J Z = B` for `M` right-hand sides given as rows `B[r][m]`.
@@ -115,7 +120,7 @@ mod tests {
             let j = [[a * units[0], b * units[1]], [c * units[0], d * units[1]]];
             let extra = if n % 2 == 0 { 0.0 } else { 1.5 * u() * units[0] };
             let cols = [[j[0][0], j[1][0], extra], [j[0][1], j[1][1], 0.0]];
-            let inv = Inverse2::in_cols(&j, cols);
+            let inv = Inverse2::in_cols(&j, [[extra], [0.0]]);
             let lu = Lu::<2>::factor_in_cols(&j, cols);
             let (pi, pl) = (inv.pivot_ratio(), lu.pivot_ratio());
             assert!((pi - pl).abs() <= 1e-13 * pl + 1e-15, "{j:?}: {pi:e} {pl:e}");
@@ -149,7 +154,8 @@ mod tests {
             ([[1.0, 2.0], [2.0, 4.0]], [[1.0, 2.0, 0.0], [2.0, 4.0, 0.0]]),
         ];
         for (j, cols) in cases {
-            assert_eq!(Inverse2::in_cols(&j, cols).pivot_ratio(), 0.0, "{j:?} {cols:?}");
+            let beyond = [[cols[0][2]], [cols[1][2]]];
+            assert_eq!(Inverse2::in_cols(&j, beyond).pivot_ratio(), 0.0, "{j:?} {cols:?}");
             assert_eq!(Lu::<2>::factor_in_cols(&j, cols).pivot_ratio(), 0.0, "{j:?} {cols:?}");
         }
     }
@@ -157,7 +163,7 @@ mod tests {
     #[test]
     fn solves_several_right_hand_sides() {
         let j = [[2.0, -1.0], [0.5, 3.0]];
-        let inv = Inverse2::in_cols(&j, [[2.0, 0.5], [-1.0, 3.0]]);
+        let inv = Inverse2::in_cols(&j, [[]; 2]);
         let z = inv.solve_cols([[1.0, 0.0], [0.0, 1.0]]);
         // J Z = I.
         for r in 0..2 {
@@ -166,9 +172,6 @@ mod tests {
                 assert!((v - if r == m { 1.0 } else { 0.0 }).abs() < 1e-15, "{z:?}");
             }
         }
-        assert!(
-            !inv.negative_det()
-                && Inverse2::in_cols(&[[0.0, 1.0], [1.0, 0.0]], [[0.0, 1.0], [1.0, 0.0]]).negative_det()
-        );
+        assert!(!inv.negative_det() && Inverse2::in_cols(&[[0.0, 1.0], [1.0, 0.0]], [[]; 2]).negative_det());
     }
 }
