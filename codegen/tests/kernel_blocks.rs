@@ -1,7 +1,11 @@
+//! How the kernel a point solve and a sweep call solves and factorises its blocks.
+//!
 //! Which Newton blocks hand their final factorisation to their analogs: those whose unknowns'
 //! Jacobian columns have no entry outside the block (the column magnitudes the analogs
-//! equilibrate by are then known when the block is solved). And which make the magnitudes their
-//! tests judge in once per solve: those whose magnitudes do not depend on their unknowns.
+//! equilibrate by are then known when the block is solved). Which make the magnitudes their
+//! tests judge in once per solve: those whose magnitudes do not depend on their unknowns. And
+//! what a 2x2 block's explicit inverse (`Inverse2::in_cols`) is given besides its own entries:
+//! the entries of its columns beyond it (the rows of later blocks that hold its unknowns).
 
 use proc_macro2::TokenStream;
 
@@ -21,16 +25,25 @@ fn fused_kernel(decl: &str) -> String {
     code[code.find("fn kinematics_step_sink").expect("the fused kernel")..].split_whitespace().collect()
 }
 
-/// A four-bar whose coupler carries a second dyad, both solved by Newton: the coupler angle
-/// `beta` also appears in the second loop, so the first block's columns reach outside it.
-const WATT: &str = "#[kinloop(newton)]
-    pub struct Watt {
+/// The declaration of both Watt chains, after their attributes.
+macro_rules! watt_body {
+    () => {
+        "pub struct Watt {
         params a = 1.0, b = 3.0, c = 2.5, d = 3.2, e = 2.0, f = 2.8, g = 1.5, h = 2.6, k = 3.0;
         input phi;
         unknowns beta = 0.5, gamma = 1.5, delta = 0.2, eps = 1.8;
         loop abcd: a @ phi + b @ beta == (d, 0) + c @ gamma;
         loop second: a @ phi + e @ (beta + 0.3) + f @ delta == (g, h) + k @ eps;
-    }";
+    }"
+    };
+}
+
+/// A four-bar whose coupler carries a second dyad, both solved by Newton: the coupler angle
+/// `beta` also appears in the second loop, so the first block's columns reach outside it.
+const WATT: &str = concat!("#[kinloop(newton)]", watt_body!());
+
+/// [`WATT`] with its dyads in closed form.
+const WATT_CLOSED: &str = watt_body!();
 
 #[test]
 fn a_block_with_its_columns_inside_keeps_its_factorisation() {
@@ -73,4 +86,26 @@ fn magnitudes_that_depend_on_the_unknowns_come_from_each_evaluation() {
     assert!(call.contains("&|__e:&::kinloop::__gen::BlockEval<2,6>|::kinloop::__gen::Magnitudes::new("), "{call}");
     assert!(call.contains("[__e.keep[2],__e.keep[3]],[__e.keep[4],__e.keep[5]]"), "{call}");
     assert!(!fused_kernel(ROCKER).contains("let__mag0"), "nothing made once");
+}
+
+/// The inverse statement of block `b`.
+fn inverse_of(kernel: &str, b: usize) -> String {
+    let at = kernel.find(&format!("let__lu{b}=")).unwrap_or_else(|| panic!("no factorisation of block {b}"));
+    kernel[at..at + kernel[at..].find(';').expect("end of statement")].to_string()
+}
+
+/// The closed-form Watt chain: `beta`'s column of the first dyad reaches the second loop's rows,
+/// `gamma`'s does not.
+#[test]
+fn a_column_reaching_a_later_block_passes_its_further_entries() {
+    let kernel = fused_kernel(WATT_CLOSED);
+    let first = inverse_of(&kernel, 0);
+    assert!(first.contains("Inverse2::in_cols("), "{first}");
+    // Two entries of `beta`'s column lie in the second loop's rows; `gamma`'s column has none
+    // (padded with zeros to the same length).
+    let beyond = &first[first.find(",[[").expect("the entries beyond the block")..];
+    assert!(beyond.starts_with(",[[j_second_x_beta,j_second_y_beta],[0.0,0.0]]"), "{beyond}");
+    // The second dyad's columns hold only its own rows.
+    let second = inverse_of(&kernel, 1);
+    assert!(second.contains(",[[],[]]"), "{second}");
 }
