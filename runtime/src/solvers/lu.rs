@@ -336,8 +336,8 @@ impl<const N: usize> Lu<N> {
         self.det = det;
     }
 
-    /// The 2x2 case of [`Lu::factor_scaled`] (every closed-form dyad, slotted rocker and angle
-    /// with a slider is one): the operations of the general elimination in the same order, so
+    /// The 2x2 case of [`Lu::factor_scaled`] (every dyad, slotted rocker and angle with a slider
+    /// solved by Newton is one): the operations of the general elimination in the same order, so
     /// the results are bit-for-bit the same, with the row exchange a selection instead of the
     /// loops' searches and index bookkeeping.
     #[inline(always)]
@@ -492,7 +492,9 @@ impl Lu<2> {
     /// are valid (unit test). A column scale that is zero, infinite or NaN is not screened: its
     /// reciprocal makes that column of the equilibrated matrix zero or NaN, so a pivot is zero
     /// or NaN and [`Lu::pivot_ratio`] is 0 as in the general path (only the other fields of
-    /// such a degenerate factorisation differ).
+    /// such a degenerate factorisation differ). The generated analogs of a 2x2 block use the
+    /// explicit inverse instead ([`Inverse2`](super::inverse2::Inverse2), whose tests compare it
+    /// with this).
     #[inline(always)]
     pub fn factor_in_cols<const M: usize>(j: &[[f64; 2]; 2], cols: [[f64; M]; 2]) -> Self {
         let inv_col = cols.map(|c| 1.0 / max_abs(c));
