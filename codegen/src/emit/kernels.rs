@@ -298,9 +298,9 @@ impl Kernel<'_> {
 
     /// The factorisation of a block whose Jacobian `jrows` is evaluated from the graph, read off
     /// the Jacobian columns its entries belong to (the runtime's `Lu::factor_in_col` for a
-    /// scalar block whose entry is among the column's non-zero entries, `Lu::factor_in_cols`
-    /// for a 2x2 block: the general factorisation with fewer checks); otherwise the general
-    /// `factor_cols` with `scale`.
+    /// scalar block whose entry is among the column's non-zero entries: the general
+    /// factorisation with fewer checks; `Inverse2::in_cols` for a 2x2 block: its explicit
+    /// inverse, with the LU's pivot ratio); otherwise the general `factor_cols` with `scale`.
     fn factor(&self, bp: &BlockPlan, jrows: &TokenStream, scale: &[TokenStream]) -> TokenStream {
         let (rt, n) = (&self.rt, lit(bp.unknowns.len()));
         let k = (bp.unknowns.len() == 1).then(|| bp.col_scale[0].iter().position(|&e| e == bp.jac[0][0])).flatten();

@@ -365,6 +365,11 @@ where
         &self.states[usize::from(self.at)]
     }
 
+    /// The last accepted state, to replace it (the first sample, a state past a crossing).
+    fn cur_mut(&mut self) -> &mut Kin<N, NI, NO> {
+        &mut self.states[usize::from(self.at)]
+    }
+
     /// Runs the whole sweep: the states up to where it ended, why and where it ended, and the
     /// singular positions met (see [`SweepResult`]).
     pub fn run(mut self) -> SweepResult<S> {
@@ -466,7 +471,7 @@ where
         let x = self.path.from;
         match self.m.kinematics_flat(&x, &self.guess, &self.cfg.newton) {
             Ok(k) => {
-                self.states[usize::from(self.at)] = k;
+                *self.cur_mut() = k;
                 self.started = true;
                 self.first_q = k.q;
                 self.signs = k.health.det_signs;
@@ -562,7 +567,7 @@ where
                             Ok(n) => {
                                 // Passed a singular crossing (AtSingular::Continue); `diagnose`
                                 // set `tau` to where the continuation resumed.
-                                self.states[usize::from(self.at)] = n;
+                                *self.cur_mut() = n;
                                 self.signs = n.health.det_signs;
                                 self.h = self.h_max;
                             }

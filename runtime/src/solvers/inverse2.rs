@@ -24,8 +24,8 @@ pub struct Inverse2 {
 impl Inverse2 {
     /// The inverse of `j`, whose column `c` is equilibrated by the largest magnitude among its
     /// two entries and `beyond[c]`, the column's further non-zero entries in the full Jacobian
-    /// (the rows of later blocks, padded with zeros): the magnitudes
-    /// [`Lu::factor_in_cols`](super::lu::Lu::factor_in_cols) takes from the whole columns.
+    /// (the rows of later blocks, padded with zeros): the largest magnitudes of the whole
+    /// columns, by which [`Lu::factor_cols`](super::lu::Lu::factor_cols) would equilibrate.
     ///
     /// The LU's first pivot is the larger entry of the first column, `t / m0` with `t =
     /// max(|j00|, |j10|)` and `m0`, `m1` the columns' magnitudes; the second is the
@@ -98,8 +98,13 @@ impl Factor for Inverse2 {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::lu::Lu;
+    use crate::lu::{Lu, max_abs};
     use crate::metrics::test_rng::Rng;
+
+    /// The general factorisation equilibrated by the columns' largest magnitudes.
+    fn general<const M: usize>(j: &[[f64; 2]; 2], cols: [[f64; M]; 2]) -> Lu<2> {
+        Lu::<2>::factor_cols(j, [max_abs(cols[0]), max_abs(cols[1])])
+    }
 
     /// Against the equilibrated LU over random blocks of entries spanning 24 orders of magnitude
     /// (each column its own unit, some columns with a third entry from another block) and
@@ -121,7 +126,7 @@ mod tests {
             let extra = if n % 2 == 0 { 0.0 } else { 1.5 * u() * units[0] };
             let cols = [[j[0][0], j[1][0], extra], [j[0][1], j[1][1], 0.0]];
             let inv = Inverse2::in_cols(&j, [[extra], [0.0]]);
-            let lu = Lu::<2>::factor_in_cols(&j, cols);
+            let lu = general(&j, cols);
             let (pi, pl) = (inv.pivot_ratio(), lu.pivot_ratio());
             assert!((pi - pl).abs() <= 1e-13 * pl + 1e-15, "{j:?}: {pi:e} {pl:e}");
             if pl > 1e-10 {
@@ -156,8 +161,53 @@ mod tests {
         for (j, cols) in cases {
             let beyond = [[cols[0][2]], [cols[1][2]]];
             assert_eq!(Inverse2::in_cols(&j, beyond).pivot_ratio(), 0.0, "{j:?} {cols:?}");
-            assert_eq!(Lu::<2>::factor_in_cols(&j, cols).pivot_ratio(), 0.0, "{j:?} {cols:?}");
+            assert_eq!(general(&j, cols).pivot_ratio(), 0.0, "{j:?} {cols:?}");
         }
+    }
+
+    /// Over a grid of zero, signed-zero, tiny, huge, subnormal, infinite and NaN entries, with a
+    /// third entry of one column beyond the block: the general factorisation's pivot ratio (to a
+    /// few roundings; 0 exactly where it is 0) and determinant sign. Where a column's magnitude
+    /// is subnormal the general factorisation's reciprocal scale overflows and it reports 0; the
+    /// inverse, which divides by the magnitude, equilibrates such a block as it does the same
+    /// block in a unit 2^600 times smaller (bit for bit), which the general factorisation then
+    /// agrees with. A subnormal pivot ratio (a block's own entries below 2^-1022 of a column
+    /// entry beyond it) is reported as such, where the LU's reciprocal of that pivot overflows and
+    /// it reports 0: both singular to any tolerance.
+    #[test]
+    fn the_inverse_agrees_with_the_lu_on_special_values() {
+        let values = [0.0, -0.0, 1.0, -2.5, 3.0e-7, 7.0e5, 1e-310, f64::INFINITY, f64::NAN];
+        let scale = 2f64.powi(600);
+        let (mut n, mut subnormal) = (0usize, 0usize);
+        for (i, &a) in values.iter().enumerate() {
+            for (k, &b) in values.iter().enumerate() {
+                for &x in &values {
+                    let (c, d) = (values[(i + 3 * k + 1) % 9], values[(2 * i + k + 5) % 9]);
+                    // Column 0 holds the block's entries and one more row's; column 1 only its own.
+                    let (mut j, mut cols) = ([[a, b], [c, d]], [[a, c, x], [b, d, 0.0]]);
+                    let inv = Inverse2::in_cols(&j, [[cols[0][2]], [cols[1][2]]]);
+                    let tiny = cols.iter().any(|c| max_abs(*c) > 0.0 && max_abs(*c) < f64::MIN_POSITIVE);
+                    if tiny {
+                        // The same block in a smaller unit: exact products by a power of two.
+                        j = j.map(|row| row.map(|v| v * scale));
+                        cols = cols.map(|col| col.map(|v| v * scale));
+                        let scaled = Inverse2::in_cols(&j, [[cols[0][2]], [cols[1][2]]]);
+                        assert_eq!(inv.pivot_ratio().to_bits(), scaled.pivot_ratio().to_bits(), "{j:?}");
+                        subnormal += 1;
+                    }
+                    let lu = general(&j, cols);
+                    let (pi, pl) = (inv.pivot_ratio(), lu.pivot_ratio());
+                    // A subnormal pivot's reciprocal overflows in the LU, which reports 0.
+                    let lu_overflows = pi < f64::MIN_POSITIVE && pl == 0.0;
+                    assert!((pi - pl).abs() <= 1e-13 * pl || lu_overflows, "{j:?} {cols:?}: {pi:e} {pl:e}");
+                    if pl > 1e-10 {
+                        assert_eq!(inv.negative_det(), lu.negative_det(), "{j:?} {cols:?}");
+                    }
+                    n += usize::from(pl > 0.0);
+                }
+            }
+        }
+        assert!(n > 100 && subnormal > 10, "{n} regular, {subnormal} subnormal cases");
     }
 
     #[test]

@@ -256,7 +256,7 @@ impl<const N: usize> Lu<N> {
     /// [`Lu::factor_cols`] written over `self`: made where it is kept, since moving a
     /// factorisation of 3 or more unknowns is a copy of `N^2 + 5N` words (a smaller one is
     /// made and moved). `col_scale` holds the columns' largest magnitudes ([`max_abs`]), which
-    /// are not screened, as in [`Lu::factor_in_cols`]: one that is zero, infinite or NaN makes
+    /// are not screened: one that is zero, infinite or NaN makes
     /// its column of the equilibrated matrix NaN or zero, so a pivot is NaN or zero and
     /// [`Lu::pivot_ratio`] is 0 as in the screened factorisation (only the other fields of such
     /// a degenerate factorisation differ).
@@ -345,12 +345,6 @@ impl<const N: usize> Lu<N> {
         let mut degenerate = false;
         let inv_row = inverses(row_scale, &mut degenerate);
         let inv_col = inverses(col_scale, &mut degenerate);
-        Self::factor_2x2_with(j, inv_row, inv_col, degenerate)
-    }
-
-    /// [`Lu::factor_2x2`] from the reciprocals of the scales; `degenerate` when one was invalid.
-    #[inline(always)]
-    fn factor_2x2_with(j: &[[f64; N]; N], inv_row: [f64; N], inv_col: [f64; N], degenerate: bool) -> Self {
         let e = |r: usize, c: usize| j[r][c] * inv_row[r] * inv_col[c];
         // Partial pivoting: the second row leads when its first entry is larger (a NaN never
         // is, as in the general search).
@@ -482,23 +476,6 @@ impl<const N: usize> Lu<N> {
             }
         }
         out
-    }
-}
-
-impl Lu<2> {
-    /// [`Lu::factor_cols`] of the 2x2 block `j` whose column `c` is scaled by the largest
-    /// magnitude in `cols[c]`, the full Jacobian column (its non-zero entries, padded with
-    /// zeros to a common length): bit for bit the general factorisation wherever the scales
-    /// are valid (unit test). A column scale that is zero, infinite or NaN is not screened: its
-    /// reciprocal makes that column of the equilibrated matrix zero or NaN, so a pivot is zero
-    /// or NaN and [`Lu::pivot_ratio`] is 0 as in the general path (only the other fields of
-    /// such a degenerate factorisation differ). The generated analogs of a 2x2 block use the
-    /// explicit inverse instead ([`Inverse2`](super::inverse2::Inverse2), whose tests compare it
-    /// with this).
-    #[inline(always)]
-    pub fn factor_in_cols<const M: usize>(j: &[[f64; 2]; 2], cols: [[f64; M]; 2]) -> Self {
-        let inv_col = cols.map(|c| 1.0 / max_abs(c));
-        Self::factor_2x2_with(j, [1.0; 2], inv_col, false)
     }
 }
 
@@ -748,38 +725,6 @@ mod tests {
             }
         }
         assert_eq!(n, 11 * 11 * 11 * 3);
-    }
-
-    /// The 2x2 factorisation inside its Jacobian columns is the general one with the scales
-    /// `max_abs` of the columns: bit for bit wherever the scales are valid, and the same zero
-    /// pivot ratio wherever one is not (a zero, infinite or NaN column).
-    #[test]
-    fn the_2x2_in_its_columns_is_the_general_factorisation() {
-        let values = [0.0, -0.0, 1.0, -2.5, 3.0e-7, 7.0e5, 1e-310, f64::INFINITY, f64::NAN];
-        let mut n = 0usize;
-        for (i, &a) in values.iter().enumerate() {
-            for (k, &b) in values.iter().enumerate() {
-                for &x in &values {
-                    let (c, d) = (values[(i + 3 * k + 1) % 9], values[(2 * i + k + 5) % 9]);
-                    let j = [[a, b], [c, d]];
-                    // Column 0 holds the block's entries and one more row's; column 1 only its own.
-                    let cols = [[a, c, x], [b, d, 0.0]];
-                    let fast = Lu::<2>::factor_in_cols(&j, cols);
-                    let general = Lu::<2>::factor_cols(&j, [max_abs(cols[0]), max_abs(cols[1])]);
-                    let at = format!("{j:?} {cols:?}");
-                    assert_eq!(fast.pivot_ratio().to_bits(), general.pivot_ratio().to_bits(), "{at}");
-                    let valid = cols.iter().all(|c| {
-                        let s = max_abs(*c);
-                        s > 0.0 && s < f64::INFINITY
-                    });
-                    if valid {
-                        assert_eq!(bits(&fast), bits(&general), "{at}");
-                    }
-                    n += usize::from(valid);
-                }
-            }
-        }
-        assert!(n > 100, "{n} valid cases");
     }
 
     /// The Newton step's elimination with its right-hand side is the factorisation followed by
