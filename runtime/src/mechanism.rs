@@ -38,6 +38,13 @@ pub trait Mechanism<const N: usize, const NI: usize, const NO: usize> {
     const UNKNOWN_KINDS: [QuantityKind; N] = [QuantityKind::Other; N];
     /// The kind of quantity of each output column (see [`Mechanism::INPUT_KINDS`]).
     const OUTPUT_KINDS: [QuantityKind; NO] = [QuantityKind::Other; NO];
+    /// Per unknown: whether it *follows* the others, i.e. is one analytic function of the
+    /// inputs and of the unknowns solved before it, with no second branch, pole or kink (its
+    /// block is linear with a constant matrix and an entire right-hand side, as a slider's
+    /// coordinate next to its rod's angle). It stays on its branch wherever those do, so a
+    /// [`Sweep`](crate::Sweep) judges its steps by the other unknowns only. `mechanism!` finds
+    /// them; by default none follows, for hand-written implementations.
+    const FOLLOWERS: [bool; N] = [false; N];
 
     /// Parameter values in declaration order.
     ///

@@ -94,6 +94,14 @@ fn kind_constants(model: &Model, plan: &Plan) -> TokenStream {
     quote!(#rt::kinds!(#ni #i, #n #u, #no #o);)
 }
 
+/// `FOLLOWERS` of the `Mechanism` implementation (see [`crate::plan::followers`]), when an
+/// unknown follows the others (the default says none does).
+fn followers_constant(plan: &Plan) -> TokenStream {
+    let n = super::lit(plan.n);
+    let follows = crate::plan::followers::followers(&plan.graph, &plan.blocks, plan.n);
+    if follows.iter().any(|&f| f) { quote!(const FOLLOWERS: [bool; #n] = [#(#follows),*];) } else { TokenStream::new() }
+}
+
 /// The inherent named API (forwarders to the runtime's `Named`), `state.motion` and the
 /// conversions that depend only on the type names: one invocation of the runtime's macro.
 fn forwarders(t: &Types, d: &Dims) -> TokenStream {
@@ -118,6 +126,7 @@ fn mechanism_impl(model: &Model, plan: &Plan, t: &Types) -> TokenStream {
     let jacobian = jacobian_body(plan, &names);
     let lints = kernel_lints();
     let kinds = kind_constants(model, plan);
+    let followers = followers_constant(plan);
     let (x, q, g, cfg) = (
         quote!(__x: &[f64; #ni]),
         quote!(__q: &[f64; #n]),
@@ -157,6 +166,7 @@ fn mechanism_impl(model: &Model, plan: &Plan, t: &Types) -> TokenStream {
         impl #rt::Mechanism<#n, #ni, #no> for #name {
             #rt::mechanism_consts!(#name, #n, #ni, #no);
             #kinds
+            #followers
             fn guess_flat(&self, #x) -> [f64; #n] { #guess }
             fn outputs_flat(&self, #x, #q) -> [f64; #no] { #outputs_body }
             fn jacobian_flat(&self, #x, #q) -> #rt::Jac<#n, #ni> { #jacobian }

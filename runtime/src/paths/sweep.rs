@@ -8,7 +8,9 @@
 //!
 //! **Branch safety.** The branch is identified by the signs of the block Jacobians'
 //! determinants (the assembly mode of each block). A step is accepted only when the corrected
-//! position keeps those signs and lies close to its prediction; otherwise the step is halved. When
+//! position keeps those signs and lies close to its prediction, with velocity analogs close to
+//! theirs (the unknowns that merely follow the others, [`Mechanism::FOLLOWERS`], are judged
+//! through those they follow); otherwise the step is halved. When
 //! a step cannot be made however small, the sweep finds out why:
 //! * a **limit position** (the input cannot advance: a fold of the solution curve), located by
 //!   following the curve by pseudo-arclength continuation to the point where the input reverses;
@@ -402,6 +404,10 @@ where
         Location::boxed(M::NAME, &M::INPUTS, x, block)
     }
 
+    /// The unknowns a step is judged by: all but the followers (`Mechanism::FOLLOWERS`), as a
+    /// constant list the judge's loops unroll over.
+    const JUDGED: Judged<N> = Judged::of(M::FOLLOWERS);
+
     /// The prediction for a step of `dt` (a fraction of the path) from `k`, with the analogs
     /// along the path it uses: `slope = q' d` and `curv = d^T q'' d` give the second-order
     /// Taylor prediction `q + slope dt + curv dt^2 / 2` and, for [`Sweep::judge`], the expected
@@ -412,7 +418,9 @@ where
         let d = &self.path.delta;
         let (mut change, mut slope_change, mut slope) = (0.0f64, 0.0f64, 0.0f64);
         let mut q = k.q;
-        let slope1 = core::array::from_fn(|u| {
+        let mut slope1 = [0.0; N];
+        // A follower is neither predicted (no solve uses its guess) nor judged.
+        for &u in Self::JUDGED.as_slice() {
             // From -0.0, the additive identity: the first addition folds away (from 0.0 it is an
             // `addsd` per sum, which `0.0 + -0.0 = 0.0` keeps).
             let mut slope0 = -0.0;
@@ -428,8 +436,8 @@ where
             change = change.max(du.abs());
             slope_change = slope_change.max((curv * dt).abs());
             slope = slope.max(slope0.abs());
-            slope0 + curv * dt
-        });
+            slope1[u] = slope0 + curv * dt;
+        }
         let (rel, abs) = (self.cfg.corrector_rel, self.cfg.corrector_abs);
         Prediction { q, slope1, max_dist: rel * change + abs, max_slope_err: rel * (slope_change + 0.1 * slope) + abs }
     }
@@ -443,7 +451,8 @@ where
     fn judge(&self, n: &Kin<N, NI, NO>, p: &Prediction<N>) -> Outcome {
         let d = &self.path.delta;
         let (mut dist, mut slope_err) = (0.0f64, 0.0f64);
-        for u in 0..N {
+        // Followers are smooth functions of the judged unknowns (see `Mechanism::FOLLOWERS`).
+        for &u in Self::JUDGED.as_slice() {
             dist = dist.max((n.q[u] - p.q[u]).abs());
             // From -0.0, as in `predict`.
             let mut s1 = -0.0;
@@ -681,6 +690,31 @@ where
                 at: self.location(&x, block_of(weakest)),
             },
         })
+    }
+}
+
+/// The indices of the unknowns that do not follow the others, in order.
+struct Judged<const N: usize> {
+    index: [usize; N],
+    len: usize,
+}
+
+impl<const N: usize> Judged<N> {
+    const fn of(followers: [bool; N]) -> Self {
+        let (mut index, mut len, mut u) = ([0; N], 0, 0);
+        while u < N {
+            if !followers[u] {
+                index[len] = u;
+                len += 1;
+            }
+            u += 1;
+        }
+        Judged { index, len }
+    }
+
+    #[inline(always)]
+    fn as_slice(&self) -> &[usize] {
+        &self.index[..self.len]
     }
 }
 
