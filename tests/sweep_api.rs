@@ -193,14 +193,12 @@ fn rejected_steps_leave_the_last_accepted_state() {
     let m = rocker();
     let g = m.position(0.0, &m.guess(0.0)).unwrap().0;
     let mut sweep: Sweep<FourBar, Kin<2, 1, 2>, 2, 1, 2> = Sweep::new(&m, [0.0], [PI], 181, g.into()).unwrap();
-    // (Called as `Sweep::last`: by method syntax `Iterator::last`, which takes the sweep by
-    // value, is found first.)
     let first = sweep.next_kin().unwrap().unwrap();
     let mut returned = first;
     let err = loop {
         match sweep.next_kin() {
             Some(Ok(k)) => {
-                assert_eq!(Sweep::last(&sweep), Some(&k));
+                assert_eq!(sweep.last_accepted(), Some(&k));
                 returned = k;
             }
             Some(Err(e)) => break e,
@@ -210,7 +208,7 @@ fn rejected_steps_leave_the_last_accepted_state() {
     assert!(matches!(err, Error::SweepStopped { kind: EventKind::LimitPosition, .. }), "{err}");
     let lim = limit(&m);
     assert!(returned.x[0] < lim && returned.x[0] > lim - PI / 180.0);
-    let last = *Sweep::last(&sweep).unwrap();
+    let last = *sweep.last_accepted().unwrap();
     assert!(last.x[0] >= returned.x[0] && last.x[0] < lim, "{} {} {lim}", last.x[0], returned.x[0]);
     assert_eq!(last.health.det_signs, first.health.det_signs);
     assert!(last.health.min_pivot >= SweepConfig::default().singular_pivot, "{:?}", last.health);

@@ -356,8 +356,10 @@ where
         &self.events
     }
 
-    /// The last accepted state (the last sample, or the last point before a stop).
-    pub fn last(&self) -> Option<&Kin<N, NI, NO>> {
+    /// The last accepted state (the last sample, or the last point before a stop). (Not named
+    /// `last`: a sweep is an iterator, and method syntax would find `Iterator::last`, which
+    /// consumes it.)
+    pub fn last_accepted(&self) -> Option<&Kin<N, NI, NO>> {
         self.started.then_some(self.cur())
     }
 
