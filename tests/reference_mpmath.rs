@@ -1,6 +1,6 @@
 //! kinloop against independent 50-digit references (tests/reference/generate.py, mpmath): a
-//! four-bar with a coupler point, an offset slider-crank, a two-loop Watt six-bar and a class IV
-//! group, over a whole crank turn, in point solves (from a guess 0.05 rad off) and in sweeps.
+//! four-bar with a coupler point, an offset slider-crank, a two-loop Watt six-bar, a class IV
+//! group and a rhombic drive, over a whole crank turn, in point solves (from a guess 0.05 rad off) and in sweeps.
 //!
 //! Tolerances: positions within 1e-14 (angles absolute, lengths relative to the largest link:
 //! a few ulps of the loop's magnitude), analogs within 1e-12 relative to the largest magnitude
@@ -54,6 +54,19 @@ kinloop::mechanism! {
         loop acdb: a + ac @ th1 + cd @ psi1 == b + bd @ th2;
         loop aefb: a + ae @ (th1 + alpha_a) + ef @ psi2 == b + bf @ (th2 + alpha_b);
         point c = a + ac @ th1;
+    }
+}
+
+kinloop::mechanism! {
+    /// Rhombic drive (paper 000), its second crank set `gamma` ahead of the first, declared (with
+    /// its unknowns) before it: in a sweep the cache gives `sin(phi1 + gamma)` by angle addition
+    /// from `phi1`'s values, which the kernel then computes first.
+    pub struct RhombicDrive {
+        params r_p = 1.0, r_b = 1.2, l_p = 3.0, l_b = 3.5, e_p = 0.5, de = 0.9, gamma = 0.7;
+        input phi1;
+        unknowns phi4 = pi, x_f = l_b, phi2 = 0, x_c = -l_p;
+        loop oadff1o: (0, e_p) + r_b @ (phi1 + gamma) == (x_f, de) + l_b @ phi4;
+        loop oabco:   (0, e_p) + r_p @ phi1           == (x_c, 0)  + l_p @ phi2;
     }
 }
 
@@ -200,4 +213,9 @@ fn watt_six_bar_matches_the_50_digit_reference() {
 #[test]
 fn class_four_group_matches_the_50_digit_reference() {
     check("class_four", &ClassFour::default(), include_str!("reference/class_four.csv"), &[], 4.4);
+}
+
+#[test]
+fn rhombic_drive_matches_the_50_digit_reference() {
+    check("rhombic_drive", &RhombicDrive::default(), include_str!("reference/rhombic_drive.csv"), &[1, 3], 3.5);
 }

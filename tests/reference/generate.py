@@ -88,6 +88,27 @@ def class_four():
     return "class_four", loops, points, [1.4, 3.0, -0.8, -1.0], [2 * pi * k / 24 for k in range(25)]
 
 
+def rhombic_drive():
+    # The crank of the second rod is set gamma ahead: its sine and cosine are a sum of angles.
+    # Its unknowns come first, as the test declares them.
+    r_p, r_b, l_p, l_b = mpf(1), mpf("1.2"), mpf(3), mpf("3.5")
+    e_p, de, gamma = mpf("0.5"), mpf("0.9"), mpf("0.7")
+
+    def loops(q, phi):
+        phi4, x_f, phi2, x_c = q
+        return [
+            r_b * cos(phi + gamma) - x_f - l_b * cos(phi4),
+            e_p + r_b * sin(phi + gamma) - de - l_b * sin(phi4),
+            r_p * cos(phi) - x_c - l_p * cos(phi2),
+            e_p + r_p * sin(phi) - l_p * sin(phi2),
+        ]
+
+    def points(q, phi):
+        return []
+
+    return "rhombic_drive", loops, points, [pi, 3.5, 0, -3], [2 * pi * k / 24 for k in range(25)]
+
+
 def solve(loops, phi, guess):
     q = findroot(lambda *q: loops(list(q), phi), [mpf(g) for g in guess], tol=mpf(10) ** -45, maxsteps=200)
     q = [q] if not isinstance(q, matrix) else [q[i] for i in range(len(guess))]
@@ -109,7 +130,7 @@ def row(loops, points, phi, guess):
 
 
 def main():
-    for name, loops, points, guess, angles in [four_bar(), slider_crank(), watt_six_bar(), class_four()]:
+    for name, loops, points, guess, angles in [four_bar(), slider_crank(), watt_six_bar(), class_four(), rhombic_drive()]:
         n, npts = len(guess), len(points([mpf(g) for g in guess], mpf(0)))
         header = ["phi"] + [f"q{u}" for u in range(n)] + [f"dq{u}" for u in range(n)] + [f"d2q{u}" for u in range(n)]
         header += [f"p{k}" for k in range(npts)] + [f"dp{k}" for k in range(npts)] + [f"d2p{k}" for k in range(npts)]

@@ -243,6 +243,10 @@ impl Names {
         for &n in nodes {
             if let Some(&(sn, cn)) = sched.sin_cos.get(&n) {
                 if done.insert(sn) {
+                    if let Some(sum) = self.angle_sum(g, sched, (sn, cn), nodes, &mut done) {
+                        out.extend(sum);
+                        continue;
+                    }
                     let (s, c) = (self.temp(sn), self.temp(cn));
                     let arg = match g.op(sn) {
                         Op::Func(_, a) => self.operand(g, a),
@@ -262,6 +266,34 @@ impl Names {
             out.extend(quote!(let #name: f64 = #e;));
         }
         out
+    }
+
+    /// In a sweep's kernel, the sine and cosine `(sn, cn)` of a sum of angles `a + b` with
+    /// `b` a parameter angle (`phi1 + gamma`, see [`Schedule::sums`]): by angle addition from
+    /// `a`'s values and `b`'s, which the cache holds unchanged over the sweep
+    /// (`InputTrig::sin_cos_sum`). Four products instead of a second rotation. `a`'s pair is
+    /// emitted first when it comes later in the same scope (the schedule put it no later).
+    fn angle_sum(
+        &self,
+        g: &Graph,
+        sched: &Schedule,
+        (sn, cn): (NodeId, NodeId),
+        nodes: &[NodeId],
+        done: &mut HashSet<NodeId>,
+    ) -> Option<TokenStream> {
+        let sum = sched.sums.get(&sn)?;
+        let (sa, ca) = sum.sin_cos_a;
+        let (&slot, &slot_a) = (self.trig_slots.get(&sn)?, self.trig_slots.get(&sa)?);
+        let (s, c, s_a, c_a) = (self.temp(sn), self.temp(cn), self.temp(sa), self.temp(ca));
+        let (a, b, arg) = (self.operand(g, sum.a), self.operand(g, sum.b), self.operand(g, sum.sum));
+        let mut out = TokenStream::new();
+        if nodes.contains(&sa) && done.insert(sa) {
+            let slot_a = Literal::usize_unsuffixed(slot_a);
+            out.extend(quote!(let (#s_a, #c_a): (f64, f64) = __trig.sin_cos(#slot_a, #a);));
+        }
+        let slot = Literal::usize_unsuffixed(slot);
+        out.extend(quote!(let (#s, #c): (f64, f64) = __trig.sin_cos_sum(#slot, #arg, (#s_a, #c_a), #b);));
+        Some(out)
     }
 }
 

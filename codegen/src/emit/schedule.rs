@@ -6,7 +6,7 @@
 //! first scope that needs it; values computed inside a Newton closure that later scopes need are
 //! handed out through the evaluation's `keep` array instead of being recomputed.
 
-use crate::dag::{Func, Graph, NodeId, Op};
+use crate::dag::{Func, Graph, Leaf, NodeId, Op};
 use std::collections::HashMap;
 
 /// Where a scope's code runs.
@@ -35,6 +35,24 @@ pub struct Schedule {
     /// A sine and the cosine of the same argument, both scheduled in the same scope: they are
     /// computed together by one `sin_cos()` (see [`schedule`]). Keyed by each of the two.
     pub sin_cos: HashMap<NodeId, (NodeId, NodeId)>,
+    /// Sums of angles: a sine's argument `a + b` free of the unknowns, with `b` a parameter
+    /// angle and `a`'s sine and cosine also computed, keyed by the sine.
+    /// `a`'s pair is scheduled no later than the sum's, so the sum's pair can be had from it by
+    /// angle addition (see `Names::angle_sum`).
+    pub sums: HashMap<NodeId, AngleSum>,
+}
+
+/// An argument `a + b` of a paired sine and cosine (see [`Schedule::sums`]).
+#[derive(Clone, Copy, Debug)]
+pub struct AngleSum {
+    /// The argument `a + b`.
+    pub sum: NodeId,
+    /// The part that varies (an input's angle).
+    pub a: NodeId,
+    /// The parameter angle.
+    pub b: NodeId,
+    /// `a`'s paired sine and cosine.
+    pub sin_cos_a: (NodeId, NodeId),
 }
 
 /// Places every node needed by `scopes` in the first scope that needs it (a node of a `Loop`
@@ -82,6 +100,7 @@ pub fn schedule(g: &Graph, level: &[i32], scopes: &[ScopeSpec]) -> Schedule {
         sin_cos.insert(sn, (sn, cn));
         sin_cos.insert(cn, (sn, cn));
     }
+    let sums = angle_sums(g, level, &sin_cos, &mut assigned);
     let mut lets = vec![Vec::new(); scopes.len()];
     for (&n, &s) in &assigned {
         lets[s].push(n);
@@ -112,5 +131,39 @@ pub fn schedule(g: &Graph, level: &[i32], scopes: &[ScopeSpec]) -> Schedule {
     for e in &mut exports {
         e.sort_unstable();
     }
-    Schedule { lets, exports, sin_cos }
+    Schedule { lets, exports, sin_cos, sums }
+}
+
+/// The paired arguments `a + b` free of the unknowns whose part `b` is a parameter angle and
+/// whose `a` has its own pair; each such `a`'s pair moves to the sum's scope when that is earlier.
+fn angle_sums(
+    g: &Graph,
+    level: &[i32],
+    sin_cos: &HashMap<NodeId, (NodeId, NodeId)>,
+    assigned: &mut HashMap<NodeId, usize>,
+) -> HashMap<NodeId, AngleSum> {
+    let parameter =
+        |n: NodeId| !matches!(g.op(n), Op::Const(_)) && g.leaves_of(&[n]).iter().all(|l| matches!(l, Leaf::Param(_)));
+    let mut sums = HashMap::new();
+    let mut sines: Vec<NodeId> = sin_cos.values().map(|&(sn, _)| sn).collect();
+    sines.sort_unstable();
+    sines.dedup();
+    for sn in sines {
+        let Op::Func(_, arg) = g.op(sn) else { continue };
+        let Op::Add(x, y) = g.op(arg) else { continue };
+        let (a, b) = match (parameter(x), parameter(y)) {
+            (false, true) => (x, y),
+            (true, false) => (y, x),
+            _ => continue,
+        };
+        let Some(&(sa, ca)) = g.find(Op::Func(Func::Sin, a)).and_then(|s| sin_cos.get(&s)) else { continue };
+        if level[arg.index()] >= 0 {
+            continue;
+        }
+        let first = assigned[&sa].min(assigned[&sn]);
+        assigned.insert(sa, first);
+        assigned.insert(ca, first);
+        sums.insert(sn, AngleSum { sum: arg, a, b, sin_cos_a: (sa, ca) });
+    }
+    sums
 }

@@ -211,6 +211,11 @@ impl Graph {
         id
     }
 
+    /// The node of `op`, if the graph has it (nothing is added).
+    pub fn find(&self, op: Op) -> Option<NodeId> {
+        self.index.get(&op).copied()
+    }
+
     /// The value of a constant node.
     pub fn as_const(&self, n: NodeId) -> Option<f64> {
         match self.op(n) {
