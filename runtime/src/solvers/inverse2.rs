@@ -48,7 +48,9 @@ impl Inverse2 {
                 sum += v;
             }
         }
-        let p0 = top / m[0];
+        // Without entries beyond the block the first column's magnitude is `top`: its pivot is 1
+        // (or NaN, which the second shares: no division for it).
+        let p0 = if K == 0 { 1.0 } else { top / m[0] };
         let p1 = det.abs() / (top * m[1]);
         let smaller = if p1 < p0 { p1 } else { p0 };
         // A NaN or infinite pivot, or a NaN or infinite entry beyond the block, fails the test,
@@ -125,7 +127,9 @@ mod tests {
             let j = [[a * units[0], b * units[1]], [c * units[0], d * units[1]]];
             let extra = if n % 2 == 0 { 0.0 } else { 1.5 * u() * units[0] };
             let cols = [[j[0][0], j[1][0], extra], [j[0][1], j[1][1], 0.0]];
-            let inv = Inverse2::in_cols(&j, [[extra], [0.0]]);
+            // Without an entry beyond the block, the form without any (its own first pivot).
+            let inv =
+                if extra == 0.0 { Inverse2::in_cols(&j, [[]; 2]) } else { Inverse2::in_cols(&j, [[extra], [0.0]]) };
             let lu = general(&j, cols);
             let (pi, pl) = (inv.pivot_ratio(), lu.pivot_ratio());
             assert!((pi - pl).abs() <= 1e-13 * pl + 1e-15, "{j:?}: {pi:e} {pl:e}");
@@ -186,6 +190,10 @@ mod tests {
                     // Column 0 holds the block's entries and one more row's; column 1 only its own.
                     let (mut j, mut cols) = ([[a, b], [c, d]], [[a, c, x], [b, d, 0.0]]);
                     let inv = Inverse2::in_cols(&j, [[cols[0][2]], [cols[1][2]]]);
+                    // A block without entries beyond it is the same block with zeros beyond it.
+                    let (alone, zeros) = (Inverse2::in_cols(&j, [[]; 2]), Inverse2::in_cols(&j, [[0.0]; 2]));
+                    assert_eq!(alone.pivot_ratio().to_bits(), zeros.pivot_ratio().to_bits(), "{j:?}");
+                    assert_eq!(alone.negative_det(), zeros.negative_det(), "{j:?}");
                     let tiny = cols.iter().any(|c| max_abs(*c) > 0.0 && max_abs(*c) < f64::MIN_POSITIVE);
                     if tiny {
                         // The same block in a smaller unit: exact products by a power of two.
