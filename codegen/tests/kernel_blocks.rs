@@ -5,7 +5,8 @@
 //! equilibrate by are then known when the block is solved). Which make the magnitudes their
 //! tests judge in once per solve: those whose magnitudes do not depend on their unknowns. And
 //! what a 2x2 block's explicit inverse (`Inverse2::in_cols`) is given besides its own entries:
-//! the entries of its columns beyond it (the rows of later blocks that hold its unknowns).
+//! the entries of its columns beyond it (the rows of later blocks that hold its unknowns). And
+//! which sines and cosines a sweep's kernel has by angle addition (`InputTrig::sin_cos_sum`).
 
 use proc_macro2::TokenStream;
 
@@ -108,4 +109,52 @@ fn a_column_reaching_a_later_block_passes_its_further_entries() {
     // The second dyad's columns hold only its own rows.
     let second = inverse_of(&kernel, 1);
     assert!(second.contains(",[[],[]]"), "{second}");
+}
+
+/// The statements of `kernel` that ask the sweep's cache for sines and cosines, in order.
+fn trig_calls(kernel: &str) -> Vec<&str> {
+    kernel.split(';').filter(|s| s.contains("__trig.sin_cos")).collect()
+}
+
+/// An input angle plus a parameter angle or a constant: in a sweep's kernel its sine and cosine
+/// come by angle addition from the input's (`sin_cos_sum`, given the input's pair, asked first
+/// even where it is declared later) and the offset's, not by a rotation of their own. Without
+/// the input's own pair, or with an unknown in the sum, the argument keeps its rotation.
+#[test]
+fn an_input_angle_plus_an_offset_comes_by_angle_addition() {
+    let drive = |first: &str, second: &str| {
+        fused_kernel(&format!(
+            "pub struct Drive {{
+                params r_p = 1.0, r_b = 1.2, l_p = 3.0, l_b = 3.5, e_p = 0.5, gamma = 0.7;
+                input phi;
+                unknowns phi4 = 3.1, x_f = 3.5, phi2 = 0, x_c = -3;
+                {first}
+                {second}
+            }}"
+        ))
+    };
+    let by_gamma = "loop b: (0, e_p) + r_b @ (phi + gamma) == (x_f, 0.9) + l_b @ phi4;";
+    let by_input = "loop a: (0, e_p) + r_p @ phi == (x_c, 0) + l_p @ phi2;";
+    for (kernel, offset) in [
+        (drive(by_gamma, by_input), "self.gamma"),
+        (drive(&by_gamma.replace("phi + gamma", "gamma + phi"), by_input), "self.gamma"),
+        (drive(&by_gamma.replace("phi + gamma", "phi + 0.7"), by_input), "0.7f64"),
+    ] {
+        let calls = trig_calls(&kernel);
+        assert_eq!(calls.len(), 2, "{calls:?}");
+        let (input, sum) = (calls[0], calls[1]);
+        assert!(input.contains("__trig.sin_cos(") && input.ends_with("x_phi)"), "{input}");
+        // The input's pair, by the names it was just given.
+        let pair = &input[input.find("let(").expect("a pair") + 4..input.find("):(").expect("typed")];
+        assert!(sum.contains("__trig.sin_cos_sum(") && sum.contains(&format!(",({pair}),{offset})")), "{sum}");
+    }
+    // Without the input's own pair, and with an unknown in the sum: rotations of their own.
+    let alone = fused_kernel(
+        "pub struct Alone { params r_b = 1.2, l_b = 3.5, e_p = 0.5, gamma = 0.7; input phi;
+            unknowns phi4 = 3.1, x_f = 3.5;
+            loop b: (0, e_p) + r_b @ (phi + gamma) == (x_f, 0.9) + l_b @ phi4; }",
+    );
+    assert!(!alone.contains("sin_cos_sum") && trig_calls(&alone).len() == 1, "{:?}", trig_calls(&alone));
+    let coupler = fused_kernel(concat!("#[kinloop(newton)]", watt_body!()));
+    assert!(!coupler.contains("sin_cos_sum"), "{:?}", trig_calls(&coupler));
 }

@@ -8,9 +8,9 @@
 //! `d` from short polynomials. That costs a fraction of a libm call. Every [`RESYNC`] rotations,
 //! and whenever the argument jumps, libm computes the values afresh, so rounding errors never
 //! accumulate beyond a few units in the last place (measured in the tests below). An argument
-//! that is such an angle plus a parameter angle (`phi1 + gamma`) is not rotated a second time:
-//! its values come by angle addition from the angle's and the parameter's, which the cache
-//! computes once ([`InputTrig::sin_cos_sum`]).
+//! that is such an angle plus a parameter angle or a constant (`phi1 + gamma`) is not rotated a
+//! second time: its values come by angle addition from the angle's and the offset's, which the
+//! cache computes once ([`InputTrig::sin_cos_sum`]).
 //!
 //! A closed-form block gets the sine and cosine of its unknown angle from its equation, and the
 //! angle itself from libm's `atan2` or `acos` (or `asin`, which the generated code keeps: it

@@ -36,7 +36,7 @@ pub struct Schedule {
     /// computed together by one `sin_cos()` (see [`schedule`]). Keyed by each of the two.
     pub sin_cos: HashMap<NodeId, (NodeId, NodeId)>,
     /// Sums of angles: a sine's argument `a + b` free of the unknowns, with `b` a parameter
-    /// angle and `a`'s sine and cosine also computed, keyed by the sine.
+    /// angle or a constant and `a`'s sine and cosine also computed, keyed by the sine.
     /// `a`'s pair is scheduled no later than the sum's, so the sum's pair can be had from it by
     /// angle addition (see `Names::angle_sum`).
     pub sums: HashMap<NodeId, AngleSum>,
@@ -49,7 +49,7 @@ pub struct AngleSum {
     pub sum: NodeId,
     /// The part that varies (an input's angle).
     pub a: NodeId,
-    /// The parameter angle.
+    /// The parameter angle (or constant).
     pub b: NodeId,
     /// `a`'s paired sine and cosine.
     pub sin_cos_a: (NodeId, NodeId),
@@ -142,8 +142,8 @@ fn angle_sums(
     sin_cos: &HashMap<NodeId, (NodeId, NodeId)>,
     assigned: &mut HashMap<NodeId, usize>,
 ) -> HashMap<NodeId, AngleSum> {
-    let parameter =
-        |n: NodeId| !matches!(g.op(n), Op::Const(_)) && g.leaves_of(&[n]).iter().all(|l| matches!(l, Leaf::Param(_)));
+    // Parameters and constants (`phi + gamma`, `phi + deg(30)`).
+    let parameter = |n: NodeId| g.leaves_of(&[n]).iter().all(|l| matches!(l, Leaf::Param(_)));
     let mut sums = HashMap::new();
     let mut sines: Vec<NodeId> = sin_cos.values().map(|&(sn, _)| sn).collect();
     sines.sort_unstable();
