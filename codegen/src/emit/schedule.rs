@@ -157,10 +157,12 @@ fn angle_sums(
             _ => continue,
         };
         let Some(&(sa, ca)) = g.find(Op::Func(Func::Sin, a)).and_then(|s| sin_cos.get(&s)) else { continue };
+        // Every paired node is scheduled; `get` rather than indexing keeps the macro panic-free.
+        let (Some(&at_a), Some(&at_sum)) = (assigned.get(&sa), assigned.get(&sn)) else { continue };
         if level[arg.index()] >= 0 {
             continue;
         }
-        let first = assigned[&sa].min(assigned[&sn]);
+        let first = at_a.min(at_sum);
         assigned.insert(sa, first);
         assigned.insert(ca, first);
         sums.insert(sn, AngleSum { sum: arg, a, b, sin_cos_a: (sa, ca) });
