@@ -1,11 +1,13 @@
 #!/usr/bin/env bash
 # Instructions per step of the closed-form rows under callgrind, for `report --callgrind FILE`:
-# runs `closed_form_step VARIANT N` (turns of 720 steps, warm start = previous position) under
-# valgrind at N = 2000 and N = 4000 steps and prints, per variant, one line
-# `VARIANT INSTRUCTIONS_PER_STEP` = (total at 4000 - total at 2000) / 2000 (the setup cancels).
+# runs `closed_form_step VARIANT N [TURN]` (turns of 720 steps unless `VARIANT@TURN` says
+# another) under valgrind at N = 2000 and N = 4000 steps (200 and 400 for the ring of 64 loops
+# and its series, whose steps are large) and prints, per variant, one line
+# `VARIANT INSTRUCTIONS_PER_STEP` = (total at high - total at low) / (high - low): the setup
+# cancels.
 #
-#   benches/callgrind.sh > callgrind.txt            # every variant of the report's table
-#   benches/callgrind.sh four-bar-hand four-bar-point  # only these
+#   benches/callgrind.sh > callgrind.txt            # every variant of the report's tables
+#   benches/callgrind.sh four-bar-hand point@1000000  # only these
 #   cargo run --release -p kinloop-bench --bin report -- --callgrind callgrind.txt
 #
 # Needs valgrind (3.19 measured the figures of BENCHMARKS.md). Run it from anywhere; it builds
@@ -24,30 +26,42 @@ else
   variants=(hand point sweep
     four-bar-hand four-bar-point four-bar-sweep
     gear-lever-hand gear-lever-point gear-lever-sweep
-    class-four-hand class-four-point)
+    class-four-hand class-four-point
+    class-four-hand-taylor class-four-point-taylor class-four-sweep
+    class-four-hand@1000000 class-four-point@1000000
+    class-four-hand-taylor@1000000 class-four-point-taylor@1000000
+    hand@1000000 point@1000000
+    newton newton-sweep
+    series-point ring-point)
 fi
 
 command -v valgrind >/dev/null || { echo "callgrind.sh: valgrind is not installed" >&2; exit 1; }
 (cd "$root" && cargo build --quiet --release -p kinloop-bench --bin closed_form_step) >&2
 
-# Total instructions of `closed_form_step VARIANT STEPS`, from callgrind's summary line.
+# Total instructions of `closed_form_step VARIANT STEPS TURN`, from callgrind's summary line.
 total() {
   local out
-  out="$(valgrind --tool=callgrind --callgrind-out-file=/dev/null "$bin" "$1" "$2" 2>&1)" || {
-    echo "callgrind.sh: closed_form_step $1 $2 failed:" >&2
+  out="$(valgrind --tool=callgrind --callgrind-out-file=/dev/null "$bin" "$1" "$2" "$3" 2>&1)" || {
+    echo "callgrind.sh: closed_form_step $1 $2 $3 failed:" >&2
     echo "$out" >&2
     return 1
   }
   echo "$out" | sed -n 's/.*Collected : *\([0-9][0-9]*\).*/\1/p'
 }
 
-echo "# closed_form_step instructions per step: (total at $high - total at $low) / $((high - low)), 720 steps a turn, $(valgrind --version)"
+echo "# closed_form_step instructions per step: (total at $high - total at $low) / $((high - low)) (ring and series: 400 and 200), 720 steps a turn unless VARIANT@TURN, $(valgrind --version)"
 for v in "${variants[@]}"; do
-  a="$(total "$v" "$low")"
-  b="$(total "$v" "$high")"
+  name="${v%@*}"
+  turn=720
+  [ "$name" != "$v" ] && turn="${v#*@}"
+  lo=$low
+  hi=$high
+  case "$name" in ring-* | series-*) lo=200 hi=400 ;; esac
+  a="$(total "$name" "$lo" "$turn")"
+  b="$(total "$name" "$hi" "$turn")"
   if [ -z "$a" ] || [ -z "$b" ]; then
     echo "callgrind.sh: no instruction count for $v" >&2
     exit 1
   fi
-  awk -v v="$v" -v a="$a" -v b="$b" -v n="$((high - low))" 'BEGIN { printf "%s %.0f\n", v, (b - a) / n }'
+  awk -v v="$v" -v a="$a" -v b="$b" -v n="$((hi - lo))" 'BEGIN { printf "%s %.0f\n", v, (b - a) / n }'
 done

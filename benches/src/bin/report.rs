@@ -9,7 +9,9 @@
 //! same steps (see [`paired`]), a cross-check of criterion's sequential runs on a shared, noisy
 //! machine. `--callgrind FILE` puts the instructions per step of the closed-form rows (the
 //! output of `benches/callgrind.sh`, lines `VARIANT COUNT` naming variants of
-//! `closed_form_step`) beside their criterion times.
+//! `closed_form_step`, `VARIANT@TURN` for another turn than 720 steps) beside their criterion
+//! times, and adds the table of the rows callgrind alone measures (the class IV predictor and
+//! sweep, the turns of 10^6 steps, the rhombic drive by Newton, the ring of 64 loops).
 
 use std::collections::HashMap;
 use std::hint::black_box;
@@ -205,6 +207,93 @@ const CLOSED_FORM_ROWS: [Row; 4] = [
         variants: &[("hand_newton", "class-four-hand"), ("kinloop", "class-four-point")],
     },
 ];
+
+/// A row measured by callgrind only: a variant of `closed_form_step` (`VARIANT@TURN` when its
+/// turn is not [`TURN_720`] steps) against its reference, and the target of their ratio if any.
+struct CountRow {
+    what: &'static str,
+    variant: &'static str,
+    reference: &'static str,
+    target: Option<f64>,
+}
+
+const COUNT_ROWS: [CountRow; 8] = [
+    CountRow {
+        what: "class IV block, second-order predictor (hand Newton with the same predictor)",
+        variant: "class-four-point-taylor",
+        reference: "class-four-hand-taylor",
+        target: Some(1.3),
+    },
+    CountRow {
+        what: "class IV block, kinloop's own `Sweep` (against the predictor-driven hand Newton)",
+        variant: "class-four-sweep",
+        reference: "class-four-hand-taylor",
+        target: None,
+    },
+    CountRow {
+        what: "class IV block, previous position, 10^6 steps a turn",
+        variant: "class-four-point@1000000",
+        reference: "class-four-hand@1000000",
+        target: Some(1.3),
+    },
+    CountRow {
+        what: "class IV block, second-order predictor, 10^6 steps a turn",
+        variant: "class-four-point-taylor@1000000",
+        reference: "class-four-hand-taylor@1000000",
+        target: Some(1.3),
+    },
+    CountRow {
+        what: "rhombic drive, point step, 10^6 steps a turn: the 4000 steps measured cover only the turn's first 1.4 degrees (libm's cost depends on the angle)",
+        variant: "point@1000000",
+        reference: "hand@1000000",
+        target: None,
+    },
+    CountRow {
+        what: "rhombic drive by Newton in every block (`#[kinloop(newton)]`) against its closed forms, point step",
+        variant: "newton",
+        reference: "point",
+        target: None,
+    },
+    CountRow {
+        what: "rhombic drive by Newton in every block against its closed forms, `Sweep` sample",
+        variant: "newton-sweep",
+        reference: "sweep",
+        target: None,
+    },
+    CountRow {
+        what: "ring of 64 four-bar loops, one sparse block of 128 unknowns, against the same loops in series",
+        variant: "ring-point",
+        reference: "series-point",
+        target: Some(10.0),
+    },
+];
+
+/// The rows measured by callgrind only (see [`COUNT_ROWS`]).
+fn count_table(callgrind: &HashMap<String, f64>) {
+    println!(
+        "| row | `closed_form_step` variant | instructions per step | reference variant | reference | ratio | target |"
+    );
+    println!("|---|---|---:|---|---:|---:|---:|");
+    for row in &COUNT_ROWS {
+        let cell = |v: &str| callgrind.get(v).copied();
+        let (count, reference) = (cell(row.variant), cell(row.reference));
+        let fmt = |n: Option<f64>| n.map_or("–".to_string(), |n| format!("{n:.0}"));
+        let ratio = match (count, reference) {
+            (Some(n), Some(r)) => format!("{:.2}", n / r),
+            _ => "–".to_string(),
+        };
+        let target = row.target.map_or("–".to_string(), |t| format!("{t}"));
+        println!(
+            "| {} | `{}` | {} | `{}` | {} | {ratio} | {target} |",
+            row.what,
+            row.variant,
+            fmt(count),
+            row.reference,
+            fmt(reference)
+        );
+    }
+    println!();
+}
 
 /// Instructions per step of the variants of `closed_form_step`: the lines `VARIANT COUNT` that
 /// `benches/callgrind.sh` prints (blank lines and `#` comments are skipped).
@@ -564,6 +653,10 @@ fn main() {
     timing_table(&dir, "class_four", &CLASS_FOUR, "hand_newton");
     println!("### Closed-form rows: criterion time and callgrind instructions, {TURN_720} steps a turn\n");
     closed_form_table(&dir, callgrind.as_ref());
+    if let Some(counts) = &callgrind {
+        println!("### Instruction counts of the other rows (callgrind), {TURN_720} steps a turn unless said\n");
+        count_table(counts);
+    }
     println!("### The ratios of the targets\n");
     speedups(&dir);
     println!("### Newton iterations and accuracy over one turn of {STEPS} steps (release build)\n");
@@ -607,6 +700,28 @@ mod tests {
         for bad in ["hand\n", "hand 575 extra\n", "hand many\n", "hand NaN\n", "hand -3\n"] {
             let e = parse(&format!("point 813\n{bad}")).unwrap_err();
             assert!(e.starts_with("line 2:"), "{bad:?}: {e}");
+        }
+    }
+
+    /// `benches/callgrind.sh` measures by default every variant a table of the report names, so
+    /// one run of it fills both tables.
+    #[test]
+    fn the_script_measures_every_variant_the_tables_name() {
+        let script = include_str!("../../callgrind.sh");
+        // The default list (the first `variants=(` takes the command line's).
+        let start = script.rfind("variants=(").expect("the script's default list");
+        let list: Vec<&str> = script[start + "variants=(".len()..]
+            .split(')')
+            .next()
+            .expect("the list closes")
+            .split_whitespace()
+            .collect();
+        let named = CLOSED_FORM_ROWS
+            .iter()
+            .flat_map(|r| r.variants.iter().map(|v| v.1))
+            .chain(COUNT_ROWS.iter().flat_map(|r| [r.variant, r.reference]));
+        for v in named {
+            assert!(list.contains(&v), "callgrind.sh does not measure `{v}` by default");
         }
     }
 
