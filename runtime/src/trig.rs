@@ -246,29 +246,22 @@ impl InputTrig for Rotating {
 #[cfg(test)]
 mod tests {
     use super::*;
-
-    /// A small deterministic generator (xorshift), so the test needs no dependency.
-    fn uniform(state: &mut u64) -> f64 {
-        *state ^= *state << 13;
-        *state ^= *state >> 7;
-        *state ^= *state << 17;
-        (*state >> 11) as f64 / (1u64 << 53) as f64
-    }
+    use crate::metrics::test_rng::Rng;
 
     /// Walks of random small steps (forward, backward, repeated, some beyond the rotation
     /// range) over many turns: the rotated values stay within 8e-16 of libm's, a few units in
     /// the last place of values up to 1 (the bound grows with `RESYNC`).
     #[test]
     fn rotated_values_stay_within_a_few_ulps_of_libm() {
-        let mut state = 0x9e37_79b9_7f4a_7c15;
+        let mut rng = Rng(0x9e37_79b9_7f4a_7c15);
         let mut worst = 0.0f64;
         for walk in 0..200 {
             let mut cache = Rotating::default();
-            let mut arg = 10.0 * (uniform(&mut state) - 0.5) + walk as f64;
+            let mut arg = 10.0 * (rng.uniform(0.0, 1.0) - 0.5) + walk as f64;
             let scale = [1e-4, 1e-3, 8.7e-3, 0.03, 0.05][walk % 5];
             for _ in 0..2000 {
-                let u = uniform(&mut state);
-                arg += if u < 0.05 { 0.0 } else { scale * (2.0 * uniform(&mut state) - 0.7) };
+                let u = rng.uniform(0.0, 1.0);
+                arg += if u < 0.05 { 0.0 } else { scale * (2.0 * rng.uniform(0.0, 1.0) - 0.7) };
                 let (s, c) = cache.sin_cos(0, arg);
                 let (sl, cl) = arg.sin_cos();
                 worst = worst.max((s - sl).abs()).max((c - cl).abs());
@@ -319,17 +312,17 @@ mod tests {
     /// are advanced (measured: 91 %).
     #[test]
     fn advanced_angles_stay_within_a_few_ulps_of_libm() {
-        let mut state = 0x2545_f491_4f6c_dd1d;
+        let mut rng = Rng(0x2545_f491_4f6c_dd1d);
         let mut worst_small = 0.0f64;
         let (mut worst, mut advanced, mut calls) = (0.0f64, 0usize, 0usize);
         for walk in 0..200 {
             let mut cache = Rotating::default();
-            let mut q = 20.0 * (uniform(&mut state) - 0.5) + walk as f64 * 0.3;
+            let mut q = 20.0 * (rng.uniform(0.0, 1.0) - 0.5) + walk as f64 * 0.3;
             let scale = [1e-4, 1e-3, 8.7e-3, 0.03, 0.2][walk % 5];
             for _ in 0..2000 {
-                q += scale * (2.0 * uniform(&mut state) - 0.8);
+                q += scale * (2.0 * rng.uniform(0.0, 1.0) - 0.8);
                 let (s, c) = q.sin_cos();
-                let guess = q + 1e-3 * (uniform(&mut state) - 0.5);
+                let guess = q + 1e-3 * (rng.uniform(0.0, 1.0) - 0.5);
                 let mut exact_called = false;
                 let got = cache.angle(2, s, c, guess, || {
                     exact_called = true;
@@ -385,13 +378,13 @@ mod tests {
     /// is closer. `Libm` gives `arg`'s own values.
     #[test]
     fn sums_of_angles_are_within_two_ulps() {
-        let mut state = 0x2545_f491_4f6c_dd1d;
+        let mut rng = Rng(0x2545_f491_4f6c_dd1d);
         let (mut worst, mut worst_libm) = (0.0f64, 0.0f64);
         for trial in 0..20_000 {
             let mut cache = Rotating::default();
-            let b = 8.0 * (uniform(&mut state) - 0.5);
+            let b = 8.0 * (rng.uniform(0.0, 1.0) - 0.5);
             for _ in 0..3 {
-                let a = 20.0 * (uniform(&mut state) - 0.5);
+                let a = 20.0 * (rng.uniform(0.0, 1.0) - 0.5);
                 let s = a + b;
                 let e = (a - (s - (s - a))) + (b - (s - a));
                 let (rs, rc) = (s.sin() + e * s.cos(), s.cos() - e * s.sin());
