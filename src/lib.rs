@@ -180,7 +180,9 @@
 //! angle from `a cos q + b sin q = c`; `closed form, RRR dyad`: circle intersection; `closed
 //! form, length and angle`: a slotted rocker; `closed form, angle and slider`: an RRP group),
 //! on the assembly mode of the guess (the sign of the block's Jacobian determinant there) and
-//! on the guess's turn; `linear, NxN` is one linear solve; `Newton, NxN` iterates;
+//! on the guess's turn. Where its links fall short of closing the loop it is `NoAssembly`, as
+//! Newton; short by no more than the residual tolerance (a limit position rounded past: `0.1 +
+//! 0.2 > 0.3` in metres) it is the limit position, in every unit. `linear, NxN` is one linear solve; `Newton, NxN` iterates;
 //! `Newton, NxN sparse (K non-zeros)` iterates on a large coupled block (16 unknowns or more,
 //! a sparse Jacobian) whose LU follows its sparsity: an elimination order fixed at compile time,
 //! every pivot checked at run time, a dense LU where one is weak.

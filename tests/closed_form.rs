@@ -362,6 +362,31 @@ fn unreachable_positions_are_no_assembly() {
     assert!(matches!(e, Error::NonFinite { what: kinloop::Quantity::Guess, name: "beta", .. }), "{e}");
 }
 
+/// A slider-crank designed to touch its limit (`r - e = l`: at `phi = pi / 2` the rod stands
+/// vertical) assembles there in every unit: in metres `0.1 + 0.2` rounds past `0.3`, so the
+/// closed form's discriminant is negative by rounding, in millimetres `100 + 200 = 300` exactly.
+/// Both give the limit position (the rod at `pi / 2`, its two roots met) and, for the analogs,
+/// the singular position, as Newton reports it; a rod short by 1e-9 of its reach is still no
+/// assembly.
+#[test]
+fn a_limit_position_is_the_same_in_every_unit() {
+    for scale in [1.0, 1e3, 1e-3, 1e6] {
+        let m = SliderCrank { r: 0.1 * scale, l: 0.3 * scale, e: -0.2 * scale };
+        let guess = SliderCrankUnknowns { psi: 1.5, x: 0.0 };
+        let (q, _) = m.position(PI / 2.0, &guess).unwrap_or_else(|e| panic!("scale {scale}: {e}"));
+        assert!((q.psi - PI / 2.0).abs() <= 4.0 * f64::EPSILON, "scale {scale}: {}", q.psi);
+        assert!(q.x.abs() <= 1e-15 * scale, "scale {scale}: {}", q.x);
+        let e = m.kinematics(PI / 2.0, &guess).unwrap_err();
+        assert!(matches!(e, Error::Singular { .. }), "scale {scale}: {e}");
+        let n = SliderCrankNewton { r: m.r, l: m.l, e: m.e };
+        let newton_guess = SliderCrankNewtonUnknowns { psi: 1.5, x: 0.0 };
+        assert!(matches!(n.kinematics(PI / 2.0, &newton_guess), Err(Error::Singular { .. })), "scale {scale}");
+        let short = SliderCrank { l: m.l * (1.0 - 1e-9), ..m };
+        let e = short.position(PI / 2.0, &guess).unwrap_err();
+        assert!(matches!(e, Error::NoAssembly { .. }), "scale {scale}: {e}");
+    }
+}
+
 /// Scale-free: the same four-bar in millimetres and micrometres gives the same angles.
 #[test]
 fn closed_forms_are_scale_free() {

@@ -177,13 +177,30 @@ fn undetermined(cfg: &NewtonConfig) -> BlockFailure {
 }
 
 /// `±sqrt(d2)` for the root of `a cos q + b sin q = c` with `d2 = r2 - c²`, `r2 = a² + b²`: the
-/// square root, negated when `flip` holds, or the failure when there is no single real root.
+/// square root, negated when `flip` holds; `0` (the limit position, where both roots meet) when
+/// `d2` is negative by no more than the residual tolerance allows (a limit position rounded
+/// past); else the failure when there is no single real root.
 #[inline]
 pub fn root_offset(d2: f64, r2: f64, c: f64, flip: bool, cfg: &NewtonConfig) -> Result<f64, BlockFailure> {
     if !(d2 >= 0.0 && r2 > 0.0) {
-        return Err(no_root(d2, r2, c, cfg));
+        return touching(d2, r2, c, cfg);
     }
     Ok(if flip { -d2.sqrt() } else { d2.sqrt() })
+}
+
+/// A negative `d2 = r2 - c²` that is the rounding of a limit position: the links fall short of
+/// `|c|` by `|c| - r ≈ -d2 / (2 |c|)`, which within `tol |c|` (`tol` the residual tolerance,
+/// at least `16 eps`) is a residual Newton accepts, so the offset is `0`, the position where
+/// both roots meet (its analogs then report the singular position, as Newton's do). Otherwise
+/// the failure of [`no_root`]. Without it whether a mechanism designed to touch its limit
+/// assembles there would depend on the rounding of its dimensions, that is on its units
+/// (`0.1 + 0.2 > 0.3` in metres, `100 + 200 = 300` in millimetres).
+#[cold]
+#[inline(never)]
+fn touching(d2: f64, r2: f64, c: f64, cfg: &NewtonConfig) -> Result<f64, BlockFailure> {
+    let tol = cfg.residual_tol.max(16.0 * f64::EPSILON);
+    // Written so that a NaN fails.
+    if r2 > 0.0 && -d2 <= 2.0 * tol * (c * c) { Ok(0.0) } else { Err(no_root(d2, r2, c, cfg)) }
 }
 
 /// `(cos q, sin q)` of the root of `a cos q + b sin q = c` with `h' = -d < 0` (`h = a cos q +
@@ -268,6 +285,37 @@ mod tests {
         );
         // Concentric circles of different radii: `0 = c` with `c` non-zero cannot hold.
         assert!(matches!(dyad_roots(0.0, 0.0, 0.5, true, &cfg), Err(BlockFailure::NoAssembly { .. })));
+    }
+
+    /// A discriminant negative by rounding only is the limit position (the double root); one
+    /// negative beyond the residual tolerance is still no assembly, with the residual `|c| - r`.
+    #[test]
+    fn a_limit_position_rounded_past_is_the_double_root() {
+        let cfg = NewtonConfig::default();
+        // `0.1 + 0.2` rounds above `0.3`: in metres the rod falls 4e-17 short of the offset.
+        let (b, c) = (0.3, 0.1 + 0.2);
+        assert!(b * b - c * c < 0.0, "the example must round past the limit");
+        for flip in [false, true] {
+            let (cq, sq) = dyad_roots(0.0, b, c, flip, &cfg).unwrap();
+            assert_eq!(cq, 0.0);
+            assert!((sq - 1.0).abs() <= 2.0 * f64::EPSILON, "{sq}");
+        }
+        // Short by 1e-9 of the offset: beyond the default 1e-12, and beyond a tolerance of 0
+        // (which still allows the rounding floor, 16 eps) even by rounding.
+        let short = 0.3 * (1.0 - 1e-9);
+        for cfg in [cfg, NewtonConfig { residual_tol: 0.0, ..cfg }] {
+            match dyad_roots(0.0, short, 0.3, false, &cfg) {
+                Err(BlockFailure::NoAssembly { residual, .. }) => {
+                    assert!((residual - 3e-10).abs() < 1e-15, "{residual}")
+                }
+                other => panic!("{other:?}"),
+            }
+        }
+        // Short by 1e-13 relative: within the default tolerance, not within a tolerance of 0.
+        let near = 0.3 * (1.0 - 1e-13);
+        assert_eq!(dyad_roots(0.0, near, 0.3, false, &cfg).unwrap().0, 0.0);
+        let exact = NewtonConfig { residual_tol: 0.0, ..cfg };
+        assert!(matches!(dyad_roots(0.0, near, 0.3, false, &exact), Err(BlockFailure::NoAssembly { .. })));
     }
 
     /// An equation every angle satisfies (`0 cos q + 0 sin q = 0`: coincident circles of equal
