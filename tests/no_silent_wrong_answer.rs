@@ -234,3 +234,26 @@ proptest::proptest! {
         }
     }
 }
+
+#[test]
+fn a_limit_position_assembles_in_every_unit() {
+    // At the non-Grashof four-bar's limit input (and an ulp or two beside it) the dyad's circles
+    // touch: their discriminant is zero up to rounding, which in some units falls below zero.
+    // That rounding used to decide between a position and "cannot be assembled" (28 of these 52
+    // solves failed). Now every one is the limit position: the loop closes to rounding, with
+    // coupler and rocker stretched into one line from B through C to D (`beta = gamma + pi` up
+    // to the angles' sensitivity there, about the square root of the rounding).
+    let base = FourBar { a: 3.0, b: 1.0, c: 1.5, d: 3.0 };
+    let phi_lim = ((base.a * base.a + base.d * base.d - (base.b + base.c).powi(2)) / (2.0 * base.a * base.d)).acos();
+    for k in [1e-6, 1e-3, 0.1, 0.3, 0.7, 1.0, 1.1, 3.0, 1e3, 1e6, 25.4, 0.0254, 1.0 / 3.0] {
+        let m = FourBar { a: base.a * k, b: base.b * k, c: base.c * k, d: base.d * k };
+        for dphi in [-2e-16, 0.0, 2e-16, 4e-16] {
+            let phi = phi_lim + dphi;
+            let (q, _) = m
+                .position_flat(&[phi], &[0.5, 1.5], &NewtonConfig::default())
+                .unwrap_or_else(|e| panic!("scale {k}, {dphi:e} past the limit: {e}"));
+            assert!(scaled_residual(&m, phi, &q) <= 1e-15, "scale {k}: {q:?}");
+            assert!(angle_err(q[0], q[1] + PI) <= 1e-7, "scale {k}, {dphi:e}: {q:?}");
+        }
+    }
+}
