@@ -274,10 +274,10 @@ fn count_table(callgrind: &HashMap<String, f64>) {
         "| row | `closed_form_step` variant | instructions per step | reference variant | reference | ratio | target |"
     );
     println!("|---|---|---:|---|---:|---:|---:|");
+    let cell = |v: &str| callgrind.get(v).copied();
+    let fmt = |n: Option<f64>| n.map_or("–".to_string(), |n| format!("{n:.0}"));
     for row in &COUNT_ROWS {
-        let cell = |v: &str| callgrind.get(v).copied();
         let (count, reference) = (cell(row.variant), cell(row.reference));
-        let fmt = |n: Option<f64>| n.map_or("–".to_string(), |n| format!("{n:.0}"));
         let ratio = match (count, reference) {
             (Some(n), Some(r)) => format!("{:.2}", n / r),
             _ => "–".to_string(),
