@@ -235,6 +235,14 @@
 //! angles in radians and lengths in units of the mechanism's size, so events are located at the
 //! same inputs whatever the unit of length.
 //!
+//! Every state carries its [`Health`]: the determinant signs (the assembly mode) and the
+//! smallest pivot ratio of its blocks, how far it is from a singular position whatever the unit
+//! of length. That includes a slide passing near the pivot of its slotted link, where the link's
+//! angle is undetermined: its pivot ratio there is the slide's distance from the pivot over the
+//! loop's other lengths. A sweep does not accept a step below [`SweepConfig::singular_pivot`]
+//! (`1e-6`); where it finds no limit position or crossing there (the path only passes close to
+//! one) it stops with [`Error::Branch`] saying so, and a lower value lets it pass.
+//!
 //! `m.with_config(cfg)` gives the mechanism its own solver configuration (a [`SweepConfig`] or
 //! a [`NewtonConfig`], validated once): the [`Configured`] mechanism uses it in every solve,
 //! sweep, reachable range, assembly-mode search and trace (its methods are those of [`Named`]).

@@ -82,6 +82,7 @@ fn keeps_lu(mode: Mode, bp: &BlockPlan) -> bool {
         && bp.sparse.is_none()
         && !bp.linear
         && bp.closed.is_none()
+        && bp.lever_floor.iter().all(Vec::is_empty)
         && bp
             .col_scale
             .iter()
@@ -105,7 +106,13 @@ fn plan_scopes(plan: &Plan, mode: Mode, sens: bool) -> Scopes {
                 (c.form.coefficients(), vec![])
             } else if bp.linear {
                 (
-                    bp.jac.concat().into_iter().chain(bp.rhs0.iter().copied()).chain(bp.col_scale.concat()).collect(),
+                    bp.jac
+                        .concat()
+                        .into_iter()
+                        .chain(bp.rhs0.iter().copied())
+                        .chain(bp.col_scale.concat())
+                        .chain(bp.lever_floor.concat())
+                        .collect(),
                     vec![],
                 )
             } else {
@@ -126,6 +133,7 @@ fn plan_scopes(plan: &Plan, mode: Mode, sens: bool) -> Scopes {
         // A block that keeps its factorisation needs no column magnitudes of its own.
         if !keeps_lu(mode, bp) {
             roots.extend(bp.col_scale.concat());
+            roots.extend(bp.lever_floor.concat());
         }
         // Closed-form hook: no Newton evaluation to reuse, the Jacobian is computed here.
         if mode == Mode::At || bp.closed.is_some() {
@@ -285,15 +293,39 @@ impl Kernel<'_> {
         self.g.as_const(bp.jac[0][0]).filter(|c| *c != 0.0 && c.is_finite())
     }
 
+    /// Each column's magnitude: the largest of its entries and of its lever floors.
     fn col_scales(&self, bp: &BlockPlan) -> Vec<TokenStream> {
         let rt = &self.rt;
-        bp.col_scale
-            .iter()
-            .map(|col| {
-                let c = self.names.operands(self.g, col);
+        (0..bp.col_scale.len())
+            .map(|c| {
+                let c = self.scale_operands(bp, c);
                 quote!(#rt::max_abs([#(#c),*]))
             })
             .collect()
+    }
+
+    /// Column `c`'s entries, then its lever floors (a floor is never an entry: it is placed after
+    /// them, so an entry's position in the list is its position among the entries).
+    fn scale_operands(&self, bp: &BlockPlan, c: usize) -> Vec<TokenStream> {
+        let all: Vec<NodeId> = bp.col_scale[c].iter().chain(&bp.lever_floor[c]).copied().collect();
+        self.names.operands(self.g, &all).collect()
+    }
+
+    /// Column `c`'s lever floor as one optional value: `None`, the floor, or the largest of
+    /// several.
+    fn floor_of(&self, bp: &BlockPlan, c: usize) -> TokenStream {
+        let rt = &self.rt;
+        match bp.lever_floor[c].as_slice() {
+            [] => quote!(::core::option::Option::None),
+            [one] => {
+                let f = self.op(*one);
+                quote!(::core::option::Option::Some(#f))
+            }
+            many => {
+                let f = self.names.operands(self.g, many);
+                quote!(::core::option::Option::Some(#rt::max_abs([#(#f),*])))
+            }
+        }
     }
 
     /// The factorisation of a block whose Jacobian `jrows` is evaluated from the graph, read off
@@ -306,7 +338,7 @@ impl Kernel<'_> {
         let k = (bp.unknowns.len() == 1).then(|| bp.col_scale[0].iter().position(|&e| e == bp.jac[0][0])).flatten();
         match (bp.unknowns.len(), k) {
             (1, Some(k)) => {
-                let (col, k) = (self.names.operands(self.g, &bp.col_scale[0]), lit(k));
+                let (col, k) = (self.scale_operands(bp, 0), lit(k));
                 quote!(#rt::Lu::<1>::factor_in_col([#(#col),*], #k))
             }
             (2, _) => {
@@ -327,7 +359,12 @@ impl Kernel<'_> {
                     v.resize(len, quote!(0.0));
                     quote!([#(#v),*])
                 });
-                quote!(#rt::Inverse2::in_cols(&#jrows, [#(#cols),*]))
+                if bp.lever_floor.iter().all(Vec::is_empty) {
+                    quote!(#rt::Inverse2::in_cols(&#jrows, [#(#cols),*]))
+                } else {
+                    let floors = (0..2).map(|c| self.floor_of(bp, c));
+                    quote!(#rt::Inverse2::in_cols_floored(&#jrows, [#(#cols),*], [#(#floors),*]))
+                }
             }
             _ => quote!(#rt::Lu::<#n>::factor_cols(&#jrows, [#(#scale),*])),
         }

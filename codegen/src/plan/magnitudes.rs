@@ -33,6 +33,16 @@
 //! slider coordinate in a loop projection (`df/dq = +-1`) gets the sum of that loop's
 //! lengths, a dimensionless ratio `t` in `t l` gets `M(f) / |l|`. The runtime judges a step
 //! `dq_j` relative to `max(|q_j|, unit_j)`.
+//!
+//! **Lever floors.** An analog factorisation divides each Jacobian column by its largest entry.
+//! For an angle whose lever is a variable length (`s @ th` with `s` unknown: a slotted link's
+//! slide, the slider of an inverted crank) that entry is `|s|`, and dividing by it hides the
+//! singular position at `s = 0`, where `th` is undetermined: the column stays of unit size
+//! however short `s` gets. Such a column is also scaled by its *lever floor*, the magnitude of
+//! each of its block's rows with the variable levers set to zero (the loop's other lengths).
+//! The column scale is then `max(|s|, floor)`: unchanged while the slide is longer than the
+//! rest of its loop, and `|s| / floor` near the pivot, which is the factor by which rounding in
+//! the loop's lengths is magnified in `th` there.
 
 use super::BlockPlan;
 use crate::dag::{Func, Graph, Leaf, NodeId, Op};
@@ -131,6 +141,55 @@ impl Magnitudes {
             .collect();
         (scale, unit)
     }
+
+    /// The lever floors of a block's columns (see the module documentation): per block
+    /// column, the nodes its column scale takes beyond its Jacobian entries. Empty unless the
+    /// column is an angle's and its entries depend on unknowns that are not angles (the levers);
+    /// then one node per block row the angle appears in: that row's magnitude with the levers
+    /// set to zero.
+    pub fn lever_floors(&mut self, g: &mut Graph, bp: &BlockPlan) -> Vec<Vec<NodeId>> {
+        (0..bp.unknowns.len())
+            .map(|c| {
+                if !self.is_angle_unknown(bp.unknowns[c]) {
+                    return Vec::new();
+                }
+                let levers: Vec<Leaf> = g
+                    .leaves_of(&bp.col_scale[c])
+                    .into_iter()
+                    .filter(|l| matches!(l, Leaf::Unknown(u) if !self.is_angle_unknown(*u as usize)))
+                    .collect();
+                if levers.is_empty() {
+                    return Vec::new();
+                }
+                let zero = g.zero();
+                let rows: Vec<usize> = (0..bp.f.len()).filter(|&r| !g.is_zero(bp.jac[r][c])).collect();
+                let rows: Vec<NodeId> = rows.into_iter().map(|r| self.of(g, bp.f[r])).collect();
+                let floors = g.substitute(&rows, &|l| levers.contains(&l).then_some(zero));
+                // A floor that is zero (a loop of levers only), or a term of another floor (a
+                // loop's X projection lacks the Y offsets its Y projection adds), changes no
+                // column's maximum.
+                let kept: Vec<NodeId> = floors.iter().copied().filter(|&f| !g.is_zero(f)).collect();
+                let mut out: Vec<NodeId> = Vec::new();
+                for (i, &f) in kept.iter().enumerate() {
+                    let dominated =
+                        kept.iter().enumerate().any(|(j, &o)| j != i && (term_of(g, f, o) || (o == f && j < i)));
+                    if !dominated {
+                        out.push(f);
+                    }
+                }
+                out
+            })
+            .collect()
+    }
+}
+
+/// Whether `f` is one of the terms of the sum `sum` (a magnitude is a sum of non-negative
+/// terms, so such an `f` is never larger than `sum`).
+fn term_of(g: &Graph, f: NodeId, sum: NodeId) -> bool {
+    match g.op(sum) {
+        Op::Add(a, b) => a == f || b == f || term_of(g, f, a) || term_of(g, f, b),
+        _ => false,
+    }
 }
 
 #[cfg(test)]
@@ -166,5 +225,49 @@ mod tests {
         // Lengths a million times smaller: the magnitude scales with them (to rounding).
         let w = at(-1.5e-6, 3.0e-6, 2.0e-6, 0.3);
         assert!((w[0] - 6.5e-6).abs() <= 4.0 * f64::EPSILON * 6.5e-6, "{w:?}");
+    }
+
+    /// The slotted rocker `(0, h) + r @ phi - s @ th = 0` (unknowns `s`, `th`): the angle's
+    /// column, whose lever `s` is an unknown, gets one floor (the Y projection's `|h| + |r|`;
+    /// the X projection's `|r|` is a term of it), the length's column none; the same loop with
+    /// a fixed lever `l @ th` gets none.
+    #[test]
+    fn only_an_angle_with_a_variable_lever_gets_a_floor() {
+        use crate::structure::Block;
+        let plan_of = |variable: bool| {
+            let mut g = Graph::new();
+            let (s, th) = (g.leaf(Leaf::Unknown(0)), g.leaf(Leaf::Unknown(1)));
+            let (h, r, l, phi) =
+                (g.leaf(Leaf::Param(0)), g.leaf(Leaf::Param(1)), g.leaf(Leaf::Param(2)), g.leaf(Leaf::Input(0)));
+            let lever = if variable { s } else { l };
+            let (cp, sp, ct, st) =
+                (g.func(Func::Cos, phi), g.func(Func::Sin, phi), g.func(Func::Cos, th), g.func(Func::Sin, th));
+            let (rc, rs, lc, ls) = (g.mul(r, cp), g.mul(r, sp), g.mul(lever, ct), g.mul(lever, st));
+            let fx = g.sub(rc, lc);
+            let hy = g.add(h, rs);
+            let mut fy = g.sub(hy, ls);
+            if !variable {
+                // `s` must still appear: a slider along X beside the fixed lever.
+                fy = g.add(fy, s);
+            }
+            let residuals = [fx, fy];
+            let (jac, _) = super::super::positions::full_jacobians(&mut g, &residuals, 2, 1);
+            let blk = Block { unknowns: vec![0, 1], equations: vec![0, 1] };
+            let bp = super::super::positions::block(&mut g, &blk, &residuals, &jac);
+            let mut mags = Magnitudes::new(&g, &residuals);
+            let floors = mags.lever_floors(&mut g, &bp);
+            (g, floors)
+        };
+        let (g, floors) = plan_of(true);
+        assert!(floors[0].is_empty(), "the slide's own column");
+        assert_eq!(floors[1].len(), 1, "one floor for the angle");
+        let v = g.eval(&floors[1], &|leaf| match leaf {
+            Leaf::Param(0) => -2.0,
+            Leaf::Param(1) => 3.0,
+            _ => f64::NAN,
+        });
+        assert_eq!(v, vec![5.0]);
+        let (_, floors) = plan_of(false);
+        assert!(floors.iter().all(Vec::is_empty));
     }
 }

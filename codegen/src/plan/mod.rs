@@ -47,6 +47,9 @@ pub struct BlockPlan {
     /// Per block unknown: the non-zero entries of its column of the full Jacobian, whose largest
     /// magnitude equilibrates the column (see `kinloop_runtime::Lu`).
     pub col_scale: Vec<Vec<NodeId>>,
+    /// Per block unknown: the lever floors its column's magnitude is raised to (see
+    /// [`magnitudes`]); empty for most columns.
+    pub lever_floor: Vec<Vec<NodeId>>,
     /// For linear blocks: minus the residuals with the block's unknowns set to zero (the
     /// right-hand side of the linear solve).
     pub rhs0: Vec<NodeId>,
@@ -185,6 +188,7 @@ pub fn build(model: &mut Model, blocks: &[Block], with_sensitivities: bool) -> P
     let mut mags = magnitudes::Magnitudes::new(&g, &residuals);
     for bp in plans.iter_mut() {
         (bp.scale, bp.unit) = mags.block(&mut g, bp);
+        bp.lever_floor = mags.lever_floors(&mut g, bp);
     }
     let scale_full = residuals.iter().map(|&r| mags.of(&mut g, r)).collect();
     let mut unit_full = vec![g.one(); n];

@@ -76,9 +76,12 @@ pub struct SweepConfig {
     pub corrector_abs: f64,
     /// Behaviour at a singular crossing.
     pub at_singular: AtSingular,
-    /// A step is not accepted at a position whose smallest row-equilibrated pivot ratio is below
-    /// this (default `1e-6`): so close to a singular position the residual tolerance no longer
-    /// pins the branch. The sweep then locates the singular position by arclength continuation.
+    /// A step is not accepted at a position whose smallest pivot ratio ([`Health::min_pivot`])
+    /// is below this (default `1e-6`): so close to a singular position the residual tolerance no
+    /// longer pins the branch. The sweep then locates the singular position by arclength
+    /// continuation; where it finds none (the path only passes close to one, e.g. a slide within
+    /// a millionth of its loop's size from its pivot) it stops with [`Error::Branch`], and a lower
+    /// value lets it pass.
     pub singular_pivot: f64,
 }
 
@@ -374,6 +377,11 @@ where
         &mut self.states[usize::from(self.at)]
     }
 
+    /// The slot the last step was solved into (the state judged last).
+    fn spare(&self) -> &Kin<N, NI, NO> {
+        &self.states[usize::from(!self.at)]
+    }
+
     /// Runs the whole sweep: the states up to where it ended, why and where it ended, and the
     /// singular positions met (see [`SweepResult`]).
     pub fn run(mut self) -> SweepResult<S> {
@@ -468,7 +476,8 @@ where
         } else if n.health.min_pivot < self.cfg.singular_pivot {
             // Too close to a singular position for the analogs (and thus the branch identity)
             // to be trusted: within the residual tolerance the solution can slide onto a
-            // crossing branch.
+            // crossing branch. (Told apart from a far step by that state's pivot, should the step
+            // become the last one tried: a separate outcome costs every step an instruction.)
             Outcome::Far
         } else if dist > p.max_dist || slope_err > p.max_slope_err {
             Outcome::Far
@@ -685,6 +694,17 @@ where
         let x = path.at_tau(tau_new);
         Err(match (outcome, failure) {
             (Outcome::Fail, Some(e)) => e,
+            (Outcome::Far, _) if self.spare().health.min_pivot < self.cfg.singular_pivot => Error::Branch {
+                message: format!(
+                    "the sweep passes within a pivot ratio of {:.2e} of a singular position, below \
+                     `SweepConfig::singular_pivot` ({:e}), where the residual tolerance no longer pins the \
+                     branch, and finds no limit position or crossing there; if the mechanism is meant to \
+                     pass this close (e.g. a slide brushing its pivot), lower `singular_pivot`",
+                    self.spare().health.min_pivot,
+                    self.cfg.singular_pivot
+                ),
+                at: self.location(&x, block_of(weakest)),
+            },
             _ => Error::Branch {
                 message: "the sweep cannot stay on its branch: however small the step, the solution jumps or its \
                           velocity analogs do (the solution curve is not smooth here, or steps land on another solution)"

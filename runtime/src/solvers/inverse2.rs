@@ -34,6 +34,17 @@ impl Inverse2 {
     /// NaN (through `t`, the determinant or a magnitude), one beyond it the sum of those entries.
     #[inline(always)]
     pub fn in_cols<const K: usize>(j: &[[f64; 2]; 2], beyond: [[f64; K]; 2]) -> Self {
+        Self::in_cols_floored(j, beyond, [None; 2])
+    }
+
+    /// [`Inverse2::in_cols`] with column `c`'s magnitude raised to at least `floor[c]` when there
+    /// is one (`None`, known when the code is compiled, costs nothing): the lever floor of an
+    /// angle whose lever is a variable length, which keeps the pivot ratio from hiding the
+    /// singular position where that length vanishes. The general factorisation equilibrated by
+    /// `max(column magnitude, floor)` reports the same (unit test); a NaN or infinite floor gives
+    /// pivot ratio 0, as an entry beyond the block does.
+    #[inline(always)]
+    pub fn in_cols_floored<const K: usize>(j: &[[f64; 2]; 2], beyond: [[f64; K]; 2], floor: [Option<f64>; 2]) -> Self {
         let [[a, b], [c, d]] = *j;
         let det = a * d - b * c;
         let id = 1.0 / det;
@@ -47,10 +58,14 @@ impl Inverse2 {
                 m[k] = select_max(v.abs(), m[k]);
                 sum += v;
             }
+            if let Some(f) = floor[k] {
+                m[k] = select_max(f, m[k]);
+                sum += f;
+            }
         }
-        // Without entries beyond the block the first column's magnitude is `top`: its pivot is 1
-        // (or NaN, which the second shares: no division for it).
-        let p0 = if K == 0 { 1.0 } else { top / m[0] };
+        // Without entries beyond the block or a floor, the first column's magnitude is `top`:
+        // its pivot is 1 (or NaN, which the second shares: no division for it).
+        let p0 = if K == 0 && floor[0].is_none() { 1.0 } else { top / m[0] };
         let p1 = det.abs() / (top * m[1]);
         let smaller = if p1 < p0 { p1 } else { p0 };
         // A NaN or infinite pivot, or a NaN or infinite entry beyond the block, fails the test,
@@ -146,6 +161,37 @@ mod tests {
             }
         }
         assert!(worst < 1e-14, "{worst:e}");
+    }
+
+    /// With a floor on either column: the general factorisation equilibrated by the larger of
+    /// the column's magnitude and its floor, over random blocks and floors from far below to far
+    /// above the columns' magnitudes; a NaN or infinite floor gives pivot ratio 0.
+    #[test]
+    fn a_floored_column_agrees_with_the_lu_equilibrated_by_its_floor() {
+        let mut rng = Rng(0x9e37_79b9_7f4a_7c15);
+        for n in 0..10_000 {
+            let mut u = || rng.uniform(-1.0, 1.0);
+            let j = [[u(), 3.0 * u()], [u(), 3.0 * u()]];
+            let mut floor = [None, None];
+            floor[n % 2] = Some(10f64.powf(4.0 * u()));
+            let extra = if n % 3 == 0 { 2.0 * u() } else { 0.0 };
+            let inv = Inverse2::in_cols_floored(&j, [[extra], [0.0]], floor);
+            let cols = [[j[0][0], j[1][0], extra], [j[0][1], j[1][1], 0.0]];
+            let lu = Lu::<2>::factor_cols(&j, [0, 1].map(|c| max_abs(cols[c]).max(floor[c].unwrap_or(0.0))));
+            let (pi, pl) = (inv.pivot_ratio(), lu.pivot_ratio());
+            assert!((pi - pl).abs() <= 1e-13 * pl + 1e-15, "{j:?} {floor:?}: {pi:e} {pl:e}");
+            if pl > 1e-10 {
+                assert_eq!(inv.negative_det(), lu.negative_det(), "{j:?}");
+            }
+        }
+        let j = [[1.0, 2.0], [3.0, 5.0]];
+        for bad in [f64::NAN, f64::INFINITY] {
+            for c in 0..2 {
+                let mut floor = [None; 2];
+                floor[c] = Some(bad);
+                assert_eq!(Inverse2::in_cols_floored(&j, [[]; 2], floor).pivot_ratio(), 0.0, "{floor:?}");
+            }
+        }
     }
 
     /// Degenerate blocks report pivot ratio 0, as the LU does: a zero column, an infinite or NaN
