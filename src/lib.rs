@@ -239,7 +239,9 @@
 //! smallest pivot ratio of its blocks, how far it is from a singular position whatever the unit
 //! of length. That includes a slide passing near the pivot of its slotted link, where the link's
 //! angle is undetermined: its pivot ratio there is the slide's distance from the pivot over the
-//! loop's other lengths. A sweep does not accept a step below [`SweepConfig::singular_pivot`]
+//! loop's other lengths (a position-only solve, which has no analogs, tests the slide itself: below
+//! [`NewtonConfig::singular_tol`] of the loop it is [`Error::Singular`], on the closed-form path
+//! as on Newton's). A sweep does not accept a step below [`SweepConfig::singular_pivot`]
 //! (`1e-6`); where it finds no limit position or crossing there (the path only passes close to
 //! one) it stops with [`Error::Branch`] saying so, and a lower value lets it pass.
 //!

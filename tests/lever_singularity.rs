@@ -91,6 +91,44 @@ fn a_slide_near_its_pivot_is_as_accurate_as_its_pivot_ratio_says() {
     }
 }
 
+#[test]
+fn a_position_solve_refuses_the_lever_the_kinematics_refuse() {
+    // Without analogs there is no pivot ratio to report: a position-only solve tests the lever
+    // itself, on both paths, and agrees with the kinematics (`Singular` from a lever of 1e-11
+    // of the loop on; Newton's own test, on its row-equilibrated Jacobian, may already refuse or
+    // still accept at 1e-10, the edge of the tolerance).
+    let eps = f64::EPSILON;
+    for scale in [1e-6, 1e-3, 1.0, 1e3, 1e6] {
+        let (h, r) = (scale, scale);
+        for k in 1..=16 {
+            let phi = -FRAC_PI_2 + 10f64.powi(-k);
+            let e = offset(phi);
+            let closed = SlottedRocker { h, r }
+                .position(phi, &SlottedRockerUnknowns { s: 0.1 * scale, theta: 0.1 })
+                .map(|(q, _)| (q.s, q.theta));
+            let newton = SlottedRockerNewton { h, r }
+                .position(phi, &SlottedRockerNewtonUnknowns { s: 0.1 * scale, theta: 0.1 })
+                .map(|(q, _)| (q.s, q.theta));
+            for (path, got) in [("closed form", closed), ("Newton", newton)] {
+                let at = format!("{path}, scale {scale:e}, e = 1e-{k}");
+                match got {
+                    Ok((s, theta)) => {
+                        assert!(k <= 10, "{at}: Ok with a lever of {:e} of the loop", s / scale);
+                        // The angle to the rounding of the loop's lengths over the lever.
+                        let lever = 2.0 * (e / 2.0).sin();
+                        assert!((theta - e / 2.0).abs() <= 4.0 * eps / lever, "{at}: theta {theta:e}");
+                        assert!((s / scale - lever).abs() <= 4.0 * eps, "{at}: s {s:e}");
+                    }
+                    Err(err) => {
+                        assert!(matches!(err, Error::Singular { .. }), "{at}: {err}");
+                        assert!(k >= 10, "{at}: {err}");
+                    }
+                }
+            }
+        }
+    }
+}
+
 /// The rocker angle from its closed form, on the side of the slide the sweep started on.
 fn exact_theta(h: f64, r: f64, phi: f64) -> f64 {
     (h + r * phi.sin()).atan2(r * phi.cos())

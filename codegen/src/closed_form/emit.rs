@@ -38,6 +38,10 @@ pub struct Context<'a> {
     pub rt: &'a TokenStream,
     /// The kernel has a sweep's cache `__trig` to ask the angles of (see [`angle_of`]).
     pub trig: bool,
+    /// For an angle unknown whose lever is a variable length: the lever floor to test the lever
+    /// against, when the solve must (a position-only solve, which has no analogs whose pivot
+    /// ratio would; see the plan's `magnitudes`).
+    pub lever_floor: &'a dyn Fn(usize) -> Option<TokenStream>,
 }
 
 /// A value of the generated code: a constant known at expansion time or an expression. The
@@ -384,6 +388,9 @@ fn polar(w: &[[NodeId; 2]; 2], e: &[NodeId; 2], u: usize, gs: &TokenStream, cx: 
     let b = bind(&mut out, "__b", sub(&mul(&w[0][1], &e[1]), &mul(&w[1][1], &e[0])));
     let r2 = add(&mul(&a, &a), &mul(&b, &b));
     let (e0, e1, rt) = (&e[0], &e[1], cx.rt);
+    if let Some(floor) = (cx.lever_floor)(u) {
+        out.extend(quote!(#rt::check_lever(#e0, #e1, #floor, __cfg).map_err(__fail)?;));
+    }
     out.extend(quote!(let __ir: f64 = #rt::polar_norm(#r2, #e0, #e1, __cfg).map_err(__fail)?;));
     let ir = local("__ir");
     let (c0, s0) = (mul(&b, &ir), neg(&mul(&a, &ir)));

@@ -102,8 +102,14 @@ fn plan_scopes(plan: &Plan, mode: Mode, sens: bool) -> Scopes {
     } else {
         for (b, bp) in plan.blocks.iter().enumerate() {
             let (pre, newton) = if let Some(c) = &bp.closed {
-                // Closed-form hook: the coefficients before the solve, no Newton closure.
-                (c.form.coefficients(), vec![])
+                // Closed-form hook: the coefficients before the solve, no Newton closure; a
+                // position-only solve also tests its levers against their floors (see
+                // `closed_block`).
+                let mut pre = c.form.coefficients();
+                if mode == Mode::Position {
+                    pre.extend(bp.lever_floor.concat());
+                }
+                (pre, vec![])
             } else if bp.linear {
                 (
                     bp.jac
@@ -314,16 +320,21 @@ impl Kernel<'_> {
     /// Column `c`'s lever floor as one optional value: `None`, the floor, or the largest of
     /// several.
     fn floor_of(&self, bp: &BlockPlan, c: usize) -> TokenStream {
+        if bp.lever_floor[c].is_empty() {
+            return quote!(::core::option::Option::None);
+        }
+        let f = self.floor_value(bp, c);
+        quote!(::core::option::Option::Some(#f))
+    }
+
+    /// Column `c`'s lever floor, which it has: the floor, or the largest of several.
+    fn floor_value(&self, bp: &BlockPlan, c: usize) -> TokenStream {
         let rt = &self.rt;
         match bp.lever_floor[c].as_slice() {
-            [] => quote!(::core::option::Option::None),
-            [one] => {
-                let f = self.op(*one);
-                quote!(::core::option::Option::Some(#f))
-            }
+            [one] => self.op(*one),
             many => {
                 let f = self.names.operands(self.g, many);
-                quote!(::core::option::Option::Some(#rt::max_abs([#(#f),*])))
+                quote!(#rt::max_abs([#(#f),*]))
             }
         }
     }
@@ -535,7 +546,15 @@ impl Kernel<'_> {
     fn closed_block(&self, b: usize, c: &crate::closed_form::Recognised) -> TokenStream {
         let op = |n: NodeId| self.op(n);
         let bind = |n: NodeId| self.closed_trig.contains(&n).then(|| self.names.temp(n));
+        // A position-only solve has no analogs, whose pivot ratio would report a lever (a
+        // polar length) too short against its floor to determine its angle: the solve tests it.
+        let bp = &self.plan.blocks[b];
+        let lever_floor = |u: usize| {
+            let c = bp.unknowns.iter().position(|&v| v == u)?;
+            (self.mode == Mode::Position && !bp.lever_floor[c].is_empty()).then(|| self.floor_value(bp, c))
+        };
         let cx = crate::closed_form::emit::Context {
+            lever_floor: &lever_floor,
             graph: self.g,
             op: &op,
             unknowns: &self.names.unknowns,

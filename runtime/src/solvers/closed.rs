@@ -234,6 +234,33 @@ pub fn polar_norm(d2: f64, e0: f64, e1: f64, cfg: &NewtonConfig) -> Result<f64, 
     if d2 > 0.0 { Ok(1.0 / d2.sqrt()) } else { Err(no_root(d2, 0.0, e0.abs().max(e1.abs()), cfg)) }
 }
 
+/// The test of a polar length's lever in a position-only solve: the length `|(e0, e1)|` against
+/// `floor`, the loop's other lengths. Below `singular_tol` times the floor the angle is
+/// determined by the data no better than `eps / singular_tol` radians (the length's pivot ratio,
+/// which the analogs' factorisation would report, is under the tolerance): singular, as Newton
+/// finds it. A NaN passes, for the solution's own finiteness check.
+///
+/// ```
+/// use kinloop_runtime::NewtonConfig;
+/// use kinloop_runtime::generated::check_lever;
+/// let cfg = NewtonConfig::default(); // singular_tol = 1e-10
+/// assert!(check_lever(3e-10, 4e-10, 2.0, &cfg).is_ok()); // 5e-10 of a loop of 2: 2.5e-10
+/// assert!(check_lever(3e-11, 4e-11, 2.0, &cfg).is_err());
+/// ```
+#[inline]
+pub fn check_lever(e0: f64, e1: f64, floor: f64, cfg: &NewtonConfig) -> Result<(), BlockFailure> {
+    let t = cfg.singular_tol * floor;
+    if e0 * e0 + e1 * e1 < t * t { Err(short_lever(e0, e1, floor, cfg)) } else { Ok(()) }
+}
+
+/// The failure of a lever shorter than the tolerance allows.
+#[cold]
+#[inline(never)]
+fn short_lever(e0: f64, e1: f64, floor: f64, cfg: &NewtonConfig) -> BlockFailure {
+    let pivot_ratio = e0.hypot(e1) / floor;
+    BlockFailure::Singular { row: 0, iterations: 0, residual: 0.0, pivot_ratio, tolerance: cfg.singular_tol }
+}
+
 /// The checks of a closed-form solution `out` whose first `angles` entries are angles: every
 /// entry finite (a NaN comes from the inputs, parameters, guess or a coefficient's domain), and
 /// every angle small enough to be accurate. On the guess's turn an angle is a large number when
