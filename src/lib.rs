@@ -237,9 +237,9 @@
 //!
 //! Every state carries its [`Health`]: the determinant signs (the assembly mode) and the
 //! smallest pivot ratio of its blocks, how far it is from a singular position whatever the unit
-//! of length. That includes a slide passing near the pivot of its slotted link, where the link's
-//! angle is undetermined: its pivot ratio there is the slide's distance from the pivot over the
-//! loop's other lengths (a position-only solve, which has no analogs, tests the slide itself: below
+//! of length. That includes a slide passing near the pivot of its slotted link (or a cylinder
+//! nearly collapsed onto its pivot), where the link's angle is undetermined: its pivot ratio
+//! there is the slide's distance from the pivot over the loop's other lengths (a position-only solve, which has no analogs, tests the slide itself: below
 //! [`NewtonConfig::singular_tol`] of the loop it is [`Error::Singular`], on the closed-form path
 //! as on Newton's). A sweep does not accept a step below [`SweepConfig::singular_pivot`]
 //! (`1e-6`); where it finds no limit position or crossing there (the path only passes close to

@@ -1,10 +1,11 @@
-//! A slotted rocker whose slide passes (close to) its pivot: the rocker angle `theta` of
-//! `s @ theta` is undetermined where its lever `s` vanishes, and only known to about
-//! `eps * L / s` near there (`L` the loop's other lengths). The health must say so: every `Ok`
-//! is as accurate as its reported pivot ratio promises, in every unit and on both paths (closed
-//! form and Newton), and a sweep never passes such a position silently.
+//! A slotted rocker whose slide passes (close to) its pivot, and a cylinder collapsed (almost)
+//! onto its pivot: the angle `theta` of `s @ theta` is undetermined where its lever `s` (an
+//! unknown, an input) vanishes, and only known to about `eps * L / s` near there (`L` the loop's
+//! other lengths). The health must say so: every `Ok` is as accurate as its reported pivot ratio
+//! promises, in every unit and on both paths (closed form and Newton), a position-only solve
+//! refuses where the kinematics do, and a sweep never passes such a position silently.
 //!
-//! The reference is exact: with the pivot at the origin, the crank centre at `(0, h)` and `h =
+//! The rocker's reference is exact: with the pivot at the origin, the crank centre at `(0, h)` and `h =
 //! r`, the slide at crank angle `phi = -pi/2 + e` is `r (sin e, 1 - cos e)`, whose direction is
 //! `theta = e / 2` and length `s = 2 r sin(e / 2)`, for every `e`: `dtheta/dphi = 1/2`.
 
@@ -29,6 +30,28 @@ kinloop::mechanism! {
         input phi;
         unknowns s = 1, theta = 0.5;
         loop slot: (0, h) + r @ phi == s @ theta;
+    }
+}
+
+kinloop::mechanism! {
+    /// A crank `r` about `(d, 0)` whose pin is driven by a cylinder of length `len` from the
+    /// origin: the cylinder's angle has an input for its lever.
+    pub struct CylinderCrank {
+        params d, r;
+        input len;
+        unknowns theta = 1.5, phi = 3.0;
+        loop cyl: len @ theta == (d, 0) + r @ phi;
+    }
+}
+
+kinloop::mechanism! {
+    /// The same drive solved by Newton.
+    #[kinloop(newton)]
+    pub struct CylinderCrankNewton {
+        params d, r;
+        input len;
+        unknowns theta = 1.5, phi = 3.0;
+        loop cyl: len @ theta == (d, 0) + r @ phi;
     }
 }
 
@@ -129,6 +152,67 @@ fn a_position_solve_refuses_the_lever_the_kinematics_refuse() {
     }
 }
 
+#[test]
+fn a_cylinder_collapsed_onto_its_pivot_is_as_accurate_as_its_pivot_ratio_says() {
+    // `d = r`: the crank pin passes the cylinder's pivot, where the cylinder's angle is
+    // undetermined. On the branch above the axis `phi = 2 theta` and `cos(theta) = len / (2 r)`:
+    // `theta = pi/2 - asin(len / (2 r))`, `dtheta/dlen = -1 / (2 r sqrt(1 - len^2 / (4 r^2)))`.
+    let eps = f64::EPSILON;
+    for scale in [1e-6, 1e-3, 1.0, 1e3, 1e6] {
+        let (d, r) = (scale, scale);
+        for k in 1..=14 {
+            let len = scale * 10f64.powi(-k);
+            let theta = FRAC_PI_2 - (len / (2.0 * r)).asin();
+            let dtheta = -1.0 / (2.0 * r * (1.0 - len * len / (4.0 * r * r)).sqrt());
+            // From the solution itself, as a sweep's prediction hands it: from a guess off by
+            // more than the lever, Newton's steps in `theta` (its column is the lever) jump to
+            // the other assembly mode, tens of turns away; its determinant sign tells.
+            let guess = (theta, 2.0 * theta);
+            let closed = CylinderCrank { d, r }
+                .kinematics(len, &CylinderCrankUnknowns { theta: guess.0, phi: guess.1 })
+                .map(|k| (k.q.theta, k.dq.theta, k.health.min_pivot));
+            let newton = CylinderCrankNewton { d, r }
+                .kinematics(len, &CylinderCrankNewtonUnknowns { theta: guess.0, phi: guess.1 })
+                .map(|k| (k.q.theta, k.dq.theta, k.health.min_pivot));
+            let placed = CylinderCrank { d, r }
+                .position(len, &CylinderCrankUnknowns { theta: guess.0, phi: guess.1 })
+                .map(|(q, _)| q.theta);
+            for (path, got) in [("closed form", closed), ("Newton", newton)] {
+                let at = format!("{path}, scale {scale:e}, len = 1e-{k} r");
+                match got {
+                    Ok((th, dth, pivot)) => {
+                        // As for the slotted rocker: `eps / pivot` and `eps / pivot^2`.
+                        // Modulo whole turns: Newton, from a guess this far, may end a turn away.
+                        assert!(turns_apart(th, theta) <= 2.0 * eps / pivot, "{at}: theta {th} (pivot {pivot:e})");
+                        let rel = ((dth - dtheta) / dtheta).abs();
+                        assert!(rel <= eps / (pivot * pivot), "{at}: dtheta {dth:e} (pivot {pivot:e})");
+                        assert!(k <= 10, "{at}: Ok with pivot {pivot:e}");
+                    }
+                    Err(err) => {
+                        assert!(matches!(err, Error::Singular { .. }), "{at}: {err}");
+                        assert!(k >= 9, "{at}: {err}");
+                    }
+                }
+            }
+            // The position-only solve refuses where the kinematics do.
+            let at = format!("position, scale {scale:e}, len = 1e-{k} r");
+            match placed {
+                Ok(th) => {
+                    assert!(k <= 10, "{at}: Ok");
+                    assert!((th - theta).abs() <= 4.0 * eps * scale / len, "{at}: theta {th}");
+                }
+                Err(err) => assert!(matches!(err, Error::Singular { .. }) && k >= 10, "{at}: {err}"),
+            }
+        }
+    }
+}
+
+/// The distance of two angles modulo whole turns.
+fn turns_apart(a: f64, b: f64) -> f64 {
+    let d = (a - b).rem_euclid(2.0 * PI);
+    d.min(2.0 * PI - d)
+}
+
 /// The rocker angle from its closed form, on the side of the slide the sweep started on.
 fn exact_theta(h: f64, r: f64, phi: f64) -> f64 {
     (h + r * phi.sin()).atan2(r * phi.cos())
@@ -145,8 +229,7 @@ fn a_sweep_never_passes_a_slide_near_its_pivot_silently() {
                 for st in m.sweep(0.0, 2.0 * PI, 73, &g).unwrap().with_config(cfg) {
                     let st = st?;
                     let want = exact_theta(h, r, st.input.phi);
-                    let err = (st.q.theta - want).rem_euclid(2.0 * PI);
-                    assert!(err.min(2.0 * PI - err) < 1e-9, "scale {scale:e}, d {d:e}, at {}", st.input.phi);
+                    assert!(turns_apart(st.q.theta, want) < 1e-9, "scale {scale:e}, d {d:e}, at {}", st.input.phi);
                     assert!(st.q.s > 0.0);
                 }
                 Ok(())

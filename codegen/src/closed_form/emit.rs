@@ -174,17 +174,41 @@ pub fn solve(rec: &Recognised, cx: &Context) -> TokenStream {
         quote!(#rt::check_guess(#(#guesses)+*).map_err(__fail)?;)
     });
     let angles = Literal::usize_unsuffixed(rec.form.angles().len());
+    let levers = lever_checks(&rec.form, cx);
     // The closure only captures references: it is `Copy`, one per block. A non-finite guess
     // makes the guesses' sum non-finite.
     quote! {
         let [#(#outs),*]: [f64; #k] = {
             let __fail = |f| #rt::block_failure(self, #bl, f, __x, __guess);
             #guess_check
+            #levers
             #body
             #rt::check_closed(&__out, #angles, __cfg).map_err(__fail)?;
             __out
         };
     }
+}
+
+/// The tests of the angles' levers against their floors, where the context asks for them (a
+/// position-only solve: see [`Context::lever_floor`]): each angle's lever vector, whose length
+/// is the magnitude of the angle's Jacobian column, at least `singular_tol` times the floor.
+fn lever_checks(form: &ClosedForm, cx: &Context) -> TokenStream {
+    let rt = cx.rt;
+    let levers: Vec<(usize, [NodeId; 2])> = match form {
+        ClosedForm::AngleEquation { angle, a, b, .. } => vec![(*angle, [*a, *b])],
+        ClosedForm::Dyad { angles, m, .. } => (0..2).map(|i| (angles[i], [m[i][0][0], m[i][1][0]])).collect(),
+        // `s w(q) = -e`: the lever `s` is as long as the offset (`w` a rotation).
+        ClosedForm::PolarLength { angle, e, .. } => vec![(*angle, *e)],
+        ClosedForm::AngleSlider { angle, m, .. } => vec![(*angle, [m[0][0], m[1][0]])],
+    };
+    let mut out = TokenStream::new();
+    for (u, [x, y]) in levers {
+        if let Some(floor) = (cx.lever_floor)(u) {
+            let (x, y) = (cx.v(x), cx.v(y));
+            out.extend(quote!(#rt::check_lever(#x, #y, #floor, __cfg).map_err(__fail)?;));
+        }
+    }
+    out
 }
 
 /// The block's unknowns that are not angles (a length or a slider).
@@ -388,9 +412,6 @@ fn polar(w: &[[NodeId; 2]; 2], e: &[NodeId; 2], u: usize, gs: &TokenStream, cx: 
     let b = bind(&mut out, "__b", sub(&mul(&w[0][1], &e[1]), &mul(&w[1][1], &e[0])));
     let r2 = add(&mul(&a, &a), &mul(&b, &b));
     let (e0, e1, rt) = (&e[0], &e[1], cx.rt);
-    if let Some(floor) = (cx.lever_floor)(u) {
-        out.extend(quote!(#rt::check_lever(#e0, #e1, #floor, __cfg).map_err(__fail)?;));
-    }
     out.extend(quote!(let __ir: f64 = #rt::polar_norm(#r2, #e0, #e1, __cfg).map_err(__fail)?;));
     let ir = local("__ir");
     let (c0, s0) = (mul(&b, &ir), neg(&mul(&a, &ir)));

@@ -35,8 +35,9 @@
 //! `dq_j` relative to `max(|q_j|, unit_j)`.
 //!
 //! **Lever floors.** An analog factorisation divides each Jacobian column by its largest entry.
-//! For an angle whose lever is a variable length (`s @ th` with `s` unknown: a slotted link's
-//! slide, the slider of an inverted crank) that entry is `|s|`, and dividing by it hides the
+//! For an angle whose lever is a variable length (`s @ th` with `s` an unknown or an input that
+//! is not an angle: a slotted link's slide, the slider of an inverted crank, a cylinder's
+//! length) that entry is `|s|`, and dividing by it hides the
 //! singular position at `s = 0`, where `th` is undetermined: the column stays of unit size
 //! however short `s` gets. Such a column is also scaled by its *lever floor*, the magnitude of
 //! each of its block's rows with the variable levers set to zero (the loop's other lengths).
@@ -144,7 +145,8 @@ impl Magnitudes {
 
     /// The lever floors of a block's columns (see the module documentation): per block
     /// column, the nodes its column scale takes beyond its Jacobian entries. Empty unless the
-    /// column is an angle's and its entries depend on unknowns that are not angles (the levers);
+    /// column is an angle's and its entries depend on unknowns or inputs that are not angles
+    /// (the levers);
     /// then one node per block row the angle appears in: that row's magnitude with the levers
     /// set to zero.
     pub fn lever_floors(&mut self, g: &mut Graph, bp: &BlockPlan) -> Vec<Vec<NodeId>> {
@@ -156,7 +158,7 @@ impl Magnitudes {
                 let levers: Vec<Leaf> = g
                     .leaves_of(&bp.col_scale[c])
                     .into_iter()
-                    .filter(|l| matches!(l, Leaf::Unknown(u) if !self.is_angle_unknown(*u as usize)))
+                    .filter(|l| matches!(l, Leaf::Unknown(_) | Leaf::Input(_)) && !self.angles.contains(l))
                     .collect();
                 if levers.is_empty() {
                     return Vec::new();
@@ -229,45 +231,52 @@ mod tests {
 
     /// The slotted rocker `(0, h) + r @ phi - s @ th = 0` (unknowns `s`, `th`): the angle's
     /// column, whose lever `s` is an unknown, gets one floor (the Y projection's `|h| + |r|`;
-    /// the X projection's `|r|` is a term of it), the length's column none; the same loop with
-    /// a fixed lever `l @ th` gets none.
+    /// the X projection's `|r|` is a term of it), the length's column none. So does the angle
+    /// of a lever that is an input (a cylinder's length); a fixed lever `l @ th` gets none.
     #[test]
     fn only_an_angle_with_a_variable_lever_gets_a_floor() {
         use crate::structure::Block;
-        let plan_of = |variable: bool| {
+        // The lever: 0 the unknown `s`, 1 the parameter `l`, 2 the input `len`.
+        let plan_of = |lever: u8| {
             let mut g = Graph::new();
             let (s, th) = (g.leaf(Leaf::Unknown(0)), g.leaf(Leaf::Unknown(1)));
             let (h, r, l, phi) =
                 (g.leaf(Leaf::Param(0)), g.leaf(Leaf::Param(1)), g.leaf(Leaf::Param(2)), g.leaf(Leaf::Input(0)));
-            let lever = if variable { s } else { l };
+            let len = g.leaf(Leaf::Input(1));
+            let lever = [s, l, len][lever as usize];
             let (cp, sp, ct, st) =
                 (g.func(Func::Cos, phi), g.func(Func::Sin, phi), g.func(Func::Cos, th), g.func(Func::Sin, th));
             let (rc, rs, lc, ls) = (g.mul(r, cp), g.mul(r, sp), g.mul(lever, ct), g.mul(lever, st));
             let fx = g.sub(rc, lc);
             let hy = g.add(h, rs);
             let mut fy = g.sub(hy, ls);
-            if !variable {
-                // `s` must still appear: a slider along X beside the fixed lever.
+            if lever != s {
+                // `s` must still appear: a slider along Y beside the lever.
                 fy = g.add(fy, s);
             }
             let residuals = [fx, fy];
-            let (jac, _) = super::super::positions::full_jacobians(&mut g, &residuals, 2, 1);
+            let (jac, _) = super::super::positions::full_jacobians(&mut g, &residuals, 2, 2);
             let blk = Block { unknowns: vec![0, 1], equations: vec![0, 1] };
             let bp = super::super::positions::block(&mut g, &blk, &residuals, &jac);
             let mut mags = Magnitudes::new(&g, &residuals);
             let floors = mags.lever_floors(&mut g, &bp);
             (g, floors)
         };
-        let (g, floors) = plan_of(true);
-        assert!(floors[0].is_empty(), "the slide's own column");
-        assert_eq!(floors[1].len(), 1, "one floor for the angle");
-        let v = g.eval(&floors[1], &|leaf| match leaf {
-            Leaf::Param(0) => -2.0,
-            Leaf::Param(1) => 3.0,
-            _ => f64::NAN,
-        });
-        assert_eq!(v, vec![5.0]);
-        let (_, floors) = plan_of(false);
+        // The floor is the Y projection's magnitude without the lever: `|h| + |r|`, plus `|s|`
+        // where `s` is a slider beside an input lever.
+        for (lever, want) in [(0, 5.0), (2, 6.0)] {
+            let (g, floors) = plan_of(lever);
+            assert!(floors[0].is_empty(), "the slide's own column");
+            assert_eq!(floors[1].len(), 1, "one floor for the angle");
+            let v = g.eval(&floors[1], &|leaf| match leaf {
+                Leaf::Param(0) => -2.0,
+                Leaf::Param(1) => 3.0,
+                Leaf::Unknown(0) => -1.0,
+                _ => f64::NAN,
+            });
+            assert_eq!(v, vec![want], "lever {lever}");
+        }
+        let (_, floors) = plan_of(1);
         assert!(floors.iter().all(Vec::is_empty));
     }
 }
