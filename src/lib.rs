@@ -239,11 +239,13 @@
 //! smallest pivot ratio of its blocks, how far it is from a singular position whatever the unit
 //! of length. That includes a slide passing near the pivot of its slotted link (or a cylinder
 //! nearly collapsed onto its pivot), where the link's angle is undetermined: its pivot ratio
-//! there is the slide's distance from the pivot over the loop's other lengths (a position-only solve, which has no analogs, tests the slide itself: below
-//! [`NewtonConfig::singular_tol`] of the loop it is [`Error::Singular`], on the closed-form path
-//! as on Newton's). A sweep does not accept a step below [`SweepConfig::singular_pivot`]
-//! (`1e-6`); where it finds no limit position or crossing there (the path only passes close to
-//! one) it stops with [`Error::Branch`] saying so, and a lower value lets it pass.
+//! there is the slide's distance from the pivot over the loop's other lengths. A position-only
+//! solve, which has no analogs, makes the same test itself (a slide, or a dyad's two centres,
+//! closer than [`NewtonConfig::singular_tol`] of the links is [`Error::Singular`]), on the
+//! closed-form path as on Newton's. A sweep does not accept a step below
+//! [`SweepConfig::singular_pivot`] (`1e-6`); where it finds no limit position or crossing there
+//! (the path only passes close to one) it stops with [`Error::Branch`] saying so, and a lower
+//! value lets it pass.
 //!
 //! `m.with_config(cfg)` gives the mechanism its own solver configuration (a [`SweepConfig`] or
 //! a [`NewtonConfig`], validated once): the [`Configured`] mechanism uses it in every solve,

@@ -257,3 +257,68 @@ fn a_limit_position_assembles_in_every_unit() {
         }
     }
 }
+
+kinloop::mechanism! {
+    /// A four-bar whose ground link `d` is tilted by `g0`.
+    pub struct TiltedFourBar {
+        params a, b, c, d, g0;
+        input phi;
+        unknowns beta = 0.5, gamma = 1.5;
+        loop abcd: a @ phi + b @ beta == d @ g0 + c @ gamma;
+    }
+}
+
+kinloop::mechanism! {
+    /// The same, solved by Newton.
+    #[kinloop(newton)]
+    pub struct TiltedFourBarNewton {
+        params a, b, c, d, g0;
+        input phi;
+        unknowns beta = 0.5, gamma = 1.5;
+        loop abcd: a @ phi + b @ beta == d @ g0 + c @ gamma;
+    }
+}
+
+#[test]
+fn a_dyad_on_coincident_centres_is_singular_in_a_position_solve_too() {
+    // `a = d`, `b = c`: at `phi = g0` the crank pin B sits on the rocker pivot D and the folded
+    // coupler and rocker turn freely about it. Near there their orientation is known only to the
+    // rounding of the loop's lengths over `|BD| = 2 a sin((phi - g0) / 2)`: with the ground
+    // tilted, both components of BD cancel, and closer than the rounding the orientation is
+    // anything. The kinematics report the pivot ratio `|BD| / b` and refuse below the tolerance;
+    // a position-only solve must not answer there either, on either path. The reference: C on
+    // the perpendicular bisector of BD, at `h = sqrt(b^2 - (|BD| / 2)^2)` from its midpoint, in
+    // half angles (no cancellation).
+    let eps = f64::EPSILON;
+    let g0 = 0.3;
+    for scale in [1e-6, 1e-3, 1.0, 1e3, 1e6] {
+        let (a, b) = (scale, 2.0 * scale);
+        let m = TiltedFourBar { a, b, c: b, d: a, g0 };
+        let mn = TiltedFourBarNewton { a, b, c: b, d: a, g0 };
+        for k in 1..=16 {
+            let phi = g0 + 10f64.powi(-k);
+            // The offset as represented (exact: the two are within a factor two).
+            let t = phi - g0;
+            let s = (0.5 * t).sin();
+            let (sm, cm) = (g0 + 0.5 * t).sin_cos();
+            let bd = 2.0 * a * s;
+            let h = (b * b - 0.25 * bd * bd).sqrt();
+            // C - B = BD / 2 + side h n, BD along (sm, -cm), n = (cm, sm).
+            let betas = [1.0, -1.0].map(|side| (-a * s * cm + side * h * sm).atan2(a * s * sm + side * h * cm));
+            let guess = [1.0, 1.0 + PI - 0.1];
+            let closed = m.position_flat(&[phi], &guess, &NewtonConfig::default()).map(|(q, _)| q[0]);
+            let newton = mn.position_flat(&[phi], &guess, &NewtonConfig::default()).map(|(q, _)| q[0]);
+            for (path, got) in [("closed form", closed), ("Newton", newton)] {
+                let at = format!("{path}, scale {scale:e}, phi - g0 = 1e-{k}");
+                match got {
+                    Ok(beta) => {
+                        let err = betas.iter().map(|&b| angle_err(beta, b)).fold(f64::INFINITY, f64::min);
+                        assert!(err <= 4.0 * eps * (a + b) / bd, "{at}: beta {beta} vs {betas:?}");
+                        assert!(k <= 9, "{at}: Ok, beta {beta}");
+                    }
+                    Err(e) => assert!(matches!(e, Error::Singular { .. }) && k >= 8, "{at}: {e}"),
+                }
+            }
+        }
+    }
+}

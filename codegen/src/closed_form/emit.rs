@@ -38,9 +38,12 @@ pub struct Context<'a> {
     pub rt: &'a TokenStream,
     /// The kernel has a sweep's cache `__trig` to ask the angles of (see [`angle_of`]).
     pub trig: bool,
-    /// For an angle unknown whose lever is a variable length: the lever floor to test the lever
-    /// against, when the solve must (a position-only solve, which has no analogs whose pivot
-    /// ratio would; see the plan's `magnitudes`).
+    /// A position-only solve: no analogs follow, whose factorisation's pivot ratio would report
+    /// a position the data do not determine, so the solve tests for it itself (see
+    /// [`lever_checks`]).
+    pub position_only: bool,
+    /// For an angle unknown whose lever is a variable length: its lever floor (see the plan's
+    /// `magnitudes`).
     pub lever_floor: &'a dyn Fn(usize) -> Option<TokenStream>,
 }
 
@@ -189,10 +192,16 @@ pub fn solve(rec: &Recognised, cx: &Context) -> TokenStream {
     }
 }
 
-/// The tests of the angles' levers against their floors, where the context asks for them (a
-/// position-only solve: see [`Context::lever_floor`]): each angle's lever vector, whose length
-/// is the magnitude of the angle's Jacobian column, at least `singular_tol` times the floor.
+/// The tests of a position-only solve (see [`Context::position_only`]) for a position the data
+/// do not determine, where the analogs' pivot ratio would be below the tolerance: an angle's
+/// lever vector (whose length is the magnitude of the angle's Jacobian column) against its lever
+/// floor, when it has one; and a dyad's centres against its links (centres that coincide leave
+/// the dyad free to turn about them).
 fn lever_checks(form: &ClosedForm, cx: &Context) -> TokenStream {
+    let mut out = TokenStream::new();
+    if !cx.position_only {
+        return out;
+    }
     let rt = cx.rt;
     let levers: Vec<(usize, [NodeId; 2])> = match form {
         ClosedForm::AngleEquation { angle, a, b, .. } => vec![(*angle, [*a, *b])],
@@ -201,12 +210,20 @@ fn lever_checks(form: &ClosedForm, cx: &Context) -> TokenStream {
         ClosedForm::PolarLength { angle, e, .. } => vec![(*angle, *e)],
         ClosedForm::AngleSlider { angle, m, .. } => vec![(*angle, [m[0][0], m[1][0]])],
     };
-    let mut out = TokenStream::new();
     for (u, [x, y]) in levers {
         if let Some(floor) = (cx.lever_floor)(u) {
             let (x, y) = (cx.v(x), cx.v(y));
             out.extend(quote!(#rt::check_lever(#x, #y, #floor, __cfg).map_err(__fail)?;));
         }
+    }
+    if let ClosedForm::Dyad { m, e, .. } = form {
+        let link = |i: usize| {
+            let (x, y) = (cx.v(m[i][0][0]), cx.v(m[i][1][0]));
+            add(&mul(&x, &x), &mul(&y, &y))
+        };
+        let (l0, l1) = (link(0), link(1));
+        let (e0, e1) = (cx.v(e[0]), cx.v(e[1]));
+        out.extend(quote!(#rt::check_centres(#e0, #e1, #l0, #l1, __cfg).map_err(__fail)?;));
     }
     out
 }

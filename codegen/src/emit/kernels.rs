@@ -551,9 +551,10 @@ impl Kernel<'_> {
         let bp = &self.plan.blocks[b];
         let lever_floor = |u: usize| {
             let c = bp.unknowns.iter().position(|&v| v == u)?;
-            (self.mode == Mode::Position && !bp.lever_floor[c].is_empty()).then(|| self.floor_value(bp, c))
+            (!bp.lever_floor[c].is_empty()).then(|| self.floor_value(bp, c))
         };
         let cx = crate::closed_form::emit::Context {
+            position_only: self.mode == Mode::Position,
             lever_floor: &lever_floor,
             graph: self.g,
             op: &op,

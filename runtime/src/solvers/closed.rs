@@ -253,6 +253,27 @@ pub fn check_lever(e0: f64, e1: f64, floor: f64, cfg: &NewtonConfig) -> Result<(
     if e0 * e0 + e1 * e1 < t * t { Err(short_lever(e0, e1, floor, cfg)) } else { Ok(()) }
 }
 
+/// The test of a dyad's centres in a position-only solve: their offset `(e0, e1)` against the
+/// longer of the two links (`l0_sq`, `l1_sq` the links' squared lengths). Centres closer than
+/// `singular_tol` times the link leave the dyad's orientation to the rounding (two equal links
+/// folded onto coincident centres turn freely about them): singular, as the analogs' pivot ratio
+/// (about the offset over the link) and Newton find it. A limit position of two unequal links
+/// keeps its centres `|l0 - l1|` apart and passes. A NaN passes, for the solution's own
+/// finiteness check.
+///
+/// ```
+/// use kinloop_runtime::NewtonConfig;
+/// use kinloop_runtime::generated::check_centres;
+/// let cfg = NewtonConfig::default(); // singular_tol = 1e-10
+/// assert!(check_centres(1e-9, 0.0, 4.0, 4.0, &cfg).is_ok());
+/// assert!(check_centres(1e-11, 0.0, 4.0, 4.0, &cfg).is_err());
+/// ```
+#[inline]
+pub fn check_centres(e0: f64, e1: f64, l0_sq: f64, l1_sq: f64, cfg: &NewtonConfig) -> Result<(), BlockFailure> {
+    let t = cfg.singular_tol * cfg.singular_tol * if l0_sq > l1_sq { l0_sq } else { l1_sq };
+    if e0 * e0 + e1 * e1 < t { Err(short_lever(e0, e1, l0_sq.max(l1_sq).sqrt(), cfg)) } else { Ok(()) }
+}
+
 /// The failure of a lever shorter than the tolerance allows.
 #[cold]
 #[inline(never)]
