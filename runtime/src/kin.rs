@@ -88,9 +88,9 @@ pub struct Health {
     /// The smallest pivot ratio over all blocks (`1` is perfectly conditioned, `0` singular) of
     /// the column-equilibrated block Jacobians the analogs are solved with. Each column is
     /// divided by its largest entry, except that the column of an angle whose lever is a
-    /// variable length (`s @ theta` with `s` unknown) is divided by at least the loop's other
-    /// lengths: a slide passing near its pivot shows as near singular, as its angle is only
-    /// known to about `eps` times their ratio to `s` there.
+    /// variable length (`s @ theta` with `s` an unknown or an input) is divided by at least the
+    /// loop's other lengths: a slide passing near its pivot shows as near singular, as its angle
+    /// is only known to about `eps` times their ratio to `s` there.
     pub min_pivot: f64,
     /// The block with that smallest pivot ratio.
     pub weakest_block: usize,

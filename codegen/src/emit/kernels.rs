@@ -546,8 +546,9 @@ impl Kernel<'_> {
     fn closed_block(&self, b: usize, c: &crate::closed_form::Recognised) -> TokenStream {
         let op = |n: NodeId| self.op(n);
         let bind = |n: NodeId| self.closed_trig.contains(&n).then(|| self.names.temp(n));
-        // A position-only solve has no analogs, whose pivot ratio would report a lever (a
-        // polar length) too short against its floor to determine its angle: the solve tests it.
+        // A position-only solve has no analogs, whose pivot ratio would report a position the
+        // data do not determine (a lever short against its floor, a dyad on coincident
+        // centres): the solve tests for it itself.
         let bp = &self.plan.blocks[b];
         let lever_floor = |u: usize| {
             let c = bp.unknowns.iter().position(|&v| v == u)?;

@@ -37,13 +37,13 @@
 //! **Lever floors.** An analog factorisation divides each Jacobian column by its largest entry.
 //! For an angle whose lever is a variable length (`s @ th` with `s` an unknown or an input that
 //! is not an angle: a slotted link's slide, the slider of an inverted crank, a cylinder's
-//! length) that entry is `|s|`, and dividing by it hides the
-//! singular position at `s = 0`, where `th` is undetermined: the column stays of unit size
-//! however short `s` gets. Such a column is also scaled by its *lever floor*, the magnitude of
-//! each of its block's rows with the variable levers set to zero (the loop's other lengths).
-//! The column scale is then `max(|s|, floor)`: unchanged while the slide is longer than the
-//! rest of its loop, and `|s| / floor` near the pivot, which is the factor by which rounding in
-//! the loop's lengths is magnified in `th` there.
+//! length) that entry is `|s|`, and dividing by it hides the singular position at `s = 0`,
+//! where `th` is undetermined: the column stays of unit size however short `s` gets. Such a
+//! column is also scaled by its *lever floor*, the magnitude of each of its block's rows with
+//! the variable levers set to zero (the loop's other lengths). The column scale is then
+//! `max(|s|, floor)`: unchanged while the slide is longer than the rest of its loop, and the
+//! pivot ratio about `|s| / floor` near the pivot, the factor by which the rounding of the
+//! loop's lengths is magnified in `th` there.
 
 use super::BlockPlan;
 use crate::dag::{Func, Graph, Leaf, NodeId, Op};
@@ -146,9 +146,8 @@ impl Magnitudes {
     /// The lever floors of a block's columns (see the module documentation): per block
     /// column, the nodes its column scale takes beyond its Jacobian entries. Empty unless the
     /// column is an angle's and its entries depend on unknowns or inputs that are not angles
-    /// (the levers);
-    /// then one node per block row the angle appears in: that row's magnitude with the levers
-    /// set to zero.
+    /// (the levers); then one node per block row the angle appears in, that row's magnitude with
+    /// the levers set to zero, less those that cannot be the largest.
     pub fn lever_floors(&mut self, g: &mut Graph, bp: &BlockPlan) -> Vec<Vec<NodeId>> {
         (0..bp.unknowns.len())
             .map(|c| {
