@@ -55,6 +55,9 @@ kinloop::mechanism! {
     }
 }
 
+/// The units the solves are made in: lengths from a micrometre to a megametre of the metre's.
+const SCALES: [f64; 5] = [1e-6, 1e-3, 1.0, 1e3, 1e6];
+
 /// What one solve returned: `theta`, `dtheta/dphi` and the smallest pivot ratio, or the error.
 type Outcome = Result<(f64, f64, f64), Error>;
 
@@ -77,37 +80,47 @@ fn offset(phi: f64) -> f64 {
     (phi + FRAC_PI_2) + 6.123_233_995_736_766e-17
 }
 
+/// The value of a solve at an offset of `1e-k`: when `Ok`, which the data must still determine
+/// there (`k <= last_ok`), the value to check; an error must be `Singular`, and only from
+/// `k >= first_singular` on.
+fn ok_or_singular<T: std::fmt::Debug>(
+    at: &str,
+    got: Result<T, Error>,
+    k: i32,
+    last_ok: i32,
+    first_singular: i32,
+) -> Option<T> {
+    match got {
+        Ok(v) => {
+            assert!(k <= last_ok, "{at}: Ok {v:?}");
+            Some(v)
+        }
+        Err(err) => {
+            assert!(matches!(err, Error::Singular { .. }), "{at}: {err}");
+            assert!(k >= first_singular, "{at}: {err}");
+            None
+        }
+    }
+}
+
 #[test]
 fn a_slide_near_its_pivot_is_as_accurate_as_its_pivot_ratio_says() {
     let eps = f64::EPSILON;
-    for scale in [1e-6, 1e-3, 1.0, 1e3, 1e6] {
+    for scale in SCALES {
         for k in 1..=12 {
             let phi = -FRAC_PI_2 + 10f64.powi(-k);
             let e = offset(phi);
             for (path, got) in ["closed form", "Newton"].iter().zip(solve_both(scale, phi)) {
                 let at = format!("{path}, scale {scale:e}, e = 1e-{k}");
-                match got {
-                    Ok((theta, dtheta, pivot)) => {
-                        // The angle carries the rounding of the loop's lengths divided by the
-                        // lever, `eps L / s`, and its analog that error once more over the lever:
-                        // with the pivot ratio `s / L`, bounds of `eps / pivot` and
-                        // `eps / pivot^2` (twice each for the other roundings).
-                        assert!(
-                            (theta - e / 2.0).abs() <= 2.0 * eps / pivot,
-                            "{at}: theta {theta:e} (pivot {pivot:e})"
-                        );
-                        assert!(
-                            (dtheta - 0.5).abs() <= eps / (pivot * pivot),
-                            "{at}: dtheta {dtheta} (pivot {pivot:e})"
-                        );
-                        // Down to a lever of 1e-8 of the loop the position is regular to the
-                        // default tolerance (pivot ratio 1e-10).
-                        assert!(k <= 9, "{at}: Ok with pivot {pivot:e}");
-                    }
-                    Err(err) => {
-                        assert!(matches!(err, Error::Singular { .. }), "{at}: {err}");
-                        assert!(k >= 10, "{at}: {err}");
-                    }
+                // Down to a lever of 1e-8 of the loop the position is regular to the default
+                // tolerance (pivot ratio 1e-10).
+                if let Some((theta, dtheta, pivot)) = ok_or_singular(&at, got, k, 9, 10) {
+                    // The angle carries the rounding of the loop's lengths divided by the lever,
+                    // `eps L / s`, and its analog that error once more over the lever: with the
+                    // pivot ratio `s / L`, bounds of `eps / pivot` and `eps / pivot^2` (twice each
+                    // for the other roundings).
+                    assert!((theta - e / 2.0).abs() <= 2.0 * eps / pivot, "{at}: theta {theta:e} (pivot {pivot:e})");
+                    assert!((dtheta - 0.5).abs() <= eps / (pivot * pivot), "{at}: dtheta {dtheta} (pivot {pivot:e})");
                 }
             }
         }
@@ -121,7 +134,7 @@ fn a_position_solve_refuses_the_lever_the_kinematics_refuse() {
     // of the loop on; Newton's own test, on its row-equilibrated Jacobian, may already refuse or
     // still accept at 1e-10, the edge of the tolerance).
     let eps = f64::EPSILON;
-    for scale in [1e-6, 1e-3, 1.0, 1e3, 1e6] {
+    for scale in SCALES {
         let (h, r) = (scale, scale);
         for k in 1..=16 {
             let phi = -FRAC_PI_2 + 10f64.powi(-k);
@@ -134,18 +147,11 @@ fn a_position_solve_refuses_the_lever_the_kinematics_refuse() {
                 .map(|(q, _)| (q.s, q.theta));
             for (path, got) in [("closed form", closed), ("Newton", newton)] {
                 let at = format!("{path}, scale {scale:e}, e = 1e-{k}");
-                match got {
-                    Ok((s, theta)) => {
-                        assert!(k <= 10, "{at}: Ok with a lever of {:e} of the loop", s / scale);
-                        // The angle to the rounding of the loop's lengths over the lever.
-                        let lever = 2.0 * (e / 2.0).sin();
-                        assert!((theta - e / 2.0).abs() <= 4.0 * eps / lever, "{at}: theta {theta:e}");
-                        assert!((s / scale - lever).abs() <= 4.0 * eps, "{at}: s {s:e}");
-                    }
-                    Err(err) => {
-                        assert!(matches!(err, Error::Singular { .. }), "{at}: {err}");
-                        assert!(k >= 10, "{at}: {err}");
-                    }
+                if let Some((s, theta)) = ok_or_singular(&at, got, k, 10, 10) {
+                    // The angle to the rounding of the loop's lengths over the lever.
+                    let lever = 2.0 * (e / 2.0).sin();
+                    assert!((theta - e / 2.0).abs() <= 4.0 * eps / lever, "{at}: theta {theta:e}");
+                    assert!((s / scale - lever).abs() <= 4.0 * eps, "{at}: s {s:e}");
                 }
             }
         }
@@ -158,7 +164,7 @@ fn a_cylinder_collapsed_onto_its_pivot_is_as_accurate_as_its_pivot_ratio_says() 
     // undetermined. On the branch above the axis `phi = 2 theta` and `cos(theta) = len / (2 r)`:
     // `theta = pi/2 - asin(len / (2 r))`, `dtheta/dlen = -1 / (2 r sqrt(1 - len^2 / (4 r^2)))`.
     let eps = f64::EPSILON;
-    for scale in [1e-6, 1e-3, 1.0, 1e3, 1e6] {
+    for scale in SCALES {
         let (d, r) = (scale, scale);
         for k in 1..=14 {
             let len = scale * 10f64.powi(-k);
@@ -179,29 +185,18 @@ fn a_cylinder_collapsed_onto_its_pivot_is_as_accurate_as_its_pivot_ratio_says() 
                 .map(|(q, _)| q.theta);
             for (path, got) in [("closed form", closed), ("Newton", newton)] {
                 let at = format!("{path}, scale {scale:e}, len = 1e-{k} r");
-                match got {
-                    Ok((th, dth, pivot)) => {
-                        // As for the slotted rocker: `eps / pivot` and `eps / pivot^2`.
-                        // Modulo whole turns: Newton, from a guess this far, may end a turn away.
-                        assert!(turns_apart(th, theta) <= 2.0 * eps / pivot, "{at}: theta {th} (pivot {pivot:e})");
-                        let rel = ((dth - dtheta) / dtheta).abs();
-                        assert!(rel <= eps / (pivot * pivot), "{at}: dtheta {dth:e} (pivot {pivot:e})");
-                        assert!(k <= 10, "{at}: Ok with pivot {pivot:e}");
-                    }
-                    Err(err) => {
-                        assert!(matches!(err, Error::Singular { .. }), "{at}: {err}");
-                        assert!(k >= 9, "{at}: {err}");
-                    }
+                if let Some((th, dth, pivot)) = ok_or_singular(&at, got, k, 10, 9) {
+                    // As for the slotted rocker: `eps / pivot` and `eps / pivot^2` (the angle
+                    // modulo whole turns, which the solution does not pick).
+                    assert!(turns_apart(th, theta) <= 2.0 * eps / pivot, "{at}: theta {th} (pivot {pivot:e})");
+                    let rel = ((dth - dtheta) / dtheta).abs();
+                    assert!(rel <= eps / (pivot * pivot), "{at}: dtheta {dth:e} (pivot {pivot:e})");
                 }
             }
             // The position-only solve refuses where the kinematics do.
             let at = format!("position, scale {scale:e}, len = 1e-{k} r");
-            match placed {
-                Ok(th) => {
-                    assert!(k <= 10, "{at}: Ok");
-                    assert!((th - theta).abs() <= 4.0 * eps * scale / len, "{at}: theta {th}");
-                }
-                Err(err) => assert!(matches!(err, Error::Singular { .. }) && k >= 10, "{at}: {err}"),
+            if let Some(th) = ok_or_singular(&at, placed, k, 10, 10) {
+                assert!((th - theta).abs() <= 4.0 * eps * scale / len, "{at}: theta {th}");
             }
         }
     }

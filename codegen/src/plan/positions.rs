@@ -44,7 +44,7 @@ pub fn block(g: &mut Graph, blk: &Block, residuals: &[NodeId], jac_full: &[Vec<N
         f,
         jac,
         col_scale,
-        lever_floor: Vec::new(),
+        lever_floor: vec![Vec::new(); blk.unknowns.len()],
         rhs0,
         vel: Vec::new(),
         acc: Vec::new(),

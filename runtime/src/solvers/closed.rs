@@ -249,8 +249,7 @@ pub fn polar_norm(d2: f64, e0: f64, e1: f64, cfg: &NewtonConfig) -> Result<f64, 
 /// ```
 #[inline]
 pub fn check_lever(e0: f64, e1: f64, floor: f64, cfg: &NewtonConfig) -> Result<(), BlockFailure> {
-    let t = cfg.singular_tol * floor;
-    if e0 * e0 + e1 * e1 < t * t { Err(short_lever(e0, e1, floor, cfg)) } else { Ok(()) }
+    lever_against(e0, e1, floor * floor, cfg)
 }
 
 /// The test of a dyad's centres in a position-only solve: their offset `(e0, e1)` against the
@@ -270,15 +269,23 @@ pub fn check_lever(e0: f64, e1: f64, floor: f64, cfg: &NewtonConfig) -> Result<(
 /// ```
 #[inline]
 pub fn check_centres(e0: f64, e1: f64, l0_sq: f64, l1_sq: f64, cfg: &NewtonConfig) -> Result<(), BlockFailure> {
-    let t = cfg.singular_tol * cfg.singular_tol * if l0_sq > l1_sq { l0_sq } else { l1_sq };
-    if e0 * e0 + e1 * e1 < t { Err(short_lever(e0, e1, l0_sq.max(l1_sq).sqrt(), cfg)) } else { Ok(()) }
+    lever_against(e0, e1, if l0_sq > l1_sq { l0_sq } else { l1_sq }, cfg)
+}
+
+/// The test of [`check_lever`] and [`check_centres`] on squares: the lever `(e0, e1)` against
+/// `singular_tol` times the length whose square is `floor_sq` (no square root on the path that
+/// passes).
+#[inline]
+fn lever_against(e0: f64, e1: f64, floor_sq: f64, cfg: &NewtonConfig) -> Result<(), BlockFailure> {
+    let tol = cfg.singular_tol;
+    if e0 * e0 + e1 * e1 < tol * tol * floor_sq { Err(short_lever(e0, e1, floor_sq, cfg)) } else { Ok(()) }
 }
 
 /// The failure of a lever shorter than the tolerance allows.
 #[cold]
 #[inline(never)]
-fn short_lever(e0: f64, e1: f64, floor: f64, cfg: &NewtonConfig) -> BlockFailure {
-    let pivot_ratio = e0.hypot(e1) / floor;
+fn short_lever(e0: f64, e1: f64, floor_sq: f64, cfg: &NewtonConfig) -> BlockFailure {
+    let pivot_ratio = e0.hypot(e1) / floor_sq.sqrt();
     BlockFailure::Singular { row: 0, iterations: 0, residual: 0.0, pivot_ratio, tolerance: cfg.singular_tol }
 }
 
