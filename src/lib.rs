@@ -185,7 +185,11 @@
 //! 0.2 > 0.3` in metres) it is the limit position, in every unit. `linear, NxN` is one linear solve; `Newton, NxN` iterates;
 //! `Newton, NxN sparse (K non-zeros)` iterates on a large coupled block (16 unknowns or more,
 //! a sparse Jacobian) whose LU follows its sparsity: an elimination order fixed at compile time,
-//! every pivot checked at run time, a dense LU where one is weak.
+//! every pivot checked at run time, a dense LU where one is weak. Newton ends on the guess's turn
+//! too: an angle that enters its block only through sines and cosines of whole multiples of
+//! itself (`l @ q`, `l @ (q + gamma)`, `l @ (2 q)`) and that a long step carried more than half a
+//! turn out is moved back to its guess's turn and corrected once more there. From a far guess
+//! Newton may end in either assembly mode; the closed forms keep the guess's.
 //! `#[kinloop(dense)]` solves all unknowns as one block with dense LU instead, `#[kinloop(newton)]` uses
 //! Newton for every nonlinear block (the results are the same; both exist to compare and to
 //! debug).

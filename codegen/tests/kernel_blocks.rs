@@ -84,9 +84,36 @@ fn magnitudes_free_of_the_unknowns_are_made_once_per_solve() {
 #[test]
 fn magnitudes_that_depend_on_the_unknowns_come_from_each_evaluation() {
     let call = newton_call(ROCKER, 0);
-    assert!(call.contains("&|__e:&::kinloop::__gen::BlockEval<2,6>|::kinloop::__gen::Magnitudes::new("), "{call}");
+    assert!(call.contains("&|__e:&::kinloop::__gen::BlockEval<2,6>|{::kinloop::__gen::Magnitudes::new("), "{call}");
     assert!(call.contains("[__e.keep[2],__e.keep[3]],[__e.keep[4],__e.keep[5]]"), "{call}");
     assert!(!fused_kernel(ROCKER).contains("let__mag0"), "nothing made once");
+    // The angle repeats every turn; the slide, which its loop holds linearly, does not.
+    assert!(call.contains(".with_turns([false,true])"), "{call}");
+}
+
+#[test]
+fn angles_that_repeat_every_turn_are_marked_for_newton() {
+    let kernel = fused_kernel(WATT);
+    // `beta` enters the second block as `e @ (beta + 0.3)`, a known angle there.
+    for b in 0..2 {
+        assert!(kernel.contains(&format!("let__mag{b}=::kinloop::__gen::Magnitudes::new(")), "block {b}");
+    }
+    assert_eq!(kernel.matches(".with_turns([true,true]);").count(), 2, "both dyads' angles");
+    // An angle that also enters by itself (rolling, `r th`) is a different position a turn
+    // on; so is half an angle, and a ratio that is not a whole number. (Each loop couples `x`
+    // and `th` into one block.)
+    for (loop_, why) in [
+        ("loop w: (x, 0) + r @ th == (u + r * th, x);", "rolling"),
+        ("loop w: (x, 0) + r @ (th / 2) == (u, x);", "half angle"),
+        ("loop w: (x, 0) + r @ (1.5 * th) == (u, x);", "ratio"),
+        ("loop w: (x, 0) + r @ (2 * th) == (u, x) + (0, th);", "beside its sine"),
+    ] {
+        let decl =
+            format!("#[kinloop(newton)] pub struct W {{ params r = 1.0; input u; unknowns x = 0, th = 0.5; {loop_} }}");
+        let kernel = fused_kernel(&decl);
+        assert!(kernel.contains("let__r0=::kinloop::__gen::newton"), "{why}: one Newton block");
+        assert!(!kernel.contains("with_turns"), "{why}");
+    }
 }
 
 /// The inverse statement of block `b`.

@@ -477,8 +477,15 @@ impl Kernel<'_> {
         };
         let ty = if bp.sparse.is_some() { quote!(#rt::BlockEval<#n, #k, #ty>) } else { quote!(#rt::BlockEval<#n, #k>) };
         let mag = format_ident!("__mag{}", b);
+        // The unknowns Newton may return on their guess's turn (see `plan::turns`).
+        let turns = if bp.turns.contains(&true) {
+            let t = &bp.turns;
+            quote!(.with_turns([#(#t),*]))
+        } else {
+            TokenStream::new()
+        };
         let (mags_once, mags) = if fixed {
-            (quote!(let #mag = #rt::Magnitudes::new([#(#scale),*], [#(#unit),*]);), quote!(&#mag))
+            (quote!(let #mag = #rt::Magnitudes::new([#(#scale),*], [#(#unit),*])#turns;), quote!(&#mag))
         } else {
             let nb = bp.unknowns.len();
             let at = |k: usize| {
@@ -486,7 +493,7 @@ impl Kernel<'_> {
                 quote!(__e.keep[#k])
             };
             let (s, u) = ((0..nb).map(at), (nb..2 * nb).map(at));
-            (TokenStream::new(), quote!(&|__e: &#ty| #rt::Magnitudes::new([#(#s),*], [#(#u),*])))
+            (TokenStream::new(), quote!(&|__e: &#ty| #rt::Magnitudes::new([#(#s),*], [#(#u),*])#turns))
         };
         // The kept magnitudes are not read after the solve.
         let take_keep = if exports.is_empty() {

@@ -26,6 +26,7 @@ pub mod positions;
 pub mod seeds;
 pub mod sensitivities;
 pub mod sparse;
+pub mod turns;
 
 use crate::dag::{Graph, Leaf, NodeId, Op};
 use crate::model::Model;
@@ -67,6 +68,9 @@ pub struct BlockPlan {
     pub scale: Vec<NodeId>,
     /// Per block unknown: the unit its Newton steps are judged in (see [`magnitudes`]).
     pub unit: Vec<NodeId>,
+    /// Per block unknown of a Newton block: whether its equations repeat every turn of it
+    /// (see [`turns`]); all `false` for the other blocks.
+    pub turns: Vec<bool>,
 }
 
 /// Right-hand sides (per row) or values (per output) of the parameter sensitivities, by stage:
@@ -184,6 +188,9 @@ pub fn build(model: &mut Model, blocks: &[Block], with_sensitivities: bool) -> P
         for bp in plans.iter_mut().filter(|bp| !bp.linear && bp.closed.is_none()) {
             bp.sparse = sparse::analyse(&g, &bp.jac);
         }
+    }
+    for bp in plans.iter_mut().filter(|bp| !bp.linear && bp.closed.is_none()) {
+        bp.turns = turns::turns(&g, bp);
     }
     let mut mags = magnitudes::Magnitudes::new(&g, &residuals);
     for bp in plans.iter_mut() {

@@ -45,6 +45,7 @@ pub fn block(g: &mut Graph, blk: &Block, residuals: &[NodeId], jac_full: &[Vec<N
         jac,
         col_scale,
         lever_floor: vec![Vec::new(); blk.unknowns.len()],
+        turns: vec![false; blk.unknowns.len()],
         rhs0,
         vel: Vec::new(),
         acc: Vec::new(),

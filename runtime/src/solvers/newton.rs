@@ -29,8 +29,10 @@
 //! its loop) keeps them with each evaluation.
 
 pub use super::newton_config::{NewtonConfig, SolveReport, Termination};
+use crate::solvers::closed::unwrap_to_turn;
 use crate::solvers::jacobian::BlockJacobian;
 use crate::solvers::lu::{Lu, RowScales, all_positive_finite, largest};
+use core::f64::consts::PI;
 
 /// One evaluation of a block: residuals, Jacobian rows, and intermediate values the generated
 /// code keeps for later stages (so they are not recomputed after convergence).
@@ -61,13 +63,25 @@ pub struct Magnitudes<const N: usize> {
     /// step `dz_j` is judged relative to `max(|z_j|, unit_j)`; a value that is not positive and
     /// finite counts as `1` (replaced here).
     unit: [f64; N],
+    /// The unknowns whose equations repeat every turn (angles that enter the block through
+    /// sines and cosines of whole multiples of themselves): an iteration that carried one more
+    /// than half a turn from its guess returns it on the guess's turn, as a closed form does.
+    turns: [bool; N],
 }
 
 impl<const N: usize> Magnitudes<N> {
     /// The row magnitudes `scale` and the units `unit` of the unknowns, checked once.
     #[inline(always)]
     pub fn new(scale: [f64; N], unit: [f64; N]) -> Self {
-        Magnitudes { rows: RowScales::new(scale), unit: units(&unit) }
+        Magnitudes { rows: RowScales::new(scale), unit: units(&unit), turns: [false; N] }
+    }
+
+    /// These magnitudes, with `turns` marking the unknowns whose equations repeat every turn
+    /// (see [`Magnitudes::turns`]).
+    #[inline(always)]
+    pub fn with_turns(mut self, turns: [bool; N]) -> Self {
+        self.turns = turns;
+        self
     }
 }
 
@@ -267,6 +281,18 @@ fn scaled_step<const N: usize>(dz: &[f64; N], z: &[f64; N], unit: &[f64; N]) -> 
         let (a, u) = (z[c].abs(), unit[c]);
         dz[c].abs() / if a > u { a } else { u }
     }))
+}
+
+/// Whether an unknown moved more than half a turn (in its own unit: only an angle's distance
+/// matters); a NaN counts as no move (a non-finite result is reported otherwise).
+#[inline(always)]
+fn beyond_half_turn<const N: usize>(z: &[f64; N], guess: &[f64; N]) -> bool {
+    // One comparison per unknown, or-ed: no maximum to carry from one to the next.
+    let mut far = false;
+    for c in 0..N {
+        far |= (z[c] - guess[c]).abs() > PI;
+    }
+    far
 }
 
 /// The scaled residual of a full system (continuation, event location): each residual relative
@@ -646,6 +672,7 @@ fn iterate<const N: usize, const K: usize, J: BlockJacobian<N>>(
     let fixed_rows = mags.fixed().is_some_and(|m| !m.rows.degenerate);
     let mut it = Iter {
         z: z0,
+        guess: &z0,
         // The caller's evaluation, not a copy: the iteration updates it in place.
         ev,
         iterations: 0,
@@ -719,6 +746,8 @@ fn iterate<const N: usize, const K: usize, J: BlockJacobian<N>>(
 /// The state of an iteration.
 struct Iter<'e, const N: usize, const K: usize, J> {
     z: [f64; N],
+    /// Where the iteration started.
+    guess: &'e [f64; N],
     /// The evaluation at `z`.
     ev: &'e mut BlockEval<N, K, J>,
     iterations: u32,
@@ -787,8 +816,67 @@ impl<const N: usize, const K: usize, J: BlockJacobian<N>> Iter<'_, N, K, J> {
                 self.checked_correction(&dz, rho, cfg, eval, mags);
             }
         }
+        if self.iterations > 1 && beyond_half_turn(&self.z, self.guess) {
+            self.back_to_guess_turns(rho, cfg, eval, mags, last);
+        }
         last.keep(self.ev);
         Ok(Solved { z: self.z, iterations: self.iterations, evaluations: self.evaluations, residual: rho, termination })
+    }
+
+    /// Moves every unknown whose equations repeat every turn (see [`Magnitudes::turns`]) and
+    /// that ended more than half a turn from its guess to the guess's turn. A long Newton step
+    /// (from a near-singular Jacobian far from the root) can carry an angle many turns out.
+    /// The position is the same; its numbers are not: many turns out the spacing of doubles is
+    /// coarser. So the block is evaluated and corrected once more on the guess's turn, which
+    /// also makes the evaluation describe the returned position. The move is kept only if the
+    /// residual there, corrected or not, is no worse than `rho` (or the tolerance): it always
+    /// is for an equation that repeats, so a mistaken mark could not return a wrong position.
+    #[cold]
+    #[inline(never)]
+    fn back_to_guess_turns(
+        &mut self,
+        rho: f64,
+        cfg: &NewtonConfig,
+        eval: &mut impl FnMut(&[f64; N]) -> BlockEval<N, K, J>,
+        mags: &impl MagnitudesOf<N, K, J>,
+        last: &mut impl LastStep<N, K, J>,
+    ) {
+        let (before, after, fallback);
+        let turns = magnitudes_at!(mags, self.ev, before).turns;
+        let unmoved = self.z;
+        let mut moved = false;
+        for c in (0..N).filter(|&c| turns[c]) {
+            let (z, g) = (self.z[c], self.guess[c]);
+            let on_turn = unwrap_to_turn(z, g);
+            // Only a move that brings it nearer (not so for a guess too large for its turns
+            // to be counted in doubles).
+            if (on_turn - g).abs() < (z - g).abs() {
+                self.z[c] = on_turn;
+                moved = true;
+            }
+        }
+        if !moved {
+            return;
+        }
+        last.forget();
+        let bound = rho.max(cfg.residual_tol);
+        *self.ev = eval(&self.z);
+        self.evaluations += 1;
+        let m = magnitudes_at!(mags, self.ev, after);
+        let rows = rows_at!(m, self.ev, fallback);
+        let moved_rho = scaled_residual(&self.ev.f, &rows.s);
+        let (dz, _) = newton_step(self.ev, rows);
+        self.evaluations += 1;
+        let corrected = dz.iter().all(|v| v.is_finite())
+            && evaluated_correction(&mut self.z, self.ev, &dz, bound, eval, mags).is_some();
+        // NaN fails the comparison: not kept.
+        let kept = corrected || moved_rho <= bound;
+        if !kept {
+            // Not a position of the block: back to where the iteration ended.
+            self.z = unmoved;
+            *self.ev = eval(&self.z);
+            self.evaluations += 1;
+        }
     }
 
     /// Applies the final correction `dz` after evaluating there, unless it made the residual
@@ -1040,6 +1128,7 @@ fn normal_equations<const N: usize, const K: usize, J: BlockJacobian<N>>(
 mod tests {
     use super::*;
     use crate::solvers::lu::max_abs;
+    use core::f64::consts::FRAC_PI_2;
 
     /// [`newton`] from `z0` with the evaluation made as the generated code makes it (into the
     /// caller's slot); the solved block and its final evaluation.
@@ -1287,5 +1376,43 @@ mod tests {
             let e = solve([1.0, 1.0], &cfg, circle).unwrap_err();
             assert_eq!(e, BlockFailure::InvalidConfig { field });
         }
+    }
+
+    /// `sin q = 1/2`, a pin on a unit crank at height one half: roots `pi/6` and `5 pi/6`, every
+    /// turn. Its equation repeats every turn of `q` when `turns` says so.
+    fn pin_solve(guess: f64, turns: bool) -> Solved<1> {
+        let eval = |z: &[f64; 1]| BlockEval { f: [z[0].sin() - 0.5], j: [[z[0].cos()]], keep: [] };
+        let mags = Magnitudes::new([1.5], [1.0]).with_turns([turns]);
+        let mut ev: BlockEval<1, 0> = eval(&[guess]);
+        newton([guess], &mut ev, &NewtonConfig::default(), eval, &mags).unwrap()
+    }
+
+    #[test]
+    fn an_angle_carried_turns_away_returns_on_its_guess_turn() {
+        // Guesses near the top of the crank, where the cosine (the Jacobian) nearly vanishes:
+        // the first Newton step is long.
+        let guesses: Vec<f64> = (0..200).map(|k| FRAC_PI_2 + (k as f64 - 99.5) * 1e-4).collect();
+        let leapt = guesses.iter().filter(|&&g| (pin_solve(g, false).z[0] - g).abs() > PI).count();
+        assert!(leapt > 20, "only {leapt} of the unmarked solves ended over half a turn out");
+        for g in guesses {
+            let q = pin_solve(g, true).z[0];
+            assert!((q - g).abs() <= PI, "guess {g}: {q}");
+            // One of the two roots of the guess's turn, to rounding.
+            let root = if q < FRAC_PI_2 { PI / 6.0 } else { 5.0 * PI / 6.0 };
+            assert!((q - root).abs() <= 2.0 * f64::EPSILON, "guess {g}: {q} vs {root}");
+        }
+    }
+
+    #[test]
+    fn a_mistaken_turn_mark_cannot_move_a_root() {
+        // `q^3 = 1000`: one root, at 10, reached from 1 in several steps. Marked as if it
+        // repeated every turn, its move to the guess's turn (10 - 2 pi) is no root: undone.
+        let eval = |z: &[f64; 1]| BlockEval { f: [z[0].powi(3) - 1000.0], j: [[3.0 * z[0] * z[0]]], keep: [] };
+        let mags = Magnitudes::new([1000.0], [1.0]).with_turns([true]);
+        let mut ev: BlockEval<1, 0> = eval(&[1.0]);
+        let s = newton([1.0], &mut ev, &NewtonConfig::default(), eval, &mags).unwrap();
+        assert!(s.iterations > 1);
+        assert!((s.z[0] - 10.0).abs() <= 8.0 * f64::EPSILON, "{}", s.z[0]);
+        assert_eq!(ev.f, eval(&s.z).f, "the evaluation is the returned position's");
     }
 }
