@@ -816,6 +816,11 @@ impl<const N: usize, const K: usize, J: BlockJacobian<N>> Iter<'_, N, K, J> {
                 self.checked_correction(&dz, rho, cfg, eval, mags);
             }
         }
+        // After one step the test is skipped (it would cost the common path: a solve from a
+        // sweep's prediction usually takes one step). One step that carries an angle over half
+        // a turn follows a linearisation that is off there by about the sine's own size, so it
+        // ends within the tolerance of a root only from a set of guesses about the tolerance
+        // wide; the position is right even then, only on another turn.
         if self.iterations > 1 && beyond_half_turn(&self.z, self.guess) {
             self.back_to_guess_turns(rho, cfg, eval, mags, last);
         }
@@ -866,9 +871,9 @@ impl<const N: usize, const K: usize, J: BlockJacobian<N>> Iter<'_, N, K, J> {
         let rows = rows_at!(m, self.ev, fallback);
         let moved_rho = scaled_residual(&self.ev.f, &rows.s);
         let (dz, _) = newton_step(self.ev, rows);
-        self.evaluations += 1;
-        let corrected = dz.iter().all(|v| v.is_finite())
-            && evaluated_correction(&mut self.z, self.ev, &dz, bound, eval, mags).is_some();
+        let finite = dz.iter().all(|v| v.is_finite());
+        self.evaluations += u32::from(finite);
+        let corrected = finite && evaluated_correction(&mut self.z, self.ev, &dz, bound, eval, mags).is_some();
         // NaN fails the comparison: not kept.
         let kept = corrected || moved_rho <= bound;
         if !kept {
