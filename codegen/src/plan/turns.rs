@@ -88,21 +88,22 @@ fn whole(g: &Graph, n: NodeId) -> Option<i64> {
     g.as_const(n).filter(|v| v.fract() == 0.0 && v.abs() <= 1e6).map(|v| v as i64)
 }
 
-/// `a + sign b`.
+/// `a + sign b` (`sign` is 1 or -1).
 fn sum(a: Class, b: Class, sign: i64) -> Class {
     match (a, b) {
         (Free, Free) => Free,
         (Multiple(k), Free) => Multiple(k),
-        (Free, Multiple(k)) => Multiple(sign * k),
-        (Multiple(j), Multiple(k)) => Multiple(j + sign * k),
+        (Free, Multiple(k)) => scaled(Multiple(k), sign),
+        (Multiple(j), Multiple(k)) => sign.checked_mul(k).and_then(|k| j.checked_add(k)).map_or(Other, Multiple),
         (x, y) => combined(x, y),
     }
 }
 
-/// `m a` for a whole number `m`.
+/// `m a` for a whole number `m` (a coefficient too large for an integer is anything: no
+/// declaration writes one, and the macro must not overflow on one that does).
 fn scaled(a: Class, m: i64) -> Class {
     match a {
-        Multiple(k) => Multiple(k * m),
+        Multiple(k) => k.checked_mul(m).map_or(Other, Multiple),
         other => other,
     }
 }
@@ -186,5 +187,17 @@ mod tests {
         assert_eq!(beside, Other);
         // atan(q): not inside a sine or cosine.
         assert_eq!(class_of(|g, q, _| g.func(Func::Atan, q)), Other);
+        // A coefficient beyond any integer (doubled 70 times): anything, not an overflow.
+        let huge = class_of(|g, q, p| {
+            let mut a = q;
+            for _ in 0..70 {
+                // `+ p - p` keeps the graph from folding the doublings into one constant.
+                let b = g.add(a, p);
+                let c = g.sub(a, p);
+                a = g.add(b, c);
+            }
+            g.func(Func::Cos, a)
+        });
+        assert_eq!(huge, Other);
     }
 }
