@@ -41,7 +41,7 @@ pub fn turns(g: &Graph, bp: &BlockPlan) -> Vec<bool> {
             let rows: Vec<NodeId> =
                 bp.f.iter().zip(&bp.jac).filter(|(_, row)| !g.is_zero(row[c])).map(|(&f, _)| f).collect();
             let class = classify(g, u, &rows);
-            rows.iter().all(|r| matches!(class[r], Free | Periodic))
+            rows.iter().all(|r| matches!(class.get(r), Some(Free | Periodic)))
         })
         .collect()
 }
@@ -61,7 +61,9 @@ fn classify(g: &Graph, u: usize, roots: &[NodeId]) -> HashMap<NodeId, Class> {
     order.sort_unstable();
     let mut class = HashMap::with_capacity(order.len());
     for n in order {
-        let of = |m: NodeId| class[&m];
+        // Every operand was classified before (a lower id); were one not, it would count as
+        // anything, never as a panic of the macro.
+        let of = |m: NodeId| class.get(&m).copied().unwrap_or(Other);
         let c = match g.op(n) {
             Op::Leaf(Leaf::Unknown(a)) if a as usize == u => Multiple(1),
             Op::Const(_) | Op::Leaf(_) => Free,
