@@ -189,7 +189,9 @@
 //! too: an angle that enters its block only through sines and cosines of whole multiples of
 //! itself (`l @ q`, `l @ (q + gamma)`, `l @ (2 q)`) and that a long step carried more than half a
 //! turn out is moved back to its guess's turn and corrected once more there. From a far guess
-//! Newton may end in either assembly mode; the closed forms keep the guess's.
+//! Newton may end in either assembly mode; the closed forms keep the guess's. A guess millions
+//! of turns out, where doubles are too far apart for an angle to meet the tolerance, is
+//! [`Error::TooManyTurns`] on both paths.
 //! `#[kinloop(dense)]` solves all unknowns as one block with dense LU instead, `#[kinloop(newton)]` uses
 //! Newton for every nonlinear block (the results are the same; both exist to compare and to
 //! debug).
@@ -455,8 +457,9 @@
 //!
 //! Bad input never panics and never yields a silent NaN: see [`Error`] (non-finite parameters or
 //! inputs, no convergence, a mechanism that cannot be assembled, a singular position, an
-//! expression outside its domain, an overflow, a sweep stopped at a singular position or unable
-//! to stay on its branch, an invalid argument). Every error but an invalid argument carries a [`Location`]: the mechanism,
+//! expression outside its domain, an overflow, an angle too many turns out to be solved to the
+//! tolerance, a sweep stopped at a singular position or unable to stay on its branch, an invalid
+//! argument). Every error but an invalid argument carries a [`Location`]: the mechanism,
 //! the input values and, where one is concerned, the block.
 //!
 //! ```

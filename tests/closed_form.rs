@@ -387,6 +387,45 @@ fn newton_from_far_guesses_ends_on_the_guess_turn() {
     }
 }
 
+/// A guess so many turns out that an angle cannot be solved to the tolerance on its turn (a
+/// billion radians: doubles 1.2e-7 apart) is named as such on both paths, not reported as a
+/// failure to converge (the closed form) or to assemble (Newton, whose residual stalls at the
+/// rounding of the angle). A hundred thousand turns out is still solved, on the guess's turn.
+#[test]
+fn an_angle_too_many_turns_out_is_named() {
+    fn check<A: Mechanism<2, 1, NO>, B: Mechanism<2, 1, NO>, const NO: usize>(a: &A, b: &B, angles: &[usize]) {
+        let at = a.kinematics_flat(&[0.7], &a.guess_flat(&[0.7]), &NewtonConfig::default()).unwrap().q;
+        // `at` with its angles moved `turns` turns out.
+        let far = |turns: f64| -> [f64; 2] {
+            std::array::from_fn(|u| if angles.contains(&u) { at[u] + turns * TAU } else { at[u] })
+        };
+        let cfg = NewtonConfig::default();
+        for (path, r) in [
+            ("closed form", a.kinematics_flat(&[0.7], &far(1.6e8), &cfg)),
+            ("Newton", b.kinematics_flat(&[0.7], &far(1.6e8), &cfg)),
+        ] {
+            match r {
+                Err(Error::TooManyTurns { name, .. }) => {
+                    assert!(angles.iter().any(|&u| A::UNKNOWNS[u] == name), "{path}: {name}");
+                }
+                other => panic!("{path}: {:?}", other.map(|k| k.q)),
+            }
+        }
+        for (path, r) in [
+            ("closed form", a.kinematics_flat(&[0.7], &far(1e5), &cfg)),
+            ("Newton", b.kinematics_flat(&[0.7], &far(1e5), &cfg)),
+        ] {
+            let q = r.unwrap_or_else(|e| panic!("{path}: {e}")).q;
+            for &u in angles {
+                assert!((q[u] - far(1e5)[u]).abs() < 1e-6, "{path}: {q:?}");
+            }
+        }
+    }
+    check(&FourBar::default(), &FourBarNewton::default(), &[0, 1]);
+    // The angle in the block's second column, after the slide.
+    check(&SlottedRocker::default(), &SlottedRockerNewton::default(), &[1]);
+}
+
 /// Where the links cannot reach, the closed form reports the typed `NoAssembly` with the block
 /// and the input, like Newton.
 #[test]

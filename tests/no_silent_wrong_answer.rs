@@ -53,10 +53,11 @@ const CRANK_ROCKER: FourBar = FourBar { a: 1.0, b: 3.0, c: 2.5, d: 3.2 };
 #[test]
 fn ok_with_a_large_residual_is_impossible() {
     // A guess 1e15 radians out: the Newton step test alone used to end the iteration with a
-    // residual of several length units and return Ok.
+    // residual of several length units and return Ok. There doubles are 1/8 rad apart: no angle
+    // meets the tolerance on that turn, and the error says so.
     match CRANK_ROCKER.kinematics_flat(&[0.3], &[1e15, 1.5], &NewtonConfig::default()) {
         Ok(k) => assert!(scaled_residual(&CRANK_ROCKER, 0.3, &k.q) <= 1e-12, "{k:?}"),
-        Err(e) => assert!(matches!(e, Error::NoConvergence { .. } | Error::NoAssembly { .. }), "{e}"),
+        Err(e) => assert!(matches!(e, Error::TooManyTurns { name: "beta", .. }), "{e}"),
     }
 }
 

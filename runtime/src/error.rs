@@ -138,6 +138,28 @@ pub enum Error {
         /// Where.
         at: Box<Location>,
     },
+    /// An angle's guess is so many turns out that on its turn the angle cannot be solved to the
+    /// tolerance: the spacing of doubles there (about `|value| * 2.2e-16`) is coarser than the
+    /// residual tolerance accepts. Solved on its guess's turn (as every angle is), it would be a
+    /// wrong answer by that much. Typical of an angle carried over millions of turns; reduce it
+    /// by whole turns.
+    #[error(
+        "the angle `{name}` is {value:e} rad, {turns:.0} turns out, where doubles are \
+         {spacing:e} rad apart: too coarse for the residual tolerance {at}; give its guess on a \
+         nearer turn (whole turns off, e.g. `q.rem_euclid(TAU)`)"
+    )]
+    TooManyTurns {
+        /// The unknown.
+        name: &'static str,
+        /// Its guess (or the closed form's root on the guess's turn).
+        value: f64,
+        /// `value` in whole turns.
+        turns: f64,
+        /// The spacing of doubles at `value`.
+        spacing: f64,
+        /// Where.
+        at: Box<Location>,
+    },
     /// An argument outside its valid range (e.g. a sweep with zero samples).
     #[error("invalid argument: {0}")]
     InvalidArgument(String),
@@ -154,7 +176,8 @@ impl Error {
             | Error::Domain { at, .. }
             | Error::Overflow { at, .. }
             | Error::SweepStopped { at, .. }
-            | Error::Branch { at, .. } => Some(at),
+            | Error::Branch { at, .. }
+            | Error::TooManyTurns { at, .. } => Some(at),
             Error::InvalidArgument(_) => None,
         }
     }

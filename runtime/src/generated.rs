@@ -79,7 +79,8 @@ where
     found.map(|(what, (name, value))| Error::NonFinite { what, name, value, at: at() })
 }
 
-/// The error for a Newton block that failed (`fail`), unless a bad value explains it.
+/// The error for a block that failed (`fail`, with the configuration `cfg`), unless a bad
+/// value or an angle guessed too many turns out explains it.
 #[cold]
 #[inline(never)]
 pub fn block_failure<M, const N: usize, const NI: usize, const NO: usize>(
@@ -88,6 +89,7 @@ pub fn block_failure<M, const N: usize, const NI: usize, const NO: usize>(
     fail: BlockFailure,
     x: &[f64; NI],
     guess: &[f64; N],
+    cfg: &NewtonConfig,
 ) -> Error
 where
     M: Mechanism<N, NI, NO>,
@@ -95,7 +97,74 @@ where
     if let Some(e) = bad_values::<M, N, NI, NO>(m, x, Some(guess)) {
         return e;
     }
+    if let Some((name, value)) = too_many_turns::<M, N, NI, NO>(block, fail, guess, cfg) {
+        let spacing = f64::from_bits(value.abs().to_bits() + 1) - value.abs();
+        let at = Box::new(location::<M, N, NI, NO>(x, Some(block)));
+        return Error::TooManyTurns { name, value, turns: value / core::f64::consts::TAU, spacing, at };
+    }
     block_error(fail, location::<M, N, NI, NO>(x, Some(block)))
+}
+
+/// [`block_failure`] of block `block` at `x` from `guess` with `cfg`, as a function of the
+/// failure: what a closed-form block maps its failures with (one short line of generated code).
+#[inline(always)]
+pub fn failure_of<'a, M, const N: usize, const NI: usize, const NO: usize>(
+    m: &'a M,
+    block: usize,
+    x: &'a [f64; NI],
+    guess: &'a [f64; N],
+    cfg: &'a NewtonConfig,
+) -> impl Fn(BlockFailure) -> Error + Copy + 'a
+where
+    M: Mechanism<N, NI, NO>,
+{
+    move |fail| block_failure(m, block, fail, x, guess, cfg)
+}
+
+/// The error of an invalid configuration `field`, located at block `block` (the first the
+/// kernel solves), unless a bad value explains the failure.
+#[cold]
+#[inline(never)]
+pub fn config_failure<M, const N: usize, const NI: usize, const NO: usize>(
+    m: &M,
+    block: usize,
+    field: &'static str,
+    x: &[f64; NI],
+    guess: &[f64; N],
+) -> Error
+where
+    M: Mechanism<N, NI, NO>,
+{
+    // The configuration is not read: an invalid one explains nothing else.
+    block_failure(m, block, BlockFailure::InvalidConfig { field }, x, guess, &NewtonConfig::default())
+}
+
+/// The angle of block `block` guessed too many turns out to be solved to the tolerance of
+/// `cfg` (see [`Error::TooManyTurns`]), and its value, when that explains the failure `fail`:
+/// a closed form's own finding (its root on the guess's turn), or any failure of Newton's from
+/// such a guess, whose residual stalls at the angle's rounding. The angle is the block's with
+/// the largest guess.
+fn too_many_turns<M, const N: usize, const NI: usize, const NO: usize>(
+    block: usize,
+    fail: BlockFailure,
+    guess: &[f64; N],
+    cfg: &NewtonConfig,
+) -> Option<(&'static str, f64)>
+where
+    M: Mechanism<N, NI, NO>,
+{
+    let unknowns = M::BLOCKS.get(block).map_or(&[][..], |info| info.unknowns);
+    let largest = unknowns
+        .iter()
+        .filter_map(|name| M::UNKNOWNS.iter().position(|u| u == name))
+        .filter(|&u| M::UNKNOWN_KINDS[u] == QuantityKind::Angle)
+        .max_by(|&a, &b| guess[a].abs().total_cmp(&guess[b].abs()));
+    match (fail, largest) {
+        (BlockFailure::TooManyTurns { value }, u) => Some((u.map_or("?", |u| M::UNKNOWNS[u]), value)),
+        (BlockFailure::InvalidConfig { .. } | BlockFailure::NonFinite { .. }, _) => None,
+        (_, Some(u)) if guess[u].abs() > largest_precise_angle(cfg) => Some((M::UNKNOWNS[u], guess[u])),
+        _ => None,
+    }
 }
 
 /// Builds the error for a failed block at a known location.
@@ -118,6 +187,14 @@ fn block_error(fail: BlockFailure, at: Location) -> Error {
         BlockFailure::InvalidConfig { field } => Error::InvalidArgument(format!(
             "NewtonConfig::{field} is out of its valid range (see its documentation), {at}"
         )),
+        // Named by `block_failure`, which knows the guesses.
+        BlockFailure::TooManyTurns { value } => Error::TooManyTurns {
+            name: "?",
+            value,
+            turns: value / core::f64::consts::TAU,
+            spacing: f64::from_bits(value.abs().to_bits() + 1) - value.abs(),
+            at: Box::new(at),
+        },
     }
 }
 

@@ -182,7 +182,7 @@ pub fn solve(rec: &Recognised, cx: &Context) -> TokenStream {
     // makes the guesses' sum non-finite.
     quote! {
         let [#(#outs),*]: [f64; #k] = {
-            let __fail = |f| #rt::block_failure(self, #bl, f, __x, __guess);
+            let __fail = #rt::failure_of(self, #bl, __x, __guess, __cfg);
             #guess_check
             #levers
             #body

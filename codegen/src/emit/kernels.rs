@@ -248,8 +248,7 @@ pub fn closed_config_check(plan: &Plan) -> TokenStream {
             let b = lit(b);
             quote! {
                 if let Some(field) = __cfg.invalid_field() {
-                    let __fail = #rt::BlockFailure::InvalidConfig { field };
-                    return Err(#rt::block_failure(self, #b, __fail, __x, __guess));
+                    return Err(#rt::config_failure(self, #b, field, __x, __guess));
                 }
             }
         }
@@ -520,7 +519,7 @@ impl Kernel<'_> {
             let #r = #newton(__z0, &mut #at, __cfg, #ev, #mags #lu_arg);
             let #s = match &#r {
                 Ok(s) => s,
-                Err(e) => return Err(#rt::block_failure(self, #bl, *e, __x, __guess)),
+                Err(e) => return Err(#rt::block_failure(self, #bl, *e, __x, __guess, __cfg)),
             };
             __report.absorb(#s);
             let [#(#qs),*] = #s.z;

@@ -289,27 +289,34 @@ fn short_lever(e0: f64, e1: f64, floor_sq: f64, cfg: &NewtonConfig) -> BlockFail
     BlockFailure::Singular { row: 0, iterations: 0, residual: 0.0, pivot_ratio, tolerance: cfg.singular_tol }
 }
 
+/// The magnitude beyond which an angle cannot be solved to the tolerance of `cfg` on its turn:
+/// its rounding there (`|q| eps`) exceeds the precision Newton's residual floor accepts (1000
+/// times the tolerance, at least 16 eps). About 4.5e6 rad (700,000 turns) by default.
+#[inline]
+pub fn largest_precise_angle(cfg: &NewtonConfig) -> f64 {
+    1000.0 * cfg.residual_tol.max(16.0 * f64::EPSILON) / f64::EPSILON
+}
+
 /// The checks of a closed-form solution `out` whose first `angles` entries are angles: every
 /// entry finite (a NaN comes from the inputs, parameters, guess or a coefficient's domain), and
 /// every angle small enough to be accurate. On the guess's turn an angle is a large number when
-/// the guess is: beyond the precision Newton's residual floor accepts (1000 times the tolerance,
-/// at least 16 eps), its own rounding would be a wrong answer.
+/// the guess is: beyond [`largest_precise_angle`] its own rounding would be a wrong answer.
 #[inline]
 pub fn check_closed<const K: usize>(out: &[f64; K], angles: usize, cfg: &NewtonConfig) -> Result<(), BlockFailure> {
     if !out.iter().sum::<f64>().is_finite() {
         return Err(BlockFailure::NonFinite { row: 0, iterations: 0 });
     }
     // Each angle against the limit: the test of their largest magnitude, without the maximum.
-    let limit = 1000.0 * cfg.residual_tol.max(16.0 * f64::EPSILON);
-    if out[..angles].iter().all(|q| q.abs() * f64::EPSILON <= limit) { Ok(()) } else { Err(imprecise(&out[..angles])) }
+    let limit = largest_precise_angle(cfg);
+    if out[..angles].iter().all(|q| q.abs() <= limit) { Ok(()) } else { Err(imprecise(&out[..angles])) }
 }
 
-/// The failure of angles too large to be accurate: the rounding of the largest.
+/// The failure of angles too large to be accurate: the largest (the error names the block's
+/// angle whose guess it is on the turn of).
 #[cold]
 #[inline(never)]
 fn imprecise(angles: &[f64]) -> BlockFailure {
-    let big = angles.iter().fold(0.0f64, |m, q| m.max(q.abs()));
-    BlockFailure::NoConvergence { row: 0, iterations: 0, residual: big * f64::EPSILON }
+    BlockFailure::TooManyTurns { value: angles.iter().fold(0.0f64, |m, q| if q.abs() > m.abs() { *q } else { m }) }
 }
 
 #[cfg(test)]
@@ -462,12 +469,13 @@ mod tests {
     }
 
     #[test]
-    fn checks_reject_non_finite_values_and_imprecise_angles() {
+    fn checks_reject_non_finite_values_and_largest_precise_angles() {
         let cfg = NewtonConfig::default();
         assert!(check_guess(f64::NAN).is_err() && check_guess(1.0).is_ok());
         assert!(check_closed(&[1.0, 0.5, f64::INFINITY], 1, &cfg).is_err());
         assert!(check_closed(&[1.0, 0.5, 0.8], 1, &cfg).is_ok());
-        assert!(matches!(check_closed(&[1e9, 0.5], 1, &cfg), Err(BlockFailure::NoConvergence { .. })));
+        assert_eq!(check_closed(&[1e9, 0.5], 1, &cfg), Err(BlockFailure::TooManyTurns { value: 1e9 }));
+        assert_eq!(check_closed(&[0.5, -1e9, 0.5], 2, &cfg), Err(BlockFailure::TooManyTurns { value: -1e9 }));
         // Only the angles count: a large length is accurate.
         assert!(check_closed(&[1.0, 1e9], 1, &cfg).is_ok());
     }

@@ -174,6 +174,12 @@ pub enum BlockFailure {
     Singular { row: usize, iterations: u32, residual: f64, pivot_ratio: f64, tolerance: f64 },
     /// A configuration field is out of range (see [`NewtonConfig::invalid_field`]).
     InvalidConfig { field: &'static str },
+    /// A closed form's angle is `value`, on its guess's turn so many turns out that the spacing
+    /// of doubles there exceeds what the tolerance accepts (see
+    /// [`largest_precise_angle`](crate::solvers::closed::largest_precise_angle)). The generated
+    /// code names the angle by its guess; it also reports Newton's failure from such a guess as
+    /// this (see `block_failure`).
+    TooManyTurns { value: f64 },
 }
 
 /// A scaled residual above this at a stall means the loops do not close there (not merely a
