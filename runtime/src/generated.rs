@@ -97,12 +97,11 @@ where
     if let Some(e) = bad_values::<M, N, NI, NO>(m, x, Some(guess)) {
         return e;
     }
-    if let Some((name, value)) = too_many_turns::<M, N, NI, NO>(block, fail, guess, cfg) {
-        let spacing = f64::from_bits(value.abs().to_bits() + 1) - value.abs();
-        let at = Box::new(location::<M, N, NI, NO>(x, Some(block)));
-        return Error::TooManyTurns { name, value, turns: value / core::f64::consts::TAU, spacing, at };
+    let at = location::<M, N, NI, NO>(x, Some(block));
+    match too_many_turns::<M, N, NI, NO>(block, fail, guess, cfg) {
+        Some((name, value)) => turns_error(name, value, at),
+        None => block_error(fail, at),
     }
-    block_error(fail, location::<M, N, NI, NO>(x, Some(block)))
 }
 
 /// [`block_failure`] of block `block` at `x` from `guess` with `cfg`, as a function of the
@@ -188,14 +187,15 @@ fn block_error(fail: BlockFailure, at: Location) -> Error {
             "NewtonConfig::{field} is out of its valid range (see its documentation), {at}"
         )),
         // Named by `block_failure`, which knows the guesses.
-        BlockFailure::TooManyTurns { value } => Error::TooManyTurns {
-            name: "?",
-            value,
-            turns: value / core::f64::consts::TAU,
-            spacing: f64::from_bits(value.abs().to_bits() + 1) - value.abs(),
-            at: Box::new(at),
-        },
+        BlockFailure::TooManyTurns { value } => turns_error("?", value, at),
     }
+}
+
+/// [`Error::TooManyTurns`] of the angle `name` at `value`.
+fn turns_error(name: &'static str, value: f64, at: Location) -> Error {
+    // The distance to the next double away from zero.
+    let spacing = f64::from_bits(value.abs().to_bits() + 1) - value.abs();
+    Error::TooManyTurns { name, value, turns: value / core::f64::consts::TAU, spacing, at: Box::new(at) }
 }
 
 /// The error for a block whose factorisation failed: a bad value, an equation outside its

@@ -469,7 +469,7 @@ mod tests {
     }
 
     #[test]
-    fn checks_reject_non_finite_values_and_largest_precise_angles() {
+    fn checks_reject_non_finite_values_and_imprecise_angles() {
         let cfg = NewtonConfig::default();
         assert!(check_guess(f64::NAN).is_err() && check_guess(1.0).is_ok());
         assert!(check_closed(&[1.0, 0.5, f64::INFINITY], 1, &cfg).is_err());
