@@ -188,8 +188,13 @@
 //! every pivot checked at run time, a dense LU where one is weak. Newton ends on the guess's turn
 //! too: an angle that enters its block only through sines and cosines of whole multiples of
 //! itself (`l @ q`, `l @ (q + gamma)`, `l @ (2 q)`) and that a long step carried more than half a
-//! turn out is moved back to its guess's turn and corrected once more there. From a far guess
-//! Newton may end in either assembly mode; the closed forms keep the guess's. A guess millions
+//! turn out is moved back to its guess's turn and corrected once more there. A far guess can
+//! lead Newton into a fold of the residual (a local minimum where no step decreases it, links
+//! lying folded against each other) though the loops close elsewhere: there it restarts, with
+//! one such angle at a time turned by a quarter turn either way and by a half turn, and returns
+//! the root nearest the guess; only when every restart stalls too is the block `NoAssembly`
+//! ([`NewtonConfig::restarts`]; a sweep's steps never restart). From a far guess Newton may end
+//! in either assembly mode; the closed forms keep the guess's. A guess millions
 //! of turns out, where doubles are too far apart for an angle to meet the tolerance, is
 //! [`Error::TooManyTurns`] on both paths.
 //! `#[kinloop(dense)]` solves all unknowns as one block with dense LU instead, `#[kinloop(newton)]` uses

@@ -23,6 +23,11 @@ fn configurations_round_trip() {
     assert_eq!(json["max_step"], 0.3);
     assert_eq!(json["newton"]["max_iterations"], 7);
     assert_eq!(json["at_singular"], "Continue");
+    // A configuration written before `restarts` existed reads with its default.
+    let mut older = serde_json::to_value(newton.with_restarts(false)).unwrap();
+    older.as_object_mut().unwrap().remove("restarts");
+    assert_eq!(serde_json::from_value::<NewtonConfig>(older).unwrap(), newton);
+    assert!(!round_trip(&newton.with_restarts(false)).restarts);
     for opts in [TraceOptions::default(), TraceOptions::default().with_ds(0.03).with_newton(newton)] {
         assert_eq!(round_trip(&opts), opts);
     }

@@ -107,10 +107,14 @@ where
         }
     }
     let mut q = guess;
+    // The first solve is from the caller's guess; every later one from the last position, where
+    // a restart would find another branch.
+    let mut newton = cfg.newton;
     let rhs = |t: f64, y: &[f64; 2]| -> Result<[f64; 2], DynamicsError> {
         let [phi, omega] = *y;
-        let k = m.kinematics_flat(&[phi], &q, &cfg.newton).map_err(|source| DynamicsError::Kinematics { t, source })?;
+        let k = m.kinematics_flat(&[phi], &q, &newton).map_err(|source| DynamicsError::Kinematics { t, source })?;
         q = k.q;
+        newton.restarts = false;
         let d = model.dynamics(&k, &[omega])?;
         let tau = drive(t, phi, omega);
         if !tau.is_finite() {

@@ -418,7 +418,8 @@ where
         for u in 0..N {
             guess[u] += a.dq_dsigma(u, metric) * (sigma - a.sigma);
         }
-        let Ok(n) = m.kinematics_flat(&path.at_sigma(sigma), &guess, cfg) else { continue };
+        // From a prediction: a restart would find another branch.
+        let Ok(n) = m.kinematics_flat(&path.at_sigma(sigma), &guess, &cfg.with_restarts(false)) else { continue };
         if (signed_det(m, &path.at_sigma(sigma), &n.q) > 0.0) == (det_a > 0.0) {
             continue;
         }

@@ -62,7 +62,9 @@ pub enum AtSingular {
 #[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
 #[non_exhaustive]
 pub struct SweepConfig {
-    /// The Newton solver used at every step.
+    /// The Newton solver used at every step. Its [`NewtonConfig::restarts`] apply to the first
+    /// sample only, solved from the caller's guess: a step's guess is a prediction, and a root
+    /// reached from a turned guess would be another branch.
     pub newton: NewtonConfig,
     /// Largest internal step as a fraction of the sample spacing (default `1`).
     pub max_step: f64,
@@ -228,6 +230,9 @@ pub struct Sweep<'m, M, S, const N: usize, const NI: usize, const NO: usize> {
     h_min: f64,
     next: usize,
     guess: [f64; N],
+    /// Whether the first sample may restart (the configuration's `restarts`; the steps' own
+    /// configuration, `cfg.newton`, has them off).
+    first_restarts: bool,
     /// The first sample's position: the continuation that locates events measures arclength
     /// in the units there (fixed for the sweep, and taken where the sweep is regular: at a
     /// singular position a unit derived from the terms' magnitudes can degenerate).
@@ -306,6 +311,7 @@ where
             h_min: 0.0,
             next: 0,
             guess,
+            first_restarts: true,
             first_q: guess,
             states: [Kin {
                 x: [0.0; NI],
@@ -341,6 +347,8 @@ where
         match cfg.validate() {
             Ok(()) => {
                 self.cfg = cfg;
+                self.first_restarts = cfg.newton.restarts;
+                self.cfg.newton.restarts = false;
                 self.invalid = None;
                 self.set_step_bounds();
             }
@@ -489,7 +497,8 @@ where
     /// The first sample, solved from the guess (kept as the last accepted state).
     fn first_sample(&mut self) -> Result<(), Error> {
         let x = self.path.from;
-        match self.m.kinematics_flat(&x, &self.guess, &self.cfg.newton) {
+        let newton = self.cfg.newton.with_restarts(self.first_restarts);
+        match self.m.kinematics_flat(&x, &self.guess, &newton) {
             Ok(k) => {
                 *self.cur_mut() = k;
                 self.started = true;

@@ -164,7 +164,7 @@ fn no_root(d2: f64, r2: f64, c: f64, cfg: &NewtonConfig) -> BlockFailure {
     } else if r2 == 0.0 && c == 0.0 {
         undetermined(cfg)
     } else {
-        BlockFailure::NoAssembly { row: 0, iterations: 0, residual: c.abs() - r2.sqrt() }
+        BlockFailure::NoAssembly { row: 0, iterations: 0, evaluations: 0, residual: c.abs() - r2.sqrt() }
     }
 }
 

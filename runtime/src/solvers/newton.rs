@@ -145,6 +145,10 @@ macro_rules! rows_at {
     };
 }
 
+// After the macros, which it uses.
+#[path = "restarts.rs"]
+mod restarts;
+
 /// A converged block. Its evaluation is the caller's (see [`newton`]): at `z`, or (after a
 /// correction at the rounding level, applied without a new evaluation) at a point within a few
 /// rounding units of `z`.
@@ -168,7 +172,8 @@ pub enum BlockFailure {
     NoConvergence { row: usize, iterations: u32, residual: f64 },
     /// The iteration stalled at a stationary point of the squared residual that is not a root
     /// (no descent direction, scaled residual clearly non-zero): the loops cannot close there.
-    NoAssembly { row: usize, iterations: u32, residual: f64 },
+    /// `evaluations` counts the block's evaluations (restarts after it add theirs).
+    NoAssembly { row: usize, iterations: u32, evaluations: u32, residual: f64 },
     /// The Jacobian is singular at (or the iteration converged only linearly to) a root: a
     /// singular position, where the solution is not determined to working accuracy.
     Singular { row: usize, iterations: u32, residual: f64, pivot_ratio: f64, tolerance: f64 },
@@ -724,7 +729,8 @@ fn iterate<const N: usize, const K: usize, J: BlockJacobian<N>>(
             return it.finish(dz, step, pivot, rho, s, Termination::StepTolerance, cfg, &mut eval, mags, last);
         }
         if it.iterations >= cfg.max_iterations {
-            return Err(it.capped(rho, s, cfg));
+            let capped = it.capped(rho, s, cfg);
+            return restarts::after(capped, z0, it.ev, cfg, &mut eval, mags, last);
         }
         if it.iterations == cfg.max_iterations / 2 {
             it.rho_mark = rho;
@@ -739,7 +745,8 @@ fn iterate<const N: usize, const K: usize, J: BlockJacobian<N>>(
                 last.forget();
                 return it.finish(dz, step, pivot, rho, s, Termination::StepTolerance, cfg, &mut eval, mags, last);
             }
-            return Err(it.stalled(rho, pivot, s, cfg));
+            let stalled = it.stalled(rho, pivot, s, cfg);
+            return restarts::after(stalled, z0, it.ev, cfg, &mut eval, mags, last);
         }
         let slow = newton_ok && step > LINEAR_CONTRACTION * it.prev_step;
         it.slow_run = if slow { it.slow_run + 1 } else { 0 };
@@ -930,7 +937,7 @@ impl<const N: usize, const K: usize, J: BlockJacobian<N>> Iter<'_, N, K, J> {
         let row = argmax_scaled(&self.ev.f, s);
         let iterations = self.iterations;
         if cfg.max_iterations >= 8 && rho > STALL_RESIDUAL && rho > 0.5 * self.rho_mark {
-            return BlockFailure::NoAssembly { row, iterations, residual: rho };
+            return BlockFailure::NoAssembly { row, iterations, evaluations: self.evaluations, residual: rho };
         }
         BlockFailure::NoConvergence { row, iterations, residual: rho }
     }
@@ -1086,7 +1093,7 @@ impl<const N: usize, const K: usize, J: BlockJacobian<N>> Iter<'_, N, K, J> {
             let pivot_ratio = if pivot.is_nan() { 0.0 } else { pivot };
             BlockFailure::Singular { row, iterations, residual: rho, pivot_ratio, tolerance: cfg.singular_tol }
         } else {
-            BlockFailure::NoAssembly { row, iterations, residual: rho }
+            BlockFailure::NoAssembly { row, iterations, evaluations: self.evaluations, residual: rho }
         }
     }
 }

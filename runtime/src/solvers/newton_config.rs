@@ -35,6 +35,22 @@ pub struct NewtonConfig {
     /// Smallest damping factor of the backtracking line search (default `2^-12`; valid range
     /// `[1e-12, 1)`).
     pub min_damping: f64,
+    /// Whether a block whose iteration stalls away from every root is solved again from
+    /// restarts before it is reported as [`Error::NoAssembly`] (default `true`). A far guess can
+    /// lead the iteration into a local minimum of the residual where no step decreases it,
+    /// though the loops close elsewhere. The restarts are the guess with one angle at a time
+    /// turned by a quarter turn either way and by a half turn (the angles whose equations
+    /// repeat every turn, in blocks of up to eight of them); of the roots they reach, the one
+    /// nearest the guess is returned, on the guess's turns. Continuations (a sweep's steps, whose guesses are predictions) never
+    /// restart: a root reached from a turned guess would be another branch.
+    #[cfg_attr(feature = "serde", serde(default = "restarts_default"))]
+    pub restarts: bool,
+}
+
+/// The default of [`NewtonConfig::restarts`], for configurations serialised without it.
+#[cfg(feature = "serde")]
+fn restarts_default() -> bool {
+    true
 }
 
 impl Default for NewtonConfig {
@@ -45,6 +61,7 @@ impl Default for NewtonConfig {
             max_iterations: 50,
             singular_tol: 1e-10,
             min_damping: 1.0 / 4096.0,
+            restarts: true,
         }
     }
 }
@@ -73,6 +90,11 @@ impl NewtonConfig {
     /// Sets [`NewtonConfig::min_damping`].
     pub fn with_min_damping(mut self, t: f64) -> Self {
         self.min_damping = t;
+        self
+    }
+    /// Sets [`NewtonConfig::restarts`].
+    pub fn with_restarts(mut self, on: bool) -> Self {
+        self.restarts = on;
         self
     }
 
