@@ -4,8 +4,9 @@
 //! Loop equations are sums of sines and cosines of the angles, so their squared residual has
 //! local minima that are not roots: configurations where links lie folded against each other.
 //! A damped Newton iteration from a far guess can end in one, where no step decreases the
-//! residual, though the loops close elsewhere: on the class IV group of the tests, up to one
-//! guess in sixteen whose angles are each within a radian of an assembly. Reporting "the
+//! residual, though the loops close elsewhere: up to one guess in sixteen on the class IV group
+//! of the tests, and one in ten on a class III triad, of guesses whose angles are each within a
+//! radian of an assembly. Reporting "the
 //! mechanism cannot be assembled" there would be false. The restarts leave the minimum's basin
 //! the way a designer would: they turn one angle at a time by a quarter turn either way and by
 //! a half turn, and iterate again from there. Of the roots they reach, the one nearest the
