@@ -89,9 +89,9 @@ pub(super) fn after<const N: usize, const K: usize, J: BlockJacobian<N>>(
         evaluations += 1;
         eval(z)
     };
-    // Called through a trait object: the iteration it calls can call this function again (for
-    // another block's failure type), which with the closure's own type would be a new
-    // instantiation at every level.
+    // Called through a trait object: the iteration contains a call of this function (never
+    // taken from here, restarts being off), and with the closure's own type every level of
+    // that call would instantiate both functions anew, without end.
     let counted: &mut dyn FnMut(&[f64; N]) -> BlockEval<N, K, J> = &mut counted;
     let mut iterations = iterations;
     let mut best: Option<([f64; N], f64)> = None;
