@@ -41,8 +41,9 @@ pub struct NewtonConfig {
     /// though the loops close elsewhere. The restarts are the guess with one angle at a time
     /// turned by a quarter turn either way and by a half turn (the angles whose equations
     /// repeat every turn, in blocks of up to eight of them); of the roots they reach, the one
-    /// nearest the guess is returned, on the guess's turns. Continuations (a sweep's steps, whose guesses are predictions) never
-    /// restart: a root reached from a turned guess would be another branch.
+    /// nearest the guess is returned, on the guess's turns. Continuations (a sweep's steps,
+    /// whose guesses are predictions) never restart: a root reached from a turned guess would
+    /// be another branch.
     #[cfg_attr(feature = "serde", serde(default = "restarts_default"))]
     pub restarts: bool,
 }

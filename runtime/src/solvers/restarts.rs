@@ -16,9 +16,9 @@
 use super::{
     BlockEval, BlockFailure, LastStep, MagnitudesOf, NewtonConfig, Solved, fallback_rows, iterate, scaled_residual,
 };
-use crate::solvers::closed::unwrap_to_turn;
+use crate::solvers::closed::{reduce_turn, unwrap_to_turn};
 use crate::solvers::jacobian::BlockJacobian;
-use core::f64::consts::{FRAC_PI_2, PI, TAU};
+use core::f64::consts::{FRAC_PI_2, PI};
 
 /// The turns of an angle a restart starts from, relative to the guess.
 const TURNS: [f64; 3] = [FRAC_PI_2, -FRAC_PI_2, PI];
@@ -47,7 +47,7 @@ fn distance<const N: usize>(z: &[f64; N], z0: &[f64; N], turns: &[bool; N], unit
     (0..N)
         .map(|c| {
             let d = z[c] - z0[c];
-            let d = if turns[c] { d - TAU * (d / TAU).round() } else { d / z0[c].abs().max(unit[c]) };
+            let d = if turns[c] { reduce_turn(d) } else { d / z0[c].abs().max(unit[c]) };
             d * d
         })
         .sum()
