@@ -10,7 +10,7 @@
 //! the same assembly mode: with the prediction and the judge taken out of the sweep (an
 //! experiment), 576 of these 768 sweeps complete across the gap. Every sweep must stop at the
 //! limit position, at the input the law of cosines gives (`|crank tip - rocker pivot| = b + c`),
-//! whatever the unit.
+//! whatever the unit, on both paths (closed form and Newton).
 
 use kinloop::{Kin, Mechanism, NewtonConfig, Stop, Sweep};
 use std::f64::consts::TAU;
@@ -27,9 +27,27 @@ kinloop::mechanism! {
     }
 }
 
+kinloop::mechanism! {
+    /// The same, solved by Newton.
+    #[kinloop(newton)]
+    pub struct RockerBesideFourBarNewton {
+        params a, b, c, d, r, h, o;
+        input phi;
+        unknowns s = 1, psi = 3, beta = 1, gamma = 2;
+        loop slot: r @ (phi + o) == (h, 0) + s @ psi;
+        loop four_bar: a @ phi + b @ beta == (d, 0) + c @ gamma;
+    }
+}
+
 /// The trap at scale `k` (every length times `k`) with the rocker's crank at phase `o`.
 fn trap(k: f64, o: f64) -> RockerBesideFourBar {
     RockerBesideFourBar { a: k, b: 2.5 * k, c: 1.49 * k, d: 3.0 * k, r: k, h: 2.0 * k, o }
+}
+
+/// The trap solved by Newton.
+fn trap_newton(k: f64, o: f64) -> RockerBesideFourBarNewton {
+    let t = trap(k, o);
+    RockerBesideFourBarNewton { a: t.a, b: t.b, c: t.c, d: t.d, r: t.r, h: t.h, o }
 }
 
 /// The crank angle where the four-bar's coupler and rocker stretch out: the crank's tip is
@@ -39,8 +57,8 @@ fn limit() -> f64 {
     ((a * a + d * d - (b + c) * (b + c)) / (2.0 * a * d)).acos()
 }
 
-#[test]
-fn a_judged_length_never_lets_a_sweep_jump_a_gap_in_any_unit() {
+/// Every sweep of the trap, built by `build(k, o)`, stops at the limit position.
+fn check<M: Mechanism<4, 1, 0>>(build: impl Fn(f64, f64) -> M) {
     let cfg = NewtonConfig::default();
     let limit = limit();
     assert!((limit - 2.978_213_783_015_119).abs() < 1e-14);
@@ -48,7 +66,7 @@ fn a_judged_length_never_lets_a_sweep_jump_a_gap_in_any_unit() {
     for k in [1e-3, 1.0, 1e3, 1e6] {
         for phase in 0..12 {
             let o = f64::from(phase) * TAU / 12.0;
-            let m = trap(k, o);
+            let m = build(k, o);
             // Both assembly modes of the four-bar (coupler and rocker above or below the line
             // of centres); the rocker's slide positive, as guessed.
             for mode in [1.0, -1.0] {
@@ -74,4 +92,14 @@ fn a_judged_length_never_lets_a_sweep_jump_a_gap_in_any_unit() {
         }
     }
     assert_eq!(sweeps, 4 * 12 * 2 * 8);
+}
+
+#[test]
+fn a_judged_length_never_lets_a_sweep_jump_a_gap_in_any_unit() {
+    check(trap);
+}
+
+#[test]
+fn nor_by_newton() {
+    check(trap_newton);
 }
