@@ -6,12 +6,12 @@
 //! A damped Newton iteration from a far guess can end in one, where no step decreases the
 //! residual, though the loops close elsewhere: up to one guess in sixteen on the class IV group
 //! of the tests, and one in ten on a class III triad, of guesses whose angles are each within a
-//! radian of an assembly. Reporting "the
-//! mechanism cannot be assembled" there would be false. The restarts leave the minimum's basin
-//! the way a designer would: they turn one angle at a time by a quarter turn either way and by
-//! a half turn, and iterate again from there. Of the roots they reach, the one nearest the
-//! guess is returned, on the guess's turns. Only when every restart fails too is the block
-//! reported as not assemblable, now with that much more evidence.
+//! radian of an assembly. Reporting "the mechanism cannot be assembled" there would be false.
+//! The restarts leave the minimum's basin the way a designer would: they turn one angle at a
+//! time by a quarter turn either way and by a half turn, and iterate again from there. Of the
+//! roots they reach, the one nearest the guess is returned, on the guess's turns. Only when
+//! every restart fails too is the block reported as not assemblable, now with that much more
+//! evidence.
 
 use super::{
     BlockEval, BlockFailure, LastStep, MagnitudesOf, NewtonConfig, Solved, fallback_rows, iterate, scaled_residual,
