@@ -84,7 +84,7 @@ where
         self.mechanism.kinematics_flat(x, guess, cfg)
     }
     #[inline]
-    fn kinematics_step_sink<T: InputTrig, S: KinSink<N, NI, NO>>(
+    fn kinematics_step_sink<T: InputTrig, S: KinSink<N, NI, NO>, const CHECKED: bool>(
         &self,
         x: &[f64; NI],
         guess: &[f64; N],
@@ -92,7 +92,7 @@ where
         trig: &mut T,
         sink: S,
     ) -> Result<S::Out, Error> {
-        self.mechanism.kinematics_step_sink(x, guess, cfg, trig, sink)
+        self.mechanism.kinematics_step_sink::<T, S, CHECKED>(x, guess, cfg, trig, sink)
     }
     fn kinematics_at_flat(&self, x: &[f64; NI], q: &[f64; N], cfg: &NewtonConfig) -> Result<Kin<N, NI, NO>, Error> {
         self.mechanism.kinematics_at_flat(x, q, cfg)

@@ -19,6 +19,7 @@ pub use crate::newton::{
     BlockEval, BlockFailure, Magnitudes, NewtonConfig, SolveReport, Solved, newton, newton_keeping_lu, newton_with,
 };
 pub use crate::solvers::closed::*;
+pub use crate::solvers::deferred::*;
 pub use crate::solvers::inverse2::Inverse2;
 pub use crate::solvers::jacobian::{BlockFactor, BlockJacobian};
 pub use crate::solvers::sparse_lu::{SparseJac, SparseLu, SparsePattern};

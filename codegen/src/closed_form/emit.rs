@@ -45,6 +45,12 @@ pub struct Context<'a> {
     /// For an angle unknown whose lever is a variable length: its lever floor (see the plan's
     /// `magnitudes`).
     pub lever_floor: &'a dyn Fn(usize) -> Option<TokenStream>,
+    /// The kernel's checks are switched by its constant `__CHECKED`, through its mode `__mode`
+    /// (the runtime's `Checks`, see `solvers::deferred`): when it is false, the solve tests
+    /// nothing. Either way the solve
+    /// binds `__check{block}`, the sum of its sines and cosines and of the guesses only
+    /// comparisons read, whose finiteness the kernel's end tests when its checks are deferred.
+    pub deferred: bool,
 }
 
 /// A value of the generated code: a constant known at expansion time or an expression. The
@@ -177,6 +183,25 @@ pub fn solve(rec: &Recognised, cx: &Context) -> TokenStream {
         quote!(#rt::check_guess(#(#guesses)+*).map_err(__fail)?;)
     });
     let angles = Literal::usize_unsuffixed(rec.form.angles().len());
+    if cx.deferred {
+        // Deferred, no test on the way: a failure leaves a non-finite output (see `root`), and
+        // a non-finite length's or slider's guess a non-finite check sum. The unknowns are in
+        // the state, whose sum the kernel's end tests: the check sums the sines and cosines.
+        // (The angles' magnitudes are tested on their guesses, at the kernel's entry.)
+        let check = format_ident!("__check{}", cx.block);
+        let trig = (outs.len() - 2 * rec.sin_cos.len()..outs.len()).map(Literal::usize_unsuffixed);
+        let guesses: Vec<TokenStream> = others_of(&rec.form).map(guess_of).into_iter().collect();
+        let guess_check = guess_check.map(|c| quote!(if __CHECKED { #c }));
+        return quote! {
+            let ([#(#outs),*], #check): ([f64; #k], f64) = {
+                let __fail = #rt::failure_of(self, #bl, __x, __guess, __cfg);
+                #guess_check
+                #body
+                __mode.check_closed(&__out, #angles, __cfg).map_err(__fail)?;
+                (__out, #(__out[#trig])+* #(+ #guesses)*)
+            };
+        };
+    }
     let levers = lever_checks(&rec.form, cx);
     // The closure only captures references: it is `Copy`, one per block. A non-finite guess
     // makes the guesses' sum non-finite.
@@ -243,14 +268,15 @@ fn others_of(form: &ClosedForm) -> Option<usize> {
 fn root(out: &mut TokenStream, a: &V, b: &V, c: &V, flip: &TokenStream, cx: &Context) {
     let rt = cx.rt;
     if let (V::E(_), V::E(_), V::E(_)) = (a, b, c) {
-        out.extend(quote!(let (__cq, __sq) = #rt::dyad_roots(#a, #b, #c, #flip, __cfg).map_err(__fail)?;));
+        let f = if cx.deferred { quote!(__mode.dyad_roots) } else { quote!(#rt::dyad_roots) };
+        out.extend(quote!(let (__cq, __sq) = #f(#a, #b, #c, #flip, __cfg).map_err(__fail)?;));
         return;
     }
     let r2 = bind(out, "__r2", add(&mul(a, a), &mul(b, b)));
     let d2 = sub(&r2, &mul(c, c));
-    out.extend(quote! {
-        let __d: f64 = #rt::root_offset(#d2, #r2, #c, #flip, __cfg).map_err(__fail)?;
-    });
+    // Deferred, a root that does not exist is NaN; a zero radius gives `0 · ∞` below, NaN too.
+    let f = if cx.deferred { quote!(__mode.root_offset) } else { quote!(#rt::root_offset) };
+    out.extend(quote!(let __d: f64 = #f(#d2, #r2, #c, #flip, __cfg).map_err(__fail)?;));
     let d = local("__d");
     let zero = |v: &V| matches!(v, V::C(z) if *z == 0.0);
     // With one coefficient zero the formulas divide by the other, not by its square: `b sin q
@@ -429,7 +455,8 @@ fn polar(w: &[[NodeId; 2]; 2], e: &[NodeId; 2], u: usize, gs: &TokenStream, cx: 
     let b = bind(&mut out, "__b", sub(&mul(&w[0][1], &e[1]), &mul(&w[1][1], &e[0])));
     let r2 = add(&mul(&a, &a), &mul(&b, &b));
     let (e0, e1, rt) = (&e[0], &e[1], cx.rt);
-    out.extend(quote!(let __ir: f64 = #rt::polar_norm(#r2, #e0, #e1, __cfg).map_err(__fail)?;));
+    let f = if cx.deferred { quote!(__mode.polar_norm) } else { quote!(#rt::polar_norm) };
+    out.extend(quote!(let __ir: f64 = #f(#r2, #e0, #e1, __cfg).map_err(__fail)?;));
     let ir = local("__ir");
     let (c0, s0) = (mul(&b, &ir), neg(&mul(&a, &ir)));
     out.extend(quote!(let (mut __cq, mut __sq): (f64, f64) = (#c0, #s0);));

@@ -2,7 +2,7 @@
 //! with the named types), its constants, and its inherent methods: one-line forwarders into the
 //! runtime's generic code, so that `m.solve(x)` needs no import.
 
-use super::kernels::{Mode, closed_config_check, jacobian_body, solver_body, straight_line};
+use super::kernels::{Mode, closed_config_check, deferred_body, jacobian_body, solver_body, straight_line};
 use super::names::Names;
 use super::{Dims, Types, kernel_lints, runtime};
 use crate::model::Model;
@@ -138,14 +138,16 @@ fn mechanism_impl(model: &Model, plan: &Plan, t: &Types) -> TokenStream {
     // it: no call, the state written in place); `kinematics_flat` is the same kernel, inlined
     // where the compiler chooses. A large one is not copied.
     // The sweep's kernel asks its cache for the sines and cosines free of the unknowns (it
-    // advances them by rotation); `kinematics_flat` gives it libm.
+    // advances them by rotation); `kinematics_flat` gives it libm. Its checks are switched by
+    // `__CHECKED`: the sweep's step defers them to the end, where a failed test hands the step
+    // to the checked kernel, out of line (`Mechanism::kinematics_step_checked`).
     let fused_fns = if plan.n <= SWEEP_INLINE_MAX_UNKNOWNS {
-        let fused = solver_body(plan, &names.with_input_trig(plan), Mode::Fused, false);
+        let fused = deferred_body(plan, &names.with_input_trig(plan));
         // The sweep's kernel is given a configuration checked once per sweep.
         let check = closed_config_check(plan);
         quote! {
             #[inline(always)]
-            fn kinematics_step_sink<T: #rt::InputTrig, S: #rt::KinSink<#n, #ni, #no>>(
+            fn kinematics_step_sink<T: #rt::InputTrig, S: #rt::KinSink<#n, #ni, #no>, const __CHECKED: bool>(
                 &self, #x, #g, #cfg, __trig: &mut T, __sink: S,
             ) -> ::core::result::Result<S::Out, #rt::Error> { #fused }
             #[inline]

@@ -571,8 +571,13 @@ where
             let x = self.path.at_tau(tau_new);
             self.trig.exact(self.cur().health.min_pivot < ROTATE_MIN_PIVOT);
             let spare = usize::from(!self.at);
-            let solved =
-                self.m.kinematics_step_sink(&x, &p.q, &self.cfg.newton, &mut self.trig, &mut self.states[spare]);
+            let solved = self.m.kinematics_step_sink::<_, _, false>(
+                &x,
+                &p.q,
+                &self.cfg.newton,
+                &mut self.trig,
+                &mut self.states[spare],
+            );
             let outcome = match &solved {
                 Ok(()) => self.judge(&self.states[spare], &p),
                 Err(_) => Outcome::Fail,

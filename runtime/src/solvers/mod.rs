@@ -4,6 +4,7 @@
 //! along an elimination order fixed at compile time ([`sparse_lu`]).
 
 pub mod closed;
+pub mod deferred;
 pub mod inverse2;
 pub mod jacobian;
 pub mod lu;

@@ -1,0 +1,265 @@
+//! The closed-form steps of a kernel whose checks are deferred to its end.
+//!
+//! A sweep's step (and a point step) runs a generated kernel that tests nothing on the way: every
+//! closed-form root is taken as if it existed, every analog block is solved whatever its pivot.
+//! Each failure the checked kernel would report leaves a trace the kernel's end sees:
+//! - a root that does not exist is the square root of a negative number (or a division by a zero
+//!   radius): NaN, which reaches the block's sines and cosines;
+//! - a non-finite coefficient or guess makes the block's outputs (or their check sum) non-finite;
+//! - a singular analog block has a pivot ratio below `singular_tol`, which the state's
+//!   [`Health`](crate::Health) records as its smallest.
+//!
+//! So one test at the end (the sum of every value finite, the smallest pivot at least
+//! `singular_tol`) accepts a step only where every one of those checks would have passed, and
+//! the state is then what the checked kernel computes: the same operations in the same order.
+//! The one check left, an angle too many turns out to be accurate, is made on entry, on the
+//! angles' guesses ([`SURELY_PRECISE_GUESS`]). Where a test fails, the kernel runs again with
+//! every check on the way, which returns the error the checked kernel reports (with its block,
+//! input and guess), or the state where every check passes after all (a limit position rounded
+//! past, see [`root_offset`](super::closed::root_offset); an angle between the conservative
+//! bound and the configured one). The tests are conservative only: they never accept what a
+//! check rejects (`tests/deferred_checks.rs` compares the two kernels where every check fails).
+//!
+//! Measured with callgrind (`benches/callgrind.sh`, 720 samples a turn), a `Sweep` sample of the
+//! rhombic drive took 69 fewer instructions (756 to 687), the gear-lever's 50 (664 to 614) and
+//! the four-bar's 32 (666 to 634): tested on the way, each check cost a branch, a closure and
+//! the values its error needs kept alive.
+
+use super::closed::{check_closed, dyad_roots, polar_norm, root_offset};
+use super::newton::{BlockFailure, NewtonConfig};
+use crate::generated::checked_with;
+use crate::kin::KinSink;
+use crate::trig::InputTrig;
+use crate::{Error, Kin, Mechanism};
+
+/// An angle this large or smaller is accurate on its turn under every configuration: the least
+/// [`largest_precise_angle`](super::closed::largest_precise_angle) of all, that of the smallest
+/// residual tolerance it admits (16 eps): `1000 · 16 eps / eps`.
+pub const SURELY_PRECISE_ANGLE: f64 = 16_000.0;
+
+/// A closed-form angle whose guess is this large or smaller is within [`SURELY_PRECISE_ANGLE`]:
+/// the angle lies within `π` of its guess (moved to the guess's turn, or `asin` on the guess's
+/// side of the vertical and turn; within 1 when a sweep's cache advances it from an anchor),
+/// and the margin of 8 leaves room to spare. A deferred kernel tests its closed-form angles'
+/// guesses against it on entry, without reading the configuration; larger ones (2545 turns) go
+/// to the checked kernel, which tests the angles against the configured bound.
+pub const SURELY_PRECISE_GUESS: f64 = SURELY_PRECISE_ANGLE - 8.0;
+
+/// [`root_offset`](super::closed::root_offset) without its test: `±sqrt(d2)`, NaN when `d2` is
+/// negative (no real root, or a limit position rounded past, which the checked kernel tells
+/// apart) or NaN.
+#[inline(always)]
+pub fn root_offset_deferred(d2: f64, flip: bool) -> f64 {
+    if flip { -d2.sqrt() } else { d2.sqrt() }
+}
+
+/// [`dyad_roots`](super::closed::dyad_roots) without its test: the same formulas, NaN where it
+/// fails (a negative `d2`, or `r2 = 0`: `0 · ∞`).
+#[inline(always)]
+pub fn dyad_roots_deferred(a: f64, b: f64, c: f64, flip: bool) -> (f64, f64) {
+    let r2 = a * a + b * b;
+    let d = root_offset_deferred(r2 - c * c, flip);
+    let inv = 1.0 / r2;
+    ((a * c - b * d) * inv, (b * c + a * d) * inv)
+}
+
+/// [`polar_norm`](super::closed::polar_norm) without its test: `1 / sqrt(d2)`, infinite for a
+/// zero direction (whose components, both zero, then give NaN sines and cosines) and NaN for a
+/// NaN one.
+#[inline(always)]
+pub fn polar_norm_deferred(d2: f64) -> f64 {
+    1.0 / d2.sqrt()
+}
+
+/// How a kernel tests: every check on the way (`CHECKED`), or deferred to its end. The kernel
+/// binds it once (`__mode`) and asks it for its closed-form steps, which are then the checked
+/// ones or the deferred ones above, and for what follows a failed test.
+#[derive(Clone, Copy, Debug)]
+pub struct Checks<const CHECKED: bool>;
+
+impl<const CHECKED: bool> Checks<CHECKED> {
+    /// [`root_offset`](super::closed::root_offset), or deferred [`root_offset_deferred`] (never
+    /// a failure).
+    #[inline(always)]
+    pub fn root_offset(self, d2: f64, r2: f64, c: f64, flip: bool, cfg: &NewtonConfig) -> Result<f64, BlockFailure> {
+        if CHECKED { root_offset(d2, r2, c, flip, cfg) } else { Ok(root_offset_deferred(d2, flip)) }
+    }
+
+    /// [`dyad_roots`](super::closed::dyad_roots), or deferred [`dyad_roots_deferred`].
+    #[inline(always)]
+    pub fn dyad_roots(
+        self,
+        a: f64,
+        b: f64,
+        c: f64,
+        flip: bool,
+        cfg: &NewtonConfig,
+    ) -> Result<(f64, f64), BlockFailure> {
+        if CHECKED { dyad_roots(a, b, c, flip, cfg) } else { Ok(dyad_roots_deferred(a, b, c, flip)) }
+    }
+
+    /// [`polar_norm`](super::closed::polar_norm), or deferred [`polar_norm_deferred`].
+    #[inline(always)]
+    pub fn polar_norm(self, d2: f64, e0: f64, e1: f64, cfg: &NewtonConfig) -> Result<f64, BlockFailure> {
+        if CHECKED { polar_norm(d2, e0, e1, cfg) } else { Ok(polar_norm_deferred(d2)) }
+    }
+
+    /// [`check_closed`](super::closed::check_closed), or deferred nothing (the kernel's end tests
+    /// the block's check sum, its entry the angles' guesses).
+    #[inline(always)]
+    pub fn check_closed<const K: usize>(
+        self,
+        out: &[f64; K],
+        angles: usize,
+        cfg: &NewtonConfig,
+    ) -> Result<(), BlockFailure> {
+        if CHECKED { check_closed(out, angles, cfg) } else { Ok(()) }
+    }
+
+    /// Deferred, whether the closed-form angles' guesses, whose magnitudes sum to `magnitudes`,
+    /// may lead to angles too large to be accurate (beyond [`SURELY_PRECISE_GUESS`]): the kernel
+    /// then answers as the checked one. (A NaN guess makes its angle NaN, which the end test
+    /// sees.)
+    #[inline(always)]
+    pub fn far(self, magnitudes: f64) -> bool {
+        !CHECKED && magnitudes > SURELY_PRECISE_GUESS
+    }
+
+    /// The checked kernel's answer from the deferred one's arguments: where a test failed.
+    #[inline(always)]
+    pub fn rerun<M, T, S, const N: usize, const NI: usize, const NO: usize>(
+        self,
+        (m, x, guess, cfg, trig): (&M, &[f64; NI], &[f64; N], &NewtonConfig, &mut T),
+        sink: S,
+    ) -> Result<S::Out, Error>
+    where
+        M: Mechanism<N, NI, NO>,
+        T: InputTrig,
+        S: KinSink<N, NI, NO>,
+    {
+        m.kinematics_step_checked(x, guess, cfg, trig, sink)
+    }
+
+    /// The kernel's end, from the kernel's arguments and the state `kin` builds, `sum` the sum of
+    /// its values. Checked, [`checked_with`]. Deferred, the state where `sink` puts it when the
+    /// end test `accept` holds; otherwise the checked kernel's answer.
+    #[inline(always)]
+    pub fn finish<M, T, S, const N: usize, const NI: usize, const NO: usize>(
+        self,
+        (accept, sum): (bool, f64),
+        args: (&M, &[f64; NI], &[f64; N], &NewtonConfig, &mut T),
+        sink: S,
+        kin: impl FnOnce() -> Kin<N, NI, NO>,
+    ) -> Result<S::Out, Error>
+    where
+        M: Mechanism<N, NI, NO>,
+        T: InputTrig,
+        S: KinSink<N, NI, NO>,
+    {
+        if CHECKED {
+            checked_with(args.0, sum, Some(args.2), sink, kin)
+        } else if accept {
+            Ok(sink.put(kin))
+        } else {
+            self.rerun(args, sink)
+        }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::generated::largest_precise_angle;
+    use crate::metrics::test_rng::Rng;
+
+    /// Where the checked step succeeds the deferred one gives the same bits; where it fails the
+    /// deferred one gives a non-finite value (the trace the kernel's end test sees). Over random
+    /// coefficients, many of them without a root, with zero and non-finite ones mixed in.
+    #[test]
+    fn a_deferred_step_equals_the_checked_one_or_leaves_a_non_finite_trace() {
+        let cfg = NewtonConfig::default();
+        let mut rng = Rng(0x9e37_79b9_7f4a_7c15);
+        let special = [0.0, -0.0, f64::NAN, f64::INFINITY, -f64::INFINITY];
+        let pick = |rng: &mut Rng| {
+            let k = rng.uniform(0.0, 1.0);
+            if k < 0.1 {
+                special[(rng.uniform(0.0, 5.0) as usize).min(4)]
+            } else {
+                10f64.powf(rng.uniform(-3.0, 3.0)) * rng.uniform(-1.0, 1.0)
+            }
+        };
+        let (mut roots, mut failures) = (0, 0);
+        for n in 0..200_000 {
+            let (a, b, c) = (pick(&mut rng), pick(&mut rng), pick(&mut rng));
+            let flip = n % 2 == 0;
+            let r2 = a * a + b * b;
+            match root_offset(r2 - c * c, r2, c, flip, &cfg) {
+                Ok(d) if r2 - c * c >= 0.0 => assert_eq!(d.to_bits(), root_offset_deferred(r2 - c * c, flip).to_bits()),
+                // A limit position rounded past: the checked kernel's own answer.
+                Ok(_) => assert!(root_offset_deferred(r2 - c * c, flip).is_nan()),
+                Err(_) => {}
+            }
+            match dyad_roots(a, b, c, flip, &cfg) {
+                Ok((cq, sq)) if r2 - c * c >= 0.0 => {
+                    roots += 1;
+                    let (dc, ds) = dyad_roots_deferred(a, b, c, flip);
+                    assert_eq!((cq.to_bits(), sq.to_bits()), (dc.to_bits(), ds.to_bits()), "{a} {b} {c}");
+                }
+                Ok(_) => assert!(dyad_roots_deferred(a, b, c, flip).0.is_nan()),
+                Err(_) => {
+                    failures += 1;
+                    let (dc, ds) = dyad_roots_deferred(a, b, c, flip);
+                    assert!(!(dc + ds).is_finite(), "{a} {b} {c}: {dc} {ds}");
+                }
+            }
+            match polar_norm(r2, a, b, &cfg) {
+                Ok(ir) => assert_eq!(ir.to_bits(), polar_norm_deferred(r2).to_bits()),
+                // The direction `(a, b)` scaled by the norm, as the generated code forms it.
+                Err(_) => {
+                    let ir = polar_norm_deferred(r2);
+                    assert!(!(a * ir + b * ir).is_finite(), "{a} {b}: {ir}");
+                }
+            }
+        }
+        assert!(roots > 10_000 && failures > 10_000, "{roots} roots, {failures} failures");
+    }
+
+    /// A closed-form angle lies within `π` of its guess (to rounding), whichever way it is
+    /// formed: `asin` on the guess's side, `atan2` or `acos` moved to the guess's turn (the
+    /// anchored form of a sweep's cache returns an angle within 1 of the guess, or one of
+    /// these). Over guesses up to the bound and random angles.
+    #[test]
+    fn a_closed_form_angle_lies_within_a_half_turn_of_its_guess() {
+        use crate::generated::{acos_on_side, asin_near, reduce_turn, unwrap_to_turn};
+        use core::f64::consts::{FRAC_PI_2, PI};
+        let mut rng = Rng(0x0123_4567_89ab_cdef);
+        let mut worst = 0.0f64;
+        for _ in 0..200_000 {
+            let g = rng.uniform(-1.0, 1.0) * SURELY_PRECISE_GUESS;
+            let t = rng.uniform(-PI, PI);
+            let (s, c) = t.sin_cos();
+            let r = reduce_turn(g);
+            for q in [
+                asin_near(s, r.abs() < FRAC_PI_2, r, g),
+                unwrap_to_turn(s.atan2(c), g),
+                unwrap_to_turn(acos_on_side(c, s), g),
+            ] {
+                worst = worst.max((q - g).abs());
+                assert!(q.abs() <= SURELY_PRECISE_ANGLE, "{q} from {g}");
+            }
+        }
+        assert!(worst <= PI + 1e-11 && worst > PI - 1e-3, "{worst}");
+    }
+
+    /// The bound is the least of the configured ones: at the smallest residual tolerance, and
+    /// below it (clamped to 16 eps).
+    #[test]
+    fn the_surely_precise_angle_is_the_least_configured_bound() {
+        for tol in [16.0 * f64::EPSILON, 1e-300, 0.0, 1e-12, 1e-6] {
+            let cfg = NewtonConfig { residual_tol: tol, ..NewtonConfig::default() };
+            assert!(SURELY_PRECISE_ANGLE <= largest_precise_angle(&cfg), "{tol:e}");
+        }
+        let least = NewtonConfig { residual_tol: 16.0 * f64::EPSILON, ..NewtonConfig::default() };
+        assert_eq!(SURELY_PRECISE_ANGLE, largest_precise_angle(&least));
+    }
+}
