@@ -139,8 +139,9 @@ fn mechanism_impl(model: &Model, plan: &Plan, t: &Types) -> TokenStream {
     // where the compiler chooses. A large one is not copied.
     // The sweep's kernel asks its cache for the sines and cosines free of the unknowns (it
     // advances them by rotation); `kinematics_flat` gives it libm. Its checks are switched by
-    // `__CHECKED`: the sweep's step defers them to the end, where a failed test hands the step
-    // to the checked kernel, out of line (`Mechanism::kinematics_step_checked`).
+    // `__CHECKED`: `kinematics_flat` tests on the way; the sweep's step defers the tests to the
+    // end, where a failed one hands the step to the checked kernel, out of line
+    // (`Mechanism::kinematics_step_checked`).
     let fused_fns = if plan.n <= SWEEP_INLINE_MAX_UNKNOWNS {
         let fused = deferred_body(plan, &names.with_input_trig(plan));
         // The sweep's kernel is given a configuration checked once per sweep.

@@ -823,12 +823,10 @@ impl Kernel<'_> {
         }
     }
 
-    /// The end of a deferred kernel: the state's values (`terms`) and the closed-form blocks'
-    /// check sums finite, the smallest pivot ratio at least `singular_tol`, and the closed-form
-    /// angles within the bound every configuration admits; otherwise the checked kernel's answer.
-    /// With `__CHECKED`, the checked kernel's end (`sum` is the state's values'). Otherwise the
-    /// state is accepted when `sum` and the closed-form blocks' check sums are finite and the
-    /// smallest pivot ratio is at least `singular_tol`; else the checked kernel answers.
+    /// The end of a kernel whose checks are switched by `__CHECKED`: with it, the checked
+    /// kernel's end (`sum` is the sum of the state's values). Otherwise the state is accepted
+    /// when `sum` and the closed-form blocks' check sums are finite and the smallest pivot ratio
+    /// is at least `singular_tol`; else the checked kernel answers.
     fn finish_deferred(&self, sum: TokenStream) -> TokenStream {
         let kin = self.kin();
         let mut checks: Vec<TokenStream> = (0..self.plan.blocks.len())
