@@ -6,6 +6,7 @@
 //! order, so the results are bit-for-bit those of the inline code. A failure is returned as a
 //! [`BlockFailure`]; the generated code adds the mechanism's location to it.
 
+use super::deferred::{polar_norm_deferred, root_offset_deferred, roots_of_offset};
 use super::newton::{BlockFailure, NewtonConfig};
 use core::f64::consts::{PI, TAU};
 
@@ -185,7 +186,7 @@ pub fn root_offset(d2: f64, r2: f64, c: f64, flip: bool, cfg: &NewtonConfig) -> 
     if !(d2 >= 0.0 && r2 > 0.0) {
         return touching(d2, r2, c, cfg);
     }
-    Ok(if flip { -d2.sqrt() } else { d2.sqrt() })
+    Ok(root_offset_deferred(d2, flip))
 }
 
 /// A negative `d2 = r2 - c²` that is the rounding of a limit position: the links fall short of
@@ -220,8 +221,7 @@ fn touching(d2: f64, r2: f64, c: f64, cfg: &NewtonConfig) -> Result<f64, BlockFa
 pub fn dyad_roots(a: f64, b: f64, c: f64, flip: bool, cfg: &NewtonConfig) -> Result<(f64, f64), BlockFailure> {
     let r2 = a * a + b * b;
     let d = root_offset(r2 - c * c, r2, c, flip, cfg)?;
-    let inv = 1.0 / r2;
-    Ok(((a * c - b * d) * inv, (b * c + a * d) * inv))
+    Ok(roots_of_offset(a, b, c, r2, d))
 }
 
 /// `1 / sqrt(d2)`, the normalisation of the direction `(a, b)` with `d2 = a² + b²` of a polar
@@ -231,7 +231,7 @@ pub fn dyad_roots(a: f64, b: f64, c: f64, flip: bool, cfg: &NewtonConfig) -> Res
 #[inline]
 pub fn polar_norm(d2: f64, e0: f64, e1: f64, cfg: &NewtonConfig) -> Result<f64, BlockFailure> {
     // Written so that a NaN fails.
-    if d2 > 0.0 { Ok(1.0 / d2.sqrt()) } else { Err(no_root(d2, 0.0, e0.abs().max(e1.abs()), cfg)) }
+    if d2 > 0.0 { Ok(polar_norm_deferred(d2)) } else { Err(no_root(d2, 0.0, e0.abs().max(e1.abs()), cfg)) }
 }
 
 /// The test of a polar length's lever in a position-only solve: the length `|(e0, e1)|` against

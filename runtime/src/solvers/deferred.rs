@@ -58,7 +58,14 @@ pub fn root_offset_deferred(d2: f64, flip: bool) -> f64 {
 #[inline(always)]
 pub fn dyad_roots_deferred(a: f64, b: f64, c: f64, flip: bool) -> (f64, f64) {
     let r2 = a * a + b * b;
-    let d = root_offset_deferred(r2 - c * c, flip);
+    roots_of_offset(a, b, c, r2, root_offset_deferred(r2 - c * c, flip))
+}
+
+/// `(cos q, sin q)` of the root of `a cos q + b sin q = c` with offset `d` (see
+/// [`root_offset`](super::closed::root_offset)) and `r2 = a² + b²`: `((a c - b d) / r², (b c +
+/// a d) / r²)`, checked or not.
+#[inline(always)]
+pub(crate) fn roots_of_offset(a: f64, b: f64, c: f64, r2: f64, d: f64) -> (f64, f64) {
     let inv = 1.0 / r2;
     ((a * c - b * d) * inv, (b * c + a * d) * inv)
 }
