@@ -120,3 +120,21 @@ proptest! {
         prop_assert_eq!(r.input_limits().count(), usize::from(!g.input_turns));
     }
 }
+
+/// A non-Grashof four-bar whose coupler and rocker are stretched within 8e-5 of their length at
+/// the start (found by the property test above): the input's limit, where `|BD| = b + c`, lies
+/// 0.0082 rad on, before the second sample. The report gives it, at its closed form, with the
+/// start as the range reached.
+#[test]
+fn a_limit_before_the_second_sample_is_reported() {
+    let (a, b, c, d) = (0.8866455380657977, 0.22395128782516954, 0.29708768544839576, 1.4076032175831328);
+    let m = FourBar { a, b, c, d };
+    let guess = four_bar_at(a, b, c, d, 0.0).unwrap();
+    let r = limit_report(&m, 0.0, TAU, 361, guess, &[FourBar::COL.gamma]).unwrap();
+    let limit = ((a * a + d * d - (b + c) * (b + c)) / (2.0 * a * d)).acos();
+    assert_eq!(r.reached, (0.0, 0.0), "{r}");
+    let limits: Vec<f64> = r.input_limits().map(|e| e.x[0]).collect();
+    assert_eq!(limits.len(), 1, "{r}");
+    assert!((limits[0] - limit).abs() < 1e-9, "{} against {limit}", limits[0]);
+    assert!(r.outputs[0].extremes.is_empty(), "{r}");
+}

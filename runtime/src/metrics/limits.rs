@@ -82,8 +82,10 @@ impl fmt::Display for LimitReport {
 /// over the range reached. A limit position of the input ends the range; it is reported, not
 /// an error.
 ///
-/// Columns are the generated handles (`Name::COL.x_c`). Errors: a start that cannot be
-/// assembled, a sweep that stops within its first two samples.
+/// Columns are the generated handles (`Name::COL.x_c`). A limit position of the input before the
+/// second sample (a start within a sample's spacing of it) is reported with no extremes: the
+/// range reached is the start alone. Errors: a start that cannot be assembled, a column outside
+/// the mechanism.
 pub fn limit_report<M, const N: usize, const NO: usize>(
     m: &M,
     from: f64,
@@ -109,18 +111,21 @@ where
         }
     }
     let events = sweep.events().to_vec();
-    if count < 3 {
-        return Err(Error::InvalidArgument(format!(
-            "the sweep of `{}` stopped after {count} samples at {last}: nothing to analyse",
-            M::NAME
-        )));
-    }
-    // The same samples over the reached range, kept in memory to locate the extremes.
-    let range = Sampled::sweep_with(m, from, last, count, guess, cfg)?;
-    let outputs = columns
-        .iter()
-        .map(|&c| Ok(OutputLimits { column: c.name().to_string(), extremes: range.extremes(c)? }))
-        .collect::<Result<_, Error>>()?;
+    let outputs = if count < 2 {
+        // The range reached is the start alone: no interior extreme.
+        columns
+            .iter()
+            .map(|&c| Ok(OutputLimits { column: c.check::<N, 1, NO>()?.name().to_string(), extremes: Vec::new() }))
+            .collect::<Result<_, Error>>()?
+    } else {
+        // The samples over the reached range kept in memory to locate the extremes (at least
+        // three, as a sampled range needs: the two reached and their midpoint).
+        let range = Sampled::sweep_with(m, from, last, count.max(3), guess, cfg)?;
+        columns
+            .iter()
+            .map(|&c| Ok(OutputLimits { column: c.name().to_string(), extremes: range.extremes(c)? }))
+            .collect::<Result<_, Error>>()?
+    };
     Ok(LimitReport { reached: (from, last), events, outputs })
 }
 
@@ -145,6 +150,26 @@ mod tests {
         assert!((e[0].x() - (x_in + TAU)).abs() < 1e-10 && (e[0].value() - inner).abs() < 1e-12, "{r}");
         assert!((e[1].x() - (x_out + TAU)).abs() < 1e-10 && (e[1].value() - outer).abs() < 1e-12, "{r}");
         assert!(r.to_string().contains("limit position of x: minimum"));
+    }
+
+    /// A start a hundredth of a radian from the input's limit, with samples a tenth apart: the
+    /// limit (the rod stretched along the vertical, `sin phi = (e - l) / r`) is reported with
+    /// the start as the range reached and no extremes; a column outside the mechanism is still
+    /// an error there.
+    #[test]
+    fn a_limit_before_the_second_sample_is_reported() {
+        let m = SliderCrank { r: 1.0, l: 1.2, e: 0.5 };
+        let limit = ((m.e - m.l) / m.r).asin();
+        let from = limit + 0.01;
+        let guess = [m.r * from.cos() + (m.l * m.l - (m.r * from.sin() - m.e).powi(2)).sqrt()];
+        let r = limit_report(&m, from, from - 1.0, 11, guess, &[SliderCrank::COL.x]).unwrap();
+        assert_eq!(r.reached, (from, from), "{r}");
+        let limits: Vec<&Event> = r.input_limits().collect();
+        assert_eq!(limits.len(), 1, "{r}");
+        assert!((limits[0].x[0] - limit).abs() < 1e-9, "{r}");
+        assert!(r.outputs[0].extremes.is_empty(), "{r}");
+        let bad = Column::__generated(crate::analysis::ColumnIndex::Unknown(3), "bad");
+        assert!(matches!(limit_report(&m, from, from - 1.0, 11, guess, &[bad]), Err(Error::InvalidArgument(_))));
     }
 
     #[test]
