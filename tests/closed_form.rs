@@ -150,6 +150,28 @@ with_newton_twin! {
 }
 
 with_newton_twin! {
+    /// The slotted rocker with its length counted in half units (`2 s` along the slot): the
+    /// length's direction has the constant magnitude 2, by which the closed form divides.
+    pub struct HalfUnitRocker, HalfUnitRockerNewton {
+        params r = 1.0, h = 1.8;
+        input phi;
+        unknowns s = 1.4, theta = 1.57;
+        loop oab: (0, h) + r @ phi == (2 * s) @ theta;
+    }
+}
+
+with_newton_twin! {
+    /// A length along a direction whose magnitude changes with its angle (`(cos t, 2 sin t)`,
+    /// an ellipse's parametrisation): the closed form's general division by `|w(t)|²`.
+    pub struct EllipticRocker, EllipticRockerNewton {
+        params r = 1.0, h = 1.8;
+        input phi;
+        unknowns s = 1.4, theta = 1.57;
+        loop oab: (0, h) + r @ phi == s * (cos(theta), 2 * sin(theta));
+    }
+}
+
+with_newton_twin! {
     /// Watt-II six-bar: two four-bars in series, the rocker of the first driving the second
     /// through a rigid offset (two RRR dyads).
     pub struct SixBar, SixBarNewton {
@@ -307,6 +329,15 @@ fn slider_cranks_and_slotted_rocker_agree_with_newton() {
     assert_eq!(agree_over(&SliderCrank::default(), &SliderCrankNewton::default(), [0.0], [TAU], 720), 2);
     assert_eq!(agree_over(&TiltedSlider::default(), &TiltedSliderNewton::default(), [0.0], [TAU], 720), 2);
     assert_eq!(agree_over(&SlottedRocker::default(), &SlottedRockerNewton::default(), [0.0], [TAU], 720), 2);
+}
+
+#[test]
+fn a_length_along_a_scaled_or_elliptic_direction_agrees_with_newton() {
+    for d in [HalfUnitRocker::DECOMPOSITION, EllipticRocker::DECOMPOSITION] {
+        assert!(d.contains("(closed form, length and angle): s, theta"), "{d}");
+    }
+    assert_eq!(agree_over(&HalfUnitRocker::default(), &HalfUnitRockerNewton::default(), [0.0], [TAU], 720), 2);
+    assert_eq!(agree_over(&EllipticRocker::default(), &EllipticRockerNewton::default(), [0.0], [TAU], 720), 2);
 }
 
 #[test]

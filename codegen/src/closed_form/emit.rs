@@ -360,11 +360,12 @@ fn angle_equation(a: &V, b: &V, c: &V, u: usize, cx: &Context) -> TokenStream {
             let __flip: bool = (#b > 0.0) == __right;
         };
         root(&mut out, a, b, c, &quote!(__flip), cx);
-        // Not asked of a sweep's cache: its anchored form needs the cosine, which comes from the
-        // root's square root, while `asin` needs only the sine. Measured: a rhombic drive's sweep
-        // sample took 7 % longer anchored (183 against 170 ns), though it executed 40 fewer
-        // instructions; the anchored `atan2` of the other forms is faster in both.
-        let q = quote!(#rt::asin_near(__sq, __right, __r, #g));
+        // A sweep's cache advances it from its anchor, as every other closed-form angle: on the
+        // rhombic drive that executes 62 fewer instructions a sample than libm's `asin`, though
+        // it waits for the cosine (the root's square root) where `asin` needs only the sine, and
+        // takes about as long in time (BENCHMARKS.md).
+        let exact = quote!(#rt::asin_near(__sq, __right, __r, #g));
+        let q = angle_of(u, quote!(__sq), quote!(__cq), exact, cx);
         out.extend(quote!(let __out: [f64; 3] = [#q, __cq, __sq];));
         return out;
     }
@@ -464,10 +465,21 @@ fn polar(w: &[[NodeId; 2]; 2], e: &[NodeId; 2], u: usize, gs: &TokenStream, cx: 
     let w0 = bind(&mut out, "__w0", dot(&[(&w[0][0], &cq), (&w[0][1], &sq)]));
     let w1 = bind(&mut out, "__w1", dot(&[(&w[1][0], &cq), (&w[1][1], &sq)]));
     let num = dot(&[(&w0, &e[0]), (&w1, &e[1])]);
-    let den = dot(&[(&w0, &w0), (&w1, &w1)]);
+    let s = match constant_norm2(&w) {
+        // `w` a unit rotation or reflection: `|w(q)|² = 1`, nothing to divide by.
+        Some(1.0) => neg(&num),
+        Some(k2) => {
+            let k2 = V::C(k2);
+            V::E(quote!((-#num / #k2)))
+        }
+        None => {
+            let den = dot(&[(&w0, &w0), (&w1, &w1)]);
+            V::E(quote!((-#num / #den)))
+        }
+    };
     let q = unwrapped(u, quote!(__sq), quote!(__cq), cx);
     out.extend(quote! {
-        let mut __s: f64 = -#num / #den;
+        let mut __s: f64 = #s;
         if __s * #gs < 0.0 {
             __s = -__s;
             __cq = -__cq;
@@ -476,6 +488,16 @@ fn polar(w: &[[NodeId; 2]; 2], e: &[NodeId; 2], u: usize, gs: &TokenStream, cx: 
         let __out: [f64; 4] = [#q, __s, __cq, __sq];
     });
     out
+}
+
+/// `|w (cos q, sin q)|²` when it is the same constant for every `q`: `w` constant with orthogonal
+/// columns of equal length (a scaled rotation or reflection), as `s (sin q, cos q)` gives.
+fn constant_norm2(w: &[[V; 2]; 2]) -> Option<f64> {
+    let [[V::C(a), V::C(b)], [V::C(c), V::C(d)]] = w else {
+        return None;
+    };
+    let (n0, n1) = (a * a + c * c, b * b + d * d);
+    (a * b + c * d == 0.0 && n0 == n1).then_some(n0)
 }
 
 /// `m c + d s + e = 0`: the combination `d1 row0 - d0 row1` is free of `s` (and its derivative

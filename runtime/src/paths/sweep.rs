@@ -222,6 +222,8 @@ pub struct Sweep<'m, M, S, const N: usize, const NI: usize, const NO: usize> {
     m: &'m M,
     cfg: SweepConfig,
     path: Path<NI>,
+    /// `delta[i] delta[j]` of the path's direction, for the curvature of every prediction.
+    delta2: [[f64; NI]; NI],
     samples: usize,
     /// Sample spacing as a fraction of the path, and the step bounds derived from it and the
     /// configuration (computed once: they are needed every step).
@@ -253,6 +255,9 @@ pub struct Sweep<'m, M, S, const N: usize, const NI: usize, const NO: usize> {
     invalid: Option<Error>,
     events: Vec<Event>,
     done: bool,
+    /// `started && !done && invalid.is_none()`: the steady state, where a sample needs one test
+    /// of this rather than one of each.
+    stepping: bool,
     _s: PhantomData<fn() -> S>,
 }
 
@@ -305,6 +310,7 @@ where
             m,
             cfg: SweepConfig::default(),
             path,
+            delta2: path.delta.map(|di| path.delta.map(|dj| di * dj)),
             samples,
             spacing,
             h_max: 0.0,
@@ -333,6 +339,7 @@ where
             invalid: None,
             events: Vec::new(),
             done: false,
+            stepping: false,
             _s: PhantomData,
         };
         sweep.set_step_bounds();
@@ -354,6 +361,7 @@ where
             }
             Err(e) => self.invalid = Some(e),
         }
+        self.stepping = self.started && !self.done && self.invalid.is_none();
         self
     }
 
@@ -433,7 +441,7 @@ where
     /// per step.
     #[inline(always)]
     fn predict(&self, k: &Kin<N, NI, NO>, dt: f64) -> Prediction<N> {
-        let d = &self.path.delta;
+        let (d, d2) = (&self.path.delta, &self.delta2);
         let (mut change, mut slope_change, mut slope) = (0.0f64, 0.0f64, 0.0f64);
         let mut q = k.q;
         let mut slope1 = [0.0; N];
@@ -446,7 +454,7 @@ where
             for i in 0..NI {
                 slope0 += k.dq[u][i] * d[i];
                 for j in 0..NI {
-                    curv += k.d2q[u][i][j] * d[i] * d[j];
+                    curv += k.d2q[u][i][j] * d2[i][j];
                 }
             }
             let du = dt * (slope0 + 0.5 * dt * curv);
@@ -502,6 +510,7 @@ where
             Ok(k) => {
                 *self.cur_mut() = k;
                 self.started = true;
+                self.stepping = true;
                 self.first_q = k.q;
                 self.signs = k.health.det_signs;
                 self.h = self.h_max;
@@ -509,7 +518,7 @@ where
                 Ok(())
             }
             Err(e) => {
-                self.done = true;
+                self.stop();
                 Err(e)
             }
         }
@@ -527,6 +536,26 @@ where
         }
     }
 
+    /// Ends the sweep: no further sample.
+    fn stop(&mut self) {
+        self.done = true;
+        self.stepping = false;
+    }
+
+    /// [`Sweep::next_ref`] outside the steady state: the end, the configuration's error, or the
+    /// first sample.
+    #[cold]
+    fn next_unstarted(&mut self) -> Option<Result<&Kin<N, NI, NO>, Error>> {
+        if self.done || self.next >= self.samples {
+            return None;
+        }
+        if self.invalid.is_some() {
+            self.stop();
+            return self.invalid.take().map(Err);
+        }
+        Some(self.first_sample().map(|()| self.cur()))
+    }
+
     /// The next sample as a flat state (a copy of [`Sweep::next_ref`]'s).
     #[inline]
     pub fn next_kin(&mut self) -> Option<Result<Kin<N, NI, NO>, Error>> {
@@ -538,16 +567,11 @@ where
     /// [`Sweep::next_kin`] and the iterator.
     #[inline]
     pub fn next_ref(&mut self) -> Option<Result<&Kin<N, NI, NO>, Error>> {
-        if self.done || self.next >= self.samples {
+        if !self.stepping {
+            return self.next_unstarted();
+        }
+        if self.next >= self.samples {
             return None;
-        }
-        // Tested before it is taken: `take` would store `None` at every sample.
-        if self.invalid.is_some() {
-            self.done = true;
-            return self.invalid.take().map(Err);
-        }
-        if !self.started {
-            return Some(self.first_sample().map(|()| self.cur()));
         }
         // Through `i64`: one conversion instruction, where `usize` to `f64` takes several (the
         // same value: a sample index is far below 2^53).
@@ -557,7 +581,7 @@ where
         while self.tau < target {
             attempts += 1;
             if attempts > MAX_ATTEMPTS_PER_SAMPLE {
-                self.done = true;
+                self.stop();
                 return Some(Err(self.no_progress()));
             }
             let remaining = target - self.tau;
@@ -606,7 +630,7 @@ where
                                 self.h = self.h_max;
                             }
                             Err(e) => {
-                                self.done = true;
+                                self.stop();
                                 return Some(Err(e));
                             }
                         }
