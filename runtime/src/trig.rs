@@ -214,8 +214,9 @@ impl InputTrig for Rotating {
 
     /// `q = q_a + asin(x)` from the slot's anchor `q_a`, with `x = sin(q - q_a) = s cos q_a -
     /// c sin q_a` (well conditioned: its rounding is about an ulp of 1, whatever the angle), when
-    /// `|x|` is within [`ANCHOR_RANGE`] on the anchor's side (`cos(q - q_a) > 0`) and the result
-    /// is near the guess. The anchor is libm's angle, so errors do not accumulate: the result is
+    /// `|x| < ANCHOR_RANGE y` with `y = cos(q - q_a)` (one comparison for both conditions: `|x|`
+    /// within [`ANCHOR_RANGE`], and `q` on the anchor's side, `y > 0`) and the result is near the
+    /// guess. The anchor is libm's angle, so errors do not accumulate: the result is
     /// within a few ulps of libm's. Otherwise, and when exact (near a singular position, where a
     /// rod's cosine is small and carries the root's rounding), libm's, which becomes the anchor.
     #[inline(always)]
@@ -225,8 +226,8 @@ impl InputTrig for Rotating {
         };
         let x = s * a.cos - c * a.sin;
         let y = c * a.cos + s * a.sin;
-        // NaN fails every comparison.
-        if x.abs() <= ANCHOR_RANGE && y > 0.0 {
+        // NaN fails the comparison.
+        if x.abs() < ANCHOR_RANGE * y {
             let q = a.q + small_asin(x);
             if (q - guess).abs() <= ANCHOR_NEAR_GUESS {
                 return q;
