@@ -13,10 +13,10 @@
 //! cache computes once ([`InputTrig::sin_cos_sum`]).
 //!
 //! A closed-form block gets the sine and cosine of its unknown angle from its equation, and the
-//! angle itself from libm's `atan2`, `acos` or `asin`. In a sweep the cache gives it instead as `q_a + asin(sin(q - q_a))` from an anchor `q_a` that libm computed, by a
-//! short series (the difference stays small for several steps). Each angle is one anchor's plus
-//! one well conditioned correction, so nothing accumulates: the angles are within a few ulps of
-//! libm's.
+//! angle itself from libm's `atan2`, `acos` or `asin`. In a sweep the cache gives it instead as
+//! `q_a + asin(sin(q - q_a))` from an anchor `q_a` that libm computed, by a short series (the
+//! difference stays small for several steps). Each angle is one anchor's plus one well
+//! conditioned correction, so nothing accumulates: the angles are within a few ulps of libm's.
 
 /// Where a generated kernel gets the sine and cosine of an argument free of the unknowns.
 pub trait InputTrig {
@@ -36,8 +36,8 @@ pub trait InputTrig {
     }
 
     /// The angle of a closed-form block's unknown `slot` (its index among the unknowns), whose
-    /// sine `s` and cosine `c` the block has just computed: `exact()` (libm's `acos`, `asin` or `atan2`,
-    /// moved to the turn of `guess`), or that same angle obtained otherwise. The default
+    /// sine `s` and cosine `c` the block has just computed: `exact()` (libm's `acos`, `asin` or
+    /// `atan2`, moved to the turn of `guess`), or that same angle obtained otherwise. The default
     /// is `exact()`; a sweep's cache computes it from an earlier exact angle of the same unknown.
     #[inline(always)]
     fn angle(&mut self, slot: usize, s: f64, c: f64, guess: f64, exact: impl FnOnce() -> f64) -> f64 {
