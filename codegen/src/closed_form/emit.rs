@@ -46,10 +46,9 @@ pub struct Context<'a> {
     /// `magnitudes`).
     pub lever_floor: &'a dyn Fn(usize) -> Option<TokenStream>,
     /// The kernel's checks are switched by its constant `__CHECKED`, through its mode `__mode`
-    /// (the runtime's `Checks`, see `solvers::deferred`): when it is false, the solve tests
-    /// nothing. Either way the solve
-    /// binds `__check{block}`, the sum of its sines and cosines and of the guesses only
-    /// comparisons read, whose finiteness the kernel's end tests when its checks are deferred.
+    /// (the runtime's `Checks`, see `solvers::deferred`); with `__CHECKED` false the solve tests
+    /// nothing. The solve then also binds `__check{block}`, the sum of its sines and cosines and
+    /// of the guesses only comparisons read, whose finiteness the kernel's end tests.
     pub deferred: bool,
 }
 

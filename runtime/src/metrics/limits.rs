@@ -111,21 +111,23 @@ where
         }
     }
     let events = sweep.events().to_vec();
-    let outputs = if count < 2 {
-        // The range reached is the start alone: no interior extreme.
-        columns
-            .iter()
-            .map(|&c| Ok(OutputLimits { column: c.check::<N, 1, NO>()?.name().to_string(), extremes: Vec::new() }))
-            .collect::<Result<_, Error>>()?
-    } else {
-        // The samples over the reached range kept in memory to locate the extremes (at least
-        // three, as a sampled range needs: the two reached and their midpoint).
-        let range = Sampled::sweep_with(m, from, last, count.max(3), guess, cfg)?;
-        columns
-            .iter()
-            .map(|&c| Ok(OutputLimits { column: c.name().to_string(), extremes: range.extremes(c)? }))
-            .collect::<Result<_, Error>>()?
-    };
+    // The samples over the reached range kept in memory to locate the extremes (at least three,
+    // as a sampled range needs: the two reached and their midpoint). A range that is the start
+    // alone has no interior extreme.
+    let range = if count < 2 { None } else { Some(Sampled::sweep_with(m, from, last, count.max(3), guess, cfg)?) };
+    let outputs = columns
+        .iter()
+        .map(|&c| {
+            let extremes = match &range {
+                Some(range) => range.extremes(c)?,
+                None => {
+                    c.check::<N, 1, NO>()?;
+                    Vec::new()
+                }
+            };
+            Ok(OutputLimits { column: c.name().to_string(), extremes })
+        })
+        .collect::<Result<_, Error>>()?;
     Ok(LimitReport { reached: (from, last), events, outputs })
 }
 

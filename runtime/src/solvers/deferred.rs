@@ -1,6 +1,7 @@
 //! The closed-form steps of a kernel whose checks are deferred to its end.
 //!
-//! A sweep's step (and a point step) runs a generated kernel that tests nothing on the way: every
+//! A sweep's step runs a generated kernel that tests nothing on the way (a point step runs the
+//! same kernel with its checks on the way, `CHECKED`): every
 //! closed-form root is taken as if it existed, every analog block is solved whatever its pivot.
 //! Each failure the checked kernel would report leaves a trace the kernel's end sees:
 //! - a root that does not exist is the square root of a negative number (or a division by a zero
@@ -21,8 +22,8 @@
 //! check rejects (`tests/deferred_checks.rs` compares the two kernels where every check fails).
 //!
 //! Measured with callgrind (`benches/callgrind.sh`, 720 samples a turn), a `Sweep` sample of the
-//! rhombic drive took 69 fewer instructions (756 to 687), the gear-lever's 50 (664 to 614) and
-//! the four-bar's 32 (666 to 634): tested on the way, each check cost a branch, a closure and
+//! rhombic drive took 76 fewer instructions (756 to 680), the gear-lever's 55 (664 to 609) and
+//! the four-bar's 40 (666 to 626): tested on the way, each check cost a branch, a closure and
 //! the values its error needs kept alive.
 
 use super::closed::{check_closed, dyad_roots, polar_norm, root_offset};
