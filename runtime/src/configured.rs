@@ -3,6 +3,7 @@
 use crate::error::Error;
 use crate::events::BlockInfo;
 use crate::kin::{Jac, Kin, KinSink};
+use crate::kinds::QuantityKind;
 use crate::mechanism::{Mechanism, Named};
 use crate::newton::{NewtonConfig, SolveReport};
 use crate::paths::sweep::SweepConfig;
@@ -58,6 +59,11 @@ where
     const EQUATIONS: [&'static str; N] = M::EQUATIONS;
     const OUTPUTS: [&'static str; NO] = M::OUTPUTS;
     const BLOCKS: &'static [BlockInfo] = M::BLOCKS;
+    const INPUT_KINDS: [QuantityKind; NI] = M::INPUT_KINDS;
+    const UNKNOWN_KINDS: [QuantityKind; N] = M::UNKNOWN_KINDS;
+    const OUTPUT_KINDS: [QuantityKind; NO] = M::OUTPUT_KINDS;
+    const FOLLOWERS: [bool; N] = M::FOLLOWERS;
+    const CLOSED_FORM_ANGLES: [bool; N] = M::CLOSED_FORM_ANGLES;
 
     fn solver_config(&self) -> SweepConfig {
         self.config

@@ -619,13 +619,15 @@ macro_rules! __columns {
 pub use crate::__columns as columns;
 
 /// The kinds of quantity of a generated mechanism's columns in its `Mechanism` implementation,
-/// from one letter each (see [`QuantityKind`]): `kinds!(NI b"a", N b"al", NO b"ll")`.
+/// from one letter each (see [`QuantityKind`]): `kinds!(NI b"a", N b"Al", NO b"ll")`. The
+/// unknowns' upper-case letters are the `CLOSED_FORM_ANGLES`.
 #[doc(hidden)]
 #[macro_export]
 macro_rules! __kinds {
     ($ni:literal $i:literal, $n:literal $u:literal, $no:literal $o:literal) => {
         const INPUT_KINDS: [$crate::QuantityKind; $ni] = $crate::QuantityKind::__from_codes($i);
         const UNKNOWN_KINDS: [$crate::QuantityKind; $n] = $crate::QuantityKind::__from_codes($u);
+        const CLOSED_FORM_ANGLES: [bool; $n] = $crate::QuantityKind::__upper_case($u);
         const OUTPUT_KINDS: [$crate::QuantityKind; $no] = $crate::QuantityKind::__from_codes($o);
     };
 }

@@ -28,18 +28,33 @@ pub const LENGTH_UNIT: &str = "length unit";
 
 impl QuantityKind {
     /// For the expansion of `mechanism!`: kinds from one letter each (`a`ngle, `l`ength,
-    /// `d`imensionless, anything else not inferred), to keep the generated code short.
+    /// `d`imensionless, anything else not inferred), to keep the generated code short. An
+    /// upper-case letter is the same kind (it marks an unknown a closed-form block gives as an
+    /// angle: [`QuantityKind::__upper_case`]).
     #[doc(hidden)]
     pub const fn __from_codes<const K: usize>(codes: &[u8; K]) -> [QuantityKind; K] {
         let mut out = [QuantityKind::Other; K];
         let mut i = 0;
         while i < K {
-            out[i] = match codes[i] {
+            out[i] = match codes[i].to_ascii_lowercase() {
                 b'a' => QuantityKind::Angle,
                 b'l' => QuantityKind::Length,
                 b'd' => QuantityKind::Dimensionless,
                 _ => QuantityKind::Other,
             };
+            i += 1;
+        }
+        out
+    }
+
+    /// For the expansion of `mechanism!`: which of the letters of [`QuantityKind::__from_codes`]
+    /// are upper-case (the unknowns of `Mechanism::CLOSED_FORM_ANGLES`).
+    #[doc(hidden)]
+    pub const fn __upper_case<const K: usize>(codes: &[u8; K]) -> [bool; K] {
+        let mut out = [false; K];
+        let mut i = 0;
+        while i < K {
+            out[i] = codes[i].is_ascii_uppercase();
             i += 1;
         }
         out

@@ -45,6 +45,12 @@ pub trait Mechanism<const N: usize, const NI: usize, const NO: usize> {
     /// [`Sweep`](crate::Sweep) judges its steps by the other unknowns only. `mechanism!` finds
     /// them; by default none follows, for hand-written implementations.
     const FOLLOWERS: [bool; N] = [false; N];
+    /// Per unknown: whether a closed-form block gives it as an angle from its sine and cosine.
+    /// A [`Sweep`](crate::Sweep)'s cache then advances it from an anchor, an earlier angle of
+    /// the same unknown, and the sweep rejects a step that leaves such an angle more than a
+    /// radian from its prediction (an anchor a turn away would put it there). `mechanism!`
+    /// finds them; by default none is, for hand-written implementations.
+    const CLOSED_FORM_ANGLES: [bool; N] = [false; N];
 
     /// Parameter values in declaration order.
     ///

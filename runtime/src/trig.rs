@@ -38,7 +38,8 @@ pub trait InputTrig {
     /// The angle of a closed-form block's unknown `slot` (its index among the unknowns), whose
     /// sine `s` and cosine `c` the block has just computed: `exact()` (libm's `acos`, `asin` or
     /// `atan2`, moved to the turn of `guess`), or that same angle obtained otherwise. The default
-    /// is `exact()`; a sweep's cache computes it from an earlier exact angle of the same unknown.
+    /// is `exact()`; a sweep's cache computes it from an earlier exact angle of the same unknown,
+    /// on that angle's turn (see [`Rotating`]).
     #[inline(always)]
     fn angle(&mut self, slot: usize, s: f64, c: f64, guess: f64, exact: impl FnOnce() -> f64) -> f64 {
         let _ = (slot, s, c, guess);
@@ -75,11 +76,6 @@ pub const SLOTS: usize = 8;
 /// On `|x| <= 2^-3` the series of `asin x` in [`small_asin`] is exact to 5e-18 (its first omitted
 /// term is `6435 x^17 / 557056`).
 pub const ANCHOR_RANGE: f64 = 0.125;
-
-/// Largest distance of an advanced angle from its guess (radians): within it the angle is on the
-/// guess's turn, as libm's would be moved (which takes the representative within a half turn).
-/// Farther (a guess from elsewhere, or a stale anchor) libm computes the angle.
-const ANCHOR_NEAR_GUESS: f64 = 1.0;
 
 /// One argument's last values.
 #[derive(Clone, Copy, Debug)]
@@ -148,9 +144,16 @@ impl Rotating {
         for s in &mut self.slots {
             s.age = RESYNC;
         }
-        for a in &mut self.anchors {
-            *a = Anchor::INVALID;
-        }
+        self.forget_anchors();
+    }
+
+    /// Drops every anchor: the next call of every angle goes to libm, on its guess's turn. A
+    /// sweep calls it after a step it did not accept, where an anchor may have been the cause
+    /// (see [`InputTrig::angle`]).
+    #[cold]
+    #[inline(never)]
+    pub fn forget_anchors(&mut self) {
+        self.anchors = [Anchor::INVALID; SLOTS];
     }
 }
 
@@ -215,12 +218,20 @@ impl InputTrig for Rotating {
     /// `q = q_a + asin(x)` from the slot's anchor `q_a`, with `x = sin(q - q_a) = s cos q_a -
     /// c sin q_a` (well conditioned: its rounding is about an ulp of 1, whatever the angle), when
     /// `|x| < ANCHOR_RANGE y` with `y = cos(q - q_a)` (one comparison for both conditions: `|x|`
-    /// within [`ANCHOR_RANGE`], and `q` on the anchor's side, `y > 0`) and the result is near the
-    /// guess. The anchor is libm's angle, so errors do not accumulate: the result is
-    /// within a few ulps of libm's. Otherwise, and when exact (near a singular position, where a
-    /// rod's cosine is small and carries the root's rounding), libm's, which becomes the anchor.
+    /// within [`ANCHOR_RANGE`], and `q` on the anchor's side, `y > 0`). The anchor is libm's
+    /// angle, so errors do not accumulate: the result is within a few ulps of libm's. Otherwise,
+    /// and when exact (near a singular position, where a rod's cosine is small and carries the
+    /// root's rounding), libm's, which becomes the anchor.
+    ///
+    /// The result is on the anchor's turn, which libm chose from an earlier guess; the guess of
+    /// this call is not looked at. In a sweep the two turns agree: an angle leaves the anchor's
+    /// range, and gets a new anchor, long before it has turned a whole turn. Should they ever
+    /// differ, the angle lies a turn from its prediction: the sweep rejects the step (it caps
+    /// the distance of every `Mechanism::CLOSED_FORM_ANGLES` angle from its prediction) and
+    /// forgets the anchors ([`Rotating::forget_anchors`]) before it tries again. Testing the
+    /// guess here cost every angle of every step 5 instructions.
     #[inline(always)]
-    fn angle(&mut self, slot: usize, s: f64, c: f64, guess: f64, exact: impl FnOnce() -> f64) -> f64 {
+    fn angle(&mut self, slot: usize, s: f64, c: f64, _guess: f64, exact: impl FnOnce() -> f64) -> f64 {
         let Some(a) = self.anchors.get_mut(slot) else {
             return exact();
         };
@@ -228,10 +239,7 @@ impl InputTrig for Rotating {
         let y = c * a.cos + s * a.sin;
         // NaN fails the comparison.
         if x.abs() < ANCHOR_RANGE * y {
-            let q = a.q + small_asin(x);
-            if (q - guess).abs() <= ANCHOR_NEAR_GUESS {
-                return q;
-            }
+            return a.q + small_asin(x);
         }
         let q = exact();
         // An exact cache keeps no anchor.
@@ -341,8 +349,9 @@ mod tests {
         assert!(worst_small <= 4.5e-16, "worst deviation of angles below 1: {worst_small:e}");
     }
 
-    /// The first call, a jump beyond the anchor's range, a guess on another turn, an exact cache,
-    /// a slot beyond the cache and a NaN are all libm's own (the `exact` closure's).
+    /// The first call, a jump beyond the anchor's range, forgotten anchors, an exact cache, a
+    /// slot beyond the cache and a NaN are all libm's own (the `exact` closure's). A guess on
+    /// another turn is not looked at: the angle stays on its anchor's turn.
     #[test]
     fn angles_fall_back_to_libm_where_they_cannot_be_advanced() {
         let mut cache = Rotating::default();
@@ -353,10 +362,15 @@ mod tests {
         let (s, c) = at(0.51);
         let q = cache.angle(0, s, c, 0.51, || f64::NAN);
         assert!((q - 0.51).abs() < 4e-16, "{q}");
-        // A jump of 0.3 rad, a guess a turn away, a slot beyond the cache: `exact`.
+        // A jump of 0.3 rad: `exact`, which becomes the anchor.
         let (s, c) = at(0.81);
-        assert_eq!(cache.angle(0, s, c, 0.81, || 7.0), 7.0);
+        assert_eq!(cache.angle(0, s, c, 0.81, || 0.81), 0.81);
+        // A guess a turn away: still on the anchor's turn, without `exact`.
         let (s, c) = at(0.82);
+        let q = cache.angle(0, s, c, 0.82 - core::f64::consts::TAU, || f64::NAN);
+        assert!((q - 0.82).abs() < 4e-16, "{q}");
+        // Forgotten anchors, a slot beyond the cache: `exact`.
+        cache.forget_anchors();
         assert_eq!(cache.angle(0, s, c, 0.82 - core::f64::consts::TAU, || -9.0), -9.0);
         assert_eq!(cache.angle(SLOTS, s, c, 0.82, || 3.0), 3.0);
         // A NaN sine goes to `exact`, and does not become the anchor.

@@ -73,24 +73,32 @@ fn constants(model: &Model, plan: &Plan, t: &Types) -> TokenStream {
 
 /// `INPUT_KINDS`, `UNKNOWN_KINDS`, `OUTPUT_KINDS` of the `Mechanism` implementation: the kind
 /// of quantity of every column (see [`crate::plan::kinds`]), one letter each, written out by
-/// the runtime's macro (the inherent constants forward to them).
+/// the runtime's macro (the inherent constants forward to them). An unknown a closed-form block
+/// gives as an angle has its letter in upper case: the runtime's `CLOSED_FORM_ANGLES`.
 fn kind_constants(model: &Model, plan: &Plan) -> TokenStream {
     let rt = runtime();
     let Dims { n, ni, no, .. } = Dims::of(plan);
     let kinds = crate::plan::kinds::classify(model, &plan.graph, &plan.residuals, &plan.outputs);
-    let list = |ks: &[Kind]| {
+    let closed_form_angles: Vec<usize> =
+        plan.blocks.iter().filter_map(|bp| bp.closed.as_ref()).flat_map(|r| r.form.angles()).collect();
+    let list = |ks: &[Kind], upper: &dyn Fn(usize) -> bool| {
         let codes: String = ks
             .iter()
-            .map(|k| match k {
-                Kind::Angle => 'a',
-                Kind::Length => 'l',
-                Kind::Dimensionless => 'd',
-                Kind::Other => 'o',
+            .enumerate()
+            .map(|(c, k)| {
+                let letter = match k {
+                    Kind::Angle => 'a',
+                    Kind::Length => 'l',
+                    Kind::Dimensionless => 'd',
+                    Kind::Other => 'o',
+                };
+                if upper(c) { letter.to_ascii_uppercase() } else { letter }
             })
             .collect();
         proc_macro2::Literal::byte_string(codes.as_bytes())
     };
-    let (i, u, o) = (list(&kinds.inputs), list(&kinds.unknowns), list(&kinds.outputs));
+    let (i, o) = (list(&kinds.inputs, &|_| false), list(&kinds.outputs, &|_| false));
+    let u = list(&kinds.unknowns, &|u| closed_form_angles.contains(&u));
     quote!(#rt::kinds!(#ni #i, #n #u, #no #o);)
 }
 

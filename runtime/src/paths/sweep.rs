@@ -194,6 +194,12 @@ const MAX_ATTEMPTS_PER_SAMPLE: u32 = 100_000;
 /// singular position they come from libm, as in a point solve.
 const ROTATE_MIN_PIVOT: f64 = 0.1;
 
+/// Largest distance (radians) of a `Mechanism::CLOSED_FORM_ANGLES` angle from its prediction in
+/// an accepted step. A step this long is far too coarse for the prediction anyway; a limit that
+/// holds in every unit of length (`max_dist` mixes the unknowns' units) and that an angle on the
+/// wrong turn (2 pi off) always exceeds.
+const ANGLE_CAP: f64 = 1.0;
+
 /// A step's prediction (see `Sweep::predict`).
 struct Prediction<const N: usize> {
     q: [f64; N],
@@ -476,10 +482,16 @@ where
     #[inline(always)]
     fn judge(&self, n: &Kin<N, NI, NO>, p: &Prediction<N>) -> Outcome {
         let d = &self.path.delta;
-        let (mut dist, mut slope_err) = (0.0f64, 0.0f64);
+        let (mut dist, mut turn, mut slope_err) = (0.0f64, 0.0f64, 0.0f64);
         // Followers are smooth functions of the judged unknowns (see `Mechanism::FOLLOWERS`).
         for &u in Self::JUDGED.as_slice() {
-            dist = dist.max((n.q[u] - p.q[u]).abs());
+            let e = (n.q[u] - p.q[u]).abs();
+            dist = dist.max(e);
+            // A constant after unrolling: where every judged unknown is such an angle, `turn`
+            // is `dist` and costs one comparison.
+            if M::CLOSED_FORM_ANGLES[u] {
+                turn = turn.max(e);
+            }
             // From -0.0, as in `predict`.
             let mut s1 = -0.0;
             for i in 0..NI {
@@ -495,7 +507,9 @@ where
             // crossing branch. (Told apart from a far step by that state's pivot, should the step
             // become the last one tried: a separate outcome costs every step an instruction.)
             Outcome::Far
-        } else if dist > p.max_dist || slope_err > p.max_slope_err {
+        } else if dist > p.max_dist || slope_err > p.max_slope_err || turn > ANGLE_CAP {
+            // `turn`: an angle the cache advanced from an anchor on another turn (see
+            // `InputTrig::angle`), whatever the units of the other unknowns make `max_dist`.
             Outcome::Far
         } else {
             Outcome::Accept
@@ -618,6 +632,9 @@ where
                 outcome => {
                     successes = 0;
                     self.h = step * 0.5;
+                    // The next attempt takes its closed-form angles from libm, on the turns of
+                    // its guess: an anchor may have put one a turn away.
+                    self.trig.forget_anchors();
                     if self.h < self.h_min {
                         // The step cannot be made however small: find out why.
                         let k = *self.cur();

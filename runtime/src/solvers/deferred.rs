@@ -40,8 +40,9 @@ pub const SURELY_PRECISE_ANGLE: f64 = 16_000.0;
 
 /// A closed-form angle whose guess is this large or smaller is within [`SURELY_PRECISE_ANGLE`]:
 /// the angle lies within `π` of its guess (moved to the guess's turn, or `asin` on the guess's
-/// side of the vertical and turn; within 1 when a sweep's cache advances it from an anchor),
-/// and the margin of 8 leaves room to spare. A deferred kernel tests its closed-form angles'
+/// side of the vertical and turn). A sweep's cache may instead advance it from an anchor, by
+/// less than `asin(1/8)`; the anchor is libm's angle, within `π` of the guess of an earlier
+/// call, which passed this test. The margin of 8 leaves room to spare. A deferred kernel tests its closed-form angles'
 /// guesses against it on entry, without reading the configuration; larger ones (2545 turns) go
 /// to the checked kernel, which tests the angles against the configured bound.
 pub const SURELY_PRECISE_GUESS: f64 = SURELY_PRECISE_ANGLE - 8.0;
@@ -125,12 +126,15 @@ impl<const CHECKED: bool> Checks<CHECKED> {
     }
 
     /// Deferred, whether the closed-form angles' guesses, whose magnitudes sum to `magnitudes`,
-    /// may lead to angles too large to be accurate (beyond [`SURELY_PRECISE_GUESS`]): the kernel
-    /// then answers as the checked one. (A NaN guess makes its angle NaN, which the end test
-    /// sees.)
+    /// may lead to angles too large to be accurate (beyond [`SURELY_PRECISE_GUESS`]), or are NaN:
+    /// the kernel then answers as the checked one. (A sweep's cache may advance an angle without
+    /// reading its guess, so a NaN guess must not get that far.)
     #[inline(always)]
+    // The negated comparison is the point: true for NaN, and one instruction per step less than
+    // `> || is_nan()` as compiled (callgrind).
+    #[allow(clippy::neg_cmp_op_on_partial_ord)]
     pub fn far(self, magnitudes: f64) -> bool {
-        !CHECKED && magnitudes > SURELY_PRECISE_GUESS
+        !CHECKED && !(magnitudes <= SURELY_PRECISE_GUESS)
     }
 
     /// The checked kernel's answer from the deferred one's arguments: where a test failed.
