@@ -5,10 +5,13 @@
 //! pivot where it arises. Compared here over inputs and guesses that reach every failure: links
 //! that cannot reach, a pin over its pivot, change points, non-finite inputs and guesses, angles
 //! too many turns out, an angle between the conservative bound of the entry test and the
-//! configured one, and a Newton block fed by a closed form that failed.
+//! configured one, a Newton block fed by a closed form that failed, and parameters non-finite,
+//! zero, negative, huge or tiny. (The deferred kernel's end sums only the values whose
+//! finiteness the others' does not imply: a value left out that the sum missed would show as a
+//! state where the checked kernel finds an error.)
 
 use kinloop::__gen::{ByValue, Libm};
-use kinloop::{Mechanism, NewtonConfig};
+use kinloop::{Mechanism, NewtonConfig, Sensitivities};
 use kinloop_fixtures::gear_lever::GearLever;
 use kinloop_fixtures::{ClassFourCore, FiveBar, FourBar, RhombicDrive, SliderCrank};
 use std::f64::consts::TAU;
@@ -170,4 +173,34 @@ fn newton_blocks_alone_and_after_a_failed_closed_form() {
     tally.add(sweep_all(&DyadThenNewton { a: 2.0, b: 1.5, c: 2.0, d: 3.0, e: 2.0 }));
     tally.add(sweep_all(&DyadThenNewton::default()));
     tally.met(&["NoAssembly", "NoConvergence", "NonFinite", "TooManyTurns"]);
+}
+
+/// Every parameter in turn NaN, infinite, zero, negative, huge (its square overflows) or tiny
+/// (its square underflows).
+#[test]
+fn extreme_parameters() {
+    const VALUES: [f64; 7] = [f64::NAN, f64::INFINITY, -f64::INFINITY, 0.0, -1.0, 1e300, 1e-300];
+    let mut tally = Tally::default();
+    for v in VALUES {
+        for k in 0..4 {
+            let mut p = [1.0, 3.0, 2.5, 3.2];
+            p[k] = v;
+            tally.add(sweep_all(&FourBar { a: p[0], b: p[1], c: p[2], d: p[3] }));
+        }
+        for k in 0..3 {
+            let mut p = [1.0, 3.0, 0.5];
+            p[k] = v;
+            tally.add(sweep_all(&SliderCrank { r: p[0], l: p[1], e: p[2] }));
+            let mut p = [2.0, 1.3, 3.0];
+            p[k] = v;
+            tally.add(sweep_all(&GearLever { l_c: p[0], l_p: p[1], u: p[2] }));
+        }
+        let rhombic = RhombicDrive::default();
+        for k in 0..rhombic.params_flat().len() {
+            let mut p = rhombic.params_flat();
+            p[k] = v;
+            tally.add(sweep_all(&rhombic.with_params_flat(p)));
+        }
+    }
+    tally.met(&["NoAssembly", "NonFinite", "Singular"]);
 }

@@ -38,8 +38,8 @@ pub trait InputTrig {
     /// The angle of a closed-form block's unknown `slot` (its index among the unknowns), whose
     /// sine `s` and cosine `c` the block has just computed: `exact()` (libm's `acos`, `asin` or
     /// `atan2`, moved to the turn of `guess`), or that same angle obtained otherwise. The default
-    /// is `exact()`; a sweep's cache computes it from an earlier exact angle of the same unknown,
-    /// on that angle's turn (see [`Rotating`]).
+    /// is `exact()`; a sweep's cache (`Rotating`) computes it from an earlier exact angle of the
+    /// same unknown, on that angle's turn.
     #[inline(always)]
     fn angle(&mut self, slot: usize, s: f64, c: f64, guess: f64, exact: impl FnOnce() -> f64) -> f64 {
         let _ = (slot, s, c, guess);

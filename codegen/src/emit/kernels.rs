@@ -16,6 +16,7 @@ use super::schedule::{Schedule, ScopeKind, ScopeSpec, schedule};
 use super::sparse;
 use super::{lit, runtime};
 use crate::dag::{Graph, Leaf, NodeId};
+use crate::plan::finite::{self, Term};
 use crate::plan::{BlockPlan, Plan, Stages, pair_index, pairs};
 use proc_macro2::{Ident, TokenStream};
 use quote::{format_ident, quote};
@@ -791,51 +792,87 @@ impl Kernel<'_> {
     /// runtime's `checked`). The usual path returns the state itself (passed through `checked`,
     /// the ~200-byte state was copied once more).
     fn finish(&self) -> TokenStream {
-        let (plan, names) = (self.plan, self.names);
-        let ni = plan.ni;
-        let mut terms: Vec<TokenStream> = names.unknowns.iter().map(|q| quote!(#q)).collect();
-        for u in 0..plan.n {
-            for i in 0..ni {
-                let v = names.tan(u, i);
-                terms.push(quote!(#v));
-                terms.extend((0..ni).map(|j| {
-                    let w = names.tan2(u, i, j);
-                    quote!(#w)
-                }));
-            }
-        }
-        for (o, &node) in plan.outputs.iter().enumerate() {
-            terms.push(self.op(node));
-            terms.extend(names.operands(self.g, &plan.out_d1[o]));
-            terms.extend(names.operands(self.g, &plan.out_d2[o]));
-        }
+        let (sum, checks) = self.finite_sum();
         if self.deferred {
-            return self.finish_deferred(balanced_sum(terms));
+            return self.finish_deferred(sum, checks);
         }
-        let (sum, kin, rt, guess) = (balanced_sum(terms), self.kin(), &self.rt, self.guess_arg());
+        let (kin, rt, guess) = (self.kin(), &self.rt, self.guess_arg());
         // The state is built where it goes on the hot path: in the returned value, or in a
         // sweep's slot (`__sink`). A state built once and passed to the check is copied into the
         // result: a memcpy per step.
-        let sink = if names.sweep_kernel() { quote!(__sink) } else { quote!(#rt::ByValue) };
+        let sink = if self.names.sweep_kernel() { quote!(__sink) } else { quote!(#rt::ByValue) };
         quote! {
             let __sum: f64 = #sum;
             #rt::checked_with(self, __sum, #guess, #sink, || #kin)
         }
     }
 
+    /// The sum of the state's values whose finiteness the kernel tests, and (deferred) the
+    /// closed-form blocks' check sums it tests too. In the fused kernel, only the values whose
+    /// finiteness the others' does not imply (see `plan::finite`); a sum of the whole state
+    /// elsewhere.
+    fn finite_sum(&self) -> (TokenStream, Vec<TokenStream>) {
+        let (plan, names, g) = (self.plan, self.names, self.g);
+        let ni = plan.ni;
+        let leaf = |l: Leaf| g.find(crate::dag::Op::Leaf(l)).map(Term::Node);
+        let mut terms: Vec<(Option<Term>, TokenStream)> = Vec::new();
+        for (u, q) in names.unknowns.iter().enumerate() {
+            terms.push((leaf(Leaf::Unknown(u as u16)), quote!(#q)));
+        }
+        for u in 0..plan.n {
+            for i in 0..ni {
+                let v = names.tan(u, i);
+                terms.push((leaf(Leaf::Tan { unknown: u as u16, input: i as u16 }), quote!(#v)));
+                for j in 0..ni {
+                    let (a, b) = (i.min(j) as u16, i.max(j) as u16);
+                    let w = names.tan2(u, i, j);
+                    terms.push((leaf(Leaf::Tan2 { unknown: u as u16, i: a, j: b }), quote!(#w)));
+                }
+            }
+        }
+        for (o, &node) in plan.outputs.iter().enumerate() {
+            for n in std::iter::once(node).chain(plan.out_d1[o].iter().copied()).chain(plan.out_d2[o].iter().copied()) {
+                terms.push((Some(Term::Node(n)), self.op(n)));
+            }
+        }
+        let first_check = terms.len();
+        if self.deferred {
+            for b in (0..plan.blocks.len()).filter(|&b| plan.blocks[b].closed.is_some()) {
+                let check = format_ident!("__check{}", b);
+                terms.push((Some(Term::Check(b)), quote!(#check)));
+            }
+        }
+        let keep = self.kept_terms(&terms);
+        let (mut sum, mut checks) = (Vec::new(), Vec::new());
+        for (k, ((_, t), kept)) in terms.into_iter().zip(keep).enumerate() {
+            if kept {
+                if k < first_check { sum.push(t) } else { checks.push(t) }
+            }
+        }
+        (balanced_sum(sum), checks)
+    }
+
+    /// Per term of [`Kernel::finite_sum`], whether the sum includes it: in the fused kernel
+    /// each value once, and only when the others' finiteness does not imply its own; elsewhere
+    /// all.
+    fn kept_terms(&self, terms: &[(Option<Term>, TokenStream)]) -> Vec<bool> {
+        if self.mode != Mode::Fused {
+            return vec![true; terms.len()];
+        }
+        let mut seen = HashSet::new();
+        let ids: Vec<Term> = terms.iter().filter_map(|(t, _)| *t).filter(|t| seen.insert(*t)).collect();
+        let summed: HashSet<Term> =
+            ids.iter().zip(finite::summed(self.plan, &ids)).filter(|(_, s)| *s).map(|(t, _)| *t).collect();
+        let mut done = HashSet::new();
+        terms.iter().map(|(t, _)| t.is_none_or(|t| summed.contains(&t) && done.insert(t))).collect()
+    }
+
     /// The end of a kernel whose checks are switched by `__CHECKED`: with it, the checked
     /// kernel's end (`sum` is the sum of the state's values). Otherwise the state is accepted
-    /// when `sum` and the closed-form blocks' check sums are finite and the smallest pivot ratio
-    /// is at least `singular_tol`; else the checked kernel answers.
-    fn finish_deferred(&self, sum: TokenStream) -> TokenStream {
+    /// when `sum` and the closed-form blocks' check sums `checks` are finite and the smallest
+    /// pivot ratio is at least `singular_tol`; else the checked kernel answers.
+    fn finish_deferred(&self, sum: TokenStream, mut checks: Vec<TokenStream>) -> TokenStream {
         let kin = self.kin();
-        let mut checks: Vec<TokenStream> = (0..self.plan.blocks.len())
-            .filter(|&b| self.plan.blocks[b].closed.is_some())
-            .map(|b| {
-                let check = format_ident!("__check{}", b);
-                quote!(#check)
-            })
-            .collect();
         checks.push(quote!(__sum));
         let all = balanced_sum(checks);
         quote! {

@@ -18,6 +18,7 @@
 //! owns the finished graph and is not changed afterwards.
 
 pub mod analogs;
+pub mod finite;
 pub mod followers;
 pub mod kinds;
 pub mod magnitudes;

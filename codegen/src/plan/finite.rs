@@ -1,0 +1,300 @@
+//! Which of a kernel's values its finiteness test must add up.
+//!
+//! A kernel accepts its state when the sum of the state's values is finite (NaN and infinity
+//! propagate through a sum). Most of those values are also operands of others: a second analog
+//! `d2q_x_c = (r_p cos phi - l_p (dq² cos q + sin q d2q)) / -1` is not finite when `cos q`,
+//! `dq` or `d2q` of the rod is not, so once it is in the sum they need not be. This pass keeps
+//! a value out of the sum when the finiteness of the values kept implies its own, by rules that
+//! hold for every IEEE operation as the generated code evaluates it:
+//!
+//! * an operand of `+`, `-`, `*`, of a negation, of `sqrt`, `abs`, `sin`, `cos` or of a
+//!   positive integer power, and the numerator of a division, is finite when the result is
+//!   (infinity and NaN give infinity or NaN; the converse, overflow, is not used);
+//! * the solution of a non-singular linear system (an analog, a linear block's unknowns) is
+//!   finite only when every right-hand side row is: some unknown carries a non-finite row
+//!   (the kernel rejects a singular or non-finite matrix through its pivot ratio);
+//! * a closed-form angle is finite when its cosine and sine are (it is their `atan2`, or an
+//!   anchor's angle advanced by a rotation of them, on the turn of a finite guess), and a
+//!   closed-form block's check sum (its sines and cosines) when all of them are.
+//!
+//! Not used: a sine or cosine that a sweep's cache computes (it rotates cached values, whatever
+//! its argument), an unknown that Newton solved, and every other function (`atan2(∞, ∞)` is
+//! finite).
+
+use super::{BlockPlan, Plan, pairs};
+use crate::dag::{Func, Leaf, NodeId, Op};
+use std::collections::HashSet;
+
+/// One value of a kernel's finiteness test.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
+pub enum Term {
+    /// A graph node (an unknown, an analog, an output or one of its derivatives).
+    Node(NodeId),
+    /// The check sum of closed-form block `b` (its sines and cosines; a length's or a slider's
+    /// guess too, which no rule covers).
+    Check(usize),
+}
+
+/// Largest `terms × nodes` the analysis visits; beyond it every term is summed (a block of
+/// hundreds of coupled loops, where the sum's additions do not matter).
+const BUDGET: usize = 50_000_000;
+
+/// Per term, whether the sum must include it: the terms left out are finite whenever the terms
+/// kept are. A term given twice is kept at most once. Terms are left out greedily in the order
+/// given (put the values that others are computed from first).
+pub fn summed(plan: &Plan, terms: &[Term]) -> Vec<bool> {
+    let mut seen = HashSet::new();
+    let mut keep: Vec<bool> = terms.iter().map(|t| !is_finite_constant(plan, t) && seen.insert(*t)).collect();
+    if terms.len().saturating_mul(plan.graph.len()) > BUDGET {
+        return keep;
+    }
+    let rules = Rules::new(plan);
+    for t in 0..terms.len() {
+        if !keep[t] {
+            continue;
+        }
+        keep[t] = false;
+        let kept = terms.iter().zip(&keep).filter(|(_, k)| **k).map(|(term, _)| rules.id(*term));
+        let hit = rules.closure(kept);
+        keep[t] = !hit[rules.id(terms[t])];
+    }
+    keep
+}
+
+fn is_finite_constant(plan: &Plan, t: &Term) -> bool {
+    matches!(t, Term::Node(n) if plan.graph.as_const(*n).is_some_and(f64::is_finite))
+}
+
+/// The implications among a plan's values: a node implies its operands' finiteness (see
+/// [`Rules::operands`]); a group's members together imply its target's.
+struct Rules<'a> {
+    plan: &'a Plan,
+    /// Sines and cosines a closed-form solve defines (not computed from the angle).
+    closed_trig: HashSet<NodeId>,
+    /// Unknowns solved by Newton.
+    newton: HashSet<NodeId>,
+    /// `(target, members)`: the target is finite when every member is.
+    groups: Vec<(usize, Vec<usize>)>,
+    /// Per value: the groups it is a member of.
+    member_of: Vec<Vec<usize>>,
+}
+
+impl<'a> Rules<'a> {
+    fn new(plan: &'a Plan) -> Self {
+        let g = &plan.graph;
+        let leaf = |l: Leaf| g.find(Op::Leaf(l));
+        let u16_of = |k: usize| k as u16;
+        let mut rules = Rules {
+            plan,
+            closed_trig: HashSet::new(),
+            newton: HashSet::new(),
+            groups: Vec::new(),
+            member_of: vec![Vec::new(); g.len() + plan.blocks.len()],
+        };
+        for (b, bp) in plan.blocks.iter().enumerate() {
+            let leaves = |make: &dyn Fn(u16) -> Leaf| -> Option<Vec<usize>> {
+                bp.unknowns.iter().map(|&u| leaf(make(u16_of(u))).map(|n| n.index())).collect()
+            };
+            if bp.linear {
+                if let Some(qs) = leaves(&|u| Leaf::Unknown(u)) {
+                    rules.rows(&bp.rhs0, &qs);
+                }
+            } else if bp.closed.is_none() {
+                rules.newton.extend(bp.unknowns.iter().filter_map(|&u| leaf(Leaf::Unknown(u16_of(u)))));
+            }
+            for i in 0..plan.ni {
+                if let Some(tans) = leaves(&|u| Leaf::Tan { unknown: u, input: u16_of(i) }) {
+                    rules.rows(&column(&bp.vel, i), &tans);
+                }
+            }
+            for (p, &(i, j)) in pairs(plan.ni).iter().enumerate() {
+                if let Some(tans) = leaves(&|u| Leaf::Tan2 { unknown: u, i: u16_of(i), j: u16_of(j) }) {
+                    rules.rows(&column(&bp.acc, p), &tans);
+                }
+            }
+            rules.closed(b, bp, &leaf);
+        }
+        rules
+    }
+
+    /// The rules of a closed-form block `b`: each angle from its cosine and sine, the check sum
+    /// from all of them when it sums nothing else.
+    fn closed(&mut self, b: usize, bp: &BlockPlan, leaf: &dyn Fn(Leaf) -> Option<NodeId>) {
+        let Some(rec) = &bp.closed else { return };
+        self.closed_trig.extend(rec.sin_cos.iter().flatten());
+        for (u, pair) in rec.form.angles().into_iter().zip(&rec.sin_cos) {
+            if let Some(q) = leaf(Leaf::Unknown(u as u16)) {
+                self.group(q.index(), pair.iter().map(|n| n.index()).collect());
+            }
+        }
+        if rec.form.angles().len() == bp.unknowns.len() {
+            let all = rec.sin_cos.iter().flatten().map(|n| n.index()).collect();
+            self.group(self.plan.graph.len() + b, all);
+        }
+    }
+
+    /// A linear solve: each right-hand side row is finite when every solution is.
+    fn rows(&mut self, rhs: &[NodeId], solution: &[usize]) {
+        for r in rhs {
+            self.group(r.index(), solution.to_vec());
+        }
+    }
+
+    fn group(&mut self, target: usize, members: Vec<usize>) {
+        for &m in &members {
+            self.member_of[m].push(self.groups.len());
+        }
+        self.groups.push((target, members));
+    }
+
+    /// The index of a term among the values.
+    fn id(&self, t: Term) -> usize {
+        match t {
+            Term::Node(n) => n.index(),
+            Term::Check(b) => self.plan.graph.len() + b,
+        }
+    }
+
+    /// The operands whose finiteness node `w`'s implies.
+    fn operands(&self, w: usize) -> Vec<NodeId> {
+        if w >= self.plan.graph.len() {
+            return Vec::new();
+        }
+        let node = NodeId(w as u32);
+        let level = |a: NodeId| self.plan.level[a.index()];
+        let ops: Vec<NodeId> = match self.plan.graph.op(node) {
+            Op::Add(a, b) | Op::Sub(a, b) | Op::Mul(a, b) => vec![a, b],
+            Op::Div(a, _) | Op::Neg(a) => vec![a],
+            Op::Powi(a, k) if k >= 1 => vec![a],
+            Op::Func(Func::Sqrt | Func::Abs, a) => vec![a],
+            // A sweep's cache computes the sines and cosines of arguments free of unknowns.
+            Op::Func(Func::Sin | Func::Cos, a) if !self.closed_trig.contains(&node) && level(a) >= 0 => vec![a],
+            _ => Vec::new(),
+        };
+        ops.into_iter().filter(|a| !self.newton.contains(a)).collect()
+    }
+
+    /// The values whose finiteness follows from that of `kept`'s (`kept` included).
+    fn closure(&self, kept: impl Iterator<Item = usize>) -> Vec<bool> {
+        let mut hit = vec![false; self.member_of.len()];
+        let mut missing: Vec<usize> = self.groups.iter().map(|(_, m)| m.len()).collect();
+        let mut stack: Vec<usize> = kept.collect();
+        while let Some(v) = stack.pop() {
+            if std::mem::replace(&mut hit[v], true) {
+                continue;
+            }
+            stack.extend(self.operands(v).into_iter().map(|a| a.index()).filter(|&a| !hit[a]));
+            for &k in &self.member_of[v] {
+                missing[k] -= 1;
+                if missing[k] == 0 && !hit[self.groups[k].0] {
+                    stack.push(self.groups[k].0);
+                }
+            }
+        }
+        hit
+    }
+}
+
+/// Column `k` of rows `m`.
+fn column(m: &[Vec<NodeId>], k: usize) -> Vec<NodeId> {
+    m.iter().filter_map(|row| row.get(k).copied()).collect()
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// The terms of a fused kernel's state (unknowns, analogs, outputs and their analogs, the
+    /// closed-form blocks' checks) for a one-input declaration, with their names, and the names
+    /// of those the sum keeps.
+    fn kept(src: &str) -> Vec<String> {
+        let a = crate::analyze(src.parse().expect("tokens")).unwrap_or_else(|e| panic!("{e}"));
+        let mut model = a.model;
+        let plan = crate::plan::build(&mut model, &a.blocks, false);
+        let g = &plan.graph;
+        let leaf = |l: Leaf| Term::Node(g.find(Op::Leaf(l)).expect("leaf"));
+        let mut terms = Vec::new();
+        for (k, u) in model.unknowns.iter().enumerate() {
+            let k = k as u16;
+            terms.push((leaf(Leaf::Unknown(k)), u.name.to_string()));
+            terms.push((leaf(Leaf::Tan { unknown: k, input: 0 }), format!("d{}", u.name)));
+            terms.push((leaf(Leaf::Tan2 { unknown: k, i: 0, j: 0 }), format!("d2{}", u.name)));
+        }
+        for (o, &n) in plan.outputs.iter().enumerate() {
+            terms.push((Term::Node(n), format!("out{o}")));
+            terms.push((Term::Node(plan.out_d1[o][0]), format!("dout{o}")));
+            terms.push((Term::Node(plan.out_d2[o][0]), format!("d2out{o}")));
+        }
+        for b in (0..plan.blocks.len()).filter(|&b| plan.blocks[b].closed.is_some()) {
+            terms.push((Term::Check(b), format!("check{b}")));
+        }
+        let ids: Vec<Term> = terms.iter().map(|(t, _)| *t).collect();
+        let summed = summed(&plan, &ids);
+        terms.into_iter().zip(summed).filter(|(_, s)| *s).map(|((_, name), _)| name).collect()
+    }
+
+    const SLIDER_CRANK: &str = "pub struct S { params r = 1, l = 3, e = 0.5; input phi; unknowns psi = 0, x = 3;
+        loop oab: r @ phi == (x, e) + l @ psi; }";
+
+    /// The offset slider-crank: the slider's second analog is computed from the rod's angle,
+    /// sine, cosine and analogs, so the slider's values imply the rod's and its block's check.
+    #[test]
+    fn a_slider_implies_its_rod() {
+        assert_eq!(kept(SLIDER_CRANK), ["x", "dx", "d2x"]);
+    }
+
+    /// With Newton for the rod, nothing implies its angle: it stays (its sine and cosine are
+    /// computed from it, but a Newton iterate is not the value the kernel returns).
+    #[test]
+    fn a_newton_unknown_is_summed() {
+        let src = format!("#[kinloop(newton)] {SLIDER_CRANK}");
+        assert_eq!(kept(&src), ["psi", "x", "dx", "d2x"]);
+    }
+
+    /// `atan2` (finite for infinite arguments) implies nothing of its arguments; a product
+    /// implies both factors.
+    #[test]
+    fn only_operations_that_propagate_non_finite_values_imply() {
+        let src = SLIDER_CRANK.replace("}", "output o = atan2(x, 1); }");
+        let a = crate::analyze(src.parse().expect("tokens")).unwrap_or_else(|e| panic!("{e}"));
+        let mut model = a.model;
+        let plan = crate::plan::build(&mut model, &a.blocks, false);
+        let rules = Rules::new(&plan);
+        let ops = (0..plan.graph.len()).map(|k| (k, plan.graph.op(NodeId(k as u32))));
+        let (mut atan2, mut products) = (0, 0);
+        for (k, op) in ops {
+            match op {
+                Op::Atan2(..) => {
+                    atan2 += 1;
+                    assert!(rules.operands(k).is_empty());
+                }
+                Op::Mul(a, b) => {
+                    products += 1;
+                    assert_eq!(rules.operands(k), [a, b]);
+                }
+                _ => {}
+            }
+        }
+        assert!(atan2 == 1 && products > 0);
+        // Through the output's analogs (a product with the slider), the slider is implied.
+        assert_eq!(kept(&SLIDER_CRANK.replace("}", "output o = 3 * x; }")), ["out0", "dout0", "d2out0"]);
+    }
+
+    /// A closed-form block with a slider or a length keeps its check: it sums the guess of that
+    /// unknown, which no value of the kernel reads.
+    #[test]
+    fn a_check_with_a_guess_is_summed() {
+        let src = "pub struct G { params a = 1, d = 2; input phi; unknowns s = 2, psi = 0.3;
+            loop l: a @ phi == (d, 0) + s @ psi; }";
+        let kept = kept(src);
+        assert!(kept.contains(&"check0".to_string()), "{kept:?}");
+    }
+
+    /// Terms that imply each other are never all left out: one of them carries the others.
+    #[test]
+    fn one_of_mutually_implied_terms_stays() {
+        let src = "pub struct S { params r = 1, l = 3, e = 0.5; input phi; unknowns psi = 0, x = 3;
+            loop oab: r @ phi == (x, e) + l @ psi; output twice = 2 * x; output again = x * 2; }";
+        assert_eq!(kept(src), ["out0", "dout0", "d2out0"]);
+    }
+}
