@@ -11,7 +11,9 @@
 //! * the outputs' analogs follow by the chain rule ([`outputs`]);
 //! * parameter sensitivities, only when the declaration asks for them ([`sensitivities`]);
 //! * the magnitude of every equation's terms and the unit of every unknown, in which the
-//!   runtime's convergence tests are made ([`magnitudes`]).
+//!   runtime's convergence tests are made ([`magnitudes`]);
+//! * read from the finished plan by the emitter: which values a kernel's finiteness test must
+//!   add up, the others' finiteness implying the rest ([`finite`]).
 //!
 //! The analogs themselves are leaves of the graph (`Tan`, `Tan2`, ...), created by [`seeds`].
 //! Each pass adds nodes to the graph; [`build`] runs them in order and returns a [`Plan`] that

@@ -10,9 +10,12 @@
 //! - a singular analog block has a pivot ratio below `singular_tol`, which the state's
 //!   [`Health`](crate::Health) records as its smallest.
 //!
-//! So one test at the end (the sum of every value finite, the smallest pivot at least
-//! `singular_tol`) accepts a step only where every one of those checks would have passed, and
-//! the state is then what the checked kernel computes: the same operations in the same order.
+//! So one test at the end (a sum finite, the smallest pivot at least `singular_tol`) accepts a
+//! step only where every one of those checks would have passed, and the state is then what the
+//! checked kernel computes: the same operations in the same order.
+//! The sum holds the state's values and the blocks' check sums that the others do not imply
+//! finite (the macro's `plan::finite`: the sliders' second analogs of the rhombic drive are
+//! computed from its rods' angles, sines, cosines and analogs, which the sum then leaves out).
 //! The one check left, an angle too many turns out to be accurate, is made on entry, on the
 //! angles' guesses ([`SURELY_PRECISE_GUESS`]). Where a test fails, the kernel runs again with
 //! every check on the way, which returns the error the checked kernel reports (with its block,
