@@ -203,13 +203,14 @@ const ANGLE_CAP: f64 = 1.0;
 /// A step's prediction (see `Sweep::predict`).
 struct Prediction<const N: usize> {
     q: [f64; N],
-    /// The predicted slopes `dq/dtau` at the new point.
+    /// The predicted slopes at the new point: `dq/dtau`, or with one input `dq/dx` (see
+    /// `Sweep::predict`).
     slope1: [f64; N],
     /// How far the solved position may be from `q`: `corrector_rel` times the largest predicted
     /// change of an unknown, plus `corrector_abs`.
     max_dist: f64,
     /// How far the solved slopes may be from `slope1`: `corrector_rel` times the largest change
-    /// of a slope plus a tenth of the largest slope, plus `corrector_abs`.
+    /// of a slope plus a tenth of the largest slope, plus `corrector_abs` (in the slopes' units).
     max_slope_err: f64,
 }
 
@@ -230,6 +231,9 @@ pub struct Sweep<'m, M, S, const N: usize, const NI: usize, const NO: usize> {
     path: Path<NI>,
     /// `delta[i] delta[j]` of the path's direction, for the curvature of every prediction.
     delta2: [[f64; NI]; NI],
+    /// The absolute term of the slopes' bound (`corrector_abs`) in the units the judge compares
+    /// slopes in: the path's, or with one input the input's (see [`Sweep::predict`]).
+    slope_abs: f64,
     samples: usize,
     /// Sample spacing as a fraction of the path, and the step bounds derived from it and the
     /// configuration (computed once: they are needed every step).
@@ -317,6 +321,7 @@ where
             cfg: SweepConfig::default(),
             path,
             delta2: path.delta.map(|di| path.delta.map(|dj| di * dj)),
+            slope_abs: 0.0,
             samples,
             spacing,
             h_max: 0.0,
@@ -374,6 +379,10 @@ where
     fn set_step_bounds(&mut self) {
         self.h_max = self.spacing * self.cfg.max_step;
         self.h_min = self.spacing * 0.5f64.powi(self.cfg.max_halvings.min(i32::MAX as u32) as i32);
+        // A slope in input units is the path's divided by `|delta|` (infinite for a path of no
+        // length, which takes no step).
+        self.slope_abs =
+            if NI == 1 { self.cfg.corrector_abs / self.path.delta[0].abs() } else { self.cfg.corrector_abs };
     }
 
     /// Singular positions met so far.
@@ -445,24 +454,34 @@ where
     /// Taylor prediction `q + slope dt + curv dt^2 / 2` and, for [`Sweep::judge`], the expected
     /// slope at the new point `slope + curv dt` and the bounds of both deviations. Computed once
     /// per step.
+    ///
+    /// With one input the slopes are taken in the input's units instead (`q'` itself, with the
+    /// step `dx = dt d`): the same prediction and the same tests, the slopes and their bound
+    /// divided by `|d|`, without the three products by `d` per unknown and step.
     #[inline(always)]
     fn predict(&self, k: &Kin<N, NI, NO>, dt: f64) -> Prediction<N> {
         let (d, d2) = (&self.path.delta, &self.delta2);
         let (mut change, mut slope_change, mut slope) = (0.0f64, 0.0f64, 0.0f64);
         let mut q = k.q;
         let mut slope1 = [0.0; N];
+        // A constant: with one input, `dt` becomes the input's step and `d` drops out.
+        let (dt, one) = if NI == 1 { (dt * d[0], true) } else { (dt, false) };
         // A follower is neither predicted (no solve uses its guess) nor judged.
         for &u in Self::JUDGED.as_slice() {
-            // From -0.0, the additive identity: the first addition folds away (from 0.0 it is an
-            // `addsd` per sum, which `0.0 + -0.0 = 0.0` keeps).
-            let mut slope0 = -0.0;
-            let mut curv = -0.0;
-            for i in 0..NI {
-                slope0 += k.dq[u][i] * d[i];
-                for j in 0..NI {
-                    curv += k.d2q[u][i][j] * d2[i][j];
+            let (slope0, curv) = if one {
+                (k.dq[u][0], k.d2q[u][0][0])
+            } else {
+                // From -0.0, the additive identity: the first addition folds away (from 0.0 it
+                // is an `addsd` per sum, which `0.0 + -0.0 = 0.0` keeps).
+                let (mut slope0, mut curv) = (-0.0, -0.0);
+                for i in 0..NI {
+                    slope0 += k.dq[u][i] * d[i];
+                    for j in 0..NI {
+                        curv += k.d2q[u][i][j] * d2[i][j];
+                    }
                 }
-            }
+                (slope0, curv)
+            };
             let du = dt * (slope0 + 0.5 * dt * curv);
             q[u] += du;
             change = change.max(du.abs());
@@ -470,8 +489,13 @@ where
             slope = slope.max(slope0.abs());
             slope1[u] = slope0 + curv * dt;
         }
-        let (rel, abs) = (self.cfg.corrector_rel, self.cfg.corrector_abs);
-        Prediction { q, slope1, max_dist: rel * change + abs, max_slope_err: rel * (slope_change + 0.1 * slope) + abs }
+        let rel = self.cfg.corrector_rel;
+        Prediction {
+            q,
+            slope1,
+            max_dist: rel * change + self.cfg.corrector_abs,
+            max_slope_err: rel * (slope_change + 0.1 * slope) + self.slope_abs,
+        }
     }
 
     /// Judges the state `n` solved from the prediction `p`.
@@ -492,10 +516,12 @@ where
             if M::CLOSED_FORM_ANGLES[u] {
                 turn = turn.max(e);
             }
-            // From -0.0, as in `predict`.
-            let mut s1 = -0.0;
-            for i in 0..NI {
-                s1 += n.dq[u][i] * d[i];
+            // In the units of `predict`'s slopes; from -0.0, as there.
+            let mut s1 = if NI == 1 { n.dq[u][0] } else { -0.0 };
+            if NI > 1 {
+                for i in 0..NI {
+                    s1 += n.dq[u][i] * d[i];
+                }
             }
             slope_err = slope_err.max((s1 - p.slope1[u]).abs());
         }
