@@ -37,12 +37,12 @@ pub trait InputTrig {
 
     /// The angle of a closed-form block's unknown `slot` (its index among the unknowns), whose
     /// sine `s` and cosine `c` the block has just computed: `exact()` (libm's `acos`, `asin` or
-    /// `atan2`, moved to the turn of `guess`), or that same angle obtained otherwise. The default
-    /// is `exact()`; a sweep's cache (`Rotating`) computes it from an earlier exact angle of the
-    /// same unknown, on that angle's turn.
+    /// `atan2`, moved to the turn of the unknown's guess), or that same angle obtained otherwise.
+    /// The default is `exact()`; a sweep's cache (`Rotating`) computes it from an earlier exact
+    /// angle of the same unknown, on that angle's turn.
     #[inline(always)]
-    fn angle(&mut self, slot: usize, s: f64, c: f64, guess: f64, exact: impl FnOnce() -> f64) -> f64 {
-        let _ = (slot, s, c, guess);
+    fn angle(&mut self, slot: usize, s: f64, c: f64, exact: impl FnOnce() -> f64) -> f64 {
+        let _ = (slot, s, c);
         exact()
     }
 }
@@ -223,15 +223,15 @@ impl InputTrig for Rotating {
     /// and when exact (near a singular position, where a rod's cosine is small and carries the
     /// root's rounding), libm's, which becomes the anchor.
     ///
-    /// The result is on the anchor's turn, which libm chose from an earlier guess; the guess of
-    /// this call is not looked at. In a sweep the two turns agree: an angle leaves the anchor's
-    /// range, and gets a new anchor, long before it has turned a whole turn. Should they ever
-    /// differ, the angle lies a turn from its prediction: the sweep rejects the step (it caps
-    /// the distance of every `Mechanism::CLOSED_FORM_ANGLES` angle from its prediction) and
-    /// forgets the anchors ([`Rotating::forget_anchors`]) before it tries again. Testing the
-    /// guess here cost every angle of every step 5 instructions.
+    /// The result is on the anchor's turn, which libm chose from an earlier guess (`exact` moves
+    /// its angle to the turn of its own call's guess). In a sweep the two turns agree: an angle
+    /// leaves the anchor's range, and gets a new anchor, long before it has turned a whole turn.
+    /// Should they ever differ, the angle lies a turn from its prediction: the sweep rejects the
+    /// step (it caps the distance of every `Mechanism::CLOSED_FORM_ANGLES` angle from its
+    /// prediction) and forgets the anchors ([`Rotating::forget_anchors`]) before it tries again.
+    /// Testing the guess here cost every angle of every step 5 instructions.
     #[inline(always)]
-    fn angle(&mut self, slot: usize, s: f64, c: f64, _guess: f64, exact: impl FnOnce() -> f64) -> f64 {
+    fn angle(&mut self, slot: usize, s: f64, c: f64, exact: impl FnOnce() -> f64) -> f64 {
         let Some(a) = self.anchors.get_mut(slot) else {
             return exact();
         };
@@ -331,7 +331,7 @@ mod tests {
                 let (s, c) = q.sin_cos();
                 let guess = q + 1e-3 * (rng.uniform(0.0, 1.0) - 0.5);
                 let mut exact_called = false;
-                let got = cache.angle(2, s, c, guess, || {
+                let got = cache.angle(2, s, c, || {
                     exact_called = true;
                     libm_angle(s, c, guess)
                 });
@@ -350,38 +350,38 @@ mod tests {
     }
 
     /// The first call, a jump beyond the anchor's range, forgotten anchors, an exact cache, a
-    /// slot beyond the cache and a NaN are all libm's own (the `exact` closure's). A guess on
-    /// another turn is not looked at: the angle stays on its anchor's turn.
+    /// slot beyond the cache and a NaN are all libm's own (the `exact` closure's). A small step stays
+    /// on its anchor's turn.
     #[test]
     fn angles_fall_back_to_libm_where_they_cannot_be_advanced() {
         let mut cache = Rotating::default();
         let at = |q: f64| q.sin_cos();
         let (s, c) = at(0.5);
-        assert_eq!(cache.angle(0, s, c, 0.5, || 0.5), 0.5);
+        assert_eq!(cache.angle(0, s, c, || 0.5), 0.5);
         // Advanced: within an ulp or two of 0.51, without calling `exact`.
         let (s, c) = at(0.51);
-        let q = cache.angle(0, s, c, 0.51, || f64::NAN);
+        let q = cache.angle(0, s, c, || f64::NAN);
         assert!((q - 0.51).abs() < 4e-16, "{q}");
         // A jump of 0.3 rad: `exact`, which becomes the anchor.
         let (s, c) = at(0.81);
-        assert_eq!(cache.angle(0, s, c, 0.81, || 0.81), 0.81);
-        // A guess a turn away: still on the anchor's turn, without `exact`.
+        assert_eq!(cache.angle(0, s, c, || 0.81), 0.81);
+        // A small step: on the anchor's turn, without `exact`.
         let (s, c) = at(0.82);
-        let q = cache.angle(0, s, c, 0.82 - core::f64::consts::TAU, || f64::NAN);
+        let q = cache.angle(0, s, c, || f64::NAN);
         assert!((q - 0.82).abs() < 4e-16, "{q}");
         // Forgotten anchors, a slot beyond the cache: `exact`.
         cache.forget_anchors();
-        assert_eq!(cache.angle(0, s, c, 0.82 - core::f64::consts::TAU, || -9.0), -9.0);
-        assert_eq!(cache.angle(SLOTS, s, c, 0.82, || 3.0), 3.0);
+        assert_eq!(cache.angle(0, s, c, || -9.0), -9.0);
+        assert_eq!(cache.angle(SLOTS, s, c, || 3.0), 3.0);
         // A NaN sine goes to `exact`, and does not become the anchor.
-        assert!(cache.angle(1, f64::NAN, c, 0.82, || f64::NAN).is_nan());
-        assert_eq!(cache.angle(1, s, c, 0.82, || 5.0), 5.0);
+        assert!(cache.angle(1, f64::NAN, c, || f64::NAN).is_nan());
+        assert_eq!(cache.angle(1, s, c, || 5.0), 5.0);
         // An exact cache always asks `exact`.
         cache.exact(true);
         let (s, c) = at(0.821);
-        assert_eq!(cache.angle(1, s, c, 0.821, || 11.0), 11.0);
+        assert_eq!(cache.angle(1, s, c, || 11.0), 11.0);
         // Libm asks `exact` too.
-        assert_eq!(Libm.angle(0, s, c, 0.821, || 13.0), 13.0);
+        assert_eq!(Libm.angle(0, s, c, || 13.0), 13.0);
     }
 
     /// A sum of angles `a + b` (`b` held in the slot): within 3.4e-16 (1.5 units in the last

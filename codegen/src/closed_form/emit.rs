@@ -307,7 +307,7 @@ fn angle_of(u: usize, s: TokenStream, c: TokenStream, exact: TokenStream, cx: &C
         return exact;
     }
     let k = Literal::usize_unsuffixed(u);
-    quote!(__trig.angle(#k, #s, #c, __guess[#k], || #exact))
+    quote!(__trig.angle(#k, #s, #c, || #exact))
 }
 
 /// `atan2(s, c)` of unknown `u`, moved by whole turns to the turn of its guess.

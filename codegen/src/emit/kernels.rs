@@ -859,16 +859,14 @@ impl Kernel<'_> {
         if self.mode != Mode::Fused {
             return vec![true; terms.len()];
         }
-        let mut seen = HashSet::new();
-        let ids: Vec<Term> = terms.iter().filter_map(|(t, _)| *t).filter(|t| seen.insert(*t)).collect();
-        let summed: HashSet<Term> =
-            ids.iter().zip(finite::summed(self.plan, &ids)).filter(|(_, s)| *s).map(|(t, _)| *t).collect();
-        let mut done = HashSet::new();
-        terms.iter().map(|(t, _)| t.is_none_or(|t| summed.contains(&t) && done.insert(t))).collect()
+        let ids: Vec<Term> = terms.iter().filter_map(|(t, _)| *t).collect();
+        let mut summed = finite::summed(self.plan, &ids).into_iter();
+        // A term with no graph node (a leaf the graph does not hold) is always summed.
+        terms.iter().map(|(t, _)| t.is_none() || summed.next() != Some(false)).collect()
     }
 
     /// The end of a kernel whose checks are switched by `__CHECKED`: with it, the checked
-    /// kernel's end (`sum` is the sum of the state's values). Otherwise the state is accepted
+    /// kernel's end (`sum` is [`Kernel::finite_sum`]'s). Otherwise the state is accepted
     /// when `sum` and the closed-form blocks' check sums `checks` are finite and the smallest
     /// pivot ratio is at least `singular_tol`; else the checked kernel answers.
     fn finish_deferred(&self, sum: TokenStream, mut checks: Vec<TokenStream>) -> TokenStream {

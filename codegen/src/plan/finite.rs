@@ -22,6 +22,7 @@
 //! finite).
 
 use super::{BlockPlan, Plan, pairs};
+use crate::closed_form::Recognised;
 use crate::dag::{Func, Leaf, NodeId, Op};
 use std::collections::HashSet;
 
@@ -66,13 +67,11 @@ fn is_finite_constant(plan: &Plan, t: &Term) -> bool {
 }
 
 /// The implications among a plan's values: a node implies its operands' finiteness (see
-/// [`Rules::operands`]); a group's members together imply its target's.
+/// [`operands`]); a group's members together imply its target's.
 struct Rules<'a> {
     plan: &'a Plan,
-    /// Sines and cosines a closed-form solve defines (not computed from the angle).
-    closed_trig: HashSet<NodeId>,
-    /// Unknowns solved by Newton.
-    newton: HashSet<NodeId>,
+    /// Per node: the operands whose finiteness its own implies (see [`operands`]).
+    implies: Vec<Vec<usize>>,
     /// `(target, members)`: the target is finite when every member is.
     groups: Vec<(usize, Vec<usize>)>,
     /// Per value: the groups it is a member of.
@@ -83,45 +82,48 @@ impl<'a> Rules<'a> {
     fn new(plan: &'a Plan) -> Self {
         let g = &plan.graph;
         let leaf = |l: Leaf| g.find(Op::Leaf(l));
-        let u16_of = |k: usize| k as u16;
         let mut rules = Rules {
             plan,
-            closed_trig: HashSet::new(),
-            newton: HashSet::new(),
+            implies: Vec::new(),
             groups: Vec::new(),
             member_of: vec![Vec::new(); g.len() + plan.blocks.len()],
         };
+        // Sines and cosines a closed-form solve defines (not computed from the angle), and
+        // unknowns Newton solved: see `operands`.
+        let (mut closed_trig, mut newton) = (HashSet::new(), HashSet::new());
         for (b, bp) in plan.blocks.iter().enumerate() {
             let leaves = |make: &dyn Fn(u16) -> Leaf| -> Option<Vec<usize>> {
-                bp.unknowns.iter().map(|&u| leaf(make(u16_of(u))).map(|n| n.index())).collect()
+                bp.unknowns.iter().map(|&u| leaf(make(u as u16)).map(|n| n.index())).collect()
             };
             if bp.linear {
-                if let Some(qs) = leaves(&|u| Leaf::Unknown(u)) {
+                if let Some(qs) = leaves(&Leaf::Unknown) {
                     rules.rows(&bp.rhs0, &qs);
                 }
             } else if bp.closed.is_none() {
-                rules.newton.extend(bp.unknowns.iter().filter_map(|&u| leaf(Leaf::Unknown(u16_of(u)))));
+                newton.extend(bp.unknowns.iter().filter_map(|&u| leaf(Leaf::Unknown(u as u16))));
             }
             for i in 0..plan.ni {
-                if let Some(tans) = leaves(&|u| Leaf::Tan { unknown: u, input: u16_of(i) }) {
+                if let Some(tans) = leaves(&|u| Leaf::Tan { unknown: u, input: i as u16 }) {
                     rules.rows(&column(&bp.vel, i), &tans);
                 }
             }
             for (p, &(i, j)) in pairs(plan.ni).iter().enumerate() {
-                if let Some(tans) = leaves(&|u| Leaf::Tan2 { unknown: u, i: u16_of(i), j: u16_of(j) }) {
+                if let Some(tans) = leaves(&|u| Leaf::Tan2 { unknown: u, i: i as u16, j: j as u16 }) {
                     rules.rows(&column(&bp.acc, p), &tans);
                 }
             }
-            rules.closed(b, bp, &leaf);
+            if let Some(rec) = &bp.closed {
+                closed_trig.extend(rec.sin_cos.iter().flatten().copied());
+                rules.closed(b, bp, rec, &leaf);
+            }
         }
+        rules.implies = (0..g.len()).map(|w| operands(plan, NodeId(w as u32), &closed_trig, &newton)).collect();
         rules
     }
 
-    /// The rules of a closed-form block `b`: each angle from its cosine and sine, the check sum
-    /// from all of them when it sums nothing else.
-    fn closed(&mut self, b: usize, bp: &BlockPlan, leaf: &dyn Fn(Leaf) -> Option<NodeId>) {
-        let Some(rec) = &bp.closed else { return };
-        self.closed_trig.extend(rec.sin_cos.iter().flatten());
+    /// The rules of closed-form block `b` solved by `rec`: each angle from its cosine and sine,
+    /// the check sum from all of them when it sums nothing else.
+    fn closed(&mut self, b: usize, bp: &BlockPlan, rec: &Recognised, leaf: &dyn Fn(Leaf) -> Option<NodeId>) {
         for (u, pair) in rec.form.angles().into_iter().zip(&rec.sin_cos) {
             if let Some(q) = leaf(Leaf::Unknown(u as u16)) {
                 self.group(q.index(), pair.iter().map(|n| n.index()).collect());
@@ -155,25 +157,6 @@ impl<'a> Rules<'a> {
         }
     }
 
-    /// The operands whose finiteness node `w`'s implies.
-    fn operands(&self, w: usize) -> Vec<NodeId> {
-        if w >= self.plan.graph.len() {
-            return Vec::new();
-        }
-        let node = NodeId(w as u32);
-        let level = |a: NodeId| self.plan.level[a.index()];
-        let ops: Vec<NodeId> = match self.plan.graph.op(node) {
-            Op::Add(a, b) | Op::Sub(a, b) | Op::Mul(a, b) => vec![a, b],
-            Op::Div(a, _) | Op::Neg(a) => vec![a],
-            Op::Powi(a, k) if k >= 1 => vec![a],
-            Op::Func(Func::Sqrt | Func::Abs, a) => vec![a],
-            // A sweep's cache computes the sines and cosines of arguments free of unknowns.
-            Op::Func(Func::Sin | Func::Cos, a) if !self.closed_trig.contains(&node) && level(a) >= 0 => vec![a],
-            _ => Vec::new(),
-        };
-        ops.into_iter().filter(|a| !self.newton.contains(a)).collect()
-    }
-
     /// The values whose finiteness follows from that of `kept`'s (`kept` included).
     fn closure(&self, kept: impl Iterator<Item = usize>) -> Vec<bool> {
         let mut hit = vec![false; self.member_of.len()];
@@ -183,7 +166,9 @@ impl<'a> Rules<'a> {
             if std::mem::replace(&mut hit[v], true) {
                 continue;
             }
-            stack.extend(self.operands(v).into_iter().map(|a| a.index()).filter(|&a| !hit[a]));
+            if let Some(ops) = self.implies.get(v) {
+                stack.extend(ops.iter().filter(|&&a| !hit[a]));
+            }
             for &k in &self.member_of[v] {
                 missing[k] -= 1;
                 if missing[k] == 0 && !hit[self.groups[k].0] {
@@ -193,6 +178,22 @@ impl<'a> Rules<'a> {
         }
         hit
     }
+}
+
+/// The operands of node `w` whose finiteness its own implies. Not those of a sine or cosine a
+/// closed-form solve defines (`closed_trig`: not computed from the angle) or a sweep's cache
+/// rotates (of an argument free of unknowns: the cache's values are finite whatever it is), and
+/// never an unknown Newton solved (`newton`).
+fn operands(plan: &Plan, w: NodeId, closed_trig: &HashSet<NodeId>, newton: &HashSet<NodeId>) -> Vec<usize> {
+    let ops = match plan.graph.op(w) {
+        Op::Add(a, b) | Op::Sub(a, b) | Op::Mul(a, b) => vec![a, b],
+        Op::Div(a, _) | Op::Neg(a) => vec![a],
+        Op::Powi(a, k) if k >= 1 => vec![a],
+        Op::Func(Func::Sqrt | Func::Abs, a) => vec![a],
+        Op::Func(Func::Sin | Func::Cos, a) if !closed_trig.contains(&w) && plan.level[a.index()] >= 0 => vec![a],
+        _ => Vec::new(),
+    };
+    ops.into_iter().filter(|a| !newton.contains(a)).map(|a| a.index()).collect()
 }
 
 /// Column `k` of rows `m`.
@@ -266,11 +267,11 @@ mod tests {
             match op {
                 Op::Atan2(..) => {
                     atan2 += 1;
-                    assert!(rules.operands(k).is_empty());
+                    assert!(rules.implies[k].is_empty());
                 }
                 Op::Mul(a, b) => {
                     products += 1;
-                    assert_eq!(rules.operands(k), [a, b]);
+                    assert_eq!(rules.implies[k], [a.index(), b.index()]);
                 }
                 _ => {}
             }

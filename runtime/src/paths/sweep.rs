@@ -460,27 +460,19 @@ where
     /// divided by `|d|`, without the three products by `d` per unknown and step.
     #[inline(always)]
     fn predict(&self, k: &Kin<N, NI, NO>, dt: f64) -> Prediction<N> {
-        let (d, d2) = (&self.path.delta, &self.delta2);
         let (mut change, mut slope_change, mut slope) = (0.0f64, 0.0f64, 0.0f64);
         let mut q = k.q;
         let mut slope1 = [0.0; N];
-        // A constant: with one input, `dt` becomes the input's step and `d` drops out.
-        let (dt, one) = if NI == 1 { (dt * d[0], true) } else { (dt, false) };
+        // With one input (a constant), `dt` becomes the input's step.
+        let dt = if NI == 1 { dt * self.path.delta[0] } else { dt };
         // A follower is neither predicted (no solve uses its guess) nor judged.
         for &u in Self::JUDGED.as_slice() {
-            let (slope0, curv) = if one {
-                (k.dq[u][0], k.d2q[u][0][0])
+            let slope0 = self.slope_of(&k.dq[u]);
+            let curv = if NI == 1 {
+                k.d2q[u][0][0]
             } else {
-                // From -0.0, the additive identity: the first addition folds away (from 0.0 it
-                // is an `addsd` per sum, which `0.0 + -0.0 = 0.0` keeps).
-                let (mut slope0, mut curv) = (-0.0, -0.0);
-                for i in 0..NI {
-                    slope0 += k.dq[u][i] * d[i];
-                    for j in 0..NI {
-                        curv += k.d2q[u][i][j] * d2[i][j];
-                    }
-                }
-                (slope0, curv)
+                let d2 = &self.delta2;
+                (0..NI).fold(-0.0, |c, i| (0..NI).fold(c, |c, j| c + k.d2q[u][i][j] * d2[i][j]))
             };
             let du = dt * (slope0 + 0.5 * dt * curv);
             q[u] += du;
@@ -498,6 +490,15 @@ where
         }
     }
 
+    /// The slope along the path of an unknown with velocity analogs `dq`: `dq d`, or with one
+    /// input `dq` itself (see [`Sweep::predict`]). Sums start from -0.0, the additive identity:
+    /// the first addition folds away (from 0.0 it is an `addsd` per sum, which `0.0 + -0.0 =
+    /// 0.0` keeps).
+    #[inline(always)]
+    fn slope_of(&self, dq: &[f64; NI]) -> f64 {
+        if NI == 1 { dq[0] } else { (0..NI).fold(-0.0, |s, i| s + dq[i] * self.path.delta[i]) }
+    }
+
     /// Judges the state `n` solved from the prediction `p`.
     ///
     /// Positions must land near their prediction, and the velocity analogs near theirs: a kink
@@ -505,7 +506,6 @@ where
     /// (e.g. at a change point) even if the positions are close.
     #[inline(always)]
     fn judge(&self, n: &Kin<N, NI, NO>, p: &Prediction<N>) -> Outcome {
-        let d = &self.path.delta;
         let (mut dist, mut turn, mut slope_err) = (0.0f64, 0.0f64, 0.0f64);
         // Followers are smooth functions of the judged unknowns (see `Mechanism::FOLLOWERS`).
         for &u in Self::JUDGED.as_slice() {
@@ -516,14 +516,7 @@ where
             if M::CLOSED_FORM_ANGLES[u] {
                 turn = turn.max(e);
             }
-            // In the units of `predict`'s slopes; from -0.0, as there.
-            let mut s1 = if NI == 1 { n.dq[u][0] } else { -0.0 };
-            if NI > 1 {
-                for i in 0..NI {
-                    s1 += n.dq[u][i] * d[i];
-                }
-            }
-            slope_err = slope_err.max((s1 - p.slope1[u]).abs());
+            slope_err = slope_err.max((self.slope_of(&n.dq[u]) - p.slope1[u]).abs());
         }
         if !n.health.det_signs.same_for(&self.signs, M::BLOCKS.len()) {
             Outcome::Flip

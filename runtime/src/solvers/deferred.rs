@@ -1,8 +1,8 @@
 //! The closed-form steps of a kernel whose checks are deferred to its end.
 //!
 //! A sweep's step runs a generated kernel that tests nothing on the way (a point step runs the
-//! same kernel with its checks on the way, `CHECKED`): every
-//! closed-form root is taken as if it existed, every analog block is solved whatever its pivot.
+//! same kernel with its checks on the way, `CHECKED`): every closed-form root is taken as if it
+//! existed, every analog block is solved whatever its pivot.
 //! Each failure the checked kernel would report leaves a trace the kernel's end sees:
 //! - a root that does not exist is the square root of a negative number (or a division by a zero
 //!   radius): NaN, which reaches the block's sines and cosines;
@@ -45,9 +45,10 @@ pub const SURELY_PRECISE_ANGLE: f64 = 16_000.0;
 /// the angle lies within `π` of its guess (moved to the guess's turn, or `asin` on the guess's
 /// side of the vertical and turn). A sweep's cache may instead advance it from an anchor, by
 /// less than `asin(1/8)`; the anchor is libm's angle, within `π` of the guess of an earlier
-/// call, which passed this test. The margin of 8 leaves room to spare. A deferred kernel tests its closed-form angles'
-/// guesses against it on entry, without reading the configuration; larger ones (2545 turns) go
-/// to the checked kernel, which tests the angles against the configured bound.
+/// call, which passed this test. The margin of 8 leaves room to spare. A deferred kernel tests
+/// its closed-form angles' guesses against it on entry, without reading the configuration;
+/// larger ones (2545 turns) go to the checked kernel, which tests the angles against the
+/// configured bound.
 pub const SURELY_PRECISE_GUESS: f64 = SURELY_PRECISE_ANGLE - 8.0;
 
 /// [`root_offset`](super::closed::root_offset) without its test: `±sqrt(d2)`, NaN when `d2` is
@@ -132,10 +133,10 @@ impl<const CHECKED: bool> Checks<CHECKED> {
     /// may lead to angles too large to be accurate (beyond [`SURELY_PRECISE_GUESS`]), or are NaN:
     /// the kernel then answers as the checked one. (A sweep's cache may advance an angle without
     /// reading its guess, so a NaN guess must not get that far.)
-    #[inline(always)]
     // The negated comparison is the point: true for NaN, and one instruction per step less than
     // `> || is_nan()` as compiled (callgrind).
     #[allow(clippy::neg_cmp_op_on_partial_ord)]
+    #[inline(always)]
     pub fn far(self, magnitudes: f64) -> bool {
         !CHECKED && !(magnitudes <= SURELY_PRECISE_GUESS)
     }
