@@ -350,8 +350,8 @@ mod tests {
     }
 
     /// The first call, a jump beyond the anchor's range, forgotten anchors, an exact cache, a
-    /// slot beyond the cache and a NaN are all libm's own (the `exact` closure's). A small step stays
-    /// on its anchor's turn.
+    /// slot beyond the cache and a NaN are all libm's own (the `exact` closure's). A small step
+    /// stays on its anchor's turn.
     #[test]
     fn angles_fall_back_to_libm_where_they_cannot_be_advanced() {
         let mut cache = Rotating::default();
