@@ -2,19 +2,20 @@
 //! code around the mechanism does not drown the real errors in secondary ones ("cannot find
 //! type `FourBar`", "no field `q`").
 //!
-//! Only what can be stated honestly is emitted: the named types of [`crate::emit::surface`]
-//! (the very items an accepted declaration gets, with `Default` when the default values are
-//! known), built here from the syntax. No method is emitted: a method whose body could not be
-//! generated would be a fake that pretends to solve something.
-//! Calls of the generated methods therefore still report "no method named ..." — after the
-//! errors that explain why.
+//! The items are the whole surface of an accepted declaration, built here from the syntax: the
+//! named types of [`crate::emit::surface`] (with `Default` when the default values are known),
+//! the constants, the `Mechanism` and `Named` implementations with the inherent named API, and
+//! `mass_model` or its explanation. The kernels' bodies are the runtime's `rejected()`: never
+//! run, because a crate with a `compile_error!` does not compile; they only let the user's calls
+//! (`m.solve(x)?.q.beta`) type-check, so that the declaration's errors are the only ones.
 
-use crate::emit::Types;
 use crate::emit::surface::{Field, Surface, items};
+use crate::emit::{Types, dynamics, lit, runtime};
 use crate::expr::Expr;
 use crate::plan::param_defaults;
 use crate::syntax::{DeclKind, ItemKind, MechanismDef};
 use proc_macro2::{Ident, TokenStream};
+use quote::quote;
 use std::collections::HashSet;
 use syn::Attribute;
 use syn::ext::IdentExt;
@@ -43,6 +44,8 @@ fn literal(e: &Expr) -> Option<f64> {
 pub struct Shape {
     surface: Surface,
     literal_defaults: Vec<Option<f64>>,
+    /// The declaration has masses, inertias or loads: `mass_model` exists (else it explains).
+    dynamics: bool,
 }
 
 impl Shape {
@@ -60,6 +63,7 @@ impl Shape {
             scalars: Vec::new(),
         };
         let mut literal_defaults = Vec::new();
+        let mut dynamics = false;
         let (mut seen_p, mut seen_i, mut seen_u, mut seen_o) =
             (HashSet::new(), HashSet::new(), HashSet::new(), HashSet::new());
         for item in &def.items {
@@ -79,10 +83,13 @@ impl Shape {
                 }
                 ItemKind::Point { name, .. } => _ = push_unique(&mut s.points, &mut seen_o, &item.docs, name),
                 ItemKind::Output { name, .. } => _ = push_unique(&mut s.scalars, &mut seen_o, &item.docs, name),
+                ItemKind::Body(_) | ItemKind::Force { .. } | ItemKind::Torque { .. } | ItemKind::Gravity { .. } => {
+                    dynamics = true
+                }
                 _ => {}
             }
         }
-        Shape { surface: s, literal_defaults }
+        Shape { surface: s, literal_defaults, dynamics }
     }
 
     /// The fallback items. `defaults` are the parameters' default values when the model knows
@@ -90,6 +97,59 @@ impl Shape {
     pub fn items(mut self, defaults: Option<Vec<f64>>) -> TokenStream {
         let n = self.surface.params.len();
         self.surface.defaults = defaults.filter(|d| d.len() == n).or_else(|| param_defaults(self.literal_defaults));
-        items(&self.surface, &Types::of(&self.surface.name))
+        let types = Types::of(&self.surface.name);
+        let mut out = items(&self.surface, &types);
+        out.extend(rejected_api(&self.surface, &types));
+        out.extend(if self.dynamics { rejected_mass_model(&self.surface, &types) } else { dynamics::absent(&types) });
+        out
+    }
+}
+
+/// Plain names, for the name constants.
+fn plain(fields: &[Field]) -> Vec<String> {
+    fields.iter().map(|f| f.name.unraw().to_string()).collect()
+}
+
+/// The constants, `Mechanism`, `Named` and the inherent named API of a rejected declaration:
+/// one invocation of the runtime's macro.
+fn rejected_api(s: &Surface, t: &Types) -> TokenStream {
+    let rt = runtime();
+    let Types { name, inputs, unknowns, outputs, state, motion, plain: plain_name, .. } = t;
+    let outputs_str: Vec<String> = s
+        .points
+        .iter()
+        .flat_map(|p| {
+            let p = p.name.unraw();
+            [format!("{p}.x"), format!("{p}.y")]
+        })
+        .chain(plain(&s.scalars))
+        .collect();
+    let (n, ni, no, np) = (lit(s.unknowns.len()), lit(s.inputs.len()), lit(outputs_str.len()), lit(s.params.len()));
+    let params = s.params.iter().enumerate().map(|(k, f)| {
+        let (field, k, plain) = (&f.name, lit(k), f.name.unraw().to_string());
+        quote!(#field #k #plain)
+    });
+    let (is, us) = (plain(&s.inputs), plain(&s.unknowns));
+    quote! {
+        #rt::rejected_mechanism!(
+            #name, #inputs, #unknowns, #outputs, #state, #motion, #n, #ni, #no, #np, #plain_name,
+            params [#(#params),*], inputs [#(#is),*], unknowns [#(#us),*], outputs [#(#outputs_str),*]
+        );
+    }
+}
+
+/// `mass_model` of a rejected declaration that declares dynamics items: its signature, never run.
+fn rejected_mass_model(s: &Surface, t: &Types) -> TokenStream {
+    let (rt, name) = (runtime(), &t.name);
+    let no = 2 * s.points.len() + s.scalars.len();
+    let (n, ni, no) = (lit(s.unknowns.len()), lit(s.inputs.len()), lit(no));
+    quote! {
+        impl #name {
+            /// The declared bodies, loads and gravity as a mass model (not generated: the
+            /// declaration was rejected).
+            pub fn mass_model(&self) -> ::core::result::Result<#rt::MassModel<#n, #ni, #no>, #rt::DynamicsError> {
+                #rt::rejected()
+            }
+        }
     }
 }

@@ -655,3 +655,7 @@ macro_rules! __mechanism_consts {
 }
 #[doc(hidden)]
 pub use crate::__mechanism_consts as mechanism_consts;
+
+// The named surface of a declaration `mechanism!` rejected (see `crate::rejected`).
+pub use crate::__rejected_mechanism as rejected_mechanism;
+pub use crate::rejected::{MassModelDeclared, rejected};

@@ -35,6 +35,7 @@ mod kinds;
 mod mechanism;
 pub mod metrics;
 pub mod paths;
+mod rejected;
 mod solvers;
 mod table;
 mod table_units;

@@ -27,11 +27,11 @@ struct Ctx<'a> {
     ni: TokenStream,
 }
 
-/// `mass_model` when the declaration has dynamics items, nothing otherwise.
+/// `mass_model` when the declaration has dynamics items, else [`absent`].
 pub fn items(model: &Model, plan: &Plan, t: &Types) -> TokenStream {
     let d = &model.dynamics;
     if !d.is_declared() {
-        return TokenStream::new();
+        return absent(t);
     }
     let (rt, name) = (runtime(), &t.name);
     let Dims { n, ni, no, .. } = Dims::of(plan);
@@ -226,4 +226,24 @@ fn lets(g: &Graph, names: &Names, roots: &[NodeId]) -> TokenStream {
     let level = vec![0; g.len()];
     let sched = schedule(g, &level, &[ScopeSpec { kind: ScopeKind::Plain, roots: roots.to_vec() }]);
     names.lets(g, &sched, &sched.lets[0])
+}
+
+/// `mass_model` of a mechanism declared without dynamics items: a method whose bound no type
+/// meets, so that calling it is a compile error saying what to declare (the runtime's
+/// `MassModelDeclared`) rather than "no method named `mass_model`". The bound is higher-ranked
+/// so that it is checked where the method is called, not where it is defined.
+pub fn absent(t: &Types) -> TokenStream {
+    let (rt, name) = (runtime(), &t.name);
+    quote! {
+        impl #name {
+            /// Not generated: declare masses, inertias or loads in the mechanism.
+            #[doc(hidden)]
+            pub fn mass_model(&self) -> ::core::convert::Infallible
+            where
+                for<'__a> Self: #rt::MassModelDeclared<'__a>,
+            {
+                #rt::MassModelDeclared::absurd(self)
+            }
+        }
+    }
 }

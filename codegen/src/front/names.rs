@@ -26,6 +26,11 @@ const TYPE_PARAMETERS: &[&str] = &["T"];
 /// Keywords syn accepts as identifiers but a current edition does not.
 const RESERVED: &[&str] = &["gen"];
 
+/// Tuple and unit variants of the standard prelude: the generated code binds declared names as
+/// variables (`let [r, l] = ...`), and Rust does not let a binding shadow a variant, raw or not.
+const PRELUDE_VARIANTS: &[(&str, &str)] =
+    &[("Some", "Option"), ("None", "Option"), ("Ok", "Result"), ("Err", "Result")];
+
 /// Why `name` cannot name the mechanism, with what to write instead.
 pub fn mechanism_name_problem(name: &Ident) -> Option<String> {
     if let Some(m) = reserved_problem(name, "the mechanism") {
@@ -49,6 +54,15 @@ pub fn mechanism_name_problem(name: &Ident) -> Option<String> {
 /// Why a declared name (parameter, input, unknown, `let`, `point`, `output`, `loop` or `eq`
 /// name) cannot be used, with what to write instead.
 pub fn reserved_problem(name: &Ident, what: &str) -> Option<String> {
+    let plain = name.unraw().to_string();
+    if let Some((v, ty)) = PRELUDE_VARIANTS.iter().find(|(v, _)| *v == plain) {
+        let instead = if what == "the mechanism" { format!("{v}Mechanism") } else { v.to_lowercase() };
+        return Some(format!(
+            "`{v}` is the prelude's variant `{ty}::{v}` and cannot name {what}: the generated code binds declared \
+             names as variables and refers to `{v}`, which such a name would shadow; choose another name such as \
+             `{instead}`"
+        ));
+    }
     let s = name.to_string();
     RESERVED.contains(&s.as_str()).then(|| {
         format!(
@@ -156,7 +170,12 @@ mod tests {
         assert!(reserved_problem(&ident("r#gen"), "a parameter").is_none());
         assert!(mechanism_name_problem(&ident("r#gen")).is_none());
         assert!(mechanism_name_problem(&ident("r#f64")).is_some(), "a raw `f64` still shadows the type");
-        for fine in ["generator", "Gen", "phi", "F64", "kinloop_arm", "Tt"] {
+        for variant in ["Some", "None", "Ok", "Err", "r#Some"] {
+            let m = reserved_problem(&ident(variant), "a parameter").expect("refused");
+            assert!(m.contains("choose another name such as `"), "{m}");
+            assert!(mechanism_name_problem(&ident(variant)).expect("refused").contains("Mechanism`"), "{variant}");
+        }
+        for fine in ["generator", "Gen", "phi", "F64", "kinloop_arm", "Tt", "some", "ok", "Okay", "Nonempty"] {
             assert!(reserved_problem(&ident(fine), "a parameter").is_none(), "{fine}");
             assert!(mechanism_name_problem(&ident(fine)).is_none(), "{fine}");
         }

@@ -142,6 +142,9 @@ struct Globals<'a> {
     unknowns: Vec<&'a Decl>,
     /// Declaration item of each declared name, keyed by the `Decl`'s address.
     item_of: HashMap<*const Decl, usize>,
+    /// Some `input` was written, even if every one was refused (a duplicate name already
+    /// reported): then "declares no input" would be a second, false error.
+    input_written: bool,
 }
 
 /// What lowering the items in order produces (pass 2).
@@ -230,9 +233,16 @@ pub(crate) fn build(def: MechanismDef) -> Result<Model, syn::Error> {
 
 /// Pass 1: the global declarations (params, inputs, unknowns), duplicates reported.
 fn declare_globals<'a>(lw: &mut Lowerer, items: &'a [Item]) -> Globals<'a> {
-    let mut g = Globals { params: Vec::new(), inputs: Vec::new(), unknowns: Vec::new(), item_of: HashMap::new() };
+    let mut g = Globals {
+        params: Vec::new(),
+        inputs: Vec::new(),
+        unknowns: Vec::new(),
+        item_of: HashMap::new(),
+        input_written: false,
+    };
     for (item_index, item) in items.iter().enumerate() {
         let ItemKind::Decls(kind, decls) = &item.kind else { continue };
+        g.input_written |= matches!(kind, DeclKind::Inputs) && !decls.is_empty();
         for d in decls {
             let list = match kind {
                 DeclKind::Params => &mut g.params,
@@ -273,7 +283,7 @@ fn check_counts(lw: &mut Lowerer, g: &mut Globals, name: &Ident) {
         ));
         g.unknowns.truncate(MAX_UNKNOWNS);
     }
-    if g.inputs.is_empty() {
+    if !g.input_written {
         lw.errors.push(syn::Error::new(
             name.span(),
             format!(
