@@ -28,200 +28,14 @@
 //! # Ok::<(), kinloop::Error>(())
 //! ```
 //!
-//! ## The declaration language
+//! ## Declaring a mechanism
 //!
-//! ```text
-//! /// doc comment                            (kept on the generated struct)
-//! #[kinloop(dense)]                          optional: solve all unknowns as one dense block
-//! #[kinloop(newton)]                         optional: Newton even where a closed form exists
-//! #[kinloop(sensitivities)]                  optional: also generate parameter sensitivities
-//! pub struct Name {
-//!     params a, b = 2.5, c;                  design parameters (f64 fields; optional defaults)
-//!     input phi;                             generalized coordinate(s): `inputs th1, th2;`
-//!     unknowns q1 = 0.3, s = a + b;          unknowns, with initial guesses (default 0)
-//!     let v = a @ phi + (0, c);              named intermediate (scalar or vector)
-//!     loop name: vector == vector;           a closed contour: two scalar equations
-//!     eq name: scalar == scalar;             one scalar equation
-//!     point p = vector;                      named output point (x, y) and its analogs
-//!     output w = scalar;                     named scalar output and its analogs
-//!     body b: mass m, com p, inertia j, turns q1;   dynamics: a rigid body (see below)
-//!     force f at p = vector;                 a force at a point, an expression of the state
-//!     torque t on q1 = scalar;               a torque on an input or an angle unknown
-//!     gravity vector;                        the gravitational acceleration, e.g. `(0, -g)`
-//! }
-//! ```
-//!
-//! * `length @ angle` is a polar vector (`(length cos angle, length sin angle)`), `(x, y)` a
-//!   Cartesian one; `+` and `-` chain vectors, a scalar scales a vector (`k * v`, `v / k`),
-//!   `v.x` and `v.y` take components. `@` binds tighter than `+` and looser than `*`, so
-//!   `a + 2 * r @ phi` is `a + ((2 r) @ phi)`, and an angle that is a sum needs parentheses:
-//!   `r @ (phi + gamma)`.
-//! * Scalars: numbers, `+ - * /`, unary `-`, powers `x ^ 2` (an integer exponent becomes
-//!   `powi`), `pi`, and the functions `sin cos tan asin acos atan atan2(y, x) sqrt exp ln abs
-//!   pow(x, y) hypot(a, b) deg(degrees)`; for vectors `norm(v) dot(a, b) cross(a, b) angle(v)
-//!   rot(v, theta)`.
-//! * **Angles are in radians** everywhere: in the declaration (`@`, `sin`, `rot`, initial
-//!   guesses), in the inputs passed at run time, in every result (`s.q.phi2`, analogs per radian)
-//!   and in tables and their CSV files (label the columns with [`Table::with_units`]:
-//!   `phi [rad]`). Write an angle in degrees as `deg(30)` in a declaration and as
-//!   `kinloop::deg(30.0)` in Rust, and read one in degrees with [`to_deg`] or
-//!   [`Table::column_deg`]; `30°` is not valid Rust and does not compile. A guess written in
-//!   degrees by mistake (`phi2 = 30`) is a guess of 30 rad.
-//! * A loop's right side may be `0` (the zero vector): `loop c: a + b - c == 0;`.
-//! * Time can be the input: `input t; let s1 = v1 * t;` (the analogs are then time derivatives).
-//! * Several inputs make a multi-degree-of-freedom mechanism; the analogs are partial
-//!   derivatives (`state.dq.phi2.th1` is `d phi2 / d th1`, `state.d2q.phi2.th1.th2` the mixed
-//!   second derivative).
-//! * The initial guesses choose the assembly mode (branch); pass another guess at run time to
-//!   pick another branch, or warm-start each solve from the previous position along a sweep.
-//!
-//! * Machine dynamics: `body name: mass m, com p, inertia j, turns angle;` declares a rigid
-//!   body — its mass and moment of inertia about the centre of mass are expressions of the
-//!   parameters (`inertia` defaults to 0), its centre of mass `com` a declared `point` or
-//!   `(x, y)` of unknowns, outputs and constants (`com (x_c, 0)` for a slider), and `turns`
-//!   names the input or angle unknown it rotates with (none for a slider). `force name at p =
-//!   (fx, fy);` and `torque name on angle = scalar;` are loads: expressions of parameters,
-//!   inputs and unknowns, evaluated by generated straight-line code; `gravity (0, -g);` sets
-//!   gravity. The macro then generates `m.mass_model()`, the runtime's
-//!   [`dynamics::MassModel`] for the reduced inertia, inverse dynamics, shaking forces, flywheel
-//!   and simulation. A negative literal mass or inertia, a mass that changes with the state,
-//!   `turns` or `on` a parameter or a length unknown, and a point with no analogs of its own
-//!   are compile errors; negative or non-finite values given at run time are typed errors.
-//!
-//! ```
-//! kinloop::mechanism! {
-//!     /// A slider-crank with its rod and piston, a gas force and gravity.
-//!     pub struct Engine {
-//!         params r = 0.05, l = 0.2, m_rod = 2.0, j_rod = 0.01, m_p = 0.5, p = 300.0;
-//!         input phi;
-//!         unknowns beta = 0, x = 0.25;
-//!         loop abc: r @ phi + l @ beta == (x, 0);
-//!         point s2 = r @ phi + 0.3 * l @ beta;
-//!         body rod: mass m_rod, com s2, inertia j_rod, turns beta;
-//!         body piston: mass m_p, com (x, 0);
-//!         force gas at (x, 0) = (p * (r + l) / x, 0);
-//!         gravity (0, -9.81);
-//!     }
-//! }
-//! use kinloop::Mechanism;
-//! let engine = Engine::default();
-//! let model = engine.mass_model()?;
-//! let k = engine.kinematics_flat(&[0.5], &engine.guess_flat(&[0.5]), &Default::default())?;
-//! let d = model.dynamics(&k, &[100.0])?; // at 100 rad/s
-//! let torque = d.drive(&[100.0], &[0.0])[0]; // J eps + 1/2 J' omega^2 - Q at constant speed
-//! assert!(d.reduced_inertia() > 0.0 && torque.is_finite());
-//! # Ok::<(), Box<dyn std::error::Error>>(())
-//! ```
-//!
-//! Mistakes are compile errors at the exact place, with what to write instead: unknown names
-//! (with a suggestion), vector/scalar mix-ups, unsupported functions, and structural problems
-//! (equation and unknown counts with the resulting mobility, over- and under-determined parts).
-//! All mistakes of a declaration are reported together. A structural problem is one error at the
-//! mechanism's name — counts, mobility `W = unknowns + inputs - equations`, the over- and
-//! under-determined parts (Dulmage–Mendelsohn) with their equations and unknowns, and what to add
-//! or remove — plus a short error at each loop and unknown involved. An unknown in no equation,
-//! an equation without unknowns and an input that is never used are errors; a parameter that is
-//! never used is a warning (name it `_mass` to keep it on purpose). After an error the macro
-//! still defines the parameter struct and the named types, so code using them adds no
-//! secondary errors.
-//!
-//! ## What is generated
-//!
-//! For `pub struct Name { ... }`:
-//!
-//! * `Name`: the parameters as public `f64` fields (and `Default` when every parameter has a
-//!   default value, or when there are no parameters), with `param_values()` and
-//!   `from_param_values([...])` in declaration order;
-//! * `NameInputs<T>`, `NameUnknowns<T>`, `NameOutputs<T>`: named fields (points are
-//!   [`Vec2`]), convertible from and to arrays (and nalgebra vectors for the unknowns); with
-//!   one input, a plain `f64` converts to `NameInputs`, so `m.solve(0.3)` works;
-//! * `NameState`: the inputs `input`, positions `q`, velocity analogs `dq`, acceleration analogs
-//!   `d2q`, outputs `out`, `dout`, `d2out`, the solver [`SolveReport`], the blocks' [`Health`]
-//!   and the same values as a flat [`Kin`] (`flat`); `state.motion(omega, eps)` gives true
-//!   velocities and accelerations (`NameMotion`);
-//! * methods on `Name`: `solve(input)`, `kinematics(input, guess)`, `position(input, guess)`,
-//!   `kinematics_at(input, q)`, `outputs`, `residual`, `guess`, `check`, `position_with` and
-//!   `kinematics_with` taking a [`NewtonConfig`], `sweep`, `sweep_at` and `assembly_modes`
-//!   (see below), `sensitivities` when requested and `mass_model` when dynamics is declared;
-//!   and the constants `NAME`, `PARAMS`, `INPUTS`, `UNKNOWNS`, `EQUATIONS`, `OUTPUTS`,
-//!   `BLOCKS` (the block-triangular decomposition) and `DECOMPOSITION` (the same in words, see
-//!   below);
-//! * implementations of [`Mechanism`] (the flat, generated kernels) and [`Named`] (the same
-//!   API by name) for generic code. The methods above are the same for every mechanism: they
-//!   live once in [`Named`] and the generated ones only forward to it, so calling them needs no
-//!   import.
-//!
-//! ```
-//! kinloop::mechanism! {
-//!     /// A slider driven through a fixed cam profile: no parameters, and still `Default`.
-//!     pub struct Cam {
-//!         input phi;
-//!         unknowns x = 1;
-//!         eq follower: x == 2 + 0.5 * sin(phi);
-//!     }
-//! }
-//! let s = Cam::default().solve(0.3)?;
-//! assert!((s.dq.x - 0.5 * 0.3f64.cos()).abs() < 1e-12);
-//! # Ok::<(), kinloop::Error>(())
-//! ```
-//!
-//! The equations are ordered into blocks (maximum matching and Tarjan's strongly connected
-//! components, i.e. the block-lower-triangular form): each block is solved by its own small
-//! Newton with a fixed-size Jacobian, blocks whose unknowns appear linearly (slider coordinates)
-//! by one linear solve, and blocks that are classical Assur groups (a rod angle, an RRR dyad, a
-//! slotted rocker, an RRP group) in closed form. Velocity analogs solve `J q' = -df/dphi` and acceleration analogs
-//! `J q'' = -D2f[(q', 1), (q', 1)]` with one factorisation per block shared by both.
-//!
-//! `Name::BLOCKS` lists the blocks in solve order ([`BlockInfo`]: unknowns, equations, linear),
-//! and `Name::DECOMPOSITION` describes them in words: the counts and the mobility, then one line
-//! per block with its index (the one error locations use), how it is solved, and its unknowns
-//! `<-` its scalar equations (`loop.x`, `loop.y`, or an `eq` name). A block that is a classical
-//! Assur group is solved in closed form, without iteration (`closed form, angle equation`: one
-//! angle from `a cos q + b sin q = c`; `closed form, RRR dyad`: circle intersection; `closed
-//! form, length and angle`: a slotted rocker; `closed form, angle and slider`: an RRP group),
-//! on the assembly mode of the guess (the sign of the block's Jacobian determinant there) and
-//! on the guess's turn. Where its links fall short of closing the loop it is `NoAssembly`, as
-//! Newton; short by no more than the residual tolerance (a limit position rounded past: `0.1 +
-//! 0.2 > 0.3` in metres) it is the limit position, in every unit. `linear, NxN` is one linear solve; `Newton, NxN` iterates;
-//! `Newton, NxN sparse (K non-zeros)` iterates on a large coupled block (16 unknowns or more,
-//! a sparse Jacobian) whose LU follows its sparsity: an elimination order fixed at compile time,
-//! every pivot checked at run time, a dense LU where one is weak. Newton ends on the guess's turn
-//! too: an angle that enters its block only through sines and cosines of whole multiples of
-//! itself (`l @ q`, `l @ (q + gamma)`, `l @ (2 q)`) and that a long step carried more than half a
-//! turn out is moved back to its guess's turn and corrected once more there. A far guess can
-//! lead Newton into a fold of the residual (a local minimum where no step decreases it, links
-//! lying folded against each other) though the loops close elsewhere: there it restarts, with
-//! one such angle at a time turned by a quarter turn either way and by a half turn, and returns
-//! the root nearest the guess; only when every restart stalls too is the block `NoAssembly`
-//! ([`NewtonConfig::restarts`]; a sweep's steps never restart). From a far guess Newton may end
-//! in either assembly mode; the closed forms keep the guess's. A guess millions
-//! of turns out, where doubles are too far apart for an angle to meet the tolerance, is
-//! [`Error::TooManyTurns`] on both paths.
-//! `#[kinloop(dense)]` solves all unknowns as one block with dense LU instead, `#[kinloop(newton)]` uses
-//! Newton for every nonlinear block (the results are the same; both exist to compare and to
-//! debug).
-//!
-//! ```
-//! kinloop::mechanism! {
-//!     pub struct SliderCrank {
-//!         params r = 1.0, l = 3.0, e = 0.2;
-//!         input phi;
-//!         unknowns psi = pi, x = r + l;   // rod from the slider back to the crank pin
-//!         loop oabo: r @ phi == (x, e) + l @ psi;
-//!     }
-//! }
-//!
-//! // The rod angle comes from the loop's y projection (the slider is not in it), then the
-//! // slider coordinate, which appears linearly, from its x projection in closed form.
-//! assert_eq!(
-//!     SliderCrank::DECOMPOSITION,
-//!     "SliderCrank: 2 unknowns, 2 scalar equations, 1 input (mobility W = 1); 2 blocks in solve order
-//!   block 0 (closed form, angle equation): psi <- oabo.y
-//!   block 1 (linear, 1x1): x <- oabo.x"
-//! );
-//! assert_eq!(SliderCrank::BLOCKS[1].unknowns, ["x"]);
-//! assert!(SliderCrank::BLOCKS[1].linear);
-//! ```
+//! A declaration names the parameters, the input(s) and the unknowns, then writes each loop of
+//! the chain as one vector equation; `point` and `output` name what to compute besides, and
+//! `body`, `force`, `torque`, `gravity` describe the dynamics. [`mechanism!`] gives the grammar
+//! at a glance and [`language`] the complete reference: expressions and functions, angles and
+//! units, several inputs, the generated types and methods, how the equations are ordered into
+//! blocks and how each block is solved (closed form, linear, Newton), and the diagnostics.
 //!
 //! ## Sweeps, singular positions and assembly modes
 //!
@@ -487,8 +301,77 @@
 
 extern crate self as kinloop;
 
+pub mod language;
+
+/// Declares a planar mechanism by its closed vector loops and generates, at compile time, its
+/// named types and straight-line kernels: positions, velocity and acceleration analogs, outputs,
+/// their exact derivatives by automatic differentiation, and (on request) parameter
+/// sensitivities and the mass model of its dynamics.
+///
+/// ```text
+/// /// doc comment                            kept on the generated struct
+/// #[kinloop(dense | newton | sensitivities)] optional solver and generation options
+/// pub struct Name {
+///     params a, b = 2.5, c;                  design parameters (f64 fields; optional defaults)
+///     input phi;                             generalized coordinate(s): `inputs th1, th2;`
+///     unknowns q1 = 0.3, s = a + b;          unknowns with initial guesses (they pick the branch)
+///     let v = a @ phi + (0, c);              named intermediate (scalar or vector)
+///     loop name: vector == vector;           one closed contour: two scalar equations
+///     eq name: scalar == scalar;             one scalar equation
+///     point p = vector;                      named output point and its analogs
+///     output w = scalar;                     named scalar output and its analogs
+///     body b: mass m, com p, inertia j, turns q1;   a rigid body of the dynamics
+///     force f at p = vector;   torque t on q1 = scalar;   gravity (0, -g);
+/// }
+/// ```
+///
+/// `length @ angle` is a polar vector, `(x, y)` a Cartesian one; angles are in radians
+/// (`deg(30)` converts). It generates `Name` (the parameters), `NameInputs`, `NameUnknowns`,
+/// `NameOutputs`, `NameState`, `NameMotion`, `NameColumns` (`Name::COL`), the constants
+/// `NAME`, `PARAMS`, `INPUTS`, `UNKNOWNS`, `EQUATIONS`, `OUTPUTS`, `BLOCKS`, `DECOMPOSITION`,
+/// the methods of [`Named`] (`solve`, `kinematics`, `sweep`, `sampled`, `reachable`, ...) and
+/// implementations of [`Mechanism`] and [`Named`]. Every mistake is a compile error at its
+/// span saying what to write instead. The complete reference is [`language`].
+///
+/// ```
+/// kinloop::mechanism! {
+///     /// Four-bar: crank `a`, coupler `b`, rocker `c`, ground `d`.
+///     pub struct FourBar {
+///         params a = 1.0, b = 3.0, c = 2.5, d = 3.2;
+///         input phi;
+///         unknowns beta = 0.5, gamma = 1.5;
+///         loop abcd: a @ phi + b @ beta == (d, 0) + c @ gamma;
+///         point coupler = a @ phi + 0.5 * b @ beta;
+///     }
+/// }
+/// let m = FourBar::default();
+/// let s = m.solve(0.3)?;
+/// // The loop closes, and the velocity analog is the derivative of the position.
+/// let closure = 1.0 * 0.3f64.cos() + 3.0 * s.q.beta.cos() - 3.2 - 2.5 * s.q.gamma.cos();
+/// assert!(closure.abs() < 1e-12);
+/// let h = 1e-6;
+/// let (up, down) = (m.kinematics(0.3 + h, &s.q)?, m.kinematics(0.3 - h, &s.q)?);
+/// assert!(((up.q.beta - down.q.beta) / (2.0 * h) - s.dq.beta).abs() < 1e-8);
+/// # Ok::<(), kinloop::Error>(())
+/// ```
+#[doc(inline)]
 pub use kinloop_macros::mechanism;
-pub use kinloop_runtime::*;
+// The runtime's public items, listed rather than glob-imported: a glob would also inline the
+// whole of nalgebra into these pages (rustdoc documents a module re-exported through a glob).
+pub use kinloop_runtime::{
+    AtSingular, BlockInfo, Configured, DetSigns, Error, Event, EventKind, Extreme, Extremum, FlatMotion, Health, Jac,
+    Kin, LENGTH_UNIT, Location, Mechanism, Named, NamedSensitivities, NewtonConfig, Quantity, QuantityKind, Reach,
+    Sens, Sensitivities, SolveReport, Stop, Sweep, SweepConfig, SweepResult, Table, Termination, TraceOptions, Traced,
+    TracedPoint, Vec2, assembly_modes, deg, extremum, integral, reachable, to_deg, trace_curve,
+};
+pub use kinloop_runtime::{analysis, dynamics, events, metrics, paths};
+// A glob of the scan module: it holds `par_scan` whenever the runtime is built with rayon,
+// whichever crate's feature asked for it (features unify).
+/// nalgebra, the linear algebra of the runtime, under its own path so that users share its
+/// version (`kinloop::nalgebra::Vector2`); its documentation is nalgebra's own.
+#[doc(no_inline)]
+pub use kinloop_runtime::nalgebra;
+pub use kinloop_runtime::paths::scan::*;
 
 /// What code expanded by [`mechanism!`] names (and nothing else); not for use by hand.
 #[doc(hidden)]

@@ -6,7 +6,8 @@
 
 use proc_macro::TokenStream;
 
-/// Declares a mechanism by its closed vector loops; see the `kinloop` crate documentation.
+/// Declares a mechanism by its closed vector loops: the grammar, an example and what is
+/// generated are on `kinloop::mechanism`, the complete reference in `kinloop::language`.
 #[proc_macro]
 pub fn mechanism(input: TokenStream) -> TokenStream {
     kinloop_codegen::expand(input.into()).into()

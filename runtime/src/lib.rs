@@ -65,5 +65,7 @@ pub use paths::trace::{TraceOptions, Traced, TracedPoint, trace_curve};
 pub use table::Table;
 pub use vec2::Vec2;
 
-/// Re-exported so generated code and users share one nalgebra version.
+/// Re-exported so generated code and users share one nalgebra version. Hidden from the item
+/// lists, which its items would swamp: the facade shows it as one re-export line.
+#[doc(hidden)]
 pub use nalgebra;
