@@ -53,7 +53,7 @@ struct Curves {
 fn describe(name: &str, m: &Balance) -> Result<Curves, Box<dyn std::error::Error>> {
     let turn = Sampled::sweep(m, 0.0, TAU, SAMPLES + 1, m.guess(0.0).into())?;
     let f = turn.fourier(Balance::COL.xc, 6)?;
-    let r = turn.residual(Balance::COL.xc, 1)?;
+    let r = turn.unbalance(Balance::COL.xc, 1)?;
     println!(
         "{name}: rho = {:.6}, gamma_b = {:.6}, k_b = {:.6}, delta = {:.6}°",
         m.rho,

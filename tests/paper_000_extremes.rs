@@ -5,7 +5,7 @@
 //! there from the same triangles; strokes and phase shifts. The closed forms themselves are
 //! checked against the stationary points of the explicit slider-crank positions.
 
-use kinloop::analysis::{ExtremeKind, Sampled};
+use kinloop::analysis::{Extreme, Sampled};
 use std::f64::consts::TAU;
 
 use kinloop_fixtures::RhombicDrive;
@@ -50,7 +50,7 @@ fn extreme_positions_strokes_and_phase_shift_match_the_closed_forms() {
     let e = turn.extremes(RhombicDrive::COL.x_f).unwrap();
     assert_eq!(e.len(), 2);
     assert!(e.iter().all(|e| e.at.d1.abs() < 1e-12));
-    assert_eq!(e.iter().filter(|e| e.kind == ExtremeKind::Max).count(), 1);
+    assert_eq!(e.iter().filter(|e| e.kind == Extreme::Max).count(), 1);
 
     // Phase shift between corresponding extremes, in degrees modulo a turn.
     let shift = |a: f64, b: f64| (a - b).to_degrees().rem_euclid(360.0);

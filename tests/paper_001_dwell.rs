@@ -4,7 +4,7 @@
 //! explicit formulas (rocker angle `atan2(x, y)`, `omega_r`, `eps_r`) with bisection and
 //! golden-section search, using the symmetry of the stop about alpha = 0.
 
-use kinloop::analysis::ExtremeKind;
+use kinloop::analysis::Extreme;
 use std::f64::consts::PI;
 
 use kinloop_fixtures::gear_lever::{GearLever, stops};
@@ -69,7 +69,7 @@ fn dwell_duration_quality_and_peak_acceleration_match_the_explicit_formulas() {
             // generated analogs to rounding; bisection is exact to rounding too; the positions
             // themselves carry the Newton tolerance (~1e-12).
             let centre = 2.0 * PI / 3.0 * i as f64;
-            assert_eq!(d.first.kind, ExtremeKind::Max);
+            assert_eq!(d.first.kind, Extreme::Max);
             assert!(((d.start.x + d.end.x) / 2.0 - centre).abs() < 1e-10, "k = {k}, stop {i}");
             assert!((d.duration() - duration).abs() < 1e-10, "k = {k}: {} vs {duration}", d.duration());
             assert!((d.swing() - swing).abs() < 1e-10, "k = {k}: {} vs {swing}", d.swing());

@@ -59,7 +59,7 @@ fn d_closed(m: &Balance) -> (f64, f64, f64) {
 fn residual_unbalance_of_the_reference_design() {
     let m = design([1.0, 2.0, 0.3, 0.0]);
     let turn = Sampled::sweep(&m, 0.0, TAU, 129, m.guess(0.0).into()).unwrap();
-    let r = turn.residual(Balance::COL.xc, 1).unwrap();
+    let r = turn.unbalance(Balance::COL.xc, 1).unwrap();
     let f = turn.fourier(Balance::COL.xc, 6).unwrap();
     let (d, at, amp2) = d_closed(&m);
     // Both sides are exact to rounding (geometric convergence of the sums; roots located to

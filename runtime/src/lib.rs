@@ -45,7 +45,8 @@ mod vec2;
 // Short paths inside the crate for the modules every part uses.
 use solvers::{lu, newton};
 
-pub use analysis::objective::{Extreme, Extremum, extremum, integral};
+pub use analysis::Extreme;
+pub use analysis::objective::{Extremum, extremum, integral};
 pub use angles::{deg, to_deg};
 pub use configured::Configured;
 pub use error::{Error, Quantity};

@@ -24,7 +24,7 @@
 //! swing in the limit; it is not reported by this definition.
 
 use super::Jet;
-use super::extremes::{ExtremeKind, LocalExtreme, bracketed_root, check_increasing, extremes};
+use super::extremes::{Extreme, LocalExtreme, bracketed_root, check_increasing, extremes};
 use crate::error::Error;
 
 /// A dwell of a progressive output; see the [module documentation](self) for the definition.
@@ -77,7 +77,7 @@ pub fn dwells(samples: &[Jet], mut eval: impl FnMut(f64) -> Result<Jet, Error>) 
         ));
     }
     // A reversal starts at a maximum for an increasing output, at a minimum for a decreasing one.
-    let starts_reversal = if travel > 0.0 { ExtremeKind::Max } else { ExtremeKind::Min };
+    let starts_reversal = if travel > 0.0 { Extreme::Max } else { Extreme::Min };
     let ext = extremes(samples, &mut eval)?;
     let mut out = Vec::new();
     for i in 0..ext.len().saturating_sub(1) {
@@ -146,7 +146,7 @@ mod tests {
         let g = |x: f64| f(x).map(|j| Jet { x, value: -j.value, d1: -j.d1, d2: -j.d2 });
         let e = dwells(&grid(g, -3.0, 3.0, 17), g).unwrap();
         assert_eq!(e.len(), 1);
-        assert!((e[0].duration() - 4.0).abs() < 1e-14 && e[0].first.kind == ExtremeKind::Min);
+        assert!((e[0].duration() - 4.0).abs() < 1e-14 && e[0].first.kind == Extreme::Min);
     }
 
     /// v = x + a sin x (a > 1): an increasing output with one reversal per period, symmetric

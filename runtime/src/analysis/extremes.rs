@@ -15,13 +15,15 @@
 use super::Jet;
 use crate::error::Error;
 
-/// Whether a local extreme is a maximum or a minimum.
+/// A maximum or a minimum: what a located local extreme is ([`LocalExtreme::kind`]), and which
+/// extremum an objective asks for ([`extremum`](crate::extremum)).
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
-#[non_exhaustive]
-pub enum ExtremeKind {
-    /// The velocity analog changes sign from positive to negative.
+pub enum Extreme {
+    /// The largest value (at a local extreme: the velocity analog changes sign from positive
+    /// to negative).
     Max,
-    /// The velocity analog changes sign from negative to positive.
+    /// The smallest value (at a local extreme: the velocity analog changes sign from negative
+    /// to positive).
     Min,
 }
 
@@ -29,7 +31,7 @@ pub enum ExtremeKind {
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct LocalExtreme {
     /// A maximum or a minimum.
-    pub kind: ExtremeKind,
+    pub kind: Extreme,
     /// The quantity, its (vanishing) velocity analog and its acceleration analog at the extreme.
     pub at: Jet,
 }
@@ -148,7 +150,7 @@ pub fn bracketed_root(
 /// are not extremes here (see [`global_range`]).
 ///
 /// ```
-/// use kinloop_runtime::analysis::{Jet, extremes::{ExtremeKind, extremes}};
+/// use kinloop_runtime::analysis::{Jet, extremes::{Extreme, extremes}};
 /// // v = sin(x) + 0.5 sin(2x) on [0, 2 pi]: v' = cos x + cos 2x vanishes at pi/3 (max), at
 /// // 5 pi/3 (min), and at pi, a sample of this grid, without changing sign (no extreme).
 /// let f = |x: f64| Ok(Jet {
@@ -161,10 +163,10 @@ pub fn bracketed_root(
 /// let found = extremes(&samples, f)?;
 /// let pi = std::f64::consts::PI;
 /// assert_eq!(found.len(), 2);
-/// assert_eq!(found[0].kind, ExtremeKind::Max);
+/// assert_eq!(found[0].kind, Extreme::Max);
 /// assert!((found[0].x() - pi / 3.0).abs() < 1e-14);
 /// assert!((found[0].value() - 0.75 * 3f64.sqrt()).abs() < 1e-15);
-/// assert_eq!(found[1].kind, ExtremeKind::Min);
+/// assert_eq!(found[1].kind, Extreme::Min);
 /// assert!((found[1].x() - 5.0 * pi / 3.0).abs() < 1e-14);
 /// # Ok::<(), kinloop_runtime::Error>(())
 /// ```
@@ -187,7 +189,7 @@ pub fn extremes(samples: &[Jet], mut eval: impl FnMut(f64) -> Result<Jet, Error>
         let k = i + 1 + step;
         let (a, b) = (samples[i], samples[k]);
         if sign(a.d1) != sign(b.d1) {
-            let kind = if a.d1 > 0.0 { ExtremeKind::Max } else { ExtremeKind::Min };
+            let kind = if a.d1 > 0.0 { Extreme::Max } else { Extreme::Min };
             let at = if k == i + 1 {
                 bracketed_root(a, b, |j| (j.d1, j.d2), &mut eval)?
             } else {
@@ -383,8 +385,8 @@ mod tests {
         assert_eq!(e.len(), 2);
         let r = 7f64.sqrt();
         let (x_max, x_min) = ((7.0 - r) / 3.0, (7.0 + r) / 3.0);
-        assert_eq!(e[0].kind, ExtremeKind::Max);
-        assert_eq!(e[1].kind, ExtremeKind::Min);
+        assert_eq!(e[0].kind, Extreme::Max);
+        assert_eq!(e[1].kind, Extreme::Min);
         assert!((e[0].x() - x_max).abs() < 1e-14, "{}", e[0].x());
         assert!((e[1].x() - x_min).abs() < 1e-14);
         assert!((e[0].value() - poly(x_max).unwrap().value).abs() < 1e-14);
@@ -406,7 +408,7 @@ mod tests {
         s[3].d1 = 0.0;
         let e = extremes(&s, f).unwrap();
         assert_eq!(e.len(), 1, "{e:?}");
-        assert_eq!(e[0].kind, ExtremeKind::Min);
+        assert_eq!(e[0].kind, Extreme::Min);
         assert!((e[0].x() - PI).abs() < 1e-15);
     }
 

@@ -56,10 +56,10 @@ pub use column::{Column, ColumnIndex};
 pub use sampled::Sampled;
 
 pub use dwell::{Dwell, dwells};
-pub use extremes::{ExtremeKind, GlobalRange, LocalExtreme, bracketed_root, extremes, global_range, maximize};
+pub use extremes::{Extreme, GlobalRange, LocalExtreme, bracketed_root, extremes, global_range, maximize};
 pub use fourier::{Fourier, fourier};
 pub use optimize::{LevenbergMarquardt, Minimum, NelderMead, Stop};
-pub use unbalance::{Residual, residual};
+pub use unbalance::{Unbalance, unbalance};
 
 use crate::error::Error;
 
@@ -132,7 +132,7 @@ mod tests {
         assert!(r.max.d1.abs() < 1e-12 && r.min.d1.abs() < 1e-12);
         let e = turn.extremes(X).unwrap();
         assert_eq!(e.len(), 2);
-        assert_eq!(e[0].kind, ExtremeKind::Max);
+        assert_eq!(e[0].kind, Extreme::Max);
         // The offset makes the return stroke quicker than the working stroke.
         assert!((e[1].x() - e[0].x()) > PI);
     }
@@ -168,7 +168,7 @@ mod tests {
             assert!((f.a[k] - g.a[k]).abs() < 1e-12 && (f.b[k] - g.b[k]).abs() < 1e-12, "harmonic {}", k + 1);
         }
         // The residual after the first harmonic, against a dense scan of the closed form.
-        let r = turn.residual(X, 1).unwrap();
+        let r = turn.unbalance(X, 1).unwrap();
         let c1 = |x: f64| g.eval_upto(1, x).0;
         let mut best = (0.0, 0.0f64);
         for i in 0..20_000 {
@@ -227,20 +227,20 @@ mod tests {
     #[test]
     fn sampled_documentation_example() -> Result<(), crate::Error> {
         use crate::analysis::demo::SliderCrank;
-        use crate::analysis::{ExtremeKind, Sampled};
+        use crate::analysis::{Extreme, Sampled};
         use std::f64::consts::TAU;
         let m = SliderCrank { r: 1.0, l: 3.0, e: 0.0 }; // a centred slider-crank
         let turn = Sampled::sweep(&m, 0.0, TAU, 37, [4.0])?;
         // Dead centres at 0 and 180 degrees (the first at the start of the range is not interior).
         let e = turn.extremes(X)?;
         assert_eq!(e.len(), 1);
-        assert_eq!(e[0].kind, ExtremeKind::Min);
+        assert_eq!(e[0].kind, Extreme::Min);
         assert!((e[0].x() - TAU / 2.0).abs() < 1e-10 && (e[0].value() - 2.0).abs() < 1e-12);
         // The largest acceleration analog |x''| = r + r^2/l at the outer dead centre.
         let (at, peak) = turn.peak_of(SliderCrank::COL.x, |j| j.d2.abs())?;
         assert!((peak - (1.0 + 1.0 / 3.0)).abs() < 1e-12 && at.cos() > 1.0 - 1e-12);
         // After the first harmonic, what remains is mostly the second, about r^2 / (4 l) cos 2 phi.
-        let r = turn.residual(X, 1)?;
+        let r = turn.unbalance(X, 1)?;
         assert!((r.max_abs - 1.0 / 12.0).abs() < 5e-3);
         // Any state of the range, on the sweep's branch.
         assert!((turn.at(1.0)?.q[0] - (1f64.cos() + (9.0 - 1f64.sin().powi(2)).sqrt())).abs() < 1e-12);
@@ -257,7 +257,7 @@ mod tests {
         let turn = Sampled::sweep(&m, start, start + std::f64::consts::TAU, 37, [outer]).unwrap();
         let e = turn.extremes(X).unwrap();
         assert_eq!(e.len(), 1, "{e:?}");
-        assert_eq!(e[0].kind, ExtremeKind::Min);
+        assert_eq!(e[0].kind, Extreme::Min);
         // The inner dead centre: crank and rod folded, x = sqrt((l - r)^2 - e^2).
         assert!((e[0].value() - (4.0f64 - 0.25).sqrt()).abs() < 1e-12, "{e:?}");
     }

@@ -7,21 +7,12 @@
 //!   (`dx*/dp = -(d q' / dp) / q''`).
 //! * [`integral`]: the trapezoidal integral of a quantity over a sweep and its exact gradient.
 
-use crate::analysis::{Column, ColumnIndex, Sampled};
+use crate::analysis::{Column, ColumnIndex, Extreme, Sampled};
 use crate::error::Error;
 use crate::kin::{Kin, Sens};
 use crate::mechanism::Sensitivities;
 use crate::paths::sweep::{Sweep, SweepConfig};
 use crate::solvers::newton::NewtonConfig;
-
-/// Which extremum to find.
-#[derive(Clone, Copy, Debug, PartialEq, Eq)]
-pub enum Extreme {
-    /// The largest value.
-    Max,
-    /// The smallest value.
-    Min,
-}
 
 /// A located extremum of a quantity over an input range, with parameter gradients.
 #[derive(Clone, Copy, Debug, PartialEq)]

@@ -2,7 +2,7 @@
 
 use super::column::Column;
 use super::extremes::{self, GlobalRange, LocalExtreme, global_range, maximize};
-use super::{Dwell, Fourier, Jet, Residual, dwell, fourier, unbalance};
+use super::{Dwell, Fourier, Jet, Unbalance, dwell, fourier, unbalance};
 use crate::error::Error;
 use crate::kin::Kin;
 use crate::mechanism::Mechanism;
@@ -87,20 +87,20 @@ impl<const NI: usize> Line<NI> {
 /// first).
 ///
 /// ```ignore
-/// use kinloop_runtime::analysis::{ExtremeKind, Sampled};
+/// use kinloop_runtime::analysis::{Extreme, Sampled};
 /// use std::f64::consts::TAU;
 /// let m = SliderCrank { r: 1.0, l: 3.0, e: 0.0 };            // a centred slider-crank
 /// let turn = Sampled::sweep(&m, 0.0, TAU, 37, [4.0])?;
 /// // Dead centres at 0 and 180 degrees (the first at the start of the range is not interior).
 /// let e = turn.extremes(SliderCrank::COL.x)?;
 /// assert_eq!(e.len(), 1);
-/// assert_eq!(e[0].kind, ExtremeKind::Min);
+/// assert_eq!(e[0].kind, Extreme::Min);
 /// assert!((e[0].x() - TAU / 2.0).abs() < 1e-10 && (e[0].value() - 2.0).abs() < 1e-12);
 /// // The largest acceleration analog |x''| = r + r^2/l at the outer dead centre.
 /// let (at, peak) = turn.peak_of(SliderCrank::COL.x, |j| j.d2.abs())?;
 /// assert!((peak - (1.0 + 1.0 / 3.0)).abs() < 1e-12 && at.cos() > 1.0 - 1e-12);
 /// // After the first harmonic, what remains is mostly the second, about r^2 / (4 l) cos 2 phi.
-/// let r = turn.residual(SliderCrank::COL.x, 1)?;
+/// let r = turn.unbalance(SliderCrank::COL.x, 1)?;
 /// assert!((r.max_abs - 1.0 / 12.0).abs() < 5e-3);
 /// // Any state of the range, on the sweep's branch.
 /// assert!((turn.at(1.0)?.q[0] - (1f64.cos() + (9.0 - 1f64.sin().powi(2)).sqrt())).abs() < 1e-12);
@@ -353,8 +353,8 @@ where
     /// The residual of a column after removing its mean and harmonics `1 ..= removed`, and its
     /// largest magnitude over the period (the residual unbalance `D` for `removed = 1`); see
     /// [`unbalance`].
-    pub fn residual(&self, c: Column<M>, removed: usize) -> Result<Residual, Error> {
+    pub fn unbalance(&self, c: Column<M>, removed: usize) -> Result<Unbalance, Error> {
         let jets = self.periodic(c)?;
-        unbalance::residual(&jets, self.eval(c), removed)
+        unbalance::unbalance(&jets, self.eval(c), removed)
     }
 }

@@ -16,9 +16,10 @@ use super::extremes::{check_increasing, extremes};
 use super::fourier::{Fourier, fourier};
 use crate::error::Error;
 
-/// The residual of a periodic quantity after removing harmonics `0 ..= removed`.
+/// The unbalance left in a periodic quantity after removing harmonics `0 ..= removed`: the
+/// residual `v - v_m` and its largest magnitude.
 #[derive(Clone, Debug, PartialEq)]
-pub struct Residual {
+pub struct Unbalance {
     /// The removed harmonics (mean and harmonics `1 ..= removed`).
     pub fourier: Fourier,
     /// `D = max |v - v_m|` over the cycle.
@@ -35,7 +36,7 @@ pub struct Residual {
 /// the period.
 ///
 /// ```
-/// use kinloop_runtime::analysis::{Jet, unbalance::residual};
+/// use kinloop_runtime::analysis::{Jet, unbalance::unbalance};
 /// use std::f64::consts::TAU;
 /// // v = 1 + cos x + 0.01 cos 2x: after removing the first harmonic, |0.01 cos 2x| <= 0.01.
 /// let f = |x: f64| Ok(Jet {
@@ -45,16 +46,16 @@ pub struct Residual {
 ///     d2: -x.cos() - 0.04 * (2.0 * x).cos(),
 /// });
 /// let s: Vec<Jet> = (0..=24).map(|j| f(TAU * j as f64 / 24.0)).collect::<Result<_, _>>()?;
-/// let r = residual(&s, f, 1)?;
+/// let r = unbalance(&s, f, 1)?;
 /// assert!((r.max_abs - 0.01).abs() < 1e-15);
 /// assert!((r.fourier.a[0] - 1.0).abs() < 1e-15);
 /// # Ok::<(), kinloop_runtime::Error>(())
 /// ```
-pub fn residual(
+pub fn unbalance(
     samples: &[Jet],
     mut eval: impl FnMut(f64) -> Result<Jet, Error>,
     removed: usize,
-) -> Result<Residual, Error> {
+) -> Result<Unbalance, Error> {
     check_increasing(samples)?;
     let n = samples.len() - 1;
     let (x0, x_end) = (samples[0].x, samples[n].x);
@@ -78,7 +79,7 @@ pub fn residual(
             at = c;
         }
     }
-    Ok(Residual { fourier: f, max_abs: at.value.abs(), at })
+    Ok(Unbalance { fourier: f, max_abs: at.value.abs(), at })
 }
 
 #[cfg(test)]
@@ -100,7 +101,7 @@ mod tests {
             })
         };
         let s: Vec<Jet> = (0..=36).map(|j| f(TAU * j as f64 / 36.0).unwrap()).collect();
-        let r = residual(&s, f, 1).unwrap();
+        let r = unbalance(&s, f, 1).unwrap();
         assert!((r.fourier.a0 - 3.0).abs() < 1e-14);
         assert!((r.fourier.a[0] - 2.0 * 0.4f64.cos()).abs() < 1e-14);
         assert!((r.fourier.b[0] - 2.0 * 0.4f64.sin()).abs() < 1e-14);
@@ -131,12 +132,12 @@ mod tests {
             })
         };
         let s: Vec<Jet> = (0..=20).map(|j| f(TAU * j as f64 / 20.0).unwrap()).collect();
-        assert!((residual(&s, f, 1).unwrap().max_abs - 0.1).abs() < 2e-3);
-        assert!((residual(&s, f, 2).unwrap().max_abs - 0.001).abs() < 1e-15);
-        assert!(residual(&s, f, 3).unwrap().max_abs < 1e-14);
+        assert!((unbalance(&s, f, 1).unwrap().max_abs - 0.1).abs() < 2e-3);
+        assert!((unbalance(&s, f, 2).unwrap().max_abs - 0.001).abs() < 1e-15);
+        assert!(unbalance(&s, f, 3).unwrap().max_abs < 1e-14);
         // Unequal spacing is refused.
         let mut bad = s.clone();
         bad[3].x += 0.01;
-        assert!(residual(&bad, f, 1).is_err());
+        assert!(unbalance(&bad, f, 1).is_err());
     }
 }

@@ -61,7 +61,7 @@ impl fmt::Display for LimitReport {
         }
         for o in &self.outputs {
             for e in &o.extremes {
-                let kind = if e.kind == crate::analysis::ExtremeKind::Max { "maximum" } else { "minimum" };
+                let kind = if e.kind == crate::analysis::Extreme::Max { "maximum" } else { "minimum" };
                 writeln!(
                     f,
                     "  limit position of {}: {kind} {:.9e} at {:.6} rad ({:.3} deg)",
@@ -134,7 +134,7 @@ where
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::analysis::ExtremeKind;
+    use crate::analysis::Extreme;
     use crate::analysis::demo::SliderCrank;
     use std::f64::consts::TAU;
 
@@ -148,7 +148,7 @@ mod tests {
         let e = &r.outputs[0].extremes;
         assert_eq!(e.len(), 2, "{r}");
         // The inner dead centre's angle lies in (-pi, 0): one turn later in this range.
-        assert_eq!(e[0].kind, ExtremeKind::Min);
+        assert_eq!(e[0].kind, Extreme::Min);
         assert!((e[0].x() - (x_in + TAU)).abs() < 1e-10 && (e[0].value() - inner).abs() < 1e-12, "{r}");
         assert!((e[1].x() - (x_out + TAU)).abs() < 1e-10 && (e[1].value() - outer).abs() < 1e-12, "{r}");
         assert!(r.to_string().contains("limit position of x: minimum"));

@@ -2,7 +2,7 @@
 //! the input angle spent while the output rises from its minimum to its maximum, against the
 //! angle spent while it falls back.
 
-use crate::analysis::{Column, ExtremeKind, Jet, Sampled, extremes};
+use crate::analysis::{Column, Extreme, Jet, Sampled, extremes};
 use crate::error::Error;
 use crate::mechanism::Mechanism;
 
@@ -60,12 +60,12 @@ pub fn time_ratio(samples: &[Jet], eval: impl FnMut(f64) -> Result<Jet, Error>) 
     // Seam: the analog changes sign between the last interval and the first one.
     let (before, after) = (samples[n - 2].d1, samples[1].d1);
     if found.len() == 1 && before * after < 0.0 {
-        let kind = if before > 0.0 { ExtremeKind::Max } else { ExtremeKind::Min };
+        let kind = if before > 0.0 { Extreme::Max } else { Extreme::Min };
         let at = if first.d1.abs() <= last.d1.abs() { first } else { Jet { x: first.x, ..last } };
         found.push(crate::analysis::LocalExtreme { kind, at });
     }
-    let pick = |k: ExtremeKind| found.iter().filter(|e| e.kind == k).map(|e| e.at).collect::<Vec<_>>();
-    let (maxima, minima) = (pick(ExtremeKind::Max), pick(ExtremeKind::Min));
+    let pick = |k: Extreme| found.iter().filter(|e| e.kind == k).map(|e| e.at).collect::<Vec<_>>();
+    let (maxima, minima) = (pick(Extreme::Max), pick(Extreme::Min));
     if maxima.len() != 1 || minima.len() != 1 {
         return Err(Error::InvalidArgument(format!(
             "a time ratio needs one maximum and one minimum of the output per turn; found {} maxima and {} minima",
