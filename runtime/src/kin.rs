@@ -10,8 +10,8 @@ use crate::solvers::newton::SolveReport;
 /// The signs of the block determinants along a decomposition: one bit per block, exact for up to
 /// [`DetSigns::CAPACITY`] blocks. `mechanism!` refuses more than 256 unknowns, and every block
 /// solves at least one, so a generated mechanism never has more blocks; sweeps refuse a
-/// hand-written [`Mechanism`](crate::Mechanism) that declares more (`Error::InvalidArgument`), whose further
-/// blocks would otherwise go unwatched.
+/// hand-written [`Mechanism`](crate::Mechanism) that declares more (`Error::InvalidArgument`),
+/// whose further blocks would otherwise go unwatched.
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq, PartialOrd, Ord, Hash)]
 pub struct DetSigns([u64; 4]);
 

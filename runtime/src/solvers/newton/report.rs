@@ -2,9 +2,11 @@
 //! failed ([`BlockFailure`]), and the diagnostics of a position solve ([`SolveReport`]), with why
 //! it stopped ([`Termination`]).
 
-/// A converged block. Its evaluation is the caller's (see [`newton`](super::newton)): at `z`, or (after a
+/// A converged block. Its evaluation is the caller's (see [`newton`]): at `z`, or (after a
 /// correction at the rounding level, applied without a new evaluation) at a point within a few
 /// rounding units of `z`.
+///
+/// [`newton`]: super::newton
 #[doc(hidden)]
 #[derive(Clone, Copy, Debug)]
 pub struct Solved<const N: usize> {
@@ -30,7 +32,9 @@ pub enum BlockFailure {
     /// The Jacobian is singular at (or the iteration converged only linearly to) a root: a
     /// singular position, where the solution is not determined to working accuracy.
     Singular { row: usize, iterations: u32, residual: f64, pivot_ratio: f64, tolerance: f64 },
-    /// A configuration field is out of range (see [`NewtonConfig::invalid_field`](super::NewtonConfig::invalid_field)).
+    /// A configuration field is out of range (see [`NewtonConfig::invalid_field`]).
+    ///
+    /// [`NewtonConfig::invalid_field`]: super::NewtonConfig::invalid_field
     InvalidConfig { field: &'static str },
     /// A closed form's angle is `value`, on its guess's turn so many turns out that the spacing
     /// of doubles there exceeds what the tolerance accepts (see
