@@ -5,8 +5,8 @@ use crate::events::BlockInfo;
 use crate::kin::{Jac, Kin, KinSink};
 use crate::kinds::QuantityKind;
 use crate::mechanism::{Mechanism, Named};
-use crate::newton::{NewtonConfig, SolveReport};
 use crate::paths::sweep::SweepConfig;
+use crate::solvers::newton::{NewtonConfig, SolveReport};
 use crate::trig::InputTrig;
 
 /// A mechanism that carries its solver configuration: every solve, sweep, reachable range,

@@ -13,15 +13,15 @@ pub use crate::error::Error;
 pub use crate::events::BlockInfo;
 pub use crate::kin::{ByValue, Health, Jac, Kin, KinSink, Sens};
 pub use crate::kinds::QuantityKind;
-pub use crate::lu::{Factor, Fixed, Lu, max_abs};
 pub use crate::mechanism::{Mechanism, NamedSensitivities, Sensitivities, SensitivitiesRequested};
-pub use crate::newton::{
-    BlockEval, BlockFailure, Magnitudes, NewtonConfig, SolveReport, Solved, newton, newton_keeping_lu, newton_with,
-};
 pub use crate::solvers::closed::*;
 pub use crate::solvers::deferred::*;
 pub use crate::solvers::inverse2::Inverse2;
 pub use crate::solvers::jacobian::{BlockFactor, BlockJacobian};
+pub use crate::solvers::lu::{Factor, Fixed, Lu, max_abs};
+pub use crate::solvers::newton::{
+    BlockEval, BlockFailure, Magnitudes, NewtonConfig, SolveReport, Solved, newton, newton_keeping_lu, newton_with,
+};
 pub use crate::solvers::sparse_lu::{SparseJac, SparseLu, SparsePattern};
 pub use crate::trig::{InputTrig, Libm};
 pub use crate::vec2::Vec2;
@@ -279,6 +279,51 @@ where
     S: KinSink<N, NI, NO>,
 {
     if sum.is_finite() { Ok(sink.put(kin)) } else { checked(m, kin(), sum, guess).map(|k| sink.put(|| k)) }
+}
+
+/// What a kernel whose checks are deferred does after a failed test and at its end: the part of
+/// [`Checks`] that runs the mechanism's kernel, defined here with the `Mechanism` trait (its
+/// closed-form steps are the solvers', which know no mechanism).
+impl<const CHECKED: bool> Checks<CHECKED> {
+    /// The checked kernel's answer from the deferred one's arguments: where a test failed.
+    #[inline(always)]
+    pub fn rerun<M, T, S, const N: usize, const NI: usize, const NO: usize>(
+        self,
+        (m, x, guess, cfg, trig): (&M, &[f64; NI], &[f64; N], &NewtonConfig, &mut T),
+        sink: S,
+    ) -> Result<S::Out, Error>
+    where
+        M: Mechanism<N, NI, NO>,
+        T: InputTrig,
+        S: KinSink<N, NI, NO>,
+    {
+        m.kinematics_step_checked(x, guess, cfg, trig, sink)
+    }
+
+    /// The kernel's end, from the kernel's arguments and the state `kin` builds, `sum` the sum of
+    /// its values. Checked, [`checked_with`]. Deferred, the state where `sink` puts it when the
+    /// end test `accept` holds; otherwise the checked kernel's answer.
+    #[inline(always)]
+    pub fn finish<M, T, S, const N: usize, const NI: usize, const NO: usize>(
+        self,
+        (accept, sum): (bool, f64),
+        args: (&M, &[f64; NI], &[f64; N], &NewtonConfig, &mut T),
+        sink: S,
+        kin: impl FnOnce() -> Kin<N, NI, NO>,
+    ) -> Result<S::Out, Error>
+    where
+        M: Mechanism<N, NI, NO>,
+        T: InputTrig,
+        S: KinSink<N, NI, NO>,
+    {
+        if CHECKED {
+            checked_with(args.0, sum, Some(args.2), sink, kin)
+        } else if accept {
+            Ok(sink.put(kin))
+        } else {
+            self.rerun(args, sink)
+        }
+    }
 }
 
 /// Checks the kinematic state `kin` and its sensitivities `sens`: both are returned when every

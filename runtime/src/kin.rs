@@ -1,17 +1,17 @@
 //! The kinematic state of a mechanism at one input value, as flat arrays in declaration order.
 //! Generated named structs convert from it; generic code (sweeps, analyses) works on it.
+//!
+//! Plain data: what needs the mechanism's names ([`Kin::checked_motion`]) is defined with the
+//! [`Mechanism`](crate::Mechanism) trait, above this module.
 
-use crate::error::Error;
-use crate::events::Location;
-use crate::mechanism::Mechanism;
 use crate::solvers::lu::Factor;
 use crate::solvers::newton::SolveReport;
 
 /// The signs of the block determinants along a decomposition: one bit per block, exact for up to
 /// [`DetSigns::CAPACITY`] blocks. `mechanism!` refuses more than 256 unknowns, and every block
 /// solves at least one, so a generated mechanism never has more blocks; sweeps refuse a
-/// hand-written [`Mechanism`] that declares more (`Error::InvalidArgument`), whose further
-/// blocks would otherwise go unwatched.
+/// hand-written [`Mechanism`](crate::Mechanism) that declares more (`Error::InvalidArgument`),
+/// whose further blocks would otherwise go unwatched.
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq, PartialOrd, Ord, Hash)]
 pub struct DetSigns([u64; 4]);
 
@@ -305,32 +305,6 @@ impl<const N: usize, const NI: usize, const NO: usize> Kin<N, NI, NO> {
             (m.out_dot[o], m.out_ddot[o]) = chain(&self.dout[o], &self.d2out[o], omega, eps);
         }
         m
-    }
-
-    /// [`Kin::motion`], checked: an `Error::Overflow` naming the first unknown or output
-    /// whose velocity or acceleration is not finite (the analogs are finite, so only huge
-    /// speeds or accelerations can cause it).
-    pub fn checked_motion<M: Mechanism<N, NI, NO>>(
-        &self,
-        omega: &[f64; NI],
-        eps: &[f64; NI],
-    ) -> Result<FlatMotion<N, NO>, Error> {
-        let m = self.motion(omega, eps);
-        let bad = |v: &[f64]| v.iter().position(|x| !x.is_finite());
-        let found = [
-            ("velocity", bad(&m.qdot), &M::UNKNOWNS[..]),
-            ("acceleration", bad(&m.qddot), &M::UNKNOWNS[..]),
-            ("output velocity", bad(&m.out_dot), &M::OUTPUTS[..]),
-            ("output acceleration", bad(&m.out_ddot), &M::OUTPUTS[..]),
-        ]
-        .into_iter()
-        .find_map(|(what, index, names)| index.map(|i| (what, names.get(i).copied().unwrap_or("?"))));
-        match found {
-            None => Ok(m),
-            Some((what, name)) => {
-                Err(Error::Overflow { what, name, at: Location::boxed(M::NAME, &M::INPUTS, &self.x, None) })
-            }
-        }
     }
 
     /// Index of the first non-finite value, as a label for error messages.

@@ -1,7 +1,10 @@
 //! A table of kinematic states with named columns and units, and its CSV export and import.
+//!
+//! Plain data: the tables of a mechanism's states, with its column names and units
+//! ([`Table::from_states`], [`Table::kin_columns`], [`Table::with_units_of`]), are built with the
+//! [`Mechanism`](crate::Mechanism) trait, above this module.
 
 use crate::kin::Kin;
-use crate::mechanism::Mechanism;
 use crate::table_units;
 use std::io::{self, Write};
 use std::path::Path;
@@ -123,21 +126,6 @@ impl Table {
         self.with_units(&base)
     }
 
-    /// The table with the units of mechanism `M`'s columns as `mechanism!` inferred them
-    /// ([`Mechanism::INPUT_KINDS`], [`Mechanism::UNKNOWN_KINDS`], [`Mechanism::OUTPUT_KINDS`]):
-    /// angles in `rad`, lengths in [`LENGTH_UNIT`](crate::LENGTH_UNIT), their analogs the
-    /// quotients; columns of a kind not inferred get none.
-    pub fn with_units_of<M, const N: usize, const NI: usize, const NO: usize>(self) -> Self
-    where
-        M: Mechanism<N, NI, NO>,
-    {
-        let inputs = M::INPUTS.iter().zip(M::INPUT_KINDS);
-        let unknowns = M::UNKNOWNS.iter().zip(M::UNKNOWN_KINDS);
-        let outputs = M::OUTPUTS.iter().zip(M::OUTPUT_KINDS);
-        let base: Vec<(&str, &str)> = inputs.chain(unknowns).chain(outputs).map(|(n, k)| (*n, k.unit())).collect();
-        self.with_units(&base)
-    }
-
     /// Writes the table as CSV (header line with the units, then one line per row; shortest
     /// round-trip formatting of every value, so reading it back gives the same bits).
     pub fn write_csv(&self, w: impl Write) -> io::Result<()> {
@@ -187,32 +175,6 @@ impl Table {
         self.write_csv(io::BufWriter::new(file))
     }
 
-    /// The columns of a kinematic state of mechanism `M`: inputs, unknowns, their first and
-    /// second analogs (`d(u)/d(i)`, `d2(u)/d(i)d(j)`), outputs and their analogs.
-    pub fn kin_columns<M, const N: usize, const NI: usize, const NO: usize>() -> Vec<String>
-    where
-        M: Mechanism<N, NI, NO>,
-    {
-        let mut c: Vec<String> = M::INPUTS.iter().map(|s| s.to_string()).collect();
-        let groups: [&[&str]; 2] = [&M::UNKNOWNS, &M::OUTPUTS];
-        for names in groups {
-            c.extend(names.iter().map(|s| s.to_string()));
-            for n in names {
-                for i in M::INPUTS {
-                    c.push(format!("d({n})/d({i})"));
-                }
-            }
-            for n in names {
-                for (a, i) in M::INPUTS.iter().enumerate() {
-                    for j in &M::INPUTS[a..] {
-                        c.push(if i == j { format!("d2({n})/d({i})^2") } else { format!("d2({n})/d({i})d({j})") });
-                    }
-                }
-            }
-        }
-        c
-    }
-
     /// One row in the order of [`Table::kin_columns`].
     pub fn kin_row<const N: usize, const NI: usize, const NO: usize>(k: &Kin<N, NI, NO>) -> Vec<f64> {
         let mut r: Vec<f64> = k.x.to_vec();
@@ -231,21 +193,5 @@ impl Table {
             }
         }
         r
-    }
-
-    /// A table of kinematic states of mechanism `M`, with the units inferred by `mechanism!` in
-    /// its header (see [`Table::with_units_of`]; [`Table::with_length_unit`] names the unit of
-    /// length, [`Table::with_units`] overrides any).
-    pub fn from_states<'a, M, const N: usize, const NI: usize, const NO: usize>(
-        states: impl IntoIterator<Item = &'a Kin<N, NI, NO>>,
-    ) -> Self
-    where
-        M: Mechanism<N, NI, NO>,
-    {
-        let mut t = Table::new(Self::kin_columns::<M, N, NI, NO>());
-        for k in states {
-            t.push(Self::kin_row(k));
-        }
-        t.with_units_of::<M, N, NI, NO>()
     }
 }

@@ -253,7 +253,7 @@ impl InputTrig for Rotating {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::metrics::test_rng::Rng;
+    use crate::test_rng::Rng;
 
     /// Walks of random small steps (forward, backward, repeated, some beyond the rotation
     /// range) over many turns: the rotated values stay within 8e-16 of libm's, a few units in

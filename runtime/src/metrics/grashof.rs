@@ -141,7 +141,7 @@ pub fn grashof(links: FourBarLinks) -> Result<Grashof, Error> {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::metrics::test_rng::Rng;
+    use crate::test_rng::Rng;
     use std::f64::consts::TAU;
 
     /// Brute force, independent of the Grashof inequalities: the input turns fully when the

@@ -21,19 +21,3 @@ pub use grashof::{FourBarLinks, Grashof, GrashofClass, Link, grashof};
 pub use limits::{LimitReport, OutputLimits, limit_report};
 pub use time_ratio::{TimeRatio, time_ratio, time_ratio_over};
 pub use transmission::{AngleAt, TransmissionRange, transmission_angle, transmission_over, transmission_range};
-
-#[cfg(test)]
-pub(crate) mod test_rng {
-    /// A small deterministic generator (xorshift64) for random designs without a dependency.
-    pub struct Rng(pub u64);
-
-    impl Rng {
-        /// A uniform draw from `[lo, hi)`.
-        pub fn uniform(&mut self, lo: f64, hi: f64) -> f64 {
-            self.0 ^= self.0 << 13;
-            self.0 ^= self.0 >> 7;
-            self.0 ^= self.0 << 17;
-            lo + (hi - lo) * (self.0 >> 11) as f64 / (1u64 << 53) as f64
-        }
-    }
-}

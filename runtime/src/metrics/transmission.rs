@@ -128,7 +128,7 @@ where
 mod tests {
     use super::*;
 
-    use crate::metrics::test_rng::Rng;
+    use crate::test_rng::Rng;
 
     /// Four-bar `a @ phi + b @ beta == (d, 0) + c @ gamma`, open assembly, in closed form:
     /// the diagonal from B to D and the triangle B-C-D.

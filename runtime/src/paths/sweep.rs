@@ -835,7 +835,7 @@ mod tests {
     use super::*;
     use crate::analysis::demo::SliderCrank;
     use crate::kin::Jac;
-    use crate::newton::SolveReport;
+    use crate::solvers::newton::SolveReport;
 
     /// A hand-written mechanism claiming more blocks than the determinant signs can track.
     struct TooManyBlocks(SliderCrank);

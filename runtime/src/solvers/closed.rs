@@ -5,8 +5,11 @@
 //! The generated code calls these with the operations the macro used to emit inline, in the same
 //! order, so the results are bit-for-bit those of the inline code. A failure is returned as a
 //! [`BlockFailure`]; the generated code adds the mechanism's location to it.
+//!
+//! The steps come in two forms: checked, and without their tests (`_deferred`), for a kernel
+//! whose checks are deferred to its end ([`deferred`](super::deferred), which switches between
+//! the two).
 
-use super::deferred::{polar_norm_deferred, root_offset_deferred, roots_of_offset};
 use super::newton::{BlockFailure, NewtonConfig};
 use core::f64::consts::{PI, TAU};
 
@@ -317,6 +320,41 @@ pub fn check_closed<const K: usize>(out: &[f64; K], angles: usize, cfg: &NewtonC
 #[inline(never)]
 fn imprecise(angles: &[f64]) -> BlockFailure {
     BlockFailure::TooManyTurns { value: angles.iter().fold(0.0f64, |m, q| if q.abs() > m.abs() { *q } else { m }) }
+}
+
+// The steps without their tests, for a kernel whose checks are deferred to its end (see
+// `deferred`): the same formulas, NaN or infinite where a test would fail.
+
+/// [`root_offset`] without its test: `±sqrt(d2)`, NaN when `d2` is
+/// negative (no real root, or a limit position rounded past, which the checked kernel tells
+/// apart) or NaN.
+#[inline(always)]
+pub fn root_offset_deferred(d2: f64, flip: bool) -> f64 {
+    if flip { -d2.sqrt() } else { d2.sqrt() }
+}
+
+/// [`dyad_roots`] without its test: the same formulas, NaN where it
+/// fails (a negative `d2`, or `r2 = 0`: `0 · ∞`).
+#[inline(always)]
+pub fn dyad_roots_deferred(a: f64, b: f64, c: f64, flip: bool) -> (f64, f64) {
+    let r2 = a * a + b * b;
+    roots_of_offset(a, b, c, r2, root_offset_deferred(r2 - c * c, flip))
+}
+
+/// `(cos q, sin q)` of the root of `a cos q + b sin q = c` with offset `d` (see
+/// [`root_offset`]) and `r2 = a² + b²`: `((a c - b d) / r², (b c + a d) / r²)`, checked or not.
+#[inline(always)]
+pub(crate) fn roots_of_offset(a: f64, b: f64, c: f64, r2: f64, d: f64) -> (f64, f64) {
+    let inv = 1.0 / r2;
+    ((a * c - b * d) * inv, (b * c + a * d) * inv)
+}
+
+/// [`polar_norm`] without its test: `1 / sqrt(d2)`, infinite for a
+/// zero direction (whose components, both zero, then give NaN sines and cosines) and NaN for a
+/// NaN one.
+#[inline(always)]
+pub fn polar_norm_deferred(d2: f64) -> f64 {
+    1.0 / d2.sqrt()
 }
 
 #[cfg(test)]

@@ -1,4 +1,6 @@
-//! The closed-form steps of a kernel whose checks are deferred to its end.
+//! The closed-form steps of a kernel whose checks are deferred to its end: the switch between
+//! the checked steps and those without their tests ([`Checks`]; both forms are in
+//! [`closed`](super::closed)), and the bound its entry tests the angles' guesses against.
 //!
 //! A sweep's step runs a generated kernel that tests nothing on the way (a point step runs the
 //! same kernel with its checks on the way, `CHECKED`): every closed-form root is taken as if it
@@ -29,12 +31,10 @@
 //! the four-bar's 40 (666 to 626): tested on the way, each check cost a branch, a closure and
 //! the values its error needs kept alive.
 
-use super::closed::{check_closed, dyad_roots, polar_norm, root_offset};
+use super::closed::{
+    check_closed, dyad_roots, dyad_roots_deferred, polar_norm, polar_norm_deferred, root_offset, root_offset_deferred,
+};
 use super::newton::{BlockFailure, NewtonConfig};
-use crate::generated::checked_with;
-use crate::kin::KinSink;
-use crate::trig::InputTrig;
-use crate::{Error, Kin, Mechanism};
 
 /// An angle this large or smaller is accurate on its turn under every configuration: the least
 /// [`largest_precise_angle`](super::closed::largest_precise_angle) of all, that of the smallest
@@ -51,42 +51,11 @@ pub const SURELY_PRECISE_ANGLE: f64 = 16_000.0;
 /// configured bound.
 pub const SURELY_PRECISE_GUESS: f64 = SURELY_PRECISE_ANGLE - 8.0;
 
-/// [`root_offset`](super::closed::root_offset) without its test: `±sqrt(d2)`, NaN when `d2` is
-/// negative (no real root, or a limit position rounded past, which the checked kernel tells
-/// apart) or NaN.
-#[inline(always)]
-pub fn root_offset_deferred(d2: f64, flip: bool) -> f64 {
-    if flip { -d2.sqrt() } else { d2.sqrt() }
-}
-
-/// [`dyad_roots`](super::closed::dyad_roots) without its test: the same formulas, NaN where it
-/// fails (a negative `d2`, or `r2 = 0`: `0 · ∞`).
-#[inline(always)]
-pub fn dyad_roots_deferred(a: f64, b: f64, c: f64, flip: bool) -> (f64, f64) {
-    let r2 = a * a + b * b;
-    roots_of_offset(a, b, c, r2, root_offset_deferred(r2 - c * c, flip))
-}
-
-/// `(cos q, sin q)` of the root of `a cos q + b sin q = c` with offset `d` (see
-/// [`root_offset`](super::closed::root_offset)) and `r2 = a² + b²`: `((a c - b d) / r², (b c +
-/// a d) / r²)`, checked or not.
-#[inline(always)]
-pub(crate) fn roots_of_offset(a: f64, b: f64, c: f64, r2: f64, d: f64) -> (f64, f64) {
-    let inv = 1.0 / r2;
-    ((a * c - b * d) * inv, (b * c + a * d) * inv)
-}
-
-/// [`polar_norm`](super::closed::polar_norm) without its test: `1 / sqrt(d2)`, infinite for a
-/// zero direction (whose components, both zero, then give NaN sines and cosines) and NaN for a
-/// NaN one.
-#[inline(always)]
-pub fn polar_norm_deferred(d2: f64) -> f64 {
-    1.0 / d2.sqrt()
-}
-
 /// How a kernel tests: every check on the way (`CHECKED`), or deferred to its end. The kernel
 /// binds it once (`__mode`) and asks it for its closed-form steps, which are then the checked
-/// ones or the deferred ones above, and for what follows a failed test.
+/// ones or the deferred ones (see [`root_offset_deferred`]), and for what follows a failed test
+/// (`rerun` and `finish`, which run the mechanism's kernel: defined with the `Mechanism` trait,
+/// in `generated`, above the solvers).
 #[derive(Clone, Copy, Debug)]
 pub struct Checks<const CHECKED: bool>;
 
@@ -140,53 +109,13 @@ impl<const CHECKED: bool> Checks<CHECKED> {
     pub fn far(self, magnitudes: f64) -> bool {
         !CHECKED && !(magnitudes <= SURELY_PRECISE_GUESS)
     }
-
-    /// The checked kernel's answer from the deferred one's arguments: where a test failed.
-    #[inline(always)]
-    pub fn rerun<M, T, S, const N: usize, const NI: usize, const NO: usize>(
-        self,
-        (m, x, guess, cfg, trig): (&M, &[f64; NI], &[f64; N], &NewtonConfig, &mut T),
-        sink: S,
-    ) -> Result<S::Out, Error>
-    where
-        M: Mechanism<N, NI, NO>,
-        T: InputTrig,
-        S: KinSink<N, NI, NO>,
-    {
-        m.kinematics_step_checked(x, guess, cfg, trig, sink)
-    }
-
-    /// The kernel's end, from the kernel's arguments and the state `kin` builds, `sum` the sum of
-    /// its values. Checked, [`checked_with`]. Deferred, the state where `sink` puts it when the
-    /// end test `accept` holds; otherwise the checked kernel's answer.
-    #[inline(always)]
-    pub fn finish<M, T, S, const N: usize, const NI: usize, const NO: usize>(
-        self,
-        (accept, sum): (bool, f64),
-        args: (&M, &[f64; NI], &[f64; N], &NewtonConfig, &mut T),
-        sink: S,
-        kin: impl FnOnce() -> Kin<N, NI, NO>,
-    ) -> Result<S::Out, Error>
-    where
-        M: Mechanism<N, NI, NO>,
-        T: InputTrig,
-        S: KinSink<N, NI, NO>,
-    {
-        if CHECKED {
-            checked_with(args.0, sum, Some(args.2), sink, kin)
-        } else if accept {
-            Ok(sink.put(kin))
-        } else {
-            self.rerun(args, sink)
-        }
-    }
 }
 
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::generated::largest_precise_angle;
-    use crate::metrics::test_rng::Rng;
+    use crate::solvers::closed::largest_precise_angle;
+    use crate::test_rng::Rng;
 
     /// Where the checked step succeeds the deferred one gives the same bits; where it fails the
     /// deferred one gives a non-finite value (the trace the kernel's end test sees). Over random
@@ -246,7 +175,7 @@ mod tests {
     /// these). Over guesses up to the bound and random angles.
     #[test]
     fn a_closed_form_angle_lies_within_a_half_turn_of_its_guess() {
-        use crate::generated::{acos_on_side, asin_near, reduce_turn, unwrap_to_turn};
+        use crate::solvers::closed::{acos_on_side, asin_near, reduce_turn, unwrap_to_turn};
         use core::f64::consts::{FRAC_PI_2, PI};
         let mut rng = Rng(0x0123_4567_89ab_cdef);
         let mut worst = 0.0f64;

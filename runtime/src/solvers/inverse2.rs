@@ -115,8 +115,8 @@ impl Factor for Inverse2 {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::lu::{Lu, max_abs};
-    use crate::metrics::test_rng::Rng;
+    use crate::solvers::lu::{Lu, max_abs};
+    use crate::test_rng::Rng;
 
     /// The general factorisation equilibrated by the columns' largest magnitudes.
     fn general<const M: usize>(j: &[[f64; 2]; 2], cols: [[f64; M]; 2]) -> Lu<2> {

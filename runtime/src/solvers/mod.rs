@@ -2,6 +2,10 @@
 //! diagnostics ([`newton`]), and the equilibrated LU factorisation of small fixed-size blocks
 //! that Newton, the analogs and the sensitivities share ([`lu`]); large sparse blocks factorise
 //! along an elimination order fixed at compile time ([`sparse_lu`]).
+//!
+//! The bottom layer of the runtime: nothing here knows a mechanism, its states or its sweeps.
+//! The solvers use each other and the small leaves `error` and `events` only, so each can be
+//! read and tested alone; `tests/layering.rs` fails when an import from above creeps in.
 
 pub mod closed;
 pub mod deferred;
@@ -9,5 +13,4 @@ pub mod inverse2;
 pub mod jacobian;
 pub mod lu;
 pub mod newton;
-mod newton_config;
 pub mod sparse_lu;

@@ -1,7 +1,6 @@
-//! The configuration of the Newton solver and the diagnostics of a position solve, apart from
-//! the iteration itself (see [`newton`](super::newton)).
+//! The configuration of the Newton solver, apart from the problem (the block's evaluation) and
+//! from the iteration itself (see [`newton`](super::newton)).
 
-use super::newton::Solved;
 use crate::error::Error;
 
 /// Tolerances and limits of the Newton solver.
@@ -150,55 +149,24 @@ pub(crate) fn invalid_config(field: &str, cfg: &NewtonConfig) -> Error {
     Error::InvalidArgument(format!("NewtonConfig::{field} is out of its valid range (see its documentation): {cfg:?}"))
 }
 
-/// Why a solve stopped successfully.
-#[derive(Clone, Copy, Debug, PartialEq, Eq, PartialOrd, Ord, Hash)]
-#[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
-#[non_exhaustive]
-pub enum Termination {
-    /// Every block was solved in closed form (linear blocks only).
-    Direct,
-    /// The scaled residual fell below `residual_tol`.
-    ResidualTolerance,
-    /// The scaled Newton step fell below `step_tol` (the residual is at its rounding floor).
-    StepTolerance,
-    /// The position was given by the caller, not solved (`kinematics_at`).
-    Given,
-}
+#[cfg(test)]
+mod tests {
+    use super::super::test_blocks::{circle, solve};
+    use super::*;
+    use crate::solvers::newton::BlockFailure;
 
-/// Diagnostics of a position solve, summed over the blocks of the decomposition.
-#[derive(Clone, Copy, Debug, PartialEq)]
-#[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
-pub struct SolveReport {
-    /// Newton iterations over all blocks (0 when the guess already satisfied the equations and
-    /// only its correction was applied).
-    pub iterations: u32,
-    /// Residual evaluations over all blocks (including line-search trials).
-    pub evaluations: u32,
-    /// Largest scaled residual (`|f_i| / scale_i`) over the iterated blocks, before the last
-    /// correction; for a given position (`kinematics_at`), the largest unscaled residual.
-    pub residual: f64,
-    /// The weakest reason any block stopped (`StepTolerance` over `ResidualTolerance` over
-    /// `Direct`).
-    pub termination: Termination,
-}
-
-impl SolveReport {
-    #[doc(hidden)]
-    pub fn direct() -> Self {
-        SolveReport { iterations: 0, evaluations: 0, residual: 0.0, termination: Termination::Direct }
-    }
-
-    #[doc(hidden)]
-    pub fn given(residual: f64) -> Self {
-        SolveReport { iterations: 0, evaluations: 1, residual, termination: Termination::Given }
-    }
-
-    #[doc(hidden)]
-    #[inline]
-    pub fn absorb<const N: usize>(&mut self, s: &Solved<N>) {
-        self.iterations += s.iterations;
-        self.evaluations += s.evaluations;
-        self.residual = self.residual.max(s.residual);
-        self.termination = self.termination.max(s.termination);
+    #[test]
+    fn out_of_range_configurations_are_named() {
+        for (cfg, field) in [
+            (NewtonConfig::default().with_residual_tol(f64::INFINITY), "residual_tol"),
+            (NewtonConfig::default().with_residual_tol(f64::NAN), "residual_tol"),
+            (NewtonConfig::default().with_step_tol(-1.0), "step_tol"),
+            (NewtonConfig::default().with_singular_tol(f64::NAN), "singular_tol"),
+            (NewtonConfig::default().with_min_damping(0.0), "min_damping"),
+        ] {
+            assert_eq!(cfg.invalid_field(), Some(field));
+            let e = solve([1.0, 1.0], &cfg, circle).unwrap_err();
+            assert_eq!(e, BlockFailure::InvalidConfig { field });
+        }
     }
 }

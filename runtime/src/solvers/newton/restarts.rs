@@ -13,9 +13,12 @@
 //! every restart fails too is the block reported as not assemblable, now with that much more
 //! evidence.
 
-use super::{
-    BlockEval, BlockFailure, LastStep, MagnitudesOf, NewtonConfig, Solved, fallback_rows, iterate, scaled_residual,
-};
+use super::config::NewtonConfig;
+use super::iterate::iterate;
+use super::kept_lu::LastStep;
+use super::norms::scaled_residual;
+use super::report::{BlockFailure, Solved};
+use super::scales::{BlockEval, MagnitudesOf, fallback_rows, magnitudes_at, rows_at};
 use crate::solvers::closed::{reduce_turn, unwrap_to_turn};
 use crate::solvers::jacobian::BlockJacobian;
 use core::f64::consts::{FRAC_PI_2, PI};
@@ -53,6 +56,25 @@ fn distance<const N: usize>(z: &[f64; N], z0: &[f64; N], turns: &[bool; N], unit
         .sum()
 }
 
+/// The iteration from `z0` ([`iterate`], whose guess's evaluation is `ev` and scaled residual
+/// `rho0`), solved again from restarts where it stalls away from every root ([`after`]): the
+/// iteration of the entry points.
+#[inline(always)]
+pub(super) fn iterate_restarting<const N: usize, const K: usize, J: BlockJacobian<N>>(
+    z0: [f64; N],
+    ev: &mut BlockEval<N, K, J>,
+    cfg: &NewtonConfig,
+    mut eval: impl FnMut(&[f64; N]) -> BlockEval<N, K, J>,
+    mags: &impl MagnitudesOf<N, K, J>,
+    last: &mut impl LastStep<N, K, J>,
+    rho0: f64,
+) -> Result<Solved<N>, BlockFailure> {
+    match iterate(z0, ev, cfg, &mut eval, mags, last, rho0) {
+        Err(fail) => after(fail, z0, ev, cfg, &mut eval, mags, last),
+        solved => solved,
+    }
+}
+
 /// The result of an iteration from `z0` that failed with `fail`: when it stalled away from every
 /// root (`NoAssembly`) and the configuration allows restarts, the root nearest `z0` that a
 /// restart reaches (moved to `z0`'s turns), with the work of every restart in its counts;
@@ -60,7 +82,7 @@ fn distance<const N: usize>(z: &[f64; N], z0: &[f64; N], turns: &[bool; N], unit
 /// returned solve leaves them.
 #[cold]
 #[inline(never)]
-pub(super) fn after<const N: usize, const K: usize, J: BlockJacobian<N>>(
+fn after<const N: usize, const K: usize, J: BlockJacobian<N>>(
     fail: BlockFailure,
     z0: [f64; N],
     ev: &mut BlockEval<N, K, J>,
@@ -89,9 +111,9 @@ pub(super) fn after<const N: usize, const K: usize, J: BlockJacobian<N>>(
         evaluations += 1;
         eval(z)
     };
-    // Called through a trait object: the iteration contains a call of this function (never
-    // taken from here, restarts being off), and with the closure's own type every level of
-    // that call would instantiate both functions anew, without end.
+    // Called through a trait object: one instance of the iteration serves the restarts of every
+    // evaluation type. (When the iteration itself called this function, the closure's own type
+    // would have instantiated both functions anew at every level, without end.)
     let counted: &mut dyn FnMut(&[f64; N]) -> BlockEval<N, K, J> = &mut counted;
     let mut iterations = iterations;
     let mut best: Option<([f64; N], f64)> = None;
@@ -141,7 +163,7 @@ fn residual_at<const N: usize, const K: usize, J: BlockJacobian<N>>(
 
 #[cfg(test)]
 mod tests {
-    use super::super::{BlockEval, BlockFailure, Magnitudes, NewtonConfig, Solved, newton};
+    use crate::solvers::newton::{BlockEval, BlockFailure, Magnitudes, NewtonConfig, Solved, newton};
     use core::f64::consts::PI;
 
     /// `f(q) = 0.2 + 2 t - 2 t^2` with `t = 1 + cos q`: roots where `cos q = 0.0916...`

@@ -1,0 +1,100 @@
+//! What the flat data of a mechanism can do knowing the mechanism: the true motion of a state
+//! checked with the names of its unknowns and outputs ([`Kin::checked_motion`]), and tables of
+//! states with the mechanism's column names and units ([`Table::from_states`]).
+//!
+//! [`Kin`] and [`Table`] are plain data defined below the [`Mechanism`] trait; these methods,
+//! generic over a mechanism, are theirs (called as `kin.checked_motion::<M>(..)`,
+//! `Table::from_states::<M, _, _, _>(..)`) but defined here, on the trait's side.
+
+use crate::error::Error;
+use crate::events::Location;
+use crate::kin::{FlatMotion, Kin};
+use crate::mechanism::Mechanism;
+use crate::table::Table;
+
+impl<const N: usize, const NI: usize, const NO: usize> Kin<N, NI, NO> {
+    /// [`Kin::motion`], checked: an `Error::Overflow` naming the first unknown or output
+    /// whose velocity or acceleration is not finite (the analogs are finite, so only huge
+    /// speeds or accelerations can cause it).
+    pub fn checked_motion<M: Mechanism<N, NI, NO>>(
+        &self,
+        omega: &[f64; NI],
+        eps: &[f64; NI],
+    ) -> Result<FlatMotion<N, NO>, Error> {
+        let m = self.motion(omega, eps);
+        let bad = |v: &[f64]| v.iter().position(|x| !x.is_finite());
+        let found = [
+            ("velocity", bad(&m.qdot), &M::UNKNOWNS[..]),
+            ("acceleration", bad(&m.qddot), &M::UNKNOWNS[..]),
+            ("output velocity", bad(&m.out_dot), &M::OUTPUTS[..]),
+            ("output acceleration", bad(&m.out_ddot), &M::OUTPUTS[..]),
+        ]
+        .into_iter()
+        .find_map(|(what, index, names)| index.map(|i| (what, names.get(i).copied().unwrap_or("?"))));
+        match found {
+            None => Ok(m),
+            Some((what, name)) => {
+                Err(Error::Overflow { what, name, at: Location::boxed(M::NAME, &M::INPUTS, &self.x, None) })
+            }
+        }
+    }
+}
+
+impl Table {
+    /// The table with the units of mechanism `M`'s columns as `mechanism!` inferred them
+    /// ([`Mechanism::INPUT_KINDS`], [`Mechanism::UNKNOWN_KINDS`], [`Mechanism::OUTPUT_KINDS`]):
+    /// angles in `rad`, lengths in [`LENGTH_UNIT`](crate::LENGTH_UNIT), their analogs the
+    /// quotients; columns of a kind not inferred get none.
+    pub fn with_units_of<M, const N: usize, const NI: usize, const NO: usize>(self) -> Self
+    where
+        M: Mechanism<N, NI, NO>,
+    {
+        let inputs = M::INPUTS.iter().zip(M::INPUT_KINDS);
+        let unknowns = M::UNKNOWNS.iter().zip(M::UNKNOWN_KINDS);
+        let outputs = M::OUTPUTS.iter().zip(M::OUTPUT_KINDS);
+        let base: Vec<(&str, &str)> = inputs.chain(unknowns).chain(outputs).map(|(n, k)| (*n, k.unit())).collect();
+        self.with_units(&base)
+    }
+
+    /// The columns of a kinematic state of mechanism `M`: inputs, unknowns, their first and
+    /// second analogs (`d(u)/d(i)`, `d2(u)/d(i)d(j)`), outputs and their analogs.
+    pub fn kin_columns<M, const N: usize, const NI: usize, const NO: usize>() -> Vec<String>
+    where
+        M: Mechanism<N, NI, NO>,
+    {
+        let mut c: Vec<String> = M::INPUTS.iter().map(|s| s.to_string()).collect();
+        let groups: [&[&str]; 2] = [&M::UNKNOWNS, &M::OUTPUTS];
+        for names in groups {
+            c.extend(names.iter().map(|s| s.to_string()));
+            for n in names {
+                for i in M::INPUTS {
+                    c.push(format!("d({n})/d({i})"));
+                }
+            }
+            for n in names {
+                for (a, i) in M::INPUTS.iter().enumerate() {
+                    for j in &M::INPUTS[a..] {
+                        c.push(if i == j { format!("d2({n})/d({i})^2") } else { format!("d2({n})/d({i})d({j})") });
+                    }
+                }
+            }
+        }
+        c
+    }
+
+    /// A table of kinematic states of mechanism `M`, with the units inferred by `mechanism!` in
+    /// its header (see [`Table::with_units_of`]; [`Table::with_length_unit`] names the unit of
+    /// length, [`Table::with_units`] overrides any).
+    pub fn from_states<'a, M, const N: usize, const NI: usize, const NO: usize>(
+        states: impl IntoIterator<Item = &'a Kin<N, NI, NO>>,
+    ) -> Self
+    where
+        M: Mechanism<N, NI, NO>,
+    {
+        let mut t = Table::new(Self::kin_columns::<M, N, NI, NO>());
+        for k in states {
+            t.push(Self::kin_row(k));
+        }
+        t.with_units_of::<M, N, NI, NO>()
+    }
+}

@@ -1,0 +1,306 @@
+//! The iteration ([`iterate`]): Newton steps from a guess that does not meet the tolerance, until
+//! the residual or the step is small enough, and the end of a converged iteration (its last
+//! correction, a root reached only linearly, an angle carried turns away).
+
+use super::config::NewtonConfig;
+use super::diagnose::{jacobian_non_finite, residual_non_finite};
+use super::kept_lu::LastStep;
+use super::norms::{beyond_half_turn, scaled_norms, scaled_residual, scaled_step, sum_sq_scaled};
+use super::report::{BlockFailure, Solved, Termination};
+use super::scales::{BlockEval, MagnitudesOf, fallback_rows, magnitudes_at, rows_at};
+use super::state::Iter;
+use super::step::{MAX_UNCHECKED_CORRECTION, evaluated_correction, newton_step};
+use crate::solvers::closed::unwrap_to_turn;
+use crate::solvers::jacobian::BlockJacobian;
+
+/// The scaled residual may exceed `residual_tol` by this factor when the iteration stops on the
+/// step test (rows whose terms are much larger than their derivatives have a higher floor).
+pub(super) const FLOOR_FACTOR: f64 = 1e3;
+
+/// A final step this large relative to the previous one means linear, not quadratic,
+/// convergence.
+pub(super) const LINEAR_CONTRACTION: f64 = 0.1;
+
+/// Newton iterations from `z0`, whose evaluation is `ev` (updated in place: each accepted
+/// step's evaluation is written over it, never copied). The generated code calls it through
+/// [`newton`] when the guess does not meet the tolerance; the correction at a converged
+/// iterate comes from `last`.
+///
+/// The common path (a full Newton step accepted, then convergence) runs in this one function;
+/// the rare paths (backtracking, descent, failures, a final correction that must be checked)
+/// are out of line.
+#[cold]
+#[inline(never)]
+#[allow(clippy::neg_cmp_op_on_partial_ord)] // the negation is what lets NaN through
+pub(super) fn iterate<const N: usize, const K: usize, J: BlockJacobian<N>>(
+    z0: [f64; N],
+    ev: &mut BlockEval<N, K, J>,
+    cfg: &NewtonConfig,
+    mut eval: impl FnMut(&[f64; N]) -> BlockEval<N, K, J>,
+    mags: &impl MagnitudesOf<N, K, J>,
+    last: &mut impl LastStep<N, K, J>,
+    rho0: f64,
+) -> Result<Solved<N>, BlockFailure> {
+    if let Some(field) = cfg.invalid_field() {
+        return Err(BlockFailure::InvalidConfig { field });
+    }
+    let floor = FLOOR_FACTOR * cfg.residual_tol.max(16.0 * f64::EPSILON);
+    // Fixed magnitudes with valid scales (not the row sums that replace invalid ones): every
+    // iterate is judged in the same scales.
+    let fixed_rows = mags.fixed().is_some_and(|m| !m.rows.degenerate);
+    let mut it = Iter {
+        z: z0,
+        guess: &z0,
+        // The caller's evaluation, not a copy: the iteration updates it in place.
+        ev,
+        iterations: 0,
+        evaluations: 1,
+        prev_step: f64::INFINITY,
+        slow_run: 0,
+        rho_mark: f64::INFINITY,
+        prev_rho: f64::INFINITY,
+        judged: None,
+    };
+    loop {
+        let (current, fallback);
+        let m = magnitudes_at!(mags, it.ev, current);
+        let rows = rows_at!(m, it.ev, fallback);
+        let s = &rows.s;
+        // The guess's scaled residual is the caller's; an iterate reached by a full step in
+        // fixed scales was judged by that step.
+        let (rho, phi) = match it.judged.take() {
+            Some(judged) => judged,
+            None if it.iterations == 0 => (rho0, sum_sq_scaled(&it.ev.f, s)),
+            None => scaled_norms(&it.ev.f, rows),
+        };
+        // A residual that is not finite makes the sum of squares infinite or NaN (which it
+        // reports as infinite); so does an overflow, for which the search finds no row.
+        if !(phi < f64::INFINITY)
+            && let Some(row) = residual_non_finite(it.ev)
+        {
+            return Err(BlockFailure::NonFinite { row, iterations: it.iterations });
+        }
+        if rho <= cfg.residual_tol {
+            // Converged: the last correction, from the factorisation `last` keeps.
+            let (dz, pivot) = last.correction(it.ev, rows, rho);
+            let step = scaled_step(&dz, &it.z, &m.unit);
+            return it.finish(dz, step, pivot, rho, s, Termination::ResidualTolerance, cfg, &mut eval, mags, last);
+        }
+        let (dz, pivot) = newton_step(it.ev, rows);
+        let step = scaled_step(&dz, &it.z, &m.unit);
+        // At the rounding floor the step no longer shrinks below `step_tol` or the residual no
+        // longer decreases (a singular root still divides it by about four per iteration).
+        let stagnant = rho >= 0.5 * it.prev_rho;
+        if (step <= cfg.step_tol || stagnant) && rho <= floor {
+            last.forget();
+            return it.finish(dz, step, pivot, rho, s, Termination::StepTolerance, cfg, &mut eval, mags, last);
+        }
+        if it.iterations >= cfg.max_iterations {
+            let capped = it.capped(rho, s, cfg);
+            // A stall away from every root is solved again from restarts by the caller
+            // (`restarts::iterate_restarting`).
+            return Err(capped);
+        }
+        if it.iterations == cfg.max_iterations / 2 {
+            it.rho_mark = rho;
+        }
+        let newton_ok = pivot > cfg.singular_tol * 1e-3 && step.is_finite();
+        // At the rounding floor only the Newton step is worth trying.
+        let moved = (newton_ok && it.full_step(&dz, pivot, rows, fixed_rows, phi, cfg, &mut eval))
+            || (rho > floor && it.descend(s, cfg, &mut eval));
+        if !moved {
+            if rho <= floor {
+                // No step decreases a residual already at its rounding floor.
+                last.forget();
+                return it.finish(dz, step, pivot, rho, s, Termination::StepTolerance, cfg, &mut eval, mags, last);
+            }
+            let stalled = it.stalled(rho, pivot, s, cfg);
+            return Err(stalled);
+        }
+        let slow = newton_ok && step > LINEAR_CONTRACTION * it.prev_step;
+        it.slow_run = if slow { it.slow_run + 1 } else { 0 };
+        it.prev_step = if newton_ok { step } else { f64::INFINITY };
+        it.prev_rho = rho;
+        it.iterations += 1;
+    }
+}
+
+impl<const N: usize, const K: usize, J: BlockJacobian<N>> Iter<'_, N, K, J> {
+    /// Ends a converged iteration: diagnoses linear convergence (a singular root), then applies
+    /// the last correction `dz`. A correction far below the tolerance is applied as it is; a
+    /// larger one is checked by a new evaluation (so the Jacobian and kept values match the
+    /// returned position) and undone if it made the residual worse.
+    #[allow(clippy::too_many_arguments)]
+    #[inline(always)]
+    pub(super) fn finish(
+        mut self,
+        dz: [f64; N],
+        step: f64,
+        pivot: f64,
+        rho: f64,
+        s: &[f64; N],
+        termination: Termination,
+        cfg: &NewtonConfig,
+        eval: &mut impl FnMut(&[f64; N]) -> BlockEval<N, K, J>,
+        mags: &impl MagnitudesOf<N, K, J>,
+        last: &mut impl LastStep<N, K, J>,
+    ) -> Result<Solved<N>, BlockFailure> {
+        if !last.finite_jacobian()
+            && let Some(row) = jacobian_non_finite(self.ev)
+        {
+            return Err(BlockFailure::NonFinite { row, iterations: self.iterations });
+        }
+        // The position is known to about the last step of a linearly converging iteration (the
+        // residual of a row can round to zero before the unknowns settle).
+        let visible = FLOOR_FACTOR * cfg.residual_tol.max(cfg.step_tol);
+        let slow = self.prev_step.is_finite() && step > LINEAR_CONTRACTION * self.prev_step;
+        let singular_root = !step.is_finite()
+            || (slow && step > visible)
+            || (self.slow_run >= 2 && self.prev_step.is_finite() && self.prev_step > visible);
+        if singular_root && self.iterations > 0 {
+            // Newton converges quadratically to a regular root; linearly (each step a fixed
+            // fraction of the previous one) only where the Jacobian is singular at the root,
+            // and the position is then only known to about the size of the last step.
+            return Err(self.singular(rho, pivot, s, cfg));
+        }
+        if step.is_finite() && step > 0.0 {
+            if pivot > cfg.singular_tol && step <= MAX_UNCHECKED_CORRECTION {
+                // A quadratically converging iteration often ends with a correction at the
+                // rounding level: the last evaluation holds at `z` to rounding.
+                for c in 0..N {
+                    self.z[c] += dz[c];
+                }
+            } else {
+                last.forget();
+                self.checked_correction(&dz, rho, cfg, eval, mags);
+            }
+        }
+        // After one step the test is skipped (it would cost the common path: a solve from a
+        // sweep's prediction usually takes one step). One step that carries an angle over half
+        // a turn follows a linearisation that is off there by about the sine's own size, so it
+        // ends within the tolerance of a root only from a set of guesses about the tolerance
+        // wide; the position is right even then, only on another turn.
+        if self.iterations > 1 && beyond_half_turn(&self.z, self.guess) {
+            self.back_to_guess_turns(rho, cfg, eval, mags, last);
+        }
+        last.keep(self.ev);
+        Ok(Solved { z: self.z, iterations: self.iterations, evaluations: self.evaluations, residual: rho, termination })
+    }
+
+    /// Moves every unknown whose equations repeat every turn (see [`Magnitudes::turns`]) and
+    /// that ended more than half a turn from its guess to the guess's turn. A long Newton step
+    /// (from a near-singular Jacobian far from the root) can carry an angle many turns out.
+    /// The position is the same; its numbers are not: many turns out the spacing of doubles is
+    /// coarser. So the block is evaluated and corrected once more on the guess's turn, which
+    /// also makes the evaluation describe the returned position. The move is kept only if the
+    /// residual there, corrected or not, is no worse than `rho` (or the tolerance): it always
+    /// is for an equation that repeats, so a mistaken mark could not return a wrong position.
+    #[cold]
+    #[inline(never)]
+    fn back_to_guess_turns(
+        &mut self,
+        rho: f64,
+        cfg: &NewtonConfig,
+        eval: &mut impl FnMut(&[f64; N]) -> BlockEval<N, K, J>,
+        mags: &impl MagnitudesOf<N, K, J>,
+        last: &mut impl LastStep<N, K, J>,
+    ) {
+        let (before, after, fallback);
+        let turns = magnitudes_at!(mags, self.ev, before).turns;
+        let unmoved = self.z;
+        let mut moved = false;
+        for c in (0..N).filter(|&c| turns[c]) {
+            let (z, g) = (self.z[c], self.guess[c]);
+            let on_turn = unwrap_to_turn(z, g);
+            // Only a move that brings it nearer (not so for a guess too large for its turns
+            // to be counted in doubles).
+            if (on_turn - g).abs() < (z - g).abs() {
+                self.z[c] = on_turn;
+                moved = true;
+            }
+        }
+        if !moved {
+            return;
+        }
+        last.forget();
+        let bound = rho.max(cfg.residual_tol);
+        *self.ev = eval(&self.z);
+        self.evaluations += 1;
+        let m = magnitudes_at!(mags, self.ev, after);
+        let rows = rows_at!(m, self.ev, fallback);
+        let moved_rho = scaled_residual(&self.ev.f, &rows.s);
+        let (dz, _) = newton_step(self.ev, rows);
+        let finite = dz.iter().all(|v| v.is_finite());
+        self.evaluations += u32::from(finite);
+        let corrected = finite && evaluated_correction(&mut self.z, self.ev, &dz, bound, eval, mags).is_some();
+        // NaN fails the comparison: not kept.
+        let kept = corrected || moved_rho <= bound;
+        if !kept {
+            // Not a position of the block: back to where the iteration ended.
+            self.z = unmoved;
+            *self.ev = eval(&self.z);
+            self.evaluations += 1;
+        }
+    }
+
+    /// Applies the final correction `dz` after evaluating there, unless it made the residual
+    /// worse than `rho` (rounding noise near a singular position).
+    #[cold]
+    #[inline(never)]
+    fn checked_correction(
+        &mut self,
+        dz: &[f64; N],
+        rho: f64,
+        cfg: &NewtonConfig,
+        eval: &mut impl FnMut(&[f64; N]) -> BlockEval<N, K, J>,
+        mags: &impl MagnitudesOf<N, K, J>,
+    ) {
+        self.evaluations += 1;
+        evaluated_correction(&mut self.z, self.ev, dz, rho.max(cfg.residual_tol), eval, mags);
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::super::newton;
+    use crate::solvers::newton::{BlockEval, Magnitudes, NewtonConfig, Solved};
+    use core::f64::consts::{FRAC_PI_2, PI};
+
+    /// `sin q = 1/2`, a pin on a unit crank at height one half: roots `pi/6` and `5 pi/6`, every
+    /// turn. Its equation repeats every turn of `q` when `turns` says so.
+    fn pin_solve(guess: f64, turns: bool) -> Solved<1> {
+        let eval = |z: &[f64; 1]| BlockEval { f: [z[0].sin() - 0.5], j: [[z[0].cos()]], keep: [] };
+        let mags = Magnitudes::new([1.5], [1.0]).with_turns([turns]);
+        let mut ev: BlockEval<1, 0> = eval(&[guess]);
+        newton([guess], &mut ev, &NewtonConfig::default(), eval, &mags).unwrap()
+    }
+
+    #[test]
+    fn an_angle_carried_turns_away_returns_on_its_guess_turn() {
+        // Guesses near the top of the crank, where the cosine (the Jacobian) nearly vanishes:
+        // the first Newton step is long.
+        let guesses: Vec<f64> = (0..200).map(|k| FRAC_PI_2 + (k as f64 - 99.5) * 1e-4).collect();
+        let leapt = guesses.iter().filter(|&&g| (pin_solve(g, false).z[0] - g).abs() > PI).count();
+        assert!(leapt > 20, "only {leapt} of the unmarked solves ended over half a turn out");
+        for g in guesses {
+            let q = pin_solve(g, true).z[0];
+            assert!((q - g).abs() <= PI, "guess {g}: {q}");
+            // One of the two roots of the guess's turn, to rounding.
+            let root = if q < FRAC_PI_2 { PI / 6.0 } else { 5.0 * PI / 6.0 };
+            assert!((q - root).abs() <= 2.0 * f64::EPSILON, "guess {g}: {q} vs {root}");
+        }
+    }
+
+    #[test]
+    fn a_mistaken_turn_mark_cannot_move_a_root() {
+        // `q^3 = 1000`: one root, at 10, reached from 1 in several steps. Marked as if it
+        // repeated every turn, its move to the guess's turn (10 - 2 pi) is no root: undone.
+        let eval = |z: &[f64; 1]| BlockEval { f: [z[0].powi(3) - 1000.0], j: [[3.0 * z[0] * z[0]]], keep: [] };
+        let mags = Magnitudes::new([1000.0], [1.0]).with_turns([true]);
+        let mut ev: BlockEval<1, 0> = eval(&[1.0]);
+        let s = newton([1.0], &mut ev, &NewtonConfig::default(), eval, &mags).unwrap();
+        assert!(s.iterations > 1);
+        assert!((s.z[0] - 10.0).abs() <= 8.0 * f64::EPSILON, "{}", s.z[0]);
+        assert_eq!(ev.f, eval(&s.z).f, "the evaluation is the returned position's");
+    }
+}

@@ -1,0 +1,249 @@
+//! Damped Newton's method for one square block, with diagnostics.
+//!
+//! The configuration ([`NewtonConfig`]) is separate from the problem (the block's generated
+//! evaluation closure) and the outcome carries its diagnostics ([`SolveReport`]): iterations,
+//! evaluations, final residual and why it stopped.
+//!
+//! **Scale-free tests.** Every test is made in the units of the problem: residual `i` is divided
+//! by its row magnitude `scale_i` (see [`Magnitudes`]), a step in unknown `j` by that
+//! unknown's magnitude, and the pivots of the factorisation are those of the row-equilibrated
+//! Jacobian (of the column-equilibrated one for a final correction made with the analogs'
+//! factorisation, below). A mechanism in metres, millimetres or micrometres therefore stops at
+//! the same relative accuracy.
+//!
+//! **No silent wrong answer.** Whatever stops the iteration, the final scaled residual is
+//! checked; the last Newton correction is applied (a prediction that already meets the
+//! tolerance is still corrected once); a root reached with linear convergence (the signature
+//! of a singular Jacobian at the root) is reported as singular, not returned as an inaccurate
+//! success.
+//!
+//! **One factorisation at the root.** The last correction is made at the evaluation the block
+//! returns, whose Jacobian the analogs factorise. [`newton_keeping_lu`] makes that correction
+//! with the analogs' own factorisation (columns divided by their magnitudes) and hands it over,
+//! so a block factorises its Jacobian at the root once, as a hand-written solver would.
+//!
+//! **Magnitudes made once.** The magnitudes of a loop of links of given lengths do not depend on
+//! the block's unknowns: the generated code makes them, checks them and takes the reciprocals of
+//! the row magnitudes once per solve, and the evaluations carry only residuals, Jacobian and kept
+//! values. A block whose magnitudes depend on its unknowns (a slider's distance is a length of
+//! its loop) keeps them with each evaluation.
+//!
+//! **The parts**, from the bottom up, each using only parts before it: the configuration
+//! (`config`) and what a solve returns (`report`); a block's evaluation and the magnitudes its
+//! tests are made in (`scales`), and the norms of those tests (`norms`); the iteration's state
+//! (`state`), the Newton step and a correction checked by a new evaluation (`step`), and the
+//! final correction from the analogs' kept factorisation (`kept_lu`); the diagnosis of a failed
+//! iteration (`diagnose`) and the line search and descent (`search`); the iteration
+//! (`iterate`); the restarts of a block that stalled (`restarts`); and here, the entry points
+//! ([`newton`], [`newton_with`], [`newton_keeping_lu`]).
+
+mod config;
+mod diagnose;
+mod iterate;
+mod kept_lu;
+mod norms;
+mod report;
+mod restarts;
+mod scales;
+mod search;
+mod state;
+mod step;
+#[cfg(test)]
+mod test_blocks;
+
+pub use config::NewtonConfig;
+pub(crate) use norms::system_residual;
+pub use report::{BlockFailure, SolveReport, Solved, Termination};
+pub use scales::{BlockEval, Magnitudes, MagnitudesOf};
+
+use crate::solvers::jacobian::BlockJacobian;
+use crate::solvers::lu::{Lu, RowScales};
+use kept_lu::{KeptLu, LastStep, RowSteps};
+use norms::{scaled_residual, scaled_step};
+use scales::{fallback_rows, magnitudes_at, rows_at};
+use step::{MAX_UNCHECKED_CORRECTION, evaluated_correction};
+
+/// The largest scaled correction applied to an accepted guess without iterating (larger ones,
+/// from an ill-conditioned block, are iterated and checked).
+const MAX_FREE_CORRECTION: f64 = 1e-6;
+
+/// The guess `z0` corrected by one Newton step `dz` with the Jacobian of its evaluation `ev`,
+/// with the step and its scaled size, or `None` when that Jacobian is near singular or the step
+/// is not small (then it iterates). A correction within the rounding of the unknowns is noise: the guess is
+/// kept, so a solve from a solution returns it unchanged.
+#[inline(always)]
+fn free_correction<const N: usize, const K: usize, J: BlockJacobian<N>>(
+    ev: &BlockEval<N, K, J>,
+    rows: &RowScales<N>,
+    unit: &[f64; N],
+    rho: f64,
+    z0: [f64; N],
+    cfg: &NewtonConfig,
+    last: &mut impl LastStep<N, K, J>,
+) -> Option<([f64; N], [f64; N], f64)> {
+    let (dz, pivot) = last.correction(ev, rows, rho);
+    let step = scaled_step(&dz, &z0, unit);
+    // NaN fails both tests.
+    if !(pivot > cfg.singular_tol && step <= MAX_FREE_CORRECTION) {
+        return None;
+    }
+    let mut z = z0;
+    if step > 4.0 * f64::EPSILON {
+        for c in 0..N {
+            z[c] += dz[c];
+        }
+    }
+    Some((z, dz, step))
+}
+
+/// The accepted guess `z0` (evaluation `ev0`, scaled residual `rho0`) corrected by `dz`, a step
+/// above the rounding level: evaluated again there, so that the Jacobian and the values the
+/// generated code keeps (sines and cosines of the unknowns, which later unknowns and outputs are
+/// computed from) describe the returned position; undone if it made the residual worse (the
+/// guess already met the tolerance).
+#[cold]
+#[inline(never)]
+fn checked_free_correction<const N: usize, const K: usize, J: BlockJacobian<N>>(
+    z0: [f64; N],
+    ev: &mut BlockEval<N, K, J>,
+    rho0: f64,
+    dz: &[f64; N],
+    eval: &mut impl FnMut(&[f64; N]) -> BlockEval<N, K, J>,
+    mags: &impl MagnitudesOf<N, K, J>,
+    last: &mut impl LastStep<N, K, J>,
+) -> Solved<N> {
+    let mut z = z0;
+    let residual = evaluated_correction(&mut z, ev, dz, rho0, eval, mags).unwrap_or(rho0);
+    last.keep(ev);
+    Solved { z, iterations: 0, evaluations: 2, residual, termination: Termination::ResidualTolerance }
+}
+
+/// Solves one block from the guess `z0`, whose evaluation the caller has made into `ev`: the
+/// iteration updates it in place (each accepted step's evaluation is written over it), and on
+/// return it is the evaluation at the returned position ([`Solved`]). The caller's slot, not a
+/// value moved through the result: a block's evaluation is hundreds of bytes (a large sparse
+/// block's, kilobytes). In the common warm-started case this costs one evaluation and one small
+/// factorisation: the guess already meets the tolerance and is corrected once by the Newton step
+/// (its Jacobian is the one the analogs use). The iteration itself is a separate, out-of-line
+/// function.
+#[doc(hidden)]
+#[inline(always)]
+pub fn newton<const N: usize, const K: usize>(
+    z0: [f64; N],
+    ev: &mut BlockEval<N, K>,
+    cfg: &NewtonConfig,
+    eval: impl FnMut(&[f64; N]) -> BlockEval<N, K>,
+    mags: &impl MagnitudesOf<N, K, [[f64; N]; N]>,
+) -> Result<Solved<N>, BlockFailure> {
+    newton_with(z0, ev, cfg, eval, mags)
+}
+
+/// [`newton`] for any representation of the Jacobian (a sparse block's non-zeros).
+#[doc(hidden)]
+#[inline(always)]
+pub fn newton_with<const N: usize, const K: usize, J: BlockJacobian<N>>(
+    z0: [f64; N],
+    ev: &mut BlockEval<N, K, J>,
+    cfg: &NewtonConfig,
+    eval: impl FnMut(&[f64; N]) -> BlockEval<N, K, J>,
+    mags: &impl MagnitudesOf<N, K, J>,
+) -> Result<Solved<N>, BlockFailure> {
+    newton_last(z0, ev, cfg, eval, mags, &mut RowSteps)
+}
+
+/// [`newton`] that also writes into `lu` the factorisation the analogs use: `J` with each
+/// column divided by its largest magnitude ([`Lu::factor_cols`]) at the returned evaluation.
+/// It is the one that made the final correction, or (where the iteration did not end with
+/// one, or a final correction was evaluated again) one made there. For a block whose Jacobian
+/// columns have no entries outside the block, the analogs reuse it instead of factorising the
+/// same matrix again. Written in place: a factorisation moved through the result would be
+/// copied.
+#[doc(hidden)]
+#[inline(always)]
+pub fn newton_keeping_lu<const N: usize, const K: usize>(
+    z0: [f64; N],
+    ev: &mut BlockEval<N, K>,
+    cfg: &NewtonConfig,
+    eval: impl FnMut(&[f64; N]) -> BlockEval<N, K>,
+    mags: &impl MagnitudesOf<N, K, [[f64; N]; N]>,
+    lu: &mut Lu<N>,
+) -> Result<Solved<N>, BlockFailure> {
+    newton_last(z0, ev, cfg, eval, mags, &mut KeptLu { lu, valid: false })
+}
+
+/// [`newton_with`] whose correction at a converged iterate comes from `last`.
+#[inline(always)]
+fn newton_last<const N: usize, const K: usize, J: BlockJacobian<N>>(
+    z0: [f64; N],
+    ev: &mut BlockEval<N, K, J>,
+    cfg: &NewtonConfig,
+    mut eval: impl FnMut(&[f64; N]) -> BlockEval<N, K, J>,
+    mags: &impl MagnitudesOf<N, K, J>,
+    last: &mut impl LastStep<N, K, J>,
+) -> Result<Solved<N>, BlockFailure> {
+    let (current, fallback);
+    let m = magnitudes_at!(mags, ev, current);
+    let rows = rows_at!(m, ev, fallback);
+    let rho = scaled_residual(&ev.f, &rows.s);
+    // NaN fails both tests; an out-of-range tolerance is diagnosed by `iterate`.
+    if rho <= cfg.residual_tol
+        && cfg.residual_tol <= 1e-3
+        && let Some((z, dz, step)) = free_correction(ev, rows, &m.unit, rho, z0, cfg, last)
+    {
+        if step > MAX_UNCHECKED_CORRECTION {
+            last.forget();
+            return Ok(checked_free_correction(z0, ev, rho, &dz, &mut eval, mags, last));
+        }
+        last.keep(ev);
+        return Ok(Solved {
+            z,
+            iterations: 0,
+            evaluations: 1,
+            residual: rho,
+            termination: Termination::ResidualTolerance,
+        });
+    }
+    restarts::iterate_restarting(z0, ev, cfg, eval, mags, last, rho)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::test_blocks::{circle, solve, varying};
+    use super::*;
+
+    #[test]
+    fn converges_quadratically_and_reports() {
+        let (s, _) = solve([1.0, 1.0], &NewtonConfig::default(), circle).unwrap();
+        assert!(s.residual <= 1e-12);
+        assert!(s.iterations > 0 && s.iterations < 10, "{}", s.iterations);
+        let [x, y] = s.z;
+        // After the last correction the residual is at the rounding floor (a few ulps of 4).
+        assert!((x * x + y * y - 4.0).abs() < 4.0 * 4.0 * f64::EPSILON && (y - x.powi(3)).abs() < 8.0 * f64::EPSILON);
+        // Warm start: no iteration at all, one evaluation.
+        let (again, _) = solve(s.z, &NewtonConfig::default(), circle).unwrap();
+        assert_eq!(again.iterations, 0);
+        assert_eq!(again.evaluations, 1);
+    }
+
+    /// The same circle in units a billion times smaller: the same iterations and the same
+    /// relative answer (an absolute residual test would accept the guess as it is).
+    #[test]
+    fn tests_are_unit_free() {
+        let k = 1e-9;
+        let small = |z: &[f64; 2]| {
+            let ev = circle(&[z[0], z[1] / k]);
+            // Scale the second unknown: y' = k y; rows scaled by k.
+            varying::<2, 4>(
+                [ev.f[0] * k, ev.f[1] * k],
+                [[ev.j[0][0] * k, ev.j[0][1]], [ev.j[1][0] * k, ev.j[1][1]]],
+                [ev.keep[0] * k, ev.keep[1] * k],
+                [1.0, k],
+            )
+        };
+        let (a, _) = solve([1.0, 1.0], &NewtonConfig::default(), circle).unwrap();
+        let (b, _) = solve([1.0, k], &NewtonConfig::default(), small).unwrap();
+        assert_eq!(a.iterations, b.iterations);
+        assert!((a.z[0] - b.z[0]).abs() <= 4.0 * f64::EPSILON, "{:?} {:?}", a.z, b.z);
+        assert!((a.z[1] - b.z[1] / k).abs() <= 8.0 * f64::EPSILON * a.z[1], "{:?} {:?}", a.z, b.z);
+    }
+}

@@ -1,0 +1,96 @@
+//! The norms a block's tests are made with: residuals relative to their rows' magnitudes, steps
+//! relative to the unknowns' magnitudes, and the scaled residual of a full system.
+
+use crate::solvers::lu::{RowScales, largest};
+use core::f64::consts::PI;
+
+/// `max_i |f_i| / s_i`; NaN propagates, a non-zero residual over a zero scale is infinite.
+#[inline(always)]
+pub(super) fn scaled_residual<const N: usize>(f: &[f64; N], s: &[f64; N]) -> f64 {
+    largest::<N>(core::array::from_fn(|r| {
+        let a = f[r].abs();
+        if a == 0.0 { 0.0 } else { a / s[r] }
+    }))
+}
+
+/// [`scaled_residual`] and [`sum_sq_scaled`] in one pass (one division per row). The maximum
+/// skips a NaN (one `maxsd` per row): the sum of squares, which the callers test first, does
+/// not. Valid scales need no test of a zero residual (measured: the loop without it is 80
+/// instructions a class IV step cheaper than one loop with the test made conditional).
+#[inline(always)]
+pub(super) fn scaled_norms<const N: usize>(f: &[f64; N], rows: &RowScales<N>) -> (f64, f64) {
+    let s = &rows.s;
+    let mut m = 0.0f64;
+    let mut acc = 0.0;
+    if rows.degenerate {
+        for r in 0..N {
+            let v = f[r] / s[r];
+            // A zero residual counts as zero even over a zero scale.
+            let a = if f[r] == 0.0 { 0.0 } else { v.abs() };
+            m = if a > m { a } else { m };
+            acc += v * v;
+        }
+    } else {
+        for r in 0..N {
+            let v = f[r] / s[r];
+            let a = v.abs();
+            m = if a > m { a } else { m };
+            acc += v * v;
+        }
+    }
+    (m, if acc.is_nan() { f64::INFINITY } else { acc })
+}
+
+/// `max_j |dz_j| / max(|z_j|, unit_j)`: steps relative to each unknown's magnitude, in its own
+/// unit (see [`Magnitudes::unit`], checked); NaN propagates.
+#[inline(always)]
+pub(super) fn scaled_step<const N: usize>(dz: &[f64; N], z: &[f64; N], unit: &[f64; N]) -> f64 {
+    largest::<N>(core::array::from_fn(|c| {
+        // The larger of `|z|` and the unit (a NaN `z` gives the unit, as `f64::max` would), one
+        // `maxsd` where `f64::max` also tests for NaN.
+        let (a, u) = (z[c].abs(), unit[c]);
+        dz[c].abs() / if a > u { a } else { u }
+    }))
+}
+
+/// Whether an unknown moved more than half a turn (in its own unit: only an angle's distance
+/// matters); a NaN counts as no move (a non-finite result is reported otherwise).
+#[inline(always)]
+pub(super) fn beyond_half_turn<const N: usize>(z: &[f64; N], guess: &[f64; N]) -> bool {
+    // One comparison per unknown, or-ed: no maximum to carry from one to the next.
+    let mut far = false;
+    for c in 0..N {
+        far |= (z[c] - guess[c]).abs() > PI;
+    }
+    far
+}
+
+/// The scaled residual of a full system (continuation, event location): each residual relative
+/// to the larger of its generated row magnitude `scale` (see [`Magnitudes`]) and
+/// `sum_j |J_ij| + |extra_i|`, where `extra` holds further derivatives of the row (along the
+/// input path). The second keeps the test attainable where every term of a row vanishes at a
+/// branch point (e.g. `s^2 - x^2` at the origin), where the continuation's absolute step test
+/// stops before a residual relative to the vanishing magnitude is reached.
+pub(crate) fn system_residual<const N: usize>(
+    f: &[f64; N],
+    j: &[[f64; N]; N],
+    extra: &[f64; N],
+    scale: &[f64; N],
+) -> f64 {
+    let mut s = [0.0; N];
+    for r in 0..N {
+        let derivatives = j[r].iter().map(|v| v.abs()).sum::<f64>() + extra[r].abs();
+        // NaN in `scale` leaves `derivatives`.
+        s[r] = if scale[r] > derivatives { scale[r] } else { derivatives };
+    }
+    scaled_residual(f, &s)
+}
+
+pub(super) fn sum_sq_scaled<const N: usize>(f: &[f64; N], s: &[f64; N]) -> f64 {
+    let mut acc = 0.0;
+    for r in 0..N {
+        let v = f[r] / s[r];
+        acc += v * v;
+    }
+    if acc.is_nan() { f64::INFINITY } else { acc }
+}

@@ -1,0 +1,189 @@
+//! The steps of an iteration that is not converged: the full Newton step when it decreases the
+//! squared scaled residual enough, otherwise backtracking along it, and where the Newton step
+//! fails, Levenberg-Marquardt steps down to steepest descent.
+
+use super::config::NewtonConfig;
+use super::norms::{scaled_norms, sum_sq_scaled};
+use super::scales::BlockEval;
+use super::state::Iter;
+use crate::solvers::jacobian::BlockJacobian;
+use crate::solvers::lu::{Lu, RowScales};
+
+/// The smallest pivot of a row-equilibrated factorisation from which its Newton step is taken
+/// to be exact to rounding (the residual `J dz + f` is then a few rounding units of the
+/// equations' magnitudes, far below what the descent test can see).
+pub(super) const ACCURATE_PIVOT: f64 = 1e-3;
+
+impl<const N: usize, const K: usize, J: BlockJacobian<N>> Iter<'_, N, K, J> {
+    /// The full Newton step `dz` (from a factorisation whose smallest pivot is `pivot`) when it
+    /// decreases the squared scaled residual enough (Armijo, `c = 1e-4`), otherwise backtracking
+    /// along it ([`Iter::search`]); moves and returns `true` on success.
+    #[inline(always)]
+    #[allow(clippy::too_many_arguments)]
+    pub(super) fn full_step(
+        &mut self,
+        dz: &[f64; N],
+        pivot: f64,
+        rows: &RowScales<N>,
+        fixed_rows: bool,
+        phi0: f64,
+        cfg: &NewtonConfig,
+        eval: &mut impl FnMut(&[f64; N]) -> BlockEval<N, K, J>,
+    ) -> bool {
+        let s = &rows.s;
+        // The slope of phi along dz is -2 phi0 for a Newton step. A well-conditioned
+        // factorisation solves to rounding, so that is its slope; otherwise it is computed, so
+        // that an inaccurate solve is caught (it is not a descent direction).
+        let slope = if pivot >= ACCURATE_PIVOT { -2.0 * phi0 } else { directional_slope(self.ev, s, dz) };
+        if slope.is_nan() || slope >= 0.0 {
+            return false;
+        }
+        let mut trial = self.z;
+        for c in 0..N {
+            trial[c] += dz[c];
+        }
+        // Evaluated in place (no copy of the evaluation on the common path, the step accepted);
+        // a rejected step's evaluation is replaced by the backtracking's or restored.
+        *self.ev = eval(&trial);
+        self.evaluations += 1;
+        let (rho, phi) = scaled_norms(&self.ev.f, rows);
+        if phi <= phi0 + 1e-4 * slope {
+            self.z = trial;
+            // In scales that stay the same, the next iteration's test of this iterate.
+            self.judged = if fixed_rows { Some((rho, phi)) } else { None };
+            return true;
+        }
+        self.rejected(dz, s, phi0, slope, cfg, eval)
+    }
+
+    /// After a rejected full step (its evaluation in `self.ev`): backtracking from half the
+    /// step; if that fails too, the evaluation at the unmoved `z` is restored (evaluated again:
+    /// the same position gives the same values), which the callers' fallbacks read.
+    #[allow(clippy::too_many_arguments)]
+    #[cold]
+    #[inline(never)]
+    fn rejected(
+        &mut self,
+        dz: &[f64; N],
+        s: &[f64; N],
+        phi0: f64,
+        slope: f64,
+        cfg: &NewtonConfig,
+        eval: &mut impl FnMut(&[f64; N]) -> BlockEval<N, K, J>,
+    ) -> bool {
+        if self.search(dz, s, phi0, slope, 0.5, cfg, eval) {
+            return true;
+        }
+        *self.ev = eval(&self.z);
+        self.evaluations += 1;
+        false
+    }
+
+    /// Backtracking (Armijo, `c = 1e-4`) along `dz` on the squared scaled residual from the
+    /// damping `t` down to the configured minimum, given its value `phi0` and `slope` at the
+    /// current iterate; moves and returns `true` on success.
+    #[allow(clippy::too_many_arguments)]
+    #[cold]
+    #[inline(never)]
+    fn search(
+        &mut self,
+        dz: &[f64; N],
+        s: &[f64; N],
+        phi0: f64,
+        slope: f64,
+        mut t: f64,
+        cfg: &NewtonConfig,
+        eval: &mut impl FnMut(&[f64; N]) -> BlockEval<N, K, J>,
+    ) -> bool {
+        while t >= cfg.min_damping {
+            let mut trial = self.z;
+            for c in 0..N {
+                trial[c] += t * dz[c];
+            }
+            let ev_t = eval(&trial);
+            self.evaluations += 1;
+            let phi = sum_sq_scaled(&ev_t.f, s);
+            if phi <= phi0 + 1e-4 * t * slope {
+                self.z = trial;
+                *self.ev = ev_t;
+                return true;
+            }
+            t *= 0.5;
+        }
+        false
+    }
+
+    /// Where the Newton step fails (singular Jacobian, no decrease), Levenberg-Marquardt steps
+    /// of increasing damping, down to steepest descent: they leave saddles of the squared
+    /// residual that a far guess can lead to. Returns `true` when one decreased the residual.
+    #[cold]
+    #[inline(never)]
+    pub(super) fn descend(
+        &mut self,
+        s: &[f64; N],
+        cfg: &NewtonConfig,
+        eval: &mut impl FnMut(&[f64; N]) -> BlockEval<N, K, J>,
+    ) -> bool {
+        let (a, g) = normal_equations(self.ev, s);
+        let trace: f64 = (0..N).map(|k| a[k][k]).sum();
+        if !(trace > 0.0 && trace.is_finite()) {
+            return false;
+        }
+        for mu in [1e-9, 1e-6, 1e-3, 1.0] {
+            let mut damped = a;
+            for k in 0..N {
+                damped[k][k] += mu * trace;
+            }
+            let lu = Lu::factor(&damped, [1.0; N]);
+            let mut neg_g = g;
+            for v in &mut neg_g {
+                *v = -*v;
+            }
+            let dz = lu.solve(neg_g);
+            if !dz.iter().all(|v| v.is_finite()) {
+                continue;
+            }
+            let phi0 = sum_sq_scaled(&self.ev.f, s);
+            let slope = directional_slope(self.ev, s, &dz);
+            if !(slope.is_nan() || slope >= 0.0) && self.search(&dz, s, phi0, slope, 1.0, cfg, eval) {
+                return true;
+            }
+        }
+        false
+    }
+}
+
+/// `d/dt |D^-1 f(z + t dz)|^2` at `t = 0`: `2 (D^-1 f) . (D^-1 J dz)`.
+fn directional_slope<const N: usize, const K: usize, J: BlockJacobian<N>>(
+    ev: &BlockEval<N, K, J>,
+    s: &[f64; N],
+    dz: &[f64; N],
+) -> f64 {
+    let jd = ev.j.mul(dz);
+    let mut acc = 0.0;
+    for r in 0..N {
+        acc += ev.f[r] * jd[r] / (s[r] * s[r]);
+    }
+    2.0 * acc
+}
+
+/// `A = (D^-1 J)^T (D^-1 J)` and `g = (D^-1 J)^T D^-1 f` with `D` the row magnitudes.
+fn normal_equations<const N: usize, const K: usize, J: BlockJacobian<N>>(
+    ev: &BlockEval<N, K, J>,
+    s: &[f64; N],
+) -> ([[f64; N]; N], [f64; N]) {
+    let j = ev.j.to_dense();
+    let mut a = [[0.0; N]; N];
+    let mut g = [0.0; N];
+    for r in 0..N {
+        let w = 1.0 / s[r];
+        for c in 0..N {
+            let jrc = j[r][c] * w;
+            g[c] += jrc * ev.f[r] * w;
+            for k in 0..N {
+                a[c][k] += jrc * j[r][k] * w;
+            }
+        }
+    }
+    (a, g)
+}

@@ -1,0 +1,63 @@
+//! The Newton step of an evaluation, and a final correction kept only where a new evaluation
+//! shows it did not make the residual worse.
+
+use super::norms::scaled_residual;
+use super::scales::{BlockEval, MagnitudesOf, fallback_rows, magnitudes_at, rows_at};
+use crate::solvers::jacobian::BlockJacobian;
+use crate::solvers::lu::RowScales;
+
+/// The largest scaled final correction of an iteration applied without evaluating the block
+/// again: a few rounding units, below which the values the generated code keeps from the last
+/// evaluation (sines and cosines of the unknowns, from which later unknowns and outputs are
+/// computed) are as accurate as new ones. A larger correction is checked by a new evaluation
+/// (and undone if it made the residual worse).
+pub(super) const MAX_UNCHECKED_CORRECTION: f64 = 16.0 * f64::EPSILON;
+
+/// The Newton step `-J^-1 f` with `J` equilibrated by the row magnitudes, and the pivot ratio.
+#[inline(always)]
+pub(super) fn newton_step<const N: usize, const K: usize, J: BlockJacobian<N>>(
+    ev: &BlockEval<N, K, J>,
+    rows: &RowScales<N>,
+) -> ([f64; N], f64) {
+    if N == 1 {
+        // A scalar block needs no factorisation: the row-equilibrated pivot is `|J| / s` (NaN
+        // when both vanish, which fails every test and is reported as 0; a non-finite `J` is
+        // caught by the callers).
+        let j = ev.j.first();
+        let mut dz = [0.0; N];
+        dz[0] = -ev.f[0] / j;
+        return (dz, j.abs() / rows.s[0]);
+    }
+    ev.j.newton_step(&ev.f, rows)
+}
+
+/// Moves `z` (evaluated as `ev`) to `z + dz` and its evaluation, and returns the scaled residual
+/// there, when that residual is at most `bound` (NaN fails); otherwise leaves both as they are:
+/// a final correction is kept only if it did not make things worse (rounding noise near a
+/// singular position can). The new evaluation is moved into `ev` once (a large block's
+/// evaluation is kilobytes).
+#[inline(always)]
+pub(super) fn evaluated_correction<const N: usize, const K: usize, J: BlockJacobian<N>>(
+    z: &mut [f64; N],
+    ev: &mut BlockEval<N, K, J>,
+    dz: &[f64; N],
+    bound: f64,
+    eval: &mut impl FnMut(&[f64; N]) -> BlockEval<N, K, J>,
+    mags: &impl MagnitudesOf<N, K, J>,
+) -> Option<f64> {
+    let mut z1 = *z;
+    for c in 0..N {
+        z1[c] += dz[c];
+    }
+    let ev1 = eval(&z1);
+    let (current, fallback);
+    let m = magnitudes_at!(mags, &ev1, current);
+    let rho = scaled_residual(&ev1.f, &rows_at!(m, &ev1, fallback).s);
+    if rho <= bound {
+        *z = z1;
+        *ev = ev1;
+        Some(rho)
+    } else {
+        None
+    }
+}

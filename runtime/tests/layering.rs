@@ -1,0 +1,871 @@
+//! The runtime's layering, checked on its sources: the block solvers (`src/solvers/`) are the
+//! bottom layer and import nothing from above them, and no import circle runs through them.
+//!
+//! The test reads `src/**/*.rs` from `lib.rs` down along the `mod` declarations, resolves every
+//! `crate::`, `$crate::`, `super::` and `self::` path (in `use` declarations and inline, as
+//! `crate::kin::Kin` in a signature) and every `use` of a child module, through the
+//! re-exports on the way (`crate::Kin` is `kin::Kin`), to the module that defines the item.
+//! Those references are the edges of the module graph; its strongly connected components
+//! (Tarjan) are the import circles, printed with the lines that close them:
+//!
+//! ```text
+//! cargo test -p kinloop-runtime --test layering -- --nocapture
+//! ```
+//!
+//! prints the circles of this tree; `KINLOOP_LAYERING_SRC=<dir>` prints (and checks) those of
+//! another source tree, e.g. an older revision checked out elsewhere.
+//!
+//! Comments are not read, doc comments included: an intra-doc link (`[x](crate::kin::Kin)`)
+//! compiles to a hyperlink, not to a dependency. A module's `#[cfg(test)]` modules are read:
+//! their references count for the solvers' boundary (a solver's tests use nothing above the
+//! solvers either, so a solver can be tested alone), but not for the circles, which are those
+//! of the library as built (a test of a low module may run the solve through the entry points
+//! of the module above it).
+
+use std::collections::{BTreeMap, BTreeSet};
+use std::fmt::Write as _;
+use std::path::{Path, PathBuf};
+
+/// The modules (and everything below them) that the solvers may use besides themselves: small
+/// leaves that import nothing from above them either (checked: they reference only each
+/// other).
+const SOLVERS_MAY_USE: [&str; 7] = ["error", "events", "kinds", "trig", "vec2", "angles", "test_rng"];
+
+/// Modules of the crate root's `use` declarations that still name a module (a second path to
+/// it, `crate::newton` beside `crate::solvers::newton`), with why each stays. Every other module
+/// with child modules imports no module.
+const MODULE_ALIASES_ALLOWED: [(&str, &str); 1] =
+    [("newton", "`dynamics/simulate.rs` names `crate::newton::NewtonConfig`; not edited on this branch")];
+
+// ---------------------------------------------------------------------------------------------
+// Lexing: tokens without comments, strings and character literals.
+
+#[derive(Clone, Debug, PartialEq)]
+enum Tok {
+    /// An identifier or keyword (`$crate` included), with its line.
+    Ident(String, usize),
+    /// `::`.
+    Path(usize),
+    /// Any other punctuation character.
+    Punct(char, usize),
+}
+
+impl Tok {
+    fn line(&self) -> usize {
+        match self {
+            Tok::Ident(_, l) | Tok::Path(l) | Tok::Punct(_, l) => *l,
+        }
+    }
+    fn is_ident(&self, s: &str) -> bool {
+        matches!(self, Tok::Ident(i, _) if i == s)
+    }
+    fn is_punct(&self, c: char) -> bool {
+        matches!(self, Tok::Punct(p, _) if *p == c)
+    }
+    fn ident(&self) -> Option<&str> {
+        match self {
+            Tok::Ident(i, _) => Some(i),
+            _ => None,
+        }
+    }
+}
+
+fn lex(src: &str) -> Vec<Tok> {
+    let c: Vec<char> = src.chars().collect();
+    let (mut i, mut line, mut out) = (0, 1, Vec::new());
+    let at = |i: usize, s: &str| s.chars().enumerate().all(|(k, ch)| c.get(i + k) == Some(&ch));
+    while i < c.len() {
+        let ch = c[i];
+        if ch == '\n' {
+            line += 1;
+            i += 1;
+        } else if ch.is_whitespace() {
+            i += 1;
+        } else if at(i, "//") {
+            while i < c.len() && c[i] != '\n' {
+                i += 1;
+            }
+        } else if at(i, "/*") {
+            let mut depth = 0;
+            while i < c.len() {
+                if at(i, "/*") {
+                    depth += 1;
+                    i += 2;
+                } else if at(i, "*/") {
+                    depth -= 1;
+                    i += 2;
+                    if depth == 0 {
+                        break;
+                    }
+                } else {
+                    line += usize::from(c[i] == '\n');
+                    i += 1;
+                }
+            }
+        } else if ch == 'r' && (at(i, "r\"") || at(i, "r#")) && !prev_is_ident(&c, i) {
+            // A raw string: r"...", r#"..."#.
+            let mut j = i + 1;
+            let mut hashes = 0;
+            while c.get(j) == Some(&'#') {
+                hashes += 1;
+                j += 1;
+            }
+            if c.get(j) != Some(&'"') {
+                // `r#ident`: a raw identifier.
+                let start = j;
+                while j < c.len() && (c[j].is_alphanumeric() || c[j] == '_') {
+                    j += 1;
+                }
+                out.push(Tok::Ident(c[start..j].iter().collect(), line));
+                i = j;
+                continue;
+            }
+            j += 1;
+            let close: String = std::iter::once('"').chain(std::iter::repeat_n('#', hashes)).collect();
+            while j < c.len() && !at(j, &close) {
+                line += usize::from(c[j] == '\n');
+                j += 1;
+            }
+            i = j + close.chars().count();
+        } else if ch == '"' || (ch == 'b' && at(i, "b\"")) {
+            let mut j = if ch == 'b' { i + 2 } else { i + 1 };
+            while j < c.len() && c[j] != '"' {
+                if c[j] == '\\' {
+                    j += 1;
+                }
+                line += usize::from(c.get(j) == Some(&'\n'));
+                j += 1;
+            }
+            i = j + 1;
+        } else if ch == '\'' {
+            // A character literal ('x', '\n', '\u{..}') or a lifetime ('a).
+            if c.get(i + 1) == Some(&'\\') {
+                // Past the escaped character, which may be a quote.
+                let mut j = i + 3;
+                while j < c.len() && c[j] != '\'' {
+                    j += 1;
+                }
+                i = j + 1;
+            } else if c.get(i + 2) == Some(&'\'') {
+                i += 3;
+            } else {
+                // A lifetime, with its name (`'static` names no item).
+                i += 1;
+                while i < c.len() && (c[i].is_alphanumeric() || c[i] == '_') {
+                    i += 1;
+                }
+            }
+        } else if ch.is_alphabetic() || ch == '_' || (ch == '$' && at(i, "$crate")) {
+            let start = i;
+            i += 1;
+            while i < c.len() && (c[i].is_alphanumeric() || c[i] == '_') {
+                i += 1;
+            }
+            out.push(Tok::Ident(c[start..i].iter().collect(), line));
+        } else if ch.is_ascii_digit() {
+            while i < c.len() && (c[i].is_alphanumeric() || c[i] == '_' || c[i] == '.') {
+                // `1..n`: a range, not a fraction.
+                if c[i] == '.' && c.get(i + 1) == Some(&'.') {
+                    break;
+                }
+                i += 1;
+            }
+        } else if at(i, "::") {
+            out.push(Tok::Path(line));
+            i += 2;
+        } else {
+            out.push(Tok::Punct(ch, line));
+            i += 1;
+        }
+    }
+    out
+}
+
+fn prev_is_ident(c: &[char], i: usize) -> bool {
+    i > 0 && (c[i - 1].is_alphanumeric() || c[i - 1] == '_')
+}
+
+// ---------------------------------------------------------------------------------------------
+// Parsing: modules, their `use` declarations, the items they define, and every path.
+
+/// A module path from the crate root, `["solvers", "newton"]` (the root is `[]`).
+type ModPath = Vec<String>;
+
+#[derive(Debug, Default)]
+struct Module {
+    /// The file that holds it, relative to the source directory.
+    file: String,
+    /// The file module it belongs to (itself, unless it is an inline module such as `tests`).
+    file_module: ModPath,
+    /// Whether it is compiled only for tests (`#[cfg(test)]`, or inside such a module).
+    test: bool,
+    /// Child modules by name (file or inline).
+    children: BTreeSet<String>,
+    /// Names brought in by top-level `use` declarations, to their full path (`[kw, ...]`,
+    /// unresolved: the first segment is `crate`, `super`, `self` or a child module).
+    uses: BTreeMap<String, Vec<String>>,
+    /// Glob imports (`use x::*`), unresolved.
+    globs: Vec<Vec<String>>,
+    /// Items defined at its top level.
+    items: BTreeSet<String>,
+}
+
+/// A path met in a module, to resolve once every module is known.
+#[derive(Debug)]
+struct Reference {
+    from: ModPath,
+    /// Made under `#[cfg(test)]` (a `use` so marked; a test module's references are marked by
+    /// their module).
+    test: bool,
+    /// A re-export (`pub use`, `pub(crate) use`): of a descendant's item, the parent's face,
+    /// not an import.
+    reexport: bool,
+    segments: Vec<String>,
+    file: String,
+    line: usize,
+}
+
+#[derive(Debug, Default)]
+struct Crate {
+    modules: BTreeMap<ModPath, Module>,
+    references: Vec<Reference>,
+    /// `#[path]` attributes met (file, line).
+    path_attributes: Vec<(String, usize)>,
+    /// Source files under the directory that no `mod` declaration reaches.
+    unreached: Vec<String>,
+}
+
+const ITEM_KEYWORDS: [&str; 8] = ["fn", "struct", "enum", "trait", "type", "const", "static", "union"];
+
+impl Crate {
+    fn read(src: &Path) -> Crate {
+        let mut krate = Crate::default();
+        krate.parse_file(src, &src.join("lib.rs"), Vec::new(), false);
+        let reached: BTreeSet<String> = krate.modules.values().map(|m| m.file.clone()).collect();
+        let mut all = Vec::new();
+        collect_rs(src, src, &mut all);
+        krate.unreached = all.into_iter().filter(|f| !reached.contains(f)).collect();
+        krate
+    }
+
+    /// Parses the file `path` as module `module`; its `mod x;` children are parsed in turn.
+    fn parse_file(&mut self, src: &Path, path: &Path, module: ModPath, test: bool) {
+        let text = std::fs::read_to_string(path).unwrap_or_else(|e| panic!("{}: {e}", path.display()));
+        let file = path.strip_prefix(src).unwrap().to_string_lossy().replace('\\', "/");
+        let name = path.file_name().unwrap().to_string_lossy();
+        // Where `mod x;` looks for `x.rs`: beside `lib.rs` and `mod.rs`, in `name/` otherwise.
+        let child_dir = if name == "lib.rs" || name == "mod.rs" {
+            path.parent().unwrap().to_path_buf()
+        } else {
+            path.with_extension("")
+        };
+        let toks = lex(&text);
+        let mut files: Vec<(PathBuf, ModPath, bool)> = Vec::new();
+        // The open inline modules: (module path, brace depth of its body).
+        let mut stack: Vec<(ModPath, usize)> = vec![(module.clone(), 0)];
+        self.modules.insert(
+            module.clone(),
+            Module { file: file.clone(), file_module: module.clone(), test, ..Default::default() },
+        );
+        let (mut depth, mut cfg_test, mut path_attr) = (0usize, false, None::<String>);
+        let mut i = 0;
+        while i < toks.len() {
+            let (current, body) = stack.last().cloned().unwrap();
+            let top = depth == body;
+            let t = &toks[i];
+            if t.is_punct('#') && toks.get(i + 1).is_some_and(|t| t.is_punct('[')) {
+                let end = matching(&toks, i + 1, '[', ']');
+                let attr: Vec<&str> = toks[i + 2..end].iter().filter_map(Tok::ident).collect();
+                if attr == ["cfg", "test"] {
+                    cfg_test = true;
+                }
+                if attr.first() == Some(&"path") {
+                    self.path_attributes.push((file.clone(), t.line()));
+                    path_attr = Some(attr_string(&text, t.line()));
+                }
+                i = end + 1;
+                continue;
+            }
+            if t.is_ident("mod") && toks.get(i + 1).and_then(Tok::ident).is_some() {
+                let name = toks[i + 1].ident().unwrap().to_string();
+                let mut child = current.clone();
+                child.push(name.clone());
+                self.modules.get_mut(&current).unwrap().children.insert(name.clone());
+                let child_test = self.modules[&current].test || cfg_test;
+                if toks.get(i + 2).is_some_and(|t| t.is_punct(';')) {
+                    let at = match path_attr.take() {
+                        Some(p) => path.parent().unwrap().join(p),
+                        None => {
+                            let flat = child_dir.join(format!("{name}.rs"));
+                            if flat.exists() { flat } else { child_dir.join(&name).join("mod.rs") }
+                        }
+                    };
+                    files.push((at, child, child_test));
+                    i += 3;
+                } else {
+                    // An inline module: `mod tests { ... }`.
+                    self.modules.insert(
+                        child.clone(),
+                        Module {
+                            file: file.clone(),
+                            file_module: module.clone(),
+                            test: child_test,
+                            ..Default::default()
+                        },
+                    );
+                    depth += 1;
+                    stack.push((child, depth));
+                    i += 3;
+                }
+                cfg_test = false;
+                continue;
+            }
+            if t.is_ident("use") {
+                let reexport = match toks[..i].last() {
+                    Some(p) if p.is_ident("pub") => true,
+                    Some(p) if p.is_punct(')') => (0..i)
+                        .rev()
+                        .find(|&k| toks[k].is_punct('('))
+                        .is_some_and(|k| k > 0 && toks[k - 1].is_ident("pub")),
+                    _ => false,
+                };
+                let end = (i..toks.len()).find(|&k| toks[k].is_punct(';')).unwrap_or(toks.len());
+                let mut trees = Vec::new();
+                use_tree(&toks[i + 1..end], Vec::new(), &mut trees);
+                for (segments, name) in trees {
+                    self.references.push(Reference {
+                        from: current.clone(),
+                        test: cfg_test,
+                        reexport,
+                        segments: segments.clone(),
+                        file: file.clone(),
+                        line: t.line(),
+                    });
+                    if top {
+                        let m = self.modules.get_mut(&current).unwrap();
+                        match name {
+                            Some(n) => {
+                                m.uses.insert(n, segments);
+                            }
+                            None => m.globs.push(segments),
+                        }
+                    }
+                }
+                cfg_test = false;
+                i = end + 1;
+                continue;
+            }
+            if top
+                && ITEM_KEYWORDS.iter().any(|k| t.is_ident(k))
+                && let Some(n) = toks.get(i + 1).and_then(Tok::ident)
+            {
+                self.modules.get_mut(&current).unwrap().items.insert(n.to_string());
+            }
+            if top && t.is_ident("macro_rules") {
+                // `#[macro_export]` macros live at the crate root; others are textual.
+                if let Some(n) = toks.get(i + 2).and_then(Tok::ident) {
+                    self.modules.get_mut(&Vec::new()).unwrap().items.insert(n.to_string());
+                }
+            }
+            // An inline path: `crate::kin::Kin`, `super::closed::root_offset`, `restarts::after`
+            // (a child module), not a segment of a longer path.
+            if let Some(first) = t.ident()
+                && toks.get(i + 1) == Some(&Tok::Path(t.line()))
+                && (i == 0 || !matches!(toks[i - 1], Tok::Path(_)))
+                && (matches!(first, "crate" | "$crate" | "super" | "self")
+                    || self.modules[&current].children.contains(first))
+            {
+                let mut segments = vec![first.to_string()];
+                let mut k = i + 1;
+                while matches!(toks.get(k), Some(Tok::Path(_))) {
+                    match toks.get(k + 1).and_then(Tok::ident) {
+                        Some(s) => segments.push(s.to_string()),
+                        None => break,
+                    }
+                    k += 2;
+                }
+                let r = Reference {
+                    from: current.clone(),
+                    test: false,
+                    reexport: false,
+                    segments,
+                    file: file.clone(),
+                    line: t.line(),
+                };
+                self.references.push(r);
+                i = k;
+                continue;
+            }
+            if t.is_punct('{') {
+                depth += 1;
+            } else if t.is_punct('}') {
+                if depth == body && stack.len() > 1 {
+                    stack.pop();
+                }
+                depth = depth.saturating_sub(1);
+            }
+            if t.is_punct('{') || t.is_punct('}') || t.is_punct(';') {
+                cfg_test = false;
+            }
+            i += 1;
+        }
+        for (at, child, child_test) in files {
+            self.parse_file(src, &at, child, child_test);
+        }
+    }
+}
+
+/// The index of the bracket closing the one at `open`.
+fn matching(toks: &[Tok], open: usize, l: char, r: char) -> usize {
+    let mut depth = 0;
+    for (k, t) in toks.iter().enumerate().skip(open) {
+        if t.is_punct(l) {
+            depth += 1;
+        } else if t.is_punct(r) {
+            depth -= 1;
+            if depth == 0 {
+                return k;
+            }
+        }
+    }
+    toks.len() - 1
+}
+
+/// The string of a `#[path = "..."]` attribute on line `line`.
+fn attr_string(text: &str, line: usize) -> String {
+    let l = text.lines().nth(line - 1).unwrap_or("");
+    l.split('"').nth(1).unwrap_or("").to_string()
+}
+
+/// Expands a use tree (`a::{b, c::d as e, f::*}`) into its paths with the name each brings in
+/// (`None` for a glob). `self` in a group names the prefix.
+fn use_tree(toks: &[Tok], prefix: Vec<String>, out: &mut Vec<(Vec<String>, Option<String>)>) {
+    let mut path = prefix;
+    let mut k = 0;
+    while k < toks.len() {
+        match &toks[k] {
+            Tok::Ident(s, _) if s == "as" => {
+                // `use x as _` brings in no name (a trait's methods only), but is a reference.
+                let alias = toks.get(k + 1).and_then(Tok::ident).unwrap_or("_").to_string();
+                out.push((path.clone(), Some(alias)));
+                return;
+            }
+            Tok::Ident(s, _) if s == "self" && k == 0 && !path.is_empty() => {
+                let name = path.last().cloned();
+                out.push((path.clone(), name));
+                return;
+            }
+            Tok::Ident(s, _) => path.push(s.clone()),
+            Tok::Path(_) => {}
+            Tok::Punct('*', _) => {
+                out.push((path.clone(), None));
+                return;
+            }
+            Tok::Punct('{', _) => {
+                let end = matching(toks, k, '{', '}');
+                let inner = &toks[k + 1..end];
+                let mut start = 0;
+                let mut depth = 0;
+                for (j, t) in inner.iter().enumerate() {
+                    if t.is_punct('{') {
+                        depth += 1;
+                    } else if t.is_punct('}') {
+                        depth -= 1;
+                    } else if t.is_punct(',') && depth == 0 {
+                        if j > start {
+                            use_tree(&inner[start..j], path.clone(), out);
+                        }
+                        start = j + 1;
+                    }
+                }
+                if inner.len() > start {
+                    use_tree(&inner[start..], path.clone(), out);
+                }
+                return;
+            }
+            _ => {}
+        }
+        k += 1;
+    }
+    let name = path.last().cloned();
+    if !path.is_empty() {
+        out.push((path, name));
+    }
+}
+
+fn collect_rs(src: &Path, dir: &Path, out: &mut Vec<String>) {
+    let mut entries: Vec<_> = std::fs::read_dir(dir).unwrap().map(|e| e.unwrap().path()).collect();
+    entries.sort();
+    for p in entries {
+        if p.is_dir() {
+            collect_rs(src, &p, out);
+        } else if p.extension().is_some_and(|e| e == "rs") {
+            out.push(p.strip_prefix(src).unwrap().to_string_lossy().replace('\\', "/"));
+        }
+    }
+}
+
+// ---------------------------------------------------------------------------------------------
+// Resolution and the module graph.
+
+/// Where a path leads: the module holding the item, and whether the whole path named a module.
+#[derive(Debug, PartialEq)]
+struct Target {
+    module: ModPath,
+    is_module: bool,
+}
+
+impl Crate {
+    /// The absolute module path a path's first segment starts from, and the rest; `None` for a
+    /// path into another crate.
+    fn anchor(&self, from: &ModPath, segments: &[String]) -> Option<(ModPath, usize)> {
+        let first = segments.first()?.as_str();
+        match first {
+            "crate" | "$crate" => Some((Vec::new(), 1)),
+            "self" => Some((from.clone(), 1)),
+            "super" => {
+                let mut m = from.clone();
+                let mut k = 0;
+                while segments.get(k).map(String::as_str) == Some("super") {
+                    m.pop();
+                    k += 1;
+                }
+                Some((m, k))
+            }
+            _ if self.modules[from].children.contains(first) => Some((from.clone(), 0)),
+            _ => None,
+        }
+    }
+
+    fn resolve(&self, from: &ModPath, segments: &[String], hops: usize) -> Option<Target> {
+        if hops > 32 {
+            return None;
+        }
+        let (mut cur, start) = self.anchor(from, segments)?;
+        for (k, seg) in segments.iter().enumerate().skip(start) {
+            let m = self.modules.get(&cur)?;
+            if m.children.contains(seg) {
+                cur.push(seg.clone());
+                continue;
+            }
+            if let Some(target) = m.uses.get(seg) {
+                let mut path = target.clone();
+                path.extend(segments[k + 1..].iter().cloned());
+                return self.resolve(&cur, &path, hops + 1);
+            }
+            if m.items.contains(seg) {
+                return Some(Target { module: cur, is_module: false });
+            }
+            for glob in &m.globs {
+                let mut path = glob.clone();
+                path.extend(segments[k..].iter().cloned());
+                if let Some(t) = self.resolve(&cur, &path, hops + 1)
+                    && (t.module != cur)
+                {
+                    return Some(t);
+                }
+            }
+            // An item the scan does not see (a variant, an associated item, a generated name).
+            return Some(Target { module: cur, is_module: false });
+        }
+        Some(Target { module: cur, is_module: true })
+    }
+}
+
+/// One import between two file modules, with the first place it is made.
+#[derive(Clone, Debug)]
+struct Edge {
+    file: String,
+    line: usize,
+    /// Only tests make it.
+    test: bool,
+}
+
+struct Graph {
+    nodes: Vec<ModPath>,
+    edges: BTreeMap<(ModPath, ModPath), Edge>,
+    /// References that lead to the crate root itself (not through a re-export): a resolution
+    /// the scan got wrong.
+    unresolved: Vec<String>,
+}
+
+fn graph(krate: &Crate) -> Graph {
+    let nodes: Vec<ModPath> =
+        krate.modules.iter().filter(|(p, m)| **p == m.file_module).map(|(p, _)| p.clone()).collect();
+    let mut edges: BTreeMap<(ModPath, ModPath), Edge> = BTreeMap::new();
+    let mut unresolved = Vec::new();
+    for r in &krate.references {
+        let Some(t) = krate.resolve(&r.from, &r.segments, 0) else { continue };
+        let from = &krate.modules[&r.from];
+        let to = krate.modules[&t.module].file_module.clone();
+        // The crate root defines no items but the exported macros: a path that ends there is
+        // one the scan misread.
+        let root_item = r.segments.last().is_some_and(|s| krate.modules[&Vec::new()].items.contains(s));
+        if to.is_empty() && !(t.is_module && r.segments.len() == 1) && !root_item {
+            unresolved.push(format!("{}:{}: {}", r.file, r.line, r.segments.join("::")));
+            continue;
+        }
+        if to == from.file_module || to.is_empty() || (r.reexport && to.starts_with(&from.file_module)) {
+            continue;
+        }
+        let edge = Edge { file: r.file.clone(), line: r.line, test: from.test || r.test };
+        edges
+            .entry((from.file_module.clone(), to))
+            .and_modify(|e| {
+                if e.test && !edge.test {
+                    *e = edge.clone();
+                }
+            })
+            .or_insert(edge);
+    }
+    Graph { nodes, edges, unresolved }
+}
+
+/// Tarjan's strongly connected components of the graph of the edges `keep` admits: the import
+/// circles (components of more than one module), each sorted, in order.
+fn circles(g: &Graph, keep: impl Fn(&Edge) -> bool) -> Vec<Vec<ModPath>> {
+    struct Tarjan {
+        adj: Vec<Vec<usize>>,
+        index: Vec<Option<usize>>,
+        low: Vec<usize>,
+        on_stack: Vec<bool>,
+        stack: Vec<usize>,
+        next: usize,
+        out: Vec<Vec<usize>>,
+    }
+    impl Tarjan {
+        fn visit(&mut self, v: usize) {
+            self.index[v] = Some(self.next);
+            self.low[v] = self.next;
+            self.next += 1;
+            self.stack.push(v);
+            self.on_stack[v] = true;
+            for w in self.adj[v].clone() {
+                match self.index[w] {
+                    None => {
+                        self.visit(w);
+                        self.low[v] = self.low[v].min(self.low[w]);
+                    }
+                    Some(iw) if self.on_stack[w] => self.low[v] = self.low[v].min(iw),
+                    Some(_) => {}
+                }
+            }
+            if Some(self.low[v]) == self.index[v] {
+                let mut scc = Vec::new();
+                while let Some(w) = self.stack.pop() {
+                    self.on_stack[w] = false;
+                    scc.push(w);
+                    if w == v {
+                        break;
+                    }
+                }
+                self.out.push(scc);
+            }
+        }
+    }
+    let id: BTreeMap<&ModPath, usize> = g.nodes.iter().enumerate().map(|(k, p)| (p, k)).collect();
+    let mut adj = vec![Vec::new(); g.nodes.len()];
+    for ((a, b), e) in &g.edges {
+        if keep(e)
+            && let (Some(&x), Some(&y)) = (id.get(a), id.get(b))
+        {
+            adj[x].push(y);
+        }
+    }
+    let n = g.nodes.len();
+    let mut t = Tarjan {
+        adj,
+        index: vec![None; n],
+        low: vec![0; n],
+        on_stack: vec![false; n],
+        stack: Vec::new(),
+        next: 0,
+        out: Vec::new(),
+    };
+    for v in 0..n {
+        if t.index[v].is_none() {
+            t.visit(v);
+        }
+    }
+    let mut out: Vec<Vec<ModPath>> = t
+        .out
+        .into_iter()
+        .filter(|c| c.len() > 1)
+        .map(|c| {
+            let mut m: Vec<ModPath> = c.into_iter().map(|k| g.nodes[k].clone()).collect();
+            m.sort();
+            m
+        })
+        .collect();
+    out.sort();
+    out
+}
+
+fn name(p: &ModPath) -> String {
+    if p.is_empty() { "crate".into() } else { p.join("::") }
+}
+
+fn under(p: &ModPath, top: &str) -> bool {
+    p.first().is_some_and(|f| f == top)
+}
+
+/// What is wrong with the layering of the sources in `src`, and the circles, printed.
+struct Findings {
+    circles: Vec<Vec<ModPath>>,
+    problems: Vec<String>,
+    text: String,
+}
+
+fn check(src: &Path) -> Findings {
+    let krate = Crate::read(src);
+    let g = graph(&krate);
+    let circles = circles(&g, |e| !e.test);
+    let mut text = String::new();
+    let mut problems = Vec::new();
+    writeln!(text, "{} file modules, {} imports between them, in {}", g.nodes.len(), g.edges.len(), src.display())
+        .unwrap();
+    writeln!(text, "{} import circle(s) (test-only imports left out):", circles.len()).unwrap();
+    for (k, c) in circles.iter().enumerate() {
+        let names: Vec<String> = c.iter().map(name).collect();
+        writeln!(text, "circle {}: {} modules: {}", k + 1, c.len(), names.join(", ")).unwrap();
+        for ((a, b), e) in &g.edges {
+            if !e.test && c.contains(a) && c.contains(b) {
+                writeln!(text, "    {} -> {}  ({}:{})", name(a), name(b), e.file, e.line).unwrap();
+            }
+        }
+    }
+    // (a) The solvers use only themselves and the allowed leaves, which use only each other.
+    let allowed = |p: &ModPath| SOLVERS_MAY_USE.iter().any(|m| under(p, m));
+    for ((a, b), e) in &g.edges {
+        let bad = (under(a, "solvers") && !under(b, "solvers") && !allowed(b)) || (allowed(a) && !allowed(b));
+        if bad {
+            problems.push(format!(
+                "{} imports {} ({}:{}{}), above the solvers' layer",
+                name(a),
+                name(b),
+                e.file,
+                e.line,
+                if e.test { ", in its tests" } else { "" }
+            ));
+        }
+    }
+    // (b) No circle runs through the solvers.
+    for c in &circles {
+        if c.iter().any(|p| under(p, "solvers")) {
+            let names: Vec<String> = c.iter().map(name).collect();
+            problems.push(format!("an import circle runs through the solvers: {}", names.join(", ")));
+        }
+    }
+    // (c) Every module is mounted where its file is.
+    for (file, line) in &krate.path_attributes {
+        problems.push(format!("{file}:{line}: a module mounted by `#[path]`"));
+    }
+    for file in &krate.unreached {
+        problems.push(format!("{file}: no `mod` declaration reaches it"));
+    }
+    // (d) One path per module: a module with children imports no module (which its descendants
+    // could then name through it, `crate::newton` beside `crate::solvers::newton`).
+    for (p, m) in &krate.modules {
+        let file_children = m.children.iter().any(|c| {
+            let mut child = p.clone();
+            child.push(c.clone());
+            krate.modules.get(&child).is_some_and(|cm| cm.file_module == child)
+        });
+        if !file_children || m.file_module != *p {
+            continue;
+        }
+        for (alias, target) in &m.uses {
+            let Some(t) = krate.resolve(p, target, 0) else { continue };
+            let allowed = p.is_empty() && MODULE_ALIASES_ALLOWED.iter().any(|(a, _)| a == alias);
+            if t.is_module && !allowed && alias != "_" {
+                problems.push(format!(
+                    "{}: `use` of module {} as {}::{alias}: a second path to it",
+                    m.file,
+                    name(&t.module),
+                    name(p)
+                ));
+            }
+        }
+    }
+    for u in &g.unresolved {
+        problems.push(format!("{u}: not resolved to a module (the scan misreads it)"));
+    }
+    Findings { circles, problems, text }
+}
+
+fn source_dir() -> PathBuf {
+    match std::env::var_os("KINLOOP_LAYERING_SRC") {
+        Some(dir) => PathBuf::from(dir),
+        None => Path::new(env!("CARGO_MANIFEST_DIR")).join("src"),
+    }
+}
+
+/// The runtime's sources: the solvers are a leaf, no circle runs through them, and the graph
+/// holds the imports every layer is known to make (so a scan that read nothing would fail).
+#[test]
+fn the_solvers_are_the_bottom_layer() {
+    let src = source_dir();
+    let f = check(&src);
+    println!("{}", f.text);
+    let krate = Crate::read(&src);
+    let g = graph(&krate);
+    let has = |a: &str, b: &str| g.edges.keys().any(|(x, y)| name(x).starts_with(a) && name(y).starts_with(b));
+    for (a, b) in
+        [("paths::sweep", "mechanism"), ("mechanism", "kin"), ("kin", "solvers::"), ("generated", "solvers::")]
+    {
+        assert!(has(a, b), "the scan lost the import of {b} by {a}:\n{}", f.text);
+    }
+    assert!(
+        f.problems.is_empty(),
+        "{} layering problem(s):\n{}\n\n{}",
+        f.problems.len(),
+        f.problems.join("\n"),
+        f.text
+    );
+    println!("{} circle(s), none through the solvers", f.circles.len());
+}
+
+/// A small crate whose solver imports the mechanism above it (inline, in a `use` through a
+/// re-export, and in its tests), with an alias path and a `#[path]` mount: every rule fires.
+#[test]
+fn an_upward_import_is_found() {
+    let dir = std::env::temp_dir().join(format!("kinloop-layering-{}", std::process::id()));
+    let files = [
+        ("lib.rs", "mod mechanism;\nmod solvers;\nmod error;\nuse solvers::closed;\npub use mechanism::Mechanism;\n"),
+        ("error.rs", "/// Not an import: [`x`](crate::mechanism::Mechanism).\npub struct Error;\n"),
+        ("mechanism.rs", "use crate::solvers::newton::Config;\npub trait Mechanism { fn c(&self) -> Config; }\n"),
+        ("solvers/mod.rs", "pub mod newton;\npub mod closed;\n"),
+        (
+            "solvers/newton.rs",
+            "use crate::error::Error;\npub struct Config;\npub fn f(m: &dyn crate::Mechanism) {}\n\
+             #[path = \"extra.rs\"]\nmod extra;\n",
+        ),
+        ("solvers/extra.rs", "pub fn g() {}\n"),
+        (
+            "solvers/closed.rs",
+            "use super::newton::Config;\npub fn h(_: Config) {}\n#[cfg(test)]\nmod tests {\n    \
+             use crate::mechanism::Mechanism;\n}\n",
+        ),
+    ];
+    for (f, text) in files {
+        let p = dir.join(f);
+        std::fs::create_dir_all(p.parent().unwrap()).unwrap();
+        std::fs::write(p, text).unwrap();
+    }
+    let found = check(&dir);
+    std::fs::remove_dir_all(&dir).unwrap();
+    println!("{}\n{}", found.text, found.problems.join("\n"));
+    let names: Vec<Vec<String>> = found.circles.iter().map(|c| c.iter().map(name).collect()).collect();
+    assert_eq!(names, [["mechanism", "solvers::newton"]]);
+    let expect = [
+        "solvers::closed imports mechanism (solvers/closed.rs:5, in its tests)",
+        "solvers::newton imports mechanism (solvers/newton.rs:3)",
+        "an import circle runs through the solvers: mechanism, solvers::newton",
+        "solvers/newton.rs:4: a module mounted by `#[path]`",
+        "lib.rs: `use` of module solvers::closed as crate::closed",
+    ];
+    for e in expect {
+        assert!(found.problems.iter().any(|p| p.starts_with(e)), "not found: {e}\n{}", found.problems.join("\n"));
+    }
+    assert_eq!(found.problems.len(), expect.len(), "{}", found.problems.join("\n"));
+}
