@@ -11,9 +11,9 @@
 
 use crate::emit::Types;
 use crate::emit::surface::{Field, Surface, items};
-use crate::expr::Expr;
+use crate::front::expr::Expr;
+use crate::front::syntax::{DeclKind, ItemKind, MechanismDef};
 use crate::plan::param_defaults;
-use crate::syntax::{DeclKind, ItemKind, MechanismDef};
 use proc_macro2::{Ident, TokenStream};
 use std::collections::HashSet;
 use syn::Attribute;
