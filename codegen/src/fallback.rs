@@ -11,9 +11,9 @@
 
 use crate::emit::surface::{Field, Surface, items};
 use crate::emit::{Types, dynamics, lit, runtime};
-use crate::expr::Expr;
+use crate::front::expr::Expr;
+use crate::front::syntax::{DeclKind, ItemKind, MechanismDef};
 use crate::plan::param_defaults;
-use crate::syntax::{DeclKind, ItemKind, MechanismDef};
 use proc_macro2::{Ident, TokenStream};
 use quote::quote;
 use std::collections::HashSet;

@@ -12,8 +12,8 @@
 //! 3. `structure` checks the structure (counts, mobility, Dulmage–Mendelsohn diagnosis) and
 //!    orders the equations into blocks (block-lower-triangular form);
 //! 4. `plan` differentiates the graph symbolically (compile-time forward-mode AD), one small
-//!    pass per kind of derivative, and finds the blocks with a closed-form solution
-//!    (`closed_form`: classical Assur groups);
+//!    pass per kind of derivative, and decides once how each block is solved (`solve`: directly,
+//!    in closed form for the classical Assur groups, `closed_form`, or by Newton);
 //! 5. `emit` writes what depends on the declaration: the named types, the straight-line
 //!    kernels and the constants (everything else is generic code in the runtime).
 //!
@@ -25,7 +25,6 @@
 
 // The stages are private: the crate's interface is `expand` (what the macro runs) and `analyze`
 // (for tests and tools), so the pipeline can change without breaking anyone.
-pub(crate) mod closed_form;
 pub(crate) mod emit;
 pub(crate) mod fallback;
 pub(crate) mod front;
@@ -34,15 +33,13 @@ pub(crate) mod plan;
 pub(crate) mod semantics;
 pub(crate) mod structure;
 
-// The first stages under their former paths (`crate::syntax`, `crate::dag`, ...).
-pub(crate) use front::{expr, syntax};
-pub(crate) use graph::dag;
-pub(crate) use structure::analysis;
 // What `analyze` returns is public: the checked model, the blocks and the warnings.
 pub use semantics::model;
 pub use structure::{Block, diag};
 
+use front::syntax;
 use proc_macro2::TokenStream;
+use structure::analysis;
 
 /// What analysis produced, for tests and tools.
 pub struct Analyzed {

@@ -2,12 +2,13 @@
 //! with the named types), its constants, and its inherent methods: one-line forwarders into the
 //! runtime's generic code, so that `m.solve(x)` needs no import.
 
-use super::kernels::{Mode, closed_config_check, deferred_body, jacobian_body, solver_body, straight_line};
+use super::evaluate::{jacobian_body, straight_line};
+use super::kernel::{Mode, closed_config_check, deferred_body, solver_body};
 use super::names::Names;
 use super::{Dims, Types, kernel_lints, runtime};
-use crate::model::Model;
 use crate::plan::Plan;
 use crate::plan::kinds::Kind;
+use crate::semantics::model::Model;
 use proc_macro2::TokenStream;
 use quote::quote;
 use syn::ext::IdentExt;
@@ -35,7 +36,7 @@ fn constants(model: &Model, plan: &Plan, t: &Types) -> TokenStream {
     let blocks = plan.blocks.iter().map(|b| {
         let us = b.unknowns.iter().map(|&u| &ustrs[u]);
         let es = b.equations.iter().map(|&e| &estrs[e]);
-        let linear = b.linear;
+        let linear = b.solve.is_linear();
         quote!(#rt::BlockInfo { unknowns: &[#(#us),*], equations: &[#(#es),*], linear: #linear })
     });
     quote! {
@@ -80,7 +81,7 @@ fn kind_constants(model: &Model, plan: &Plan) -> TokenStream {
     let Dims { n, ni, no, .. } = Dims::of(plan);
     let kinds = crate::plan::kinds::classify(model, &plan.graph, &plan.residuals, &plan.outputs);
     let closed_form_angles: Vec<usize> =
-        plan.blocks.iter().filter_map(|bp| bp.closed.as_ref()).flat_map(|r| r.form.angles()).collect();
+        plan.blocks.iter().filter_map(|bp| bp.solve.closed_form()).flat_map(|r| r.form.angles()).collect();
     let list = |ks: &[Kind], upper: &dyn Fn(usize) -> bool| {
         let codes: String = ks
             .iter()

@@ -14,8 +14,9 @@
 //! unknowns appear linearly), its unknowns and its scalar equations (`loop.x`, `loop.y`, or an
 //! `eq` name).
 
-use crate::model::Model;
 use crate::plan::Plan;
+use crate::plan::solve::Solve;
+use crate::semantics::model::Model;
 
 fn plural(n: usize, one: &str, many: &str) -> String {
     format!("{n} {}", if n == 1 { one } else { many })
@@ -46,19 +47,19 @@ pub fn decomposition(model: &Model, plan: &Plan) -> String {
         let equations: Vec<&str> = b.equations.iter().map(|&e| model.equations[e].name.as_str()).collect();
         s.push_str(&format!(
             "\n  block {k} ({}): {} <- {}",
-            // Closed-form hook: how the block is solved.
-            match (&b.closed, b.linear) {
-                (Some(c), _) => c.form.describe().to_string(),
-                (None, true) => format!("linear, {}x{}", b.equations.len(), b.unknowns.len()),
-                (None, false) => match &b.sparse {
-                    Some(sp) => format!(
-                        "Newton, {}x{} sparse ({} non-zeros)",
-                        b.equations.len(),
-                        b.unknowns.len(),
-                        sp.entries.len()
-                    ),
-                    None => format!("Newton, {}x{}", b.equations.len(), b.unknowns.len()),
-                },
+            // How the block is solved.
+            match &b.solve {
+                Solve::ClosedForm(c) => c.form.describe().to_string(),
+                Solve::Fixed { .. } | Solve::Linear { .. } => {
+                    format!("linear, {}x{}", b.equations.len(), b.unknowns.len())
+                }
+                Solve::NewtonSparse(sp) => format!(
+                    "Newton, {}x{} sparse ({} non-zeros)",
+                    b.equations.len(),
+                    b.unknowns.len(),
+                    sp.entries.len()
+                ),
+                Solve::Newton => format!("Newton, {}x{}", b.equations.len(), b.unknowns.len()),
             },
             unknowns.join(", "),
             equations.join(", ")

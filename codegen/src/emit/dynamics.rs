@@ -9,10 +9,10 @@
 use super::names::Names;
 use super::schedule::{ScopeKind, ScopeSpec, schedule};
 use super::{Dims, Types, kernel_lints, lit, runtime};
-use crate::dag::{Graph, Leaf, NodeId};
-use crate::model::Model;
+use crate::graph::dag::{Graph, Leaf, NodeId};
 use crate::plan::Plan;
 use crate::semantics::dynamics::{AngleModel, BodyModel, CoordModel, ForceModel, TorqueModel};
+use crate::semantics::model::Model;
 use proc_macro2::TokenStream;
 use quote::{format_ident, quote};
 use syn::ext::IdentExt;

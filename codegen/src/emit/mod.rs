@@ -3,7 +3,9 @@
 //! * [`schedule`] places each graph node in the scope of a kernel that first needs it (and
 //!   pairs a sine with the cosine of the same argument);
 //! * [`names`] names the locals and renders nodes as `let` statements;
-//! * [`kernels`] emits the straight-line kernels (positions, analogs, outputs, Jacobians);
+//! * [`kernel`] emits the straight-line solver kernels (positions, analogs, outputs), with
+//!   [`closed_form`] the straight-line solves of closed-form blocks, and [`evaluate`] the
+//!   evaluations at a given position (outputs, guesses, Jacobians);
 //! * [`surface`] declares the named types (also emitted by the fallback after an error);
 //! * [`api`] implements the runtime traits with the kernels and the constants, and forwards the
 //!   inherent methods to the runtime's generic code;
@@ -15,18 +17,20 @@
 //! Generated code reaches the runtime through `::kinloop::__gen` only.
 
 pub mod api;
+pub mod closed_form;
 pub mod describe;
 pub mod dynamics;
+pub mod evaluate;
 mod group_lets;
-pub mod kernels;
+pub mod kernel;
 pub mod names;
 pub mod schedule;
 pub mod sensitivities;
 pub mod sparse;
 pub mod surface;
 
-use crate::model::Model;
 use crate::plan::Plan;
+use crate::semantics::model::Model;
 use proc_macro2::{Ident, Literal, TokenStream};
 use quote::{format_ident, quote};
 use syn::ext::IdentExt;

@@ -10,9 +10,9 @@
 //! and their node number.
 
 use super::schedule::Schedule;
-use crate::dag::{Func, Graph, Leaf, NodeId, Op};
-use crate::model::Model;
+use crate::graph::dag::{Func, Graph, Leaf, NodeId, Op};
 use crate::plan::Plan;
+use crate::semantics::model::Model;
 use proc_macro2::{Ident, Literal, Span, TokenStream};
 use quote::{format_ident, quote};
 use std::collections::{HashMap, HashSet};

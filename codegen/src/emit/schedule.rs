@@ -6,7 +6,7 @@
 //! first scope that needs it; values computed inside a Newton closure that later scopes need are
 //! handed out through the evaluation's `keep` array instead of being recomputed.
 
-use crate::dag::{Func, Graph, Leaf, NodeId, Op};
+use crate::graph::dag::{Func, Graph, Leaf, NodeId, Op};
 use std::collections::HashMap;
 
 /// Where a scope's code runs.

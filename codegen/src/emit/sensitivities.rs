@@ -7,12 +7,12 @@
 //! Without the attribute, [`absent`] declares the two methods with a bound no type satisfies,
 //! so calling them is a compile error that says to add the attribute.
 
-use super::kernels::{Mode, solver_body};
+use super::kernel::{Mode, solver_body};
 use super::names::Names;
 use super::surface::{Field, analog_conversions, analog_types, named_struct};
 use super::{Dims, Types, kernel_lints, runtime};
-use crate::model::Model;
 use crate::plan::Plan;
+use crate::semantics::model::Model;
 use proc_macro2::TokenStream;
 use quote::quote;
 

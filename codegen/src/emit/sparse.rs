@@ -4,7 +4,7 @@
 
 use super::lit;
 use super::names::Names;
-use crate::dag::{Graph, NodeId};
+use crate::graph::dag::{Graph, NodeId};
 use crate::plan::sparse::Sparse;
 use proc_macro2::{Ident, TokenStream};
 use quote::{format_ident, quote};

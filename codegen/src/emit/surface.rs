@@ -6,7 +6,7 @@
 //! the same items from the syntax ([`Surface`] is built from either).
 
 use super::{Types, lit, runtime};
-use crate::model::Model;
+use crate::semantics::model::Model;
 use proc_macro2::{Ident, Span, TokenStream};
 use quote::quote;
 use syn::ext::IdentExt;

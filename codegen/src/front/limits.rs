@@ -10,7 +10,7 @@
 use proc_macro2::{TokenStream, TokenTree, token_stream::IntoIter};
 
 /// Deepest nesting of `(...)`, `[...]` and `{...}` accepted. Expressions have their own,
-/// smaller limit ([`crate::expr::MAX_DEPTH`]) with a more specific message; this one only keeps
+/// smaller limit ([`crate::front::expr::MAX_DEPTH`]) with a more specific message; this one only keeps
 /// the recursive parsers safe.
 pub const MAX_NESTING: usize = 256;
 

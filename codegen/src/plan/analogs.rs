@@ -4,7 +4,7 @@
 use super::BlockPlan;
 use super::rows_from_columns;
 use super::seeds::Seeds;
-use crate::dag::{Graph, NodeId};
+use crate::graph::dag::{Graph, NodeId};
 
 /// The full first and second total derivatives of a block's residuals (every analog a leaf),
 /// which the sensitivities differentiate further.

@@ -21,9 +21,10 @@
 //! its argument), an unknown that Newton solved, and every other function (`atan2(∞, ∞)` is
 //! finite).
 
+use super::closed_form::Recognised;
+use super::solve::Solve;
 use super::{BlockPlan, Plan, pairs};
-use crate::closed_form::Recognised;
-use crate::dag::{Func, Leaf, NodeId, Op};
+use crate::graph::dag::{Func, Leaf, NodeId, Op};
 use std::collections::HashSet;
 
 /// One value of a kernel's finiteness test.
@@ -95,12 +96,17 @@ impl<'a> Rules<'a> {
             let leaves = |make: &dyn Fn(u16) -> Leaf| -> Option<Vec<usize>> {
                 bp.unknowns.iter().map(|&u| leaf(make(u as u16)).map(|n| n.index())).collect()
             };
-            if bp.linear {
-                if let Some(qs) = leaves(&Leaf::Unknown) {
-                    rules.rows(&bp.rhs0, &qs);
+            match &bp.solve {
+                Solve::Fixed { .. } | Solve::Linear { .. } => {
+                    if let (Some(rhs), Some(qs)) = (bp.solve.linear_rhs(), leaves(&Leaf::Unknown)) {
+                        rules.rows(rhs, &qs);
+                    }
                 }
-            } else if bp.closed.is_none() {
-                newton.extend(bp.unknowns.iter().filter_map(|&u| leaf(Leaf::Unknown(u as u16))));
+                Solve::Newton | Solve::NewtonSparse(_) => {
+                    newton.extend(bp.unknowns.iter().filter_map(|&u| leaf(Leaf::Unknown(u as u16))));
+                }
+                // Its rules follow its analogs' (see `Rules::closed`).
+                Solve::ClosedForm(_) => {}
             }
             for i in 0..plan.ni {
                 if let Some(tans) = leaves(&|u| Leaf::Tan { unknown: u, input: i as u16 }) {
@@ -112,7 +118,7 @@ impl<'a> Rules<'a> {
                     rules.rows(&column(&bp.acc, p), &tans);
                 }
             }
-            if let Some(rec) = &bp.closed {
+            if let Solve::ClosedForm(rec) = &bp.solve {
                 closed_trig.extend(rec.sin_cos.iter().flatten().copied());
                 rules.closed(b, bp, rec, &leaf);
             }
@@ -226,7 +232,7 @@ mod tests {
             terms.push((Term::Node(plan.out_d1[o][0]), format!("dout{o}")));
             terms.push((Term::Node(plan.out_d2[o][0]), format!("d2out{o}")));
         }
-        for b in (0..plan.blocks.len()).filter(|&b| plan.blocks[b].closed.is_some()) {
+        for b in (0..plan.blocks.len()).filter(|&b| plan.blocks[b].solve.closed_form().is_some()) {
             terms.push((Term::Check(b), format!("check{b}")));
         }
         let ids: Vec<Term> = terms.iter().map(|(t, _)| *t).collect();

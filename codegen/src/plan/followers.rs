@@ -16,7 +16,7 @@
 //! of their domains).
 
 use super::BlockPlan;
-use crate::dag::{Func, Graph, Leaf, Op};
+use crate::graph::dag::{Func, Graph, Leaf, Op};
 
 /// Per unknown, whether it follows the others (see the module documentation).
 pub fn followers(g: &Graph, blocks: &[BlockPlan], n: usize) -> Vec<bool> {
@@ -32,7 +32,7 @@ pub fn followers(g: &Graph, blocks: &[BlockPlan], n: usize) -> Vec<bool> {
 /// Whether every unknown of block `bp` follows the others.
 fn follows(g: &Graph, bp: &BlockPlan) -> bool {
     let constant_matrix = bp.jac.iter().flatten().all(|&e| g.as_const(e).is_some());
-    bp.linear && constant_matrix && g.reachable(&bp.f).into_iter().all(|node| is_entire(g, g.op(node)))
+    bp.solve.is_linear() && constant_matrix && g.reachable(&bp.f).into_iter().all(|node| is_entire(g, g.op(node)))
 }
 
 /// Whether node operation `op` is an entire function of its operands (divisions only by

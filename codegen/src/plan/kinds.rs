@@ -14,8 +14,8 @@
 //! length, a ratio of lengths dimensionless, `sqrt` of a sum of squares of lengths a length.
 //! Whatever does not follow from the classified leaves is [`Kind::Other`]: nothing is guessed.
 
-use crate::dag::{Func, Graph, Leaf, NodeId, Op};
-use crate::model::Model;
+use crate::graph::dag::{Func, Graph, Leaf, NodeId, Op};
+use crate::semantics::model::Model;
 use std::collections::{HashMap, HashSet};
 
 /// The kind of quantity of a column.

@@ -46,7 +46,7 @@
 //! loop's lengths is magnified in `th` there.
 
 use super::BlockPlan;
-use crate::dag::{Func, Graph, Leaf, NodeId, Op};
+use crate::graph::dag::{Func, Graph, Leaf, NodeId, Op};
 use std::collections::{HashMap, HashSet};
 
 /// Builds the structural magnitudes of expressions of one graph.
@@ -256,7 +256,8 @@ mod tests {
             let residuals = [fx, fy];
             let (jac, _) = super::super::positions::full_jacobians(&mut g, &residuals, 2, 2);
             let blk = Block { unknowns: vec![0, 1], equations: vec![0, 1] };
-            let bp = super::super::positions::block(&mut g, &blk, &residuals, &jac);
+            let pos = super::super::positions::block(&mut g, &blk, &residuals, &jac);
+            let bp = super::super::BlockPlan::new(&blk, pos, super::super::solve::Solve::Newton);
             let mut mags = Magnitudes::new(&g, &residuals);
             let floors = mags.lever_floors(&mut g, &bp);
             (g, floors)

@@ -3,7 +3,10 @@
 //!
 //! For an equation `f(q(x), x) = 0` with unknowns `q` and inputs `x`:
 //!
-//! * position Newton needs `f` and `J = df/dq` per block ([`positions`]);
+//! * position Newton needs `f` and `J = df/dq` per block ([`positions`]); how each block is
+//!   solved is decided once, from them ([`solve`]: directly when it is linear, in closed form
+//!   when it is a classical Assur group, [`closed_form`], otherwise by Newton, dense or
+//!   [`sparse`]);
 //! * velocity analogs solve `J_bb q'_b = -T_i f_b` where `T_i` is the total derivative along
 //!   input `i` with the block's own analogs set to zero (earlier blocks' analogs are known);
 //!   acceleration analogs solve `J_bb q''_b = -T_j T_i f_b`, again with the block's own second
@@ -20,6 +23,7 @@
 //! owns the finished graph and is not changed afterwards.
 
 pub mod analogs;
+pub mod closed_form;
 pub mod finite;
 pub mod followers;
 pub mod kinds;
@@ -28,13 +32,15 @@ pub mod outputs;
 pub mod positions;
 pub mod seeds;
 pub mod sensitivities;
+pub mod solve;
 pub mod sparse;
 pub mod turns;
 
-use crate::dag::{Graph, Leaf, NodeId, Op};
-use crate::model::Model;
+use crate::graph::dag::{Graph, Leaf, NodeId, Op};
+use crate::semantics::model::Model;
 use crate::structure::Block;
 use seeds::Seeds;
+use solve::Solve;
 
 /// Everything computed for one block of the decomposition.
 pub struct BlockPlan {
@@ -42,8 +48,8 @@ pub struct BlockPlan {
     pub unknowns: Vec<usize>,
     /// The block's equations (indices into the model's equations).
     pub equations: Vec<usize>,
-    /// `J_bb` does not depend on the block's unknowns: solved by one linear solve.
-    pub linear: bool,
+    /// How the block's positions are solved.
+    pub solve: Solve,
     /// Residuals of the block's equations.
     pub f: Vec<NodeId>,
     /// `jac[r][c] = d f_r / d q_c` over the block's unknowns.
@@ -54,19 +60,12 @@ pub struct BlockPlan {
     /// Per block unknown: the lever floors its column's magnitude is raised to (see
     /// [`magnitudes`]); empty for most columns.
     pub lever_floor: Vec<Vec<NodeId>>,
-    /// For linear blocks: minus the residuals with the block's unknowns set to zero (the
-    /// right-hand side of the linear solve).
-    pub rhs0: Vec<NodeId>,
     /// `vel[r][i]`: the velocity right-hand side.
     pub vel: Vec<Vec<NodeId>>,
     /// `acc[r][p]`: the acceleration right-hand side for input pair `p`.
     pub acc: Vec<Vec<NodeId>>,
     /// Right-hand sides of the parameter sensitivities, when requested.
     pub sens: Option<Stages>,
-    /// Closed-form hook: the block's closed-form solve, when it has one (else Newton or linear).
-    pub closed: Option<crate::closed_form::Recognised>,
-    /// A large sparse Newton block's symbolic factorisation (see [`sparse`]); `None`: dense.
-    pub sparse: Option<sparse::Sparse>,
     /// Per row: the magnitude of the equation's terms (see [`magnitudes`]).
     pub scale: Vec<NodeId>,
     /// Per block unknown: the unit its Newton steps are judged in (see [`magnitudes`]).
@@ -177,22 +176,20 @@ pub fn build(model: &mut Model, blocks: &[Block], with_sensitivities: bool) -> P
     let (n, ni, np) = (model.unknowns.len(), model.inputs.len(), model.params.len());
     let seeds = Seeds::new(&mut g, n, ni, np, blocks, with_sensitivities);
     let full = positions::full_jacobians(&mut g, &residuals, n, ni);
-    let mut plans: Vec<BlockPlan> =
+    // Every block's position part first, then each one's solve: the graph's nodes (whose order
+    // names the generated temporaries) are added in that order. Closed-form recognition adds
+    // nodes too: before the levels are computed.
+    let positions: Vec<positions::Position> =
         blocks.iter().map(|blk| positions::block(&mut g, blk, &residuals, &full.0)).collect();
-    // Closed-form hook: every nonlinear block that is a classical Assur group, unless
-    // `#[kinloop(newton)]` (recognition adds graph nodes: before the levels are computed).
-    if model.options.newton.is_none() {
-        for (bp, blk) in plans.iter_mut().zip(blocks).filter(|(bp, _)| !bp.linear) {
-            bp.closed = crate::closed_form::recognise(&mut g, blk, &bp.f, np);
-        }
-    }
-    // Large sparse Newton blocks, unless `#[kinloop(dense)]` asks for dense everything.
-    if model.options.dense.is_none() {
-        for bp in plans.iter_mut().filter(|bp| !bp.linear && bp.closed.is_none()) {
-            bp.sparse = sparse::analyse(&g, &bp.jac);
-        }
-    }
-    for bp in plans.iter_mut().filter(|bp| !bp.linear && bp.closed.is_none()) {
+    let mut plans: Vec<BlockPlan> = blocks
+        .iter()
+        .zip(positions)
+        .map(|(blk, pos)| {
+            let solve = Solve::decide(&mut g, blk, &pos, np, &model.options);
+            BlockPlan::new(blk, pos, solve)
+        })
+        .collect();
+    for bp in plans.iter_mut().filter(|bp| bp.solve.is_newton()) {
         bp.turns = turns::turns(&g, bp);
     }
     let mut mags = magnitudes::Magnitudes::new(&g, &residuals);

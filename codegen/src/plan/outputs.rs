@@ -2,7 +2,7 @@
 
 use super::rows_from_columns;
 use super::seeds::Seeds;
-use crate::dag::{Graph, NodeId};
+use crate::graph::dag::{Graph, NodeId};
 
 /// `(out_d1[o][i], out_d2[o][p], first)` where `first[i]` is the column of first derivatives
 /// along input `i` (the sensitivities differentiate it further).

@@ -1,8 +1,9 @@
 //! Positions: the full Jacobians, and per block its residuals, Jacobian, column scales and
 //! whether it is linear in its unknowns.
 
+use super::solve::Solve;
 use super::{BlockPlan, rows_from_columns};
-use crate::dag::{Graph, Leaf, NodeId};
+use crate::graph::dag::{Graph, Leaf, NodeId};
 use crate::structure::Block;
 
 /// `(df/dq, df/dx)` of every equation, each as rows.
@@ -20,8 +21,21 @@ pub fn full_jacobians(
     (rows_from_columns(residuals.len(), dq), rows_from_columns(residuals.len(), dx))
 }
 
-/// The position part of a block's plan (its analogs and sensitivities are filled in later).
-pub fn block(g: &mut Graph, blk: &Block, residuals: &[NodeId], jac_full: &[Vec<NodeId>]) -> BlockPlan {
+/// The position part of a block, from which its solve is decided (see [`Solve::decide`]).
+pub struct Position {
+    /// Residuals of the block's equations.
+    pub f: Vec<NodeId>,
+    /// `jac[r][c] = d f_r / d q_c` over the block's unknowns.
+    pub jac: Vec<Vec<NodeId>>,
+    /// Per block unknown: the non-zero entries of its column of the full Jacobian.
+    pub col_scale: Vec<Vec<NodeId>>,
+    /// When the block is linear in its unknowns (`J_bb` free of them): minus the residuals with
+    /// the block's unknowns set to zero, the right-hand side of its linear solve.
+    pub rhs: Option<Vec<NodeId>>,
+}
+
+/// The position part of a block.
+pub fn block(g: &mut Graph, blk: &Block, residuals: &[NodeId], jac_full: &[Vec<NodeId>]) -> Position {
     let f: Vec<NodeId> = blk.equations.iter().map(|&e| residuals[e]).collect();
     let jac: Vec<Vec<NodeId>> =
         blk.equations.iter().map(|&e| blk.unknowns.iter().map(|&u| jac_full[e][u]).collect()).collect();
@@ -30,29 +44,34 @@ pub fn block(g: &mut Graph, blk: &Block, residuals: &[NodeId], jac_full: &[Vec<N
         blk.unknowns.iter().map(|&u| jac_full.iter().map(|row| row[u]).filter(|&n| !g.is_zero(n)).collect()).collect();
     let own: Vec<Leaf> = blk.unknowns.iter().map(|&a| Leaf::Unknown(a as u16)).collect();
     let linear = !g.leaves_of(&jac.concat()).iter().any(|l| own.contains(l));
-    let rhs0 = if linear {
+    let rhs = linear.then(|| {
         let zero = g.zero();
         let f0 = g.substitute(&f, &|l| own.contains(&l).then_some(zero));
         f0.into_iter().map(|x| g.neg(x)).collect()
-    } else {
-        Vec::new()
-    };
-    BlockPlan {
-        unknowns: blk.unknowns.clone(),
-        equations: blk.equations.clone(),
-        linear,
-        f,
-        jac,
-        col_scale,
-        lever_floor: vec![Vec::new(); blk.unknowns.len()],
-        turns: vec![false; blk.unknowns.len()],
-        rhs0,
-        vel: Vec::new(),
-        acc: Vec::new(),
-        sens: None,
-        closed: None,
-        sparse: None,
-        scale: Vec::new(),
-        unit: Vec::new(),
+    });
+    Position { f, jac, col_scale, rhs }
+}
+
+impl BlockPlan {
+    /// The plan of block `blk` from its position part and its solve (its magnitudes, analogs and
+    /// sensitivities are filled in later).
+    pub fn new(blk: &Block, pos: Position, solve: Solve) -> BlockPlan {
+        // The linear right-hand side went into `solve`.
+        let Position { f, jac, col_scale, rhs: _ } = pos;
+        BlockPlan {
+            unknowns: blk.unknowns.clone(),
+            equations: blk.equations.clone(),
+            solve,
+            f,
+            jac,
+            col_scale,
+            lever_floor: vec![Vec::new(); blk.unknowns.len()],
+            turns: vec![false; blk.unknowns.len()],
+            vel: Vec::new(),
+            acc: Vec::new(),
+            sens: None,
+            scale: Vec::new(),
+            unit: Vec::new(),
+        }
     }
 }

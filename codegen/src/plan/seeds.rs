@@ -2,7 +2,7 @@
 //! derivatives seeded with them.
 
 use super::pairs;
-use crate::dag::{Graph, Leaf, NodeId};
+use crate::graph::dag::{Graph, Leaf, NodeId};
 use crate::structure::Block;
 
 /// Leaves of the derived quantities, and which block solves each unknown.

@@ -5,7 +5,7 @@
 use super::analogs::negated;
 use super::seeds::Seeds;
 use super::{Stages, rows_from_columns};
-use crate::dag::{Graph, NodeId};
+use crate::graph::dag::{Graph, NodeId};
 
 /// One stage: every parameter's derivative of every column in `columns`, parameter innermost,
 /// negated when `rhs` (a right-hand side rather than a value).

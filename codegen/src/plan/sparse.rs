@@ -9,7 +9,7 @@
 //! per row) factorises with fill along one column only: the code and the work grow linearly with
 //! the number of loops instead of with its square (dense) or cube (dense LU).
 
-use crate::dag::{Graph, NodeId};
+use crate::graph::dag::{Graph, NodeId};
 use crate::structure::maximum_matching;
 use std::collections::{BTreeSet, HashMap};
 

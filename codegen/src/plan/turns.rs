@@ -14,7 +14,7 @@
 //! contain `q`), so the pass costs about the block's own graph, not the graph times the block.
 
 use super::BlockPlan;
-use crate::dag::{Func, Graph, Leaf, NodeId, Op};
+use crate::graph::dag::{Func, Graph, Leaf, NodeId, Op};
 use std::collections::{HashMap, HashSet};
 
 /// How a node depends on the unknown being classified.

@@ -3,7 +3,7 @@
 //! the function list in error messages all read [`BUILTINS`]; a test checks that the crate
 //! documentation lists every entry.
 
-use crate::dag::Func;
+use crate::graph::dag::Func;
 
 /// Whether a value is a scalar or a planar vector.
 #[derive(Clone, Copy, PartialEq, Eq, Debug)]

@@ -3,8 +3,8 @@
 use super::builtins::{self, Builtin, HINTS, Kind, Lowering};
 use super::lower::{Lowerer, Val, integer_exponent};
 use super::suggest::similar;
-use crate::dag::{Func, Graph, NodeId};
-use crate::expr::Expr;
+use crate::front::expr::Expr;
+use crate::graph::dag::{Func, Graph, NodeId};
 use proc_macro2::Span;
 use syn::Ident;
 

@@ -8,9 +8,9 @@
 
 use super::lower::{Lowerer, Val};
 use super::scope::Symbol;
-use crate::dag::{Func, Graph, Leaf, NodeId, Op};
-use crate::expr::{Expr, SpanRange};
-use crate::syntax::BodyDef;
+use crate::front::expr::{Expr, SpanRange};
+use crate::front::syntax::BodyDef;
+use crate::graph::dag::{Func, Graph, Leaf, NodeId, Op};
 use proc_macro2::Span;
 use std::collections::{HashMap, HashSet};
 use syn::Ident;

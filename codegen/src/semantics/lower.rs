@@ -1,9 +1,9 @@
 //! Lowering expressions into the graph, with the vector/scalar type checks of operators.
 
 use super::scope::Scope;
-use crate::dag::{Func, Graph, Leaf, NodeId};
-use crate::expr::{BinOp, Component, Expr};
-use crate::syntax::Errors;
+use crate::front::expr::{BinOp, Component, Expr};
+use crate::front::syntax::Errors;
+use crate::graph::dag::{Func, Graph, Leaf, NodeId};
 use proc_macro2::Span;
 
 /// The type of a lowered expression.

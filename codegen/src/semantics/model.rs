@@ -4,9 +4,9 @@
 use super::dynamics::{DynamicsModel, Pending};
 use super::lower::{Lowerer, Val};
 use super::scope::Symbol;
-use crate::dag::{Graph, NodeId};
-use crate::expr::{Expr, SpanRange};
-use crate::syntax::{Decl, DeclKind, Item, ItemKind, MechanismDef, Options};
+use crate::front::expr::{Expr, SpanRange};
+use crate::front::syntax::{Decl, DeclKind, Item, ItemKind, MechanismDef, Options};
+use crate::graph::dag::{Graph, NodeId};
 use proc_macro2::Span;
 use std::collections::HashMap;
 use syn::{Attribute, Ident, Visibility};

@@ -2,7 +2,7 @@
 
 use super::lower::{Lowerer, Val};
 use super::suggest::similar;
-use crate::dag::Leaf;
+use crate::graph::dag::Leaf;
 use proc_macro2::Span;
 use std::collections::HashMap;
 use syn::Ident;

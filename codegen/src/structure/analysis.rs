@@ -14,10 +14,10 @@
 //!   Names already reported by a local error above are left out of the notes.
 //! * An unused parameter is a warning (see [`warnings`]).
 
-use crate::diag::Warning;
-use crate::model::Model;
+use crate::front::syntax::Errors;
+use crate::semantics::model::Model;
+use crate::structure::diag::Warning;
 use crate::structure::{self, Block};
-use crate::syntax::Errors;
 use std::collections::BTreeSet;
 
 /// Checks the structure and returns the blocks in solve order.
@@ -126,7 +126,7 @@ fn unused_inputs(model: &Model, errors: &mut Errors) {
 /// with), and a parameter may be kept on purpose for the user's own computations (a mass, a
 /// speed); refusing to compile would be wrong. Procedural macros cannot emit warnings on stable
 /// Rust, so they reach the user as a `deprecated` lint at the parameter's name (see
-/// [`crate::diag`]), which `-D warnings` turns into an error like any warning. A parameter whose
+/// [`crate::structure::diag`]), which `-D warnings` turns into an error like any warning. A parameter whose
 /// name starts with `_` is never reported, as in Rust.
 pub fn warnings(model: &Model) -> Vec<Warning> {
     model

@@ -3,9 +3,9 @@
 //! short note per place that takes part.
 
 use super::Imbalance;
-use crate::expr::SpanRange;
-use crate::model::Model;
-use crate::syntax::Errors;
+use crate::front::expr::SpanRange;
+use crate::front::syntax::Errors;
+use crate::semantics::model::Model;
 use std::collections::BTreeSet;
 
 fn plural(n: usize, one: &str, many: &str) -> String {

@@ -22,8 +22,8 @@ pub use blt::{Block, blt};
 pub use dm::{Imbalance, dulmage_mendelsohn};
 pub use matching::maximum_matching;
 
-use crate::dag::{Leaf, NodeId};
-use crate::model::Model;
+use crate::graph::dag::{Leaf, NodeId};
+use crate::semantics::model::Model;
 use std::collections::BTreeSet;
 
 /// The incidence: for each equation, the unknowns its residual depends on.

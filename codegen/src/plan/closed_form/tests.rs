@@ -4,7 +4,7 @@
 //! look alike but have no such closed form keep Newton.
 
 use super::recognise::{ClosedForm, recognise};
-use crate::dag::{Graph, Leaf, NodeId};
+use crate::graph::dag::{Graph, Leaf, NodeId};
 
 /// The closed forms of the declaration's blocks, in solve order (`None`: Newton or linear).
 fn forms(src: &str) -> (Graph, Vec<Option<ClosedForm>>, Vec<Vec<NodeId>>) {

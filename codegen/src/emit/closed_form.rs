@@ -13,10 +13,10 @@
 //! operations this code would, in the same order; only the coefficients, specific to the
 //! block, are emitted inline (with their constants folded).
 
-use super::recognise::{ClosedForm, Recognised};
-use crate::dag::{Graph, NodeId};
-use crate::emit::names::float;
+use super::names::float;
+use crate::graph::dag::{Graph, NodeId};
 use crate::plan::Plan;
+use crate::plan::closed_form::{ClosedForm, Recognised};
 use proc_macro2::{Ident, Literal, TokenStream};
 use quote::{format_ident, quote};
 use std::collections::HashSet;
@@ -529,7 +529,7 @@ fn angle_slider(m: &[[NodeId; 2]; 2], d: &[NodeId; 2], e: &[NodeId; 2], u: usize
 /// defines them) and returns those that were scheduled (some later code reads them).
 pub fn take_trig(plan: &Plan, lets: &mut [Vec<NodeId>]) -> HashSet<NodeId> {
     let provided: HashSet<NodeId> =
-        plan.blocks.iter().filter_map(|bp| bp.closed.as_ref()).flat_map(|c| c.sin_cos.concat()).collect();
+        plan.blocks.iter().filter_map(|bp| bp.solve.closed_form()).flat_map(|c| c.sin_cos.concat()).collect();
     let mut bound = HashSet::new();
     for l in lets {
         l.retain(|n| {

@@ -2,7 +2,8 @@
 //!
 //! Newton with an LU solves every nonlinear block in general; a block whose position problem
 //! has a closed form is solved by that form instead ([`recognise`](mod@recognise) proves the
-//! pattern on the expression graph at compile time, [`emit`] writes the straight-line solve):
+//! pattern on the expression graph at compile time; the emitter's `closed_form` writes the
+//! straight-line solve):
 //!
 //! * one unknown angle in one equation `a cos q + b sin q = c` (a rod's angle from one
 //!   projection of its loop): two roots by one square root;
@@ -17,10 +18,9 @@
 //! stay on their branch. The analogs still come from the block's Jacobian (one factorisation),
 //! which reads the sines and cosines of the unknown angles that the closed form produced.
 
-pub mod emit;
 pub mod recognise;
 
-pub use recognise::{Recognised, recognise};
+pub use recognise::{ClosedForm, Recognised, recognise};
 
 #[cfg(test)]
 mod tests;

@@ -10,7 +10,7 @@
 //! the coefficients read off are exact: a pattern is accepted only when it holds identically,
 //! never by the look of the source. Anything else keeps Newton.
 
-use crate::dag::{Func, Graph, Leaf, NodeId, Op};
+use crate::graph::dag::{Func, Graph, Leaf, NodeId, Op};
 use crate::structure::Block;
 use std::collections::HashMap;
 

@@ -1,0 +1,223 @@
+//! Each block's position solve, as its plan's `Solve` says: one division, one linear solve,
+//! the straight-line solve of a closed form, or Newton over the block's evaluation.
+
+use super::scopes::keeps_lu;
+use super::{Kernel, Mode, evaluation_ident};
+use crate::emit::names::float_arg;
+use crate::emit::{closed_form, lit, sparse};
+use crate::graph::dag::NodeId;
+use crate::plan::BlockPlan;
+use crate::plan::closed_form::Recognised;
+use crate::plan::solve::Solve;
+use crate::plan::sparse::Sparse;
+use proc_macro2::{Ident, TokenStream};
+use quote::{format_ident, quote};
+
+impl Kernel<'_> {
+    /// The position solve of block `b`, after the values computed before it.
+    pub(super) fn position_block(&self, b: usize) -> TokenStream {
+        let bp = &self.plan.blocks[b];
+        let mut out = self.lets(self.scopes.pre[b]);
+        let qs = self.unknowns_of(bp);
+        out.extend(match &bp.solve {
+            Solve::Fixed { coefficient, rhs } => {
+                // A constant, non-zero coefficient: one division, never singular.
+                let (rt, lu) = (&self.rt, format_ident!("__lu{}", b));
+                let (c, rhs) = (float_arg(*coefficient), self.op(*rhs));
+                quote! {
+                    let #lu = #rt::Fixed(#c);
+                    let [#(#qs),*] = #lu.solve([#rhs]);
+                }
+            }
+            Solve::Linear { rhs } => self.linear_block(b, bp, rhs, &qs),
+            Solve::ClosedForm(c) => self.closed_block(b, c),
+            Solve::Newton => self.newton_block(b, bp, None, &qs),
+            Solve::NewtonSparse(sp) => self.newton_block(b, bp, Some(sp), &qs),
+        });
+        out
+    }
+
+    /// One linear solve, `J q = rhs`, failing where `J` is singular.
+    fn linear_block(&self, b: usize, bp: &BlockPlan, rhs: &[NodeId], qs: &[&Ident]) -> TokenStream {
+        let rt = &self.rt;
+        let (bl, lu) = (lit(b), format_ident!("__lu{}", b));
+        let scale = self.col_scales(bp);
+        let jrows = self.names.rows(self.g, &bp.jac);
+        let aug: Vec<Vec<NodeId>> =
+            bp.jac.iter().zip(rhs).map(|(row, &r)| row.iter().copied().chain([r]).collect()).collect();
+        let aug = self.names.rows(self.g, &aug);
+        let rhs = self.names.operands(self.g, rhs);
+        let factor = self.factor(bp, &jrows, &scale);
+        quote! {
+            let #lu = #factor;
+            if !(#lu.pivot_ratio() >= __cfg.singular_tol) {
+                return Err(#rt::singular(self, #bl, #lu.pivot_ratio(), __cfg, __x, #rt::first_bad_row(&#aug)));
+            }
+            let [#(#qs),*] = #lu.solve([#(#rhs),*]);
+        }
+    }
+
+    /// Newton over the block's evaluation, dense or (with `sparse`) over its sparse
+    /// factorisation.
+    fn newton_block(&self, b: usize, bp: &BlockPlan, sparse: Option<&Sparse>, qs: &[&Ident]) -> TokenStream {
+        let rt = &self.rt;
+        let (n, bl) = (lit(bp.unknowns.len()), lit(b));
+        let l = self.scopes.newton[b];
+        let inner = self.lets(l);
+        let (scale, unit) = (self.names.operands(self.g, &bp.scale), self.names.operands(self.g, &bp.unit));
+        let (scale, unit): (Vec<TokenStream>, Vec<TokenStream>) = (scale.collect(), unit.collect());
+        // The magnitudes the tests judge in: made once for the solve when they do not depend on
+        // the block's unknowns (link lengths), otherwise kept from every evaluation after the
+        // values later scopes read.
+        let fixed =
+            bp.scale.iter().chain(&bp.unit).all(|m| self.plan.level.get(m.index()).is_some_and(|&l| l < b as i32));
+        let kept_mags: Vec<&TokenStream> = if fixed { Vec::new() } else { scale.iter().chain(&unit).collect() };
+        // What later scopes read from the evaluation: a dense Jacobian entry from `j`, where the
+        // evaluation holds it anyway; the rest through `keep` (each kept value is a store per
+        // evaluation).
+        let (from_j, kept) = self.exports_of(b, l, sparse.is_none());
+        let exports: Vec<Ident> = kept.iter().map(|&x| self.names.temp(x)).collect();
+        let k = lit(exports.len() + kept_mags.len());
+        let guess = bp.unknowns.iter().map(|&u| {
+            let u = lit(u);
+            quote!(__guess[#u])
+        });
+        let f = self.names.operands(self.g, &bp.f);
+        let (s, ev, r) = (format_ident!("__s{}", b), format_ident!("__eval{}", b), format_ident!("__r{}", b));
+        let at = evaluation_ident(b);
+        // A large sparse block: its non-zeros only, and Newton over its sparse factorisation.
+        let (pattern, ty, jrows, newton) = match sparse {
+            Some(sp) => (
+                sparse::pattern_item(sp, b, rt),
+                sparse::jac_type(sp, bp.unknowns.len(), rt),
+                sparse::jac_value(sp, b, self.g, self.names, &bp.jac, rt),
+                quote!(#rt::newton_with),
+            ),
+            None => (TokenStream::new(), quote!(), self.names.rows(self.g, &bp.jac), quote!(#rt::newton::<#n, #k>)),
+        };
+        // A block that keeps the final factorisation for its analogs: the runtime writes it
+        // into the analogs' `__lu{b}`.
+        let lu = format_ident!("__lu{}", b);
+        let (slot, newton, lu_arg) = if keeps_lu(self.mode, bp) {
+            (
+                quote!(let mut #lu = #rt::Lu::<#n>::unfactored();),
+                quote!(#rt::newton_keeping_lu::<#n, #k>),
+                quote!(, &mut #lu),
+            )
+        } else {
+            (TokenStream::new(), newton, TokenStream::new())
+        };
+        let ty = if sparse.is_some() { quote!(#rt::BlockEval<#n, #k, #ty>) } else { quote!(#rt::BlockEval<#n, #k>) };
+        let mag = format_ident!("__mag{}", b);
+        // The unknowns Newton may return on their guess's turn (see `plan::turns`).
+        let turns = if bp.turns.contains(&true) {
+            let t = &bp.turns;
+            quote!(.with_turns([#(#t),*]))
+        } else {
+            TokenStream::new()
+        };
+        let (mags_once, mags) = if fixed {
+            (quote!(let #mag = #rt::Magnitudes::new([#(#scale),*], [#(#unit),*])#turns;), quote!(&#mag))
+        } else {
+            let nb = bp.unknowns.len();
+            let at = |k: usize| {
+                let k = lit(exports.len() + k);
+                quote!(__e.keep[#k])
+            };
+            let (s, u) = ((0..nb).map(at), (nb..2 * nb).map(at));
+            (TokenStream::new(), quote!(&|__e: &#ty| #rt::Magnitudes::new([#(#s),*], [#(#u),*])#turns))
+        };
+        // The kept magnitudes are not read after the solve.
+        let take_keep = if exports.is_empty() {
+            TokenStream::new()
+        } else {
+            let unkept = kept_mags.iter().map(|_| quote!(_));
+            quote!(let [#(#exports,)* #(#unkept),*] = #at.keep;)
+        };
+        // Deferred, an earlier block may have failed unchecked (its outputs NaN): the checked
+        // kernel tells which failure it is.
+        let failure = quote!(return Err(#rt::block_failure(self, #bl, *e, __x, __guess, __cfg)));
+        let fail = if self.deferred {
+            quote!({
+                if __CHECKED {
+                    #failure
+                }
+                return __mode.rerun((self, __x, __guess, __cfg, __trig), __sink);
+            })
+        } else {
+            failure
+        };
+        // The block's evaluation is one closure handed to the runtime's Newton, which checks
+        // the guess, corrects it at least once and always checks the final residual.
+        quote! {
+            #pattern
+            let #ev = |__z: &[f64; #n]| -> #ty {
+                let [#(#qs),*] = *__z;
+                #inner
+                #rt::BlockEval { f: [#(#f),*], j: #jrows, keep: [#(#exports,)* #(#kept_mags),*] }
+            };
+            #mags_once
+            let __z0: [f64; #n] = [#(#guess),*];
+            // The guess evaluated here, into the slot the iteration updates in place: the
+            // block's evaluation is never copied into or out of the solver.
+            let mut #at = #ev(&__z0);
+            #slot
+            let #r = #newton(__z0, &mut #at, __cfg, #ev, #mags #lu_arg);
+            let #s = match &#r {
+                Ok(s) => s,
+                Err(e) => #fail,
+            };
+            __report.absorb(#s);
+            let [#(#qs),*] = #s.z;
+            #take_keep
+            #(#from_j)*
+        }
+    }
+
+    /// The values Newton block `b`'s loop scope `l` hands to later scopes: bindings read from
+    /// the final evaluation's dense Jacobian `j` for those that are entries of it, and the
+    /// nodes of the rest, which go through `keep`.
+    fn exports_of(&self, b: usize, l: usize, dense: bool) -> (Vec<TokenStream>, Vec<NodeId>) {
+        let (bp, at) = (&self.plan.blocks[b], evaluation_ident(b));
+        let mut from_j = Vec::new();
+        let mut kept = Vec::new();
+        for &x in &self.sched.exports[l] {
+            let entry = bp.jac.iter().enumerate().find_map(|(r, row)| row.iter().position(|&e| e == x).map(|c| (r, c)));
+            match entry {
+                Some((r, c)) if dense => {
+                    let (id, r, c) = (self.names.temp(x), lit(r), lit(c));
+                    from_j.push(quote!(let #id: f64 = #at.j[#r][#c];));
+                }
+                _ => kept.push(x),
+            }
+        }
+        (from_j, kept)
+    }
+
+    /// The straight-line solve of a block recognised as a closed form.
+    fn closed_block(&self, b: usize, c: &Recognised) -> TokenStream {
+        let op = |n: NodeId| self.op(n);
+        let bind = |n: NodeId| self.closed_trig.contains(&n).then(|| self.names.temp(n));
+        // A position-only solve has no analogs, whose pivot ratio would report a position the
+        // data do not determine (a lever short against its floor, a dyad on coincident
+        // centres): the solve tests for it itself.
+        let bp = &self.plan.blocks[b];
+        let lever_floor = |u: usize| {
+            let c = bp.unknowns.iter().position(|&v| v == u)?;
+            (!bp.lever_floor[c].is_empty()).then(|| self.floor_value(bp, c))
+        };
+        let cx = closed_form::Context {
+            position_only: self.mode == Mode::Position,
+            lever_floor: &lever_floor,
+            graph: self.g,
+            op: &op,
+            unknowns: &self.names.unknowns,
+            bind: &bind,
+            block: b,
+            rt: &self.rt,
+            trig: self.names.sweep_kernel(),
+            deferred: self.deferred,
+        };
+        closed_form::solve(c, &cx)
+    }
+}
