@@ -197,25 +197,25 @@ fn fine_sweep<M: Mechanism<N, 1, NO>, const N: usize, const NO: usize>(
 
 #[test]
 fn four_bar_with_coupler_point_matches_the_50_digit_reference() {
-    check("four_bar", &FourBarP::default(), include_str!("reference/four_bar.csv"), &[], 3.2);
+    check("four_bar", &FourBarP::default(), include_str!("../reference/four_bar.csv"), &[], 3.2);
 }
 
 #[test]
 fn offset_slider_crank_matches_the_50_digit_reference() {
-    check("slider_crank", &OffsetSliderCrank::default(), include_str!("reference/slider_crank.csv"), &[1], 3.0);
+    check("slider_crank", &OffsetSliderCrank::default(), include_str!("../reference/slider_crank.csv"), &[1], 3.0);
 }
 
 #[test]
 fn watt_six_bar_matches_the_50_digit_reference() {
-    check("watt_six_bar", &WattSixBar::default(), include_str!("reference/watt_six_bar.csv"), &[], 6.0);
+    check("watt_six_bar", &WattSixBar::default(), include_str!("../reference/watt_six_bar.csv"), &[], 6.0);
 }
 
 #[test]
 fn class_four_group_matches_the_50_digit_reference() {
-    check("class_four", &ClassFour::default(), include_str!("reference/class_four.csv"), &[], 4.4);
+    check("class_four", &ClassFour::default(), include_str!("../reference/class_four.csv"), &[], 4.4);
 }
 
 #[test]
 fn rhombic_drive_matches_the_50_digit_reference() {
-    check("rhombic_drive", &RhombicDrive::default(), include_str!("reference/rhombic_drive.csv"), &[1, 3], 3.5);
+    check("rhombic_drive", &RhombicDrive::default(), include_str!("../reference/rhombic_drive.csv"), &[1, 3], 3.5);
 }

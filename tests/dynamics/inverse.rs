@@ -16,10 +16,7 @@
 //! M = -(m x'' - F) r sin(phi + beta) / cos beta
 //! ```
 
-#[allow(dead_code)]
-mod dynamics_fixtures;
-
-use dynamics_fixtures::{
+use crate::fixtures::{
     RhombicDrive, SliderCrank, configuration, derivative, gas_force, index, reduced_inertia_fd, rhombic_model,
 };
 use kinloop::Mechanism;

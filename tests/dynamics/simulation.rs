@@ -3,10 +3,7 @@
 //! reproduced by simulation, the run-up from rest under a motor characteristic, and a typed
 //! stop at a limit position.
 
-#[allow(dead_code)]
-mod dynamics_fixtures;
-
-use dynamics_fixtures::{RhombicDrive, SliderCrank, rhombic_bodies, rhombic_model};
+use crate::fixtures::{RhombicDrive, SliderCrank, rhombic_bodies, rhombic_model};
 use kinloop::Mechanism;
 use kinloop::analysis::Sampled;
 use kinloop::dynamics::{

@@ -3,8 +3,8 @@
 //! `valgrind --tool=callgrind`:
 //!
 //! ```text
-//! cargo test --release --test step_cost -- --ignored --nocapture
-//! valgrind --tool=callgrind target/release/deps/step_cost-* --ignored --test-threads=1
+//! cargo test --release --test solver -- step_cost --ignored --nocapture
+//! valgrind --tool=callgrind target/release/deps/solver-* step_cost --ignored --test-threads=1
 //! ```
 //!
 //! Ignored by default: it only measures. Divide the instruction count by `STEPS`.

@@ -5,10 +5,7 @@ use kinloop::{AtSingular, Error, EventKind, SweepConfig};
 use kinloop_fixtures::{FourBar, FourBarUnknowns};
 use std::f64::consts::PI;
 
-#[allow(dead_code)] // not every test uses every helper
-mod support;
-
-use support::circle_point;
+use crate::support::circle_point;
 
 /// The crank angles where coupler and rocker are collinear: `|BD| = b + c` or `|b - c|`.
 fn limit_angles(m: &FourBar) -> Vec<f64> {

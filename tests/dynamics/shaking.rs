@@ -5,10 +5,7 @@
 //! crank counterweighted onto its axis shakes nothing; the slider-crank's harmonics against the
 //! closed form.
 
-#[allow(dead_code)]
-mod dynamics_fixtures;
-
-use dynamics_fixtures::{RhombicDrive, configuration, derivative, rhombic_model, second_derivative};
+use crate::fixtures::{RhombicDrive, configuration, derivative, rhombic_model, second_derivative};
 use kinloop::Mechanism;
 use kinloop::dynamics::{Body, Coord, MassModel, Rotation, SpeedLaw, inverse_cycle};
 use std::f64::consts::TAU;

@@ -7,10 +7,7 @@ use std::f64::consts::PI;
 use kinloop_fixtures::RhombicDrive;
 use kinloop_fixtures::rhombic::GALLERY_DRIVE;
 
-#[allow(dead_code)] // not every test uses every helper
-mod support;
-
-use support::close;
+use crate::support::close;
 
 /// The example's drive, with centres of mass of its own.
 const DRIVE: RhombicDrive = RhombicDrive { l_as1: 0.4, psi_s1: 0.3, l_cs2: 1.1, l_fs4: 1.6, ..GALLERY_DRIVE };

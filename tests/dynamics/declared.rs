@@ -8,10 +8,7 @@
 //!   hand, body by body;
 //! * bad parameter values at run time: typed errors.
 
-#[allow(dead_code)]
-mod dynamics_fixtures;
-
-use dynamics_fixtures::{RhombicDrive, derivative};
+use crate::fixtures::{RhombicDrive, derivative};
 use kinloop::dynamics::{Body, Coord, DynamicsError, MassModel, Rotation};
 use kinloop::{Mechanism, NewtonConfig};
 
@@ -81,8 +78,8 @@ fn declared_engine_agrees_with_closed_form_positions() {
 
 #[test]
 fn declared_rhombic_model_is_the_hand_built_one() {
-    let declared = dynamics_fixtures::rhombic_bodies([0.0, -9.81]);
-    let hand = dynamics_fixtures::rhombic_bodies_by_hand([0.0, -9.81]);
+    let declared = crate::fixtures::rhombic_bodies([0.0, -9.81]);
+    let hand = crate::fixtures::rhombic_bodies_by_hand([0.0, -9.81]);
     assert_eq!(declared.bodies().len(), hand.bodies().len());
     for (a, b) in declared.bodies().iter().zip(hand.bodies()) {
         assert_eq!((a.mass, a.com, a.inertia, a.rotation), (b.mass, b.com, b.inertia, b.rotation), "{}", a.name);

@@ -4,13 +4,10 @@
 //! path against a dense scan of the same construction, and the path parameter's two choices
 //! (fraction of the path, one input).
 
-#[allow(dead_code)] // not every test uses every helper
-mod support;
-
+use crate::support::{circle_point, richardson};
 use kinloop::Error;
 use kinloop::analysis::{Column, Jet, Sampled};
 use kinloop_fixtures::FiveBar;
-use support::{circle_point, richardson};
 
 const M: FiveBar = FiveBar { a: 1.0, b: 2.5, c: 2.2, d: 1.5, e: 1.2 };
 const FROM: [f64; 2] = [0.4, 1.6];

@@ -10,10 +10,7 @@ use kinloop::{Error, Event, EventKind, NewtonConfig, SweepConfig};
 use proptest::prelude::*;
 use std::f64::consts::{PI, TAU};
 
-#[allow(dead_code)] // not every test uses every helper
-mod support;
-
-use support::{circle_point, wrap};
+use crate::support::{circle_point, wrap};
 
 macro_rules! with_newton_twin {
     (pub struct $name:ident, $newton:ident { $($body:tt)* }) => {

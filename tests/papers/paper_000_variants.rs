@@ -10,10 +10,7 @@ use std::f64::consts::{PI, TAU};
 
 use kinloop_fixtures::{DisplacerRodDrive, WorkingRodDrive};
 
-#[allow(dead_code)] // not every test uses every helper
-mod support;
-
-use support::{argmax, close, richardson, stationary, wrap};
+use crate::support::{argmax, close, richardson, stationary, wrap};
 
 /// Fig. 1's published closed form (paper 000) with one crank pin (R_P = R_B = r,
 /// gamma = 0): (positions, velocity analogs, acceleration analogs) of [phi2, phi4, X_C, X_F].

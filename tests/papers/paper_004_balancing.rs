@@ -10,10 +10,7 @@ use std::f64::consts::{PI, TAU};
 
 use kinloop_fixtures::balancing::{Balance, PHASE, design, phased, unbalance};
 
-#[allow(dead_code)] // not every test uses every helper
-mod support;
-
-use support::{argmax, stationary, wrap};
+use crate::support::{argmax, stationary, wrap};
 
 /// X_C and X_F against the crank angle from paper 000's closed form (piston rod to the left,
 /// displacer rod to the right).

@@ -8,10 +8,7 @@ use kinloop_fixtures::{FiveBar, FourBar, SliderCrank};
 use proptest::prelude::*;
 use std::f64::consts::PI;
 
-#[allow(dead_code)] // not every test uses every helper
-mod support;
-
-use support::circle_point;
+use crate::support::circle_point;
 
 fn side_of(bx: f64, by: f64, dx: f64, dy: f64, cx: f64, cy: f64) -> f64 {
     ((dx - bx) * (cy - by) - (dy - by) * (cx - bx)).signum()

@@ -4,10 +4,7 @@
 //! 5e-4, one Richardson step), on the rhombic drive with five bodies; and the mass matrix of the
 //! two-input five-bar against the same construction per input.
 
-#[allow(dead_code)]
-mod dynamics_fixtures;
-
-use dynamics_fixtures::{RhombicDrive, derivative, reduced_inertia_fd, rhombic_model, tight};
+use crate::fixtures::{RhombicDrive, derivative, reduced_inertia_fd, rhombic_model, tight};
 use kinloop::Mechanism;
 use kinloop::dynamics::{Body, Coord, MassModel, Rotation};
 
@@ -57,7 +54,7 @@ fn inertia_slope_matches_differenced_inertia() {
 }
 
 kinloop::mechanism! {
-    /// Five-bar linkage driven by two cranks (as in tests/five_bar.rs), with the centres of
+    /// Five-bar linkage driven by two cranks (as in tests/kinematics/five_bar.rs), with the centres of
     /// mass of its two links.
     pub struct FiveBar {
         params a = 1.0, b = 2.5, c = 2.2, d = 1.5, e = 1.2;
@@ -198,7 +195,7 @@ fn reduced_inertia_scales_with_length_squared() {
         l_fs4: s * d.l_fs4,
         ..d
     };
-    let small_model = dynamics_fixtures::rhombic_bodies([0.0, -9.81]);
+    let small_model = crate::fixtures::rhombic_bodies([0.0, -9.81]);
     let big_model = scaled_bodies(&small_model, s);
     let (mut g_small, mut g_big) = (d.guess_flat(&[0.0]), big.guess_flat(&[0.0]));
     for j in 0..36 {

@@ -9,10 +9,7 @@ use std::f64::consts::TAU;
 
 use kinloop_fixtures::ClassFour;
 
-#[allow(dead_code)] // not every test uses every helper
-mod support;
-
-use support::{bisect, richardson, wrap};
+use crate::support::{bisect, richardson, wrap};
 
 /// The paper's way, independently: for a trial angle `th2` of link DBF, D and F are known; C is
 /// the intersection of the circles (A, AC) and (D, CD) on the side `side` of A->D; then E

@@ -13,10 +13,7 @@ use kinloop_fixtures::strategies::{gear_lever, rhombic_drive, sample};
 use kinloop_fixtures::{ClassFour, FiveBar, RhombicDrive};
 use proptest::prelude::*;
 
-#[allow(dead_code)] // not every test uses every helper
-mod support;
-
-use support::close;
+use crate::support::close;
 
 /// Compares every sensitivity with Richardson-extrapolated central differences of the state.
 fn check<M, const N: usize, const NI: usize, const NO: usize, const NP: usize>(m: &M, x: [f64; NI], guess: [f64; N])

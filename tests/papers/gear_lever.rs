@@ -6,10 +6,7 @@
 use kinloop_fixtures::gear_lever::GearLever;
 use std::f64::consts::PI;
 
-#[allow(dead_code)] // not every test uses every helper
-mod support;
-
-use support::wrap;
+use crate::support::wrap;
 
 /// The paper's explicit formulas (u = z1/z3, L = carrier, l = pin radius).
 fn explicit(big_l: f64, l: f64, u: f64, a: f64) -> [f64; 6] {

@@ -6,10 +6,7 @@
 
 use kinloop_fixtures::roller_edger::{RollerEdger, closed, solved};
 
-#[allow(dead_code)] // not every test uses every helper
-mod support;
-
-use support::{circle_point, richardson, stationary};
+use crate::support::{circle_point, richardson, stationary};
 
 #[test]
 fn all_links_match_the_closed_forms_over_the_stroke() {

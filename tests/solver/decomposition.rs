@@ -10,10 +10,7 @@ use std::f64::consts::PI;
 
 use kinloop_fixtures::{ClassFour, ClassFourDense, RhombicDrive, RhombicDriveDense};
 
-#[allow(dead_code)] // not every test uses every helper
-mod support;
-
-use support::{close, richardson_first};
+use crate::support::{close, richardson_first};
 
 #[test]
 fn class_four_is_one_coupled_four_unknown_block() {

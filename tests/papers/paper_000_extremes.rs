@@ -10,10 +10,7 @@ use std::f64::consts::TAU;
 
 use kinloop_fixtures::RhombicDrive;
 
-#[allow(dead_code)] // not every test uses every helper
-mod support;
-
-use support::{stationary, wrap};
+use crate::support::{stationary, wrap};
 
 #[test]
 fn extreme_positions_strokes_and_phase_shift_match_the_closed_forms() {

@@ -9,10 +9,7 @@ use std::f64::consts::PI;
 
 use kinloop_fixtures::gear_lever::{GearLever, stops};
 
-#[allow(dead_code)] // not every test uses every helper
-mod support;
-
-use support::{argmax, bisect};
+use crate::support::{argmax, bisect};
 
 /// The paper's explicit formulas for u = 3, L = 2, l = k: rocker angle, omega_r / omega,
 /// eps_r / omega^2.
