@@ -8,6 +8,8 @@ use kinloop_fixtures::FourBar;
 use proptest::prelude::*;
 use std::f64::consts::{FRAC_PI_2, PI, TAU};
 
+use crate::support::{four_bar_angles, four_bar_limit};
+
 kinloop::mechanism! {
     /// Crank-shaper: crank `r` about the origin; its pin slides in a lever pivoted at
     /// `(0, -d)` (`d > r`, so the lever oscillates); the lever's line drives a ram on `y = h`.
@@ -50,19 +52,6 @@ fn quick_return_ratio_of_a_crank_shaper_matches_its_closed_form_in_any_unit() {
     }
 }
 
-/// The open assembly of the four-bar at `phi` in closed form (diagonal B-D, triangle B-C-D).
-fn four_bar_at(a: f64, b: f64, c: f64, d: f64, phi: f64) -> Option<[f64; 2]> {
-    let (bx, by) = (a * phi.cos(), a * phi.sin());
-    let (ex, ey) = (d - bx, -by);
-    let e = ex.hypot(ey);
-    let cos_t = (b * b + e * e - c * c) / (2.0 * b * e);
-    if !(-1.0..=1.0).contains(&cos_t) {
-        return None;
-    }
-    let beta = ey.atan2(ex) + cos_t.acos();
-    Some([beta, (by + b * beta.sin()).atan2(bx + b * beta.cos() - d)])
-}
-
 proptest! {
     #![proptest_config(ProptestConfig { cases: 32, ..ProptestConfig::default() })]
 
@@ -79,7 +68,8 @@ proptest! {
         prop_assume!(matches!(g, Ok(g) if g.class == GrashofClass::CrankRocker && g.margin < -0.02));
         let k = 10f64.powf(scale_exp);
         let m = FourBar { a: a * k, b: b * k, c: c * k, d: d * k };
-        let guess = four_bar_at(m.a, m.b, m.c, m.d, 0.0).unwrap();
+        // The open assembly (C left of B -> D) as the guess.
+        let guess = four_bar_angles(m.a, m.b, m.c, m.d, 0.0, 1.0).unwrap();
         let turn = Sampled::sweep(&m, 0.0, TAU, 181, guess).unwrap();
         let mu = transmission_over(&turn, FourBar::COL.beta, FourBar::COL.gamma).unwrap();
         let cos_mu = |phi: f64| (b * b + c * c - a * a - d * d + 2.0 * a * d * phi.cos()) / (2.0 * b * c);
@@ -113,7 +103,7 @@ proptest! {
         };
         prop_assume!(g.margin.abs() > 0.02);
         let m = FourBar { a, b, c, d };
-        let Some(guess) = four_bar_at(a, b, c, d, 0.0) else { return Ok(()) };
+        let Some(guess) = four_bar_angles(a, b, c, d, 0.0, 1.0) else { return Ok(()) };
         let r = limit_report(&m, 0.0, TAU, 361, guess, &[]).unwrap();
         let went_round = r.reached.1 == TAU;
         prop_assert_eq!(went_round, g.input_turns, "{:?} {}", g, r);
@@ -129,9 +119,9 @@ proptest! {
 fn a_limit_before_the_second_sample_is_reported() {
     let (a, b, c, d) = (0.8866455380657977, 0.22395128782516954, 0.29708768544839576, 1.4076032175831328);
     let m = FourBar { a, b, c, d };
-    let guess = four_bar_at(a, b, c, d, 0.0).unwrap();
+    let guess = four_bar_angles(a, b, c, d, 0.0, 1.0).unwrap();
     let r = limit_report(&m, 0.0, TAU, 361, guess, &[FourBar::COL.gamma]).unwrap();
-    let limit = ((a * a + d * d - (b + c) * (b + c)) / (2.0 * a * d)).acos();
+    let limit = four_bar_limit(a, d, b + c);
     assert_eq!(r.reached, (0.0, 0.0), "{r}");
     let limits: Vec<f64> = r.input_limits().map(|e| e.x[0]).collect();
     assert_eq!(limits.len(), 1, "{r}");

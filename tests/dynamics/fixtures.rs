@@ -3,8 +3,9 @@
 //! solved positions only (no analogs): configurations of the bodies, Richardson-extrapolated
 //! central differences, kinetic energy and virtual work.
 
+use crate::support::newton_to_fine_step;
+use kinloop::Mechanism;
 use kinloop::dynamics::{Body, Coord, MassModel, Rotation};
-use kinloop::{Mechanism, NewtonConfig};
 
 pub use kinloop_fixtures::{RhombicDrive, StirlingEngine};
 
@@ -103,18 +104,12 @@ pub fn configuration<M, const N: usize, const NO: usize>(m: &M, bodies: &[Body],
 where
     M: Mechanism<N, 1, NO>,
 {
-    let (q, _) = m.position_flat(&[x], guess, &tight()).expect("position solve");
+    let (q, _) = m.position_flat(&[x], guess, &newton_to_fine_step()).expect("position solve");
     let out = m.outputs_flat(&[x], &q);
     bodies
         .iter()
         .flat_map(|b| [coord(&q, &out, b.com[0]), coord(&q, &out, b.com[1]), angle(x, &q, b.rotation)])
         .collect()
-}
-
-/// Newton converged to rounding: differences of positions divide their errors by h or h^2, so
-/// the default residual tolerance (1e-12) would dominate the references.
-pub fn tight() -> NewtonConfig {
-    NewtonConfig::default().with_residual_tol(1e-300).with_step_tol(1e-15)
 }
 
 /// First derivative of a vector function by central differences at `h` and `h / 2`, one

@@ -4,7 +4,8 @@
 //! 5e-4, one Richardson step), on the rhombic drive with five bodies; and the mass matrix of the
 //! two-input five-bar against the same construction per input.
 
-use crate::fixtures::{RhombicDrive, derivative, reduced_inertia_fd, rhombic_model, tight};
+use crate::fixtures::{RhombicDrive, derivative, reduced_inertia_fd, rhombic_model};
+use crate::support::newton_to_fine_step;
 use kinloop::Mechanism;
 use kinloop::dynamics::{Body, Coord, MassModel, Rotation};
 
@@ -90,7 +91,7 @@ fn five_bar_model() -> MassModel<2, 2, 8> {
 fn five_bar_mass_matrix_matches_differenced_partial_velocities() {
     let m = FiveBar::default();
     let model = five_bar_model();
-    let cfg = tight();
+    let cfg = newton_to_fine_step();
     for (th1, th2) in [(1.3, 0.9), (1.5, 1.1), (1.7, 1.3), (1.25, 1.35)] {
         let k = m.kinematics_flat(&[th1, th2], &m.guess_flat(&[th1, th2]), &cfg).unwrap();
         let config = |x: [f64; 2]| -> Vec<f64> {
@@ -127,7 +128,7 @@ fn five_bar_mass_matrix_matches_differenced_partial_velocities() {
 fn five_bar_velocity_terms_satisfy_lagrange() {
     let m = FiveBar::default();
     let model = five_bar_model();
-    let cfg = tight();
+    let cfg = newton_to_fine_step();
     let w = [1.7, -0.9];
     for (th1, th2) in [(1.3, 0.9), (1.5, 1.1), (1.7, 1.3)] {
         let k = m.kinematics_flat(&[th1, th2], &m.guess_flat(&[th1, th2]), &cfg).unwrap();
@@ -156,7 +157,7 @@ fn five_bar_velocity_terms_satisfy_lagrange() {
 fn five_bar_forward_dynamics_inverts_inverse_dynamics() {
     let m = FiveBar::default();
     let model = five_bar_model().with_gravity([0.0, -9.81]).unwrap();
-    let cfg = tight();
+    let cfg = newton_to_fine_step();
     for (th1, th2) in [(1.3, 0.9), (1.5, 1.1), (1.7, 1.3)] {
         let k = m.kinematics_flat(&[th1, th2], &m.guess_flat(&[th1, th2]), &cfg).unwrap();
         let (w, eps) = ([1.7, -0.9], [0.4, 2.5]);
@@ -200,8 +201,8 @@ fn reduced_inertia_scales_with_length_squared() {
     let (mut g_small, mut g_big) = (d.guess_flat(&[0.0]), big.guess_flat(&[0.0]));
     for j in 0..36 {
         let phi = j as f64 * 10f64.to_radians() + 0.03;
-        let ks = d.kinematics_flat(&[phi], &g_small, &tight()).unwrap();
-        let kb = big.kinematics_flat(&[phi], &g_big, &tight()).unwrap();
+        let ks = d.kinematics_flat(&[phi], &g_small, &newton_to_fine_step()).unwrap();
+        let kb = big.kinematics_flat(&[phi], &g_big, &newton_to_fine_step()).unwrap();
         (g_small, g_big) = (ks.q, kb.q);
         let (a, b) = (small_model.dynamics(&ks, &[1.0]).unwrap(), big_model.dynamics(&kb, &[1.0]).unwrap());
         assert!((b.reduced_inertia() / (s * s) - a.reduced_inertia()).abs() <= 1e-12 * a.reduced_inertia());

@@ -5,11 +5,12 @@
 //! links the whole library. A new test file of this subject goes into this folder with a
 //! `mod` line here; `support` (`tests/support/`) is shared by every binary.
 
-#[allow(dead_code)] // not every binary uses every helper
+#[allow(dead_code, unused_macros)] // not every binary uses every helper
 #[macro_use]
 #[path = "../support/mod.rs"]
 mod support;
 
+mod assert_close;
 mod errors;
 mod no_silent_wrong_answer;
 mod no_silent_wrong_answer_sweeps;

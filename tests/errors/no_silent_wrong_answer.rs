@@ -7,6 +7,8 @@ use kinloop::{Error, Mechanism, NewtonConfig};
 use kinloop_fixtures::{FourBar, FourBarUnknowns};
 use std::f64::consts::PI;
 
+use crate::support::{four_bar_angles, four_bar_limit};
+
 kinloop::mechanism! {
     /// The same four-bar solved by Newton (`FourBar`'s dyad is solved in closed form): for the
     /// tests of Newton's own acceptance.
@@ -17,22 +19,6 @@ kinloop::mechanism! {
         unknowns beta = 0.5, gamma = 1.5;
         loop abcd: a @ phi + b @ beta == (d, 0) + c @ gamma;
     }
-}
-
-/// Coupler and rocker angles from the intersection of circle (B, b) and circle (D, c), on the
-/// side `side = +1` (left of B -> D) or `-1`. `None` where the circles do not meet.
-fn closed_form(m: &FourBar, phi: f64, side: f64) -> Option<[f64; 2]> {
-    let (bx, by) = (m.a * phi.cos(), m.a * phi.sin());
-    let (ux, uy) = (m.d - bx, -by);
-    let dist = ux.hypot(uy);
-    let along = (m.b * m.b - m.c * m.c + dist * dist) / (2.0 * dist);
-    let h2 = m.b * m.b - along * along;
-    if h2 < 0.0 {
-        return None;
-    }
-    let h = side * h2.sqrt();
-    let (cx, cy) = (bx + (along * ux - h * uy) / dist, by + (along * uy + h * ux) / dist);
-    Some([(cy - by).atan2(cx - bx), cy.atan2(cx - m.d)])
 }
 
 /// Angle difference modulo whole turns.
@@ -67,7 +53,7 @@ fn a_guess_within_tolerance_is_still_corrected() {
     // come back unchanged. Corrected once, it is exact to rounding.
     let m = CRANK_ROCKER;
     for phi in [0.0, 0.7, 2.0, 4.0] {
-        let exact = closed_form(&m, phi, 1.0).unwrap();
+        let exact = four_bar_angles(m.a, m.b, m.c, m.d, phi, 1.0).unwrap();
         let guess = [exact[0] + 1e-13, exact[1] - 1e-13];
         let k = m.kinematics_flat(&[phi], &guess, &NewtonConfig::default()).unwrap();
         for u in 0..2 {
@@ -94,7 +80,7 @@ fn an_exact_solution_near_a_singular_position_is_not_no_assembly() {
     // Coupler and rocker a million times the crank: nearly parallel, pivot ratio ~1e-6.
     let m = FourBar { a: 1.0, b: 1e6, c: 1e6, d: 1.0 };
     let phi = 1.0;
-    let exact = closed_form(&m, phi, 1.0).unwrap();
+    let exact = four_bar_angles(m.a, m.b, m.c, m.d, phi, 1.0).unwrap();
     match m.kinematics_flat(&[phi], &exact, &NewtonConfig::default()) {
         Ok(k) => {
             // Condition ~1e6: the angles are determined to ~1e6 ulps of the residual floor.
@@ -111,14 +97,14 @@ fn near_a_limit_from_the_limit_configuration_is_not_no_assembly() {
     // Non-Grashof: coupler and rocker stretch (|BD| = b + c) at phi_lim; the input 1e-9 rad
     // before it, from the stretched configuration as guess, used to report NoAssembly.
     let m = FourBar { a: 3.0, b: 1.0, c: 1.5, d: 3.0 };
-    let phi_lim = ((m.a * m.a + m.d * m.d - (m.b + m.c).powi(2)) / (2.0 * m.a * m.d)).acos();
+    let phi_lim = four_bar_limit(m.a, m.d, m.b + m.c);
     let (bx, by) = (m.a * phi_lim.cos(), m.a * phi_lim.sin());
     let dir = (-by).atan2(m.d - bx);
     let phi = phi_lim - 1e-9;
     match m.kinematics_flat(&[phi], &[dir, dir + PI], &NewtonConfig::default()) {
         Ok(k) => {
             assert!(scaled_residual(&m, phi, &k.q) <= 1e-12, "{k:?}");
-            let want = [1.0, -1.0].map(|s| closed_form(&m, phi, s).unwrap());
+            let want = [1.0, -1.0].map(|s| four_bar_angles(m.a, m.b, m.c, m.d, phi, s).unwrap());
             // Within sqrt(1e-9) of the fold the solution is known to ~1e-16 / 1e-4.5.
             assert!(want.iter().any(|w| (0..2).all(|u| angle_err(k.q[u], w[u]) <= 1e-9)), "{:?} vs {want:?}", k.q);
         }
@@ -130,7 +116,7 @@ fn near_a_limit_from_the_limit_configuration_is_not_no_assembly() {
 fn unreachable_input_is_still_no_assembly() {
     // The same four-bar 0.1 rad beyond its limit cannot close.
     let m = FourBar { a: 3.0, b: 1.0, c: 1.5, d: 3.0 };
-    let phi_lim = ((m.a * m.a + m.d * m.d - (m.b + m.c).powi(2)) / (2.0 * m.a * m.d)).acos();
+    let phi_lim = four_bar_limit(m.a, m.d, m.b + m.c);
     let e = m.kinematics_flat(&[phi_lim + 0.1], &[-0.5, 2.0], &NewtonConfig::default()).unwrap_err();
     assert!(matches!(e, Error::NoAssembly { .. }), "{e}");
 }
@@ -147,7 +133,7 @@ fn far_guesses_at_reachable_inputs_never_claim_no_assembly() {
             match m.kinematics_flat(&[phi], &g, &NewtonConfig::default()) {
                 Ok(k) => {
                     assert!(scaled_residual(&m, phi, &k.q) <= 1e-12, "{k:?}");
-                    let want = [1.0, -1.0].map(|s| closed_form(&m, phi, s).unwrap());
+                    let want = [1.0, -1.0].map(|s| four_bar_angles(m.a, m.b, m.c, m.d, phi, s).unwrap());
                     // Angles come back modulo turns: their rounding grows with their magnitude.
                     let tol = |v: f64| 8.0 * f64::EPSILON * v.abs().max(PI);
                     assert!(want.iter().any(|w| (0..2).all(|u| angle_err(k.q[u], w[u]) <= tol(k.q[u]))), "{:?}", k.q);
@@ -167,7 +153,7 @@ fn unit_free_acceptance() {
     // accepted as it is, and the angles agree to rounding.
     for k in [1.0, 1e-12, 1e6] {
         let m = FourBar { a: CRANK_ROCKER.a * k, b: CRANK_ROCKER.b * k, c: CRANK_ROCKER.c * k, d: CRANK_ROCKER.d * k };
-        let exact = closed_form(&CRANK_ROCKER, 0.7, 1.0).unwrap();
+        let exact = four_bar_angles(CRANK_ROCKER.a, CRANK_ROCKER.b, CRANK_ROCKER.c, CRANK_ROCKER.d, 0.7, 1.0).unwrap();
         let guess = [exact[0] + 0.1, exact[1] + 0.1];
         let s = m.kinematics_flat(&[0.7], &guess, &NewtonConfig::default()).unwrap();
         let n = FourBarNewton { a: m.a, b: m.b, c: m.c, d: m.d };
@@ -202,7 +188,7 @@ fn limit_positions_are_located_alike_at_every_scale() {
     let phi_lim = ((base.a * base.a + base.d * base.d - (base.b + base.c).powi(2)) / (2.0 * base.a * base.d)).acos();
     for k in [1e-3, 1.0, 1e6] {
         let m = FourBar { a: base.a * k, b: base.b * k, c: base.c * k, d: base.d * k };
-        let exact = closed_form(&base, 0.2, 1.0).unwrap();
+        let exact = four_bar_angles(base.a, base.b, base.c, base.d, 0.2, 1.0).unwrap();
         let mut s = m.sweep(0.2, 1.5, 14, &FourBarUnknowns { beta: exact[0], gamma: exact[1] }).unwrap();
         let stop = s.by_ref().find_map(|r| r.err()).expect("the limit stops the sweep");
         assert!(
@@ -229,7 +215,7 @@ proptest::proptest! {
         let m = FourBar { a: CRANK_ROCKER.a * scale, b: CRANK_ROCKER.b * scale, c: CRANK_ROCKER.c * scale, d: CRANK_ROCKER.d * scale };
         if let Ok(k) = m.kinematics_flat(&[phi], &[g0, g1], &NewtonConfig::default()) {
             proptest::prop_assert!(scaled_residual(&m, phi, &k.q) <= 1e-12, "{:?}", k.q);
-            let want = [1.0, -1.0].map(|s| closed_form(&CRANK_ROCKER, phi, s).unwrap());
+            let want = [1.0, -1.0].map(|s| four_bar_angles(CRANK_ROCKER.a, CRANK_ROCKER.b, CRANK_ROCKER.c, CRANK_ROCKER.d, phi, s).unwrap());
             let tol = |v: f64| 8.0 * f64::EPSILON * v.abs().max(PI);
             proptest::prop_assert!(want.iter().any(|w| (0..2).all(|u| angle_err(k.q[u], w[u]) <= tol(k.q[u]))), "{:?} vs {want:?}", k.q);
         }

@@ -8,7 +8,7 @@ use kinloop_fixtures::{FiveBar, FourBar, SliderCrank};
 use proptest::prelude::*;
 use std::f64::consts::PI;
 
-use crate::support::circle_point;
+use crate::support::{circle_point, four_bar_joint};
 
 fn side_of(bx: f64, by: f64, dx: f64, dy: f64, cx: f64, cy: f64) -> f64 {
     ((dx - bx) * (cy - by) - (dy - by) * (cx - bx)).signum()
@@ -34,7 +34,7 @@ proptest! {
             let st = st.unwrap();
             let phi = st.input.phi;
             prop_assert!(m.residual(phi, &st.q).iter().all(|r| r.abs() <= 1e-10));
-            let (cx, cy) = circle_point(a * phi.cos(), a * phi.sin(), b, d, 0.0, c, side);
+            let (cx, cy) = four_bar_joint(a, b, c, d, phi, side).unwrap_or((f64::NAN, f64::NAN));
             prop_assert!((st.out.pc.x - cx).abs() < 1e-9 && (st.out.pc.y - cy).abs() < 1e-9, "branch at {}", phi);
             prop_assert_eq!(st.health.det_signs, start.health.det_signs);
             n += 1;

@@ -19,6 +19,8 @@ use kinloop::{Error, EventKind, Kin, Mechanism, NewtonConfig, Sensitivities, Swe
 use kinloop_fixtures::{ClassFour, DisplacerRodDrive, FiveBar, FourBar, SliderCrank};
 use std::f64::consts::PI;
 
+use crate::support::four_bar_limit;
+
 const SCALES: [f64; 7] = [1e-9, 1e-6, 1e-3, 1.0, 1e3, 1e6, 1e9];
 const ANGLE_TOL: f64 = 1e-14;
 const LENGTH_TOL: f64 = 1e-14;
@@ -385,7 +387,7 @@ fn rocker(k: f64) -> RockerWithPoint {
 /// rocker stretch out (`|BD| = b + c`).
 fn rocker_limit() -> f64 {
     let (a, b, c, d) = (3.0f64, 2.0, 2.5, 4.0);
-    ((a * a + d * d - (b + c) * (b + c)) / (2.0 * a * d)).acos()
+    four_bar_limit(a, d, b + c)
 }
 
 /// The largest difference between two traces: angles and inputs absolute, the length `xp`

@@ -4,13 +4,13 @@
 //! third joint on the crank pin both reduce to Fig. 1 and match its published closed form
 //! (positions, velocity and acceleration analogs); the strokes the example prints.
 
+use kinloop::Kin;
 use kinloop::analysis::Sampled;
-use kinloop::{Kin, NewtonConfig};
 use std::f64::consts::{PI, TAU};
 
 use kinloop_fixtures::{DisplacerRodDrive, WorkingRodDrive};
 
-use crate::support::{argmax, close, richardson, stationary, wrap};
+use crate::support::{argmax, close, newton_to_default_step, richardson, stationary, wrap};
 
 /// Fig. 1's published closed form (paper 000) with one crank pin (R_P = R_B = r,
 /// gamma = 0): (positions, velocity analogs, acceleration analogs) of [phi2, phi4, X_C, X_F].
@@ -31,12 +31,6 @@ fn fig1(r: f64, l_p: f64, l_b: f64, e_p: f64, de: f64, phi1: f64) -> [[f64; 4]; 
     let a_c = l_p * (e2 * phi2.sin() + u21 * u21 * c2 - lam_p * phi1.cos());
     let a_f = l_b * (e4 * phi4.sin() + u41 * u41 * c4 - lam_b * phi1.cos());
     [[phi2, phi4, x_c, x_f], [u21, u41, v_c, v_f], [e2, e4, a_c, a_f]]
-}
-
-/// A tight solve for finite differences: Newton runs until its step falls below 1e-13 (1 + |q|),
-/// i.e. positions within ~5e-13.
-fn tight() -> NewtonConfig {
-    NewtonConfig::default().with_residual_tol(0.0)
 }
 
 #[test]
@@ -80,9 +74,9 @@ fn analogs_match_finite_differences() {
     for i in 0..24 {
         let phi1 = 0.1 + TAU * i as f64 / 24.0;
         let s2 = m2.solve(phi1).unwrap();
-        let q2 = |x: f64| -> [f64; 4] { m2.position_with(x, &s2.q, &tight()).unwrap().0.into() };
+        let q2 = |x: f64| -> [f64; 4] { m2.position_with(x, &s2.q, &newton_to_default_step()).unwrap().0.into() };
         let s3 = m3.solve(phi1).unwrap();
-        let q3 = |x: f64| -> [f64; 4] { m3.position_with(x, &s3.q, &tight()).unwrap().0.into() };
+        let q3 = |x: f64| -> [f64; 4] { m3.position_with(x, &s3.q, &newton_to_default_step()).unwrap().0.into() };
         let (dq2, d2q2): ([f64; 4], [f64; 4]) = (s2.dq.into(), s2.d2q.into());
         let (dq3, d2q3): ([f64; 4], [f64; 4]) = (s3.dq.into(), s3.d2q.into());
         for u in 0..4 {

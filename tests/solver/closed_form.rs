@@ -8,6 +8,7 @@
 //! agree to 1e-13, analogs to 1e-11 relative. Where the closed form has no root, the error is
 //! the same typed `NoAssembly` as Newton's.
 
+use crate::support::newton_to_rounding;
 use kinloop::{Error, Kin, Mechanism, NewtonConfig, QuantityKind, Sweep, SweepConfig};
 use kinloop_fixtures::gear_lever::{GEAR_LEVER_TEXT, GearLever};
 use kinloop_fixtures::roller_edger::{ROLLER_EDGER_TEXT, RollerEdger};
@@ -206,32 +207,23 @@ with_newton_twin! {
     }
 }
 
-/// The Newton twin's configuration: iterate to rounding level.
-fn tight() -> NewtonConfig {
-    NewtonConfig::default().with_residual_tol(1e-14).with_step_tol(1e-16)
-}
-
-/// `|a - b| <= tol * max(1, |b|)`: angles absolutely, lengths relative to their size.
-fn near(a: f64, b: f64, tol: f64) -> bool {
-    (a - b).abs() <= tol * b.abs().max(1.0)
-}
-
 fn assert_agree<const N: usize, const NI: usize, const NO: usize>(at: &str, a: &Kin<N, NI, NO>, b: &Kin<N, NI, NO>) {
     for u in 0..N {
-        assert!(near(a.q[u], b.q[u], 1e-13), "q[{u}] {at}: {} vs Newton {}", a.q[u], b.q[u]);
+        // Relative tolerances (`rel`): angles absolutely, lengths relative to their size.
+        assert_close!(a.q[u], b.q[u], rel = 1e-13, "q[{u}] {at}, closed form vs Newton");
         for i in 0..NI {
             let (x, y) = (a.dq[u][i], b.dq[u][i]);
-            assert!(near(x, y, 1e-11), "dq[{u}][{i}] {at}: {x} vs Newton {y}");
+            assert_close!(x, y, rel = 1e-11, "dq[{u}][{i}] {at}, closed form vs Newton");
             for j in 0..NI {
                 let (x, y) = (a.d2q[u][i][j], b.d2q[u][i][j]);
-                assert!(near(x, y, 1e-11), "d2q[{u}][{i}][{j}] {at}: {x} vs Newton {y}");
+                assert_close!(x, y, rel = 1e-11, "d2q[{u}][{i}][{j}] {at}, closed form vs Newton");
             }
         }
     }
     for o in 0..NO {
-        assert!(near(a.out[o], b.out[o], 1e-13), "out[{o}] {at}: {} vs Newton {}", a.out[o], b.out[o]);
+        assert_close!(a.out[o], b.out[o], rel = 1e-13, "out[{o}] {at}, closed form vs Newton");
         for i in 0..NI {
-            assert!(near(a.dout[o][i], b.dout[o][i], 1e-11), "dout[{o}][{i}] {at}");
+            assert_close!(a.dout[o][i], b.dout[o][i], rel = 1e-11, "dout[{o}][{i}] {at}, closed form vs Newton");
         }
     }
 }
@@ -250,7 +242,7 @@ where
     A: Mechanism<N, NI, NO>,
     B: Mechanism<N, NI, NO>,
 {
-    let modes = kinloop::assembly_modes(b, &from, 64, &tight());
+    let modes = kinloop::assembly_modes(b, &from, 64, &newton_to_rounding());
     assert!(!modes.is_empty(), "{}: no assembly mode at {from:?}", B::NAME);
     for mode in &modes {
         let (mut ga, mut gb) = (mode.q, mode.q);
@@ -259,14 +251,14 @@ where
             let x: [f64; NI] = std::array::from_fn(|i| from[i] + t * (to[i] - from[i]));
             let at = format!("{} at {x:?} (mode from {:?})", A::NAME, mode.q);
             let ka = a.kinematics_flat(&x, &ga, &NewtonConfig::default()).unwrap_or_else(|e| panic!("{at}: {e}"));
-            let kb = b.kinematics_flat(&x, &gb, &tight()).unwrap_or_else(|e| panic!("Newton {at}: {e}"));
+            let kb = b.kinematics_flat(&x, &gb, &newton_to_rounding()).unwrap_or_else(|e| panic!("Newton {at}: {e}"));
             assert_agree(&at, &ka, &kb);
             ga = ka.q;
             gb = kb.q;
         }
         let sa: Vec<Kin<N, NI, NO>> =
             Sweep::new(a, from, to, samples + 1, mode.q).unwrap().collect::<Result<_, _>>().unwrap();
-        let newton = SweepConfig::default().with_newton(tight());
+        let newton = SweepConfig::default().with_newton(newton_to_rounding());
         let sb: Vec<Kin<N, NI, NO>> = Sweep::new(b, from, to, samples + 1, mode.q)
             .unwrap()
             .with_config(newton)

@@ -6,11 +6,11 @@
 //! limit positions equal the law-of-cosines closed form within 1e-9, and its samples and events
 //! are those of the Newton twin (`#[kinloop(newton)]`).
 
-use kinloop::{Error, Event, EventKind, NewtonConfig, SweepConfig};
+use kinloop::{Error, Event, EventKind, SweepConfig};
 use proptest::prelude::*;
 use std::f64::consts::{PI, TAU};
 
-use crate::support::{circle_point, wrap};
+use crate::support::{circle_point, four_bar_angles, newton_to_rounding, wrap};
 
 macro_rules! with_newton_twin {
     (pub struct $name:ident, $newton:ident { $($body:tt)* }) => {
@@ -49,7 +49,7 @@ with_newton_twin! {
 
 /// The Newton twin iterates to rounding level, so both paths may be compared tightly.
 fn newton_sweep() -> SweepConfig {
-    SweepConfig::default().with_newton(NewtonConfig::default().with_residual_tol(1e-14).with_step_tol(1e-16))
+    SweepConfig::default().with_newton(newton_to_rounding())
 }
 
 /// A sweep's samples (input, positions) until it stops, its events, and whether it stopped.
@@ -93,17 +93,6 @@ fn same_runs(a: &Run, b: &Run) -> Result<(), TestCaseError> {
     Ok(())
 }
 
-/// The four-bar's coupler and rocker angles by circle intersection on `side` of B -> D.
-fn four_bar_at(a: f64, b: f64, c: f64, d: f64, phi: f64, side: f64) -> Option<(f64, f64)> {
-    let (bx, by) = (a * phi.cos(), a * phi.sin());
-    let dist = (d - bx).hypot(by);
-    if dist > b + c || dist < (b - c).abs() {
-        return None;
-    }
-    let (cx, cy) = circle_point(bx, by, b, d, 0.0, c, side);
-    Some(((cy - by).atan2(cx - bx), cy.atan2(cx - d)))
-}
-
 /// The first crank angle after `from` where coupler and rocker are collinear (`|BD| = b ± c`).
 fn next_limit(a: f64, b: f64, c: f64, d: f64, from: f64) -> Option<f64> {
     let mut best: Option<f64> = None;
@@ -128,9 +117,9 @@ proptest! {
         phi0 in 0.0f64..TAU, n in 8usize..=36, left in any::<bool>(),
     ) {
         let side = if left { 1.0 } else { -1.0 };
-        let start = four_bar_at(a, b, c, d, phi0, side);
+        let start = four_bar_angles(a, b, c, d, phi0, side);
         prop_assume!(start.is_some());
-        let (beta0, gamma0) = start.unwrap_or_default();
+        let [beta0, gamma0] = start.unwrap_or_default();
         // Away from a limit position at the start: the mode is well defined there.
         prop_assume!((gamma0 - beta0).sin().abs() > 1e-3);
         let (m, w) = (FourBar { a, b, c, d }, FourBarNewton { a, b, c, d });
@@ -142,7 +131,7 @@ proptest! {
         for (phi, q) in &closed.0 {
             // No branch jump: the determinant's sign (b c sin(gamma - beta)) is the start's.
             prop_assert_eq!((q[1] - q[0]).sin().signum(), mode, "branch jump at {}", phi);
-            let (beta, gamma) = four_bar_at(a, b, c, d, *phi, side).unwrap_or((f64::NAN, f64::NAN));
+            let [beta, gamma] = four_bar_angles(a, b, c, d, *phi, side).unwrap_or([f64::NAN; 2]);
             prop_assert!(wrap(q[0] - beta).abs() < 1e-9 && wrap(q[1] - gamma).abs() < 1e-9,
                 "at {}: {:?} vs construction ({}, {})", phi, q, beta, gamma);
         }
@@ -208,9 +197,9 @@ proptest! {
     ) {
         // The first dyad by circle intersection; the second's start from the same construction.
         let side = if left { 1.0 } else { -1.0 };
-        let start = four_bar_at(a, b, c, d, 0.0, side);
+        let start = four_bar_angles(a, b, c, d, 0.0, side);
         prop_assume!(start.is_some());
-        let (beta0, gamma0) = start.unwrap_or_default();
+        let [beta0, gamma0] = start.unwrap_or_default();
         let (px, py) = (d + c2 * (gamma0 + delta).cos(), c2 * (gamma0 + delta).sin());
         let dist = (f - px).hypot(g - py);
         prop_assume!(dist < e + h && dist > (e - h).abs());

@@ -1,6 +1,48 @@
-//! Plain numerics for the tests' independent checks (closed forms solved without kinloop).
+//! Shared by every test binary: plain numerics for the independent checks (closed forms solved
+//! without kinloop), the reference constructions several tests need, named tolerances
+//! ([`tol`]), `assert_close!`, and the Newton configurations references are solved with.
 
+use kinloop::NewtonConfig;
 use std::f64::consts::{PI, TAU};
+
+pub mod tol;
+
+/// Asserts that `actual` is within a tolerance of `expected`, and on failure prints both, their
+/// difference, the tolerance and a label (by default the expression of `actual`; a format
+/// string and its arguments otherwise).
+///
+/// * `assert_close!(actual, expected, tol)`: `|actual - expected| < tol`, absolute;
+/// * `assert_close!(actual, expected, rel = tol)`: [`close`]`(actual, expected, tol)`, i.e.
+///   `|actual - expected| <= tol * max(1, |expected|)`, relative and absolute near zero.
+///
+/// A NaN on either side fails both forms.
+macro_rules! assert_close {
+    ($actual:expr, $expected:expr, rel = $tol:expr $(,)?) => {
+        assert_close!($actual, $expected, rel = $tol, "{}", stringify!($actual))
+    };
+    ($actual:expr, $expected:expr, rel = $tol:expr, $($label:tt)+) => {{
+        let (actual, expected, tol): (f64, f64, f64) = ($actual, $expected, $tol);
+        assert!(
+            $crate::support::close(actual, expected, tol),
+            "{}: expected {expected:e}, actual {actual:e}, difference {:e}, tolerance {tol:e} relative ({:e} absolute)",
+            format_args!($($label)+),
+            (actual - expected).abs(),
+            tol * expected.abs().max(1.0),
+        );
+    }};
+    ($actual:expr, $expected:expr, $tol:expr $(,)?) => {
+        assert_close!($actual, $expected, $tol, "{}", stringify!($actual))
+    };
+    ($actual:expr, $expected:expr, $tol:expr, $($label:tt)+) => {{
+        let (actual, expected, tol): (f64, f64, f64) = ($actual, $expected, $tol);
+        assert!(
+            (actual - expected).abs() < tol,
+            "{}: expected {expected:e}, actual {actual:e}, difference {:e}, tolerance {tol:e}",
+            format_args!($($label)+),
+            (actual - expected).abs(),
+        );
+    }};
+}
 
 /// A root of `f` in `[lo, hi]` by bisection; `f` must change sign there.
 pub fn bisect(f: impl Fn(f64) -> f64, mut lo: f64, mut hi: f64) -> f64 {
@@ -74,4 +116,50 @@ pub fn circle_point(bx: f64, by: f64, rb: f64, dx: f64, dy: f64, rd: f64, side: 
     let along = (rb * rb - rd * rd + dist * dist) / (2.0 * dist);
     let h = (rb * rb - along * along).max(0.0).sqrt();
     (bx + (along * ux - side * h * uy) / dist, by + (along * uy + side * h * ux) / dist)
+}
+
+/// Joint C of the four-bar O-B-C-D (crank `a` from O at `phi`, coupler `b`, rocker `c`, frame
+/// `d` from O along x) from the circles (B, b) and (D, c), on side `side` of B -> D (+1 left,
+/// -1 right); `None` where the circles do not meet.
+pub fn four_bar_joint(a: f64, b: f64, c: f64, d: f64, phi: f64, side: f64) -> Option<(f64, f64)> {
+    let (bx, by) = (a * phi.cos(), a * phi.sin());
+    let dist = (d - bx).hypot(by);
+    if dist > b + c || dist < (b - c).abs() {
+        return None;
+    }
+    Some(circle_point(bx, by, b, d, 0.0, c, side))
+}
+
+/// The four-bar's coupler and rocker angles (of B -> C and D -> C) at `phi`, from
+/// [`four_bar_joint`]; `None` where it cannot be assembled.
+pub fn four_bar_angles(a: f64, b: f64, c: f64, d: f64, phi: f64, side: f64) -> Option<[f64; 2]> {
+    let (cx, cy) = four_bar_joint(a, b, c, d, phi, side)?;
+    let (bx, by) = (a * phi.cos(), a * phi.sin());
+    Some([(cy - by).atan2(cx - bx), cy.atan2(cx - d)])
+}
+
+/// The crank angle in `[0, pi]` where the four-bar's diagonal `|BD|` equals `r` (`b + c`: coupler
+/// and rocker stretched, `|b - c|`: folded), by the law of cosines; NaN where it never does.
+pub fn four_bar_limit(a: f64, d: f64, r: f64) -> f64 {
+    ((a * a + d * d - r * r) / (2.0 * a * d)).acos()
+}
+
+/// Newton until the residual is at rounding level (1e-14, below the default 1e-12) or the step
+/// below 1e-16: a solve to compare other solves with.
+pub fn newton_to_rounding() -> NewtonConfig {
+    NewtonConfig::default().with_residual_tol(1e-14).with_step_tol(1e-16)
+}
+
+/// Newton without the residual test (tolerance 0): it stops when its step falls below the
+/// default step tolerance, 1e-13 (1 + |q|), i.e. positions within ~5e-13; for finite
+/// differences of positions, whose errors they divide by the step.
+pub fn newton_to_default_step() -> NewtonConfig {
+    NewtonConfig::default().with_residual_tol(0.0)
+}
+
+/// Newton with the residual test out of reach (1e-300) and the step down to 1e-15: positions
+/// converged to rounding, for differences of positions divided by h or h^2, which the default
+/// residual tolerance (1e-12) would dominate.
+pub fn newton_to_fine_step() -> NewtonConfig {
+    NewtonConfig::default().with_residual_tol(1e-300).with_step_tol(1e-15)
 }

@@ -6,6 +6,8 @@ use kinloop::{AtSingular, Error, EventKind, Kin, Named, NewtonConfig, Stop, Swee
 use kinloop_fixtures::{FourBar, FourBarInputs, FourBarUnknowns};
 use std::f64::consts::PI;
 
+use crate::support::four_bar_limit;
+
 kinloop::mechanism! {
     /// The four-bar solved by Newton's method (not in closed form), so that the Newton
     /// configuration changes what a solve does.
@@ -25,7 +27,7 @@ fn rocker() -> FourBar {
 
 /// The input at the limit position, `|BD| = b + c`, by the law of cosines.
 fn limit(m: &FourBar) -> f64 {
-    ((m.a * m.a + m.d * m.d - (m.b + m.c) * (m.b + m.c)) / (2.0 * m.a * m.d)).acos()
+    four_bar_limit(m.a, m.d, m.b + m.c)
 }
 
 #[test]

@@ -4,15 +4,7 @@
 use kinloop_fixtures::FourBar;
 use std::f64::consts::TAU;
 
-/// Joint C of the four-bar by the law of cosines, on the branch `side` (+1 or -1).
-fn joint_c(m: &FourBar, phi: f64, side: f64) -> (f64, f64) {
-    let (bx, by) = (m.a * phi.cos(), m.a * phi.sin());
-    let (ux, uy) = (m.d - bx, -by);
-    let l = ux.hypot(uy);
-    let alpha = ((m.b * m.b + l * l - m.c * m.c) / (2.0 * m.b * l)).acos();
-    let t = uy.atan2(ux) + side * alpha;
-    (bx + m.b * t.cos(), by + m.b * t.sin())
-}
+use crate::support::four_bar_joint;
 
 #[test]
 fn uneven_inputs_stay_on_one_branch() {
@@ -28,10 +20,11 @@ fn uneven_inputs_stay_on_one_branch() {
     let states = run.into_result().unwrap();
     assert_eq!(states.len(), inputs.len());
     let first = states[0].out.pc;
-    let side = if (joint_c(&m, inputs[0], 1.0).1 - first.y).abs() < 1e-9 { 1.0 } else { -1.0 };
+    let side =
+        if (four_bar_joint(m.a, m.b, m.c, m.d, inputs[0], 1.0).unwrap().1 - first.y).abs() < 1e-9 { 1.0 } else { -1.0 };
     for (s, &phi) in states.iter().zip(&inputs) {
         assert_eq!(s.input.phi, phi);
-        let (cx, cy) = joint_c(&m, phi, side);
+        let (cx, cy) = four_bar_joint(m.a, m.b, m.c, m.d, phi, side).unwrap();
         // Lengths of order 3: a few ulps of the closed form's rounding.
         assert!((s.out.pc.x - cx).abs() < 1e-12 && (s.out.pc.y - cy).abs() < 1e-12, "phi = {phi}");
     }

@@ -15,6 +15,8 @@
 use kinloop::{Kin, Mechanism, NewtonConfig, Stop, Sweep};
 use std::f64::consts::TAU;
 
+use crate::support::four_bar_limit;
+
 kinloop::mechanism! {
     /// A crank `r` at phase `o` driving a block in a slot pivoted at `(h, 0)`, and a four-bar
     /// `a`, `b`, `c`, `d` on the same crank angle.
@@ -54,7 +56,7 @@ fn trap_newton(k: f64, o: f64) -> RockerBesideFourBarNewton {
 /// `b + c` from the rocker's pivot (law of cosines; the same at every scale).
 fn limit() -> f64 {
     let (a, b, c, d) = (1.0f64, 2.5, 1.49, 3.0);
-    ((a * a + d * d - (b + c) * (b + c)) / (2.0 * a * d)).acos()
+    four_bar_limit(a, d, b + c)
 }
 
 /// Every sweep of the trap, built by `build(k, o)`, stops at the limit position.

@@ -5,18 +5,11 @@ use kinloop::{AtSingular, Error, EventKind, SweepConfig};
 use kinloop_fixtures::{FourBar, FourBarUnknowns};
 use std::f64::consts::PI;
 
-use crate::support::circle_point;
+use crate::support::{four_bar_joint, four_bar_limit};
 
 /// The crank angles where coupler and rocker are collinear: `|BD| = b + c` or `|b - c|`.
 fn limit_angles(m: &FourBar) -> Vec<f64> {
-    let mut v = Vec::new();
-    for r in [m.b + m.c, (m.b - m.c).abs()] {
-        let c = (m.a * m.a + m.d * m.d - r * r) / (2.0 * m.a * m.d);
-        if c.abs() <= 1.0 {
-            v.push(c.acos());
-        }
-    }
-    v
+    [m.b + m.c, (m.b - m.c).abs()].into_iter().map(|r| four_bar_limit(m.a, m.d, r)).filter(|x| !x.is_nan()).collect()
 }
 
 #[test]
@@ -64,11 +57,6 @@ fn reachable_range_of_a_non_grashof_crank() {
     assert_eq!((flat.from, flat.to), ([lo], [hi]));
 }
 
-/// The independent solution: C from the circles (B, b) and (D, c), on the side given by `side`.
-fn coupler(m: &FourBar, phi: f64, side: f64) -> (f64, f64) {
-    circle_point(m.a * phi.cos(), m.a * phi.sin(), m.b, m.d, 0.0, m.c, side)
-}
-
 #[test]
 fn near_change_point_four_bar_keeps_its_branch_over_ten_turns() {
     // s + l = 1 + 3 = 4 is just below p + q = 2 + 2.001: a crank-rocker that passes within
@@ -78,7 +66,7 @@ fn near_change_point_four_bar_keeps_its_branch_over_ten_turns() {
     // Which intersection kinloop assembled: at phi = 0 the two are mirror images in the x axis.
     let side = {
         let (cx, cy) = (m.a + m.b * g.beta.cos(), m.b * g.beta.sin());
-        let (px, py) = coupler(&m, 0.0, 1.0);
+        let (px, py) = four_bar_joint(m.a, m.b, m.c, m.d, 0.0, 1.0).unwrap();
         assert!((px - cx).abs() < 1e-9 && (py.abs() - cy.abs()).abs() < 1e-9, "({cx}, {cy}) vs ({px}, +-{py})");
         py.signum() * cy.signum()
     };
@@ -87,7 +75,7 @@ fn near_change_point_four_bar_keeps_its_branch_over_ten_turns() {
     let mut last = None;
     for s in sweep {
         let s = s.unwrap();
-        let (cx, cy) = coupler(&m, s.input.phi, side);
+        let (cx, cy) = four_bar_joint(m.a, m.b, m.c, m.d, s.input.phi, side).unwrap();
         assert!((s.out.pc.x - cx).abs() < 1e-9 && (s.out.pc.y - cy).abs() < 1e-9, "branch jump at {}", s.input.phi);
         first.get_or_insert(s.q);
         last = Some(s.q);
@@ -149,7 +137,7 @@ fn assembly_modes_of_a_four_bar_are_elbow_up_and_down() {
     let up = modes.iter().find(|s| s.out.pc.y > 0.0).expect("elbow up");
     let down = modes.iter().find(|s| s.out.pc.y < 0.0).expect("elbow down");
     assert_ne!(up.health.det_signs, down.health.det_signs);
-    let (cx, cy) = coupler(&m, 0.7, 1.0);
+    let (cx, cy) = four_bar_joint(m.a, m.b, m.c, m.d, 0.7, 1.0).unwrap();
     let c = if cy > 0.0 { up } else { down };
     assert!((c.out.pc.x - cx).abs() < 1e-10);
     // A sweep started from either mode stays in it.
