@@ -4,7 +4,7 @@
 //! path against a dense scan of the same construction, and the path parameter's two choices
 //! (fraction of the path, one input).
 
-use crate::support::{circle_point, richardson};
+use crate::support::{five_bar_joint, richardson};
 use kinloop::Error;
 use kinloop::analysis::{Column, Jet, Sampled};
 use kinloop_fixtures::FiveBar;
@@ -21,10 +21,7 @@ fn inputs(s: f64) -> [f64; 2] {
 /// Columns of the five-bar at inputs `x` by construction: C on the left of B -> D, the link
 /// angles from it. Returns `[phi2, phi3, pc.x, pc.y, spread, th2]`.
 fn construction(x: [f64; 2]) -> [f64; 6] {
-    let (bx, by) = (M.a * x[0].cos(), M.a * x[0].sin());
-    let (dx, dy) = (M.d + M.e * x[1].cos(), M.e * x[1].sin());
-    let (cx, cy) = circle_point(bx, by, M.b, dx, dy, M.c, 1.0);
-    let (p2, p3) = ((cy - by).atan2(cx - bx), (cy - dy).atan2(cx - dx));
+    let (cx, cy, p2, p3) = five_bar_joint(&M, x[0], x[1], 1.0);
     [p2, p3, cx, cy, p3 - p2, x[1]]
 }
 

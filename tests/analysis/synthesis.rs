@@ -6,15 +6,16 @@ use kinloop_fixtures::RhombicDrive;
 use kinloop_fixtures::synthesis::{self, derivative_free_run, drive, gradient_run, problem};
 use std::f64::consts::PI;
 
+use crate::support::dead_centres;
+
 /// Outer dead centres from the triangle A, crank pin, slider (crank and rod collinear): the
 /// piston's X_C = -sqrt((L_P + R_P)^2 - e_P^2) when the crank points from A (0, e_P) to C; the
 /// displacer's X_F0 = sqrt((L_B + R_B)^2 - e_B^2) when arm AD (at phi1 + gamma) points to F.
 fn closed_form(m: &RhombicDrive) -> (f64, f64) {
     let e_b = m.e_p - m.de;
-    let xc_out = -((m.l_p + m.r_p).powi(2) - m.e_p * m.e_p).sqrt();
-    let xc_in = -((m.l_p - m.r_p).powi(2) - m.e_p * m.e_p).sqrt();
-    let xf_out = ((m.l_b + m.r_b).powi(2) - e_b * e_b).sqrt();
-    let xf_in = ((m.l_b - m.r_b).powi(2) - e_b * e_b).sqrt();
+    let (xc_out, xc_in) = dead_centres(m.l_p, m.r_p, m.e_p);
+    let (xc_out, xc_in) = (-xc_out, -xc_in);
+    let (xf_out, xf_in) = dead_centres(m.l_b, m.r_b, e_b);
     let phi_c = (-m.e_p).atan2(xc_out);
     let phi_f = (-e_b).atan2(xf_out) - m.gamma;
     let phase = (phi_f - phi_c + PI).rem_euclid(2.0 * PI) - PI;

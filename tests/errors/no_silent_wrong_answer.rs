@@ -7,7 +7,7 @@ use kinloop::{Error, Mechanism, NewtonConfig};
 use kinloop_fixtures::{FourBar, FourBarUnknowns};
 use std::f64::consts::PI;
 
-use crate::support::{four_bar_angles, four_bar_limit};
+use crate::support::{angle_apart, four_bar_angles, four_bar_limit};
 
 kinloop::mechanism! {
     /// The same four-bar solved by Newton (`FourBar`'s dyad is solved in closed form): for the
@@ -19,12 +19,6 @@ kinloop::mechanism! {
         unknowns beta = 0.5, gamma = 1.5;
         loop abcd: a @ phi + b @ beta == (d, 0) + c @ gamma;
     }
-}
-
-/// Angle difference modulo whole turns.
-fn angle_err(a: f64, b: f64) -> f64 {
-    let d = (a - b).rem_euclid(2.0 * PI);
-    d.min(2.0 * PI - d)
 }
 
 /// Largest residual relative to the loop's magnitude (the sum of its link lengths): the
@@ -58,7 +52,7 @@ fn a_guess_within_tolerance_is_still_corrected() {
         let k = m.kinematics_flat(&[phi], &guess, &NewtonConfig::default()).unwrap();
         for u in 0..2 {
             // Rounding of the closed form and of the solver: a few ulps of the angles (~3).
-            assert!(angle_err(k.q[u], exact[u]) <= 4e-15, "phi {phi}: {:?} vs {exact:?}", k.q);
+            assert!(angle_apart(k.q[u], exact[u]) <= 4e-15, "phi {phi}: {:?} vs {exact:?}", k.q);
         }
     }
 }
@@ -85,7 +79,7 @@ fn an_exact_solution_near_a_singular_position_is_not_no_assembly() {
         Ok(k) => {
             // Condition ~1e6: the angles are determined to ~1e6 ulps of the residual floor.
             for u in 0..2 {
-                assert!(angle_err(k.q[u], exact[u]) <= 1e-9, "{:?} vs {exact:?}", k.q);
+                assert!(angle_apart(k.q[u], exact[u]) <= 1e-9, "{:?} vs {exact:?}", k.q);
             }
         }
         Err(e) => assert!(matches!(e, Error::Singular { .. }), "{e}"),
@@ -106,7 +100,7 @@ fn near_a_limit_from_the_limit_configuration_is_not_no_assembly() {
             assert!(scaled_residual(&m, phi, &k.q) <= 1e-12, "{k:?}");
             let want = [1.0, -1.0].map(|s| four_bar_angles(m.a, m.b, m.c, m.d, phi, s).unwrap());
             // Within sqrt(1e-9) of the fold the solution is known to ~1e-16 / 1e-4.5.
-            assert!(want.iter().any(|w| (0..2).all(|u| angle_err(k.q[u], w[u]) <= 1e-9)), "{:?} vs {want:?}", k.q);
+            assert!(want.iter().any(|w| (0..2).all(|u| angle_apart(k.q[u], w[u]) <= 1e-9)), "{:?} vs {want:?}", k.q);
         }
         Err(e) => assert!(matches!(e, Error::Singular { .. } | Error::NoConvergence { .. }), "{e}"),
     }
@@ -136,7 +130,7 @@ fn far_guesses_at_reachable_inputs_never_claim_no_assembly() {
                     let want = [1.0, -1.0].map(|s| four_bar_angles(m.a, m.b, m.c, m.d, phi, s).unwrap());
                     // Angles come back modulo turns: their rounding grows with their magnitude.
                     let tol = |v: f64| 8.0 * f64::EPSILON * v.abs().max(PI);
-                    assert!(want.iter().any(|w| (0..2).all(|u| angle_err(k.q[u], w[u]) <= tol(k.q[u]))), "{:?}", k.q);
+                    assert!(want.iter().any(|w| (0..2).all(|u| angle_apart(k.q[u], w[u]) <= tol(k.q[u]))), "{:?}", k.q);
                     counts[0] += 1;
                 }
                 Err(Error::NoAssembly { .. }) => panic!("NoAssembly at a reachable input {phi} from {g:?}"),
@@ -160,8 +154,8 @@ fn unit_free_acceptance() {
         let sn = n.kinematics_flat(&[0.7], &guess, &NewtonConfig::default()).unwrap();
         assert!(sn.report.iterations > 0, "scale {k}: guess accepted as it is");
         for u in 0..2 {
-            assert!(angle_err(s.q[u], exact[u]) <= 4e-15, "scale {k}: {:?} vs {exact:?}", s.q);
-            assert!(angle_err(sn.q[u], exact[u]) <= 4e-15, "scale {k}, Newton: {:?} vs {exact:?}", sn.q);
+            assert!(angle_apart(s.q[u], exact[u]) <= 4e-15, "scale {k}: {:?} vs {exact:?}", s.q);
+            assert!(angle_apart(sn.q[u], exact[u]) <= 4e-15, "scale {k}, Newton: {:?} vs {exact:?}", sn.q);
         }
     }
 }
@@ -217,7 +211,7 @@ proptest::proptest! {
             proptest::prop_assert!(scaled_residual(&m, phi, &k.q) <= 1e-12, "{:?}", k.q);
             let want = [1.0, -1.0].map(|s| four_bar_angles(CRANK_ROCKER.a, CRANK_ROCKER.b, CRANK_ROCKER.c, CRANK_ROCKER.d, phi, s).unwrap());
             let tol = |v: f64| 8.0 * f64::EPSILON * v.abs().max(PI);
-            proptest::prop_assert!(want.iter().any(|w| (0..2).all(|u| angle_err(k.q[u], w[u]) <= tol(k.q[u]))), "{:?} vs {want:?}", k.q);
+            proptest::prop_assert!(want.iter().any(|w| (0..2).all(|u| angle_apart(k.q[u], w[u]) <= tol(k.q[u]))), "{:?} vs {want:?}", k.q);
         }
     }
 }
@@ -240,7 +234,7 @@ fn a_limit_position_assembles_in_every_unit() {
                 .position_flat(&[phi], &[0.5, 1.5], &NewtonConfig::default())
                 .unwrap_or_else(|e| panic!("scale {k}, {dphi:e} past the limit: {e}"));
             assert!(scaled_residual(&m, phi, &q) <= 1e-15, "scale {k}: {q:?}");
-            assert!(angle_err(q[0], q[1] + PI) <= 1e-7, "scale {k}, {dphi:e}: {q:?}");
+            assert!(angle_apart(q[0], q[1] + PI) <= 1e-7, "scale {k}, {dphi:e}: {q:?}");
         }
     }
 }
@@ -299,7 +293,7 @@ fn a_dyad_on_coincident_centres_is_singular_in_a_position_solve_too() {
                 let at = format!("{path}, scale {scale:e}, phi - g0 = 1e-{k}");
                 match got {
                     Ok(beta) => {
-                        let err = betas.iter().map(|&b| angle_err(beta, b)).fold(f64::INFINITY, f64::min);
+                        let err = betas.iter().map(|&b| angle_apart(beta, b)).fold(f64::INFINITY, f64::min);
                         assert!(err <= 4.0 * eps * (a + b) / bd, "{at}: beta {beta} vs {betas:?}");
                         assert!(k <= 9, "{at}: Ok, beta {beta}");
                     }

@@ -4,19 +4,9 @@
 
 use kinloop_fixtures::FiveBar;
 
-const M: FiveBar = FiveBar { a: 1.0, b: 2.5, c: 2.2, d: 1.5, e: 1.2 };
+use crate::support::five_bar_joint;
 
-/// C from the intersection of circle (B, b) and circle (D, c), on the left of B -> D.
-fn coupler_point(m: &FiveBar, th1: f64, th2: f64) -> (f64, f64, f64, f64) {
-    let (bx, by) = (m.a * th1.cos(), m.a * th1.sin());
-    let (dx, dy) = (m.d + m.e * th2.cos(), m.e * th2.sin());
-    let (ux, uy) = (dx - bx, dy - by);
-    let dist = (ux * ux + uy * uy).sqrt();
-    let along = (m.b * m.b - m.c * m.c + dist * dist) / (2.0 * dist);
-    let h = (m.b * m.b - along * along).sqrt();
-    let (cx, cy) = (bx + along * ux / dist - h * uy / dist, by + along * uy / dist + h * ux / dist);
-    (cx, cy, (cy - by).atan2(cx - bx), (cy - dy).atan2(cx - dx))
-}
+const M: FiveBar = FiveBar { a: 1.0, b: 2.5, c: 2.2, d: 1.5, e: 1.2 };
 
 #[test]
 fn five_bar_positions_match_circle_intersection() {
@@ -24,7 +14,7 @@ fn five_bar_positions_match_circle_intersection() {
         for j in 0..40 {
             let (t1, t2) = (1.2 + 0.6 * i as f64 / 40.0, 0.8 + 0.6 * j as f64 / 40.0);
             let st = M.solve([t1, t2]).unwrap();
-            let (cx, cy, p2, p3) = coupler_point(&M, t1, t2);
+            let (cx, cy, p2, p3) = five_bar_joint(&M, t1, t2, 1.0);
             // The construction's own rounding (a square root of a difference) is ~1e-12.
             assert!(
                 (st.out.pc.x - cx).abs() < 1e-10 && (st.out.pc.y - cy).abs() < 1e-10,

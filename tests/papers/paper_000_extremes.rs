@@ -10,7 +10,7 @@ use std::f64::consts::TAU;
 
 use kinloop_fixtures::RhombicDrive;
 
-use crate::support::{stationary, wrap};
+use crate::support::{dead_centres, stationary, tol, wrap};
 
 #[test]
 fn extreme_positions_strokes_and_phase_shift_match_the_closed_forms() {
@@ -20,16 +20,16 @@ fn extreme_positions_strokes_and_phase_shift_match_the_closed_forms() {
     let xf = turn.range(RhombicDrive::COL.x_f).unwrap();
 
     let e_b = m.e_p - m.de;
-    let x_f0 = ((m.l_b + m.r_b).powi(2) - e_b * e_b).sqrt();
-    let x_fmin = ((m.l_b - m.r_b).powi(2) - e_b * e_b).sqrt();
-    let c_outer = -((m.l_p + m.r_p).powi(2) - m.e_p * m.e_p).sqrt();
-    let c_inner = -((m.l_p - m.r_p).powi(2) - m.e_p * m.e_p).sqrt();
+    let (x_f0, x_fmin) = dead_centres(m.l_b, m.r_b, e_b);
+    let (c_outer, c_inner) = dead_centres(m.l_p, m.r_p, m.e_p);
+    let (c_outer, c_inner) = (-c_outer, -c_inner);
     // The positions carry the Newton tolerance (1e-12 on the loop residual, well conditioned).
-    assert!((xf.max.value - x_f0).abs() < 1e-12, "{} vs {x_f0}", xf.max.value);
-    assert!((xf.min.value - x_fmin).abs() < 1e-12);
-    assert!((xc.min.value - c_outer).abs() < 1e-12);
-    assert!((xc.max.value - c_inner).abs() < 1e-12);
-    assert!((xf.span() - (x_f0 - x_fmin)).abs() < 1e-12 && (xc.span() - (c_inner - c_outer)).abs() < 1e-12);
+    assert_close!(xf.max.value, x_f0, tol::SOLVE, "X_F0");
+    assert_close!(xf.min.value, x_fmin, tol::SOLVE, "X_Fmin");
+    assert_close!(xc.min.value, c_outer, tol::SOLVE, "X_C outer");
+    assert_close!(xc.max.value, c_inner, tol::SOLVE, "X_C inner");
+    assert_close!(xf.span(), x_f0 - x_fmin, tol::SOLVE, "displacer stroke");
+    assert_close!(xc.span(), c_inner - c_outer, tol::SOLVE, "piston stroke");
 
     // Crank angles: the arm points along (outer) or against (inner) the line from A to the pin.
     let at = [
@@ -83,7 +83,8 @@ fn extremes_follow_the_drive_when_its_dimensions_change() {
     let turn = Sampled::sweep(&m, 0.0, TAU, 181, m.guess(0.0).into()).unwrap();
     let xf = turn.range(RhombicDrive::COL.x_f).unwrap();
     let e_b = m.e_p - m.de;
-    assert!((xf.max.value - ((m.l_b + m.r_b).powi(2) - e_b * e_b).sqrt()).abs() < 1e-12);
-    assert!((xf.min.value - ((m.l_b - m.r_b).powi(2) - e_b * e_b).sqrt()).abs() < 1e-12);
+    let (x_f0, x_fmin) = dead_centres(m.l_b, m.r_b, e_b);
+    assert_close!(xf.max.value, x_f0, tol::SOLVE, "X_F0");
+    assert_close!(xf.min.value, x_fmin, tol::SOLVE, "X_Fmin");
     assert!(wrap(xf.max.x - (f64::atan2(-e_b, xf.max.value) - m.gamma)).abs() < 1e-10);
 }

@@ -10,7 +10,7 @@ use std::f64::consts::{PI, TAU};
 
 use kinloop_fixtures::{DisplacerRodDrive, WorkingRodDrive};
 
-use crate::support::{argmax, close, newton_to_default_step, richardson, stationary, wrap};
+use crate::support::{argmax, close, dead_centres, newton_to_default_step, richardson, stationary, wrap};
 
 /// Fig. 1's published closed form (paper 000) with one crank pin (R_P = R_B = r,
 /// gamma = 0): (positions, velocity analogs, acceleration analogs) of [phi2, phi4, X_C, X_F].
@@ -153,7 +153,7 @@ fn strokes_and_extremes_printed_by_the_example() {
     let (c, f) = (t2.range(DisplacerRodDrive::COL.x_c).unwrap(), t2.range(DisplacerRodDrive::COL.x_f).unwrap());
     let e_b = m2.e_p - m2.de;
     // The displacer group of Fig. 2 is Fig. 1's: the paper's X_F0 and X_Fmin.
-    let (x_f0, x_fmin) = (((m2.l_b + m2.r).powi(2) - e_b * e_b).sqrt(), ((m2.l_b - m2.r).powi(2) - e_b * e_b).sqrt());
+    let (x_f0, x_fmin) = dead_centres(m2.l_b, m2.r, e_b);
     assert!((f.max.value - x_f0).abs() < 1e-12);
     assert!((f.min.value - x_fmin).abs() < 1e-12);
     assert!((f.span() - (x_f0 - x_fmin)).abs() < 1e-12);

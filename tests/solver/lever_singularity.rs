@@ -12,6 +12,8 @@
 use kinloop::{Error, EventKind, SweepConfig};
 use std::f64::consts::{FRAC_PI_2, PI};
 
+use crate::support::angle_apart;
+
 kinloop::mechanism! {
     /// A crank `r` about `(0, h)` driving a block in a rocker slot pivoted at the origin.
     pub struct SlottedRocker {
@@ -188,7 +190,7 @@ fn a_cylinder_collapsed_onto_its_pivot_is_as_accurate_as_its_pivot_ratio_says() 
                 if let Some((th, dth, pivot)) = ok_or_singular(&at, got, k, 10, 9) {
                     // As for the slotted rocker: `eps / pivot` and `eps / pivot^2` (the angle
                     // modulo whole turns, which the solution does not pick).
-                    assert!(turns_apart(th, theta) <= 2.0 * eps / pivot, "{at}: theta {th} (pivot {pivot:e})");
+                    assert!(angle_apart(th, theta) <= 2.0 * eps / pivot, "{at}: theta {th} (pivot {pivot:e})");
                     let rel = ((dth - dtheta) / dtheta).abs();
                     assert!(rel <= eps / (pivot * pivot), "{at}: dtheta {dth:e} (pivot {pivot:e})");
                 }
@@ -200,12 +202,6 @@ fn a_cylinder_collapsed_onto_its_pivot_is_as_accurate_as_its_pivot_ratio_says() 
             }
         }
     }
-}
-
-/// The distance of two angles modulo whole turns.
-fn turns_apart(a: f64, b: f64) -> f64 {
-    let d = (a - b).rem_euclid(2.0 * PI);
-    d.min(2.0 * PI - d)
 }
 
 /// The rocker angle from its closed form, on the side of the slide the sweep started on.
@@ -224,7 +220,7 @@ fn a_sweep_never_passes_a_slide_near_its_pivot_silently() {
                 for st in m.sweep(0.0, 2.0 * PI, 73, &g).unwrap().with_config(cfg) {
                     let st = st?;
                     let want = exact_theta(h, r, st.input.phi);
-                    assert!(turns_apart(st.q.theta, want) < 1e-9, "scale {scale:e}, d {d:e}, at {}", st.input.phi);
+                    assert!(angle_apart(st.q.theta, want) < 1e-9, "scale {scale:e}, d {d:e}, at {}", st.input.phi);
                     assert!(st.q.s > 0.0);
                 }
                 Ok(())

@@ -3,6 +3,7 @@
 //! ([`tol`]), `assert_close!`, and the Newton configurations references are solved with.
 
 use kinloop::NewtonConfig;
+use kinloop_fixtures::FiveBar;
 use std::f64::consts::{PI, TAU};
 
 pub mod tol;
@@ -94,6 +95,12 @@ pub fn wrap(a: f64) -> f64 {
     (a + PI).rem_euclid(TAU) - PI
 }
 
+/// The distance of two angles modulo whole turns, in `[0, pi]`.
+pub fn angle_apart(a: f64, b: f64) -> f64 {
+    let d = (a - b).rem_euclid(2.0 * PI);
+    d.min(2.0 * PI - d)
+}
+
 /// Central differences with one Richardson step (h and h/2): (first, second) derivative with
 /// truncation error O(h^4) (~h^4/480 |q^(5)| and less for the second); position errors e
 /// contribute ~e/h and ~5e/h^2.
@@ -142,6 +149,23 @@ pub fn four_bar_angles(a: f64, b: f64, c: f64, d: f64, phi: f64, side: f64) -> O
 /// and rocker stretched, `|b - c|`: folded), by the law of cosines; NaN where it never does.
 pub fn four_bar_limit(a: f64, d: f64, r: f64) -> f64 {
     ((a * a + d * d - r * r) / (2.0 * a * d)).acos()
+}
+
+/// The fixtures' five-bar at inputs `th1`, `th2`: C from the circles (B, b) and (D, c), B the
+/// tip of crank `a` at the origin and D of crank `e` at (d, 0), on side `side` of B -> D (+1
+/// left, -1 right), with the angles of B -> C and D -> C: `(cx, cy, phi2, phi3)`.
+pub fn five_bar_joint(m: &FiveBar, th1: f64, th2: f64, side: f64) -> (f64, f64, f64, f64) {
+    let (bx, by) = (m.a * th1.cos(), m.a * th1.sin());
+    let (dx, dy) = (m.d + m.e * th2.cos(), m.e * th2.sin());
+    let (cx, cy) = circle_point(bx, by, m.b, dx, dy, m.c, side);
+    (cx, cy, (cy - by).atan2(cx - bx), (cy - dy).atan2(cx - dx))
+}
+
+/// The dead centres of an offset slider-crank (crank `r`, rod `l`, the guide `e` off the crank's
+/// axis): the slider's distance from the axis along the guide where crank and rod are stretched,
+/// `sqrt((l + r)^2 - e^2)`, and folded, `sqrt((l - r)^2 - e^2)`: paper 000's `X_F0` and `X_Fmin`.
+pub fn dead_centres(l: f64, r: f64, e: f64) -> (f64, f64) {
+    (((l + r).powi(2) - e * e).sqrt(), ((l - r).powi(2) - e * e).sqrt())
 }
 
 /// Newton until the residual is at rounding level (1e-14, below the default 1e-12) or the step
