@@ -8,7 +8,7 @@ use kinloop_fixtures::FourBar;
 use proptest::prelude::*;
 use std::f64::consts::{FRAC_PI_2, PI, TAU};
 
-use crate::support::{four_bar_angles, four_bar_limit};
+use crate::support::{four_bar_angles, four_bar_limit, tol};
 
 kinloop::mechanism! {
     /// Crank-shaper: crank `r` about the origin; its pin slides in a lever pivoted at
@@ -41,14 +41,14 @@ fn quick_return_ratio_of_a_crank_shaper_matches_its_closed_form_in_any_unit() {
             let t = time_ratio_over(&turn, column).unwrap();
             // Extremes are located to rounding (roots of the velocity analog), the ratio to a
             // few ulps times its condition.
-            assert!((t.ratio() - shaper_ratio(r, d)).abs() < 1e-10 * shaper_ratio(r, d), "{column}: {t:?}");
-            assert!((t.rising + t.falling - TAU).abs() < 1e-12);
+            assert_close!(t.ratio(), shaper_ratio(r, d), 1e-10 * shaper_ratio(r, d), "{column}: {t:?}");
+            assert_close!(t.rising + t.falling, TAU, tol::SOLVE);
         }
         let psi = time_ratio_over(&turn, CrankShaper::COL.psi).unwrap();
-        assert!((psi.max.value - (FRAC_PI_2 + alpha)).abs() < 1e-12, "{psi:?}");
-        assert!((psi.min.value - (FRAC_PI_2 - alpha)).abs() < 1e-12);
+        assert_close!(psi.max.value, FRAC_PI_2 + alpha, tol::SOLVE, "{psi:?}");
+        assert_close!(psi.min.value, FRAC_PI_2 - alpha, tol::SOLVE);
         // The lever rises (psi grows) while the crank runs the long way round, pi + 2 alpha.
-        assert!((psi.rising - (PI + 2.0 * alpha)).abs() < 1e-9, "{psi:?}");
+        assert_close!(psi.rising, PI + 2.0 * alpha, 1e-9, "{psi:?}");
     }
 }
 
@@ -125,6 +125,6 @@ fn a_limit_before_the_second_sample_is_reported() {
     assert_eq!(r.reached, (0.0, 0.0), "{r}");
     let limits: Vec<f64> = r.input_limits().map(|e| e.x[0]).collect();
     assert_eq!(limits.len(), 1, "{r}");
-    assert!((limits[0] - limit).abs() < 1e-9, "{} against {limit}", limits[0]);
+    assert_close!(limits[0], limit, tol::LOCATED, "{} against {limit}", limits[0]);
     assert!(r.outputs[0].extremes.is_empty(), "{r}");
 }

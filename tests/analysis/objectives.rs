@@ -28,10 +28,10 @@ fn displacer_extremes_match_the_paper_with_gradients() {
     // Gradients of the closed forms, e.g. d X_F0 / d L_B = (L_B + R_B) / X_F0.
     let e_b = M.e_p - M.de;
     let l = RhombicDrive::PARAMS.iter().position(|p| *p == "l_b").unwrap();
-    assert!((max.grad[l] - (M.l_b + M.r_b) / x0).abs() < 1e-9);
-    assert!((min.grad[l] - (M.l_b - M.r_b) / x1).abs() < 1e-9);
+    assert_close!(max.grad[l], (M.l_b + M.r_b) / x0, 1e-9);
+    assert_close!(min.grad[l], (M.l_b - M.r_b) / x1, 1e-9);
     let e = RhombicDrive::PARAMS.iter().position(|p| *p == "e_p").unwrap();
-    assert!((max.grad[e] - (-e_b / x0)).abs() < 1e-9);
+    assert_close!(max.grad[e], -e_b / x0, 1e-9);
     // The extremum's location moves as finite differences say (the centres of mass, the last
     // four parameters, do not move it: their gradients vanish).
     for p in 0..RhombicDrive::PARAMS.len() {
@@ -45,13 +45,15 @@ fn displacer_extremes_match_the_paper_with_gradients() {
         let (a, b) = (at(h), at(-h));
         let fd_x = (a.x - b.x) / (2.0 * h);
         let fd_v = (a.value - b.value) / (2.0 * h);
-        assert!(
-            (max.x_grad[p] - fd_x).abs() < 1e-6 * (1.0 + fd_x.abs()),
+        assert_close!(
+            max.x_grad[p],
+            fd_x,
+            1e-6 * (1.0 + fd_x.abs()),
             "{}: {} vs {fd_x}",
             RhombicDrive::PARAMS[p],
             max.x_grad[p]
         );
-        assert!((max.grad[p] - fd_v).abs() < 1e-7 * (1.0 + fd_v.abs()));
+        assert_close!(max.grad[p], fd_v, 1e-7 * (1.0 + fd_v.abs()));
     }
 }
 
@@ -70,7 +72,7 @@ fn integral_of_an_output_and_its_gradient() {
     let h = 2.0 * PI / 180.0;
     let reference: f64 =
         (0..=180).map(|k| if k == 0 || k == 180 { 0.5 } else { 1.0 } * h * gap(&M, k as f64 * h)).sum();
-    assert!((v - reference).abs() < 1e-10, "{v} vs {reference}");
+    assert_close!(v, reference, 1e-10, "{v} vs {reference}");
     let l = RhombicDrive::PARAMS.iter().position(|p| *p == "l_b").unwrap();
     let dh = 1e-6;
     let mut mp = M;
@@ -80,5 +82,5 @@ fn integral_of_an_output_and_its_gradient() {
     let fd = (integral(&mp, RhombicDrive::COL.gap, 0.0, 2.0 * PI, 181, mp.guess(0.0).into(), &cfg).unwrap().0
         - integral(&mm, RhombicDrive::COL.gap, 0.0, 2.0 * PI, 181, mm.guess(0.0).into(), &cfg).unwrap().0)
         / (2.0 * dh);
-    assert!((g[l] - fd).abs() < 1e-6 * fd.abs(), "{} vs {fd}", g[l]);
+    assert_close!(g[l], fd, 1e-6 * fd.abs(), "{} vs {fd}", g[l]);
 }

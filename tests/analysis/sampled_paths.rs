@@ -4,7 +4,7 @@
 //! path against a dense scan of the same construction, and the path parameter's two choices
 //! (fraction of the path, one input).
 
-use crate::support::{five_bar_joint, richardson};
+use crate::support::{five_bar_joint, richardson, tol};
 use kinloop::Error;
 use kinloop::analysis::{Column, Jet, Sampled};
 use kinloop_fixtures::FiveBar;
@@ -48,9 +48,9 @@ fn jets_along_the_path_match_finite_differences_of_the_construction() {
             // h = 1e-3 of the path: Richardson's truncation ~h^4, the values' rounding 1e-16/h for the
             // slope, 1e-16/h^2 amplified by the extrapolation for the curvature (measured 2e-10, 8e-9).
             let (d1, d2) = richardson(f, s, 1e-3);
-            assert!((jet.value - f(s)).abs() < 1e-12 * SCALE, "{c} at {s}: {} vs {}", jet.value, f(s));
-            assert!((jet.d1 - d1).abs() < 1e-9 * SCALE, "{c}' at {s}: {} vs {d1}", jet.d1);
-            assert!((jet.d2 - d2).abs() < 1e-7 * SCALE, "{c}'' at {s}: {} vs {d2}", jet.d2);
+            assert_close!(jet.value, f(s), tol::SOLVE * SCALE, "{c} at {s}: {} vs {}", jet.value, f(s));
+            assert_close!(jet.d1, d1, tol::FD_FIRST * SCALE, "{c}' at {s}: {} vs {d1}", jet.d1);
+            assert_close!(jet.d2, d2, 1e-7 * SCALE, "{c}'' at {s}: {} vs {d2}", jet.d2);
         }
     }
     // The input th2 moves linearly along the path: its jet is exact.
@@ -68,14 +68,15 @@ fn an_input_as_the_parameter_rescales_the_derivatives() {
     assert_eq!(by_th1.direction()[0], 1.0);
     for (a, b) in by_fraction.jets(FiveBar::COL.pc.y).unwrap().iter().zip(by_th1.jets(FiveBar::COL.pc.y).unwrap()) {
         assert_eq!(a.value, b.value);
-        assert!((b.x - (FROM[0] + a.x * run)).abs() < 1e-15 * TO[0]);
-        assert!((b.d1 * run - a.d1).abs() < 1e-13 * SCALE);
-        assert!((b.d2 * run * run - a.d2).abs() < 1e-12 * SCALE);
+        assert_close!(b.x, FROM[0] + a.x * run, 1e-15 * TO[0]);
+        assert_close!(b.d1 * run, a.d1, 1e-13 * SCALE);
+        assert_close!(b.d2 * run * run, a.d2, tol::SOLVE * SCALE);
     }
     // States between samples are the same point of the path whatever the parameter.
     let (s, x) = (0.37, FROM[0] + 0.37 * run);
     let (a, b) = (by_fraction.at(s).unwrap(), by_th1.at(x).unwrap());
-    assert!((a.q[0] - b.q[0]).abs() < 1e-12 && (a.x[1] - b.x[1]).abs() < 1e-14);
+    assert_close!(a.q[0], b.q[0], tol::SOLVE);
+    assert_close!(a.x[1], b.x[1], tol::ULPS);
 }
 
 #[test]
@@ -103,8 +104,8 @@ fn extremes_on_the_path_match_a_dense_scan_of_the_construction() {
         for e in run.extremes(c).unwrap() {
             // An interior extreme: the slope of the construction along the path vanishes there.
             let (d1, _) = richardson(f, e.x(), 1e-3);
-            assert!(d1.abs() < 1e-8 * SCALE, "{c} at {}: slope {d1}", e.x());
-            assert!((e.value() - f(e.x())).abs() < 1e-12 * SCALE);
+            assert_close!(d1, 0.0, 1e-8 * SCALE, "{c} at {}: slope {d1}", e.x());
+            assert_close!(e.value(), f(e.x()), tol::SOLVE * SCALE);
         }
     }
     assert!(!run.extremes(FiveBar::COL.pc.y).unwrap().is_empty(), "the path was chosen to pass a peak of pc.y");

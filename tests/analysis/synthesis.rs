@@ -27,12 +27,14 @@ fn gradient_synthesis_beats_derivative_free_and_meets_the_requirement() {
     let (start, target) = problem().unwrap();
     let (p0, r0) = closed_form(&drive(&start));
     let (p_k, r_k) = synthesis::characteristics(&start).unwrap().0.into();
-    assert!((p0 - p_k).abs() < 1e-9 && (r0 - r_k).abs() < 1e-9, "start: {p0} {r0} vs {p_k} {r_k}");
+    assert_close!(p0, p_k, 1e-9, "start: {p0} {r0} vs {p_k} {r_k}");
+    assert_close!(r0, r_k, 1e-9, "start: {p0} {r0} vs {p_k} {r_k}");
 
     let lm = gradient_run(start, target).unwrap();
     assert!(lm.converged(), "{lm:?}");
     let (phase, ratio) = closed_form(&drive(&lm.x));
-    assert!((phase - target[0]).abs() < 1e-9 && (ratio - target[1]).abs() < 1e-9, "{phase} {ratio} vs {target:?}");
+    assert_close!(phase, target[0], 1e-9, "{phase} {ratio} vs {target:?}");
+    assert_close!(ratio, target[1], 1e-9, "{phase} {ratio} vs {target:?}");
 
     let nm = derivative_free_run(start, target);
     assert!(lm.evaluations < nm.evaluations, "gradient {} vs derivative-free {}", lm.evaluations, nm.evaluations);

@@ -151,7 +151,7 @@ fn slider_crank_shaking_harmonics_match_closed_form() {
     assert!((fx.a[0] - scale).abs() <= 1e-12 * scale, "{} vs {scale}", fx.a[0]);
     assert!((fx.a[1] - coefficient(2, f64::cos)).abs() <= 1e-12 * scale);
     // Second harmonic ~ lambda = r / l of the first (the classical approximation).
-    assert!((fx.amplitude(2) / scale - m.r / m.l).abs() < (m.r / m.l).powi(3));
+    assert_close!(fx.amplitude(2) / scale, m.r / m.l, (m.r / m.l).powi(3));
     for k in 1..=4 {
         assert!(fx.b[k - 1].abs() <= 1e-12 * scale && fy.amplitude(k) <= 1e-12 * scale);
     }

@@ -12,6 +12,8 @@ use kinloop::dynamics::{
 };
 use std::f64::consts::TAU;
 
+use crate::support::tol;
+
 #[test]
 fn dopri5_matches_closed_forms() {
     let cfg = OdeConfig::default().with_tolerances(1e-11, 1e-11);
@@ -35,11 +37,12 @@ fn dopri5_matches_closed_forms() {
     .unwrap();
     assert_eq!(t, 10.0 * TAU);
     // Global error: ~ tolerance times the number of steps (a few hundred).
-    assert!((y[0] - 1.0).abs() < 1e-8 && y[1].abs() < 1e-8, "{y:?}");
+    assert_close!(y[0], 1.0, 1e-8, "{y:?}");
+    assert_close!(y[1], 0.0, 1e-8, "{y:?}");
     assert!(worst_dense < 1e-8, "dense output error {worst_dense:e}");
     // Non-autonomous: y' = -2 t y, y = exp(-t^2).
     let (_, y) = dopri5(|t, y| Ok([-2.0 * t * y[0]]), 0.0, [1.0], 3.0, &cfg, |_, _| Ok(false)).unwrap();
-    assert!((y[0] - (-9f64).exp()).abs() < 1e-10);
+    assert_close!(y[0], (-9f64).exp(), 1e-10);
     // A failing right-hand side stops the integration with its error.
     let err = dopri5(
         |t, y| if t > 1.0 { Err(DynamicsError::StepTooSmall { t, h: 0.0 }) } else { Ok([y[0]]) },
@@ -133,8 +136,8 @@ fn flywheel_gives_the_required_speed_fluctuation() {
     );
     // The steady cycle is reproduced: sampling of the extremes (0.1 degree, ~1e-7) and the
     // trapezoidal work (~1e-7) limit the agreement.
-    assert!(((hi + lo) / 2.0 - omega_m).abs() < 1e-5 * omega_m, "mean {}", (hi + lo) / 2.0);
-    assert!(((hi - lo) / omega_m - delta).abs() < 1e-4 * delta, "delta {}", (hi - lo) / omega_m);
+    assert_close!((hi + lo) / 2.0, omega_m, 1e-5 * omega_m, "mean {}", (hi + lo) / 2.0);
+    assert_close!((hi - lo) / omega_m, delta, 1e-4 * delta, "delta {}", (hi - lo) / omega_m);
 }
 
 /// With a constant reduced inertia the energy method is exact: `1/2 J (omega_max^2 -
@@ -154,10 +157,10 @@ fn energy_method_is_exact_for_constant_inertia() {
     let energy = |phi: f64| 3.0 * (1.0 - phi.cos()) + 0.5 * (1.0 - (2.0 * phi).cos());
     let samples: Vec<f64> = (0..3600).map(|j| energy(TAU * j as f64 / 3600.0)).collect();
     let swing = samples.iter().copied().fold(f64::MIN, f64::max) - samples.iter().copied().fold(f64::MAX, f64::min);
-    assert!((fw.energy_swing - swing).abs() < 1e-6 * swing, "{} vs {swing}", fw.energy_swing);
-    assert!(fw.mean_torque.abs() < 1e-12);
-    assert!((fw.flywheel / fw.exact - 1.0).abs() < 1e-6, "{} vs {}", fw.flywheel, fw.exact);
-    assert!((fw.total_inertia - swing / (0.02 * 400.0)).abs() < 1e-6 * fw.total_inertia);
+    assert_close!(fw.energy_swing, swing, 1e-6 * swing, "{} vs {swing}", fw.energy_swing);
+    assert_close!(fw.mean_torque, 0.0, tol::SOLVE);
+    assert_close!(fw.flywheel / fw.exact, 1.0, 1e-6, "{} vs {}", fw.flywheel, fw.exact);
+    assert_close!(fw.total_inertia, swing / (0.02 * 400.0), 1e-6 * fw.total_inertia);
 }
 
 /// From rest under `M = M_s (1 - omega / omega_s)` and viscous friction nowhere: on the
@@ -195,7 +198,7 @@ fn run_up_from_rest_reaches_the_synchronous_speed_on_average() {
         }
     }
     // Quadrature on whole steps only near the turn's start: ~ one step of a few hundred.
-    assert!((num / den / omega_s - 1.0).abs() < 1e-2, "angle-averaged speed {}", num / den);
+    assert_close!(num / den / omega_s, 1.0, 1e-2, "angle-averaged speed {}", num / den);
     assert!(run.end[1] > 0.5 * omega_s);
 }
 
@@ -249,7 +252,7 @@ fn running_into_a_limit_position_is_a_typed_error() {
         DynamicsError::SingularMotion { t, x, speed, .. } => {
             eprintln!("stopped at phi = {}, limit - phi = {:e}, speed {:e}", x[0], limit - x[0], speed[0]);
             assert!(t.is_finite() && (limit - x[0]).abs() < 1e-9, "{err}");
-            assert!(speed[0].abs() < 1e-3, "the speed must fall to zero at the limit: {err}");
+            assert_close!(speed[0], 0.0, 1e-3, "the speed must fall to zero at the limit: {err}");
         }
         // With the rocker's dyad solved in closed form, the kinematic solve may meet the fold
         // first (its discriminant vanishes there): a typed singular position, located as

@@ -7,6 +7,8 @@ use kinloop_fixtures::FourBar;
 use std::sync::mpsc;
 use std::time::Duration;
 
+use crate::support::tol;
+
 const CRANK_ROCKER: FourBar = FourBar { a: 1.0, b: 3.0, c: 2.5, d: 3.2 };
 
 /// Runs `f` on a thread and fails if it does not return within `secs` (a hang is a defect).
@@ -171,13 +173,13 @@ fn a_branch_flip_in_block_seventy_is_caught() {
     let (index, info) = ev.block.expect("the flipped block is named");
     assert_eq!(info.unknowns, ["s70"]);
     assert!(index >= 64, "{index}");
-    assert!(ev.x[0].abs() < 1e-9, "{:?}", ev.x);
+    assert_close!(ev.x[0], 0.0, tol::LOCATED, "{:?}", ev.x);
     // Passing it, the mode of block 70 is seen to change.
     let cfg = SweepConfig::default().with_at_singular(AtSingular::Continue);
     let all: Vec<_> = m.sweep(1.0, -1.0, 5, &g).unwrap().with_config(cfg).collect::<Result<_, _>>().unwrap();
     let (first, last) = (all[0].health.det_signs, all[4].health.det_signs);
     assert_eq!(first.first_difference(&last), Some(index));
-    assert!((all[4].q.s70 - -1.0).abs() < 1e-14, "{}", all[4].q.s70);
+    assert_close!(all[4].q.s70, -1.0, tol::ULPS, "{}", all[4].q.s70);
     let _ = <ManyBlocks as Mechanism<71, 1, 0>>::BLOCKS;
 }
 
@@ -221,8 +223,8 @@ macro_rules! five_bar_crossing {
                 assert_eq!(events.len(), 1);
                 // A branch point is located to about `sqrt(eps)` in the input (the determinant and
                 // the path's rate both vanish there to first order only along some directions).
-                assert!((events[0].x[0] - star[0]).abs() < 1e-7, "{events:?} vs {star:?}");
-                assert!((events[0].x[1] - star[1]).abs() < 1e-7, "{events:?} vs {star:?}");
+                assert_close!(events[0].x[0], star[0], 1e-7, "{events:?} vs {star:?}");
+                assert_close!(events[0].x[1], star[1], 1e-7, "{events:?} vs {star:?}");
                 let (states, events) = sweep(through, AtSingular::Continue, samples, guess);
                 assert_eq!(states.len(), samples);
                 assert!(states.iter().all(|r| r.as_ref().is_ok_and(closes)), "{states:?}");
@@ -290,7 +292,8 @@ fn five_bar_crossings_are_the_same_through_the_closed_form_and_newton() {
                 // 1.3e-7 over these paths): the residual grows only quadratically off it along the
                 // circle of positions through it.
                 let off = [events[0].x[0] - star[0], events[0].x[1] - star[1]];
-                assert!(off[0].abs() < 5e-7 && off[1].abs() < 5e-7, "{k}: {off:?} {events:?}");
+                assert_close!(off[0], 0.0, 5e-7, "{k}: {off:?} {events:?}");
+                assert_close!(off[1], 0.0, 5e-7, "{k}: {off:?} {events:?}");
             }
         }
     }

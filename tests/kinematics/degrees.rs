@@ -3,6 +3,8 @@
 
 use std::f64::consts::FRAC_PI_6;
 
+use crate::support::tol;
+
 kinloop::mechanism! {
     /// A slider driven by a crank set 30 degrees ahead of the input angle.
     pub struct Ahead {
@@ -23,12 +25,12 @@ fn declared_degrees_are_radians_in_results() {
         // Closed forms: x = r cos(phi + pi/6), dx/dphi = -r sin(phi + pi/6),
         // d2x/dphi2 = -r cos(phi + pi/6); a few ulps of r.
         let t = phi + FRAC_PI_6;
-        assert!((s.q.x - 2.0 * t.cos()).abs() < 1e-14, "{k}");
-        assert!((s.dq.x - -2.0 * t.sin()).abs() < 1e-14, "{k}");
-        assert!((s.d2q.x - -2.0 * t.cos()).abs() < 1e-14, "{k}");
+        assert_close!(s.q.x, 2.0 * t.cos(), tol::ULPS, "{k}");
+        assert_close!(s.dq.x, -2.0 * t.sin(), tol::ULPS, "{k}");
+        assert_close!(s.d2q.x, -2.0 * t.cos(), tol::ULPS, "{k}");
         // The declaration's conversion and the runtime's are the same, bit for bit.
         assert_eq!(s.out.lead.to_bits(), kinloop::deg(30.0).to_bits());
         assert!((s.out.lead - FRAC_PI_6).abs() <= f64::EPSILON * FRAC_PI_6);
     }
-    assert!((kinloop::to_deg(m.solve(kinloop::deg(45.0)).unwrap().flat.x[0]) - 45.0).abs() < 1e-12);
+    assert_close!(kinloop::to_deg(m.solve(kinloop::deg(45.0)).unwrap().flat.x[0]), 45.0, tol::SOLVE);
 }

@@ -4,7 +4,7 @@
 
 use kinloop_fixtures::FiveBar;
 
-use crate::support::five_bar_joint;
+use crate::support::{five_bar_joint, tol};
 
 const M: FiveBar = FiveBar { a: 1.0, b: 2.5, c: 2.2, d: 1.5, e: 1.2 };
 
@@ -16,13 +16,10 @@ fn five_bar_positions_match_circle_intersection() {
             let st = M.solve([t1, t2]).unwrap();
             let (cx, cy, p2, p3) = five_bar_joint(&M, t1, t2, 1.0);
             // The construction's own rounding (a square root of a difference) is ~1e-12.
-            assert!(
-                (st.out.pc.x - cx).abs() < 1e-10 && (st.out.pc.y - cy).abs() < 1e-10,
-                "({t1}, {t2}): {:?} vs {cx}, {cy}; {:?}",
-                st.out.pc,
-                st.q
-            );
-            assert!((st.q.phi2 - p2).abs() < 1e-10 && (st.q.phi3 - p3).abs() < 1e-10);
+            assert_close!(st.out.pc.x, cx, 1e-10, "({t1}, {t2}): {:?} vs {cx}, {cy}; {:?}", st.out.pc, st.q);
+            assert_close!(st.out.pc.y, cy, 1e-10, "({t1}, {t2}): {:?} vs {cx}, {cy}; {:?}", st.out.pc, st.q);
+            assert_close!(st.q.phi2, p2, 1e-10);
+            assert_close!(st.q.phi3, p3, 1e-10);
         }
     }
 }
@@ -51,21 +48,16 @@ fn five_bar_partial_analogs_match_finite_differences() {
             let (p, m) = (q(pa, pb), q(ma, mb));
             for k in 0..5 {
                 let fd = (p[k] - m[k]) / (2.0 * h);
-                assert!((first(i, k) - fd).abs() < 1e-6, "d/dth{} of #{k}: {} vs {fd}", i + 1, first(i, k));
+                assert_close!(first(i, k), fd, 1e-6, "d/dth{} of #{k}: {} vs {fd}", i + 1, first(i, k));
                 let fd2 = (p[k] - 2.0 * c[k] + m[k]) / (h * h);
-                assert!(
-                    (second(i, i, k) - fd2).abs() < 1e-4,
-                    "d2/dth{}^2 of #{k}: {} vs {fd2}",
-                    i + 1,
-                    second(i, i, k)
-                );
+                assert_close!(second(i, i, k), fd2, 1e-4, "d2/dth{}^2 of #{k}: {} vs {fd2}", i + 1, second(i, i, k));
             }
         }
         // Mixed partial by the four-point stencil.
         let (pp, pm, mp, mm) = (q(t1 + h, t2 + h), q(t1 + h, t2 - h), q(t1 - h, t2 + h), q(t1 - h, t2 - h));
         for k in 0..5 {
             let fd = (pp[k] - pm[k] - mp[k] + mm[k]) / (4.0 * h * h);
-            assert!((second(0, 1, k) - fd).abs() < 1e-4, "mixed #{k}: {} vs {fd}", second(0, 1, k));
+            assert_close!(second(0, 1, k), fd, 1e-4, "mixed #{k}: {} vs {fd}", second(0, 1, k));
             assert_eq!(second(0, 1, k), second(1, 0, k), "second analogs are symmetric");
         }
     }
@@ -80,6 +72,6 @@ fn five_bar_true_motion_sums_over_inputs() {
     let dd = st.d2q.phi2;
     let v = d.th1 * w1 + d.th2 * w2;
     let a = dd.th1.th1 * w1 * w1 + 2.0 * dd.th1.th2 * w1 * w2 + dd.th2.th2 * w2 * w2 + d.th1 * e1 + d.th2 * e2;
-    assert!((mo.qdot.phi2 - v).abs() < 1e-12);
-    assert!((mo.qddot.phi2 - a).abs() < 1e-12);
+    assert_close!(mo.qdot.phi2, v, tol::SOLVE);
+    assert_close!(mo.qddot.phi2, a, tol::SOLVE);
 }

@@ -8,7 +8,7 @@ use kinloop_fixtures::{FiveBar, FourBar, SliderCrank};
 use proptest::prelude::*;
 use std::f64::consts::PI;
 
-use crate::support::{five_bar_joint, four_bar_joint};
+use crate::support::{five_bar_joint, four_bar_joint, newton_to_residual_floor};
 
 fn side_of(bx: f64, by: f64, dx: f64, dy: f64, cx: f64, cy: f64) -> f64 {
     ((dx - bx) * (cy - by) - (dy - by) * (cx - bx)).signum()
@@ -45,8 +45,8 @@ proptest! {
         let st = m.kinematics(phi, &m.position(phi, &start.q).unwrap().0).unwrap();
         // Reference solves converge to the rounding floor, and the step balances truncation
         // (h^2 times the fourth derivative) against the remaining noise (1e-15 / h^2).
-        let tight = kinloop::NewtonConfig::default().with_residual_tol(1e-15);
-        let at = |x: f64| m.position_with(x, &st.q, &tight).unwrap().0;
+        let floor = newton_to_residual_floor();
+        let at = |x: f64| m.position_with(x, &st.q, &floor).unwrap().0;
         let h = 1e-3;
         let (p, q) = (at(phi + h), at(phi - h));
         let c = at(phi);
@@ -104,8 +104,8 @@ proptest! {
         let h = 1e-3;
         let st = m.solve([0.3 + 0.5 * k1, 0.2 + 0.5 * k2]).unwrap();
         let (t1, t2) = (st.input.th1, st.input.th2);
-        let tight = kinloop::NewtonConfig::default().with_residual_tol(1e-15);
-        let at = |x: [f64; 2]| m.position_with(x, &st.q, &tight).unwrap().0;
+        let floor = newton_to_residual_floor();
+        let at = |x: [f64; 2]| m.position_with(x, &st.q, &floor).unwrap().0;
         let (p1, m1) = (at([t1 + h, t2]), at([t1 - h, t2]));
         let (p2, m2) = (at([t1, t2 + h]), at([t1, t2 - h]));
         let fd1 = (p1.phi3 - m1.phi3) / (2.0 * h);

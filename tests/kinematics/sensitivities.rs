@@ -8,27 +8,27 @@
 //! max|f| <= 1e-15). The tolerance 1e-7 (relative, absolute near zero) leaves a wide margin
 //! while any wrong term shows up at O(1).
 
-use kinloop::{Kin, Mechanism, NewtonConfig, Sens, Sensitivities};
+use kinloop::{Kin, Mechanism, Sens, Sensitivities};
 use kinloop_fixtures::strategies::{gear_lever, rhombic_drive, sample};
 use kinloop_fixtures::{ClassFour, FiveBar, RhombicDrive};
 use proptest::prelude::*;
 
-use crate::support::close;
+use crate::support::{newton_to_residual_floor, tol};
 
 /// Compares every sensitivity with Richardson-extrapolated central differences of the state.
 fn check<M, const N: usize, const NI: usize, const NO: usize, const NP: usize>(m: &M, x: [f64; NI], guess: [f64; N])
 where
     M: Sensitivities<N, NI, NO, NP>,
 {
-    let tight = NewtonConfig::default().with_residual_tol(1e-15);
-    let (k, s): (Kin<N, NI, NO>, Sens<N, NI, NO, NP>) = m.sensitivities_flat(&x, &guess, &tight).unwrap();
+    let floor = newton_to_residual_floor();
+    let (k, s): (Kin<N, NI, NO>, Sens<N, NI, NO, NP>) = m.sensitivities_flat(&x, &guess, &floor).unwrap();
     let base = m.params_flat();
     for p in 0..NP {
         let h = 1e-4 * base[p].abs().max(1.0);
         let at = |step: f64| {
             let mut v = base;
             v[p] += step;
-            m.with_params_flat(v).kinematics_flat(&x, &k.q, &tight).unwrap()
+            m.with_params_flat(v).kinematics_flat(&x, &k.q, &floor).unwrap()
         };
         let (hi, lo, hi2, lo2) = (at(h), at(-h), at(h / 2.0), at(-h / 2.0));
         let fd = |f: &dyn Fn(&Kin<N, NI, NO>) -> f64| {
@@ -48,21 +48,21 @@ where
             let vn = of(v);
             let got = if v < N { s.q[v][p] } else { s.out[v - N][p] };
             let f = fd(&|k| value(k, v));
-            assert!(close(got, f, 1e-7), "d{vn}/d{name}: {got} vs {f}");
+            assert_close!(got, f, rel = 1e-7, "d{vn}/d{name}: {got} vs {f}");
             for i in 0..NI {
                 let got = if v < N { s.dq[v][i][p] } else { s.dout[v - N][i][p] };
                 let f = fd(&|k| first(k, v, i));
-                assert!(close(got, f, 1e-7), "d(d{vn}/dx{i})/d{name}: {got} vs {f}");
+                assert_close!(got, f, rel = 1e-7, "d(d{vn}/dx{i})/d{name}: {got} vs {f}");
                 for j in 0..NI {
                     let got = if v < N { s.d2q[v][i][j][p] } else { s.d2out[v - N][i][j][p] };
                     let f = fd(&|k| second(k, v, i, j));
-                    assert!(close(got, f, 1e-7), "d(d2{vn}/dx{i}dx{j})/d{name}: {got} vs {f}");
+                    assert_close!(got, f, rel = 1e-7, "d(d2{vn}/dx{i}dx{j})/d{name}: {got} vs {f}");
                 }
             }
         }
     }
     // The kinematic part equals the plain solve.
-    let plain = m.kinematics_flat(&x, &guess, &tight).unwrap();
+    let plain = m.kinematics_flat(&x, &guess, &floor).unwrap();
     assert_eq!(plain.q, k.q);
     assert_eq!(plain.d2out, k.d2out);
 }
@@ -142,7 +142,7 @@ fn named_sensitivities_match_flat() {
     assert_eq!(sens.q.x_c.l_p, sens.flat.q[2][2]);
     // X_C = R_P cos(phi1) - L_P cos(phi2): d X_C / d L_P = -cos(phi2) + L_P sin(phi2) dphi2/dL_P.
     let expected = -st.q.phi2.cos() + 3.0 * st.q.phi2.sin() * sens.q.phi2.l_p;
-    assert!((sens.q.x_c.l_p - expected).abs() < 1e-12);
+    assert_close!(sens.q.x_c.l_p, expected, tol::SOLVE);
     assert_eq!(sens.out.gap.l_b, sens.q.x_f.l_b - sens.q.x_c.l_b);
     // Flat, the outputs are the points' x and y (s1, s2, s4), then the scalar output: seven.
     assert_eq!(<RhombicDrive as Mechanism<4, 1, 7>>::NAME, "RhombicDrive");

@@ -6,7 +6,7 @@
 use kinloop_fixtures::gear_lever::GearLever;
 use std::f64::consts::PI;
 
-use crate::support::wrap;
+use crate::support::{tol, wrap};
 
 /// The paper's explicit formulas (u = z1/z3, L = carrier, l = pin radius).
 fn explicit(big_l: f64, l: f64, u: f64, a: f64) -> [f64; 6] {
@@ -40,14 +40,14 @@ fn gear_lever_matches_explicit_formulas_for_all_k() {
             // Newton stops at max|f| <= 1e-12, which bounds the position error by about 1e-12
             // times the inverse Jacobian's norm (about 1 here).
             assert!(wrap(st.q.phi - phi).abs() < 1e-11, "phi at {a}: {} vs {phi}", st.q.phi);
-            assert!((st.q.s - s).abs() < 1e-11);
+            assert_close!(st.q.s, s, 1e-11);
             assert!((st.dq.phi - om).abs() <= 1e-9 * om.abs().max(1.0), "omega_r at {a}");
             assert!((st.d2q.phi - eps).abs() <= 1e-9 * eps.abs().max(1.0), "eps_r at {a}: {} vs {eps}", st.d2q.phi);
             assert!((st.dq.s - ds).abs() <= 1e-9 * ds.abs().max(1.0), "ds at {a}");
-            assert!((st.out.b.x - x).abs() < 1e-14, "the pin is an explicit output");
+            assert_close!(st.out.b.x, x, tol::ULPS, "the pin is an explicit output");
         }
         // The rocker turns once per carrier turn: the continuous solution gains 2 pi.
-        assert!((guess.phi - 2.0 * PI).abs() < 1e-9, "k = {k}: phi ends at {}", guess.phi);
+        assert_close!(guess.phi, 2.0 * PI, 1e-9, "k = {k}: phi ends at {}", guess.phi);
     }
 }
 
@@ -63,10 +63,10 @@ fn gear_lever_analogs_match_central_finite_differences() {
         let fd1 = (p.phi - n.phi) / (2.0 * h);
         let fd2 = (p.phi - 2.0 * c.phi + n.phi) / (h * h);
         // Truncation error of the central differences is O(h^2 q''') and O(h^2 q'''').
-        assert!((st.dq.phi - fd1).abs() < 1e-6 * st.dq.phi.abs().max(1.0), "at {a}");
-        assert!((st.d2q.phi - fd2).abs() < 1e-4 * st.d2q.phi.abs().max(1.0), "at {a}: {} vs {fd2}", st.d2q.phi);
+        assert_close!(st.dq.phi, fd1, 1e-6 * st.dq.phi.abs().max(1.0), "at {a}");
+        assert_close!(st.d2q.phi, fd2, 1e-4 * st.d2q.phi.abs().max(1.0), "at {a}: {} vs {fd2}", st.d2q.phi);
         let fds = (p.s - n.s) / (2.0 * h);
-        assert!((st.dq.s - fds).abs() < 1e-6 * st.dq.s.abs().max(1.0));
+        assert_close!(st.dq.s, fds, 1e-6 * st.dq.s.abs().max(1.0));
     }
 }
 

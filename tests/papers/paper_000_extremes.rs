@@ -53,8 +53,8 @@ fn extreme_positions_strokes_and_phase_shift_match_the_closed_forms() {
     let shift = |a: f64, b: f64| (a - b).to_degrees().rem_euclid(360.0);
     let outer = shift(xf.max.x, xc.min.x);
     let inner = shift(xf.min.x, xc.max.x);
-    assert!((outer - shift(at[2].1, at[0].1)).abs() < 1e-8);
-    assert!((inner - shift(at[3].1, at[1].1)).abs() < 1e-8);
+    assert_close!(outer, shift(at[2].1, at[0].1), 1e-8);
+    assert_close!(inner, shift(at[3].1, at[1].1), 1e-8);
 
     // The closed forms the example prints, against the stationary points of the explicit
     // positions (each slider-crank's triangle solved for the slider): values exact to rounding,
@@ -67,13 +67,14 @@ fn extreme_positions_strokes_and_phase_shift_match_the_closed_forms() {
     for (k, ((_, want_at), want)) in at.into_iter().zip([c_outer, c_inner, x_f0, x_fmin]).enumerate() {
         let f = |a: f64| position(k, a);
         found[k] = stationary(f, want_at - 0.3, want_at + 0.3);
-        assert!((f(found[k]) - want).abs() < 1e-12, "extreme {k}: {} vs {want}", f(found[k]));
+        assert_close!(f(found[k]), want, tol::SOLVE, "extreme {k}: {} vs {want}", f(found[k]));
         assert!(wrap(found[k] - want_at).abs() < 1e-10, "extreme {k} at {} vs {want_at}", found[k]);
     }
     // Strokes and phase shifts from the explicit positions alone.
-    assert!((xc.span() - (x_c(found[1]) - x_c(found[0]))).abs() < 1e-12);
-    assert!((xf.span() - (x_f(found[2]) - x_f(found[3]))).abs() < 1e-12);
-    assert!((outer - shift(found[2], found[0])).abs() < 1e-8 && (inner - shift(found[3], found[1])).abs() < 1e-8);
+    assert_close!(xc.span(), x_c(found[1]) - x_c(found[0]), tol::SOLVE);
+    assert_close!(xf.span(), x_f(found[2]) - x_f(found[3]), tol::SOLVE);
+    assert_close!(outer, shift(found[2], found[0]), 1e-8);
+    assert_close!(inner, shift(found[3], found[1]), 1e-8);
 }
 
 #[test]

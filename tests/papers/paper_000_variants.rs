@@ -10,7 +10,7 @@ use std::f64::consts::{PI, TAU};
 
 use kinloop_fixtures::{DisplacerRodDrive, WorkingRodDrive};
 
-use crate::support::{argmax, close, dead_centres, newton_to_default_step, richardson, stationary, wrap};
+use crate::support::{argmax, dead_centres, newton_to_default_step, richardson, stationary, tol, wrap};
 
 /// Fig. 1's published closed form (paper 000) with one crank pin (R_P = R_B = r,
 /// gamma = 0): (positions, velocity analogs, acceleration analogs) of [phi2, phi4, X_C, X_F].
@@ -47,7 +47,7 @@ fn loops_close_and_positions_match_a_triangle_construction() {
         let phi2 = (dy / m2.l_p).asin();
         let x_c = dx - m2.l_p * phi2.cos();
         for (got, want) in [(s.q.phi4, phi4), (s.q.x_f, x_f), (s.q.phi2, phi2), (s.q.x_c, x_c), (s.out.d.x, dx)] {
-            assert!((got - want).abs() < 1e-12, "Fig. 2 at {phi1}: {got} vs {want}");
+            assert_close!(got, want, tol::SOLVE, "Fig. 2 at {phi1}: {got} vs {want}");
         }
     }
     let m3 = WorkingRodDrive::default();
@@ -61,7 +61,7 @@ fn loops_close_and_positions_match_a_triangle_construction() {
         let phi4 = PI - ((dy - m3.de) / m3.l_b).asin();
         let x_f = dx - m3.l_b * phi4.cos();
         for (got, want) in [(s.q.phi2, phi2), (s.q.x_c, x_c), (s.q.phi4, phi4), (s.q.x_f, x_f), (s.out.d.y, dy)] {
-            assert!((got - want).abs() < 1e-12, "Fig. 3 at {phi1}: {got} vs {want}");
+            assert_close!(got, want, tol::SOLVE, "Fig. 3 at {phi1}: {got} vs {want}");
         }
     }
 }
@@ -82,22 +82,35 @@ fn analogs_match_finite_differences() {
         for u in 0..4 {
             // With h = 1e-2: truncation ~1e-10, position errors 5e-13 give ~5e-11 and ~3e-8.
             let (f1, f2) = richardson(|x| q2(x)[u], phi1, h);
-            assert!(
-                close(dq2[u], f1, 1e-9),
+            assert_close!(
+                dq2[u],
+                f1,
+                rel = tol::FD_FIRST,
                 "Fig. 2 d{} at {phi1}: {} vs {f1}",
                 DisplacerRodDrive::UNKNOWNS[u],
                 dq2[u]
             );
-            assert!(
-                close(d2q2[u], f2, 1e-6),
+            assert_close!(
+                d2q2[u],
+                f2,
+                rel = tol::FD_SECOND,
                 "Fig. 2 d2{} at {phi1}: {} vs {f2}",
                 DisplacerRodDrive::UNKNOWNS[u],
                 d2q2[u]
             );
             let (f1, f2) = richardson(|x| q3(x)[u], phi1, h);
-            assert!(close(dq3[u], f1, 1e-9), "Fig. 3 d{} at {phi1}: {} vs {f1}", WorkingRodDrive::UNKNOWNS[u], dq3[u]);
-            assert!(
-                close(d2q3[u], f2, 1e-6),
+            assert_close!(
+                dq3[u],
+                f1,
+                rel = tol::FD_FIRST,
+                "Fig. 3 d{} at {phi1}: {} vs {f1}",
+                WorkingRodDrive::UNKNOWNS[u],
+                dq3[u]
+            );
+            assert_close!(
+                d2q3[u],
+                f2,
+                rel = tol::FD_SECOND,
                 "Fig. 3 d2{} at {phi1}: {} vs {f2}",
                 WorkingRodDrive::UNKNOWNS[u],
                 d2q3[u]
@@ -114,7 +127,7 @@ fn assert_fig1<const NO: usize>(fig: &str, unknowns: [&str; 4], s: &Kin<4, 1, NO
     for o in 0..3 {
         for u in 0..4 {
             let tol = if o == 0 { 1e-12 } else { 1e-9 };
-            assert!(close(got[o][u], want[o][u], tol), "{fig} order {o} #{u} at {}", s.x[0]);
+            assert_close!(got[o][u], want[o][u], rel = tol, "{fig} order {o} #{u} at {}", s.x[0]);
         }
     }
 }
@@ -154,9 +167,9 @@ fn strokes_and_extremes_printed_by_the_example() {
     let e_b = m2.e_p - m2.de;
     // The displacer group of Fig. 2 is Fig. 1's: the paper's X_F0 and X_Fmin.
     let (x_f0, x_fmin) = dead_centres(m2.l_b, m2.r, e_b);
-    assert!((f.max.value - x_f0).abs() < 1e-12);
-    assert!((f.min.value - x_fmin).abs() < 1e-12);
-    assert!((f.span() - (x_f0 - x_fmin)).abs() < 1e-12);
+    assert_close!(f.max.value, x_f0, tol::SOLVE);
+    assert_close!(f.min.value, x_fmin, tol::SOLVE);
+    assert_close!(f.span(), x_f0 - x_fmin, tol::SOLVE);
     // The piston's extremes of Fig. 2 are where its analog vanishes: against the stationary
     // points of the triangle construction (independent of the helpers).
     let x_c = |phi1: f64| {
@@ -166,8 +179,9 @@ fn strokes_and_extremes_printed_by_the_example() {
         dx - m2.l_p * (dy / m2.l_p).asin().cos()
     };
     let [lo, hi] = extremes(x_c);
-    assert!((c.min.value - lo.1).abs() < 1e-12 && (c.max.value - hi.1).abs() < 1e-12);
-    assert!((c.span() - (hi.1 - lo.1)).abs() < 1e-12);
+    assert_close!(c.min.value, lo.1, tol::SOLVE);
+    assert_close!(c.max.value, hi.1, tol::SOLVE);
+    assert_close!(c.span(), hi.1 - lo.1, tol::SOLVE);
     assert!(wrap(c.min.x - lo.0).abs() < 1e-9 && wrap(c.max.x - hi.0).abs() < 1e-9);
 
     let m3 = WorkingRodDrive::default();
@@ -175,8 +189,8 @@ fn strokes_and_extremes_printed_by_the_example() {
     let (c, f) = (t3.range(WorkingRodDrive::COL.x_c).unwrap(), t3.range(WorkingRodDrive::COL.x_f).unwrap());
     let (c_outer, c_inner) =
         (-((m3.l_p + m3.r).powi(2) - m3.e_p * m3.e_p).sqrt(), -((m3.l_p - m3.r).powi(2) - m3.e_p * m3.e_p).sqrt());
-    assert!((c.min.value - c_outer).abs() < 1e-12);
-    assert!((c.span() - (c_inner - c_outer)).abs() < 1e-12);
+    assert_close!(c.min.value, c_outer, tol::SOLVE);
+    assert_close!(c.span(), c_inner - c_outer, tol::SOLVE);
     // The displacer of Fig. 3 from the triangle construction; the phase shifts the example
     // prints from the stationary points of both constructions.
     let (x_c, x_f) = (
@@ -189,8 +203,8 @@ fn strokes_and_extremes_printed_by_the_example() {
         },
     );
     let ([c_lo, c_hi], [f_lo, f_hi]) = (extremes(x_c), extremes(x_f));
-    assert!((f.span() - (f_hi.1 - f_lo.1)).abs() < 1e-12);
+    assert_close!(f.span(), f_hi.1 - f_lo.1, tol::SOLVE);
     let shift = |a: f64, b: f64| (a - b).to_degrees().rem_euclid(360.0);
-    assert!((shift(f.max.x, c.min.x) - shift(f_hi.0, c_lo.0)).abs() < 1e-6);
-    assert!((shift(f.min.x, c.max.x) - shift(f_lo.0, c_hi.0)).abs() < 1e-6);
+    assert_close!(shift(f.max.x, c.min.x), shift(f_hi.0, c_lo.0), 1e-6);
+    assert_close!(shift(f.min.x, c.max.x), shift(f_lo.0, c_hi.0), 1e-6);
 }

@@ -67,19 +67,19 @@ fn dwell_duration_quality_and_peak_acceleration_match_the_explicit_formulas() {
             // themselves carry the Newton tolerance (~1e-12).
             let centre = 2.0 * PI / 3.0 * i as f64;
             assert_eq!(d.first.kind, ExtremeKind::Max);
-            assert!(((d.start.x + d.end.x) / 2.0 - centre).abs() < 1e-10, "k = {k}, stop {i}");
-            assert!((d.duration() - duration).abs() < 1e-10, "k = {k}: {} vs {duration}", d.duration());
-            assert!((d.swing() - swing).abs() < 1e-10, "k = {k}: {} vs {swing}", d.swing());
+            assert_close!((d.start.x + d.end.x) / 2.0, centre, 1e-10, "k = {k}, stop {i}");
+            assert_close!(d.duration(), duration, 1e-10, "k = {k}: {} vs {duration}", d.duration());
+            assert_close!(d.swing(), swing, 1e-10, "k = {k}: {} vs {swing}", d.swing());
             // The located extremes are where omega_r = 0 in the explicit formula.
             assert!(explicit(k, d.first.x()).1.abs() < 1e-10 && explicit(k, d.second.x()).1.abs() < 1e-10);
         }
         // Brent locates the peak to ~1e-8 rad; the value is then exact to ~1e-15 relative.
-        assert!((acc - peak).abs() < 1e-9 * peak, "k = {k}: {acc} vs {peak}");
-        assert!((explicit(k, x_peak).2 - acc).abs() < 1e-9 * peak);
+        assert_close!(acc, peak, 1e-9 * peak, "k = {k}: {acc} vs {peak}");
+        assert_close!(explicit(k, x_peak).2, acc, 1e-9 * peak);
         // The printed numbers (degrees, rounded to 6 decimals).
-        assert!((duration.to_degrees() - p_duration).abs() < 6e-7, "k = {k}: {}", duration.to_degrees());
-        assert!((swing.to_degrees() - p_swing).abs() < 6e-7, "k = {k}: {}", swing.to_degrees());
-        assert!((peak - p_acc).abs() < 6e-7, "k = {k}: {peak}");
+        assert_close!(duration.to_degrees(), p_duration, 6e-7, "k = {k}: {}", duration.to_degrees());
+        assert_close!(swing.to_degrees(), p_swing, 6e-7, "k = {k}: {}", swing.to_degrees());
+        assert_close!(peak, p_acc, 6e-7, "k = {k}: {peak}");
         // The paper's finding: the farther the pin from the planet centre, the longer the dwell
         // and the worse its quality (and the harder the acceleration).
         assert!(duration > previous.0 && swing > previous.1 && peak > previous.2, "k = {k}");
@@ -92,5 +92,6 @@ fn the_stops_do_not_depend_on_size() {
     // Angular results depend on the ratios only: scale every length by 2.5.
     let (a, _) = with_helpers(1.3);
     let (b, _) = stops(&GearLever { l_c: 5.0, l_p: 1.3 * 2.5, u: 3.0 }).unwrap();
-    assert!((a[0].duration() - b[0].duration()).abs() < 1e-10 && (a[0].swing() - b[0].swing()).abs() < 1e-10);
+    assert_close!(a[0].duration(), b[0].duration(), 1e-10);
+    assert_close!(a[0].swing(), b[0].swing(), 1e-10);
 }

@@ -6,7 +6,7 @@
 
 use kinloop_fixtures::roller_edger::{RollerEdger, closed, solved};
 
-use crate::support::{circle_point, richardson, stationary};
+use crate::support::{circle_point, richardson, stationary, tol};
 
 #[test]
 fn all_links_match_the_closed_forms_over_the_stroke() {
@@ -20,8 +20,10 @@ fn all_links_match_the_closed_forms_over_the_stroke() {
             // from the same factorisation, to the same tolerance; contour 2 inherits contour 1's
             // error.
             for o in 0..3 {
-                assert!(
-                    (got[l][o] - c[l][o]).abs() < 1e-12,
+                assert_close!(
+                    got[l][o],
+                    c[l][o],
+                    tol::SOLVE,
                     "link {l}, order {o} at t = {}: {} vs {}",
                     s.input.t,
                     got[l][o],
@@ -68,12 +70,8 @@ fn all_links_match_a_construction_with_differentiated_time() {
                 // The construction's own rounding (square roots of differences) is ~1e-14; the
                 // Newton tolerance 1e-12 bounds the solved angles.
                 let tol = [1e-11, 1e-10, 1e-9][order];
-                assert!(
-                    (got[l][order] - want).abs() < tol,
-                    "link {l} order {order} at {t}: {} vs {want}",
-                    got[l][order]
-                );
-                assert!((c[l][order] - want).abs() < tol, "closed form, link {l} order {order} at {t}");
+                assert_close!(got[l][order], want, tol, "link {l} order {order} at {t}: {} vs {want}", got[l][order]);
+                assert_close!(c[l][order], want, tol, "closed form, link {l} order {order} at {t}");
             }
         }
     }
@@ -89,13 +87,13 @@ fn cylinder_one_turns_back_where_it_is_perpendicular_to_link_three() {
     let run = kinloop::analysis::Sampled::sweep(&m, 0.0, 6.0, 61, m.guess(0.0).into()).unwrap();
     let top = run.range(RollerEdger::COL.phi1).unwrap().max;
     let t_star = ((m.l5 * m.l5 - m.l3 * m.l3).sqrt() - m.l1) / m.v1;
-    assert!((top.x - t_star).abs() < 1e-9, "{} vs {t_star}", top.x);
+    assert_close!(top.x, t_star, 1e-9, "{} vs {t_star}", top.x);
     let apex = closed(&m, t_star)[0][0];
-    assert!((top.value - apex).abs() < 1e-12);
+    assert_close!(top.value, apex, tol::SOLVE);
     // Independently: the construction's phi1 is stationary at t* (located to ~1e-13 / |phi1''|
     // ~ 1e-10 s), and there the cylinder is perpendicular to link 3.
     let geo = construction(&m, t_star);
-    assert!((stationary(|t| construction(&m, t)[0], 1.0, 5.0) - t_star).abs() < 1e-8);
+    assert_close!(stationary(|t| construction(&m, t)[0], 1.0, 5.0), t_star, 1e-8);
     assert!((geo[0] - apex).abs() < 1e-12 && (geo[0] - geo[1]).cos().abs() < 1e-12);
-    assert!((m.solve(6.0).unwrap().q.phi1 - m.solve(0.0).unwrap().q.phi1).abs() < 1e-12);
+    assert_close!(m.solve(6.0).unwrap().q.phi1, m.solve(0.0).unwrap().q.phi1, tol::SOLVE);
 }

@@ -4,12 +4,11 @@
 //! with the paper's own method, solved independently: track the free angle of link DBF until
 //! the two four-bars close together (here by bisection on the closure of EF).
 
-use kinloop::NewtonConfig;
 use std::f64::consts::TAU;
 
 use kinloop_fixtures::ClassFour;
 
-use crate::support::{bisect, richardson, wrap};
+use crate::support::{bisect, newton_to_default_step, richardson, tol, wrap};
 
 /// The paper's way, independently: for a trial angle `th2` of link DBF, D and F are known; C is
 /// the intersection of the circles (A, AC) and (D, CD) on the side `side` of A->D; then E
@@ -66,7 +65,8 @@ fn full_turn_against_the_tracking_solution() {
     }
     // A full turn brings the group back (a crank-driven, fully rotatable linkage).
     let (a, b) = (states[0].q, states[720].q);
-    assert!((a.th1 - b.th1).abs() < 1e-11 && (a.psi2 - b.psi2).abs() < 1e-11);
+    assert_close!(a.th1, b.th1, 1e-11);
+    assert_close!(a.psi2, b.psi2, 1e-11);
     // Well conditioned throughout.
     assert!(states.iter().all(|s| s.health.min_pivot > 0.5));
 }
@@ -77,18 +77,18 @@ fn analogs_match_finite_differences() {
     // Positions solved until the Newton step is below 1e-13 (1 + |q|); Richardson-extrapolated
     // central differences with h = 1e-2: truncation ~1e-10, position errors give ~5e-11 and
     // ~3e-8 on the first and second derivatives.
-    let tight = NewtonConfig::default().with_residual_tol(0.0);
+    let step = newton_to_default_step();
     let h = 1e-2;
     for i in 0..36 {
         let phi = 0.05 + TAU * i as f64 / 36.0;
         let s = m.solve(phi).unwrap();
-        let q = |x: f64| -> [f64; 4] { m.position_with(x, &s.q, &tight).unwrap().0.into() };
+        let q = |x: f64| -> [f64; 4] { m.position_with(x, &s.q, &step).unwrap().0.into() };
         let (dq, d2q): ([f64; 4], [f64; 4]) = (s.dq.into(), s.d2q.into());
         for u in 0..4 {
             let (f1, f2) = richardson(|x| q(x)[u], phi, h);
             let name = ClassFour::UNKNOWNS[u];
-            assert!((dq[u] - f1).abs() < 1e-9 * dq[u].abs().max(1.0), "d{name} at {phi}: {} vs {f1}", dq[u]);
-            assert!((d2q[u] - f2).abs() < 1e-6 * d2q[u].abs().max(1.0), "d2{name} at {phi}: {} vs {f2}", d2q[u]);
+            assert_close!(dq[u], f1, tol::FD_FIRST * dq[u].abs().max(1.0), "d{name} at {phi}: {} vs {f1}", dq[u]);
+            assert_close!(d2q[u], f2, tol::FD_SECOND * d2q[u].abs().max(1.0), "d2{name} at {phi}: {} vs {f2}", d2q[u]);
         }
     }
 }
@@ -116,7 +116,7 @@ fn rows_printed_by_the_example_against_the_tracking_solution() {
         for u in 0..4 {
             assert!(wrap(got[u] - want[u]).abs() < 1e-11, "{} at {phi}", ClassFour::UNKNOWNS[u]);
             let (fd, _) = richardson(|x| track(x)[u], phi, 1e-2);
-            assert!((dq[u] - fd).abs() < 1e-9 * dq[u].abs().max(1.0), "d{} at {phi}", ClassFour::UNKNOWNS[u]);
+            assert_close!(dq[u], fd, tol::FD_FIRST * dq[u].abs().max(1.0), "d{} at {phi}", ClassFour::UNKNOWNS[u]);
         }
     }
 }

@@ -10,7 +10,7 @@ use std::f64::consts::{PI, TAU};
 
 use kinloop_fixtures::balancing::{Balance, PHASE, design, phased, unbalance};
 
-use crate::support::{argmax, stationary, wrap};
+use crate::support::{argmax, stationary, tol, wrap};
 
 /// X_C and X_F against the crank angle from paper 000's closed form (piston rod to the left,
 /// displacer rod to the right).
@@ -61,16 +61,16 @@ fn residual_unbalance_of_the_reference_design() {
     let (d, at, amp2) = d_closed(&m);
     // Both sides are exact to rounding (geometric convergence of the sums; roots located to
     // rounding), apart from the kinematics' Newton tolerance.
-    assert!((r.max_abs - d).abs() < 1e-12, "{} vs {d}", r.max_abs);
-    assert!((r.at.x - at).abs() < 1e-6);
-    assert!((f.amplitude(2) - amp2).abs() < 1e-12);
+    assert_close!(r.max_abs, d, tol::SOLVE, "{} vs {d}", r.max_abs);
+    assert_close!(r.at.x, at, 1e-6);
+    assert_close!(f.amplitude(2), amp2, tol::SOLVE);
     // The residual peaks at alpha = 90 degrees, by a symmetry of the design: both groups share
     // one crank pin and the same dimensions, so X_c = -cos(alpha) + a function of sin(alpha)
     // alone, which is even about the crank's vertical (alpha -> pi - alpha), and so is the
     // residual. D = 3.008e-2 (`docs/papers.md`).
-    assert!((r.at.x - PI / 2.0).abs() < 1e-9);
+    assert_close!(r.at.x, PI / 2.0, 1e-9);
     let rest = |a: f64| xc_closed(&m, a) + a.cos();
-    assert!((rest(0.3) - rest(PI - 0.3)).abs() < 1e-14);
+    assert_close!(rest(0.3), rest(PI - 0.3), tol::ULPS);
     // The paper's finding: the second harmonic dominates what remains.
     assert!(f.amplitude(2) > 0.9 * r.max_abs && f.amplitude(2) > 10.0 * f.amplitude(3));
 }
@@ -85,11 +85,11 @@ fn trends_against_rod_length_and_eccentricity() {
     let d_k = by_k.map(|k| family(2.0, k));
     for (g, d) in by_gamma.into_iter().zip(d_gamma) {
         let want = d_closed(&Balance { gamma: g, gamma_b: g, ..Balance::default() }).0;
-        assert!((d - want).abs() < 1e-12, "gamma = {g}: {d} vs {want}");
+        assert_close!(d, want, tol::SOLVE, "gamma = {g}: {d} vs {want}");
     }
     for (k, d) in by_k.into_iter().zip(d_k) {
         let want = d_closed(&Balance { k, k_b: k, ..Balance::default() }).0;
-        assert!((d - want).abs() < 1e-12, "k = {k}: {d} vs {want}");
+        assert_close!(d, want, tol::SOLVE, "k = {k}: {d} vs {want}");
     }
     // Shorter rods: more unbalance (as the paper finds). More eccentricity: more unbalance in
     // this family (the paper finds the opposite for its parameterisation; see the example).
@@ -111,7 +111,7 @@ fn nelder_mead_finds_the_exact_balance() {
     let best = cfg.minimize_boxed(|p| unbalance(&design(*p), 32), [1.3, 2.7, 0.2, 0.1], lo, hi);
     assert!(best.converged(), "{best:?}");
     for (got, want) in best.x.iter().zip([1.5, 3.0, 0.3, 0.0]) {
-        assert!((got - want).abs() < 1e-6, "{best:?}");
+        assert_close!(*got, want, 1e-6, "{best:?}");
     }
     assert!(best.value < 1e-9);
 }
@@ -132,7 +132,7 @@ fn phase_constrained_optimum_printed_by_the_example() {
     let (at_c, at_f) = (stationary(&x_c, at_c - 0.1, at_c + 0.1), stationary(&x_f, at_f - 0.1, at_f + 0.1));
     assert!(wrap(at_f - at_c - PHASE).abs() < 1e-9, "{}", (at_f - at_c).to_degrees());
     let d = unbalance(&m, 128);
-    assert!((d - d_closed(&m).0).abs() < 1e-12);
+    assert_close!(d, d_closed(&m).0, tol::SOLVE);
     // Optimal in the box: stepping into it along each parameter increases D.
     for p in [[0.52, 6.0, 1.0], [0.5, 5.9, 1.0], [0.5, 6.0, 0.99]] {
         assert!(unbalance(&phased(p), 128) > d, "{p:?}");

@@ -7,7 +7,7 @@ use std::f64::consts::PI;
 use kinloop_fixtures::RhombicDrive;
 use kinloop_fixtures::rhombic::GALLERY_DRIVE;
 
-use crate::support::close;
+use crate::support::tol;
 
 /// The example's drive, with centres of mass of its own.
 const DRIVE: RhombicDrive = RhombicDrive { l_as1: 0.4, psi_s1: 0.3, l_cs2: 1.1, l_fs4: 1.6, ..GALLERY_DRIVE };
@@ -86,8 +86,8 @@ fn rhombic_drive_matches_published_closed_form_over_a_full_turn() {
         for u in 0..4 {
             let name = RhombicDrive::UNKNOWNS[u];
             assert!((q[u] - c.q[u]).abs() <= 1e-12, "{name} at {phi1}: {} vs {}", q[u], c.q[u]);
-            assert!(close(dq[u], c.dq[u], 1e-9), "d{name} at {phi1}: {} vs {}", dq[u], c.dq[u]);
-            assert!(close(d2q[u], c.d2q[u], 1e-9), "d2{name} at {phi1}: {} vs {}", d2q[u], c.d2q[u]);
+            assert_close!(dq[u], c.dq[u], rel = 1e-9, "d{name} at {phi1}: {} vs {}", dq[u], c.dq[u]);
+            assert_close!(d2q[u], c.d2q[u], rel = 1e-9, "d2{name} at {phi1}: {} vs {}", d2q[u], c.d2q[u]);
         }
         let pts = [
             (st.out.s1, st.dout.s1, st.d2out.s1),
@@ -100,8 +100,10 @@ fn rhombic_drive_matches_published_closed_form_over_a_full_turn() {
             for o in 0..3 {
                 for xy in 0..2 {
                     let tol = if o == 0 { 1e-12 } else { 1e-9 };
-                    assert!(
-                        close(got[o][xy], want[o][xy], tol),
+                    assert_close!(
+                        got[o][xy],
+                        want[o][xy],
+                        rel = tol,
                         "point {p} order {o} comp {xy} at {phi1}: {} vs {}",
                         got[o][xy],
                         want[o][xy]
@@ -116,8 +118,10 @@ fn rhombic_drive_matches_published_closed_form_over_a_full_turn() {
     }
     // The paper: phi4 runs over 2.911..3.616 rad (partly in the 3rd quadrant, no 2 pi jump) and
     // phi2 over -0.167..0.524 for these dimensions.
-    assert!((phi4_min - 2.911).abs() < 1e-3 && (phi4_max - 3.616).abs() < 1e-3, "{phi4_min}..{phi4_max}");
-    assert!((phi2_min + 0.167).abs() < 1e-3 && (phi2_max - 0.524).abs() < 1e-3, "{phi2_min}..{phi2_max}");
+    assert_close!(phi4_min, 2.911, 1e-3, "{phi4_min}..{phi4_max}");
+    assert_close!(phi4_max, 3.616, 1e-3, "{phi4_min}..{phi4_max}");
+    assert_close!(phi2_min, -0.167, 1e-3, "{phi2_min}..{phi2_max}");
+    assert_close!(phi2_max, 0.524, 1e-3, "{phi2_min}..{phi2_max}");
 }
 
 #[test]
@@ -126,7 +130,7 @@ fn paper_s1_velocity_sign_is_derived_not_copied() {
     let m = DRIVE;
     let st = m.solve(0.2).unwrap();
     let expected = -m.l_as1 * (0.2 + m.psi_s1).sin();
-    assert!((st.dout.s1.x - expected).abs() < 1e-14);
+    assert_close!(st.dout.s1.x, expected, tol::ULPS);
     assert!(st.dout.s1.x < 0.0);
 }
 
@@ -136,9 +140,9 @@ fn true_motion_from_analogs() {
     let st = m.solve(1.0).unwrap();
     let (w, e) = (12.0, -3.0);
     let mo = st.motion(w, e).unwrap();
-    assert!((mo.qdot.x_c - st.dq.x_c * w).abs() < 1e-12);
-    assert!((mo.qddot.x_c - (st.d2q.x_c * w * w + st.dq.x_c * e)).abs() < 1e-10);
-    assert!((mo.out_ddot.s2.y - (st.d2out.s2.y * w * w + st.dout.s2.y * e)).abs() < 1e-10);
+    assert_close!(mo.qdot.x_c, st.dq.x_c * w, tol::SOLVE);
+    assert_close!(mo.qddot.x_c, st.d2q.x_c * w * w + st.dq.x_c * e, 1e-10);
+    assert_close!(mo.out_ddot.s2.y, st.d2out.s2.y * w * w + st.dout.s2.y * e, 1e-10);
     assert!(st.motion(f64::NAN, 0.0).is_err());
 }
 

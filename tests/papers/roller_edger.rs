@@ -53,8 +53,8 @@ fn roller_edger_matches_closed_forms_in_time() {
         let (bx, by) = (sb * phi2.cos(), sb * phi2.sin());
         let phi4 = (ay - by).atan2(ax - bx);
         // The construction inherits phi3's error and its own rounding.
-        assert!((st.q.phi2 - phi2).abs() < 1e-10, "phi2 at {t}");
-        assert!((st.q.phi4 - phi4).abs() < 1e-10, "phi4 at {t}: {} vs {phi4}", st.q.phi4);
+        assert_close!(st.q.phi2, phi2, 1e-10, "phi2 at {t}");
+        assert_close!(st.q.phi4, phi4, 1e-10, "phi4 at {t}: {} vs {phi4}", st.q.phi4);
     }
 }
 

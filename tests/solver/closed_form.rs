@@ -8,7 +8,7 @@
 //! agree to 1e-13, analogs to 1e-11 relative. Where the closed form has no root, the error is
 //! the same typed `NoAssembly` as Newton's.
 
-use crate::support::newton_to_rounding;
+use crate::support::{newton_to_rounding, tol};
 use kinloop::{Error, Kin, Mechanism, NewtonConfig, QuantityKind, Sweep, SweepConfig};
 use kinloop_fixtures::gear_lever::{GEAR_LEVER_TEXT, GearLever};
 use kinloop_fixtures::roller_edger::{ROLLER_EDGER_TEXT, RollerEdger};
@@ -354,8 +354,8 @@ fn angles_stay_on_the_guess_turn() {
         g.beta += turns * TAU;
         g.gamma += turns * TAU;
         let s = m.kinematics(0.3, &g).unwrap();
-        assert!((s.q.beta - k.q.beta - turns * TAU).abs() < 1e-12, "{turns}: {:?}", s.q);
-        assert!((s.q.gamma - k.q.gamma - turns * TAU).abs() < 1e-12, "{turns}: {:?}", s.q);
+        assert_close!(s.q.beta - k.q.beta, turns * TAU, tol::SOLVE, "{turns}: {:?}", s.q);
+        assert_close!(s.q.gamma - k.q.gamma, turns * TAU, tol::SOLVE, "{turns}: {:?}", s.q);
     }
 }
 
@@ -440,7 +440,7 @@ fn an_angle_too_many_turns_out_is_named() {
         ] {
             let q = r.unwrap_or_else(|e| panic!("{path}: {e}")).q;
             for &u in angles {
-                assert!((q[u] - far(1e5)[u]).abs() < 1e-6, "{path}: {q:?}");
+                assert_close!(q[u], far(1e5)[u], 1e-6, "{path}: {q:?}");
             }
         }
     }
@@ -509,8 +509,8 @@ fn closed_forms_are_scale_free() {
         for k in 0..36 {
             let phi = k as f64 * TAU / 36.0;
             let (x, y) = (m.solve(phi).unwrap(), s.solve(phi).unwrap());
-            assert!((x.q.beta - y.q.beta).abs() < 1e-14 * x.q.beta.abs().max(1.0), "{scale} {phi}");
-            assert!((x.q.gamma - y.q.gamma).abs() < 1e-14 * x.q.gamma.abs().max(1.0), "{scale} {phi}");
+            assert_close!(x.q.beta, y.q.beta, tol::ULPS * x.q.beta.abs().max(1.0), "{scale} {phi}");
+            assert_close!(x.q.gamma, y.q.gamma, tol::ULPS * x.q.gamma.abs().max(1.0), "{scale} {phi}");
         }
     }
 }

@@ -10,7 +10,7 @@ use std::f64::consts::PI;
 
 use kinloop_fixtures::{ClassFour, ClassFourDense, RhombicDrive, RhombicDriveDense};
 
-use crate::support::{close, richardson_first};
+use crate::support::{richardson_first, tol};
 
 #[test]
 fn class_four_is_one_coupled_four_unknown_block() {
@@ -67,10 +67,10 @@ fn rhombic_drive_splits_into_its_groups_with_sliders_in_closed_form() {
 }
 
 /// `|a - b| <= tol * max(1, |b|)`, with a message naming what differs.
-fn assert_close(what: &str, a: &[f64], b: &[f64], tol: f64) {
+fn assert_all_close(what: &str, a: &[f64], b: &[f64], tol: f64) {
     assert_eq!(a.len(), b.len());
     for (k, (x, y)) in a.iter().zip(b).enumerate() {
-        assert!(close(*x, *y, tol), "{what}[{k}]: {x} vs {y} (difference {})", (x - y).abs());
+        assert_close!(*x, *y, rel = tol, "{what}[{k}]");
     }
 }
 
@@ -79,12 +79,12 @@ fn assert_close(what: &str, a: &[f64], b: &[f64], tol: f64) {
 fn assert_same_as_dense<const N: usize, const NO: usize>(at: &str, a: &Kin<N, 1, NO>, b: &Kin<N, 1, NO>) {
     let first = |v: &[[f64; 1]]| v.iter().map(|d| d[0]).collect::<Vec<_>>();
     let second = |v: &[[[f64; 1]; 1]]| v.iter().map(|d| d[0][0]).collect::<Vec<_>>();
-    assert_close(&format!("q {at}"), &a.q, &b.q, 1e-12);
-    assert_close(&format!("dq {at}"), &first(&a.dq), &first(&b.dq), 1e-12);
-    assert_close(&format!("d2q {at}"), &second(&a.d2q), &second(&b.d2q), 1e-12);
-    assert_close(&format!("outputs {at}"), &a.out, &b.out, 1e-12);
-    assert_close(&format!("output analogs {at}"), &first(&a.dout), &first(&b.dout), 1e-12);
-    assert_close(&format!("output acceleration analogs {at}"), &second(&a.d2out), &second(&b.d2out), 1e-12);
+    assert_all_close(&format!("q {at}"), &a.q, &b.q, tol::SOLVE);
+    assert_all_close(&format!("dq {at}"), &first(&a.dq), &first(&b.dq), tol::SOLVE);
+    assert_all_close(&format!("d2q {at}"), &second(&a.d2q), &second(&b.d2q), tol::SOLVE);
+    assert_all_close(&format!("outputs {at}"), &a.out, &b.out, tol::SOLVE);
+    assert_all_close(&format!("output analogs {at}"), &first(&a.dout), &first(&b.dout), tol::SOLVE);
+    assert_all_close(&format!("output acceleration analogs {at}"), &second(&a.d2out), &second(&b.d2out), tol::SOLVE);
 }
 
 #[test]
@@ -122,9 +122,9 @@ fn class_four_decomposed_equals_dense_and_assembles_over_a_turn() {
         let plus: [f64; 4] = m.kinematics(phi + h, &a.q).expect("phi + h").q.into();
         let minus: [f64; 4] = m.kinematics(phi - h, &a.q).expect("phi - h").q.into();
         let fd: Vec<f64> = plus.iter().zip(&minus).map(|(p, q)| (p - q) / (2.0 * h)).collect();
-        assert_close(&format!("dq vs finite differences {at}"), &va, &fd, 1e-6);
+        assert_all_close(&format!("dq vs finite differences {at}"), &va, &fd, 1e-6);
         let fd2: Vec<f64> = plus.iter().zip(&minus).zip(&qa).map(|((p, q), c)| (p - 2.0 * c + q) / (h * h)).collect();
-        assert_close(&format!("d2q vs finite differences {at}"), &aa, &fd2, 1e-3);
+        assert_all_close(&format!("d2q vs finite differences {at}"), &aa, &fd2, 1e-3);
         // Continuity along the sweep: the same assembly mode all the way round.
         let prev: [f64; 4] = gm.into();
         assert!(qa.iter().zip(&prev).all(|(x, y)| (x - y).abs() < 0.2), "branch jump {at}: {qa:?} after {prev:?}");
@@ -133,7 +133,7 @@ fn class_four_decomposed_equals_dense_and_assembles_over_a_turn() {
     }
     // Back to the start after a full turn.
     let (end, start): ([f64; 4], [f64; 4]) = (gm.into(), first.q.into());
-    assert_close("q after a full turn", &end, &start, 1e-9);
+    assert_all_close("q after a full turn", &end, &start, 1e-9);
 }
 
 /// Richardson-extrapolated central differences of the velocity analogs (of the unknowns and of
@@ -153,11 +153,11 @@ where
         let at = |x: f64| m.kinematics_flat(&[x], &s.q, &Default::default()).unwrap();
         for u in 0..N {
             let fd = richardson_first(|x| at(x).dq[u][0], x, h);
-            assert!(close(s.d2q[u][0][0], fd, 1e-8), "d2{} at {x}: {} vs {fd}", M::UNKNOWNS[u], s.d2q[u][0][0]);
+            assert_close!(s.d2q[u][0][0], fd, rel = 1e-8, "d2{} at {x}: {} vs {fd}", M::UNKNOWNS[u], s.d2q[u][0][0]);
         }
         for o in 0..NO {
             let fd = richardson_first(|x| at(x).dout[o][0], x, h);
-            assert!(close(s.d2out[o][0][0], fd, 1e-8), "d2 output {o} at {x}: {} vs {fd}", s.d2out[o][0][0]);
+            assert_close!(s.d2out[o][0][0], fd, rel = 1e-8, "d2 output {o} at {x}: {} vs {fd}", s.d2out[o][0][0]);
         }
     }
 }

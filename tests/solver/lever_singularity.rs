@@ -251,6 +251,6 @@ fn a_slide_through_its_pivot_is_a_located_singular_crossing() {
         // within a lever of about `sqrt(eps) L` times a few of the crossing. Measured: within
         // 8.3e-7 at scales 1e-6 to 1e6 and 13 to 721 samples, on both paths.
         let ev = &sweep.events()[0];
-        assert!((ev.x[0] - 1.5 * PI).abs() < 2e-6, "scale {scale:e}: crossing at {}", ev.x[0]);
+        assert_close!(ev.x[0], 1.5 * PI, 2e-6, "scale {scale:e}: crossing at {}", ev.x[0]);
     }
 }

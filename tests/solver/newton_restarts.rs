@@ -7,6 +7,8 @@ use kinloop::{Error, Mechanism, NewtonConfig};
 use kinloop_fixtures::{ClassFour, ClassFourUnknowns};
 use std::f64::consts::PI;
 
+use crate::support::tol;
+
 /// The two loops of the group, written out here: `A + AC + CD - (B + BD)` and
 /// `A + AE + EF - (B + BF)`, each projected on X and Y.
 fn loop_gaps(m: &ClassFour, phi: f64, [th1, th2, psi1, psi2]: [f64; 4]) -> [f64; 4] {
@@ -144,7 +146,7 @@ fn a_stalled_guess_assembles_in_its_own_mode_and_starts_a_sweep() {
     let states = m.sweep(0.0, phi, 2, &m.guess(0.0)).unwrap().collect::<Result<Vec<_>, _>>().unwrap();
     let q_ref: [f64; 4] = states[1].q.into();
     for u in 0..4 {
-        assert!((q[u] - q_ref[u]).abs() < 1e-12, "{q:?} vs {q_ref:?}");
+        assert_close!(q[u], q_ref[u], tol::SOLVE, "{q:?} vs {q_ref:?}");
     }
     assert!(report.iterations > 10, "{report:?}");
     // A sweep from that guess starts (its first sample restarts) and closes the loops.

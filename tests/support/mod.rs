@@ -174,6 +174,12 @@ pub fn newton_to_rounding() -> NewtonConfig {
     NewtonConfig::default().with_residual_tol(1e-14).with_step_tol(1e-16)
 }
 
+/// Newton until the residual is at the rounding floor of unit-size loops (1e-15), with the default
+/// step tolerance: references for central differences, whose position errors the step divides.
+pub fn newton_to_residual_floor() -> NewtonConfig {
+    NewtonConfig::default().with_residual_tol(1e-15)
+}
+
 /// Newton without the residual test (tolerance 0): it stops when its step falls below the
 /// default step tolerance, 1e-13 (1 + |q|), i.e. positions within ~5e-13; for finite
 /// differences of positions, whose errors they divide by the step.

@@ -6,7 +6,7 @@ use kinloop::{AtSingular, Error, EventKind, Kin, Named, NewtonConfig, Stop, Swee
 use kinloop_fixtures::{FourBar, FourBarInputs, FourBarUnknowns};
 use std::f64::consts::PI;
 
-use crate::support::four_bar_limit;
+use crate::support::{four_bar_limit, tol};
 
 kinloop::mechanism! {
     /// The four-bar solved by Newton's method (not in closed form), so that the Newton
@@ -41,7 +41,7 @@ fn a_run_keeps_the_states_and_says_where_it_stopped() {
     assert_eq!(run.states.len(), below);
     assert!(run.states.iter().all(|s| s.input.phi < lim));
     let Stop::LimitPosition(ev) = &run.stop else { panic!("{:?}", run.stop) };
-    assert!((ev.x[0] - lim).abs() < 1e-9, "{} vs {lim}", ev.x[0]);
+    assert_close!(ev.x[0], lim, tol::LOCATED, "{} vs {lim}", ev.x[0]);
     assert_eq!(ev.kind, EventKind::LimitPosition);
     assert_eq!(run.stop.event(), Some(ev));
     assert_eq!(run.events, vec![ev.clone()]);
@@ -76,7 +76,7 @@ fn a_crossing_stop_is_reported_as_such() {
     let g = m.position(0.5, &FourBarUnknowns { beta: 0.6, gamma: 1.6 }).unwrap().0;
     let run = m.sweep(0.5, 7.0, 66, &g).unwrap().run();
     let Stop::SingularCrossing(ev) = &run.stop else { panic!("{:?}", run.stop) };
-    assert!((ev.x[0] - 2.0 * PI).abs() < 1e-9, "{:?}", ev.x);
+    assert_close!(ev.x[0], 2.0 * PI, tol::LOCATED, "{:?}", ev.x);
     // Configured on the mechanism to continue, it completes and lists the crossing.
     let cont = m.with_config(SweepConfig::default().with_at_singular(AtSingular::Continue)).unwrap();
     let run = cont.sweep(0.5, 7.0, 66, &g).unwrap().run();
@@ -132,11 +132,13 @@ fn reachable_answers_in_named_input_values() {
     let lim = limit(&m);
     let g = m.position(0.0, &m.guess(0.0)).unwrap().0;
     let r = m.reachable(0.0, FourBarInputs { phi: PI }, &g, 91).unwrap();
-    assert!((r.to.phi - lim).abs() < 1e-9 && (r.from.phi + lim).abs() < 1e-9, "{r:?} vs +-{lim}");
+    assert_close!(r.to.phi, lim, tol::LOCATED, "{r:?} vs +-{lim}");
+    assert_close!(r.from.phi, -lim, tol::LOCATED, "{r:?} vs +-{lim}");
     assert!(r.to_event.is_some() && r.from_event.is_some());
     // Within a small range, the ends of the range itself, without events.
     let r = m.reachable(0.2, 0.5, &m.position(0.2, &g).unwrap().0, 11).unwrap();
-    assert!((r.from.phi - -0.3).abs() < 1e-15 && (r.to.phi - 0.7).abs() < 1e-15, "{r:?}");
+    assert_close!(r.from.phi, -0.3, 1e-15, "{r:?}");
+    assert_close!(r.to.phi, 0.7, 1e-15, "{r:?}");
     assert!(r.from_event.is_none() && r.to_event.is_none());
 }
 

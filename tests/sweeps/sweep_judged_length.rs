@@ -15,7 +15,7 @@
 use kinloop::{Kin, Mechanism, NewtonConfig, Stop, Sweep};
 use std::f64::consts::TAU;
 
-use crate::support::four_bar_limit;
+use crate::support::{four_bar_limit, tol};
 
 kinloop::mechanism! {
     /// A crank `r` at phase `o` driving a block in a slot pivoted at `(h, 0)`, and a four-bar
@@ -63,7 +63,7 @@ fn limit() -> f64 {
 fn check<M: Mechanism<4, 1, 0>>(build: impl Fn(f64, f64) -> M) {
     let cfg = NewtonConfig::default();
     let limit = limit();
-    assert!((limit - 2.978_213_783_015_119).abs() < 1e-14);
+    assert_close!(limit, 2.978_213_783_015_119, tol::ULPS);
     let mut sweeps = 0;
     for k in [1e-3, 1.0, 1e3, 1e6] {
         for phase in 0..12 {
@@ -82,8 +82,10 @@ fn check<M: Mechanism<4, 1, 0>>(build: impl Fn(f64, f64) -> M) {
                     let Stop::LimitPosition(event) = &run.stop else {
                         panic!("{at}: the sweep did not stop at the limit position: {:?}", run.stop);
                     };
-                    assert!(
-                        (event.x[0] - limit).abs() < 1e-9,
+                    assert_close!(
+                        event.x[0],
+                        limit,
+                        tol::LOCATED,
                         "{at}: limit at {} (law of cosines {limit})",
                         event.x[0]
                     );

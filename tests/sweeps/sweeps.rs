@@ -5,7 +5,7 @@ use kinloop::{AtSingular, Error, EventKind, SweepConfig};
 use kinloop_fixtures::{FourBar, FourBarUnknowns};
 use std::f64::consts::PI;
 
-use crate::support::{four_bar_joint, four_bar_limit};
+use crate::support::{four_bar_joint, four_bar_limit, tol};
 
 /// The crank angles where coupler and rocker are collinear: `|BD| = b + c` or `|b - c|`.
 fn limit_angles(m: &FourBar) -> Vec<f64> {
@@ -31,7 +31,7 @@ fn non_grashof_four_bar_stops_at_its_limit_position() {
     assert_eq!(ev.kind, EventKind::LimitPosition);
     assert!(matches!(stop, Some(Error::SweepStopped { kind: EventKind::LimitPosition, .. })), "{stop:?}");
     let expected = lim.iter().copied().find(|l| *l > 0.0 && *l < PI).unwrap();
-    assert!((ev.x[0] - expected).abs() < 1e-9, "limit at {} vs law of cosines {expected}", ev.x[0]);
+    assert_close!(ev.x[0], expected, tol::LOCATED, "limit at {} vs law of cosines {expected}", ev.x[0]);
     assert!(last < expected && last > expected - PI / 180.0 - 1e-12);
     // At the limit position, coupler and rocker are collinear (extended): gamma = beta.
     let (beta, gamma) = (ev.q[0], ev.q[1]);
@@ -48,7 +48,8 @@ fn reachable_range_of_a_non_grashof_crank() {
     let g = m.position(0.0, &m.guess(0.0)).unwrap().0;
     let r = m.reachable(0.0, PI, &g, 91).unwrap();
     let (lo, hi) = (r.from.phi, r.to.phi);
-    assert!((hi - lim).abs() < 1e-9 && (lo + lim).abs() < 1e-9, "[{lo}, {hi}] vs +-{lim}");
+    assert_close!(hi, lim, tol::LOCATED, "[{lo}, {hi}] vs +-{lim}");
+    assert_close!(lo, -lim, tol::LOCATED, "[{lo}, {hi}] vs +-{lim}");
     // The ends are the located limit positions themselves.
     assert_eq!(r.to_event.expect("limit above").x[0], hi);
     assert_eq!(r.from_event.expect("limit below").x[0], lo);
@@ -67,7 +68,8 @@ fn near_change_point_four_bar_keeps_its_branch_over_ten_turns() {
     let side = {
         let (cx, cy) = (m.a + m.b * g.beta.cos(), m.b * g.beta.sin());
         let (px, py) = four_bar_joint(m.a, m.b, m.c, m.d, 0.0, 1.0).unwrap();
-        assert!((px - cx).abs() < 1e-9 && (py.abs() - cy.abs()).abs() < 1e-9, "({cx}, {cy}) vs ({px}, +-{py})");
+        assert_close!(px, cx, 1e-9, "({cx}, {cy}) vs ({px}, +-{py})");
+        assert_close!(py.abs(), cy.abs(), 1e-9, "({cx}, {cy}) vs ({px}, +-{py})");
         py.signum() * cy.signum()
     };
     let sweep = m.sweep(0.0, 20.0 * PI, 7201, &g).unwrap();
@@ -76,12 +78,14 @@ fn near_change_point_four_bar_keeps_its_branch_over_ten_turns() {
     for s in sweep {
         let s = s.unwrap();
         let (cx, cy) = four_bar_joint(m.a, m.b, m.c, m.d, s.input.phi, side).unwrap();
-        assert!((s.out.pc.x - cx).abs() < 1e-9 && (s.out.pc.y - cy).abs() < 1e-9, "branch jump at {}", s.input.phi);
+        assert_close!(s.out.pc.x, cx, 1e-9, "branch jump at {}", s.input.phi);
+        assert_close!(s.out.pc.y, cy, 1e-9, "branch jump at {}", s.input.phi);
         first.get_or_insert(s.q);
         last = Some(s.q);
     }
     let (f, l) = (first.unwrap(), last.unwrap());
-    assert!((f.beta - l.beta).abs() < 1e-9 && (f.gamma - l.gamma).abs() < 1e-9, "10 turns return to the start");
+    assert_close!(f.beta, l.beta, 1e-9, "10 turns return to the start");
+    assert_close!(f.gamma, l.gamma, 1e-9, "10 turns return to the start");
 }
 
 #[test]
@@ -94,7 +98,7 @@ fn change_point_crossing_is_located_and_never_silent() {
     let stop = sweep.by_ref().find_map(|s| s.err());
     assert!(matches!(stop, Some(Error::SweepStopped { kind: EventKind::SingularCrossing, .. })), "{stop:?}");
     let ev = &sweep.events()[0];
-    assert!((ev.x[0] - 2.0 * PI).abs() < 1e-9, "crossing at {}", ev.x[0]);
+    assert_close!(ev.x[0], 2.0 * PI, tol::LOCATED, "crossing at {}", ev.x[0]);
 
     // Configured to continue, the sweep passes the change point and records it.
     let cfg = SweepConfig::default().with_at_singular(AtSingular::Continue);
@@ -120,7 +124,7 @@ fn sweep_table_has_named_columns() {
     let d2 = table.column("d2(pc.y)/d(phi)^2").unwrap();
     assert_eq!(beta.len(), 73);
     assert!(dbeta.iter().chain(&d2).all(|v| v.is_finite()));
-    assert!((table.column("phi").unwrap()[72] - 2.0 * PI).abs() < 1e-15);
+    assert_close!(table.column("phi").unwrap()[72], 2.0 * PI, 1e-15);
     let mut csv = Vec::new();
     table.write_csv(&mut csv).unwrap();
     let text = String::from_utf8(csv).unwrap();
@@ -139,7 +143,7 @@ fn assembly_modes_of_a_four_bar_are_elbow_up_and_down() {
     assert_ne!(up.health.det_signs, down.health.det_signs);
     let (cx, cy) = four_bar_joint(m.a, m.b, m.c, m.d, 0.7, 1.0).unwrap();
     let c = if cy > 0.0 { up } else { down };
-    assert!((c.out.pc.x - cx).abs() < 1e-10);
+    assert_close!(c.out.pc.x, cx, 1e-10);
     // A sweep started from either mode stays in it.
     for mode in [up, down] {
         for s in m.sweep(0.7, 0.7 + 2.0 * PI, 37, &mode.q).unwrap() {
@@ -171,7 +175,8 @@ fn arclength_traces_the_whole_closed_curve_of_a_non_grashof_four_bar() {
     assert_eq!(t.folds.len(), 2, "{:?}", t.folds);
     let mut at: Vec<f64> = t.folds.iter().map(|f| f.x[0]).collect();
     at.sort_by(f64::total_cmp);
-    assert!((at[0] + lim).abs() < 1e-9 && (at[1] - lim).abs() < 1e-9, "{at:?} vs +-{lim}");
+    assert_close!(at[0], -lim, tol::LOCATED, "{at:?} vs +-{lim}");
+    assert_close!(at[1], lim, tol::LOCATED, "{at:?} vs +-{lim}");
     // Both assembly modes are on the one closed curve: the input reverses at each fold.
     assert!(t.points.iter().any(|p| p.input_rate < 0.0) && t.points.iter().any(|p| p.input_rate > 0.0));
     for p in &t.points {
