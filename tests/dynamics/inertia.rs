@@ -5,7 +5,7 @@
 //! two-input five-bar against the same construction per input.
 
 use crate::fixtures::{RhombicDrive, derivative, reduced_inertia_fd, rhombic_model};
-use crate::support::newton_to_fine_step;
+use crate::support::{newton_to_fine_step, tol};
 use kinloop::Mechanism;
 use kinloop::dynamics::{Body, Coord, MassModel, Rotation};
 
@@ -28,7 +28,7 @@ fn reduced_inertia_matches_kinetic_energy_of_differenced_positions() {
         worst = worst.max((d.reduced_inertia() - reference).abs() / reference);
         // The kinetic energy at any speed is 1/2 J omega^2.
         let t = model.kinetic_energy(&k, &[7.0]);
-        assert!((t - 0.5 * reference * 49.0).abs() <= FD_REL * t);
+        assert_close!(t, 0.5 * reference * 49.0, <= FD_REL * t);
     }
     assert!(worst <= FD_REL, "worst relative deviation {worst:e}");
 }
@@ -50,7 +50,7 @@ fn inertia_slope_matches_differenced_inertia() {
         };
         let reference = derivative(j_at, phi, 1e-3)[0];
         let scale = model.dynamics(&k, &[1.0]).unwrap().reduced_inertia();
-        assert!((slope - reference).abs() <= 1e-9 * scale, "phi {phi}: {slope} vs {reference}");
+        assert_close!(slope, reference, <= 1e-9 * scale, "phi {phi}: {slope} vs {reference}");
     }
 }
 
@@ -115,7 +115,7 @@ fn five_bar_mass_matrix_matches_differenced_partial_velocities() {
                         body.mass * (v[i][x] * v[j][x] + v[i][y] * v[j][y]) + body.inertia * v[i][r] * v[j][r]
                     })
                     .sum();
-                assert!((mass[i][j] - reference).abs() <= FD_REL * mass[0][0].max(mass[1][1]), "M[{i}][{j}]");
+                assert_close!(mass[i][j], reference, <= FD_REL * mass[0][0].max(mass[1][1]), "M[{i}][{j}]");
             }
         }
     }
@@ -145,7 +145,7 @@ fn five_bar_velocity_terms_satisfy_lagrange() {
         let d = model.dynamics(&k, &w).unwrap();
         let h = d.velocity_terms(&w);
         for i in 0..2 {
-            assert!((h[i] - reference[i]).abs() <= 1e-8, "h[{i}] = {} vs {}", h[i], reference[i]);
+            assert_close!(h[i], reference[i], <= 1e-8, "h[{i}] = {} vs {}", h[i], reference[i]);
         }
     }
 }
@@ -165,7 +165,7 @@ fn five_bar_forward_dynamics_inverts_inverse_dynamics() {
         let tau = d.drive(&w, &eps);
         let back = d.accelerations(&k.x, &w, &tau).unwrap();
         for i in 0..2 {
-            assert!((back[i] - eps[i]).abs() <= 1e-12 * eps[0].abs().max(eps[1].abs()), "{back:?} vs {eps:?}");
+            assert_close!(back[i], eps[i], <= tol::SOLVE * eps[0].abs().max(eps[1].abs()), "{back:?} vs {eps:?}");
         }
     }
     // A model without mass has a singular mass matrix: a typed error, not a NaN.
@@ -205,10 +205,10 @@ fn reduced_inertia_scales_with_length_squared() {
         let kb = big.kinematics_flat(&[phi], &g_big, &newton_to_fine_step()).unwrap();
         (g_small, g_big) = (ks.q, kb.q);
         let (a, b) = (small_model.dynamics(&ks, &[1.0]).unwrap(), big_model.dynamics(&kb, &[1.0]).unwrap());
-        assert!((b.reduced_inertia() / (s * s) - a.reduced_inertia()).abs() <= 1e-12 * a.reduced_inertia());
+        assert_close!(b.reduced_inertia() / (s * s), a.reduced_inertia(), <= tol::SOLVE * a.reduced_inertia());
         let slope_scale = a.reduced_inertia();
-        assert!((b.reduced_inertia_slope() / (s * s) - a.reduced_inertia_slope()).abs() <= 1e-12 * slope_scale);
-        assert!((b.forces[0] / s - a.forces[0]).abs() <= 1e-12 * a.forces[0].abs().max(1.0));
+        assert_close!(b.reduced_inertia_slope() / (s * s), a.reduced_inertia_slope(), <= tol::SOLVE * slope_scale);
+        assert_close!(b.forces[0] / s, a.forces[0], <= tol::SOLVE * a.forces[0].abs().max(1.0));
     }
 }
 

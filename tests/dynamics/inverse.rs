@@ -62,10 +62,10 @@ fn rhombic_driving_torque_satisfies_lagrange_equation() {
         let (_, dt_dphi, q) = lagrange_terms(&drive, gravity, p.phi, p.omega, &guess);
         let reference = dp_dt - dt_dphi - q;
         // Nested differences: J to ~1e-12, its derivative in t to ~1e-12 / 1e-3 ~ 1e-9.
-        assert!((p.torque - reference).abs() <= 1e-7 * scale, "phi {}: {} vs {reference}", p.phi, p.torque);
+        assert_close!(p.torque, reference, <= 1e-7 * scale, "phi {}: {} vs {reference}", p.phi, p.torque);
         // The cycle's own fields are consistent with the formula.
         let direct = p.inertia * p.eps + 0.5 * p.inertia_slope * p.omega * p.omega - p.load;
-        assert!((p.torque - direct).abs() <= 1e-14 * scale);
+        assert_close!(p.torque, direct, <= tol::ULPS * scale);
     }
 }
 
@@ -107,7 +107,7 @@ fn slider_crank_torque_matches_classical_closed_form() {
     };
     let scale = cycle.points.iter().map(|p| closed(p.phi).abs()).fold(0.0, f64::max);
     for p in &cycle.points {
-        assert!((p.torque - closed(p.phi)).abs() <= 1e-12 * scale, "phi {}: {} vs {}", p.phi, p.torque, closed(p.phi));
+        assert_close!(p.torque, closed(p.phi), <= tol::SOLVE * scale, "phi {}: {} vs {}", p.phi, p.torque, closed(p.phi));
     }
     // The phase of the samples: one turn from 0.1, equally spaced.
     assert_close!(cycle.points[1].phi - cycle.points[0].phi, TAU / 720.0, tol::SOLVE);

@@ -1,6 +1,7 @@
 //! The tests' own `assert_close!` (`tests/support/`): it fails where the difference reaches the
-//! tolerance or is NaN, and its message carries the label, both values, the difference and the
-//! tolerance, so that a failing check elsewhere says what it compared.
+//! tolerance (or passes the bound of the inclusive form) or is NaN, and its message carries the
+//! label, both values, the difference and the tolerance, so that a failing check elsewhere says
+//! what it compared.
 
 use crate::support::tol;
 
@@ -37,4 +38,16 @@ fn fails_on_nan() {
 fn the_relative_form_fails_beyond_its_scaled_tolerance() {
     let x_c = 2004.0;
     assert_close!(x_c, 2000.0, rel = 1e-3);
+}
+
+#[test]
+fn the_inclusive_form_admits_the_bound_itself() {
+    // 0.75 - 0.5 is exactly 0.25: inside `<= 0.25`, outside `< 0.25` (above).
+    assert_close!(0.75, 0.5, <= 0.25, "at the bound");
+}
+
+#[test]
+#[should_panic(expected = "beyond: expected 5e-1, actual 1e0, difference 5e-1, tolerance 2.5e-1 (inclusive)")]
+fn the_inclusive_form_fails_beyond_the_bound() {
+    assert_close!(1.0, 0.5, <= 0.25, "beyond");
 }

@@ -30,7 +30,7 @@ fn declared_degrees_are_radians_in_results() {
         assert_close!(s.d2q.x, -2.0 * t.cos(), tol::ULPS, "{k}");
         // The declaration's conversion and the runtime's are the same, bit for bit.
         assert_eq!(s.out.lead.to_bits(), kinloop::deg(30.0).to_bits());
-        assert!((s.out.lead - FRAC_PI_6).abs() <= f64::EPSILON * FRAC_PI_6);
+        assert_close!(s.out.lead, FRAC_PI_6, <= f64::EPSILON * FRAC_PI_6);
     }
     assert_close!(kinloop::to_deg(m.solve(kinloop::deg(45.0)).unwrap().flat.x[0]), 45.0, tol::SOLVE);
 }

@@ -105,11 +105,11 @@ fn compare<const N: usize, const NO: usize>(
     let r = &reference.rows[row];
     let pos = |u: usize, got: f64, want: f64, is_length: bool| {
         let tol = if is_length { 1e-14 * length } else { 1e-14 };
-        assert!((got - want).abs() <= tol, "{name} row {row}: position {u} {got} vs {want} (tol {tol:e})");
+        assert_close!(got, want, <= tol, "{name} row {row}: position {u} {got} vs {want} (tol {tol:e})");
     };
     let analog = |col: usize, got: f64| {
         let tol = 1e-12 * reference.column_max(col);
-        assert!((got - r[col]).abs() <= tol, "{name} row {row}: column {col} {got} vs {} (tol {tol:e})", r[col]);
+        assert_close!(got, r[col], <= tol, "{name} row {row}: column {col} {got} vs {} (tol {tol:e})", r[col]);
     };
     for u in 0..N {
         pos(u, k.q[u], r[1 + u], lengths.contains(&u));
@@ -151,7 +151,7 @@ fn check<M: Mechanism<N, 1, NO>, const N: usize, const NO: usize>(
             .unwrap();
     for (i, k) in sweep.enumerate() {
         let k = k.unwrap_or_else(|e| panic!("{name} sweep sample {i}: {e}"));
-        assert!((k.x[0] - reference.rows[i][0]).abs() <= 4.0 * f64::EPSILON * 7.0, "{name} sample {i} at {:?}", k.x);
+        assert_close!(k.x[0], reference.rows[i][0], <= 4.0 * f64::EPSILON * 7.0, "{name} sample {i} at {:?}", k.x);
         compare(name, &reference, i, &k, lengths, length);
     }
     fine_sweep(name, m, &reference, lengths, length);

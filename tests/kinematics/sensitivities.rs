@@ -137,7 +137,7 @@ fn named_sensitivities_match_flat() {
         .concat()
     };
     for (x, y) in all(&sens.flat).iter().zip(all(&at.flat)) {
-        assert!((x - y).abs() <= 1e-14 * (1.0 + y.abs()), "{x} vs {y}");
+        assert_close!(*x, y, <= tol::ULPS * (1.0 + y.abs()), "{x} vs {y}");
     }
     assert_eq!(sens.q.x_c.l_p, sens.flat.q[2][2]);
     // X_C = R_P cos(phi1) - L_P cos(phi2): d X_C / d L_P = -cos(phi2) + L_P sin(phi2) dphi2/dL_P.

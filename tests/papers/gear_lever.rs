@@ -41,9 +41,9 @@ fn gear_lever_matches_explicit_formulas_for_all_k() {
             // times the inverse Jacobian's norm (about 1 here).
             assert!(wrap(st.q.phi - phi).abs() < 1e-11, "phi at {a}: {} vs {phi}", st.q.phi);
             assert_close!(st.q.s, s, 1e-11);
-            assert!((st.dq.phi - om).abs() <= 1e-9 * om.abs().max(1.0), "omega_r at {a}");
-            assert!((st.d2q.phi - eps).abs() <= 1e-9 * eps.abs().max(1.0), "eps_r at {a}: {} vs {eps}", st.d2q.phi);
-            assert!((st.dq.s - ds).abs() <= 1e-9 * ds.abs().max(1.0), "ds at {a}");
+            assert_close!(st.dq.phi, om, <= 1e-9 * om.abs().max(1.0), "omega_r at {a}");
+            assert_close!(st.d2q.phi, eps, <= 1e-9 * eps.abs().max(1.0), "eps_r at {a}: {} vs {eps}", st.d2q.phi);
+            assert_close!(st.dq.s, ds, <= 1e-9 * ds.abs().max(1.0), "ds at {a}");
             assert_close!(st.out.b.x, x, tol::ULPS, "the pin is an explicit output");
         }
         // The rocker turns once per carrier turn: the continuous solution gains 2 pi.

@@ -85,7 +85,7 @@ fn rhombic_drive_matches_published_closed_form_over_a_full_turn() {
         let d2q: [f64; 4] = st.d2q.into();
         for u in 0..4 {
             let name = RhombicDrive::UNKNOWNS[u];
-            assert!((q[u] - c.q[u]).abs() <= 1e-12, "{name} at {phi1}: {} vs {}", q[u], c.q[u]);
+            assert_close!(q[u], c.q[u], <= tol::SOLVE, "{name} at {phi1}: {} vs {}", q[u], c.q[u]);
             assert_close!(dq[u], c.dq[u], rel = 1e-9, "d{name} at {phi1}: {} vs {}", dq[u], c.dq[u]);
             assert_close!(d2q[u], c.d2q[u], rel = 1e-9, "d2{name} at {phi1}: {} vs {}", d2q[u], c.d2q[u]);
         }

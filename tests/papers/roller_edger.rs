@@ -21,18 +21,8 @@ fn roller_edger_matches_closed_forms_in_time() {
         let ([c1, c3, _, _], [got1, got3, _, _]) = (closed(&M, t), solved(&st));
         for o in 0..3 {
             let tol = if o == 0 { 1e-12 } else { 1e-9 };
-            assert!(
-                (got1[o] - c1[o]).abs() <= tol * c1[o].abs().max(1.0),
-                "phi1 order {o} at t = {t}: {} vs {}",
-                got1[o],
-                c1[o]
-            );
-            assert!(
-                (got3[o] - c3[o]).abs() <= tol * c3[o].abs().max(1.0),
-                "phi3 order {o} at t = {t}: {} vs {}",
-                got3[o],
-                c3[o]
-            );
+            assert_close!(got1[o], c1[o], <= tol * c1[o].abs().max(1.0), "phi1 order {o} at t = {t}: {} vs {}", got1[o], c1[o]);
+            assert_close!(got3[o], c3[o], <= tol * c3[o].abs().max(1.0), "phi3 order {o} at t = {t}: {} vs {}", got3[o], c3[o]);
         }
         // Time is the input: true angular velocities are the analogs themselves.
         let mo = st.motion(1.0, 0.0).unwrap();

@@ -382,14 +382,14 @@ where
         let Ok(n) = b.kinematics_flat(&[x], &guess, &NewtonConfig::default()) else { continue };
         solves += 1;
         for u in (0..N).filter(|&u| angle[u]) {
-            assert!((n.q[u] - guess[u]).abs() <= PI, "{} from {guess:?}: {}", B::NAME, n.q[u]);
+            assert_close!(n.q[u], guess[u], <= PI, "{} from {guess:?}: {}", B::NAME, n.q[u]);
         }
         let c = a.kinematics_flat(&[x], &guess, &NewtonConfig::default()).unwrap();
         if c.health.det_signs == n.health.det_signs {
             same_mode += 1;
             for u in 0..N {
                 let tol = 8.0 * f64::EPSILON * c.q[u].abs().max(1.0);
-                assert!((n.q[u] - c.q[u]).abs() <= tol, "{} q[{u}] from {guess:?}: {} vs {}", B::NAME, n.q[u], c.q[u]);
+                assert_close!(n.q[u], c.q[u], <= tol, "{} q[{u}] from {guess:?}: {} vs {}", B::NAME, n.q[u], c.q[u]);
             }
         }
     }
@@ -487,8 +487,8 @@ fn a_limit_position_is_the_same_in_every_unit() {
         let m = SliderCrank { r: 0.1 * scale, l: 0.3 * scale, e: -0.2 * scale };
         let guess = SliderCrankUnknowns { psi: 1.5, x: 0.0 };
         let (q, _) = m.position(PI / 2.0, &guess).unwrap_or_else(|e| panic!("scale {scale}: {e}"));
-        assert!((q.psi - PI / 2.0).abs() <= 4.0 * f64::EPSILON, "scale {scale}: {}", q.psi);
-        assert!(q.x.abs() <= 1e-15 * scale, "scale {scale}: {}", q.x);
+        assert_close!(q.psi, PI / 2.0, <= 4.0 * f64::EPSILON, "scale {scale}: {}", q.psi);
+        assert_close!(q.x, 0.0, <= 1e-15 * scale, "scale {scale}: {}", q.x);
         let e = m.kinematics(PI / 2.0, &guess).unwrap_err();
         assert!(matches!(e, Error::Singular { .. }), "scale {scale}: {e}");
         let n = SliderCrankNewton { r: m.r, l: m.l, e: m.e };

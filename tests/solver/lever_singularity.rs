@@ -121,8 +121,8 @@ fn a_slide_near_its_pivot_is_as_accurate_as_its_pivot_ratio_says() {
                     // `eps L / s`, and its analog that error once more over the lever: with the
                     // pivot ratio `s / L`, bounds of `eps / pivot` and `eps / pivot^2` (twice each
                     // for the other roundings).
-                    assert!((theta - e / 2.0).abs() <= 2.0 * eps / pivot, "{at}: theta {theta:e} (pivot {pivot:e})");
-                    assert!((dtheta - 0.5).abs() <= eps / (pivot * pivot), "{at}: dtheta {dtheta} (pivot {pivot:e})");
+                    assert_close!(theta, e / 2.0, <= 2.0 * eps / pivot, "{at}: theta {theta:e} (pivot {pivot:e})");
+                    assert_close!(dtheta, 0.5, <= eps / (pivot * pivot), "{at}: dtheta {dtheta} (pivot {pivot:e})");
                 }
             }
         }
@@ -152,8 +152,8 @@ fn a_position_solve_refuses_the_lever_the_kinematics_refuse() {
                 if let Some((s, theta)) = ok_or_singular(&at, got, k, 10, 10) {
                     // The angle to the rounding of the loop's lengths over the lever.
                     let lever = 2.0 * (e / 2.0).sin();
-                    assert!((theta - e / 2.0).abs() <= 4.0 * eps / lever, "{at}: theta {theta:e}");
-                    assert!((s / scale - lever).abs() <= 4.0 * eps, "{at}: s {s:e}");
+                    assert_close!(theta, e / 2.0, <= 4.0 * eps / lever, "{at}: theta {theta:e}");
+                    assert_close!(s / scale, lever, <= 4.0 * eps, "{at}: s {s:e}");
                 }
             }
         }
@@ -198,7 +198,7 @@ fn a_cylinder_collapsed_onto_its_pivot_is_as_accurate_as_its_pivot_ratio_says() 
             // The position-only solve refuses where the kinematics do.
             let at = format!("position, scale {scale:e}, len = 1e-{k} r");
             if let Some(th) = ok_or_singular(&at, placed, k, 10, 10) {
-                assert!((th - theta).abs() <= 4.0 * eps * scale / len, "{at}: theta {th}");
+                assert_close!(th, theta, <= 4.0 * eps * scale / len, "{at}: theta {th}");
             }
         }
     }

@@ -2,6 +2,8 @@
 //! cosine): the generated code computes both with one `sin_cos` where the first of them is
 //! needed, so every use stays after its definition.
 
+use crate::support::tol;
+
 kinloop::mechanism! {
     /// `a cos(q) + b q = x`: the residual uses `cos(q)`, the Jacobian `-a sin(q) + b`.
     pub struct CosFirst {
@@ -18,9 +20,9 @@ fn cosine_before_its_sine_compiles_and_solves() {
     let x = 1.3;
     let k = m.kinematics(x, &m.guess(x)).unwrap();
     let q = k.q.q;
-    assert!((m.a * q.cos() + m.b * q - x).abs() <= 1e-12);
+    assert_close!(m.a * q.cos() + m.b * q, x, <= tol::SOLVE);
     // dq/dx = 1 / (b - a sin q); d2q/dx2 = a cos(q) q'^2 / (b - a sin q).
     let d = m.b - m.a * q.sin();
-    assert!((k.dq.q - 1.0 / d).abs() <= 1e-12);
-    assert!((k.d2q.q - m.a * q.cos() / d.powi(3)).abs() <= 1e-12);
+    assert_close!(k.dq.q, 1.0 / d, <= tol::SOLVE);
+    assert_close!(k.d2q.q, m.a * q.cos() / d.powi(3), <= tol::SOLVE);
 }

@@ -13,6 +13,8 @@ pub mod tol;
 /// string and its arguments otherwise).
 ///
 /// * `assert_close!(actual, expected, tol)`: `|actual - expected| < tol`, absolute;
+/// * `assert_close!(actual, expected, <= tol)`: `|actual - expected| <= tol`, absolute, for a
+///   bound that may be met exactly;
 /// * `assert_close!(actual, expected, rel = tol)`: [`close`]`(actual, expected, tol)`, i.e.
 ///   `|actual - expected| <= tol * max(1, |expected|)`, relative and absolute near zero.
 ///
@@ -29,6 +31,18 @@ macro_rules! assert_close {
             format_args!($($label)+),
             (actual - expected).abs(),
             tol * expected.abs().max(1.0),
+        );
+    }};
+    ($actual:expr, $expected:expr, <= $tol:expr $(,)?) => {
+        assert_close!($actual, $expected, <= $tol, "{}", stringify!($actual))
+    };
+    ($actual:expr, $expected:expr, <= $tol:expr, $($label:tt)+) => {{
+        let (actual, expected, tol): (f64, f64, f64) = ($actual, $expected, $tol);
+        assert!(
+            (actual - expected).abs() <= tol,
+            "{}: expected {expected:e}, actual {actual:e}, difference {:e}, tolerance {tol:e} (inclusive)",
+            format_args!($($label)+),
+            (actual - expected).abs(),
         );
     }};
     ($actual:expr, $expected:expr, $tol:expr $(,)?) => {
