@@ -6,26 +6,7 @@
 use kinloop_fixtures::gear_lever::GearLever;
 use std::f64::consts::PI;
 
-use crate::support::{tol, wrap};
-
-/// The paper's explicit formulas (u = z1/z3, L = carrier, l = pin radius).
-fn explicit(big_l: f64, l: f64, u: f64, a: f64) -> [f64; 6] {
-    let w = 1.0 - u;
-    let x = big_l * a.sin() + l * (w * a).sin();
-    let y = big_l * a.cos() + l * (w * a).cos();
-    let xd = big_l * a.cos() + l * w * (w * a).cos();
-    let yd = -big_l * a.sin() - l * w * (w * a).sin();
-    let xdd = -big_l * a.sin() - l * w * w * (w * a).sin();
-    let ydd = -big_l * a.cos() - l * w * w * (w * a).cos();
-    let r2 = x * x + y * y;
-    let omega_r = (xd * y - yd * x) / r2;
-    let eps_r = ((xdd * y - ydd * x) * r2 - 2.0 * (xd * y - yd * x) * (xd * x + yd * y)) / (r2 * r2);
-    // The paper's slip speed V = -(x'x + y'y)/sqrt(x^2 + y^2) is measured towards O; the
-    // distance s = |OB| grows at ds/dalpha = -V.
-    let v_slip = -(xd * x + yd * y) / r2.sqrt();
-    let phi = x.atan2(y); // = arctan(x / y), on the right branch
-    [phi, omega_r, eps_r, r2.sqrt(), -v_slip, x]
-}
+use crate::support::{gear_lever_explicit, tol, wrap};
 
 #[test]
 fn gear_lever_matches_explicit_formulas_for_all_k() {
@@ -36,7 +17,7 @@ fn gear_lever_matches_explicit_formulas_for_all_k() {
             let a = 2.0 * PI * i as f64 / 720.0;
             let st = m.kinematics(a, &guess).unwrap_or_else(|e| panic!("k = {k}, alpha = {a}: {e}"));
             guess = st.q;
-            let [phi, om, eps, s, ds, x] = explicit(2.0, k, 3.0, a);
+            let [phi, om, eps, s, ds, x] = gear_lever_explicit(2.0, k, 3.0, a);
             // Newton stops at max|f| <= 1e-12, which bounds the position error by about 1e-12
             // times the inverse Jacobian's norm (about 1 here).
             assert!(wrap(st.q.phi - phi).abs() < 1e-11, "phi at {a}: {} vs {phi}", st.q.phi);

@@ -9,21 +9,13 @@ use std::f64::consts::PI;
 
 use kinloop_fixtures::gear_lever::{GearLever, stops};
 
-use crate::support::{argmax, bisect};
+use crate::support::{argmax, bisect, gear_lever_explicit};
 
 /// The paper's explicit formulas for u = 3, L = 2, l = k: rocker angle, omega_r / omega,
 /// eps_r / omega^2.
 fn explicit(k: f64, a: f64) -> (f64, f64, f64) {
-    let x = 2.0 * a.sin() - k * (2.0 * a).sin();
-    let y = 2.0 * a.cos() + k * (2.0 * a).cos();
-    let xd = 2.0 * a.cos() - 2.0 * k * (2.0 * a).cos();
-    let yd = -2.0 * a.sin() - 2.0 * k * (2.0 * a).sin();
-    let xdd = -2.0 * a.sin() + 4.0 * k * (2.0 * a).sin();
-    let ydd = -2.0 * a.cos() - 4.0 * k * (2.0 * a).cos();
-    let r2 = x * x + y * y;
-    let w = (xd * y - yd * x) / r2;
-    let e = ((xdd * y - ydd * x) * r2 - 2.0 * (xd * y - yd * x) * (xd * x + yd * y)) / (r2 * r2);
-    (x.atan2(y), w, e)
+    let [phi, omega_r, eps_r, ..] = gear_lever_explicit(2.0, k, 3.0, a);
+    (phi, omega_r, eps_r)
 }
 
 /// Independent stop characteristics: (duration, swing, peak acceleration analog) in radians.

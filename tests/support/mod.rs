@@ -182,6 +182,27 @@ pub fn dead_centres(l: f64, r: f64, e: f64) -> (f64, f64) {
     (((l + r).powi(2) - e * e).sqrt(), ((l - r).powi(2) - e * e).sqrt())
 }
 
+/// Paper 001's explicit formulas for the gear-lever drive at carrier angle `a` (u = z1/z3, L =
+/// carrier, l = pin radius): `[phi, omega_r, eps_r, s, ds, x]`, the rocker angle, its velocity and
+/// acceleration analogs, the pin's distance from O and its analog, and the pin's x.
+pub fn gear_lever_explicit(big_l: f64, l: f64, u: f64, a: f64) -> [f64; 6] {
+    let w = 1.0 - u;
+    let x = big_l * a.sin() + l * (w * a).sin();
+    let y = big_l * a.cos() + l * (w * a).cos();
+    let xd = big_l * a.cos() + l * w * (w * a).cos();
+    let yd = -big_l * a.sin() - l * w * (w * a).sin();
+    let xdd = -big_l * a.sin() - l * w * w * (w * a).sin();
+    let ydd = -big_l * a.cos() - l * w * w * (w * a).cos();
+    let r2 = x * x + y * y;
+    let omega_r = (xd * y - yd * x) / r2;
+    let eps_r = ((xdd * y - ydd * x) * r2 - 2.0 * (xd * y - yd * x) * (xd * x + yd * y)) / (r2 * r2);
+    // The paper's slip speed V = -(x'x + y'y)/sqrt(x^2 + y^2) is measured towards O; the
+    // distance s = |OB| grows at ds/dalpha = -V.
+    let v_slip = -(xd * x + yd * y) / r2.sqrt();
+    let phi = x.atan2(y); // = arctan(x / y), on the right branch
+    [phi, omega_r, eps_r, r2.sqrt(), -v_slip, x]
+}
+
 /// Newton until the residual is at rounding level (1e-14, below the default 1e-12) or the step
 /// below 1e-16: a solve to compare other solves with.
 pub fn newton_to_rounding() -> NewtonConfig {
