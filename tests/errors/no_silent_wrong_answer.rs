@@ -36,7 +36,7 @@ fn ok_with_a_large_residual_is_impossible() {
     // residual of several length units and return Ok. There doubles are 1/8 rad apart: no angle
     // meets the tolerance on that turn, and the error says so.
     match CRANK_ROCKER.kinematics_flat(&[0.3], &[1e15, 1.5], &NewtonConfig::default()) {
-        Ok(k) => assert!(scaled_residual(&CRANK_ROCKER, 0.3, &k.q) <= 1e-12, "{k:?}"),
+        Ok(k) => assert!(scaled_residual(&CRANK_ROCKER, 0.3, &k.q) <= tol::SOLVE, "{k:?}"),
         Err(e) => assert!(matches!(e, Error::TooManyTurns { name: "beta", .. }), "{e}"),
     }
 }
@@ -97,7 +97,7 @@ fn near_a_limit_from_the_limit_configuration_is_not_no_assembly() {
     let phi = phi_lim - 1e-9;
     match m.kinematics_flat(&[phi], &[dir, dir + PI], &NewtonConfig::default()) {
         Ok(k) => {
-            assert!(scaled_residual(&m, phi, &k.q) <= 1e-12, "{k:?}");
+            assert!(scaled_residual(&m, phi, &k.q) <= tol::SOLVE, "{k:?}");
             let want = [1.0, -1.0].map(|s| four_bar_angles(m.a, m.b, m.c, m.d, phi, s).unwrap());
             // Within sqrt(1e-9) of the fold the solution is known to ~1e-16 / 1e-4.5.
             assert!(want.iter().any(|w| (0..2).all(|u| angle_apart(k.q[u], w[u]) <= 1e-9)), "{:?} vs {want:?}", k.q);
@@ -126,7 +126,7 @@ fn far_guesses_at_reachable_inputs_never_claim_no_assembly() {
             let g = [-20.0 + 40.0 * ((j * 7) % 30) as f64 / 29.0, -20.0 + 40.0 * j as f64 / 29.0];
             match m.kinematics_flat(&[phi], &g, &NewtonConfig::default()) {
                 Ok(k) => {
-                    assert!(scaled_residual(&m, phi, &k.q) <= 1e-12, "{k:?}");
+                    assert!(scaled_residual(&m, phi, &k.q) <= tol::SOLVE, "{k:?}");
                     let want = [1.0, -1.0].map(|s| four_bar_angles(m.a, m.b, m.c, m.d, phi, s).unwrap());
                     // Angles come back modulo turns: their rounding grows with their magnitude.
                     let tol = |v: f64| 8.0 * f64::EPSILON * v.abs().max(PI);
@@ -208,7 +208,7 @@ proptest::proptest! {
     ) {
         let m = FourBar { a: CRANK_ROCKER.a * scale, b: CRANK_ROCKER.b * scale, c: CRANK_ROCKER.c * scale, d: CRANK_ROCKER.d * scale };
         if let Ok(k) = m.kinematics_flat(&[phi], &[g0, g1], &NewtonConfig::default()) {
-            proptest::prop_assert!(scaled_residual(&m, phi, &k.q) <= 1e-12, "{:?}", k.q);
+            proptest::prop_assert!(scaled_residual(&m, phi, &k.q) <= tol::SOLVE, "{:?}", k.q);
             let want = [1.0, -1.0].map(|s| four_bar_angles(CRANK_ROCKER.a, CRANK_ROCKER.b, CRANK_ROCKER.c, CRANK_ROCKER.d, phi, s).unwrap());
             let tol = |v: f64| 8.0 * f64::EPSILON * v.abs().max(PI);
             proptest::prop_assert!(want.iter().any(|w| (0..2).all(|u| angle_apart(k.q[u], w[u]) <= tol(k.q[u]))), "{:?} vs {want:?}", k.q);

@@ -207,7 +207,7 @@ macro_rules! five_bar_crossing {
         };
         // The residual of a state relative to the loop's magnitude (the sum of its lengths).
         let size = m.a + m.b + m.c + m.d + m.e;
-        let closes = |k: &Kin<2, 2, 3>| m.residual_flat(&k.x, &k.q).iter().all(|r| r.abs() <= 1e-12 * size);
+        let closes = |k: &Kin<2, 2, 3>| m.residual_flat(&k.x, &k.q).iter().all(|r| r.abs() <= tol::SOLVE * size);
         let through = [2.0 * star[0] - from[0], 2.0 * star[1] - from[1]];
         let modes = kinloop::Named::assembly_modes(&m, from);
         assert_eq!(modes.len(), 2);

@@ -39,7 +39,7 @@ fn loops_close_and_positions_match_a_triangle_construction() {
     for s in m2.sweep(0.0, TAU, 721, &m2.guess(0.0)).unwrap() {
         let s = s.unwrap();
         let phi1 = s.input.phi1;
-        assert!(m2.residual(phi1, &s.q).iter().all(|r| r.abs() <= 1e-12), "Fig. 2 at {phi1}");
+        assert!(m2.residual(phi1, &s.q).iter().all(|r| r.abs() <= tol::SOLVE), "Fig. 2 at {phi1}");
         // Independent: the displacer group as in Fig. 1, then D, then the working rod from D.
         let phi4 = PI - ((m2.e_p + m2.r * phi1.sin() - m2.de) / m2.l_b).asin();
         let x_f = m2.r * phi1.cos() - m2.l_b * phi4.cos();
@@ -54,7 +54,7 @@ fn loops_close_and_positions_match_a_triangle_construction() {
     for s in m3.sweep(0.0, TAU, 721, &m3.guess(0.0)).unwrap() {
         let s = s.unwrap();
         let phi1 = s.input.phi1;
-        assert!(m3.residual(phi1, &s.q).iter().all(|r| r.abs() <= 1e-12), "Fig. 3 at {phi1}");
+        assert!(m3.residual(phi1, &s.q).iter().all(|r| r.abs() <= tol::SOLVE), "Fig. 3 at {phi1}");
         let phi2 = ((m3.e_p + m3.r * phi1.sin()) / m3.l_p).asin();
         let x_c = m3.r * phi1.cos() - m3.l_p * phi2.cos();
         let (dx, dy) = (x_c + m3.l_cd * (phi2 + m3.gamma_p).cos(), m3.l_cd * (phi2 + m3.gamma_p).sin());
@@ -126,7 +126,7 @@ fn assert_fig1<const NO: usize>(fig: &str, unknowns: [&str; 4], s: &Kin<4, 1, NO
     let got = [at.map(|u| s.q[u]), at.map(|u| s.dq[u][0]), at.map(|u| s.d2q[u][0][0])];
     for o in 0..3 {
         for u in 0..4 {
-            let tol = if o == 0 { 1e-12 } else { 1e-9 };
+            let tol = if o == 0 { tol::SOLVE } else { 1e-9 };
             assert_close!(got[o][u], want[o][u], rel = tol, "{fig} order {o} #{u} at {}", s.x[0]);
         }
     }

@@ -49,7 +49,7 @@ fn full_turn_against_the_tracking_solution() {
     let mut th2 = s0.q.th2 + 0.02; // the tracker's own start, off the solution
     for s in &states {
         let phi = s.input.phi;
-        assert!(m.residual(phi, &s.q).iter().all(|r| r.abs() < 1e-12), "loops open at {phi}");
+        assert!(m.residual(phi, &s.q).iter().all(|r| r.abs() < tol::SOLVE), "loops open at {phi}");
         // Track: bracket the root of the EF closure near the previous angle, then bisect.
         let g = |t: f64| close_with(&m, phi, t, side).3;
         let (lo, hi) = (th2 - 0.05, th2 + 0.05);

@@ -99,7 +99,7 @@ fn rhombic_drive_matches_published_closed_form_over_a_full_turn() {
             let want = [c.s[p], c.ds[p], c.d2s[p]];
             for o in 0..3 {
                 for xy in 0..2 {
-                    let tol = if o == 0 { 1e-12 } else { 1e-9 };
+                    let tol = if o == 0 { tol::SOLVE } else { 1e-9 };
                     assert_close!(
                         got[o][xy],
                         want[o][xy],

@@ -6,6 +6,8 @@
 
 use kinloop_fixtures::roller_edger::{RollerEdger, closed, solved};
 
+use crate::support::tol;
+
 const M: RollerEdger =
     RollerEdger { l1: 0.9, l3: 0.6, l5: 1.2, alpha: 0.2, v1: 0.05, l2: 1.0, s2: 0.1, l4: 0.7, l6: 1.4, beta: 0.9 };
 
@@ -20,7 +22,7 @@ fn roller_edger_matches_closed_forms_in_time() {
         guess = st.q;
         let ([c1, c3, _, _], [got1, got3, _, _]) = (closed(&M, t), solved(&st));
         for o in 0..3 {
-            let tol = if o == 0 { 1e-12 } else { 1e-9 };
+            let tol = if o == 0 { tol::SOLVE } else { 1e-9 };
             assert_close!(got1[o], c1[o], <= tol * c1[o].abs().max(1.0), "phi1 order {o} at t = {t}: {} vs {}", got1[o], c1[o]);
             assert_close!(got3[o], c3[o], <= tol * c3[o].abs().max(1.0), "phi3 order {o} at t = {t}: {} vs {}", got3[o], c3[o]);
         }

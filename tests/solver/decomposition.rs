@@ -100,7 +100,7 @@ fn rhombic_drive_decomposed_equals_dense_over_a_turn() {
         assert_same_as_dense(&format!("at phi1 = {phi1}"), &a.flat, &b.flat);
         // The decomposition is not a different answer to the same question only by accident:
         // both satisfy the loops.
-        assert!(m.residual(phi1, &a.q).iter().all(|r| r.abs() < 1e-12));
+        assert!(m.residual(phi1, &a.q).iter().all(|r| r.abs() < tol::SOLVE));
     }
 }
 

@@ -12,7 +12,8 @@ pub const ULPS: f64 = 1e-14;
 /// closed form written in the test, a closed form against Newton, a decomposed against a dense
 /// solve). Newton's default residual tolerance is 1e-12 and its final correction leaves the
 /// positions within about that (times a condition number near 1) of the exact root; the analogs
-/// reuse the Jacobian and inherit the same error.
+/// reuse the Jacobian and inherit the same error. Also the bound on a loop's residual (relative
+/// to unit-size links) after a solve with the default configuration.
 pub const SOLVE: f64 = 1e-12;
 
 /// A first derivative (velocity analog, gradient) against central differences of positions
