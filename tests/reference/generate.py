@@ -1,4 +1,4 @@
-"""High-precision references for tests/reference_mpmath.rs (50 significant digits, mpmath).
+"""High-precision references for tests/kinematics/reference_mpmath.rs (50 significant digits, mpmath).
 
 Independent of kinloop: each mechanism's loop equations are written out here by hand, solved by
 mpmath's multidimensional Newton (findroot) at 50 digits, and differentiated along the input by

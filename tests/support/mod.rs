@@ -1,6 +1,63 @@
-//! Plain numerics for the tests' independent checks (closed forms solved without kinloop).
+//! Shared by every test binary: plain numerics for the independent checks (closed forms solved
+//! without kinloop), the reference constructions several tests need, named tolerances
+//! ([`tol`]), `assert_close!`, and the Newton configurations references are solved with.
 
+use kinloop::NewtonConfig;
+use kinloop_fixtures::FiveBar;
 use std::f64::consts::{PI, TAU};
+
+pub mod tol;
+
+/// Asserts that `actual` is within a tolerance of `expected`, and on failure prints both, their
+/// difference, the tolerance and a label (by default the expression of `actual`; a format
+/// string and its arguments otherwise).
+///
+/// * `assert_close!(actual, expected, tol)`: `|actual - expected| < tol`, absolute;
+/// * `assert_close!(actual, expected, <= tol)`: `|actual - expected| <= tol`, absolute, for a
+///   bound that may be met exactly;
+/// * `assert_close!(actual, expected, rel = tol)`: [`close`]`(actual, expected, tol)`, i.e.
+///   `|actual - expected| <= tol * max(1, |expected|)`, relative and absolute near zero.
+///
+/// A NaN on either side fails both forms.
+macro_rules! assert_close {
+    ($actual:expr, $expected:expr, rel = $tol:expr $(,)?) => {
+        assert_close!($actual, $expected, rel = $tol, "{}", stringify!($actual))
+    };
+    ($actual:expr, $expected:expr, rel = $tol:expr, $($label:tt)+) => {{
+        let (actual, expected, tol): (f64, f64, f64) = ($actual, $expected, $tol);
+        assert!(
+            $crate::support::close(actual, expected, tol),
+            "{}: expected {expected:e}, actual {actual:e}, difference {:e}, tolerance {tol:e} relative ({:e} absolute)",
+            format_args!($($label)+),
+            (actual - expected).abs(),
+            tol * expected.abs().max(1.0),
+        );
+    }};
+    ($actual:expr, $expected:expr, <= $tol:expr $(,)?) => {
+        assert_close!($actual, $expected, <= $tol, "{}", stringify!($actual))
+    };
+    ($actual:expr, $expected:expr, <= $tol:expr, $($label:tt)+) => {{
+        let (actual, expected, tol): (f64, f64, f64) = ($actual, $expected, $tol);
+        assert!(
+            (actual - expected).abs() <= tol,
+            "{}: expected {expected:e}, actual {actual:e}, difference {:e}, tolerance {tol:e} (inclusive)",
+            format_args!($($label)+),
+            (actual - expected).abs(),
+        );
+    }};
+    ($actual:expr, $expected:expr, $tol:expr $(,)?) => {
+        assert_close!($actual, $expected, $tol, "{}", stringify!($actual))
+    };
+    ($actual:expr, $expected:expr, $tol:expr, $($label:tt)+) => {{
+        let (actual, expected, tol): (f64, f64, f64) = ($actual, $expected, $tol);
+        assert!(
+            (actual - expected).abs() < tol,
+            "{}: expected {expected:e}, actual {actual:e}, difference {:e}, tolerance {tol:e}",
+            format_args!($($label)+),
+            (actual - expected).abs(),
+        );
+    }};
+}
 
 /// A root of `f` in `[lo, hi]` by bisection; `f` must change sign there.
 pub fn bisect(f: impl Fn(f64) -> f64, mut lo: f64, mut hi: f64) -> f64 {
@@ -52,6 +109,12 @@ pub fn wrap(a: f64) -> f64 {
     (a + PI).rem_euclid(TAU) - PI
 }
 
+/// The distance of two angles modulo whole turns, in `[0, pi]`.
+pub fn angle_apart(a: f64, b: f64) -> f64 {
+    let d = (a - b).rem_euclid(2.0 * PI);
+    d.min(2.0 * PI - d)
+}
+
 /// Central differences with one Richardson step (h and h/2): (first, second) derivative with
 /// truncation error O(h^4) (~h^4/480 |q^(5)| and less for the second); position errors e
 /// contribute ~e/h and ~5e/h^2.
@@ -74,4 +137,94 @@ pub fn circle_point(bx: f64, by: f64, rb: f64, dx: f64, dy: f64, rd: f64, side: 
     let along = (rb * rb - rd * rd + dist * dist) / (2.0 * dist);
     let h = (rb * rb - along * along).max(0.0).sqrt();
     (bx + (along * ux - side * h * uy) / dist, by + (along * uy + side * h * ux) / dist)
+}
+
+/// Joint C of the four-bar O-B-C-D (crank `a` from O at `phi`, coupler `b`, rocker `c`, frame
+/// `d` from O along x) from the circles (B, b) and (D, c), on side `side` of B -> D (+1 left,
+/// -1 right); `None` where the circles do not meet.
+pub fn four_bar_joint(a: f64, b: f64, c: f64, d: f64, phi: f64, side: f64) -> Option<(f64, f64)> {
+    let (bx, by) = (a * phi.cos(), a * phi.sin());
+    let dist = (d - bx).hypot(by);
+    if dist > b + c || dist < (b - c).abs() {
+        return None;
+    }
+    Some(circle_point(bx, by, b, d, 0.0, c, side))
+}
+
+/// The four-bar's coupler and rocker angles (of B -> C and D -> C) at `phi`, from
+/// [`four_bar_joint`]; `None` where it cannot be assembled.
+pub fn four_bar_angles(a: f64, b: f64, c: f64, d: f64, phi: f64, side: f64) -> Option<[f64; 2]> {
+    let (cx, cy) = four_bar_joint(a, b, c, d, phi, side)?;
+    let (bx, by) = (a * phi.cos(), a * phi.sin());
+    Some([(cy - by).atan2(cx - bx), cy.atan2(cx - d)])
+}
+
+/// The crank angle in `[0, pi]` where the four-bar's diagonal `|BD|` equals `r` (`b + c`: coupler
+/// and rocker stretched, `|b - c|`: folded), by the law of cosines; NaN where it never does.
+pub fn four_bar_limit(a: f64, d: f64, r: f64) -> f64 {
+    ((a * a + d * d - r * r) / (2.0 * a * d)).acos()
+}
+
+/// The fixtures' five-bar at inputs `th1`, `th2`: C from the circles (B, b) and (D, c), B the
+/// tip of crank `a` at the origin and D of crank `e` at (d, 0), on side `side` of B -> D (+1
+/// left, -1 right), with the angles of B -> C and D -> C: `(cx, cy, phi2, phi3)`.
+pub fn five_bar_joint(m: &FiveBar, th1: f64, th2: f64, side: f64) -> (f64, f64, f64, f64) {
+    let (bx, by) = (m.a * th1.cos(), m.a * th1.sin());
+    let (dx, dy) = (m.d + m.e * th2.cos(), m.e * th2.sin());
+    let (cx, cy) = circle_point(bx, by, m.b, dx, dy, m.c, side);
+    (cx, cy, (cy - by).atan2(cx - bx), (cy - dy).atan2(cx - dx))
+}
+
+/// The dead centres of an offset slider-crank (crank `r`, rod `l`, the guide `e` off the crank's
+/// axis): the slider's distance from the axis along the guide where crank and rod are stretched,
+/// `sqrt((l + r)^2 - e^2)`, and folded, `sqrt((l - r)^2 - e^2)`: paper 000's `X_F0` and `X_Fmin`.
+pub fn dead_centres(l: f64, r: f64, e: f64) -> (f64, f64) {
+    (((l + r).powi(2) - e * e).sqrt(), ((l - r).powi(2) - e * e).sqrt())
+}
+
+/// Paper 001's explicit formulas for the gear-lever drive at carrier angle `a` (u = z1/z3, L =
+/// carrier, l = pin radius): `[phi, omega_r, eps_r, s, ds, x]`, the rocker angle, its velocity and
+/// acceleration analogs, the pin's distance from O and its analog, and the pin's x.
+pub fn gear_lever_explicit(big_l: f64, l: f64, u: f64, a: f64) -> [f64; 6] {
+    let w = 1.0 - u;
+    let x = big_l * a.sin() + l * (w * a).sin();
+    let y = big_l * a.cos() + l * (w * a).cos();
+    let xd = big_l * a.cos() + l * w * (w * a).cos();
+    let yd = -big_l * a.sin() - l * w * (w * a).sin();
+    let xdd = -big_l * a.sin() - l * w * w * (w * a).sin();
+    let ydd = -big_l * a.cos() - l * w * w * (w * a).cos();
+    let r2 = x * x + y * y;
+    let omega_r = (xd * y - yd * x) / r2;
+    let eps_r = ((xdd * y - ydd * x) * r2 - 2.0 * (xd * y - yd * x) * (xd * x + yd * y)) / (r2 * r2);
+    // The paper's slip speed V = -(x'x + y'y)/sqrt(x^2 + y^2) is measured towards O; the
+    // distance s = |OB| grows at ds/dalpha = -V.
+    let v_slip = -(xd * x + yd * y) / r2.sqrt();
+    let phi = x.atan2(y); // = arctan(x / y), on the right branch
+    [phi, omega_r, eps_r, r2.sqrt(), -v_slip, x]
+}
+
+/// Newton until the residual is at rounding level (1e-14, below the default 1e-12) or the step
+/// below 1e-16: a solve to compare other solves with.
+pub fn newton_to_rounding() -> NewtonConfig {
+    NewtonConfig::default().with_residual_tol(1e-14).with_step_tol(1e-16)
+}
+
+/// Newton until the residual is at the rounding floor of unit-size loops (1e-15), with the default
+/// step tolerance: references for central differences, whose position errors the step divides.
+pub fn newton_to_residual_floor() -> NewtonConfig {
+    NewtonConfig::default().with_residual_tol(1e-15)
+}
+
+/// Newton without the residual test (tolerance 0): it stops when its step falls below the
+/// default step tolerance, 1e-13 (1 + |q|), i.e. positions within ~5e-13; for finite
+/// differences of positions, whose errors they divide by the step.
+pub fn newton_to_default_step() -> NewtonConfig {
+    NewtonConfig::default().with_residual_tol(0.0)
+}
+
+/// Newton with the residual test out of reach (1e-300) and the step down to 1e-15: positions
+/// converged to rounding, for differences of positions divided by h or h^2, which the default
+/// residual tolerance (1e-12) would dominate.
+pub fn newton_to_fine_step() -> NewtonConfig {
+    NewtonConfig::default().with_residual_tol(1e-300).with_step_tol(1e-15)
 }

@@ -1,0 +1,16 @@
+//! Analysis on top of sweeps: design metrics, objectives with exact gradients, `Sampled` along
+//! paths through the input space, and the synthesis example.
+//!
+//! One test binary per subject: each module below was a binary of its own, and every binary
+//! links the whole library. A new test file of this subject goes into this folder with a
+//! `mod` line here; `support` (`tests/support/`) is shared by every binary.
+
+#[allow(dead_code, unused_macros)] // not every binary uses every helper
+#[macro_use]
+#[path = "../support/mod.rs"]
+mod support;
+
+mod metrics_mechanisms;
+mod objectives;
+mod sampled_paths;
+mod synthesis;

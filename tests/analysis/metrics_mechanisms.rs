@@ -1,0 +1,130 @@
+//! Design metrics on declared mechanisms against closed forms: the quick-return ratio of a
+//! crank-shaper (oscillating slotted lever), the transmission angle of random four-bars over a
+//! full turn, and the Grashof class against what a sweep can actually do.
+
+use kinloop::analysis::Sampled;
+use kinloop::metrics::{FourBarLinks, GrashofClass, grashof, limit_report, time_ratio_over, transmission_over};
+use kinloop_fixtures::FourBar;
+use proptest::prelude::*;
+use std::f64::consts::{FRAC_PI_2, PI, TAU};
+
+use crate::support::{four_bar_angles, four_bar_limit, tol};
+
+kinloop::mechanism! {
+    /// Crank-shaper: crank `r` about the origin; its pin slides in a lever pivoted at
+    /// `(0, -d)` (`d > r`, so the lever oscillates); the lever's line drives a ram on `y = h`.
+    pub struct CrankShaper {
+        params r, d, h;
+        input phi;
+        unknowns psi = 1.5, s = d, x = 0, u = h + d;
+        loop pin: r @ phi == (0, -d) + s @ psi;
+        loop ram: (x, h) == (0, -d) + u @ psi;
+    }
+}
+
+/// The closed form of the crank-shaper: the lever's extremes are where the crank is
+/// perpendicular to it, `alpha = asin(r / d)` either side of vertical; the crank turns
+/// `pi + 2 alpha` for one stroke and `pi - 2 alpha` for the other.
+fn shaper_ratio(r: f64, d: f64) -> f64 {
+    let alpha = (r / d).asin();
+    (PI + 2.0 * alpha) / (PI - 2.0 * alpha)
+}
+
+#[test]
+fn quick_return_ratio_of_a_crank_shaper_matches_its_closed_form_in_any_unit() {
+    for (r, d, h) in [(0.1, 0.2, 0.25), (100.0, 200.0, 250.0), (100e-6, 150e-6, 400e-6), (3.0, 10.0, 2.0)] {
+        let m = CrankShaper { r, d, h };
+        // Start away from the extremes (anywhere works; the seam is handled too).
+        let turn = Sampled::sweep(&m, 0.2, 0.2 + TAU, 181, m.guess(0.2).into()).unwrap();
+        let alpha = (r / d).asin();
+        for column in [CrankShaper::COL.psi, CrankShaper::COL.x] {
+            let t = time_ratio_over(&turn, column).unwrap();
+            // Extremes are located to rounding (roots of the velocity analog), the ratio to a
+            // few ulps times its condition.
+            assert_close!(t.ratio(), shaper_ratio(r, d), 1e-10 * shaper_ratio(r, d), "{column}: {t:?}");
+            assert_close!(t.rising + t.falling, TAU, tol::SOLVE);
+        }
+        let psi = time_ratio_over(&turn, CrankShaper::COL.psi).unwrap();
+        assert_close!(psi.max.value, FRAC_PI_2 + alpha, tol::SOLVE, "{psi:?}");
+        assert_close!(psi.min.value, FRAC_PI_2 - alpha, tol::SOLVE);
+        // The lever rises (psi grows) while the crank runs the long way round, pi + 2 alpha.
+        assert_close!(psi.rising, PI + 2.0 * alpha, 1e-9, "{psi:?}");
+    }
+}
+
+proptest! {
+    #![proptest_config(ProptestConfig { cases: 32, ..ProptestConfig::default() })]
+
+    /// Over a full turn of a random crank-rocker, `cos mu = (b^2 + c^2 - a^2 - d^2 + 2 a d
+    /// cos phi) / (2 b c)` is monotone in `cos phi`: the smallest acute transmission angle is at
+    /// `phi = 0` or `pi`. The rocker's swing is between the two collinear positions of crank
+    /// and coupler (`|AC| = b - a` and `b + a`). Scales from 1e-2 to 1e3: the solver's residual
+    /// tolerance is absolute, so far smaller mechanisms lose relative accuracy in their positions.
+    #[test]
+    fn transmission_angle_and_swing_of_random_crank_rockers(
+        a in 0.2f64..1.0, b in 1.0f64..4.0, c in 1.0f64..4.0, d in 1.0f64..4.0, scale_exp in -2.0f64..3.0,
+    ) {
+        let g = grashof(FourBarLinks { ground: d, input: a, coupler: b, output: c });
+        prop_assume!(matches!(g, Ok(g) if g.class == GrashofClass::CrankRocker && g.margin < -0.02));
+        let k = 10f64.powf(scale_exp);
+        let m = FourBar { a: a * k, b: b * k, c: c * k, d: d * k };
+        // The open assembly (C left of B -> D) as the guess.
+        let guess = four_bar_angles(m.a, m.b, m.c, m.d, 0.0, 1.0).unwrap();
+        let turn = Sampled::sweep(&m, 0.0, TAU, 181, guess).unwrap();
+        let mu = transmission_over(&turn, FourBar::COL.beta, FourBar::COL.gamma).unwrap();
+        let cos_mu = |phi: f64| (b * b + c * c - a * a - d * d + 2.0 * a * d * phi.cos()) / (2.0 * b * c);
+        let worst = cos_mu(0.0).abs().max(cos_mu(PI).abs());
+        // The solver stops at an absolute residual of 1e-12 (length units): angles then carry
+        // up to about that over the link lengths, times the loop's conditioning (kept modest
+        // by the Grashof margin); plus rounding. Compare cosines (acos is ill-conditioned near 0).
+        let tol = 1e-12 + 10.0 * 1e-12 / (k * a);
+        prop_assert!((mu.min.angle.cos() - worst).abs() < tol, "{:?} vs acos {}", mu, worst);
+        let at_dead_centre = |x: f64| x.abs() < 1e-9 || (x - PI).abs() < 1e-9 || (x - TAU).abs() < 1e-9;
+        prop_assert!(at_dead_centre(mu.min.x), "{:?}", mu);
+        prop_assert!(mu.dead_points.is_empty());
+
+        let limits = limit_report(&m, 0.0, TAU, 181, guess, &[FourBar::COL.gamma]).unwrap();
+        prop_assert!(limits.events.is_empty() && limits.reached.1 == TAU);
+        let theta = |e: f64| ((d * d + c * c - e * e) / (2.0 * d * c)).acos();
+        let swing = (theta(b - a) - theta(b + a)).abs();
+        let ex = &limits.outputs[0].extremes;
+        prop_assert_eq!(ex.len(), 2);
+        prop_assert!(((ex[0].value() - ex[1].value()).abs() - swing).abs() < 10.0 * tol, "{:?} vs {}", ex, swing);
+    }
+
+    /// A non-Grashof four-bar cannot turn its input: the sweep meets a limit position of the
+    /// input, where the report places it; a crank (Grashof, input shortest) goes round.
+    #[test]
+    fn the_grashof_class_predicts_whether_the_input_turns(
+        a in 0.2f64..4.0, b in 0.2f64..4.0, c in 0.2f64..4.0, d in 0.2f64..4.0,
+    ) {
+        let Ok(g) = grashof(FourBarLinks { ground: d, input: a, coupler: b, output: c }) else {
+            return Ok(());
+        };
+        prop_assume!(g.margin.abs() > 0.02);
+        let m = FourBar { a, b, c, d };
+        let Some(guess) = four_bar_angles(a, b, c, d, 0.0, 1.0) else { return Ok(()) };
+        let r = limit_report(&m, 0.0, TAU, 361, guess, &[]).unwrap();
+        let went_round = r.reached.1 == TAU;
+        prop_assert_eq!(went_round, g.input_turns, "{:?} {}", g, r);
+        prop_assert_eq!(r.input_limits().count(), usize::from(!g.input_turns));
+    }
+}
+
+/// A non-Grashof four-bar whose coupler and rocker are stretched within 8e-5 of their length at
+/// the start (found by the property test above): the input's limit, where `|BD| = b + c`, lies
+/// 0.0082 rad on, before the second sample. The report gives it, at its closed form, with the
+/// start as the range reached.
+#[test]
+fn a_limit_before_the_second_sample_is_reported() {
+    let (a, b, c, d) = (0.8866455380657977, 0.22395128782516954, 0.29708768544839576, 1.4076032175831328);
+    let m = FourBar { a, b, c, d };
+    let guess = four_bar_angles(a, b, c, d, 0.0, 1.0).unwrap();
+    let r = limit_report(&m, 0.0, TAU, 361, guess, &[FourBar::COL.gamma]).unwrap();
+    let limit = four_bar_limit(a, d, b + c);
+    assert_eq!(r.reached, (0.0, 0.0), "{r}");
+    let limits: Vec<f64> = r.input_limits().map(|e| e.x[0]).collect();
+    assert_eq!(limits.len(), 1, "{r}");
+    assert_close!(limits[0], limit, tol::LOCATED, "{} against {limit}", limits[0]);
+    assert!(r.outputs[0].extremes.is_empty(), "{r}");
+}

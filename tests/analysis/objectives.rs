@@ -1,0 +1,86 @@
+//! Objectives over a sweep with exact gradients: extremes of the rhombic drive's displacer
+//! against the paper's closed forms, their gradients and locations against finite differences,
+//! and the integral of an output.
+
+use kinloop::{Extreme, NewtonConfig, extremum, integral};
+use kinloop_fixtures::RhombicDrive;
+use std::f64::consts::PI;
+
+use crate::support::{dead_centres, tol};
+
+/// The gallery drive (its centres of mass do not enter the objectives).
+const M: RhombicDrive = kinloop_fixtures::rhombic::GALLERY_DRIVE;
+
+/// `docs/papers.md`, paper 000: X_F0 = sqrt((L_B + R_B)^2 - e_B^2), X_Fmin = sqrt((L_B - R_B)^2 - e_B^2).
+fn closed_extremes(m: &RhombicDrive) -> (f64, f64) {
+    dead_centres(m.l_b, m.r_b, m.e_p - m.de)
+}
+
+#[test]
+fn displacer_extremes_match_the_paper_with_gradients() {
+    let cfg = NewtonConfig::default();
+    let g = M.guess(0.0);
+    let max = extremum(&M, RhombicDrive::COL.x_f, Extreme::Max, 0.0..=2.0 * PI, 73, g.into(), &cfg).unwrap();
+    let min = extremum(&M, RhombicDrive::COL.x_f, Extreme::Min, 0.0..=2.0 * PI, 73, g.into(), &cfg).unwrap();
+    let (x0, x1) = closed_extremes(&M);
+    assert_close!(max.value, x0, tol::SOLVE, "X_F0");
+    assert_close!(min.value, x1, tol::SOLVE, "X_Fmin");
+    // Gradients of the closed forms, e.g. d X_F0 / d L_B = (L_B + R_B) / X_F0.
+    let e_b = M.e_p - M.de;
+    let l = RhombicDrive::PARAMS.iter().position(|p| *p == "l_b").unwrap();
+    assert_close!(max.grad[l], (M.l_b + M.r_b) / x0, 1e-9);
+    assert_close!(min.grad[l], (M.l_b - M.r_b) / x1, 1e-9);
+    let e = RhombicDrive::PARAMS.iter().position(|p| *p == "e_p").unwrap();
+    assert_close!(max.grad[e], -e_b / x0, 1e-9);
+    // The extremum's location moves as finite differences say (the centres of mass, the last
+    // four parameters, do not move it: their gradients vanish).
+    for p in 0..RhombicDrive::PARAMS.len() {
+        let h = 1e-5;
+        let at = |s: f64| {
+            let mut v = M.param_values();
+            v[p] += s;
+            let m = RhombicDrive::from_param_values(v);
+            extremum(&m, RhombicDrive::COL.x_f, Extreme::Max, 0.0..=2.0 * PI, 73, m.guess(0.0).into(), &cfg).unwrap()
+        };
+        let (a, b) = (at(h), at(-h));
+        let fd_x = (a.x - b.x) / (2.0 * h);
+        let fd_v = (a.value - b.value) / (2.0 * h);
+        assert_close!(
+            max.x_grad[p],
+            fd_x,
+            1e-6 * (1.0 + fd_x.abs()),
+            "{}: {} vs {fd_x}",
+            RhombicDrive::PARAMS[p],
+            max.x_grad[p]
+        );
+        assert_close!(max.grad[p], fd_v, 1e-7 * (1.0 + fd_v.abs()));
+    }
+}
+
+#[test]
+fn integral_of_an_output_and_its_gradient() {
+    let cfg = NewtonConfig::default();
+    let (v, g) = integral(&M, RhombicDrive::COL.gap, 0.0, 2.0 * PI, 181, M.guess(0.0).into(), &cfg).unwrap();
+    // Independent: trapezoid over the closed-form gap X_F - X_C.
+    let e_b = M.e_p - M.de;
+    let gap = |m: &RhombicDrive, phi: f64| {
+        let s4 = (e_b + m.r_b * (phi + m.gamma).sin()) / m.l_b;
+        let s2 = (m.e_p + m.r_p * phi.sin()) / m.l_p;
+        let x_f = m.r_b * (phi + m.gamma).cos() + m.l_b * (1.0 - s4 * s4).sqrt();
+        x_f - (m.r_p * phi.cos() - m.l_p * (1.0 - s2 * s2).sqrt())
+    };
+    let h = 2.0 * PI / 180.0;
+    let reference: f64 =
+        (0..=180).map(|k| if k == 0 || k == 180 { 0.5 } else { 1.0 } * h * gap(&M, k as f64 * h)).sum();
+    assert_close!(v, reference, 1e-10, "{v} vs {reference}");
+    let l = RhombicDrive::PARAMS.iter().position(|p| *p == "l_b").unwrap();
+    let dh = 1e-6;
+    let mut mp = M;
+    mp.l_b += dh;
+    let mut mm = M;
+    mm.l_b -= dh;
+    let fd = (integral(&mp, RhombicDrive::COL.gap, 0.0, 2.0 * PI, 181, mp.guess(0.0).into(), &cfg).unwrap().0
+        - integral(&mm, RhombicDrive::COL.gap, 0.0, 2.0 * PI, 181, mm.guess(0.0).into(), &cfg).unwrap().0)
+        / (2.0 * dh);
+    assert_close!(g[l], fd, 1e-6 * fd.abs(), "{} vs {fd}", g[l]);
+}

@@ -1,0 +1,141 @@
+//! `Sampled` along a straight path through the input space of a two-input mechanism (the
+//! five-bar): the jets along the path against central finite differences of positions solved
+//! independently (circle intersection) at nearby points of the path, extremes located on the
+//! path against a dense scan of the same construction, and the path parameter's two choices
+//! (fraction of the path, one input).
+
+use crate::support::{five_bar_joint, richardson, tol};
+use kinloop::Error;
+use kinloop::analysis::{Column, Jet, Sampled};
+use kinloop_fixtures::FiveBar;
+
+const M: FiveBar = FiveBar { a: 1.0, b: 2.5, c: 2.2, d: 1.5, e: 1.2 };
+const FROM: [f64; 2] = [0.4, 1.6];
+const TO: [f64; 2] = [2.6, 0.5];
+
+/// The inputs at fraction `s` of the path.
+fn inputs(s: f64) -> [f64; 2] {
+    [FROM[0] + s * (TO[0] - FROM[0]), FROM[1] + s * (TO[1] - FROM[1])]
+}
+
+/// Columns of the five-bar at inputs `x` by construction: C on the left of B -> D, the link
+/// angles from it. Returns `[phi2, phi3, pc.x, pc.y, spread, th2]`.
+fn construction(x: [f64; 2]) -> [f64; 6] {
+    let (cx, cy, p2, p3) = five_bar_joint(&M, x[0], x[1], 1.0);
+    [p2, p3, cx, cy, p3 - p2, x[1]]
+}
+
+fn columns() -> [Column<FiveBar>; 6] {
+    let c = FiveBar::COL;
+    [c.phi2, c.phi3, c.pc.x, c.pc.y, c.spread, c.th2]
+}
+
+fn path() -> Sampled<'static, FiveBar, 2, 3, 2> {
+    Sampled::path(&M, FROM, TO, 41, M.guess(FROM).into()).unwrap()
+}
+
+/// Lengths scale with the links, angles are of order one: one scale for the tolerances.
+const SCALE: f64 = 2.5;
+
+#[test]
+fn jets_along_the_path_match_finite_differences_of_the_construction() {
+    let run = path();
+    // Samples and points between them, as fractions of the path.
+    for s in [0.05, 0.2, 0.3125, 0.5, 0.61, 0.8, 0.95] {
+        for (k, c) in columns().into_iter().enumerate() {
+            let jet = run.jet_at(c, s).unwrap();
+            let f = |s: f64| construction(inputs(s))[k];
+            // h = 1e-3 of the path: Richardson's truncation ~h^4, the values' rounding 1e-16/h for the
+            // slope, 1e-16/h^2 amplified by the extrapolation for the curvature (measured 2e-10, 8e-9).
+            let (d1, d2) = richardson(f, s, 1e-3);
+            assert_close!(jet.value, f(s), tol::SOLVE * SCALE, "{c} at {s}: {} vs {}", jet.value, f(s));
+            assert_close!(jet.d1, d1, tol::FD_FIRST * SCALE, "{c}' at {s}: {} vs {d1}", jet.d1);
+            assert_close!(jet.d2, d2, 1e-7 * SCALE, "{c}'' at {s}: {} vs {d2}", jet.d2);
+        }
+    }
+    // The input th2 moves linearly along the path: its jet is exact.
+    let j = run.jet_at(FiveBar::COL.th2, 0.3).unwrap();
+    assert_eq!((j.d1, j.d2), (TO[1] - FROM[1], 0.0));
+}
+
+#[test]
+fn an_input_as_the_parameter_rescales_the_derivatives() {
+    let by_fraction = path();
+    let by_th1 = path().along(FiveBar::COL.th1).unwrap();
+    let run = TO[0] - FROM[0];
+    assert_eq!(by_th1.path_values()[0], FROM[0]);
+    assert_eq!(by_th1.path_values()[40], TO[0]);
+    assert_eq!(by_th1.direction()[0], 1.0);
+    for (a, b) in by_fraction.jets(FiveBar::COL.pc.y).unwrap().iter().zip(by_th1.jets(FiveBar::COL.pc.y).unwrap()) {
+        assert_eq!(a.value, b.value);
+        assert_close!(b.x, FROM[0] + a.x * run, 1e-15 * TO[0]);
+        assert_close!(b.d1 * run, a.d1, 1e-13 * SCALE);
+        assert_close!(b.d2 * run * run, a.d2, tol::SOLVE * SCALE);
+    }
+    // States between samples are the same point of the path whatever the parameter.
+    let (s, x) = (0.37, FROM[0] + 0.37 * run);
+    let (a, b) = (by_fraction.at(s).unwrap(), by_th1.at(x).unwrap());
+    assert_close!(a.q[0], b.q[0], tol::SOLVE);
+    assert_close!(a.x[1], b.x[1], tol::ULPS);
+}
+
+#[test]
+fn extremes_on_the_path_match_a_dense_scan_of_the_construction() {
+    let run = path();
+    for (k, c) in columns().into_iter().enumerate().take(5) {
+        let range = run.range(c).unwrap();
+        // A dense scan of the construction (independent of the solver).
+        let f = |s: f64| construction(inputs(s))[k];
+        let n = 20_000;
+        let (mut lo, mut hi) = ((0.0, f(0.0)), (0.0, f(0.0)));
+        for i in 0..=n {
+            let s = i as f64 / n as f64;
+            let v = f(s);
+            if v < lo.1 {
+                lo = (s, v);
+            }
+            if v > hi.1 {
+                hi = (s, v);
+            }
+        }
+        // The scan's value is within (spacing^2 |f''| / 8) of the true extreme: ~1e-9.
+        assert!((range.max.value - hi.1).abs() < 1e-8 * SCALE && range.max.value >= hi.1 - 1e-12, "{c} max");
+        assert!((range.min.value - lo.1).abs() < 1e-8 * SCALE && range.min.value <= lo.1 + 1e-12, "{c} min");
+        for e in run.extremes(c).unwrap() {
+            // An interior extreme: the slope of the construction along the path vanishes there.
+            let (d1, _) = richardson(f, e.x(), 1e-3);
+            assert_close!(d1, 0.0, 1e-8 * SCALE, "{c} at {}: slope {d1}", e.x());
+            assert_close!(e.value(), f(e.x()), tol::SOLVE * SCALE);
+        }
+    }
+    assert!(!run.extremes(FiveBar::COL.pc.y).unwrap().is_empty(), "the path was chosen to pass a peak of pc.y");
+}
+
+#[test]
+fn a_peak_of_a_jet_along_the_path() {
+    let run = path();
+    // Largest |d2(pc.x)/ds2| along the path, against a dense scan of the jets.
+    let (s, v) = run.peak_of(FiveBar::COL.pc.x, |j: Jet| j.d2.abs()).unwrap();
+    let mut best = 0.0f64;
+    for i in 0..=2000 {
+        best = best.max(run.jet_at(FiveBar::COL.pc.x, i as f64 / 2000.0).unwrap().d2.abs());
+    }
+    assert!(v >= best - 1e-9 * best && v - best < 1e-4 * best, "{v} vs {best}");
+    assert!((0.0..=1.0).contains(&s));
+}
+
+#[test]
+fn invalid_paths_and_parameters_are_typed_errors() {
+    let g = M.guess(FROM).into();
+    assert!(matches!(Sampled::path(&M, FROM, FROM, 11, g), Err(Error::InvalidArgument(_))));
+    assert!(matches!(Sampled::path(&M, FROM, TO, 2, g), Err(Error::InvalidArgument(_))));
+    // th2 decreases along this path: it cannot be the parameter; an unknown never can.
+    assert!(matches!(path().along(FiveBar::COL.th2), Err(Error::InvalidArgument(_))));
+    assert!(matches!(path().along(FiveBar::COL.phi2), Err(Error::InvalidArgument(_))));
+    assert!(matches!(path().at(1.5), Err(Error::InvalidArgument(_))));
+    // The dynamic fallback finds the same handles, and names the columns when it cannot.
+    assert_eq!(Column::<FiveBar>::named("pc.y").unwrap(), FiveBar::COL.pc.y);
+    assert_eq!(Column::<FiveBar>::named("th1").unwrap(), FiveBar::COL.th1);
+    let e = Column::<FiveBar>::named("pc.z").unwrap_err().to_string();
+    assert!(e.contains("pc.x, pc.y, spread") && e.contains("th1, th2"), "{e}");
+}

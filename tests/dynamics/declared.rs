@@ -1,0 +1,183 @@
+//! Machine dynamics declared in `mechanism!` (`body`, `force`, `torque`, `gravity`), checked
+//! against references that use no analog of kinloop:
+//!
+//! * a slider-crank engine whose positions have a closed form: the reduced moment of inertia,
+//!   its slope and the generalised force of a gas force, a friction torque and gravity, from
+//!   Richardson-extrapolated central differences of the closed-form positions;
+//! * the rhombic drive of the fixtures: the declared mass model against the same model built by
+//!   hand, body by body;
+//! * bad parameter values at run time: typed errors.
+
+use crate::fixtures::{RhombicDrive, derivative};
+use kinloop::dynamics::{Body, Coord, DynamicsError, MassModel, Rotation};
+use kinloop::{Mechanism, NewtonConfig};
+
+kinloop::mechanism! {
+    /// Slider-crank engine: crank `r` about the origin, rod `l` to the piston on the X axis;
+    /// the rod's centre of mass `l_s` from the crank pin.
+    pub struct Engine {
+        params r = 0.05, l = 0.2, l_s = 0.06, m_rod = 2.0, j_rod = 0.01, m_p = 0.5, j_crank = 0.02,
+               area = 3e-3, p0 = 1e5, c = 0.4, g = 9.81;
+        input phi;
+        unknowns beta = 0, x = 0.25;
+        loop abc: r @ phi + l @ beta == (x, 0);
+        point s2 = r @ phi + l_s @ beta;
+        body crank: mass 0, com (0, 0), inertia j_crank, turns phi;
+        body rod: mass m_rod, com s2, inertia j_rod, turns beta;
+        body piston: mass m_p, com (x, 0);
+        // Gas pressure falling as the piston moves out (isothermal), on the piston crown.
+        force gas at (x, 0) = (p0 * area * (r + l) / x, 0);
+        torque friction on beta = -c * sin(beta);
+        gravity (0, -g);
+    }
+}
+
+/// Closed-form positions `[beta, x, s2x, s2y]` of the engine (`r sin phi + l sin beta = 0`).
+fn positions(e: &Engine, phi: f64) -> Vec<f64> {
+    let beta = (-e.r * phi.sin() / e.l).asin();
+    let x = e.r * phi.cos() + e.l * beta.cos();
+    vec![beta, x, e.r * phi.cos() + e.l_s * beta.cos(), e.r * phi.sin() + e.l_s * beta.sin()]
+}
+
+/// Reduced moment of inertia and generalised force from the closed-form positions.
+fn reference(e: &Engine, phi: f64) -> (f64, f64) {
+    let p = positions(e, phi);
+    let v = derivative(|t| positions(e, t), phi, 1e-3);
+    let (beta, x) = (p[0], p[1]);
+    let j = e.j_crank + e.m_rod * (v[2] * v[2] + v[3] * v[3]) + e.j_rod * v[0] * v[0] + e.m_p * v[1] * v[1];
+    let gas = e.p0 * e.area * (e.r + e.l) / x;
+    let q = gas * v[1] - e.c * beta.sin() * v[0] - e.g * e.m_rod * v[3];
+    (j, q)
+}
+
+#[test]
+fn declared_engine_agrees_with_closed_form_positions() {
+    let e = Engine::default();
+    let model = e.mass_model().unwrap();
+    let mut guess = e.guess_flat(&[0.0]);
+    let (mut worst_j, mut worst_dj, mut worst_q): (f64, f64, f64) = (0.0, 0.0, 0.0);
+    for step in 0..72 {
+        let phi = step as f64 * 5f64.to_radians();
+        let k = e.kinematics_flat(&[phi], &guess, &NewtonConfig::default()).unwrap();
+        guess = k.q;
+        let d = model.dynamics(&k, &[30.0]).unwrap();
+        let (j, q) = reference(&e, phi);
+        let dj = derivative(|t| vec![reference(&e, t).0], phi, 1e-3)[0];
+        worst_j = worst_j.max((d.reduced_inertia() - j).abs() / j);
+        worst_dj = worst_dj.max((d.reduced_inertia_slope() - dj).abs() / j);
+        worst_q = worst_q.max((d.forces[0] - q).abs() / (e.p0 * e.area * e.r));
+    }
+    eprintln!("relative errors: J {worst_j:e}, dJ/dphi {worst_dj:e}, Q {worst_q:e}");
+    // Richardson-extrapolated central differences at h = 1e-3: truncation ~ h^4 = 1e-12 times
+    // the fifth derivative (of the order of the value here), rounding ~ eps / h ~ 2e-13 for a
+    // first difference and ~ eps / h^2 ~ 2e-10 for the slope (a difference of differences).
+    assert!(worst_j < 1e-10, "J: {worst_j:e}");
+    assert!(worst_dj < 1e-8, "dJ/dphi: {worst_dj:e}");
+    assert!(worst_q < 1e-10, "Q: {worst_q:e}");
+}
+
+#[test]
+fn declared_rhombic_model_is_the_hand_built_one() {
+    let declared = crate::fixtures::rhombic_bodies([0.0, -9.81]);
+    let hand = crate::fixtures::rhombic_bodies_by_hand([0.0, -9.81]);
+    assert_eq!(declared.bodies().len(), hand.bodies().len());
+    for (a, b) in declared.bodies().iter().zip(hand.bodies()) {
+        assert_eq!((a.mass, a.com, a.inertia, a.rotation), (b.mass, b.com, b.inertia, b.rotation), "{}", a.name);
+    }
+    assert_eq!(declared.gravity_vector(), hand.gravity_vector());
+    // The declared gas force is off by default (no gas): its generalised force is zero, so both
+    // models give the same dynamics everywhere.
+    let drive = RhombicDrive::default();
+    let mut guess = drive.guess_flat(&[0.0]);
+    for step in 0..36 {
+        let phi = step as f64 * 10f64.to_radians();
+        let k = drive.kinematics_flat(&[phi], &guess, &NewtonConfig::default()).unwrap();
+        guess = k.q;
+        assert_eq!(declared.dynamics(&k, &[7.0]).unwrap(), hand.dynamics(&k, &[7.0]).unwrap(), "phi = {phi}");
+    }
+}
+
+#[test]
+fn bad_declared_values_are_typed_errors() {
+    let bad_mass = Engine { m_rod: -1.0, ..Engine::default() };
+    assert!(matches!(bad_mass.mass_model(), Err(DynamicsError::BadMass { body: "rod", quantity: "mass", .. })));
+    let bad_inertia = Engine { j_rod: f64::NAN, ..Engine::default() };
+    assert!(matches!(bad_inertia.mass_model(), Err(DynamicsError::BadMass { quantity: "moment of inertia", .. })));
+    let bad_gravity = Engine { g: f64::INFINITY, ..Engine::default() };
+    assert!(matches!(bad_gravity.mass_model(), Err(DynamicsError::BadValue { what: "gravity", .. })));
+    // A load that is not finite shows when it is evaluated, with the input where it happened.
+    let bad_gas = Engine { p0: f64::NAN, ..Engine::default() };
+    let model = bad_gas.mass_model().unwrap();
+    let k = bad_gas.kinematics_flat(&[0.5], &bad_gas.guess_flat(&[0.5]), &NewtonConfig::default()).unwrap();
+    match model.dynamics(&k, &[1.0]) {
+        Err(DynamicsError::NonFiniteLoad { name: "gas", x, .. }) => assert_eq!(x, vec![0.5]),
+        other => panic!("expected a non-finite gas force, got {other:?}"),
+    }
+}
+
+/// The declared coordinates and angles are the ones a hand-built model names.
+#[test]
+fn declared_points_and_angles_map_to_the_state() {
+    let model = Engine::default().mass_model().unwrap();
+    let col = |n: &str| <Engine as Mechanism<2, 1, 2>>::OUTPUTS.iter().position(|o| *o == n).unwrap();
+    let expected = [
+        Body { name: "crank", mass: 0.0, com: [Coord::Fixed(0.0); 2], inertia: 0.02, rotation: Rotation::Input(0) },
+        Body {
+            name: "rod",
+            mass: 2.0,
+            com: [Coord::Output(col("s2.x")), Coord::Output(col("s2.y"))],
+            inertia: 0.01,
+            rotation: Rotation::Unknown(0),
+        },
+        Body {
+            name: "piston",
+            mass: 0.5,
+            com: [Coord::Unknown(1), Coord::Fixed(0.0)],
+            inertia: 0.0,
+            rotation: Rotation::None,
+        },
+    ];
+    assert_eq!(model.bodies(), &expected);
+    assert_eq!(model.gravity_vector(), [0.0, -9.81]);
+    let names: Vec<_> = model.loads().iter().map(|l| l.name()).collect();
+    assert_eq!(names, ["gas", "friction"]);
+    let _: &MassModel<2, 1, 2> = &model;
+}
+
+/// Scale-free: the engine in millimetres (consistent units kg, mm, s: lengths times 1e3,
+/// moments of inertia, pressures times areas and torques rescaled accordingly) gives the same
+/// dynamics times the unit's factor: J, dJ/dphi and Q (energies per radian) times 1e6.
+#[test]
+fn declared_dynamics_are_scale_free() {
+    let m = Engine::default();
+    let mm = Engine {
+        r: m.r * 1e3,
+        l: m.l * 1e3,
+        l_s: m.l_s * 1e3,
+        j_rod: m.j_rod * 1e6,
+        j_crank: m.j_crank * 1e6,
+        area: m.area * 1e6,
+        p0: m.p0 * 1e-3,
+        c: m.c * 1e6,
+        g: m.g * 1e3,
+        ..m
+    };
+    let (model_m, model_mm) = (m.mass_model().unwrap(), mm.mass_model().unwrap());
+    let (mut guess_m, mut guess_mm) = (m.guess_flat(&[0.0]), mm.guess_flat(&[0.0]));
+    let mut worst: f64 = 0.0;
+    for step in 0..36 {
+        let phi = step as f64 * 10f64.to_radians();
+        let k_m = m.kinematics_flat(&[phi], &guess_m, &NewtonConfig::default()).unwrap();
+        let k_mm = mm.kinematics_flat(&[phi], &guess_mm, &NewtonConfig::default()).unwrap();
+        (guess_m, guess_mm) = (k_m.q, k_mm.q);
+        let (a, b) = (model_m.dynamics(&k_m, &[30.0]).unwrap(), model_mm.dynamics(&k_mm, &[30.0]).unwrap());
+        let rel = |x: f64, y: f64, scale: f64| (y / 1e6 - x).abs() / scale;
+        worst = worst
+            .max(rel(a.reduced_inertia(), b.reduced_inertia(), a.reduced_inertia()))
+            .max(rel(a.reduced_inertia_slope(), b.reduced_inertia_slope(), a.reduced_inertia()))
+            .max(rel(a.forces[0], b.forces[0], m.p0 * m.area * m.r));
+    }
+    // Each quantity is a short sum of products of f64 values that differ by exact powers of ten
+    // only up to rounding (1e3 and 1e-3 are not exact binary scalings): a few ulps.
+    assert!(worst < 1e-13, "relative difference {worst:e}");
+}

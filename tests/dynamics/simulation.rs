@@ -1,0 +1,279 @@
+//! Forward dynamics: the Dormand–Prince integrator against closed-form solutions, energy
+//! conservation of the free rhombic drive over 100 turns, the flywheel's speed fluctuation
+//! reproduced by simulation, the run-up from rest under a motor characteristic, and a typed
+//! stop at a limit position.
+
+use crate::fixtures::{RhombicDrive, SliderCrank, rhombic_bodies, rhombic_model};
+use kinloop::Mechanism;
+use kinloop::analysis::Sampled;
+use kinloop::dynamics::{
+    Body, Coord, DynamicsError, MassModel, OdeConfig, Rotation, RunConfig, SpeedLaw, Trajectory, dopri5, inverse_cycle,
+    simulate,
+};
+use std::f64::consts::TAU;
+
+use crate::support::tol;
+
+#[test]
+fn dopri5_matches_closed_forms() {
+    let cfg = OdeConfig::default().with_tolerances(1e-11, 1e-11);
+    // Harmonic oscillator over ten periods: y = (cos t, -sin t).
+    let mut worst_dense: f64 = 0.0;
+    let (t, y) = dopri5(
+        |_, y| Ok([y[1], -y[0]]),
+        0.0,
+        [1.0, 0.0],
+        10.0 * TAU,
+        &cfg,
+        |s, _| {
+            for k in 1..4 {
+                let t = s.t0 + s.h * k as f64 / 4.0;
+                let y = s.at(t);
+                worst_dense = worst_dense.max((y[0] - t.cos()).abs()).max((y[1] + t.sin()).abs());
+            }
+            Ok(false)
+        },
+    )
+    .unwrap();
+    assert_eq!(t, 10.0 * TAU);
+    // Global error: ~ tolerance times the number of steps (a few hundred).
+    assert_close!(y[0], 1.0, 1e-8, "{y:?}");
+    assert_close!(y[1], 0.0, 1e-8, "{y:?}");
+    assert!(worst_dense < 1e-8, "dense output error {worst_dense:e}");
+    // Non-autonomous: y' = -2 t y, y = exp(-t^2).
+    let (_, y) = dopri5(|t, y| Ok([-2.0 * t * y[0]]), 0.0, [1.0], 3.0, &cfg, |_, _| Ok(false)).unwrap();
+    assert_close!(y[0], (-9f64).exp(), 1e-10);
+    // A failing right-hand side stops the integration with its error.
+    let err = dopri5(
+        |t, y| if t > 1.0 { Err(DynamicsError::StepTooSmall { t, h: 0.0 }) } else { Ok([y[0]]) },
+        0.0,
+        [1.0],
+        2.0,
+        &cfg,
+        |_, _| Ok(false),
+    );
+    assert!(matches!(err, Err(DynamicsError::StepTooSmall { h: 0.0, .. })));
+}
+
+/// The kinetic energy at `(phi, omega)`: it needs the solved positions there, on the branch of
+/// the run, reached by a sweep from 0 over one turn plus the final angle modulo a turn (the
+/// drive repeats every turn).
+fn energy_at(drive: &RhombicDrive, model: &MassModel<4, 1, 7>, phi: f64, omega: f64) -> f64 {
+    let sweep = Sampled::sweep(drive, 0.0, TAU + phi.rem_euclid(TAU), 721, drive.guess_flat(&[0.0])).unwrap();
+    let k = sweep.states().last().unwrap();
+    model.kinetic_energy(k, &[omega])
+}
+
+#[test]
+fn free_rhombic_drive_conserves_energy_over_100_turns() {
+    let drive = RhombicDrive::default();
+    let model = rhombic_bodies([0.0, 0.0]);
+    let cfg = RunConfig::default().with_ode(OdeConfig::default().with_tolerances(1e-13, 1e-13));
+    let omega0 = 12.0;
+    let e0 = energy_at(&drive, &model, 0.0, omega0);
+    let run = simulate(
+        &drive,
+        &model,
+        |_, _, _| 0.0,
+        [0.0, omega0],
+        1e3,
+        drive.guess_flat(&[0.0]),
+        &cfg,
+        |_, y| y[0] >= 100.0 * TAU,
+    )
+    .unwrap();
+    let [phi, omega] = run.end;
+    assert!(phi >= 100.0 * TAU, "reached only {} turns", phi / TAU);
+    let drift = (energy_at(&drive, &model, phi, omega) - e0).abs() / e0;
+    eprintln!("relative energy drift {drift:e} over 100 turns, {} steps", run.steps.len());
+    assert!(drift < 1e-8, "relative energy drift {drift:e} over {} steps", run.steps.len());
+}
+
+/// Largest and smallest speed over one turn from `phi_from`, from the dense output.
+fn speed_range(run: &Trajectory, phi_from: f64) -> (f64, f64) {
+    let (mut hi, mut lo) = (f64::NEG_INFINITY, f64::INFINITY);
+    for s in &run.steps {
+        for k in 0..=20 {
+            let [phi, omega] = s.at(s.t0 + s.h * k as f64 / 20.0);
+            if phi >= phi_from && phi < phi_from + TAU {
+                hi = hi.max(omega);
+                lo = lo.min(omega);
+            }
+        }
+    }
+    (hi, lo)
+}
+
+#[test]
+fn flywheel_gives_the_required_speed_fluctuation() {
+    let drive = RhombicDrive::default();
+    let model = rhombic_model([0.0, 0.0]);
+    let (omega_m, delta) = (10.0, 1.0 / 50.0);
+    let cycle =
+        inverse_cycle(&drive, &model, SpeedLaw::Constant(omega_m), 0.0, 3600, drive.guess_flat(&[0.0]), [0.0; 2])
+            .unwrap();
+    let fw = cycle.flywheel(delta).unwrap();
+    assert!(fw.exact > 0.0 && fw.flywheel > 0.0);
+    let cfg = RunConfig::default().with_flywheel(fw.exact);
+    let run = simulate(
+        &drive,
+        &model,
+        |_, _, _| fw.mean_torque,
+        [0.0, fw.start_speed],
+        1e3,
+        drive.guess_flat(&[0.0]),
+        &cfg,
+        |_, y| y[0] >= 2.5 * TAU,
+    )
+    .unwrap();
+    let (hi, lo) = speed_range(&run, TAU);
+    eprintln!(
+        "flywheel for delta = 1/50: energy method {:.6}, exact {:.6}; simulated delta {:.8}, mean speed {:.8}",
+        fw.flywheel,
+        fw.exact,
+        (hi - lo) / omega_m,
+        (hi + lo) / 2.0
+    );
+    // The steady cycle is reproduced: sampling of the extremes (0.1 degree, ~1e-7) and the
+    // trapezoidal work (~1e-7) limit the agreement.
+    assert_close!((hi + lo) / 2.0, omega_m, 1e-5 * omega_m, "mean {}", (hi + lo) / 2.0);
+    assert_close!((hi - lo) / omega_m, delta, 1e-4 * delta, "delta {}", (hi - lo) / omega_m);
+}
+
+/// With a constant reduced inertia the energy method is exact: `1/2 J (omega_max^2 -
+/// omega_min^2) = dE_max` is `J delta omega_m^2 = dE_max` when `omega_m` is the mid-range
+/// speed. A crank of constant inertia under a load torque `3 sin phi + sin 2 phi`.
+#[test]
+fn energy_method_is_exact_for_constant_inertia() {
+    let sc = SliderCrank::default();
+    let model = crank_model(0.5)
+        .and_then(|m| m.with_torque("load", Rotation::Input(0), |k, _| 3.0 * k.x[0].sin() + (2.0 * k.x[0]).sin()))
+        .unwrap();
+    let cycle =
+        inverse_cycle(&sc, &model, SpeedLaw::Constant(20.0), 0.0, 3600, sc.guess_flat(&[0.0]), [0.0; 2]).unwrap();
+    let fw = cycle.flywheel(0.02).unwrap();
+    // Work of the load from its closed-form integral, E = 3 (1 - cos phi) + (1 - cos 2 phi) / 2,
+    // its swing taken over the same angles (the trapezoidal work is accurate to ~1e-7).
+    let energy = |phi: f64| 3.0 * (1.0 - phi.cos()) + 0.5 * (1.0 - (2.0 * phi).cos());
+    let samples: Vec<f64> = (0..3600).map(|j| energy(TAU * j as f64 / 3600.0)).collect();
+    let swing = samples.iter().copied().fold(f64::MIN, f64::max) - samples.iter().copied().fold(f64::MAX, f64::min);
+    assert_close!(fw.energy_swing, swing, 1e-6 * swing, "{} vs {swing}", fw.energy_swing);
+    assert_close!(fw.mean_torque, 0.0, tol::SOLVE);
+    assert_close!(fw.flywheel / fw.exact, 1.0, 1e-6, "{} vs {}", fw.flywheel, fw.exact);
+    assert_close!(fw.total_inertia, swing / (0.02 * 400.0), 1e-6 * fw.total_inertia);
+}
+
+/// From rest under `M = M_s (1 - omega / omega_s)` and viscous friction nowhere: on the
+/// periodic steady state the motor does no net work over a turn, so the angle-averaged speed
+/// `int omega dphi / 2 pi = int omega^2 dt / int omega dt` equals `omega_s`.
+#[test]
+fn run_up_from_rest_reaches_the_synchronous_speed_on_average() {
+    let sc = SliderCrank::default();
+    let model = crank_model(2.0)
+        .and_then(|m| {
+            m.with_body(Body {
+                name: "piston",
+                mass: 0.8,
+                com: [Coord::Unknown(1), Coord::Fixed(0.3)],
+                inertia: 0.0,
+                rotation: Rotation::None,
+            })
+        })
+        .unwrap();
+    let (m_s, omega_s) = (40.0, 6.0);
+    let motor = move |_: f64, _: f64, omega: f64| m_s * (1.0 - omega / omega_s);
+    let run =
+        simulate(&sc, &model, motor, [0.0, 0.0], 60.0, sc.guess_flat(&[0.0]), &RunConfig::default(), |_, _| false)
+            .unwrap();
+    let last = run.end[0] - TAU;
+    let (mut num, mut den) = (0.0, 0.0);
+    for s in &run.steps {
+        // Gauss–Legendre, 3 nodes per step, on the part of the last turn.
+        for (x, w) in [(-0.774_596_669_241_483_4, 5.0 / 9.0), (0.0, 8.0 / 9.0), (0.774_596_669_241_483_4, 5.0 / 9.0)] {
+            let [phi, omega] = s.at(s.t0 + 0.5 * s.h * (1.0 + x));
+            if phi >= last {
+                num += 0.5 * s.h * w * omega * omega;
+                den += 0.5 * s.h * w * omega;
+            }
+        }
+    }
+    // Quadrature on whole steps only near the turn's start: ~ one step of a few hundred.
+    assert_close!(num / den / omega_s, 1.0, 1e-2, "angle-averaged speed {}", num / den);
+    assert!(run.end[1] > 0.5 * omega_s);
+}
+
+kinloop::mechanism! {
+    /// Non-Grashof four-bar: the input can only rock between two limit positions.
+    pub struct Rocker {
+        params a = 3.0, b = 2.0, c = 2.5, d = 4.0;
+        input phi;
+        unknowns beta = 0.5, gamma = 1.5;
+        loop abcd: a @ phi + b @ beta == (d, 0) + c @ gamma;
+        point sb = a @ phi + 0.5 * b @ beta;
+    }
+}
+
+#[test]
+fn running_into_a_limit_position_is_a_typed_error() {
+    let m = Rocker::default();
+    let model = MassModel::new()
+        .with_body(Body {
+            name: "input",
+            mass: 0.0,
+            com: [Coord::Fixed(0.0); 2],
+            inertia: 1.0,
+            rotation: Rotation::Input(0),
+        })
+        .and_then(|md| {
+            md.with_body(Body {
+                name: "coupler",
+                mass: 1.0,
+                com: [Coord::Output(0), Coord::Output(1)],
+                inertia: 0.3,
+                rotation: Rotation::Unknown(0),
+            })
+        })
+        .unwrap();
+    let g = m.position_flat(&[0.0], &m.guess_flat(&[0.0]), &Default::default()).unwrap().0;
+    let err =
+        simulate(&m, &model, |_, _, _| 1.0, [0.0, 1.0], 100.0, g, &RunConfig::default(), |_, _| false).unwrap_err();
+    // The limit position is where |BD| = b + c (law of cosines).
+    let limit = ((9.0 + 16.0 - 4.5f64 * 4.5) / 24.0).acos();
+    // Approaching it, J grows like K / (limit - phi) (the rod's angle analog like
+    // 1 / sqrt(limit - phi)): with the energy E bounded (E ~ 2 here: the start's 1/2 J w^2 plus
+    // the drive's work over 1.4 rad), the speed falls like sqrt(2 E (limit - phi) / K) and
+    // reaches zero in finite time, where the input stops being a coordinate of the motion. The
+    // step collapses there, unless a kinematic solve fails first, so the error is the singular
+    // motion or the singular position, located. Where it stops: (1) limit - phi ~ K w^2 / (2 E) with the speed w at the
+    // last step (~1e-6, measured), ~1e-12 for K / E of order one; (2) a kinematic solve accepts
+    // residuals up to its tolerance (1e-12) and may sit that far (divided by the links' lengths,
+    // 2 to 4) beyond the fold. Both are ~1e-12; 1e-9 leaves three orders for the constants.
+    match &err {
+        DynamicsError::SingularMotion { t, x, speed, .. } => {
+            eprintln!("stopped at phi = {}, limit - phi = {:e}, speed {:e}", x[0], limit - x[0], speed[0]);
+            assert!(t.is_finite() && (limit - x[0]).abs() < 1e-9, "{err}");
+            assert_close!(speed[0], 0.0, 1e-3, "the speed must fall to zero at the limit: {err}");
+        }
+        // With the rocker's dyad solved in closed form, the kinematic solve may meet the fold
+        // first (its discriminant vanishes there): a typed singular position, located as
+        // precisely.
+        DynamicsError::Kinematics { t, source } => {
+            let at = source.location().map(|l| l.inputs[0].1).unwrap_or(f64::NAN);
+            assert!(t.is_finite() && (limit - at).abs() < 1e-9, "{err}");
+            assert!(matches!(source, kinloop::Error::Singular { .. } | kinloop::Error::NoAssembly { .. }), "{err}");
+        }
+        other => panic!("expected a singular motion or position, got {other}"),
+    }
+}
+
+/// A crank of moment of inertia `inertia` about its axis (centre of mass on the axis), turning
+/// with the input.
+fn crank_model(inertia: f64) -> Result<MassModel<2, 1, 2>, DynamicsError> {
+    MassModel::new().with_body(Body {
+        name: "crank",
+        mass: 1.0,
+        com: [Coord::Fixed(0.0); 2],
+        inertia,
+        rotation: Rotation::Input(0),
+    })
+}

@@ -1,0 +1,16 @@
+//! Typed errors and the regression tests of the point solver and of sweeps: every `Ok` is
+//! accurate, every error names what happened.
+//!
+//! One test binary per subject: each module below was a binary of its own, and every binary
+//! links the whole library. A new test file of this subject goes into this folder with a
+//! `mod` line here; `support` (`tests/support/`) is shared by every binary.
+
+#[allow(dead_code, unused_macros)] // not every binary uses every helper
+#[macro_use]
+#[path = "../support/mod.rs"]
+mod support;
+
+mod assert_close;
+mod errors;
+mod no_silent_wrong_answer;
+mod no_silent_wrong_answer_sweeps;

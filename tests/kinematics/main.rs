@@ -1,0 +1,20 @@
+//! Positions and analogs of declared mechanisms against independent references: closed forms,
+//! 50-digit references, finite differences, random linkages, units and quantity kinds, degrees,
+//! parameter sensitivities.
+//!
+//! One test binary per subject: each module below was a binary of its own, and every binary
+//! links the whole library. A new test file of this subject goes into this folder with a
+//! `mod` line here; `support` (`tests/support/`) is shared by every binary.
+
+#[allow(dead_code, unused_macros)] // not every binary uses every helper
+#[macro_use]
+#[path = "../support/mod.rs"]
+mod support;
+
+mod degrees;
+mod five_bar;
+mod prop_linkages;
+mod quantity_kinds;
+mod reference_mpmath;
+mod sensitivities;
+mod units;

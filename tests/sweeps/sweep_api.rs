@@ -1,0 +1,224 @@
+//! The sweep's results with its stop reason and location, a mechanism-wide solver configuration,
+//! `reachable` in input values and `trace_curve`'s options, checked against closed forms (the law
+//! of cosines for a four-bar's limit positions) and against the behaviour without them.
+
+use kinloop::{AtSingular, Error, EventKind, Kin, Named, NewtonConfig, Stop, Sweep, SweepConfig, TraceOptions};
+use kinloop_fixtures::{FourBar, FourBarInputs, FourBarUnknowns};
+use std::f64::consts::PI;
+
+use crate::support::{four_bar_limit, tol};
+
+kinloop::mechanism! {
+    /// The four-bar solved by Newton's method (not in closed form), so that the Newton
+    /// configuration changes what a solve does.
+    #[kinloop(newton)]
+    pub struct NewtonFourBar {
+        params a, b, c, d;
+        input phi;
+        unknowns beta = 0.5, gamma = 1.5;
+        loop abcd: a @ phi + b @ beta == (d, 0) + c @ gamma;
+    }
+}
+
+/// A double rocker (`a + d > b + c`): its input stops where coupler and rocker stretch out.
+fn rocker() -> FourBar {
+    FourBar { a: 3.0, b: 2.0, c: 2.5, d: 4.0 }
+}
+
+/// The input at the limit position, `|BD| = b + c`, by the law of cosines.
+fn limit(m: &FourBar) -> f64 {
+    four_bar_limit(m.a, m.d, m.b + m.c)
+}
+
+#[test]
+fn a_run_keeps_the_states_and_says_where_it_stopped() {
+    let m = rocker();
+    let g = m.position(0.0, &m.guess(0.0)).unwrap().0;
+    let run = m.sweep(0.0, PI, 181, &g).unwrap().run();
+    let lim = limit(&m);
+    // Every sample below the limit position (spacing pi/180), and only those.
+    let below = (0..181).filter(|&i| PI * i as f64 / 180.0 < lim).count();
+    assert_eq!(run.states.len(), below);
+    assert!(run.states.iter().all(|s| s.input.phi < lim));
+    let Stop::LimitPosition(ev) = &run.stop else { panic!("{:?}", run.stop) };
+    assert_close!(ev.x[0], lim, tol::LOCATED, "{} vs {lim}", ev.x[0]);
+    assert_eq!(ev.kind, EventKind::LimitPosition);
+    assert_eq!(run.stop.event(), Some(ev));
+    assert_eq!(run.events, vec![ev.clone()]);
+    assert!(!run.is_completed());
+    // The same states and the same error as the lazy iterator.
+    let mut lazy = m.sweep(0.0, PI, 181, &g).unwrap();
+    let states: Vec<_> = lazy.by_ref().map_while(Result::ok).collect();
+    assert_eq!(states, run.states);
+    assert_eq!(lazy.events(), &run.events[..]);
+    let err = run.into_result().unwrap_err();
+    assert!(matches!(err, Error::SweepStopped { kind: EventKind::LimitPosition, .. }), "{err}");
+}
+
+#[test]
+fn a_complete_run_and_a_failed_one() {
+    let crank = FourBar { a: 1.0, b: 3.0, c: 2.5, d: 3.0 };
+    let g = crank.guess(0.0);
+    let run = crank.sweep(0.0, 2.0 * PI, 37, &g).unwrap().run();
+    assert!(run.is_completed() && run.events.is_empty() && run.stop.event().is_none());
+    assert_eq!(run.into_result().unwrap().len(), 37);
+    // No assembly at the first input: a failure, no states.
+    let far = FourBar { a: 1.0, b: 1.0, c: 1.0, d: 10.0 };
+    let run = far.sweep(0.0, 1.0, 3, &g).unwrap().run();
+    assert!(run.states.is_empty());
+    assert!(matches!(run.stop, Stop::Failed(Error::NoAssembly { .. })), "{:?}", run.stop);
+}
+
+#[test]
+fn a_crossing_stop_is_reported_as_such() {
+    // Change-point four-bar: the assembly modes meet at phi = 2 pi.
+    let m = FourBar { a: 1.0, b: 3.0, c: 2.0, d: 2.0 };
+    let g = m.position(0.5, &FourBarUnknowns { beta: 0.6, gamma: 1.6 }).unwrap().0;
+    let run = m.sweep(0.5, 7.0, 66, &g).unwrap().run();
+    let Stop::SingularCrossing(ev) = &run.stop else { panic!("{:?}", run.stop) };
+    assert_close!(ev.x[0], 2.0 * PI, tol::LOCATED, "{:?}", ev.x);
+    // Configured on the mechanism to continue, it completes and lists the crossing.
+    let cont = m.with_config(SweepConfig::default().with_at_singular(AtSingular::Continue)).unwrap();
+    let run = cont.sweep(0.5, 7.0, 66, &g).unwrap().run();
+    assert!(run.is_completed(), "{:?}", run.stop);
+    assert_eq!(run.states.len(), 66);
+    assert_eq!(run.events.len(), 1);
+    assert_eq!(run.events[0].kind, EventKind::SingularCrossing);
+}
+
+#[test]
+fn the_mechanism_configuration_reaches_every_solve() {
+    let m = NewtonFourBar { a: 1.0, b: 3.0, c: 2.5, d: 3.0 };
+    let far = NewtonFourBarUnknowns { beta: 1.2, gamma: 2.4 };
+    // By default Newton converges from the declared and from a far guess.
+    assert!(m.solve(0.4).is_ok() && m.kinematics(0.4, &far).is_ok());
+    // One iteration is not enough: every solve of the configured mechanism says so.
+    let one = m.with_config(NewtonConfig::default().with_max_iterations(1)).unwrap();
+    assert_eq!(one.config().newton.max_iterations, 1);
+    let no_convergence = |r: Result<NewtonFourBarState, Error>| matches!(r, Err(Error::NoConvergence { .. }));
+    assert!(no_convergence(one.solve(0.4)), "{:?}", one.solve(0.4));
+    assert!(no_convergence(one.kinematics(0.4, &far)));
+    assert!(one.position(0.4, &far).is_err());
+    assert!(matches!(one.sweep(0.4, 1.0, 5, &far).unwrap().run().stop, Stop::Failed(Error::NoConvergence { .. })));
+    assert!(matches!(one.sweep_at([0.4, 0.6], &far).stop, Stop::Failed(Error::NoConvergence { .. })));
+    assert!(one.assembly_modes(0.4).is_empty());
+    assert!(one.trace_curve(0.4, 1.0, &far, &TraceOptions::default()).is_err());
+    // An explicit configuration still wins over the mechanism's.
+    assert!(one.kinematics_with(0.4, &far, &NewtonConfig::default()).is_ok());
+    assert!(one.trace_curve(0.4, 1.0, &far, &TraceOptions::default().with_newton(NewtonConfig::default())).is_ok());
+    // The residual tolerance of the configuration is the one met: looser tolerance, fewer
+    // iterations (and never more) from the same guess.
+    let loose = m.with_config(NewtonConfig::default().with_residual_tol(1e-4)).unwrap();
+    let (tight_report, loose_report) = (m.position(0.4, &far).unwrap().1, loose.position(0.4, &far).unwrap().1);
+    assert!(loose_report.iterations < tight_report.iterations, "{loose_report:?} vs {tight_report:?}");
+    assert!(loose_report.residual <= 1e-4, "{loose_report:?}");
+    // The parameters are those of the mechanism.
+    assert_eq!(one.mechanism().c, 2.5);
+    assert_eq!(one.into_inner(), m);
+}
+
+#[test]
+fn an_invalid_configuration_is_refused_up_front_naming_the_field() {
+    let m = rocker();
+    let e = m.with_config(NewtonConfig::default().with_residual_tol(f64::NAN)).unwrap_err();
+    assert!(e.to_string().contains("newton.residual_tol"), "{e}");
+    let e = m.with_config(SweepConfig::default().with_max_step(0.0)).unwrap_err();
+    assert!(e.to_string().contains("max_step"), "{e}");
+}
+
+#[test]
+fn reachable_answers_in_named_input_values() {
+    let m = rocker();
+    let lim = limit(&m);
+    let g = m.position(0.0, &m.guess(0.0)).unwrap().0;
+    let r = m.reachable(0.0, FourBarInputs { phi: PI }, &g, 91).unwrap();
+    assert_close!(r.to.phi, lim, tol::LOCATED, "{r:?} vs +-{lim}");
+    assert_close!(r.from.phi, -lim, tol::LOCATED, "{r:?} vs +-{lim}");
+    assert!(r.to_event.is_some() && r.from_event.is_some());
+    // Within a small range, the ends of the range itself, without events.
+    let r = m.reachable(0.2, 0.5, &m.position(0.2, &g).unwrap().0, 11).unwrap();
+    assert_close!(r.from.phi, -0.3, 1e-15, "{r:?}");
+    assert_close!(r.to.phi, 0.7, 1e-15, "{r:?}");
+    assert!(r.from_event.is_none() && r.to_event.is_none());
+}
+
+#[test]
+fn trace_options_are_validated_naming_the_field() {
+    let m = rocker();
+    let g = m.position(0.0, &m.guess(0.0)).unwrap().0;
+    let cases = [
+        (TraceOptions::default().with_ds(0.0), "TraceOptions::ds"),
+        (TraceOptions::default().with_ds(f64::NAN), "TraceOptions::ds"),
+        (TraceOptions::default().with_ds(f64::INFINITY), "TraceOptions::ds"),
+        (TraceOptions::default().with_max_points(0), "TraceOptions::max_points"),
+        (
+            TraceOptions::default().with_newton(NewtonConfig::default().with_max_iterations(10_001)),
+            "newton.max_iterations",
+        ),
+    ];
+    for (opts, field) in cases {
+        let e = m.trace_curve(0.0, PI, &g, &opts).unwrap_err();
+        assert!(matches!(e, Error::InvalidArgument(_)) && e.to_string().contains(field), "{field}: {e}");
+    }
+    // A trace of few points stops there.
+    let t = m.trace_curve(0.0, PI, &g, &TraceOptions::default().with_max_points(5)).unwrap();
+    assert_eq!(t.points.len(), 5);
+    assert!(!t.closed);
+}
+
+#[test]
+fn a_scan_uses_each_mechanism_configuration_unless_it_gives_one() {
+    use kinloop::{Kin, ScanSpec, scan};
+    // The change-point four-bar meets a crossing at 2 pi: configured to continue, its sweep
+    // completes; by default it stops there.
+    let m = FourBar { a: 1.0, b: 3.0, c: 2.0, d: 2.0 };
+    let g = m.position(0.5, &FourBarUnknowns { beta: 0.6, gamma: 1.6 }).unwrap().0;
+    let plain = m.with_config(SweepConfig::default()).unwrap();
+    let cont = m.with_config(SweepConfig::default().with_at_singular(AtSingular::Continue)).unwrap();
+    let spec = ScanSpec::new([0.5], [7.0], 66).start(kinloop::ScanStart::Guess(g.into()));
+    let count = |_: &_| 0usize;
+    let fold = |n: usize, _: &_, _: &Kin<2, 1, 2>| n + 1;
+    let results = scan(&[plain, cont], &spec, count, fold);
+    assert!(matches!(results[0], Err(Error::SweepStopped { kind: EventKind::SingularCrossing, .. })), "{results:?}");
+    assert_eq!(results[1], Ok(66));
+    // A configuration in the spec applies to every set.
+    let results = scan(&[plain, cont], &spec.with_config(SweepConfig::default()), count, fold);
+    assert!(results.iter().all(Result::is_err), "{results:?}");
+}
+
+/// The sweep solves each step into its spare slot and keeps the last accepted state in the
+/// other. While sampling, its last state is the sample it returned. At the stop it is the last
+/// point it accepted on the way to the limit position: not one of the steps it rejected there
+/// (halved ever smaller until it diagnosed the limit, each rejected for a pivot ratio below
+/// `singular_pivot` or as a failed solve beyond the limit), so on the sweep's branch, at a
+/// pivot ratio it accepts, between the last sample and the limit, and closing the loop.
+#[test]
+fn rejected_steps_leave_the_last_accepted_state() {
+    let m = rocker();
+    let g = m.position(0.0, &m.guess(0.0)).unwrap().0;
+    let mut sweep: Sweep<FourBar, Kin<2, 1, 2>, 2, 1, 2> = Sweep::new(&m, [0.0], [PI], 181, g.into()).unwrap();
+    let first = sweep.next_kin().unwrap().unwrap();
+    let mut returned = first;
+    let err = loop {
+        match sweep.next_kin() {
+            Some(Ok(k)) => {
+                assert_eq!(sweep.last_accepted(), Some(&k));
+                returned = k;
+            }
+            Some(Err(e)) => break e,
+            None => panic!("the double rocker cannot turn to pi"),
+        }
+    };
+    assert!(matches!(err, Error::SweepStopped { kind: EventKind::LimitPosition, .. }), "{err}");
+    let lim = limit(&m);
+    assert!(returned.x[0] < lim && returned.x[0] > lim - PI / 180.0);
+    let last = *sweep.last_accepted().unwrap();
+    assert!(last.x[0] >= returned.x[0] && last.x[0] < lim, "{} {} {lim}", last.x[0], returned.x[0]);
+    assert_eq!(last.health.det_signs, first.health.det_signs);
+    assert!(last.health.min_pivot >= SweepConfig::default().singular_pivot, "{:?}", last.health);
+    // The loop closes: a phi + b beta = (d, 0) + c gamma.
+    let (phi, [beta, gamma]) = (last.x[0], last.q);
+    let rx = m.a * phi.cos() + m.b * beta.cos() - m.d - m.c * gamma.cos();
+    let ry = m.a * phi.sin() + m.b * beta.sin() - m.c * gamma.sin();
+    assert!(rx.abs().max(ry.abs()) < 1e-12 * m.d, "{rx:e} {ry:e}");
+}

@@ -1,0 +1,54 @@
+//! A sweep over a given, unevenly spaced list of inputs, checked against the four-bar's closed
+//! form (intersection of two circles) on one assembly branch throughout.
+
+use kinloop_fixtures::FourBar;
+use std::f64::consts::TAU;
+
+use crate::support::{four_bar_joint, tol};
+
+#[test]
+fn uneven_inputs_stay_on_one_branch() {
+    // A crank-rocker: the crank turns fully, no limit position of the input.
+    let m = FourBar { a: 1.0, b: 3.0, c: 2.5, d: 3.0 };
+    // Quadratically spaced over two turns, with a repeat and a long jump back.
+    let mut inputs: Vec<f64> = (0..=40).map(|k| 2.0 * TAU * (k as f64 / 40.0).powi(2)).collect();
+    inputs.insert(5, inputs[5]);
+    inputs.push(0.25);
+    let g = m.guess(inputs[0]);
+    let run = m.sweep_at(inputs.iter().copied(), &g);
+    assert!(run.is_completed() && run.events.is_empty(), "{:?}", run.stop);
+    let states = run.into_result().unwrap();
+    assert_eq!(states.len(), inputs.len());
+    let first = states[0].out.pc;
+    let side =
+        if (four_bar_joint(m.a, m.b, m.c, m.d, inputs[0], 1.0).unwrap().1 - first.y).abs() < 1e-9 { 1.0 } else { -1.0 };
+    for (s, &phi) in states.iter().zip(&inputs) {
+        assert_eq!(s.input.phi, phi);
+        let (cx, cy) = four_bar_joint(m.a, m.b, m.c, m.d, phi, side).unwrap();
+        // Lengths of order 3: a few ulps of the closed form's rounding.
+        assert_close!(s.out.pc.x, cx, tol::SOLVE, "phi = {phi}");
+        assert_close!(s.out.pc.y, cy, tol::SOLVE, "phi = {phi}");
+    }
+}
+
+#[test]
+fn a_limit_position_between_inputs_is_a_typed_error() {
+    // A double rocker: the crank cannot pass phi where |BD| = b + c.
+    let m = FourBar { a: 2.0, b: 1.0, c: 1.5, d: 3.0 };
+    let g = m.position(0.3, &m.guess(0.3)).unwrap().0;
+    let run = m.sweep_at([0.3, 0.5, 3.0], &g);
+    // The two inputs before the limit position are kept; the stop says where it is: where
+    // |BD| = b + c, by the law of cosines.
+    assert_eq!(run.states.len(), 2);
+    let (a, b, c, d) = (m.a, m.b, m.c, m.d);
+    let limit = ((a * a + d * d - (b + c) * (b + c)) / (2.0 * a * d)).acos();
+    match &run.stop {
+        kinloop::Stop::LimitPosition(ev) => assert!((ev.x[0] - limit).abs() < 1e-9, "{ev:?} vs {limit}"),
+        other => panic!("{other:?}"),
+    }
+    assert_eq!(run.events.len(), 1);
+    let err = run.into_result().unwrap_err();
+    assert!(matches!(err, kinloop::Error::SweepStopped { .. }), "{err}");
+    // No inputs, no states.
+    assert!(m.sweep_at(Vec::<f64>::new(), &g).into_result().unwrap().is_empty());
+}

@@ -1,0 +1,186 @@
+//! Sweeps: branch safety, limit positions and singular crossings located precisely, assembly
+//! modes, tables.
+
+use kinloop::{AtSingular, Error, EventKind, SweepConfig};
+use kinloop_fixtures::{FourBar, FourBarUnknowns};
+use std::f64::consts::PI;
+
+use crate::support::{four_bar_joint, four_bar_limit, tol};
+
+/// The crank angles where coupler and rocker are collinear: `|BD| = b + c` or `|b - c|`.
+fn limit_angles(m: &FourBar) -> Vec<f64> {
+    [m.b + m.c, (m.b - m.c).abs()].into_iter().map(|r| four_bar_limit(m.a, m.d, r)).filter(|x| !x.is_nan()).collect()
+}
+
+#[test]
+fn non_grashof_four_bar_stops_at_its_limit_position() {
+    // s + l = 2 + 4 > p + q = 2.5 + 3: the input crank cannot turn fully.
+    let m = FourBar { a: 3.0, b: 2.0, c: 2.5, d: 4.0 };
+    let lim = limit_angles(&m);
+    let g = m.position(0.0, &m.guess(0.0)).unwrap().0;
+    let mut sweep = m.sweep(0.0, PI, 181, &g).unwrap();
+    let mut last = 0.0;
+    let mut stop = None;
+    for s in &mut sweep {
+        match s {
+            Ok(s) => last = s.input.phi,
+            Err(e) => stop = Some(e),
+        }
+    }
+    let ev = &sweep.events()[0];
+    assert_eq!(ev.kind, EventKind::LimitPosition);
+    assert!(matches!(stop, Some(Error::SweepStopped { kind: EventKind::LimitPosition, .. })), "{stop:?}");
+    let expected = lim.iter().copied().find(|l| *l > 0.0 && *l < PI).unwrap();
+    assert_close!(ev.x[0], expected, tol::LOCATED, "limit at {} vs law of cosines {expected}", ev.x[0]);
+    assert!(last < expected && last > expected - PI / 180.0 - 1e-12);
+    // At the limit position, coupler and rocker are collinear (extended): gamma = beta.
+    let (beta, gamma) = (ev.q[0], ev.q[1]);
+    assert!(((gamma - beta).sin()).abs() < 1e-6, "beta {beta} gamma {gamma}");
+    // The error message names the input value.
+    let msg = stop.unwrap().to_string();
+    assert!(msg.contains("limit position") && msg.contains("phi = 1.37"), "{msg}");
+}
+
+#[test]
+fn reachable_range_of_a_non_grashof_crank() {
+    let m = FourBar { a: 3.0, b: 2.0, c: 2.5, d: 4.0 };
+    let lim = limit_angles(&m)[0];
+    let g = m.position(0.0, &m.guess(0.0)).unwrap().0;
+    let r = m.reachable(0.0, PI, &g, 91).unwrap();
+    let (lo, hi) = (r.from.phi, r.to.phi);
+    assert_close!(hi, lim, tol::LOCATED, "[{lo}, {hi}] vs +-{lim}");
+    assert_close!(lo, -lim, tol::LOCATED, "[{lo}, {hi}] vs +-{lim}");
+    // The ends are the located limit positions themselves.
+    assert_eq!(r.to_event.expect("limit above").x[0], hi);
+    assert_eq!(r.from_event.expect("limit below").x[0], lo);
+    // The flat form answers in the same input values.
+    let flat = kinloop::reachable(&m, [0.0], [PI], g.into(), 91).unwrap();
+    assert_eq!((flat.from, flat.to), ([lo], [hi]));
+}
+
+#[test]
+fn near_change_point_four_bar_keeps_its_branch_over_ten_turns() {
+    // s + l = 1 + 3 = 4 is just below p + q = 2 + 2.001: a crank-rocker that passes within
+    // about sqrt(1e-3) of the other assembly mode twice per turn.
+    let m = FourBar { a: 1.0, b: 3.0, c: 2.0, d: 2.001 };
+    let g = m.position(0.0, &m.guess(0.0)).unwrap().0;
+    // Which intersection kinloop assembled: at phi = 0 the two are mirror images in the x axis.
+    let side = {
+        let (cx, cy) = (m.a + m.b * g.beta.cos(), m.b * g.beta.sin());
+        let (px, py) = four_bar_joint(m.a, m.b, m.c, m.d, 0.0, 1.0).unwrap();
+        assert_close!(px, cx, 1e-9, "({cx}, {cy}) vs ({px}, +-{py})");
+        assert_close!(py.abs(), cy.abs(), 1e-9, "({cx}, {cy}) vs ({px}, +-{py})");
+        py.signum() * cy.signum()
+    };
+    let sweep = m.sweep(0.0, 20.0 * PI, 7201, &g).unwrap();
+    let mut first = None;
+    let mut last = None;
+    for s in sweep {
+        let s = s.unwrap();
+        let (cx, cy) = four_bar_joint(m.a, m.b, m.c, m.d, s.input.phi, side).unwrap();
+        assert_close!(s.out.pc.x, cx, 1e-9, "branch jump at {}", s.input.phi);
+        assert_close!(s.out.pc.y, cy, 1e-9, "branch jump at {}", s.input.phi);
+        first.get_or_insert(s.q);
+        last = Some(s.q);
+    }
+    let (f, l) = (first.unwrap(), last.unwrap());
+    assert_close!(f.beta, l.beta, 1e-9, "10 turns return to the start");
+    assert_close!(f.gamma, l.gamma, 1e-9, "10 turns return to the start");
+}
+
+#[test]
+fn change_point_crossing_is_located_and_never_silent() {
+    // s + l = p + q exactly: at phi = 0 (mod 2 pi) all links are collinear (|BD| = d - a =
+    // b - c) and the two assembly modes meet; the determinant changes sign there.
+    let m = FourBar { a: 1.0, b: 3.0, c: 2.0, d: 2.0 };
+    let g = m.position(0.5, &FourBarUnknowns { beta: 0.6, gamma: 1.6 }).unwrap().0;
+    let mut sweep = m.sweep(0.5, 7.0, 66, &g).unwrap();
+    let stop = sweep.by_ref().find_map(|s| s.err());
+    assert!(matches!(stop, Some(Error::SweepStopped { kind: EventKind::SingularCrossing, .. })), "{stop:?}");
+    let ev = &sweep.events()[0];
+    assert_close!(ev.x[0], 2.0 * PI, tol::LOCATED, "crossing at {}", ev.x[0]);
+
+    // Configured to continue, the sweep passes the change point and records it.
+    let cfg = SweepConfig::default().with_at_singular(AtSingular::Continue);
+    let mut sweep = m.sweep(0.5, 7.0, 66, &g).unwrap().with_config(cfg);
+    let all: Vec<_> = sweep.by_ref().collect::<Result<_, _>>().unwrap();
+    assert_eq!(all.len(), 66);
+    assert_eq!(sweep.events().len(), 1);
+    // The smooth continuation through the change point changes the assembly mode.
+    assert_ne!(all[0].health.det_signs, all[65].health.det_signs);
+    for s in &all {
+        assert!(m.residual(s.input, &s.q).iter().all(|r| r.abs() < 1e-10));
+    }
+}
+
+#[test]
+fn sweep_table_has_named_columns() {
+    let m = FourBar { a: 1.0, b: 3.0, c: 2.5, d: 3.0 };
+    let g = m.position(0.0, &m.guess(0.0)).unwrap().0;
+    let table = m.sweep(0.0, 2.0 * PI, 73, &g).unwrap().table().unwrap();
+    assert_eq!(table.rows.len(), 73);
+    let beta = table.column("beta").unwrap();
+    let dbeta = table.column("d(beta)/d(phi)").unwrap();
+    let d2 = table.column("d2(pc.y)/d(phi)^2").unwrap();
+    assert_eq!(beta.len(), 73);
+    assert!(dbeta.iter().chain(&d2).all(|v| v.is_finite()));
+    assert_close!(table.column("phi").unwrap()[72], 2.0 * PI, 1e-15);
+    let mut csv = Vec::new();
+    table.write_csv(&mut csv).unwrap();
+    let text = String::from_utf8(csv).unwrap();
+    // Units inferred by the macro: the input and the link angles in radians.
+    assert!(text.starts_with("phi [rad],beta [rad],gamma [rad],d(beta)/d(phi) [rad/rad],"), "{text:.80}");
+    assert_eq!(text.lines().count(), 74);
+}
+
+#[test]
+fn assembly_modes_of_a_four_bar_are_elbow_up_and_down() {
+    let m = FourBar { a: 1.0, b: 3.0, c: 2.5, d: 3.0 };
+    let modes = m.assembly_modes(0.7);
+    assert_eq!(modes.len(), 2, "{modes:?}");
+    let up = modes.iter().find(|s| s.out.pc.y > 0.0).expect("elbow up");
+    let down = modes.iter().find(|s| s.out.pc.y < 0.0).expect("elbow down");
+    assert_ne!(up.health.det_signs, down.health.det_signs);
+    let (cx, cy) = four_bar_joint(m.a, m.b, m.c, m.d, 0.7, 1.0).unwrap();
+    let c = if cy > 0.0 { up } else { down };
+    assert_close!(c.out.pc.x, cx, 1e-10);
+    // A sweep started from either mode stays in it.
+    for mode in [up, down] {
+        for s in m.sweep(0.7, 0.7 + 2.0 * PI, 37, &mode.q).unwrap() {
+            assert_eq!(s.unwrap().health.det_signs, mode.health.det_signs);
+        }
+    }
+}
+
+#[test]
+fn bad_sweep_arguments_are_errors() {
+    let m = FourBar { a: 1.0, b: 3.0, c: 2.5, d: 3.0 };
+    let g = m.guess(0.0);
+    assert!(matches!(m.sweep(0.0, 1.0, 0, &g), Err(Error::InvalidArgument(_))));
+    assert!(matches!(m.sweep(0.0, 0.0, 5, &g), Err(Error::InvalidArgument(_))));
+    assert!(matches!(m.sweep(f64::NAN, 1.0, 5, &g), Err(Error::NonFinite { .. })));
+    // A start that cannot assemble is reported at the first sample.
+    let far = FourBar { a: 1.0, b: 1.0, c: 1.0, d: 9.0 };
+    let first = far.sweep(0.0, 1.0, 3, &g).unwrap().next().unwrap();
+    assert!(matches!(first, Err(Error::NoAssembly { .. })), "{first:?}");
+}
+
+#[test]
+fn arclength_traces_the_whole_closed_curve_of_a_non_grashof_four_bar() {
+    let m = FourBar { a: 3.0, b: 2.0, c: 2.5, d: 4.0 };
+    let lim = limit_angles(&m)[0];
+    let g = m.position(0.0, &m.guess(0.0)).unwrap().0;
+    let t = m.trace_curve(0.0, PI, &g, &kinloop::TraceOptions::default().with_ds(0.02)).unwrap();
+    assert!(t.closed, "the curve closes on itself");
+    assert_eq!(t.folds.len(), 2, "{:?}", t.folds);
+    let mut at: Vec<f64> = t.folds.iter().map(|f| f.x[0]).collect();
+    at.sort_by(f64::total_cmp);
+    assert_close!(at[0], -lim, tol::LOCATED, "{at:?} vs +-{lim}");
+    assert_close!(at[1], lim, tol::LOCATED, "{at:?} vs +-{lim}");
+    // Both assembly modes are on the one closed curve: the input reverses at each fold.
+    assert!(t.points.iter().any(|p| p.input_rate < 0.0) && t.points.iter().any(|p| p.input_rate > 0.0));
+    for p in &t.points {
+        let r = m.residual(p.x[0], &p.q.into());
+        assert!(r.iter().all(|v| v.abs() < 1e-10));
+    }
+}
