@@ -80,10 +80,34 @@ impl<const NI: usize> Dynamics<NI> {
         tau
     }
 
+    /// [`Dynamics::drive`] checked: a speed or acceleration that is not finite is
+    /// [`DynamicsError::BadValue`], a driving force beyond the range of `f64` (huge speeds or
+    /// accelerations) [`DynamicsError::Overflow`] at inputs `x`.
+    pub fn checked_drive(&self, x: &[f64; NI], w: &[f64; NI], eps: &[f64; NI]) -> Result<[f64; NI], DynamicsError> {
+        finite_values("input speed", w)?;
+        finite_values("input acceleration", eps)?;
+        let tau = self.drive(w, eps);
+        if tau.iter().all(|v| v.is_finite()) {
+            Ok(tau)
+        } else {
+            Err(DynamicsError::Overflow { what: "driving force", x: x.to_vec() })
+        }
+    }
+
+    /// Whether the mass matrix, the velocity-product coefficients and the forces are finite.
+    fn is_finite(&self) -> bool {
+        let gamma = self.gamma.iter().flatten().flatten();
+        self.mass.iter().flatten().chain(gamma).chain(&self.forces).all(|v| v.is_finite())
+    }
+
     /// Forward dynamics: the input accelerations under driving forces `tau` at speeds `w`,
     /// from `M eps = tau + Q - h` by Cholesky factorisation. Fails with
-    /// [`DynamicsError::SingularMass`] (carrying `x`) when `M` is not positive definite.
+    /// [`DynamicsError::SingularMass`] (carrying `x`) when `M` is not positive definite, with
+    /// [`DynamicsError::BadValue`] for a speed or force that is not finite and with
+    /// [`DynamicsError::Overflow`] when the accelerations are beyond the range of `f64`.
     pub fn accelerations(&self, x: &[f64; NI], w: &[f64; NI], tau: &[f64; NI]) -> Result<[f64; NI], DynamicsError> {
+        finite_values("input speed", w)?;
+        finite_values("driving force", tau)?;
         let h = self.velocity_terms(w);
         let mut b = [0.0; NI];
         for i in 0..NI {
@@ -122,8 +146,29 @@ impl<const NI: usize> Dynamics<NI> {
             }
             b[i] /= l[i][i];
         }
-        Ok(b)
+        if b.iter().all(|v| v.is_finite()) {
+            Ok(b)
+        } else {
+            Err(DynamicsError::Overflow { what: "input accelerations", x: x.to_vec() })
+        }
     }
+}
+
+/// `values` all finite, else [`DynamicsError::BadValue`] naming the first that is not.
+fn finite_values(what: &'static str, values: &[f64]) -> Result<(), DynamicsError> {
+    match values.iter().find(|v| !v.is_finite()) {
+        Some(&value) => Err(DynamicsError::BadValue { what, value, why: "must be finite" }),
+        None => Ok(()),
+    }
+}
+
+/// Every number of state `k` finite (a state made by hand can hold anything), else
+/// [`DynamicsError::BadValue`].
+fn finite_state<const N: usize, const NI: usize, const NO: usize>(k: &Kin<N, NI, NO>) -> Result<(), DynamicsError> {
+    let analogs = k.dq.iter().flatten().chain(k.d2q.iter().flatten().flatten());
+    let outputs = k.dout.iter().flatten().chain(k.d2out.iter().flatten().flatten());
+    let all: Vec<f64> = k.x.iter().chain(&k.q).chain(analogs).chain(&k.out).chain(outputs).copied().collect();
+    finite_values("kinematic state value", &all)
 }
 
 /// Value and analogs of a coordinate.
@@ -216,15 +261,30 @@ impl<const N: usize, const NI: usize, const NO: usize> MassModel<N, NI, NO> {
                 }
             }
         }
+        if !q.iter().all(|v| v.is_finite()) {
+            finite_state(k)?;
+            finite_values("input speed", w)?;
+            return Err(DynamicsError::Overflow { what: "generalised forces", x: k.x.to_vec() });
+        }
         Ok(q)
     }
 
     /// Mass matrix, velocity-product coefficients and generalised forces at state `k` and
-    /// input speeds `w`: one dynamics evaluation.
+    /// input speeds `w`: one dynamics evaluation. A state value that is not finite is
+    /// [`DynamicsError::BadValue`]; a result beyond the range of `f64` (masses and analogs so
+    /// large that their products overflow) is [`DynamicsError::Overflow`].
     #[inline]
     pub fn dynamics(&self, k: &Kin<N, NI, NO>, w: &[f64; NI]) -> Result<Dynamics<NI>, DynamicsError> {
         let (mass, gamma) = self.inertia(k);
-        Ok(Dynamics { mass, gamma, forces: self.generalized_forces(k, w)? })
+        let d = Dynamics { mass, gamma, forces: self.generalized_forces(k, w)? };
+        if !d.is_finite() {
+            finite_state(k)?;
+            return Err(DynamicsError::Overflow {
+                what: "mass matrix or velocity-product coefficients",
+                x: k.x.to_vec(),
+            });
+        }
+        Ok(d)
     }
 
     /// Kinetic energy `1/2 w^T M w` at input speeds `w`.
