@@ -98,6 +98,15 @@ where
     if samples < 8 {
         return Err(DynamicsError::BadValue { what: "samples", value: samples as f64, why: "need at least 8" });
     }
+    // The samples of the turn must be told apart: at a huge start angle the spacing of f64
+    // numbers exceeds the step between samples and they would all fall on a few angles.
+    if !(phi0.is_finite() && super::error::spacing(phi0.abs() + TAU) < TAU / samples as f64) {
+        return Err(DynamicsError::BadValue {
+            what: "start angle",
+            value: phi0,
+            why: "must be finite and small enough for the samples of a turn to be told apart (reduce it modulo a turn)",
+        });
+    }
     let turn = Sampled::sweep(m, phi0, phi0 + TAU, samples + 1, guess).map_err(DynamicsError::kin)?;
     let mut points = Vec::with_capacity(samples);
     for k in &turn.states()[..samples] {
