@@ -125,6 +125,12 @@ fn exercise(m: &Machine, model: &Model, v: &[f64; 6], samples: usize, harmonics:
         if let Ok(eps) = d.accelerations(&k.x, &[omega], &[delta]) {
             assert!(finite(eps), "{eps:?}");
         }
+        if let Ok(s) = model.shaking(&k, &[omega], &[delta], [about, -about]) {
+            assert!(finite(s.force.into_iter().chain([s.moment])), "{s:?}");
+        }
+        if let Ok(c) = model.centre_of_mass(&k) {
+            assert!(finite(c), "{c:?}");
+        }
     }
     if let Ok(c) = inverse_cycle(m, model, SpeedLaw::Constant(omega), phi0, samples, guess, [about, -about]) {
         for p in &c.points {

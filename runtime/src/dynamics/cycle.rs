@@ -118,10 +118,7 @@ where
             }
         }
         let d = model.dynamics(k, &[omega])?;
-        let shaking = model.shaking(k, &[omega], &[eps], about);
-        if !(shaking.force.iter().all(|f| f.is_finite()) && shaking.moment.is_finite()) {
-            return Err(DynamicsError::Overflow { what: "shaking force or moment", x: vec![phi] });
-        }
+        let shaking = model.shaking(k, &[omega], &[eps], about)?;
         points.push(CyclePoint {
             phi,
             omega,

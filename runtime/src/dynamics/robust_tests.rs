@@ -171,3 +171,31 @@ fn an_integration_that_cannot_move_a_huge_coordinate_is_an_error() {
     let r = dopri5(|_, y| Ok([y[0] * y[0]]), 0.0, [1.0], 2.0, &cfg, |_, _| Ok(false));
     assert!(matches!(r, Err(DynamicsError::StepTooSmall { .. })), "{r:?}");
 }
+
+#[test]
+fn shaking_and_centre_of_mass_are_typed_errors_or_finite() {
+    let model = MassModel::<0, 1, 2>::new().with_body(body(2.0, 0.01)).unwrap();
+    let k = crank(0.1);
+    let s = model.shaking(&k, &[10.0], &[0.0], [0.0; 2]).unwrap();
+    // The crank pin's centripetal acceleration: -m a = m r w^2 outwards, along +x.
+    assert!((s.force[0] - 2.0 * 0.1 * 100.0).abs() < 1e-12 && s.force[1].abs() < 1e-12, "{s:?}");
+    // Speeds whose square overflows, a moment centre at the end of the f64 range.
+    let err = model.shaking(&k, &[1e200], &[0.0], [0.0; 2]).unwrap_err();
+    assert!(matches!(err, DynamicsError::Overflow { what: "shaking force or moment", .. }), "{err}");
+    let err = model.shaking(&k, &[1e150], &[0.0], [0.0, f64::MAX]).unwrap_err();
+    assert!(matches!(err, DynamicsError::Overflow { .. }), "{err}");
+    assert!(matches!(model.shaking(&k, &[f64::NAN], &[0.0], [0.0; 2]), Err(DynamicsError::BadValue { .. })));
+    assert!(matches!(model.shaking(&k, &[1.0], &[0.0], [f64::INFINITY, 0.0]), Err(DynamicsError::BadValue { .. })));
+    // The centre of mass: none without mass; the mean of huge coordinates computed weighted.
+    assert_eq!(model.centre_of_mass(&k).unwrap(), [0.1, 0.0]);
+    let none = MassModel::<0, 1, 2>::new();
+    assert!(matches!(none.centre_of_mass(&k), Err(DynamicsError::BadValue { what: "total mass", .. })));
+    let heavy = MassModel::<0, 1, 2>::new().with_body(body(1e300, 0.0)).unwrap();
+    let far = crank(1e300);
+    assert_eq!(heavy.centre_of_mass(&far).unwrap(), [1e300, 0.0]);
+    // Coefficients set by hand to NaN are named, not reported as an overflow.
+    let mut d = model.dynamics(&k, &[1.0]).unwrap();
+    d.mass[0][0] = f64::NAN;
+    assert!(matches!(d.accelerations(&[0.0], &[1.0], &[1.0]), Err(DynamicsError::BadValue { .. })));
+    assert!(matches!(d.checked_drive(&[0.0], &[1.0], &[1.0]), Err(DynamicsError::BadValue { .. })));
+}
