@@ -127,7 +127,9 @@ impl Table {
     }
 
     /// Writes the table as CSV (header line with the units, then one line per row; shortest
-    /// round-trip formatting of every value, so reading it back gives the same bits).
+    /// round-trip formatting of every value, so reading it back gives the same bits; names
+    /// and units read back exactly, and a unit the header cannot hold, one containing ` [`,
+    /// is an `InvalidInput` error).
     pub fn write_csv(&self, w: impl Write) -> io::Result<()> {
         let mut out = csv::WriterBuilder::new().terminator(csv::Terminator::Any(b'\n')).from_writer(w);
         let header = self
@@ -135,7 +137,7 @@ impl Table {
             .iter()
             .enumerate()
             .map(|(k, c)| table_units::header(c, self.units.get(k).map_or("", String::as_str)));
-        out.write_record(header.collect::<Vec<_>>())?;
+        out.write_record(header.collect::<io::Result<Vec<_>>>()?)?;
         for row in &self.rows {
             out.write_record(row.iter().map(|v| v.to_string()))?;
         }

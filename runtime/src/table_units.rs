@@ -51,9 +51,21 @@ fn analog(column: &str) -> Option<(&str, Vec<&str>)> {
     Some((num, inputs))
 }
 
-/// The header field of a column: `name [unit]`, or `name` without a unit.
-pub(crate) fn header(name: &str, unit: &str) -> String {
-    if unit.is_empty() { name.to_string() } else { format!("{name} [{unit}]") }
+/// The header field of a column: `name [unit]`, or `name` without a unit; [`split_header`]
+/// reads back exactly this name and unit.
+///
+/// The reader takes the text after the last ` [` of a field ending in `]` as the unit. So a
+/// name that itself ends like `a [b]` gets an empty unit written, `a [b] []`, and a unit
+/// holding ` [` cannot be written at all (the reader would cut it there): an
+/// `InvalidInput` error naming the column.
+pub(crate) fn header(name: &str, unit: &str) -> std::io::Result<String> {
+    if unit.contains(" [") {
+        let message = format!(
+            "the unit `{unit}` of column `{name}` holds ` [`, which the CSV header cannot tell from the start of the unit"
+        );
+        return Err(std::io::Error::new(std::io::ErrorKind::InvalidInput, message));
+    }
+    Ok(if !unit.is_empty() || split_header(name).0 != name { format!("{name} [{unit}]") } else { name.to_string() })
 }
 
 /// Splits a header field `name [unit]` into its name and unit (`""` when there is none).
@@ -86,7 +98,33 @@ mod tests {
     #[test]
     fn header_fields_split_back() {
         for (name, unit) in [("phi", "rad"), ("d(x_c)/d(phi)", "mm/rad"), ("w", ""), ("a [b", "")] {
-            assert_eq!(split_header(&header(name, unit)), (name.to_string(), unit.to_string()));
+            assert_eq!(split_header(&header(name, unit).unwrap()), (name.to_string(), unit.to_string()));
         }
+    }
+
+    #[test]
+    fn names_and_units_with_brackets_round_trip_or_are_refused() {
+        // Names that read like `name [unit]` themselves, units with brackets, empty ones.
+        let names = ["a [b]", "a []", "a [b] [c]", "[x]", " [", "]", "", "a [", "p [m] ", "x\n[y]"];
+        let units = ["", "b", "]", "[", "m]", "[m", "kg/(m s)^2", "a]b"];
+        for name in names {
+            for unit in units {
+                let field = header(name, unit).unwrap();
+                assert_eq!(split_header(&field), (name.to_string(), unit.to_string()), "{field:?}");
+            }
+        }
+        // Through a whole table written and read as CSV.
+        let mut t = crate::Table::new(names.iter().map(|n| n.to_string()).collect());
+        t.units = names.iter().enumerate().map(|(k, _)| units[k % units.len()].to_string()).collect();
+        t.push(vec![1.0; names.len()]);
+        let mut csv = Vec::new();
+        t.write_csv(&mut csv).unwrap();
+        assert_eq!(crate::Table::read_csv(&csv[..]).unwrap(), t, "{}", String::from_utf8_lossy(&csv));
+        // A unit holding ` [` cannot be told from the unit's start: refused, naming it.
+        let err = header("w", "a [b").unwrap_err();
+        assert_eq!(err.kind(), std::io::ErrorKind::InvalidInput);
+        assert!(err.to_string().contains("unit `a [b` of column `w`"), "{err}");
+        t.units[0] = "x [y]".into();
+        assert_eq!(t.write_csv(Vec::new()).unwrap_err().kind(), std::io::ErrorKind::InvalidInput);
     }
 }

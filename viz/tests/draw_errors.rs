@@ -104,3 +104,104 @@ fn a_failed_sweep_is_an_error_and_a_lone_pose_still_draws() {
     let svg = Drawing::new().joint("p").animate(&one, &Animation::default()).unwrap();
     assert!(!svg.contains("NaN") && !svg.contains("inf") && !svg.contains("<animate"));
 }
+
+#[test]
+fn a_hand_pushed_pose_shorter_than_the_mechanism_is_an_error() {
+    let (m, mo) = motion();
+    let d = Drawing::new().link(["b", "c", "p"]).trace("p");
+    let full = kinloop_viz::draw::Pose::from(&m.solve(0.3).unwrap().flat);
+    // Too few output columns (the drawing reads `p.x`, `p.y` from them), too few inputs, too
+    // many unknowns: each is named with its counts, on a sample or on an event.
+    let cases = [
+        (kinloop_viz::draw::Pose { out: full.out[..2].to_vec(), ..full.clone() }, "output column", 2, 6),
+        (kinloop_viz::draw::Pose { x: Vec::new(), ..full.clone() }, "input", 0, 1),
+        (kinloop_viz::draw::Pose { q: vec![0.0; 3], ..full.clone() }, "unknown", 3, 2),
+    ];
+    for (pose, what, has, needs) in cases {
+        let mut short = mo.clone();
+        short.push(pose.clone());
+        let at = short.poses.len() - 1;
+        for err in [
+            d.svg(&short, 0).unwrap_err(),
+            d.animate(&short, &Animation::default()).unwrap_err(),
+            d.exposures(&short, 3).unwrap_err(),
+        ] {
+            let DrawError::MalformedPose { pose, part, len, expected } = err else { panic!("{err}") };
+            assert_eq!((pose, part, len, expected), (at, what, has, needs));
+        }
+        let mut event = mo.clone();
+        event.events.push(kinloop_viz::draw::Marked { kind: kinloop::EventKind::LimitPosition, pose });
+        let err = d.svg(&event, 0).unwrap_err();
+        assert!(matches!(err, DrawError::MalformedPose { pose, .. } if pose == mo.poses.len()), "{err}");
+        assert!(err.to_string().contains(&format!("{has} {what} values but the motion needs {needs}")), "{err}");
+    }
+    // An event's input is printed in its label: it must be finite.
+    let mut event = mo.clone();
+    event.events.push(kinloop_viz::draw::Marked {
+        kind: kinloop::EventKind::LimitPosition,
+        pose: kinloop_viz::draw::Pose { x: vec![f64::NAN], ..full },
+    });
+    assert!(matches!(d.svg(&event, 0), Err(DrawError::NonFinite { .. })));
+}
+
+/// Every number of `svg` (attribute values and text) is finite: no `NaN`, `inf` in it.
+fn all_finite(svg: &str) -> bool {
+    let doc = roxmltree::Document::parse(svg).expect("well-formed SVG");
+    doc.descendants().all(|n| {
+        let bad = |s: &str| s.contains("NaN") || s.contains("inf");
+        !n.attributes().any(|a| bad(a.value())) && !n.text().is_some_and(bad)
+    })
+}
+
+#[test]
+fn extreme_coordinates_draw_finite_or_are_errors() {
+    let (_, mo) = motion();
+    // Points at the ends of the f64 range: the extent overflows a plain difference.
+    let huge = Drawing::new().link([Pt::fixed(-1.7e308, -1.7e308), Pt::fixed(1.7e308, 1.7e308)]).joint("p");
+    let svg = huge.svg(&mo, 0).unwrap();
+    assert!(all_finite(&svg), "{svg}");
+    // A mechanism of subnormal size: drawn when its extent can be scaled to pixels, a typed
+    // error when the pixels per unit overflow.
+    let tiny = Drawing::new().link([Pt::fixed(0.0, 0.0), Pt::fixed(1e-300, 1e-300)]);
+    assert!(all_finite(&tiny.svg(&mo, 0).unwrap()));
+    let subnormal = Drawing::new().link([Pt::fixed(0.0, 0.0), Pt::fixed(1e-320, 0.0)]);
+    assert!(matches!(subnormal.svg(&mo, 0), Err(DrawError::Unscalable { .. })));
+    let lone = Drawing::new().joint(Pt::fixed(1e-320, 0.0));
+    assert!(all_finite(&lone.svg(&mo, 0).unwrap()));
+    // A gear whose circle leaves the f64 plane, a negative radius.
+    let gear = Drawing::new().gear(Pt::fixed(1e308, 0.0), 1e308, 0.0).svg(&mo, 0);
+    assert!(matches!(gear, Err(DrawError::NonFinite { .. })), "{gear:?}");
+    let gear = Drawing::new().gear(Pt::fixed(0.0, 0.0), -1.0, 0.0).svg(&mo, 0);
+    assert!(matches!(gear, Err(DrawError::InvalidSetting(_))), "{gear:?}");
+    // Huge angles (their degrees overflow), a far-off point through a tiny window.
+    let turned = Drawing::new().slider("c", Scalar::expr(|s| if s.x[0] > 1.0 { 1.7e308 } else { -1.7e308 }));
+    assert!(all_finite(&turned.animate(&mo, &Animation::default()).unwrap()));
+    let window = Canvas { window: Some([0.0, 0.0, 1e-6, 1e-6]), ..Canvas::default() };
+    let far = Drawing::new().with_canvas(window).joint("p").svg(&mo, 0);
+    assert!(matches!(far, Err(DrawError::OffCanvas { .. })), "{far:?}");
+    let window = Canvas { window: Some([0.0, 0.0, 1.0, 1e300]), ..Canvas::default() };
+    assert!(matches!(Drawing::new().with_canvas(window).joint("p").svg(&mo, 0), Err(DrawError::InvalidSetting(_))));
+    // A slider far along its guide through a window: the guide is cut to the picture (not a
+    // billion hatch strokes).
+    let window = Canvas { window: Some([-2.0, -2.0, 6.0, 5.0]), ..Canvas::default() };
+    let far_slider = Drawing::new().with_canvas(window).slider(Pt::expr(|s| [1e6 * s.x[0], 0.0]), 0.0);
+    let svg = far_slider.exposures(&mo, 3).unwrap();
+    assert!(svg.len() < 100_000 && all_finite(&svg), "{} bytes", svg.len());
+}
+
+#[test]
+fn style_sizes_and_colours_are_checked() {
+    let (_, mo) = motion();
+    let d = Drawing::new().link(["b", "c"]);
+    for style in [
+        kinloop_viz::draw::Style { link_width: f64::NAN, ..Default::default() },
+        kinloop_viz::draw::Style { joint_radius: -1.0, ..Default::default() },
+        kinloop_viz::draw::Style { block: [f64::INFINITY, 1.0], ..Default::default() },
+        kinloop_viz::draw::Style { ink: "red\" onload=\"x".into(), ..Default::default() },
+    ] {
+        let err = d.clone().with_style(style).svg(&mo, 0).unwrap_err();
+        assert!(matches!(err, DrawError::InvalidSetting(_)), "{err}");
+    }
+    let wide = Canvas { width: 1e300, ..Canvas::default() };
+    assert!(matches!(d.clone().with_canvas(wide).svg(&mo, 0), Err(DrawError::InvalidSetting(_))));
+}

@@ -238,3 +238,75 @@ fn mixing_quantity_kinds_on_one_axis_is_an_error() {
         Err(PlotError::Empty { .. })
     ));
 }
+
+/// The value of tick label `l` (`m` or `me<e>`) times `2^s`, computed without leaving the
+/// f64 range (the label itself may lie beyond it, or among the subnormals).
+fn label_times_pow2(l: &str, s: i32) -> f64 {
+    let (m, e) = l.split_once('e').map_or((l, 0), |(m, e)| (m, e.parse().unwrap()));
+    m.parse::<f64>().unwrap() * 10f64.powf(e as f64 + s as f64 * std::f64::consts::LOG10_2)
+}
+
+/// Every attribute value and text of `svg` is free of `NaN` and `inf`.
+fn all_finite(svg: &str) -> bool {
+    let doc = roxmltree::Document::parse(svg).expect("well-formed SVG");
+    doc.descendants().all(|n| {
+        let bad = |s: &str| s.contains("NaN") || s.contains("inf");
+        !n.attributes().any(|a| bad(a.value())) && !n.text().is_some_and(bad)
+    })
+}
+
+#[test]
+fn ranges_at_the_ends_of_the_f64_range_are_drawn_on_their_labelled_scales() {
+    // y over almost all of f64 (its width overflows), x over a subnormal span: each point
+    // lies where the tick labels say, read in units scaled by 2^s so that the labels'
+    // values stay representable.
+    let cases = [
+        (vec![0.0, 1.0, 2.0], vec![-1e308, 3e307, 1e308], 0, -10),
+        (vec![0.0, 4e-321, 1e-320], vec![1.0, 2.0, 3.0], 1070, 0),
+        (vec![-f64::MAX, 0.0, f64::MAX], vec![f64::MIN_POSITIVE, 0.0, 5e-324], -10, 1074),
+    ];
+    for (xs, ys, sx, sy) in cases {
+        let series = Series::columns("c", mm(), &xs, &ys);
+        let svg = line_chart_svg("", &Axis::length("x", "mm"), &Axis::length("y", "mm"), &[series]).unwrap();
+        assert!(all_finite(&svg), "{svg}");
+        let p = parse(&svg);
+        let scaled = |t: &[(String, f64)], s: i32| -> Vec<(String, f64)> {
+            t.iter().map(|(l, px)| (label_times_pow2(l, s).to_string(), *px)).collect()
+        };
+        let (xt, yt) = (scaled(&p.x_ticks[0], sx), scaled(&p.y_ticks[0], sy));
+        assert!(xt.len() >= 3 && yt.len() >= 3, "{:?} {:?}", labels(&p.x_ticks[0]), labels(&p.y_ticks[0]));
+        let (fx, fy) = (axis_map(&xt), axis_map(&yt));
+        let drawn = &p.curves[0][0];
+        assert_eq!(drawn.len(), xs.len());
+        for ((x, y), (px, py)) in xs.iter().zip(&ys).zip(drawn) {
+            // Times 2^s in two exact halves (2^s alone can overflow).
+            let times = |v: f64, s: i32| v * 2f64.powi(s / 2) * 2f64.powi(s - s / 2);
+            let (ex, ey) = (fx(times(*x, sx)), fy(times(*y, sy)));
+            assert!(
+                (ex - px).abs() < 0.05 && (ey - py).abs() < 0.05,
+                "({x:e}, {y:e}) at ({px}, {py}), labels say ({ex}, {ey})"
+            );
+        }
+    }
+    // Angles whose degrees overflow, and an x-y chart over the whole f64 plane.
+    let svg = line_chart_svg(
+        "",
+        &Axis::angle("φ"),
+        &Axis::angle("ψ"),
+        &[Series::columns("c", Kind::Angle, &[-1e307, 1e307], &[f64::MAX, -f64::MAX])],
+    )
+    .unwrap();
+    assert!(all_finite(&svg), "{svg}");
+    let corners = vec![(-f64::MAX, -f64::MAX), (f64::MAX, f64::MAX)];
+    let svg = xy_chart_svg(
+        "",
+        &Axis::length("x", "mm"),
+        &Axis::length("y", "mm"),
+        &[Series::new("c", mm(), corners)],
+        &[(5e-324, 0.0)],
+    )
+    .unwrap();
+    assert!(all_finite(&svg), "{svg}");
+    let lone = xy_chart_svg("", &Axis::length("x", "mm"), &Axis::length("y", "mm"), &[], &[(1e-320, 0.0)]).unwrap();
+    assert!(all_finite(&lone), "{lone}");
+}

@@ -98,15 +98,27 @@ where
     if samples < 8 {
         return Err(DynamicsError::BadValue { what: "samples", value: samples as f64, why: "need at least 8" });
     }
+    // The samples of the turn must be told apart: at a huge start angle the spacing of f64
+    // numbers exceeds the step between samples and they would all fall on a few angles.
+    if !(phi0.is_finite() && super::error::spacing(phi0.abs() + TAU) < TAU / samples as f64) {
+        return Err(DynamicsError::BadValue {
+            what: "start angle",
+            value: phi0,
+            why: "must be finite and small enough for the samples of a turn to be told apart (reduce it modulo a turn)",
+        });
+    }
     let turn = Sampled::sweep(m, phi0, phi0 + TAU, samples + 1, guess).map_err(DynamicsError::kin)?;
     let mut points = Vec::with_capacity(samples);
     for k in &turn.states()[..samples] {
         let phi = k.x[0];
         let (omega, eps) = law.at(phi);
-        if !(omega.is_finite() && eps.is_finite()) {
-            return Err(DynamicsError::BadValue { what: "speed law", value: omega + eps, why: "must be finite" });
+        for value in [omega, eps] {
+            if !value.is_finite() {
+                return Err(DynamicsError::BadValue { what: "speed law", value, why: "must be finite" });
+            }
         }
         let d = model.dynamics(k, &[omega])?;
+        let shaking = model.shaking(k, &[omega], &[eps], about)?;
         points.push(CyclePoint {
             phi,
             omega,
@@ -114,17 +126,50 @@ where
             inertia: d.reduced_inertia(),
             inertia_slope: d.reduced_inertia_slope(),
             load: d.forces[0],
-            torque: d.drive(&[omega], &[eps])[0],
-            shaking: model.shaking(k, &[omega], &[eps], about),
+            torque: d.checked_drive(&[phi], &[omega], &[eps])?[0],
+            shaking,
         });
     }
     Ok(Cycle { points })
 }
 
 impl Cycle {
+    /// The Fourier series of `f` over the cycle's points, computed on the values divided by a
+    /// power of two near their largest magnitude (exact) and scaled back, so that
+    /// coefficients are found whenever they are representable.
     fn series(&self, f: impl Fn(&CyclePoint) -> f64, harmonics: usize) -> Result<Fourier, DynamicsError> {
+        let samples = self.points.len();
+        if 2 * harmonics >= samples {
+            return Err(DynamicsError::TooManyHarmonics { harmonics, samples });
+        }
         let v: Vec<f64> = self.points.iter().map(f).collect();
-        fourier(&v, self.points[0].phi, TAU, harmonics).map_err(DynamicsError::kin)
+        let phi0 = self.points[0].phi;
+        for value in v.iter().copied().chain([phi0]) {
+            if !value.is_finite() {
+                return Err(DynamicsError::BadValue { what: "cycle value", value, why: "must be finite" });
+            }
+        }
+        let big = v.iter().fold(0.0f64, |m, x| m.max(x.abs()));
+        let unit = if big > 0.0 { pow2_at_most(big) } else { 1.0 };
+        let scaled: Vec<f64> = v.iter().map(|x| x / unit).collect();
+        // Every precondition of `fourier` is checked above; should it still refuse, say so.
+        let s = fourier(&scaled, phi0, TAU, harmonics).map_err(|_| DynamicsError::BadValue {
+            what: "cycle for a Fourier series",
+            value: samples as f64,
+            why: "refused by the Fourier analysis",
+        })?;
+        let back = |c: f64| c * unit;
+        let series = Fourier {
+            a0: back(s.a0),
+            a: s.a.iter().map(|&c| back(c)).collect(),
+            b: s.b.iter().map(|&c| back(c)).collect(),
+            ..s
+        };
+        if series.a.iter().chain(&series.b).chain([&series.a0]).all(|c| c.is_finite()) {
+            Ok(series)
+        } else {
+            Err(DynamicsError::Overflow { what: "Fourier coefficients", x: Vec::new() })
+        }
     }
 
     /// Fourier series of the driving torque up to `harmonics` (the mean is `a0`).
@@ -141,9 +186,10 @@ impl Cycle {
         ])
     }
 
-    /// Mean driving torque over the cycle.
+    /// Mean driving torque over the cycle (finite for finite torques; NaN for a cycle
+    /// without points).
     pub fn mean_torque(&self) -> f64 {
-        self.points.iter().map(|p| p.torque).sum::<f64>() / self.points.len() as f64
+        mean(self.points.iter().map(|p| p.torque))
     }
 
     /// Flywheel for a coefficient of speed fluctuation `delta = (omega_max - omega_min) /
@@ -170,20 +216,40 @@ impl Cycle {
                 why: "must lie in (0, 2)",
             });
         }
-        let n = self.points.len() as f64;
-        let mean_torque = -self.points.iter().map(|p| p.load).sum::<f64>() / n;
-        let omega_m = self.points.iter().map(|p| p.omega).sum::<f64>() / n;
+        if self.points.is_empty() {
+            return Err(DynamicsError::BadValue { what: "cycle points", value: 0.0, why: "need at least one" });
+        }
+        for p in &self.points {
+            for (what, value) in [("cycle load", p.load), ("cycle speed", p.omega), ("cycle inertia", p.inertia)] {
+                if !value.is_finite() {
+                    return Err(DynamicsError::BadValue { what, value, why: "must be finite" });
+                }
+            }
+            if p.inertia < 0.0 {
+                return Err(DynamicsError::BadValue {
+                    what: "cycle inertia",
+                    value: p.inertia,
+                    why: "must not be negative",
+                });
+            }
+        }
+        let mean_torque = -mean(self.points.iter().map(|p| p.load));
+        let omega_m = mean(self.points.iter().map(|p| p.omega));
         if omega_m.is_nan() || omega_m <= 0.0 {
             return Err(DynamicsError::BadValue { what: "mean speed", value: omega_m, why: "must be positive" });
         }
         let work = self.work(mean_torque);
         let lo = work.iter().copied().fold(f64::INFINITY, f64::min);
         let energy_swing = work.iter().copied().fold(f64::NEG_INFINITY, f64::max) - lo;
-        let exact = self.exact_flywheel(&work, omega_m, delta);
+        let overflow = |what| DynamicsError::Overflow { what, x: Vec::new() };
+        if !energy_swing.is_finite() {
+            return Err(overflow("work of the loads over the cycle"));
+        }
+        let exact = self.exact_flywheel(&work, omega_m, delta).ok_or_else(|| overflow("exact flywheel inertia"))?;
         let (_, e0) = self.fluctuation(&work, exact, omega_m);
         let total_inertia = energy_swing / (delta * omega_m * omega_m);
-        let mechanism_inertia = self.points.iter().map(|p| p.inertia).sum::<f64>() / n;
-        Ok(Flywheel {
+        let mechanism_inertia = mean(self.points.iter().map(|p| p.inertia));
+        let f = Flywheel {
             mean_torque,
             energy_swing,
             total_inertia,
@@ -191,7 +257,9 @@ impl Cycle {
             flywheel: (total_inertia - mechanism_inertia).max(0.0),
             exact,
             start_speed: (2.0 * (e0 + work[0]) / (exact + self.points[0].inertia)).sqrt(),
-        })
+        };
+        let values = [f.mean_torque, f.total_inertia, f.mechanism_inertia, f.flywheel, f.exact, f.start_speed];
+        if values.iter().all(|v| v.is_finite()) { Ok(f) } else { Err(overflow("flywheel sizing")) }
     }
 
     /// The work `E(phi_j) = int_0^phi_j (M_m + Q) dphi` of a constant driving torque `M_m` and
@@ -238,20 +306,49 @@ impl Cycle {
     }
 
     /// The flywheel giving fluctuation `delta` (0 when the mechanism alone stays within it);
-    /// the fluctuation falls as the flywheel grows.
-    fn exact_flywheel(&self, work: &[f64], omega_m: f64, delta: f64) -> f64 {
-        if self.fluctuation(work, 0.0, omega_m).0 <= delta {
-            return 0.0;
+    /// the fluctuation falls as the flywheel grows. `None` when no finite flywheel does (or
+    /// the fluctuation cannot be computed: the energies overflow).
+    fn exact_flywheel(&self, work: &[f64], omega_m: f64, delta: f64) -> Option<f64> {
+        let f0 = self.fluctuation(work, 0.0, omega_m).0;
+        if f0.is_nan() {
+            return None;
+        }
+        if f0 <= delta {
+            return Some(0.0);
         }
         let mut hi = self.points.iter().map(|p| p.inertia).fold(0.0, f64::max).max(f64::MIN_POSITIVE);
         while self.fluctuation(work, hi, omega_m).0 > delta && hi < f64::MAX / 4.0 {
             hi *= 2.0;
+        }
+        // NaN (an overflow) is no flywheel either.
+        let reached = self.fluctuation(work, hi, omega_m).0;
+        if reached.is_nan() || reached > delta {
+            return None;
         }
         let mut lo = 0.0;
         for _ in 0..100 {
             let mid = 0.5 * (lo + hi);
             if self.fluctuation(work, mid, omega_m).0 > delta { lo = mid } else { hi = mid }
         }
-        0.5 * (lo + hi)
+        Some(0.5 * (lo + hi))
+    }
+}
+
+/// The mean of `values`: the plain sum divided by the count, or, when that sum overflows,
+/// the sum of the values each divided by the count (the mean of finite values is always
+/// representable). NaN for no values.
+fn mean(values: impl Iterator<Item = f64> + Clone) -> f64 {
+    let n = values.clone().count() as f64;
+    let plain = values.clone().sum::<f64>() / n;
+    if plain.is_finite() || n == 0.0 { plain } else { values.map(|v| v / n).sum() }
+}
+
+/// The largest power of two not above `m` (positive, finite): dividing by it is exact.
+fn pow2_at_most(m: f64) -> f64 {
+    let bits = m.to_bits();
+    if m.is_normal() {
+        f64::from_bits(bits & 0x7ff0_0000_0000_0000)
+    } else {
+        f64::from_bits(1u64 << (63 - bits.leading_zeros()))
     }
 }

@@ -70,7 +70,7 @@ pub enum DynamicsError {
     },
     /// The kinematic solve failed (a limit position, a singular position, no assembly), at
     /// time `t` of a simulation (NaN outside a simulation).
-    #[error("kinematics failed at t = {t}: {source}")]
+    #[error("kinematics failed{}: {source}", at_time(*.t))]
     Kinematics {
         /// Time of the simulation when it happened (NaN when not simulating).
         t: f64,
@@ -104,6 +104,51 @@ pub enum DynamicsError {
         /// The input speeds there.
         speed: Vec<f64>,
     },
+    /// A result of the dynamics is beyond the range of `f64` (masses, speeds or loads so large
+    /// that a product or a sum of them overflows), though every input is finite.
+    #[error(
+        "the {what}{} is beyond the range of f64: express the model in other units (larger units of mass, length or time)",
+        at_input(.x)
+    )]
+    Overflow {
+        /// Which result (`"total mass"`, `"mass matrix"`, `"driving torque"`, ...).
+        what: &'static str,
+        /// The inputs where it happened (empty when it does not depend on them).
+        x: Vec<f64>,
+    },
+    /// A Fourier series asked for more harmonics than its samples resolve: `n` samples of a
+    /// period determine harmonics below `n / 2` only.
+    #[error(
+        "{harmonics} harmonics asked of {samples} samples per period: they resolve at most {} \
+         (fewer than half the samples); take fewer harmonics or more samples",
+        samples.saturating_sub(1) / 2
+    )]
+    TooManyHarmonics {
+        /// Harmonics asked for.
+        harmonics: usize,
+        /// Samples per period.
+        samples: usize,
+    },
+    /// An integration step cannot change a component of the state: the change it computes
+    /// is below the spacing of `f64` numbers at the component's value, so the state stays
+    /// where it is (e.g. a simulation started at an input angle of 1e300, whose spacing is
+    /// about 1e284 rad).
+    #[error(
+        "the integration cannot advance at t = {t}: a step changes state component {component} (= {value:e}) \
+         by {change:e}, less than half the spacing of f64 numbers there ({:e}), so the change is lost; \
+         start from a smaller value (an angle modulo a turn)",
+        spacing(*.value)
+    )]
+    CannotAdvance {
+        /// Time reached.
+        t: f64,
+        /// Index of the state component (for a simulation, 0 the input, 1 its speed).
+        component: usize,
+        /// The component's value.
+        value: f64,
+        /// The change the step computed for it.
+        change: f64,
+    },
     /// The integrator made its maximum number of steps.
     #[error("the integration made {steps} steps and reached only t = {t}; raise `max_steps`")]
     TooManySteps {
@@ -121,6 +166,25 @@ impl From<DynamicsError> for Error {
             other => Error::InvalidArgument(other.to_string()),
         }
     }
+}
+
+/// `" at t = .."` for a time, nothing outside a simulation (a NaN time).
+fn at_time(t: f64) -> String {
+    if t.is_nan() { String::new() } else { format!(" at t = {t}") }
+}
+
+/// `" at input [..]"`, or nothing for a result independent of the inputs.
+fn at_input(x: &[f64]) -> String {
+    if x.is_empty() { String::new() } else { format!(" at input {x:?}") }
+}
+
+/// The spacing of `f64` numbers at `v` (one unit in the last place).
+pub(crate) fn spacing(v: f64) -> f64 {
+    let a = v.abs();
+    if !a.is_finite() {
+        return f64::NAN;
+    }
+    if a == f64::MAX { a - f64::from_bits(a.to_bits() - 1) } else { f64::from_bits(a.to_bits() + 1) - a }
 }
 
 impl DynamicsError {

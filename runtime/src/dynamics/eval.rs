@@ -80,10 +80,44 @@ impl<const NI: usize> Dynamics<NI> {
         tau
     }
 
+    /// [`Dynamics::drive`] checked: a speed or acceleration that is not finite is
+    /// [`DynamicsError::BadValue`], a driving force beyond the range of `f64` (huge speeds or
+    /// accelerations) [`DynamicsError::Overflow`] at inputs `x`.
+    pub fn checked_drive(&self, x: &[f64; NI], w: &[f64; NI], eps: &[f64; NI]) -> Result<[f64; NI], DynamicsError> {
+        self.check()?;
+        finite_values("input speed", w)?;
+        finite_values("input acceleration", eps)?;
+        let tau = self.drive(w, eps);
+        if tau.iter().all(|v| v.is_finite()) {
+            Ok(tau)
+        } else {
+            Err(DynamicsError::Overflow { what: "driving force", x: x.to_vec() })
+        }
+    }
+
+    /// Whether the mass matrix, the velocity-product coefficients and the forces are finite.
+    fn is_finite(&self) -> bool {
+        let gamma = self.gamma.iter().flatten().flatten();
+        self.mass.iter().flatten().chain(gamma).chain(&self.forces).all(|v| v.is_finite())
+    }
+
+    /// The coefficients finite (those of [`MassModel::dynamics`] are; fields set by hand may
+    /// not be), else [`DynamicsError::BadValue`].
+    fn check(&self) -> Result<(), DynamicsError> {
+        let gamma = self.gamma.iter().flatten().flatten();
+        let all: Vec<f64> = self.mass.iter().flatten().chain(gamma).chain(&self.forces).copied().collect();
+        finite_values("coefficient of the dynamics", &all)
+    }
+
     /// Forward dynamics: the input accelerations under driving forces `tau` at speeds `w`,
     /// from `M eps = tau + Q - h` by Cholesky factorisation. Fails with
-    /// [`DynamicsError::SingularMass`] (carrying `x`) when `M` is not positive definite.
+    /// [`DynamicsError::SingularMass`] (carrying `x`) when `M` is not positive definite, with
+    /// [`DynamicsError::BadValue`] for a speed or force that is not finite and with
+    /// [`DynamicsError::Overflow`] when the accelerations are beyond the range of `f64`.
     pub fn accelerations(&self, x: &[f64; NI], w: &[f64; NI], tau: &[f64; NI]) -> Result<[f64; NI], DynamicsError> {
+        self.check()?;
+        finite_values("input speed", w)?;
+        finite_values("driving force", tau)?;
         let h = self.velocity_terms(w);
         let mut b = [0.0; NI];
         for i in 0..NI {
@@ -122,8 +156,29 @@ impl<const NI: usize> Dynamics<NI> {
             }
             b[i] /= l[i][i];
         }
-        Ok(b)
+        if b.iter().all(|v| v.is_finite()) {
+            Ok(b)
+        } else {
+            Err(DynamicsError::Overflow { what: "input accelerations", x: x.to_vec() })
+        }
     }
+}
+
+/// `values` all finite, else [`DynamicsError::BadValue`] naming the first that is not.
+fn finite_values(what: &'static str, values: &[f64]) -> Result<(), DynamicsError> {
+    match values.iter().find(|v| !v.is_finite()) {
+        Some(&value) => Err(DynamicsError::BadValue { what, value, why: "must be finite" }),
+        None => Ok(()),
+    }
+}
+
+/// Every number of state `k` finite (a state made by hand can hold anything), else
+/// [`DynamicsError::BadValue`].
+fn finite_state<const N: usize, const NI: usize, const NO: usize>(k: &Kin<N, NI, NO>) -> Result<(), DynamicsError> {
+    let analogs = k.dq.iter().flatten().chain(k.d2q.iter().flatten().flatten());
+    let outputs = k.dout.iter().flatten().chain(k.d2out.iter().flatten().flatten());
+    let all: Vec<f64> = k.x.iter().chain(&k.q).chain(analogs).chain(&k.out).chain(outputs).copied().collect();
+    finite_values("kinematic state value", &all)
 }
 
 /// Value and analogs of a coordinate.
@@ -216,15 +271,30 @@ impl<const N: usize, const NI: usize, const NO: usize> MassModel<N, NI, NO> {
                 }
             }
         }
+        if !q.iter().all(|v| v.is_finite()) {
+            finite_state(k)?;
+            finite_values("input speed", w)?;
+            return Err(DynamicsError::Overflow { what: "generalised forces", x: k.x.to_vec() });
+        }
         Ok(q)
     }
 
     /// Mass matrix, velocity-product coefficients and generalised forces at state `k` and
-    /// input speeds `w`: one dynamics evaluation.
+    /// input speeds `w`: one dynamics evaluation. A state value that is not finite is
+    /// [`DynamicsError::BadValue`]; a result beyond the range of `f64` (masses and analogs so
+    /// large that their products overflow) is [`DynamicsError::Overflow`].
     #[inline]
     pub fn dynamics(&self, k: &Kin<N, NI, NO>, w: &[f64; NI]) -> Result<Dynamics<NI>, DynamicsError> {
         let (mass, gamma) = self.inertia(k);
-        Ok(Dynamics { mass, gamma, forces: self.generalized_forces(k, w)? })
+        let d = Dynamics { mass, gamma, forces: self.generalized_forces(k, w)? };
+        if !d.is_finite() {
+            finite_state(k)?;
+            return Err(DynamicsError::Overflow {
+                what: "mass matrix or velocity-product coefficients",
+                x: k.x.to_vec(),
+            });
+        }
+        Ok(d)
     }
 
     /// Kinetic energy `1/2 w^T M w` at input speeds `w`.
@@ -239,20 +309,52 @@ impl<const N: usize, const NI: usize, const NO: usize> MassModel<N, NI, NO> {
         0.5 * t
     }
 
-    /// Centre of mass of all bodies (NaN when the total mass is zero).
-    pub fn centre_of_mass(&self, k: &Kin<N, NI, NO>) -> [f64; 2] {
+    /// Centre of mass of all bodies. A model without mass has none
+    /// ([`DynamicsError::BadValue`]); a state value that is not finite is
+    /// [`DynamicsError::BadValue`] too.
+    pub fn centre_of_mass(&self, k: &Kin<N, NI, NO>) -> Result<[f64; 2], DynamicsError> {
+        let m = self.total_mass();
+        if m <= 0.0 {
+            return Err(DynamicsError::BadValue {
+                what: "total mass",
+                value: m,
+                why: "must be positive for a centre of mass",
+            });
+        }
         let (mut sx, mut sy) = (0.0, 0.0);
         for b in &self.bodies {
             sx += b.mass * coord(k, b.com[0]).0;
             sy += b.mass * coord(k, b.com[1]).0;
         }
-        let m = self.total_mass();
-        [sx / m, sy / m]
+        let c = [sx / m, sy / m];
+        if c.iter().all(|v| v.is_finite()) {
+            return Ok(c);
+        }
+        finite_state(k)?;
+        // A mean of finite coordinates is representable: weigh each by its share of the mass
+        // (at most 1), so that no product or sum overflows.
+        let (mut cx, mut cy) = (0.0, 0.0);
+        for b in &self.bodies {
+            cx += b.mass / m * coord(k, b.com[0]).0;
+            cy += b.mass / m * coord(k, b.com[1]).0;
+        }
+        Ok([cx, cy])
     }
 
     /// Shaking force and moment about the frame point `about` at input speeds `w` and input
-    /// accelerations `eps` (see [`Shaking`]).
-    pub fn shaking(&self, k: &Kin<N, NI, NO>, w: &[f64; NI], eps: &[f64; NI], about: [f64; 2]) -> Shaking {
+    /// accelerations `eps` (see [`Shaking`]). Values that are not finite are
+    /// [`DynamicsError::BadValue`]; a force or moment beyond the range of `f64` is
+    /// [`DynamicsError::Overflow`].
+    pub fn shaking(
+        &self,
+        k: &Kin<N, NI, NO>,
+        w: &[f64; NI],
+        eps: &[f64; NI],
+        about: [f64; 2],
+    ) -> Result<Shaking, DynamicsError> {
+        finite_values("input speed", w)?;
+        finite_values("input acceleration", eps)?;
+        finite_values("moment centre", &about)?;
         let mut s = Shaking { force: [0.0; 2], moment: 0.0 };
         for b in &self.bodies {
             let (x, vx, ax) = coord(k, b.com[0]);
@@ -266,7 +368,11 @@ impl<const N: usize, const NI: usize, const NO: usize> MassModel<N, NI, NO> {
             s.force[1] += fy;
             s.moment += (x - about[0]) * fy - (y - about[1]) * fx - b.inertia * alpha;
         }
-        s
+        if s.force.iter().all(|f| f.is_finite()) && s.moment.is_finite() {
+            return Ok(s);
+        }
+        finite_state(k)?;
+        Err(DynamicsError::Overflow { what: "shaking force or moment", x: k.x.to_vec() })
     }
 }
 

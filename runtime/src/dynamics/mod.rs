@@ -43,6 +43,9 @@ pub mod model;
 pub mod ode;
 pub mod simulate;
 
+#[cfg(test)]
+mod robust_tests;
+
 pub use cycle::{Cycle, CyclePoint, Flywheel, SpeedLaw, inverse_cycle};
 pub use error::DynamicsError;
 pub use eval::{Dynamics, Shaking};

@@ -118,7 +118,8 @@ impl<const N: usize, const NI: usize, const NO: usize> MassModel<N, NI, NO> {
         self.gravity
     }
 
-    /// Total mass of the bodies.
+    /// Total mass of the bodies (always finite: [`MassModel::with_body`] refuses a body that
+    /// would make it overflow).
     pub fn total_mass(&self) -> f64 {
         self.bodies.iter().map(|b| b.mass).sum()
     }
@@ -134,12 +135,17 @@ impl<const N: usize, const NI: usize, const NO: usize> MassModel<N, NI, NO> {
         Ok(self)
     }
 
-    /// Adds a body after checking its mass, inertia and indices.
+    /// Adds a body after checking its mass, inertia and indices, and that the total mass stays
+    /// within the range of `f64` ([`DynamicsError::Overflow`] otherwise).
     pub fn with_body(mut self, body: Body) -> Result<Self, DynamicsError> {
         for (quantity, value) in [("mass", body.mass), ("moment of inertia", body.inertia)] {
             if !value.is_finite() || value < 0.0 {
                 return Err(DynamicsError::BadMass { body: body.name, quantity, value });
             }
+        }
+        // The sum in the order `total_mass` takes it.
+        if !(self.total_mass() + body.mass).is_finite() {
+            return Err(DynamicsError::Overflow { what: "total mass", x: Vec::new() });
         }
         check_point::<N, NO>("body", body.name, body.com)?;
         check_rotation::<N, NI>("body", body.name, body.rotation)?;

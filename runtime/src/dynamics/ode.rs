@@ -129,7 +129,9 @@ fn norm<const D: usize>(v: &[f64; D], y0: &[f64; D], y1: &[f64; D], cfg: &OdeCon
 
 /// Integrates `y' = f(t, y)` from `(t0, y0)` to `t_end > t0`. After every accepted step,
 /// `on_step(step, y_end)` is called; it returns `true` to stop there. Returns the time and the
-/// state reached. An error of `f` or `on_step` stops the integration and is returned.
+/// state reached. An error of `f` or `on_step` stops the integration and is returned; a step
+/// that cannot change a component of the state by a change larger than the absolute tolerance
+/// (the component's value is too large to register it) is [`DynamicsError::CannotAdvance`].
 pub fn dopri5<const D: usize>(
     mut f: impl FnMut(f64, &[f64; D]) -> Result<[f64; D], DynamicsError>,
     t0: f64,
@@ -157,6 +159,12 @@ pub fn dopri5<const D: usize>(
         k[4] = f(t + C[3] * h, &combine(&y, h, &A5, &k))?;
         k[5] = f(t + C[4] * h, &combine(&y, h, &A6, &k))?;
         let y1 = combine(&y, h, &B, &k);
+        // A state that overflows is no step (the error norm can miss it: an infinite state
+        // makes its own scale infinite); a smaller one may stay finite.
+        if !y1.iter().all(|v| v.is_finite()) {
+            h *= 0.2;
+            continue;
+        }
         let t1 = if last { t_end } else { t + h };
         k[6] = f(t1, &y1)?;
         let err = norm(&combine(&[0.0; D], h, &E, &k), &y, &y1, cfg);
@@ -168,6 +176,14 @@ pub fn dopri5<const D: usize>(
         if err > 1.0 {
             h *= grow.min(1.0);
             continue;
+        }
+        // A component the step should move by more than the absolute tolerance but that stays
+        // where it is: its value is so large that the change is below the spacing of f64
+        // numbers there. Its error looks small (relative to the huge value), so the step would
+        // be accepted and the component would never move.
+        let change = combine(&[0.0; D], h, &B, &k);
+        if let Some(i) = (0..D).find(|&i| y1[i] == y[i] && change[i].abs() > cfg.atol) {
+            return Err(DynamicsError::CannotAdvance { t, component: i, value: y[i], change: change[i] });
         }
         let step = dense(t, h, &y, &y1, &k);
         (t, y) = (t1, y1);

@@ -78,7 +78,9 @@ impl Trajectory {
 /// position, where the reduced inertia grows without bound) as
 /// [`DynamicsError::SingularMotion`] with the input reached; a reduced inertia that is not positive as
 /// [`DynamicsError::SingularMass`]; a drive or load that is not finite as
-/// [`DynamicsError::NonFiniteLoad`]; integrator failures. Besides the recorded trajectory (one
+/// [`DynamicsError::NonFiniteLoad`]; a start so far out (an input of 1e300) that a step cannot
+/// change it as [`DynamicsError::CannotAdvance`]; results beyond the range of `f64` as
+/// [`DynamicsError::Overflow`]; integrator failures. Besides the recorded trajectory (one
 /// entry per accepted step, amortised growth), a step allocates nothing.
 #[allow(clippy::too_many_arguments)]
 pub fn simulate<M, const N: usize, const NO: usize>(

@@ -127,7 +127,8 @@ impl Layers<'_> {
     fn ground(&self, out: &mut String) {
         let all: Vec<usize> = (0..self.scene.frames.len()).collect();
         for k in 0..self.items() {
-            guide(out, &self.d.style, &at_keys(&self.scene, &all, k));
+            let size = [self.scene.view.width, self.scene.view.height];
+            guide(out, &self.d.style, &at_keys(&self.scene, &all, k), size);
         }
     }
 

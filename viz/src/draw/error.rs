@@ -16,6 +16,21 @@ pub enum DrawError {
     },
     /// There is no pose to draw: the motion is empty.
     EmptyMotion,
+    /// A pose of the motion does not fit the motion's columns: a hand-pushed [`Pose`] with
+    /// fewer (or more) input or output values than the motion names, or with another number
+    /// of unknowns than its first pose.
+    ///
+    /// [`Pose`]: super::Pose
+    MalformedPose {
+        /// Index of the pose in the motion (events count after the samples).
+        pose: usize,
+        /// Which values: `"input"`, `"unknown"` or `"output column"`.
+        part: &'static str,
+        /// How many the pose has.
+        len: usize,
+        /// How many the motion needs.
+        expected: usize,
+    },
     /// A point, angle or radius of the drawing is NaN or infinite at one pose (e.g. a closure
     /// over the state returned NaN).
     NonFinite {
@@ -23,6 +38,23 @@ pub enum DrawError {
         what: String,
         /// Index of the pose in the motion (events count after the samples).
         pose: usize,
+    },
+    /// A point maps to a pixel farther than a billion pixels from the picture (a window far
+    /// smaller than the mechanism): its coordinates would not survive the SVG's number
+    /// formats and renderers.
+    OffCanvas {
+        /// Which part of the drawing (`"point c"`, `"radius of item 2 (gear)"`, ...).
+        what: String,
+        /// Index of the pose in the motion (events count after the samples).
+        pose: usize,
+    },
+    /// The drawing's extent is too small to be fitted: more pixels per unit of length than
+    /// an `f64` holds (a mechanism spanning less than about 1e-305 units).
+    Unscalable {
+        /// Width of the extent, in the mechanism's units.
+        width: f64,
+        /// Height of the extent, in the mechanism's units.
+        height: f64,
     },
     /// A setting outside its valid range (e.g. zero frames or a non-positive width).
     InvalidSetting(String),
@@ -43,7 +75,20 @@ impl fmt::Display for DrawError {
                 write!(f, "no point `{name}`: the mechanism's points are {}", available.join(", "))
             }
             DrawError::EmptyMotion => f.write_str("nothing to draw: the motion has no pose (an empty sweep)"),
+            DrawError::MalformedPose { pose, part, len, expected } => write!(
+                f,
+                "pose {pose} has {len} {part} values but the motion needs {expected}: a pose must have one value per column"
+            ),
             DrawError::NonFinite { what, pose } => write!(f, "{what} is not finite at pose {pose}"),
+            DrawError::OffCanvas { what, pose } => write!(
+                f,
+                "{what} at pose {pose} lies more than 1e9 pixels outside the picture: widen the canvas window"
+            ),
+            DrawError::Unscalable { width, height } => write!(
+                f,
+                "the drawing spans only {width:e} x {height:e} units: too small to scale to pixels in f64; \
+                 express the mechanism in a smaller unit of length"
+            ),
             DrawError::InvalidSetting(s) => write!(f, "invalid drawing setting: {s}"),
             DrawError::Sweep(e) => write!(f, "the sweep failed: {e}"),
             DrawError::Render(s) => write!(f, "cannot render the SVG: {s}"),

@@ -120,6 +120,32 @@ impl Motion {
         Ok(motion)
     }
 
+    /// Checks every pose against the motion's columns (a [`Pose`] pushed by hand can have any
+    /// lengths): one input value per input name, one output value per output column, the
+    /// same number of unknowns in every pose; and the inputs of events finite (their labels
+    /// print them).
+    pub(crate) fn check(&self) -> Result<(), DrawError> {
+        let unknowns = self.poses.first().map_or(0, |p| p.q.len());
+        for (pose, p) in self.all_poses().enumerate() {
+            for (part, len, expected) in [
+                ("input", p.x.len(), self.inputs.len()),
+                ("unknown", p.q.len(), unknowns),
+                ("output column", p.out.len(), self.outputs.len()),
+            ] {
+                if len != expected {
+                    return Err(DrawError::MalformedPose { pose, part, len, expected });
+                }
+            }
+        }
+        for (j, e) in self.events.iter().enumerate() {
+            if let Some(i) = e.pose.x.iter().position(|v| !v.is_finite()) {
+                let what = format!("input `{}` of event {j}", self.inputs[i]);
+                return Err(DrawError::NonFinite { what, pose: self.poses.len() + j });
+            }
+        }
+        Ok(())
+    }
+
     /// The samples followed by the event poses: the poses a drawing must fit in its frame.
     pub(crate) fn all_poses(&self) -> impl Iterator<Item = &Pose> {
         self.poses.iter().chain(self.events.iter().map(|e| &e.pose))

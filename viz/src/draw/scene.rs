@@ -3,7 +3,7 @@
 use super::error::DrawError;
 use super::motion::{Motion, Pose};
 use super::spec::{Drawing, Item, PointFn, Pt, Scalar, StateRef};
-use super::view::View;
+use super::view::{FAR, View};
 
 /// The geometry of one item at one pose (world units, then pixels after [`Shape::to_px`]).
 /// Angles are radians counter-clockwise in world units and degrees clockwise (SVG) in pixels.
@@ -30,7 +30,12 @@ impl Shape {
     }
 
     fn to_px(&self, v: &View) -> Shape {
-        let deg = |a: f64| -a.to_degrees();
+        // Beyond about 3e306 radians the degrees overflow: there the angle is first reduced
+        // to a turn (such an angle has no digits left below a turn anyway).
+        let deg = |a: f64| {
+            let d = -a.to_degrees();
+            if d.is_finite() { d } else { -(a % std::f64::consts::TAU).to_degrees() }
+        };
         match self {
             Shape::Link { pts, closed } => Shape::Link { pts: pts.iter().map(|p| v.px(*p)).collect(), closed: *closed },
             Shape::Pivot { at } => Shape::Pivot { at: v.px(*at) },
@@ -135,12 +140,23 @@ impl<'d> BoundItems<'d> {
                     angle: e.scalar(angle, || format!("angle of item {k} (slider)"))?,
                     fixed: matches!(angle, Scalar::Const(_)),
                 },
-                Item::Gear { radius, angle, .. } => Shape::Gear {
-                    centre: p(0)?,
-                    radius: e.scalar(&Scalar::Const(*radius), || format!("radius of item {k} (gear)"))?,
-                    angle: e.scalar(angle, || format!("angle of item {k} (gear)"))?,
-                    turning: matches!(angle, Scalar::Expr(_)),
-                },
+                Item::Gear { radius, angle, .. } => {
+                    let what = || format!("radius of item {k} (gear)");
+                    let (centre, radius) = (p(0)?, e.scalar(&Scalar::Const(*radius), what)?);
+                    if radius < 0.0 {
+                        return Err(DrawError::InvalidSetting(format!("{} {radius} is negative", what())));
+                    }
+                    // The circle must fit in the plane of f64 too: its extent is fitted.
+                    let [x, y] = centre;
+                    e.check([x - radius, y - radius], || format!("extent of item {k} (gear)"))?;
+                    e.check([x + radius, y + radius], || format!("extent of item {k} (gear)"))?;
+                    Shape::Gear {
+                        centre,
+                        radius,
+                        angle: e.scalar(angle, || format!("angle of item {k} (gear)"))?,
+                        turning: matches!(angle, Scalar::Expr(_)),
+                    }
+                }
             });
         }
         Ok(shapes)
@@ -161,9 +177,11 @@ pub(crate) struct Scene {
 impl Scene {
     pub fn new(d: &Drawing, motion: &Motion) -> Result<Scene, DrawError> {
         d.canvas.check()?;
+        d.style.check()?;
         if motion.poses.is_empty() {
             return Err(DrawError::EmptyMotion);
         }
+        motion.check()?;
         let bound = BoundItems::new(d, motion)?;
         let mut frames = Vec::with_capacity(motion.poses.len() + motion.events.len());
         let mut traced = Vec::with_capacity(frames.capacity());
@@ -178,8 +196,9 @@ impl Scene {
         }
         pts.extend(traced.iter().flatten());
         let view = d.canvas.view(&pts)?;
-        let frames = frames.iter().map(|f| f.iter().map(|s| s.to_px(&view)).collect()).collect();
-        let traced = traced.iter().map(|t| t.iter().map(|p| view.px(*p)).collect()).collect();
+        let frames: Vec<Vec<Shape>> = frames.iter().map(|f| f.iter().map(|s| s.to_px(&view)).collect()).collect();
+        let traced: Vec<Vec<[f64; 2]>> = traced.iter().map(|t| t.iter().map(|p| view.px(*p)).collect()).collect();
+        near(d, &frames, &traced)?;
         Ok(Scene { view, frames, traced, samples: motion.poses.len() })
     }
 
@@ -203,6 +222,28 @@ impl Scene {
         }
         path
     }
+}
+
+/// Every pixel coordinate and size within [`FAR`] of the origin (a window can put points
+/// anywhere, even at infinite pixels).
+fn near(d: &Drawing, frames: &[Vec<Shape>], traced: &[Vec<[f64; 2]>]) -> Result<(), DrawError> {
+    let far = |v: f64| v.is_nan() || v.abs() > FAR;
+    for (pose, (shapes, traced)) in frames.iter().zip(traced).enumerate() {
+        for (k, shape) in shapes.iter().enumerate() {
+            let mut out = false;
+            shape.extent(|[x, y]| out |= far(x) || far(y));
+            if let Shape::Gear { radius, .. } = shape {
+                out |= far(*radius);
+            }
+            if out {
+                return Err(DrawError::OffCanvas { what: format!("item {k} ({:?})", d.items[k]), pose });
+            }
+        }
+        if let Some(t) = traced.iter().position(|[x, y]| far(*x) || far(*y)) {
+            return Err(DrawError::OffCanvas { what: format!("traced {}", d.traces[t].describe()), pose });
+        }
+    }
+    Ok(())
 }
 
 fn state(p: &Pose) -> StateRef<'_> {

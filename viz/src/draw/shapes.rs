@@ -118,8 +118,9 @@ fn slider(out: &mut String, pen: &Pen, shapes: &[&Shape]) {
 }
 
 /// The guide of a slider on a fixed direction: a ground line under the block over its whole
-/// stroke (every pose in `shapes`), hatched on the far side.
-pub(crate) fn guide(out: &mut String, style: &Style, shapes: &[&Shape]) {
+/// stroke (every pose in `shapes`), hatched on the far side; cut to the picture of `size`
+/// pixels (a stroke far outside a window would take as many hatch strokes).
+pub(crate) fn guide(out: &mut String, style: &Style, shapes: &[&Shape], size: [f64; 2]) {
     let Some(Shape::Slider { at, angle, fixed: true }) = shapes.first() else { return };
     let a = angle.to_radians();
     let (u, n) = ([a.cos(), a.sin()], [-a.sin(), a.cos()]);
@@ -132,6 +133,13 @@ pub(crate) fn guide(out: &mut String, style: &Style, shapes: &[&Shape]) {
     }
     let [l, h] = style.block;
     let (lo, hi) = (lo - 0.5 * l - 8.0, hi + 0.5 * l + 8.0);
+    // The part of the line over the picture lies between the corners' positions along it.
+    let corners = [[0.0, 0.0], [size[0], 0.0], [0.0, size[1]], size].map(|c| along(&c));
+    let (first, last) = corners.iter().fold((f64::INFINITY, f64::NEG_INFINITY), |(a, b), c| (a.min(*c), b.max(*c)));
+    let (lo, hi) = (lo.max(first - 8.0), hi.min(last + 8.0));
+    if lo > hi {
+        return;
+    }
     let off = at[0] * n[0] + at[1] * n[1] + 0.5 * h;
     let p = |t: f64| [u[0] * t + n[0] * off, u[1] * t + n[1] * off];
     let (a0, a1) = (p(lo), p(hi));

@@ -1,5 +1,7 @@
 //! Colours and sizes of drawings, in pixels (independent of the mechanism's unit of length).
 
+use super::error::DrawError;
+
 /// How a drawing looks. Sizes are pixels; colours are SVG colours.
 #[derive(Clone, Debug, PartialEq)]
 pub struct Style {
@@ -41,6 +43,32 @@ impl Default for Style {
 }
 
 impl Style {
+    /// Sizes must be finite and not negative, and colours must be writable into an SVG
+    /// attribute as they are.
+    pub(crate) fn check(&self) -> Result<(), DrawError> {
+        let sizes = [
+            ("link width", self.link_width),
+            ("joint radius", self.joint_radius),
+            ("block length", self.block[0]),
+            ("block height", self.block[1]),
+            ("trace width", self.trace_width),
+        ];
+        for (what, v) in sizes {
+            if !(v.is_finite() && v >= 0.0) {
+                return Err(DrawError::InvalidSetting(format!("style {what} {v} must be finite and not negative")));
+            }
+        }
+        let colours = [&self.ink, &self.fill, &self.event, &self.ground].into_iter().chain(&self.traces);
+        for c in colours {
+            if c.contains(['"', '<', '>', '&']) {
+                return Err(DrawError::InvalidSetting(format!(
+                    "style colour {c:?} holds a character that cannot stand in an SVG attribute (\", <, > or &)"
+                )));
+            }
+        }
+        Ok(())
+    }
+
     /// The colour of trace `k`.
     pub(crate) fn trace(&self, k: usize) -> &str {
         self.traces.get(k % self.traces.len().max(1)).map_or("#d95f02", String::as_str)

@@ -4,6 +4,11 @@ use std::fmt::Write;
 
 /// A coordinate rounded to 0.1 px, as written.
 pub(crate) fn round(v: f64) -> f64 {
+    // From 2^52 up every f64 is a whole number (nothing to round), and `v * 10` could
+    // overflow to infinity.
+    if v.abs() >= 4_503_599_627_370_496.0 {
+        return v + 0.0;
+    }
     // `-0` would print as "-0"; the sum with `0.0` turns it into `+0`.
     (v * 10.0).round() / 10.0 + 0.0
 }
@@ -35,8 +40,10 @@ pub(crate) fn pair([x, y]: [f64; 2]) -> String {
 pub(crate) fn unwrap_degrees(a: &[f64]) -> Vec<f64> {
     let mut out: Vec<f64> = Vec::with_capacity(a.len());
     for &v in a {
+        // In halves, so that angles near the largest f64 do not overflow (the same numbers
+        // otherwise: halving is exact).
         out.push(match out.last() {
-            Some(&prev) => v - 360.0 * ((v - prev) / 360.0).round(),
+            Some(&prev) => 2.0 * (0.5 * v - 180.0 * ((0.5 * v - 0.5 * prev) / 180.0).round()),
             None => v,
         });
     }

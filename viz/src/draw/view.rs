@@ -25,10 +25,21 @@ impl Default for Canvas {
 /// Fitted pictures are at most this many times as high as wide.
 const MAX_ASPECT: f64 = 1.25;
 
+/// Largest width (and, times [`MAX_ASPECT`], height) of a picture in pixels: a larger one is
+/// no picture any renderer draws, and its ground hatching would take that many strokes.
+const MAX_WIDTH: f64 = 1e6;
+
+/// Pixel coordinates farther than this from the origin are not written (see
+/// [`DrawError::OffCanvas`]).
+pub(crate) const FAR: f64 = 1e9;
+
 impl Canvas {
     pub(crate) fn check(&self) -> Result<(), DrawError> {
-        if !(self.width.is_finite() && self.width > 0.0) {
-            return Err(DrawError::InvalidSetting(format!("canvas width {} must be positive", self.width)));
+        if !(self.width.is_finite() && self.width > 0.0 && self.width <= MAX_WIDTH) {
+            return Err(DrawError::InvalidSetting(format!(
+                "canvas width {} must be positive and at most {MAX_WIDTH:e} pixels",
+                self.width
+            )));
         }
         if !(self.margin.is_finite() && self.margin >= 0.0 && 2.0 * self.margin < self.width) {
             return Err(DrawError::InvalidSetting(format!(
@@ -44,11 +55,25 @@ impl Canvas {
         Ok(())
     }
 
-    /// The view showing `pts` (or the window).
+    /// The view showing `pts` (all finite), or the window.
+    ///
+    /// Differences of coordinates are taken of halves (`x / 2 - x0 / 2`), which cannot
+    /// overflow for finite coordinates and, halving being exact, give the same pixels as the
+    /// plain difference wherever that one is finite.
     pub(crate) fn view(&self, pts: &[[f64; 2]]) -> Result<View, DrawError> {
         if let Some([x0, y0, x1, y1]) = self.window {
-            let scale = self.width / (x1 - x0);
-            return Ok(View { x0, y1, ox: 0.0, oy: 0.0, scale, width: self.width, height: (y1 - y0) * scale });
+            let scale = 0.5 * self.width / (0.5 * x1 - 0.5 * x0);
+            let height = 2.0 * ((0.5 * y1 - 0.5 * y0) * scale);
+            if !(scale.is_finite() && height.is_finite() && height > 0.0 && height <= MAX_ASPECT * MAX_WIDTH) {
+                return Err(DrawError::InvalidSetting(format!(
+                    "window {:?} at {} pixels wide gives a picture {height:e} pixels high \
+                     ({scale:e} pixels per unit): it must be more than 0 and at most {:e}",
+                    self.window,
+                    self.width,
+                    MAX_ASPECT * MAX_WIDTH
+                )));
+            }
+            return Ok(View { x0, y1, ox: 0.0, oy: 0.0, scale, width: self.width, height });
         }
         let (mut x0, mut y0, mut x1, mut y1) = (f64::INFINITY, f64::INFINITY, f64::NEG_INFINITY, f64::NEG_INFINITY);
         for [x, y] in pts {
@@ -58,19 +83,26 @@ impl Canvas {
             return Err(DrawError::InvalidSetting("the drawing has no item to draw".into()));
         }
         let (inner, tall) = (self.width - 2.0 * self.margin, MAX_ASPECT * self.width - 2.0 * self.margin);
-        let (dx, dy) = (x1 - x0, y1 - y0);
-        let mut scale = if dx > 0.0 { inner / dx } else { f64::INFINITY };
-        if dy > 0.0 {
-            scale = scale.min(tall / dy);
+        // Half the extent on each axis.
+        let (hx, hy) = (0.5 * x1 - 0.5 * x0, 0.5 * y1 - 0.5 * y0);
+        let mut scale = if hx > 0.0 { 0.5 * inner / hx } else { f64::INFINITY };
+        if hy > 0.0 {
+            scale = scale.min(0.5 * tall / hy);
         }
-        if !scale.is_finite() {
+        if hx == 0.0 && hy == 0.0 {
             // A lone point has no extent to fit: show it at the scale of its distance from the
-            // origin (scale-free), or at any scale when it is the origin.
+            // origin (scale-free), or at any scale when it is the origin (or so near it that
+            // its scale overflows: every shape sits on the one point, so any scale draws it).
             let r = x0.abs().max(y0.abs());
             scale = if r > 0.0 { inner / (2.0 * r) } else { 1.0 };
+            if !scale.is_finite() {
+                scale = f64::MAX;
+            }
+        } else if !scale.is_finite() {
+            return Err(DrawError::Unscalable { width: 2.0 * hx, height: 2.0 * hy });
         }
-        let ox = self.margin + (inner - dx * scale) / 2.0;
-        let height = dy * scale + 2.0 * self.margin;
+        let ox = self.margin + 0.5 * inner - hx * scale;
+        let height = 2.0 * (hy * scale) + 2.0 * self.margin;
         Ok(View { x0, y1, ox, oy: self.margin, scale, width: self.width, height })
     }
 }
@@ -92,7 +124,13 @@ pub struct View {
 
 impl View {
     /// The pixel of point `(x, y)` (Y up in the mechanism, down in the picture).
+    /// Differences are taken of halves, so no finite point overflows on the way (the
+    /// pixel itself can be far outside the picture, or infinite, for a point far outside a
+    /// window).
     pub fn px(&self, [x, y]: [f64; 2]) -> [f64; 2] {
-        [self.ox + (x - self.x0) * self.scale, self.oy + (self.y1 - y) * self.scale]
+        [
+            self.ox + 2.0 * ((0.5 * x - 0.5 * self.x0) * self.scale),
+            self.oy + 2.0 * ((0.5 * self.y1 - 0.5 * y) * self.scale),
+        ]
     }
 }

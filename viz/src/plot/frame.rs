@@ -1,9 +1,9 @@
 //! The plot area of one panel: its pixel rectangle, the ticks of both axes and the mapping from
 //! data to pixels; draws the frame, grid, tick labels and axis titles.
 
+use super::Axis;
 use super::svg::Svg;
 use super::ticks::Ticks;
-use super::{Axis, Kind};
 
 /// Canvas width in pixels.
 pub(crate) const WIDTH: f64 = 900.0;
@@ -21,21 +21,15 @@ pub(crate) struct Frame {
     pub y: f64,
     pub w: f64,
     pub h: f64,
+    /// The ticks of both axes (and their scales, which convert values to shown units).
     pub xt: Ticks,
     pub yt: Ticks,
-    /// Kinds of the axes (to convert values to shown units).
-    pub xk: Kind,
-    pub yk: Kind,
 }
 
 impl Frame {
     /// The pixel position of a data point (values in the library's units).
     pub fn px(&self, (x, y): (f64, f64)) -> (f64, f64) {
-        let (sx, sy) = (self.xk.shown(x), self.yk.shown(y));
-        (
-            self.x + (sx - self.xt.lo) / (self.xt.hi - self.xt.lo) * self.w,
-            self.y + self.h - (sy - self.yt.lo) / (self.yt.hi - self.yt.lo) * self.h,
-        )
+        (self.x + self.xt.frac(x) * self.w, self.y + self.h - self.yt.frac(y) * self.h)
     }
 
     /// The right edge of the plot area.
@@ -47,17 +41,17 @@ impl Frame {
     /// stacked panels name the shared x axis once, under the last).
     pub fn draw(&self, svg: &mut Svg, x_title: Option<&Axis>, y: &Axis) {
         let (x0, y0, x1, y1) = (self.x, self.y, self.x + self.w, self.y + self.h);
-        for &v in &self.xt.values {
-            let px = x0 + (v - self.xt.lo) / (self.xt.hi - self.xt.lo) * self.w;
+        for &(v, k) in &self.xt.values {
+            let px = x0 + self.xt.frac_scaled(v) * self.w;
             svg.line("grid", (px, y0), (px, y1), "#e3e3e3", 1.0);
             svg.line("tick", (px, y1), (px, y1 + 5.0), "black", 1.0);
-            svg.text("tick-label x", px, y1 + 19.0, TICK_FONT, "middle", 0.0, &self.xt.label(v));
+            svg.text("tick-label x", px, y1 + 19.0, TICK_FONT, "middle", 0.0, &self.xt.label(k));
         }
-        for &v in &self.yt.values {
-            let py = y1 - (v - self.yt.lo) / (self.yt.hi - self.yt.lo) * self.h;
+        for &(v, k) in &self.yt.values {
+            let py = y1 - self.yt.frac_scaled(v) * self.h;
             svg.line("grid", (x0, py), (x1, py), "#e3e3e3", 1.0);
             svg.line("tick", (x0 - 5.0, py), (x0, py), "black", 1.0);
-            svg.text("tick-label y", x0 - 8.0, py + 4.0, TICK_FONT, "end", 0.0, &self.yt.label(v));
+            svg.text("tick-label y", x0 - 8.0, py + 4.0, TICK_FONT, "end", 0.0, &self.yt.label(k));
         }
         svg.rect("plot-area", (x0, y0), (self.w, self.h), "none", "black");
         svg.text("axis-title y", 22.0, y0 + self.h / 2.0, AXIS_FONT, "middle", -90.0, &y.title());

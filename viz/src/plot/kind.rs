@@ -78,6 +78,11 @@ impl Kind {
     pub fn shown(&self, v: f64) -> f64 {
         if self.is_angle() { v.to_degrees() } else { v }
     }
+
+    /// Shown units per value unit (degrees per radian for angles, else 1).
+    pub(crate) fn factor(&self) -> f64 {
+        self.shown(1.0)
+    }
 }
 
 impl fmt::Display for Kind {

@@ -42,7 +42,7 @@ pub fn panels_svg(title: &str, x: &Axis, panels: &[Panel]) -> Result<String, Plo
     }
     let all = panels.iter().flat_map(|p| p.series.iter().flat_map(|s| s.points.iter()).chain(p.marks.iter()));
     let (x0, x1, _, _) = bounds(all).ok_or_else(|| PlotError::Empty { what: "the figure".into() })?;
-    let xt = Ticks::new(x.kind.shown(x0), x.kind.shown(x1), x.kind.is_angle(), false);
+    let xt = Ticks::new(x0, x1, x.kind.factor(), x.kind.is_angle(), false, 0.0);
     let legend_w = legend::width(panels.iter().flat_map(|p| p.series.iter().map(|s| s.label.as_str())));
     let top = if title.is_empty() { 16.0 } else { 48.0 };
     let height = top + panels.len() as f64 * (PANEL_H + GAP) + 20.0;
@@ -54,17 +54,13 @@ pub fn panels_svg(title: &str, x: &Axis, panels: &[Panel]) -> Result<String, Plo
     for (k, p) in panels.iter().enumerate() {
         let what = || PlotError::Empty { what: format!("the panel `{}`", p.axis.name) };
         let (_, _, y0, y1) = bounds(p.series.iter().flat_map(|s| s.points.iter()).chain(&p.marks)).ok_or_else(what)?;
-        let (y0, y1) = (p.axis.kind.shown(y0), p.axis.kind.shown(y1));
-        let pad = 0.03 * (y1 - y0);
         let frame = Frame {
             x: LEFT,
             y: top + k as f64 * (PANEL_H + GAP),
             w: plot_w,
             h: PANEL_H,
             xt: xt.clone(),
-            yt: Ticks::new(y0 - pad, y1 + pad, p.axis.kind.is_angle(), true),
-            xk: x.kind.clone(),
-            yk: p.axis.kind.clone(),
+            yt: Ticks::new(y0, y1, p.axis.kind.factor(), p.axis.kind.is_angle(), true, 0.03),
         };
         draw_panel(&mut svg, &frame, k, p, (k + 1 == panels.len()).then_some(x), legend_w);
     }

@@ -3,7 +3,7 @@
 use super::frame::{Frame, LEFT, TITLE_FONT, WIDTH};
 use super::series::bounds;
 use super::svg::Svg;
-use super::ticks::Ticks;
+use super::ticks::{Ticks, binade};
 use super::{Axis, PlotError, Series, legend};
 
 /// Largest plot area height in pixels.
@@ -43,29 +43,33 @@ pub fn xy_chart_svg(
     let (x0, x1, y0, y1) = bounds(series.iter().flat_map(|s| s.points.iter()).chain(marks))
         .ok_or(PlotError::Empty { what: "the figure".into() })?;
     let k = &x.kind;
-    let (x0, x1, y0, y1) = (k.shown(x0), k.shown(x1), k.shown(y0), k.shown(y1));
+    // Scaled (see `Ticks`): both axes by one power of two, so the spans, centres and the
+    // common scale below cannot overflow, and subnormal data keep their precision.
+    let unit = binade(x0.abs().max(x1.abs()).max(y0.abs()).max(y1.abs()));
+    let n = |v: f64| v / unit * k.factor();
+    let (x0, x1, y0, y1) = (n(x0), n(x1), n(y0), n(y1));
     let legend_w = legend::width(series.iter().map(|s| s.label.as_str()));
     let w = WIDTH - LEFT - 24.0 - if legend_w > 0.0 { legend_w + 16.0 } else { 0.0 };
-    // Shown units per pixel, with a margin, from the axis that needs more.
+    // Scaled shown units per pixel, with a margin, from the axis that needs more.
     let mut span = ((x1 - x0) / w).max((y1 - y0) / MAX_H);
     if span == 0.0 {
+        // A lone point: a window of a fifth of its distance from the origin on either side
+        // (scale-free: a nonzero scaled coordinate is at least 1).
         span = x0.abs().max(y0.abs()).max(1.0) * 0.2 / w;
     }
     let scale = 1.08 * span;
     let h = ((y1 - y0) / scale * 1.08).clamp(MAX_H / 2.0, MAX_H);
-    let (cx, cy) = ((x0 + x1) / 2.0, (y0 + y1) / 2.0);
+    let (cx, cy) = (0.5 * (x0 + x1), 0.5 * (y0 + y1));
     let (hx, hy) = (scale * w / 2.0, scale * h / 2.0);
-    let xt = Ticks::new(cx - hx, cx + hx, k.is_angle(), false);
+    let xt = Ticks::scaled(cx - hx, cx + hx, unit, k.factor(), k.is_angle(), false, 0.0);
     // The same step on both axes: equal scales read best with equal grid squares.
-    let mut yt = Ticks::new(cy - hy, cy + hy, k.is_angle(), false);
-    yt.step = xt.step;
-    yt.values = Ticks::multiples(cy - hy, cy + hy, xt.step);
+    let yt = Ticks::with_step(cy - hy, cy + hy, &xt);
     let top = if title.is_empty() { 16.0 } else { 48.0 };
     let mut svg = Svg::new(WIDTH, top + h + 64.0);
     if !title.is_empty() {
         svg.text("title", WIDTH / 2.0, 30.0, TITLE_FONT, "middle", 0.0, title);
     }
-    let frame = Frame { x: LEFT, y: top, w, h, xt, yt, xk: k.clone(), yk: k.clone() };
+    let frame = Frame { x: LEFT, y: top, w, h, xt, yt };
     svg.open("panel");
     frame.draw(&mut svg, Some(x), y);
     svg.clip("area0", (frame.x, frame.y), (frame.w, frame.h));

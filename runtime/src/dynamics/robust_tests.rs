@@ -1,0 +1,201 @@
+//! Hostile magnitudes in the dynamics: results beyond the range of f64 are typed errors (or
+//! computed scaled where representable), never infinity or NaN inside an `Ok`.
+
+use super::*;
+use crate::kin::{Health, Kin};
+use crate::{SolveReport, Termination};
+
+/// A crank of radius `r` turning with input 0, its centre of mass at the crank pin (the
+/// columns of a point `r @ phi` at phi = 0), as a hand-made state.
+fn crank(r: f64) -> Kin<0, 1, 2> {
+    Kin {
+        x: [0.0],
+        q: [],
+        dq: [],
+        d2q: [],
+        out: [r, 0.0],
+        dout: [[0.0], [r]],
+        d2out: [[[-r]], [[0.0]]],
+        report: SolveReport { iterations: 0, evaluations: 0, residual: 0.0, termination: Termination::Direct },
+        health: Health::default(),
+    }
+}
+
+fn body(mass: f64, inertia: f64) -> Body {
+    Body { name: "crank", mass, com: [Coord::Output(0), Coord::Output(1)], inertia, rotation: Rotation::Input(0) }
+}
+
+#[test]
+fn a_total_mass_beyond_f64_is_refused_when_the_body_is_added() {
+    let one = MassModel::<0, 1, 2>::new().with_body(body(1e308, 0.0)).unwrap();
+    assert_eq!(one.total_mass(), 1e308);
+    let err = one.with_body(body(1e308, 0.0)).err().expect("two bodies of 1e308 overflow");
+    assert!(matches!(err, DynamicsError::Overflow { what: "total mass", .. }), "{err}");
+    assert!(err.to_string().contains("total mass is beyond the range of f64"), "{err}");
+    assert!(!err.to_string().contains("at input"), "{err}");
+}
+
+#[test]
+fn dynamics_results_beyond_f64_are_overflow_errors() {
+    // m r^2 overflows: the mass matrix is not representable.
+    let model = MassModel::<0, 1, 2>::new().with_body(body(1e308, 0.0)).unwrap();
+    let err = model.dynamics(&crank(10.0), &[1.0]).unwrap_err();
+    assert!(matches!(&err, DynamicsError::Overflow { x, .. } if x == &[0.0]), "{err}");
+    // Gravity on a huge mass: the generalised force overflows.
+    let model = MassModel::<0, 1, 2>::new().with_body(body(1e308, 0.0)).unwrap().with_gravity([0.0, -10.0]).unwrap();
+    let err = model.dynamics(&crank(1.0), &[1.0]).unwrap_err();
+    assert!(matches!(err, DynamicsError::Overflow { what: "generalised forces", .. }), "{err}");
+    // A representable model, driven at speeds and accelerations whose torque overflows.
+    // J = 200.01: J eps overflows.
+    let model = MassModel::<0, 1, 2>::new().with_body(body(2.0, 0.01)).unwrap();
+    let d = model.dynamics(&crank(10.0), &[1.0]).unwrap();
+    let err = d.checked_drive(&[0.0], &[1.0], &[1e308]).unwrap_err();
+    assert!(matches!(err, DynamicsError::Overflow { what: "driving force", .. }), "{err}");
+    assert_eq!(d.checked_drive(&[0.0], &[1.0], &[2.0]).unwrap(), d.drive(&[1.0], &[2.0]));
+    assert!(matches!(d.checked_drive(&[0.0], &[f64::NAN], &[0.0]), Err(DynamicsError::BadValue { .. })));
+    // J = 0.01: tau / J overflows.
+    let d = model.dynamics(&crank(0.001), &[1.0]).unwrap();
+    let err = d.accelerations(&[0.0], &[1.0], &[1e308]).unwrap_err();
+    assert!(matches!(err, DynamicsError::Overflow { what: "input accelerations", .. }), "{err}");
+    assert!(matches!(d.accelerations(&[0.0], &[1.0], &[f64::INFINITY]), Err(DynamicsError::BadValue { .. })));
+    // A hand-made state holding NaN is a bad value, not an overflow.
+    let mut k = crank(0.1);
+    k.dout[1][0] = f64::NAN;
+    let err = model.dynamics(&k, &[1.0]).unwrap_err();
+    assert!(matches!(err, DynamicsError::BadValue { what: "kinematic state value", .. }), "{err}");
+}
+
+fn point(phi: f64, torque: f64, load: f64, omega: f64, inertia: f64) -> CyclePoint {
+    CyclePoint {
+        phi,
+        omega,
+        eps: 0.0,
+        inertia,
+        inertia_slope: 0.0,
+        load,
+        torque,
+        shaking: Shaking { force: [torque, -torque], moment: torque },
+    }
+}
+
+/// A cycle of `n` points with torque `scale * (1 + cos phi)`.
+fn cycle(n: usize, scale: f64) -> Cycle {
+    let points = (0..n)
+        .map(|j| {
+            let phi = std::f64::consts::TAU * j as f64 / n as f64;
+            point(phi, scale * (1.0 + phi.cos()), 0.0, 1.0, 1.0)
+        })
+        .collect();
+    Cycle { points }
+}
+
+#[test]
+fn too_many_harmonics_say_so_with_the_numbers() {
+    let c = cycle(16, 1.0);
+    let err = c.torque_harmonics(8).unwrap_err();
+    assert_eq!(err, DynamicsError::TooManyHarmonics { harmonics: 8, samples: 16 });
+    let text = err.to_string();
+    assert!(text.contains("8 harmonics asked of 16 samples per period: they resolve at most 7"), "{text}");
+    assert!(!text.contains("kinematics") && !text.contains("NaN"), "{text}");
+    assert!(c.torque_harmonics(7).is_ok());
+    assert!(matches!(c.shaking_harmonics(100), Err(DynamicsError::TooManyHarmonics { harmonics: 100, .. })));
+    assert!(matches!(Cycle { points: Vec::new() }.torque_harmonics(0), Err(DynamicsError::TooManyHarmonics { .. })));
+    // Outside a simulation a kinematic failure names no time.
+    let kin = DynamicsError::kin(crate::Error::InvalidArgument("x".into())).to_string();
+    assert!(kin.starts_with("kinematics failed: "), "{kin}");
+}
+
+#[test]
+fn harmonics_and_means_of_huge_values_are_computed_scaled() {
+    // Torques near the top of the f64 range: the plain sums overflow, the scaled ones do not.
+    let c = cycle(16, 8e307);
+    let f = c.torque_harmonics(3).unwrap();
+    assert!((f.a0 / 8e307 - 1.0).abs() < 1e-12 && (f.a[0] / 8e307 - 1.0).abs() < 1e-12, "{f:?}");
+    assert!(f.a[1].abs() < 1e-12 * 8e307 && f.b[0].abs() < 1e-12 * 8e307, "{f:?}");
+    assert!((c.mean_torque() / 8e307 - 1.0).abs() < 1e-12, "{}", c.mean_torque());
+    assert!(c.shaking_harmonics(3).is_ok());
+    // The same at ordinary magnitudes, bit for bit as before the scaling (a power of two).
+    let small = cycle(16, 3.0);
+    let scaled = cycle(16, 3.0 * 2f64.powi(600));
+    let (a, b) = (small.torque_harmonics(3).unwrap(), scaled.torque_harmonics(3).unwrap());
+    assert_eq!(a.a0 * 2f64.powi(600), b.a0);
+    assert_eq!(a.b.iter().map(|v| v * 2f64.powi(600)).collect::<Vec<_>>(), b.b);
+}
+
+#[test]
+fn a_flywheel_beyond_f64_is_an_error() {
+    // Loads whose work over the cycle overflows.
+    let n = 16;
+    let points: Vec<CyclePoint> = (0..n)
+        .map(|j| {
+            let phi = std::f64::consts::TAU * j as f64 / n as f64;
+            point(phi, 0.0, 1.5e308 * phi.sin(), 1.0, 1.0)
+        })
+        .collect();
+    let err = Cycle { points }.flywheel(0.01).unwrap_err();
+    assert!(matches!(err, DynamicsError::Overflow { .. }), "{err}");
+    // A fluctuation so small that the flywheel is beyond f64.
+    let n = 16;
+    let points: Vec<CyclePoint> = (0..n)
+        .map(|j| {
+            let phi = std::f64::consts::TAU * j as f64 / n as f64;
+            point(phi, 0.0, 1e300 * phi.sin(), 1.0, 1.0)
+        })
+        .collect();
+    let err = Cycle { points: points.clone() }.flywheel(1e-300).unwrap_err();
+    assert!(matches!(err, DynamicsError::Overflow { .. }), "{err}");
+    // Hand-made points that are not finite, or none.
+    let mut bad = points;
+    bad[3].omega = f64::NAN;
+    assert!(matches!(Cycle { points: bad }.flywheel(0.1), Err(DynamicsError::BadValue { .. })));
+    assert!(matches!(Cycle { points: Vec::new() }.flywheel(0.1), Err(DynamicsError::BadValue { .. })));
+}
+
+#[test]
+fn an_integration_that_cannot_move_a_huge_coordinate_is_an_error() {
+    // y' = 1 from y = 1e300: every step's change is far below the spacing of f64 there
+    // (about 1e284), so y would stay at 1e300 and an Ok would report a frozen state.
+    let cfg = OdeConfig::default();
+    let err = dopri5(|_, _| Ok([1.0]), 0.0, [1e300], 1.0, &cfg, |_, _| Ok(false)).unwrap_err();
+    let DynamicsError::CannotAdvance { component: 0, value, change, .. } = err else { panic!("{err}") };
+    assert_eq!(value, 1e300);
+    assert!(change > cfg.atol && change < 1.0, "{change}");
+    assert!(err.to_string().contains("spacing of f64 numbers there (1.4"), "{err}");
+    // A change below the absolute tolerance may be lost (a machine coming to rest), and a
+    // large value that does register its change integrates as before.
+    let (_, y) = dopri5(|_, _| Ok([1e-20]), 0.0, [1.0], 1.0, &cfg, |_, _| Ok(false)).unwrap();
+    assert_eq!(y, [1.0]);
+    let (_, y) = dopri5(|_, _| Ok([1.0]), 0.0, [1e6], 1.0, &cfg, |_, _| Ok(false)).unwrap();
+    assert_eq!(y, [1e6 + 1.0]);
+    // A state that overflows is never accepted: y' = y^2 from 1 blows up at t = 1.
+    let r = dopri5(|_, y| Ok([y[0] * y[0]]), 0.0, [1.0], 2.0, &cfg, |_, _| Ok(false));
+    assert!(matches!(r, Err(DynamicsError::StepTooSmall { .. })), "{r:?}");
+}
+
+#[test]
+fn shaking_and_centre_of_mass_are_typed_errors_or_finite() {
+    let model = MassModel::<0, 1, 2>::new().with_body(body(2.0, 0.01)).unwrap();
+    let k = crank(0.1);
+    let s = model.shaking(&k, &[10.0], &[0.0], [0.0; 2]).unwrap();
+    // The crank pin's centripetal acceleration: -m a = m r w^2 outwards, along +x.
+    assert!((s.force[0] - 2.0 * 0.1 * 100.0).abs() < 1e-12 && s.force[1].abs() < 1e-12, "{s:?}");
+    // Speeds whose square overflows, a moment centre at the end of the f64 range.
+    let err = model.shaking(&k, &[1e200], &[0.0], [0.0; 2]).unwrap_err();
+    assert!(matches!(err, DynamicsError::Overflow { what: "shaking force or moment", .. }), "{err}");
+    let err = model.shaking(&k, &[1e150], &[0.0], [0.0, f64::MAX]).unwrap_err();
+    assert!(matches!(err, DynamicsError::Overflow { .. }), "{err}");
+    assert!(matches!(model.shaking(&k, &[f64::NAN], &[0.0], [0.0; 2]), Err(DynamicsError::BadValue { .. })));
+    assert!(matches!(model.shaking(&k, &[1.0], &[0.0], [f64::INFINITY, 0.0]), Err(DynamicsError::BadValue { .. })));
+    // The centre of mass: none without mass; the mean of huge coordinates computed weighted.
+    assert_eq!(model.centre_of_mass(&k).unwrap(), [0.1, 0.0]);
+    let none = MassModel::<0, 1, 2>::new();
+    assert!(matches!(none.centre_of_mass(&k), Err(DynamicsError::BadValue { what: "total mass", .. })));
+    let heavy = MassModel::<0, 1, 2>::new().with_body(body(1e300, 0.0)).unwrap();
+    let far = crank(1e300);
+    assert_eq!(heavy.centre_of_mass(&far).unwrap(), [1e300, 0.0]);
+    // Coefficients set by hand to NaN are named, not reported as an overflow.
+    let mut d = model.dynamics(&k, &[1.0]).unwrap();
+    d.mass[0][0] = f64::NAN;
+    assert!(matches!(d.accelerations(&[0.0], &[1.0], &[1.0]), Err(DynamicsError::BadValue { .. })));
+    assert!(matches!(d.checked_drive(&[0.0], &[1.0], &[1.0]), Err(DynamicsError::BadValue { .. })));
+}
