@@ -18,4 +18,5 @@ mod errors;
 mod inertia;
 mod inverse;
 mod shaking;
+mod robust_inputs;
 mod simulation;
