@@ -105,3 +105,24 @@ macro_rules! __rejected_mechanism {
         $crate::generated::named_api!($name, $inputs, $unknowns, $outputs, $state, $motion, $n, $ni, $no);
     };
 }
+
+/// `mass_model` of a mechanism declared without masses, inertias or loads: a method whose bound
+/// no type meets ([`MassModelDeclared`]), so that calling it is a compile error saying what to
+/// declare rather than "no method named `mass_model`". The bound is higher-ranked so that it is
+/// checked where the method is called, not where it is defined.
+#[doc(hidden)]
+#[macro_export]
+macro_rules! __no_mass_model {
+    ($name:ident) => {
+        impl $name {
+            /// Not generated: declare masses, inertias or loads in the mechanism.
+            #[doc(hidden)]
+            pub fn mass_model(&self) -> ::core::convert::Infallible
+            where
+                for<'a> Self: $crate::generated::MassModelDeclared<'a>,
+            {
+                $crate::generated::MassModelDeclared::absurd(self)
+            }
+        }
+    };
+}

@@ -228,22 +228,9 @@ fn lets(g: &Graph, names: &Names, roots: &[NodeId]) -> TokenStream {
     names.lets(g, &sched, &sched.lets[0])
 }
 
-/// `mass_model` of a mechanism declared without dynamics items: a method whose bound no type
-/// meets, so that calling it is a compile error saying what to declare (the runtime's
-/// `MassModelDeclared`) rather than "no method named `mass_model`". The bound is higher-ranked
-/// so that it is checked where the method is called, not where it is defined.
+/// `mass_model` of a mechanism declared without dynamics items: a method that says, where it is
+/// called, what to declare (the runtime's macro).
 pub fn absent(t: &Types) -> TokenStream {
     let (rt, name) = (runtime(), &t.name);
-    quote! {
-        impl #name {
-            /// Not generated: declare masses, inertias or loads in the mechanism.
-            #[doc(hidden)]
-            pub fn mass_model(&self) -> ::core::convert::Infallible
-            where
-                for<'__a> Self: #rt::MassModelDeclared<'__a>,
-            {
-                #rt::MassModelDeclared::absurd(self)
-            }
-        }
-    }
+    quote!(#rt::no_mass_model!(#name);)
 }
