@@ -73,6 +73,11 @@ fn too_many_harmonics_name_the_samples_not_a_kinematic_failure() {
     assert!(text.contains("12 harmonics asked of 24 samples per period: they resolve at most 11"), "{text}");
     assert!(!text.contains("kinematics") && !text.contains("NaN"), "{text}");
     assert_eq!(cycle.torque_harmonics(11).unwrap().a.len(), 11);
+    // A sample count no memory holds is refused before anything is allocated.
+    for samples in [usize::MAX, usize::MAX / 8] {
+        let err = inverse_cycle(&m, &model, SpeedLaw::Constant(10.0), 0.0, samples, m.guess_flat(&[0.0]), [0.0; 2]);
+        assert!(matches!(err, Err(DynamicsError::BadValue { what: "samples", .. })), "{err:?}");
+    }
 }
 
 /// A hostile number: NaN, infinities, zeros, the ends of the f64 range, or an ordinary one.
