@@ -3,7 +3,10 @@
 //! typed error or an `Ok` whose every number is finite; none panics.
 
 use kinloop::Mechanism;
-use kinloop::dynamics::{DynamicsError, MassModel, OdeConfig, RunConfig, SpeedLaw, inverse_cycle, simulate};
+use kinloop::dynamics::{
+    Coord, Cycle, CyclePoint, DynamicsError, MassModel, OdeConfig, Rotation, RunConfig, Shaking, SpeedLaw, dopri5,
+    inverse_cycle, simulate,
+};
 use proptest::prelude::*;
 
 kinloop::mechanism! {
@@ -73,6 +76,11 @@ fn too_many_harmonics_name_the_samples_not_a_kinematic_failure() {
     assert!(text.contains("12 harmonics asked of 24 samples per period: they resolve at most 11"), "{text}");
     assert!(!text.contains("kinematics") && !text.contains("NaN"), "{text}");
     assert_eq!(cycle.torque_harmonics(11).unwrap().a.len(), 11);
+    // A sample count no memory holds is refused before anything is allocated.
+    for samples in [usize::MAX, usize::MAX / 8] {
+        let err = inverse_cycle(&m, &model, SpeedLaw::Constant(10.0), 0.0, samples, m.guess_flat(&[0.0]), [0.0; 2]);
+        assert!(matches!(err, Err(DynamicsError::BadValue { what: "samples", .. })), "{err:?}");
+    }
 }
 
 /// A hostile number: NaN, infinities, zeros, the ends of the f64 range, or an ordinary one.
@@ -180,6 +188,74 @@ proptest! {
         // A model is refused (a typed error) or holds a finite total mass.
         if let Ok(model) = m.mass_model() {
             exercise(&m, &model, &v, samples, harmonics);
+        }
+    }
+}
+
+proptest! {
+    #![proptest_config(ProptestConfig { cases: 64, failure_persistence: None, ..ProptestConfig::default() })]
+
+    #[test]
+    fn hostile_integrations_cycles_and_loads_give_errors_or_finite_results(
+        y0 in proptest::array::uniform2(hostile()),
+        rate in hostile(),
+        t_end in mostly(0.0, 5.0),
+        tolerances in proptest::array::uniform3(mostly(1e-9, 1e-3)),
+        cycle in proptest::collection::vec(proptest::array::uniform4(mostly(-5.0, 5.0)), 0..12),
+        harmonics in 0usize..8,
+        delta in mostly(0.0, 2.0),
+        load in proptest::array::uniform2(hostile()),
+    ) {
+        // The integrator alone: y' = (y1, -rate y0), any start, tolerances and horizon.
+        let cfg = OdeConfig::default()
+            .with_tolerances(tolerances[0], tolerances[1])
+            .with_h_max(tolerances[2])
+            .with_max_steps(2000);
+        let f = |_: f64, y: &[f64; 2]| Ok([y[1], -rate * y[0]]);
+        let each = |s: &kinloop::dynamics::DenseStep<2>, y: &[f64; 2]| {
+            assert!(finite([s.t0, s.h]) && finite(*y), "{s:?} {y:?}");
+            Ok(false)
+        };
+        if let Ok((t, y)) = dopri5(f, 0.0, y0, t_end, &cfg, each) {
+            prop_assert!(finite(y.into_iter().chain([t])), "{y:?} at {t}");
+        }
+        // A cycle made by hand, with any values.
+        let n = cycle.len().max(1) as f64;
+        let points: Vec<CyclePoint> = cycle
+            .iter()
+            .enumerate()
+            .map(|(j, [torque, load, omega, inertia])| CyclePoint {
+                phi: std::f64::consts::TAU * j as f64 / n,
+                omega: *omega,
+                eps: 0.0,
+                inertia: *inertia,
+                inertia_slope: 0.0,
+                load: *load,
+                torque: *torque,
+                shaking: Shaking { force: [*torque, *load], moment: *omega },
+            })
+            .collect();
+        let c = Cycle { points };
+        if let Ok(f) = c.torque_harmonics(harmonics) {
+            prop_assert!(finite(f.a.iter().chain(&f.b).copied().chain([f.a0])), "{f:?}");
+        }
+        if let Ok(all) = c.shaking_harmonics(harmonics) {
+            prop_assert!(all.iter().all(|f| finite(f.a.iter().chain(&f.b).copied().chain([f.a0]))));
+        }
+        if let Ok(f) = c.flywheel(delta) {
+            let values = [f.mean_torque, f.energy_swing, f.total_inertia, f.mechanism_inertia, f.flywheel];
+            prop_assert!(finite(values.into_iter().chain([f.exact, f.start_speed])), "{f:?}");
+        }
+        // Constant loads of any size on a declared machine: refused when not finite, else a
+        // typed error or finite forces.
+        let m = Machine::default();
+        let model = m.mass_model().unwrap();
+        let at = [Coord::Unknown(1), Coord::Fixed(0.0)];
+        if let Ok(model) = model.with_constant_force("push", at, load).and_then(|m| m.with_constant_torque("twist", Rotation::Input(0), load[0])) {
+            let k = m.kinematics_flat(&[0.4], &m.guess_flat(&[0.4]), &Default::default()).unwrap();
+            if let Ok(d) = model.dynamics(&k, &[1.0]) {
+                prop_assert!(finite(d.forces), "{:?}", d.forces);
+            }
         }
     }
 }

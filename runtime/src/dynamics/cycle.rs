@@ -98,6 +98,15 @@ where
     if samples < 8 {
         return Err(DynamicsError::BadValue { what: "samples", value: samples as f64, why: "need at least 8" });
     }
+    // More points than an allocation can hold would panic in the allocator (a capacity
+    // overflow) rather than fail.
+    if samples > isize::MAX as usize / std::mem::size_of::<CyclePoint>() {
+        return Err(DynamicsError::BadValue {
+            what: "samples",
+            value: samples as f64,
+            why: "too many to hold in memory",
+        });
+    }
     // The samples of the turn must be told apart: at a huge start angle the spacing of f64
     // numbers exceeds the step between samples and they would all fall on a few angles.
     if !(phi0.is_finite() && super::error::spacing(phi0.abs() + TAU) < TAU / samples as f64) {

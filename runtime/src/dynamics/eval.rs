@@ -67,7 +67,8 @@ impl<const NI: usize> Dynamics<NI> {
 
     /// Inverse dynamics: the driving forces `tau = M eps + h(w) - Q` that give the input
     /// accelerations `eps` at input speeds `w` (for one input, the driving torque
-    /// `J eps + 1/2 J' w^2 - Q`).
+    /// `J eps + 1/2 J' w^2 - Q`). Plain arithmetic: at speeds or accelerations so large that a
+    /// force overflows, it is infinite; [`Dynamics::checked_drive`] makes that a typed error.
     pub fn drive(&self, w: &[f64; NI], eps: &[f64; NI]) -> [f64; NI] {
         let h = self.velocity_terms(w);
         let mut tau = [0.0; NI];
@@ -297,7 +298,8 @@ impl<const N: usize, const NI: usize, const NO: usize> MassModel<N, NI, NO> {
         Ok(d)
     }
 
-    /// Kinetic energy `1/2 w^T M w` at input speeds `w`.
+    /// Kinetic energy `1/2 w^T M w` at input speeds `w` (plain arithmetic: infinite when it
+    /// overflows, and NaN for a speed or a state value that is not finite).
     pub fn kinetic_energy(&self, k: &Kin<N, NI, NO>, w: &[f64; NI]) -> f64 {
         let (m, _) = self.inertia(k);
         let mut t = 0.0;

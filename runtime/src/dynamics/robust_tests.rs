@@ -167,9 +167,13 @@ fn an_integration_that_cannot_move_a_huge_coordinate_is_an_error() {
     assert_eq!(y, [1.0]);
     let (_, y) = dopri5(|_, _| Ok([1.0]), 0.0, [1e6], 1.0, &cfg, |_, _| Ok(false)).unwrap();
     assert_eq!(y, [1e6 + 1.0]);
-    // A state that overflows is never accepted: y' = y^2 from 1 blows up at t = 1.
+    // A state that overflows is never accepted: y' = y^2 from 1 blows up at t = 1, and
+    // y' = 1e308 from 1e308 leaves the f64 range at t = 0.8 with a finite derivative (so the
+    // error estimate, relative to an infinite state, would not see it).
     let r = dopri5(|_, y| Ok([y[0] * y[0]]), 0.0, [1.0], 2.0, &cfg, |_, _| Ok(false));
     assert!(matches!(r, Err(DynamicsError::StepTooSmall { .. })), "{r:?}");
+    let r = dopri5(|_, _| Ok([1e308]), 0.0, [1e308], 2.0, &cfg, |_, y| Ok(!y[0].is_finite()));
+    assert!(matches!(r, Err(DynamicsError::StepTooSmall { t, .. }) if t < 0.8), "{r:?}");
 }
 
 #[test]
