@@ -8,7 +8,7 @@
 //! right-hand side that cannot fail, whereas here every evaluation solves the kinematics, which
 //! fails at a limit or singular position and must stop the integration with that typed error.
 //! The method is short; it works on `[f64; D]` so a step allocates nothing, and it is tested
-//! against closed-form solutions in `tests/dynamics_simulation.rs`.
+//! against closed-form solutions in `tests/dynamics/simulation.rs`.
 
 use super::error::DynamicsError;
 

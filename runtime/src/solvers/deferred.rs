@@ -24,7 +24,7 @@
 //! input and guess), or the state where every check passes after all (a limit position rounded
 //! past, see [`root_offset`](super::closed::root_offset); an angle between the conservative
 //! bound and the configured one). The tests are conservative only: they never accept what a
-//! check rejects (`tests/deferred_checks.rs` compares the two kernels where every check fails).
+//! check rejects (`tests/solver/deferred_checks.rs` compares the two kernels where every check fails).
 //!
 //! Measured with callgrind (`benches/callgrind.sh`, 720 samples a turn), a `Sweep` sample of the
 //! rhombic drive took 76 fewer instructions (756 to 680), the gear-lever's 55 (664 to 609) and

@@ -5,7 +5,7 @@
 //!
 //! The bottom layer of the runtime: nothing here knows a mechanism, its states or its sweeps.
 //! The solvers use each other and the small leaves `error` and `events` only, so each can be
-//! read and tested alone; `tests/layering.rs` fails when an import from above creeps in.
+//! read and tested alone; `runtime/tests/layering.rs` fails when an import from above creeps in.
 
 pub mod closed;
 pub mod deferred;
