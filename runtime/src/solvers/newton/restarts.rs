@@ -69,7 +69,9 @@ pub(super) fn iterate_restarting<const N: usize, const K: usize, J: BlockJacobia
     last: &mut impl LastStep<N, K, J>,
     rho0: f64,
 ) -> Result<Solved<N>, BlockFailure> {
-    match iterate(z0, ev, cfg, &mut eval, mags, last, rho0) {
+    // The iteration calls `eval` itself, not through a reference to it (whose forwarding call
+    // is not inlined into the iteration as the evaluation itself is).
+    match iterate(z0, ev, cfg, |z: &[f64; N]| eval(z), mags, last, rho0) {
         Err(fail) => after(fail, z0, ev, cfg, &mut eval, mags, last),
         solved => solved,
     }
