@@ -701,7 +701,8 @@ macro_rules! __mechanism_consts {
 #[doc(hidden)]
 pub use crate::__mechanism_consts as mechanism_consts;
 
-// The named surface of a declaration `mechanism!` rejected (see `crate::rejected`).
+// The named surface of a declaration `mechanism!` rejected (see `rejected`).
 pub use crate::__no_mass_model as no_mass_model;
 pub use crate::__rejected_mechanism as rejected_mechanism;
-pub use crate::rejected::{MassModelDeclared, rejected};
+mod rejected;
+pub use rejected::{MassModelDeclared, rejected};

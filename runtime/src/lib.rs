@@ -35,7 +35,6 @@ mod kinds;
 mod mechanism;
 pub mod metrics;
 pub mod paths;
-mod rejected;
 mod solvers;
 mod table;
 mod table_units;
@@ -43,12 +42,6 @@ mod table_units;
 mod test_rng;
 mod trig;
 mod vec2;
-
-// A second path to the Newton solver, `crate::newton`, kept only for `dynamics/simulate.rs`,
-// which is not edited on this branch; every other module names `crate::solvers::newton` (the
-// layering test allows this one alias and no other). Remove it once `dynamics` names the
-// solver by its path.
-use solvers::newton;
 
 pub use analysis::Extreme;
 pub use analysis::objective::{Extremum, extremum, integral};

@@ -17,6 +17,6 @@ mod declared;
 mod errors;
 mod inertia;
 mod inverse;
-mod shaking;
 mod robust_inputs;
+mod shaking;
 mod simulation;

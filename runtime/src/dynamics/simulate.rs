@@ -7,7 +7,7 @@ use super::error::DynamicsError;
 use super::model::MassModel;
 use super::ode::{DenseStep, OdeConfig, dopri5};
 use crate::mechanism::Mechanism;
-use crate::newton::NewtonConfig;
+use crate::solvers::newton::NewtonConfig;
 
 /// Settings of [`simulate`].
 #[derive(Clone, Copy, Debug, PartialEq)]

@@ -66,7 +66,7 @@ macro_rules! __rejected_mechanism {
         }
 
         impl $crate::Mechanism<$n, $ni, $no> for $name {
-            $crate::generated::mechanism_consts!($name, $n, $ni, $no);
+            $crate::__mechanism_consts!($name, $n, $ni, $no);
             fn guess_flat(&self, _: &[f64; $ni]) -> [f64; $n] {
                 $crate::generated::rejected()
             }
@@ -102,7 +102,7 @@ macro_rules! __rejected_mechanism {
             }
         }
 
-        $crate::generated::named_api!($name, $inputs, $unknowns, $outputs, $state, $motion, $n, $ni, $no);
+        $crate::__named_api!($name, $inputs, $unknowns, $outputs, $state, $motion, $n, $ni, $no);
     };
 }
 
