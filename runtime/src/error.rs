@@ -83,14 +83,13 @@ pub enum Error {
     },
     /// The Jacobian of a block is singular or too ill-conditioned at the solved position: a dead
     /// centre, a limit position of the input, or a change point. Velocity analogs do not exist.
-    #[error(
-        "singular position {at}: the Jacobian's pivot ratio is {pivot_ratio:e} (below the \
-         tolerance {tolerance:e}); this is a dead centre or a limit position"
-    )]
+    #[error("singular position {at}: {}; this is a dead centre or a limit position", singular_cause(*pivot_ratio, *tolerance))]
     Singular {
-        /// Smallest row-equilibrated pivot ratio of the block's Jacobian.
+        /// Smallest row-equilibrated pivot ratio of the block's Jacobian where the solve ended.
         pivot_ratio: f64,
-        /// The tolerance it fell below (`NewtonConfig::singular_tol`).
+        /// The singular tolerance (`NewtonConfig::singular_tol`). The pivot ratio is below it,
+        /// or Newton reached the position only linearly, as at a root where the Jacobian is
+        /// singular (its pivot ratio then shrinks with every step, not yet below the tolerance).
         tolerance: f64,
         /// Where.
         at: Box<Location>,
@@ -180,5 +179,19 @@ impl Error {
             | Error::TooManyTurns { at, .. } => Some(at),
             Error::InvalidArgument(_) => None,
         }
+    }
+}
+
+/// Why a position is singular, with the numbers as they are: a pivot ratio below the tolerance,
+/// or a root that Newton reaches only linearly (each step about half the last, as where the
+/// Jacobian is singular at the root) while the ratio has not yet fallen below the tolerance.
+fn singular_cause(pivot_ratio: f64, tolerance: f64) -> String {
+    if pivot_ratio < tolerance {
+        format!("the Jacobian's pivot ratio is {pivot_ratio:e} (below the tolerance {tolerance:e})")
+    } else {
+        format!(
+            "Newton reaches the position only linearly, as a root where the Jacobian is singular (its pivot \
+             ratio falls with every step, {pivot_ratio:e} at the last, the tolerance being {tolerance:e})"
+        )
     }
 }

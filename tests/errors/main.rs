@@ -12,5 +12,6 @@ mod support;
 
 mod assert_close;
 mod errors;
+mod newton_near_limits;
 mod no_silent_wrong_answer;
 mod no_silent_wrong_answer_sweeps;

@@ -97,7 +97,11 @@ impl<const N: usize, const K: usize, J: BlockJacobian<N>> Iter<'_, N, K, J> {
         }
         let row = argmax_scaled(&self.ev.f, s);
         let iterations = self.iterations;
-        if rho <= STALL_RESIDUAL {
+        if rho <= STALL_RESIDUAL && pivot > cfg.singular_tol {
+            // Near a root whose Jacobian is regular, no step decreases the residual: rounding
+            // keeps it above the tolerance. Not a singular position.
+            BlockFailure::NoConvergence { row, iterations, residual: rho }
+        } else if rho <= STALL_RESIDUAL {
             let pivot_ratio = if pivot.is_nan() { 0.0 } else { pivot };
             BlockFailure::Singular { row, iterations, residual: rho, pivot_ratio, tolerance: cfg.singular_tol }
         } else {

@@ -21,6 +21,14 @@ pub(super) const FLOOR_FACTOR: f64 = 1e3;
 /// convergence.
 pub(super) const LINEAR_CONTRACTION: f64 = 0.1;
 
+/// Iterations taken past the residual tolerance when it was reached only linearly with a
+/// regular Jacobian. Just inside a limit position Newton approaches the root linearly (each
+/// step about half the last) until it is nearer to it than to its twin across the fold, which
+/// is about where the residual meets the tolerance; from there it converges quadratically
+/// within two or three steps. At a singular root the steps keep halving: four more halvings
+/// confirm it.
+const LINEAR_EXTRA: u32 = 4;
+
 /// Newton iterations from `z0`, whose evaluation is `ev` (updated in place: each accepted
 /// step's evaluation is written over it, never copied). The generated code calls it through
 /// [`newton`] when the guess does not meet the tolerance; the correction at a converged
@@ -60,6 +68,7 @@ pub(super) fn iterate<const N: usize, const K: usize, J: BlockJacobian<N>>(
         rho_mark: f64::INFINITY,
         prev_rho: f64::INFINITY,
         judged: None,
+        past_tolerance: 0,
     };
     loop {
         let (current, fallback);
@@ -84,7 +93,14 @@ pub(super) fn iterate<const N: usize, const K: usize, J: BlockJacobian<N>>(
             // Converged: the last correction, from the factorisation `last` keeps.
             let (dz, pivot) = last.correction(it.ev, rows, rho);
             let step = scaled_step(&dz, &it.z, &m.unit);
-            return it.finish(dz, step, pivot, rho, s, Termination::ResidualTolerance, cfg, &mut eval, mags, last);
+            let again = it.past_tolerance < LINEAR_EXTRA && it.iterations < cfg.max_iterations;
+            if !(again && pivot > cfg.singular_tol && it.reached_linearly(step, cfg)) {
+                return it.finish(dz, step, pivot, rho, s, Termination::ResidualTolerance, cfg, &mut eval, mags, last);
+            }
+            // Reached linearly, yet the Jacobian here is regular by the tolerance: perhaps a
+            // root just inside a limit position (see `LINEAR_EXTRA`). A few more steps tell.
+            it.past_tolerance += 1;
+            last.forget();
         }
         let (dz, pivot) = newton_step(it.ev, rows);
         let step = scaled_step(&dz, &it.z, &m.unit);
@@ -150,14 +166,7 @@ impl<const N: usize, const K: usize, J: BlockJacobian<N>> Iter<'_, N, K, J> {
         {
             return Err(BlockFailure::NonFinite { row, iterations: self.iterations });
         }
-        // The position is known to about the last step of a linearly converging iteration (the
-        // residual of a row can round to zero before the unknowns settle).
-        let visible = FLOOR_FACTOR * cfg.residual_tol.max(cfg.step_tol);
-        let slow = self.prev_step.is_finite() && step > LINEAR_CONTRACTION * self.prev_step;
-        let singular_root = !step.is_finite()
-            || (slow && step > visible)
-            || (self.slow_run >= 2 && self.prev_step.is_finite() && self.prev_step > visible);
-        if singular_root && self.iterations > 0 {
+        if self.reached_linearly(step, cfg) && self.iterations > 0 {
             // Newton converges quadratically to a regular root; linearly (each step a fixed
             // fraction of the previous one) only where the Jacobian is singular at the root,
             // and the position is then only known to about the size of the last step.
@@ -185,6 +194,20 @@ impl<const N: usize, const K: usize, J: BlockJacobian<N>> Iter<'_, N, K, J> {
         }
         last.keep(self.ev);
         Ok(Solved { z: self.z, iterations: self.iterations, evaluations: self.evaluations, residual: rho, termination })
+    }
+
+    /// Whether the iteration ends on a root it reached only linearly (each step a fixed fraction
+    /// of the previous one), whose position is then known only to about the size of the last
+    /// step (the residual of a row can round to zero before the unknowns settle). Steps at the
+    /// rounding level are noise, not evidence of linear convergence: they are not counted
+    /// however small the tolerances.
+    #[inline(always)]
+    pub(super) fn reached_linearly(&self, step: f64, cfg: &NewtonConfig) -> bool {
+        let visible = FLOOR_FACTOR * cfg.residual_tol.max(cfg.step_tol).max(16.0 * f64::EPSILON);
+        let slow = self.prev_step.is_finite() && step > LINEAR_CONTRACTION * self.prev_step;
+        !step.is_finite()
+            || (slow && step > visible)
+            || (self.slow_run >= 2 && self.prev_step.is_finite() && self.prev_step > visible)
     }
 
     /// Moves every unknown whose equations repeat every turn (see [`Magnitudes::turns`]) and

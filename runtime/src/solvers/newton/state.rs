@@ -24,4 +24,7 @@ pub(super) struct Iter<'e, const N: usize, const K: usize, J> {
     /// The scaled residual and sum of squares of the current iterate, when the full step that
     /// reached it computed them in scales the next iteration uses too.
     pub(super) judged: Option<(f64, f64)>,
+    /// Iterations taken past the residual tolerance because it was reached only linearly (see
+    /// `iterate`'s `LINEAR_EXTRA`).
+    pub(super) past_tolerance: u32,
 }
