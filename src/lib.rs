@@ -377,6 +377,15 @@ pub use kinloop_runtime::paths::scan::*;
 #[doc(hidden)]
 pub mod __gen {
     pub use kinloop_runtime::generated::*;
+
+    // The `Serialize` and `Deserialize` derives every generated struct names: serde's with the
+    // feature `serde`, otherwise derives that implement nothing and accept the `serde`
+    // attributes. The user's crate cannot test kinloop's features, so the expansion names these,
+    // the same with and without the feature.
+    #[cfg(not(feature = "serde"))]
+    pub use kinloop_macros::{NoDeserialize as Deserialize, NoSerialize as Serialize};
+    #[cfg(feature = "serde")]
+    pub use kinloop_runtime::generated::serde::{Deserialize, Serialize};
 }
 
 /// Charts of sweep results as SVG (feature `plot`).

@@ -9,7 +9,7 @@ use super::{Dims, Types, kernel_lints, runtime};
 use crate::plan::Plan;
 use crate::plan::kinds::Kind;
 use crate::semantics::model::Model;
-use proc_macro2::TokenStream;
+use proc_macro2::{Ident, Span, TokenStream};
 use quote::quote;
 use syn::ext::IdentExt;
 
@@ -72,35 +72,31 @@ fn constants(model: &Model, plan: &Plan, t: &Types) -> TokenStream {
     }
 }
 
-/// `INPUT_KINDS`, `UNKNOWN_KINDS`, `OUTPUT_KINDS` of the `Mechanism` implementation: the kind
-/// of quantity of every column (see [`crate::plan::kinds`]), one letter each, written out by
-/// the runtime's macro (the inherent constants forward to them). An unknown a closed-form block
-/// gives as an angle has its letter in upper case: the runtime's `CLOSED_FORM_ANGLES`.
+/// `INPUT_KINDS`, `UNKNOWN_KINDS`, `CLOSED_FORM_ANGLES`, `OUTPUT_KINDS` of the `Mechanism`
+/// implementation: the kind of quantity of every column (see [`crate::plan::kinds`]) by its
+/// name, and which unknowns a closed-form block gives as angles, written out by the runtime's
+/// macro (the inherent constants forward to them).
 fn kind_constants(model: &Model, plan: &Plan) -> TokenStream {
     let rt = runtime();
     let Dims { n, ni, no, .. } = Dims::of(plan);
     let kinds = crate::plan::kinds::classify(model, &plan.graph, &plan.residuals, &plan.outputs);
-    let closed_form_angles: Vec<usize> =
+    let closed: Vec<usize> =
         plan.blocks.iter().filter_map(|bp| bp.solve.closed_form()).flat_map(|r| r.form.angles()).collect();
-    let list = |ks: &[Kind], upper: &dyn Fn(usize) -> bool| {
-        let codes: String = ks
-            .iter()
-            .enumerate()
-            .map(|(c, k)| {
-                let letter = match k {
-                    Kind::Angle => 'a',
-                    Kind::Length => 'l',
-                    Kind::Dimensionless => 'd',
-                    Kind::Other => 'o',
-                };
-                if upper(c) { letter.to_ascii_uppercase() } else { letter }
-            })
-            .collect();
-        proc_macro2::Literal::byte_string(codes.as_bytes())
+    let closed = (0..plan.n).map(|u| closed.contains(&u));
+    let list = |ks: &[Kind]| {
+        let names = ks.iter().map(|k| {
+            let name = match k {
+                Kind::Angle => "Angle",
+                Kind::Length => "Length",
+                Kind::Dimensionless => "Dimensionless",
+                Kind::Other => "Other",
+            };
+            Ident::new(name, Span::call_site())
+        });
+        quote!([#(#names),*])
     };
-    let (i, o) = (list(&kinds.inputs, &|_| false), list(&kinds.outputs, &|_| false));
-    let u = list(&kinds.unknowns, &|u| closed_form_angles.contains(&u));
-    quote!(#rt::kinds!(#ni #i, #n #u, #no #o);)
+    let (i, u, o) = (list(&kinds.inputs), list(&kinds.unknowns), list(&kinds.outputs));
+    quote!(#rt::kinds!(#ni #i, #n #u [#(#closed),*], #no #o);)
 }
 
 /// `FOLLOWERS` of the `Mechanism` implementation (see [`crate::plan::followers`]), when an

@@ -171,7 +171,6 @@ pub fn solve(rec: &Recognised, cx: &Context) -> TokenStream {
             });
         }
     }
-    let k = Literal::usize_unsuffixed(outs.len());
     let bl = Literal::usize_unsuffixed(cx.block);
     let rt = cx.rt;
     // The guess only picks the branch and the turn, through comparisons that a NaN would
@@ -192,7 +191,7 @@ pub fn solve(rec: &Recognised, cx: &Context) -> TokenStream {
         let guesses: Vec<TokenStream> = others_of(&rec.form).map(guess_of).into_iter().collect();
         let guess_check = guess_check.map(|c| quote!(if __CHECKED { #c }));
         return quote! {
-            let ([#(#outs),*], #check): ([f64; #k], f64) = {
+            let ([#(#outs),*], #check) = {
                 let __fail = #rt::failure_of(self, #bl, __x, __guess, __cfg);
                 #guess_check
                 #body
@@ -205,7 +204,7 @@ pub fn solve(rec: &Recognised, cx: &Context) -> TokenStream {
     // The closure only captures references: it is `Copy`, one per block. A non-finite guess
     // makes the guesses' sum non-finite.
     quote! {
-        let [#(#outs),*]: [f64; #k] = {
+        let [#(#outs),*] = {
             let __fail = #rt::failure_of(self, #bl, __x, __guess, __cfg);
             #guess_check
             #levers

@@ -6,8 +6,10 @@
 //! coincide (names containing underscores can), the derived names fall back to indices
 //! (`dq0_1`). Temporaries that are a declared quantity are named after it: the residual of
 //! `loop abcd` on X is `r_abcd_x`, its derivative by `beta` `j_abcd_x_beta`, by input `phi`
-//! `fx_abcd_x_phi`, the x coordinate of `point p` `out_p_x`; anonymous subexpressions are `t`
-//! and their node number.
+//! `fx_abcd_x_phi`, the x coordinate of `point p` `out_p_x`, its analogs `dout_p_x_phi` and
+//! `d2out_p_x_phi_phi`. Other temporaries, and derivatives that other values are computed from,
+//! are named by their form where it is short (`cos_phi`, `a_cos_phi`); the rest are `t` and
+//! their node number.
 
 use super::schedule::Schedule;
 use crate::graph::dag::{Func, Graph, Leaf, NodeId, Op};
@@ -297,34 +299,130 @@ impl Names {
     }
 }
 
-/// Names of the temporaries that are declared quantities (see the module docs), each name
-/// given once: should two quantities spell the same (`eq a_x` next to `loop a`), the later one
-/// stays anonymous.
+/// Names of the temporaries (see the module docs), each name given once. A declared quantity
+/// names its node: should two quantities spell the same (`eq a_x` next to `loop a`), the later
+/// one stays anonymous. A Jacobian entry or an input derivative that other values are computed
+/// from is a term several roles share: it is named by its form where that is short
+/// (`a_cos_phi`), so that a residual or an output computed from it does not read as computed
+/// from a derivative. So is every other temporary with a short form; the rest are `t` and their
+/// node number.
 fn roles(model: &Model, plan: &Plan) -> HashMap<NodeId, Ident> {
     let g = &plan.graph;
     // Equation and output names may hold raw identifiers (`r#match.x`).
     let snake = |s: &str| s.replace("r#", "").replace('.', "_");
     let u: Vec<String> = model.unknowns.iter().map(|x| plain(&x.name)).collect();
     let i: Vec<String> = model.inputs.iter().map(|x| plain(&x.name)).collect();
-    let mut named: Vec<(NodeId, String)> = Vec::new();
+    let p: Vec<String> = model.params.iter().map(|x| plain(&x.name)).collect();
+    // With `true`: a derivative's role, which gives way to the node's form when others read it.
+    let mut named: Vec<(NodeId, String, bool)> = Vec::new();
     for (e, eq) in model.equations.iter().enumerate() {
         let eqn = snake(&eq.name);
-        named.push((plan.residuals[e], format!("r_{eqn}")));
-        named.extend(plan.jac_full[e].iter().zip(&u).map(|(&n, u)| (n, format!("j_{eqn}_{u}"))));
-        named.extend(plan.fx_full[e].iter().zip(&i).map(|(&n, i)| (n, format!("fx_{eqn}_{i}"))));
+        named.push((plan.residuals[e], format!("r_{eqn}"), false));
+        named.extend(plan.jac_full[e].iter().zip(&u).map(|(&n, u)| (n, format!("j_{eqn}_{u}"), true)));
+        named.extend(plan.fx_full[e].iter().zip(&i).map(|(&n, i)| (n, format!("fx_{eqn}_{i}"), true)));
     }
     let outs = model.output_names();
-    named.extend(plan.outputs.iter().zip(&outs).map(|(&n, o)| (n, format!("out_{}", snake(o)))));
+    for (o, name) in outs.iter().enumerate() {
+        let name = snake(name);
+        named.push((plan.outputs[o], format!("out_{name}"), false));
+        named.extend(plan.out_d1[o].iter().zip(&i).map(|(&n, i)| (n, format!("dout_{name}_{i}"), false)));
+        let second = crate::plan::pairs(i.len()).into_iter().map(|(a, b)| format!("d2out_{name}_{}_{}", i[a], i[b]));
+        named.extend(plan.out_d2[o].iter().copied().zip(second).map(|(n, s)| (n, s, false)));
+    }
+    let forms = forms(g, &u, &i, &p);
+    let read = read_by_others(plan);
     let mut taken = HashSet::new();
     let mut roles = HashMap::new();
-    for (n, name) in named {
+    let mut give = |n: NodeId, name: &str, roles: &mut HashMap<NodeId, Ident>| {
         let anonymous = matches!(g.op(n), Op::Const(_) | Op::Leaf(_)) || roles.contains_key(&n);
-        if anonymous || syn::parse_str::<Ident>(&name).is_err() || !taken.insert(name.clone()) {
-            continue;
+        if !anonymous && syn::parse_str::<Ident>(name).is_ok() && taken.insert(name.to_string()) {
+            roles.insert(n, Ident::new(name, Span::call_site()));
         }
-        roles.insert(n, Ident::new(&name, Span::call_site()));
+    };
+    let by_form = |n: NodeId, derivative: bool| derivative && read.contains(&n) && forms[n.index()].is_some();
+    for (n, name, derivative) in &named {
+        if !by_form(*n, *derivative) {
+            give(*n, name, &mut roles);
+        }
+    }
+    for (k, form) in forms.iter().enumerate() {
+        if let Some(form) = form {
+            give(NodeId(k as u32), form, &mut roles);
+        }
+    }
+    // A shared derivative whose form's name was taken keeps its role's.
+    for (n, name, _) in &named {
+        give(*n, name, &mut roles);
     }
     roles
+}
+
+/// Per node, the name of its form where it is short: a function of a declared name
+/// (`cos_phi`), a product of such (`a_cos_phi`), a negation (`neg_a`), a square (`a_sq`).
+/// `None` for the rest, for names longer than a glance, and for names that begin like a leaf's
+/// local or a role's (`q_`, `j_`, ...), for which they could be taken.
+fn forms(g: &Graph, u: &[String], i: &[String], p: &[String]) -> Vec<Option<String>> {
+    const LONGEST: usize = 24;
+    const LOOK_ALIKE: [&str; 11] = ["_", "x_", "q_", "dq", "d2q", "sq_", "sdq", "sd2q", "r_", "j_", "fx_"];
+    let mut forms: Vec<Option<String>> = Vec::with_capacity(g.len());
+    for k in 0..g.len() {
+        // Operands come before the nodes made of them.
+        let part = |n: NodeId| if n.index() < k { forms[n.index()].clone() } else { None };
+        let form = match g.op(NodeId(k as u32)) {
+            Op::Leaf(Leaf::Param(x)) => p.get(x as usize).cloned(),
+            Op::Leaf(Leaf::Input(x)) => i.get(x as usize).cloned(),
+            Op::Leaf(Leaf::Unknown(x)) => u.get(x as usize).cloned(),
+            op => {
+                let form = match op {
+                    Op::Func(f, a) => part(a).map(|a| format!("{}_{a}", f.method())),
+                    Op::Mul(a, b) => part(a).zip(part(b)).map(|(a, b)| format!("{a}_{b}")),
+                    Op::Neg(a) => part(a).map(|a| format!("neg_{a}")),
+                    Op::Powi(a, 2) => part(a).map(|a| format!("{a}_sq")),
+                    _ => None,
+                };
+                form.filter(|f| f.len() <= LONGEST && !LOOK_ALIKE.iter().any(|l| f.starts_with(l)))
+            }
+        };
+        forms.push(form);
+    }
+    forms
+}
+
+/// The nodes other nodes are computed from, among everything the plan computes.
+fn read_by_others(plan: &Plan) -> HashSet<NodeId> {
+    let g = &plan.graph;
+    let mut roots: Vec<NodeId> = Vec::new();
+    let mut add = |rows: &[Vec<NodeId>]| roots.extend(rows.iter().flatten().copied());
+    add(&plan.jac_full);
+    add(&plan.fx_full);
+    add(&plan.out_d1);
+    add(&plan.out_d2);
+    for bp in &plan.blocks {
+        add(&bp.vel);
+        add(&bp.acc);
+        add(&bp.col_scale);
+        add(&bp.lever_floor);
+        if let Some(st) = &bp.sens {
+            add(&st.q);
+            add(&st.v);
+            add(&st.a);
+        }
+    }
+    if let Some(st) = &plan.out_sens {
+        add(&st.q);
+        add(&st.v);
+        add(&st.a);
+    }
+    let singles = [&plan.residuals, &plan.outputs, &plan.guesses, &plan.scale_full, &plan.unit_full, &plan.input_unit];
+    roots.extend(singles.into_iter().flatten().copied());
+    for bp in &plan.blocks {
+        roots.extend(bp.scale.iter().chain(&bp.unit).copied());
+        roots.extend(bp.solve.linear_rhs().unwrap_or_default());
+        if let Some(rec) = bp.solve.closed_form() {
+            roots.extend(rec.form.coefficients());
+        }
+    }
+    g.reachable(&roots).into_iter().flat_map(|n| g.op(n).operands().collect::<Vec<_>>()).collect()
 }
 
 fn binary(a: TokenStream, op: TokenStream, b: TokenStream) -> TokenStream {

@@ -33,7 +33,7 @@ fn types(model: &Model, plan: &Plan, t: &Types) -> TokenStream {
          (`sens.q.x.l` is `d x / d l`)."
     );
     let sens_doc = format!(
-        "Exact sensitivities of a [`{plain}State`] to the parameters: append a parameter name to a \
+        " Exact sensitivities of a [`{plain}State`] to the parameters: append a parameter name to a \
          state path (`state.dq.u` -> `sens.dq.u.p` is `d(du/dinput)/dp`)."
     );
     let fields: Vec<Field> = model.params.iter().map(|p| Field::new(&[], &p.name)).collect();

@@ -26,7 +26,7 @@ impl Field {
     /// The doc comments, or `fallback` with the field's name when there are none.
     fn doc(&self, kind: &str) -> TokenStream {
         if self.docs.is_empty() {
-            let d = format!("{kind} `{}`.", self.name.unraw());
+            let d = format!(" {kind} `{}`.", self.name.unraw());
             quote!(#[doc = #d])
         } else {
             let d = &self.docs;
@@ -164,15 +164,13 @@ fn params_struct(s: &Surface) -> TokenStream {
         }
         _ => quote!(),
     };
-    let rt = runtime();
+    let derive = derives(quote!(Clone, Copy, Debug, PartialEq), quote!());
     quote! {
-        #rt::serde_derive! {
-            #(#docs)*
-            #[derive(Clone, Copy, Debug, PartialEq)]
-            #[allow(non_snake_case)]
-            #vis struct #name {
-                #(#fields)*
-            }
+        #(#docs)*
+        #derive
+        #[allow(non_snake_case)]
+        #vis struct #name {
+            #(#fields)*
         }
         #default
     }
@@ -181,92 +179,63 @@ fn params_struct(s: &Surface) -> TokenStream {
 /// A struct generic over its element type `T` with one field per name, and its conversions
 /// from and to `[T; n]` in field order.
 pub fn named_struct(vis: &Visibility, ty: &Ident, doc: &str, fields: &[Field], kind: &str) -> TokenStream {
-    let n = lit(fields.len());
+    let (rt, n) = (runtime(), lit(fields.len()));
     let names: Vec<&Ident> = fields.iter().map(|f| &f.name).collect();
     let docs = fields.iter().map(|f| f.doc(kind));
     let bind: Vec<Ident> = (0..fields.len()).map(|k| Ident::new(&format!("f{k}"), Span::call_site())).collect();
     // A struct without fields still mentions `T`.
-    let (marker, marker_init) = if fields.is_empty() {
-        (
-            quote!(#[doc(hidden)] pub __marker: ::core::marker::PhantomData<T>,),
-            quote!(__marker: ::core::marker::PhantomData),
-        )
-    } else {
-        (quote!(), quote!())
-    };
-    let rt = runtime();
+    let marker = fields.is_empty().then(|| quote!(#[doc(hidden)] pub __marker: ::core::marker::PhantomData<T>,));
+    let derive = derives(quote!(Clone, Copy, Debug, Default, PartialEq), quote!());
+    let doc_line = format!(" {doc}");
     quote! {
-        #rt::serde_derive! {
-            #[doc = #doc]
-            #[derive(Clone, Copy, Debug, Default, PartialEq)]
-            #[allow(non_snake_case)]
-            #vis struct #ty<T = f64> {
-                #(#docs pub #names: T,)*
-                #marker
-            }
+        #[doc = #doc_line]
+        #derive
+        #[allow(non_snake_case)]
+        #vis struct #ty<T = f64> {
+            #(#docs pub #names: T,)*
+            #marker
         }
-        impl<T> ::core::convert::From<[T; #n]> for #ty<T> {
-            #[inline]
-            fn from([#(#bind),*]: [T; #n]) -> Self {
-                #ty { #(#names: #bind,)* #marker_init }
-            }
-        }
-        impl<T> ::core::convert::From<#ty<T>> for [T; #n] {
-            #[inline]
-            fn from(v: #ty<T>) -> Self {
-                [#(v.#names),*]
-            }
-        }
+        #rt::array_conversions!(#ty, #n; #(#names(#bind)),*);
     }
 }
 
 /// Outputs: points are `Vec2<T>`, scalars `T`; flat order is x, y per point then scalars.
 fn outputs_struct(s: &Surface, t: &Types) -> TokenStream {
     let (rt, vis, ty, plain) = (runtime(), &s.vis, &t.outputs, &t.plain);
-    let (mut fields, mut from, mut into, mut flat) = (Vec::new(), Vec::new(), Vec::new(), Vec::new());
+    let (mut fields, mut points, mut scalars, mut flat) = (Vec::new(), Vec::new(), Vec::new(), 0);
     let o = |k: usize| Ident::new(&format!("o{k}"), Span::call_site());
     for p in &s.points {
-        let (d, f, a, b) = (p.doc("Point"), &p.name, o(flat.len()), o(flat.len() + 1));
+        let (d, f, a, b) = (p.doc("Point"), &p.name, o(flat), o(flat + 1));
         fields.push(quote!(#d pub #f: #rt::Vec2<T>,));
-        from.push(quote!(#f: #rt::Vec2 { x: #a, y: #b }));
-        into.extend([quote!(v.#f.x), quote!(v.#f.y)]);
-        flat.extend([a, b]);
+        points.push(quote!(#f(#a, #b)));
+        flat += 2;
     }
     for p in &s.scalars {
-        let (d, f, a) = (p.doc("Output"), &p.name, o(flat.len()));
+        let (d, f, a) = (p.doc("Output"), &p.name, o(flat));
         fields.push(quote!(#d pub #f: T,));
-        from.push(quote!(#f: #a));
-        into.push(quote!(v.#f));
-        flat.push(a);
+        scalars.push(quote!(#f(#a)));
+        flat += 1;
     }
-    if flat.is_empty() {
+    let conversions = if flat == 0 {
         fields.push(quote!(#[doc(hidden)] pub __marker: ::core::marker::PhantomData<T>,));
-        from.push(quote!(__marker: ::core::marker::PhantomData));
-    }
-    let nol = lit(flat.len());
+        quote!(#rt::array_conversions!(#ty, 0;);)
+    } else {
+        let nol = lit(flat);
+        quote!(#rt::array_conversions!(#ty, #nol; points #(#points),*; scalars #(#scalars),*);)
+    };
     let doc = format!(
-        "Named outputs of [`{plain}`] (points and scalar outputs); with `T = f64` their values, in \
+        " Named outputs of [`{plain}`] (points and scalar outputs); with `T = f64` their values, in \
          [`{plain}State`] also their analogs."
     );
+    let derive = derives(quote!(Clone, Copy, Debug, Default, PartialEq), quote!());
     quote! {
-        #rt::serde_derive! {
-            #[doc = #doc]
-            #[derive(Clone, Copy, Debug, Default, PartialEq)]
-            #[allow(non_snake_case)]
-            #vis struct #ty<T = f64> {
-                #(#fields)*
-            }
+        #[doc = #doc]
+        #derive
+        #[allow(non_snake_case)]
+        #vis struct #ty<T = f64> {
+            #(#fields)*
         }
-        impl<T> ::core::convert::From<[T; #nol]> for #ty<T> {
-            fn from([#(#flat),*]: [T; #nol]) -> Self {
-                #ty { #(#from),* }
-            }
-        }
-        impl<T> ::core::convert::From<#ty<T>> for [T; #nol] {
-            fn from(v: #ty<T>) -> Self {
-                [#(#into),*]
-            }
-        }
+        #conversions
     }
 }
 
@@ -318,11 +287,11 @@ fn state_struct(s: &Surface, t: &Types) -> TokenStream {
     let motion_struct = motion_struct(s, t);
     // A state serializes as its flat `Kin` (the named fields repeat its values).
     let kin = format!("::kinloop::__gen::Kin<{}, {ni}, {}>", s.unknowns.len(), s.n_outputs());
+    let derive = derives(quote!(Clone, Copy, Debug, PartialEq), quote!(, from = #kin, into = #kin));
+    let state_line = format!(" {state_doc}");
     quote! {
-        #rt::serde_derive! {
-        #[serde_as(from = #kin, into = #kin)]
-        #[doc = #state_doc]
-        #[derive(Clone, Copy, Debug, PartialEq)]
+        #[doc = #state_line]
+        #derive
         #vis struct #state {
             /// The input values.
             pub input: #inputs,
@@ -344,7 +313,6 @@ fn state_struct(s: &Surface, t: &Types) -> TokenStream {
             pub health: #rt::Health,
             /// The same values as flat arrays in declaration order (for generic code).
             pub flat: #rt::Kin<#nl, #nil, #nol>,
-        }
         }
         impl ::core::convert::From<#state> for #rt::Kin<#nl, #nil, #nol> {
             #[inline]
@@ -375,13 +343,13 @@ fn state_struct(s: &Surface, t: &Types) -> TokenStream {
 
 /// `NameMotion`: true velocities and accelerations.
 fn motion_struct(s: &Surface, t: &Types) -> TokenStream {
-    let (rt, vis, plain) = (runtime(), &s.vis, &t.plain);
+    let (vis, plain) = (&s.vis, &t.plain);
     let Types { unknowns, outputs, motion, .. } = t;
-    let motion_doc = format!("True velocities and accelerations of [`{plain}`] (time derivatives).");
+    let motion_line = format!(" True velocities and accelerations of [`{plain}`] (time derivatives).");
+    let derive = derives(quote!(Clone, Copy, Debug, PartialEq), quote!());
     quote! {
-        #rt::serde_derive! {
-        #[doc = #motion_doc]
-        #[derive(Clone, Copy, Debug, PartialEq)]
+        #[doc = #motion_line]
+        #derive
         #vis struct #motion {
             /// Velocities of the unknowns.
             pub qdot: #unknowns,
@@ -392,6 +360,19 @@ fn motion_struct(s: &Surface, t: &Types) -> TokenStream {
             /// Accelerations of the outputs.
             pub out_ddot: #outputs,
         }
-        }
+    }
+}
+
+/// The derive attributes of a generated struct: the standard traits `std`, and `Serialize` and
+/// `Deserialize` from the facade's `__gen`, serde's with kinloop's feature `serde` and otherwise
+/// derives that implement nothing (the user's crate cannot test kinloop's features, so the
+/// expansion is the same either way); then the serde container attribute, naming serde through
+/// kinloop, with the further arguments `extra` (`, from = ..`).
+fn derives(std: TokenStream, extra: TokenStream) -> TokenStream {
+    let rt = runtime();
+    quote! {
+        #[derive(#std)]
+        #[derive(#rt::Serialize, #rt::Deserialize)]
+        #[serde(crate = "::kinloop::__gen::serde" #extra)]
     }
 }

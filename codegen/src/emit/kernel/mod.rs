@@ -138,8 +138,11 @@ fn used_leaves(g: &Graph, specs: &[ScopeSpec]) -> HashSet<Leaf> {
     g.leaves_of(&roots).into_iter().collect()
 }
 
-/// `let [a, _, c] = *from;` binding only the used elements.
+/// `let [a, _, c] = *from;` binding only the used elements; nothing when none is used.
 fn bind_used(ids: &[Ident], used: impl Fn(usize) -> bool, from: TokenStream) -> TokenStream {
+    if !(0..ids.len()).any(&used) {
+        return TokenStream::new();
+    }
     let pats = ids.iter().enumerate().map(|(k, id)| if used(k) { quote!(#id) } else { quote!(_) });
     quote!(let [#(#pats),*] = *#from;)
 }
