@@ -44,7 +44,7 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
     let (lo, hi) = (reach.from.phi, reach.to.phi);
     println!("  reachable input range on this assembly mode: [{lo:.12}, {hi:.12}] rad");
 
-    let traced = m.trace_curve(0.0, PI, &g, &kinloop::TraceOptions::default())?;
+    let traced = m.trace_curve(0.0, PI, &g, &kinloop::TraceConfig::default())?;
     println!(
         "  arclength continuation: {} points, closed = {}, limit positions at {:?}",
         traced.points.len(),

@@ -49,11 +49,11 @@
 //! a **singular crossing** (a change point where a determinant changes sign) — records an
 //! [`Event`] with the input value, and stops with [`Error::SweepStopped`] (or, with
 //! [`AtSingular::Continue`], passes a crossing). [`Sweep::run`] runs it to its end and returns a
-//! [`SweepResult`]: the states up to where it ended, the [`Stop`] (completed, a limit position
+//! [`SweepResult`]: the states up to where it ended, the [`SweepStop`] (completed, a limit position
 //! or a singular crossing with its located [`Event`], or the error) and the events met.
 //! [`Sweep::table`] collects a sweep into a CSV-ready [`Table`]; `m.reachable(at, delta, &guess,
 //! samples)` finds the input range reachable on a branch, in input values ([`Reach`]);
-//! `m.trace_curve(from, to, &guess, &TraceOptions::default())` follows the whole solution curve
+//! `m.trace_curve(from, to, &guess, &TraceConfig::default())` follows the whole solution curve
 //! through limit positions (e.g. the closed curve of a non-Grashof four-bar);
 //! `m.assembly_modes(input)` lists the distinct assembly modes so one can be picked by a readable
 //! rule ("elbow up": `.into_iter().find(|s| s.out.c.y > 0.0)`). Arclength continuation measures
@@ -98,13 +98,13 @@
 //! // The whole run at once: the states before the limit position and where it is.
 //! let run = m.sweep(0.0, 3.14, 19, &g)?.run();
 //! assert_eq!(run.states.len(), 8); // 0, 10, ..., 70 degrees
-//! let kinloop::Stop::LimitPosition(at) = &run.stop else { panic!("{:?}", run.stop) };
+//! let kinloop::SweepStop::LimitPosition(at) = &run.stop else { panic!("{:?}", run.stop) };
 //! assert!((at.x[0] - expected).abs() < 1e-9);
 //! // The reachable range on this assembly mode, in input values.
 //! let reach = m.reachable(0.0, 3.14, &g, 19)?;
 //! assert!((reach.to.phi - expected).abs() < 1e-9 && (reach.from.phi + expected).abs() < 1e-9);
 //! // The closed curve through both limit positions.
-//! let curve = m.trace_curve(0.0, 3.14, &g, &kinloop::TraceOptions::default().with_ds(0.05))?;
+//! let curve = m.trace_curve(0.0, 3.14, &g, &kinloop::TraceConfig::default().with_ds(0.05))?;
 //! assert!(curve.closed && curve.folds.len() == 2);
 //!
 //! // A mechanism-wide configuration, validated once and used by every call.
@@ -209,7 +209,7 @@
 //! (a stroke, the extreme of an output) without keeping its states; `par_scan` (cargo feature
 //! `rayon`) does the same on all cores and returns bitwise the same results in the same order.
 //! A set that fails (cannot be assembled, meets a limit position, non-finite parameters) gives
-//! an [`Error`] in its slot; the others go on. [`ScanSpec`] says what every sweep does and
+//! an [`Error`] in its slot; the others go on. [`ScanConfig`] says what every sweep does and
 //! [`ScanStart`] how it starts (the declared guess by default).
 //!
 //! ```
@@ -222,12 +222,12 @@
 //!     }
 //! }
 //! use std::f64::consts::TAU;
-//! use kinloop::{ScanSpec, scan};
+//! use kinloop::{ScanConfig, scan};
 //!
 //! // Rod lengths 2.0, 2.5, ..., and one rod too short to reach the slider's line.
 //! let mut designs: Vec<_> = (0..8).map(|i| SliderCrank { r: 1.0, l: 2.0 + 0.5 * i as f64, e: 0.3 }).collect();
 //! designs.push(SliderCrank { r: 1.0, l: 0.2, e: 0.3 });
-//! let spec = ScanSpec::new([0.0], [TAU], 361);
+//! let spec = ScanConfig::new([0.0], [TAU], 361);
 //! // Fold each turn into (min, max) of the slider position x (unknown 1).
 //! let extent = |(lo, hi): (f64, f64), _: &SliderCrank, k: &kinloop::Kin<2, 1, 0>| (lo.min(k.q[1]), hi.max(k.q[1]));
 //! let start = |_: &SliderCrank| (f64::INFINITY, f64::NEG_INFINITY);
@@ -358,19 +358,19 @@ pub mod language;
 pub use kinloop_macros::mechanism;
 // The runtime's public items, listed rather than glob-imported: a glob would also inline the
 // whole of nalgebra into these pages (rustdoc documents a module re-exported through a glob).
-pub use kinloop_runtime::{
-    AtSingular, BlockInfo, Configured, DetSigns, Error, Event, EventKind, Extreme, Extremum, FlatMotion, Health, Jac,
-    Kin, LENGTH_UNIT, Location, Mechanism, Named, NamedSensitivities, NewtonConfig, Quantity, QuantityKind, Reach,
-    Sens, Sensitivities, SolveReport, Stop, Sweep, SweepConfig, SweepResult, Table, Termination, TraceOptions, Traced,
-    TracedPoint, Vec2, assembly_modes, deg, extremum, integral, reachable, to_deg, trace_curve,
-};
-pub use kinloop_runtime::{analysis, dynamics, events, metrics, paths};
-// A glob of the scan module: it holds `par_scan` whenever the runtime is built with rayon,
-// whichever crate's feature asked for it (features unify).
 /// nalgebra, the linear algebra of the runtime, under its own path so that users share its
 /// version (`kinloop::nalgebra::Vector2`); its documentation is nalgebra's own.
 #[doc(no_inline)]
 pub use kinloop_runtime::nalgebra;
+pub use kinloop_runtime::{
+    AtSingular, BlockInfo, Configured, DetSigns, Error, Event, EventKind, Extreme, Extremum, FlatMotion, Health, Jac,
+    Kin, LENGTH_UNIT, Location, Mechanism, Named, NamedSensitivities, NewtonConfig, NewtonStop, Quantity, QuantityKind,
+    Reach, Sens, Sensitivities, SolveReport, Sweep, SweepConfig, SweepResult, SweepStop, Table, TraceConfig, Traced,
+    TracedPoint, Vec2, deg, extremum, integral, to_deg,
+};
+pub use kinloop_runtime::{analysis, dynamics, events, metrics, paths};
+// A glob of the scan module: it holds `par_scan` whenever the runtime is built with rayon,
+// whichever crate's feature asked for it (features unify).
 pub use kinloop_runtime::paths::scan::*;
 
 /// What code expanded by [`mechanism!`] names (and nothing else); not for use by hand.

@@ -10,7 +10,7 @@
 //! worker threads, not on the calling one. A counting allocator shows that a scan allocates
 //! nothing per set or per sample: only its result vector.
 
-use kinloop::{Error, EventKind, Kin, ScanSpec, ScanStart, par_scan, scan};
+use kinloop::{Error, EventKind, Kin, ScanConfig, ScanStart, par_scan, scan};
 use kinloop_fixtures::SliderCrank;
 use kinloop_fixtures::strategies::{limited_slider_crank, sample, turning_slider_crank, unassemblable_slider_crank};
 use std::collections::HashSet;
@@ -189,7 +189,7 @@ fn bits(results: &[Result<Acc, Error>]) -> Vec<Result<([u64; 4], usize), String>
 #[test]
 fn scan_matches_closed_forms_and_par_scan_matches_scan_bitwise() {
     let (ms, ex) = designs(200);
-    let spec = ScanSpec::new([0.0], [TAU], SAMPLES);
+    let spec = ScanConfig::new([0.0], [TAU], SAMPLES);
     let seq = scan(&ms, &spec, init, fold);
     check_results(&ms, &ex, &seq);
     let par = par_scan(&ms, &spec, init, fold);
@@ -202,7 +202,7 @@ fn scan_matches_closed_forms_and_par_scan_matches_scan_bitwise() {
 #[test]
 fn scan_allocates_only_its_result() {
     let turns = turning_designs(60);
-    let spec = ScanSpec::new([0.0], [TAU], SAMPLES);
+    let spec = ScanConfig::new([0.0], [TAU], SAMPLES);
     let (results, n) = allocations(|| scan(&turns, &spec, init, fold));
     assert!(results.iter().all(|r| r.as_ref().is_ok_and(|a| a.samples == SAMPLES)));
     assert_eq!(n, 1, "{} sets of {SAMPLES} samples: {n} allocations", turns.len());
@@ -211,7 +211,7 @@ fn scan_allocates_only_its_result() {
 #[test]
 fn par_scan_runs_on_the_rayon_pool() {
     let (ms, _) = designs(64);
-    let spec = ScanSpec::new([0.0], [TAU], 37);
+    let spec = ScanConfig::new([0.0], [TAU], 37);
     let threads = Mutex::new(Vec::<ThreadId>::new());
     let init = |m: &SliderCrank| {
         threads.lock().unwrap().push(thread::current().id());
@@ -245,8 +245,8 @@ fn the_start_policy_picks_the_branch() {
     // The mirrored branch (psi near pi, the slider on the crank's +x side) from a computed guess
     // and from a fixed one: x spans the closed forms' mirror image.
     let turns = turning_designs(60);
-    let with = ScanSpec::new([0.0], [TAU], SAMPLES).start(ScanStart::With(|m: &SliderCrank| [PI + m.e / m.l, m.l]));
-    let fixed = ScanSpec::new([0.0], [TAU], SAMPLES).start(ScanStart::Guess([3.0, 1.0]));
+    let with = ScanConfig::new([0.0], [TAU], SAMPLES).start(ScanStart::With(|m: &SliderCrank| [PI + m.e / m.l, m.l]));
+    let fixed = ScanConfig::new([0.0], [TAU], SAMPLES).start(ScanStart::Guess([3.0, 1.0]));
     for spec in [with, fixed] {
         let seq = scan(&turns, &spec, init, fold);
         for (m, r) in turns.iter().zip(&seq) {
@@ -264,9 +264,10 @@ fn the_start_policy_picks_the_branch() {
 #[test]
 fn bad_arguments_fail_every_slot_without_panicking() {
     let (ms, _) = designs(5);
-    assert!(scan(&ms[..0], &ScanSpec::new([0.0], [TAU], SAMPLES), init, fold).is_empty());
-    assert!(par_scan(&ms[..0], &ScanSpec::new([0.0], [TAU], SAMPLES), init, fold).is_empty());
-    let cases = [ScanSpec::new([0.0], [TAU], 0), ScanSpec::new([0.0], [0.0], 3), ScanSpec::new([f64::NAN], [TAU], 3)];
+    assert!(scan(&ms[..0], &ScanConfig::new([0.0], [TAU], SAMPLES), init, fold).is_empty());
+    assert!(par_scan(&ms[..0], &ScanConfig::new([0.0], [TAU], SAMPLES), init, fold).is_empty());
+    let cases =
+        [ScanConfig::new([0.0], [TAU], 0), ScanConfig::new([0.0], [0.0], 3), ScanConfig::new([f64::NAN], [TAU], 3)];
     for spec in cases {
         for results in [scan(&ms, &spec, init, fold), par_scan(&ms, &spec, init, fold)] {
             assert_eq!(results.len(), ms.len());
@@ -277,6 +278,6 @@ fn bad_arguments_fail_every_slot_without_panicking() {
         }
     }
     // One sample: the start position alone.
-    let one = scan(&ms, &ScanSpec::new([0.5], [0.5], 1), init, fold);
+    let one = scan(&ms, &ScanConfig::new([0.5], [0.5], 1), init, fold);
     assert!(one.iter().all(|r| r.as_ref().unwrap().samples == 1));
 }

@@ -540,13 +540,13 @@ macro_rules! __named_api {
                 from: impl ::core::convert::Into<$inputs>,
                 to: impl ::core::convert::Into<$inputs>,
                 guess: &$unknowns,
-                opts: &$crate::TraceOptions,
+                opts: &$crate::TraceConfig,
             ) -> ::core::result::Result<$crate::Traced<$n, $ni>, $crate::Error> {
                 <Self as $crate::Named<$n, $ni, $no>>::trace_curve(self, from, to, guess, opts)
             }
 
             /// The distinct assembly modes at `input` (multi-start Newton; see
-            /// [`assembly_modes`](::kinloop::assembly_modes)), e.g. to pick "elbow up" with
+            /// [`Named::assembly_modes`](::kinloop::Named::assembly_modes)), e.g. to pick "elbow up" with
             /// `.into_iter().find(|s| ...)`.
             pub fn assembly_modes(&self, input: impl ::core::convert::Into<$inputs>) -> ::std::vec::Vec<$state> {
                 <Self as $crate::Named<$n, $ni, $no>>::assembly_modes(self, input)

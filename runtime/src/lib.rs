@@ -7,8 +7,9 @@
 //!   block solvers themselves are private: generated code reaches them through a hidden
 //!   module);
 //! * branch-safe sweeps, continuation through limit positions, assembly modes and scans
-//!   ([`paths`], with [`Sweep`], [`trace_curve`], [`assembly_modes`] and [`scan`] re-exported),
-//!   and the [`Event`]s they locate;
+//!   ([`paths`], with [`Sweep`] and [`scan`] re-exported; a mechanism's own methods
+//!   [`Named::reachable`], [`Named::trace_curve`] and [`Named::assembly_modes`] reach the
+//!   rest), and the [`Event`]s they locate;
 //! * [`Table`]s with units and CSV, [`Vec2`], angle conversions ([`deg`], [`to_deg`]);
 //! * [`analysis`] of sweeps, design [`metrics`], machine [`dynamics`].
 //!
@@ -52,15 +53,14 @@ pub use events::{BlockInfo, Event, EventKind, Location};
 pub use kin::{DetSigns, FlatMotion, Health, Jac, Kin, Sens};
 pub use kinds::{LENGTH_UNIT, QuantityKind};
 pub use mechanism::{Mechanism, Named, NamedSensitivities, Sensitivities};
-pub use paths::modes::assembly_modes;
-pub use paths::outcome::{Stop, SweepResult};
-pub use paths::reach::{Reach, reachable};
+pub use paths::outcome::{SweepResult, SweepStop};
+pub use paths::reach::Reach;
 #[cfg(feature = "rayon")]
 pub use paths::scan::par_scan;
-pub use paths::scan::{ScanSpec, ScanStart, scan};
+pub use paths::scan::{ScanConfig, ScanStart, scan};
 pub use paths::sweep::{AtSingular, Sweep, SweepConfig};
-pub use paths::trace::{TraceOptions, Traced, TracedPoint, trace_curve};
-pub use solvers::newton::{NewtonConfig, SolveReport, Termination};
+pub use paths::trace::{TraceConfig, Traced, TracedPoint};
+pub use solvers::newton::{NewtonConfig, NewtonStop, SolveReport};
 pub use table::Table;
 pub use vec2::Vec2;
 

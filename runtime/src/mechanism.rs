@@ -8,7 +8,7 @@ use crate::kinds::QuantityKind;
 use crate::paths::outcome::SweepResult;
 use crate::paths::reach::Reach;
 use crate::paths::sweep::{Sweep, SweepConfig};
-use crate::paths::trace::{TraceOptions, Traced};
+use crate::paths::trace::{TraceConfig, Traced};
 use crate::solvers::newton::{NewtonConfig, SolveReport};
 use crate::trig::InputTrig;
 
@@ -361,7 +361,7 @@ pub trait Named<const N: usize, const NI: usize, const NO: usize>: Mechanism<N, 
 
     /// How far the input can move from `at` towards `at + delta` and `at - delta` on the
     /// assembly mode of `guess` before a limit position, in input values (see
-    /// [`reachable`](crate::reachable); `samples` per direction).
+    /// [`reachable`](crate::paths::reach::reachable); `samples` per direction).
     fn reachable(
         &self,
         at: impl Into<Self::Inputs>,
@@ -375,19 +375,19 @@ pub trait Named<const N: usize, const NI: usize, const NO: usize>: Mechanism<N, 
     }
 
     /// The whole solution curve through `guess` at `from`, first towards `to`, through limit
-    /// positions (see [`trace_curve`](crate::trace_curve)).
+    /// positions (see [`trace_curve`](crate::paths::trace::trace_curve)).
     fn trace_curve(
         &self,
         from: impl Into<Self::Inputs>,
         to: impl Into<Self::Inputs>,
         guess: &Self::Unknowns,
-        opts: &TraceOptions,
+        opts: &TraceConfig,
     ) -> Result<Traced<N, NI>, Error> {
         crate::paths::trace::trace_curve(self, from.into().into(), to.into().into(), (*guess).into(), opts)
     }
 
     /// The distinct assembly modes at `input` (multi-start Newton; see
-    /// [`assembly_modes`](crate::assembly_modes)), e.g. to pick "elbow up" with
+    /// [`assembly_modes`](crate::paths::modes::assembly_modes)), e.g. to pick "elbow up" with
     /// `.into_iter().find(|s| ...)`.
     fn assembly_modes(&self, input: impl Into<Self::Inputs>) -> Vec<Self::State> {
         let x: [f64; NI] = input.into().into();

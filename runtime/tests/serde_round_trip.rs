@@ -3,7 +3,7 @@
 //! exactly).
 #![cfg(feature = "serde")]
 
-use kinloop_runtime::{AtSingular, Event, EventKind, NewtonConfig, SweepConfig, Table, TraceOptions, Vec2};
+use kinloop_runtime::{AtSingular, Event, EventKind, NewtonConfig, SweepConfig, Table, TraceConfig, Vec2};
 use serde::Serialize;
 use serde::de::DeserializeOwned;
 
@@ -28,7 +28,7 @@ fn configurations_round_trip() {
     older.as_object_mut().unwrap().remove("restarts");
     assert_eq!(serde_json::from_value::<NewtonConfig>(older).unwrap(), newton);
     assert!(!round_trip(&newton.with_restarts(false)).restarts);
-    for opts in [TraceOptions::default(), TraceOptions::default().with_ds(0.03).with_newton(newton)] {
+    for opts in [TraceConfig::default(), TraceConfig::default().with_ds(0.03).with_newton(newton)] {
         assert_eq!(round_trip(&opts), opts);
     }
 }

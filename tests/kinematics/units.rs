@@ -409,7 +409,7 @@ fn trace_diff(t: &kinloop::Traced<3, 1>, k: f64, r: &kinloop::Traced<3, 1>) -> f
 /// coordinates) and finds the same limit positions at every scale.
 #[test]
 fn traced_curve_is_unit_free() {
-    let opts = kinloop::TraceOptions::default().with_ds(0.02);
+    let opts = kinloop::TraceConfig::default().with_ds(0.02);
     let trace = |k: f64| {
         let m = rocker(k);
         let g = m.position(0.0, &m.guess(0.0)).unwrap().0;
@@ -442,7 +442,7 @@ fn limit_positions_and_reach_are_unit_free_with_a_length_unknown() {
         let g = m.position(0.0, &m.guess(0.0)).unwrap().0;
         let run = m.sweep(0.0, PI, 181, &g).unwrap().run();
         match &run.stop {
-            kinloop::Stop::LimitPosition(ev) => stops.push(ev.x[0]),
+            kinloop::SweepStop::LimitPosition(ev) => stops.push(ev.x[0]),
             other => panic!("k={k}: {other:?}"),
         }
         let reach = m.reachable(0.0, PI, &g, 91).unwrap();

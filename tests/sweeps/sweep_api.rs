@@ -2,7 +2,7 @@
 //! `reachable` in input values and `trace_curve`'s options, checked against closed forms (the law
 //! of cosines for a four-bar's limit positions) and against the behaviour without them.
 
-use kinloop::{AtSingular, Error, EventKind, Kin, Named, NewtonConfig, Stop, Sweep, SweepConfig, TraceOptions};
+use kinloop::{AtSingular, Error, EventKind, Kin, Named, NewtonConfig, Sweep, SweepConfig, SweepStop, TraceConfig};
 use kinloop_fixtures::{FourBar, FourBarInputs, FourBarUnknowns};
 use std::f64::consts::PI;
 
@@ -40,7 +40,7 @@ fn a_run_keeps_the_states_and_says_where_it_stopped() {
     let below = (0..181).filter(|&i| PI * i as f64 / 180.0 < lim).count();
     assert_eq!(run.states.len(), below);
     assert!(run.states.iter().all(|s| s.input.phi < lim));
-    let Stop::LimitPosition(ev) = &run.stop else { panic!("{:?}", run.stop) };
+    let SweepStop::LimitPosition(ev) = &run.stop else { panic!("{:?}", run.stop) };
     assert_close!(ev.x[0], lim, tol::LOCATED, "{} vs {lim}", ev.x[0]);
     assert_eq!(ev.kind, EventKind::LimitPosition);
     assert_eq!(run.stop.event(), Some(ev));
@@ -66,7 +66,7 @@ fn a_complete_run_and_a_failed_one() {
     let far = FourBar { a: 1.0, b: 1.0, c: 1.0, d: 10.0 };
     let run = far.sweep(0.0, 1.0, 3, &g).unwrap().run();
     assert!(run.states.is_empty());
-    assert!(matches!(run.stop, Stop::Failed(Error::NoAssembly { .. })), "{:?}", run.stop);
+    assert!(matches!(run.stop, SweepStop::Failed(Error::NoAssembly { .. })), "{:?}", run.stop);
 }
 
 #[test]
@@ -75,7 +75,7 @@ fn a_crossing_stop_is_reported_as_such() {
     let m = FourBar { a: 1.0, b: 3.0, c: 2.0, d: 2.0 };
     let g = m.position(0.5, &FourBarUnknowns { beta: 0.6, gamma: 1.6 }).unwrap().0;
     let run = m.sweep(0.5, 7.0, 66, &g).unwrap().run();
-    let Stop::SingularCrossing(ev) = &run.stop else { panic!("{:?}", run.stop) };
+    let SweepStop::SingularCrossing(ev) = &run.stop else { panic!("{:?}", run.stop) };
     assert_close!(ev.x[0], 2.0 * PI, tol::LOCATED, "{:?}", ev.x);
     // Configured on the mechanism to continue, it completes and lists the crossing.
     let cont = m.with_config(SweepConfig::default().with_at_singular(AtSingular::Continue)).unwrap();
@@ -99,13 +99,13 @@ fn the_mechanism_configuration_reaches_every_solve() {
     assert!(no_convergence(one.solve(0.4)), "{:?}", one.solve(0.4));
     assert!(no_convergence(one.kinematics(0.4, &far)));
     assert!(one.position(0.4, &far).is_err());
-    assert!(matches!(one.sweep(0.4, 1.0, 5, &far).unwrap().run().stop, Stop::Failed(Error::NoConvergence { .. })));
-    assert!(matches!(one.sweep_at([0.4, 0.6], &far).stop, Stop::Failed(Error::NoConvergence { .. })));
+    assert!(matches!(one.sweep(0.4, 1.0, 5, &far).unwrap().run().stop, SweepStop::Failed(Error::NoConvergence { .. })));
+    assert!(matches!(one.sweep_at([0.4, 0.6], &far).stop, SweepStop::Failed(Error::NoConvergence { .. })));
     assert!(one.assembly_modes(0.4).is_empty());
-    assert!(one.trace_curve(0.4, 1.0, &far, &TraceOptions::default()).is_err());
+    assert!(one.trace_curve(0.4, 1.0, &far, &TraceConfig::default()).is_err());
     // An explicit configuration still wins over the mechanism's.
     assert!(one.kinematics_with(0.4, &far, &NewtonConfig::default()).is_ok());
-    assert!(one.trace_curve(0.4, 1.0, &far, &TraceOptions::default().with_newton(NewtonConfig::default())).is_ok());
+    assert!(one.trace_curve(0.4, 1.0, &far, &TraceConfig::default().with_newton(NewtonConfig::default())).is_ok());
     // The residual tolerance of the configuration is the one met: looser tolerance, fewer
     // iterations (and never more) from the same guess.
     let loose = m.with_config(NewtonConfig::default().with_residual_tol(1e-4)).unwrap();
@@ -147,12 +147,12 @@ fn trace_options_are_validated_naming_the_field() {
     let m = rocker();
     let g = m.position(0.0, &m.guess(0.0)).unwrap().0;
     let cases = [
-        (TraceOptions::default().with_ds(0.0), "TraceOptions::ds"),
-        (TraceOptions::default().with_ds(f64::NAN), "TraceOptions::ds"),
-        (TraceOptions::default().with_ds(f64::INFINITY), "TraceOptions::ds"),
-        (TraceOptions::default().with_max_points(0), "TraceOptions::max_points"),
+        (TraceConfig::default().with_ds(0.0), "TraceConfig::ds"),
+        (TraceConfig::default().with_ds(f64::NAN), "TraceConfig::ds"),
+        (TraceConfig::default().with_ds(f64::INFINITY), "TraceConfig::ds"),
+        (TraceConfig::default().with_max_points(0), "TraceConfig::max_points"),
         (
-            TraceOptions::default().with_newton(NewtonConfig::default().with_max_iterations(10_001)),
+            TraceConfig::default().with_newton(NewtonConfig::default().with_max_iterations(10_001)),
             "newton.max_iterations",
         ),
     ];
@@ -161,21 +161,21 @@ fn trace_options_are_validated_naming_the_field() {
         assert!(matches!(e, Error::InvalidArgument(_)) && e.to_string().contains(field), "{field}: {e}");
     }
     // A trace of few points stops there.
-    let t = m.trace_curve(0.0, PI, &g, &TraceOptions::default().with_max_points(5)).unwrap();
+    let t = m.trace_curve(0.0, PI, &g, &TraceConfig::default().with_max_points(5)).unwrap();
     assert_eq!(t.points.len(), 5);
     assert!(!t.closed);
 }
 
 #[test]
 fn a_scan_uses_each_mechanism_configuration_unless_it_gives_one() {
-    use kinloop::{Kin, ScanSpec, scan};
+    use kinloop::{Kin, ScanConfig, scan};
     // The change-point four-bar meets a crossing at 2 pi: configured to continue, its sweep
     // completes; by default it stops there.
     let m = FourBar { a: 1.0, b: 3.0, c: 2.0, d: 2.0 };
     let g = m.position(0.5, &FourBarUnknowns { beta: 0.6, gamma: 1.6 }).unwrap().0;
     let plain = m.with_config(SweepConfig::default()).unwrap();
     let cont = m.with_config(SweepConfig::default().with_at_singular(AtSingular::Continue)).unwrap();
-    let spec = ScanSpec::new([0.5], [7.0], 66).start(kinloop::ScanStart::Guess(g.into()));
+    let spec = ScanConfig::new([0.5], [7.0], 66).start(kinloop::ScanStart::Guess(g.into()));
     let count = |_: &_| 0usize;
     let fold = |n: usize, _: &_, _: &Kin<2, 1, 2>| n + 1;
     let results = scan(&[plain, cont], &spec, count, fold);

@@ -43,7 +43,7 @@ fn a_limit_position_between_inputs_is_a_typed_error() {
     let (a, b, c, d) = (m.a, m.b, m.c, m.d);
     let limit = ((a * a + d * d - (b + c) * (b + c)) / (2.0 * a * d)).acos();
     match &run.stop {
-        kinloop::Stop::LimitPosition(ev) => assert!((ev.x[0] - limit).abs() < 1e-9, "{ev:?} vs {limit}"),
+        kinloop::SweepStop::LimitPosition(ev) => assert!((ev.x[0] - limit).abs() < 1e-9, "{ev:?} vs {limit}"),
         other => panic!("{other:?}"),
     }
     assert_eq!(run.events.len(), 1);

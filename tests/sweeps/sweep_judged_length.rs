@@ -12,7 +12,7 @@
 //! limit position, at the input the law of cosines gives (`|crank tip - rocker pivot| = b + c`),
 //! whatever the unit, on both paths (closed form and Newton).
 
-use kinloop::{Kin, Mechanism, NewtonConfig, Stop, Sweep};
+use kinloop::{Kin, Mechanism, NewtonConfig, Sweep, SweepStop};
 use std::f64::consts::TAU;
 
 use crate::support::{four_bar_limit, tol};
@@ -79,7 +79,7 @@ fn check<M: Mechanism<4, 1, 0>>(build: impl Fn(f64, f64) -> M) {
                     let to = TAU - from;
                     let run = Sweep::<_, Kin<4, 1, 0>, 4, 1, 0>::new(&m, [from], [to], samples, start.q).unwrap().run();
                     let at = format!("k = {k:e}, o = {o:.3}, mode {mode}, from {from} in {samples} samples");
-                    let Stop::LimitPosition(event) = &run.stop else {
+                    let SweepStop::LimitPosition(event) = &run.stop else {
                         panic!("{at}: the sweep did not stop at the limit position: {:?}", run.stop);
                     };
                     assert_close!(

@@ -54,7 +54,7 @@ fn reachable_range_of_a_non_grashof_crank() {
     assert_eq!(r.to_event.expect("limit above").x[0], hi);
     assert_eq!(r.from_event.expect("limit below").x[0], lo);
     // The flat form answers in the same input values.
-    let flat = kinloop::reachable(&m, [0.0], [PI], g.into(), 91).unwrap();
+    let flat = kinloop::paths::reach::reachable(&m, [0.0], [PI], g.into(), 91).unwrap();
     assert_eq!((flat.from, flat.to), ([lo], [hi]));
 }
 
@@ -170,7 +170,7 @@ fn arclength_traces_the_whole_closed_curve_of_a_non_grashof_four_bar() {
     let m = FourBar { a: 3.0, b: 2.0, c: 2.5, d: 4.0 };
     let lim = limit_angles(&m)[0];
     let g = m.position(0.0, &m.guess(0.0)).unwrap().0;
-    let t = m.trace_curve(0.0, PI, &g, &kinloop::TraceOptions::default().with_ds(0.02)).unwrap();
+    let t = m.trace_curve(0.0, PI, &g, &kinloop::TraceConfig::default().with_ds(0.02)).unwrap();
     assert!(t.closed, "the curve closes on itself");
     assert_eq!(t.folds.len(), 2, "{:?}", t.folds);
     let mut at: Vec<f64> = t.folds.iter().map(|f| f.x[0]).collect();

@@ -7,7 +7,7 @@ use crate::error::Error;
 use crate::events::{BlockInfo, Location};
 use crate::kin::{Health, Jac, Kin};
 use crate::mechanism::Mechanism;
-use crate::solvers::newton::{NewtonConfig, SolveReport, Termination};
+use crate::solvers::newton::{NewtonConfig, NewtonStop, SolveReport};
 
 /// Offset slider-crank: crank `r` about the origin at angle `phi`, rod `l`, slider at `(x, e)`
 /// on the right (`x > r cos phi`). Equation `rod`: `(x - r cos phi)^2 + (r sin phi - e)^2 = l^2`.
@@ -85,7 +85,7 @@ impl Mechanism<1, 1, 1> for SliderCrank {
                     iterations,
                     evaluations,
                     residual: f.abs(),
-                    termination: Termination::ResidualTolerance,
+                    termination: NewtonStop::ResidualTolerance,
                 };
                 return Ok(([q], report));
             }

@@ -7,7 +7,7 @@
 //!   samples in increasing `x` plus an evaluator `FnMut(f64) -> Result<Jet, Error>` for points
 //!   in between. Used directly for test signals and derived quantities:
 //!   [`extremes()`](extremes::extremes), [`global_range`], [`dwells()`](dwell::dwells),
-//!   [`fourier()`](fourier::fourier), [`residual`], [`maximize`].
+//!   [`fourier()`](fourier::fourier), [`unbalance()`](unbalance::unbalance), [`maximize`].
 //! * **A mechanism's unknown or output column** over a sweep: [`Sampled`] runs a branch-safe
 //!   sweep (one input, or several moving along a straight path) once and answers the same
 //!   questions by column, given as the generated typed handle (`Name::COL.x_f`,
@@ -58,7 +58,7 @@ pub use sampled::Sampled;
 pub use dwell::{Dwell, dwells};
 pub use extremes::{Extreme, GlobalRange, LocalExtreme, bracketed_root, extremes, global_range, maximize};
 pub use fourier::{Fourier, fourier};
-pub use optimize::{LevenbergMarquardt, Minimum, NelderMead, Stop};
+pub use optimize::{LevenbergMarquardt, Minimum, NelderMead, OptimizerStop};
 pub use unbalance::{Unbalance, unbalance};
 
 use crate::error::Error;

@@ -82,7 +82,7 @@ impl<const NI: usize> Line<NI> {
 /// The number of inputs `NI` comes last and defaults to one, so that `Sampled<'_, M, N, NO>`
 /// is the single-input type (`N` unknowns, `NO` output columns, as in `Mechanism<N, NI, NO>`).
 ///
-/// For [`Sampled::fourier`] and [`Sampled::residual`] the range must be one period of the
+/// For [`Sampled::fourier`] and [`Sampled::unbalance`] the range must be one period of the
 /// quantity (e.g. one crank turn, `samples - 1` equal intervals, the last sample repeating the
 /// first).
 ///
@@ -352,7 +352,7 @@ where
 
     /// The residual of a column after removing its mean and harmonics `1 ..= removed`, and its
     /// largest magnitude over the period (the residual unbalance `D` for `removed = 1`); see
-    /// [`unbalance`].
+    /// [`unbalance()`](unbalance::unbalance).
     pub fn unbalance(&self, c: Column<M>, removed: usize) -> Result<Unbalance, Error> {
         let jets = self.periodic(c)?;
         unbalance::unbalance(&jets, self.eval(c), removed)

@@ -11,7 +11,7 @@
 //!
 //! ```
 //! use kinloop_runtime::dynamics::{Body, Coord, MassModel, Rotation};
-//! use kinloop_runtime::{Health, Kin, SolveReport, Termination};
+//! use kinloop_runtime::{Health, Kin, SolveReport, NewtonStop};
 //!
 //! // A crank of radius 0.1 turning with input 0, its centre of mass at the crank pin, in a
 //! // hand-made state (the columns of a point `p = r @ phi` at phi = 0).
@@ -19,7 +19,7 @@
 //! let k: Kin<0, 1, 2> = Kin {
 //!     x: [0.0], q: [], dq: [], d2q: [],
 //!     out: [r, 0.0], dout: [[0.0], [r]], d2out: [[[-r]], [[0.0]]],
-//!     report: SolveReport { iterations: 0, evaluations: 0, residual: 0.0, termination: Termination::Direct },
+//!     report: SolveReport { iterations: 0, evaluations: 0, residual: 0.0, termination: NewtonStop::Direct },
 //!     health: Health::default(),
 //! };
 //! let model = MassModel::new()

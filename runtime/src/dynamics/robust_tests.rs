@@ -3,7 +3,7 @@
 
 use super::*;
 use crate::kin::{Health, Kin};
-use crate::{SolveReport, Termination};
+use crate::{NewtonStop, SolveReport};
 
 /// A crank of radius `r` turning with input 0, its centre of mass at the crank pin (the
 /// columns of a point `r @ phi` at phi = 0), as a hand-made state.
@@ -16,7 +16,7 @@ fn crank(r: f64) -> Kin<0, 1, 2> {
         out: [r, 0.0],
         dout: [[0.0], [r]],
         d2out: [[[-r]], [[0.0]]],
-        report: SolveReport { iterations: 0, evaluations: 0, residual: 0.0, termination: Termination::Direct },
+        report: SolveReport { iterations: 0, evaluations: 0, residual: 0.0, termination: NewtonStop::Direct },
         health: Health::default(),
     }
 }

@@ -1,4 +1,4 @@
-//! A whole sweep's results with the reason it stopped and where ([`SweepResult`], [`Stop`]).
+//! A whole sweep's results with the reason it stopped and where ([`SweepResult`], [`SweepStop`]).
 
 use crate::error::Error;
 use crate::events::{Event, EventKind};
@@ -6,7 +6,7 @@ use crate::events::{Event, EventKind};
 /// Why a sweep ended.
 #[derive(Clone, Debug, PartialEq)]
 #[non_exhaustive]
-pub enum Stop {
+pub enum SweepStop {
     /// Every sample was computed.
     Completed,
     /// A limit position (the input cannot advance on this assembly mode), located precisely:
@@ -20,27 +20,29 @@ pub enum Stop {
     Failed(Error),
 }
 
-impl Stop {
+impl SweepStop {
     /// The stop for the error `e` that ended a sweep, whose last recorded event is `last`.
     pub(crate) fn from_error(e: &Error, last: Option<&Event>) -> Self {
         match (e, last) {
-            (Error::SweepStopped { kind: EventKind::LimitPosition, .. }, Some(ev)) => Stop::LimitPosition(ev.clone()),
-            (Error::SweepStopped { kind: EventKind::SingularCrossing, .. }, Some(ev)) => {
-                Stop::SingularCrossing(ev.clone())
+            (Error::SweepStopped { kind: EventKind::LimitPosition, .. }, Some(ev)) => {
+                SweepStop::LimitPosition(ev.clone())
             }
-            _ => Stop::Failed(e.clone()),
+            (Error::SweepStopped { kind: EventKind::SingularCrossing, .. }, Some(ev)) => {
+                SweepStop::SingularCrossing(ev.clone())
+            }
+            _ => SweepStop::Failed(e.clone()),
         }
     }
 
     /// Whether every sample was computed.
     pub fn is_completed(&self) -> bool {
-        matches!(self, Stop::Completed)
+        matches!(self, SweepStop::Completed)
     }
 
     /// The event that stopped the sweep (a limit position or a singular crossing).
     pub fn event(&self) -> Option<&Event> {
         match self {
-            Stop::LimitPosition(ev) | Stop::SingularCrossing(ev) => Some(ev),
+            SweepStop::LimitPosition(ev) | SweepStop::SingularCrossing(ev) => Some(ev),
             _ => None,
         }
     }
@@ -57,7 +59,7 @@ pub struct SweepResult<S> {
     /// The samples computed, in order (up to the stop).
     pub states: Vec<S>,
     /// Why the sweep ended.
-    pub stop: Stop,
+    pub stop: SweepStop,
     /// Every singular position met, in order (also the crossings passed with
     /// [`AtSingular::Continue`](crate::AtSingular::Continue), which do not stop a sweep).
     pub events: Vec<Event>,
@@ -69,8 +71,8 @@ impl<S> SweepResult<S> {
     /// A result from its parts; `error` is what stopped the sweep (`None`: completed).
     pub(crate) fn new(states: Vec<S>, error: Option<Error>, events: Vec<Event>) -> Self {
         let stop = match &error {
-            None => Stop::Completed,
-            Some(e) => Stop::from_error(e, events.last()),
+            None => SweepStop::Completed,
+            Some(e) => SweepStop::from_error(e, events.last()),
         };
         SweepResult { states, stop, events, error }
     }

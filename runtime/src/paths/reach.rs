@@ -1,7 +1,7 @@
 //! How far the input can move on one assembly mode ([`reachable`], answering in input values
 //! with [`Reach`]).
 
-use super::outcome::Stop;
+use super::outcome::SweepStop;
 use super::sweep::Sweep;
 use crate::error::Error;
 use crate::events::Event;
@@ -57,8 +57,8 @@ where
         let run = Sweep::<M, Kin<N, NI, NO>, N, NI, NO>::new(m, at, to, samples.max(2), guess)?.run();
         let last = run.states.last().map_or(at, |k| k.x);
         ends[side] = match run.stop {
-            Stop::Completed => (last, None),
-            Stop::LimitPosition(ev) => {
+            SweepStop::Completed => (last, None),
+            SweepStop::LimitPosition(ev) => {
                 let mut x = last;
                 x.copy_from_slice(&ev.x);
                 (x, Some(ev))

@@ -69,9 +69,9 @@ impl<M, const N: usize> ScanStart<M, N> {
 /// What every sweep of a scan does: `samples` equally spaced inputs from `from` to `to` (both
 /// included, as in [`Sweep::new`]), starting as `start` says, with `config` (or each
 /// mechanism's own, [`Mechanism::solver_config`]). Built with
-/// [`ScanSpec::new`] and the builder methods.
+/// [`ScanConfig::new`] and the builder methods.
 #[non_exhaustive]
-pub struct ScanSpec<M, const N: usize, const NI: usize> {
+pub struct ScanConfig<M, const N: usize, const NI: usize> {
     /// Inputs at the first sample.
     pub from: [f64; NI],
     /// Inputs at the last sample.
@@ -86,17 +86,17 @@ pub struct ScanSpec<M, const N: usize, const NI: usize> {
     pub config: Option<SweepConfig>,
 }
 
-impl<M, const N: usize, const NI: usize> Clone for ScanSpec<M, N, NI> {
+impl<M, const N: usize, const NI: usize> Clone for ScanConfig<M, N, NI> {
     fn clone(&self) -> Self {
         *self
     }
 }
 
-impl<M, const N: usize, const NI: usize> Copy for ScanSpec<M, N, NI> {}
+impl<M, const N: usize, const NI: usize> Copy for ScanConfig<M, N, NI> {}
 
-impl<M, const N: usize, const NI: usize> fmt::Debug for ScanSpec<M, N, NI> {
+impl<M, const N: usize, const NI: usize> fmt::Debug for ScanConfig<M, N, NI> {
     fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
-        f.debug_struct("ScanSpec")
+        f.debug_struct("ScanConfig")
             .field("from", &self.from)
             .field("to", &self.to)
             .field("samples", &self.samples)
@@ -106,11 +106,11 @@ impl<M, const N: usize, const NI: usize> fmt::Debug for ScanSpec<M, N, NI> {
     }
 }
 
-impl<M, const N: usize, const NI: usize> ScanSpec<M, N, NI> {
+impl<M, const N: usize, const NI: usize> ScanConfig<M, N, NI> {
     /// Sweeps of `samples` inputs from `from` to `to`, each starting from the mechanism's
     /// declared guess ([`ScanStart::Declared`]), with each mechanism's configuration.
     pub fn new(from: [f64; NI], to: [f64; NI], samples: usize) -> Self {
-        ScanSpec { from, to, samples, start: ScanStart::Declared, config: None }
+        ScanConfig { from, to, samples, start: ScanStart::Declared, config: None }
     }
 
     /// Replaces the starting guess policy.
@@ -129,7 +129,7 @@ impl<M, const N: usize, const NI: usize> ScanSpec<M, N, NI> {
 /// One parameter set: its sweep folded into one value.
 fn scan_one<M, A, I, F, const N: usize, const NI: usize, const NO: usize>(
     m: &M,
-    spec: &ScanSpec<M, N, NI>,
+    spec: &ScanConfig<M, N, NI>,
     init: &I,
     fold: &F,
 ) -> Result<A, Error>
@@ -165,7 +165,7 @@ where
 /// order, as in `Name::UNKNOWNS` and `Name::OUTPUTS`); `NameState::from(*k)` names them.
 pub fn scan<M, A, I, F, const N: usize, const NI: usize, const NO: usize>(
     mechanisms: &[M],
-    spec: &ScanSpec<M, N, NI>,
+    spec: &ScanConfig<M, N, NI>,
     init: I,
     fold: F,
 ) -> Vec<Result<A, Error>>
@@ -187,7 +187,7 @@ where
 #[cfg(feature = "rayon")]
 pub fn par_scan<M, A, I, F, const N: usize, const NI: usize, const NO: usize>(
     mechanisms: &[M],
-    spec: &ScanSpec<M, N, NI>,
+    spec: &ScanConfig<M, N, NI>,
     init: I,
     fold: F,
 ) -> Vec<Result<A, Error>>

@@ -1,5 +1,5 @@
 //! Tracing a whole solution curve through its limit positions ([`trace_curve`], configured by
-//! [`TraceOptions`]).
+//! [`TraceConfig`]).
 
 use super::curve::{CurvePoint, Metric, Path, arc_step, event_at, locate_fold, tangent_from_analogs};
 use crate::error::Error;
@@ -10,16 +10,16 @@ use crate::solvers::newton::NewtonConfig;
 /// Options of [`trace_curve`], built from the default with the `with_*` methods.
 ///
 /// ```
-/// use kinloop_runtime::{NewtonConfig, TraceOptions};
-/// let opts = TraceOptions::default().with_ds(0.02).with_max_points(10_000);
+/// use kinloop_runtime::{NewtonConfig, TraceConfig};
+/// let opts = TraceConfig::default().with_ds(0.02).with_max_points(10_000);
 /// assert!(opts.validate().is_ok());
-/// let bad = TraceOptions::default().with_ds(-1.0);
-/// assert!(bad.validate().unwrap_err().to_string().contains("TraceOptions::ds"));
+/// let bad = TraceConfig::default().with_ds(-1.0);
+/// assert!(bad.validate().unwrap_err().to_string().contains("TraceConfig::ds"));
 /// ```
 #[derive(Clone, Copy, Debug, PartialEq)]
 #[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
 #[non_exhaustive]
-pub struct TraceOptions {
+pub struct TraceConfig {
     /// Arclength between points (default `0.01`), measured in scaled coordinates: angles in
     /// radians, lengths in units of the mechanism's size (the magnitude of the loops they
     /// appear in), so the spacing does not depend on the unit of length. `0.01` gives points
@@ -32,24 +32,24 @@ pub struct TraceOptions {
     pub newton: Option<NewtonConfig>,
 }
 
-impl Default for TraceOptions {
+impl Default for TraceConfig {
     fn default() -> Self {
-        TraceOptions { ds: 0.01, max_points: 100_000, newton: None }
+        TraceConfig { ds: 0.01, max_points: 100_000, newton: None }
     }
 }
 
-impl TraceOptions {
-    /// Sets [`TraceOptions::ds`].
+impl TraceConfig {
+    /// Sets [`TraceConfig::ds`].
     pub fn with_ds(mut self, ds: f64) -> Self {
         self.ds = ds;
         self
     }
-    /// Sets [`TraceOptions::max_points`].
+    /// Sets [`TraceConfig::max_points`].
     pub fn with_max_points(mut self, n: usize) -> Self {
         self.max_points = n;
         self
     }
-    /// Sets [`TraceOptions::newton`].
+    /// Sets [`TraceConfig::newton`].
     pub fn with_newton(mut self, newton: NewtonConfig) -> Self {
         self.newton = Some(newton);
         self
@@ -72,7 +72,7 @@ impl TraceOptions {
         match self.invalid_field() {
             None => Ok(()),
             Some(field) => Err(Error::InvalidArgument(format!(
-                "TraceOptions::{field} is out of its valid range (see its documentation): {self:?}"
+                "TraceConfig::{field} is out of its valid range (see its documentation): {self:?}"
             ))),
         }
     }
@@ -107,8 +107,8 @@ pub struct Traced<const N: usize, const NI: usize> {
 /// where the input reverses, so a mechanism whose input cannot make a full turn (a non-Grashof
 /// four-bar driven by a rocking link) yields its complete closed curve. Stops when the curve
 /// closes, leaves the segment between `from - (to - from)` and `to`, or after
-/// [`TraceOptions::max_points`]. Arclength is measured in scaled coordinates (see
-/// [`TraceOptions::ds`]): the same points in any unit of length.
+/// [`TraceConfig::max_points`]. Arclength is measured in scaled coordinates (see
+/// [`TraceConfig::ds`]): the same points in any unit of length.
 /// Allocates (it returns a `Vec`); use [`Sweep`](crate::Sweep) in hot loops.
 ///
 /// Errors: `InvalidArgument` for invalid options (naming the field) or `to == from`; the
@@ -118,7 +118,7 @@ pub fn trace_curve<M, const N: usize, const NI: usize, const NO: usize>(
     from: [f64; NI],
     to: [f64; NI],
     guess: [f64; N],
-    opts: &TraceOptions,
+    opts: &TraceConfig,
 ) -> Result<Traced<N, NI>, Error>
 where
     M: Mechanism<N, NI, NO>,

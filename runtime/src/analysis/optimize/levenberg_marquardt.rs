@@ -1,6 +1,6 @@
 //! Levenberg–Marquardt for small least-squares problems with an exact Jacobian.
 
-use super::{Minimum, Stop};
+use super::{Minimum, OptimizerStop};
 use crate::error::Error;
 
 /// Minimiser of `|r(x)|^2` for `R` residuals in `P` variables with the Jacobian supplied by the
@@ -120,11 +120,11 @@ impl LevenbergMarquardt {
         }
         let value = norm(&r);
         let termination = if value <= self.tol {
-            Stop::Converged
+            OptimizerStop::Converged
         } else if evaluations >= self.max_evaluations {
-            Stop::MaxEvaluations
+            OptimizerStop::MaxEvaluations
         } else {
-            Stop::Stalled
+            OptimizerStop::Stalled
         };
         Ok(Minimum { x, value, evaluations, iterations, termination, history })
     }

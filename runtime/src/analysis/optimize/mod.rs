@@ -16,7 +16,7 @@ pub use nelder_mead::NelderMead;
 /// Why a minimiser stopped.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
 #[non_exhaustive]
-pub enum Stop {
+pub enum OptimizerStop {
     /// The tolerances were met.
     Converged,
     /// The evaluation budget ran out first.
@@ -39,7 +39,7 @@ pub struct Minimum<const P: usize> {
     /// Iterations (simplex iterations, accepted Levenberg–Marquardt steps).
     pub iterations: usize,
     /// Why it stopped.
-    pub termination: Stop,
+    pub termination: OptimizerStop,
     /// The objective after every iteration ([`LevenbergMarquardt`]) or every restart round
     /// ([`NelderMead`]), starting with the value at the starting point.
     pub history: Vec<f64>,
@@ -48,6 +48,6 @@ pub struct Minimum<const P: usize> {
 impl<const P: usize> Minimum<P> {
     /// The tolerances were met.
     pub fn converged(&self) -> bool {
-        self.termination == Stop::Converged
+        self.termination == OptimizerStop::Converged
     }
 }

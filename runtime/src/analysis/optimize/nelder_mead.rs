@@ -9,7 +9,7 @@
 //! objective: such points are never accepted, and the simplex contracts away from them. The
 //! starting point must be feasible.
 
-use super::{Minimum, Stop};
+use super::{Minimum, OptimizerStop};
 
 /// Derivative-free minimiser: the Nelder–Mead simplex method with the dimension-adaptive
 /// coefficients of Gao and Han, restarts and evaluation counting. Infeasible points are marked
@@ -112,7 +112,7 @@ impl NelderMead {
             }
             restarts_left -= 1;
         }
-        let termination = if converged { Stop::Converged } else { Stop::MaxEvaluations };
+        let termination = if converged { OptimizerStop::Converged } else { OptimizerStop::MaxEvaluations };
         Minimum { x: best, value: f_best, evaluations: evaluations.get(), iterations, termination, history }
     }
 
@@ -288,7 +288,7 @@ mod tests {
             [0.5, 0.5],
         );
         assert!(!m.converged());
-        assert_eq!(m.termination, Stop::MaxEvaluations);
+        assert_eq!(m.termination, OptimizerStop::MaxEvaluations);
         // The last iteration may finish its contraction and shrink: at most P + 2 more.
         assert!(m.evaluations <= 40 + 2 + 2, "{}", m.evaluations);
     }

@@ -6,7 +6,7 @@ use super::config::NewtonConfig;
 use super::diagnose::{jacobian_non_finite, residual_non_finite};
 use super::kept_lu::LastStep;
 use super::norms::{beyond_half_turn, scaled_norms, scaled_residual, scaled_step, sum_sq_scaled};
-use super::report::{BlockFailure, Solved, Termination};
+use super::report::{BlockFailure, NewtonStop, Solved};
 use super::scales::{BlockEval, MagnitudesOf, fallback_rows, magnitudes_at, rows_at};
 use super::state::Iter;
 use super::step::{MAX_UNCHECKED_CORRECTION, evaluated_correction, newton_step};
@@ -95,7 +95,7 @@ pub(super) fn iterate<const N: usize, const K: usize, J: BlockJacobian<N>>(
             let step = scaled_step(&dz, &it.z, &m.unit);
             let again = it.past_tolerance < LINEAR_EXTRA && it.iterations < cfg.max_iterations;
             if !(again && pivot > cfg.singular_tol && it.reached_linearly(step, cfg)) {
-                return it.finish(dz, step, pivot, rho, s, Termination::ResidualTolerance, cfg, &mut eval, mags, last);
+                return it.finish(dz, step, pivot, rho, s, NewtonStop::ResidualTolerance, cfg, &mut eval, mags, last);
             }
             // Reached linearly, yet the Jacobian here is regular by the tolerance: perhaps a
             // root just inside a limit position (see `LINEAR_EXTRA`). A few more steps tell.
@@ -109,7 +109,7 @@ pub(super) fn iterate<const N: usize, const K: usize, J: BlockJacobian<N>>(
         let stagnant = rho >= 0.5 * it.prev_rho;
         if (step <= cfg.step_tol || stagnant) && rho <= floor {
             last.forget();
-            return it.finish(dz, step, pivot, rho, s, Termination::StepTolerance, cfg, &mut eval, mags, last);
+            return it.finish(dz, step, pivot, rho, s, NewtonStop::StepTolerance, cfg, &mut eval, mags, last);
         }
         if it.iterations >= cfg.max_iterations {
             let capped = it.capped(rho, s, cfg);
@@ -128,7 +128,7 @@ pub(super) fn iterate<const N: usize, const K: usize, J: BlockJacobian<N>>(
             if rho <= floor {
                 // No step decreases a residual already at its rounding floor.
                 last.forget();
-                return it.finish(dz, step, pivot, rho, s, Termination::StepTolerance, cfg, &mut eval, mags, last);
+                return it.finish(dz, step, pivot, rho, s, NewtonStop::StepTolerance, cfg, &mut eval, mags, last);
             }
             let stalled = it.stalled(rho, pivot, s, cfg);
             return Err(stalled);
@@ -155,7 +155,7 @@ impl<const N: usize, const K: usize, J: BlockJacobian<N>> Iter<'_, N, K, J> {
         pivot: f64,
         rho: f64,
         s: &[f64; N],
-        termination: Termination,
+        termination: NewtonStop,
         cfg: &NewtonConfig,
         eval: &mut impl FnMut(&[f64; N]) -> BlockEval<N, K, J>,
         mags: &impl MagnitudesOf<N, K, J>,

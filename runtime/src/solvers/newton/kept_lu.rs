@@ -112,7 +112,7 @@ mod tests {
     use super::super::test_blocks::{circle, mags, solve, sphere};
     use super::*;
     use crate::solvers::lu::max_abs;
-    use crate::solvers::newton::{NewtonConfig, Termination};
+    use crate::solvers::newton::{NewtonConfig, NewtonStop};
 
     /// The factorisation `newton_keeping_lu` leaves is, bit for bit, the analogs' own of the
     /// returned evaluation (columns divided by their largest magnitudes), whichever way the
@@ -125,7 +125,7 @@ mod tests {
             guess: [f64; N],
             cfg: &NewtonConfig,
             eval: impl Fn(&[f64; N]) -> BlockEval<N, K> + Copy,
-        ) -> Termination {
+        ) -> NewtonStop {
             let mut kept = Lu::unfactored();
             let mut ev = eval(&guess);
             let s = newton_keeping_lu(guess, &mut ev, cfg, eval, &mags, &mut kept).unwrap();
@@ -149,12 +149,12 @@ mod tests {
         let cfg = NewtonConfig::default();
         let root = solve([1.0, 1.0], &cfg, circle).unwrap().0.z;
         for guess in [[1.0, 1.0], [1.5, 0.5], root] {
-            assert_eq!(check(guess, &cfg, circle), Termination::ResidualTolerance);
+            assert_eq!(check(guess, &cfg, circle), NewtonStop::ResidualTolerance);
         }
         for guess in [[1.2, 0.9, 1.1], [1.0, 1.0, 1.0], [1.0 + 1e-9, 1.0, 1.0 - 1e-9]] {
-            assert_eq!(check(guess, &cfg, sphere), Termination::ResidualTolerance);
+            assert_eq!(check(guess, &cfg, sphere), NewtonStop::ResidualTolerance);
         }
         let unreachable = NewtonConfig { residual_tol: 0.0, ..cfg };
-        assert_eq!(check([1.2, 0.9, 1.1], &unreachable, sphere), Termination::StepTolerance);
+        assert_eq!(check([1.2, 0.9, 1.1], &unreachable, sphere), NewtonStop::StepTolerance);
     }
 }

@@ -53,7 +53,7 @@ mod test_blocks;
 
 pub use config::NewtonConfig;
 pub(crate) use norms::system_residual;
-pub use report::{BlockFailure, SolveReport, Solved, Termination};
+pub use report::{BlockFailure, NewtonStop, SolveReport, Solved};
 pub use scales::{BlockEval, Magnitudes, MagnitudesOf};
 
 use crate::solvers::jacobian::BlockJacobian;
@@ -115,7 +115,7 @@ fn checked_free_correction<const N: usize, const K: usize, J: BlockJacobian<N>>(
     let mut z = z0;
     let residual = evaluated_correction(&mut z, ev, dz, rho0, eval, mags).unwrap_or(rho0);
     last.keep(ev);
-    Solved { z, iterations: 0, evaluations: 2, residual, termination: Termination::ResidualTolerance }
+    Solved { z, iterations: 0, evaluations: 2, residual, termination: NewtonStop::ResidualTolerance }
 }
 
 /// Solves one block from the guess `z0`, whose evaluation the caller has made into `ev`: the
@@ -200,7 +200,7 @@ fn newton_last<const N: usize, const K: usize, J: BlockJacobian<N>>(
             iterations: 0,
             evaluations: 1,
             residual: rho,
-            termination: Termination::ResidualTolerance,
+            termination: NewtonStop::ResidualTolerance,
         });
     }
     restarts::iterate_restarting(z0, ev, cfg, eval, mags, last, rho)

@@ -1,6 +1,6 @@
 //! What a solve gives, apart from the iteration itself: a solved block ([`Solved`]) or why it
 //! failed ([`BlockFailure`]), and the diagnostics of a position solve ([`SolveReport`]), with why
-//! it stopped ([`Termination`]).
+//! it stopped ([`NewtonStop`]).
 
 /// A converged block. Its evaluation is the caller's (see [`newton`]): at `z`, or (after a
 /// correction at the rounding level, applied without a new evaluation) at a point within a few
@@ -14,7 +14,7 @@ pub struct Solved<const N: usize> {
     pub iterations: u32,
     pub evaluations: u32,
     pub residual: f64,
-    pub termination: Termination,
+    pub termination: NewtonStop,
 }
 
 /// Why a block failed; the generated code adds the location and names.
@@ -48,7 +48,7 @@ pub enum BlockFailure {
 #[derive(Clone, Copy, Debug, PartialEq, Eq, PartialOrd, Ord, Hash)]
 #[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
 #[non_exhaustive]
-pub enum Termination {
+pub enum NewtonStop {
     /// Every block was solved in closed form (linear blocks only).
     Direct,
     /// The scaled residual fell below `residual_tol`.
@@ -73,18 +73,18 @@ pub struct SolveReport {
     pub residual: f64,
     /// The weakest reason any block stopped (`StepTolerance` over `ResidualTolerance` over
     /// `Direct`).
-    pub termination: Termination,
+    pub termination: NewtonStop,
 }
 
 impl SolveReport {
     #[doc(hidden)]
     pub fn direct() -> Self {
-        SolveReport { iterations: 0, evaluations: 0, residual: 0.0, termination: Termination::Direct }
+        SolveReport { iterations: 0, evaluations: 0, residual: 0.0, termination: NewtonStop::Direct }
     }
 
     #[doc(hidden)]
     pub fn given(residual: f64) -> Self {
-        SolveReport { iterations: 0, evaluations: 1, residual, termination: Termination::Given }
+        SolveReport { iterations: 0, evaluations: 1, residual, termination: NewtonStop::Given }
     }
 
     #[doc(hidden)]
