@@ -279,7 +279,10 @@
 //! expression outside its domain, an overflow, an angle too many turns out to be solved to the
 //! tolerance, a sweep stopped at a singular position or unable to stay on its branch, an invalid
 //! argument). Every error but an invalid argument carries a [`Location`]: the mechanism,
-//! the input values and, where one is concerned, the block.
+//! the input values and, where one is concerned, the block. [`Error`] is the one error type a
+//! program needs: the errors of dynamics, charts and drawings (`DynamicsError`, `PlotError`,
+//! `DrawError`) convert into it through `?`, kept whole in [`Error::Dynamics`] and
+//! [`Error::Figure`] ([`Source::downcast_ref`] gives them back typed).
 //!
 //! ```
 //! kinloop::mechanism! {
@@ -365,8 +368,8 @@ pub use kinloop_runtime::nalgebra;
 pub use kinloop_runtime::{
     AtSingular, BlockInfo, Configured, DetSigns, Error, Event, EventKind, Extreme, Extremum, FlatMotion, Health, Jac,
     Kin, LENGTH_UNIT, Location, Mechanism, Named, NamedSensitivities, NewtonConfig, NewtonStop, Quantity, QuantityKind,
-    Reach, Sens, Sensitivities, SolveReport, Sweep, SweepConfig, SweepResult, SweepStop, Table, TraceConfig, Traced,
-    TracedPoint, Vec2, deg, extremum, integral, to_deg,
+    Reach, Sens, Sensitivities, SolveReport, Source, Sweep, SweepConfig, SweepResult, SweepStop, Table, TraceConfig,
+    Traced, TracedPoint, Vec2, deg, extremum, integral, to_deg,
 };
 pub use kinloop_runtime::{analysis, dynamics, events, metrics, paths};
 // A glob of the scan module: it holds `par_scan` whenever the runtime is built with rayon,

@@ -162,6 +162,60 @@ pub enum Error {
     /// An argument outside its valid range (e.g. a sweep with zero samples).
     #[error("invalid argument: {0}")]
     InvalidArgument(String),
+    /// A dynamic analysis failed for a reason of its own: the
+    /// [`DynamicsError`](crate::dynamics::DynamicsError), kept whole (`e.downcast_ref()`). A
+    /// kinematic failure inside a dynamic analysis is its own variant of this enum instead.
+    #[error(transparent)]
+    Dynamics(Source),
+    /// A chart or a drawing could not be made: the error of `kinloop::plot` or `kinloop::draw`
+    /// (`PlotError`, `DrawError`), kept whole (`e.downcast_ref()`).
+    #[error(transparent)]
+    Figure(Source),
+}
+
+/// An error of another part of kinloop carried inside [`Error`] (see [`Error::Dynamics`] and
+/// [`Error::Figure`]), so that one error type goes through `?` everywhere. The original is kept:
+/// [`Source::downcast_ref`] gives it back typed, and `std::error::Error::source` follows its
+/// chain. Two are equal when their messages are.
+#[derive(Clone, Debug)]
+pub struct Source(std::sync::Arc<dyn std::error::Error + Send + Sync + 'static>);
+
+impl Source {
+    /// Wraps `e`.
+    pub fn new(e: impl std::error::Error + Send + Sync + 'static) -> Self {
+        Source(std::sync::Arc::new(e))
+    }
+
+    /// The original error, if it is a `T`.
+    ///
+    /// ```
+    /// use kinloop_runtime::Error;
+    /// use kinloop_runtime::dynamics::DynamicsError;
+    /// let e = Error::from(DynamicsError::Overflow { what: "total mass", x: Vec::new() });
+    /// let Error::Dynamics(source) = &e else { panic!("{e:?}") };
+    /// assert!(matches!(source.downcast_ref::<DynamicsError>(), Some(DynamicsError::Overflow { .. })));
+    /// ```
+    pub fn downcast_ref<T: std::error::Error + 'static>(&self) -> Option<&T> {
+        self.0.downcast_ref::<T>()
+    }
+}
+
+impl fmt::Display for Source {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        self.0.fmt(f)
+    }
+}
+
+impl std::error::Error for Source {
+    fn source(&self) -> Option<&(dyn std::error::Error + 'static)> {
+        self.0.source()
+    }
+}
+
+impl PartialEq for Source {
+    fn eq(&self, other: &Self) -> bool {
+        std::sync::Arc::ptr_eq(&self.0, &other.0) || self.0.to_string() == other.0.to_string()
+    }
 }
 
 impl Error {
@@ -177,7 +231,7 @@ impl Error {
             | Error::SweepStopped { at, .. }
             | Error::Branch { at, .. }
             | Error::TooManyTurns { at, .. } => Some(at),
-            Error::InvalidArgument(_) => None,
+            Error::InvalidArgument(_) | Error::Dynamics(_) | Error::Figure(_) => None,
         }
     }
 }

@@ -48,7 +48,7 @@ pub use analysis::Extreme;
 pub use analysis::objective::{Extremum, extremum, integral};
 pub use angles::{deg, to_deg};
 pub use configured::Configured;
-pub use error::{Error, Quantity};
+pub use error::{Error, Quantity, Source};
 pub use events::{BlockInfo, Event, EventKind, Location};
 pub use kin::{DetSigns, FlatMotion, Health, Jac, Kin, Sens};
 pub use kinds::{LENGTH_UNIT, QuantityKind};

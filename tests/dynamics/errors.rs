@@ -35,9 +35,12 @@ fn bad_masses_and_inertias() {
     ] {
         let err = Model::new().with_body(body(mass, inertia)).err().unwrap();
         assert!(matches!(err, DynamicsError::BadMass { body: "rod", quantity: q, .. } if q == quantity), "{err}");
-        // Into the crate's error, with the message kept.
+        // Into the crate's error, whole: the message kept, and the error itself.
         let e: kinloop::Error = err.into();
-        assert!(matches!(&e, kinloop::Error::InvalidArgument(m) if m.contains("rod")), "{e}");
+        assert!(e.to_string().contains("rod"), "{e}");
+        let kinloop::Error::Dynamics(source) = &e else { panic!("{e:?}") };
+        let back = source.downcast_ref::<DynamicsError>();
+        assert!(matches!(back, Some(DynamicsError::BadMass { body: "rod", quantity: q, .. }) if *q == quantity), "{e}");
     }
 }
 

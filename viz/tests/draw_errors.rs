@@ -205,3 +205,19 @@ fn style_sizes_and_colours_are_checked() {
     let wide = Canvas { width: 1e300, ..Canvas::default() };
     assert!(matches!(d.clone().with_canvas(wide).svg(&mo, 0), Err(DrawError::InvalidSetting(_))));
 }
+
+/// A drawing's error goes through `?` into kinloop's one error type, whole: a failed sweep as
+/// the sweep's error, anything else as `Error::Figure`, from which it comes back typed.
+#[test]
+fn draw_errors_convert_into_kinloops_error() {
+    fn svg_of_empty() -> Result<String, kinloop_runtime::Error> {
+        let empty = Motion::empty::<FourBar, 2, 1, 6>();
+        Ok(Drawing::new().joint("b").svg(&empty, 0)?)
+    }
+    let e = svg_of_empty().unwrap_err();
+    let kinloop_runtime::Error::Figure(source) = &e else { panic!("{e:?}") };
+    assert!(matches!(source.downcast_ref::<DrawError>(), Some(DrawError::EmptyMotion)), "{e:?}");
+    assert_eq!(e.to_string(), DrawError::EmptyMotion.to_string());
+    let sweep = kinloop_runtime::Error::InvalidArgument("no samples".into());
+    assert_eq!(kinloop_runtime::Error::from(DrawError::Sweep(sweep.clone())), sweep);
+}

@@ -310,3 +310,16 @@ fn ranges_at_the_ends_of_the_f64_range_are_drawn_on_their_labelled_scales() {
     let lone = xy_chart_svg("", &Axis::length("x", "mm"), &Axis::length("y", "mm"), &[], &[(1e-320, 0.0)]).unwrap();
     assert!(all_finite(&lone), "{lone}");
 }
+
+/// A chart's error goes through `?` into kinloop's one error type as `Error::Figure`, from which
+/// it comes back typed.
+#[test]
+fn plot_errors_convert_into_kinloops_error() {
+    fn chart_of_nothing() -> Result<String, kinloop_runtime::Error> {
+        let nothing = [Series::new("nan", Kind::Angle, vec![(f64::NAN, 0.0)])];
+        Ok(line_chart_svg("", &Axis::angle("φ"), &Axis::of(Kind::Angle), &nothing)?)
+    }
+    let e = chart_of_nothing().unwrap_err();
+    let kinloop_runtime::Error::Figure(source) = &e else { panic!("{e:?}") };
+    assert!(matches!(source.downcast_ref::<PlotError>(), Some(PlotError::Empty { .. })), "{e:?}");
+}

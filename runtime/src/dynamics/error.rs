@@ -163,7 +163,7 @@ impl From<DynamicsError> for Error {
     fn from(e: DynamicsError) -> Error {
         match e {
             DynamicsError::Kinematics { source, .. } => source,
-            other => Error::InvalidArgument(other.to_string()),
+            other => Error::Dynamics(crate::error::Source::new(other)),
         }
     }
 }

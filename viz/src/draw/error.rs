@@ -110,3 +110,15 @@ impl From<kinloop_runtime::Error> for DrawError {
         DrawError::Sweep(e)
     }
 }
+
+/// Into kinloop's one error type, so that code making drawings and running analyses uses `?`
+/// throughout: a failed sweep is that sweep's error again, anything else
+/// [`kinloop_runtime::Error::Figure`], from which `downcast_ref` gives this back.
+impl From<DrawError> for kinloop_runtime::Error {
+    fn from(e: DrawError) -> Self {
+        match e {
+            DrawError::Sweep(e) => e,
+            other => kinloop_runtime::Error::Figure(kinloop_runtime::Source::new(other)),
+        }
+    }
+}

@@ -74,3 +74,11 @@ impl std::error::Error for PlotError {
         }
     }
 }
+
+/// Into kinloop's one error type, so that code making charts and running analyses uses `?`
+/// throughout: [`kinloop_runtime::Error::Figure`], from which `downcast_ref` gives this back.
+impl From<PlotError> for kinloop_runtime::Error {
+    fn from(e: PlotError) -> Self {
+        kinloop_runtime::Error::Figure(kinloop_runtime::Source::new(e))
+    }
+}
