@@ -21,7 +21,7 @@
 
 use kinloop::Mechanism;
 use kinloop::Table;
-use kinloop::dynamics::{Cycle, CyclePoint, Load, RunConfig, SpeedLaw, Trajectory, inverse_cycle, simulate};
+use kinloop::dynamics::{Cycle, CyclePoint, Load, RunConfig, Simulation, SpeedLaw, Trajectory, inverse_cycle};
 use kinloop_examples::{Series, figure_dir, line_chart, out_dir};
 use kinloop_fixtures::StirlingEngine;
 use std::f64::consts::{PI, TAU};
@@ -108,16 +108,13 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
     );
     // The energy method takes J as its mean; here 1/2 (J_max - J_min) omega^2 is of the order of
     // the gas work's swing, so only the energy equation gives the fluctuation asked for.
-    let check = simulate(
-        &drive,
-        &hot,
-        |_, _, _| fw.mean_torque,
-        [0.0, fw.start_speed],
-        1.0,
-        guess,
-        &RunConfig::default().with_flywheel(fw.exact),
-        |_, y| y[0] >= 2.0 * TAU,
-    )?;
+    let check = Simulation::new(&drive, &hot)
+        .start(0.0, fw.start_speed)
+        .guess(guess)
+        .drive(|_, _, _| fw.mean_torque)
+        .config(RunConfig::default().with_flywheel(fw.exact))
+        .stop_when(|_, y| y[0] >= 2.0 * TAU)
+        .run(1.0)?;
     let speeds: Vec<f64> = check
         .steps
         .iter()
@@ -182,7 +179,12 @@ fn run_up(omega_s: f64, j_fly: f64) -> Result<Trajectory, Box<dyn std::error::Er
     let m_s = 6.0;
     let motor = move |_: f64, _: f64, w: f64| m_s * (1.0 - w / omega_s);
     let cfg = RunConfig::default().with_flywheel(j_fly);
-    let run = simulate(drive, &cold, motor, [0.0, 0.0], 3.0, drive.guess_flat(&[0.0]), &cfg, |_, _| false)?;
+    let run = Simulation::new(drive, &cold)
+        .start(0.0, 0.0)
+        .guess(drive.guess_flat(&[0.0]))
+        .drive(motor)
+        .config(cfg)
+        .run(3.0)?;
     let t95 = run.steps.iter().find(|s| s.at(s.t1())[1] >= 0.95 * omega_s).map_or(f64::NAN, |s| s.t1());
     println!("\nrun-up from rest (cold engine, flywheel above, motor {m_s} Nm stall, {omega_s:.1} rad/s synchronous):");
     println!(

@@ -4,7 +4,7 @@
 
 use kinloop::Mechanism;
 use kinloop::dynamics::{
-    Body, Coord, DynamicsError, MassModel, Rotation, RunConfig, SpeedLaw, inverse_cycle, simulate,
+    Body, Coord, DynamicsError, MassModel, Rotation, RunConfig, Simulation, SpeedLaw, inverse_cycle,
 };
 
 kinloop::mechanism! {
@@ -113,7 +113,7 @@ fn bad_arguments_and_a_machine_without_inertia() {
         assert!(matches!(cycle.flywheel(delta), Err(DynamicsError::BadValue { .. })));
     }
     let run = |model: &Model, cfg: &RunConfig, start: [f64; 2], t_end: f64| {
-        simulate(&m, model, |_, _, _| 1.0, start, t_end, g, cfg, |_, _| false)
+        Simulation::new(&m, model).start(start[0], start[1]).guess(g).drive(|_, _, _| 1.0).config(*cfg).run(t_end)
     };
     let cfg = RunConfig::default();
     assert!(matches!(run(&model, &cfg.with_flywheel(-1.0), [0.0, 1.0], 1.0), Err(DynamicsError::BadValue { .. })));
@@ -125,7 +125,13 @@ fn bad_arguments_and_a_machine_without_inertia() {
     let empty = Model::new();
     assert!(matches!(run(&empty, &cfg, [0.0, 1.0], 1.0), Err(DynamicsError::SingularMass { .. })));
     // A drive that is not finite.
-    let err = simulate(&m, &model, |_, _, _| f64::NAN, [0.0, 1.0], 1.0, g, &cfg, |_, _| false).unwrap_err();
+    let err = Simulation::new(&m, &model)
+        .start(0.0, 1.0)
+        .guess(g)
+        .drive(|_, _, _| f64::NAN)
+        .config(cfg)
+        .run(1.0)
+        .unwrap_err();
     assert!(matches!(err, DynamicsError::NonFiniteLoad { name: "drive", .. }));
     // Too few steps allowed.
     let short = cfg.with_ode(cfg.ode.with_max_steps(3));

@@ -4,8 +4,8 @@
 
 use kinloop::Mechanism;
 use kinloop::dynamics::{
-    Coord, Cycle, CyclePoint, DynamicsError, MassModel, OdeConfig, Rotation, RunConfig, Shaking, SpeedLaw, dopri5,
-    inverse_cycle, simulate,
+    Coord, Cycle, CyclePoint, DynamicsError, MassModel, OdeConfig, Rotation, RunConfig, Shaking, Simulation, SpeedLaw,
+    dopri5, inverse_cycle,
 };
 use proptest::prelude::*;
 
@@ -50,7 +50,7 @@ fn a_simulation_that_cannot_move_its_input_is_a_typed_error() {
     let model = m.mass_model().unwrap();
     let run = |phi0: f64| {
         let guess = m.guess_flat(&[phi0]);
-        simulate(&m, &model, |_, _, _| 0.0, [phi0, 10.0], 1.0, guess, &RunConfig::default(), |_, _| false)
+        Simulation::new(&m, &model).start(phi0, 10.0).guess(guess).run(1.0)
     };
     // At 1e300 rad the spacing of f64 numbers is about 1e284 rad: the input cannot move.
     let err = run(1e300).unwrap_err();
@@ -163,7 +163,8 @@ fn exercise(m: &Machine, model: &Model, v: &[f64; 6], samples: usize, harmonics:
         .with_ode(OdeConfig::default().with_tolerances(1e-6, 1e-6).with_max_steps(400));
     let drive = move |_: f64, _: f64, _: f64| delta;
     let start_guess = m.guess_flat(&[phi0]);
-    if let Ok(run) = simulate(m, model, drive, [phi0, omega], t_end, start_guess, &cfg, |_, _| false) {
+    if let Ok(run) = Simulation::new(m, model).start(phi0, omega).guess(start_guess).drive(drive).config(cfg).run(t_end)
+    {
         assert!(finite(run.end.into_iter().chain([run.t_end])), "{:?} at {}", run.end, run.t_end);
         for s in &run.steps {
             assert!(finite([s.t0, s.h]) && finite(s.at(s.t0 + 0.5 * s.h)), "{s:?}");

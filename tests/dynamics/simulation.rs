@@ -7,8 +7,8 @@ use crate::fixtures::{RhombicDrive, SliderCrank, rhombic_bodies, rhombic_model};
 use kinloop::Mechanism;
 use kinloop::analysis::Sampled;
 use kinloop::dynamics::{
-    Body, Coord, DynamicsError, MassModel, OdeConfig, Rotation, RunConfig, SpeedLaw, Trajectory, dopri5, inverse_cycle,
-    simulate,
+    Body, Coord, DynamicsError, MassModel, OdeConfig, Rotation, RunConfig, Simulation, SpeedLaw, Trajectory, dopri5,
+    inverse_cycle,
 };
 use std::f64::consts::TAU;
 
@@ -71,17 +71,13 @@ fn free_rhombic_drive_conserves_energy_over_100_turns() {
     let cfg = RunConfig::default().with_ode(OdeConfig::default().with_tolerances(1e-13, 1e-13));
     let omega0 = 12.0;
     let e0 = energy_at(&drive, &model, 0.0, omega0);
-    let run = simulate(
-        &drive,
-        &model,
-        |_, _, _| 0.0,
-        [0.0, omega0],
-        1e3,
-        drive.guess_flat(&[0.0]),
-        &cfg,
-        |_, y| y[0] >= 100.0 * TAU,
-    )
-    .unwrap();
+    let run = Simulation::new(&drive, &model)
+        .start(0.0, omega0)
+        .guess(drive.guess_flat(&[0.0]))
+        .config(cfg)
+        .stop_when(|_, y| y[0] >= 100.0 * TAU)
+        .run(1e3)
+        .unwrap();
     let [phi, omega] = run.end;
     assert!(phi >= 100.0 * TAU, "reached only {} turns", phi / TAU);
     let drift = (energy_at(&drive, &model, phi, omega) - e0).abs() / e0;
@@ -115,17 +111,14 @@ fn flywheel_gives_the_required_speed_fluctuation() {
     let fw = cycle.flywheel(delta).unwrap();
     assert!(fw.exact > 0.0 && fw.flywheel > 0.0);
     let cfg = RunConfig::default().with_flywheel(fw.exact);
-    let run = simulate(
-        &drive,
-        &model,
-        |_, _, _| fw.mean_torque,
-        [0.0, fw.start_speed],
-        1e3,
-        drive.guess_flat(&[0.0]),
-        &cfg,
-        |_, y| y[0] >= 2.5 * TAU,
-    )
-    .unwrap();
+    let run = Simulation::new(&drive, &model)
+        .start(0.0, fw.start_speed)
+        .guess(drive.guess_flat(&[0.0]))
+        .drive(|_, _, _| fw.mean_torque)
+        .config(cfg)
+        .stop_when(|_, y| y[0] >= 2.5 * TAU)
+        .run(1e3)
+        .unwrap();
     let (hi, lo) = speed_range(&run, TAU);
     eprintln!(
         "flywheel for delta = 1/50: energy method {:.6}, exact {:.6}; simulated delta {:.8}, mean speed {:.8}",
@@ -182,9 +175,7 @@ fn run_up_from_rest_reaches_the_synchronous_speed_on_average() {
         .unwrap();
     let (m_s, omega_s) = (40.0, 6.0);
     let motor = move |_: f64, _: f64, omega: f64| m_s * (1.0 - omega / omega_s);
-    let run =
-        simulate(&sc, &model, motor, [0.0, 0.0], 60.0, sc.guess_flat(&[0.0]), &RunConfig::default(), |_, _| false)
-            .unwrap();
+    let run = Simulation::new(&sc, &model).start(0.0, 0.0).guess(sc.guess_flat(&[0.0])).drive(motor).run(60.0).unwrap();
     let last = run.end[0] - TAU;
     let (mut num, mut den) = (0.0, 0.0);
     for s in &run.steps {
@@ -235,8 +226,7 @@ fn running_into_a_limit_position_is_a_typed_error() {
         })
         .unwrap();
     let g = m.position_flat(&[0.0], &m.guess_flat(&[0.0]), &Default::default()).unwrap().0;
-    let err =
-        simulate(&m, &model, |_, _, _| 1.0, [0.0, 1.0], 100.0, g, &RunConfig::default(), |_, _| false).unwrap_err();
+    let err = Simulation::new(&m, &model).start(0.0, 1.0).guess(g).drive(|_, _, _| 1.0).run(100.0).unwrap_err();
     // The limit position is where |BD| = b + c (law of cosines).
     let limit = ((9.0 + 16.0 - 4.5f64 * 4.5) / 24.0).acos();
     // Approaching it, J grows like K / (limit - phi) (the rod's angle analog like

@@ -210,7 +210,7 @@ impl Cycle {
     /// `omega` within `omega_m (1 ± delta / 2)`, so `J_total = dE_max / (delta omega_m^2)`. The
     /// mechanism supplies its mean reduced inertia; the flywheel provides the rest. The
     /// mechanism's inertia variation is thereby neglected (its error is of the order of
-    /// `(J_max - J_min) / J_total` in delta; a simulation with [`simulate`](fn@super::simulate)
+    /// `(J_max - J_min) / J_total` in delta; a simulation with [`Simulation`](super::Simulation)
     /// checks the result). Loads depending on speed are taken at the law's speeds.
     ///
     /// [`Flywheel::exact`] keeps the variable inertia: on a steady cycle the energy equation

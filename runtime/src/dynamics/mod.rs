@@ -51,4 +51,4 @@ pub use error::DynamicsError;
 pub use eval::{Dynamics, Shaking};
 pub use model::{Body, Coord, ForceLaw, Load, MassModel, Point, Rotation, TorqueLaw};
 pub use ode::{DenseStep, OdeConfig, dopri5};
-pub use simulate::{RunConfig, Trajectory, simulate};
+pub use simulate::{RunConfig, Simulation, Trajectory};

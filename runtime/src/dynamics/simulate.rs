@@ -9,7 +9,7 @@ use super::ode::{DenseStep, OdeConfig, dopri5};
 use crate::mechanism::Mechanism;
 use crate::solvers::newton::NewtonConfig;
 
-/// Settings of [`simulate`].
+/// Settings of a [`Simulation`].
 #[derive(Clone, Copy, Debug, PartialEq)]
 #[non_exhaustive]
 pub struct RunConfig {
@@ -68,22 +68,116 @@ impl Trajectory {
     }
 }
 
-/// Simulates from `phi0` at speed `omega0` for `t_end` time units, `guess` choosing the
-/// assembly branch at `phi0`. `drive(t, phi, omega)` is the driving torque on the input (a motor
-/// characteristic; `|_, _, _| 0.0` for none). `stop(t, [phi, omega])` is asked after every step
-/// and ends the run early when it returns `true`.
+/// A forward simulation of a one-input machine, set up by name and run by [`Simulation::run`]:
 ///
-/// Errors: a kinematic failure (limit or singular position, no assembly) as
-/// [`DynamicsError::Kinematics`] with the time; a step that collapses (approaching a limit
-/// position, where the reduced inertia grows without bound) as
-/// [`DynamicsError::SingularMotion`] with the input reached; a reduced inertia that is not positive as
-/// [`DynamicsError::SingularMass`]; a drive or load that is not finite as
-/// [`DynamicsError::NonFiniteLoad`]; a start so far out (an input of 1e300) that a step cannot
-/// change it as [`DynamicsError::CannotAdvance`]; results beyond the range of `f64` as
-/// [`DynamicsError::Overflow`]; integrator failures. Besides the recorded trajectory (one
-/// entry per accepted step, amortised growth), a step allocates nothing.
+/// ```text
+/// let run = Simulation::new(&engine, &engine.mass_model()?)
+///     .start(0.0, 10.0)                         // phi0, omega0
+///     .guess(engine.guess(0.0))                 // the assembly branch at phi0
+///     .drive(|_t, _phi, omega| 5.0 - 0.1 * omega) // a motor characteristic
+///     .config(RunConfig::default().with_flywheel(0.2))
+///     .stop_when(|_t, [phi, _]| *phi > 20.0)
+///     .run(3.0)?;                               // simulate 3 time units
+/// let [phi, omega] = run.at(1.5);
+/// ```
+///
+/// Without a call to each setter: at rest at input 0 (`start`), from the mechanism's declared
+/// guess there (`guess`), no driving torque (`drive`), never stopped early (`stop_when`), the
+/// default [`RunConfig`] (`config`).
+#[must_use = "a simulation does nothing until `run`"]
+pub struct Simulation<'a, M, D, S, const N: usize, const NO: usize> {
+    m: &'a M,
+    model: &'a MassModel<N, 1, NO>,
+    drive: D,
+    stop: S,
+    start: [f64; 2],
+    guess: Option<[f64; N]>,
+    cfg: RunConfig,
+}
+
+/// No driving torque.
+type NoDrive = fn(f64, f64, f64) -> f64;
+/// Never stop early.
+type NoStop = fn(f64, &[f64; 2]) -> bool;
+
+impl<'a, M, const N: usize, const NO: usize> Simulation<'a, M, NoDrive, NoStop, N, NO>
+where
+    M: Mechanism<N, 1, NO>,
+{
+    /// A simulation of mechanism `m` with mass model `model` (see the type's documentation for
+    /// what it starts with).
+    pub fn new(m: &'a M, model: &'a MassModel<N, 1, NO>) -> Self {
+        Simulation {
+            m,
+            model,
+            drive: |_, _, _| 0.0,
+            stop: |_, _| false,
+            start: [0.0, 0.0],
+            guess: None,
+            cfg: RunConfig::default(),
+        }
+    }
+}
+
+impl<'a, M, D, S, const N: usize, const NO: usize> Simulation<'a, M, D, S, N, NO>
+where
+    M: Mechanism<N, 1, NO>,
+{
+    /// Starts from input `phi0` at speed `omega0`.
+    pub fn start(mut self, phi0: f64, omega0: f64) -> Self {
+        self.start = [phi0, omega0];
+        self
+    }
+
+    /// The positions that choose the assembly branch at the start: the mechanism's named
+    /// unknowns (`m.guess(phi0)`) or their array.
+    pub fn guess(mut self, guess: impl Into<[f64; N]>) -> Self {
+        self.guess = Some(guess.into());
+        self
+    }
+
+    /// The integrator's, the solver's and the flywheel's settings.
+    pub fn config(mut self, cfg: RunConfig) -> Self {
+        self.cfg = cfg;
+        self
+    }
+
+    /// The driving torque on the input, `drive(t, phi, omega)` (a motor characteristic).
+    pub fn drive<D2: Fn(f64, f64, f64) -> f64>(self, drive: D2) -> Simulation<'a, M, D2, S, N, NO> {
+        let Simulation { m, model, stop, start, guess, cfg, .. } = self;
+        Simulation { m, model, drive, stop, start, guess, cfg }
+    }
+
+    /// Ends the run early when `stop(t, [phi, omega])`, asked after every step, returns `true`.
+    pub fn stop_when<S2: FnMut(f64, &[f64; 2]) -> bool>(self, stop: S2) -> Simulation<'a, M, D, S2, N, NO> {
+        let Simulation { m, model, drive, start, guess, cfg, .. } = self;
+        Simulation { m, model, drive, stop, start, guess, cfg }
+    }
+
+    /// Simulates for `t_end` time units from the start.
+    ///
+    /// Errors: a kinematic failure (limit or singular position, no assembly) as
+    /// [`DynamicsError::Kinematics`] with the time; a step that collapses (approaching a limit
+    /// position, where the reduced inertia grows without bound) as
+    /// [`DynamicsError::SingularMotion`] with the input reached; a reduced inertia that is not positive as
+    /// [`DynamicsError::SingularMass`]; a drive or load that is not finite as
+    /// [`DynamicsError::NonFiniteLoad`]; a start so far out (an input of 1e300) that a step cannot
+    /// change it as [`DynamicsError::CannotAdvance`]; results beyond the range of `f64` as
+    /// [`DynamicsError::Overflow`]; integrator failures. Besides the recorded trajectory (one
+    /// entry per accepted step, amortised growth), a step allocates nothing.
+    pub fn run(mut self, t_end: f64) -> Result<Trajectory, DynamicsError>
+    where
+        D: Fn(f64, f64, f64) -> f64,
+        S: FnMut(f64, &[f64; 2]) -> bool,
+    {
+        let guess = self.guess.unwrap_or_else(|| self.m.guess_flat(&[self.start[0]]));
+        integrate(self.m, self.model, &self.drive, self.start, t_end, guess, &self.cfg, &mut self.stop)
+    }
+}
+
+/// The integration behind [`Simulation::run`].
 #[allow(clippy::too_many_arguments)]
-pub fn simulate<M, const N: usize, const NO: usize>(
+fn integrate<M, const N: usize, const NO: usize>(
     m: &M,
     model: &MassModel<N, 1, NO>,
     drive: impl Fn(f64, f64, f64) -> f64,
