@@ -182,7 +182,7 @@
 //! #     }
 //! # }
 //! # let m = SliderCrank::default();
-//! # let turn = Sampled::sweep(&m, 0.0, 6.0, 73, m.guess(0.0).into()).unwrap();
+//! # let turn = Sampled::sweep(&m, 0.0, 6.0, 73, &m.guess(0.0)).unwrap();
 //! let x = turn.range(SliderCrank::COL.xc); // no column `xc`: a compile error
 //! ```
 //!

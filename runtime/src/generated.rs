@@ -703,6 +703,14 @@ macro_rules! __array_conversions {
                 [$(v.$p.x, v.$p.y,)* $(v.$s,)*]
             }
         }
+        // By reference too, so that `&m.guess(x)` is the one way to pass a guess, whether the
+        // callee takes the named unknowns or an array.
+        impl<T: ::core::marker::Copy> ::core::convert::From<&$ty<T>> for [T; $n] {
+            #[inline]
+            fn from(v: &$ty<T>) -> Self {
+                [$(v.$p.x, v.$p.y,)* $(v.$s,)*]
+            }
+        }
     };
     ($ty:ident, $n:literal; $($f:ident($b:ident)),+) => {
         $crate::__array_conversions!($ty, $n; points; scalars $($f($b)),+);

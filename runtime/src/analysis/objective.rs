@@ -51,16 +51,17 @@ pub fn extremum<M, const N: usize, const NO: usize, const NP: usize>(
     m: &M,
     col: Column<M>,
     which: Extreme,
-    range: std::ops::RangeInclusive<f64>,
+    from: f64,
+    to: f64,
     samples: usize,
-    guess: [f64; N],
+    guess: impl Into<[f64; N]>,
     cfg: &NewtonConfig,
 ) -> Result<Extremum<NP>, Error>
 where
     M: Sensitivities<N, 1, NO, NP>,
 {
     let sweep_cfg = SweepConfig { newton: *cfg, ..SweepConfig::default() };
-    let sampled = Sampled::sweep_with(m, *range.start(), *range.end(), samples.max(3), guess, sweep_cfg)?;
+    let sampled = Sampled::sweep_with(m, from, to, samples.max(3), guess, sweep_cfg)?;
     let global = sampled.range(col)?;
     let at = if which == Extreme::Max { global.max } else { global.min };
     let interior = global.extremes.iter().any(|e| e.at.x == at.x);
@@ -86,7 +87,7 @@ pub fn integral<M, const N: usize, const NO: usize, const NP: usize>(
     from: f64,
     to: f64,
     samples: usize,
-    guess: [f64; N],
+    guess: impl Into<[f64; N]>,
     cfg: &NewtonConfig,
 ) -> Result<(f64, [f64; NP]), Error>
 where
@@ -97,7 +98,7 @@ where
     let h = (to - from) / (samples - 1) as f64;
     let mut value = 0.0;
     let mut grad = [0.0; NP];
-    let mut sweep = Sweep::<M, Kin<N, 1, NO>, N, 1, NO>::new(m, [from], [to], samples, guess)?;
+    let mut sweep = Sweep::<M, Kin<N, 1, NO>, N, 1, NO>::new(m, [from], [to], samples, guess.into())?;
     let mut i = 0;
     while let Some(k) = sweep.next_kin() {
         let k = k?;

@@ -121,7 +121,7 @@ where
 {
     /// Sweeps `samples` equally spaced inputs from `from` to `to > from` (both included) from
     /// `guess` at `from` (which picks the assembly mode). The path parameter is the input.
-    pub fn sweep(m: &'m M, from: f64, to: f64, samples: usize, guess: [f64; N]) -> Result<Self, Error> {
+    pub fn sweep(m: &'m M, from: f64, to: f64, samples: usize, guess: impl Into<[f64; N]>) -> Result<Self, Error> {
         Self::sweep_with(m, from, to, samples, guess, SweepConfig::default())
     }
 
@@ -131,7 +131,7 @@ where
         from: f64,
         to: f64,
         samples: usize,
-        guess: [f64; N],
+        guess: impl Into<[f64; N]>,
         cfg: SweepConfig,
     ) -> Result<Self, Error> {
         if from.partial_cmp(&to) != Some(std::cmp::Ordering::Less) {
@@ -159,7 +159,7 @@ where
         from: impl Into<[f64; NI]>,
         to: impl Into<[f64; NI]>,
         samples: usize,
-        guess: [f64; N],
+        guess: impl Into<[f64; N]>,
     ) -> Result<Self, Error> {
         Self::path_with(m, from, to, samples, guess, SweepConfig::default())
     }
@@ -170,10 +170,10 @@ where
         from: impl Into<[f64; NI]>,
         to: impl Into<[f64; NI]>,
         samples: usize,
-        guess: [f64; N],
+        guess: impl Into<[f64; N]>,
         cfg: SweepConfig,
     ) -> Result<Self, Error> {
-        let (from, to) = (from.into(), to.into());
+        let (from, to, guess) = (from.into(), to.into(), guess.into());
         if samples < 3 || from == to {
             return Err(Error::InvalidArgument(format!(
                 "Sampled needs from != to and at least 3 samples (got {from:?} .. {to:?}, {samples} samples)"

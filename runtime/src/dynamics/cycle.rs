@@ -89,7 +89,7 @@ pub fn inverse_cycle<M, const N: usize, const NO: usize>(
     law: SpeedLaw<'_>,
     phi0: f64,
     samples: usize,
-    guess: [f64; N],
+    guess: impl Into<[f64; N]>,
     about: [f64; 2],
 ) -> Result<Cycle, DynamicsError>
 where
