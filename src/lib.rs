@@ -366,10 +366,10 @@ pub use kinloop_macros::mechanism;
 #[doc(no_inline)]
 pub use kinloop_runtime::nalgebra;
 pub use kinloop_runtime::{
-    AtSingular, BlockInfo, Configured, DetSigns, Error, Event, EventKind, Extreme, Extremum, FlatMotion, Health, Jac,
-    Kin, LENGTH_UNIT, Location, Mechanism, Named, NamedSensitivities, NewtonConfig, NewtonStop, Quantity, QuantityKind,
-    Reach, Sens, Sensitivities, SolveReport, Source, Sweep, SweepConfig, SweepResult, SweepStop, Table, TraceConfig,
-    Traced, TracedPoint, Vec2, deg, extremum, integral, to_deg,
+    AtSingular, BlockInfo, ColumnKey, Configured, DetSigns, Error, Event, EventKind, Extreme, Extremum, FlatMotion,
+    Health, Jac, Kin, LENGTH_UNIT, Location, Mechanism, Named, NamedSensitivities, NewtonConfig, NewtonStop, Quantity,
+    QuantityKind, Reach, Sens, Sensitivities, SolveReport, Source, Sweep, SweepConfig, SweepResult, SweepStop, Table,
+    TraceConfig, Traced, TracedPoint, Vec2, deg, extremum, integral, to_deg,
 };
 pub use kinloop_runtime::{analysis, dynamics, events, metrics, paths};
 // A glob of the scan module: it holds `par_scan` whenever the runtime is built with rayon,

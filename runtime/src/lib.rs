@@ -61,7 +61,7 @@ pub use paths::scan::{ScanConfig, ScanStart, scan};
 pub use paths::sweep::{AtSingular, Sweep, SweepConfig};
 pub use paths::trace::{TraceConfig, Traced, TracedPoint};
 pub use solvers::newton::{NewtonConfig, NewtonStop, SolveReport};
-pub use table::Table;
+pub use table::{ColumnKey, Table};
 pub use vec2::Vec2;
 
 /// Re-exported so generated code and users share one nalgebra version. Hidden from the item

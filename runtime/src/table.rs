@@ -9,6 +9,31 @@ use crate::table_units;
 use std::io::{self, Write};
 use std::path::Path;
 
+/// What names a column of a [`Table`]: a mechanism's typed column (`Name::COL.beta`, checked
+/// by the compiler) or, for a lookup decided at run time, its name as a string.
+pub trait ColumnKey {
+    /// The column's name in a table's header (without its unit).
+    fn column_name(&self) -> &str;
+}
+
+impl ColumnKey for &str {
+    fn column_name(&self) -> &str {
+        self
+    }
+}
+
+impl ColumnKey for String {
+    fn column_name(&self) -> &str {
+        self
+    }
+}
+
+impl ColumnKey for &String {
+    fn column_name(&self) -> &str {
+        self
+    }
+}
+
 /// Rows of numbers under named columns (one row per input value of a sweep), with optional
 /// units written into the CSV header (`phi [rad]`, `x_c [mm]`, `d(x_c)/d(phi) [mm/rad]`).
 /// Angles are always in radians.
@@ -58,24 +83,25 @@ impl Table {
         self.rows.push(row);
     }
 
-    /// Index of a column by name.
-    pub fn index(&self, name: &str) -> Option<usize> {
+    /// Index of a column: by a mechanism's typed column (`Name::COL.beta`) or by name.
+    pub fn index(&self, name: impl ColumnKey) -> Option<usize> {
+        let name = name.column_name();
         self.columns.iter().position(|c| c == name)
     }
 
-    /// A column's values by name.
-    pub fn column(&self, name: &str) -> Option<Vec<f64>> {
+    /// A column's values: by a mechanism's typed column (`Name::COL.beta`) or by name.
+    pub fn column(&self, name: impl ColumnKey) -> Option<Vec<f64>> {
         let k = self.index(name)?;
         Some(self.rows.iter().map(|r| r.get(k).copied().unwrap_or(f64::NAN)).collect())
     }
 
-    /// A column's values by name, converted from radians to degrees (for an angle column).
-    pub fn column_deg(&self, name: &str) -> Option<Vec<f64>> {
+    /// A column's values converted from radians to degrees (for an angle column).
+    pub fn column_deg(&self, name: impl ColumnKey) -> Option<Vec<f64>> {
         Some(self.column(name)?.into_iter().map(crate::to_deg).collect())
     }
 
     /// The unit of a column (`""` when none is known).
-    pub fn unit(&self, name: &str) -> Option<&str> {
+    pub fn unit(&self, name: impl ColumnKey) -> Option<&str> {
         let k = self.index(name)?;
         Some(self.units.get(k).map_or("", String::as_str))
     }

@@ -125,6 +125,10 @@ fn sweep_table_has_named_columns() {
     assert_eq!(beta.len(), 73);
     assert!(dbeta.iter().chain(&d2).all(|v| v.is_finite()));
     assert_close!(table.column("phi").unwrap()[72], 2.0 * PI, 1e-15);
+    // The typed columns name the same columns as the strings.
+    assert_eq!(table.column(FourBar::COL.beta), Some(beta));
+    assert_eq!(table.column(FourBar::COL.pc.y), table.column("pc.y"));
+    assert_eq!(table.unit(FourBar::COL.phi), Some("rad"));
     let mut csv = Vec::new();
     table.write_csv(&mut csv).unwrap();
     let text = String::from_utf8(csv).unwrap();

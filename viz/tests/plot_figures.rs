@@ -323,3 +323,13 @@ fn plot_errors_convert_into_kinloops_error() {
     let kinloop_runtime::Error::Figure(source) = &e else { panic!("{e:?}") };
     assert!(matches!(source.downcast_ref::<PlotError>(), Some(PlotError::Empty { .. })), "{e:?}");
 }
+
+/// Points whose spread on one axis is below the spacing of doubles at their position on the
+/// other (a subnormal x spread beside a y of the smallest normal number) still draw on finite
+/// pixels: the equal-scale window is never narrower than the doubles can resolve.
+#[test]
+fn an_xy_window_below_the_spacing_of_doubles_draws_finite() {
+    let tiny = Series::new("a", Kind::length("mm"), vec![(0.0, f64::MIN_POSITIVE), (5e-324, f64::MIN_POSITIVE)]);
+    let svg = xy_chart_svg("t", &Axis::length("x", "mm"), &Axis::length("y", "mm"), &[tiny], &[]).unwrap();
+    assert!(!svg.contains("NaN") && !svg.contains("inf"), "{svg}");
+}

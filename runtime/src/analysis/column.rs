@@ -33,6 +33,12 @@ pub struct Column<M> {
     _m: PhantomData<fn() -> M>,
 }
 
+impl<M> crate::table::ColumnKey for Column<M> {
+    fn column_name(&self) -> &str {
+        self.name
+    }
+}
+
 // Written by hand: derives would require `M: Clone`, `M: Debug`, ... of the mechanism.
 impl<M> Clone for Column<M> {
     fn clone(&self) -> Self {

@@ -1,7 +1,7 @@
 //! What a chart draws: curves (series) and marked points, grouped on value axes (panels).
 
 use super::{Axis, Kind, PlotError};
-use kinloop_runtime::Table;
+use kinloop_runtime::{ColumnKey, Table};
 
 /// One curve: a label for the legend, the quantity kind of its values and its points `(x, y)`.
 /// A point with a non-finite coordinate breaks the curve (a sweep that stopped, a gap).
@@ -27,7 +27,8 @@ impl Series {
         Series::new(label, kind, x.iter().copied().zip(y.iter().copied()).collect())
     }
 
-    /// A curve of column `y` against column `x` of a sweep's [`Table`] (names as in
+    /// A curve of column `y` against column `x` of a sweep's [`Table`], each a mechanism's typed
+    /// column (`Name::COL.x`) or a name as in
     /// `Table::kin_columns`: `"phi"`, `"x"`, `"d(x)/d(phi)"`, `"p.x"`), labelled `y`.
     ///
     /// ```
@@ -41,7 +42,8 @@ impl Series {
     /// assert!(Series::from_table(&t, "phi", "y", Kind::length("mm")).is_err());
     /// # Ok::<(), kinloop_viz::plot::PlotError>(())
     /// ```
-    pub fn from_table(table: &Table, x: &str, y: &str, kind: Kind) -> Result<Series, PlotError> {
+    pub fn from_table(table: &Table, x: impl ColumnKey, y: impl ColumnKey, kind: Kind) -> Result<Series, PlotError> {
+        let (x, y) = (x.column_name(), y.column_name());
         let column = |name: &str| {
             table
                 .column(name)

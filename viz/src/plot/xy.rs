@@ -57,6 +57,11 @@ pub fn xy_chart_svg(
         // (scale-free: a nonzero scaled coordinate is at least 1).
         span = x0.abs().max(y0.abs()).max(1.0) * 0.2 / w;
     }
+    // A window narrower than the spacing of doubles at its centre maps every point to one
+    // coordinate (0/0 in pixels): at least 2^-40 of the largest scaled coordinate, about 1e-12
+    // relative, far below what a drawing can show.
+    let largest = x0.abs().max(x1.abs()).max(y0.abs()).max(y1.abs());
+    span = span.max(largest * (-40f64).exp2() / w);
     let scale = 1.08 * span;
     let h = ((y1 - y0) / scale * 1.08).clamp(MAX_H / 2.0, MAX_H);
     let (cx, cy) = (0.5 * (x0 + x1), 0.5 * (y0 + y1));
