@@ -47,6 +47,7 @@ fn column_sens<M, const N: usize, const NO: usize, const NP: usize>(
 ///
 /// An extremum at an end of the range (where the analog does not vanish) is returned at the end
 /// with `x_grad = 0` and `grad = dq/dp` there.
+#[allow(clippy::too_many_arguments)] // the range as `from, to`, as every other call takes it
 pub fn extremum<M, const N: usize, const NO: usize, const NP: usize>(
     m: &M,
     col: Column<M>,
