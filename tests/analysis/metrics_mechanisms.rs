@@ -35,7 +35,7 @@ fn quick_return_ratio_of_a_crank_shaper_matches_its_closed_form_in_any_unit() {
     for (r, d, h) in [(0.1, 0.2, 0.25), (100.0, 200.0, 250.0), (100e-6, 150e-6, 400e-6), (3.0, 10.0, 2.0)] {
         let m = CrankShaper { r, d, h };
         // Start away from the extremes (anywhere works; the seam is handled too).
-        let turn = Sampled::sweep(&m, 0.2, 0.2 + TAU, 181, &m.guess(0.2)).unwrap();
+        let turn = Sampled::sweep(&m, 0.2, 0.2 + TAU, 181, m.guess(0.2)).unwrap();
         let alpha = (r / d).asin();
         for column in [CrankShaper::COL.psi, CrankShaper::COL.x] {
             let t = time_ratio_over(&turn, column).unwrap();

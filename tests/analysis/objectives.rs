@@ -20,8 +20,8 @@ fn closed_extremes(m: &RhombicDrive) -> (f64, f64) {
 fn displacer_extremes_match_the_paper_with_gradients() {
     let cfg = NewtonConfig::default();
     let g = M.guess(0.0);
-    let max = extremum(&M, RhombicDrive::COL.x_f, Extreme::Max, 0.0, 2.0 * PI, 73, &g, &cfg).unwrap();
-    let min = extremum(&M, RhombicDrive::COL.x_f, Extreme::Min, 0.0, 2.0 * PI, 73, &g, &cfg).unwrap();
+    let max = extremum(&M, RhombicDrive::COL.x_f, Extreme::Max, 0.0, 2.0 * PI, 73, g, &cfg).unwrap();
+    let min = extremum(&M, RhombicDrive::COL.x_f, Extreme::Min, 0.0, 2.0 * PI, 73, g, &cfg).unwrap();
     let (x0, x1) = closed_extremes(&M);
     assert_close!(max.value, x0, tol::SOLVE, "X_F0");
     assert_close!(min.value, x1, tol::SOLVE, "X_Fmin");
@@ -40,7 +40,7 @@ fn displacer_extremes_match_the_paper_with_gradients() {
             let mut v = M.param_values();
             v[p] += s;
             let m = RhombicDrive::from_param_values(v);
-            extremum(&m, RhombicDrive::COL.x_f, Extreme::Max, 0.0, 2.0 * PI, 73, &m.guess(0.0), &cfg).unwrap()
+            extremum(&m, RhombicDrive::COL.x_f, Extreme::Max, 0.0, 2.0 * PI, 73, m.guess(0.0), &cfg).unwrap()
         };
         let (a, b) = (at(h), at(-h));
         let fd_x = (a.x - b.x) / (2.0 * h);
@@ -60,7 +60,7 @@ fn displacer_extremes_match_the_paper_with_gradients() {
 #[test]
 fn integral_of_an_output_and_its_gradient() {
     let cfg = NewtonConfig::default();
-    let (v, g) = integral(&M, RhombicDrive::COL.gap, 0.0, 2.0 * PI, 181, &M.guess(0.0), &cfg).unwrap();
+    let (v, g) = integral(&M, RhombicDrive::COL.gap, 0.0, 2.0 * PI, 181, M.guess(0.0), &cfg).unwrap();
     // Independent: trapezoid over the closed-form gap X_F - X_C.
     let e_b = M.e_p - M.de;
     let gap = |m: &RhombicDrive, phi: f64| {
@@ -79,8 +79,8 @@ fn integral_of_an_output_and_its_gradient() {
     mp.l_b += dh;
     let mut mm = M;
     mm.l_b -= dh;
-    let fd = (integral(&mp, RhombicDrive::COL.gap, 0.0, 2.0 * PI, 181, &mp.guess(0.0), &cfg).unwrap().0
-        - integral(&mm, RhombicDrive::COL.gap, 0.0, 2.0 * PI, 181, &mm.guess(0.0), &cfg).unwrap().0)
+    let fd = (integral(&mp, RhombicDrive::COL.gap, 0.0, 2.0 * PI, 181, mp.guess(0.0), &cfg).unwrap().0
+        - integral(&mm, RhombicDrive::COL.gap, 0.0, 2.0 * PI, 181, mm.guess(0.0), &cfg).unwrap().0)
         / (2.0 * dh);
     assert_close!(g[l], fd, 1e-6 * fd.abs(), "{} vs {fd}", g[l]);
 }

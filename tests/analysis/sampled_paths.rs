@@ -31,7 +31,7 @@ fn columns() -> [Column<FiveBar>; 6] {
 }
 
 fn path() -> Sampled<'static, FiveBar, 2, 3, 2> {
-    Sampled::path(&M, FROM, TO, 41, &M.guess(FROM)).unwrap()
+    Sampled::path(&M, FROM, TO, 41, M.guess(FROM)).unwrap()
 }
 
 /// Lengths scale with the links, angles are of order one: one scale for the tolerances.
@@ -127,8 +127,8 @@ fn a_peak_of_a_jet_along_the_path() {
 #[test]
 fn invalid_paths_and_parameters_are_typed_errors() {
     let g = M.guess(FROM);
-    assert!(matches!(Sampled::path(&M, FROM, FROM, 11, &g), Err(Error::InvalidArgument(_))));
-    assert!(matches!(Sampled::path(&M, FROM, TO, 2, &g), Err(Error::InvalidArgument(_))));
+    assert!(matches!(Sampled::path(&M, FROM, FROM, 11, g), Err(Error::InvalidArgument(_))));
+    assert!(matches!(Sampled::path(&M, FROM, TO, 2, g), Err(Error::InvalidArgument(_))));
     // th2 decreases along this path: it cannot be the parameter; an unknown never can.
     assert!(matches!(path().along(FiveBar::COL.th2), Err(Error::InvalidArgument(_))));
     assert!(matches!(path().along(FiveBar::COL.phi2), Err(Error::InvalidArgument(_))));
