@@ -24,13 +24,13 @@
 //! **Steps, whatever the samples.** The samples asked for are the output grid, never the step:
 //! a step is at most [`SweepConfig::max_step`] of the sample spacing, and also at most a quarter
 //! of the inputs' natural unit ([`MAX_INPUT_STEP`]: a quarter radian of an angle input, a quarter
-//! of the mechanism's size of a length), and its prediction may change no judged unknown's slope
-//! by more than a quarter of itself plus a quarter of one of its units per unit of input
-//! ([`MAX_SLOPE_CHANGE`]). Approaching a limit position the slopes grow as the inverse square
-//! root of the distance to it, so that bound shortens the steps before it, and no step passes it
-//! and an interval beyond it where the loops cannot close to land on another part of the motion:
-//! two samples over a turn meet the same branch and the same first limit position as two
-//! thousand.
+//! of the mechanism's size of a length), and the largest change its prediction makes to a judged
+//! unknown's slope is at most a quarter of the largest slope plus a quarter unit per unit of
+//! input ([`MAX_SLOPE_CHANGE`]). Approaching a limit position the slopes grow as the inverse
+//! square root of the distance to it, so that bound shortens the steps before it, and no step
+//! passes it and an interval beyond it where the loops cannot close to land on another part of
+//! the motion: two samples over a turn meet the same branch and the same first limit position as
+//! two thousand.
 //!
 //! **Range.** A sweep follows at most [`MAX_TURNS`] turns of its inputs (the path's length in
 //! their units over `2 pi`): longer, its steps would number beyond use, and the doubles of inputs
@@ -218,13 +218,15 @@ const MIN_MAX_STEP: f64 = 1e-6;
 /// inputs where the loops cannot close and land on another, disconnected part of the motion.
 const MAX_INPUT_STEP: f64 = 0.25;
 
-/// Largest change, relative to itself, of a judged unknown's slope that a step's prediction may
-/// make (`|q'' dt| <= MAX_SLOPE_CHANGE (|q'| + unit)`, the unit one of the unknown's units per
-/// unit of input): the predictor's error bound. Approaching a limit position, where an unknown
-/// goes as the square root of the distance to it, the slope's relative change over a step is
-/// the step over twice that distance; at a quarter, no step goes more than halfway to the limit
-/// position, let alone across the gap beyond it. Judged before the step is solved, so a step too
-/// long costs no solve.
+/// Largest change, relative to the largest slope, of the judged unknowns' slopes that a step's
+/// prediction may make (`max |q'' dt| <= MAX_SLOPE_CHANGE (max |q'| + unit)`, the unit the
+/// largest of the judged unknowns' units per unit of input): the predictor's error bound.
+/// Approaching a limit position, where the unknowns of the block that folds go as the square
+/// root of the distance to it (and their slopes outgrow every other), the slopes' relative change
+/// over a step is the step over twice that distance; at a quarter, no step goes more than halfway
+/// to the limit position, let alone across the gap beyond it. Judged by the maxima the
+/// prediction computes anyway, with the solved step (a step too long is rare: only where the
+/// samples are far apart or a limit position is near).
 const MAX_SLOPE_CHANGE: f64 = 0.25;
 
 /// Most turns (`2 pi` units of the inputs, see [`MAX_INPUT_STEP`]) a sweep follows: at most
@@ -269,8 +271,6 @@ enum Outcome {
     Far,
     /// The solve failed (its error is the solve's result).
     Fail,
-    /// The prediction changes a slope too much ([`MAX_SLOPE_CHANGE`]): not solved.
-    Long,
 }
 
 /// A lazy sweep (see the crate documentation, "Sweeps"). Items are `Result<S, Error>` with `S`
@@ -291,11 +291,11 @@ pub struct Sweep<'m, M, S, const N: usize, const NI: usize, const NO: usize> {
     h_max: f64,
     h_min: f64,
     /// The largest step in the inputs' natural scale ([`MAX_INPUT_STEP`]) as a fraction of the
-    /// path (infinite until the first sample sets it).
+    /// path (infinite for a path of no length).
     h_nat: f64,
-    /// Per unknown, `MAX_SLOPE_CHANGE` times one of its units per unit of input, in the units
-    /// the slopes are compared in (see [`Sweep::predict`]); set with `h_nat`.
-    slope_floor: [f64; N],
+    /// `MAX_SLOPE_CHANGE` times the largest unit of a judged unknown per unit of input, in the
+    /// units the slopes are compared in (see [`Sweep::predict`]); set with `h_nat`.
+    slope_floor: f64,
     /// The attempts a sample may take (see [`MAX_ATTEMPTS_PER_SAMPLE`]).
     max_attempts: u64,
     next: usize,
@@ -375,9 +375,10 @@ where
         if samples > 1 && (path.len.is_nan() || path.len <= 0.0) {
             return Err(Error::InvalidArgument("a sweep with several samples needs `to` different from `from`".into()));
         }
-        // In the inputs' units at the start (the guess's, which the first sample replaces).
-        let turns =
-            if path.len > 0.0 { Metric::at(m, &path, &from, &guess).input_len / std::f64::consts::TAU } else { 0.0 };
+        // The units at the start's guess (once per sweep: a sweep of a few samples, as every
+        // stretch of `sweep_at` is, should not pay for more).
+        let metric = Metric::at(m, &path, &from, &guess);
+        let turns = if path.len > 0.0 { metric.input_len / std::f64::consts::TAU } else { 0.0 };
         let too_long = (turns > MAX_TURNS || turns.is_nan()).then(|| Error::RangeTooLong {
             turns,
             max_turns: MAX_TURNS,
@@ -395,7 +396,7 @@ where
             h_max: 0.0,
             h_min: 0.0,
             h_nat: f64::INFINITY,
-            slope_floor: [0.0; N],
+            slope_floor: 0.0,
             max_attempts: MAX_ATTEMPTS_PER_SAMPLE,
             next: 0,
             guess,
@@ -425,7 +426,7 @@ where
             stepping: false,
             _s: PhantomData,
         };
-        sweep.set_step_bounds();
+        sweep.set_natural_bounds(&metric);
         Ok(sweep.with_config(m.solver_config()))
     }
 
@@ -469,20 +470,18 @@ where
         self.spacing.min(self.h_nat)
     }
 
-    /// The natural step bounds ([`MAX_INPUT_STEP`], [`MAX_SLOPE_CHANGE`]) from the units at the
-    /// first sample's position `q`.
-    fn set_natural_bounds(&mut self, q: &[f64; N]) {
-        let metric = Metric::at(self.m, &self.path, &self.path.from, q);
+    /// The natural step bounds ([`MAX_INPUT_STEP`], [`MAX_SLOPE_CHANGE`]) from the units of
+    /// `metric`, and the step bounds with them.
+    fn set_natural_bounds(&mut self, metric: &Metric<N>) {
         let input_len = metric.input_len;
         // (A range too long in these units was refused by `new`.)
         self.h_nat = if input_len > 0.0 && input_len.is_finite() { MAX_INPUT_STEP / input_len } else { f64::INFINITY };
         // One unit of an unknown per unit of input, in the slopes' units: per fraction of the
         // path `unit * input_len`, per unit of a single input that over `|delta|`.
         let per = if NI == 1 { input_len / self.path.delta[0].abs() } else { input_len };
-        for u in 0..N {
-            let floor = MAX_SLOPE_CHANGE * metric.unit[u] * per;
-            self.slope_floor[u] = if floor.is_finite() { floor } else { 0.0 };
-        }
+        let unit = Self::JUDGED.as_slice().iter().fold(0.0f64, |m, &u| m.max(metric.unit[u]));
+        let floor = MAX_SLOPE_CHANGE * unit * per;
+        self.slope_floor = if floor.is_finite() { floor } else { 0.0 };
         self.set_step_bounds();
     }
 
@@ -562,7 +561,6 @@ where
     #[inline(always)]
     fn predict(&self, k: &Kin<N, NI, NO>, dt: f64) -> Prediction<N> {
         let (mut change, mut slope_change, mut slope) = (0.0f64, 0.0f64, 0.0f64);
-        let mut long = false;
         let mut q = k.q;
         let mut slope1 = [0.0; N];
         // With one input (a constant), `dt` becomes the input's step.
@@ -579,10 +577,8 @@ where
             let du = dt * (slope0 + 0.5 * dt * curv);
             q[u] += du;
             change = change.max(du.abs());
-            let turn = (curv * dt).abs();
-            slope_change = slope_change.max(turn);
+            slope_change = slope_change.max((curv * dt).abs());
             slope = slope.max(slope0.abs());
-            long |= too_long(turn, MAX_SLOPE_CHANGE * slope0.abs() + self.slope_floor[u]);
             slope1[u] = slope0 + curv * dt;
         }
         let rel = self.cfg.corrector_rel;
@@ -591,7 +587,7 @@ where
             slope1,
             max_dist: rel * change + self.cfg.corrector_abs,
             max_slope_err: rel * (slope_change + 0.1 * slope) + self.slope_abs,
-            long,
+            long: too_long(slope_change, MAX_SLOPE_CHANGE * slope + self.slope_floor),
         }
     }
 
@@ -631,9 +627,10 @@ where
             // crossing branch. (Told apart from a far step by that state's pivot, should the step
             // become the last one tried: a separate outcome costs every step an instruction.)
             Outcome::Far
-        } else if dist > p.max_dist || slope_err > p.max_slope_err || turn > ANGLE_CAP {
+        } else if dist > p.max_dist || slope_err > p.max_slope_err || turn > ANGLE_CAP || p.long {
             // `turn`: an angle the cache advanced from an anchor on another turn (see
             // `InputTrig::angle`), whatever the units of the other unknowns make `max_dist`.
+            // `long`: a step longer than the predictor's error bound (`MAX_SLOPE_CHANGE`).
             Outcome::Far
         } else {
             Outcome::Accept
@@ -651,7 +648,6 @@ where
                 self.stepping = true;
                 self.first_q = k.q;
                 self.signs = k.health.det_signs;
-                self.set_natural_bounds(&k.q);
                 self.h = self.h_max;
                 self.next = 1;
                 Ok(())
@@ -737,22 +733,19 @@ where
             // Solved into the spare slot and judged there: an accepted state is not moved (every
             // copy of the ~180-byte state is a memcpy on the per-step path).
             let p = self.predict(self.cur(), tau_new - self.tau);
-            let (outcome, failure) = if p.long {
-                (Outcome::Long, None)
-            } else {
-                let x = self.path.at_tau(tau_new);
-                self.trig.exact(self.cur().health.min_pivot < ROTATE_MIN_PIVOT);
-                let spare = usize::from(!self.at);
-                match self.m.kinematics_step_sink::<_, _, false>(
-                    &x,
-                    &p.q,
-                    &self.cfg.newton,
-                    &mut self.trig,
-                    &mut self.states[spare],
-                ) {
-                    Ok(()) => (self.judge(&self.states[spare], &p), None),
-                    Err(e) => (Outcome::Fail, Some(e)),
-                }
+            let x = self.path.at_tau(tau_new);
+            self.trig.exact(self.cur().health.min_pivot < ROTATE_MIN_PIVOT);
+            let spare = usize::from(!self.at);
+            let solved = self.m.kinematics_step_sink::<_, _, false>(
+                &x,
+                &p.q,
+                &self.cfg.newton,
+                &mut self.trig,
+                &mut self.states[spare],
+            );
+            let outcome = match &solved {
+                Ok(()) => self.judge(&self.states[spare], &p),
+                Err(_) => Outcome::Fail,
             };
             match outcome {
                 Outcome::Accept => {
@@ -767,15 +760,12 @@ where
                     successes = 0;
                     self.h = step * 0.5;
                     // The next attempt takes its closed-form angles from libm, on the turns of
-                    // its guess: an anchor may have put one a turn away. (A step too long for
-                    // its prediction was not solved.)
-                    if !matches!(outcome, Outcome::Long) {
-                        self.trig.forget_anchors();
-                    }
+                    // its guess: an anchor may have put one a turn away.
+                    self.trig.forget_anchors();
                     if self.h < self.h_min {
                         // The step cannot be made however small: find out why.
                         let k = *self.cur();
-                        match self.diagnose(&k, tau_new, target, outcome, failure) {
+                        match self.diagnose(&k, tau_new, target, outcome, solved.err()) {
                             Ok(n) => {
                                 // Passed a singular crossing (AtSingular::Continue); `diagnose`
                                 // set `tau` to where the continuation resumed.
@@ -909,6 +899,8 @@ where
 }
 
 /// Whether a predicted slope change `turn` exceeds `bound`, or either is NaN: one comparison.
+/// (`f64::max` drops a NaN, so the maxima in `turn` and `bound` are NaN only where the step or
+/// the floor is.)
 #[allow(clippy::neg_cmp_op_on_partial_ord)] // the negation is what makes a NaN too long
 #[inline(always)]
 fn too_long(turn: f64, bound: f64) -> bool {
