@@ -216,7 +216,7 @@ const MIN_MAX_STEP: f64 = 1e-6;
 /// for a length), whatever the sample spacing: the number of samples asked for is the output
 /// grid, never the step. A step over a whole turn could pass, in one stride, an interval of
 /// inputs where the loops cannot close and land on another, disconnected part of the motion.
-const MAX_INPUT_STEP: f64 = 0.25;
+pub const MAX_INPUT_STEP: f64 = 0.25;
 
 /// Largest change, relative to the largest slope, of the judged unknowns' slopes that a step's
 /// prediction may make (`max |q'' dt| <= MAX_SLOPE_CHANGE (max |q'| + unit)`, the unit the
@@ -227,7 +227,7 @@ const MAX_INPUT_STEP: f64 = 0.25;
 /// to the limit position, let alone across the gap beyond it. Judged by the maxima the
 /// prediction computes anyway, with the solved step (a step too long is rare: only where the
 /// samples are far apart or a limit position is near).
-const MAX_SLOPE_CHANGE: f64 = 0.25;
+pub const MAX_SLOPE_CHANGE: f64 = 0.25;
 
 /// Most turns (`2 pi` units of the inputs, see [`MAX_INPUT_STEP`]) a sweep follows: at most
 /// about 2.5e7 steps, and where the inputs reach `2 pi 1e6` their doubles are `1e-9` apart,
