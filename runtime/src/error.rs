@@ -159,6 +159,26 @@ pub enum Error {
         /// Where.
         at: Box<Location>,
     },
+    /// A sweep's range is longer than a sweep follows: more than `max_turns` turns of its inputs
+    /// (measured in the inputs' units: radians for an angle, the mechanism's size for a length).
+    /// A sweep steps at most a fraction of a radian of its inputs at a time, whatever the number
+    /// of samples asked for, so that no step passes a gap where the loops cannot close; a longer
+    /// range would take more steps than a sweep makes, and far out the inputs' doubles are too
+    /// coarse for such steps (see [`paths::sweep`](crate::paths::sweep), "Range", and
+    /// [`MAX_TURNS`](crate::paths::sweep::MAX_TURNS)). Split the range, or reduce a periodic
+    /// input by whole turns.
+    #[error(
+        "the sweep's range is {turns:e} turns of its inputs, more than the {max_turns:e} turns a \
+         sweep follows {at}; split the range, or reduce a periodic input by whole turns"
+    )]
+    RangeTooLong {
+        /// The range's length in turns (`2 pi` input units).
+        turns: f64,
+        /// The most turns a sweep follows.
+        max_turns: f64,
+        /// Where (the start of the range).
+        at: Box<Location>,
+    },
     /// An argument outside its valid range (e.g. a sweep with zero samples).
     #[error("invalid argument: {0}")]
     InvalidArgument(String),
@@ -230,7 +250,8 @@ impl Error {
             | Error::Overflow { at, .. }
             | Error::SweepStopped { at, .. }
             | Error::Branch { at, .. }
-            | Error::TooManyTurns { at, .. } => Some(at),
+            | Error::TooManyTurns { at, .. }
+            | Error::RangeTooLong { at, .. } => Some(at),
             Error::InvalidArgument(_) | Error::Dynamics(_) | Error::Figure(_) => None,
         }
     }

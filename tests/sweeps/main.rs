@@ -10,6 +10,7 @@
 #[path = "../support/mod.rs"]
 mod support;
 
+mod sweep_any_step;
 mod sweep_api;
 mod sweep_at;
 mod sweep_judged_length;

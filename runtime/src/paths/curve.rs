@@ -73,6 +73,9 @@ fn sane(unit: f64) -> f64 {
 pub(crate) struct Metric<const N: usize> {
     pub unit: [f64; N],
     pub sigma: f64,
+    /// The path's length measured in input units, `|delta ./ input_unit|` (`0` for a path of no
+    /// length): how far the path goes in the inputs' natural scale (radians for angle inputs).
+    pub input_len: f64,
 }
 
 impl<const N: usize> Metric<N> {
@@ -94,13 +97,14 @@ impl<const N: usize> Metric<N> {
             scaled[i] = path.delta[i] / sane(jac.input_unit[i]);
         }
         let big = scaled.iter().fold(0.0f64, |m, d| m.max(d.abs()));
+        // Infinite where a component overflows (a unit far below the path's length).
         let norm = if big > 0.0 && big.is_finite() {
             big * scaled.iter().map(|d| (d / big) * (d / big)).sum::<f64>().sqrt()
         } else {
-            0.0
+            big
         };
         let sigma = if norm > 0.0 { sane(path.len / norm) } else { 1.0 };
-        Metric { unit, sigma }
+        Metric { unit, sigma, input_len: norm }
     }
 }
 
@@ -392,6 +396,78 @@ where
 /// Relative singular value below which the augmented Jacobian is rank deficient.
 const RANK_TOL: f64 = 1e-6;
 
+/// The smallest and largest singular values of `a` with its rows over `rows` (the equations'
+/// magnitudes) and each column over its largest entry.
+fn singular_range(mut a: DMatrix<f64>, rows: &[f64]) -> (f64, f64) {
+    for (e, &row) in rows.iter().enumerate() {
+        a.row_mut(e).unscale_mut(if row > 0.0 && row.is_finite() { row } else { 1.0 });
+    }
+    for c in 0..a.ncols() {
+        let big = a.column(c).amax();
+        if big > 0.0 {
+            a.column_mut(c).unscale_mut(big);
+        }
+    }
+    let sv = a.svd(false, false).singular_values;
+    (sv.min(), sv.max())
+}
+
+/// Whether one block of the decomposition is at a limit position of its own at `p`: the first
+/// block (in solve order) whose Jacobian is singular there has a full-rank Jacobian augmented by
+/// its equations' rate along the path (the path's own and, through the blocks solved before it,
+/// theirs), so that block, and with it the input path, cannot advance. Where several blocks fold
+/// at once (a five-bar driven by its end effector to where both arms stretch) the whole system's
+/// augmented Jacobian loses rank as at a crossing, yet no branch goes on. `false` where the
+/// blocks cannot be told from the names (a hand-written mechanism's) or no block folds.
+pub(crate) fn block_folds<M, const N: usize, const NI: usize, const NO: usize>(
+    m: &M,
+    path: &Path<NI>,
+    p: &CurvePoint<N>,
+) -> bool
+where
+    M: Mechanism<N, NI, NO>,
+{
+    let jac = m.jacobian_flat(&path.at_sigma(p.sigma), &p.q);
+    let fs = f_sigma(&jac, path);
+    // The rows and columns of the blocks solved so far.
+    let (mut rows, mut cols) = (Vec::new(), Vec::new());
+    for info in M::BLOCKS {
+        let own_rows: Option<Vec<usize>> =
+            info.equations.iter().map(|e| M::EQUATIONS.iter().position(|n| n == e)).collect();
+        let own_cols: Option<Vec<usize>> =
+            info.unknowns.iter().map(|u| M::UNKNOWNS.iter().position(|n| n == u)).collect();
+        let (Some(own_rows), Some(own_cols)) = (own_rows, own_cols) else { return false };
+        if own_rows.len() != own_cols.len() || own_rows.is_empty() {
+            return false;
+        }
+        let k = own_rows.len();
+        let a = DMatrix::from_fn(k, k, |i, j| jac.j[own_rows[i]][own_cols[j]]);
+        let scale: Vec<f64> = own_rows.iter().map(|&e| jac.scale[e]).collect();
+        let (lo, hi) = singular_range(a.clone(), &scale);
+        if hi > 0.0 && lo > FOLD_PIVOT * hi {
+            rows.extend(own_rows);
+            cols.extend(own_cols);
+            continue;
+        }
+        // The earlier blocks' rates `dq/dsigma` (regular: they were not singular).
+        let earlier = DMatrix::from_fn(rows.len(), cols.len(), |i, j| jac.j[rows[i]][cols[j]]);
+        let rhs = DVector::from_fn(rows.len(), |i, _| -fs[rows[i]]);
+        let rates = if rows.is_empty() { Some(DVector::zeros(0)) } else { earlier.lu().solve(&rhs) };
+        let Some(rates) = rates else { return false };
+        let rate = |i: usize| {
+            fs[own_rows[i]] + cols.iter().enumerate().map(|(c, &u)| jac.j[own_rows[i]][u] * rates[c]).sum::<f64>()
+        };
+        let augmented = DMatrix::from_fn(k, k + 1, |i, j| if j < k { a[(i, j)] } else { rate(i) });
+        let (lo, hi) = singular_range(augmented, &scale);
+        return hi > 0.0 && lo > RANK_TOL * hi;
+    }
+    false
+}
+
+/// Relative smallest singular value of a block's scaled Jacobian below which [`block_folds`]
+/// counts it singular: that of a limit position located to the rounding of the arclength.
+const FOLD_PIVOT: f64 = 1e-6;
+
 /// The point past the branch point `at` that the path tangent at `a` continues to: solved at
 /// fixed input from the straight (tangent) prediction, beyond `at` by up to eight times the
 /// distance from `a` to it, with the far side's determinant sign.
@@ -459,7 +535,7 @@ where
     let det_at = |p: &CurvePoint<N>| signed_det(m, &path.at_sigma(p.sigma), &p.q);
     let mut a = start.clone();
     let mut det_a = det_at(&a);
-    let mut ds = ds0;
+    let mut ds = ds0.min(MAX_ARC_STEP);
     let mut walked = 0.0;
     while walked < max_arc {
         // A step whose tangent turns sharply has left the curve being followed: at a branch
@@ -480,7 +556,7 @@ where
             // Where `[J | dF/dsigma]` loses rank too, the input is not stopped: several
             // branches meet (e.g. two coincident joints), and the one the path tangent
             // continues goes on.
-            if !augmented_full_rank(m, path, &fold) {
+            if !augmented_full_rank(m, path, &fold) && !block_folds(m, path, &fold) {
                 return straight_past(m, path, metric, &a, &fold, cfg).map(|past| Found::Crossing(fold, past));
             }
             return Some(Found::Fold(fold));
@@ -506,15 +582,26 @@ where
             )
             .unwrap_or(0.5 * (lo + hi));
             let at = arc_step(m, path, metric, &base, s, cfg).unwrap_or_else(|| b.clone());
+            // Where a block folds, the input cannot pass, whatever the determinant of the whole
+            // does beyond (several blocks folding at once make a branch point of the whole).
+            if block_folds(m, path, &at) {
+                return Some(Found::Fold(at));
+            }
             return Some(Found::Crossing(at, b));
         }
         walked += ds;
         a = b;
         det_a = det_b;
-        ds = (ds * 1.5).min(max_arc);
+        ds = (ds * 1.5).min(max_arc).min(MAX_ARC_STEP);
     }
     None
 }
+
+/// Longest step of [`trace`] (scaled coordinates: a quarter radian of an angle, a quarter of the
+/// mechanism's size of a length), however far it may follow the curve: a longer step could pass
+/// a limit position and the gap beyond it, or a crossing, in one stride and land on another part
+/// of the solution set, where the input happens to advance again.
+const MAX_ARC_STEP: f64 = 0.25;
 
 /// Smallest cosine of the angle between the unit tangents at the two ends of an accepted
 /// continuation step (about 26 degrees): a smooth curve turns less over a step small against its

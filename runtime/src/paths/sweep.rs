@@ -21,6 +21,22 @@
 //! input value (or, with [`AtSingular::Continue`], passes a crossing and goes on). It never
 //! continues silently on another branch.
 //!
+//! **Steps, whatever the samples.** The samples asked for are the output grid, never the step:
+//! a step is at most [`SweepConfig::max_step`] of the sample spacing, and also at most a quarter
+//! of the inputs' natural unit ([`MAX_INPUT_STEP`]: a quarter radian of an angle input, a quarter
+//! of the mechanism's size of a length), and the largest change its prediction makes to a judged
+//! unknown's slope is at most a quarter of the largest slope plus a quarter unit per unit of
+//! input ([`MAX_SLOPE_CHANGE`]). Approaching a limit position the slopes grow as the inverse
+//! square root of the distance to it, so that bound shortens the steps before it, and no step
+//! passes it and an interval beyond it where the loops cannot close to land on another part of
+//! the motion: two samples over a turn meet the same branch and the same first limit position as
+//! two thousand.
+//!
+//! **Range.** A sweep follows at most [`MAX_TURNS`] turns of its inputs (the path's length in
+//! their units over `2 pi`): longer, its steps would number beyond use, and the doubles of inputs
+//! that large (`0.125` apart at `1e15`) could not resolve them. A longer range is refused up
+//! front: the sweep's first item is [`Error::RangeTooLong`], with the numbers.
+//!
 //! The iterator allocates nothing per step (events are rare and allocate).
 
 use super::curve::{self, CurvePoint, Found, Metric, Path};
@@ -66,7 +82,10 @@ pub struct SweepConfig {
     /// sample only, solved from the caller's guess: a step's guess is a prediction, and a root
     /// reached from a turned guess would be another branch.
     pub newton: NewtonConfig,
-    /// Largest internal step as a fraction of the sample spacing (default `1`).
+    /// Largest internal step as a fraction of the sample spacing (default `1`; at least `1e-6`,
+    /// so that a sample takes at most a million steps). Whatever it is, a step is also at most
+    /// [`Sweep`]'s natural bound (a quarter radian of an angle input), so the number of samples
+    /// never sets how far a step goes.
     pub max_step: f64,
     /// How many times a step may be halved before the sweep diagnoses a singular position
     /// (default `40`, i.e. steps down to about `1e-12` of the sample spacing).
@@ -147,7 +166,7 @@ impl SweepConfig {
         let finite_positive = |v: f64| v > 0.0 && v < f64::INFINITY;
         if let Some(field) = self.newton.invalid_field() {
             Some(field)
-        } else if !(finite_positive(self.max_step) && self.max_step <= 1.0) {
+        } else if !(self.max_step >= MIN_MAX_STEP && self.max_step <= 1.0) {
             Some("max_step")
         } else if !(1..=60).contains(&self.max_halvings) {
             Some("max_halvings")
@@ -163,7 +182,7 @@ impl SweepConfig {
     }
 
     /// Checks every field: `Error::InvalidArgument` names the first one out of range
-    /// (`max_step` in `(0, 1]`, `max_halvings` in `1..=60`, `corrector_rel` positive and finite,
+    /// (`max_step` in `[1e-6, 1]`, `max_halvings` in `1..=60`, `corrector_rel` positive and finite,
     /// `corrector_abs` non-negative and finite, `singular_pivot` in `[0, 1)`, and the Newton
     /// configuration's ranges).
     ///
@@ -184,9 +203,38 @@ impl SweepConfig {
     }
 }
 
-/// Bound on the internal steps between two samples (attempts, accepted or not): a sweep never
-/// loops without bound.
-const MAX_ATTEMPTS_PER_SAMPLE: u32 = 100_000;
+/// Bound on the internal steps between two samples (attempts, accepted or not) beyond the
+/// steps the sample spacing needs at the largest step (four attempts each): a sweep never loops
+/// without bound.
+const MAX_ATTEMPTS_PER_SAMPLE: u64 = 100_000;
+
+/// Smallest valid [`SweepConfig::max_step`]: below it a sample would take more than a million
+/// steps, beyond any use (the sample spacing is the user's to choose instead).
+const MIN_MAX_STEP: f64 = 1e-6;
+
+/// Largest step of the inputs, in their units (radians for an angle input, the mechanism's size
+/// for a length), whatever the sample spacing: the number of samples asked for is the output
+/// grid, never the step. A step over a whole turn could pass, in one stride, an interval of
+/// inputs where the loops cannot close and land on another, disconnected part of the motion.
+pub const MAX_INPUT_STEP: f64 = 0.25;
+
+/// Largest change, relative to the largest slope, of the judged unknowns' slopes that a step's
+/// prediction may make (`max |q'' dt| <= MAX_SLOPE_CHANGE (max |q'| + unit)`, the unit the
+/// largest of the judged unknowns' units per unit of input): the predictor's error bound.
+/// Approaching a limit position, where the unknowns of the block that folds go as the square
+/// root of the distance to it (and their slopes outgrow every other), the slopes' relative change
+/// over a step is the step over twice that distance; at a quarter, no step goes more than halfway
+/// to the limit position, let alone across the gap beyond it. Judged by the maxima the
+/// prediction computes anyway, with the solved step (a step too long is rare: only where the
+/// samples are far apart or a limit position is near).
+pub const MAX_SLOPE_CHANGE: f64 = 0.25;
+
+/// Most turns (`2 pi` units of the inputs, see [`MAX_INPUT_STEP`]) a sweep follows: at most
+/// about 2.5e7 steps, and where the inputs reach `2 pi 1e6` their doubles are `1e-9` apart,
+/// fine against the steps. A longer range is refused up front ([`Error::RangeTooLong`]) rather
+/// than followed with steps that the doubles of its inputs, or of the path's fraction, can no
+/// longer resolve.
+pub const MAX_TURNS: f64 = 1e6;
 
 /// The inputs' sines and cosines are advanced by rotation (a few units in the last place off
 /// libm's) only from a position whose smallest pivot ratio is at least this: there the positions
@@ -212,6 +260,8 @@ struct Prediction<const N: usize> {
     /// How far the solved slopes may be from `slope1`: `corrector_rel` times the largest change
     /// of a slope plus a tenth of the largest slope, plus `corrector_abs` (in the slopes' units).
     max_slope_err: f64,
+    /// The step is longer than the predictor's error bound allows ([`MAX_SLOPE_CHANGE`]).
+    long: bool,
 }
 
 /// Why a step was not accepted.
@@ -240,6 +290,14 @@ pub struct Sweep<'m, M, S, const N: usize, const NI: usize, const NO: usize> {
     spacing: f64,
     h_max: f64,
     h_min: f64,
+    /// The largest step in the inputs' natural scale ([`MAX_INPUT_STEP`]) as a fraction of the
+    /// path (infinite for a path of no length).
+    h_nat: f64,
+    /// `MAX_SLOPE_CHANGE` times the largest unit of a judged unknown per unit of input, in the
+    /// units the slopes are compared in (see [`Sweep::predict`]); set with `h_nat`.
+    slope_floor: f64,
+    /// The attempts a sample may take (see [`MAX_ATTEMPTS_PER_SAMPLE`]).
+    max_attempts: u64,
     next: usize,
     guess: [f64; N],
     /// Whether the first sample may restart (the configuration's `restarts`; the steps' own
@@ -263,6 +321,8 @@ pub struct Sweep<'m, M, S, const N: usize, const NI: usize, const NO: usize> {
     trig: Rotating,
     /// A configuration or range error found by `with_config`, returned by the first `next`.
     invalid: Option<Error>,
+    /// A range longer than [`MAX_TURNS`], found by `new` and returned by the first `next`.
+    too_long: Option<Error>,
     events: Vec<Event>,
     done: bool,
     /// `started && !done && invalid.is_none()`: the steady state, where a sample needs one test
@@ -315,6 +375,15 @@ where
         if samples > 1 && (path.len.is_nan() || path.len <= 0.0) {
             return Err(Error::InvalidArgument("a sweep with several samples needs `to` different from `from`".into()));
         }
+        // The units at the start's guess (once per sweep: a sweep of a few samples, as every
+        // stretch of `sweep_at` is, should not pay for more).
+        let metric = Metric::at(m, &path, &from, &guess);
+        let turns = if path.len > 0.0 { metric.input_len / std::f64::consts::TAU } else { 0.0 };
+        let too_long = (turns > MAX_TURNS || turns.is_nan()).then(|| Error::RangeTooLong {
+            turns,
+            max_turns: MAX_TURNS,
+            at: Location::boxed(M::NAME, &M::INPUTS, &from, None),
+        });
         let spacing = if samples > 1 { 1.0 / (samples - 1) as f64 } else { 1.0 };
         let mut sweep = Sweep {
             m,
@@ -326,6 +395,9 @@ where
             spacing,
             h_max: 0.0,
             h_min: 0.0,
+            h_nat: f64::INFINITY,
+            slope_floor: 0.0,
+            max_attempts: MAX_ATTEMPTS_PER_SAMPLE,
             next: 0,
             guess,
             first_restarts: true,
@@ -348,12 +420,13 @@ where
             signs: DetSigns::default(),
             trig: Rotating::default(),
             invalid: None,
+            too_long,
             events: Vec::new(),
             done: false,
             stepping: false,
             _s: PhantomData,
         };
-        sweep.set_step_bounds();
+        sweep.set_natural_bounds(&metric);
         Ok(sweep.with_config(m.solver_config()))
     }
 
@@ -377,12 +450,39 @@ where
     }
 
     fn set_step_bounds(&mut self) {
-        self.h_max = self.spacing * self.cfg.max_step;
-        self.h_min = self.spacing * 0.5f64.powi(self.cfg.max_halvings.min(i32::MAX as u32) as i32);
+        self.h_max = (self.spacing * self.cfg.max_step).min(self.h_nat);
+        self.h_min = self.scale() * 0.5f64.powi(self.cfg.max_halvings.min(i32::MAX as u32) as i32);
+        // Four attempts per step the spacing needs at the largest step, and the fixed reserve
+        // (finite: `h_max` is at least `MIN_MAX_STEP` of the spacing or `h_nat`, bounded by
+        // `MAX_TURNS`).
+        let steps = (self.spacing / self.h_max).ceil();
+        self.max_attempts =
+            MAX_ATTEMPTS_PER_SAMPLE + if steps.is_finite() { (4.0 * steps).min(1e15) as u64 } else { 0 };
         // A slope in input units is the path's divided by `|delta|` (infinite for a path of no
         // length, which takes no step).
         self.slope_abs =
             if NI == 1 { self.cfg.corrector_abs / self.path.delta[0].abs() } else { self.cfg.corrector_abs };
+    }
+
+    /// The step scale as a fraction of the path: the sample spacing, or the natural step where
+    /// that is shorter.
+    fn scale(&self) -> f64 {
+        self.spacing.min(self.h_nat)
+    }
+
+    /// The natural step bounds ([`MAX_INPUT_STEP`], [`MAX_SLOPE_CHANGE`]) from the units of
+    /// `metric`, and the step bounds with them.
+    fn set_natural_bounds(&mut self, metric: &Metric<N>) {
+        let input_len = metric.input_len;
+        // (A range too long in these units was refused by `new`.)
+        self.h_nat = if input_len > 0.0 && input_len.is_finite() { MAX_INPUT_STEP / input_len } else { f64::INFINITY };
+        // One unit of an unknown per unit of input, in the slopes' units: per fraction of the
+        // path `unit * input_len`, per unit of a single input that over `|delta|`.
+        let per = if NI == 1 { input_len / self.path.delta[0].abs() } else { input_len };
+        let unit = Self::JUDGED.as_slice().iter().fold(0.0f64, |m, &u| m.max(metric.unit[u]));
+        let floor = MAX_SLOPE_CHANGE * unit * per;
+        self.slope_floor = if floor.is_finite() { floor } else { 0.0 };
+        self.set_step_bounds();
     }
 
     /// Singular positions met so far.
@@ -487,6 +587,7 @@ where
             slope1,
             max_dist: rel * change + self.cfg.corrector_abs,
             max_slope_err: rel * (slope_change + 0.1 * slope) + self.slope_abs,
+            long: too_long(slope_change, MAX_SLOPE_CHANGE * slope + self.slope_floor),
         }
     }
 
@@ -526,9 +627,10 @@ where
             // crossing branch. (Told apart from a far step by that state's pivot, should the step
             // become the last one tried: a separate outcome costs every step an instruction.)
             Outcome::Far
-        } else if dist > p.max_dist || slope_err > p.max_slope_err || turn > ANGLE_CAP {
+        } else if dist > p.max_dist || slope_err > p.max_slope_err || turn > ANGLE_CAP || p.long {
             // `turn`: an angle the cache advanced from an anchor on another turn (see
             // `InputTrig::angle`), whatever the units of the other unknowns make `max_dist`.
+            // `long`: a step longer than the predictor's error bound (`MAX_SLOPE_CHANGE`).
             Outcome::Far
         } else {
             Outcome::Accept
@@ -562,8 +664,10 @@ where
     fn no_progress(&self) -> Error {
         Error::Branch {
             message: format!(
-                "the sweep made no progress towards the next sample in {MAX_ATTEMPTS_PER_SAMPLE} steps \
-                 (the solution curve is too rough for the sample spacing)"
+                "the sweep made no progress towards the next sample in {} steps (four per step of the \
+                 largest length the sample spacing needs, and a reserve): its steps keep being rejected \
+                 or cut far below that length (the solution curve is too rough here)",
+                self.max_attempts
             ),
             at: self.location(&self.path.at_tau(self.tau), None),
         }
@@ -585,6 +689,10 @@ where
         if self.invalid.is_some() {
             self.stop();
             return self.invalid.take().map(Err);
+        }
+        if self.too_long.is_some() {
+            self.stop();
+            return self.too_long.take().map(Err);
         }
         Some(self.first_sample().map(|()| self.cur()))
     }
@@ -610,10 +718,10 @@ where
         // same value: a sample index is far below 2^53).
         let target = if self.next + 1 == self.samples { 1.0 } else { self.next as i64 as f64 * self.spacing };
         let mut successes = 0u32;
-        let mut attempts = 0u32;
+        let mut attempts = 0u64;
         while self.tau < target {
             attempts += 1;
-            if attempts > MAX_ATTEMPTS_PER_SAMPLE {
+            if attempts > self.max_attempts {
                 self.stop();
                 return Some(Err(self.no_progress()));
             }
@@ -686,7 +794,7 @@ where
         let newton = self.cfg.newton;
         let end = target * path.len;
         // In the continuation's scaled arclength (see `Metric`).
-        let mut ds = 0.01 * self.spacing * path.len / metric.sigma;
+        let mut ds = 0.01 * self.scale() * path.len / metric.sigma;
         for _ in 0..200 {
             if let Ok(k) = self.m.kinematics_at_flat(&path.at_sigma(p.sigma), &p.q, &newton)
                 && k.health.min_pivot >= self.cfg.singular_pivot * 100.0
@@ -706,7 +814,8 @@ where
                 return Some(k);
             }
             p = next;
-            ds *= 1.5;
+            // Not beyond the natural step (see `MAX_INPUT_STEP`), in the scaled coordinates.
+            ds = (ds * 1.5).min(MAX_INPUT_STEP);
         }
         None
     }
@@ -735,7 +844,7 @@ where
         let tangent = curve::tangent_from_analogs(&k.dq, &path, &metric);
         let start = CurvePoint { q: k.q, sigma: self.tau * path.len, tangent };
         let ds0 = ((tau_new - self.tau) * path.len).max(1e-9 * path.len) / metric.sigma;
-        let reach = (self.spacing * path.len / metric.sigma).max(ds0 * 8.0);
+        let reach = (self.scale() * path.len / metric.sigma).max(ds0 * 8.0);
         match curve::trace(self.m, &path, &metric, &start, ds0, reach, &newton) {
             // A true limit position is singular; a reversal where the Jacobian is regular is a
             // kink of a non-smooth curve (e.g. through `abs`), reported below as a branch error.
@@ -787,6 +896,15 @@ where
             },
         })
     }
+}
+
+/// Whether a predicted slope change `turn` exceeds `bound`, or either is NaN: one comparison.
+/// (`f64::max` drops a NaN, so the maxima in `turn` and `bound` are NaN only where the step or
+/// the floor is.)
+#[allow(clippy::neg_cmp_op_on_partial_ord)] // the negation is what makes a NaN too long
+#[inline(always)]
+fn too_long(turn: f64, bound: f64) -> bool {
+    !(turn <= bound)
 }
 
 /// The indices of the unknowns that do not follow the others, in order.

@@ -1,0 +1,720 @@
+//! Sweeps whose samples are far apart: the number of samples is the output grid, never the step.
+//!
+//! Random four-bars (Grashof and not) and offset slider-cranks, swept over one to three turns
+//! with two to five samples per turn on both paths (closed forms, and the Newton twins declared
+//! with `#[kinloop(newton)]`), are checked against constructions written here: every state on
+//! the start's branch, the first limit position where the construction puts it, no crossing.
+//! Then ranges up to `1e300` radians (they complete, or are refused up front with the documented
+//! cap on turns), and a five-bar driven by its end effector to the edge of its workspace, where
+//! both arms stretch at once.
+
+use kinloop::paths::sweep::MAX_TURNS;
+use kinloop::{AtSingular, Error, EventKind, SweepConfig, SweepStop};
+use proptest::prelude::*;
+use proptest::test_runner::RngSeed;
+use std::f64::consts::{PI, TAU};
+
+/// Declares a mechanism twice from one body: as `$name` (closed forms where recognised) and as
+/// `$newton` with `#[kinloop(newton)]`.
+macro_rules! with_newton_twin {
+    ($(#[doc = $doc:literal])* pub struct $name:ident, $newton:ident { $($body:tt)* }) => {
+        kinloop::mechanism! {
+            $(#[doc = $doc])*
+            pub struct $name { $($body)* }
+        }
+        kinloop::mechanism! {
+            $(#[doc = $doc])*
+            #[kinloop(newton)]
+            pub struct $newton { $($body)* }
+        }
+    };
+}
+
+with_newton_twin! {
+    /// Four-bar: crank `a` at the origin, coupler `b`, rocker `c` pivoted at (d, 0).
+    pub struct FourBar, FourBarNewton {
+        params a, b, c, d;
+        input phi;
+        unknowns beta = 0.5, gamma = 1.5;
+        loop abcd: a @ phi + b @ beta == (d, 0) + c @ gamma;
+    }
+}
+
+with_newton_twin! {
+    /// Offset slider-crank: crank `r` at the origin, rod `l`, slider (x, e) on the line y = e.
+    pub struct Slider, SliderNewton {
+        params r, l, e;
+        input phi;
+        unknowns psi = 0, x = l;
+        loop oab: r @ phi + l @ psi == (x, e);
+    }
+}
+
+with_newton_twin! {
+    /// Watt six-bar: the four-bar above, and a dyad driven by the rocker's extension `c2` at
+    /// `alpha` to it, links `e` (from E) and `f` (from G = (gx, gy)) meeting at F.
+    pub struct SixBar, SixBarNewton {
+        params a, b, c, d, c2, alpha, e, f, gx, gy;
+        input phi;
+        unknowns beta = 0.5, gamma = 1.5, delta = 0.5, eps = 1.5;
+        loop abcd: a @ phi + b @ beta == (d, 0) + c @ gamma;
+        loop defg: (d, 0) + c2 @ (gamma + alpha) + e @ delta == (gx, gy) + f @ eps;
+    }
+}
+
+with_newton_twin! {
+    /// A five-bar used for inverse kinematics: the end effector P = (px, py) is the input, the
+    /// motor angles `th1` (at the origin) and `th2` (at (d, 0)) and the distal links' angles the
+    /// unknowns, two dyads.
+    pub struct IkFiveBar, IkFiveBarNewton {
+        params a, b, c, d, e;
+        inputs px, py;
+        unknowns th1 = 1.0, phi2 = 0.2, th2 = 2.0, phi3 = 1.0;
+        loop left: a @ th1 + b @ phi2 == (px, py);
+        loop right: (d, 0) + e @ th2 + c @ phi3 == (px, py);
+    }
+}
+
+/// Where circle (P, p) meets circle (Q, q), on the left of P -> Q for `side > 0` (`None` where
+/// they do not meet).
+fn circles(px: f64, py: f64, p: f64, qx: f64, qy: f64, q: f64, side: f64) -> Option<(f64, f64)> {
+    let (ux, uy) = (qx - px, qy - py);
+    let dist = ux.hypot(uy);
+    let along = (p * p - q * q + dist * dist) / (2.0 * dist);
+    let h2 = p * p - along * along;
+    if h2 < 0.0 || h2.is_nan() {
+        return None;
+    }
+    let h = side.signum() * h2.sqrt();
+    Some((px + (along * ux - h * uy) / dist, py + (along * uy + h * ux) / dist))
+}
+
+/// The smallest `t > 0` with `from + dir t` one of `roots` modulo a turn.
+fn first_after(from: f64, dir: f64, roots: &[f64]) -> Option<f64> {
+    roots.iter().map(|r| ((r - from) * dir).rem_euclid(TAU)).filter(|t| *t > 0.0).min_by(f64::total_cmp)
+}
+
+/// The grid the sweep samples: `n` inputs from `from`, `span` apart in all.
+fn grid(from: f64, dir: f64, span: f64, n: usize) -> Vec<f64> {
+    (0..n).map(|i| from + dir * span * i as f64 / (n - 1) as f64).collect()
+}
+
+/// A random four-bar and sweep: lengths, the start `phi0` (where the loop closes with a margin),
+/// the side of B -> D that C starts on, the direction, the turns and the samples per turn.
+#[derive(Clone, Debug)]
+struct FourBarCase {
+    m: FourBar,
+    phi0: f64,
+    side: f64,
+    dir: f64,
+    turns: usize,
+    per_turn: usize,
+}
+
+impl FourBarCase {
+    fn size(&self) -> f64 {
+        self.m.a + self.m.b + self.m.c + self.m.d
+    }
+
+    /// |BD| at `phi`.
+    fn bd(&self, phi: f64) -> f64 {
+        let m = &self.m;
+        (m.a * m.a + m.d * m.d - 2.0 * m.a * m.d * phi.cos()).sqrt()
+    }
+
+    /// Joint C on the start's side of B -> D.
+    fn c_at(&self, phi: f64) -> Option<(f64, f64)> {
+        let m = &self.m;
+        circles(m.a * phi.cos(), m.a * phi.sin(), m.b, m.d, 0.0, m.c, self.side)
+    }
+
+    /// The crank angles where coupler and rocker are collinear (`|BD| = b + c` or `|b - c|`),
+    /// the limit positions: the first of them along the sweep, as a distance from `phi0`.
+    fn first_limit(&self) -> Option<f64> {
+        let m = &self.m;
+        let mut roots = Vec::new();
+        for r in [m.b + m.c, (m.b - m.c).abs()] {
+            let cos = (m.a * m.a + m.d * m.d - r * r) / (2.0 * m.a * m.d);
+            if cos.abs() <= 1.0 {
+                roots.extend([cos.acos(), -cos.acos()]);
+            }
+        }
+        first_after(self.phi0, self.dir, &roots)
+    }
+}
+
+fn four_bar_case() -> impl Strategy<Value = FourBarCase> {
+    let lengths = (0.3f64..3.0, 0.3f64..3.0, 0.3f64..3.0, 0.3f64..3.0);
+    let sweep = (-PI..PI, any::<bool>(), any::<bool>(), 1usize..=3, 2usize..=5);
+    (lengths, sweep)
+        .prop_map(|((a, b, c, d), (phi0, left, up, turns, per_turn))| FourBarCase {
+            m: FourBar { a, b, c, d },
+            phi0,
+            side: if left { 1.0 } else { -1.0 },
+            dir: if up { 1.0 } else { -1.0 },
+            turns,
+            per_turn,
+        })
+        .prop_filter("the loop closes at the start, away from a limit position", |k| {
+            let (m, bd) = (&k.m, k.bd(k.phi0));
+            let margin = 1e-2 * k.size();
+            bd > (m.b - m.c).abs() + margin && bd < m.b + m.c - margin
+        })
+}
+
+/// Four-bars whose crank rocks on two stretches with a gap between them where the loop cannot
+/// close (`d - a < |b - c| < b + c < d + a`: the shortest link turns, the crank cannot reach
+/// `phi = 0` nor `phi = pi`), started inside one stretch: where a coarse sweep could step across
+/// the gap onto the other stretch.
+fn gapped_four_bar_case() -> impl Strategy<Value = FourBarCase> {
+    let shape = (0.3f64..1.5, 1.0f64..3.0, 0.05f64..0.95, 0.05f64..0.95, any::<bool>());
+    let sweep = (0.02f64..0.98, any::<bool>(), any::<bool>(), any::<bool>(), 1usize..=3, 2usize..=5);
+    (shape, sweep)
+        .prop_map(|((a, extra, u, v, swap), (w, upper, left, up, turns, per_turn))| {
+            let d = a + extra;
+            // |b - c| and b + c in (d - a, d + a).
+            let (lo, hi) = (d - a + 2.0 * a * u.min(v), d - a + 2.0 * a * u.max(v));
+            let (b, c) = if swap { ((hi - lo) / 2.0, (hi + lo) / 2.0) } else { ((hi + lo) / 2.0, (hi - lo) / 2.0) };
+            let m = FourBar { a, b, c, d };
+            // The crank angle of |BD| = r.
+            let angle = |r: f64| ((a * a + d * d - r * r) / (2.0 * a * d)).acos();
+            let phi0 = angle(lo) + w * (angle(hi) - angle(lo));
+            let phi0 = if upper { phi0 } else { -phi0 };
+            FourBarCase {
+                m,
+                phi0,
+                side: if left { 1.0 } else { -1.0 },
+                dir: if up { 1.0 } else { -1.0 },
+                turns,
+                per_turn,
+            }
+        })
+        .prop_filter("the loop closes at the start, away from a limit position", |k| {
+            let (m, bd) = (&k.m, k.bd(k.phi0));
+            let margin = 1e-2 * k.size();
+            bd > (m.b - m.c).abs() + margin && bd < m.b + m.c - margin
+        })
+}
+
+/// Checks a four-bar sweep's result (states `(phi, beta, gamma)`, stop, events) against the
+/// construction.
+fn check_four_bar(k: &FourBarCase, states: &[(f64, f64, f64)], stop: &SweepStop, events: &[kinloop::Event]) {
+    let m = &k.m;
+    let size = k.size();
+    let span = TAU * k.turns as f64;
+    let n = k.per_turn * k.turns;
+    let limit = k.first_limit().filter(|t| *t < span);
+    let inputs = grid(k.phi0, k.dir, span, n);
+    // The samples strictly before the first limit position (or all of them).
+    let expected = inputs.iter().filter(|x| limit.is_none_or(|t| (*x - k.phi0) * k.dir < t)).count();
+    assert_eq!(states.len(), expected, "{k:?}: {stop:?}");
+    for (&(phi, beta, gamma), x) in states.iter().zip(&inputs) {
+        assert!((phi - x).abs() <= 1e-12 * (1.0 + x.abs()), "{k:?}: sample at {phi}, grid {x}");
+        let (cx, cy) = k.c_at(phi).expect("the loop closes before the first limit position");
+        // C through the coupler and through the rocker: on the start's side, where the
+        // construction puts it.
+        let via_b = (m.a * phi.cos() + m.b * beta.cos(), m.a * phi.sin() + m.b * beta.sin());
+        let via_d = (m.d + m.c * gamma.cos(), m.c * gamma.sin());
+        for (x, y) in [via_b, via_d] {
+            assert!((x - cx).hypot(y - cy) <= 1e-9 * size, "{k:?}: at {phi} C = ({x}, {y}), construction ({cx}, {cy})");
+        }
+    }
+    assert!(events.iter().all(|e| e.kind == EventKind::LimitPosition), "{k:?}: {events:?}");
+    match limit {
+        Some(t) => {
+            let at = k.phi0 + k.dir * t;
+            let SweepStop::LimitPosition(ev) = stop else { panic!("{k:?}: {stop:?}, limit position at {at}") };
+            assert!((ev.x[0] - at).abs() <= 1e-9, "{k:?}: limit at {}, construction {at}", ev.x[0]);
+            // The loop closed there, with coupler and rocker collinear: C on the line B -> D.
+            let (bx, by) = (m.a * at.cos(), m.a * at.sin());
+            let via_b = (bx + m.b * ev.q[0].cos(), by + m.b * ev.q[0].sin());
+            let via_d = (m.d + m.c * ev.q[1].cos(), m.c * ev.q[1].sin());
+            assert!((via_b.0 - via_d.0).hypot(via_b.1 - via_d.1) <= 1e-9 * size, "{k:?}: {ev:?}");
+            let off_line = ((m.d - bx) * (via_b.1 - by) - (0.0 - by) * (via_b.0 - bx)) / k.bd(at);
+            assert!(off_line.abs() <= 1e-6 * size, "{k:?}: {ev:?}, C {off_line} off the line B -> D");
+        }
+        None => assert_eq!(stop, &SweepStop::Completed, "{k:?}"),
+    }
+}
+
+/// The start's guess from the construction.
+fn four_bar_start(k: &FourBarCase) -> (f64, f64) {
+    let m = &k.m;
+    let (cx, cy) = k.c_at(k.phi0).expect("filtered: the loop closes");
+    ((cy - m.a * k.phi0.sin()).atan2(cx - m.a * k.phi0.cos()), cy.atan2(cx - m.d))
+}
+
+/// A random offset slider-crank and sweep; `side` is the sign of `cos psi` at the start.
+#[derive(Clone, Debug)]
+struct SliderCase {
+    m: Slider,
+    phi0: f64,
+    side: f64,
+    dir: f64,
+    turns: usize,
+    per_turn: usize,
+}
+
+impl SliderCase {
+    fn size(&self) -> f64 {
+        self.m.r + self.m.l + self.m.e.abs()
+    }
+
+    /// `sin psi` at `phi`.
+    fn sin_psi(&self, phi: f64) -> f64 {
+        (self.m.e - self.m.r * phi.sin()) / self.m.l
+    }
+
+    /// `(psi, x)` on the start's branch (`None` where the rod cannot reach the line).
+    fn at(&self, phi: f64) -> Option<(f64, f64)> {
+        let s = self.sin_psi(phi);
+        if s.abs() > 1.0 {
+            return None;
+        }
+        let c = self.side * (1.0 - s * s).sqrt();
+        Some((s.atan2(c), self.m.r * phi.cos() + self.m.l * c))
+    }
+
+    /// The limit positions, where the rod is perpendicular to the line (`e - r sin phi = +-l`):
+    /// the first along the sweep, as a distance from `phi0`.
+    fn first_limit(&self) -> Option<f64> {
+        let m = &self.m;
+        let mut roots = Vec::new();
+        for v in [(m.e - m.l) / m.r, (m.e + m.l) / m.r] {
+            if v.abs() <= 1.0 {
+                roots.extend([v.asin(), PI - v.asin()]);
+            }
+        }
+        first_after(self.phi0, self.dir, &roots)
+    }
+}
+
+fn slider_case() -> impl Strategy<Value = SliderCase> {
+    let lengths = (0.3f64..3.0, 0.3f64..3.0, -2.0f64..2.0);
+    let sweep = (-PI..PI, any::<bool>(), any::<bool>(), 1usize..=3, 2usize..=5);
+    (lengths, sweep)
+        .prop_map(|((r, l, e), (phi0, right, up, turns, per_turn))| SliderCase {
+            m: Slider { r, l, e },
+            phi0,
+            side: if right { 1.0 } else { -1.0 },
+            dir: if up { 1.0 } else { -1.0 },
+            turns,
+            per_turn,
+        })
+        .prop_filter("the rod reaches the line at the start, away from a limit position", |k| {
+            k.sin_psi(k.phi0).abs() < 1.0 - 1e-2
+        })
+}
+
+fn check_slider(k: &SliderCase, states: &[(f64, f64, f64)], stop: &SweepStop, events: &[kinloop::Event]) {
+    let size = k.size();
+    let span = TAU * k.turns as f64;
+    let n = k.per_turn * k.turns;
+    let limit = k.first_limit().filter(|t| *t < span);
+    let inputs = grid(k.phi0, k.dir, span, n);
+    let expected = inputs.iter().filter(|x| limit.is_none_or(|t| (*x - k.phi0) * k.dir < t)).count();
+    assert_eq!(states.len(), expected, "{k:?}: {stop:?}");
+    for (&(phi, psi, x), g) in states.iter().zip(&inputs) {
+        assert!((phi - g).abs() <= 1e-12 * (1.0 + g.abs()), "{k:?}: sample at {phi}, grid {g}");
+        let (psi_c, x_c) = k.at(phi).expect("the rod reaches the line before the first limit position");
+        // The rod's end B + l @ psi against the construction's, and the slider.
+        let (dx, dy) = (psi.cos() - psi_c.cos(), psi.sin() - psi_c.sin());
+        assert!(k.m.l * dx.hypot(dy) <= 1e-9 * size, "{k:?}: at {phi} psi = {psi}, construction {psi_c}");
+        assert!((x - x_c).abs() <= 1e-9 * size, "{k:?}: at {phi} x = {x}, construction {x_c}");
+    }
+    assert!(events.iter().all(|e| e.kind == EventKind::LimitPosition), "{k:?}: {events:?}");
+    match limit {
+        Some(t) => {
+            let at = k.phi0 + k.dir * t;
+            let SweepStop::LimitPosition(ev) = stop else { panic!("{k:?}: {stop:?}, limit position at {at}") };
+            assert!((ev.x[0] - at).abs() <= 1e-9, "{k:?}: limit at {}, construction {at}", ev.x[0]);
+            // The rod perpendicular to the line there.
+            assert!(ev.q[0].cos().abs() <= 1e-6, "{k:?}: {ev:?}");
+        }
+        None => assert_eq!(stop, &SweepStop::Completed, "{k:?}"),
+    }
+}
+
+/// A random six-bar and sweep: the four-bar's case, and the dyad's side of E -> G.
+#[derive(Clone, Debug)]
+struct SixBarCase {
+    four: FourBarCase,
+    m: SixBar,
+    side2: f64,
+}
+
+impl SixBarCase {
+    /// Joints C and F on the start's sides (`None` where a loop cannot close).
+    fn joints(&self, phi: f64) -> Option<((f64, f64), (f64, f64))> {
+        let m = &self.m;
+        let (cx, cy) = self.four.c_at(phi)?;
+        let gamma = cy.atan2(cx - m.d);
+        let (ex, ey) = (m.d + m.c2 * (gamma + m.alpha).cos(), m.c2 * (gamma + m.alpha).sin());
+        Some(((cx, cy), circles(ex, ey, m.e, m.gx, m.gy, m.f, self.side2)?))
+    }
+
+    /// `|EG|` less `r` on the start's branch of the four-bar.
+    fn reach(&self, phi: f64, r: f64) -> f64 {
+        let m = &self.m;
+        let (cx, cy) = self.four.c_at(phi).unwrap_or((f64::NAN, f64::NAN));
+        let gamma = cy.atan2(cx - m.d);
+        let (ex, ey) = (m.d + m.c2 * (gamma + m.alpha).cos(), m.c2 * (gamma + m.alpha).sin());
+        (ex - m.gx).hypot(ey - m.gy) - r
+    }
+
+    /// The first limit position along the sweep within `span`, as a distance from `phi0`: the
+    /// four-bar's (by the law of cosines), or the dyad's first before it, where `|EG| = e + f` or
+    /// `|e - f|`.
+    fn first_limit(&self, span: f64) -> Option<f64> {
+        let k = &self.four;
+        let four_bar = k.first_limit().filter(|t| *t < span);
+        let end = four_bar.unwrap_or(span);
+        let at = |t: f64| k.phi0 + k.dir * t;
+        [self.m.e + self.m.f, (self.m.e - self.m.f).abs()]
+            .into_iter()
+            .filter_map(|r| first_root(|t| self.reach(at(t), r), end))
+            .chain(four_bar)
+            .min_by(f64::total_cmp)
+    }
+}
+
+/// The first root of `g` on `(0, end)`: its first sign change on a grid of a thousandth of a
+/// radian, bisected.
+fn first_root(g: impl Fn(f64) -> f64, end: f64) -> Option<f64> {
+    let steps = (end / 1e-3).ceil() as usize;
+    let mut lo = 0.0;
+    for i in 1..=steps {
+        let hi = end * i as f64 / steps as f64;
+        if (g(lo) > 0.0) != (g(hi) > 0.0) {
+            let (mut a, mut b) = (lo, hi);
+            for _ in 0..100 {
+                let mid = 0.5 * (a + b);
+                if (g(mid) > 0.0) == (g(a) > 0.0) {
+                    a = mid;
+                } else {
+                    b = mid;
+                }
+            }
+            return Some(0.5 * (a + b));
+        }
+        lo = hi;
+    }
+    None
+}
+
+fn six_bar_case() -> impl Strategy<Value = SixBarCase> {
+    let dyad = (0.3f64..2.0, -PI..PI, 0.3f64..3.0, 0.3f64..3.0, -2.0f64..5.0, -3.0f64..3.0, any::<bool>());
+    (four_bar_case(), dyad)
+        .prop_map(|(four, (c2, alpha, e, f, gx, gy, left))| {
+            let FourBar { a, b, c, d } = four.m;
+            SixBarCase { four, m: SixBar { a, b, c, d, c2, alpha, e, f, gx, gy }, side2: if left { 1.0 } else { -1.0 } }
+        })
+        .prop_filter("the dyad closes at the start, away from a limit position", |k| {
+            let m = &k.m;
+            let margin = 1e-2 * (k.four.size() + m.c2 + m.e + m.f);
+            k.reach(k.four.phi0, (m.e - m.f).abs()) > margin && k.reach(k.four.phi0, m.e + m.f) < -margin
+        })
+}
+
+/// Checks a six-bar sweep's result (states `(phi, q)`) against the construction.
+fn check_six_bar(k: &SixBarCase, states: &[(f64, [f64; 4])], stop: &SweepStop, events: &[kinloop::Event]) {
+    let (m, four) = (&k.m, &k.four);
+    let size = four.size() + m.c2 + m.e + m.f + m.gx.hypot(m.gy);
+    let span = TAU * four.turns as f64;
+    let n = four.per_turn * four.turns;
+    let limit = k.first_limit(span);
+    let inputs = grid(four.phi0, four.dir, span, n);
+    let expected = inputs.iter().filter(|x| limit.is_none_or(|t| (*x - four.phi0) * four.dir < t)).count();
+    assert_eq!(states.len(), expected, "{k:?}: {stop:?}");
+    for (&(phi, [beta, gamma, delta, eps]), x) in states.iter().zip(&inputs) {
+        assert!((phi - x).abs() <= 1e-12 * (1.0 + x.abs()), "{k:?}: sample at {phi}, grid {x}");
+        let ((cx, cy), (fx, fy)) = k.joints(phi).expect("the loops close before the first limit position");
+        let via_b = (m.a * phi.cos() + m.b * beta.cos(), m.a * phi.sin() + m.b * beta.sin());
+        let via_d = (m.d + m.c * gamma.cos(), m.c * gamma.sin());
+        let (ex, ey) = (m.d + m.c2 * (gamma + m.alpha).cos(), m.c2 * (gamma + m.alpha).sin());
+        let via_e = (ex + m.e * delta.cos(), ey + m.e * delta.sin());
+        let via_g = (m.gx + m.f * eps.cos(), m.gy + m.f * eps.sin());
+        for ((x, y), (px, py)) in [(via_b, (cx, cy)), (via_d, (cx, cy)), (via_e, (fx, fy)), (via_g, (fx, fy))] {
+            assert!((x - px).hypot(y - py) <= 1e-9 * size, "{k:?}: at {phi} ({x}, {y}), construction ({px}, {py})");
+        }
+    }
+    assert!(events.iter().all(|e| e.kind == EventKind::LimitPosition), "{k:?}: {events:?}");
+    match limit {
+        Some(t) => {
+            let at = four.phi0 + four.dir * t;
+            let SweepStop::LimitPosition(ev) = stop else { panic!("{k:?}: {stop:?}, limit position at {at}") };
+            assert!((ev.x[0] - at).abs() <= 1e-9, "{k:?}: limit at {}, construction {at}", ev.x[0]);
+        }
+        None => assert_eq!(stop, &SweepStop::Completed, "{k:?}"),
+    }
+}
+
+/// A fixed seed: the same cases on every run, among them (for the gapped four-bars) some that a
+/// sweep stepping by its sample spacing crossed the gap on.
+fn config(cases: u32) -> ProptestConfig {
+    ProptestConfig { cases, failure_persistence: None, rng_seed: RngSeed::Fixed(SEED), ..ProptestConfig::default() }
+}
+
+const SEED: u64 = 8;
+
+proptest! {
+    #![proptest_config(config(64))]
+
+    #[test]
+    fn coarse_four_bar_sweeps_keep_their_branch_and_first_limit(k in four_bar_case()) {
+        let (beta, gamma) = four_bar_start(&k);
+        let (span, n) = (TAU * k.turns as f64, k.per_turn * k.turns);
+        let to = k.phi0 + k.dir * span;
+        let r = k.m.sweep(k.phi0, to, n, &FourBarUnknowns { beta, gamma }).unwrap().run();
+        let states: Vec<_> = r.states.iter().map(|s| (s.input.phi, s.q.beta, s.q.gamma)).collect();
+        check_four_bar(&k, &states, &r.stop, &r.events);
+        let m = FourBarNewton { a: k.m.a, b: k.m.b, c: k.m.c, d: k.m.d };
+        let r = m.sweep(k.phi0, to, n, &FourBarNewtonUnknowns { beta, gamma }).unwrap().run();
+        let states: Vec<_> = r.states.iter().map(|s| (s.input.phi, s.q.beta, s.q.gamma)).collect();
+        check_four_bar(&k, &states, &r.stop, &r.events);
+    }
+
+    #[test]
+    fn coarse_slider_crank_sweeps_keep_their_branch_and_first_limit(k in slider_case()) {
+        let (psi, x) = k.at(k.phi0).expect("filtered: the rod reaches the line");
+        let (span, n) = (TAU * k.turns as f64, k.per_turn * k.turns);
+        let to = k.phi0 + k.dir * span;
+        let r = k.m.sweep(k.phi0, to, n, &SliderUnknowns { psi, x }).unwrap().run();
+        let states: Vec<_> = r.states.iter().map(|s| (s.input.phi, s.q.psi, s.q.x)).collect();
+        check_slider(&k, &states, &r.stop, &r.events);
+        let m = SliderNewton { r: k.m.r, l: k.m.l, e: k.m.e };
+        let r = m.sweep(k.phi0, to, n, &SliderNewtonUnknowns { psi, x }).unwrap().run();
+        let states: Vec<_> = r.states.iter().map(|s| (s.input.phi, s.q.psi, s.q.x)).collect();
+        check_slider(&k, &states, &r.stop, &r.events);
+    }
+}
+
+proptest! {
+    #![proptest_config(config(48))]
+
+    #[test]
+    fn coarse_six_bar_sweeps_keep_their_branch_and_first_limit(k in six_bar_case()) {
+        let four = &k.four;
+        let (beta, gamma) = four_bar_start(four);
+        let m = &k.m;
+        let ((_, _), (fx, fy)) = k.joints(four.phi0).expect("filtered: the loops close");
+        let (ex, ey) = (m.d + m.c2 * (gamma + m.alpha).cos(), m.c2 * (gamma + m.alpha).sin());
+        let (delta, eps) = ((fy - ey).atan2(fx - ex), (fy - m.gy).atan2(fx - m.gx));
+        let (span, n) = (TAU * four.turns as f64, four.per_turn * four.turns);
+        let to = four.phi0 + four.dir * span;
+        let r = m.sweep(four.phi0, to, n, &SixBarUnknowns { beta, gamma, delta, eps }).unwrap().run();
+        let states: Vec<_> = r.states.iter().map(|s| (s.input.phi, [s.q.beta, s.q.gamma, s.q.delta, s.q.eps])).collect();
+        check_six_bar(&k, &states, &r.stop, &r.events);
+        let SixBar { a, b, c, d, c2, alpha, e, f, gx, gy } = *m;
+        let twin = SixBarNewton { a, b, c, d, c2, alpha, e, f, gx, gy };
+        let r = twin.sweep(four.phi0, to, n, &SixBarNewtonUnknowns { beta, gamma, delta, eps }).unwrap().run();
+        let states: Vec<_> = r.states.iter().map(|s| (s.input.phi, [s.q.beta, s.q.gamma, s.q.delta, s.q.eps])).collect();
+        check_six_bar(&k, &states, &r.stop, &r.events);
+    }
+}
+
+proptest! {
+    #![proptest_config(config(800))]
+
+    #[test]
+    fn coarse_sweeps_of_gapped_four_bars_do_not_cross_the_gap(k in gapped_four_bar_case()) {
+        let (beta, gamma) = four_bar_start(&k);
+        let (span, n) = (TAU * k.turns as f64, k.per_turn * k.turns);
+        let to = k.phi0 + k.dir * span;
+        let r = k.m.sweep(k.phi0, to, n, &FourBarUnknowns { beta, gamma }).unwrap().run();
+        let states: Vec<_> = r.states.iter().map(|s| (s.input.phi, s.q.beta, s.q.gamma)).collect();
+        check_four_bar(&k, &states, &r.stop, &r.events);
+        let m = FourBarNewton { a: k.m.a, b: k.m.b, c: k.m.c, d: k.m.d };
+        let r = m.sweep(k.phi0, to, n, &FourBarNewtonUnknowns { beta, gamma }).unwrap().run();
+        let states: Vec<_> = r.states.iter().map(|s| (s.input.phi, s.q.beta, s.q.gamma)).collect();
+        check_four_bar(&k, &states, &r.stop, &r.events);
+    }
+}
+
+/// A four-bar whose crank rocks on two disconnected stretches, `0.834 <= |phi| <= 1.700`: from
+/// the lower stretch, two or three samples over a turn used to step across the gap onto the
+/// upper one and report its far limit position.
+#[test]
+fn two_samples_meet_the_first_limit_position_of_two_thousand() {
+    let (a, b, c, d): (f64, f64, f64, f64) =
+        (1.167316486983594, 2.915455888055534, 0.4890604759650559, 3.0514760186111705);
+    let (phi0, beta, gamma): (f64, f64, f64) = (-1.4742276589232268, 0.23688881894505256, -1.7869470677896337);
+    // |BD| = |b - c|, by the law of cosines.
+    let r = b - c;
+    let first = -((a * a + d * d - r * r) / (2.0 * a * d)).acos();
+    let k = FourBarCase { m: FourBar { a, b, c, d }, phi0, side: 0.0, dir: 1.0, turns: 1, per_turn: 0 };
+    let side = {
+        // The start's side of B -> D, from the given angles.
+        let (bx, by) = (a * phi0.cos(), a * phi0.sin());
+        let (cx, cy) = (bx + b * beta.cos(), by + b * beta.sin());
+        ((d - bx) * (cy - by) - (0.0 - by) * (cx - bx)).signum()
+    };
+    let k = FourBarCase { side, ..k };
+    assert!((k.phi0 + k.first_limit().unwrap() - first).abs() < 1e-12);
+    for n in [2, 3, 5, 2000] {
+        let k = FourBarCase { per_turn: n, ..k.clone() };
+        let r = k.m.sweep(phi0, phi0 + TAU, n, &FourBarUnknowns { beta, gamma }).unwrap().run();
+        let states: Vec<_> = r.states.iter().map(|s| (s.input.phi, s.q.beta, s.q.gamma)).collect();
+        check_four_bar(&k, &states, &r.stop, &r.events);
+        let m = FourBarNewton { a, b, c, d };
+        let r = m.sweep(phi0, phi0 + TAU, n, &FourBarNewtonUnknowns { beta, gamma }).unwrap().run();
+        let states: Vec<_> = r.states.iter().map(|s| (s.input.phi, s.q.beta, s.q.gamma)).collect();
+        check_four_bar(&k, &states, &r.stop, &r.events);
+        assert!((r.stop.event().unwrap().x[0] - first).abs() < 1e-9, "{n} samples: {:?}", r.stop);
+        // The reachable stretch is the lower one, whatever the samples.
+        let reach = m.reachable(phi0, TAU, &FourBarNewtonUnknowns { beta, gamma }, n).unwrap();
+        let low = -((a * a + d * d - (b + c) * (b + c)) / (2.0 * a * d)).acos();
+        assert!((reach.from.phi - low).abs() < 1e-9 && (reach.to.phi - first).abs() < 1e-9, "{n}: {reach:?}");
+    }
+}
+
+/// An offset slider-crank whose crank cannot pass `sin phi = -0.9886`: swept down by a turn
+/// with two or three samples, both paths used to step across the gap and stop at the far limit.
+#[test]
+fn a_slider_crank_swept_coarsely_stops_at_its_first_limit_position() {
+    let (r, l, e): (f64, f64, f64) = (2.865045657806234, 1.8131016164683502, -1.019642607325769);
+    let phi0 = -0.15685475016024064;
+    // e - r sin(phi) = l.
+    let first = ((e - l) / r).asin();
+    assert!((first - -1.4204928582508287).abs() < 1e-12);
+    for n in [2, 3, 4, 2000] {
+        let k = SliderCase { m: Slider { r, l, e }, phi0, side: 1.0, dir: -1.0, turns: 1, per_turn: n };
+        let (psi, x) = k.at(phi0).unwrap();
+        let run = k.m.sweep(phi0, phi0 - TAU, n, &SliderUnknowns { psi, x }).unwrap().run();
+        let states: Vec<_> = run.states.iter().map(|s| (s.input.phi, s.q.psi, s.q.x)).collect();
+        check_slider(&k, &states, &run.stop, &run.events);
+        let m = SliderNewton { r, l, e };
+        let run = m.sweep(phi0, phi0 - TAU, n, &SliderNewtonUnknowns { psi, x }).unwrap().run();
+        let states: Vec<_> = run.states.iter().map(|s| (s.input.phi, s.q.psi, s.q.x)).collect();
+        check_slider(&k, &states, &run.stop, &run.events);
+        assert!((run.stop.event().unwrap().x[0] - first).abs() < 1e-9, "{n} samples: {:?}", run.stop);
+    }
+}
+
+/// The Grashof crank-rocker of the huge-range reports.
+const CRANK_ROCKER: FourBar = FourBar { a: 1.0, b: 3.0, c: 2.5, d: 3.2 };
+
+/// Over a range of more turns than a sweep follows, the sweep's first item is the documented
+/// error with the numbers, on every path into a sweep; never a crossing.
+#[test]
+fn a_range_of_more_turns_than_a_sweep_follows_is_refused_up_front() {
+    let m = CRANK_ROCKER;
+    let g = m.guess(0.0);
+    for to in [1e7, 1e12, 1e13, 1e14, 1e15, 1e300] {
+        for cfg in [SweepConfig::default(), SweepConfig::default().with_at_singular(AtSingular::Continue)] {
+            let mut sweep = m.sweep(0.0, to, 3, &g).unwrap().with_config(cfg);
+            let first = sweep.next().expect("an item");
+            match first {
+                Err(Error::RangeTooLong { turns, max_turns, .. }) => {
+                    assert!((turns - to / TAU).abs() <= 1e-12 * turns, "{turns} turns for {to}");
+                    assert_eq!(max_turns, MAX_TURNS);
+                }
+                other => panic!("to {to}: {other:?}"),
+            }
+            assert!(sweep.next().is_none() && sweep.events().is_empty());
+            let run = m.sweep(0.0, to, 3, &g).unwrap().with_config(cfg).run();
+            assert!(matches!(run.stop, SweepStop::Failed(Error::RangeTooLong { .. })), "{:?}", run.stop);
+            assert!(run.states.is_empty() && run.events.is_empty());
+        }
+        let e = m.reachable(0.0, to, &g, 3).unwrap_err();
+        assert!(matches!(e, Error::RangeTooLong { .. }), "{e}");
+        let msg = e.to_string();
+        assert!(msg.contains("turns") && msg.contains("split the range"), "{msg}");
+    }
+}
+
+/// The cap is on the range's turns, checked before the first sample: just below it the sweep
+/// starts (its first sample is the start's), just above it the first item is the error.
+#[test]
+fn the_cap_on_turns_is_the_documented_one() {
+    let m = CRANK_ROCKER;
+    let g = m.guess(0.0);
+    let below = m.sweep(0.0, TAU * MAX_TURNS * (1.0 - 1e-9), 3, &g).unwrap().next().unwrap().unwrap();
+    assert_eq!(below.input.phi, 0.0);
+    // Backwards, and from a start far from zero: the range's length counts.
+    let from = 1e3;
+    let first = m.sweep(from, from - TAU * MAX_TURNS * (1.0 + 1e-9), 3, &g).unwrap().next().unwrap();
+    assert!(matches!(first, Err(Error::RangeTooLong { .. })), "{first:?}");
+    const { assert!(MAX_TURNS >= 1e5, "a hundred thousand turns are followed") };
+}
+
+/// A crank that turns fully, followed over many turns with three samples: it completes, every
+/// sample where the construction puts it, no event.
+#[test]
+fn a_crank_rocker_over_many_turns_completes() {
+    let k = FourBarCase { m: CRANK_ROCKER, phi0: 0.0, side: 1.0, dir: 1.0, turns: 1, per_turn: 3 };
+    let (beta, gamma) = four_bar_start(&k);
+    let size = k.size();
+    for cfg in [SweepConfig::default(), SweepConfig::default().with_at_singular(AtSingular::Continue)] {
+        let run = k.m.sweep(0.0, 1e5, 3, &FourBarUnknowns { beta, gamma }).unwrap().with_config(cfg).run();
+        assert!(run.is_completed() && run.events.is_empty(), "{:?}", run.stop);
+        for s in &run.states {
+            let phi = s.input.phi;
+            let (cx, cy) = k.c_at(phi).unwrap();
+            let via_b = (phi.cos() + 3.0 * s.q.beta.cos(), phi.sin() + 3.0 * s.q.beta.sin());
+            // Far out the input itself is only known to its doubles' spacing.
+            let tol = 1e-9 * size + 4.0 * f64::EPSILON * phi.abs() * k.m.a;
+            assert!((via_b.0 - cx).hypot(via_b.1 - cy) <= tol, "at {phi}: {via_b:?} vs ({cx}, {cy})");
+        }
+        assert_eq!(run.states.iter().map(|s| s.input.phi).collect::<Vec<_>>(), [0.0, 5e4, 1e5]);
+    }
+}
+
+/// A step of a millionth of the sample spacing is the smallest a configuration may ask for; a
+/// smaller one is refused at validation, naming the field (not a "too rough" curve later).
+#[test]
+fn a_vanishing_max_step_is_refused_at_validation() {
+    let m = CRANK_ROCKER;
+    for step in [1e-300, 1e-7, f64::MIN_POSITIVE] {
+        let cfg = SweepConfig::default().with_max_step(step);
+        assert!(cfg.validate().unwrap_err().to_string().contains("max_step"), "{step}");
+        let run = m.sweep(0.0, 1.0, 3, &m.guess(0.0)).unwrap().with_config(cfg).run();
+        assert!(
+            matches!(&run.stop, SweepStop::Failed(Error::InvalidArgument(msg)) if msg.contains("max_step")),
+            "{:?}",
+            run.stop
+        );
+    }
+    let cfg = SweepConfig::default().with_max_step(1e-6);
+    assert!(cfg.validate().is_ok());
+    let run = m.sweep(0.0, 1e-3, 2, &m.guess(0.0)).unwrap().with_config(cfg).run();
+    assert!(run.is_completed(), "{:?}", run.stop);
+}
+
+/// The symmetric five-bar driven by its end effector straight up the line of symmetry: both arms
+/// stretch at once at `|P| = a + b`, and the input path can go no further. That is a limit
+/// position (it used to be a branch failure advising a lower `singular_pivot`, or a crossing).
+#[test]
+fn a_five_bar_driven_to_its_workspace_edge_stops_at_a_limit_position() {
+    let (a, b, d): (f64, f64, f64) = (0.15, 0.25, 0.4);
+    let px = d / 2.0;
+    // (px, py) at distance a + b from both motors.
+    let edge = ((a + b) * (a + b) - px * px).sqrt();
+    let size = 2.0 * (a + b) + d;
+    let m = IkFiveBar { a, b, c: b, d, e: a };
+    let modes = m.assembly_modes([px, 0.1]);
+    assert_eq!(modes.len(), 4, "two elbows on each side");
+    for start in &modes {
+        for n in [2, 3, 11, 101] {
+            let run = m.sweep([px, 0.1], [px, 1.0], n, &start.q).unwrap().run();
+            let SweepStop::LimitPosition(ev) = &run.stop else {
+                panic!("{n} samples from {:?}: {:?}", start.q, run.stop)
+            };
+            assert!((ev.x[0] - px).abs() <= 1e-12 && (ev.x[1] - edge).abs() <= 1e-9 * size, "{ev:?} vs {edge}");
+            assert!(run.events.len() == 1, "{:?}", run.events);
+            // Both arms stretched there.
+            for (motor, distal) in [(ev.q[0], ev.q[1]), (ev.q[2], ev.q[3])] {
+                assert!((motor - distal).sin().abs() <= 1e-6 && (motor - distal).cos() > 0.0, "{ev:?}");
+            }
+            assert!(run.states.iter().all(|s| s.input.py < edge), "{n}");
+            let q = start.q;
+            let twin = IkFiveBarNewton { a, b, c: b, d, e: a };
+            let guess = IkFiveBarNewtonUnknowns { th1: q.th1, phi2: q.phi2, th2: q.th2, phi3: q.phi3 };
+            let run = twin.sweep([px, 0.1], [px, 1.0], n, &guess).unwrap().run();
+            let SweepStop::LimitPosition(ev) = &run.stop else {
+                panic!("{n} samples from {:?}: {:?}", start.q, run.stop)
+            };
+            assert!((ev.x[1] - edge).abs() <= 1e-9 * size, "{ev:?} vs {edge}");
+        }
+    }
+}
