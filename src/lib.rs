@@ -44,7 +44,11 @@
 //! a second-order Taylor predictor from the generated analogs and a Newton corrector, and it
 //! **never jumps branches**: a step is accepted only if every block keeps the sign of its
 //! Jacobian determinant (its assembly mode), the corrected position lies near the prediction and
-//! the velocity analogs near theirs. When no step can be made it locates why — a **limit
+//! the velocity analogs near theirs. The samples are only the output grid: the steps between
+//! them are bounded in the inputs' own scale (a quarter radian for an angle) and by how much the
+//! predicted slopes change, so two samples per turn follow the same branch to the same first
+//! limit as two thousand. A range of more than a million turns is refused up front
+//! ([`Error::RangeTooLong`]). When no step can be made it locates why — a **limit
 //! position** of the input (found by pseudo-arclength continuation where the input reverses) or
 //! a **singular crossing** (a change point where a determinant changes sign) — records an
 //! [`Event`] with the input value, and stops with [`Error::SweepStopped`] (or, with
