@@ -3,7 +3,7 @@
 //! full turn, and the Grashof class against what a sweep can actually do.
 
 use kinloop::analysis::Sampled;
-use kinloop::metrics::{FourBarLinks, GrashofClass, grashof, limit_report, time_ratio_over, transmission_over};
+use kinloop::metrics::{FourBarLinks, GrashofClass, grashof, limit_report};
 use kinloop_fixtures::FourBar;
 use proptest::prelude::*;
 use std::f64::consts::{FRAC_PI_2, PI, TAU};
@@ -38,13 +38,13 @@ fn quick_return_ratio_of_a_crank_shaper_matches_its_closed_form_in_any_unit() {
         let turn = Sampled::sweep(&m, 0.2, 0.2 + TAU, 181, m.guess(0.2)).unwrap();
         let alpha = (r / d).asin();
         for column in [CrankShaper::COL.psi, CrankShaper::COL.x] {
-            let t = time_ratio_over(&turn, column).unwrap();
+            let t = turn.time_ratio(column).unwrap();
             // Extremes are located to rounding (roots of the velocity analog), the ratio to a
             // few ulps times its condition.
             assert_close!(t.ratio(), shaper_ratio(r, d), 1e-10 * shaper_ratio(r, d), "{column}: {t:?}");
             assert_close!(t.rising + t.falling, TAU, tol::SOLVE);
         }
-        let psi = time_ratio_over(&turn, CrankShaper::COL.psi).unwrap();
+        let psi = turn.time_ratio(CrankShaper::COL.psi).unwrap();
         assert_close!(psi.max.value, FRAC_PI_2 + alpha, tol::SOLVE, "{psi:?}");
         assert_close!(psi.min.value, FRAC_PI_2 - alpha, tol::SOLVE);
         // The lever rises (psi grows) while the crank runs the long way round, pi + 2 alpha.
@@ -71,7 +71,7 @@ proptest! {
         // The open assembly (C left of B -> D) as the guess.
         let guess = four_bar_angles(m.a, m.b, m.c, m.d, 0.0, 1.0).unwrap();
         let turn = Sampled::sweep(&m, 0.0, TAU, 181, guess).unwrap();
-        let mu = transmission_over(&turn, FourBar::COL.beta, FourBar::COL.gamma).unwrap();
+        let mu = turn.transmission(FourBar::COL.beta, FourBar::COL.gamma).unwrap();
         let cos_mu = |phi: f64| (b * b + c * c - a * a - d * d + 2.0 * a * d * phi.cos()) / (2.0 * b * c);
         let worst = cos_mu(0.0).abs().max(cos_mu(PI).abs());
         // The solver stops at an absolute residual of 1e-12 (length units): angles then carry

@@ -91,13 +91,14 @@ pub fn limit_report<M, const N: usize, const NO: usize>(
     from: f64,
     to: f64,
     samples: usize,
-    guess: [f64; N],
+    guess: impl Into<[f64; N]>,
     columns: &[Column<M>],
 ) -> Result<LimitReport, Error>
 where
     M: Mechanism<N, 1, NO>,
 {
     let cfg = SweepConfig { at_singular: AtSingular::Continue, ..SweepConfig::default() };
+    let guess: [f64; N] = guess.into();
     let mut sweep = Sweep::<M, Kin<N, 1, NO>, N, 1, NO>::new(m, [from], [to], samples, guess)?.with_config(cfg);
     let (mut last, mut count) = (from, 0usize);
     while let Some(step) = sweep.next_kin() {

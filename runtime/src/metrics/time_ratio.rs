@@ -78,15 +78,15 @@ pub fn time_ratio(samples: &[Jet], eval: impl FnMut(f64) -> Result<Jet, Error>) 
     Ok(TimeRatio { min, max, rising, falling: period - rising })
 }
 
-/// [`time_ratio`] of a column (`Name::COL.psi`) of a sweep over one full input turn.
-pub fn time_ratio_over<M, const N: usize, const NO: usize>(
-    turn: &Sampled<'_, M, N, NO>,
-    column: Column<M>,
-) -> Result<TimeRatio, Error>
+impl<M, const N: usize, const NO: usize> Sampled<'_, M, N, NO>
 where
     M: Mechanism<N, 1, NO>,
 {
-    time_ratio(&turn.jets(column)?, |x| turn.jet_at(column, x))
+    /// The time (quick-return) ratio ([`time_ratio()`]) of a column (`Name::COL.psi`) of a sweep
+    /// over one full input turn.
+    pub fn time_ratio(&self, column: Column<M>) -> Result<TimeRatio, Error> {
+        time_ratio(&self.jets(column)?, |x| self.jet_at(column, x))
+    }
 }
 
 #[cfg(test)]

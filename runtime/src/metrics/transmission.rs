@@ -110,18 +110,16 @@ pub fn transmission_range(
     Ok(TransmissionRange { min, max, dead_points })
 }
 
-/// [`transmission_range`] of a sampled sweep, the coupler and follower angles given by their
-/// columns (`Name::COL.beta`, `Name::COL.gamma`).
-pub fn transmission_over<M, const N: usize, const NO: usize>(
-    turn: &Sampled<'_, M, N, NO>,
-    coupler: Column<M>,
-    follower: Column<M>,
-) -> Result<TransmissionRange, Error>
+impl<M, const N: usize, const NO: usize> Sampled<'_, M, N, NO>
 where
     M: Mechanism<N, 1, NO>,
 {
-    let (cj, fj) = (turn.jets(coupler)?, turn.jets(follower)?);
-    transmission_range(&cj, &fj, |x| turn.at(x).map(|k| (coupler.jet(&k), follower.jet(&k))))
+    /// The transmission angle's range ([`transmission_range`]) over a sampled sweep, the coupler
+    /// and follower angles given by their columns (`Name::COL.beta`, `Name::COL.gamma`).
+    pub fn transmission(&self, coupler: Column<M>, follower: Column<M>) -> Result<TransmissionRange, Error> {
+        let (cj, fj) = (self.jets(coupler)?, self.jets(follower)?);
+        transmission_range(&cj, &fj, |x| self.at(x).map(|k| (coupler.jet(&k), follower.jet(&k))))
+    }
 }
 
 #[cfg(test)]
