@@ -724,3 +724,8 @@ pub use crate::__no_mass_model as no_mass_model;
 pub use crate::__rejected_mechanism as rejected_mechanism;
 mod rejected;
 pub use rejected::{MassModelDeclared, rejected};
+
+// A state's serialized form, by name (see `state_by_name`).
+pub use crate::__state_by_name as state_by_name;
+mod state_by_name;
+pub use state_by_name::StateByName;

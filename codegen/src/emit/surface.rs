@@ -285,9 +285,21 @@ fn state_struct(s: &Surface, t: &Types) -> TokenStream {
          ({analog_doc}), acceleration analogs, and the same for every output."
     );
     let motion_struct = motion_struct(s, t);
-    // A state serializes as its flat `Kin` (the named fields repeat its values).
-    let kin = format!("::kinloop::__gen::Kin<{}, {ni}, {}>", s.unknowns.len(), s.n_outputs());
-    let derive = derives(quote!(Clone, Copy, Debug, PartialEq), quote!(, from = #kin, into = #kin));
+    // A state serializes by name: its named fields without the flat copy of the same values,
+    // which deserialization rebuilds from them (the runtime's `StateByName`).
+    let (vs, as_) = if ni == 1 {
+        ("f64".to_string(), "f64".to_string())
+    } else {
+        (format!("{inputs}<f64>"), format!("{inputs}<{inputs}<f64>>"))
+    };
+    let by_name = format!(
+        "::kinloop::__gen::StateByName<{inputs}, {unknowns}, {unknowns}<{vs}>, {unknowns}<{as_}>, {outputs}, \
+         {outputs}<{vs}>, {outputs}<{as_}>>"
+    );
+    let derive = derives(quote!(Clone, Copy, Debug, PartialEq), quote!(, from = #by_name, into = #by_name));
+    let arity = if ni == 1 { quote!(one) } else { quote!(many) };
+    let by_name_conversions =
+        quote!(#rt::state_by_name!(#state, #inputs, #unknowns, #outputs, #nl, #nil, #nol, #arity););
     let state_line = format!(" {state_doc}");
     quote! {
         #[doc = #state_line]
@@ -337,6 +349,7 @@ fn state_struct(s: &Surface, t: &Types) -> TokenStream {
                 }
             }
         }
+        #by_name_conversions
         #motion_struct
     }
 }

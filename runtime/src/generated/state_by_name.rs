@@ -1,0 +1,79 @@
+//! The serialized form of a generated `NameState`: its named fields (`"q": {"beta": ..}`), not
+//! the flat copy of the same values, which deserialization rebuilds from them.
+
+use crate::kin::Health;
+use crate::solvers::newton::SolveReport;
+
+/// A generated state's named fields: inputs `I`, unknowns `U` with their analogs `UV`, `UA`,
+/// outputs `O` with theirs `OV`, `OA`, and the solve's report and health. A generated state
+/// serializes through it (`serde(into, from)`), so a state's JSON names every value.
+#[derive(Clone, Copy, Debug)]
+#[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
+pub struct StateByName<I, U, UV, UA, O, OV, OA> {
+    /// The input values.
+    pub input: I,
+    /// Positions of the unknowns.
+    pub q: U,
+    /// Velocity analogs.
+    pub dq: UV,
+    /// Acceleration analogs.
+    pub d2q: UA,
+    /// Output values.
+    pub out: O,
+    /// Velocity analogs of the outputs.
+    pub dout: OV,
+    /// Acceleration analogs of the outputs.
+    pub d2out: OA,
+    /// Diagnostics of the position solve.
+    pub report: SolveReport,
+    /// Conditioning and assembly mode of each block.
+    pub health: Health,
+}
+
+/// The conversions of a generated state to and from its [`StateByName`]: `one` input (analogs
+/// are numbers) or `many` (analogs are the named inputs' structs).
+#[doc(hidden)]
+#[macro_export]
+macro_rules! __state_by_name {
+    ($state:ident, $inputs:ident, $unknowns:ident, $outputs:ident, $n:literal, $ni:literal, $no:literal, one) => {
+        $crate::__state_by_name!(@impl $state, $inputs, $unknowns, $outputs, $n, $ni, $no, f64, f64,
+            |v: f64| [v], |a: f64| [[a]]);
+    };
+    ($state:ident, $inputs:ident, $unknowns:ident, $outputs:ident, $n:literal, $ni:literal, $no:literal, many) => {
+        $crate::__state_by_name!(@impl $state, $inputs, $unknowns, $outputs, $n, $ni, $no, $inputs<f64>,
+            $inputs<$inputs<f64>>, <[f64; $ni]>::from,
+            |a: $inputs<$inputs<f64>>| <[$inputs<f64>; $ni]>::from(a).map(<[f64; $ni]>::from));
+    };
+    (@impl $state:ident, $inputs:ident, $unknowns:ident, $outputs:ident, $n:literal, $ni:literal, $no:literal,
+        $v:ty, $a:ty, $back_v:expr, $back_a:expr) => {
+        impl ::core::convert::From<$state>
+            for $crate::generated::StateByName<$inputs, $unknowns, $unknowns<$v>, $unknowns<$a>, $outputs, $outputs<$v>, $outputs<$a>>
+        {
+            fn from(s: $state) -> Self {
+                $crate::generated::StateByName {
+                    input: s.input, q: s.q, dq: s.dq, d2q: s.d2q, out: s.out, dout: s.dout, d2out: s.d2out,
+                    report: s.report, health: s.health,
+                }
+            }
+        }
+        impl ::core::convert::From<$crate::generated::StateByName<$inputs, $unknowns, $unknowns<$v>, $unknowns<$a>, $outputs, $outputs<$v>, $outputs<$a>>>
+            for $state
+        {
+            fn from(
+                s: $crate::generated::StateByName<$inputs, $unknowns, $unknowns<$v>, $unknowns<$a>, $outputs, $outputs<$v>, $outputs<$a>>,
+            ) -> Self {
+                $state::from($crate::Kin::<$n, $ni, $no> {
+                    x: s.input.into(),
+                    q: s.q.into(),
+                    dq: <[$v; $n]>::from(s.dq).map($back_v),
+                    d2q: <[$a; $n]>::from(s.d2q).map($back_a),
+                    out: s.out.into(),
+                    dout: <[$v; $no]>::from(s.dout).map($back_v),
+                    d2out: <[$a; $no]>::from(s.d2out).map($back_a),
+                    report: s.report,
+                    health: s.health,
+                })
+            }
+        }
+    };
+}
