@@ -52,3 +52,21 @@ fn a_form_spelled_like_a_leaf_is_not_a_name() {
     assert!(code.contains(": f64 = self.x * self.phi;") && !code.contains("let x_phi"), "{code}");
     assert!(code.contains("let th_l: f64 = x_th * self.l;"), "{code}");
 }
+
+/// A `let` names the temporary that holds its value (a vector's components `_x`, `_y`), unless
+/// its name reads as one the generator gives (here `t2`, an anonymous temporary's spelling).
+#[test]
+fn a_let_names_the_temporary_it_produced() {
+    let code = expanded(
+        "pub struct Crank { params a, b, c, d; input phi; unknowns beta = 0.5, gamma = 1.5;
+            let crank_pin = a @ phi + (0, c);
+            let reach = b * cos(beta) + d;
+            let t2 = reach * reach;
+            loop abcd: crank_pin + b @ beta == (d, 0) + c @ gamma;
+            output spread = reach + t2; }",
+    );
+    assert!(code.contains("let crank_pin_x: f64 = "), "{code}");
+    assert!(code.contains("let crank_pin_y: f64 = "), "{code}");
+    assert!(code.contains("let reach: f64 = "), "{code}");
+    assert!(!code.contains("let t2: f64 = reach * reach"), "{code}");
+}

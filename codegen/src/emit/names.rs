@@ -345,6 +345,10 @@ fn roles(model: &Model, plan: &Plan) -> HashMap<NodeId, Ident> {
             give(*n, name, &mut roles);
         }
     }
+    // A `let`'s value is named after it, unless its name reads as a name of another kind.
+    for (n, name) in model.lets.iter().filter(|(_, name)| !reads_as_generated(name)) {
+        give(*n, name, &mut roles);
+    }
     for (k, form) in forms.iter().enumerate() {
         if let Some(form) = form {
             give(NodeId(k as u32), form, &mut roles);
@@ -355,6 +359,16 @@ fn roles(model: &Model, plan: &Plan) -> HashMap<NodeId, Ident> {
         give(*n, name, &mut roles);
     }
     roles
+}
+
+/// Whether a `let`'s name would read as (or be) a name the generator gives: a leaf's local
+/// (`x_phi`, `q_beta`, its analogs and sensitivities), an anonymous temporary (`t12`), a
+/// declared quantity's (`r_abcd_x`, `out_p_x`, ...) or a hidden local (`__cfg`).
+fn reads_as_generated(name: &str) -> bool {
+    const PREFIXES: [&str; 13] =
+        ["x_", "q_", "dq", "d2q", "sq_", "sdq", "sd2q", "r_", "j_", "fx_", "out_", "dout_", "d2out_"];
+    let anonymous = name.strip_prefix('t').is_some_and(|d| !d.is_empty() && d.bytes().all(|b| b.is_ascii_digit()));
+    name.starts_with("__") || anonymous || PREFIXES.iter().any(|p| name.starts_with(p))
 }
 
 /// Per node, the name of its form where it is short: a function of a declared name

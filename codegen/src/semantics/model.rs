@@ -9,6 +9,7 @@ use crate::front::syntax::{Decl, DeclKind, Item, ItemKind, MechanismDef, Options
 use crate::graph::dag::{Graph, NodeId};
 use proc_macro2::Span;
 use std::collections::HashMap;
+use syn::ext::IdentExt;
 use syn::{Attribute, Ident, Visibility};
 
 /// Most unknowns (and equations) one mechanism may declare. Every block of the decomposition
@@ -100,6 +101,9 @@ pub struct Model {
     pub used_inputs: Vec<bool>,
     /// Bodies, loads and gravity (`body`, `force`, `torque`, `gravity`), if declared.
     pub dynamics: DynamicsModel,
+    /// The node of each `let`, with the let's name (`v_x`, `v_y` for a vector `let v`), in
+    /// declaration order: the generated code names the temporary after it.
+    pub lets: Vec<(NodeId, String)>,
 }
 
 impl Model {
@@ -157,6 +161,7 @@ struct Lowered {
     /// Names of the `loop` and `eq` items seen so far, where first given.
     item_names: HashMap<String, Span>,
     dynamics: Pending,
+    lets: Vec<(NodeId, String)>,
 }
 
 /// Builds the model; all semantic errors found are returned together.
@@ -211,7 +216,7 @@ pub(crate) fn build(def: MechanismDef) -> Result<Model, syn::Error> {
     let unknowns =
         globals.unknowns.iter().zip(out.unknown_guess).map(|(d, value)| named(d, value, &globals.item_of)).collect();
     let Lowerer { graph, errors, used_params, used_inputs, .. } = lw;
-    let (equations, points, scalars) = (out.equations, out.points, out.scalars);
+    let (equations, points, scalars, lets) = (out.equations, out.points, out.scalars, out.lets);
     errors.finish(Model {
         docs,
         options,
@@ -228,6 +233,7 @@ pub(crate) fn build(def: MechanismDef) -> Result<Model, syn::Error> {
         used_params,
         used_inputs,
         dynamics,
+        lets,
     })
 }
 
@@ -310,7 +316,14 @@ fn lower_item(lw: &mut Lowerer, g: &Globals, item: &Item, out: &mut Lowered) {
         }
         ItemKind::Decls(..) => {}
         ItemKind::Let { name, value } => match lw.lower(value) {
-            Some(v) => lw.define(name, v),
+            Some(v) => {
+                let plain = name.unraw().to_string();
+                match v {
+                    Val::S(n) => out.lets.push((n, plain)),
+                    Val::V(x, y) => out.lets.extend([(x, format!("{plain}_x")), (y, format!("{plain}_y"))]),
+                }
+                lw.define(name, v)
+            }
             None => lw.poison(name),
         },
         ItemKind::Point { name, value } => lower_point(lw, item, name, value, out),
