@@ -1,6 +1,8 @@
 //! Fuzz-style robustness test of the macro's entry points: thousands of random and mutated token
 //! streams (from valid declarations) go through `kinloop_codegen::expand` and `analyze`, which
-//! must return (Ok or Err / code or `compile_error!`) without panicking, within a time bound.
+//! must return (Ok or Err / code or `compile_error!`) without panicking. A hang cannot pass
+//! either: the front end's size and operation limits (`front/limits.rs`, pinned by their own
+//! tests) bound the work any input causes; no test here reads the clock.
 //!
 //! Deterministic: a fixed-seed PRNG drives every choice, so a failure names the case number and
 //! its input, and reruns the same. Set `KINLOOP_FUZZ_CASES` to run more cases (the coverage-guided
@@ -8,7 +10,6 @@
 
 use proc_macro2::{Delimiter, Group, Ident, Literal, Punct, Spacing, Span, TokenStream, TokenTree};
 use std::panic::{AssertUnwindSafe, catch_unwind};
-use std::time::{Duration, Instant};
 
 /// Valid declarations (bodies of `mechanism!`), the material mutations start from.
 const SEEDS: &[&str] = &[
@@ -281,12 +282,10 @@ fn random_stream(rng: &mut Rng, len: usize, depth: usize) -> Vec<Tok> {
 
 /// Runs both entry points on `ts`; panics become test failures naming the input. Returns whether
 /// the declaration was accepted (code without `compile_error!`).
-fn check(case: &str, ts: TokenStream, slowest: &mut (Duration, String)) -> bool {
+fn check(case: &str, ts: TokenStream) -> bool {
     let text = ts.to_string();
-    let start = Instant::now();
     let analyzed = catch_unwind(AssertUnwindSafe(|| kinloop_codegen::analyze(ts.clone()).map(|_| ())));
     let expanded = catch_unwind(AssertUnwindSafe(|| kinloop_codegen::expand(ts)));
-    let elapsed = start.elapsed();
     let shown: String = text.chars().take(2000).collect();
     assert!(analyzed.is_ok(), "`analyze` panicked on {case}:\n{shown}");
     let out = expanded.unwrap_or_else(|_| panic!("`expand` panicked on {case}:\n{shown}"));
@@ -299,20 +298,10 @@ fn check(case: &str, ts: TokenStream, slowest: &mut (Duration, String)) -> bool 
     {
         panic!("`expand` produced tokens that are not Rust items on {case}: {e}\n{shown}\n=> {printed}");
     }
-    assert!(elapsed < PER_INPUT, "{case} took {elapsed:?} (bound {PER_INPUT:?}):\n{shown}");
-    if elapsed > slowest.0 {
-        *slowest = (elapsed, case.to_string());
-    }
     let accepted = !printed.contains("compile_error");
     assert_eq!(accepted, matches!(analyzed, Ok(Ok(()))), "`analyze` and `expand` disagree on {case}:\n{shown}");
     accepted
 }
-
-/// Bound per input: it catches a hang or an exponential blow-up, not a slow machine. Wall-clock
-/// time on a machine shared with parallel builds varies by more than 10x (a 5 s bound failed
-/// there; the slowest of 3000 mutations took 35 ms in a debug build under load), hence the wide
-/// margin.
-const PER_INPUT: Duration = Duration::from_secs(30);
 
 fn cases() -> usize {
     std::env::var("KINLOOP_FUZZ_CASES").ok().and_then(|v| v.parse().ok()).unwrap_or(3000)
@@ -342,8 +331,6 @@ fn mutated_declarations_never_panic() {
     with_compiler_stack(|| {
         let seeds: Vec<Vec<Tok>> = SEEDS.iter().map(|s| to_toks(s.parse().expect("seed tokens"))).collect();
         let mut rng = Rng(0x6b69_6e6c_6f6f_7031);
-        let mut slowest = (Duration::ZERO, String::new());
-        let start = Instant::now();
         let mut accepted = 0;
         for case in 0..cases() {
             let mut toks = rng.pick(&seeds).clone();
@@ -351,15 +338,9 @@ fn mutated_declarations_never_panic() {
             for _ in 0..1 + rng.below(6) {
                 mutate(&mut rng, &mut toks, &donor);
             }
-            accepted += usize::from(check(&format!("mutation case {case}"), to_stream(&toks), &mut slowest));
+            accepted += usize::from(check(&format!("mutation case {case}"), to_stream(&toks)));
         }
-        eprintln!(
-            "mutations: {} cases ({accepted} still valid) in {:?}; slowest {:?} ({})",
-            cases(),
-            start.elapsed(),
-            slowest.0,
-            slowest.1
-        );
+        eprintln!("mutations: {} cases ({accepted} still valid)", cases());
         // Some mutants must stay valid (e.g. a duplicated `,`), or code generation is never fuzzed.
         assert!(accepted > cases() / 50, "only {accepted} mutants were valid");
     });
@@ -369,7 +350,6 @@ fn mutated_declarations_never_panic() {
 fn random_streams_never_panic() {
     with_compiler_stack(|| {
         let mut rng = Rng(0x7261_6e64_6f6d_0002);
-        let mut slowest = (Duration::ZERO, String::new());
         for case in 0..cases() {
             let len = rng.below(40);
             let mut toks = random_stream(&mut rng, len, 0);
@@ -380,9 +360,8 @@ fn random_streams_never_panic() {
                 body.push(Tok::Group(Delimiter::Brace, toks));
                 toks = body;
             }
-            check(&format!("random case {case}"), to_stream(&toks), &mut slowest);
+            check(&format!("random case {case}"), to_stream(&toks));
         }
-        eprintln!("random streams: slowest {:?} ({})", slowest.0, slowest.1);
     });
 }
 
@@ -437,10 +416,9 @@ fn extreme_inputs_are_rejected_or_accepted_without_panic() {
                 (0..60).map(|k| format!("u{k}")).collect::<Vec<_>>().join(", ")
             ),
         ));
-        let mut slowest = (Duration::ZERO, String::new());
         for (what, src) in inputs {
             let ts: TokenStream = src.parse().unwrap_or_else(|e| panic!("{what}: {e}"));
-            check(what.as_str(), ts, &mut slowest);
+            check(what.as_str(), ts);
         }
         // Idents and literals built directly (not from text).
         let odd: TokenStream = [
@@ -454,24 +432,18 @@ fn extreme_inputs_are_rejected_or_accepted_without_panic() {
         ]
         .into_iter()
         .collect();
-        check("direct tokens", odd, &mut slowest);
-        eprintln!("extreme inputs: slowest {:?} ({})", slowest.0, slowest.1);
+        check("direct tokens", odd);
     });
 }
 
 /// Runs both entry points on a huge input without printing it (printing a token stream
-/// recurses into its groups) and returns the expansion's text and the time both took.
-fn run_huge(what: &str, src: &str) -> (String, Duration) {
+/// recurses into its groups) and returns the expansion's text.
+fn run_huge(what: &str, src: &str) -> String {
     let ts: TokenStream = src.parse().unwrap_or_else(|e| panic!("{what}: {e}"));
-    let start = Instant::now();
     let analyzed = catch_unwind(AssertUnwindSafe(|| kinloop_codegen::analyze(ts.clone()).err().map(|e| e.to_string())));
     let expanded = catch_unwind(AssertUnwindSafe(|| kinloop_codegen::expand(ts)));
-    let elapsed = start.elapsed();
     assert!(analyzed.is_ok(), "`analyze` panicked on {what}");
-    let out = expanded.unwrap_or_else(|_| panic!("`expand` panicked on {what}")).to_string();
-    assert!(elapsed < PER_INPUT, "{what} took {elapsed:?} (bound {PER_INPUT:?})");
-    eprintln!("{what}: {elapsed:?}");
-    (out, elapsed)
+    expanded.unwrap_or_else(|_| panic!("`expand` panicked on {what}")).to_string()
 }
 
 /// Brackets nested far beyond any parser's recursion: rejected by one error naming the limit,
@@ -490,7 +462,7 @@ fn deep_nesting_is_one_error_without_stack_overflow() {
                     ("attribute", format!("#[kinloop{deep}] pub struct M {{}}")),
                 ] {
                     let what = format!("{n} nested `{open}` in the {place}");
-                    let (out, _) = run_huge(&what, &src);
+                    let out = run_huge(&what, &src);
                     assert_eq!(out.matches("compile_error").count(), 1, "{what}: {out}");
                     assert!(out.contains("nested more than 256 levels deep"), "{what}: {out}");
                 }
@@ -500,7 +472,7 @@ fn deep_nesting_is_one_error_without_stack_overflow() {
 }
 
 /// Long chains of `let`s: accepted while small, then one error naming the limit that is hit
-/// (the size of the lowered declaration, then the number of tokens), always within the bound.
+/// (the size of the lowered declaration, then the number of tokens).
 #[test]
 fn huge_let_chains_are_bounded() {
     with_compiler_stack(|| {
@@ -512,17 +484,17 @@ fn huge_let_chains_are_bounded() {
                 n - 1
             )
         };
-        let (out, _) = run_huge("2000 lets", &chain(2000));
+        let out = run_huge("2000 lets", &chain(2000));
         assert!(!out.contains("compile_error"), "2000 lets are a valid declaration");
         // Two operations per `let`: the limit of 5000 is crossed near the 2500th.
         for n in [3000, 9000] {
-            let (out, _) = run_huge(&format!("{n} lets"), &chain(n));
+            let out = run_huge(&format!("{n} lets"), &chain(n));
             assert_eq!(out.matches("compile_error").count(), 1, "{}", &out[..out.len().min(2000)]);
             assert!(out.contains("more than 5000 distinct operations"), "{}", &out[..out.len().min(2000)]);
         }
         // Nine tokens per `let`: beyond 11111 of them the token limit stops everything first.
         for n in [15_000, 50_000, 200_000] {
-            let (out, _) = run_huge(&format!("{n} lets"), &chain(n));
+            let out = run_huge(&format!("{n} lets"), &chain(n));
             assert_eq!(out.matches("compile_error").count(), 1);
             assert!(out.contains("more than 100000 tokens"), "{}", &out[..out.len().min(2000)]);
         }
