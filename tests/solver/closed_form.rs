@@ -90,22 +90,6 @@ fn newton_twins_are_the_fixtures() {
     }
 }
 
-/// Declares a mechanism twice from one body: as `$name` (closed forms where recognised) and as
-/// `$newton` with `#[kinloop(newton)]`, so that the two cannot drift apart.
-macro_rules! with_newton_twin {
-    ($(#[doc = $doc:literal])* pub struct $name:ident, $newton:ident { $($body:tt)* }) => {
-        kinloop::mechanism! {
-            $(#[doc = $doc])*
-            pub struct $name { $($body)* }
-        }
-        kinloop::mechanism! {
-            $(#[doc = $doc])*
-            #[kinloop(newton)]
-            pub struct $newton { $($body)* }
-        }
-    };
-}
-
 with_newton_twin! {
     /// Grashof crank-rocker with a coupler point (RRR dyad).
     pub struct FourBar, FourBarNewton {

@@ -12,13 +12,6 @@ use std::f64::consts::{PI, TAU};
 
 use crate::support::{circle_point, four_bar_angles, newton_to_rounding, wrap};
 
-macro_rules! with_newton_twin {
-    (pub struct $name:ident, $newton:ident { $($body:tt)* }) => {
-        kinloop::mechanism! { pub struct $name { $($body)* } }
-        kinloop::mechanism! { #[kinloop(newton)] pub struct $newton { $($body)* } }
-    };
-}
-
 with_newton_twin! {
     pub struct FourBar, FourBarNewton {
         params a, b, c, d;

@@ -8,6 +8,22 @@ use std::f64::consts::{PI, TAU};
 
 pub mod tol;
 
+/// Declares a mechanism twice from one body: as `$name` (closed forms where recognised) and as
+/// `$newton` with `#[kinloop(newton)]`, so that the two cannot drift apart.
+macro_rules! with_newton_twin {
+    ($(#[doc = $doc:literal])* pub struct $name:ident, $newton:ident { $($body:tt)* }) => {
+        kinloop::mechanism! {
+            $(#[doc = $doc])*
+            pub struct $name { $($body)* }
+        }
+        kinloop::mechanism! {
+            $(#[doc = $doc])*
+            #[kinloop(newton)]
+            pub struct $newton { $($body)* }
+        }
+    };
+}
+
 /// Asserts that `actual` is within a tolerance of `expected`, and on failure prints both, their
 /// difference, the tolerance and a label (by default the expression of `actual`; a format
 /// string and its arguments otherwise).

@@ -14,22 +14,6 @@ use proptest::prelude::*;
 use proptest::test_runner::RngSeed;
 use std::f64::consts::{PI, TAU};
 
-/// Declares a mechanism twice from one body: as `$name` (closed forms where recognised) and as
-/// `$newton` with `#[kinloop(newton)]`.
-macro_rules! with_newton_twin {
-    ($(#[doc = $doc:literal])* pub struct $name:ident, $newton:ident { $($body:tt)* }) => {
-        kinloop::mechanism! {
-            $(#[doc = $doc])*
-            pub struct $name { $($body)* }
-        }
-        kinloop::mechanism! {
-            $(#[doc = $doc])*
-            #[kinloop(newton)]
-            pub struct $newton { $($body)* }
-        }
-    };
-}
-
 with_newton_twin! {
     /// Four-bar: crank `a` at the origin, coupler `b`, rocker `c` pivoted at (d, 0).
     pub struct FourBar, FourBarNewton {
