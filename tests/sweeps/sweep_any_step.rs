@@ -433,6 +433,21 @@ fn check_six_bar(k: &SixBarCase, states: &[(f64, [f64; 4])], stop: &SweepStop, e
     }
 }
 
+/// Sweeps case `k` on the closed-form path and on the Newton path, each checked against the
+/// construction.
+fn sweep_four_bar_both_paths(k: &FourBarCase) {
+    let (beta, gamma) = four_bar_start(k);
+    let (span, n) = (TAU * k.turns as f64, k.per_turn * k.turns);
+    let to = k.phi0 + k.dir * span;
+    let r = k.m.sweep(k.phi0, to, n, &FourBarUnknowns { beta, gamma }).unwrap().run();
+    let states: Vec<_> = r.states.iter().map(|s| (s.input.phi, s.q.beta, s.q.gamma)).collect();
+    check_four_bar(k, &states, &r.stop, &r.events);
+    let m = FourBarNewton { a: k.m.a, b: k.m.b, c: k.m.c, d: k.m.d };
+    let r = m.sweep(k.phi0, to, n, &FourBarNewtonUnknowns { beta, gamma }).unwrap().run();
+    let states: Vec<_> = r.states.iter().map(|s| (s.input.phi, s.q.beta, s.q.gamma)).collect();
+    check_four_bar(k, &states, &r.stop, &r.events);
+}
+
 /// A fixed seed: the same cases on every run, among them (for the gapped four-bars) some that a
 /// sweep stepping by its sample spacing crossed the gap on.
 fn config(cases: u32) -> ProptestConfig {
@@ -446,16 +461,7 @@ proptest! {
 
     #[test]
     fn coarse_four_bar_sweeps_keep_their_branch_and_first_limit(k in four_bar_case()) {
-        let (beta, gamma) = four_bar_start(&k);
-        let (span, n) = (TAU * k.turns as f64, k.per_turn * k.turns);
-        let to = k.phi0 + k.dir * span;
-        let r = k.m.sweep(k.phi0, to, n, &FourBarUnknowns { beta, gamma }).unwrap().run();
-        let states: Vec<_> = r.states.iter().map(|s| (s.input.phi, s.q.beta, s.q.gamma)).collect();
-        check_four_bar(&k, &states, &r.stop, &r.events);
-        let m = FourBarNewton { a: k.m.a, b: k.m.b, c: k.m.c, d: k.m.d };
-        let r = m.sweep(k.phi0, to, n, &FourBarNewtonUnknowns { beta, gamma }).unwrap().run();
-        let states: Vec<_> = r.states.iter().map(|s| (s.input.phi, s.q.beta, s.q.gamma)).collect();
-        check_four_bar(&k, &states, &r.stop, &r.events);
+        sweep_four_bar_both_paths(&k);
     }
 
     #[test]
@@ -502,16 +508,7 @@ proptest! {
 
     #[test]
     fn coarse_sweeps_of_gapped_four_bars_do_not_cross_the_gap(k in gapped_four_bar_case()) {
-        let (beta, gamma) = four_bar_start(&k);
-        let (span, n) = (TAU * k.turns as f64, k.per_turn * k.turns);
-        let to = k.phi0 + k.dir * span;
-        let r = k.m.sweep(k.phi0, to, n, &FourBarUnknowns { beta, gamma }).unwrap().run();
-        let states: Vec<_> = r.states.iter().map(|s| (s.input.phi, s.q.beta, s.q.gamma)).collect();
-        check_four_bar(&k, &states, &r.stop, &r.events);
-        let m = FourBarNewton { a: k.m.a, b: k.m.b, c: k.m.c, d: k.m.d };
-        let r = m.sweep(k.phi0, to, n, &FourBarNewtonUnknowns { beta, gamma }).unwrap().run();
-        let states: Vec<_> = r.states.iter().map(|s| (s.input.phi, s.q.beta, s.q.gamma)).collect();
-        check_four_bar(&k, &states, &r.stop, &r.events);
+        sweep_four_bar_both_paths(&k);
     }
 }
 
