@@ -37,6 +37,7 @@ mod mechanism;
 pub mod metrics;
 pub mod paths;
 mod solvers;
+pub mod synthesis;
 mod table;
 mod table_units;
 #[cfg(test)]

@@ -1,0 +1,1 @@
+//! Closed-form four-bar synthesis from the classical theory.
