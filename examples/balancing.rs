@@ -38,7 +38,7 @@
 //!
 //! Run with `cargo run --release -p kinloop-examples --example balancing`.
 
-use kinloop::analysis::{NelderMead, Sampled};
+use kinloop::analysis::NelderMead;
 use kinloop::plot::{self, Axis, Kind, Panel, Series};
 use kinloop_fixtures::balancing::{Balance, PHASE, SAMPLES, design, phased, unbalance};
 use std::f64::consts::{PI, TAU};
@@ -51,7 +51,7 @@ struct Curves {
 
 /// Prints a design's harmonics and D; returns its curves over the turn.
 fn describe(name: &str, m: &Balance) -> Result<Curves, Box<dyn std::error::Error>> {
-    let turn = Sampled::sweep(m, 0.0, TAU, SAMPLES + 1, m.guess(0.0))?;
+    let turn = m.sampled(0.0, TAU, SAMPLES + 1, &m.guess(0.0))?;
     let f = turn.fourier(Balance::COL.xc, 6)?;
     let r = turn.unbalance(Balance::COL.xc, 1)?;
     println!(

@@ -13,7 +13,6 @@
 //! `$KINLOOP_FIGURES/rhombic_drive/` when that variable is set).
 
 use kinloop::Table;
-use kinloop::analysis::Sampled;
 use kinloop::plot::{self, Axis, Kind, Panel, Series};
 use kinloop_fixtures::{RhombicDrive, RhombicDriveState};
 use std::f64::consts::TAU;
@@ -72,7 +71,7 @@ fn print_table(states: &[RhombicDriveState]) {
 fn report_extremes(drive: &RhombicDrive) -> Result<()> {
     // Extreme positions, located as roots of the velocity analogs (dX/dphi1 = 0) on a sweep of
     // one turn, against the closed forms: crank and rod stretched (outer) or folded (inner).
-    let turn = Sampled::sweep(drive, 0.0, TAU, 361, drive.guess(0.0))?;
+    let turn = drive.sampled(0.0, TAU, 361, &drive.guess(0.0))?;
     let xc = turn.range(RhombicDrive::COL.x_c)?;
     let xf = turn.range(RhombicDrive::COL.x_f)?;
     let e_b = drive.e_p - drive.de;

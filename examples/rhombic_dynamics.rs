@@ -21,7 +21,7 @@
 
 use kinloop::Mechanism;
 use kinloop::Table;
-use kinloop::dynamics::{Cycle, CyclePoint, Load, RunConfig, Simulation, SpeedLaw, Trajectory, inverse_cycle};
+use kinloop::dynamics::{Cycle, CyclePoint, InverseCycle, Load, RunConfig, Simulation, SpeedLaw, Trajectory};
 use kinloop_examples::{Series, figure_dir, line_chart, out_dir};
 use kinloop_fixtures::StirlingEngine;
 use std::f64::consts::{PI, TAU};
@@ -65,7 +65,7 @@ fn with_gas(
     t_hot: f64,
     mean_pressure: f64,
 ) -> Result<StirlingEngine, Box<dyn std::error::Error>> {
-    let sweep = kinloop::analysis::Sampled::sweep(&drive, 0.0, TAU, 721, drive.guess_flat(&[0.0]))?;
+    let sweep = drive.sampled(0.0, TAU, 721, &drive.guess(0.0))?;
     let xs = |u: usize| sweep.states().iter().map(move |k| k.q[u]);
     let (xc, xf) = (index(&StirlingEngine::UNKNOWNS, "x_c"), index(&StirlingEngine::UNKNOWNS, "x_f"));
     let unit = StirlingEngine {
@@ -97,7 +97,11 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
     let hot = drive.mass_model()?;
     let omega = 1500.0 * TAU / 60.0;
     let guess = drive.guess_flat(&[0.0]);
-    let cycle = inverse_cycle(&drive, &hot, SpeedLaw::Constant(omega), 0.0, 3600, guess, [0.0, drive.e_p])?;
+    let cycle = InverseCycle::new(&drive, &hot, SpeedLaw::Constant(omega))
+        .samples(3600)
+        .guess(guess)
+        .about([0.0, drive.e_p])
+        .run()?;
     print_cycle(&cycle, omega)?;
 
     let fw = cycle.flywheel(1.0 / 50.0)?;

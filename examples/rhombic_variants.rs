@@ -55,8 +55,8 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
     let fig2 = DisplacerRodDrive::default();
     let fig3 = WorkingRodDrive::default();
     println!("Rhombic drive variants of paper 000 (lengths in crank radii)\n{fig2:?}\n{fig3:?}\n");
-    let t2 = Sampled::sweep(&fig2, 0.0, TAU, 361, fig2.guess(0.0))?;
-    let t3 = Sampled::sweep(&fig3, 0.0, TAU, 361, fig3.guess(0.0))?;
+    let t2 = fig2.sampled(0.0, TAU, 361, &fig2.guess(0.0))?;
+    let t3 = fig3.sampled(0.0, TAU, 361, &fig3.guess(0.0))?;
     report("Fig. 2, developed displacer rod:", &t2, [DisplacerRodDrive::COL.x_c, DisplacerRodDrive::COL.x_f])?;
     // The displacer group of Fig. 2 is the one of Fig. 1: the paper's X_F0 and X_Fmin hold.
     let e_b = fig2.e_p - fig2.de;

@@ -17,7 +17,6 @@
 //!
 //! Run with `cargo run --release -p kinloop-examples --example roller_edger`.
 
-use kinloop::analysis::Sampled;
 use kinloop::plot::{self, Axis, Kind, Panel, Series};
 use kinloop_fixtures::roller_edger::{RollerEdger, RollerEdgerState, closed, solved};
 
@@ -73,7 +72,7 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
 
     // Cylinder 1 turns back when it is perpendicular to link 3 (s^2 = l5^2 - l3^2): located as
     // the maximum of phi1, a root of its angular velocity.
-    let run = Sampled::sweep(&m, 0.0, 6.0, 61, m.guess(0.0))?;
+    let run = m.sampled(0.0, 6.0, 61, &m.guess(0.0))?;
     let top = run.range(RollerEdger::COL.phi1)?.max;
     println!(
         "cylinder 1 turns back at t = {:.6} s (closed form {:.6} s), phi1 = {:.6}°",

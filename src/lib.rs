@@ -186,7 +186,7 @@
 //! #     }
 //! # }
 //! # let m = SliderCrank::default();
-//! # let turn = Sampled::sweep(&m, 0.0, 6.0, 73, &m.guess(0.0)).unwrap();
+//! # let turn = m.sampled(0.0, 6.0, 73, &m.guess(0.0)).unwrap();
 //! let x = turn.range(SliderCrank::COL.xc); // no column `xc`: a compile error
 //! ```
 //!
@@ -202,10 +202,12 @@
 //! differentiated at compile time. A parameter name appended to a state path reads as a
 //! derivative: `sens.dq.x_c.l_p` is `d(dX_C/dphi1)/dL_P`. They cost nothing unless requested;
 //! calling `sensitivities` on a mechanism declared without the attribute is a compile error that
-//! says to add it. [`extremum`] and [`integral`] give objectives over a whole sweep with exact
-//! gradients (extremes by the envelope theorem, with the gradient of their location), and
-//! [`LevenbergMarquardt`](analysis::optimize::LevenbergMarquardt) uses them for synthesis
-//! (`examples/synthesis.rs`).
+//! says to add it. A sampled sweep's
+//! [`extremum_with_gradient`](analysis::Sampled::extremum_with_gradient) and
+//! [`integral_with_gradient`](analysis::Sampled::integral_with_gradient) give objectives over a
+//! whole sweep with exact gradients (extremes by the envelope theorem, with the gradient of
+//! their location), and [`LevenbergMarquardt`](analysis::optimize::LevenbergMarquardt) uses them
+//! for synthesis (`examples/synthesis.rs`).
 //!
 //! ## Design-space scans
 //!
@@ -373,7 +375,7 @@ pub use kinloop_runtime::{
     AtSingular, BlockInfo, ColumnKey, Configured, DetSigns, Error, Event, EventKind, Extreme, Extremum, FlatMotion,
     Health, Jac, Kin, LENGTH_UNIT, Location, Mechanism, Named, NamedSensitivities, NewtonConfig, NewtonStop, Quantity,
     QuantityKind, Reach, Sens, Sensitivities, SolveReport, Source, Sweep, SweepConfig, SweepResult, SweepStop, Table,
-    TraceConfig, Traced, TracedPoint, Vec2, deg, extremum, integral, to_deg,
+    TraceConfig, Traced, TracedPoint, Vec2, deg, to_deg,
 };
 pub use kinloop_runtime::{analysis, dynamics, events, metrics, paths, synthesis};
 // A glob of the scan module: it holds `par_scan` whenever the runtime is built with rayon,

@@ -3,7 +3,7 @@
 //! full turn, and the Grashof class against what a sweep can actually do.
 
 use kinloop::analysis::Sampled;
-use kinloop::metrics::{FourBarLinks, GrashofClass, grashof, limit_report};
+use kinloop::metrics::{FourBarLinks, GrashofClass, Limits, grashof};
 use kinloop_fixtures::FourBar;
 use proptest::prelude::*;
 use std::f64::consts::{FRAC_PI_2, PI, TAU};
@@ -35,7 +35,7 @@ fn quick_return_ratio_of_a_crank_shaper_matches_its_closed_form_in_any_unit() {
     for (r, d, h) in [(0.1, 0.2, 0.25), (100.0, 200.0, 250.0), (100e-6, 150e-6, 400e-6), (3.0, 10.0, 2.0)] {
         let m = CrankShaper { r, d, h };
         // Start away from the extremes (anywhere works; the seam is handled too).
-        let turn = Sampled::sweep(&m, 0.2, 0.2 + TAU, 181, m.guess(0.2)).unwrap();
+        let turn = m.sampled(0.2, 0.2 + TAU, 181, &m.guess(0.2)).unwrap();
         let alpha = (r / d).asin();
         for column in [CrankShaper::COL.psi, CrankShaper::COL.x] {
             let t = turn.time_ratio(column).unwrap();
@@ -83,7 +83,7 @@ proptest! {
         prop_assert!(at_dead_centre(mu.min.x), "{:?}", mu);
         prop_assert!(mu.dead_points.is_empty());
 
-        let limits = limit_report(&m, 0.0, TAU, 181, guess, &[FourBar::COL.gamma]).unwrap();
+        let limits = Limits::new(&m, 0.0, TAU).samples(181).guess(guess).columns(&[FourBar::COL.gamma]).run().unwrap();
         prop_assert!(limits.events.is_empty() && limits.reached.1 == TAU);
         let theta = |e: f64| ((d * d + c * c - e * e) / (2.0 * d * c)).acos();
         let swing = (theta(b - a) - theta(b + a)).abs();
@@ -104,7 +104,7 @@ proptest! {
         prop_assume!(g.margin.abs() > 0.02);
         let m = FourBar { a, b, c, d };
         let Some(guess) = four_bar_angles(a, b, c, d, 0.0, 1.0) else { return Ok(()) };
-        let r = limit_report(&m, 0.0, TAU, 361, guess, &[]).unwrap();
+        let r = Limits::new(&m, 0.0, TAU).samples(361).guess(guess).run().unwrap();
         let went_round = r.reached.1 == TAU;
         prop_assert_eq!(went_round, g.input_turns, "{:?} {}", g, r);
         prop_assert_eq!(r.input_limits().count(), usize::from(!g.input_turns));
@@ -120,7 +120,7 @@ fn a_limit_before_the_second_sample_is_reported() {
     let (a, b, c, d) = (0.8866455380657977, 0.22395128782516954, 0.29708768544839576, 1.4076032175831328);
     let m = FourBar { a, b, c, d };
     let guess = four_bar_angles(a, b, c, d, 0.0, 1.0).unwrap();
-    let r = limit_report(&m, 0.0, TAU, 361, guess, &[FourBar::COL.gamma]).unwrap();
+    let r = Limits::new(&m, 0.0, TAU).samples(361).guess(guess).columns(&[FourBar::COL.gamma]).run().unwrap();
     let limit = four_bar_limit(a, d, b + c);
     assert_eq!(r.reached, (0.0, 0.0), "{r}");
     let limits: Vec<f64> = r.input_limits().map(|e| e.x[0]).collect();

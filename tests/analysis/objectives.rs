@@ -2,7 +2,7 @@
 //! against the paper's closed forms, their gradients and locations against finite differences,
 //! and the integral of an output.
 
-use kinloop::{Extreme, NewtonConfig, extremum, integral};
+use kinloop::Extreme;
 use kinloop_fixtures::RhombicDrive;
 use std::f64::consts::PI;
 
@@ -18,10 +18,11 @@ fn closed_extremes(m: &RhombicDrive) -> (f64, f64) {
 
 #[test]
 fn displacer_extremes_match_the_paper_with_gradients() {
-    let cfg = NewtonConfig::default();
     let g = M.guess(0.0);
-    let max = extremum(&M, RhombicDrive::COL.x_f, Extreme::Max, 0.0, 2.0 * PI, 73, g, &cfg).unwrap();
-    let min = extremum(&M, RhombicDrive::COL.x_f, Extreme::Min, 0.0, 2.0 * PI, 73, g, &cfg).unwrap();
+    let max =
+        M.sampled(0.0, 2.0 * PI, 73, &g).unwrap().extremum_with_gradient(RhombicDrive::COL.x_f, Extreme::Max).unwrap();
+    let min =
+        M.sampled(0.0, 2.0 * PI, 73, &g).unwrap().extremum_with_gradient(RhombicDrive::COL.x_f, Extreme::Min).unwrap();
     let (x0, x1) = closed_extremes(&M);
     assert_close!(max.value, x0, tol::SOLVE, "X_F0");
     assert_close!(min.value, x1, tol::SOLVE, "X_Fmin");
@@ -40,7 +41,10 @@ fn displacer_extremes_match_the_paper_with_gradients() {
             let mut v = M.param_values();
             v[p] += s;
             let m = RhombicDrive::from_param_values(v);
-            extremum(&m, RhombicDrive::COL.x_f, Extreme::Max, 0.0, 2.0 * PI, 73, m.guess(0.0), &cfg).unwrap()
+            m.sampled(0.0, 2.0 * PI, 73, &m.guess(0.0))
+                .unwrap()
+                .extremum_with_gradient(RhombicDrive::COL.x_f, Extreme::Max)
+                .unwrap()
         };
         let (a, b) = (at(h), at(-h));
         let fd_x = (a.x - b.x) / (2.0 * h);
@@ -59,8 +63,8 @@ fn displacer_extremes_match_the_paper_with_gradients() {
 
 #[test]
 fn integral_of_an_output_and_its_gradient() {
-    let cfg = NewtonConfig::default();
-    let (v, g) = integral(&M, RhombicDrive::COL.gap, 0.0, 2.0 * PI, 181, M.guess(0.0), &cfg).unwrap();
+    let (v, g) =
+        M.sampled(0.0, 2.0 * PI, 181, &M.guess(0.0)).unwrap().integral_with_gradient(RhombicDrive::COL.gap).unwrap();
     // Independent: trapezoid over the closed-form gap X_F - X_C.
     let e_b = M.e_p - M.de;
     let gap = |m: &RhombicDrive, phi: f64| {
@@ -70,8 +74,10 @@ fn integral_of_an_output_and_its_gradient() {
         x_f - (m.r_p * phi.cos() - m.l_p * (1.0 - s2 * s2).sqrt())
     };
     let h = 2.0 * PI / 180.0;
-    let reference: f64 =
-        (0..=180).map(|k| if k == 0 || k == 180 { 0.5 } else { 1.0 } * h * gap(&M, k as f64 * h)).sum();
+    let trapezoid = |m: &RhombicDrive| -> f64 {
+        (0..=180).map(|k| if k == 0 || k == 180 { 0.5 } else { 1.0 } * h * gap(m, k as f64 * h)).sum()
+    };
+    let reference = trapezoid(&M);
     assert_close!(v, reference, 1e-10, "{v} vs {reference}");
     let l = RhombicDrive::PARAMS.iter().position(|p| *p == "l_b").unwrap();
     let dh = 1e-6;
@@ -79,8 +85,7 @@ fn integral_of_an_output_and_its_gradient() {
     mp.l_b += dh;
     let mut mm = M;
     mm.l_b -= dh;
-    let fd = (integral(&mp, RhombicDrive::COL.gap, 0.0, 2.0 * PI, 181, mp.guess(0.0), &cfg).unwrap().0
-        - integral(&mm, RhombicDrive::COL.gap, 0.0, 2.0 * PI, 181, mm.guess(0.0), &cfg).unwrap().0)
-        / (2.0 * dh);
+    // The gradient against finite differences of the independent closed-form quadrature.
+    let fd = (trapezoid(&mp) - trapezoid(&mm)) / (2.0 * dh);
     assert_close!(g[l], fd, 1e-6 * fd.abs(), "{} vs {fd}", g[l]);
 }

@@ -4,7 +4,7 @@
 
 use kinloop::Mechanism;
 use kinloop::dynamics::{
-    Body, Coord, DynamicsError, MassModel, Rotation, RunConfig, Simulation, SpeedLaw, inverse_cycle,
+    Body, Coord, DynamicsError, InverseCycle, MassModel, Rotation, RunConfig, Simulation, SpeedLaw,
 };
 
 kinloop::mechanism! {
@@ -90,7 +90,11 @@ fn bad_loads_and_gravity() {
             md.with_force("gas", [Coord::Unknown(1), Coord::Fixed(0.0)], |k, _| [(k.q[1] - 3.5).sqrt(), 0.0])
         })
         .unwrap();
-    let err = inverse_cycle(&m, &model, SpeedLaw::Constant(1.0), 0.0, 36, m.guess_flat(&[0.0]), [0.0; 2]).unwrap_err();
+    let err = InverseCycle::new(&m, &model, SpeedLaw::Constant(1.0))
+        .samples(36)
+        .guess(m.guess_flat(&[0.0]))
+        .run()
+        .unwrap_err();
     assert!(matches!(&err, DynamicsError::NonFiniteLoad { name: "gas", x, .. } if x.len() == 1), "{err}");
 }
 
@@ -100,15 +104,15 @@ fn bad_arguments_and_a_machine_without_inertia() {
     let model = Model::new().with_body(body(1.0, 0.1)).unwrap();
     let g = m.guess_flat(&[0.0]);
     assert!(matches!(
-        inverse_cycle(&m, &model, SpeedLaw::Constant(1.0), 0.0, 3, g, [0.0; 2]),
+        InverseCycle::new(&m, &model, SpeedLaw::Constant(1.0)).samples(3).guess(g).run(),
         Err(DynamicsError::BadValue { .. })
     ));
     let nan = |_: f64| (f64::NAN, 0.0);
     assert!(matches!(
-        inverse_cycle(&m, &model, SpeedLaw::Varying(&nan), 0.0, 36, g, [0.0; 2]),
+        InverseCycle::new(&m, &model, SpeedLaw::Varying(&nan)).samples(36).guess(g).run(),
         Err(DynamicsError::BadValue { what: "speed law", .. })
     ));
-    let cycle = inverse_cycle(&m, &model, SpeedLaw::Constant(1.0), 0.0, 36, g, [0.0; 2]).unwrap();
+    let cycle = InverseCycle::new(&m, &model, SpeedLaw::Constant(1.0)).samples(36).guess(g).run().unwrap();
     for delta in [0.0, -0.1, f64::NAN, 2.5] {
         assert!(matches!(cycle.flywheel(delta), Err(DynamicsError::BadValue { .. })));
     }

@@ -20,7 +20,7 @@ use crate::fixtures::{
     RhombicDrive, SliderCrank, configuration, derivative, gas_force, index, reduced_inertia_fd, rhombic_model,
 };
 use kinloop::Mechanism;
-use kinloop::dynamics::{Body, Coord, MassModel, Rotation, SpeedLaw, inverse_cycle};
+use kinloop::dynamics::{Body, Coord, InverseCycle, MassModel, Rotation, SpeedLaw};
 use std::f64::consts::TAU;
 
 use crate::support::tol;
@@ -47,8 +47,11 @@ fn rhombic_driving_torque_satisfies_lagrange_equation() {
     let gravity = [0.0, -9.81];
     let model = rhombic_model(gravity);
     let law = |phi: f64| (1.3 * (1.0 + 0.2 * phi.sin()), 1.3 * 0.2 * phi.cos());
-    let cycle =
-        inverse_cycle(&drive, &model, SpeedLaw::Varying(&law), 0.0, 36, drive.guess_flat(&[0.0]), [0.0, 0.0]).unwrap();
+    let cycle = InverseCycle::new(&drive, &model, SpeedLaw::Varying(&law))
+        .samples(36)
+        .guess(drive.guess_flat(&[0.0]))
+        .run()
+        .unwrap();
     let scale = cycle.points.iter().map(|p| p.torque.abs()).fold(0.0, f64::max);
     let mut guess = drive.guess_flat(&[0.0]);
     for p in &cycle.points {
@@ -94,8 +97,12 @@ fn slider_crank_torque_matches_classical_closed_form() {
         })
         .and_then(|md| md.with_force("gas", piston, move |k, _| [piston_gas(k.q[x_col]), 0.0]))
         .unwrap();
-    let cycle =
-        inverse_cycle(&sc, &model, SpeedLaw::Constant(omega), 0.1, 720, sc.guess_flat(&[0.1]), [0.0; 2]).unwrap();
+    let cycle = InverseCycle::new(&sc, &model, SpeedLaw::Constant(omega))
+        .start(0.1)
+        .samples(720)
+        .guess(sc.guess_flat(&[0.1]))
+        .run()
+        .unwrap();
     let closed = |phi: f64| {
         let (u, du, d2u) = (r * phi.sin() - e, r * phi.cos(), -r * phi.sin());
         let s = (l * l - u * u).sqrt();

@@ -4,8 +4,8 @@
 
 use kinloop::Mechanism;
 use kinloop::dynamics::{
-    Coord, Cycle, CyclePoint, DynamicsError, MassModel, OdeConfig, Rotation, RunConfig, Shaking, Simulation, SpeedLaw,
-    dopri5, inverse_cycle,
+    Coord, Cycle, CyclePoint, DynamicsError, InverseCycle, MassModel, OdeConfig, Rotation, RunConfig, Shaking,
+    Simulation, SpeedLaw, dopri5,
 };
 use proptest::prelude::*;
 
@@ -40,7 +40,11 @@ fn masses_whose_sum_overflows_are_a_typed_error() {
     let k = m.kinematics_flat(&[0.3], &m.guess_flat(&[0.3]), &Default::default()).unwrap();
     let err = model.dynamics(&k, &[1.0]).unwrap_err();
     assert!(matches!(err, DynamicsError::Overflow { .. }), "{err}");
-    let err = inverse_cycle(&m, &model, SpeedLaw::Constant(1.0), 0.0, 16, m.guess_flat(&[0.0]), [0.0; 2]).unwrap_err();
+    let err = InverseCycle::new(&m, &model, SpeedLaw::Constant(1.0))
+        .samples(16)
+        .guess(m.guess_flat(&[0.0]))
+        .run()
+        .unwrap_err();
     assert!(matches!(err, DynamicsError::Overflow { .. }), "{err}");
 }
 
@@ -61,7 +65,11 @@ fn a_simulation_that_cannot_move_its_input_is_a_typed_error() {
     let ok = run(1e300 % std::f64::consts::TAU).unwrap();
     assert!(ok.end[0] > 1e300 % std::f64::consts::TAU + 5.0, "{:?}", ok.end);
     // An inverse cycle from such an angle could not tell its samples apart either.
-    let err = inverse_cycle(&m, &model, SpeedLaw::Constant(1.0), 1e300, 16, m.guess_flat(&[0.0]), [0.0; 2]);
+    let err = InverseCycle::new(&m, &model, SpeedLaw::Constant(1.0))
+        .start(1e300)
+        .samples(16)
+        .guess(m.guess_flat(&[0.0]))
+        .run();
     assert!(matches!(err, Err(DynamicsError::BadValue { what: "start angle", .. })), "{err:?}");
 }
 
@@ -69,7 +77,8 @@ fn a_simulation_that_cannot_move_its_input_is_a_typed_error() {
 fn too_many_harmonics_name_the_samples_not_a_kinematic_failure() {
     let m = Machine::default();
     let model = m.mass_model().unwrap();
-    let cycle = inverse_cycle(&m, &model, SpeedLaw::Constant(10.0), 0.0, 24, m.guess_flat(&[0.0]), [0.0; 2]).unwrap();
+    let cycle =
+        InverseCycle::new(&m, &model, SpeedLaw::Constant(10.0)).samples(24).guess(m.guess_flat(&[0.0])).run().unwrap();
     let err = cycle.torque_harmonics(12).unwrap_err();
     assert_eq!(err, DynamicsError::TooManyHarmonics { harmonics: 12, samples: 24 });
     let text = err.to_string();
@@ -78,7 +87,8 @@ fn too_many_harmonics_name_the_samples_not_a_kinematic_failure() {
     assert_eq!(cycle.torque_harmonics(11).unwrap().a.len(), 11);
     // A sample count no memory holds is refused before anything is allocated.
     for samples in [usize::MAX, usize::MAX / 8] {
-        let err = inverse_cycle(&m, &model, SpeedLaw::Constant(10.0), 0.0, samples, m.guess_flat(&[0.0]), [0.0; 2]);
+        let err =
+            InverseCycle::new(&m, &model, SpeedLaw::Constant(10.0)).samples(samples).guess(m.guess_flat(&[0.0])).run();
         assert!(matches!(err, Err(DynamicsError::BadValue { what: "samples", .. })), "{err:?}");
     }
 }
@@ -140,7 +150,13 @@ fn exercise(m: &Machine, model: &Model, v: &[f64; 6], samples: usize, harmonics:
             assert!(finite(c), "{c:?}");
         }
     }
-    if let Ok(c) = inverse_cycle(m, model, SpeedLaw::Constant(omega), phi0, samples, guess, [about, -about]) {
+    if let Ok(c) = InverseCycle::new(m, model, SpeedLaw::Constant(omega))
+        .start(phi0)
+        .samples(samples)
+        .guess(guess)
+        .about([about, -about])
+        .run()
+    {
         for p in &c.points {
             let s = p.shaking;
             let values = [p.phi, p.omega, p.eps, p.inertia, p.inertia_slope, p.load, p.torque, s.moment];

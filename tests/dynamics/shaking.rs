@@ -7,7 +7,7 @@
 
 use crate::fixtures::{RhombicDrive, configuration, derivative, rhombic_model, second_derivative};
 use kinloop::Mechanism;
-use kinloop::dynamics::{Body, Coord, MassModel, Rotation, SpeedLaw, inverse_cycle};
+use kinloop::dynamics::{Body, Coord, InverseCycle, MassModel, Rotation, SpeedLaw};
 use std::f64::consts::TAU;
 
 use crate::support::tol;
@@ -20,8 +20,13 @@ fn shaking_force_is_mass_times_centre_of_mass_acceleration() {
     let total = model.total_mass();
     let law = |phi: f64| (2.0 * (1.0 + 0.3 * phi.cos()), -2.0 * 0.3 * phi.sin());
     let about = [0.4, -0.2];
-    let cycle =
-        inverse_cycle(&drive, &model, SpeedLaw::Varying(&law), 0.05, 36, drive.guess_flat(&[0.05]), about).unwrap();
+    let cycle = InverseCycle::new(&drive, &model, SpeedLaw::Varying(&law))
+        .start(0.05)
+        .samples(36)
+        .guess(drive.guess_flat(&[0.05]))
+        .about(about)
+        .run()
+        .unwrap();
     let mut guess = drive.guess_flat(&[0.05]);
     let scale = cycle.points.iter().map(|p| p.shaking.force[0].hypot(p.shaking.force[1])).fold(0.0, f64::max);
     for p in &cycle.points {
@@ -102,7 +107,11 @@ fn counterweighted_crank_does_not_shake() {
         .with_body(body("arm", m_arm, 0))
         .and_then(|md| md.with_body(body("counterweight", m_weight, 1)))
         .unwrap();
-    let cycle = inverse_cycle(&m, &model, SpeedLaw::Constant(omega), 0.0, 360, m.guess_flat(&[0.0]), [0.0; 2]).unwrap();
+    let cycle = InverseCycle::new(&m, &model, SpeedLaw::Constant(omega))
+        .samples(360)
+        .guess(m.guess_flat(&[0.0]))
+        .run()
+        .unwrap();
     let unbalanced = m_arm * m.a * omega * omega;
     for p in &cycle.points {
         let f = p.shaking.force[0].hypot(p.shaking.force[1]);
@@ -113,7 +122,8 @@ fn counterweighted_crank_does_not_shake() {
     }
     // Without the counterweight the crank shakes with m a omega^2 in every direction.
     let bare = MassModel::new().with_body(body("arm", m_arm, 0)).unwrap();
-    let cycle = inverse_cycle(&m, &bare, SpeedLaw::Constant(omega), 0.0, 360, m.guess_flat(&[0.0]), [0.0; 2]).unwrap();
+    let cycle =
+        InverseCycle::new(&m, &bare, SpeedLaw::Constant(omega)).samples(360).guess(m.guess_flat(&[0.0])).run().unwrap();
     for p in &cycle.points {
         let f = p.shaking.force[0].hypot(p.shaking.force[1]);
         assert_close!(f, unbalanced, <= tol::SOLVE * unbalanced);
@@ -138,7 +148,8 @@ fn slider_crank_shaking_harmonics_match_closed_form() {
             rotation: Rotation::None,
         })
         .unwrap();
-    let cycle = inverse_cycle(&m, &model, SpeedLaw::Constant(omega), 0.0, n, m.guess_flat(&[0.0]), [0.0; 2]).unwrap();
+    let cycle =
+        InverseCycle::new(&m, &model, SpeedLaw::Constant(omega)).samples(n).guess(m.guess_flat(&[0.0])).run().unwrap();
     let [fx, fy, _] = cycle.shaking_harmonics(4).unwrap();
     let scale = mass * m.r * omega * omega;
     let closed = |phi: f64| {

@@ -5,10 +5,9 @@
 
 use crate::fixtures::{RhombicDrive, SliderCrank, rhombic_bodies, rhombic_model};
 use kinloop::Mechanism;
-use kinloop::analysis::Sampled;
 use kinloop::dynamics::{
-    Body, Coord, DynamicsError, MassModel, OdeConfig, Rotation, RunConfig, Simulation, SpeedLaw, Trajectory, dopri5,
-    inverse_cycle,
+    Body, Coord, DynamicsError, InverseCycle, MassModel, OdeConfig, Rotation, RunConfig, Simulation, SpeedLaw,
+    Trajectory, dopri5,
 };
 use std::f64::consts::TAU;
 
@@ -59,7 +58,7 @@ fn dopri5_matches_closed_forms() {
 /// the run, reached by a sweep from 0 over one turn plus the final angle modulo a turn (the
 /// drive repeats every turn).
 fn energy_at(drive: &RhombicDrive, model: &MassModel<4, 1, 7>, phi: f64, omega: f64) -> f64 {
-    let sweep = Sampled::sweep(drive, 0.0, TAU + phi.rem_euclid(TAU), 721, drive.guess_flat(&[0.0])).unwrap();
+    let sweep = drive.sampled(0.0, TAU + phi.rem_euclid(TAU), 721, &drive.guess(0.0)).unwrap();
     let k = sweep.states().last().unwrap();
     model.kinetic_energy(k, &[omega])
 }
@@ -105,9 +104,11 @@ fn flywheel_gives_the_required_speed_fluctuation() {
     let drive = RhombicDrive::default();
     let model = rhombic_model([0.0, 0.0]);
     let (omega_m, delta) = (10.0, 1.0 / 50.0);
-    let cycle =
-        inverse_cycle(&drive, &model, SpeedLaw::Constant(omega_m), 0.0, 3600, drive.guess_flat(&[0.0]), [0.0; 2])
-            .unwrap();
+    let cycle = InverseCycle::new(&drive, &model, SpeedLaw::Constant(omega_m))
+        .samples(3600)
+        .guess(drive.guess_flat(&[0.0]))
+        .run()
+        .unwrap();
     let fw = cycle.flywheel(delta).unwrap();
     assert!(fw.exact > 0.0 && fw.flywheel > 0.0);
     let cfg = RunConfig::default().with_flywheel(fw.exact);
@@ -142,8 +143,11 @@ fn energy_method_is_exact_for_constant_inertia() {
     let model = crank_model(0.5)
         .and_then(|m| m.with_torque("load", Rotation::Input(0), |k, _| 3.0 * k.x[0].sin() + (2.0 * k.x[0]).sin()))
         .unwrap();
-    let cycle =
-        inverse_cycle(&sc, &model, SpeedLaw::Constant(20.0), 0.0, 3600, sc.guess_flat(&[0.0]), [0.0; 2]).unwrap();
+    let cycle = InverseCycle::new(&sc, &model, SpeedLaw::Constant(20.0))
+        .samples(3600)
+        .guess(sc.guess_flat(&[0.0]))
+        .run()
+        .unwrap();
     let fw = cycle.flywheel(0.02).unwrap();
     // Work of the load from its closed-form integral, E = 3 (1 - cos phi) + (1 - cos 2 phi) / 2,
     // its swing taken over the same angles (the trapezoidal work is accurate to ~1e-7).

@@ -5,7 +5,7 @@
 //! there from the same triangles; strokes and phase shifts. The closed forms themselves are
 //! checked against the stationary points of the explicit slider-crank positions.
 
-use kinloop::analysis::{Extreme, Sampled};
+use kinloop::analysis::Extreme;
 use std::f64::consts::TAU;
 
 use kinloop_fixtures::RhombicDrive;
@@ -15,7 +15,7 @@ use crate::support::{dead_centres, stationary, tol, wrap};
 #[test]
 fn extreme_positions_strokes_and_phase_shift_match_the_closed_forms() {
     let m = RhombicDrive::default();
-    let turn = Sampled::sweep(&m, 0.0, TAU, 361, m.guess(0.0)).unwrap();
+    let turn = m.sampled(0.0, TAU, 361, &m.guess(0.0)).unwrap();
     let xc = turn.range(RhombicDrive::COL.x_c).unwrap();
     let xf = turn.range(RhombicDrive::COL.x_f).unwrap();
 
@@ -81,7 +81,7 @@ fn extreme_positions_strokes_and_phase_shift_match_the_closed_forms() {
 fn extremes_follow_the_drive_when_its_dimensions_change() {
     // A second, more eccentric drive: the helpers and the closed forms still agree.
     let m = RhombicDrive { r_b: 0.8, l_b: 2.6, e_p: 0.9, de: -0.3, gamma: 2.1, ..RhombicDrive::default() };
-    let turn = Sampled::sweep(&m, 0.0, TAU, 181, m.guess(0.0)).unwrap();
+    let turn = m.sampled(0.0, TAU, 181, &m.guess(0.0)).unwrap();
     let xf = turn.range(RhombicDrive::COL.x_f).unwrap();
     let e_b = m.e_p - m.de;
     let (x_f0, x_fmin) = dead_centres(m.l_b, m.r_b, e_b);

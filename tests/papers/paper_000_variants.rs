@@ -5,7 +5,6 @@
 //! (positions, velocity and acceleration analogs); the strokes the example prints.
 
 use kinloop::Kin;
-use kinloop::analysis::Sampled;
 use std::f64::consts::{PI, TAU};
 
 use kinloop_fixtures::{DisplacerRodDrive, WorkingRodDrive};
@@ -162,7 +161,7 @@ fn extremes(f: impl Fn(f64) -> f64) -> [(f64, f64); 2] {
 #[test]
 fn strokes_and_extremes_printed_by_the_example() {
     let m2 = DisplacerRodDrive::default();
-    let t2 = Sampled::sweep(&m2, 0.0, TAU, 361, m2.guess(0.0)).unwrap();
+    let t2 = m2.sampled(0.0, TAU, 361, &m2.guess(0.0)).unwrap();
     let (c, f) = (t2.range(DisplacerRodDrive::COL.x_c).unwrap(), t2.range(DisplacerRodDrive::COL.x_f).unwrap());
     let e_b = m2.e_p - m2.de;
     // The displacer group of Fig. 2 is Fig. 1's: the paper's X_F0 and X_Fmin.
@@ -185,7 +184,7 @@ fn strokes_and_extremes_printed_by_the_example() {
     assert!(wrap(c.min.x - lo.0).abs() < 1e-9 && wrap(c.max.x - hi.0).abs() < 1e-9);
 
     let m3 = WorkingRodDrive::default();
-    let t3 = Sampled::sweep(&m3, 0.0, TAU, 361, m3.guess(0.0)).unwrap();
+    let t3 = m3.sampled(0.0, TAU, 361, &m3.guess(0.0)).unwrap();
     let (c, f) = (t3.range(WorkingRodDrive::COL.x_c).unwrap(), t3.range(WorkingRodDrive::COL.x_f).unwrap());
     let (c_outer, c_inner) =
         (-((m3.l_p + m3.r).powi(2) - m3.e_p * m3.e_p).sqrt(), -((m3.l_p - m3.r).powi(2) - m3.e_p * m3.e_p).sqrt());

@@ -84,7 +84,7 @@ fn cylinder_one_turns_back_where_it_is_perpendicular_to_link_three() {
     // at A: s^2 = l5^2 - l3^2), i.e. at t* = (sqrt(l5^2 - l3^2) - l1) / V1; since
     // 0.9 * 1.2 = l5^2 - l3^2 its angle is the same at both ends of the stroke. The example
     // locates t* as the maximum of phi1 (root of its angular velocity).
-    let run = kinloop::analysis::Sampled::sweep(&m, 0.0, 6.0, 61, m.guess(0.0)).unwrap();
+    let run = m.sampled(0.0, 6.0, 61, &m.guess(0.0)).unwrap();
     let top = run.range(RollerEdger::COL.phi1).unwrap().max;
     let t_star = ((m.l5 * m.l5 - m.l3 * m.l3).sqrt() - m.l1) / m.v1;
     assert_close!(top.x, t_star, 1e-9, "{} vs {t_star}", top.x);

@@ -5,7 +5,7 @@
 //! golden sections); the closed-form optimum (exact balance) found by Nelder–Mead; the
 //! phase-constrained optimum, its phase shift and its local optimality.
 
-use kinloop::analysis::{NelderMead, Sampled};
+use kinloop::analysis::NelderMead;
 use std::f64::consts::{PI, TAU};
 
 use kinloop_fixtures::balancing::{Balance, PHASE, design, phased, unbalance};
@@ -55,7 +55,7 @@ fn d_closed(m: &Balance) -> (f64, f64, f64) {
 #[test]
 fn residual_unbalance_of_the_reference_design() {
     let m = design([1.0, 2.0, 0.3, 0.0]);
-    let turn = Sampled::sweep(&m, 0.0, TAU, 129, m.guess(0.0)).unwrap();
+    let turn = m.sampled(0.0, TAU, 129, &m.guess(0.0)).unwrap();
     let r = turn.unbalance(Balance::COL.xc, 1).unwrap();
     let f = turn.fourier(Balance::COL.xc, 6).unwrap();
     let (d, at, amp2) = d_closed(&m);
@@ -122,7 +122,7 @@ fn phase_constrained_optimum_printed_by_the_example() {
     let m = phased([0.5, 6.0, 1.0]);
     // The phase requirement: the outer dead centres (located by the extremes helper) are 90
     // degrees apart.
-    let turn = Sampled::sweep(&m, 0.0, TAU, 129, m.guess(0.0)).unwrap();
+    let turn = m.sampled(0.0, TAU, 129, &m.guess(0.0)).unwrap();
     let shift = turn.range(Balance::COL.x_f).unwrap().max.x - turn.range(Balance::COL.x_c).unwrap().min.x;
     assert!(wrap(shift - PHASE).abs() < 1e-9, "{shift}");
     // Independently of `delta_for_phase` and of kinloop: the outer dead centres as stationary

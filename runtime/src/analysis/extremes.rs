@@ -16,7 +16,7 @@ use super::Jet;
 use crate::error::Error;
 
 /// A maximum or a minimum: what a located local extreme is ([`LocalExtreme::kind`]), and which
-/// extremum an objective asks for ([`extremum`](crate::extremum)).
+/// extremum an objective asks for ([`Sampled::extremum_with_gradient`](crate::analysis::Sampled::extremum_with_gradient)).
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub enum Extreme {
     /// The largest value (at a local extreme: the velocity analog changes sign from positive

@@ -121,6 +121,10 @@ where
 {
     /// Sweeps `samples` equally spaced inputs from `from` to `to > from` (both included) from
     /// `guess` at `from` (which picks the assembly mode). The path parameter is the input.
+    ///
+    /// A declared mechanism's `m.sampled(from, to, samples, &m.guess(from))` is this call with
+    /// the named unknowns; this form serves code generic over [`Mechanism`] and hand-written
+    /// implementations, as [`Sweep::new`] does beside `m.sweep`.
     pub fn sweep(m: &'m M, from: f64, to: f64, samples: usize, guess: impl Into<[f64; N]>) -> Result<Self, Error> {
         Self::sweep_with(m, from, to, samples, guess, SweepConfig::default())
     }
@@ -241,6 +245,11 @@ where
     /// The mechanism.
     pub fn mechanism(&self) -> &'m M {
         self.m
+    }
+
+    /// The sweep configuration the samples were taken with (also used for every refinement).
+    pub fn config(&self) -> &SweepConfig {
+        &self.cfg
     }
 
     /// The samples of a column as jets in the path parameter.

@@ -80,16 +80,89 @@ pub struct Flywheel {
     pub start_speed: f64,
 }
 
-/// Inverse dynamics over a turn: solves the kinematics at `samples` angles from `phi0` (on the
-/// assembly branch of `guess`), evaluates the model and the speed law there; shaking moments
-/// are taken about the frame point `about`.
-pub fn inverse_cycle<M, const N: usize, const NO: usize>(
+/// Inverse dynamics over a turn of a one-input machine, set up by name and run by
+/// [`InverseCycle::run`]: solves the kinematics at `samples` equally spaced angles of one turn
+/// from the start angle (on the assembly branch of the guess) and evaluates the mass model and
+/// the speed law there.
+///
+/// ```text
+/// let cycle = InverseCycle::new(&drive, &drive.mass_model()?, SpeedLaw::Constant(omega))
+///     .start(0.0)             // phi0: the first angle of the turn
+///     .samples(3600)          // angles per turn
+///     .guess(drive.guess(0.0))
+///     .about([0.0, drive.e_p]) // frame point for the shaking moment
+///     .run()?;
+/// ```
+///
+/// Without a call to each setter: the turn from angle 0 (`start`), 360 samples (`samples`), from
+/// the mechanism's declared guess at the start (`guess`), shaking moments about the origin
+/// (`about`).
+#[must_use = "an inverse cycle does nothing until `run`"]
+pub struct InverseCycle<'a, M, const N: usize, const NO: usize> {
+    m: &'a M,
+    model: &'a MassModel<N, 1, NO>,
+    law: SpeedLaw<'a>,
+    phi0: f64,
+    samples: usize,
+    guess: Option<[f64; N]>,
+    about: [f64; 2],
+}
+
+impl<'a, M, const N: usize, const NO: usize> InverseCycle<'a, M, N, NO>
+where
+    M: Mechanism<N, 1, NO>,
+{
+    /// The inverse dynamics of mechanism `m` with mass model `model` driven at the speed law
+    /// `law` (see the type's documentation for what it starts with).
+    pub fn new(m: &'a M, model: &'a MassModel<N, 1, NO>, law: SpeedLaw<'a>) -> Self {
+        InverseCycle { m, model, law, phi0: 0.0, samples: 360, guess: None, about: [0.0, 0.0] }
+    }
+
+    /// The turn covers `[phi0, phi0 + 2 pi)`.
+    pub fn start(mut self, phi0: f64) -> Self {
+        self.phi0 = phi0;
+        self
+    }
+
+    /// Equally spaced angles per turn (at least 8).
+    pub fn samples(mut self, samples: usize) -> Self {
+        self.samples = samples;
+        self
+    }
+
+    /// The positions that choose the assembly branch at the start: the mechanism's named
+    /// unknowns (`m.guess(phi0)`) or their array.
+    pub fn guess(mut self, guess: impl Into<[f64; N]>) -> Self {
+        self.guess = Some(guess.into());
+        self
+    }
+
+    /// The frame point the shaking moments are taken about.
+    pub fn about(mut self, about: [f64; 2]) -> Self {
+        self.about = about;
+        self
+    }
+
+    /// Runs the inverse dynamics over the turn.
+    ///
+    /// Errors: fewer than 8 samples, more than memory holds, a start angle so large that the
+    /// samples cannot be told apart, or a speed law that is not finite as
+    /// [`DynamicsError::BadValue`]; a kinematic failure over the turn (a limit position: the
+    /// input cannot turn) as [`DynamicsError::Kinematics`]; the model's own errors.
+    pub fn run(self) -> Result<Cycle, DynamicsError> {
+        let guess = self.guess.unwrap_or_else(|| self.m.guess_flat(&[self.phi0]));
+        inverse_cycle(self.m, self.model, self.law, self.phi0, self.samples, guess, self.about)
+    }
+}
+
+/// The computation behind [`InverseCycle::run`].
+fn inverse_cycle<M, const N: usize, const NO: usize>(
     m: &M,
     model: &MassModel<N, 1, NO>,
     law: SpeedLaw<'_>,
     phi0: f64,
     samples: usize,
-    guess: impl Into<[f64; N]>,
+    guess: [f64; N],
     about: [f64; 2],
 ) -> Result<Cycle, DynamicsError>
 where

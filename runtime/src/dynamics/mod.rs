@@ -46,7 +46,7 @@ pub mod simulate;
 #[cfg(test)]
 mod robust_tests;
 
-pub use cycle::{Cycle, CyclePoint, Flywheel, SpeedLaw, inverse_cycle};
+pub use cycle::{Cycle, CyclePoint, Flywheel, InverseCycle, SpeedLaw};
 pub use error::DynamicsError;
 pub use eval::{Dynamics, Shaking};
 pub use model::{Body, Coord, ForceLaw, Load, MassModel, Point, Rotation, TorqueLaw};

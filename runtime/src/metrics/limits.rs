@@ -76,29 +76,87 @@ impl fmt::Display for LimitReport {
     }
 }
 
-/// Sweeps a single-input mechanism from `from` to `to` (`samples` equally spaced inputs, from
-/// `guess`, which picks the assembly mode), passing singular crossings, and reports the input's
-/// limit positions and crossings (the sweep's events) and the located extremes of `columns`
-/// over the range reached. A limit position of the input ends the range; it is reported, not
-/// an error.
+/// A search for the dead centres and limit positions of a single-input mechanism over a range
+/// of its input, set up by name and run by [`Limits::run`]:
 ///
-/// Columns are the generated handles (`Name::COL.x_c`). A limit position of the input before the
-/// second sample (a start within a sample's spacing of it) is reported with no extremes: the
-/// range reached is the start alone. Errors: a start that cannot be assembled, a column outside
-/// the mechanism.
-pub fn limit_report<M, const N: usize, const NO: usize>(
+/// ```text
+/// let report = Limits::new(&m, 0.0, TAU)      // the input range, either direction
+///     .samples(361)                            // equally spaced inputs
+///     .guess(m.guess(0.0))                     // the assembly mode at the start
+///     .columns(&[FourBar::COL.gamma])          // outputs whose limit positions to locate
+///     .run()?;
+/// ```
+///
+/// Without a call to each setter: 361 samples (`samples`), the mechanism's declared guess at the
+/// start (`guess`), no output columns (`columns`).
+#[must_use = "a limit search does nothing until `run`"]
+pub struct Limits<'a, M, const N: usize> {
+    m: &'a M,
+    from: f64,
+    to: f64,
+    samples: usize,
+    guess: Option<[f64; N]>,
+    columns: &'a [Column<M>],
+}
+
+impl<'a, M, const N: usize> Limits<'a, M, N> {
+    /// The limits of mechanism `m` over the input range from `from` to `to` (either direction).
+    pub fn new<const NO: usize>(m: &'a M, from: f64, to: f64) -> Self
+    where
+        M: Mechanism<N, 1, NO>,
+    {
+        Limits { m, from, to, samples: 361, guess: None, columns: &[] }
+    }
+
+    /// Equally spaced inputs of the sweep (both ends included).
+    pub fn samples(mut self, samples: usize) -> Self {
+        self.samples = samples;
+        self
+    }
+
+    /// The positions that choose the assembly mode at the start: the mechanism's named unknowns
+    /// (`m.guess(from)`) or their array.
+    pub fn guess(mut self, guess: impl Into<[f64; N]>) -> Self {
+        self.guess = Some(guess.into());
+        self
+    }
+
+    /// The unknown or output columns (`Name::COL.x_c`) whose extremes to locate over the range
+    /// reached.
+    pub fn columns(mut self, columns: &'a [Column<M>]) -> Self {
+        self.columns = columns;
+        self
+    }
+
+    /// Sweeps the range, passing singular crossings, and reports the input's limit positions and
+    /// crossings (the sweep's events) and the located extremes of the columns over the range
+    /// reached. A limit position of the input ends the range; it is reported, not an error.
+    ///
+    /// A limit position of the input before the second sample (a start within a sample's spacing
+    /// of it) is reported with no extremes: the range reached is the start alone. Errors: a start
+    /// that cannot be assembled, a column outside the mechanism.
+    pub fn run<const NO: usize>(self) -> Result<LimitReport, Error>
+    where
+        M: Mechanism<N, 1, NO>,
+    {
+        let guess = self.guess.unwrap_or_else(|| self.m.guess_flat(&[self.from]));
+        limit_report(self.m, self.from, self.to, self.samples, guess, self.columns)
+    }
+}
+
+/// The search behind [`Limits::run`].
+fn limit_report<M, const N: usize, const NO: usize>(
     m: &M,
     from: f64,
     to: f64,
     samples: usize,
-    guess: impl Into<[f64; N]>,
+    guess: [f64; N],
     columns: &[Column<M>],
 ) -> Result<LimitReport, Error>
 where
     M: Mechanism<N, 1, NO>,
 {
     let cfg = SweepConfig { at_singular: AtSingular::Continue, ..SweepConfig::default() };
-    let guess: [f64; N] = guess.into();
     let mut sweep = Sweep::<M, Kin<N, 1, NO>, N, 1, NO>::new(m, [from], [to], samples, guess)?.with_config(cfg);
     let (mut last, mut count) = (from, 0usize);
     while let Some(step) = sweep.next_kin() {
@@ -142,7 +200,7 @@ mod tests {
     #[test]
     fn dead_centres_of_a_slider_crank_against_the_collinear_triangles() {
         let m = SliderCrank { r: 1.0, l: 3.0, e: 0.5 };
-        let r = limit_report(&m, 0.3, 0.3 + TAU, 73, [3.9], &[SliderCrank::COL.x]).unwrap();
+        let r = Limits::new(&m, 0.3, 0.3 + TAU).samples(73).guess([3.9]).columns(&[SliderCrank::COL.x]).run().unwrap();
         assert!(r.events.is_empty());
         assert_eq!(r.reached, (0.3, 0.3 + TAU));
         let [(x_out, outer), (x_in, inner)] = m.dead_centres();
@@ -165,20 +223,27 @@ mod tests {
         let limit = ((m.e - m.l) / m.r).asin();
         let from = limit + 0.01;
         let guess = [m.r * from.cos() + (m.l * m.l - (m.r * from.sin() - m.e).powi(2)).sqrt()];
-        let r = limit_report(&m, from, from - 1.0, 11, guess, &[SliderCrank::COL.x]).unwrap();
+        let r =
+            Limits::new(&m, from, from - 1.0).samples(11).guess(guess).columns(&[SliderCrank::COL.x]).run().unwrap();
         assert_eq!(r.reached, (from, from), "{r}");
         let limits: Vec<&Event> = r.input_limits().collect();
         assert_eq!(limits.len(), 1, "{r}");
         assert!((limits[0].x[0] - limit).abs() < 1e-9, "{r}");
         assert!(r.outputs[0].extremes.is_empty(), "{r}");
         let bad = Column::__generated(crate::analysis::ColumnIndex::Unknown(3), "bad");
-        assert!(matches!(limit_report(&m, from, from - 1.0, 11, guess, &[bad]), Err(Error::InvalidArgument(_))));
+        assert!(matches!(
+            Limits::new(&m, from, from - 1.0).samples(11).guess(guess).columns(&[bad]).run(),
+            Err(Error::InvalidArgument(_))
+        ));
     }
 
     #[test]
     fn a_column_outside_the_mechanism_is_an_error() {
         let m = SliderCrank { r: 1.0, l: 3.0, e: 0.5 };
         let bad = Column::__generated(crate::analysis::ColumnIndex::Unknown(3), "bad");
-        assert!(matches!(limit_report(&m, 0.0, 1.0, 5, [3.9], &[bad]), Err(Error::InvalidArgument(_))));
+        assert!(matches!(
+            Limits::new(&m, 0.0, 1.0).samples(5).guess([3.9]).columns(&[bad]).run(),
+            Err(Error::InvalidArgument(_))
+        ));
     }
 }

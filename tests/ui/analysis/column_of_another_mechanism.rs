@@ -1,4 +1,3 @@
-use kinloop::analysis::Sampled;
 
 kinloop::mechanism! {
     pub struct SliderCrank {
@@ -20,7 +19,7 @@ kinloop::mechanism! {
 
 fn main() -> Result<(), kinloop::Error> {
     let m = SliderCrank::default();
-    let turn = Sampled::sweep(&m, 0.0, 6.0, 61, &m.guess(0.0))?;
+    let turn = m.sampled(0.0, 6.0, 61, &m.guess(0.0))?;
     // Column handles carry their mechanism: the four-bar's `beta` is no column of the slider-crank.
     let _swing = turn.range(FourBar::COL.beta)?;
     Ok(())

@@ -1,4 +1,3 @@
-use kinloop::analysis::Sampled;
 
 kinloop::mechanism! {
     pub struct SliderCrank {
@@ -12,7 +11,7 @@ kinloop::mechanism! {
 
 fn main() -> Result<(), kinloop::Error> {
     let m = SliderCrank::default();
-    let turn = Sampled::sweep(&m, 0.0, 6.0, 61, &m.guess(0.0))?;
+    let turn = m.sampled(0.0, 6.0, 61, &m.guess(0.0))?;
     // A column name is a field of `SliderCrank::COL`: a typo is a compile error, not a run-time one.
     let _stroke = turn.range(SliderCrank::COL.xc)?;
     let _path = turn.range(SliderCrank::COL.b.z)?;
