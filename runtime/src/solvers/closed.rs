@@ -186,7 +186,9 @@ fn undetermined(cfg: &NewtonConfig) -> BlockFailure {
 /// past); else the failure when there is no single real root.
 #[inline]
 pub fn root_offset(d2: f64, r2: f64, c: f64, flip: bool, cfg: &NewtonConfig) -> Result<f64, BlockFailure> {
-    if !(d2 >= 0.0 && r2 > 0.0) {
+    // A subnormal `r2` (links shorter than about 1e-154 of the unit) would give `d2` with few
+    // significant bits: a failure, as a zero `r2` is (see `mechanism::extreme_scale`).
+    if !(d2 >= 0.0 && r2 >= f64::MIN_POSITIVE) {
         return touching(d2, r2, c, cfg);
     }
     Ok(root_offset_deferred(d2, flip))
@@ -204,7 +206,7 @@ pub fn root_offset(d2: f64, r2: f64, c: f64, flip: bool, cfg: &NewtonConfig) -> 
 fn touching(d2: f64, r2: f64, c: f64, cfg: &NewtonConfig) -> Result<f64, BlockFailure> {
     let tol = cfg.residual_tol.max(16.0 * f64::EPSILON);
     // Written so that a NaN fails.
-    if r2 > 0.0 && -d2 <= 2.0 * tol * (c * c) { Ok(0.0) } else { Err(no_root(d2, r2, c, cfg)) }
+    if r2 >= f64::MIN_POSITIVE && -d2 <= 2.0 * tol * (c * c) { Ok(0.0) } else { Err(no_root(d2, r2, c, cfg)) }
 }
 
 /// `(cos q, sin q)` of the root of `a cos q + b sin q = c` with `h' = -d < 0` (`h = a cos q +
@@ -223,18 +225,72 @@ fn touching(d2: f64, r2: f64, c: f64, cfg: &NewtonConfig) -> Result<f64, BlockFa
 #[inline]
 pub fn dyad_roots(a: f64, b: f64, c: f64, flip: bool, cfg: &NewtonConfig) -> Result<(f64, f64), BlockFailure> {
     let r2 = a * a + b * b;
+    // Written so that a NaN takes the rescaled path too (which then fails as below).
+    if !(f64::MIN_POSITIVE..=f64::MAX).contains(&r2) {
+        return dyad_roots_rescaled(a, b, c, flip, cfg);
+    }
     let d = root_offset(r2 - c * c, r2, c, flip, cfg)?;
     Ok(roots_of_offset(a, b, c, r2, d))
 }
 
-/// `1 / sqrt(d2)`, the normalisation of the direction `(a, b)` with `d2 = a² + b²` of a polar
+/// [`dyad_roots`] where `a² + b²` is not a normal number: the coefficients are products of two
+/// lengths, so `a² + b²` is a fourth power of the mechanism's size and leaves the range of
+/// `f64` at sizes beyond about `1e±77`. The equation is homogeneous in `(a, b, c)`: divided by
+/// the power of two nearest their largest magnitude (exact), its roots are the same and its
+/// squares are of order one. Coefficients that are not finite, all zero, or so small that they
+/// carry less than full precision (below `2^-1000`) fail as the unscaled formulas do.
+#[cold]
+#[inline(never)]
+fn dyad_roots_rescaled(a: f64, b: f64, c: f64, flip: bool, cfg: &NewtonConfig) -> Result<(f64, f64), BlockFailure> {
+    let big = a.abs().max(b.abs()).max(c.abs());
+    let (k, r2) = if big.is_finite() && big >= SMALLEST_PRECISE_COEFFICIENT {
+        let k = reciprocal_power_of_two(big);
+        let (a, b) = (a * k, b * k);
+        (k, a * a + b * b)
+    } else {
+        (1.0, a * a + b * b)
+    };
+    let (a, b, c) = (a * k, b * k, c * k);
+    let d = root_offset(r2 - c * c, r2, c, flip, cfg).map_err(|f| match f {
+        // The residual back in the coefficients' units.
+        BlockFailure::NoAssembly { row, iterations, evaluations, residual } => {
+            BlockFailure::NoAssembly { row, iterations, evaluations, residual: residual / k }
+        }
+        other => other,
+    })?;
+    Ok(roots_of_offset(a, b, c, r2, d))
+}
+
+/// `2^-1000`: a coefficient at least this large is a normal number with 22 binary orders of
+/// magnitude to spare, so the subnormal rounding of the terms it was computed from (absolute
+/// `2^-1075`) is far below its own rounding.
+const SMALLEST_PRECISE_COEFFICIENT: f64 = 9.332636185032189e-302;
+
+/// The power of two `2^-e` with `2^e <= x < 2^(e+1)`, for a positive finite `x`: multiplying by
+/// it is exact and brings `x` into `[1, 2)` (for a subnormal `x` below `2^-1023`, the largest
+/// power of two, `2^1023`, which brings it to at least `2^-51`). `1` for anything else (zero,
+/// negative, infinite, NaN), which leaves a value unchanged.
+pub(crate) fn reciprocal_power_of_two(x: f64) -> f64 {
+    if !(x > 0.0 && x <= f64::MAX) {
+        return 1.0;
+    }
+    let exponent = |v: f64| ((v.to_bits() >> 52) & 0x7ff) as i32 - 1023;
+    // A subnormal's exponent, read from it times 2^600 (exact).
+    let e = if x >= f64::MIN_POSITIVE { exponent(x) } else { exponent(x * 2f64.powi(600)) - 600 };
+    // `2^-e` for `e` in `-1023 ..= 1023`: `2^-1023` is subnormal, and still exact.
+    if e > 1022 { 0.5 * 2f64.powi(-(e - 1)) } else { 2f64.powi(-e.max(-1023)) }
+}
+
+/// `sqrt(1 / d2)`, the normalisation of the direction `(a, b)` with `d2 = a² + b²` of a polar
 /// length along offset `(e0, e1)`, or the failure when there is no direction: a zero offset
 /// (a zero length, whose angle every value satisfies: singular) or a direction that vanishes
 /// although the offset does not (it cannot be reached; the residual is the offset's size).
 #[inline]
 pub fn polar_norm(d2: f64, e0: f64, e1: f64, cfg: &NewtonConfig) -> Result<f64, BlockFailure> {
-    // Written so that a NaN fails.
-    if d2 > 0.0 { Ok(polar_norm_deferred(d2)) } else { Err(no_root(d2, 0.0, e0.abs().max(e1.abs()), cfg)) }
+    let ir = polar_norm_deferred(d2);
+    // Written so that a NaN fails; infinite for a zero `d2`, and for one so small (an offset
+    // below about 1e-154 of the unit) that it has lost significant bits.
+    if ir <= f64::MAX { Ok(ir) } else { Err(no_root(d2, 0.0, e0.abs().max(e1.abs()), cfg)) }
 }
 
 /// The test of a polar length's lever in a position-only solve: the length `|(e0, e1)|` against
@@ -338,6 +394,9 @@ pub fn root_offset_deferred(d2: f64, flip: bool) -> f64 {
 #[inline(always)]
 pub fn dyad_roots_deferred(a: f64, b: f64, c: f64, flip: bool) -> (f64, f64) {
     let r2 = a * a + b * b;
+    // Where the checked step rescales (`a² + b²` not normal), a NaN trace: the checked kernel
+    // then answers.
+    let r2 = if r2 >= f64::MIN_POSITIVE { r2 } else { f64::NAN };
     roots_of_offset(a, b, c, r2, root_offset_deferred(r2 - c * c, flip))
 }
 
@@ -349,12 +408,13 @@ pub(crate) fn roots_of_offset(a: f64, b: f64, c: f64, r2: f64, d: f64) -> (f64, 
     ((a * c - b * d) * inv, (b * c + a * d) * inv)
 }
 
-/// [`polar_norm`] without its test: `1 / sqrt(d2)`, infinite for a
-/// zero direction (whose components, both zero, then give NaN sines and cosines) and NaN for a
-/// NaN one.
+/// [`polar_norm`] without its test: `sqrt(1 / d2)`, infinite for a zero direction (whose
+/// components, both zero, then give NaN sines and cosines) and for a subnormal one below about
+/// `5.6e-309` (few significant bits: see `mechanism::extreme_scale`), NaN for a NaN one. (The
+/// reciprocal first: as cheap as `1 / sqrt(d2)`, and its overflow is the trace of a `d2` too small.)
 #[inline(always)]
 pub fn polar_norm_deferred(d2: f64) -> f64 {
-    1.0 / d2.sqrt()
+    (1.0 / d2).sqrt()
 }
 
 #[cfg(test)]

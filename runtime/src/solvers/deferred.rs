@@ -64,7 +64,12 @@ impl<const CHECKED: bool> Checks<CHECKED> {
     /// a failure).
     #[inline(always)]
     pub fn root_offset(self, d2: f64, r2: f64, c: f64, flip: bool, cfg: &NewtonConfig) -> Result<f64, BlockFailure> {
-        if CHECKED { root_offset(d2, r2, c, flip, cfg) } else { Ok(root_offset_deferred(d2, flip)) }
+        if CHECKED {
+            root_offset(d2, r2, c, flip, cfg)
+        } else {
+            // A subnormal `r2`, which the checked step refuses, leaves a NaN trace.
+            Ok(root_offset_deferred(if r2 >= f64::MIN_POSITIVE { d2 } else { f64::NAN }, flip))
+        }
     }
 
     /// [`dyad_roots`](super::closed::dyad_roots), or deferred [`dyad_roots_deferred`].

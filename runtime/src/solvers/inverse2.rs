@@ -8,6 +8,7 @@
 //! of the column-equilibrated matrix under partial pivoting, to rounding) and the sign of the
 //! determinant, so the sweep's singularity tests and assembly modes read it unchanged.
 
+use super::closed::reciprocal_power_of_two;
 use super::lu::Factor;
 
 /// `J⁻¹` of a 2x2 block `J`, with the pivot ratio and determinant sign of its column-equilibrated
@@ -43,8 +44,28 @@ impl Inverse2 {
     /// singular position where that length vanishes. The general factorisation equilibrated by
     /// `max(column magnitude, floor)` reports the same (unit test); a NaN or infinite floor gives
     /// pivot ratio 0, as an entry beyond the block does.
+    ///
+    /// Where the determinant or a pivot leaves the range of `f64` although the block is regular
+    /// (entries about `s` give a determinant about `s²`, beyond it for `s` beyond about `1e±154`),
+    /// the inverse is made from the columns divided by powers of two near their magnitudes
+    /// (exact), which changes neither the pivots nor the determinant's sign.
     #[inline(always)]
     pub fn in_cols_floored<const K: usize>(j: &[[f64; 2]; 2], beyond: [[f64; K]; 2], floor: [Option<f64>; 2]) -> Self {
+        match Self::unscaled(j, beyond, floor) {
+            Ok(inverse) => inverse,
+            Err(magnitudes) => Self::column_scaled(j, beyond, floor, magnitudes),
+        }
+    }
+
+    /// [`Inverse2::in_cols_floored`] as computed, or the columns' magnitudes where a pivot, the
+    /// determinant or its reciprocal is not finite (pivot ratio 0 as computed: singular, or out
+    /// of range).
+    #[inline(always)]
+    fn unscaled<const K: usize>(
+        j: &[[f64; 2]; 2],
+        beyond: [[f64; K]; 2],
+        floor: [Option<f64>; 2],
+    ) -> Result<Self, [f64; 2]> {
         let [[a, b], [c, d]] = *j;
         let det = a * d - b * c;
         let id = 1.0 / det;
@@ -68,10 +89,44 @@ impl Inverse2 {
         let p0 = if K == 0 && floor[0].is_none() { 1.0 } else { top / m[0] };
         let p1 = det.abs() / (top * m[1]);
         let smaller = if p1 < p0 { p1 } else { p0 };
-        // A NaN or infinite pivot, or a NaN or infinite entry beyond the block, fails the test,
-        // however the selections went: pivot ratio 0, as the LU's.
-        let pivot_ratio = if p0 + p1 + 0.0 * sum < f64::INFINITY { smaller } else { 0.0 };
-        Inverse2 { inv: [[d * id, b * id], [c * id, a * id]], pivot_ratio, negative_det: det < 0.0 }
+        // A NaN or infinite pivot, or a NaN or infinite entry beyond the block, or a determinant
+        // whose reciprocal is not finite, fails the test however the selections went.
+        if p0 + p1 + 0.0 * (sum + id) < f64::INFINITY {
+            Ok(Inverse2 { inv: [[d * id, b * id], [c * id, a * id]], pivot_ratio: smaller, negative_det: det < 0.0 })
+        } else {
+            Err(m)
+        }
+    }
+
+    /// The inverse made from `J D`, `D` the powers of two nearest the reciprocals of the
+    /// columns' magnitudes `m`: `J⁻¹ = D (J D)⁻¹`. Pivot ratio 0 where that fails too (a
+    /// singular block, or a NaN or infinite entry), as the LU's.
+    #[cold]
+    #[inline(never)]
+    fn column_scaled<const K: usize>(
+        j: &[[f64; 2]; 2],
+        beyond: [[f64; K]; 2],
+        floor: [Option<f64>; 2],
+        m: [f64; 2],
+    ) -> Self {
+        let s = m.map(reciprocal_power_of_two);
+        let scaled = [[j[0][0] * s[0], j[0][1] * s[1]], [j[1][0] * s[0], j[1][1] * s[1]]];
+        let beyond = [beyond[0].map(|v| v * s[0]), beyond[1].map(|v| v * s[1])];
+        let floor = [floor[0].map(|f| f * s[0]), floor[1].map(|f| f * s[1])];
+        match Self::unscaled(&scaled, beyond, floor) {
+            // Row `k` of the inverse (the unknown `k`) scaled back by `s[k]`.
+            Ok(mut inverse) => {
+                inverse.inv[0] = inverse.inv[0].map(|v| v * s[0]);
+                inverse.inv[1] = inverse.inv[1].map(|v| v * s[1]);
+                inverse
+            }
+            Err(_) => {
+                let [[a, b], [c, d]] = *j;
+                let det = a * d - b * c;
+                let id = 1.0 / det;
+                Inverse2 { inv: [[d * id, b * id], [c * id, a * id]], pivot_ratio: 0.0, negative_det: det < 0.0 }
+            }
+        }
     }
 
     /// Smallest pivot of the equilibrated matrix, in `[0, ~1]`: `0` when singular.
@@ -223,7 +278,9 @@ mod tests {
     /// block in a unit 2^600 times smaller (bit for bit), which the general factorisation then
     /// agrees with. A subnormal pivot ratio (a block's own entries below 2^-1022 of a column
     /// entry beyond it) is reported as such, where the LU's reciprocal of that pivot overflows and
-    /// it reports 0: both singular to any tolerance.
+    /// it reports 0; a determinant whose reciprocal overflows with the columns equilibrated is
+    /// reported as 0 by the inverse, where the LU finds a ratio below 1e-300: both singular to
+    /// any tolerance.
     #[test]
     fn the_inverse_agrees_with_the_lu_on_special_values() {
         let values = [0.0, -0.0, 1.0, -2.5, 3.0e-7, 7.0e5, 1e-310, f64::INFINITY, f64::NAN];
@@ -251,9 +308,15 @@ mod tests {
                     }
                     let lu = general(&j, cols);
                     let (pi, pl) = (inv.pivot_ratio(), lu.pivot_ratio());
-                    // A subnormal pivot's reciprocal overflows in the LU, which reports 0.
+                    // A subnormal pivot's reciprocal overflows in the LU, which reports 0; a
+                    // determinant whose reciprocal overflows even with the columns equilibrated
+                    // makes the inverse report 0 (a pivot ratio below 1e-300 there).
                     let lu_overflows = pi < f64::MIN_POSITIVE && pl == 0.0;
-                    assert!((pi - pl).abs() <= 1e-13 * pl || lu_overflows, "{j:?} {cols:?}: {pi:e} {pl:e}");
+                    let inverse_overflows = pi == 0.0 && pl < 1e-300;
+                    assert!(
+                        (pi - pl).abs() <= 1e-13 * pl || lu_overflows || inverse_overflows,
+                        "{j:?} {cols:?}: {pi:e} {pl:e}"
+                    );
                     if pl > 1e-10 {
                         assert_eq!(inv.negative_det(), lu.negative_det(), "{j:?} {cols:?}");
                     }

@@ -1,0 +1,93 @@
+//! Closed-form blocks at sizes where their squared lengths leave the range of `f64`.
+//!
+//! A closed form works with squares and products of lengths (`a² + b²` of a dyad, `l²` of an
+//! angle equation): for a mechanism whose lengths are about `s`, those are about `s²` (the
+//! dyad's rescaled coefficients about `s⁴`, see
+//! [`dyad_roots`](crate::solvers::closed::dyad_roots)). Beyond about `1e±150` they overflow or
+//! become subnormal, and the closed form fails (a non-finite value, a limit position rounded
+//! away, no assembly) where the mechanism is fine: the same mechanism in other units solves.
+//! Newton's method judges every residual and step in the magnitudes of the equations and
+//! unknowns (see [`newton`](crate::solvers::newton)) and works at every representable size.
+//!
+//! So where a checked kernel fails for a mechanism outside [`CLOSED_FORM_SIZES`], the position
+//! is solved again by Newton over the whole system (its residuals and Jacobian from
+//! [`Mechanism::jacobian_flat`], from the same guess), and the analogs and outputs at that
+//! position by [`Mechanism::kinematics_at_flat`], whose factorisations are scaled. Inside the
+//! range the kernel's own error stands: nothing changes for a mechanism of ordinary size, and the
+//! hot path pays nothing (this runs only after a failure).
+
+use crate::error::Error;
+use crate::kin::Kin;
+use crate::kinds::QuantityKind;
+use crate::mechanism::Mechanism;
+use crate::solvers::newton::{BlockEval, Magnitudes, NewtonConfig, SolveReport, newton};
+
+/// The sizes (largest magnitude of an equation's terms: the sum of a loop's link lengths) at
+/// which every closed form computes exactly: `2^-480 .. 2^480`, about `1e-144 .. 1e144`. Their
+/// squares, and the products of two of them, stay normal numbers with 60 binary orders of
+/// magnitude to spare for link ratios and small offsets.
+pub const CLOSED_FORM_SIZES: (f64, f64) = (1.0 / TWO_480, TWO_480);
+
+/// `2^480`, exact.
+const TWO_480: f64 = (1u128 << 120) as f64 * (1u128 << 120) as f64 * (1u128 << 120) as f64 * (1u128 << 120) as f64;
+
+/// Whether the mechanism at `(x, q)` lies outside [`CLOSED_FORM_SIZES`]: its largest equation
+/// magnitude (finite and positive) beyond either end.
+fn outside_closed_form_sizes<M, const N: usize, const NI: usize, const NO: usize>(
+    m: &M,
+    x: &[f64; NI],
+    q: &[f64; N],
+) -> bool
+where
+    M: Mechanism<N, NI, NO> + ?Sized,
+{
+    let size = m.jacobian_flat(x, q).scale.iter().fold(0.0f64, |s, v| if v.is_finite() { s.max(v.abs()) } else { s });
+    size > 0.0 && !(size >= CLOSED_FORM_SIZES.0 && size <= CLOSED_FORM_SIZES.1)
+}
+
+/// The answer to a checked kernel's failure `error` at input `x` from `guess`: for a mechanism
+/// outside [`CLOSED_FORM_SIZES`], the kinematics solved by Newton over the whole system (and
+/// `error` where that fails too); otherwise `error`.
+#[cold]
+#[inline(never)]
+pub(crate) fn rescue<M, const N: usize, const NI: usize, const NO: usize>(
+    m: &M,
+    x: &[f64; NI],
+    guess: &[f64; N],
+    cfg: &NewtonConfig,
+    error: Error,
+) -> Result<Kin<N, NI, NO>, Error>
+where
+    M: Mechanism<N, NI, NO> + ?Sized,
+{
+    if !guess.iter().chain(x.iter()).all(|v| v.is_finite()) || !outside_closed_form_sizes(m, x, guess) {
+        return Err(error);
+    }
+    // Newton in dimensionless unknowns `z = q / unit` (radians for an angle, fractions of its
+    // loop's size for a length): the columns of the Jacobian are then of one magnitude, as a
+    // block of the generated Newton solver has them.
+    let jac = m.jacobian_flat(x, guess);
+    let unit = jac.unit.map(|u| if u > 0.0 && u.is_finite() { u } else { 1.0 });
+    let turns = M::UNKNOWN_KINDS.map(|k| k == QuantityKind::Angle);
+    let mags = Magnitudes::new(jac.scale, [1.0; N]).with_turns(turns);
+    let q_of = |z: &[f64; N]| core::array::from_fn::<f64, N, _>(|u| z[u] * unit[u]);
+    let eval = |z: &[f64; N]| {
+        let jz = m.jacobian_flat(x, &q_of(z));
+        let mut j = jz.j;
+        for row in &mut j {
+            for u in 0..N {
+                row[u] *= unit[u];
+            }
+        }
+        BlockEval { f: jz.f, j, keep: [] }
+    };
+    let z0 = core::array::from_fn::<f64, N, _>(|u| guess[u] / unit[u]);
+    let mut ev: BlockEval<N, 0> = eval(&z0);
+    let Ok(mut solved) = newton(z0, &mut ev, cfg, eval, &mags) else { return Err(error) };
+    solved.z = q_of(&solved.z);
+    let mut report = SolveReport::direct();
+    report.absorb(&solved);
+    let mut kin = m.kinematics_at_flat(x, &solved.z, cfg).map_err(|_| error)?;
+    kin.report = report;
+    Ok(kin)
+}

@@ -1,0 +1,158 @@
+//! Closed-form blocks at every representable scale. A mechanism whose lengths are `k` times
+//! another's has the same angles and `k` times its lengths; the closed forms compute with
+//! squares and products of lengths, which leave the range of `f64` beyond about `k = 1e±77`
+//! (a dyad's coefficients squared) or `1e±154` (a length squared). The Newton twin of each
+//! mechanism (`#[kinloop(newton)]`, scale-free by construction) is the independent reference
+//! here besides scale 1: at every scale from `1e-300` to `1e300` both give the scale-1 angles
+//! to `1e-14` rad and lengths to `1e-14` of the scaled size, for point solves, analogs and
+//! sweeps — never an error, a non-finite value or a silently imprecise position.
+
+// The loops walk parallel fixed-size arrays (states, dimensions) by one index.
+#![allow(clippy::needless_range_loop)]
+
+use kinloop::{Kin, Mechanism, NewtonConfig, Sweep};
+
+use crate::support::tol;
+
+with_newton_twin! {
+    /// Four-bar (RRR dyad) with a coupler point.
+    pub struct FourBar, FourBarNewton {
+        params a, b, c, d;
+        input phi;
+        unknowns beta = 0.5, gamma = 1.5;
+        loop abcd: a @ phi + b @ beta == (d, 0) + c @ gamma;
+        point pc = a @ phi + b @ beta;
+    }
+}
+
+with_newton_twin! {
+    /// Offset slider-crank (angle equation, then the slider).
+    pub struct SliderCrank, SliderCrankNewton {
+        params r, l, e;
+        input phi;
+        unknowns psi = 0, x = -l;
+        loop oabo: r @ phi == (x, e) + l @ psi;
+    }
+}
+
+/// The four-bar at size `k` (link lengths 1, 3.5, 3, 4 times `k`).
+fn four_bar(k: f64) -> FourBar {
+    FourBar { a: k, b: 3.5 * k, c: 3.0 * k, d: 4.0 * k }
+}
+
+fn four_bar_newton(k: f64) -> FourBarNewton {
+    FourBarNewton { a: k, b: 3.5 * k, c: 3.0 * k, d: 4.0 * k }
+}
+
+/// The slider-crank at size `k`.
+fn slider_crank(k: f64) -> SliderCrank {
+    SliderCrank { r: k, l: 3.2 * k, e: 0.4 * k }
+}
+
+fn slider_crank_newton(k: f64) -> SliderCrankNewton {
+    SliderCrankNewton { r: k, l: 3.2 * k, e: 0.4 * k }
+}
+
+/// Every tenth power of ten from `1e-300` to `1e300`, and powers of two next to the ends of
+/// the closed forms' own range (`2^±480`) and of `f64`'s.
+fn scales() -> Vec<f64> {
+    let mut k: Vec<f64> = (-30..=30).map(|e| 10f64.powi(10 * e)).collect();
+    k.extend([2f64.powi(480), 2f64.powi(481), 2f64.powi(-480), 2f64.powi(-481), 2f64.powi(1000), 2f64.powi(-1000)]);
+    k
+}
+
+/// Largest difference of the state at scale `k` from the one at scale 1 (`got` and `base`),
+/// in radians for angles and in fractions of the size `k` for lengths (`lengths[u]`, the
+/// outputs all lengths): positions, and velocity and acceleration analogs.
+fn difference<const N: usize, const NO: usize>(
+    got: &Kin<N, 1, NO>,
+    base: &Kin<N, 1, NO>,
+    lengths: [bool; N],
+    k: f64,
+) -> f64 {
+    let mut worst = 0.0f64;
+    let mut see = |g: f64, b: f64, s: f64| {
+        let d = (g / s - b).abs();
+        worst = worst.max(if d.is_nan() { f64::INFINITY } else { d });
+    };
+    for u in 0..N {
+        let s = if lengths[u] { k } else { 1.0 };
+        see(got.q[u], base.q[u], s);
+        see(got.dq[u][0], base.dq[u][0], s);
+        see(got.d2q[u][0][0], base.d2q[u][0][0], s);
+    }
+    for o in 0..NO {
+        see(got.out[o], base.out[o], k);
+        see(got.dout[o][0], base.dout[o][0], k);
+    }
+    worst
+}
+
+/// Point solves at 12 inputs of a turn from the declared guess, at every scale: the largest
+/// difference from scale 1 (which must solve), or the first error with its scale.
+fn point_solves<M: Mechanism<N, 1, NO>, const N: usize, const NO: usize>(
+    at: impl Fn(f64) -> M,
+    lengths: [bool; N],
+) -> f64 {
+    let cfg = NewtonConfig::default();
+    let one = at(1.0);
+    let mut worst = 0.0f64;
+    for k in scales() {
+        let m = at(k);
+        for i in 0..12 {
+            let x = [0.3 + i as f64 * 0.5];
+            let base = one.kinematics_flat(&x, &one.guess_flat(&x), &cfg).unwrap();
+            let got = m
+                .kinematics_flat(&x, &m.guess_flat(&x), &cfg)
+                .unwrap_or_else(|e| panic!("{} at size {k:e}: {e}", M::NAME));
+            worst = worst.max(difference(&got, &base, lengths, k));
+        }
+    }
+    worst
+}
+
+/// A sweep of a turn in 73 samples at every scale against the one at scale 1: the largest
+/// difference over all samples.
+fn sweeps<M: Mechanism<N, 1, NO>, const N: usize, const NO: usize>(at: impl Fn(f64) -> M, lengths: [bool; N]) -> f64 {
+    let run = |m: &M| -> Vec<Kin<N, 1, NO>> {
+        Sweep::<M, Kin<N, 1, NO>, N, 1, NO>::new(m, [0.3], [0.3 + std::f64::consts::TAU], 73, m.guess_flat(&[0.3]))
+            .unwrap()
+            .map(|k| k.unwrap_or_else(|e| panic!("{}: {e}", M::NAME)))
+            .collect()
+    };
+    let base = run(&at(1.0));
+    let mut worst = 0.0f64;
+    for k in scales() {
+        let got = run(&at(k));
+        assert_eq!(got.len(), base.len(), "{} at size {k:e}", M::NAME);
+        for (g, b) in got.iter().zip(&base) {
+            worst = worst.max(difference(g, b, lengths, k));
+        }
+    }
+    worst
+}
+
+/// `1e-14` rad or of the size: the scaled parameters' own rounding (`k` times a length is
+/// rounded, 1.1e-16 relative) amplified by the mechanism's condition, as in `units.rs`.
+const SCALE_TOL: f64 = 1e-14;
+
+#[test]
+fn four_bar_solves_at_every_scale() {
+    let closed = point_solves(four_bar, [false, false]);
+    let newton = point_solves(four_bar_newton, [false, false]);
+    eprintln!("four-bar point solves over scales: closed form {closed:.1e}, Newton {newton:.1e}");
+    assert!(closed <= SCALE_TOL && newton <= SCALE_TOL, "{closed:e} {newton:e}");
+    let swept = sweeps(four_bar, [false, false]);
+    assert!(swept <= SCALE_TOL, "four-bar sweeps differ by {swept:e}");
+    let _ = tol::SOLVE;
+}
+
+#[test]
+fn slider_crank_solves_at_every_scale() {
+    let closed = point_solves(slider_crank, [false, true]);
+    let newton = point_solves(slider_crank_newton, [false, true]);
+    eprintln!("slider-crank point solves over scales: closed form {closed:.1e}, Newton {newton:.1e}");
+    assert!(closed <= SCALE_TOL && newton <= SCALE_TOL, "{closed:e} {newton:e}");
+    let swept = sweeps(slider_crank, [false, true]);
+    assert!(swept <= SCALE_TOL, "slider-crank sweeps differ by {swept:e}");
+}
