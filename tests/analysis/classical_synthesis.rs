@@ -104,7 +104,7 @@ fn a_four_bar_of_two_burmester_dyads_takes_every_pose_under_newtons_method() {
     let (crank, rocker) = (&found.dyads[0], &found.dyads[1]);
     let m = pose_four_bar(crank, rocker, &poses[0]);
     for (j, pose) in poses.iter().enumerate() {
-        let (k1, k2) = (crank.circle_point_in(&poses, j), rocker.circle_point_in(&poses, j));
+        let (k1, k2) = (crank.circle_point_in(&poses[0], pose), rocker.circle_point_in(&poses[0], pose));
         let phi = (k1 - crank.center).angle();
         // Guesses a little off the pose, so that Newton has work to do.
         let guess = PoseFourBarUnknowns { theta: (k2 - k1).angle() + 0.03, psi: (k2 - rocker.center).angle() - 0.03 };

@@ -44,7 +44,8 @@ impl Compatibility {
         let d4 = zi * dj - zj * di;
         let d1 = -(d2 + d3 + d4);
         let largest = [d1, d2, d3, d4].iter().map(|c| c.norm()).fold(0.0, f64::max);
-        if !(largest > 0.0) || d3.norm() <= ZERO_MINOR * largest || d4.norm() <= ZERO_MINOR * largest {
+        if largest.is_nan() || largest <= 0.0 || d3.norm() <= ZERO_MINOR * largest || d4.norm() <= ZERO_MINOR * largest
+        {
             return Err(ClassicalError::Degenerate(format!(
                 "poses 0, {}, {} and {} have a pole in common (a point of the body that stays in place between \
                  two pairs of them), a special case the center-point curve's construction does not cover",
@@ -60,11 +61,11 @@ impl Compatibility {
         let [d1, d2, d3, d4] = self.d;
         let t = -d1 - d2 * Complex::from_polar(1.0, beta2);
         let (r3, r4, len) = (d3.norm(), d4.norm(), t.norm());
-        if !(len > 0.0) {
+        if len.is_nan() || len <= 0.0 {
             return [None, None];
         }
         let cos_gamma = (r3 * r3 + len * len - r4 * r4) / (2.0 * r3 * len);
-        if !(cos_gamma.abs() <= 1.0) {
+        if cos_gamma.is_nan() || cos_gamma.abs() > 1.0 {
             return [None, None];
         }
         let gamma = cos_gamma.acos();

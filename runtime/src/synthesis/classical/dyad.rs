@@ -59,10 +59,11 @@ impl Dyad {
         (self.circle - self.center).norm()
     }
 
-    /// The moving pivot in pose `j`: the circle point carried with the body from the first
-    /// pose (it keeps its place relative to the body's point and angle).
-    pub fn circle_point_in(&self, poses: &[Pose], j: usize) -> Vec2 {
-        carried(self.circle, &poses[0], &poses[j])
+    /// The moving pivot when the body is in `pose`: the circle point carried with the body from
+    /// the `first` pose (the one the dyad's `circle` is given in), keeping its place relative to
+    /// the body's point and angle.
+    pub fn circle_point_in(&self, first: &Pose, pose: &Pose) -> Vec2 {
+        carried(self.circle, first, pose)
     }
 
     /// The largest distance, over the poses, between the moving pivot's distance from the
@@ -71,7 +72,7 @@ impl Dyad {
     /// so it checks a dyad however it was found.
     pub fn deviation(&self, poses: &[Pose]) -> f64 {
         let r = self.radius();
-        (0..poses.len()).map(|j| ((self.circle_point_in(poses, j) - self.center).norm() - r).abs()).fold(0.0, f64::max)
+        poses.iter().map(|p| ((self.circle_point_in(&poses[0], p) - self.center).norm() - r).abs()).fold(0.0, f64::max)
     }
 }
 
@@ -158,7 +159,7 @@ pub(crate) fn solve_dyad(poses: &[Pose], betas: &[f64]) -> Option<Dyad> {
     }
     let svd = m.svd(true, true);
     let (largest, smallest) = (svd.singular_values.max(), svd.singular_values.min());
-    if !(smallest >= DYAD_RCOND * largest) {
+    if smallest.is_nan() || smallest < DYAD_RCOND * largest {
         return None;
     }
     let x = svd.solve(&rhs, 0.0).ok()?;

@@ -5,7 +5,7 @@
 
 use crate::error::Error;
 
-/// Why a classical synthesis gave no answer; see the [module documentation](self).
+/// Why a classical synthesis gave no answer; see the [module documentation](super).
 #[derive(Clone, Debug, PartialEq, thiserror::Error)]
 #[non_exhaustive]
 pub enum ClassicalError {

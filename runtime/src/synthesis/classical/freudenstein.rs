@@ -113,7 +113,7 @@ pub fn freudenstein(points: &[PrecisionPoint]) -> Result<FunctionGenerator, Clas
     let svd = a.clone().svd(true, true);
     let (largest, smallest) = (svd.singular_values.max(), svd.singular_values.min());
     let rcond = smallest / largest;
-    if !(rcond >= MIN_RCOND) {
+    if rcond.is_nan() || rcond < MIN_RCOND {
         return Err(ClassicalError::Singular { what: "Freudenstein system", rcond, tolerance: MIN_RCOND });
     }
     let k = svd.solve(&rhs, 0.0).map_err(|why| ClassicalError::Degenerate(why.into()))?;
@@ -162,7 +162,7 @@ fn lengths([k1, k2, k3]: [f64; 3]) -> Result<FourBarLinks, ClassicalError> {
     }
     let b2 = a * a + c * c + 1.0 - 2.0 * a * c * k3;
     // b^2 is a difference of terms of size a^2 + c^2 + 1: below their rounding it is not a length.
-    if !(b2 > 8.0 * f64::EPSILON * (a * a + c * c + 1.0)) {
+    if b2.is_nan() || b2 <= 8.0 * f64::EPSILON * (a * a + c * c + 1.0) {
         return bad(
             "coupler",
             b2,

@@ -66,7 +66,7 @@ impl Frame {
         let (pb, d) = (self.b(phi), self.d());
         let e = pb - d;
         let l = e.norm();
-        if !(l > 0.0) {
+        if l.is_nan() || l <= 0.0 {
             return None;
         }
         let u = e * (1.0 / l);
