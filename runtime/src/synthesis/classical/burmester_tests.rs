@@ -183,3 +183,48 @@ fn bad_input_is_an_error_not_a_panic() {
     let shared = [about(0.0), about(0.5), Pose::new(1.0, 3.0, 0.9), about(1.2)];
     assert!(matches!(center_point_curve(&shared, &cfg), Err(ClassicalError::Degenerate(_))));
 }
+
+/// `reference/burmester_random.csv`: twelve problems of five poses made by no linkage, with
+/// mpmath's Burmester pairs of each.
+#[allow(clippy::type_complexity)]
+fn random_problems() -> Vec<(Vec<Pose>, Vec<(Vec2, Vec2)>)> {
+    let mut problems: Vec<(Vec<Pose>, Vec<(Vec2, Vec2)>)> = Vec::new();
+    for line in include_str!("reference/burmester_random.csv").lines().skip(1) {
+        let f: Vec<&str> = line.split(',').collect();
+        let i: usize = f[0].parse().unwrap();
+        if problems.len() <= i {
+            problems.push((vec![], vec![]));
+        }
+        let v = |k: usize| f[k].parse::<f64>().unwrap();
+        match f[1] {
+            "pose" => problems[i].0.push(Pose::new(v(2), v(3), v(4))),
+            _ => problems[i].1.push((Vec2::new(v(2), v(3)), Vec2::new(v(4), v(5)))),
+        }
+    }
+    problems
+}
+
+/// Problems with none, two and four Burmester points, many with gaps where the first
+/// compatibility linkage cannot close (so that the search crosses its folds): the same pairs
+/// as the reference, every one keeping its circle.
+#[test]
+fn random_five_pose_problems_give_the_reference_burmester_pairs() {
+    let problems = random_problems();
+    assert_eq!(problems.len(), 12);
+    let mut folds = 0;
+    for (i, (poses, pairs)) in problems.iter().enumerate() {
+        let first = Compatibility::new(poses, [1, 2, 3]).unwrap();
+        folds += usize::from((0..720).any(|k| first.closures(k as f64 * TAU / 720.0)[0].is_none()));
+        let found = burmester_points(poses, &BurmesterConfig::default()).unwrap();
+        assert_eq!(found.dyads.len(), pairs.len(), "problem {i}: {found:?} vs {pairs:?}");
+        assert!(found.max_deviation <= DEVIATION, "problem {i}: {:e}", found.max_deviation);
+        for (center, circle) in pairs {
+            let hit = found.dyads.iter().find(|d| {
+                let scale = found.size.max(d.radius());
+                (d.center - *center).norm() <= 1e-10 * scale && (d.circle - *circle).norm() <= 1e-10 * scale
+            });
+            assert!(hit.is_some(), "problem {i}: {center:?} not among {:?}", found.dyads);
+        }
+    }
+    assert!(folds >= 6, "{folds}");
+}

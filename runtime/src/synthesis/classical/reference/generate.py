@@ -9,14 +9,21 @@ Independent of kinloop and of the formulations the library uses:
   at 11 arguments x, found by solving the two loop-closure equations (not Freudenstein's
   equation) with mpmath's Newton from the ideal angle. Then the same at 6 evenly spaced points
   in the least-squares sense (mpmath's QR), with the residual's 2-norm.
+* burmester_random.csv -- twelve problems of five poses drawn from a seeded generator (points
+  in [-2, 2]^2, angles in [-1.5, 1.5] rad; not made by any linkage), each with every Burmester
+  pair found as above from 2000 starts at three scales. Four pairs means every one was found (no
+  more exist); fewer can in principle mean a missed far one, which the test would show as a
+  disagreement in count.
 * burmester_five_poses.csv -- five poses of the coupler of a known four-bar (written with 17
   significant digits, then read back, so that the problem solved here is exactly the one the
   test solves), and every Burmester pair (center point, circle point in the first pose) found
   by solving the Cartesian conditions |k_j - M| = |k_1 - M|, j = 2..5 (k_j the circle point
-  carried with the body into pose j), with mpmath's Newton from 300 pseudo-random starts.
+  carried with the body into pose j): Newton's method in doubles from 300 pseudo-random
+  starts, each converged one polished by mpmath's Newton at 50 digits.
 
 Run: python3 generate.py   (writes the CSV files beside it)
 """
+import math
 import os
 import random
 from mpmath import mp, mpf, cos, sin, pi, log10, sqrt, atan2, matrix, lu_solve, qr_solve, findroot, nstr
@@ -109,33 +116,64 @@ def poses():
     return rows, known
 
 
-def burmester(rows):
+def burmester(rows, starts=300, scales=(12,)):
+    """Every Burmester pair of five poses: Newton's method in doubles from pseudo-random starts
+    (cheap, so that many starts can be tried), each converged start then polished by mpmath's
+    Newton at 50 digits."""
     x1, y1, t1 = rows[0]
 
-    def carried(kx, ky, j):
+    def carried(kx, ky, j, c, s):
         xj, yj, tj = rows[j]
         dt = tj - t1
         rx, ry = kx - x1, ky - y1
-        return xj + rx * cos(dt) - ry * sin(dt), yj + rx * sin(dt) + ry * cos(dt)
+        return xj + rx * c(dt) - ry * s(dt), yj + rx * s(dt) + ry * c(dt)
 
     def eqs(mx, my, kx, ky):
         r1 = (kx - mx) ** 2 + (ky - my) ** 2
         out = []
         for j in range(1, 5):
-            qx, qy = carried(kx, ky, j)
+            qx, qy = carried(kx, ky, j, cos, sin)
             out.append((qx - mx) ** 2 + (qy - my) ** 2 - r1)
         return out
 
+    frows = [(float(x), float(y), float(a)) for x, y, a in rows]
+
+    def float_newton(v):
+        for _ in range(60):
+            mx, my, kx, ky = v
+            f, jac = [], []
+            for j in range(1, 5):
+                dt = frows[j][2] - frows[0][2]
+                c, s = math.cos(dt), math.sin(dt)
+                rx, ry = kx - frows[0][0], ky - frows[0][1]
+                qx, qy = frows[j][0] + rx * c - ry * s, frows[j][1] + rx * s + ry * c
+                ux, uy, wx, wy = qx - mx, qy - my, kx - mx, ky - my
+                f.append(ux * ux + uy * uy - wx * wx - wy * wy)
+                # d/dM: -2u + 2w; d/dk: 2 R^T u - 2w
+                jac.append([-2 * ux + 2 * wx, -2 * uy + 2 * wy, 2 * (c * ux + s * uy) - 2 * wx, 2 * (-s * ux + c * uy) - 2 * wy])
+            step = solve4(jac, f)
+            if step is None:
+                return None
+            v = [a - b for a, b in zip(v, step)]
+            if max(abs(x) for x in v) > 1e7:
+                return None
+            if max(abs(x) for x in step) < 1e-13 * max(1.0, max(abs(x) for x in v)):
+                return v
+        return None
+
     rng = random.Random(7)
     found = []
-    for _ in range(300):
-        start = [mpf(rng.uniform(-12, 12)) for _ in range(4)]
+    for n in range(starts):
+        scale = scales[n % len(scales)]
+        v = float_newton([rng.uniform(-scale, scale) for _ in range(4)])
+        if v is None:
+            continue
         try:
-            sol = findroot(eqs, start, tol=mpf(10) ** -45, maxsteps=60)
+            sol = findroot(eqs, [mpf(x) for x in v], tol=mpf(10) ** -45, maxsteps=20)
         except (ValueError, ZeroDivisionError):
             continue
         mx, my, kx, ky = sol
-        if max(abs(v) for v in (mx, my, kx, ky)) > 1e6:
+        if max(abs(v) for v in (mx, my, kx, ky)) > 1e6 or max(abs(v) for v in eqs(mx, my, kx, ky)) > mpf(10) ** -30:
             continue
         radius = sqrt((kx - mx) ** 2 + (ky - my) ** 2)
         if radius < mpf(10) ** -20:
@@ -143,6 +181,47 @@ def burmester(rows):
         if all(max(abs(mx - f[0]), abs(my - f[1])) > mpf(10) ** -30 for f in found):
             found.append((mx, my, kx, ky))
     return sorted(found, key=lambda f: (f[0], f[1]))
+
+
+def solve4(a, b):
+    """Gaussian elimination with partial pivoting on a 4x4 system; None when singular."""
+    m = [row[:] + [rhs] for row, rhs in zip(a, b)]
+    for col in range(4):
+        piv = max(range(col, 4), key=lambda r: abs(m[r][col]))
+        if abs(m[piv][col]) < 1e-300:
+            return None
+        m[col], m[piv] = m[piv], m[col]
+        for r in range(col + 1, 4):
+            f = m[r][col] / m[col][col]
+            for k in range(col, 5):
+                m[r][k] -= f * m[col][k]
+    x = [0.0] * 4
+    for r in range(3, -1, -1):
+        x[r] = (m[r][4] - sum(m[r][k] * x[k] for k in range(r + 1, 4))) / m[r][r]
+    return x
+
+
+def random_poses():
+    """The generator of the twelve random problems: a 64-bit linear congruential generator whose
+    top 53 bits make a double in [0, 1)."""
+    seed = 12345
+    mask = (1 << 64) - 1
+
+    def rnd():
+        nonlocal seed
+        seed = (seed * 6364136223846793005 + 1442695040888963407) & mask
+        return float(seed >> 11) / float(1 << 53)
+
+    problems = []
+    for _ in range(12):
+        poses = []
+        for _ in range(5):
+            x = 4.0 * rnd() - 2.0
+            y = 4.0 * rnd() - 2.0
+            a = 3.0 * rnd() - 1.5
+            poses.append((x, y, a))
+        problems.append(poses)
+    return problems
 
 
 def main():
@@ -158,6 +237,15 @@ def main():
     for mx, my, kx, ky in burmester(rows):
         out.append(f"burmester,{s(mx)},{s(my)},{s(kx)},{s(ky)}")
     with open(os.path.join(HERE, "burmester_five_poses.csv"), "w") as f:
+        f.write("\n".join(out) + "\n")
+    out = ["problem,kind,x,y,angle_or_circle_x,circle_y"]
+    for i, problem in enumerate(random_poses()):
+        for x, y, a in problem:
+            out.append(f"{i},pose,{x!r},{y!r},{a!r},")
+        rows = [(mpf(x), mpf(y), mpf(a)) for x, y, a in problem]
+        for mx, my, kx, ky in burmester(rows, starts=2000, scales=(3, 15, 80)):
+            out.append(f"{i},burmester,{s(mx)},{s(my)},{s(kx)},{s(ky)}")
+    with open(os.path.join(HERE, "burmester_random.csv"), "w") as f:
         f.write("\n".join(out) + "\n")
     print("known pivots (A, B in pose 1, D):", [(nstr(x, 12), nstr(y, 12)) for x, y in known])
 
