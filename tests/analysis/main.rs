@@ -10,6 +10,7 @@
 #[path = "../support/mod.rs"]
 mod support;
 
+mod classical_synthesis;
 mod metrics_mechanisms;
 mod objectives;
 mod sampled_paths;

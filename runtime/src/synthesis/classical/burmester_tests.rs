@@ -1,0 +1,230 @@
+//! Burmester's curves and points against independent references: the two dyads of a known
+//! four-bar whose coupler made the poses, mpmath's 50-digit solution of the Cartesian
+//! five-pose conditions (`reference/generate.py`), and the circle property of every dyad
+//! returned (checked from its pivots and the poses alone).
+
+use super::*;
+use crate::synthesis::classical::position::{Closure, Frame};
+use crate::{Vec2, deg, metrics::FourBarLinks};
+
+/// A known dyad: fixed pivot, moving pivot in the first pose, crank rotations.
+struct Known {
+    center: Vec2,
+    circle: Vec2,
+    rotations: Vec<f64>,
+}
+
+/// Poses of the coupler of the four-bar of `reference/generate.py` (ground 4, input 1.5,
+/// coupler 4, output 3, coupler point 2.5 from B at 0.6 rad from BC, open closure, turned by
+/// 0.25 rad and moved by (0.3, -0.2)) at the input angles `phis` (degrees), with its two dyads.
+fn four_bar_poses(phis: &[f64]) -> (Vec<Pose>, [Known; 2]) {
+    let frame = Frame { links: FourBarLinks { ground: 4.0, input: 1.5, coupler: 4.0, output: 3.0 } };
+    let (turn, origin) = (0.25f64, Vec2::new(0.3, -0.2));
+    let place = |v: Vec2| {
+        let (s, c) = turn.sin_cos();
+        origin + Vec2::new(c * v.x - s * v.y, s * v.x + c * v.y)
+    };
+    let (mut poses, mut bs, mut cs, mut psis) = (vec![], vec![], vec![], vec![]);
+    for &phi in phis.iter().map(|p| deg(*p)).collect::<Vec<_>>().iter() {
+        let psi = [Closure::CounterClockwise, Closure::Clockwise]
+            .into_iter()
+            .map(|c| frame.output_angle(phi, c).unwrap())
+            .find(|&psi| psi.sin() > 0.0)
+            .unwrap();
+        let (b, c) = (frame.b(phi), frame.c(psi));
+        let theta = (c - b).angle();
+        let p = b + Vec2::new((theta + 0.6).cos(), (theta + 0.6).sin()) * 2.5;
+        let p = place(p);
+        poses.push(Pose { point: p, angle: theta + turn });
+        bs.push(place(b));
+        cs.push(place(c));
+        psis.push(psi);
+    }
+    let input = Known {
+        center: place(Vec2::new(0.0, 0.0)),
+        circle: bs[0],
+        rotations: phis.iter().map(|p| deg(p - phis[0])).collect(),
+    };
+    let output =
+        Known { center: place(frame.d()), circle: cs[0], rotations: psis.iter().map(|p| p - psis[0]).collect() };
+    (poses, [input, output])
+}
+
+/// A dyad's deviation relative to the problem (or the crank, when longer): what the circle
+/// property allows a correct dyad computed in doubles. The pivots come from a linear solve
+/// whose conditioning the rotations set; a few hundred roundings of the problem's size.
+const DEVIATION: f64 = 1e-10;
+
+#[test]
+fn the_four_pose_curve_passes_through_the_known_four_bars_pivots() {
+    let (poses, known) = four_bar_poses(&[30.0, 55.0, 80.0, 110.0]);
+    let size = check_poses(&poses, 4, "test").unwrap();
+    for k in &known {
+        let dyads = dyads_at(&poses, k.rotations[1]).unwrap();
+        let hit = dyads
+            .iter()
+            .flatten()
+            .find(|d| (d.center - k.center).norm() < 1e-12 * size)
+            .unwrap_or_else(|| panic!("no dyad at {:?}: {dyads:?}", k.center));
+        assert!((hit.circle - k.circle).norm() < 1e-12 * size);
+        for j in 1..4 {
+            assert!(angle_difference(hit.rotations[j], k.rotations[j]).abs() < 1e-12);
+        }
+    }
+}
+
+#[test]
+fn every_point_of_the_four_pose_curve_keeps_its_circle() {
+    let (poses, _) = four_bar_poses(&[30.0, 55.0, 80.0, 110.0]);
+    let curve = center_point_curve(&poses, &BurmesterConfig::default()).unwrap();
+    // Both branches exist over most of the turn here.
+    assert!(curve.points.len() > 720, "{}", curve.points.len());
+    assert!(curve.max_deviation <= DEVIATION, "{:e}", curve.max_deviation);
+    for p in &curve.points {
+        assert!(p.dyad.deviation(&poses) <= DEVIATION * curve.size.max(p.dyad.radius()), "{p:?}");
+    }
+    assert_eq!(curve.center_points().count(), curve.points.len());
+    assert_eq!(curve.circle_points().next(), Some(curve.points[0].dyad.circle));
+}
+
+/// `reference/burmester_five_poses.csv`: the poses (17 digits, the problem solved in both) and
+/// mpmath's Burmester pairs.
+fn reference() -> (Vec<Pose>, Vec<(Vec2, Vec2)>) {
+    let (mut poses, mut pairs) = (vec![], vec![]);
+    for line in include_str!("reference/burmester_five_poses.csv").lines().skip(1) {
+        let f: Vec<&str> = line.split(',').collect();
+        let v = |i: usize| f[i].parse::<f64>().unwrap();
+        match f[0] {
+            "pose" => poses.push(Pose::new(v(1), v(2), v(3))),
+            _ => pairs.push((Vec2::new(v(1), v(2)), Vec2::new(v(3), v(4)))),
+        }
+    }
+    (poses, pairs)
+}
+
+#[test]
+fn five_poses_give_the_four_burmester_pairs_of_the_50_digit_reference() {
+    let (poses, pairs) = reference();
+    assert_eq!(pairs.len(), 4);
+    let found = burmester_points(&poses, &BurmesterConfig::default()).unwrap();
+    assert_eq!(found.dyads.len(), 4, "{found:?}");
+    assert!(found.max_deviation <= DEVIATION, "{:e}", found.max_deviation);
+    // Both sorted by the center's x.
+    for (dyad, (center, circle)) in found.dyads.iter().zip(&pairs) {
+        let scale = found.size.max(dyad.radius());
+        assert!((dyad.center - *center).norm() <= 1e-11 * scale, "{dyad:?} vs {center:?}");
+        assert!((dyad.circle - *circle).norm() <= 1e-11 * scale, "{dyad:?} vs {circle:?}");
+    }
+}
+
+#[test]
+fn five_poses_of_a_four_bar_give_its_own_two_dyads_among_the_burmester_points() {
+    let (poses, known) = four_bar_poses(&[30.0, 55.0, 80.0, 110.0, 140.0]);
+    let found = burmester_points(&poses, &BurmesterConfig::default()).unwrap();
+    for k in &known {
+        let hit = found.dyads.iter().find(|d| (d.center - k.center).norm() < 1e-11 * found.size);
+        let hit = hit.unwrap_or_else(|| panic!("{:?} not among {:?}", k.center, found.dyads));
+        assert!((hit.circle - k.circle).norm() < 1e-11 * found.size);
+        for j in 1..5 {
+            assert!(angle_difference(hit.rotations[j], k.rotations[j]).abs() < 1e-10);
+        }
+    }
+}
+
+/// Millimetres instead of metres, and the whole problem turned and moved: the same dyads,
+/// scaled, turned and moved (the tolerances are relative to the problem's size).
+#[test]
+fn burmester_points_follow_a_change_of_unit_and_placement() {
+    let (poses, _) = reference();
+    let base = burmester_points(&poses, &BurmesterConfig::default()).unwrap();
+    let (k, turn, shift) = (1000.0, 1.0f64, Vec2::new(-250.0, 4000.0));
+    let (s, c) = turn.sin_cos();
+    let map = |v: Vec2| shift + Vec2::new(c * v.x - s * v.y, s * v.x + c * v.y) * k;
+    let moved: Vec<Pose> = poses.iter().map(|p| Pose { point: map(p.point), angle: p.angle + turn }).collect();
+    let other = burmester_points(&moved, &BurmesterConfig::default()).unwrap();
+    assert_eq!(other.dyads.len(), base.dyads.len());
+    for d in &base.dyads {
+        let scale = other.size.max(k * d.radius());
+        assert!(
+            other.dyads.iter().any(|o| (o.center - map(d.center)).norm() < 1e-10 * scale
+                && (o.circle - map(d.circle)).norm() < 1e-10 * scale)
+        );
+    }
+}
+
+#[test]
+fn bad_input_is_an_error_not_a_panic() {
+    let (poses, _) = reference();
+    let cfg = BurmesterConfig::default();
+    assert!(matches!(center_point_curve(&poses, &cfg), Err(ClassicalError::Count { given: 5, .. })));
+    assert!(matches!(center_point_curve(&poses[..3], &cfg), Err(ClassicalError::Count { given: 3, .. })));
+    assert!(matches!(burmester_points(&poses[..4], &cfg), Err(ClassicalError::Count { given: 4, .. })));
+    assert!(matches!(burmester_points(&[], &cfg), Err(ClassicalError::Count { given: 0, .. })));
+    for bad in [f64::NAN, f64::INFINITY] {
+        let mut p = poses.clone();
+        p[2].point.y = bad;
+        assert!(matches!(burmester_points(&p, &cfg), Err(ClassicalError::NonFinite { .. })));
+        assert!(matches!(center_point_curve(&p[..4], &cfg), Err(ClassicalError::NonFinite { .. })));
+    }
+    let mut same = poses.clone();
+    same[4] = same[1];
+    assert_eq!(
+        burmester_points(&same, &cfg),
+        Err(ClassicalError::Coincident { what: "poses", first: 1, second: 4 }).map(|_: ()| unreachable!())
+    );
+    assert!(matches!(center_point_curve(&poses[..4], &cfg.samples(3)), Err(ClassicalError::BadRange { .. })));
+    // Poses 2 and 4 both turned about one point from pose 1: a shared pole.
+    let q = Vec2::new(2.0, 1.0);
+    let about = |a: f64| {
+        let (s, c) = a.sin_cos();
+        let r = Vec2::new(0.0, 0.0) - q;
+        Pose { point: q + Vec2::new(c * r.x - s * r.y, s * r.x + c * r.y), angle: a }
+    };
+    let shared = [about(0.0), about(0.5), Pose::new(1.0, 3.0, 0.9), about(1.2)];
+    assert!(matches!(center_point_curve(&shared, &cfg), Err(ClassicalError::Degenerate(_))));
+}
+
+/// `reference/burmester_random.csv`: twelve problems of five poses made by no linkage, with
+/// mpmath's Burmester pairs of each.
+#[allow(clippy::type_complexity)]
+fn random_problems() -> Vec<(Vec<Pose>, Vec<(Vec2, Vec2)>)> {
+    let mut problems: Vec<(Vec<Pose>, Vec<(Vec2, Vec2)>)> = Vec::new();
+    for line in include_str!("reference/burmester_random.csv").lines().skip(1) {
+        let f: Vec<&str> = line.split(',').collect();
+        let i: usize = f[0].parse().unwrap();
+        if problems.len() <= i {
+            problems.push((vec![], vec![]));
+        }
+        let v = |k: usize| f[k].parse::<f64>().unwrap();
+        match f[1] {
+            "pose" => problems[i].0.push(Pose::new(v(2), v(3), v(4))),
+            _ => problems[i].1.push((Vec2::new(v(2), v(3)), Vec2::new(v(4), v(5)))),
+        }
+    }
+    problems
+}
+
+/// Problems with none, two and four Burmester points, many with gaps where the first
+/// compatibility linkage cannot close (so that the search crosses its folds): the same pairs
+/// as the reference, every one keeping its circle.
+#[test]
+fn random_five_pose_problems_give_the_reference_burmester_pairs() {
+    let problems = random_problems();
+    assert_eq!(problems.len(), 12);
+    let mut folds = 0;
+    for (i, (poses, pairs)) in problems.iter().enumerate() {
+        let first = Compatibility::new(poses, [1, 2, 3]).unwrap();
+        folds += usize::from((0..720).any(|k| first.closures(k as f64 * TAU / 720.0)[0].is_none()));
+        let found = burmester_points(poses, &BurmesterConfig::default()).unwrap();
+        assert_eq!(found.dyads.len(), pairs.len(), "problem {i}: {found:?} vs {pairs:?}");
+        assert!(found.max_deviation <= DEVIATION, "problem {i}: {:e}", found.max_deviation);
+        for (center, circle) in pairs {
+            let hit = found.dyads.iter().find(|d| {
+                let scale = found.size.max(d.radius());
+                (d.center - *center).norm() <= 1e-10 * scale && (d.circle - *circle).norm() <= 1e-10 * scale
+            });
+            assert!(hit.is_some(), "problem {i}: {center:?} not among {:?}", found.dyads);
+        }
+    }
+    assert!(folds >= 6, "{folds}");
+}

@@ -1,0 +1,84 @@
+//! Chebyshev spacing of precision points.
+//!
+//! A linkage that meets a function exactly at `n` precision points deviates from it in between
+//! by an error that vanishes at those points. Spacing them at the zeros of the Chebyshev
+//! polynomial of degree `n`, mapped onto the range, is the classical first choice: for an error
+//! that behaves like a polynomial of degree `n` in `x` it makes the largest deviation over the
+//! range the smallest, the deviations at the ends and between the points coming out about equal.
+
+use super::error::{ClassicalError, finite};
+
+/// `n` precision points over `[x0, x1]` at Chebyshev spacing, in increasing order when
+/// `x0 < x1`:
+///
+/// `x_j = (x0 + x1) / 2 - (x1 - x0) / 2 * cos((2 j - 1) pi / (2 n))`, `j = 1 ..= n`.
+///
+/// Errors: `n == 0`, a bound not finite, or `x0 == x1`.
+///
+/// ```
+/// use kinloop_runtime::synthesis::classical::chebyshev_points;
+/// let x = chebyshev_points(3, 1.0, 2.0)?;
+/// let half_root3 = 3f64.sqrt() / 2.0;
+/// assert!((x[0] - (1.5 - 0.5 * half_root3)).abs() < 1e-15);
+/// assert!((x[1] - 1.5).abs() < 1e-15);
+/// assert!((x[2] - (1.5 + 0.5 * half_root3)).abs() < 1e-15);
+/// # Ok::<(), kinloop_runtime::synthesis::classical::ClassicalError>(())
+/// ```
+pub fn chebyshev_points(n: usize, x0: f64, x1: f64) -> Result<Vec<f64>, ClassicalError> {
+    finite(x0, || "the start of the range".into())?;
+    finite(x1, || "the end of the range".into())?;
+    if n == 0 {
+        return Err(ClassicalError::BadRange { what: "number of precision points", why: "it is zero".into() });
+    }
+    if x0 == x1 {
+        return Err(ClassicalError::BadRange { what: "range", why: format!("it is empty ({x0} to {x1})") });
+    }
+    let (mid, half) = (0.5 * (x0 + x1), 0.5 * (x1 - x0));
+    let x = (1..=n)
+        .map(|j| {
+            let theta = (2 * j - 1) as f64 * std::f64::consts::PI / (2 * n) as f64;
+            mid - half * theta.cos()
+        })
+        .collect();
+    Ok(x)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// The points are the roots of the Chebyshev polynomial `T_n` mapped onto the range: mapped
+    /// back to `[-1, 1]`, `T_n(t) = cos(n acos t)` vanishes there (a check through the
+    /// polynomial's definition, not through the spacing formula).
+    #[test]
+    fn points_are_the_mapped_roots_of_the_chebyshev_polynomial() {
+        for n in 1..=9 {
+            let x = chebyshev_points(n, -3.0, 5.0).unwrap();
+            assert_eq!(x.len(), n);
+            for (j, &xj) in x.iter().enumerate() {
+                let t = (xj - 1.0) / 4.0;
+                let tn = (n as f64 * t.acos()).cos();
+                assert!(tn.abs() < 1e-13, "n {n}, point {j}: T_n = {tn}");
+                assert!(j == 0 || xj > x[j - 1], "increasing");
+                assert!((-3.0..=5.0).contains(&xj));
+            }
+        }
+    }
+
+    #[test]
+    fn an_inverted_range_gives_the_points_in_decreasing_order() {
+        let up = chebyshev_points(4, 0.0, 1.0).unwrap();
+        let down = chebyshev_points(4, 1.0, 0.0).unwrap();
+        for (u, d) in up.iter().zip(down.iter()) {
+            assert!((u - (1.0 - d)).abs() < 1e-15);
+        }
+    }
+
+    #[test]
+    fn bad_input_is_an_error() {
+        assert!(matches!(chebyshev_points(0, 0.0, 1.0), Err(ClassicalError::BadRange { .. })));
+        assert!(matches!(chebyshev_points(3, 1.0, 1.0), Err(ClassicalError::BadRange { .. })));
+        assert!(matches!(chebyshev_points(3, f64::NAN, 1.0), Err(ClassicalError::NonFinite { .. })));
+        assert!(matches!(chebyshev_points(3, 0.0, f64::INFINITY), Err(ClassicalError::NonFinite { .. })));
+    }
+}

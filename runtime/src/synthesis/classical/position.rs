@@ -1,0 +1,136 @@
+//! The position of a four-bar by intersecting two circles: where the output link's end lies for
+//! a given input angle, on either closure. Used to analyse a synthesised function generator
+//! without the equation it was synthesised from.
+
+use crate::Vec2;
+use crate::metrics::FourBarLinks;
+
+/// Which of the two closures of a four-bar for a given input angle: the coupler's end `C` lies
+/// on one side or the other of the line from the input's end `B` to the output's pivot `D`.
+///
+/// [`CounterClockwise`](Closure::CounterClockwise) when the triangle `B, D, C` turns
+/// counter-clockwise (`(D - B) x (C - B) > 0`). A linkage keeps its closure while it moves,
+/// unless it passes a position where `B`, `C` and `D` line up.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum Closure {
+    /// `(D - B) x (C - B) > 0`.
+    CounterClockwise,
+    /// `(D - B) x (C - B) < 0`.
+    Clockwise,
+}
+
+/// The joints of a four-bar with the input pivot `A` at the origin and the output pivot `D` at
+/// `(ground, 0)`: the input's end `B` for the input angle `phi`, and the output's angle for a
+/// point `C` on the output link.
+pub(crate) struct Frame {
+    pub links: FourBarLinks,
+}
+
+impl Frame {
+    /// The input's end `B`.
+    pub fn b(&self, phi: f64) -> Vec2 {
+        let (s, c) = phi.sin_cos();
+        Vec2::new(self.links.input * c, self.links.input * s)
+    }
+
+    /// The output's pivot `D`.
+    pub fn d(&self) -> Vec2 {
+        Vec2::new(self.links.ground, 0.0)
+    }
+
+    /// The output's end `C` for the output angle `psi`.
+    pub fn c(&self, psi: f64) -> Vec2 {
+        let (s, c) = psi.sin_cos();
+        self.d() + Vec2::new(self.links.output * c, self.links.output * s)
+    }
+
+    /// The closure the output angle `psi` is on at the input angle `phi` (`None` when `B`, `D`
+    /// and `C` line up).
+    pub fn closure(&self, phi: f64, psi: f64) -> Option<Closure> {
+        let (b, d, c) = (self.b(phi), self.d(), self.c(psi));
+        let turn = (d - b).cross(c - b);
+        if turn > 0.0 {
+            Some(Closure::CounterClockwise)
+        } else if turn < 0.0 {
+            Some(Closure::Clockwise)
+        } else {
+            None
+        }
+    }
+
+    /// The output angle at the input angle `phi` on `closure`: `C` is where the circle of
+    /// radius `coupler` about `B` meets the circle of radius `output` about `D`. `None` where
+    /// they do not meet (the linkage cannot be assembled there).
+    pub fn output_angle(&self, phi: f64, closure: Closure) -> Option<f64> {
+        let FourBarLinks { coupler: b, output: c, .. } = self.links;
+        let (pb, d) = (self.b(phi), self.d());
+        let e = pb - d;
+        let l = e.norm();
+        if l.is_nan() || l <= 0.0 {
+            return None;
+        }
+        let u = e * (1.0 / l);
+        let n = Vec2::new(-u.y, u.x);
+        // Distance from D along u to the chord through the two intersections, and the half
+        // chord; a half chord negative by rounding only (tangent circles) counts as zero.
+        let along = (c * c - b * b + l * l) / (2.0 * l);
+        let h2 = c * c - along * along;
+        let rounding = 8.0 * f64::EPSILON * (c * c + b * b + l * l);
+        if h2 < -rounding || !h2.is_finite() {
+            return None;
+        }
+        let h = h2.max(0.0).sqrt();
+        // (D - B) x (C - B) = -l h (n . rotated u = 1): counter-clockwise takes C on the -n side.
+        let side = if closure == Closure::CounterClockwise { -h } else { h };
+        let pc = d + u * along + n * side;
+        Some((pc - d).angle())
+    }
+}
+
+/// The angle `x - y` wrapped into `(-pi, pi]`.
+pub(crate) fn angle_difference(x: f64, y: f64) -> f64 {
+    use std::f64::consts::{PI, TAU};
+    let r = (x - y + PI).rem_euclid(TAU) - PI;
+    if r == -PI { PI } else { r }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn frame() -> Frame {
+        Frame { links: FourBarLinks { ground: 3.2, input: 1.0, coupler: 3.0, output: 2.5 } }
+    }
+
+    /// Both closures close the loop (|C - B| = coupler), lie on the sides they are named for,
+    /// and are mirror images in the line B-D.
+    #[test]
+    fn both_closures_close_the_loop_on_their_side() {
+        let f = frame();
+        for k in 0..24 {
+            let phi = k as f64 * std::f64::consts::TAU / 24.0;
+            for closure in [Closure::CounterClockwise, Closure::Clockwise] {
+                let psi = f.output_angle(phi, closure).unwrap();
+                assert!(((f.c(psi) - f.b(phi)).norm() - 3.0).abs() < 1e-14, "{phi} {closure:?}");
+                assert_eq!(f.closure(phi, psi), Some(closure));
+            }
+        }
+    }
+
+    #[test]
+    fn no_angle_where_the_circles_do_not_meet() {
+        let f = Frame { links: FourBarLinks { ground: 3.0, input: 1.0, coupler: 0.5, output: 0.5 } };
+        assert_eq!(f.output_angle(std::f64::consts::PI, Closure::Clockwise), None);
+        let f = Frame { links: FourBarLinks { ground: 1.0, input: 1.0, coupler: 1.0, output: 1.0 } };
+        assert_eq!(f.output_angle(0.0, Closure::Clockwise), None, "B on D");
+    }
+
+    #[test]
+    fn angle_difference_wraps_into_half_open_interval() {
+        use std::f64::consts::PI;
+        assert!((angle_difference(0.1, 2.0 * PI - 0.1) - 0.2).abs() < 1e-15);
+        assert_eq!(angle_difference(PI, 0.0), PI);
+        assert_eq!(angle_difference(-PI, 0.0), PI);
+        assert!((angle_difference(-3.0, 3.0) - (2.0 * PI - 6.0)).abs() < 1e-15);
+    }
+}
