@@ -3,7 +3,8 @@
 
 kinloop::mechanism! {
     /// Four-bar with a coupler point: crank `a` at the origin, coupler `b`, rocker `c` at
-    /// (d, 0); the point `p` at distance `e` from the crank pin, `alpha` off the coupler line.
+    /// (d, 0); the point `p` at distance `e` from the crank pin, `alpha` off the coupler line; `theta` the angle of the line from
+    /// the crank pin to `p` (the coupler's angle in a motion task).
     #[kinloop(sensitivities)]
     pub struct CouplerFourBar {
         params a = 1.0, b = 3.0, c = 2.5, d = 3.0, e = 1.5, alpha = 0.6;
@@ -11,6 +12,7 @@ kinloop::mechanism! {
         unknowns beta = 0.5, gamma = 1.5;
         loop abcd: a @ phi + b @ beta == (d, 0) + c @ gamma;
         point p = a @ phi + e @ (beta + alpha);
+        output theta = beta + alpha;
     }
 }
 
