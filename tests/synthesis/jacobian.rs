@@ -45,7 +45,8 @@ fn design() -> Design {
 fn path_with_free_timing_and_placement() {
     let phis = [0.4, 1.1, 1.9, 2.6, 3.5, 4.4, 5.1, 5.8, 6.0, 6.1];
     let targets: Vec<[f64; 2]> = phis.iter().map(|&p| coupler_point(FOUR_BAR, p)).collect();
-    let bounds = PlacementBounds::translation((-5.0, 5.0), (-5.0, 5.0)).with_rotation((-4.0, 4.0)).with_scale((0.1, 10.0));
+    let bounds =
+        PlacementBounds::translation((-5.0, 5.0), (-5.0, 5.0)).with_rotation((-4.0, 4.0)).with_scale((0.1, 10.0));
     let task = Task::fit("p", targets).untimed(0.0, 7.0).with_placement(bounds);
     let problem = Problem::new(CouplerFourBar::default(), &design(), &task).unwrap();
     // Dimensions, the crank angles (off the targets'), and a placement with every term at work.
@@ -61,7 +62,8 @@ fn motion_with_prescribed_timing_and_placement() {
     // Poses of the coupler (point and angle), targets off the mechanism so the residuals are
     // not small; the placement turns the angle too.
     let poses = [[1.0, 2.0, 0.5], [0.5, 2.5, 0.9], [0.0, 2.2, 1.4], [-0.3, 1.5, 2.0]];
-    let bounds = PlacementBounds::translation((-5.0, 5.0), (-5.0, 5.0)).with_rotation((-4.0, 4.0)).with_scale((0.1, 10.0));
+    let bounds =
+        PlacementBounds::translation((-5.0, 5.0), (-5.0, 5.0)).with_rotation((-4.0, 4.0)).with_scale((0.1, 10.0));
     let task = Task::motion("p", "theta", poses).timed([0.3, 0.9, 1.6, 2.4]).with_placement(bounds);
     let problem = Problem::new(CouplerFourBar::default(), &design(), &task).unwrap();
     let z = [1.05, 3.1, 2.45, 3.0, 1.6, 0.5, 0.3, -0.2, 0.7, 1.3];

@@ -34,17 +34,18 @@ pub const FOUR_BAR: [f64; 6] = [1.0, 3.2, 2.4, 3.1, 1.7, 0.45];
 /// coupler joint C on the left of the line from the crank pin A to the rocker pivot D (the
 /// assembly mode of the declared guess): circle intersection in closed form.
 pub fn coupler_point(p: [f64; 6], phi: f64) -> [f64; 2] {
+    four_bar_pose(p, phi, 1.0).0
+}
+
+/// The coupler point and the angles `[beta, gamma]` of a four-bar at crank angle `phi`, with C
+/// on side `side` of the line from A to D (+1 left, -1 right).
+pub fn four_bar_pose(p: [f64; 6], phi: f64, side: f64) -> ([f64; 2], [f64; 2]) {
     let [a, b, c, d, e, alpha] = p;
     let (ax, ay) = (a * phi.cos(), a * phi.sin());
-    let (ux, uy) = (d - ax, -ay);
-    let r2 = ux * ux + uy * uy;
-    let r = r2.sqrt();
-    // Along AD by `s`, then to its left by `h`.
-    let s = (b * b - c * c + r2) / (2.0 * r);
-    let h = (b * b - s * s).sqrt();
-    let (cx, cy) = (ax + (s * ux - h * uy) / r, ay + (s * uy + h * ux) / r);
+    let (cx, cy) = crate::support::circle_point(ax, ay, b, d, 0.0, c, side);
     let beta = (cy - ay).atan2(cx - ax);
-    [ax + e * (beta + alpha).cos(), ay + e * (beta + alpha).sin()]
+    let gamma = cy.atan2(cx - d);
+    ([ax + e * (beta + alpha).cos(), ay + e * (beta + alpha).sin()], [beta, gamma])
 }
 
 /// The slider's truth: `[r, l, e]`.

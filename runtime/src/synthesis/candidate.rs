@@ -53,7 +53,8 @@ pub enum Defect {
 #[derive(Clone, Debug, PartialEq)]
 #[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
 pub struct Candidate {
-    /// The index of the start it was found from (the search's Halton index).
+    /// The index of the start it was found from (the search's Halton index; `usize::MAX` for
+    /// [`Search::refine`](super::Search::refine)).
     pub start: usize,
     /// The design variables' values, in the problem's order.
     pub values: Vec<f64>,

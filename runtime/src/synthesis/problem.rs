@@ -31,6 +31,17 @@ pub(crate) enum Inputs<const NI: usize> {
     Free { lo: f64, hi: f64 },
 }
 
+/// Where the first evaluation of a local solve starts its position solves.
+#[derive(Clone, Debug, PartialEq)]
+pub(crate) enum Guess<const N: usize> {
+    /// The declared guess at the first target, each next target from the one before.
+    Declared,
+    /// This position at the first target, each next target from the one before.
+    First([f64; N]),
+    /// A position at every target.
+    Every(Vec<[f64; N]>),
+}
+
 /// The constraints resolved to indices.
 #[derive(Clone, Debug, Default, PartialEq)]
 pub(crate) struct Checks {
@@ -61,7 +72,8 @@ pub struct Problem<M, const N: usize, const NI: usize, const NO: usize, const NP
     pub(crate) inputs: Inputs<NI>,
     pub(crate) placement: Option<PlacementBounds>,
     pub(crate) checks: Checks,
-    pub(crate) guess: Option<[f64; N]>,
+    /// The positions the first evaluation starts from: at the first target, or at every one.
+    pub(crate) guess: Guess<N>,
     pub(crate) newton: NewtonConfig,
     pub(crate) sweep: SweepConfig,
     /// The size of the targets (their largest distance from their centroid, 1 without
@@ -134,7 +146,7 @@ where
             inputs,
             placement: task.placement,
             checks: Checks::default(),
-            guess: None,
+            guess: Guess::Declared,
             newton: NewtonConfig::default().with_residual_tol(1e-14).with_step_tol(1e-16),
             sweep: SweepConfig::default(),
             scale,
@@ -191,8 +203,21 @@ where
     /// The position at the first target that picks the assembly mode (by default the
     /// mechanism's declared guess there).
     pub fn with_guess(mut self, guess: [f64; N]) -> Self {
-        self.guess = Some(guess);
+        self.guess = Guess::First(guess);
         self
+    }
+
+    /// A position at every target, to start the first evaluation of every local solve from
+    /// (e.g. from a design whose assembly mode at each target is known); one per target.
+    pub fn with_guesses(mut self, guesses: Vec<[f64; N]>) -> Result<Self, SynthesisError> {
+        if guesses.len() != self.targets() {
+            return Err(SynthesisError::Mismatch(format!("{} guesses for {} targets", guesses.len(), self.targets())));
+        }
+        if guesses.iter().flatten().any(|v| !v.is_finite()) {
+            return Err(SynthesisError::InvalidConfig("a guess is not finite".into()));
+        }
+        self.guess = Guess::Every(guesses);
+        Ok(self)
     }
 
     /// The Newton configuration of every position solve (by default a residual tolerance of

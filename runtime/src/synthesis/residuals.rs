@@ -3,7 +3,7 @@
 //! from the velocity analogs, to the placement in closed form.
 
 use super::error::SynthesisError;
-use super::problem::{Problem, Resolved};
+use super::problem::{Guess, Problem, Resolved};
 use crate::analysis::ColumnIndex;
 use crate::error::Error;
 use crate::kin::{Kin, Sens};
@@ -68,18 +68,25 @@ where
     M: Sensitivities<N, NI, NO, NP> + Clone,
 {
     /// The residuals and their exact Jacobian at the search's unknowns `z` (see [`Problem`] for
-    /// their order), the positions solved from the declared guess (or
-    /// [`Problem::with_guess`]) at the first target and each from the one before.
+    /// their order), the positions solved from the declared guess (or those of
+    /// [`Problem::with_guess`], [`Problem::with_guesses`]) at the first target and each from the
+    /// one before.
     pub fn residuals(&self, z: &[f64]) -> Result<Residuals, SynthesisError> {
+        self.check_point(z)?;
+        let e = self.evaluate(z, None)?;
+        let cols = self.dims();
+        Ok(Residuals { values: e.r, jacobian: e.jac.chunks(cols).map(<[f64]>::to_vec).collect() })
+    }
+
+    /// `z` has one finite value per unknown of the search.
+    pub(crate) fn check_point(&self, z: &[f64]) -> Result<(), SynthesisError> {
         if z.len() != self.dims() {
             return Err(SynthesisError::Mismatch(format!("{} values for {} unknowns", z.len(), self.dims())));
         }
         if let Some(v) = z.iter().find(|v| !v.is_finite()) {
             return Err(SynthesisError::InvalidConfig(format!("an unknown of the search is not finite ({v})")));
         }
-        let e = self.evaluate(z, None)?;
-        let cols = self.dims();
-        Ok(Residuals { values: e.r, jacobian: e.jac.chunks(cols).map(<[f64]>::to_vec).collect() })
+        Ok(())
     }
 
     /// The residuals, Jacobian and positions at `z`, each target's position solved from
@@ -99,10 +106,12 @@ where
             (z[at], z[at + 1], th.cos(), th.sin(), s)
         });
         for (k, x) in inputs.iter().enumerate() {
-            let guess = match (guesses, qs.last()) {
-                (Some(g), _) => g[k],
-                (None, Some(q)) => *q,
-                (None, None) => self.guess.unwrap_or_else(|| m.guess_flat(x)),
+            let guess = match (guesses, &self.guess, qs.last()) {
+                (Some(g), _, _) => g[k],
+                (None, Guess::Every(g), _) => g[k],
+                (None, _, Some(q)) => *q,
+                (None, Guess::First(g), None) => *g,
+                (None, Guess::Declared, None) => m.guess_flat(x),
             };
             let (kin, sens) = m.sensitivities_flat(x, &guess, &self.newton)?;
             qs.push(kin.q);

@@ -48,6 +48,8 @@ impl Default for Search {
 pub struct SynthesisReport {
     /// The design variables' names, the order of [`Candidate::values`].
     pub variables: Vec<String>,
+    /// Their bounds, in the same order.
+    pub bounds: Vec<(f64, f64)>,
     /// The best distinct candidates: valid ones (no defect) first, each group by increasing
     /// RMS error, ties by start index.
     pub candidates: Vec<Candidate>,
@@ -72,12 +74,13 @@ impl SynthesisReport {
         self.candidates.first().filter(|c| c.is_valid())
     }
 
-    /// The reports of two parts of one search (disjoint start ranges of the same problem and
-    /// settings) as one, ranked again and cut to `keep`.
-    pub fn merge(mut self, other: SynthesisReport, keep: usize) -> SynthesisReport {
-        self.candidates.extend(other.candidates);
-        rank(&mut self.candidates);
-        self.candidates.truncate(keep);
+    /// The reports of two parts of one search (disjoint start ranges of the same problem,
+    /// `search` the settings both ran with but for the range) as one: ranked again, duplicates
+    /// removed, cut to [`Search::keep`].
+    pub fn merge(mut self, other: SynthesisReport, search: &Search) -> SynthesisReport {
+        let mut all = std::mem::take(&mut self.candidates);
+        all.extend(other.candidates);
+        self.candidates = distinct(all, &self.bounds, search);
         self.starts = self.starts.start.min(other.starts.start)..self.starts.end.max(other.starts.end);
         self.unassembled += other.unassembled;
         self.converged += other.converged;
@@ -95,6 +98,27 @@ fn rank(c: &mut [Candidate]) {
     c.sort_by(|a, b| {
         b.is_valid().cmp(&a.is_valid()).then(a.rms_error.total_cmp(&b.rms_error)).then(a.start.cmp(&b.start))
     });
+}
+
+/// The candidates ranked, without duplicates (a candidate of the same validity whose every
+/// value is within `distinct` of the range of one ranked before it), at most `keep`.
+fn distinct(mut all: Vec<Candidate>, bounds: &[(f64, f64)], search: &Search) -> Vec<Candidate> {
+    rank(&mut all);
+    let span: Vec<f64> = bounds.iter().map(|(lo, hi)| (hi - lo).max(f64::MIN_POSITIVE)).collect();
+    let mut out: Vec<Candidate> = Vec::new();
+    for c in all {
+        if out.len() >= search.keep {
+            break;
+        }
+        let same = |o: &Candidate| {
+            o.is_valid() == c.is_valid()
+                && o.values.iter().zip(&c.values).zip(&span).all(|((a, b), s)| (a - b).abs() <= search.distinct * s)
+        };
+        if !out.iter().any(same) {
+            out.push(c);
+        }
+    }
+    out
 }
 
 /// The slot of `rejected` counting a defect.
@@ -230,6 +254,7 @@ impl Search {
     {
         let mut report = SynthesisReport {
             variables: problem.names.clone(),
+            bounds: problem.vars.iter().map(|b| (b.lo, b.hi)).collect(),
             candidates: Vec::new(),
             starts: self.starts.clone(),
             unassembled: 0,
@@ -253,20 +278,27 @@ impl Search {
             all.push(c);
         }
         report.evaluations += report.unassembled;
-        rank(&mut all);
-        let span: Vec<f64> = problem.vars.iter().map(|b| (b.hi - b.lo).max(f64::MIN_POSITIVE)).collect();
-        for c in all {
-            let same = |o: &Candidate| {
-                o.is_valid() == c.is_valid()
-                    && o.values.iter().zip(&c.values).zip(&span).all(|((a, b), s)| (a - b).abs() <= self.distinct * s)
-            };
-            if !report.candidates.iter().any(same) {
-                report.candidates.push(c);
-                if report.candidates.len() >= self.keep {
-                    break;
-                }
-            }
-        }
+        report.candidates = distinct(all, &report.bounds, self);
         report
+    }
+
+    /// Runs the local solve from `z0` (the search's unknowns, see [`Problem`]; clamped into
+    /// their bounds) and verifies its result: e.g. from a classical closed-form design, or to
+    /// polish a candidate with other settings. An error where the design cannot be assembled
+    /// at every target at `z0`.
+    pub fn refine<M, const N: usize, const NI: usize, const NO: usize, const NP: usize>(
+        &self,
+        problem: &Problem<M, N, NI, NO, NP>,
+        z0: &[f64],
+    ) -> Result<Candidate, SynthesisError>
+    where
+        M: Sensitivities<N, NI, NO, NP> + Clone,
+    {
+        self.validate()?;
+        problem.check_point(z0)?;
+        let (lo, hi) = problem.bounds();
+        let z0 = z0.iter().zip(lo.iter().zip(&hi)).map(|(v, (a, b))| v.clamp(*a, *b)).collect();
+        let (z, e, report) = problem.local(z0, &self.local)?;
+        Ok(problem.verify(usize::MAX, z, e, report))
     }
 }
