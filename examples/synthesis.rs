@@ -70,7 +70,8 @@ fn path_generation() -> Result<(), Box<dyn std::error::Error>> {
         .var("d", 0.5, 8.0)
         .var("e", 0.0, 5.0)
         .var("alpha", -3.2, 3.2);
-    let constraints = Constraints::default().with_full_rotation().with_transmission("beta", "gamma", 30f64.to_radians());
+    let constraints =
+        Constraints::default().with_full_rotation().with_transmission("beta", "gamma", 30f64.to_radians());
     let problem = Problem::new(CouplerFourBar::default(), &design, &task)?.with_constraints(&constraints)?;
     let search = Search::default().with_starts(0..512).with_seed(1).with_keep(5);
     let clock = Instant::now();

@@ -1,9 +1,7 @@
 //! Bad input: a clear error naming what is wrong, never a panic.
 
 use super::mechanisms::CouplerFourBar;
-use kinloop::synthesis::{
-    Constraints, Design, LocalConfig, PlacementBounds, Problem, Search, SynthesisError, Task,
-};
+use kinloop::synthesis::{Constraints, Design, LocalConfig, PlacementBounds, Problem, Search, SynthesisError, Task};
 
 fn design() -> Design {
     Design::new().var("a", 0.5, 2.0).var("b", 1.0, 5.0)
@@ -56,7 +54,9 @@ fn targets_that_are_missing_not_finite_or_too_few() {
     assert!(matches!(e, SynthesisError::NonFinite { what: "the input", target: 1, .. }), "{e:?}");
     // Two points, untimed: four equations for two dimensions and two crank angles is enough;
     // one point is not (two equations, three unknowns).
-    assert!(Problem::new(CouplerFourBar::default(), &design(), &Task::path("p", [[1.0, 2.0]; 2]).untimed(0.0, 1.0)).is_ok());
+    assert!(
+        Problem::new(CouplerFourBar::default(), &design(), &Task::path("p", [[1.0, 2.0]; 2]).untimed(0.0, 1.0)).is_ok()
+    );
     let e = error(&design(), &Task::path("p", [[1.0, 2.0]]).untimed(0.0, 1.0));
     assert_eq!(e, SynthesisError::TooFewTargets { residuals: 2, variables: 3 });
     // Timing missing, or of the wrong length.
