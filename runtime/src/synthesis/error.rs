@@ -4,7 +4,8 @@
 
 use crate::error::Error;
 
-/// What is wrong with a synthesis problem or its search; see the [module documentation](self).
+/// What is wrong with a synthesis problem or its search: a problem that is not well posed is
+/// refused when it is built, with a message that names what is wrong.
 #[derive(Clone, Debug, PartialEq, thiserror::Error)]
 #[non_exhaustive]
 pub enum SynthesisError {

@@ -51,7 +51,7 @@ fn first_primes(n: usize) -> Vec<u64> {
     let mut primes: Vec<u64> = Vec::with_capacity(n);
     let mut k = 2u64;
     while primes.len() < n {
-        if primes.iter().take_while(|&&p| p * p <= k).all(|&p| k % p != 0) {
+        if primes.iter().take_while(|&&p| p * p <= k).all(|&p| !k.is_multiple_of(p)) {
             primes.push(k);
         }
         k += 1;

@@ -125,7 +125,8 @@ where
             let lengths: Vec<f64> = idx.iter().map(|&i| params[i].abs()).collect();
             let ratio =
                 lengths.iter().copied().fold(0.0, f64::max) / lengths.iter().copied().fold(f64::INFINITY, f64::min);
-            if !(ratio <= *max) {
+            // A NaN ratio (a zero or non-finite link) is a violation too.
+            if !matches!(ratio.partial_cmp(max), Some(std::cmp::Ordering::Less | std::cmp::Ordering::Equal)) {
                 defects.push(Defect::LinkRatio { ratio });
             }
         }
