@@ -7,7 +7,9 @@
 //! roundings) and the dimensions agree to the residual times the condition number of the
 //! Jacobian (well below `DIMENSION`, 1e-8 relative, for these well-spread targets).
 
-use super::mechanisms::{CouplerFourBar, FOUR_BAR, SLIDER, Slider, coupler_point, slider_x};
+use super::mechanisms::{
+    CouplerFourBar, FOUR_BAR, SLIDER, STEPHENSON, Slider, Stephenson, coupler_point, slider_x, stephenson_point,
+};
 use kinloop::synthesis::{Design, Problem, Search, SynthesisReport, Task, chebyshev};
 
 const RESIDUAL: f64 = 1e-13;
@@ -85,4 +87,17 @@ fn four_bar_angle_function() {
     let problem = Problem::new(m, &design(&["a", "b", "c"], &[a, b, c], 0.3), &task).unwrap();
     let report = Search::default().with_starts(0..16).run(&problem).unwrap();
     check_recovered(&report, &[a, b, c], 1.0);
+}
+
+#[test]
+fn stephenson_six_bar_path_with_timing() {
+    // Eleven dimensions from eight points at prescribed crank angles (sixteen equations): a path
+    // no four-bar declaration can be asked for.
+    let phis: Vec<f64> = (0..8).map(|k| 0.2 + 0.75 * k as f64).collect();
+    let targets: Vec<[f64; 2]> = phis.iter().map(|&p| stephenson_point(STEPHENSON, p)).collect();
+    let task = Task::path("r", targets).timed(phis);
+    let names = ["a", "b", "c", "d", "e", "alpha", "f", "g", "gx", "gy", "h"];
+    let problem = Problem::new(Stephenson::default(), &design(&names, &STEPHENSON, 0.1), &task).unwrap();
+    let report = Search::default().with_starts(0..32).run(&problem).unwrap();
+    check_recovered(&report, &STEPHENSON, 1.0);
 }

@@ -57,3 +57,32 @@ pub fn slider_x(p: [f64; 3], phi: f64) -> f64 {
     let [r, l, e] = p;
     r * phi.cos() - (l * l - (r * phi.sin() - e).powi(2)).sqrt()
 }
+
+kinloop::mechanism! {
+    /// Stephenson six-bar: the four-bar above, and a dyad from its coupler point P (link `f`,
+    /// angle `delta`) to a ground pivot G = (gx, gy) (link `g`, angle `eps`); the traced point
+    /// `r` lies on the dyad's first link at distance `h` from P.
+    #[kinloop(sensitivities)]
+    pub struct Stephenson {
+        params a = 1.0, b = 3.2, c = 2.4, d = 3.1, e = 1.7, alpha = 0.45, f = 2.2, g = 2.6, gx = 0.8,
+               gy = 4.6, h = 3.0;
+        input phi;
+        unknowns beta = 0.5, gamma = 1.5, delta = 0.3, eps = -1.0;
+        loop abcd: a @ phi + b @ beta == (d, 0) + c @ gamma;
+        loop peg: a @ phi + e @ (beta + alpha) + f @ delta == (gx, gy) + g @ eps;
+        point r = a @ phi + e @ (beta + alpha) + h @ delta;
+    }
+}
+
+/// The six-bar's truth, in declaration order.
+pub const STEPHENSON: [f64; 11] = [1.0, 3.2, 2.4, 3.1, 1.7, 0.45, 2.2, 2.6, 0.8, 4.6, 3.0];
+
+/// The six-bar's traced point at crank angle `phi`: the four-bar's coupler point P (C on the
+/// left of AD), the dyad's joint E on the right of the line from P to G, `r` on PE.
+pub fn stephenson_point(p: [f64; 11], phi: f64) -> [f64; 2] {
+    let [a, b, c, d, e, alpha, f, g, gx, gy, h] = p;
+    let [px, py] = coupler_point([a, b, c, d, e, alpha], phi);
+    let (ex, ey) = crate::support::circle_point(px, py, f, gx, gy, g, -1.0);
+    let delta = (ey - py).atan2(ex - px);
+    [px + h * delta.cos(), py + h * delta.sin()]
+}
