@@ -16,3 +16,4 @@ mod determinism;
 mod jacobian;
 mod known_answers;
 mod mechanisms;
+mod report;

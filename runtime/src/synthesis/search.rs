@@ -1,14 +1,15 @@
 //! The global search: local solves from many starts spread over the box of the design variables
 //! by a shifted Halton sequence, each verified, ranked. Start `i` depends on the seed and on `i`
 //! only, so a search can be split by index range over processes or machines and the reports
-//! merged ([`SynthesisReport::merge`]); with the `rayon` feature [`Search::par_run`] runs the
+//! merged ([`SynthesisReport::merge`](super::SynthesisReport::merge)); with the `rayon` feature [`Search::par_run`] runs the
 //! starts on all cores with the same result as [`Search::run`].
 
-use super::candidate::{Candidate, Defect};
+use super::candidate::Candidate;
 use super::error::SynthesisError;
 use super::halton::Halton;
 use super::local::LocalConfig;
 use super::problem::{Inputs, Problem};
+use super::report::{SynthesisReport, distinct, slot};
 use crate::mechanism::Sensitivities;
 use std::ops::Range;
 
@@ -39,98 +40,6 @@ pub struct Search {
 impl Default for Search {
     fn default() -> Self {
         Search { starts: 0..64, seed: 0, local: LocalConfig::default(), keep: 10, distinct: 1e-6 }
-    }
-}
-
-/// The outcome of a search: the best candidates and what happened to the others.
-#[derive(Clone, Debug, PartialEq)]
-#[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
-pub struct SynthesisReport {
-    /// The design variables' names, the order of [`Candidate::values`].
-    pub variables: Vec<String>,
-    /// Their bounds, in the same order.
-    pub bounds: Vec<(f64, f64)>,
-    /// The best distinct candidates: valid ones (no defect) first, each group by increasing
-    /// RMS error, ties by start index.
-    pub candidates: Vec<Candidate>,
-    /// The starts run.
-    pub starts: Range<usize>,
-    /// Starts at which the design cannot be assembled at every target (no local solve).
-    pub unassembled: usize,
-    /// Local solves that met the tolerance (residual or step).
-    pub converged: usize,
-    /// Local solves whose result is valid (no defect).
-    pub valid: usize,
-    /// Candidates rejected, by their first defect: order, branch, circuit, no assembly, full
-    /// rotation, transmission angle, link ratio.
-    pub rejected: [usize; 7],
-    /// Evaluations of residuals and Jacobian over all starts.
-    pub evaluations: usize,
-}
-
-impl SynthesisReport {
-    /// The best valid candidate, if any.
-    pub fn best(&self) -> Option<&Candidate> {
-        self.candidates.first().filter(|c| c.is_valid())
-    }
-
-    /// The reports of two parts of one search (disjoint start ranges of the same problem,
-    /// `search` the settings both ran with but for the range) as one: ranked again, duplicates
-    /// removed, cut to [`Search::keep`].
-    pub fn merge(mut self, other: SynthesisReport, search: &Search) -> SynthesisReport {
-        let mut all = std::mem::take(&mut self.candidates);
-        all.extend(other.candidates);
-        self.candidates = distinct(all, &self.bounds, search);
-        self.starts = self.starts.start.min(other.starts.start)..self.starts.end.max(other.starts.end);
-        self.unassembled += other.unassembled;
-        self.converged += other.converged;
-        self.valid += other.valid;
-        for (a, b) in self.rejected.iter_mut().zip(other.rejected) {
-            *a += b;
-        }
-        self.evaluations += other.evaluations;
-        self
-    }
-}
-
-/// Valid first, then by RMS error, then by start.
-fn rank(c: &mut [Candidate]) {
-    c.sort_by(|a, b| {
-        b.is_valid().cmp(&a.is_valid()).then(a.rms_error.total_cmp(&b.rms_error)).then(a.start.cmp(&b.start))
-    });
-}
-
-/// The candidates ranked, without duplicates (a candidate of the same validity whose every
-/// value is within `distinct` of the range of one ranked before it), at most `keep`.
-fn distinct(mut all: Vec<Candidate>, bounds: &[(f64, f64)], search: &Search) -> Vec<Candidate> {
-    rank(&mut all);
-    let span: Vec<f64> = bounds.iter().map(|(lo, hi)| (hi - lo).max(f64::MIN_POSITIVE)).collect();
-    let mut out: Vec<Candidate> = Vec::new();
-    for c in all {
-        if out.len() >= search.keep {
-            break;
-        }
-        let same = |o: &Candidate| {
-            o.is_valid() == c.is_valid()
-                && o.values.iter().zip(&c.values).zip(&span).all(|((a, b), s)| (a - b).abs() <= search.distinct * s)
-        };
-        if !out.iter().any(same) {
-            out.push(c);
-        }
-    }
-    out
-}
-
-/// The slot of `rejected` counting a defect.
-fn slot(d: &Defect) -> usize {
-    match d {
-        Defect::Order => 0,
-        Defect::Branch { .. } => 1,
-        Defect::Circuit { .. } => 2,
-        Defect::NoAssembly { .. } => 3,
-        Defect::NoFullRotation => 4,
-        Defect::Transmission { .. } => 5,
-        Defect::LinkRatio { .. } => 6,
     }
 }
 
@@ -221,8 +130,31 @@ impl Search {
     where
         M: Sensitivities<N, NI, NO, NP> + Clone,
     {
+        self.run_with_progress(problem, |_, _| {})
+    }
+
+    /// [`Search::run`], calling `progress(done, total)` after each start (e.g. to drive a
+    /// progress bar on a long search).
+    pub fn run_with_progress<M, const N: usize, const NI: usize, const NO: usize, const NP: usize>(
+        &self,
+        problem: &Problem<M, N, NI, NO, NP>,
+        mut progress: impl FnMut(usize, usize),
+    ) -> Result<SynthesisReport, SynthesisError>
+    where
+        M: Sensitivities<N, NI, NO, NP> + Clone,
+    {
         self.validate()?;
-        let found: Vec<Option<Candidate>> = self.starts.clone().map(|i| self.one(problem, i)).collect();
+        let total = self.starts.len();
+        let found: Vec<Option<Candidate>> = self
+            .starts
+            .clone()
+            .enumerate()
+            .map(|(k, i)| {
+                let c = self.one(problem, i);
+                progress(k + 1, total);
+                c
+            })
+            .collect();
         Ok(self.report(problem, found))
     }
 
@@ -236,9 +168,34 @@ impl Search {
     where
         M: Sensitivities<N, NI, NO, NP> + Clone + Sync,
     {
+        self.par_run_with_progress(problem, |_, _| {})
+    }
+
+    /// [`Search::par_run`], calling `progress(done, total)` from the worker threads after each
+    /// start (`done` counts the starts finished, in whatever order they finish).
+    #[cfg(feature = "rayon")]
+    pub fn par_run_with_progress<M, const N: usize, const NI: usize, const NO: usize, const NP: usize>(
+        &self,
+        problem: &Problem<M, N, NI, NO, NP>,
+        progress: impl Fn(usize, usize) + Sync,
+    ) -> Result<SynthesisReport, SynthesisError>
+    where
+        M: Sensitivities<N, NI, NO, NP> + Clone + Sync,
+    {
         use rayon::prelude::*;
+        use std::sync::atomic::{AtomicUsize, Ordering};
         self.validate()?;
-        let found: Vec<Option<Candidate>> = self.starts.clone().into_par_iter().map(|i| self.one(problem, i)).collect();
+        let (total, done) = (self.starts.len(), AtomicUsize::new(0));
+        let found: Vec<Option<Candidate>> = self
+            .starts
+            .clone()
+            .into_par_iter()
+            .map(|i| {
+                let c = self.one(problem, i);
+                progress(done.fetch_add(1, Ordering::Relaxed) + 1, total);
+                c
+            })
+            .collect();
         Ok(self.report(problem, found))
     }
 
