@@ -8,9 +8,10 @@
 //! Jacobian (well below `DIMENSION`, 1e-8 relative, for these well-spread targets).
 
 use super::mechanisms::{
-    CouplerFourBar, FOUR_BAR, SLIDER, STEPHENSON, Slider, Stephenson, coupler_point, slider_x, stephenson_point,
+    CouplerFourBar, FOUR_BAR, SLIDER, STEPHENSON, Slider, Stephenson, coupler_point, four_bar_pose, slider_x,
+    stephenson_point,
 };
-use kinloop::synthesis::{Design, Problem, Search, SynthesisReport, Task, chebyshev};
+use kinloop::synthesis::{Design, PlacementBounds, Problem, Search, SynthesisReport, Task, chebyshev};
 
 const RESIDUAL: f64 = 1e-13;
 const DIMENSION: f64 = 1e-8;
@@ -100,4 +101,48 @@ fn stephenson_six_bar_path_with_timing() {
     let problem = Problem::new(Stephenson::default(), &design(&names, &STEPHENSON, 0.1), &task).unwrap();
     let report = Search::default().with_starts(0..32).run(&problem).unwrap();
     check_recovered(&report, &STEPHENSON, 1.0);
+}
+
+#[test]
+fn four_bar_path_fitting_with_a_placement() {
+    // Twelve samples of the coupler curve moved by (dx, dy) = (2, -1) and turned by 0.7 rad,
+    // crank angles free: the dimensions, the crank angles and the placement are found again.
+    let (dx, dy, turn) = (2.0, -1.0, 0.7f64);
+    let (s, c) = turn.sin_cos();
+    let phis: Vec<f64> = (0..12).map(|k| 0.1 + 0.5 * k as f64).collect();
+    let samples: Vec<[f64; 2]> = phis
+        .iter()
+        .map(|&p| {
+            let [x, y] = coupler_point(FOUR_BAR, p);
+            [dx + c * x - s * y, dy + s * x + c * y]
+        })
+        .collect();
+    let bounds = PlacementBounds::translation((1.0, 3.0), (-2.0, 0.0)).with_rotation((0.4, 1.0));
+    let task = Task::fit("p", samples).untimed(0.0, std::f64::consts::TAU).with_placement(bounds);
+    let problem = Problem::new(CouplerFourBar::default(), &design(&FOUR_BAR_NAMES, &FOUR_BAR, 0.2), &task).unwrap();
+    assert_eq!(problem.dims(), 6 + 12 + 4);
+    let report = Search::default().with_starts(0..32).run(&problem).unwrap();
+    check_recovered(&report, &FOUR_BAR, 1.0);
+    let placement = report.best().unwrap().placement.unwrap();
+    for (got, want) in placement.iter().zip([dx, dy, turn, 1.0]) {
+        assert_close!(*got, want, rel = DIMENSION, "placement");
+    }
+}
+
+#[test]
+fn four_bar_motion_generation() {
+    // Four poses of the coupler (its point and its angle theta) at prescribed crank angles:
+    // twelve equations for the six dimensions.
+    let phis = [0.3, 1.2, 2.4, 3.9];
+    let poses: Vec<[f64; 3]> = phis
+        .iter()
+        .map(|&p| {
+            let ([x, y], [beta, _]) = four_bar_pose(FOUR_BAR, p, 1.0);
+            [x, y, beta + FOUR_BAR[5]]
+        })
+        .collect();
+    let task = Task::motion("p", "theta", poses).timed(phis);
+    let problem = Problem::new(CouplerFourBar::default(), &design(&FOUR_BAR_NAMES, &FOUR_BAR, 0.3), &task).unwrap();
+    let report = Search::default().with_starts(0..16).run(&problem).unwrap();
+    check_recovered(&report, &FOUR_BAR, 1.0);
 }
