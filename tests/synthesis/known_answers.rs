@@ -121,7 +121,7 @@ fn four_bar_path_fitting_with_a_placement() {
     let task = Task::fit("p", samples).untimed(0.0, std::f64::consts::TAU).with_placement(bounds);
     let problem = Problem::new(CouplerFourBar::default(), &design(&FOUR_BAR_NAMES, &FOUR_BAR, 0.2), &task).unwrap();
     assert_eq!(problem.dims(), 6 + 12 + 4);
-    let report = Search::default().with_starts(0..32).run(&problem).unwrap();
+    let report = Search::default().with_starts(0..8).run(&problem).unwrap();
     check_recovered(&report, &FOUR_BAR, 1.0);
     let placement = report.best().unwrap().placement.unwrap();
     for (got, want) in placement.iter().zip([dx, dy, turn, 1.0]) {
