@@ -66,6 +66,8 @@ fn targets_that_are_missing_not_finite_or_too_few() {
     assert!(matches!(e, SynthesisError::Mismatch(_)), "{e:?}");
     let e = error(&design(), &Task::path("p", [[1.0, 2.0]; 3]).timed_inputs(vec![vec![0.0, 1.0]; 3]));
     assert!(matches!(e, SynthesisError::Mismatch(_)), "{e:?}");
+    let e = error(&design(), &Task::new(vec![], vec![vec![]; 3]).timed([0.0; 3]));
+    assert!(matches!(e, SynthesisError::Mismatch(_)), "{e:?}");
     let e = error(&design(), &three().with_weights(vec![-1.0]));
     assert!(matches!(e, SynthesisError::InvalidConfig(_)), "{e:?}");
 }

@@ -95,6 +95,11 @@ where
         mechanism.check_params()?;
         let vars = design.resolve(M::NAME, M::PARAMS)?;
         let names = design.variables().iter().map(|v| v.name.clone()).collect();
+        if task.channels.is_empty() {
+            return Err(SynthesisError::Mismatch(
+                "the task has no channel: nothing to compare the targets with".into(),
+            ));
+        }
         if task.weights.len() != task.channels.len() {
             return Err(SynthesisError::Mismatch(format!(
                 "{} weights for {} channels",
