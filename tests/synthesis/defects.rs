@@ -74,6 +74,22 @@ fn targets_met_out_of_order_are_an_order_defect() {
 }
 
 #[test]
+fn crank_angles_in_cyclic_order_are_one_motion() {
+    // Free crank angles 5.5, 6.0, 0.3, 0.9: in order once the crank passes its zero, the
+    // candidate meets them at 5.5, 6.0, 0.3 + 2 pi, 0.9 + 2 pi, on one sweep.
+    let phis = [5.5, 6.0, 0.3, 0.9];
+    let problem = exact(FOUR_BAR, &phis, &[1.0; 4], false);
+    let mut z = vec![FOUR_BAR[4]];
+    z.extend(phis);
+    let c = verify(&problem, &z);
+    assert!(c.is_valid(), "{c:?}");
+    let unwrapped: Vec<f64> = c.inputs.iter().map(|x| x[0]).collect();
+    for (got, want) in unwrapped.iter().zip([5.5, 6.0, 0.3 + TAU, 0.9 + TAU]) {
+        assert_close!(*got, want, crate::support::tol::ULPS * 10.0);
+    }
+}
+
+#[test]
 fn constraints_full_rotation_transmission_and_link_ratio() {
     // The crank-rocker turns fully; its transmission angle is extreme with crank and frame in
     // line (phi = 0 and pi, both sampled when the motion starts at 0): from the triangle of

@@ -8,8 +8,9 @@ use super::local::LocalReport;
 #[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
 #[non_exhaustive]
 pub enum Defect {
-    /// The free inputs of the targets are not strictly monotone: the targets are not met in
-    /// the given order along one motion (an order defect).
+    /// The free inputs of the targets are not strictly monotone (for an angle input: not in
+    /// cyclic order within one turn either): the targets are not met in the given order along
+    /// one motion (an order defect).
     Order,
     /// The sweep from the previous target reaches target `target` on another assembly mode
     /// than the one the targets were met on, or passes a singular crossing (a change point)
@@ -61,7 +62,7 @@ pub struct Candidate {
     /// Every parameter of the mechanism, in declaration order.
     pub params: Vec<f64>,
     /// The input values at which the targets are met (the prescribed ones, or the solved free
-    /// ones).
+    /// ones; free angles in cyclic order unwrapped by whole turns into one monotone motion).
     pub inputs: Vec<Vec<f64>>,
     /// The placement `[dx, dy, angle, scale]`, where the task has one.
     pub placement: Option<[f64; 4]>,

@@ -41,6 +41,39 @@ fn value<const N: usize, const NI: usize, const NO: usize>(k: &Kin<N, NI, NO>, c
     }
 }
 
+/// The free inputs as one monotone motion: themselves if strictly monotone; for an angle,
+/// also in cyclic order within less than a turn (a crank passing its zero between two targets),
+/// unwrapped by whole turns, in the sense that turns less; `None` otherwise (an order defect).
+/// An angle input is periodic in every declaration of a mechanism that turns by it (its sines
+/// and cosines); where it is not (a gear ratio that is no integer), the sweep to the unwrapped
+/// input does not reach the solved position, and the candidate has a branch defect instead.
+fn in_order(x: &[f64], angle: bool) -> Option<Vec<f64>> {
+    let monotone = |s: f64| x.windows(2).all(|w| s * (w[1] - w[0]) > 0.0);
+    if monotone(1.0) || monotone(-1.0) {
+        return Some(x.to_vec());
+    }
+    if !angle {
+        return None;
+    }
+    [1.0, -1.0]
+        .iter()
+        .filter_map(|&s| {
+            let steps: Vec<f64> = x.windows(2).map(|w| (s * (w[1] - w[0])).rem_euclid(TAU)).collect();
+            let total: f64 = steps.iter().sum();
+            (steps.iter().all(|&d| d > 0.0) && total < TAU).then_some((s, steps, total))
+        })
+        .min_by(|a, b| a.2.total_cmp(&b.2))
+        .map(|(s, steps, _)| {
+            let mut at = x[0];
+            std::iter::once(at)
+                .chain(steps.iter().map(|d| {
+                    at += s * d;
+                    at
+                }))
+                .collect()
+        })
+}
+
 impl<M, const N: usize, const NI: usize, const NO: usize, const NP: usize> Problem<M, N, NI, NO, NP>
 where
     M: Sensitivities<N, NI, NO, NP> + Clone,
@@ -49,13 +82,14 @@ where
     pub(crate) fn verify(&self, start: usize, z: Vec<f64>, e: Eval<N>, local: LocalReport) -> Candidate {
         let params = self.params(&z);
         let m = self.base.with_params_flat(params);
-        let inputs = self.input_values(&z);
+        let mut inputs = self.input_values(&z);
         let n = inputs.len();
         let mut defects = Vec::new();
         if matches!(self.inputs, Inputs::Free { .. }) && n > 1 {
-            let up = inputs[1][0] > inputs[0][0];
-            if !inputs.windows(2).all(|w| if up { w[1][0] > w[0][0] } else { w[1][0] < w[0][0] }) {
-                defects.push(Defect::Order);
+            let free: Vec<f64> = inputs.iter().map(|x| x[0]).collect();
+            match in_order(&free, M::INPUT_KINDS[0] == QuantityKind::Angle) {
+                Some(x) => inputs = x.into_iter().map(|v| [v; NI]).collect(),
+                None => defects.push(Defect::Order),
             }
         }
         // The motion from target to target on the first target's assembly mode.
