@@ -13,8 +13,8 @@
 //!
 //! Every candidate returned was verified by a branch-safe sweep through the targets in order.
 //!
-//! Run with `cargo run --release -p kinloop-examples --example synthesis` (`--features rayon`
-//! on the `kinloop` dependency runs the starts on all cores with `Search::par_run`).
+//! Run with `cargo run --release -p kinloop-examples --example synthesis`. (With the `kinloop`
+//! feature `rayon`, `Search::par_run` runs the starts on all cores, with the same report.)
 
 use kinloop::analysis::optimize::LevenbergMarquardt;
 use kinloop::synthesis::{Constraints, Design, LocalConfig, PlacementBounds, Problem, Search, Task, chebyshev};
