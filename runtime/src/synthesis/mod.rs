@@ -25,6 +25,7 @@ mod local;
 mod problem;
 mod report;
 mod residuals;
+mod resolve;
 mod search;
 mod task;
 mod vars;

@@ -3,7 +3,8 @@
 //! from the velocity analogs, to the placement in closed form.
 
 use super::error::SynthesisError;
-use super::problem::{Guess, Problem, Resolved};
+use super::problem::{Guess, Problem};
+use super::resolve::Resolved;
 use crate::analysis::ColumnIndex;
 use crate::error::Error;
 use crate::kin::{Kin, Sens};

@@ -8,8 +8,9 @@ use super::candidate::Candidate;
 use super::error::SynthesisError;
 use super::halton::Halton;
 use super::local::LocalConfig;
-use super::problem::{Inputs, Problem};
+use super::problem::Problem;
 use super::report::{SynthesisReport, distinct, slot};
+use super::resolve::Inputs;
 use crate::mechanism::Sensitivities;
 use std::ops::Range;
 

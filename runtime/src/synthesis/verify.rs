@@ -4,8 +4,9 @@
 
 use super::candidate::{Candidate, Defect};
 use super::local::LocalReport;
-use super::problem::{Inputs, Problem};
+use super::problem::Problem;
 use super::residuals::{Eval, wrap};
+use super::resolve::Inputs;
 use crate::analysis::ColumnIndex;
 use crate::kin::Kin;
 use crate::kinds::QuantityKind;
