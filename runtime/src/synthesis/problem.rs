@@ -38,7 +38,7 @@ pub(crate) struct Checks {
 /// task, the constraints, and the solver settings of its analyses. Solved by a
 /// [`Search`](super::Search).
 ///
-/// The search's unknowns are, in order: the design variables; with [`Timing::Free`] the input
+/// The search's unknowns are, in order: the design variables; with [`Timing::Free`](super::Timing::Free) the input
 /// value of every target; with a placement its translation `dx`, `dy`, rotation and scale.
 #[derive(Clone, Debug)]
 pub struct Problem<M, const N: usize, const NI: usize, const NO: usize, const NP: usize> {
