@@ -114,7 +114,12 @@ where
                 (None, Guess::First(g), None) => *g,
                 (None, Guess::Declared, None) => m.guess_flat(x),
             };
-            let (kin, sens) = m.sensitivities_flat(x, &guess, &self.newton)?;
+            // Newton's restarts (roots from turned guesses) only where the assembly mode is
+            // chosen: at the first target of a start. Elsewhere a root from a turned guess would
+            // be another assembly mode than the guess's; a failed solve rejects the step instead.
+            let choose = guesses.is_none() && k == 0;
+            let cfg = if choose { self.newton } else { self.newton.with_restarts(false) };
+            let (kin, sens) = m.sensitivities_flat(x, &guess, &cfg)?;
             qs.push(kin.q);
             let mut row = k * self.width;
             for &(ch, w) in &self.channels {
