@@ -2,7 +2,8 @@
 //!
 //! 1. path generation: a coupler point through eight points met in order along one turn of
 //!    the crank, the crank angles free, the crank required to turn fully with a transmission
-//!    angle of at least 30 degrees;
+//!    angle of at least 30 degrees; the best design's coupler curve is drawn with the targets
+//!    (`out/synthesis/coupler_curve.svg`);
 //! 2. function generation: `y = log10(x)` on `1 <= x <= 2` (the textbook case), a 60 degree
 //!    crank rotation mapped to a 90 degree rocker rotation, five precision points at Chebyshev
 //!    spacing, and the structural error over the whole range;
@@ -17,8 +18,10 @@
 //! feature `rayon`, `Search::par_run` runs the starts on all cores, with the same report.)
 
 use kinloop::analysis::optimize::LevenbergMarquardt;
+use kinloop::plot::{self, Axis, Kind, Series};
 use kinloop::synthesis::{Constraints, Design, LocalConfig, PlacementBounds, Problem, Search, Task, chebyshev};
 use kinloop::{Error, Extreme, NewtonConfig, Sensitivities, extremum, to_deg};
+use kinloop_examples::out_dir;
 use std::f64::consts::PI;
 use std::f64::consts::TAU;
 use std::time::Instant;
@@ -133,6 +136,30 @@ fn path_generation() -> Result<(), Box<dyn std::error::Error>> {
             c.min_transmission.map_or(f64::NAN, to_deg),
             c.defects
         );
+    }
+    // The best design's coupler curve over a turn, placed, with the targets marked.
+    if let Some(best) = report.best() {
+        let m = CouplerFourBar::default().with_params_flat(best.params.as_slice().try_into()?);
+        let q0: [f64; 2] = best.positions[0].as_slice().try_into()?;
+        let [dx, dy, turn, scale] = best.placement.unwrap_or([0.0, 0.0, 0.0, 1.0]);
+        let (sn, cs) = turn.sin_cos();
+        let x0 = best.inputs[0][0];
+        let mut curve = Vec::new();
+        for s in m.sweep(x0, x0 + TAU, 361, &q0.into())? {
+            let p = s?.out.p;
+            curve.push((dx + scale * (cs * p.x - sn * p.y), dy + scale * (sn * p.x + cs * p.y)));
+        }
+        let marks: Vec<(f64, f64)> = targets.iter().map(|t| (t[0], t[1])).collect();
+        let path = out_dir("synthesis").join("coupler_curve.svg");
+        plot::xy_chart(
+            &path,
+            "Best four-bar: its coupler curve through the ten targets (dots)",
+            &Axis::length("x", "length unit"),
+            &Axis::length("y", "length unit"),
+            &[Series::new("coupler point", Kind::length("length unit"), curve)],
+            &marks,
+        )?;
+        println!("   wrote {}", path.display());
     }
     println!();
     Ok(())
