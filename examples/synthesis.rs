@@ -1,7 +1,8 @@
-//! Dimensional synthesis with `kinloop::synthesis`, on two four-bars declared here:
+//! Dimensional synthesis with `kinloop::synthesis`, on mechanisms declared here:
 //!
-//! 1. path generation: a coupler point through eight points met in order along one turn of
-//!    the crank, the crank angles free, the crank required to turn fully with a transmission
+//! 1. path generation: a four-bar's coupler point through ten points of an ellipse met in
+//!    order along one turn of the crank, the crank angles and the frame's placement free, the
+//!    crank required to turn fully with a transmission
 //!    angle of at least 30 degrees; the best design's coupler curve is drawn with the targets
 //!    (`out/synthesis/coupler_curve.svg`);
 //! 2. function generation: `y = log10(x)` on `1 <= x <= 2` (the textbook case), a 60 degree
