@@ -169,3 +169,18 @@ fn four_bar_path_on_the_other_assembly_mode() {
     let report = Search::default().with_starts(0..24).run(&problem.with_guess([beta, gamma])).unwrap();
     check_recovered(&report, &FOUR_BAR, 1.0);
 }
+
+#[test]
+fn an_optimum_beyond_a_bound_stops_on_it() {
+    // The slider's crank is at most 1.0 here, the truth's 1.1: the local solves end on the
+    // bound (held there while the others move), at a local minimum of non-zero residual.
+    let phis = chebyshev(0.2, 3.0, 5);
+    let task = Task::function("x", phis.iter().map(|&p| (p, slider_x(SLIDER, p))));
+    let design = Design::new().var("r", 0.5, 1.0).var("l", 2.0, 5.0).var("e", -1.0, 1.0);
+    let problem = Problem::new(Slider::default(), &design, &task).unwrap();
+    let report = Search::default().with_starts(0..8).run(&problem).unwrap();
+    let best = report.best().unwrap();
+    assert_eq!(best.values[0], 1.0, "{best:?}");
+    assert!(best.max_error > 1e-3 && best.max_error.is_finite(), "{best:?}");
+    assert_eq!(best.local.stop, kinloop::analysis::OptimizerStop::Converged, "{best:?}");
+}
