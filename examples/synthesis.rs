@@ -118,12 +118,12 @@ fn path_generation() -> Result<(), Box<dyn std::error::Error>> {
         report.unassembled,
         report.converged,
         report.valid,
-        report.rejected[0],
-        report.rejected[1],
-        report.rejected[2],
-        report.rejected[3],
-        report.rejected[4],
-        report.rejected[5]
+        report.rejected.order,
+        report.rejected.branch,
+        report.rejected.circuit,
+        report.rejected.no_assembly,
+        report.rejected.full_rotation,
+        report.rejected.transmission
     );
     for (rank, c) in report.candidates.iter().enumerate() {
         let values: Vec<String> =

@@ -29,6 +29,8 @@ fn serial_and_parallel_searches_agree() {
     // On rayon's global pool (the tests build the runtime with `rayon`: see `Cargo.toml`).
     let parallel = search.par_run(&problem).unwrap();
     assert_eq!(serial, parallel);
+    // Every start is accounted for: not assembled, valid, or rejected by its first defect.
+    assert_eq!(serial.unassembled + serial.valid + serial.rejected.total(), 24);
     assert!(serial.candidates.len() > 1, "several distinct candidates to order: {}", serial.candidates.len());
     // Another seed, other starts.
     assert_ne!(search.with_seed(4).run(&problem).unwrap(), serial);

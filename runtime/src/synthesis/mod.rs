@@ -37,7 +37,7 @@ pub use error::SynthesisError;
 pub use halton::Halton;
 pub use local::{LocalConfig, LocalReport};
 pub use problem::Problem;
-pub use report::SynthesisReport;
+pub use report::{Rejections, SynthesisReport};
 pub use residuals::Residuals;
 pub use search::Search;
 pub use task::{Channel, PlacementBounds, Task, Timing, chebyshev};

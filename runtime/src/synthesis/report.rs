@@ -25,9 +25,8 @@ pub struct SynthesisReport {
     pub converged: usize,
     /// Local solves whose result is valid (no defect).
     pub valid: usize,
-    /// Candidates rejected, by their first defect: order, branch, circuit, no assembly, full
-    /// rotation, transmission angle, link ratio.
-    pub rejected: [usize; 7],
+    /// Candidates rejected, counted by their first defect.
+    pub rejected: Rejections,
     /// Evaluations of residuals and Jacobian over all starts.
     pub evaluations: usize,
 }
@@ -49,9 +48,7 @@ impl SynthesisReport {
         self.unassembled += other.unassembled;
         self.converged += other.converged;
         self.valid += other.valid;
-        for (a, b) in self.rejected.iter_mut().zip(other.rejected) {
-            *a += b;
-        }
+        self.rejected.add(&other.rejected);
         self.evaluations += other.evaluations;
         self
     }
@@ -85,16 +82,60 @@ pub(crate) fn distinct(mut all: Vec<Candidate>, bounds: &[(f64, f64)], search: &
     out
 }
 
-/// The slot of `rejected` counting a defect.
-pub(crate) fn slot(d: &Defect) -> usize {
-    match d {
-        Defect::Order => 0,
-        Defect::Branch { .. } => 1,
-        Defect::Circuit { .. } => 2,
-        Defect::NoAssembly { .. } => 3,
-        Defect::NoFullRotation => 4,
-        Defect::Transmission { .. } => 5,
-        Defect::LinkRatio { .. } => 6,
+/// How many candidates of a search were rejected, by their first [`Defect`].
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+#[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
+pub struct Rejections {
+    /// [`Defect::Order`].
+    pub order: usize,
+    /// [`Defect::Branch`].
+    pub branch: usize,
+    /// [`Defect::Circuit`].
+    pub circuit: usize,
+    /// [`Defect::NoAssembly`].
+    pub no_assembly: usize,
+    /// [`Defect::NoFullRotation`].
+    pub full_rotation: usize,
+    /// [`Defect::Transmission`].
+    pub transmission: usize,
+    /// [`Defect::LinkRatio`].
+    pub link_ratio: usize,
+}
+
+impl Rejections {
+    /// Counts one candidate rejected by `defect`.
+    pub(crate) fn count(&mut self, defect: &Defect) {
+        *match defect {
+            Defect::Order => &mut self.order,
+            Defect::Branch { .. } => &mut self.branch,
+            Defect::Circuit { .. } => &mut self.circuit,
+            Defect::NoAssembly { .. } => &mut self.no_assembly,
+            Defect::NoFullRotation => &mut self.full_rotation,
+            Defect::Transmission { .. } => &mut self.transmission,
+            Defect::LinkRatio { .. } => &mut self.link_ratio,
+        } += 1;
+    }
+
+    /// Adds the counts of `other`.
+    pub(crate) fn add(&mut self, other: &Rejections) {
+        self.order += other.order;
+        self.branch += other.branch;
+        self.circuit += other.circuit;
+        self.no_assembly += other.no_assembly;
+        self.full_rotation += other.full_rotation;
+        self.transmission += other.transmission;
+        self.link_ratio += other.link_ratio;
+    }
+
+    /// All rejected candidates.
+    pub fn total(&self) -> usize {
+        self.order
+            + self.branch
+            + self.circuit
+            + self.no_assembly
+            + self.full_rotation
+            + self.transmission
+            + self.link_ratio
     }
 }
 
@@ -157,7 +198,7 @@ mod tests {
             unassembled: 2,
             converged: 10,
             valid: 0,
-            rejected: [1, 0, 13, 0, 0, 0, 0],
+            rejected: Rejections { order: 1, circuit: 13, ..Rejections::default() },
             evaluations: 140,
         };
         let json = serde_json::to_string(&report).unwrap();

@@ -9,7 +9,7 @@ use super::error::SynthesisError;
 use super::halton::Halton;
 use super::local::LocalConfig;
 use super::problem::Problem;
-use super::report::{SynthesisReport, distinct, slot};
+use super::report::{Rejections, SynthesisReport, distinct};
 use super::resolve::Inputs;
 use crate::mechanism::Sensitivities;
 use std::ops::Range;
@@ -218,7 +218,7 @@ impl Search {
             unassembled: 0,
             converged: 0,
             valid: 0,
-            rejected: [0; 7],
+            rejected: Rejections::default(),
             evaluations: 0,
         };
         let mut all = Vec::new();
@@ -231,7 +231,7 @@ impl Search {
             report.converged += usize::from(c.local.stop == crate::analysis::optimize::OptimizerStop::Converged);
             match c.defects.first() {
                 None => report.valid += 1,
-                Some(d) => report.rejected[slot(d)] += 1,
+                Some(d) => report.rejected.count(d),
             }
             all.push(c);
         }
