@@ -206,8 +206,15 @@
 //! [`extremum_with_gradient`](analysis::Sampled::extremum_with_gradient) and
 //! [`integral_with_gradient`](analysis::Sampled::integral_with_gradient) give objectives over a
 //! whole sweep with exact gradients (extremes by the envelope theorem, with the gradient of
-//! their location), and [`LevenbergMarquardt`](analysis::optimize::LevenbergMarquardt) uses them
-//! for synthesis (`examples/synthesis.rs`).
+//! their location), and [`LevenbergMarquardt`](analysis::optimize::LevenbergMarquardt) uses them.
+//!
+//! [`synthesis`] finds dimensions for a task with them: a point through given points (with
+//! prescribed or free input values), a curve fitted with a free placement, a function, poses.
+//! Its Levenberg–Marquardt runs on the exact Jacobian (sensitivities, velocity analogs) from
+//! Halton starts, every candidate verified by a branch-safe sweep through the targets in order
+//! and rejected with its defect (branch, circuit, order) or a violated constraint (full
+//! rotation, transmission angle, link ratio); see `docs/synthesis.md` and
+//! `examples/synthesis.rs`.
 //!
 //! ## Design-space scans
 //!

@@ -1,0 +1,91 @@
+//! A candidate design: its values, how well it meets each target, what its verification found,
+//! and what its local solve did.
+
+use super::local::LocalReport;
+
+/// Why a candidate is not a valid design, as its verification found.
+#[derive(Clone, Debug, PartialEq)]
+#[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
+#[non_exhaustive]
+pub enum Defect {
+    /// The free inputs of the targets are not strictly monotone (for an angle input: not in
+    /// cyclic order within one turn either): the targets are not met in the given order along
+    /// one motion (an order defect).
+    Order,
+    /// The sweep from the previous target reaches target `target` on another assembly mode
+    /// than the one the targets were met on, or passes a singular crossing (a change point)
+    /// on the way: the design meets the target only by switching assembly mode (a branch
+    /// defect).
+    Branch {
+        /// The first target not reached on the first target's assembly mode.
+        target: usize,
+    },
+    /// The sweep from the previous target meets a limit position at input `at` before target
+    /// `target`: the targets lie on different circuits, or the motion must reverse (a circuit
+    /// defect).
+    Circuit {
+        /// The first target not reached.
+        target: usize,
+        /// The input value of the limit position (the first input).
+        at: f64,
+    },
+    /// The mechanism cannot be moved from the previous target to target `target` (the sweep
+    /// failed: no assembly, no convergence).
+    NoAssembly {
+        /// The first target not reached.
+        target: usize,
+    },
+    /// The input does not turn fully on the candidate's assembly mode.
+    NoFullRotation,
+    /// The smallest transmission angle over the motion checked is below the bound.
+    Transmission {
+        /// The smallest transmission angle found (radians).
+        min: f64,
+    },
+    /// The longest of the bounded links is more than the bound times the shortest.
+    LinkRatio {
+        /// The ratio found.
+        ratio: f64,
+    },
+}
+
+/// Errors of a candidate: per target, the norm of its weighted residual components (a point's
+/// distance from its target, an angle's difference modulo a turn).
+#[derive(Clone, Debug, PartialEq)]
+#[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
+pub struct Candidate {
+    /// The index of the start it was found from (the search's Halton index; `usize::MAX` for
+    /// [`Search::refine`](super::Search::refine)).
+    pub start: usize,
+    /// The design variables' values, in the problem's order.
+    pub values: Vec<f64>,
+    /// Every parameter of the mechanism, in declaration order.
+    pub params: Vec<f64>,
+    /// The input values at which the targets are met (the prescribed ones, or the solved free
+    /// ones; free angles in cyclic order unwrapped by whole turns into one monotone motion).
+    pub inputs: Vec<Vec<f64>>,
+    /// The placement `[dx, dy, angle, scale]`, where the task has one.
+    pub placement: Option<[f64; 4]>,
+    /// The position (unknowns) at each target.
+    pub positions: Vec<Vec<f64>>,
+    /// The error at each target.
+    pub errors: Vec<f64>,
+    /// The largest error.
+    pub max_error: f64,
+    /// The root mean square of the errors.
+    pub rms_error: f64,
+    /// What the verification found wrong (empty: a valid design).
+    pub defects: Vec<Defect>,
+    /// The smallest transmission angle over the motion checked (radians), where the
+    /// constraints name the coupler and the follower.
+    pub min_transmission: Option<f64>,
+    /// What the local solve did.
+    pub local: LocalReport,
+}
+
+impl Candidate {
+    /// Whether the verification found no defect.
+    pub fn is_valid(&self) -> bool {
+        self.defects.is_empty()
+    }
+}

@@ -1,0 +1,283 @@
+//! A synthesis problem: a mechanism with sensitivities, its design variables, a task and
+//! constraints, checked and resolved against the mechanism's names once, when it is built.
+
+use super::constraints::Constraints;
+use super::error::SynthesisError;
+use super::resolve::{Inputs, Resolved, resolve_channel, resolve_timing, scalar_column, target_scale};
+use super::task::{Channel, PlacementBounds, Task};
+use super::vars::{Bound, Design, check_bounds, param_index};
+use crate::analysis::ColumnIndex;
+use crate::mechanism::Sensitivities;
+use crate::paths::sweep::SweepConfig;
+use crate::solvers::newton::NewtonConfig;
+use std::marker::PhantomData;
+
+/// Where the first evaluation of a local solve starts its position solves.
+#[derive(Clone, Debug, PartialEq)]
+pub(crate) enum Guess<const N: usize> {
+    /// The declared guess at the first target, each next target from the one before.
+    Declared,
+    /// This position at the first target, each next target from the one before.
+    First([f64; N]),
+    /// A position at every target.
+    Every(Vec<[f64; N]>),
+}
+
+/// The constraints resolved to indices.
+#[derive(Clone, Debug, Default, PartialEq)]
+pub(crate) struct Checks {
+    pub full_rotation: bool,
+    /// Coupler and follower columns, and the smallest angle allowed.
+    pub transmission: Option<(ColumnIndex, ColumnIndex, f64)>,
+    /// Parameter indices and the largest ratio allowed.
+    pub link_ratio: Option<(Vec<usize>, f64)>,
+}
+
+/// A synthesis problem over the mechanism type `M` (declared with `#[kinloop(sensitivities)]`):
+/// the mechanism whose parameters not varied keep their values, the design variables, the
+/// task, the constraints, and the solver settings of its analyses. Solved by a
+/// [`Search`](super::Search).
+///
+/// The search's unknowns are, in order: the design variables; with [`Timing::Free`](super::Timing::Free) the input
+/// value of every target; with a placement its translation `dx`, `dy`, rotation and scale.
+#[derive(Clone, Debug)]
+pub struct Problem<M, const N: usize, const NI: usize, const NO: usize, const NP: usize> {
+    pub(crate) base: M,
+    pub(crate) names: Vec<String>,
+    pub(crate) vars: Vec<Bound>,
+    pub(crate) channels: Vec<(Resolved, f64)>,
+    /// Components per target.
+    pub(crate) width: usize,
+    /// Target values, `width` per target.
+    pub(crate) targets: Vec<f64>,
+    pub(crate) inputs: Inputs<NI>,
+    pub(crate) placement: Option<PlacementBounds>,
+    pub(crate) checks: Checks,
+    /// The positions the first evaluation starts from: at the first target, or at every one.
+    pub(crate) guess: Guess<N>,
+    pub(crate) newton: NewtonConfig,
+    pub(crate) sweep: SweepConfig,
+    /// The size of the targets (their largest distance from their centroid, 1 without
+    /// lengths): the unit of the search's residual tolerance.
+    pub(crate) scale: f64,
+    _sizes: PhantomData<[(); NO]>,
+    _params: PhantomData<[(); NP]>,
+}
+
+impl<M, const N: usize, const NI: usize, const NO: usize, const NP: usize> Problem<M, N, NI, NO, NP>
+where
+    M: Sensitivities<N, NI, NO, NP> + Clone,
+{
+    /// The problem of varying `design` of `mechanism` (whose other parameters stay) to do
+    /// `task`. Every name is checked against the mechanism, every value for being finite, the
+    /// bounds for holding a value, and the targets for giving at least as many equations as
+    /// the search has unknowns.
+    pub fn new(mechanism: M, design: &Design, task: &Task) -> Result<Self, SynthesisError> {
+        mechanism.check_params()?;
+        let vars = design.resolve(M::NAME, M::PARAMS)?;
+        let names = design.variables().iter().map(|v| v.name.clone()).collect();
+        if task.channels.is_empty() {
+            return Err(SynthesisError::Mismatch(
+                "the task has no channel: nothing to compare the targets with".into(),
+            ));
+        }
+        if task.weights.len() != task.channels.len() {
+            return Err(SynthesisError::Mismatch(format!(
+                "{} weights for {} channels",
+                task.weights.len(),
+                task.channels.len()
+            )));
+        }
+        let mut channels = Vec::with_capacity(task.channels.len());
+        for (c, &w) in task.channels.iter().zip(&task.weights) {
+            if !(w.is_finite() && w > 0.0) {
+                return Err(SynthesisError::InvalidConfig(format!("the weight {w} must be positive and finite")));
+            }
+            channels.push((resolve_channel::<M, N, NI, NO>(c)?, w));
+        }
+        let width: usize = task.channels.iter().map(Channel::width).sum();
+        if task.targets.is_empty() {
+            return Err(SynthesisError::NoTargets);
+        }
+        let mut targets = Vec::with_capacity(width * task.targets.len());
+        for (k, row) in task.targets.iter().enumerate() {
+            if row.len() != width {
+                return Err(SynthesisError::Mismatch(format!(
+                    "target {k} has {} values; the channels take {width}",
+                    row.len()
+                )));
+            }
+            if let Some(&v) = row.iter().find(|v| !v.is_finite()) {
+                return Err(SynthesisError::NonFinite { what: "a value", target: k, value: v });
+            }
+            targets.extend_from_slice(row);
+        }
+        let inputs = resolve_timing::<NI>(&task.timing, task.targets.len())?;
+        if let Some(p) = &task.placement {
+            for (name, (lo, hi)) in [("dx", p.dx), ("dy", p.dy), ("angle", p.angle), ("scale", p.scale)] {
+                check_bounds(name, lo, hi)?;
+            }
+            if p.scale.0 <= 0.0 {
+                return Err(SynthesisError::BadBounds { name: "scale".into(), lo: p.scale.0, hi: p.scale.1 });
+            }
+        }
+        let scale = target_scale(&channels, &targets, width);
+        let p = Problem {
+            base: mechanism,
+            names,
+            vars,
+            channels,
+            width,
+            targets,
+            inputs,
+            placement: task.placement,
+            checks: Checks::default(),
+            guess: Guess::Declared,
+            newton: NewtonConfig::default().with_residual_tol(1e-14).with_step_tol(1e-16),
+            sweep: SweepConfig::default(),
+            scale,
+            _sizes: PhantomData,
+            _params: PhantomData,
+        };
+        let (residuals, variables) = (p.targets.len(), p.dims());
+        if residuals < variables {
+            return Err(SynthesisError::TooFewTargets { residuals, variables });
+        }
+        Ok(p)
+    }
+
+    /// The problem with `constraints` checked on every candidate (names resolved here).
+    pub fn with_constraints(mut self, constraints: &Constraints) -> Result<Self, SynthesisError> {
+        let mut checks = Checks { full_rotation: constraints.full_rotation, ..Checks::default() };
+        if constraints.full_rotation && NI != 1 {
+            return Err(SynthesisError::Unsupported(format!(
+                "full rotation is checked for a mechanism with one input; `{}` has {NI}",
+                M::NAME
+            )));
+        }
+        if let Some(t) = &constraints.transmission {
+            let c = scalar_column::<M, N, NI, NO>(&t.coupler)?;
+            let f = scalar_column::<M, N, NI, NO>(&t.follower)?;
+            if !(t.min.is_finite() && (0.0..=std::f64::consts::FRAC_PI_2).contains(&t.min)) {
+                return Err(SynthesisError::InvalidConfig(format!(
+                    "the smallest transmission angle {} must lie in [0, pi/2]",
+                    t.min
+                )));
+            }
+            checks.transmission = Some((c, f, t.min));
+        }
+        if let Some(r) = &constraints.link_ratio {
+            let mut idx = Vec::new();
+            for name in &r.links {
+                let i = param_index(M::NAME, M::PARAMS, name)?;
+                if idx.contains(&i) {
+                    return Err(SynthesisError::DuplicateVariable { name: name.clone() });
+                }
+                idx.push(i);
+            }
+            if idx.len() < 2 || !(r.max.is_finite() && r.max >= 1.0) {
+                return Err(SynthesisError::InvalidConfig(
+                    "a link ratio bound needs at least two links and a finite largest ratio >= 1".into(),
+                ));
+            }
+            checks.link_ratio = Some((idx, r.max));
+        }
+        self.checks = checks;
+        Ok(self)
+    }
+
+    /// The position at the first target that picks the assembly mode (by default the
+    /// mechanism's declared guess there).
+    pub fn with_guess(mut self, guess: [f64; N]) -> Self {
+        self.guess = Guess::First(guess);
+        self
+    }
+
+    /// A position at every target, to start the first evaluation of every local solve from
+    /// (e.g. from a design whose assembly mode at each target is known); one per target.
+    pub fn with_guesses(mut self, guesses: Vec<[f64; N]>) -> Result<Self, SynthesisError> {
+        if guesses.len() != self.targets() {
+            return Err(SynthesisError::Mismatch(format!("{} guesses for {} targets", guesses.len(), self.targets())));
+        }
+        if guesses.iter().flatten().any(|v| !v.is_finite()) {
+            return Err(SynthesisError::InvalidConfig("a guess is not finite".into()));
+        }
+        self.guess = Guess::Every(guesses);
+        Ok(self)
+    }
+
+    /// The Newton configuration of every position solve (by default a residual tolerance of
+    /// `1e-14` and a step tolerance of `1e-16`: positions to rounding, so that the targets
+    /// can be met to rounding).
+    pub fn with_newton(mut self, newton: NewtonConfig) -> Result<Self, SynthesisError> {
+        newton.validate()?;
+        self.newton = newton;
+        Ok(self)
+    }
+
+    /// The configuration of the verifying sweeps.
+    pub fn with_sweep(mut self, sweep: SweepConfig) -> Result<Self, SynthesisError> {
+        sweep.validate()?;
+        self.sweep = sweep;
+        Ok(self)
+    }
+
+    /// The names of the design variables, in order.
+    pub fn variable_names(&self) -> &[String] {
+        &self.names
+    }
+
+    /// Number of targets.
+    pub fn targets(&self) -> usize {
+        self.targets.len() / self.width
+    }
+
+    /// Number of unknowns of the search (design variables, free inputs, placement).
+    pub fn dims(&self) -> usize {
+        self.vars.len() + self.free_inputs() + if self.placement.is_some() { 4 } else { 0 }
+    }
+
+    /// Number of free input values (one per target with free timing, else none).
+    pub(crate) fn free_inputs(&self) -> usize {
+        match self.inputs {
+            Inputs::Free { .. } => self.targets(),
+            Inputs::Prescribed(_) => 0,
+        }
+    }
+
+    /// Lower and upper bounds of every unknown of the search.
+    pub(crate) fn bounds(&self) -> (Vec<f64>, Vec<f64>) {
+        let (mut lo, mut hi): (Vec<f64>, Vec<f64>) = self.vars.iter().map(|b| (b.lo, b.hi)).unzip();
+        if let Inputs::Free { lo: a, hi: b } = self.inputs {
+            lo.extend(std::iter::repeat_n(a, self.targets()));
+            hi.extend(std::iter::repeat_n(b, self.targets()));
+        }
+        if let Some(p) = &self.placement {
+            for (a, b) in [p.dx, p.dy, p.angle, p.scale] {
+                lo.push(a);
+                hi.push(b);
+            }
+        }
+        (lo, hi)
+    }
+
+    /// The parameters with the design variables of `z`.
+    pub(crate) fn params(&self, z: &[f64]) -> [f64; NP] {
+        let mut p = self.base.params_flat();
+        for (b, v) in self.vars.iter().zip(z) {
+            p[b.index] = *v;
+        }
+        p
+    }
+
+    /// The inputs of every target for the unknowns `z`.
+    pub(crate) fn input_values(&self, z: &[f64]) -> Vec<[f64; NI]> {
+        match &self.inputs {
+            Inputs::Prescribed(x) => x.clone(),
+            Inputs::Free { .. } => {
+                let nv = self.vars.len();
+                z[nv..nv + self.targets()].iter().map(|&v| [v; NI]).collect()
+            }
+        }
+    }
+}

@@ -1,0 +1,209 @@
+//! The report of a search: the best distinct candidates, ranked, and what happened to the
+//! other starts; merged across parts of a split search; as a table for CSV.
+
+use super::candidate::{Candidate, Defect};
+use super::search::Search;
+use crate::table::Table;
+use std::ops::Range;
+
+/// The outcome of a search: the best candidates and what happened to the others.
+#[derive(Clone, Debug, PartialEq)]
+#[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
+pub struct SynthesisReport {
+    /// The design variables' names, the order of [`Candidate::values`].
+    pub variables: Vec<String>,
+    /// Their bounds, in the same order.
+    pub bounds: Vec<(f64, f64)>,
+    /// The best distinct candidates: valid ones (no defect) first, each group by increasing
+    /// RMS error, ties by start index.
+    pub candidates: Vec<Candidate>,
+    /// The starts run.
+    pub starts: Range<usize>,
+    /// Starts at which the design cannot be assembled at every target (no local solve).
+    pub unassembled: usize,
+    /// Local solves that met the tolerance (residual or step).
+    pub converged: usize,
+    /// Local solves whose result is valid (no defect).
+    pub valid: usize,
+    /// Candidates rejected, counted by their first defect.
+    pub rejected: Rejections,
+    /// Evaluations of residuals and Jacobian over all starts.
+    pub evaluations: usize,
+}
+
+impl SynthesisReport {
+    /// The best valid candidate, if any.
+    pub fn best(&self) -> Option<&Candidate> {
+        self.candidates.first().filter(|c| c.is_valid())
+    }
+
+    /// The reports of two parts of one search (disjoint start ranges of the same problem,
+    /// `search` the settings both ran with but for the range) as one: ranked again, duplicates
+    /// removed, cut to [`Search::keep`].
+    pub fn merge(mut self, other: SynthesisReport, search: &Search) -> SynthesisReport {
+        let mut all = std::mem::take(&mut self.candidates);
+        all.extend(other.candidates);
+        self.candidates = distinct(all, &self.bounds, search);
+        self.starts = self.starts.start.min(other.starts.start)..self.starts.end.max(other.starts.end);
+        self.unassembled += other.unassembled;
+        self.converged += other.converged;
+        self.valid += other.valid;
+        self.rejected.add(&other.rejected);
+        self.evaluations += other.evaluations;
+        self
+    }
+}
+
+/// Valid first, then by RMS error, then by start.
+fn rank(c: &mut [Candidate]) {
+    c.sort_by(|a, b| {
+        b.is_valid().cmp(&a.is_valid()).then(a.rms_error.total_cmp(&b.rms_error)).then(a.start.cmp(&b.start))
+    });
+}
+
+/// The candidates ranked, without duplicates (a candidate of the same validity whose every
+/// value is within `distinct` of the range of one ranked before it), at most `keep`.
+pub(crate) fn distinct(mut all: Vec<Candidate>, bounds: &[(f64, f64)], search: &Search) -> Vec<Candidate> {
+    rank(&mut all);
+    let span: Vec<f64> = bounds.iter().map(|(lo, hi)| (hi - lo).max(f64::MIN_POSITIVE)).collect();
+    let mut out: Vec<Candidate> = Vec::new();
+    for c in all {
+        if out.len() >= search.keep {
+            break;
+        }
+        let same = |o: &Candidate| {
+            o.is_valid() == c.is_valid()
+                && o.values.iter().zip(&c.values).zip(&span).all(|((a, b), s)| (a - b).abs() <= search.distinct * s)
+        };
+        if !out.iter().any(same) {
+            out.push(c);
+        }
+    }
+    out
+}
+
+/// How many candidates of a search were rejected, by their first [`Defect`].
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+#[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
+pub struct Rejections {
+    /// [`Defect::Order`].
+    pub order: usize,
+    /// [`Defect::Branch`].
+    pub branch: usize,
+    /// [`Defect::Circuit`].
+    pub circuit: usize,
+    /// [`Defect::NoAssembly`].
+    pub no_assembly: usize,
+    /// [`Defect::NoFullRotation`].
+    pub full_rotation: usize,
+    /// [`Defect::Transmission`].
+    pub transmission: usize,
+    /// [`Defect::LinkRatio`].
+    pub link_ratio: usize,
+}
+
+impl Rejections {
+    /// Counts one candidate rejected by `defect`.
+    pub(crate) fn count(&mut self, defect: &Defect) {
+        *match defect {
+            Defect::Order => &mut self.order,
+            Defect::Branch { .. } => &mut self.branch,
+            Defect::Circuit { .. } => &mut self.circuit,
+            Defect::NoAssembly { .. } => &mut self.no_assembly,
+            Defect::NoFullRotation => &mut self.full_rotation,
+            Defect::Transmission { .. } => &mut self.transmission,
+            Defect::LinkRatio { .. } => &mut self.link_ratio,
+        } += 1;
+    }
+
+    /// Adds the counts of `other`.
+    pub(crate) fn add(&mut self, other: &Rejections) {
+        self.order += other.order;
+        self.branch += other.branch;
+        self.circuit += other.circuit;
+        self.no_assembly += other.no_assembly;
+        self.full_rotation += other.full_rotation;
+        self.transmission += other.transmission;
+        self.link_ratio += other.link_ratio;
+    }
+
+    /// All rejected candidates.
+    pub fn total(&self) -> usize {
+        self.order
+            + self.branch
+            + self.circuit
+            + self.no_assembly
+            + self.full_rotation
+            + self.transmission
+            + self.link_ratio
+    }
+}
+
+impl SynthesisReport {
+    /// The candidates as a table, one row per candidate in rank order: `start`, `valid` (1 or 0),
+    /// the design variables by name, `max_error`, `rms_error`, `min_transmission` (radians; NaN
+    /// where not asked), `evaluations` (of its local solve). Write it with
+    /// [`Table::write_csv`] or [`Table::save_csv`].
+    ///
+    /// ```
+    /// use kinloop_runtime::synthesis::SynthesisReport;
+    /// # fn show(report: &SynthesisReport) -> std::io::Result<()> {
+    /// report.table().write_csv(std::io::stdout())?;
+    /// # Ok(())
+    /// # }
+    /// ```
+    pub fn table(&self) -> Table {
+        let mut columns = vec!["start".to_string(), "valid".to_string()];
+        columns.extend(self.variables.iter().cloned());
+        columns.extend(["max_error", "rms_error", "min_transmission", "evaluations"].map(String::from));
+        let mut t = Table::new(columns);
+        for c in &self.candidates {
+            let mut row = vec![c.start as f64, f64::from(u8::from(c.is_valid()))];
+            row.extend(&c.values);
+            row.extend([c.max_error, c.rms_error, c.min_transmission.unwrap_or(f64::NAN), c.local.evaluations as f64]);
+            t.push(row);
+        }
+        t
+    }
+}
+
+#[cfg(all(test, feature = "serde"))]
+mod tests {
+    use super::*;
+    use crate::analysis::optimize::OptimizerStop;
+    use crate::synthesis::LocalReport;
+
+    #[test]
+    fn a_report_reads_back_from_json() {
+        let local = LocalReport { evaluations: 7, iterations: 6, stop: OptimizerStop::Stalled, residual: 0.25 };
+        let candidate = Candidate {
+            start: 3,
+            values: vec![1.0, 2.5],
+            params: vec![1.0, 2.5, 3.0],
+            inputs: vec![vec![0.1], vec![0.7]],
+            placement: Some([0.5, -0.5, 0.1, 1.2]),
+            positions: vec![vec![0.3, 1.1], vec![0.4, 1.3]],
+            errors: vec![0.1, 0.2],
+            max_error: 0.2,
+            rms_error: 0.158,
+            defects: vec![Defect::Circuit { target: 1, at: 2.36 }, Defect::Order],
+            min_transmission: None,
+            local,
+        };
+        let report = SynthesisReport {
+            variables: vec!["a".into(), "b".into()],
+            bounds: vec![(0.5, 2.0), (1.0, 4.0)],
+            candidates: vec![candidate],
+            starts: 0..16,
+            unassembled: 2,
+            converged: 10,
+            valid: 0,
+            rejected: Rejections { order: 1, circuit: 13, ..Rejections::default() },
+            evaluations: 140,
+        };
+        let json = serde_json::to_string(&report).unwrap();
+        let back: SynthesisReport = serde_json::from_str(&json).unwrap();
+        assert_eq!(back, report);
+        assert!(json.contains("\"Stalled\""), "{json}");
+    }
+}

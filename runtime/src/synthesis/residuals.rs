@@ -1,0 +1,193 @@
+//! The residuals of a problem at the search's unknowns and their exact Jacobian: with respect
+//! to the design variables from the generated parameter sensitivities, to the free input values
+//! from the velocity analogs, to the placement in closed form.
+
+use super::error::SynthesisError;
+use super::problem::{Guess, Problem};
+use super::resolve::Resolved;
+use crate::analysis::ColumnIndex;
+use crate::error::Error;
+use crate::kin::{Kin, Sens};
+use crate::mechanism::Sensitivities;
+use std::f64::consts::TAU;
+
+/// Residuals and Jacobian at one point of the search (row-major, `rows x cols`), with the
+/// positions solved at every target (the guesses of the next evaluation).
+#[derive(Clone, Debug)]
+pub(crate) struct Eval<const N: usize> {
+    pub r: Vec<f64>,
+    pub jac: Vec<f64>,
+    pub qs: Vec<[f64; N]>,
+}
+
+/// The residuals of a problem and their Jacobian at a point of the search.
+#[derive(Clone, Debug, PartialEq)]
+pub struct Residuals {
+    /// Weighted differences of the mechanism's values from the targets, `width` per target (an
+    /// angle's difference reduced to `(-pi, pi]`).
+    pub values: Vec<f64>,
+    /// `jacobian[k][i] = d values[k] / d z[i]`.
+    pub jacobian: Vec<Vec<f64>>,
+}
+
+/// A difference of angles reduced to `[-pi, pi]`.
+pub(crate) fn wrap(d: f64) -> f64 {
+    d - TAU * (d / TAU).round()
+}
+
+/// A column's value, its sensitivity to parameter `p`, and its velocity analog.
+fn value<const N: usize, const NI: usize, const NO: usize>(k: &Kin<N, NI, NO>, c: ColumnIndex) -> f64 {
+    match c {
+        ColumnIndex::Unknown(u) => k.q[u],
+        ColumnIndex::Output(o) => k.out[o],
+        ColumnIndex::Input(i) => k.x[i],
+    }
+}
+
+fn by_param<const N: usize, const NI: usize, const NO: usize, const NP: usize>(
+    s: &Sens<N, NI, NO, NP>,
+    c: ColumnIndex,
+    p: usize,
+) -> f64 {
+    match c {
+        ColumnIndex::Unknown(u) => s.q[u][p],
+        ColumnIndex::Output(o) => s.out[o][p],
+        ColumnIndex::Input(_) => 0.0,
+    }
+}
+
+fn by_input<const N: usize, const NI: usize, const NO: usize>(k: &Kin<N, NI, NO>, c: ColumnIndex) -> f64 {
+    match c {
+        ColumnIndex::Unknown(u) => k.dq[u][0],
+        ColumnIndex::Output(o) => k.dout[o][0],
+        ColumnIndex::Input(i) => (i == 0) as u8 as f64,
+    }
+}
+
+impl<M, const N: usize, const NI: usize, const NO: usize, const NP: usize> Problem<M, N, NI, NO, NP>
+where
+    M: Sensitivities<N, NI, NO, NP> + Clone,
+{
+    /// The residuals and their exact Jacobian at the search's unknowns `z` (see [`Problem`] for
+    /// their order), the positions solved from the declared guess (or those of
+    /// [`Problem::with_guess`], [`Problem::with_guesses`]) at the first target and each from the
+    /// one before.
+    pub fn residuals(&self, z: &[f64]) -> Result<Residuals, SynthesisError> {
+        self.check_point(z)?;
+        let e = self.evaluate(z, None)?;
+        let cols = self.dims();
+        Ok(Residuals { values: e.r, jacobian: e.jac.chunks(cols).map(<[f64]>::to_vec).collect() })
+    }
+
+    /// `z` has one finite value per unknown of the search.
+    pub(crate) fn check_point(&self, z: &[f64]) -> Result<(), SynthesisError> {
+        if z.len() != self.dims() {
+            return Err(SynthesisError::Mismatch(format!("{} values for {} unknowns", z.len(), self.dims())));
+        }
+        if let Some(v) = z.iter().find(|v| !v.is_finite()) {
+            return Err(SynthesisError::InvalidConfig(format!("an unknown of the search is not finite ({v})")));
+        }
+        Ok(())
+    }
+
+    /// The residuals, Jacobian and positions at `z`, each target's position solved from
+    /// `guesses` (the previous evaluation's), or else from the first target's guess and each
+    /// from the one before.
+    pub(crate) fn evaluate(&self, z: &[f64], guesses: Option<&[[f64; N]]>) -> Result<Eval<N>, Error> {
+        let m = self.base.with_params_flat(self.params(z));
+        let inputs = self.input_values(z);
+        let (nv, nt, cols) = (self.vars.len(), self.free_inputs(), self.dims());
+        let n = inputs.len();
+        let mut r = vec![0.0; n * self.width];
+        let mut jac = vec![0.0; n * self.width * cols];
+        let mut qs: Vec<[f64; N]> = Vec::with_capacity(n);
+        let place = self.placement.map(|_| {
+            let at = nv + nt;
+            let (th, s) = (z[at + 2], z[at + 3]);
+            (z[at], z[at + 1], th.cos(), th.sin(), s)
+        });
+        for (k, x) in inputs.iter().enumerate() {
+            let guess = match (guesses, &self.guess, qs.last()) {
+                (Some(g), _, _) => g[k],
+                (None, Guess::Every(g), _) => g[k],
+                (None, _, Some(q)) => *q,
+                (None, Guess::First(g), None) => *g,
+                (None, Guess::Declared, None) => m.guess_flat(x),
+            };
+            // Newton's restarts (roots from turned guesses) only where the assembly mode is
+            // chosen: at the first target of a start. Elsewhere a root from a turned guess would
+            // be another assembly mode than the guess's; a failed solve rejects the step instead.
+            let choose = guesses.is_none() && k == 0;
+            let cfg = if choose { self.newton } else { self.newton.with_restarts(false) };
+            let (kin, sens) = m.sensitivities_flat(x, &guess, &cfg)?;
+            qs.push(kin.q);
+            let mut row = k * self.width;
+            for &(ch, w) in &self.channels {
+                match ch {
+                    Resolved::Point(cx, cy) => {
+                        let (px, py) = (value(&kin, cx), value(&kin, cy));
+                        let (tx, ty) = (self.targets[row], self.targets[row + 1]);
+                        // The placed point d + s R p and the placed derivative s R dp.
+                        let (dx, dy, c, sn, s) = place.unwrap_or((0.0, 0.0, 1.0, 0.0, 1.0));
+                        let turn = |a: f64, b: f64| (s * (c * a - sn * b), s * (sn * a + c * b));
+                        let (mx, my) = turn(px, py);
+                        r[row] = w * (dx + mx - tx);
+                        r[row + 1] = w * (dy + my - ty);
+                        let (jx, jy) = (row * cols, (row + 1) * cols);
+                        for (i, b) in self.vars.iter().enumerate() {
+                            let (a, bb) = turn(by_param(&sens, cx, b.index), by_param(&sens, cy, b.index));
+                            jac[jx + i] = w * a;
+                            jac[jy + i] = w * bb;
+                        }
+                        if nt > 0 {
+                            let (a, bb) = turn(by_input(&kin, cx), by_input(&kin, cy));
+                            jac[jx + nv + k] = w * a;
+                            jac[jy + nv + k] = w * bb;
+                        }
+                        if place.is_some() {
+                            let at = nv + nt;
+                            jac[jx + at] = w;
+                            jac[jy + at + 1] = w;
+                            // d(s R p)/d angle = (-my, mx); d(s R p)/d s = R p = (mx, my) / s.
+                            jac[jx + at + 2] = -w * my;
+                            jac[jy + at + 2] = w * mx;
+                            jac[jx + at + 3] = w * (c * px - sn * py);
+                            jac[jy + at + 3] = w * (sn * px + c * py);
+                        }
+                        row += 2;
+                    }
+                    Resolved::Angle { col, rotates } => {
+                        let turn = match place {
+                            Some((_, _, c, sn, _)) if rotates => sn.atan2(c),
+                            _ => 0.0,
+                        };
+                        r[row] = w * wrap(value(&kin, col) + turn - self.targets[row]);
+                        let j = row * cols;
+                        for (i, b) in self.vars.iter().enumerate() {
+                            jac[j + i] = w * by_param(&sens, col, b.index);
+                        }
+                        if nt > 0 {
+                            jac[j + nv + k] = w * by_input(&kin, col);
+                        }
+                        if place.is_some() && rotates {
+                            jac[j + nv + nt + 2] = w;
+                        }
+                        row += 1;
+                    }
+                    Resolved::Value(col) => {
+                        r[row] = w * (value(&kin, col) - self.targets[row]);
+                        let j = row * cols;
+                        for (i, b) in self.vars.iter().enumerate() {
+                            jac[j + i] = w * by_param(&sens, col, b.index);
+                        }
+                        if nt > 0 {
+                            jac[j + nv + k] = w * by_input(&kin, col);
+                        }
+                        row += 1;
+                    }
+                }
+            }
+        }
+        Ok(Eval { r, jac, qs })
+    }
+}

@@ -1,0 +1,132 @@
+//! The names of a task resolved against a mechanism: its channels to columns, its timing to
+//! input values, and the size of its targets (the unit of the residual tolerance).
+
+use super::error::SynthesisError;
+use super::task::{Channel, Timing};
+use super::vars::check_bounds;
+use crate::analysis::ColumnIndex;
+use crate::kinds::QuantityKind;
+
+/// A target channel resolved to the mechanism's columns.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub(crate) enum Resolved {
+    /// A point's x and y columns; moved by the placement.
+    Point(ColumnIndex, ColumnIndex),
+    /// An angle column: compared modulo a turn; turned by the placement (`rotates`) or not (a
+    /// function generator's output angle).
+    Angle { col: ColumnIndex, rotates: bool },
+    /// A scalar column.
+    Value(ColumnIndex),
+}
+
+/// The timing resolved: the inputs of every target, or free inputs within bounds.
+#[derive(Clone, Debug, PartialEq)]
+pub(crate) enum Inputs<const NI: usize> {
+    Prescribed(Vec<[f64; NI]>),
+    Free { lo: f64, hi: f64 },
+}
+
+/// A channel's columns.
+pub(crate) fn resolve_channel<M, const N: usize, const NI: usize, const NO: usize>(
+    c: &Channel,
+) -> Result<Resolved, SynthesisError>
+where
+    M: crate::mechanism::Mechanism<N, NI, NO>,
+{
+    Ok(match c {
+        Channel::Point(name) => Resolved::Point(
+            scalar_column::<M, N, NI, NO>(&format!("{name}.x"))?,
+            scalar_column::<M, N, NI, NO>(&format!("{name}.y"))?,
+        ),
+        Channel::Angle(name) => Resolved::Angle { col: scalar_column::<M, N, NI, NO>(name)?, rotates: true },
+        Channel::Value(name) => {
+            let col = scalar_column::<M, N, NI, NO>(name)?;
+            let kind = match col {
+                ColumnIndex::Unknown(u) => M::UNKNOWN_KINDS[u],
+                ColumnIndex::Output(o) => M::OUTPUT_KINDS[o],
+                ColumnIndex::Input(i) => M::INPUT_KINDS[i],
+            };
+            if kind == QuantityKind::Angle { Resolved::Angle { col, rotates: false } } else { Resolved::Value(col) }
+        }
+    })
+}
+
+/// An unknown or output column by name.
+pub(crate) fn scalar_column<M, const N: usize, const NI: usize, const NO: usize>(
+    name: &str,
+) -> Result<ColumnIndex, SynthesisError>
+where
+    M: crate::mechanism::Mechanism<N, NI, NO>,
+{
+    let find = |names: &[&'static str]| names.iter().position(|n| *n == name);
+    find(&M::UNKNOWNS).map(ColumnIndex::Unknown).or_else(|| find(&M::OUTPUTS).map(ColumnIndex::Output)).ok_or_else(
+        || SynthesisError::UnknownColumn {
+            name: name.to_string(),
+            mechanism: M::NAME,
+            columns: M::UNKNOWNS.iter().chain(M::OUTPUTS.iter()).copied().collect::<Vec<_>>().join(", "),
+        },
+    )
+}
+
+/// The timing checked against the targets and the mechanism's inputs.
+pub(crate) fn resolve_timing<const NI: usize>(timing: &Timing, targets: usize) -> Result<Inputs<NI>, SynthesisError> {
+    match timing {
+        Timing::Unset => Err(SynthesisError::Mismatch(
+            "the task has no timing: give the inputs (`timed`) or their range (`untimed`)".into(),
+        )),
+        Timing::Prescribed(rows) => {
+            if rows.len() != targets {
+                return Err(SynthesisError::Mismatch(format!("{} input values for {targets} targets", rows.len())));
+            }
+            let mut out = Vec::with_capacity(targets);
+            for (k, row) in rows.iter().enumerate() {
+                let x: [f64; NI] = row.as_slice().try_into().map_err(|_| {
+                    SynthesisError::Mismatch(format!(
+                        "target {k} has {} input values; the mechanism has {NI}",
+                        row.len()
+                    ))
+                })?;
+                if let Some(&v) = x.iter().find(|v| !v.is_finite()) {
+                    return Err(SynthesisError::NonFinite { what: "the input", target: k, value: v });
+                }
+                out.push(x);
+            }
+            Ok(Inputs::Prescribed(out))
+        }
+        &Timing::Free { lo, hi } => {
+            if NI != 1 {
+                return Err(SynthesisError::Unsupported(format!(
+                    "free timing moves one input; the mechanism has {NI} (prescribe the inputs)"
+                )));
+            }
+            check_bounds("input", lo, hi)?;
+            Ok(Inputs::Free { lo, hi })
+        }
+    }
+}
+
+/// The largest distance of the targets' lengths from their centroid (1 where none is a length
+/// or all coincide): what the residual tolerance is relative to.
+pub(crate) fn target_scale(channels: &[(Resolved, f64)], targets: &[f64], width: usize) -> f64 {
+    let mut scale: f64 = 0.0;
+    let mut at = 0;
+    for (c, w) in channels {
+        let cols: &[usize] = match c {
+            Resolved::Point(..) => &[0, 1],
+            Resolved::Value(_) => &[0],
+            Resolved::Angle { .. } => &[],
+        };
+        let n = targets.len() / width;
+        let mean = |j: usize| (0..n).map(|k| targets[k * width + at + j]).sum::<f64>() / n as f64;
+        let means: Vec<f64> = cols.iter().map(|&j| mean(j)).collect();
+        for k in 0..n {
+            let d2: f64 = cols.iter().zip(&means).map(|(&j, m)| (targets[k * width + at + j] - m).powi(2)).sum();
+            scale = scale.max(w * d2.sqrt());
+        }
+        at += match c {
+            Resolved::Point(..) => 2,
+            _ => 1,
+        };
+    }
+    if scale > 0.0 && scale.is_finite() { scale } else { 1.0 }
+}

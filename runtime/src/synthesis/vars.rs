@@ -1,0 +1,98 @@
+//! Design variables: parameters of the mechanism, named, each with the range the search may
+//! explore. The other parameters keep the values of the mechanism the problem is built from.
+
+use super::error::SynthesisError;
+
+/// A bounded design variable: a parameter of the mechanism by name, and its range.
+#[derive(Clone, Debug, PartialEq)]
+#[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
+pub struct Variable {
+    /// The parameter's declared name.
+    pub name: String,
+    /// Lower bound.
+    pub lo: f64,
+    /// Upper bound.
+    pub hi: f64,
+}
+
+impl Variable {
+    /// The parameter `name`, varied over `[lo, hi]`.
+    pub fn new(name: impl Into<String>, lo: f64, hi: f64) -> Self {
+        Variable { name: name.into(), lo, hi }
+    }
+}
+
+/// The design variables in the order the candidates list their values.
+///
+/// ```
+/// use kinloop_runtime::synthesis::Design;
+/// let design = Design::new().var("a", 0.2, 2.0).var("b", 0.5, 5.0);
+/// assert_eq!(design.variables().len(), 2);
+/// ```
+#[derive(Clone, Debug, Default, PartialEq)]
+#[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
+pub struct Design {
+    variables: Vec<Variable>,
+}
+
+impl Design {
+    /// No variable yet.
+    pub fn new() -> Self {
+        Design::default()
+    }
+
+    /// Adds the parameter `name`, varied over `[lo, hi]`.
+    pub fn var(mut self, name: impl Into<String>, lo: f64, hi: f64) -> Self {
+        self.variables.push(Variable::new(name, lo, hi));
+        self
+    }
+
+    /// The variables, in order.
+    pub fn variables(&self) -> &[Variable] {
+        &self.variables
+    }
+
+    /// Each variable's index into `params` (the mechanism's parameter names) and its bounds;
+    /// an unknown or repeated name, or bounds that hold no value, is an error.
+    pub(crate) fn resolve(&self, mechanism: &'static str, params: &[&str]) -> Result<Vec<Bound>, SynthesisError> {
+        if self.variables.is_empty() {
+            return Err(SynthesisError::NoVariables);
+        }
+        let mut out: Vec<Bound> = Vec::with_capacity(self.variables.len());
+        for v in &self.variables {
+            let index = param_index(mechanism, params, &v.name)?;
+            if out.iter().any(|b| b.index == index) {
+                return Err(SynthesisError::DuplicateVariable { name: v.name.clone() });
+            }
+            check_bounds(&v.name, v.lo, v.hi)?;
+            out.push(Bound { index, lo: v.lo, hi: v.hi });
+        }
+        Ok(out)
+    }
+}
+
+/// A resolved variable: the index of what it sets and its bounds.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub(crate) struct Bound {
+    pub index: usize,
+    pub lo: f64,
+    pub hi: f64,
+}
+
+/// The index of the parameter `name`, or an error listing the parameters.
+pub(crate) fn param_index(mechanism: &'static str, params: &[&str], name: &str) -> Result<usize, SynthesisError> {
+    params.iter().position(|p| *p == name).ok_or_else(|| SynthesisError::UnknownVariable {
+        name: name.to_string(),
+        mechanism,
+        params: params.join(", "),
+    })
+}
+
+/// Bounds must be finite and ordered.
+pub(crate) fn check_bounds(name: &str, lo: f64, hi: f64) -> Result<(), SynthesisError> {
+    if lo.is_finite() && hi.is_finite() && lo <= hi {
+        Ok(())
+    } else {
+        Err(SynthesisError::BadBounds { name: name.to_string(), lo, hi })
+    }
+}

@@ -1,0 +1,190 @@
+//! Verification of a locally solved design: a branch-safe sweep from the first target through
+//! every other, in order, must reach each on the assembly mode the targets were solved on;
+//! then the optional constraints. Every candidate a search returns went through this.
+
+use super::candidate::{Candidate, Defect};
+use super::local::LocalReport;
+use super::problem::Problem;
+use super::residuals::{Eval, wrap};
+use super::resolve::Inputs;
+use crate::analysis::ColumnIndex;
+use crate::kin::Kin;
+use crate::kinds::QuantityKind;
+use crate::mechanism::Sensitivities;
+use crate::metrics::transmission_angle;
+use crate::paths::outcome::SweepStop;
+use crate::paths::sweep::Sweep;
+use std::f64::consts::TAU;
+
+/// Samples of each sweep between consecutive targets (the transmission angle is their
+/// minimum, with the targets'), and of a turn checked for full rotation.
+const STRETCH_SAMPLES: usize = 9;
+const TURN_SAMPLES: usize = 73;
+
+/// Two positions are the same assembly mode when every unknown agrees to this, relative to
+/// its size (angles modulo a turn): far above the solves' tolerances, far below the distance
+/// between distinct assembly modes of a design that is not near singular.
+const SAME_POSITION: f64 = 1e-6;
+
+/// `size` is the unit of a length (the targets' size).
+fn same_position<const N: usize>(kinds: &[QuantityKind; N], a: &[f64; N], b: &[f64; N], size: f64) -> bool {
+    (0..N).all(|u| match kinds[u] {
+        QuantityKind::Angle => wrap(a[u] - b[u]).abs() <= SAME_POSITION,
+        _ => (a[u] - b[u]).abs() <= SAME_POSITION * (size + b[u].abs()),
+    })
+}
+
+fn value<const N: usize, const NI: usize, const NO: usize>(k: &Kin<N, NI, NO>, c: ColumnIndex) -> f64 {
+    match c {
+        ColumnIndex::Unknown(u) => k.q[u],
+        ColumnIndex::Output(o) => k.out[o],
+        ColumnIndex::Input(i) => k.x[i],
+    }
+}
+
+/// The free inputs as one monotone motion: themselves if strictly monotone; for an angle,
+/// also in cyclic order within less than a turn (a crank passing its zero between two targets),
+/// unwrapped by whole turns, in the sense that turns less; `None` otherwise (an order defect).
+/// An angle input is periodic in every declaration of a mechanism that turns by it (its sines
+/// and cosines); where it is not (a gear ratio that is no integer), the sweep to the unwrapped
+/// input does not reach the solved position, and the candidate has a branch defect instead.
+fn in_order(x: &[f64], angle: bool) -> Option<Vec<f64>> {
+    let monotone = |s: f64| x.windows(2).all(|w| s * (w[1] - w[0]) > 0.0);
+    if monotone(1.0) || monotone(-1.0) {
+        return Some(x.to_vec());
+    }
+    if !angle {
+        return None;
+    }
+    [1.0, -1.0]
+        .iter()
+        .filter_map(|&s| {
+            let steps: Vec<f64> = x.windows(2).map(|w| (s * (w[1] - w[0])).rem_euclid(TAU)).collect();
+            let total: f64 = steps.iter().sum();
+            (steps.iter().all(|&d| d > 0.0) && total < TAU).then_some((s, steps, total))
+        })
+        .min_by(|a, b| a.2.total_cmp(&b.2))
+        .map(|(s, steps, _)| {
+            let mut at = x[0];
+            std::iter::once(at)
+                .chain(steps.iter().map(|d| {
+                    at += s * d;
+                    at
+                }))
+                .collect()
+        })
+}
+
+impl<M, const N: usize, const NI: usize, const NO: usize, const NP: usize> Problem<M, N, NI, NO, NP>
+where
+    M: Sensitivities<N, NI, NO, NP> + Clone,
+{
+    /// The candidate of the local solution `z` (evaluated as `e`), verified.
+    pub(crate) fn verify(&self, start: usize, z: Vec<f64>, e: Eval<N>, local: LocalReport) -> Candidate {
+        let params = self.params(&z);
+        let m = self.base.with_params_flat(params);
+        let mut inputs = self.input_values(&z);
+        let n = inputs.len();
+        let mut defects = Vec::new();
+        if matches!(self.inputs, Inputs::Free { .. }) && n > 1 {
+            let free: Vec<f64> = inputs.iter().map(|x| x[0]).collect();
+            match in_order(&free, M::INPUT_KINDS[0] == QuantityKind::Angle) {
+                Some(x) => inputs = x.into_iter().map(|v| [v; NI]).collect(),
+                None => defects.push(Defect::Order),
+            }
+        }
+        // The motion from target to target on the first target's assembly mode.
+        let mut samples: Vec<Kin<N, NI, NO>> = Vec::new();
+        for k in 1..n {
+            if inputs[k] == inputs[k - 1] {
+                continue;
+            }
+            let run =
+                Sweep::<M, Kin<N, NI, NO>, N, NI, NO>::new(&m, inputs[k - 1], inputs[k], STRETCH_SAMPLES, e.qs[k - 1])
+                    .map(|s| s.with_config(self.sweep).run());
+            let defect = match run {
+                Ok(r) => match (&r.stop, r.states.last()) {
+                    (SweepStop::Completed, Some(last)) => {
+                        samples.extend_from_slice(&r.states);
+                        (!same_position(&M::UNKNOWN_KINDS, &last.q, &e.qs[k], self.scale))
+                            .then_some(Defect::Branch { target: k })
+                    }
+                    (SweepStop::LimitPosition(ev), _) => {
+                        Some(Defect::Circuit { target: k, at: ev.x.first().copied().unwrap_or(f64::NAN) })
+                    }
+                    (SweepStop::SingularCrossing(_), _) => Some(Defect::Branch { target: k }),
+                    _ => Some(Defect::NoAssembly { target: k }),
+                },
+                Err(_) => Some(Defect::NoAssembly { target: k }),
+            };
+            if let Some(d) = defect {
+                defects.push(d);
+                break;
+            }
+        }
+        if self.checks.full_rotation {
+            let dir = if n > 1 && inputs[n - 1][0] < inputs[0][0] { -1.0 } else { 1.0 };
+            let to = inputs[0].map(|x| x + dir * TAU);
+            let run = Sweep::<M, Kin<N, NI, NO>, N, NI, NO>::new(&m, inputs[0], to, TURN_SAMPLES, e.qs[0])
+                .map(|s| s.with_config(self.sweep).run());
+            match run {
+                Ok(r)
+                    if r.is_completed()
+                        && r.states
+                            .last()
+                            .is_some_and(|l| same_position(&M::UNKNOWN_KINDS, &l.q, &e.qs[0], self.scale)) =>
+                {
+                    samples = r.states;
+                }
+                _ => defects.push(Defect::NoFullRotation),
+            }
+        }
+        let mut min_transmission = None;
+        if let Some((c, f, min)) = self.checks.transmission {
+            let at_targets =
+                e.qs.iter().zip(&inputs).filter_map(|(q, x)| m.kinematics_at_flat(x, q, &self.newton).ok());
+            let angle = samples
+                .iter()
+                .copied()
+                .chain(at_targets)
+                .map(|k| transmission_angle(value(&k, c), value(&k, f)))
+                .fold(f64::INFINITY, f64::min);
+            if angle.is_finite() {
+                min_transmission = Some(angle);
+                if angle < min {
+                    defects.push(Defect::Transmission { min: angle });
+                }
+            }
+        }
+        if let Some((idx, max)) = &self.checks.link_ratio {
+            let lengths: Vec<f64> = idx.iter().map(|&i| params[i].abs()).collect();
+            let ratio =
+                lengths.iter().copied().fold(0.0, f64::max) / lengths.iter().copied().fold(f64::INFINITY, f64::min);
+            // A NaN ratio (a zero or non-finite link) is a violation too.
+            if !matches!(ratio.partial_cmp(max), Some(std::cmp::Ordering::Less | std::cmp::Ordering::Equal)) {
+                defects.push(Defect::LinkRatio { ratio });
+            }
+        }
+        let errors: Vec<f64> = e.r.chunks(self.width).map(|c| c.iter().map(|v| v * v).sum::<f64>().sqrt()).collect();
+        let max_error = errors.iter().copied().fold(0.0, f64::max);
+        let rms_error = (errors.iter().map(|v| v * v).sum::<f64>() / n as f64).sqrt();
+        let placement = self.placement.map(|_| {
+            let at = self.vars.len() + self.free_inputs();
+            [z[at], z[at + 1], z[at + 2], z[at + 3]]
+        });
+        Candidate {
+            start,
+            values: z[..self.vars.len()].to_vec(),
+            params: params.to_vec(),
+            inputs: inputs.iter().map(|x| x.to_vec()).collect(),
+            placement,
+            positions: e.qs.iter().map(|q| q.to_vec()).collect(),
+            errors,
+            max_error,
+            rms_error,
+            defects,
+            min_transmission,
+            local,
+        }
+    }
+}

@@ -1,0 +1,98 @@
+//! Bad input: a clear error naming what is wrong, never a panic.
+
+use super::mechanisms::CouplerFourBar;
+use kinloop::synthesis::{Constraints, Design, LocalConfig, PlacementBounds, Problem, Search, SynthesisError, Task};
+
+fn design() -> Design {
+    Design::new().var("a", 0.5, 2.0).var("b", 1.0, 5.0)
+}
+
+fn three() -> Task {
+    Task::path("p", [[1.0, 2.0], [1.5, 2.2], [2.0, 2.1]]).timed([0.0, 0.5, 1.0])
+}
+
+fn error(design: &Design, task: &Task) -> SynthesisError {
+    Problem::new(CouplerFourBar::default(), design, task).unwrap_err()
+}
+
+#[test]
+fn names_that_are_not_the_mechanism_s() {
+    let e = error(&Design::new().var("length", 0.0, 1.0), &three());
+    assert!(matches!(&e, SynthesisError::UnknownVariable { name, .. } if name == "length"), "{e:?}");
+    assert!(e.to_string().contains("a, b, c, d, e, alpha"), "the message lists the parameters: {e}");
+    let e = error(&design().var("a", 0.1, 0.2), &three());
+    assert!(matches!(e, SynthesisError::DuplicateVariable { .. }), "{e:?}");
+    let e = error(&Design::new(), &three());
+    assert_eq!(e, SynthesisError::NoVariables);
+    let task = Task::path("q", [[1.0, 2.0], [1.5, 2.2]]).timed([0.0, 0.5]);
+    let e = error(&design(), &task);
+    assert!(matches!(&e, SynthesisError::UnknownColumn { name, .. } if name == "q.x"), "{e:?}");
+    let e = error(&design(), &Task::function("omega", [(0.0, 1.0), (1.0, 2.0)]));
+    assert!(e.to_string().contains("beta, gamma, p.x, p.y, theta"), "{e}");
+}
+
+#[test]
+fn bounds_that_hold_no_value() {
+    for (lo, hi) in [(2.0, 1.0), (f64::NAN, 1.0), (0.0, f64::INFINITY)] {
+        let e = error(&Design::new().var("a", lo, hi), &three());
+        assert!(matches!(&e, SynthesisError::BadBounds { name, .. } if name == "a"), "{e:?}");
+    }
+    let e = error(&design(), &Task::path("p", [[1.0, 2.0]; 3]).untimed(1.0, 0.0));
+    assert!(matches!(&e, SynthesisError::BadBounds { name, .. } if name == "input"), "{e:?}");
+    let placement = PlacementBounds::translation((0.0, 1.0), (0.0, 1.0)).with_scale((0.0, 2.0));
+    let e = error(&design(), &Task::path("p", [[1.0, 2.0]; 9]).timed([0.0; 9]).with_placement(placement));
+    assert!(matches!(&e, SynthesisError::BadBounds { name, .. } if name == "scale"), "{e:?}");
+}
+
+#[test]
+fn targets_that_are_missing_not_finite_or_too_few() {
+    let empty: [[f64; 2]; 0] = [];
+    assert_eq!(error(&design(), &Task::path("p", empty).timed([])), SynthesisError::NoTargets);
+    let e = error(&design(), &Task::path("p", [[1.0, 2.0], [f64::NAN, 2.0]]).timed([0.0, 1.0]));
+    assert!(matches!(e, SynthesisError::NonFinite { target: 1, .. }), "{e:?}");
+    let e = error(&design(), &Task::path("p", [[1.0, 2.0], [1.0, 2.0]]).timed([0.0, f64::INFINITY]));
+    assert!(matches!(e, SynthesisError::NonFinite { what: "the input", target: 1, .. }), "{e:?}");
+    // Two points, untimed: four equations for two dimensions and two crank angles is enough;
+    // one point is not (two equations, three unknowns).
+    assert!(
+        Problem::new(CouplerFourBar::default(), &design(), &Task::path("p", [[1.0, 2.0]; 2]).untimed(0.0, 1.0)).is_ok()
+    );
+    let e = error(&design(), &Task::path("p", [[1.0, 2.0]]).untimed(0.0, 1.0));
+    assert_eq!(e, SynthesisError::TooFewTargets { residuals: 2, variables: 3 });
+    // Timing missing, or of the wrong length.
+    let e = error(&design(), &Task::path("p", [[1.0, 2.0]; 3]));
+    assert!(matches!(e, SynthesisError::Mismatch(_)), "{e:?}");
+    let e = error(&design(), &Task::path("p", [[1.0, 2.0]; 3]).timed([0.0, 1.0]));
+    assert!(matches!(e, SynthesisError::Mismatch(_)), "{e:?}");
+    let e = error(&design(), &Task::path("p", [[1.0, 2.0]; 3]).timed_inputs(vec![vec![0.0, 1.0]; 3]));
+    assert!(matches!(e, SynthesisError::Mismatch(_)), "{e:?}");
+    let e = error(&design(), &Task::new(vec![], vec![vec![]; 3]).timed([0.0; 3]));
+    assert!(matches!(e, SynthesisError::Mismatch(_)), "{e:?}");
+    let e = error(&design(), &three().with_weights(vec![-1.0]));
+    assert!(matches!(e, SynthesisError::InvalidConfig(_)), "{e:?}");
+}
+
+#[test]
+fn settings_and_points_out_of_range() {
+    let problem = Problem::new(CouplerFourBar::default(), &design(), &three()).unwrap();
+    let search = Search::default().with_local(LocalConfig::default().with_max_evaluations(0));
+    assert!(matches!(search.run(&problem), Err(SynthesisError::InvalidConfig(_))));
+    assert!(matches!(problem.residuals(&[1.0]), Err(SynthesisError::Mismatch(_))));
+    assert!(matches!(problem.residuals(&[1.0, f64::NAN]), Err(SynthesisError::InvalidConfig(_))));
+    let c = Constraints::default().with_transmission("beta", "gamma", 2.0);
+    assert!(matches!(problem.clone().with_constraints(&c), Err(SynthesisError::InvalidConfig(_))));
+    let c = Constraints::default().with_link_ratio(&["a", "z"], 2.0);
+    assert!(matches!(problem.clone().with_constraints(&c), Err(SynthesisError::UnknownVariable { .. })));
+    assert!(matches!(problem.clone().with_guesses(vec![[0.0, 0.0]]), Err(SynthesisError::Mismatch(_))));
+}
+
+#[test]
+fn designs_that_never_assemble_are_counted_not_fatal() {
+    // The crank far longer than the rest: no start assembles at the targets.
+    let design = Design::new().var("a", 50.0, 60.0).var("e", 1.0, 2.0);
+    let problem = Problem::new(CouplerFourBar::default(), &design, &three()).unwrap();
+    let report = Search::default().with_starts(0..8).run(&problem).unwrap();
+    assert_eq!((report.unassembled, report.candidates.len()), (8, 0));
+    assert!(report.best().is_none());
+    assert!(Search::default().refine(&problem, &[55.0, 1.5]).is_err());
+}

@@ -1,0 +1,118 @@
+//! The verification on hand-made designs with a known defect: each design meets its targets
+//! exactly (targets sampled from its closed form), so only the verification can reject it.
+
+use super::mechanisms::{CouplerFourBar, FOUR_BAR, four_bar_pose};
+use kinloop::synthesis::{Constraints, Defect, Design, Problem, Search, Task};
+use std::f64::consts::{PI, TAU};
+
+/// A non-Grashof four-bar (s + l = 1 + 2 > p + q = 1.5 + 1.3): the crank rocks within
+/// `|phi| <= theta`, `cos theta = (a^2 + d^2 - (b + c)^2) / (2 a d)` (A, B and D in line).
+const TRIPLE_ROCKER: [f64; 6] = [1.0, 1.5, 1.3, 2.0, 0.8, 0.3];
+
+/// The problem of the targets at `phis` on sides `sides` of `p` (only `e` varies, within a
+/// box around its value), each target's position given.
+fn exact(p: [f64; 6], phis: &[f64], sides: &[f64], timed: bool) -> Problem<CouplerFourBar, 2, 1, 3, 6> {
+    let poses: Vec<([f64; 2], [f64; 2])> = phis.iter().zip(sides).map(|(&x, &s)| four_bar_pose(p, x, s)).collect();
+    let task = Task::path("p", poses.iter().map(|(t, _)| *t));
+    let task = if timed { task.timed(phis.to_vec()) } else { task.untimed(-TAU, TAU) };
+    let [a, b, c, d, e, alpha] = p;
+    let m = CouplerFourBar { a, b, c, d, e, alpha };
+    Problem::new(m, &Design::new().var("e", 0.5 * e, 2.0 * e), &task)
+        .unwrap()
+        .with_guesses(poses.iter().map(|(_, q)| *q).collect())
+        .unwrap()
+}
+
+/// The design's own values (`e`, then the inputs where free), refined and verified.
+fn verify(problem: &Problem<CouplerFourBar, 2, 1, 3, 6>, z: &[f64]) -> kinloop::synthesis::Candidate {
+    let c = Search::default().refine(problem, z).unwrap();
+    assert!(c.max_error < 1e-13, "the design meets its targets: {c:?}");
+    c
+}
+
+#[test]
+fn a_valid_design_has_no_defect() {
+    let problem = exact(FOUR_BAR, &[0.0, 1.0, 2.0, 3.0], &[1.0; 4], true);
+    let c = verify(&problem, &[FOUR_BAR[4]]);
+    assert!(c.is_valid(), "{c:?}");
+}
+
+#[test]
+fn targets_on_two_assembly_modes_are_a_branch_defect() {
+    // The Grashof crank-rocker with its second target on the other assembly mode (C on the
+    // right of AD): met exactly, but the sweep from the first target reaches the second on the
+    // first's mode.
+    let problem = exact(FOUR_BAR, &[0.5, 1.0, 1.5], &[1.0, -1.0, -1.0], true);
+    let c = verify(&problem, &[FOUR_BAR[4]]);
+    assert_eq!(c.defects, [Defect::Branch { target: 1 }]);
+}
+
+#[test]
+fn a_limit_position_between_targets_is_a_circuit_defect() {
+    // The crank must pass its limit position theta to go from 2.0 to 2 pi - 2.0 upwards.
+    let [a, b, c, d, ..] = TRIPLE_ROCKER;
+    let theta = ((a * a + d * d - (b + c) * (b + c)) / (2.0 * a * d)).acos();
+    assert!(2.0 < theta && theta < PI);
+    let problem = exact(TRIPLE_ROCKER, &[2.0, TAU - 2.0], &[1.0, 1.0], true);
+    let cand = verify(&problem, &[TRIPLE_ROCKER[4]]);
+    match cand.defects.as_slice() {
+        // The sweep locates the limit position to its event tolerance (`tol::LOCATED`).
+        [Defect::Circuit { target: 1, at }] => assert_close!(*at, theta, crate::support::tol::LOCATED),
+        other => panic!("{other:?}"),
+    }
+}
+
+#[test]
+fn targets_met_out_of_order_are_an_order_defect() {
+    // Free crank angles, met exactly at 0.5, 1.5, 1.0, 2.0: not monotone.
+    let phis = [0.5, 1.5, 1.0, 2.0];
+    let problem = exact(FOUR_BAR, &phis, &[1.0; 4], false);
+    let mut z = vec![FOUR_BAR[4]];
+    z.extend(phis);
+    let c = verify(&problem, &z);
+    assert_eq!(c.defects.first(), Some(&Defect::Order));
+}
+
+#[test]
+fn crank_angles_in_cyclic_order_are_one_motion() {
+    // Free crank angles 5.5, 6.0, 0.3, 0.9: in order once the crank passes its zero, the
+    // candidate meets them at 5.5, 6.0, 0.3 + 2 pi, 0.9 + 2 pi, on one sweep.
+    let phis = [5.5, 6.0, 0.3, 0.9];
+    let problem = exact(FOUR_BAR, &phis, &[1.0; 4], false);
+    let mut z = vec![FOUR_BAR[4]];
+    z.extend(phis);
+    let c = verify(&problem, &z);
+    assert!(c.is_valid(), "{c:?}");
+    let unwrapped: Vec<f64> = c.inputs.iter().map(|x| x[0]).collect();
+    for (got, want) in unwrapped.iter().zip([5.5, 6.0, 0.3 + TAU, 0.9 + TAU]) {
+        assert_close!(*got, want, crate::support::tol::ULPS * 10.0);
+    }
+}
+
+#[test]
+fn constraints_full_rotation_transmission_and_link_ratio() {
+    // The crank-rocker turns fully; its transmission angle is extreme with crank and frame in
+    // line (phi = 0 and pi, both sampled when the motion starts at 0): from the triangle of
+    // coupler, rocker and |AD| = d -+ a, cos mu = (b^2 + c^2 - AD^2) / (2 b c).
+    let [a, b, c, d, ..] = FOUR_BAR;
+    let mu = |ad: f64| {
+        let m = ((b * b + c * c - ad * ad) / (2.0 * b * c)).acos();
+        m.min(PI - m)
+    };
+    let expected = mu(d - a).min(mu(d + a));
+    let constraints = Constraints::default()
+        .with_full_rotation()
+        .with_transmission("beta", "gamma", expected + 0.01)
+        .with_link_ratio(&["a", "b", "c", "d"], 3.0);
+    let problem = exact(FOUR_BAR, &[0.0, 1.0, 2.0], &[1.0; 3], true).with_constraints(&constraints).unwrap();
+    let cand = verify(&problem, &[FOUR_BAR[4]]);
+    let min = cand.min_transmission.unwrap();
+    assert_close!(min, expected, crate::support::tol::SOLVE);
+    assert_eq!(cand.defects, [Defect::Transmission { min }, Defect::LinkRatio { ratio: b / a }]);
+
+    // The triple rocker cannot turn fully.
+    let problem = exact(TRIPLE_ROCKER, &[0.0, 1.0], &[1.0; 2], true)
+        .with_constraints(&Constraints::default().with_full_rotation())
+        .unwrap();
+    assert_eq!(verify(&problem, &[TRIPLE_ROCKER[4]]).defects, [Defect::NoFullRotation]);
+}

@@ -1,0 +1,186 @@
+//! Known answers: targets sampled from closed forms of a design (`mechanisms.rs`, plain
+//! trigonometry), its dimensions hidden, found again by the search.
+//!
+//! Tolerances: the targets are exact to rounding (~1e-16 of their size), and the problems are
+//! overdetermined or square with a Jacobian of full rank at the truth, so the residual of the
+//! recovered design is at rounding (`RESIDUAL`, 1e-13 of the targets' size, a few hundred
+//! roundings) and the dimensions agree to the residual times the condition number of the
+//! Jacobian (well below `DIMENSION`, 1e-8 relative, for these well-spread targets).
+
+use super::mechanisms::{
+    CouplerFourBar, FOUR_BAR, SLIDER, STEPHENSON, Slider, Stephenson, coupler_point, four_bar_pose, slider_x,
+    stephenson_point,
+};
+use kinloop::synthesis::{Design, PlacementBounds, Problem, Search, SynthesisReport, Task, chebyshev};
+
+const RESIDUAL: f64 = 1e-13;
+const DIMENSION: f64 = 1e-8;
+
+/// Design variables `names` with the truth `values`, each within `spread` of its value.
+fn design(names: &[&str], values: &[f64], spread: f64) -> Design {
+    names.iter().zip(values).fold(Design::new(), |d, (n, v)| d.var(*n, v * (1.0 - spread), v * (1.0 + spread)))
+}
+
+/// The best valid candidate meets the targets to rounding and has the true dimensions.
+fn check_recovered(report: &SynthesisReport, truth: &[f64], size: f64) {
+    let best = report.best().unwrap_or_else(|| panic!("no valid candidate: {report:#?}"));
+    assert!(best.max_error <= RESIDUAL * size, "max error {:e}", best.max_error);
+    // With the exact Jacobian the best start converges in few steps (measured: 6 to 18
+    // evaluations, 46 for the 22 unknowns of the fitting case, from starts up to 40 % off); a
+    // wrong derivative would need far more, or stall.
+    assert!(best.local.evaluations <= 60, "{:?}", best.local);
+    for (name, (got, want)) in report.variables.iter().zip(best.values.iter().zip(truth)) {
+        assert_close!(*got, *want, rel = DIMENSION, "{name}: {got} vs {want}");
+    }
+}
+
+const FOUR_BAR_NAMES: [&str; 6] = ["a", "b", "c", "d", "e", "alpha"];
+
+#[test]
+fn four_bar_path_with_timing() {
+    // Five points at prescribed crank angles: ten equations for the six dimensions.
+    let phis: Vec<f64> = (0..5).map(|k| 0.3 + 1.1 * k as f64).collect();
+    let targets: Vec<[f64; 2]> = phis.iter().map(|&p| coupler_point(FOUR_BAR, p)).collect();
+    let task = Task::path("p", targets).timed(phis);
+    let problem = Problem::new(CouplerFourBar::default(), &design(&FOUR_BAR_NAMES, &FOUR_BAR, 0.3), &task).unwrap();
+    let report = Search::default().with_starts(0..24).run(&problem).unwrap();
+    check_recovered(&report, &FOUR_BAR, 1.0);
+    assert!(report.valid >= 1 && report.evaluations > 0);
+}
+
+#[test]
+fn four_bar_path_without_timing() {
+    // Eight points, their crank angles unknown: sixteen equations for six dimensions and eight
+    // input values, met in order along one turn of the crank.
+    let phis: Vec<f64> = (0..8).map(|k| 0.2 + 0.7 * k as f64).collect();
+    let targets: Vec<[f64; 2]> = phis.iter().map(|&p| coupler_point(FOUR_BAR, p)).collect();
+    let task = Task::path("p", targets).untimed(0.0, std::f64::consts::TAU);
+    let problem = Problem::new(CouplerFourBar::default(), &design(&FOUR_BAR_NAMES, &FOUR_BAR, 0.2), &task).unwrap();
+    assert_eq!(problem.dims(), 14);
+    let report = Search::default().with_starts(0..48).run(&problem).unwrap();
+    check_recovered(&report, &FOUR_BAR, 1.0);
+    let best = report.best().unwrap();
+    for (x, want) in best.inputs.iter().zip(&phis) {
+        assert_close!(x[0], *want, rel = DIMENSION, "crank angle");
+    }
+}
+
+#[test]
+fn slider_crank_function_with_chebyshev_spacing() {
+    // The slider's position at five crank angles at Chebyshev spacing over half a turn.
+    let phis = chebyshev(0.2, 3.0, 5);
+    let task = Task::function("x", phis.iter().map(|&p| (p, slider_x(SLIDER, p))));
+    let problem = Problem::new(Slider::default(), &design(&["r", "l", "e"], &SLIDER, 0.4), &task).unwrap();
+    let report = Search::default().with_starts(0..16).run(&problem).unwrap();
+    check_recovered(&report, &SLIDER, 1.0);
+}
+
+#[test]
+fn four_bar_angle_function() {
+    // The rocker angle gamma as a function of the crank angle (an angle column: compared modulo
+    // a turn): its proportions a, b, c with the frame d fixed, as the function is scale-free.
+    let [a, b, c, d, ..] = FOUR_BAR;
+    let gamma = |phi: f64| {
+        // The rocker angle from the coupler point construction with e = b, alpha = 0 (the point
+        // is the joint C itself).
+        let [x, y] = coupler_point([a, b, c, d, b, 0.0], phi);
+        y.atan2(x - d)
+    };
+    let phis: Vec<f64> = (0..6).map(|k| 0.5 + 0.8 * k as f64).collect();
+    let task = Task::function("gamma", phis.iter().map(|&p| (p, gamma(p))));
+    let m = CouplerFourBar { d, ..CouplerFourBar::default() };
+    let problem = Problem::new(m, &design(&["a", "b", "c"], &[a, b, c], 0.3), &task).unwrap();
+    let report = Search::default().with_starts(0..16).run(&problem).unwrap();
+    check_recovered(&report, &[a, b, c], 1.0);
+}
+
+#[test]
+fn stephenson_six_bar_path_with_timing() {
+    // Eleven dimensions from eight points at prescribed crank angles (sixteen equations): a path
+    // no four-bar declaration can be asked for.
+    let phis: Vec<f64> = (0..8).map(|k| 0.2 + 0.75 * k as f64).collect();
+    let targets: Vec<[f64; 2]> = phis.iter().map(|&p| stephenson_point(STEPHENSON, p)).collect();
+    let task = Task::path("r", targets).timed(phis);
+    let names = ["a", "b", "c", "d", "e", "alpha", "f", "g", "gx", "gy", "h"];
+    let problem = Problem::new(Stephenson::default(), &design(&names, &STEPHENSON, 0.1), &task).unwrap();
+    let report = Search::default().with_starts(0..32).run(&problem).unwrap();
+    check_recovered(&report, &STEPHENSON, 1.0);
+}
+
+#[test]
+fn four_bar_path_fitting_with_a_placement() {
+    // Twelve samples of the coupler curve moved by (dx, dy) = (2, -1) and turned by 0.7 rad,
+    // crank angles free: the dimensions, the crank angles and the placement are found again.
+    let (dx, dy, turn) = (2.0, -1.0, 0.7f64);
+    let (s, c) = turn.sin_cos();
+    let phis: Vec<f64> = (0..12).map(|k| 0.1 + 0.5 * k as f64).collect();
+    let samples: Vec<[f64; 2]> = phis
+        .iter()
+        .map(|&p| {
+            let [x, y] = coupler_point(FOUR_BAR, p);
+            [dx + c * x - s * y, dy + s * x + c * y]
+        })
+        .collect();
+    let bounds = PlacementBounds::translation((1.0, 3.0), (-2.0, 0.0)).with_rotation((0.4, 1.0));
+    let task = Task::fit("p", samples).untimed(0.0, std::f64::consts::TAU).with_placement(bounds);
+    let problem = Problem::new(CouplerFourBar::default(), &design(&FOUR_BAR_NAMES, &FOUR_BAR, 0.2), &task).unwrap();
+    assert_eq!(problem.dims(), 6 + 12 + 4);
+    let report = Search::default().with_starts(0..8).run(&problem).unwrap();
+    check_recovered(&report, &FOUR_BAR, 1.0);
+    let placement = report.best().unwrap().placement.unwrap();
+    for (got, want) in placement.iter().zip([dx, dy, turn, 1.0]) {
+        assert_close!(*got, want, rel = DIMENSION, "placement");
+    }
+}
+
+#[test]
+fn four_bar_motion_generation() {
+    // Four poses of the coupler (its point and its angle theta) at prescribed crank angles:
+    // twelve equations for the six dimensions.
+    let phis = [0.3, 1.2, 2.4, 3.9];
+    let poses: Vec<[f64; 3]> = phis
+        .iter()
+        .map(|&p| {
+            let ([x, y], [beta, _]) = four_bar_pose(FOUR_BAR, p, 1.0);
+            [x, y, beta + FOUR_BAR[5]]
+        })
+        .collect();
+    let task = Task::motion("p", "theta", poses).timed(phis);
+    let problem = Problem::new(CouplerFourBar::default(), &design(&FOUR_BAR_NAMES, &FOUR_BAR, 0.3), &task).unwrap();
+    let report = Search::default().with_starts(0..16).run(&problem).unwrap();
+    check_recovered(&report, &FOUR_BAR, 1.0);
+}
+
+#[test]
+fn four_bar_path_on_the_other_assembly_mode() {
+    // The same five timed points, sampled with the coupler joint on the right of AD (the mode
+    // the declared guess does not pick): found when the first position is given on that mode.
+    let phis: Vec<f64> = (0..5).map(|k| 0.3 + 1.1 * k as f64).collect();
+    let targets: Vec<[f64; 2]> = phis.iter().map(|&p| four_bar_pose(FOUR_BAR, p, -1.0).0).collect();
+    let (_, [beta, gamma]) = four_bar_pose(FOUR_BAR, phis[0], -1.0);
+    let task = Task::path("p", targets).timed(phis);
+    let design = design(&FOUR_BAR_NAMES, &FOUR_BAR, 0.3);
+    let problem = Problem::new(CouplerFourBar::default(), &design, &task).unwrap();
+    // On the declared guess's mode no design of the box meets them (measured: the best valid
+    // candidate misses by 1.7, the size of the curve) ...
+    let declared = Search::default().with_starts(0..8).run(&problem).unwrap();
+    assert!(declared.best().is_none_or(|b| b.max_error > 1e-6), "{:?}", declared.best());
+    // ... on the given mode they are.
+    let report = Search::default().with_starts(0..24).run(&problem.with_guess([beta, gamma])).unwrap();
+    check_recovered(&report, &FOUR_BAR, 1.0);
+}
+
+#[test]
+fn an_optimum_beyond_a_bound_stops_on_it() {
+    // The slider's crank is at most 1.0 here, the truth's 1.1: the local solves end on the
+    // bound (held there while the others move), at a local minimum of non-zero residual.
+    let phis = chebyshev(0.2, 3.0, 5);
+    let task = Task::function("x", phis.iter().map(|&p| (p, slider_x(SLIDER, p))));
+    let design = Design::new().var("r", 0.5, 1.0).var("l", 2.0, 5.0).var("e", -1.0, 1.0);
+    let problem = Problem::new(Slider::default(), &design, &task).unwrap();
+    let report = Search::default().with_starts(0..8).run(&problem).unwrap();
+    let best = report.best().unwrap();
+    assert_eq!(best.values[0], 1.0, "{best:?}");
+    assert!(best.max_error > 1e-3 && best.max_error.is_finite(), "{best:?}");
+    assert_eq!(best.local.stop, kinloop::analysis::OptimizerStop::Converged, "{best:?}");
+}

@@ -1,0 +1,46 @@
+//! The report as a table (read back from its CSV by the `csv` crate, independently of the
+//! runtime's reader), and the progress of a search.
+
+use super::mechanisms::{Slider, slider_x};
+use kinloop::synthesis::{Design, Problem, Search, Task};
+use std::cell::RefCell;
+use std::sync::Mutex;
+
+fn problem() -> Problem<Slider, 2, 1, 0, 3> {
+    let p = [1.1, 3.4, 0.35];
+    let task = Task::function("x", (0..5).map(|k| 0.5 * k as f64).map(|phi| (phi, slider_x(p, phi))));
+    let design = Design::new().var("r", 0.5, 2.0).var("l", 2.0, 5.0).var("e", -1.0, 1.0);
+    Problem::new(Slider::default(), &design, &task).unwrap()
+}
+
+#[test]
+fn the_table_holds_every_candidate() {
+    let report = Search::default().with_starts(0..8).run(&problem()).unwrap();
+    let mut csv = Vec::new();
+    report.table().write_csv(&mut csv).unwrap();
+    let mut reader = csv::Reader::from_reader(csv.as_slice());
+    let header: Vec<String> = reader.headers().unwrap().iter().map(String::from).collect();
+    assert_eq!(header, ["start", "valid", "r", "l", "e", "max_error", "rms_error", "min_transmission", "evaluations"]);
+    let rows: Vec<csv::StringRecord> = reader.records().map(Result::unwrap).collect();
+    assert_eq!(rows.len(), report.candidates.len());
+    for (row, c) in rows.iter().zip(&report.candidates) {
+        let v = |k: usize| row[k].parse::<f64>().unwrap();
+        assert_eq!((v(0), v(1)), (c.start as f64, if c.is_valid() { 1.0 } else { 0.0 }));
+        assert_eq!([v(2), v(3), v(4), v(5)], [c.values[0], c.values[1], c.values[2], c.max_error]);
+        assert!(v(7).is_nan(), "no transmission angle was asked for");
+    }
+}
+
+#[test]
+fn progress_counts_every_start() {
+    let problem = problem();
+    let search = Search::default().with_starts(4..10);
+    let seen = RefCell::new(Vec::new());
+    search.run_with_progress(&problem, |done, total| seen.borrow_mut().push((done, total))).unwrap();
+    assert_eq!(seen.into_inner(), (1..=6).map(|k| (k, 6)).collect::<Vec<_>>());
+    let seen = Mutex::new(Vec::new());
+    search.par_run_with_progress(&problem, |done, total| seen.lock().unwrap().push((done, total))).unwrap();
+    let mut seen = seen.into_inner().unwrap();
+    seen.sort();
+    assert_eq!(seen, (1..=6).map(|k| (k, 6)).collect::<Vec<_>>());
+}
