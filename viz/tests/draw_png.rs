@@ -2,7 +2,7 @@
 //! the zoomed closed-form pixel. Run with `cargo test -p kinloop-viz --features png`.
 #![cfg(feature = "png")]
 
-use kinloop_viz::draw::{Animation, Canvas, DrawError, Drawing, Motion, png};
+use kinloop_viz::draw::{Animation, Annotate, Canvas, DrawError, Drawing, Motion, png};
 use resvg::tiny_skia::Pixmap;
 use std::f64::consts::TAU;
 
@@ -16,7 +16,9 @@ fn png_frames_show_the_joint_on_its_closed_form_pixel() {
     let m = FourBar::default();
     let mo = Motion::record(&m, m.sweep(0.0, TAU, 25, &m.guess(0.0)).unwrap()).unwrap();
     let window = [-2.0, -2.0, 6.0, 5.0];
-    let d = Drawing::new().with_canvas(Canvas { width: 200.0, window: Some(window), ..Canvas::default() }).joint("p");
+    // Without annotations: the ink measured is the joint's alone.
+    let canvas = Canvas { width: 200.0, window: Some(window), ..Canvas::default() };
+    let d = Drawing::new().with_canvas(canvas).with_annotate(Annotate::none()).joint("p");
     let anim = Animation { frames: 7, ..Animation::default() };
     let zoom = 2.0;
     let frames = png::frames(&d, &mo, &anim, zoom).unwrap();

@@ -3,7 +3,7 @@
 //! mechanism in metres and in millimetres.
 
 use kinloop::{AtSingular, EventKind, SweepConfig};
-use kinloop_viz::draw::{Animation, Canvas, Drawing, Motion, Pt};
+use kinloop_viz::draw::{Animation, Annotate, Canvas, Drawing, Motion, Pt};
 use std::f64::consts::{PI, TAU};
 
 #[allow(dead_code)] // not every test uses every helper
@@ -51,8 +51,12 @@ fn the_animation_is_well_formed_with_its_key_frames() {
     assert_eq!(root.tag_name().name(), "svg");
     assert_eq!(root.tag_name().namespace(), Some("http://www.w3.org/2000/svg"));
     assert!(!svg.contains("script") && !svg.contains("NaN"));
-    let animations: Vec<_> =
-        doc.descendants().filter(|n| matches!(n.tag_name().name(), "animate" | "animateTransform")).collect();
+    // The moving parts (the readout's texts take turns: each is shown for its key frame).
+    let animations: Vec<_> = doc
+        .descendants()
+        .filter(|n| matches!(n.tag_name().name(), "animate" | "animateTransform"))
+        .filter(|n| n.attribute("attributeName") != Some("visibility"))
+        .collect();
     // Moving: the crank, the body and the rocker (points), the joints B, C, P (twice: the
     // crank's end and the body's corner; the body's and the rocker's C), the trace's dot.
     assert!(animations.len() >= 8, "{} animated attributes", animations.len());
@@ -129,7 +133,8 @@ fn a_limit_position_is_drawn_and_marked_where_the_closed_form_puts_it() {
     let doc = roxmltree::Document::parse(&svg).unwrap();
     let event = doc.descendants().find(|n| n.attribute("class") == Some("event")).expect("the event is drawn");
     let label = event.descendants().find(|n| n.tag_name().name() == "text").unwrap().text().unwrap();
-    assert_eq!(label, format!("limit position at phi = {limit:.4}"));
+    // Angles are read out in degrees (two decimals, 0.00017 rad).
+    assert_eq!(label, format!("limit position at phi = {:.2}°", limit.to_degrees()));
     let ghost = event.descendants().find(|n| n.tag_name().name() == "circle").unwrap();
     let at = ghost.attribute("transform").unwrap().trim_start_matches("translate(").trim_end_matches(')');
     let at = pairs(at, ';')[0];
@@ -161,7 +166,7 @@ fn a_singular_crossing_passed_is_drawn_where_the_links_fold() {
     let doc = roxmltree::Document::parse(&svg).unwrap();
     let event = doc.descendants().find(|n| n.attribute("class") == Some("event")).expect("the crossing is drawn");
     let label = event.descendants().find(|n| n.tag_name().name() == "text").unwrap().text().unwrap();
-    assert_eq!(label, format!("singular crossing at phi = {TAU:.4}"));
+    assert_eq!(label, "singular crossing at phi = 360.00°");
     let ghost = event.descendants().find(|n| n.tag_name().name() == "circle").unwrap();
     let at = ghost.attribute("transform").unwrap().trim_start_matches("translate(").trim_end_matches(')');
     let want = window_px(window, WIDTH, [4.0, 0.0]);
@@ -178,8 +183,18 @@ fn numbers(svg: &str) -> Vec<f64> {
 fn metres_and_millimetres_draw_alike() {
     let m = FourBar::default();
     let mm = FourBar { r: 1e3 * m.r, l: 1e3 * m.l, k: 1e3 * m.k, d: 1e3 * m.d, e: 1e3 * m.e, ..m };
-    let a = four_bar_drawing(&m).animate(&motion(&m, TAU, 181), &Animation::default()).unwrap();
-    let b = four_bar_drawing(&mm).animate(&motion(&mm, TAU, 181), &Animation::default()).unwrap();
+    // The scale bars differ as the units do: the same bar, 1000 times the number.
+    let bar = |d: &Drawing, m: &FourBar| -> f64 {
+        let svg = d.svg(&motion(m, TAU, 19), 0).unwrap();
+        let doc = roxmltree::Document::parse(&svg).unwrap();
+        let g = doc.descendants().find(|n| n.attribute("class") == Some("scale-bar")).expect("a scale bar");
+        let text = g.descendants().find(|n| n.is_text()).unwrap().text().unwrap();
+        text.split(' ').next().unwrap().parse().unwrap()
+    };
+    assert_eq!(bar(&four_bar_drawing(&mm), &mm), 1e3 * bar(&four_bar_drawing(&m), &m));
+    let no_bar = Annotate { scale_bar: false, ..Annotate::default() };
+    let a = four_bar_drawing(&m).with_annotate(no_bar).animate(&motion(&m, TAU, 181), &Animation::default()).unwrap();
+    let b = four_bar_drawing(&mm).with_annotate(no_bar).animate(&motion(&mm, TAU, 181), &Animation::default()).unwrap();
     let (na, nb) = (numbers(&a), numbers(&b));
     assert_eq!(na.len(), nb.len());
     // Pixels agree up to the 0.1 px rounding of a coordinate lying on a rounding boundary.

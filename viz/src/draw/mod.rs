@@ -54,6 +54,7 @@
 //! # Ok::<(), Box<dyn std::error::Error>>(())
 //! ```
 
+mod annotate;
 mod compose;
 mod error;
 mod motion;
@@ -66,6 +67,7 @@ mod style;
 mod svg;
 mod view;
 
+pub use annotate::Annotate;
 pub use compose::Animation;
 pub use error::DrawError;
 pub use motion::{Marked, Motion, Pose};
