@@ -62,7 +62,13 @@ fn short(v: f64) -> String {
 }
 
 /// `phi = 12.5°, s = 3.0000 mm`: the inputs `names` at values `x`.
-pub(crate) fn readout(names: &[String], kinds: &[QuantityKind], x: &[f64], unit: Option<&str>, decimals: usize) -> String {
+pub(crate) fn readout(
+    names: &[String],
+    kinds: &[QuantityKind],
+    x: &[f64],
+    unit: Option<&str>,
+    decimals: usize,
+) -> String {
     let parts: Vec<String> = names
         .iter()
         .zip(x)
@@ -81,17 +87,15 @@ pub(crate) fn scale_bar(scale: f64, room: f64, unit: Option<&str>) -> Option<(f6
         return None;
     }
     let e = most.log10().floor() as i32;
-    let (mant, e) = [(5, e), (2, e), (1, e), (5, e - 1)].into_iter().find(|&(m, e)| m as f64 * 10f64.powi(e) <= most)?;
+    let (mant, e) =
+        [(5, e), (2, e), (1, e), (5, e - 1)].into_iter().find(|&(m, e)| m as f64 * 10f64.powi(e) <= most)?;
     let length = mant as f64 * 10f64.powi(e);
     let px = length * scale;
     if !(px.is_finite() && px > 0.0) {
         return None;
     }
-    let text = if (-4..=5).contains(&e) {
-        format!("{:.*}", (-e).max(0) as usize, length)
-    } else {
-        format!("{mant}e{e}")
-    };
+    let text =
+        if (-4..=5).contains(&e) { format!("{:.*}", (-e).max(0) as usize, length) } else { format!("{mant}e{e}") };
     Some((px, format!("{text} {}", unit.unwrap_or(LENGTH_UNIT))))
 }
 

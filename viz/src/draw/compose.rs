@@ -184,7 +184,11 @@ impl Layers<'_> {
     fn event_label(&self, j: usize) -> String {
         let e = &self.motion.events[j];
         let unit = self.d.length_unit.as_deref();
-        format!("{} at {}", e.kind, readout(&self.motion.inputs, &self.motion.input_kinds, &e.pose.x, unit, EVENT_DECIMALS))
+        format!(
+            "{} at {}",
+            e.kind,
+            readout(&self.motion.inputs, &self.motion.input_kinds, &e.pose.x, unit, EVENT_DECIMALS)
+        )
     }
 
     /// The readout of the inputs at pose `i`.
@@ -314,7 +318,8 @@ impl Drawing {
         let strip = scene.view.height;
         // The scale bar: a round length of at most a third of the mechanism's picture.
         let room = (scene.view.width / 3.0).max(60.0);
-        let bar = if self.annotate.scale_bar { scale_bar(scene.view.scale, room, self.length_unit.as_deref()) } else { None };
+        let bar =
+            if self.annotate.scale_bar { scale_bar(scene.view.scale, room, self.length_unit.as_deref()) } else { None };
         let mut l = Layers { d: self, motion, scene, strip, bar };
         // The strip under the mechanism: the scale bar and readout, then one line per event;
         // the picture is widened (when fitted) to hold its longest line.
@@ -322,8 +327,7 @@ impl Drawing {
         let pad = self.canvas.margin;
         let mut need: f64 = 0.0;
         if l.first_line() {
-            let widest =
-                (0..l.scene.frames.len()).map(|i| text_width(&l.readout_text(i))).fold(0.0, f64::max);
+            let widest = (0..l.scene.frames.len()).map(|i| text_width(&l.readout_text(i))).fold(0.0, f64::max);
             let readout = if self.annotate.readout { widest } else { 0.0 };
             need = l.readout_x() + readout + pad;
         }

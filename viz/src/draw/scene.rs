@@ -51,8 +51,11 @@ impl Shape {
             Shape::Slider { at: [x, y], angle, fixed } => {
                 let [l, h] = style.block;
                 // The block, and for a fixed guide its line and hatching beside the block.
-                let (u0, u1, n0, n1) =
-                    if *fixed { (-0.5 * l - 13.0, 0.5 * l + 8.0, -0.5 * h, 0.5 * h + 7.0) } else { (-0.5 * l, 0.5 * l, -0.5 * h, 0.5 * h) };
+                let (u0, u1, n0, n1) = if *fixed {
+                    (-0.5 * l - 13.0, 0.5 * l + 8.0, -0.5 * h, 0.5 * h + 7.0)
+                } else {
+                    (-0.5 * l, 0.5 * l, -0.5 * h, 0.5 * h)
+                };
                 let (sin, cos) = angle.to_radians().sin_cos();
                 for (a, b) in [(u0, n0), (u0, n1), (u1, n0), (u1, n1)] {
                     add([x + a * cos - b * sin, y + a * sin + b * cos]);
