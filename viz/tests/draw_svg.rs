@@ -8,6 +8,13 @@ use std::f64::consts::{PI, TAU};
 
 #[allow(dead_code)] // not every test uses every helper
 mod draw_support;
+mod figure_check;
+
+/// Parses a drawing after the checks every figure passes (`figure_check::sound`).
+fn checked(svg: &str) -> Result<roxmltree::Document<'_>, roxmltree::Error> {
+    figure_check::sound(svg);
+    roxmltree::Document::parse(svg)
+}
 
 use draw_support::{FourBar, FourBarUnknowns, four_bar_joints, window_px};
 
@@ -46,7 +53,7 @@ fn the_animation_is_well_formed_with_its_key_frames() {
     let mo = motion(&m, TAU, 361);
     let anim = Animation { frames: 90, seconds: 5.0, back_and_forth: false };
     let svg = four_bar_drawing(&m).animate(&mo, &anim).unwrap();
-    let doc = roxmltree::Document::parse(&svg).expect("well-formed XML");
+    let doc = checked(&svg).expect("well-formed XML");
     let root = doc.root_element();
     assert_eq!(root.tag_name().name(), "svg");
     assert_eq!(root.tag_name().namespace(), Some("http://www.w3.org/2000/svg"));
@@ -67,7 +74,7 @@ fn the_animation_is_well_formed_with_its_key_frames() {
     }
     // Forward and back: 2 k - 1 key frames.
     let both = four_bar_drawing(&m).animate(&mo, &Animation { back_and_forth: true, ..anim }).unwrap();
-    let doc = roxmltree::Document::parse(&both).unwrap();
+    let doc = checked(&both).unwrap();
     let a = doc.descendants().find(|n| n.tag_name().name() == "animate").unwrap();
     assert_eq!(a.attribute("values").unwrap().split(';').count(), 179);
 }
@@ -82,7 +89,7 @@ fn key_frames_follow_the_closed_form_motion() {
     let anim = Animation { frames: 61, ..Animation::default() };
     let d = Drawing::new().with_canvas(canvas).joint("p");
     let svg = d.animate(&mo, &anim).unwrap();
-    let doc = roxmltree::Document::parse(&svg).unwrap();
+    let doc = checked(&svg).unwrap();
     let a = doc.descendants().find(|n| n.tag_name().name() == "animateTransform").unwrap();
     let values = pairs(a.attribute("values").unwrap(), ';');
     let keys = d.key_poses(&mo, &anim).unwrap();
@@ -101,7 +108,7 @@ fn the_traced_path_is_the_closed_form_coupler_curve() {
     let mo = motion(&m, TAU, 121);
     let canvas = Canvas { width: WIDTH, window: Some(WINDOW), ..Canvas::default() };
     let svg = four_bar_drawing(&m).with_canvas(canvas).animate(&mo, &Animation::default()).unwrap();
-    let doc = roxmltree::Document::parse(&svg).unwrap();
+    let doc = checked(&svg).unwrap();
     let trace = doc.descendants().find(|n| n.attribute("class") == Some("trace")).expect("a traced path");
     let pts = pairs(trace.attribute("points").unwrap(), ' ');
     // Every sample (none falls on the same 0.1 px as its neighbour on this curve).
@@ -130,7 +137,7 @@ fn a_limit_position_is_drawn_and_marked_where_the_closed_form_puts_it() {
     let d = Drawing::new().with_canvas(canvas).joint("c");
     let anim = Animation { frames: 30, back_and_forth: true, ..Animation::default() };
     let svg = d.animate(&mo, &anim).unwrap();
-    let doc = roxmltree::Document::parse(&svg).unwrap();
+    let doc = checked(&svg).unwrap();
     let event = doc.descendants().find(|n| n.attribute("class") == Some("event")).expect("the event is drawn");
     let label = event.descendants().find(|n| n.tag_name().name() == "text").unwrap().text().unwrap();
     // Angles are read out in degrees (two decimals, 0.00017 rad).
@@ -163,7 +170,7 @@ fn a_singular_crossing_passed_is_drawn_where_the_links_fold() {
     let window = [-2.0, -4.0, 6.0, 4.0];
     let canvas = Canvas { width: WIDTH, window: Some(window), ..Canvas::default() };
     let svg = Drawing::new().with_canvas(canvas).joint("c").animate(&mo, &Animation::default()).unwrap();
-    let doc = roxmltree::Document::parse(&svg).unwrap();
+    let doc = checked(&svg).unwrap();
     let event = doc.descendants().find(|n| n.attribute("class") == Some("event")).expect("the crossing is drawn");
     let label = event.descendants().find(|n| n.tag_name().name() == "text").unwrap().text().unwrap();
     assert_eq!(label, "singular crossing at phi = 360.00°");
@@ -186,7 +193,7 @@ fn metres_and_millimetres_draw_alike() {
     // The scale bars differ as the units do: the same bar, 1000 times the number.
     let bar = |d: &Drawing, m: &FourBar| -> f64 {
         let svg = d.svg(&motion(m, TAU, 19), 0).unwrap();
-        let doc = roxmltree::Document::parse(&svg).unwrap();
+        let doc = checked(&svg).unwrap();
         let g = doc.descendants().find(|n| n.attribute("class") == Some("scale-bar")).expect("a scale bar");
         let text = g.descendants().find(|n| n.is_text()).unwrap().text().unwrap();
         text.split(' ').next().unwrap().parse().unwrap()
@@ -210,7 +217,7 @@ fn the_committed_animations_are_well_formed_and_small() {
     for entry in std::fs::read_dir(&dir).expect("docs/animations") {
         let path = entry.unwrap().path();
         let svg = std::fs::read_to_string(&path).unwrap();
-        let doc = roxmltree::Document::parse(&svg).unwrap_or_else(|e| panic!("{}: {e}", path.display()));
+        let doc = checked(&svg).unwrap_or_else(|e| panic!("{}: {e}", path.display()));
         assert_eq!(doc.root_element().tag_name().name(), "svg");
         assert!(!svg.contains("script") && !svg.contains("NaN") && !svg.contains("inf"), "{}", path.display());
         assert!(svg.len() < 64 * 1024, "{}: {} bytes", path.display(), svg.len());
@@ -233,7 +240,7 @@ fn a_multi_exposure_shows_evenly_spread_distinct_poses() {
     let mo = motion(&m, TAU, 361);
     let canvas = Canvas { width: WIDTH, window: Some(WINDOW), ..Canvas::default() };
     let svg = Drawing::new().with_canvas(canvas).joint("p").exposures(&mo, 4).unwrap();
-    let doc = roxmltree::Document::parse(&svg).unwrap();
+    let doc = checked(&svg).unwrap();
     let faint = doc.descendants().filter(|n| n.attribute("opacity").is_some()).count();
     let circles: Vec<[f64; 2]> = doc
         .descendants()
@@ -263,7 +270,7 @@ fn the_animated_trace_grows_with_the_traced_point() {
     let anim = Animation { frames: 46, ..Animation::default() };
     let d = four_bar_drawing(&m).with_canvas(canvas);
     let svg = d.animate(&mo, &anim).unwrap();
-    let doc = roxmltree::Document::parse(&svg).unwrap();
+    let doc = checked(&svg).unwrap();
     let traced = doc.descendants().find(|n| n.attribute("class") == Some("traced")).expect("the growing trace");
     let dash: Vec<f64> = traced.attribute("stroke-dasharray").unwrap().split(' ').map(|v| v.parse().unwrap()).collect();
     assert_eq!(dash[0], dash[1]);
