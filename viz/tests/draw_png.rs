@@ -1,5 +1,6 @@
-//! PNG frames (feature `png`): one per key frame, at the zoomed size, each showing the joint on
-//! the zoomed closed-form pixel. Run with `cargo test -p kinloop-viz --features png`.
+//! PNG renders (feature `png`, on in these tests through the facade's dev-dependency): one
+//! frame per key frame, at the zoomed size, each showing the joint on the zoomed closed-form
+//! pixel; and text drawn where the SVG writes it.
 #![cfg(feature = "png")]
 
 use kinloop_viz::draw::{Animation, Annotate, Canvas, DrawError, Drawing, Motion, png};

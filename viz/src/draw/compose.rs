@@ -243,7 +243,7 @@ impl Layers<'_> {
     /// The inputs at the poses `keys` (one: static; several: each key frame's text shown in
     /// its turn, with `timing`).
     fn readout(&self, out: &mut String, keys: &[usize], timing: Option<Timing>) {
-        if !(self.d.annotate.readout && !self.motion.inputs.is_empty()) {
+        if !self.d.annotate.readout || self.motion.inputs.is_empty() {
             return;
         }
         let (x, y, ink) = (num(self.readout_x()), num(self.line_y(0)), &self.d.style.ink);
