@@ -298,3 +298,80 @@ fn the_animated_trace_grows_with_the_traced_point() {
         assert!((dash[0] - o - along[k]).abs() < 1.0, "key {k}: drawn {} px of {} px", dash[0] - o, along[k]);
     }
 }
+
+#[test]
+fn joints_are_labelled_and_the_readout_follows_the_input_in_degrees() {
+    // In a window: each named point's label group moves with its joint (the closed-form pixel
+    // of B, C, P at every key frame), a fixed point is labelled by hand, and the readout shows
+    // each key frame's crank angle in degrees, one text per key frame, in turn.
+    let m = FourBar::default();
+    let mo = motion(&m, TAU, 37);
+    let canvas = Canvas { width: WIDTH, window: Some(WINDOW), ..Canvas::default() };
+    let anim = Animation { frames: 13, ..Animation::default() };
+    let d = four_bar_drawing(&m).with_canvas(canvas).label(Pt::fixed(0.0, 0.0), "A").label("c", "C").length_unit("m");
+    let svg = d.animate(&mo, &anim).unwrap();
+    let doc = checked(&svg).unwrap();
+    let keys = d.key_poses(&mo, &anim).unwrap();
+    let groups: Vec<_> = doc.descendants().filter(|n| n.attribute("class") == Some("joint-label")).collect();
+    let texts: Vec<&str> =
+        groups.iter().map(|g| g.descendants().find(|n| n.is_text()).unwrap().text().unwrap()).collect();
+    // b and p by name, c renamed, the pivot A added; no other label.
+    assert_eq!(texts, ["b", "C", "p", "A"]);
+    for (g, joint) in groups.iter().zip([0, 1, 2]) {
+        let moving = g.children().find(|n| n.tag_name().name() == "animateTransform").unwrap();
+        for (v, &k) in pairs(moving.attribute("values").unwrap(), ';').iter().zip(&keys) {
+            let want = window_px(WINDOW, WIDTH, four_bar_joints(&m, mo.poses[k].x[0])[joint]);
+            assert!((v[0] - want[0]).abs() <= 0.0501 && (v[1] - want[1]).abs() <= 0.0501, "{v:?} vs {want:?}");
+        }
+    }
+    let readout: Vec<_> = doc
+        .descendants()
+        .filter(|n| n.tag_name().name() == "text" && n.parent().and_then(|p| p.attribute("class")) == Some("readout"))
+        .collect();
+    assert_eq!(readout.len(), keys.len());
+    for (t, &k) in readout.iter().zip(&keys) {
+        // 37 samples over a turn: 10 degrees apart.
+        assert_eq!(t.text().unwrap(), format!("phi = {:.1}°", 10.0 * k as f64));
+    }
+    // Only the first is shown to a static renderer; each is shown for its key frame's turn.
+    assert_eq!(readout.iter().filter(|t| t.attribute("visibility") == Some("visible")).count(), 1);
+    let times = |t: &roxmltree::Node| {
+        t.children().find(|n| n.tag_name().name() == "animate").unwrap().attribute("keyTimes").unwrap().to_string()
+    };
+    assert_eq!(times(&readout[6]), "0;0.45833;0.54167");
+}
+
+#[test]
+fn a_fitted_drawing_is_cropped_to_its_ink_with_the_margin() {
+    // Without a window, the picture ends a margin beyond what is drawn: the mechanism's
+    // pixels (rendered) reach to within the margin and a few pixels of each edge, and no
+    // shape is cut by one.
+    let m = FourBar::default();
+    let mo = motion(&m, TAU, 13);
+    // A small picture: few pixels to render.
+    let canvas = Canvas { width: 240.0, ..Canvas::default() };
+    let d = four_bar_drawing(&m).with_annotate(Annotate::none()).with_canvas(canvas);
+    let svg = d.svg(&mo, 0).unwrap();
+    checked(&svg).unwrap();
+    let view = d.view(&mo).unwrap();
+    // The traced path is drawn over the whole turn; at pose 0 the rest is the mechanism there:
+    // the ink's box over the motion is that of the exposures of every pose.
+    let all = d.exposures(&mo, 13).unwrap();
+    let (rgba, w, h) = draw_support::render(&all);
+    assert_eq!((w as f64, h as f64), (view.width.ceil(), view.height.ceil()));
+    let (mut x0, mut y0, mut x1, mut y1) = (u32::MAX, u32::MAX, 0, 0);
+    for j in 0..h {
+        for i in 0..w {
+            if draw_support::ink(&rgba, w, i, j) > 8.0 {
+                (x0, y0, x1, y1) = (x0.min(i), y0.min(j), x1.max(i), y1.max(j));
+            }
+        }
+    }
+    let margin = kinloop_viz::draw::Canvas::default().margin;
+    let gaps = [x0 as f64, y0 as f64, w as f64 - 1.0 - x1 as f64, h as f64 - 1.0 - y1 as f64];
+    // The ink's box is estimated from the shapes' sizes (strokes, symbols), a pixel or two
+    // generous: each gap is the margin to within 3 px, never less than half of it.
+    for g in gaps {
+        assert!(g >= 0.5 * margin && g <= margin + 3.0, "gaps {gaps:?} for a margin of {margin}");
+    }
+}
