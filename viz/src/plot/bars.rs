@@ -96,7 +96,7 @@ pub fn bar_chart_svg(title: &str, x: &Axis, panels: &[Panel]) -> Result<String, 
             }
         }
         let labels: Vec<&str> = p.series.iter().map(|s| s.label.as_str()).collect();
-        legend::draw(&mut svg, (frame.right() + 16.0, frame.y), &labels, legend_w);
+        legend::draw_with(&mut svg, (frame.right() + 16.0, frame.y), &labels, legend_w, legend::Swatch::Square);
         svg.close();
     }
     Ok(svg.finish())
