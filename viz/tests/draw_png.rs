@@ -126,7 +126,8 @@ fn png_text_is_drawn_where_the_svg_puts_it() {
         ("drawing.png", &svg, vec![text_at(&svg, "readout"), text_at(&svg, "scale-bar")]),
         ("chart.png", &chart, vec![text_at(&chart, "tick-label x"), text_at(&chart, "axis-title x")]),
     ] {
-        let png = png::render(svg, zoom as f32).unwrap();
+        // Through the facade's feature `png`, which forwards this crate's.
+        let png = kinloop::draw::png::render(svg, zoom as f32).unwrap();
         keep(name, &png);
         let with = Pixmap::decode_png(&png).unwrap();
         let bare = Pixmap::decode_png(&png::render(&without_text(svg), zoom as f32).unwrap()).unwrap();
