@@ -2,10 +2,13 @@
 //! Hershey stroke font ([`super::hershey`]), so a renderer without fonts (resvg here, which
 //! loads none) still draws every label, tick and title.
 //!
-//! Why a stroke font rather than an embedded outline font: the package ships only Rust sources
-//! (no font file beside them), a stroke font's glyphs are a few kilobytes of text (an outline
-//! font with Greek is hundreds), it needs no text-shaping dependency, and it draws the same on
-//! every machine. Text keeps its position, size, anchor, rotation, colour and visibility; the
+//! Why a stroke font rather than resvg's `text` feature with an embedded outline font: that
+//! feature brings a font database and a text shaper (fontdb, rustybuzz, ttf-parser) and still
+//! needs font data, either the system's (absent on a bare CI machine, different elsewhere) or
+//! a font file shipped in the package (which ships only Rust sources and its licence texts,
+//! and an open font's licence would have to travel with it); an outline font with Greek is
+//! hundreds of kilobytes, the stroke glyphs here a few. The stroke font needs no dependency
+//! beyond the XML reader resvg already uses, and draws the same on every machine. Text keeps its position, size, anchor, rotation, colour and visibility; the
 //! face is a plain sans-serif of strokes rather than the viewer's.
 
 use super::hershey::{GREEK_LOWER, GREEK_UPPER, LATIN};
