@@ -242,6 +242,15 @@ fn mixing_quantity_kinds_on_one_axis_is_an_error() {
         xy_chart_svg("", &Axis::length("x", "mm"), &Axis::length("y", "m"), &series[..1], &[]),
         Err(PlotError::UnequalAxes { .. })
     ));
+    // Units written into an axis name (the old harmonics chart's "amplitude [N], [Nm]") are
+    // refused: the title adds the one unit of the axis's kind.
+    let amplitude = Axis::new("amplitude [N], [Nm]", Kind::force("N"));
+    let err = line_chart_svg("", &Axis::angle("φ"), &amplitude, &[]).unwrap_err();
+    assert!(matches!(err, PlotError::UnitInName { ref axis } if axis == "amplitude [N], [Nm]"), "{err}");
+    assert!(matches!(
+        xy_chart_svg("", &Axis::length("x [mm]", "mm"), &Axis::length("y", "mm"), &series[..1], &[]),
+        Err(PlotError::UnitInName { .. })
+    ));
     let nothing = [Series::new("nan", Kind::Angle, vec![(f64::NAN, 0.0)])];
     assert!(matches!(
         line_chart_svg("", &Axis::angle("φ"), &Axis::of(Kind::Angle), &nothing),

@@ -39,6 +39,7 @@ const GROUP: f64 = 0.8;
 /// # Ok::<(), kinloop_viz::plot::PlotError>(())
 /// ```
 pub fn bar_chart_svg(title: &str, x: &Axis, panels: &[Panel]) -> Result<String, PlotError> {
+    x.check()?;
     for p in panels {
         p.check()?;
     }

@@ -29,6 +29,8 @@ pub fn xy_chart_svg(
     series: &[Series],
     marks: &[(f64, f64)],
 ) -> Result<String, PlotError> {
+    x.check()?;
+    y.check()?;
     if x.kind != y.kind {
         return Err(PlotError::UnequalAxes { x: x.kind.clone(), y: y.kind.clone() });
     }
