@@ -97,7 +97,8 @@ impl Kind {
     /// The kind of a mechanism's column as `mechanism!` inferred it ([`QuantityKind`], which
     /// carries no unit of length), with lengths in `length_unit`: one vocabulary, so a chart of a
     /// table's column needs no kind spelled out again. A column whose kind was not inferred
-    /// ([`QuantityKind::Other`]) is a quantity named `"value"` without a unit (`"-"`).
+    /// ([`QuantityKind::Other`]) is a quantity named `"value"` of unknown unit (`"?"`: not
+    /// claimed dimensionless); give such a column its kind yourself (`Kind::time("s")`).
     ///
     /// ```
     /// use kinloop_runtime::QuantityKind;
@@ -110,7 +111,7 @@ impl Kind {
             QuantityKind::Angle => Kind::Angle,
             QuantityKind::Length => Kind::length(length_unit),
             QuantityKind::Dimensionless => Kind::Dimensionless,
-            _ => Kind::Other { quantity: "value".into(), unit: "-".into() },
+            _ => Kind::Other { quantity: "value".into(), unit: "?".into() },
         }
     }
 
@@ -237,6 +238,6 @@ mod tests {
         assert_eq!(Axis::of(Kind::torque("N m")).title(), "torque [N m]");
         assert_eq!(Axis::of(Kind::AngularSpeed).title(), "angular speed [rad/s]");
         assert_eq!(Axis::of(Kind::inertia("kg m²")).title(), "moment of inertia [kg m²]");
-        assert_eq!(Kind::of_column(QuantityKind::Other, "mm").unit(), "-");
+        assert_eq!(Kind::of_column(QuantityKind::Other, "mm").unit(), "?");
     }
 }
