@@ -275,7 +275,8 @@ impl Layers<'_> {
         out.push_str("</g>");
     }
 
-    /// The labels of the joints, following them over the key frames.
+    /// The labels of the joints, following them over the key frames; a white halo keeps a
+    /// label legible where it crosses a link or a path.
     fn labels(&self, out: &mut String, keys: &[usize], timing: Option<Timing>) {
         let ink = &self.d.style.ink;
         for (j, label) in self.scene.labels.iter().enumerate() {
@@ -284,7 +285,7 @@ impl Layers<'_> {
             animate_transform(out, "translate", &values, timing);
             let _ = write!(
                 out,
-                r#"<text x="{}" y="{}" font-size="{FONT}" text-anchor="{}" fill="{ink}">{}</text></g>"#,
+                r#"<text x="{}" y="{}" font-size="{FONT}" text-anchor="{}" fill="{ink}" stroke="white" stroke-width="3" stroke-linejoin="round" paint-order="stroke">{}</text></g>"#,
                 num(label.offset[0]),
                 num(label.offset[1] + 0.35 * FONT),
                 label.anchor,

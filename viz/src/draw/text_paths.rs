@@ -179,20 +179,27 @@ pub(crate) fn outline(svg: &str) -> Result<String, String> {
         let (x, y) =
             (node.attribute("x").and_then(number).unwrap_or(0.0), node.attribute("y").and_then(number).unwrap_or(0.0));
         let anchor = inherited(node, "text-anchor").unwrap_or("start");
-        let _ = write!(
-            out,
-            r#"<path d="{}" fill="none" stroke="{}" stroke-width="{}" stroke-linecap="round" stroke-linejoin="round""#,
-            path_data(&text, x, y, size, anchor),
-            escape(fill),
-            num(WEIGHT * size)
-        );
-        for name in ["class", "transform", "visibility", "opacity", "fill-opacity"] {
-            if let Some(v) = node.attribute(name) {
-                let v = if name == "fill-opacity" { ("stroke-opacity", v) } else { (name, v) };
-                let _ = write!(out, r#" {}="{}""#, v.0, escape(v.1));
+        let d = path_data(&text, x, y, size, anchor);
+        // A text's own outline (a halo behind it: `stroke` with `paint-order="stroke"`) is a
+        // wider stroke of the same path, drawn first.
+        let halo = node.attribute("stroke").filter(|c| *c != "none");
+        let halo_width = node.attribute("stroke-width").and_then(number).unwrap_or(1.0);
+        let strokes = halo.map(|c| (c, WEIGHT * size + halo_width)).into_iter().chain([(fill, WEIGHT * size)]);
+        for (colour, width) in strokes {
+            let _ = write!(
+                out,
+                r#"<path d="{d}" fill="none" stroke="{}" stroke-width="{}" stroke-linecap="round" stroke-linejoin="round""#,
+                escape(colour),
+                num(width)
+            );
+            for name in ["class", "transform", "visibility", "opacity", "fill-opacity"] {
+                if let Some(v) = node.attribute(name) {
+                    let v = if name == "fill-opacity" { ("stroke-opacity", v) } else { (name, v) };
+                    let _ = write!(out, r#" {}="{}""#, v.0, escape(v.1));
+                }
             }
+            out.push_str("/>");
         }
-        out.push_str("/>");
     }
     out.push_str(&svg[done..]);
     Ok(out)
@@ -240,6 +247,12 @@ mod tests {
         let out = outline(svg).unwrap();
         assert!(!out.contains("<text") && out.contains(r#"stroke="red""#) && out.contains("rotate(-90 1 2)"), "{out}");
         assert!(out.ends_with(r#"<circle r="1"/></svg>"#));
+        // A halo: the wider white stroke first, then the text's own.
+        let halo = r#"<svg xmlns="http://www.w3.org/2000/svg"><text font-size="10" stroke="white" stroke-width="3" paint-order="stroke">b</text></svg>"#;
+        let out = outline(halo).unwrap();
+        let (white, ink) =
+            (out.find(r#"stroke="white" stroke-width="3.9""#), out.find(r#"stroke="black" stroke-width="0.9""#));
+        assert!(white.is_some() && ink.is_some() && white < ink, "{out}");
         assert!(outline("<svg").is_err());
     }
 }
