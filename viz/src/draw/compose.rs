@@ -212,11 +212,12 @@ impl Layers<'_> {
         self.strip + LINE * k as f64 + FONT
     }
 
-    /// Where the readout starts: after the scale bar and its label.
+    /// Where the readout starts: after the scale bar and its label (its width estimated, with
+    /// room for wider faces such as the stroke font of PNG renders).
     fn readout_x(&self) -> f64 {
         let pad = self.d.canvas.margin;
         match &self.bar {
-            Some((px, label)) => pad + px + 6.0 + text_width(label) + 18.0,
+            Some((px, label)) => pad + px + 6.0 + text_width(label) + 28.0,
             None => pad,
         }
     }
