@@ -22,7 +22,8 @@
 use kinloop::Mechanism;
 use kinloop::Table;
 use kinloop::dynamics::{Cycle, CyclePoint, InverseCycle, Load, RunConfig, Simulation, SpeedLaw, Trajectory};
-use kinloop_examples::{Series, figure_dir, line_chart, out_dir};
+use kinloop::plot::{self, Axis, Kind, Panel, Series};
+use kinloop_examples::{figure_dir, out_dir};
 use kinloop_fixtures::StirlingEngine;
 use std::f64::consts::{PI, TAU};
 
@@ -230,41 +231,40 @@ fn write_outputs(
     r.save_csv(data.join("runup.csv"))?;
 
     let dir = figure_dir("rhombic_dynamics");
-    let deg = |f: &dyn Fn(&CyclePoint) -> f64| -> Vec<(f64, f64)> {
-        cycle.points.iter().step_by(5).map(|p| (p.phi.to_degrees(), f(p))).collect()
+    let crank = Axis::angle("crank angle φ1");
+    let over_turn = |label: &str, kind: &Kind, f: &dyn Fn(&CyclePoint) -> f64| {
+        Series::new(label, kind.clone(), cycle.points.iter().step_by(5).map(|p| (p.phi, f(p))).collect())
     };
-    line_chart(
+    let (torque, force) = (Kind::torque("N m"), Kind::force("N"));
+    plot::line_chart(
         &dir.join("torque.svg"),
         "Driving torque at 1500 rpm",
-        "crank angle [deg]",
-        "torque [Nm]",
-        &[
-            Series { label: "driving torque M", points: deg(&|p| p.torque) },
-            Series { label: "gas torque Q", points: deg(&|p| p.load) },
-        ],
+        &crank,
+        &Axis::new("torque", torque.clone()),
+        &[over_turn("driving torque M", &torque, &|p| p.torque), over_turn("gas torque Q", &torque, &|p| p.load)],
     )?;
-    line_chart(
+    plot::line_chart(
         &dir.join("shaking.svg"),
         "Shaking force on the frame at 1500 rpm",
-        "crank angle [deg]",
-        "force [N]",
-        &[
-            Series { label: "Fx", points: deg(&|p| p.shaking.force[0]) },
-            Series { label: "Fy", points: deg(&|p| p.shaking.force[1]) },
-        ],
+        &crank,
+        &Axis::new("force", force.clone()),
+        &[over_turn("Fx", &force, &|p| p.shaking.force[0]), over_turn("Fy", &force, &|p| p.shaking.force[1])],
     )?;
+    // Amplitudes of the harmonics as bars: forces [N] and the moment [N m] on two panels (an
+    // axis never mixes units), each from 0.
     let [fx, fy, msh] = cycle.shaking_harmonics(8)?;
-    let orders =
-        |h: &kinloop::analysis::Fourier| -> Vec<(f64, f64)> { (1..=8).map(|n| (n as f64, h.amplitude(n))).collect() };
-    line_chart(
+    let orders = |label: &str, kind: &Kind, h: &kinloop::analysis::Fourier| {
+        Series::new(label, kind.clone(), (1..=8).map(|n| (n as f64, h.amplitude(n))).collect())
+    };
+    plot::bar_chart(
         &dir.join("shaking_harmonics.svg"),
         "Harmonics of the shaking force and moment at 1500 rpm",
-        "order (multiple of the crank speed)",
-        "amplitude [N], [Nm]",
+        &Axis::new("order (multiple of the crank speed)", Kind::Dimensionless),
         &[
-            Series { label: "Fx [N]", points: orders(&fx) },
-            Series { label: "Fy [N]", points: orders(&fy) },
-            Series { label: "moment [Nm]", points: orders(&msh) },
+            Panel::new(Axis::new("force amplitude", force.clone()))
+                .with(orders("Fx", &force, &fx))
+                .with(orders("Fy", &force, &fy)),
+            Panel::new(Axis::new("moment amplitude", torque.clone())).with(orders("shaking moment", &torque, &msh)),
         ],
     )?;
     let speed: Vec<(f64, f64)> = (0..=600)
@@ -273,12 +273,12 @@ fn write_outputs(
             (time, run.at(time)[1])
         })
         .collect();
-    line_chart(
+    plot::line_chart(
         &dir.join("runup.svg"),
         "Run-up from rest under the motor",
-        "time [s]",
-        "crank speed [rad/s]",
-        &[Series { label: "omega", points: speed }],
+        &Axis::new("time t", Kind::time("s")),
+        &Axis::new("crank speed ω", Kind::AngularSpeed),
+        &[Series::new("ω", Kind::AngularSpeed, speed)],
     )?;
     println!("\nwrote cycle.csv and runup.csv to {} and 4 charts to {}", data.display(), dir.display());
     Ok(())

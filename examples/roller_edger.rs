@@ -90,8 +90,8 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
 /// the folder it went to.
 fn draw(states: &[RollerEdgerState]) -> Result<std::path::PathBuf, Box<dyn std::error::Error>> {
     let dir = plot::figure_dir("roller_edger")?;
-    let kind = |quantity: &str, unit: &str| Kind::Other { quantity: quantity.into(), unit: unit.into() };
-    let (velocity, acceleration) = (kind("angular velocity", "rad/s"), kind("angular acceleration", "rad/s²"));
+    let velocity = Kind::AngularSpeed;
+    let acceleration = Kind::Other { quantity: "angular acceleration".into(), unit: "rad/s²".into() };
     // One panel per order, each with the four links.
     let panel = |axis: Axis, of: [fn(&RollerEdgerState) -> f64; 4]| {
         let links = ["link 1 (cylinder 1)", "link 3", "link 2 (cylinder 2)", "link 4"];
@@ -102,7 +102,7 @@ fn draw(states: &[RollerEdgerState]) -> Result<std::path::PathBuf, Box<dyn std::
     plot::panels(
         &dir.join("angles_velocities_accelerations.svg"),
         "Roller edger (V1 = 0.05 m/s): link angles and their rates",
-        &Axis::new("time t", kind("time", "s")),
+        &Axis::new("time t", Kind::time("s")),
         &[
             panel(Axis::angle("link angle"), [|s| s.q.phi1, |s| s.q.phi3, |s| s.q.phi2, |s| s.q.phi4]),
             panel(

@@ -2,7 +2,7 @@
 //! position of the mechanism puts it. Frames are rendered with resvg; the expected pixel comes
 //! from the closed form and the documented window rule, not from the library.
 
-use kinloop_viz::draw::{Canvas, Drawing, Motion, Pt, Scalar};
+use kinloop_viz::draw::{Annotate, Canvas, Drawing, Motion, Pt, Scalar};
 use std::f64::consts::TAU;
 
 #[allow(dead_code)] // not every test uses every helper
@@ -15,6 +15,11 @@ const WIDTH: f64 = 400.0;
 
 fn canvas() -> Canvas {
     Canvas { width: WIDTH, window: Some(WINDOW), ..Canvas::default() }
+}
+
+/// A drawing in the window without annotations: the ink measured is the mechanism's alone.
+fn bare() -> Drawing {
+    Drawing::new().with_canvas(canvas()).with_annotate(Annotate::none())
 }
 
 /// The slider-crank's slider runs over x in [-4, -2] (left of the crank).
@@ -44,7 +49,7 @@ fn each_joint_lands_on_its_closed_form_pixel() {
     for (i, pose) in motion.poses.iter().enumerate() {
         let exact = four_bar_joints(&m, pose.x[0]);
         for (j, joint) in joints.iter().enumerate() {
-            let svg = Drawing::new().with_canvas(canvas()).joint(joint.clone()).svg(&motion, i).unwrap();
+            let svg = bare().joint(joint.clone()).svg(&motion, i).unwrap();
             let (c, total) = centroid(&svg);
             assert!(total > 0.0, "joint {joint:?} is drawn");
             worst = worst.max(assert_near(c, window_px(WINDOW, WIDTH, exact[j]), &format!("pose {i}, {joint:?}")));
@@ -60,8 +65,7 @@ fn joints_of_the_full_drawing_sit_on_their_pixels() {
     let m = FourBar::default();
     let motion = four_bar_motion(&m, 7);
     let (o, d) = ([0.0, 0.0], [m.d, 0.0]);
-    let drawing = Drawing::new()
-        .with_canvas(canvas())
+    let drawing = bare()
         .pivot(o)
         .pivot(d)
         .link([Pt::from(o), Pt::point("b")])
@@ -100,11 +104,11 @@ fn slider_blocks_and_gears_land_on_their_pixels() {
         let want = window_px(SLIDER_WINDOW, WIDTH, slider_position(&m, pose.x[0]));
         let canvas = || Canvas { window: Some(SLIDER_WINDOW), ..canvas() };
         // A guide turning with the state has no ground line: the block alone.
-        let block = Drawing::new().with_canvas(canvas()).slider("c", Scalar::expr(|s| 0.3 * s.x[0]));
+        let block = bare().with_canvas(canvas()).slider("c", Scalar::expr(|s| 0.3 * s.x[0]));
         assert_near(centroid(&block.svg(&motion, i).unwrap()).0, want, &format!("slider block, pose {i}"));
         // A fixed gear of radius 1 about C: teeth and pitch circle symmetric about it (a
         // turning gear's spoke would pull the centroid off the centre).
-        let gear = Drawing::new().with_canvas(canvas()).gear("c", 1.0, 0.0);
+        let gear = bare().with_canvas(canvas()).gear("c", 1.0, 0.0);
         assert_near(centroid(&gear.svg(&motion, i).unwrap()).0, want, &format!("gear, pose {i}"));
     }
 }
@@ -116,9 +120,9 @@ fn fixed_points_and_expressions_land_on_their_pixels() {
     let r = m.r;
     let crank_pin = Pt::expr(move |s| [r * s.x[0].cos(), r * s.x[0].sin()]);
     for (i, pose) in motion.poses.iter().enumerate() {
-        let svg = Drawing::new().with_canvas(canvas()).joint(crank_pin.clone()).svg(&motion, i).unwrap();
+        let svg = bare().joint(crank_pin.clone()).svg(&motion, i).unwrap();
         assert_near(centroid(&svg).0, window_px(WINDOW, WIDTH, four_bar_joints(&m, pose.x[0])[0]), "expression");
-        let svg = Drawing::new().with_canvas(canvas()).joint(Pt::fixed(m.d, 0.0)).svg(&motion, i).unwrap();
+        let svg = bare().joint(Pt::fixed(m.d, 0.0)).svg(&motion, i).unwrap();
         assert_near(centroid(&svg).0, window_px(WINDOW, WIDTH, [m.d, 0.0]), "fixed point");
     }
 }

@@ -3,11 +3,18 @@
 //! mechanism in metres and in millimetres.
 
 use kinloop::{AtSingular, EventKind, SweepConfig};
-use kinloop_viz::draw::{Animation, Canvas, Drawing, Motion, Pt};
+use kinloop_viz::draw::{Animation, Annotate, Canvas, Drawing, Motion, Pt};
 use std::f64::consts::{PI, TAU};
 
 #[allow(dead_code)] // not every test uses every helper
 mod draw_support;
+mod figure_check;
+
+/// Parses a drawing after the checks every figure passes (`figure_check::sound`).
+fn checked(svg: &str) -> Result<roxmltree::Document<'_>, roxmltree::Error> {
+    figure_check::sound(svg);
+    roxmltree::Document::parse(svg)
+}
 
 use draw_support::{FourBar, FourBarUnknowns, four_bar_joints, window_px};
 
@@ -46,13 +53,17 @@ fn the_animation_is_well_formed_with_its_key_frames() {
     let mo = motion(&m, TAU, 361);
     let anim = Animation { frames: 90, seconds: 5.0, back_and_forth: false };
     let svg = four_bar_drawing(&m).animate(&mo, &anim).unwrap();
-    let doc = roxmltree::Document::parse(&svg).expect("well-formed XML");
+    let doc = checked(&svg).expect("well-formed XML");
     let root = doc.root_element();
     assert_eq!(root.tag_name().name(), "svg");
     assert_eq!(root.tag_name().namespace(), Some("http://www.w3.org/2000/svg"));
     assert!(!svg.contains("script") && !svg.contains("NaN"));
-    let animations: Vec<_> =
-        doc.descendants().filter(|n| matches!(n.tag_name().name(), "animate" | "animateTransform")).collect();
+    // The moving parts (the readout's texts take turns: each is shown for its key frame).
+    let animations: Vec<_> = doc
+        .descendants()
+        .filter(|n| matches!(n.tag_name().name(), "animate" | "animateTransform"))
+        .filter(|n| n.attribute("attributeName") != Some("visibility"))
+        .collect();
     // Moving: the crank, the body and the rocker (points), the joints B, C, P (twice: the
     // crank's end and the body's corner; the body's and the rocker's C), the trace's dot.
     assert!(animations.len() >= 8, "{} animated attributes", animations.len());
@@ -63,7 +74,7 @@ fn the_animation_is_well_formed_with_its_key_frames() {
     }
     // Forward and back: 2 k - 1 key frames.
     let both = four_bar_drawing(&m).animate(&mo, &Animation { back_and_forth: true, ..anim }).unwrap();
-    let doc = roxmltree::Document::parse(&both).unwrap();
+    let doc = checked(&both).unwrap();
     let a = doc.descendants().find(|n| n.tag_name().name() == "animate").unwrap();
     assert_eq!(a.attribute("values").unwrap().split(';').count(), 179);
 }
@@ -78,7 +89,7 @@ fn key_frames_follow_the_closed_form_motion() {
     let anim = Animation { frames: 61, ..Animation::default() };
     let d = Drawing::new().with_canvas(canvas).joint("p");
     let svg = d.animate(&mo, &anim).unwrap();
-    let doc = roxmltree::Document::parse(&svg).unwrap();
+    let doc = checked(&svg).unwrap();
     let a = doc.descendants().find(|n| n.tag_name().name() == "animateTransform").unwrap();
     let values = pairs(a.attribute("values").unwrap(), ';');
     let keys = d.key_poses(&mo, &anim).unwrap();
@@ -97,7 +108,7 @@ fn the_traced_path_is_the_closed_form_coupler_curve() {
     let mo = motion(&m, TAU, 121);
     let canvas = Canvas { width: WIDTH, window: Some(WINDOW), ..Canvas::default() };
     let svg = four_bar_drawing(&m).with_canvas(canvas).animate(&mo, &Animation::default()).unwrap();
-    let doc = roxmltree::Document::parse(&svg).unwrap();
+    let doc = checked(&svg).unwrap();
     let trace = doc.descendants().find(|n| n.attribute("class") == Some("trace")).expect("a traced path");
     let pts = pairs(trace.attribute("points").unwrap(), ' ');
     // Every sample (none falls on the same 0.1 px as its neighbour on this curve).
@@ -126,10 +137,11 @@ fn a_limit_position_is_drawn_and_marked_where_the_closed_form_puts_it() {
     let d = Drawing::new().with_canvas(canvas).joint("c");
     let anim = Animation { frames: 30, back_and_forth: true, ..Animation::default() };
     let svg = d.animate(&mo, &anim).unwrap();
-    let doc = roxmltree::Document::parse(&svg).unwrap();
+    let doc = checked(&svg).unwrap();
     let event = doc.descendants().find(|n| n.attribute("class") == Some("event")).expect("the event is drawn");
     let label = event.descendants().find(|n| n.tag_name().name() == "text").unwrap().text().unwrap();
-    assert_eq!(label, format!("limit position at phi = {limit:.4}"));
+    // Angles are read out in degrees (two decimals, 0.00017 rad).
+    assert_eq!(label, format!("limit position at phi = {:.2}°", limit.to_degrees()));
     let ghost = event.descendants().find(|n| n.tag_name().name() == "circle").unwrap();
     let at = ghost.attribute("transform").unwrap().trim_start_matches("translate(").trim_end_matches(')');
     let at = pairs(at, ';')[0];
@@ -158,10 +170,10 @@ fn a_singular_crossing_passed_is_drawn_where_the_links_fold() {
     let window = [-2.0, -4.0, 6.0, 4.0];
     let canvas = Canvas { width: WIDTH, window: Some(window), ..Canvas::default() };
     let svg = Drawing::new().with_canvas(canvas).joint("c").animate(&mo, &Animation::default()).unwrap();
-    let doc = roxmltree::Document::parse(&svg).unwrap();
+    let doc = checked(&svg).unwrap();
     let event = doc.descendants().find(|n| n.attribute("class") == Some("event")).expect("the crossing is drawn");
     let label = event.descendants().find(|n| n.tag_name().name() == "text").unwrap().text().unwrap();
-    assert_eq!(label, format!("singular crossing at phi = {TAU:.4}"));
+    assert_eq!(label, "singular crossing at phi = 360.00°");
     let ghost = event.descendants().find(|n| n.tag_name().name() == "circle").unwrap();
     let at = ghost.attribute("transform").unwrap().trim_start_matches("translate(").trim_end_matches(')');
     let want = window_px(window, WIDTH, [4.0, 0.0]);
@@ -178,8 +190,18 @@ fn numbers(svg: &str) -> Vec<f64> {
 fn metres_and_millimetres_draw_alike() {
     let m = FourBar::default();
     let mm = FourBar { r: 1e3 * m.r, l: 1e3 * m.l, k: 1e3 * m.k, d: 1e3 * m.d, e: 1e3 * m.e, ..m };
-    let a = four_bar_drawing(&m).animate(&motion(&m, TAU, 181), &Animation::default()).unwrap();
-    let b = four_bar_drawing(&mm).animate(&motion(&mm, TAU, 181), &Animation::default()).unwrap();
+    // The scale bars differ as the units do: the same bar, 1000 times the number.
+    let bar = |d: &Drawing, m: &FourBar| -> f64 {
+        let svg = d.svg(&motion(m, TAU, 19), 0).unwrap();
+        let doc = checked(&svg).unwrap();
+        let g = doc.descendants().find(|n| n.attribute("class") == Some("scale-bar")).expect("a scale bar");
+        let text = g.descendants().find(|n| n.is_text()).unwrap().text().unwrap();
+        text.split(' ').next().unwrap().parse().unwrap()
+    };
+    assert_eq!(bar(&four_bar_drawing(&mm), &mm), 1e3 * bar(&four_bar_drawing(&m), &m));
+    let no_bar = Annotate { scale_bar: false, ..Annotate::default() };
+    let a = four_bar_drawing(&m).with_annotate(no_bar).animate(&motion(&m, TAU, 181), &Animation::default()).unwrap();
+    let b = four_bar_drawing(&mm).with_annotate(no_bar).animate(&motion(&mm, TAU, 181), &Animation::default()).unwrap();
     let (na, nb) = (numbers(&a), numbers(&b));
     assert_eq!(na.len(), nb.len());
     // Pixels agree up to the 0.1 px rounding of a coordinate lying on a rounding boundary.
@@ -195,7 +217,7 @@ fn the_committed_animations_are_well_formed_and_small() {
     for entry in std::fs::read_dir(&dir).expect("docs/animations") {
         let path = entry.unwrap().path();
         let svg = std::fs::read_to_string(&path).unwrap();
-        let doc = roxmltree::Document::parse(&svg).unwrap_or_else(|e| panic!("{}: {e}", path.display()));
+        let doc = checked(&svg).unwrap_or_else(|e| panic!("{}: {e}", path.display()));
         assert_eq!(doc.root_element().tag_name().name(), "svg");
         assert!(!svg.contains("script") && !svg.contains("NaN") && !svg.contains("inf"), "{}", path.display());
         assert!(svg.len() < 64 * 1024, "{}: {} bytes", path.display(), svg.len());
@@ -218,7 +240,7 @@ fn a_multi_exposure_shows_evenly_spread_distinct_poses() {
     let mo = motion(&m, TAU, 361);
     let canvas = Canvas { width: WIDTH, window: Some(WINDOW), ..Canvas::default() };
     let svg = Drawing::new().with_canvas(canvas).joint("p").exposures(&mo, 4).unwrap();
-    let doc = roxmltree::Document::parse(&svg).unwrap();
+    let doc = checked(&svg).unwrap();
     let faint = doc.descendants().filter(|n| n.attribute("opacity").is_some()).count();
     let circles: Vec<[f64; 2]> = doc
         .descendants()
@@ -248,7 +270,7 @@ fn the_animated_trace_grows_with_the_traced_point() {
     let anim = Animation { frames: 46, ..Animation::default() };
     let d = four_bar_drawing(&m).with_canvas(canvas);
     let svg = d.animate(&mo, &anim).unwrap();
-    let doc = roxmltree::Document::parse(&svg).unwrap();
+    let doc = checked(&svg).unwrap();
     let traced = doc.descendants().find(|n| n.attribute("class") == Some("traced")).expect("the growing trace");
     let dash: Vec<f64> = traced.attribute("stroke-dasharray").unwrap().split(' ').map(|v| v.parse().unwrap()).collect();
     assert_eq!(dash[0], dash[1]);
@@ -274,5 +296,82 @@ fn the_animated_trace_grows_with_the_traced_point() {
         // The written polyline's points are rounded to 0.1 px, which changes its length by
         // well under a pixel over 360 segments (the rounding errors mostly cancel).
         assert!((dash[0] - o - along[k]).abs() < 1.0, "key {k}: drawn {} px of {} px", dash[0] - o, along[k]);
+    }
+}
+
+#[test]
+fn joints_are_labelled_and_the_readout_follows_the_input_in_degrees() {
+    // In a window: each named point's label group moves with its joint (the closed-form pixel
+    // of B, C, P at every key frame), a fixed point is labelled by hand, and the readout shows
+    // each key frame's crank angle in degrees, one text per key frame, in turn.
+    let m = FourBar::default();
+    let mo = motion(&m, TAU, 37);
+    let canvas = Canvas { width: WIDTH, window: Some(WINDOW), ..Canvas::default() };
+    let anim = Animation { frames: 13, ..Animation::default() };
+    let d = four_bar_drawing(&m).with_canvas(canvas).label(Pt::fixed(0.0, 0.0), "A").label("c", "C").length_unit("m");
+    let svg = d.animate(&mo, &anim).unwrap();
+    let doc = checked(&svg).unwrap();
+    let keys = d.key_poses(&mo, &anim).unwrap();
+    let groups: Vec<_> = doc.descendants().filter(|n| n.attribute("class") == Some("joint-label")).collect();
+    let texts: Vec<&str> =
+        groups.iter().map(|g| g.descendants().find(|n| n.is_text()).unwrap().text().unwrap()).collect();
+    // b and p by name, c renamed, the pivot A added; no other label.
+    assert_eq!(texts, ["b", "C", "p", "A"]);
+    for (g, joint) in groups.iter().zip([0, 1, 2]) {
+        let moving = g.children().find(|n| n.tag_name().name() == "animateTransform").unwrap();
+        for (v, &k) in pairs(moving.attribute("values").unwrap(), ';').iter().zip(&keys) {
+            let want = window_px(WINDOW, WIDTH, four_bar_joints(&m, mo.poses[k].x[0])[joint]);
+            assert!((v[0] - want[0]).abs() <= 0.0501 && (v[1] - want[1]).abs() <= 0.0501, "{v:?} vs {want:?}");
+        }
+    }
+    let readout: Vec<_> = doc
+        .descendants()
+        .filter(|n| n.tag_name().name() == "text" && n.parent().and_then(|p| p.attribute("class")) == Some("readout"))
+        .collect();
+    assert_eq!(readout.len(), keys.len());
+    for (t, &k) in readout.iter().zip(&keys) {
+        // 37 samples over a turn: 10 degrees apart.
+        assert_eq!(t.text().unwrap(), format!("phi = {:.1}°", 10.0 * k as f64));
+    }
+    // Only the first is shown to a static renderer; each is shown for its key frame's turn.
+    assert_eq!(readout.iter().filter(|t| t.attribute("visibility") == Some("visible")).count(), 1);
+    let times = |t: &roxmltree::Node| {
+        t.children().find(|n| n.tag_name().name() == "animate").unwrap().attribute("keyTimes").unwrap().to_string()
+    };
+    assert_eq!(times(&readout[6]), "0;0.45833;0.54167");
+}
+
+#[test]
+fn a_fitted_drawing_is_cropped_to_its_ink_with_the_margin() {
+    // Without a window, the picture ends a margin beyond what is drawn: the mechanism's
+    // pixels (rendered) reach to within the margin and a few pixels of each edge, and no
+    // shape is cut by one.
+    let m = FourBar::default();
+    let mo = motion(&m, TAU, 13);
+    // A small picture: few pixels to render.
+    let canvas = Canvas { width: 240.0, ..Canvas::default() };
+    let d = four_bar_drawing(&m).with_annotate(Annotate::none()).with_canvas(canvas);
+    let svg = d.svg(&mo, 0).unwrap();
+    checked(&svg).unwrap();
+    let view = d.view(&mo).unwrap();
+    // The traced path is drawn over the whole turn; at pose 0 the rest is the mechanism there:
+    // the ink's box over the motion is that of the exposures of every pose.
+    let all = d.exposures(&mo, 13).unwrap();
+    let (rgba, w, h) = draw_support::render(&all);
+    assert_eq!((w as f64, h as f64), (view.width.ceil(), view.height.ceil()));
+    let (mut x0, mut y0, mut x1, mut y1) = (u32::MAX, u32::MAX, 0, 0);
+    for j in 0..h {
+        for i in 0..w {
+            if draw_support::ink(&rgba, w, i, j) > 8.0 {
+                (x0, y0, x1, y1) = (x0.min(i), y0.min(j), x1.max(i), y1.max(j));
+            }
+        }
+    }
+    let margin = kinloop_viz::draw::Canvas::default().margin;
+    let gaps = [x0 as f64, y0 as f64, w as f64 - 1.0 - x1 as f64, h as f64 - 1.0 - y1 as f64];
+    // The ink's box is estimated from the shapes' sizes (strokes, symbols), a pixel or two
+    // generous: each gap is the margin to within 3 px, never less than half of it.
+    for g in gaps {
+        assert!(g >= 0.5 * margin && g <= margin + 3.0, "gaps {gaps:?} for a margin of {margin}");
     }
 }

@@ -9,6 +9,7 @@ use proptest::prelude::*;
 
 #[allow(dead_code)] // not every test uses every helper
 mod draw_support;
+mod figure_check;
 
 use draw_support::FourBar;
 
@@ -50,6 +51,7 @@ fn points(max: usize) -> impl Strategy<Value = Vec<(f64, f64)>> {
 /// `svg` is well-formed and none of its attribute values or texts holds `NaN` or `inf` (the
 /// labels given by the tests hold neither).
 fn assert_finite(svg: &str) {
+    figure_check::sound(svg);
     let doc = roxmltree::Document::parse(svg).unwrap_or_else(|e| panic!("{e}: {svg}"));
     for n in doc.descendants() {
         let bad = |s: &str| s.contains("NaN") || s.contains("inf");

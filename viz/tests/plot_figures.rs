@@ -3,8 +3,12 @@
 //! library's mapping), legends that cover no data, smooth (fractional) coordinates, errors for
 //! mixed quantity kinds.
 
-use kinloop_viz::plot::{Axis, Kind, Panel, PlotError, Series, line_chart_svg, panels_svg, xy_chart_svg};
+use kinloop_viz::plot::{
+    Axis, Kind, Panel, PlotError, Series, bar_chart_svg, line_chart_svg, panels_svg, xy_chart_svg,
+};
 use std::f64::consts::TAU;
+
+mod figure_check;
 
 /// What a test reads from a figure: per panel, its plot area, tick labels with their pixel
 /// positions, axis titles, legend boxes, curves (as pixel points) and marks.
@@ -39,7 +43,9 @@ fn subpaths(d: &str) -> Vec<Vec<(f64, f64)>> {
     out
 }
 
+/// Parses a figure, after the checks every figure passes (`figure_check::sound`).
 fn parse(svg: &str) -> Parsed {
+    figure_check::sound(svg);
     let doc = roxmltree::Document::parse(svg).expect("well-formed SVG");
     let mut p = Parsed::default();
     for panel in doc.descendants().filter(|n| n.attribute("class") == Some("panel")) {
@@ -196,14 +202,18 @@ fn no_legend_covers_data() {
 
 #[test]
 fn an_xy_chart_draws_both_axes_to_one_scale() {
-    let ellipse: Vec<(f64, f64)> =
-        (0..=200).map(|i| (i as f64 * TAU / 200.0).sin_cos()).map(|(s, c)| (300.0 * c, 50.0 * s)).collect();
-    let series = [Series::new("e", mm(), ellipse)];
-    let p = parse(&xy_chart_svg("", &Axis::length("x", "mm"), &Axis::length("y", "mm"), &series, &[]).unwrap());
-    let (mx, my) = (axis_map(&p.x_ticks[0]), axis_map(&p.y_ticks[0]));
-    let (px_per_mm_x, px_per_mm_y) = (mx(100.0) - mx(0.0), my(0.0) - my(100.0));
-    // Tick positions are written to 1/100 pixel over about 700 pixels.
-    assert!((px_per_mm_x - px_per_mm_y).abs() < 1e-4 * px_per_mm_x, "{px_per_mm_x} vs {px_per_mm_y}");
+    // Ellipses of several widths: some windows end just short of a tick, which a chart of
+    // curves would take to the tick, and an x-y chart must not (its scales stay equal).
+    for a in (0..12).map(|k| 240.0 + 10.0 * k as f64) {
+        let ellipse: Vec<(f64, f64)> =
+            (0..=200).map(|i| (i as f64 * TAU / 200.0).sin_cos()).map(|(s, c)| (a * c, 0.8 * a * s)).collect();
+        let series = [Series::new("e", mm(), ellipse)];
+        let p = parse(&xy_chart_svg("", &Axis::length("x", "mm"), &Axis::length("y", "mm"), &series, &[]).unwrap());
+        let (mx, my) = (axis_map(&p.x_ticks[0]), axis_map(&p.y_ticks[0]));
+        let (px_per_mm_x, px_per_mm_y) = (mx(100.0) - mx(0.0), my(0.0) - my(100.0));
+        // Tick positions are written to 1/100 pixel over about 700 pixels.
+        assert!((px_per_mm_x - px_per_mm_y).abs() < 1e-4 * px_per_mm_x, "{a}: {px_per_mm_x} vs {px_per_mm_y}");
+    }
 }
 
 #[test]
@@ -231,6 +241,15 @@ fn mixing_quantity_kinds_on_one_axis_is_an_error() {
     assert!(matches!(
         xy_chart_svg("", &Axis::length("x", "mm"), &Axis::length("y", "m"), &series[..1], &[]),
         Err(PlotError::UnequalAxes { .. })
+    ));
+    // Units written into an axis name (the old harmonics chart's "amplitude [N], [Nm]") are
+    // refused: the title adds the one unit of the axis's kind.
+    let amplitude = Axis::new("amplitude [N], [Nm]", Kind::force("N"));
+    let err = line_chart_svg("", &Axis::angle("φ"), &amplitude, &[]).unwrap_err();
+    assert!(matches!(err, PlotError::UnitInName { ref axis } if axis == "amplitude [N], [Nm]"), "{err}");
+    assert!(matches!(
+        xy_chart_svg("", &Axis::length("x [mm]", "mm"), &Axis::length("y", "mm"), &series[..1], &[]),
+        Err(PlotError::UnitInName { .. })
     ));
     let nothing = [Series::new("nan", Kind::Angle, vec![(f64::NAN, 0.0)])];
     assert!(matches!(
@@ -332,4 +351,142 @@ fn an_xy_window_below_the_spacing_of_doubles_draws_finite() {
     let tiny = Series::new("a", Kind::length("mm"), vec![(0.0, f64::MIN_POSITIVE), (5e-324, f64::MIN_POSITIVE)]);
     let svg = xy_chart_svg("t", &Axis::length("x", "mm"), &Axis::length("y", "mm"), &[tiny], &[]).unwrap();
     assert!(!svg.contains("NaN") && !svg.contains("inf"), "{svg}");
+}
+
+/// The bars of each panel: `(label, x centre, top, bottom)` in pixels.
+fn bars(svg: &str) -> Vec<Vec<(String, f64, f64, f64)>> {
+    let doc = roxmltree::Document::parse(svg).unwrap();
+    doc.descendants()
+        .filter(|n| n.attribute("class") == Some("panel"))
+        .map(|panel| {
+            panel
+                .descendants()
+                .filter(|n| n.attribute("class") == Some("bar"))
+                .map(|n| {
+                    let (x, y, w, h) = (attr(n, "x"), attr(n, "y"), attr(n, "width"), attr(n, "height"));
+                    (n.attribute("data-label").unwrap().to_string(), x + w / 2.0, y, y + h)
+                })
+                .collect()
+        })
+        .collect()
+}
+
+#[test]
+fn harmonics_are_bars_from_zero_on_one_panel_per_unit() {
+    // Amplitudes of a force's and a moment's harmonics, orders 1 to 8: two units, two panels.
+    let force: Vec<(f64, f64)> = (1..=8).map(|n| (n as f64, 5800.0 / (n * n) as f64)).collect();
+    let force_y: Vec<(f64, f64)> = (1..=8).map(|n| (n as f64, 2400.0 / n as f64)).collect();
+    let moment: Vec<(f64, f64)> = (1..=8).map(|n| (n as f64, 12.0 + n as f64)).collect();
+    let (newton, newton_metre) = (Kind::force("N"), Kind::torque("N m"));
+    let svg = bar_chart_svg(
+        "Harmonics",
+        &Axis::new("order", Kind::Dimensionless),
+        &[
+            Panel::new(Axis::new("force amplitude", newton.clone()))
+                .with(Series::new("Fx", newton.clone(), force.clone()))
+                .with(Series::new("Fy", newton.clone(), force_y)),
+            Panel::new(Axis::new("moment amplitude", newton_metre.clone())).with(Series::new(
+                "M",
+                newton_metre,
+                moment.clone(),
+            )),
+        ],
+    )
+    .unwrap();
+    let look = std::path::Path::new(env!("CARGO_TARGET_TMPDIR")).join("plot/harmonics.svg");
+    kinloop_viz::plot::save(&look, &svg).unwrap();
+    let p = parse(&svg);
+    assert_eq!(p.titles, ["force amplitude [N]", "moment amplitude [N m]", "order [-]"]);
+    // Every order ticked; both value axes start at 0 (no axis below zero for an amplitude).
+    for ticks in &p.x_ticks {
+        assert_eq!(labels(ticks), ["1", "2", "3", "4", "5", "6", "7", "8"]);
+    }
+    for ticks in &p.y_ticks {
+        assert_eq!(ticks[0].0, "0", "{:?}", labels(ticks));
+    }
+    let b = bars(&svg);
+    assert_eq!((b[0].len(), b[1].len()), (16, 8));
+    // Each bar from the 0 tick to its amplitude on the labelled scale, centred on its order
+    // (a group of two side by side: their middle on the order's tick).
+    for (k, values) in [(0, &force), (1, &moment)] {
+        let (y_of, x_of) = (axis_map(&p.y_ticks[k]), axis_map(&p.x_ticks[k]));
+        let first: Vec<_> = b[k].iter().filter(|bar| bar.0 == if k == 0 { "Fx" } else { "M" }).collect();
+        for (bar, &(order, amplitude)) in first.iter().zip(values.iter()) {
+            assert!(
+                (bar.3 - y_of(0.0)).abs() < 0.02 && (bar.2 - y_of(amplitude)).abs() < 0.02,
+                "{bar:?} vs {amplitude}"
+            );
+            if k == 1 {
+                assert!((bar.1 - x_of(order)).abs() < 0.02, "{bar:?} vs order {order}");
+            }
+        }
+    }
+    // Fx and Fy of one order straddle its tick.
+    let x_of = axis_map(&p.x_ticks[0]);
+    assert!((0.5 * (b[0][0].1 + b[0][8].1) - x_of(1.0)).abs() < 0.02);
+    // A moment on the force panel is refused: an axis never mixes units.
+    let mixed =
+        Panel::new(Axis::new("amplitude", Kind::force("N"))).with(Series::new("M", Kind::torque("N m"), moment));
+    assert!(matches!(bar_chart_svg("", &Axis::of(Kind::Dimensionless), &[mixed]), Err(PlotError::MixedKinds { .. })));
+}
+
+#[test]
+fn a_sampled_turn_is_ticked_to_360_and_amplitudes_start_at_zero() {
+    // 72 samples over [0, 2 pi): the last at 355 degrees; the axis still ends on 360.
+    let phi: Vec<f64> = (0..72).map(|i| i as f64 * TAU / 72.0).collect();
+    let amplitude: Vec<f64> = phi.iter().map(|p| 100.0 + 5700.0 * p.sin().powi(2)).collect();
+    let speed: Vec<f64> = phi.iter().map(|p| 157.0 + 3.0 * p.cos()).collect();
+    let svg = panels_svg(
+        "",
+        &Axis::angle("crank angle φ"),
+        &[
+            Panel::new(Axis::new("force amplitude", Kind::force("N"))).with(Series::columns(
+                "|F|",
+                Kind::force("N"),
+                &phi,
+                &amplitude,
+            )),
+            Panel::new(Axis::new("crank speed", Kind::AngularSpeed)).with(Series::columns(
+                "ω",
+                Kind::AngularSpeed,
+                &phi,
+                &speed,
+            )),
+        ],
+    )
+    .unwrap();
+    let p = parse(&svg);
+    assert_eq!(labels(&p.x_ticks[1]), ["0", "90", "180", "270", "360"]);
+    // The amplitude's axis is not padded below zero: from 0 (its data are all positive).
+    assert_eq!(p.y_ticks[0][0].0, "0", "{:?}", labels(&p.y_ticks[0]));
+    assert!(p.y_ticks[0].iter().all(|t| !t.0.starts_with('-')));
+    // The speed near 157 rad/s is not dragged down to 0: only the pad stops at zero.
+    assert!(p.y_ticks[1][0].0.parse::<f64>().unwrap() >= 150.0, "{:?}", labels(&p.y_ticks[1]));
+    assert_eq!(p.titles, ["force amplitude [N]", "crank speed [rad/s]", "crank angle φ [°]"]);
+}
+
+#[test]
+fn dynamics_quantities_have_kinds_with_their_units() {
+    let cases = [
+        (Kind::torque("N m"), "torque [N m]"),
+        (Kind::force("kN"), "force [kN]"),
+        (Kind::speed("m/s"), "speed [m/s]"),
+        (Kind::AngularSpeed, "angular speed [rad/s]"),
+        (Kind::time("s"), "time [s]"),
+        (Kind::energy("J"), "energy [J]"),
+        (Kind::inertia("kg m²"), "moment of inertia [kg m²]"),
+        (Kind::power("W"), "power [W]"),
+    ];
+    let t: Vec<f64> = (0..=10).map(|i| i as f64 * 0.1).collect();
+    for (kind, title) in cases {
+        let y: Vec<f64> = t.iter().map(|v| 2.0 * v).collect();
+        let svg = line_chart_svg(
+            "",
+            &Axis::of(Kind::time("s")),
+            &Axis::of(kind.clone()),
+            &[Series::columns("y", kind, &t, &y)],
+        )
+        .unwrap();
+        assert_eq!(parse(&svg).titles, [title, "time [s]"]);
+    }
 }

@@ -7,6 +7,8 @@ use kinloop_runtime::analysis::Sampled;
 use kinloop_viz::plot::{Axis, Kind, Panel, Series, panels_svg};
 use std::f64::consts::TAU;
 
+mod figure_check;
+
 /// `(label, pixel position)` of the tick labels of one axis, in document order.
 fn ticks(doc: &roxmltree::Document, class: &str, coordinate: &str, offset: f64) -> Vec<(f64, f64)> {
     doc.descendants()
@@ -48,6 +50,7 @@ fn dead_centres_are_marked_where_the_closed_form_puts_them() {
     let svg = panels_svg("Slider-crank", &Axis::angle("crank angle φ"), &[panel, analog]).unwrap();
     kinloop_viz::plot::save(&std::path::Path::new(env!("CARGO_TARGET_TMPDIR")).join("plot/dead_centres.svg"), &svg)
         .unwrap();
+    figure_check::sound(&svg);
     let doc = roxmltree::Document::parse(&svg).unwrap();
     let panel0 = doc.descendants().find(|n| n.attribute("class") == Some("panel")).unwrap();
     let sub = roxmltree::Document::parse(&svg[panel0.range()]).unwrap();

@@ -1,11 +1,12 @@
 //! Whole pictures: a pose, a multi-exposure, an animation; built from the same layers.
 
+use super::annotate::{FONT, LINE, readout, scale_bar, text_width};
 use super::error::DrawError;
 use super::motion::Motion;
 use super::scene::{Scene, Shape};
 use super::shapes::{Pen, dot, guide, item, joints};
 use super::spec::Drawing;
-use super::svg::{Timing, animate, escape, num, round};
+use super::svg::{Timing, animate, animate_transform, escape, num, pair, round};
 use super::view::View;
 use std::fmt::Write;
 
@@ -68,7 +69,16 @@ struct Layers<'a> {
     d: &'a Drawing,
     motion: &'a Motion,
     scene: Scene,
+    /// Top of the strip of annotations under the mechanism, in pixels.
+    strip: f64,
+    /// The scale bar: its length in pixels and its label.
+    bar: Option<(f64, String)>,
 }
+
+/// Decimals of the degrees in the readout (what a slider shows) and in the events' labels
+/// (where a limit position lies, to compare with a calculation).
+const READOUT_DECIMALS: usize = 1;
+const EVENT_DECIMALS: usize = 2;
 
 impl Layers<'_> {
     fn items(&self) -> usize {
@@ -151,22 +161,136 @@ impl Layers<'_> {
         }
     }
 
-    /// Each event's pose as a dashed ghost, with a label saying what and where.
+    /// Each event's pose as a dashed ghost, with a label in the strip saying what and where
+    /// (angles in degrees).
     fn events(&self, out: &mut String) {
         let style = &self.d.style;
         let pen = Pen { style, ink: &style.event, fill: "none", ghost: true, dashed: true, timing: None };
-        for (j, e) in self.motion.events.iter().enumerate() {
+        for j in 0..self.motion.events.len() {
             let _ = write!(out, r#"<g class="event">"#);
             self.mechanism(out, &[self.scene.samples + j], &pen);
-            let at: Vec<String> =
-                self.motion.inputs.iter().zip(&e.pose.x).map(|(n, v)| format!("{n} = {v:.4}")).collect();
             let _ = write!(
                 out,
-                r#"<text x="8" y="{}" font-family="sans-serif" font-size="12" fill="{}">{} at {}</text></g>"#,
-                16 + 15 * j,
+                r#"<text class="event-label" x="{}" y="{}" font-size="{FONT}" fill="{}">{}</text></g>"#,
+                num(self.d.canvas.margin),
+                num(self.line_y(self.first_event_line() + j)),
                 style.event,
-                e.kind,
-                escape(&at.join(", "))
+                escape(&self.event_label(j))
+            );
+        }
+    }
+
+    /// `limit position at phi = 78.59°`.
+    fn event_label(&self, j: usize) -> String {
+        let e = &self.motion.events[j];
+        let unit = self.d.length_unit.as_deref();
+        format!(
+            "{} at {}",
+            e.kind,
+            readout(&self.motion.inputs, &self.motion.input_kinds, &e.pose.x, unit, EVENT_DECIMALS)
+        )
+    }
+
+    /// The readout of the inputs at pose `i`.
+    fn readout_text(&self, i: usize) -> String {
+        let x = &self.motion.all_poses().nth(i).map_or(&[][..], |p| &p.x[..]);
+        let unit = self.d.length_unit.as_deref();
+        readout(&self.motion.inputs, &self.motion.input_kinds, x, unit, READOUT_DECIMALS)
+    }
+
+    /// Whether the strip's first line holds the scale bar and the readout.
+    fn first_line(&self) -> bool {
+        self.bar.is_some() || (self.d.annotate.readout && !self.motion.inputs.is_empty())
+    }
+
+    fn first_event_line(&self) -> usize {
+        usize::from(self.first_line())
+    }
+
+    /// The baseline of line `k` of the strip.
+    fn line_y(&self, k: usize) -> f64 {
+        self.strip + LINE * k as f64 + FONT
+    }
+
+    /// Where the readout starts: after the scale bar and its label (its width estimated, with
+    /// room for wider faces such as the stroke font of PNG renders).
+    fn readout_x(&self) -> f64 {
+        let pad = self.d.canvas.margin;
+        match &self.bar {
+            Some((px, label)) => pad + px + 6.0 + text_width(label) + 28.0,
+            None => pad,
+        }
+    }
+
+    /// The scale bar and its label on the strip's first line.
+    fn scale_bar(&self, out: &mut String) {
+        let Some((px, label)) = &self.bar else { return };
+        let (x0, y) = (self.d.canvas.margin, self.line_y(0) - 4.0);
+        let ink = &self.d.style.ink;
+        let _ = write!(
+            out,
+            r#"<g class="scale-bar"><path d="M{},{}V{}H{}V{}" fill="none" stroke="{ink}" stroke-width="1.5"/><text x="{}" y="{}" font-size="{FONT}" fill="{ink}">{}</text></g>"#,
+            num(x0),
+            num(y - 5.0),
+            num(y),
+            num(x0 + px),
+            num(y - 5.0),
+            num(x0 + px + 6.0),
+            num(self.line_y(0)),
+            escape(label)
+        );
+    }
+
+    /// The inputs at the poses `keys` (one: static; several: each key frame's text shown in
+    /// its turn, with `timing`).
+    fn readout(&self, out: &mut String, keys: &[usize], timing: Option<Timing>) {
+        if !self.d.annotate.readout || self.motion.inputs.is_empty() {
+            return;
+        }
+        let (x, y, ink) = (num(self.readout_x()), num(self.line_y(0)), &self.d.style.ink);
+        let _ = write!(out, r#"<g class="readout" font-size="{FONT}" fill="{ink}">"#);
+        let n = keys.len();
+        for (k, &i) in keys.iter().enumerate() {
+            let shown = if k == 0 { "visible" } else { "hidden" };
+            let _ = write!(out, r#"<text x="{x}" y="{y}" visibility="{shown}">{}"#, escape(&self.readout_text(i)));
+            if let (Some(t), true) = (timing, n > 1) {
+                // Key frame k is shown at k / (n - 1) of the pass: its text from half a frame
+                // before to half a frame after.
+                let step = 1.0 / (n - 1) as f64;
+                let (from, to) = ((k as f64 - 0.5) * step, (k as f64 + 0.5) * step);
+                let (values, times) = if k == 0 {
+                    ("visible;hidden".to_string(), format!("0;{}", frac(to)))
+                } else if k + 1 == n {
+                    ("hidden;visible".to_string(), format!("0;{}", frac(from)))
+                } else {
+                    ("hidden;visible;hidden".to_string(), format!("0;{};{}", frac(from), frac(to)))
+                };
+                let _ = write!(
+                    out,
+                    r#"<animate attributeName="visibility" calcMode="discrete" dur="{}s" repeatCount="indefinite" values="{values}" keyTimes="{times}"/>"#,
+                    num(t.seconds)
+                );
+            }
+            out.push_str("</text>");
+        }
+        out.push_str("</g>");
+    }
+
+    /// The labels of the joints, following them over the key frames; a white halo keeps a
+    /// label legible where it crosses a link or a path.
+    fn labels(&self, out: &mut String, keys: &[usize], timing: Option<Timing>) {
+        let ink = &self.d.style.ink;
+        for (j, label) in self.scene.labels.iter().enumerate() {
+            let values: Vec<String> = keys.iter().map(|&i| pair(self.scene.labelled[i][j])).collect();
+            let _ = write!(out, r#"<g class="joint-label" transform="translate({})">"#, values[0]);
+            animate_transform(out, "translate", &values, timing);
+            let _ = write!(
+                out,
+                r#"<text x="{}" y="{}" font-size="{FONT}" text-anchor="{}" fill="{ink}" stroke="white" stroke-width="3" stroke-linejoin="round" paint-order="stroke">{}</text></g>"#,
+                num(label.offset[0]),
+                num(label.offset[1] + 0.35 * FONT),
+                label.anchor,
+                escape(&label.text)
             );
         }
     }
@@ -175,7 +299,7 @@ impl Layers<'_> {
         let View { width, height, .. } = self.scene.view;
         let (w, h) = (num(width), num(height));
         format!(
-            r#"<svg xmlns="http://www.w3.org/2000/svg" width="{w}" height="{h}" viewBox="0 0 {w} {h}"><rect width="{w}" height="{h}" fill="white"/>{body}</svg>"#
+            r#"<svg xmlns="http://www.w3.org/2000/svg" width="{w}" height="{h}" viewBox="0 0 {w} {h}" font-family="sans-serif"><rect width="{w}" height="{h}" fill="white"/>{body}</svg>"#
         )
     }
 
@@ -185,15 +309,47 @@ impl Layers<'_> {
     }
 }
 
+/// A key time (a fraction of the pass) as written.
+fn frac(t: f64) -> String {
+    format!("{:.5}", t.clamp(0.0, 1.0))
+}
+
 impl Drawing {
     fn layers<'a>(&'a self, motion: &'a Motion) -> Result<Layers<'a>, DrawError> {
-        Ok(Layers { d: self, motion, scene: Scene::new(self, motion)? })
+        let scene = Scene::new(self, motion)?;
+        let strip = scene.view.height;
+        // The scale bar: a round length of at most a third of the mechanism's picture.
+        let room = (scene.view.width / 3.0).max(60.0);
+        let bar =
+            if self.annotate.scale_bar { scale_bar(scene.view.scale, room, self.length_unit.as_deref()) } else { None };
+        let mut l = Layers { d: self, motion, scene, strip, bar };
+        // The strip under the mechanism: the scale bar and readout, then one line per event;
+        // the picture is widened (when fitted) to hold its longest line.
+        let lines = l.first_event_line() + motion.events.len();
+        let pad = self.canvas.margin;
+        let mut need: f64 = 0.0;
+        if l.first_line() {
+            let widest = (0..l.scene.frames.len()).map(|i| text_width(&l.readout_text(i))).fold(0.0, f64::max);
+            let readout = if self.annotate.readout { widest } else { 0.0 };
+            need = l.readout_x() + readout + pad;
+        }
+        for j in 0..motion.events.len() {
+            need = need.max(2.0 * pad + text_width(&l.event_label(j)));
+        }
+        if self.canvas.window.is_none() {
+            l.scene.view.width = l.scene.view.width.max(need.ceil());
+        }
+        if lines > 0 {
+            l.scene.view.height += LINE * lines as f64 + 0.5 * LINE;
+        }
+        Ok(l)
     }
 
     /// The map from mechanism units to pixels this drawing uses for `motion` (fitted to every
-    /// pose, or the canvas window).
+    /// pose and cropped to what is drawn, or the canvas window), with the size of the whole
+    /// picture (the strip of annotations included).
     pub fn view(&self, motion: &Motion) -> Result<View, DrawError> {
-        Ok(Scene::new(self, motion)?.view)
+        Ok(self.layers(motion)?.scene.view)
     }
 
     /// The mechanism at one pose (`pose` indexes the samples, then the events) as a static SVG,
@@ -212,6 +368,9 @@ impl Drawing {
         l.events(&mut body);
         l.mechanism(&mut body, &[pose], &l.pen(None));
         l.trace_dots(&mut body, &[pose], &l.pen(None));
+        l.labels(&mut body, &[pose], None);
+        l.scale_bar(&mut body);
+        l.readout(&mut body, &[pose], None);
         Ok(l.document(&body))
     }
 
@@ -244,6 +403,12 @@ impl Drawing {
                 body.push_str("</g>");
             }
         }
+        // Labelled at the pose drawn in full; the readout says which it is.
+        if let Some(&last) = keys.last() {
+            l.labels(&mut body, &[path[last]], None);
+            l.readout(&mut body, &[path[last]], None);
+        }
+        l.scale_bar(&mut body);
         Ok(l.document(&body))
     }
 
@@ -272,6 +437,10 @@ impl Drawing {
         l.events(&mut body);
         l.mechanism(&mut body, &keys, &pen);
         l.trace_dots(&mut body, &keys, &pen);
+        let timing = Some(Timing { seconds: anim.seconds });
+        l.labels(&mut body, &keys, timing);
+        l.scale_bar(&mut body);
+        l.readout(&mut body, &keys, timing);
         Ok(l.document(&body))
     }
 }

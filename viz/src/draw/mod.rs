@@ -11,7 +11,8 @@
 //! * [`Drawing::animate`]: an animated SVG (SMIL, no script: it plays in browsers and in a
 //!   README on a code host) with the traced paths;
 //! * [`Drawing::exposures`]: a static multi-exposure for print;
-//! * [`Drawing::svg`]: the mechanism at one pose; the module `png` renders it (feature `png`).
+//! * [`Drawing::svg`]: the mechanism at one pose; the module `png` renders it (feature `png`),
+//!   its text drawn with a built-in stroke font.
 //!
 //! Where a sweep stopped at a limit position or passed a singular crossing, the drawing shows
 //! the mechanism at the located event as a dashed ghost, labelled with its kind and input.
@@ -54,8 +55,11 @@
 //! # Ok::<(), Box<dyn std::error::Error>>(())
 //! ```
 
+mod annotate;
 mod compose;
 mod error;
+#[cfg(feature = "png")]
+mod hershey;
 mod motion;
 #[cfg(feature = "png")]
 pub mod png;
@@ -64,8 +68,11 @@ mod shapes;
 mod spec;
 mod style;
 mod svg;
+#[cfg(feature = "png")]
+mod text_paths;
 mod view;
 
+pub use annotate::Annotate;
 pub use compose::Animation;
 pub use error::DrawError;
 pub use motion::{Marked, Motion, Pose};

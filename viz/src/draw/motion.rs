@@ -2,7 +2,7 @@
 //! mechanism's const generics, so one drawing description serves any mechanism.
 
 use super::error::DrawError;
-use kinloop_runtime::{Error, EventKind, Kin, Mechanism, Sweep};
+use kinloop_runtime::{Error, EventKind, Kin, Mechanism, QuantityKind, Sweep};
 
 /// One pose of the mechanism: inputs `x`, unknowns `q` and output columns `out`, in
 /// declaration order (as in [`Kin`]).
@@ -36,6 +36,9 @@ pub struct Marked {
 pub struct Motion {
     /// Names of the inputs (`Mechanism::INPUTS`).
     pub inputs: Vec<String>,
+    /// Kinds of the inputs (`Mechanism::INPUT_KINDS`): an angle is read out in degrees. A
+    /// missing kind reads as a plain number.
+    pub input_kinds: Vec<QuantityKind>,
     /// Names of the output columns (`Mechanism::OUTPUTS`).
     pub outputs: Vec<String>,
     /// The samples, in sweep order.
@@ -54,6 +57,7 @@ impl Motion {
     {
         Motion {
             inputs: M::INPUTS.iter().map(|s| s.to_string()).collect(),
+            input_kinds: M::INPUT_KINDS.to_vec(),
             outputs: M::OUTPUTS.iter().map(|s| s.to_string()).collect(),
             poses: Vec::new(),
             events: Vec::new(),
@@ -122,8 +126,8 @@ impl Motion {
 
     /// Checks every pose against the motion's columns (a [`Pose`] pushed by hand can have any
     /// lengths): one input value per input name, one output value per output column, the
-    /// same number of unknowns in every pose; and the inputs of events finite (their labels
-    /// print them).
+    /// same number of unknowns in every pose; and every input finite (the readout and the
+    /// events' labels print them).
     pub(crate) fn check(&self) -> Result<(), DrawError> {
         let unknowns = self.poses.first().map_or(0, |p| p.q.len());
         for (pose, p) in self.all_poses().enumerate() {
@@ -137,10 +141,14 @@ impl Motion {
                 }
             }
         }
-        for (j, e) in self.events.iter().enumerate() {
-            if let Some(i) = e.pose.x.iter().position(|v| !v.is_finite()) {
-                let what = format!("input `{}` of event {j}", self.inputs[i]);
-                return Err(DrawError::NonFinite { what, pose: self.poses.len() + j });
+        // Inputs are printed (the readout, the events' labels): none may be NaN or infinite.
+        for (pose, p) in self.all_poses().enumerate() {
+            if let Some(i) = p.x.iter().position(|v| !v.is_finite()) {
+                let what = match pose.checked_sub(self.poses.len()) {
+                    Some(j) => format!("input `{}` of event {j}", self.inputs[i]),
+                    None => format!("input `{}`", self.inputs[i]),
+                };
+                return Err(DrawError::NonFinite { what, pose });
             }
         }
         Ok(())

@@ -1,8 +1,10 @@
 //! A drawing evaluated over a motion: every item's geometry at every pose, in pixels.
 
+use super::annotate::{FONT, LABEL_OFFSET, text_width};
 use super::error::DrawError;
 use super::motion::{Motion, Pose};
 use super::spec::{Drawing, Item, PointFn, Pt, Scalar, StateRef};
+use super::style::Style;
 use super::view::{FAR, View};
 
 /// The geometry of one item at one pose (world units, then pixels after [`Shape::to_px`]).
@@ -25,6 +27,39 @@ impl Shape {
             Shape::Gear { centre: [x, y], radius: r, .. } => {
                 add([x - r, y - r]);
                 add([x + r, y + r]);
+            }
+        }
+    }
+
+    /// Everything drawn of the shape in pixels (the shape in pixels): its points with the
+    /// strokes, circles, blocks, guides and ground symbols drawn around them.
+    fn ink(&self, style: &Style, mut add: impl FnMut([f64; 2])) {
+        let mut square = |[x, y]: [f64; 2], r: f64| {
+            add([x - r, y - r]);
+            add([x + r, y + r]);
+        };
+        let joint = style.joint_radius + 1.5;
+        match self {
+            Shape::Link { pts, .. } => pts.iter().for_each(|p| square(*p, joint.max(0.5 * style.link_width))),
+            Shape::Joint { at } => square(*at, joint),
+            Shape::Gear { centre, radius, .. } => square(*centre, radius + 3.0),
+            Shape::Pivot { at: [x, y] } => {
+                // The triangle, ground line and hatching (see `shapes::pivot`).
+                add([x - 18.0, y - joint]);
+                add([x + 16.0, y + 21.0]);
+            }
+            Shape::Slider { at: [x, y], angle, fixed } => {
+                let [l, h] = style.block;
+                // The block, and for a fixed guide its line and hatching beside the block.
+                let (u0, u1, n0, n1) = if *fixed {
+                    (-0.5 * l - 13.0, 0.5 * l + 8.0, -0.5 * h, 0.5 * h + 7.0)
+                } else {
+                    (-0.5 * l, 0.5 * l, -0.5 * h, 0.5 * h)
+                };
+                let (sin, cos) = angle.to_radians().sin_cos();
+                for (a, b) in [(u0, n0), (u0, n1), (u1, n0), (u1, n1)] {
+                    add([x + a * cos - b * sin, y + a * sin + b * cos]);
+                }
             }
         }
     }
@@ -163,6 +198,34 @@ impl<'d> BoundItems<'d> {
     }
 }
 
+/// A label of the drawing: its text, where the middle of its line sits relative to its point
+/// (pixels) and how it is anchored (`start`, `middle`, `end`).
+pub(crate) struct Label {
+    pub text: String,
+    pub offset: [f64; 2],
+    pub anchor: &'static str,
+}
+
+impl Label {
+    /// The corners of the label's text at point `p` (pixels).
+    fn ink(&self, [x, y]: [f64; 2], mut add: impl FnMut([f64; 2])) {
+        let w = text_width(&self.text);
+        let left = x + self.offset[0]
+            - match self.anchor {
+                "end" => w,
+                "middle" => 0.5 * w,
+                _ => 0.0,
+            };
+        let cy = y + self.offset[1];
+        add([left, cy - 0.5 * FONT]);
+        add([left + w, cy + 0.5 * FONT]);
+    }
+}
+
+/// Pixels reserved around the points when fitting, for what is drawn around them (pivot
+/// symbols, slider blocks, labels); the picture is then cropped to what is drawn.
+const RESERVE: f64 = 24.0;
+
 /// A drawing evaluated at the poses of a motion, in pixels.
 pub(crate) struct Scene {
     pub view: View,
@@ -170,8 +233,36 @@ pub(crate) struct Scene {
     pub frames: Vec<Vec<Shape>>,
     /// The traced points at each pose (same order as `frames`).
     pub traced: Vec<Vec<[f64; 2]>>,
+    /// The labels and their points at each pose (same order as `frames`).
+    pub labels: Vec<Label>,
+    pub labelled: Vec<Vec<[f64; 2]>>,
     /// How many of the poses are samples (the rest are events).
     pub samples: usize,
+}
+
+/// The labels of a drawing: each named point of its items and traces with its name (when
+/// joint labels are on), then the drawing's own labels, which rename (or, empty, remove) the
+/// label of the same named point.
+fn label_points(d: &Drawing) -> Vec<(&Pt, String)> {
+    let mut out: Vec<(&Pt, String)> = Vec::new();
+    if d.annotate.joint_labels {
+        for p in d.items.iter().flat_map(item_points).chain(&d.traces) {
+            if let Pt::Point(name) = p
+                && !out.iter().any(|(q, _)| matches!(q, Pt::Point(n) if n == name))
+            {
+                out.push((p, name.clone()));
+            }
+        }
+    }
+    for (p, text) in &d.labels {
+        let same = |q: &Pt| matches!((p, q), (Pt::Point(a), Pt::Point(b)) if a == b);
+        match out.iter().position(|(q, _)| same(q)) {
+            Some(i) => out[i].1 = text.clone(),
+            None => out.push((p, text.clone())),
+        }
+    }
+    out.retain(|(_, t)| !t.is_empty());
+    out
 }
 
 impl Scene {
@@ -183,23 +274,105 @@ impl Scene {
         }
         motion.check()?;
         let bound = BoundItems::new(d, motion)?;
-        let mut frames = Vec::with_capacity(motion.poses.len() + motion.events.len());
-        let mut traced = Vec::with_capacity(frames.capacity());
+        let label_pts = label_points(d);
+        let label_bound = label_pts.iter().map(|(p, _)| bind(p, motion)).collect::<Result<Vec<_>, _>>()?;
+        let mut world = Vec::with_capacity(motion.poses.len() + motion.events.len());
+        let mut traced = Vec::with_capacity(world.capacity());
+        let mut labelled = Vec::with_capacity(world.capacity());
         for (i, pose) in motion.all_poses().enumerate() {
             let e = Eval { state: state(pose), pose: i };
-            frames.push(bound.shapes(&e)?);
+            world.push(bound.shapes(&e)?);
             traced.push(bound.traces.iter().map(|(p, b)| e.point(b, p)).collect::<Result<Vec<_>, _>>()?);
+            let at = label_bound.iter().zip(&label_pts).map(|(b, (p, _))| e.point(b, p));
+            labelled.push(at.collect::<Result<Vec<_>, _>>()?);
         }
         let mut pts = Vec::new();
-        for shape in frames.iter().flatten() {
+        for shape in world.iter().flatten() {
             shape.extent(|p| pts.push(p));
         }
         pts.extend(traced.iter().flatten());
-        let view = d.canvas.view(&pts)?;
-        let frames: Vec<Vec<Shape>> = frames.iter().map(|f| f.iter().map(|s| s.to_px(&view)).collect()).collect();
-        let traced: Vec<Vec<[f64; 2]>> = traced.iter().map(|t| t.iter().map(|p| view.px(*p)).collect()).collect();
-        near(d, &frames, &traced)?;
-        Ok(Scene { view, frames, traced, samples: motion.poses.len() })
+        pts.extend(labelled.iter().flatten());
+        let fitted = d.canvas.view(&pts, RESERVE)?;
+        let mut scene = Scene::at(fitted, &world, &traced, &labelled, Vec::new(), motion.poses.len());
+        near(d, &scene.frames, &scene.traced)?;
+        scene.labels = scene.place_labels(label_pts.into_iter().map(|(_, t)| t).collect());
+        if d.canvas.window.is_none() {
+            // Cropped to everything drawn over the whole motion, plus the margin.
+            let [x0, y0, x1, y1] = scene.ink(&d.style);
+            let pad = d.canvas.margin;
+            let view = fitted.cropped([pad - x0, pad - y0], x1 - x0 + 2.0 * pad, y1 - y0 + 2.0 * pad);
+            let labels = std::mem::take(&mut scene.labels);
+            scene = Scene::at(view, &world, &traced, &labelled, labels, motion.poses.len());
+        }
+        Ok(scene)
+    }
+
+    /// The scene of the world shapes and points through `view`.
+    fn at(
+        view: View,
+        world: &[Vec<Shape>],
+        traced: &[Vec<[f64; 2]>],
+        labelled: &[Vec<[f64; 2]>],
+        labels: Vec<Label>,
+        samples: usize,
+    ) -> Scene {
+        let px = |t: &Vec<[f64; 2]>| t.iter().map(|p| view.px(*p)).collect();
+        Scene {
+            view,
+            frames: world.iter().map(|f| f.iter().map(|s| s.to_px(&view)).collect()).collect(),
+            traced: traced.iter().map(px).collect(),
+            labelled: labelled.iter().map(px).collect(),
+            labels,
+            samples,
+        }
+    }
+
+    /// Each label placed beside its point, away from the middle of the mechanism at the first
+    /// pose (so it sits outside the links rather than across them).
+    fn place_labels(&self, texts: Vec<String>) -> Vec<Label> {
+        let mut pts = Vec::new();
+        self.frames[0].iter().for_each(|s| s.extent(|p| pts.push(p)));
+        let n = pts.len().max(1) as f64;
+        let mid = pts.iter().fold([0.0, 0.0], |m, p| [m[0] + p[0] / n, m[1] + p[1] / n]);
+        texts
+            .into_iter()
+            .zip(&self.labelled[0])
+            .map(|(text, p)| {
+                let (dx, dy) = (p[0] - mid[0], p[1] - mid[1]);
+                let r = dx.hypot(dy);
+                // At the middle itself (or a non-finite distance): above and to the right.
+                let [ux, uy] = if r > 1.0 && r.is_finite() { [dx / r, dy / r] } else { [0.6, -0.8] };
+                // Beside the joint (text starting or ending clear of its circle), or above or
+                // below it (the text's middle clear of it): `offset` is the text's centre line.
+                let (anchor, offset) = if ux.abs() > 0.35 {
+                    (if ux > 0.0 { "start" } else { "end" }, [LABEL_OFFSET * ux.signum(), LABEL_OFFSET * uy])
+                } else {
+                    ("middle", [0.0, (LABEL_OFFSET + 0.5 * FONT) * uy.signum()])
+                };
+                Label { text, offset, anchor }
+            })
+            .collect()
+    }
+
+    /// The bounding box `[x0, y0, x1, y1]` in pixels of everything drawn at every pose.
+    pub fn ink(&self, style: &Style) -> [f64; 4] {
+        let mut b = [f64::INFINITY, f64::INFINITY, f64::NEG_INFINITY, f64::NEG_INFINITY];
+        let mut add = |[x, y]: [f64; 2]| {
+            if x.is_finite() && y.is_finite() {
+                b = [b[0].min(x), b[1].min(y), b[2].max(x), b[3].max(y)];
+            }
+        };
+        for (k, shapes) in self.frames.iter().enumerate() {
+            shapes.iter().for_each(|s| s.ink(style, &mut add));
+            for p in &self.traced[k] {
+                add([p[0] - style.trace_width, p[1] - style.trace_width]);
+                add([p[0] + style.trace_width, p[1] + style.trace_width]);
+            }
+            for (l, p) in self.labels.iter().zip(&self.labelled[k]) {
+                l.ink(*p, &mut add);
+            }
+        }
+        if b[0] > b[2] { [0.0, 0.0, self.view.width, self.view.height] } else { b }
     }
 
     /// Poses `i` and `j` look the same: every point within 0.05 px (the SVG's rounding).

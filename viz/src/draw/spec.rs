@@ -1,6 +1,7 @@
 //! What to draw: a run-time description of the mechanism's links, pivots, sliders and gears,
 //! through points named after the mechanism's outputs, fixed points or expressions of the state.
 
+use super::annotate::Annotate;
 use super::style::Style;
 use super::view::Canvas;
 use std::fmt;
@@ -154,7 +155,9 @@ pub enum Item {
 ///
 /// Items are drawn in the order added (later ones on top), then every joint circle on top of
 /// all. Sizes of strokes, circles and blocks are in pixels, so the picture does not depend on
-/// the mechanism's unit of length.
+/// the mechanism's unit of length. By default ([`Annotate`]) joints at named points carry
+/// their names, and a strip under the picture holds a scale bar, the inputs at the pose shown
+/// (angles in degrees) and the events' labels.
 #[derive(Clone, Debug, Default)]
 pub struct Drawing {
     /// The elements, in drawing order.
@@ -165,6 +168,14 @@ pub struct Drawing {
     pub canvas: Canvas,
     /// Colours and sizes.
     pub style: Style,
+    /// Labels written beside points, `(point, text)`: a label at a named point replaces that
+    /// joint's automatic label (an empty text removes it).
+    pub labels: Vec<(Pt, String)>,
+    /// The unit of the mechanism's lengths, written on the scale bar and in the readout of
+    /// length inputs (`None`: the runtime's generic "length unit").
+    pub length_unit: Option<String>,
+    /// Which annotations are written (joint labels, scale bar, input readout).
+    pub annotate: Annotate,
 }
 
 impl Drawing {
@@ -219,6 +230,25 @@ impl Drawing {
     /// Sets colours and sizes.
     pub fn with_style(mut self, style: Style) -> Drawing {
         self.style = style;
+        self
+    }
+
+    /// Writes `text` beside `at` (a joint's name, a fixed point's letter). At a named point it
+    /// replaces the automatic label (its name); an empty `text` removes that label.
+    pub fn label(mut self, at: impl Into<Pt>, text: impl Into<String>) -> Drawing {
+        self.labels.push((at.into(), text.into()));
+        self
+    }
+
+    /// Names the unit of the mechanism's lengths (`"mm"`), for the scale bar and the readout.
+    pub fn length_unit(mut self, unit: impl Into<String>) -> Drawing {
+        self.length_unit = Some(unit.into());
+        self
+    }
+
+    /// Sets which annotations are written.
+    pub fn with_annotate(mut self, annotate: Annotate) -> Drawing {
+        self.annotate = annotate;
         self
     }
 

@@ -7,18 +7,23 @@ use super::error::DrawError;
 pub struct Canvas {
     /// Width of the picture in pixels (default 480).
     pub width: f64,
-    /// Room left around the mechanism, in pixels (default 24), when it is fitted.
+    /// Room left around everything drawn, in pixels (default 8), when the picture is fitted:
+    /// the mechanism is scaled to the width (leaving room for pivot symbols, slider blocks and
+    /// labels), then the picture is cropped to the bounding box of every shape, label and
+    /// traced path over the whole motion, plus this.
     pub margin: f64,
     /// The rectangle of the plane shown, `[x0, y0, x1, y1]` in mechanism units; `None` (the
     /// default) fits every pose of the motion. With a window, a point `(x, y)` lands on pixel
     /// `((x - x0) / (x1 - x0) * width, (y1 - y) / (x1 - x0) * width)` (Y points up in the
-    /// mechanism, down in the picture), and the height is `(y1 - y0) / (x1 - x0) * width`.
+    /// mechanism, down in the picture), and the window's part of the picture is
+    /// `(y1 - y0) / (x1 - x0) * width` high, with the strip of annotations (scale bar, input
+    /// readout, events) under it.
     pub window: Option<[f64; 4]>,
 }
 
 impl Default for Canvas {
     fn default() -> Self {
-        Canvas { width: 480.0, margin: 24.0, window: None }
+        Canvas { width: 480.0, margin: 8.0, window: None }
     }
 }
 
@@ -55,12 +60,13 @@ impl Canvas {
         Ok(())
     }
 
-    /// The view showing `pts` (all finite), or the window.
+    /// The view showing `pts` (all finite) with `reserve` pixels more than the margin on each
+    /// side (for what is drawn around the points), or the window.
     ///
     /// Differences of coordinates are taken of halves (`x / 2 - x0 / 2`), which cannot
     /// overflow for finite coordinates and, halving being exact, give the same pixels as the
     /// plain difference wherever that one is finite.
-    pub(crate) fn view(&self, pts: &[[f64; 2]]) -> Result<View, DrawError> {
+    pub(crate) fn view(&self, pts: &[[f64; 2]], reserve: f64) -> Result<View, DrawError> {
         if let Some([x0, y0, x1, y1]) = self.window {
             let scale = 0.5 * self.width / (0.5 * x1 - 0.5 * x0);
             let height = 2.0 * ((0.5 * y1 - 0.5 * y0) * scale);
@@ -82,7 +88,9 @@ impl Canvas {
         if x0 > x1 {
             return Err(DrawError::InvalidSetting("the drawing has no item to draw".into()));
         }
-        let (inner, tall) = (self.width - 2.0 * self.margin, MAX_ASPECT * self.width - 2.0 * self.margin);
+        // The reserve leaves at least half the room inside the margins to the mechanism.
+        let margin = self.margin + reserve.min(0.25 * self.width - 0.5 * self.margin).max(0.0);
+        let (inner, tall) = (self.width - 2.0 * margin, MAX_ASPECT * self.width - 2.0 * margin);
         // Half the extent on each axis.
         let (hx, hy) = (0.5 * x1 - 0.5 * x0, 0.5 * y1 - 0.5 * y0);
         let mut scale = if hx > 0.0 { 0.5 * inner / hx } else { f64::INFINITY };
@@ -101,9 +109,9 @@ impl Canvas {
         } else if !scale.is_finite() {
             return Err(DrawError::Unscalable { width: 2.0 * hx, height: 2.0 * hy });
         }
-        let ox = self.margin + 0.5 * inner - hx * scale;
-        let height = 2.0 * (hy * scale) + 2.0 * self.margin;
-        Ok(View { x0, y1, ox, oy: self.margin, scale, width: self.width, height })
+        let ox = margin + 0.5 * inner - hx * scale;
+        let height = 2.0 * (hy * scale) + 2.0 * margin;
+        Ok(View { x0, y1, ox, oy: margin, scale, width: self.width, height })
     }
 }
 
@@ -123,6 +131,12 @@ pub struct View {
 }
 
 impl View {
+    /// The same map shifted by `[dx, dy]` pixels, in a picture of `width` x `height` pixels
+    /// (the fitted view cropped to what is drawn).
+    pub(crate) fn cropped(&self, [dx, dy]: [f64; 2], width: f64, height: f64) -> View {
+        View { ox: self.ox + dx, oy: self.oy + dy, width, height, ..*self }
+    }
+
     /// The pixel of point `(x, y)` (Y up in the mechanism, down in the picture).
     /// Differences are taken of halves, so no finite point overflows on the way (the
     /// pixel itself can be far outside the picture, or infinite, for a point far outside a

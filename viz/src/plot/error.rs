@@ -23,6 +23,13 @@ pub enum PlotError {
         /// The series's kind.
         found: Box<Kind>,
     },
+    /// An axis name holding a bracketed unit (`"amplitude [N], [Nm]"`): the title adds the
+    /// unit of the axis's kind, so such a name either repeats it or claims units the axis does
+    /// not hold (an axis mixing units).
+    UnitInName {
+        /// The axis's name.
+        axis: String,
+    },
     /// An x-y chart with equal scales needs the same kind (and unit) on both axes.
     UnequalAxes {
         /// Kind of the x axis.
@@ -54,6 +61,11 @@ impl fmt::Display for PlotError {
                 f,
                 "series `{series}` holds {found} but axis `{axis}` holds {expected}: \
                  an axis holds one quantity kind; give the series its own panel"
+            ),
+            PlotError::UnitInName { axis } => write!(
+                f,
+                "axis name `{axis}` holds a unit in brackets: name the quantity alone, the title adds \
+                 the unit of its kind; quantities in different units go on separate panels"
             ),
             PlotError::UnequalAxes { x, y } => {
                 write!(f, "an x-y chart draws both axes to one scale, so both must hold one kind (x: {x}, y: {y})")

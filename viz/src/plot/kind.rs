@@ -1,6 +1,8 @@
 //! What a series holds: the quantity kind of its values, which fixes the axis unit and how the
 //! values are shown (angles in degrees).
 
+use super::PlotError;
+use kinloop_runtime::QuantityKind;
 use std::fmt;
 
 /// The quantity kind of a series' values (and of the axis that shows them). An axis holds one
@@ -24,8 +26,24 @@ pub enum Kind {
     LengthAnalog(String),
     /// Acceleration analog of a length, `d2x / d phi2` [unit/rad²].
     LengthAnalog2(String),
-    /// A pure number (a ratio, a count) [-].
+    /// A pure number (a ratio, a count, a harmonic's order) [-].
     Dimensionless,
+    /// A torque (moment) in the named unit (`"N m"`, `"N mm"`).
+    Torque(String),
+    /// A force in the named unit (`"N"`, `"kN"`).
+    Force(String),
+    /// A linear speed in the named unit (`"m/s"`, `"mm/s"`).
+    Speed(String),
+    /// An angular speed, in rad/s (angles are radians throughout; not converted).
+    AngularSpeed,
+    /// A time in the named unit (`"s"`, `"ms"`).
+    Time(String),
+    /// An energy (work) in the named unit (`"J"`, `"N mm"`).
+    Energy(String),
+    /// A moment of inertia in the named unit (`"kg m²"`).
+    Inertia(String),
+    /// A power in the named unit (`"W"`, `"kW"`).
+    Power(String),
     /// Any other quantity, with its name (`"force"`) and unit (`"N"`).
     Other {
         /// The quantity's name.
@@ -41,6 +59,62 @@ impl Kind {
         Kind::Length(unit.to_string())
     }
 
+    /// A torque in `unit` (`"N m"`).
+    pub fn torque(unit: &str) -> Kind {
+        Kind::Torque(unit.to_string())
+    }
+
+    /// A force in `unit` (`"N"`).
+    pub fn force(unit: &str) -> Kind {
+        Kind::Force(unit.to_string())
+    }
+
+    /// A linear speed in `unit` (`"m/s"`).
+    pub fn speed(unit: &str) -> Kind {
+        Kind::Speed(unit.to_string())
+    }
+
+    /// A time in `unit` (`"s"`).
+    pub fn time(unit: &str) -> Kind {
+        Kind::Time(unit.to_string())
+    }
+
+    /// An energy in `unit` (`"J"`).
+    pub fn energy(unit: &str) -> Kind {
+        Kind::Energy(unit.to_string())
+    }
+
+    /// A moment of inertia in `unit` (`"kg m²"`).
+    pub fn inertia(unit: &str) -> Kind {
+        Kind::Inertia(unit.to_string())
+    }
+
+    /// A power in `unit` (`"W"`).
+    pub fn power(unit: &str) -> Kind {
+        Kind::Power(unit.to_string())
+    }
+
+    /// The kind of a mechanism's column as `mechanism!` inferred it ([`QuantityKind`], which
+    /// carries no unit of length), with lengths in `length_unit`: one vocabulary, so a chart of a
+    /// table's column needs no kind spelled out again. A column whose kind was not inferred
+    /// ([`QuantityKind::Other`]) is a quantity named `"value"` of unknown unit (`"?"`: not
+    /// claimed dimensionless); give such a column its kind yourself (`Kind::time("s")`).
+    ///
+    /// ```
+    /// use kinloop_runtime::QuantityKind;
+    /// use kinloop_viz::plot::Kind;
+    /// assert_eq!(Kind::of_column(QuantityKind::Angle, "mm"), Kind::Angle);
+    /// assert_eq!(Kind::of_column(QuantityKind::Length, "mm"), Kind::length("mm"));
+    /// ```
+    pub fn of_column(kind: QuantityKind, length_unit: &str) -> Kind {
+        match kind {
+            QuantityKind::Angle => Kind::Angle,
+            QuantityKind::Length => Kind::length(length_unit),
+            QuantityKind::Dimensionless => Kind::Dimensionless,
+            _ => Kind::Other { quantity: "value".into(), unit: "?".into() },
+        }
+    }
+
     /// The unit written on the axis.
     pub fn unit(&self) -> String {
         match self {
@@ -51,6 +125,14 @@ impl Kind {
             Kind::LengthAnalog(u) => format!("{u}/rad"),
             Kind::LengthAnalog2(u) => format!("{u}/rad²"),
             Kind::Dimensionless => "-".into(),
+            Kind::Torque(u)
+            | Kind::Force(u)
+            | Kind::Speed(u)
+            | Kind::Time(u)
+            | Kind::Energy(u)
+            | Kind::Inertia(u)
+            | Kind::Power(u) => u.clone(),
+            Kind::AngularSpeed => "rad/s".into(),
             Kind::Other { unit, .. } => unit.clone(),
         }
     }
@@ -65,6 +147,14 @@ impl Kind {
             Kind::LengthAnalog(_) => "length velocity analog".into(),
             Kind::LengthAnalog2(_) => "length acceleration analog".into(),
             Kind::Dimensionless => "ratio".into(),
+            Kind::Torque(_) => "torque".into(),
+            Kind::Force(_) => "force".into(),
+            Kind::Speed(_) => "speed".into(),
+            Kind::AngularSpeed => "angular speed".into(),
+            Kind::Time(_) => "time".into(),
+            Kind::Energy(_) => "energy".into(),
+            Kind::Inertia(_) => "moment of inertia".into(),
+            Kind::Power(_) => "power".into(),
             Kind::Other { quantity, .. } => quantity.clone(),
         }
     }
@@ -121,6 +211,14 @@ impl Axis {
         Axis { name: kind.quantity(), kind }
     }
 
+    /// Refuses a name with a bracketed unit in it ([`PlotError::UnitInName`]).
+    pub(crate) fn check(&self) -> Result<(), PlotError> {
+        match self.name.find('[') {
+            Some(open) if self.name[open..].contains(']') => Err(PlotError::UnitInName { axis: self.name.clone() }),
+            _ => Ok(()),
+        }
+    }
+
     /// The axis title with its unit: `"crank angle φ [°]"`.
     pub fn title(&self) -> String {
         format!("{} [{}]", self.name, self.kind.unit())
@@ -137,5 +235,9 @@ mod tests {
         assert_eq!(Axis::new("x'", Kind::LengthAnalog("mm".into())).title(), "x' [mm/rad]");
         assert_eq!(Axis::of(Kind::Dimensionless).title(), "ratio [-]");
         assert!((Kind::Angle.shown(std::f64::consts::PI) - 180.0).abs() < 1e-12);
+        assert_eq!(Axis::of(Kind::torque("N m")).title(), "torque [N m]");
+        assert_eq!(Axis::of(Kind::AngularSpeed).title(), "angular speed [rad/s]");
+        assert_eq!(Axis::of(Kind::inertia("kg m²")).title(), "moment of inertia [kg m²]");
+        assert_eq!(Kind::of_column(QuantityKind::Other, "mm").unit(), "?");
     }
 }

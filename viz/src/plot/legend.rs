@@ -38,8 +38,21 @@ pub(crate) fn width<'a>(labels: impl Iterator<Item = &'a str>) -> f64 {
     widest.map_or(0.0, |w| w + 48.0)
 }
 
+/// What a legend entry shows of its series: a stretch of line (curves) or a filled square
+/// (bars).
+#[derive(Clone, Copy, PartialEq, Eq)]
+pub(crate) enum Swatch {
+    Line,
+    Square,
+}
+
 /// Draws the legend of `labels` (curve `k` in colour `k`) with its top-left corner at `(x, y)`.
-pub(crate) fn draw(svg: &mut Svg, (x, y): (f64, f64), labels: &[&str], width: f64) {
+pub(crate) fn draw(svg: &mut Svg, at: (f64, f64), labels: &[&str], width: f64) {
+    draw_with(svg, at, labels, width, Swatch::Line);
+}
+
+/// [`draw`] with entries shown as `swatch`.
+pub(crate) fn draw_with(svg: &mut Svg, (x, y): (f64, f64), labels: &[&str], width: f64, swatch: Swatch) {
     let entries: Vec<(usize, &&str)> = labels.iter().enumerate().filter(|(_, l)| !l.is_empty()).collect();
     if entries.is_empty() {
         return;
@@ -48,7 +61,10 @@ pub(crate) fn draw(svg: &mut Svg, (x, y): (f64, f64), labels: &[&str], width: f6
     svg.rect("legend-box", (x, y), (width, 10.0 + 20.0 * entries.len() as f64), "white", "#888888");
     for (row, (k, label)) in entries.iter().enumerate() {
         let cy = y + 15.0 + 20.0 * row as f64;
-        svg.line("legend-line", (x + 8.0, cy), (x + 30.0, cy), color(*k), 2.0);
+        match swatch {
+            Swatch::Line => svg.line("legend-line", (x + 8.0, cy), (x + 30.0, cy), color(*k), 2.0),
+            Swatch::Square => svg.rect("legend-swatch", (x + 13.0, cy - 6.0), (12.0, 12.0), color(*k), "none"),
+        }
         svg.text("legend-label", x + 36.0, cy + 4.0, TICK_FONT, "start", 0.0, &shown(label));
     }
     svg.close();

@@ -37,6 +37,7 @@ pub fn line_chart_svg(title: &str, x: &Axis, y: &Axis, series: &[Series]) -> Res
 /// Errors: a curve whose kind differs from its panel's axis ([`PlotError::MixedKinds`]), a
 /// figure or panel without a finite point ([`PlotError::Empty`]).
 pub fn panels_svg(title: &str, x: &Axis, panels: &[Panel]) -> Result<String, PlotError> {
+    x.check()?;
     for p in panels {
         p.check()?;
     }

@@ -1,11 +1,20 @@
 //! Charts of sweep results as SVG: curves against the input ([`line_chart`], stacked
-//! [`panels`]) and x-y paths with equal scales ([`xy_chart`]).
+//! [`panels`]), x-y paths with equal scales ([`xy_chart`]) and bars at discrete abscissae such
+//! as the orders of harmonics ([`bar_chart`]).
 //!
 //! Every series states the quantity kind of its values ([`Kind`]): angles (given in radians,
 //! shown in degrees, a turn ticked at 0, 90, 180, 270, 360), lengths with their unit, velocity
 //! and acceleration analogs, pure numbers. Axis titles carry the unit (`"crank angle φ [°]"`,
 //! `"x' [mm/rad]"`), and an axis holds one kind: a series of another kind is an error
-//! ([`PlotError::MixedKinds`]); [`Panel::split_by_kind`] gives each kind its own panel.
+//! ([`PlotError::MixedKinds`]); [`Panel::split_by_kind`] gives each kind its own panel (the
+//! one rule: two panels, never twin axes, so each value reads against one scale). Dynamics
+//! have their kinds too: [`Kind::Torque`], [`Kind::Force`], [`Kind::Speed`],
+//! [`Kind::AngularSpeed`], [`Kind::Time`], [`Kind::Energy`], [`Kind::Inertia`],
+//! [`Kind::Power`]; a mechanism's columns map to kinds with [`Kind::of_column`].
+//!
+//! Axes read as an engineer expects: a value axis whose data do not change sign starts (or
+//! ends) at 0 rather than being padded across it, a bar chart's value axis always includes 0,
+//! and an angle axis over a sampled turn `[0, 2 pi)` ends on its 360 tick.
 //!
 //! The SVG is written directly, with coordinates to 1/100 pixel (smooth curves, no pixel
 //! snapping), points closer than half a pixel merged, curves broken at non-finite points (a
@@ -23,6 +32,7 @@
 //! # Ok::<(), plot::PlotError>(())
 //! ```
 
+mod bars;
 mod error;
 mod files;
 mod frame;
@@ -34,6 +44,7 @@ mod svg;
 mod ticks;
 mod xy;
 
+pub use bars::bar_chart_svg;
 pub use error::PlotError;
 pub use files::{decimate, figure_dir, out_dir, save};
 pub use kind::{Axis, Kind};
@@ -51,6 +62,11 @@ pub fn line_chart(path: &Path, title: &str, x: &Axis, y: &Axis, series: &[Series
 /// [`panels_svg`] written to `path`.
 pub fn panels(path: &Path, title: &str, x: &Axis, panels: &[Panel]) -> Result<(), PlotError> {
     save(path, &panels_svg(title, x, panels)?)
+}
+
+/// [`bar_chart_svg`] written to `path`.
+pub fn bar_chart(path: &Path, title: &str, x: &Axis, panels: &[Panel]) -> Result<(), PlotError> {
+    save(path, &bar_chart_svg(title, x, panels)?)
 }
 
 /// [`xy_chart_svg`] written to `path`.

@@ -95,8 +95,9 @@ impl Panel {
         panels
     }
 
-    /// Checks that every curve holds the axis' kind.
+    /// Checks the axis' name and that every curve holds the axis' kind.
     pub(crate) fn check(&self) -> Result<(), PlotError> {
+        self.axis.check()?;
         match self.series.iter().find(|s| s.kind != self.axis.kind) {
             Some(s) => Err(PlotError::MixedKinds {
                 axis: self.axis.name.clone(),

@@ -79,6 +79,19 @@ impl Svg {
         );
     }
 
+    /// A bar of series `label`: a filled rectangle without outline.
+    pub fn bar(&mut self, label: &str, (x, y): (f64, f64), (w, h): (f64, f64), fill: &str) {
+        let _ = write!(
+            self.out,
+            r#"<rect class="bar" data-label="{}" x="{}" y="{}" width="{}" height="{}" fill="{fill}"/>"#,
+            escape(label),
+            num(x),
+            num(y),
+            num(w),
+            num(h)
+        );
+    }
+
     /// A dot of radius `r`.
     pub fn dot(&mut self, class: &str, (x, y): (f64, f64), r: f64, fill: &str) {
         let _ = write!(

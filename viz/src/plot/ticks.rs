@@ -102,6 +102,13 @@ fn decimal(k: i128, p: i32) -> String {
     format!("{sign}{whole}.{frac}")
 }
 
+/// The range `[lo, hi]` padded by `pad` times its width on each side, the pad stopping at
+/// zero.
+fn padded(lo: f64, hi: f64, pad: f64) -> (f64, f64) {
+    let (plo, phi) = (lo - pad * (hi - lo), hi + pad * (hi - lo));
+    (if lo >= 0.0 { plo.max(0.0) } else { plo }, if hi <= 0.0 { phi.min(0.0) } else { phi })
+}
+
 impl Ticks {
     /// Ticks for data in `[lo, hi]` (library units, finite), shown times `factor`: about six
     /// intervals for angles (90 degree steps over a turn), about seven otherwise. The range
@@ -115,7 +122,9 @@ impl Ticks {
 
     /// [`Ticks::new`] for a range already scaled by `unit` and `factor`.
     pub fn scaled(lo: f64, hi: f64, unit: f64, factor: f64, angle: bool, widen: bool, pad: f64) -> Ticks {
-        let (lo, hi) = (lo - pad * (hi - lo), hi + pad * (hi - lo));
+        // The pad never crosses zero: data that are all non-negative (an amplitude, a length
+        // from a datum) get an axis from 0, not one reaching below it for the pad alone.
+        let (lo, hi) = padded(lo, hi, pad);
         let (lo, hi) = if hi > lo {
             (lo, hi)
         } else {
@@ -132,9 +141,23 @@ impl Ticks {
         };
         // Integer multiples of the step, with a tolerance of rounding for ends on a tick.
         let slack = 1e-9;
-        let (lo, hi) =
-            if widen { ((lo / step + slack).floor() * step, (hi / step - slack).ceil() * step) } else { (lo, hi) };
+        let (lo, hi) = if widen {
+            ((lo / step + slack).floor() * step, (hi / step - slack).ceil() * step)
+        } else {
+            // An end a little short of a tick is taken to it (a sweep over [0, 2 pi) ends a
+            // sample before the turn: the axis still ends on the 360 tick): within a tenth of
+            // the range for angles (a turn sampled at 12 points or more), a twentieth otherwise.
+            let near = (hi - lo) * if angle { 0.1 } else { 0.05 };
+            let (below, above) = ((lo / step + slack).floor() * step, (hi / step - slack).ceil() * step);
+            (if lo - below <= near { below } else { lo }, if above - hi <= near { above } else { hi })
+        };
         Ticks { unit, factor, lo, hi, step, mant, exp, values: Ticks::multiples(lo, hi, step) }
+    }
+
+    /// Ticks at every whole number in `[lo, hi]` (unscaled, not an angle): abscissae such as
+    /// the orders of harmonics, each labelled.
+    pub fn whole(lo: f64, hi: f64) -> Ticks {
+        Ticks { unit: 1.0, factor: 1.0, lo, hi, step: 1.0, mant: 1, exp: 0, values: Ticks::multiples(lo, hi, 1.0) }
     }
 
     /// Ticks over the scaled range `[lo, hi]` at the scale and step of `other`.
@@ -196,6 +219,21 @@ mod tests {
     }
 
     #[test]
+    fn a_sampled_turn_ends_on_the_360_tick_and_padding_stays_above_zero() {
+        // 72 samples over [0, 2 pi): the last is at 355 degrees.
+        let t = Ticks::new(0.0, 355.0, 1.0, true, false, 0.0);
+        assert_eq!(labels(&t), ["0", "90", "180", "270", "360"]);
+        // 300 degrees is no full turn: the axis ends at the data.
+        let t = Ticks::new(0.0, 300.0, 1.0, true, false, 0.0);
+        assert_eq!(t.hi * t.unit, 300.0);
+        // Amplitudes from 12 to 5800 with the value axes' 3 % pad: the axis starts at 0.
+        let t = Ticks::new(12.0, 5800.0, 1.0, false, true, 0.03);
+        assert_eq!(labels(&t)[0], "0");
+        let t = Ticks::new(-5800.0, -12.0, 1.0, false, true, 0.03);
+        assert_eq!(labels(&t).last().map(String::as_str), Some("0"));
+    }
+
+    #[test]
     fn linear_steps_are_one_two_or_five_times_a_power_of_ten() {
         let t = Ticks::new(0.013, 0.092, 1.0, false, true, 0.0);
         assert_eq!(labels(&t), ["0.00", "0.02", "0.04", "0.06", "0.08", "0.10"]);
@@ -234,7 +272,7 @@ mod tests {
         assert_eq!(labels(&t)[0], "-1.5e308");
         let t = Ticks::new(0.0, 1e-320, 1.0, false, false, 0.0);
         consistent(&t);
-        assert_eq!(labels(&t)[1], "2e-321", "{:?}", labels(&t));
+        assert_eq!(labels(&t)[1], "0.2e-320", "{:?}", labels(&t));
         consistent(&Ticks::new(f64::MIN, f64::MAX, 1.0, false, true, 0.03));
         consistent(&Ticks::new(5e-324, 5e-324, 1.0, false, true, 0.03));
         consistent(&Ticks::new(f64::MAX, f64::MAX, 1.0, false, true, 0.0));

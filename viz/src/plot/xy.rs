@@ -29,6 +29,8 @@ pub fn xy_chart_svg(
     series: &[Series],
     marks: &[(f64, f64)],
 ) -> Result<String, PlotError> {
+    x.check()?;
+    y.check()?;
     if x.kind != y.kind {
         return Err(PlotError::UnequalAxes { x: x.kind.clone(), y: y.kind.clone() });
     }
@@ -66,7 +68,10 @@ pub fn xy_chart_svg(
     let h = ((y1 - y0) / scale * 1.08).clamp(MAX_H / 2.0, MAX_H);
     let (cx, cy) = (0.5 * (x0 + x1), 0.5 * (y0 + y1));
     let (hx, hy) = (scale * w / 2.0, scale * h / 2.0);
-    let xt = Ticks::scaled(cx - hx, cx + hx, unit, k.factor(), k.is_angle(), false, 0.0);
+    // The step from the range; the range itself kept as is (not taken to a tick), so that both
+    // axes keep the one scale.
+    let step = Ticks::scaled(cx - hx, cx + hx, unit, k.factor(), k.is_angle(), false, 0.0);
+    let xt = Ticks::with_step(cx - hx, cx + hx, &step);
     // The same step on both axes: equal scales read best with equal grid squares.
     let yt = Ticks::with_step(cy - hy, cy + hy, &xt);
     let top = if title.is_empty() { 16.0 } else { 48.0 };

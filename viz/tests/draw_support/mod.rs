@@ -67,10 +67,13 @@ pub fn render(svg: &str) -> (Vec<u8>, u32, u32) {
     (pixmap.data().to_vec(), size.width(), size.height())
 }
 
-/// Darkness of pixel `(i, j)`: 0 white, 255 black (mean of the channels).
+/// Darkness of pixel `(i, j)` over white paper: 0 white, 255 black (mean of the channels; the
+/// pixels are premultiplied, so a transparent one, beyond the picture's last whole pixel, is
+/// white).
 pub fn ink(rgba: &[u8], width: u32, i: u32, j: u32) -> f64 {
     let k = 4 * (j * width + i) as usize;
-    255.0 - (rgba[k] as f64 + rgba[k + 1] as f64 + rgba[k + 2] as f64) / 3.0
+    let paper = 255.0 - rgba[k + 3] as f64;
+    255.0 - (rgba[k] as f64 + rgba[k + 1] as f64 + rgba[k + 2] as f64) / 3.0 - paper
 }
 
 /// The darkness-weighted centre of all ink, in pixel coordinates (pixel `(i, j)` covers

@@ -1,0 +1,104 @@
+//! Bar charts: values at discrete abscissae (the orders of a Fourier series, cases of a
+//! study) drawn as bars from zero, grouped when a panel holds several series.
+
+use super::frame::{Frame, LEFT, TITLE_FONT, WIDTH};
+use super::series::bounds;
+use super::svg::Svg;
+use super::ticks::Ticks;
+use super::{Axis, Panel, PlotError, legend};
+
+/// Height of one panel's plot area and the space between panels (x tick labels).
+const PANEL_H: f64 = 220.0;
+const GAP: f64 = 44.0;
+
+/// Most abscissae ticked one by one when they are whole numbers (orders 1 to 24).
+const MAX_WHOLE_TICKS: usize = 24;
+
+/// Part of the space between neighbouring abscissae that a group of bars fills.
+const GROUP: f64 = 0.8;
+
+/// Panels of bars over a common x axis, as an SVG document: each series of a panel is one bar
+/// per point `(x, y)`, from 0 to `y`, the series of a panel side by side at each `x`. Every
+/// value axis includes 0 (bars start there: an amplitude's axis runs from 0, never below it),
+/// and whole-number abscissae such as harmonic orders are each ticked.
+///
+/// As with [`panels_svg`](super::panels_svg), a panel's axis holds one kind: amplitudes in N
+/// and in N m go on two panels, and a series of another kind than its panel is
+/// [`PlotError::MixedKinds`].
+///
+/// ```
+/// use kinloop_viz::plot::{Axis, Kind, Panel, Series, bar_chart_svg};
+/// let orders = |a: &[f64]| a.iter().enumerate().map(|(k, &v)| ((k + 1) as f64, v)).collect();
+/// let svg = bar_chart_svg("Harmonics", &Axis::new("order", Kind::Dimensionless), &[
+///     Panel::new(Axis::new("force amplitude", Kind::force("N")))
+///         .with(Series::new("Fx", Kind::force("N"), orders(&[120.0, 30.0, 4.0]))),
+///     Panel::new(Axis::new("moment amplitude", Kind::torque("N m")))
+///         .with(Series::new("M", Kind::torque("N m"), orders(&[8.0, 2.0, 0.5]))),
+/// ])?;
+/// assert_eq!(svg.matches(r#"class="bar""#).count(), 6);
+/// # Ok::<(), kinloop_viz::plot::PlotError>(())
+/// ```
+pub fn bar_chart_svg(title: &str, x: &Axis, panels: &[Panel]) -> Result<String, PlotError> {
+    x.check()?;
+    for p in panels {
+        p.check()?;
+    }
+    let mut xs: Vec<f64> = panels
+        .iter()
+        .flat_map(|p| p.series.iter().flat_map(|s| s.points.iter()))
+        .filter(|(x, y)| x.is_finite() && y.is_finite())
+        .map(|&(x, _)| x)
+        .collect();
+    xs.sort_by(f64::total_cmp);
+    xs.dedup();
+    if xs.is_empty() {
+        return Err(PlotError::Empty { what: "the figure".into() });
+    }
+    // The narrowest space between neighbouring abscissae sets the width of a group of bars;
+    // a lone abscissa gets a unit's (or its own magnitude's) room.
+    let spacing = xs.windows(2).map(|w| w[1] - w[0]).filter(|d| *d > 0.0).fold(f64::INFINITY, f64::min);
+    let spacing = if spacing.is_finite() { spacing } else { xs[0].abs().max(1.0) };
+    let (lo, hi) = (xs[0] - 0.5 * spacing, xs[xs.len() - 1] + 0.5 * spacing);
+    let whole = xs.len() <= MAX_WHOLE_TICKS && xs.iter().all(|v| v.fract() == 0.0 && v.abs() < 1e15);
+    let xt = if whole && !x.kind.is_angle() {
+        Ticks::whole(lo, hi)
+    } else {
+        Ticks::new(lo, hi, x.kind.factor(), x.kind.is_angle(), false, 0.0)
+    };
+    let legend_w = legend::width(panels.iter().flat_map(|p| p.series.iter().map(|s| s.label.as_str())));
+    let top = if title.is_empty() { 16.0 } else { 48.0 };
+    let mut svg = Svg::new(WIDTH, top + panels.len() as f64 * (PANEL_H + GAP) + 20.0);
+    if !title.is_empty() {
+        svg.text("title", WIDTH / 2.0, 30.0, TITLE_FONT, "middle", 0.0, title);
+    }
+    let plot_w = WIDTH - LEFT - 24.0 - if legend_w > 0.0 { legend_w + 16.0 } else { 0.0 };
+    for (k, p) in panels.iter().enumerate() {
+        let what = || PlotError::Empty { what: format!("the panel `{}`", p.axis.name) };
+        let (_, _, y0, y1) = bounds(p.series.iter().flat_map(|s| s.points.iter())).ok_or_else(what)?;
+        let frame = Frame {
+            x: LEFT,
+            y: top + k as f64 * (PANEL_H + GAP),
+            w: plot_w,
+            h: PANEL_H,
+            xt: xt.clone(),
+            yt: Ticks::new(y0.min(0.0), y1.max(0.0), p.axis.kind.factor(), p.axis.kind.is_angle(), true, 0.03),
+        };
+        svg.open("panel");
+        frame.draw(&mut svg, (k + 1 == panels.len()).then_some(x), &p.axis);
+        let n = p.series.len() as f64;
+        // Pixel width of one bar: the group fills `GROUP` of the narrowest spacing.
+        let bar = (frame.px((spacing, 0.0)).0 - frame.px((0.0, 0.0)).0).abs() * GROUP / n;
+        for (c, s) in p.series.iter().enumerate() {
+            for &(bx, by) in s.points.iter().filter(|(x, y)| x.is_finite() && y.is_finite()) {
+                let (px, py) = frame.px((bx, by));
+                let (_, base) = frame.px((bx, 0.0));
+                let left = px + (c as f64 - 0.5 * (n - 1.0)) * bar - 0.5 * bar;
+                svg.bar(&s.label, (left, py.min(base)), (bar, (py - base).abs()), legend::color(c));
+            }
+        }
+        let labels: Vec<&str> = p.series.iter().map(|s| s.label.as_str()).collect();
+        legend::draw_with(&mut svg, (frame.right() + 16.0, frame.y), &labels, legend_w, legend::Swatch::Square);
+        svg.close();
+    }
+    Ok(svg.finish())
+}
