@@ -1,7 +1,7 @@
 //! Small charts of a readout against the input, with a cursor the page moves with the slider.
 
-use super::readouts::Channel;
 use super::page::escape;
+use super::readouts::Channel;
 use std::fmt::Write;
 
 /// Plot area insets in pixels: left (tick labels and the y title), right, top, bottom (tick
@@ -56,7 +56,8 @@ pub(crate) fn ticks(lo: f64, hi: f64, degrees: bool) -> Ticks {
         .map(|k| {
             let v = k as f64 * s;
             let label = format!("{:.*}", digits, v + 0.0);
-            let label = if label.trim_start_matches(['-', '0', '.']).is_empty() { label.replace('-', "") } else { label };
+            let label =
+                if label.trim_start_matches(['-', '0', '.']).is_empty() { label.replace('-', "") } else { label };
             (v, label)
         })
         .collect();
@@ -198,6 +199,9 @@ mod tests {
         let t = ticks(2.0, 2.0, false);
         assert!(t.lo < 2.0 && t.hi > 2.0);
         let t = ticks(0.0, 12.5, false);
-        assert_eq!(t.ticks.iter().map(|(_, l)| l.as_str()).collect::<Vec<_>>(), ["0.0", "2.5", "5.0", "7.5", "10.0", "12.5"]);
+        assert_eq!(
+            t.ticks.iter().map(|(_, l)| l.as_str()).collect::<Vec<_>>(),
+            ["0.0", "2.5", "5.0", "7.5", "10.0", "12.5"]
+        );
     }
 }

@@ -40,11 +40,7 @@ impl Readout {
 
     /// A value computed from the state, called `label`, of quantity `kind` (given in the
     /// library's units: radians for an angle).
-    pub fn expr(
-        label: &str,
-        kind: Kind,
-        f: impl Fn(&crate::draw::StateRef) -> f64 + Send + Sync + 'static,
-    ) -> Readout {
+    pub fn expr(label: &str, kind: Kind, f: impl Fn(&crate::draw::StateRef) -> f64 + Send + Sync + 'static) -> Readout {
         Readout { value: Value::Expr(Scalar::expr(f)), label: Some(label.to_string()), kind: Some(kind), chart: true }
     }
 

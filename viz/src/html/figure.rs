@@ -75,8 +75,15 @@ fn items(out: &mut String, style: &Style, slots: &[Slot], f: &[i64], pen: &Pen, 
         let (x, y) = (t(f[o]), t(f[o + 1]));
         match slot {
             Slot::Link { n, closed } => {
-                let pts: Vec<String> = (0..*n).map(|j| format!("{},{}", t(f[o + 2 * j]), t(f[o + 2 * j + 1]))).collect();
-                let (tag, fill) = if *closed && !pen.ghost { ("polygon", pen.fill) } else if *closed { ("polygon", "none") } else { ("polyline", "none") };
+                let pts: Vec<String> =
+                    (0..*n).map(|j| format!("{},{}", t(f[o + 2 * j]), t(f[o + 2 * j + 1]))).collect();
+                let (tag, fill) = if *closed && !pen.ghost {
+                    ("polygon", pen.fill)
+                } else if *closed {
+                    ("polygon", "none")
+                } else {
+                    ("polyline", "none")
+                };
                 let _ = write!(
                     out,
                     r#"<{tag}{} points="{}" fill="{fill}" fill-opacity="0.7" stroke="{}" stroke-width="{}" stroke-linecap="round" stroke-linejoin="round"{dash}/>"#,
@@ -177,9 +184,7 @@ pub(crate) fn figure(
     let _ = write!(
         s,
         r#"<svg xmlns="http://www.w3.org/2000/svg" id="kl-drawing" width="{w}" height="{h}" viewBox="0 0 {w} {h}" data-scale="{}" data-origin="{} {}" data-frame="{first}"><rect width="{w}" height="{h}" fill="white"/>"#,
-        fr.view.scale,
-        origin[0],
-        origin[1]
+        fr.view.scale, origin[0], origin[1]
     );
     for (k, path) in fr.paths.iter().enumerate() {
         let pts: Vec<String> = path.iter().map(|p| format!("{},{}", t(p[0]), t(p[1]))).collect();

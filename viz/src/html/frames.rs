@@ -188,9 +188,8 @@ impl Frames {
         let path = path(motion);
         let poses = spread(&path, max_frames);
         let frames = poses.iter().map(|&i| e.frame(d, i)).collect::<Result<Vec<_>, _>>()?;
-        let events = (0..motion.events.len())
-            .map(|j| e.frame(d, motion.poses.len() + j))
-            .collect::<Result<Vec<_>, _>>()?;
+        let events =
+            (0..motion.events.len()).map(|j| e.frame(d, motion.poses.len() + j)).collect::<Result<Vec<_>, _>>()?;
         let mut paths = vec![Vec::<[i64; 2]>::new(); d.traces.len()];
         for &i in &path {
             for (t, p) in d.traces.iter().enumerate() {
@@ -222,8 +221,7 @@ pub(crate) fn event_positions(motion: &Motion, poses: &[usize]) -> Vec<f64> {
                 } else {
                     0.0
                 };
-                let dist: f64 =
-                    ev.pose.x.iter().zip(a).zip(&d).map(|((e, a), d)| (e - a - s * d).powi(2)).sum::<f64>();
+                let dist: f64 = ev.pose.x.iter().zip(a).zip(&d).map(|((e, a), d)| (e - a - s * d).powi(2)).sum::<f64>();
                 if dist < best.0 {
                     best = (dist, k as f64 + s);
                 }

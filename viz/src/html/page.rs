@@ -79,7 +79,12 @@ fn data(p: &Parts) -> Result<String, HtmlError> {
         if k > 0 {
             s.push(',');
         }
-        let _ = write!(s, r#"{{"dec":{},"v":[{}]}}"#, c.decimals, c.values.iter().map(|v| c.text(*v)).collect::<Vec<_>>().join(","));
+        let _ = write!(
+            s,
+            r#"{{"dec":{},"v":[{}]}}"#,
+            c.decimals,
+            c.values.iter().map(|v| c.text(*v)).collect::<Vec<_>>().join(",")
+        );
     }
     s.push_str("],\"charts\":[");
     for (k, (ch, _, map)) in p.charts.iter().enumerate() {

@@ -121,7 +121,8 @@ where
         })
         .collect();
     list.extend(config.readouts.iter().filter(|r| names_input(r).is_none()).cloned());
-    let all: Vec<usize> = poses.iter().copied().chain(motion.poses.len()..motion.poses.len() + motion.events.len()).collect();
+    let all: Vec<usize> =
+        poses.iter().copied().chain(motion.poses.len()..motion.poses.len() + motion.events.len()).collect();
     let mut out = Vec::with_capacity(list.len());
     for r in list {
         let (label, kind, get): (String, Kind, Box<dyn Fn(usize) -> f64>) = match &r.value {
