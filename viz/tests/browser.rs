@@ -39,9 +39,7 @@ fn chromium() -> Option<PathBuf> {
         Some(p) => vec![PathBuf::from(p)],
         None => std::env::var_os("PATH")
             .map(|path| {
-                std::env::split_paths(&path)
-                    .flat_map(|d| ["chromium", "chromium-browser"].map(|n| d.join(n)))
-                    .collect()
+                std::env::split_paths(&path).flat_map(|d| ["chromium", "chromium-browser"].map(|n| d.join(n))).collect()
             })
             .unwrap_or_default(),
     };
@@ -133,7 +131,10 @@ fn probe_lines(dom: &str) -> Vec<Line> {
                 let (k, v) = rest[i].split_once('=').expect("key=value");
                 if k == "text" {
                     // The readout's text runs to the end of the line.
-                    fields.push((k.to_string(), std::iter::once(v).chain(rest[i + 1..].iter().copied()).collect::<Vec<_>>().join(" ")));
+                    fields.push((
+                        k.to_string(),
+                        std::iter::once(v).chain(rest[i + 1..].iter().copied()).collect::<Vec<_>>().join(" "),
+                    ));
                     break;
                 }
                 fields.push((k.to_string(), v.to_string()));
@@ -173,6 +174,9 @@ fn svgs(page: &str) -> Vec<String> {
     out
 }
 
+/// An axis's ticks: (value, pixel).
+type Ticks = Vec<(f64, f64)>;
+
 /// What a page states about itself, read from its HTML (not from the browser).
 struct Page {
     /// Pixels per unit and the pixel of the origin.
@@ -181,7 +185,7 @@ struct Page {
     /// Readout labels and units, by channel.
     readouts: Vec<(String, String)>,
     /// Each chart: its y title, and its x and y ticks as (value, pixel).
-    charts: Vec<(String, Vec<(f64, f64)>, Vec<(f64, f64)>)>,
+    charts: Vec<(String, Ticks, Ticks)>,
 }
 
 fn attr<'a>(node: &roxmltree::Node<'a, 'a>, name: &str) -> &'a str {
@@ -232,7 +236,9 @@ fn read_page(page: &str) -> Page {
             }
             let xs = text("kl-tick-x").map(|(l, x, _)| (l.parse().expect("tick value"), x)).collect();
             let ys = text("kl-tick-y")
-                .map(|(l, _, n)| (l.parse().expect("tick value"), n.attribute("y").unwrap().parse::<f64>().unwrap() - 4.0))
+                .map(|(l, _, n)| {
+                    (l.parse().expect("tick value"), n.attribute("y").unwrap().parse::<f64>().unwrap() - 4.0)
+                })
                 .collect();
             (title, xs, ys)
         })
@@ -285,13 +291,20 @@ fn check_in_browser(bin: &Path, page_path: &Path, name: &str, frames: &[usize], 
             .collect();
         for (n, p) in &e.joints {
             let near = |q: &[f64; 2]| (q[0] - p[0]).abs() <= tol && (q[1] - p[1]).abs() <= tol;
-            let found = if *n == "-" { drawn.iter().any(|(_, q)| near(q)) } else { drawn.iter().any(|(m, q)| m == n && near(q)) };
+            let found = if *n == "-" {
+                drawn.iter().any(|(_, q)| near(q))
+            } else {
+                drawn.iter().any(|(m, q)| m == n && near(q))
+            };
             assert!(found, "{name} frame {f}: joint {n} at {p:?} not drawn (drawn: {drawn:?})");
         }
         for (n, p) in &e.dots {
             let dot = at.iter().find(|l| l.what == "dot" && l.get("name") == *n).expect("the traced dot");
             let q = page.world([dot.num("x"), dot.num("y")]);
-            assert!((q[0] - p[0]).abs() <= tol && (q[1] - p[1]).abs() <= tol, "{name} frame {f}: dot {n} {q:?} vs {p:?}");
+            assert!(
+                (q[0] - p[0]).abs() <= tol && (q[1] - p[1]).abs() <= tol,
+                "{name} frame {f}: dot {n} {q:?} vs {p:?}"
+            );
         }
         for (label, v) in &e.values {
             let ch = page.channel(label);
@@ -300,17 +313,26 @@ fn check_in_browser(bin: &Path, page_path: &Path, name: &str, frames: &[usize], 
             let decimals = text.split_once('.').map_or(0, |(_, d)| d.len());
             let shown: f64 = text.parse().expect("a number");
             let half = 0.5 * 10f64.powi(-(decimals as i32));
-            assert!((shown - v).abs() <= half * (1.0 + 1e-9) + 1e-12, "{name} frame {f}: {label} shows {text}, exact {v}");
+            assert!(
+                (shown - v).abs() <= half * (1.0 + 1e-9) + 1e-12,
+                "{name} frame {f}: {label} shows {text}, exact {v}"
+            );
             if page.readouts[ch].1 == "°" {
                 assert_eq!(decimals, 2, "{name}: angles to a hundredth of a degree");
             }
             // The chart of this readout (if any): its cursor at the input and at the value,
             // on the chart's own tick labels, within the 0.1 px rounding and the value's.
-            if let Some((k, (_, xs, ys))) = page.charts.iter().enumerate().find(|(_, c)| c.0.starts_with(&format!("{label} ["))) {
+            if let Some((k, (_, xs, ys))) =
+                page.charts.iter().enumerate().find(|(_, c)| c.0.starts_with(&format!("{label} [")))
+            {
                 let cursor = at.iter().find(|l| l.what == "cursor" && l.get("chart") == k.to_string()).expect("cursor");
                 let input = e.values[0].1;
                 let x_px = on_ticks(xs, input);
-                assert!((cursor.num("x") - x_px).abs() <= 0.1, "{name} frame {f}: chart {k} cursor x {} vs {x_px}", cursor.num("x"));
+                assert!(
+                    (cursor.num("x") - x_px).abs() <= 0.1,
+                    "{name} frame {f}: chart {k} cursor x {} vs {x_px}",
+                    cursor.num("x")
+                );
                 let (y_px, y_slack) = (on_ticks(ys, *v), (on_ticks(ys, v + half) - on_ticks(ys, *v)).abs());
                 assert!(
                     (cursor.num("y") - y_px).abs() <= 0.1 + y_slack,
@@ -337,7 +359,11 @@ fn check_in_browser(bin: &Path, page_path: &Path, name: &str, frames: &[usize], 
     // A screenshot for a person to look at (never committed).
     let shot = Path::new(env!("CARGO_TARGET_TMPDIR")).join("browser").join(format!("{name}.png"));
     std::fs::create_dir_all(shot.parent().unwrap()).unwrap();
-    run_chromium(bin, &url(page_path, &format!("i={}", frames[frames.len() / 2])), &[&format!("--screenshot={}", shot.display())]);
+    run_chromium(
+        bin,
+        &url(page_path, &format!("i={}", frames[frames.len() / 2])),
+        &[&format!("--screenshot={}", shot.display())],
+    );
     assert!(std::fs::metadata(&shot).is_ok_and(|m| m.len() > 1000), "{name}: a screenshot at {}", shot.display());
     eprintln!("{name}: screenshot {}", shot.display());
 }
@@ -350,24 +376,30 @@ fn gallery_four_bar_page_draws_the_closed_form_positions() {
     let Some(bin) = chromium() else { return };
     let m = FourBar::default();
     let phi = |i: usize| i as f64 * TAU / 360.0;
-    check_in_browser(&bin, &root().join("docs/animations/four_bar_coupler.html"), "four_bar_coupler", &[0, 45, 137, 250, 360], |i| {
-        let [b, c, p] = four_bar_joints(&m, phi(i));
-        let gamma = (c[1]).atan2(c[0] - m.d);
-        let beta = (c[1] - b[1]).atan2(c[0] - b[0]);
-        // Angles as the readouts show them: continuous from the declared guesses (gamma near
-        // 1.5 rad and beta near 0.5 rad over the whole turn: no wrap on this branch).
-        Expected {
-            joints: vec![("-", [0.0, 0.0]), ("-", [m.d, 0.0]), ("b", b), ("c", c), ("p", p)],
-            dots: vec![("p", p)],
-            values: vec![
-                ("phi", phi(i).to_degrees()),
-                ("gamma", gamma.to_degrees()),
-                ("p.y", p[1]),
-                ("beta", beta.to_degrees()),
-                ("p.x", p[0]),
-            ],
-        }
-    });
+    check_in_browser(
+        &bin,
+        &root().join("docs/animations/four_bar_coupler.html"),
+        "four_bar_coupler",
+        &[0, 45, 137, 250, 360],
+        |i| {
+            let [b, c, p] = four_bar_joints(&m, phi(i));
+            let gamma = (c[1]).atan2(c[0] - m.d);
+            let beta = (c[1] - b[1]).atan2(c[0] - b[0]);
+            // Angles as the readouts show them: continuous from the declared guesses (gamma near
+            // 1.5 rad and beta near 0.5 rad over the whole turn: no wrap on this branch).
+            Expected {
+                joints: vec![("-", [0.0, 0.0]), ("-", [m.d, 0.0]), ("b", b), ("c", c), ("p", p)],
+                dots: vec![("p", p)],
+                values: vec![
+                    ("phi", phi(i).to_degrees()),
+                    ("gamma", gamma.to_degrees()),
+                    ("p.y", p[1]),
+                    ("beta", beta.to_degrees()),
+                    ("p.x", p[0]),
+                ],
+            }
+        },
+    );
 }
 
 /// The gallery's rhombic drive: crank arms AB and AD about A, pistons C (y = 0) and F
@@ -378,32 +410,38 @@ fn gallery_rhombic_drive_page_draws_the_closed_form_positions() {
     let Some(bin) = chromium() else { return };
     let m: RhombicDrive = GALLERY_DRIVE;
     let phi = |i: usize| i as f64 * TAU / 360.0;
-    check_in_browser(&bin, &root().join("docs/animations/rhombic_drive.html"), "rhombic_drive", &[0, 90, 200, 333], |i| {
-        let a = [0.0, m.e_p];
-        let b = [a[0] + m.r_p * phi(i).cos(), a[1] + m.r_p * phi(i).sin()];
-        let d = [a[0] + m.r_b * (phi(i) + m.gamma).cos(), a[1] + m.r_b * (phi(i) + m.gamma).sin()];
-        // B = C + l_p @ phi2 with cos phi2 > 0; D = F + l_b @ phi4 with cos phi4 < 0.
-        let (s2, c2) = (b[1] / m.l_p, (1.0 - (b[1] / m.l_p).powi(2)).sqrt());
-        let c = [b[0] - m.l_p * c2, 0.0];
-        let (s4, c4) = ((d[1] - m.de) / m.l_b, -(1.0 - ((d[1] - m.de) / m.l_b).powi(2)).sqrt());
-        let f = [d[0] - m.l_b * c4, m.de];
-        let cs2 = [c[0] + m.l_cs2 * c2, c[1] + m.l_cs2 * s2];
-        let fs4 = [f[0] + m.l_fs4 * c4, f[1] + m.l_fs4 * s4];
-        let phi4 = s4.atan2(c4);
-        Expected {
-            joints: vec![("-", a), ("-", b), ("-", c), ("-", d), ("-", f)],
-            dots: vec![("s2", cs2), ("s4", fs4)],
-            values: vec![
-                ("phi1", phi(i).to_degrees()),
-                ("x_c", c[0]),
-                ("x_f", f[0]),
-                ("phi2", s2.atan2(c2).to_degrees()),
-                // phi4 continues from its guess pi: in (0, 2 pi) on this branch.
-                ("phi4", phi4.rem_euclid(TAU).to_degrees()),
-                ("gap", f[0] - c[0]),
-            ],
-        }
-    });
+    check_in_browser(
+        &bin,
+        &root().join("docs/animations/rhombic_drive.html"),
+        "rhombic_drive",
+        &[0, 90, 200, 333],
+        |i| {
+            let a = [0.0, m.e_p];
+            let b = [a[0] + m.r_p * phi(i).cos(), a[1] + m.r_p * phi(i).sin()];
+            let d = [a[0] + m.r_b * (phi(i) + m.gamma).cos(), a[1] + m.r_b * (phi(i) + m.gamma).sin()];
+            // B = C + l_p @ phi2 with cos phi2 > 0; D = F + l_b @ phi4 with cos phi4 < 0.
+            let (s2, c2) = (b[1] / m.l_p, (1.0 - (b[1] / m.l_p).powi(2)).sqrt());
+            let c = [b[0] - m.l_p * c2, 0.0];
+            let (s4, c4) = ((d[1] - m.de) / m.l_b, -(1.0 - ((d[1] - m.de) / m.l_b).powi(2)).sqrt());
+            let f = [d[0] - m.l_b * c4, m.de];
+            let cs2 = [c[0] + m.l_cs2 * c2, c[1] + m.l_cs2 * s2];
+            let fs4 = [f[0] + m.l_fs4 * c4, f[1] + m.l_fs4 * s4];
+            let phi4 = s4.atan2(c4);
+            Expected {
+                joints: vec![("-", a), ("-", b), ("-", c), ("-", d), ("-", f)],
+                dots: vec![("s2", cs2), ("s4", fs4)],
+                values: vec![
+                    ("phi1", phi(i).to_degrees()),
+                    ("x_c", c[0]),
+                    ("x_f", f[0]),
+                    ("phi2", s2.atan2(c2).to_degrees()),
+                    // phi4 continues from its guess pi: in (0, 2 pi) on this branch.
+                    ("phi4", phi4.rem_euclid(TAU).to_degrees()),
+                    ("gap", f[0] - c[0]),
+                ],
+            }
+        },
+    );
 }
 
 kinloop::mechanism! {
@@ -432,7 +470,8 @@ fn rocking_page(m: &Rocking) -> (String, Motion) {
         .pivot(Pt::fixed(m.d, 0.0))
         .link([Pt::fixed(0.0, 0.0), Pt::point("b"), Pt::point("c"), Pt::fixed(m.d, 0.0)])
         .trace("c");
-    let config = HtmlConfig::new("Rocking four-bar").show(Rocking::COL.gamma).with_back_and_forth(true).with_length_unit("mm");
+    let config =
+        HtmlConfig::new("Rocking four-bar").show(Rocking::COL.gamma).with_back_and_forth(true).with_length_unit("mm");
     (html(m, &drawing, &motion, &config).unwrap(), motion)
 }
 

@@ -216,10 +216,10 @@ pub(crate) fn figure(
     }
     let f = &fr.frames[first];
     items(&mut s, style, &fr.slots, f, &Pen { ink: &style.ink, fill: &style.fill, ghost: false }, Some(joints));
-    for k in 0..fr.paths.len() {
+    for (k, name) in traces.iter().enumerate() {
         let o = fr.traces_at + 2 * k;
         let colour = style.traces.get(k % style.traces.len().max(1)).map_or("#d95f02", String::as_str);
-        let name = traces[k].as_ref().map_or(String::new(), |n| format!(r#" data-name="{}""#, escape(n)));
+        let name = name.as_ref().map_or(String::new(), |n| format!(r#" data-name="{}""#, escape(n)));
         let _ = write!(
             s,
             r#"<circle class="kl-dot" data-trace="{k}"{name} cx="{}" cy="{}" r="2.5" fill="{colour}" stroke="{colour}" stroke-width="1.5"/>"#,

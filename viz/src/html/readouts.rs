@@ -81,7 +81,7 @@ fn decimals(kind: &Kind, max: f64) -> usize {
     if kind.is_angle() {
         return 2;
     }
-    if !(max > 0.0) {
+    if max <= 0.0 || !max.is_finite() {
         return 4;
     }
     (4 - max.log10().floor() as i64).clamp(0, 12) as usize
