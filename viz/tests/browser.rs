@@ -267,6 +267,9 @@ fn on_ticks(ticks: &[(f64, f64)], v: f64) -> f64 {
 /// A mechanism's expected state at a frame: points (name or `-` for unnamed joints that must
 /// be among the drawn ones) and readout values (label, value in shown units).
 struct Expected {
+    /// Where the charts' cursors stand on their x axis (the input in degrees; the fraction
+    /// of the path for several inputs).
+    chart_x: f64,
     joints: Vec<(&'static str, [f64; 2])>,
     dots: Vec<(&'static str, [f64; 2])>,
     values: Vec<(&'static str, f64)>,
@@ -326,8 +329,7 @@ fn check_in_browser(bin: &Path, page_path: &Path, name: &str, frames: &[usize], 
                 page.charts.iter().enumerate().find(|(_, c)| c.0.starts_with(&format!("{label} [")))
             {
                 let cursor = at.iter().find(|l| l.what == "cursor" && l.get("chart") == k.to_string()).expect("cursor");
-                let input = e.values[0].1;
-                let x_px = on_ticks(xs, input);
+                let x_px = on_ticks(xs, e.chart_x);
                 assert!(
                     (cursor.num("x") - x_px).abs() <= 0.1,
                     "{name} frame {f}: chart {k} cursor x {} vs {x_px}",
@@ -388,6 +390,7 @@ fn gallery_four_bar_page_draws_the_closed_form_positions() {
             // Angles as the readouts show them: continuous from the declared guesses (gamma near
             // 1.5 rad and beta near 0.5 rad over the whole turn: no wrap on this branch).
             Expected {
+                chart_x: phi(i).to_degrees(),
                 joints: vec![("-", [0.0, 0.0]), ("-", [m.d, 0.0]), ("b", b), ("c", c), ("p", p)],
                 dots: vec![("p", p)],
                 values: vec![
@@ -428,6 +431,7 @@ fn gallery_rhombic_drive_page_draws_the_closed_form_positions() {
             let fs4 = [f[0] + m.l_fs4 * c4, f[1] + m.l_fs4 * s4];
             let phi4 = s4.atan2(c4);
             Expected {
+                chart_x: phi(i).to_degrees(),
                 joints: vec![("-", a), ("-", b), ("-", c), ("-", d), ("-", f)],
                 dots: vec![("s2", cs2), ("s4", fs4)],
                 values: vec![
@@ -442,6 +446,68 @@ fn gallery_rhombic_drive_page_draws_the_closed_form_positions() {
             }
         },
     );
+}
+
+/// Where the circles (`a`, `ra`) and (`b`, `rb`) meet, to the left of a->b (a tangency, at
+/// a limit position, counts as meeting).
+fn meet_left(a: [f64; 2], ra: f64, b: [f64; 2], rb: f64) -> [f64; 2] {
+    let v = [b[0] - a[0], b[1] - a[1]];
+    let dist = v[0].hypot(v[1]);
+    let along = (ra * ra - rb * rb + dist * dist) / (2.0 * dist);
+    let h = (ra * ra - along * along).max(0.0).sqrt();
+    [a[0] + (along * v[0] - h * v[1]) / dist, a[1] + (along * v[1] + h * v[0]) / dist]
+}
+
+kinloop::mechanism! {
+    /// A five-bar: two cranks (inputs) joined by two links meeting at `p`.
+    pub struct FiveBar {
+        params a = 1.0, b = 2.5, c = 2.5, d = 1.0, e = 2.0;
+        inputs th1, th2;
+        unknowns al = 1.2, be = 2.0;
+        loop l: a @ th1 + b @ al == (e, 0) + d @ th2 + c @ be;
+        point p = a @ th1 + b @ al;
+    }
+}
+
+/// Several inputs: the slider moves along the straight path in input space (the first crank
+/// half a turn, the second a quarter), every input has its readout and the charts are against
+/// the fraction of the path; the joint P is where the links' circles meet.
+#[test]
+fn several_inputs_move_along_the_path() {
+    let m = FiveBar::default();
+    let (from, to) = ([0.0, 0.5 * PI], [PI, PI]);
+    let samples = 61;
+    let motion = Motion::record(&m, m.sweep(from, to, samples, &m.guess(from)).unwrap()).unwrap();
+    let (a, c) = (
+        |s: &kinloop_viz::draw::StateRef| [s.x[0].cos(), s.x[0].sin()],
+        |s: &kinloop_viz::draw::StateRef| [2.0 + s.x[1].cos(), s.x[1].sin()],
+    );
+    let drawing = Drawing::new()
+        .pivot(Pt::fixed(0.0, 0.0))
+        .pivot(Pt::fixed(m.e, 0.0))
+        .link([Pt::fixed(0.0, 0.0), Pt::expr(a), Pt::point("p"), Pt::expr(c), Pt::fixed(m.e, 0.0)])
+        .trace("p");
+    let config = HtmlConfig::new("Five-bar").show(FiveBar::COL.p.y).with_autoplay(false);
+    let page = html(&m, &drawing, &motion, &config).unwrap();
+    let read = read_page(&page);
+    assert_eq!(read.readouts[..2], [("th1".to_string(), "°".to_string()), ("th2".to_string(), "°".to_string())]);
+    assert!(read.charts[0].1.iter().all(|(v, _)| (0.0..=1.0).contains(v)), "charted against the path's fraction");
+    let Some(bin) = chromium() else { return };
+    let path = Path::new(env!("CARGO_TARGET_TMPDIR")).join("five_bar.html");
+    std::fs::write(&path, &page).unwrap();
+    check_in_browser(&bin, &path, "five_bar", &[0, 17, 60], |i| {
+        let u = i as f64 / (samples - 1) as f64;
+        let (th1, th2) = (from[0] + u * (to[0] - from[0]), from[1] + u * (to[1] - from[1]));
+        let pa = [m.a * th1.cos(), m.a * th1.sin()];
+        let pc = [m.e + m.d * th2.cos(), m.d * th2.sin()];
+        let p = meet_left(pa, m.b, pc, m.c);
+        Expected {
+            chart_x: u,
+            joints: vec![("-", pa), ("p", p), ("-", pc)],
+            dots: vec![("p", p)],
+            values: vec![("th1", th1.to_degrees()), ("th2", th2.to_degrees()), ("p.y", p[1])],
+        }
+    });
 }
 
 kinloop::mechanism! {
@@ -499,13 +565,10 @@ fn a_sweep_stopped_at_a_limit_position_ends_the_slider_there() {
         let phi = if i == samples { limit } else { i as f64 * PI / 90.0 };
         let b = [m.r * phi.cos(), m.r * phi.sin()];
         // C where the circles (B, l) and (D, k) meet, left of B->D (the declared mode).
-        let v = [m.d - b[0], -b[1]];
-        let dist = v[0].hypot(v[1]);
-        let along = (m.l * m.l - m.k * m.k + dist * dist) / (2.0 * dist);
-        let h = (m.l * m.l - along * along).max(0.0).sqrt();
-        let c = [b[0] + (along * v[0] - h * v[1]) / dist, b[1] + (along * v[1] + h * v[0]) / dist];
+        let c = meet_left(b, m.l, [m.d, 0.0], m.k);
         let gamma = c[1].atan2(c[0] - m.d);
         Expected {
+            chart_x: phi.to_degrees(),
             joints: vec![("b", b), ("c", c)],
             dots: vec![],
             values: vec![("phi", phi.to_degrees()), ("gamma", gamma.to_degrees())],
