@@ -626,6 +626,24 @@ fn bad_data_is_an_error_and_pages_are_deterministic() {
     let point_nan = Drawing::new().link([Pt::fixed(0.0, 0.0), Pt::expr(|s| [s.x[0], f64::NAN])]);
     let err = html(&m, &point_nan, &motion, &HtmlConfig::new("x")).unwrap_err();
     assert!(matches!(err, HtmlError::Draw(_)), "{err}");
+    // Fewer frames than poses: evenly spread, the first and the last (the limit) kept.
+    let few = HtmlConfig::new("x").with_max_frames(10);
+    let page = html(&m, &drawing, &motion, &few).unwrap();
+    assert!(page.contains(r#"max="9""#), "ten frames");
+    let inputs =
+        page.split(r#""ch":[{"dec":2,"v":["#).nth(1).and_then(|r| r.split(']').next()).expect("the input's values");
+    let inputs: Vec<f64> = inputs.split(',').map(|v| v.parse().unwrap()).collect();
+    assert_eq!(inputs.len(), 10);
+    assert_eq!(inputs[0], 0.0);
+    assert!(
+        (inputs[9] - rocking_limit(&m).to_degrees()).abs() <= 0.005 + 1e-9,
+        "the last frame is the limit: {inputs:?}"
+    );
+    assert!(inputs.windows(2).all(|w| w[1] > w[0]), "in order: {inputs:?}");
+    let label = format!("limit position at phi = {:.2}°", rocking_limit(&m).to_degrees());
+    assert!(page.contains(&label));
+    let err = html(&m, &drawing, &motion, &HtmlConfig::new("x").with_max_frames(1)).unwrap_err();
+    assert!(matches!(err, HtmlError::InvalidSetting(_)), "{err}");
     // Through kinloop's one error type.
     let e: kinloop::Error = HtmlError::InvalidSetting("x".into()).into();
     assert!(matches!(e, kinloop::Error::Figure(_)));

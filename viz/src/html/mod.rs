@@ -96,7 +96,11 @@ fn joint_names(d: &Drawing) -> Vec<Vec<Option<String>>> {
 }
 
 /// An interactive page of `drawing` moving through `motion` (a sweep of mechanism `m`,
-/// recorded with [`Motion::record`]): see the [module documentation](self).
+/// recorded with [`Motion::record`]): see the [module documentation](self). The mechanism
+/// gives the names and quantity kinds of its columns (the readouts' units).
+///
+/// With more poses than [`HtmlConfig::max_frames`], that many are written, evenly spread
+/// over the motion (the first and the last kept); the traced paths keep every pose.
 ///
 /// Errors: the drawing's own ([`HtmlError::Draw`]: an unknown point, an empty motion, a
 /// non-finite coordinate), a readout naming no column of `M` ([`HtmlError::UnknownColumn`]),
