@@ -619,6 +619,11 @@ fn bad_data_is_an_error_and_pages_are_deterministic() {
     }));
     let err = html(&m, &drawing, &motion, &nan).unwrap_err();
     assert!(matches!(err, HtmlError::NonFinite { .. }), "{err}");
+    let huge = HtmlConfig::new("x").with_readout(Readout::expr("huge", kinloop_viz::plot::Kind::Dimensionless, |s| {
+        if s.x[0] > 0.5 { f64::MAX } else { -f64::MAX }
+    }));
+    let err = html(&m, &drawing, &motion, &huge).unwrap_err();
+    assert!(matches!(err, HtmlError::InvalidSetting(_)), "{err}");
     let err = html(&m, &drawing, &motion, &HtmlConfig::new("x").show("delta")).unwrap_err();
     assert!(matches!(&err, HtmlError::UnknownColumn { name, .. } if name == "delta"), "{err}");
     let err = html(&m, &drawing, &motion, &HtmlConfig::new("x").with_seconds(f64::NAN)).unwrap_err();
@@ -647,4 +652,48 @@ fn bad_data_is_an_error_and_pages_are_deterministic() {
     // Through kinloop's one error type.
     let e: kinloop::Error = HtmlError::InvalidSetting("x".into()).into();
     assert!(matches!(e, kinloop::Error::Figure(_)));
+}
+
+/// A hostile number: NaN, infinities, the ends of the f64 range, subnormals, or an ordinary one.
+fn hostile() -> impl proptest::strategy::Strategy<Value = f64> + Clone {
+    use proptest::prelude::*;
+    prop_oneof![
+        Just(f64::NAN),
+        Just(f64::INFINITY),
+        Just(-f64::MAX),
+        Just(f64::MAX),
+        Just(5e-324),
+        Just(1e300),
+        Just(-1e-300),
+        Just(0.0),
+        -10.0..10.0f64,
+        any::<f64>(),
+    ]
+}
+
+proptest::proptest! {
+    #![proptest_config(proptest::prelude::ProptestConfig { cases: 48, ..Default::default() })]
+    /// Hostile readouts, points and angles: a typed error or a page without NaN or infinity
+    /// (parsed as XML), never a panic.
+    #[test]
+    fn hostile_values_give_an_error_or_a_finite_page(
+        values in proptest::collection::vec(hostile(), 1..6),
+        points in proptest::collection::vec(hostile(), 2..6),
+        angle in hostile(),
+    ) {
+        let m = Rocking::default();
+        let g = m.position(0.0, &m.guess(0.0)).unwrap().0;
+        let motion = Motion::record(&m, m.sweep(0.0, 1.0, 9, &g).unwrap()).unwrap();
+        let pick = |v: &[f64], s: &kinloop_viz::draw::StateRef| v[((s.x[0] * 8.0).round() as usize) % v.len()];
+        let (vs, ps) = (values.clone(), points.clone());
+        let drawing = Drawing::new()
+            .link([Pt::fixed(0.0, 0.0), Pt::point("b")])
+            .slider(Pt::expr(move |s| [pick(&ps, s), 1.0]), kinloop_viz::draw::Scalar::Const(angle))
+            .trace("c");
+        let config = HtmlConfig::new("hostile")
+            .with_readout(Readout::expr("v", kinloop_viz::plot::Kind::length("mm"), move |s| pick(&vs, s)));
+        if let Ok(page) = html(&m, &drawing, &motion, &config) {
+            let _ = read_page(&page);
+        }
+    }
 }

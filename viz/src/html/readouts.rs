@@ -8,6 +8,9 @@ use crate::draw::{Motion, Scalar};
 use crate::plot::Kind;
 use kinloop_runtime::{Mechanism, QuantityKind};
 
+/// The largest magnitude of a readout (shown units).
+const LARGEST: f64 = 1e100;
+
 /// One readout, evaluated.
 pub(crate) struct Channel {
     /// What the page calls it.
@@ -155,6 +158,12 @@ where
             let v = kind.shown(get(i));
             if !v.is_finite() {
                 return Err(HtmlError::NonFinite { what: format!("readout `{label}`"), pose: i });
+            }
+            // Charts divide by the range of the values: beyond this they could overflow.
+            if v.abs() > LARGEST {
+                return Err(HtmlError::InvalidSetting(format!(
+                    "readout `{label}` is {v:e} at pose {i}: more than {LARGEST:e} cannot be charted"
+                )));
             }
             shown.push(v);
         }
