@@ -6,9 +6,10 @@
 //! (the folder defaults to `out/animations`). Each mechanism gives `<name>.svg`, an animated
 //! SVG that plays in a browser or a README; the roller edger, the class IV mechanism and the
 //! four-bar coupler curve also give `<name>_exposures.svg`, a static multi-exposure for print.
-//! Each mechanism also gives `<name>.html`, an interactive page (one file, no network): a
-//! slider and play/pause for the input, live readouts with units, charts whose cursor follows
-//! the slider, and the sweep's limit positions marked on the slider's track.
+//! Each mechanism also gives `<name>.html` in the folder `pages` beside that one (or the folder
+//! given second), an interactive page (one file, no network): a slider and play/pause for the
+//! input, live readouts with units, charts whose cursor follows the slider, and the sweep's
+//! limit positions marked on the slider's track.
 
 use kinloop::draw::{Animation, Drawing, HtmlConfig, Motion, Pt, Readout, Scalar, html};
 use kinloop::plot::Kind;
@@ -237,7 +238,12 @@ fn main() -> Result<(), Box<dyn Error>> {
             write(&dir, &format!("{}_exposures", s.name), &drawing.exposures(&motion, 8)?)?;
         }
     }
-    pages(&dir)
+    // The pages go beside the animations' folder (`docs/animations` -> `docs/pages`), or
+    // into the folder given second.
+    let pages_dir =
+        std::env::args_os().nth(2).map_or_else(|| dir.parent().unwrap_or(Path::new(".")).join("pages"), PathBuf::from);
+    std::fs::create_dir_all(&pages_dir)?;
+    pages(&pages_dir)
 }
 
 /// Writes `<name>.html`.

@@ -384,7 +384,7 @@ fn gallery_four_bar_page_draws_the_closed_form_positions() {
     let phi = |i: usize| i as f64 * TAU / 360.0;
     check_in_browser(
         &bin,
-        &root().join("docs/animations/four_bar_coupler.html"),
+        &root().join("docs/pages/four_bar_coupler.html"),
         "four_bar_coupler",
         &[0, 45, 137, 250, 360],
         |i| {
@@ -417,39 +417,33 @@ fn gallery_rhombic_drive_page_draws_the_closed_form_positions() {
     let Some(bin) = chromium() else { return };
     let m: RhombicDrive = GALLERY_DRIVE;
     let phi = |i: usize| i as f64 * TAU / 360.0;
-    check_in_browser(
-        &bin,
-        &root().join("docs/animations/rhombic_drive.html"),
-        "rhombic_drive",
-        &[0, 90, 200, 333],
-        |i| {
-            let a = [0.0, m.e_p];
-            let b = [a[0] + m.r_p * phi(i).cos(), a[1] + m.r_p * phi(i).sin()];
-            let d = [a[0] + m.r_b * (phi(i) + m.gamma).cos(), a[1] + m.r_b * (phi(i) + m.gamma).sin()];
-            // B = C + l_p @ phi2 with cos phi2 > 0; D = F + l_b @ phi4 with cos phi4 < 0.
-            let (s2, c2) = (b[1] / m.l_p, (1.0 - (b[1] / m.l_p).powi(2)).sqrt());
-            let c = [b[0] - m.l_p * c2, 0.0];
-            let (s4, c4) = ((d[1] - m.de) / m.l_b, -(1.0 - ((d[1] - m.de) / m.l_b).powi(2)).sqrt());
-            let f = [d[0] - m.l_b * c4, m.de];
-            let cs2 = [c[0] + m.l_cs2 * c2, c[1] + m.l_cs2 * s2];
-            let fs4 = [f[0] + m.l_fs4 * c4, f[1] + m.l_fs4 * s4];
-            let phi4 = s4.atan2(c4);
-            Expected {
-                chart_x: phi(i).to_degrees(),
-                joints: vec![("-", a), ("-", b), ("-", c), ("-", d), ("-", f)],
-                dots: vec![("s2", cs2), ("s4", fs4)],
-                values: vec![
-                    ("phi1", phi(i).to_degrees()),
-                    ("x_c", c[0]),
-                    ("x_f", f[0]),
-                    ("phi2", s2.atan2(c2).to_degrees()),
-                    // phi4 continues from its guess pi: in (0, 2 pi) on this branch.
-                    ("phi4", phi4.rem_euclid(TAU).to_degrees()),
-                    ("gap", f[0] - c[0]),
-                ],
-            }
-        },
-    );
+    check_in_browser(&bin, &root().join("docs/pages/rhombic_drive.html"), "rhombic_drive", &[0, 90, 200, 333], |i| {
+        let a = [0.0, m.e_p];
+        let b = [a[0] + m.r_p * phi(i).cos(), a[1] + m.r_p * phi(i).sin()];
+        let d = [a[0] + m.r_b * (phi(i) + m.gamma).cos(), a[1] + m.r_b * (phi(i) + m.gamma).sin()];
+        // B = C + l_p @ phi2 with cos phi2 > 0; D = F + l_b @ phi4 with cos phi4 < 0.
+        let (s2, c2) = (b[1] / m.l_p, (1.0 - (b[1] / m.l_p).powi(2)).sqrt());
+        let c = [b[0] - m.l_p * c2, 0.0];
+        let (s4, c4) = ((d[1] - m.de) / m.l_b, -(1.0 - ((d[1] - m.de) / m.l_b).powi(2)).sqrt());
+        let f = [d[0] - m.l_b * c4, m.de];
+        let cs2 = [c[0] + m.l_cs2 * c2, c[1] + m.l_cs2 * s2];
+        let fs4 = [f[0] + m.l_fs4 * c4, f[1] + m.l_fs4 * s4];
+        let phi4 = s4.atan2(c4);
+        Expected {
+            chart_x: phi(i).to_degrees(),
+            joints: vec![("-", a), ("-", b), ("-", c), ("-", d), ("-", f)],
+            dots: vec![("s2", cs2), ("s4", fs4)],
+            values: vec![
+                ("phi1", phi(i).to_degrees()),
+                ("x_c", c[0]),
+                ("x_f", f[0]),
+                ("phi2", s2.atan2(c2).to_degrees()),
+                // phi4 continues from its guess pi: in (0, 2 pi) on this branch.
+                ("phi4", phi4.rem_euclid(TAU).to_degrees()),
+                ("gap", f[0] - c[0]),
+            ],
+        }
+    });
 }
 
 /// Where the circles (`a`, `ra`) and (`b`, `rb`) meet, to the left of a->b (a tangency, at
@@ -580,18 +574,22 @@ fn a_sweep_stopped_at_a_limit_position_ends_the_slider_there() {
     });
 }
 
-/// Every gallery page (no browser): one per animated mechanism, its SVG well-formed without
+/// Every gallery page (no browser): one per animated mechanism, linked from the README, its
+/// SVG well-formed without
 /// NaN, every chart axis titled with its unit, a full turn of the input ticked 0 to 360, a
 /// readout per input, and no address outside the page.
 #[test]
 fn every_gallery_page_is_self_contained_and_finite() {
-    let dir = root().join("docs/animations");
+    let dir = root().join("docs/pages");
+    let readme = std::fs::read_to_string(root().join("README.md")).unwrap();
     let mut pages = 0;
     for entry in std::fs::read_dir(&dir).unwrap() {
         let path = entry.unwrap().path();
         if path.extension().is_some_and(|e| e == "html") {
             let text = std::fs::read_to_string(&path).unwrap();
-            let svg = path.with_extension("svg");
+            let link = format!("(docs/pages/{})", path.file_name().unwrap().to_string_lossy());
+            assert!(readme.contains(&link), "the README links {link}");
+            let svg = root().join("docs/animations").join(path.file_name().unwrap()).with_extension("svg");
             assert!(svg.is_file(), "{} has its animation", path.display());
             assert!(text.len() < 150_000, "{}: {} bytes", path.display(), text.len());
             let page = read_page(&text);
