@@ -575,9 +575,8 @@ fn a_sweep_stopped_at_a_limit_position_ends_the_slider_there() {
 }
 
 /// Every gallery page (no browser): one per animated mechanism, linked from the README, its
-/// SVG well-formed without
-/// NaN, every chart axis titled with its unit, a full turn of the input ticked 0 to 360, a
-/// readout per input, and no address outside the page.
+/// SVG well-formed without NaN, every chart axis titled with its unit, a full turn of the
+/// input ticked 0 to 360, a readout per input, and no address outside the page.
 #[test]
 fn every_gallery_page_is_self_contained_and_finite() {
     let dir = root().join("docs/pages");
