@@ -555,6 +555,7 @@ fn a_sweep_stopped_at_a_limit_position_ends_the_slider_there() {
     let samples = motion.poses.len();
     assert!(page.contains(&format!(r#"max="{samples}""#)), "the slider ends at the limit position");
     assert!(page.contains("kl-mark kl-limit-position\" style=\"left:calc(8px + (100% - 16px) * 1)\""));
+    assert!(page.contains(&format!(r#"data-at="{samples}""#)), "a click on the mark shows the limit position");
     let _ = read_page(&page);
     let Some(bin) = chromium() else { return };
     let path = Path::new(env!("CARGO_TARGET_TMPDIR")).join("rocking.html");

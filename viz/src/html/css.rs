@@ -14,7 +14,8 @@ body{margin:0;font-family:system-ui,sans-serif;color:#1c2833;background:#f7f8fa}
 .kl-track{position:relative;flex:1;min-width:160px}
 .kl-track input{width:100%;margin:0;display:block}
 .kl-marks{position:absolute;left:0;right:0;top:-5px;bottom:-5px;pointer-events:none}
-.kl-mark{position:absolute;top:0;bottom:0;width:3px;margin-left:-1.5px;background:#c0143c;border-radius:1px}
+.kl-mark{position:absolute;top:0;bottom:0;width:5px;margin-left:-2.5px;background:#c0143c;border-radius:1px;pointer-events:auto;cursor:pointer}
+.kl-events li{cursor:pointer}
 .kl-mark.kl-singular-crossing{background:#7570b3}
 .kl-events{list-style:none;margin:6px 0 0;padding:0;font-size:.85rem;color:#c0143c}
 .kl-key{display:inline-block;width:3px;height:.9em;margin-right:6px;vertical-align:middle;background:#c0143c}

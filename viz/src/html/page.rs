@@ -34,7 +34,7 @@ pub(crate) struct Parts<'a> {
     /// Charts are against the first channel (one input), or against the path.
     pub against_input: bool,
     /// Each event: its kind (for the mark's class), where it sits on the slider (fractional
-    /// frame index) and its label.
+    /// frame index; a click on its mark shows the nearest frame) and its label.
     pub events: Vec<(String, f64, String)>,
     pub seconds: f64,
     pub back_and_forth: bool,
@@ -132,16 +132,22 @@ pub(crate) fn document(p: &Parts) -> Result<String, HtmlError> {
         let f = at / (n - 1).max(1) as f64;
         let _ = write!(
             s,
-            r#"<span class="kl-mark kl-{kind}" style="left:calc(8px + (100% - 16px) * {})" title="{}"></span>"#,
+            r#"<span class="kl-mark kl-{kind}" style="left:calc(8px + (100% - 16px) * {})" title="{}" data-at="{}"></span>"#,
             number((f * 1e4).round() / 1e4, "event position")?,
-            escape(label)
+            escape(label),
+            at.round()
         );
     }
     s.push_str("</div></div></div>\n");
     if !p.events.is_empty() {
         s.push_str("<ul class=\"kl-events\">");
-        for (kind, _, label) in &p.events {
-            let _ = write!(s, r#"<li><span class="kl-key kl-{kind}"></span>{}</li>"#, escape(label));
+        for (kind, at, label) in &p.events {
+            let _ = write!(
+                s,
+                r#"<li data-at="{}"><span class="kl-key kl-{kind}"></span>{}</li>"#,
+                at.round(),
+                escape(label)
+            );
         }
         s.push_str("</ul>\n");
     }

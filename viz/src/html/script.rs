@@ -1,6 +1,6 @@
 //! The page's script: shows frame `i` of the precomputed motion (moves every item, the
-//! traced points' dots, the readouts and the charts' cursors), plays and pauses, and follows
-//! the slider.
+//! traced points' dots, the readouts and the charts' cursors), plays and pauses, follows the
+//! slider, and jumps to an event when its mark is clicked.
 //!
 //! The page's address can ask for a pose: `page.html#i=40` shows frame 40 and does not play;
 //! `page.html#probe=0,40,80` moves the slider to each frame in turn, as a user would, and
@@ -33,6 +33,8 @@ pub(crate) const SCRIPT: &str = r#"
     return { c: c, line: el.querySelector('.kl-cursor'), dot: el.querySelector('.kl-cursor-dot') };
   });
   var current = 0;
+  // The first input's readout names the slider's value for assistive technology.
+  var row = document.querySelector('tr.kl-readout[data-ch="0"]');
 
   function show(i) {
     var f = D.frames[i];
@@ -70,6 +72,9 @@ pub(crate) const SCRIPT: &str = r#"
     });
     svg.setAttribute('data-frame', String(i));
     slider.value = String(i);
+    if (row) {
+      slider.setAttribute('aria-valuetext', row.cells[0].textContent + ' = ' + row.cells[1].textContent + ' ' + row.cells[2].textContent);
+    }
     current = i;
   }
 
@@ -100,6 +105,10 @@ pub(crate) const SCRIPT: &str = r#"
   }
   button.addEventListener('click', function () { if (playing) { pause(); } else { play(); } });
   slider.addEventListener('input', function () { pause(); show(parseInt(slider.value, 10)); });
+  // A click on an event's mark (or its line in the list) shows the mechanism there.
+  all(document, '[data-at]').forEach(function (el) {
+    el.addEventListener('click', function () { pause(); show(Math.min(parseInt(el.getAttribute('data-at'), 10), n - 1)); });
+  });
 
   function probe(i) {
     slider.value = String(i);
