@@ -379,6 +379,10 @@ fn check_in_browser(bin: &Path, page_path: &Path, name: &str, frames: &[usize], 
 /// form; the page's readouts gamma, p.y, beta, p.x.
 #[test]
 fn gallery_four_bar_page_draws_the_closed_form_positions() {
+    // The units the readouts state: angles in degrees, lengths in the (unnamed) unit.
+    let page = read_page(&std::fs::read_to_string(root().join("docs/pages/four_bar_coupler.html")).unwrap());
+    let units: Vec<(&str, &str)> = page.readouts.iter().map(|(l, u)| (l.as_str(), u.as_str())).collect();
+    assert_eq!(units, [("phi", "°"), ("gamma", "°"), ("p.y", "length unit"), ("beta", "°"), ("p.x", "length unit")]);
     let Some(bin) = chromium() else { return };
     let m = FourBar::default();
     let phi = |i: usize| i as f64 * TAU / 360.0;
