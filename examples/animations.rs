@@ -6,8 +6,13 @@
 //! (the folder defaults to `out/animations`). Each mechanism gives `<name>.svg`, an animated
 //! SVG that plays in a browser or a README; the roller edger, the class IV mechanism and the
 //! four-bar coupler curve also give `<name>_exposures.svg`, a static multi-exposure for print.
+//! Each mechanism also gives `<name>.html` in the folder `pages` beside that one (or the folder
+//! given second), an interactive page (one file, no network): a slider and play/pause for the
+//! input, live readouts with units, charts whose cursor follows the slider, and the sweep's
+//! limit positions marked on the slider's track.
 
-use kinloop::draw::{Animation, Drawing, Motion, Pt, Scalar};
+use kinloop::draw::{Animation, Drawing, HtmlConfig, Motion, Pt, Readout, Scalar, html};
+use kinloop::plot::Kind;
 use std::error::Error;
 use std::f64::consts::{FRAC_PI_2, PI, TAU};
 use std::path::{Path, PathBuf};
@@ -233,5 +238,71 @@ fn main() -> Result<(), Box<dyn Error>> {
             write(&dir, &format!("{}_exposures", s.name), &drawing.exposures(&motion, 8)?)?;
         }
     }
+    // The pages go beside the animations' folder (`docs/animations` -> `docs/pages`), or
+    // into the folder given second.
+    let pages_dir =
+        std::env::args_os().nth(2).map_or_else(|| dir.parent().unwrap_or(Path::new(".")).join("pages"), PathBuf::from);
+    std::fs::create_dir_all(&pages_dir)?;
+    pages(&pages_dir)
+}
+
+/// Writes `<name>.html`.
+fn write_page(dir: &Path, name: &str, page: &str) -> Result<(), Box<dyn Error>> {
+    let path = dir.join(format!("{name}.html"));
+    std::fs::write(&path, page)?;
+    println!("{:>7} bytes  {}", page.len(), path.display());
     Ok(())
+}
+
+/// The interactive pages: the same drawings and sweeps, with the readouts worth watching.
+fn pages(dir: &Path) -> Result<(), Box<dyn Error>> {
+    let (d, motion) = rhombic_drive()?;
+    let config = HtmlConfig::new("Rhombic drive (paper 000, Fig. 1)")
+        .show(RhombicDrive::COL.x_c)
+        .show(RhombicDrive::COL.x_f)
+        .with_readout(Readout::column(RhombicDrive::COL.phi2).without_chart())
+        .with_readout(Readout::column(RhombicDrive::COL.phi4).without_chart())
+        .with_readout(Readout::column(RhombicDrive::COL.gap).without_chart());
+    write_page(dir, "rhombic_drive", &html(&RhombicDrive::default(), &d, &motion, &config)?)?;
+    let (d, motion) = displacer_rod_drive()?;
+    let config = HtmlConfig::new("Developed displacer rod (paper 000, Fig. 2)")
+        .show(DisplacerRodDrive::COL.x_c)
+        .show(DisplacerRodDrive::COL.x_f);
+    write_page(dir, "displacer_rod_drive", &html(&DisplacerRodDrive::default(), &d, &motion, &config)?)?;
+    let (d, motion) = working_rod_drive()?;
+    let config = HtmlConfig::new("Developed working rod (paper 000, Fig. 3)")
+        .show(WorkingRodDrive::COL.x_c)
+        .show(WorkingRodDrive::COL.x_f);
+    write_page(dir, "working_rod_drive", &html(&WorkingRodDrive::default(), &d, &motion, &config)?)?;
+    let (d, motion) = gear_lever()?;
+    let config = HtmlConfig::new("Gear-lever drive (paper 001)")
+        .show(GearLever::COL.phi)
+        .with_readout(Readout::column(GearLever::COL.s).without_chart());
+    write_page(dir, "gear_lever", &html(&GearLever::default(), &d, &motion, &config)?)?;
+    let (d, motion) = roller_edger()?;
+    let time = Kind::Other { quantity: "time".into(), unit: "s".into() };
+    let config = HtmlConfig::new("Roller edger (paper 002)")
+        .with_readout(Readout::column(RollerEdger::COL.t).kind(time))
+        .show(RollerEdger::COL.phi3)
+        .with_readout(Readout::column(RollerEdger::COL.phi1).without_chart())
+        .with_readout(Readout::column(RollerEdger::COL.phi2).without_chart())
+        .with_back_and_forth(true);
+    write_page(dir, "roller_edger", &html(&RollerEdger::default(), &d, &motion, &config)?)?;
+    let (d, motion) = class_four()?;
+    let config = HtmlConfig::new("Class IV mechanism (paper 003)").show(ClassFour::COL.th1).show(ClassFour::COL.th2);
+    write_page(dir, "class_four", &html(&ClassFour::default(), &d, &motion, &config)?)?;
+    let (d, motion) = coupler_curve()?;
+    let config = HtmlConfig::new("Crank-rocker four-bar: coupler curve of P")
+        .show(CouplerFourBar::COL.gamma)
+        .show(CouplerFourBar::COL.p.y)
+        .with_readout(Readout::column(CouplerFourBar::COL.beta).without_chart())
+        .with_readout(Readout::column(CouplerFourBar::COL.p.x).without_chart());
+    write_page(dir, "four_bar_coupler", &html(&CouplerFourBar::default(), &d, &motion, &config)?)?;
+    let (d, motion) = limit_position()?;
+    let m = CouplerFourBar { r: 3.0, l: 2.0, k: 2.5, d: 4.0, e: 1.2, delta: 0.9 };
+    let config = HtmlConfig::new("Non-Grashof four-bar: the sweep stops at the limit position")
+        .show(CouplerFourBar::COL.gamma)
+        .with_readout(Readout::column(CouplerFourBar::COL.beta).without_chart())
+        .with_back_and_forth(true);
+    write_page(dir, "four_bar_limit", &html(&m, &d, &motion, &config)?)
 }

@@ -282,7 +282,8 @@
 //! (transmission angle, Grashof class, time ratio, dead centres and limit positions);
 //! [`dynamics`] works on the mass model of a machine (reduced inertia, inverse dynamics,
 //! flywheel, simulation). Cargo features add `plot` (`kinloop::plot`, charts of sweep results
-//! as SVG), `draw` (`kinloop::draw`, drawings and animations of the mechanism as SVG), `png`
+//! as SVG), `draw` (`kinloop::draw`, drawings and animations of the mechanism as SVG, and
+//! interactive HTML pages with a slider, readouts and linked charts: `draw::html`), `png`
 //! (`kinloop::draw::png`, drawings and charts rendered to PNG, text included), `rayon`
 //! (`par_scan`), `mint` and `serde` (see above).
 //!

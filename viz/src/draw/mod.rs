@@ -12,7 +12,8 @@
 //!   README on a code host) with the traced paths;
 //! * [`Drawing::exposures`]: a static multi-exposure for print;
 //! * [`Drawing::svg`]: the mechanism at one pose; the module `png` renders it (feature `png`),
-//!   its text drawn with a built-in stroke font.
+//!   its text drawn with a built-in stroke font;
+//! * [`html()`]: an interactive page (slider, play/pause, live readouts, linked charts).
 //!
 //! Where a sweep stopped at a limit position or passed a singular crossing, the drawing shows
 //! the mechanism at the located event as a dashed ghost, labelled with its kind and input.
@@ -79,3 +80,6 @@ pub use motion::{Marked, Motion, Pose};
 pub use spec::{Drawing, Item, Pt, Scalar, StateRef};
 pub use style::Style;
 pub use view::{Canvas, View};
+
+// Interactive pages of a drawing (`kinloop::draw::html`), from the crate's `html` module.
+pub use crate::html::{HtmlConfig, HtmlError, Readout, html};

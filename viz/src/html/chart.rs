@@ -1,0 +1,207 @@
+//! Small charts of a readout against the input, with a cursor the page moves with the slider.
+
+use super::page::escape;
+use super::readouts::Channel;
+use std::fmt::Write;
+
+/// Plot area insets in pixels: left (tick labels and the y title), right, top, bottom (tick
+/// labels and the x title).
+const LEFT: f64 = 58.0;
+const RIGHT: f64 = 12.0;
+const TOP: f64 = 10.0;
+const BOTTOM: f64 = 38.0;
+
+/// A pixel coordinate to a tenth of a pixel (as the drawing), without a trailing `.0`.
+pub(crate) fn px(v: f64) -> String {
+    let r = (v * 10.0).round() / 10.0 + 0.0;
+    format!("{r}")
+}
+
+/// An axis range widened to whole steps, and its ticks.
+pub(crate) struct Ticks {
+    pub lo: f64,
+    pub hi: f64,
+    /// The tick values and their labels.
+    pub ticks: Vec<(f64, String)>,
+}
+
+/// The step between ticks: 1, 2, 2.5 or 5 times a power of ten, or for degrees above ten a
+/// division of a turn (15, 30, 45, 90, 180, 360 degrees) or whole turns; with the digits its
+/// labels need.
+fn step(raw: f64, degrees: bool) -> (f64, usize) {
+    if degrees && raw > 10.0 {
+        if let Some(&s) = [15.0, 30.0, 45.0, 90.0, 180.0, 360.0].iter().find(|&&s| s >= raw) {
+            return (s, 0);
+        }
+        let (turns, _) = step(raw / 360.0, false);
+        return (360.0 * turns.ceil(), 0);
+    }
+    let p = 10f64.powf(raw.log10().floor());
+    let m = [1.0, 2.0, 2.5, 5.0, 10.0].into_iter().find(|&m| m * p >= raw * (1.0 - 1e-12)).unwrap_or(10.0);
+    let digits = -(p.log10().round()) + if m == 2.5 { 1.0 } else { 0.0 };
+    ((m * p), digits.max(0.0) as usize)
+}
+
+/// Ticks over `[lo, hi]` (shown units), about five, the range widened to whole steps.
+pub(crate) fn ticks(lo: f64, hi: f64, degrees: bool) -> Ticks {
+    let (mut lo, mut hi) = (lo, hi);
+    if hi - lo <= 1e-12 * lo.abs().max(hi.abs()) {
+        // A constant: a range around it.
+        let pad = if lo == 0.0 { 1.0 } else { 0.1 * lo.abs() };
+        (lo, hi) = (lo - pad, hi + pad);
+    }
+    let (s, digits) = step((hi - lo) / 5.0, degrees);
+    let (k0, k1) = ((lo / s + 1e-9).floor() as i64, (hi / s - 1e-9).ceil() as i64);
+    let ticks = (k0..=k1)
+        .map(|k| {
+            let v = k as f64 * s;
+            let label = format!("{:.*}", digits, v + 0.0);
+            let label =
+                if label.trim_start_matches(['-', '0', '.']).is_empty() { label.replace('-', "") } else { label };
+            (v, label)
+        })
+        .collect();
+    Ticks { lo: k0 as f64 * s, hi: k1 as f64 * s, ticks }
+}
+
+/// A chart's map from shown values to pixels: `px = a + b v` on each axis.
+#[derive(Clone, Copy, Debug)]
+pub(crate) struct Map {
+    pub x: [f64; 2],
+    pub y: [f64; 2],
+}
+
+/// An axis title: `"name [unit]"`.
+fn title(c: &Channel) -> String {
+    format!("{} [{}]", c.label, c.kind.unit())
+}
+
+/// The chart `k` of `y` against `x` (channels at every frame; `None`: against the fraction of
+/// the path, for several inputs), `size` pixels, with dashed lines at the events `events` (x
+/// values, shown units); and its map.
+pub(crate) fn chart(k: usize, x: Option<&Channel>, y: &Channel, events: &[f64], size: [f64; 2]) -> (String, Map) {
+    let n = y.values.len();
+    let xs: Vec<f64> = match x {
+        Some(c) => c.values.clone(),
+        None => (0..n).map(|i| i as f64 / (n.max(2) - 1) as f64).collect(),
+    };
+    let fold = |v: &[f64]| v.iter().fold((f64::INFINITY, f64::NEG_INFINITY), |(a, b), v| (a.min(*v), b.max(*v)));
+    let (x0, x1) = fold(&xs);
+    let (y0, y1) = fold(&y.values);
+    let xt = ticks(x0, x1, x.is_some_and(|c| c.kind.is_angle()));
+    let yt = ticks(y0, y1, y.kind.is_angle());
+    let [w, h] = size;
+    let (l, r, t, b) = (LEFT, w - RIGHT, TOP, h - BOTTOM);
+    let bx = (r - l) / (xt.hi - xt.lo);
+    let by = (b - t) / (yt.hi - yt.lo);
+    let map = Map { x: [l - xt.lo * bx, bx], y: [b + yt.lo * by, -by] };
+    let (fx, fy) = (|v: f64| map.x[0] + map.x[1] * v, |v: f64| map.y[0] + map.y[1] * v);
+    let mut s = String::new();
+    let _ = write!(
+        s,
+        r#"<svg xmlns="http://www.w3.org/2000/svg" class="kl-chart" data-chart="{k}" width="{w}" height="{h}" viewBox="0 0 {w} {h}" font-family="sans-serif" font-size="11">"#,
+        w = px(w),
+        h = px(h)
+    );
+    let _ = write!(s, r#"<rect width="{}" height="{}" fill="white"/>"#, px(w), px(h));
+    for (v, label) in &xt.ticks {
+        let p = px(fx(*v));
+        let _ = write!(
+            s,
+            r##"<line class="kl-grid" x1="{p}" y1="{}" x2="{p}" y2="{}" stroke="#e3e3e3"/><text class="kl-tick-x" x="{p}" y="{}" text-anchor="middle">{label}</text>"##,
+            px(t),
+            px(b),
+            px(b + 14.0)
+        );
+    }
+    for (v, label) in &yt.ticks {
+        let p = px(fy(*v));
+        let _ = write!(
+            s,
+            r##"<line class="kl-grid" x1="{}" y1="{p}" x2="{}" y2="{p}" stroke="#e3e3e3"/><text class="kl-tick-y" x="{}" y="{}" text-anchor="end">{label}</text>"##,
+            px(l),
+            px(r),
+            px(l - 5.0),
+            px(fy(*v) + 4.0)
+        );
+    }
+    let _ = write!(
+        s,
+        r#"<rect class="kl-plot-area" x="{}" y="{}" width="{}" height="{}" fill="none" stroke="black"/>"#,
+        px(l),
+        px(t),
+        px(r - l),
+        px(b - t)
+    );
+    let x_title = x.map_or_else(|| "path [-]".to_string(), title);
+    let _ = write!(
+        s,
+        r#"<text class="kl-axis-x" x="{}" y="{}" text-anchor="middle">{}</text><text class="kl-axis-y" x="14" y="{}" text-anchor="middle" transform="rotate(-90 14 {})">{}</text>"#,
+        px((l + r) / 2.0),
+        px(h - 6.0),
+        escape(&x_title),
+        px((t + b) / 2.0),
+        px((t + b) / 2.0),
+        escape(&title(y))
+    );
+    for v in events {
+        let p = px(fx(*v));
+        let _ = write!(
+            s,
+            r##"<line class="kl-chart-event" x1="{p}" y1="{}" x2="{p}" y2="{}" stroke="#c0143c" stroke-dasharray="4 3"/>"##,
+            px(t),
+            px(b)
+        );
+    }
+    let mut pts = String::new();
+    let mut last = String::new();
+    for (xv, yv) in xs.iter().zip(&y.values) {
+        let p = format!("{},{}", px(fx(*xv)), px(fy(*yv)));
+        if p != last {
+            if !pts.is_empty() {
+                pts.push(' ');
+            }
+            pts.push_str(&p);
+            last = p;
+        }
+    }
+    let _ = write!(
+        s,
+        r##"<polyline class="kl-curve" points="{pts}" fill="none" stroke="#1f77b4" stroke-width="1.5" stroke-linejoin="round"/>"##
+    );
+    let (cx, cy) = (px(fx(xs[0])), px(fy(y.values[0])));
+    let _ = write!(
+        s,
+        r##"<line class="kl-cursor" x1="{cx}" y1="{}" x2="{cx}" y2="{}" stroke="#444"/><circle class="kl-cursor-dot" cx="{cx}" cy="{cy}" r="3.5" fill="#1f77b4" stroke="white"/></svg>"##,
+        px(t),
+        px(b)
+    );
+    (s, map)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn a_turn_is_ticked_every_90_degrees_up_to_360() {
+        let t = ticks(0.0, 360.0, true);
+        let labels: Vec<&str> = t.ticks.iter().map(|(_, l)| l.as_str()).collect();
+        assert_eq!(labels, ["0", "90", "180", "270", "360"]);
+        assert_eq!((t.lo, t.hi), (0.0, 360.0));
+    }
+
+    #[test]
+    fn decimal_steps_cover_the_data_with_their_digits() {
+        let t = ticks(-0.013, 0.0415, false);
+        let labels: Vec<&str> = t.ticks.iter().map(|(_, l)| l.as_str()).collect();
+        assert_eq!(labels, ["-0.02", "0.00", "0.02", "0.04", "0.06"]);
+        let t = ticks(2.0, 2.0, false);
+        assert!(t.lo < 2.0 && t.hi > 2.0);
+        let t = ticks(0.0, 12.5, false);
+        assert_eq!(
+            t.ticks.iter().map(|(_, l)| l.as_str()).collect::<Vec<_>>(),
+            ["0.0", "2.5", "5.0", "7.5", "10.0", "12.5"]
+        );
+    }
+}

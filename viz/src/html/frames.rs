@@ -1,0 +1,232 @@
+//! The drawing evaluated at the poses the page shows, as the integers the page holds:
+//! coordinates in tenths of a pixel, angles in tenths of a degree.
+//!
+//! Tenths of a pixel is the resolution of the kinloop SVG drawings: below what a screen shows,
+//! and a mechanism drawn 600 pixels wide is resolved to 1/6000 of its extent. Integers keep the
+//! page small and cannot hold a NaN.
+
+use super::HtmlError;
+use crate::draw::{Drawing, Item, Motion, Pose, Pt, Scalar, StateRef, View};
+use std::f64::consts::TAU;
+
+/// Largest pixel coordinate written (as the drawings: beyond it a renderer loses precision).
+const FAR: f64 = 1e9;
+
+/// What one item of the drawing is on the page, and where its numbers sit in a frame.
+#[derive(Clone, Debug, PartialEq)]
+pub(crate) enum Slot {
+    /// A bar, chain of bars or filled body through `n` points: `2 n` numbers.
+    Link { n: usize, closed: bool },
+    /// A fixed pivot: its position, 2 numbers.
+    Pivot,
+    /// A slider block: position and angle, 3 numbers; `fixed` when its guide does not turn.
+    Slider { fixed: bool },
+    /// A gear: centre and angle, 3 numbers, with its pitch radius in pixels.
+    Gear { radius: f64, turning: bool },
+    /// A lone joint: 2 numbers.
+    Joint,
+}
+
+impl Slot {
+    /// How many numbers the item takes in a frame.
+    pub(crate) fn len(&self) -> usize {
+        match self {
+            Slot::Link { n, .. } => 2 * n,
+            Slot::Pivot | Slot::Joint => 2,
+            Slot::Slider { .. } | Slot::Gear { .. } => 3,
+        }
+    }
+}
+
+/// The drawing at the page's frames and at the motion's events.
+pub(crate) struct Frames {
+    /// Mechanism units to pixels (the drawings' own view of the motion).
+    pub view: View,
+    /// The items, in drawing order.
+    pub slots: Vec<Slot>,
+    /// Where the traced points start in a frame (after every item), one pair each.
+    pub traces_at: usize,
+    /// The poses shown, as indices of the motion's samples followed by its events.
+    pub poses: Vec<usize>,
+    /// Per frame: the numbers of every item, then of every traced point.
+    pub frames: Vec<Vec<i64>>,
+    /// The same numbers at each event of the motion.
+    pub events: Vec<Vec<i64>>,
+    /// Every traced point along the whole path of the motion (all samples), in tenths of a
+    /// pixel, consecutive equal ones merged.
+    pub paths: Vec<Vec<[i64; 2]>>,
+}
+
+/// The poses along the motion: its samples, then the event where it stopped (as the drawings).
+pub(crate) fn path(motion: &Motion) -> Vec<usize> {
+    let mut path: Vec<usize> = (0..motion.poses.len()).collect();
+    if motion.stopped && !motion.events.is_empty() {
+        path.push(motion.poses.len() + motion.events.len() - 1);
+    }
+    path
+}
+
+/// `count` of `path` evenly spread, first and last kept.
+pub(crate) fn spread(path: &[usize], count: usize) -> Vec<usize> {
+    let n = path.len();
+    if count >= n {
+        return path.to_vec();
+    }
+    (0..count).map(|i| path[(i as f64 * (n - 1) as f64 / (count - 1) as f64).round() as usize]).collect()
+}
+
+/// Pose `i` of the motion: a sample, or an event after the samples.
+pub(crate) fn pose(motion: &Motion, i: usize) -> &Pose {
+    motion.poses.get(i).unwrap_or_else(|| &motion.events[i - motion.poses.len()].pose)
+}
+
+pub(crate) fn state(p: &Pose) -> StateRef<'_> {
+    StateRef { x: &p.x, q: &p.q, out: &p.out }
+}
+
+/// A value in tenths (of a pixel, of a degree), checked finite and near.
+fn tenths(v: f64, what: impl FnOnce() -> String, pose: usize) -> Result<i64, HtmlError> {
+    if v.is_finite() && v.abs() <= FAR {
+        Ok((v * 10.0).round() as i64)
+    } else {
+        Err(HtmlError::NonFinite { what: what(), pose })
+    }
+}
+
+/// The page's angle of a direction `a` (radians counter-clockwise, mechanism): degrees
+/// clockwise (SVG's `rotate`), reduced to a turn first so that any finite angle is written.
+fn svg_degrees(a: f64) -> f64 {
+    -(a % TAU).to_degrees()
+}
+
+/// The points of an item (as the drawings bind them).
+fn item_points(item: &Item) -> Vec<&Pt> {
+    match item {
+        Item::Link { through, .. } => through.iter().collect(),
+        Item::Pivot { at } | Item::Slider { at, .. } | Item::Joint { at } => vec![at],
+        Item::Gear { centre, .. } => vec![centre],
+    }
+}
+
+struct Eval<'a> {
+    motion: &'a Motion,
+    view: View,
+}
+
+impl Eval<'_> {
+    /// Point `p` at pose `i` in tenths of a pixel.
+    fn point(&self, p: &Pt, i: usize) -> Result<[i64; 2], HtmlError> {
+        let pose = pose(self.motion, i);
+        let xy = match p {
+            Pt::Point(name) => {
+                let (ix, iy) = self.motion.point_columns(name)?;
+                [pose.out[ix], pose.out[iy]]
+            }
+            Pt::Fixed(xy) => *xy,
+            Pt::Expr(f) => f(&state(pose)),
+        };
+        let what = || format!("pixel of {}", p.describe());
+        if !(xy[0].is_finite() && xy[1].is_finite()) {
+            return Err(HtmlError::NonFinite { what: p.describe(), pose: i });
+        }
+        let [x, y] = self.view.px(xy);
+        Ok([tenths(x, what, i)?, tenths(y, what, i)?])
+    }
+
+    /// Angle `s` at pose `i` in tenths of a degree (SVG's sense).
+    fn angle(&self, s: &Scalar, i: usize, k: usize) -> Result<i64, HtmlError> {
+        let a = match s {
+            Scalar::Const(v) => *v,
+            Scalar::Expr(f) => f(&state(pose(self.motion, i))),
+        };
+        let what = || format!("angle of item {k}");
+        if !a.is_finite() {
+            return Err(HtmlError::NonFinite { what: what(), pose: i });
+        }
+        tenths(svg_degrees(a), what, i)
+    }
+
+    /// Every item's numbers, then every traced point's, at pose `i`.
+    fn frame(&self, d: &Drawing, i: usize) -> Result<Vec<i64>, HtmlError> {
+        let mut out = Vec::new();
+        for (k, item) in d.items.iter().enumerate() {
+            for p in item_points(item) {
+                out.extend(self.point(p, i)?);
+            }
+            match item {
+                Item::Slider { angle, .. } | Item::Gear { angle, .. } => out.push(self.angle(angle, i, k)?),
+                _ => {}
+            }
+        }
+        for t in &d.traces {
+            out.extend(self.point(t, i)?);
+        }
+        Ok(out)
+    }
+}
+
+impl Frames {
+    /// `d` over `motion`, at most `max_frames` poses along its path.
+    pub(crate) fn new(d: &Drawing, motion: &Motion, max_frames: usize) -> Result<Frames, HtmlError> {
+        // The drawings' own checks (names, shapes of poses, finite points, style, canvas) and
+        // their fit of the picture to every pose.
+        let view = d.view(motion)?;
+        let e = Eval { motion, view };
+        let mut slots = Vec::with_capacity(d.items.len());
+        for item in &d.items {
+            slots.push(match item {
+                Item::Link { through, closed } => Slot::Link { n: through.len(), closed: *closed },
+                Item::Pivot { .. } => Slot::Pivot,
+                Item::Slider { angle, .. } => Slot::Slider { fixed: matches!(angle, Scalar::Const(_)) },
+                Item::Gear { radius, angle, .. } => {
+                    Slot::Gear { radius: radius * view.scale, turning: matches!(angle, Scalar::Expr(_)) }
+                }
+                Item::Joint { .. } => Slot::Joint,
+            });
+        }
+        let traces_at = slots.iter().map(Slot::len).sum();
+        let path = path(motion);
+        let poses = spread(&path, max_frames);
+        let frames = poses.iter().map(|&i| e.frame(d, i)).collect::<Result<Vec<_>, _>>()?;
+        let events =
+            (0..motion.events.len()).map(|j| e.frame(d, motion.poses.len() + j)).collect::<Result<Vec<_>, _>>()?;
+        let mut paths = vec![Vec::<[i64; 2]>::new(); d.traces.len()];
+        for &i in &path {
+            for (t, p) in d.traces.iter().enumerate() {
+                let xy = e.point(p, i)?;
+                if paths[t].last() != Some(&xy) {
+                    paths[t].push(xy);
+                }
+            }
+        }
+        Ok(Frames { view, slots, traces_at, poses, frames, events, paths })
+    }
+}
+
+/// Where each event sits on the slider, in frame indices (fractional): on the segment between
+/// two consecutive frames nearest to the event's inputs.
+pub(crate) fn event_positions(motion: &Motion, poses: &[usize]) -> Vec<f64> {
+    let x = |i: usize| &pose(motion, i).x;
+    motion
+        .events
+        .iter()
+        .map(|ev| {
+            let mut best = (f64::INFINITY, 0.0);
+            for (k, w) in poses.windows(2).enumerate() {
+                let (a, b) = (x(w[0]), x(w[1]));
+                let d: Vec<f64> = b.iter().zip(a).map(|(b, a)| b - a).collect();
+                let dd: f64 = d.iter().map(|v| v * v).sum();
+                let s = if dd > 0.0 {
+                    (ev.pose.x.iter().zip(a).zip(&d).map(|((e, a), d)| (e - a) * d).sum::<f64>() / dd).clamp(0.0, 1.0)
+                } else {
+                    0.0
+                };
+                let dist: f64 = ev.pose.x.iter().zip(a).zip(&d).map(|((e, a), d)| (e - a - s * d).powi(2)).sum::<f64>();
+                if dist < best.0 {
+                    best = (dist, k as f64 + s);
+                }
+            }
+            best.1
+        })
+        .collect()
+}

@@ -1,0 +1,177 @@
+//! The readouts' values at every frame, in the units shown (angles in degrees), rounded to
+//! the digits shown.
+
+use super::HtmlError;
+use super::config::{HtmlConfig, Readout, Value};
+use super::frames::{pose, state};
+use crate::draw::{Motion, Scalar};
+use crate::plot::Kind;
+use kinloop_runtime::{Mechanism, QuantityKind};
+
+/// The largest magnitude of a readout (shown units).
+const LARGEST: f64 = 1e100;
+
+/// One readout, evaluated.
+pub(crate) struct Channel {
+    /// What the page calls it.
+    pub label: String,
+    /// Its kind (unit, degrees for angles).
+    pub kind: Kind,
+    /// Digits after the decimal point shown (and written).
+    pub decimals: usize,
+    /// The value at each frame, in shown units, rounded to `decimals`.
+    pub values: Vec<f64>,
+    /// The value at each event of the motion, likewise.
+    pub at_events: Vec<f64>,
+    /// Charted against the input.
+    pub chart: bool,
+}
+
+impl Channel {
+    /// The unit written after the value (none for a pure number or an unknown kind).
+    pub(crate) fn unit(&self) -> String {
+        let u = self.kind.unit();
+        if u == "-" { String::new() } else { u }
+    }
+
+    /// Value `v` (shown units) as the page writes it.
+    pub(crate) fn text(&self, v: f64) -> String {
+        format!("{:.*}", self.decimals, v)
+    }
+}
+
+/// Where a column's value sits in a pose.
+#[derive(Clone, Copy)]
+enum Source {
+    Input(usize),
+    Unknown(usize),
+    Output(usize),
+}
+
+fn kind_of(k: QuantityKind, length_unit: &str) -> Kind {
+    match k {
+        QuantityKind::Angle => Kind::Angle,
+        QuantityKind::Length => Kind::length(length_unit),
+        QuantityKind::Dimensionless => Kind::Dimensionless,
+        _ => Kind::Other { quantity: "value".into(), unit: "-".into() },
+    }
+}
+
+/// The column `name` of mechanism `M`, with its inferred kind.
+fn column<M, const N: usize, const NI: usize, const NO: usize>(
+    name: &str,
+    unit: &str,
+) -> Result<(Source, Kind), HtmlError>
+where
+    M: Mechanism<N, NI, NO>,
+{
+    if let Some(i) = M::INPUTS.iter().position(|n| *n == name) {
+        return Ok((Source::Input(i), kind_of(M::INPUT_KINDS[i], unit)));
+    }
+    if let Some(i) = M::UNKNOWNS.iter().position(|n| *n == name) {
+        return Ok((Source::Unknown(i), kind_of(M::UNKNOWN_KINDS[i], unit)));
+    }
+    if let Some(i) = M::OUTPUTS.iter().position(|n| *n == name) {
+        return Ok((Source::Output(i), kind_of(M::OUTPUT_KINDS[i], unit)));
+    }
+    let available = M::INPUTS.iter().chain(&M::UNKNOWNS).chain(&M::OUTPUTS).map(|s| s.to_string()).collect();
+    Err(HtmlError::UnknownColumn { name: name.to_string(), available })
+}
+
+/// Digits after the decimal point for values of magnitude up to `max`: two for degrees (a
+/// hundredth of a degree), else five significant digits of the largest value.
+fn decimals(kind: &Kind, max: f64) -> usize {
+    if kind.is_angle() {
+        return 2;
+    }
+    if max <= 0.0 || !max.is_finite() {
+        return 4;
+    }
+    (4 - max.log10().floor() as i64).clamp(0, 12) as usize
+}
+
+/// `v` rounded to `decimals` digits (never `-0`).
+fn rounded(v: f64, decimals: usize) -> f64 {
+    let f = 10f64.powi(decimals as i32);
+    let r = (v * f).round() / f;
+    if r.is_finite() { r + 0.0 } else { v }
+}
+
+/// The inputs' readouts (each replaced by a readout of the config naming it), then the
+/// config's other readouts, at the frames `poses` and at the motion's events.
+pub(crate) fn channels<M, const N: usize, const NI: usize, const NO: usize>(
+    config: &HtmlConfig,
+    motion: &Motion,
+    poses: &[usize],
+) -> Result<Vec<Channel>, HtmlError>
+where
+    M: Mechanism<N, NI, NO>,
+{
+    let names_input = |r: &Readout| match &r.value {
+        Value::Column(c) => M::INPUTS.iter().position(|n| n == c),
+        Value::Expr(_) => None,
+    };
+    let mut list: Vec<Readout> = M::INPUTS
+        .iter()
+        .enumerate()
+        .map(|(i, n)| {
+            config
+                .readouts
+                .iter()
+                .find(|r| names_input(r) == Some(i))
+                .cloned()
+                .unwrap_or_else(|| Readout::column(*n).without_chart())
+        })
+        .collect();
+    list.extend(config.readouts.iter().filter(|r| names_input(r).is_none()).cloned());
+    let all: Vec<usize> =
+        poses.iter().copied().chain(motion.poses.len()..motion.poses.len() + motion.events.len()).collect();
+    let mut out = Vec::with_capacity(list.len());
+    for r in list {
+        let (label, kind, get): (String, Kind, Box<dyn Fn(usize) -> f64>) = match &r.value {
+            Value::Column(name) => {
+                let (src, inferred) = column::<M, N, NI, NO>(name, &config.length_unit)?;
+                let get = move |i: usize| {
+                    let p = pose(motion, i);
+                    match src {
+                        Source::Input(k) => p.x.get(k),
+                        Source::Unknown(k) => p.q.get(k),
+                        Source::Output(k) => p.out.get(k),
+                    }
+                    .copied()
+                    .unwrap_or(f64::NAN)
+                };
+                (r.label.clone().unwrap_or_else(|| name.clone()), r.kind.clone().unwrap_or(inferred), Box::new(get))
+            }
+            Value::Expr(s) => {
+                let s = s.clone();
+                let get = move |i: usize| match &s {
+                    Scalar::Const(v) => *v,
+                    Scalar::Expr(f) => f(&state(pose(motion, i))),
+                };
+                let label = r.label.clone().unwrap_or_else(|| "value".into());
+                (label, r.kind.clone().unwrap_or(Kind::Dimensionless), Box::new(get))
+            }
+        };
+        let mut shown = Vec::with_capacity(all.len());
+        for &i in &all {
+            let v = kind.shown(get(i));
+            if !v.is_finite() {
+                return Err(HtmlError::NonFinite { what: format!("readout `{label}`"), pose: i });
+            }
+            // Charts divide by the range of the values: beyond this they could overflow.
+            if v.abs() > LARGEST {
+                return Err(HtmlError::InvalidSetting(format!(
+                    "readout `{label}` is {v:e} at pose {i}: more than {LARGEST:e} cannot be charted"
+                )));
+            }
+            shown.push(v);
+        }
+        let max = shown.iter().fold(0.0f64, |m, v| m.max(v.abs()));
+        let decimals = decimals(&kind, max);
+        let mut values: Vec<f64> = shown.into_iter().map(|v| rounded(v, decimals)).collect();
+        let at_events = values.split_off(poses.len());
+        out.push(Channel { label, kind, decimals, values, at_events, chart: r.chart });
+    }
+    Ok(out)
+}

@@ -1,0 +1,361 @@
+//! The interactive pages in a real browser: headless Chromium opens each page with the slider
+//! moved to several poses (`page.html#probe=0,40,...`: the page's script moves the slider as a
+//! user does and writes out what is then drawn), and the joints drawn, the readouts and the
+//! charts' cursors are compared with closed-form positions of the mechanism at that input.
+//! The drawn DOM itself (`--dump-dom`) is read back too, and a screenshot per mechanism is
+//! written under `target/` for a person to look at.
+//!
+//! Without Chromium the browser tests print a note and pass locally; in CI (`CI` set) they
+//! fail: `.ci/run` installs Debian's `chromium`. `KINLOOP_CHROMIUM` names another binary.
+//!
+//! The pages' SVG is also parsed as XML (no browser needed): no NaN, finite numbers, units on
+//! every axis, a full turn ticked 0..360.
+
+use kinloop::EventKind;
+use kinloop_fixtures::{GALLERY_DRIVE, RhombicDrive};
+use kinloop_viz::draw::{Drawing, HtmlConfig, Motion, Pt, Readout, html};
+use std::f64::consts::{PI, TAU};
+use std::path::Path;
+
+#[allow(dead_code)] // not every test uses every helper
+mod draw_support;
+
+use draw_support::{FourBar, four_bar_joints};
+
+mod browser_support;
+
+use browser_support::{Expected, check_in_browser, chromium, read_page, root, run_chromium, url};
+
+/// The gallery's four-bar (the same parameters as `CouplerFourBar` of the gallery, whose
+/// `FourBar` twin the draw tests share): crank pin B, rocker pin C, coupler point P in closed
+/// form; the page's readouts gamma, p.y, beta, p.x.
+#[test]
+fn gallery_four_bar_page_draws_the_closed_form_positions() {
+    // The units the readouts state: angles in degrees, lengths in the (unnamed) unit.
+    let page = read_page(&std::fs::read_to_string(root().join("docs/pages/four_bar_coupler.html")).unwrap());
+    let units: Vec<(&str, &str)> = page.readouts.iter().map(|(l, u)| (l.as_str(), u.as_str())).collect();
+    assert_eq!(units, [("phi", "°"), ("gamma", "°"), ("p.y", "length unit"), ("beta", "°"), ("p.x", "length unit")]);
+    let Some(bin) = chromium() else { return };
+    let m = FourBar::default();
+    let phi = |i: usize| i as f64 * TAU / 360.0;
+    check_in_browser(
+        &bin,
+        &root().join("docs/pages/four_bar_coupler.html"),
+        "four_bar_coupler",
+        &[0, 45, 137, 250, 360],
+        |i| {
+            let [b, c, p] = four_bar_joints(&m, phi(i));
+            let gamma = (c[1]).atan2(c[0] - m.d);
+            let beta = (c[1] - b[1]).atan2(c[0] - b[0]);
+            // Angles as the readouts show them: continuous from the declared guesses (gamma near
+            // 1.5 rad and beta near 0.5 rad over the whole turn: no wrap on this branch).
+            Expected {
+                chart_x: phi(i).to_degrees(),
+                joints: vec![("-", [0.0, 0.0]), ("-", [m.d, 0.0]), ("b", b), ("c", c), ("p", p)],
+                dots: vec![("p", p)],
+                values: vec![
+                    ("phi", phi(i).to_degrees()),
+                    ("gamma", gamma.to_degrees()),
+                    ("p.y", p[1]),
+                    ("beta", beta.to_degrees()),
+                    ("p.x", p[0]),
+                ],
+            }
+        },
+    );
+}
+
+/// The gallery's rhombic drive: crank arms AB and AD about A, pistons C (y = 0) and F
+/// (y = de) in closed form from the loops (working rod to the left, displacer rod to the
+/// right), and the rods' centres of mass S2, S4 (the traced points).
+#[test]
+fn gallery_rhombic_drive_page_draws_the_closed_form_positions() {
+    let Some(bin) = chromium() else { return };
+    let m: RhombicDrive = GALLERY_DRIVE;
+    let phi = |i: usize| i as f64 * TAU / 360.0;
+    check_in_browser(&bin, &root().join("docs/pages/rhombic_drive.html"), "rhombic_drive", &[0, 90, 200, 333], |i| {
+        let a = [0.0, m.e_p];
+        let b = [a[0] + m.r_p * phi(i).cos(), a[1] + m.r_p * phi(i).sin()];
+        let d = [a[0] + m.r_b * (phi(i) + m.gamma).cos(), a[1] + m.r_b * (phi(i) + m.gamma).sin()];
+        // B = C + l_p @ phi2 with cos phi2 > 0; D = F + l_b @ phi4 with cos phi4 < 0.
+        let (s2, c2) = (b[1] / m.l_p, (1.0 - (b[1] / m.l_p).powi(2)).sqrt());
+        let c = [b[0] - m.l_p * c2, 0.0];
+        let (s4, c4) = ((d[1] - m.de) / m.l_b, -(1.0 - ((d[1] - m.de) / m.l_b).powi(2)).sqrt());
+        let f = [d[0] - m.l_b * c4, m.de];
+        let cs2 = [c[0] + m.l_cs2 * c2, c[1] + m.l_cs2 * s2];
+        let fs4 = [f[0] + m.l_fs4 * c4, f[1] + m.l_fs4 * s4];
+        let phi4 = s4.atan2(c4);
+        Expected {
+            chart_x: phi(i).to_degrees(),
+            joints: vec![("-", a), ("-", b), ("-", c), ("-", d), ("-", f)],
+            dots: vec![("s2", cs2), ("s4", fs4)],
+            values: vec![
+                ("phi1", phi(i).to_degrees()),
+                ("x_c", c[0]),
+                ("x_f", f[0]),
+                ("phi2", s2.atan2(c2).to_degrees()),
+                // phi4 continues from its guess pi: in (0, 2 pi) on this branch.
+                ("phi4", phi4.rem_euclid(TAU).to_degrees()),
+                ("gap", f[0] - c[0]),
+            ],
+        }
+    });
+}
+
+/// Where the circles (`a`, `ra`) and (`b`, `rb`) meet, to the left of a->b (a tangency, at
+/// a limit position, counts as meeting).
+fn meet_left(a: [f64; 2], ra: f64, b: [f64; 2], rb: f64) -> [f64; 2] {
+    let v = [b[0] - a[0], b[1] - a[1]];
+    let dist = v[0].hypot(v[1]);
+    let along = (ra * ra - rb * rb + dist * dist) / (2.0 * dist);
+    let h = (ra * ra - along * along).max(0.0).sqrt();
+    [a[0] + (along * v[0] - h * v[1]) / dist, a[1] + (along * v[1] + h * v[0]) / dist]
+}
+
+kinloop::mechanism! {
+    /// A five-bar: two cranks (inputs) joined by two links meeting at `p`.
+    pub struct FiveBar {
+        params a = 1.0, b = 2.5, c = 2.5, d = 1.0, e = 2.0;
+        inputs th1, th2;
+        unknowns al = 1.2, be = 2.0;
+        loop l: a @ th1 + b @ al == (e, 0) + d @ th2 + c @ be;
+        point p = a @ th1 + b @ al;
+    }
+}
+
+/// Several inputs: the slider moves along the straight path in input space (the first crank
+/// half a turn, the second a quarter), every input has its readout and the charts are against
+/// the fraction of the path; the joint P is where the links' circles meet.
+#[test]
+fn several_inputs_move_along_the_path() {
+    let m = FiveBar::default();
+    let (from, to) = ([0.0, 0.5 * PI], [PI, PI]);
+    let samples = 61;
+    let motion = Motion::record(&m, m.sweep(from, to, samples, &m.guess(from)).unwrap()).unwrap();
+    let (a, c) = (
+        |s: &kinloop_viz::draw::StateRef| [s.x[0].cos(), s.x[0].sin()],
+        |s: &kinloop_viz::draw::StateRef| [2.0 + s.x[1].cos(), s.x[1].sin()],
+    );
+    let drawing = Drawing::new()
+        .pivot(Pt::fixed(0.0, 0.0))
+        .pivot(Pt::fixed(m.e, 0.0))
+        .link([Pt::fixed(0.0, 0.0), Pt::expr(a), Pt::point("p"), Pt::expr(c), Pt::fixed(m.e, 0.0)])
+        .trace("p");
+    let config = HtmlConfig::new("Five-bar").show(FiveBar::COL.p.y).with_autoplay(false);
+    let page = html(&m, &drawing, &motion, &config).unwrap();
+    let read = read_page(&page);
+    assert_eq!(read.readouts[..2], [("th1".to_string(), "°".to_string()), ("th2".to_string(), "°".to_string())]);
+    assert!(read.charts[0].1.iter().all(|(v, _)| (0.0..=1.0).contains(v)), "charted against the path's fraction");
+    let Some(bin) = chromium() else { return };
+    let path = Path::new(env!("CARGO_TARGET_TMPDIR")).join("five_bar.html");
+    std::fs::write(&path, &page).unwrap();
+    check_in_browser(&bin, &path, "five_bar", &[0, 17, 60], |i| {
+        let u = i as f64 / (samples - 1) as f64;
+        let (th1, th2) = (from[0] + u * (to[0] - from[0]), from[1] + u * (to[1] - from[1]));
+        let pa = [m.a * th1.cos(), m.a * th1.sin()];
+        let pc = [m.e + m.d * th2.cos(), m.d * th2.sin()];
+        let p = meet_left(pa, m.b, pc, m.c);
+        Expected {
+            chart_x: u,
+            joints: vec![("-", pa), ("p", p), ("-", pc)],
+            dots: vec![("p", p)],
+            values: vec![("th1", th1.to_degrees()), ("th2", th2.to_degrees()), ("p.y", p[1])],
+        }
+    });
+}
+
+kinloop::mechanism! {
+    /// A non-Grashof four-bar: the crank rocks between two limit positions.
+    pub struct Rocking {
+        params r = 3.0, l = 2.0, k = 2.5, d = 4.0;
+        input phi;
+        unknowns beta = 0.5, gamma = 1.5;
+        loop obcd: r @ phi + l @ beta == (d, 0) + k @ gamma;
+        point b = r @ phi;
+        point c = (d, 0) + k @ gamma;
+    }
+}
+
+/// The limit position where the coupler and the rocker are collinear, |BD| = l + k (law of
+/// cosines in triangle OBD).
+fn rocking_limit(m: &Rocking) -> f64 {
+    ((m.r * m.r + m.d * m.d - (m.l + m.k).powi(2)) / (2.0 * m.r * m.d)).acos()
+}
+
+fn rocking_page(m: &Rocking) -> (String, Motion) {
+    let g = m.position(0.0, &m.guess(0.0)).unwrap().0;
+    let motion = Motion::record(m, m.sweep(0.0, PI, 91, &g).unwrap()).unwrap();
+    let drawing = Drawing::new()
+        .pivot(Pt::fixed(0.0, 0.0))
+        .pivot(Pt::fixed(m.d, 0.0))
+        .link([Pt::fixed(0.0, 0.0), Pt::point("b"), Pt::point("c"), Pt::fixed(m.d, 0.0)])
+        .trace("c");
+    let config =
+        HtmlConfig::new("Rocking four-bar").show(Rocking::COL.gamma).with_back_and_forth(true).with_length_unit("mm");
+    (html(m, &drawing, &motion, &config).unwrap(), motion)
+}
+
+/// A page written by the library here (not a committed file): the sweep stops at the limit
+/// position, which is the slider's last pose, marked at the end of its track and labelled
+/// with the closed-form input; the browser draws B and C there.
+#[test]
+fn a_sweep_stopped_at_a_limit_position_ends_the_slider_there() {
+    let m = Rocking::default();
+    let (page, motion) = rocking_page(&m);
+    let limit = rocking_limit(&m);
+    assert_eq!(motion.events.len(), 1);
+    assert_eq!(motion.events[0].kind, EventKind::LimitPosition);
+    let label = format!("limit position at phi = {:.2}°", limit.to_degrees());
+    assert!(page.contains(&label), "the limit is labelled `{label}`");
+    // Samples every 2 degrees below the limit, then the limit itself: the last pose.
+    let samples = motion.poses.len();
+    assert!(page.contains(&format!(r#"max="{samples}""#)), "the slider ends at the limit position");
+    assert!(page.contains("kl-mark kl-limit-position\" style=\"left:calc(8px + (100% - 16px) * 1)\""));
+    assert!(page.contains(&format!(r#"data-at="{samples}""#)), "a click on the mark shows the limit position");
+    let _ = read_page(&page);
+    let Some(bin) = chromium() else { return };
+    let path = Path::new(env!("CARGO_TARGET_TMPDIR")).join("rocking.html");
+    std::fs::write(&path, &page).unwrap();
+    // Opened without a pose in its address, the page plays (its button then pauses); the
+    // frames it reaches depend on the browser's clock, so only the state is checked.
+    let dom = run_chromium(&bin, &url(&path, ""), &["--virtual-time-budget=500", "--dump-dom"]);
+    assert!(dom.contains(r#"aria-pressed="true">Pause</button>"#), "the page plays when opened");
+    check_in_browser(&bin, &path, "rocking_limit", &[0, 20, samples], |i| {
+        let phi = if i == samples { limit } else { i as f64 * PI / 90.0 };
+        let b = [m.r * phi.cos(), m.r * phi.sin()];
+        // C where the circles (B, l) and (D, k) meet, left of B->D (the declared mode).
+        let c = meet_left(b, m.l, [m.d, 0.0], m.k);
+        let gamma = c[1].atan2(c[0] - m.d);
+        Expected {
+            chart_x: phi.to_degrees(),
+            joints: vec![("b", b), ("c", c)],
+            dots: vec![],
+            values: vec![("phi", phi.to_degrees()), ("gamma", gamma.to_degrees())],
+        }
+    });
+}
+
+/// Every gallery page (no browser): one per animated mechanism, linked from the README, its
+/// SVG well-formed without NaN, every chart axis titled with its unit, a full turn of the
+/// input ticked 0 to 360, a readout per input, and no address outside the page.
+#[test]
+fn every_gallery_page_is_self_contained_and_finite() {
+    let dir = root().join("docs/pages");
+    let readme = std::fs::read_to_string(root().join("README.md")).unwrap();
+    let mut pages = 0;
+    for entry in std::fs::read_dir(&dir).unwrap() {
+        let path = entry.unwrap().path();
+        if path.extension().is_some_and(|e| e == "html") {
+            let text = std::fs::read_to_string(&path).unwrap();
+            let link = format!("(docs/pages/{})", path.file_name().unwrap().to_string_lossy());
+            assert!(readme.contains(&link), "the README links {link}");
+            let svg = root().join("docs/animations").join(path.file_name().unwrap()).with_extension("svg");
+            assert!(svg.is_file(), "{} has its animation", path.display());
+            assert!(text.len() < 150_000, "{}: {} bytes", path.display(), text.len());
+            let page = read_page(&text);
+            assert!(!page.readouts.is_empty() && !page.charts.is_empty(), "{}", path.display());
+            for (title, xs, _) in &page.charts {
+                let labels: Vec<f64> = xs.iter().map(|(v, _)| *v).collect();
+                if labels.first() == Some(&0.0) && labels.last() == Some(&360.0) {
+                    assert_eq!(labels, [0.0, 90.0, 180.0, 270.0, 360.0], "{title}: a turn ticked every 90 degrees");
+                }
+            }
+            pages += 1;
+        }
+    }
+    assert!(pages >= 8, "one page per gallery mechanism, found {pages}");
+}
+
+/// Bad data is a typed error, never NaN in the file: a readout that is NaN at some pose, a
+/// column the mechanism does not have, a setting out of range; and the page is the same
+/// bytes every time.
+#[test]
+fn bad_data_is_an_error_and_pages_are_deterministic() {
+    use kinloop_viz::html::HtmlError;
+    let m = Rocking::default();
+    let (page, motion) = rocking_page(&m);
+    assert_eq!(page, rocking_page(&m).0, "the same page every time");
+    let drawing = Drawing::new().link([Pt::fixed(0.0, 0.0), Pt::point("b")]);
+    let nan = HtmlConfig::new("x").with_readout(Readout::expr("bad", kinloop_viz::plot::Kind::Dimensionless, |s| {
+        if s.x[0] > 0.5 { f64::NAN } else { 1.0 }
+    }));
+    let err = html(&m, &drawing, &motion, &nan).unwrap_err();
+    assert!(matches!(err, HtmlError::NonFinite { .. }), "{err}");
+    let huge = HtmlConfig::new("x").with_readout(Readout::expr("huge", kinloop_viz::plot::Kind::Dimensionless, |s| {
+        if s.x[0] > 0.5 { f64::MAX } else { -f64::MAX }
+    }));
+    let err = html(&m, &drawing, &motion, &huge).unwrap_err();
+    assert!(matches!(err, HtmlError::InvalidSetting(_)), "{err}");
+    let err = html(&m, &drawing, &motion, &HtmlConfig::new("x").show("delta")).unwrap_err();
+    assert!(matches!(&err, HtmlError::UnknownColumn { name, .. } if name == "delta"), "{err}");
+    let err = html(&m, &drawing, &motion, &HtmlConfig::new("x").with_seconds(f64::NAN)).unwrap_err();
+    assert!(matches!(err, HtmlError::InvalidSetting(_)), "{err}");
+    let point_nan = Drawing::new().link([Pt::fixed(0.0, 0.0), Pt::expr(|s| [s.x[0], f64::NAN])]);
+    let err = html(&m, &point_nan, &motion, &HtmlConfig::new("x")).unwrap_err();
+    assert!(matches!(err, HtmlError::Draw(_)), "{err}");
+    // Fewer frames than poses: evenly spread, the first and the last (the limit) kept.
+    let few = HtmlConfig::new("x").with_max_frames(10);
+    let page = html(&m, &drawing, &motion, &few).unwrap();
+    assert!(page.contains(r#"max="9""#), "ten frames");
+    let inputs =
+        page.split(r#""ch":[{"dec":2,"v":["#).nth(1).and_then(|r| r.split(']').next()).expect("the input's values");
+    let inputs: Vec<f64> = inputs.split(',').map(|v| v.parse().unwrap()).collect();
+    assert_eq!(inputs.len(), 10);
+    assert_eq!(inputs[0], 0.0);
+    assert!(
+        (inputs[9] - rocking_limit(&m).to_degrees()).abs() <= 0.005 + 1e-9,
+        "the last frame is the limit: {inputs:?}"
+    );
+    assert!(inputs.windows(2).all(|w| w[1] > w[0]), "in order: {inputs:?}");
+    let label = format!("limit position at phi = {:.2}°", rocking_limit(&m).to_degrees());
+    assert!(page.contains(&label));
+    let err = html(&m, &drawing, &motion, &HtmlConfig::new("x").with_max_frames(1)).unwrap_err();
+    assert!(matches!(err, HtmlError::InvalidSetting(_)), "{err}");
+    // Through kinloop's one error type.
+    let e: kinloop::Error = HtmlError::InvalidSetting("x".into()).into();
+    assert!(matches!(e, kinloop::Error::Figure(_)));
+}
+
+/// A hostile number: NaN, infinities, the ends of the f64 range, subnormals, or an ordinary one.
+fn hostile() -> impl proptest::strategy::Strategy<Value = f64> + Clone {
+    use proptest::prelude::*;
+    prop_oneof![
+        Just(f64::NAN),
+        Just(f64::INFINITY),
+        Just(-f64::MAX),
+        Just(f64::MAX),
+        Just(5e-324),
+        Just(1e300),
+        Just(-1e-300),
+        Just(0.0),
+        -10.0..10.0f64,
+        any::<f64>(),
+    ]
+}
+
+proptest::proptest! {
+    #![proptest_config(proptest::prelude::ProptestConfig { cases: 48, ..Default::default() })]
+    /// Hostile readouts, points and angles: a typed error or a page without NaN or infinity
+    /// (parsed as XML), never a panic.
+    #[test]
+    fn hostile_values_give_an_error_or_a_finite_page(
+        values in proptest::collection::vec(hostile(), 1..6),
+        points in proptest::collection::vec(hostile(), 2..6),
+        angle in hostile(),
+    ) {
+        let m = Rocking::default();
+        let g = m.position(0.0, &m.guess(0.0)).unwrap().0;
+        let motion = Motion::record(&m, m.sweep(0.0, 1.0, 9, &g).unwrap()).unwrap();
+        let pick = |v: &[f64], s: &kinloop_viz::draw::StateRef| v[((s.x[0] * 8.0).round() as usize) % v.len()];
+        let (vs, ps) = (values.clone(), points.clone());
+        let drawing = Drawing::new()
+            .link([Pt::fixed(0.0, 0.0), Pt::point("b")])
+            .slider(Pt::expr(move |s| [pick(&ps, s), 1.0]), kinloop_viz::draw::Scalar::Const(angle))
+            .trace("c");
+        let config = HtmlConfig::new("hostile")
+            .with_readout(Readout::expr("v", kinloop_viz::plot::Kind::length("mm"), move |s| pick(&vs, s)));
+        if let Ok(page) = html(&m, &drawing, &motion, &config) {
+            let _ = read_page(&page);
+        }
+    }
+}
