@@ -21,7 +21,7 @@
 use kinloop::analysis::optimize::LevenbergMarquardt;
 use kinloop::plot::{self, Axis, Kind, Series};
 use kinloop::synthesis::{Constraints, Design, LocalConfig, PlacementBounds, Problem, Search, Task, chebyshev};
-use kinloop::{Error, Extreme, NewtonConfig, Sensitivities, extremum, to_deg};
+use kinloop::{Error, Extreme, Sensitivities, to_deg};
 use kinloop_examples::out_dir;
 use std::f64::consts::PI;
 use std::f64::consts::TAU;
@@ -228,9 +228,8 @@ fn rhombic(x: &[f64; 2]) -> Rhombic {
 /// (-pi, pi]) and stroke ratio (displacer over piston), with their gradients in `r_b`, `gamma`.
 fn characteristics(x: &[f64; 2]) -> Result<([f64; 2], [[f64; 2]; 2]), Error> {
     let m = rhombic(x);
-    let g: [f64; 4] = m.guess(0.0).into();
-    let cfg = NewtonConfig::default();
-    let ext = |col, which| extremum(&m, col, which, 0.0, 2.0 * PI, 73, g, &cfg);
+    let turn = m.sampled(0.0, 2.0 * PI, 73, &m.guess(0.0))?;
+    let ext = |col, which| turn.extremum_with_gradient(col, which);
     let (c_max, c_min) = (ext(Rhombic::COL.x_c, Extreme::Max)?, ext(Rhombic::COL.x_c, Extreme::Min)?);
     let (f_max, f_min) = (ext(Rhombic::COL.x_f, Extreme::Max)?, ext(Rhombic::COL.x_f, Extreme::Min)?);
     // The piston's outer dead centre is its most negative X_C; the displacer's its largest X_F.

@@ -185,6 +185,11 @@ pub trait Mechanism<const N: usize, const NI: usize, const NO: usize> {
 
 /// A mechanism with generated parameter sensitivities (declared with
 /// `#[kinloop(sensitivities)]`), for generic optimisation code. `NP` is the number of parameters.
+#[diagnostic::on_unimplemented(
+    message = "`{Self}` was declared without parameter sensitivities",
+    label = "synthesis and gradient objectives need the generated sensitivities",
+    note = "add `#[kinloop(sensitivities)]` before `pub struct` in the `mechanism!` declaration of `{Self}`"
+)]
 pub trait Sensitivities<const N: usize, const NI: usize, const NO: usize, const NP: usize>:
     Mechanism<N, NI, NO> + Sized
 {
