@@ -10,7 +10,7 @@
 //! (`m.solve(x)?.q.beta`) type-check, so that the declaration's errors are the only ones.
 
 use crate::emit::surface::{Field, Surface, items};
-use crate::emit::{Types, dynamics, lit, runtime};
+use crate::emit::{Dims, Types, dynamics, lit, runtime, sensitivities};
 use crate::front::expr::Expr;
 use crate::front::syntax::{DeclKind, ItemKind, MechanismDef};
 use crate::plan::param_defaults;
@@ -46,6 +46,8 @@ pub struct Shape {
     literal_defaults: Vec<Option<f64>>,
     /// The declaration has masses, inertias or loads: `mass_model` exists (else it explains).
     dynamics: bool,
+    /// The declaration asks for `#[kinloop(sensitivities)]`: their API exists (else it explains).
+    sensitivities: bool,
 }
 
 impl Shape {
@@ -89,7 +91,7 @@ impl Shape {
                 _ => {}
             }
         }
-        Shape { surface: s, literal_defaults, dynamics }
+        Shape { surface: s, literal_defaults, dynamics, sensitivities: def.options.sensitivities.is_some() }
     }
 
     /// The fallback items. `defaults` are the parameters' default values when the model knows
@@ -101,6 +103,11 @@ impl Shape {
         let mut out = items(&self.surface, &types);
         out.extend(rejected_api(&self.surface, &types));
         out.extend(if self.dynamics { rejected_mass_model(&self.surface, &types) } else { dynamics::absent(&types) });
+        out.extend(if self.sensitivities {
+            rejected_sensitivities(&self.surface, &types)
+        } else {
+            sensitivities::absent(&types)
+        });
         out
     }
 }
@@ -135,6 +142,51 @@ fn rejected_api(s: &Surface, t: &Types) -> TokenStream {
             #name, #inputs, #unknowns, #outputs, #state, #motion, #n, #ni, #no, #np, #plain_name,
             params [#(#params),*], inputs [#(#is),*], unknowns [#(#us),*], outputs [#(#outputs_str),*]
         );
+    }
+}
+
+/// The sensitivity API of a rejected declaration with `#[kinloop(sensitivities)]`: the named
+/// types, `Sensitivities`, `NamedSensitivities` and the inherent methods, never run.
+fn rejected_sensitivities(s: &Surface, t: &Types) -> TokenStream {
+    let rt = runtime();
+    let Types { name, inputs, unknowns, state, sens, .. } = t;
+    let no = 2 * s.points.len() + s.scalars.len();
+    let dims = Dims { n: lit(s.unknowns.len()), ni: lit(s.inputs.len()), no: lit(no), np: lit(s.params.len()) };
+    let types = sensitivities::types(&s.vis, &s.params, &dims, s.inputs.len(), t);
+    let Dims { n, ni, no, np } = dims;
+    let input = quote!(_input: impl ::core::convert::Into<#inputs>);
+    let ret = quote!(::core::result::Result<(#state, #sens), #rt::Error>);
+    let flat = quote!(::core::result::Result<(#rt::Kin<#n, #ni, #no>, #rt::Sens<#n, #ni, #no, #np>), #rt::Error>);
+    quote! {
+        #types
+        impl #name {
+            /// The kinematics and their parameter sensitivities (not generated: the declaration
+            /// was rejected).
+            pub fn sensitivities(&self, #input, _guess: &#unknowns) -> #ret {
+                #rt::rejected()
+            }
+            /// [`Self::sensitivities`] at a solved position (not generated).
+            pub fn sensitivities_at(&self, #input, _q: &#unknowns) -> #ret {
+                #rt::rejected()
+            }
+        }
+        impl #rt::Sensitivities<#n, #ni, #no, #np> for #name {
+            fn params_flat(&self) -> [f64; #np] {
+                #rt::rejected()
+            }
+            fn with_params_flat(&self, _: [f64; #np]) -> Self {
+                #rt::rejected()
+            }
+            fn sensitivities_flat(&self, _: &[f64; #ni], _: &[f64; #n], _: &#rt::NewtonConfig) -> #flat {
+                #rt::rejected()
+            }
+            fn sensitivities_at_flat(&self, _: &[f64; #ni], _: &[f64; #n], _: &#rt::NewtonConfig) -> #flat {
+                #rt::rejected()
+            }
+        }
+        impl #rt::NamedSensitivities<#n, #ni, #no, #np> for #name {
+            type Sens = #sens;
+        }
     }
 }
 

@@ -15,19 +15,22 @@ use crate::plan::Plan;
 use crate::semantics::model::Model;
 use proc_macro2::TokenStream;
 use quote::quote;
+use syn::Visibility;
 
 /// Every sensitivity item of a mechanism declared with `#[kinloop(sensitivities)]`.
 pub fn items(model: &Model, plan: &Plan, t: &Types) -> TokenStream {
-    let mut out = types(model, plan, t);
+    let fields: Vec<Field> = model.params.iter().map(|p| Field::new(&[], &p.name)).collect();
+    let mut out = types(&model.vis, &fields, &Dims::of(plan), plan.ni, t);
     out.extend(kernels(model, plan, t));
     out
 }
 
-/// `NameParams` and `NameSensitivities` (from a flat `Sens`).
-fn types(model: &Model, plan: &Plan, t: &Types) -> TokenStream {
-    let (rt, vis, plain) = (runtime(), &model.vis, &t.plain);
+/// `NameParams` and `NameSensitivities` (from a flat `Sens`), of a mechanism with the parameters
+/// `fields`, sizes `dims` and `ni` inputs (also emitted for a rejected declaration).
+pub fn types(vis: &Visibility, fields: &[Field], dims: &Dims, ni: usize, t: &Types) -> TokenStream {
+    let (rt, plain) = (runtime(), &t.plain);
     let Types { inputs, unknowns, outputs, params, sens, .. } = t;
-    let Dims { n, ni, no, np } = Dims::of(plan);
+    let Dims { n, ni: ni_lit, no, np } = dims;
     let params_doc = format!(
         "One value per parameter of [`{plain}`]: the innermost level of [`{plain}Sensitivities`] \
          (`sens.q.x.l` is `d x / d l`)."
@@ -36,10 +39,9 @@ fn types(model: &Model, plan: &Plan, t: &Types) -> TokenStream {
         " Exact sensitivities of a [`{plain}State`] to the parameters: append a parameter name to a \
          state path (`state.dq.u` -> `sens.dq.u.p` is `d(du/dinput)/dp`)."
     );
-    let fields: Vec<Field> = model.params.iter().map(|p| Field::new(&[], &p.name)).collect();
-    let params_struct = named_struct(vis, params, &params_doc, &fields, "Parameter");
-    let (vp, ap) = analog_types(plan.ni, inputs, quote!(#params<f64>));
-    let (conv_v, conv_a) = analog_conversions(plan.ni, inputs, quote!([f64; #np]), Some(quote!(#params::from)));
+    let params_struct = named_struct(vis, params, &params_doc, fields, "Parameter");
+    let (vp, ap) = analog_types(ni, inputs, quote!(#params<f64>));
+    let (conv_v, conv_a) = analog_conversions(ni, inputs, quote!([f64; #np]), Some(quote!(#params::from)));
     quote! {
         #params_struct
         #[doc = #sens_doc]
@@ -58,10 +60,10 @@ fn types(model: &Model, plan: &Plan, t: &Types) -> TokenStream {
             /// Sensitivities of the outputs' acceleration analogs.
             pub d2out: #outputs<#ap>,
             /// The same values as flat arrays (parameter innermost).
-            pub flat: #rt::Sens<#n, #ni, #no, #np>,
+            pub flat: #rt::Sens<#n, #ni_lit, #no, #np>,
         }
-        impl ::core::convert::From<#rt::Sens<#n, #ni, #no, #np>> for #sens {
-            fn from(s: #rt::Sens<#n, #ni, #no, #np>) -> Self {
+        impl ::core::convert::From<#rt::Sens<#n, #ni_lit, #no, #np>> for #sens {
+            fn from(s: #rt::Sens<#n, #ni_lit, #no, #np>) -> Self {
                 #sens {
                     q: #unknowns::from(s.q.map(#params::from)),
                     dq: #unknowns::from(s.dq.map(#conv_v)),
