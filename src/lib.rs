@@ -375,7 +375,7 @@ pub use kinloop_runtime::{
     QuantityKind, Reach, Sens, Sensitivities, SolveReport, Source, Sweep, SweepConfig, SweepResult, SweepStop, Table,
     TraceConfig, Traced, TracedPoint, Vec2, deg, extremum, integral, to_deg,
 };
-pub use kinloop_runtime::{analysis, dynamics, events, metrics, paths, synthesis};
+pub use kinloop_runtime::{analysis, drawing, dynamics, events, metrics, paths, synthesis};
 // A glob of the scan module: it holds `par_scan` whenever the runtime is built with rayon,
 // whichever crate's feature asked for it (features unify).
 pub use kinloop_runtime::paths::scan::*;

@@ -12,6 +12,7 @@
 mod support;
 
 mod degrees;
+mod drawing;
 mod five_bar;
 mod prop_linkages;
 mod quantity_kinds;

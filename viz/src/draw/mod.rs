@@ -55,6 +55,7 @@
 //! ```
 
 mod compose;
+mod declared;
 mod error;
 mod motion;
 #[cfg(feature = "png")]
@@ -67,6 +68,7 @@ mod svg;
 mod view;
 
 pub use compose::Animation;
+pub use declared::{DefaultDrawing, Draw};
 pub use error::DrawError;
 pub use motion::{Marked, Motion, Pose};
 pub use spec::{Drawing, Item, Pt, Scalar, StateRef};
