@@ -8,6 +8,10 @@
 //!   same vectors, in any order, after cancelling a vector added and subtracted) are one
 //!   [`Joint`], across loops too; a loop's two ends are one joint. This is decided
 //!   symbolically, by the macro: points that coincide only numerically stay apart.
+//! * Loops are drawn in one frame: each from the origin, unless one of its links is a link of
+//!   an earlier loop (the same `l @ q`): then the loop starts where that link puts it (a second
+//!   loop written from its own frame pivot). A joint that a constant vector joins to a fixed
+//!   joint is fixed too.
 //! * A vector `l @ q` of constant length turning with an input or unknown angle is a
 //!   [`SegmentKind::Link`]; a constant vector (parameters and numbers only) is
 //!   [`SegmentKind::Ground`]; a Cartesian vector with one coordinate that moves, or a polar one
