@@ -1,7 +1,7 @@
 //! What a mechanism's declaration says about how it looks: the chain of points of every loop,
 //! each vector between two of them classified, the named points, the rigid plates, and notes
 //! where the declaration cannot be drawn unambiguously. `mechanism!` emits it
-//! ([`Mechanism::DRAWING`](crate::Mechanism::DRAWING)); `kinloop::draw` turns it into a drawing.
+//! ([`Mechanism::DRAWING`]); `kinloop::draw` turns it into a drawing.
 //!
 //! * Each loop's sides are chains of points: the partial sums of their vectors, from the origin
 //!   to the loop's closing point, where both sides meet. Points with the same partial sum (the
@@ -21,27 +21,25 @@
 //!   [`Plate`]; a named point reached from a plate's joint by vectors turning with the plate
 //!   belongs to it; a plate whose angle a declared `body` turns with takes the body's name.
 //!
-//! ```
-//! use kinloop::Mechanism;
-//! use kinloop::drawing::{Description, SegmentKind};
+//! With `mechanism!`, `Description::of::<Name, N, NI, NO>()` reads a mechanism's; here one
+//! written out, of a crank `r @ phi` from the origin (the tape evaluates the parameter `r`,
+//! the input `phi` and `r cos phi`, `r sin phi`):
 //!
-//! kinloop::mechanism! {
-//!     pub struct SliderCrank {
-//!         params r = 1.0, l = 3.0, e = 0.2;
-//!         input phi;
-//!         unknowns psi = 3, x = 4;
-//!         loop oabo: r @ phi == (x, e) + l @ psi;
-//!     }
-//! }
-//! let d = Description::of::<SliderCrank, 2, 1, 0>()?;
-//! let kinds: Vec<SegmentKind> = d.segments.iter().map(|s| s.kind).collect();
-//! assert_eq!(kinds, [SegmentKind::Link, SegmentKind::Slider { fixed_guide: true }, SegmentKind::Link]);
-//! let m = SliderCrank::default();
-//! let s = m.solve(0.5)?;
-//! let at = d.evaluate(&m.param_values(), &s.flat.x, &s.flat.q)?;
-//! let b = d.joint("oabo.l1").map(|j| at.joints[j]);
-//! assert_eq!(b, Some([0.5f64.cos(), 0.5f64.sin()]));
-//! # Ok::<(), kinloop::Error>(())
+//! ```
+//! use kinloop_runtime::drawing::{Description, SegmentKind};
+//!
+//! let d = Description::parse(
+//!     "kinloop-drawing 1\n\
+//!      t c:0 p:0 x:0 cos:2 mul:1,3 sin:2 mul:1,5\n\
+//!      j origin g - 0 0\n\
+//!      j crank.l1 m - 4 6\n\
+//!      s 0 1 link 2 crank: r @ phi",
+//! )?;
+//! assert_eq!(d.segments[0].kind, SegmentKind::Link);
+//! let at = d.evaluate(&[2.0], &[0.5], &[])?;
+//! assert_eq!(at.joints[d.joint("crank.l1").unwrap()], [2.0 * 0.5f64.cos(), 2.0 * 0.5f64.sin()]);
+//! assert_eq!(at.angles[0], Some(0.5));
+//! # Ok::<(), kinloop_runtime::Error>(())
 //! ```
 
 mod parse;

@@ -1,42 +1,4 @@
-//! The default drawing of a mechanism, from its declaration: [`Draw::drawing`] reads the
-//! description `mechanism!` emits ([`Description`]) and draws every loop's links, frame pivots,
-//! sliders and rigid plates, and traces the named points, with no point described twice.
-//!
-//! * A plate (links turning together, a declared `body`) is a filled polygon through its
-//!   joints, a lone link a bar;
-//! * a fixed joint that a link or a turning guide starts or ends at is a pivot with hatching;
-//!   constant vectors between fixed joints (the frame) are not drawn;
-//! * a slider on a fixed guide is a block at the vector's end with its hatched guide; on a
-//!   turning guide (a cylinder, a slotted rocker) the guide is a bar and the block slides on it;
-//! * a vector that is none of these is a thin bar, and the description's note says so: the
-//!   drawing never guesses silently. [`DefaultDrawing::notes`] lists the notes, and the SVG
-//!   shows them below the picture.
-//!
-//! Joints are merged where the macro proves two partial sums equal (see
-//! [`kinloop_runtime::drawing`]); points that coincide only numerically stay two joints.
-//!
-//! ```
-//! use kinloop_viz::draw::{Animation, Draw, Motion};
-//!
-//! kinloop::mechanism! {
-//!     pub struct FourBar {
-//!         params r = 1.0, l = 3.0, k = 2.5, d = 3.0, e = 1.5, delta = 0.6;
-//!         input phi;
-//!         unknowns beta = 0.5, gamma = 1.5;
-//!         loop obcd: r @ phi + l @ beta == (d, 0) + k @ gamma;
-//!         point p = r @ phi + e @ (beta + delta);
-//!     }
-//! }
-//! let m = FourBar::default();
-//! let motion = Motion::record(&m, m.sweep(0.0, std::f64::consts::TAU, 91, &m.guess(0.0))?)?;
-//! // Crank, coupler plate carrying P, rocker, two pivots; P traced. Rename a joint, add to it.
-//! let drawing = m.drawing().rename("obcd.l1", "B")?.extend(|d| d.joint(kinloop_viz::draw::Pt::fixed(1.0, 1.0)));
-//! assert!(drawing.notes().is_empty());
-//! assert!(drawing.joint("B").is_ok());
-//! let svg = drawing.animate(&motion, &Animation::default())?;
-//! assert!(svg.contains("<animate ") && !svg.contains("NaN"));
-//! # Ok::<(), Box<dyn std::error::Error>>(())
-//! ```
+//! The default drawing of a mechanism, from its declaration (see [`Draw`]).
 
 use super::compose::Animation;
 use super::error::DrawError;
@@ -49,9 +11,47 @@ use kinloop_runtime::{Mechanism, NewtonConfig};
 use std::fmt::Write;
 use std::sync::Arc;
 
-/// `m.drawing()`: the default drawing of any mechanism declared with `mechanism!`.
+/// `m.drawing()`: the default drawing of a mechanism, from its declaration. It reads the
+/// description `mechanism!` emits ([`Description`]) and draws every loop's links, frame pivots,
+/// sliders and rigid plates, and traces the named points, with no point described twice.
+///
+/// * A plate (links turning together, a declared `body`) is a filled polygon through its
+///   joints, a lone link a bar;
+/// * a fixed joint that a link or a turning guide starts or ends at is a pivot with hatching;
+///   constant vectors between fixed joints (the frame) are not drawn;
+/// * a slider on a fixed guide is a block at the vector's end with its hatched guide; on a
+///   turning guide (a cylinder, a slotted rocker) the guide is a bar and the block slides on it;
+/// * a vector that is none of these is drawn as a bar between its ends, and a note of the
+///   description says so: the drawing never guesses silently. [`DefaultDrawing::notes`] lists
+///   the notes, and the SVG shows them at the picture's bottom left.
+///
+/// Joints are merged where the macro proves two partial sums equal (see
+/// [`kinloop_runtime::drawing`]); points that coincide only numerically stay two joints.
+///
+/// ```
+/// use kinloop_viz::draw::{Animation, Draw, Motion};
+///
+/// kinloop::mechanism! {
+///     pub struct FourBar {
+///         params r = 1.0, l = 3.0, k = 2.5, d = 3.0, e = 1.5, delta = 0.6;
+///         input phi;
+///         unknowns beta = 0.5, gamma = 1.5;
+///         loop obcd: r @ phi + l @ beta == (d, 0) + k @ gamma;
+///         point p = r @ phi + e @ (beta + delta);
+///     }
+/// }
+/// let m = FourBar::default();
+/// let motion = Motion::record(&m, m.sweep(0.0, std::f64::consts::TAU, 91, &m.guess(0.0))?)?;
+/// // Crank, coupler plate carrying P, rocker, two pivots; P traced. Rename a joint, add to it.
+/// let drawing = m.drawing().rename("obcd.l1", "B")?.extend(|d| d.joint(kinloop_viz::draw::Pt::fixed(1.0, 1.0)));
+/// assert!(drawing.notes().is_empty());
+/// assert!(drawing.joint("B").is_ok());
+/// let svg = drawing.animate(&motion, &Animation::default())?;
+/// assert!(svg.contains("<animate ") && !svg.contains("NaN"));
+/// # Ok::<(), Box<dyn std::error::Error>>(())
+/// ```
 pub trait Draw<const N: usize, const NI: usize, const NO: usize> {
-    /// The mechanism drawn as its declaration describes it (see the [module](self)).
+    /// The mechanism drawn as its declaration describes it (see [`Draw`]).
     fn drawing(&self) -> DefaultDrawing;
 }
 
@@ -337,7 +337,7 @@ impl DefaultDrawing {
         Ok(self.annotate(self.clone().into_drawing().exposures(motion, count)?))
     }
 
-    /// The notes as lines of text at the picture's bottom left, over it.
+    /// The notes as lines of text at the picture's bottom left.
     fn annotate(&self, mut svg: String) -> String {
         if self.notes.is_empty() {
             return svg;
