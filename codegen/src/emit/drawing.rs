@@ -50,8 +50,29 @@ struct Classified {
     angle: Option<Angle>,
 }
 
-fn moves(g: &Graph, n: NodeId) -> bool {
-    g.leaves_of(&[n]).iter().any(|l| matches!(l, Leaf::Input(_) | Leaf::Unknown(_)))
+/// The graph with, for every node, whether it depends on an input or an unknown (worked out
+/// once, in one pass: node ids are a topological order).
+struct Moving<'a> {
+    g: &'a Graph,
+    moving: Vec<bool>,
+}
+
+impl<'a> Moving<'a> {
+    fn new(g: &'a Graph) -> Moving<'a> {
+        let mut moving = vec![false; g.len()];
+        for i in 0..g.len() {
+            let op = g.op(NodeId(i as u32));
+            moving[i] = match op {
+                Op::Leaf(l) => matches!(l, Leaf::Input(_) | Leaf::Unknown(_)),
+                _ => op.operands().any(|a| moving[a.index()]),
+            };
+        }
+        Moving { g, moving }
+    }
+
+    fn moves(&self, n: NodeId) -> bool {
+        self.moving[n.index()]
+    }
 }
 
 /// `l * f(theta)` (or `f(theta)`) with `f` a sine or cosine: `(l, f, theta)`.
@@ -75,13 +96,13 @@ fn trig_factor(g: &Graph, n: NodeId) -> Option<(Option<NodeId>, Func, NodeId)> {
 }
 
 /// The part of `theta` that turns: constant summands and negations stripped.
-fn turn(g: &Graph, mut n: NodeId, mut positive: bool) -> Turn {
+fn turn(m: &Moving, mut n: NodeId, mut positive: bool) -> Turn {
     loop {
-        n = match g.op(n) {
-            Op::Add(a, b) if !moves(g, b) => a,
-            Op::Add(a, b) if !moves(g, a) => b,
-            Op::Sub(a, b) if !moves(g, b) => a,
-            Op::Sub(a, b) if !moves(g, a) => {
+        n = match m.g.op(n) {
+            Op::Add(a, b) if !m.moves(b) => a,
+            Op::Add(a, b) if !m.moves(a) => b,
+            Op::Sub(a, b) if !m.moves(b) => a,
+            Op::Sub(a, b) if !m.moves(a) => {
                 positive = !positive;
                 b
             }
@@ -94,8 +115,9 @@ fn turn(g: &Graph, mut n: NodeId, mut positive: bool) -> Turn {
     }
 }
 
-fn classify(g: &Graph, t: &Term) -> Classified {
-    let (mx, my) = (moves(g, t.x), moves(g, t.y));
+fn classify(m: &Moving, t: &Term) -> Classified {
+    let (g, moves) = (m.g, |n| m.moves(n));
+    let (mx, my) = (moves(t.x), moves(t.y));
     if !mx && !my {
         return Classified { class: Class::Ground, angle: None };
     }
@@ -105,9 +127,9 @@ fn classify(g: &Graph, t: &Term) -> Classified {
         && fx != fy
     {
         let swapped = fx == Func::Sin;
-        let length_moves = lx.is_some_and(|l| moves(g, l));
-        let class = match (length_moves, moves(g, tx)) {
-            (false, _) => Class::Link(turn(g, tx, !swapped)),
+        let length_moves = lx.is_some_and(moves);
+        let class = match (length_moves, moves(tx)) {
+            (false, _) => Class::Link(turn(m, tx, !swapped)),
             (true, turning) => Class::Slider { fixed: !turning },
         };
         return Classified { class, angle: Some(Angle::Of(tx, swapped)) };
@@ -266,10 +288,10 @@ struct Step<'a> {
 /// Where a loop's chains start. Loops are drawn in one frame: each from the origin, unless a
 /// link of the loop is a link of an earlier loop, whose start then fixes this loop's (a loop
 /// written from its own frame pivot, as a second loop often is).
-fn start<'a>(pts: &Points<'a>, g: &Graph, steps: &[Step<'a>], sides: [&'a [Term]; 2]) -> Sum<'a> {
+fn start<'a>(pts: &Points<'a>, mv: &Moving, steps: &[Step<'a>], sides: [&'a [Term]; 2]) -> Sum<'a> {
     for terms in sides {
         for (i, t) in terms.iter().enumerate() {
-            if !matches!(classify(g, t).class, Class::Link(_)) {
+            if !matches!(classify(mv, t).class, Class::Link(_)) {
                 continue;
             }
             let Some(prev) = steps.iter().find(|s| (s.term.x, s.term.y) == (t.x, t.y)) else { continue };
@@ -286,12 +308,13 @@ fn start<'a>(pts: &Points<'a>, g: &Graph, steps: &[Step<'a>], sides: [&'a [Term]
 pub fn description(model: &Model) -> String {
     let dm: &DrawingModel = &model.drawing;
     let g = &dm.graph;
+    let mv = Moving::new(g);
     let mut notes: Vec<String> = Vec::new();
     let mut pts = Points { keys: HashMap::new(), info: Vec::new(), parent: Vec::new() };
     let origin = pts.get(Vec::new(), "origin".to_string());
     let mut steps: Vec<Step> = Vec::new();
     for l in &dm.loops {
-        let base = start(&pts, g, &steps, [&l.left, &l.right]);
+        let base = start(&pts, &mv, &steps, [&l.left, &l.right]);
         let first = pts.get(base.clone(), format!("{}.start", l.name));
         let mut ends = [first; 2];
         for (side, (tag, terms)) in [("l", &l.left), ("r", &l.right)].into_iter().enumerate() {
@@ -326,7 +349,7 @@ pub fn description(model: &Model) -> String {
             *slot = Some(name.clone());
         }
         let turn = base.and_then(|(b, k)| {
-            let turns: Vec<Class> = terms[k..].iter().map(|t| classify(g, t).class).collect();
+            let turns: Vec<Class> = terms[k..].iter().map(|t| classify(&mv, t).class).collect();
             match turns.first() {
                 Some(&Class::Link(t)) if turns.iter().all(|c| *c == Class::Link(t)) => Some((b, t)),
                 _ => None,
@@ -350,7 +373,7 @@ pub fn description(model: &Model) -> String {
     // Each joint's coordinates: a member's sum of constant vectors where there is one (a
     // frame pivot), else its first member's; then through constant vectors, from a fixed
     // joint to the next.
-    let is_fixed = |sum: &Sum| sum.iter().all(|(_, t)| !moves(g, t.x) && !moves(g, t.y));
+    let is_fixed = |sum: &Sum| sum.iter().all(|(_, t)| !mv.moves(t.x) && !mv.moves(t.y));
     let mut coords: Vec<(Sum, bool)> = members
         .iter()
         .map(|m| match m.iter().find(|&&i| is_fixed(&pts.info[i].1)) {
@@ -358,11 +381,12 @@ pub fn description(model: &Model) -> String {
             None => (pts.info[m[0]].1.clone(), false),
         })
         .collect();
+    let classes: Vec<Classified> = steps.iter().map(|s| classify(&mv, s.term)).collect();
     loop {
         let mut changed = false;
-        for s in &steps {
+        for (s, c) in steps.iter().zip(&classes) {
             let (a, b) = (joint(s.from), joint(s.to));
-            if classify(g, s.term).class != Class::Ground || coords[a].1 == coords[b].1 {
+            if c.class != Class::Ground || coords[a].1 == coords[b].1 {
                 continue;
             }
             let (from, to, sign) = if coords[a].1 { (a, b, 1.0) } else { (b, a, -1.0) };
@@ -388,12 +412,11 @@ pub fn description(model: &Model) -> String {
     let mut seen: HashMap<(usize, usize, NodeId, NodeId, bool), ()> = HashMap::new();
     let mut seg_lines = Vec::new();
     let mut links: Vec<(Turn, usize, usize)> = Vec::new();
-    for s in &steps {
+    for (s, c) in steps.iter().zip(&classes) {
         let (a, b) = (joint(s.from), joint(s.to));
         if a == b || seen.insert((a, b, s.term.x, s.term.y, s.term.sign > 0.0), ()).is_some() {
             continue;
         }
-        let c = classify(g, s.term);
         let kind = match c.class {
             Class::Ground => "ground",
             Class::Link(t) => {
