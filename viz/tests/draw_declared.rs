@@ -119,3 +119,24 @@ fn joints_are_renamed_and_hidden_by_name_and_a_wrong_name_is_an_error() {
     let circles = translated(&svg, "circle");
     assert!(!circles.is_empty() && circles.iter().all(|c| !near(*c, p)), "{circles:?}");
 }
+
+kinloop::mechanism! {
+    /// A crank pin declared twice: `b` as the loop's `r @ phi`, `t` a turn further round, which
+    /// is the same point but not the same sum of vectors.
+    pub struct TwicePinned {
+        params r = 1.0, l = 3.0, e = 0.2;
+        input phi;
+        unknowns psi = 3, x = 4;
+        loop oabo: r @ phi == (x, e) + l @ psi;
+        point b = r @ phi;
+        point t = r @ (phi + 2 * pi);
+    }
+}
+
+#[test]
+fn joints_that_coincide_only_numerically_are_two_joints_with_a_note() {
+    let d = TwicePinned::default().drawing();
+    assert_eq!(d.joint_names(), ["origin", "b", "oabo.r1", "t"]);
+    let notes = d.notes().join("\n");
+    assert!(notes.contains("`b` and `t` coincide"), "{notes}");
+}

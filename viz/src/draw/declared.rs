@@ -26,7 +26,8 @@ use std::sync::Arc;
 ///   the notes, and the SVG shows them at the picture's bottom left.
 ///
 /// Joints are merged where the macro proves two partial sums equal (see
-/// [`kinloop_runtime::drawing`]); points that coincide only numerically stay two joints.
+/// [`kinloop_runtime::drawing`]); points that coincide only numerically (at the inputs 0,
+/// solved from the declared guess) stay two joints, with a note.
 ///
 /// ```
 /// use kinloop_viz::draw::{Animation, Draw, Motion};
@@ -101,6 +102,9 @@ impl DefaultDrawing {
             .position_flat(&x, &m.guess_flat(&x), &NewtonConfig::default())
             .ok()
             .and_then(|(q, _)| description.evaluate(&params, &x, &q).ok());
+        if let Some(v) = &reference {
+            notes.extend(coincident(&description, &v.joints));
+        }
         let plates = description
             .plates
             .iter()
@@ -367,6 +371,27 @@ impl From<DefaultDrawing> for Drawing {
     fn from(d: DefaultDrawing) -> Drawing {
         d.into_drawing()
     }
+}
+
+/// Joints at the same place at the reference state though the macro could not prove them one
+/// (their sums differ symbolically): said in a note, drawn as two, since a coincidence at one
+/// state may be a chance one. Within 1e-9 of the mechanism's extent, rounding of two sums of a
+/// few vectors apart.
+fn coincident(d: &Description, at: &[[f64; 2]]) -> Vec<String> {
+    let extent = at.iter().fold(0.0f64, |e, p| e.max(p[0].abs()).max(p[1].abs()));
+    let mut notes = Vec::new();
+    for i in 0..at.len() {
+        for j in i + 1..at.len() {
+            if (at[i][0] - at[j][0]).hypot(at[i][1] - at[j][1]) <= 1e-9 * extent {
+                notes.push(format!(
+                    "joints `{}` and `{}` coincide at inputs 0 but are different sums of the declared vectors: \
+                     drawn as two joints",
+                    d.joints[i].name, d.joints[j].name
+                ));
+            }
+        }
+    }
+    notes
 }
 
 /// `joints` ordered by their angle about their centre in `at`.
