@@ -333,6 +333,9 @@ pub fn description(model: &Model) -> String {
     if dm.loops.is_empty() {
         notes.push("the declaration has no loop: it describes no chain of points to draw".to_string());
     }
+    for what in &dm.skipped {
+        notes.push(format!("{what} has too many vectors to describe: the drawing leaves it out"));
+    }
     for e in &dm.equations {
         notes.push(format!("equation `{e}` is a scalar equation: the drawing does not show it"));
     }

@@ -42,7 +42,16 @@ pub struct DrawingModel {
     pub points: Vec<(String, Vec<Term>)>,
     /// The scalar equations (`eq`), which the drawing cannot show.
     pub equations: Vec<String>,
+    /// Loops and points with too many vectors to describe (see [`MAX_TERMS`]).
+    pub skipped: Vec<String>,
 }
+
+/// Most vectors of one side of a loop or one point, and of all loops together, the drawing
+/// describes: joints are found by comparing partial sums, which takes the square of a side's
+/// length. A mechanism has a handful per loop; a longer one is left out with a note.
+pub const MAX_TERMS: usize = 256;
+/// Most vectors of all loops together (see [`MAX_TERMS`]).
+pub const MAX_ALL_TERMS: usize = 4096;
 
 /// How many `let`s and `point`s a term may expand through, and how deep a side may nest: past
 /// them a part is kept as one term (the drawing is then coarser, never wrong).
@@ -55,28 +64,38 @@ pub(super) fn model(lw: &mut Lowerer, items: &[Item]) -> DrawingModel {
     let saved = lw.graph.clone();
     let errors = std::mem::take(&mut lw.errors);
     let mut defs: HashMap<String, &Expr> = HashMap::new();
-    let (mut loops, mut points, mut equations) = (Vec::new(), Vec::new(), Vec::new());
+    let (mut loops, mut points, mut equations, mut skipped) = (Vec::new(), Vec::new(), Vec::new(), Vec::new());
+    let mut all = 0;
     for item in items {
         match &item.kind {
             ItemKind::Let { name, value } => {
                 defs.insert(name.to_string(), value);
             }
             ItemKind::Point { name, value } => {
-                points.push((name.to_string(), terms_of(lw, value, &defs)));
+                let terms = terms_of(lw, value, &defs);
+                if terms.len() > MAX_TERMS {
+                    skipped.push(format!("point `{name}`"));
+                } else {
+                    points.push((name.to_string(), terms));
+                }
                 defs.insert(name.to_string(), value);
             }
-            ItemKind::Loop { name, lhs, rhs, .. } => loops.push(Chain {
-                name: name.to_string(),
-                left: terms_of(lw, lhs, &defs),
-                right: terms_of(lw, rhs, &defs),
-            }),
+            ItemKind::Loop { name, lhs, rhs, .. } => {
+                let (left, right) = (terms_of(lw, lhs, &defs), terms_of(lw, rhs, &defs));
+                all += left.len() + right.len();
+                if left.len().max(right.len()) > MAX_TERMS || all > MAX_ALL_TERMS {
+                    skipped.push(format!("loop `{name}`"));
+                } else {
+                    loops.push(Chain { name: name.to_string(), left, right });
+                }
+            }
             ItemKind::Eq { name, .. } => equations.push(name.to_string()),
             _ => {}
         }
     }
     let graph = std::mem::replace(&mut lw.graph, saved);
     lw.errors = errors;
-    DrawingModel { graph, loops, points, equations }
+    DrawingModel { graph, loops, points, equations, skipped }
 }
 
 fn terms_of(lw: &mut Lowerer, e: &Expr, defs: &HashMap<String, &Expr>) -> Vec<Term> {
