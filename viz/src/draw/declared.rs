@@ -176,10 +176,15 @@ impl DefaultDrawing {
         if self.source.description.segments[s].kind == SegmentKind::Ground {
             return Err(DrawError::InvalidSetting(format!("segment `{term}` is fixed: it has no turning angle")));
         }
+        Ok(self.angle_of(s))
+    }
+
+    /// The angle of segment `s` at each state (NaN where it has none: a drawing reports it).
+    fn angle_of(&self, s: usize) -> Scalar {
         let source = Arc::clone(&self.source);
-        Ok(Scalar::expr(move |st| {
+        Scalar::expr(move |st| {
             source.description.evaluate(&source.params, st.x, st.q).ok().and_then(|v| v.angles[s]).unwrap_or(f64::NAN)
-        }))
+        })
     }
 
     fn segment(&self, term: &str) -> Result<usize, DrawError> {
@@ -269,11 +274,8 @@ impl DefaultDrawing {
                     pivot(seg.to, &mut pivots);
                 }
                 SegmentKind::Slider { fixed_guide } => {
-                    let angle = match self.angle(&seg.term) {
-                        Ok(a) if fixed_guide => Scalar::Const(self.constant(&a)),
-                        Ok(a) => a,
-                        Err(_) => continue,
-                    };
+                    let angle = self.angle_of(s);
+                    let angle = if fixed_guide { Scalar::Const(self.constant(&angle)) } else { angle };
                     if !fixed_guide {
                         pivot(seg.from, &mut pivots);
                         items.push(Item::Link { through: vec![self.pt(seg.from), self.pt(seg.to)], closed: false });
