@@ -1,7 +1,12 @@
 //! The default drawing (`m.drawing()`) as SVG: parsed back as XML, its joint circles sit on the
 //! closed-form joints of the four-bar and its pivots on the frame points, nothing is NaN, and a
-//! declaration the drawing cannot show unambiguously carries notes in the picture.
+//! declaration the drawing cannot show unambiguously carries notes in the picture, while every
+//! gallery mechanism is drawn from its declaration without one.
 
+use kinloop::Mechanism;
+use kinloop_fixtures::gear_lever::GearLever;
+use kinloop_fixtures::roller_edger::RollerEdger;
+use kinloop_fixtures::{ClassFour, DisplacerRodDrive, RhombicDrive, StirlingEngine, WorkingRodDrive};
 use kinloop_viz::draw::{Animation, Canvas, Draw, DrawError, Motion};
 
 #[allow(dead_code)] // not every test uses every helper
@@ -139,4 +144,29 @@ fn joints_that_coincide_only_numerically_are_two_joints_with_a_note() {
     assert_eq!(d.joint_names(), ["origin", "b", "oabo.r1", "t"]);
     let notes = d.notes().join("\n");
     assert!(notes.contains("`b` and `t` coincide"), "{notes}");
+}
+
+/// `m`'s default drawing animated over a sweep from 0 to `to`: no note, well-formed, finite.
+fn draws_plainly<M: Mechanism<N, NI, NO>, const N: usize, const NI: usize, const NO: usize>(m: &M, to: f64) {
+    let x0 = [0.0; NI];
+    let sweep = kinloop::Sweep::<M, kinloop::Kin<N, NI, NO>, N, NI, NO>::new(m, x0, [to; NI], 61, m.guess_flat(&x0));
+    let motion = Motion::record(m, sweep.unwrap()).unwrap();
+    let d = m.drawing();
+    assert!(d.notes().is_empty(), "{}: {:?}", M::NAME, d.notes());
+    let svg = d.animate(&motion, &Animation::default()).unwrap();
+    finite(&svg);
+    assert!(!translated(&svg, "circle").is_empty(), "{}: no joint drawn", M::NAME);
+}
+
+#[test]
+fn every_gallery_mechanism_is_drawn_from_its_declaration_without_a_note() {
+    let tau = std::f64::consts::TAU;
+    draws_plainly(&RhombicDrive::default(), tau);
+    draws_plainly(&StirlingEngine::default(), tau);
+    draws_plainly(&DisplacerRodDrive::default(), tau);
+    draws_plainly(&WorkingRodDrive::default(), tau);
+    draws_plainly(&GearLever::default(), tau);
+    draws_plainly(&RollerEdger::default(), 6.0);
+    draws_plainly(&ClassFour::default(), tau);
+    draws_plainly(&FourBar::default(), tau);
 }

@@ -311,7 +311,8 @@ pub fn description(model: &Model) -> String {
     let mv = Moving::new(g);
     let mut notes: Vec<String> = Vec::new();
     let mut pts = Points { keys: HashMap::new(), info: Vec::new(), parent: Vec::new() };
-    let origin = pts.get(Vec::new(), "origin".to_string());
+    // The origin is the first joint, whether or not a loop starts there.
+    pts.get(Vec::new(), "origin".to_string());
     let mut steps: Vec<Step> = Vec::new();
     for l in &dm.loops {
         let base = start(&pts, &mv, &steps, [&l.left, &l.right]);
@@ -329,7 +330,6 @@ pub fn description(model: &Model) -> String {
         }
         pts.union(ends[0], ends[1]);
     }
-    let _ = origin;
     if dm.loops.is_empty() {
         notes.push("the declaration has no loop: it describes no chain of points to draw".to_string());
     }
