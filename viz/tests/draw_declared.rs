@@ -126,24 +126,26 @@ fn joints_are_renamed_and_hidden_by_name_and_a_wrong_name_is_an_error() {
 }
 
 kinloop::mechanism! {
-    /// A crank pin declared twice: `b` as the loop's `r @ phi`, `t` a turn further round, which
-    /// is the same point but not the same sum of vectors.
+    /// A crank pin declared thrice: `b` and `pin` as the loop's `r @ phi` (one joint), `t` a
+    /// turn further round, which is the same point but not the same sum of vectors.
     pub struct TwicePinned {
         params r = 1.0, l = 3.0, e = 0.2;
         input phi;
         unknowns psi = 3, x = 4;
         loop oabo: r @ phi == (x, e) + l @ psi;
         point b = r @ phi;
+        point pin = r @ phi;
         point t = r @ (phi + 2 * pi);
     }
 }
 
 #[test]
-fn joints_that_coincide_only_numerically_are_two_joints_with_a_note() {
+fn joints_that_coincide_only_numerically_are_two_joints_and_points_of_one_sum_one_joint_with_notes() {
     let d = TwicePinned::default().drawing();
     assert_eq!(d.joint_names(), ["origin", "b", "oabo.r1", "t"]);
     let notes = d.notes().join("\n");
     assert!(notes.contains("`b` and `t` coincide"), "{notes}");
+    assert!(notes.contains("points `b` and `pin` are one joint"), "{notes}");
 }
 
 /// `m`'s default drawing animated over a sweep from 0 to `to`: no note, well-formed, finite.

@@ -165,8 +165,8 @@ fn plus<'a>(base: &Sum<'a>, terms: &'a [Term]) -> Sum<'a> {
 /// The joints under construction: one per distinct partial sum, merged into classes.
 struct Points<'a> {
     keys: HashMap<Key, usize>,
-    /// Generated name, the sum, and the named point's name.
-    info: Vec<(String, Sum<'a>, Option<String>)>,
+    /// Generated name, the sum, and the names of the points declared as this sum.
+    info: Vec<(String, Sum<'a>, Vec<String>)>,
     parent: Vec<usize>,
 }
 
@@ -178,7 +178,7 @@ impl<'a> Points<'a> {
         }
         let i = self.info.len();
         self.keys.insert(k, i);
-        self.info.push((name, sum, None));
+        self.info.push((name, sum, Vec::new()));
         self.parent.push(i);
         i
     }
@@ -312,7 +312,9 @@ pub fn description(model: &Model) -> String {
     let mut notes: Vec<String> = Vec::new();
     let mut pts = Points { keys: HashMap::new(), info: Vec::new(), parent: Vec::new() };
     // The origin is the first joint, whether or not a loop starts there.
-    pts.get(Vec::new(), "origin".to_string());
+    // (A name no identifier takes where a point is called `origin`.)
+    let origin = if dm.points.iter().any(|(n, _)| n == "origin") { "(origin)" } else { "origin" };
+    pts.get(Vec::new(), origin.to_string());
     let mut steps: Vec<Step> = Vec::new();
     for l in &dm.loops {
         let base = start(&pts, &mv, &steps, [&l.left, &l.right]);
@@ -347,10 +349,7 @@ pub fn description(model: &Model) -> String {
         let none = Vec::new();
         let base = (0..terms.len()).rev().find_map(|k| pts.keys.get(&key(&plus(&none, &terms[..k]))).map(|&b| (b, k)));
         let at = pts.get(plus(&none, terms), name.clone());
-        let slot = &mut pts.info[at].2;
-        if slot.is_none() {
-            *slot = Some(name.clone());
-        }
+        pts.info[at].2.push(name.clone());
         let turn = base.and_then(|(b, k)| {
             let turns: Vec<Class> = terms[k..].iter().map(|t| classify(&mv, t).class).collect();
             match turns.first() {
@@ -405,7 +404,17 @@ pub fn description(model: &Model) -> String {
     let mut tape = Tape::default();
     let mut joint_lines = Vec::new();
     for (m, (sum, ground)) in members.iter().zip(&coords) {
-        let named = m.iter().find_map(|&i| pts.info[i].2.clone());
+        let all: Vec<&String> = m.iter().flat_map(|&i| &pts.info[i].2).collect();
+        let named = all.first().map(|n| n.to_string());
+        if all.len() > 1 {
+            let others: Vec<String> = all[1..].iter().map(|n| format!("`{n}`")).collect();
+            notes.push(format!(
+                "points `{}` and {} are one joint (the same sum of vectors): drawn once, named `{}`",
+                all[0],
+                others.join(", "),
+                all[0]
+            ));
+        }
         let (x, y) = (tape.sum(g, sum, false), tape.sum(g, sum, true));
         let name = named.clone().unwrap_or_else(|| pts.info[m[0]].0.clone());
         let kind = if *ground { "g" } else { "m" };
