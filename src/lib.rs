@@ -272,8 +272,10 @@
 //! harmonics, unbalance) and optimises designs; [`metrics`] gives the designer's figures
 //! (transmission angle, Grashof class, time ratio, dead centres and limit positions);
 //! [`dynamics`] works on the mass model of a machine (reduced inertia, inverse dynamics,
-//! flywheel, simulation). Cargo features add `plot` (`kinloop::plot`, charts of sweep results
-//! as SVG), `draw` (`kinloop::draw`, drawings and animations of the mechanism as SVG), `rayon`
+//! flywheel, simulation); [`drawing`] reads what a declaration says about how the mechanism
+//! looks (its loops' chains of points, links, frame, sliders, plates). Cargo features add
+//! `plot` (`kinloop::plot`, charts of sweep results as SVG), `draw` (`kinloop::draw`, drawings
+//! and animations of the mechanism as SVG; `m.drawing()` draws it from its declaration), `rayon`
 //! (`par_scan`), `mint` and `serde` (see above).
 //!
 //! ## Errors
