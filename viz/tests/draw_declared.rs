@@ -123,6 +123,10 @@ fn joints_are_renamed_and_hidden_by_name_and_a_wrong_name_is_an_error() {
     let p = window_px(WINDOW, WIDTH, four_bar_joints(&m, 1.0)[2]);
     let circles = translated(&svg, "circle");
     assert!(!circles.is_empty() && circles.iter().all(|c| !near(*c, p)), "{circles:?}");
+    // The crank hidden by its term: its bar goes, and the pivot O that only it stood on; the
+    // coupler, the rocker and the pivot D stay.
+    let without_crank = m.drawing().hide("obcd: r @ phi").unwrap().into_drawing();
+    assert_eq!(without_crank.items.len(), m.drawing().into_drawing().items.len() - 2);
 }
 
 kinloop::mechanism! {

@@ -206,7 +206,7 @@ impl DefaultDrawing {
 
     /// Leaves out a joint (by name: its pivot, its trace, and every bar, plate corner and
     /// slider through it) or a segment (by its declared term, `loop: r @ phi`: a construction
-    /// vector, a slider).
+    /// vector, a slider, a link; a plate of several links goes when all of them are hidden).
     ///
     /// # Errors
     /// [`DrawError::UnknownPoint`] when it names neither.
@@ -287,8 +287,16 @@ impl DefaultDrawing {
                 }
             }
         }
-        for (p, joints) in self.source.description.plates.iter().zip(&self.plates) {
-            let _ = p;
+        for joints in &self.plates {
+            // A plate goes with its links: hidden when every link of it is.
+            let mut links = d
+                .segments
+                .iter()
+                .enumerate()
+                .filter(|(_, s)| s.kind == SegmentKind::Link && joints.contains(&s.from) && joints.contains(&s.to));
+            if links.all(|(s, _)| self.hidden_segments[s]) {
+                continue;
+            }
             let through: Vec<Pt> = joints.iter().copied().filter(|&j| shown(j)).map(|j| self.pt(j)).collect();
             if through.len() >= 2 {
                 items.push(Item::Link { closed: through.len() > 2, through });
