@@ -210,3 +210,18 @@ impl fmt::Display for Description {
         Ok(())
     }
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::analysis::demo::SliderCrank;
+
+    #[test]
+    fn a_hand_written_mechanism_describes_no_drawing_and_says_so() {
+        let d = Description::of::<SliderCrank, 1, 1, 1>().unwrap();
+        assert!(d.joints.is_empty() && d.segments.is_empty());
+        assert_eq!(d.notes.len(), 1);
+        assert!(d.notes[0].contains("not declared with `mechanism!`"), "{:?}", d.notes);
+        assert_eq!(d.evaluate(&[], &[], &[]).unwrap().joints, Vec::<[f64; 2]>::new());
+    }
+}
