@@ -118,7 +118,11 @@
 //!   (see below), `sensitivities` when requested and `mass_model` when dynamics is declared;
 //!   and the constants `NAME`, `PARAMS`, `INPUTS`, `UNKNOWNS`, `EQUATIONS`, `OUTPUTS`,
 //!   `BLOCKS` (the block-triangular decomposition) and `DECOMPOSITION` (the same in words, see
-//!   below);
+//!   below); and `Mechanism::DRAWING`, what the declaration says about how the mechanism looks
+//!   (see [`drawing`](crate::drawing): each loop's chain of points, the partial sums of its
+//!   vectors; `l @ q` turning with an input or unknown is a link, a constant vector is the
+//!   frame, a Cartesian vector with one moving coordinate a slider; links turning alike are one
+//!   plate), which `m.drawing()` of `kinloop::draw` draws;
 //! * implementations of [`Mechanism`](crate::Mechanism) (the flat, generated kernels) and [`Named`](crate::Named) (the same
 //!   API by name) for generic code. The methods above are the same for every mechanism: they
 //!   live once in [`Named`](crate::Named) and the generated ones only forward to it, so calling them needs no

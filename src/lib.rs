@@ -281,8 +281,10 @@
 //! harmonics, unbalance) and optimises designs; [`metrics`] gives the designer's figures
 //! (transmission angle, Grashof class, time ratio, dead centres and limit positions);
 //! [`dynamics`] works on the mass model of a machine (reduced inertia, inverse dynamics,
-//! flywheel, simulation). Cargo features add `plot` (`kinloop::plot`, charts of sweep results
-//! as SVG), `draw` (`kinloop::draw`, drawings and animations of the mechanism as SVG, and
+//! flywheel, simulation); [`drawing`] reads what a declaration says about how the mechanism
+//! looks (its loops' chains of points, links, frame, sliders, plates). Cargo features add
+//! `plot` (`kinloop::plot`, charts of sweep results as SVG), `draw` (`kinloop::draw`, drawings
+//! and animations of the mechanism as SVG; `m.drawing()` draws it from its declaration; and
 //! interactive HTML pages with a slider, readouts and linked charts: `draw::html`), `png`
 //! (`kinloop::draw::png`, drawings and charts rendered to PNG, text included), `rayon`
 //! (`par_scan`), `mint` and `serde` (see above).
@@ -386,7 +388,7 @@ pub use kinloop_runtime::{
     QuantityKind, Reach, Sens, Sensitivities, SolveReport, Source, Sweep, SweepConfig, SweepResult, SweepStop, Table,
     TraceConfig, Traced, TracedPoint, Vec2, deg, to_deg,
 };
-pub use kinloop_runtime::{analysis, dynamics, events, metrics, paths, synthesis};
+pub use kinloop_runtime::{analysis, drawing, dynamics, events, metrics, paths, synthesis};
 // A glob of the scan module: it holds `par_scan` whenever the runtime is built with rayon,
 // whichever crate's feature asked for it (features unify).
 pub use kinloop_runtime::paths::scan::*;

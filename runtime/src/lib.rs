@@ -24,6 +24,7 @@
 pub mod analysis;
 mod angles;
 mod configured;
+pub mod drawing;
 pub mod dynamics;
 mod error;
 pub mod events;

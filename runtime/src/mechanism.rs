@@ -54,6 +54,11 @@ pub trait Mechanism<const N: usize, const NI: usize, const NO: usize> {
     /// radian from its prediction (an anchor a turn away would put it there). `mechanism!`
     /// finds them; by default none is, for hand-written implementations.
     const CLOSED_FORM_ANGLES: [bool; N] = [false; N];
+    /// What the declaration says about how the mechanism looks (its loops' chains of points,
+    /// links, ground, sliders, plates), in the text format of [`drawing`](crate::drawing),
+    /// read by [`Description::of`](crate::drawing::Description::of). `mechanism!` writes it;
+    /// by default empty, for hand-written implementations (which then describe no drawing).
+    const DRAWING: &'static str = "";
 
     /// Parameter values in declaration order.
     ///

@@ -12,6 +12,7 @@
 mod support;
 
 mod degrees;
+mod drawing;
 mod extreme_scales;
 mod five_bar;
 mod prop_linkages;

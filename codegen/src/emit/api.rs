@@ -132,6 +132,7 @@ fn mechanism_impl(model: &Model, plan: &Plan, t: &Types) -> TokenStream {
     let lints = kernel_lints();
     let kinds = kind_constants(model, plan);
     let followers = followers_constant(plan);
+    let drawing = super::drawing::constant(model);
     let (x, q, g, cfg) = (
         quote!(__x: &[f64; #ni]),
         quote!(__q: &[f64; #n]),
@@ -175,6 +176,7 @@ fn mechanism_impl(model: &Model, plan: &Plan, t: &Types) -> TokenStream {
             #rt::mechanism_consts!(#name, #n, #ni, #no);
             #kinds
             #followers
+            #drawing
             fn guess_flat(&self, #x) -> [f64; #n] { #guess }
             fn outputs_flat(&self, #x, #q) -> [f64; #no] { #outputs_body }
             fn jacobian_flat(&self, #x, #q) -> #rt::Jac<#n, #ni> { #jacobian }

@@ -12,6 +12,7 @@
 //! * [`sensitivities`] adds the sensitivity types and kernels when they were requested;
 //! * [`sparse`] emits the tables and Jacobians of large sparse Newton blocks;
 //! * [`describe`] writes the decomposition in words;
+//! * [`drawing`] describes the default drawing: the loops' chains of points, classified;
 //! * [`dynamics`] builds the declared bodies and loads into the runtime's mass model.
 //!
 //! Generated code reaches the runtime through `::kinloop::__gen` only.
@@ -19,6 +20,7 @@
 pub mod api;
 pub mod closed_form;
 pub mod describe;
+pub mod drawing;
 pub mod dynamics;
 pub mod evaluate;
 mod group_lets;

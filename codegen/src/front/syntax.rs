@@ -221,6 +221,11 @@ impl Errors {
         }
     }
 
+    /// Whether no error was pushed.
+    pub fn is_empty(&self) -> bool {
+        self.0.is_none()
+    }
+
     /// The combined errors, if any.
     pub fn into_error(self) -> Option<syn::Error> {
         self.0

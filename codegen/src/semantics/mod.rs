@@ -4,6 +4,7 @@
 
 pub mod builtins;
 mod calls;
+pub mod drawing;
 pub mod dynamics;
 pub mod lower;
 pub mod model;

@@ -1,6 +1,7 @@
 //! The checked model of a mechanism: names resolved, vector/scalar types checked, and every
 //! equation and output lowered to nodes of one expression graph.
 
+use super::drawing::DrawingModel;
 use super::dynamics::{DynamicsModel, Pending};
 use super::lower::{Lowerer, Val};
 use super::scope::Symbol;
@@ -104,6 +105,8 @@ pub struct Model {
     /// The node of each `let`, with the let's name (`v_x`, `v_y` for a vector `let v`), in
     /// declaration order: the generated code names the temporary after it.
     pub lets: Vec<(NodeId, String)>,
+    /// The loops and points vector by vector, for the default drawing.
+    pub drawing: DrawingModel,
 }
 
 impl Model {
@@ -213,6 +216,8 @@ pub(crate) fn build(def: MechanismDef) -> Result<Model, syn::Error> {
     let columns: Vec<NodeId> =
         out.points.iter().flat_map(|p| [p.x, p.y]).chain(out.scalars.iter().map(|s| s.value)).collect();
     let dynamics = std::mem::take(&mut out.dynamics).resolve(&mut lw, &columns, &kinematics);
+    // The drawing lowers the terms again: only a declaration without errors lowers cleanly.
+    let drawing = if lw.errors.is_empty() { super::drawing::model(&mut lw, &items) } else { DrawingModel::default() };
     let unknowns =
         globals.unknowns.iter().zip(out.unknown_guess).map(|(d, value)| named(d, value, &globals.item_of)).collect();
     let Lowerer { graph, errors, used_params, used_inputs, .. } = lw;
@@ -234,6 +239,7 @@ pub(crate) fn build(def: MechanismDef) -> Result<Model, syn::Error> {
         used_inputs,
         dynamics,
         lets,
+        drawing,
     })
 }
 

@@ -58,6 +58,7 @@
 
 mod annotate;
 mod compose;
+mod declared;
 mod error;
 #[cfg(feature = "png")]
 mod hershey;
@@ -75,6 +76,7 @@ mod view;
 
 pub use annotate::Annotate;
 pub use compose::Animation;
+pub use declared::{DefaultDrawing, Draw};
 pub use error::DrawError;
 pub use motion::{Marked, Motion, Pose};
 pub use spec::{Drawing, Item, Pt, Scalar, StateRef};

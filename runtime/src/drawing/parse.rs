@@ -1,0 +1,175 @@
+//! Reading the text `mechanism!` emits (one string constant keeps the generated code short):
+//!
+//! ```text
+//! kinloop-drawing 1
+//! t <entry> <entry> ...                 the tape: c:1.5 p:0 x:0 q:1 add:a,b sub:a,b mul:a,b
+//!                                       div:a,b neg:a powi:a,n powf:a,b atan2:y,x sin:a ...
+//! j <name> <g|m> <n|-> <x> <y>          a joint: fixed or moving, named or not, tape entries
+//! s <from> <to> <kind> <angle|-> <term> a segment: link, ground, slider-fixed,
+//!                                       slider-turning or construction
+//! p <name|-> <joint> <joint> ...        a plate
+//! n <text>                              a note
+//! ```
+//!
+//! Every index is checked: a tape entry reads earlier entries only, joints and segments read
+//! existing entries and joints. A text that does not read is an error, never a panic.
+
+use super::tape::{Func, TapeOp};
+use super::{Description, FORMAT, Joint, Plate, Segment, SegmentKind};
+use crate::error::Error;
+
+pub(super) fn parse(text: &str) -> Result<Description, Error> {
+    let mut lines = text.lines();
+    if lines.next() != Some(FORMAT) {
+        return Err(bad(1, &format!("the first line must be `{FORMAT}`")));
+    }
+    let mut d = Description {
+        joints: Vec::new(),
+        segments: Vec::new(),
+        plates: Vec::new(),
+        notes: Vec::new(),
+        tape: Vec::new(),
+    };
+    for (i, line) in lines.enumerate() {
+        let n = i + 2;
+        let (tag, rest) = line.split_once(' ').unwrap_or((line, ""));
+        match tag {
+            "t" => {
+                for entry in rest.split_whitespace() {
+                    let op = tape_entry(entry, d.tape.len()).ok_or_else(|| bad(n, &format!("tape entry `{entry}`")))?;
+                    d.tape.push(op);
+                }
+            }
+            "j" => d.joints.push(joint(rest, d.tape.len()).ok_or_else(|| bad(n, "a joint"))?),
+            "s" => d.segments.push(segment(rest, d.tape.len(), d.joints.len()).ok_or_else(|| bad(n, "a segment"))?),
+            "p" => d.plates.push(plate(rest, d.joints.len()).ok_or_else(|| bad(n, "a plate"))?),
+            "n" => d.notes.push(rest.to_string()),
+            _ => return Err(bad(n, &format!("unknown line `{tag}`"))),
+        }
+    }
+    Ok(d)
+}
+
+fn bad(line: usize, what: &str) -> Error {
+    Error::InvalidArgument(format!("the drawing description does not read at line {line}: {what}"))
+}
+
+/// An index below `len`.
+fn index(s: &str, len: usize) -> Option<usize> {
+    s.parse::<usize>().ok().filter(|&i| i < len)
+}
+
+fn tape_entry(entry: &str, len: usize) -> Option<TapeOp> {
+    let (op, args) = entry.split_once(':')?;
+    let one = || index(args, len);
+    let two = || {
+        let (a, b) = args.split_once(',')?;
+        Some((index(a, len)?, index(b, len)?))
+    };
+    let leaf = || args.parse::<usize>().ok();
+    Some(match op {
+        "c" => TapeOp::Const(args.parse().ok()?),
+        "p" => TapeOp::Param(leaf()?),
+        "x" => TapeOp::Input(leaf()?),
+        "q" => TapeOp::Unknown(leaf()?),
+        "add" => two().map(|(a, b)| TapeOp::Add(a, b))?,
+        "sub" => two().map(|(a, b)| TapeOp::Sub(a, b))?,
+        "mul" => two().map(|(a, b)| TapeOp::Mul(a, b))?,
+        "div" => two().map(|(a, b)| TapeOp::Div(a, b))?,
+        "powf" => two().map(|(a, b)| TapeOp::Powf(a, b))?,
+        "atan2" => two().map(|(a, b)| TapeOp::Atan2(a, b))?,
+        "neg" => TapeOp::Neg(one()?),
+        "powi" => {
+            let (a, n) = args.split_once(',')?;
+            TapeOp::Powi(index(a, len)?, n.parse().ok()?)
+        }
+        f => TapeOp::Func(Func::ALL.iter().find(|(name, _)| *name == f)?.1, one()?),
+    })
+}
+
+fn joint(rest: &str, tape: usize) -> Option<Joint> {
+    let f: Vec<&str> = rest.split(' ').collect();
+    let [name, kind, named, x, y] = f[..] else { return None };
+    let ground = match kind {
+        "g" => true,
+        "m" => false,
+        _ => return None,
+    };
+    Some(Joint { name: name.to_string(), ground, named: named == "n", x: index(x, tape)?, y: index(y, tape)? })
+}
+
+fn segment(rest: &str, tape: usize, joints: usize) -> Option<Segment> {
+    let mut f = rest.splitn(5, ' ');
+    let (from, to) = (index(f.next()?, joints)?, index(f.next()?, joints)?);
+    let kind = match f.next()? {
+        "link" => SegmentKind::Link,
+        "ground" => SegmentKind::Ground,
+        "slider-fixed" => SegmentKind::Slider { fixed_guide: true },
+        "slider-turning" => SegmentKind::Slider { fixed_guide: false },
+        "construction" => SegmentKind::Construction,
+        _ => return None,
+    };
+    let angle = match f.next()? {
+        "-" => None,
+        a => Some(index(a, tape)?),
+    };
+    Some(Segment { from, to, kind, angle, term: f.next()?.to_string() })
+}
+
+fn plate(rest: &str, joints: usize) -> Option<Plate> {
+    let mut f = rest.split(' ');
+    let name = match f.next()? {
+        "-" => None,
+        n => Some(n.to_string()),
+    };
+    let joints = f.map(|j| index(j, joints)).collect::<Option<Vec<_>>>()?;
+    (joints.len() >= 2).then_some(Plate { name, joints })
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    const SLIDER_CRANK: &str = "kinloop-drawing 1
+t c:0 p:0 x:0 cos:2 mul:1,3 sin:2 mul:1,5 q:1 p:1
+j origin g - 0 0
+j a.l1 m - 4 6
+s 0 1 link 2 a: r @ phi
+s 0 1 slider-fixed - a: (x, e)
+p - 0 1
+n a note, with spaces";
+
+    #[test]
+    fn a_description_reads_and_evaluates() {
+        let d = parse(SLIDER_CRANK).unwrap();
+        assert_eq!(d.joints.len(), 2);
+        assert_eq!(d.segments[0].term, "a: r @ phi");
+        assert_eq!(d.segments[1].kind, SegmentKind::Slider { fixed_guide: true });
+        assert_eq!(d.notes, ["a note, with spaces"]);
+        let v = d.evaluate(&[2.0, 0.5], &[0.3], &[0.0, 1.0]).unwrap();
+        assert_eq!(v.joints, [[0.0, 0.0], [2.0 * 0.3f64.cos(), 2.0 * 0.3f64.sin()]]);
+        assert_eq!(v.angles, [Some(0.3), None]);
+    }
+
+    #[test]
+    fn a_broken_description_is_an_error_not_a_panic() {
+        for broken in [
+            "",
+            "kinloop-drawing 2",
+            "kinloop-drawing 1\nt add:0,1",
+            "kinloop-drawing 1\nt c:1 add:0,1",
+            "kinloop-drawing 1\nt c:x",
+            "kinloop-drawing 1\nt c:1\nj a g - 0 1",
+            "kinloop-drawing 1\nt c:1\nj a g - 0 0\ns 0 1 link - t",
+            "kinloop-drawing 1\nt c:1\nj a g - 0 0\ns 0 0 bar - t",
+            "kinloop-drawing 1\nt c:1\nj a g - 0 0\np - 0",
+            "kinloop-drawing 1\nz",
+            "kinloop-drawing 1\nt frob:0",
+        ] {
+            assert!(matches!(parse(broken), Err(Error::InvalidArgument(_))), "{broken:?}");
+        }
+        // Leaves beyond the slices given are an error at evaluation.
+        let d = parse(SLIDER_CRANK).unwrap();
+        assert!(matches!(d.evaluate(&[2.0], &[0.3], &[0.0, 1.0]), Err(Error::InvalidArgument(_))));
+    }
+}

@@ -1,0 +1,417 @@
+//! The default drawing of a mechanism, from its declaration (see [`Draw`]).
+
+use super::compose::Animation;
+use super::error::DrawError;
+use super::motion::Motion;
+use super::spec::{Drawing, Item, Pt, Scalar};
+use super::style::Style;
+use super::view::Canvas;
+use kinloop_runtime::drawing::{Description, SegmentKind};
+use kinloop_runtime::{Mechanism, NewtonConfig};
+use std::fmt::Write;
+use std::sync::Arc;
+
+/// `m.drawing()`: the default drawing of a mechanism, from its declaration. It reads the
+/// description `mechanism!` emits ([`Description`]) and draws every loop's links, frame pivots,
+/// sliders and rigid plates, and traces the named points, with no point described twice.
+///
+/// * A plate (links turning together, a declared `body`) is a filled polygon through its
+///   joints, a lone link a bar;
+/// * a fixed joint that a link or a turning guide starts or ends at is a pivot with hatching;
+///   constant vectors between fixed joints (the frame) are not drawn;
+/// * a slider on a fixed guide is a block at the vector's end with its hatched guide; on a
+///   turning guide (a cylinder, a slotted rocker) the guide is a bar and the block slides on it;
+/// * a vector that is none of these is drawn as a bar between its ends, and a note of the
+///   description says so: the drawing never guesses silently. [`DefaultDrawing::notes`] lists
+///   the notes, and the SVG shows them at the picture's bottom left.
+///
+/// Joints are merged where the macro proves two partial sums equal (see
+/// [`kinloop_runtime::drawing`]); points that coincide only numerically (at the inputs 0,
+/// solved from the declared guess) stay two joints, with a note.
+///
+/// ```
+/// use kinloop_viz::draw::{Animation, Draw, Motion};
+///
+/// kinloop::mechanism! {
+///     pub struct FourBar {
+///         params r = 1.0, l = 3.0, k = 2.5, d = 3.0, e = 1.5, delta = 0.6;
+///         input phi;
+///         unknowns beta = 0.5, gamma = 1.5;
+///         loop obcd: r @ phi + l @ beta == (d, 0) + k @ gamma;
+///         point p = r @ phi + e @ (beta + delta);
+///     }
+/// }
+/// let m = FourBar::default();
+/// let motion = Motion::record(&m, m.sweep(0.0, std::f64::consts::TAU, 91, &m.guess(0.0))?)?;
+/// // Crank, coupler plate carrying P, rocker, two pivots; P traced. Rename a joint, add to it.
+/// let drawing = m.drawing().rename("obcd.l1", "B")?.extend(|d| d.joint(kinloop_viz::draw::Pt::fixed(1.0, 1.0)));
+/// assert!(drawing.notes().is_empty());
+/// assert!(drawing.joint("B").is_ok());
+/// let svg = drawing.animate(&motion, &Animation::default())?;
+/// assert!(svg.contains("<animate ") && !svg.contains("NaN"));
+/// # Ok::<(), Box<dyn std::error::Error>>(())
+/// ```
+pub trait Draw<const N: usize, const NI: usize, const NO: usize> {
+    /// The mechanism drawn as its declaration describes it (see [`Draw`]).
+    fn drawing(&self) -> DefaultDrawing;
+}
+
+impl<M: Mechanism<N, NI, NO>, const N: usize, const NI: usize, const NO: usize> Draw<N, NI, NO> for M {
+    fn drawing(&self) -> DefaultDrawing {
+        DefaultDrawing::new(self)
+    }
+}
+
+/// The description and the parameter values it is evaluated with, shared by every point.
+struct Source {
+    description: Description,
+    params: Vec<f64>,
+    /// Zero inputs and unknowns: a state to evaluate what depends on the parameters only.
+    zero: [Vec<f64>; 2],
+}
+
+/// A mechanism's default drawing, to restyle, extend or trim before drawing it: a [`Drawing`]
+/// built from the declaration ([`DefaultDrawing::into_drawing`]), with the joints named.
+#[derive(Clone)]
+pub struct DefaultDrawing {
+    source: Arc<Source>,
+    names: Vec<String>,
+    hidden_joints: Vec<bool>,
+    hidden_segments: Vec<bool>,
+    untraced: Vec<bool>,
+    notes: Vec<String>,
+    /// Each plate's joints in the order drawn (around the plate at the reference state).
+    plates: Vec<Vec<usize>>,
+    /// Style, canvas, and the items and traces added by [`DefaultDrawing::extend`].
+    extra: Drawing,
+}
+
+impl DefaultDrawing {
+    /// The default drawing of `m`. A plate of four or more joints is drawn around its centre
+    /// as the mechanism stands at the inputs `0` solved from the declared guess (the reference
+    /// state); where that does not solve, in the declared order, with a note.
+    pub fn new<M: Mechanism<N, NI, NO>, const N: usize, const NI: usize, const NO: usize>(m: &M) -> DefaultDrawing {
+        let (description, mut notes) = match Description::of::<M, N, NI, NO>() {
+            Ok(d) => (d, Vec::new()),
+            Err(e) => (Description::default(), vec![e.to_string()]),
+        };
+        notes.extend(description.notes.iter().cloned());
+        let params = m.param_values();
+        let x = [0.0; NI];
+        let reference = m
+            .position_flat(&x, &m.guess_flat(&x), &NewtonConfig::default())
+            .ok()
+            .and_then(|(q, _)| description.evaluate(&params, &x, &q).ok());
+        if let Some(v) = &reference {
+            notes.extend(coincident(&description, &v.joints));
+        }
+        let plates = description
+            .plates
+            .iter()
+            .map(|p| match &reference {
+                Some(v) if p.joints.len() > 3 => around(&p.joints, &v.joints),
+                None if p.joints.len() > 3 => {
+                    notes.push(format!(
+                        "the mechanism does not assemble at inputs 0 from its guess: the plate through {} is \
+                         drawn in the declared order",
+                        p.joints.iter().map(|&j| description.joints[j].name.as_str()).collect::<Vec<_>>().join(", ")
+                    ));
+                    p.joints.clone()
+                }
+                _ => p.joints.clone(),
+            })
+            .collect();
+        let names = description.joints.iter().map(|j| j.name.clone()).collect();
+        let (nj, ns) = (description.joints.len(), description.segments.len());
+        DefaultDrawing {
+            source: Arc::new(Source { description, params, zero: [vec![0.0; NI], vec![0.0; N]] }),
+            names,
+            hidden_joints: vec![false; nj],
+            hidden_segments: vec![false; ns],
+            untraced: vec![false; nj],
+            notes,
+            plates,
+            extra: Drawing::new(),
+        }
+    }
+
+    /// The description the drawing is made from.
+    pub fn description(&self) -> &Description {
+        &self.source.description
+    }
+
+    /// What the declaration leaves ambiguous, and how the drawing shows it.
+    pub fn notes(&self) -> &[String] {
+        &self.notes
+    }
+
+    /// The joints' names (a `point`'s name, or `loop.lK` / `loop.rK`, or as renamed).
+    pub fn joint_names(&self) -> &[String] {
+        &self.names
+    }
+
+    fn index(&self, name: &str) -> Result<usize, DrawError> {
+        self.names
+            .iter()
+            .position(|n| n == name)
+            .ok_or_else(|| DrawError::UnknownPoint { name: name.to_string(), available: self.names.clone() })
+    }
+
+    /// Joint `name` as a point of a drawing, to extend the drawing through it (a gear about
+    /// it, a bar to it).
+    ///
+    /// # Errors
+    /// [`DrawError::UnknownPoint`] when no joint has this name.
+    pub fn joint(&self, name: &str) -> Result<Pt, DrawError> {
+        Ok(self.pt(self.index(name)?))
+    }
+
+    /// The angle of the segment declared as `term` (`loop: r @ phi`, as in
+    /// [`Description::segments`]), for a slider or gear added through [`DefaultDrawing::extend`].
+    ///
+    /// # Errors
+    /// [`DrawError::InvalidSetting`] when no segment is declared so, or it has no angle.
+    pub fn angle(&self, term: &str) -> Result<Scalar, DrawError> {
+        let s = self.segment(term)?;
+        if self.source.description.segments[s].kind == SegmentKind::Ground {
+            return Err(DrawError::InvalidSetting(format!("segment `{term}` is fixed: it has no turning angle")));
+        }
+        Ok(self.angle_of(s))
+    }
+
+    /// The angle of segment `s` at each state (NaN where it has none: a drawing reports it).
+    fn angle_of(&self, s: usize) -> Scalar {
+        let source = Arc::clone(&self.source);
+        Scalar::expr(move |st| {
+            source.description.evaluate(&source.params, st.x, st.q).ok().and_then(|v| v.angles[s]).unwrap_or(f64::NAN)
+        })
+    }
+
+    fn segment(&self, term: &str) -> Result<usize, DrawError> {
+        self.source.description.segments.iter().position(|s| s.term == term).ok_or_else(|| {
+            let all: Vec<&str> = self.source.description.segments.iter().map(|s| s.term.as_str()).collect();
+            DrawError::InvalidSetting(format!("no segment `{term}`; the segments are: {}", all.join("; ")))
+        })
+    }
+
+    /// Renames joint `from` to `to`.
+    ///
+    /// # Errors
+    /// [`DrawError::UnknownPoint`] when no joint is named `from`.
+    pub fn rename(mut self, from: &str, to: impl Into<String>) -> Result<DefaultDrawing, DrawError> {
+        let i = self.index(from)?;
+        self.names[i] = to.into();
+        Ok(self)
+    }
+
+    /// Leaves out a joint (by name: its pivot, its trace, and every bar, plate corner and
+    /// slider through it) or a segment (by its declared term, `loop: r @ phi`: a construction
+    /// vector, a slider, a link; a plate of several links goes when all of them are hidden).
+    ///
+    /// # Errors
+    /// [`DrawError::UnknownPoint`] when it names neither.
+    pub fn hide(mut self, what: &str) -> Result<DefaultDrawing, DrawError> {
+        if let Ok(s) = self.segment(what) {
+            self.hidden_segments[s] = true;
+        } else {
+            let j = self.index(what)?;
+            self.hidden_joints[j] = true;
+        }
+        Ok(self)
+    }
+
+    /// Stops tracing the path of named point `name`.
+    ///
+    /// # Errors
+    /// [`DrawError::UnknownPoint`] when no joint has this name.
+    pub fn untrace(mut self, name: &str) -> Result<DefaultDrawing, DrawError> {
+        let j = self.index(name)?;
+        self.untraced[j] = true;
+        Ok(self)
+    }
+
+    /// Sets colours and sizes.
+    pub fn with_style(mut self, style: Style) -> DefaultDrawing {
+        self.extra.style = style;
+        self
+    }
+
+    /// Sets the picture's size and the part of the plane shown.
+    pub fn with_canvas(mut self, canvas: Canvas) -> DefaultDrawing {
+        self.extra.canvas = canvas;
+        self
+    }
+
+    /// Adds items and traces drawn over the default ones: `.extend(|d| d.gear(centre, r, 0.0))`.
+    pub fn extend(mut self, add: impl FnOnce(Drawing) -> Drawing) -> DefaultDrawing {
+        self.extra = add(self.extra);
+        self
+    }
+
+    fn pt(&self, j: usize) -> Pt {
+        let source = Arc::clone(&self.source);
+        Pt::expr(move |st| match source.description.evaluate(&source.params, st.x, st.q) {
+            Ok(v) => v.joints[j],
+            Err(_) => [f64::NAN; 2],
+        })
+    }
+
+    /// The drawing: plates and bars, pivots, sliders, traces, then the items added.
+    pub fn into_drawing(self) -> Drawing {
+        let d = &self.source.description;
+        let shown = |j: usize| !self.hidden_joints[j];
+        let mut items = Vec::new();
+        let mut pivots = vec![false; d.joints.len()];
+        for (s, seg) in d.segments.iter().enumerate() {
+            if self.hidden_segments[s] || !shown(seg.from) || !shown(seg.to) {
+                continue;
+            }
+            let pivot = |j: usize, pivots: &mut Vec<bool>| pivots[j] |= d.joints[j].ground;
+            match seg.kind {
+                SegmentKind::Ground => {}
+                SegmentKind::Link => {
+                    pivot(seg.from, &mut pivots);
+                    pivot(seg.to, &mut pivots);
+                }
+                SegmentKind::Slider { fixed_guide } => {
+                    let angle = self.angle_of(s);
+                    let angle = if fixed_guide { Scalar::Const(self.constant(&angle)) } else { angle };
+                    if !fixed_guide {
+                        pivot(seg.from, &mut pivots);
+                        items.push(Item::Link { through: vec![self.pt(seg.from), self.pt(seg.to)], closed: false });
+                    }
+                    items.push(Item::Slider { at: self.pt(seg.to), angle });
+                }
+                SegmentKind::Construction => {
+                    items.push(Item::Link { through: vec![self.pt(seg.from), self.pt(seg.to)], closed: false })
+                }
+            }
+        }
+        for joints in &self.plates {
+            // A plate goes with its links: hidden when every link of it is.
+            let mut links = d
+                .segments
+                .iter()
+                .enumerate()
+                .filter(|(_, s)| s.kind == SegmentKind::Link && joints.contains(&s.from) && joints.contains(&s.to));
+            if links.all(|(s, _)| self.hidden_segments[s]) {
+                continue;
+            }
+            let through: Vec<Pt> = joints.iter().copied().filter(|&j| shown(j)).map(|j| self.pt(j)).collect();
+            if through.len() >= 2 {
+                items.push(Item::Link { closed: through.len() > 2, through });
+            }
+        }
+        let mut drawing = Drawing::new();
+        for (j, _) in pivots.iter().enumerate().filter(|(j, p)| **p && shown(*j)) {
+            drawing = drawing.pivot(self.pt(j));
+        }
+        drawing.items.extend(items);
+        for (j, joint) in d.joints.iter().enumerate() {
+            if joint.named && !joint.ground && shown(j) && !self.untraced[j] {
+                drawing = drawing.trace(self.pt(j));
+            }
+        }
+        let DefaultDrawing { extra, .. } = self;
+        drawing.items.extend(extra.items);
+        drawing.traces.extend(extra.traces);
+        drawing.with_style(extra.style).with_canvas(extra.canvas)
+    }
+
+    /// A fixed guide's angle (parameters only: any state gives it).
+    fn constant(&self, a: &Scalar) -> f64 {
+        let [x, q] = &self.source.zero;
+        match a {
+            Scalar::Const(v) => *v,
+            Scalar::Expr(f) => f(&super::spec::StateRef { x, q, out: &[] }),
+        }
+    }
+
+    /// [`Drawing::animate`] of the drawing, with its notes below the picture.
+    ///
+    /// # Errors
+    /// As [`Drawing::animate`].
+    pub fn animate(&self, motion: &Motion, anim: &Animation) -> Result<String, DrawError> {
+        Ok(self.annotate(self.clone().into_drawing().animate(motion, anim)?))
+    }
+
+    /// [`Drawing::svg`] of the drawing at pose `pose`, with its notes.
+    ///
+    /// # Errors
+    /// As [`Drawing::svg`].
+    pub fn svg(&self, motion: &Motion, pose: usize) -> Result<String, DrawError> {
+        Ok(self.annotate(self.clone().into_drawing().svg(motion, pose)?))
+    }
+
+    /// [`Drawing::exposures`] of the drawing, with its notes.
+    ///
+    /// # Errors
+    /// As [`Drawing::exposures`].
+    pub fn exposures(&self, motion: &Motion, count: usize) -> Result<String, DrawError> {
+        Ok(self.annotate(self.clone().into_drawing().exposures(motion, count)?))
+    }
+
+    /// The notes as lines of text at the picture's bottom left.
+    fn annotate(&self, mut svg: String) -> String {
+        if self.notes.is_empty() {
+            return svg;
+        }
+        let Some(end) = svg.rfind("</svg>") else { return svg };
+        // The picture's height, from the root element's attribute.
+        let height = svg
+            .split_once(" height=\"")
+            .and_then(|(_, rest)| rest.split_once('"'))
+            .and_then(|(h, _)| h.parse::<f64>().ok())
+            .unwrap_or(14.0 * (self.notes.len() as f64 + 1.0));
+        let mut text = String::new();
+        for (k, note) in self.notes.iter().rev().enumerate() {
+            let escaped = note.replace('&', "&amp;").replace('<', "&lt;").replace('>', "&gt;");
+            let y = height - 6.0 - 14.0 * k as f64;
+            let _ = write!(
+                text,
+                r##"<text x="8" y="{y}" font-family="sans-serif" font-size="11" fill="#a0522d">note: {escaped}</text>"##
+            );
+        }
+        svg.insert_str(end, &text);
+        svg
+    }
+}
+
+impl From<DefaultDrawing> for Drawing {
+    fn from(d: DefaultDrawing) -> Drawing {
+        d.into_drawing()
+    }
+}
+
+/// Joints at the same place at the reference state though the macro could not prove them one
+/// (their sums differ symbolically): said in a note, drawn as two, since a coincidence at one
+/// state may be a chance one. Within 1e-9 of the mechanism's extent, rounding of two sums of a
+/// few vectors apart.
+fn coincident(d: &Description, at: &[[f64; 2]]) -> Vec<String> {
+    let extent = at.iter().fold(0.0f64, |e, p| e.max(p[0].abs()).max(p[1].abs()));
+    let mut notes = Vec::new();
+    for i in 0..at.len() {
+        for j in i + 1..at.len() {
+            if (at[i][0] - at[j][0]).hypot(at[i][1] - at[j][1]) <= 1e-9 * extent {
+                notes.push(format!(
+                    "joints `{}` and `{}` coincide at inputs 0 but are different sums of the declared vectors: \
+                     drawn as two joints",
+                    d.joints[i].name, d.joints[j].name
+                ));
+            }
+        }
+    }
+    notes
+}
+
+/// `joints` ordered by their angle about their centre in `at`.
+fn around(joints: &[usize], at: &[[f64; 2]]) -> Vec<usize> {
+    let n = joints.len() as f64;
+    let c = joints.iter().fold([0.0, 0.0], |c, &j| [c[0] + at[j][0] / n, c[1] + at[j][1] / n]);
+    let mut v = joints.to_vec();
+    v.sort_by(|&a, &b| {
+        let angle = |j: usize| (at[j][1] - c[1]).atan2(at[j][0] - c[0]);
+        angle(a).total_cmp(&angle(b))
+    });
+    v
+}
