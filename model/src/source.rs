@@ -109,9 +109,29 @@ pub fn tokens(name: &str, text: &str) -> Result<TokenStream, Diagnostics> {
         return Err(Diagnostics::whole(name, text, message));
     }
     text.parse::<TokenStream>().map_err(|e| {
-        let d = at_span(text, e.span(), format!("cannot read the declaration: {e}"));
+        let mut d = at_span(text, e.span(), String::new());
+        d.message = lex_message(text[d.range.start..].chars().next(), &e);
         Diagnostics { name: name.to_string(), text: text.to_string(), items: vec![d] }
     })
+}
+
+/// The compiler's message for a text its lexer rejects at character `at`, for the two mistakes
+/// it names (a character no token starts with, a closing bracket without its opening one);
+/// proc-macro2's own message otherwise.
+fn lex_message(at: Option<char>, e: &proc_macro2::LexError) -> String {
+    match at {
+        Some(c @ (')' | ']' | '}')) => format!("unexpected closing delimiter: `{c}`"),
+        Some(c) if !c.is_ascii() && !unicode_ident_start(c) => {
+            format!("unknown start of token: {}", c.escape_default())
+        }
+        _ => format!("cannot read the declaration: {e}"),
+    }
+}
+
+/// Whether `c` may start an identifier (approximated: alphabetic), where the compiler reports
+/// a non-ASCII identifier instead of an unknown token.
+fn unicode_ident_start(c: char) -> bool {
+    c.is_alphabetic()
 }
 
 /// Forgets the spans of every text this thread lexed. proc-macro2 keeps the text of each
