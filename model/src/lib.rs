@@ -71,4 +71,4 @@ mod tape;
 pub use blocks::StepFailure;
 pub use factor::MAX_DENSE;
 pub use model::{Model, ReadError, State, StepError};
-pub use source::{Diagnostic, Diagnostics};
+pub use source::{Diagnostic, Diagnostics, Level};

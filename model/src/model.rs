@@ -105,6 +105,7 @@ pub struct State {
 pub struct Model {
     name: String,
     decomposition: String,
+    warnings: Option<Diagnostics>,
     graph: Graph,
     params: Vec<String>,
     param_values: Vec<Option<f64>>,
@@ -147,7 +148,15 @@ impl Model {
         let tokens = source::tokens(name, text).map_err(ReadError::Rejected)?;
         let planned = kinloop_codegen::plan_declaration(tokens)
             .map_err(|e| ReadError::Rejected(Diagnostics::from_syn(name, text, e)))?;
-        Model::from_planned(planned)
+        let warnings = Diagnostics::warnings(name, text, &planned.warnings);
+        let mut m = Model::from_planned(planned)?;
+        m.warnings = warnings;
+        Ok(m)
+    }
+
+    /// The warnings of the declaration (unused parameters), as the macro gives them.
+    pub fn warnings(&self) -> Option<&Diagnostics> {
+        self.warnings.as_ref()
     }
 
     /// Builds the run-time program of a planned declaration.
@@ -250,6 +259,7 @@ impl Model {
         let mut m = Model {
             name: name_of(&model.name),
             decomposition,
+            warnings: None,
             params: model.params.iter().map(|p| name_of(&p.name)).collect(),
             param_values,
             param_regs: (0..np).map(|k| find(Leaf::Param(k as u16))).collect(),
@@ -565,4 +575,58 @@ fn keeps_lu(bp: &BlockPlan) -> bool {
             .iter()
             .enumerate()
             .all(|(c, col)| col.iter().all(|e| bp.jac.iter().any(|row| row.get(c) == Some(e))))
+}
+
+impl State {
+    /// The state as one table row, in the order of [`Model::columns`] (the runtime's
+    /// `Table::kin_row`): inputs; unknowns, their first analogs, their second analogs (pairs
+    /// `i <= j`); the same for the output columns.
+    pub fn row(&self) -> Vec<f64> {
+        let ni = self.x.len();
+        let mut row = self.x.clone();
+        for (values, d1, d2) in [(&self.q, &self.dq, &self.d2q), (&self.out, &self.dout, &self.d2out)] {
+            row.extend(values);
+            row.extend(d1.iter());
+            for u in 0..values.len() {
+                for i in 0..ni {
+                    for j in i..ni {
+                        row.push(d2[(u * ni + i) * ni + j]);
+                    }
+                }
+            }
+        }
+        row
+    }
+}
+
+impl Model {
+    /// The names of a state's table columns (the runtime's `Table::kin_columns`): `phi`, `psi`,
+    /// `d(psi)/d(phi)`, `d2(psi)/d(phi)^2`, `d2(n)/d(i)d(j)`, ...
+    pub fn columns(&self) -> Vec<String> {
+        let mut c = self.inputs.clone();
+        for names in [&self.unknowns, &self.outputs] {
+            c.extend(names.iter().cloned());
+            for n in names {
+                for i in &self.inputs {
+                    c.push(format!("d({n})/d({i})"));
+                }
+            }
+            for n in names {
+                for (a, i) in self.inputs.iter().enumerate() {
+                    for j in &self.inputs[a..] {
+                        c.push(if i == j { format!("d2({n})/d({i})^2") } else { format!("d2({n})/d({i})d({j})") });
+                    }
+                }
+            }
+        }
+        c
+    }
+
+    /// The base quantities with their kinds: inputs, unknowns and output columns (a point's
+    /// `p.x`, `p.y`), for units.
+    pub fn quantities(&self) -> Vec<(&str, QuantityKind)> {
+        let names = self.inputs.iter().chain(&self.unknowns).chain(&self.outputs);
+        let kinds = self.input_kinds.iter().chain(&self.unknown_kinds).chain(&self.output_kinds);
+        names.map(String::as_str).zip(kinds.copied()).collect()
+    }
 }

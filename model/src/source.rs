@@ -32,9 +32,21 @@ pub struct Diagnostic {
     pub column: usize,
 }
 
-/// Why a declaration was rejected: every message, in order, with the text they point into.
+/// How serious a set of messages is.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum Level {
+    /// The declaration is rejected.
+    Error,
+    /// The declaration is accepted; something in it is probably a mistake (an unused parameter).
+    Warning,
+}
+
+/// Messages about a declaration, in order, with the text they point into: why it was rejected,
+/// or (level [`Level::Warning`]) what in an accepted one looks wrong.
 #[derive(Clone, Debug)]
 pub struct Diagnostics {
+    /// Errors or warnings.
+    pub level: Level,
     /// The name the text is shown under (a file name).
     pub name: String,
     /// The declaration's text.
@@ -47,14 +59,20 @@ impl Diagnostics {
     /// One message about the whole text (its first line).
     fn whole(name: &str, text: &str, message: String) -> Diagnostics {
         let items = vec![Diagnostic { message, range: 0..0, line: 1, column: 1 }];
-        Diagnostics { name: name.to_string(), text: text.to_string(), items }
+        Diagnostics { level: Level::Error, name: name.to_string(), text: text.to_string(), items }
     }
 
     /// The messages of a `syn::Error` (it holds several when the macro found several mistakes),
     /// each at its span.
     pub(crate) fn from_syn(name: &str, text: &str, error: syn::Error) -> Diagnostics {
         let items = error.into_iter().map(|e| at_span(text, e.span(), e.to_string())).collect();
-        Diagnostics { name: name.to_string(), text: text.to_string(), items }
+        Diagnostics { level: Level::Error, name: name.to_string(), text: text.to_string(), items }
+    }
+
+    /// The warnings of an accepted declaration (`None` when there are none).
+    pub(crate) fn warnings(name: &str, text: &str, warnings: &[kinloop_codegen::diag::Warning]) -> Option<Diagnostics> {
+        let items: Vec<Diagnostic> = warnings.iter().map(|w| at_span(text, w.span, w.message.clone())).collect();
+        (!items.is_empty()).then(|| Diagnostics { level: Level::Warning, name: name.to_string(), text: text.to_string(), items })
     }
 
     /// The messages rendered as the compiler shows them: `error: message`, the file, line and
@@ -64,7 +82,11 @@ impl Diagnostics {
         let config = Config::default();
         let mut out = Vec::new();
         for d in &self.items {
-            let report = Report::error().with_message(&d.message).with_labels(vec![Label::primary((), d.range.clone())]);
+            let report = match self.level {
+                Level::Error => Report::error(),
+                Level::Warning => Report::warning(),
+            };
+            let report = report.with_message(&d.message).with_labels(vec![Label::primary((), d.range.clone())]);
             let written = if color {
                 let mut w = term::termcolor::Ansi::new(&mut out);
                 term::emit(&mut w, &config, &file, &report)
@@ -74,7 +96,7 @@ impl Diagnostics {
             };
             if written.is_err() {
                 // Rendering into memory fails only on a range outside the text: the plain form.
-                out.extend(format!("error: {}\n --> {}:{}:{}\n", d.message, self.name, d.line, d.column).bytes());
+                out.extend(format!("{}: {}\n --> {}:{}:{}\n", if self.level == Level::Error { "error" } else { "warning" }, d.message, self.name, d.line, d.column).bytes());
             }
         }
         String::from_utf8_lossy(&out).into_owned()
@@ -111,7 +133,7 @@ pub fn tokens(name: &str, text: &str) -> Result<TokenStream, Diagnostics> {
     text.parse::<TokenStream>().map_err(|e| {
         let mut d = at_span(text, e.span(), String::new());
         d.message = lex_message(text[d.range.start..].chars().next(), &e);
-        Diagnostics { name: name.to_string(), text: text.to_string(), items: vec![d] }
+        Diagnostics { level: Level::Error, name: name.to_string(), text: text.to_string(), items: vec![d] }
     })
 }
 
