@@ -20,7 +20,11 @@ pub fn apply(model: &mut Model, list: &str) -> Result<(), Failed> {
             return Err(Failed(exit::USAGE));
         }
         if !model.set_param(name, v) {
-            eprintln!("error: {} has no parameter `{name}` (its parameters: {})", model.name(), model.params().join(", "));
+            eprintln!(
+                "error: {} has no parameter `{name}` (its parameters: {})",
+                model.name(),
+                model.params().join(", ")
+            );
             return Err(Failed(exit::USAGE));
         }
     }

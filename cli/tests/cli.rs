@@ -75,7 +75,10 @@ fn degrees_and_parameters() {
     // Degrees: one conversion and one rounding each.
     let close = |got: f64, want: f64| assert!((got - want).abs() <= 4.0 * f64::EPSILON * want.abs(), "{got} vs {want}");
     close(row_of(&header, &rows, "beta [deg]"), k.q[0].to_degrees());
-    close(row_of(&header, &rows, "d2(gamma)/d(phi)^2 [deg/deg^2]"), k.d2q[1][0][0].to_degrees() / 180f64.to_degrees() * std::f64::consts::PI);
+    close(
+        row_of(&header, &rows, "d2(gamma)/d(phi)^2 [deg/deg^2]"),
+        k.d2q[1][0][0].to_degrees() / 180f64.to_degrees() * std::f64::consts::PI,
+    );
     close(row_of(&header, &rows, "d(pc.y)/d(phi) [length unit/deg]"), k.dout[1][0].to_radians());
 }
 
@@ -97,8 +100,11 @@ fn errors_have_carets_and_exit_codes() {
     let dir = std::env::temp_dir().join(format!("kinloop-cli-{}", std::process::id()));
     std::fs::create_dir_all(&dir).expect("temp dir");
     let bad = dir.join("bad.kl");
-    std::fs::write(&bad, "pub struct S {\n    params r = 1;\n    input phi;\n    unknowns x = 1;\n    eq e: x == r * phy;\n}\n")
-        .expect("write");
+    std::fs::write(
+        &bad,
+        "pub struct S {\n    params r = 1;\n    input phi;\n    unknowns x = 1;\n    eq e: x == r * phy;\n}\n",
+    )
+    .expect("write");
     let out = kinloop(&["check", &bad.display().to_string()]);
     assert_eq!(out.status.code(), Some(65));
     let err = String::from_utf8_lossy(&out.stderr);

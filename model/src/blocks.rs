@@ -67,6 +67,19 @@ pub(crate) struct BlockProg {
     pub(crate) tan2_regs: Vec<Option<u32>>,
 }
 
+/// What a block's stage works on: the registers, its factorisation, the configuration.
+pub(crate) struct Work<'a> {
+    pub(crate) r: &'a mut [f64],
+    pub(crate) fac: &'a mut Fac,
+    pub(crate) cfg: &'a NewtonConfig,
+}
+
+/// Whether a pivot ratio fails the configuration's test: below it, or NaN.
+#[allow(clippy::neg_cmp_op_on_partial_ord)] // the negation is what lets NaN through
+fn singular(pivot_ratio: f64, cfg: &NewtonConfig) -> bool {
+    !(pivot_ratio >= cfg.singular_tol)
+}
+
 impl BlockProg {
     fn set_unknowns(&self, r: &mut [f64], q: &mut [f64], values: &[f64]) {
         for (k, &u) in self.unknowns.iter().enumerate() {
@@ -89,8 +102,7 @@ impl BlockProg {
                     [r[self.jac[0] as usize], r[self.jac[1] as usize]],
                     [r[self.jac[2] as usize], r[self.jac[3] as usize]],
                 ];
-                let beyond =
-                    (!self.beyond.iter().all(Vec::is_empty)).then(|| [v(&self.beyond[0]), v(&self.beyond[1])]);
+                let beyond = (!self.beyond.iter().all(Vec::is_empty)).then(|| [v(&self.beyond[0]), v(&self.beyond[1])]);
                 let floor = |c: usize| match self.floors[c].as_slice() {
                     [] => None,
                     [one] => Some(r[*one as usize]),
@@ -120,13 +132,12 @@ impl BlockProg {
     pub(crate) fn position(
         &self,
         g: &Graph,
-        r: &mut [f64],
+        w: Work<'_>,
         q: &mut [f64],
         guess: &[f64],
-        cfg: &NewtonConfig,
         report: &mut SolveReport,
-        fac: &mut Fac,
     ) -> Result<(), StepFailure> {
+        let Work { r, fac, cfg } = w;
         self.pre.run(r);
         match &self.how {
             How::Fixed { coefficient, rhs } => {
@@ -136,7 +147,7 @@ impl BlockProg {
             }
             How::Linear { rhs } => {
                 let lu = self.factor_from_graph(r);
-                if !(lu.pivot_ratio() >= cfg.singular_tol) {
+                if singular(lu.pivot_ratio(), cfg) {
                     return Err(StepFailure::Singular { pivot_ratio: lu.pivot_ratio() });
                 }
                 let mut z = [0.0; crate::factor::MAX_DENSE];
@@ -187,13 +198,12 @@ impl BlockProg {
     pub(crate) fn velocity(
         &self,
         b: usize,
-        r: &mut [f64],
+        w: Work<'_>,
         dq: &mut [f64],
         ni: usize,
-        cfg: &NewtonConfig,
         health: &mut Health,
-        fac: &mut Fac,
     ) -> Result<(), StepFailure> {
+        let Work { r, fac, cfg } = w;
         self.vel.run(r);
         match &self.how {
             How::Fixed { .. } | How::Linear { .. } => {}
@@ -201,7 +211,7 @@ impl BlockProg {
             How::Newton(p) if p.keeps_lu => {}
             How::Newton(_) => *fac = self.factor_cols(r),
         }
-        if matches!(self.how, How::Closed { .. } | How::Newton(_)) && !(fac.pivot_ratio() >= cfg.singular_tol) {
+        if matches!(self.how, How::Closed { .. } | How::Newton(_)) && singular(fac.pivot_ratio(), cfg) {
             return Err(StepFailure::Singular { pivot_ratio: fac.pivot_ratio() });
         }
         fac.note(health, b);

@@ -13,8 +13,8 @@ use kinloop_codegen::graph::dag::{Graph, NodeId};
 use kinloop_codegen::plan::closed_form::ClosedForm;
 use kinloop_runtime::NewtonConfig;
 use kinloop_runtime::generated::{
-    BlockFailure, acos_on_side, asin_near, check_closed, check_guess, dyad_roots, polar_norm, reduce_turn,
-    root_offset, sign_at_guess, unwrap_to_turn,
+    BlockFailure, acos_on_side, asin_near, check_closed, check_guess, dyad_roots, polar_norm, reduce_turn, root_offset,
+    sign_at_guess, unwrap_to_turn,
 };
 use std::f64::consts::FRAC_PI_2;
 
@@ -58,7 +58,7 @@ fn mul(a: V, b: V) -> V {
 fn add(a: V, b: V) -> V {
     match (a, b) {
         (V::C(x), V::C(y)) => V::C(x + y),
-        (V::C(z), e) | (e, V::C(z)) if z == 0.0 => e,
+        (V::C(0.0), e) | (e, V::C(0.0)) => e,
         _ => V::E(a.val() + b.val()),
     }
 }
@@ -66,8 +66,8 @@ fn add(a: V, b: V) -> V {
 fn sub(a: V, b: V) -> V {
     match (a, b) {
         (V::C(x), V::C(y)) => V::C(x - y),
-        (e, V::C(z)) if z == 0.0 => e,
-        (V::C(z), e) if z == 0.0 => neg(e),
+        (e, V::C(0.0)) => e,
+        (V::C(0.0), e) => neg(e),
         _ => V::E(a.val() - b.val()),
     }
 }

@@ -1,7 +1,7 @@
 //! A mechanism read at run time: the plan turned into the tape and block programs once, then
 //! evaluated step by step without allocating.
 
-use crate::blocks::{BlockProg, How, StepFailure};
+use crate::blocks::{BlockProg, How, StepFailure, Work};
 use crate::factor::{Fac, MAX_DENSE};
 use crate::newton::NewtonProg;
 use crate::source::{self, Diagnostics};
@@ -424,11 +424,13 @@ impl Model {
         st.report = SolveReport::direct();
         st.health = Health::default();
         for (b, prog) in self.blocks.iter().enumerate() {
-            prog.position(&self.graph, &mut self.regs, &mut st.q, guess, cfg, &mut st.report, &mut self.facs[b])
+            let w = Work { r: &mut self.regs, fac: &mut self.facs[b], cfg };
+            prog.position(&self.graph, w, &mut st.q, guess, &mut st.report)
                 .map_err(|failure| StepError::Block { block: b, failure })?;
         }
         for (b, prog) in self.blocks.iter().enumerate() {
-            prog.velocity(b, &mut self.regs, &mut st.dq, ni, cfg, &mut st.health, &mut self.facs[b])
+            let w = Work { r: &mut self.regs, fac: &mut self.facs[b], cfg };
+            prog.velocity(b, w, &mut st.dq, ni, &mut st.health)
                 .map_err(|failure| StepError::Block { block: b, failure })?;
         }
         let np = ni * (ni + 1) / 2;
@@ -459,7 +461,8 @@ impl Model {
             *o = r[reg as usize];
         }
         full(&self.pair_d2, self.outputs.len(), &mut st.d2out);
-        let finite = [&st.q, &st.dq, &st.d2q, &st.out, &st.dout, &st.d2out].iter().all(|v| v.iter().all(|x| x.is_finite()));
+        let finite =
+            [&st.q, &st.dq, &st.d2q, &st.out, &st.dout, &st.d2out].iter().all(|v| v.iter().all(|x| x.is_finite()));
         if !finite {
             return Err(StepError::NonFinite);
         }
@@ -489,9 +492,8 @@ fn position_program(
     let unknown_nodes: Vec<Option<NodeId>> = bp.unknowns.iter().map(|&u| find(Leaf::Unknown(u as u16))).collect();
     let regs = |v: &[NodeId]| v.iter().map(|n| n.0).collect::<Vec<u32>>();
     let jac = regs(&bp.jac.concat());
-    let col: Vec<Vec<u32>> = (0..nb)
-        .map(|c| bp.col_scale[c].iter().chain(&bp.lever_floor[c]).map(|n| n.0).collect())
-        .collect();
+    let col: Vec<Vec<u32>> =
+        (0..nb).map(|c| bp.col_scale[c].iter().chain(&bp.lever_floor[c]).map(|n| n.0).collect()).collect();
     let floors: Vec<Vec<u32>> = bp.lever_floor.iter().map(|f| regs(f)).collect();
     let beyond: Vec<Vec<u32>> = if nb == 2 {
         (0..2)
@@ -510,8 +512,14 @@ fn position_program(
             (tape.segment(&[*rhs], None)?, How::Fixed { coefficient: *coefficient, rhs: rhs.0 })
         }
         Solve::Linear { rhs } => {
-            let roots: Vec<NodeId> =
-                bp.jac.concat().into_iter().chain(rhs.iter().copied()).chain(bp.col_scale.concat()).chain(bp.lever_floor.concat()).collect();
+            let roots: Vec<NodeId> = bp
+                .jac
+                .concat()
+                .into_iter()
+                .chain(rhs.iter().copied())
+                .chain(bp.col_scale.concat())
+                .chain(bp.lever_floor.concat())
+                .collect();
             (tape.segment(&roots, None)?, How::Linear { rhs: regs(rhs) })
         }
         Solve::ClosedForm(rec) => {
@@ -522,7 +530,12 @@ fn position_program(
         }
         Solve::Newton | Solve::NewtonSparse(_) => {
             let roots: Vec<NodeId> =
-                bp.f.iter().copied().chain(bp.jac.concat()).chain(bp.scale.iter().copied()).chain(bp.unit.iter().copied()).collect();
+                bp.f.iter()
+                    .copied()
+                    .chain(bp.jac.concat())
+                    .chain(bp.scale.iter().copied())
+                    .chain(bp.unit.iter().copied())
+                    .collect();
             // What does not depend on the block's unknowns is computed once, before the solve.
             let pre = tape.segment(&roots, Some(&level_below))?;
             tape.provide(unknown_nodes.iter().flatten().copied());

@@ -42,7 +42,11 @@ pub(crate) fn solve(
 ) -> Result<(), BlockFailure> {
     macro_rules! go {
         ($n:literal, $k:literal, $kf:literal) => {
-            if p.fixed_mags { solve_n::<$n, $kf>(p, r, guess, cfg, report, fac) } else { solve_n::<$n, $k>(p, r, guess, cfg, report, fac) }
+            if p.fixed_mags {
+                solve_n::<$n, $kf>(p, r, guess, cfg, report, fac)
+            } else {
+                solve_n::<$n, $k>(p, r, guess, cfg, report, fac)
+            }
         };
     }
     match p.unknowns.len() {

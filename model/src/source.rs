@@ -72,7 +72,12 @@ impl Diagnostics {
     /// The warnings of an accepted declaration (`None` when there are none).
     pub(crate) fn warnings(name: &str, text: &str, warnings: &[kinloop_codegen::diag::Warning]) -> Option<Diagnostics> {
         let items: Vec<Diagnostic> = warnings.iter().map(|w| at_span(text, w.span, w.message.clone())).collect();
-        (!items.is_empty()).then(|| Diagnostics { level: Level::Warning, name: name.to_string(), text: text.to_string(), items })
+        (!items.is_empty()).then(|| Diagnostics {
+            level: Level::Warning,
+            name: name.to_string(),
+            text: text.to_string(),
+            items,
+        })
     }
 
     /// The messages rendered as the compiler shows them: `error: message`, the file, line and
@@ -96,7 +101,17 @@ impl Diagnostics {
             };
             if written.is_err() {
                 // Rendering into memory fails only on a range outside the text: the plain form.
-                out.extend(format!("{}: {}\n --> {}:{}:{}\n", if self.level == Level::Error { "error" } else { "warning" }, d.message, self.name, d.line, d.column).bytes());
+                out.extend(
+                    format!(
+                        "{}: {}\n --> {}:{}:{}\n",
+                        if self.level == Level::Error { "error" } else { "warning" },
+                        d.message,
+                        self.name,
+                        d.line,
+                        d.column
+                    )
+                    .bytes(),
+                );
             }
         }
         String::from_utf8_lossy(&out).into_owned()

@@ -87,9 +87,7 @@ fn bodies(src: &str) -> Vec<(usize, usize)> {
 
 /// `src` with everything outside `range` blanked, newlines kept.
 fn in_place(src: &str, (from, to): (usize, usize)) -> String {
-    src.char_indices()
-        .map(|(i, c)| if (from..to).contains(&i) || c == '\n' { c } else { ' ' })
-        .collect()
+    src.char_indices().map(|(i, c)| if (from..to).contains(&i) || c == '\n' { c } else { ' ' }).collect()
 }
 
 fn ui_cases() -> Vec<PathBuf> {
@@ -128,9 +126,11 @@ fn ui_declarations_read_at_run_time_give_the_macros_messages() {
         for &span in &spans {
             match Model::read(&case.display().to_string(), &in_place(&src, span)) {
                 Ok(_) | Err(ReadError::Unsupported(_)) => {}
-                Err(ReadError::Rejected(d)) => got.extend(
-                    d.items.into_iter().map(|i| Expected { line: i.line, column: i.column, message: i.message }),
-                ),
+                Err(ReadError::Rejected(d)) => got.extend(d.items.into_iter().map(|i| Expected {
+                    line: i.line,
+                    column: i.column,
+                    message: i.message,
+                })),
             }
         }
         expected.sort();
