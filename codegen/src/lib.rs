@@ -24,22 +24,19 @@
 #![warn(missing_docs)]
 
 // The crate's interface is `expand` (what the macro runs), `analyze` (for tests and tools) and
-// `plan` (for back ends other than the emitter: the run-time evaluator of `kinloop-model`). The
-// stages that `plan` returns the products of are reachable, hidden from the documentation: they
-// are an interface between the workspace's crates, not a stable one, so the pipeline can change
-// without breaking anyone outside it. The emitter and the fallback stay private.
+// `plan_declaration` (for back ends other than the emitter: the run-time evaluator of
+// `kinloop-model`). The plan it returns and the expression graph the plan owns are reachable,
+// hidden from the documentation: an interface between the workspace's crates, not a stable one,
+// so the pipeline can change without breaking anyone outside it. The other stages are private.
 pub(crate) mod emit;
 pub(crate) mod fallback;
-#[doc(hidden)]
-pub mod front;
+pub(crate) mod front;
 #[doc(hidden)]
 pub mod graph;
 #[doc(hidden)]
 pub mod plan;
-#[doc(hidden)]
-pub mod semantics;
-#[doc(hidden)]
-pub mod structure;
+pub(crate) mod semantics;
+pub(crate) mod structure;
 
 // What `analyze` returns is public: the checked model, the blocks and the warnings.
 pub use semantics::model;
