@@ -32,7 +32,13 @@ pub(crate) enum How {
     Linear { rhs: Vec<u32> },
     /// The closed form; the registers of each angle's `[sin, cos]` nodes, which the solve
     /// defines.
-    Closed { form: ClosedForm, sin_cos: Vec<[Option<u32>; 2]> },
+    Closed {
+        form: ClosedForm,
+        sin_cos: Vec<[Option<u32>; 2]>,
+        /// The unknowns in the order the solve gives them (the angles, then the length or
+        /// slider), each with its register.
+        order: Vec<(usize, Option<u32>)>,
+    },
     /// Newton.
     Newton(NewtonProg),
 }
@@ -159,16 +165,12 @@ impl BlockProg {
                 *fac = lu;
                 self.set_unknowns(r, q, &z[..n]);
             }
-            How::Closed { form, sin_cos } => {
+            How::Closed { form, sin_cos, order } => {
                 let out = closed::solve(form, g, r, guess, cfg).map_err(StepFailure::Block)?;
                 let n = self.unknowns.len();
-                // The unknowns in the solve's order: the angles, then the length or slider.
-                let order: Vec<usize> = form.angles().into_iter().chain(other_unknown(form)).collect();
-                for (k, &u) in order.iter().enumerate() {
+                for (k, &(u, reg)) in order.iter().enumerate() {
                     q[u] = out.values[k];
-                    if let Some(pos) = self.unknowns.iter().position(|&v| v == u)
-                        && let Some(reg) = self.unknown_regs[pos]
-                    {
+                    if let Some(reg) = reg {
                         r[reg as usize] = out.values[k];
                     }
                 }

@@ -126,9 +126,13 @@ pub(crate) fn solve(
         ClosedForm::AngleEquation { .. } | ClosedForm::Dyad { .. } => None,
     };
     if let Some(o) = others {
-        let angles = form.angles();
-        let sum = angles.iter().map(|&u| guess[u]).chain([guess[o]]).reduce(|a, b| a + b).unwrap_or(0.0);
-        check_guess(sum)?;
+        // The angle's guess, then the other's (the forms with a length or slider have one angle).
+        let angle = match form {
+            ClosedForm::PolarLength { angle, .. } | ClosedForm::AngleSlider { angle, .. } => *angle,
+            ClosedForm::AngleEquation { angle, .. } => *angle,
+            ClosedForm::Dyad { angles, .. } => angles[0],
+        };
+        check_guess(guess[angle] + guess[o])?;
     }
     let (values, len) = match form {
         ClosedForm::AngleEquation { angle, a, b, c } => {

@@ -1,7 +1,7 @@
 //! A mechanism read at run time: the plan turned into the tape and block programs once, then
 //! evaluated step by step without allocating.
 
-use crate::blocks::{BlockProg, How, StepFailure, Work};
+use crate::blocks::{BlockProg, How, StepFailure, Work, other_unknown};
 use crate::factor::{Fac, MAX_DENSE};
 use crate::newton::NewtonProg;
 use crate::source::{self, Diagnostics};
@@ -130,6 +130,8 @@ pub struct Model {
     facs: Vec<Fac>,
     state: State,
     pair_d2: Vec<f64>,
+    /// `pair_of[i * ni + j]`: the index of the input pair `(i, j)` among the pairs `i <= j`.
+    pair_of: Vec<usize>,
 }
 
 fn kind(k: Kind) -> QuantityKind {
@@ -282,6 +284,7 @@ impl Model {
             regs: registers(g),
             state,
             pair_d2: vec![0.0; n.max(no) * npairs],
+            pair_of: (0..ni * ni).map(|ij| kinloop_codegen::plan::pair_index(ni, ij / ni, ij % ni)).collect(),
             graph: plan.graph,
         };
         m.load_params();
@@ -438,13 +441,11 @@ impl Model {
             prog.acceleration(&mut self.regs, &mut self.pair_d2, np, &self.facs[b]);
         }
         // Pairs (i <= j) to the full symmetric second analogs.
+        let pair_of = &self.pair_of;
         let full = |pair_vals: &[f64], rows: usize, out: &mut [f64]| {
             for u in 0..rows {
-                for i in 0..ni {
-                    for j in 0..ni {
-                        let p = kinloop_codegen::plan::pair_index(ni, i, j);
-                        out[(u * ni + i) * ni + j] = pair_vals[u * np + p];
-                    }
+                for (ij, &p) in pair_of.iter().enumerate() {
+                    out[u * ni * ni + ij] = pair_vals[u * np + p];
                 }
             }
         };
@@ -526,7 +527,14 @@ fn position_program(
             let pre = tape.segment(&rec.form.coefficients(), None)?;
             let sin_cos: Vec<[Option<u32>; 2]> = rec.sin_cos.iter().map(|[s, c]| [Some(s.0), Some(c.0)]).collect();
             tape.provide(rec.sin_cos.concat());
-            (pre, How::Closed { form: rec.form.clone(), sin_cos })
+            let order = rec
+                .form
+                .angles()
+                .into_iter()
+                .chain(other_unknown(&rec.form))
+                .map(|u| (u, find(Leaf::Unknown(u as u16)).map(|n| n.0)))
+                .collect();
+            (pre, How::Closed { form: rec.form.clone(), sin_cos, order })
         }
         Solve::Newton | Solve::NewtonSparse(_) => {
             let roots: Vec<NodeId> =
