@@ -98,11 +98,11 @@ impl BlockProg {
 
     /// The factorisation of the Jacobian evaluated from the graph, by the emitter's rule: the
     /// scalar in its column, the 2x2 inverse, or the column-equilibrated LU.
-    fn factor_from_graph(&self, r: &[f64]) -> Fac {
+    fn factor_from_graph(&self, r: &[f64], fac: &mut Fac) {
         let n = self.unknowns.len();
         let v = |regs: &[u32]| max_abs(regs.iter().map(|&k| r[k as usize]));
         match (n, self.in_col) {
-            (1, Some(_)) => Fac::in_col(r[self.jac[0] as usize], v(&self.col[0])),
+            (1, Some(_)) => *fac = Fac::in_col(r[self.jac[0] as usize], v(&self.col[0])),
             (2, _) => {
                 let j = [
                     [r[self.jac[0] as usize], r[self.jac[1] as usize]],
@@ -114,14 +114,14 @@ impl BlockProg {
                     [one] => Some(r[*one as usize]),
                     many => Some(v(many)),
                 };
-                Fac::inverse2(&j, beyond, [floor(0), floor(1)])
+                *fac = Fac::inverse2(&j, beyond, [floor(0), floor(1)]);
             }
-            _ => self.factor_cols(r),
+            _ => self.factor_cols(r, fac),
         }
     }
 
     /// `Lu::factor_cols` of the Jacobian in the registers.
-    fn factor_cols(&self, r: &[f64]) -> Fac {
+    fn factor_cols(&self, r: &[f64], fac: &mut Fac) {
         let n = self.unknowns.len();
         let mut rows = [0.0; crate::factor::MAX_DENSE * crate::factor::MAX_DENSE];
         let mut scale = [0.0; crate::factor::MAX_DENSE];
@@ -131,7 +131,7 @@ impl BlockProg {
         for (c, s) in scale.iter_mut().enumerate().take(n) {
             *s = max_abs(self.col[c].iter().map(|&k| r[k as usize]));
         }
-        Fac::factor_cols(n, &rows[..n * n], &scale[..n])
+        fac.factor_cols(n, &rows[..n * n], &scale[..n]);
     }
 
     /// Solves the block's positions; writes them into `q` and the registers.
@@ -152,17 +152,16 @@ impl BlockProg {
                 self.set_unknowns(r, q, &f.solve([r[*rhs as usize]]));
             }
             How::Linear { rhs } => {
-                let lu = self.factor_from_graph(r);
-                if singular(lu.pivot_ratio(), cfg) {
-                    return Err(StepFailure::Singular { pivot_ratio: lu.pivot_ratio() });
+                self.factor_from_graph(r, fac);
+                if singular(fac.pivot_ratio(), cfg) {
+                    return Err(StepFailure::Singular { pivot_ratio: fac.pivot_ratio() });
                 }
                 let mut z = [0.0; crate::factor::MAX_DENSE];
                 for (k, &reg) in rhs.iter().enumerate() {
                     z[k] = r[reg as usize];
                 }
                 let n = rhs.len();
-                lu.solve(&mut z[..n]);
-                *fac = lu;
+                fac.solve(&mut z[..n]);
                 self.set_unknowns(r, q, &z[..n]);
             }
             How::Closed { form, sin_cos, order } => {
@@ -209,9 +208,9 @@ impl BlockProg {
         self.vel.run(r);
         match &self.how {
             How::Fixed { .. } | How::Linear { .. } => {}
-            How::Closed { .. } => *fac = self.factor_from_graph(r),
+            How::Closed { .. } => self.factor_from_graph(r, fac),
             How::Newton(p) if p.keeps_lu => {}
-            How::Newton(_) => *fac = self.factor_cols(r),
+            How::Newton(_) => self.factor_cols(r, fac),
         }
         if matches!(self.how, How::Closed { .. } | How::Newton(_)) && singular(fac.pivot_ratio(), cfg) {
             return Err(StepFailure::Singular { pivot_ratio: fac.pivot_ratio() });

@@ -11,8 +11,10 @@ use kinloop_runtime::generated::{Factor as _, Fixed, Health, Inverse2, Lu};
 /// every size up to it).
 pub const MAX_DENSE: usize = 8;
 
-/// One block's factorisation, of the type the emitted code would use.
-#[derive(Clone, Copy, Debug)]
+/// One block's factorisation, of the type the emitted code would use. Factorisations of three
+/// unknowns and more are boxed, allocated once for the block ([`Fac::for_size`]) and written in
+/// place by every step: the enum stays small, so moving it costs no large copy.
+#[derive(Clone, Debug)]
 pub(crate) enum Fac {
     /// Not factorised yet.
     None,
@@ -20,12 +22,12 @@ pub(crate) enum Fac {
     Inverse2(Inverse2),
     L1(Lu<1>),
     L2(Lu<2>),
-    L3(Lu<3>),
-    L4(Lu<4>),
-    L5(Lu<5>),
-    L6(Lu<6>),
-    L7(Lu<7>),
-    L8(Lu<8>),
+    L3(Box<Lu<3>>),
+    L4(Box<Lu<4>>),
+    L5(Box<Lu<5>>),
+    L6(Box<Lu<6>>),
+    L7(Box<Lu<7>>),
+    L8(Box<Lu<8>>),
 }
 
 /// Calls `$f!(lu)` with the factorisation `lu` of whatever size `$fac` holds.
@@ -60,24 +62,65 @@ fn matrix<const N: usize>(rows: &[f64]) -> [[f64; N]; N] {
     m
 }
 
+/// The place of a block's `Lu<N>` in its [`Fac`], made the first time (for the sizes that are
+/// boxed: when the block's slot is made, [`Fac::for_size`]).
+pub(crate) trait LuSlot<const N: usize> {
+    /// The `Lu<N>` of `fac`, made unfactored if `fac` holds another kind.
+    fn slot(fac: &mut Fac) -> &mut Lu<N>;
+}
+
+macro_rules! slots {
+    ($($n:literal => $v:ident $(boxed $b:tt)?),*) => {$(
+        impl LuSlot<$n> for Lu<$n> {
+            fn slot(fac: &mut Fac) -> &mut Lu<$n> {
+                if !matches!(fac, Fac::$v(_)) {
+                    *fac = Fac::$v(slots!(@make $($b)?));
+                }
+                match fac {
+                    Fac::$v(lu) => lu,
+                    // Made just above.
+                    _ => unreachable!(),
+                }
+            }
+        }
+    )*};
+    (@make) => { Lu::unfactored() };
+    (@make $b:tt) => { Box::new(Lu::unfactored()) };
+}
+slots!(1 => L1, 2 => L2, 3 => L3 boxed x, 4 => L4 boxed x, 5 => L5 boxed x, 6 => L6 boxed x, 7 => L7 boxed x, 8 => L8 boxed x);
+
 impl Fac {
-    /// `Lu::factor_cols` of the `n x n` matrix `rows` (row-major) with column scales `scale`.
-    pub(crate) fn factor_cols(n: usize, rows: &[f64], scale: &[f64]) -> Fac {
+    /// The slot of a block of `n` unknowns: its boxed `Lu` made once, where it has one.
+    pub(crate) fn for_size(n: usize) -> Fac {
+        match n {
+            3 => Fac::L3(Box::new(Lu::unfactored())),
+            4 => Fac::L4(Box::new(Lu::unfactored())),
+            5 => Fac::L5(Box::new(Lu::unfactored())),
+            6 => Fac::L6(Box::new(Lu::unfactored())),
+            7 => Fac::L7(Box::new(Lu::unfactored())),
+            8 => Fac::L8(Box::new(Lu::unfactored())),
+            _ => Fac::None,
+        }
+    }
+
+    /// `Lu::factor_cols` of the `n x n` matrix `rows` (row-major) with column scales `scale`,
+    /// written into this slot.
+    pub(crate) fn factor_cols(&mut self, n: usize, rows: &[f64], scale: &[f64]) {
         macro_rules! f {
-            ($n:literal, $v:ident) => {
-                Fac::$v(Lu::<$n>::factor_cols(&matrix::<$n>(rows), array::<$n>(scale)))
+            ($n:literal) => {
+                *<Lu<$n> as LuSlot<$n>>::slot(self) = Lu::<$n>::factor_cols(&matrix::<$n>(rows), array::<$n>(scale))
             };
         }
         match n {
-            1 => f!(1, L1),
-            2 => f!(2, L2),
-            3 => f!(3, L3),
-            4 => f!(4, L4),
-            5 => f!(5, L5),
-            6 => f!(6, L6),
-            7 => f!(7, L7),
-            8 => f!(8, L8),
-            _ => Fac::None,
+            1 => f!(1),
+            2 => f!(2),
+            3 => f!(3),
+            4 => f!(4),
+            5 => f!(5),
+            6 => f!(6),
+            7 => f!(7),
+            8 => f!(8),
+            _ => *self = Fac::None,
         }
     }
 
@@ -107,11 +150,19 @@ impl Fac {
 
     /// Records the factorisation's conditioning for block `b`.
     pub(crate) fn note(&self, health: &mut Health, b: usize) {
-        each_lu!(self, lu => health.note(b, lu), other => match other {
+        match self {
             Fac::Fixed(f) => health.note(b, f),
             Fac::Inverse2(f) => health.note(b, f),
-            _ => {}
-        })
+            Fac::L1(lu) => health.note(b, lu),
+            Fac::L2(lu) => health.note(b, lu),
+            Fac::L3(lu) => health.note(b, &**lu),
+            Fac::L4(lu) => health.note(b, &**lu),
+            Fac::L5(lu) => health.note(b, &**lu),
+            Fac::L6(lu) => health.note(b, &**lu),
+            Fac::L7(lu) => health.note(b, &**lu),
+            Fac::L8(lu) => health.note(b, &**lu),
+            Fac::None => {}
+        }
     }
 
     /// Solves `J z = rhs` in place (`rhs.len()` is the block's size).

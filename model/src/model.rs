@@ -274,7 +274,7 @@ impl Model {
             output_kinds: k.outputs.iter().map(|&x| kind(x)).collect(),
             guess,
             guess_regs,
-            facs: vec![Fac::None; blocks.len()],
+            facs: blocks.iter().map(|b| Fac::for_size(b.unknowns.len())).collect(),
             blocks,
             outputs_seg,
             out_regs: plan.outputs.iter().map(|n| n.0).collect(),

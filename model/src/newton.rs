@@ -2,7 +2,7 @@
 //! emitted code keeps the final factorisation for the analogs), with the block's evaluation a
 //! run of the tape instead of emitted straight-line code.
 
-use crate::factor::Fac;
+use crate::factor::{Fac, LuSlot};
 use crate::tape::Segment;
 use kinloop_runtime::NewtonConfig;
 use kinloop_runtime::generated::{BlockEval, BlockFailure, Lu, Magnitudes, SolveReport, newton, newton_keeping_lu};
@@ -67,22 +67,6 @@ fn read<const N: usize>(r: &[f64], regs: &[u32]) -> [f64; N] {
     std::array::from_fn(|k| r[regs[k] as usize])
 }
 
-/// Conversion of the kept `Lu<N>` into the run-time factorisation.
-trait IntoFac {
-    fn into_fac(self) -> Fac;
-}
-
-macro_rules! into_fac {
-    ($($n:literal => $v:ident),*) => {$(
-        impl IntoFac for Lu<$n> {
-            fn into_fac(self) -> Fac {
-                Fac::$v(self)
-            }
-        }
-    )*};
-}
-into_fac!(1 => L1, 2 => L2, 3 => L3, 4 => L4, 5 => L5, 6 => L6, 7 => L7, 8 => L8);
-
 /// [`solve`] for a block of `N` unknowns keeping `K` values per evaluation (its magnitudes, when
 /// they depend on the unknowns: `K = 2N`; otherwise none).
 fn solve_n<const N: usize, const K: usize>(
@@ -94,7 +78,7 @@ fn solve_n<const N: usize, const K: usize>(
     fac: &mut Fac,
 ) -> Result<(), BlockFailure>
 where
-    Lu<N>: IntoFac,
+    Lu<N>: LuSlot<N>,
 {
     let z0: [f64; N] = std::array::from_fn(|k| guess[p.unknowns[k]]);
     let turns: [bool; N] = std::array::from_fn(|k| p.turns[k]);
@@ -118,14 +102,13 @@ where
         Magnitudes::new(std::array::from_fn(|k| e.keep[k]), std::array::from_fn(|k| e.keep[N + k])).with_turns(turns)
     };
     let solved = if p.keeps_lu {
-        let mut lu = Lu::<N>::unfactored();
-        let s = if K == 0 {
-            newton_keeping_lu::<N, K>(z0, &mut ev, cfg, &mut eval, &fixed, &mut lu)
+        // Written into the block's own slot: the analogs read it there.
+        let lu = <Lu<N> as LuSlot<N>>::slot(fac);
+        if K == 0 {
+            newton_keeping_lu::<N, K>(z0, &mut ev, cfg, &mut eval, &fixed, lu)
         } else {
-            newton_keeping_lu::<N, K>(z0, &mut ev, cfg, &mut eval, &per_eval, &mut lu)
-        };
-        *fac = lu.into_fac();
-        s
+            newton_keeping_lu::<N, K>(z0, &mut ev, cfg, &mut eval, &per_eval, lu)
+        }
     } else if K == 0 {
         newton::<N, K>(z0, &mut ev, cfg, &mut eval, &fixed)
     } else {
