@@ -32,8 +32,8 @@
 //! nothing.
 //!
 //! Not evaluated yet: blocks solved by sparse Newton and blocks of more than
-//! [`MAX_DENSE`] unknowns ([`ReadError::Unsupported`]); sensitivities and dynamics (they are
-//! planned, not evaluated).
+//! [`MAX_DENSE`] unknowns ([`ReadError::Unsupported`]); the dynamics items (bodies, loads: planned,
+//! not evaluated). Parameter sensitivities are ([`Model::sensitivities`]).
 //!
 //! # Sweeps and the runtime's algorithms
 //!
@@ -65,10 +65,12 @@ mod closed;
 mod factor;
 mod model;
 mod newton;
+mod sensitivities;
 pub mod source;
 mod tape;
 
 pub use blocks::StepFailure;
 pub use factor::MAX_DENSE;
 pub use model::{Model, ReadError, State, StepError};
+pub use sensitivities::Sensitivities;
 pub use source::{Diagnostic, Diagnostics, Level};

@@ -4,6 +4,7 @@
 use crate::blocks::{BlockProg, How, StepFailure, Work, other_unknown};
 use crate::factor::{Fac, MAX_DENSE};
 use crate::newton::NewtonProg;
+use crate::sensitivities::{SensProg, Sensitivities};
 use crate::source::{self, Diagnostics};
 use crate::tape::{Builder, Segment, registers};
 use kinloop_codegen::Planned;
@@ -129,6 +130,8 @@ pub struct Model {
     regs: Vec<f64>,
     facs: Vec<Fac>,
     state: State,
+    sens: Option<SensProg>,
+    sens_state: Option<Sensitivities>,
     pair_d2: Vec<f64>,
     /// `pair_of[i * ni + j]`: the index of the input pair `(i, j)` among the pairs `i <= j`.
     pair_of: Vec<usize>,
@@ -225,6 +228,7 @@ impl Model {
         let out_roots: Vec<NodeId> =
             plan.outputs.iter().copied().chain(plan.out_d1.concat()).chain(plan.out_d2.concat()).collect();
         let outputs_seg = tape.segment(&out_roots, None).map_err(internal)?;
+        let sens = SensProg::build(&plan, &mut tape).map_err(internal)?;
         let instructions = guess.len()
             + outputs_seg.len()
             + blocks
@@ -258,7 +262,10 @@ impl Model {
             report: SolveReport::direct(),
             health: Health::default(),
         };
+        let sens_state = sens.as_ref().map(|p| p.empty(n, no));
         let mut m = Model {
+            sens,
+            sens_state,
             name: name_of(&model.name),
             decomposition,
             warnings: None,
@@ -468,6 +475,31 @@ impl Model {
             return Err(StepError::NonFinite);
         }
         Ok(&self.state)
+    }
+
+    /// Whether the declaration asks for parameter sensitivities (`#[kinloop(sensitivities)]`).
+    pub fn has_sensitivities(&self) -> bool {
+        self.sens.is_some()
+    }
+
+    /// [`Model::kinematics`] and the sensitivities of the state to every parameter, on the same
+    /// factorisations (the compiled mechanism's `sensitivities_flat`); `None` in place of the
+    /// sensitivities when the declaration did not ask for them. No allocation.
+    pub fn sensitivities(
+        &mut self,
+        x: &[f64],
+        guess: &[f64],
+        cfg: &NewtonConfig,
+    ) -> Result<(&State, Option<&Sensitivities>), StepError> {
+        self.kinematics(x, guess, cfg)?;
+        if let (Some(p), Some(s)) = (&self.sens, &mut self.sens_state) {
+            p.run(&mut self.regs, &self.facs, s);
+            let all = [&s.q, &s.dq, &s.d2q, &s.out, &s.dout, &s.d2out];
+            if !all.iter().all(|v| v.iter().all(|x| x.is_finite())) {
+                return Err(StepError::NonFinite);
+            }
+        }
+        Ok((&self.state, self.sens_state.as_ref()))
     }
 
     /// [`Model::kinematics`] from the declared initial guess with the default configuration

@@ -1,5 +1,6 @@
-//! A run-time step allocates nothing once the model is built: a counting allocator sees no
-//! allocation over a sweep of steps (closed forms, linear blocks and Newton blocks).
+//! A run-time step (with its parameter sensitivities) allocates nothing once the model is built:
+//! a counting allocator sees no allocation over a sweep of steps (closed forms, linear blocks and
+//! Newton blocks).
 
 use kinloop::NewtonConfig;
 use kinloop_fixtures as fx;
@@ -42,7 +43,7 @@ fn steps_do_not_allocate() {
         let before = ALLOCATIONS.load(Ordering::Relaxed);
         for k in 0..200 {
             x[0] = k as f64 * 0.03;
-            let s = m.kinematics(&x, &q, &cfg).expect("step");
+            let (s, _) = m.sensitivities(&x, &q, &cfg).expect("step");
             q.copy_from_slice(&s.q);
         }
         let during = ALLOCATIONS.load(Ordering::Relaxed) - before;

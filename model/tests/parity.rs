@@ -142,3 +142,52 @@ fn a_changed_parameter_is_seen() {
     }));
     assert!(caught.is_err(), "a parameter changed by 1e-12 went unnoticed");
 }
+
+/// Sensitivities of positions, analogs and outputs to every parameter along a turn, against the
+/// compiled mechanism's `sensitivities_flat`.
+fn sensitivity_parity<M, const N: usize, const NI: usize, const NO: usize, const NP: usize>(
+    compiled: &M,
+    model: &mut Model,
+    x0: [f64; NI],
+    samples: usize,
+) -> f64
+where
+    M: kinloop::Sensitivities<N, NI, NO, NP>,
+{
+    let cfg = NewtonConfig::default();
+    let mut guess = compiled.guess_flat(&x0);
+    let mut worst = 0.0f64;
+    for k in 0..samples {
+        let mut x = x0;
+        x[0] = x0[0] + TAU * k as f64 / samples as f64;
+        let (ck, cs) = compiled.sensitivities_flat(&x, &guess, &cfg).expect("compiled");
+        let (_, rs) = model.sensitivities(&x, &guess, &cfg).expect("run time");
+        let rs = rs.expect("declared with sensitivities");
+        let f = |v: &[f64]| v.to_vec();
+        let pairs = [
+            (cs.q.iter().flatten().copied().collect::<Vec<_>>(), f(&rs.q)),
+            (cs.dq.iter().flatten().flatten().copied().collect(), f(&rs.dq)),
+            (cs.d2q.iter().flatten().flatten().flatten().copied().collect(), f(&rs.d2q)),
+            (cs.out.iter().flatten().copied().collect(), f(&rs.out)),
+            (cs.dout.iter().flatten().flatten().copied().collect(), f(&rs.dout)),
+            (cs.d2out.iter().flatten().flatten().flatten().copied().collect(), f(&rs.d2out)),
+        ];
+        for (c, r) in pairs {
+            let d = rel_diff(&c, &r);
+            assert!(d <= REL, "{} at {x:?}: sensitivities differ by {d:e}", model.name());
+            worst = worst.max(d);
+        }
+        guess = ck.q;
+    }
+    worst
+}
+
+#[test]
+fn sensitivities_equal_the_compiled_ones() {
+    let w = sensitivity_parity(&fx::RhombicDrive::default(), &mut read(fx::RHOMBIC_DRIVE_TEXT), [0.0], 90);
+    eprintln!("rhombic drive sensitivities: largest relative difference {w:e}");
+    let w = sensitivity_parity(&fx::FiveBar::default(), &mut read(fx::FIVE_BAR_TEXT), [0.0, 0.4], 90);
+    eprintln!("five-bar sensitivities: {w:e}");
+    let w = sensitivity_parity(&fx::ClassFour::default(), &mut read(fx::CLASS_FOUR_TEXT), [0.0], 90);
+    eprintln!("class IV sensitivities: {w:e}");
+}
