@@ -7,7 +7,8 @@
 //! ```
 //!
 //! `VARIANT` is `MECHANISM-compiled` or `MECHANISM-runtime` with `MECHANISM` one of
-//! `rhombic`, `four-bar`, `class-four`. Prints the sum of the last state's values (so the work
+//! `rhombic`, `four-bar`, `class-four`; `read-rhombic` and `read-class-four` read and plan the
+//! declaration `STEPS` times instead. Prints the sum of the last state's values (so the work
 //! is not optimised away) and the wall time per step (one run; callgrind's counts are the
 //! figure to compare).
 
@@ -71,6 +72,11 @@ fn main() {
         "four-bar-runtime" => runtime(&mut model(fx::FOUR_BAR_TEXT, &four_bar), steps),
         "class-four-compiled" => compiled(&fx::ClassFour::default(), steps),
         "class-four-runtime" => runtime(&mut model(fx::CLASS_FOUR_TEXT, &[]), steps),
+        // Reading and planning a declaration, `STEPS` times.
+        "read-rhombic" | "read-class-four" => {
+            let text = if variant == "read-rhombic" { fx::RHOMBIC_DRIVE_TEXT } else { fx::CLASS_FOUR_TEXT };
+            (0..steps).map(|_| model(black_box(text), &[]).instructions() as f64).sum()
+        }
         other => {
             eprintln!("unknown variant {other}");
             std::process::exit(2);

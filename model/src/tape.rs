@@ -32,35 +32,68 @@ pub(crate) enum Ins {
 
 /// A run of instructions, executed in order.
 #[derive(Clone, Debug, Default)]
-pub(crate) struct Segment(Vec<Ins>);
+pub(crate) struct Segment {
+    ins: Vec<Ins>,
+    /// One more than the largest register an instruction names: the registers a run needs.
+    needs: usize,
+}
 
 impl Segment {
     /// Executes the segment over the registers.
     #[inline]
     pub(crate) fn run(&self, r: &mut [f64]) {
-        for ins in &self.0 {
-            match *ins {
-                Ins::Add(d, a, b) => r[d as usize] = r[a as usize] + r[b as usize],
-                Ins::Sub(d, a, b) => r[d as usize] = r[a as usize] - r[b as usize],
-                Ins::Mul(d, a, b) => r[d as usize] = r[a as usize] * r[b as usize],
-                Ins::Div(d, a, b) => r[d as usize] = r[a as usize] / r[b as usize],
-                Ins::Neg(d, a) => r[d as usize] = -r[a as usize],
-                Ins::Square(d, a) => {
-                    let x = r[a as usize];
-                    r[d as usize] = x * x;
-                }
-                Ins::Recip(d, a) => r[d as usize] = 1.0 / r[a as usize],
-                Ins::Powi(d, a, k) => r[d as usize] = r[a as usize].powi(k),
-                Ins::Powf(d, a, b) => r[d as usize] = r[a as usize].powf(r[b as usize]),
-                Ins::Func(d, f, a) => r[d as usize] = func(f, r[a as usize]),
-                Ins::Atan2(d, y, x) => r[d as usize] = r[y as usize].atan2(r[x as usize]),
+        // Every register an instruction names is below `needs` (checked when the segment was
+        // built): one test here instead of one per operand.
+        assert!(r.len() >= self.needs, "registers of another tape");
+        let r = &mut r[..self.needs];
+        for ins in &self.ins {
+            // SAFETY: every index is below `needs` = `r.len()` (see `Segment::new`).
+            unsafe {
+                let v = |k: u32| *r.get_unchecked(k as usize);
+                let (d, x) = match *ins {
+                    Ins::Add(d, a, b) => (d, v(a) + v(b)),
+                    Ins::Sub(d, a, b) => (d, v(a) - v(b)),
+                    Ins::Mul(d, a, b) => (d, v(a) * v(b)),
+                    Ins::Div(d, a, b) => (d, v(a) / v(b)),
+                    Ins::Neg(d, a) => (d, -v(a)),
+                    Ins::Square(d, a) => {
+                        let x = v(a);
+                        (d, x * x)
+                    }
+                    Ins::Recip(d, a) => (d, 1.0 / v(a)),
+                    Ins::Powi(d, a, k) => (d, v(a).powi(k)),
+                    Ins::Powf(d, a, b) => (d, v(a).powf(v(b))),
+                    Ins::Func(d, f, a) => (d, func(f, v(a))),
+                    Ins::Atan2(d, y, x) => (d, v(y).atan2(v(x))),
+                };
+                *r.get_unchecked_mut(d as usize) = x;
             }
         }
     }
 
+    /// A segment of `ins`, with the registers it names counted.
+    fn new(ins: Vec<Ins>) -> Segment {
+        let needs = ins
+            .iter()
+            .map(|i| match *i {
+                Ins::Add(d, a, b)
+                | Ins::Sub(d, a, b)
+                | Ins::Mul(d, a, b)
+                | Ins::Div(d, a, b)
+                | Ins::Powf(d, a, b)
+                | Ins::Atan2(d, a, b) => d.max(a).max(b),
+                Ins::Neg(d, a) | Ins::Square(d, a) | Ins::Recip(d, a) | Ins::Powi(d, a, _) | Ins::Func(d, _, a) => {
+                    d.max(a)
+                }
+            })
+            .max()
+            .map_or(0, |m| m as usize + 1);
+        Segment { ins, needs }
+    }
+
     /// The number of instructions.
     pub(crate) fn len(&self) -> usize {
-        self.0.len()
+        self.ins.len()
     }
 }
 
@@ -169,7 +202,7 @@ impl<'g> Builder<'g> {
             };
             self.known[d as usize] = true;
         }
-        Ok(Segment(out))
+        Ok(Segment::new(out))
     }
 }
 
