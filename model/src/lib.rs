@@ -44,26 +44,42 @@
 //!
 //! # Sweeps and the runtime's algorithms
 //!
-//! The runtime's sweeps, events, reachable ranges, curve tracing and analyses are written over
-//! the const-generic trait `Mechanism<N, NI, NO>` (sizes known when the mechanism is compiled)
-//! and its `Kin<N, NI, NO>` states. They are not repeated here: making them serve a run-time
-//! model needs them generic over how sizes are known. What that takes:
+//! The runtime's sweeps, events, reachable ranges, curve tracing, scans and analyses are written
+//! over the const-generic trait `Mechanism<N, NI, NO>` (sizes known when the mechanism is
+//! compiled) and its `Kin<N, NI, NO>` states. They are not repeated here (one implementation of
+//! each algorithm): serving a run-time model needs them generic over how sizes are known. What
+//! that takes, from `runtime/src/paths/sweep.rs`, `curve.rs` and `mechanism.rs`:
 //!
-//! * a size parameter: a trait `Dims` with associated array types (`type Q: AsRef<[f64]> +
-//!   AsMut<[f64]> + Copy`, one per shape: unknowns, inputs, outputs, `dq`, ...) implemented
-//!   by a zero-sized `Const<N, NI, NO>` (arrays: the compiled path keeps its code and speed)
-//!   and by a run-time `Dyn` (boxed slices, allocated once per sweep);
-//! * `Kin` and the sweep's state generic over `Dims` instead of three const parameters;
-//!   `Mechanism` gains `type Dims` and its flat kernels take and return `Dims`' types; every
-//!   `[f64; N]` in `paths/` (sweep, continuation, events, trace, reach) becomes `D::Q`, and
-//!   the few stack arrays of temporaries (`[f64; N]` scratch in the event locator and the
-//!   predictor) become fields of a per-sweep workspace;
-//! * the sweep's kernel entry points that a compiled mechanism specialises (`kinematics_step_sink`
-//!   with its trigonometry cache and deferred checks) keep default implementations in terms of
-//!   `kinematics_flat`, which a run-time model implements with [`Model::kinematics`].
+//! * **Sizes.** A trait `Dims` with associated storage types, one per shape the algorithms hold
+//!   (`Q` for `[f64; N]`, `X` for `[f64; NI]`, `XX` for `[[f64; NI]; NI]`, the state `Kin`, the
+//!   Jacobian `Jac`), implemented by a zero-sized `Fixed<N, NI, NO>` with the arrays of today
+//!   (compiled mechanisms keep their code and speed) and by a run-time `Sized { n, ni, no }` with
+//!   boxed slices, allocated once per sweep. `Mechanism` gains `type Dims` and its flat kernels
+//!   (`kinematics_flat`, `kinematics_at_flat`, `jacobian_flat`, `guess_flat`, `outputs_flat`,
+//!   `kinematics_step_sink`) take and write `Dims`' types. The sweep's fields (`guess`,
+//!   `first_q`, `states: [Kin; 2]`, `delta2`, `Path<NI>`), its `Prediction<N>`, and
+//!   `curve.rs`'s `CurvePoint<N>`, `Metric<N>` and stack temporaries become `Dims`' types or
+//!   fields of the sweep's workspace.
+//! * **Constants.** `NAME`, `PARAMS`, `INPUTS`, `UNKNOWNS`, `EQUATIONS`, `OUTPUTS`, `BLOCKS`,
+//!   the kinds, `FOLLOWERS` and `CLOSED_FORM_ANGLES` are associated constants; a run-time model
+//!   knows them only when read. They become methods whose defaults return the constants
+//!   (nothing changes for compiled mechanisms after inlining), and what the sweep computes from
+//!   them at compile time (`const JUDGED: Judged<N> = Judged::of(M::FOLLOWERS)`) becomes a field
+//!   made in `Sweep::new`.
+//! * **Names in errors.** `Location` and `Error` hold `&'static str` names (`M::NAME`,
+//!   `M::INPUTS`); a run-time model's names are owned strings. Either the names become
+//!   `Cow<'static, str>` (or `Arc<str>`) in `Location` (a public type: a CHANGELOG entry), or a
+//!   read model leaks its few names once (`Box::leak`, bounded by the number of models read;
+//!   not acceptable for a long-running service reading untrusted files).
+//! * **What a run-time model must still provide**: `kinematics_at_flat` (the emitter's mode
+//!   `At`: analogs at a given position, with the factorisations made from the graph for every
+//!   block), `jacobian_flat` (the plan's `jac_full`, `fx_full`: one more segment), `outputs_flat`
+//!   and `residual_flat` (segments of the plan's outputs and residuals). The sweep's fast path
+//!   (`kinematics_step_sink` with the input trigonometry cache and deferred checks) keeps its
+//!   default, `kinematics_flat`, for a run-time model.
 //!
-//! Until then a run-time model offers single-point solves with their analogs
-//! ([`Model::kinematics`], [`Model::solve`]) and the structure report.
+//! Until then a run-time model offers single-point solves with their analogs and sensitivities
+//! ([`Model::kinematics`], [`Model::sensitivities`], [`Model::solve`]) and the structure report.
 
 #![warn(missing_docs)]
 
