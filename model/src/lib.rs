@@ -73,8 +73,8 @@
 //!   not acceptable for a long-running service reading untrusted files).
 //! * **What a run-time model must still provide**: `kinematics_at_flat` (the emitter's mode
 //!   `At`: analogs at a given position, with the factorisations made from the graph for every
-//!   block), `jacobian_flat` (the plan's `jac_full`, `fx_full`: one more segment), `outputs_flat`
-//!   and `residual_flat` (segments of the plan's outputs and residuals). The sweep's fast path
+//!   block). It has `jacobian_flat`, `outputs_flat` and `residual_flat` already
+//!   ([`Model::jacobian`], [`Model::outputs_at`], [`Model::residual`]). The sweep's fast path
 //!   (`kinematics_step_sink` with the input trigonometry cache and deferred checks) keeps its
 //!   default, `kinematics_flat`, for a run-time model.
 //!
@@ -83,6 +83,7 @@
 
 #![warn(missing_docs)]
 
+mod at;
 mod blocks;
 mod closed;
 mod factor;
@@ -92,6 +93,7 @@ mod sensitivities;
 pub mod source;
 mod tape;
 
+pub use at::Jacobian;
 pub use blocks::StepFailure;
 pub use factor::MAX_DENSE;
 pub use model::{Model, ReadError, State, StepError};

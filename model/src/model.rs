@@ -1,6 +1,7 @@
 //! A mechanism read at run time: the plan turned into the tape and block programs once, then
 //! evaluated step by step without allocating.
 
+use crate::at::{AtProg, Jacobian};
 use crate::blocks::{BlockProg, How, StepFailure, Work, other_unknown};
 use crate::factor::{Fac, MAX_DENSE};
 use crate::newton::NewtonProg;
@@ -130,6 +131,7 @@ pub struct Model {
     regs: Vec<f64>,
     facs: Vec<Fac>,
     state: State,
+    at: AtProg,
     sens: Option<SensProg>,
     sens_state: Option<Sensitivities>,
     pair_d2: Vec<f64>,
@@ -229,6 +231,7 @@ impl Model {
             plan.outputs.iter().copied().chain(plan.out_d1.concat()).chain(plan.out_d2.concat()).collect();
         let outputs_seg = tape.segment(&out_roots, None).map_err(internal)?;
         let sens = SensProg::build(&plan, &mut tape).map_err(internal)?;
+        let at = AtProg::build(&plan).map_err(internal)?;
         let instructions = guess.len()
             + outputs_seg.len()
             + blocks
@@ -264,6 +267,7 @@ impl Model {
         };
         let sens_state = sens.as_ref().map(|p| p.empty(n, no));
         let mut m = Model {
+            at,
             sens,
             sens_state,
             name: name_of(&model.name),
@@ -475,6 +479,38 @@ impl Model {
             return Err(StepError::NonFinite);
         }
         Ok(&self.state)
+    }
+
+    fn check_at(&mut self, x: &[f64], q: &[f64]) -> Result<(), StepError> {
+        self.check_ready(x)?;
+        if q.len() != self.unknowns.len() {
+            return Err(StepError::Size { what: "unknowns", expected: self.unknowns.len(), given: q.len() });
+        }
+        self.load_inputs(x);
+        Ok(())
+    }
+
+    /// The residuals of the equations at `(x, q)`, in declaration order, into `out` (the
+    /// compiled mechanism's `residual_flat`).
+    pub fn residual(&mut self, x: &[f64], q: &[f64], out: &mut [f64]) -> Result<(), StepError> {
+        self.check_at(x, q)?;
+        self.at.residual(&mut self.regs, q, out);
+        Ok(())
+    }
+
+    /// The output columns at `(x, q)` into `out` (the compiled mechanism's `outputs_flat`).
+    pub fn outputs_at(&mut self, x: &[f64], q: &[f64], out: &mut [f64]) -> Result<(), StepError> {
+        self.check_at(x, q)?;
+        self.at.outputs(&mut self.regs, q, out);
+        Ok(())
+    }
+
+    /// The residuals, the full Jacobians and the magnitudes at `(x, q)` into `out` (the compiled
+    /// mechanism's `jacobian_flat`; `out`'s vectors are reused).
+    pub fn jacobian(&mut self, x: &[f64], q: &[f64], out: &mut Jacobian) -> Result<(), StepError> {
+        self.check_at(x, q)?;
+        self.at.jacobian(&mut self.regs, q, out);
+        Ok(())
     }
 
     /// Whether the declaration asks for parameter sensitivities (`#[kinloop(sensitivities)]`).

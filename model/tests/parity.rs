@@ -191,3 +191,46 @@ fn sensitivities_equal_the_compiled_ones() {
     let w = sensitivity_parity(&fx::ClassFour::default(), &mut read(fx::CLASS_FOUR_TEXT), [0.0], 90);
     eprintln!("class IV sensitivities: {w:e}");
 }
+
+/// Residuals, outputs and the full Jacobian at given positions (near and away from the
+/// solution), against the compiled `residual_flat`, `outputs_flat` and `jacobian_flat`.
+fn at_parity<M, const N: usize, const NI: usize, const NO: usize>(compiled: &M, model: &mut Model, x0: [f64; NI])
+where
+    M: Mechanism<N, NI, NO>,
+{
+    let mut jac = kinloop_model::Jacobian::default();
+    for k in 0..24 {
+        let mut x = x0;
+        x[0] += 0.27 * k as f64;
+        let mut q = compiled.guess_flat(&x);
+        for (u, v) in q.iter_mut().enumerate() {
+            *v += 0.01 * (k * (u + 1)) as f64;
+        }
+        let (mut res, mut out) = (vec![0.0; N], vec![0.0; NO]);
+        model.residual(&x, &q, &mut res).expect("residual");
+        model.outputs_at(&x, &q, &mut out).expect("outputs");
+        model.jacobian(&x, &q, &mut jac).expect("jacobian");
+        let c = compiled.jacobian_flat(&x, &q);
+        assert_eq!(rel_diff(&res, &compiled.residual_flat(&x, &q)), 0.0, "{}: residual", model.name());
+        assert_eq!(rel_diff(&out, &compiled.outputs_flat(&x, &q)), 0.0, "{}: outputs", model.name());
+        let flat = |m: &[[f64; N]]| m.iter().flatten().copied().collect::<Vec<f64>>();
+        let flat_x = |m: &[[f64; NI]]| m.iter().flatten().copied().collect::<Vec<f64>>();
+        for (what, a, b) in [
+            ("f", jac.f.clone(), c.f.to_vec()),
+            ("j", jac.j.clone(), flat(&c.j)),
+            ("fx", jac.fx.clone(), flat_x(&c.fx)),
+            ("scale", jac.scale.clone(), c.scale.to_vec()),
+            ("unit", jac.unit.clone(), c.unit.to_vec()),
+            ("input_unit", jac.input_unit.clone(), c.input_unit.to_vec()),
+        ] {
+            assert!(rel_diff(&a, &b) <= REL, "{}: jacobian {what}", model.name());
+        }
+    }
+}
+
+#[test]
+fn evaluations_at_a_position_equal_the_compiled_ones() {
+    at_parity(&fx::RhombicDrive::default(), &mut read(fx::RHOMBIC_DRIVE_TEXT), [0.0]);
+    at_parity(&fx::ClassFour::default(), &mut read(fx::CLASS_FOUR_TEXT), [0.0]);
+    at_parity(&fx::FiveBar::default(), &mut read(fx::FIVE_BAR_TEXT), [0.0, 0.4]);
+}
