@@ -196,6 +196,10 @@ impl BlockProg {
 
     /// The velocity analogs `dq[u * ni + i]`, factorising the Jacobian where the position solve
     /// did not (the factorisation is kept in `fac` for the accelerations).
+    ///
+    /// With `at` (the emitter's mode `At`: analogs at a position the caller gives, no position
+    /// solve before), `at` is the segment to run, and every block but a fixed one factorises
+    /// its Jacobian from the graph and tests it.
     pub(crate) fn velocity(
         &self,
         b: usize,
@@ -203,16 +207,29 @@ impl BlockProg {
         dq: &mut [f64],
         ni: usize,
         health: &mut Health,
+        at: Option<&Segment>,
     ) -> Result<(), StepFailure> {
         let Work { r, fac, cfg } = w;
-        self.vel.run(r);
-        match &self.how {
-            How::Fixed { .. } | How::Linear { .. } => {}
-            How::Closed { .. } => self.factor_from_graph(r, fac),
-            How::Newton(p) if p.keeps_lu => {}
-            How::Newton(_) => self.factor_cols(r, fac),
-        }
-        if matches!(self.how, How::Closed { .. } | How::Newton(_)) && singular(fac.pivot_ratio(), cfg) {
+        at.unwrap_or(&self.vel).run(r);
+        let tested = match (&self.how, at) {
+            (How::Fixed { coefficient, .. }, Some(_)) => {
+                *fac = Fac::Fixed(kinloop_runtime::generated::Fixed(*coefficient));
+                false
+            }
+            (How::Fixed { .. }, None) => false,
+            (_, Some(_)) | (How::Closed { .. }, None) => {
+                self.factor_from_graph(r, fac);
+                true
+            }
+            (How::Linear { .. }, None) => false,
+            (How::Newton(p), None) => {
+                if !p.keeps_lu {
+                    self.factor_cols(r, fac);
+                }
+                true
+            }
+        };
+        if tested && singular(fac.pivot_ratio(), cfg) {
             return Err(StepFailure::Singular { pivot_ratio: fac.pivot_ratio() });
         }
         fac.note(health, b);
@@ -234,8 +251,9 @@ impl BlockProg {
     }
 
     /// The acceleration analogs `d2q[u * pairs + p]` on the velocity's factorisation.
-    pub(crate) fn acceleration(&self, r: &mut [f64], d2q: &mut [f64], pairs: usize, fac: &Fac) {
-        self.acc.run(r);
+    /// (With `at`, that segment instead of the step's: see [`BlockProg::velocity`].)
+    pub(crate) fn acceleration(&self, r: &mut [f64], d2q: &mut [f64], pairs: usize, fac: &Fac, at: Option<&Segment>) {
+        at.unwrap_or(&self.acc).run(r);
         let n = self.unknowns.len();
         let mut z = [0.0; crate::factor::MAX_DENSE];
         for p in 0..pairs {

@@ -71,10 +71,11 @@
 //!   `Cow<'static, str>` (or `Arc<str>`) in `Location` (a public type: a CHANGELOG entry), or a
 //!   read model leaks its few names once (`Box::leak`, bounded by the number of models read;
 //!   not acceptable for a long-running service reading untrusted files).
-//! * **What a run-time model must still provide**: `kinematics_at_flat` (the emitter's mode
-//!   `At`: analogs at a given position, with the factorisations made from the graph for every
-//!   block). It has `jacobian_flat`, `outputs_flat` and `residual_flat` already
-//!   ([`Model::jacobian`], [`Model::outputs_at`], [`Model::residual`]). The sweep's fast path
+//! * **The flat kernels** a run-time model provides already, equal to the compiled ones:
+//!   `kinematics_flat` ([`Model::kinematics`]), `kinematics_at_flat` ([`Model::kinematics_at`]),
+//!   `jacobian_flat` ([`Model::jacobian`]), `outputs_flat` ([`Model::outputs_at`]),
+//!   `residual_flat` ([`Model::residual`]), `guess_flat` ([`Model::guess`]) and
+//!   `sensitivities_flat` ([`Model::sensitivities`]). The sweep's fast path
 //!   (`kinematics_step_sink` with the input trigonometry cache and deferred checks) keeps its
 //!   default, `kinematics_flat`, for a run-time model.
 //!

@@ -132,6 +132,7 @@ pub struct Model {
     facs: Vec<Fac>,
     state: State,
     at: AtProg,
+    at_kin: AtKin,
     sens: Option<SensProg>,
     sens_state: Option<Sensitivities>,
     pair_d2: Vec<f64>,
@@ -232,6 +233,7 @@ impl Model {
         let outputs_seg = tape.segment(&out_roots, None).map_err(internal)?;
         let sens = SensProg::build(&plan, &mut tape).map_err(internal)?;
         let at = AtProg::build(&plan).map_err(internal)?;
+        let at_kin = at_kinematics(&plan, &blocks, &out_roots).map_err(internal)?;
         let instructions = guess.len()
             + outputs_seg.len()
             + blocks
@@ -268,6 +270,7 @@ impl Model {
         let sens_state = sens.as_ref().map(|p| p.empty(n, no));
         let mut m = Model {
             at,
+            at_kin,
             sens,
             sens_state,
             name: name_of(&model.name),
@@ -432,7 +435,6 @@ impl Model {
             return Err(StepError::InvalidConfig(field));
         }
         self.load_inputs(x);
-        let ni = self.inputs.len();
         let st = &mut self.state;
         st.x.copy_from_slice(x);
         st.report = SolveReport::direct();
@@ -442,42 +444,7 @@ impl Model {
             prog.position(&self.graph, w, &mut st.q, guess, &mut st.report)
                 .map_err(|failure| StepError::Block { block: b, failure })?;
         }
-        for (b, prog) in self.blocks.iter().enumerate() {
-            let w = Work { r: &mut self.regs, fac: &mut self.facs[b], cfg };
-            prog.velocity(b, w, &mut st.dq, ni, &mut st.health)
-                .map_err(|failure| StepError::Block { block: b, failure })?;
-        }
-        let np = ni * (ni + 1) / 2;
-        for (b, prog) in self.blocks.iter().enumerate() {
-            prog.acceleration(&mut self.regs, &mut self.pair_d2, np, &self.facs[b]);
-        }
-        // Pairs (i <= j) to the full symmetric second analogs.
-        let pair_of = &self.pair_of;
-        let full = |pair_vals: &[f64], rows: usize, out: &mut [f64]| {
-            for u in 0..rows {
-                for (ij, &p) in pair_of.iter().enumerate() {
-                    out[u * ni * ni + ij] = pair_vals[u * np + p];
-                }
-            }
-        };
-        full(&self.pair_d2, self.unknowns.len(), &mut st.d2q);
-        self.outputs_seg.run(&mut self.regs);
-        let r = &self.regs;
-        for (o, &reg) in st.out.iter_mut().zip(&self.out_regs) {
-            *o = r[reg as usize];
-        }
-        for (o, &reg) in st.dout.iter_mut().zip(&self.out_d1_regs) {
-            *o = r[reg as usize];
-        }
-        for (o, &reg) in self.pair_d2.iter_mut().zip(&self.out_d2_regs) {
-            *o = r[reg as usize];
-        }
-        full(&self.pair_d2, self.outputs.len(), &mut st.d2out);
-        let finite =
-            [&st.q, &st.dq, &st.d2q, &st.out, &st.dout, &st.d2out].iter().all(|v| v.iter().all(|x| x.is_finite()));
-        if !finite {
-            return Err(StepError::NonFinite);
-        }
+        self.analogs(cfg, false)?;
         Ok(&self.state)
     }
 
@@ -511,6 +478,71 @@ impl Model {
         self.check_at(x, q)?;
         self.at.jacobian(&mut self.regs, q, out);
         Ok(())
+    }
+
+    /// The analogs and outputs after the positions (`at`: of the evaluation at a given position,
+    /// [`Model::kinematics_at`]), and the state's finiteness test.
+    fn analogs(&mut self, cfg: &NewtonConfig, at: bool) -> Result<(), StepError> {
+        let ni = self.inputs.len();
+        let st = &mut self.state;
+        for (b, prog) in self.blocks.iter().enumerate() {
+            let w = Work { r: &mut self.regs, fac: &mut self.facs[b], cfg };
+            prog.velocity(b, w, &mut st.dq, ni, &mut st.health, at.then(|| &self.at_kin.vel[b]))
+                .map_err(|failure| StepError::Block { block: b, failure })?;
+        }
+        let np = ni * (ni + 1) / 2;
+        for (b, prog) in self.blocks.iter().enumerate() {
+            prog.acceleration(&mut self.regs, &mut self.pair_d2, np, &self.facs[b], at.then(|| &self.at_kin.acc[b]));
+        }
+        // Pairs (i <= j) to the full symmetric second analogs.
+        let pair_of = &self.pair_of;
+        let full = |pair_vals: &[f64], rows: usize, out: &mut [f64]| {
+            for u in 0..rows {
+                for (ij, &p) in pair_of.iter().enumerate() {
+                    out[u * ni * ni + ij] = pair_vals[u * np + p];
+                }
+            }
+        };
+        full(&self.pair_d2, self.unknowns.len(), &mut st.d2q);
+        if at { &self.at_kin.out } else { &self.outputs_seg }.run(&mut self.regs);
+        let r = &self.regs;
+        for (o, &reg) in st.out.iter_mut().zip(&self.out_regs) {
+            *o = r[reg as usize];
+        }
+        for (o, &reg) in st.dout.iter_mut().zip(&self.out_d1_regs) {
+            *o = r[reg as usize];
+        }
+        for (o, &reg) in self.pair_d2.iter_mut().zip(&self.out_d2_regs) {
+            *o = r[reg as usize];
+        }
+        full(&self.pair_d2, self.outputs.len(), &mut st.d2out);
+        let finite =
+            [&st.q, &st.dq, &st.d2q, &st.out, &st.dout, &st.d2out].iter().all(|v| v.iter().all(|x| x.is_finite()));
+        if !finite {
+            return Err(StepError::NonFinite);
+        }
+        Ok(())
+    }
+
+    /// Analogs and outputs at a position `q` the caller already solved (the compiled
+    /// mechanism's `kinematics_at_flat`): the report carries the residual there, every block's
+    /// Jacobian is factorised from the graph. No allocation.
+    pub fn kinematics_at(&mut self, x: &[f64], q: &[f64], cfg: &NewtonConfig) -> Result<&State, StepError> {
+        self.check_at(x, q)?;
+        for (u, reg) in self.at.unknown_regs.iter().enumerate() {
+            if let Some(reg) = reg {
+                self.regs[*reg as usize] = q[u];
+            }
+        }
+        self.at_kin.residual.run(&mut self.regs);
+        let residual = crate::factor::max_abs(self.at_kin.residual_regs.iter().map(|&r| self.regs[r as usize]));
+        let st = &mut self.state;
+        st.x.copy_from_slice(x);
+        st.q.copy_from_slice(q);
+        st.report = SolveReport::given(residual);
+        st.health = Health::default();
+        self.analogs(cfg, true)?;
+        Ok(&self.state)
     }
 
     /// Whether the declaration asks for parameter sensitivities (`#[kinloop(sensitivities)]`).
@@ -718,4 +750,35 @@ impl Model {
         let kinds = self.input_kinds.iter().chain(&self.unknown_kinds).chain(&self.output_kinds);
         names.map(String::as_str).zip(kinds.copied()).collect()
     }
+}
+
+/// The segments of [`Model::kinematics_at`]: the residuals at the given position, then per
+/// block the analogs' right-hand sides and Jacobian, then the outputs (the emitter's mode `At`).
+struct AtKin {
+    residual: Segment,
+    residual_regs: Vec<u32>,
+    vel: Vec<Segment>,
+    acc: Vec<Segment>,
+    out: Segment,
+}
+
+fn at_kinematics(plan: &Plan, blocks: &[BlockProg], out_roots: &[NodeId]) -> Result<AtKin, crate::tape::Unavailable> {
+    let g = &plan.graph;
+    let mut tape = Builder::new(g);
+    tape.provide((0..plan.n).filter_map(|u| g.find(Op::Leaf(Leaf::Unknown(u as u16)))));
+    let residual = tape.segment(&plan.residuals, None)?;
+    let mut vel = Vec::with_capacity(blocks.len());
+    for (bp, prog) in plan.blocks.iter().zip(blocks) {
+        let roots: Vec<NodeId> =
+            [bp.vel.concat(), bp.col_scale.concat(), bp.lever_floor.concat(), bp.jac.concat()].concat();
+        vel.push(tape.segment(&roots, None)?);
+        tape.provide(prog.tan_regs.iter().flatten().map(|&r| NodeId(r)));
+    }
+    let mut acc = Vec::with_capacity(blocks.len());
+    for (bp, prog) in plan.blocks.iter().zip(blocks) {
+        acc.push(tape.segment(&bp.acc.concat(), None)?);
+        tape.provide(prog.tan2_regs.iter().flatten().map(|&r| NodeId(r)));
+    }
+    let out = tape.segment(out_roots, None)?;
+    Ok(AtKin { residual, residual_regs: plan.residuals.iter().map(|n| n.0).collect(), vel, acc, out })
 }

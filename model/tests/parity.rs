@@ -234,3 +234,57 @@ fn evaluations_at_a_position_equal_the_compiled_ones() {
     at_parity(&fx::ClassFour::default(), &mut read(fx::CLASS_FOUR_TEXT), [0.0]);
     at_parity(&fx::FiveBar::default(), &mut read(fx::FIVE_BAR_TEXT), [0.0, 0.4]);
 }
+
+/// Analogs and outputs at given positions (solved ones and perturbed ones), against the
+/// compiled `kinematics_at_flat`, including the residual it reports.
+fn kinematics_at_parity<M, const N: usize, const NI: usize, const NO: usize>(
+    compiled: &M,
+    model: &mut Model,
+    x0: [f64; NI],
+) where
+    M: Mechanism<N, NI, NO>,
+{
+    let cfg = NewtonConfig::default();
+    let name = model.name().to_string();
+    let mut compared = 0;
+    for k in 0..24 {
+        let mut x = x0;
+        x[0] += 0.27 * k as f64;
+        let Ok(solved) = compiled.kinematics_flat(&x, &compiled.guess_flat(&x), &cfg) else { continue };
+        for shift in [0.0, 1e-7] {
+            let q = solved.q.map(|v| v + shift);
+            let (c, r) = (compiled.kinematics_at_flat(&x, &q, &cfg), model.kinematics_at(&x, &q, &cfg));
+            let (c, r) = match (c, r) {
+                (Ok(c), Ok(r)) => (c, r),
+                (Err(_), Err(_)) => continue,
+                (c, r) => panic!("{name}: compiled {:?}, run time {:?}", c.is_ok(), r.is_ok()),
+            };
+            let flat2 = |v: &[[f64; NI]]| v.iter().flatten().copied().collect::<Vec<f64>>();
+            let flat3 = |v: &[[[f64; NI]; NI]]| v.iter().flatten().flatten().copied().collect::<Vec<f64>>();
+            assert_eq!(c.report.residual.to_bits(), r.report.residual.to_bits(), "{name}: residual");
+            for (a, b) in [
+                (flat2(&c.dq), r.dq.clone()),
+                (flat3(&c.d2q), r.d2q.clone()),
+                (c.out.to_vec(), r.out.clone()),
+                (flat2(&c.dout), r.dout.clone()),
+                (flat3(&c.d2out), r.d2out.clone()),
+            ] {
+                assert!(rel_diff(&a, &b) <= REL, "{name} at {x:?}: analogs at a position differ");
+            }
+            compared += 1;
+        }
+    }
+    assert!(compared >= 24, "{name}: only {compared} positions compared");
+}
+
+#[test]
+fn kinematics_at_a_position_equal_the_compiled_ones() {
+    kinematics_at_parity(&fx::RhombicDrive::default(), &mut read(fx::RHOMBIC_DRIVE_TEXT), [0.0]);
+    kinematics_at_parity(&fx::ClassFour::default(), &mut read(fx::CLASS_FOUR_TEXT), [0.0]);
+    kinematics_at_parity(&fx::FiveBar::default(), &mut read(fx::FIVE_BAR_TEXT), [0.0, 0.4]);
+    let mut m = read(fx::SLIDER_CRANK_TEXT);
+    for (p, v) in [("r", 1.0), ("l", 3.0), ("e", 0.4)] {
+        m.set_param(p, v);
+    }
+    kinematics_at_parity(&fx::SliderCrank { r: 1.0, l: 3.0, e: 0.4 }, &mut m, [0.0]);
+}
