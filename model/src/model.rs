@@ -637,6 +637,10 @@ fn position_program(
             (pre, How::Closed { form: rec.form.clone(), sin_cos, order })
         }
         Solve::Newton | Solve::NewtonSparse(_) => {
+            // Every unknown of a Newton block is read by its equations: its leaf is in the graph.
+            if let Some(k) = unknown_nodes.iter().position(Option::is_none) {
+                return Err(crate::tape::Unavailable(Leaf::Unknown(bp.unknowns[k] as u16)));
+            }
             let roots: Vec<NodeId> =
                 bp.f.iter()
                     .copied()
