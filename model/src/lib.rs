@@ -37,10 +37,10 @@
 //!
 //! # Speed
 //!
-//! A step is an interpreted tape: on the gallery's rhombic drive it executes about 6.9 times
-//! the compiled step's instructions (4.2 times its time), on a Newton-dominated class IV block
-//! 2.4 times; reading and planning a declaration takes a few milliseconds (`BENCHMARKS.md`,
-//! "Mechanisms read at run time").
+//! A step is an interpreted tape: on the gallery's rhombic drive it executes about 7 times the
+//! compiled step's instructions (about 3 times its time), on a Newton-dominated class IV block
+//! 2.4 times; reading and planning a declaration takes one or two milliseconds
+//! (`BENCHMARKS.md`, "Mechanisms read at run time").
 //!
 //! # Sweeps and the runtime's algorithms
 //!
