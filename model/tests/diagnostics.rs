@@ -1,6 +1,6 @@
 //! Diagnostics parity: the declarations of the macro's UI tests (`tests/ui/**/*.rs`, whose
 //! compiler output is pinned in the `.stderr` beside each) read at run time give the same
-//! messages at the same lines and columns.
+//! messages at the same lines and columns (errors, and the warnings of accepted declarations).
 //!
 //! Each `mechanism! { ... }` body is read in place: the rest of the file is blanked (newlines
 //! kept), so a run-time location is directly comparable with the compiler's. The reference is
@@ -20,11 +20,27 @@ struct Expected {
 }
 
 fn errors_of(stderr: &str) -> Vec<Expected> {
+    messages_of(stderr, "error: ")
+}
+
+/// The warnings the macro makes the compiler print: `use of deprecated associated constant
+/// `Name::tag`: message`, of which the message is the macro's.
+fn warnings_of(stderr: &str) -> Vec<Expected> {
+    messages_of(stderr, "warning: use of deprecated associated constant ")
+        .into_iter()
+        .filter_map(|e| {
+            let (_, message) = e.message.split_once("`: ")?;
+            Some(Expected { message: message.to_string(), ..e })
+        })
+        .collect()
+}
+
+fn messages_of(stderr: &str, prefix: &str) -> Vec<Expected> {
     let lines: Vec<&str> = stderr.lines().collect();
     let mut out = Vec::new();
     let mut k = 0;
     while k < lines.len() {
-        if let Some(first) = lines[k].strip_prefix("error: ") {
+        if let Some(first) = lines[k].strip_prefix(prefix) {
             let mut message = first.to_string();
             k += 1;
             while k < lines.len() && !lines[k].trim_start().starts_with("--> ") {
@@ -123,9 +139,14 @@ fn ui_declarations_read_at_run_time_give_the_macros_messages() {
         let inside = |e: &Expected| spans.iter().any(|&(a, b)| (line_of(a)..=line_of(b)).contains(&e.line));
         let mut expected: Vec<Expected> = errors_of(&stderr).into_iter().filter(inside).collect();
         let mut got = Vec::new();
+        let mut expected_warnings: Vec<Expected> = warnings_of(&stderr).into_iter().filter(inside).collect();
+        let mut got_warnings = Vec::new();
         for &span in &spans {
             match Model::read(&case.display().to_string(), &in_place(&src, span)) {
-                Ok(_) | Err(ReadError::Unsupported(_)) => {}
+                Ok(m) => got_warnings.extend(m.warnings().into_iter().flat_map(|d| {
+                    d.items.iter().map(|i| Expected { line: i.line, column: i.column, message: i.message.clone() })
+                })),
+                Err(ReadError::Unsupported(_)) => {}
                 Err(ReadError::Rejected(d)) => got.extend(d.items.into_iter().map(|i| Expected {
                     line: i.line,
                     column: i.column,
@@ -136,7 +157,10 @@ fn ui_declarations_read_at_run_time_give_the_macros_messages() {
         expected.sort();
         got.sort();
         assert_eq!(got, expected, "{}", case.display());
-        compared += expected.len();
+        expected_warnings.sort();
+        got_warnings.sort();
+        assert_eq!(got_warnings, expected_warnings, "{}: warnings", case.display());
+        compared += expected.len() + expected_warnings.len();
         cases += 1;
     }
     eprintln!("{cases} UI cases, {compared} messages compared");
