@@ -129,6 +129,20 @@ fn other_fixtures_equal_the_compiled_ones() {
     eprintln!("displacer-rod drive: {w:?}");
     let w = sweep_parity(&fx::WorkingRodDrive::default(), &mut read(fx::WORKING_ROD_DRIVE_TEXT), [0.0], 180);
     eprintln!("working-rod drive: {w:?}");
+    let w = sweep_parity(&fx::gear_lever::GearLever::default(), &mut read(fx::gear_lever::GEAR_LEVER_TEXT), [0.0], 180);
+    eprintln!("gear lever: {w:?}");
+    // The roller edger's input is time: the same range, 0 to 2π, in seconds.
+    let w = sweep_parity(
+        &fx::roller_edger::RollerEdger::default(),
+        &mut read(fx::roller_edger::ROLLER_EDGER_TEXT),
+        [0.0],
+        180,
+    );
+    eprintln!("roller edger: {w:?}");
+    let w = sweep_parity(&fx::balancing::Balance::default(), &mut read(fx::balancing::BALANCE_TEXT), [0.0], 180);
+    eprintln!("balance: {w:?}");
+    let w = sweep_parity(&fx::ClassFourCore::default(), &mut read(fx::CLASS_FOUR_CORE_TEXT), [0.0], 180);
+    eprintln!("class IV core: {w:?}");
 }
 
 /// The comparison can fail: a run-time model with one parameter changed by one part in 10^12
