@@ -131,7 +131,10 @@ impl Fac {
     }
 
     /// `Inverse2::in_cols_floored` of `j` with each column's largest magnitude beyond the block
-    /// (`None`: the columns have no entries beyond it) and its floor.
+    /// (`None`: the columns have no entries beyond it) and its floor. The emitted code passes
+    /// the entries themselves; their largest magnitude gives the same maximum, and the same
+    /// verdict on a non-finite entry, except where finite entries beyond the block sum to an
+    /// infinity (magnitudes near `f64::MAX`), which the compiled test would call singular.
     pub(crate) fn inverse2(j: &[[f64; 2]; 2], beyond: Option<[f64; 2]>, floor: [Option<f64>; 2]) -> Fac {
         Fac::Inverse2(match beyond {
             None => Inverse2::in_cols_floored::<0>(j, [[]; 2], floor),
