@@ -23,13 +23,18 @@
 
 #![warn(missing_docs)]
 
-// The stages are private: the crate's interface is `expand` (what the macro runs) and `analyze`
-// (for tests and tools), so the pipeline can change without breaking anyone.
+// The crate's interface is `expand` (what the macro runs), `analyze` (for tests and tools) and
+// `plan_declaration` (for back ends other than the emitter: the run-time evaluator of
+// `kinloop-model`). The plan it returns and the expression graph the plan owns are reachable,
+// hidden from the documentation: an interface between the workspace's crates, not a stable one,
+// so the pipeline can change without breaking anyone outside it. The other stages are private.
 pub(crate) mod emit;
 pub(crate) mod fallback;
 pub(crate) mod front;
-pub(crate) mod graph;
-pub(crate) mod plan;
+#[doc(hidden)]
+pub mod graph;
+#[doc(hidden)]
+pub mod plan;
 pub(crate) mod semantics;
 pub(crate) mod structure;
 
@@ -59,6 +64,36 @@ pub fn analyze(input: TokenStream) -> Result<Analyzed, syn::Error> {
     let blocks = analysis::analyze(&model)?;
     let warnings = analysis::warnings(&model);
     Ok(Analyzed { model, blocks, warnings })
+}
+
+/// What planning produced: the checked declaration and the plan the emitter writes Rust from,
+/// for back ends that evaluate the plan instead (see `kinloop-model`).
+pub struct Planned {
+    /// The checked model (its graph is moved into the plan: read expressions from `plan.graph`).
+    pub model: model::Model,
+    /// The blocks in solve order.
+    pub blocks: Vec<Block>,
+    /// The computation plan: every derivative, and how each block is solved.
+    pub plan: plan::Plan,
+    /// Warnings (unused parameters).
+    pub warnings: Vec<diag::Warning>,
+}
+
+/// Parses, checks and plans a declaration exactly as [`expand`] does before it emits code: the
+/// same front end, checks, structure analysis and plan. Never panics; the first error comes back
+/// as the macro would report it (message and span).
+pub fn plan_declaration(input: TokenStream) -> Result<Planned, syn::Error> {
+    let Analyzed { mut model, blocks, warnings } = analyze(input)?;
+    let sensitivities = model.options.sensitivities.is_some();
+    let plan = plan::build(&mut model, &blocks, sensitivities);
+    Ok(Planned { model, blocks, plan, warnings })
+}
+
+/// The decomposition of a planned declaration in words, as the generated constant
+/// `Name::DECOMPOSITION` has it: counts, mobility, and per block how it is solved, its unknowns
+/// and its equations.
+pub fn decomposition(planned: &Planned) -> String {
+    emit::describe::decomposition(&planned.model, &planned.plan)
 }
 
 /// Expands a `mechanism!` invocation. Never panics. Errors come back as `compile_error!`

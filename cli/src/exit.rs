@@ -1,0 +1,12 @@
+//! The exit codes of `kinloop` (those above 2 are the BSD `sysexits` conventions).
+
+/// A solve failed (no assembly, singular position, ...), or a parameter has no value.
+pub const SOLVE_FAILED: u8 = 1;
+/// Wrong arguments (also clap's code for its own usage errors).
+pub const USAGE: u8 = 2;
+/// The declaration is rejected: its diagnostics are on standard error.
+pub const DATA_ERR: u8 = 65;
+/// The file cannot be read.
+pub const NO_INPUT: u8 = 66;
+/// The declaration uses what the run-time evaluator does not evaluate yet.
+pub const UNAVAILABLE: u8 = 69;

@@ -1,0 +1,114 @@
+//! `kinloop`: mechanisms declared in text files (`.kl`, the language of `mechanism!`), checked
+//! and solved at run time by `kinloop-model`.
+//!
+//! ```text
+//! kinloop check four_bar.kl                      # structure: counts, mobility, blocks
+//! kinloop solve four_bar.kl --at 30 --deg        # one state as CSV, with units
+//! kinloop solve four_bar.kl --at 0 --at 0.5 --params a=1.2,b=3
+//! ```
+//!
+//! Exit codes ([`exit`]): 0 success, 1 a solve failed, 2 a usage error, 65 the declaration is
+//! rejected (diagnostics on standard error), 66 the file cannot be read, 69 the declaration uses
+//! what the run-time evaluator does not evaluate yet.
+
+mod exit;
+mod params;
+mod report;
+mod solve;
+
+use clap::{Parser, Subcommand};
+use kinloop_model::{Model, ReadError};
+use std::io::IsTerminal;
+use std::path::{Path, PathBuf};
+use std::process::ExitCode;
+
+/// Mechanisms declared in text files, checked and solved at run time.
+#[derive(Parser)]
+#[command(name = "kinloop", version, about)]
+struct Cli {
+    #[command(subcommand)]
+    command: Command,
+}
+
+/// What to do with the mechanism.
+#[derive(Subcommand)]
+enum Command {
+    /// Checks a declaration and reports its structure: counts, mobility, the blocks in solve
+    /// order and how each is solved.
+    Check {
+        /// The declaration (`.kl`).
+        file: PathBuf,
+        /// Parameter values, `name=value` separated by commas (overriding the defaults).
+        #[arg(long, value_name = "NAME=VALUE,...")]
+        params: Option<String>,
+    },
+    /// Solves positions, velocity and acceleration analogs and outputs at given inputs, from
+    /// the declared initial guess, and writes them as CSV with units.
+    Solve {
+        /// The declaration (`.kl`).
+        file: PathBuf,
+        /// The inputs of one state, separated by commas (one value per input); repeat for more
+        /// states (each solved from the declared guess).
+        #[arg(long, required = true, value_name = "X,...", allow_hyphen_values = true)]
+        at: Vec<String>,
+        /// Angles in degrees (inputs given and values written); otherwise radians.
+        #[arg(long)]
+        deg: bool,
+        /// Parameter values, `name=value` separated by commas (overriding the defaults).
+        #[arg(long, value_name = "NAME=VALUE,...")]
+        params: Option<String>,
+    },
+}
+
+/// A failure with its exit code; the message is already written.
+pub struct Failed(pub u8);
+
+fn main() -> ExitCode {
+    let cli = Cli::parse();
+    match run(cli) {
+        Ok(()) => ExitCode::SUCCESS,
+        Err(Failed(code)) => ExitCode::from(code),
+    }
+}
+
+fn run(cli: Cli) -> Result<(), Failed> {
+    match cli.command {
+        Command::Check { file, params } => {
+            let model = load(&file, params.as_deref())?;
+            print!("{}", report::structure(&model));
+            Ok(())
+        }
+        Command::Solve { file, at, deg, params } => {
+            let mut model = load(&file, params.as_deref())?;
+            solve::run(&mut model, &at, deg)
+        }
+    }
+}
+
+/// Reads, checks and plans the declaration in `file`, with the parameters `params`; writes the
+/// diagnostics (with a caret, coloured on a terminal) on failure and the warnings.
+fn load(file: &Path, params: Option<&str>) -> Result<Model, Failed> {
+    let text = std::fs::read_to_string(file).map_err(|e| {
+        eprintln!("error: cannot read {}: {e}", file.display());
+        Failed(exit::NO_INPUT)
+    })?;
+    let color = std::io::stderr().is_terminal();
+    let mut model = match Model::read(&file.display().to_string(), &text) {
+        Ok(m) => m,
+        Err(ReadError::Rejected(d)) => {
+            eprint!("{}", d.render(color));
+            return Err(Failed(exit::DATA_ERR));
+        }
+        Err(e @ ReadError::Unsupported(_)) => {
+            eprintln!("error: {e}");
+            return Err(Failed(exit::UNAVAILABLE));
+        }
+    };
+    if let Some(w) = model.warnings() {
+        eprint!("{}", w.render(color));
+    }
+    if let Some(p) = params {
+        params::apply(&mut model, p)?;
+    }
+    Ok(model)
+}

@@ -1,0 +1,32 @@
+//! `--params a=1.2,b=3`: parameter values overriding the declared defaults.
+
+use crate::{Failed, exit};
+use kinloop_model::Model;
+
+/// Sets the parameters listed in `list` (`name=value` separated by commas).
+pub fn apply(model: &mut Model, list: &str) -> Result<(), Failed> {
+    for item in list.split(',').map(str::trim).filter(|s| !s.is_empty()) {
+        let Some((name, value)) = item.split_once('=') else {
+            eprintln!("error: `{item}` in --params is not `name=value`");
+            return Err(Failed(exit::USAGE));
+        };
+        let (name, value) = (name.trim(), value.trim());
+        let Ok(v) = value.parse::<f64>() else {
+            eprintln!("error: the value of `{name}` in --params, `{value}`, is not a number");
+            return Err(Failed(exit::USAGE));
+        };
+        if !v.is_finite() {
+            eprintln!("error: the value of `{name}` in --params is not finite");
+            return Err(Failed(exit::USAGE));
+        }
+        if !model.set_param(name, v) {
+            eprintln!(
+                "error: {} has no parameter `{name}` (its parameters: {})",
+                model.name(),
+                model.params().join(", ")
+            );
+            return Err(Failed(exit::USAGE));
+        }
+    }
+    Ok(())
+}

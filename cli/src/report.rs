@@ -1,0 +1,34 @@
+//! `kinloop check`: the structure report of a declaration.
+
+use kinloop_model::Model;
+use std::fmt::Write;
+
+/// The decomposition (counts, mobility, blocks and how each is solved), then the parameters
+/// with their values, the quantities with their units, and the size of the run-time program.
+pub fn structure(model: &Model) -> String {
+    let mut s = format!("{}\n", model.decomposition());
+    let params: Vec<String> = model
+        .params()
+        .iter()
+        .zip(model.param_values())
+        .map(|(p, v)| match v {
+            Some(v) => format!("{p} = {v}"),
+            None => format!("{p} (no value)"),
+        })
+        .collect();
+    let _ = writeln!(s, "parameters: {}", if params.is_empty() { "none".to_string() } else { params.join(", ") });
+    let quantities = model.quantities();
+    let (ni, nu) = (model.inputs().len(), model.unknowns().len());
+    let list = |q: &[(&str, kinloop_runtime::QuantityKind)]| {
+        let v: Vec<String> = q
+            .iter()
+            .map(|(n, k)| if k.unit().is_empty() { n.to_string() } else { format!("{n} [{}]", k.unit()) })
+            .collect();
+        if v.is_empty() { "none".to_string() } else { v.join(", ") }
+    };
+    let _ = writeln!(s, "inputs: {}", list(&quantities[..ni]));
+    let _ = writeln!(s, "unknowns: {}", list(&quantities[ni..ni + nu]));
+    let _ = writeln!(s, "outputs: {}", list(&quantities[ni + nu..]));
+    let _ = writeln!(s, "run-time program: {} registers, {} instructions", model.registers(), model.instructions());
+    s
+}

@@ -1,0 +1,81 @@
+//! `kinloop solve`: states at given inputs as CSV, with units in the header.
+
+use crate::{Failed, exit};
+use kinloop_model::Model;
+use kinloop_runtime::{QuantityKind, Table};
+
+/// Solves at every `--at` and writes the table to standard output.
+pub fn run(model: &mut Model, at: &[String], deg: bool) -> Result<(), Failed> {
+    let kinds: Vec<QuantityKind> = model.quantities().iter().map(|(_, k)| *k).collect();
+    let ni = model.inputs().len();
+    let factors = factors(model, &kinds, deg);
+    let name = model.name().to_string();
+    let mut table = Table::new(model.columns());
+    for spec in at {
+        let mut x = parse_inputs(spec, ni)?;
+        for (v, k) in x.iter_mut().zip(&kinds[..ni]) {
+            if deg && *k == QuantityKind::Angle {
+                *v = v.to_radians();
+            }
+        }
+        let state = model.solve(&x).map_err(|e| {
+            eprintln!("error: {name} at {spec}: {e}");
+            Failed(exit::SOLVE_FAILED)
+        })?;
+        table.push(state.row().iter().zip(&factors).map(|(v, f)| v * f).collect());
+    }
+    let names: Vec<String> = model.quantities().iter().map(|(n, _)| n.to_string()).collect();
+    let base: Vec<(&str, &str)> = names
+        .iter()
+        .zip(&kinds)
+        .map(|(n, k)| (n.as_str(), if deg && *k == QuantityKind::Angle { "deg" } else { k.unit() }))
+        .collect();
+    let table = table.with_units(&base);
+    let stdout = std::io::stdout();
+    table.write_csv(stdout.lock()).map_err(|e| {
+        eprintln!("error: cannot write the table: {e}");
+        Failed(exit::SOLVE_FAILED)
+    })
+}
+
+/// One `--at`: one number per input.
+fn parse_inputs(spec: &str, ni: usize) -> Result<Vec<f64>, Failed> {
+    let x: Result<Vec<f64>, _> = spec.split(',').map(|v| v.trim().parse::<f64>()).collect();
+    match x {
+        Ok(x) if x.len() == ni && x.iter().all(|v| v.is_finite()) => Ok(x),
+        Ok(x) if x.len() != ni => {
+            eprintln!("error: --at {spec} gives {} inputs, the mechanism has {ni}", x.len());
+            Err(Failed(exit::USAGE))
+        }
+        _ => {
+            eprintln!("error: --at {spec} is not a list of finite numbers");
+            Err(Failed(exit::USAGE))
+        }
+    }
+}
+
+/// Per column of [`Model::columns`]: the factor that converts its value to degrees where
+/// angles are written in degrees (an angle in the quantity: times `180/π`; an angle input in
+/// the derivative: divided by it), 1 otherwise.
+fn factors(model: &Model, kinds: &[QuantityKind], deg: bool) -> Vec<f64> {
+    let d = 180.0 / std::f64::consts::PI;
+    let of = |k: QuantityKind| if deg && k == QuantityKind::Angle { d } else { 1.0 };
+    let ni = model.inputs().len();
+    let (inputs, rest) = kinds.split_at(ni);
+    let (unknowns, outputs) = rest.split_at(model.unknowns().len());
+    let mut f: Vec<f64> = inputs.iter().map(|&k| of(k)).collect();
+    for group in [unknowns, outputs] {
+        f.extend(group.iter().map(|&k| of(k)));
+        for &k in group {
+            f.extend(inputs.iter().map(|&i| of(k) / of(i)));
+        }
+        for &k in group {
+            for a in 0..ni {
+                for b in a..ni {
+                    f.push(of(k) / (of(inputs[a]) * of(inputs[b])));
+                }
+            }
+        }
+    }
+    f
+}

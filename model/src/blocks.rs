@@ -1,0 +1,281 @@
+//! Each block of the plan as the run-time step executes it: its position solve (as the plan's
+//! `Solve` says), then its velocity and acceleration analogs on one factorisation, in the order
+//! and with the factorisations the emitted fused kernel uses.
+
+use crate::closed;
+use crate::factor::{Fac, max_abs};
+use crate::newton::{self, NewtonProg};
+use crate::tape::Segment;
+use kinloop_codegen::graph::dag::Graph;
+use kinloop_codegen::plan::closed_form::ClosedForm;
+use kinloop_runtime::NewtonConfig;
+use kinloop_runtime::generated::{BlockFailure, Health, SolveReport};
+
+/// Why a step failed in a block.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub enum StepFailure {
+    /// The position solve failed (no assembly, no convergence, singular, non-finite, ...).
+    Block(BlockFailure),
+    /// The block's Jacobian is singular at the position: pivot ratio below the configuration's
+    /// `singular_tol` (the analogs are not determined).
+    Singular {
+        /// The pivot ratio of the equilibrated Jacobian.
+        pivot_ratio: f64,
+    },
+}
+
+/// How a block's positions are solved at run time.
+pub(crate) enum How {
+    /// One division by a constant coefficient.
+    Fixed { coefficient: f64, rhs: u32 },
+    /// One linear solve with the block's Jacobian.
+    Linear { rhs: Vec<u32> },
+    /// The closed form; the registers of each angle's `[sin, cos]` nodes, which the solve
+    /// defines.
+    Closed {
+        form: ClosedForm,
+        sin_cos: Vec<[Option<u32>; 2]>,
+        /// The unknowns in the order the solve gives them (the angles, then the length or
+        /// slider), each with its register.
+        order: Vec<(usize, Option<u32>)>,
+    },
+    /// Newton.
+    Newton(NewtonProg),
+}
+
+/// One block of the step.
+pub(crate) struct BlockProg {
+    pub(crate) unknowns: Vec<usize>,
+    /// Registers of the unknowns' leaves (`None`: no node reads the unknown).
+    pub(crate) unknown_regs: Vec<Option<u32>>,
+    /// What is computed before the position solve (coefficients, right-hand sides, the
+    /// magnitudes that do not depend on the block's unknowns).
+    pub(crate) pre: Segment,
+    pub(crate) how: How,
+    /// The Jacobian, row-major.
+    pub(crate) jac: Vec<u32>,
+    /// Per column: its entries in the full Jacobian, then its lever floors (`max_abs` of them
+    /// equilibrates the column).
+    pub(crate) col: Vec<Vec<u32>>,
+    /// Per column: its lever floors only.
+    pub(crate) floors: Vec<Vec<u32>>,
+    /// Per column: its entries beyond the block (rows of later blocks).
+    pub(crate) beyond: Vec<Vec<u32>>,
+    /// A 1x1 block whose entry is among its column's entries: the position of the entry there.
+    pub(crate) in_col: Option<usize>,
+    pub(crate) vel: Segment,
+    /// `vel[r * ni + i]`.
+    pub(crate) vel_rows: Vec<u32>,
+    pub(crate) tan_regs: Vec<Option<u32>>,
+    pub(crate) acc: Segment,
+    /// `acc[r * pairs + p]`.
+    pub(crate) acc_rows: Vec<u32>,
+    pub(crate) tan2_regs: Vec<Option<u32>>,
+}
+
+/// What a block's stage works on: the registers, its factorisation, the configuration.
+pub(crate) struct Work<'a> {
+    pub(crate) r: &'a mut [f64],
+    pub(crate) fac: &'a mut Fac,
+    pub(crate) cfg: &'a NewtonConfig,
+}
+
+/// Whether a pivot ratio fails the configuration's test: below it, or NaN.
+#[allow(clippy::neg_cmp_op_on_partial_ord)] // the negation is what lets NaN through
+fn singular(pivot_ratio: f64, cfg: &NewtonConfig) -> bool {
+    !(pivot_ratio >= cfg.singular_tol)
+}
+
+impl BlockProg {
+    fn set_unknowns(&self, r: &mut [f64], q: &mut [f64], values: &[f64]) {
+        for (k, &u) in self.unknowns.iter().enumerate() {
+            q[u] = values[k];
+            if let Some(reg) = self.unknown_regs[k] {
+                r[reg as usize] = values[k];
+            }
+        }
+    }
+
+    /// The factorisation of the Jacobian evaluated from the graph, by the emitter's rule: the
+    /// scalar in its column, the 2x2 inverse, or the column-equilibrated LU.
+    fn factor_from_graph(&self, r: &[f64], fac: &mut Fac) {
+        let n = self.unknowns.len();
+        let v = |regs: &[u32]| max_abs(regs.iter().map(|&k| r[k as usize]));
+        match (n, self.in_col) {
+            (1, Some(_)) => *fac = Fac::in_col(r[self.jac[0] as usize], v(&self.col[0])),
+            (2, _) => {
+                let j = [
+                    [r[self.jac[0] as usize], r[self.jac[1] as usize]],
+                    [r[self.jac[2] as usize], r[self.jac[3] as usize]],
+                ];
+                let beyond = (!self.beyond.iter().all(Vec::is_empty)).then(|| [v(&self.beyond[0]), v(&self.beyond[1])]);
+                let floor = |c: usize| match self.floors[c].as_slice() {
+                    [] => None,
+                    [one] => Some(r[*one as usize]),
+                    many => Some(v(many)),
+                };
+                *fac = Fac::inverse2(&j, beyond, [floor(0), floor(1)]);
+            }
+            _ => self.factor_cols(r, fac),
+        }
+    }
+
+    /// `Lu::factor_cols` of the Jacobian in the registers.
+    fn factor_cols(&self, r: &[f64], fac: &mut Fac) {
+        let n = self.unknowns.len();
+        let mut rows = [0.0; crate::factor::MAX_DENSE * crate::factor::MAX_DENSE];
+        let mut scale = [0.0; crate::factor::MAX_DENSE];
+        for (k, &reg) in self.jac.iter().enumerate() {
+            rows[k] = r[reg as usize];
+        }
+        for (c, s) in scale.iter_mut().enumerate().take(n) {
+            *s = max_abs(self.col[c].iter().map(|&k| r[k as usize]));
+        }
+        fac.factor_cols(n, &rows[..n * n], &scale[..n]);
+    }
+
+    /// Solves the block's positions; writes them into `q` and the registers.
+    pub(crate) fn position(
+        &self,
+        g: &Graph,
+        w: Work<'_>,
+        q: &mut [f64],
+        guess: &[f64],
+        report: &mut SolveReport,
+    ) -> Result<(), StepFailure> {
+        let Work { r, fac, cfg } = w;
+        self.pre.run(r);
+        match &self.how {
+            How::Fixed { coefficient, rhs } => {
+                let f = kinloop_runtime::generated::Fixed(*coefficient);
+                *fac = Fac::Fixed(f);
+                self.set_unknowns(r, q, &f.solve([r[*rhs as usize]]));
+            }
+            How::Linear { rhs } => {
+                self.factor_from_graph(r, fac);
+                if singular(fac.pivot_ratio(), cfg) {
+                    return Err(StepFailure::Singular { pivot_ratio: fac.pivot_ratio() });
+                }
+                let mut z = [0.0; crate::factor::MAX_DENSE];
+                for (k, &reg) in rhs.iter().enumerate() {
+                    z[k] = r[reg as usize];
+                }
+                let n = rhs.len();
+                fac.solve(&mut z[..n]);
+                self.set_unknowns(r, q, &z[..n]);
+            }
+            How::Closed { form, sin_cos, order } => {
+                let out = closed::solve(form, g, r, guess, cfg).map_err(StepFailure::Block)?;
+                let n = self.unknowns.len();
+                for (k, &(u, reg)) in order.iter().enumerate() {
+                    q[u] = out.values[k];
+                    if let Some(reg) = reg {
+                        r[reg as usize] = out.values[k];
+                    }
+                }
+                for (a, [s, c]) in sin_cos.iter().enumerate() {
+                    let (cv, sv) = (out.values[n + 2 * a], out.values[n + 2 * a + 1]);
+                    if let Some(c) = c {
+                        r[*c as usize] = cv;
+                    }
+                    if let Some(s) = s {
+                        r[*s as usize] = sv;
+                    }
+                }
+                debug_assert_eq!(out.len, n + 2 * sin_cos.len());
+            }
+            How::Newton(p) => {
+                newton::solve(p, r, guess, cfg, report, fac).map_err(StepFailure::Block)?;
+                for (k, &u) in self.unknowns.iter().enumerate() {
+                    q[u] = r[p.unknown_regs[k] as usize];
+                }
+            }
+        }
+        Ok(())
+    }
+
+    /// The velocity analogs `dq[u * ni + i]`, factorising the Jacobian where the position solve
+    /// did not (the factorisation is kept in `fac` for the accelerations).
+    ///
+    /// With `at` (the emitter's mode `At`: analogs at a position the caller gives, no position
+    /// solve before), `at` is the segment to run, and every block but a fixed one factorises
+    /// its Jacobian from the graph and tests it.
+    pub(crate) fn velocity(
+        &self,
+        b: usize,
+        w: Work<'_>,
+        dq: &mut [f64],
+        ni: usize,
+        health: &mut Health,
+        at: Option<&Segment>,
+    ) -> Result<(), StepFailure> {
+        let Work { r, fac, cfg } = w;
+        at.unwrap_or(&self.vel).run(r);
+        let tested = match (&self.how, at) {
+            (How::Fixed { coefficient, .. }, Some(_)) => {
+                *fac = Fac::Fixed(kinloop_runtime::generated::Fixed(*coefficient));
+                false
+            }
+            (How::Fixed { .. }, None) => false,
+            (_, Some(_)) | (How::Closed { .. }, None) => {
+                self.factor_from_graph(r, fac);
+                true
+            }
+            (How::Linear { .. }, None) => false,
+            (How::Newton(p), None) => {
+                if !p.keeps_lu {
+                    self.factor_cols(r, fac);
+                }
+                true
+            }
+        };
+        if tested && singular(fac.pivot_ratio(), cfg) {
+            return Err(StepFailure::Singular { pivot_ratio: fac.pivot_ratio() });
+        }
+        fac.note(health, b);
+        let n = self.unknowns.len();
+        let mut z = [0.0; crate::factor::MAX_DENSE];
+        for i in 0..ni {
+            for (row, zr) in z.iter_mut().enumerate().take(n) {
+                *zr = r[self.vel_rows[row * ni + i] as usize];
+            }
+            fac.solve(&mut z[..n]);
+            for (k, &u) in self.unknowns.iter().enumerate() {
+                dq[u * ni + i] = z[k];
+                if let Some(reg) = self.tan_regs[k * ni + i] {
+                    r[reg as usize] = z[k];
+                }
+            }
+        }
+        Ok(())
+    }
+
+    /// The acceleration analogs `d2q[u * pairs + p]` on the velocity's factorisation.
+    /// (With `at`, that segment instead of the step's: see [`BlockProg::velocity`].)
+    pub(crate) fn acceleration(&self, r: &mut [f64], d2q: &mut [f64], pairs: usize, fac: &Fac, at: Option<&Segment>) {
+        at.unwrap_or(&self.acc).run(r);
+        let n = self.unknowns.len();
+        let mut z = [0.0; crate::factor::MAX_DENSE];
+        for p in 0..pairs {
+            for (row, zr) in z.iter_mut().enumerate().take(n) {
+                *zr = r[self.acc_rows[row * pairs + p] as usize];
+            }
+            fac.solve(&mut z[..n]);
+            for (k, &u) in self.unknowns.iter().enumerate() {
+                d2q[u * pairs + p] = z[k];
+                if let Some(reg) = self.tan2_regs[k * pairs + p] {
+                    r[reg as usize] = z[k];
+                }
+            }
+        }
+    }
+}
+
+/// The unknown of a closed form that is not an angle (a length or a slider).
+pub(crate) fn other_unknown(form: &ClosedForm) -> Option<usize> {
+    match form {
+        ClosedForm::PolarLength { length, .. } => Some(*length),
+        ClosedForm::AngleSlider { slider, .. } => Some(*slider),
+        ClosedForm::AngleEquation { .. } | ClosedForm::Dyad { .. } => None,
+    }
+}

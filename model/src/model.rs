@@ -1,0 +1,788 @@
+//! A mechanism read at run time: the plan turned into the tape and block programs once, then
+//! evaluated step by step without allocating.
+
+use crate::at::{AtProg, Jacobian};
+use crate::blocks::{BlockProg, How, StepFailure, Work, other_unknown};
+use crate::factor::{Fac, MAX_DENSE};
+use crate::newton::NewtonProg;
+use crate::sensitivities::{SensProg, Sensitivities};
+use crate::source::{self, Diagnostics};
+use crate::tape::{Builder, Segment, registers};
+use kinloop_codegen::Planned;
+use kinloop_codegen::graph::dag::{Graph, Leaf, NodeId, Op};
+use kinloop_codegen::plan::kinds::{self, Kind};
+use kinloop_codegen::plan::solve::Solve;
+use kinloop_codegen::plan::{BlockPlan, Plan, pairs};
+use kinloop_runtime::generated::{Health, SolveReport};
+use kinloop_runtime::{NewtonConfig, QuantityKind};
+use std::fmt;
+
+/// Why a text could not become a [`Model`].
+#[derive(Debug)]
+pub enum ReadError {
+    /// The declaration was rejected: the macro's own messages, at their places in the text.
+    Rejected(Diagnostics),
+    /// The declaration is valid but uses what the run-time evaluator does not evaluate yet.
+    Unsupported(String),
+}
+
+impl fmt::Display for ReadError {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        match self {
+            ReadError::Rejected(d) => write!(f, "{d}"),
+            ReadError::Unsupported(what) => write!(f, "not evaluated at run time: {what}"),
+        }
+    }
+}
+
+impl std::error::Error for ReadError {}
+
+/// Why one step failed.
+#[derive(Clone, Debug, PartialEq)]
+pub enum StepError {
+    /// A parameter without a default value was not given one.
+    UnsetParam(String),
+    /// A given slice has the wrong length.
+    Size {
+        /// What was given (`inputs`, `guess`).
+        what: &'static str,
+        /// The length expected.
+        expected: usize,
+        /// The length given.
+        given: usize,
+    },
+    /// The solver configuration has a field out of range.
+    InvalidConfig(&'static str),
+    /// A block failed.
+    Block {
+        /// The block's index in solve order.
+        block: usize,
+        /// What failed.
+        failure: StepFailure,
+    },
+    /// A value of the state is not finite (a parameter or input outside the functions' domains).
+    NonFinite,
+}
+
+impl fmt::Display for StepError {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        match self {
+            StepError::UnsetParam(p) => write!(f, "parameter `{p}` has no value (it has no default: give one)"),
+            StepError::Size { what, expected, given } => write!(f, "{given} {what} given, {expected} expected"),
+            StepError::InvalidConfig(field) => write!(f, "solver configuration: `{field}` is out of range"),
+            StepError::Block { block, failure } => write!(f, "block {block}: {failure:?}"),
+            StepError::NonFinite => write!(f, "a value of the state is not finite"),
+        }
+    }
+}
+
+impl std::error::Error for StepError {}
+
+/// A kinematic state: positions, their first and second analogs, the outputs and theirs, for
+/// `n` unknowns, `ni` inputs and `no` output columns, flat (the const-generic runtime's `Kin`
+/// with its sizes known at run time).
+#[derive(Clone, Debug)]
+pub struct State {
+    /// Inputs.
+    pub x: Vec<f64>,
+    /// Positions of the unknowns.
+    pub q: Vec<f64>,
+    /// `dq[u * ni + i] = d q_u / d x_i`.
+    pub dq: Vec<f64>,
+    /// `d2q[(u * ni + i) * ni + j] = d2 q_u / d x_i d x_j`.
+    pub d2q: Vec<f64>,
+    /// Output columns (a point gives its `x` and `y`).
+    pub out: Vec<f64>,
+    /// `dout[o * ni + i]`.
+    pub dout: Vec<f64>,
+    /// `d2out[(o * ni + i) * ni + j]`.
+    pub d2out: Vec<f64>,
+    /// The position solve's report.
+    pub report: SolveReport,
+    /// Conditioning of the blocks (pivot ratios, determinant signs).
+    pub health: Health,
+}
+
+/// A mechanism read at run time (see the crate documentation).
+pub struct Model {
+    name: String,
+    decomposition: String,
+    warnings: Option<Diagnostics>,
+    graph: Graph,
+    params: Vec<String>,
+    param_values: Vec<Option<f64>>,
+    param_regs: Vec<Option<u32>>,
+    inputs: Vec<String>,
+    input_regs: Vec<Option<u32>>,
+    unknowns: Vec<String>,
+    outputs: Vec<String>,
+    input_kinds: Vec<QuantityKind>,
+    unknown_kinds: Vec<QuantityKind>,
+    output_kinds: Vec<QuantityKind>,
+    guess: Segment,
+    guess_regs: Vec<u32>,
+    blocks: Vec<BlockProg>,
+    outputs_seg: Segment,
+    out_regs: Vec<u32>,
+    out_d1_regs: Vec<u32>,
+    out_d2_regs: Vec<u32>,
+    instructions: usize,
+    // The workspace of a step: written by every step, never reallocated.
+    regs: Vec<f64>,
+    facs: Vec<Fac>,
+    state: State,
+    at: AtProg,
+    at_kin: AtKin,
+    sens: Option<SensProg>,
+    sens_state: Option<Sensitivities>,
+    pair_d2: Vec<f64>,
+    /// `pair_of[i * ni + j]`: the index of the input pair `(i, j)` among the pairs `i <= j`.
+    pair_of: Vec<usize>,
+}
+
+fn kind(k: Kind) -> QuantityKind {
+    match k {
+        Kind::Angle => QuantityKind::Angle,
+        Kind::Length => QuantityKind::Length,
+        Kind::Dimensionless => QuantityKind::Dimensionless,
+        _ => QuantityKind::Other,
+    }
+}
+
+impl Model {
+    /// Reads a declaration from its text (`name` names it in diagnostics, e.g. the file name):
+    /// the macro's front end, checks, structure analysis and plan, then the run-time program.
+    pub fn read(name: &str, text: &str) -> Result<Model, ReadError> {
+        let tokens = source::tokens(name, text).map_err(ReadError::Rejected)?;
+        let planned = kinloop_codegen::plan_declaration(tokens)
+            .map_err(|e| ReadError::Rejected(Diagnostics::from_syn(name, text, e)))?;
+        let warnings = Diagnostics::warnings(name, text, &planned.warnings);
+        let mut m = Model::from_planned(planned)?;
+        m.warnings = warnings;
+        Ok(m)
+    }
+
+    /// The warnings of the declaration (unused parameters), as the macro gives them.
+    pub fn warnings(&self) -> Option<&Diagnostics> {
+        self.warnings.as_ref()
+    }
+
+    /// Builds the run-time program of a planned declaration.
+    pub fn from_planned(planned: Planned) -> Result<Model, ReadError> {
+        let decomposition = kinloop_codegen::decomposition(&planned);
+        let Planned { model, plan, .. } = planned;
+        let g = &plan.graph;
+        let unsupported = |what: String| Err(ReadError::Unsupported(what));
+        for (b, bp) in plan.blocks.iter().enumerate() {
+            if matches!(bp.solve, Solve::NewtonSparse(_)) {
+                return unsupported(format!(
+                    "block {b} is solved by sparse Newton (declare `#[kinloop(dense)]` for dense blocks)"
+                ));
+            }
+            if bp.unknowns.len() > MAX_DENSE {
+                return unsupported(format!("block {b} has {} unknowns (at most {MAX_DENSE})", bp.unknowns.len()));
+            }
+        }
+        let find = |l: Leaf| g.find(Op::Leaf(l)).map(|n| n.0);
+        let (n, ni, np) = (plan.n, plan.ni, plan.np);
+        let npairs = pairs(ni).len();
+        let internal = |e: crate::tape::Unavailable| ReadError::Unsupported(format!("the plan reads {:?} early", e.0));
+
+        // The declared guesses, evaluated on their own.
+        let guess = Builder::new(g).segment(&plan.guesses, None).map_err(internal)?;
+        let guess_regs = plan.guesses.iter().map(|n| n.0).collect();
+
+        let mut tape = Builder::new(g);
+        let mut blocks: Vec<BlockProg> = Vec::with_capacity(plan.blocks.len());
+        for (b, bp) in plan.blocks.iter().enumerate() {
+            blocks.push(position_program(&plan, b, bp, &mut tape).map_err(internal)?);
+        }
+        for (b, bp) in plan.blocks.iter().enumerate() {
+            let prog = &mut blocks[b];
+            let mut roots: Vec<NodeId> = bp.vel.concat();
+            let keeps = matches!(&prog.how, How::Newton(p) if p.keeps_lu);
+            if !keeps {
+                roots.extend(bp.col_scale.concat());
+                roots.extend(bp.lever_floor.concat());
+            }
+            roots.extend(bp.jac.concat());
+            prog.vel = tape.segment(&roots, None).map_err(internal)?;
+            let tans: Vec<Option<u32>> = bp
+                .unknowns
+                .iter()
+                .flat_map(|&u| (0..ni).map(move |i| (u, i)))
+                .map(|(u, i)| find(Leaf::Tan { unknown: u as u16, input: i as u16 }))
+                .collect();
+            tape.provide(tans.iter().flatten().map(|&k| NodeId(k)));
+            prog.tan_regs = tans;
+        }
+        for (b, bp) in plan.blocks.iter().enumerate() {
+            let prog = &mut blocks[b];
+            prog.acc = tape.segment(&bp.acc.concat(), None).map_err(internal)?;
+            let tan2: Vec<Option<u32>> = bp
+                .unknowns
+                .iter()
+                .flat_map(|&u| pairs(ni).into_iter().map(move |p| (u, p)))
+                .map(|(u, (i, j))| find(Leaf::Tan2 { unknown: u as u16, i: i as u16, j: j as u16 }))
+                .collect();
+            tape.provide(tan2.iter().flatten().map(|&k| NodeId(k)));
+            prog.tan2_regs = tan2;
+        }
+        let out_roots: Vec<NodeId> =
+            plan.outputs.iter().copied().chain(plan.out_d1.concat()).chain(plan.out_d2.concat()).collect();
+        let outputs_seg = tape.segment(&out_roots, None).map_err(internal)?;
+        let sens = SensProg::build(&plan, &mut tape).map_err(internal)?;
+        let at = AtProg::build(&plan).map_err(internal)?;
+        let at_kin = at_kinematics(&plan, &blocks, &out_roots).map_err(internal)?;
+        let instructions = guess.len()
+            + outputs_seg.len()
+            + blocks
+                .iter()
+                .map(|p| {
+                    p.pre.len()
+                        + p.vel.len()
+                        + p.acc.len()
+                        + match &p.how {
+                            How::Newton(nw) => nw.eval.len(),
+                            _ => 0,
+                        }
+                })
+                .sum::<usize>();
+
+        let k = kinds::classify(&model, g, &plan.residuals, &plan.outputs);
+        let name_of = |i: &proc_macro2::Ident| syn::ext::IdentExt::unraw(i).to_string();
+        let param_values: Vec<Option<f64>> = match &plan.defaults {
+            Some(d) => d.iter().map(|&v| Some(v)).collect(),
+            None => model.params.iter().map(|p| p.value.and_then(|v| g.as_const(v))).collect(),
+        };
+        let no = plan.outputs.len();
+        let state = State {
+            x: vec![0.0; ni],
+            q: vec![0.0; n],
+            dq: vec![0.0; n * ni],
+            d2q: vec![0.0; n * ni * ni],
+            out: vec![0.0; no],
+            dout: vec![0.0; no * ni],
+            d2out: vec![0.0; no * ni * ni],
+            report: SolveReport::direct(),
+            health: Health::default(),
+        };
+        let sens_state = sens.as_ref().map(|p| p.empty(n, no));
+        let mut m = Model {
+            at,
+            at_kin,
+            sens,
+            sens_state,
+            name: name_of(&model.name),
+            decomposition,
+            warnings: None,
+            params: model.params.iter().map(|p| name_of(&p.name)).collect(),
+            param_values,
+            param_regs: (0..np).map(|k| find(Leaf::Param(k as u16))).collect(),
+            inputs: model.inputs.iter().map(|p| name_of(&p.name)).collect(),
+            input_regs: (0..ni).map(|k| find(Leaf::Input(k as u16))).collect(),
+            unknowns: model.unknowns.iter().map(|p| name_of(&p.name)).collect(),
+            outputs: model.output_names(),
+            input_kinds: k.inputs.iter().map(|&x| kind(x)).collect(),
+            unknown_kinds: k.unknowns.iter().map(|&x| kind(x)).collect(),
+            output_kinds: k.outputs.iter().map(|&x| kind(x)).collect(),
+            guess,
+            guess_regs,
+            facs: blocks.iter().map(|b| Fac::for_size(b.unknowns.len())).collect(),
+            blocks,
+            outputs_seg,
+            out_regs: plan.outputs.iter().map(|n| n.0).collect(),
+            out_d1_regs: plan.out_d1.concat().iter().map(|n| n.0).collect(),
+            out_d2_regs: plan.out_d2.concat().iter().map(|n| n.0).collect(),
+            instructions,
+            regs: registers(g),
+            state,
+            pair_d2: vec![0.0; n.max(no) * npairs],
+            pair_of: (0..ni * ni).map(|ij| kinloop_codegen::plan::pair_index(ni, ij / ni, ij % ni)).collect(),
+            graph: plan.graph,
+        };
+        m.load_params();
+        Ok(m)
+    }
+
+    fn load_params(&mut self) {
+        for (k, reg) in self.param_regs.iter().enumerate() {
+            if let Some(reg) = reg {
+                self.regs[*reg as usize] = self.param_values[k].unwrap_or(f64::NAN);
+            }
+        }
+    }
+
+    /// The mechanism's name.
+    pub fn name(&self) -> &str {
+        &self.name
+    }
+
+    /// The decomposition in words: counts, mobility, and how each block is solved (the
+    /// compiled mechanism's `DECOMPOSITION`).
+    pub fn decomposition(&self) -> &str {
+        &self.decomposition
+    }
+
+    /// Parameter names, in declaration order.
+    pub fn params(&self) -> &[String] {
+        &self.params
+    }
+
+    /// Parameter values (`None`: no default and not set).
+    pub fn param_values(&self) -> &[Option<f64>] {
+        &self.param_values
+    }
+
+    /// Sets parameter `name`; `false` when there is no such parameter.
+    pub fn set_param(&mut self, name: &str, value: f64) -> bool {
+        match self.params.iter().position(|p| p == name) {
+            Some(k) => {
+                self.param_values[k] = Some(value);
+                self.load_params();
+                true
+            }
+            None => false,
+        }
+    }
+
+    /// Input names.
+    pub fn inputs(&self) -> &[String] {
+        &self.inputs
+    }
+
+    /// Unknown names.
+    pub fn unknowns(&self) -> &[String] {
+        &self.unknowns
+    }
+
+    /// Output column names (`p.x`, `p.y` for a point `p`, then the scalar outputs).
+    pub fn outputs(&self) -> &[String] {
+        &self.outputs
+    }
+
+    /// What each input is (angle, length, ...), as the macro infers it.
+    pub fn input_kinds(&self) -> &[QuantityKind] {
+        &self.input_kinds
+    }
+
+    /// What each unknown is.
+    pub fn unknown_kinds(&self) -> &[QuantityKind] {
+        &self.unknown_kinds
+    }
+
+    /// What each output column is.
+    pub fn output_kinds(&self) -> &[QuantityKind] {
+        &self.output_kinds
+    }
+
+    /// The number of blocks.
+    pub fn block_count(&self) -> usize {
+        self.blocks.len()
+    }
+
+    /// The number of instructions of one step's tape (all segments, each Newton evaluation
+    /// counted once).
+    pub fn instructions(&self) -> usize {
+        self.instructions
+    }
+
+    /// The graph's size: registers of one step.
+    pub fn registers(&self) -> usize {
+        self.regs.len()
+    }
+
+    fn check_ready(&self, x: &[f64]) -> Result<(), StepError> {
+        if let Some(k) = self.param_values.iter().position(Option::is_none) {
+            return Err(StepError::UnsetParam(self.params[k].clone()));
+        }
+        if x.len() != self.inputs.len() {
+            return Err(StepError::Size { what: "inputs", expected: self.inputs.len(), given: x.len() });
+        }
+        Ok(())
+    }
+
+    fn load_inputs(&mut self, x: &[f64]) {
+        for (i, reg) in self.input_regs.iter().enumerate() {
+            if let Some(reg) = reg {
+                self.regs[*reg as usize] = x[i];
+            }
+        }
+    }
+
+    /// The declared initial guess at inputs `x`, into `out` (one value per unknown).
+    pub fn guess(&mut self, x: &[f64], out: &mut [f64]) -> Result<(), StepError> {
+        self.check_ready(x)?;
+        if out.len() != self.unknowns.len() {
+            return Err(StepError::Size { what: "guess", expected: self.unknowns.len(), given: out.len() });
+        }
+        self.load_inputs(x);
+        self.guess.run(&mut self.regs);
+        for (o, &reg) in out.iter_mut().zip(&self.guess_regs) {
+            *o = self.regs[reg as usize];
+        }
+        Ok(())
+    }
+
+    /// Positions, velocity and acceleration analogs and outputs at inputs `x`, solved from
+    /// `guess` with `cfg`: the compiled mechanism's `kinematics_flat`. No allocation.
+    pub fn kinematics(&mut self, x: &[f64], guess: &[f64], cfg: &NewtonConfig) -> Result<&State, StepError> {
+        self.check_ready(x)?;
+        if guess.len() != self.unknowns.len() {
+            return Err(StepError::Size { what: "guess", expected: self.unknowns.len(), given: guess.len() });
+        }
+        if let Some(field) = cfg.invalid_field() {
+            return Err(StepError::InvalidConfig(field));
+        }
+        self.load_inputs(x);
+        let st = &mut self.state;
+        st.x.copy_from_slice(x);
+        st.report = SolveReport::direct();
+        st.health = Health::default();
+        for (b, prog) in self.blocks.iter().enumerate() {
+            let w = Work { r: &mut self.regs, fac: &mut self.facs[b], cfg };
+            prog.position(&self.graph, w, &mut st.q, guess, &mut st.report)
+                .map_err(|failure| StepError::Block { block: b, failure })?;
+        }
+        self.analogs(cfg, false)?;
+        Ok(&self.state)
+    }
+
+    fn check_at(&mut self, x: &[f64], q: &[f64]) -> Result<(), StepError> {
+        self.check_ready(x)?;
+        if q.len() != self.unknowns.len() {
+            return Err(StepError::Size { what: "unknowns", expected: self.unknowns.len(), given: q.len() });
+        }
+        self.load_inputs(x);
+        Ok(())
+    }
+
+    /// The residuals of the equations at `(x, q)`, in declaration order, into `out` (the
+    /// compiled mechanism's `residual_flat`).
+    pub fn residual(&mut self, x: &[f64], q: &[f64], out: &mut [f64]) -> Result<(), StepError> {
+        self.check_at(x, q)?;
+        self.at.residual(&mut self.regs, q, out);
+        Ok(())
+    }
+
+    /// The output columns at `(x, q)` into `out` (the compiled mechanism's `outputs_flat`).
+    pub fn outputs_at(&mut self, x: &[f64], q: &[f64], out: &mut [f64]) -> Result<(), StepError> {
+        self.check_at(x, q)?;
+        self.at.outputs(&mut self.regs, q, out);
+        Ok(())
+    }
+
+    /// The residuals, the full Jacobians and the magnitudes at `(x, q)` into `out` (the compiled
+    /// mechanism's `jacobian_flat`; `out`'s vectors are reused).
+    pub fn jacobian(&mut self, x: &[f64], q: &[f64], out: &mut Jacobian) -> Result<(), StepError> {
+        self.check_at(x, q)?;
+        self.at.jacobian(&mut self.regs, q, out);
+        Ok(())
+    }
+
+    /// The analogs and outputs after the positions (`at`: of the evaluation at a given position,
+    /// [`Model::kinematics_at`]), and the state's finiteness test.
+    fn analogs(&mut self, cfg: &NewtonConfig, at: bool) -> Result<(), StepError> {
+        let ni = self.inputs.len();
+        let st = &mut self.state;
+        for (b, prog) in self.blocks.iter().enumerate() {
+            let w = Work { r: &mut self.regs, fac: &mut self.facs[b], cfg };
+            prog.velocity(b, w, &mut st.dq, ni, &mut st.health, at.then(|| &self.at_kin.vel[b]))
+                .map_err(|failure| StepError::Block { block: b, failure })?;
+        }
+        let np = ni * (ni + 1) / 2;
+        for (b, prog) in self.blocks.iter().enumerate() {
+            prog.acceleration(&mut self.regs, &mut self.pair_d2, np, &self.facs[b], at.then(|| &self.at_kin.acc[b]));
+        }
+        // Pairs (i <= j) to the full symmetric second analogs.
+        let pair_of = &self.pair_of;
+        let full = |pair_vals: &[f64], rows: usize, out: &mut [f64]| {
+            for u in 0..rows {
+                for (ij, &p) in pair_of.iter().enumerate() {
+                    out[u * ni * ni + ij] = pair_vals[u * np + p];
+                }
+            }
+        };
+        full(&self.pair_d2, self.unknowns.len(), &mut st.d2q);
+        if at { &self.at_kin.out } else { &self.outputs_seg }.run(&mut self.regs);
+        let r = &self.regs;
+        for (o, &reg) in st.out.iter_mut().zip(&self.out_regs) {
+            *o = r[reg as usize];
+        }
+        for (o, &reg) in st.dout.iter_mut().zip(&self.out_d1_regs) {
+            *o = r[reg as usize];
+        }
+        for (o, &reg) in self.pair_d2.iter_mut().zip(&self.out_d2_regs) {
+            *o = r[reg as usize];
+        }
+        full(&self.pair_d2, self.outputs.len(), &mut st.d2out);
+        let finite =
+            [&st.q, &st.dq, &st.d2q, &st.out, &st.dout, &st.d2out].iter().all(|v| v.iter().all(|x| x.is_finite()));
+        if !finite {
+            return Err(StepError::NonFinite);
+        }
+        Ok(())
+    }
+
+    /// Analogs and outputs at a position `q` the caller already solved (the compiled
+    /// mechanism's `kinematics_at_flat`): the report carries the residual there, every block's
+    /// Jacobian is factorised from the graph. No allocation.
+    pub fn kinematics_at(&mut self, x: &[f64], q: &[f64], cfg: &NewtonConfig) -> Result<&State, StepError> {
+        self.check_at(x, q)?;
+        for (u, reg) in self.at.unknown_regs.iter().enumerate() {
+            if let Some(reg) = reg {
+                self.regs[*reg as usize] = q[u];
+            }
+        }
+        self.at_kin.residual.run(&mut self.regs);
+        let residual = crate::factor::max_abs(self.at_kin.residual_regs.iter().map(|&r| self.regs[r as usize]));
+        let st = &mut self.state;
+        st.x.copy_from_slice(x);
+        st.q.copy_from_slice(q);
+        st.report = SolveReport::given(residual);
+        st.health = Health::default();
+        self.analogs(cfg, true)?;
+        Ok(&self.state)
+    }
+
+    /// Whether the declaration asks for parameter sensitivities (`#[kinloop(sensitivities)]`).
+    pub fn has_sensitivities(&self) -> bool {
+        self.sens.is_some()
+    }
+
+    /// [`Model::kinematics`] and the sensitivities of the state to every parameter, on the same
+    /// factorisations (the compiled mechanism's `sensitivities_flat`); `None` in place of the
+    /// sensitivities when the declaration did not ask for them. No allocation.
+    pub fn sensitivities(
+        &mut self,
+        x: &[f64],
+        guess: &[f64],
+        cfg: &NewtonConfig,
+    ) -> Result<(&State, Option<&Sensitivities>), StepError> {
+        self.kinematics(x, guess, cfg)?;
+        if let (Some(p), Some(s)) = (&self.sens, &mut self.sens_state) {
+            p.run(&mut self.regs, &self.facs, s);
+            let all = [&s.q, &s.dq, &s.d2q, &s.out, &s.dout, &s.d2out];
+            if !all.iter().all(|v| v.iter().all(|x| x.is_finite())) {
+                return Err(StepError::NonFinite);
+            }
+        }
+        Ok((&self.state, self.sens_state.as_ref()))
+    }
+
+    /// [`Model::kinematics`] from the declared initial guess with the default configuration
+    /// (the compiled mechanism's `solve`).
+    pub fn solve(&mut self, x: &[f64]) -> Result<&State, StepError> {
+        let mut guess = vec![0.0; self.unknowns.len()];
+        self.guess(x, &mut guess)?;
+        self.kinematics(x, &guess, &NewtonConfig::default())
+    }
+}
+
+/// The position part of block `b`'s program, its segments appended to `tape` in the order the
+/// step runs them.
+fn position_program(
+    plan: &Plan,
+    b: usize,
+    bp: &BlockPlan,
+    tape: &mut Builder<'_>,
+) -> Result<BlockProg, crate::tape::Unavailable> {
+    let g = &plan.graph;
+    let find = |l: Leaf| g.find(Op::Leaf(l));
+    let nb = bp.unknowns.len();
+    let unknown_nodes: Vec<Option<NodeId>> = bp.unknowns.iter().map(|&u| find(Leaf::Unknown(u as u16))).collect();
+    let regs = |v: &[NodeId]| v.iter().map(|n| n.0).collect::<Vec<u32>>();
+    let jac = regs(&bp.jac.concat());
+    let col: Vec<Vec<u32>> =
+        (0..nb).map(|c| bp.col_scale[c].iter().chain(&bp.lever_floor[c]).map(|n| n.0).collect()).collect();
+    let floors: Vec<Vec<u32>> = bp.lever_floor.iter().map(|f| regs(f)).collect();
+    let beyond: Vec<Vec<u32>> = if nb == 2 {
+        (0..2)
+            .map(|c| {
+                let own = [bp.jac[0][c], bp.jac[1][c]];
+                bp.col_scale[c].iter().filter(|e| !own.contains(e)).map(|n| n.0).collect()
+            })
+            .collect()
+    } else {
+        vec![Vec::new(); nb]
+    };
+    let in_col = (nb == 1).then(|| bp.col_scale[0].iter().position(|&e| e == bp.jac[0][0])).flatten();
+    let level_below = |n: NodeId| plan.level[n.index()] < b as i32;
+    let (pre, how) = match &bp.solve {
+        Solve::Fixed { coefficient, rhs } => {
+            (tape.segment(&[*rhs], None)?, How::Fixed { coefficient: *coefficient, rhs: rhs.0 })
+        }
+        Solve::Linear { rhs } => {
+            let roots: Vec<NodeId> = bp
+                .jac
+                .concat()
+                .into_iter()
+                .chain(rhs.iter().copied())
+                .chain(bp.col_scale.concat())
+                .chain(bp.lever_floor.concat())
+                .collect();
+            (tape.segment(&roots, None)?, How::Linear { rhs: regs(rhs) })
+        }
+        Solve::ClosedForm(rec) => {
+            let pre = tape.segment(&rec.form.coefficients(), None)?;
+            let sin_cos: Vec<[Option<u32>; 2]> = rec.sin_cos.iter().map(|[s, c]| [Some(s.0), Some(c.0)]).collect();
+            tape.provide(rec.sin_cos.concat());
+            let order = rec
+                .form
+                .angles()
+                .into_iter()
+                .chain(other_unknown(&rec.form))
+                .map(|u| (u, find(Leaf::Unknown(u as u16)).map(|n| n.0)))
+                .collect();
+            (pre, How::Closed { form: rec.form.clone(), sin_cos, order })
+        }
+        Solve::Newton | Solve::NewtonSparse(_) => {
+            // Every unknown of a Newton block is read by its equations: its leaf is in the graph.
+            if let Some(k) = unknown_nodes.iter().position(Option::is_none) {
+                return Err(crate::tape::Unavailable(Leaf::Unknown(bp.unknowns[k] as u16)));
+            }
+            let roots: Vec<NodeId> =
+                bp.f.iter()
+                    .copied()
+                    .chain(bp.jac.concat())
+                    .chain(bp.scale.iter().copied())
+                    .chain(bp.unit.iter().copied())
+                    .collect();
+            // What does not depend on the block's unknowns is computed once, before the solve.
+            let pre = tape.segment(&roots, Some(&level_below))?;
+            tape.provide(unknown_nodes.iter().flatten().copied());
+            let eval = tape.segment(&roots, None)?;
+            let fixed_mags = bp.scale.iter().chain(&bp.unit).all(|m| level_below(*m));
+            let prog = NewtonProg {
+                eval,
+                unknowns: bp.unknowns.clone(),
+                unknown_regs: unknown_nodes.iter().map(|n| n.map_or(u32::MAX, |n| n.0)).collect(),
+                f: regs(&bp.f),
+                jac: jac.clone(),
+                scale: regs(&bp.scale),
+                unit: regs(&bp.unit),
+                turns: bp.turns.clone(),
+                fixed_mags,
+                keeps_lu: keeps_lu(bp),
+            };
+            (pre, How::Newton(prog))
+        }
+    };
+    tape.provide(unknown_nodes.iter().flatten().copied());
+    Ok(BlockProg {
+        unknowns: bp.unknowns.clone(),
+        unknown_regs: unknown_nodes.iter().map(|n| n.map(|n| n.0)).collect(),
+        pre,
+        how,
+        jac,
+        col,
+        floors,
+        beyond,
+        in_col,
+        vel: Segment::default(),
+        vel_rows: bp.vel.concat().iter().map(|n| n.0).collect(),
+        tan_regs: Vec::new(),
+        acc: Segment::default(),
+        acc_rows: bp.acc.concat().iter().map(|n| n.0).collect(),
+        tan2_regs: Vec::new(),
+    })
+}
+
+/// Whether a dense Newton block's analogs reuse the factorisation of its final correction:
+/// the emitter's rule for the fused kernel (every non-zero entry of the block's Jacobian
+/// columns is one of the block's own entries, and no column has a lever floor), which decides
+/// whether the compiled kernel calls `newton_keeping_lu`.
+fn keeps_lu(bp: &BlockPlan) -> bool {
+    matches!(bp.solve, Solve::Newton)
+        && bp.lever_floor.iter().all(Vec::is_empty)
+        && bp
+            .col_scale
+            .iter()
+            .enumerate()
+            .all(|(c, col)| col.iter().all(|e| bp.jac.iter().any(|row| row.get(c) == Some(e))))
+}
+
+impl State {
+    /// The state as one table row, in the order of [`Model::columns`] (the runtime's
+    /// `Table::kin_row`): inputs; unknowns, their first analogs, their second analogs (pairs
+    /// `i <= j`); the same for the output columns.
+    pub fn row(&self) -> Vec<f64> {
+        let ni = self.x.len();
+        let mut row = self.x.clone();
+        for (values, d1, d2) in [(&self.q, &self.dq, &self.d2q), (&self.out, &self.dout, &self.d2out)] {
+            row.extend(values);
+            row.extend(d1.iter());
+            for u in 0..values.len() {
+                for i in 0..ni {
+                    for j in i..ni {
+                        row.push(d2[(u * ni + i) * ni + j]);
+                    }
+                }
+            }
+        }
+        row
+    }
+}
+
+impl Model {
+    /// The names of a state's table columns (the runtime's `Table::kin_columns`): `phi`, `psi`,
+    /// `d(psi)/d(phi)`, `d2(psi)/d(phi)^2`, `d2(n)/d(i)d(j)`, ...
+    pub fn columns(&self) -> Vec<String> {
+        let mut c = self.inputs.clone();
+        for names in [&self.unknowns, &self.outputs] {
+            c.extend(names.iter().cloned());
+            for n in names {
+                for i in &self.inputs {
+                    c.push(format!("d({n})/d({i})"));
+                }
+            }
+            for n in names {
+                for (a, i) in self.inputs.iter().enumerate() {
+                    for j in &self.inputs[a..] {
+                        c.push(if i == j { format!("d2({n})/d({i})^2") } else { format!("d2({n})/d({i})d({j})") });
+                    }
+                }
+            }
+        }
+        c
+    }
+
+    /// The base quantities with their kinds: inputs, unknowns and output columns (a point's
+    /// `p.x`, `p.y`), for units.
+    pub fn quantities(&self) -> Vec<(&str, QuantityKind)> {
+        let names = self.inputs.iter().chain(&self.unknowns).chain(&self.outputs);
+        let kinds = self.input_kinds.iter().chain(&self.unknown_kinds).chain(&self.output_kinds);
+        names.map(String::as_str).zip(kinds.copied()).collect()
+    }
+}
+
+/// The segments of [`Model::kinematics_at`]: the residuals at the given position, then per
+/// block the analogs' right-hand sides and Jacobian, then the outputs (the emitter's mode `At`).
+struct AtKin {
+    residual: Segment,
+    residual_regs: Vec<u32>,
+    vel: Vec<Segment>,
+    acc: Vec<Segment>,
+    out: Segment,
+}
+
+fn at_kinematics(plan: &Plan, blocks: &[BlockProg], out_roots: &[NodeId]) -> Result<AtKin, crate::tape::Unavailable> {
+    let g = &plan.graph;
+    let mut tape = Builder::new(g);
+    tape.provide((0..plan.n).filter_map(|u| g.find(Op::Leaf(Leaf::Unknown(u as u16)))));
+    let residual = tape.segment(&plan.residuals, None)?;
+    let mut vel = Vec::with_capacity(blocks.len());
+    for (bp, prog) in plan.blocks.iter().zip(blocks) {
+        let roots: Vec<NodeId> =
+            [bp.vel.concat(), bp.col_scale.concat(), bp.lever_floor.concat(), bp.jac.concat()].concat();
+        vel.push(tape.segment(&roots, None)?);
+        tape.provide(prog.tan_regs.iter().flatten().map(|&r| NodeId(r)));
+    }
+    let mut acc = Vec::with_capacity(blocks.len());
+    for (bp, prog) in plan.blocks.iter().zip(blocks) {
+        acc.push(tape.segment(&bp.acc.concat(), None)?);
+        tape.provide(prog.tan2_regs.iter().flatten().map(|&r| NodeId(r)));
+    }
+    let out = tape.segment(out_roots, None)?;
+    Ok(AtKin { residual, residual_regs: plan.residuals.iter().map(|n| n.0).collect(), vel, acc, out })
+}

@@ -1,0 +1,142 @@
+//! A Newton block at run time: the runtime's own `newton` (or `newton_keeping_lu`, where the
+//! emitted code keeps the final factorisation for the analogs), with the block's evaluation a
+//! run of the tape instead of emitted straight-line code.
+
+use crate::factor::{Fac, LuSlot};
+use crate::tape::Segment;
+use kinloop_runtime::NewtonConfig;
+use kinloop_runtime::generated::{BlockEval, BlockFailure, Lu, Magnitudes, SolveReport, newton, newton_keeping_lu};
+
+/// What the Newton iteration of one block reads: registers of its unknowns, residuals,
+/// Jacobian (row-major), magnitudes, and the segment that evaluates them.
+pub(crate) struct NewtonProg {
+    /// The block's evaluation: every node of its residuals, Jacobian and magnitudes that
+    /// depends on its unknowns.
+    pub(crate) eval: Segment,
+    pub(crate) unknowns: Vec<usize>,
+    pub(crate) unknown_regs: Vec<u32>,
+    pub(crate) f: Vec<u32>,
+    pub(crate) jac: Vec<u32>,
+    pub(crate) scale: Vec<u32>,
+    pub(crate) unit: Vec<u32>,
+    pub(crate) turns: Vec<bool>,
+    /// The magnitudes do not depend on the block's unknowns: made once per solve.
+    pub(crate) fixed_mags: bool,
+    /// The final factorisation is kept for the analogs (the emitter's `keeps_lu`).
+    pub(crate) keeps_lu: bool,
+}
+
+/// Evaluations remembered to find the one the solver returned (see [`solve`]).
+const RECENT: usize = 4;
+
+/// Solves the block from the guesses; on return the registers hold the values of the
+/// evaluation the runtime's solver returned (what the emitted code reads from it afterwards),
+/// and `fac` the kept factorisation when there is one.
+pub(crate) fn solve(
+    p: &NewtonProg,
+    r: &mut [f64],
+    guess: &[f64],
+    cfg: &NewtonConfig,
+    report: &mut SolveReport,
+    fac: &mut Fac,
+) -> Result<(), BlockFailure> {
+    macro_rules! go {
+        ($n:literal, $k:literal, $kf:literal) => {
+            if p.fixed_mags {
+                solve_n::<$n, $kf>(p, r, guess, cfg, report, fac)
+            } else {
+                solve_n::<$n, $k>(p, r, guess, cfg, report, fac)
+            }
+        };
+    }
+    match p.unknowns.len() {
+        1 => go!(1, 2, 0),
+        2 => go!(2, 4, 0),
+        3 => go!(3, 6, 0),
+        4 => go!(4, 8, 0),
+        5 => go!(5, 10, 0),
+        6 => go!(6, 12, 0),
+        7 => go!(7, 14, 0),
+        8 => go!(8, 16, 0),
+        // Larger blocks are rejected when the model is built.
+        _ => Err(BlockFailure::NonFinite { row: 0, iterations: 0 }),
+    }
+}
+
+fn read<const N: usize>(r: &[f64], regs: &[u32]) -> [f64; N] {
+    std::array::from_fn(|k| r[regs[k] as usize])
+}
+
+/// [`solve`] for a block of `N` unknowns keeping `K` values per evaluation (its magnitudes, when
+/// they depend on the unknowns: `K = 2N`; otherwise none).
+fn solve_n<const N: usize, const K: usize>(
+    p: &NewtonProg,
+    r: &mut [f64],
+    guess: &[f64],
+    cfg: &NewtonConfig,
+    report: &mut SolveReport,
+    fac: &mut Fac,
+) -> Result<(), BlockFailure>
+where
+    Lu<N>: LuSlot<N>,
+{
+    let z0: [f64; N] = std::array::from_fn(|k| guess[p.unknowns[k]]);
+    let turns: [bool; N] = std::array::from_fn(|k| p.turns[k]);
+    let fixed = Magnitudes::new(read::<N>(r, &p.scale), read::<N>(r, &p.unit)).with_turns(turns);
+    let mut recent = [[f64::NAN; N]; RECENT];
+    let mut calls = 0usize;
+    let mut eval = |z: &[f64; N]| -> BlockEval<N, K> {
+        for (k, &reg) in p.unknown_regs.iter().enumerate() {
+            r[reg as usize] = z[k];
+        }
+        recent[calls % RECENT] = *z;
+        calls += 1;
+        p.eval.run(r);
+        let j: [[f64; N]; N] = std::array::from_fn(|row| read::<N>(r, &p.jac[row * N..]));
+        let keep: [f64; K] =
+            std::array::from_fn(|k| if k < N { r[p.scale[k] as usize] } else { r[p.unit[k - N] as usize] });
+        BlockEval { f: read::<N>(r, &p.f), j, keep }
+    };
+    let mut ev = eval(&z0);
+    let per_eval = |e: &BlockEval<N, K>| {
+        Magnitudes::new(std::array::from_fn(|k| e.keep[k]), std::array::from_fn(|k| e.keep[N + k])).with_turns(turns)
+    };
+    let solved = if p.keeps_lu {
+        // Written into the block's own slot: the analogs read it there.
+        let lu = <Lu<N> as LuSlot<N>>::slot(fac);
+        if K == 0 {
+            newton_keeping_lu::<N, K>(z0, &mut ev, cfg, &mut eval, &fixed, lu)
+        } else {
+            newton_keeping_lu::<N, K>(z0, &mut ev, cfg, &mut eval, &per_eval, lu)
+        }
+    } else if K == 0 {
+        newton::<N, K>(z0, &mut ev, cfg, &mut eval, &fixed)
+    } else {
+        newton::<N, K>(z0, &mut ev, cfg, &mut eval, &per_eval)
+    }?;
+    report.absorb(&solved);
+    // The registers must hold the returned evaluation, which the solver may have made before a
+    // rejected trial (or, after a correction at the rounding level, before that correction):
+    // the most recent evaluation whose residuals and Jacobian are the returned ones is made
+    // again (evaluations are deterministic).
+    let matches = |r: &[f64]| {
+        p.f.iter().zip(&ev.f).all(|(&reg, v)| r[reg as usize].to_bits() == v.to_bits())
+            && p.jac.iter().zip(ev.j.iter().flatten()).all(|(&reg, v)| r[reg as usize].to_bits() == v.to_bits())
+    };
+    if !matches(r) {
+        for back in 1..=RECENT.min(calls) {
+            let z = recent[(calls - back) % RECENT];
+            for (k, &reg) in p.unknown_regs.iter().enumerate() {
+                r[reg as usize] = z[k];
+            }
+            p.eval.run(r);
+            if matches(r) {
+                break;
+            }
+        }
+    }
+    for (k, &reg) in p.unknown_regs.iter().enumerate() {
+        r[reg as usize] = solved.z[k];
+    }
+    Ok(())
+}

@@ -1,0 +1,180 @@
+//! Declaration text read at run time: its tokens (with line and column), and the diagnostics of
+//! the macro's own checks rendered over it with a caret.
+//!
+//! The text is the language inside `mechanism! { ... }` (a `.kl` file holds one declaration).
+//! It is turned into a `proc_macro2::TokenStream` by proc-macro2's own lexer, which outside a
+//! compiler keeps a source map of every text it lexed: each token's span then knows its line,
+//! column and byte range, and the macro's errors (`syn::Error`, at the user's span) come back
+//! here exactly as the compiler would place them.
+
+use codespan_reporting::diagnostic::{Diagnostic as Report, Label};
+use codespan_reporting::files::SimpleFile;
+use codespan_reporting::term::{self, Config};
+use proc_macro2::TokenStream;
+use std::fmt;
+use std::ops::Range;
+
+/// The largest text read (bytes). The front end bounds the tokens and their nesting
+/// (`kinloop_codegen`'s limits, 100 000 tokens); this bounds the memory the lexer takes before
+/// those limits are checked. A large mechanism's declaration is a few kilobytes.
+pub const MAX_SOURCE_BYTES: usize = 1 << 20;
+
+/// One message of a rejected declaration, at a place in its text.
+#[derive(Clone, Debug, PartialEq, Eq)]
+pub struct Diagnostic {
+    /// The message, exactly as `mechanism!` reports it.
+    pub message: String,
+    /// Byte range in the text (empty when the message is about the whole text).
+    pub range: Range<usize>,
+    /// Line of the start, from 1.
+    pub line: usize,
+    /// Column of the start, from 1, in characters (as the compiler counts them).
+    pub column: usize,
+}
+
+/// How serious a set of messages is.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum Level {
+    /// The declaration is rejected.
+    Error,
+    /// The declaration is accepted; something in it is probably a mistake (an unused parameter).
+    Warning,
+}
+
+/// Messages about a declaration, in order, with the text they point into: why it was rejected,
+/// or (level [`Level::Warning`]) what in an accepted one looks wrong.
+#[derive(Clone, Debug)]
+pub struct Diagnostics {
+    /// Errors or warnings.
+    pub level: Level,
+    /// The name the text is shown under (a file name).
+    pub name: String,
+    /// The declaration's text.
+    pub text: String,
+    /// The messages.
+    pub items: Vec<Diagnostic>,
+}
+
+impl Diagnostics {
+    /// One message about the whole text (its first line).
+    fn whole(name: &str, text: &str, message: String) -> Diagnostics {
+        let items = vec![Diagnostic { message, range: 0..0, line: 1, column: 1 }];
+        Diagnostics { level: Level::Error, name: name.to_string(), text: text.to_string(), items }
+    }
+
+    /// The messages of a `syn::Error` (it holds several when the macro found several mistakes),
+    /// each at its span.
+    pub(crate) fn from_syn(name: &str, text: &str, error: syn::Error) -> Diagnostics {
+        let items = error.into_iter().map(|e| at_span(text, e.span(), e.to_string())).collect();
+        Diagnostics { level: Level::Error, name: name.to_string(), text: text.to_string(), items }
+    }
+
+    /// The warnings of an accepted declaration (`None` when there are none).
+    pub(crate) fn warnings(name: &str, text: &str, warnings: &[kinloop_codegen::diag::Warning]) -> Option<Diagnostics> {
+        let items: Vec<Diagnostic> = warnings.iter().map(|w| at_span(text, w.span, w.message.clone())).collect();
+        (!items.is_empty()).then(|| Diagnostics {
+            level: Level::Warning,
+            name: name.to_string(),
+            text: text.to_string(),
+            items,
+        })
+    }
+
+    /// The messages rendered as the compiler shows them: `error: message`, the file, line and
+    /// column, and the line of text with a caret under the span. `color` adds terminal colours.
+    pub fn render(&self, color: bool) -> String {
+        let file = SimpleFile::new(self.name.as_str(), self.text.as_str());
+        let config = Config::default();
+        let mut out = Vec::new();
+        for d in &self.items {
+            let report = match self.level {
+                Level::Error => Report::error(),
+                Level::Warning => Report::warning(),
+            };
+            let report = report.with_message(&d.message).with_labels(vec![Label::primary((), d.range.clone())]);
+            let written = if color {
+                let mut w = term::termcolor::Ansi::new(&mut out);
+                term::emit(&mut w, &config, &file, &report)
+            } else {
+                let mut w = term::termcolor::NoColor::new(&mut out);
+                term::emit(&mut w, &config, &file, &report)
+            };
+            if written.is_err() {
+                // Rendering into memory fails only on a range outside the text: the plain form.
+                out.extend(
+                    format!(
+                        "{}: {}\n --> {}:{}:{}\n",
+                        if self.level == Level::Error { "error" } else { "warning" },
+                        d.message,
+                        self.name,
+                        d.line,
+                        d.column
+                    )
+                    .bytes(),
+                );
+            }
+        }
+        String::from_utf8_lossy(&out).into_owned()
+    }
+}
+
+impl fmt::Display for Diagnostics {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        f.write_str(&self.render(false))
+    }
+}
+
+impl std::error::Error for Diagnostics {}
+
+/// The diagnostic of `message` at `span` of `text`.
+fn at_span(text: &str, span: proc_macro2::Span, message: String) -> Diagnostic {
+    let start = span.start();
+    let range = span.byte_range();
+    // A span from another text (never made here) or past the end: the whole text.
+    let range = if range.start <= range.end && range.end <= text.len() { range } else { 0..0 };
+    Diagnostic { message, range, line: start.line.max(1), column: start.column + 1 }
+}
+
+/// The tokens of a declaration's text, or why it has none: too large, or a lexical error
+/// (an unclosed bracket or string) at its place. `name` names the text in diagnostics.
+pub fn tokens(name: &str, text: &str) -> Result<TokenStream, Diagnostics> {
+    if text.len() > MAX_SOURCE_BYTES {
+        let message = format!(
+            "the declaration has {} bytes, more than the {MAX_SOURCE_BYTES} a text read at run time may have",
+            text.len()
+        );
+        return Err(Diagnostics::whole(name, text, message));
+    }
+    text.parse::<TokenStream>().map_err(|e| {
+        let mut d = at_span(text, e.span(), String::new());
+        d.message = lex_message(text[d.range.start..].chars().next(), &e);
+        Diagnostics { level: Level::Error, name: name.to_string(), text: text.to_string(), items: vec![d] }
+    })
+}
+
+/// The compiler's message for a text its lexer rejects at character `at`, for the two mistakes
+/// it names (a character no token starts with, a closing bracket without its opening one);
+/// proc-macro2's own message otherwise.
+fn lex_message(at: Option<char>, e: &proc_macro2::LexError) -> String {
+    match at {
+        Some(c @ (')' | ']' | '}')) => format!("unexpected closing delimiter: `{c}`"),
+        Some(c) if !c.is_ascii() && !unicode_ident_start(c) => {
+            format!("unknown start of token: {}", c.escape_default())
+        }
+        _ => format!("cannot read the declaration: {e}"),
+    }
+}
+
+/// Whether `c` may start an identifier (approximated: alphabetic), where the compiler reports
+/// a non-ASCII identifier instead of an unknown token.
+fn unicode_ident_start(c: char) -> bool {
+    c.is_alphabetic()
+}
+
+/// Forgets the spans of every text this thread lexed. proc-macro2 keeps the text of each
+/// lexed source in a per-thread map for the spans' locations; a long-running reader (a service)
+/// calls this between declarations to bound its memory. Spans made before are invalid after it:
+/// call it only when no token stream, span or error from an earlier read is in use.
+pub fn forget_spans() {
+    proc_macro2::extra::invalidate_current_thread_spans();
+}

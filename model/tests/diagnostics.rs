@@ -1,0 +1,168 @@
+//! Diagnostics parity: the declarations of the macro's UI tests (`tests/ui/**/*.rs`, whose
+//! compiler output is pinned in the `.stderr` beside each) read at run time give the same
+//! messages at the same lines and columns (errors, and the warnings of accepted declarations).
+//!
+//! Each `mechanism! { ... }` body is read in place: the rest of the file is blanked (newlines
+//! kept), so a run-time location is directly comparable with the compiler's. The reference is
+//! the compiler's own rendering of the macro's errors in the `.stderr` files; errors there that
+//! lie outside every declaration (code using the generated types) are not the reader's and are
+//! left out.
+
+use kinloop_model::{Model, ReadError};
+use std::path::{Path, PathBuf};
+
+/// One error of a `.stderr`: message (continuation lines joined by newlines), line and column.
+#[derive(Debug, Clone, PartialEq, Eq, PartialOrd, Ord)]
+struct Expected {
+    line: usize,
+    column: usize,
+    message: String,
+}
+
+fn errors_of(stderr: &str) -> Vec<Expected> {
+    messages_of(stderr, "error: ")
+}
+
+/// The warnings the macro makes the compiler print: `use of deprecated associated constant
+/// `Name::tag`: message`, of which the message is the macro's.
+fn warnings_of(stderr: &str) -> Vec<Expected> {
+    messages_of(stderr, "warning: use of deprecated associated constant ")
+        .into_iter()
+        .filter_map(|e| {
+            let (_, message) = e.message.split_once("`: ")?;
+            Some(Expected { message: message.to_string(), ..e })
+        })
+        .collect()
+}
+
+fn messages_of(stderr: &str, prefix: &str) -> Vec<Expected> {
+    let lines: Vec<&str> = stderr.lines().collect();
+    let mut out = Vec::new();
+    let mut k = 0;
+    while k < lines.len() {
+        if let Some(first) = lines[k].strip_prefix(prefix) {
+            let mut message = first.to_string();
+            k += 1;
+            while k < lines.len() && !lines[k].trim_start().starts_with("--> ") {
+                if let Some(more) = lines[k].strip_prefix("       ") {
+                    message.push('\n');
+                    message.push_str(more);
+                }
+                k += 1;
+            }
+            if let Some(at) = lines.get(k).and_then(|l| l.trim_start().strip_prefix("--> ")) {
+                let mut parts = at.rsplitn(3, ':');
+                let column = parts.next().and_then(|c| c.parse().ok()).unwrap_or(0);
+                let line = parts.next().and_then(|c| c.parse().ok()).unwrap_or(0);
+                out.push(Expected { line, column, message });
+            }
+        }
+        k += 1;
+    }
+    out
+}
+
+/// The byte ranges of the bodies of every `mechanism! { ... }` in `src` (inside the braces).
+fn bodies(src: &str) -> Vec<(usize, usize)> {
+    let b = src.as_bytes();
+    let mut out = Vec::new();
+    let mut from = 0;
+    while let Some(at) = src[from..].find("mechanism!") {
+        let start = from + at + "mechanism!".len();
+        let Some(open) = src[start..].find('{').map(|o| start + o) else { break };
+        let (mut depth, mut k) = (0usize, open);
+        while k < b.len() {
+            match b[k] {
+                b'{' => depth += 1,
+                b'}' => {
+                    depth -= 1;
+                    if depth == 0 {
+                        break;
+                    }
+                }
+                b'"' => {
+                    k += 1;
+                    while k < b.len() && b[k] != b'"' {
+                        k += if b[k] == b'\\' { 2 } else { 1 };
+                    }
+                }
+                b'/' if b.get(k + 1) == Some(&b'/') => {
+                    while k < b.len() && b[k] != b'\n' {
+                        k += 1;
+                    }
+                }
+                _ => {}
+            }
+            k += 1;
+        }
+        out.push((open + 1, k.min(b.len())));
+        from = k.min(b.len());
+    }
+    out
+}
+
+/// `src` with everything outside `range` blanked, newlines kept.
+fn in_place(src: &str, (from, to): (usize, usize)) -> String {
+    src.char_indices().map(|(i, c)| if (from..to).contains(&i) || c == '\n' { c } else { ' ' }).collect()
+}
+
+fn ui_cases() -> Vec<PathBuf> {
+    let root = Path::new(env!("CARGO_MANIFEST_DIR")).join("../tests/ui");
+    let mut out = Vec::new();
+    let mut dirs = vec![root];
+    while let Some(d) = dirs.pop() {
+        for e in std::fs::read_dir(&d).expect("tests/ui") {
+            let p = e.expect("entry").path();
+            if p.is_dir() {
+                dirs.push(p);
+            } else if p.extension().is_some_and(|x| x == "rs") && p.with_extension("stderr").exists() {
+                out.push(p);
+            }
+        }
+    }
+    out.sort();
+    out
+}
+
+#[test]
+fn ui_declarations_read_at_run_time_give_the_macros_messages() {
+    let mut compared = 0;
+    let mut cases = 0;
+    for case in ui_cases() {
+        let src = std::fs::read_to_string(&case).expect("case");
+        let stderr = std::fs::read_to_string(case.with_extension("stderr")).expect("stderr");
+        let line_of = |byte: usize| src[..byte].matches('\n').count() + 1;
+        let spans = bodies(&src);
+        if spans.is_empty() {
+            continue;
+        }
+        let inside = |e: &Expected| spans.iter().any(|&(a, b)| (line_of(a)..=line_of(b)).contains(&e.line));
+        let mut expected: Vec<Expected> = errors_of(&stderr).into_iter().filter(inside).collect();
+        let mut got = Vec::new();
+        let mut expected_warnings: Vec<Expected> = warnings_of(&stderr).into_iter().filter(inside).collect();
+        let mut got_warnings = Vec::new();
+        for &span in &spans {
+            match Model::read(&case.display().to_string(), &in_place(&src, span)) {
+                Ok(m) => got_warnings.extend(m.warnings().into_iter().flat_map(|d| {
+                    d.items.iter().map(|i| Expected { line: i.line, column: i.column, message: i.message.clone() })
+                })),
+                Err(ReadError::Unsupported(_)) => {}
+                Err(ReadError::Rejected(d)) => got.extend(d.items.into_iter().map(|i| Expected {
+                    line: i.line,
+                    column: i.column,
+                    message: i.message,
+                })),
+            }
+        }
+        expected.sort();
+        got.sort();
+        assert_eq!(got, expected, "{}", case.display());
+        expected_warnings.sort();
+        got_warnings.sort();
+        assert_eq!(got_warnings, expected_warnings, "{}: warnings", case.display());
+        compared += expected.len() + expected_warnings.len();
+        cases += 1;
+    }
+    eprintln!("{cases} UI cases, {compared} messages compared");
+    assert!(compared >= 50, "only {compared} messages compared");
+}

@@ -1,0 +1,52 @@
+//! A run-time step (with its parameter sensitivities) allocates nothing once the model is built:
+//! a counting allocator sees no allocation over a sweep of steps (closed forms, linear blocks and
+//! Newton blocks).
+
+use kinloop::NewtonConfig;
+use kinloop_fixtures as fx;
+use kinloop_model::Model;
+use std::alloc::{GlobalAlloc, Layout, System};
+use std::sync::atomic::{AtomicUsize, Ordering};
+
+struct Counting;
+
+static ALLOCATIONS: AtomicUsize = AtomicUsize::new(0);
+
+// SAFETY: forwards to the system allocator, only counting.
+unsafe impl GlobalAlloc for Counting {
+    unsafe fn alloc(&self, layout: Layout) -> *mut u8 {
+        ALLOCATIONS.fetch_add(1, Ordering::Relaxed);
+        // SAFETY: the caller's layout is passed on unchanged.
+        unsafe { System.alloc(layout) }
+    }
+    unsafe fn dealloc(&self, ptr: *mut u8, layout: Layout) {
+        // SAFETY: `ptr` was allocated by `System` with `layout`.
+        unsafe { System.dealloc(ptr, layout) }
+    }
+}
+
+#[global_allocator]
+static GLOBAL: Counting = Counting;
+
+#[test]
+fn steps_do_not_allocate() {
+    let dense = format!(
+        "#[kinloop(dense)] {}",
+        fx::RHOMBIC_DRIVE_TEXT.replacen("struct RhombicDrive ", "struct RhombicDriveDense ", 1)
+    );
+    for text in [fx::RHOMBIC_DRIVE_TEXT, dense.as_str(), fx::CLASS_FOUR_TEXT] {
+        let mut m = Model::read("m.kl", text).expect("valid");
+        let cfg = NewtonConfig::default();
+        let mut q = vec![0.0; m.unknowns().len()];
+        let mut x = [0.0];
+        m.guess(&x, &mut q).expect("guess");
+        let before = ALLOCATIONS.load(Ordering::Relaxed);
+        for k in 0..200 {
+            x[0] = k as f64 * 0.03;
+            let (s, _) = m.sensitivities(&x, &q, &cfg).expect("step");
+            q.copy_from_slice(&s.q);
+        }
+        let during = ALLOCATIONS.load(Ordering::Relaxed) - before;
+        assert_eq!(during, 0, "{}: {during} allocations in 200 steps", m.name());
+    }
+}

@@ -1,0 +1,304 @@
+//! The run-time model against the compiled mechanism of the same declaration: the fixtures'
+//! mechanisms (declared with `kinloop::mechanism!`, their text kept beside them) read at run
+//! time give the same positions, analogs and outputs along whole sweeps.
+//!
+//! The reference is independent of the tape: the compiled kernels are straight-line Rust that
+//! the macro emitted and rustc optimised. Both evaluate the same plan with the same operations,
+//! so the values agree to the last bits; the tolerance allows a relative 1e-15 of each array's
+//! largest magnitude (a few rounding steps of 1.1e-16: an optimiser may contract or reorder
+//! nothing in IEEE arithmetic, but libm calls may be inlined differently), and the test reports
+//! the largest difference it saw.
+
+use kinloop::Mechanism;
+use kinloop::NewtonConfig;
+use kinloop_fixtures as fx;
+use kinloop_model::Model;
+use std::f64::consts::TAU;
+
+/// Relative agreement demanded, of each array's largest magnitude.
+const REL: f64 = 1e-15;
+
+/// Largest difference between `a` and `b` relative to the largest magnitude of either.
+fn rel_diff(a: &[f64], b: &[f64]) -> f64 {
+    assert_eq!(a.len(), b.len());
+    let scale = a.iter().chain(b).fold(0.0f64, |m, v| m.max(v.abs())).max(f64::MIN_POSITIVE);
+    a.iter().zip(b).map(|(x, y)| (x - y).abs() / scale).fold(0.0, f64::max)
+}
+
+/// Sweeps input 0 over a full turn (the other inputs fixed), warm-started from the compiled
+/// mechanism's previous position (both solvers get the same guess, bit for bit), and compares
+/// every array of the state. Returns the largest relative difference seen and the number of
+/// states compared.
+fn sweep_parity<M, const N: usize, const NI: usize, const NO: usize>(
+    compiled: &M,
+    model: &mut Model,
+    x0: [f64; NI],
+    samples: usize,
+) -> (f64, usize)
+where
+    M: Mechanism<N, NI, NO>,
+{
+    let cfg = NewtonConfig::default();
+    let name = model.name().to_string();
+    let mut guess = compiled.guess_flat(&x0);
+    let mut worst = 0.0f64;
+    let mut compared = 0;
+    for k in 0..samples {
+        let mut x = x0;
+        x[0] = x0[0] + TAU * k as f64 / samples as f64;
+        let c = compiled.kinematics_flat(&x, &guess, &cfg);
+        let r = model.kinematics(&x, &guess, &cfg).cloned();
+        match (c, r) {
+            (Ok(c), Ok(r)) => {
+                let flat3 = |v: &[[[f64; NI]; NI]]| v.iter().flatten().flatten().copied().collect::<Vec<f64>>();
+                let flat2 = |v: &[[f64; NI]]| v.iter().flatten().copied().collect::<Vec<f64>>();
+                let diffs = [
+                    rel_diff(&c.q, &r.q),
+                    rel_diff(&flat2(&c.dq), &r.dq),
+                    rel_diff(&flat3(&c.d2q), &r.d2q),
+                    rel_diff(&c.out, &r.out),
+                    rel_diff(&flat2(&c.dout), &r.dout),
+                    rel_diff(&flat3(&c.d2out), &r.d2out),
+                ];
+                for (what, d) in ["q", "dq", "d2q", "out", "dout", "d2out"].iter().zip(diffs) {
+                    assert!(d <= REL, "{} at x = {x:?}: {what} differs by {d:e} (relative)", name);
+                    worst = worst.max(d);
+                }
+                assert_eq!(c.report.iterations, r.report.iterations, "{} at {x:?}: iterations", name);
+                assert_eq!(c.health.det_signs, r.health.det_signs, "{} at {x:?}: determinant signs", name);
+                guess = c.q;
+                compared += 1;
+            }
+            (Err(_), Err(_)) => guess = compiled.guess_flat(&x),
+            (c, r) => panic!("{} at {x:?}: compiled {:?}, run time {:?}", name, c.map(|k| k.q), r.map(|s| s.q)),
+        }
+    }
+    (worst, compared)
+}
+
+fn read(text: &str) -> Model {
+    Model::read("fixture.kl", text).unwrap_or_else(|e| panic!("{e}"))
+}
+
+/// The `#[kinloop(dense)]` twin of a fixture's text, named `dense`.
+fn dense_text(text: &str, name: &str, dense: &str) -> String {
+    format!("#[kinloop(dense)] {}", text.replacen(&format!("struct {name} "), &format!("struct {dense} "), 1))
+}
+
+#[test]
+fn four_bar_equals_the_compiled_one() {
+    let compiled = fx::FourBar { a: 1.0, b: 3.0, c: 2.5, d: 3.2 };
+    let mut model = read(fx::FOUR_BAR_TEXT);
+    for (p, v) in [("a", 1.0), ("b", 3.0), ("c", 2.5), ("d", 3.2)] {
+        assert!(model.set_param(p, v));
+    }
+    let (worst, n) = sweep_parity(&compiled, &mut model, [0.0], 360);
+    assert!(n >= 300, "only {n} states compared");
+    eprintln!("four-bar: {n} states, largest relative difference {worst:e}");
+}
+
+#[test]
+fn rhombic_drive_equals_the_compiled_one() {
+    let mut model = read(fx::RHOMBIC_DRIVE_TEXT);
+    let (worst, n) = sweep_parity(&fx::RhombicDrive::default(), &mut model, [0.0], 360);
+    assert_eq!(n, 360);
+    eprintln!("rhombic drive: {n} states, largest relative difference {worst:e}");
+    // The same declaration as one dense Newton block.
+    let mut dense = read(&dense_text(fx::RHOMBIC_DRIVE_TEXT, "RhombicDrive", "RhombicDriveDense"));
+    let (worst, n) = sweep_parity(&fx::RhombicDriveDense::default(), &mut dense, [0.0], 360);
+    assert_eq!(n, 360);
+    eprintln!("rhombic drive (dense Newton): {n} states, largest relative difference {worst:e}");
+}
+
+#[test]
+fn other_fixtures_equal_the_compiled_ones() {
+    let mut m = read(fx::SLIDER_CRANK_TEXT);
+    for (p, v) in [("r", 1.0), ("l", 3.0), ("e", 0.4)] {
+        m.set_param(p, v);
+    }
+    let w = sweep_parity(&fx::SliderCrank { r: 1.0, l: 3.0, e: 0.4 }, &mut m, [0.0], 180);
+    eprintln!("slider-crank: {w:?}");
+    let w = sweep_parity(&fx::FiveBar::default(), &mut read(fx::FIVE_BAR_TEXT), [0.0, 0.4], 180);
+    eprintln!("five-bar: {w:?}");
+    let w = sweep_parity(&fx::ClassFour::default(), &mut read(fx::CLASS_FOUR_TEXT), [0.0], 180);
+    eprintln!("class IV: {w:?}");
+    let mut dense = read(&dense_text(fx::CLASS_FOUR_TEXT, "ClassFour", "ClassFourDense"));
+    let w = sweep_parity(&fx::ClassFourDense::default(), &mut dense, [0.0], 180);
+    eprintln!("class IV (dense): {w:?}");
+    let w = sweep_parity(&fx::DisplacerRodDrive::default(), &mut read(fx::DISPLACER_ROD_DRIVE_TEXT), [0.0], 180);
+    eprintln!("displacer-rod drive: {w:?}");
+    let w = sweep_parity(&fx::WorkingRodDrive::default(), &mut read(fx::WORKING_ROD_DRIVE_TEXT), [0.0], 180);
+    eprintln!("working-rod drive: {w:?}");
+    let w = sweep_parity(&fx::gear_lever::GearLever::default(), &mut read(fx::gear_lever::GEAR_LEVER_TEXT), [0.0], 180);
+    eprintln!("gear lever: {w:?}");
+    // The roller edger's input is time: the same range, 0 to 2π, in seconds.
+    let w = sweep_parity(
+        &fx::roller_edger::RollerEdger::default(),
+        &mut read(fx::roller_edger::ROLLER_EDGER_TEXT),
+        [0.0],
+        180,
+    );
+    eprintln!("roller edger: {w:?}");
+    let w = sweep_parity(&fx::balancing::Balance::default(), &mut read(fx::balancing::BALANCE_TEXT), [0.0], 180);
+    eprintln!("balance: {w:?}");
+    let w = sweep_parity(&fx::ClassFourCore::default(), &mut read(fx::CLASS_FOUR_CORE_TEXT), [0.0], 180);
+    eprintln!("class IV core: {w:?}");
+}
+
+/// The comparison can fail: a run-time model with one parameter changed by one part in 10^12
+/// differs from the compiled mechanism beyond the tolerance.
+#[test]
+fn a_changed_parameter_is_seen() {
+    let mut model = read(fx::RHOMBIC_DRIVE_TEXT);
+    model.set_param("l_p", 3.0 * (1.0 + 1e-12));
+    let caught = std::panic::catch_unwind(std::panic::AssertUnwindSafe(|| {
+        sweep_parity(&fx::RhombicDrive::default(), &mut model, [0.0], 8)
+    }));
+    assert!(caught.is_err(), "a parameter changed by 1e-12 went unnoticed");
+}
+
+/// Sensitivities of positions, analogs and outputs to every parameter along a turn, against the
+/// compiled mechanism's `sensitivities_flat`.
+fn sensitivity_parity<M, const N: usize, const NI: usize, const NO: usize, const NP: usize>(
+    compiled: &M,
+    model: &mut Model,
+    x0: [f64; NI],
+    samples: usize,
+) -> f64
+where
+    M: kinloop::Sensitivities<N, NI, NO, NP>,
+{
+    let cfg = NewtonConfig::default();
+    let mut guess = compiled.guess_flat(&x0);
+    let mut worst = 0.0f64;
+    for k in 0..samples {
+        let mut x = x0;
+        x[0] = x0[0] + TAU * k as f64 / samples as f64;
+        let (ck, cs) = compiled.sensitivities_flat(&x, &guess, &cfg).expect("compiled");
+        let (_, rs) = model.sensitivities(&x, &guess, &cfg).expect("run time");
+        let rs = rs.expect("declared with sensitivities");
+        let f = |v: &[f64]| v.to_vec();
+        let pairs = [
+            (cs.q.iter().flatten().copied().collect::<Vec<_>>(), f(&rs.q)),
+            (cs.dq.iter().flatten().flatten().copied().collect(), f(&rs.dq)),
+            (cs.d2q.iter().flatten().flatten().flatten().copied().collect(), f(&rs.d2q)),
+            (cs.out.iter().flatten().copied().collect(), f(&rs.out)),
+            (cs.dout.iter().flatten().flatten().copied().collect(), f(&rs.dout)),
+            (cs.d2out.iter().flatten().flatten().flatten().copied().collect(), f(&rs.d2out)),
+        ];
+        for (c, r) in pairs {
+            let d = rel_diff(&c, &r);
+            assert!(d <= REL, "{} at {x:?}: sensitivities differ by {d:e}", model.name());
+            worst = worst.max(d);
+        }
+        guess = ck.q;
+    }
+    worst
+}
+
+#[test]
+fn sensitivities_equal_the_compiled_ones() {
+    let w = sensitivity_parity(&fx::RhombicDrive::default(), &mut read(fx::RHOMBIC_DRIVE_TEXT), [0.0], 90);
+    eprintln!("rhombic drive sensitivities: largest relative difference {w:e}");
+    let w = sensitivity_parity(&fx::FiveBar::default(), &mut read(fx::FIVE_BAR_TEXT), [0.0, 0.4], 90);
+    eprintln!("five-bar sensitivities: {w:e}");
+    let w = sensitivity_parity(&fx::ClassFour::default(), &mut read(fx::CLASS_FOUR_TEXT), [0.0], 90);
+    eprintln!("class IV sensitivities: {w:e}");
+}
+
+/// Residuals, outputs and the full Jacobian at given positions (near and away from the
+/// solution), against the compiled `residual_flat`, `outputs_flat` and `jacobian_flat`.
+fn at_parity<M, const N: usize, const NI: usize, const NO: usize>(compiled: &M, model: &mut Model, x0: [f64; NI])
+where
+    M: Mechanism<N, NI, NO>,
+{
+    let mut jac = kinloop_model::Jacobian::default();
+    for k in 0..24 {
+        let mut x = x0;
+        x[0] += 0.27 * k as f64;
+        let mut q = compiled.guess_flat(&x);
+        for (u, v) in q.iter_mut().enumerate() {
+            *v += 0.01 * (k * (u + 1)) as f64;
+        }
+        let (mut res, mut out) = (vec![0.0; N], vec![0.0; NO]);
+        model.residual(&x, &q, &mut res).expect("residual");
+        model.outputs_at(&x, &q, &mut out).expect("outputs");
+        model.jacobian(&x, &q, &mut jac).expect("jacobian");
+        let c = compiled.jacobian_flat(&x, &q);
+        assert_eq!(rel_diff(&res, &compiled.residual_flat(&x, &q)), 0.0, "{}: residual", model.name());
+        assert_eq!(rel_diff(&out, &compiled.outputs_flat(&x, &q)), 0.0, "{}: outputs", model.name());
+        let flat = |m: &[[f64; N]]| m.iter().flatten().copied().collect::<Vec<f64>>();
+        let flat_x = |m: &[[f64; NI]]| m.iter().flatten().copied().collect::<Vec<f64>>();
+        for (what, a, b) in [
+            ("f", jac.f.clone(), c.f.to_vec()),
+            ("j", jac.j.clone(), flat(&c.j)),
+            ("fx", jac.fx.clone(), flat_x(&c.fx)),
+            ("scale", jac.scale.clone(), c.scale.to_vec()),
+            ("unit", jac.unit.clone(), c.unit.to_vec()),
+            ("input_unit", jac.input_unit.clone(), c.input_unit.to_vec()),
+        ] {
+            assert!(rel_diff(&a, &b) <= REL, "{}: jacobian {what}", model.name());
+        }
+    }
+}
+
+#[test]
+fn evaluations_at_a_position_equal_the_compiled_ones() {
+    at_parity(&fx::RhombicDrive::default(), &mut read(fx::RHOMBIC_DRIVE_TEXT), [0.0]);
+    at_parity(&fx::ClassFour::default(), &mut read(fx::CLASS_FOUR_TEXT), [0.0]);
+    at_parity(&fx::FiveBar::default(), &mut read(fx::FIVE_BAR_TEXT), [0.0, 0.4]);
+}
+
+/// Analogs and outputs at given positions (solved ones and perturbed ones), against the
+/// compiled `kinematics_at_flat`, including the residual it reports.
+fn kinematics_at_parity<M, const N: usize, const NI: usize, const NO: usize>(
+    compiled: &M,
+    model: &mut Model,
+    x0: [f64; NI],
+) where
+    M: Mechanism<N, NI, NO>,
+{
+    let cfg = NewtonConfig::default();
+    let name = model.name().to_string();
+    let mut compared = 0;
+    for k in 0..24 {
+        let mut x = x0;
+        x[0] += 0.27 * k as f64;
+        let Ok(solved) = compiled.kinematics_flat(&x, &compiled.guess_flat(&x), &cfg) else { continue };
+        for shift in [0.0, 1e-7] {
+            let q = solved.q.map(|v| v + shift);
+            let (c, r) = (compiled.kinematics_at_flat(&x, &q, &cfg), model.kinematics_at(&x, &q, &cfg));
+            let (c, r) = match (c, r) {
+                (Ok(c), Ok(r)) => (c, r),
+                (Err(_), Err(_)) => continue,
+                (c, r) => panic!("{name}: compiled {:?}, run time {:?}", c.is_ok(), r.is_ok()),
+            };
+            let flat2 = |v: &[[f64; NI]]| v.iter().flatten().copied().collect::<Vec<f64>>();
+            let flat3 = |v: &[[[f64; NI]; NI]]| v.iter().flatten().flatten().copied().collect::<Vec<f64>>();
+            assert_eq!(c.report.residual.to_bits(), r.report.residual.to_bits(), "{name}: residual");
+            for (a, b) in [
+                (flat2(&c.dq), r.dq.clone()),
+                (flat3(&c.d2q), r.d2q.clone()),
+                (c.out.to_vec(), r.out.clone()),
+                (flat2(&c.dout), r.dout.clone()),
+                (flat3(&c.d2out), r.d2out.clone()),
+            ] {
+                assert!(rel_diff(&a, &b) <= REL, "{name} at {x:?}: analogs at a position differ");
+            }
+            compared += 1;
+        }
+    }
+    assert!(compared >= 24, "{name}: only {compared} positions compared");
+}
+
+#[test]
+fn kinematics_at_a_position_equal_the_compiled_ones() {
+    kinematics_at_parity(&fx::RhombicDrive::default(), &mut read(fx::RHOMBIC_DRIVE_TEXT), [0.0]);
+    kinematics_at_parity(&fx::ClassFour::default(), &mut read(fx::CLASS_FOUR_TEXT), [0.0]);
+    kinematics_at_parity(&fx::FiveBar::default(), &mut read(fx::FIVE_BAR_TEXT), [0.0, 0.4]);
+    let mut m = read(fx::SLIDER_CRANK_TEXT);
+    for (p, v) in [("r", 1.0), ("l", 3.0), ("e", 0.4)] {
+        m.set_param(p, v);
+    }
+    kinematics_at_parity(&fx::SliderCrank { r: 1.0, l: 3.0, e: 0.4 }, &mut m, [0.0]);
+}

@@ -1,0 +1,33 @@
+//! What the run-time evaluator does not evaluate yet is refused when the model is built, with
+//! the reason, never evaluated differently from the compiled mechanism: a block solved by sparse
+//! Newton, and a dense block of more than `MAX_DENSE` unknowns.
+
+use kinloop_model::{MAX_DENSE, Model, ReadError};
+
+/// A ring of `n` four-bar loops closed through the input: one coupled block of `2n` unknowns.
+fn ring(n: usize, dense: bool) -> String {
+    let unknowns: Vec<String> = (0..n).map(|i| format!("u{i} = 0.6, v{i} = 1.9")).collect();
+    let mut loops = vec![format!("loop l0: a @ (0.5 * (phi + v{})) + b @ u0 == (d, 0) + c @ v0;", n - 1)];
+    loops.extend((1..n).map(|i| format!("loop l{i}: a @ v{} + b @ u{i} == (d, 0) + c @ v{i};", i - 1)));
+    format!(
+        "{} pub struct Ring {{ params a = 1.0, b = 3.0, c = 2.5, d = 3.2; input phi; unknowns {}; {} }}",
+        if dense { "#[kinloop(dense)]" } else { "" },
+        unknowns.join(", "),
+        loops.join(" ")
+    )
+}
+
+#[test]
+fn sparse_and_large_blocks_are_refused_with_the_reason() {
+    match Model::read("ring.kl", &ring(9, false)) {
+        Err(ReadError::Unsupported(why)) => assert!(why.contains("sparse Newton"), "{why}"),
+        other => panic!("expected a refusal, got {:?}", other.map(|m| m.name().to_string())),
+    }
+    match Model::read("ring.kl", &ring(9, true)) {
+        Err(ReadError::Unsupported(why)) => assert!(why.contains(&format!("at most {MAX_DENSE}")), "{why}"),
+        other => panic!("expected a refusal, got {:?}", other.map(|m| m.name().to_string())),
+    }
+    // A ring small enough for a dense block is evaluated.
+    let mut small = Model::read("ring.kl", &ring(2, true)).expect("a 4x4 dense block");
+    assert!(small.solve(&[0.3]).is_ok());
+}
