@@ -49,11 +49,11 @@ impl FourBarClosed {
     }
 }
 
-impl Stepper<2> for FourBarClosed {
-    const WARM: bool = false;
-
-    #[inline]
-    fn step(&self, phi: f64, guess: &[f64; 2]) -> Result<Step<2>, Failed> {
+impl FourBarClosed {
+    /// The step at crank angle `phi` (angles on the turns of `guess`) and the coupler point with
+    /// its analogs `[x, y, x', y', x'', y'']`.
+    #[inline(always)]
+    pub fn full(&self, phi: f64, guess: &[f64; 2]) -> Result<(Step<2>, [f64; 6]), Failed> {
         let (a, b, c) = (self.a, self.b, self.c);
         let (s1, c1) = phi.sin_cos();
         let (bx, by) = (a * c1, a * s1);
@@ -89,8 +89,24 @@ impl Stepper<2> for FourBarClosed {
             -bx - b * e_b * sb - b * w_b * w_b * cb,
             -by + b * e_b * cb - b * w_b * w_b * sb,
         ];
+        Ok((Step { q: [beta, gamma], dq: [w_b, w_g], d2q: [e_b, e_g], iterations: 0 }, point))
+    }
+}
+
+impl Stepper<2> for FourBarClosed {
+    const WARM: bool = false;
+
+    #[inline(always)]
+    fn step(&self, phi: f64, guess: &[f64; 2]) -> Result<Step<2>, Failed> {
+        let (step, point) = self.full(phi, guess)?;
         black_box(point);
-        Ok(Step { q: [beta, gamma], dq: [w_b, w_g], d2q: [e_b, e_g], iterations: 0 })
+        Ok(step)
+    }
+
+    #[inline(always)]
+    fn step_summed(&self, phi: f64, guess: &[f64; 2]) -> Result<(Step<2>, f64), Failed> {
+        let (step, p) = self.full(phi, guess)?;
+        Ok((step, ((p[0] + p[1]) + (p[2] + p[3])) + (p[4] + p[5])))
     }
 }
 
@@ -117,11 +133,11 @@ impl GearLeverClosed {
     }
 }
 
-impl Stepper<2> for GearLeverClosed {
-    const WARM: bool = false;
-
-    #[inline]
-    fn step(&self, alpha: f64, guess: &[f64; 2]) -> Result<Step<2>, Failed> {
+impl GearLeverClosed {
+    /// The step at carrier angle `alpha` (the rocker angle on the turn of `guess`) and the pin
+    /// with its analogs `[x, y, x', y', x'', y'']`.
+    #[inline(always)]
+    pub fn full(&self, alpha: f64, guess: &[f64; 2]) -> Result<(Step<2>, [f64; 6]), Failed> {
         let k = 1.0 - self.u;
         let (sa, ca) = alpha.sin_cos();
         let (sk, ck) = (k * alpha).sin_cos();
@@ -138,7 +154,24 @@ impl Stepper<2> for GearLeverClosed {
         let dphi = (dp[0] * p[1] - p[0] * dp[1]) / s2;
         let dds = (dp[0] * dp[0] + dp[1] * dp[1] + p[0] * ddp[0] + p[1] * ddp[1] - ds * ds) / s;
         let ddphi = (ddp[0] * p[1] - p[0] * ddp[1]) / s2 - 2.0 * dphi * ds / s;
-        black_box([p, dp, ddp]);
-        Ok(Step { q: [s, phi], dq: [ds, dphi], d2q: [dds, ddphi], iterations: 0 })
+        let pin = [p[0], p[1], dp[0], dp[1], ddp[0], ddp[1]];
+        Ok((Step { q: [s, phi], dq: [ds, dphi], d2q: [dds, ddphi], iterations: 0 }, pin))
+    }
+}
+
+impl Stepper<2> for GearLeverClosed {
+    const WARM: bool = false;
+
+    #[inline(always)]
+    fn step(&self, alpha: f64, guess: &[f64; 2]) -> Result<Step<2>, Failed> {
+        let (step, pin) = self.full(alpha, guess)?;
+        black_box(pin);
+        Ok(step)
+    }
+
+    #[inline(always)]
+    fn step_summed(&self, alpha: f64, guess: &[f64; 2]) -> Result<(Step<2>, f64), Failed> {
+        let (step, p) = self.full(alpha, guess)?;
+        Ok((step, ((p[0] + p[1]) + (p[2] + p[3])) + (p[4] + p[5])))
     }
 }
