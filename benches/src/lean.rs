@@ -53,7 +53,12 @@ fn first_step<S: Stepper<N>, const N: usize>(s: &S, guess: &[f64; N]) -> Result<
 
 /// [`stepper_turns`] from the previous position: only the positions are kept between steps.
 #[inline(never)]
-fn previous_turns<S: Stepper<N>, const N: usize>(s: &S, turn: usize, guess: [f64; N], steps: usize) -> Result<f64, Failed> {
+fn previous_turns<S: Stepper<N>, const N: usize>(
+    s: &S,
+    turn: usize,
+    guess: [f64; N],
+    steps: usize,
+) -> Result<f64, Failed> {
     let (h, mut k) = (TAU / turn as f64, 0usize);
     let mut q = first_step(s, &guess)?.q;
     let mut acc = 0.0;
@@ -68,7 +73,12 @@ fn previous_turns<S: Stepper<N>, const N: usize>(s: &S, turn: usize, guess: [f64
 /// [`stepper_turns`] from the second-order prediction (a closed form is given the previous
 /// position instead: it computes no prediction).
 #[inline(never)]
-fn taylor_turns<S: Stepper<N>, const N: usize>(s: &S, turn: usize, guess: [f64; N], steps: usize) -> Result<f64, Failed> {
+fn taylor_turns<S: Stepper<N>, const N: usize>(
+    s: &S,
+    turn: usize,
+    guess: [f64; N],
+    steps: usize,
+) -> Result<f64, Failed> {
     let (h, mut k) = (TAU / turn as f64, 0usize);
     let mut prev = first_step(s, &guess)?;
     let mut acc = 0.0;
