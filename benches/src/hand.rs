@@ -26,8 +26,9 @@ fn on_turn(q: f64, guess: f64) -> f64 {
 
 /// The four-bar of the fixtures (`kinloop_fixtures::FourBar`: crank `a` at the origin, coupler
 /// `b`, rocker `c` pivoted at `(d, 0)`, coupler point `pc` = joint C) by circle intersection, on
-/// the side of the line B -> D given by `left`. The coupler point and its analogs go through
-/// `black_box`, so they are computed as the generated code computes them.
+/// the side of the line B -> D given by `left`. The coupler point and its analogs are computed
+/// as the generated code computes them: `step` passes them to `black_box`, the lean harness
+/// (`step_summed`, [`crate::lean`]) adds them up with the unknowns'.
 #[derive(Clone, Copy, Debug)]
 pub struct FourBarClosed {
     /// Crank length.
@@ -113,7 +114,8 @@ impl Stepper<2> for FourBarClosed {
 /// The gear-lever drive of the fixtures (`kinloop_fixtures::gear_lever::GearLever`): the pin
 /// `P = l_c (sin a, cos a) + l_p (sin k a, cos k a)` with `k = 1 - u`, the rocker angle
 /// `phi = atan2(P_x, P_y)` and the block's distance `s = |P|` (on the side `s > 0`), with the
-/// analogs of the polar coordinates; the pin and its analogs go through `black_box`. Angles are
+/// analogs of the polar coordinates; the pin and its analogs go through `black_box` (`step`) or
+/// into the lean harness's sum (`step_summed`). Angles are
 /// moved to the guess's turn, as a sweep needs (both closed forms here do).
 #[derive(Clone, Copy, Debug)]
 pub struct GearLeverClosed {
