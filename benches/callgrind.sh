@@ -1,10 +1,13 @@
 #!/usr/bin/env bash
 # Instructions per step of the closed-form rows under callgrind, for `report --callgrind FILE`:
 # runs `closed_form_step VARIANT N [TURN]` (turns of 720 steps unless `VARIANT@TURN` says
-# another) under valgrind at N = 2000 and N = 4000 steps (200 and 400 for the ring of 64 loops
-# and its series, whose steps are large) and prints, per variant, one line
+# another) under valgrind at two step counts and prints, per variant, one line
 # `VARIANT INSTRUCTIONS_PER_STEP` = (total at high - total at low) / (high - low): the setup
-# cancels.
+# cancels. The two counts differ by whole turns (the cost of libm's functions depends on the
+# angle, so a part of a turn would weigh some angles more than others): 3 and 6 turns of 720
+# steps, 1 and 2 turns of 20,000; the turns of 10^6 steps are sampled over their first 2000
+# steps (2000 and 4000), and the ring of 64 loops and its series, whose steps are large, over
+# 200 and 400.
 #
 #   benches/callgrind.sh > callgrind.txt            # every variant of the report's tables
 #   benches/callgrind.sh four-bar-hand point@1000000  # only these
@@ -26,6 +29,9 @@ else
   variants=(hand point sweep
     four-bar-hand four-bar-point four-bar-sweep
     gear-lever-hand gear-lever-point gear-lever-sweep
+    hand@20000 point@20000 sweep@20000
+    four-bar-hand@20000 four-bar-point@20000 four-bar-sweep@20000
+    gear-lever-hand@20000 gear-lever-point@20000 gear-lever-sweep@20000
     class-four-hand class-four-point
     class-four-hand-taylor class-four-point-taylor class-four-sweep
     class-four-hand@1000000 class-four-point@1000000
@@ -49,13 +55,18 @@ total() {
   echo "$out" | sed -n 's/.*Collected : *\([0-9][0-9]*\).*/\1/p'
 }
 
-echo "# closed_form_step instructions per step: (total at $high - total at $low) / $((high - low)) (ring and series: 400 and 200), 720 steps a turn unless VARIANT@TURN, $(valgrind --version)"
+echo "# closed_form_step instructions per step: difference of the totals of two runs over the difference of their steps (whole turns up to 20,000 steps a turn; otherwise $low and $high steps, ring and series 200 and 400), 720 steps a turn unless VARIANT@TURN, $(valgrind --version)"
 for v in "${variants[@]}"; do
   name="${v%@*}"
   turn=720
   [ "$name" != "$v" ] && turn="${v#*@}"
   lo=$low
   hi=$high
+  if [ "$turn" -le 20000 ]; then
+    # Whole turns: the smallest number of turns of at least `low` steps, and twice that.
+    lo=$(((low + turn - 1) / turn * turn))
+    hi=$((2 * lo))
+  fi
   case "$name" in ring-* | series-*) lo=200 hi=400 ;; esac
   a="$(total "$name" "$lo" "$turn")"
   b="$(total "$name" "$hi" "$turn")"

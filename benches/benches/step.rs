@@ -24,6 +24,7 @@ use kinloop::Mechanism;
 use kinloop_bench::class_four::{self, HandNewton};
 use kinloop_bench::hand::{FOUR_BAR, FourBarClosed, GearLeverClosed, gear_lever};
 use kinloop_bench::kinloop_variants::{Kinloop, KinloopNamed, KinloopSweep, check_kinloop_sweep};
+use kinloop_bench::lean::step_sum;
 use kinloop_bench::rhombic::{self, ClosedForm, DenseFiniteDifference, DenseHandJacobian, DenseNumDual, TwoLoopNewton};
 use kinloop_bench::sweep::{
     DIFFERENCED, EXACT, Failed, STEPS, Step, Stepper, Sweep, SweepCheck, WarmStart, check_sweep,
@@ -104,6 +105,44 @@ fn bench_kinloop_sweep<M: Mechanism<N, 1, NO>, R: Stepper<N>, const N: usize, co
     time_step(g, name, || sweep.advance().map(consume));
 }
 
+/// [`bench`] in the lean harness of the callgrind counts (`kinloop_bench::lean`): the step's
+/// twelve numbers summed, the sum passed to `black_box`.
+fn bench_lean<S: Stepper<N>, R: Stepper<N>, const N: usize>(
+    g: &mut BenchmarkGroup<'_, WallTime>,
+    name: &str,
+    s: &S,
+    reference: &R,
+    guess0: [f64; N],
+    steps: usize,
+) {
+    let policy = WarmStart::Previous;
+    assert_check(name, policy, check_sweep(s, reference, steps, policy, guess0), EXACT);
+    let mut sweep = Sweep::start(s, steps, policy, guess0).unwrap();
+    time_step(g, name, || {
+        let (step, out) = sweep.advance_summed(s)?;
+        black_box(step_sum(step) + out);
+        Ok(())
+    });
+}
+
+/// [`bench_kinloop_sweep`] in the lean harness of the callgrind counts: the sample's twelve
+/// numbers summed where the sweep keeps them, the sum passed to `black_box`.
+fn bench_kinloop_sweep_lean<M: Mechanism<N, 1, NO>, R: Stepper<N>, const N: usize, const NO: usize>(
+    g: &mut BenchmarkGroup<'_, WallTime>,
+    m: &M,
+    reference: &R,
+    guess0: [f64; N],
+    steps: usize,
+) {
+    let name = "kinloop_sweep";
+    assert_check(name, WarmStart::Taylor, check_kinloop_sweep(m, reference, steps, guess0), EXACT);
+    let mut sweep = KinloopSweep::start(m, steps, guess0).unwrap();
+    time_step(g, name, || {
+        black_box(sweep.advance_sum()?);
+        Ok(())
+    });
+}
+
 fn rhombic_drive(c: &mut Criterion) {
     // Opaque parameters: no variant may fold them into constants.
     let p = black_box(rhombic::PARAMS);
@@ -161,7 +200,8 @@ const TURN_720: usize = 720;
 /// One closed-form row at [`TURN_720`] steps a turn, each variant checked over a whole turn
 /// against the hand closed form `hand` first: `closed_form` (the hand closed form, which ignores
 /// the guess), `kinloop` (the generated point step `kinematics_flat` from the previous position)
-/// and `kinloop_sweep` (one sample of kinloop's own `Sweep`).
+/// and `kinloop_sweep` (one sample of kinloop's own `Sweep`), all in the lean harness of the
+/// callgrind counts.
 fn closed_form_row<M: Mechanism<N, 1, NO>, H: Stepper<N>, const N: usize, const NO: usize>(
     c: &mut Criterion,
     group: &str,
@@ -170,11 +210,10 @@ fn closed_form_row<M: Mechanism<N, 1, NO>, H: Stepper<N>, const N: usize, const 
     guess0: [f64; N],
 ) {
     let mut g = c.benchmark_group(group);
-    let policy = WarmStart::Previous;
     let kl = Kinloop::<M, NO>::new(m);
-    bench(&mut g, "closed_form", hand, hand, policy, guess0, EXACT, TURN_720);
-    bench(&mut g, "kinloop", &kl, hand, policy, guess0, EXACT, TURN_720);
-    bench_kinloop_sweep(&mut g, &kl.m, hand, guess0, TURN_720);
+    bench_lean(&mut g, "closed_form", hand, hand, guess0, TURN_720);
+    bench_lean(&mut g, "kinloop", &kl, hand, guess0, TURN_720);
+    bench_kinloop_sweep_lean(&mut g, &kl.m, hand, guess0, TURN_720);
     g.finish();
 }
 

@@ -100,7 +100,7 @@ struct Trig {
 }
 
 impl Stepper<4> for HandNewton {
-    #[inline]
+    #[inline(always)]
     fn step(&self, phi: f64, guess: &[f64; 4]) -> Result<Step<4>, Failed> {
         let p = &self.p;
         let (sph, cph) = phi.sin_cos();

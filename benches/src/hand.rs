@@ -26,8 +26,9 @@ fn on_turn(q: f64, guess: f64) -> f64 {
 
 /// The four-bar of the fixtures (`kinloop_fixtures::FourBar`: crank `a` at the origin, coupler
 /// `b`, rocker `c` pivoted at `(d, 0)`, coupler point `pc` = joint C) by circle intersection, on
-/// the side of the line B -> D given by `left`. The coupler point and its analogs go through
-/// `black_box`, so they are computed as the generated code computes them.
+/// the side of the line B -> D given by `left`. The coupler point and its analogs are computed
+/// as the generated code computes them: `step` passes them to `black_box`, the lean harness
+/// (`step_summed`, [`crate::lean`]) adds them up with the unknowns'.
 #[derive(Clone, Copy, Debug)]
 pub struct FourBarClosed {
     /// Crank length.
@@ -49,11 +50,11 @@ impl FourBarClosed {
     }
 }
 
-impl Stepper<2> for FourBarClosed {
-    const WARM: bool = false;
-
-    #[inline]
-    fn step(&self, phi: f64, guess: &[f64; 2]) -> Result<Step<2>, Failed> {
+impl FourBarClosed {
+    /// The step at crank angle `phi` (angles on the turns of `guess`) and the coupler point with
+    /// its analogs `[x, y, x', y', x'', y'']`.
+    #[inline(always)]
+    pub fn full(&self, phi: f64, guess: &[f64; 2]) -> Result<(Step<2>, [f64; 6]), Failed> {
         let (a, b, c) = (self.a, self.b, self.c);
         let (s1, c1) = phi.sin_cos();
         let (bx, by) = (a * c1, a * s1);
@@ -89,15 +90,32 @@ impl Stepper<2> for FourBarClosed {
             -bx - b * e_b * sb - b * w_b * w_b * cb,
             -by + b * e_b * cb - b * w_b * w_b * sb,
         ];
+        Ok((Step { q: [beta, gamma], dq: [w_b, w_g], d2q: [e_b, e_g], iterations: 0 }, point))
+    }
+}
+
+impl Stepper<2> for FourBarClosed {
+    const WARM: bool = false;
+
+    #[inline(always)]
+    fn step(&self, phi: f64, guess: &[f64; 2]) -> Result<Step<2>, Failed> {
+        let (step, point) = self.full(phi, guess)?;
         black_box(point);
-        Ok(Step { q: [beta, gamma], dq: [w_b, w_g], d2q: [e_b, e_g], iterations: 0 })
+        Ok(step)
+    }
+
+    #[inline(always)]
+    fn step_summed(&self, phi: f64, guess: &[f64; 2]) -> Result<(Step<2>, f64), Failed> {
+        let (step, p) = self.full(phi, guess)?;
+        Ok((step, ((p[0] + p[1]) + (p[2] + p[3])) + (p[4] + p[5])))
     }
 }
 
 /// The gear-lever drive of the fixtures (`kinloop_fixtures::gear_lever::GearLever`): the pin
 /// `P = l_c (sin a, cos a) + l_p (sin k a, cos k a)` with `k = 1 - u`, the rocker angle
 /// `phi = atan2(P_x, P_y)` and the block's distance `s = |P|` (on the side `s > 0`), with the
-/// analogs of the polar coordinates; the pin and its analogs go through `black_box`. Angles are
+/// analogs of the polar coordinates; the pin and its analogs go through `black_box` (`step`) or
+/// into the lean harness's sum (`step_summed`). Angles are
 /// moved to the guess's turn, as a sweep needs (both closed forms here do).
 #[derive(Clone, Copy, Debug)]
 pub struct GearLeverClosed {
@@ -117,11 +135,11 @@ impl GearLeverClosed {
     }
 }
 
-impl Stepper<2> for GearLeverClosed {
-    const WARM: bool = false;
-
-    #[inline]
-    fn step(&self, alpha: f64, guess: &[f64; 2]) -> Result<Step<2>, Failed> {
+impl GearLeverClosed {
+    /// The step at carrier angle `alpha` (the rocker angle on the turn of `guess`) and the pin
+    /// with its analogs `[x, y, x', y', x'', y'']`.
+    #[inline(always)]
+    pub fn full(&self, alpha: f64, guess: &[f64; 2]) -> Result<(Step<2>, [f64; 6]), Failed> {
         let k = 1.0 - self.u;
         let (sa, ca) = alpha.sin_cos();
         let (sk, ck) = (k * alpha).sin_cos();
@@ -138,7 +156,24 @@ impl Stepper<2> for GearLeverClosed {
         let dphi = (dp[0] * p[1] - p[0] * dp[1]) / s2;
         let dds = (dp[0] * dp[0] + dp[1] * dp[1] + p[0] * ddp[0] + p[1] * ddp[1] - ds * ds) / s;
         let ddphi = (ddp[0] * p[1] - p[0] * ddp[1]) / s2 - 2.0 * dphi * ds / s;
-        black_box([p, dp, ddp]);
-        Ok(Step { q: [s, phi], dq: [ds, dphi], d2q: [dds, ddphi], iterations: 0 })
+        let pin = [p[0], p[1], dp[0], dp[1], ddp[0], ddp[1]];
+        Ok((Step { q: [s, phi], dq: [ds, dphi], d2q: [dds, ddphi], iterations: 0 }, pin))
+    }
+}
+
+impl Stepper<2> for GearLeverClosed {
+    const WARM: bool = false;
+
+    #[inline(always)]
+    fn step(&self, alpha: f64, guess: &[f64; 2]) -> Result<Step<2>, Failed> {
+        let (step, pin) = self.full(alpha, guess)?;
+        black_box(pin);
+        Ok(step)
+    }
+
+    #[inline(always)]
+    fn step_summed(&self, alpha: f64, guess: &[f64; 2]) -> Result<(Step<2>, f64), Failed> {
+        let (step, p) = self.full(alpha, guess)?;
+        Ok((step, ((p[0] + p[1]) + (p[2] + p[3])) + (p[4] + p[5])))
     }
 }

@@ -32,14 +32,47 @@ impl<M, const NO: usize> Kinloop<M, NO> {
     }
 }
 
-impl<M: Mechanism<N, 1, NO>, const N: usize, const NO: usize> Stepper<N> for Kinloop<M, NO> {
-    #[inline]
-    fn step(&self, phi: f64, guess: &[f64; N]) -> Result<Step<N>, Failed> {
-        match self.m.kinematics_flat(&[phi], guess, &self.cfg) {
-            Ok(k) => Ok(step_of(&k)),
-            Err(e) => Err(Failed::new(e)),
-        }
+/// `kinematics_flat` of `k` at `phi` from `guess`, inlined into the caller as the peers' steps
+/// are: its configuration test, then the kernel it runs with libm's sines and cosines
+/// (`kinematics_step_flat`, always inlined). Called through `kinematics_flat` itself, which the
+/// benchmark's other uses instantiate too, the compiler keeps it out of line (about 90 more
+/// instructions a step: the state returned through memory).
+#[inline(always)]
+fn kin_of<M: Mechanism<N, 1, NO>, const N: usize, const NO: usize>(
+    k: &Kinloop<M, NO>,
+    phi: f64,
+    guess: &[f64; N],
+) -> Result<Kin<N, 1, NO>, Failed> {
+    if let Some(field) = k.cfg.invalid_field() {
+        return Err(Failed::new(format!("invalid configuration: {field}")));
     }
+    k.m.kinematics_step_flat(&[phi], guess, &k.cfg, &mut kinloop::__gen::Libm).map_err(Failed::new)
+}
+
+impl<M: Mechanism<N, 1, NO>, const N: usize, const NO: usize> Stepper<N> for Kinloop<M, NO> {
+    #[inline(always)]
+    fn step(&self, phi: f64, guess: &[f64; N]) -> Result<Step<N>, Failed> {
+        kin_of(self, phi, guess).map(|k| step_of(&k))
+    }
+
+    #[inline(always)]
+    fn step_summed(&self, phi: f64, guess: &[f64; N]) -> Result<(Step<N>, f64), Failed> {
+        kin_of(self, phi, guess).map(|k| (step_of(&k), outputs_sum(&k)))
+    }
+}
+
+/// The sum of a state's outputs and their analogs (one input).
+#[inline(always)]
+pub fn outputs_sum<const N: usize, const NO: usize>(k: &Kin<N, 1, NO>) -> f64 {
+    (0..NO).fold(-0.0, |s, o| s + ((k.out[o] + k.dout[o][0]) + k.d2out[o][0][0]))
+}
+
+/// The sum of a state's positions, analogs, outputs and their analogs (one input): the
+/// numbers the lean harness adds up per step (see [`crate::lean`]).
+#[inline(always)]
+pub fn state_sum<const N: usize, const NO: usize>(k: &Kin<N, 1, NO>) -> f64 {
+    let q = (0..N).fold(-0.0, |s, u| s + ((k.q[u] + k.dq[u][0]) + k.d2q[u][0][0]));
+    q + outputs_sum(k)
 }
 
 /// The generated named API of a mechanism of the benchmarks: `kinematics_with` taking the
@@ -154,6 +187,28 @@ impl<'m, M: Mechanism<N, 1, NO>, const N: usize, const NO: usize> KinloopSweep<'
             }
         }
         Ok(&self.current)
+    }
+
+    /// The next sample's [`state_sum`], read where the sweep keeps the state (the lean harness,
+    /// [`crate::lean`]): nothing is copied out of the sweep.
+    #[inline(always)]
+    pub fn advance_sum(&mut self) -> Result<f64, Failed> {
+        match self.sweep.next_ref() {
+            Some(Ok(k)) => Ok(state_sum(k)),
+            Some(Err(e)) => Err(Failed::new(e)),
+            None => self.restart_sum(),
+        }
+    }
+
+    /// [`KinloopSweep::restart`] from the sweep's last position, and the first sample's sum.
+    #[cold]
+    #[inline(never)]
+    fn restart_sum(&mut self) -> Result<f64, Failed> {
+        if let Some(k) = self.sweep.last_accepted() {
+            self.current.q = k.q;
+        }
+        let k = self.restart()?;
+        Ok(state_sum(&k))
     }
 
     /// A new turn from the last position, and its first sample.

@@ -15,6 +15,7 @@ pub mod decls;
 pub mod expansion;
 pub mod hand;
 pub mod kinloop_variants;
+pub mod lean;
 pub mod linalg;
 pub mod rhombic;
 pub mod ring;

@@ -99,7 +99,7 @@ impl ClosedForm {
 impl Stepper<4> for ClosedForm {
     const WARM: bool = false;
 
-    #[inline]
+    #[inline(always)]
     fn step(&self, phi1: f64, _guess: &[f64; 4]) -> Result<Step<4>, Failed> {
         let (s1, c1) = phi1.sin_cos();
         let (sa, ca) = (phi1 + self.gamma).sin_cos();

@@ -46,6 +46,14 @@ pub trait Stepper<const N: usize> {
     /// Positions at input `phi`, solved from `guess`, with their velocity and acceleration
     /// analogs.
     fn step(&self, phi: f64, guess: &[f64; N]) -> Result<Step<N>, Failed>;
+
+    /// [`Stepper::step`] and the sum of the output points' coordinates and their analogs (0
+    /// without outputs): what the lean harness of the closed-form rows adds up (see
+    /// [`crate::lean`]), where `step` hands the outputs to `black_box`.
+    #[inline(always)]
+    fn step_summed(&self, phi: f64, guess: &[f64; N]) -> Result<(Step<N>, f64), Failed> {
+        self.step(phi, guess).map(|s| (s, 0.0))
+    }
 }
 
 /// How the guess of the next step is made from the previous step.
@@ -137,6 +145,20 @@ impl<const N: usize> Sweep<N> {
     pub fn advance_to<S: Stepper<N>>(&mut self, s: &S, phi: f64) -> Result<&Step<N>, Failed> {
         self.k = (self.k + 1) % self.steps;
         self.solve_at(s, phi)
+    }
+
+    /// Like [`Sweep::advance`], with the sum of the outputs (see [`Stepper::step_summed`]).
+    #[inline(always)]
+    pub fn advance_summed<S: Stepper<N>>(&mut self, s: &S) -> Result<(&Step<N>, f64), Failed> {
+        self.k += 1;
+        if self.k == self.steps {
+            self.k = 0;
+        }
+        let phi = self.h * self.k as i64 as f64;
+        let guess = if S::WARM { self.guess() } else { self.prev.q };
+        let (step, out) = s.step_summed(phi, &guess)?;
+        self.prev = step;
+        Ok((&self.prev, out))
     }
 
     #[inline(always)]

@@ -278,6 +278,25 @@ mod tests {
         assert!(worst > 0.0, "the walks must have rotated");
     }
 
+    /// Equally spaced arguments, as a sweep's samples give them (`k` times a fraction of the
+    /// range), over up to 300 turns: within 8e-16 of libm's, nothing accumulates.
+    #[test]
+    fn equally_spaced_arguments_stay_within_a_few_ulps_of_libm() {
+        let mut worst = 0.0f64;
+        for (n, turns) in [(720usize, 3.0), (20_000, 2.0), (1000, 300.0)] {
+            let mut cache = Rotating::default();
+            let len = core::f64::consts::TAU * turns;
+            let spacing = 1.0 / (n as f64 * turns - 1.0);
+            for k in 0..(n as f64 * turns) as usize {
+                let arg = 0.3 + (k as f64 * spacing) * len;
+                let (s, c) = cache.sin_cos(0, arg);
+                let (sl, cl) = arg.sin_cos();
+                worst = worst.max((s - sl).abs()).max((c - cl).abs());
+            }
+        }
+        assert!(worst <= 8e-16, "worst deviation from libm {worst:e}");
+    }
+
     /// The first call, a jump, a non-finite argument and slots beyond the cache are libm's own.
     #[test]
     fn first_calls_jumps_and_overflowing_slots_are_libm() {

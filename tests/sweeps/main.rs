@@ -13,5 +13,6 @@ mod support;
 mod sweep_any_step;
 mod sweep_api;
 mod sweep_at;
+mod sweep_drift;
 mod sweep_judged_length;
 mod sweeps;

@@ -14,18 +14,20 @@
 //!   unknowns): `ring-point` (sparse factorisation), `ring-dense-point` (its `#[kinloop(dense)]`
 //!   twin), against `series-point`, the same 64 loops in series (closed-form dyads).
 //!
+//! Every variant runs in the same lean harness ([`kinloop_bench::lean`]): the step inlined into
+//! a loop of its own, its twelve numbers added into one accumulator.
+//!
 //! Instructions per step = difference of the totals of two runs with different `STEPS`, divided
 //! by the difference of the steps (the setup cancels).
-
-use std::hint::black_box;
 
 use kinloop_bench::class_four::{self, HandNewton};
 use kinloop_bench::decls::{ClassFour, RhombicDrive};
 use kinloop_bench::hand::{FOUR_BAR, FourBarClosed, GearLeverClosed, gear_lever};
-use kinloop_bench::kinloop_variants::{Kinloop, KinloopSweep};
+use kinloop_bench::kinloop_variants::Kinloop;
+use kinloop_bench::lean;
 use kinloop_bench::rhombic::{ClosedForm, PARAMS, initial_guess};
 use kinloop_bench::ring::{Ring, RingDense, Series};
-use kinloop_bench::sweep::{Stepper, Sweep, WarmStart};
+use kinloop_bench::sweep::{Stepper, WarmStart};
 use kinloop_fixtures::FourBar;
 use kinloop_fixtures::gear_lever::GearLever;
 
@@ -50,35 +52,22 @@ fn turn() -> usize {
     std::env::args().nth(3).and_then(|s| s.parse().ok()).unwrap_or(TURN)
 }
 
-// Each variant's loop is a function of its own: the compiler's inlining decisions inside one
-// variant do not depend on how large the other variants make `main`.
-#[inline(never)]
+// Every variant runs in the lean harness (`kinloop_bench::lean`): one loop per variant, the
+// step inlined into it, the step's twelve numbers added into one accumulator.
 fn steps_of<S: Stepper<N>, const N: usize>(s: &S, guess: [f64; N], steps: usize) -> f64 {
     policy_steps(s, WarmStart::Previous, guess, steps)
 }
 
-#[inline(never)]
 fn policy_steps<S: Stepper<N>, const N: usize>(s: &S, policy: WarmStart, guess: [f64; N], steps: usize) -> f64 {
-    let mut sweep = Sweep::start(s, turn(), policy, guess).expect("start");
-    let mut acc = 0.0;
-    for _ in 0..steps {
-        acc += black_box(sweep.advance(s).expect("step")).q[0];
-    }
-    acc
+    lean::stepper_turns(s, policy, turn(), guess, steps).expect("step")
 }
 
-#[inline(never)]
 fn sweep_of<M: kinloop::Mechanism<N, 1, NO>, const N: usize, const NO: usize>(
     m: &M,
     guess: [f64; N],
     steps: usize,
 ) -> f64 {
-    let mut s = KinloopSweep::start(m, turn(), guess).expect("start");
-    let mut acc = 0.0;
-    for _ in 0..steps {
-        acc += black_box(s.advance().expect("step")).q[0];
-    }
-    acc
+    lean::sweep_turns(m, turn(), guess, steps).expect("sample")
 }
 
 /// The ring's position at input 0.

@@ -217,7 +217,43 @@ struct CountRow {
     target: Option<f64>,
 }
 
-const COUNT_ROWS: [CountRow; 8] = [
+const COUNT_ROWS: [CountRow; 14] = [
+    CountRow {
+        what: "rhombic drive, kinloop's own `Sweep`, 20,000 steps a turn",
+        variant: "sweep@20000",
+        reference: "hand@20000",
+        target: Some(0.6),
+    },
+    CountRow {
+        what: "rhombic drive, point step, 20,000 steps a turn",
+        variant: "point@20000",
+        reference: "hand@20000",
+        target: Some(1.3),
+    },
+    CountRow {
+        what: "four-bar with its coupler point, kinloop's own `Sweep`, 20,000 steps a turn",
+        variant: "four-bar-sweep@20000",
+        reference: "four-bar-hand@20000",
+        target: Some(0.6),
+    },
+    CountRow {
+        what: "four-bar with its coupler point, point step, 20,000 steps a turn",
+        variant: "four-bar-point@20000",
+        reference: "four-bar-hand@20000",
+        target: Some(1.3),
+    },
+    CountRow {
+        what: "gear-lever rocker, kinloop's own `Sweep`, 20,000 steps a turn",
+        variant: "gear-lever-sweep@20000",
+        reference: "gear-lever-hand@20000",
+        target: Some(0.6),
+    },
+    CountRow {
+        what: "gear-lever rocker, point step, 20,000 steps a turn",
+        variant: "gear-lever-point@20000",
+        reference: "gear-lever-hand@20000",
+        target: Some(1.3),
+    },
     CountRow {
         what: "class IV block, second-order predictor (hand Newton with the same predictor)",
         variant: "class-four-point-taylor",
@@ -243,7 +279,7 @@ const COUNT_ROWS: [CountRow; 8] = [
         target: Some(1.3),
     },
     CountRow {
-        what: "rhombic drive, point step, 10^6 steps a turn: the 4000 steps measured cover only the turn's first 1.4 degrees (libm's cost depends on the angle)",
+        what: "rhombic drive, point step, 10^6 steps a turn: the 2000 steps measured cover only 0.7 degrees of the turn (libm's cost depends on the angle)",
         variant: "point@1000000",
         reference: "hand@1000000",
         target: None,

@@ -1,0 +1,114 @@
+//! The lean harness of the instruction counts: one loop for every variant, reference and
+//! candidate alike. Each step's twelve numbers (the positions, velocity and acceleration analogs
+//! of the unknowns, and of the output point where the mechanism has one) are added into one
+//! accumulator, so every variant must compute all of them and none is made to store them: a
+//! hand closed form keeps them in registers, kinloop's `Sweep` is read where it keeps its state.
+//! The step functions are inlined into the loop, which is a function of its own per variant.
+
+use kinloop::Mechanism;
+
+use crate::kinloop_variants::KinloopSweep;
+use std::f64::consts::TAU;
+
+use crate::sweep::{Failed, Step, Stepper, WarmStart};
+
+/// The sum of a step's positions and analogs.
+#[inline(always)]
+pub fn step_sum<const N: usize>(s: &Step<N>) -> f64 {
+    (0..N).fold(-0.0, |acc, u| acc + ((s.q[u] + s.dq[u]) + s.d2q[u]))
+}
+
+/// `steps` steps of `s` over turns of `turn` equally spaced inputs, each warm-started from the
+/// previous step by `policy` (a closed form ignores it): the sum of every step's numbers (see
+/// the module documentation).
+pub fn stepper_turns<S: Stepper<N>, const N: usize>(
+    s: &S,
+    policy: WarmStart,
+    turn: usize,
+    guess: [f64; N],
+    steps: usize,
+) -> Result<f64, Failed> {
+    match policy {
+        WarmStart::Previous => previous_turns(s, turn, guess, steps),
+        WarmStart::Taylor => taylor_turns(s, turn, guess, steps),
+    }
+}
+
+/// The input of the step after the `k`-th of a turn of `turn` steps of `h`, `k` advanced.
+#[inline(always)]
+fn next_input(k: &mut usize, turn: usize, h: f64) -> f64 {
+    *k += 1;
+    if *k == turn {
+        *k = 0;
+    }
+    h * *k as i64 as f64
+}
+
+/// The first step, at input 0: out of the loops' functions, so that the step has one call site
+/// there, in the loop (with two, the compiler may inline it in neither).
+#[inline(never)]
+fn first_step<S: Stepper<N>, const N: usize>(s: &S, guess: &[f64; N]) -> Result<Step<N>, Failed> {
+    s.step(0.0, guess)
+}
+
+/// [`stepper_turns`] from the previous position: only the positions are kept between steps.
+#[inline(never)]
+fn previous_turns<S: Stepper<N>, const N: usize>(
+    s: &S,
+    turn: usize,
+    guess: [f64; N],
+    steps: usize,
+) -> Result<f64, Failed> {
+    let (h, mut k) = (TAU / turn as f64, 0usize);
+    let mut q = first_step(s, &guess)?.q;
+    let mut acc = 0.0;
+    for _ in 0..steps {
+        let (step, out) = s.step_summed(next_input(&mut k, turn, h), &q)?;
+        q = step.q;
+        acc += step_sum(&step) + out;
+    }
+    Ok(acc)
+}
+
+/// [`stepper_turns`] from the second-order prediction (a closed form is given the previous
+/// position instead: it computes no prediction).
+#[inline(never)]
+fn taylor_turns<S: Stepper<N>, const N: usize>(
+    s: &S,
+    turn: usize,
+    guess: [f64; N],
+    steps: usize,
+) -> Result<f64, Failed> {
+    let (h, mut k) = (TAU / turn as f64, 0usize);
+    let mut prev = first_step(s, &guess)?;
+    let mut acc = 0.0;
+    for _ in 0..steps {
+        let g = if S::WARM {
+            std::array::from_fn(|u| prev.q[u] + h * (prev.dq[u] + 0.5 * h * prev.d2q[u]))
+        } else {
+            prev.q
+        };
+        let (step, out) = s.step_summed(next_input(&mut k, turn, h), &g)?;
+        prev = step;
+        acc += step_sum(&step) + out;
+    }
+    Ok(acc)
+}
+
+/// `steps` samples of kinloop's own `Sweep` of `m` over turns of `turn` samples (a new sweep
+/// per turn, from the last position): the sum of every sample's numbers, as
+/// [`stepper_turns`] sums its steps'.
+#[inline(never)]
+pub fn sweep_turns<M: Mechanism<N, 1, NO>, const N: usize, const NO: usize>(
+    m: &M,
+    turn: usize,
+    guess: [f64; N],
+    steps: usize,
+) -> Result<f64, Failed> {
+    let mut sweep = KinloopSweep::start(m, turn, guess)?;
+    let mut acc = 0.0;
+    for _ in 0..steps {
+        acc += sweep.advance_sum()?;
+    }
+    Ok(acc)
+}
