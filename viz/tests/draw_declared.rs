@@ -24,6 +24,8 @@ fn translated(svg: &str, tag: &str) -> Vec<[f64; 2]> {
     let doc = roxmltree::Document::parse(svg).expect("well-formed SVG");
     doc.descendants()
         .filter(|n| n.has_tag_name(tag))
+        // A joint's label is placed by a translated group too: not a pivot.
+        .filter(|n| n.attribute("class") != Some("joint-label"))
         .filter_map(|n| n.attribute("transform"))
         .filter_map(|t| t.strip_prefix("translate(")?.strip_suffix(')').map(str::to_string))
         .map(|xy| {

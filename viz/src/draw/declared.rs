@@ -249,6 +249,12 @@ impl DefaultDrawing {
     }
 
     fn pt(&self, j: usize) -> Pt {
+        // A declared `point` is an output of the mechanism: drawn from its columns by name, so
+        // that it is labelled, traced and read back (an interactive page names it) as the point.
+        let joint = &self.source.description.joints[j];
+        if joint.named {
+            return Pt::point(joint.name.clone());
+        }
         let source = Arc::clone(&self.source);
         Pt::expr(move |st| match source.description.evaluate(&source.params, st.x, st.q) {
             Ok(v) => v.joints[j],

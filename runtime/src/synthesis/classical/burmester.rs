@@ -305,5 +305,4 @@ fn max_deviation<'a>(dyads: impl Iterator<Item = &'a Dyad>, poses: &[Pose], size
 }
 
 #[cfg(test)]
-#[path = "burmester_tests.rs"]
 mod tests;

@@ -194,5 +194,4 @@ impl FunctionGenerator {
 }
 
 #[cfg(test)]
-#[path = "freudenstein_tests.rs"]
 mod tests;

@@ -9,7 +9,7 @@ use crate::synthesis::classical::{FunctionMap, chebyshev_points, structural_erro
 
 /// `reference/freudenstein_log10.csv`: `case,name,value`.
 fn reference(case: &str, name: &str) -> f64 {
-    include_str!("reference/freudenstein_log10.csv")
+    include_str!("../reference/freudenstein_log10.csv")
         .lines()
         .find_map(|l| {
             let mut f = l.split(',');

@@ -91,7 +91,7 @@ fn every_point_of_the_four_pose_curve_keeps_its_circle() {
 /// mpmath's Burmester pairs.
 fn reference() -> (Vec<Pose>, Vec<(Vec2, Vec2)>) {
     let (mut poses, mut pairs) = (vec![], vec![]);
-    for line in include_str!("reference/burmester_five_poses.csv").lines().skip(1) {
+    for line in include_str!("../reference/burmester_five_poses.csv").lines().skip(1) {
         let f: Vec<&str> = line.split(',').collect();
         let v = |i: usize| f[i].parse::<f64>().unwrap();
         match f[0] {
@@ -189,7 +189,7 @@ fn bad_input_is_an_error_not_a_panic() {
 #[allow(clippy::type_complexity)]
 fn random_problems() -> Vec<(Vec<Pose>, Vec<(Vec2, Vec2)>)> {
     let mut problems: Vec<(Vec<Pose>, Vec<(Vec2, Vec2)>)> = Vec::new();
-    for line in include_str!("reference/burmester_random.csv").lines().skip(1) {
+    for line in include_str!("../reference/burmester_random.csv").lines().skip(1) {
         let f: Vec<&str> = line.split(',').collect();
         let i: usize = f[0].parse().unwrap();
         if problems.len() <= i {
