@@ -110,8 +110,21 @@ pub trait Mechanism<const N: usize, const NI: usize, const NO: usize> {
         cfg: &NewtonConfig,
         trig: &mut T,
     ) -> Result<Kin<N, NI, NO>, Error> {
-        match self.kinematics_step_sink::<T, ByValue, true>(x, guess, cfg, trig, ByValue) {
-            // A closed form outside the sizes it computes exactly: see `extreme_scale`.
+        self.kinematics_step_sink::<T, ByValue, true>(x, guess, cfg, trig, ByValue)
+    }
+    /// [`Mechanism::kinematics_step_flat`] with libm's sines and cosines, and a failure of a
+    /// mechanism whose lengths leave the range the closed forms compute in (beyond about
+    /// `1e±144`) solved again by Newton over the whole system (see `extreme_scale`): what the
+    /// macro's `kinematics_flat` of a small mechanism is.
+    #[doc(hidden)]
+    #[inline(always)]
+    fn kinematics_step_rescued(
+        &self,
+        x: &[f64; NI],
+        guess: &[f64; N],
+        cfg: &NewtonConfig,
+    ) -> Result<Kin<N, NI, NO>, Error> {
+        match self.kinematics_step_flat(x, guess, cfg, &mut crate::trig::Libm) {
             Err(e) => extreme_scale::rescue(self, x, guess, cfg, e),
             ok => ok,
         }
@@ -160,7 +173,10 @@ pub trait Mechanism<const N: usize, const NI: usize, const NO: usize> {
     ) -> Result<S::Out, Error> {
         // Through the state by value, which a failure at an extreme size can still be turned
         // into (see `extreme_scale`); this path runs only where a deferred test failed.
-        let kin = self.kinematics_step_flat(x, guess, cfg, trig)?;
+        let kin = match self.kinematics_step_flat(x, guess, cfg, trig) {
+            Err(e) => extreme_scale::rescue(self, x, guess, cfg, e)?,
+            Ok(kin) => kin,
+        };
         Ok(sink.put(|| kin))
     }
     /// Analogs and outputs at a given (already solved) position.

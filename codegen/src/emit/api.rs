@@ -144,7 +144,8 @@ fn mechanism_impl(model: &Model, plan: &Plan, t: &Types) -> TokenStream {
     // it: no call, the state written in place); `kinematics_flat` is the same kernel, inlined
     // where the compiler chooses. A large one is not copied.
     // The sweep's kernel asks its cache for the sines and cosines free of the unknowns (it
-    // advances them by rotation); `kinematics_flat` gives it libm. Its checks are switched by
+    // advances them by rotation); `kinematics_flat` gives it libm (and a failure at an extreme
+    // size its rescue, `Mechanism::kinematics_step_rescued`). Its checks are switched by
     // `__CHECKED`: `kinematics_flat` tests on the way; the sweep's step defers the tests to the
     // end, where a failed one hands the step to the checked kernel, out of line
     // (`Mechanism::kinematics_step_checked`).
@@ -160,7 +161,7 @@ fn mechanism_impl(model: &Model, plan: &Plan, t: &Types) -> TokenStream {
             #[inline]
             fn kinematics_flat(&self, #x, #g, #cfg) -> #kin {
                 #check
-                self.kinematics_step_flat(__x, __guess, __cfg, &mut #rt::Libm)
+                self.kinematics_step_rescued(__x, __guess, __cfg)
             }
         }
     } else {
