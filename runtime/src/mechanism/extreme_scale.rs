@@ -31,17 +31,10 @@ pub const CLOSED_FORM_SIZES: (f64, f64) = (1.0 / TWO_480, TWO_480);
 /// `2^480`, exact.
 const TWO_480: f64 = (1u128 << 120) as f64 * (1u128 << 120) as f64 * (1u128 << 120) as f64 * (1u128 << 120) as f64;
 
-/// Whether the mechanism at `(x, q)` lies outside [`CLOSED_FORM_SIZES`]: its largest equation
-/// magnitude (finite and positive) beyond either end.
-fn outside_closed_form_sizes<M, const N: usize, const NI: usize, const NO: usize>(
-    m: &M,
-    x: &[f64; NI],
-    q: &[f64; N],
-) -> bool
-where
-    M: Mechanism<N, NI, NO> + ?Sized,
-{
-    let size = m.jacobian_flat(x, q).scale.iter().fold(0.0f64, |s, v| if v.is_finite() { s.max(v.abs()) } else { s });
+/// Whether equation magnitudes `scale` (finite and positive ones) put the mechanism outside
+/// [`CLOSED_FORM_SIZES`]: its largest beyond either end.
+fn outside_closed_form_sizes(scale: &[f64]) -> bool {
+    let size = scale.iter().fold(0.0f64, |s, v| if v.is_finite() { s.max(v.abs()) } else { s });
     size > 0.0 && !(size >= CLOSED_FORM_SIZES.0 && size <= CLOSED_FORM_SIZES.1)
 }
 
@@ -60,13 +53,16 @@ pub(crate) fn rescue<M, const N: usize, const NI: usize, const NO: usize>(
 where
     M: Mechanism<N, NI, NO> + ?Sized,
 {
-    if !guess.iter().chain(x.iter()).all(|v| v.is_finite()) || !outside_closed_form_sizes(m, x, guess) {
+    if !guess.iter().chain(x.iter()).all(|v| v.is_finite()) {
+        return Err(error);
+    }
+    let jac = m.jacobian_flat(x, guess);
+    if !outside_closed_form_sizes(&jac.scale) {
         return Err(error);
     }
     // Newton in dimensionless unknowns `z = q / unit` (radians for an angle, fractions of its
     // loop's size for a length): the columns of the Jacobian are then of one magnitude, as a
     // block of the generated Newton solver has them.
-    let jac = m.jacobian_flat(x, guess);
     let unit = jac.unit.map(|u| if u > 0.0 && u.is_finite() { u } else { 1.0 });
     let turns = M::UNKNOWN_KINDS.map(|k| k == QuantityKind::Angle);
     let mags = Magnitudes::new(jac.scale, [1.0; N]).with_turns(turns);

@@ -243,14 +243,9 @@ pub fn dyad_roots(a: f64, b: f64, c: f64, flip: bool, cfg: &NewtonConfig) -> Res
 #[inline(never)]
 fn dyad_roots_rescaled(a: f64, b: f64, c: f64, flip: bool, cfg: &NewtonConfig) -> Result<(f64, f64), BlockFailure> {
     let big = a.abs().max(b.abs()).max(c.abs());
-    let (k, r2) = if big.is_finite() && big >= SMALLEST_PRECISE_COEFFICIENT {
-        let k = reciprocal_power_of_two(big);
-        let (a, b) = (a * k, b * k);
-        (k, a * a + b * b)
-    } else {
-        (1.0, a * a + b * b)
-    };
+    let k = if big.is_finite() && big >= SMALLEST_PRECISE_COEFFICIENT { reciprocal_power_of_two(big) } else { 1.0 };
     let (a, b, c) = (a * k, b * k, c * k);
+    let r2 = a * a + b * b;
     let d = root_offset(r2 - c * c, r2, c, flip, cfg).map_err(|f| match f {
         // The residual back in the coefficients' units.
         BlockFailure::NoAssembly { row, iterations, evaluations, residual } => {
