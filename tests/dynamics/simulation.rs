@@ -253,7 +253,7 @@ fn running_into_a_limit_position_is_a_typed_error() {
         // precisely.
         DynamicsError::Kinematics { t, source } => {
             let at = source.location().map(|l| l.inputs[0].1).unwrap_or(f64::NAN);
-            assert!(t.is_finite() && (limit - at).abs() < 1e-9, "{err}");
+            assert!(t.is_some_and(f64::is_finite) && (limit - at).abs() < 1e-9, "{err}");
             assert!(matches!(source, kinloop::Error::Singular { .. } | kinloop::Error::NoAssembly { .. }), "{err}");
         }
         other => panic!("expected a singular motion or position, got {other}"),

@@ -69,11 +69,11 @@ pub enum DynamicsError {
         pivot: f64,
     },
     /// The kinematic solve failed (a limit position, a singular position, no assembly), at
-    /// time `t` of a simulation (NaN outside a simulation).
+    /// time `t` of a simulation (`None` outside a simulation).
     #[error("kinematics failed{}: {source}", at_time(*.t))]
     Kinematics {
-        /// Time of the simulation when it happened (NaN when not simulating).
-        t: f64,
+        /// Time of the simulation when it happened (`None` when not simulating).
+        t: Option<f64>,
         /// The kinematic error, with its location.
         source: Error,
     },
@@ -168,9 +168,9 @@ impl From<DynamicsError> for Error {
     }
 }
 
-/// `" at t = .."` for a time, nothing outside a simulation (a NaN time).
-fn at_time(t: f64) -> String {
-    if t.is_nan() { String::new() } else { format!(" at t = {t}") }
+/// `" at t = .."` for a time, nothing outside a simulation.
+fn at_time(t: Option<f64>) -> String {
+    t.map_or_else(String::new, |t| format!(" at t = {t}"))
 }
 
 /// `" at input [..]"`, or nothing for a result independent of the inputs.
@@ -190,6 +190,6 @@ pub(crate) fn spacing(v: f64) -> f64 {
 impl DynamicsError {
     /// A kinematic failure outside a simulation.
     pub(crate) fn kin(source: Error) -> Self {
-        DynamicsError::Kinematics { t: f64::NAN, source }
+        DynamicsError::Kinematics { t: None, source }
     }
 }
