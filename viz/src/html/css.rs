@@ -29,4 +29,5 @@ body{margin:0;font-family:system-ui,sans-serif;color:#1c2833;background:#f7f8fa}
 .kl-charts{display:flex;flex-direction:column;gap:6px}
 .kl-chart{background:white;border:1px solid #d5dbe1;border-radius:4px}
 .kl-note{font-size:.8rem;color:#5d6d7e}
+.kl-drawing-note{margin:6px 0 0;font-size:.85rem;color:#a0522d;max-width:640px}
 "#;

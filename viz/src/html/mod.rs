@@ -162,6 +162,7 @@ where
     let figure = figure::figure(&fr, &drawing.style, 0, &joint_names(drawing), &traces, &labels);
     page::document(&page::Parts {
         title: &config.title,
+        notes: &drawing.notes,
         frames: &fr,
         channels: &channels,
         figure,

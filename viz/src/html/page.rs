@@ -25,6 +25,8 @@ fn number(v: f64, what: &str) -> Result<String, HtmlError> {
 /// What the page is made of.
 pub(crate) struct Parts<'a> {
     pub title: &'a str,
+    /// The drawing's notes, written under the picture.
+    pub notes: &'a [String],
     pub frames: &'a Frames,
     pub channels: &'a [Channel],
     /// The picture (SVG).
@@ -150,6 +152,9 @@ pub(crate) fn document(p: &Parts) -> Result<String, HtmlError> {
             );
         }
         s.push_str("</ul>\n");
+    }
+    for note in p.notes {
+        let _ = write!(s, "<p class=\"kl-drawing-note\">note: {}</p>\n", escape(note));
     }
     s.push_str("</figure>\n<section class=\"kl-side\">\n<table class=\"kl-readouts\"><tbody>");
     for (k, c) in p.channels.iter().enumerate() {
