@@ -60,6 +60,7 @@ mod annotate;
 mod compose;
 mod declared;
 mod error;
+mod grid;
 #[cfg(feature = "png")]
 mod hershey;
 mod motion;
@@ -78,10 +79,11 @@ pub use annotate::Annotate;
 pub use compose::Animation;
 pub use declared::{DefaultDrawing, Draw};
 pub use error::DrawError;
+pub use grid::{GridMotion, MAX_GRID_CELLS};
 pub use motion::{Marked, Motion, Pose};
 pub use spec::{Drawing, Item, Pt, Scalar, StateRef};
 pub use style::Style;
 pub use view::{Canvas, View};
 
 // Interactive pages of a drawing (`kinloop::draw::html`), from the crate's `html` module.
-pub use crate::html::{HtmlConfig, HtmlError, Readout, html};
+pub use crate::html::{HtmlConfig, HtmlError, Readout, html, html_grid};

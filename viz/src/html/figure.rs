@@ -186,15 +186,19 @@ pub(crate) fn figure(
         r#"<svg xmlns="http://www.w3.org/2000/svg" id="kl-drawing" width="{w}" height="{h}" viewBox="0 0 {w} {h}" data-scale="{}" data-origin="{} {}" data-frame="{first}"><rect width="{w}" height="{h}" fill="white"/>"#,
         fr.view.scale, origin[0], origin[1]
     );
-    for (k, path) in fr.paths.iter().enumerate() {
-        let pts: Vec<String> = path.iter().map(|p| format!("{},{}", t(p[0]), t(p[1]))).collect();
+    for (k, pieces) in fr.paths.iter().enumerate() {
         let colour = style.traces.get(k % style.traces.len().max(1)).map_or("#d95f02", String::as_str);
-        let _ = write!(
-            s,
-            r#"<polyline class="kl-trace" data-trace="{k}" points="{}" fill="none" stroke="{colour}" stroke-width="{}" stroke-linejoin="round" opacity="0.7"/>"#,
-            pts.join(" "),
-            px(style.trace_width)
-        );
+        // The pieces of a grid's rows are many: thinner and fainter than a sweep's one path.
+        let (width, opacity) =
+            if pieces.len() > 1 { (px(0.6 * style.trace_width), "0.45") } else { (px(style.trace_width), "0.7") };
+        for path in pieces {
+            let pts: Vec<String> = path.iter().map(|p| format!("{},{}", t(p[0]), t(p[1]))).collect();
+            let _ = write!(
+                s,
+                r#"<polyline class="kl-trace" data-trace="{k}" points="{}" fill="none" stroke="{colour}" stroke-width="{width}" stroke-linejoin="round" opacity="{opacity}"/>"#,
+                pts.join(" "),
+            );
+        }
     }
     let mut o = 0;
     for slot in &fr.slots {
@@ -215,6 +219,8 @@ pub(crate) fn figure(
         );
     }
     let f = &fr.frames[first];
+    // The live mechanism in one group: a grid's page hides it where it cannot be assembled.
+    s.push_str(r#"<g id="kl-mechanism">"#);
     items(&mut s, style, &fr.slots, f, &Pen { ink: &style.ink, fill: &style.fill, ghost: false }, Some(joints));
     for (k, name) in traces.iter().enumerate() {
         let o = fr.traces_at + 2 * k;
@@ -227,6 +233,6 @@ pub(crate) fn figure(
             t(f[o + 1])
         );
     }
-    s.push_str("</svg>");
+    s.push_str("</g></svg>");
     s
 }
