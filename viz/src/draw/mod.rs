@@ -57,6 +57,7 @@
 //! ```
 
 mod annotate;
+mod candidates;
 mod compose;
 mod declared;
 mod error;
@@ -76,6 +77,7 @@ mod text_paths;
 mod view;
 
 pub use annotate::Annotate;
+pub use candidates::{CandidatesConfig, candidates};
 pub use compose::Animation;
 pub use declared::{DefaultDrawing, Draw};
 pub use error::DrawError;

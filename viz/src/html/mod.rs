@@ -69,7 +69,7 @@
 //! # Ok::<(), Box<dyn std::error::Error>>(())
 //! ```
 
-mod chart;
+pub(crate) mod chart;
 mod config;
 mod css;
 mod error;
