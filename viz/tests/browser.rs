@@ -237,7 +237,8 @@ fn a_sweep_stopped_at_a_limit_position_ends_the_slider_there() {
 
 /// Every gallery page (no browser): one per animated mechanism, linked from the README, its
 /// SVG well-formed without NaN, every chart axis titled with its unit, a full turn of the
-/// input ticked 0 to 360, a readout per input, and no address outside the page.
+/// input ticked 0 to 360, a readout per input (and a slider per input on a grid's page), and
+/// no address outside the page.
 #[test]
 fn every_gallery_page_is_self_contained_and_finite() {
     let dir = root().join("docs/pages");
@@ -253,7 +254,15 @@ fn every_gallery_page_is_self_contained_and_finite() {
             assert!(svg.is_file(), "{} has its animation", path.display());
             assert!(text.len() < 150_000, "{}: {} bytes", path.display(), text.len());
             let page = read_page(&text);
-            assert!(!page.readouts.is_empty() && !page.charts.is_empty(), "{}", path.display());
+            assert!(!page.readouts.is_empty(), "{}", path.display());
+            if text.contains(r#"id="kl-slider-0""#) {
+                // A grid of several inputs: a slider and a readout for each, no chart.
+                let sliders = text.matches(r#"class="kl-slider""#).count();
+                assert!(sliders >= 2 && page.readouts.len() >= sliders, "{}", path.display());
+                assert!(page.charts.is_empty() && text.contains(r#""grid":{"n":["#), "{}", path.display());
+            } else {
+                assert!(!page.charts.is_empty(), "{}", path.display());
+            }
             for (title, xs, _) in &page.charts {
                 let labels: Vec<f64> = xs.iter().map(|(v, _)| *v).collect();
                 if labels.first() == Some(&0.0) && labels.last() == Some(&360.0) {
@@ -263,7 +272,7 @@ fn every_gallery_page_is_self_contained_and_finite() {
             pages += 1;
         }
     }
-    assert!(pages >= 8, "one page per gallery mechanism, found {pages}");
+    assert!(pages >= 9, "one page per gallery mechanism, found {pages}");
 }
 
 /// Bad data is a typed error, never NaN in the file: a readout that is NaN at some pose, a
