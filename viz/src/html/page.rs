@@ -193,7 +193,7 @@ pub(crate) fn document(p: &Parts) -> Result<String, HtmlError> {
         s.push_str("</ul>\n");
     }
     for note in p.notes {
-        let _ = write!(s, "<p class=\"kl-drawing-note\">note: {}</p>\n", escape(note));
+        let _ = writeln!(s, "<p class=\"kl-drawing-note\">note: {}</p>", escape(note));
     }
     s.push_str("</figure>\n<section class=\"kl-side\">\n<table class=\"kl-readouts\"><tbody>");
     for (k, c) in p.channels.iter().enumerate() {
