@@ -147,6 +147,12 @@ fn path_generation() -> Result<(), Box<dyn std::error::Error>> {
         let path = out_dir("synthesis").join("coupler_curve.svg");
         std::fs::write(&path, kinloop::draw::candidates(&CouplerFourBar::default(), best, &targets, &config)?)?;
         println!("   wrote {}", path.display());
+        // The best one moving through the targets, in a page with a slider.
+        let page = kinloop::draw::HtmlConfig::new("Best four-bar through the ten targets").show("p.x").show("p.y");
+        let html = kinloop::draw::candidate_page(&CouplerFourBar::default(), &best[0], &targets, &config, &page)?;
+        let path = out_dir("synthesis").join("best_candidate.html");
+        std::fs::write(&path, html)?;
+        println!("   wrote {}", path.display());
     }
     println!();
     Ok(())

@@ -6,7 +6,7 @@
 //! errors, and nothing is NaN.
 
 use kinloop::synthesis::{Design, LocalConfig, PlacementBounds, Problem, Search, Task};
-use kinloop_viz::draw::{CandidatesConfig, DrawError, candidates};
+use kinloop_viz::draw::{CandidatesConfig, DrawError, HtmlConfig, candidate_page, candidates};
 use std::f64::consts::TAU;
 
 kinloop::mechanism! {
@@ -191,6 +191,54 @@ fn candidates_are_drawn_through_their_targets_on_axes_with_units() {
     let mut short = best[0].clone();
     short.params.pop();
     assert!(matches!(candidates(&Coupler::default(), &[short], &targets, &config), Err(DrawError::InvalidSetting(_))));
+    // The best valid candidate's page: the mechanism placed in the targets' plane, the targets
+    // marked and numbered at their coordinates (the page's own scale and origin), the traced
+    // point at the first target within its error at the first frame, the readouts of p in the
+    // targets' plane.
+    let valid = best.iter().find(|c| c.is_valid()).unwrap();
+    let page = candidate_page(
+        &Coupler::default(),
+        valid,
+        &targets,
+        &config,
+        &HtmlConfig::new("Best four-bar").show("p.x").show("p.y").with_autoplay(false),
+    )
+    .unwrap();
+    assert!(!page.contains("NaN") && !page.contains("Infinity"));
+    std::fs::write(std::path::Path::new(env!("CARGO_TARGET_TMPDIR")).join("candidate.html"), &page).unwrap();
+    let at = page.find("<svg").unwrap();
+    let svg = &page[at..at + page[at..].find("</svg>").unwrap() + "</svg>".len()];
+    let doc = roxmltree::Document::parse(svg).unwrap();
+    let root = doc.root_element();
+    let scale: f64 = root.attribute("data-scale").unwrap().parse().unwrap();
+    let origin: Vec<f64> = root.attribute("data-origin").unwrap().split(' ').map(|v| v.parse().unwrap()).collect();
+    let world = |n: &roxmltree::Node| {
+        let (x, y): (f64, f64) =
+            (n.attribute("cx").unwrap().parse().unwrap(), n.attribute("cy").unwrap().parse().unwrap());
+        [(x - origin[0]) / scale, (origin[1] - y) / scale]
+    };
+    // Pixels to a tenth: half of it off at most.
+    let tol = (0.05 + 1e-6) / scale;
+    let marks: Vec<[f64; 2]> =
+        doc.descendants().filter(|n| n.attribute("class") == Some("kl-target")).map(|n| world(&n)).collect();
+    assert_eq!(marks.len(), targets.len());
+    for (q, t) in marks.iter().zip(&targets) {
+        assert!((q[0] - t[0]).abs() <= tol && (q[1] - t[1]).abs() <= tol, "{q:?} vs {t:?}");
+    }
+    let labels: Vec<&str> = doc
+        .descendants()
+        .filter(|n| n.attribute("class") == Some("kl-target-label"))
+        .filter_map(|n| n.text())
+        .collect();
+    assert_eq!(labels.first(), Some(&"1"));
+    assert_eq!(labels.len(), 10);
+    let dot = doc
+        .descendants()
+        .find(|n| n.attribute("class") == Some("kl-dot") && n.attribute("data-name") == Some("p"))
+        .unwrap();
+    let q = world(&dot);
+    let t = targets[0];
+    assert!((q[0] - t[0]).hypot(q[1] - t[1]) <= valid.errors[0] + 2.0 * tol, "p {q:?} at the first target {t:?}");
     // A full turn from the first target: a longer closed path.
     let turn = candidates(&Coupler::default(), &best[..1], &targets, &config.clone().with_span(TAU)).unwrap();
     assert!(roxmltree::Document::parse(&turn).is_ok() && !turn.contains("NaN"));

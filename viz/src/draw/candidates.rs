@@ -9,9 +9,11 @@ use super::motion::{Motion, Pose};
 use super::spec::{Drawing, Item, Pt, Scalar, StateRef};
 use super::svg::{escape, num};
 use crate::html::chart::ticks;
+use crate::html::{HtmlConfig, HtmlError, html_marked};
 use kinloop_runtime::synthesis::Candidate;
 use kinloop_runtime::{Kin, Sensitivities, Sweep};
 use std::fmt::Write;
+use std::sync::Arc;
 
 /// Colours of the candidates, best first (a qualitative palette, distinct in print).
 const PALETTE: [&str; 6] = ["#1b9e77", "#d95f02", "#7570b3", "#e7298a", "#66a61e", "#a6761d"];
@@ -101,10 +103,56 @@ impl CandidatesConfig {
 struct Placement([f64; 4]);
 
 impl Placement {
+    fn of(c: &Candidate) -> Placement {
+        Placement(c.placement.unwrap_or([0.0, 0.0, 0.0, 1.0]))
+    }
+
     fn point(&self, [x, y]: [f64; 2]) -> [f64; 2] {
         let [dx, dy, angle, s] = self.0;
         let (sn, cs) = angle.sin_cos();
         [dx + s * (cs * x - sn * y), dy + s * (sn * x + cs * y)]
+    }
+
+    /// The motion with its points' output columns moved (its named points are drawn from them).
+    fn motion(&self, mut motion: Motion) -> Result<Motion, DrawError> {
+        for name in motion.point_names() {
+            let (ix, iy) = motion.point_columns(&name)?;
+            for pose in &mut motion.poses {
+                [pose.out[ix], pose.out[iy]] = self.point([pose.out[ix], pose.out[iy]]);
+            }
+        }
+        Ok(motion)
+    }
+
+    /// The drawing moved: fixed points and expressions mapped, angles turned, radii scaled
+    /// (named points are read from the moved motion).
+    fn drawing(&self, mut d: Drawing) -> Drawing {
+        let place = *self;
+        let [_, _, turn, scale] = self.0;
+        let pt = |p: Pt| match p {
+            Pt::Point(n) => Pt::Point(n),
+            Pt::Fixed(xy) => Pt::Fixed(place.point(xy)),
+            Pt::Expr(f) => Pt::Expr(Arc::new(move |s: &StateRef| place.point(f(s)))),
+        };
+        let angle = |a: Scalar| match a {
+            Scalar::Const(v) => Scalar::Const(v + turn),
+            Scalar::Expr(f) => Scalar::expr(move |s| f(s) + turn),
+        };
+        d.items = std::mem::take(&mut d.items)
+            .into_iter()
+            .map(|item| match item {
+                Item::Link { through, closed } => Item::Link { through: through.into_iter().map(pt).collect(), closed },
+                Item::Pivot { at } => Item::Pivot { at: pt(at) },
+                Item::Slider { at, angle: a } => Item::Slider { at: pt(at), angle: angle(a) },
+                Item::Gear { centre, radius, angle: a } => {
+                    Item::Gear { centre: pt(centre), radius: radius * scale, angle: angle(a) }
+                }
+                Item::Joint { at } => Item::Joint { at: pt(at) },
+            })
+            .collect();
+        d.traces = std::mem::take(&mut d.traces).into_iter().map(pt).collect();
+        d.labels = std::mem::take(&mut d.labels).into_iter().map(|(p, t)| (pt(p), t)).collect();
+        d
     }
 }
 
@@ -238,7 +286,7 @@ where
     })?;
     let m = m.with_params_flat(params);
     let motion = motion(&m, c, config)?;
-    let place = Placement(c.placement.unwrap_or([0.0, 0.0, 0.0, 1.0]));
+    let place = Placement::of(c);
     let (ix, iy) = motion.point_columns(&config.point)?;
     let path = motion
         .poses
@@ -261,6 +309,57 @@ where
         });
     }
     Ok(Drawn { shapes, path, cut: motion.stopped })
+}
+
+/// `M` with the parameters of candidate `c` (ranked `rank`).
+fn with_params<M, const N: usize, const NI: usize, const NO: usize, const NP: usize>(
+    m: &M,
+    c: &Candidate,
+    rank: usize,
+) -> Result<M, DrawError>
+where
+    M: Sensitivities<N, NI, NO, NP>,
+{
+    let params = <[f64; NP]>::try_from(c.params.as_slice()).map_err(|_| {
+        DrawError::InvalidSetting(format!("candidate {rank} has {} parameters; `{}` has {NP}", c.params.len(), M::NAME))
+    })?;
+    Ok(m.with_params_flat(params))
+}
+
+/// An interactive page ([`html`](crate::html::html)) of candidate `c`: its mechanism (the
+/// default drawing of `m` with the candidate's parameters, moved by its placement into the
+/// targets' plane) moving through the targets (or over [`CandidatesConfig::span`]), with the
+/// targets marked and numbered from 1 over the picture. Readouts of points (`p.x`) are in the
+/// targets' plane too.
+///
+/// # Errors
+/// As [`candidates`] (through [`HtmlError::Draw`]) and as [`html`](crate::html::html).
+pub fn candidate_page<M, const N: usize, const NI: usize, const NO: usize, const NP: usize>(
+    m: &M,
+    c: &Candidate,
+    targets: &[[f64; 2]],
+    config: &CandidatesConfig,
+    page: &HtmlConfig,
+) -> Result<String, HtmlError>
+where
+    M: Sensitivities<N, NI, NO, NP>,
+{
+    config.check()?;
+    if targets.is_empty() {
+        return Err(DrawError::InvalidSetting("a candidate's page needs its targets".into()).into());
+    }
+    if let Some(t) = targets.iter().find(|t| !(t[0].is_finite() && t[1].is_finite())) {
+        return Err(DrawError::NonFinite { what: format!("target {t:?}"), pose: 0 }.into());
+    }
+    let m = with_params(m, c, 0)?;
+    let place = Placement::of(c);
+    let motion = place.motion(motion(&m, c, config)?)?;
+    let drawing = place.drawing(m.drawing().into_drawing());
+    // The picture fitted to the targets too (drawn as joints there for the fit only).
+    let mut fit = drawing.clone();
+    fit.items.extend(targets.iter().map(|t| Item::Joint { at: Pt::Fixed(*t) }));
+    let view = fit.view(&motion)?;
+    html_marked(&m, &drawing, &motion, page, targets, Some(view))
 }
 
 /// The figure's map from the plane to pixels: `x -> x0 + s x`, `y -> y0 - s y`.

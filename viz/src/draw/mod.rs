@@ -85,7 +85,7 @@ mod text_paths;
 mod view;
 
 pub use annotate::Annotate;
-pub use candidates::{CandidatesConfig, candidates};
+pub use candidates::{CandidatesConfig, candidate_page, candidates};
 pub use compose::Animation;
 pub use declared::{DefaultDrawing, Draw};
 pub use error::DrawError;

@@ -169,7 +169,8 @@ fn items(out: &mut String, style: &Style, slots: &[Slot], f: &[i64], pen: &Pen, 
 }
 
 /// The picture at frame `first`, with `events` labelled by `labels` (one per event).
-/// `joints`: the names of each item's joints, `traces`: of each traced point (`point` outputs).
+/// `joints`: the names of each item's joints, `traces`: of each traced point (`point` outputs);
+/// `marks`: fixed points (mechanism units) marked and numbered from 1 (a synthesis's targets).
 pub(crate) fn figure(
     fr: &Frames,
     style: &Style,
@@ -177,6 +178,7 @@ pub(crate) fn figure(
     joints: &[Vec<Option<String>>],
     traces: &[Option<String>],
     labels: &[String],
+    marks: &[[f64; 2]],
 ) -> String {
     let (w, h) = (px(fr.view.width), px(fr.view.height));
     let origin = fr.view.px([0.0, 0.0]);
@@ -216,6 +218,18 @@ pub(crate) fn figure(
             16 + 15 * j,
             style.event,
             escape(label)
+        );
+    }
+    for (i, m) in marks.iter().enumerate() {
+        let [x, y] = fr.view.px(*m);
+        let _ = write!(
+            s,
+            r##"<circle class="kl-target" data-index="{i}" cx="{}" cy="{}" r="4.5" fill="none" stroke="#111" stroke-width="1.5"/><text class="kl-target-label" x="{}" y="{}" font-family="sans-serif" font-size="11" fill="#111" stroke="white" stroke-width="3" paint-order="stroke">{}</text>"##,
+            px(x),
+            px(y),
+            px(x + 6.0),
+            px(y - 6.0),
+            i + 1
         );
     }
     let f = &fr.frames[first];

@@ -167,23 +167,19 @@ impl Eval<'_> {
 }
 
 impl Frames {
-    /// `d` over `motion`, at most `max_frames` poses along its path.
-    pub(crate) fn new(d: &Drawing, motion: &Motion, max_frames: usize) -> Result<Frames, HtmlError> {
-        let path = path(motion);
-        Frames::build(d, motion, spread(&path, max_frames), &[path])
-    }
-
     /// `d` at the poses `poses` of `motion`, its traced paths through the poses of each of
-    /// `runs`.
+    /// `runs`; in `view`, or fitted to the drawing over the motion.
     pub(crate) fn build(
         d: &Drawing,
         motion: &Motion,
         poses: Vec<usize>,
         runs: &[Vec<usize>],
+        view: Option<View>,
     ) -> Result<Frames, HtmlError> {
         // The drawings' own checks (names, shapes of poses, finite points, style, canvas) and
         // their fit of the picture to every pose.
-        let view = d.view(motion)?;
+        let fitted = d.view(motion)?;
+        let view = view.unwrap_or(fitted);
         let e = Eval { motion, view };
         let mut slots = Vec::with_capacity(d.items.len());
         for item in &d.items {

@@ -118,6 +118,22 @@ pub fn html<M, const N: usize, const NI: usize, const NO: usize>(
 where
     M: Mechanism<N, NI, NO>,
 {
+    html_marked(m, drawing, motion, config, &[], None)
+}
+
+/// [`html`] with fixed points `marks` marked and numbered over the picture, in `view` (fitted
+/// to the drawing over the motion when `None`).
+pub(crate) fn html_marked<M, const N: usize, const NI: usize, const NO: usize>(
+    m: &M,
+    drawing: &Drawing,
+    motion: &Motion,
+    config: &HtmlConfig,
+    marks: &[[f64; 2]],
+    view: Option<crate::draw::View>,
+) -> Result<String, HtmlError>
+where
+    M: Mechanism<N, NI, NO>,
+{
     let _ = m;
     config.check()?;
     if motion.inputs != M::INPUTS || motion.outputs != M::OUTPUTS {
@@ -128,7 +144,8 @@ where
             M::INPUTS
         )));
     }
-    let fr = frames::Frames::new(drawing, motion, config.max_frames)?;
+    let path = frames::path(motion);
+    let fr = frames::Frames::build(drawing, motion, frames::spread(&path, config.max_frames), &[path], view)?;
     let channels = readouts::channels::<M, N, NI, NO>(config, motion, &fr.poses)?;
     let against_input = NI == 1;
     let labels: Vec<String> = motion
@@ -162,7 +179,7 @@ where
     }
     let traces: Vec<Option<String>> =
         drawing.traces.iter().map(|p| if let Pt::Point(n) = p { Some(n.clone()) } else { None }).collect();
-    let figure = figure::figure(&fr, &drawing.style, 0, &joint_names(drawing), &traces, &labels);
+    let figure = figure::figure(&fr, &drawing.style, 0, &joint_names(drawing), &traces, &labels, marks);
     page::document(&page::Parts {
         title: &config.title,
         notes: &drawing.notes,
@@ -249,7 +266,7 @@ where
             config.max_frames
         )));
     }
-    let fr = frames::Frames::build(drawing, motion, (0..motion.poses.len()).collect(), &grid.runs())?;
+    let fr = frames::Frames::build(drawing, motion, (0..motion.poses.len()).collect(), &grid.runs(), None)?;
     let mut channels = readouts::channels::<M, N, NI, NO>(config, motion, &fr.poses)?;
     for (c, axis) in channels.iter_mut().zip(&grid.axes) {
         readouts::on_axis(c, axis);
@@ -257,7 +274,7 @@ where
     let traces: Vec<Option<String>> =
         drawing.traces.iter().map(|p| if let Pt::Point(n) = p { Some(n.clone()) } else { None }).collect();
     let first = grid.cells[0].unwrap_or(0);
-    let figure = figure::figure(&fr, &drawing.style, first, &joint_names(drawing), &traces, &[]);
+    let figure = figure::figure(&fr, &drawing.style, first, &joint_names(drawing), &traces, &[], &[]);
     let cells = grid.cells.iter().map(|c| c.map_or(-1, |i| i as i64)).collect();
     page::document(&page::Parts {
         title: &config.title,
