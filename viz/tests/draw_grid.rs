@@ -37,7 +37,7 @@ fn three_inputs_are_a_grid_of_slices_on_one_assembly_mode() {
     let grid = GridMotion::record(&m, from, to, counts, m.guess_flat(&from)).unwrap();
     assert_eq!(grid.counts(), counts);
     assert_eq!(grid.cells.len(), 11 * 9 * 5);
-    assert_eq!(grid.cell(&[3, 2, 1]), Some(3 + 11 * (2 + 9 * 1)));
+    assert_eq!(grid.cell(&[3, 2, 4]), Some(3 + 11 * (2 + 9 * 4)));
     assert_eq!(grid.cell(&[11, 0, 0]), None);
     let (mut reached, mut beyond) = (0, 0);
     for k in 0..5 {
