@@ -469,6 +469,12 @@ fn a_grid_of_two_inputs_has_a_slider_each_and_marks_what_cannot_be_assembled() {
             assert_eq!(status, "cannot be assembled here");
             assert_eq!(text(2), "\u{2013}", "no number where there is no mechanism");
             assert!(!at.iter().any(|l| l.what == "joint"));
+            // The browser draws the frame's two pivots and nothing else of the mechanism.
+            let shown = at.iter().find(|l| l.what == "shown").expect("what is drawn");
+            assert_eq!(
+                [shown.get("pivots"), shown.get("joints"), shown.get("shapes"), shown.get("dots")],
+                ["2", "0", "0", "0"]
+            );
             continue;
         }
         assert_eq!(state.get("reachable"), "true", "cell {i}:{j}");
@@ -503,6 +509,15 @@ fn a_grid_of_two_inputs_has_a_slider_each_and_marks_what_cannot_be_assembled() {
         svg.contains(&format!(r#"data-cell="{}""#, grid.cell(&[2, 10]).unwrap()))
             && svg.contains(r#"data-reachable="true""#)
     );
+    // Opened without a cell in its address, a page that plays starts playing (along the first
+    // input's row; the frames it reaches depend on the browser's clock, so only the state and
+    // the reachable first row are checked).
+    let playing = Path::new(env!("CARGO_TARGET_TMPDIR")).join("five_bar_grid_playing.html");
+    std::fs::write(&playing, html_grid(&m, &drawing, &grid, &config.clone().with_autoplay(true)).unwrap()).unwrap();
+    let dom = run_chromium(&bin, &url(&playing, ""), &["--virtual-time-budget=800", "--dump-dom"]);
+    assert!(dom.contains(r#"aria-pressed="true">Pause</button>"#), "the page plays when opened");
+    let cell: usize = dom.split(r#"data-cell=""#).nth(1).and_then(|r| r.split('"').next()).unwrap().parse().unwrap();
+    assert!(cell < counts[0], "on the first row: cell {cell}");
     let shot = Path::new(env!("CARGO_TARGET_TMPDIR")).join("browser").join("five_bar_grid.png");
     std::fs::create_dir_all(shot.parent().unwrap()).unwrap();
     run_chromium(&bin, &url(&path, "cell=15:0"), &[&format!("--screenshot={}", shot.display())]);

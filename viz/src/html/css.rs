@@ -33,6 +33,7 @@ body{margin:0;font-family:system-ui,sans-serif;color:#1c2833;background:#f7f8fa}
 .kl-axis{display:flex;align-items:center;gap:8px;font-size:.9rem}
 .kl-axis span{min-width:4em}
 .kl-axis input{flex:1}
+#kl-mechanism.kl-unreachable>:not(.kl-pivot){visibility:hidden}
 .kl-status{margin:6px 0 0;min-height:1.2em;font-weight:600;color:#c0143c}
 .kl-drawing-note{margin:6px 0 0;font-size:.85rem;color:#a0522d;max-width:640px}
 "#;

@@ -98,7 +98,8 @@ fn items(out: &mut String, style: &Style, slots: &[Slot], f: &[i64], pen: &Pen, 
                 let _ = write!(
                     out,
                     r#"<g{} transform="translate({x} {y})"><path d="M0,0L-9,14H9Z" fill="white" stroke="{g}" stroke-width="1.5"/><path d="M-15,14H15" stroke="{g}" stroke-width="2"/>"#,
-                    mark(k)
+                    // The frame's pivots stay drawn where a grid's page hides the mechanism.
+                    mark(k).replace("kl-shape", "kl-shape kl-pivot")
                 );
                 hatch(out, g, [-13.0, 14.0], [1.0, 0.0], 26.0);
                 out.push_str("</g>");

@@ -198,8 +198,9 @@ where
 
 /// An interactive page of `drawing` over a grid of the inputs of mechanism `m` (recorded with
 /// [`GridMotion::record`]): one slider per input, a readout of every input, the mechanism at
-/// the sliders' cell; where the grid could not be assembled the mechanism is hidden, the
-/// other readouts show a dash and the page says "cannot be assembled here". The traced
+/// the sliders' cell; where the grid could not be assembled the mechanism is hidden (its frame
+/// pivots stay), the other readouts show a dash and the page says "cannot be assembled here".
+/// The traced
 /// points' paths are drawn along every row of reachable cells. Play moves the first input
 /// along its row. The readouts have no charts (a chart against one input would hold for one
 /// row only).

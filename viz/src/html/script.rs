@@ -111,10 +111,10 @@ pub(crate) const SCRIPT: &str = r#"
     });
     if (f >= 0) {
       show(f);
-      mech.removeAttribute('visibility');
+      mech.classList.remove('kl-unreachable');
       status.textContent = '';
     } else {
-      mech.setAttribute('visibility', 'hidden');
+      mech.classList.add('kl-unreachable');
       values.forEach(function (el, k) { if (k >= ni) { el.textContent = '\u2013'; } });
       status.textContent = 'cannot be assembled here';
     }
@@ -173,6 +173,12 @@ pub(crate) const SCRIPT: &str = r#"
       lines.push('frame=' + here + ' cell at=' + at().join(':') + ' reachable=' + ok);
       lines.push('frame=' + here + ' status text=' + status.textContent);
       if (!ok) {
+        // What is still drawn: the frame's pivots only.
+        var shown = function (sel) {
+          return all(svg, sel).filter(function (el) { return window.getComputedStyle(el).visibility !== 'hidden'; }).length;
+        };
+        lines.push('frame=' + here + ' shown pivots=' + shown('.kl-pivot') + ' joints=' + shown('circle.kl-joint') +
+          ' shapes=' + shown('.kl-shape:not(.kl-pivot)') + ' dots=' + shown('circle.kl-dot'));
         values.forEach(function (el, k) { lines.push('frame=' + here + ' value ch=' + k + ' text=' + el.textContent); });
         return lines;
       }
