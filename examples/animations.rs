@@ -11,11 +11,15 @@
 //! input, live readouts with units, charts whose cursor follows the slider, and the sweep's
 //! limit positions marked on the slider's track.
 //!
+//! The five-bar's page has two inputs: it holds a grid of both cranks' angles, with one slider
+//! per crank (`html_grid`).
+//!
 //! Each mechanism is drawn as its declaration describes it (`m.drawing()`: links, frame
 //! pivots, sliders, rigid plates, the named points traced), with at most a trace removed or
 //! added and, for the gear-lever drive, its gears, which no loop describes.
 
-use kinloop::draw::{Animation, DefaultDrawing, Draw, HtmlConfig, Motion, Readout, html};
+use kinloop::Mechanism;
+use kinloop::draw::{Animation, DefaultDrawing, Draw, GridMotion, HtmlConfig, Motion, Readout, html, html_grid};
 use kinloop::plot::Kind;
 use std::error::Error;
 use std::f64::consts::{PI, TAU};
@@ -24,7 +28,7 @@ use std::path::{Path, PathBuf};
 // The gallery's mechanisms, declared once in the fixtures crate.
 use kinloop_fixtures::gear_lever::GearLever;
 use kinloop_fixtures::roller_edger::RollerEdger;
-use kinloop_fixtures::{ClassFour, DisplacerRodDrive, RhombicDrive, WorkingRodDrive};
+use kinloop_fixtures::{ClassFour, DisplacerRodDrive, FiveBar, RhombicDrive, WorkingRodDrive};
 
 kinloop::mechanism! {
     /// Four-bar: crank `r` at O = (0, 0), coupler BC of length `l` carrying the point P at
@@ -86,6 +90,14 @@ fn class_four() -> Result<(DefaultDrawing, Motion), Box<dyn Error>> {
     Ok((drawing, Motion::record(&m, m.sweep(0.0, TAU, 361, &m.guess(0.0))?)?))
 }
 
+/// The five-bar with two cranks: both turned together (a one-to-one gearing), the coupler
+/// point C tracing its path. (Its page is a grid of the two cranks: one slider each.)
+fn five_bar() -> Result<(DefaultDrawing, Motion), Box<dyn Error>> {
+    let m = FiveBar::default();
+    let (from, to) = ([0.0, 0.0], [TAU, TAU]);
+    Ok((m.drawing(), Motion::record(&m, m.sweep(from, to, 361, &m.guess(from))?)?))
+}
+
 /// The four-bar with the coupler curve of P traced (the pins B and C move on circles).
 fn four_bar(m: &CouplerFourBar) -> Result<DefaultDrawing, Box<dyn Error>> {
     Ok(m.drawing().untrace("b")?.untrace("c")?)
@@ -136,6 +148,7 @@ fn main() -> Result<(), Box<dyn Error>> {
         show("class_four", class_four, true, true),
         show("four_bar_coupler", coupler_curve, true, true),
         show("four_bar_limit", limit_position, false, false),
+        show("five_bar", five_bar, true, false),
     ];
     for s in shows {
         let (drawing, motion) = (s.scene)()?;
@@ -223,5 +236,16 @@ fn pages(dir: &Path) -> Result<(), Box<dyn Error>> {
         .show(CouplerFourBar::COL.gamma)
         .with_readout(Readout::column(CouplerFourBar::COL.beta).without_chart())
         .with_back_and_forth(true);
-    write_page(dir, "four_bar_limit", &html(&m, &d.clone().into_drawing(), &motion, &config)?)
+    write_page(dir, "four_bar_limit", &html(&m, &d.clone().into_drawing(), &motion, &config)?)?;
+    // Two inputs: a grid of both cranks over a turn each (25 x 25 cells), one slider per crank;
+    // where the links cannot reach each other the page says so.
+    let m = FiveBar::default();
+    let from = [0.0, 0.0];
+    let grid = GridMotion::record(&m, from, [TAU, TAU], [25, 25], m.guess_flat(&from))?;
+    let config = HtmlConfig::new("Five-bar: a slider for each crank")
+        .show(FiveBar::COL.pc.x)
+        .show(FiveBar::COL.pc.y)
+        .show(FiveBar::COL.spread)
+        .with_autoplay(false);
+    write_page(dir, "five_bar", &html_grid(&m, &m.drawing().into_drawing(), &grid, &config)?)
 }

@@ -19,7 +19,6 @@
 //! feature `rayon`, `Search::par_run` runs the starts on all cores, with the same report.)
 
 use kinloop::analysis::optimize::LevenbergMarquardt;
-use kinloop::plot::{self, Axis, Kind, Series};
 use kinloop::synthesis::{Constraints, Design, LocalConfig, PlacementBounds, Problem, Search, Task, chebyshev};
 use kinloop::{Error, Extreme, Sensitivities, to_deg};
 use kinloop_examples::out_dir;
@@ -138,28 +137,21 @@ fn path_generation() -> Result<(), Box<dyn std::error::Error>> {
             c.defects
         );
     }
-    // The best design's coupler curve over a turn, placed, with the targets marked.
-    if let Some(best) = report.best() {
-        let m = CouplerFourBar::default().with_params_flat(best.params.as_slice().try_into()?);
-        let q0: [f64; 2] = best.positions[0].as_slice().try_into()?;
-        let [dx, dy, turn, scale] = best.placement.unwrap_or([0.0, 0.0, 0.0, 1.0]);
-        let (sn, cs) = turn.sin_cos();
-        let x0 = best.inputs[0][0];
-        let mut curve = Vec::new();
-        for s in m.sweep(x0, x0 + TAU, 361, &q0.into())? {
-            let p = s?.out.p;
-            curve.push((dx + scale * (cs * p.x - sn * p.y), dy + scale * (sn * p.x + cs * p.y)));
-        }
-        let marks: Vec<(f64, f64)> = targets.iter().map(|t| (t[0], t[1])).collect();
+    // The best designs (up to three) drawn over the targets: each mechanism placed and shown at
+    // its first target, its coupler curve over a turn of the crank, the targets numbered.
+    if !report.candidates.is_empty() {
+        let best = &report.candidates[..report.candidates.len().min(3)];
+        let config = kinloop::draw::CandidatesConfig::new("p")
+            .with_title("Best four-bars: their coupler curves through the ten targets")
+            .with_span(TAU);
         let path = out_dir("synthesis").join("coupler_curve.svg");
-        plot::xy_chart(
-            &path,
-            "Best four-bar: its coupler curve through the ten targets (dots)",
-            &Axis::length("x", "length unit"),
-            &Axis::length("y", "length unit"),
-            &[Series::new("coupler point", Kind::length("length unit"), curve)],
-            &marks,
-        )?;
+        std::fs::write(&path, kinloop::draw::candidates(&CouplerFourBar::default(), best, &targets, &config)?)?;
+        println!("   wrote {}", path.display());
+        // The best one moving through the targets, in a page with a slider.
+        let page = kinloop::draw::HtmlConfig::new("Best four-bar through the ten targets").show("p.x").show("p.y");
+        let html = kinloop::draw::candidate_page(&CouplerFourBar::default(), &best[0], &targets, &config, &page)?;
+        let path = out_dir("synthesis").join("best_candidate.html");
+        std::fs::write(&path, html)?;
         println!("   wrote {}", path.display());
     }
     println!();

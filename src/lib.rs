@@ -285,7 +285,9 @@
 //! looks (its loops' chains of points, links, frame, sliders, plates). Cargo features add
 //! `plot` (`kinloop::plot`, charts of sweep results as SVG), `draw` (`kinloop::draw`, drawings
 //! and animations of the mechanism as SVG; `m.drawing()` draws it from its declaration; and
-//! interactive HTML pages with a slider, readouts and linked charts: `draw::html`), `png`
+//! interactive HTML pages with a slider, readouts and linked charts: `draw::html`, or a slider
+//! per input over a grid of several inputs: `draw::html_grid`; synthesis candidates over their
+//! targets: `draw::candidates`), `png`
 //! (`kinloop::draw::png`, drawings and charts rendered to PNG, text included), `rayon`
 //! (`par_scan`), `mint` and `serde` (see above).
 //!

@@ -237,7 +237,8 @@ fn a_sweep_stopped_at_a_limit_position_ends_the_slider_there() {
 
 /// Every gallery page (no browser): one per animated mechanism, linked from the README, its
 /// SVG well-formed without NaN, every chart axis titled with its unit, a full turn of the
-/// input ticked 0 to 360, a readout per input, and no address outside the page.
+/// input ticked 0 to 360, a readout per input (and a slider per input on a grid's page), and
+/// no address outside the page.
 #[test]
 fn every_gallery_page_is_self_contained_and_finite() {
     let dir = root().join("docs/pages");
@@ -253,7 +254,15 @@ fn every_gallery_page_is_self_contained_and_finite() {
             assert!(svg.is_file(), "{} has its animation", path.display());
             assert!(text.len() < 150_000, "{}: {} bytes", path.display(), text.len());
             let page = read_page(&text);
-            assert!(!page.readouts.is_empty() && !page.charts.is_empty(), "{}", path.display());
+            assert!(!page.readouts.is_empty(), "{}", path.display());
+            if text.contains(r#"id="kl-slider-0""#) {
+                // A grid of several inputs: a slider and a readout for each, no chart.
+                let sliders = text.matches(r#"class="kl-slider""#).count();
+                assert!(sliders >= 2 && page.readouts.len() >= sliders, "{}", path.display());
+                assert!(page.charts.is_empty() && text.contains(r#""grid":{"n":["#), "{}", path.display());
+            } else {
+                assert!(!page.charts.is_empty(), "{}", path.display());
+            }
             for (title, xs, _) in &page.charts {
                 let labels: Vec<f64> = xs.iter().map(|(v, _)| *v).collect();
                 if labels.first() == Some(&0.0) && labels.last() == Some(&360.0) {
@@ -263,7 +272,7 @@ fn every_gallery_page_is_self_contained_and_finite() {
             pages += 1;
         }
     }
-    assert!(pages >= 8, "one page per gallery mechanism, found {pages}");
+    assert!(pages >= 9, "one page per gallery mechanism, found {pages}");
 }
 
 /// Bad data is a typed error, never NaN in the file: a readout that is NaN at some pose, a
@@ -358,4 +367,160 @@ proptest::proptest! {
             let _ = read_page(&page);
         }
     }
+}
+
+kinloop::mechanism! {
+    /// A five-bar whose links are short: it cannot be assembled where the cranks' pins are
+    /// farther apart than `b + c`.
+    pub struct ShortFiveBar {
+        params a = 1.0, b = 1.6, c = 1.6, d = 1.0, e = 2.0;
+        inputs th1, th2;
+        unknowns al = 1.2, be = 2.0;
+        loop l: a @ th1 + b @ al == (e, 0) + d @ th2 + c @ be;
+        point p = a @ th1 + b @ al;
+    }
+}
+
+/// Several inputs over a grid: one slider per input. Headless Chromium moves both sliders to
+/// several cells; the joints drawn there are the closed-form ones (the links' circles meet
+/// left of A->C: one assembly mode carried over the whole grid), the readouts show both
+/// inputs and p.y, and a cell where the pins are farther apart than `b + c` (closed form) says
+/// "cannot be assembled here" with the mechanism hidden and no number for p.y.
+#[test]
+fn a_grid_of_two_inputs_has_a_slider_each_and_marks_what_cannot_be_assembled() {
+    use kinloop::Mechanism;
+    use kinloop_viz::draw::{Draw, GridMotion, html_grid};
+    let m = ShortFiveBar::default();
+    let (from, to, counts) = ([0.5, 0.0], [3.5, 3.0], [16, 13]);
+    let grid = GridMotion::record(&m, from, to, counts, m.guess_flat(&from)).unwrap();
+    let pins = |th1: f64, th2: f64| ([m.a * th1.cos(), m.a * th1.sin()], [m.e + m.d * th2.cos(), m.d * th2.sin()]);
+    // The library's grid against the closed form, every cell: reachable ones on the carried
+    // mode, the pins too far apart never reachable, and a row cut at its first unreachable cell.
+    let (mut reachable, mut beyond) = (0, 0);
+    for j in 0..counts[1] {
+        let mut cut = false;
+        for i in 0..counts[0] {
+            let (th1, th2) = (grid.axes[0][i], grid.axes[1][j]);
+            let (pa, pc) = pins(th1, th2);
+            let apart = (pc[0] - pa[0]).hypot(pc[1] - pa[1]);
+            match grid.cells[grid.cell(&[i, j]).unwrap()] {
+                Some(k) => {
+                    assert!(!cut, "cell {i}:{j} reached after its row was cut");
+                    assert!(apart <= m.b + m.c, "cell {i}:{j}: pins {apart} apart");
+                    let pose = &grid.motion.poses[k];
+                    assert!((pose.x[0] - th1).abs() < 1e-12 && (pose.x[1] - th2).abs() < 1e-12);
+                    let p = meet_left(pa, m.b, pc, m.c);
+                    // Away from the limit (where the closed form's square root loses digits).
+                    if apart < m.b + m.c - 1e-3 {
+                        assert!(
+                            (pose.out[0] - p[0]).hypot(pose.out[1] - p[1]) < 1e-9,
+                            "cell {i}:{j}: {pose:?} vs {p:?}"
+                        );
+                    }
+                    reachable += 1;
+                }
+                None => {
+                    cut = true;
+                    beyond += usize::from(apart > m.b + m.c);
+                }
+            }
+        }
+    }
+    assert!(reachable > 100 && beyond > 10, "{reachable} reachable, {beyond} beyond reach");
+    let config = HtmlConfig::new("Five-bar over a grid").show(ShortFiveBar::COL.p.y).with_autoplay(false);
+    let drawing = m.drawing().into_drawing();
+    let page = html_grid(&m, &drawing, &grid, &config).unwrap();
+    assert_eq!(page, html_grid(&m, &drawing, &grid, &config).unwrap(), "deterministic");
+    let read = read_page(&page);
+    let units: Vec<(&str, &str)> = read.readouts.iter().map(|(l, u)| (l.as_str(), u.as_str())).collect();
+    assert_eq!(units, [("th1", "°"), ("th2", "°"), ("p.y", "length unit")]);
+    assert!(page.contains(r#"id="kl-slider-0" class="kl-slider" data-axis="0" type="range" min="0" max="15""#));
+    assert!(page.contains(r#"id="kl-slider-1" class="kl-slider" data-axis="1" type="range" min="0" max="12""#));
+    // Bounded: a grid of more cells than the page's poses is an error.
+    let small = HtmlConfig::new("x").with_max_frames(100);
+    assert!(matches!(html_grid(&m, &drawing, &grid, &small), Err(kinloop_viz::html::HtmlError::InvalidSetting(_))));
+    let Some(bin) = chromium() else { return };
+    let path = Path::new(env!("CARGO_TARGET_TMPDIR")).join("five_bar_grid.html");
+    std::fs::write(&path, &page).unwrap();
+    // Reachable cells, then the cell at th1 = 3.5, th2 = 0: pins 1 + 2 + 0.94 > 3.2 apart.
+    let cells = [[0, 0], [5, 3], [15, 12], [9, 7], [15, 0], [2, 10]];
+    let probe: Vec<String> = cells.iter().map(|[i, j]| format!("{i}:{j}")).collect();
+    let dom = run_chromium(&bin, &url(&path, &format!("probe={}", probe.join(","))), &["--dump-dom"]);
+    let lines = browser_support::probe_lines(&dom);
+    let tol = browser_support::PX_TOL / read.scale;
+    for [i, j] in cells {
+        let c = grid.cell(&[i, j]).unwrap();
+        let at: Vec<&browser_support::Line> = lines.iter().filter(|l| l.frame == c).collect();
+        let state = at.iter().find(|l| l.what == "cell").expect("the cell's line");
+        assert_eq!(state.get("at"), format!("{i}:{j}"), "both sliders moved");
+        let (th1, th2) = (grid.axes[0][i], grid.axes[1][j]);
+        let (pa, pc) = pins(th1, th2);
+        let apart = (pc[0] - pa[0]).hypot(pc[1] - pa[1]);
+        let text =
+            |ch: usize| at.iter().find(|l| l.what == "value" && l.get("ch") == ch.to_string()).unwrap().get("text");
+        // The inputs' readouts: the sliders' values to a hundredth of a degree, reachable or not.
+        for (ch, th) in [(0, th1), (1, th2)] {
+            let shown: f64 = text(ch).parse().unwrap();
+            assert!((shown - th.to_degrees()).abs() <= 0.005 + 1e-9, "cell {i}:{j}: {} vs {th}", text(ch));
+        }
+        let status = at.iter().find(|l| l.what == "status").unwrap().get("text");
+        if grid.cells[c].is_none() {
+            assert_eq!(state.get("reachable"), "false");
+            assert_eq!(status, "cannot be assembled here");
+            assert_eq!(text(2), "\u{2013}", "no number where there is no mechanism");
+            assert!(!at.iter().any(|l| l.what == "joint"));
+            // The browser draws the frame's two pivots and nothing else of the mechanism.
+            let shown = at.iter().find(|l| l.what == "shown").expect("what is drawn");
+            assert_eq!(
+                [shown.get("pivots"), shown.get("joints"), shown.get("shapes"), shown.get("dots")],
+                ["2", "0", "0", "0"]
+            );
+            continue;
+        }
+        assert_eq!(state.get("reachable"), "true", "cell {i}:{j}");
+        assert!(apart <= m.b + m.c);
+        assert_eq!(status, "");
+        let p = meet_left(pa, m.b, pc, m.c);
+        let drawn: Vec<(&str, [f64; 2])> = at
+            .iter()
+            .filter(|l| l.what == "joint")
+            .map(|l| (l.get("name"), read.world([l.num("x"), l.num("y")])))
+            .collect();
+        for (name, q) in [("-", pa), ("p", p), ("-", pc), ("-", [0.0, 0.0]), ("-", [m.e, 0.0])] {
+            let near = |r: &[f64; 2]| (r[0] - q[0]).abs() <= tol && (r[1] - q[1]).abs() <= tol;
+            assert!(
+                drawn.iter().any(|(n, r)| (name == "-" || *n == name) && near(r)),
+                "cell {i}:{j}: joint {name} at {q:?} not drawn: {drawn:?}"
+            );
+        }
+        let dot = at.iter().find(|l| l.what == "dot" && l.get("name") == "p").expect("p's dot");
+        let q = read.world([dot.num("x"), dot.num("y")]);
+        assert!((q[0] - p[0]).abs() <= tol && (q[1] - p[1]).abs() <= tol, "cell {i}:{j}: dot {q:?} vs {p:?}");
+        let shown: f64 = text(2).parse().unwrap();
+        let decimals = text(2).split_once('.').map_or(0, |(_, d)| d.len());
+        assert!((shown - p[1]).abs() <= 0.5 * 10f64.powi(-(decimals as i32)) + 1e-12, "cell {i}:{j}: p.y {}", text(2));
+    }
+    let unreachable = cells.iter().filter(|[i, j]| grid.cells[grid.cell(&[*i, *j]).unwrap()].is_none()).count();
+    assert_eq!(unreachable, 1, "one probed cell cannot be assembled");
+    // In the DOM after the last move (a reachable cell): the mechanism shown, the status empty.
+    let at = dom.find("<svg").unwrap();
+    let svg = &dom[at..at + dom[at..].find('>').unwrap()];
+    assert!(
+        svg.contains(&format!(r#"data-cell="{}""#, grid.cell(&[2, 10]).unwrap()))
+            && svg.contains(r#"data-reachable="true""#)
+    );
+    // Opened without a cell in its address, a page that plays starts playing (along the first
+    // input's row; the frames it reaches depend on the browser's clock, so only the state and
+    // the reachable first row are checked).
+    let playing = Path::new(env!("CARGO_TARGET_TMPDIR")).join("five_bar_grid_playing.html");
+    std::fs::write(&playing, html_grid(&m, &drawing, &grid, &config.clone().with_autoplay(true)).unwrap()).unwrap();
+    let dom = run_chromium(&bin, &url(&playing, ""), &["--virtual-time-budget=800", "--dump-dom"]);
+    assert!(dom.contains(r#"aria-pressed="true">Pause</button>"#), "the page plays when opened");
+    let cell: usize = dom.split(r#"data-cell=""#).nth(1).and_then(|r| r.split('"').next()).unwrap().parse().unwrap();
+    assert!(cell < counts[0], "on the first row: cell {cell}");
+    let shot = Path::new(env!("CARGO_TARGET_TMPDIR")).join("browser").join("five_bar_grid.png");
+    std::fs::create_dir_all(shot.parent().unwrap()).unwrap();
+    run_chromium(&bin, &url(&path, "cell=15:0"), &[&format!("--screenshot={}", shot.display())]);
+    assert!(std::fs::metadata(&shot).is_ok_and(|m| m.len() > 1000));
+    eprintln!("five_bar_grid: screenshot {}", shot.display());
 }

@@ -105,6 +105,51 @@ fn an_ambiguous_declaration_is_drawn_with_notes_saying_so() {
     assert_eq!(texts.iter().filter(|t| t.starts_with("note: ")).count(), 2, "{texts:?}");
 }
 
+/// The notes survive `into_drawing()`: the `Drawing` carries the declaration's notes and any
+/// added with `.note(..)`, and its SVGs (pose, exposures, animation) and its interactive page
+/// write each once, below the picture (within the picture's height), escaped.
+#[test]
+fn notes_survive_into_the_drawing_its_svg_and_its_page() {
+    let m = Pointer::default();
+    let declared = m.drawing().notes().to_vec();
+    assert_eq!(declared.len(), 2, "{declared:?}");
+    let d = m.drawing().extend(|d| d.note("pin <A> & rod")).into_drawing().note("second note");
+    let mut expected: Vec<String> = declared.iter().map(|n| format!("note: {n}")).collect();
+    expected.push("note: pin <A> & rod".into());
+    expected.push("note: second note".into());
+    assert_eq!(d.notes().len(), 4);
+    let motion = Motion::record(&m, m.sweep(0.0, 1.0, 5, &m.guess(0.0)).unwrap()).unwrap();
+    for svg in [
+        d.svg(&motion, 2).unwrap(),
+        d.exposures(&motion, 3).unwrap(),
+        d.animate(&motion, &Animation::default()).unwrap(),
+    ] {
+        finite(&svg);
+        let doc = roxmltree::Document::parse(&svg).unwrap();
+        let height: f64 = doc.root_element().attribute("height").unwrap().parse().unwrap();
+        let notes: Vec<(String, f64)> = doc
+            .descendants()
+            .filter(|n| n.has_tag_name("text") && n.attribute("class") == Some("note"))
+            .map(|n| (n.text().unwrap().to_string(), n.attribute("y").unwrap().parse().unwrap()))
+            .collect();
+        assert_eq!(notes.iter().map(|(t, _)| t.clone()).collect::<Vec<_>>(), expected);
+        // One line each, in order, inside the picture.
+        assert!(notes.windows(2).all(|w| w[1].1 > w[0].1), "{notes:?}");
+        assert!(notes.iter().all(|(_, y)| *y <= height), "{notes:?} within {height}");
+    }
+    let page = kinloop_viz::draw::html(&m, &d, &motion, &kinloop_viz::draw::HtmlConfig::new("notes")).unwrap();
+    let written: Vec<&str> =
+        page.split("<p class=\"kl-drawing-note\">").skip(1).map(|s| s.split("</p>").next().unwrap()).collect();
+    let escaped: Vec<String> =
+        expected.iter().map(|n| n.replace('&', "&amp;").replace('<', "&lt;").replace('>', "&gt;")).collect();
+    assert_eq!(written, escaped);
+    // Without notes, none is written.
+    let plain = FourBar::default();
+    let motion = Motion::record(&plain, plain.sweep(0.0, 1.0, 5, &plain.guess(0.0)).unwrap()).unwrap();
+    let svg = plain.drawing().into_drawing().svg(&motion, 0).unwrap();
+    assert!(!svg.contains("class=\"note\""));
+}
+
 #[test]
 fn joints_are_renamed_and_hidden_by_name_and_a_wrong_name_is_an_error() {
     let m = FourBar::default();

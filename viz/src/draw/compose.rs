@@ -180,6 +180,20 @@ impl Layers<'_> {
         }
     }
 
+    /// The drawing's notes, one line each after the events' labels.
+    fn notes(&self, out: &mut String) {
+        let first = self.first_event_line() + self.motion.events.len();
+        for (k, note) in self.d.notes.iter().enumerate() {
+            let _ = write!(
+                out,
+                r#"<text class="note" x="{}" y="{}" font-size="{FONT}" fill="{NOTE}">{}</text>"#,
+                num(self.d.canvas.margin),
+                num(self.line_y(first + k)),
+                escape(&note_text(note))
+            );
+        }
+    }
+
     /// `limit position at phi = 78.59°`.
     fn event_label(&self, j: usize) -> String {
         let e = &self.motion.events[j];
@@ -309,6 +323,14 @@ impl Layers<'_> {
     }
 }
 
+/// The colour of notes: apart from the ink and the events' red.
+pub(crate) const NOTE: &str = "#a0522d";
+
+/// A note as written: `note: text`.
+pub(crate) fn note_text(note: &str) -> String {
+    format!("note: {note}")
+}
+
 /// A key time (a fraction of the pass) as written.
 fn frac(t: f64) -> String {
     format!("{:.5}", t.clamp(0.0, 1.0))
@@ -323,9 +345,9 @@ impl Drawing {
         let bar =
             if self.annotate.scale_bar { scale_bar(scene.view.scale, room, self.length_unit.as_deref()) } else { None };
         let mut l = Layers { d: self, motion, scene, strip, bar };
-        // The strip under the mechanism: the scale bar and readout, then one line per event;
-        // the picture is widened (when fitted) to hold its longest line.
-        let lines = l.first_event_line() + motion.events.len();
+        // The strip under the mechanism: the scale bar and readout, then one line per event,
+        // then one per note; the picture is widened (when fitted) to hold its longest line.
+        let lines = l.first_event_line() + motion.events.len() + self.notes.len();
         let pad = self.canvas.margin;
         let mut need: f64 = 0.0;
         if l.first_line() {
@@ -335,6 +357,9 @@ impl Drawing {
         }
         for j in 0..motion.events.len() {
             need = need.max(2.0 * pad + text_width(&l.event_label(j)));
+        }
+        for note in &self.notes {
+            need = need.max(2.0 * pad + text_width(&note_text(note)));
         }
         if self.canvas.window.is_none() {
             l.scene.view.width = l.scene.view.width.max(need.ceil());
@@ -371,6 +396,7 @@ impl Drawing {
         l.labels(&mut body, &[pose], None);
         l.scale_bar(&mut body);
         l.readout(&mut body, &[pose], None);
+        l.notes(&mut body);
         Ok(l.document(&body))
     }
 
@@ -409,6 +435,7 @@ impl Drawing {
             l.readout(&mut body, &[path[last]], None);
         }
         l.scale_bar(&mut body);
+        l.notes(&mut body);
         Ok(l.document(&body))
     }
 
@@ -441,6 +468,7 @@ impl Drawing {
         l.labels(&mut body, &keys, timing);
         l.scale_bar(&mut body);
         l.readout(&mut body, &keys, timing);
+        l.notes(&mut body);
         Ok(l.document(&body))
     }
 }

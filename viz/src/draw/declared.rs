@@ -8,7 +8,6 @@ use super::style::Style;
 use super::view::Canvas;
 use kinloop_runtime::drawing::{Description, SegmentKind};
 use kinloop_runtime::{Mechanism, NewtonConfig};
-use std::fmt::Write;
 use std::sync::Arc;
 
 /// `m.drawing()`: the default drawing of a mechanism, from its declaration. It reads the
@@ -23,7 +22,8 @@ use std::sync::Arc;
 ///   turning guide (a cylinder, a slotted rocker) the guide is a bar and the block slides on it;
 /// * a vector that is none of these is drawn as a bar between its ends, and a note of the
 ///   description says so: the drawing never guesses silently. [`DefaultDrawing::notes`] lists
-///   the notes, and the SVG shows them at the picture's bottom left.
+///   the notes; [`DefaultDrawing::into_drawing`] carries them ([`Drawing::notes`]), and the
+///   SVG and the interactive page write them under the picture.
 ///
 /// Joints are merged where the macro proves two partial sums equal (see
 /// [`kinloop_runtime::drawing`]); points that coincide only numerically (at the inputs 0,
@@ -242,7 +242,8 @@ impl DefaultDrawing {
         self
     }
 
-    /// Adds items and traces drawn over the default ones: `.extend(|d| d.gear(centre, r, 0.0))`.
+    /// Adds items and traces drawn over the default ones: `.extend(|d| d.gear(centre, r, 0.0))`;
+    /// labels, notes, the length unit and the annotations set there are kept too.
     pub fn extend(mut self, add: impl FnOnce(Drawing) -> Drawing) -> DefaultDrawing {
         self.extra = add(self.extra);
         self
@@ -318,9 +319,14 @@ impl DefaultDrawing {
                 drawing = drawing.trace(self.pt(j));
             }
         }
-        let DefaultDrawing { extra, .. } = self;
+        let DefaultDrawing { extra, notes, .. } = self;
         drawing.items.extend(extra.items);
         drawing.traces.extend(extra.traces);
+        drawing.labels = extra.labels;
+        drawing.length_unit = extra.length_unit;
+        drawing.annotate = extra.annotate;
+        // The declaration's notes, then any added through `extend`.
+        drawing.notes = notes.into_iter().chain(extra.notes).collect();
         drawing.with_style(extra.style).with_canvas(extra.canvas)
     }
 
@@ -333,12 +339,12 @@ impl DefaultDrawing {
         }
     }
 
-    /// [`Drawing::animate`] of the drawing, with its notes below the picture.
+    /// [`Drawing::animate`] of the drawing (its notes written below the picture).
     ///
     /// # Errors
     /// As [`Drawing::animate`].
     pub fn animate(&self, motion: &Motion, anim: &Animation) -> Result<String, DrawError> {
-        Ok(self.annotate(self.clone().into_drawing().animate(motion, anim)?))
+        self.clone().into_drawing().animate(motion, anim)
     }
 
     /// [`Drawing::svg`] of the drawing at pose `pose`, with its notes.
@@ -346,7 +352,7 @@ impl DefaultDrawing {
     /// # Errors
     /// As [`Drawing::svg`].
     pub fn svg(&self, motion: &Motion, pose: usize) -> Result<String, DrawError> {
-        Ok(self.annotate(self.clone().into_drawing().svg(motion, pose)?))
+        self.clone().into_drawing().svg(motion, pose)
     }
 
     /// [`Drawing::exposures`] of the drawing, with its notes.
@@ -354,32 +360,7 @@ impl DefaultDrawing {
     /// # Errors
     /// As [`Drawing::exposures`].
     pub fn exposures(&self, motion: &Motion, count: usize) -> Result<String, DrawError> {
-        Ok(self.annotate(self.clone().into_drawing().exposures(motion, count)?))
-    }
-
-    /// The notes as lines of text at the picture's bottom left.
-    fn annotate(&self, mut svg: String) -> String {
-        if self.notes.is_empty() {
-            return svg;
-        }
-        let Some(end) = svg.rfind("</svg>") else { return svg };
-        // The picture's height, from the root element's attribute.
-        let height = svg
-            .split_once(" height=\"")
-            .and_then(|(_, rest)| rest.split_once('"'))
-            .and_then(|(h, _)| h.parse::<f64>().ok())
-            .unwrap_or(14.0 * (self.notes.len() as f64 + 1.0));
-        let mut text = String::new();
-        for (k, note) in self.notes.iter().rev().enumerate() {
-            let escaped = note.replace('&', "&amp;").replace('<', "&lt;").replace('>', "&gt;");
-            let y = height - 6.0 - 14.0 * k as f64;
-            let _ = write!(
-                text,
-                r##"<text x="8" y="{y}" font-family="sans-serif" font-size="11" fill="#a0522d">note: {escaped}</text>"##
-            );
-        }
-        svg.insert_str(end, &text);
-        svg
+        self.clone().into_drawing().exposures(motion, count)
     }
 }
 

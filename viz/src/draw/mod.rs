@@ -13,7 +13,15 @@
 //! * [`Drawing::exposures`]: a static multi-exposure for print;
 //! * [`Drawing::svg`]: the mechanism at one pose; the module `png` renders it (feature `png`),
 //!   its text drawn with a built-in stroke font;
-//! * [`html()`]: an interactive page (slider, play/pause, live readouts, linked charts).
+//! * [`html()`]: an interactive page (slider, play/pause, live readouts, linked charts);
+//!   [`html_grid`] for several inputs: one slider per input over a [`GridMotion`], a grid of
+//!   the inputs swept carrying one assembly mode, with "cannot be assembled here" where it is
+//!   not reached.
+//!
+//! A drawing's notes ([`Drawing::note`]; the default drawing's say what the declaration leaves
+//! ambiguous) are written under the picture by every SVG and page. [`candidates()`] draws the
+//! best candidates of a synthesis search over their targets (numbered, on axes with units, a
+//! legend of rank and largest error).
 //!
 //! Where a sweep stopped at a limit position or passed a singular crossing, the drawing shows
 //! the mechanism at the located event as a dashed ghost, labelled with its kind and input.
@@ -57,9 +65,11 @@
 //! ```
 
 mod annotate;
+mod candidates;
 mod compose;
 mod declared;
 mod error;
+mod grid;
 #[cfg(feature = "png")]
 mod hershey;
 mod motion;
@@ -75,13 +85,15 @@ mod text_paths;
 mod view;
 
 pub use annotate::Annotate;
+pub use candidates::{CandidatesConfig, candidate_page, candidates};
 pub use compose::Animation;
 pub use declared::{DefaultDrawing, Draw};
 pub use error::DrawError;
+pub use grid::{GridMotion, MAX_GRID_CELLS};
 pub use motion::{Marked, Motion, Pose};
 pub use spec::{Drawing, Item, Pt, Scalar, StateRef};
 pub use style::Style;
 pub use view::{Canvas, View};
 
 // Interactive pages of a drawing (`kinloop::draw::html`), from the crate's `html` module.
-pub use crate::html::{HtmlConfig, HtmlError, Readout, html};
+pub use crate::html::{HtmlConfig, HtmlError, Readout, html, html_grid};

@@ -176,6 +176,11 @@ pub struct Drawing {
     pub length_unit: Option<String>,
     /// Which annotations are written (joint labels, scale bar, input readout).
     pub annotate: Annotate,
+    /// Notes about the drawing (what it shows in a way the reader should know: a vector the
+    /// default drawing could not classify, joints that coincide only numerically), written as
+    /// lines `note: ...` in the strip under the picture and under an interactive page's
+    /// picture.
+    pub notes: Vec<String>,
 }
 
 impl Drawing {
@@ -250,6 +255,24 @@ impl Drawing {
     pub fn with_annotate(mut self, annotate: Annotate) -> Drawing {
         self.annotate = annotate;
         self
+    }
+
+    /// Adds a note, written under the picture (`note: text`) by every SVG of the drawing and by
+    /// its interactive page.
+    ///
+    /// ```
+    /// use kinloop_viz::draw::{Drawing, Pt};
+    /// let d = Drawing::new().link([Pt::fixed(0.0, 0.0), Pt::point("b")]).note("the crank is drawn shortened");
+    /// assert_eq!(d.notes(), ["the crank is drawn shortened"]);
+    /// ```
+    pub fn note(mut self, text: impl Into<String>) -> Drawing {
+        self.notes.push(text.into());
+        self
+    }
+
+    /// The notes, in the order added.
+    pub fn notes(&self) -> &[String] {
+        &self.notes
     }
 
     /// Traces the path of `at` over the motion (a coupler curve).

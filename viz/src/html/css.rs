@@ -29,4 +29,11 @@ body{margin:0;font-family:system-ui,sans-serif;color:#1c2833;background:#f7f8fa}
 .kl-charts{display:flex;flex-direction:column;gap:6px}
 .kl-chart{background:white;border:1px solid #d5dbe1;border-radius:4px}
 .kl-note{font-size:.8rem;color:#5d6d7e}
+.kl-sliders{flex:1;display:flex;flex-direction:column;gap:4px;min-width:200px}
+.kl-axis{display:flex;align-items:center;gap:8px;font-size:.9rem}
+.kl-axis span{min-width:4em}
+.kl-axis input{flex:1}
+#kl-mechanism.kl-unreachable>:not(.kl-pivot){visibility:hidden}
+.kl-status{margin:6px 0 0;min-height:1.2em;font-weight:600;color:#c0143c}
+.kl-drawing-note{margin:6px 0 0;font-size:.85rem;color:#a0522d;max-width:640px}
 "#;

@@ -98,7 +98,8 @@ fn items(out: &mut String, style: &Style, slots: &[Slot], f: &[i64], pen: &Pen, 
                 let _ = write!(
                     out,
                     r#"<g{} transform="translate({x} {y})"><path d="M0,0L-9,14H9Z" fill="white" stroke="{g}" stroke-width="1.5"/><path d="M-15,14H15" stroke="{g}" stroke-width="2"/>"#,
-                    mark(k)
+                    // The frame's pivots stay drawn where a grid's page hides the mechanism.
+                    mark(k).replace("kl-shape", "kl-shape kl-pivot")
                 );
                 hatch(out, g, [-13.0, 14.0], [1.0, 0.0], 26.0);
                 out.push_str("</g>");
@@ -169,7 +170,8 @@ fn items(out: &mut String, style: &Style, slots: &[Slot], f: &[i64], pen: &Pen, 
 }
 
 /// The picture at frame `first`, with `events` labelled by `labels` (one per event).
-/// `joints`: the names of each item's joints, `traces`: of each traced point (`point` outputs).
+/// `joints`: the names of each item's joints, `traces`: of each traced point (`point` outputs);
+/// `marks`: fixed points (mechanism units) marked and numbered from 1 (a synthesis's targets).
 pub(crate) fn figure(
     fr: &Frames,
     style: &Style,
@@ -177,6 +179,7 @@ pub(crate) fn figure(
     joints: &[Vec<Option<String>>],
     traces: &[Option<String>],
     labels: &[String],
+    marks: &[[f64; 2]],
 ) -> String {
     let (w, h) = (px(fr.view.width), px(fr.view.height));
     let origin = fr.view.px([0.0, 0.0]);
@@ -186,15 +189,19 @@ pub(crate) fn figure(
         r#"<svg xmlns="http://www.w3.org/2000/svg" id="kl-drawing" width="{w}" height="{h}" viewBox="0 0 {w} {h}" data-scale="{}" data-origin="{} {}" data-frame="{first}"><rect width="{w}" height="{h}" fill="white"/>"#,
         fr.view.scale, origin[0], origin[1]
     );
-    for (k, path) in fr.paths.iter().enumerate() {
-        let pts: Vec<String> = path.iter().map(|p| format!("{},{}", t(p[0]), t(p[1]))).collect();
+    for (k, pieces) in fr.paths.iter().enumerate() {
         let colour = style.traces.get(k % style.traces.len().max(1)).map_or("#d95f02", String::as_str);
-        let _ = write!(
-            s,
-            r#"<polyline class="kl-trace" data-trace="{k}" points="{}" fill="none" stroke="{colour}" stroke-width="{}" stroke-linejoin="round" opacity="0.7"/>"#,
-            pts.join(" "),
-            px(style.trace_width)
-        );
+        // The pieces of a grid's rows are many: thinner and fainter than a sweep's one path.
+        let (width, opacity) =
+            if pieces.len() > 1 { (px(0.6 * style.trace_width), "0.45") } else { (px(style.trace_width), "0.7") };
+        for path in pieces {
+            let pts: Vec<String> = path.iter().map(|p| format!("{},{}", t(p[0]), t(p[1]))).collect();
+            let _ = write!(
+                s,
+                r#"<polyline class="kl-trace" data-trace="{k}" points="{}" fill="none" stroke="{colour}" stroke-width="{width}" stroke-linejoin="round" opacity="{opacity}"/>"#,
+                pts.join(" "),
+            );
+        }
     }
     let mut o = 0;
     for slot in &fr.slots {
@@ -214,7 +221,21 @@ pub(crate) fn figure(
             escape(label)
         );
     }
+    for (i, m) in marks.iter().enumerate() {
+        let [x, y] = fr.view.px(*m);
+        let _ = write!(
+            s,
+            r##"<circle class="kl-target" data-index="{i}" cx="{}" cy="{}" r="4.5" fill="none" stroke="#111" stroke-width="1.5"/><text class="kl-target-label" x="{}" y="{}" font-family="sans-serif" font-size="11" fill="#111" stroke="white" stroke-width="3" paint-order="stroke">{}</text>"##,
+            px(x),
+            px(y),
+            px(x + 6.0),
+            px(y - 6.0),
+            i + 1
+        );
+    }
     let f = &fr.frames[first];
+    // The live mechanism in one group: a grid's page hides it where it cannot be assembled.
+    s.push_str(r#"<g id="kl-mechanism">"#);
     items(&mut s, style, &fr.slots, f, &Pen { ink: &style.ink, fill: &style.fill, ghost: false }, Some(joints));
     for (k, name) in traces.iter().enumerate() {
         let o = fr.traces_at + 2 * k;
@@ -227,6 +248,6 @@ pub(crate) fn figure(
             t(f[o + 1])
         );
     }
-    s.push_str("</svg>");
+    s.push_str("</g></svg>");
     s
 }

@@ -53,8 +53,9 @@ pub(crate) struct Frames {
     /// The same numbers at each event of the motion.
     pub events: Vec<Vec<i64>>,
     /// Every traced point along the whole path of the motion (all samples), in tenths of a
-    /// pixel, consecutive equal ones merged.
-    pub paths: Vec<Vec<[i64; 2]>>,
+    /// pixel, consecutive equal ones merged: per traced point, its pieces (one for a sweep;
+    /// on a grid, one per run of reachable cells along the first input).
+    pub paths: Vec<Vec<Vec<[i64; 2]>>>,
 }
 
 /// The poses along the motion: its samples, then the event where it stopped (as the drawings).
@@ -166,11 +167,19 @@ impl Eval<'_> {
 }
 
 impl Frames {
-    /// `d` over `motion`, at most `max_frames` poses along its path.
-    pub(crate) fn new(d: &Drawing, motion: &Motion, max_frames: usize) -> Result<Frames, HtmlError> {
+    /// `d` at the poses `poses` of `motion`, its traced paths through the poses of each of
+    /// `runs`; in `view`, or fitted to the drawing over the motion.
+    pub(crate) fn build(
+        d: &Drawing,
+        motion: &Motion,
+        poses: Vec<usize>,
+        runs: &[Vec<usize>],
+        view: Option<View>,
+    ) -> Result<Frames, HtmlError> {
         // The drawings' own checks (names, shapes of poses, finite points, style, canvas) and
         // their fit of the picture to every pose.
-        let view = d.view(motion)?;
+        let fitted = d.view(motion)?;
+        let view = view.unwrap_or(fitted);
         let e = Eval { motion, view };
         let mut slots = Vec::with_capacity(d.items.len());
         for item in &d.items {
@@ -185,18 +194,20 @@ impl Frames {
             });
         }
         let traces_at = slots.iter().map(Slot::len).sum();
-        let path = path(motion);
-        let poses = spread(&path, max_frames);
         let frames = poses.iter().map(|&i| e.frame(d, i)).collect::<Result<Vec<_>, _>>()?;
         let events =
             (0..motion.events.len()).map(|j| e.frame(d, motion.poses.len() + j)).collect::<Result<Vec<_>, _>>()?;
-        let mut paths = vec![Vec::<[i64; 2]>::new(); d.traces.len()];
-        for &i in &path {
+        let mut paths = vec![Vec::<Vec<[i64; 2]>>::new(); d.traces.len()];
+        for run in runs {
             for (t, p) in d.traces.iter().enumerate() {
-                let xy = e.point(p, i)?;
-                if paths[t].last() != Some(&xy) {
-                    paths[t].push(xy);
+                let mut piece = Vec::<[i64; 2]>::new();
+                for &i in run {
+                    let xy = e.point(p, i)?;
+                    if piece.last() != Some(&xy) {
+                        piece.push(xy);
+                    }
                 }
+                paths[t].push(piece);
             }
         }
         Ok(Frames { view, slots, traces_at, poses, frames, events, paths })

@@ -16,8 +16,11 @@
 //! * the sweep's events (limit positions, singular crossings) marked on the slider's track and
 //!   on the charts, and the mechanism drawn there as a dashed ghost.
 //!
-//! With several inputs the motion is a sweep along a straight path in input space: the slider
-//! moves along that path and every input has its readout.
+//! With several inputs the motion is either a sweep along a straight path in input space
+//! ([`html`]: one slider moves along that path and every input has its readout), or a grid of
+//! the inputs ([`html_grid`] over a [`GridMotion`]: one slider per input, the mechanism at
+//! the sliders' cell, "cannot be assembled here" where the grid could not be assembled on
+//! the assembly mode carried from its first cell).
 //!
 //! The page is deterministic (the same inputs give the same bytes: no time stamp, no random
 //! identifier) and holds no NaN or infinite number: a non-finite value is an [`HtmlError`].
@@ -66,7 +69,7 @@
 //! # Ok::<(), Box<dyn std::error::Error>>(())
 //! ```
 
-mod chart;
+pub(crate) mod chart;
 mod config;
 mod css;
 mod error;
@@ -79,7 +82,7 @@ mod script;
 pub use config::{HtmlConfig, Readout, Value};
 pub use error::HtmlError;
 
-use crate::draw::{Drawing, Item, Motion, Pt};
+use crate::draw::{Drawing, GridMotion, Item, Motion, Pt};
 use kinloop_runtime::Mechanism;
 
 /// The names of the joints of each item (the `point` outputs among its points).
@@ -115,6 +118,22 @@ pub fn html<M, const N: usize, const NI: usize, const NO: usize>(
 where
     M: Mechanism<N, NI, NO>,
 {
+    html_marked(m, drawing, motion, config, &[], None)
+}
+
+/// [`html`] with fixed points `marks` marked and numbered over the picture, in `view` (fitted
+/// to the drawing over the motion when `None`).
+pub(crate) fn html_marked<M, const N: usize, const NI: usize, const NO: usize>(
+    m: &M,
+    drawing: &Drawing,
+    motion: &Motion,
+    config: &HtmlConfig,
+    marks: &[[f64; 2]],
+    view: Option<crate::draw::View>,
+) -> Result<String, HtmlError>
+where
+    M: Mechanism<N, NI, NO>,
+{
     let _ = m;
     config.check()?;
     if motion.inputs != M::INPUTS || motion.outputs != M::OUTPUTS {
@@ -125,7 +144,8 @@ where
             M::INPUTS
         )));
     }
-    let fr = frames::Frames::new(drawing, motion, config.max_frames)?;
+    let path = frames::path(motion);
+    let fr = frames::Frames::build(drawing, motion, frames::spread(&path, config.max_frames), &[path], view)?;
     let channels = readouts::channels::<M, N, NI, NO>(config, motion, &fr.poses)?;
     let against_input = NI == 1;
     let labels: Vec<String> = motion
@@ -159,9 +179,10 @@ where
     }
     let traces: Vec<Option<String>> =
         drawing.traces.iter().map(|p| if let Pt::Point(n) = p { Some(n.clone()) } else { None }).collect();
-    let figure = figure::figure(&fr, &drawing.style, 0, &joint_names(drawing), &traces, &labels);
+    let figure = figure::figure(&fr, &drawing.style, 0, &joint_names(drawing), &traces, &labels, marks);
     page::document(&page::Parts {
         title: &config.title,
+        notes: &drawing.notes,
         frames: &fr,
         channels: &channels,
         figure,
@@ -171,5 +192,103 @@ where
         seconds: config.seconds,
         back_and_forth: config.back_and_forth,
         autoplay: config.autoplay,
+        grid: None,
+    })
+}
+
+/// An interactive page of `drawing` over a grid of the inputs of mechanism `m` (recorded with
+/// [`GridMotion::record`]): one slider per input, a readout of every input, the mechanism at
+/// the sliders' cell; where the grid could not be assembled the mechanism is hidden (its frame
+/// pivots stay), the other readouts show a dash and the page says "cannot be assembled here".
+/// The traced
+/// points' paths are drawn along every row of reachable cells. Play moves the first input
+/// along its row. The readouts have no charts (a chart against one input would hold for one
+/// row only).
+///
+/// Every cell is written: a grid of more cells than [`HtmlConfig::max_frames`] is an error
+/// (fewer values per input, or a larger `max_frames`), so the page's size stays bounded.
+///
+/// ```
+/// use kinloop::Mechanism;
+/// use kinloop_viz::draw::{Draw, GridMotion};
+/// use kinloop_viz::html::{HtmlConfig, html_grid};
+///
+/// kinloop::mechanism! {
+///     pub struct FiveBar {
+///         params a = 1.0, b = 2.5, c = 2.5, d = 1.0, e = 2.0;
+///         inputs th1, th2;
+///         unknowns al = 1.2, be = 2.0;
+///         loop l: a @ th1 + b @ al == (e, 0) + d @ th2 + c @ be;
+///         point p = a @ th1 + b @ al;
+///     }
+/// }
+/// let m = FiveBar::default();
+/// let grid = GridMotion::record(&m, [0.0, 0.0], [3.0, 3.0], [13, 13], m.guess_flat(&[0.0, 0.0]))?;
+/// let page = html_grid(&m, &m.drawing().into_drawing(), &grid, &HtmlConfig::new("Five-bar"))?;
+/// assert!(page.contains(r#"id="kl-slider-0""#) && page.contains(r#"id="kl-slider-1""#));
+/// assert!(!page.contains("NaN"));
+/// # Ok::<(), Box<dyn std::error::Error>>(())
+/// ```
+///
+/// # Errors
+/// As [`html`], and [`HtmlError::InvalidSetting`] for a grid of another mechanism or of more
+/// cells than [`HtmlConfig::max_frames`].
+pub fn html_grid<M, const N: usize, const NI: usize, const NO: usize>(
+    m: &M,
+    drawing: &Drawing,
+    grid: &GridMotion,
+    config: &HtmlConfig,
+) -> Result<String, HtmlError>
+where
+    M: Mechanism<N, NI, NO>,
+{
+    let _ = m;
+    config.check()?;
+    let motion = &grid.motion;
+    let counts = grid.counts();
+    if motion.inputs != M::INPUTS || motion.outputs != M::OUTPUTS || counts.len() != NI {
+        return Err(HtmlError::InvalidSetting(format!(
+            "the grid (inputs {:?}) is not a grid of the mechanism {} (inputs {:?})",
+            motion.inputs,
+            M::NAME,
+            M::INPUTS
+        )));
+    }
+    if grid.cells.len() != counts.iter().product::<usize>()
+        || grid.cells.iter().flatten().any(|&i| i >= motion.poses.len())
+    {
+        return Err(HtmlError::InvalidSetting("the grid's cells do not match its axes and poses".into()));
+    }
+    if grid.cells.len() > config.max_frames {
+        return Err(HtmlError::InvalidSetting(format!(
+            "a grid of {} cells is more than the page's {} poses (max_frames): fewer values per input or a larger \
+             max_frames",
+            grid.cells.len(),
+            config.max_frames
+        )));
+    }
+    let fr = frames::Frames::build(drawing, motion, (0..motion.poses.len()).collect(), &grid.runs(), None)?;
+    let mut channels = readouts::channels::<M, N, NI, NO>(config, motion, &fr.poses)?;
+    for (c, axis) in channels.iter_mut().zip(&grid.axes) {
+        readouts::on_axis(c, axis);
+    }
+    let traces: Vec<Option<String>> =
+        drawing.traces.iter().map(|p| if let Pt::Point(n) = p { Some(n.clone()) } else { None }).collect();
+    let first = grid.cells[0].unwrap_or(0);
+    let figure = figure::figure(&fr, &drawing.style, first, &joint_names(drawing), &traces, &[], &[]);
+    let cells = grid.cells.iter().map(|c| c.map_or(-1, |i| i as i64)).collect();
+    page::document(&page::Parts {
+        title: &config.title,
+        notes: &drawing.notes,
+        frames: &fr,
+        channels: &channels,
+        figure,
+        charts: Vec::new(),
+        against_input: false,
+        events: Vec::new(),
+        seconds: config.seconds,
+        back_and_forth: config.back_and_forth,
+        autoplay: config.autoplay,
+        grid: Some(page::GridPart { counts, cells, inputs: M::INPUTS.iter().map(|s| s.to_string()).collect() }),
     })
 }

@@ -25,6 +25,8 @@ fn number(v: f64, what: &str) -> Result<String, HtmlError> {
 /// What the page is made of.
 pub(crate) struct Parts<'a> {
     pub title: &'a str,
+    /// The drawing's notes, written under the picture.
+    pub notes: &'a [String],
     pub frames: &'a Frames,
     pub channels: &'a [Channel],
     /// The picture (SVG).
@@ -39,6 +41,18 @@ pub(crate) struct Parts<'a> {
     pub seconds: f64,
     pub back_and_forth: bool,
     pub autoplay: bool,
+    /// A grid's page: one slider per input over its cells.
+    pub grid: Option<GridPart>,
+}
+
+/// What a grid's page holds besides the frames.
+pub(crate) struct GridPart {
+    /// Cells along each input.
+    pub counts: Vec<usize>,
+    /// For every cell (the first input fastest), its frame, or -1 where it cannot be assembled.
+    pub cells: Vec<i64>,
+    /// The inputs' names, labelling the sliders.
+    pub inputs: Vec<String>,
 }
 
 /// The numbers of every frame and how the script reads them, as JSON.
@@ -102,9 +116,19 @@ fn data(p: &Parts) -> Result<String, HtmlError> {
             number(map.y[1], what)?
         );
     }
+    s.push(']');
+    if let Some(g) = &p.grid {
+        let list = |v: Vec<String>| v.join(",");
+        let _ = write!(
+            s,
+            r#","grid":{{"n":[{}],"cell":[{}]}}"#,
+            list(g.counts.iter().map(usize::to_string).collect()),
+            list(g.cells.iter().map(i64::to_string).collect())
+        );
+    }
     let _ = write!(
         s,
-        r#"],"seconds":{},"bf":{},"autoplay":{}}}"#,
+        r#","seconds":{},"bf":{},"autoplay":{}}}"#,
         number(p.seconds, "duration")?,
         p.back_and_forth,
         p.autoplay
@@ -123,11 +147,26 @@ pub(crate) fn document(p: &Parts) -> Result<String, HtmlError> {
         css::CSS,
         p.figure
     );
-    let _ = write!(
-        s,
-        "<div class=\"kl-controls\"><button id=\"kl-play\" type=\"button\" aria-pressed=\"false\">Play</button><div class=\"kl-track\"><input id=\"kl-slider\" type=\"range\" min=\"0\" max=\"{}\" step=\"1\" value=\"0\" aria-label=\"pose along the motion\"><div class=\"kl-marks\">",
-        n - 1
-    );
+    if let Some(g) = &p.grid {
+        s.push_str(
+            "<div class=\"kl-controls kl-grid\"><button id=\"kl-play\" type=\"button\" aria-pressed=\"false\">Play</button><div class=\"kl-sliders\">",
+        );
+        for (k, (name, count)) in g.inputs.iter().zip(&g.counts).enumerate() {
+            let name = escape(name);
+            let _ = write!(
+                s,
+                "<label class=\"kl-axis\"><span>{name}</span><input id=\"kl-slider-{k}\" class=\"kl-slider\" data-axis=\"{k}\" type=\"range\" min=\"0\" max=\"{}\" step=\"1\" value=\"0\" aria-label=\"{name}\"></label>",
+                count - 1
+            );
+        }
+        s.push_str("</div></div>\n<p id=\"kl-status\" class=\"kl-status\" role=\"status\" aria-live=\"polite\"></p>\n");
+    } else {
+        let _ = write!(
+            s,
+            "<div class=\"kl-controls\"><button id=\"kl-play\" type=\"button\" aria-pressed=\"false\">Play</button><div class=\"kl-track\"><input id=\"kl-slider\" type=\"range\" min=\"0\" max=\"{}\" step=\"1\" value=\"0\" aria-label=\"pose along the motion\"><div class=\"kl-marks\">",
+            n - 1
+        );
+    }
     for (kind, at, label) in &p.events {
         let f = at / (n - 1).max(1) as f64;
         let _ = write!(
@@ -138,7 +177,9 @@ pub(crate) fn document(p: &Parts) -> Result<String, HtmlError> {
             at.round()
         );
     }
-    s.push_str("</div></div></div>\n");
+    if p.grid.is_none() {
+        s.push_str("</div></div></div>\n");
+    }
     if !p.events.is_empty() {
         s.push_str("<ul class=\"kl-events\">");
         for (kind, at, label) in &p.events {
@@ -150,6 +191,9 @@ pub(crate) fn document(p: &Parts) -> Result<String, HtmlError> {
             );
         }
         s.push_str("</ul>\n");
+    }
+    for note in p.notes {
+        let _ = writeln!(s, "<p class=\"kl-drawing-note\">note: {}</p>", escape(note));
     }
     s.push_str("</figure>\n<section class=\"kl-side\">\n<table class=\"kl-readouts\"><tbody>");
     for (k, c) in p.channels.iter().enumerate() {
@@ -165,9 +209,20 @@ pub(crate) fn document(p: &Parts) -> Result<String, HtmlError> {
     for (_, svg, _) in &p.charts {
         s.push_str(svg);
     }
+    let about = match &p.grid {
+        Some(g) => format!(
+            "{n} of {} cells of a grid of the inputs ({}), computed by kinloop: rows along {} by branch-safe sweeps, each row started from the previous row's first cell, so that one assembly mode is carried throughout; where the mechanism cannot be assembled on it, the page says so. Drag the sliders or use the arrow keys.",
+            g.cells.len(),
+            g.counts.iter().map(usize::to_string).collect::<Vec<_>>().join(" x "),
+            escape(g.inputs.first().map_or("", String::as_str))
+        ),
+        None => {
+            format!("{n} poses of a branch-safe sweep, computed by kinloop; drag the slider or use the arrow keys.")
+        }
+    };
     let _ = write!(
         s,
-        "</div>\n</section>\n</div>\n<p class=\"kl-note\">{n} poses of a branch-safe sweep, computed by kinloop; drag the slider or use the arrow keys. Coordinates are drawn to 0.1 px, readouts to the digits shown.</p>\n</main>\n<script type=\"application/json\" id=\"kl-data\">{}</script>\n<script>{}</script>\n</body>\n</html>\n",
+        "</div>\n</section>\n</div>\n<p class=\"kl-note\">{about} Coordinates are drawn to 0.1 px, readouts to the digits shown.</p>\n</main>\n<script type=\"application/json\" id=\"kl-data\">{}</script>\n<script>{}</script>\n</body>\n</html>\n",
         data(p)?,
         script::SCRIPT
     );

@@ -175,3 +175,13 @@ where
     }
     Ok(out)
 }
+
+/// Input channel `c` made to read the values `axis` (library units) of a grid's axis: shown
+/// units, with the digits those need.
+pub(crate) fn on_axis(c: &mut Channel, axis: &[f64]) {
+    let shown: Vec<f64> = axis.iter().map(|v| c.kind.shown(*v)).collect();
+    let max = shown.iter().fold(0.0f64, |m, v| m.max(v.abs()));
+    c.decimals = decimals(&c.kind, max);
+    c.values = shown.into_iter().map(|v| rounded(v, c.decimals)).collect();
+    c.at_events.clear();
+}

@@ -6,6 +6,13 @@
 //! `page.html#probe=0,40,80` moves the slider to each frame in turn, as a user would, and
 //! writes what is then drawn (every joint and traced dot, the readouts' texts, the charts'
 //! cursors) as lines into a `<pre id="kl-probe">`, read back by the browser test.
+//!
+//! A grid's page (several inputs, [`html_grid`](super::html_grid)) has one slider per input:
+//! the cell under the sliders is shown, or, where the grid could not be assembled, the
+//! mechanism is hidden, the other readouts show a dash and the status line says so. Its
+//! address takes cells as indices along each input: `page.html#cell=3:5`, and
+//! `page.html#probe=3:5,10:2` (each written as frame = the cell's number, with a line saying
+//! whether it is reachable). Play moves the first input along its row.
 
 /// The script (plain ES5, no library).
 pub(crate) const SCRIPT: &str = r#"
@@ -13,9 +20,16 @@ pub(crate) const SCRIPT: &str = r#"
   'use strict';
   var D = JSON.parse(document.getElementById('kl-data').textContent);
   var svg = document.getElementById('kl-drawing');
-  var slider = document.getElementById('kl-slider');
+  var G = D.grid || null;
+  var sliders = G ? Array.prototype.slice.call(document.querySelectorAll('input.kl-slider')) : [document.getElementById('kl-slider')];
+  var slider = sliders[0];
   var button = document.getElementById('kl-play');
-  var n = D.frames.length;
+  var mech = document.getElementById('kl-mechanism');
+  var status = document.getElementById('kl-status');
+  // Played along: the frames of a sweep, or the first input's values on a grid.
+  var n = G ? G.n[0] : D.frames.length;
+  // On a grid, the first `ni` readouts are the inputs, read from the sliders.
+  var ni = G ? G.n.length : 0;
   var all = function (root, sel) { return Array.prototype.slice.call(root.querySelectorAll(sel)); };
   // Coordinates are held in tenths of a pixel, angles in tenths of a degree.
   var t = function (v) { return String(v / 10); };
@@ -59,7 +73,7 @@ pub(crate) const SCRIPT: &str = r#"
       d.setAttribute('cx', t(f[o]));
       d.setAttribute('cy', t(f[o + 1]));
     });
-    values.forEach(function (el, k) { el.textContent = D.ch[k].v[i].toFixed(D.ch[k].dec); });
+    values.forEach(function (el, k) { if (k >= ni) { el.textContent = D.ch[k].v[i].toFixed(D.ch[k].dec); } });
     charts.forEach(function (c) {
       var xv = c.c.x < 0 ? i / Math.max(n - 1, 1) : D.ch[c.c.x].v[i];
       var m = c.c.map;
@@ -71,11 +85,46 @@ pub(crate) const SCRIPT: &str = r#"
       c.dot.setAttribute('cy', py);
     });
     svg.setAttribute('data-frame', String(i));
+    if (G) { return; }
     slider.value = String(i);
     if (row) {
       slider.setAttribute('aria-valuetext', row.cells[0].textContent + ' = ' + row.cells[1].textContent + ' ' + row.cells[2].textContent);
     }
     current = i;
+  }
+
+  // A grid: the sliders' indices, the cell they select, and that cell shown.
+  function at() { return sliders.map(function (s) { return parseInt(s.value, 10); }); }
+  function cellOf(idx) {
+    var c = 0;
+    for (var k = idx.length - 1; k >= 0; k--) { c = c * G.n[k] + Math.max(0, Math.min(idx[k], G.n[k] - 1)); }
+    return c;
+  }
+  function showCell(idx) {
+    var c = cellOf(idx), f = G.cell[c];
+    sliders.forEach(function (s, k) {
+      var j = Math.max(0, Math.min(idx[k], G.n[k] - 1));
+      s.value = String(j);
+      values[k].textContent = D.ch[k].v[j].toFixed(D.ch[k].dec);
+      var r = document.querySelector('tr.kl-readout[data-ch="' + k + '"]');
+      s.setAttribute('aria-valuetext', r.cells[0].textContent + ' = ' + r.cells[1].textContent + ' ' + r.cells[2].textContent);
+    });
+    if (f >= 0) {
+      show(f);
+      mech.classList.remove('kl-unreachable');
+      status.textContent = '';
+    } else {
+      mech.classList.add('kl-unreachable');
+      values.forEach(function (el, k) { if (k >= ni) { el.textContent = '\u2013'; } });
+      status.textContent = 'cannot be assembled here';
+    }
+    svg.setAttribute('data-cell', String(c));
+    svg.setAttribute('data-reachable', f >= 0 ? 'true' : 'false');
+    current = parseInt(sliders[0].value, 10);
+  }
+  // Index `i` along the first input, the others where their sliders are.
+  function move(i) {
+    if (G) { var idx = at(); idx[0] = i; showCell(idx); } else { show(i); }
   }
 
   var playing = false, start = 0, from = 0;
@@ -86,7 +135,7 @@ pub(crate) const SCRIPT: &str = r#"
   function tick(now) {
     if (!playing) { return; }
     var i = Math.round(position((now - start) / (1000 * D.seconds) + from) * (n - 1));
-    if (i !== current) { show(i); }
+    if (i !== current) { move(i); }
     window.requestAnimationFrame(tick);
   }
   function play() {
@@ -104,46 +153,73 @@ pub(crate) const SCRIPT: &str = r#"
     button.setAttribute('aria-pressed', 'false');
   }
   button.addEventListener('click', function () { if (playing) { pause(); } else { play(); } });
-  slider.addEventListener('input', function () { pause(); show(parseInt(slider.value, 10)); });
+  sliders.forEach(function (s) {
+    s.addEventListener('input', function () { pause(); if (G) { showCell(at()); } else { show(parseInt(s.value, 10)); } });
+  });
   // A click on an event's mark (or its line in the list) shows the mechanism there.
   all(document, '[data-at]').forEach(function (el) {
     el.addEventListener('click', function () { pause(); show(Math.min(parseInt(el.getAttribute('data-at'), 10), n - 1)); });
   });
 
-  function probe(i) {
-    slider.value = String(i);
-    slider.dispatchEvent(new Event('input'));
-    var at = +slider.value, lines = [];
+  function probe(text) {
+    var lines = [], here;
+    if (G) {
+      // Each slider moved in turn, as a user does.
+      text.split(':').forEach(function (v, k) {
+        if (sliders[k]) { sliders[k].value = v; sliders[k].dispatchEvent(new Event('input')); }
+      });
+      here = +svg.getAttribute('data-cell');
+      var ok = svg.getAttribute('data-reachable') === 'true';
+      lines.push('frame=' + here + ' cell at=' + at().join(':') + ' reachable=' + ok);
+      lines.push('frame=' + here + ' status text=' + status.textContent);
+      if (!ok) {
+        // What is still drawn: the frame's pivots only.
+        var shown = function (sel) {
+          return all(svg, sel).filter(function (el) { return window.getComputedStyle(el).visibility !== 'hidden'; }).length;
+        };
+        lines.push('frame=' + here + ' shown pivots=' + shown('.kl-pivot') + ' joints=' + shown('circle.kl-joint') +
+          ' shapes=' + shown('.kl-shape:not(.kl-pivot)') + ' dots=' + shown('circle.kl-dot'));
+        values.forEach(function (el, k) { lines.push('frame=' + here + ' value ch=' + k + ' text=' + el.textContent); });
+        return lines;
+      }
+    } else {
+      slider.value = String(Math.min(parseInt(text, 10), n - 1));
+      slider.dispatchEvent(new Event('input'));
+      here = +slider.value;
+    }
     all(svg, 'circle.kl-joint').forEach(function (c) {
-      lines.push('frame=' + at + ' joint item=' + c.getAttribute('data-item') + ' point=' + c.getAttribute('data-point') +
+      lines.push('frame=' + here + ' joint item=' + c.getAttribute('data-item') + ' point=' + c.getAttribute('data-point') +
         ' name=' + (c.getAttribute('data-name') || '-') + ' x=' + c.getAttribute('cx') + ' y=' + c.getAttribute('cy'));
     });
     dots.forEach(function (c) {
-      lines.push('frame=' + at + ' dot trace=' + c.getAttribute('data-trace') + ' name=' + (c.getAttribute('data-name') || '-') +
+      lines.push('frame=' + here + ' dot trace=' + c.getAttribute('data-trace') + ' name=' + (c.getAttribute('data-name') || '-') +
         ' x=' + c.getAttribute('cx') + ' y=' + c.getAttribute('cy'));
     });
-    values.forEach(function (el, k) { lines.push('frame=' + at + ' value ch=' + k + ' text=' + el.textContent); });
+    values.forEach(function (el, k) { lines.push('frame=' + here + ' value ch=' + k + ' text=' + el.textContent); });
     charts.forEach(function (c, k) {
-      lines.push('frame=' + at + ' cursor chart=' + k + ' x=' + c.line.getAttribute('x1') + ' y=' + c.dot.getAttribute('cy'));
+      lines.push('frame=' + here + ' cursor chart=' + k + ' x=' + c.line.getAttribute('x1') + ' y=' + c.dot.getAttribute('cy'));
     });
     return lines;
   }
 
   var hash = window.location.hash;
-  var one = /^#i=(\d+)$/.exec(hash), many = /^#probe=([\d,]+)$/.exec(hash);
-  if (one) {
+  var one = /^#i=(\d+)$/.exec(hash), many = /^#probe=([\d,:]+)$/.exec(hash), cell = /^#cell=([\d:]+)$/.exec(hash);
+  if (one && !G) {
     show(Math.min(parseInt(one[1], 10), n - 1));
+  } else if (cell && G) {
+    showCell(cell[1].split(':').map(function (v) { return parseInt(v, 10); }));
   } else if (many) {
+    if (G) { showCell(at()); }
     var lines = [];
     many[1].split(',').forEach(function (s) {
-      if (s !== '') { lines = lines.concat(probe(Math.min(parseInt(s, 10), n - 1))); }
+      if (s !== '') { lines = lines.concat(probe(s)); }
     });
     var pre = document.createElement('pre');
     pre.id = 'kl-probe';
     pre.textContent = lines.join('\n');
     document.body.appendChild(pre);
   } else {
-    show(0);
+    if (G) { showCell(at()); } else { show(0); }
     if (D.autoplay) { play(); }
   }
 })();

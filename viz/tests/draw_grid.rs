@@ -1,0 +1,107 @@
+//! Grids of several inputs (`GridMotion::record`) without a browser: three inputs (a five-bar
+//! whose frame length is an input too), every reachable cell's pose against the closed form and
+//! one assembly mode over the whole grid; the page has a slider per input; and mistakes are
+//! typed errors.
+
+use kinloop::Mechanism;
+use kinloop_viz::draw::{Draw, DrawError, GridMotion, HtmlConfig, HtmlError, MAX_GRID_CELLS, html_grid};
+
+kinloop::mechanism! {
+    /// A five-bar whose frame length `s` is a third input.
+    pub struct Stretch {
+        params a = 1.0, b = 1.6, c = 1.6, d = 1.0;
+        inputs th1, th2, s;
+        unknowns al = 1.2, be = 2.0;
+        loop l: a @ th1 + b @ al == (s, 0) + d @ th2 + c @ be;
+        point p = a @ th1 + b @ al;
+    }
+}
+
+/// Where the circles (`a`, `ra`) and (`b`, `rb`) meet, to the left of a->b; `None` where they
+/// do not.
+fn meet_left(a: [f64; 2], ra: f64, b: [f64; 2], rb: f64) -> Option<[f64; 2]> {
+    let v = [b[0] - a[0], b[1] - a[1]];
+    let dist = v[0].hypot(v[1]);
+    let along = (ra * ra - rb * rb + dist * dist) / (2.0 * dist);
+    let h2 = ra * ra - along * along;
+    (h2 >= 0.0).then(|| {
+        let h = h2.sqrt();
+        [a[0] + (along * v[0] - h * v[1]) / dist, a[1] + (along * v[1] + h * v[0]) / dist]
+    })
+}
+
+#[test]
+fn three_inputs_are_a_grid_of_slices_on_one_assembly_mode() {
+    let m = Stretch::default();
+    let (from, to, counts) = ([0.5, 0.0, 1.6], [3.0, 2.5, 2.4], [11, 9, 5]);
+    let grid = GridMotion::record(&m, from, to, counts, m.guess_flat(&from)).unwrap();
+    assert_eq!(grid.counts(), counts);
+    assert_eq!(grid.cells.len(), 11 * 9 * 5);
+    assert_eq!(grid.cell(&[3, 2, 4]), Some(3 + 11 * (2 + 9 * 4)));
+    assert_eq!(grid.cell(&[11, 0, 0]), None);
+    let (mut reached, mut beyond) = (0, 0);
+    for k in 0..5 {
+        for j in 0..9 {
+            for i in 0..11 {
+                let x = [grid.axes[0][i], grid.axes[1][j], grid.axes[2][k]];
+                let pa = [m.a * x[0].cos(), m.a * x[0].sin()];
+                let pc = [x[2] + m.d * x[1].cos(), m.d * x[1].sin()];
+                let apart = (pc[0] - pa[0]).hypot(pc[1] - pa[1]);
+                match grid.cells[grid.cell(&[i, j, k]).unwrap()] {
+                    Some(n) => {
+                        let pose = &grid.motion.poses[n];
+                        assert!(pose.x.iter().zip(&x).all(|(a, b)| (a - b).abs() < 1e-12), "{:?} vs {x:?}", pose.x);
+                        let p = meet_left(pa, m.b, pc, m.c).expect("reachable cells assemble");
+                        if apart < m.b + m.c - 1e-3 {
+                            let d = (pose.out[0] - p[0]).hypot(pose.out[1] - p[1]);
+                            assert!(d < 1e-9, "cell {i}:{j}:{k}: p off by {d}");
+                        }
+                        reached += 1;
+                    }
+                    None => beyond += usize::from(apart > m.b + m.c),
+                }
+            }
+        }
+    }
+    // Cells beyond the links' reach are never reached; most of the others are.
+    let impossible = (0..grid.cells.len()).filter(|&c| grid.cells[c].is_none()).count();
+    assert!(
+        reached > 300 && beyond > 0 && impossible >= beyond,
+        "{reached} reached, {beyond} beyond, {impossible} not"
+    );
+    let page = html_grid(&m, &m.drawing().into_drawing(), &grid, &HtmlConfig::new("three")).unwrap();
+    for k in 0..3 {
+        assert!(page.contains(&format!(r#"id="kl-slider-{k}""#)));
+    }
+    assert!(!page.contains("NaN") && !page.contains("kl-slider-3"));
+}
+
+#[test]
+fn bad_grids_are_errors() {
+    let m = Stretch::default();
+    let g = m.guess_flat(&[0.5, 0.0, 2.0]);
+    let bad = |from: [f64; 3], to: [f64; 3], counts: [usize; 3]| GridMotion::record(&m, from, to, counts, g);
+    let setting = |r: Result<GridMotion, DrawError>| matches!(r, Err(DrawError::InvalidSetting(_)));
+    assert!(setting(bad([0.5, 0.0, 2.0], [1.0, 1.0, 2.5], [0, 3, 3])), "no value");
+    assert!(setting(bad([0.5, 0.0, 2.0], [1.0, 0.0, 2.5], [3, 3, 3])), "a range of one value");
+    assert!(setting(bad([0.5, f64::NAN, 2.0], [1.0, 1.0, 2.5], [3, 3, 3])), "NaN");
+    assert!(setting(bad([0.5, 0.0, 2.0], [1.0, 1.0, 2.5], [100, 100, 100])), "more than {MAX_GRID_CELLS} cells");
+    assert!(setting(bad([0.5, 0.0, 2.0], [1.0, 1.0, 2.5], [usize::MAX, 2, 2])), "overflowing count");
+    // One value on an axis is a slice: allowed.
+    assert_eq!(bad([0.5, 0.0, 2.0], [1.0, 1.0, 2.0], [3, 3, 1]).unwrap().cells.len(), 9);
+    // Not assembled at the first cell (the frame longer than every link together).
+    let far = GridMotion::record(&m, [0.5, 0.0, 9.0], [1.0, 1.0, 9.5], [3, 3, 3], g);
+    assert!(matches!(far, Err(DrawError::Sweep(_))), "{far:?}");
+    // A page: a grid of too many cells for its poses, and one of another mechanism.
+    let grid = bad([0.5, 0.0, 2.0], [1.0, 1.0, 2.5], [10, 10, 10]).unwrap();
+    let d = m.drawing().into_drawing();
+    let small = html_grid(&m, &d, &grid, &HtmlConfig::new("x").with_max_frames(999));
+    assert!(matches!(small, Err(HtmlError::InvalidSetting(_))));
+    assert!(html_grid(&m, &d, &grid, &HtmlConfig::new("x").with_max_frames(1000)).is_ok());
+    let mut other = grid.clone();
+    other.motion.inputs.pop();
+    assert!(matches!(html_grid(&m, &d, &other, &HtmlConfig::new("x")), Err(HtmlError::InvalidSetting(_))));
+    let mut broken = grid;
+    broken.cells.pop();
+    assert!(matches!(html_grid(&m, &d, &broken, &HtmlConfig::new("x")), Err(HtmlError::InvalidSetting(_))));
+}
