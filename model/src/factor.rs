@@ -168,6 +168,20 @@ impl Fac {
         }
     }
 
+    /// Solves the 1x1 `J z = rhs` (a block of one unknown: `Fixed`, `Lu<1>`).
+    #[inline]
+    pub(crate) fn solve1(&self, rhs: f64) -> f64 {
+        match self {
+            Fac::Fixed(f) => f.solve([rhs])[0],
+            Fac::L1(lu) => lu.solve([rhs])[0],
+            other => {
+                let mut z = [rhs];
+                other.solve(&mut z);
+                z[0]
+            }
+        }
+    }
+
     /// Solves `J z = rhs` in place (`rhs.len()` is the block's size).
     pub(crate) fn solve(&self, rhs: &mut [f64]) {
         macro_rules! s {
