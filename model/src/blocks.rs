@@ -107,17 +107,28 @@ impl Columns {
     }
 
     /// Solves every column on `fac` and writes the solutions into `out` and the registers.
-    #[inline]
+    #[inline(always)]
     fn solve(&self, n: usize, r: &mut [f64], fac: &Fac, out: &mut [f64]) {
         if n == 1 {
-            // One unknown: the runtime's 1x1 solve on each value, no gathering.
-            for ((&s, &d), &g) in self.src.iter().zip(&self.dst).zip(&self.reg) {
-                let z = fac.solve1(r[s as usize]);
-                out[d as usize] = z;
-                r[g as usize] = z;
-            }
-            return;
+            self.solve1(r, fac, out);
+        } else {
+            self.solve_n(n, r, fac, out);
         }
+    }
+
+    /// [`Columns::solve`] for one unknown: the runtime's 1x1 solve on each value, no gathering.
+    #[inline]
+    fn solve1(&self, r: &mut [f64], fac: &Fac, out: &mut [f64]) {
+        for ((&s, &d), &g) in self.src.iter().zip(&self.dst).zip(&self.reg) {
+            let z = fac.solve1(r[s as usize]);
+            out[d as usize] = z;
+            r[g as usize] = z;
+        }
+    }
+
+    /// [`Columns::solve`] for `n` unknowns.
+    #[inline(never)]
+    fn solve_n(&self, n: usize, r: &mut [f64], fac: &Fac, out: &mut [f64]) {
         if n == 0 {
             return;
         }
