@@ -198,15 +198,12 @@ impl BlockProg {
     /// `Lu::factor_cols` of the Jacobian in the registers.
     fn factor_cols(&self, r: &[f64], fac: &mut Fac) {
         let n = self.unknowns.len();
-        let mut rows = [0.0; crate::factor::MAX_DENSE * crate::factor::MAX_DENSE];
         let mut scale = [0.0; crate::factor::MAX_DENSE];
-        for (k, &reg) in self.jac.iter().enumerate() {
-            rows[k] = r[reg as usize];
-        }
         for (c, s) in scale.iter_mut().enumerate().take(n) {
             *s = max_abs(self.col[c].iter().map(|&k| r[k as usize]));
         }
-        fac.factor_cols(n, &rows[..n * n], &scale[..n]);
+        // The matrix is read from the registers straight into the size's array.
+        fac.factor_cols(n, |k| r[self.jac[k] as usize], &scale[..n]);
     }
 
     /// Solves the block's positions; writes them into `q` and the registers.
