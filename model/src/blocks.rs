@@ -71,6 +71,81 @@ pub(crate) struct BlockProg {
     /// `acc[r * pairs + p]`.
     pub(crate) acc_rows: Vec<u32>,
     pub(crate) tan2_regs: Vec<Option<u32>>,
+    /// The velocity analogs' solves, gathered and scattered by flat tables.
+    pub(crate) vel_cols: Columns,
+    /// The acceleration analogs' solves.
+    pub(crate) acc_cols: Columns,
+}
+
+/// The right-hand sides of a block's analog solves, one column per input (or input pair), as
+/// flat tables made once: per column `c` and block row or unknown `k` (index `c * n + k`), the
+/// register of the right-hand side, the place of the solution in the state's array, and the
+/// register the solution is written to (the scratch register when no node reads it). The hot
+/// loop then has no nested index arithmetic and no branch per value.
+#[derive(Clone, Debug, Default)]
+pub(crate) struct Columns {
+    src: Vec<u32>,
+    dst: Vec<u32>,
+    reg: Vec<u32>,
+}
+
+impl Columns {
+    /// The tables of `cols` columns for a block of `unknowns`: `rows[row * cols + c]` the
+    /// right-hand sides, `regs[k * cols + c]` the solutions' registers, `scratch` the register
+    /// written in place of a missing one.
+    pub(crate) fn new(unknowns: &[usize], cols: usize, rows: &[u32], regs: &[Option<u32>], scratch: u32) -> Columns {
+        let n = unknowns.len();
+        let mut t = Columns::default();
+        for c in 0..cols {
+            for k in 0..n {
+                t.src.push(rows[k * cols + c]);
+                t.dst.push((unknowns[k] * cols + c) as u32);
+                t.reg.push(regs[k * cols + c].unwrap_or(scratch));
+            }
+        }
+        t
+    }
+
+    /// Solves every column on `fac` and writes the solutions into `out` and the registers.
+    #[inline(always)]
+    fn solve(&self, n: usize, r: &mut [f64], fac: &Fac, out: &mut [f64]) {
+        if n == 1 {
+            self.solve1(r, fac, out);
+        } else {
+            self.solve_n(n, r, fac, out);
+        }
+    }
+
+    /// [`Columns::solve`] for one unknown: the runtime's 1x1 solve on each value, no gathering.
+    #[inline]
+    fn solve1(&self, r: &mut [f64], fac: &Fac, out: &mut [f64]) {
+        for ((&s, &d), &g) in self.src.iter().zip(&self.dst).zip(&self.reg) {
+            let z = fac.solve1(r[s as usize]);
+            out[d as usize] = z;
+            r[g as usize] = z;
+        }
+    }
+
+    /// [`Columns::solve`] for `n` unknowns.
+    #[inline(never)]
+    fn solve_n(&self, n: usize, r: &mut [f64], fac: &Fac, out: &mut [f64]) {
+        if n == 0 {
+            return;
+        }
+        let mut z = [0.0; crate::factor::MAX_DENSE];
+        let z = &mut z[..n];
+        for c in 0..self.src.len() / n {
+            let at = c * n;
+            for (k, zk) in z.iter_mut().enumerate() {
+                *zk = r[self.src[at + k] as usize];
+            }
+            fac.solve(z);
+            for (k, &zk) in z.iter().enumerate() {
+                out[self.dst[at + k] as usize] = zk;
+                r[self.reg[at + k] as usize] = zk;
+            }
+        }
+    }
 }
 
 /// What a block's stage works on: the registers, its factorisation, the configuration.
@@ -123,15 +198,12 @@ impl BlockProg {
     /// `Lu::factor_cols` of the Jacobian in the registers.
     fn factor_cols(&self, r: &[f64], fac: &mut Fac) {
         let n = self.unknowns.len();
-        let mut rows = [0.0; crate::factor::MAX_DENSE * crate::factor::MAX_DENSE];
         let mut scale = [0.0; crate::factor::MAX_DENSE];
-        for (k, &reg) in self.jac.iter().enumerate() {
-            rows[k] = r[reg as usize];
-        }
         for (c, s) in scale.iter_mut().enumerate().take(n) {
             *s = max_abs(self.col[c].iter().map(|&k| r[k as usize]));
         }
-        fac.factor_cols(n, &rows[..n * n], &scale[..n]);
+        // The matrix is read from the registers straight into the size's array.
+        fac.factor_cols(n, |k| r[self.jac[k] as usize], &scale[..n]);
     }
 
     /// Solves the block's positions; writes them into `q` and the registers.
@@ -233,20 +305,8 @@ impl BlockProg {
             return Err(StepFailure::Singular { pivot_ratio: fac.pivot_ratio() });
         }
         fac.note(health, b);
-        let n = self.unknowns.len();
-        let mut z = [0.0; crate::factor::MAX_DENSE];
-        for i in 0..ni {
-            for (row, zr) in z.iter_mut().enumerate().take(n) {
-                *zr = r[self.vel_rows[row * ni + i] as usize];
-            }
-            fac.solve(&mut z[..n]);
-            for (k, &u) in self.unknowns.iter().enumerate() {
-                dq[u * ni + i] = z[k];
-                if let Some(reg) = self.tan_regs[k * ni + i] {
-                    r[reg as usize] = z[k];
-                }
-            }
-        }
+        self.vel_cols.solve(self.unknowns.len(), r, fac, dq);
+        let _ = ni;
         Ok(())
     }
 
@@ -254,20 +314,8 @@ impl BlockProg {
     /// (With `at`, that segment instead of the step's: see [`BlockProg::velocity`].)
     pub(crate) fn acceleration(&self, r: &mut [f64], d2q: &mut [f64], pairs: usize, fac: &Fac, at: Option<&Segment>) {
         at.unwrap_or(&self.acc).run(r);
-        let n = self.unknowns.len();
-        let mut z = [0.0; crate::factor::MAX_DENSE];
-        for p in 0..pairs {
-            for (row, zr) in z.iter_mut().enumerate().take(n) {
-                *zr = r[self.acc_rows[row * pairs + p] as usize];
-            }
-            fac.solve(&mut z[..n]);
-            for (k, &u) in self.unknowns.iter().enumerate() {
-                d2q[u * pairs + p] = z[k];
-                if let Some(reg) = self.tan2_regs[k * pairs + p] {
-                    r[reg as usize] = z[k];
-                }
-            }
-        }
+        let _ = pairs;
+        self.acc_cols.solve(self.unknowns.len(), r, fac, d2q);
     }
 }
 

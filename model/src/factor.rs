@@ -9,7 +9,7 @@ use kinloop_runtime::generated::{Factor as _, Fixed, Health, Inverse2, Lu};
 
 /// The largest dense block evaluated at run time (the runtime's types are instantiated for
 /// every size up to it).
-pub const MAX_DENSE: usize = 8;
+pub const MAX_DENSE: usize = 16;
 
 /// One block's factorisation, of the type the emitted code would use. Factorisations of three
 /// unknowns and more are boxed, allocated once for the block ([`Fac::for_size`]) and written in
@@ -28,6 +28,14 @@ pub(crate) enum Fac {
     L6(Box<Lu<6>>),
     L7(Box<Lu<7>>),
     L8(Box<Lu<8>>),
+    L9(Box<Lu<9>>),
+    L10(Box<Lu<10>>),
+    L11(Box<Lu<11>>),
+    L12(Box<Lu<12>>),
+    L13(Box<Lu<13>>),
+    L14(Box<Lu<14>>),
+    L15(Box<Lu<15>>),
+    L16(Box<Lu<16>>),
 }
 
 /// Calls `$f!(lu)` with the factorisation `lu` of whatever size `$fac` holds.
@@ -42,6 +50,14 @@ macro_rules! each_lu {
             Fac::L6($lu) => $body,
             Fac::L7($lu) => $body,
             Fac::L8($lu) => $body,
+            Fac::L9($lu) => $body,
+            Fac::L10($lu) => $body,
+            Fac::L11($lu) => $body,
+            Fac::L12($lu) => $body,
+            Fac::L13($lu) => $body,
+            Fac::L14($lu) => $body,
+            Fac::L15($lu) => $body,
+            Fac::L16($lu) => $body,
             $other => $alt,
         }
     };
@@ -52,14 +68,6 @@ fn array<const N: usize>(v: &[f64]) -> [f64; N] {
     let mut a = [0.0; N];
     a.copy_from_slice(&v[..N]);
     a
-}
-
-fn matrix<const N: usize>(rows: &[f64]) -> [[f64; N]; N] {
-    let mut m = [[0.0; N]; N];
-    for (r, row) in m.iter_mut().enumerate() {
-        *row = array(&rows[r * N..]);
-    }
-    m
 }
 
 /// The place of a block's `Lu<N>` in its [`Fac`], made the first time (for the sizes that are
@@ -87,7 +95,9 @@ macro_rules! slots {
     (@make) => { Lu::unfactored() };
     (@make $b:tt) => { Box::new(Lu::unfactored()) };
 }
-slots!(1 => L1, 2 => L2, 3 => L3 boxed x, 4 => L4 boxed x, 5 => L5 boxed x, 6 => L6 boxed x, 7 => L7 boxed x, 8 => L8 boxed x);
+slots!(1 => L1, 2 => L2, 3 => L3 boxed x, 4 => L4 boxed x, 5 => L5 boxed x, 6 => L6 boxed x, 7 => L7 boxed x, 8 => L8 boxed x,
+    9 => L9 boxed x, 10 => L10 boxed x, 11 => L11 boxed x, 12 => L12 boxed x, 13 => L13 boxed x, 14 => L14 boxed x, 15 => L15 boxed x, 16 => L16 boxed x
+);
 
 impl Fac {
     /// The slot of a block of `n` unknowns: its boxed `Lu` made once, where it has one.
@@ -99,17 +109,26 @@ impl Fac {
             6 => Fac::L6(Box::new(Lu::unfactored())),
             7 => Fac::L7(Box::new(Lu::unfactored())),
             8 => Fac::L8(Box::new(Lu::unfactored())),
+            9 => Fac::L9(Box::new(Lu::unfactored())),
+            10 => Fac::L10(Box::new(Lu::unfactored())),
+            11 => Fac::L11(Box::new(Lu::unfactored())),
+            12 => Fac::L12(Box::new(Lu::unfactored())),
+            13 => Fac::L13(Box::new(Lu::unfactored())),
+            14 => Fac::L14(Box::new(Lu::unfactored())),
+            15 => Fac::L15(Box::new(Lu::unfactored())),
+            16 => Fac::L16(Box::new(Lu::unfactored())),
             _ => Fac::None,
         }
     }
 
-    /// `Lu::factor_cols` of the `n x n` matrix `rows` (row-major) with column scales `scale`,
-    /// written into this slot.
-    pub(crate) fn factor_cols(&mut self, n: usize, rows: &[f64], scale: &[f64]) {
+    /// `Lu::factor_cols` of the `n x n` matrix whose entry `k` in row-major order is `entry(k)`,
+    /// with column scales `scale`, written into this slot.
+    pub(crate) fn factor_cols(&mut self, n: usize, entry: impl Fn(usize) -> f64, scale: &[f64]) {
         macro_rules! f {
-            ($n:literal) => {
-                *<Lu<$n> as LuSlot<$n>>::slot(self) = Lu::<$n>::factor_cols(&matrix::<$n>(rows), array::<$n>(scale))
-            };
+            ($n:literal) => {{
+                let m: [[f64; $n]; $n] = std::array::from_fn(|i| std::array::from_fn(|j| entry(i * $n + j)));
+                *<Lu<$n> as LuSlot<$n>>::slot(self) = Lu::<$n>::factor_cols(&m, array::<$n>(scale))
+            }};
         }
         match n {
             1 => f!(1),
@@ -120,6 +139,14 @@ impl Fac {
             6 => f!(6),
             7 => f!(7),
             8 => f!(8),
+            9 => f!(9),
+            10 => f!(10),
+            11 => f!(11),
+            12 => f!(12),
+            13 => f!(13),
+            14 => f!(14),
+            15 => f!(15),
+            16 => f!(16),
             _ => *self = Fac::None,
         }
     }
@@ -164,7 +191,29 @@ impl Fac {
             Fac::L6(lu) => health.note(b, &**lu),
             Fac::L7(lu) => health.note(b, &**lu),
             Fac::L8(lu) => health.note(b, &**lu),
+            Fac::L9(lu) => health.note(b, &**lu),
+            Fac::L10(lu) => health.note(b, &**lu),
+            Fac::L11(lu) => health.note(b, &**lu),
+            Fac::L12(lu) => health.note(b, &**lu),
+            Fac::L13(lu) => health.note(b, &**lu),
+            Fac::L14(lu) => health.note(b, &**lu),
+            Fac::L15(lu) => health.note(b, &**lu),
+            Fac::L16(lu) => health.note(b, &**lu),
             Fac::None => {}
+        }
+    }
+
+    /// Solves the 1x1 `J z = rhs` (a block of one unknown: `Fixed`, `Lu<1>`).
+    #[inline]
+    pub(crate) fn solve1(&self, rhs: f64) -> f64 {
+        match self {
+            Fac::Fixed(f) => f.solve([rhs])[0],
+            Fac::L1(lu) => lu.solve([rhs])[0],
+            other => {
+                let mut z = [rhs];
+                other.solve(&mut z);
+                z[0]
+            }
         }
     }
 
@@ -187,6 +236,14 @@ impl Fac {
             Fac::L6(lu) => s!(lu, 6),
             Fac::L7(lu) => s!(lu, 7),
             Fac::L8(lu) => s!(lu, 8),
+            Fac::L9(lu) => s!(lu, 9),
+            Fac::L10(lu) => s!(lu, 10),
+            Fac::L11(lu) => s!(lu, 11),
+            Fac::L12(lu) => s!(lu, 12),
+            Fac::L13(lu) => s!(lu, 13),
+            Fac::L14(lu) => s!(lu, 14),
+            Fac::L15(lu) => s!(lu, 15),
+            Fac::L16(lu) => s!(lu, 16),
             Fac::None => rhs.fill(f64::NAN),
         }
     }

@@ -37,10 +37,12 @@
 //!
 //! # Speed
 //!
-//! A step is an interpreted tape: on the gallery's rhombic drive it executes about 7 times the
-//! compiled step's instructions (about 3 times its time), on a Newton-dominated class IV block
-//! 2.4 times; reading and planning a declaration takes one or two milliseconds
-//! (`BENCHMARKS.md`, "Mechanisms read at run time").
+//! A step is an interpreted tape (nodes of the parameters alone computed when they are set, a
+//! sine and cosine of one argument as one instruction, consecutive arithmetic operations
+//! sharing a dispatch): on the gallery's rhombic drive it executes about 5.4 times the compiled
+//! step's instructions (about 2.5 times its time), on the four-bar 4.6 times, on a
+//! Newton-dominated class IV block 2 times; reading and planning a declaration takes one to
+//! three milliseconds (`BENCHMARKS.md`, "Mechanisms read at run time").
 //!
 //! # Sweeps and the runtime's algorithms
 //!

@@ -2,12 +2,12 @@
 //! evaluated step by step without allocating.
 
 use crate::at::{AtProg, Jacobian};
-use crate::blocks::{BlockProg, How, StepFailure, Work, other_unknown};
+use crate::blocks::{BlockProg, Columns, How, StepFailure, Work, other_unknown};
 use crate::factor::{Fac, MAX_DENSE};
 use crate::newton::NewtonProg;
 use crate::sensitivities::{SensProg, Sensitivities};
 use crate::source::{self, Diagnostics};
-use crate::tape::{Builder, Segment, registers};
+use crate::tape::{Builder, Segment, registers, statics};
 use kinloop_codegen::Planned;
 use kinloop_codegen::graph::dag::{Graph, Leaf, NodeId, Op};
 use kinloop_codegen::plan::kinds::{self, Kind};
@@ -119,6 +119,8 @@ pub struct Model {
     input_kinds: Vec<QuantityKind>,
     unknown_kinds: Vec<QuantityKind>,
     output_kinds: Vec<QuantityKind>,
+    /// The nodes of the parameters alone, run when they are set.
+    statics: Segment,
     guess: Segment,
     guess_regs: Vec<u32>,
     blocks: Vec<BlockProg>,
@@ -228,6 +230,12 @@ impl Model {
             tape.provide(tan2.iter().flatten().map(|&k| NodeId(k)));
             prog.tan2_regs = tan2;
         }
+        // One register past the graph's: where the analogs no node reads are written.
+        let scratch = g.len() as u32;
+        for prog in &mut blocks {
+            prog.vel_cols = Columns::new(&prog.unknowns, ni, &prog.vel_rows, &prog.tan_regs, scratch);
+            prog.acc_cols = Columns::new(&prog.unknowns, npairs, &prog.acc_rows, &prog.tan2_regs, scratch);
+        }
         let out_roots: Vec<NodeId> =
             plan.outputs.iter().copied().chain(plan.out_d1.concat()).chain(plan.out_d2.concat()).collect();
         let outputs_seg = tape.segment(&out_roots, None).map_err(internal)?;
@@ -286,6 +294,7 @@ impl Model {
             input_kinds: k.inputs.iter().map(|&x| kind(x)).collect(),
             unknown_kinds: k.unknowns.iter().map(|&x| kind(x)).collect(),
             output_kinds: k.outputs.iter().map(|&x| kind(x)).collect(),
+            statics: statics(g),
             guess,
             guess_regs,
             facs: blocks.iter().map(|b| Fac::for_size(b.unknowns.len())).collect(),
@@ -295,7 +304,7 @@ impl Model {
             out_d1_regs: plan.out_d1.concat().iter().map(|n| n.0).collect(),
             out_d2_regs: plan.out_d2.concat().iter().map(|n| n.0).collect(),
             instructions,
-            regs: registers(g),
+            regs: registers(g).into_iter().chain([0.0]).collect(),
             state,
             pair_d2: vec![0.0; n.max(no) * npairs],
             pair_of: (0..ni * ni).map(|ij| kinloop_codegen::plan::pair_index(ni, ij / ni, ij % ni)).collect(),
@@ -311,6 +320,7 @@ impl Model {
                 self.regs[*reg as usize] = self.param_values[k].unwrap_or(f64::NAN);
             }
         }
+        self.statics.run(&mut self.regs);
     }
 
     /// The mechanism's name.
@@ -497,9 +507,14 @@ impl Model {
         // Pairs (i <= j) to the full symmetric second analogs.
         let pair_of = &self.pair_of;
         let full = |pair_vals: &[f64], rows: usize, out: &mut [f64]| {
-            for u in 0..rows {
-                for (ij, &p) in pair_of.iter().enumerate() {
-                    out[u * ni * ni + ij] = pair_vals[u * np + p];
+            if ni == 1 {
+                // One input: one pair, the arrays are the same.
+                out[..rows].copy_from_slice(&pair_vals[..rows]);
+                return;
+            }
+            for (row, pairs) in out.chunks_exact_mut(ni * ni).zip(pair_vals.chunks_exact(np)).take(rows) {
+                for (o, &p) in row.iter_mut().zip(pair_of) {
+                    *o = pairs[p];
                 }
             }
         };
@@ -516,8 +531,7 @@ impl Model {
             *o = r[reg as usize];
         }
         full(&self.pair_d2, self.outputs.len(), &mut st.d2out);
-        let finite =
-            [&st.q, &st.dq, &st.d2q, &st.out, &st.dout, &st.d2out].iter().all(|v| v.iter().all(|x| x.is_finite()));
+        let finite = [&st.q, &st.dq, &st.d2q, &st.out, &st.dout, &st.d2out].iter().all(|v| all_finite(v));
         if !finite {
             return Err(StepError::NonFinite);
         }
@@ -685,6 +699,8 @@ fn position_program(
         acc: Segment::default(),
         acc_rows: bp.acc.concat().iter().map(|n| n.0).collect(),
         tan2_regs: Vec::new(),
+        vel_cols: Default::default(),
+        acc_cols: Default::default(),
     })
 }
 
@@ -785,4 +801,11 @@ fn at_kinematics(plan: &Plan, blocks: &[BlockProg], out_roots: &[NodeId]) -> Res
     }
     let out = tape.segment(out_roots, None)?;
     Ok(AtKin { residual, residual_regs: plan.residuals.iter().map(|n| n.0).collect(), vel, acc, out })
+}
+
+/// Whether every value of `v` is finite: an exponent test on the bits, without a branch per
+/// value (the loop vectorises).
+fn all_finite(v: &[f64]) -> bool {
+    const EXP: u64 = 0x7ff0_0000_0000_0000;
+    !v.iter().fold(false, |bad, x| bad | (x.to_bits() & EXP == EXP))
 }

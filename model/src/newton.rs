@@ -58,6 +58,14 @@ pub(crate) fn solve(
         6 => go!(6, 12, 0),
         7 => go!(7, 14, 0),
         8 => go!(8, 16, 0),
+        9 => go!(9, 18, 0),
+        10 => go!(10, 20, 0),
+        11 => go!(11, 22, 0),
+        12 => go!(12, 24, 0),
+        13 => go!(13, 26, 0),
+        14 => go!(14, 28, 0),
+        15 => go!(15, 30, 0),
+        16 => go!(16, 32, 0),
         // Larger blocks are rejected when the model is built.
         _ => Err(BlockFailure::NonFinite { row: 0, iterations: 0 }),
     }

@@ -302,3 +302,40 @@ fn kinematics_at_a_position_equal_the_compiled_ones() {
     }
     kinematics_at_parity(&fx::SliderCrank { r: 1.0, l: 3.0, e: 0.4 }, &mut m, [0.0]);
 }
+
+/// Declares a mechanism with `kinloop::mechanism!` and keeps its text.
+macro_rules! declared {
+    ($text:ident => $($t:tt)*) => {
+        kinloop::mechanism! { $($t)* }
+        const $text: &str = stringify!($($t)*);
+    };
+}
+
+declared! {
+    DENSE_RING_TEXT =>
+    /// A ring of five four-bar loops closed through the input: one coupled block of ten
+    /// unknowns, declared dense (more unknowns than the sizes of the closed forms and the 2x2
+    /// inverse: the runtime's `Lu<10>` and `newton::<10, _>`).
+    #[kinloop(dense)]
+    pub struct DenseRing {
+        params a = 1.0, b = 3.0, c = 2.5, d = 3.2;
+        input phi;
+        unknowns u0 = 0.6, v0 = 1.9, u1 = 0.6, v1 = 1.9, u2 = 0.6, v2 = 1.9, u3 = 0.6, v3 = 1.9,
+            u4 = 0.6, v4 = 1.9;
+        loop l0: a @ (0.5 * (phi + v4)) + b @ u0 == (d, 0) + c @ v0;
+        loop l1: a @ v0 + b @ u1 == (d, 0) + c @ v1;
+        loop l2: a @ v1 + b @ u2 == (d, 0) + c @ v2;
+        loop l3: a @ v2 + b @ u3 == (d, 0) + c @ v3;
+        loop l4: a @ v3 + b @ u4 == (d, 0) + c @ v4;
+    }
+}
+
+#[test]
+fn a_dense_block_of_ten_unknowns_equals_the_compiled_one() {
+    let mut model = read(DENSE_RING_TEXT);
+    assert_eq!(model.block_count(), 1, "{}", model.decomposition());
+    assert!(model.unknowns().len() > 8);
+    let (worst, n) = sweep_parity(&DenseRing::default(), &mut model, [0.0], 360);
+    assert!(n >= 300, "only {n} states compared");
+    eprintln!("dense ring of ten unknowns: {n} states, largest relative difference {worst:e}");
+}
