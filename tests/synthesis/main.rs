@@ -13,6 +13,7 @@ mod support;
 mod bad_input;
 mod defects;
 mod determinism;
+mod evolution;
 mod jacobian;
 mod known_answers;
 mod mechanisms;
