@@ -129,13 +129,7 @@ impl IslandRng {
 /// The trial vectors of one generation (in member order), DE/rand/1/bin: a mutant component
 /// outside the box is put at random between the bound it crossed and the member's value (the
 /// member is inside, so the trial is too).
-pub(crate) fn trials(
-    pop: &[Vec<f64>],
-    lo: &[f64],
-    hi: &[f64],
-    cfg: &DeConfig,
-    rng: &mut IslandRng,
-) -> Vec<Vec<f64>> {
+pub(crate) fn trials(pop: &[Vec<f64>], lo: &[f64], hi: &[f64], cfg: &DeConfig, rng: &mut IslandRng) -> Vec<Vec<f64>> {
     let np = pop.len();
     let d = lo.len();
     (0..np)
@@ -223,9 +217,8 @@ mod tests {
         let f = |z: &[f64]| (1.0 - z[0]).powi(2) + 100.0 * (z[1] - z[0] * z[0]).powi(2);
         let (lo, hi) = (vec![-2.0, -1.0], vec![2.0, 3.0]);
         let mut rng = IslandRng::new(5, 0);
-        let mut pop: Vec<Vec<f64>> = (0..30)
-            .map(|_| (0..2).map(|j| lo[j] + (hi[j] - lo[j]) * rng.uniform()).collect())
-            .collect();
+        let mut pop: Vec<Vec<f64>> =
+            (0..30).map(|_| (0..2).map(|j| lo[j] + (hi[j] - lo[j]) * rng.uniform()).collect()).collect();
         let mut fit: Vec<f64> = pop.iter().map(|z| f(z)).collect();
         let cfg = DeConfig::default().with_population(30).with_generations(300).with_f(0.7).with_cr(0.9);
         let n = evolve(&mut pop, &mut fit, (&lo, &hi), &cfg, &mut rng, 0.0, |b| b.iter().map(|z| f(z)).collect());

@@ -181,9 +181,9 @@ impl SynthesisReport {
             row.extend(&c.values);
             row.extend([c.max_error, c.rms_error, c.min_transmission.unwrap_or(f64::NAN), c.local.evaluations as f64]);
             if four_bar {
-                row.extend(c.four_bar.map_or([f64::NAN; 3], |f| {
-                    [grashof_code(f.class) as f64, f.margin, f.min_transmission]
-                }));
+                row.extend(
+                    c.four_bar.map_or([f64::NAN; 3], |f| [grashof_code(f.class) as f64, f.margin, f.min_transmission]),
+                );
             }
             t.push(row);
         }

@@ -256,8 +256,7 @@ impl Search {
     {
         let (lo, hi) = problem.bounds();
         let first = island.saturating_mul(de.population);
-        let mut pop: Vec<Vec<f64>> =
-            (0..de.population).map(|k| self.start(problem, first.saturating_add(k))).collect();
+        let mut pop: Vec<Vec<f64>> = (0..de.population).map(|k| self.start(problem, first.saturating_add(k))).collect();
         let mut fit = batch(&pop);
         let mut rng = IslandRng::new(self.seed, island);
         let done = self.local.tol * problem.scale;
@@ -393,8 +392,7 @@ impl Search {
                     continue;
                 };
                 report.evaluations += c.local.evaluations;
-                report.converged +=
-                    usize::from(c.local.stop == crate::analysis::optimize::OptimizerStop::Converged);
+                report.converged += usize::from(c.local.stop == crate::analysis::optimize::OptimizerStop::Converged);
                 match c.defects.first() {
                     None => report.valid += 1,
                     Some(d) => report.rejected.count(d),

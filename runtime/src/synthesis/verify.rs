@@ -97,7 +97,14 @@ where
     M: Sensitivities<N, NI, NO, NP> + Clone,
 {
     /// The candidate of the local solution `z` (evaluated as `e`), verified.
-    pub(crate) fn verify(&self, origin: Origin, start: usize, z: Vec<f64>, e: Eval<N>, local: LocalReport) -> Candidate {
+    pub(crate) fn verify(
+        &self,
+        origin: Origin,
+        start: usize,
+        z: Vec<f64>,
+        e: Eval<N>,
+        local: LocalReport,
+    ) -> Candidate {
         let params = self.params(&z);
         let m = self.base.with_params_flat(params);
         let mut inputs = self.input_values(&z);
@@ -182,7 +189,8 @@ where
                 defects.push(Defect::LinkRatio { ratio });
             }
         }
-        let four_bar = self.checks.four_bar.and_then(|[d, a, b, c]| four_bar_class([d, a, b, c].map(|i| params[i].abs())));
+        let four_bar =
+            self.checks.four_bar.and_then(|[d, a, b, c]| four_bar_class([d, a, b, c].map(|i| params[i].abs())));
         let errors: Vec<f64> = e.r.chunks(self.width).map(|c| c.iter().map(|v| v * v).sum::<f64>().sqrt()).collect();
         let max_error = errors.iter().copied().fold(0.0, f64::max);
         let rms_error = (errors.iter().map(|v| v * v).sum::<f64>() / n as f64).sqrt();

@@ -67,7 +67,10 @@ impl FourBar {
     /// assert_eq!(seed[0], g.links.input);
     /// # Ok::<(), kinloop_runtime::synthesis::classical::ClassicalError>(())
     /// ```
-    pub fn from_function_generator(g: &FunctionGenerator, points: &[PrecisionPoint]) -> Result<FourBar, ClassicalError> {
+    pub fn from_function_generator(
+        g: &FunctionGenerator,
+        points: &[PrecisionPoint],
+    ) -> Result<FourBar, ClassicalError> {
         let l = g.links;
         let mut couplers = Vec::with_capacity(points.len());
         for (i, p) in points.iter().enumerate() {
