@@ -126,7 +126,7 @@ impl FourBar {
             ("the input crank has no length", (b1 - a).norm()),
             ("the output crank has no length", (c1 - d).norm()),
         ] {
-            if !(len > tiny) {
+            if len.is_nan() || len <= tiny {
                 return Err(ClassicalError::Degenerate(format!("{what}: the two dyads make no four-bar")));
             }
         }
