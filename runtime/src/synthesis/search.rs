@@ -277,7 +277,8 @@ impl Search {
     where
         M: Sensitivities<N, NI, NO, NP> + Clone,
     {
-        problem.evaluate(z, None).map_or(f64::INFINITY, |e| e.r.iter().map(|v| v * v).sum::<f64>().sqrt())
+        // A NaN (a position solve that returned one) counts as unassembled too.
+        problem.norm_at(z).ok().filter(|v| !v.is_nan()).unwrap_or(f64::INFINITY)
     }
 
     /// Runs the seeds, then the starts (or islands), one after the other.
