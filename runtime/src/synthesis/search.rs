@@ -70,7 +70,7 @@ impl Default for Search {
 enum Job {
     Seed(usize),
     Start(usize),
-    Island(usize),
+    Island(usize, DeConfig),
 }
 
 /// The candidates of one job (`None`: could not be assembled) and the evaluations its global
@@ -147,10 +147,10 @@ impl Search {
     /// The jobs of this search, in the order their candidates are reported.
     fn jobs(&self) -> Vec<Job> {
         let seeds = if self.starts.start == 0 { self.seeds.len() } else { 0 };
-        let global: Box<dyn Iterator<Item = Job>> = match self.global {
-            Global::Halton => Box::new(self.starts.clone().map(Job::Start)),
-            Global::DifferentialEvolution(_) => Box::new(self.starts.clone().map(Job::Island)),
-        };
+        let global = self.starts.clone().map(|i| match self.global {
+            Global::Halton => Job::Start(i),
+            Global::DifferentialEvolution(de) => Job::Island(i, de),
+        });
         (0..seeds).map(Job::Seed).chain(global).collect()
     }
 
@@ -234,10 +234,7 @@ impl Search {
                 let unassembled = usize::from(c.is_none());
                 (vec![c], unassembled)
             }
-            Job::Island(i) => {
-                let Global::DifferentialEvolution(de) = &self.global else { unreachable!("islands are DE jobs") };
-                self.island(problem, i, de, batch)
-            }
+            Job::Island(i, de) => self.island(problem, i, &de, batch),
         }
     }
 
