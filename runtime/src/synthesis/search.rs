@@ -25,6 +25,7 @@ use std::ops::Range;
 /// // Differential evolution instead: two islands of 24 members.
 /// let de = search.with_global(Global::DifferentialEvolution(DeConfig::default().with_population(24)));
 /// let de = de.with_starts(0..2);
+/// assert!(matches!(de.global, Global::DifferentialEvolution(c) if c.population == 24));
 /// ```
 #[derive(Clone, Debug, PartialEq)]
 #[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
