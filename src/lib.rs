@@ -211,7 +211,8 @@
 //! [`synthesis`] finds dimensions for a task with them: a point through given points (with
 //! prescribed or free input values), a curve fitted with a free placement, a function, poses.
 //! Its Levenberg–Marquardt runs on the exact Jacobian (sensitivities, velocity analogs) from
-//! Halton starts, every candidate verified by a branch-safe sweep through the targets in order
+//! Halton starts, from the best members of a differential evolution, or from classical closed
+//! forms given as seeds, every candidate verified by a branch-safe sweep through the targets in order
 //! and rejected with its defect (branch, circuit, order) or a violated constraint (full
 //! rotation, transmission angle, link ratio); see `docs/synthesis.md` and
 //! `examples/synthesis.rs`.

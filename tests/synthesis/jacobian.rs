@@ -1,6 +1,6 @@
 //! The residuals' Jacobian (generated sensitivities for the dimensions, velocity analogs for the
 //! free crank angles, closed forms for the placement) against central differences of the
-//! residuals themselves.
+//! residuals themselves; the residual norm without the Jacobian against the residuals'.
 //!
 //! Reference: central differences with steps h and h/2 combined by one Richardson step
 //! (truncation ~h^4, ~1e-13 at h = 1e-3 for these unit-size, smooth residuals); the positions are
@@ -19,6 +19,10 @@ fn check<M, const N: usize, const NI: usize, const NO: usize, const NP: usize>(
     M: kinloop::Sensitivities<N, NI, NO, NP> + Clone,
 {
     let at = problem.residuals(z).unwrap();
+    // The residual norm without the Jacobian (the evolution's objective) solves the same
+    // positions from the same guesses: the same norm to a few roundings.
+    let norm = at.values.iter().map(|v| v * v).sum::<f64>().sqrt();
+    assert_close!(problem.residual_norm(z).unwrap(), norm, rel = 1e-13, "residual norm");
     let h = 1e-3;
     for i in 0..z.len() {
         let values = |step: f64| {

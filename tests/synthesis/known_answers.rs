@@ -17,12 +17,12 @@ const RESIDUAL: f64 = 1e-13;
 const DIMENSION: f64 = 1e-8;
 
 /// Design variables `names` with the truth `values`, each within `spread` of its value.
-fn design(names: &[&str], values: &[f64], spread: f64) -> Design {
+pub fn design(names: &[&str], values: &[f64], spread: f64) -> Design {
     names.iter().zip(values).fold(Design::new(), |d, (n, v)| d.var(*n, v * (1.0 - spread), v * (1.0 + spread)))
 }
 
 /// The best valid candidate meets the targets to rounding and has the true dimensions.
-fn check_recovered(report: &SynthesisReport, truth: &[f64], size: f64) {
+pub fn check_recovered(report: &SynthesisReport, truth: &[f64], size: f64) {
     let best = report.best().unwrap_or_else(|| panic!("no valid candidate: {report:#?}"));
     assert!(best.max_error <= RESIDUAL * size, "max error {:e}", best.max_error);
     // With the exact Jacobian the best start converges in few steps (measured: 6 to 18
@@ -34,7 +34,7 @@ fn check_recovered(report: &SynthesisReport, truth: &[f64], size: f64) {
     }
 }
 
-const FOUR_BAR_NAMES: [&str; 6] = ["a", "b", "c", "d", "e", "alpha"];
+pub const FOUR_BAR_NAMES: [&str; 6] = ["a", "b", "c", "d", "e", "alpha"];
 
 #[test]
 fn four_bar_path_with_timing() {

@@ -86,3 +86,31 @@ pub fn stephenson_point(p: [f64; 11], phi: f64) -> [f64; 2] {
     let delta = (ey - py).atan2(ex - px);
     [px + h * delta.cos(), py + h * delta.sin()]
 }
+
+kinloop::mechanism! {
+    /// Four-bar function generator in Freudenstein's frame: input `a` at the origin at angle
+    /// `phi`, coupler `b`, output `c` pivoted at (d, 0) at angle `psi`.
+    #[kinloop(sensitivities)]
+    pub struct FunctionFourBar {
+        params a = 3.0, b = 2.0, c = 4.0, d = 1.0;
+        input phi;
+        unknowns beta = 0.3, psi = 1.6;
+        loop abcd: a @ phi + b @ beta == (d, 0) + c @ psi;
+    }
+}
+
+kinloop::mechanism! {
+    /// Four-bar anywhere in the plane, for motion generation: input pivot A = (ax, ay), ground
+    /// `g` at angle `th`, input `a` at `phi` from the ground line, coupler `b` (angle `beta`),
+    /// output `c` (angle `gamma`); the body's point `p` at `e`, `alpha` off the coupler line,
+    /// its angle `theta` at `tau` from the coupler line.
+    #[kinloop(sensitivities)]
+    pub struct PlacedFourBar {
+        params ax = 0.0, ay = 0.0, g = 4.0, th = 0.0, a = 1.5, b = 4.0, c = 3.0, e = 2.5, alpha = 0.6, tau = 0.0;
+        input phi;
+        unknowns beta = 0.5, gamma = 1.5;
+        loop abcd: a @ (phi + th) + b @ beta == g @ th + c @ gamma;
+        point p = (ax, ay) + a @ (phi + th) + e @ (beta + alpha);
+        output theta = beta + tau;
+    }
+}

@@ -2,6 +2,41 @@
 //! and what its local solve did.
 
 use super::local::LocalReport;
+use crate::metrics::GrashofClass;
+
+/// Where a candidate's local solve started.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, PartialOrd, Ord, Hash)]
+#[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
+#[non_exhaustive]
+pub enum Origin {
+    /// A point given with [`Search::with_seeds`](super::Search::with_seeds) (e.g. a classical
+    /// closed-form design); [`Candidate::start`] is its index among the seeds.
+    Seed,
+    /// A point of the Halton sequence; [`Candidate::start`] is its index.
+    Halton,
+    /// One of the best members of a differential evolution; [`Candidate::start`] is its island.
+    Evolution,
+    /// The point given to [`Search::refine`](super::Search::refine).
+    Refine,
+}
+
+/// A four-bar candidate's Grashof class and smallest transmission angle, from its four link
+/// lengths (named by [`Constraints::with_four_bar`](super::Constraints::with_four_bar)) in closed form.
+#[derive(Clone, Copy, Debug, PartialEq)]
+#[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
+pub struct FourBarClass {
+    /// The Grashof class ([`crate::metrics::grashof()`]), named from the input's point of view.
+    #[cfg_attr(feature = "serde", serde(with = "class_serde"))]
+    pub class: GrashofClass,
+    /// `(s + l) - (p + q)` over the sum of the four lengths: negative for a Grashof linkage,
+    /// zero at a change point, positive for a triple rocker.
+    pub margin: f64,
+    /// The smallest transmission angle (radians, acute) over the input's whole range of motion:
+    /// for an input that turns fully, the smaller at the two positions where the input lies
+    /// along the ground line, `acos |b^2 + c^2 - (d -+ a)^2| / 2bc`; zero where the input only
+    /// rocks (at its limit positions coupler and follower lie in line).
+    pub min_transmission: f64,
+}
 
 /// Why a candidate is not a valid design, as its verification found.
 #[derive(Clone, Debug, PartialEq)]
@@ -54,9 +89,11 @@ pub enum Defect {
 #[derive(Clone, Debug, PartialEq)]
 #[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
 pub struct Candidate {
-    /// The index of the start it was found from (the search's Halton index; `usize::MAX` for
-    /// [`Search::refine`](super::Search::refine)).
+    /// The index of the start it was found from (see [`Candidate::origin`]: the Halton index,
+    /// the seed's index, the island's; `usize::MAX` for [`Search::refine`](super::Search::refine)).
     pub start: usize,
+    /// What kind of start it was found from.
+    pub origin: Origin,
     /// The design variables' values, in the problem's order.
     pub values: Vec<f64>,
     /// Every parameter of the mechanism, in declaration order.
@@ -79,6 +116,9 @@ pub struct Candidate {
     /// The smallest transmission angle over the motion checked (radians), where the
     /// constraints name the coupler and the follower.
     pub min_transmission: Option<f64>,
+    /// Grashof class and smallest transmission angle over the input's range, where the
+    /// constraints name the four links of a four-bar.
+    pub four_bar: Option<FourBarClass>,
     /// What the local solve did.
     pub local: LocalReport,
 }
@@ -87,5 +127,34 @@ impl Candidate {
     /// Whether the verification found no defect.
     pub fn is_valid(&self) -> bool {
         self.defects.is_empty()
+    }
+}
+
+/// [`GrashofClass`] as its variant name (it has no serde impls of its own).
+#[cfg(feature = "serde")]
+mod class_serde {
+    use crate::metrics::GrashofClass;
+    use serde::{Deserialize, Deserializer, Serializer, de::Error};
+
+    const NAMES: [(GrashofClass, &str); 6] = [
+        (GrashofClass::CrankRocker, "CrankRocker"),
+        (GrashofClass::RockerCrank, "RockerCrank"),
+        (GrashofClass::DoubleCrank, "DoubleCrank"),
+        (GrashofClass::DoubleRocker, "DoubleRocker"),
+        (GrashofClass::ChangePoint, "ChangePoint"),
+        (GrashofClass::TripleRocker, "TripleRocker"),
+    ];
+
+    pub fn serialize<S: Serializer>(class: &GrashofClass, s: S) -> Result<S::Ok, S::Error> {
+        s.serialize_str(NAMES.iter().find(|(c, _)| c == class).map_or("TripleRocker", |(_, n)| n))
+    }
+
+    pub fn deserialize<'de, D: Deserializer<'de>>(d: D) -> Result<GrashofClass, D::Error> {
+        let name = String::deserialize(d)?;
+        NAMES
+            .iter()
+            .find(|(_, n)| *n == name)
+            .map(|(c, _)| *c)
+            .ok_or_else(|| D::Error::custom(format!("unknown Grashof class `{name}`")))
     }
 }

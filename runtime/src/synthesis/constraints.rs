@@ -26,6 +26,22 @@ pub struct LinkRatioBound {
     pub max: f64,
 }
 
+/// The parameters that are the four link lengths of a four-bar (their absolute values), for
+/// the Grashof class and the closed-form transmission angle of every candidate
+/// ([`Candidate::four_bar`](super::Candidate::four_bar)).
+#[derive(Clone, Debug, PartialEq)]
+#[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
+pub struct FourBarNames {
+    /// The ground link, between the fixed pivots.
+    pub ground: String,
+    /// The input (driven) link.
+    pub input: String,
+    /// The coupler.
+    pub coupler: String,
+    /// The output (follower) link.
+    pub output: String,
+}
+
 /// The optional requirements (none by default).
 ///
 /// ```
@@ -33,7 +49,8 @@ pub struct LinkRatioBound {
 /// let c = Constraints::default()
 ///     .with_full_rotation()
 ///     .with_transmission("beta", "gamma", 30f64.to_radians())
-///     .with_link_ratio(&["a", "b", "c", "d"], 6.0);
+///     .with_link_ratio(&["a", "b", "c", "d"], 6.0)
+///     .with_four_bar("d", "a", "b", "c");
 /// assert!(c.full_rotation);
 /// ```
 #[derive(Clone, Debug, Default, PartialEq)]
@@ -48,6 +65,9 @@ pub struct Constraints {
     pub transmission: Option<TransmissionBound>,
     /// Bound on a ratio of link lengths.
     pub link_ratio: Option<LinkRatioBound>,
+    /// The four links of a four-bar, to report every candidate's Grashof class and smallest
+    /// transmission angle (reported, not required).
+    pub four_bar: Option<FourBarNames>,
 }
 
 impl Constraints {
@@ -68,6 +88,19 @@ impl Constraints {
     /// Requires the longest of the parameters `links` to be at most `max` times the shortest.
     pub fn with_link_ratio(mut self, links: &[&str], max: f64) -> Self {
         self.link_ratio = Some(LinkRatioBound { links: links.iter().map(|s| s.to_string()).collect(), max });
+        self
+    }
+
+    /// Names the parameters that are a four-bar's `ground`, `input`, `coupler` and `output`
+    /// links: every candidate then reports its Grashof class and smallest transmission angle
+    /// over the input's range ([`FourBarClass`](super::FourBarClass)).
+    pub fn with_four_bar(mut self, ground: &str, input: &str, coupler: &str, output: &str) -> Self {
+        self.four_bar = Some(FourBarNames {
+            ground: ground.to_string(),
+            input: input.to_string(),
+            coupler: coupler.to_string(),
+            output: output.to_string(),
+        });
         self
     }
 }

@@ -60,7 +60,7 @@ fn first_primes(n: usize) -> Vec<u64> {
 }
 
 /// SplitMix64 (Steele, Lea and Flood 2014): a well-mixed 64-bit value per call.
-fn splitmix64(state: &mut u64) -> u64 {
+pub(crate) fn splitmix64(state: &mut u64) -> u64 {
     *state = state.wrapping_add(0x9E37_79B9_7F4A_7C15);
     let mut z = *state;
     z = (z ^ (z >> 30)).wrapping_mul(0xBF58_476D_1CE4_E5B9);
@@ -69,7 +69,7 @@ fn splitmix64(state: &mut u64) -> u64 {
 }
 
 /// The top 53 bits as a double in `[0, 1)`.
-fn unit(v: u64) -> f64 {
+pub(crate) fn unit(v: u64) -> f64 {
     (v >> 11) as f64 / (1u64 << 53) as f64
 }
 

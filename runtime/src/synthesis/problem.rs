@@ -31,6 +31,8 @@ pub(crate) struct Checks {
     pub transmission: Option<(ColumnIndex, ColumnIndex, f64)>,
     /// Parameter indices and the largest ratio allowed.
     pub link_ratio: Option<(Vec<usize>, f64)>,
+    /// Parameter indices of ground, input, coupler and output.
+    pub four_bar: Option<[usize; 4]>,
 }
 
 /// A synthesis problem over the mechanism type `M` (declared with `#[kinloop(sensitivities)]`):
@@ -181,6 +183,16 @@ where
                 ));
             }
             checks.link_ratio = Some((idx, r.max));
+        }
+        if let Some(f) = &constraints.four_bar {
+            let mut idx = [0; 4];
+            for (k, name) in [&f.ground, &f.input, &f.coupler, &f.output].into_iter().enumerate() {
+                idx[k] = param_index(M::NAME, M::PARAMS, name)?;
+                if idx[..k].contains(&idx[k]) {
+                    return Err(SynthesisError::DuplicateVariable { name: name.clone() });
+                }
+            }
+            checks.four_bar = Some(idx);
         }
         self.checks = checks;
         Ok(self)

@@ -3,6 +3,7 @@
 
 use super::candidate::{Candidate, Defect};
 use super::search::Search;
+use crate::metrics::GrashofClass;
 use crate::table::Table;
 use std::ops::Range;
 
@@ -17,9 +18,14 @@ pub struct SynthesisReport {
     /// The best distinct candidates: valid ones (no defect) first, each group by increasing
     /// RMS error, ties by start index.
     pub candidates: Vec<Candidate>,
-    /// The starts run.
+    /// The starts run (Halton indices, or with differential evolution islands).
     pub starts: Range<usize>,
-    /// Starts at which the design cannot be assembled at every target (no local solve).
+    /// The seeds run ([`Search::seeds`]; with the part of a split search whose starts begin
+    /// at `0`).
+    pub seeds: usize,
+    /// Seeds and starts (with differential evolution: members to polish) at which the design
+    /// cannot be assembled at every target (no local solve). With the local solves that ran,
+    /// they count every seed and start (or `polish` per island).
     pub unassembled: usize,
     /// Local solves that met the tolerance (residual or step).
     pub converged: usize,
@@ -27,7 +33,8 @@ pub struct SynthesisReport {
     pub valid: usize,
     /// Candidates rejected, counted by their first defect.
     pub rejected: Rejections,
-    /// Evaluations of residuals and Jacobian over all starts.
+    /// Evaluations of residuals and Jacobian over all seeds and starts (with differential
+    /// evolution, its populations' too).
     pub evaluations: usize,
 }
 
@@ -45,6 +52,7 @@ impl SynthesisReport {
         all.extend(other.candidates);
         self.candidates = distinct(all, &self.bounds, search);
         self.starts = self.starts.start.min(other.starts.start)..self.starts.end.max(other.starts.end);
+        self.seeds += other.seeds;
         self.unassembled += other.unassembled;
         self.converged += other.converged;
         self.valid += other.valid;
@@ -54,10 +62,14 @@ impl SynthesisReport {
     }
 }
 
-/// Valid first, then by RMS error, then by start.
+/// Valid first, then by RMS error, then by origin (seeds first) and start.
 fn rank(c: &mut [Candidate]) {
     c.sort_by(|a, b| {
-        b.is_valid().cmp(&a.is_valid()).then(a.rms_error.total_cmp(&b.rms_error)).then(a.start.cmp(&b.start))
+        b.is_valid()
+            .cmp(&a.is_valid())
+            .then(a.rms_error.total_cmp(&b.rms_error))
+            .then(a.origin.cmp(&b.origin))
+            .then(a.start.cmp(&b.start))
     });
 }
 
@@ -142,7 +154,10 @@ impl Rejections {
 impl SynthesisReport {
     /// The candidates as a table, one row per candidate in rank order: `start`, `valid` (1 or 0),
     /// the design variables by name, `max_error`, `rms_error`, `min_transmission` (radians; NaN
-    /// where not asked), `evaluations` (of its local solve). Write it with
+    /// where not asked), `evaluations` (of its local solve); where the candidates are four-bars
+    /// with named links ([`Constraints::with_four_bar`](super::Constraints::with_four_bar)) also
+    /// `grashof` (the class as a number: see [`grashof_code`]), `grashof_margin` and
+    /// `min_transmission_range` (radians, over the input's range). Write it with
     /// [`Table::write_csv`] or [`Table::save_csv`].
     ///
     /// ```
@@ -153,17 +168,40 @@ impl SynthesisReport {
     /// # }
     /// ```
     pub fn table(&self) -> Table {
+        let four_bar = self.candidates.iter().any(|c| c.four_bar.is_some());
         let mut columns = vec!["start".to_string(), "valid".to_string()];
         columns.extend(self.variables.iter().cloned());
         columns.extend(["max_error", "rms_error", "min_transmission", "evaluations"].map(String::from));
+        if four_bar {
+            columns.extend(["grashof", "grashof_margin", "min_transmission_range"].map(String::from));
+        }
         let mut t = Table::new(columns);
         for c in &self.candidates {
             let mut row = vec![c.start as f64, f64::from(u8::from(c.is_valid()))];
             row.extend(&c.values);
             row.extend([c.max_error, c.rms_error, c.min_transmission.unwrap_or(f64::NAN), c.local.evaluations as f64]);
+            if four_bar {
+                row.extend(
+                    c.four_bar.map_or([f64::NAN; 3], |f| [grashof_code(f.class) as f64, f.margin, f.min_transmission]),
+                );
+            }
             t.push(row);
         }
         t
+    }
+}
+
+/// The number of a Grashof class in the `grashof` column of [`SynthesisReport::table`]:
+/// 0 crank-rocker, 1 rocker-crank, 2 double-crank, 3 Grashof double-rocker, 4 change point,
+/// 5 non-Grashof triple-rocker.
+pub fn grashof_code(class: GrashofClass) -> u8 {
+    match class {
+        GrashofClass::CrankRocker => 0,
+        GrashofClass::RockerCrank => 1,
+        GrashofClass::DoubleCrank => 2,
+        GrashofClass::DoubleRocker => 3,
+        GrashofClass::ChangePoint => 4,
+        GrashofClass::TripleRocker => 5,
     }
 }
 
@@ -171,13 +209,15 @@ impl SynthesisReport {
 mod tests {
     use super::*;
     use crate::analysis::optimize::OptimizerStop;
-    use crate::synthesis::LocalReport;
+    use crate::metrics::GrashofClass;
+    use crate::synthesis::{FourBarClass, LocalReport, Origin};
 
     #[test]
     fn a_report_reads_back_from_json() {
         let local = LocalReport { evaluations: 7, iterations: 6, stop: OptimizerStop::Stalled, residual: 0.25 };
         let candidate = Candidate {
             start: 3,
+            origin: Origin::Evolution,
             values: vec![1.0, 2.5],
             params: vec![1.0, 2.5, 3.0],
             inputs: vec![vec![0.1], vec![0.7]],
@@ -188,6 +228,7 @@ mod tests {
             rms_error: 0.158,
             defects: vec![Defect::Circuit { target: 1, at: 2.36 }, Defect::Order],
             min_transmission: None,
+            four_bar: Some(FourBarClass { class: GrashofClass::DoubleRocker, margin: -0.1, min_transmission: 0.0 }),
             local,
         };
         let report = SynthesisReport {
@@ -195,6 +236,7 @@ mod tests {
             bounds: vec![(0.5, 2.0), (1.0, 4.0)],
             candidates: vec![candidate],
             starts: 0..16,
+            seeds: 1,
             unassembled: 2,
             converged: 10,
             valid: 0,
@@ -204,6 +246,6 @@ mod tests {
         let json = serde_json::to_string(&report).unwrap();
         let back: SynthesisReport = serde_json::from_str(&json).unwrap();
         assert_eq!(back, report);
-        assert!(json.contains("\"Stalled\""), "{json}");
+        assert!(json.contains("\"Stalled\"") && json.contains("\"DoubleRocker\""), "{json}");
     }
 }

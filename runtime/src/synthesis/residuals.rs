@@ -90,6 +90,70 @@ where
         Ok(())
     }
 
+    /// The norm of the residuals at the search's unknowns `z`, without their Jacobian (positions
+    /// and outputs only, each target's position solved as for [`Problem::residuals`]): the
+    /// objective of differential evolution, cheaper than a Jacobian. An error where the design
+    /// cannot be assembled at a target.
+    pub fn residual_norm(&self, z: &[f64]) -> Result<f64, SynthesisError> {
+        self.check_point(z)?;
+        Ok(self.norm_at(z)?)
+    }
+
+    /// [`Problem::residual_norm`] without the check of `z`.
+    pub(crate) fn norm_at(&self, z: &[f64]) -> Result<f64, Error> {
+        let m = self.base.with_params_flat(self.params(z));
+        let inputs = self.input_values(z);
+        let at = self.vars.len() + self.free_inputs();
+        let (dx, dy, c, sn, s) = match self.placement {
+            Some(_) => (z[at], z[at + 1], z[at + 2].cos(), z[at + 2].sin(), z[at + 3]),
+            None => (0.0, 0.0, 1.0, 0.0, 1.0),
+        };
+        let mut sum = 0.0;
+        let mut last: Option<[f64; N]> = None;
+        for (k, x) in inputs.iter().enumerate() {
+            // The guesses and Newton's settings of `evaluate` without previous positions.
+            let guess = match (&self.guess, last) {
+                (Guess::Every(g), _) => g[k],
+                (_, Some(q)) => q,
+                (Guess::First(g), None) => *g,
+                (Guess::Declared, None) => m.guess_flat(x),
+            };
+            let cfg = if k == 0 { self.newton } else { self.newton.with_restarts(false) };
+            let (q, _) = m.position_flat(x, &guess, &cfg)?;
+            let out = m.outputs_flat(x, &q);
+            let value = |col: ColumnIndex| match col {
+                ColumnIndex::Unknown(u) => q[u],
+                ColumnIndex::Output(o) => out[o],
+                ColumnIndex::Input(i) => x[i],
+            };
+            let mut row = k * self.width;
+            for &(ch, w) in &self.channels {
+                match ch {
+                    Resolved::Point(cx, cy) => {
+                        let (px, py) = (value(cx), value(cy));
+                        let rx = dx + s * (c * px - sn * py) - self.targets[row];
+                        let ry = dy + s * (sn * px + c * py) - self.targets[row + 1];
+                        sum += w * w * (rx * rx + ry * ry);
+                        row += 2;
+                    }
+                    Resolved::Angle { col, rotates } => {
+                        let turn = if self.placement.is_some() && rotates { sn.atan2(c) } else { 0.0 };
+                        let r = wrap(value(col) + turn - self.targets[row]);
+                        sum += w * w * r * r;
+                        row += 1;
+                    }
+                    Resolved::Value(col) => {
+                        let r = value(col) - self.targets[row];
+                        sum += w * w * r * r;
+                        row += 1;
+                    }
+                }
+            }
+            last = Some(q);
+        }
+        Ok(sum.sqrt())
+    }
+
     /// The residuals, Jacobian and positions at `z`, each target's position solved from
     /// `guesses` (the previous evaluation's), or else from the first target's guess and each
     /// from the one before.

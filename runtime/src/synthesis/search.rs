@@ -1,11 +1,13 @@
 //! The global search: local solves from many starts spread over the box of the design variables
-//! by a shifted Halton sequence, each verified, ranked. Start `i` depends on the seed and on `i`
-//! only, so a search can be split by index range over processes or machines and the reports
-//! merged ([`SynthesisReport::merge`](super::SynthesisReport::merge)); with the `rayon` feature [`Search::par_run`] runs the
-//! starts on all cores with the same result as [`Search::run`].
+//! by a shifted Halton sequence (or from the best members of a differential evolution: see
+//! [`Global`]), and from given seeds, each verified, ranked. Start `i` (island `i`) depends on
+//! the seed and on `i` only, so a search can be split by index range over processes or machines
+//! and the reports merged ([`SynthesisReport::merge`](super::SynthesisReport::merge)); with the
+//! `rayon` feature [`Search::par_run`] runs on all cores with the same result as [`Search::run`].
 
-use super::candidate::Candidate;
+use super::candidate::{Candidate, Origin};
 use super::error::SynthesisError;
+use super::evolution::{DeConfig, Global, IslandRng, best, evolve};
 use super::halton::Halton;
 use super::local::LocalConfig;
 use super::problem::Problem;
@@ -17,18 +19,30 @@ use std::ops::Range;
 /// Settings of a global search, apart from the problem (build once, run on many problems).
 ///
 /// ```
-/// use kinloop_runtime::synthesis::Search;
+/// use kinloop_runtime::synthesis::{DeConfig, Global, Search};
 /// let search = Search::default().with_starts(0..256).with_seed(7).with_keep(5);
 /// assert_eq!(search.starts, 0..256);
+/// // Differential evolution instead: two islands of 24 members.
+/// let de = search.with_global(Global::DifferentialEvolution(DeConfig::default().with_population(24)));
+/// let de = de.with_starts(0..2);
+/// assert!(matches!(de.global, Global::DifferentialEvolution(c) if c.population == 24));
 /// ```
 #[derive(Clone, Debug, PartialEq)]
 #[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
 #[non_exhaustive]
 pub struct Search {
-    /// The indices of the starts to run (default `0..64`).
+    /// The indices of the starts to run (default `0..64`): Halton points, or with
+    /// [`Global::DifferentialEvolution`] islands.
     pub starts: Range<usize>,
-    /// The seed of the Halton sequence's shift (default `0`).
+    /// The seed of the Halton sequence's shift and of the evolution's random numbers (default
+    /// `0`).
     pub seed: u64,
+    /// Where the local solves start from (default [`Global::Halton`]).
+    pub global: Global,
+    /// Points of the search's unknowns to solve from before the global stage (e.g. classical
+    /// closed-form designs; default none). They run with the part of a split search whose
+    /// starts begin at `0`, so that the parts merge into the whole.
+    pub seeds: Vec<Vec<f64>>,
     /// The local solve from each start.
     pub local: LocalConfig,
     /// How many candidates the report keeps, best first (default `10`).
@@ -40,9 +54,29 @@ pub struct Search {
 
 impl Default for Search {
     fn default() -> Self {
-        Search { starts: 0..64, seed: 0, local: LocalConfig::default(), keep: 10, distinct: 1e-6 }
+        Search {
+            starts: 0..64,
+            seed: 0,
+            global: Global::Halton,
+            seeds: Vec::new(),
+            local: LocalConfig::default(),
+            keep: 10,
+            distinct: 1e-6,
+        }
     }
 }
+
+/// One unit of work of a search: a seed, a Halton start, or an island.
+#[derive(Clone, Copy)]
+enum Job {
+    Seed(usize),
+    Start(usize),
+    Island(usize, DeConfig),
+}
+
+/// The candidates of one job (`None`: could not be assembled) and the evaluations its global
+/// stage made beyond their local solves.
+type Found = (Vec<Option<Candidate>>, usize);
 
 impl Search {
     /// Sets [`Search::starts`].
@@ -53,6 +87,18 @@ impl Search {
     /// Sets [`Search::seed`].
     pub fn with_seed(mut self, seed: u64) -> Self {
         self.seed = seed;
+        self
+    }
+    /// Sets [`Search::global`].
+    pub fn with_global(mut self, global: Global) -> Self {
+        self.global = global;
+        self
+    }
+    /// Sets [`Search::seeds`]: each a point of the search's unknowns (see
+    /// [`Problem`](super::Problem); clamped into their bounds), e.g. a four-bar of
+    /// [`classical`](super::classical) mapped onto the declaration's parameters.
+    pub fn with_seeds(mut self, seeds: Vec<Vec<f64>>) -> Self {
+        self.seeds = seeds;
         self
     }
     /// Sets [`Search::local`].
@@ -78,7 +124,35 @@ impl Search {
         if !(self.distinct.is_finite() && self.distinct >= 0.0) {
             return Err(SynthesisError::InvalidConfig("distinct".into()));
         }
+        if let Global::DifferentialEvolution(de) = &self.global {
+            de.validate()?;
+        }
         Ok(())
+    }
+
+    /// [`Search::validate`], and every seed a point of `problem`'s unknowns.
+    fn validate_for<M, const N: usize, const NI: usize, const NO: usize, const NP: usize>(
+        &self,
+        problem: &Problem<M, N, NI, NO, NP>,
+    ) -> Result<(), SynthesisError>
+    where
+        M: Sensitivities<N, NI, NO, NP> + Clone,
+    {
+        self.validate()?;
+        for (k, seed) in self.seeds.iter().enumerate() {
+            problem.check_point(seed).map_err(|e| SynthesisError::Mismatch(format!("seed {k}: {e}")))?;
+        }
+        Ok(())
+    }
+
+    /// The jobs of this search, in the order their candidates are reported.
+    fn jobs(&self) -> Vec<Job> {
+        let seeds = if self.starts.start == 0 { self.seeds.len() } else { 0 };
+        let global = self.starts.clone().map(|i| match self.global {
+            Global::Halton => Job::Start(i),
+            Global::DifferentialEvolution(de) => Job::Island(i, de),
+        });
+        (0..seeds).map(Job::Seed).chain(global).collect()
     }
 
     /// The starting point `index` of the search: the design variables (and placement) from the
@@ -109,21 +183,103 @@ impl Search {
         z
     }
 
-    /// One start: its local solve, verified (`None` where the start cannot be assembled).
-    fn one<M, const N: usize, const NI: usize, const NO: usize, const NP: usize>(
+    /// The local solve from `z0`, verified (`None` where `z0` cannot be assembled).
+    fn solve<M, const N: usize, const NI: usize, const NO: usize, const NP: usize>(
         &self,
         problem: &Problem<M, N, NI, NO, NP>,
+        z0: Vec<f64>,
+        origin: Origin,
         index: usize,
     ) -> Option<Candidate>
     where
         M: Sensitivities<N, NI, NO, NP> + Clone,
     {
-        let z0 = self.start(problem, index);
         let (z, e, report) = problem.local(z0, &self.local).ok()?;
-        Some(problem.verify(index, z, e, report))
+        Some(problem.verify(origin, index, z, e, report))
     }
 
-    /// Runs the starts one after the other.
+    /// A point clamped into the bounds of the unknowns.
+    fn clamped<M, const N: usize, const NI: usize, const NO: usize, const NP: usize>(
+        problem: &Problem<M, N, NI, NO, NP>,
+        z: &[f64],
+    ) -> Vec<f64>
+    where
+        M: Sensitivities<N, NI, NO, NP> + Clone,
+    {
+        let (lo, hi) = problem.bounds();
+        z.iter().zip(lo.iter().zip(&hi)).map(|(v, (a, b))| v.clamp(*a, *b)).collect()
+    }
+
+    /// One job: a seed's or a start's local solve, or an island's evolution and the local
+    /// solves of its best members. `batch` evaluates the residual norms of a generation's
+    /// trial vectors (one after the other, or on all cores), `inf` where one cannot be
+    /// assembled.
+    fn job<M, const N: usize, const NI: usize, const NO: usize, const NP: usize>(
+        &self,
+        problem: &Problem<M, N, NI, NO, NP>,
+        job: Job,
+        batch: impl Fn(&[Vec<f64>]) -> Vec<f64>,
+    ) -> Found
+    where
+        M: Sensitivities<N, NI, NO, NP> + Clone,
+    {
+        match job {
+            // A point that cannot be assembled costs its one evaluation.
+            Job::Seed(k) => {
+                let c = self.solve(problem, Self::clamped(problem, &self.seeds[k]), Origin::Seed, k);
+                let unassembled = usize::from(c.is_none());
+                (vec![c], unassembled)
+            }
+            Job::Start(i) => {
+                let c = self.solve(problem, self.start(problem, i), Origin::Halton, i);
+                let unassembled = usize::from(c.is_none());
+                (vec![c], unassembled)
+            }
+            Job::Island(i, de) => self.island(problem, i, &de, batch),
+        }
+    }
+
+    /// Island `i`: its population from the Halton points `i * population ..`, evolved, its
+    /// best `polish` members solved locally (a missing member, where fewer could be assembled,
+    /// is a `None`).
+    fn island<M, const N: usize, const NI: usize, const NO: usize, const NP: usize>(
+        &self,
+        problem: &Problem<M, N, NI, NO, NP>,
+        island: usize,
+        de: &DeConfig,
+        batch: impl Fn(&[Vec<f64>]) -> Vec<f64>,
+    ) -> Found
+    where
+        M: Sensitivities<N, NI, NO, NP> + Clone,
+    {
+        let (lo, hi) = problem.bounds();
+        let first = island.saturating_mul(de.population);
+        let mut pop: Vec<Vec<f64>> = (0..de.population).map(|k| self.start(problem, first.saturating_add(k))).collect();
+        let mut fit = batch(&pop);
+        let mut rng = IslandRng::new(self.seed, island);
+        let done = self.local.tol * problem.scale;
+        let evaluations = de.population + evolve(&mut pop, &mut fit, (&lo, &hi), de, &mut rng, done, batch);
+        let chosen = best(&fit, de.polish);
+        let mut found: Vec<Option<Candidate>> =
+            chosen.iter().map(|&k| self.solve(problem, pop[k].clone(), Origin::Evolution, island)).collect();
+        found.resize(de.polish, None);
+        (found, evaluations)
+    }
+
+    /// The residual norm at `z`, `inf` where the design cannot be assembled at every target:
+    /// the objective of the evolution.
+    fn norm<M, const N: usize, const NI: usize, const NO: usize, const NP: usize>(
+        problem: &Problem<M, N, NI, NO, NP>,
+        z: &[f64],
+    ) -> f64
+    where
+        M: Sensitivities<N, NI, NO, NP> + Clone,
+    {
+        // A NaN (a position solve that returned one) counts as unassembled too.
+        problem.norm_at(z).ok().filter(|v| !v.is_nan()).unwrap_or(f64::INFINITY)
+    }
+
+    /// Runs the seeds, then the starts (or islands), one after the other.
     pub fn run<M, const N: usize, const NI: usize, const NO: usize, const NP: usize>(
         &self,
         problem: &Problem<M, N, NI, NO, NP>,
@@ -134,8 +290,8 @@ impl Search {
         self.run_with_progress(problem, |_, _| {})
     }
 
-    /// [`Search::run`], calling `progress(done, total)` after each start (e.g. to drive a
-    /// progress bar on a long search).
+    /// [`Search::run`], calling `progress(done, total)` after each seed, start or island (e.g.
+    /// to drive a progress bar on a long search).
     pub fn run_with_progress<M, const N: usize, const NI: usize, const NO: usize, const NP: usize>(
         &self,
         problem: &Problem<M, N, NI, NO, NP>,
@@ -144,23 +300,26 @@ impl Search {
     where
         M: Sensitivities<N, NI, NO, NP> + Clone,
     {
-        self.validate()?;
-        let total = self.starts.len();
-        let found: Vec<Option<Candidate>> = self
-            .starts
-            .clone()
+        self.validate_for(problem)?;
+        let jobs = self.jobs();
+        let total = jobs.len();
+        let batch = |zs: &[Vec<f64>]| zs.iter().map(|z| Self::norm(problem, z)).collect();
+        let found: Vec<Found> = jobs
+            .into_iter()
             .enumerate()
-            .map(|(k, i)| {
-                let c = self.one(problem, i);
+            .map(|(k, job)| {
+                let f = self.job(problem, job, batch);
                 progress(k + 1, total);
-                c
+                f
             })
             .collect();
         Ok(self.report(problem, found))
     }
 
     /// [`Search::run`] on all cores (rayon's global pool, or the pool it is called in): the
-    /// same report, candidates in the same order.
+    /// same report, candidates in the same order. Seeds, starts and islands run in parallel,
+    /// and each generation's trial vectors of an island are evaluated in parallel and selected
+    /// in member order.
     #[cfg(feature = "rayon")]
     pub fn par_run<M, const N: usize, const NI: usize, const NO: usize, const NP: usize>(
         &self,
@@ -173,7 +332,7 @@ impl Search {
     }
 
     /// [`Search::par_run`], calling `progress(done, total)` from the worker threads after each
-    /// start (`done` counts the starts finished, in whatever order they finish).
+    /// seed, start or island (`done` counts those finished, in whatever order they finish).
     #[cfg(feature = "rayon")]
     pub fn par_run_with_progress<M, const N: usize, const NI: usize, const NO: usize, const NP: usize>(
         &self,
@@ -185,27 +344,28 @@ impl Search {
     {
         use rayon::prelude::*;
         use std::sync::atomic::{AtomicUsize, Ordering};
-        self.validate()?;
-        let (total, done) = (self.starts.len(), AtomicUsize::new(0));
-        let found: Vec<Option<Candidate>> = self
-            .starts
-            .clone()
+        self.validate_for(problem)?;
+        let jobs = self.jobs();
+        let (total, done) = (jobs.len(), AtomicUsize::new(0));
+        // `collect` keeps the order of the indices, whatever order they finish in.
+        let batch = |zs: &[Vec<f64>]| zs.par_iter().map(|z| Self::norm(problem, z)).collect();
+        let found: Vec<Found> = jobs
             .into_par_iter()
-            .map(|i| {
-                let c = self.one(problem, i);
+            .map(|job| {
+                let f = self.job(problem, job, batch);
                 progress(done.fetch_add(1, Ordering::Relaxed) + 1, total);
-                c
+                f
             })
             .collect();
         Ok(self.report(problem, found))
     }
 
-    /// Counts, ranks and removes duplicates (in start order, so that the result does not
-    /// depend on how the starts were run).
+    /// Counts, ranks and removes duplicates (in job order, so that the result does not depend
+    /// on how the jobs were run).
     fn report<M, const N: usize, const NI: usize, const NO: usize, const NP: usize>(
         &self,
         problem: &Problem<M, N, NI, NO, NP>,
-        found: Vec<Option<Candidate>>,
+        found: Vec<Found>,
     ) -> SynthesisReport
     where
         M: Sensitivities<N, NI, NO, NP> + Clone,
@@ -215,6 +375,7 @@ impl Search {
             bounds: problem.vars.iter().map(|b| (b.lo, b.hi)).collect(),
             candidates: Vec::new(),
             starts: self.starts.clone(),
+            seeds: if self.starts.start == 0 { self.seeds.len() } else { 0 },
             unassembled: 0,
             converged: 0,
             valid: 0,
@@ -222,20 +383,22 @@ impl Search {
             evaluations: 0,
         };
         let mut all = Vec::new();
-        for c in found {
-            let Some(c) = c else {
-                report.unassembled += 1;
-                continue;
-            };
-            report.evaluations += c.local.evaluations;
-            report.converged += usize::from(c.local.stop == crate::analysis::optimize::OptimizerStop::Converged);
-            match c.defects.first() {
-                None => report.valid += 1,
-                Some(d) => report.rejected.count(d),
+        for (candidates, evaluations) in found {
+            report.evaluations += evaluations;
+            for c in candidates {
+                let Some(c) = c else {
+                    report.unassembled += 1;
+                    continue;
+                };
+                report.evaluations += c.local.evaluations;
+                report.converged += usize::from(c.local.stop == crate::analysis::optimize::OptimizerStop::Converged);
+                match c.defects.first() {
+                    None => report.valid += 1,
+                    Some(d) => report.rejected.count(d),
+                }
+                all.push(c);
             }
-            all.push(c);
         }
-        report.evaluations += report.unassembled;
         report.candidates = distinct(all, &report.bounds, self);
         report
     }
@@ -257,6 +420,6 @@ impl Search {
         let (lo, hi) = problem.bounds();
         let z0 = z0.iter().zip(lo.iter().zip(&hi)).map(|(v, (a, b))| v.clamp(*a, *b)).collect();
         let (z, e, report) = problem.local(z0, &self.local)?;
-        Ok(problem.verify(usize::MAX, z, e, report))
+        Ok(problem.verify(Origin::Refine, usize::MAX, z, e, report))
     }
 }

@@ -2,7 +2,7 @@
 //! every other, in order, must reach each on the assembly mode the targets were solved on;
 //! then the optional constraints. Every candidate a search returns went through this.
 
-use super::candidate::{Candidate, Defect};
+use super::candidate::{Candidate, Defect, FourBarClass, Origin};
 use super::local::LocalReport;
 use super::problem::Problem;
 use super::residuals::{Eval, wrap};
@@ -11,7 +11,7 @@ use crate::analysis::ColumnIndex;
 use crate::kin::Kin;
 use crate::kinds::QuantityKind;
 use crate::mechanism::Sensitivities;
-use crate::metrics::transmission_angle;
+use crate::metrics::{FourBarLinks, grashof, transmission_angle};
 use crate::paths::outcome::SweepStop;
 use crate::paths::sweep::Sweep;
 use std::f64::consts::TAU;
@@ -75,12 +75,36 @@ fn in_order(x: &[f64], angle: bool) -> Option<Vec<f64>> {
         })
 }
 
+/// The Grashof class of the four-bar `[ground, input, coupler, output]` and its smallest
+/// transmission angle over the input's range (see [`FourBarClass`]); `None` where the lengths
+/// are no four-bar (one not positive, or longer than the other three together).
+pub(crate) fn four_bar_class([d, a, b, c]: [f64; 4]) -> Option<FourBarClass> {
+    let g = grashof(FourBarLinks { ground: d, input: a, coupler: b, output: c }).ok()?;
+    let min_transmission = if g.input_turns {
+        // The distance from the input's tip to the output's pivot runs from |d - a| to d + a,
+        // and the cosine of the transmission angle is linear in its square: the acute angle
+        // is smallest at one of the two ends.
+        let acute = |e: f64| ((b * b + c * c - e * e) / (2.0 * b * c)).abs().min(1.0).acos();
+        acute(d - a).min(acute(d + a))
+    } else {
+        0.0
+    };
+    Some(FourBarClass { class: g.class, margin: g.margin, min_transmission })
+}
+
 impl<M, const N: usize, const NI: usize, const NO: usize, const NP: usize> Problem<M, N, NI, NO, NP>
 where
     M: Sensitivities<N, NI, NO, NP> + Clone,
 {
     /// The candidate of the local solution `z` (evaluated as `e`), verified.
-    pub(crate) fn verify(&self, start: usize, z: Vec<f64>, e: Eval<N>, local: LocalReport) -> Candidate {
+    pub(crate) fn verify(
+        &self,
+        origin: Origin,
+        start: usize,
+        z: Vec<f64>,
+        e: Eval<N>,
+        local: LocalReport,
+    ) -> Candidate {
         let params = self.params(&z);
         let m = self.base.with_params_flat(params);
         let mut inputs = self.input_values(&z);
@@ -165,6 +189,8 @@ where
                 defects.push(Defect::LinkRatio { ratio });
             }
         }
+        let four_bar =
+            self.checks.four_bar.and_then(|[d, a, b, c]| four_bar_class([d, a, b, c].map(|i| params[i].abs())));
         let errors: Vec<f64> = e.r.chunks(self.width).map(|c| c.iter().map(|v| v * v).sum::<f64>().sqrt()).collect();
         let max_error = errors.iter().copied().fold(0.0, f64::max);
         let rms_error = (errors.iter().map(|v| v * v).sum::<f64>() / n as f64).sqrt();
@@ -174,6 +200,7 @@ where
         });
         Candidate {
             start,
+            origin,
             values: z[..self.vars.len()].to_vec(),
             params: params.to_vec(),
             inputs: inputs.iter().map(|x| x.to_vec()).collect(),
@@ -184,6 +211,7 @@ where
             rms_error,
             defects,
             min_transmission,
+            four_bar,
             local,
         }
     }

@@ -11,6 +11,10 @@
 //!   guide it through them: a one-parameter family for four poses (Burmester's center-point
 //!   and circle-point curves), at most four for five (the Burmester points). Two such dyads
 //!   make a four-bar whose coupler takes the poses.
+//! * **As seeds** ([`FourBar`]): a function generator or two dyads as a whole four-bar (pivots,
+//!   lengths, coupler point, link angles at every point), to map onto a declared four-bar's
+//!   parameters and start the general search from
+//!   ([`Search::with_seeds`](crate::synthesis::Search::with_seeds)).
 //!
 //! Every function is pure, takes plain numbers, and reports unusable input as a
 //! [`ClassicalError`] (which converts into [`crate::Error`]). Angles are in radians,
@@ -23,6 +27,7 @@ mod chebyshev;
 mod compatibility;
 mod dyad;
 mod error;
+mod four_bar;
 mod freudenstein;
 mod function_map;
 mod position;
@@ -34,6 +39,7 @@ pub use burmester::{
 pub use chebyshev::chebyshev_points;
 pub use dyad::{Dyad, Pose};
 pub use error::ClassicalError;
+pub use four_bar::FourBar;
 pub use freudenstein::{COINCIDENT_ANGLE, FunctionGenerator, MIN_RCOND, PrecisionPoint, freudenstein};
 pub use function_map::FunctionMap;
 pub use position::Closure;

@@ -1,0 +1,181 @@
+//! Classical closed forms as seeds of the general search (`Search::with_seeds`): Freudenstein's
+//! three-point `y = log10 x` generator and a pair of Burmester dyads of five poses, mapped by
+//! `classical::FourBar` onto declared four-bars. Checked against the 50-digit mpmath references
+//! of `runtime/src/synthesis/classical/reference/` (independent of the library).
+
+use super::mechanisms::{FunctionFourBar, PlacedFourBar};
+use kinloop::Vec2;
+use kinloop::deg;
+use kinloop::synthesis::classical::{
+    BurmesterConfig, FourBar, FunctionMap, Pose, burmester_points, chebyshev_points, freudenstein,
+};
+use kinloop::synthesis::{Design, Origin, Problem, Search, Task};
+
+/// The targets are met to rounding: a few hundred roundings of the targets' size.
+const RESIDUAL: f64 = 1e-13;
+
+/// `name,value` rows of the `exact` case of `freudenstein_log10.csv`.
+fn log10_reference(name: &str) -> f64 {
+    include_str!("../../runtime/src/synthesis/classical/reference/freudenstein_log10.csv")
+        .lines()
+        .find_map(|l| {
+            let f: Vec<&str> = l.split(',').collect();
+            (f[0] == "exact" && f[1] == name).then(|| f[2].parse().unwrap())
+        })
+        .unwrap()
+}
+
+#[test]
+fn freudenstein_s_log10_generator_seeds_a_function_generation_problem() {
+    // y = log10 x on [1, 2]: input from 60 degrees through 90, output from 90 through 90;
+    // three Chebyshev precision points (the textbook three-point case).
+    let map = FunctionMap::new(f64::log10, 1.0, 2.0, deg(60.0), deg(90.0), deg(90.0), deg(90.0)).unwrap();
+    let points = map.precision_points(f64::log10, &chebyshev_points(3, 1.0, 2.0).unwrap()).unwrap();
+    let g = freudenstein(&points).unwrap();
+    let four_bar = FourBar::from_function_generator(&g, &points).unwrap();
+    let seed = vec![four_bar.links.input, four_bar.links.coupler, four_bar.links.output];
+    // The declared four-bar with the ground d = 1, its output angle psi a function of phi.
+    let task = Task::function("psi", points.iter().map(|p| (p.phi, p.psi)));
+    let design = Design::new().var("a", 0.5, 8.0).var("b", 0.5, 8.0).var("c", 0.5, 8.0);
+    let problem = Problem::new(FunctionFourBar::default(), &design, &task)
+        .unwrap()
+        .with_guess([four_bar.couplers[0], four_bar.outputs[0]]);
+    // The seed alone: already at the answer, the local solve stops at once.
+    let report = Search::default().with_seeds(vec![seed.clone()]).with_starts(0..0).run(&problem).unwrap();
+    assert_eq!(report.seeds, 1);
+    let best = report.best().unwrap();
+    assert_eq!((best.origin, best.start), (Origin::Seed, 0), "{best:?}");
+    assert!(best.local.evaluations <= 2, "{:?}", best.local);
+    assert!(best.max_error <= RESIDUAL, "output angle error {:e} rad", best.max_error);
+    // The link ratios (ground 1) are the 50-digit closed form's: the system's reciprocal
+    // condition number is 0.052, so rounding of the angles costs about 20x in the lengths.
+    for (got, name) in best.values.iter().zip(["input", "coupler", "output"]) {
+        let want = log10_reference(name);
+        assert!((got - want).abs() <= 1e-13 * want, "{name}: {got} vs {want}");
+    }
+    // With Halton starts beside it, the seed's design is the best (one design, whichever start
+    // reached it with the smaller rounding error is kept).
+    let report = Search::default().with_seeds(vec![seed]).with_starts(0..8).run(&problem).unwrap();
+    let best = report.best().unwrap();
+    assert!(best.max_error <= RESIDUAL);
+    for (got, name) in best.values.iter().zip(["input", "coupler", "output"]) {
+        let want = log10_reference(name);
+        assert!((got - want).abs() <= 1e-13 * want, "{name}: {got} vs {want}");
+    }
+}
+
+/// `burmester_five_poses.csv`: five poses of a four-bar's coupler and mpmath's Burmester pairs
+/// (center point, circle point in the first pose), sorted by the center's x.
+fn five_poses() -> (Vec<Pose>, Vec<(Vec2, Vec2)>) {
+    let (mut poses, mut pairs) = (vec![], vec![]);
+    for line in include_str!("../../runtime/src/synthesis/classical/reference/burmester_five_poses.csv").lines().skip(1)
+    {
+        let f: Vec<&str> = line.split(',').collect();
+        let v = |i: usize| f[i].parse::<f64>().unwrap();
+        match f[0] {
+            "pose" => poses.push(Pose::new(v(1), v(2), v(3))),
+            _ => pairs.push((Vec2::new(v(1), v(2)), Vec2::new(v(3), v(4)))),
+        }
+    }
+    (poses, pairs)
+}
+
+/// The problem of the five poses for the declared `PlacedFourBar` with the four-bar of two
+/// dyads as its seed: design variables in a box of +-0.5 (or +-50 % of a larger value) around
+/// the seed's, crank angles free (motion generation prescribes no timing: fifteen equations for
+/// ten dimensions and five inputs), each target's position started from the four-bar's own.
+fn seeded(four_bar: &FourBar, poses: &[Pose]) -> (Problem<PlacedFourBar, 2, 1, 3, 10>, Vec<f64>) {
+    let (e, alpha) = four_bar.coupler_point.unwrap();
+    let l = four_bar.links;
+    let names = ["ax", "ay", "g", "th", "a", "b", "c", "e", "alpha", "tau"];
+    let dims = [
+        four_bar.input_pivot.x,
+        four_bar.input_pivot.y,
+        l.ground,
+        four_bar.ground_angle,
+        l.input,
+        l.coupler,
+        l.output,
+        e,
+        alpha,
+        four_bar.body_angle,
+    ];
+    let design = names.iter().zip(dims).fold(Design::new(), |d, (n, v)| {
+        let w = 0.5 * v.abs().max(1.0);
+        d.var(*n, v - w, v + w)
+    });
+    let x = &four_bar.inputs;
+    let (lo, hi) =
+        (x.iter().copied().fold(f64::INFINITY, f64::min), x.iter().copied().fold(f64::NEG_INFINITY, f64::max));
+    let task =
+        Task::motion("p", "theta", poses.iter().map(|p| [p.point.x, p.point.y, p.angle])).untimed(lo - 0.5, hi + 0.5);
+    let th = four_bar.ground_angle;
+    // Each target's position from the four-bar's own link angles: from the previous target's
+    // a Newton solve can land on the other assembly mode where the output turns far between
+    // poses.
+    let guesses = four_bar.couplers.iter().zip(&four_bar.outputs).map(|(b, c)| [b + th, c + th]).collect();
+    let problem = Problem::new(PlacedFourBar::default(), &design, &task).unwrap().with_guesses(guesses).unwrap();
+    let mut seed = dims.to_vec();
+    seed.extend(x);
+    (problem, seed)
+}
+
+#[test]
+fn two_burmester_dyads_seed_a_five_pose_motion_generation_problem() {
+    let (poses, pairs) = five_poses();
+    let found = burmester_points(&poses, &BurmesterConfig::default()).unwrap();
+    assert_eq!(found.dyads.len(), 4);
+    // The first two pairs: their cranks are the input and the output of the four-bar the poses
+    // were made with.
+    let four_bar = FourBar::from_dyads(&found.dyads[0], &found.dyads[1], &poses).unwrap();
+    let (problem, seed) = seeded(&four_bar, &poses);
+    let report = Search::default().with_seeds(vec![seed]).with_starts(0..0).run(&problem).unwrap();
+    let best = report.best().unwrap_or_else(|| panic!("{report:#?}"));
+    assert_eq!(best.origin, Origin::Seed);
+    // Measured: 1.9e-15 of poses 2.1 apart, in one evaluation (the seed is already there).
+    assert!(best.max_error <= RESIDUAL * found.size, "pose error {:e}", best.max_error);
+    // At the crank angles the poses were made at (30, 55, 80, 110, 140 degrees from the ground
+    // line: `generate.py`).
+    for (x, want) in best.inputs.iter().zip([30.0, 55.0, 80.0, 110.0, 140.0]) {
+        assert!((x[0] - deg(want)).abs() < 1e-12, "{x:?} vs {want} degrees");
+    }
+    // Its pivots and lengths are the 50-digit reference's Burmester pairs.
+    let [ax, ay, g, _, a, b, c, ..] = best.values[..] else { unreachable!() };
+    let ((m1, k1), (m2, k2)) = (pairs[0], pairs[1]);
+    for (got, want) in [
+        (ax, m1.x),
+        (ay, m1.y),
+        (g, (m2 - m1).norm()),
+        (a, (k1 - m1).norm()),
+        (b, (k2 - k1).norm()),
+        (c, (k2 - m2).norm()),
+    ] {
+        assert!((got - want).abs() <= 1e-11 * found.size, "{got} vs {want}");
+    }
+}
+
+#[test]
+fn every_pair_of_burmester_dyads_meets_the_five_poses() {
+    // Each ordered pair of the four dyads is a four-bar through the five poses (to rounding of
+    // the problem's size, or of a far crank's length: up to 31 times the size here), which the
+    // verification may still reject for a branch or order defect, the classical defects of
+    // Burmester synthesis. The crank of the third dyad driving the first's is one no linkage
+    // made, and valid.
+    let (poses, _) = five_poses();
+    let found = burmester_points(&poses, &BurmesterConfig::default()).unwrap();
+    let mut valid = Vec::new();
+    for i in 0..4 {
+        for j in (0..4).filter(|&j| j != i) {
+            let four_bar = FourBar::from_dyads(&found.dyads[i], &found.dyads[j], &poses).unwrap();
+            let (problem, seed) = seeded(&four_bar, &poses);
+            let report = Search::default().with_seeds(vec![seed]).with_starts(0..0).run(&problem).unwrap();
+            let c = &report.candidates[0];
+            let size = found.size.max(found.dyads[i].radius()).max(found.dyads[j].radius());
+            assert!(c.max_error <= 1e-13 * size, "pair {i}, {j}: {:e}", c.max_error);
+            if c.is_valid() {
+                valid.push((i, j));
+            }
+        }
+    }
+    assert!(valid.contains(&(0, 1)) && valid.contains(&(2, 0)), "{valid:?}");
+}
