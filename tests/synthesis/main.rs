@@ -15,5 +15,6 @@ mod defects;
 mod determinism;
 mod jacobian;
 mod known_answers;
+mod literature;
 mod mechanisms;
 mod report;

@@ -6,7 +6,7 @@
 //! `cargo run --release -p kinloop-bench --bin literature [-- STARTS [SEED]]` (default 256
 //! starts per assembly mode, seed 1). One thread.
 
-use kinloop_bench::literature::{THRESHOLDS, cases, search, sum_of_squares, variables};
+use kinloop_bench::literature::{THRESHOLDS, cases, polish, search, sum_of_squares, variables};
 use std::time::Instant;
 
 fn main() -> Result<(), Box<dyn std::error::Error>> {
@@ -36,6 +36,17 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
             out.unassembled, r.order, r.branch, r.circuit, r.no_assembly, r.full_rotation, out.best_rejected
         );
         if let Some(b) = &out.best {
+            println!(
+                "    found from start {} (mode guess {:?}, crank window {:?}) in {} evaluations: {:e}",
+                b.start,
+                out.best_at.0,
+                out.best_at.1,
+                b.local.evaluations,
+                sum_of_squares(b)
+            );
+        }
+        if let Some(b) = polish(case, &out)? {
+            println!("    polished by a longer local solve: {:e} ({} evaluations)", sum_of_squares(&b), b.local.evaluations);
             let names = variables(case);
             let values: Vec<String> = names.iter().zip(&b.values).map(|(n, v)| format!("{n} = {v:?}")).collect();
             println!("    design: {}", values.join(", "));

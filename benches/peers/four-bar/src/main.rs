@@ -47,7 +47,7 @@ fn cases() -> Vec<Case> {
             mode: syn::Mode::Closed,
             links: (5.0, 80.0),
             coords: (-80.0, 80.0),
-            threshold: 1.0,
+            threshold: 1e-2,
         },
     ]
 }
@@ -81,7 +81,7 @@ fn main() {
             let func = syn::FbDDSyn::from_curve(case.targets.clone(), case.mode);
             let s = mh::Solver::build(mh::De::default(), func)
                 .seed(seed)
-                .task(|ctx| ctx.gen == gens)
+                .task(|ctx| ctx.r#gen == gens)
                 .pop_num(pop)
                 .solve();
             let fb: FourBar = s.into_result();
