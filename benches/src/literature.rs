@@ -178,11 +178,7 @@ pub fn variables(case: &Case) -> Vec<&'static str> {
 pub type LiteratureProblem = Problem<LiteratureFourBar, 2, 1, 2, 10>;
 
 /// Builds the problem of `case`, free crank angles within `window` (ignored with timing).
-pub fn problem(
-    case: &Case,
-    guess: Option<[f64; 2]>,
-    window: (f64, f64),
-) -> Result<LiteratureProblem, SynthesisError> {
+pub fn problem(case: &Case, guess: Option<[f64; 2]>, window: (f64, f64)) -> Result<LiteratureProblem, SynthesisError> {
     let (l0, l1) = case.links;
     let (c0, c1) = case.coords;
     let mut design = Design::new().var("r1", l0, l1).var("r2", l0, l1).var("r3", l0, l1).var("r4", l0, l1);
@@ -199,12 +195,11 @@ pub fn problem(
         }
         Timing::Free => task.untimed(window.0, window.1),
     };
-    let p = Problem::new(LiteratureFourBar::default(), &design, &task)?
-        .with_constraints(&if case.full_rotation {
-            Constraints::default().with_full_rotation()
-        } else {
-            Constraints::default()
-        })?;
+    let p = Problem::new(LiteratureFourBar::default(), &design, &task)?.with_constraints(&if case.full_rotation {
+        Constraints::default().with_full_rotation()
+    } else {
+        Constraints::default()
+    })?;
     Ok(match guess {
         Some(g) => p.with_guess(g),
         None => p,

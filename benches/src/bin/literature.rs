@@ -46,7 +46,11 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
             );
         }
         if let Some(b) = polish(case, &out)? {
-            println!("    polished by a longer local solve: {:e} ({} evaluations)", sum_of_squares(&b), b.local.evaluations);
+            println!(
+                "    polished by a longer local solve: {:e} ({} evaluations)",
+                sum_of_squares(&b),
+                b.local.evaluations
+            );
             let names = variables(case);
             let values: Vec<String> = names.iter().zip(&b.values).map(|(n, v)| format!("{n} = {v:?}")).collect();
             println!("    design: {}", values.join(", "));
