@@ -11,7 +11,10 @@
 //! 3. the rhombic drive of a Stirling engine (`docs/papers.md`, paper 000): a phase shift and a
 //!    stroke ratio, properties of the whole turn rather than targets at given inputs, reached by
 //!    Levenberg–Marquardt on their exact gradients (the extremes' sensitivities by the envelope
-//!    theorem, their locations by implicit differentiation of the velocity analog).
+//!    theorem, their locations by implicit differentiation of the velocity analog);
+//! 4. a timed path only a six-bar makes: twelve points of a Stephenson six-bar at crank angles
+//!    30 degrees apart, found again by the six-bar and missed by the best four-bar found
+//!    (`docs/synthesis-literature.md`).
 //!
 //! Every candidate returned was verified by a branch-safe sweep through the targets in order.
 //!
