@@ -220,7 +220,7 @@ fn b_six_points_on_a_line_with_a_crank() {
             5.410593838015761,
             5.742599930605591,
             6.0034664809831275,
-            6.283185307179586,
+            TAU, // the crank angle ended on the bound of its range
         ],
         free: true,
         increments: false,
