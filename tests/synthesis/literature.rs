@@ -147,6 +147,9 @@ fn check(case: &Case) {
     for (name, v, (lo, hi)) in named(case) {
         assert!((lo..=hi).contains(&v), "{name} = {v} outside [{lo}, {hi}]");
     }
+    if case.free {
+        assert!(case.th2.iter().all(|x| (0.0..=TAU).contains(x)), "crank angles {:?}", case.th2);
+    }
     let p = problem(case);
     // Verify the committed design itself: a local solve of one evaluation (no step) from it,
     // then the branch-safe sweeps through the targets in order.
