@@ -63,7 +63,7 @@ pub struct Case {
     pub frame_fixed: bool,
 }
 
-/// (a) Five points with prescribed crank angles (Cabrera, Simon and Prado 2002, case 1).
+/// (a) Five points with prescribed crank angles (as restated since Cabrera, Simon and Prado 2002).
 pub fn case_a() -> Case {
     Case {
         name: "a: 5 points, timed",
