@@ -17,6 +17,7 @@ pub mod hand;
 pub mod kinloop_variants;
 pub mod lean;
 pub mod linalg;
+pub mod literature;
 pub mod rhombic;
 pub mod ring;
 pub mod sweep;

@@ -17,6 +17,7 @@ mod evolution;
 mod grashof;
 mod jacobian;
 mod known_answers;
+mod literature;
 mod mechanisms;
 mod report;
 mod seeds;
