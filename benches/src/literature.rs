@@ -77,6 +77,13 @@ pub fn case_a() -> Case {
     }
 }
 
+/// (b) with the frame free (crank pivot and frame angle design variables too), as the case is
+/// stated in the literature: 15 unknowns for 12 equations, so the problem is declared
+/// underdetermined.
+pub fn case_b_free_frame() -> Case {
+    Case { name: "b\u{2033}: 6 points on a line, untimed, frame free", frame_fixed: false, ..case_b() }
+}
+
 /// (b) Six points on a vertical straight line, untimed.
 pub fn case_b() -> Case {
     Case {
@@ -157,7 +164,7 @@ pub fn case_b_rocking() -> Case {
 
 /// All cases, in order.
 pub fn cases() -> Vec<Case> {
-    vec![case_a(), case_b(), case_b_rocking(), case_c(), case_d()]
+    vec![case_a(), case_b(), case_b_rocking(), case_b_free_frame(), case_c(), case_d()]
 }
 
 /// The design variables' names, in the order of [`Candidate::values`].
@@ -185,6 +192,11 @@ pub fn problem(case: &Case, guess: Option<[f64; 2]>, window: (f64, f64)) -> Resu
     design = design.var("rcx", c0, c1).var("rcy", c0, c1);
     if !case.frame_fixed {
         design = design.var("x0", c0, c1).var("y0", c0, c1).var("th0", 0.0, TAU);
+    }
+    if !case.frame_fixed && matches!(case.timing, Timing::Free) {
+        // Untimed with the frame free: more unknowns than the targets' equations (a family of
+        // designs meets them; the constraints choose).
+        design = design.underdetermined();
     }
     let task = Task::path("p", case.targets.clone());
     let task = match &case.timing {
@@ -290,7 +302,7 @@ pub fn search(case: &Case, starts: usize, seed: u64, max_evaluations: usize) -> 
 
 /// The error (sum of squares) a run must reach to count as a success in the comparison, per
 /// case.
-pub const THRESHOLDS: [f64; 5] = [1e-4, 1e-2, 1e-2, 1e-2, 2e-2];
+pub const THRESHOLDS: [f64; 6] = [1e-4, 1e-2, 1e-2, 1e-2, 1e-2, 2e-2];
 
 /// The best candidate of `out` polished by a longer local solve (up to 5000 evaluations) from
 /// where its start stopped, verified again.

@@ -208,7 +208,9 @@ where
     let mut newton = cfg.newton;
     let rhs = |t: f64, y: &[f64; 2]| -> Result<[f64; 2], DynamicsError> {
         let [phi, omega] = *y;
-        let k = m.kinematics_flat(&[phi], &q, &newton).map_err(|source| DynamicsError::Kinematics { t: Some(t), source })?;
+        let k = m
+            .kinematics_flat(&[phi], &q, &newton)
+            .map_err(|source| DynamicsError::Kinematics { t: Some(t), source })?;
         q = k.q;
         newton.restarts = false;
         let d = model.dynamics(&k, &[omega])?;

@@ -66,7 +66,8 @@ pub enum SynthesisError {
     /// input values, placement): the solution is not determined.
     #[error(
         "{residuals} equations from the targets for {variables} unknowns (design variables, free \
-         inputs, placement): give at least {variables} target values, or fewer variables"
+         inputs, placement): give at least {variables} target values, fewer variables, or accept a \
+         family of designs with `Design::underdetermined()`"
     )]
     TooFewTargets {
         /// Scalar equations (target components).

@@ -142,7 +142,7 @@ where
             _params: PhantomData,
         };
         let (residuals, variables) = (p.targets.len(), p.dims());
-        if residuals < variables {
+        if residuals < variables && !design.is_underdetermined() {
             return Err(SynthesisError::TooFewTargets { residuals, variables });
         }
         Ok(p)

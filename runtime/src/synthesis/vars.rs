@@ -33,6 +33,9 @@ impl Variable {
 #[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
 pub struct Design {
     variables: Vec<Variable>,
+    /// Whether the problem may have more unknowns than the targets give equations.
+    #[cfg_attr(feature = "serde", serde(default))]
+    underdetermined: bool,
 }
 
 impl Design {
@@ -50,6 +53,24 @@ impl Design {
     /// The variables, in order.
     pub fn variables(&self) -> &[Variable] {
         &self.variables
+    }
+
+    /// Accepts a problem with more unknowns (design variables, free inputs, placement) than the
+    /// targets give scalar equations. Such a task is met by a whole family of designs, not by
+    /// one: Levenberg–Marquardt (damped, so its steps stay defined) stops at one member of the
+    /// family near each start, and the constraints and the verification choose among them. By
+    /// default such a problem is refused ([`SynthesisError::TooFewTargets`]), since its
+    /// dimensions are not determined by the task: ask for it when the freedom is wanted (e.g.
+    /// the literature's six points on a line with the frame free, where the constraints pick a
+    /// crank that turns fully).
+    pub fn underdetermined(mut self) -> Self {
+        self.underdetermined = true;
+        self
+    }
+
+    /// Whether [`Design::underdetermined`] was asked for.
+    pub fn is_underdetermined(&self) -> bool {
+        self.underdetermined
     }
 
     /// Each variable's index into `params` (the mechanism's parameter names) and its bounds;
