@@ -15,9 +15,15 @@
 //! Jacobian equilibrated by the caller's row and column scales): the determinant's sign (the
 //! assembly mode) is the same, and the pivot ratio is the smallest pivot of the factorisation
 //! that was used.
+//!
+//! The numeric steps run by the pattern's tables ([`Tables`]) or, for a block the macro
+//! generated, by straight-line code emitted for its pattern (the type parameter `E`, see
+//! [`SparseSteps`]): the same arithmetic in the same order, so the same factor bit for bit.
 
 use super::jacobian::{BlockFactor, BlockJacobian};
-use super::lu::{Factor, Lu, inverses};
+use super::lu::{Factor, Lu, RowScales, inverses};
+use super::sparse_steps::{SparseSteps, Tables};
+use core::marker::PhantomData;
 
 /// A static pivot below this fraction of the largest entry of its column in the active
 /// submatrix sends the block to the dense factorisation (0.1 is the customary threshold of
@@ -64,21 +70,33 @@ pub struct SparsePattern {
 }
 
 /// The structural non-zeros of a sparse block's Jacobian (`NNZ` values, in the order of its
-/// [`SparsePattern`]); `NLU` is the number of slots of its factor.
+/// [`SparsePattern`]); `NLU` is the number of slots of its factor; `E` runs the factorisation's
+/// numeric steps (the pattern's tables unless the macro emitted them as straight-line code).
 #[doc(hidden)]
-#[derive(Clone, Copy, Debug)]
-pub struct SparseJac<const N: usize, const NNZ: usize, const NLU: usize> {
+#[derive(Debug)]
+pub struct SparseJac<const N: usize, const NNZ: usize, const NLU: usize, E = Tables> {
     /// Values of the entries.
     pub v: [f64; NNZ],
     /// Their positions and the symbolic factorisation.
     pub pattern: &'static SparsePattern,
+    steps: PhantomData<fn() -> E>,
 }
+
+// Not derived: a derive would ask `E: Clone` of the marker type.
+impl<const N: usize, const NNZ: usize, const NLU: usize, E> Clone for SparseJac<N, NNZ, NLU, E> {
+    #[inline(always)]
+    fn clone(&self) -> Self {
+        *self
+    }
+}
+
+impl<const N: usize, const NNZ: usize, const NLU: usize, E> Copy for SparseJac<N, NNZ, NLU, E> {}
 
 /// A factorised sparse block: `P D_r J D_c Q = L U` along the static order, or the dense
 /// partial-pivoting factorisation where a static pivot was weak.
 #[doc(hidden)]
-#[derive(Clone, Debug)]
-pub struct SparseLu<const N: usize, const NLU: usize> {
+#[derive(Debug)]
+pub struct SparseLu<const N: usize, const NLU: usize, E = Tables> {
     lu: [f64; NLU],
     pattern: &'static SparsePattern,
     inv_row: [f64; N],
@@ -90,24 +108,38 @@ pub struct SparseLu<const N: usize, const NLU: usize> {
     /// The dense fallback (on the heap: it is `N^2` values, and needed only near singular
     /// positions or for unusual values).
     dense: Option<Box<Lu<N>>>,
+    steps: PhantomData<fn() -> E>,
 }
 
-impl<const N: usize, const NNZ: usize, const NLU: usize> SparseJac<N, NNZ, NLU> {
+impl<const N: usize, const NLU: usize, E> Clone for SparseLu<N, NLU, E> {
+    fn clone(&self) -> Self {
+        SparseLu { dense: self.dense.clone(), ..*self }
+    }
+}
+
+impl<const N: usize, const NNZ: usize, const NLU: usize, E: SparseSteps<N, NLU>> SparseJac<N, NNZ, NLU, E> {
     /// The Jacobian with entry values `v` of `pattern`.
     #[inline(always)]
     pub fn new(v: [f64; NNZ], pattern: &'static SparsePattern) -> Self {
         debug_assert!(pattern.row_ptr.len() == N + 1 && pattern.col.len() == NNZ && pattern.diag.len() == N);
-        SparseJac { v, pattern }
+        SparseJac { v, pattern, steps: PhantomData }
+    }
+
+    /// The same entries factorised by the steps `F` (a test compares the emitted steps with
+    /// the tables).
+    #[inline(always)]
+    pub fn with_steps<F: SparseSteps<N, NLU>>(&self) -> SparseJac<N, NNZ, NLU, F> {
+        SparseJac { v: self.v, pattern: self.pattern, steps: PhantomData }
     }
 
     /// Factorises the matrix equilibrated by row and column scales (see [`Lu::factor_scaled`]).
-    pub fn factor_scaled(&self, row_scale: [f64; N], col_scale: [f64; N]) -> SparseLu<N, NLU> {
+    pub fn factor_scaled(&self, row_scale: [f64; N], col_scale: [f64; N]) -> SparseLu<N, NLU, E> {
         SparseLu::factor(self, row_scale, col_scale)
     }
 
     /// Factorises the matrix with column `c` divided by `col_scale[c]`.
     #[inline]
-    pub fn factor_cols(&self, col_scale: [f64; N]) -> SparseLu<N, NLU> {
+    pub fn factor_cols(&self, col_scale: [f64; N]) -> SparseLu<N, NLU, E> {
         SparseLu::factor(self, [1.0; N], col_scale)
     }
 
@@ -123,11 +155,20 @@ impl<const N: usize, const NNZ: usize, const NLU: usize> SparseJac<N, NNZ, NLU> 
     }
 }
 
-impl<const N: usize, const NNZ: usize, const NLU: usize> BlockJacobian<N> for SparseJac<N, NNZ, NLU> {
-    type Factor = SparseLu<N, NLU>;
+impl<const N: usize, const NNZ: usize, const NLU: usize, E: SparseSteps<N, NLU>> BlockJacobian<N>
+    for SparseJac<N, NNZ, NLU, E>
+{
+    type Factor = SparseLu<N, NLU, E>;
 
     fn factor_rows(&self, row_scale: [f64; N]) -> Self::Factor {
         SparseLu::factor(self, row_scale, [1.0; N])
+    }
+
+    /// The row scales' reciprocals are those of `rows` (not taken again).
+    #[inline(always)]
+    fn newton_step(&self, f: &[f64; N], rows: &RowScales<N>) -> ([f64; N], f64) {
+        let lu = SparseLu::factor_inverses(self, rows.s, rows.inv, rows.degenerate, [1.0; N]);
+        (lu.solve(f.map(|v| -v)), lu.pivot_ratio())
     }
 
     fn row_abs_sum(&self, r: usize) -> f64 {
@@ -161,16 +202,29 @@ impl<const N: usize, const NNZ: usize, const NLU: usize> BlockJacobian<N> for Sp
     }
 }
 
-impl<const N: usize, const NLU: usize> SparseLu<N, NLU> {
+impl<const N: usize, const NLU: usize, E: SparseSteps<N, NLU>> SparseLu<N, NLU, E> {
     /// Factorises `j` equilibrated by `row_scale` and `col_scale` along its static order, or
     /// densely when a static pivot is weak (see the module documentation).
-    pub fn factor<const NNZ: usize>(j: &SparseJac<N, NNZ, NLU>, row_scale: [f64; N], col_scale: [f64; N]) -> Self {
-        let p = j.pattern;
+    pub fn factor<const NNZ: usize>(j: &SparseJac<N, NNZ, NLU, E>, row_scale: [f64; N], col_scale: [f64; N]) -> Self {
         let mut degenerate = false;
         let inv_row = inverses(row_scale, &mut degenerate);
+        Self::factor_inverses(j, row_scale, inv_row, degenerate, col_scale)
+    }
+
+    /// [`SparseLu::factor`] with the row scales' reciprocals `inv_row` already taken
+    /// (`degenerate` when a row scale is not positive and finite).
+    #[inline(always)]
+    fn factor_inverses<const NNZ: usize>(
+        j: &SparseJac<N, NNZ, NLU, E>,
+        row_scale: [f64; N],
+        inv_row: [f64; N],
+        mut degenerate: bool,
+        col_scale: [f64; N],
+    ) -> Self {
+        let p = j.pattern;
         let inv_col = inverses(col_scale, &mut degenerate);
         let mut f = SparseLu {
-            lu: [0.0; NLU],
+            lu: E::load(p, &j.v, &inv_row, &inv_col),
             pattern: p,
             inv_row,
             inv_col,
@@ -179,60 +233,14 @@ impl<const N: usize, const NLU: usize> SparseLu<N, NLU> {
             negative_det: p.odd,
             det: if p.odd { -1.0 } else { 1.0 },
             dense: None,
+            steps: PhantomData,
         };
-        for (r, &ir) in inv_row.iter().enumerate() {
-            let e = j.entries(r);
-            for ((&s, &c), &v) in p.slot[e.clone()].iter().zip(&p.col[e.clone()]).zip(&j.v[e]) {
-                f.lu[s as usize] = v * ir * inv_col[c as usize];
-            }
-        }
-        match f.eliminate() {
+        match E::eliminate(p, &mut f.lu, &mut f.inv_diag, &mut f.det, &mut f.negative_det) {
             Some(min_pivot) if !degenerate => f.pivot_ratio = min_pivot,
             Some(_) => {}
-            None => f.dense = Some(Box::new(Lu::factor_scaled(&j.to_dense(), row_scale, col_scale))),
+            None => f.dense = Some(dense_fallback(j, row_scale, col_scale)),
         }
         f
-    }
-
-    /// The elimination along the static order; the smallest pivot, or `None` at the first weak
-    /// (or zero, or not finite) pivot.
-    fn eliminate(&mut self) -> Option<f64> {
-        let p = self.pattern;
-        let (lu, mut upd, mut min_pivot) = (&mut self.lu, p.upd.iter(), f64::INFINITY);
-        for k in 0..N {
-            let pivot = lu[p.diag[k] as usize];
-            let lower = &p.l_slot[p.l_ptr[k] as usize..p.l_ptr[k + 1] as usize];
-            let upper = &p.u_slot[p.u_ptr[k] as usize..p.u_ptr[k + 1] as usize];
-            let mut col_max = 0.0f64;
-            for &s in lower {
-                // NaN propagates (`f64::max` would drop it).
-                let a = lu[s as usize].abs();
-                if a > col_max || a.is_nan() {
-                    col_max = a;
-                }
-            }
-            // NaN fails the test (the dense factorisation reports it).
-            let magnitude = pivot.abs();
-            if !(magnitude >= THRESHOLD * col_max && magnitude > 0.0 && magnitude < f64::INFINITY) {
-                return None;
-            }
-            min_pivot = min_pivot.min(magnitude);
-            self.det *= pivot;
-            if pivot < 0.0 {
-                self.negative_det = !self.negative_det;
-            }
-            let inv = 1.0 / pivot;
-            self.inv_diag[k] = inv;
-            for &s in lower {
-                let li = lu[s as usize] * inv;
-                lu[s as usize] = li;
-                // `zip` takes the next `upper.len()` targets (it asks `upper` first).
-                for (&u, &t) in upper.iter().zip(upd.by_ref()) {
-                    lu[t as usize] -= li * lu[u as usize];
-                }
-            }
-        }
-        Some(min_pivot)
     }
 
     /// Whether the dense fallback factorised this block.
@@ -267,25 +275,13 @@ impl<const N: usize, const NLU: usize> SparseLu<N, NLU> {
         if let Some(d) = &self.dense {
             return d.solve(b);
         }
-        let (p, lu) = (self.pattern, &self.lu);
+        let p = self.pattern;
         let mut z = [0.0; N];
         for (k, zk) in z.iter_mut().enumerate() {
             let r = p.prow[k] as usize;
             *zk = b[r] * self.inv_row[r];
         }
-        for k in 0..N {
-            let (zk, l) = (z[k], p.l_ptr[k] as usize..p.l_ptr[k + 1] as usize);
-            for (&s, &i) in p.l_slot[l.clone()].iter().zip(&p.l_row[l]) {
-                z[i as usize] -= lu[s as usize] * zk;
-            }
-        }
-        for k in (0..N).rev() {
-            let (mut acc, u) = (z[k], p.u_ptr[k] as usize..p.u_ptr[k + 1] as usize);
-            for (&s, &j) in p.u_slot[u.clone()].iter().zip(&p.u_col[u]) {
-                acc -= lu[s as usize] * z[j as usize];
-            }
-            z[k] = acc * self.inv_diag[k];
-        }
+        E::substitute(p, &self.lu, &self.inv_diag, &mut z);
         let mut x = [0.0; N];
         for (k, &zk) in z.iter().enumerate() {
             let c = p.pcol[k] as usize;
@@ -307,7 +303,15 @@ impl<const N: usize, const NLU: usize> SparseLu<N, NLU> {
     }
 }
 
-impl<const N: usize, const NLU: usize> Factor for SparseLu<N, NLU> {
+/// The dense partial-pivoting factorisation of a block whose static pivot was weak (cold: near
+/// singular positions or unusual values only).
+#[cold]
+#[inline(never)]
+fn dense_fallback<const N: usize, J: BlockJacobian<N>>(j: &J, row_scale: [f64; N], col_scale: [f64; N]) -> Box<Lu<N>> {
+    Box::new(Lu::factor_scaled(&j.to_dense(), row_scale, col_scale))
+}
+
+impl<const N: usize, const NLU: usize, E: SparseSteps<N, NLU>> Factor for SparseLu<N, NLU, E> {
     #[inline]
     fn pivot_ratio(&self) -> f64 {
         SparseLu::pivot_ratio(self)
@@ -318,7 +322,7 @@ impl<const N: usize, const NLU: usize> Factor for SparseLu<N, NLU> {
     }
 }
 
-impl<const N: usize, const NLU: usize> BlockFactor<N> for SparseLu<N, NLU> {
+impl<const N: usize, const NLU: usize, E: SparseSteps<N, NLU>> BlockFactor<N> for SparseLu<N, NLU, E> {
     fn solve_block(&self, b: [f64; N]) -> [f64; N] {
         self.solve(b)
     }
