@@ -93,8 +93,9 @@ impl Kernel<'_> {
         let j = if self.mode == Mode::At {
             sparse::jac_value(sp, b, self.g, self.names, &bp.jac)
         } else {
+            // Borrowed: the Jacobian of a large block is kilobytes.
             let at = evaluation_ident(b);
-            quote!(#at.j)
+            quote!(&#at.j)
         };
         quote! {
             let __j = #j;
