@@ -124,12 +124,12 @@ fn values<const M: usize, const NNZ: usize, const NLU: usize, E: SparseSteps<M, 
 ) -> [f64; NNZ] {
     let p = j.pattern;
     let mut v = [0.0; NNZ];
-    for r in 0..M {
-        for e in p.row_ptr[r] as usize..p.row_ptr[r + 1] as usize {
-            let c = p.col[e] as usize;
-            let on_pivot = (0..M).any(|k| p.prow[k] as usize == r && p.pcol[k] as usize == c);
-            v[e] = if on_pivot { pivot * (1.5 + s.next()) } else { s.next() };
-        }
+    for (e, ve) in v.iter_mut().enumerate() {
+        // The entry's row: the last whose entries start at or before it.
+        let r = p.row_ptr.partition_point(|&start| start as usize <= e) - 1;
+        let c = p.col[e] as usize;
+        let on_pivot = (0..M).any(|k| p.prow[k] as usize == r && p.pcol[k] as usize == c);
+        *ve = if on_pivot { pivot * (1.5 + s.next()) } else { s.next() };
     }
     v
 }

@@ -24,7 +24,7 @@
 //! by the difference of the steps (the setup cancels).
 
 use kinloop_bench::class_four::{self, HandNewton};
-use kinloop_bench::decls::{ClassFour, RhombicDrive};
+use kinloop_bench::decls::{ClassFour, FourBarSens, RhombicDrive, four_sens};
 use kinloop_bench::hand::{FOUR_BAR, FourBarClosed, GearLeverClosed, gear_lever};
 use kinloop_bench::kinloop_variants::{Kinloop, KinloopSens};
 use kinloop_bench::lean;
@@ -43,19 +43,6 @@ kinloop::mechanism! {
         unknowns phi2 = 0, phi4 = pi, x_c = -l_p, x_f = l_b;
         loop oabco:   (0, e_p) + r_p @ phi1           == (x_c, 0)  + l_p @ phi2;
         loop oadff1o: (0, e_p) + r_b @ (phi1 + gamma) == (x_f, de) + l_b @ phi4;
-    }
-}
-
-kinloop::mechanism! {
-    /// The four-bar of the fixtures (`kinloop_fixtures::FourBar`) with its parameter
-    /// sensitivities.
-    #[kinloop(sensitivities)]
-    pub struct FourBarSens {
-        params a, b, c, d;
-        input phi;
-        unknowns beta = 0.5, gamma = 1.5;
-        loop abcd: a @ phi + b @ beta == (d, 0) + c @ gamma;
-        point pc = a @ phi + b @ beta;
     }
 }
 
@@ -84,11 +71,6 @@ fn sweep_of<M: kinloop::Mechanism<N, 1, NO>, const N: usize, const NO: usize>(
     steps: usize,
 ) -> f64 {
     lean::sweep_turns(m, turn(), guess, steps).expect("sample")
-}
-
-/// The four-bar of the benchmarks ([`FOUR_BAR`]) declared with sensitivities.
-fn four_sens() -> FourBarSens {
-    FourBarSens { a: FOUR_BAR.a, b: FOUR_BAR.b, c: FOUR_BAR.c, d: FOUR_BAR.d }
 }
 
 /// The ring's position at input 0.
@@ -126,8 +108,8 @@ fn main() {
         "four-bar-hand" => steps_of(&four_hand, gf, steps),
         "four-bar-point" => steps_of(&Kinloop::<FourBar, 2>::new(four), gf, steps),
         "four-bar-sweep" => sweep_of(&four, gf, steps),
-        "four-bar-sens" => steps_of(&KinloopSens::<FourBarSens, 2, 4>::new(four_sens()), gf, steps),
-        "four-bar-sens-point" => steps_of(&Kinloop::<FourBarSens, 2>::new(four_sens()), gf, steps),
+        "four-bar-sens" => steps_of(&KinloopSens::<FourBarSens, 2, 4>::new(four_sens(&four)), gf, steps),
+        "four-bar-sens-point" => steps_of(&Kinloop::<FourBarSens, 2>::new(four_sens(&four)), gf, steps),
         "gear-lever-hand" => steps_of(&gear_hand, gg, steps),
         "gear-lever-point" => steps_of(&Kinloop::<GearLever, 2>::new(gear), gg, steps),
         "gear-lever-sweep" => sweep_of(&gear, gg, steps),

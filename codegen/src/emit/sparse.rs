@@ -94,7 +94,10 @@ pub fn steps_item(sp: &Sparse, m: &str, b: usize, rt: &TokenStream) -> TokenStre
         Some(e) => {
             let (r, c) = sp.entries[e];
             let (e, r, c) = (lit(e), lit(r), lit(c));
-            quote!(v[#e] * r[#r] * c[#c])
+            // A call, not a product, as an element: a binary operator in an array literal
+            // whose tokens all carry the invocation's span looks like a missing comma to
+            // clippy.
+            quote!(#rt::scaled(v[#e], r[#r], c[#c]))
         }
         None => quote!(0.0),
     });
@@ -129,11 +132,19 @@ pub fn steps_item(sp: &Sparse, m: &str, b: usize, rt: &TokenStream) -> TokenStre
     for k in (0..sp.diag.len()).rev() {
         let kl = lit(k);
         let u = sp.u_ptr[k] as usize..sp.u_ptr[k + 1] as usize;
-        let terms = sp.u_slot[u.clone()].iter().zip(&sp.u_col[u]).map(|(&s, &j)| {
-            let (s, j) = (lit(s as usize), lit(j as usize));
-            quote!(- a[#s] * z[#j])
+        let terms: Vec<_> = sp.u_slot[u.clone()]
+            .iter()
+            .zip(&sp.u_col[u])
+            .map(|(&s, &j)| {
+                let (s, j) = (lit(s as usize), lit(j as usize));
+                quote!(- a[#s] * z[#j])
+            })
+            .collect();
+        subst.extend(if terms.is_empty() {
+            quote!(z[#kl] *= d[#kl];)
+        } else {
+            quote!(z[#kl] = (z[#kl] #(#terms)*) * d[#kl];)
         });
-        subst.extend(quote!(z[#kl] = (z[#kl] #(#terms)*) * d[#kl];));
     }
     quote! {
         #[doc(hidden)]

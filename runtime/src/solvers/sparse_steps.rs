@@ -114,6 +114,14 @@ impl<const N: usize, const NLU: usize> SparseSteps<N, NLU> for Tables {
     }
 }
 
+/// `v * r * c`, an entry `v` of a block equilibrated by its row's and its column's inverse
+/// scales `r` and `c` ([`SparseSteps::load`]), in the tables' order of operations.
+#[doc(hidden)]
+#[inline(always)]
+pub fn scaled(v: f64, r: f64, c: f64) -> f64 {
+    v * r * c
+}
+
 /// The running state of an elimination emitted as straight-line code: every pivot is tested
 /// and accumulated here, and the elimination is judged once at its end ([`Pivots::finish`]),
 /// so the straight-line code has no branch. After a weak pivot the remaining arithmetic runs on
