@@ -23,7 +23,7 @@
 
 use super::jacobian::{BlockFactor, BlockJacobian};
 use super::lu::{Factor, Lu, RowScales, inverses};
-pub use super::sparse_steps::{SparsePattern, THRESHOLD};
+pub use super::sparse_steps::SparsePattern;
 use super::sparse_steps::{SparseSteps, Tables};
 use core::marker::PhantomData;
 
