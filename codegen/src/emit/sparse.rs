@@ -1,8 +1,8 @@
 //! Emission for large sparse Newton blocks (see [`crate::plan::sparse`]), once per mechanism
-//! beside its types: the block's symbolic factorisation as one `static` table, its numeric steps (load, elimination,
-//! substitution) as straight-line code over the factor's slots, and its Jacobian as the
-//! structural non-zeros only, so that the generated code grows with the number of non-zeros and
-//! fill, not with `n^2`.
+//! beside its types: the block's symbolic factorisation as one `static` table, its numeric
+//! steps (load, elimination, substitution) as straight-line code over the factor's slots, and
+//! its Jacobian as the structural non-zeros only, so that the generated code grows with the
+//! number of non-zeros and fill, not with `n^2`.
 
 use super::lit;
 use super::names::Names;
@@ -77,7 +77,7 @@ pub fn pattern_item(sp: &Sparse, m: &str, b: usize, n: usize, rt: &TokenStream) 
     }
 }
 
-/// `struct __SparseStepsb;` implementing `SparseSteps` for block `b`'s pattern as straight-line
+/// `struct __mSparseStepsb;` implementing `SparseSteps` for block `b`'s pattern as straight-line
 /// code: every slot a constant index (no table read, no loop, no bounds check), one statement
 /// per entry, pivot, multiplier and update, so its length is linear in the non-zeros and fill.
 /// The arithmetic is the tables' (`kinloop_runtime`'s `Tables`), operation for operation: the
