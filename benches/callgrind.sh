@@ -38,7 +38,8 @@ else
     class-four-hand-taylor@1000000 class-four-point-taylor@1000000
     hand@1000000 point@1000000
     newton newton-sweep
-    series-point ring-point)
+    series-point ring-point
+    four-bar-sens-point four-bar-sens)
 fi
 
 command -v valgrind >/dev/null || { echo "callgrind.sh: valgrind is not installed" >&2; exit 1; }

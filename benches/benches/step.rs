@@ -10,7 +10,11 @@
 //! * `closed_form_rhombic`, `closed_form_four_bar`, `closed_form_gear_lever`: the closed-form
 //!   rows of the callgrind harness `closed_form_step` (720 steps a turn, previous position, the
 //!   hand closed forms, kinloop's point step and kinloop's own `Sweep`), see
-//!   [`closed_form_row`]; `class_four_720_previous`: the class IV block on that turn.
+//!   [`closed_form_row`]; `class_four_720_previous`: the class IV block on that turn;
+//! * `ring_720_previous`: the ring of 64 four-bar loops (one sparse block) and the same loops in
+//!   series; `sensitivities_four_bar`: the four-bar's sensitivity solve and its kinematic step
+//!   (`ring-point`, `series-point`, `four-bar-sens`, `four-bar-sens-point` of
+//!   `closed_form_step`).
 //!
 //! `cargo bench -p kinloop-bench --bench step`; `cargo run --release -p kinloop-bench --bin
 //! report` then prints the table of medians and ratios.
@@ -22,10 +26,12 @@ use criterion::measurement::WallTime;
 use criterion::{BenchmarkGroup, Criterion, criterion_group, criterion_main};
 use kinloop::Mechanism;
 use kinloop_bench::class_four::{self, HandNewton};
+use kinloop_bench::decls::{FourBarSens, four_sens};
 use kinloop_bench::hand::{FOUR_BAR, FourBarClosed, GearLeverClosed, gear_lever};
-use kinloop_bench::kinloop_variants::{Kinloop, KinloopNamed, KinloopSweep, check_kinloop_sweep};
+use kinloop_bench::kinloop_variants::{Kinloop, KinloopNamed, KinloopSens, KinloopSweep, check_kinloop_sweep};
 use kinloop_bench::lean::step_sum;
 use kinloop_bench::rhombic::{self, ClosedForm, DenseFiniteDifference, DenseHandJacobian, DenseNumDual, TwoLoopNewton};
+use kinloop_bench::ring::{Ring, RingDense, Series};
 use kinloop_bench::sweep::{
     DIFFERENCED, EXACT, Failed, STEPS, Step, Stepper, Sweep, SweepCheck, WarmStart, check_sweep,
 };
@@ -247,6 +253,37 @@ fn class_four_720(c: &mut Criterion) {
     g.finish();
 }
 
+/// The ring of 64 four-bar loops (one sparse Newton block of 128 unknowns) and the same loops
+/// in series, 720 steps a turn from the previous position: the ring checked against its dense
+/// twin (`RingDense`: the dense partial-pivoting factorisation); the series, a different
+/// mechanism with no peer here, only timed (its check against itself asserts that it solves
+/// every step).
+fn ring_720(c: &mut Criterion) {
+    let (ring, dense, series) = (
+        Kinloop::<Ring, 0>::new(Ring::default()),
+        Kinloop::<RingDense, 0>::new(RingDense::default()),
+        Kinloop::<Series, 0>::new(Series::default()),
+    );
+    let ring_guess: [f64; 128] = Ring::default().solve(0.0).expect("the ring assembles").q.into();
+    let series_guess: [f64; 128] = Series::default().solve(0.0).expect("the series assembles").q.into();
+    let mut g = c.benchmark_group("ring_720_previous");
+    bench_lean(&mut g, "ring", &ring, &dense, ring_guess, TURN_720);
+    bench_lean(&mut g, "series", &series, &series, series_guess, TURN_720);
+    g.finish();
+}
+
+/// The four-bar's sensitivity solve (`sensitivities_flat`) and the same declaration's kinematic
+/// step, 720 steps a turn from the previous position, checked against the hand closed form.
+fn sensitivities_four_bar(c: &mut Criterion) {
+    let four = black_box(FOUR_BAR);
+    let hand = FourBarClosed::of(&four);
+    let g0: [f64; 2] = four.solve(0.0).expect("the four-bar assembles").q.into();
+    let mut g = c.benchmark_group("sensitivities_four_bar");
+    bench_lean(&mut g, "kinematics", &Kinloop::<FourBarSens, 2>::new(four_sens(&four)), &hand, g0, TURN_720);
+    bench_lean(&mut g, "sensitivities", &KinloopSens::<FourBarSens, 2, 4>::new(four_sens(&four)), &hand, g0, TURN_720);
+    g.finish();
+}
+
 fn config() -> Criterion {
     Criterion::default()
         .sample_size(100)
@@ -258,6 +295,6 @@ fn config() -> Criterion {
 criterion_group! {
     name = step;
     config = config();
-    targets = rhombic_drive, class_four_block, closed_form_blocks, class_four_720
+    targets = rhombic_drive, class_four_block, closed_form_blocks, class_four_720, ring_720, sensitivities_four_bar
 }
 criterion_main!(step);

@@ -4,7 +4,7 @@
 
 use std::f64::consts::TAU;
 
-use kinloop::{Kin, Mechanism, NewtonConfig};
+use kinloop::{Kin, Mechanism, NewtonConfig, Sensitivities};
 
 use crate::decls::{ClassFour, ClassFourUnknowns, RhombicDrive, RhombicDriveUnknowns};
 use crate::sweep::{Failed, Step, Stepper, SweepCheck, WarmStart, check_turn};
@@ -58,6 +58,51 @@ impl<M: Mechanism<N, 1, NO>, const N: usize, const NO: usize> Stepper<N> for Kin
     #[inline(always)]
     fn step_summed(&self, phi: f64, guess: &[f64; N]) -> Result<(Step<N>, f64), Failed> {
         kin_of(self, phi, guess).map(|k| (step_of(&k), outputs_sum(&k)))
+    }
+}
+
+/// kinloop's parameter sensitivities (`Sensitivities::sensitivities_flat`): the kinematic solve
+/// and the sensitivities of positions, analogs and outputs to every parameter on the same
+/// factorisations, for the cost of a sensitivity solve against a kinematic step
+/// ([`Kinloop`] of the same mechanism). `NP` is the mechanism's number of parameters.
+#[derive(Clone, Copy, Debug)]
+pub struct KinloopSens<M, const NO: usize, const NP: usize> {
+    /// The mechanism (its parameter values).
+    pub m: M,
+    /// The Newton settings of every solve.
+    pub cfg: NewtonConfig,
+}
+
+impl<M, const NO: usize, const NP: usize> KinloopSens<M, NO, NP> {
+    /// `m` with the default Newton settings.
+    pub fn new(m: M) -> Self {
+        KinloopSens { m, cfg: NewtonConfig::default() }
+    }
+}
+
+impl<M: Sensitivities<N, 1, NO, NP>, const N: usize, const NO: usize, const NP: usize> Stepper<N>
+    for KinloopSens<M, NO, NP>
+{
+    #[inline(always)]
+    fn step(&self, phi: f64, guess: &[f64; N]) -> Result<Step<N>, Failed> {
+        self.step_summed(phi, guess).map(|(s, _)| s)
+    }
+
+    /// The outputs and every sensitivity are added up (a sensitivity not read would be a
+    /// computation the compiler may drop).
+    #[inline(always)]
+    fn step_summed(&self, phi: f64, guess: &[f64; N]) -> Result<(Step<N>, f64), Failed> {
+        let (k, s) = self.m.sensitivities_flat(&[phi], guess, &self.cfg).map_err(Failed::new)?;
+        let mut sum = outputs_sum(&k);
+        for p in 0..NP {
+            for u in 0..N {
+                sum += (s.q[u][p] + s.dq[u][0][p]) + s.d2q[u][0][0][p];
+            }
+            for o in 0..NO {
+                sum += (s.out[o][p] + s.dout[o][0][p]) + s.d2out[o][0][0][p];
+            }
+        }
+        Ok((step_of(&k), sum))
     }
 }
 

@@ -206,15 +206,29 @@ pub struct Sens<const N: usize, const NI: usize, const NO: usize, const NP: usiz
 
 impl<const N: usize, const NI: usize, const NO: usize, const NP: usize> Sens<N, NI, NO, NP> {
     /// Every value is finite.
+    ///
+    /// One test of all values, without a branch per value: the early exits of chained
+    /// iterators cost a four-bar's sensitivity solve about 500 instructions (callgrind), a
+    /// fifth of it.
     #[doc(hidden)]
+    #[inline]
     pub fn all_finite(&self) -> bool {
-        let f = |v: &f64| v.is_finite();
-        self.q.iter().flatten().all(f)
-            && self.dq.iter().flatten().flatten().all(f)
-            && self.d2q.iter().flatten().flatten().flatten().all(f)
-            && self.out.iter().flatten().all(f)
-            && self.dout.iter().flatten().flatten().all(f)
-            && self.d2out.iter().flatten().flatten().flatten().all(f)
+        let mut finite = true;
+        let values = [
+            self.q.as_flattened(),
+            self.dq.as_flattened().as_flattened(),
+            self.d2q.as_flattened().as_flattened().as_flattened(),
+            self.out.as_flattened(),
+            self.dout.as_flattened().as_flattened(),
+            self.d2out.as_flattened().as_flattened().as_flattened(),
+        ];
+        for part in values {
+            for v in part {
+                // NaN fails the comparison.
+                finite &= v.abs() < f64::INFINITY;
+            }
+        }
+        finite
     }
 
     /// Name of the first quantity with a non-finite sensitivity.

@@ -19,4 +19,5 @@ mod deferred_checks;
 mod lever_singularity;
 mod newton_restarts;
 mod sin_cos_order;
+mod sparse_steps;
 mod step_cost;

@@ -10,6 +10,9 @@
 //! * class IV block (Newton): `class-four-hand` (the hand-written Newton), `class-four-point`,
 //!   `class-four-sweep`, and `class-four-hand-taylor`, `class-four-point-taylor` warm-started by
 //!   the benchmarks' second-order predictor instead of the previous position;
+//! * sensitivities: `four-bar-sens` (the four-bar's `sensitivities_flat`: positions, analogs and
+//!   outputs with their sensitivities to its four parameters) and `four-bar-sens-point` (the
+//!   same declaration's `kinematics_flat`);
 //! * ring of 64 four-bar loops closed through a differential (one Newton block of 128
 //!   unknowns): `ring-point` (sparse factorisation), `ring-dense-point` (its `#[kinloop(dense)]`
 //!   twin), against `series-point`, the same 64 loops in series (closed-form dyads).
@@ -21,9 +24,9 @@
 //! by the difference of the steps (the setup cancels).
 
 use kinloop_bench::class_four::{self, HandNewton};
-use kinloop_bench::decls::{ClassFour, RhombicDrive};
+use kinloop_bench::decls::{ClassFour, FourBarSens, RhombicDrive, four_sens};
 use kinloop_bench::hand::{FOUR_BAR, FourBarClosed, GearLeverClosed, gear_lever};
-use kinloop_bench::kinloop_variants::Kinloop;
+use kinloop_bench::kinloop_variants::{Kinloop, KinloopSens};
 use kinloop_bench::lean;
 use kinloop_bench::rhombic::{ClosedForm, PARAMS, initial_guess};
 use kinloop_bench::ring::{Ring, RingDense, Series};
@@ -105,6 +108,8 @@ fn main() {
         "four-bar-hand" => steps_of(&four_hand, gf, steps),
         "four-bar-point" => steps_of(&Kinloop::<FourBar, 2>::new(four), gf, steps),
         "four-bar-sweep" => sweep_of(&four, gf, steps),
+        "four-bar-sens" => steps_of(&KinloopSens::<FourBarSens, 2, 4>::new(four_sens(&four)), gf, steps),
+        "four-bar-sens-point" => steps_of(&Kinloop::<FourBarSens, 2>::new(four_sens(&four)), gf, steps),
         "gear-lever-hand" => steps_of(&gear_hand, gg, steps),
         "gear-lever-point" => steps_of(&Kinloop::<GearLever, 2>::new(gear), gg, steps),
         "gear-lever-sweep" => sweep_of(&gear, gg, steps),

@@ -10,7 +10,8 @@
 //! * [`api`] implements the runtime traits with the kernels and the constants, and forwards the
 //!   inherent methods to the runtime's generic code;
 //! * [`sensitivities`] adds the sensitivity types and kernels when they were requested;
-//! * [`sparse`] emits the tables and Jacobians of large sparse Newton blocks;
+//! * [`sparse`] emits the tables, straight-line factorisations and Jacobians of large sparse
+//!   Newton blocks;
 //! * [`describe`] writes the decomposition in words;
 //! * [`drawing`] describes the default drawing: the loops' chains of points, classified;
 //! * [`dynamics`] builds the declared bodies and loads into the runtime's mass model.
@@ -121,6 +122,7 @@ pub fn generate(model: &Model, plan: &Plan) -> TokenStream {
     let types = Types::of(&model.name);
     let mut out = surface::items(&surface::Surface::of_model(model, plan.defaults.clone()), &types);
     out.extend(api::items(model, plan, &types));
+    out.extend(sparse::items(plan, &types.plain, &runtime()));
     out.extend(dynamics::items(model, plan, &types));
     if plan.has_sensitivities() {
         out.extend(sensitivities::items(model, plan, &types));

@@ -23,6 +23,9 @@ use syn::ext::IdentExt;
 /// Names of leaves and temporaries in generated code.
 #[derive(Clone)]
 pub struct Names {
+    /// The mechanism's name without `r#` (module-level items derived from it: a sparse
+    /// block's tables and steps).
+    pub mechanism: String,
     /// Parameters are read from the mechanism where they are used (`self.a`).
     pub params: Vec<TokenStream>,
     /// Locals holding the inputs (`x_phi`).
@@ -59,6 +62,7 @@ impl Names {
         let i: Vec<String> = model.inputs.iter().map(|x| plain(&x.name)).collect();
         let p: Vec<String> = model.params.iter().map(|x| plain(&x.name)).collect();
         let mut names = Names {
+            mechanism: plain(&model.name),
             params: model
                 .params
                 .iter()

@@ -1,28 +1,59 @@
-//! Emission for large sparse Newton blocks (see [`crate::plan::sparse`]): the block's symbolic
-//! factorisation as one `static` table per kernel, and its Jacobian as the structural non-zeros
-//! only, so that the generated code grows with the number of non-zeros, not with `n^2`.
+//! Emission for large sparse Newton blocks (see [`crate::plan::sparse`]), once per mechanism
+//! beside its types: the block's symbolic factorisation as one `static` table, its numeric
+//! steps (load, elimination, substitution) as straight-line code over the factor's slots, and
+//! its Jacobian as the structural non-zeros only, so that the generated code grows with the
+//! number of non-zeros and fill, not with `n^2`.
 
 use super::lit;
 use super::names::Names;
 use crate::graph::dag::{Graph, NodeId};
+use crate::plan::Plan;
+use crate::plan::solve::Solve;
 use crate::plan::sparse::Sparse;
 use proc_macro2::{Ident, TokenStream};
 use quote::{format_ident, quote};
 
-/// The name of block `b`'s pattern table.
-pub fn pattern_ident(b: usize) -> Ident {
-    format_ident!("__SPARSE_PATTERN{}", b)
+/// The name of mechanism `m`'s block `b`'s pattern table, `__mSparsePatternb`.
+pub fn pattern_ident(m: &str, b: usize) -> Ident {
+    format_ident!("__{}SparsePattern{}", m, b)
 }
 
-/// `static __SPARSE_PATTERNb: SparsePattern = ...;` for block `b`.
-pub fn pattern_item(sp: &Sparse, b: usize, rt: &TokenStream) -> TokenStream {
-    let id = pattern_ident(b);
+/// The name of mechanism `m`'s block `b`'s straight-line numeric steps, `__mSparseStepsb`.
+pub fn steps_ident(m: &str, b: usize) -> Ident {
+    format_ident!("__{}SparseSteps{}", m, b)
+}
+
+/// The name of the type of mechanism `m`'s block `b`'s Jacobian, `__mSparseJacb`.
+pub fn jac_ident(m: &str, b: usize) -> Ident {
+    format_ident!("__{}SparseJac{}", m, b)
+}
+
+/// The items of every sparse block of a mechanism named `m` (see [`pattern_item`]).
+pub fn items(plan: &Plan, m: &str, rt: &TokenStream) -> TokenStream {
+    let mut out = TokenStream::new();
+    for (b, bp) in plan.blocks.iter().enumerate() {
+        if let Solve::NewtonSparse(sp) = &bp.solve {
+            out.extend(pattern_item(sp, m, b, bp.unknowns.len(), rt));
+        }
+    }
+    out
+}
+
+/// `static __mSparsePatternb: SparsePattern = ...;` for block `b` of mechanism `m`, its numeric
+/// steps (see [`steps_item`]) and the type of its Jacobian: private items of the module that
+/// declares the mechanism, once for all its kernels.
+pub fn pattern_item(sp: &Sparse, m: &str, b: usize, n: usize, rt: &TokenStream) -> TokenStream {
+    let steps = steps_item(sp, m, b, rt);
+    let (jac, ty) = (jac_ident(m, b), jac_type(sp, m, b, n, rt));
+    let id = pattern_ident(m, b);
     let col = sp.entries.iter().map(|&(_, c)| c as u16);
     let (row_ptr, slot, prow, pcol, diag) = (&sp.row_ptr, &sp.slot, &sp.prow, &sp.pcol, &sp.diag);
     let (l_ptr, l_slot, l_row, u_ptr, u_slot, u_col, upd) =
         (&sp.l_ptr, &sp.l_slot, &sp.l_row, &sp.u_ptr, &sp.u_slot, &sp.u_col, &sp.upd);
     let odd = sp.odd;
     quote! {
+        #[doc(hidden)]
+        #[allow(non_upper_case_globals)]
         static #id: #rt::SparsePattern = #rt::SparsePattern {
             row_ptr: &[#(#row_ptr),*],
             col: &[#(#col),*],
@@ -39,25 +70,120 @@ pub fn pattern_item(sp: &Sparse, b: usize, rt: &TokenStream) -> TokenStream {
             u_col: &[#(#u_col),*],
             upd: &[#(#upd),*],
         };
+        #[doc(hidden)]
+        #[allow(non_camel_case_types)]
+        type #jac = #ty;
+        #steps
     }
 }
 
-/// The type `SparseJac<n, nnz, nlu>` of the block's Jacobian.
-pub fn jac_type(sp: &Sparse, n: usize, rt: &TokenStream) -> TokenStream {
-    let (n, nnz, nlu) = (lit(n), lit(sp.entries.len()), lit(sp.nlu));
-    quote!(#rt::SparseJac<#n, #nnz, #nlu>)
+/// `struct __mSparseStepsb;` implementing `SparseSteps` for block `b`'s pattern as straight-line
+/// code: every slot a constant index (no table read, no loop, no bounds check), one statement
+/// per entry, pivot, multiplier and update, so its length is linear in the non-zeros and fill.
+/// The arithmetic is the tables' (`kinloop_runtime`'s `Tables`), operation for operation: the
+/// same factor bit for bit.
+pub fn steps_item(sp: &Sparse, m: &str, b: usize, rt: &TokenStream) -> TokenStream {
+    let (id, n, nlu) = (steps_ident(m, b), lit(sp.diag.len()), lit(sp.nlu));
+    // Load: the factor's slots in order, each an entry times its row's and column's scale, or
+    // a zero of fill.
+    let mut at: Vec<Option<usize>> = vec![None; sp.nlu];
+    for (e, &s) in sp.slot.iter().enumerate() {
+        at[s as usize] = Some(e);
+    }
+    let load = at.iter().map(|e| match *e {
+        Some(e) => {
+            let (r, c) = sp.entries[e];
+            let (e, r, c) = (lit(e), lit(r), lit(c));
+            // A call, not a product, as an element: a binary operator in an array literal
+            // whose tokens all carry the invocation's span looks like a missing comma to
+            // clippy.
+            quote!(#rt::scaled(v[#e], r[#r], c[#c]))
+        }
+        None => quote!(0.0),
+    });
+    // Elimination: per pivot its test, its reciprocal, then per row below it the multiplier
+    // and the updates of that row's entries right of the pivot.
+    let mut elim = TokenStream::new();
+    let mut upd = sp.upd.iter();
+    for k in 0..sp.diag.len() {
+        let (l, u) = (sp.l_ptr[k] as usize..sp.l_ptr[k + 1] as usize, sp.u_ptr[k] as usize..sp.u_ptr[k + 1] as usize);
+        let (d, kl) = (lit(sp.diag[k] as usize), lit(k));
+        let lower: Vec<_> = sp.l_slot[l.clone()].iter().map(|&s| lit(s as usize)).collect();
+        elim.extend(quote!(let i = __p.pivot(a[#d], [#(a[#lower]),*]); d[#kl] = i;));
+        for s in &lower {
+            let ups = sp.u_slot[u.clone()].iter().zip(upd.by_ref()).map(|(&u, &t)| {
+                let (u, t) = (lit(u as usize), lit(t as usize));
+                quote!(a[#t] -= m * a[#u];)
+            });
+            elim.extend(quote!(let m = a[#s] * i; a[#s] = m; #(#ups)*));
+        }
+    }
+    // Substitution: forward through the columns of `L`, back through the rows of `U`.
+    let mut subst = TokenStream::new();
+    for k in 0..sp.diag.len() {
+        let kl = lit(k);
+        for (&s, &i) in
+            sp.l_slot[sp.l_ptr[k] as usize..sp.l_ptr[k + 1] as usize].iter().zip(&sp.l_row[sp.l_ptr[k] as usize..])
+        {
+            let (s, i) = (lit(s as usize), lit(i as usize));
+            subst.extend(quote!(z[#i] -= a[#s] * z[#kl];));
+        }
+    }
+    for k in (0..sp.diag.len()).rev() {
+        let kl = lit(k);
+        let u = sp.u_ptr[k] as usize..sp.u_ptr[k + 1] as usize;
+        let terms: Vec<_> = sp.u_slot[u.clone()]
+            .iter()
+            .zip(&sp.u_col[u])
+            .map(|(&s, &j)| {
+                let (s, j) = (lit(s as usize), lit(j as usize));
+                quote!(- a[#s] * z[#j])
+            })
+            .collect();
+        subst.extend(if terms.is_empty() {
+            quote!(z[#kl] *= d[#kl];)
+        } else {
+            quote!(z[#kl] = (z[#kl] #(#terms)*) * d[#kl];)
+        });
+    }
+    quote! {
+        #[doc(hidden)]
+        #[allow(non_camel_case_types)]
+        struct #id;
+        impl #rt::SparseSteps<#n, #nlu> for #id {
+            #[inline]
+            fn load<const NNZ: usize>(_: &#rt::SparsePattern, v: &[f64; NNZ], r: &[f64; #n], c: &[f64; #n]) -> [f64; #nlu] {
+                [#(#load),*]
+            }
+            #[inline]
+            fn eliminate(
+                _: &#rt::SparsePattern,
+                a: &mut [f64; #nlu],
+                d: &mut [f64; #n],
+                det: &mut f64,
+                negative: &mut bool,
+            ) -> Option<f64> {
+                let mut __p = #rt::Pivots::new(*det, *negative);
+                #elim
+                __p.finish(det, negative)
+            }
+            #[inline]
+            fn substitute(_: &#rt::SparsePattern, a: &[f64; #nlu], d: &[f64; #n], z: &mut [f64; #n]) {
+                #subst
+            }
+        }
+    }
+}
+
+/// The type `SparseJac<n, nnz, nlu, __mSparseStepsb>` of block `b`'s Jacobian.
+fn jac_type(sp: &Sparse, m: &str, b: usize, n: usize, rt: &TokenStream) -> TokenStream {
+    let (n, nnz, nlu, steps) = (lit(n), lit(sp.entries.len()), lit(sp.nlu), steps_ident(m, b));
+    quote!(#rt::SparseJac<#n, #nnz, #nlu, #steps>)
 }
 
 /// The block's Jacobian from the nodes of its dense rows `jac`: its structural non-zeros only.
-pub fn jac_value(
-    sp: &Sparse,
-    b: usize,
-    g: &Graph,
-    names: &Names,
-    jac: &[Vec<NodeId>],
-    rt: &TokenStream,
-) -> TokenStream {
+pub fn jac_value(sp: &Sparse, b: usize, g: &Graph, names: &Names, jac: &[Vec<NodeId>]) -> TokenStream {
     let values = sp.entries.iter().map(|&(r, c)| names.operand(g, jac[r][c]));
-    let (ty, id) = (jac_type(sp, jac.len(), rt), pattern_ident(b));
-    quote!(<#ty>::new([#(#values),*], &#id))
+    let (ty, id) = (jac_ident(&names.mechanism, b), pattern_ident(&names.mechanism, b));
+    quote!(#ty::new([#(#values),*], &#id))
 }

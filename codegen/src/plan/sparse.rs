@@ -1,6 +1,7 @@
 //! The symbolic factorisation of a large sparse Newton block: which entries of its Jacobian are
 //! structurally non-zero, an order of pivots that keeps the factors sparse, and the index tables
-//! the runtime's sparse LU (`kinloop_runtime::SparseLu`) loops over.
+//! of the runtime's sparse LU (`kinloop_runtime::SparseLu`), from which the emitter writes the
+//! numeric factorisation as straight-line code (`crate::emit::sparse`).
 //!
 //! Pivots are the pairs of a perfect matching of rows to columns (a zero-free diagonal), chosen
 //! one at a time by least Markowitz cost `(r - 1)(c - 1)` (`r`, `c`: non-zeros of the pivot's row

@@ -1,7 +1,8 @@
 //! Solvers of one square block: damped Newton's method with scale-free tests and its
 //! diagnostics ([`newton`]), and the equilibrated LU factorisation of small fixed-size blocks
 //! that Newton, the analogs and the sensitivities share ([`lu`]); large sparse blocks factorise
-//! along an elimination order fixed at compile time ([`sparse_lu`]).
+//! along an elimination order fixed at compile time ([`sparse_lu`]), by the numeric steps of
+//! [`sparse_steps`].
 //!
 //! The bottom layer of the runtime: nothing here knows a mechanism, its states or its sweeps.
 //! The solvers use each other and the small leaves `error` and `events` only, so each can be
@@ -14,3 +15,4 @@ pub mod jacobian;
 pub mod lu;
 pub mod newton;
 pub mod sparse_lu;
+pub mod sparse_steps;

@@ -90,14 +90,14 @@ impl Kernel<'_> {
     fn sparse_factor(&self, b: usize, sp: &Sparse, rv: &Ident) -> TokenStream {
         let (bp, rt, bl) = (&self.plan.blocks[b], &self.rt, lit(b));
         let (lu, scale) = (format_ident!("__lu{}", b), self.col_scales(bp));
-        let (pattern, j) = if self.mode == Mode::At {
-            (sparse::pattern_item(sp, b, rt), sparse::jac_value(sp, b, self.g, self.names, &bp.jac, rt))
+        let j = if self.mode == Mode::At {
+            sparse::jac_value(sp, b, self.g, self.names, &bp.jac)
         } else {
+            // Borrowed: the Jacobian of a large block is kilobytes.
             let at = evaluation_ident(b);
-            (TokenStream::new(), quote!(#at.j))
+            quote!(&#at.j)
         };
         quote! {
-            #pattern
             let __j = #j;
             let #lu = __j.factor_cols([#(#scale),*]);
             if !(#lu.pivot_ratio() >= __cfg.singular_tol) {

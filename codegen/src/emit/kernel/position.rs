@@ -86,14 +86,12 @@ impl Kernel<'_> {
         let (s, ev, r) = (format_ident!("__s{}", b), format_ident!("__eval{}", b), format_ident!("__r{}", b));
         let at = evaluation_ident(b);
         // A large sparse block: its non-zeros only, and Newton over its sparse factorisation.
-        let (pattern, ty, jrows, newton) = match sparse {
-            Some(sp) => (
-                sparse::pattern_item(sp, b, rt),
-                sparse::jac_type(sp, bp.unknowns.len(), rt),
-                sparse::jac_value(sp, b, self.g, self.names, &bp.jac, rt),
-                quote!(#rt::newton_with),
-            ),
-            None => (TokenStream::new(), quote!(), self.names.rows(self.g, &bp.jac), quote!(#rt::newton::<#n, #k>)),
+        let (ty, jrows, newton) = match sparse {
+            Some(sp) => {
+                let ty = sparse::jac_ident(&self.names.mechanism, b);
+                (quote!(#ty), sparse::jac_value(sp, b, self.g, self.names, &bp.jac), quote!(#rt::newton_with))
+            }
+            None => (quote!(), self.names.rows(self.g, &bp.jac), quote!(#rt::newton::<#n, #k>)),
         };
         // A block that keeps the final factorisation for its analogs: the runtime writes it
         // into the analogs' `__lu{b}`.
@@ -150,7 +148,6 @@ impl Kernel<'_> {
         // The block's evaluation is one closure handed to the runtime's Newton, which checks
         // the guess, corrects it at least once and always checks the final residual.
         quote! {
-            #pattern
             let #ev = |__z: &[f64; #n]| -> #ty {
                 let [#(#qs),*] = *__z;
                 #inner
