@@ -125,9 +125,24 @@ pub trait Mechanism<const N: usize, const NI: usize, const NO: usize> {
         cfg: &NewtonConfig,
     ) -> Result<Kin<N, NI, NO>, Error> {
         match self.kinematics_step_flat(x, guess, cfg, &mut crate::trig::Libm) {
-            Err(e) => extreme_scale::rescue(self, x, guess, cfg, e),
+            Err(e) => self.kinematics_rescue(x, guess, cfg, e),
             ok => ok,
         }
+    }
+    /// The answer to a failure `error` of the checked kernel at input `x` from `guess`: for a
+    /// mechanism whose lengths leave the range the closed forms compute in (beyond about
+    /// `1e±144`), the kinematics solved by Newton over the whole system (see `extreme_scale`);
+    /// otherwise `error`. The macro's `kinematics_flat` ends with it, inlined or not.
+    #[doc(hidden)]
+    #[inline]
+    fn kinematics_rescue(
+        &self,
+        x: &[f64; NI],
+        guess: &[f64; N],
+        cfg: &NewtonConfig,
+        error: Error,
+    ) -> Result<Kin<N, NI, NO>, Error> {
+        extreme_scale::rescue(self, x, guess, cfg, error)
     }
     /// [`Mechanism::kinematics_step_flat`] with the state put where `sink` says: returned, or
     /// written into a state of the caller's (a sweep solves into its spare slot). The macro

@@ -35,6 +35,33 @@ with_newton_twin! {
     }
 }
 
+with_newton_twin! {
+    /// Five four-bars in series, each driven by the rocker of the one before: ten unknowns,
+    /// more than a sweep inlines, so `kinloop::mechanism!` emits its `kinematics_flat` as a
+    /// kernel of its own (five closed-form dyads in sequence).
+    pub struct FourBarChain, FourBarChainNewton {
+        params a, b, c, d;
+        input phi;
+        unknowns b1 = 0.5, g1 = 1.5, b2 = 0.5, g2 = 1.5, b3 = 0.5, g3 = 1.5, b4 = 0.5, g4 = 1.5,
+                 b5 = 0.5, g5 = 1.5;
+        loop l1: a @ phi + b @ b1 == (d, 0) + c @ g1;
+        loop l2: a @ g1 + b @ b2 == (d, 0) + c @ g2;
+        loop l3: a @ g2 + b @ b3 == (d, 0) + c @ g3;
+        loop l4: a @ g3 + b @ b4 == (d, 0) + c @ g4;
+        loop l5: a @ g4 + b @ b5 == (d, 0) + c @ g5;
+        point p5 = (d, 0) + c @ g5;
+    }
+}
+
+/// The chain at size `k` (every four-bar's links 1, 3.5, 3, 4 times `k`).
+fn chain(k: f64) -> FourBarChain {
+    FourBarChain { a: k, b: 3.5 * k, c: 3.0 * k, d: 4.0 * k }
+}
+
+fn chain_newton(k: f64) -> FourBarChainNewton {
+    FourBarChainNewton { a: k, b: 3.5 * k, c: 3.0 * k, d: 4.0 * k }
+}
+
 /// The four-bar at size `k` (link lengths 1, 3.5, 3, 4 times `k`).
 fn four_bar(k: f64) -> FourBar {
     FourBar { a: k, b: 3.5 * k, c: 3.0 * k, d: 4.0 * k }
@@ -155,4 +182,17 @@ fn slider_crank_solves_at_every_scale() {
     assert!(closed <= SCALE_TOL && newton <= SCALE_TOL, "{closed:e} {newton:e}");
     let swept = sweeps(slider_crank, [false, true]);
     assert!(swept <= SCALE_TOL, "slider-crank sweeps differ by {swept:e}");
+}
+
+/// A mechanism of more unknowns than a sweep inlines has its own `kinematics_flat`; a failure
+/// of its closed forms at an extreme size is rescued there too (and in its sweeps, which call
+/// it).
+#[test]
+fn a_chain_of_ten_unknowns_solves_at_every_scale() {
+    let closed = point_solves(chain, [false; 10]);
+    let newton = point_solves(chain_newton, [false; 10]);
+    eprintln!("four-bar chain point solves over scales: closed form {closed:.1e}, Newton {newton:.1e}");
+    assert!(closed <= SCALE_TOL && newton <= SCALE_TOL, "{closed:e} {newton:e}");
+    let swept = sweeps(chain, [false; 10]);
+    assert!(swept <= SCALE_TOL, "chain sweeps differ by {swept:e}");
 }

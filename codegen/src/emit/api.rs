@@ -166,9 +166,19 @@ fn mechanism_impl(model: &Model, plan: &Plan, t: &Types) -> TokenStream {
         }
     } else {
         let fused = solver_body(plan, &names, Mode::Fused, false);
+        // The kernel's failure at an extreme size goes to the rescue, as a small mechanism's
+        // does through `kinematics_step_rescued`.
         quote! {
             #[inline]
-            fn kinematics_flat(&self, #x, #g, #cfg) -> #kin { #fused }
+            fn kinematics_flat(&self, #x, #g, #cfg) -> #kin {
+                // A closure, so that the kernel's early returns land here.
+                #[allow(clippy::redundant_closure_call)]
+                let __solved = (|| -> #kin { #fused })();
+                match __solved {
+                    ::core::result::Result::Err(__e) => self.kinematics_rescue(__x, __guess, __cfg, __e),
+                    __ok => __ok,
+                }
+            }
         }
     };
     quote! {
