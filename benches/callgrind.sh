@@ -39,7 +39,7 @@ else
     hand@1000000 point@1000000
     newton newton-sweep
     series-point ring-point
-    four-bar-sens-point four-bar-sens)
+    four-bar-sens-point four-bar-sens four-bar-scan four-bar-sweep@99)
 fi
 
 command -v valgrind >/dev/null || { echo "callgrind.sh: valgrind is not installed" >&2; exit 1; }

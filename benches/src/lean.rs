@@ -112,3 +112,23 @@ pub fn sweep_turns<M: Mechanism<N, 1, NO>, const N: usize, const NO: usize>(
     }
     Ok(acc)
 }
+
+/// Samples of each design's sweep in [`scan_designs`]: a turn from 0 to `2 pi`, both ends
+/// included (the sweep's spacing is that of a turn of `SCAN_SAMPLES - 1` steps).
+pub const SCAN_SAMPLES: usize = 100;
+
+/// A design-space scan (`kinloop::scan`) over `steps / SCAN_SAMPLES` designs made by `design`
+/// from their index, each swept over a turn in [`SCAN_SAMPLES`] samples from its declared
+/// guess, every sample's numbers added into one accumulator by the scan's fold: the sum over
+/// the designs. Its cost per sample against [`sweep_turns`] at `SCAN_SAMPLES - 1` steps a turn
+/// is the scan's cost per design (a new sweep, its first solve from the guess, the fold's copy
+/// of each state) spread over its samples.
+pub fn scan_designs<M: Mechanism<N, 1, NO>, const N: usize, const NO: usize>(
+    design: impl Fn(usize) -> M,
+    steps: usize,
+) -> Result<f64, Failed> {
+    let designs: Vec<M> = (0..steps / SCAN_SAMPLES).map(design).collect();
+    let spec = kinloop::ScanConfig::new([0.0], [TAU], SCAN_SAMPLES);
+    let sums = kinloop::scan(&designs, &spec, |_| 0.0, |acc, _, k| acc + crate::kinloop_variants::state_sum(k));
+    sums.into_iter().try_fold(0.0, |acc, s| Ok(acc + s.map_err(Failed::new)?))
+}

@@ -10,6 +10,9 @@
 //! * class IV block (Newton): `class-four-hand` (the hand-written Newton), `class-four-point`,
 //!   `class-four-sweep`, and `class-four-hand-taylor`, `class-four-point-taylor` warm-started by
 //!   the benchmarks' second-order predictor instead of the previous position;
+//! * design-space scan: `four-bar-scan` (`kinloop::scan` over four-bars whose cranks differ
+//!   by 0.1 %, each swept over a turn in 100 samples; against `four-bar-sweep@99`, the same
+//!   spacing in one long sweep);
 //! * sensitivities: `four-bar-sens` (the four-bar's `sensitivities_flat`: positions, analogs and
 //!   outputs with their sensitivities to its four parameters) and `four-bar-sens-point` (the
 //!   same declaration's `kinematics_flat`);
@@ -108,6 +111,12 @@ fn main() {
         "four-bar-hand" => steps_of(&four_hand, gf, steps),
         "four-bar-point" => steps_of(&Kinloop::<FourBar, 2>::new(four), gf, steps),
         "four-bar-sweep" => sweep_of(&four, gf, steps),
+        "four-bar-scan" => lean::scan_designs(
+            // Designs 0.1 % apart in the crank: every one a crank-rocker like the four-bar.
+            |i| FourBar { a: four.a * (1.0 + 1e-3 * (i % 100) as f64), ..four },
+            steps,
+        )
+        .expect("scan"),
         "four-bar-sens" => steps_of(&KinloopSens::<FourBarSens, 2, 4>::new(four_sens(&four)), gf, steps),
         "four-bar-sens-point" => steps_of(&Kinloop::<FourBarSens, 2>::new(four_sens(&four)), gf, steps),
         "gear-lever-hand" => steps_of(&gear_hand, gg, steps),
