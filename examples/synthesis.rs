@@ -313,7 +313,9 @@ fn six_bar_versus_four_bar() -> Result<(), Box<dyn std::error::Error>> {
     }
     let sse = |c: &kinloop::synthesis::Candidate| c.errors.iter().map(|e| e * e).sum::<f64>();
     // The path's size: the largest distance of a target from their centroid.
-    let (cx, cy) = (targets.iter().map(|t| t[0]).sum::<f64>() / 12.0, targets.iter().map(|t| t[1]).sum::<f64>() / 12.0);
+    let count = targets.len() as f64;
+    let (cx, cy) =
+        (targets.iter().map(|t| t[0]).sum::<f64>() / count, targets.iter().map(|t| t[1]).sum::<f64>() / count);
     let extent = targets.iter().map(|t| (t[0] - cx).hypot(t[1] - cy)).fold(0.0, f64::max);
     println!("4. A timed path of a Stephenson six-bar: 12 points, crank angles 30 degrees apart");
 

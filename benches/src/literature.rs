@@ -274,16 +274,7 @@ pub fn search(case: &Case, starts: usize, seed: u64, max_evaluations: usize) -> 
         out.starts += starts;
         out.evaluations += r.evaluations;
         out.unassembled += r.unassembled;
-        let rj = &r.rejected;
-        for (sum, add) in [
-            (&mut out.rejected.order, rj.order),
-            (&mut out.rejected.branch, rj.branch),
-            (&mut out.rejected.circuit, rj.circuit),
-            (&mut out.rejected.no_assembly, rj.no_assembly),
-            (&mut out.rejected.full_rotation, rj.full_rotation),
-        ] {
-            *sum += add;
-        }
+        out.rejected.add(&r.rejected);
         for c in r.candidates {
             let e = sum_of_squares(&c);
             if !c.is_valid() {

@@ -13,6 +13,7 @@ pub use crate::error::Error;
 pub use crate::events::BlockInfo;
 pub use crate::kin::{ByValue, Health, Jac, Kin, KinSink, Sens};
 pub use crate::kinds::QuantityKind;
+pub use crate::mechanism::extreme_scale::rescue;
 pub use crate::mechanism::{Mechanism, NamedSensitivities, Sensitivities, SensitivitiesRequested};
 pub use crate::solvers::closed::*;
 pub use crate::solvers::deferred::*;

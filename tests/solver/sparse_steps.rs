@@ -222,7 +222,7 @@ fn a_weak_static_pivot_takes_the_dense_fallback() {
         .collect();
     assert!(tested.len() >= 3, "{tested:?}");
     for k in [tested[0], tested[tested.len() / 2], tested[tested.len() - 1]] {
-        let j = __CoupledSparseJac0::new(weak_pivot(pattern, k, &mut s), pattern);
+        let j = weak_pivot(pattern, k, &mut s);
         assert!(same_factor(j, &mut s), "pivot {k}: the static order was kept");
     }
     // A NaN entry: singular (pivot ratio 0), never a silent NaN solution reported regular.
@@ -235,19 +235,14 @@ fn a_weak_static_pivot_takes_the_dense_fallback() {
 
 /// Random values of the pattern's entries with static pivot `k` set to `1e-6`: weak against
 /// the other entries of its column (dominant pivots of about 10, other entries below 1).
-fn weak_pivot<const NNZ: usize>(
-    pattern: &'static kinloop::__gen::SparsePattern,
-    k: usize,
-    s: &mut Stream,
-) -> [f64; NNZ] {
+fn weak_pivot(pattern: &'static kinloop::__gen::SparsePattern, k: usize, s: &mut Stream) -> __CoupledSparseJac0 {
     let (r, c) = (pattern.prow[k] as usize, pattern.pcol[k] as usize);
-    let j = SparseJac::<28, NNZ, 131, __CoupledSparseSteps0>::new([0.0; NNZ], pattern);
-    let mut v = values(&j, s, 10.0);
+    let mut v = values(&__CoupledSparseJac0::new([0.0; _], pattern), s, 10.0);
     let e = (pattern.row_ptr[r] as usize..pattern.row_ptr[r + 1] as usize)
         .find(|&e| pattern.col[e] as usize == c)
         .expect("a pivot is an entry");
     v[e] = 1e-6;
-    v
+    __CoupledSparseJac0::new(v, pattern)
 }
 
 /// The solve through the emitted factorisation against the dense block: the same positions

@@ -125,5 +125,5 @@ fn bad_evolution_settings_are_refused() {
     let e = Search::default().with_seeds(vec![vec![1.0; 5]]).run(&problem).unwrap_err();
     assert!(matches!(&e, SynthesisError::Mismatch(m) if m.contains("seed 0")), "{e}");
     let e = Search::default().with_seeds(vec![vec![f64::NAN; 6]]).run(&problem).unwrap_err();
-    assert!(matches!(&e, SynthesisError::Mismatch(m) if m.contains("not finite")), "{e}");
+    assert!(matches!(&e, SynthesisError::InvalidConfig(m) if m.contains("seed 0") && m.contains("not finite")), "{e}");
 }

@@ -166,8 +166,8 @@ fn mechanism_impl(model: &Model, plan: &Plan, t: &Types) -> TokenStream {
         }
     } else {
         let fused = solver_body(plan, &names, Mode::Fused, false);
-        // The kernel's failure at an extreme size goes to the rescue, as a small mechanism's
-        // does through `kinematics_step_rescued`.
+        // The kernel's failure at an extreme size goes to the rescue (`extreme_scale`), as a
+        // small mechanism's does through `kinematics_step_rescued`.
         quote! {
             #[inline]
             fn kinematics_flat(&self, #x, #g, #cfg) -> #kin {
@@ -175,7 +175,7 @@ fn mechanism_impl(model: &Model, plan: &Plan, t: &Types) -> TokenStream {
                 #[allow(clippy::redundant_closure_call)]
                 let __solved = (|| -> #kin { #fused })();
                 match __solved {
-                    ::core::result::Result::Err(__e) => self.kinematics_rescue(__x, __guess, __cfg, __e),
+                    ::core::result::Result::Err(__e) => #rt::rescue(self, __x, __guess, __cfg, __e),
                     __ok => __ok,
                 }
             }

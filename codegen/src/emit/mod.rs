@@ -36,7 +36,6 @@ use crate::plan::Plan;
 use crate::semantics::model::Model;
 use proc_macro2::{Ident, Literal, TokenStream};
 use quote::{format_ident, quote};
-use syn::ext::IdentExt;
 
 /// The path generated code uses to reach the runtime.
 pub fn runtime() -> TokenStream {
@@ -74,7 +73,7 @@ pub struct Types {
 impl Types {
     /// The type names of mechanism `name`.
     pub fn of(name: &Ident) -> Types {
-        let plain = name.unraw().to_string();
+        let plain = names::plain(name);
         let t = |suffix: &str| format_ident!("{}{}", plain, suffix);
         Types {
             name: name.clone(),

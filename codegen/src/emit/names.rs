@@ -47,7 +47,9 @@ pub struct Names {
     sweep_kernel: bool,
 }
 
-fn plain(id: &Ident) -> String {
+/// An identifier without `r#`: the one spelling of a name in derived identifiers (the
+/// mechanism's types, its sparse blocks' items, the kernels' temporaries).
+pub(crate) fn plain(id: &Ident) -> String {
     id.unraw().to_string()
 }
 

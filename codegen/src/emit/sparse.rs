@@ -11,7 +11,7 @@ use crate::plan::Plan;
 use crate::plan::solve::Solve;
 use crate::plan::sparse::Sparse;
 use proc_macro2::{Ident, TokenStream};
-use quote::{format_ident, quote};
+use quote::{ToTokens, format_ident, quote};
 
 /// The name of mechanism `m`'s block `b`'s pattern table, `__mSparsePatternb`.
 pub fn pattern_ident(m: &str, b: usize) -> Ident {
@@ -21,6 +21,18 @@ pub fn pattern_ident(m: &str, b: usize) -> Ident {
 /// The name of mechanism `m`'s block `b`'s straight-line numeric steps, `__mSparseStepsb`.
 pub fn steps_ident(m: &str, b: usize) -> Ident {
     format_ident!("__{}SparseSteps{}", m, b)
+}
+
+/// The most updates a block's factorisation may have for its numeric steps to be emitted as
+/// straight-line code (one statement each). Beyond, the runtime's loops over the pattern's
+/// tables (`Tables`, the same arithmetic) factorise it, so that a large, strongly coupled
+/// declaration cannot turn its fill into code without bound. The ring of 64 four-bar loops of
+/// the benchmarks has a few thousand.
+pub const MAX_STRAIGHT_LINE_UPDATES: usize = 1 << 16;
+
+/// Whether block `sp`'s numeric steps are emitted as straight-line code.
+fn straight_line(sp: &Sparse) -> bool {
+    sp.upd.len() <= MAX_STRAIGHT_LINE_UPDATES
 }
 
 /// The name of the type of mechanism `m`'s block `b`'s Jacobian, `__mSparseJacb`.
@@ -43,7 +55,7 @@ pub fn items(plan: &Plan, m: &str, rt: &TokenStream) -> TokenStream {
 /// steps (see [`steps_item`]) and the type of its Jacobian: private items of the module that
 /// declares the mechanism, once for all its kernels.
 pub fn pattern_item(sp: &Sparse, m: &str, b: usize, n: usize, rt: &TokenStream) -> TokenStream {
-    let steps = steps_item(sp, m, b, rt);
+    let steps = if straight_line(sp) { steps_item(sp, m, b, rt) } else { TokenStream::new() };
     let (jac, ty) = (jac_ident(m, b), jac_type(sp, m, b, n, rt));
     let id = pattern_ident(m, b);
     let col = sp.entries.iter().map(|&(_, c)| c as u16);
@@ -83,7 +95,7 @@ pub fn pattern_item(sp: &Sparse, m: &str, b: usize, n: usize, rt: &TokenStream) 
 /// The arithmetic is the tables' (`kinloop_runtime`'s `Tables`), operation for operation: the
 /// same factor bit for bit.
 pub fn steps_item(sp: &Sparse, m: &str, b: usize, rt: &TokenStream) -> TokenStream {
-    let (id, n, nlu) = (steps_ident(m, b), lit(sp.diag.len()), lit(sp.nlu));
+    let (id, n, nlu, pattern) = (steps_ident(m, b), lit(sp.diag.len()), lit(sp.nlu), pattern_ident(m, b));
     // Load: the factor's slots in order, each an entry times its row's and column's scale, or
     // a zero of fill.
     let mut at: Vec<Option<usize>> = vec![None; sp.nlu];
@@ -152,7 +164,9 @@ pub fn steps_item(sp: &Sparse, m: &str, b: usize, rt: &TokenStream) -> TokenStre
         struct #id;
         impl #rt::SparseSteps<#n, #nlu> for #id {
             #[inline]
-            fn load<const NNZ: usize>(_: &#rt::SparsePattern, v: &[f64; NNZ], r: &[f64; #n], c: &[f64; #n]) -> [f64; #nlu] {
+            fn load<const NNZ: usize>(p: &#rt::SparsePattern, v: &[f64; NNZ], r: &[f64; #n], c: &[f64; #n]) -> [f64; #nlu] {
+                // The code below is this block's pattern's: paired with another, it would be wrong.
+                debug_assert!(::core::ptr::eq(p, &#pattern));
                 [#(#load),*]
             }
             #[inline]
@@ -175,9 +189,11 @@ pub fn steps_item(sp: &Sparse, m: &str, b: usize, rt: &TokenStream) -> TokenStre
     }
 }
 
-/// The type `SparseJac<n, nnz, nlu, __mSparseStepsb>` of block `b`'s Jacobian.
+/// The type `SparseJac<n, nnz, nlu, __mSparseStepsb>` of block `b`'s Jacobian (`Tables` for
+/// its steps beyond [`MAX_STRAIGHT_LINE_UPDATES`]).
 fn jac_type(sp: &Sparse, m: &str, b: usize, n: usize, rt: &TokenStream) -> TokenStream {
-    let (n, nnz, nlu, steps) = (lit(n), lit(sp.entries.len()), lit(sp.nlu), steps_ident(m, b));
+    let (n, nnz, nlu) = (lit(n), lit(sp.entries.len()), lit(sp.nlu));
+    let steps = if straight_line(sp) { steps_ident(m, b).into_token_stream() } else { quote!(#rt::Tables) };
     quote!(#rt::SparseJac<#n, #nnz, #nlu, #steps>)
 }
 

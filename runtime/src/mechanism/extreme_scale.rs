@@ -40,10 +40,12 @@ fn outside_closed_form_sizes(scale: &[f64]) -> bool {
 
 /// The answer to a checked kernel's failure `error` at input `x` from `guess`: for a mechanism
 /// outside [`CLOSED_FORM_SIZES`], the kinematics solved by Newton over the whole system (and
-/// `error` where that fails too); otherwise `error`.
+/// `error` where that fails too); otherwise `error`. The macro's `kinematics_flat` of a mechanism
+/// of more unknowns than a sweep inlines ends with it (`kinloop::__gen::rescue`).
+#[doc(hidden)]
 #[cold]
 #[inline(never)]
-pub(crate) fn rescue<M, const N: usize, const NI: usize, const NO: usize>(
+pub fn rescue<M, const N: usize, const NI: usize, const NO: usize>(
     m: &M,
     x: &[f64; NI],
     guess: &[f64; N],

@@ -37,6 +37,7 @@ pub enum Link {
 
 /// The Grashof class of a four-bar, named from the input's point of view.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
+#[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
 pub enum GrashofClass {
     /// Grashof; the input turns fully, the output rocks.
     CrankRocker,

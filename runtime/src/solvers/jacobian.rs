@@ -16,15 +16,9 @@ pub trait BlockFactor<const N: usize>: Factor {
 pub trait BlockJacobian<const N: usize>: Copy {
     /// Its factorisation.
     type Factor: BlockFactor<N>;
-    /// Factorises the matrix with row `r` divided by `row_scale[r]`.
-    fn factor_rows(&self, row_scale: [f64; N]) -> Self::Factor;
     /// The Newton step `-J^-1 f` with row `r` divided by `rows.s[r]`, and the smallest pivot
-    /// of that row-equilibrated matrix ([`Factor::pivot_ratio`] of [`Self::factor_rows`]).
-    #[inline(always)]
-    fn newton_step(&self, f: &[f64; N], rows: &RowScales<N>) -> ([f64; N], f64) {
-        let lu = self.factor_rows(rows.s);
-        (lu.solve_block(f.map(|v| -v)), lu.pivot_ratio())
-    }
+    /// of that row-equilibrated matrix ([`Factor::pivot_ratio`] of its factorisation).
+    fn newton_step(&self, f: &[f64; N], rows: &RowScales<N>) -> ([f64; N], f64);
     /// `sum_c |J_rc|`.
     fn row_abs_sum(&self, r: usize) -> f64;
     /// Whether every entry of row `r` is finite.
@@ -51,11 +45,6 @@ impl<const N: usize> BlockFactor<N> for Lu<N> {
 
 impl<const N: usize> BlockJacobian<N> for [[f64; N]; N] {
     type Factor = Lu<N>;
-
-    #[inline(always)]
-    fn factor_rows(&self, row_scale: [f64; N]) -> Lu<N> {
-        Lu::factor(self, row_scale)
-    }
 
     /// Eliminates the right-hand side with the matrix: no factorisation is kept.
     #[inline(always)]

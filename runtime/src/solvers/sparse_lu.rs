@@ -118,11 +118,7 @@ impl<const N: usize, const NNZ: usize, const NLU: usize, E: SparseSteps<N, NLU>>
 {
     type Factor = SparseLu<N, NLU, E>;
 
-    fn factor_rows(&self, row_scale: [f64; N]) -> Self::Factor {
-        SparseLu::factor(self, row_scale, [1.0; N])
-    }
-
-    /// The row scales' reciprocals are those of `rows` (not taken again).
+    /// Factorises with the row scales' reciprocals of `rows` (not taken again).
     #[inline(always)]
     fn newton_step(&self, f: &[f64; N], rows: &RowScales<N>) -> ([f64; N], f64) {
         let lu = SparseLu::factor_inverses(self, rows.s, rows.inv, rows.degenerate, [1.0; N]);

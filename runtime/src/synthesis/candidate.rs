@@ -26,7 +26,6 @@ pub enum Origin {
 #[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
 pub struct FourBarClass {
     /// The Grashof class ([`crate::metrics::grashof()`]), named from the input's point of view.
-    #[cfg_attr(feature = "serde", serde(with = "class_serde"))]
     pub class: GrashofClass,
     /// `(s + l) - (p + q)` over the sum of the four lengths: negative for a Grashof linkage,
     /// zero at a change point, positive for a triple rocker.
@@ -127,34 +126,5 @@ impl Candidate {
     /// Whether the verification found no defect.
     pub fn is_valid(&self) -> bool {
         self.defects.is_empty()
-    }
-}
-
-/// [`GrashofClass`] as its variant name (it has no serde impls of its own).
-#[cfg(feature = "serde")]
-mod class_serde {
-    use crate::metrics::GrashofClass;
-    use serde::{Deserialize, Deserializer, Serializer, de::Error};
-
-    const NAMES: [(GrashofClass, &str); 6] = [
-        (GrashofClass::CrankRocker, "CrankRocker"),
-        (GrashofClass::RockerCrank, "RockerCrank"),
-        (GrashofClass::DoubleCrank, "DoubleCrank"),
-        (GrashofClass::DoubleRocker, "DoubleRocker"),
-        (GrashofClass::ChangePoint, "ChangePoint"),
-        (GrashofClass::TripleRocker, "TripleRocker"),
-    ];
-
-    pub fn serialize<S: Serializer>(class: &GrashofClass, s: S) -> Result<S::Ok, S::Error> {
-        s.serialize_str(NAMES.iter().find(|(c, _)| c == class).map_or("TripleRocker", |(_, n)| n))
-    }
-
-    pub fn deserialize<'de, D: Deserializer<'de>>(d: D) -> Result<GrashofClass, D::Error> {
-        let name = String::deserialize(d)?;
-        NAMES
-            .iter()
-            .find(|(_, n)| *n == name)
-            .map(|(c, _)| *c)
-            .ok_or_else(|| D::Error::custom(format!("unknown Grashof class `{name}`")))
     }
 }

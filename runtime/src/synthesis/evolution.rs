@@ -117,7 +117,7 @@ impl IslandRng {
         IslandRng(splitmix64(&mut s))
     }
     /// Uniform in `[0, 1)`.
-    fn uniform(&mut self) -> f64 {
+    pub(crate) fn uniform(&mut self) -> f64 {
         unit(splitmix64(&mut self.0))
     }
     /// Uniform in `0..n`.

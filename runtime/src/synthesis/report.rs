@@ -128,8 +128,8 @@ impl Rejections {
         } += 1;
     }
 
-    /// Adds the counts of `other`.
-    pub(crate) fn add(&mut self, other: &Rejections) {
+    /// Adds the counts of `other` (e.g. of another search's report).
+    pub fn add(&mut self, other: &Rejections) {
         self.order += other.order;
         self.branch += other.branch;
         self.circuit += other.circuit;

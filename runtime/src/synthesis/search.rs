@@ -140,7 +140,12 @@ impl Search {
     {
         self.validate()?;
         for (k, seed) in self.seeds.iter().enumerate() {
-            problem.check_point(seed).map_err(|e| SynthesisError::Mismatch(format!("seed {k}: {e}")))?;
+            // The seed's index in the message, the kind of error kept.
+            problem.check_point(seed).map_err(|e| match e {
+                SynthesisError::InvalidConfig(m) => SynthesisError::InvalidConfig(format!("seed {k}: {m}")),
+                SynthesisError::Mismatch(m) => SynthesisError::Mismatch(format!("seed {k}: {m}")),
+                e => e,
+            })?;
         }
         Ok(())
     }
@@ -239,7 +244,8 @@ impl Search {
         }
     }
 
-    /// Island `i`: its population from the Halton points `i * population ..`, evolved, its
+    /// Island `i`: its population from the Halton points `i * population ..` (free inputs at
+    /// random in all members but the first), evolved, its
     /// best `polish` members solved locally (a missing member, where fewer could be assembled,
     /// is a `None`).
     fn island<M, const N: usize, const NI: usize, const NO: usize, const NP: usize>(
@@ -254,9 +260,23 @@ impl Search {
     {
         let (lo, hi) = problem.bounds();
         let first = island.saturating_mul(de.population);
-        let mut pop: Vec<Vec<f64>> = (0..de.population).map(|k| self.start(problem, first.saturating_add(k))).collect();
-        let mut fit = batch(&pop);
         let mut rng = IslandRng::new(self.seed, island);
+        // Free inputs: evenly spaced in the first member, drawn at random (in order) in the
+        // others, so that the differences of members move them too.
+        let (nv, nt) = (problem.vars.len(), problem.free_inputs());
+        let mut pop: Vec<Vec<f64>> = (0..de.population)
+            .map(|k| {
+                let mut z = self.start(problem, first.saturating_add(k));
+                if k > 0 && nt > 0 {
+                    for j in nv..nv + nt {
+                        z[j] = lo[j] + (hi[j] - lo[j]) * rng.uniform();
+                    }
+                    z[nv..nv + nt].sort_by(f64::total_cmp);
+                }
+                z
+            })
+            .collect();
+        let mut fit = batch(&pop);
         let done = self.local.tol * problem.scale;
         let evaluations = de.population + evolve(&mut pop, &mut fit, (&lo, &hi), de, &mut rng, done, batch);
         let chosen = best(&fit, de.polish);
@@ -417,9 +437,7 @@ impl Search {
     {
         self.validate()?;
         problem.check_point(z0)?;
-        let (lo, hi) = problem.bounds();
-        let z0 = z0.iter().zip(lo.iter().zip(&hi)).map(|(v, (a, b))| v.clamp(*a, *b)).collect();
-        let (z, e, report) = problem.local(z0, &self.local)?;
+        let (z, e, report) = problem.local(Self::clamped(problem, z0), &self.local)?;
         Ok(problem.verify(Origin::Refine, usize::MAX, z, e, report))
     }
 }

@@ -319,15 +319,13 @@ impl DefaultDrawing {
                 drawing = drawing.trace(self.pt(j));
             }
         }
-        let DefaultDrawing { extra, notes, .. } = self;
-        drawing.items.extend(extra.items);
-        drawing.traces.extend(extra.traces);
-        drawing.labels = extra.labels;
-        drawing.length_unit = extra.length_unit;
-        drawing.annotate = extra.annotate;
-        // The declaration's notes, then any added through `extend`.
-        drawing.notes = notes.into_iter().chain(extra.notes).collect();
-        drawing.with_style(extra.style).with_canvas(extra.canvas)
+        // What `extend` set, every field of it kept, with the declaration's items, traces and
+        // notes before its own.
+        let DefaultDrawing { extra: mut out, notes, .. } = self;
+        out.items.splice(0..0, drawing.items);
+        out.traces.splice(0..0, drawing.traces);
+        out.notes.splice(0..0, notes);
+        out
     }
 
     /// A fixed guide's angle (parameters only: any state gives it).

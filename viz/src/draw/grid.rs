@@ -18,9 +18,8 @@ pub const MAX_GRID_CELLS: usize = 100_000;
 /// `axes[0][i0], axes[1][i1], ...`.
 #[derive(Clone, Debug, PartialEq)]
 pub struct GridMotion {
-    /// The poses of the cells that were reached, in the order solved (rows along the first
-    /// input). Its events are empty: a row ends at a limit position (the cells after it are
-    /// unreachable) and the page marks none.
+    /// The poses of the cells that were reached, in the order solved (breadth first from the
+    /// first cell). Its events are empty: the page marks none.
     pub motion: Motion,
     /// The input values along each axis (`count` values evenly spaced from `from` to `to`).
     pub axes: Vec<Vec<f64>>,
@@ -37,54 +36,17 @@ fn spaced(from: f64, to: f64, count: usize) -> Vec<f64> {
     (0..count).map(|k| from + (to - from) * (k as f64 / (count - 1) as f64)).collect()
 }
 
-/// The states of a sweep of `m` from `x` along axis `a` over `values` (the other inputs as in
-/// `x`), from `guess`: each sample's state, `None` from the first that fails or meets a limit
-/// position on. The first sample's error is returned when `first` (the grid's start).
-fn line<M, const N: usize, const NI: usize, const NO: usize>(
-    m: &M,
-    x: [f64; NI],
-    a: usize,
-    values: &[f64],
-    guess: [f64; N],
-    first: bool,
-) -> Result<Vec<Option<Kin<N, NI, NO>>>, DrawError>
-where
-    M: Mechanism<N, NI, NO>,
-{
-    let (mut from, mut to) = (x, x);
-    from[a] = values[0];
-    to[a] = values[values.len() - 1];
-    let mut out = Vec::with_capacity(values.len());
-    let sweep = Sweep::<M, Kin<N, NI, NO>, N, NI, NO>::new(m, from, to, values.len(), guess);
-    match sweep {
-        Ok(mut sweep) => {
-            while let Some(k) = sweep.next_kin() {
-                match k {
-                    Ok(k) => out.push(Some(k)),
-                    Err(e) if first && out.is_empty() => return Err(DrawError::Sweep(e)),
-                    // A limit position (`Error::SweepStopped`) or a failed step: the rest of the
-                    // line is not reached on this assembly mode.
-                    Err(_) => break,
-                }
-            }
-        }
-        Err(e) => return Err(DrawError::Sweep(e)),
-    }
-    out.resize(values.len(), None);
-    Ok(out)
-}
-
 impl GridMotion {
     /// Solves mechanism `m` over the grid of `counts[k]` inputs evenly spaced from `from[k]`
     /// to `to[k]` (both included) on each axis, starting from `guess` at `from` (the guess
     /// picks the assembly mode).
     ///
-    /// The assembly mode is carried continuously: a branch-safe sweep along the last input
-    /// from the first cell gives the start of each slice; each slice is filled the same way
-    /// down to rows along the first input, each row started from the state at its first
-    /// cell, itself swept from the previous row's first cell. Where a sweep meets a limit
-    /// position or cannot be continued, the cells after it on that line (and the rows started
-    /// from them) are marked unreachable: `None` in [`GridMotion::cells`].
+    /// The assembly mode is carried continuously: from the first cell, every cell reached
+    /// passes its state to its neighbours along each axis by a branch-safe sweep between the
+    /// two (breadth first, in cell order). A sweep that meets a limit position or cannot be
+    /// continued passes nothing, and a cell no neighbour reaches is marked unreachable: `None`
+    /// in [`GridMotion::cells`]. Cells beyond a limit position on one line are so reached
+    /// around it where the mechanism can be assembled there on the same mode.
     ///
     /// ```
     /// use kinloop::Mechanism;
@@ -151,35 +113,62 @@ impl GridMotion {
         };
         let axes: Vec<Vec<f64>> = (0..NI).map(|k| spaced(from[k], to[k], counts[k])).collect();
         let mut grid = GridMotion { motion: Motion::empty::<M, N, NI, NO>(), axes, cells: vec![None; cells] };
-        grid.fill(m, NI - 1, from, guess, 0, true)?;
+        grid.flood(m, from, guess)?;
         Ok(grid)
     }
 
-    /// Fills the sub-grid of axes `0..=a` whose first cell (number `base`) is at `x`, swept
-    /// from `guess` there.
-    fn fill<M, const N: usize, const NI: usize, const NO: usize>(
+    /// The input values of cell `cell`.
+    fn inputs<const NI: usize>(&self, cell: usize) -> [f64; NI] {
+        let mut rest = cell;
+        core::array::from_fn(|k| {
+            let axis = &self.axes[k];
+            let i = rest % axis.len();
+            rest /= axis.len();
+            axis[i]
+        })
+    }
+
+    /// Solves the first cell at `from` from `guess`, then every cell reached from a reached
+    /// neighbour by a sweep of two samples (branch-safe: its steps in between are its own).
+    fn flood<M, const N: usize, const NI: usize, const NO: usize>(
         &mut self,
         m: &M,
-        a: usize,
-        x: [f64; NI],
+        from: [f64; NI],
         guess: [f64; N],
-        base: usize,
-        first: bool,
     ) -> Result<(), DrawError>
     where
         M: Mechanism<N, NI, NO>,
     {
-        let stride: usize = self.axes[..a].iter().map(Vec::len).product();
-        let values = self.axes[a].clone();
-        let states = line(m, x, a, &values, guess, first)?;
-        for (j, state) in states.into_iter().enumerate() {
-            let Some(k) = state else { break };
-            let cell = base + j * stride;
-            if a == 0 {
-                self.cells[cell] = Some(self.motion.poses.len());
-                self.motion.push(&k);
-            } else {
-                self.fill(m, a - 1, k.x, k.q, cell, first && j == 0)?;
+        let first = Sweep::<M, Kin<N, NI, NO>, N, NI, NO>::new(m, from, from, 1, guess)
+            .map_err(DrawError::Sweep)?
+            .next_kin()
+            .ok_or_else(|| DrawError::InvalidSetting("the first cell's sweep has no sample".into()))?
+            .map_err(DrawError::Sweep)?;
+        let mut states = vec![None; self.cells.len()];
+        states[0] = Some(first);
+        let mut queue = std::collections::VecDeque::from([0usize]);
+        while let Some(cell) = queue.pop_front() {
+            let Some(k) = states[cell] else { continue };
+            self.cells[cell] = Some(self.motion.poses.len());
+            self.motion.push(&k);
+            let mut stride = 1;
+            for axis in &self.axes {
+                let i = (cell / stride) % axis.len();
+                let next = [(i > 0).then(|| cell - stride), (i + 1 < axis.len()).then(|| cell + stride)];
+                for n in next.into_iter().flatten() {
+                    if states[n].is_some() {
+                        continue;
+                    }
+                    let to = self.inputs::<NI>(n);
+                    let reached = Sweep::<M, Kin<N, NI, NO>, N, NI, NO>::new(m, k.x, to, 2, k.q)
+                        .ok()
+                        .and_then(|sweep| sweep.last().and_then(Result::ok));
+                    if let Some(state) = reached {
+                        states[n] = Some(state);
+                        queue.push_back(n);
+                    }
+                }
+                stride *= axis.len();
             }
         }
         Ok(())

@@ -70,7 +70,9 @@ fn items(out: &mut String, style: &Style, slots: &[Slot], f: &[i64], pen: &Pen, 
     let mut o = 0;
     let width = if pen.ghost { 1.5 } else { style.link_width };
     let dash = if pen.ghost { r#" stroke-dasharray="5 3""# } else { "" };
-    let mark = |k: usize| if live { format!(r#" class="kl-shape" data-item="{k}""#) } else { String::new() };
+    let mark_as =
+        |k: usize, class: &str| if live { format!(r#" class="{class}" data-item="{k}""#) } else { String::new() };
+    let mark = |k: usize| mark_as(k, "kl-shape");
     for (k, slot) in slots.iter().enumerate() {
         let (x, y) = (t(f[o]), t(f[o + 1]));
         match slot {
@@ -99,7 +101,7 @@ fn items(out: &mut String, style: &Style, slots: &[Slot], f: &[i64], pen: &Pen, 
                     out,
                     r#"<g{} transform="translate({x} {y})"><path d="M0,0L-9,14H9Z" fill="white" stroke="{g}" stroke-width="1.5"/><path d="M-15,14H15" stroke="{g}" stroke-width="2"/>"#,
                     // The frame's pivots stay drawn where a grid's page hides the mechanism.
-                    mark(k).replace("kl-shape", "kl-shape kl-pivot")
+                    mark_as(k, "kl-shape kl-pivot")
                 );
                 hatch(out, g, [-13.0, 14.0], [1.0, 0.0], 26.0);
                 out.push_str("</g>");

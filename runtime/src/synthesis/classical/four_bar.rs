@@ -46,10 +46,6 @@ pub struct FourBar {
     pub outputs: Vec<f64>,
 }
 
-fn angle(v: Vec2) -> f64 {
-    v.y.atan2(v.x)
-}
-
 impl FourBar {
     /// The function generator `g` through its precision `points` (those it was synthesised
     /// from): `A` at the origin, `D` at `(1, 0)`, the input and output angles those of the
@@ -83,7 +79,7 @@ impl FourBar {
                     "the coupler's joints coincide at precision point {i}: its angle is not defined"
                 )));
             }
-            couplers.push(angle(c - b));
+            couplers.push((c - b).angle());
         }
         Ok(FourBar {
             input_pivot: Vec2::new(0.0, 0.0),
@@ -130,7 +126,7 @@ impl FourBar {
                 return Err(ClassicalError::Degenerate(format!("{what}: the two dyads make no four-bar")));
             }
         }
-        let ground_angle = angle(d - a);
+        let ground_angle = (d - a).angle();
         let links = FourBarLinks {
             ground: (d - a).norm(),
             input: (b1 - a).norm(),
@@ -138,9 +134,9 @@ impl FourBar {
             output: (c1 - d).norm(),
         };
         let p1 = poses[0].point;
-        let coupler1 = angle(c1 - b1);
-        let coupler_point = ((p1 - b1).norm(), angle_difference(angle(p1 - b1), coupler1));
-        let from_ground = |v: Vec2| angle_difference(angle(v), ground_angle);
+        let coupler1 = (c1 - b1).angle();
+        let coupler_point = ((p1 - b1).norm(), angle_difference((p1 - b1).angle(), coupler1));
+        let from_ground = |v: Vec2| angle_difference(v.angle(), ground_angle);
         let first = from_ground(b1 - a);
         let mut inputs = Vec::with_capacity(poses.len());
         let mut couplers = Vec::with_capacity(poses.len());
@@ -188,7 +184,7 @@ mod tests {
             let h = (lb * lb - x * x).sqrt();
             let u = bd * (1.0 / dist);
             let c = b + u * x + Vec2::new(-u.y, u.x) * h;
-            let beta = angle(c - b);
+            let beta = (c - b).angle();
             let p = b + Vec2::new(e * (beta + alpha).cos(), e * (beta + alpha).sin());
             poses.push(Pose { point: p, angle: beta + tau });
             truth.push((b, c, beta));
