@@ -6,8 +6,8 @@
 # times (user + system, as GNU time reports them) over the difference of their steps, so the
 # setup cancels. CPU time, not wall time: the time a run waits for a core another build holds
 # is not counted (what is left is the contention of the core's caches and the other hyper-thread).
-# The pair's two variants run one after the other in every round, so load that comes and goes
-# weighs on both; the ratio is taken per round. Prints every round, then per pair the median
+# The pair's two variants run one after the other in every round (each first in every other
+# round), so load that comes and goes weighs on both; the ratio is taken per round. Prints every round, then per pair the median
 # and range of the ratio CAND / REF and the medians of the two times.
 #
 #   benches/cputime.sh 11 hand:point:5000000 gear-lever-hand:gear-lever-point:5000000
@@ -47,8 +47,14 @@ declare -A refs cands ratios
 for r in $(seq 1 "$rounds"); do
   for p in "$@"; do
     IFS=: read -r ref cand steps <<<"$p"
-    tr="$(per_step "$ref" "$steps")"
-    tc="$(per_step "$cand" "$steps")"
+    # Each of the two first in every other round: neither always runs after the other.
+    if ((r % 2)); then
+      tr="$(per_step "$ref" "$steps")"
+      tc="$(per_step "$cand" "$steps")"
+    else
+      tc="$(per_step "$cand" "$steps")"
+      tr="$(per_step "$ref" "$steps")"
+    fi
     q="$(awk -v a="$tr" -v b="$tc" 'BEGIN { printf "%.4f", b / a }')"
     echo "round $r: $ref $tr ns, $cand $tc ns, ratio $q"
     refs[$p]+="$tr "
