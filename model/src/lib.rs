@@ -94,6 +94,7 @@ mod model;
 mod newton;
 mod sensitivities;
 pub mod source;
+mod sparse;
 mod tape;
 
 pub use at::Jacobian;
@@ -102,3 +103,4 @@ pub use factor::MAX_DENSE;
 pub use model::{Model, ReadError, State, StepError};
 pub use sensitivities::Sensitivities;
 pub use source::{Diagnostic, Diagnostics, Level};
+pub use sparse::MAX_SPARSE;
