@@ -63,7 +63,7 @@ where
                 assert_eq!(c.report.residual.to_bits(), r.report.residual.to_bits(), "{name} at {x:?}: residual");
                 assert_eq!(c.health.det_signs, r.health.det_signs, "{name} at {x:?}: determinant signs");
                 assert_eq!(c.health.min_pivot.to_bits(), r.health.min_pivot.to_bits(), "{name} at {x:?}: pivot ratio");
-                seen.dense += usize::from(model.dense_fallback(0) == Some(true));
+                seen.dense += (0..model.block_count()).filter(|&b| model.dense_fallback(b) == Some(true)).count();
                 guess = c.q;
                 seen.states += 1;
             }
@@ -127,4 +127,83 @@ fn the_ring_of_64_equals_the_compiled_one() {
     let seen = turn(&kinloop_bench::ring::Ring::default(), &mut model, 360);
     assert_eq!(seen.states, 360, "{seen:?}");
     eprintln!("ring of 64: {seen:?}");
+}
+
+/// The body of a declaration of `loops` four-bar loops, each driven through a differential by
+/// the input and the rockers of two other loops drawn at random (seeded, a linear congruential
+/// generator): a coupled block whose pattern follows no ring or band. The four-bar (crank 1,
+/// coupler 3, rocker 2.5, frame 3.2) is a Grashof crank-rocker: it assembles at every crank
+/// angle, so every combination of drivers does.
+fn random_coupled(loops: usize, seed: u64) -> String {
+    let mut state = seed;
+    let mut draw = |m: usize| {
+        state = state.wrapping_mul(6364136223846793005).wrapping_add(1442695040888963407);
+        ((state >> 33) % m as u64) as usize
+    };
+    let mut body = String::from("params a = 1.0, b = 3.0, c = 2.5, d = 3.2; input phi; unknowns ");
+    body += &(0..loops).map(|i| format!("u{i} = 0.6, v{i} = 1.9")).collect::<Vec<_>>().join(", ");
+    body += ";";
+    for i in 0..loops {
+        let j = (i + 1 + draw(loops - 1)) % loops;
+        let mut k = (i + 1 + draw(loops - 1)) % loops;
+        if k == j {
+            k = (j + 1) % loops;
+            if k == i {
+                k = (k + 1) % loops;
+            }
+        }
+        body += &format!(" loop l{i}: a @ ((phi + v{j} + v{k}) / 3) + b @ u{i} == (d, 0) + c @ v{i};");
+    }
+    body
+}
+
+declared! {
+    RANDOM_TEXT =>
+    /// Twenty four-bar loops coupled at random (`random_coupled(20, 7)`, written out: a
+    /// declaration is tokens).
+    pub struct RandomCoupled {
+        params a = 1.0, b = 3.0, c = 2.5, d = 3.2;
+        input phi;
+        unknowns u0 = 0.6, v0 = 1.9, u1 = 0.6, v1 = 1.9, u2 = 0.6, v2 = 1.9, u3 = 0.6, v3 = 1.9, u4 = 0.6,
+            v4 = 1.9, u5 = 0.6, v5 = 1.9, u6 = 0.6, v6 = 1.9, u7 = 0.6, v7 = 1.9, u8 = 0.6, v8 = 1.9,
+            u9 = 0.6, v9 = 1.9, u10 = 0.6, v10 = 1.9, u11 = 0.6, v11 = 1.9, u12 = 0.6, v12 = 1.9, u13 = 0.6,
+            v13 = 1.9, u14 = 0.6, v14 = 1.9, u15 = 0.6, v15 = 1.9, u16 = 0.6, v16 = 1.9, u17 = 0.6,
+            v17 = 1.9, u18 = 0.6, v18 = 1.9, u19 = 0.6, v19 = 1.9;
+        loop l0: a @ ((phi + v19 + v6) / 3) + b @ u0 == (d, 0) + c @ v0;
+        loop l1: a @ ((phi + v19 + v13) / 3) + b @ u1 == (d, 0) + c @ v1;
+        loop l2: a @ ((phi + v8 + v18) / 3) + b @ u2 == (d, 0) + c @ v2;
+        loop l3: a @ ((phi + v16 + v17) / 3) + b @ u3 == (d, 0) + c @ v3;
+        loop l4: a @ ((phi + v6 + v0) / 3) + b @ u4 == (d, 0) + c @ v4;
+        loop l5: a @ ((phi + v1 + v11) / 3) + b @ u5 == (d, 0) + c @ v5;
+        loop l6: a @ ((phi + v16 + v0) / 3) + b @ u6 == (d, 0) + c @ v6;
+        loop l7: a @ ((phi + v17 + v18) / 3) + b @ u7 == (d, 0) + c @ v7;
+        loop l8: a @ ((phi + v10 + v12) / 3) + b @ u8 == (d, 0) + c @ v8;
+        loop l9: a @ ((phi + v11 + v10) / 3) + b @ u9 == (d, 0) + c @ v9;
+        loop l10: a @ ((phi + v19 + v6) / 3) + b @ u10 == (d, 0) + c @ v10;
+        loop l11: a @ ((phi + v17 + v13) / 3) + b @ u11 == (d, 0) + c @ v11;
+        loop l12: a @ ((phi + v9 + v0) / 3) + b @ u12 == (d, 0) + c @ v12;
+        loop l13: a @ ((phi + v17 + v6) / 3) + b @ u13 == (d, 0) + c @ v13;
+        loop l14: a @ ((phi + v5 + v3) / 3) + b @ u14 == (d, 0) + c @ v14;
+        loop l15: a @ ((phi + v4 + v5) / 3) + b @ u15 == (d, 0) + c @ v15;
+        loop l16: a @ ((phi + v12 + v1) / 3) + b @ u16 == (d, 0) + c @ v16;
+        loop l17: a @ ((phi + v14 + v7) / 3) + b @ u17 == (d, 0) + c @ v17;
+        loop l18: a @ ((phi + v17 + v4) / 3) + b @ u18 == (d, 0) + c @ v18;
+        loop l19: a @ ((phi + v0 + v12) / 3) + b @ u19 == (d, 0) + c @ v19;
+    }
+}
+
+#[test]
+fn the_written_out_random_declaration_is_the_generated_one() {
+    let strip = |s: &str| s.chars().filter(|c| !c.is_whitespace()).collect::<String>();
+    assert!(strip(RANDOM_TEXT).ends_with(&format!("{{{}}}", strip(&random_coupled(20, 7)))), "{RANDOM_TEXT}");
+}
+
+#[test]
+fn a_randomly_coupled_declaration_equals_the_compiled_one() {
+    let mut model = read(RANDOM_TEXT);
+    eprintln!("{}", model.decomposition());
+    assert!(model.decomposition().contains("sparse"), "{}", model.decomposition());
+    let seen = turn(&RandomCoupled::default(), &mut model, 360);
+    assert_eq!(seen.states, 360, "{seen:?}");
+    eprintln!("randomly coupled: {seen:?}");
 }
