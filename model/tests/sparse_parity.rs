@@ -207,3 +207,106 @@ fn a_randomly_coupled_declaration_equals_the_compiled_one() {
     assert_eq!(seen.states, 360, "{seen:?}");
     eprintln!("randomly coupled: {seen:?}");
 }
+
+/// Parameters of the ring of nine at which the static order's pivots turn weak at some inputs of
+/// the turn (found by a scan of link lengths): there both factorise densely.
+#[test]
+fn the_dense_fallback_of_a_weak_static_pivot_equals_the_compiled_one() {
+    let (a, b, c, d) = (2.0, 2.0, 4.0, 2.0);
+    let mut model = read(RING9_TEXT);
+    for (p, v) in [("a", a), ("b", b), ("c", c), ("d", d)] {
+        assert!(model.set_param(p, v));
+    }
+    let seen = turn(&Ring9 { a, b, c, d }, &mut model, 360);
+    assert_eq!(seen.states, 360, "{seen:?}");
+    // Both paths taken: the sparse order where it holds, the dense fallback where it does not.
+    assert!(seen.dense > 0 && seen.dense < seen.states, "{seen:?}");
+    eprintln!("ring of nine with weak static pivots: {seen:?}");
+}
+
+declared! {
+    RING9_SENS_TEXT =>
+    /// The ring of nine with its parameter sensitivities.
+    #[kinloop(sensitivities)]
+    pub struct Ring9Sens {
+        params a = 1.0, b = 3.0, c = 2.5, d = 3.2;
+        input phi;
+        unknowns u0 = 0.6, v0 = 1.9, u1 = 0.6, v1 = 1.9, u2 = 0.6, v2 = 1.9, u3 = 0.6, v3 = 1.9,
+            u4 = 0.6, v4 = 1.9, u5 = 0.6, v5 = 1.9, u6 = 0.6, v6 = 1.9, u7 = 0.6, v7 = 1.9,
+            u8 = 0.6, v8 = 1.9;
+        loop l0: a @ (0.5 * (phi + v8)) + b @ u0 == (d, 0) + c @ v0;
+        loop l1: a @ v0 + b @ u1 == (d, 0) + c @ v1;
+        loop l2: a @ v1 + b @ u2 == (d, 0) + c @ v2;
+        loop l3: a @ v2 + b @ u3 == (d, 0) + c @ v3;
+        loop l4: a @ v3 + b @ u4 == (d, 0) + c @ v4;
+        loop l5: a @ v4 + b @ u5 == (d, 0) + c @ v5;
+        loop l6: a @ v5 + b @ u6 == (d, 0) + c @ v6;
+        loop l7: a @ v6 + b @ u7 == (d, 0) + c @ v7;
+        loop l8: a @ v7 + b @ u8 == (d, 0) + c @ v8;
+        point p8 = b @ u8;
+    }
+}
+
+/// Sensitivities to every parameter along a turn, on the sparse factorisation and on its dense
+/// fallback (the second parameter set), against the compiled `sensitivities_flat`, bit for bit.
+#[test]
+fn sensitivities_of_a_sparse_block_equal_the_compiled_ones() {
+    use kinloop::Sensitivities as _;
+    let cfg = NewtonConfig::default();
+    let mut model = read(RING9_SENS_TEXT);
+    for (a, b, c, d) in [(1.0, 3.0, 2.5, 3.2), (2.0, 2.0, 4.0, 2.0)] {
+        let compiled = Ring9Sens { a, b, c, d };
+        for (p, v) in [("a", a), ("b", b), ("c", c), ("d", d)] {
+            assert!(model.set_param(p, v));
+        }
+        let mut guess = compiled.guess_flat(&[0.0]);
+        let mut dense = 0;
+        for k in 0..90 {
+            let x = [TAU * k as f64 / 90.0];
+            let (ck, cs) = compiled.sensitivities_flat(&x, &guess, &cfg).expect("compiled");
+            let (_, rs) = model.sensitivities(&x, &guess, &cfg).expect("run time");
+            let rs = rs.expect("declared with sensitivities");
+            for (what, c, r) in [
+                ("q", cs.q.iter().flatten().copied().collect::<Vec<_>>(), &rs.q),
+                ("dq", cs.dq.iter().flatten().flatten().copied().collect(), &rs.dq),
+                ("d2q", cs.d2q.iter().flatten().flatten().flatten().copied().collect(), &rs.d2q),
+                ("out", cs.out.iter().flatten().copied().collect(), &rs.out),
+                ("dout", cs.dout.iter().flatten().flatten().copied().collect(), &rs.dout),
+                ("d2out", cs.d2out.iter().flatten().flatten().flatten().copied().collect(), &rs.d2out),
+            ] {
+                assert_eq!(bits(&c), bits(r), "at {x:?}: sensitivities {what} differ");
+            }
+            dense += usize::from(model.dense_fallback(0) == Some(true));
+            guess = ck.q;
+        }
+        eprintln!("ring of nine ({a}, {b}, {c}, {d}): sensitivities equal at 90 inputs, {dense} by the dense fallback");
+    }
+}
+
+/// Analogs at given positions (solved and perturbed), the block's Jacobian factorised from the
+/// graph: the compiled `kinematics_at_flat`.
+#[test]
+fn kinematics_at_a_position_of_a_sparse_block_equal_the_compiled_ones() {
+    let cfg = NewtonConfig::default();
+    let compiled = Ring9::default();
+    let mut model = read(RING9_TEXT);
+    let mut compared = 0;
+    let mut guess = compiled.guess_flat(&[0.0]);
+    for k in 0..24 {
+        let x = [0.27 * k as f64];
+        let solved = compiled.kinematics_flat(&x, &guess, &cfg).expect("assembles");
+        guess = solved.q;
+        for shift in [0.0, 1e-7] {
+            let q = solved.q.map(|v| v + shift);
+            let c = compiled.kinematics_at_flat(&x, &q, &cfg).expect("compiled");
+            let r = model.kinematics_at(&x, &q, &cfg).expect("run time");
+            assert_eq!(c.report.residual.to_bits(), r.report.residual.to_bits());
+            let flat = |v: &[[f64; 1]]| v.iter().flatten().copied().collect::<Vec<f64>>();
+            let flat3 = |v: &[[[f64; 1]; 1]]| v.iter().flatten().flatten().copied().collect::<Vec<f64>>();
+            assert_eq!(bits(&flat(&c.dq)), bits(&r.dq), "at {x:?}");
+            assert_eq!(bits(&flat3(&c.d2q)), bits(&r.d2q), "at {x:?}");
+            compared += 1;
+        }
+    }
+    assert_eq!(compared, 48);
+}
