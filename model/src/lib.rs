@@ -27,12 +27,16 @@
 //! runtime's own solvers: the closed forms by the emitter's formulas on values (`closed`),
 //! Newton by the runtime's `newton` (`newton`), the factorisations by the runtime's `Lu`,
 //! `Inverse2` and `Fixed`, chosen by the emitter's rules (`factor`), dispatched over the block
-//! size once per call. A step ([`Model::kinematics`]) computes what the compiled mechanism's
+//! size once per call. A large block the plan solves by sparse Newton keeps the plan's pattern
+//! and elimination order as tables and runs the runtime's `newton_with` over its non-zeros,
+//! its numeric steps the loops the compiled tables run (`sparse`), the weak-pivot dense
+//! fallback included; it is solved at a compiled size padded with unknowns that stay zero,
+//! which changes no value and no test. A step ([`Model::kinematics`]) computes what the compiled mechanism's
 //! `kinematics_flat` computes, with the same operations in the same order, and allocates
 //! nothing.
 //!
-//! Not evaluated yet: blocks solved by sparse Newton and blocks of more than
-//! [`MAX_DENSE`] unknowns ([`ReadError::Unsupported`]); the dynamics items (bodies, loads: planned,
+//! Not evaluated yet: dense blocks of more than [`MAX_DENSE`] unknowns and sparse blocks of more
+//! than [`MAX_SPARSE`] ([`ReadError::Unsupported`]); the dynamics items (bodies, loads: planned,
 //! not evaluated). Parameter sensitivities are ([`Model::sensitivities`]).
 //!
 //! # Speed
