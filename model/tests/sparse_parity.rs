@@ -310,3 +310,10 @@ fn kinematics_at_a_position_of_a_sparse_block_equal_the_compiled_ones() {
     }
     assert_eq!(compared, 48);
 }
+
+/// A model holding a sparse block's solver can move to and be shared with other threads.
+#[test]
+fn a_model_with_a_sparse_block_is_send_and_sync() {
+    fn send_sync<T: Send + Sync>(_: &T) {}
+    send_sync(&read(RING9_TEXT));
+}

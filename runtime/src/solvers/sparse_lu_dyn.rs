@@ -19,7 +19,7 @@
 use super::jacobian::{BlockFactor, BlockJacobian};
 use super::lu::{Factor, Lu, RowScales, inverses};
 use super::sparse_steps::THRESHOLD;
-use core::cell::RefCell;
+use std::sync::Mutex;
 
 /// The symbolic factorisation of one sparse block, owned (the meaning of every field is that of
 /// [`SparsePattern`](super::sparse_steps::SparsePattern)'s).
@@ -295,19 +295,20 @@ impl<const P: usize> Factor for PaddedLu<P> {
 }
 
 /// What a padded block's Jacobians share: the tables and the factorisation Newton's steps are
-/// made in (one per block, written by each step).
+/// made in (one per block, written by each step; behind a lock that is never contended, since a
+/// block is solved by one thread at a time, so that a reader holding it stays `Sync`).
 #[doc(hidden)]
 #[derive(Debug)]
 pub struct PaddedWork<const P: usize> {
     /// The block's tables.
     pub tables: SparseTables,
-    step: RefCell<PaddedLu<P>>,
+    step: Mutex<PaddedLu<P>>,
 }
 
 impl<const P: usize> PaddedWork<P> {
     /// The work of a block with tables `t`.
     pub fn new(tables: SparseTables) -> Self {
-        let step = RefCell::new(PaddedLu::new(&tables));
+        let step = Mutex::new(PaddedLu::new(&tables));
         PaddedWork { tables, step }
     }
 }
@@ -346,7 +347,8 @@ impl<const P: usize, const CAP: usize> BlockJacobian<P> for PaddedJac<'_, P, CAP
     type Factor = PaddedLu<P>;
 
     fn newton_step(&self, f: &[f64; P], rows: &RowScales<P>) -> ([f64; P], f64) {
-        let mut lu = self.work.step.borrow_mut();
+        // A poisoned lock (a panic elsewhere mid-step) still holds a slot this step rewrites.
+        let mut lu = self.work.step.lock().unwrap_or_else(|e| e.into_inner());
         let t = self.t();
         lu.factor_inverses(t, &self.v, rows.s, rows.inv, rows.degenerate, [1.0; P]);
         (lu.solve(t, f.map(|v| -v)), lu.pivot_ratio())
