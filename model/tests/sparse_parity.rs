@@ -317,3 +317,14 @@ fn a_model_with_a_sparse_block_is_send_and_sync() {
     fn send_sync<T: Send + Sync>(_: &T) {}
     send_sync(&read(RING9_TEXT));
 }
+
+/// The comparison can fail: the ring of nine read with one link length changed by one part in
+/// 10^12 differs from the compiled mechanism.
+#[test]
+fn a_changed_parameter_is_seen() {
+    let mut model = read(RING9_TEXT);
+    assert!(model.set_param("c", 2.5 * (1.0 + 1e-12)));
+    let caught =
+        std::panic::catch_unwind(std::panic::AssertUnwindSafe(|| turn(&Ring9::default(), &mut model, 8))).is_err();
+    assert!(caught, "a parameter changed by 1e-12 went unnoticed");
+}
