@@ -3,7 +3,8 @@
 //!
 //! The runtime's factorisations are generic over the block size `N` (a constant of the compiled
 //! code). At run time the size is dispatched once per call over `1..=MAX_DENSE`, so a block is
-//! factorised and solved by the very code a compiled mechanism runs.
+//! factorised and solved by the very code a compiled mechanism runs. A block solved by sparse
+//! Newton holds its own solver and factorisation (`sparse`), of any size up to `MAX_SPARSE`.
 
 use crate::sparse::SparseBlock;
 use kinloop_runtime::generated::{Factor as _, Fixed, Health, Inverse2, Lu};

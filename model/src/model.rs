@@ -285,9 +285,12 @@ impl Model {
                 Solve::NewtonSparse(sp) => {
                     let entries = sp.entries.iter().map(|&(r, c)| bp.jac[r][c].0).collect();
                     let block = sparse::block(sparse::tables(sp), entries).ok_or_else(|| {
+                        // The plan's density bound keeps the non-zeros within a quarter of
+                        // the padded square: not reached.
                         ReadError::Unsupported(format!(
-                            "block {b}: {} non-zeros in its sparse factor",
-                            sp.entries.len()
+                            "block {b}: {} non-zeros, beyond the capacity of a sparse block of {} unknowns",
+                            sp.entries.len(),
+                            bp.unknowns.len()
                         ))
                     })?;
                     Fac::Sparse(block)
