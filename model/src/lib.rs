@@ -45,7 +45,8 @@
 //! sine and cosine of one argument as one instruction, consecutive arithmetic operations
 //! sharing a dispatch): on the gallery's rhombic drive it executes about 5.4 times the compiled
 //! step's instructions (about 2.5 times its time), on the four-bar 4.6 times, on a
-//! Newton-dominated class IV block 2 times; reading and planning a declaration takes one to
+//! Newton-dominated class IV block 2 times, on the ring of 64 four-bar loops (one sparse block
+//! of 128 unknowns) 2.4 times; reading and planning a declaration takes one to
 //! three milliseconds (`BENCHMARKS.md`, "Mechanisms read at run time").
 //!
 //! # Sweeps and the runtime's algorithms
