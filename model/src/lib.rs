@@ -35,9 +35,9 @@
 //! `kinematics_flat` computes, with the same operations in the same order, and allocates
 //! nothing.
 //!
-//! Not evaluated yet: dense blocks of more than [`MAX_DENSE`] unknowns and sparse blocks of more
-//! than [`MAX_SPARSE`] ([`ReadError::Unsupported`]); the dynamics items (bodies, loads: planned,
-//! not evaluated). Parameter sensitivities are ([`Model::sensitivities`]).
+//! Not evaluated yet: dense blocks of more than [`MAX_DENSE`] unknowns
+//! ([`ReadError::Unsupported`]; sparse blocks are, up to [`MAX_SPARSE`], the language's limit of
+//! unknowns); the dynamics items (bodies, loads: planned, not evaluated). Parameter sensitivities are ([`Model::sensitivities`]).
 //!
 //! # Speed
 //!

@@ -21,11 +21,13 @@ use std::fmt;
 
 /// The sizes a sparse block is padded to, each with the capacities for its non-zeros: the
 /// largest block evaluated at run time has `MAX_SPARSE` unknowns.
-const SIZES: [(usize, &[usize]); 4] = [(16, &[64]), (32, &[256]), (64, &[256, 1024]), (128, &[512, 4096])];
+const SIZES: [(usize, &[usize]); 5] =
+    [(16, &[64]), (32, &[256]), (64, &[256, 1024]), (128, &[512, 4096]), (256, &[1024, 16384])];
 
-/// The most unknowns of a block solved by sparse Newton at run time (its padded evaluation,
+/// The most unknowns of a block solved by sparse Newton at run time: the language's limit of a
+/// mechanism's unknowns, so every sparse block a plan makes is evaluated (its padded evaluation,
 /// dense fallback included, lives on the stack as the compiled one does).
-pub const MAX_SPARSE: usize = 128;
+pub const MAX_SPARSE: usize = 256;
 
 /// The largest block any solve of the step gathers into a stack buffer.
 pub(crate) const MAX_BLOCK: usize = MAX_SPARSE;
@@ -95,7 +97,16 @@ pub(crate) fn block(t: SparseTables, entries: Vec<u32>) -> Option<Box<dyn Sparse
         };
     }
     // The third: the values kept per evaluation when the magnitudes depend on the unknowns (`2P`).
-    make!((16, 64, 32), (32, 256, 64), (64, 256, 128), (64, 1024, 128), (128, 512, 256), (128, 4096, 256))
+    make!(
+        (16, 64, 32),
+        (32, 256, 64),
+        (64, 256, 128),
+        (64, 1024, 128),
+        (128, 512, 256),
+        (128, 4096, 256),
+        (256, 1024, 512),
+        (256, 16384, 512)
+    )
 }
 
 /// A sparse block padded to `P` unknowns with at most `CAP` non-zeros (`K2 = 2P`).
