@@ -16,7 +16,7 @@
 //! updates it makes to padded entries subtract exact zeros, so the real part is the dense
 //! factorisation of the `n x n` matrix.
 
-use super::jacobian::{BlockFactor, BlockJacobian};
+use super::jacobian::BlockJacobian;
 use super::lu::{Factor, Lu, RowScales, inverses};
 use super::sparse_steps::THRESHOLD;
 use std::sync::Mutex;
@@ -336,15 +336,11 @@ impl<'w, const P: usize, const CAP: usize> PaddedJac<'w, P, CAP> {
     }
 }
 
-/// Never made by Newton's method (its steps go through [`BlockJacobian::newton_step`]).
-impl<const P: usize> BlockFactor<P> for PaddedLu<P> {
-    fn solve_block(&self, _b: [f64; P]) -> [f64; P] {
-        [f64::NAN; P]
-    }
-}
-
 impl<const P: usize, const CAP: usize> BlockJacobian<P> for PaddedJac<'_, P, CAP> {
-    type Factor = PaddedLu<P>;
+    /// Newton's method makes its steps through [`BlockJacobian::newton_step`] and keeps no
+    /// factorisation of a sparse block (the analogs make theirs, a [`PaddedLu`]): the dense
+    /// factorisation of the padded matrix is what one would be.
+    type Factor = Lu<P>;
 
     fn newton_step(&self, f: &[f64; P], rows: &RowScales<P>) -> ([f64; P], f64) {
         // A poisoned lock (a panic elsewhere mid-step) still holds a slot this step rewrites.
