@@ -14,7 +14,8 @@
 //! weak the dense partial-pivoting [`Lu`] of the padded matrix factorises it: its pivot
 //! search never picks a padded row (their entries in the real columns are zero), and the
 //! updates it makes to padded entries subtract exact zeros, so the real part is the dense
-//! factorisation of the `n x n` matrix.
+//! factorisation of the `n x n` matrix (a substitution may turn an exact `-0` of a real value
+//! into `+0` there, where a zero product of the padding is subtracted: equal values).
 
 use super::jacobian::BlockJacobian;
 use super::lu::{Factor, Lu, RowScales, inverses};
