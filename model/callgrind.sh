@@ -14,7 +14,7 @@ bin="$target/release/examples/step_count"
 if [ "$#" -gt 0 ]; then
   variants=("$@")
 else
-  variants=(rhombic-compiled rhombic-runtime four-bar-compiled four-bar-runtime class-four-compiled class-four-runtime)
+  variants=(rhombic-compiled rhombic-runtime four-bar-compiled four-bar-runtime class-four-compiled class-four-runtime ring-compiled ring-runtime)
 fi
 command -v valgrind >/dev/null || { echo "callgrind.sh: valgrind is not installed" >&2; exit 1; }
 (cd "$root" && cargo build --quiet --release -p kinloop-model --example step_count) >&2

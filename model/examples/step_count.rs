@@ -7,7 +7,8 @@
 //! ```
 //!
 //! `VARIANT` is `MECHANISM-compiled` or `MECHANISM-runtime` with `MECHANISM` one of
-//! `rhombic`, `four-bar`, `class-four`; `read-rhombic` and `read-class-four` read and plan the
+//! `rhombic`, `four-bar`, `class-four`, `ring` (64 four-bar loops closed through a
+//! differential: one sparse Newton block of 128 unknowns); `read-rhombic` and `read-class-four` read and plan the
 //! declaration `STEPS` times instead. Prints the sum of the last state's values (so the work
 //! is not optimised away) and the wall time per step (one run; callgrind's counts are the
 //! figure to compare).
@@ -72,6 +73,8 @@ fn main() {
         "four-bar-runtime" => runtime(&mut model(fx::FOUR_BAR_TEXT, &four_bar), steps),
         "class-four-compiled" => compiled(&fx::ClassFour::default(), steps),
         "class-four-runtime" => runtime(&mut model(fx::CLASS_FOUR_TEXT, &[]), steps),
+        "ring-compiled" => compiled(&kinloop_bench::ring::Ring::default(), steps),
+        "ring-runtime" => runtime(&mut model(kinloop_bench::ring::RING, &[]), steps),
         // Reading and planning a declaration, `STEPS` times.
         "read-rhombic" | "read-class-four" => {
             let text = if variant == "read-rhombic" { fx::RHOMBIC_DRIVE_TEXT } else { fx::CLASS_FOUR_TEXT };

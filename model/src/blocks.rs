@@ -132,7 +132,7 @@ impl Columns {
         if n == 0 {
             return;
         }
-        let mut z = [0.0; crate::factor::MAX_DENSE];
+        let mut z = [0.0; crate::sparse::MAX_BLOCK];
         let z = &mut z[..n];
         for c in 0..self.src.len() / n {
             let at = c * n;
@@ -198,9 +198,14 @@ impl BlockProg {
     /// `Lu::factor_cols` of the Jacobian in the registers.
     fn factor_cols(&self, r: &[f64], fac: &mut Fac) {
         let n = self.unknowns.len();
-        let mut scale = [0.0; crate::factor::MAX_DENSE];
+        let mut scale = [0.0; crate::sparse::MAX_BLOCK];
         for (c, s) in scale.iter_mut().enumerate().take(n) {
             *s = max_abs(self.col[c].iter().map(|&k| r[k as usize]));
+        }
+        if let Fac::Sparse(s) = fac {
+            // The non-zeros, read from the registers by the block's own tables.
+            s.factor_cols(r, &scale[..n]);
+            return;
         }
         // The matrix is read from the registers straight into the size's array.
         fac.factor_cols(n, |k| r[self.jac[k] as usize], &scale[..n]);
@@ -257,7 +262,11 @@ impl BlockProg {
                 debug_assert_eq!(out.len, n + 2 * sin_cos.len());
             }
             How::Newton(p) => {
-                newton::solve(p, r, guess, cfg, report, fac).map_err(StepFailure::Block)?;
+                match fac {
+                    Fac::Sparse(s) => s.newton(p, r, guess, cfg, report),
+                    _ => newton::solve(p, r, guess, cfg, report, fac),
+                }
+                .map_err(StepFailure::Block)?;
                 for (k, &u) in self.unknowns.iter().enumerate() {
                     q[u] = r[p.unknown_regs[k] as usize];
                 }

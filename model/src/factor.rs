@@ -3,8 +3,10 @@
 //!
 //! The runtime's factorisations are generic over the block size `N` (a constant of the compiled
 //! code). At run time the size is dispatched once per call over `1..=MAX_DENSE`, so a block is
-//! factorised and solved by the very code a compiled mechanism runs.
+//! factorised and solved by the very code a compiled mechanism runs. A block solved by sparse
+//! Newton holds its own solver and factorisation (`sparse`), of any size up to `MAX_SPARSE`.
 
+use crate::sparse::SparseBlock;
 use kinloop_runtime::generated::{Factor as _, Fixed, Health, Inverse2, Lu};
 
 /// The largest dense block evaluated at run time (the runtime's types are instantiated for
@@ -14,7 +16,7 @@ pub const MAX_DENSE: usize = 16;
 /// One block's factorisation, of the type the emitted code would use. Factorisations of three
 /// unknowns and more are boxed, allocated once for the block ([`Fac::for_size`]) and written in
 /// place by every step: the enum stays small, so moving it costs no large copy.
-#[derive(Clone, Debug)]
+#[derive(Debug)]
 pub(crate) enum Fac {
     /// Not factorised yet.
     None,
@@ -36,6 +38,8 @@ pub(crate) enum Fac {
     L14(Box<Lu<14>>),
     L15(Box<Lu<15>>),
     L16(Box<Lu<16>>),
+    /// A block solved by sparse Newton: its solver and the analogs' factorisation.
+    Sparse(Box<dyn SparseBlock>),
 }
 
 /// Calls `$f!(lu)` with the factorisation `lu` of whatever size `$fac` holds.
@@ -174,6 +178,7 @@ impl Fac {
         each_lu!(self, lu => lu.pivot_ratio(), other => match other {
             Fac::Fixed(f) => f.pivot_ratio(),
             Fac::Inverse2(f) => f.pivot_ratio(),
+            Fac::Sparse(s) => s.pivot_ratio(),
             _ => 0.0,
         })
     }
@@ -199,6 +204,7 @@ impl Fac {
             Fac::L14(lu) => health.note(b, &**lu),
             Fac::L15(lu) => health.note(b, &**lu),
             Fac::L16(lu) => health.note(b, &**lu),
+            Fac::Sparse(s) => s.note(health, b),
             Fac::None => {}
         }
     }
@@ -244,6 +250,7 @@ impl Fac {
             Fac::L14(lu) => s!(lu, 14),
             Fac::L15(lu) => s!(lu, 15),
             Fac::L16(lu) => s!(lu, 16),
+            Fac::Sparse(s) => s.solve(rhs),
             Fac::None => rhs.fill(f64::NAN),
         }
     }

@@ -7,6 +7,7 @@ use crate::factor::{Fac, MAX_DENSE};
 use crate::newton::NewtonProg;
 use crate::sensitivities::{SensProg, Sensitivities};
 use crate::source::{self, Diagnostics};
+use crate::sparse::{self, MAX_SPARSE};
 use crate::tape::{Builder, Segment, registers, statics};
 use kinloop_codegen::Planned;
 use kinloop_codegen::graph::dag::{Graph, Leaf, NodeId, Op};
@@ -176,13 +177,14 @@ impl Model {
         let g = &plan.graph;
         let unsupported = |what: String| Err(ReadError::Unsupported(what));
         for (b, bp) in plan.blocks.iter().enumerate() {
-            if matches!(bp.solve, Solve::NewtonSparse(_)) {
+            let (n, sparse) = (bp.unknowns.len(), matches!(bp.solve, Solve::NewtonSparse(_)));
+            if sparse && n > MAX_SPARSE {
                 return unsupported(format!(
-                    "block {b} is solved by sparse Newton (declare `#[kinloop(dense)]` for dense blocks)"
+                    "block {b} is solved by sparse Newton with {n} unknowns (at most {MAX_SPARSE})"
                 ));
             }
-            if bp.unknowns.len() > MAX_DENSE {
-                return unsupported(format!("block {b} has {} unknowns (at most {MAX_DENSE})", bp.unknowns.len()));
+            if !sparse && n > MAX_DENSE {
+                return unsupported(format!("block {b} has {n} unknowns (at most {MAX_DENSE})"));
             }
         }
         let find = |l: Leaf| g.find(Op::Leaf(l)).map(|n| n.0);
@@ -276,6 +278,26 @@ impl Model {
             health: Health::default(),
         };
         let sens_state = sens.as_ref().map(|p| p.empty(n, no));
+        // Each block's factorisation slot; a sparse block's solver with its workspace.
+        let mut facs = Vec::with_capacity(blocks.len());
+        for (b, bp) in plan.blocks.iter().enumerate() {
+            facs.push(match &bp.solve {
+                Solve::NewtonSparse(sp) => {
+                    let entries = sp.entries.iter().map(|&(r, c)| bp.jac[r][c].0).collect();
+                    let block = sparse::block(sparse::tables(sp), entries).ok_or_else(|| {
+                        // The plan's density bound keeps the non-zeros within a quarter of
+                        // the padded square: not reached.
+                        ReadError::Unsupported(format!(
+                            "block {b}: {} non-zeros, beyond the capacity of a sparse block of {} unknowns",
+                            sp.entries.len(),
+                            bp.unknowns.len()
+                        ))
+                    })?;
+                    Fac::Sparse(block)
+                }
+                _ => Fac::for_size(bp.unknowns.len()),
+            });
+        }
         let mut m = Model {
             at,
             at_kin,
@@ -297,7 +319,7 @@ impl Model {
             statics: statics(g),
             guess,
             guess_regs,
-            facs: blocks.iter().map(|b| Fac::for_size(b.unknowns.len())).collect(),
+            facs,
             blocks,
             outputs_seg,
             out_regs: plan.outputs.iter().map(|n| n.0).collect(),
@@ -395,6 +417,17 @@ impl Model {
     /// counted once).
     pub fn instructions(&self) -> usize {
         self.instructions
+    }
+
+    /// Whether the last step factorised block `block`'s analogs by the dense fallback (a
+    /// static pivot of its sparse elimination order was weak: below a tenth of its column in
+    /// the active submatrix, as in the compiled mechanism); `None` for a block not solved by
+    /// sparse Newton.
+    pub fn dense_fallback(&self, block: usize) -> Option<bool> {
+        match self.facs.get(block)? {
+            Fac::Sparse(s) => Some(s.is_dense()),
+            _ => None,
+        }
     }
 
     /// The graph's size: registers of one step.

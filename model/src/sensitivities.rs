@@ -3,7 +3,7 @@
 //! the plan's right-hand sides solved with the block's factorisation of the kinematic step, then
 //! the outputs' by the chain rule — the emitted sensitivity kernel's order and operations.
 
-use crate::factor::{Fac, MAX_DENSE};
+use crate::factor::Fac;
 use crate::tape::{Builder, Segment, Unavailable};
 use kinloop_codegen::graph::dag::{Graph, Leaf, Op};
 use kinloop_codegen::plan::{Plan, Stages, pairs};
@@ -129,7 +129,7 @@ impl SensProg {
             for (b, p) in progs.iter().enumerate() {
                 p.seg.run(r);
                 let n = p.unknowns.len();
-                let mut z = [0.0; MAX_DENSE];
+                let mut z = [0.0; crate::sparse::MAX_BLOCK];
                 for c in 0..p.width {
                     for (row, zr) in z.iter_mut().enumerate().take(n) {
                         *zr = r[p.rows[row * p.width + c] as usize];

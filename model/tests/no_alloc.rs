@@ -1,6 +1,6 @@
 //! A run-time step (with its parameter sensitivities) allocates nothing once the model is built:
-//! a counting allocator sees no allocation over a sweep of steps (closed forms, linear blocks and
-//! Newton blocks).
+//! a counting allocator sees no allocation over a sweep of steps (closed forms, linear blocks,
+//! Newton blocks, sparse Newton blocks and their dense fallback).
 
 use kinloop::NewtonConfig;
 use kinloop_fixtures as fx;
@@ -34,17 +34,33 @@ fn steps_do_not_allocate() {
         "#[kinloop(dense)] {}",
         fx::RHOMBIC_DRIVE_TEXT.replacen("struct RhombicDrive ", "struct RhombicDriveDense ", 1)
     );
-    for text in [fx::RHOMBIC_DRIVE_TEXT, dense.as_str(), fx::CLASS_FOUR_TEXT] {
+    // A ring of nine four-bar loops closed through a differential (one sparse block), at link
+    // lengths where some static pivots of the turn are weak (the dense fallback).
+    let unknowns: Vec<String> = (0..9).map(|i| format!("u{i} = 0.6, v{i} = 1.9")).collect();
+    let mut loops = vec!["loop l0: a @ (0.5 * (phi + v8)) + b @ u0 == (d, 0) + c @ v0;".to_string()];
+    loops.extend((1..9).map(|i| format!("loop l{i}: a @ v{} + b @ u{i} == (d, 0) + c @ v{i};", i - 1)));
+    let ring = format!(
+        "pub struct Ring9 {{ params a = 2.0, b = 2.0, c = 4.0, d = 2.0; input phi; unknowns {}; {} }}",
+        unknowns.join(", "),
+        loops.join(" ")
+    );
+    let texts = [fx::RHOMBIC_DRIVE_TEXT, dense.as_str(), fx::CLASS_FOUR_TEXT, kinloop_bench::ring::RING, ring.as_str()];
+    for text in texts {
         let mut m = Model::read("m.kl", text).expect("valid");
         let cfg = NewtonConfig::default();
         let mut q = vec![0.0; m.unknowns().len()];
         let mut x = [0.0];
         m.guess(&x, &mut q).expect("guess");
         let before = ALLOCATIONS.load(Ordering::Relaxed);
+        let mut dense = 0;
         for k in 0..200 {
             x[0] = k as f64 * 0.03;
             let (s, _) = m.sensitivities(&x, &q, &cfg).expect("step");
             q.copy_from_slice(&s.q);
+            dense += usize::from(m.dense_fallback(0) == Some(true));
+        }
+        if text == ring {
+            assert!(dense > 0, "the dense fallback was not exercised");
         }
         let during = ALLOCATIONS.load(Ordering::Relaxed) - before;
         assert_eq!(during, 0, "{}: {during} allocations in 200 steps", m.name());

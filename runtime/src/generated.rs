@@ -24,6 +24,7 @@ pub use crate::solvers::newton::{
     BlockEval, BlockFailure, Magnitudes, NewtonConfig, SolveReport, Solved, newton, newton_keeping_lu, newton_with,
 };
 pub use crate::solvers::sparse_lu::{SparseJac, SparseLu, SparsePattern};
+pub use crate::solvers::sparse_lu_dyn::{PaddedJac, PaddedLu, PaddedWork, SparseTables};
 pub use crate::solvers::sparse_steps::{Pivots, SparseSteps, Tables, scaled};
 pub use crate::trig::{InputTrig, Libm};
 pub use crate::vec2::Vec2;
