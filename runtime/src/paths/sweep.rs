@@ -565,7 +565,6 @@ where
         let mut slope1 = [0.0; N];
         // With one input (a constant), `dt` becomes the input's step.
         let dt = if NI == 1 { dt * self.path.delta[0] } else { dt };
-        let half_dt = 0.5 * dt;
         // A follower is neither predicted (no solve uses its guess) nor judged.
         for &u in Self::JUDGED.as_slice() {
             let slope0 = self.slope_of(&k.dq[u]);
@@ -575,16 +574,12 @@ where
                 let d2 = &self.delta2;
                 (0..NI).fold(-0.0, |c, i| (0..NI).fold(c, |c, j| c + k.d2q[u][i][j] * d2[i][j]))
             };
-            // The slope's change over the step, and the change of the unknown by the trapezoid
-            // of the two slopes (`dt (slope0 + curv dt / 2)`, one multiplication fewer).
-            let turn = curv * dt;
-            let s1 = slope0 + turn;
-            let du = half_dt * (slope0 + s1);
+            let du = dt * (slope0 + 0.5 * dt * curv);
             q[u] += du;
             change = change.max(du.abs());
-            slope_change = slope_change.max(turn.abs());
+            slope_change = slope_change.max((curv * dt).abs());
             slope = slope.max(slope0.abs());
-            slope1[u] = s1;
+            slope1[u] = slope0 + curv * dt;
         }
         let rel = self.cfg.corrector_rel;
         Prediction {
@@ -761,13 +756,13 @@ where
                 Outcome::Accept => {
                     self.tau = tau_new;
                     self.at = !self.at;
-                    if lands {
-                        // At the target (`tau_new` is `target` itself): the loop's test, known.
-                        break;
-                    }
                     successes += 1;
                     if successes >= 2 {
                         self.h = (self.h * 2.0).min(self.h_max);
+                    }
+                    if lands {
+                        // At the target (`tau_new` is `target` itself): the loop's test, known.
+                        break;
                     }
                 }
                 outcome => {
