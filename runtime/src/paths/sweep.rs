@@ -574,12 +574,16 @@ where
                 let d2 = &self.delta2;
                 (0..NI).fold(-0.0, |c, i| (0..NI).fold(c, |c, j| c + k.d2q[u][i][j] * d2[i][j]))
             };
-            let du = dt * (slope0 + 0.5 * dt * curv);
+            // The slope's change over the step, and the unknown's change by the trapezoid of
+            // the two slopes: `dt (slope0 + curv dt / 2)` with one multiplication fewer.
+            let turn = curv * dt;
+            let s1 = slope0 + turn;
+            let du = (0.5 * dt) * (slope0 + s1);
             q[u] += du;
             change = change.max(du.abs());
-            slope_change = slope_change.max((curv * dt).abs());
+            slope_change = slope_change.max(turn.abs());
             slope = slope.max(slope0.abs());
-            slope1[u] = slope0 + curv * dt;
+            slope1[u] = s1;
         }
         let rel = self.cfg.corrector_rel;
         Prediction {
