@@ -574,12 +574,16 @@ where
                 let d2 = &self.delta2;
                 (0..NI).fold(-0.0, |c, i| (0..NI).fold(c, |c, j| c + k.d2q[u][i][j] * d2[i][j]))
             };
-            let du = dt * (slope0 + 0.5 * dt * curv);
+            // The slope's change over the step, and the unknown's change by the trapezoid of
+            // the two slopes: `dt (slope0 + curv dt / 2)` with one multiplication fewer.
+            let turn = curv * dt;
+            let s1 = slope0 + turn;
+            let du = (0.5 * dt) * (slope0 + s1);
             q[u] += du;
             change = change.max(du.abs());
-            slope_change = slope_change.max((curv * dt).abs());
+            slope_change = slope_change.max(turn.abs());
             slope = slope.max(slope0.abs());
-            slope1[u] = slope0 + curv * dt;
+            slope1[u] = s1;
         }
         let rel = self.cfg.corrector_rel;
         Prediction {
@@ -621,16 +625,21 @@ where
         }
         if !n.health.det_signs.same_for(&self.signs, M::BLOCKS.len()) {
             Outcome::Flip
-        } else if n.health.min_pivot < self.cfg.singular_pivot {
-            // Too close to a singular position for the analogs (and thus the branch identity)
-            // to be trusted: within the residual tolerance the solution can slide onto a
-            // crossing branch. (Told apart from a far step by that state's pivot, should the step
-            // become the last one tried: a separate outcome costs every step an instruction.)
-            Outcome::Far
-        } else if dist > p.max_dist || slope_err > p.max_slope_err || turn > ANGLE_CAP || p.long {
-            // `turn`: an angle the cache advanced from an anchor on another turn (see
-            // `InputTrig::angle`), whatever the units of the other unknowns make `max_dist`.
-            // `long`: a step longer than the predictor's error bound (`MAX_SLOPE_CHANGE`).
+        } else if (n.health.min_pivot < self.cfg.singular_pivot)
+            | (dist > p.max_dist)
+            | (slope_err > p.max_slope_err)
+            | (turn > ANGLE_CAP)
+            | p.long
+        {
+            // One test of every bound, without a branch per bound (all hold in the usual step):
+            // * the pivot: too close to a singular position for the analogs (and thus the branch
+            //   identity) to be trusted: within the residual tolerance the solution can slide
+            //   onto a crossing branch (told apart from a far step by that state's pivot, should
+            //   the step become the last one tried: a separate outcome costs every step an
+            //   instruction);
+            // * `turn`: an angle the cache advanced from an anchor on another turn (see
+            //   `InputTrig::angle`), whatever the units of the other unknowns make `max_dist`;
+            // * `long`: a step longer than the predictor's error bound (`MAX_SLOPE_CHANGE`).
             Outcome::Far
         } else {
             Outcome::Accept
@@ -728,8 +737,8 @@ where
             let remaining = target - self.tau;
             // Within a hair of the target, land on it: a full step computed in floating point
             // may fall short by an ulp and leave a needless tiny step.
-            let (step, tau_new) =
-                if remaining <= self.h * (1.0 + 1e-9) { (remaining, target) } else { (self.h, self.tau + self.h) };
+            let lands = remaining <= self.h * (1.0 + 1e-9);
+            let (step, tau_new) = if lands { (remaining, target) } else { (self.h, self.tau + self.h) };
             // Solved into the spare slot and judged there: an accepted state is not moved (every
             // copy of the ~180-byte state is a memcpy on the per-step path).
             let p = self.predict(self.cur(), tau_new - self.tau);
@@ -754,6 +763,10 @@ where
                     successes += 1;
                     if successes >= 2 {
                         self.h = (self.h * 2.0).min(self.h_max);
+                    }
+                    if lands {
+                        // At the target (`tau_new` is `target` itself): the loop's test, known.
+                        break;
                     }
                 }
                 outcome => {
