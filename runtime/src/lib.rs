@@ -24,6 +24,7 @@
 pub mod analysis;
 mod angles;
 mod configured;
+pub mod dims;
 pub mod drawing;
 pub mod dynamics;
 mod error;
@@ -54,6 +55,7 @@ pub use error::{Error, Quantity, Source};
 pub use events::{BlockInfo, Event, EventKind, Location};
 pub use kin::{DetSigns, FlatMotion, Health, Jac, Kin, Sens};
 pub use kinds::{LENGTH_UNIT, QuantityKind};
+pub use mechanism::kernel::{Compiled, Kernel};
 pub use mechanism::{Mechanism, Named, NamedSensitivities, Sensitivities};
 pub use paths::outcome::{SweepResult, SweepStop};
 pub use paths::reach::Reach;
