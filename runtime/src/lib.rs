@@ -62,7 +62,7 @@ pub use paths::reach::Reach;
 #[cfg(feature = "rayon")]
 pub use paths::scan::par_scan;
 pub use paths::scan::{ScanConfig, ScanStart, scan};
-pub use paths::sweep::{AtSingular, Sweep, SweepConfig};
+pub use paths::sweep::{AtSingular, Sweep, SweepConfig, SweepOf};
 pub use paths::trace::{TraceConfig, Traced, TracedPoint};
 pub use solvers::newton::{NewtonConfig, NewtonStop, SolveReport};
 pub use table::{ColumnKey, Table};

@@ -5,7 +5,7 @@
 //!
 //! **Unit-free.** Arclength, tangents and the corrector's tests are measured in scaled
 //! coordinates `z = (q_u / unit_u, sigma / unit_sigma)` with the units the generated code gives
-//! every unknown and input ([`Jac::unit`], [`Jac::input_unit`]: one radian for an angle, the
+//! every unknown and input ([`Jac::unit`](crate::Jac::unit), [`Jac::input_unit`](crate::Jac::input_unit): one radian for an angle, the
 //! mechanism's size for a length), fixed at the start of a trace (`Metric`). A mechanism in
 //! metres, millimetres or micrometres is therefore followed with the same steps and its events
 //! are located at the same inputs; angles and lengths never mix in one norm.

@@ -108,7 +108,7 @@ pub struct SweepConfig {
     pub corrector_abs: f64,
     /// Behaviour at a singular crossing.
     pub at_singular: AtSingular,
-    /// A step is not accepted at a position whose smallest pivot ratio ([`Health::min_pivot`])
+    /// A step is not accepted at a position whose smallest pivot ratio ([`Health::min_pivot`](crate::Health::min_pivot))
     /// is below this (default `1e-6`): so close to a singular position the residual tolerance no
     /// longer pins the branch. The sweep then locates the singular position by arclength
     /// continuation; where it finds none (the path only passes close to one, e.g. a slide within
