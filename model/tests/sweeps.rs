@@ -220,25 +220,63 @@ fn a_limit_position_is_the_same_event() {
     eprintln!("limit position at {} (closed form {phi}), {n} samples, {worst:e}", re[0].x[0]);
 }
 
+/// Both comparisons on one fixture over `[from, to]`: against the compiled sweep (to `REL`, the
+/// same events at the same inputs, both stopping or neither) and against the compiled kernels
+/// with libm's sines (bit for bit). Returns the samples compared and the events met.
+fn fixture<M, const N: usize, const NI: usize, const NO: usize>(
+    name: &str,
+    compiled: M,
+    model: &mut Model,
+    from: [f64; NI],
+    to: [f64; NI],
+    samples: usize,
+) -> (usize, usize)
+where
+    M: Mechanism<N, NI, NO>,
+{
+    let (worst, n, ce, re, cerr, rerr) = both(&compiled, model, from, to, samples);
+    assert!(worst <= REL, "{name}: largest relative difference {worst:e}");
+    same_events(&ce, &re);
+    assert_eq!(cerr.is_some(), rerr.is_some(), "{name}: {cerr:?} {rerr:?}");
+    let (worst, n_libm, ce, re, ..) = both(&Libm(compiled), model, from, to, samples);
+    assert_eq!(worst, 0.0, "{name}: with libm's sines");
+    let strip = |e: &[Event]| e.iter().map(|e| (e.kind, e.x.clone(), e.tau, e.q.clone())).collect::<Vec<_>>();
+    assert_eq!(strip(&ce), strip(&re), "{name}: events with libm's sines");
+    eprintln!("{name}: {n} samples ({n_libm} with libm's sines), {} events", ce.len());
+    (n, ce.len())
+}
+
+/// Every fixture of `parity.rs` over a whole turn of its first input.
 #[test]
 fn other_fixtures_sweep_as_the_compiled_ones() {
-    let mut m = read(fx::RHOMBIC_DRIVE_TEXT);
-    let w = both(&fx::RhombicDrive::default(), &mut m, [0.0], [TAU], 361);
-    assert!(w.0 <= REL && w.1 == 361, "rhombic drive: {:?}", (w.0, w.1));
-    same_events(&w.2, &w.3);
+    let turn = [0.0];
+    let end = [TAU];
+    let n = fixture("rhombic drive", fx::RhombicDrive::default(), &mut read(fx::RHOMBIC_DRIVE_TEXT), turn, end, 361);
+    assert_eq!(n.0, 361);
+    let dense = |text: &str, name: &str, twin: &str| {
+        read(&format!("#[kinloop(dense)] {}", text.replacen(&format!("struct {name} "), &format!("struct {twin} "), 1)))
+    };
+    let mut m = dense(fx::RHOMBIC_DRIVE_TEXT, "RhombicDrive", "RhombicDriveDense");
+    assert_eq!(fixture("rhombic drive (dense)", fx::RhombicDriveDense::default(), &mut m, turn, end, 361).0, 361);
     let mut m = read(fx::SLIDER_CRANK_TEXT);
     set(&mut m, &[("r", 1.0), ("l", 3.0), ("e", 0.4)]);
-    let w = both(&fx::SliderCrank { r: 1.0, l: 3.0, e: 0.4 }, &mut m, [0.0], [TAU], 181);
-    assert!(w.0 <= REL && w.1 == 181, "slider-crank: {:?}", (w.0, w.1));
-    let w = both(&fx::FiveBar::default(), &mut read(fx::FIVE_BAR_TEXT), [0.0, 0.4], [1.0, 0.4], 101);
-    assert!(w.0 <= REL, "five-bar: {:?}", (w.0, w.1));
-    same_events(&w.2, &w.3);
-    let w = both(&fx::ClassFour::default(), &mut read(fx::CLASS_FOUR_TEXT), [0.0], [TAU], 181);
-    assert!(w.0 <= REL, "class IV: {:?}", (w.0, w.1));
-    same_events(&w.2, &w.3);
-    let w = both(&fx::gear_lever::GearLever::default(), &mut read(fx::gear_lever::GEAR_LEVER_TEXT), [0.0], [TAU], 181);
-    assert!(w.0 <= REL, "gear lever: {:?}", (w.0, w.1));
-    same_events(&w.2, &w.3);
+    assert_eq!(fixture("slider-crank", fx::SliderCrank { r: 1.0, l: 3.0, e: 0.4 }, &mut m, turn, end, 181).0, 181);
+    fixture("five-bar", fx::FiveBar::default(), &mut read(fx::FIVE_BAR_TEXT), [0.0, 0.4], [TAU, 0.4], 181);
+    fixture("class IV", fx::ClassFour::default(), &mut read(fx::CLASS_FOUR_TEXT), turn, end, 181);
+    let mut m = dense(fx::CLASS_FOUR_TEXT, "ClassFour", "ClassFourDense");
+    fixture("class IV (dense)", fx::ClassFourDense::default(), &mut m, turn, end, 181);
+    let mut m = read(fx::DISPLACER_ROD_DRIVE_TEXT);
+    fixture("displacer-rod drive", fx::DisplacerRodDrive::default(), &mut m, turn, end, 181);
+    let mut m = read(fx::WORKING_ROD_DRIVE_TEXT);
+    fixture("working-rod drive", fx::WorkingRodDrive::default(), &mut m, turn, end, 181);
+    let mut m = read(fx::gear_lever::GEAR_LEVER_TEXT);
+    fixture("gear lever", fx::gear_lever::GearLever::default(), &mut m, turn, end, 181);
+    let mut m = read(fx::roller_edger::ROLLER_EDGER_TEXT);
+    fixture("roller edger", fx::roller_edger::RollerEdger::default(), &mut m, turn, end, 181);
+    let mut m = read(fx::balancing::BALANCE_TEXT);
+    fixture("balance", fx::balancing::Balance::default(), &mut m, turn, end, 181);
+    let mut m = read(fx::CLASS_FOUR_CORE_TEXT);
+    fixture("class IV core", fx::ClassFourCore::default(), &mut m, turn, end, 181);
 }
 
 /// The table of a run-time sweep: the compiled sweep's columns, units and rows.
@@ -260,4 +298,26 @@ fn tables_equal_the_compiled_ones() {
         let (x, y) = (ta.column(name).unwrap(), tb.column(name).unwrap());
         assert!(rel_diff(&x, &y) <= REL, "{name}");
     }
+}
+
+/// A parallelogram four-bar (`a = c`, `b = d`) has change points where its links lie in line,
+/// at `phi = 0` and `pi`: from `phi = 0.3` both sweeps stop at the same singular crossing, at
+/// `pi`.
+#[test]
+fn a_singular_crossing_is_the_same_event() {
+    let (a, b, c, d) = (1.0, 3.0, 1.0, 3.0);
+    let mut model = read(fx::FOUR_BAR_TEXT);
+    set(&mut model, &[("a", a), ("b", b), ("c", c), ("d", d)]);
+    // The parallelogram branch through the start (beta = 0, gamma = phi).
+    let guess = [0.0, 0.3];
+    let compiled = fx::FourBar { a, b, c, d };
+    let mut cs = Sweep::<_, Kin<2, 1, 2>, 2, 1, 2>::new(&compiled, [0.3], [0.3 + TAU], 181, guess).unwrap();
+    let mut rs = model.sweep(&[0.3], &[0.3 + TAU], 181, &guess).unwrap();
+    let (c_states, r_states) = (cs.by_ref().count(), rs.by_ref().count());
+    assert_eq!(c_states, r_states);
+    let (ce, re) = (cs.events().to_vec(), rs.events().to_vec());
+    assert_eq!(ce.len(), 1, "{ce:?}");
+    assert_eq!(ce[0].kind, kinloop::EventKind::SingularCrossing);
+    same_events(&ce, &re);
+    assert!((re[0].x[0] - std::f64::consts::PI).abs() < 1e-6, "crossing at {}", re[0].x[0]);
 }
