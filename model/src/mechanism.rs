@@ -6,6 +6,7 @@ use crate::at::Jacobian;
 use crate::blocks::StepFailure;
 use crate::model::{Model, State, StepError};
 use kinloop_runtime::dims::{Dims, JacBuf, KinBuf, Sizes};
+use kinloop_runtime::generated::BlockFailure;
 use kinloop_runtime::paths::sweep::SweepOf;
 use kinloop_runtime::{BlockInfo, Error, Kernel, Location, NewtonConfig, QuantityKind, SweepConfig};
 use std::borrow::Cow;
@@ -112,10 +113,31 @@ impl ModelKernel<'_> {
             StepError::Block { block, failure: StepFailure::Singular { pivot_ratio } } => {
                 Error::Singular { pivot_ratio, tolerance: cfg.singular_tol, at: self.location(x, Some(block)) }
             }
-            StepError::Block { block, failure } => Error::Model {
-                message: format!("block {block} failed: {failure:?}"),
-                at: self.location(x, Some(block)),
-            },
+            StepError::Block { block, failure: StepFailure::Block(f) } => {
+                let at = self.location(x, Some(block));
+                let message = match f {
+                    BlockFailure::Singular { pivot_ratio, tolerance, .. } => {
+                        return Error::Singular { pivot_ratio, tolerance, at };
+                    }
+                    BlockFailure::InvalidConfig { field } => {
+                        return Error::InvalidArgument(format!("NewtonConfig::{field} is out of its valid range"));
+                    }
+                    BlockFailure::NonFinite { .. } => "a value is not finite: an expression left its domain (e.g. \
+                                                       sqrt of a negative number, asin/acos beyond ±1, or a division by zero)"
+                        .to_string(),
+                    BlockFailure::NoConvergence { iterations, residual, .. } => {
+                        format!("Newton's method did not converge in {iterations} iterations (residual {residual:e})")
+                    }
+                    BlockFailure::NoAssembly { residual, .. } => format!(
+                        "the mechanism cannot be assembled: the loop residual stalls at {residual:e} (the links \
+                         cannot reach; check the lengths or the input range)"
+                    ),
+                    BlockFailure::TooManyTurns { value } => {
+                        format!("an angle is {value:e} rad, too many turns out to be solved to the tolerance")
+                    }
+                };
+                Error::Model { message: format!("block {block}: {message}"), at }
+            }
             e => Error::Model { message: e.to_string(), at: self.location(x, None) },
         }
     }

@@ -321,3 +321,23 @@ fn a_singular_crossing_is_the_same_event() {
     same_events(&ce, &re);
     assert!((re[0].x[0] - std::f64::consts::PI).abs() < 1e-6, "crossing at {}", re[0].x[0]);
 }
+
+/// A sweep that cannot start names the run-time model and its input with the model's own
+/// (owned) names, as the compiled mechanism's error names its constants.
+#[test]
+fn a_failed_start_names_the_model() {
+    let (a, b, c, d) = (1.5, 3.0, 1.0, 3.2);
+    let mut model = read(fx::FOUR_BAR_TEXT);
+    set(&mut model, &[("a", a), ("b", b), ("c", c), ("d", d)]);
+    // At phi = 0, |AD| = 1.7 is shorter than |b - c| = 2: no assembly.
+    let compiled = fx::FourBar { a, b, c, d };
+    let g = compiled.guess_flat(&[0.0]);
+    let c_err =
+        Sweep::<_, Kin<2, 1, 2>, 2, 1, 2>::new(&compiled, [0.0], [1.0], 3, g).unwrap().next().unwrap().unwrap_err();
+    let r_err = model.sweep(&[0.0], &[1.0], 3, &g).unwrap().next().unwrap().unwrap_err();
+    let (c_at, r_at) = (c_err.location().expect("located"), r_err.location().expect("located"));
+    assert_eq!((&c_at.mechanism, &c_at.inputs), (&r_at.mechanism, &r_at.inputs));
+    assert!(matches!(r_at.mechanism, std::borrow::Cow::Owned(_)));
+    assert!(r_err.to_string().contains("in `FourBar` at phi = 0"), "{r_err}");
+    eprintln!("compiled: {c_err}\nrun time: {r_err}");
+}
