@@ -386,12 +386,12 @@ pub use kinloop_macros::mechanism;
 #[doc(no_inline)]
 pub use kinloop_runtime::nalgebra;
 pub use kinloop_runtime::{
-    AtSingular, BlockInfo, ColumnKey, Configured, DetSigns, Error, Event, EventKind, Extreme, Extremum, FlatMotion,
-    Health, Jac, Kin, LENGTH_UNIT, Location, Mechanism, Named, NamedSensitivities, NewtonConfig, NewtonStop, Quantity,
-    QuantityKind, Reach, Sens, Sensitivities, SolveReport, Source, Sweep, SweepConfig, SweepResult, SweepStop, Table,
-    TraceConfig, Traced, TracedPoint, Vec2, deg, to_deg,
+    AtSingular, BlockInfo, ColumnKey, Compiled, Configured, DetSigns, Error, Event, EventKind, Extreme, Extremum,
+    FlatMotion, Health, Jac, Kernel, Kin, LENGTH_UNIT, Location, Mechanism, Named, NamedSensitivities, NewtonConfig,
+    NewtonStop, Quantity, QuantityKind, Reach, Sens, Sensitivities, SolveReport, Source, Sweep, SweepConfig, SweepOf,
+    SweepResult, SweepStop, Table, TraceConfig, Traced, TracedPoint, Vec2, deg, to_deg,
 };
-pub use kinloop_runtime::{analysis, drawing, dynamics, events, metrics, paths, synthesis};
+pub use kinloop_runtime::{analysis, dims, drawing, dynamics, events, metrics, paths, synthesis};
 // A glob of the scan module: it holds `par_scan` whenever the runtime is built with rayon,
 // whichever crate's feature asked for it (features unify).
 pub use kinloop_runtime::paths::scan::*;

@@ -160,7 +160,7 @@ fn check_results(ms: &[SliderCrank], ex: &[Expect], results: &[Result<Acc, Error
             }
             (Expect::NoAssembly, Err(Error::NoAssembly { at, .. })) => {
                 counts[1] += 1;
-                assert_eq!(at.inputs, [("phi", 0.0)], "set {i}");
+                assert_eq!(at.inputs, [("phi".into(), 0.0)], "set {i}");
             }
             (Expect::Limit(limit), Err(Error::SweepStopped { kind: EventKind::LimitPosition, at })) => {
                 counts[2] += 1;

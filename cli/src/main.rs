@@ -5,6 +5,7 @@
 //! kinloop check four_bar.kl                      # structure: counts, mobility, blocks
 //! kinloop solve four_bar.kl --at 30 --deg        # one state as CSV, with units
 //! kinloop solve four_bar.kl --at 0 --at 0.5 --params a=1.2,b=3
+//! kinloop sweep four_bar.kl --from 0 --to 360 --samples 73 --deg --params a=1,b=3,c=2.5,d=3.2
 //! ```
 //!
 //! Exit codes ([`exit`]): 0 success, 1 a solve failed, 2 a usage error, 65 the declaration is
@@ -15,6 +16,7 @@ mod exit;
 mod params;
 mod report;
 mod solve;
+mod sweep;
 
 use clap::{Parser, Subcommand};
 use kinloop_model::{Model, ReadError};
@@ -58,6 +60,34 @@ enum Command {
         #[arg(long, value_name = "NAME=VALUE,...")]
         params: Option<String>,
     },
+    /// Sweeps the inputs along the straight path from `--from` to `--to` without jumping
+    /// branches, from the declared initial guess at `--from`, and writes the states as CSV
+    /// with units; the singular positions met (limit positions, crossings) are listed on
+    /// standard error or written to `--events`. A sweep that stops writes the states before
+    /// the stop and fails.
+    Sweep {
+        /// The declaration (`.kl`).
+        file: PathBuf,
+        /// The inputs at the start, separated by commas (one value per input).
+        #[arg(long, value_name = "X,...", allow_hyphen_values = true)]
+        from: String,
+        /// The inputs at the end.
+        #[arg(long, value_name = "X,...", allow_hyphen_values = true)]
+        to: String,
+        /// Samples, equally spaced, both ends included.
+        #[arg(long, default_value_t = 361)]
+        samples: usize,
+        /// Angles in degrees (inputs given and values written); otherwise radians.
+        #[arg(long)]
+        deg: bool,
+        /// Parameter values, `name=value` separated by commas (overriding the defaults).
+        #[arg(long, value_name = "NAME=VALUE,...")]
+        params: Option<String>,
+        /// Writes the events as CSV to this file (`kind,tau,` inputs, unknowns) instead of
+        /// listing them on standard error.
+        #[arg(long, value_name = "FILE")]
+        events: Option<PathBuf>,
+    },
 }
 
 /// A failure with its exit code; the message is already written.
@@ -81,6 +111,11 @@ fn run(cli: Cli) -> Result<(), Failed> {
         Command::Solve { file, at, deg, params } => {
             let mut model = load(&file, params.as_deref())?;
             solve::run(&mut model, &at, deg)
+        }
+        Command::Sweep { file, from, to, samples, deg, params, events } => {
+            let mut model = load(&file, params.as_deref())?;
+            let req = sweep::Request { from: &from, to: &to, samples, deg, events: events.as_deref() };
+            sweep::run(&mut model, &req)
         }
     }
 }

@@ -12,7 +12,7 @@ pub fn run(model: &mut Model, at: &[String], deg: bool) -> Result<(), Failed> {
     let name = model.name().to_string();
     let mut table = Table::new(model.columns());
     for spec in at {
-        let mut x = parse_inputs(spec, ni)?;
+        let mut x = parse_inputs(spec, ni, "--at")?;
         for (v, k) in x.iter_mut().zip(&kinds[..ni]) {
             if deg && *k == QuantityKind::Angle {
                 *v = v.to_radians();
@@ -24,13 +24,8 @@ pub fn run(model: &mut Model, at: &[String], deg: bool) -> Result<(), Failed> {
         })?;
         table.push(state.row().iter().zip(&factors).map(|(v, f)| v * f).collect());
     }
-    let names: Vec<String> = model.quantities().iter().map(|(n, _)| n.to_string()).collect();
-    let base: Vec<(&str, &str)> = names
-        .iter()
-        .zip(&kinds)
-        .map(|(n, k)| (n.as_str(), if deg && *k == QuantityKind::Angle { "deg" } else { k.unit() }))
-        .collect();
-    let table = table.with_units(&base);
+    let base = units(model, &kinds, deg);
+    let table = table.with_units(&base.iter().map(|(n, u)| (n.as_str(), *u)).collect::<Vec<_>>());
     let stdout = std::io::stdout();
     table.write_csv(stdout.lock()).map_err(|e| {
         eprintln!("error: cannot write the table: {e}");
@@ -38,17 +33,28 @@ pub fn run(model: &mut Model, at: &[String], deg: bool) -> Result<(), Failed> {
     })
 }
 
-/// One `--at`: one number per input.
-fn parse_inputs(spec: &str, ni: usize) -> Result<Vec<f64>, Failed> {
+/// The base quantities with their units: `deg` for angles where angles are written in
+/// degrees, the inferred unit otherwise.
+pub fn units(model: &Model, kinds: &[QuantityKind], deg: bool) -> Vec<(String, &'static str)> {
+    model
+        .quantities()
+        .iter()
+        .zip(kinds)
+        .map(|((n, _), k)| (n.to_string(), if deg && *k == QuantityKind::Angle { "deg" } else { k.unit() }))
+        .collect()
+}
+
+/// One list of inputs (of the option `option`): one number per input.
+pub fn parse_inputs(spec: &str, ni: usize, option: &str) -> Result<Vec<f64>, Failed> {
     let x: Result<Vec<f64>, _> = spec.split(',').map(|v| v.trim().parse::<f64>()).collect();
     match x {
         Ok(x) if x.len() == ni && x.iter().all(|v| v.is_finite()) => Ok(x),
         Ok(x) if x.len() != ni => {
-            eprintln!("error: --at {spec} gives {} inputs, the mechanism has {ni}", x.len());
+            eprintln!("error: {option} {spec} gives {} inputs, the mechanism has {ni}", x.len());
             Err(Failed(exit::USAGE))
         }
         _ => {
-            eprintln!("error: --at {spec} is not a list of finite numbers");
+            eprintln!("error: {option} {spec} is not a list of finite numbers");
             Err(Failed(exit::USAGE))
         }
     }
@@ -57,7 +63,7 @@ fn parse_inputs(spec: &str, ni: usize) -> Result<Vec<f64>, Failed> {
 /// Per column of [`Model::columns`]: the factor that converts its value to degrees where
 /// angles are written in degrees (an angle in the quantity: times `180/π`; an angle input in
 /// the derivative: divided by it), 1 otherwise.
-fn factors(model: &Model, kinds: &[QuantityKind], deg: bool) -> Vec<f64> {
+pub fn factors(model: &Model, kinds: &[QuantityKind], deg: bool) -> Vec<f64> {
     let d = 180.0 / std::f64::consts::PI;
     let of = |k: QuantityKind| if deg && k == QuantityKind::Angle { d } else { 1.0 };
     let ni = model.inputs().len();

@@ -125,3 +125,78 @@ fn errors_have_carets_and_exit_codes() {
     assert_eq!(out_of_reach.status.code(), Some(1), "{}", String::from_utf8_lossy(&out_of_reach.stdout));
     std::fs::remove_dir_all(&dir).ok();
 }
+
+/// `sweep` writes the compiled mechanism's sweep: the runtime's one sweep over the model, the
+/// same states to the kernels' agreement (1e-15 of a column's magnitude in `kinloop-model`'s
+/// parity tests; 1e-13 here for the compiled sweep's rotated sines, a few ulps off libm's), in
+/// degrees where asked.
+#[test]
+fn sweep_writes_the_compiled_mechanisms_sweep() {
+    let (a, b, c, d) = (1.0, 3.0, 2.5, 3.2);
+    let four_bar = fx::FourBar { a, b, c, d };
+    let params = format!("a={a},b={b},c={c},d={d}");
+    let out = kinloop(&[
+        "sweep",
+        &shipped("four_bar.kl"),
+        "--from",
+        "0",
+        "--to",
+        "360",
+        "--samples",
+        "73",
+        "--deg",
+        "--params",
+        &params,
+    ]);
+    let (header, rows) = csv(&out);
+    assert_eq!(rows.len(), 73);
+    assert_eq!(header[0], "phi [deg]");
+    let g = four_bar.guess_flat(&[0.0]);
+    let compiled: Vec<kinloop::Kin<2, 1, 2>> =
+        kinloop::Sweep::<_, kinloop::Kin<2, 1, 2>, 2, 1, 2>::new(&four_bar, [0.0], [std::f64::consts::TAU], 73, g)
+            .expect("sweep")
+            .map(|k| k.expect("compiled state"))
+            .collect();
+    let close = |got: f64, want: f64, scale: f64| assert!((got - want).abs() <= 1e-13 * scale, "{got} vs {want}");
+    for (k, row) in compiled.iter().zip(&rows) {
+        close(row[column(&header, "phi [deg]")], k.x[0].to_degrees(), 360.0);
+        close(row[column(&header, "beta [deg]")], k.q[0].to_degrees(), 360.0);
+        close(row[column(&header, "d(gamma)/d(phi) [deg/deg]")], k.dq[1][0], 1.0 + k.dq[1][0].abs());
+        close(row[column(&header, "pc.x [length unit]")], k.out[0], 4.0);
+    }
+    assert!(out.stderr.is_empty(), "no event: {}", String::from_utf8_lossy(&out.stderr));
+}
+
+/// A rocker's sweep stops at its limit position: the states before it are written, the event
+/// (in `--events`) is where the coupler and the output stretch in line (closed form), and the
+/// command fails.
+#[test]
+fn sweep_lists_the_limit_position_and_fails() {
+    let (a, b, c, d): (f64, f64, f64, f64) = (1.5, 3.0, 1.0, 3.2);
+    let dir = std::env::temp_dir().join(format!("kinloop-cli-sweep-{}", std::process::id()));
+    std::fs::create_dir_all(&dir).expect("temp dir");
+    let events = dir.join("events.csv");
+    let params = format!("a={a},b={b},c={c},d={d}");
+    let args = ["sweep", &shipped("four_bar.kl"), "--from", "1.2", "--to", "7.4", "--samples", "100", "--params"];
+    let mut args: Vec<&str> = args.to_vec();
+    let events_arg = events.display().to_string();
+    args.extend([params.as_str(), "--events", &events_arg]);
+    let out = kinloop(&args);
+    assert_eq!(out.status.code(), Some(1), "{}", String::from_utf8_lossy(&out.stderr));
+    let err = String::from_utf8_lossy(&out.stderr);
+    assert!(err.contains("limit position"), "{err}");
+    let text = String::from_utf8(out.stdout).expect("utf-8");
+    let rows = text.lines().count() - 1;
+    // |AD| = b + c: cos(phi) = (a^2 + d^2 - (b + c)^2) / (2 a d), about 1.945; samples 0.0626
+    // apart from 1.2 reach it after the twelfth.
+    let phi = ((a * a + d * d - (b + c) * (b + c)) / (2.0 * a * d)).acos();
+    assert_eq!(rows, ((phi - 1.2) / (6.2 / 99.0)).floor() as usize + 1, "{text}");
+    let events = std::fs::read_to_string(&events).expect("events file");
+    let mut lines = events.lines();
+    assert_eq!(lines.next(), Some("kind,tau,phi,beta,gamma"));
+    let event: Vec<&str> = lines.next().expect("one event").split(',').collect();
+    assert_eq!(event[0], "limit position");
+    let at: f64 = event[2].parse().expect("a number");
+    assert!((at - phi).abs() < 1e-9, "event at {at}, closed form {phi}");
+    std::fs::remove_dir_all(&dir).ok();
+}

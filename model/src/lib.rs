@@ -51,43 +51,37 @@
 //!
 //! # Sweeps and the runtime's algorithms
 //!
-//! The runtime's sweeps, events, reachable ranges, curve tracing, scans and analyses are written
-//! over the const-generic trait `Mechanism<N, NI, NO>` (sizes known when the mechanism is
-//! compiled) and its `Kin<N, NI, NO>` states. They are not repeated here (one implementation of
-//! each algorithm): serving a run-time model needs them generic over how sizes are known. What
-//! that takes, from `runtime/src/paths/sweep.rs`, `curve.rs` and `mechanism.rs`:
+//! The runtime's sweep is written once, over its size-agnostic trait `Kernel`, whose storage
+//! comes from a `Dims`: `Fixed<N, NI, NO>` (arrays, for compiled mechanisms through the
+//! zero-cost wrapper `Compiled`) or `Sizes { n, ni, no }` (boxed slices, allocated once per
+//! sweep). A [`Model`] is a `Kernel` ([`ModelKernel`], from [`Model::kernel`]), so
+//! [`Model::sweep`] is that very sweep: branch-safe steps, events (limit positions, singular
+//! crossings, located by the same continuation), `next_ref`/`next_kin`, `table()` with the
+//! model's column names and units, `run`. It equals the compiled mechanism's sweep to rounding
+//! (`tests/sweeps.rs`: the fixtures of the parity tests over a whole turn, the same events at the
+//! same inputs). Its step is [`Model::kinematics`] (libm's sines and cosines: a run-time model has
+//! no trigonometry cache, nor deferred checks), copied into the sweep's slot: no allocation per
+//! step.
 //!
-//! * **Sizes.** A trait `Dims` with associated storage types, one per shape the algorithms hold
-//!   (`Q` for `[f64; N]`, `X` for `[f64; NI]`, `XX` for `[[f64; NI]; NI]`, the state `Kin`, the
-//!   Jacobian `Jac`), implemented by a zero-sized `Fixed<N, NI, NO>` with the arrays of today
-//!   (compiled mechanisms keep their code and speed) and by a run-time `Sized { n, ni, no }` with
-//!   boxed slices, allocated once per sweep. `Mechanism` gains `type Dims` and its flat kernels
-//!   (`kinematics_flat`, `kinematics_at_flat`, `jacobian_flat`, `guess_flat`, `outputs_flat`,
-//!   `kinematics_step_sink`) take and write `Dims`' types. The sweep's fields (`guess`,
-//!   `first_q`, `states: [Kin; 2]`, `delta2`, `Path<NI>`), its `Prediction<N>`, and
-//!   `curve.rs`'s `CurvePoint<N>`, `Metric<N>` and stack temporaries become `Dims`' types or
-//!   fields of the sweep's workspace.
-//! * **Constants.** `NAME`, `PARAMS`, `INPUTS`, `UNKNOWNS`, `EQUATIONS`, `OUTPUTS`, `BLOCKS`,
-//!   the kinds, `FOLLOWERS` and `CLOSED_FORM_ANGLES` are associated constants; a run-time model
-//!   knows them only when read. They become methods whose defaults return the constants
-//!   (nothing changes for compiled mechanisms after inlining), and what the sweep computes from
-//!   them at compile time (`const JUDGED: Judged<N> = Judged::of(M::FOLLOWERS)`) becomes a field
-//!   made in `Sweep::new`.
-//! * **Names in errors.** `Location` and `Error` hold `&'static str` names (`M::NAME`,
-//!   `M::INPUTS`); a run-time model's names are owned strings. Either the names become
-//!   `Cow<'static, str>` (or `Arc<str>`) in `Location` (a public type: a CHANGELOG entry), or a
-//!   read model leaks its few names once (`Box::leak`, bounded by the number of models read;
-//!   not acceptable for a long-running service reading untrusted files).
-//! * **The flat kernels** a run-time model provides already, equal to the compiled ones:
-//!   `kinematics_flat` ([`Model::kinematics`]), `kinematics_at_flat` ([`Model::kinematics_at`]),
-//!   `jacobian_flat` ([`Model::jacobian`]), `outputs_flat` ([`Model::outputs_at`]),
-//!   `residual_flat` ([`Model::residual`]), `guess_flat` ([`Model::guess`]) and
-//!   `sensitivities_flat` ([`Model::sensitivities`]). The sweep's fast path
-//!   (`kinematics_step_sink` with the input trigonometry cache and deferred checks) keeps its
-//!   default, `kinematics_flat`, for a run-time model.
+//! Served to run-time models this round: the sweep and what it uses (the event location by
+//! pseudo-arclength continuation, the equilibrated determinants, the table). Still on compiled
+//! sizes (`Mechanism<N, NI, NO>` and `Kin<N, NI, NO>`): `trace_curve` (its result type
+//! `Traced<N, NI>` holds arrays; its continuation is already the kernel-generic one), the
+//! reachable ranges and `sweep_at` (stretches of sweeps: they need their result types generic),
+//! the assembly modes (multi-start Newton over `position_flat`, which a model does not expose
+//! as a kernel method), scans, the analyses of sampled sweeps (`Sampled` holds `Kin` arrays),
+//! sensitivities-based synthesis (`Sensitivities<N, NI, NO, NP>`) and dynamics. Each needs its
+//! state and result types over `Dims` as the sweep's are, and the kernel methods it calls
+//! (`position`, `sensitivities`) added to `Kernel`.
 //!
-//! Until then a run-time model offers single-point solves with their analogs and sensitivities
-//! ([`Model::kinematics`], [`Model::sensitivities`], [`Model::solve`]) and the structure report.
+//! A run-time model's events carry no block description (`Event::block` is `None`): the
+//! runtime's `BlockInfo` holds `&'static` names, which a model read at run time does not have;
+//! its errors name the model and its inputs with owned strings (`Location`'s names are
+//! `Cow<'static, str>`).
+//!
+//! Besides sweeps a run-time model offers single-point solves with their analogs and
+//! sensitivities ([`Model::kinematics`], [`Model::sensitivities`], [`Model::solve`]) and the
+//! structure report.
 
 #![warn(missing_docs)]
 
@@ -95,6 +89,7 @@ mod at;
 mod blocks;
 mod closed;
 mod factor;
+mod mechanism;
 mod model;
 mod newton;
 mod sensitivities;
@@ -105,6 +100,7 @@ mod tape;
 pub use at::Jacobian;
 pub use blocks::StepFailure;
 pub use factor::MAX_DENSE;
+pub use mechanism::ModelKernel;
 pub use model::{Model, ReadError, State, StepError};
 pub use sensitivities::Sensitivities;
 pub use source::{Diagnostic, Diagnostics, Level};

@@ -120,6 +120,12 @@ pub struct Model {
     input_kinds: Vec<QuantityKind>,
     unknown_kinds: Vec<QuantityKind>,
     output_kinds: Vec<QuantityKind>,
+    /// Per unknown: whether it follows the others (the compiled `Mechanism::FOLLOWERS`).
+    pub(crate) followers: Vec<bool>,
+    /// Per unknown: whether a closed form gives it as an angle (`CLOSED_FORM_ANGLES`).
+    pub(crate) closed_form_angles: Vec<bool>,
+    /// Per block in solve order: its equations (rows) and unknowns (columns).
+    pub(crate) block_rows_cols: Vec<(Vec<usize>, Vec<usize>)>,
     /// The nodes of the parameters alone, run when they are set.
     statics: Segment,
     guess: Segment,
@@ -266,6 +272,12 @@ impl Model {
             None => model.params.iter().map(|p| p.value.and_then(|v| g.as_const(v))).collect(),
         };
         let no = plan.outputs.len();
+        // What the emitter writes as `FOLLOWERS` and `CLOSED_FORM_ANGLES`, from the same plan.
+        let followers = kinloop_codegen::plan::followers::followers(&plan.graph, &plan.blocks, n);
+        let closed: Vec<usize> =
+            plan.blocks.iter().filter_map(|bp| bp.solve.closed_form()).flat_map(|r| r.form.angles()).collect();
+        let closed_form_angles = (0..n).map(|u| closed.contains(&u)).collect();
+        let block_rows_cols = plan.blocks.iter().map(|bp| (bp.equations.clone(), bp.unknowns.clone())).collect();
         let state = State {
             x: vec![0.0; ni],
             q: vec![0.0; n],
@@ -316,6 +328,9 @@ impl Model {
             input_kinds: k.inputs.iter().map(|&x| kind(x)).collect(),
             unknown_kinds: k.unknowns.iter().map(|&x| kind(x)).collect(),
             output_kinds: k.outputs.iter().map(|&x| kind(x)).collect(),
+            followers,
+            closed_form_angles,
+            block_rows_cols,
             statics: statics(g),
             guess,
             guess_regs,

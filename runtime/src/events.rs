@@ -2,6 +2,7 @@
 //! positions (events) met along a path. This vocabulary depends on nothing else in the crate,
 //! so errors, sweeps and continuation can all name it.
 
+use std::borrow::Cow;
 use std::fmt;
 
 /// Static description of one block of a mechanism's block-triangular decomposition.
@@ -19,10 +20,11 @@ pub struct BlockInfo {
 /// Where an error happened.
 #[derive(Clone, Debug, PartialEq)]
 pub struct Location {
-    /// Name of the mechanism type.
-    pub mechanism: &'static str,
-    /// Values of the inputs (generalized coordinates) when it happened.
-    pub inputs: Vec<(&'static str, f64)>,
+    /// Name of the mechanism type: borrowed for a compiled mechanism, owned for one read at run
+    /// time.
+    pub mechanism: Cow<'static, str>,
+    /// Values of the inputs (generalized coordinates) when it happened, by name.
+    pub inputs: Vec<(Cow<'static, str>, f64)>,
     /// The block being solved, with its index in solve order, if the error concerns one.
     pub block: Option<(usize, BlockInfo)>,
 }
@@ -36,7 +38,11 @@ impl Location {
         x: &[f64],
         block: Option<(usize, BlockInfo)>,
     ) -> Box<Location> {
-        Box::new(Location { mechanism, inputs: names.iter().copied().zip(x.iter().copied()).collect(), block })
+        Box::new(Location {
+            mechanism: Cow::Borrowed(mechanism),
+            inputs: names.iter().map(|&n| Cow::Borrowed(n)).zip(x.iter().copied()).collect(),
+            block,
+        })
     }
 }
 

@@ -45,8 +45,8 @@ where
     M: Mechanism<N, NI, NO>,
 {
     Location {
-        mechanism: M::NAME,
-        inputs: M::INPUTS.iter().copied().zip(x.iter().copied()).collect(),
+        mechanism: std::borrow::Cow::Borrowed(M::NAME),
+        inputs: M::INPUTS.iter().map(|&n| std::borrow::Cow::Borrowed(n)).zip(x.iter().copied()).collect(),
         block: block.and_then(|b| M::BLOCKS.get(b).map(|i| (b, *i))),
     }
 }

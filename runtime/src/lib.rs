@@ -24,6 +24,7 @@
 pub mod analysis;
 mod angles;
 mod configured;
+pub mod dims;
 pub mod drawing;
 pub mod dynamics;
 mod error;
@@ -54,13 +55,14 @@ pub use error::{Error, Quantity, Source};
 pub use events::{BlockInfo, Event, EventKind, Location};
 pub use kin::{DetSigns, FlatMotion, Health, Jac, Kin, Sens};
 pub use kinds::{LENGTH_UNIT, QuantityKind};
+pub use mechanism::kernel::{Compiled, Kernel};
 pub use mechanism::{Mechanism, Named, NamedSensitivities, Sensitivities};
 pub use paths::outcome::{SweepResult, SweepStop};
 pub use paths::reach::Reach;
 #[cfg(feature = "rayon")]
 pub use paths::scan::par_scan;
 pub use paths::scan::{ScanConfig, ScanStart, scan};
-pub use paths::sweep::{AtSingular, Sweep, SweepConfig};
+pub use paths::sweep::{AtSingular, Sweep, SweepConfig, SweepOf};
 pub use paths::trace::{TraceConfig, Traced, TracedPoint};
 pub use solvers::newton::{NewtonConfig, NewtonStop, SolveReport};
 pub use table::{ColumnKey, Table};

@@ -35,7 +35,7 @@ impl SliderCrank {
     };
 
     fn at(&self, phi: f64) -> Box<Location> {
-        Box::new(Location { mechanism: "SliderCrank", inputs: vec![("phi", phi)], block: None })
+        Location::boxed("SliderCrank", &["phi"], &[phi], None)
     }
 
     /// The largest and smallest slider positions and the crank angles where they occur, from
@@ -165,7 +165,7 @@ impl Mechanism<1, 1, 1> for SliderCrank {
                     what: crate::error::Quantity::Parameter,
                     name,
                     value,
-                    at: Box::new(Location { mechanism: "SliderCrank", inputs: Vec::new(), block: None }),
+                    at: Location::boxed("SliderCrank", &[], &[], None),
                 });
             }
         }

@@ -6,10 +6,12 @@
 //! generic over a mechanism, are theirs (called as `kin.checked_motion::<M>(..)`,
 //! `Table::from_states::<M, _, _, _>(..)`) but defined here, on the trait's side.
 
+use crate::dims::Dims;
 use crate::error::Error;
 use crate::events::Location;
 use crate::kin::{FlatMotion, Kin};
 use crate::mechanism::Mechanism;
+use crate::mechanism::kernel::Kernel;
 use crate::table::Table;
 
 impl<const N: usize, const NI: usize, const NO: usize> Kin<N, NI, NO> {
@@ -62,24 +64,27 @@ impl Table {
     where
         M: Mechanism<N, NI, NO>,
     {
-        let mut c: Vec<String> = M::INPUTS.iter().map(|s| s.to_string()).collect();
-        let groups: [&[&str]; 2] = [&M::UNKNOWNS, &M::OUTPUTS];
-        for names in groups {
-            c.extend(names.iter().map(|s| s.to_string()));
-            for n in names {
-                for i in M::INPUTS {
-                    c.push(format!("d({n})/d({i})"));
-                }
-            }
-            for n in names {
-                for (a, i) in M::INPUTS.iter().enumerate() {
-                    for j in &M::INPUTS[a..] {
-                        c.push(if i == j { format!("d2({n})/d({i})^2") } else { format!("d2({n})/d({i})d({j})") });
-                    }
-                }
-            }
-        }
-        c
+        columns(&M::INPUTS, &M::UNKNOWNS, &M::OUTPUTS)
+    }
+
+    /// The columns of a kinematic state of kernel `k` (see [`Table::kin_columns`]): a compiled
+    /// mechanism's, or a mechanism's read at run time.
+    pub fn kernel_columns<K: Kernel>(k: &K) -> Vec<String> {
+        let d = k.dims();
+        let inputs: Vec<&str> = (0..d.ni()).map(|i| k.input_name(i)).collect();
+        let unknowns: Vec<&str> = (0..d.n()).map(|u| k.unknown_name(u)).collect();
+        let outputs: Vec<&str> = (0..d.no()).map(|o| k.output_name(o)).collect();
+        columns(&inputs, &unknowns, &outputs)
+    }
+
+    /// The table with the units of kernel `k`'s columns (see [`Table::with_units_of`]).
+    pub fn with_kernel_units<K: Kernel>(self, k: &K) -> Self {
+        let d = k.dims();
+        let inputs = (0..d.ni()).map(|i| (k.input_name(i), k.input_kind(i)));
+        let unknowns = (0..d.n()).map(|u| (k.unknown_name(u), k.unknown_kind(u)));
+        let outputs = (0..d.no()).map(|o| (k.output_name(o), k.output_kind(o)));
+        let base: Vec<(&str, &str)> = inputs.chain(unknowns).chain(outputs).map(|(n, k)| (n, k.unit())).collect();
+        self.with_units(&base)
     }
 
     /// A table of kinematic states of mechanism `M`, with the units inferred by `mechanism!` in
@@ -97,4 +102,26 @@ impl Table {
         }
         t.with_units_of::<M, N, NI, NO>()
     }
+}
+
+/// The columns of a kinematic state: inputs, unknowns, their first and second analogs
+/// (`d(u)/d(i)`, `d2(u)/d(i)d(j)`), outputs and their analogs.
+fn columns(inputs: &[&str], unknowns: &[&str], outputs: &[&str]) -> Vec<String> {
+    let mut c: Vec<String> = inputs.iter().map(|s| s.to_string()).collect();
+    for names in [unknowns, outputs] {
+        c.extend(names.iter().map(|s| s.to_string()));
+        for n in names {
+            for i in inputs {
+                c.push(format!("d({n})/d({i})"));
+            }
+        }
+        for n in names {
+            for (a, i) in inputs.iter().enumerate() {
+                for j in &inputs[a..] {
+                    c.push(if i == j { format!("d2({n})/d({i})^2") } else { format!("d2({n})/d({i})d({j})") });
+                }
+            }
+        }
+    }
+    c
 }

@@ -5,7 +5,7 @@
 //!
 //! **Unit-free.** Arclength, tangents and the corrector's tests are measured in scaled
 //! coordinates `z = (q_u / unit_u, sigma / unit_sigma)` with the units the generated code gives
-//! every unknown and input ([`Jac::unit`], [`Jac::input_unit`]: one radian for an angle, the
+//! every unknown and input ([`Jac::unit`](crate::Jac::unit), [`Jac::input_unit`](crate::Jac::input_unit): one radian for an angle, the
 //! mechanism's size for a length), fixed at the start of a trace (`Metric`). A mechanism in
 //! metres, millimetres or micrometres is therefore followed with the same steps and its events
 //! are located at the same inputs; angles and lengths never mix in one norm.
@@ -13,33 +13,40 @@
 //! These routines run only on the rare paths (locating an event, tracing a closed curve), so
 //! they use nalgebra's dynamic matrices for the `(N + 1)`-sized bordered systems.
 
+use crate::dims::{Dims, JacState, KinState, Store};
 use crate::events::{BlockInfo, Event, EventKind};
-use crate::kin::Jac;
-use crate::mechanism::Mechanism;
-use crate::solvers::lu::Lu;
-use crate::solvers::newton::{NewtonConfig, system_residual};
+use crate::mechanism::kernel::Kernel;
+use crate::solvers::newton::NewtonConfig;
 use nalgebra::{DMatrix, DVector};
+
+/// The storage of kernel `K`'s sizes.
+type D<K> = <K as Kernel>::Dims;
+/// A vector of the unknowns' size of kernel `K`.
+pub(crate) type Q<K> = <D<K> as Dims>::Q;
+/// A vector of the inputs' size of kernel `K`.
+pub(crate) type X<K> = <D<K> as Dims>::X;
 
 /// A straight path in input space.
 #[derive(Clone, Copy, Debug)]
-pub(crate) struct Path<const NI: usize> {
-    pub from: [f64; NI],
+pub(crate) struct Path<X> {
+    pub from: X,
     /// `to - from`.
-    pub delta: [f64; NI],
+    pub delta: X,
     /// `|to - from|` (Euclidean).
     pub len: f64,
 }
 
-impl<const NI: usize> Path<NI> {
-    pub fn new(from: [f64; NI], to: [f64; NI]) -> Self {
-        let mut delta = [0.0; NI];
-        for i in 0..NI {
+impl<X: Store> Path<X> {
+    pub fn new(from: X, to: X) -> Self {
+        let mut delta = from.clone();
+        let ni = delta.as_ref().len();
+        for i in 0..ni {
             delta[i] = to[i] - from[i];
         }
         // Scaled so that a range near the largest `f64` does not overflow its length.
-        let big = delta.iter().fold(0.0f64, |m, d| m.max(d.abs()));
+        let big = delta.as_ref().iter().fold(0.0f64, |m, d| m.max(d.abs()));
         let len = if big > 0.0 && big.is_finite() {
-            big * delta.iter().map(|d| (d / big) * (d / big)).sum::<f64>().sqrt()
+            big * delta.as_ref().iter().map(|d| (d / big) * (d / big)).sum::<f64>().sqrt()
         } else {
             big
         };
@@ -47,16 +54,23 @@ impl<const NI: usize> Path<NI> {
     }
 
     /// Input at fraction `tau` of the path.
-    pub fn at_tau(&self, tau: f64) -> [f64; NI] {
-        let mut x = self.from;
-        for i in 0..NI {
-            x[i] += tau * self.delta[i];
-        }
+    pub fn at_tau(&self, tau: f64) -> X {
+        let mut x = self.from.clone();
+        self.at_tau_into(tau, &mut x);
         x
     }
 
+    /// Input at fraction `tau` of the path, into `x` (a sweep's step: no allocation).
+    #[inline(always)]
+    pub fn at_tau_into(&self, tau: f64, x: &mut X) {
+        let ni = x.as_ref().len();
+        for i in 0..ni {
+            x[i] = self.from[i] + tau * self.delta[i];
+        }
+    }
+
     /// Input at distance `sigma` along the path.
-    pub fn at_sigma(&self, sigma: f64) -> [f64; NI] {
+    pub fn at_sigma(&self, sigma: f64) -> X {
         self.at_tau(sigma / self.len)
     }
 }
@@ -70,32 +84,35 @@ fn sane(unit: f64) -> f64 {
 /// coordinate `sigma` in `sigma`. Fixed for a whole trace, so that one arclength is used
 /// throughout.
 #[derive(Clone, Copy, Debug)]
-pub(crate) struct Metric<const N: usize> {
-    pub unit: [f64; N],
+pub(crate) struct Metric<Q> {
+    pub unit: Q,
     pub sigma: f64,
     /// The path's length measured in input units, `|delta ./ input_unit|` (`0` for a path of no
     /// length): how far the path goes in the inputs' natural scale (radians for angle inputs).
     pub input_len: f64,
 }
 
-impl<const N: usize> Metric<N> {
+impl<Q: Store> Metric<Q> {
     /// The units at `(x, q)` on `path`: the generated units of the unknowns, and for `sigma`
     /// the path's length over its length measured in input units (the input's own unit for a
     /// single input).
-    pub fn at<M, const NI: usize, const NO: usize>(m: &M, path: &Path<NI>, x: &[f64; NI], q: &[f64; N]) -> Self
+    pub fn at<K>(m: &K, path: &Path<X<K>>, x: &X<K>, q: &Q) -> Self
     where
-        M: Mechanism<N, NI, NO>,
+        K: Kernel,
+        D<K>: Dims<Q = Q>,
     {
-        let jac = m.jacobian_flat(x, q);
-        let mut unit = jac.unit;
-        for u in &mut unit {
-            *u = sane(*u);
+        let d = m.dims();
+        let jac = m.jacobian(x, q);
+        let mut unit = q.clone();
+        for u in 0..d.n() {
+            unit[u] = sane(jac.unit(u));
         }
         // `|delta ./ input_unit|`, scaled like `Path::new` so that it cannot overflow.
-        let mut scaled = [0.0; NI];
-        for i in 0..NI {
-            scaled[i] = path.delta[i] / sane(jac.input_unit[i]);
+        let mut scaled = d.x();
+        for i in 0..d.ni() {
+            scaled[i] = path.delta[i] / sane(jac.input_unit(i));
         }
+        let scaled = scaled.as_ref();
         let big = scaled.iter().fold(0.0f64, |m, d| m.max(d.abs()));
         // Infinite where a component overflows (a unit far below the path's length).
         let norm = if big > 0.0 && big.is_finite() {
@@ -109,139 +126,165 @@ impl<const N: usize> Metric<N> {
 }
 
 /// The event of kind `kind` at curve point `p` of `path`.
-pub(crate) fn event_at<const N: usize, const NI: usize>(
+pub(crate) fn event_at<Q: Store, X: Store>(
     kind: EventKind,
-    path: &Path<NI>,
-    p: &CurvePoint<N>,
+    path: &Path<X>,
+    p: &CurvePoint<Q>,
     block: Option<(usize, BlockInfo)>,
 ) -> Event {
     let tau = p.sigma / path.len;
-    Event { kind, x: path.at_tau(tau).to_vec(), tau, q: p.q.to_vec(), block }
+    Event { kind, x: path.at_tau(tau).as_ref().to_vec(), tau, q: p.q.as_ref().to_vec(), block }
 }
 
 /// Derivative of `f` along the path per unit `sigma`.
-fn f_sigma<const N: usize, const NI: usize>(jac: &Jac<N, NI>, path: &Path<NI>) -> [f64; N] {
-    let mut out = [0.0; N];
-    for e in 0..N {
-        out[e] = (0..NI).map(|i| jac.fx[e][i] * path.delta[i]).sum::<f64>() / path.len;
+fn f_sigma<J: JacState, X: Store>(jac: &J, path: &Path<X>, n: usize) -> Vec<f64> {
+    let ni = path.delta.as_ref().len();
+    (0..n).map(|e| (0..ni).map(|i| jac.fx(e, i) * path.delta[i]).sum::<f64>() / path.len).collect()
+}
+
+/// The scaled residual of a full system (continuation, event location): each residual relative
+/// to the larger of its generated row magnitude `scale` (see `Magnitudes`) and
+/// `sum_j |J_ij| + |fs_i|`, where `fs` holds the row's derivative along the input path; the
+/// largest of them (NaN when one is NaN). The second keeps the test attainable where every term
+/// of a row vanishes at a branch point (e.g. `s^2 - x^2` at the origin), where the
+/// continuation's absolute step test stops before a residual relative to the vanishing
+/// magnitude is reached.
+fn residual_of<J: JacState>(jac: &J, fs: &[f64]) -> f64 {
+    let n = fs.len();
+    let (mut m, mut sum) = (0.0f64, -0.0f64);
+    for r in 0..n {
+        let derivatives = (0..n).map(|u| jac.j(r, u).abs()).sum::<f64>() + fs[r].abs();
+        let scale = jac.scale(r);
+        // NaN in `scale` leaves `derivatives`.
+        let s = if scale > derivatives { scale } else { derivatives };
+        let a = jac.f(r).abs();
+        let x = if a == 0.0 { 0.0 } else { a / s };
+        m = if x > m { x } else { m };
+        sum += x;
     }
-    out
+    if sum.is_nan() { f64::NAN } else { m }
 }
 
 /// A point of the curve: positions and path coordinate, with its unit tangent.
 #[derive(Clone, Debug)]
-pub(crate) struct CurvePoint<const N: usize> {
-    pub q: [f64; N],
+pub(crate) struct CurvePoint<Q> {
+    pub q: Q,
     pub sigma: f64,
     /// Unit tangent in the scaled coordinates `z` (see [`Metric`]); its last component is
     /// `d (sigma / unit_sigma) / ds`.
     pub tangent: DVector<f64>,
 }
 
-impl<const N: usize> CurvePoint<N> {
+impl<Q: Store> CurvePoint<Q> {
+    fn n(&self) -> usize {
+        self.q.as_ref().len()
+    }
+
     /// The point in scaled coordinates.
-    pub fn z(&self, metric: &Metric<N>) -> DVector<f64> {
-        DVector::from_iterator(N + 1, (0..N).map(|u| self.q[u] / metric.unit[u]).chain([self.sigma / metric.sigma]))
+    pub fn z(&self, metric: &Metric<Q>) -> DVector<f64> {
+        let n = self.n();
+        DVector::from_iterator(n + 1, (0..n).map(|u| self.q[u] / metric.unit[u]).chain([self.sigma / metric.sigma]))
     }
 
     /// The rate of the path coordinate along the curve: positive while the input advances,
     /// zero at a limit position.
     pub fn dsigma(&self) -> f64 {
-        self.tangent[N]
+        self.tangent[self.n()]
     }
 
     /// `d q_u / d sigma` along the tangent (finite away from limit positions).
-    pub fn dq_dsigma(&self, u: usize, metric: &Metric<N>) -> f64 {
-        self.tangent[u] * metric.unit[u] / (self.tangent[N] * metric.sigma)
+    pub fn dq_dsigma(&self, u: usize, metric: &Metric<Q>) -> f64 {
+        self.tangent[u] * metric.unit[u] / (self.tangent[self.n()] * metric.sigma)
     }
 }
 
 /// The physical `(q, sigma)` of scaled coordinates `z`.
-fn unscale<const N: usize>(z: &DVector<f64>, metric: &Metric<N>) -> ([f64; N], f64) {
-    let mut q = [0.0; N];
-    for u in 0..N {
+fn unscale<Q: Store>(z: &DVector<f64>, metric: &Metric<Q>) -> (Q, f64) {
+    let mut q = metric.unit.clone();
+    let n = q.as_ref().len();
+    for u in 0..n {
         q[u] = z[u] * metric.unit[u];
     }
-    (q, z[N] * metric.sigma)
+    (q, z[n] * metric.sigma)
 }
 
 /// The bordered Jacobian in scaled coordinates (columns times their units, rows over their
 /// magnitudes, so that its entries are dimensionless) with `last_row` appended, and the
 /// scaled residuals `-f_e / scale_e` as the first `N` entries of the right-hand side.
-fn bordered<const N: usize, const NI: usize>(
-    jac: &Jac<N, NI>,
-    path: &Path<NI>,
-    metric: &Metric<N>,
+fn bordered<J: JacState, Q: Store, X: Store>(
+    jac: &J,
+    path: &Path<X>,
+    metric: &Metric<Q>,
     last_row: &DVector<f64>,
 ) -> (DMatrix<f64>, DVector<f64>) {
-    let fs = f_sigma(jac, path);
-    let mut a = DMatrix::zeros(N + 1, N + 1);
-    let mut rhs = DVector::zeros(N + 1);
-    for e in 0..N {
-        let row = sane(jac.scale[e]);
-        for u in 0..N {
-            a[(e, u)] = jac.j[e][u] * metric.unit[u] / row;
+    let n = metric.unit.as_ref().len();
+    let fs = f_sigma(jac, path, n);
+    let mut a = DMatrix::zeros(n + 1, n + 1);
+    let mut rhs = DVector::zeros(n + 1);
+    for e in 0..n {
+        let row = sane(jac.scale(e));
+        for u in 0..n {
+            a[(e, u)] = jac.j(e, u) * metric.unit[u] / row;
         }
-        a[(e, N)] = fs[e] * metric.sigma / row;
-        rhs[e] = -jac.f[e] / row;
+        a[(e, n)] = fs[e] * metric.sigma / row;
+        rhs[e] = -jac.f(e) / row;
     }
-    for k in 0..=N {
-        a[(N, k)] = last_row[k];
+    for k in 0..=n {
+        a[(n, k)] = last_row[k];
     }
     (a, rhs)
 }
 
 /// Unit tangent (scaled coordinates) at `(q, sigma)`, oriented like `prev`.
-pub(crate) fn tangent<M, const N: usize, const NI: usize, const NO: usize>(
-    m: &M,
-    path: &Path<NI>,
-    metric: &Metric<N>,
-    q: &[f64; N],
+pub(crate) fn tangent<K: Kernel>(
+    m: &K,
+    path: &Path<X<K>>,
+    metric: &Metric<Q<K>>,
+    q: &Q<K>,
     sigma: f64,
     prev: &DVector<f64>,
-) -> Option<DVector<f64>>
-where
-    M: Mechanism<N, NI, NO>,
-{
-    let jac = m.jacobian_flat(&path.at_sigma(sigma), q);
+) -> Option<DVector<f64>> {
+    let n = m.dims().n();
+    let jac = m.jacobian(&path.at_sigma(sigma), q);
     let (a, _) = bordered(&jac, path, metric, prev);
-    let mut rhs = DVector::zeros(N + 1);
-    rhs[N] = 1.0;
+    let mut rhs = DVector::zeros(n + 1);
+    rhs[n] = 1.0;
     let t = a.lu().solve(&rhs)?;
     let norm = t.norm();
     (norm.is_finite() && norm > 0.0).then(|| t / norm)
 }
 
-/// The tangent (scaled coordinates) at a regular point from the velocity analogs, oriented
-/// with increasing sigma.
-pub(crate) fn tangent_from_analogs<const N: usize, const NI: usize>(
-    dq: &[[f64; NI]; N],
-    path: &Path<NI>,
-    metric: &Metric<N>,
+/// The tangent (scaled coordinates) at a regular point from the velocity analogs of `k`,
+/// oriented with increasing sigma.
+pub(crate) fn tangent_from_analogs<S: KinState, Q: Store, X: Store>(
+    k: &S,
+    path: &Path<X>,
+    metric: &Metric<Q>,
 ) -> DVector<f64> {
-    let mut t = DVector::zeros(N + 1);
-    for u in 0..N {
-        let dq_dsigma = (0..NI).map(|i| dq[u][i] * path.delta[i]).sum::<f64>() / path.len;
+    let n = metric.unit.as_ref().len();
+    let ni = path.delta.as_ref().len();
+    let mut t = DVector::zeros(n + 1);
+    for u in 0..n {
+        let dq = k.dq(u);
+        let dq_dsigma = (0..ni).map(|i| dq[i] * path.delta[i]).sum::<f64>() / path.len;
         t[u] = dq_dsigma * metric.sigma / metric.unit[u];
     }
-    t[N] = 1.0;
-    let n = t.norm();
-    t / n
+    t[n] = 1.0;
+    let norm = t.norm();
+    t / norm
 }
 
 /// One pseudo-arclength step of length `ds` (scaled coordinates) from `p`: Euler predictor
 /// along the tangent, Newton corrector on `[f(q, sigma); t . (z - z_pred)] = 0`.
-pub(crate) fn arc_step<M, const N: usize, const NI: usize, const NO: usize>(
-    m: &M,
-    path: &Path<NI>,
-    metric: &Metric<N>,
-    p: &CurvePoint<N>,
+pub(crate) fn arc_step<K: Kernel>(
+    m: &K,
+    path: &Path<X<K>>,
+    metric: &Metric<Q<K>>,
+    p: &CurvePoint<Q<K>>,
     ds: f64,
     cfg: &NewtonConfig,
-) -> Option<CurvePoint<N>>
-where
-    M: Mechanism<N, NI, NO>,
-{
+) -> Option<CurvePoint<Q<K>>> {
+    let n = m.dims().n();
     let z_pred = p.z(metric) + &p.tangent * ds;
     let mut z = z_pred.clone();
     // A point meeting the tolerance is corrected once more (free accuracy where Newton
@@ -250,16 +293,16 @@ where
     let mut corrected = false;
     for _ in 0..cfg.max_iterations.max(8) {
         let (q, sigma) = unscale(&z, metric);
-        let jac = m.jacobian_flat(&path.at_sigma(sigma), &q);
+        let jac = m.jacobian(&path.at_sigma(sigma), &q);
         // Each residual relative to its row's magnitude (see `system_residual`).
-        let res = system_residual(&jac.f, &jac.j, &f_sigma(&jac, path), &jac.scale);
+        let res = residual_of(&jac, &f_sigma(&jac, path, n));
         if !res.is_finite() {
             return None;
         }
         let (a, mut g) = bordered(&jac, path, metric, &p.tangent);
-        g[N] = -p.tangent.dot(&(&z - &z_pred));
+        g[n] = -p.tangent.dot(&(&z - &z_pred));
         // Both tests are dimensionless: `g[N]` is a distance in scaled coordinates.
-        if res <= cfg.residual_tol && g[N].abs() <= cfg.residual_tol * (1.0 + ds.abs()) && corrected {
+        if res <= cfg.residual_tol && g[n].abs() <= cfg.residual_tol * (1.0 + ds.abs()) && corrected {
             let tangent = tangent(m, path, metric, &q, sigma, &p.tangent)?;
             return Some(CurvePoint { q, sigma, tangent });
         }
@@ -271,11 +314,9 @@ where
         z += &dz;
         if dz.amax() <= cfg.step_tol * (1.0 + z.amax()) {
             let (q, sigma) = unscale(&z, metric);
-            let jac = m.jacobian_flat(&path.at_sigma(sigma), &q);
+            let jac = m.jacobian(&path.at_sigma(sigma), &q);
             // The step is at the rounding floor: accept a residual up to its floor.
-            if system_residual(&jac.f, &jac.j, &f_sigma(&jac, path), &jac.scale)
-                <= 1e3 * cfg.residual_tol.max(16.0 * f64::EPSILON)
-            {
+            if residual_of(&jac, &f_sigma(&jac, path, n)) <= 1e3 * cfg.residual_tol.max(16.0 * f64::EPSILON) {
                 let tangent = tangent(m, path, metric, &q, sigma, &p.tangent)?;
                 return Some(CurvePoint { q, sigma, tangent });
             }
@@ -334,18 +375,15 @@ pub(crate) fn illinois(
 /// The limit position between `base` (arclength `s = 0`) and the curve point `ds` further on,
 /// whose `d sigma / ds` is `dsigma_end` (of the other sign than at `base`): the root of
 /// `d sigma / ds` in `s`.
-pub(crate) fn locate_fold<M, const N: usize, const NI: usize, const NO: usize>(
-    m: &M,
-    path: &Path<NI>,
-    metric: &Metric<N>,
-    base: &CurvePoint<N>,
+pub(crate) fn locate_fold<K: Kernel>(
+    m: &K,
+    path: &Path<X<K>>,
+    metric: &Metric<Q<K>>,
+    base: &CurvePoint<Q<K>>,
     ds: f64,
     dsigma_end: f64,
     cfg: &NewtonConfig,
-) -> Option<CurvePoint<N>>
-where
-    M: Mechanism<N, NI, NO>,
-{
+) -> Option<CurvePoint<Q<K>>> {
     let s = illinois(
         |s| arc_step(m, path, metric, base, s, cfg).map(|p| p.dsigma()),
         0.0,
@@ -361,26 +399,20 @@ where
 /// singular value, with rows scaled by their magnitudes and columns by their largest entry, is
 /// not negligible. At a limit position `J` alone is singular and the augmented matrix is not
 /// (the input cannot go on); where both are singular branches cross.
-fn augmented_full_rank<M, const N: usize, const NI: usize, const NO: usize>(
-    m: &M,
-    path: &Path<NI>,
-    p: &CurvePoint<N>,
-) -> bool
-where
-    M: Mechanism<N, NI, NO>,
-{
-    let jac = m.jacobian_flat(&path.at_sigma(p.sigma), &p.q);
-    let fs = f_sigma(&jac, path);
-    let mut a = DMatrix::zeros(N, N + 1);
-    for e in 0..N {
-        let row = jac.scale[e];
+fn augmented_full_rank<K: Kernel>(m: &K, path: &Path<X<K>>, p: &CurvePoint<Q<K>>) -> bool {
+    let n = m.dims().n();
+    let jac = m.jacobian(&path.at_sigma(p.sigma), &p.q);
+    let fs = f_sigma(&jac, path, n);
+    let mut a = DMatrix::zeros(n, n + 1);
+    for e in 0..n {
+        let row = jac.scale(e);
         let row = if row > 0.0 && row.is_finite() { row } else { 1.0 };
-        for u in 0..N {
-            a[(e, u)] = jac.j[e][u] / row;
+        for u in 0..n {
+            a[(e, u)] = jac.j(e, u) / row;
         }
-        a[(e, N)] = fs[e] / row;
+        a[(e, n)] = fs[e] / row;
     }
-    for c in 0..=N {
+    for c in 0..=n {
         let big = a.column(c).amax();
         if big > 0.0 {
             a.column_mut(c).unscale_mut(big);
@@ -419,30 +451,19 @@ fn singular_range(mut a: DMatrix<f64>, rows: &[f64]) -> (f64, f64) {
 /// at once (a five-bar driven by its end effector to where both arms stretch) the whole system's
 /// augmented Jacobian loses rank as at a crossing, yet no branch goes on. `false` where the
 /// blocks cannot be told from the names (a hand-written mechanism's) or no block folds.
-pub(crate) fn block_folds<M, const N: usize, const NI: usize, const NO: usize>(
-    m: &M,
-    path: &Path<NI>,
-    p: &CurvePoint<N>,
-) -> bool
-where
-    M: Mechanism<N, NI, NO>,
-{
-    let jac = m.jacobian_flat(&path.at_sigma(p.sigma), &p.q);
-    let fs = f_sigma(&jac, path);
+pub(crate) fn block_folds<K: Kernel>(m: &K, path: &Path<X<K>>, p: &CurvePoint<Q<K>>) -> bool {
+    let jac = m.jacobian(&path.at_sigma(p.sigma), &p.q);
+    let fs = f_sigma(&jac, path, m.dims().n());
     // The rows and columns of the blocks solved so far.
     let (mut rows, mut cols) = (Vec::new(), Vec::new());
-    for info in M::BLOCKS {
-        let own_rows: Option<Vec<usize>> =
-            info.equations.iter().map(|e| M::EQUATIONS.iter().position(|n| n == e)).collect();
-        let own_cols: Option<Vec<usize>> =
-            info.unknowns.iter().map(|u| M::UNKNOWNS.iter().position(|n| n == u)).collect();
-        let (Some(own_rows), Some(own_cols)) = (own_rows, own_cols) else { return false };
+    for b in 0..m.block_count() {
+        let Some((own_rows, own_cols)) = m.block_rows_cols(b) else { return false };
         if own_rows.len() != own_cols.len() || own_rows.is_empty() {
             return false;
         }
         let k = own_rows.len();
-        let a = DMatrix::from_fn(k, k, |i, j| jac.j[own_rows[i]][own_cols[j]]);
-        let scale: Vec<f64> = own_rows.iter().map(|&e| jac.scale[e]).collect();
+        let a = DMatrix::from_fn(k, k, |i, j| jac.j(own_rows[i], own_cols[j]));
+        let scale: Vec<f64> = own_rows.iter().map(|&e| jac.scale(e)).collect();
         let (lo, hi) = singular_range(a.clone(), &scale);
         if hi > 0.0 && lo > FOLD_PIVOT * hi {
             rows.extend(own_rows);
@@ -450,12 +471,12 @@ where
             continue;
         }
         // The earlier blocks' rates `dq/dsigma` (regular: they were not singular).
-        let earlier = DMatrix::from_fn(rows.len(), cols.len(), |i, j| jac.j[rows[i]][cols[j]]);
+        let earlier = DMatrix::from_fn(rows.len(), cols.len(), |i, j| jac.j(rows[i], cols[j]));
         let rhs = DVector::from_fn(rows.len(), |i, _| -fs[rows[i]]);
         let rates = if rows.is_empty() { Some(DVector::zeros(0)) } else { earlier.lu().solve(&rhs) };
         let Some(rates) = rates else { return false };
         let rate = |i: usize| {
-            fs[own_rows[i]] + cols.iter().enumerate().map(|(c, &u)| jac.j[own_rows[i]][u] * rates[c]).sum::<f64>()
+            fs[own_rows[i]] + cols.iter().enumerate().map(|(c, &u)| jac.j(own_rows[i], u) * rates[c]).sum::<f64>()
         };
         let augmented = DMatrix::from_fn(k, k + 1, |i, j| if j < k { a[(i, j)] } else { rate(i) });
         let (lo, hi) = singular_range(augmented, &scale);
@@ -471,17 +492,14 @@ const FOLD_PIVOT: f64 = 1e-6;
 /// The point past the branch point `at` that the path tangent at `a` continues to: solved at
 /// fixed input from the straight (tangent) prediction, beyond `at` by up to eight times the
 /// distance from `a` to it, with the far side's determinant sign.
-fn straight_past<M, const N: usize, const NI: usize, const NO: usize>(
-    m: &M,
-    path: &Path<NI>,
-    metric: &Metric<N>,
-    a: &CurvePoint<N>,
-    at: &CurvePoint<N>,
+fn straight_past<K: Kernel>(
+    m: &K,
+    path: &Path<X<K>>,
+    metric: &Metric<Q<K>>,
+    a: &CurvePoint<Q<K>>,
+    at: &CurvePoint<Q<K>>,
     cfg: &NewtonConfig,
-) -> Option<CurvePoint<N>>
-where
-    M: Mechanism<N, NI, NO>,
-{
+) -> Option<CurvePoint<Q<K>>> {
     let rate = a.dsigma();
     let gap = at.sigma - a.sigma;
     if !(rate > 0.0 && gap > 0.0) {
@@ -490,49 +508,48 @@ where
     let det_a = signed_det(m, &path.at_sigma(a.sigma), &a.q);
     for k in [1.0, 2.0, 4.0, 8.0] {
         let sigma = at.sigma + k * gap;
-        let mut guess = a.q;
-        for u in 0..N {
+        let mut guess = a.q.clone();
+        for u in 0..m.dims().n() {
             guess[u] += a.dq_dsigma(u, metric) * (sigma - a.sigma);
         }
         // From a prediction: a restart would find another branch.
-        let Ok(n) = m.kinematics_flat(&path.at_sigma(sigma), &guess, &cfg.with_restarts(false)) else { continue };
-        if (signed_det(m, &path.at_sigma(sigma), &n.q) > 0.0) == (det_a > 0.0) {
+        let Ok(n) = m.kinematics(&path.at_sigma(sigma), &guess, &cfg.with_restarts(false)) else { continue };
+        let mut q = guess;
+        q.as_mut().copy_from_slice(n.q());
+        if (signed_det(m, &path.at_sigma(sigma), &q) > 0.0) == (det_a > 0.0) {
             continue;
         }
-        let tangent = tangent_from_analogs(&n.dq, path, metric);
-        return Some(CurvePoint { q: n.q, sigma, tangent });
+        let tangent = tangent_from_analogs(&n, path, metric);
+        return Some(CurvePoint { q, sigma, tangent });
     }
     None
 }
 
 /// What following the curve found.
-pub(crate) enum Found<const N: usize> {
+pub(crate) enum Found<Q> {
     /// A limit position: the input reverses here.
-    Fold(CurvePoint<N>),
+    Fold(CurvePoint<Q>),
     /// The Jacobian's determinant changes sign here while the input keeps advancing; the second
     /// point lies just past it on the smooth continuation.
-    Crossing(CurvePoint<N>, CurvePoint<N>),
+    Crossing(CurvePoint<Q>, CurvePoint<Q>),
 }
 
 /// Follows the curve from `start` (tangent oriented with increasing sigma) for at most
 /// `max_arc` of arclength (`ds0` and `max_arc` in the scaled coordinates of `metric`), watching for a limit position (the tangent's sigma component changing
 /// sign) and for a sign change of the Jacobian determinant; locates the first one found.
-pub(crate) fn trace<M, const N: usize, const NI: usize, const NO: usize>(
-    m: &M,
-    path: &Path<NI>,
-    metric: &Metric<N>,
-    start: &CurvePoint<N>,
+pub(crate) fn trace<K: Kernel>(
+    m: &K,
+    path: &Path<X<K>>,
+    metric: &Metric<Q<K>>,
+    start: &CurvePoint<Q<K>>,
     ds0: f64,
     max_arc: f64,
     cfg: &NewtonConfig,
-) -> Option<Found<N>>
-where
-    M: Mechanism<N, NI, NO>,
-{
+) -> Option<Found<Q<K>>> {
     if !(ds0 > 0.0 && ds0.is_finite() && max_arc.is_finite()) {
         return None;
     }
-    let det_at = |p: &CurvePoint<N>| signed_det(m, &path.at_sigma(p.sigma), &p.q);
+    let det_at = |p: &CurvePoint<Q<K>>| signed_det(m, &path.at_sigma(p.sigma), &p.q);
     let mut a = start.clone();
     let mut det_a = det_at(&a);
     let mut ds = ds0.min(MAX_ARC_STEP);
@@ -609,31 +626,11 @@ const MAX_ARC_STEP: f64 = 0.25;
 const MIN_TURN_COS: f64 = 0.9;
 
 /// Signed determinant of the column-equilibrated full Jacobian at `(x, q)`.
-pub(crate) fn signed_det<M, const N: usize, const NI: usize, const NO: usize>(m: &M, x: &[f64; NI], q: &[f64; N]) -> f64
-where
-    M: Mechanism<N, NI, NO>,
-{
-    equilibrated(m, x, q).det()
+pub(crate) fn signed_det<K: Kernel>(m: &K, x: &X<K>, q: &Q<K>) -> f64 {
+    m.dims().equilibrated(&m.jacobian(x, q)).0
 }
 
 /// Smallest pivot of the column-equilibrated full Jacobian at `(x, q)`.
-pub(crate) fn pivot_at<M, const N: usize, const NI: usize, const NO: usize>(m: &M, x: &[f64; NI], q: &[f64; N]) -> f64
-where
-    M: Mechanism<N, NI, NO>,
-{
-    equilibrated(m, x, q).pivot_ratio()
-}
-
-fn equilibrated<M, const N: usize, const NI: usize, const NO: usize>(m: &M, x: &[f64; NI], q: &[f64; N]) -> Lu<N>
-where
-    M: Mechanism<N, NI, NO>,
-{
-    let jac = m.jacobian_flat(x, q);
-    let mut scale = [0.0f64; N];
-    for row in &jac.j {
-        for u in 0..N {
-            scale[u] = scale[u].max(row[u].abs());
-        }
-    }
-    Lu::<N>::factor_cols(&jac.j, scale)
+pub(crate) fn pivot_at<K: Kernel>(m: &K, x: &X<K>, q: &Q<K>) -> f64 {
+    m.dims().equilibrated(&m.jacobian(x, q)).1
 }

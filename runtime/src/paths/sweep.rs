@@ -41,14 +41,25 @@
 
 use super::curve::{self, CurvePoint, Found, Metric, Path};
 use super::outcome::SweepResult;
+use crate::dims::{Dims, KinState, Square};
 use crate::error::{Error, Quantity};
 use crate::events::{BlockInfo, Event, EventKind, Location};
-use crate::kin::{DetSigns, Health, Kin};
+use crate::kin::{DetSigns, Kin};
 use crate::mechanism::Mechanism;
-use crate::solvers::newton::{NewtonConfig, SolveReport};
+use crate::mechanism::kernel::{Compiled, Kernel};
+use crate::solvers::newton::NewtonConfig;
 use crate::table::Table;
 use crate::trig::Rotating;
 use std::marker::PhantomData;
+
+/// The storage of kernel `K`'s sizes.
+type D<K> = <K as Kernel>::Dims;
+/// A vector of the unknowns' size of kernel `K`.
+type Q<K> = <D<K> as Dims>::Q;
+/// A vector of the inputs' size of kernel `K`.
+type X<K> = <D<K> as Dims>::X;
+/// The kinematic state of kernel `K`.
+type KinOf<K> = <D<K> as Dims>::Kin;
 
 /// What a sweep does at a singular crossing (a change point where a block's determinant changes
 /// sign and the mechanism can continue on either branch).
@@ -97,7 +108,7 @@ pub struct SweepConfig {
     pub corrector_abs: f64,
     /// Behaviour at a singular crossing.
     pub at_singular: AtSingular,
-    /// A step is not accepted at a position whose smallest pivot ratio ([`Health::min_pivot`])
+    /// A step is not accepted at a position whose smallest pivot ratio ([`Health::min_pivot`](crate::Health::min_pivot))
     /// is below this (default `1e-6`): so close to a singular position the residual tolerance no
     /// longer pins the branch. The sweep then locates the singular position by arclength
     /// continuation; where it finds none (the path only passes close to one, e.g. a slide within
@@ -248,12 +259,12 @@ const ROTATE_MIN_PIVOT: f64 = 0.1;
 /// wrong turn (2 pi off) always exceeds.
 const ANGLE_CAP: f64 = 1.0;
 
-/// A step's prediction (see `Sweep::predict`).
-struct Prediction<const N: usize> {
-    q: [f64; N],
+/// A step's prediction (see `Sweep::predict`), kept in the sweep and rewritten every step.
+struct Prediction<Q> {
+    q: Q,
     /// The predicted slopes at the new point: `dq/dtau`, or with one input `dq/dx` (see
     /// `Sweep::predict`).
-    slope1: [f64; N],
+    slope1: Q,
     /// How far the solved position may be from `q`: `corrector_rel` times the largest predicted
     /// change of an unknown, plus `corrector_abs`.
     max_dist: f64,
@@ -273,14 +284,25 @@ enum Outcome {
     Fail,
 }
 
-/// A lazy sweep (see the crate documentation, "Sweeps"). Items are `Result<S, Error>` with `S`
-/// the state type (the generated `NameState`, or the flat [`Kin`]).
-pub struct Sweep<'m, M, S, const N: usize, const NI: usize, const NO: usize> {
-    m: &'m M,
+/// A lazy sweep of a compiled mechanism `M` of `N` unknowns, `NI` inputs and `NO` output
+/// columns: [`SweepOf`] over [`Compiled`] (see the crate documentation, "Sweeps"). Items are
+/// `Result<S, Error>` with `S` the state type (the generated `NameState`, or the flat [`Kin`]).
+pub type Sweep<'m, M, S, const N: usize, const NI: usize, const NO: usize> = SweepOf<Compiled<'m, M, N, NI, NO>, S>;
+
+/// A lazy sweep over any [`Kernel`]: a compiled mechanism's ([`Sweep`]) or a mechanism's read
+/// at run time. Items are `Result<S, Error>` with `S` the state type (one the kernel's state
+/// converts into). The one implementation of the sweep, its events and its table.
+pub struct SweepOf<K: Kernel, S> {
+    m: K,
+    d: K::Dims,
     cfg: SweepConfig,
-    path: Path<NI>,
+    path: Path<X<K>>,
     /// `delta[i] delta[j]` of the path's direction, for the curvature of every prediction.
-    delta2: [[f64; NI]; NI],
+    delta2: <D<K> as Dims>::XX,
+    /// The input of the step being made (written in place: no allocation per step).
+    x_step: X<K>,
+    /// The prediction of the step being made (written in place).
+    pred: Prediction<Q<K>>,
     /// The absolute term of the slopes' bound (`corrector_abs`) in the units the judge compares
     /// slopes in: the path's, or with one input the input's (see [`Sweep::predict`]).
     slope_abs: f64,
@@ -299,18 +321,18 @@ pub struct Sweep<'m, M, S, const N: usize, const NI: usize, const NO: usize> {
     /// The attempts a sample may take (see [`MAX_ATTEMPTS_PER_SAMPLE`]).
     max_attempts: u64,
     next: usize,
-    guess: [f64; N],
+    guess: Q<K>,
     /// Whether the first sample may restart (the configuration's `restarts`; the steps' own
     /// configuration, `cfg.newton`, has them off).
     first_restarts: bool,
     /// The first sample's position: the continuation that locates events measures arclength
     /// in the units there (fixed for the sweep, and taken where the sweep is regular: at a
     /// singular position a unit derived from the terms' magnitudes can degenerate).
-    first_q: [f64; N],
+    first_q: Q<K>,
     /// The last accepted state (`states[at]`, valid once `started`) and the slot the next step
     /// is solved into: an accepted step only flips `at`, where moving the ~180-byte state into
     /// place would copy it at every step (nor is either slot an `Option`, for the same reason).
-    states: [Kin<N, NI, NO>; 2],
+    states: [KinOf<K>; 2],
     at: bool,
     started: bool,
     tau: f64,
@@ -331,19 +353,14 @@ pub struct Sweep<'m, M, S, const N: usize, const NI: usize, const NO: usize> {
     _s: PhantomData<fn() -> S>,
 }
 
-fn check_finite(what: &'static str, v: &[f64], mechanism: &'static str) -> Result<(), Error> {
+fn check_finite<K: Kernel>(what: &'static str, v: &[f64], m: &K) -> Result<(), Error> {
     match v.iter().find(|x| !x.is_finite()) {
-        Some(&value) => Err(Error::NonFinite {
-            what: Quantity::Range,
-            name: what,
-            value,
-            at: Location::boxed(mechanism, &[], &[], None),
-        }),
+        Some(&value) => Err(Error::NonFinite { what: Quantity::Range, name: what, value, at: m.location(&[], None) }),
         None => Ok(()),
     }
 }
 
-impl<'m, M, S, const N: usize, const NI: usize, const NO: usize> Sweep<'m, M, S, N, NI, NO>
+impl<'m, M, S, const N: usize, const NI: usize, const NO: usize> SweepOf<Compiled<'m, M, N, NI, NO>, S>
 where
     M: Mechanism<N, NI, NO>,
     S: From<Kin<N, NI, NO>>,
@@ -353,20 +370,41 @@ where
     /// configuration ([`Mechanism::solver_config`]: the defaults, or the one a
     /// [`Configured`](crate::Configured) mechanism carries).
     pub fn new(m: &'m M, from: [f64; NI], to: [f64; NI], samples: usize, guess: [f64; N]) -> Result<Self, Error> {
-        check_finite("from", &from, M::NAME)?;
-        check_finite("to", &to, M::NAME)?;
+        SweepOf::over(Compiled(m), from, to, samples, guess)
+    }
+}
+
+impl<K, S> SweepOf<K, S>
+where
+    K: Kernel,
+    S: From<KinOf<K>>,
+{
+    /// [`Sweep::new`] over any kernel: `from`, `to` and `guess` of the kernel's sizes (a
+    /// mismatch is an `Error::InvalidArgument`).
+    pub fn over(m: K, from: X<K>, to: X<K>, samples: usize, guess: Q<K>) -> Result<Self, Error> {
+        let d = m.dims();
+        if from.as_ref().len() != d.ni() || to.as_ref().len() != d.ni() || guess.as_ref().len() != d.n() {
+            return Err(Error::InvalidArgument(format!(
+                "a sweep of `{}` needs {} inputs at each end and a guess of {} unknowns",
+                m.name(),
+                d.ni(),
+                d.n()
+            )));
+        }
+        check_finite("from", from.as_ref(), &m)?;
+        check_finite("to", to.as_ref(), &m)?;
         if samples == 0 {
             return Err(Error::InvalidArgument("a sweep needs at least one sample".into()));
         }
-        if M::BLOCKS.len() > DetSigns::CAPACITY {
+        if m.block_count() > DetSigns::CAPACITY {
             return Err(Error::InvalidArgument(format!(
                 "`{}` has {} blocks; a sweep watches the assembly mode of at most {} (split the mechanism)",
-                M::NAME,
-                M::BLOCKS.len(),
+                m.name(),
+                m.block_count(),
                 DetSigns::CAPACITY
             )));
         }
-        let path = Path::new(from, to);
+        let path = Path::new(from.clone(), to);
         if !path.len.is_finite() {
             return Err(Error::InvalidArgument(
                 "the sweep's range `to - from` overflows (its length is not finite)".into(),
@@ -377,19 +415,29 @@ where
         }
         // The units at the start's guess (once per sweep: a sweep of a few samples, as every
         // stretch of `sweep_at` is, should not pay for more).
-        let metric = Metric::at(m, &path, &from, &guess);
+        let metric = Metric::at(&m, &path, &from, &guess);
         let turns = if path.len > 0.0 { metric.input_len / std::f64::consts::TAU } else { 0.0 };
         let too_long = (turns > MAX_TURNS || turns.is_nan()).then(|| Error::RangeTooLong {
             turns,
             max_turns: MAX_TURNS,
-            at: Location::boxed(M::NAME, &M::INPUTS, &from, None),
+            at: m.location(from.as_ref(), None),
         });
         let spacing = if samples > 1 { 1.0 / (samples - 1) as f64 } else { 1.0 };
-        let mut sweep = Sweep {
+        let mut delta2 = d.xx();
+        for i in 0..d.ni() {
+            for j in 0..d.ni() {
+                delta2.set(i, j, path.delta[i] * path.delta[j]);
+            }
+        }
+        let config = m.solver_config();
+        let mut sweep = SweepOf {
             m,
+            d,
             cfg: SweepConfig::default(),
+            x_step: d.x(),
+            pred: Prediction { q: d.q(), slope1: d.q(), max_dist: 0.0, max_slope_err: 0.0, long: false },
             path,
-            delta2: path.delta.map(|di| path.delta.map(|dj| di * dj)),
+            delta2,
             slope_abs: 0.0,
             samples,
             spacing,
@@ -399,20 +447,10 @@ where
             slope_floor: 0.0,
             max_attempts: MAX_ATTEMPTS_PER_SAMPLE,
             next: 0,
+            first_q: guess.clone(),
             guess,
             first_restarts: true,
-            first_q: guess,
-            states: [Kin {
-                x: [0.0; NI],
-                q: [0.0; N],
-                dq: [[0.0; NI]; N],
-                d2q: [[[0.0; NI]; NI]; N],
-                out: [0.0; NO],
-                dout: [[0.0; NI]; NO],
-                d2out: [[[0.0; NI]; NI]; NO],
-                report: SolveReport::direct(),
-                health: Health::default(),
-            }; 2],
+            states: [d.kin(), d.kin()],
             at: false,
             started: false,
             tau: 0.0,
@@ -427,7 +465,7 @@ where
             _s: PhantomData,
         };
         sweep.set_natural_bounds(&metric);
-        Ok(sweep.with_config(m.solver_config()))
+        Ok(sweep.with_config(config))
     }
 
     /// Replaces the configuration.
@@ -461,7 +499,7 @@ where
         // A slope in input units is the path's divided by `|delta|` (infinite for a path of no
         // length, which takes no step).
         self.slope_abs =
-            if NI == 1 { self.cfg.corrector_abs / self.path.delta[0].abs() } else { self.cfg.corrector_abs };
+            if self.d.ni() == 1 { self.cfg.corrector_abs / self.path.delta[0].abs() } else { self.cfg.corrector_abs };
     }
 
     /// The step scale as a fraction of the path: the sample spacing, or the natural step where
@@ -472,14 +510,14 @@ where
 
     /// The natural step bounds ([`MAX_INPUT_STEP`], [`MAX_SLOPE_CHANGE`]) from the units of
     /// `metric`, and the step bounds with them.
-    fn set_natural_bounds(&mut self, metric: &Metric<N>) {
+    fn set_natural_bounds(&mut self, metric: &Metric<Q<K>>) {
         let input_len = metric.input_len;
         // (A range too long in these units was refused by `new`.)
         self.h_nat = if input_len > 0.0 && input_len.is_finite() { MAX_INPUT_STEP / input_len } else { f64::INFINITY };
         // One unit of an unknown per unit of input, in the slopes' units: per fraction of the
         // path `unit * input_len`, per unit of a single input that over `|delta|`.
-        let per = if NI == 1 { input_len / self.path.delta[0].abs() } else { input_len };
-        let unit = Self::JUDGED.as_slice().iter().fold(0.0f64, |m, &u| m.max(metric.unit[u]));
+        let per = if self.d.ni() == 1 { input_len / self.path.delta[0].abs() } else { input_len };
+        let unit = self.m.judged().iter().fold(0.0f64, |m, &u| m.max(metric.unit[u]));
         let floor = MAX_SLOPE_CHANGE * unit * per;
         self.slope_floor = if floor.is_finite() { floor } else { 0.0 };
         self.set_step_bounds();
@@ -493,23 +531,23 @@ where
     /// The last accepted state (the last sample, or the last point before a stop). (Not named
     /// `last`: a sweep is an iterator, and method syntax would find `Iterator::last`, which
     /// consumes it.)
-    pub fn last_accepted(&self) -> Option<&Kin<N, NI, NO>> {
+    pub fn last_accepted(&self) -> Option<&KinOf<K>> {
         self.started.then_some(self.cur())
     }
 
     /// The last accepted state.
     #[inline(always)]
-    fn cur(&self) -> &Kin<N, NI, NO> {
+    fn cur(&self) -> &KinOf<K> {
         &self.states[usize::from(self.at)]
     }
 
     /// The last accepted state, to replace it (the first sample, a state past a crossing).
-    fn cur_mut(&mut self) -> &mut Kin<N, NI, NO> {
+    fn cur_mut(&mut self) -> &mut KinOf<K> {
         &mut self.states[usize::from(self.at)]
     }
 
     /// The slot the last step was solved into (the state judged last).
-    fn spare(&self) -> &Kin<N, NI, NO> {
+    fn spare(&self) -> &KinOf<K> {
         &self.states[usize::from(!self.at)]
     }
 
@@ -534,20 +572,16 @@ where
     /// Runs the whole sweep into a [`Table`] (CSV-ready, named columns, inferred units: see
     /// [`Table::with_units_of`]).
     pub fn table(mut self) -> Result<Table, Error> {
-        let mut t = Table::new(Table::kin_columns::<M, N, NI, NO>());
-        while let Some(k) = self.next_kin() {
-            t.push(Table::kin_row(&k?));
+        let mut t = Table::new(Table::kernel_columns(&self.m));
+        while let Some(k) = self.next_ref() {
+            t.push(k?.table_row());
         }
-        Ok(t.with_units_of::<M, N, NI, NO>())
+        Ok(t.with_kernel_units(&self.m))
     }
 
     fn location(&self, x: &[f64], block: Option<(usize, BlockInfo)>) -> Box<Location> {
-        Location::boxed(M::NAME, &M::INPUTS, x, block)
+        self.m.location(x, block.map(|(b, _)| b))
     }
-
-    /// The unknowns a step is judged by: all but the followers (`Mechanism::FOLLOWERS`), as a
-    /// constant list the judge's loops unroll over.
-    const JUDGED: Judged<N> = Judged::of(M::FOLLOWERS);
 
     /// The prediction for a step of `dt` (a fraction of the path) from `k`, with the analogs
     /// along the path it uses: `slope = q' d` and `curv = d^T q'' d` give the second-order
@@ -558,50 +592,42 @@ where
     /// With one input the slopes are taken in the input's units instead (`q'` itself, with the
     /// step `dx = dt d`): the same prediction and the same tests, the slopes and their bound
     /// divided by `|d|`, without the three products by `d` per unknown and step.
+    ///
+    /// Written into the sweep's own prediction (`pred`), from its last accepted state.
     #[inline(always)]
-    fn predict(&self, k: &Kin<N, NI, NO>, dt: f64) -> Prediction<N> {
+    fn predict(&mut self, dt: f64) {
         let (mut change, mut slope_change, mut slope) = (0.0f64, 0.0f64, 0.0f64);
-        let mut q = k.q;
-        let mut slope1 = [0.0; N];
+        let k = &self.states[usize::from(self.at)];
+        let p = &mut self.pred;
+        let (d, path) = (self.d, &self.path);
+        let ni = d.ni();
+        p.q.as_mut().copy_from_slice(k.q());
         // With one input (a constant), `dt` becomes the input's step.
-        let dt = if NI == 1 { dt * self.path.delta[0] } else { dt };
+        let dt = if ni == 1 { dt * path.delta[0] } else { dt };
         // A follower is neither predicted (no solve uses its guess) nor judged.
-        for &u in Self::JUDGED.as_slice() {
-            let slope0 = self.slope_of(&k.dq[u]);
-            let curv = if NI == 1 {
-                k.d2q[u][0][0]
+        for &u in self.m.judged() {
+            let slope0 = slope_of(d, path, k.dq(u));
+            let curv = if ni == 1 {
+                k.d2q(u, 0, 0)
             } else {
                 let d2 = &self.delta2;
-                (0..NI).fold(-0.0, |c, i| (0..NI).fold(c, |c, j| c + k.d2q[u][i][j] * d2[i][j]))
+                (0..ni).fold(-0.0, |c, i| (0..ni).fold(c, |c, j| c + k.d2q(u, i, j) * d2.at(i, j)))
             };
             // The slope's change over the step, and the unknown's change by the trapezoid of
             // the two slopes: `dt (slope0 + curv dt / 2)` with one multiplication fewer.
             let turn = curv * dt;
             let s1 = slope0 + turn;
             let du = (0.5 * dt) * (slope0 + s1);
-            q[u] += du;
+            p.q[u] += du;
             change = change.max(du.abs());
             slope_change = slope_change.max(turn.abs());
             slope = slope.max(slope0.abs());
-            slope1[u] = s1;
+            p.slope1[u] = s1;
         }
         let rel = self.cfg.corrector_rel;
-        Prediction {
-            q,
-            slope1,
-            max_dist: rel * change + self.cfg.corrector_abs,
-            max_slope_err: rel * (slope_change + 0.1 * slope) + self.slope_abs,
-            long: too_long(slope_change, MAX_SLOPE_CHANGE * slope + self.slope_floor),
-        }
-    }
-
-    /// The slope along the path of an unknown with velocity analogs `dq`: `dq d`, or with one
-    /// input `dq` itself (see [`Sweep::predict`]). Sums start from -0.0, the additive identity:
-    /// the first addition folds away (from 0.0 it is an `addsd` per sum, which `0.0 + -0.0 =
-    /// 0.0` keeps).
-    #[inline(always)]
-    fn slope_of(&self, dq: &[f64; NI]) -> f64 {
-        if NI == 1 { dq[0] } else { (0..NI).fold(-0.0, |s, i| s + dq[i] * self.path.delta[i]) }
+        p.max_dist = rel * change + self.cfg.corrector_abs;
+        p.max_slope_err = rel * (slope_change + 0.1 * slope) + self.slope_abs;
+        p.long = too_long(slope_change, MAX_SLOPE_CHANGE * slope + self.slope_floor);
     }
 
     /// Judges the state `n` solved from the prediction `p`.
@@ -610,22 +636,24 @@ where
     /// in the analogs means the corrector slid onto another branch through a singular position
     /// (e.g. at a change point) even if the positions are close.
     #[inline(always)]
-    fn judge(&self, n: &Kin<N, NI, NO>, p: &Prediction<N>) -> Outcome {
+    fn judge(&self, n: &KinOf<K>, p: &Prediction<Q<K>>) -> Outcome {
         let (mut dist, mut turn, mut slope_err) = (0.0f64, 0.0f64, 0.0f64);
+        let nq = n.q();
         // Followers are smooth functions of the judged unknowns (see `Mechanism::FOLLOWERS`).
-        for &u in Self::JUDGED.as_slice() {
-            let e = (n.q[u] - p.q[u]).abs();
+        for &u in self.m.judged() {
+            let e = (nq[u] - p.q[u]).abs();
             dist = dist.max(e);
             // A constant after unrolling: where every judged unknown is such an angle, `turn`
             // is `dist` and costs one comparison.
-            if M::CLOSED_FORM_ANGLES[u] {
+            if self.m.closed_form_angle(u) {
                 turn = turn.max(e);
             }
-            slope_err = slope_err.max((self.slope_of(&n.dq[u]) - p.slope1[u]).abs());
+            slope_err = slope_err.max((slope_of(self.d, &self.path, n.dq(u)) - p.slope1[u]).abs());
         }
-        if !n.health.det_signs.same_for(&self.signs, M::BLOCKS.len()) {
+        let health = n.health();
+        if !health.det_signs.same_for(&self.signs, self.m.block_count()) {
             Outcome::Flip
-        } else if (n.health.min_pivot < self.cfg.singular_pivot)
+        } else if (health.min_pivot < self.cfg.singular_pivot)
             | (dist > p.max_dist)
             | (slope_err > p.max_slope_err)
             | (turn > ANGLE_CAP)
@@ -648,15 +676,14 @@ where
 
     /// The first sample, solved from the guess (kept as the last accepted state).
     fn first_sample(&mut self) -> Result<(), Error> {
-        let x = self.path.from;
         let newton = self.cfg.newton.with_restarts(self.first_restarts);
-        match self.m.kinematics_flat(&x, &self.guess, &newton) {
+        match self.m.kinematics(&self.path.from, &self.guess, &newton) {
             Ok(k) => {
-                *self.cur_mut() = k;
                 self.started = true;
                 self.stepping = true;
-                self.first_q = k.q;
-                self.signs = k.health.det_signs;
+                self.first_q.as_mut().copy_from_slice(k.q());
+                self.signs = k.health().det_signs;
+                *self.cur_mut() = k;
                 self.h = self.h_max;
                 self.next = 1;
                 Ok(())
@@ -678,7 +705,7 @@ where
                  or cut far below that length (the solution curve is too rough here)",
                 self.max_attempts
             ),
-            at: self.location(&self.path.at_tau(self.tau), None),
+            at: self.location(self.path.at_tau(self.tau).as_ref(), None),
         }
     }
 
@@ -691,7 +718,7 @@ where
     /// [`Sweep::next_ref`] outside the steady state: the end, the configuration's error, or the
     /// first sample.
     #[cold]
-    fn next_unstarted(&mut self) -> Option<Result<&Kin<N, NI, NO>, Error>> {
+    fn next_unstarted(&mut self) -> Option<Result<&KinOf<K>, Error>> {
         if self.done || self.next >= self.samples {
             return None;
         }
@@ -708,15 +735,15 @@ where
 
     /// The next sample as a flat state (a copy of [`Sweep::next_ref`]'s).
     #[inline]
-    pub fn next_kin(&mut self) -> Option<Result<Kin<N, NI, NO>, Error>> {
-        self.next_ref().map(|r| r.copied())
+    pub fn next_kin(&mut self) -> Option<Result<KinOf<K>, Error>> {
+        self.next_ref().map(|r| r.cloned())
     }
 
     /// The next sample, lent: the sweep's own copy of the state, valid until the next call
     /// (reading it where it lies saves copying the state of every sample). The same states as
     /// [`Sweep::next_kin`] and the iterator.
     #[inline]
-    pub fn next_ref(&mut self) -> Option<Result<&Kin<N, NI, NO>, Error>> {
+    pub fn next_ref(&mut self) -> Option<Result<&KinOf<K>, Error>> {
         if !self.stepping {
             return self.next_unstarted();
         }
@@ -741,19 +768,14 @@ where
             let (step, tau_new) = if lands { (remaining, target) } else { (self.h, self.tau + self.h) };
             // Solved into the spare slot and judged there: an accepted state is not moved (every
             // copy of the ~180-byte state is a memcpy on the per-step path).
-            let p = self.predict(self.cur(), tau_new - self.tau);
-            let x = self.path.at_tau(tau_new);
-            self.trig.exact(self.cur().health.min_pivot < ROTATE_MIN_PIVOT);
+            self.predict(tau_new - self.tau);
+            self.path.at_tau_into(tau_new, &mut self.x_step);
+            self.trig.exact(self.cur().health().min_pivot < ROTATE_MIN_PIVOT);
             let spare = usize::from(!self.at);
-            let solved = self.m.kinematics_step_sink::<_, _, false>(
-                &x,
-                &p.q,
-                &self.cfg.newton,
-                &mut self.trig,
-                &mut self.states[spare],
-            );
+            let solved =
+                self.m.step_into(&self.x_step, &self.pred.q, &self.cfg.newton, &mut self.trig, &mut self.states[spare]);
             let outcome = match &solved {
-                Ok(()) => self.judge(&self.states[spare], &p),
+                Ok(()) => self.judge(&self.states[spare], &self.pred),
                 Err(_) => Outcome::Fail,
             };
             match outcome {
@@ -777,13 +799,13 @@ where
                     self.trig.forget_anchors();
                     if self.h < self.h_min {
                         // The step cannot be made however small: find out why.
-                        let k = *self.cur();
+                        let k = self.cur().clone();
                         match self.diagnose(&k, tau_new, target, outcome, solved.err()) {
                             Ok(n) => {
                                 // Passed a singular crossing (AtSingular::Continue); `diagnose`
                                 // set `tau` to where the continuation resumed.
+                                self.signs = n.health().det_signs;
                                 *self.cur_mut() = n;
-                                self.signs = n.health.det_signs;
                                 self.h = self.h_max;
                             }
                             Err(e) => {
@@ -802,27 +824,27 @@ where
     /// After a crossing: follows the curve from `p` until the Jacobian is well conditioned again
     /// (so the analogs can be trusted) without passing the sample at `target`; sets `tau` there.
     /// `p`'s tangent is in the scaled coordinates of `metric`.
-    fn resume_past(&mut self, mut p: CurvePoint<N>, target: f64, metric: &Metric<N>) -> Option<Kin<N, NI, NO>> {
-        let path = self.path;
+    fn resume_past(&mut self, mut p: CurvePoint<Q<K>>, target: f64, metric: &Metric<Q<K>>) -> Option<KinOf<K>> {
+        let path = self.path.clone();
         let newton = self.cfg.newton;
         let end = target * path.len;
         // In the continuation's scaled arclength (see `Metric`).
         let mut ds = 0.01 * self.scale() * path.len / metric.sigma;
         for _ in 0..200 {
-            if let Ok(k) = self.m.kinematics_at_flat(&path.at_sigma(p.sigma), &p.q, &newton)
-                && k.health.min_pivot >= self.cfg.singular_pivot * 100.0
+            if let Ok(k) = self.m.kinematics_at(&path.at_sigma(p.sigma), &p.q, &newton)
+                && k.health().min_pivot >= self.cfg.singular_pivot * 100.0
             {
                 self.tau = p.sigma / path.len;
                 return Some(k);
             }
-            let next = curve::arc_step(self.m, &path, metric, &p, ds, &newton)?;
+            let next = curve::arc_step(&self.m, &path, metric, &p, ds, &newton)?;
             if next.sigma >= end {
                 // Land exactly on the sample, predicting along the curve's tangent.
-                let mut guess = p.q;
-                for u in 0..N {
+                let mut guess = p.q.clone();
+                for u in 0..self.d.n() {
                     guess[u] += p.dq_dsigma(u, metric) * (end - p.sigma);
                 }
-                let k = self.m.kinematics_flat(&path.at_tau(target), &guess, &newton).ok()?;
+                let k = self.m.kinematics(&path.at_tau(target), &guess, &newton).ok()?;
                 self.tau = target;
                 return Some(k);
             }
@@ -838,30 +860,33 @@ where
     /// state past a crossing when configured to continue through it.
     fn diagnose(
         &mut self,
-        k: &Kin<N, NI, NO>,
+        k: &KinOf<K>,
         tau_new: f64,
         target: f64,
         outcome: Outcome,
         failure: Option<Error>,
-    ) -> Result<Kin<N, NI, NO>, Error> {
-        let path = self.path;
+    ) -> Result<KinOf<K>, Error> {
+        let path = self.path.clone();
         let newton = self.cfg.newton;
-        let weakest = k.health.weakest_block;
-        let block_of = |b: usize| M::BLOCKS.get(b).map(|info| (b, *info));
+        let weakest = k.health().weakest_block;
+        let m = &self.m;
+        let block_of = |b: usize| m.block_info(b).map(|info| (b, info));
 
         // Follow the smooth continuation of the curve by arclength from the last good point: it
         // passes limit positions (the input reverses) and singular crossings (a determinant
         // changes sign) that no step in the input can pass.
         // Arclength in scaled coordinates (see `Metric`): the same steps in any unit of length.
-        let metric = Metric::at(self.m, &path, &path.from, &self.first_q);
-        let tangent = curve::tangent_from_analogs(&k.dq, &path, &metric);
-        let start = CurvePoint { q: k.q, sigma: self.tau * path.len, tangent };
+        let metric = Metric::at(&self.m, &path, &path.from, &self.first_q);
+        let tangent = curve::tangent_from_analogs(k, &path, &metric);
+        let mut q = self.d.q();
+        q.as_mut().copy_from_slice(k.q());
+        let start = CurvePoint { q, sigma: self.tau * path.len, tangent };
         let ds0 = ((tau_new - self.tau) * path.len).max(1e-9 * path.len) / metric.sigma;
         let reach = (self.scale() * path.len / metric.sigma).max(ds0 * 8.0);
-        match curve::trace(self.m, &path, &metric, &start, ds0, reach, &newton) {
+        match curve::trace(&self.m, &path, &metric, &start, ds0, reach, &newton) {
             // A true limit position is singular; a reversal where the Jacobian is regular is a
             // kink of a non-smooth curve (e.g. through `abs`), reported below as a branch error.
-            Some(Found::Fold(fold)) if curve::pivot_at(self.m, &path.at_sigma(fold.sigma), &fold.q) < 1e-6 => {
+            Some(Found::Fold(fold)) if curve::pivot_at(&self.m, &path.at_sigma(fold.sigma), &fold.q) < 1e-6 => {
                 let ev = curve::event_at(EventKind::LimitPosition, &path, &fold, block_of(weakest));
                 let at = self.location(&ev.x, ev.block);
                 self.events.push(ev);
@@ -869,8 +894,9 @@ where
             }
             Some(Found::Crossing(at, past)) => {
                 // The block whose determinant sign differs on the far side.
-                let beyond = self.m.kinematics_at_flat(&path.at_sigma(past.sigma), &past.q, &newton).ok();
-                let flipped = beyond.and_then(|n| n.health.det_signs.first_difference(&self.signs)).unwrap_or(weakest);
+                let beyond = self.m.kinematics_at(&path.at_sigma(past.sigma), &past.q, &newton).ok();
+                let flipped =
+                    beyond.and_then(|n| n.health().det_signs.first_difference(&self.signs)).unwrap_or(weakest);
                 self.events.push(curve::event_at(EventKind::SingularCrossing, &path, &at, block_of(flipped)));
                 if self.cfg.at_singular == AtSingular::Continue
                     && let Some(n) = self.resume_past(past, target, &metric)
@@ -890,22 +916,22 @@ where
         let x = path.at_tau(tau_new);
         Err(match (outcome, failure) {
             (Outcome::Fail, Some(e)) => e,
-            (Outcome::Far, _) if self.spare().health.min_pivot < self.cfg.singular_pivot => Error::Branch {
+            (Outcome::Far, _) if self.spare().health().min_pivot < self.cfg.singular_pivot => Error::Branch {
                 message: format!(
                     "the sweep passes within a pivot ratio of {:.2e} of a singular position, below \
                      `SweepConfig::singular_pivot` ({:e}), where the residual tolerance no longer pins the \
                      branch, and finds no limit position or crossing there; if the mechanism is meant to \
                      pass this close (e.g. a slide brushing its pivot), lower `singular_pivot`",
-                    self.spare().health.min_pivot,
+                    self.spare().health().min_pivot,
                     self.cfg.singular_pivot
                 ),
-                at: self.location(&x, block_of(weakest)),
+                at: self.location(x.as_ref(), block_of(weakest)),
             },
             _ => Error::Branch {
                 message: "the sweep cannot stay on its branch: however small the step, the solution jumps or its \
                           velocity analogs do (the solution curve is not smooth here, or steps land on another solution)"
                     .into(),
-                at: self.location(&x, block_of(weakest)),
+                at: self.location(x.as_ref(), block_of(weakest)),
             },
         })
     }
@@ -920,35 +946,20 @@ fn too_long(turn: f64, bound: f64) -> bool {
     !(turn <= bound)
 }
 
-/// The indices of the unknowns that do not follow the others, in order.
-struct Judged<const N: usize> {
-    index: [usize; N],
-    len: usize,
+/// The slope along the path of an unknown with velocity analogs `dq`: `dq d`, or with one
+/// input `dq` itself (see [`Sweep::predict`]). Sums start from -0.0, the additive identity: the
+/// first addition folds away (from 0.0 it is an `addsd` per sum, which `0.0 + -0.0 = 0.0`
+/// keeps).
+#[inline(always)]
+fn slope_of<D: Dims>(d: D, path: &Path<D::X>, dq: &[f64]) -> f64 {
+    let ni = d.ni();
+    if ni == 1 { dq[0] } else { (0..ni).fold(-0.0, |s, i| s + dq[i] * path.delta[i]) }
 }
 
-impl<const N: usize> Judged<N> {
-    const fn of(followers: [bool; N]) -> Self {
-        let (mut index, mut len, mut u) = ([0; N], 0, 0);
-        while u < N {
-            if !followers[u] {
-                index[len] = u;
-                len += 1;
-            }
-            u += 1;
-        }
-        Judged { index, len }
-    }
-
-    #[inline(always)]
-    fn as_slice(&self) -> &[usize] {
-        &self.index[..self.len]
-    }
-}
-
-impl<M, S, const N: usize, const NI: usize, const NO: usize> Iterator for Sweep<'_, M, S, N, NI, NO>
+impl<K, S> Iterator for SweepOf<K, S>
 where
-    M: Mechanism<N, NI, NO>,
-    S: From<Kin<N, NI, NO>>,
+    K: Kernel,
+    S: From<KinOf<K>>,
 {
     type Item = Result<S, Error>;
 

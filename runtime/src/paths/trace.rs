@@ -5,6 +5,7 @@ use super::curve::{CurvePoint, Metric, Path, arc_step, event_at, locate_fold, ta
 use crate::error::Error;
 use crate::events::{Event, EventKind, Location};
 use crate::mechanism::Mechanism;
+use crate::mechanism::kernel::Compiled;
 use crate::solvers::newton::NewtonConfig;
 
 /// Options of [`trace_curve`], built from the default with the `with_*` methods.
@@ -133,15 +134,18 @@ where
         ));
     }
     let k0 = m.kinematics_flat(&from, &guess, &cfg)?;
-    let metric = Metric::at(m, &path, &from, &k0.q);
-    let start = CurvePoint { q: k0.q, sigma: 0.0, tangent: tangent_from_analogs(&k0.dq, &path, &metric) };
+    // The continuation is written over any kernel (see `curve`); a compiled mechanism's is its
+    // arrays and kernels.
+    let m = Compiled(m);
+    let metric = Metric::at(&m, &path, &from, &k0.q);
+    let start = CurvePoint { q: k0.q, sigma: 0.0, tangent: tangent_from_analogs(&k0, &path, &metric) };
     let start_z = start.z(&metric);
-    let point = |p: &CurvePoint<N>| TracedPoint { x: path.at_sigma(p.sigma), q: p.q, input_rate: p.dsigma() };
+    let point = |p: &CurvePoint<[f64; N]>| TracedPoint { x: path.at_sigma(p.sigma), q: p.q, input_rate: p.dsigma() };
     let mut out = Traced { points: vec![point(&start)], folds: Vec::new(), closed: false };
     let (ds, mut p, mut walked) = (opts.ds, start, 0.0);
     let mut step = ds;
     while out.points.len() < opts.max_points {
-        let Some(next) = arc_step(m, &path, &metric, &p, step, &cfg) else {
+        let Some(next) = arc_step(&m, &path, &metric, &p, step, &cfg) else {
             step *= 0.5;
             if step < ds * 1e-6 {
                 return Err(Error::Branch {
@@ -152,7 +156,7 @@ where
             continue;
         };
         if (p.dsigma() > 0.0) != (next.dsigma() > 0.0)
-            && let Some(f) = locate_fold(m, &path, &metric, &p, step, next.dsigma(), &cfg)
+            && let Some(f) = locate_fold(&m, &path, &metric, &p, step, next.dsigma(), &cfg)
         {
             out.folds.push(event_at(EventKind::LimitPosition, &path, &f, None));
         }

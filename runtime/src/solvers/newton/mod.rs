@@ -52,7 +52,6 @@ mod step;
 mod test_blocks;
 
 pub use config::NewtonConfig;
-pub(crate) use norms::system_residual;
 pub use report::{BlockFailure, NewtonStop, SolveReport, Solved};
 pub use scales::{BlockEval, Magnitudes, MagnitudesOf};
 

@@ -65,27 +65,6 @@ pub(super) fn beyond_half_turn<const N: usize>(z: &[f64; N], guess: &[f64; N]) -
     far
 }
 
-/// The scaled residual of a full system (continuation, event location): each residual relative
-/// to the larger of its generated row magnitude `scale` (see [`Magnitudes`]) and
-/// `sum_j |J_ij| + |extra_i|`, where `extra` holds further derivatives of the row (along the
-/// input path). The second keeps the test attainable where every term of a row vanishes at a
-/// branch point (e.g. `s^2 - x^2` at the origin), where the continuation's absolute step test
-/// stops before a residual relative to the vanishing magnitude is reached.
-pub(crate) fn system_residual<const N: usize>(
-    f: &[f64; N],
-    j: &[[f64; N]; N],
-    extra: &[f64; N],
-    scale: &[f64; N],
-) -> f64 {
-    let mut s = [0.0; N];
-    for r in 0..N {
-        let derivatives = j[r].iter().map(|v| v.abs()).sum::<f64>() + extra[r].abs();
-        // NaN in `scale` leaves `derivatives`.
-        s[r] = if scale[r] > derivatives { scale[r] } else { derivatives };
-    }
-    scaled_residual(f, &s)
-}
-
 pub(super) fn sum_sq_scaled<const N: usize>(f: &[f64; N], s: &[f64; N]) -> f64 {
     let mut acc = 0.0;
     for r in 0..N {

@@ -1,0 +1,280 @@
+//! A run-time model as the runtime's size-agnostic [`Kernel`]: its sweep is the runtime's own
+//! ([`SweepOf`]), with events and `table()`, over boxed slices of the sizes read
+//! ([`Sizes`]).
+
+use crate::at::Jacobian;
+use crate::blocks::StepFailure;
+use crate::model::{Model, State, StepError};
+use kinloop_runtime::dims::{Dims, JacBuf, KinBuf, Sizes};
+use kinloop_runtime::generated::BlockFailure;
+use kinloop_runtime::paths::sweep::SweepOf;
+use kinloop_runtime::{BlockInfo, Error, Kernel, Location, NewtonConfig, QuantityKind, SweepConfig};
+use std::borrow::Cow;
+use std::cell::RefCell;
+
+/// A [`Model`] lent to the runtime's algorithms as a [`Kernel`] (see [`Model::kernel`]): the
+/// model's names, kinds and structure copied once, its kernels called through the model's own
+/// workspace (a step allocates nothing).
+pub struct ModelKernel<'a> {
+    model: RefCell<&'a mut Model>,
+    jac: RefCell<Jacobian>,
+    sizes: Sizes,
+    name: String,
+    inputs: Vec<String>,
+    unknowns: Vec<String>,
+    outputs: Vec<String>,
+    input_kinds: Vec<QuantityKind>,
+    unknown_kinds: Vec<QuantityKind>,
+    output_kinds: Vec<QuantityKind>,
+    judged: Vec<usize>,
+    closed_form_angles: Vec<bool>,
+    block_rows_cols: Vec<(Vec<usize>, Vec<usize>)>,
+    config: SweepConfig,
+}
+
+impl Model {
+    /// This model as a [`Kernel`] with the solver configuration `config`, for the runtime's
+    /// generic algorithms. Every parameter must have a value (`Error::InvalidArgument` names
+    /// the first that has none).
+    pub fn kernel(&mut self, config: SweepConfig) -> Result<ModelKernel<'_>, Error> {
+        if let Some(k) = self.param_values().iter().position(Option::is_none) {
+            return Err(Error::InvalidArgument(format!(
+                "parameter `{}` of `{}` has no value (it has no default: give one)",
+                self.params()[k],
+                self.name()
+            )));
+        }
+        config.validate()?;
+        let sizes = Sizes { n: self.unknowns().len(), ni: self.inputs().len(), no: self.outputs().len() };
+        Ok(ModelKernel {
+            sizes,
+            name: self.name().to_string(),
+            inputs: self.inputs().to_vec(),
+            unknowns: self.unknowns().to_vec(),
+            outputs: self.outputs().to_vec(),
+            input_kinds: self.input_kinds().to_vec(),
+            unknown_kinds: self.unknown_kinds().to_vec(),
+            output_kinds: self.output_kinds().to_vec(),
+            judged: (0..sizes.n).filter(|&u| !self.followers[u]).collect(),
+            closed_form_angles: self.closed_form_angles.clone(),
+            block_rows_cols: self.block_rows_cols.clone(),
+            jac: RefCell::new(Jacobian::default()),
+            model: RefCell::new(self),
+            config,
+        })
+    }
+
+    /// A lazy, branch-safe sweep of `samples` equally spaced inputs from `from` to `to` (both
+    /// included) from `guess` at `from`, with the default solver configuration: the runtime's
+    /// [`Sweep`](kinloop_runtime::Sweep) (events, `next_ref`, `table()`, `run`) over this
+    /// model. Its states are [`KinBuf`]s.
+    ///
+    /// ```
+    /// use kinloop_model::Model;
+    /// let text = "pub struct FourBar {
+    ///     params a = 1, b = 3, c = 2.5, d = 3.2;
+    ///     input phi;
+    ///     unknowns psi = 0.6, theta = 1.9;
+    ///     loop abcd: a @ phi + b @ psi == (d, 0) + c @ theta;
+    /// }";
+    /// let mut m = Model::read("four_bar.kl", text).unwrap();
+    /// let table = m.sweep(&[0.0], &[6.283185307179586], 37, &[0.6, 1.9]).unwrap().table().unwrap();
+    /// assert_eq!(table.column("psi").unwrap().len(), 37);
+    /// ```
+    pub fn sweep(
+        &mut self,
+        from: &[f64],
+        to: &[f64],
+        samples: usize,
+        guess: &[f64],
+    ) -> Result<SweepOf<ModelKernel<'_>, KinBuf>, Error> {
+        self.sweep_with(from, to, samples, guess, SweepConfig::default())
+    }
+
+    /// [`Model::sweep`] with the solver configuration `config`.
+    pub fn sweep_with(
+        &mut self,
+        from: &[f64],
+        to: &[f64],
+        samples: usize,
+        guess: &[f64],
+        config: SweepConfig,
+    ) -> Result<SweepOf<ModelKernel<'_>, KinBuf>, Error> {
+        let k = self.kernel(config)?;
+        let v = |s: &[f64]| kinloop_runtime::dims::Heap(s.into());
+        SweepOf::over(k, v(from), v(to), samples, v(guess))
+    }
+}
+
+impl ModelKernel<'_> {
+    /// The error of a failed step at `x`, with the model's names.
+    fn error(&self, e: StepError, x: &[f64], cfg: &NewtonConfig) -> Error {
+        match e {
+            StepError::Block { block, failure: StepFailure::Singular { pivot_ratio } } => {
+                Error::Singular { pivot_ratio, tolerance: cfg.singular_tol, at: self.location(x, Some(block)) }
+            }
+            StepError::Block { block, failure: StepFailure::Block(f) } => {
+                let at = self.location(x, Some(block));
+                let message = match f {
+                    BlockFailure::Singular { pivot_ratio, tolerance, .. } => {
+                        return Error::Singular { pivot_ratio, tolerance, at };
+                    }
+                    BlockFailure::InvalidConfig { field } => {
+                        return Error::InvalidArgument(format!("NewtonConfig::{field} is out of its valid range"));
+                    }
+                    BlockFailure::NonFinite { .. } => "a value is not finite: an expression left its domain (e.g. \
+                                                       sqrt of a negative number, asin/acos beyond ±1, or a division by zero)"
+                        .to_string(),
+                    BlockFailure::NoConvergence { iterations, residual, .. } => {
+                        format!("Newton's method did not converge in {iterations} iterations (residual {residual:e})")
+                    }
+                    BlockFailure::NoAssembly { residual, .. } => format!(
+                        "the mechanism cannot be assembled: the loop residual stalls at {residual:e} (the links \
+                         cannot reach; check the lengths or the input range)"
+                    ),
+                    BlockFailure::TooManyTurns { value } => {
+                        format!("an angle is {value:e} rad, too many turns out to be solved to the tolerance")
+                    }
+                };
+                Error::Model { message: format!("block {block}: {message}"), at }
+            }
+            e => Error::Model { message: e.to_string(), at: self.location(x, None) },
+        }
+    }
+
+    /// The model's state into `into`.
+    fn copy_state(st: &State, into: &mut KinBuf) {
+        into.x.copy_from_slice(&st.x);
+        into.q.copy_from_slice(&st.q);
+        into.dq.copy_from_slice(&st.dq);
+        into.d2q.copy_from_slice(&st.d2q);
+        into.out.copy_from_slice(&st.out);
+        into.dout.copy_from_slice(&st.dout);
+        into.d2out.copy_from_slice(&st.d2out);
+        into.report = st.report;
+        into.health = st.health;
+    }
+
+    fn owned(&self, st: Result<&State, StepError>, x: &[f64], cfg: &NewtonConfig) -> Result<KinBuf, Error> {
+        let mut k = self.sizes.kin();
+        match st {
+            Ok(st) => {
+                Self::copy_state(st, &mut k);
+                Ok(k)
+            }
+            Err(e) => Err(self.error(e, x, cfg)),
+        }
+    }
+}
+
+impl Kernel for ModelKernel<'_> {
+    type Dims = Sizes;
+    fn dims(&self) -> Sizes {
+        self.sizes
+    }
+    fn name(&self) -> &str {
+        &self.name
+    }
+    fn input_name(&self, i: usize) -> &str {
+        &self.inputs[i]
+    }
+    fn unknown_name(&self, u: usize) -> &str {
+        &self.unknowns[u]
+    }
+    fn output_name(&self, o: usize) -> &str {
+        &self.outputs[o]
+    }
+    fn input_kind(&self, i: usize) -> QuantityKind {
+        self.input_kinds[i]
+    }
+    fn unknown_kind(&self, u: usize) -> QuantityKind {
+        self.unknown_kinds[u]
+    }
+    fn output_kind(&self, o: usize) -> QuantityKind {
+        self.output_kinds[o]
+    }
+    fn block_count(&self) -> usize {
+        self.block_rows_cols.len()
+    }
+    /// None: a block's static description names the compiled mechanism's equations
+    /// (`&'static` names); a run-time model's events and locations give the block's index only
+    /// through its errors.
+    fn block_info(&self, _: usize) -> Option<BlockInfo> {
+        None
+    }
+    fn block_rows_cols(&self, b: usize) -> Option<(Vec<usize>, Vec<usize>)> {
+        self.block_rows_cols.get(b).cloned()
+    }
+    fn judged(&self) -> &[usize] {
+        &self.judged
+    }
+    fn closed_form_angle(&self, u: usize) -> bool {
+        self.closed_form_angles[u]
+    }
+    fn location(&self, x: &[f64], _block: Option<usize>) -> Box<Location> {
+        Box::new(Location {
+            mechanism: Cow::Owned(self.name.clone()),
+            inputs: self.inputs.iter().map(|n| Cow::Owned(n.clone())).zip(x.iter().copied()).collect(),
+            block: None,
+        })
+    }
+    fn solver_config(&self) -> SweepConfig {
+        self.config
+    }
+    fn kinematics(
+        &self,
+        x: &kinloop_runtime::dims::Heap,
+        guess: &kinloop_runtime::dims::Heap,
+        cfg: &NewtonConfig,
+    ) -> Result<KinBuf, Error> {
+        let mut m = self.model.borrow_mut();
+        self.owned(m.kinematics(&x.0, &guess.0, cfg), &x.0, cfg)
+    }
+    fn kinematics_at(
+        &self,
+        x: &kinloop_runtime::dims::Heap,
+        q: &kinloop_runtime::dims::Heap,
+        cfg: &NewtonConfig,
+    ) -> Result<KinBuf, Error> {
+        let mut m = self.model.borrow_mut();
+        self.owned(m.kinematics_at(&x.0, &q.0, cfg), &x.0, cfg)
+    }
+    fn jacobian(&self, x: &kinloop_runtime::dims::Heap, q: &kinloop_runtime::dims::Heap) -> JacBuf {
+        let mut m = self.model.borrow_mut();
+        let mut jac = self.jac.borrow_mut();
+        let mut out = JacBuf::zeros(self.sizes);
+        match m.jacobian(&x.0, &q.0, &mut jac) {
+            Ok(()) => {
+                out.f.copy_from_slice(&jac.f);
+                out.j.copy_from_slice(&jac.j);
+                out.fx.copy_from_slice(&jac.fx);
+                out.scale.copy_from_slice(&jac.scale);
+                out.unit.copy_from_slice(&jac.unit);
+                out.input_unit.copy_from_slice(&jac.input_unit);
+            }
+            // Sizes and parameters were checked when the kernel was made: not reached. NaN
+            // where it were, as a compiled kernel's values outside their domain.
+            Err(_) => out.f.fill(f64::NAN),
+        }
+        out
+    }
+    /// The model's step (`Model::kinematics`, libm's sines and cosines: a run-time model has no
+    /// trigonometry cache) copied into `into`.
+    fn step_into<T: kinloop_runtime::generated::InputTrig>(
+        &self,
+        x: &kinloop_runtime::dims::Heap,
+        guess: &kinloop_runtime::dims::Heap,
+        cfg: &NewtonConfig,
+        _trig: &mut T,
+        into: &mut KinBuf,
+    ) -> Result<(), Error> {
+        let mut m = self.model.borrow_mut();
+        match m.kinematics(&x.0, &guess.0, cfg) {
+            Ok(st) => {
+                Self::copy_state(st, into);
+                Ok(())
+            }
+            Err(e) => Err(self.error(e, &x.0, cfg)),
+        }
+    }
+}

@@ -1,0 +1,343 @@
+//! The runtime's sweep over a run-time model against the same sweep over the compiled
+//! mechanism of the same declaration (the fixtures of `parity.rs`): one implementation of the
+//! sweep, two kernels. The reference is the compiled kernels (straight-line Rust the macro
+//! emitted); the states must agree to the kernels' own agreement (`parity.rs`: a relative 1e-15
+//! of each array's largest magnitude) at every sample, the events must be the same events at
+//! the same inputs.
+//!
+//! The compiled sweep's steps take the inputs' sines and cosines from a rotation cache (a few
+//! units in the last place off libm's, see the runtime's `trig`), a run-time model's from libm:
+//! so the sweeps agree to rounding, not bit for bit, and the step sequences (accepted, halved)
+//! are the same where no judgement sits within rounding of its bound.
+
+use kinloop::{Event, Kin, Mechanism, Sweep};
+use kinloop_fixtures as fx;
+use kinloop_model::Model;
+use kinloop_runtime::dims::KinBuf;
+use std::f64::consts::TAU;
+
+/// Relative agreement demanded, of each array's largest magnitude (the kernels' own, see
+/// `parity.rs`), with room for the rotation cache's few ulps amplified by a step's Newton
+/// correction: 1e-13.
+const REL: f64 = 1e-13;
+
+fn rel_diff(a: &[f64], b: &[f64]) -> f64 {
+    assert_eq!(a.len(), b.len());
+    let scale = a.iter().chain(b).fold(0.0f64, |m, v| m.max(v.abs())).max(f64::MIN_POSITIVE);
+    a.iter().zip(b).map(|(x, y)| (x - y).abs() / scale).fold(0.0, f64::max)
+}
+
+/// One compiled state against one run-time state: every array.
+fn state_diff<const N: usize, const NI: usize, const NO: usize>(c: &Kin<N, NI, NO>, r: &KinBuf) -> f64 {
+    let f2 = |v: &[[f64; NI]]| v.iter().flatten().copied().collect::<Vec<f64>>();
+    let f3 = |v: &[[[f64; NI]; NI]]| v.iter().flatten().flatten().copied().collect::<Vec<f64>>();
+    [
+        rel_diff(&c.x, &r.x),
+        rel_diff(&c.q, &r.q),
+        rel_diff(&f2(&c.dq), &r.dq),
+        rel_diff(&f3(&c.d2q), &r.d2q),
+        rel_diff(&c.out, &r.out),
+        rel_diff(&f2(&c.dout), &r.dout),
+        rel_diff(&f3(&c.d2out), &r.d2out),
+    ]
+    .into_iter()
+    .fold(0.0, f64::max)
+}
+
+/// Both sweeps of input 0 over `[from, to]` (the other inputs at `from`'s), sample by sample;
+/// returns the largest difference, the samples compared and the two sweeps' events and errors.
+fn both<M, const N: usize, const NI: usize, const NO: usize>(
+    compiled: &M,
+    model: &mut Model,
+    from: [f64; NI],
+    to: [f64; NI],
+    samples: usize,
+) -> (f64, usize, Vec<Event>, Vec<Event>, Option<String>, Option<String>)
+where
+    M: Mechanism<N, NI, NO>,
+{
+    let guess = compiled.guess_flat(&from);
+    let mut c = Sweep::<M, Kin<N, NI, NO>, N, NI, NO>::new(compiled, from, to, samples, guess).unwrap();
+    let mut r = model.sweep(&from, &to, samples, &guess).unwrap();
+    let (mut worst, mut compared) = (0.0f64, 0);
+    let (mut c_err, mut r_err) = (None, None);
+    loop {
+        match (c.next_ref(), r.next_ref()) {
+            (Some(Ok(a)), Some(Ok(b))) => {
+                assert_eq!(a.health.det_signs, b.health.det_signs, "determinant signs at {:?}", a.x);
+                worst = worst.max(state_diff(a, b));
+                compared += 1;
+            }
+            (None, None) => break,
+            (Some(Err(a)), Some(Err(b))) => {
+                (c_err, r_err) = (Some(a.to_string()), Some(b.to_string()));
+                break;
+            }
+            (a, b) => panic!(
+                "the sweeps part after {compared} samples: compiled {:?}, run time {:?}",
+                a.map(|x| x.map(|k| k.q)),
+                b.map(|x| x.map(|k| k.q.clone()))
+            ),
+        }
+    }
+    (worst, compared, c.events().to_vec(), r.events().to_vec(), c_err, r_err)
+}
+
+/// The same events: kind, and input, fraction and positions to the states' agreement.
+fn same_events(c: &[Event], r: &[Event]) {
+    assert_eq!(c.len(), r.len(), "compiled {c:?}\nrun time {r:?}");
+    for (a, b) in c.iter().zip(r) {
+        assert_eq!(a.kind, b.kind);
+        assert!(rel_diff(&a.x, &b.x) <= REL, "{a:?}\n{b:?}");
+        assert!((a.tau - b.tau).abs() <= REL, "{a:?}\n{b:?}");
+        assert!(rel_diff(&a.q, &b.q) <= REL, "{a:?}\n{b:?}");
+    }
+}
+
+fn read(text: &str) -> Model {
+    Model::read("fixture.kl", text).unwrap_or_else(|e| panic!("{e}"))
+}
+
+fn set(m: &mut Model, values: &[(&str, f64)]) {
+    for (p, v) in values {
+        assert!(m.set_param(p, *v), "{p}");
+    }
+}
+
+/// A compiled mechanism whose sweep steps take libm's sines and cosines, as a run-time model's
+/// do: every kernel forwarded except the sweep's fast step (`kinematics_step_sink`), which then
+/// keeps its default, `kinematics_flat`.
+struct Libm<M>(M);
+
+impl<M, const N: usize, const NI: usize, const NO: usize> Mechanism<N, NI, NO> for Libm<M>
+where
+    M: Mechanism<N, NI, NO>,
+{
+    const NAME: &'static str = M::NAME;
+    const PARAMS: &'static [&'static str] = M::PARAMS;
+    const INPUTS: [&'static str; NI] = M::INPUTS;
+    const UNKNOWNS: [&'static str; N] = M::UNKNOWNS;
+    const EQUATIONS: [&'static str; N] = M::EQUATIONS;
+    const OUTPUTS: [&'static str; NO] = M::OUTPUTS;
+    const BLOCKS: &'static [kinloop::BlockInfo] = M::BLOCKS;
+    const INPUT_KINDS: [kinloop::QuantityKind; NI] = M::INPUT_KINDS;
+    const UNKNOWN_KINDS: [kinloop::QuantityKind; N] = M::UNKNOWN_KINDS;
+    const OUTPUT_KINDS: [kinloop::QuantityKind; NO] = M::OUTPUT_KINDS;
+    const FOLLOWERS: [bool; N] = M::FOLLOWERS;
+    const CLOSED_FORM_ANGLES: [bool; N] = M::CLOSED_FORM_ANGLES;
+    fn param_values(&self) -> Vec<f64> {
+        self.0.param_values()
+    }
+    fn guess_flat(&self, x: &[f64; NI]) -> [f64; N] {
+        self.0.guess_flat(x)
+    }
+    fn position_flat(
+        &self,
+        x: &[f64; NI],
+        g: &[f64; N],
+        c: &kinloop::NewtonConfig,
+    ) -> Result<([f64; N], kinloop::SolveReport), kinloop::Error> {
+        self.0.position_flat(x, g, c)
+    }
+    fn kinematics_flat(
+        &self,
+        x: &[f64; NI],
+        g: &[f64; N],
+        c: &kinloop::NewtonConfig,
+    ) -> Result<Kin<N, NI, NO>, kinloop::Error> {
+        self.0.kinematics_flat(x, g, c)
+    }
+    fn kinematics_at_flat(
+        &self,
+        x: &[f64; NI],
+        q: &[f64; N],
+        c: &kinloop::NewtonConfig,
+    ) -> Result<Kin<N, NI, NO>, kinloop::Error> {
+        self.0.kinematics_at_flat(x, q, c)
+    }
+    fn outputs_flat(&self, x: &[f64; NI], q: &[f64; N]) -> [f64; NO] {
+        self.0.outputs_flat(x, q)
+    }
+    fn jacobian_flat(&self, x: &[f64; NI], q: &[f64; N]) -> kinloop::Jac<N, NI> {
+        self.0.jacobian_flat(x, q)
+    }
+}
+
+/// With libm's sines and cosines in both, the one sweep over the two kernels gives the same
+/// states bit for bit, sample by sample, and the same events at the same inputs.
+#[test]
+fn with_the_same_sines_the_sweeps_are_equal_to_the_last_bit() {
+    let mut model = read(fx::FOUR_BAR_TEXT);
+    set(&mut model, &[("a", 1.0), ("b", 3.0), ("c", 2.5), ("d", 3.2)]);
+    let (worst, n, ..) = both(&Libm(fx::FourBar { a: 1.0, b: 3.0, c: 2.5, d: 3.2 }), &mut model, [0.0], [TAU], 721);
+    assert_eq!((worst, n), (0.0, 721));
+    set(&mut model, &[("a", 1.5), ("b", 3.0), ("c", 1.0), ("d", 3.2)]);
+    let compiled = Libm(fx::FourBar { a: 1.5, b: 3.0, c: 1.0, d: 3.2 });
+    let (worst, n, ce, re, ..) = both(&compiled, &mut model, [1.2], [1.2 + TAU], 361);
+    assert_eq!(worst, 0.0, "after {n} samples");
+    assert_eq!(ce.len(), 1);
+    // The same event, bit for bit (a run-time model's carries no static block description).
+    let strip = |e: &[Event]| e.iter().map(|e| (e.kind, e.x.clone(), e.tau, e.q.clone())).collect::<Vec<_>>();
+    assert_eq!(strip(&ce), strip(&re));
+    let mut m = read(fx::RHOMBIC_DRIVE_TEXT);
+    let (worst, n, ..) = both(&Libm(fx::RhombicDrive::default()), &mut m, [0.0], [TAU], 361);
+    assert_eq!((worst, n), (0.0, 361));
+}
+
+#[test]
+fn four_bar_sweeps_equal_the_compiled_one() {
+    let compiled = fx::FourBar { a: 1.0, b: 3.0, c: 2.5, d: 3.2 };
+    let mut model = read(fx::FOUR_BAR_TEXT);
+    set(&mut model, &[("a", 1.0), ("b", 3.0), ("c", 2.5), ("d", 3.2)]);
+    let (worst, n, ce, re, cerr, rerr) = both(&compiled, &mut model, [0.0], [TAU], 721);
+    assert_eq!(n, 721);
+    assert!(worst <= REL, "largest relative difference {worst:e}");
+    assert!(ce.is_empty() && re.is_empty() && cerr.is_none() && rerr.is_none());
+    eprintln!("four-bar sweep: {n} samples, largest relative difference {worst:e}");
+}
+
+/// A rocker input (Grashof, shortest link the output): both sweeps stop at the same limit
+/// position, located at the same input.
+#[test]
+fn a_limit_position_is_the_same_event() {
+    let (a, b, c, d) = (1.5, 3.0, 1.0, 3.2);
+    let compiled = fx::FourBar { a, b, c, d };
+    let mut model = read(fx::FOUR_BAR_TEXT);
+    set(&mut model, &[("a", a), ("b", b), ("c", c), ("d", d)]);
+    // Start where the loop closes (|AD| = 3, between |b - c| = 2 and b + c = 4), going up
+    // to where the coupler and the output stretch in line.
+    let (worst, n, ce, re, cerr, rerr) = both(&compiled, &mut model, [1.2], [1.2 + TAU], 361);
+    assert!(n > 10, "only {n} samples");
+    assert!(worst <= REL, "largest relative difference {worst:e}");
+    assert_eq!(ce.len(), 1, "{ce:?}");
+    assert_eq!(ce[0].kind, kinloop::EventKind::LimitPosition);
+    same_events(&ce, &re);
+    assert!(cerr.is_some() && rerr.is_some(), "{cerr:?} {rerr:?}");
+    // The limit position against the closed form: the coupler and the output in line,
+    // |A - D| = b + c, i.e. a^2 + d^2 - 2 a d cos(phi) = (b + c)^2.
+    let phi = ((a * a + d * d - (b + c) * (b + c)) / (2.0 * a * d)).acos();
+    assert!((re[0].x[0] - phi).abs() < 1e-9, "event at {}, closed form {phi}", re[0].x[0]);
+    eprintln!("limit position at {} (closed form {phi}), {n} samples, {worst:e}", re[0].x[0]);
+}
+
+/// Both comparisons on one fixture over `[from, to]`: against the compiled sweep (to `REL`, the
+/// same events at the same inputs, both stopping or neither) and against the compiled kernels
+/// with libm's sines (bit for bit). Returns the samples compared and the events met.
+fn fixture<M, const N: usize, const NI: usize, const NO: usize>(
+    name: &str,
+    compiled: M,
+    model: &mut Model,
+    from: [f64; NI],
+    to: [f64; NI],
+    samples: usize,
+) -> (usize, usize)
+where
+    M: Mechanism<N, NI, NO>,
+{
+    let (worst, n, ce, re, cerr, rerr) = both(&compiled, model, from, to, samples);
+    assert!(worst <= REL, "{name}: largest relative difference {worst:e}");
+    same_events(&ce, &re);
+    assert_eq!(cerr.is_some(), rerr.is_some(), "{name}: {cerr:?} {rerr:?}");
+    let (worst, n_libm, ce, re, ..) = both(&Libm(compiled), model, from, to, samples);
+    assert_eq!(worst, 0.0, "{name}: with libm's sines");
+    let strip = |e: &[Event]| e.iter().map(|e| (e.kind, e.x.clone(), e.tau, e.q.clone())).collect::<Vec<_>>();
+    assert_eq!(strip(&ce), strip(&re), "{name}: events with libm's sines");
+    eprintln!("{name}: {n} samples ({n_libm} with libm's sines), {} events", ce.len());
+    (n, ce.len())
+}
+
+/// Every fixture of `parity.rs` over a whole turn of its first input.
+#[test]
+fn other_fixtures_sweep_as_the_compiled_ones() {
+    let turn = [0.0];
+    let end = [TAU];
+    let n = fixture("rhombic drive", fx::RhombicDrive::default(), &mut read(fx::RHOMBIC_DRIVE_TEXT), turn, end, 361);
+    assert_eq!(n.0, 361);
+    let dense = |text: &str, name: &str, twin: &str| {
+        read(&format!("#[kinloop(dense)] {}", text.replacen(&format!("struct {name} "), &format!("struct {twin} "), 1)))
+    };
+    let mut m = dense(fx::RHOMBIC_DRIVE_TEXT, "RhombicDrive", "RhombicDriveDense");
+    assert_eq!(fixture("rhombic drive (dense)", fx::RhombicDriveDense::default(), &mut m, turn, end, 361).0, 361);
+    let mut m = read(fx::SLIDER_CRANK_TEXT);
+    set(&mut m, &[("r", 1.0), ("l", 3.0), ("e", 0.4)]);
+    assert_eq!(fixture("slider-crank", fx::SliderCrank { r: 1.0, l: 3.0, e: 0.4 }, &mut m, turn, end, 181).0, 181);
+    fixture("five-bar", fx::FiveBar::default(), &mut read(fx::FIVE_BAR_TEXT), [0.0, 0.4], [TAU, 0.4], 181);
+    fixture("class IV", fx::ClassFour::default(), &mut read(fx::CLASS_FOUR_TEXT), turn, end, 181);
+    let mut m = dense(fx::CLASS_FOUR_TEXT, "ClassFour", "ClassFourDense");
+    fixture("class IV (dense)", fx::ClassFourDense::default(), &mut m, turn, end, 181);
+    let mut m = read(fx::DISPLACER_ROD_DRIVE_TEXT);
+    fixture("displacer-rod drive", fx::DisplacerRodDrive::default(), &mut m, turn, end, 181);
+    let mut m = read(fx::WORKING_ROD_DRIVE_TEXT);
+    fixture("working-rod drive", fx::WorkingRodDrive::default(), &mut m, turn, end, 181);
+    let mut m = read(fx::gear_lever::GEAR_LEVER_TEXT);
+    fixture("gear lever", fx::gear_lever::GearLever::default(), &mut m, turn, end, 181);
+    let mut m = read(fx::roller_edger::ROLLER_EDGER_TEXT);
+    fixture("roller edger", fx::roller_edger::RollerEdger::default(), &mut m, turn, end, 181);
+    let mut m = read(fx::balancing::BALANCE_TEXT);
+    fixture("balance", fx::balancing::Balance::default(), &mut m, turn, end, 181);
+    let mut m = read(fx::CLASS_FOUR_CORE_TEXT);
+    fixture("class IV core", fx::ClassFourCore::default(), &mut m, turn, end, 181);
+}
+
+/// The table of a run-time sweep: the compiled sweep's columns, units and rows.
+#[test]
+fn tables_equal_the_compiled_ones() {
+    let compiled = fx::FourBar { a: 1.0, b: 3.0, c: 2.5, d: 3.2 };
+    let mut model = read(fx::FOUR_BAR_TEXT);
+    set(&mut model, &[("a", 1.0), ("b", 3.0), ("c", 2.5), ("d", 3.2)]);
+    let g = compiled.guess_flat(&[0.0]);
+    let c = Sweep::<_, Kin<2, 1, 2>, 2, 1, 2>::new(&compiled, [0.0], [TAU], 37, g).unwrap().table().unwrap();
+    let r = model.sweep(&[0.0], &[TAU], 37, &g).unwrap().table().unwrap();
+    let (mut a, mut b) = (Vec::new(), Vec::new());
+    c.write_csv(&mut a).unwrap();
+    r.write_csv(&mut b).unwrap();
+    let (a, b) = (String::from_utf8(a).unwrap(), String::from_utf8(b).unwrap());
+    assert_eq!(a.lines().next(), b.lines().next(), "headers");
+    let (ta, tb) = (kinloop::Table::read_csv(a.as_bytes()).unwrap(), kinloop::Table::read_csv(b.as_bytes()).unwrap());
+    for name in ["phi", "beta", "gamma", "d(beta)/d(phi)", "d2(gamma)/d(phi)^2", "pc.x"] {
+        let (x, y) = (ta.column(name).unwrap(), tb.column(name).unwrap());
+        assert!(rel_diff(&x, &y) <= REL, "{name}");
+    }
+}
+
+/// A parallelogram four-bar (`a = c`, `b = d`) has change points where its links lie in line,
+/// at `phi = 0` and `pi`: from `phi = 0.3` both sweeps stop at the same singular crossing, at
+/// `pi`.
+#[test]
+fn a_singular_crossing_is_the_same_event() {
+    let (a, b, c, d) = (1.0, 3.0, 1.0, 3.0);
+    let mut model = read(fx::FOUR_BAR_TEXT);
+    set(&mut model, &[("a", a), ("b", b), ("c", c), ("d", d)]);
+    // The parallelogram branch through the start (beta = 0, gamma = phi).
+    let guess = [0.0, 0.3];
+    let compiled = fx::FourBar { a, b, c, d };
+    let mut cs = Sweep::<_, Kin<2, 1, 2>, 2, 1, 2>::new(&compiled, [0.3], [0.3 + TAU], 181, guess).unwrap();
+    let mut rs = model.sweep(&[0.3], &[0.3 + TAU], 181, &guess).unwrap();
+    let (c_states, r_states) = (cs.by_ref().count(), rs.by_ref().count());
+    assert_eq!(c_states, r_states);
+    let (ce, re) = (cs.events().to_vec(), rs.events().to_vec());
+    assert_eq!(ce.len(), 1, "{ce:?}");
+    assert_eq!(ce[0].kind, kinloop::EventKind::SingularCrossing);
+    same_events(&ce, &re);
+    assert!((re[0].x[0] - std::f64::consts::PI).abs() < 1e-6, "crossing at {}", re[0].x[0]);
+}
+
+/// A sweep that cannot start names the run-time model and its input with the model's own
+/// (owned) names, as the compiled mechanism's error names its constants.
+#[test]
+fn a_failed_start_names_the_model() {
+    let (a, b, c, d) = (1.5, 3.0, 1.0, 3.2);
+    let mut model = read(fx::FOUR_BAR_TEXT);
+    set(&mut model, &[("a", a), ("b", b), ("c", c), ("d", d)]);
+    // At phi = 0, |AD| = 1.7 is shorter than |b - c| = 2: no assembly.
+    let compiled = fx::FourBar { a, b, c, d };
+    let g = compiled.guess_flat(&[0.0]);
+    let c_err =
+        Sweep::<_, Kin<2, 1, 2>, 2, 1, 2>::new(&compiled, [0.0], [1.0], 3, g).unwrap().next().unwrap().unwrap_err();
+    let r_err = model.sweep(&[0.0], &[1.0], 3, &g).unwrap().next().unwrap().unwrap_err();
+    let (c_at, r_at) = (c_err.location().expect("located"), r_err.location().expect("located"));
+    assert_eq!((&c_at.mechanism, &c_at.inputs), (&r_at.mechanism, &r_at.inputs));
+    assert!(matches!(r_at.mechanism, std::borrow::Cow::Owned(_)));
+    assert!(r_err.to_string().contains("in `FourBar` at phi = 0"), "{r_err}");
+    eprintln!("compiled: {c_err}\nrun time: {r_err}");
+}

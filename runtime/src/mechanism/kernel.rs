@@ -1,0 +1,213 @@
+//! The size-agnostic view of a mechanism that the runtime's sweep, its event location and its
+//! table are written over ([`Kernel`]): compiled mechanisms through [`Compiled`] (arrays,
+//! constants, the macro's inlined kernel: the code of before), run-time models by their own
+//! implementation (`kinloop-model`).
+
+use crate::dims::{Dims, Fixed};
+use crate::error::Error;
+use crate::events::{BlockInfo, Location};
+use crate::kin::{Jac, Kin};
+use crate::kinds::QuantityKind;
+use crate::mechanism::Mechanism;
+use crate::paths::sweep::SweepConfig;
+use crate::solvers::newton::NewtonConfig;
+use crate::trig::InputTrig;
+
+/// A mechanism as the generic algorithms see it, whatever way its sizes are known ([`Dims`]):
+/// its names, kinds and structure as methods, and its flat kernels over the storage of its
+/// [`Dims`]. Compiled mechanisms implement it through [`Compiled`] (whose methods return their
+/// constants and forward to their kernels, so that nothing changes after inlining); a
+/// `kinloop_model::Model` through its own implementation.
+pub trait Kernel {
+    /// How the sizes are known, and the storage of each shape.
+    type Dims: Dims;
+    /// The sizes.
+    fn dims(&self) -> Self::Dims;
+    /// The mechanism's name.
+    fn name(&self) -> &str;
+    /// The name of input `i`.
+    fn input_name(&self, i: usize) -> &str;
+    /// The name of unknown `u`.
+    fn unknown_name(&self, u: usize) -> &str;
+    /// The name of output column `o`.
+    fn output_name(&self, o: usize) -> &str;
+    /// The kind of quantity of input `i`.
+    fn input_kind(&self, i: usize) -> QuantityKind;
+    /// The kind of quantity of unknown `u`.
+    fn unknown_kind(&self, u: usize) -> QuantityKind;
+    /// The kind of quantity of output column `o`.
+    fn output_kind(&self, o: usize) -> QuantityKind;
+    /// The number of blocks of the decomposition.
+    fn block_count(&self) -> usize;
+    /// The static description of block `b` (a compiled mechanism's [`Mechanism::BLOCKS`]);
+    /// `None` for a mechanism whose names are known only at run time.
+    fn block_info(&self, b: usize) -> Option<BlockInfo>;
+    /// The rows (equations) and columns (unknowns) of block `b`, in declaration order; `None`
+    /// where they cannot be told.
+    fn block_rows_cols(&self, b: usize) -> Option<(Vec<usize>, Vec<usize>)>;
+    /// The unknowns a sweep judges its steps by: all but the followers
+    /// ([`Mechanism::FOLLOWERS`]), in order.
+    fn judged(&self) -> &[usize];
+    /// Whether unknown `u` is an angle given by a closed form ([`Mechanism::CLOSED_FORM_ANGLES`]).
+    fn closed_form_angle(&self, u: usize) -> bool;
+    /// Where an error happened: the mechanism, the inputs `x` by name, and block `block`.
+    fn location(&self, x: &[f64], block: Option<usize>) -> Box<Location>;
+    /// The solver configuration used where none is given ([`Mechanism::solver_config`]).
+    fn solver_config(&self) -> SweepConfig;
+    /// Positions, analogs and outputs solved from `guess` ([`Mechanism::kinematics_flat`]).
+    fn kinematics(
+        &self,
+        x: &<Self::Dims as Dims>::X,
+        guess: &<Self::Dims as Dims>::Q,
+        cfg: &NewtonConfig,
+    ) -> Result<<Self::Dims as Dims>::Kin, Error>;
+    /// Analogs and outputs at a given position ([`Mechanism::kinematics_at_flat`]).
+    fn kinematics_at(
+        &self,
+        x: &<Self::Dims as Dims>::X,
+        q: &<Self::Dims as Dims>::Q,
+        cfg: &NewtonConfig,
+    ) -> Result<<Self::Dims as Dims>::Kin, Error>;
+    /// Residuals and Jacobians at `(x, q)` ([`Mechanism::jacobian_flat`]).
+    fn jacobian(&self, x: &<Self::Dims as Dims>::X, q: &<Self::Dims as Dims>::Q) -> <Self::Dims as Dims>::Jac;
+    /// A sweep's step: [`Kernel::kinematics`] written into `into`, the sines and cosines of the
+    /// input arguments possibly from `trig`, checks possibly deferred
+    /// ([`Mechanism::kinematics_step_sink`]). `cfg` must be valid.
+    fn step_into<T: InputTrig>(
+        &self,
+        x: &<Self::Dims as Dims>::X,
+        guess: &<Self::Dims as Dims>::Q,
+        cfg: &NewtonConfig,
+        trig: &mut T,
+        into: &mut <Self::Dims as Dims>::Kin,
+    ) -> Result<(), Error>;
+}
+
+/// A compiled mechanism seen as a [`Kernel`]: a reference, zero cost (every method returns a
+/// constant of [`Mechanism`] or forwards to its kernel, inlined).
+pub struct Compiled<'m, M, const N: usize, const NI: usize, const NO: usize>(pub &'m M);
+
+impl<M, const N: usize, const NI: usize, const NO: usize> Clone for Compiled<'_, M, N, NI, NO> {
+    fn clone(&self) -> Self {
+        *self
+    }
+}
+
+impl<M, const N: usize, const NI: usize, const NO: usize> Copy for Compiled<'_, M, N, NI, NO> {}
+
+/// The indices of the unknowns that do not follow the others, in order.
+pub(crate) struct Judged<const N: usize> {
+    index: [usize; N],
+    len: usize,
+}
+
+impl<const N: usize> Judged<N> {
+    pub(crate) const fn of(followers: [bool; N]) -> Self {
+        let (mut index, mut len, mut u) = ([0; N], 0, 0);
+        while u < N {
+            if !followers[u] {
+                index[len] = u;
+                len += 1;
+            }
+            u += 1;
+        }
+        Judged { index, len }
+    }
+
+    #[inline(always)]
+    pub(crate) fn as_slice(&self) -> &[usize] {
+        &self.index[..self.len]
+    }
+}
+
+impl<M, const N: usize, const NI: usize, const NO: usize> Compiled<'_, M, N, NI, NO>
+where
+    M: Mechanism<N, NI, NO>,
+{
+    /// The unknowns a step is judged by, as a constant list the judge's loops unroll over.
+    const JUDGED: Judged<N> = Judged::of(M::FOLLOWERS);
+}
+
+impl<'m, M, const N: usize, const NI: usize, const NO: usize> Kernel for Compiled<'m, M, N, NI, NO>
+where
+    M: Mechanism<N, NI, NO>,
+{
+    type Dims = Fixed<N, NI, NO>;
+    #[inline(always)]
+    fn dims(&self) -> Fixed<N, NI, NO> {
+        Fixed
+    }
+    fn name(&self) -> &str {
+        M::NAME
+    }
+    fn input_name(&self, i: usize) -> &str {
+        M::INPUTS[i]
+    }
+    fn unknown_name(&self, u: usize) -> &str {
+        M::UNKNOWNS[u]
+    }
+    fn output_name(&self, o: usize) -> &str {
+        M::OUTPUTS[o]
+    }
+    fn input_kind(&self, i: usize) -> QuantityKind {
+        M::INPUT_KINDS[i]
+    }
+    fn unknown_kind(&self, u: usize) -> QuantityKind {
+        M::UNKNOWN_KINDS[u]
+    }
+    fn output_kind(&self, o: usize) -> QuantityKind {
+        M::OUTPUT_KINDS[o]
+    }
+    #[inline(always)]
+    fn block_count(&self) -> usize {
+        M::BLOCKS.len()
+    }
+    fn block_info(&self, b: usize) -> Option<BlockInfo> {
+        M::BLOCKS.get(b).copied()
+    }
+    fn block_rows_cols(&self, b: usize) -> Option<(Vec<usize>, Vec<usize>)> {
+        let info = M::BLOCKS.get(b)?;
+        let rows: Option<Vec<usize>> =
+            info.equations.iter().map(|e| M::EQUATIONS.iter().position(|n| n == e)).collect();
+        let cols: Option<Vec<usize>> = info.unknowns.iter().map(|u| M::UNKNOWNS.iter().position(|n| n == u)).collect();
+        Some((rows?, cols?))
+    }
+    #[inline(always)]
+    fn judged(&self) -> &[usize] {
+        const { &Self::JUDGED }.as_slice()
+    }
+    #[inline(always)]
+    fn closed_form_angle(&self, u: usize) -> bool {
+        M::CLOSED_FORM_ANGLES[u]
+    }
+    fn location(&self, x: &[f64], block: Option<usize>) -> Box<Location> {
+        Location::boxed(M::NAME, &M::INPUTS, x, block.and_then(|b| M::BLOCKS.get(b).map(|info| (b, *info))))
+    }
+    #[inline(always)]
+    fn solver_config(&self) -> SweepConfig {
+        self.0.solver_config()
+    }
+    #[inline(always)]
+    fn kinematics(&self, x: &[f64; NI], guess: &[f64; N], cfg: &NewtonConfig) -> Result<Kin<N, NI, NO>, Error> {
+        self.0.kinematics_flat(x, guess, cfg)
+    }
+    #[inline(always)]
+    fn kinematics_at(&self, x: &[f64; NI], q: &[f64; N], cfg: &NewtonConfig) -> Result<Kin<N, NI, NO>, Error> {
+        self.0.kinematics_at_flat(x, q, cfg)
+    }
+    #[inline(always)]
+    fn jacobian(&self, x: &[f64; NI], q: &[f64; N]) -> Jac<N, NI> {
+        self.0.jacobian_flat(x, q)
+    }
+    #[inline(always)]
+    fn step_into<T: InputTrig>(
+        &self,
+        x: &[f64; NI],
+        guess: &[f64; N],
+        cfg: &NewtonConfig,
+        trig: &mut T,
+        into: &mut Kin<N, NI, NO>,
+    ) -> Result<(), Error> {
+        self.0.kinematics_step_sink::<T, _, false>(x, guess, cfg, trig, into)
+    }
+}
