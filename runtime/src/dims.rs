@@ -228,18 +228,11 @@ impl KinState for KinBuf {
         &self.report
     }
     fn table_row(&self) -> Vec<f64> {
-        let ni = self.x.len();
-        let mut r: Vec<f64> = self.x.to_vec();
-        for (values, d1, d2) in [(&self.q, &self.dq, &self.d2q), (&self.out, &self.dout, &self.d2out)] {
-            r.extend(values.iter());
-            r.extend(d1.iter());
-            for u in 0..values.len() {
-                for i in 0..ni {
-                    r.extend(&d2[(u * ni + i) * ni + i..(u * ni + i + 1) * ni]);
-                }
-            }
-        }
-        r
+        crate::Table::state_row(
+            self.x.len(),
+            &self.x,
+            [(&self.q, &self.dq, &self.d2q), (&self.out, &self.dout, &self.d2out)],
+        )
     }
 }
 
@@ -443,11 +436,6 @@ pub struct Sizes {
     pub no: usize,
 }
 
-/// The largest system whose equilibrated determinant a run-time model takes from the same
-/// factorisation as a compiled mechanism (the runtime's LU of its size, bit for bit); a larger
-/// one's comes from nalgebra's LU (partial pivoting too, its roundings not guaranteed the same).
-pub const SIZES_LU_MAX: usize = 12;
-
 impl Dims for Sizes {
     type Q = Heap;
     type X = Heap;
@@ -493,12 +481,18 @@ impl Dims for Sizes {
                 }
             };
         }
+        // Up to 12 unknowns the same factorisation as a compiled mechanism's (the runtime's LU
+        // of that size, bit for bit); a larger system's comes from nalgebra's LU (partial
+        // pivoting too, its roundings not guaranteed the same).
         dispatch!(1 2 3 4 5 6 7 8 9 10 11 12);
         // Larger: nalgebra's LU of the column-equilibrated matrix.
         let mut a = nalgebra::DMatrix::from_fn(n, n, |e, u| jac.j[e * n + u]);
         for c in 0..n {
+            // A zero column stays zero (its determinant 0, as the runtime's LU gives), not NaN.
             let big = a.column(c).amax();
-            a.column_mut(c).unscale_mut(big);
+            if big > 0.0 {
+                a.column_mut(c).unscale_mut(big);
+            }
         }
         let lu = a.lu();
         let u = lu.u();

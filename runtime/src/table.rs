@@ -205,19 +205,29 @@ impl Table {
 
     /// One row in the order of [`Table::kin_columns`].
     pub fn kin_row<const N: usize, const NI: usize, const NO: usize>(k: &Kin<N, NI, NO>) -> Vec<f64> {
-        let mut r: Vec<f64> = k.x.to_vec();
-        r.extend(k.q);
-        r.extend(k.dq.iter().flatten());
-        for u in &k.d2q {
-            for a in 0..NI {
-                r.extend(&u[a][a..]);
-            }
-        }
-        r.extend(k.out);
-        r.extend(k.dout.iter().flatten());
-        for o in &k.d2out {
-            for a in 0..NI {
-                r.extend(&o[a][a..]);
+        let second = |d2: &[[[f64; NI]; NI]]| d2.as_flattened().as_flattened().to_vec();
+        Self::state_row(
+            NI,
+            &k.x,
+            [
+                (&k.q[..], k.dq.as_flattened(), &second(&k.d2q)[..]),
+                (&k.out[..], k.dout.as_flattened(), &second(&k.d2out)[..]),
+            ],
+        )
+    }
+
+    /// One row in the order of [`Table::kin_columns`] from flat storage of `ni` inputs: the
+    /// inputs, then for the unknowns and for the outputs their values, first analogs (row-major)
+    /// and the upper triangle (diagonal included) of each one's second analogs (`ni` by `ni`,
+    /// row-major). The one layout of a state's row, for compiled and run-time states alike.
+    pub(crate) fn state_row(ni: usize, x: &[f64], groups: [(&[f64], &[f64], &[f64]); 2]) -> Vec<f64> {
+        let mut r = x.to_vec();
+        for (values, d1, d2) in groups {
+            r.extend(values);
+            r.extend(d1);
+            // Row `a` of a quantity's `ni` by `ni` block, from its diagonal on.
+            for (k, row) in d2.chunks_exact(ni.max(1)).enumerate() {
+                r.extend(&row[k % ni.max(1)..]);
             }
         }
         r

@@ -13,6 +13,15 @@ use crate::paths::sweep::SweepConfig;
 use crate::solvers::newton::NewtonConfig;
 use crate::trig::InputTrig;
 
+/// The storage of kernel `K`'s sizes.
+pub(crate) type D<K> = <K as Kernel>::Dims;
+/// A vector of the unknowns' size of kernel `K`.
+pub(crate) type Q<K> = <D<K> as Dims>::Q;
+/// A vector of the inputs' size of kernel `K`.
+pub(crate) type X<K> = <D<K> as Dims>::X;
+/// The kinematic state of kernel `K`.
+pub(crate) type KinOf<K> = <D<K> as Dims>::Kin;
+
 /// A mechanism as the generic algorithms see it, whatever way its sizes are known ([`Dims`]):
 /// its names, kinds and structure as methods, and its flat kernels over the storage of its
 /// [`Dims`]. Compiled mechanisms implement it through [`Compiled`] (whose methods return their

@@ -125,3 +125,65 @@ fn columns(inputs: &[&str], unknowns: &[&str], outputs: &[&str]) -> Vec<String> 
     }
     c
 }
+
+#[cfg(test)]
+mod tests {
+    use super::columns;
+    use crate::Table;
+    use crate::kin::{Health, Kin};
+    use crate::solvers::newton::SolveReport;
+
+    /// Every value of a state of two inputs lands under the column that names it: each value is
+    /// coded by its indices, and the expected code is read back from the column's own name.
+    #[test]
+    fn a_two_input_row_puts_each_value_under_its_name() {
+        let code = |base: f64, u: usize, i: usize, j: usize| base + 100.0 * u as f64 + 10.0 * i as f64 + j as f64;
+        let k = Kin::<2, 2, 1> {
+            x: [1.0, 2.0],
+            q: [code(1000.0, 0, 0, 0), code(1000.0, 1, 0, 0)],
+            dq: std::array::from_fn(|u| std::array::from_fn(|i| code(2000.0, u, i, 0))),
+            d2q: std::array::from_fn(|u| std::array::from_fn(|i| std::array::from_fn(|j| code(3000.0, u, i, j)))),
+            out: [code(5000.0, 0, 0, 0)],
+            dout: [std::array::from_fn(|i| code(6000.0, 0, i, 0))],
+            d2out: [std::array::from_fn(|i| std::array::from_fn(|j| code(7000.0, 0, i, j)))],
+            report: SolveReport::direct(),
+            health: Health::default(),
+        };
+        let (inputs, unknowns, outputs) = (["a", "b"], ["p", "q"], ["o"]);
+        let names = columns(&inputs, &unknowns, &outputs);
+        let row = Table::kin_row(&k);
+        assert_eq!(names.len(), row.len());
+        let input = |s: &str| inputs.iter().position(|n| *n == s).unwrap();
+        for (name, value) in names.iter().zip(&row) {
+            let expected = if let Some(i) = inputs.iter().position(|n| n == name) {
+                k.x[i]
+            } else if let Some(rest) = name.strip_prefix("d2(") {
+                // `d2(n)/d(i)^2` or `d2(n)/d(i)d(j)`.
+                let (n, rest) = rest.split_once(")/d(").unwrap();
+                let (i, j) = match rest.strip_suffix(")^2") {
+                    Some(i) => (input(i), input(i)),
+                    None => {
+                        let (i, j) = rest.trim_end_matches(')').split_once(")d(").unwrap();
+                        (input(i), input(j))
+                    }
+                };
+                match unknowns.iter().position(|u| *u == n) {
+                    Some(u) => code(3000.0, u, i, j),
+                    None => code(7000.0, 0, i, j),
+                }
+            } else if let Some(rest) = name.strip_prefix("d(") {
+                let (n, i) = rest.trim_end_matches(')').split_once(")/d(").unwrap();
+                match unknowns.iter().position(|u| *u == n) {
+                    Some(u) => code(2000.0, u, input(i), 0),
+                    None => code(6000.0, 0, input(i), 0),
+                }
+            } else {
+                match unknowns.iter().position(|u| u == name) {
+                    Some(u) => code(1000.0, u, 0, 0),
+                    None => code(5000.0, 0, 0, 0),
+                }
+            };
+            assert_eq!(*value, expected, "column {name}");
+        }
+    }
+}

@@ -15,16 +15,9 @@
 
 use crate::dims::{Dims, JacState, KinState, Store};
 use crate::events::{BlockInfo, Event, EventKind};
-use crate::mechanism::kernel::Kernel;
+use crate::mechanism::kernel::{D, Kernel, Q, X};
 use crate::solvers::newton::NewtonConfig;
 use nalgebra::{DMatrix, DVector};
-
-/// The storage of kernel `K`'s sizes.
-type D<K> = <K as Kernel>::Dims;
-/// A vector of the unknowns' size of kernel `K`.
-pub(crate) type Q<K> = <D<K> as Dims>::Q;
-/// A vector of the inputs' size of kernel `K`.
-pub(crate) type X<K> = <D<K> as Dims>::X;
 
 /// A straight path in input space.
 #[derive(Clone, Copy, Debug)]

@@ -43,23 +43,14 @@ use super::curve::{self, CurvePoint, Found, Metric, Path};
 use super::outcome::SweepResult;
 use crate::dims::{Dims, KinState, Square};
 use crate::error::{Error, Quantity};
-use crate::events::{BlockInfo, Event, EventKind, Location};
+use crate::events::{Event, EventKind, Location};
 use crate::kin::{DetSigns, Kin};
 use crate::mechanism::Mechanism;
-use crate::mechanism::kernel::{Compiled, Kernel};
+use crate::mechanism::kernel::{Compiled, D, Kernel, KinOf, Q, X};
 use crate::solvers::newton::NewtonConfig;
 use crate::table::Table;
 use crate::trig::Rotating;
 use std::marker::PhantomData;
-
-/// The storage of kernel `K`'s sizes.
-type D<K> = <K as Kernel>::Dims;
-/// A vector of the unknowns' size of kernel `K`.
-type Q<K> = <D<K> as Dims>::Q;
-/// A vector of the inputs' size of kernel `K`.
-type X<K> = <D<K> as Dims>::X;
-/// The kinematic state of kernel `K`.
-type KinOf<K> = <D<K> as Dims>::Kin;
 
 /// What a sweep does at a singular crossing (a change point where a block's determinant changes
 /// sign and the mechanism can continue on either branch).
@@ -579,8 +570,8 @@ where
         Ok(t.with_kernel_units(&self.m))
     }
 
-    fn location(&self, x: &[f64], block: Option<(usize, BlockInfo)>) -> Box<Location> {
-        self.m.location(x, block.map(|(b, _)| b))
+    fn location(&self, x: &[f64], block: Option<usize>) -> Box<Location> {
+        self.m.location(x, block)
     }
 
     /// The prediction for a step of `dt` (a fraction of the path) from `k`, with the analogs
@@ -888,7 +879,7 @@ where
             // kink of a non-smooth curve (e.g. through `abs`), reported below as a branch error.
             Some(Found::Fold(fold)) if curve::pivot_at(&self.m, &path.at_sigma(fold.sigma), &fold.q) < 1e-6 => {
                 let ev = curve::event_at(EventKind::LimitPosition, &path, &fold, block_of(weakest));
-                let at = self.location(&ev.x, ev.block);
+                let at = self.location(&ev.x, Some(weakest));
                 self.events.push(ev);
                 return Err(Error::SweepStopped { kind: EventKind::LimitPosition, at });
             }
@@ -903,10 +894,10 @@ where
                 {
                     return Ok(n);
                 }
-                let ev = &self.events[self.events.len() - 1];
+                let x = self.events[self.events.len() - 1].x.clone();
                 return Err(Error::SweepStopped {
                     kind: EventKind::SingularCrossing,
-                    at: self.location(&ev.x, ev.block),
+                    at: self.location(&x, Some(flipped)),
                 });
             }
             _ => {}
@@ -925,13 +916,13 @@ where
                     self.spare().health().min_pivot,
                     self.cfg.singular_pivot
                 ),
-                at: self.location(x.as_ref(), block_of(weakest)),
+                at: self.location(x.as_ref(), Some(weakest)),
             },
             _ => Error::Branch {
                 message: "the sweep cannot stay on its branch: however small the step, the solution jumps or its \
                           velocity analogs do (the solution curve is not smooth here, or steps land on another solution)"
                     .into(),
-                at: self.location(x.as_ref(), block_of(weakest)),
+                at: self.location(x.as_ref(), Some(weakest)),
             },
         })
     }
@@ -976,6 +967,7 @@ where
 mod tests {
     use super::*;
     use crate::analysis::demo::SliderCrank;
+    use crate::events::BlockInfo;
     use crate::kin::Jac;
     use crate::solvers::newton::SolveReport;
 

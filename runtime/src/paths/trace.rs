@@ -3,9 +3,9 @@
 
 use super::curve::{CurvePoint, Metric, Path, arc_step, event_at, locate_fold, tangent_from_analogs};
 use crate::error::Error;
-use crate::events::{Event, EventKind, Location};
+use crate::events::{Event, EventKind};
 use crate::mechanism::Mechanism;
-use crate::mechanism::kernel::Compiled;
+use crate::mechanism::kernel::{Compiled, Kernel};
 use crate::solvers::newton::NewtonConfig;
 
 /// Options of [`trace_curve`], built from the default with the `with_*` methods.
@@ -150,7 +150,7 @@ where
             if step < ds * 1e-6 {
                 return Err(Error::Branch {
                     message: "pseudo-arclength continuation cannot proceed (the curve bifurcates or ends here)".into(),
-                    at: Location::boxed(M::NAME, &M::INPUTS, &path.at_sigma(p.sigma), None),
+                    at: m.location(&path.at_sigma(p.sigma), None),
                 });
             }
             continue;
