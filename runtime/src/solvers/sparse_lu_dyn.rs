@@ -19,7 +19,7 @@
 
 use super::jacobian::BlockJacobian;
 use super::lu::{Factor, Lu, RowScales, inverses};
-use super::sparse_steps::THRESHOLD;
+use super::sparse_steps::PatternView;
 use std::sync::Mutex;
 
 /// The symbolic factorisation of one sparse block, owned (the meaning of every field is that of
@@ -71,71 +71,29 @@ impl SparseTables {
         self.row_ptr[r] as usize..self.row_ptr[r + 1] as usize
     }
 
-    /// `Tables::load`: entry `e` of row `r`, column `c` as `v[e] * inv_row[r] * inv_col[c]` at
-    /// its slot, fill slots zero.
+    /// The tables as the loops of the compiled path read them
+    /// ([`PatternView`](super::sparse_steps::PatternView): the same arithmetic).
+    pub fn view(&self) -> PatternView<'_> {
+        PatternView {
+            n: self.n,
+            row_ptr: &self.row_ptr,
+            col: &self.col,
+            slot: &self.slot,
+            diag: &self.diag,
+            l_ptr: &self.l_ptr,
+            l_slot: &self.l_slot,
+            l_row: &self.l_row,
+            u_ptr: &self.u_ptr,
+            u_slot: &self.u_slot,
+            u_col: &self.u_col,
+            upd: &self.upd,
+        }
+    }
+
+    /// The factor's slots before elimination, fill slots zero (see [`PatternView::load`]).
     pub fn load(&self, v: &[f64], inv_row: &[f64], inv_col: &[f64], lu: &mut [f64]) {
         lu.fill(0.0);
-        for (r, &ir) in inv_row.iter().enumerate().take(self.n) {
-            let e = self.entries(r);
-            for ((&s, &c), &v) in self.slot[e.clone()].iter().zip(&self.col[e.clone()]).zip(&v[e]) {
-                lu[s as usize] = v * ir * inv_col[c as usize];
-            }
-        }
-    }
-
-    /// `Tables::eliminate`: the elimination in place with its threshold test of every pivot;
-    /// `None` when a pivot is weak, zero or not finite.
-    pub fn eliminate(&self, lu: &mut [f64], inv_diag: &mut [f64], det: &mut f64, negative: &mut bool) -> Option<f64> {
-        let (mut upd, mut min_pivot) = (self.upd.iter(), f64::INFINITY);
-        for k in 0..self.n {
-            let pivot = lu[self.diag[k] as usize];
-            let lower = &self.l_slot[self.l_ptr[k] as usize..self.l_ptr[k + 1] as usize];
-            let upper = &self.u_slot[self.u_ptr[k] as usize..self.u_ptr[k + 1] as usize];
-            let mut col_max = 0.0f64;
-            for &s in lower {
-                // NaN propagates (`f64::max` would drop it).
-                let a = lu[s as usize].abs();
-                if a > col_max || a.is_nan() {
-                    col_max = a;
-                }
-            }
-            let magnitude = pivot.abs();
-            if !(magnitude >= THRESHOLD * col_max && magnitude > 0.0 && magnitude < f64::INFINITY) {
-                return None;
-            }
-            min_pivot = min_pivot.min(magnitude);
-            *det *= pivot;
-            if pivot < 0.0 {
-                *negative = !*negative;
-            }
-            let inv = 1.0 / pivot;
-            inv_diag[k] = inv;
-            for &s in lower {
-                let li = lu[s as usize] * inv;
-                lu[s as usize] = li;
-                for (&u, &t) in upper.iter().zip(upd.by_ref()) {
-                    lu[t as usize] -= li * lu[u as usize];
-                }
-            }
-        }
-        Some(min_pivot)
-    }
-
-    /// `Tables::substitute`: solves `L U z = z` in place (`z` in pivot order).
-    pub fn substitute(&self, lu: &[f64], inv_diag: &[f64], z: &mut [f64]) {
-        for k in 0..self.n {
-            let (zk, l) = (z[k], self.l_ptr[k] as usize..self.l_ptr[k + 1] as usize);
-            for (&s, &i) in self.l_slot[l.clone()].iter().zip(&self.l_row[l]) {
-                z[i as usize] -= lu[s as usize] * zk;
-            }
-        }
-        for k in (0..self.n).rev() {
-            let (mut acc, u) = (z[k], self.u_ptr[k] as usize..self.u_ptr[k + 1] as usize);
-            for (&s, &j) in self.u_slot[u.clone()].iter().zip(&self.u_col[u]) {
-                acc -= lu[s as usize] * z[j as usize];
-            }
-            z[k] = acc * inv_diag[k];
-        }
+        self.view().load(v, inv_row, inv_col, lu);
     }
 
     /// The matrix of entry values `v` padded to `P` with the identity (dense rows).
@@ -215,7 +173,7 @@ impl<const P: usize> PaddedLu<P> {
         self.negative_det = t.odd;
         self.det = if t.odd { -1.0 } else { 1.0 };
         self.is_dense = false;
-        match t.eliminate(&mut self.lu, &mut self.inv_diag[..n], &mut self.det, &mut self.negative_det) {
+        match t.view().eliminate(&mut self.lu, &mut self.inv_diag[..n], &mut self.det, &mut self.negative_det) {
             Some(min_pivot) if !degenerate => self.pivot_ratio = min_pivot,
             Some(_) => {}
             None => self.dense_fallback(t, v, row_scale, col_scale),
@@ -268,7 +226,7 @@ impl<const P: usize> PaddedLu<P> {
             let r = t.prow[k] as usize;
             *zk = b[r] * self.inv_row[r];
         }
-        t.substitute(&self.lu, &self.inv_diag[..n], &mut z[..n]);
+        t.view().substitute(&self.lu, &self.inv_diag[..n], &mut z[..n]);
         let mut x = b;
         for (k, &zk) in z.iter().enumerate().take(n) {
             let c = t.pcol[k] as usize;

@@ -88,12 +88,7 @@ pub struct Tables;
 impl<const N: usize, const NLU: usize> SparseSteps<N, NLU> for Tables {
     fn load<const NNZ: usize>(p: &SparsePattern, v: &[f64; NNZ], inv_row: &[f64; N], inv_col: &[f64; N]) -> [f64; NLU] {
         let mut lu = [0.0; NLU];
-        for (r, &ir) in inv_row.iter().enumerate() {
-            let e = p.row_ptr[r] as usize..p.row_ptr[r + 1] as usize;
-            for ((&s, &c), &v) in p.slot[e.clone()].iter().zip(&p.col[e.clone()]).zip(&v[e]) {
-                lu[s as usize] = v * ir * inv_col[c as usize];
-            }
-        }
+        p.view().load(v, inv_row, inv_col, &mut lu);
         lu
     }
 
@@ -104,11 +99,89 @@ impl<const N: usize, const NLU: usize> SparseSteps<N, NLU> for Tables {
         det: &mut f64,
         negative: &mut bool,
     ) -> Option<f64> {
-        let (mut upd, mut min_pivot) = (p.upd.iter(), f64::INFINITY);
-        for k in 0..N {
-            let pivot = lu[p.diag[k] as usize];
-            let lower = &p.l_slot[p.l_ptr[k] as usize..p.l_ptr[k + 1] as usize];
-            let upper = &p.u_slot[p.u_ptr[k] as usize..p.u_ptr[k + 1] as usize];
+        p.view().eliminate(lu, inv_diag, det, negative)
+    }
+
+    fn substitute(p: &SparsePattern, lu: &[f64; NLU], inv_diag: &[f64; N], z: &mut [f64; N]) {
+        p.view().substitute(lu, inv_diag, z)
+    }
+}
+
+impl SparsePattern {
+    /// The tables as the loops read them.
+    #[inline(always)]
+    pub fn view(&self) -> PatternView<'_> {
+        PatternView {
+            n: self.diag.len(),
+            row_ptr: self.row_ptr,
+            col: self.col,
+            slot: self.slot,
+            diag: self.diag,
+            l_ptr: self.l_ptr,
+            l_slot: self.l_slot,
+            l_row: self.l_row,
+            u_ptr: self.u_ptr,
+            u_slot: self.u_slot,
+            u_col: self.u_col,
+            upd: self.upd,
+        }
+    }
+}
+
+/// The index tables of a sparse block's factorisation, borrowed from where they live (the
+/// compiled pattern's statics, or the tables a mechanism read at run time owns), and the
+/// numeric steps as loops over them: the one copy of this arithmetic besides the emitted
+/// straight-line code (the fields are those of [`SparsePattern`]; `n` is the number of pivots).
+#[doc(hidden)]
+#[derive(Clone, Copy, Debug)]
+pub struct PatternView<'a> {
+    /// Number of unknowns (pivots).
+    pub n: usize,
+    /// See [`SparsePattern::row_ptr`].
+    pub row_ptr: &'a [u32],
+    /// See [`SparsePattern::col`].
+    pub col: &'a [u16],
+    /// See [`SparsePattern::slot`].
+    pub slot: &'a [u32],
+    /// See [`SparsePattern::diag`].
+    pub diag: &'a [u32],
+    /// See [`SparsePattern::l_ptr`].
+    pub l_ptr: &'a [u32],
+    /// See [`SparsePattern::l_slot`].
+    pub l_slot: &'a [u32],
+    /// See [`SparsePattern::l_row`].
+    pub l_row: &'a [u16],
+    /// See [`SparsePattern::u_ptr`].
+    pub u_ptr: &'a [u32],
+    /// See [`SparsePattern::u_slot`].
+    pub u_slot: &'a [u32],
+    /// See [`SparsePattern::u_col`].
+    pub u_col: &'a [u16],
+    /// See [`SparsePattern::upd`].
+    pub upd: &'a [u32],
+}
+
+impl PatternView<'_> {
+    /// [`SparseSteps::load`] into `lu`, whose fill slots must already be zero: entry `e` of row
+    /// `r < n`, column `c` as `v[e] * inv_row[r] * inv_col[c]` at its slot.
+    #[inline(always)]
+    pub fn load(&self, v: &[f64], inv_row: &[f64], inv_col: &[f64], lu: &mut [f64]) {
+        for (r, &ir) in inv_row.iter().enumerate().take(self.n) {
+            let e = self.row_ptr[r] as usize..self.row_ptr[r + 1] as usize;
+            for ((&s, &c), &v) in self.slot[e.clone()].iter().zip(&self.col[e.clone()]).zip(&v[e]) {
+                lu[s as usize] = v * ir * inv_col[c as usize];
+            }
+        }
+    }
+
+    /// [`SparseSteps::eliminate`] over the first `n` pivots.
+    #[inline(always)]
+    pub fn eliminate(&self, lu: &mut [f64], inv_diag: &mut [f64], det: &mut f64, negative: &mut bool) -> Option<f64> {
+        let (mut upd, mut min_pivot) = (self.upd.iter(), f64::INFINITY);
+        for k in 0..self.n {
+            let pivot = lu[self.diag[k] as usize];
+            let lower = &self.l_slot[self.l_ptr[k] as usize..self.l_ptr[k + 1] as usize];
+            let upper = &self.u_slot[self.u_ptr[k] as usize..self.u_ptr[k + 1] as usize];
             let mut col_max = 0.0f64;
             for &s in lower {
                 // NaN propagates (`f64::max` would drop it).
@@ -141,16 +214,19 @@ impl<const N: usize, const NLU: usize> SparseSteps<N, NLU> for Tables {
         Some(min_pivot)
     }
 
-    fn substitute(p: &SparsePattern, lu: &[f64; NLU], inv_diag: &[f64; N], z: &mut [f64; N]) {
-        for k in 0..N {
-            let (zk, l) = (z[k], p.l_ptr[k] as usize..p.l_ptr[k + 1] as usize);
-            for (&s, &i) in p.l_slot[l.clone()].iter().zip(&p.l_row[l]) {
+    /// [`SparseSteps::substitute`]: solves `L U z = z` in place for the first `n` values of `z`
+    /// (in pivot order).
+    #[inline(always)]
+    pub fn substitute(&self, lu: &[f64], inv_diag: &[f64], z: &mut [f64]) {
+        for k in 0..self.n {
+            let (zk, l) = (z[k], self.l_ptr[k] as usize..self.l_ptr[k + 1] as usize);
+            for (&s, &i) in self.l_slot[l.clone()].iter().zip(&self.l_row[l]) {
                 z[i as usize] -= lu[s as usize] * zk;
             }
         }
-        for k in (0..N).rev() {
-            let (mut acc, u) = (z[k], p.u_ptr[k] as usize..p.u_ptr[k + 1] as usize);
-            for (&s, &j) in p.u_slot[u.clone()].iter().zip(&p.u_col[u]) {
+        for k in (0..self.n).rev() {
+            let (mut acc, u) = (z[k], self.u_ptr[k] as usize..self.u_ptr[k + 1] as usize);
+            for (&s, &j) in self.u_slot[u.clone()].iter().zip(&self.u_col[u]) {
                 acc -= lu[s as usize] * z[j as usize];
             }
             z[k] = acc * inv_diag[k];
