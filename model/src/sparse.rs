@@ -5,7 +5,7 @@
 //! order.
 //!
 //! The runtime's Newton is written over a block size known when it is compiled. A block of `n`
-//! unknowns is solved at the next size `P` of [`SIZES`] padded with unknowns that stay zero
+//! unknowns is solved at the first size `P` of [`block`]'s list padded with unknowns that stay zero
 //! (see the runtime's `sparse_lu_dyn` for why every test and every real value is unchanged),
 //! its non-zeros in an array of `CAP >= nnz` values; both are chosen once, when the model is
 //! built, and the workspace (factor slots, the dense fallback) is allocated then.
@@ -18,11 +18,6 @@ use kinloop_runtime::generated::{
     newton_with,
 };
 use std::fmt;
-
-/// The sizes a sparse block is padded to, each with the capacities for its non-zeros: the
-/// largest block evaluated at run time has `MAX_SPARSE` unknowns.
-const SIZES: [(usize, &[usize]); 5] =
-    [(16, &[64]), (32, &[256]), (64, &[256, 1024]), (128, &[512, 4096]), (256, &[1024, 16384])];
 
 /// The most unknowns of a block solved by sparse Newton at run time: the language's limit of a
 /// mechanism's unknowns, so every sparse block a plan makes is evaluated (its padded evaluation,
@@ -86,18 +81,18 @@ pub(crate) fn tables(sp: &Sparse) -> SparseTables {
 /// (in the tables' order); `None` beyond [`MAX_SPARSE`] unknowns.
 pub(crate) fn block(t: SparseTables, entries: Vec<u32>) -> Option<Box<dyn SparseBlock>> {
     let (n, nnz) = (t.n, t.nnz());
-    let (p, cap) =
-        SIZES.iter().find(|(p, _)| *p >= n).and_then(|(p, caps)| Some((*p, *caps.iter().find(|&&c| c >= nnz)?)))?;
-    macro_rules! make {
-        ($(($p:literal, $c:literal, $k:literal)),*) => {
-            match (p, cap) {
-                $(($p, $c) => Some(Box::new(Padded::<$p, $c, $k>::new(t, entries)) as Box<dyn SparseBlock>),)*
-                _ => None,
-            }
-        };
+    // The padded sizes with the capacities for their non-zeros, smallest first (the plan's
+    // density bound, `nnz <= n^2 / 4`, keeps every block within one); the third size is the
+    // values kept per evaluation when the magnitudes depend on the unknowns (`2P`).
+    macro_rules! first_fitting {
+        ($(($p:literal, $c:literal, $k:literal)),*) => {{
+            $(if n <= $p && nnz <= $c {
+                return Some(Box::new(Padded::<$p, $c, $k>::new(t, entries)));
+            })*
+            None
+        }};
     }
-    // The third: the values kept per evaluation when the magnitudes depend on the unknowns (`2P`).
-    make!(
+    first_fitting!(
         (16, 64, 32),
         (32, 256, 64),
         (64, 256, 128),
