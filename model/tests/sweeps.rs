@@ -339,5 +339,15 @@ fn a_failed_start_names_the_model() {
     assert_eq!((&c_at.mechanism, &c_at.inputs), (&r_at.mechanism, &r_at.inputs));
     assert!(matches!(r_at.mechanism, std::borrow::Cow::Owned(_)));
     assert!(r_err.to_string().contains("in `FourBar` at phi = 0"), "{r_err}");
+    // The same failure is the same variant, the residual where the loop stalls the same.
+    assert_eq!(std::mem::discriminant(&c_err), std::mem::discriminant(&r_err), "{c_err:?}\n{r_err:?}");
+    let (kinloop::Error::NoAssembly { residual: c_res, .. }, kinloop::Error::NoAssembly { residual: r_res, .. }) =
+        (&c_err, &r_err)
+    else {
+        panic!("no assembly expected: {c_err:?}\n{r_err:?}")
+    };
+    // The residual is where Newton's method stalls (a length of the order of the gap
+    // |b - c| - |AD| = 0.3): the same to a few rounding steps of that length.
+    assert!((c_res - r_res).abs() <= 1e-12 * c_res.abs().max(1.0), "{c_res:e} {r_res:e}");
     eprintln!("compiled: {c_err}\nrun time: {r_err}");
 }
