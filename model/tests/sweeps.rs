@@ -238,8 +238,16 @@ where
     assert!(worst <= REL, "{name}: largest relative difference {worst:e}");
     same_events(&ce, &re);
     assert_eq!(cerr.is_some(), rerr.is_some(), "{name}: {cerr:?} {rerr:?}");
+    // Every sample requested compared, or a stop that an event explains: two sweeps failing
+    // alike at their first sample would otherwise agree.
+    if ce.is_empty() {
+        assert_eq!((n, &cerr), (samples, &None), "{name}: samples compared of {samples}");
+    } else {
+        assert!(n > 0, "{name}: stopped at the start after the events {ce:?}");
+    }
     let (worst, n_libm, ce, re, ..) = both(&Libm(compiled), model, from, to, samples);
     assert_eq!(worst, 0.0, "{name}: with libm's sines");
+    assert_eq!(n_libm, n, "{name}: samples compared with libm's sines");
     let strip = |e: &[Event]| e.iter().map(|e| (e.kind, e.x.clone(), e.tau, e.q.clone())).collect::<Vec<_>>();
     assert_eq!(strip(&ce), strip(&re), "{name}: events with libm's sines");
     eprintln!("{name}: {n} samples ({n_libm} with libm's sines), {} events", ce.len());
