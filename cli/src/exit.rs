@@ -10,3 +10,7 @@ pub const DATA_ERR: u8 = 65;
 pub const NO_INPUT: u8 = 66;
 /// The declaration uses what the run-time evaluator does not evaluate yet.
 pub const UNAVAILABLE: u8 = 69;
+/// An output file (`--events`) cannot be created.
+pub const CANT_CREATE: u8 = 73;
+/// Writing an output (the table, the events) failed.
+pub const IO_ERR: u8 = 74;

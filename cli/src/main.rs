@@ -10,7 +10,8 @@
 //!
 //! Exit codes ([`exit`]): 0 success, 1 a solve failed, 2 a usage error, 65 the declaration is
 //! rejected (diagnostics on standard error), 66 the file cannot be read, 69 the declaration uses
-//! what the run-time evaluator does not evaluate yet.
+//! what the run-time evaluator does not evaluate yet, 73 the `--events` file cannot be created,
+//! 74 an output cannot be written.
 
 mod exit;
 mod params;

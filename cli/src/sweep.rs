@@ -6,7 +6,7 @@ use crate::solve::{factors, parse_inputs, units};
 use crate::{Failed, exit};
 use kinloop_model::Model;
 use kinloop_runtime::dims::KinState;
-use kinloop_runtime::{Event, QuantityKind, Table};
+use kinloop_runtime::{Error, Event, QuantityKind, Table};
 use std::io::Write;
 use std::path::Path;
 
@@ -30,8 +30,8 @@ pub struct Request<'a> {
 pub fn run(model: &mut Model, req: &Request) -> Result<(), Failed> {
     let kinds: Vec<QuantityKind> = model.quantities().iter().map(|(_, k)| *k).collect();
     let ni = model.inputs().len();
-    let to_rad = |spec: &str| -> Result<Vec<f64>, Failed> {
-        let mut x = parse_inputs(spec, ni, "--from/--to")?;
+    let to_rad = |spec: &str, option: &str| -> Result<Vec<f64>, Failed> {
+        let mut x = parse_inputs(spec, ni, option)?;
         for (v, k) in x.iter_mut().zip(&kinds[..ni]) {
             if req.deg && *k == QuantityKind::Angle {
                 *v = v.to_radians();
@@ -39,11 +39,7 @@ pub fn run(model: &mut Model, req: &Request) -> Result<(), Failed> {
         }
         Ok(x)
     };
-    let (from, to) = (to_rad(req.from)?, to_rad(req.to)?);
-    if req.samples == 0 {
-        eprintln!("error: --samples must be at least 1");
-        return Err(Failed(exit::USAGE));
-    }
+    let (from, to) = (to_rad(req.from, "--from")?, to_rad(req.to, "--to")?);
     let name = model.name().to_string();
     let factors = factors(model, &kinds, req.deg);
     let columns = model.columns();
@@ -54,7 +50,23 @@ pub fn run(model: &mut Model, req: &Request) -> Result<(), Failed> {
     };
     let mut guess = vec![0.0; model.unknowns().len()];
     model.guess(&from, &mut guess).map_err(|e| failed(&e))?;
-    let mut sweep = model.sweep(&from, &to, req.samples, &guess).map_err(|e| failed(&e))?;
+    // The runtime checks the arguments (at least one sample, `to` apart from `from` for
+    // several): its refusal is a usage error, not a failed solve.
+    let mut sweep = model.sweep(&from, &to, req.samples, &guess).map_err(|e| match e {
+        Error::InvalidArgument(_) => {
+            eprintln!("error: {name}: {e}");
+            Failed(exit::USAGE)
+        }
+        e => failed(&e),
+    })?;
+    // Created before the sweep runs: a path that cannot be written stops before any output.
+    let events_file = match req.events {
+        Some(path) => Some(std::fs::File::create(path).map_err(|e| {
+            eprintln!("error: cannot create the events file {}: {e}", path.display());
+            Failed(exit::CANT_CREATE)
+        })?),
+        None => None,
+    };
     let mut table = Table::new(columns);
     let mut stop = None;
     while let Some(k) = sweep.next_ref() {
@@ -70,21 +82,26 @@ pub fn run(model: &mut Model, req: &Request) -> Result<(), Failed> {
     drop(sweep);
     let table = table.with_units(&base.iter().map(|(n, u)| (n.as_str(), *u)).collect::<Vec<_>>());
     let stdout = std::io::stdout();
-    table.write_csv(stdout.lock()).map_err(|e| failed(&format!("cannot write the table: {e}")))?;
-    write_events(model, &events, req).map_err(|e| failed(&format!("cannot write the events: {e}")))?;
+    let io_error = |what: &str, e: std::io::Error| {
+        eprintln!("error: cannot write {what}: {e}");
+        Failed(exit::IO_ERR)
+    };
+    table.write_csv(stdout.lock()).map_err(|e| io_error("the table", e))?;
+    write_events(model, &events, req.deg, events_file).map_err(|e| io_error("the events", e))?;
     match stop {
         Some(e) => Err(failed(&e)),
         None => Ok(()),
     }
 }
 
-/// The events as CSV (`kind,tau,` the inputs and the unknowns, in the sweep's units) into
-/// `--events`, or one line each on standard error.
-fn write_events(model: &Model, events: &[Event], req: &Request) -> std::io::Result<()> {
+/// The events as CSV (`kind,tau,` the inputs and the unknowns, in the sweep's units, named
+/// `name [unit]` as the table's columns) into `file` (`--events`), or one line each on
+/// standard error.
+fn write_events(model: &Model, events: &[Event], deg: bool, file: Option<std::fs::File>) -> std::io::Result<()> {
     let kinds: Vec<QuantityKind> = model.quantities().iter().map(|(_, k)| *k).collect();
-    let angle = |k: QuantityKind, v: f64| if req.deg && k == QuantityKind::Angle { v.to_degrees() } else { v };
+    let angle = |k: QuantityKind, v: f64| if deg && k == QuantityKind::Angle { v.to_degrees() } else { v };
     let ni = model.inputs().len();
-    let Some(path) = req.events else {
+    let Some(file) = file else {
         for e in events {
             let at: Vec<String> = model
                 .inputs()
@@ -97,9 +114,16 @@ fn write_events(model: &Model, events: &[Event], req: &Request) -> std::io::Resu
         }
         return Ok(());
     };
-    let mut w = std::io::BufWriter::new(std::fs::File::create(path)?);
-    let names: Vec<&str> = model.inputs().iter().chain(model.unknowns()).map(String::as_str).collect();
-    writeln!(w, "kind,tau,{}", names.join(","))?;
+    let mut w = std::io::BufWriter::new(file);
+    let columns = ni + model.unknowns().len();
+    // The header the table writes for the same columns (`name [unit]`, the name alone where
+    // the unit is empty), ended by its newline.
+    let base = &units(model, &kinds, deg)[..columns];
+    let header = Table::new(base.iter().map(|(n, _)| n.clone()).collect());
+    let header = header.with_units(&base.iter().map(|(n, u)| (n.as_str(), *u)).collect::<Vec<_>>());
+    let mut line = Vec::new();
+    header.write_csv(&mut line)?;
+    write!(w, "kind,tau,{}", String::from_utf8_lossy(&line))?;
     for e in events {
         let values: Vec<String> =
             e.x.iter().chain(&e.q).zip(&kinds[..ni + e.q.len()]).map(|(v, k)| angle(*k, *v).to_string()).collect();

@@ -193,10 +193,43 @@ fn sweep_lists_the_limit_position_and_fails() {
     assert_eq!(rows, ((phi - 1.2) / (6.2 / 99.0)).floor() as usize + 1, "{text}");
     let events = std::fs::read_to_string(&events).expect("events file");
     let mut lines = events.lines();
-    assert_eq!(lines.next(), Some("kind,tau,phi,beta,gamma"));
+    // The table's headers of the same columns, with their units.
+    assert_eq!(lines.next(), Some("kind,tau,phi [rad],beta [rad],gamma [rad]"));
     let event: Vec<&str> = lines.next().expect("one event").split(',').collect();
     assert_eq!(event[0], "limit position");
     let at: f64 = event[2].parse().expect("a number");
     assert!((at - phi).abs() < 1e-9, "event at {at}, closed form {phi}");
     std::fs::remove_dir_all(&dir).ok();
+}
+
+/// Arguments the runtime's sweep refuses (no sample; several samples over an empty range) are
+/// usage errors (exit 2), named on standard error, not failed solves; an `--events` file that
+/// cannot be created is exit 73, before anything is written.
+#[test]
+fn sweep_arguments_the_runtime_refuses_are_usage_errors() {
+    let four_bar = shipped("four_bar.kl");
+    let params = "a=1,b=3,c=2.5,d=3.2";
+    let empty = kinloop(&["sweep", &four_bar, "--from", "0", "--to", "0", "--params", params]);
+    let err = String::from_utf8_lossy(&empty.stderr);
+    assert_eq!(empty.status.code(), Some(2), "{err}");
+    assert!(err.contains("`to` different from `from`"), "{err}");
+    assert!(empty.stdout.is_empty());
+    let none = kinloop(&["sweep", &four_bar, "--from", "0", "--to", "1", "--samples", "0", "--params", params]);
+    let err = String::from_utf8_lossy(&none.stderr);
+    assert_eq!(none.status.code(), Some(2), "{err}");
+    assert!(err.contains("at least one sample"), "{err}");
+    // One sample needs no range: the state at `from`.
+    let one = kinloop(&["sweep", &four_bar, "--from", "0", "--to", "0", "--samples", "1", "--params", params]);
+    assert_eq!(csv(&one).1.len(), 1);
+    let bad_to = kinloop(&["sweep", &four_bar, "--from", "0", "--to", "x", "--params", params]);
+    let err = String::from_utf8_lossy(&bad_to.stderr);
+    assert_eq!(bad_to.status.code(), Some(2), "{err}");
+    assert!(err.contains("--to x") && !err.contains("--from"), "{err}");
+    let nowhere = std::env::temp_dir().join(format!("kinloop-cli-no-dir-{}", std::process::id())).join("events.csv");
+    let nowhere = nowhere.display().to_string();
+    let out = kinloop(&["sweep", &four_bar, "--from", "0", "--to", "1", "--params", params, "--events", &nowhere]);
+    let err = String::from_utf8_lossy(&out.stderr);
+    assert_eq!(out.status.code(), Some(73), "{err}");
+    assert!(err.contains("cannot create the events file"), "{err}");
+    assert!(out.stdout.is_empty());
 }

@@ -6,7 +6,7 @@ use crate::at::Jacobian;
 use crate::blocks::StepFailure;
 use crate::model::{Model, State, StepError};
 use kinloop_runtime::dims::{Dims, JacBuf, KinBuf, Sizes};
-use kinloop_runtime::generated::BlockFailure;
+use kinloop_runtime::generated::{BlockFailure, block_error};
 use kinloop_runtime::paths::sweep::SweepOf;
 use kinloop_runtime::{BlockInfo, Error, Kernel, Location, NewtonConfig, QuantityKind, SweepConfig};
 use std::borrow::Cow;
@@ -38,11 +38,8 @@ impl Model {
     /// the first that has none).
     pub fn kernel(&mut self, config: SweepConfig) -> Result<ModelKernel<'_>, Error> {
         if let Some(k) = self.param_values().iter().position(Option::is_none) {
-            return Err(Error::InvalidArgument(format!(
-                "parameter `{}` of `{}` has no value (it has no default: give one)",
-                self.params()[k],
-                self.name()
-            )));
+            let unset = StepError::UnsetParam(self.params()[k].to_string());
+            return Err(Error::InvalidArgument(format!("{unset}, in `{}`", self.name())));
         }
         config.validate()?;
         let sizes = Sizes { n: self.unknowns().len(), ni: self.inputs().len(), no: self.outputs().len() };
@@ -107,38 +104,27 @@ impl Model {
 }
 
 impl ModelKernel<'_> {
-    /// The error of a failed step at `x`, with the model's names.
+    /// The error of a failed step at `x`, with the model's names: the variant the compiled
+    /// mechanism's step returns for the same failure (`block_error`, the runtime's own). The
+    /// model's equation and unknown names are not `&'static`: they are `?`, as for a compiled
+    /// block that names none, and the location names the model and its inputs.
     fn error(&self, e: StepError, x: &[f64], cfg: &NewtonConfig) -> Error {
         match e {
             StepError::Block { block, failure: StepFailure::Singular { pivot_ratio } } => {
                 Error::Singular { pivot_ratio, tolerance: cfg.singular_tol, at: self.location(x, Some(block)) }
             }
             StepError::Block { block, failure: StepFailure::Block(f) } => {
-                let at = self.location(x, Some(block));
-                let message = match f {
-                    BlockFailure::Singular { pivot_ratio, tolerance, .. } => {
-                        return Error::Singular { pivot_ratio, tolerance, at };
-                    }
-                    BlockFailure::InvalidConfig { field } => {
-                        return Error::InvalidArgument(format!("NewtonConfig::{field} is out of its valid range"));
-                    }
-                    BlockFailure::NonFinite { .. } => "a value is not finite: an expression left its domain (e.g. \
-                                                       sqrt of a negative number, asin/acos beyond ±1, or a division by zero)"
-                        .to_string(),
-                    BlockFailure::NoConvergence { iterations, residual, .. } => {
-                        format!("Newton's method did not converge in {iterations} iterations (residual {residual:e})")
-                    }
-                    BlockFailure::NoAssembly { residual, .. } => format!(
-                        "the mechanism cannot be assembled: the loop residual stalls at {residual:e} (the links \
-                         cannot reach; check the lengths or the input range)"
-                    ),
-                    BlockFailure::TooManyTurns { value } => {
-                        format!("an angle is {value:e} rad, too many turns out to be solved to the tolerance")
-                    }
-                };
-                Error::Model { message: format!("block {block}: {message}"), at }
+                block_error(f, *self.location(x, Some(block)))
             }
-            e => Error::Model { message: e.to_string(), at: self.location(x, None) },
+            // As the compiled step's `non_finite` when it cannot tell which value.
+            StepError::NonFinite => Error::Domain { what: "value", name: "?", at: self.location(x, None) },
+            // Arguments the compiled mechanism's types or checks rule out before a step.
+            e @ (StepError::UnsetParam(_) | StepError::Size { .. }) => {
+                Error::InvalidArgument(format!("{e}, {}", self.location(x, None)))
+            }
+            StepError::InvalidConfig(field) => {
+                block_error(BlockFailure::InvalidConfig { field }, *self.location(x, None))
+            }
         }
     }
 

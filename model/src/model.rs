@@ -274,9 +274,7 @@ impl Model {
         let no = plan.outputs.len();
         // What the emitter writes as `FOLLOWERS` and `CLOSED_FORM_ANGLES`, from the same plan.
         let followers = kinloop_codegen::plan::followers::followers(&plan.graph, &plan.blocks, n);
-        let closed: Vec<usize> =
-            plan.blocks.iter().filter_map(|bp| bp.solve.closed_form()).flat_map(|r| r.form.angles()).collect();
-        let closed_form_angles = (0..n).map(|u| closed.contains(&u)).collect();
+        let closed_form_angles = kinloop_codegen::plan::closed_form_angles(&plan);
         let block_rows_cols = plan.blocks.iter().map(|bp| (bp.equations.clone(), bp.unknowns.clone())).collect();
         let state = State {
             x: vec![0.0; ni],

@@ -238,8 +238,16 @@ where
     assert!(worst <= REL, "{name}: largest relative difference {worst:e}");
     same_events(&ce, &re);
     assert_eq!(cerr.is_some(), rerr.is_some(), "{name}: {cerr:?} {rerr:?}");
+    // Every sample requested compared, or a stop that an event explains: two sweeps failing
+    // alike at their first sample would otherwise agree.
+    if ce.is_empty() {
+        assert_eq!((n, &cerr), (samples, &None), "{name}: samples compared of {samples}");
+    } else {
+        assert!(n > 0, "{name}: stopped at the start after the events {ce:?}");
+    }
     let (worst, n_libm, ce, re, ..) = both(&Libm(compiled), model, from, to, samples);
     assert_eq!(worst, 0.0, "{name}: with libm's sines");
+    assert_eq!(n_libm, n, "{name}: samples compared with libm's sines");
     let strip = |e: &[Event]| e.iter().map(|e| (e.kind, e.x.clone(), e.tau, e.q.clone())).collect::<Vec<_>>();
     assert_eq!(strip(&ce), strip(&re), "{name}: events with libm's sines");
     eprintln!("{name}: {n} samples ({n_libm} with libm's sines), {} events", ce.len());
@@ -339,5 +347,15 @@ fn a_failed_start_names_the_model() {
     assert_eq!((&c_at.mechanism, &c_at.inputs), (&r_at.mechanism, &r_at.inputs));
     assert!(matches!(r_at.mechanism, std::borrow::Cow::Owned(_)));
     assert!(r_err.to_string().contains("in `FourBar` at phi = 0"), "{r_err}");
+    // The same failure is the same variant, the residual where the loop stalls the same.
+    assert_eq!(std::mem::discriminant(&c_err), std::mem::discriminant(&r_err), "{c_err:?}\n{r_err:?}");
+    let (kinloop::Error::NoAssembly { residual: c_res, .. }, kinloop::Error::NoAssembly { residual: r_res, .. }) =
+        (&c_err, &r_err)
+    else {
+        panic!("no assembly expected: {c_err:?}\n{r_err:?}")
+    };
+    // The residual is where Newton's method stalls (a length of the order of the gap
+    // |b - c| - |AD| = 0.3): the same to a few rounding steps of that length.
+    assert!((c_res - r_res).abs() <= 1e-12 * c_res.abs().max(1.0), "{c_res:e} {r_res:e}");
     eprintln!("compiled: {c_err}\nrun time: {r_err}");
 }

@@ -179,16 +179,6 @@ pub enum Error {
         /// Where (the start of the range).
         at: Box<Location>,
     },
-    /// A step of a mechanism read at run time (`kinloop_model::Model`) failed: the model's own
-    /// description of the failure (the block and how it failed), with the model's names in the
-    /// location.
-    #[error("a step of a mechanism read at run time failed: {message} {at}")]
-    Model {
-        /// What failed.
-        message: String,
-        /// Where.
-        at: Box<Location>,
-    },
     /// An argument outside its valid range (e.g. a sweep with zero samples).
     #[error("invalid argument: {0}")]
     InvalidArgument(String),
@@ -261,8 +251,7 @@ impl Error {
             | Error::SweepStopped { at, .. }
             | Error::Branch { at, .. }
             | Error::TooManyTurns { at, .. }
-            | Error::RangeTooLong { at, .. }
-            | Error::Model { at, .. } => Some(at),
+            | Error::RangeTooLong { at, .. } => Some(at),
             Error::InvalidArgument(_) | Error::Dynamics(_) | Error::Figure(_) => None,
         }
     }

@@ -170,10 +170,13 @@ where
     }
 }
 
-/// Builds the error for a failed block at a known location.
+/// Builds the error for a failed block at a known location: equations the location's block
+/// does not name are `?`. Public for a mechanism read at run time (`kinloop_model`), whose
+/// failed steps must be the compiled mechanism's variants.
+#[doc(hidden)]
 #[cold]
 #[inline(never)]
-fn block_error(fail: BlockFailure, at: Location) -> Error {
+pub fn block_error(fail: BlockFailure, at: Location) -> Error {
     let equations = at.block.map_or(&[][..], |(_, info)| info.equations);
     let name = |row: usize| equations.get(row).copied().unwrap_or("?");
     match fail {

@@ -80,9 +80,7 @@ fn kind_constants(model: &Model, plan: &Plan) -> TokenStream {
     let rt = runtime();
     let Dims { n, ni, no, .. } = Dims::of(plan);
     let kinds = crate::plan::kinds::classify(model, &plan.graph, &plan.residuals, &plan.outputs);
-    let closed: Vec<usize> =
-        plan.blocks.iter().filter_map(|bp| bp.solve.closed_form()).flat_map(|r| r.form.angles()).collect();
-    let closed = (0..plan.n).map(|u| closed.contains(&u));
+    let closed = crate::plan::closed_form_angles(plan);
     let list = |ks: &[Kind]| {
         let names = ks.iter().map(|k| {
             let name = match k {
