@@ -27,7 +27,7 @@ pub(crate) struct NewtonProg {
 }
 
 /// Evaluations remembered to find the one the solver returned (see [`solve`]).
-const RECENT: usize = 4;
+pub(crate) const RECENT: usize = 4;
 
 /// Solves the block from the guesses; on return the registers hold the values of the
 /// evaluation the runtime's solver returned (what the emitted code reads from it afterwards),
@@ -123,19 +123,32 @@ where
         newton::<N, K>(z0, &mut ev, cfg, &mut eval, &per_eval)
     }?;
     report.absorb(&solved);
-    // The registers must hold the returned evaluation, which the solver may have made before a
-    // rejected trial (or, after a correction at the rounding level, before that correction):
-    // the most recent evaluation whose residuals and Jacobian are the returned ones is made
-    // again (evaluations are deterministic).
+    restore_returned(p, r, &recent, calls, (&ev.f, &p.jac, ev.j.as_flattened()), &solved.z);
+    Ok(())
+}
+
+/// Leaves the block's registers as the solver's result needs them: holding the returned
+/// evaluation, which the solver may have made before a rejected trial (or, after a correction
+/// at the rounding level, before that correction), so the most recent evaluation whose
+/// residuals `f` and Jacobian values `jac` (in registers `jac_regs`) are the returned ones is made
+/// again from `recent` (evaluations are deterministic); then the solution `z`.
+pub(crate) fn restore_returned<const P: usize>(
+    p: &NewtonProg,
+    r: &mut [f64],
+    recent: &[[f64; P]; RECENT],
+    calls: usize,
+    (f, jac_regs, jac): (&[f64], &[u32], &[f64]),
+    z: &[f64],
+) {
     let matches = |r: &[f64]| {
-        p.f.iter().zip(&ev.f).all(|(&reg, v)| r[reg as usize].to_bits() == v.to_bits())
-            && p.jac.iter().zip(ev.j.iter().flatten()).all(|(&reg, v)| r[reg as usize].to_bits() == v.to_bits())
+        p.f.iter().zip(f).all(|(&reg, v)| r[reg as usize].to_bits() == v.to_bits())
+            && jac_regs.iter().zip(jac).all(|(&reg, v)| r[reg as usize].to_bits() == v.to_bits())
     };
     if !matches(r) {
         for back in 1..=RECENT.min(calls) {
-            let z = recent[(calls - back) % RECENT];
+            let zb = recent[(calls - back) % RECENT];
             for (k, &reg) in p.unknown_regs.iter().enumerate() {
-                r[reg as usize] = z[k];
+                r[reg as usize] = zb[k];
             }
             p.eval.run(r);
             if matches(r) {
@@ -144,7 +157,6 @@ where
         }
     }
     for (k, &reg) in p.unknown_regs.iter().enumerate() {
-        r[reg as usize] = solved.z[k];
+        r[reg as usize] = z[k];
     }
-    Ok(())
 }

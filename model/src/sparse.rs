@@ -10,7 +10,7 @@
 //! its non-zeros in an array of `CAP >= nnz` values; both are chosen once, when the model is
 //! built, and the workspace (factor slots, the dense fallback) is allocated then.
 
-use crate::newton::NewtonProg;
+use crate::newton::{NewtonProg, RECENT, restore_returned};
 use kinloop_codegen::plan::sparse::Sparse;
 use kinloop_runtime::NewtonConfig;
 use kinloop_runtime::generated::{
@@ -26,9 +26,6 @@ pub const MAX_SPARSE: usize = 256;
 
 /// The largest block any solve of the step gathers into a stack buffer.
 pub(crate) const MAX_BLOCK: usize = MAX_SPARSE;
-
-/// Evaluations remembered to find the one the solver returned (see `newton::solve`).
-const RECENT: usize = 4;
 
 /// A sparse block's solver state, of its padded size.
 pub(crate) trait SparseBlock: fmt::Debug + Send + Sync {
@@ -173,26 +170,7 @@ impl<const P: usize, const CAP: usize, const K2: usize> Padded<P, CAP, K2> {
             newton_with::<P, K, _>(z0, &mut ev, cfg, &mut eval, &per_eval)
         }?;
         report.absorb(&solved);
-        // The registers must hold the returned evaluation (see `newton::solve`).
-        let matches = |r: &[f64]| {
-            p.f.iter().zip(&ev.f).all(|(&reg, v)| r[reg as usize].to_bits() == v.to_bits())
-                && entries.iter().zip(&ev.j.v).all(|(&reg, v)| r[reg as usize].to_bits() == v.to_bits())
-        };
-        if !matches(r) {
-            for back in 1..=RECENT.min(calls) {
-                let z = recent[(calls - back) % RECENT];
-                for (k, &reg) in p.unknown_regs.iter().enumerate() {
-                    r[reg as usize] = z[k];
-                }
-                p.eval.run(r);
-                if matches(r) {
-                    break;
-                }
-            }
-        }
-        for (k, &reg) in p.unknown_regs.iter().enumerate() {
-            r[reg as usize] = solved.z[k];
-        }
+        restore_returned(p, r, &recent, calls, (&ev.f, entries, &ev.j.v), &solved.z);
         Ok(())
     }
 }
