@@ -269,6 +269,17 @@ impl<const N: usize> Lu<N> {
         }
     }
 
+    /// [`Lu::factor_scaled`] written over `self`: where a large factorisation is kept on the
+    /// heap, made there rather than on the stack and moved (a block of 256 unknowns is 512 KiB).
+    #[inline(always)]
+    pub(crate) fn refactor_scaled(&mut self, j: &[[f64; N]; N], row_scale: [f64; N], col_scale: [f64; N]) {
+        if N <= 2 {
+            *self = Self::factor_scaled(j, row_scale, col_scale);
+        } else {
+            self.refactor_general(j, row_scale, col_scale);
+        }
+    }
+
     /// [`Lu::factor_general`] written over `self` (every field is set).
     #[inline(always)]
     fn refactor_general(&mut self, j: &[[f64; N]; N], row_scale: [f64; N], col_scale: [f64; N]) {

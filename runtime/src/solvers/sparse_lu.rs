@@ -262,7 +262,11 @@ impl<const N: usize, const NLU: usize, E: SparseSteps<N, NLU>> SparseLu<N, NLU, 
 #[cold]
 #[inline(never)]
 fn dense_fallback<const N: usize, J: BlockJacobian<N>>(j: &J, row_scale: [f64; N], col_scale: [f64; N]) -> Box<Lu<N>> {
-    Box::new(Lu::factor_scaled(&j.to_dense(), row_scale, col_scale))
+    // Factorised where it is kept: the dense matrix and the factorisation are 512 KiB each for
+    // a block of 256 unknowns, and a copy of each more would overflow a thread's default stack.
+    let mut lu = Box::new(Lu::unfactored());
+    lu.refactor_scaled(&j.to_dense(), row_scale, col_scale);
+    lu
 }
 
 impl<const N: usize, const NLU: usize, E: SparseSteps<N, NLU>> Factor for SparseLu<N, NLU, E> {

@@ -184,7 +184,7 @@ impl<const P: usize> PaddedLu<P> {
     #[cold]
     #[inline(never)]
     fn dense_fallback(&mut self, t: &SparseTables, v: &[f64], row_scale: [f64; P], col_scale: [f64; P]) {
-        *self.dense = Lu::factor_scaled(&t.padded_dense::<P>(v), row_scale, col_scale);
+        self.dense.refactor_scaled(&t.padded_dense::<P>(v), row_scale, col_scale);
         self.is_dense = true;
     }
 
