@@ -2,11 +2,14 @@
 //! given speed law, the shaking force and moment, their harmonics, and flywheel sizing.
 
 use super::error::DynamicsError;
-use super::eval::Shaking;
+use super::eval::{Shaking, checked_drive_into};
 use super::model::MassModel;
-use crate::analysis::Sampled;
+use super::state::AnalogState;
 use crate::analysis::fourier::{Fourier, fourier};
+use crate::dims::Dims;
 use crate::mechanism::Mechanism;
+use crate::mechanism::kernel::{Compiled, Kernel};
+use crate::paths::sweep::{SweepConfig, SweepOf};
 use std::f64::consts::TAU;
 
 /// How the input turns over the cycle.
@@ -151,23 +154,33 @@ where
     /// input cannot turn) as [`DynamicsError::Kinematics`]; the model's own errors.
     pub fn run(self) -> Result<Cycle, DynamicsError> {
         let guess = self.guess.unwrap_or_else(|| self.m.guess_flat(&[self.phi0]));
-        inverse_cycle(self.m, self.model, self.law, self.phi0, self.samples, guess, self.about)
+        let states = turn_states(Compiled(self.m), self.phi0, self.samples, guess)?;
+        let (model, about) = (self.model, self.about);
+        Cycle::over_states(&states, self.law, |k, omega, eps| {
+            let d = model.dynamics(k, &[omega])?;
+            let shaking = model.shaking(k, &[omega], &[eps], about)?;
+            let gamma = d.gamma.as_flattened().as_flattened();
+            CyclePoint::of(k.x[0], omega, eps, d.mass.as_flattened(), gamma, &d.forces, shaking)
+        })
     }
 }
 
-/// The computation behind [`InverseCycle::run`].
-fn inverse_cycle<M, const N: usize, const NO: usize>(
-    m: &M,
-    model: &MassModel<N, 1, NO>,
-    law: SpeedLaw<'_>,
+/// The kinematic states of one turn of the input of a one-input mechanism `k` (any
+/// [`Kernel`]: a compiled one through [`Compiled`], a run-time model's): `samples` equally
+/// spaced angles of `[phi0, phi0 + 2 pi)`, swept from `guess` at `phi0` (the turn's end is
+/// swept too, so that a limit position anywhere on the turn is found), with the default
+/// [`SweepConfig`]. The states [`InverseCycle::run`] evaluates, with its errors; a mechanism
+/// with other than one input is [`DynamicsError::SizeMismatch`].
+pub fn turn_states<K: Kernel>(
+    k: K,
     phi0: f64,
     samples: usize,
-    guess: [f64; N],
-    about: [f64; 2],
-) -> Result<Cycle, DynamicsError>
-where
-    M: Mechanism<N, 1, NO>,
-{
+    guess: <K::Dims as Dims>::Q,
+) -> Result<Vec<<K::Dims as Dims>::Kin>, DynamicsError> {
+    let d = k.dims();
+    if d.ni() != 1 {
+        return Err(DynamicsError::SizeMismatch { what: "inputs of a one-input cycle", expected: 1, given: d.ni() });
+    }
     if samples < 8 {
         return Err(DynamicsError::BadValue { what: "samples", value: samples as f64, why: "need at least 8" });
     }
@@ -189,33 +202,79 @@ where
             why: "must be finite and small enough for the samples of a turn to be told apart (reduce it modulo a turn)",
         });
     }
-    let turn = Sampled::sweep(m, phi0, phi0 + TAU, samples + 1, guess).map_err(DynamicsError::kin)?;
-    let mut points = Vec::with_capacity(samples);
-    for k in &turn.states()[..samples] {
-        let phi = k.x[0];
-        let (omega, eps) = law.at(phi);
-        for value in [omega, eps] {
-            if !value.is_finite() {
-                return Err(DynamicsError::BadValue { what: "speed law", value, why: "must be finite" });
+    let (mut from, mut to) = (d.x(), d.x());
+    from[0] = phi0;
+    to[0] = phi0 + TAU;
+    let mut sweep = SweepOf::<K, <K::Dims as Dims>::Kin>::over(k, from, to, samples + 1, guess)
+        .map_err(DynamicsError::kin)?
+        .with_config(SweepConfig::default());
+    let mut states = Vec::with_capacity(samples + 1);
+    while let Some(state) = sweep.next_kin() {
+        states.push(state.map_err(DynamicsError::kin)?);
+    }
+    states.truncate(samples);
+    Ok(states)
+}
+
+impl CyclePoint {
+    /// The point at input angle `phi`, speed `omega` and acceleration `eps` from one input's
+    /// dynamics (`mass`, `gamma`, `forces` of one entry each, as [`Dynamics`](super::Dynamics)
+    /// or [`DynamicsBuf`](super::DynamicsBuf) hold them) and the shaking there: the reduced
+    /// inertia, its slope, the load and the checked driving torque.
+    pub fn of(
+        phi: f64,
+        omega: f64,
+        eps: f64,
+        mass: &[f64],
+        gamma: &[f64],
+        forces: &[f64],
+        shaking: Shaking,
+    ) -> Result<CyclePoint, DynamicsError> {
+        for (what, given) in
+            [("mass matrix entries", mass.len()), ("coefficients", gamma.len()), ("forces", forces.len())]
+        {
+            if given != 1 {
+                return Err(DynamicsError::SizeMismatch { what, expected: 1, given });
             }
         }
-        let d = model.dynamics(k, &[omega])?;
-        let shaking = model.shaking(k, &[omega], &[eps], about)?;
-        points.push(CyclePoint {
+        let mut torque = [0.0];
+        checked_drive_into(mass, gamma, forces, &[phi], &[omega], &[eps], &mut torque)?;
+        Ok(CyclePoint {
             phi,
             omega,
             eps,
-            inertia: d.reduced_inertia(),
-            inertia_slope: d.reduced_inertia_slope(),
-            load: d.forces[0],
-            torque: d.checked_drive(&[phi], &[omega], &[eps])?[0],
+            inertia: mass[0],
+            inertia_slope: 2.0 * gamma[0],
+            load: forces[0],
+            torque: torque[0],
             shaking,
-        });
+        })
     }
-    Ok(Cycle { points })
 }
 
 impl Cycle {
+    /// The cycle of the one-input `states` (of a turn, e.g. [`turn_states`]) at the speed law
+    /// `law`: `point` gives the point of each state at its speed and acceleration (see
+    /// [`CyclePoint::of`]). A speed law that is not finite is [`DynamicsError::BadValue`].
+    pub fn over_states<S: AnalogState>(
+        states: &[S],
+        law: SpeedLaw<'_>,
+        mut point: impl FnMut(&S, f64, f64) -> Result<CyclePoint, DynamicsError>,
+    ) -> Result<Cycle, DynamicsError> {
+        let mut points = Vec::with_capacity(states.len());
+        for k in states {
+            let phi = k.inputs()[0];
+            let (omega, eps) = law.at(phi);
+            for value in [omega, eps] {
+                if !value.is_finite() {
+                    return Err(DynamicsError::BadValue { what: "speed law", value, why: "must be finite" });
+                }
+            }
+            points.push(point(k, omega, eps)?);
+        }
+        Ok(Cycle { points })
+    }
+
     /// The Fourier series of `f` over the cycle's points, computed on the values divided by a
     /// power of two near their largest magnitude (exact) and scaled back, so that
     /// coefficients are found whenever they are representable.

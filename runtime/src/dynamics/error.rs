@@ -149,6 +149,17 @@ pub enum DynamicsError {
         /// The change the step computed for it.
         change: f64,
     },
+    /// A state, vector or list of values of a run-time mass model
+    /// ([`MassModelBuf`](super::MassModelBuf)) has another size than the model's.
+    #[error("{given} {what} given, {expected} expected")]
+    SizeMismatch {
+        /// What was given.
+        what: &'static str,
+        /// The size expected.
+        expected: usize,
+        /// The size given.
+        given: usize,
+    },
     /// The integrator made its maximum number of steps.
     #[error("the integration made {steps} steps and reached only t = {t}; raise `max_steps`")]
     TooManySteps {

@@ -16,7 +16,9 @@
 //! `Q_i = sum F . v_Pi + T w_i + sum m g . v_Si`.
 
 use super::error::DynamicsError;
-use super::model::{Coord, Load, MassModel, Rotation};
+use super::model::{Body, Load, MassModel};
+use super::state::AnalogState;
+use super::terms;
 use crate::kin::Kin;
 
 /// Mass matrix, velocity-product coefficients and generalised forces at one state; see the
@@ -55,13 +57,7 @@ impl<const NI: usize> Dynamics<NI> {
     /// The velocity-product terms `h_i = sum_jk G_ijk w_j w_k` at input speeds `w`.
     pub fn velocity_terms(&self, w: &[f64; NI]) -> [f64; NI] {
         let mut h = [0.0; NI];
-        for i in 0..NI {
-            for j in 0..NI {
-                for k in 0..NI {
-                    h[i] += self.gamma[i][j][k] * w[j] * w[k];
-                }
-            }
-        }
+        terms::velocity_terms_into(self.gamma.as_flattened().as_flattened(), w, &mut h);
         h
     }
 
@@ -70,14 +66,9 @@ impl<const NI: usize> Dynamics<NI> {
     /// `J eps + 1/2 J' w^2 - Q`). Plain arithmetic: at speeds or accelerations so large that a
     /// force overflows, it is infinite; [`Dynamics::checked_drive`] makes that a typed error.
     pub fn drive(&self, w: &[f64; NI], eps: &[f64; NI]) -> [f64; NI] {
-        let h = self.velocity_terms(w);
         let mut tau = [0.0; NI];
-        for i in 0..NI {
-            tau[i] = h[i] - self.forces[i];
-            for j in 0..NI {
-                tau[i] += self.mass[i][j] * eps[j];
-            }
-        }
+        let gamma = self.gamma.as_flattened().as_flattened();
+        terms::drive_into(self.mass.as_flattened(), gamma, &self.forces, w, eps, &mut tau);
         tau
     }
 
@@ -85,15 +76,10 @@ impl<const NI: usize> Dynamics<NI> {
     /// [`DynamicsError::BadValue`], a driving force beyond the range of `f64` (huge speeds or
     /// accelerations) [`DynamicsError::Overflow`] at inputs `x`.
     pub fn checked_drive(&self, x: &[f64; NI], w: &[f64; NI], eps: &[f64; NI]) -> Result<[f64; NI], DynamicsError> {
-        self.check()?;
-        finite_values("input speed", w)?;
-        finite_values("input acceleration", eps)?;
-        let tau = self.drive(w, eps);
-        if tau.iter().all(|v| v.is_finite()) {
-            Ok(tau)
-        } else {
-            Err(DynamicsError::Overflow { what: "driving force", x: x.to_vec() })
-        }
+        let mut tau = [0.0; NI];
+        let gamma = self.gamma.as_flattened().as_flattened();
+        checked_drive_into(self.mass.as_flattened(), gamma, &self.forces, x, w, eps, &mut tau)?;
+        Ok(tau)
     }
 
     /// Whether the mass matrix, the velocity-product coefficients and the forces are finite.
@@ -166,7 +152,7 @@ impl<const NI: usize> Dynamics<NI> {
 }
 
 /// `values` all finite, else [`DynamicsError::BadValue`] naming the first that is not.
-fn finite_values(what: &'static str, values: &[f64]) -> Result<(), DynamicsError> {
+pub(crate) fn finite_values(what: &'static str, values: &[f64]) -> Result<(), DynamicsError> {
     match values.iter().find(|v| !v.is_finite()) {
         Some(&value) => Err(DynamicsError::BadValue { what, value, why: "must be finite" }),
         None => Ok(()),
@@ -175,41 +161,109 @@ fn finite_values(what: &'static str, values: &[f64]) -> Result<(), DynamicsError
 
 /// Every number of state `k` finite (a state made by hand can hold anything), else
 /// [`DynamicsError::BadValue`].
-fn finite_state<const N: usize, const NI: usize, const NO: usize>(k: &Kin<N, NI, NO>) -> Result<(), DynamicsError> {
-    let analogs = k.dq.iter().flatten().chain(k.d2q.iter().flatten().flatten());
-    let outputs = k.dout.iter().flatten().chain(k.d2out.iter().flatten().flatten());
-    let all: Vec<f64> = k.x.iter().chain(&k.q).chain(analogs).chain(&k.out).chain(outputs).copied().collect();
-    finite_values("kinematic state value", &all)
-}
-
-/// Value and analogs of a coordinate.
-#[inline]
-fn coord<const N: usize, const NI: usize, const NO: usize>(
-    k: &Kin<N, NI, NO>,
-    c: Coord,
-) -> (f64, [f64; NI], [[f64; NI]; NI]) {
-    match c {
-        Coord::Output(o) => (k.out[o], k.dout[o], k.d2out[o]),
-        Coord::Unknown(u) => (k.q[u], k.dq[u], k.d2q[u]),
-        Coord::Fixed(v) => (v, [0.0; NI], [[0.0; NI]; NI]),
+pub(crate) fn finite_state<S: AnalogState + ?Sized>(k: &S) -> Result<(), DynamicsError> {
+    match k.non_finite() {
+        Some(value) => Err(DynamicsError::BadValue { what: "kinematic state value", value, why: "must be finite" }),
+        None => Ok(()),
     }
 }
 
-/// Analogs `(w_i, e_ij)` of a body's angle.
-#[inline]
-fn rotation_analogs<const N: usize, const NI: usize, const NO: usize>(
-    k: &Kin<N, NI, NO>,
-    r: Rotation,
-) -> ([f64; NI], [[f64; NI]; NI]) {
-    match r {
-        Rotation::Unknown(u) => (k.dq[u], k.d2q[u]),
-        Rotation::Input(i) => {
-            let mut w = [0.0; NI];
-            w[i] = 1.0;
-            (w, [[0.0; NI]; NI])
-        }
-        Rotation::None => ([0.0; NI], [[0.0; NI]; NI]),
+/// The driving forces `tau = M eps + h(w) - Q` checked: coefficients, speeds and
+/// accelerations finite ([`DynamicsError::BadValue`]), the forces within the range of `f64`
+/// ([`DynamicsError::Overflow`] at inputs `x`).
+pub(crate) fn checked_drive_into(
+    mass: &[f64],
+    gamma: &[f64],
+    forces: &[f64],
+    x: &[f64],
+    w: &[f64],
+    eps: &[f64],
+    tau: &mut [f64],
+) -> Result<(), DynamicsError> {
+    if let Some(&value) = mass.iter().chain(gamma).chain(forces).find(|v| !v.is_finite()) {
+        return Err(DynamicsError::BadValue { what: "coefficient of the dynamics", value, why: "must be finite" });
     }
+    finite_values("input speed", w)?;
+    finite_values("input acceleration", eps)?;
+    terms::drive_into(mass, gamma, forces, w, eps, tau);
+    if tau.iter().all(|v| v.is_finite()) {
+        Ok(())
+    } else {
+        Err(DynamicsError::Overflow { what: "driving force", x: x.to_vec() })
+    }
+}
+
+/// A force's value checked finite, else [`DynamicsError::NonFiniteLoad`] at inputs `x`.
+pub(crate) fn force_value(name: &'static str, f: [f64; 2], x: &[f64]) -> Result<[f64; 2], DynamicsError> {
+    match f.iter().find(|v| !v.is_finite()) {
+        Some(&value) => Err(DynamicsError::NonFiniteLoad { name, value, x: x.to_vec() }),
+        None => Ok(f),
+    }
+}
+
+/// A torque's value checked finite, else [`DynamicsError::NonFiniteLoad`] at inputs `x`.
+pub(crate) fn torque_value(name: &'static str, t: f64, x: &[f64]) -> Result<f64, DynamicsError> {
+    if t.is_finite() { Ok(t) } else { Err(DynamicsError::NonFiniteLoad { name, value: t, x: x.to_vec() }) }
+}
+
+/// Generalised forces `q` computed from finite loads, checked: a value that is not finite comes
+/// from a state value or a speed that is not finite ([`DynamicsError::BadValue`]) or else from
+/// an overflow.
+pub(crate) fn checked_forces<S: AnalogState + ?Sized>(q: &[f64], k: &S, w: &[f64]) -> Result<(), DynamicsError> {
+    if q.iter().all(|v| v.is_finite()) {
+        return Ok(());
+    }
+    finite_state(k)?;
+    finite_values("input speed", w)?;
+    Err(DynamicsError::Overflow { what: "generalised forces", x: k.inputs().to_vec() })
+}
+
+/// A mass matrix and velocity-product coefficients checked finite (see [`checked_forces`]).
+pub(crate) fn checked_inertia<S: AnalogState + ?Sized>(finite: bool, k: &S) -> Result<(), DynamicsError> {
+    if finite {
+        return Ok(());
+    }
+    finite_state(k)?;
+    Err(DynamicsError::Overflow { what: "mass matrix or velocity-product coefficients", x: k.inputs().to_vec() })
+}
+
+/// The centre of mass of `bodies` of total mass `m`, checked (see [`MassModel::centre_of_mass`]).
+pub(crate) fn checked_centre<S: AnalogState + ?Sized>(
+    bodies: &[Body],
+    m: f64,
+    k: &S,
+) -> Result<[f64; 2], DynamicsError> {
+    if m <= 0.0 {
+        return Err(DynamicsError::BadValue {
+            what: "total mass",
+            value: m,
+            why: "must be positive for a centre of mass",
+        });
+    }
+    let c = terms::centre_of_mass(bodies, m, k);
+    if !c.iter().all(|v| v.is_finite()) {
+        finite_state(k)?;
+    }
+    Ok(c)
+}
+
+/// The shaking force and moment of `bodies`, checked (see [`MassModel::shaking`]).
+pub(crate) fn checked_shaking<S: AnalogState + ?Sized>(
+    bodies: &[Body],
+    k: &S,
+    w: &[f64],
+    eps: &[f64],
+    about: [f64; 2],
+) -> Result<Shaking, DynamicsError> {
+    finite_values("input speed", w)?;
+    finite_values("input acceleration", eps)?;
+    finite_values("moment centre", &about)?;
+    let s = terms::shaking(bodies, k, w, eps, about);
+    if s.force.iter().all(|f| f.is_finite()) && s.moment.is_finite() {
+        return Ok(s);
+    }
+    finite_state(k)?;
+    Err(DynamicsError::Overflow { what: "shaking force or moment", x: k.inputs().to_vec() })
 }
 
 impl<const N: usize, const NI: usize, const NO: usize> MassModel<N, NI, NO> {
@@ -217,20 +271,7 @@ impl<const N: usize, const NI: usize, const NO: usize> MassModel<N, NI, NO> {
     pub fn inertia(&self, k: &Kin<N, NI, NO>) -> ([[f64; NI]; NI], [[[f64; NI]; NI]; NI]) {
         let mut m = [[0.0; NI]; NI];
         let mut g = [[[0.0; NI]; NI]; NI];
-        for b in &self.bodies {
-            let (_, vx, ax) = coord(k, b.com[0]);
-            let (_, vy, ay) = coord(k, b.com[1]);
-            let (w, e) = rotation_analogs(k, b.rotation);
-            for i in 0..NI {
-                let (mvx, mvy, jw) = (b.mass * vx[i], b.mass * vy[i], b.inertia * w[i]);
-                for j in 0..NI {
-                    m[i][j] += mvx * vx[j] + mvy * vy[j] + jw * w[j];
-                    for l in 0..NI {
-                        g[i][j][l] += mvx * ax[j][l] + mvy * ay[j][l] + jw * e[j][l];
-                    }
-                }
-            }
-        }
+        terms::inertia_into(&self.bodies, k, NI, m.as_flattened_mut(), g.as_flattened_mut().as_flattened_mut());
         (m, g)
     }
 
@@ -238,45 +279,20 @@ impl<const N: usize, const NI: usize, const NO: usize> MassModel<N, NI, NO> {
     /// A load law returning NaN or infinity is an error.
     pub fn generalized_forces(&self, k: &Kin<N, NI, NO>, w: &[f64; NI]) -> Result<[f64; NI], DynamicsError> {
         let mut q = [0.0; NI];
-        let [gx, gy] = self.gravity;
-        for b in &self.bodies {
-            let (_, vx, _) = coord(k, b.com[0]);
-            let (_, vy, _) = coord(k, b.com[1]);
-            for i in 0..NI {
-                q[i] += b.mass * (gx * vx[i] + gy * vy[i]);
-            }
-        }
+        terms::gravity_into(&self.bodies, self.gravity, k, &mut q);
         for load in &self.loads {
             match load {
                 Load::Force { name, at, law } => {
-                    let [fx, fy] = law(k, w);
-                    if !(fx.is_finite() && fy.is_finite()) {
-                        let value = if fx.is_finite() { fy } else { fx };
-                        return Err(DynamicsError::NonFiniteLoad { name, value, x: k.x.to_vec() });
-                    }
-                    let (_, vx, _) = coord(k, at[0]);
-                    let (_, vy, _) = coord(k, at[1]);
-                    for i in 0..NI {
-                        q[i] += fx * vx[i] + fy * vy[i];
-                    }
+                    let f = force_value(name, law(k, w), &k.x)?;
+                    terms::force_into(k, *at, f, &mut q);
                 }
                 Load::Torque { name, on, law } => {
-                    let t = law(k, w);
-                    if !t.is_finite() {
-                        return Err(DynamicsError::NonFiniteLoad { name, value: t, x: k.x.to_vec() });
-                    }
-                    let (rw, _) = rotation_analogs(k, *on);
-                    for i in 0..NI {
-                        q[i] += t * rw[i];
-                    }
+                    let t = torque_value(name, law(k, w), &k.x)?;
+                    terms::torque_into(k, *on, t, &mut q);
                 }
             }
         }
-        if !q.iter().all(|v| v.is_finite()) {
-            finite_state(k)?;
-            finite_values("input speed", w)?;
-            return Err(DynamicsError::Overflow { what: "generalised forces", x: k.x.to_vec() });
-        }
+        checked_forces(&q, k, w)?;
         Ok(q)
     }
 
@@ -288,13 +304,7 @@ impl<const N: usize, const NI: usize, const NO: usize> MassModel<N, NI, NO> {
     pub fn dynamics(&self, k: &Kin<N, NI, NO>, w: &[f64; NI]) -> Result<Dynamics<NI>, DynamicsError> {
         let (mass, gamma) = self.inertia(k);
         let d = Dynamics { mass, gamma, forces: self.generalized_forces(k, w)? };
-        if !d.is_finite() {
-            finite_state(k)?;
-            return Err(DynamicsError::Overflow {
-                what: "mass matrix or velocity-product coefficients",
-                x: k.x.to_vec(),
-            });
-        }
+        checked_inertia(d.is_finite(), k)?;
         Ok(d)
     }
 
@@ -302,45 +312,14 @@ impl<const N: usize, const NI: usize, const NO: usize> MassModel<N, NI, NO> {
     /// overflows, and NaN for a speed or a state value that is not finite).
     pub fn kinetic_energy(&self, k: &Kin<N, NI, NO>, w: &[f64; NI]) -> f64 {
         let (m, _) = self.inertia(k);
-        let mut t = 0.0;
-        for i in 0..NI {
-            for j in 0..NI {
-                t += m[i][j] * w[i] * w[j];
-            }
-        }
-        0.5 * t
+        terms::kinetic_energy(m.as_flattened(), w)
     }
 
     /// Centre of mass of all bodies. A model without mass has none
     /// ([`DynamicsError::BadValue`]); a state value that is not finite is
     /// [`DynamicsError::BadValue`] too.
     pub fn centre_of_mass(&self, k: &Kin<N, NI, NO>) -> Result<[f64; 2], DynamicsError> {
-        let m = self.total_mass();
-        if m <= 0.0 {
-            return Err(DynamicsError::BadValue {
-                what: "total mass",
-                value: m,
-                why: "must be positive for a centre of mass",
-            });
-        }
-        let (mut sx, mut sy) = (0.0, 0.0);
-        for b in &self.bodies {
-            sx += b.mass * coord(k, b.com[0]).0;
-            sy += b.mass * coord(k, b.com[1]).0;
-        }
-        let c = [sx / m, sy / m];
-        if c.iter().all(|v| v.is_finite()) {
-            return Ok(c);
-        }
-        finite_state(k)?;
-        // A mean of finite coordinates is representable: weigh each by its share of the mass
-        // (at most 1), so that no product or sum overflows.
-        let (mut cx, mut cy) = (0.0, 0.0);
-        for b in &self.bodies {
-            cx += b.mass / m * coord(k, b.com[0]).0;
-            cy += b.mass / m * coord(k, b.com[1]).0;
-        }
-        Ok([cx, cy])
+        checked_centre(&self.bodies, self.total_mass(), k)
     }
 
     /// Shaking force and moment about the frame point `about` at input speeds `w` and input
@@ -354,41 +333,6 @@ impl<const N: usize, const NI: usize, const NO: usize> MassModel<N, NI, NO> {
         eps: &[f64; NI],
         about: [f64; 2],
     ) -> Result<Shaking, DynamicsError> {
-        finite_values("input speed", w)?;
-        finite_values("input acceleration", eps)?;
-        finite_values("moment centre", &about)?;
-        let mut s = Shaking { force: [0.0; 2], moment: 0.0 };
-        for b in &self.bodies {
-            let (x, vx, ax) = coord(k, b.com[0]);
-            let (y, vy, ay) = coord(k, b.com[1]);
-            let (_, ax) = chain(&vx, &ax, w, eps);
-            let (_, ay) = chain(&vy, &ay, w, eps);
-            let (rw, re) = rotation_analogs(k, b.rotation);
-            let (_, alpha) = chain(&rw, &re, w, eps);
-            let (fx, fy) = (-b.mass * ax, -b.mass * ay);
-            s.force[0] += fx;
-            s.force[1] += fy;
-            s.moment += (x - about[0]) * fy - (y - about[1]) * fx - b.inertia * alpha;
-        }
-        if s.force.iter().all(|f| f.is_finite()) && s.moment.is_finite() {
-            return Ok(s);
-        }
-        finite_state(k)?;
-        Err(DynamicsError::Overflow { what: "shaking force or moment", x: k.x.to_vec() })
+        checked_shaking(&self.bodies, k, w, eps, about)
     }
-}
-
-/// Velocity and acceleration of a coordinate from its analogs: `sum d_i w_i` and
-/// `sum d_i e_i + sum d2_ij w_i w_j`.
-#[inline]
-fn chain<const NI: usize>(d: &[f64; NI], d2: &[[f64; NI]; NI], w: &[f64; NI], e: &[f64; NI]) -> (f64, f64) {
-    let (mut v, mut a) = (0.0, 0.0);
-    for i in 0..NI {
-        v += d[i] * w[i];
-        a += d[i] * e[i];
-        for j in 0..NI {
-            a += d2[i][j] * w[i] * w[j];
-        }
-    }
-    (v, a)
 }

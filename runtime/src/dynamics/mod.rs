@@ -42,13 +42,18 @@ pub mod eval;
 pub mod model;
 pub mod ode;
 pub mod simulate;
+pub mod sized;
+pub mod state;
+mod terms;
 
 #[cfg(test)]
 mod robust_tests;
 
-pub use cycle::{Cycle, CyclePoint, Flywheel, InverseCycle, SpeedLaw};
+pub use cycle::{Cycle, CyclePoint, Flywheel, InverseCycle, SpeedLaw, turn_states};
 pub use error::DynamicsError;
 pub use eval::{Dynamics, Shaking};
 pub use model::{Body, Coord, ForceLaw, Load, MassModel, Point, Rotation, TorqueLaw};
 pub use ode::{DenseStep, OdeConfig, dopri5};
 pub use simulate::{RunConfig, Simulation, Trajectory};
+pub use sized::{Applied, DynamicsBuf, MassModelBuf};
+pub use state::AnalogState;

@@ -138,17 +138,7 @@ impl<const N: usize, const NI: usize, const NO: usize> MassModel<N, NI, NO> {
     /// Adds a body after checking its mass, inertia and indices, and that the total mass stays
     /// within the range of `f64` ([`DynamicsError::Overflow`] otherwise).
     pub fn with_body(mut self, body: Body) -> Result<Self, DynamicsError> {
-        for (quantity, value) in [("mass", body.mass), ("moment of inertia", body.inertia)] {
-            if !value.is_finite() || value < 0.0 {
-                return Err(DynamicsError::BadMass { body: body.name, quantity, value });
-            }
-        }
-        // The sum in the order `total_mass` takes it.
-        if !(self.total_mass() + body.mass).is_finite() {
-            return Err(DynamicsError::Overflow { what: "total mass", x: Vec::new() });
-        }
-        check_point::<N, NO>("body", body.name, body.com)?;
-        check_rotation::<N, NI>("body", body.name, body.rotation)?;
+        check_body(&body, self.total_mass(), [N, NI, NO])?;
         self.bodies.push(body);
         Ok(self)
     }
@@ -160,7 +150,7 @@ impl<const N: usize, const NI: usize, const NO: usize> MassModel<N, NI, NO> {
         at: Point,
         law: impl Fn(&Kin<N, NI, NO>, &[f64; NI]) -> [f64; 2] + Send + Sync + 'static,
     ) -> Result<Self, DynamicsError> {
-        check_point::<N, NO>("load", name, at)?;
+        check_point("load", name, at, [N, NI, NO])?;
         self.loads.push(Load::Force { name, at, law: Box::new(law) });
         Ok(self)
     }
@@ -185,7 +175,7 @@ impl<const N: usize, const NI: usize, const NO: usize> MassModel<N, NI, NO> {
         if on == Rotation::None {
             return Err(DynamicsError::TorqueOnSlider { name });
         }
-        check_rotation::<N, NI>("load", name, on)?;
+        check_rotation("load", name, on, [N, NI, NO])?;
         self.loads.push(Load::Torque { name, on, law: Box::new(law) });
         Ok(self)
     }
@@ -199,15 +189,33 @@ impl<const N: usize, const NI: usize, const NO: usize> MassModel<N, NI, NO> {
     }
 }
 
-fn check_point<const N: usize, const NO: usize>(
+/// A body's mass, inertia and indices checked against the sizes `[n, ni, no]`, and the total
+/// mass `total` of the bodies before it kept within the range of `f64`.
+pub(crate) fn check_body(body: &Body, total: f64, sizes: [usize; 3]) -> Result<(), DynamicsError> {
+    for (quantity, value) in [("mass", body.mass), ("moment of inertia", body.inertia)] {
+        if !value.is_finite() || value < 0.0 {
+            return Err(DynamicsError::BadMass { body: body.name, quantity, value });
+        }
+    }
+    // The sum in the order `total_mass` takes it.
+    if !(total + body.mass).is_finite() {
+        return Err(DynamicsError::Overflow { what: "total mass", x: Vec::new() });
+    }
+    check_point("body", body.name, body.com, sizes)?;
+    check_rotation("body", body.name, body.rotation, sizes)
+}
+
+/// A point's indices checked against the sizes `[n, ni, no]`, its constants finite.
+pub(crate) fn check_point(
     owner: &'static str,
     name: &'static str,
     p: Point,
+    [n, _, no]: [usize; 3],
 ) -> Result<(), DynamicsError> {
     for c in p {
         let (what, index, len) = match c {
-            Coord::Output(c) => ("output column", c, NO),
-            Coord::Unknown(u) => ("unknown", u, N),
+            Coord::Output(c) => ("output column", c, no),
+            Coord::Unknown(u) => ("unknown", u, n),
             Coord::Fixed(v) if v.is_finite() => continue,
             Coord::Fixed(v) => {
                 return Err(DynamicsError::BadValue { what: "fixed coordinate", value: v, why: "must be finite" });
@@ -220,14 +228,16 @@ fn check_point<const N: usize, const NO: usize>(
     Ok(())
 }
 
-fn check_rotation<const N: usize, const NI: usize>(
+/// An angle's index checked against the sizes `[n, ni, no]`.
+pub(crate) fn check_rotation(
     owner: &'static str,
     name: &'static str,
     r: Rotation,
+    [n, ni, _]: [usize; 3],
 ) -> Result<(), DynamicsError> {
     let (what, index, len) = match r {
-        Rotation::Unknown(u) => ("unknown", u, N),
-        Rotation::Input(i) => ("input", i, NI),
+        Rotation::Unknown(u) => ("unknown", u, n),
+        Rotation::Input(i) => ("input", i, ni),
         Rotation::None => return Ok(()),
     };
     if index >= len { Err(DynamicsError::IndexOutOfRange { owner, name, what, index, len }) } else { Ok(()) }

@@ -1,0 +1,158 @@
+//! The kinematic state as the dynamics reads it, whatever way its sizes are known: a compiled
+//! mechanism's [`Kin`] (arrays) or a run-time model's [`KinBuf`] (slices). The formulas of
+//! [`terms`](super::terms) are written once over this trait.
+
+use super::model::{Coord, Rotation};
+use crate::dims::KinBuf;
+use crate::kin::Kin;
+
+/// Positions, analogs and outputs of one kinematic state, by index.
+pub trait AnalogState {
+    /// The inputs (their count is the number of inputs).
+    fn inputs(&self) -> &[f64];
+    /// The positions of the unknowns.
+    fn unknowns(&self) -> &[f64];
+    /// The output columns.
+    fn outputs(&self) -> &[f64];
+    /// `d q_u / d x_i`.
+    fn unknown_d1(&self, u: usize, i: usize) -> f64;
+    /// `d2 q_u / d x_i d x_j`.
+    fn unknown_d2(&self, u: usize, i: usize, j: usize) -> f64;
+    /// `d out_o / d x_i`.
+    fn output_d1(&self, o: usize, i: usize) -> f64;
+    /// `d2 out_o / d x_i d x_j`.
+    fn output_d2(&self, o: usize, i: usize, j: usize) -> f64;
+    /// The first number of the state that is not finite (inputs, positions, their analogs,
+    /// outputs, theirs), if any.
+    fn non_finite(&self) -> Option<f64>;
+}
+
+impl<const N: usize, const NI: usize, const NO: usize> AnalogState for Kin<N, NI, NO> {
+    #[inline(always)]
+    fn inputs(&self) -> &[f64] {
+        &self.x
+    }
+    #[inline(always)]
+    fn unknowns(&self) -> &[f64] {
+        &self.q
+    }
+    #[inline(always)]
+    fn outputs(&self) -> &[f64] {
+        &self.out
+    }
+    #[inline(always)]
+    fn unknown_d1(&self, u: usize, i: usize) -> f64 {
+        self.dq[u][i]
+    }
+    #[inline(always)]
+    fn unknown_d2(&self, u: usize, i: usize, j: usize) -> f64 {
+        self.d2q[u][i][j]
+    }
+    #[inline(always)]
+    fn output_d1(&self, o: usize, i: usize) -> f64 {
+        self.dout[o][i]
+    }
+    #[inline(always)]
+    fn output_d2(&self, o: usize, i: usize, j: usize) -> f64 {
+        self.d2out[o][i][j]
+    }
+    fn non_finite(&self) -> Option<f64> {
+        let analogs = self.dq.iter().flatten().chain(self.d2q.iter().flatten().flatten());
+        let outputs = self.dout.iter().flatten().chain(self.d2out.iter().flatten().flatten());
+        self.x.iter().chain(&self.q).chain(analogs).chain(&self.out).chain(outputs).copied().find(|v| !v.is_finite())
+    }
+}
+
+impl AnalogState for KinBuf {
+    #[inline]
+    fn inputs(&self) -> &[f64] {
+        &self.x
+    }
+    #[inline]
+    fn unknowns(&self) -> &[f64] {
+        &self.q
+    }
+    #[inline]
+    fn outputs(&self) -> &[f64] {
+        &self.out
+    }
+    #[inline]
+    fn unknown_d1(&self, u: usize, i: usize) -> f64 {
+        self.dq[u * self.x.len() + i]
+    }
+    #[inline]
+    fn unknown_d2(&self, u: usize, i: usize, j: usize) -> f64 {
+        let ni = self.x.len();
+        self.d2q[(u * ni + i) * ni + j]
+    }
+    #[inline]
+    fn output_d1(&self, o: usize, i: usize) -> f64 {
+        self.dout[o * self.x.len() + i]
+    }
+    #[inline]
+    fn output_d2(&self, o: usize, i: usize, j: usize) -> f64 {
+        let ni = self.x.len();
+        self.d2out[(o * ni + i) * ni + j]
+    }
+    fn non_finite(&self) -> Option<f64> {
+        [&self.x, &self.q, &self.dq, &self.d2q, &self.out, &self.dout, &self.d2out]
+            .into_iter()
+            .flat_map(|v| v.iter().copied())
+            .find(|v| !v.is_finite())
+    }
+}
+
+/// The value of coordinate `c` in state `k`.
+#[inline(always)]
+pub(crate) fn value<S: AnalogState + ?Sized>(k: &S, c: Coord) -> f64 {
+    match c {
+        Coord::Output(o) => k.outputs()[o],
+        Coord::Unknown(u) => k.unknowns()[u],
+        Coord::Fixed(v) => v,
+    }
+}
+
+/// `d c / d x_i`.
+#[inline(always)]
+pub(crate) fn d1<S: AnalogState + ?Sized>(k: &S, c: Coord, i: usize) -> f64 {
+    match c {
+        Coord::Output(o) => k.output_d1(o, i),
+        Coord::Unknown(u) => k.unknown_d1(u, i),
+        Coord::Fixed(_) => 0.0,
+    }
+}
+
+/// `d2 c / d x_i d x_j`.
+#[inline(always)]
+pub(crate) fn d2<S: AnalogState + ?Sized>(k: &S, c: Coord, i: usize, j: usize) -> f64 {
+    match c {
+        Coord::Output(o) => k.output_d2(o, i, j),
+        Coord::Unknown(u) => k.unknown_d2(u, i, j),
+        Coord::Fixed(_) => 0.0,
+    }
+}
+
+/// `d angle / d x_i` of a body's angle (1 for the input it turns with).
+#[inline(always)]
+pub(crate) fn w1<S: AnalogState + ?Sized>(k: &S, r: Rotation, i: usize) -> f64 {
+    match r {
+        Rotation::Unknown(u) => k.unknown_d1(u, i),
+        Rotation::Input(input) => {
+            if input == i {
+                1.0
+            } else {
+                0.0
+            }
+        }
+        Rotation::None => 0.0,
+    }
+}
+
+/// `d2 angle / d x_i d x_j` of a body's angle (0 for an input).
+#[inline(always)]
+pub(crate) fn w2<S: AnalogState + ?Sized>(k: &S, r: Rotation, i: usize, j: usize) -> f64 {
+    match r {
+        Rotation::Unknown(u) => k.unknown_d2(u, i, j),
+        Rotation::Input(_) | Rotation::None => 0.0,
+    }
+}
