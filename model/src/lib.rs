@@ -88,6 +88,7 @@
 mod at;
 mod blocks;
 mod closed;
+mod dynamics;
 mod factor;
 mod mechanism;
 mod model;
@@ -99,6 +100,7 @@ mod tape;
 
 pub use at::Jacobian;
 pub use blocks::StepFailure;
+pub use dynamics::ModelCycle;
 pub use factor::MAX_DENSE;
 pub use mechanism::ModelKernel;
 pub use model::{Model, ReadError, State, StepError};

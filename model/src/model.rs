@@ -2,6 +2,7 @@
 //! evaluated step by step without allocating.
 
 use crate::at::{AtProg, Jacobian};
+use crate::dynamics::DynamicsProg;
 use crate::blocks::{BlockProg, Columns, How, StepFailure, Work, other_unknown};
 use crate::factor::{Fac, MAX_DENSE};
 use crate::newton::NewtonProg;
@@ -147,6 +148,8 @@ pub struct Model {
     pair_d2: Vec<f64>,
     /// `pair_of[i * ni + j]`: the index of the input pair `(i, j)` among the pairs `i <= j`.
     pair_of: Vec<usize>,
+    /// The declared bodies, loads and gravity (`None`: none declared).
+    pub(crate) dynamics: Option<DynamicsProg>,
 }
 
 fn kind(k: Kind) -> QuantityKind {
@@ -250,6 +253,7 @@ impl Model {
         let sens = SensProg::build(&plan, &mut tape).map_err(internal)?;
         let at = AtProg::build(&plan).map_err(internal)?;
         let at_kin = at_kinematics(&plan, &blocks, &out_roots).map_err(internal)?;
+        let dynamics = DynamicsProg::build(&model.dynamics, &plan).map_err(internal)?;
         let instructions = guess.len()
             + outputs_seg.len()
             + blocks
@@ -344,9 +348,20 @@ impl Model {
             pair_d2: vec![0.0; n.max(no) * npairs],
             pair_of: (0..ni * ni).map(|ij| kinloop_codegen::plan::pair_index(ni, ij / ni, ij % ni)).collect(),
             graph: plan.graph,
+            dynamics,
         };
         m.load_params();
         Ok(m)
+    }
+
+    /// The registers (the parameters' nodes hold their values once they are set).
+    pub(crate) fn registers_view(&self) -> &[f64] {
+        &self.regs
+    }
+
+    /// The registers and the dynamics program, borrowed together.
+    pub(crate) fn regs_and_dynamics(&mut self) -> (&mut [f64], Option<&mut DynamicsProg>) {
+        (&mut self.regs, self.dynamics.as_mut())
     }
 
     fn load_params(&mut self) {

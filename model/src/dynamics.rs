@@ -1,0 +1,403 @@
+//! The declared dynamics items of a run-time model: bodies, loads and gravity, evaluated as the
+//! compiled mechanism's `mass_model` evaluates them, and the runtime's dynamics over them.
+//!
+//! Masses, moments of inertia, constant coordinates and gravity are nodes of the parameters
+//! alone: their registers hold them once the parameters are set (the tape's statics, the
+//! operations the emitted `mass_model` performs), and [`Model::mass_model`] reads them into
+//! the runtime's [`MassModelBuf`], whose checks are the compiled `MassModel`'s. The force and
+//! torque expressions are a segment of their own over the inputs and unknowns of a given
+//! state (the emitted load closures read `x` and `q` from the state and compute the rest), run
+//! over the model's registers: evaluating the loads at a state allocates nothing. The formulas
+//! of the dynamics, the inverse cycle and the flywheel are the runtime's, written once over any
+//! state ([`AnalogState`]) and any `Kernel`.
+
+use crate::model::Model;
+use crate::tape::{Builder, Segment, Unavailable};
+use kinloop_codegen::dynamics::{AngleModel, CoordModel, DynamicsModel};
+use kinloop_codegen::graph::dag::{Leaf, NodeId, Op};
+use kinloop_codegen::plan::Plan;
+use kinloop_runtime::dims::{Heap, KinBuf, Sizes};
+use kinloop_runtime::dynamics::{
+    AnalogState, Body, Coord, Cycle, CyclePoint, DynamicsBuf, DynamicsError, MassModelBuf, Rotation, Shaking,
+    SpeedLaw, turn_states,
+};
+use kinloop_runtime::{Error, SweepConfig};
+use std::collections::HashSet;
+use std::sync::{Mutex, OnceLock};
+
+/// A coordinate as the plan gives it: a state column or the register of a constant.
+#[derive(Clone, Copy, Debug)]
+enum Col {
+    Output(usize),
+    Unknown(usize),
+    Fixed(u32),
+}
+
+struct BodyItem {
+    name: &'static str,
+    mass: u32,
+    inertia: u32,
+    com: [Col; 2],
+    turns: Rotation,
+}
+
+enum LoadItem {
+    Force { name: &'static str, at: [Col; 2], value: [u32; 2] },
+    Torque { name: &'static str, on: Rotation, value: u32 },
+}
+
+/// The program of the declared dynamics items (see the [module documentation](self)).
+pub(crate) struct DynamicsProg {
+    bodies: Vec<BodyItem>,
+    /// Forces, then torques: the order the emitted `mass_model` adds them in.
+    loads: Vec<LoadItem>,
+    gravity: Option<[u32; 2]>,
+    /// The load values from the registers of the inputs and unknowns.
+    segment: Segment,
+    input_regs: Vec<Option<u32>>,
+    unknown_regs: Vec<Option<u32>>,
+    /// The load values of the last evaluation, in [`MassModelBuf::load_values`] order.
+    values: Vec<f64>,
+}
+
+/// `name` as a `&'static str`, as the runtime's bodies and errors name things: each distinct
+/// name is kept once for the life of the process (a model read again reuses it).
+fn intern(name: &str) -> &'static str {
+    static NAMES: OnceLock<Mutex<HashSet<&'static str>>> = OnceLock::new();
+    let mut names = NAMES.get_or_init(Default::default).lock().unwrap_or_else(|e| e.into_inner());
+    if let Some(&kept) = names.get(name) {
+        return kept;
+    }
+    let kept: &'static str = Box::leak(name.to_owned().into_boxed_str());
+    names.insert(kept);
+    kept
+}
+
+fn col(c: &CoordModel) -> Col {
+    match *c {
+        CoordModel::Output(o) => Col::Output(o),
+        CoordModel::Unknown(u) => Col::Unknown(u),
+        CoordModel::Fixed(n) => Col::Fixed(n.0),
+    }
+}
+
+fn rotation(a: AngleModel) -> Rotation {
+    match a {
+        AngleModel::Unknown(u) => Rotation::Unknown(u),
+        AngleModel::Input(i) => Rotation::Input(i),
+        AngleModel::None => Rotation::None,
+    }
+}
+
+impl DynamicsProg {
+    /// The program of the declared items `d` of `plan`; `None` when nothing is declared.
+    pub(crate) fn build(d: &DynamicsModel, plan: &Plan) -> Result<Option<DynamicsProg>, Unavailable> {
+        if !d.is_declared() {
+            return Ok(None);
+        }
+        let g = &plan.graph;
+        let find = |l: Leaf| g.find(Op::Leaf(l)).map(|n| n.0);
+        let bodies = d
+            .bodies
+            .iter()
+            .map(|b| BodyItem {
+                name: intern(&b.name),
+                mass: b.mass.0,
+                inertia: b.inertia.0,
+                com: [col(&b.com[0]), col(&b.com[1])],
+                turns: rotation(b.turns),
+            })
+            .collect();
+        let forces = d.forces.iter().map(|f| LoadItem::Force {
+            name: intern(&f.name),
+            at: [col(&f.at[0]), col(&f.at[1])],
+            value: [f.value[0].0, f.value[1].0],
+        });
+        let torques =
+            d.torques.iter().map(|t| LoadItem::Torque { name: intern(&t.name), on: rotation(t.on), value: t.value.0 });
+        let loads: Vec<LoadItem> = forces.chain(torques).collect();
+        let unknown_regs: Vec<Option<u32>> = (0..plan.n).map(|u| find(Leaf::Unknown(u as u16))).collect();
+        let roots: Vec<NodeId> = d.forces.iter().flat_map(|f| f.value).chain(d.torques.iter().map(|t| t.value)).collect();
+        let mut tape = Builder::new(g);
+        tape.provide(unknown_regs.iter().flatten().map(|&r| NodeId(r)));
+        let segment = tape.segment(&roots, None)?;
+        Ok(Some(DynamicsProg {
+            bodies,
+            values: vec![0.0; roots.len()],
+            loads,
+            gravity: d.gravity.map(|[x, y]| [x.0, y.0]),
+            segment,
+            input_regs: (0..plan.ni).map(|i| find(Leaf::Input(i as u16))).collect(),
+            unknown_regs,
+        }))
+    }
+
+    /// The mass model with the parameters' values in `regs`.
+    fn mass_model(&self, regs: &[f64], sizes: Sizes) -> Result<MassModelBuf, DynamicsError> {
+        let r = |k: u32| regs[k as usize];
+        let coord = |c: Col| match c {
+            Col::Output(o) => Coord::Output(o),
+            Col::Unknown(u) => Coord::Unknown(u),
+            Col::Fixed(k) => Coord::Fixed(r(k)),
+        };
+        let mut m = MassModelBuf::new(sizes);
+        if let Some([x, y]) = self.gravity {
+            m = m.with_gravity([r(x), r(y)])?;
+        }
+        for b in &self.bodies {
+            m = m.with_body(Body {
+                name: b.name,
+                mass: r(b.mass),
+                com: [coord(b.com[0]), coord(b.com[1])],
+                inertia: r(b.inertia),
+                rotation: b.turns,
+            })?;
+        }
+        for l in &self.loads {
+            m = match *l {
+                LoadItem::Force { name, at, .. } => m.with_force(name, [coord(at[0]), coord(at[1])])?,
+                LoadItem::Torque { name, on, .. } => m.with_torque(name, on)?,
+            };
+        }
+        Ok(m)
+    }
+
+    /// The load values at state `k` (its inputs and unknowns into the registers, the
+    /// segment run): no allocation.
+    fn loads<S: AnalogState + ?Sized>(&mut self, regs: &mut [f64], k: &S) -> &[f64] {
+        for (reg, &x) in self.input_regs.iter().zip(k.inputs()) {
+            if let Some(reg) = reg {
+                regs[*reg as usize] = x;
+            }
+        }
+        for (reg, &q) in self.unknown_regs.iter().zip(k.unknowns()) {
+            if let Some(reg) = reg {
+                regs[*reg as usize] = q;
+            }
+        }
+        self.segment.run(regs);
+        let mut out = self.values.iter_mut();
+        for l in &self.loads {
+            let regs_of: &[u32] = match l {
+                LoadItem::Force { value, .. } => value,
+                LoadItem::Torque { value, .. } => std::slice::from_ref(value),
+            };
+            for (o, &reg) in out.by_ref().zip(regs_of) {
+                *o = regs[reg as usize];
+            }
+        }
+        &self.values
+    }
+}
+
+/// The inverse dynamics of a run-time model over a turn of its input, set up by name and run by
+/// [`ModelCycle::run`]: the compiled mechanism's
+/// [`InverseCycle`](kinloop_runtime::dynamics::InverseCycle), with the same defaults (the turn
+/// from angle 0, 360 samples, the declared guess at the start, moments about the origin).
+#[must_use = "an inverse cycle does nothing until `run`"]
+pub struct ModelCycle<'a, 'l> {
+    model: &'a mut Model,
+    law: SpeedLaw<'l>,
+    phi0: f64,
+    samples: usize,
+    guess: Option<Vec<f64>>,
+    about: [f64; 2],
+}
+
+impl ModelCycle<'_, '_> {
+    /// The turn covers `[phi0, phi0 + 2 pi)`.
+    pub fn start(mut self, phi0: f64) -> Self {
+        self.phi0 = phi0;
+        self
+    }
+
+    /// Equally spaced angles per turn (at least 8).
+    pub fn samples(mut self, samples: usize) -> Self {
+        self.samples = samples;
+        self
+    }
+
+    /// The positions that choose the assembly branch at the start.
+    pub fn guess(mut self, guess: &[f64]) -> Self {
+        self.guess = Some(guess.to_vec());
+        self
+    }
+
+    /// The frame point the shaking moments are taken about.
+    pub fn about(mut self, about: [f64; 2]) -> Self {
+        self.about = about;
+        self
+    }
+
+    /// Runs the inverse dynamics over the turn: the runtime's sweep of the turn over the model
+    /// ([`turn_states`]), then at each state the mass model, the loads, the driving torque
+    /// and the shaking ([`Cycle::over_states`]). Errors: those of the compiled
+    /// `InverseCycle::run` (as [`Error::Dynamics`] or the kinematic error), a guess of another
+    /// length, a parameter without a value, a model without declared dynamics or with other
+    /// than one input ([`Error::InvalidArgument`]).
+    pub fn run(self) -> Result<Cycle, Error> {
+        let m = self.model;
+        let mass = m.mass_model()?;
+        let guess = match self.guess {
+            Some(g) => g,
+            None => {
+                let mut g = vec![0.0; m.unknowns().len()];
+                m.guess(&[self.phi0], &mut g).map_err(|e| Error::InvalidArgument(format!("{e}, in `{}`", m.name())))?;
+                g
+            }
+        };
+        if guess.len() != m.unknowns().len() {
+            let n = m.unknowns().len();
+            return Err(Error::InvalidArgument(format!("a guess of {} values given, {n} expected", guess.len())));
+        }
+        let states: Vec<KinBuf> = turn_states(m.kernel(SweepConfig::default())?, self.phi0, self.samples, Heap(guess.into()))?;
+        let about = self.about;
+        let mut d = DynamicsBuf::zeros(1);
+        let (regs, prog) = m.dynamics_parts();
+        let cycle = Cycle::over_states(&states, self.law, |k, omega, eps| {
+            let loads = prog.loads(regs, k);
+            mass.dynamics_into(k, &[omega], loads, &mut d)?;
+            let shaking = mass.shaking(k, &[omega], &[eps], about)?;
+            CyclePoint::of(k.x[0], omega, eps, &d.mass, &d.gamma, &d.forces, shaking)
+        })?;
+        Ok(cycle)
+    }
+}
+
+impl Model {
+    /// Whether the declaration has dynamics items (bodies, forces, torques, gravity): then
+    /// [`Model::mass_model`] exists (the compiled mechanism's `mass_model`).
+    pub fn has_dynamics(&self) -> bool {
+        self.dynamics.is_some()
+    }
+
+    /// The registers and the dynamics program (present: checked by
+    /// [`Model::dynamics_ready`]).
+    fn dynamics_parts(&mut self) -> (&mut [f64], &mut DynamicsProg) {
+        let (regs, prog) = self.regs_and_dynamics();
+        (regs, prog.expect("checked by dynamics_ready"))
+    }
+
+    /// The declared bodies, loads and gravity with the current parameter values, as the
+    /// runtime's [`MassModelBuf`] (the compiled mechanism's `mass_model`: the same checks, a
+    /// negative or non-finite mass a [`DynamicsError`] naming the body). A declaration without
+    /// dynamics items or a parameter without a value is [`Error::InvalidArgument`].
+    pub fn mass_model(&self) -> Result<MassModelBuf, Error> {
+        let prog = self.dynamics_ready()?;
+        let sizes = Sizes { n: self.unknowns().len(), ni: self.inputs().len(), no: self.outputs().len() };
+        Ok(prog.mass_model(self.registers_view(), sizes)?)
+    }
+
+    /// The values of the declared loads at state `k` (forces two values each, then torques: the
+    /// order of [`MassModelBuf::load_values`]), computed by the load expressions' segment over
+    /// the model's registers: no allocation. A state of other sizes is
+    /// [`Error::InvalidArgument`].
+    pub fn load_values<S: AnalogState + ?Sized>(&mut self, k: &S) -> Result<&[f64], Error> {
+        self.dynamics_ready()?;
+        let (n, ni) = (self.unknowns().len(), self.inputs().len());
+        if k.inputs().len() != ni || k.unknowns().len() != n {
+            return Err(Error::InvalidArgument(format!(
+                "a state of {} inputs and {} unknowns given, {ni} and {n} expected",
+                k.inputs().len(),
+                k.unknowns().len()
+            )));
+        }
+        let (regs, prog) = self.dynamics_parts();
+        Ok(prog.loads(regs, k))
+    }
+
+    /// The dynamics at state `k` (from [`Model::kinematics`] or a sweep) and input speeds `w`:
+    /// mass matrix, velocity-product coefficients and generalised forces of the declared items
+    /// (the compiled `mass_model()?.dynamics(k, w)`).
+    pub fn dynamics<S: AnalogState + ?Sized>(&mut self, k: &S, w: &[f64]) -> Result<DynamicsBuf, Error> {
+        let mass = self.mass_model()?;
+        let loads = self.load_values(k)?;
+        Ok(mass.dynamics(k, w, loads)?)
+    }
+
+    /// The shaking force and moment of the declared bodies at state `k`, input speeds `w` and
+    /// accelerations `eps`, about the frame point `about`.
+    pub fn shaking<S: AnalogState + ?Sized>(
+        &mut self,
+        k: &S,
+        w: &[f64],
+        eps: &[f64],
+        about: [f64; 2],
+    ) -> Result<Shaking, Error> {
+        Ok(self.mass_model()?.shaking(k, w, eps, about)?)
+    }
+
+    /// The inverse dynamics over a turn of the input at the speed law `law`: see
+    /// [`ModelCycle`].
+    ///
+    /// ```
+    /// use kinloop_model::Model;
+    /// use kinloop_runtime::dynamics::SpeedLaw;
+    /// let text = "pub struct Crank {
+    ///     params r = 0.1, l = 0.4, m = 2.0;
+    ///     input phi;
+    ///     unknowns beta = 0, x = 0.5;
+    ///     loop abc: r @ phi + l @ beta == (x, 0);
+    ///     body piston: mass m, com (x, 0);
+    /// }";
+    /// let mut model = Model::read("crank.kl", text).unwrap();
+    /// let cycle = model.inverse_cycle(SpeedLaw::Constant(10.0)).samples(72).run().unwrap();
+    /// // At a constant speed and without loads, the mean driving torque vanishes.
+    /// assert!(cycle.mean_torque().abs() < 1e-12);
+    /// ```
+    pub fn inverse_cycle<'l>(&mut self, law: SpeedLaw<'l>) -> ModelCycle<'_, 'l> {
+        ModelCycle { model: self, law, phi0: 0.0, samples: 360, guess: None, about: [0.0, 0.0] }
+    }
+
+    /// The declaration has dynamics items and every parameter a value, else
+    /// [`Error::InvalidArgument`] saying what is missing.
+    fn dynamics_ready(&self) -> Result<&DynamicsProg, Error> {
+        let Some(prog) = &self.dynamics else {
+            return Err(Error::InvalidArgument(format!(
+                "`{}` declares no bodies, loads or gravity: declare them (`body`, `force`, `torque`, `gravity`) for its dynamics",
+                self.name()
+            )));
+        };
+        if let Some(k) = self.param_values().iter().position(Option::is_none) {
+            return Err(Error::InvalidArgument(format!(
+                "parameter `{}` has no value (it has no default: give one), in `{}`",
+                self.params()[k],
+                self.name()
+            )));
+        }
+        Ok(prog)
+    }
+}
+
+/// A run-time model's flat state, read by the runtime's dynamics.
+impl AnalogState for crate::model::State {
+    fn inputs(&self) -> &[f64] {
+        &self.x
+    }
+    fn unknowns(&self) -> &[f64] {
+        &self.q
+    }
+    fn outputs(&self) -> &[f64] {
+        &self.out
+    }
+    fn unknown_d1(&self, u: usize, i: usize) -> f64 {
+        self.dq[u * self.x.len() + i]
+    }
+    fn unknown_d2(&self, u: usize, i: usize, j: usize) -> f64 {
+        let ni = self.x.len();
+        self.d2q[(u * ni + i) * ni + j]
+    }
+    fn output_d1(&self, o: usize, i: usize) -> f64 {
+        self.dout[o * self.x.len() + i]
+    }
+    fn output_d2(&self, o: usize, i: usize, j: usize) -> f64 {
+        let ni = self.x.len();
+        self.d2out[(o * ni + i) * ni + j]
+    }
+    fn non_finite(&self) -> Option<f64> {
+        [&self.x, &self.q, &self.dq, &self.d2q, &self.out, &self.dout, &self.d2out]
+            .into_iter()
+            .flat_map(|v| v.iter().copied())
+            .find(|v| !v.is_finite())
+    }
+}
