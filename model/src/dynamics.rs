@@ -176,14 +176,15 @@ impl DynamicsProg {
             }
         }
         self.segment.run(regs);
-        let mut out = self.values.iter_mut();
+        let mut k = 0;
         for l in &self.loads {
             let regs_of: &[u32] = match l {
                 LoadItem::Force { value, .. } => value,
                 LoadItem::Torque { value, .. } => std::slice::from_ref(value),
             };
-            for (o, &reg) in out.by_ref().zip(regs_of) {
-                *o = regs[reg as usize];
+            for &reg in regs_of {
+                self.values[k] = regs[reg as usize];
+                k += 1;
             }
         }
         &self.values

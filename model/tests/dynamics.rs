@@ -1,0 +1,216 @@
+//! The dynamics of run-time models: the declared bodies, loads and gravity evaluated at run
+//! time against the compiled mechanism's `mass_model` (the same declarations, compiled by the
+//! macro), and against closed forms.
+//!
+//! The compiled reference is independent of the tape: straight-line Rust the macro emitted for
+//! the kinematics, the masses and the load laws. Both evaluate the same plan with the same
+//! operations, so the values agree to a few roundings; the tolerance is 1e-14 of each
+//! quantity's largest magnitude over the cycle (a torque crosses zero: a relative difference at
+//! each point would measure the rounding of the larger terms against a vanishing sum).
+
+use kinloop::Mechanism;
+use kinloop::NewtonConfig;
+use kinloop::dynamics::{Cycle, CyclePoint, DynamicsError, InverseCycle, SpeedLaw};
+use kinloop_fixtures as fx;
+use kinloop_model::Model;
+use kinloop_runtime::Error;
+
+/// Agreement demanded of the run-time dynamics with the compiled, of each quantity's largest
+/// magnitude.
+const REL: f64 = 1e-14;
+
+/// The largest difference of `a` and `b`, relative to the largest magnitude of either.
+fn rel_diff(a: &[f64], b: &[f64]) -> f64 {
+    assert_eq!(a.len(), b.len());
+    let scale = a.iter().chain(b).fold(0.0f64, |m, v| m.max(v.abs())).max(f64::MIN_POSITIVE);
+    a.iter().zip(b).map(|(x, y)| (x - y).abs() / scale).fold(0.0, f64::max)
+}
+
+/// The columns of a cycle: angle, speed, acceleration, inertia, its slope, load, torque, shaking.
+fn columns(c: &Cycle) -> Vec<(&'static str, Vec<f64>)> {
+    let col = |f: fn(&CyclePoint) -> f64| c.points.iter().map(f).collect::<Vec<f64>>();
+    vec![
+        ("phi", col(|p| p.phi)),
+        ("omega", col(|p| p.omega)),
+        ("eps", col(|p| p.eps)),
+        ("inertia", col(|p| p.inertia)),
+        ("inertia slope", col(|p| p.inertia_slope)),
+        ("load", col(|p| p.load)),
+        ("torque", col(|p| p.torque)),
+        ("shaking x", col(|p| p.shaking.force[0])),
+        ("shaking y", col(|p| p.shaking.force[1])),
+        ("shaking moment", col(|p| p.shaking.moment)),
+    ]
+}
+
+/// Compares two cycles column by column; returns the largest relative difference.
+fn cycles_agree(compiled: &Cycle, run_time: &Cycle) -> f64 {
+    assert_eq!(compiled.points.len(), run_time.points.len());
+    let mut worst = 0.0f64;
+    for ((name, c), (_, r)) in columns(compiled).into_iter().zip(columns(run_time)) {
+        let d = rel_diff(&c, &r);
+        assert!(d <= REL, "{name}: relative difference {d:e}");
+        worst = worst.max(d);
+    }
+    worst
+}
+
+#[test]
+fn the_engine_s_inverse_cycle_equals_the_compiled_one() {
+    let engine = fx::EngineMachine::default();
+    let mass = engine.mass_model().unwrap();
+    let mut model = Model::read("engine.kl", fx::ENGINE_MACHINE_TEXT).unwrap();
+    assert!(model.has_dynamics());
+    let about = [0.01, -0.02];
+    let omega = |phi: f64| (150.0 * (1.0 + 0.1 * phi.sin()), 15.0 * phi.cos());
+    for law in [SpeedLaw::Constant(150.0), SpeedLaw::Varying(&omega)] {
+        let compiled = InverseCycle::new(&engine, &mass, law).samples(360).start(0.3).about(about).run().unwrap();
+        let run_time = model.inverse_cycle(law).samples(360).start(0.3).about(about).run().unwrap();
+        let worst = cycles_agree(&compiled, &run_time);
+        eprintln!("engine cycle: largest relative difference {worst:e}");
+        // Every quantity is exercised: the loads and the shaking do not vanish.
+        assert!(compiled.points.iter().all(|p| p.load != 0.0 && p.shaking.moment != 0.0));
+        let (fc, fr) = (compiled.flywheel(0.02).unwrap(), run_time.flywheel(0.02).unwrap());
+        let pairs = [
+            (fc.mean_torque, fr.mean_torque),
+            (fc.energy_swing, fr.energy_swing),
+            (fc.total_inertia, fr.total_inertia),
+            (fc.mechanism_inertia, fr.mechanism_inertia),
+            (fc.flywheel, fr.flywheel),
+            (fc.exact, fr.exact),
+            (fc.start_speed, fr.start_speed),
+        ];
+        for (c, r) in pairs {
+            assert!((c - r).abs() <= REL * c.abs().max(r.abs()), "flywheel {fc:?} against {fr:?}");
+        }
+        let (hc, hr) = (compiled.torque_harmonics(4).unwrap(), run_time.torque_harmonics(4).unwrap());
+        let scale = hc.a.iter().chain(&hc.b).fold(hc.a0.abs(), |m, v| m.max(v.abs()));
+        for (c, r) in hc.a.iter().chain(&hc.b).zip(hr.a.iter().chain(&hr.b)) {
+            assert!((c - r).abs() <= REL * scale, "harmonics {hc:?} against {hr:?}");
+        }
+    }
+}
+
+#[test]
+fn the_five_bar_s_mass_matrix_and_forces_equal_the_compiled_ones() {
+    let five = fx::FiveBarMachine::default();
+    let mass = five.mass_model().unwrap();
+    let mut model = Model::read("five_bar.kl", fx::FIVE_BAR_MACHINE_TEXT).unwrap();
+    let cfg = NewtonConfig::default();
+    let (w, eps) = ([3.0, -2.0], [1.0, 0.5]);
+    let mut compared = 0;
+    for k in 0..24 {
+        let x = [0.9 + 0.05 * k as f64, 2.0 - 0.03 * k as f64];
+        let Ok(c) = five.kinematics_flat(&x, &five.guess_flat(&x), &cfg) else { continue };
+        let r = model.kinematics(&x, &five.guess_flat(&x), &cfg).unwrap().clone();
+        let (dc, dr) = (mass.dynamics(&c, &w).unwrap(), model.dynamics(&r, &w).unwrap());
+        assert!(rel_diff(dc.mass.as_flattened(), &dr.mass) <= REL, "{dc:?} against {dr:?}");
+        assert!(rel_diff(dc.gamma.as_flattened().as_flattened(), &dr.gamma) <= REL, "{dc:?} against {dr:?}");
+        assert!(rel_diff(&dc.forces, &dr.forces) <= REL, "{dc:?} against {dr:?}");
+        let (sc, sr) = (mass.shaking(&c, &w, &eps, [0.5, 0.1]).unwrap(), model.shaking(&r, &w, &eps, [0.5, 0.1]).unwrap());
+        let flat = |s: kinloop::dynamics::Shaking| [s.force[0], s.force[1], s.moment];
+        assert!(rel_diff(&flat(sc), &flat(sr)) <= REL, "{sc:?} against {sr:?}");
+        let mut tau = [0.0; 2];
+        dr.checked_drive_into(&x, &w, &eps, &mut tau).unwrap();
+        let want = dc.checked_drive(&x, &w, &eps).unwrap();
+        assert!(rel_diff(&want, &tau) <= REL, "{want:?} against {tau:?}");
+        // The mass matrix is symmetric (to rounding: `(m v_i) v_j` and `(m v_j) v_i` round
+        // differently) and positive definite.
+        assert!((dr.mass[1] - dr.mass[2]).abs() <= 1e-15 * dr.mass[0].max(dr.mass[3]), "{dr:?}");
+        assert!(dr.mass[0] > 0.0 && dr.mass[0] * dr.mass[3] > dr.mass[1] * dr.mass[2]);
+        compared += 1;
+    }
+    assert!(compared >= 20, "only {compared} states assemble");
+}
+
+/// A centred slider-crank (crank `r`, rod `l`, piston at `x` on the X axis): the piston's
+/// position and its first two derivatives in the crank angle, in closed form.
+fn piston(r: f64, l: f64, phi: f64) -> (f64, f64, f64) {
+    let (s, c) = phi.sin_cos();
+    let root = (l * l - r * r * s * s).sqrt();
+    let x = r * c + root;
+    let x1 = -r * s - r * r * s * c / root;
+    let x2 = -r * c - r * r * (c * c - s * s) / root - r.powi(4) * s * s * c * c / root.powi(3);
+    (x, x1, x2)
+}
+
+const CENTRED: &str = "pub struct Centred {
+    params r = 0.05, l = 0.2, m_c = 1.2, j_c = 0.004, m_p = 0.5, f = 300.0;
+    input phi;
+    unknowns beta = 0, x = 0.25;
+    loop abc: r @ phi + l @ beta == (x, 0);
+    point pin = r @ phi;
+    body crank: mass m_c, com pin, inertia j_c, turns phi;
+    body piston: mass m_p, com (x, 0);
+    force gas at (x, 0) = (-f, 0);
+}";
+
+/// The driving torque, reduced inertia and shaking force of a slider-crank whose rod is
+/// massless, from the closed form of the piston's motion: `J = j_c + m_c r^2 + m_p x'^2`,
+/// `J' = 2 m_p x' x''`, `Q = -f x'`, the torque `J eps + J' omega^2 / 2 - Q`, the shaking force
+/// `m_c r (omega^2 cos + eps sin, omega^2 sin - eps cos) - m_p (x' eps + x'' omega^2, 0)`.
+#[test]
+fn a_slider_crank_s_torque_and_shaking_force_match_the_closed_form() {
+    let (r, l, m_c, j_c, m_p, f) = (0.05, 0.2, 1.2, 0.004, 0.5, 300.0);
+    let mut model = Model::read("centred.kl", CENTRED).unwrap();
+    let speed = |phi: f64| (120.0 + 20.0 * phi.sin(), 20.0 * phi.cos());
+    let cycle = model.inverse_cycle(SpeedLaw::Varying(&speed)).samples(180).run().unwrap();
+    let mut want = vec![Vec::new(); 5];
+    let mut got = vec![Vec::new(); 5];
+    for p in &cycle.points {
+        let (_, x1, x2) = piston(r, l, p.phi);
+        let (w, eps) = (p.omega, p.eps);
+        let j = j_c + m_c * r * r + m_p * x1 * x1;
+        let torque = j * eps + m_p * x1 * x2 * w * w + f * x1;
+        let (s, c) = p.phi.sin_cos();
+        let fx = m_c * r * (w * w * c + eps * s) - m_p * (x1 * eps + x2 * w * w);
+        let fy = m_c * r * (w * w * s - eps * c);
+        for (v, value) in want.iter_mut().zip([j, 2.0 * m_p * x1 * x2, torque, fx, fy]) {
+            v.push(value);
+        }
+        for (v, value) in got.iter_mut().zip([p.inertia, p.inertia_slope, p.torque, p.shaking.force[0], p.shaking.force[1]]) {
+            v.push(value);
+        }
+    }
+    // The closed forms round differently from the analogs (a square root and its cube, about
+    // ten operations each): a few hundred units of rounding of the largest magnitude.
+    for (name, (w, g)) in ["inertia", "inertia slope", "torque", "shaking x", "shaking y"].iter().zip(want.iter().zip(&got)) {
+        let d = rel_diff(w, g);
+        assert!(d < 1e-13, "{name}: {d:e}");
+    }
+}
+
+#[test]
+fn bad_values_and_missing_items_are_typed_errors() {
+    let mut model = Model::read("engine.kl", fx::ENGINE_MACHINE_TEXT).unwrap();
+    assert!(model.set_param("m_rod", -2.0));
+    match model.mass_model() {
+        Err(Error::Dynamics(source)) => {
+            let e = source.downcast_ref::<DynamicsError>().expect("a dynamics error");
+            assert!(matches!(e, DynamicsError::BadMass { body: "rod", quantity: "mass", .. }), "{e:?}");
+        }
+        other => panic!("{other:?}"),
+    }
+    let mut plain = Model::read(
+        "four_bar.kl",
+        "pub struct FourBar {
+            params a = 1, b = 3, c = 2.5, d = 3.2;
+            input phi;
+            unknowns psi = 0.6, theta = 1.9;
+            loop abcd: a @ phi + b @ psi == (d, 0) + c @ theta;
+        }",
+    )
+    .unwrap();
+    assert!(!plain.has_dynamics());
+    let e = plain.inverse_cycle(SpeedLaw::Constant(1.0)).run().unwrap_err();
+    assert!(matches!(&e, Error::InvalidArgument(m) if m.contains("declares no bodies")), "{e}");
+    // A load that is not finite names the load.
+    let mut engine = Model::read("engine.kl", fx::ENGINE_MACHINE_TEXT).unwrap();
+    engine.set_param("p0", f64::INFINITY);
+    let e = engine.inverse_cycle(SpeedLaw::Constant(1.0)).run().unwrap_err();
+    assert!(e.to_string().contains("gas"), "{e}");
+    // A two-input model has no one-input cycle.
+    let mut five = Model::read("five_bar.kl", fx::FIVE_BAR_MACHINE_TEXT).unwrap();
+    let e = five.inverse_cycle(SpeedLaw::Constant(1.0)).guess(&[1.2, 2.0]).run().unwrap_err();
+    assert!(e.to_string().contains("1 expected"), "{e}");
+}
