@@ -6,6 +6,7 @@
 //! kinloop solve four_bar.kl --at 30 --deg        # one state as CSV, with units
 //! kinloop solve four_bar.kl --at 0 --at 0.5 --params a=1.2,b=3
 //! kinloop sweep four_bar.kl --from 0 --to 360 --samples 73 --deg --params a=1,b=3,c=2.5,d=3.2
+//! kinloop dynamics engine.kl --speed 150 --delta 0.02 --flywheel flywheel.csv
 //! ```
 //!
 //! Exit codes ([`exit`]): 0 success, 1 a solve failed, 2 a usage error, 65 the declaration is
@@ -13,6 +14,7 @@
 //! what the run-time evaluator does not evaluate yet, 73 the `--events` file cannot be created,
 //! 74 an output cannot be written.
 
+mod dynamics;
 mod exit;
 mod params;
 mod report;
@@ -89,6 +91,42 @@ enum Command {
         #[arg(long, value_name = "FILE")]
         events: Option<PathBuf>,
     },
+    /// The inverse dynamics of a one-input machine from its declared bodies, loads and
+    /// gravity, over a turn of its input at a constant speed: per angle the reduced moment of
+    /// inertia and its slope, the load on the input, the driving torque and the shaking force
+    /// and moment, as CSV with units (masses and lengths in the parameters' units, time in the
+    /// speed's); and the flywheel for a coefficient of speed fluctuation, listed on standard
+    /// error or written to `--flywheel`.
+    Dynamics {
+        /// The declaration (`.kl`), with `body`, `force`, `torque` or `gravity` items.
+        file: PathBuf,
+        /// The constant input speed, in rad (or degrees with `--deg`) per time unit.
+        #[arg(long, allow_hyphen_values = true)]
+        speed: f64,
+        /// The input angle the turn starts at.
+        #[arg(long, default_value_t = 0.0, allow_hyphen_values = true)]
+        start: f64,
+        /// Equally spaced angles per turn (at least 8).
+        #[arg(long, default_value_t = 360)]
+        samples: usize,
+        /// The coefficient of speed fluctuation `(omega_max - omega_min) / omega_mean` the
+        /// flywheel is sized for.
+        #[arg(long, default_value_t = 0.02)]
+        delta: f64,
+        /// The frame point the shaking moments are taken about, `x,y` (the origin otherwise).
+        #[arg(long, value_name = "X,Y", allow_hyphen_values = true)]
+        about: Option<String>,
+        /// Angles in degrees (the start, the input, the speed); otherwise radians.
+        #[arg(long)]
+        deg: bool,
+        /// Parameter values, `name=value` separated by commas (overriding the defaults).
+        #[arg(long, value_name = "NAME=VALUE,...")]
+        params: Option<String>,
+        /// Writes the flywheel sizing as CSV to this file instead of listing it on standard
+        /// error.
+        #[arg(long, value_name = "FILE")]
+        flywheel: Option<PathBuf>,
+    },
 }
 
 /// A failure with its exit code; the message is already written.
@@ -117,6 +155,19 @@ fn run(cli: Cli) -> Result<(), Failed> {
             let mut model = load(&file, params.as_deref())?;
             let req = sweep::Request { from: &from, to: &to, samples, deg, events: events.as_deref() };
             sweep::run(&mut model, &req)
+        }
+        Command::Dynamics { file, speed, start, samples, delta, about, deg, params, flywheel } => {
+            let mut model = load(&file, params.as_deref())?;
+            let req = dynamics::Request {
+                speed,
+                start,
+                samples,
+                delta,
+                about: about.as_deref(),
+                deg,
+                flywheel: flywheel.as_deref(),
+            };
+            dynamics::run(&mut model, &req)
         }
     }
 }

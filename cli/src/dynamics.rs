@@ -1,0 +1,178 @@
+//! `kinloop dynamics`: the inverse dynamics of a one-input machine over a turn of its crank at
+//! a constant speed, from the declared bodies, loads and gravity: per angle the reduced moment
+//! of inertia and its slope, the generalised force of the loads, the driving torque and the
+//! shaking force and moment, as CSV with units; and the flywheel for a coefficient of speed
+//! fluctuation. The runtime's inverse cycle and flywheel sizing over the model.
+//!
+//! Units: masses and lengths in the units of the parameters (`mass unit`, `length unit`), time
+//! in the unit of the speed (`time unit`): with kg, m and s, torques in N m and forces in N.
+
+use crate::{Failed, exit};
+use kinloop_model::Model;
+use kinloop_runtime::dynamics::{Cycle, Flywheel, SpeedLaw};
+use kinloop_runtime::{Error, QuantityKind, Table};
+use std::io::Write;
+use std::path::Path;
+
+/// What `kinloop dynamics` was asked.
+pub struct Request<'a> {
+    /// The constant input speed (rad per time unit, or degrees with `deg`).
+    pub speed: f64,
+    /// The input angle the turn starts at.
+    pub start: f64,
+    /// Equally spaced angles per turn.
+    pub samples: usize,
+    /// The coefficient of speed fluctuation the flywheel is sized for.
+    pub delta: f64,
+    /// The frame point the shaking moments are taken about, `x,y`.
+    pub about: Option<&'a str>,
+    /// Angles (the input, the speed, its slope's denominator) in degrees.
+    pub deg: bool,
+    /// Where to write the flywheel sizing (standard error otherwise).
+    pub flywheel: Option<&'a Path>,
+}
+
+const INERTIA: &str = "mass unit length unit^2";
+const TORQUE: &str = "mass unit length unit^2/time unit^2";
+const FORCE: &str = "mass unit length unit/time unit^2";
+
+fn usage(message: String) -> Failed {
+    eprintln!("error: {message}");
+    Failed(exit::USAGE)
+}
+
+/// The frame point of `--about`: two finite numbers.
+fn parse_about(spec: Option<&str>) -> Result<[f64; 2], Failed> {
+    let Some(spec) = spec else { return Ok([0.0, 0.0]) };
+    let v: Result<Vec<f64>, _> = spec.split(',').map(|v| v.trim().parse::<f64>()).collect();
+    match v.as_deref() {
+        Ok(&[x, y]) if x.is_finite() && y.is_finite() => Ok([x, y]),
+        _ => Err(usage(format!("--about {spec} is not a point `x,y` of two finite numbers"))),
+    }
+}
+
+/// Checks the request against the model, runs the cycle and writes the table to standard
+/// output and the flywheel sizing to `--flywheel` or standard error.
+pub fn run(model: &mut Model, req: &Request) -> Result<(), Failed> {
+    let name = model.name().to_string();
+    if !model.has_dynamics() {
+        return Err(usage(format!(
+            "{name} declares no bodies, loads or gravity: declare them (`body`, `force`, `torque`, `gravity`) for its dynamics"
+        )));
+    }
+    if model.inputs().len() != 1 || model.input_kinds()[0] != QuantityKind::Angle {
+        return Err(usage(format!(
+            "kinloop dynamics turns a crank: {name} must have one input, an angle (its inputs: {})",
+            model.inputs().join(", ")
+        )));
+    }
+    if req.samples < 8 {
+        return Err(usage(format!("--samples {} is too few: a turn needs at least 8", req.samples)));
+    }
+    if !(req.speed.is_finite() && req.speed > 0.0) {
+        return Err(usage(format!("--speed {} must be a positive number", req.speed)));
+    }
+    if !(req.delta > 0.0 && req.delta < 2.0) {
+        return Err(usage(format!("--delta {} must lie between 0 and 2 (e.g. 0.02)", req.delta)));
+    }
+    if !req.start.is_finite() {
+        return Err(usage(format!("--start {} must be a finite number", req.start)));
+    }
+    let about = parse_about(req.about)?;
+    let angle = if req.deg { 180.0 / std::f64::consts::PI } else { 1.0 };
+    let (speed, start) = (req.speed / angle, req.start / angle);
+    let cycle = model.inverse_cycle(SpeedLaw::Constant(speed)).start(start).samples(req.samples).about(about).run();
+    let cycle = cycle.map_err(|e| match e {
+        Error::InvalidArgument(_) => usage(format!("{name}: {e}")),
+        e => {
+            eprintln!("error: {name}: {e}");
+            Failed(exit::SOLVE_FAILED)
+        }
+    })?;
+    let flywheel = cycle.flywheel(req.delta).map_err(|e| {
+        eprintln!("error: {name}: flywheel: {e}");
+        Failed(exit::SOLVE_FAILED)
+    })?;
+    let input = model.inputs()[0].clone();
+    let io_error = |what: &str, e: std::io::Error| {
+        eprintln!("error: cannot write {what}: {e}");
+        Failed(exit::IO_ERR)
+    };
+    // Created before anything is written: a path that cannot be written stops first.
+    let file = match req.flywheel {
+        Some(path) => Some(std::fs::File::create(path).map_err(|e| {
+            eprintln!("error: cannot create the flywheel file {}: {e}", path.display());
+            Failed(exit::CANT_CREATE)
+        })?),
+        None => None,
+    };
+    let table = cycle_table(&cycle, &input, req.deg);
+    table.write_csv(std::io::stdout().lock()).map_err(|e| io_error("the table", e))?;
+    write_flywheel(&flywheel, req, angle, file).map_err(|e| io_error("the flywheel", e))
+}
+
+/// The cycle as a table: per angle the input, its speed and acceleration, the reduced inertia
+/// `J`, its slope, the load `Q` (the generalised force of the loads and gravity on the input),
+/// the driving torque and the shaking force and moment, with units.
+fn cycle_table(cycle: &Cycle, input: &str, deg: bool) -> Table {
+    let (angle, a) = if deg { (180.0 / std::f64::consts::PI, "deg") } else { (1.0, "rad") };
+    let slope = format!("d(J)/d({input})");
+    let columns = [input, "omega", "eps", "J", &slope, "load", "torque", "shaking_x", "shaking_y", "shaking_moment"];
+    let mut t = Table::new(columns.iter().map(|c| c.to_string()).collect());
+    for p in &cycle.points {
+        t.push(vec![
+            p.phi * angle,
+            p.omega * angle,
+            p.eps * angle,
+            p.inertia,
+            p.inertia_slope / angle,
+            p.load,
+            p.torque,
+            p.shaking.force[0],
+            p.shaking.force[1],
+            p.shaking.moment,
+        ]);
+    }
+    let (speed, acceleration) = (format!("{a}/time unit"), format!("{a}/time unit^2"));
+    t.with_units(&[
+        (input, a),
+        ("omega", &speed),
+        ("eps", &acceleration),
+        ("J", INERTIA),
+        ("load", TORQUE),
+        ("torque", TORQUE),
+        ("shaking_x", FORCE),
+        ("shaking_y", FORCE),
+        ("shaking_moment", TORQUE),
+    ])
+}
+
+/// The flywheel sizing as a CSV of one row into `file` (`--flywheel`), or one line each on
+/// standard error.
+fn write_flywheel(f: &Flywheel, req: &Request, angle: f64, file: Option<std::fs::File>) -> std::io::Result<()> {
+    let a = if req.deg { "deg" } else { "rad" };
+    let speed = format!("{a}/time unit");
+    let rows: [(&str, &str, f64); 8] = [
+        ("delta", "", req.delta),
+        ("mean_torque", TORQUE, f.mean_torque),
+        ("energy_swing", TORQUE, f.energy_swing),
+        ("total_inertia", INERTIA, f.total_inertia),
+        ("mechanism_inertia", INERTIA, f.mechanism_inertia),
+        ("flywheel", INERTIA, f.flywheel),
+        ("exact_flywheel", INERTIA, f.exact),
+        ("start_speed", &speed, f.start_speed * angle),
+    ];
+    let Some(file) = file else {
+        for (name, unit, value) in rows {
+            let unit = if unit.is_empty() { String::new() } else { format!(" {unit}") };
+            eprintln!("flywheel: {name} = {value}{unit}");
+        }
+        return Ok(());
+    };
+    let mut t = Table::new(rows.iter().map(|(n, _, _)| n.to_string()).collect());
+    t.push(rows.iter().map(|(_, _, v)| *v).collect());
+    let units: Vec<(&str, &str)> = rows.iter().map(|(n, u, _)| (*n, *u)).collect();
+    let mut w = std::io::BufWriter::new(file);
+    t.with_units(&units).write_csv(&mut w)?;
+    w.flush()
+}

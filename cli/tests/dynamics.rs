@@ -1,0 +1,192 @@
+//! `kinloop dynamics` end to end: the built binary on the shipped engine, its CSV (the cycle
+//! and the flywheel) parsed and compared with the compiled mechanism of the same declaration
+//! (the fixtures' `EngineMachine` and its `mass_model`), its units, options and exit codes.
+
+use kinloop::dynamics::{InverseCycle, SpeedLaw};
+use kinloop_fixtures as fx;
+use std::path::PathBuf;
+use std::process::{Command, Output};
+
+/// Agreement demanded with the compiled mechanism, of each column's largest magnitude: both
+/// evaluate the same plan with the same operations (a few roundings apart), and the CSV
+/// writes each value with the digits that read back exactly.
+const REL: f64 = 1e-14;
+
+fn kinloop(args: &[&str]) -> Output {
+    Command::new(env!("CARGO_BIN_EXE_kinloop")).args(args).output().expect("the kinloop binary runs")
+}
+
+fn shipped(name: &str) -> String {
+    PathBuf::from(env!("CARGO_MANIFEST_DIR")).join("mechanisms").join(name).display().to_string()
+}
+
+/// A CSV's header and rows.
+fn parse(text: &str) -> (Vec<String>, Vec<Vec<f64>>) {
+    let mut lines = text.lines();
+    let header = lines.next().expect("header").split(',').map(str::to_string).collect();
+    let rows = lines.map(|l| l.split(',').map(|v| v.parse().expect("a number")).collect()).collect();
+    (header, rows)
+}
+
+fn csv(out: &Output) -> (Vec<String>, Vec<Vec<f64>>) {
+    assert!(out.status.success(), "{}", String::from_utf8_lossy(&out.stderr));
+    parse(&String::from_utf8(out.stdout.clone()).expect("utf-8"))
+}
+
+fn column(header: &[String], rows: &[Vec<f64>], name: &str) -> Vec<f64> {
+    let k = header.iter().position(|h| h == name).unwrap_or_else(|| panic!("no column {name} in {header:?}"));
+    rows.iter().map(|r| r[k]).collect()
+}
+
+/// `a` and `b` equal to `REL` of their largest magnitude.
+fn assert_close(what: &str, a: &[f64], b: &[f64]) {
+    assert_eq!(a.len(), b.len(), "{what}");
+    let scale = a.iter().chain(b).fold(0.0f64, |m, v| m.max(v.abs())).max(f64::MIN_POSITIVE);
+    for (x, y) in a.iter().zip(b) {
+        assert!((x - y).abs() <= REL * scale, "{what}: {x} against {y}");
+    }
+}
+
+/// The shipped engine holds the fixture's declaration: the same tokens.
+#[test]
+fn the_shipped_engine_is_the_fixture_s_declaration() {
+    let tokens = |t: &str| t.parse::<proc_macro2::TokenStream>().expect("tokens").to_string().replace("= r\"", "= \"");
+    let shipped = std::fs::read_to_string(shipped("engine.kl")).expect("shipped file");
+    assert_eq!(tokens(&shipped), tokens(fx::ENGINE_MACHINE_TEXT));
+}
+
+#[test]
+fn dynamics_writes_the_compiled_engine_s_cycle_and_flywheel() {
+    let dir = std::env::temp_dir().join(format!("kinloop-dynamics-{}", std::process::id()));
+    std::fs::create_dir_all(&dir).unwrap();
+    let fly = dir.join("flywheel.csv");
+    let (header, rows) = csv(&kinloop(&[
+        "dynamics",
+        &shipped("engine.kl"),
+        "--speed",
+        "150",
+        "--samples",
+        "72",
+        "--start",
+        "0.3",
+        "--about",
+        "0.01,-0.02",
+        "--delta",
+        "0.05",
+        "--flywheel",
+        fly.to_str().unwrap(),
+    ]));
+    let torque_unit = "mass unit length unit^2/time unit^2";
+    let want_header = [
+        "phi [rad]".to_string(),
+        "omega [rad/time unit]".to_string(),
+        "eps [rad/time unit^2]".to_string(),
+        "J [mass unit length unit^2]".to_string(),
+        "d(J)/d(phi) [mass unit length unit^2/rad]".to_string(),
+        format!("load [{torque_unit}]"),
+        format!("torque [{torque_unit}]"),
+        "shaking_x [mass unit length unit/time unit^2]".to_string(),
+        "shaking_y [mass unit length unit/time unit^2]".to_string(),
+        format!("shaking_moment [{torque_unit}]"),
+    ];
+    assert_eq!(header, want_header);
+    assert_eq!(rows.len(), 72);
+
+    let engine = fx::EngineMachine::default();
+    let mass = engine.mass_model().unwrap();
+    let cycle =
+        InverseCycle::new(&engine, &mass, SpeedLaw::Constant(150.0)).samples(72).start(0.3).about([0.01, -0.02]).run().unwrap();
+    let compiled: [(&str, Vec<f64>); 10] = [
+        ("phi", cycle.points.iter().map(|p| p.phi).collect()),
+        ("omega", cycle.points.iter().map(|p| p.omega).collect()),
+        ("eps", cycle.points.iter().map(|p| p.eps).collect()),
+        ("J", cycle.points.iter().map(|p| p.inertia).collect()),
+        ("d(J)/d(phi)", cycle.points.iter().map(|p| p.inertia_slope).collect()),
+        ("load", cycle.points.iter().map(|p| p.load).collect()),
+        ("torque", cycle.points.iter().map(|p| p.torque).collect()),
+        ("shaking_x", cycle.points.iter().map(|p| p.shaking.force[0]).collect()),
+        ("shaking_y", cycle.points.iter().map(|p| p.shaking.force[1]).collect()),
+        ("shaking_moment", cycle.points.iter().map(|p| p.shaking.moment).collect()),
+    ];
+    for ((name, want), h) in compiled.iter().zip(&want_header) {
+        assert_close(name, &column(&header, &rows, h), want);
+    }
+
+    let f = cycle.flywheel(0.05).unwrap();
+    let (fh, frows) = parse(&std::fs::read_to_string(&fly).expect("the flywheel file"));
+    assert_eq!(frows.len(), 1);
+    let inertia = "mass unit length unit^2";
+    for (name, want) in [
+        ("delta".to_string(), 0.05),
+        (format!("mean_torque [{torque_unit}]"), f.mean_torque),
+        (format!("energy_swing [{torque_unit}]"), f.energy_swing),
+        (format!("total_inertia [{inertia}]"), f.total_inertia),
+        (format!("mechanism_inertia [{inertia}]"), f.mechanism_inertia),
+        (format!("flywheel [{inertia}]"), f.flywheel),
+        (format!("exact_flywheel [{inertia}]"), f.exact),
+        ("start_speed [rad/time unit]".to_string(), f.start_speed),
+    ] {
+        assert_close(&name, &column(&fh, &frows, &name), &[want]);
+    }
+    // The brake's mean is what a constant driving torque must overcome: the flywheel is needed.
+    assert!(f.mean_torque > 0.0 && f.flywheel > 0.0, "{f:?}");
+    std::fs::remove_dir_all(&dir).ok();
+}
+
+#[test]
+fn degrees_and_parameters() {
+    let out = kinloop(&[
+        "dynamics",
+        &shipped("engine.kl"),
+        "--speed",
+        "9000",
+        "--deg",
+        "--samples",
+        "36",
+        "--params",
+        "m_p=0.8,p0=0",
+    ]);
+    let (header, rows) = csv(&out);
+    let phi = column(&header, &rows, "phi [deg]");
+    for (k, p) in phi.iter().enumerate() {
+        assert!((p - 10.0 * k as f64).abs() < 1e-12, "{phi:?}");
+    }
+    let omega = column(&header, &rows, "omega [deg/time unit]");
+    assert!(omega.iter().all(|&w| (w - 9000.0).abs() < 1e-9), "{omega:?}");
+    // 9000 degrees per time unit is 50 pi rad per time unit.
+    let engine = fx::EngineMachine { m_p: 0.8, p0: 0.0, ..Default::default() };
+    let mass = engine.mass_model().unwrap();
+    let w = 9000f64.to_radians();
+    let cycle = InverseCycle::new(&engine, &mass, SpeedLaw::Constant(w)).samples(36).run().unwrap();
+    let torque = column(&header, &rows, "torque [mass unit length unit^2/time unit^2]");
+    assert_close("torque", &torque, &cycle.points.iter().map(|p| p.torque).collect::<Vec<f64>>());
+    let slope = column(&header, &rows, "d(J)/d(phi) [mass unit length unit^2/deg]");
+    let per_deg: Vec<f64> = cycle.points.iter().map(|p| p.inertia_slope.to_radians()).collect();
+    assert_close("slope", &slope, &per_deg);
+    // Without a file, the flywheel is listed on standard error.
+    let err = String::from_utf8_lossy(&out.stderr);
+    assert!(err.contains("flywheel: exact_flywheel = "), "{err}");
+}
+
+#[test]
+fn bad_requests_are_usage_errors_and_bad_values_failures() {
+    let engine = shipped("engine.kl");
+    let code = |args: &[&str]| {
+        let out = kinloop(args);
+        (out.status.code(), String::from_utf8_lossy(&out.stderr).to_string())
+    };
+    let (c, e) = code(&["dynamics", &shipped("four_bar.kl"), "--speed", "1", "--params", "a=1,b=3,c=2.5,d=3.2"]);
+    assert_eq!(c, Some(2), "{e}");
+    assert!(e.contains("declares no bodies"), "{e}");
+    for args in [["--samples", "4"], ["--speed", "-3"], ["--delta", "2.5"], ["--about", "1"]] {
+        let mut all = vec!["dynamics", engine.as_str(), "--speed", "10"];
+        all.extend(args);
+        let (c, e) = code(&all);
+        assert_eq!(c, Some(2), "{args:?}: {e}");
+        assert!(e.contains(args[0]), "{args:?}: {e}");
+    }
+    // A negative mass at run time: the runtime's error naming the body.
+    let (c, e) = code(&["dynamics", &engine, "--speed", "10", "--params", "m_rod=-2"]);
+    assert_eq!(c, Some(1), "{e}");
+    assert!(e.contains("`rod`"), "{e}");
+}
