@@ -94,8 +94,12 @@ fn dynamics_writes_the_compiled_engine_s_cycle_and_flywheel() {
 
     let engine = fx::EngineMachine::default();
     let mass = engine.mass_model().unwrap();
-    let cycle =
-        InverseCycle::new(&engine, &mass, SpeedLaw::Constant(150.0)).samples(72).start(0.3).about([0.01, -0.02]).run().unwrap();
+    let cycle = InverseCycle::new(&engine, &mass, SpeedLaw::Constant(150.0))
+        .samples(72)
+        .start(0.3)
+        .about([0.01, -0.02])
+        .run()
+        .unwrap();
     let compiled: [(&str, Vec<f64>); 10] = [
         ("phi", cycle.points.iter().map(|p| p.phi).collect()),
         ("omega", cycle.points.iter().map(|p| p.omega).collect()),

@@ -39,11 +39,11 @@ pub(crate) mod semantics;
 pub(crate) mod structure;
 
 // What `analyze` returns is public: the checked model, the blocks and the warnings.
-pub use semantics::model;
 /// The declared dynamics items (bodies, loads, gravity) of a checked model, which a run-time
 /// back end evaluates as the emitted `mass_model` does.
 #[doc(hidden)]
 pub use semantics::dynamics;
+pub use semantics::model;
 pub use structure::{Block, diag};
 
 use front::syntax;

@@ -18,8 +18,8 @@ use kinloop_codegen::graph::dag::{Leaf, NodeId, Op};
 use kinloop_codegen::plan::Plan;
 use kinloop_runtime::dims::{Heap, KinBuf, Sizes};
 use kinloop_runtime::dynamics::{
-    AnalogState, Body, Coord, Cycle, CyclePoint, DynamicsBuf, DynamicsError, MassModelBuf, Rotation, Shaking,
-    SpeedLaw, turn_states,
+    AnalogState, Body, Coord, Cycle, CyclePoint, DynamicsBuf, DynamicsError, MassModelBuf, Rotation, Shaking, SpeedLaw,
+    turn_states,
 };
 use kinloop_runtime::{Error, SweepConfig};
 use std::collections::HashSet;
@@ -117,7 +117,8 @@ impl DynamicsProg {
             d.torques.iter().map(|t| LoadItem::Torque { name: intern(&t.name), on: rotation(t.on), value: t.value.0 });
         let loads: Vec<LoadItem> = forces.chain(torques).collect();
         let unknown_regs: Vec<Option<u32>> = (0..plan.n).map(|u| find(Leaf::Unknown(u as u16))).collect();
-        let roots: Vec<NodeId> = d.forces.iter().flat_map(|f| f.value).chain(d.torques.iter().map(|t| t.value)).collect();
+        let roots: Vec<NodeId> =
+            d.forces.iter().flat_map(|f| f.value).chain(d.torques.iter().map(|t| t.value)).collect();
         let mut tape = Builder::new(g);
         tape.provide(unknown_regs.iter().flatten().map(|&r| NodeId(r)));
         let segment = tape.segment(&roots, None)?;
@@ -251,7 +252,8 @@ impl ModelCycle<'_, '_> {
             let n = m.unknowns().len();
             return Err(Error::InvalidArgument(format!("a guess of {} values given, {n} expected", guess.len())));
         }
-        let states: Vec<KinBuf> = turn_states(m.kernel(SweepConfig::default())?, self.phi0, self.samples, Heap(guess.into()))?;
+        let states: Vec<KinBuf> =
+            turn_states(m.kernel(SweepConfig::default())?, self.phi0, self.samples, Heap(guess.into()))?;
         let about = self.about;
         let mut d = DynamicsBuf::zeros(1);
         let (regs, prog) = m.dynamics_parts();

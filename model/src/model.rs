@@ -2,8 +2,8 @@
 //! evaluated step by step without allocating.
 
 use crate::at::{AtProg, Jacobian};
-use crate::dynamics::DynamicsProg;
 use crate::blocks::{BlockProg, Columns, How, StepFailure, Work, other_unknown};
+use crate::dynamics::DynamicsProg;
 use crate::factor::{Fac, MAX_DENSE};
 use crate::newton::NewtonProg;
 use crate::sensitivities::{SensProg, Sensitivities};

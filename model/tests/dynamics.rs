@@ -107,7 +107,8 @@ fn the_five_bar_s_mass_matrix_and_forces_equal_the_compiled_ones() {
         assert!(rel_diff(dc.mass.as_flattened(), &dr.mass) <= REL, "{dc:?} against {dr:?}");
         assert!(rel_diff(dc.gamma.as_flattened().as_flattened(), &dr.gamma) <= REL, "{dc:?} against {dr:?}");
         assert!(rel_diff(&dc.forces, &dr.forces) <= REL, "{dc:?} against {dr:?}");
-        let (sc, sr) = (mass.shaking(&c, &w, &eps, [0.5, 0.1]).unwrap(), model.shaking(&r, &w, &eps, [0.5, 0.1]).unwrap());
+        let (sc, sr) =
+            (mass.shaking(&c, &w, &eps, [0.5, 0.1]).unwrap(), model.shaking(&r, &w, &eps, [0.5, 0.1]).unwrap());
         let flat = |s: kinloop::dynamics::Shaking| [s.force[0], s.force[1], s.moment];
         assert!(rel_diff(&flat(sc), &flat(sr)) <= REL, "{sc:?} against {sr:?}");
         let mut tau = [0.0; 2];
@@ -168,13 +169,17 @@ fn a_slider_crank_s_torque_and_shaking_force_match_the_closed_form() {
         for (v, value) in want.iter_mut().zip([j, 2.0 * m_p * x1 * x2, torque, fx, fy]) {
             v.push(value);
         }
-        for (v, value) in got.iter_mut().zip([p.inertia, p.inertia_slope, p.torque, p.shaking.force[0], p.shaking.force[1]]) {
+        for (v, value) in
+            got.iter_mut().zip([p.inertia, p.inertia_slope, p.torque, p.shaking.force[0], p.shaking.force[1]])
+        {
             v.push(value);
         }
     }
     // The closed forms round differently from the analogs (a square root and its cube, about
     // ten operations each): a few hundred units of rounding of the largest magnitude.
-    for (name, (w, g)) in ["inertia", "inertia slope", "torque", "shaking x", "shaking y"].iter().zip(want.iter().zip(&got)) {
+    for (name, (w, g)) in
+        ["inertia", "inertia slope", "torque", "shaking x", "shaking y"].iter().zip(want.iter().zip(&got))
+    {
         let d = rel_diff(w, g);
         assert!(d < 1e-13, "{name}: {d:e}");
     }
