@@ -37,7 +37,23 @@
 //!
 //! Not evaluated yet: dense blocks of more than [`MAX_DENSE`] unknowns
 //! ([`ReadError::Unsupported`]; sparse blocks are, up to [`MAX_SPARSE`], the language's limit of
-//! unknowns); the dynamics items (bodies, loads: planned, not evaluated). Parameter sensitivities are ([`Model::sensitivities`]).
+//! unknowns). Parameter sensitivities are ([`Model::sensitivities`]), and so are the dynamics
+//! items (below).
+//!
+//! # Dynamics
+//!
+//! The declared bodies, loads and gravity are evaluated as the compiled mechanism's
+//! `mass_model` evaluates them: masses, moments of inertia, constant coordinates and gravity
+//! are nodes of the parameters, read from their registers into the runtime's
+//! `dynamics::MassModelBuf` ([`Model::mass_model`]); the force and torque expressions are a
+//! segment of their own over the inputs and unknowns of a state ([`Model::load_values`], no
+//! allocation). The runtime's dynamics is written once over any state (`AnalogState`: the
+//! compiled `Kin` or a run-time `KinBuf`) and any `Kernel`, so a model's dynamics at a state
+//! ([`Model::dynamics`], [`Model::shaking`]), its inverse cycle over a turn of the input and the
+//! flywheel sizing ([`Model::inverse_cycle`]) are the compiled mechanism's, computed by the same
+//! code: they equal the compiled ones to 1e-14 of each quantity's magnitude
+//! (`tests/dynamics.rs`). The forward simulation (`dynamics::Simulation`) stays on compiled
+//! sizes.
 //!
 //! # Speed
 //!
@@ -70,7 +86,8 @@
 //! reachable ranges and `sweep_at` (stretches of sweeps: they need their result types generic),
 //! the assembly modes (multi-start Newton over `position_flat`, which a model does not expose
 //! as a kernel method), scans, the analyses of sampled sweeps (`Sampled` holds `Kin` arrays),
-//! sensitivities-based synthesis (`Sensitivities<N, NI, NO, NP>`) and dynamics. Each needs its
+//! sensitivities-based synthesis (`Sensitivities<N, NI, NO, NP>`) and the forward simulation
+//! of the dynamics (the inverse dynamics is served: see above). Each needs its
 //! state and result types over `Dims` as the sweep's are, and the kernel methods it calls
 //! (`position`, `sensitivities`) added to `Kernel`.
 //!

@@ -9,6 +9,14 @@
 //! the velocity and acceleration analogs kinloop already generates: see [`eval`] for the
 //! formulas.
 //!
+//! The formulas are written once over any kinematic state ([`AnalogState`]: a compiled
+//! mechanism's [`Kin`](crate::Kin) or a run-time model's [`KinBuf`](crate::dims::KinBuf)), so a
+//! mechanism read at run time has the same dynamics: [`MassModelBuf`] holds its bodies and
+//! gravity with the sizes it learns when read (its loads' values computed by the model and
+//! given to each evaluation), and [`turn_states`] sweeps a turn of any
+//! [`Kernel`](crate::Kernel)'s input for [`Cycle::over_states`], the inverse cycle
+//! [`InverseCycle::run`] computes.
+//!
 //! ```
 //! use kinloop_runtime::dynamics::{Body, Coord, MassModel, Rotation};
 //! use kinloop_runtime::{Health, Kin, SolveReport, NewtonStop};
