@@ -285,3 +285,70 @@ impl DynamicsBuf {
         checked_drive_into(&self.mass, &self.gamma, &self.forces, x, w, eps, tau)
     }
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::dims::KinBuf;
+    use crate::dynamics::Coord;
+
+    fn crank() -> (MassModelBuf, KinBuf) {
+        let sizes = Sizes { n: 1, ni: 1, no: 2 };
+        let mut k = KinBuf::zeros(sizes);
+        k.out.copy_from_slice(&[0.1, 0.0]);
+        k.dout.copy_from_slice(&[0.0, 0.1]);
+        k.d2out.copy_from_slice(&[-0.1, 0.0]);
+        let pin = [Coord::Output(0), Coord::Output(1)];
+        let body = Body { name: "crank", mass: 2.0, com: pin, inertia: 0.01, rotation: Rotation::Input(0) };
+        let m = MassModelBuf::new(sizes).with_body(body).unwrap().with_force("push", pin).unwrap();
+        (m, k)
+    }
+
+    /// Bad sizes, indices, masses and load values are typed errors naming what is wrong.
+    #[test]
+    fn bad_input_is_a_typed_error() {
+        let (m, k) = crank();
+        assert_eq!(m.load_values(), 2);
+        let e = m.dynamics(&k, &[1.0], &[0.0]).unwrap_err();
+        assert_eq!(e, DynamicsError::SizeMismatch { what: "load values", expected: 2, given: 1 });
+        let e = m.dynamics(&k, &[1.0, 2.0], &[0.0, 0.0]).unwrap_err();
+        assert_eq!(e, DynamicsError::SizeMismatch { what: "input speeds", expected: 1, given: 2 });
+        let other = KinBuf::zeros(Sizes { n: 2, ni: 1, no: 2 });
+        let e = m.shaking(&other, &[1.0], &[0.0], [0.0; 2]).unwrap_err();
+        assert_eq!(e, DynamicsError::SizeMismatch { what: "unknowns of the state", expected: 1, given: 2 });
+        let e = m.dynamics(&k, &[1.0], &[f64::NAN, 0.0]).unwrap_err();
+        assert!(matches!(e, DynamicsError::NonFiniteLoad { name: "push", .. }), "{e:?}");
+        let e = m.clone().with_torque("t", Rotation::None).unwrap_err();
+        assert_eq!(e, DynamicsError::TorqueOnSlider { name: "t" });
+        let e = m.clone().with_force("f", [Coord::Output(2), Coord::Fixed(0.0)]).unwrap_err();
+        assert!(matches!(e, DynamicsError::IndexOutOfRange { index: 2, len: 2, .. }), "{e:?}");
+        let heavy = Body { name: "b", mass: -1.0, com: [Coord::Fixed(0.0); 2], inertia: 0.0, rotation: Rotation::None };
+        assert!(matches!(m.clone().with_body(heavy), Err(DynamicsError::BadMass { body: "b", .. })));
+        let mut d = DynamicsBuf::zeros(1);
+        let e = d.checked_drive_into(&[0.0], &[1.0], &[0.0], &mut [0.0; 2]).unwrap_err();
+        assert_eq!(e, DynamicsError::SizeMismatch { what: "driving forces", expected: 1, given: 2 });
+        d.mass[0] = f64::INFINITY;
+        assert!(matches!(
+            d.checked_drive_into(&[0.0], &[1.0], &[0.0], &mut [0.0]),
+            Err(DynamicsError::BadValue { .. })
+        ));
+    }
+
+    /// A crank with its centre of mass at the pin, pushed upwards at the pin at phi = 0:
+    /// `J = m r^2 + J_S`, `Q = F r`, the shaking force the centripetal `m r w^2` outwards and
+    /// the kinetic energy `J w^2 / 2`.
+    #[test]
+    fn a_crank_s_dynamics_are_the_closed_forms() {
+        let (m, k) = crank();
+        let (r, w) = (0.1, 10.0);
+        let d = m.dynamics(&k, &[w], &[0.0, 3.0]).unwrap();
+        let j = 2.0 * r * r + 0.01;
+        assert!((d.reduced_inertia() - j).abs() < 1e-15);
+        assert_eq!(d.reduced_inertia_slope(), 0.0);
+        assert!((d.forces[0] - 3.0 * r).abs() < 1e-15);
+        assert!((d.kinetic_energy(&[w]) - 0.5 * j * w * w).abs() < 1e-13);
+        let s = m.shaking(&k, &[w], &[0.0], [0.0, 0.0]).unwrap();
+        assert!((s.force[0] - 2.0 * r * w * w).abs() < 1e-13 && s.force[1] == 0.0, "{s:?}");
+        assert_eq!(m.centre_of_mass(&k).unwrap(), [0.1, 0.0]);
+    }
+}
