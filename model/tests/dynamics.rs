@@ -242,7 +242,7 @@ fn the_stirling_engine_s_inverse_cycle_equals_the_compiled_one() {
         let k = fx::StirlingEngine::PARAMS.iter().position(|p| *p == name).unwrap();
         let mut values = engine.param_values();
         values[k] = value;
-        engine = fx::StirlingEngine::from_param_values(values.try_into().unwrap());
+        engine = fx::StirlingEngine::from_param_values(values);
         assert!(model.set_param(name, value));
     }
     let mass = engine.mass_model().unwrap();

@@ -2,7 +2,7 @@
 //! mechanisms read from text: the bodies and gravity as the compiled [`MassModel`] holds them,
 //! the loads as where they act, their values computed by the caller (a run-time model
 //! evaluates its load expressions on its own tape) and given to each evaluation. Its formulas
-//! and checks are the compiled model's own ([`terms`](super::terms)): one implementation.
+//! and checks are the compiled model's own (one implementation, in a private module).
 //!
 //! ```
 //! use kinloop_runtime::dims::{KinBuf, Sizes};

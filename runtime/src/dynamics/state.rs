@@ -1,6 +1,6 @@
 //! The kinematic state as the dynamics reads it, whatever way its sizes are known: a compiled
-//! mechanism's [`Kin`] (arrays) or a run-time model's [`KinBuf`] (slices). The formulas of
-//! [`terms`](super::terms) are written once over this trait.
+//! mechanism's [`Kin`] (arrays) or a run-time model's [`KinBuf`] (slices). The formulas of the
+//! dynamics are written once over this trait.
 
 use super::model::{Coord, Rotation};
 use crate::dims::KinBuf;
