@@ -311,7 +311,9 @@ impl Model {
 
     /// The dynamics at state `k` (from [`Model::kinematics`] or a sweep) and input speeds `w`:
     /// mass matrix, velocity-product coefficients and generalised forces of the declared items
-    /// (the compiled `mass_model()?.dynamics(k, w)`).
+    /// (the compiled `mass_model()?.dynamics(k, w)`). It builds the mass model on each call;
+    /// to evaluate many states without allocating, keep [`Model::mass_model`] and a
+    /// `DynamicsBuf`, and call [`Model::load_values`] and `MassModelBuf::dynamics_into`.
     pub fn dynamics<S: AnalogState + ?Sized>(&mut self, k: &S, w: &[f64]) -> Result<DynamicsBuf, Error> {
         let mass = self.mass_model()?;
         let loads = self.load_values(k)?;
