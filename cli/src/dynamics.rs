@@ -10,7 +10,7 @@
 use crate::{Failed, exit};
 use kinloop_model::Model;
 use kinloop_runtime::dynamics::{Cycle, Flywheel, SpeedLaw};
-use kinloop_runtime::{Error, QuantityKind, Table};
+use kinloop_runtime::{QuantityKind, Table};
 use std::io::Write;
 use std::path::Path;
 
@@ -82,12 +82,11 @@ pub fn run(model: &mut Model, req: &Request) -> Result<(), Failed> {
     let angle = if req.deg { 180.0 / std::f64::consts::PI } else { 1.0 };
     let (speed, start) = (req.speed / angle, req.start / angle);
     let cycle = model.inverse_cycle(SpeedLaw::Constant(speed)).start(start).samples(req.samples).about(about).run();
-    let cycle = cycle.map_err(|e| match e {
-        Error::InvalidArgument(_) => usage(format!("{name}: {e}")),
-        e => {
-            eprintln!("error: {name}: {e}");
-            Failed(exit::SOLVE_FAILED)
-        }
+    // The request is checked above: what remains is the model's (a parameter without a
+    // value, a limit position on the turn, a mass or load that is not finite).
+    let cycle = cycle.map_err(|e| {
+        eprintln!("error: {name}: {e}");
+        Failed(exit::SOLVE_FAILED)
     })?;
     let flywheel = cycle.flywheel(req.delta).map_err(|e| {
         eprintln!("error: {name}: flywheel: {e}");

@@ -189,6 +189,15 @@ fn bad_requests_are_usage_errors_and_bad_values_failures() {
         assert_eq!(c, Some(2), "{args:?}: {e}");
         assert!(e.contains(args[0]), "{args:?}: {e}");
     }
+    // A parameter without a value fails as a solve does.
+    let dir = std::env::temp_dir().join(format!("kinloop-dynamics-unset-{}", std::process::id()));
+    std::fs::create_dir_all(&dir).unwrap();
+    let unset = dir.join("unset.kl");
+    std::fs::write(&unset, fx::ENGINE_MACHINE_TEXT.replacen("m_p = 0.5", "m_p", 1)).unwrap();
+    let (c, e) = code(&["dynamics", unset.to_str().unwrap(), "--speed", "10"]);
+    assert_eq!(c, Some(1), "{e}");
+    assert!(e.contains("`m_p` has no value"), "{e}");
+    std::fs::remove_dir_all(&dir).ok();
     // A negative mass at run time: the runtime's error naming the body.
     let (c, e) = code(&["dynamics", &engine, "--speed", "10", "--params", "m_rod=-2"]);
     assert_eq!(c, Some(1), "{e}");
