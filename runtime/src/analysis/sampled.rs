@@ -224,7 +224,7 @@ where
         guess: impl Into<[f64; N]>,
         cfg: SweepConfig,
     ) -> Result<Self, Error> {
-        SampledOf::path_over(Compiled(m), from.into(), to.into(), samples, guess.into(), cfg)
+        SampledOf::path_over(Compiled(m), from.into(), to.into(), samples, guess.into(), cfg, &mut |_| ())
     }
 
     /// [`Sampled::path`] with the input as the parameter when there is one input (as
@@ -252,11 +252,42 @@ impl<K: Lend> SampledOf<K> {
     /// when there is one (which must then increase), the fraction of the path otherwise (see
     /// [`SampledOf::along`]).
     pub fn over(k: K, from: X<K>, to: X<K>, samples: usize, guess: Q<K>, cfg: SweepConfig) -> Result<Self, Error> {
-        if k.dims().ni() == 1 { Self::input_with(k, from, to, samples, guess, cfg) } else { Self::path_over(k, from, to, samples, guess, cfg) }
+        Self::over_reporting(k, from, to, samples, guess, cfg, |_| ())
+    }
+
+    /// [`SampledOf::over`], telling `progress` how many samples are taken after each (for a
+    /// progress bar on long work).
+    pub fn over_reporting(
+        k: K,
+        from: X<K>,
+        to: X<K>,
+        samples: usize,
+        guess: Q<K>,
+        cfg: SweepConfig,
+        mut progress: impl FnMut(usize),
+    ) -> Result<Self, Error> {
+        if k.dims().ni() == 1 {
+            Self::input_reporting(k, from, to, samples, guess, cfg, &mut progress)
+        } else {
+            Self::path_over(k, from, to, samples, guess, cfg, &mut progress)
+        }
     }
 
     /// One input from `from` to `to`, the path parameter the input ([`Sampled::sweep_with`]).
     pub(crate) fn input_with(k: K, from: X<K>, to: X<K>, samples: usize, guess: Q<K>, cfg: SweepConfig) -> Result<Self, Error> {
+        Self::input_reporting(k, from, to, samples, guess, cfg, &mut |_| ())
+    }
+
+    /// [`SampledOf::input_with`], telling `progress` the samples taken.
+    fn input_reporting(
+        k: K,
+        from: X<K>,
+        to: X<K>,
+        samples: usize,
+        guess: Q<K>,
+        cfg: SweepConfig,
+        progress: &mut impl FnMut(usize),
+    ) -> Result<Self, Error> {
         let (a, b) = (from.as_ref().first().copied(), to.as_ref().first().copied());
         if k.dims().ni() != 1 || a.partial_cmp(&b) != Some(std::cmp::Ordering::Less) {
             return Err(Error::InvalidArgument(format!(
@@ -265,11 +296,19 @@ impl<K: Lend> SampledOf<K> {
                 to.as_ref()
             )));
         }
-        Self::path_over(k, from, to, samples, guess, cfg)?.reparametrised(|l, k| l.along(0, k.input_name(0)))
+        Self::path_over(k, from, to, samples, guess, cfg, progress)?.reparametrised(|l, k| l.along(0, k.input_name(0)))
     }
 
     /// The samples of the path, its parameter the fraction of the path.
-    fn path_over(k: K, from: X<K>, to: X<K>, samples: usize, guess: Q<K>, cfg: SweepConfig) -> Result<Self, Error> {
+    fn path_over(
+        k: K,
+        from: X<K>,
+        to: X<K>,
+        samples: usize,
+        guess: Q<K>,
+        cfg: SweepConfig,
+        progress: &mut impl FnMut(usize),
+    ) -> Result<Self, Error> {
         if samples < 3 || from.as_ref() == to.as_ref() {
             return Err(Error::InvalidArgument(format!(
                 "Sampled needs from != to and at least 3 samples (got {:?} .. {:?}, {samples} samples)",
@@ -283,6 +322,7 @@ impl<K: Lend> SampledOf<K> {
                 .with_config(cfg);
             while let Some(state) = sweep.next_kin() {
                 states.push(state?);
+                progress(states.len());
             }
         }
         let line = Line::fraction(from, to);

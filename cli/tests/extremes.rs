@@ -1,0 +1,158 @@
+//! `kinloop extremes` end to end: the built binary on the shipped `.kl` files, its CSV and its
+//! table parsed and compared with closed forms (the limit positions of a crank-rocker and the
+//! dead centres of an offset slider-crank), its usage errors and exit codes.
+//!
+//! Tolerances: an extreme is located as a root of the velocity analog, to the analog's rounding
+//! over the curvature (of order one for these links): within 1e-10 rad of the closed form's
+//! input; its value, where the analog vanishes, moves to second order only: within 1e-12 of the
+//! links' size. Degrees add one conversion (a relative rounding).
+
+use kinloop_fixtures as fx;
+use std::f64::consts::TAU;
+use std::path::PathBuf;
+use std::process::{Command, Output};
+
+fn kinloop(args: &[&str]) -> Output {
+    Command::new(env!("CARGO_BIN_EXE_kinloop")).args(args).output().expect("the kinloop binary runs")
+}
+
+fn shipped(name: &str) -> String {
+    PathBuf::from(env!("CARGO_MANIFEST_DIR")).join("mechanisms").join(name).display().to_string()
+}
+
+/// The CSV's header and rows (column name, then numbers), keyed by the column's name.
+fn csv(out: &Output) -> (Vec<String>, Vec<(String, String, Vec<f64>)>) {
+    assert!(out.status.success(), "{}", String::from_utf8_lossy(&out.stderr));
+    // No progress bar, nor anything else, where standard error is not a terminal.
+    assert!(out.stderr.is_empty(), "{}", String::from_utf8_lossy(&out.stderr));
+    let text = String::from_utf8(out.stdout.clone()).expect("utf-8");
+    let mut lines = text.lines();
+    let header = lines.next().expect("header").split(',').map(str::to_string).collect();
+    let rows = lines
+        .map(|l| {
+            let cells: Vec<&str> = l.split(',').collect();
+            let numbers = cells[2..].iter().map(|v| v.parse().expect("a number")).collect();
+            (cells[0].to_string(), cells[1].to_string(), numbers)
+        })
+        .collect();
+    (header, rows)
+}
+
+/// The row of column `name`: `[min, input at min, max, input at max]` for one input.
+fn row<'a>(rows: &'a [(String, String, Vec<f64>)], name: &str) -> (&'a str, &'a [f64]) {
+    let r = rows.iter().find(|r| r.0 == name).unwrap_or_else(|| panic!("no row {name}"));
+    (&r.1, &r.2)
+}
+
+/// The shipped slider-crank is the fixture's declaration: the same tokens.
+#[test]
+fn the_shipped_slider_crank_is_the_fixtures() {
+    let tokens = |t: &str| t.parse::<proc_macro2::TokenStream>().expect("tokens").to_string().replace("= r\"", "= \"");
+    let shipped = std::fs::read_to_string(shipped("slider_crank.kl")).expect("shipped file");
+    assert_eq!(tokens(&shipped), tokens(fx::SLIDER_CRANK_TEXT));
+}
+
+/// A crank-rocker's rocker swings between the positions where crank and coupler line up
+/// (`|AC| = b + a` stretched, `b - a` folded); the triangle A-D-C gives the rocker angle,
+/// `|AC|^2 = d^2 + c^2 + 2 d c cos gamma`, and the crank lies along A-C or against it.
+#[test]
+fn a_rockers_swing_from_the_limit_position_geometry_in_degrees() {
+    let (a, b, c, d): (f64, f64, f64, f64) = (1.0, 3.0, 2.5, 3.2);
+    let params = format!("a={a},b={b},c={c},d={d}");
+    let out = kinloop(&["extremes", &shipped("four_bar.kl"), "--from", "0", "--to", "360", "--deg", "--params", &params]);
+    let (header, rows) = csv(&out);
+    assert_eq!(header, ["column", "unit", "min", "phi at min [deg]", "max", "phi at max [deg]"]);
+    assert_eq!(rows.iter().map(|r| r.0.as_str()).collect::<Vec<_>>(), ["beta", "gamma", "pc.x", "pc.y"]);
+    let limit = |ac: f64, stretched: bool| {
+        let gamma = ((ac * ac - d * d - c * c) / (2.0 * d * c)).acos();
+        let (cx, cy) = (d + c * gamma.cos(), c * gamma.sin());
+        let phi = if stretched { cy.atan2(cx) } else { (-cy).atan2(-cx) };
+        (gamma.to_degrees(), phi.rem_euclid(TAU).to_degrees())
+    };
+    let (stretched, folded) = (limit(b + a, true), limit(b - a, false));
+    let (min, max) = if stretched.0 < folded.0 { (stretched, folded) } else { (folded, stretched) };
+    let (unit, g) = row(&rows, "gamma");
+    assert_eq!(unit, "deg");
+    let deg = |rad: f64| rad.to_degrees();
+    assert!((g[0] - min.0).abs() < deg(1e-12) && (g[2] - max.0).abs() < deg(1e-12), "{g:?} vs {min:?} {max:?}");
+    assert!((g[1] - min.1).abs() < deg(1e-10) && (g[3] - max.1).abs() < deg(1e-10), "{g:?} vs {min:?} {max:?}");
+    // The joint C at the rocker's limits lies on the circle about D: its x is d + c cos gamma at
+    // its extremes only where C is leftmost or rightmost, which the rocker's swing, within
+    // (0, pi), does not contain: x is extreme where gamma is.
+    let (unit, x) = row(&rows, "pc.x");
+    assert_eq!(unit, "length unit");
+    let cx = |gamma_deg: f64| d + c * gamma_deg.to_radians().cos();
+    assert!((x[0] - cx(max.0)).abs() < 1e-12 && (x[2] - cx(min.0)).abs() < 1e-12, "{x:?}");
+    assert!((x[1] - max.1).abs() < deg(1e-10) && (x[3] - min.1).abs() < deg(1e-10), "{x:?}");
+}
+
+/// An offset slider-crank (the slider on the crank's -x side): nearest the crank pivot with
+/// crank and rod folded, `|x| = sqrt((l - r)^2 - e^2)`, the crank pointing away from the slider;
+/// farthest with them stretched, `|x| = sqrt((l + r)^2 - e^2)`, the crank pointing at it. The
+/// stroke is the difference; in radians, from a start that is no extreme.
+#[test]
+fn a_sliders_stroke_and_dead_centres_from_the_closed_form() {
+    let (r, l, e): (f64, f64, f64) = (1.0, 3.0, 0.4);
+    let params = format!("r={r},l={l},e={e}");
+    let to = format!("{}", TAU);
+    let out = kinloop(&["extremes", &shipped("slider_crank.kl"), "--from", "0", "--to", &to, "--samples", "73", "--params", &params, "--columns", "x"]);
+    let (header, rows) = csv(&out);
+    assert_eq!(header, ["column", "unit", "min", "phi at min [rad]", "max", "phi at max [rad]"]);
+    assert_eq!(rows.len(), 1);
+    let near = ((l - r) * (l - r) - e * e).sqrt();
+    let far = ((l + r) * (l + r) - e * e).sqrt();
+    let (unit, x) = row(&rows, "x");
+    assert_eq!(unit, "length unit");
+    assert!((x[0] - -far).abs() < 1e-12 && (x[2] - -near).abs() < 1e-12, "{x:?}");
+    assert!((x[1] - f64::atan2(e, -far).rem_euclid(TAU)).abs() < 1e-10, "{x:?}");
+    assert!((x[3] - f64::atan2(-e, near).rem_euclid(TAU)).abs() < 1e-10, "{x:?}");
+    assert!(((x[2] - x[0]) - (far - near)).abs() < 1e-12, "the stroke: {x:?}");
+}
+
+/// The table holds the CSV's numbers to ten significant digits, aligned under a header.
+#[test]
+fn the_table_is_the_csv_readable() {
+    let args = ["extremes", &shipped("four_bar.kl"), "--from", "0", "--to", "360", "--deg", "--params", "a=1,b=3,c=2.5,d=3.2"];
+    let (_, rows) = csv(&kinloop(&args));
+    let mut with_table = args.to_vec();
+    with_table.push("--table");
+    let out = kinloop(&with_table);
+    assert!(out.status.success() && out.stderr.is_empty());
+    let text = String::from_utf8(out.stdout).expect("utf-8");
+    let mut lines = text.lines();
+    let header = lines.next().expect("header");
+    assert!(header.starts_with("column") && header.contains("phi at max [deg]"), "{header}");
+    for (line, (name, unit, numbers)) in lines.zip(&rows) {
+        let cells: Vec<&str> = line.split_whitespace().collect();
+        // Units of several words (`length unit`) split: the numbers are the last four cells.
+        assert_eq!(cells[0], name);
+        assert_eq!(cells[1..cells.len() - 4].join(" "), *unit);
+        for (cell, v) in cells[cells.len() - 4..].iter().zip(numbers) {
+            let t: f64 = cell.parse().expect("a number");
+            assert!((t - v).abs() <= 1e-9 * v.abs().max(1.0), "{line}: {t} vs {v}");
+        }
+    }
+}
+
+/// Usage errors (exit 2) name what is wrong; a sweep that stops at a limit position fails
+/// (exit 1) and says so; nothing is written on standard output then.
+#[test]
+fn errors_and_exit_codes() {
+    let four_bar = shipped("four_bar.kl");
+    let params = "a=1,b=3,c=2.5,d=3.2";
+    let code = |args: &[&str], code: i32, says: &str| {
+        let out = kinloop(args);
+        let err = String::from_utf8_lossy(&out.stderr);
+        assert_eq!(out.status.code(), Some(code), "{args:?}: {err}");
+        assert!(err.contains(says), "{args:?}: {err}");
+        assert!(out.stdout.is_empty(), "{args:?}");
+    };
+    code(&["extremes", &four_bar, "--from", "0", "--to", "1", "--params", params, "--columns", "beta,nope"], 2, "`nope`");
+    code(&["extremes", &four_bar, "--from", "1", "--to", "0", "--params", params], 2, "from < to");
+    code(&["extremes", &four_bar, "--from", "0", "--to", "1", "--samples", "2", "--params", params], 2, "at least 3 samples");
+    code(&["extremes", &four_bar, "--from", "0", "--to", "x", "--params", params], 2, "--to x");
+    code(&["extremes", &four_bar, "--from", "0", "--to", "1"], 1, "has no value");
+    // A non-Grashof rocker cannot turn through: its limit position, where coupler and rocker
+    // stretch in line, stops the sweep.
+    code(&["extremes", &four_bar, "--from", "1.2", "--to", "7.4", "--params", "a=1.5,b=3,c=1,d=3.2"], 1, "limit position");
+}
