@@ -85,9 +85,15 @@ pub fn run(model: &mut Model, req: &Request) -> Result<(), Failed> {
     let kernel = model.kernel(SweepConfig::default()).map_err(|e| failed(&e))?;
     let bar = progress::bar(&format!("{name}: sampling"), req.samples + columns.len(), req.samples);
     let cfg = SweepConfig::default();
-    let sampled = SampledOf::over_reporting(kernel, Heap(from.into()), Heap(to.into()), req.samples, Heap(guess.into()), cfg, |n| {
-        bar.set_position(n as u64)
-    });
+    let sampled = SampledOf::over_reporting(
+        kernel,
+        Heap(from.into()),
+        Heap(to.into()),
+        req.samples,
+        Heap(guess.into()),
+        cfg,
+        |n| bar.set_position(n as u64),
+    );
     // The runtime checks the arguments (at least three samples, `to` apart from `from`, and
     // past it for one input): its refusal is a usage error, not a failed solve.
     let sampled = sampled.map_err(|e| {
@@ -123,7 +129,8 @@ pub fn run(model: &mut Model, req: &Request) -> Result<(), Failed> {
     }
     bar.finish_and_clear();
     let input_units: Vec<&str> = input_kinds.iter().map(|k| unit(*k, req.deg)).collect();
-    let text = if req.table { table(&rows, &input_names, &input_units) } else { csv(&rows, &input_names, &input_units) };
+    let text =
+        if req.table { table(&rows, &input_names, &input_units) } else { csv(&rows, &input_names, &input_units) };
     std::io::stdout().lock().write_all(text.as_bytes()).map_err(|e| {
         eprintln!("error: cannot write the extremes: {e}");
         Failed(exit::IO_ERR)
@@ -131,7 +138,11 @@ pub fn run(model: &mut Model, req: &Request) -> Result<(), Failed> {
 }
 
 /// The columns named in `list` (unknowns or outputs), in its order.
-fn select(quantities: &[(String, QuantityKind)], list: &str, name: &str) -> Result<Vec<(String, QuantityKind)>, Failed> {
+fn select(
+    quantities: &[(String, QuantityKind)],
+    list: &str,
+    name: &str,
+) -> Result<Vec<(String, QuantityKind)>, Failed> {
     list.split(',')
         .map(str::trim)
         .filter(|c| !c.is_empty())
@@ -191,7 +202,8 @@ fn table(rows: &[Row], inputs: &[String], units: &[&str]) -> String {
             format!("{v:.9e}")
         }
     };
-    let lines: Vec<Vec<String>> = std::iter::once(header(inputs, units)).chain(rows.iter().map(|r| cells(r, number))).collect();
+    let lines: Vec<Vec<String>> =
+        std::iter::once(header(inputs, units)).chain(rows.iter().map(|r| cells(r, number))).collect();
     let widths: Vec<usize> =
         (0..lines[0].len()).map(|c| lines.iter().map(|l| l[c].chars().count()).max().unwrap_or(0)).collect();
     let mut s = String::new();

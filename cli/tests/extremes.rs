@@ -59,7 +59,8 @@ fn the_shipped_slider_crank_is_the_fixtures() {
 fn a_rockers_swing_from_the_limit_position_geometry_in_degrees() {
     let (a, b, c, d): (f64, f64, f64, f64) = (1.0, 3.0, 2.5, 3.2);
     let params = format!("a={a},b={b},c={c},d={d}");
-    let out = kinloop(&["extremes", &shipped("four_bar.kl"), "--from", "0", "--to", "360", "--deg", "--params", &params]);
+    let out =
+        kinloop(&["extremes", &shipped("four_bar.kl"), "--from", "0", "--to", "360", "--deg", "--params", &params]);
     let (header, rows) = csv(&out);
     assert_eq!(header, ["column", "unit", "min", "phi at min [deg]", "max", "phi at max [deg]"]);
     assert_eq!(rows.iter().map(|r| r.0.as_str()).collect::<Vec<_>>(), ["beta", "gamma", "pc.x", "pc.y"]);
@@ -95,7 +96,20 @@ fn a_sliders_stroke_and_dead_centres_from_the_closed_form() {
     let (r, l, e): (f64, f64, f64) = (1.0, 3.0, 0.4);
     let params = format!("r={r},l={l},e={e}");
     let to = format!("{}", TAU);
-    let out = kinloop(&["extremes", &shipped("slider_crank.kl"), "--from", "0", "--to", &to, "--samples", "73", "--params", &params, "--columns", "x"]);
+    let out = kinloop(&[
+        "extremes",
+        &shipped("slider_crank.kl"),
+        "--from",
+        "0",
+        "--to",
+        &to,
+        "--samples",
+        "73",
+        "--params",
+        &params,
+        "--columns",
+        "x",
+    ]);
     let (header, rows) = csv(&out);
     assert_eq!(header, ["column", "unit", "min", "phi at min [rad]", "max", "phi at max [rad]"]);
     assert_eq!(rows.len(), 1);
@@ -112,7 +126,8 @@ fn a_sliders_stroke_and_dead_centres_from_the_closed_form() {
 /// The table holds the CSV's numbers to ten significant digits, aligned under a header.
 #[test]
 fn the_table_is_the_csv_readable() {
-    let args = ["extremes", &shipped("four_bar.kl"), "--from", "0", "--to", "360", "--deg", "--params", "a=1,b=3,c=2.5,d=3.2"];
+    let args =
+        ["extremes", &shipped("four_bar.kl"), "--from", "0", "--to", "360", "--deg", "--params", "a=1,b=3,c=2.5,d=3.2"];
     let (_, rows) = csv(&kinloop(&args));
     let mut with_table = args.to_vec();
     with_table.push("--table");
@@ -147,12 +162,24 @@ fn errors_and_exit_codes() {
         assert!(err.contains(says), "{args:?}: {err}");
         assert!(out.stdout.is_empty(), "{args:?}");
     };
-    code(&["extremes", &four_bar, "--from", "0", "--to", "1", "--params", params, "--columns", "beta,nope"], 2, "`nope`");
+    code(
+        &["extremes", &four_bar, "--from", "0", "--to", "1", "--params", params, "--columns", "beta,nope"],
+        2,
+        "`nope`",
+    );
     code(&["extremes", &four_bar, "--from", "1", "--to", "0", "--params", params], 2, "from < to");
-    code(&["extremes", &four_bar, "--from", "0", "--to", "1", "--samples", "2", "--params", params], 2, "at least 3 samples");
+    code(
+        &["extremes", &four_bar, "--from", "0", "--to", "1", "--samples", "2", "--params", params],
+        2,
+        "at least 3 samples",
+    );
     code(&["extremes", &four_bar, "--from", "0", "--to", "x", "--params", params], 2, "--to x");
     code(&["extremes", &four_bar, "--from", "0", "--to", "1"], 1, "has no value");
     // A non-Grashof rocker cannot turn through: its limit position, where coupler and rocker
     // stretch in line, stops the sweep.
-    code(&["extremes", &four_bar, "--from", "1.2", "--to", "7.4", "--params", "a=1.5,b=3,c=1,d=3.2"], 1, "limit position");
+    code(
+        &["extremes", &four_bar, "--from", "1.2", "--to", "7.4", "--params", "a=1.5,b=3,c=1,d=3.2"],
+        1,
+        "limit position",
+    );
 }

@@ -40,7 +40,13 @@ impl Model {
     /// // The stroke of a centred slider-crank: twice the crank.
     /// assert!((x.span() - 2.0).abs() < 1e-12);
     /// ```
-    pub fn sampled(&mut self, from: &[f64], to: &[f64], samples: usize, guess: &[f64]) -> Result<ModelSampled<'_>, Error> {
+    pub fn sampled(
+        &mut self,
+        from: &[f64],
+        to: &[f64],
+        samples: usize,
+        guess: &[f64],
+    ) -> Result<ModelSampled<'_>, Error> {
         self.sampled_with(from, to, samples, guess, SweepConfig::default())
     }
 

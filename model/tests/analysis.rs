@@ -171,7 +171,12 @@ fn with_the_same_sines_the_metrics_are_equal_to_the_last_bit() {
     let r = m.sampled(&[-1.0], &[TAU - 1.0], 73, &guess).unwrap();
     assert_eq!(ct, r.transmission("beta", "gamma").unwrap());
     let columns = [col("gamma"), col("pc.x")];
-    let cl = kinloop::metrics::Limits::new(&compiled, -1.0, TAU - 1.0).samples(73).guess(guess).columns(&columns).run().unwrap();
+    let cl = kinloop::metrics::Limits::new(&compiled, -1.0, TAU - 1.0)
+        .samples(73)
+        .guess(guess)
+        .columns(&columns)
+        .run()
+        .unwrap();
     let rl = m.limits(-1.0, TAU - 1.0, 73, &guess, &["gamma", "pc.x"]).unwrap();
     assert_eq!((cl.reached, &cl.outputs), (rl.reached, &rl.outputs));
     assert_eq!(cl.outputs[0].extremes.len(), 2);

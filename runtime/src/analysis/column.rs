@@ -214,6 +214,11 @@ fn contract(value: f64, g: impl Fn(usize) -> f64, h: impl Fn(usize, usize) -> f6
 /// A column as the analyses over a kernel `K` take it: the generated typed handle
 /// (`Name::COL.beta`, for a compiled mechanism), a name known at run time (`"beta"`, `"cp.x"`,
 /// for any kernel, a run-time model's included), or a [`ColumnIndex`].
+#[diagnostic::on_unimplemented(
+    message = "`{Self}` is not a column of the mechanism `{K}` samples",
+    label = "a column of another mechanism",
+    note = "a column is a handle of the sampled mechanism (`Name::COL.field`), a name (`\"field\"`) or a `ColumnIndex`"
+)]
 pub trait ColumnOf<K: Kernel>: Copy {
     /// The column's flat array and index in `k`; an [`Error::InvalidArgument`] for a column
     /// `k` does not have (naming its columns).
@@ -238,7 +243,11 @@ impl<K: Kernel> ColumnOf<K> for ColumnIndex {
             ColumnIndex::Unknown(u) => u < d.n(),
             ColumnIndex::Output(o) => o < d.no(),
         };
-        if ok { Ok(self) } else { Err(Error::InvalidArgument(format!("column {self:?} does not exist in `{}`", k.name()))) }
+        if ok {
+            Ok(self)
+        } else {
+            Err(Error::InvalidArgument(format!("column {self:?} does not exist in `{}`", k.name())))
+        }
     }
 }
 

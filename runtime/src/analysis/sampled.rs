@@ -5,12 +5,12 @@
 use super::column::{ColumnOf, column_name, jet_along};
 use super::extremes::{self, GlobalRange, LocalExtreme, global_range, maximize};
 use super::{ColumnIndex, Dwell, Fourier, Jet, Unbalance, dwell, fourier, unbalance};
+use crate::Kernel;
 use crate::dims::{Dims, KinState, Store};
 use crate::error::Error;
 use crate::mechanism::Mechanism;
 use crate::mechanism::kernel::{Compiled, KinOf, Q, X};
 use crate::paths::sweep::{SweepConfig, SweepOf};
-use crate::Kernel;
 
 /// A [`Kernel`] that [`SampledOf`] can lend to the sweeps it solves with (the samples, and
 /// every refinement between them) while keeping it: a compiled mechanism's [`Compiled`] lends
@@ -274,7 +274,14 @@ impl<K: Lend> SampledOf<K> {
     }
 
     /// One input from `from` to `to`, the path parameter the input ([`Sampled::sweep_with`]).
-    pub(crate) fn input_with(k: K, from: X<K>, to: X<K>, samples: usize, guess: Q<K>, cfg: SweepConfig) -> Result<Self, Error> {
+    pub(crate) fn input_with(
+        k: K,
+        from: X<K>,
+        to: X<K>,
+        samples: usize,
+        guess: Q<K>,
+        cfg: SweepConfig,
+    ) -> Result<Self, Error> {
         Self::input_reporting(k, from, to, samples, guess, cfg, &mut |_| ())
     }
 

@@ -170,11 +170,7 @@ pub fn limits_of<K: Lend, C: ColumnOf<K>>(
 ) -> Result<LimitReport, Error> {
     let d = k.dims();
     if d.ni() != 1 {
-        return Err(Error::InvalidArgument(format!(
-            "the limits of `{}` need one input (it has {})",
-            k.name(),
-            d.ni()
-        )));
+        return Err(Error::InvalidArgument(format!("the limits of `{}` need one input (it has {})", k.name(), d.ni())));
     }
     let input = |v: f64| {
         let mut x = d.x();
