@@ -20,8 +20,11 @@ fn shipped(name: &str) -> String {
     PathBuf::from(env!("CARGO_MANIFEST_DIR")).join("mechanisms").join(name).display().to_string()
 }
 
-/// The CSV's header and rows (column name, then numbers), keyed by the column's name.
-fn csv(out: &Output) -> (Vec<String>, Vec<(String, String, Vec<f64>)>) {
+/// A row of the output: the column's name, its unit and the numbers.
+type Row = (String, String, Vec<f64>);
+
+/// The CSV's header and rows.
+fn csv(out: &Output) -> (Vec<String>, Vec<Row>) {
     assert!(out.status.success(), "{}", String::from_utf8_lossy(&out.stderr));
     // No progress bar, nor anything else, where standard error is not a terminal.
     assert!(out.stderr.is_empty(), "{}", String::from_utf8_lossy(&out.stderr));
@@ -39,7 +42,7 @@ fn csv(out: &Output) -> (Vec<String>, Vec<(String, String, Vec<f64>)>) {
 }
 
 /// The row of column `name`: `[min, input at min, max, input at max]` for one input.
-fn row<'a>(rows: &'a [(String, String, Vec<f64>)], name: &str) -> (&'a str, &'a [f64]) {
+fn row<'a>(rows: &'a [Row], name: &str) -> (&'a str, &'a [f64]) {
     let r = rows.iter().find(|r| r.0 == name).unwrap_or_else(|| panic!("no row {name}"));
     (&r.1, &r.2)
 }

@@ -147,7 +147,7 @@ fn with_the_same_sines_the_analyses_are_equal_to_the_last_bit() {
     let n = same_analyses(fx::FourBar { a: 1.0, b: 3.0, c: 2.5, d: 3.2 }, &mut m, [-1.0], [TAU - 1.0], 73);
     // Each column's extremes, range, harmonics, unbalance, peak and a jet at least.
     assert!(n >= 4 * 6, "{n} results");
-    let mut m = read(&fx::RHOMBIC_DRIVE_TEXT.to_string());
+    let mut m = read(fx::RHOMBIC_DRIVE_TEXT);
     assert!(same_analyses(fx::RhombicDrive::default(), &mut m, [0.0], [TAU], 145) >= 6 * 6);
     let mut m = read(fx::SLIDER_CRANK_TEXT);
     set(&mut m, &[("r", 1.0), ("l", 3.0), ("e", 0.4)]);
