@@ -186,3 +186,55 @@ fn errors_and_exit_codes() {
         "limit position",
     );
 }
+
+/// Two inputs moving together along the straight path (`--from th1,th2 --to th1,th2`): each
+/// extreme with both inputs where it happens, against the compiled mechanism of the same
+/// declaration (kinloop's fixture, its own sweep with the rotated sines): the values to the
+/// sweeps' agreement (1e-13 of the links' size, see `kinloop-model`'s `sweeps.rs`), an extreme's
+/// value to second order in its location, the inputs to the analog's rounding over the
+/// curvature (1e-10).
+#[test]
+fn a_path_of_two_inputs_gives_both_inputs_at_each_extreme() {
+    use kinloop::Mechanism;
+    use kinloop::analysis::{Column, Sampled};
+    let dir = std::env::temp_dir().join(format!("kinloop-cli-extremes-{}", std::process::id()));
+    std::fs::create_dir_all(&dir).expect("temp dir");
+    let file = dir.join("five_bar.kl");
+    std::fs::write(&file, fx::FIVE_BAR_TEXT).expect("write");
+    let (from, to) = ([0.0, 1.0], [std::f64::consts::PI, 1.0 + std::f64::consts::FRAC_PI_2]);
+    let list = |x: [f64; 2]| format!("{},{}", x[0], x[1]);
+    let out = kinloop(&[
+        "extremes",
+        &file.display().to_string(),
+        "--from",
+        &list(from),
+        "--to",
+        &list(to),
+        "--samples",
+        "91",
+    ]);
+    let (header, rows) = csv(&out);
+    let want = [
+        "column",
+        "unit",
+        "min",
+        "th1 at min [rad]",
+        "th2 at min [rad]",
+        "max",
+        "th1 at max [rad]",
+        "th2 at max [rad]",
+    ];
+    assert_eq!(header, want);
+    let m = fx::FiveBar::default();
+    let compiled = Sampled::path(&m, from, to, 91, m.guess_flat(&from)).expect("compiled sweep");
+    assert_eq!(rows.len(), fx::FiveBar::UNKNOWNS.len() + fx::FiveBar::OUTPUTS.len());
+    for (name, _, v) in &rows {
+        let r = compiled.range(Column::named(name).expect("a column")).expect("range");
+        let (at_min, at_max) = (compiled.inputs_at(r.min.x), compiled.inputs_at(r.max.x));
+        assert!((v[0] - r.min.value).abs() < 1e-12 && (v[3] - r.max.value).abs() < 1e-12, "{name}: {v:?} {r:?}");
+        for (got, want) in v[1..3].iter().zip(at_min).chain(v[4..6].iter().zip(at_max)) {
+            assert!((got - want).abs() < 1e-10, "{name}: {v:?} {r:?}");
+        }
+    }
+    std::fs::remove_dir_all(&dir).ok();
+}
