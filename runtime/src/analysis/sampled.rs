@@ -295,12 +295,20 @@ impl<K: Lend> SampledOf<K> {
         cfg: SweepConfig,
         progress: &mut impl FnMut(usize),
     ) -> Result<Self, Error> {
-        let (a, b) = (from.as_ref().first().copied(), to.as_ref().first().copied());
-        if k.dims().ni() != 1 || a.partial_cmp(&b) != Some(std::cmp::Ordering::Less) {
+        if k.dims().ni() != 1 {
             return Err(Error::InvalidArgument(format!(
-                "Sampled::sweep needs one input and from < to (got {:?} .. {:?})",
-                from.as_ref(),
-                to.as_ref()
+                "a sampled sweep of one input: `{}` has {}",
+                k.name(),
+                k.dims().ni()
+            )));
+        }
+        if from[0].partial_cmp(&to[0]) != Some(std::cmp::Ordering::Less) {
+            return Err(Error::InvalidArgument(format!(
+                "a sampled sweep of `{}` over its input `{}` needs from < to (got {} .. {})",
+                k.name(),
+                k.input_name(0),
+                from[0],
+                to[0]
             )));
         }
         Self::path_over(k, from, to, samples, guess, cfg, progress)?.reparametrised(|l, k| l.along(0, k.input_name(0)))
