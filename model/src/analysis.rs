@@ -7,7 +7,7 @@
 
 use crate::mechanism::ModelKernel;
 use crate::model::Model;
-use kinloop_runtime::analysis::{ColumnOf, Lend, SampledOf};
+use kinloop_runtime::analysis::{Lend, SampledOf};
 use kinloop_runtime::dims::{Heap, JacBuf, KinBuf, Sizes};
 use kinloop_runtime::generated::InputTrig;
 use kinloop_runtime::metrics::{LimitReport, limits_of};
@@ -95,15 +95,7 @@ impl Model {
                 k.dims().n
             )));
         }
-        // A column the model does not have is an error even where no range is reached.
-        for &c in columns {
-            c.resolve(&k)?;
-        }
-        let mut report = limits_of(k, from, to, samples, Heap(guess.into()), columns)?;
-        for (o, name) in report.outputs.iter_mut().zip(columns) {
-            o.column = name.to_string();
-        }
-        Ok(report)
+        limits_of(k, from, to, samples, Heap(guess.into()), columns)
     }
 }
 

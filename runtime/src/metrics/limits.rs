@@ -9,6 +9,7 @@
 //!   from the output, where the output cannot drive the input): the located extremes of the
 //!   output's column.
 
+use crate::analysis::column::column_name;
 use crate::analysis::{Column, ColumnOf, Lend, LocalExtreme, SampledOf};
 use crate::dims::{Dims, KinState};
 use crate::error::Error;
@@ -141,17 +142,7 @@ impl<'a, M, const N: usize> Limits<'a, M, N> {
         M: Mechanism<N, 1, NO>,
     {
         let guess = self.guess.unwrap_or_else(|| self.m.guess_flat(&[self.from]));
-        // A column outside the mechanism is an error even where no range is reached.
-        for &c in self.columns {
-            c.check::<N, 1, NO>()?;
-        }
-        let names = self.columns.iter().map(|c| c.name());
-        let mut report = limits_of(Compiled(self.m), self.from, self.to, self.samples, guess, self.columns)?;
-        // The handles' own names (a range that is the start alone resolves none).
-        for (o, name) in report.outputs.iter_mut().zip(names) {
-            o.column = name.to_string();
-        }
-        Ok(report)
+        limits_of(Compiled(self.m), self.from, self.to, self.samples, guess, self.columns)
     }
 }
 
@@ -159,7 +150,8 @@ impl<'a, M, const N: usize> Limits<'a, M, N> {
 /// compiled mechanism's [`Compiled`], a run-time model's): sweeps from `guess` at `from` to
 /// `to` (either direction) in `samples` equally spaced inputs, passing singular crossings, and
 /// reports the input's limit positions and crossings and the located extremes of `columns`
-/// (typed handles, names or indices, see [`ColumnOf`]) over the range reached.
+/// (typed handles, names or indices, see [`ColumnOf`]) over the range reached. A column `k`
+/// does not have is an error, even where the range reached is the start alone.
 pub fn limits_of<K: Lend, C: ColumnOf<K>>(
     k: K,
     from: f64,
@@ -169,6 +161,10 @@ pub fn limits_of<K: Lend, C: ColumnOf<K>>(
     columns: &[C],
 ) -> Result<LimitReport, Error> {
     let d = k.dims();
+    let columns = columns
+        .iter()
+        .map(|&c| c.resolve(&k).map(|i| (i, column_name(&k, i).to_string())))
+        .collect::<Result<Vec<_>, Error>>()?;
     if d.ni() != 1 {
         return Err(Error::InvalidArgument(format!("the limits of `{}` need one input (it has {})", k.name(), d.ni())));
     }
@@ -204,11 +200,11 @@ pub fn limits_of<K: Lend, C: ColumnOf<K>>(
         Some(SampledOf::input_with(k, input(from), input(last), count.max(3), guess, cfg)?)
     };
     let outputs = columns
-        .iter()
-        .map(|&c| {
-            let (column, extremes) = match &range {
-                Some(range) => (range.column_name(c)?.to_string(), range.extremes(c)?),
-                None => (String::new(), Vec::new()),
+        .into_iter()
+        .map(|(c, column)| {
+            let extremes = match &range {
+                Some(range) => range.extremes(c)?,
+                None => Vec::new(),
             };
             Ok(OutputLimits { column, extremes })
         })
