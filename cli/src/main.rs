@@ -7,7 +7,10 @@
 //! kinloop solve four_bar.kl --at 0 --at 0.5 --params a=1.2,b=3
 //! kinloop sweep four_bar.kl --from 0 --to 360 --samples 73 --deg --params a=1,b=3,c=2.5,d=3.2
 //! kinloop dynamics engine.kl --speed 150 --delta 0.02 --flywheel flywheel.csv
+//! kinloop extremes four_bar.kl --from 0 --to 360 --deg --table   # each unknown's min and max
 //! ```
+//!
+//! Long sweeps (from 2000 samples) show a progress bar on standard error when it is a terminal.
 //!
 //! Exit codes ([`exit`]): 0 success, 1 a solve failed, 2 a usage error, 65 the declaration is
 //! rejected (diagnostics on standard error), 66 the file cannot be read, 69 the declaration uses
@@ -16,7 +19,9 @@
 
 mod dynamics;
 mod exit;
+mod extremes;
 mod params;
+mod progress;
 mod report;
 mod solve;
 mod sweep;
@@ -127,6 +132,36 @@ enum Command {
         #[arg(long, value_name = "FILE")]
         flywheel: Option<PathBuf>,
     },
+    /// Sweeps the inputs along the straight path from `--from` to `--to` as `sweep` does and
+    /// writes the smallest and largest value of each unknown and output with the inputs where
+    /// it happens: an interior extreme located as a root of the velocity analog between
+    /// samples, on the sweep's branch; otherwise an end of the range. CSV with units, or a
+    /// table. A sweep that stops (a limit position) fails.
+    Extremes {
+        /// The declaration (`.kl`).
+        file: PathBuf,
+        /// The inputs at the start, separated by commas (one value per input).
+        #[arg(long, value_name = "X,...", allow_hyphen_values = true)]
+        from: String,
+        /// The inputs at the end (past `--from` for one input).
+        #[arg(long, value_name = "X,...", allow_hyphen_values = true)]
+        to: String,
+        /// Samples, equally spaced, both ends included (at least 3).
+        #[arg(long, default_value_t = 361)]
+        samples: usize,
+        /// Angles in degrees (inputs given and values written); otherwise radians.
+        #[arg(long)]
+        deg: bool,
+        /// Parameter values, `name=value` separated by commas (overriding the defaults).
+        #[arg(long, value_name = "NAME=VALUE,...")]
+        params: Option<String>,
+        /// The unknowns and outputs to report, separated by commas (all of them otherwise).
+        #[arg(long, value_name = "NAME,...")]
+        columns: Option<String>,
+        /// A table aligned in columns instead of CSV.
+        #[arg(long)]
+        table: bool,
+    },
 }
 
 /// A failure with its exit code; the message is already written.
@@ -168,6 +203,11 @@ fn run(cli: Cli) -> Result<(), Failed> {
                 flywheel: flywheel.as_deref(),
             };
             dynamics::run(&mut model, &req)
+        }
+        Command::Extremes { file, from, to, samples, deg, params, columns, table } => {
+            let mut model = load(&file, params.as_deref())?;
+            let req = extremes::Request { from: &from, to: &to, samples, deg, columns: columns.as_deref(), table };
+            extremes::run(&mut model, &req)
         }
     }
 }

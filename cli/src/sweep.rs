@@ -3,7 +3,7 @@
 //! written to `--events`).
 
 use crate::solve::{factors, parse_inputs, units};
-use crate::{Failed, exit};
+use crate::{Failed, exit, progress};
 use kinloop_model::Model;
 use kinloop_runtime::dims::KinState;
 use kinloop_runtime::{Error, Event, QuantityKind, Table};
@@ -69,6 +69,7 @@ pub fn run(model: &mut Model, req: &Request) -> Result<(), Failed> {
     };
     let mut table = Table::new(columns);
     let mut stop = None;
+    let bar = progress::bar(&format!("{name}: sweeping"), req.samples, req.samples);
     while let Some(k) = sweep.next_ref() {
         match k {
             Ok(k) => table.push(k.table_row().iter().zip(&factors).map(|(v, f)| v * f).collect()),
@@ -77,7 +78,9 @@ pub fn run(model: &mut Model, req: &Request) -> Result<(), Failed> {
                 break;
             }
         }
+        bar.inc(1);
     }
+    bar.finish_and_clear();
     let events = sweep.events().to_vec();
     drop(sweep);
     let table = table.with_units(&base.iter().map(|(n, u)| (n.as_str(), *u)).collect::<Vec<_>>());

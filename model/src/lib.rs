@@ -79,17 +79,22 @@
 //! no trigonometry cache, nor deferred checks), copied into the sweep's slot: no allocation per
 //! step.
 //!
-//! Served to run-time models this round: the sweep and what it uses (the event location by
-//! pseudo-arclength continuation, the equilibrated determinants, the table). Still on compiled
-//! sizes (`Mechanism<N, NI, NO>` and `Kin<N, NI, NO>`): `trace_curve` (its result type
+//! Served to run-time models: the sweep and what it uses (the event location by
+//! pseudo-arclength continuation, the equilibrated determinants, the table), and the analyses
+//! of sampled sweeps ([`Model::sampled`], the runtime's `SampledOf`: extremes located as roots
+//! of the velocity analog, ranges, dwells, harmonics, unbalance, time ratio, transmission angle;
+//! columns by name) and the limit report ([`Model::limits`]), each the one implementation a
+//! compiled mechanism runs (`tests/analysis.rs`: equal bit for bit to the compiled
+//! mechanism's where the sweeps' sines are the same, and to the closed forms). Still on
+//! compiled sizes (`Mechanism<N, NI, NO>` and `Kin<N, NI, NO>`): `trace_curve` (its result type
 //! `Traced<N, NI>` holds arrays; its continuation is already the kernel-generic one), the
 //! reachable ranges and `sweep_at` (stretches of sweeps: they need their result types generic),
 //! the assembly modes (multi-start Newton over `position_flat`, which a model does not expose
-//! as a kernel method), scans, the analyses of sampled sweeps (`Sampled` holds `Kin` arrays),
-//! sensitivities-based synthesis (`Sensitivities<N, NI, NO, NP>`) and the forward simulation
-//! of the dynamics (the inverse dynamics is served: see above). Each needs its
-//! state and result types over `Dims` as the sweep's are, and the kernel methods it calls
-//! (`position`, `sensitivities`) added to `Kernel`.
+//! as a kernel method), scans, sensitivities-based synthesis and the objectives with parameter
+//! gradients (`Sensitivities<N, NI, NO, NP>`) and the forward simulation of the dynamics (the
+//! inverse dynamics is served: see above). Each needs its state and result types over `Dims` as
+//! the sweep's are, and the kernel methods it calls (`position`, `sensitivities`) added to
+//! `Kernel`.
 //!
 //! A run-time model's events carry no block description (`Event::block` is `None`): the
 //! runtime's `BlockInfo` holds `&'static` names, which a model read at run time does not have;
@@ -102,6 +107,7 @@
 
 #![warn(missing_docs)]
 
+mod analysis;
 mod at;
 mod blocks;
 mod closed;
@@ -115,6 +121,7 @@ pub mod source;
 mod sparse;
 mod tape;
 
+pub use analysis::ModelSampled;
 pub use at::Jacobian;
 pub use blocks::StepFailure;
 pub use dynamics::ModelCycle;

@@ -119,6 +119,12 @@ pub trait KinState: Clone + fmt::Debug {
     fn dq(&self, u: usize) -> &[f64];
     /// The acceleration analog `d2 q_u / d x_i d x_j`.
     fn d2q(&self, u: usize, i: usize, j: usize) -> f64;
+    /// The output columns.
+    fn out(&self) -> &[f64];
+    /// The velocity analogs of output column `o`, one per input.
+    fn dout(&self, o: usize) -> &[f64];
+    /// The acceleration analog `d2 out_o / d x_i d x_j`.
+    fn d2out(&self, o: usize, i: usize, j: usize) -> f64;
     /// The conditioning of the blocks.
     fn health(&self) -> &Health;
     /// The position solve's report.
@@ -144,6 +150,18 @@ impl<const N: usize, const NI: usize, const NO: usize> KinState for Kin<N, NI, N
     #[inline(always)]
     fn d2q(&self, u: usize, i: usize, j: usize) -> f64 {
         self.d2q[u][i][j]
+    }
+    #[inline(always)]
+    fn out(&self) -> &[f64] {
+        &self.out
+    }
+    #[inline(always)]
+    fn dout(&self, o: usize) -> &[f64] {
+        &self.dout[o]
+    }
+    #[inline(always)]
+    fn d2out(&self, o: usize, i: usize, j: usize) -> f64 {
+        self.d2out[o][i][j]
     }
     #[inline(always)]
     fn health(&self) -> &Health {
@@ -218,6 +236,20 @@ impl KinState for KinBuf {
     fn d2q(&self, u: usize, i: usize, j: usize) -> f64 {
         let ni = self.x.len();
         self.d2q[(u * ni + i) * ni + j]
+    }
+    #[inline]
+    fn out(&self) -> &[f64] {
+        &self.out
+    }
+    #[inline]
+    fn dout(&self, o: usize) -> &[f64] {
+        let ni = self.x.len();
+        &self.dout[o * ni..(o + 1) * ni]
+    }
+    #[inline]
+    fn d2out(&self, o: usize, i: usize, j: usize) -> f64 {
+        let ni = self.x.len();
+        self.d2out[(o * ni + i) * ni + j]
     }
     #[inline]
     fn health(&self) -> &Health {

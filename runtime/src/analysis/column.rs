@@ -8,9 +8,11 @@
 //! misspelled column is a compile error. [`Column::named`] is the dynamic fallback, for names
 //! that only exist at run time (a command line, a configuration file).
 
+use crate::dims::{Dims, KinState};
 use crate::error::Error;
 use crate::kin::Kin;
 use crate::mechanism::Mechanism;
+use crate::mechanism::kernel::{Compiled, Kernel};
 use std::fmt;
 use std::marker::PhantomData;
 
@@ -179,14 +181,106 @@ impl<M> Column<M> {
         s: f64,
         dir: &[f64; NI],
     ) -> super::Jet {
-        let (g, h) = (self.gradient(k), self.hessian(k));
-        let d1 = (0..NI).map(|i| g[i] * dir[i]).sum();
-        let d2 = (0..NI).map(|i| (0..NI).map(|j| h[i][j] * dir[j]).sum::<f64>() * dir[i]).sum();
-        super::Jet { x: s, value: self.value(k), d1, d2 }
+        jet_along(self.index, k, s, dir)
     }
 
     /// The column's value and analogs in a single-input state, as a function of the input.
     pub fn jet<const N: usize, const NO: usize>(self, k: &Kin<N, 1, NO>) -> super::Jet {
         self.jet_along(k, k.x[0], &[1.0])
+    }
+}
+
+/// The column `index` along a straight path through state `k` at path parameter `s`, the inputs
+/// moving by `dir` per unit of `s` (see [`Column::jet_along`]): the one computation of a
+/// column's jet, whatever the state's storage.
+pub(crate) fn jet_along<S: KinState>(index: ColumnIndex, k: &S, s: f64, dir: &[f64]) -> super::Jet {
+    // An input's gradient is the unit vector, its Hessian zero.
+    match index {
+        ColumnIndex::Input(i) => contract(k.x()[i], |j| if i == j { 1.0 } else { 0.0 }, |_, _| 0.0, s, dir),
+        ColumnIndex::Unknown(u) => contract(k.q()[u], |i| k.dq(u)[i], |i, j| k.d2q(u, i, j), s, dir),
+        ColumnIndex::Output(o) => contract(k.out()[o], |i| k.dout(o)[i], |i, j| k.d2out(o, i, j), s, dir),
+    }
+}
+
+/// The jet of a quantity of value `value`, gradient `g` and Hessian `h` along `dir`.
+#[inline(always)]
+fn contract(value: f64, g: impl Fn(usize) -> f64, h: impl Fn(usize, usize) -> f64, s: f64, dir: &[f64]) -> super::Jet {
+    let ni = dir.len();
+    let d1 = (0..ni).map(|i| g(i) * dir[i]).sum();
+    let d2 = (0..ni).map(|i| (0..ni).map(|j| h(i, j) * dir[j]).sum::<f64>() * dir[i]).sum();
+    super::Jet { x: s, value, d1, d2 }
+}
+
+/// A column as the analyses over a kernel `K` take it: the generated typed handle
+/// (`Name::COL.beta`, for a compiled mechanism), a name known at run time (`"beta"`, `"cp.x"`,
+/// for any kernel, a run-time model's included), or a [`ColumnIndex`].
+#[diagnostic::on_unimplemented(
+    message = "`{Self}` is not a column of the mechanism `{K}` samples",
+    label = "a column of another mechanism",
+    note = "a column is a handle of the sampled mechanism (`Name::COL.field`), a name (`\"field\"`) or a `ColumnIndex`"
+)]
+pub trait ColumnOf<K: Kernel>: Copy {
+    /// The column's flat array and index in `k`; an [`Error::InvalidArgument`] for a column
+    /// `k` does not have (naming its columns).
+    fn resolve(self, k: &K) -> Result<ColumnIndex, Error>;
+}
+
+impl<M, const N: usize, const NI: usize, const NO: usize> ColumnOf<Compiled<'_, M, N, NI, NO>> for Column<M>
+where
+    M: Mechanism<N, NI, NO>,
+{
+    #[inline]
+    fn resolve(self, _: &Compiled<'_, M, N, NI, NO>) -> Result<ColumnIndex, Error> {
+        self.check::<N, NI, NO>().map(Column::index)
+    }
+}
+
+impl<K: Kernel> ColumnOf<K> for ColumnIndex {
+    fn resolve(self, k: &K) -> Result<ColumnIndex, Error> {
+        let d = k.dims();
+        let ok = match self {
+            ColumnIndex::Input(i) => i < d.ni(),
+            ColumnIndex::Unknown(u) => u < d.n(),
+            ColumnIndex::Output(o) => o < d.no(),
+        };
+        if ok {
+            Ok(self)
+        } else {
+            Err(Error::InvalidArgument(format!("column {self:?} does not exist in `{}`", k.name())))
+        }
+    }
+}
+
+impl<K: Kernel> ColumnOf<K> for &str {
+    fn resolve(self, k: &K) -> Result<ColumnIndex, Error> {
+        let d = k.dims();
+        let inputs: Vec<&str> = (0..d.ni()).map(|i| k.input_name(i)).collect();
+        let unknowns: Vec<&str> = (0..d.n()).map(|u| k.unknown_name(u)).collect();
+        let outputs: Vec<&str> = (0..d.no()).map(|o| k.output_name(o)).collect();
+        let find = |names: &[&str]| names.iter().position(|n| *n == self);
+        find(&inputs)
+            .map(ColumnIndex::Input)
+            .or_else(|| find(&unknowns).map(ColumnIndex::Unknown))
+            .or_else(|| find(&outputs).map(ColumnIndex::Output))
+            .ok_or_else(|| {
+                Error::InvalidArgument(format!(
+                    "`{self}` is no column of `{}`: inputs {}; unknowns {}; outputs {}",
+                    k.name(),
+                    inputs.join(", "),
+                    unknowns.join(", "),
+                    outputs.join(", ")
+                ))
+            })
+    }
+}
+
+/// The name of column `index` of `k` (`"?"` outside its ranges).
+pub(crate) fn column_name<K: Kernel>(k: &K, index: ColumnIndex) -> &str {
+    let d = k.dims();
+    match index {
+        ColumnIndex::Input(i) if i < d.ni() => k.input_name(i),
+        ColumnIndex::Unknown(u) if u < d.n() => k.unknown_name(u),
+        ColumnIndex::Output(o) if o < d.no() => k.output_name(o),
+        _ => "?",
     }
 }

@@ -16,11 +16,11 @@
 //!
 //! | question | helper | how it is located |
 //! |---|---|---|
-//! | extreme positions, stroke, swing | [`Sampled::extremes`], [`Sampled::range`] | roots of the velocity analog (safeguarded Newton with the acceleration analog) |
-//! | peak of a quantity without analog (e.g. an acceleration analog) | [`Sampled::peak`] | Brent's derivative-free search between samples |
-//! | dwells of a progressive output | [`Sampled::dwells`] | extremes plus band crossings (see [`dwell`]) |
-//! | harmonics over a cycle | [`Sampled::fourier`] | trapezoidal rule, exact for trigonometric polynomials |
-//! | residual unbalance `max |v - v_1|` | [`Sampled::residual`] | extremes of the residual |
+//! | extreme positions, stroke, swing | [`SampledOf::extremes`], [`SampledOf::range`] | roots of the velocity analog (safeguarded Newton with the acceleration analog) |
+//! | peak of a quantity without analog (e.g. an acceleration analog) | [`SampledOf::peak`] | Brent's derivative-free search between samples |
+//! | dwells of a progressive output | [`SampledOf::dwells`] | extremes plus band crossings (see [`dwell`]) |
+//! | harmonics over a cycle | [`SampledOf::fourier`] | trapezoidal rule, exact for trigonometric polynomials |
+//! | residual unbalance `max |v - v_1|` | [`SampledOf::unbalance`] | extremes of the residual |
 //! | design optimisation without gradients | [`NelderMead`] (`minimize`, `minimize_boxed`) | Nelder–Mead simplex (in a box: MINUIT's sine transformation) |
 //!
 //! ```ignore
@@ -41,7 +41,7 @@
 //! # Ok::<(), kinloop_runtime::Error>(())
 //! ```
 
-mod column;
+pub(crate) mod column;
 #[cfg(test)]
 pub(crate) mod demo;
 pub mod dwell;
@@ -52,8 +52,8 @@ pub mod optimize;
 mod sampled;
 pub mod unbalance;
 
-pub use column::{Column, ColumnIndex};
-pub use sampled::Sampled;
+pub use column::{Column, ColumnIndex, ColumnOf};
+pub use sampled::{Lend, Sampled, SampledOf};
 
 pub use dwell::{Dwell, dwells};
 pub use extremes::{Extreme, GlobalRange, LocalExtreme, bracketed_root, extremes, global_range, maximize};

@@ -1,27 +1,65 @@
-//! [`Sampled`]: a branch-safe sweep kept in memory and analysed column by column.
+//! [`Sampled`]: a branch-safe sweep kept in memory and analysed column by column, written once
+//! over any [`Kernel`] ([`SampledOf`]): a compiled mechanism's, through [`Compiled`], or a
+//! mechanism's read at run time.
 
-use super::column::Column;
+use super::column::{ColumnOf, column_name, jet_along};
 use super::extremes::{self, GlobalRange, LocalExtreme, global_range, maximize};
-use super::{Dwell, Fourier, Jet, Unbalance, dwell, fourier, unbalance};
+use super::{ColumnIndex, Dwell, Fourier, Jet, Unbalance, dwell, fourier, unbalance};
+use crate::Kernel;
+use crate::dims::{Dims, KinState, Store};
 use crate::error::Error;
-use crate::kin::Kin;
 use crate::mechanism::Mechanism;
-use crate::paths::sweep::{Sweep, SweepConfig};
+use crate::mechanism::kernel::{Compiled, KinOf, Q, X};
+use crate::paths::sweep::{SweepConfig, SweepOf};
 
-/// The straight path of a [`Sampled`] in input space and its parameter `s`.
-#[derive(Clone, Copy, Debug)]
-struct Line<const NI: usize> {
-    from: [f64; NI],
-    to: [f64; NI],
+/// A [`Kernel`] that [`SampledOf`] can lend to the sweeps it solves with (the samples, and
+/// every refinement between them) while keeping it: a compiled mechanism's [`Compiled`] lends
+/// a copy of itself (the very sweep of before), a run-time model's kernel a reference.
+pub trait Lend: Kernel {
+    /// The kernel lent, of the same sizes.
+    type Lent<'a>: Kernel<Dims = Self::Dims>
+    where
+        Self: 'a;
+    /// This kernel, lent for one sweep.
+    fn lend(&self) -> Self::Lent<'_>;
+}
+
+impl<M, const N: usize, const NI: usize, const NO: usize> Lend for Compiled<'_, M, N, NI, NO>
+where
+    M: Mechanism<N, NI, NO>,
+{
+    type Lent<'a>
+        = Self
+    where
+        Self: 'a;
+    #[inline(always)]
+    fn lend(&self) -> Self {
+        *self
+    }
+}
+
+/// The straight path of a [`SampledOf`] in input space and its parameter `s`.
+#[derive(Clone, Debug)]
+struct Line<V> {
+    from: V,
+    to: V,
     /// How far the inputs move per unit of `s`.
-    dir: [f64; NI],
+    dir: V,
     /// `s` is input `k` itself (`Some(k)`) or the fraction of the path (`None`).
     along: Option<usize>,
 }
 
-impl<const NI: usize> Line<NI> {
-    fn fraction(from: [f64; NI], to: [f64; NI]) -> Self {
-        Line { from, to, dir: std::array::from_fn(|i| to[i] - from[i]), along: None }
+impl<V: Store> Line<V> {
+    fn fraction(from: V, to: V) -> Self {
+        let mut dir = from.clone();
+        for (i, d) in dir.as_mut().iter_mut().enumerate() {
+            *d = to[i] - from[i];
+        }
+        Line { from, to, dir, along: None }
+    }
+
+    fn ni(&self) -> usize {
+        self.from.as_ref().len()
     }
 
     /// The same path with input `k` as its parameter (it must increase along the path).
@@ -33,56 +71,68 @@ impl<const NI: usize> Line<NI> {
                 self.from[k], self.to[k]
             )));
         }
-        let dir = std::array::from_fn(|i| if i == k { 1.0 } else { (self.to[i] - self.from[i]) / run });
+        let mut dir = self.dir.clone();
+        for (i, d) in dir.as_mut().iter_mut().enumerate() {
+            *d = if i == k { 1.0 } else { (self.to[i] - self.from[i]) / run };
+        }
         Ok(Line { dir, along: Some(k), ..self })
     }
 
     /// The parameter of the point `x` of the path.
-    fn param(&self, x: &[f64; NI]) -> f64 {
+    fn param(&self, x: &[f64]) -> f64 {
         match self.along {
             Some(k) => x[k],
             None => {
-                let delta: [f64; NI] = std::array::from_fn(|i| self.to[i] - self.from[i]);
-                let dot = |a: &[f64; NI], b: &[f64; NI]| (0..NI).map(|i| a[i] * b[i]).sum::<f64>();
-                let off: [f64; NI] = std::array::from_fn(|i| x[i] - self.from[i]);
-                dot(&off, &delta) / dot(&delta, &delta)
+                let ni = self.ni();
+                let delta = |i: usize| self.to[i] - self.from[i];
+                let off = |i: usize| x[i] - self.from[i];
+                (0..ni).map(|i| off(i) * delta(i)).sum::<f64>() / (0..ni).map(|i| delta(i) * delta(i)).sum::<f64>()
             }
         }
     }
 
     /// The inputs at parameter `s`.
-    fn point(&self, s: f64) -> [f64; NI] {
+    fn point(&self, s: f64) -> V {
         let s0 = self.along.map_or(0.0, |k| self.from[k]);
-        let mut x: [f64; NI] = std::array::from_fn(|i| self.from[i] + (s - s0) * self.dir[i]);
+        let mut x = self.from.clone();
+        for (i, v) in x.as_mut().iter_mut().enumerate() {
+            *v = self.from[i] + (s - s0) * self.dir[i];
+        }
         match self.along {
             Some(k) => x[k] = s,
-            None if s == 1.0 => x = self.to,
+            None if s == 1.0 => x = self.to.clone(),
             None => {}
         }
         x
     }
 }
 
+/// A compiled mechanism's [`SampledOf`]: the number of inputs `NI` comes last and defaults to
+/// one, so that `Sampled<'_, M, N, NO>` is the single-input type (`N` unknowns, `NO` output
+/// columns, as in `Mechanism<N, NI, NO>`).
+pub type Sampled<'m, M, const N: usize, const NO: usize, const NI: usize = 1> = SampledOf<Compiled<'m, M, N, NI, NO>>;
+
 /// A branch-safe sweep along a straight path in input space, kept in memory and analysed
 /// column by column: extremes located as roots of the velocity analog, dwells, Fourier
 /// coefficients, residual unbalance. Between samples the mechanism is solved again (warm-started
-/// from the nearest sample and stepped there by a two-sample [`Sweep`], so the refinement never
+/// from the nearest sample and stepped there by a two-sample [`Sweep`](crate::Sweep), so the refinement never
 /// leaves the sweep's branch).
 ///
-/// Columns are the generated typed handles `Name::COL.field` (see [`Column`]); every quantity
-/// is a function of the **path parameter** `s`:
+/// Written once over any [`Kernel`] that can [`Lend`] itself: [`Sampled`] is a compiled
+/// mechanism's, `kinloop_model::Model::sampled` a run-time model's.
+///
+/// Columns are the generated typed handles `Name::COL.field` (see [`Column`](super::Column)), or for any
+/// kernel names known at run time (`"beta"`) or [`ColumnIndex`]es ([`ColumnOf`]); every
+/// quantity is a function of the **path parameter** `s`:
 ///
 /// * one input ([`Sampled::sweep`]): `s` is the input itself, the jets' derivatives are the
 ///   velocity and acceleration analogs;
 /// * several inputs ([`Sampled::path`]): the inputs move on the straight line from `from` to
 ///   `to`, `s` is the fraction of the path (0 at `from`, 1 at `to`), or one chosen input after
-///   [`Sampled::along`]; the derivatives along the path are the analog tensors contracted with
+///   [`SampledOf::along`]; the derivatives along the path are the analog tensors contracted with
 ///   the path's direction `d` (`dq/ds = dq[u][i] d_i`, `d2q/ds2 = d2q[u][i][j] d_i d_j`).
 ///
-/// The number of inputs `NI` comes last and defaults to one, so that `Sampled<'_, M, N, NO>`
-/// is the single-input type (`N` unknowns, `NO` output columns, as in `Mechanism<N, NI, NO>`).
-///
-/// For [`Sampled::fourier`] and [`Sampled::unbalance`] the range must be one period of the
+/// For [`SampledOf::fourier`] and [`SampledOf::unbalance`] the range must be one period of the
 /// quantity (e.g. one crank turn, `samples - 1` equal intervals, the last sample repeating the
 /// first).
 ///
@@ -106,12 +156,12 @@ impl<const NI: usize> Line<NI> {
 /// assert!((turn.at(1.0)?.q[0] - (1f64.cos() + (9.0 - 1f64.sin().powi(2)).sqrt())).abs() < 1e-12);
 /// # Ok::<(), kinloop_runtime::Error>(())
 /// ```
-pub struct Sampled<'m, M, const N: usize, const NO: usize, const NI: usize = 1> {
-    m: &'m M,
-    states: Vec<Kin<N, NI, NO>>,
+pub struct SampledOf<K: Lend> {
+    k: K,
+    states: Vec<KinOf<K>>,
     /// The path parameter of each state.
     s: Vec<f64>,
-    line: Line<NI>,
+    line: Line<X<K>>,
     cfg: SweepConfig,
 }
 
@@ -124,7 +174,7 @@ where
     ///
     /// A declared mechanism's `m.sampled(from, to, samples, &m.guess(from))` is this call with
     /// the named unknowns; this form serves code generic over [`Mechanism`] and hand-written
-    /// implementations, as [`Sweep::new`] does beside `m.sweep`.
+    /// implementations, as [`Sweep::new`](crate::Sweep::new) does beside `m.sweep`.
     pub fn sweep(m: &'m M, from: f64, to: f64, samples: usize, guess: impl Into<[f64; N]>) -> Result<Self, Error> {
         Self::sweep_with(m, from, to, samples, guess, SweepConfig::default())
     }
@@ -138,10 +188,7 @@ where
         guess: impl Into<[f64; N]>,
         cfg: SweepConfig,
     ) -> Result<Self, Error> {
-        if from.partial_cmp(&to) != Some(std::cmp::Ordering::Less) {
-            return Err(Error::InvalidArgument(format!("Sampled::sweep needs from < to (got {from} .. {to})")));
-        }
-        Self::path_with(m, [from], [to], samples, guess, cfg)?.reparametrised(|l| l.along(0, M::INPUTS[0]))
+        SampledOf::input_with(Compiled(m), [from], [to], samples, guess.into(), cfg)
     }
 }
 
@@ -151,7 +198,7 @@ where
 {
     /// Sweeps `samples` equally spaced points of the straight path from inputs `from` to `to`
     /// (both included; arrays or the generated `NameInputs`) from `guess` at `from`. The path
-    /// parameter is the fraction of the path, `0 ..= 1`; see [`Sampled::along`] to use an input.
+    /// parameter is the fraction of the path, `0 ..= 1`; see [`SampledOf::along`] to use an input.
     ///
     /// ```ignore
     /// // A five-bar driven by both cranks at once, th2 turning half as fast as th1.
@@ -177,20 +224,7 @@ where
         guess: impl Into<[f64; N]>,
         cfg: SweepConfig,
     ) -> Result<Self, Error> {
-        let (from, to, guess) = (from.into(), to.into(), guess.into());
-        if samples < 3 || from == to {
-            return Err(Error::InvalidArgument(format!(
-                "Sampled needs from != to and at least 3 samples (got {from:?} .. {to:?}, {samples} samples)"
-            )));
-        }
-        let mut sweep = Sweep::<M, Kin<N, NI, NO>, N, NI, NO>::new(m, from, to, samples, guess)?.with_config(cfg);
-        let mut states = Vec::with_capacity(samples);
-        while let Some(k) = sweep.next_kin() {
-            states.push(k?);
-        }
-        let line = Line::fraction(from, to);
-        let s = states.iter().map(|k| line.param(&k.x)).collect();
-        Ok(Sampled { m, states, s, line, cfg })
+        SampledOf::path_over(Compiled(m), from.into(), to.into(), samples, guess.into(), cfg, &mut |_| ())
     }
 
     /// [`Sampled::path`] with the input as the parameter when there is one input (as
@@ -202,28 +236,137 @@ where
         samples: usize,
         guess: [f64; N],
     ) -> Result<Self, Error> {
-        let s = Self::path(m, from, to, samples, guess)?;
-        if NI == 1 { s.reparametrised(|l| l.along(0, M::INPUTS.first().copied().unwrap_or("?"))) } else { Ok(s) }
+        SampledOf::over(Compiled(m), from, to, samples, guess, SweepConfig::default())
     }
 
-    /// The same samples with input `input` (`Name::COL.th1`) as the path parameter: jets are
-    /// then derivatives with respect to that input along the path (the other inputs following
-    /// it). The input must increase from `from` to `to`.
-    pub fn along(self, input: Column<M>) -> Result<Self, Error> {
-        match input.check::<N, NI, NO>()?.index() {
-            super::ColumnIndex::Input(k) => self.reparametrised(|l| l.along(k, input.name())),
-            _ => Err(Error::InvalidArgument(format!("`{}` is not an input of `{}`", input.name(), M::NAME))),
+    /// The mechanism.
+    pub fn mechanism(&self) -> &'m M {
+        self.k.0
+    }
+}
+
+impl<K: Lend> SampledOf<K> {
+    /// Sweeps `samples` equally spaced points of the straight path from inputs `from` to `to`
+    /// (both included, of the kernel's sizes) from `guess` at `from`, with the sweep
+    /// configuration `cfg` (also used for every refinement): the path parameter is the input
+    /// when there is one (which must then increase), the fraction of the path otherwise (see
+    /// [`SampledOf::along`]).
+    pub fn over(k: K, from: X<K>, to: X<K>, samples: usize, guess: Q<K>, cfg: SweepConfig) -> Result<Self, Error> {
+        Self::over_reporting(k, from, to, samples, guess, cfg, |_| ())
+    }
+
+    /// [`SampledOf::over`], telling `progress` how many samples are taken after each (for a
+    /// progress bar on long work).
+    pub fn over_reporting(
+        k: K,
+        from: X<K>,
+        to: X<K>,
+        samples: usize,
+        guess: Q<K>,
+        cfg: SweepConfig,
+        mut progress: impl FnMut(usize),
+    ) -> Result<Self, Error> {
+        if k.dims().ni() == 1 {
+            Self::input_reporting(k, from, to, samples, guess, cfg, &mut progress)
+        } else {
+            Self::path_over(k, from, to, samples, guess, cfg, &mut progress)
         }
     }
 
-    fn reparametrised(mut self, f: impl FnOnce(Line<NI>) -> Result<Line<NI>, Error>) -> Result<Self, Error> {
-        self.line = f(self.line)?;
-        self.s = self.states.iter().map(|k| self.line.param(&k.x)).collect();
+    /// One input from `from` to `to`, the path parameter the input ([`Sampled::sweep_with`]).
+    pub(crate) fn input_with(
+        k: K,
+        from: X<K>,
+        to: X<K>,
+        samples: usize,
+        guess: Q<K>,
+        cfg: SweepConfig,
+    ) -> Result<Self, Error> {
+        Self::input_reporting(k, from, to, samples, guess, cfg, &mut |_| ())
+    }
+
+    /// [`SampledOf::input_with`], telling `progress` the samples taken.
+    fn input_reporting(
+        k: K,
+        from: X<K>,
+        to: X<K>,
+        samples: usize,
+        guess: Q<K>,
+        cfg: SweepConfig,
+        progress: &mut impl FnMut(usize),
+    ) -> Result<Self, Error> {
+        if k.dims().ni() != 1 {
+            return Err(Error::InvalidArgument(format!(
+                "a sampled sweep of one input: `{}` has {}",
+                k.name(),
+                k.dims().ni()
+            )));
+        }
+        if from[0].partial_cmp(&to[0]) != Some(std::cmp::Ordering::Less) {
+            return Err(Error::InvalidArgument(format!(
+                "a sampled sweep of `{}` over its input `{}` needs from < to (got {} .. {})",
+                k.name(),
+                k.input_name(0),
+                from[0],
+                to[0]
+            )));
+        }
+        Self::path_over(k, from, to, samples, guess, cfg, progress)?.reparametrised(|l, k| l.along(0, k.input_name(0)))
+    }
+
+    /// The samples of the path, its parameter the fraction of the path.
+    fn path_over(
+        k: K,
+        from: X<K>,
+        to: X<K>,
+        samples: usize,
+        guess: Q<K>,
+        cfg: SweepConfig,
+        progress: &mut impl FnMut(usize),
+    ) -> Result<Self, Error> {
+        if samples < 3 || from.as_ref() == to.as_ref() {
+            return Err(Error::InvalidArgument(format!(
+                "Sampled needs from != to and at least 3 samples (got {:?} .. {:?}, {samples} samples)",
+                from.as_ref(),
+                to.as_ref()
+            )));
+        }
+        let mut states = Vec::with_capacity(samples);
+        {
+            let mut sweep = SweepOf::<K::Lent<'_>, KinOf<K>>::over(k.lend(), from.clone(), to.clone(), samples, guess)?
+                .with_config(cfg);
+            while let Some(state) = sweep.next_kin() {
+                states.push(state?);
+                progress(states.len());
+            }
+        }
+        let line = Line::fraction(from, to);
+        let s = states.iter().map(|st| line.param(st.x())).collect();
+        Ok(SampledOf { k, states, s, line, cfg })
+    }
+
+    /// The same samples with input `input` (`Name::COL.th1`, or its name) as the path
+    /// parameter: jets are then derivatives with respect to that input along the path (the
+    /// other inputs following it). The input must increase from `from` to `to`.
+    pub fn along(self, input: impl ColumnOf<K>) -> Result<Self, Error> {
+        match input.resolve(&self.k)? {
+            ColumnIndex::Input(i) => self.reparametrised(|l, k| l.along(i, k.input_name(i))),
+            c => Err(Error::InvalidArgument(format!(
+                "`{}` is not an input of `{}`",
+                column_name(&self.k, c),
+                self.k.name()
+            ))),
+        }
+    }
+
+    fn reparametrised(mut self, f: impl FnOnce(Line<X<K>>, &K) -> Result<Line<X<K>>, Error>) -> Result<Self, Error> {
+        self.line = f(self.line, &self.k)?;
+        self.s = self.states.iter().map(|st| self.line.param(st.x())).collect();
         Ok(self)
     }
 
     /// The sampled states, in increasing path parameter.
-    pub fn states(&self) -> &[Kin<N, NI, NO>] {
+    pub fn states(&self) -> &[KinOf<K>] {
         &self.states
     }
 
@@ -233,18 +376,18 @@ where
     }
 
     /// How far the inputs move per unit of the path parameter.
-    pub fn direction(&self) -> [f64; NI] {
-        self.line.dir
+    pub fn direction(&self) -> X<K> {
+        self.line.dir.clone()
     }
 
     /// The inputs at path parameter `s`.
-    pub fn inputs_at(&self, s: f64) -> [f64; NI] {
+    pub fn inputs_at(&self, s: f64) -> X<K> {
         self.line.point(s)
     }
 
-    /// The mechanism.
-    pub fn mechanism(&self) -> &'m M {
-        self.m
+    /// The kernel the samples were taken of.
+    pub fn kernel(&self) -> &K {
+        &self.k
     }
 
     /// The sweep configuration the samples were taken with (also used for every refinement).
@@ -252,21 +395,34 @@ where
         &self.cfg
     }
 
+    /// The name of a column (as the kernel names it).
+    pub fn column_name(&self, c: impl ColumnOf<K>) -> Result<&str, Error> {
+        c.resolve(&self.k).map(|c| column_name(&self.k, c))
+    }
+
     /// The samples of a column as jets in the path parameter.
-    pub fn jets(&self, c: Column<M>) -> Result<Vec<Jet>, Error> {
-        let c = c.check::<N, NI, NO>()?;
-        Ok(self.states.iter().zip(&self.s).map(|(k, &s)| c.jet_along(k, s, &self.line.dir)).collect())
+    pub fn jets(&self, c: impl ColumnOf<K>) -> Result<Vec<Jet>, Error> {
+        let c = c.resolve(&self.k)?;
+        Ok(self.jets_of(c))
+    }
+
+    fn jets_of(&self, c: ColumnIndex) -> Vec<Jet> {
+        self.states.iter().zip(&self.s).map(|(st, &s)| jet_along(c, st, s, self.line.dir.as_ref())).collect()
     }
 
     /// A column's jet at any path parameter `s` of the range, on the sweep's branch.
-    pub fn jet_at(&self, c: Column<M>, s: f64) -> Result<Jet, Error> {
-        let c = c.check::<N, NI, NO>()?;
-        self.at(s).map(|k| c.jet_along(&k, s, &self.line.dir))
+    pub fn jet_at(&self, c: impl ColumnOf<K>, s: f64) -> Result<Jet, Error> {
+        let c = c.resolve(&self.k)?;
+        self.jet_of(c, s)
+    }
+
+    fn jet_of(&self, c: ColumnIndex, s: f64) -> Result<Jet, Error> {
+        self.at(s).map(|st| jet_along(c, &st, s, self.line.dir.as_ref()))
     }
 
     /// The state at any path parameter `s` of the range (the input for one input), on the
     /// sweep's branch.
-    pub fn at(&self, s: f64) -> Result<Kin<N, NI, NO>, Error> {
+    pub fn at(&self, s: f64) -> Result<KinOf<K>, Error> {
         let (first, last) = (self.s[0], self.s[self.s.len() - 1]);
         let slack = 1e-9 * (last - first);
         if !(s >= first - slack && s <= last + slack) {
@@ -283,50 +439,56 @@ where
         let near = &self.states[j];
         let x = self.line.point(s);
         // The sample itself (its parameter may differ from `s` in the last bit).
-        if self.s[j] == s || near.x == x {
-            return Ok(*near);
+        if self.s[j] == s || near.x() == x.as_ref() {
+            return Ok(near.clone());
         }
-        let mut step = Sweep::<M, Kin<N, NI, NO>, N, NI, NO>::new(self.m, near.x, x, 2, near.q)?.with_config(self.cfg);
+        let (mut from, mut guess) = (self.k.dims().x(), self.k.dims().q());
+        from.as_mut().copy_from_slice(near.x());
+        guess.as_mut().copy_from_slice(near.q());
+        let mut step = SweepOf::<K::Lent<'_>, KinOf<K>>::over(self.k.lend(), from, x, 2, guess)?.with_config(self.cfg);
         let _start = step.next_kin().transpose()?;
         step.next_kin().unwrap_or_else(|| Err(Error::InvalidArgument("empty refinement sweep".into())))
     }
 
-    fn eval(&self, c: Column<M>) -> impl FnMut(f64) -> Result<Jet, Error> + '_ {
-        move |s| self.jet_at(c, s)
+    fn eval(&self, c: ColumnIndex) -> impl FnMut(f64) -> Result<Jet, Error> + '_ {
+        move |s| self.jet_of(c, s)
     }
 
     /// The local extremes of a column (interior roots of its derivative along the path), in
     /// increasing path parameter; see [`extremes()`](extremes::extremes).
-    pub fn extremes(&self, c: Column<M>) -> Result<Vec<LocalExtreme>, Error> {
-        extremes::extremes(&self.jets(c)?, self.eval(c))
+    pub fn extremes(&self, c: impl ColumnOf<K>) -> Result<Vec<LocalExtreme>, Error> {
+        let c = c.resolve(&self.k)?;
+        extremes::extremes(&self.jets_of(c), self.eval(c))
     }
 
     /// The global minimum and maximum of a column over the range (interior extremes or ends),
     /// e.g. the dead centres and stroke of a slider; see [`global_range`].
-    pub fn range(&self, c: Column<M>) -> Result<GlobalRange, Error> {
-        global_range(&self.jets(c)?, self.eval(c))
+    pub fn range(&self, c: impl ColumnOf<K>) -> Result<GlobalRange, Error> {
+        let c = c.resolve(&self.k)?;
+        global_range(&self.jets_of(c), self.eval(c))
     }
 
     /// The dwells of a progressive column; see [`dwell`] for the definition.
-    pub fn dwells(&self, c: Column<M>) -> Result<Vec<Dwell>, Error> {
-        dwell::dwells(&self.jets(c)?, self.eval(c))
+    pub fn dwells(&self, c: impl ColumnOf<K>) -> Result<Vec<Dwell>, Error> {
+        let c = c.resolve(&self.k)?;
+        dwell::dwells(&self.jets_of(c), self.eval(c))
     }
 
     /// The maximum of a derived quantity `f(state)` (e.g. the magnitude of an acceleration
     /// analog) over the range: the best sample, refined by Brent's derivative-free search
     /// between its neighbours. Returns `(s, f)`. For a minimum, maximise `-f`.
-    pub fn peak(&self, f: impl Fn(&Kin<N, NI, NO>) -> f64) -> Result<(f64, f64), Error> {
+    pub fn peak(&self, f: impl Fn(&KinOf<K>) -> f64) -> Result<(f64, f64), Error> {
         self.peak_by(|_, k| f(k))
     }
 
     /// The maximum of a function of a column's jet along the path (e.g. `|j| j.d2.abs()`, the
-    /// largest acceleration analog), located as by [`Sampled::peak`]. Returns `(s, f)`.
-    pub fn peak_of(&self, c: Column<M>, f: impl Fn(Jet) -> f64) -> Result<(f64, f64), Error> {
-        let c = c.check::<N, NI, NO>()?;
-        self.peak_by(|s, k| f(c.jet_along(k, s, &self.line.dir)))
+    /// largest acceleration analog), located as by [`SampledOf::peak`]. Returns `(s, f)`.
+    pub fn peak_of(&self, c: impl ColumnOf<K>, f: impl Fn(Jet) -> f64) -> Result<(f64, f64), Error> {
+        let c = c.resolve(&self.k)?;
+        self.peak_by(|s, k| f(jet_along(c, k, s, self.line.dir.as_ref())))
     }
 
-    fn peak_by(&self, f: impl Fn(f64, &Kin<N, NI, NO>) -> f64) -> Result<(f64, f64), Error> {
+    fn peak_by(&self, f: impl Fn(f64, &KinOf<K>) -> f64) -> Result<(f64, f64), Error> {
         let values: Vec<f64> = self.states.iter().zip(&self.s).map(|(k, &s)| f(s, k)).collect();
         let best = (0..values.len()).max_by(|&a, &b| values[a].total_cmp(&values[b])).unwrap_or(0);
         let lo = self.s[best.saturating_sub(1)];
@@ -337,14 +499,14 @@ where
     }
 
     /// Checks that a column returns to its starting value over the range (one period).
-    fn periodic(&self, c: Column<M>) -> Result<Vec<Jet>, Error> {
-        let jets = self.jets(c)?;
+    fn periodic(&self, c: ColumnIndex) -> Result<Vec<Jet>, Error> {
+        let jets = self.jets_of(c);
         let (a, b) = (jets[0].value, jets[jets.len() - 1].value);
         let scale = jets.iter().map(|j| j.value.abs()).fold(1.0, f64::max);
         if (a - b).abs() > 1e-9 * scale {
             return Err(Error::InvalidArgument(format!(
                 "`{}` is not periodic over the sweep ({a} at the start, {b} at the end): sweep exactly one cycle",
-                c.name()
+                column_name(&self.k, c)
             )));
         }
         Ok(jets)
@@ -352,8 +514,8 @@ where
 
     /// Fourier coefficients of a column up to `harmonics`, the sweep being one period (`n + 1`
     /// samples, the last repeating the first); see [`fourier()`](fourier::fourier).
-    pub fn fourier(&self, c: Column<M>, harmonics: usize) -> Result<Fourier, Error> {
-        let jets = self.periodic(c)?;
+    pub fn fourier(&self, c: impl ColumnOf<K>, harmonics: usize) -> Result<Fourier, Error> {
+        let jets = self.periodic(c.resolve(&self.k)?)?;
         let n = jets.len() - 1;
         let values: Vec<f64> = jets[..n].iter().map(|j| j.value).collect();
         fourier::fourier(&values, jets[0].x, jets[n].x - jets[0].x, harmonics)
@@ -362,7 +524,8 @@ where
     /// The residual of a column after removing its mean and harmonics `1 ..= removed`, and its
     /// largest magnitude over the period (the residual unbalance `D` for `removed = 1`); see
     /// [`unbalance()`](unbalance::unbalance).
-    pub fn unbalance(&self, c: Column<M>, removed: usize) -> Result<Unbalance, Error> {
+    pub fn unbalance(&self, c: impl ColumnOf<K>, removed: usize) -> Result<Unbalance, Error> {
+        let c = c.resolve(&self.k)?;
         let jets = self.periodic(c)?;
         unbalance::unbalance(&jets, self.eval(c), removed)
     }

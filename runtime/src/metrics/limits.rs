@@ -9,12 +9,14 @@
 //!   from the output, where the output cannot drive the input): the located extremes of the
 //!   output's column.
 
-use crate::analysis::{Column, LocalExtreme, Sampled};
+use crate::analysis::column::column_name;
+use crate::analysis::{Column, ColumnOf, Lend, LocalExtreme, SampledOf};
+use crate::dims::{Dims, KinState};
 use crate::error::Error;
 use crate::events::{Event, EventKind};
-use crate::kin::Kin;
 use crate::mechanism::Mechanism;
-use crate::paths::sweep::{AtSingular, Sweep, SweepConfig};
+use crate::mechanism::kernel::{Compiled, KinOf, Q};
+use crate::paths::sweep::{AtSingular, SweepConfig, SweepOf};
 use std::fmt;
 
 /// The located extremes (limit positions) of one output column.
@@ -140,51 +142,71 @@ impl<'a, M, const N: usize> Limits<'a, M, N> {
         M: Mechanism<N, 1, NO>,
     {
         let guess = self.guess.unwrap_or_else(|| self.m.guess_flat(&[self.from]));
-        limit_report(self.m, self.from, self.to, self.samples, guess, self.columns)
+        limits_of(Compiled(self.m), self.from, self.to, self.samples, guess, self.columns)
     }
 }
 
-/// The search behind [`Limits::run`].
-fn limit_report<M, const N: usize, const NO: usize>(
-    m: &M,
+/// The search behind [`Limits::run`], over any [`Kernel`](crate::Kernel) of one input (a
+/// compiled mechanism's [`Compiled`], a run-time model's): sweeps from `guess` at `from` to
+/// `to` (either direction) in `samples` equally spaced inputs, passing singular crossings, and
+/// reports the input's limit positions and crossings and the located extremes of `columns`
+/// (typed handles, names or indices, see [`ColumnOf`]) over the range reached. A column `k`
+/// does not have is an error, even where the range reached is the start alone.
+pub fn limits_of<K: Lend, C: ColumnOf<K>>(
+    k: K,
     from: f64,
     to: f64,
     samples: usize,
-    guess: [f64; N],
-    columns: &[Column<M>],
-) -> Result<LimitReport, Error>
-where
-    M: Mechanism<N, 1, NO>,
-{
-    let cfg = SweepConfig { at_singular: AtSingular::Continue, ..SweepConfig::default() };
-    let mut sweep = Sweep::<M, Kin<N, 1, NO>, N, 1, NO>::new(m, [from], [to], samples, guess)?.with_config(cfg);
-    let (mut last, mut count) = (from, 0usize);
-    while let Some(step) = sweep.next_kin() {
-        match step {
-            Ok(k) => {
-                last = k.x[0];
-                count += 1;
-            }
-            Err(Error::SweepStopped { kind: EventKind::LimitPosition, .. }) => break,
-            Err(e) => return Err(e),
-        }
+    guess: Q<K>,
+    columns: &[C],
+) -> Result<LimitReport, Error> {
+    let d = k.dims();
+    let columns = columns
+        .iter()
+        .map(|&c| c.resolve(&k).map(|i| (i, column_name(&k, i).to_string())))
+        .collect::<Result<Vec<_>, Error>>()?;
+    if d.ni() != 1 {
+        return Err(Error::InvalidArgument(format!("the limits of `{}` need one input (it has {})", k.name(), d.ni())));
     }
-    let events = sweep.events().to_vec();
+    let input = |v: f64| {
+        let mut x = d.x();
+        x[0] = v;
+        x
+    };
+    let cfg = SweepConfig { at_singular: AtSingular::Continue, ..SweepConfig::default() };
+    let (mut last, mut count) = (from, 0usize);
+    let events = {
+        let mut sweep =
+            SweepOf::<K::Lent<'_>, KinOf<K>>::over(k.lend(), input(from), input(to), samples, guess.clone())?
+                .with_config(cfg);
+        while let Some(step) = sweep.next_ref() {
+            match step {
+                Ok(st) => {
+                    last = st.x()[0];
+                    count += 1;
+                }
+                Err(Error::SweepStopped { kind: EventKind::LimitPosition, .. }) => break,
+                Err(e) => return Err(e),
+            }
+        }
+        sweep.events().to_vec()
+    };
     // The samples over the reached range kept in memory to locate the extremes (at least three,
     // as a sampled range needs: the two reached and their midpoint). A range that is the start
     // alone has no interior extreme.
-    let range = if count < 2 { None } else { Some(Sampled::sweep_with(m, from, last, count.max(3), guess, cfg)?) };
+    let range = if count < 2 {
+        None
+    } else {
+        Some(SampledOf::input_with(k, input(from), input(last), count.max(3), guess, cfg)?)
+    };
     let outputs = columns
-        .iter()
-        .map(|&c| {
+        .into_iter()
+        .map(|(c, column)| {
             let extremes = match &range {
                 Some(range) => range.extremes(c)?,
-                None => {
-                    c.check::<N, 1, NO>()?;
-                    Vec::new()
-                }
+                None => Vec::new(),
             };
-            Ok(OutputLimits { column: c.name().to_string(), extremes })
+            Ok(OutputLimits { column, extremes })
         })
         .collect::<Result<_, Error>>()?;
     Ok(LimitReport { reached: (from, last), events, outputs })

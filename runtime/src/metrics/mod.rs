@@ -18,6 +18,6 @@ pub mod time_ratio;
 pub mod transmission;
 
 pub use grashof::{FourBarLinks, Grashof, GrashofClass, Link, grashof};
-pub use limits::{LimitReport, Limits, OutputLimits};
+pub use limits::{LimitReport, Limits, OutputLimits, limits_of};
 pub use time_ratio::{TimeRatio, time_ratio};
 pub use transmission::{AngleAt, TransmissionRange, transmission_angle, transmission_range};

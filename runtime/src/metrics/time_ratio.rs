@@ -2,9 +2,8 @@
 //! the input angle spent while the output rises from its minimum to its maximum, against the
 //! angle spent while it falls back.
 
-use crate::analysis::{Column, Extreme, Jet, Sampled, extremes};
+use crate::analysis::{ColumnOf, Extreme, Jet, Lend, SampledOf, extremes};
 use crate::error::Error;
-use crate::mechanism::Mechanism;
 
 /// The strokes of an output over one input turn, from its located extremes.
 #[derive(Clone, Copy, Debug, PartialEq)]
@@ -78,14 +77,12 @@ pub fn time_ratio(samples: &[Jet], eval: impl FnMut(f64) -> Result<Jet, Error>) 
     Ok(TimeRatio { min, max, rising, falling: period - rising })
 }
 
-impl<M, const N: usize, const NO: usize> Sampled<'_, M, N, NO>
-where
-    M: Mechanism<N, 1, NO>,
-{
-    /// The time (quick-return) ratio ([`time_ratio()`]) of a column (`Name::COL.psi`) of a sweep
-    /// over one full input turn.
-    pub fn time_ratio(&self, column: Column<M>) -> Result<TimeRatio, Error> {
-        time_ratio(&self.jets(column)?, |x| self.jet_at(column, x))
+impl<K: Lend> SampledOf<K> {
+    /// The time (quick-return) ratio ([`time_ratio()`]) of a column (`Name::COL.psi`, or its
+    /// name) of a sweep over one full input turn (one period of the path parameter).
+    pub fn time_ratio(&self, column: impl ColumnOf<K>) -> Result<TimeRatio, Error> {
+        let c = column.resolve(self.kernel())?;
+        time_ratio(&self.jets(c)?, |x| self.jet_at(c, x))
     }
 }
 

@@ -2,9 +2,9 @@
 //! drives. Near zero the coupler pushes along the follower and cannot turn it (a dead point);
 //! designers keep its minimum above about 40 degrees.
 
-use crate::analysis::{Column, Jet, Sampled, bracketed_root, extremes};
+use crate::analysis::column::jet_along;
+use crate::analysis::{ColumnOf, Jet, Lend, SampledOf, bracketed_root, extremes};
 use crate::error::Error;
-use crate::mechanism::Mechanism;
 use std::f64::consts::{FRAC_PI_2, PI};
 
 /// The acute angle, in `[0, pi/2]`, between the line of the coupler (at angle `coupler`) and
@@ -110,15 +110,21 @@ pub fn transmission_range(
     Ok(TransmissionRange { min, max, dead_points })
 }
 
-impl<M, const N: usize, const NO: usize> Sampled<'_, M, N, NO>
-where
-    M: Mechanism<N, 1, NO>,
-{
+impl<K: Lend> SampledOf<K> {
     /// The transmission angle's range ([`transmission_range`]) over a sampled sweep, the coupler
-    /// and follower angles given by their columns (`Name::COL.beta`, `Name::COL.gamma`).
-    pub fn transmission(&self, coupler: Column<M>, follower: Column<M>) -> Result<TransmissionRange, Error> {
+    /// and follower angles given by their columns (`Name::COL.beta`, `Name::COL.gamma`, or their
+    /// names), as functions of the path parameter (the input, for one input).
+    pub fn transmission(
+        &self,
+        coupler: impl ColumnOf<K>,
+        follower: impl ColumnOf<K>,
+    ) -> Result<TransmissionRange, Error> {
+        let (coupler, follower) = (coupler.resolve(self.kernel())?, follower.resolve(self.kernel())?);
         let (cj, fj) = (self.jets(coupler)?, self.jets(follower)?);
-        transmission_range(&cj, &fj, |x| self.at(x).map(|k| (coupler.jet(&k), follower.jet(&k))))
+        let dir = self.direction();
+        transmission_range(&cj, &fj, |x| {
+            self.at(x).map(|k| (jet_along(coupler, &k, x, dir.as_ref()), jet_along(follower, &k, x, dir.as_ref())))
+        })
     }
 }
 

@@ -1,0 +1,222 @@
+//! `kinloop extremes`: the smallest and largest value of every unknown and output over a sweep
+//! of the inputs, with the inputs where each happens, located as the library's analyses locate
+//! them (the runtime's sampled sweep over the model: an interior extreme is a root of the
+//! velocity analog, refined between samples on the sweep's branch; otherwise an end of the
+//! range). Written as CSV with units, or as a readable table.
+
+use crate::solve::parse_inputs;
+use crate::{Failed, exit, progress};
+use kinloop_model::Model;
+use kinloop_runtime::analysis::SampledOf;
+use kinloop_runtime::dims::Heap;
+use kinloop_runtime::{Error, QuantityKind, SweepConfig};
+use std::io::Write;
+
+/// What `kinloop extremes` was asked.
+pub struct Request<'a> {
+    /// The inputs at the start, one per input.
+    pub from: &'a str,
+    /// The inputs at the end.
+    pub to: &'a str,
+    /// Samples, both ends included.
+    pub samples: usize,
+    /// Angles in degrees.
+    pub deg: bool,
+    /// The columns to report (names separated by commas); every unknown and output otherwise.
+    pub columns: Option<&'a str>,
+    /// A readable table instead of CSV.
+    pub table: bool,
+}
+
+/// One column's extremes, in the units written.
+struct Row {
+    name: String,
+    unit: &'static str,
+    min: f64,
+    at_min: Vec<f64>,
+    max: f64,
+    at_max: Vec<f64>,
+}
+
+/// The unit a quantity of kind `k` is written in.
+fn unit(k: QuantityKind, deg: bool) -> &'static str {
+    if deg && k == QuantityKind::Angle { "deg" } else { k.unit() }
+}
+
+/// A value of kind `k` in the units written (degrees for an angle with `deg`).
+fn written(k: QuantityKind, deg: bool, v: f64) -> f64 {
+    if deg && k == QuantityKind::Angle { v.to_degrees() } else { v }
+}
+
+/// Samples the range from the declared guess at `from`, locates each column's extremes and
+/// writes them to standard output.
+pub fn run(model: &mut Model, req: &Request) -> Result<(), Failed> {
+    let name = model.name().to_string();
+    let input_names = model.inputs().to_vec();
+    let input_kinds = model.input_kinds().to_vec();
+    let ni = input_names.len();
+    let to_model = |spec: &str, option: &str| -> Result<Vec<f64>, Failed> {
+        let mut x = parse_inputs(spec, ni, option)?;
+        for (v, k) in x.iter_mut().zip(&input_kinds) {
+            if req.deg && *k == QuantityKind::Angle {
+                *v = v.to_radians();
+            }
+        }
+        Ok(x)
+    };
+    let (from, to) = (to_model(req.from, "--from")?, to_model(req.to, "--to")?);
+    let quantities: Vec<(String, QuantityKind)> = model
+        .unknowns()
+        .iter()
+        .zip(model.unknown_kinds())
+        .chain(model.outputs().iter().zip(model.output_kinds()))
+        .map(|(n, k)| (n.clone(), *k))
+        .collect();
+    let columns = match req.columns {
+        None => quantities,
+        Some(list) => select(&quantities, list, &name)?,
+    };
+    let failed = |e: &dyn std::fmt::Display| {
+        eprintln!("error: {name}: {e}");
+        Failed(exit::SOLVE_FAILED)
+    };
+    let mut guess = vec![0.0; model.unknowns().len()];
+    model.guess(&from, &mut guess).map_err(|e| failed(&e))?;
+    let kernel = model.kernel(SweepConfig::default()).map_err(|e| failed(&e))?;
+    let bar = progress::bar(&format!("{name}: sampling"), req.samples + columns.len(), req.samples);
+    let cfg = SweepConfig::default();
+    let sampled = SampledOf::over_reporting(
+        kernel,
+        Heap(from.into()),
+        Heap(to.into()),
+        req.samples,
+        Heap(guess.into()),
+        cfg,
+        |n| bar.set_position(n as u64),
+    );
+    // The runtime checks the arguments (at least three samples, `to` apart from `from`, and
+    // past it for one input): its refusal is a usage error, not a failed solve.
+    let sampled = sampled.map_err(|e| {
+        bar.finish_and_clear();
+        match e {
+            Error::InvalidArgument(_) => {
+                eprintln!("error: {name}: {e}");
+                Failed(exit::USAGE)
+            }
+            e => failed(&e),
+        }
+    })?;
+    bar.set_message(format!("{name}: locating extremes"));
+    let mut rows = Vec::with_capacity(columns.len());
+    for (column, kind) in &columns {
+        let range = sampled.range(column.as_str()).map_err(|e| {
+            bar.finish_and_clear();
+            failed(&format!("the extremes of {column}: {e}"))
+        })?;
+        let inputs = |s: f64| -> Vec<f64> {
+            let x = sampled.inputs_at(s);
+            x.0.iter().zip(&input_kinds).map(|(v, k)| written(*k, req.deg, *v)).collect()
+        };
+        rows.push(Row {
+            name: column.clone(),
+            unit: unit(*kind, req.deg),
+            min: written(*kind, req.deg, range.min.value),
+            at_min: inputs(range.min.x),
+            max: written(*kind, req.deg, range.max.value),
+            at_max: inputs(range.max.x),
+        });
+        bar.inc(1);
+    }
+    bar.finish_and_clear();
+    let input_units: Vec<&str> = input_kinds.iter().map(|k| unit(*k, req.deg)).collect();
+    let text =
+        if req.table { table(&rows, &input_names, &input_units) } else { csv(&rows, &input_names, &input_units) };
+    std::io::stdout().lock().write_all(text.as_bytes()).map_err(|e| {
+        eprintln!("error: cannot write the extremes: {e}");
+        Failed(exit::IO_ERR)
+    })
+}
+
+/// The columns named in `list` (unknowns or outputs), in its order.
+fn select(
+    quantities: &[(String, QuantityKind)],
+    list: &str,
+    name: &str,
+) -> Result<Vec<(String, QuantityKind)>, Failed> {
+    list.split(',')
+        .map(str::trim)
+        .filter(|c| !c.is_empty())
+        .map(|c| {
+            quantities.iter().find(|(n, _)| n == c).cloned().ok_or_else(|| {
+                let known: Vec<&str> = quantities.iter().map(|(n, _)| n.as_str()).collect();
+                eprintln!("error: {name} has no unknown or output `{c}` (they are: {})", known.join(", "));
+                Failed(exit::USAGE)
+            })
+        })
+        .collect()
+}
+
+/// The header's cells: the column, its unit, the minimum and the inputs there, the maximum and
+/// the inputs there (`phi at min [deg]`).
+fn header(inputs: &[String], units: &[&str]) -> Vec<String> {
+    let at = |which: &str| -> Vec<String> {
+        inputs
+            .iter()
+            .zip(units)
+            .map(|(n, u)| if u.is_empty() { format!("{n} at {which}") } else { format!("{n} at {which} [{u}]") })
+            .collect()
+    };
+    let mut h = vec!["column".to_string(), "unit".to_string(), "min".to_string()];
+    h.extend(at("min"));
+    h.push("max".to_string());
+    h.extend(at("max"));
+    h
+}
+
+/// A row's cells, numbers as given by `number`.
+fn cells(r: &Row, number: impl Fn(f64) -> String) -> Vec<String> {
+    let mut c = vec![r.name.clone(), r.unit.to_string(), number(r.min)];
+    c.extend(r.at_min.iter().map(|&v| number(v)));
+    c.push(number(r.max));
+    c.extend(r.at_max.iter().map(|&v| number(v)));
+    c
+}
+
+/// CSV: numbers in their shortest form that reads back exactly.
+fn csv(rows: &[Row], inputs: &[String], units: &[&str]) -> String {
+    let mut s = header(inputs, units).join(",") + "\n";
+    for r in rows {
+        s += &(cells(r, |v| v.to_string()).join(",") + "\n");
+    }
+    s
+}
+
+/// A table aligned in columns, numbers to ten significant digits.
+fn table(rows: &[Row], inputs: &[String], units: &[&str]) -> String {
+    let number = |v: f64| {
+        let a = v.abs();
+        if a == 0.0 || (1e-3..1e6).contains(&a) {
+            let digits = 9usize.saturating_sub(a.log10().floor().max(0.0) as usize);
+            format!("{v:.digits$}")
+        } else {
+            format!("{v:.9e}")
+        }
+    };
+    let lines: Vec<Vec<String>> =
+        std::iter::once(header(inputs, units)).chain(rows.iter().map(|r| cells(r, number))).collect();
+    let widths: Vec<usize> =
+        (0..lines[0].len()).map(|c| lines.iter().map(|l| l[c].chars().count()).max().unwrap_or(0)).collect();
+    let mut s = String::new();
+    for l in &lines {
+        let padded: Vec<String> = l
+            .iter()
+            .zip(&widths)
+            .enumerate()
+            // Names and units to the left, numbers to the right.
+            .map(|(c, (v, w))| if c < 2 { format!("{v:<w$}") } else { format!("{v:>w$}") })
+            .collect();
+        s += padded.join("  ").trim_end();
+        s.push('\n');
+    }
+    s
+}

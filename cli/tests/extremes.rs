@@ -1,0 +1,240 @@
+//! `kinloop extremes` end to end: the built binary on the shipped `.kl` files, its CSV and its
+//! table parsed and compared with closed forms (the limit positions of a crank-rocker and the
+//! dead centres of an offset slider-crank), its usage errors and exit codes.
+//!
+//! Tolerances: an extreme is located as a root of the velocity analog, to the analog's rounding
+//! over the curvature (of order one for these links): within 1e-10 rad of the closed form's
+//! input; its value, where the analog vanishes, moves to second order only: within 1e-12 of the
+//! links' size. Degrees add one conversion (a relative rounding).
+
+use kinloop_fixtures as fx;
+use std::f64::consts::TAU;
+use std::path::PathBuf;
+use std::process::{Command, Output};
+
+fn kinloop(args: &[&str]) -> Output {
+    Command::new(env!("CARGO_BIN_EXE_kinloop")).args(args).output().expect("the kinloop binary runs")
+}
+
+fn shipped(name: &str) -> String {
+    PathBuf::from(env!("CARGO_MANIFEST_DIR")).join("mechanisms").join(name).display().to_string()
+}
+
+/// A row of the output: the column's name, its unit and the numbers.
+type Row = (String, String, Vec<f64>);
+
+/// The CSV's header and rows.
+fn csv(out: &Output) -> (Vec<String>, Vec<Row>) {
+    assert!(out.status.success(), "{}", String::from_utf8_lossy(&out.stderr));
+    // No progress bar, nor anything else, where standard error is not a terminal.
+    assert!(out.stderr.is_empty(), "{}", String::from_utf8_lossy(&out.stderr));
+    let text = String::from_utf8(out.stdout.clone()).expect("utf-8");
+    let mut lines = text.lines();
+    let header = lines.next().expect("header").split(',').map(str::to_string).collect();
+    let rows = lines
+        .map(|l| {
+            let cells: Vec<&str> = l.split(',').collect();
+            let numbers = cells[2..].iter().map(|v| v.parse().expect("a number")).collect();
+            (cells[0].to_string(), cells[1].to_string(), numbers)
+        })
+        .collect();
+    (header, rows)
+}
+
+/// The row of column `name`: `[min, input at min, max, input at max]` for one input.
+fn row<'a>(rows: &'a [Row], name: &str) -> (&'a str, &'a [f64]) {
+    let r = rows.iter().find(|r| r.0 == name).unwrap_or_else(|| panic!("no row {name}"));
+    (&r.1, &r.2)
+}
+
+/// The shipped slider-crank is the fixture's declaration: the same tokens.
+#[test]
+fn the_shipped_slider_crank_is_the_fixtures() {
+    let tokens = |t: &str| t.parse::<proc_macro2::TokenStream>().expect("tokens").to_string().replace("= r\"", "= \"");
+    let shipped = std::fs::read_to_string(shipped("slider_crank.kl")).expect("shipped file");
+    assert_eq!(tokens(&shipped), tokens(fx::SLIDER_CRANK_TEXT));
+}
+
+/// A crank-rocker's rocker swings between the positions where crank and coupler line up
+/// (`|AC| = b + a` stretched, `b - a` folded); the triangle A-D-C gives the rocker angle,
+/// `|AC|^2 = d^2 + c^2 + 2 d c cos gamma`, and the crank lies along A-C or against it.
+#[test]
+fn a_rockers_swing_from_the_limit_position_geometry_in_degrees() {
+    let (a, b, c, d): (f64, f64, f64, f64) = (1.0, 3.0, 2.5, 3.2);
+    let params = format!("a={a},b={b},c={c},d={d}");
+    let out =
+        kinloop(&["extremes", &shipped("four_bar.kl"), "--from", "0", "--to", "360", "--deg", "--params", &params]);
+    let (header, rows) = csv(&out);
+    assert_eq!(header, ["column", "unit", "min", "phi at min [deg]", "max", "phi at max [deg]"]);
+    assert_eq!(rows.iter().map(|r| r.0.as_str()).collect::<Vec<_>>(), ["beta", "gamma", "pc.x", "pc.y"]);
+    let limit = |ac: f64, stretched: bool| {
+        let gamma = ((ac * ac - d * d - c * c) / (2.0 * d * c)).acos();
+        let (cx, cy) = (d + c * gamma.cos(), c * gamma.sin());
+        let phi = if stretched { cy.atan2(cx) } else { (-cy).atan2(-cx) };
+        (gamma.to_degrees(), phi.rem_euclid(TAU).to_degrees())
+    };
+    let (stretched, folded) = (limit(b + a, true), limit(b - a, false));
+    let (min, max) = if stretched.0 < folded.0 { (stretched, folded) } else { (folded, stretched) };
+    let (unit, g) = row(&rows, "gamma");
+    assert_eq!(unit, "deg");
+    let deg = |rad: f64| rad.to_degrees();
+    assert!((g[0] - min.0).abs() < deg(1e-12) && (g[2] - max.0).abs() < deg(1e-12), "{g:?} vs {min:?} {max:?}");
+    assert!((g[1] - min.1).abs() < deg(1e-10) && (g[3] - max.1).abs() < deg(1e-10), "{g:?} vs {min:?} {max:?}");
+    // The joint C at the rocker's limits lies on the circle about D: its x is d + c cos gamma at
+    // its extremes only where C is leftmost or rightmost, which the rocker's swing, within
+    // (0, pi), does not contain: x is extreme where gamma is.
+    let (unit, x) = row(&rows, "pc.x");
+    assert_eq!(unit, "length unit");
+    let cx = |gamma_deg: f64| d + c * gamma_deg.to_radians().cos();
+    assert!((x[0] - cx(max.0)).abs() < 1e-12 && (x[2] - cx(min.0)).abs() < 1e-12, "{x:?}");
+    assert!((x[1] - max.1).abs() < deg(1e-10) && (x[3] - min.1).abs() < deg(1e-10), "{x:?}");
+}
+
+/// An offset slider-crank (the slider on the crank's -x side): nearest the crank pivot with
+/// crank and rod folded, `|x| = sqrt((l - r)^2 - e^2)`, the crank pointing away from the slider;
+/// farthest with them stretched, `|x| = sqrt((l + r)^2 - e^2)`, the crank pointing at it. The
+/// stroke is the difference; in radians, from a start that is no extreme.
+#[test]
+fn a_sliders_stroke_and_dead_centres_from_the_closed_form() {
+    let (r, l, e): (f64, f64, f64) = (1.0, 3.0, 0.4);
+    let params = format!("r={r},l={l},e={e}");
+    let to = format!("{}", TAU);
+    let out = kinloop(&[
+        "extremes",
+        &shipped("slider_crank.kl"),
+        "--from",
+        "0",
+        "--to",
+        &to,
+        "--samples",
+        "73",
+        "--params",
+        &params,
+        "--columns",
+        "x",
+    ]);
+    let (header, rows) = csv(&out);
+    assert_eq!(header, ["column", "unit", "min", "phi at min [rad]", "max", "phi at max [rad]"]);
+    assert_eq!(rows.len(), 1);
+    let near = ((l - r) * (l - r) - e * e).sqrt();
+    let far = ((l + r) * (l + r) - e * e).sqrt();
+    let (unit, x) = row(&rows, "x");
+    assert_eq!(unit, "length unit");
+    assert!((x[0] - -far).abs() < 1e-12 && (x[2] - -near).abs() < 1e-12, "{x:?}");
+    assert!((x[1] - f64::atan2(e, -far).rem_euclid(TAU)).abs() < 1e-10, "{x:?}");
+    assert!((x[3] - f64::atan2(-e, near).rem_euclid(TAU)).abs() < 1e-10, "{x:?}");
+    assert!(((x[2] - x[0]) - (far - near)).abs() < 1e-12, "the stroke: {x:?}");
+}
+
+/// The table holds the CSV's numbers to ten significant digits, aligned under a header.
+#[test]
+fn the_table_is_the_csv_readable() {
+    let args =
+        ["extremes", &shipped("four_bar.kl"), "--from", "0", "--to", "360", "--deg", "--params", "a=1,b=3,c=2.5,d=3.2"];
+    let (_, rows) = csv(&kinloop(&args));
+    let mut with_table = args.to_vec();
+    with_table.push("--table");
+    let out = kinloop(&with_table);
+    assert!(out.status.success() && out.stderr.is_empty());
+    let text = String::from_utf8(out.stdout).expect("utf-8");
+    let mut lines = text.lines();
+    let header = lines.next().expect("header");
+    assert!(header.starts_with("column") && header.contains("phi at max [deg]"), "{header}");
+    for (line, (name, unit, numbers)) in lines.zip(&rows) {
+        let cells: Vec<&str> = line.split_whitespace().collect();
+        // Units of several words (`length unit`) split: the numbers are the last four cells.
+        assert_eq!(cells[0], name);
+        assert_eq!(cells[1..cells.len() - 4].join(" "), *unit);
+        for (cell, v) in cells[cells.len() - 4..].iter().zip(numbers) {
+            let t: f64 = cell.parse().expect("a number");
+            assert!((t - v).abs() <= 1e-9 * v.abs().max(1.0), "{line}: {t} vs {v}");
+        }
+    }
+}
+
+/// Usage errors (exit 2) name what is wrong; a sweep that stops at a limit position fails
+/// (exit 1) and says so; nothing is written on standard output then.
+#[test]
+fn errors_and_exit_codes() {
+    let four_bar = shipped("four_bar.kl");
+    let params = "a=1,b=3,c=2.5,d=3.2";
+    let code = |args: &[&str], code: i32, says: &str| {
+        let out = kinloop(args);
+        let err = String::from_utf8_lossy(&out.stderr);
+        assert_eq!(out.status.code(), Some(code), "{args:?}: {err}");
+        assert!(err.contains(says), "{args:?}: {err}");
+        assert!(out.stdout.is_empty(), "{args:?}");
+    };
+    code(
+        &["extremes", &four_bar, "--from", "0", "--to", "1", "--params", params, "--columns", "beta,nope"],
+        2,
+        "`nope`",
+    );
+    code(&["extremes", &four_bar, "--from", "1", "--to", "0", "--params", params], 2, "from < to");
+    code(
+        &["extremes", &four_bar, "--from", "0", "--to", "1", "--samples", "2", "--params", params],
+        2,
+        "at least 3 samples",
+    );
+    code(&["extremes", &four_bar, "--from", "0", "--to", "x", "--params", params], 2, "--to x");
+    code(&["extremes", &four_bar, "--from", "0", "--to", "1"], 1, "has no value");
+    // A non-Grashof rocker cannot turn through: its limit position, where coupler and rocker
+    // stretch in line, stops the sweep.
+    code(
+        &["extremes", &four_bar, "--from", "1.2", "--to", "7.4", "--params", "a=1.5,b=3,c=1,d=3.2"],
+        1,
+        "limit position",
+    );
+}
+
+/// Two inputs moving together along the straight path (`--from th1,th2 --to th1,th2`): each
+/// extreme with both inputs where it happens, against the compiled mechanism of the same
+/// declaration (kinloop's fixture, its own sweep with the rotated sines): the values to the
+/// sweeps' agreement (1e-13 of the links' size, see `kinloop-model`'s `sweeps.rs`), an extreme's
+/// value to second order in its location, the inputs to the analog's rounding over the
+/// curvature (1e-10).
+#[test]
+fn a_path_of_two_inputs_gives_both_inputs_at_each_extreme() {
+    use kinloop::Mechanism;
+    use kinloop::analysis::{Column, Sampled};
+    let dir = std::env::temp_dir().join(format!("kinloop-cli-extremes-{}", std::process::id()));
+    std::fs::create_dir_all(&dir).expect("temp dir");
+    let file = dir.join("five_bar.kl");
+    std::fs::write(&file, fx::FIVE_BAR_TEXT).expect("write");
+    let (from, to) = ([0.0, 1.0], [std::f64::consts::PI, 1.0 + std::f64::consts::FRAC_PI_2]);
+    let list = |x: [f64; 2]| format!("{},{}", x[0], x[1]);
+    let out = kinloop(&[
+        "extremes",
+        &file.display().to_string(),
+        "--from",
+        &list(from),
+        "--to",
+        &list(to),
+        "--samples",
+        "91",
+    ]);
+    let (header, rows) = csv(&out);
+    let want = [
+        "column",
+        "unit",
+        "min",
+        "th1 at min [rad]",
+        "th2 at min [rad]",
+        "max",
+        "th1 at max [rad]",
+        "th2 at max [rad]",
+    ];
+    assert_eq!(header, want);
+    let m = fx::FiveBar::default();
+    let compiled = Sampled::path(&m, from, to, 91, m.guess_flat(&from)).expect("compiled sweep");
+    assert_eq!(rows.len(), fx::FiveBar::UNKNOWNS.len() + fx::FiveBar::OUTPUTS.len());
+    for (name, _, v) in &rows {
+        let r = compiled.range(Column::named(name).expect("a column")).expect("range");
+        let (at_min, at_max) = (compiled.inputs_at(r.min.x), compiled.inputs_at(r.max.x));
+        assert!((v[0] - r.min.value).abs() < 1e-12 && (v[3] - r.max.value).abs() < 1e-12, "{name}: {v:?} {r:?}");
+        for (got, want) in v[1..3].iter().zip(at_min).chain(v[4..6].iter().zip(at_max)) {
+            assert!((got - want).abs() < 1e-10, "{name}: {v:?} {r:?}");
+        }
+    }
+    std::fs::remove_dir_all(&dir).ok();
+}

@@ -1,0 +1,179 @@
+//! The runtime's analyses of sampled sweeps and its limit report on a run-time model: the one
+//! implementation ([`SampledOf`], `limits_of`), over the model's [`Kernel`].
+//!
+//! A [`SampledOf`] keeps its kernel and lends it to the sweeps it solves with (the samples and
+//! every refinement between them, [`Lend`]): a model's kernel lends itself by reference, so
+//! `&ModelKernel` is a kernel too (each method forwarded).
+
+use crate::mechanism::ModelKernel;
+use crate::model::Model;
+use kinloop_runtime::analysis::{Lend, SampledOf};
+use kinloop_runtime::dims::{Heap, JacBuf, KinBuf, Sizes};
+use kinloop_runtime::generated::InputTrig;
+use kinloop_runtime::metrics::{LimitReport, limits_of};
+use kinloop_runtime::{BlockInfo, Error, Kernel, Location, NewtonConfig, QuantityKind, SweepConfig};
+
+/// A sweep of a run-time model kept in memory and analysed column by column (the runtime's
+/// [`SampledOf`]: extremes, ranges, dwells, harmonics, unbalance, time ratio, transmission
+/// angle), its columns named as the model names them (`"psi"`, `"pc.x"`). Made by
+/// [`Model::sampled`].
+pub type ModelSampled<'a> = SampledOf<ModelKernel<'a>>;
+
+impl Model {
+    /// Sweeps `samples` equally spaced points of the straight path from inputs `from` to `to`
+    /// (both included) from `guess` at `from`, with the default solver configuration, and keeps
+    /// them for analysis by column: the runtime's [`SampledOf`] over this model, the same
+    /// implementation a compiled mechanism's `m.sampled(..)` runs. The path parameter is the
+    /// input when there is one (it must then increase), the fraction of the path otherwise.
+    ///
+    /// ```
+    /// use kinloop_model::Model;
+    /// let text = "pub struct SliderCrank {
+    ///     params r = 1, l = 3;
+    ///     input phi;
+    ///     unknowns psi = 0, x = 4;
+    ///     loop oabo: r @ phi == (x, 0) + l @ psi;
+    /// }";
+    /// let mut m = Model::read("slider_crank.kl", text).unwrap();
+    /// let turn = m.sampled(&[0.0], &[std::f64::consts::TAU], 37, &[0.0, 4.0]).unwrap();
+    /// let x = turn.range("x").unwrap();
+    /// // The stroke of a centred slider-crank: twice the crank.
+    /// assert!((x.span() - 2.0).abs() < 1e-12);
+    /// ```
+    pub fn sampled(
+        &mut self,
+        from: &[f64],
+        to: &[f64],
+        samples: usize,
+        guess: &[f64],
+    ) -> Result<ModelSampled<'_>, Error> {
+        self.sampled_with(from, to, samples, guess, SweepConfig::default())
+    }
+
+    /// [`Model::sampled`] with the sweep configuration `config` (also used for every
+    /// refinement).
+    pub fn sampled_with(
+        &mut self,
+        from: &[f64],
+        to: &[f64],
+        samples: usize,
+        guess: &[f64],
+        config: SweepConfig,
+    ) -> Result<ModelSampled<'_>, Error> {
+        let k = self.kernel(config)?;
+        let sizes = k.dims();
+        if from.len() != sizes.ni || to.len() != sizes.ni || guess.len() != sizes.n {
+            return Err(Error::InvalidArgument(format!(
+                "a sampled sweep of `{}` needs {} inputs at each end and a guess of {} unknowns",
+                k.name(),
+                sizes.ni,
+                sizes.n
+            )));
+        }
+        let v = |s: &[f64]| Heap(s.into());
+        SampledOf::over(k, v(from), v(to), samples, v(guess), config)
+    }
+
+    /// Dead centres and limit positions of a single-input model over its input from `from` to
+    /// `to` (either direction), `samples` equally spaced inputs from `guess` at `from`: the
+    /// input's limit positions and singular crossings (the sweep's events; a limit position
+    /// ends the range) and the located extremes of the columns named `columns` over the range
+    /// reached. The runtime's `limits_of`, as a compiled mechanism's `Limits::run`.
+    pub fn limits(
+        &mut self,
+        from: f64,
+        to: f64,
+        samples: usize,
+        guess: &[f64],
+        columns: &[&str],
+    ) -> Result<LimitReport, Error> {
+        let k = self.kernel(SweepConfig::default())?;
+        if guess.len() != k.dims().n {
+            return Err(Error::InvalidArgument(format!(
+                "the limits of `{}` need a guess of {} unknowns",
+                k.name(),
+                k.dims().n
+            )));
+        }
+        limits_of(k, from, to, samples, Heap(guess.into()), columns)
+    }
+}
+
+impl<'m> Lend for ModelKernel<'m> {
+    type Lent<'a>
+        = &'a ModelKernel<'m>
+    where
+        Self: 'a;
+    fn lend(&self) -> &ModelKernel<'m> {
+        self
+    }
+}
+
+/// A model's kernel lent by reference: every method the kernel's own.
+impl Kernel for &ModelKernel<'_> {
+    type Dims = Sizes;
+    fn dims(&self) -> Sizes {
+        (**self).dims()
+    }
+    fn name(&self) -> &str {
+        (**self).name()
+    }
+    fn input_name(&self, i: usize) -> &str {
+        (**self).input_name(i)
+    }
+    fn unknown_name(&self, u: usize) -> &str {
+        (**self).unknown_name(u)
+    }
+    fn output_name(&self, o: usize) -> &str {
+        (**self).output_name(o)
+    }
+    fn input_kind(&self, i: usize) -> QuantityKind {
+        (**self).input_kind(i)
+    }
+    fn unknown_kind(&self, u: usize) -> QuantityKind {
+        (**self).unknown_kind(u)
+    }
+    fn output_kind(&self, o: usize) -> QuantityKind {
+        (**self).output_kind(o)
+    }
+    fn block_count(&self) -> usize {
+        (**self).block_count()
+    }
+    fn block_info(&self, b: usize) -> Option<BlockInfo> {
+        (**self).block_info(b)
+    }
+    fn block_rows_cols(&self, b: usize) -> Option<(Vec<usize>, Vec<usize>)> {
+        (**self).block_rows_cols(b)
+    }
+    fn judged(&self) -> &[usize] {
+        (**self).judged()
+    }
+    fn closed_form_angle(&self, u: usize) -> bool {
+        (**self).closed_form_angle(u)
+    }
+    fn location(&self, x: &[f64], block: Option<usize>) -> Box<Location> {
+        (**self).location(x, block)
+    }
+    fn solver_config(&self) -> SweepConfig {
+        (**self).solver_config()
+    }
+    fn kinematics(&self, x: &Heap, guess: &Heap, cfg: &NewtonConfig) -> Result<KinBuf, Error> {
+        (**self).kinematics(x, guess, cfg)
+    }
+    fn kinematics_at(&self, x: &Heap, q: &Heap, cfg: &NewtonConfig) -> Result<KinBuf, Error> {
+        (**self).kinematics_at(x, q, cfg)
+    }
+    fn jacobian(&self, x: &Heap, q: &Heap) -> JacBuf {
+        (**self).jacobian(x, q)
+    }
+    fn step_into<T: InputTrig>(
+        &self,
+        x: &Heap,
+        guess: &Heap,
+        cfg: &NewtonConfig,
+        trig: &mut T,
+        into: &mut KinBuf,
+    ) -> Result<(), Error> {
+        (**self).step_into(x, guess, cfg, trig, into)
+    }
+}
