@@ -24,18 +24,18 @@ const STEPS: usize = 1_000_000;
 fn model() -> MassModel<4, 1, 7> {
     let out = |c: usize| [Coord::Output(2 * c), Coord::Output(2 * c + 1)];
     let bodies = [
-        Body { name: "crank", mass: 2.0, com: out(0), inertia: 0.05, rotation: Rotation::Input(0) },
-        Body { name: "working rod", mass: 0.8, com: out(1), inertia: 0.6, rotation: Rotation::Unknown(0) },
-        Body { name: "displacer rod", mass: 0.9, com: out(2), inertia: 0.9, rotation: Rotation::Unknown(1) },
+        Body { name: "crank".into(), mass: 2.0, com: out(0), inertia: 0.05, rotation: Rotation::Input(0) },
+        Body { name: "working rod".into(), mass: 0.8, com: out(1), inertia: 0.6, rotation: Rotation::Unknown(0) },
+        Body { name: "displacer rod".into(), mass: 0.9, com: out(2), inertia: 0.9, rotation: Rotation::Unknown(1) },
         Body {
-            name: "piston",
+            name: "piston".into(),
             mass: 1.5,
             com: [Coord::Unknown(2), Coord::Fixed(0.0)],
             inertia: 0.0,
             rotation: Rotation::None,
         },
         Body {
-            name: "displacer",
+            name: "displacer".into(),
             mass: 1.1,
             com: [Coord::Unknown(3), Coord::Fixed(0.9)],
             inertia: 0.0,

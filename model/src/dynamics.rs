@@ -22,8 +22,6 @@ use kinloop_runtime::dynamics::{
     turn_states,
 };
 use kinloop_runtime::{Error, SweepConfig};
-use std::collections::HashSet;
-use std::sync::{Mutex, OnceLock};
 
 /// A coordinate as the plan gives it: a state column or the register of a constant.
 #[derive(Clone, Copy, Debug)]
@@ -34,7 +32,7 @@ enum Col {
 }
 
 struct BodyItem {
-    name: &'static str,
+    name: String,
     mass: u32,
     inertia: u32,
     com: [Col; 2],
@@ -42,8 +40,8 @@ struct BodyItem {
 }
 
 enum LoadItem {
-    Force { name: &'static str, at: [Col; 2], value: [u32; 2] },
-    Torque { name: &'static str, on: Rotation, value: u32 },
+    Force { name: String, at: [Col; 2], value: [u32; 2] },
+    Torque { name: String, on: Rotation, value: u32 },
 }
 
 /// The program of the declared dynamics items (see the [module documentation](self)).
@@ -58,19 +56,6 @@ pub(crate) struct DynamicsProg {
     unknown_regs: Vec<Option<u32>>,
     /// The load values of the last evaluation, in [`MassModelBuf::load_values`] order.
     values: Vec<f64>,
-}
-
-/// `name` as a `&'static str`, as the runtime's bodies and errors name things: each distinct
-/// name is kept once for the life of the process (a model read again reuses it).
-fn intern(name: &str) -> &'static str {
-    static NAMES: OnceLock<Mutex<HashSet<&'static str>>> = OnceLock::new();
-    let mut names = NAMES.get_or_init(Default::default).lock().unwrap_or_else(|e| e.into_inner());
-    if let Some(&kept) = names.get(name) {
-        return kept;
-    }
-    let kept: &'static str = Box::leak(name.to_owned().into_boxed_str());
-    names.insert(kept);
-    kept
 }
 
 fn col(c: &CoordModel) -> Col {
@@ -101,7 +86,7 @@ impl DynamicsProg {
             .bodies
             .iter()
             .map(|b| BodyItem {
-                name: intern(&b.name),
+                name: b.name.clone(),
                 mass: b.mass.0,
                 inertia: b.inertia.0,
                 com: [col(&b.com[0]), col(&b.com[1])],
@@ -109,12 +94,12 @@ impl DynamicsProg {
             })
             .collect();
         let forces = d.forces.iter().map(|f| LoadItem::Force {
-            name: intern(&f.name),
+            name: f.name.clone(),
             at: [col(&f.at[0]), col(&f.at[1])],
             value: [f.value[0].0, f.value[1].0],
         });
         let torques =
-            d.torques.iter().map(|t| LoadItem::Torque { name: intern(&t.name), on: rotation(t.on), value: t.value.0 });
+            d.torques.iter().map(|t| LoadItem::Torque { name: t.name.clone(), on: rotation(t.on), value: t.value.0 });
         let loads: Vec<LoadItem> = forces.chain(torques).collect();
         let unknown_regs: Vec<Option<u32>> = (0..plan.n).map(|u| find(Leaf::Unknown(u as u16))).collect();
         let roots: Vec<NodeId> =
@@ -147,7 +132,7 @@ impl DynamicsProg {
         }
         for b in &self.bodies {
             m = m.with_body(Body {
-                name: b.name,
+                name: b.name.clone().into(),
                 mass: r(b.mass),
                 com: [coord(b.com[0]), coord(b.com[1])],
                 inertia: r(b.inertia),
@@ -155,9 +140,9 @@ impl DynamicsProg {
             })?;
         }
         for l in &self.loads {
-            m = match *l {
-                LoadItem::Force { name, at, .. } => m.with_force(name, [coord(at[0]), coord(at[1])])?,
-                LoadItem::Torque { name, on, .. } => m.with_torque(name, on)?,
+            m = match l {
+                LoadItem::Force { name, at, .. } => m.with_force(name.clone(), [coord(at[0]), coord(at[1])])?,
+                LoadItem::Torque { name, on, .. } => m.with_torque(name.clone(), *on)?,
             };
         }
         Ok(m)

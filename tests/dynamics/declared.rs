@@ -100,7 +100,9 @@ fn declared_rhombic_model_is_the_hand_built_one() {
 #[test]
 fn bad_declared_values_are_typed_errors() {
     let bad_mass = Engine { m_rod: -1.0, ..Engine::default() };
-    assert!(matches!(bad_mass.mass_model(), Err(DynamicsError::BadMass { body: "rod", quantity: "mass", .. })));
+    assert!(
+        matches!(bad_mass.mass_model(), Err(DynamicsError::BadMass { body, quantity: "mass", .. }) if body == "rod")
+    );
     let bad_inertia = Engine { j_rod: f64::NAN, ..Engine::default() };
     assert!(matches!(bad_inertia.mass_model(), Err(DynamicsError::BadMass { quantity: "moment of inertia", .. })));
     let bad_gravity = Engine { g: f64::INFINITY, ..Engine::default() };
@@ -110,7 +112,7 @@ fn bad_declared_values_are_typed_errors() {
     let model = bad_gas.mass_model().unwrap();
     let k = bad_gas.kinematics_flat(&[0.5], &bad_gas.guess_flat(&[0.5]), &NewtonConfig::default()).unwrap();
     match model.dynamics(&k, &[1.0]) {
-        Err(DynamicsError::NonFiniteLoad { name: "gas", x, .. }) => assert_eq!(x, vec![0.5]),
+        Err(DynamicsError::NonFiniteLoad { name, x, .. }) if name == "gas" => assert_eq!(x, vec![0.5]),
         other => panic!("expected a non-finite gas force, got {other:?}"),
     }
 }
@@ -121,16 +123,22 @@ fn declared_points_and_angles_map_to_the_state() {
     let model = Engine::default().mass_model().unwrap();
     let col = |n: &str| <Engine as Mechanism<2, 1, 2>>::OUTPUTS.iter().position(|o| *o == n).unwrap();
     let expected = [
-        Body { name: "crank", mass: 0.0, com: [Coord::Fixed(0.0); 2], inertia: 0.02, rotation: Rotation::Input(0) },
         Body {
-            name: "rod",
+            name: "crank".into(),
+            mass: 0.0,
+            com: [Coord::Fixed(0.0); 2],
+            inertia: 0.02,
+            rotation: Rotation::Input(0),
+        },
+        Body {
+            name: "rod".into(),
             mass: 2.0,
             com: [Coord::Output(col("s2.x")), Coord::Output(col("s2.y"))],
             inertia: 0.01,
             rotation: Rotation::Unknown(0),
         },
         Body {
-            name: "piston",
+            name: "piston".into(),
             mass: 0.5,
             com: [Coord::Unknown(1), Coord::Fixed(0.0)],
             inertia: 0.0,

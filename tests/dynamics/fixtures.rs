@@ -37,7 +37,7 @@ pub fn rhombic_bodies_by_hand(gravity: [f64; 2]) -> MassModel<4, 1, 7> {
         .with_gravity(gravity)
         .and_then(|m| {
             m.with_body(Body {
-                name: "crank",
+                name: "crank".into(),
                 mass: 2.0,
                 com: [out("s1.x"), out("s1.y")],
                 inertia: 0.05,
@@ -47,7 +47,7 @@ pub fn rhombic_bodies_by_hand(gravity: [f64; 2]) -> MassModel<4, 1, 7> {
         .and_then(|m| {
             let rotation = Rotation::Unknown(unknown("phi2"));
             m.with_body(Body {
-                name: "working rod",
+                name: "working rod".into(),
                 mass: 0.8,
                 com: [out("s2.x"), out("s2.y")],
                 inertia: 0.6,
@@ -57,7 +57,7 @@ pub fn rhombic_bodies_by_hand(gravity: [f64; 2]) -> MassModel<4, 1, 7> {
         .and_then(|m| {
             let rotation = Rotation::Unknown(unknown("phi4"));
             m.with_body(Body {
-                name: "displacer rod",
+                name: "displacer rod".into(),
                 mass: 0.9,
                 com: [out("s4.x"), out("s4.y")],
                 inertia: 0.9,
@@ -66,11 +66,11 @@ pub fn rhombic_bodies_by_hand(gravity: [f64; 2]) -> MassModel<4, 1, 7> {
         })
         .and_then(|m| {
             let com = [Coord::Unknown(unknown("x_c")), Coord::Fixed(0.0)];
-            m.with_body(Body { name: "piston", mass: 1.5, com, inertia: 0.0, rotation: Rotation::None })
+            m.with_body(Body { name: "piston".into(), mass: 1.5, com, inertia: 0.0, rotation: Rotation::None })
         })
         .and_then(|m| {
             let com = [Coord::Unknown(unknown("x_f")), Coord::Fixed(de)];
-            m.with_body(Body { name: "displacer", mass: 1.1, com, inertia: 0.0, rotation: Rotation::None })
+            m.with_body(Body { name: "displacer".into(), mass: 1.1, com, inertia: 0.0, rotation: Rotation::None })
         })
         .expect("a valid model")
 }

@@ -70,8 +70,8 @@ kinloop::mechanism! {
 }
 
 fn five_bar_model() -> MassModel<2, 2, 8> {
-    let body = |name, mass, c: usize, inertia, rotation| Body {
-        name,
+    let body = |name: &'static str, mass, c: usize, inertia, rotation| Body {
+        name: name.into(),
         mass,
         com: [Coord::Output(2 * c), Coord::Output(2 * c + 1)],
         inertia,
@@ -218,7 +218,7 @@ fn scaled_bodies(model: &MassModel<4, 1, 7>, s: f64) -> MassModel<4, 1, 7> {
     let scale = |c: Coord| if let Coord::Fixed(v) = c { Coord::Fixed(s * v) } else { c };
     let mut m = MassModel::new().with_gravity(model.gravity_vector()).unwrap();
     for b in model.bodies() {
-        m = m.with_body(Body { inertia: b.inertia * s * s, com: b.com.map(scale), ..*b }).unwrap();
+        m = m.with_body(Body { inertia: b.inertia * s * s, com: b.com.map(scale), ..b.clone() }).unwrap();
     }
     m
 }

@@ -86,14 +86,14 @@ fn slider_crank_torque_matches_classical_closed_form() {
     // A massless rod: the classical reciprocating-mass model.
     let model = MassModel::new()
         .with_body(Body {
-            name: "crank",
+            name: "crank".into(),
             mass: 4.0,
             com: [Coord::Fixed(0.0); 2],
             inertia: 0.3,
             rotation: Rotation::Input(0),
         })
         .and_then(|md| {
-            md.with_body(Body { name: "piston", mass: m, com: piston, inertia: 0.0, rotation: Rotation::None })
+            md.with_body(Body { name: "piston".into(), mass: m, com: piston, inertia: 0.0, rotation: Rotation::None })
         })
         .and_then(|md| md.with_force("gas", piston, move |k, _| [piston_gas(k.q[x_col]), 0.0]))
         .unwrap();

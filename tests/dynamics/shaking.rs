@@ -96,8 +96,8 @@ fn counterweighted_crank_does_not_shake() {
     let m = Counterweighted::default();
     let (m_arm, omega) = (3.0, 150.0);
     let m_weight = m_arm * m.a / m.b;
-    let body = |name, mass, c: usize| Body {
-        name,
+    let body = |name: &'static str, mass, c: usize| Body {
+        name: name.into(),
         mass,
         com: [Coord::Output(2 * c), Coord::Output(2 * c + 1)],
         inertia: 0.01,
@@ -141,7 +141,7 @@ fn slider_crank_shaking_harmonics_match_closed_form() {
     let x = index_of_x();
     let model = MassModel::new()
         .with_body(Body {
-            name: "piston",
+            name: "piston".into(),
             mass,
             com: [Coord::Unknown(x), Coord::Fixed(0.0)],
             inertia: 0.0,

@@ -169,7 +169,7 @@ fn run_up_from_rest_reaches_the_synchronous_speed_on_average() {
     let model = crank_model(2.0)
         .and_then(|m| {
             m.with_body(Body {
-                name: "piston",
+                name: "piston".into(),
                 mass: 0.8,
                 com: [Coord::Unknown(1), Coord::Fixed(0.3)],
                 inertia: 0.0,
@@ -213,7 +213,7 @@ fn running_into_a_limit_position_is_a_typed_error() {
     let m = Rocker::default();
     let model = MassModel::new()
         .with_body(Body {
-            name: "input",
+            name: "input".into(),
             mass: 0.0,
             com: [Coord::Fixed(0.0); 2],
             inertia: 1.0,
@@ -221,7 +221,7 @@ fn running_into_a_limit_position_is_a_typed_error() {
         })
         .and_then(|md| {
             md.with_body(Body {
-                name: "coupler",
+                name: "coupler".into(),
                 mass: 1.0,
                 com: [Coord::Output(0), Coord::Output(1)],
                 inertia: 0.3,
@@ -264,7 +264,7 @@ fn running_into_a_limit_position_is_a_typed_error() {
 /// with the input.
 fn crank_model(inertia: f64) -> Result<MassModel<2, 1, 2>, DynamicsError> {
     MassModel::new().with_body(Body {
-        name: "crank",
+        name: "crank".into(),
         mass: 1.0,
         com: [Coord::Fixed(0.0); 2],
         inertia,

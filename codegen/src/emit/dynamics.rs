@@ -123,7 +123,7 @@ fn bodies(cx: &Ctx, model: &Model) -> Vec<TokenStream> {
         let (px, py, rotation) = (coord(cx, &b.com[0]), coord(cx, &b.com[1]), angle(b.turns));
         quote! {
             let __model = __model.with_body(#rt::Body {
-                name: #bname, mass: #mass, com: [#px, #py], inertia: #inertia, rotation: #rotation,
+                name: ::std::borrow::Cow::Borrowed(#bname), mass: #mass, com: [#px, #py], inertia: #inertia, rotation: #rotation,
             })?;
         }
     };

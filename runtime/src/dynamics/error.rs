@@ -3,6 +3,7 @@
 //! and integrator failures. Each converts into [`crate::Error`].
 
 use crate::error::Error;
+use std::borrow::Cow;
 
 /// What went wrong in a dynamic analysis; see the [module documentation](self).
 #[derive(Clone, Debug, PartialEq, thiserror::Error)]
@@ -12,7 +13,7 @@ pub enum DynamicsError {
     #[error("the {quantity} of body `{body}` is {value}: it must be finite and not negative")]
     BadMass {
         /// The body's name.
-        body: &'static str,
+        body: Cow<'static, str>,
         /// `"mass"` or `"moment of inertia"`.
         quantity: &'static str,
         /// The offending value.
@@ -24,7 +25,7 @@ pub enum DynamicsError {
         /// `"body"` or `"load"`.
         owner: &'static str,
         /// The body's or the load's name.
-        name: &'static str,
+        name: Cow<'static, str>,
         /// `"output column"`, `"unknown"` or `"input"`.
         what: &'static str,
         /// The offending index.
@@ -47,13 +48,13 @@ pub enum DynamicsError {
     #[error("the torque `{name}` acts on no angle: give it an unknown or an input to act on")]
     TorqueOnSlider {
         /// The load's name.
-        name: &'static str,
+        name: Cow<'static, str>,
     },
     /// A force or torque law returned NaN or infinity.
     #[error("the load `{name}` is not finite ({value}) at input {x:?}")]
     NonFiniteLoad {
         /// The load's name (`"drive"` for a drive torque law).
-        name: &'static str,
+        name: Cow<'static, str>,
         /// The value returned.
         value: f64,
         /// The inputs where it happened.

@@ -20,6 +20,7 @@ use super::model::{Body, Load, MassModel};
 use super::state::AnalogState;
 use super::terms;
 use crate::kin::Kin;
+use std::borrow::Cow;
 
 /// Mass matrix, velocity-product coefficients and generalised forces at one state; see the
 /// [module documentation](self).
@@ -194,16 +195,20 @@ pub(crate) fn checked_drive_into(
 }
 
 /// A force's value checked finite, else [`DynamicsError::NonFiniteLoad`] at inputs `x`.
-pub(crate) fn force_value(name: &'static str, f: [f64; 2], x: &[f64]) -> Result<[f64; 2], DynamicsError> {
+pub(crate) fn force_value(name: &Cow<'static, str>, f: [f64; 2], x: &[f64]) -> Result<[f64; 2], DynamicsError> {
     match f.iter().find(|v| !v.is_finite()) {
-        Some(&value) => Err(DynamicsError::NonFiniteLoad { name, value, x: x.to_vec() }),
+        Some(&value) => Err(DynamicsError::NonFiniteLoad { name: name.clone(), value, x: x.to_vec() }),
         None => Ok(f),
     }
 }
 
 /// A torque's value checked finite, else [`DynamicsError::NonFiniteLoad`] at inputs `x`.
-pub(crate) fn torque_value(name: &'static str, t: f64, x: &[f64]) -> Result<f64, DynamicsError> {
-    if t.is_finite() { Ok(t) } else { Err(DynamicsError::NonFiniteLoad { name, value: t, x: x.to_vec() }) }
+pub(crate) fn torque_value(name: &Cow<'static, str>, t: f64, x: &[f64]) -> Result<f64, DynamicsError> {
+    if t.is_finite() {
+        Ok(t)
+    } else {
+        Err(DynamicsError::NonFiniteLoad { name: name.clone(), value: t, x: x.to_vec() })
+    }
 }
 
 /// Generalised forces `q` computed from finite loads, checked: a value that is not finite comes

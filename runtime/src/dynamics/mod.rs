@@ -31,7 +31,7 @@
 //!     health: Health::default(),
 //! };
 //! let model = MassModel::new()
-//!     .with_body(Body { name: "crank", mass: 2.0, com: [Coord::Output(0), Coord::Output(1)], inertia: 0.01, rotation: Rotation::Input(0) })?
+//!     .with_body(Body { name: "crank".into(), mass: 2.0, com: [Coord::Output(0), Coord::Output(1)], inertia: 0.01, rotation: Rotation::Input(0) })?
 //!     .with_gravity([0.0, -9.81])?;
 //! let d = model.dynamics(&k, &[10.0])?;
 //! // J = m r^2 + J_S, constant: J' = 0; gravity pulls the horizontal crank down: Q = -m g r.
@@ -39,7 +39,7 @@
 //! assert!(d.reduced_inertia_slope().abs() < 1e-15);
 //! assert!((d.forces[0] + 2.0 * 9.81 * r).abs() < 1e-14);
 //! // Bad input is a typed error.
-//! let bad = MassModel::<0, 1, 2>::new().with_body(Body { name: "crank", mass: -1.0, com: [Coord::Output(0), Coord::Fixed(0.0)], inertia: 0.0, rotation: Rotation::None });
+//! let bad = MassModel::<0, 1, 2>::new().with_body(Body { name: "crank".into(), mass: -1.0, com: [Coord::Output(0), Coord::Fixed(0.0)], inertia: 0.0, rotation: Rotation::None });
 //! assert!(matches!(bad, Err(kinloop_runtime::dynamics::DynamicsError::BadMass { .. })));
 //! # Ok::<(), kinloop_runtime::dynamics::DynamicsError>(())
 //! ```

@@ -3,6 +3,7 @@
 
 use super::error::DynamicsError;
 use crate::kin::Kin;
+use std::borrow::Cow;
 
 /// The angle a body rotates with.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
@@ -30,10 +31,10 @@ pub enum Coord {
 pub type Point = [Coord; 2];
 
 /// A rigid body: its mass, centre of mass, and moment of inertia about the centre of mass.
-#[derive(Clone, Copy, Debug, PartialEq)]
+#[derive(Clone, Debug, PartialEq)]
 pub struct Body {
-    /// Name used in error messages.
-    pub name: &'static str,
+    /// Name used in error messages (a compiled mechanism's borrowed, a run-time model's owned).
+    pub name: Cow<'static, str>,
     /// Mass (not negative).
     pub mass: f64,
     /// The centre of mass.
@@ -56,7 +57,7 @@ pub enum Load<const N: usize, const NI: usize, const NO: usize> {
     /// A force applied at the point `at`.
     Force {
         /// Name used in error messages.
-        name: &'static str,
+        name: Cow<'static, str>,
         /// The point of application.
         at: Point,
         /// The force.
@@ -65,7 +66,7 @@ pub enum Load<const N: usize, const NI: usize, const NO: usize> {
     /// A torque on a body rotating with `on` (its reaction acts on the frame).
     Torque {
         /// Name used in error messages.
-        name: &'static str,
+        name: Cow<'static, str>,
         /// The angle the torque works on.
         on: Rotation,
         /// The torque.
@@ -75,7 +76,7 @@ pub enum Load<const N: usize, const NI: usize, const NO: usize> {
 
 impl<const N: usize, const NI: usize, const NO: usize> Load<N, NI, NO> {
     /// The load's name.
-    pub fn name(&self) -> &'static str {
+    pub fn name(&self) -> &str {
         match self {
             Load::Force { name, .. } | Load::Torque { name, .. } => name,
         }
@@ -146,17 +147,23 @@ impl<const N: usize, const NI: usize, const NO: usize> MassModel<N, NI, NO> {
     /// Adds a force law applied at the point `at`.
     pub fn with_force(
         mut self,
-        name: &'static str,
+        name: impl Into<Cow<'static, str>>,
         at: Point,
         law: impl Fn(&Kin<N, NI, NO>, &[f64; NI]) -> [f64; 2] + Send + Sync + 'static,
     ) -> Result<Self, DynamicsError> {
-        check_point("load", name, at, [N, NI, NO])?;
+        let name = name.into();
+        check_point("load", &name, at, [N, NI, NO])?;
         self.loads.push(Load::Force { name, at, law: Box::new(law) });
         Ok(self)
     }
 
     /// Adds a constant force applied at the point `at`.
-    pub fn with_constant_force(self, name: &'static str, at: Point, f: [f64; 2]) -> Result<Self, DynamicsError> {
+    pub fn with_constant_force(
+        self,
+        name: impl Into<Cow<'static, str>>,
+        at: Point,
+        f: [f64; 2],
+    ) -> Result<Self, DynamicsError> {
         for v in f {
             if !v.is_finite() {
                 return Err(DynamicsError::BadValue { what: "force", value: v, why: "must be finite" });
@@ -168,20 +175,26 @@ impl<const N: usize, const NI: usize, const NO: usize> MassModel<N, NI, NO> {
     /// Adds a torque law acting on the angle `on`.
     pub fn with_torque(
         mut self,
-        name: &'static str,
+        name: impl Into<Cow<'static, str>>,
         on: Rotation,
         law: impl Fn(&Kin<N, NI, NO>, &[f64; NI]) -> f64 + Send + Sync + 'static,
     ) -> Result<Self, DynamicsError> {
+        let name = name.into();
         if on == Rotation::None {
             return Err(DynamicsError::TorqueOnSlider { name });
         }
-        check_rotation("load", name, on, [N, NI, NO])?;
+        check_rotation("load", &name, on, [N, NI, NO])?;
         self.loads.push(Load::Torque { name, on, law: Box::new(law) });
         Ok(self)
     }
 
     /// Adds a constant torque acting on the angle `on`.
-    pub fn with_constant_torque(self, name: &'static str, on: Rotation, t: f64) -> Result<Self, DynamicsError> {
+    pub fn with_constant_torque(
+        self,
+        name: impl Into<Cow<'static, str>>,
+        on: Rotation,
+        t: f64,
+    ) -> Result<Self, DynamicsError> {
         if !t.is_finite() {
             return Err(DynamicsError::BadValue { what: "torque", value: t, why: "must be finite" });
         }
@@ -194,21 +207,21 @@ impl<const N: usize, const NI: usize, const NO: usize> MassModel<N, NI, NO> {
 pub(crate) fn check_body(body: &Body, total: f64, sizes: [usize; 3]) -> Result<(), DynamicsError> {
     for (quantity, value) in [("mass", body.mass), ("moment of inertia", body.inertia)] {
         if !value.is_finite() || value < 0.0 {
-            return Err(DynamicsError::BadMass { body: body.name, quantity, value });
+            return Err(DynamicsError::BadMass { body: body.name.clone(), quantity, value });
         }
     }
     // The sum in the order `total_mass` takes it.
     if !(total + body.mass).is_finite() {
         return Err(DynamicsError::Overflow { what: "total mass", x: Vec::new() });
     }
-    check_point("body", body.name, body.com, sizes)?;
-    check_rotation("body", body.name, body.rotation, sizes)
+    check_point("body", &body.name, body.com, sizes)?;
+    check_rotation("body", &body.name, body.rotation, sizes)
 }
 
 /// A point's indices checked against the sizes `[n, ni, no]`, its constants finite.
 pub(crate) fn check_point(
     owner: &'static str,
-    name: &'static str,
+    name: &Cow<'static, str>,
     p: Point,
     [n, _, no]: [usize; 3],
 ) -> Result<(), DynamicsError> {
@@ -222,7 +235,7 @@ pub(crate) fn check_point(
             }
         };
         if index >= len {
-            return Err(DynamicsError::IndexOutOfRange { owner, name, what, index, len });
+            return Err(DynamicsError::IndexOutOfRange { owner, name: name.clone(), what, index, len });
         }
     }
     Ok(())
@@ -231,7 +244,7 @@ pub(crate) fn check_point(
 /// An angle's index checked against the sizes `[n, ni, no]`.
 pub(crate) fn check_rotation(
     owner: &'static str,
-    name: &'static str,
+    name: &Cow<'static, str>,
     r: Rotation,
     [n, ni, _]: [usize; 3],
 ) -> Result<(), DynamicsError> {
@@ -240,5 +253,9 @@ pub(crate) fn check_rotation(
         Rotation::Input(i) => ("input", i, ni),
         Rotation::None => return Ok(()),
     };
-    if index >= len { Err(DynamicsError::IndexOutOfRange { owner, name, what, index, len }) } else { Ok(()) }
+    if index >= len {
+        Err(DynamicsError::IndexOutOfRange { owner, name: name.clone(), what, index, len })
+    } else {
+        Ok(())
+    }
 }

@@ -22,7 +22,13 @@ fn crank(r: f64) -> Kin<0, 1, 2> {
 }
 
 fn body(mass: f64, inertia: f64) -> Body {
-    Body { name: "crank", mass, com: [Coord::Output(0), Coord::Output(1)], inertia, rotation: Rotation::Input(0) }
+    Body {
+        name: "crank".into(),
+        mass,
+        com: [Coord::Output(0), Coord::Output(1)],
+        inertia,
+        rotation: Rotation::Input(0),
+    }
 }
 
 #[test]

@@ -216,7 +216,7 @@ where
         let d = model.dynamics(&k, &[omega])?;
         let tau = drive(t, phi, omega);
         if !tau.is_finite() {
-            return Err(DynamicsError::NonFiniteLoad { name: "drive", value: tau, x: vec![phi] });
+            return Err(DynamicsError::NonFiniteLoad { name: "drive".into(), value: tau, x: vec![phi] });
         }
         let mut d = d;
         d.mass[0][0] += cfg.flywheel;

@@ -18,7 +18,7 @@
 //! k.d2out.copy_from_slice(&[-r, 0.0]);
 //! let pin = [Coord::Output(0), Coord::Output(1)];
 //! let model = MassModelBuf::new(sizes)
-//!     .with_body(Body { name: "crank", mass: 2.0, com: pin, inertia: 0.01, rotation: Rotation::Input(0) })?
+//!     .with_body(Body { name: "crank".into(), mass: 2.0, com: pin, inertia: 0.01, rotation: Rotation::Input(0) })?
 //!     .with_force("push", pin)?;
 //! let d = model.dynamics(&k, &[10.0], &[0.0, 3.0])?;
 //! assert!((d.reduced_inertia() - (2.0 * r * r + 0.01)).abs() < 1e-15);
@@ -37,21 +37,22 @@ use super::model::{Body, Point, Rotation, check_body, check_point, check_rotatio
 use super::state::AnalogState;
 use super::terms;
 use crate::dims::Sizes;
+use std::borrow::Cow;
 
 /// Where a load of a [`MassModelBuf`] acts; its value is given to each evaluation.
-#[derive(Clone, Copy, Debug, PartialEq)]
+#[derive(Clone, Debug, PartialEq)]
 pub enum Applied {
     /// A force (two values, `F_x` and `F_y`) at a point.
     Force {
         /// Name used in error messages.
-        name: &'static str,
+        name: Cow<'static, str>,
         /// The point of application.
         at: Point,
     },
     /// A torque (one value) on an angle.
     Torque {
         /// Name used in error messages.
-        name: &'static str,
+        name: Cow<'static, str>,
         /// The angle it works on.
         on: Rotation,
     },
@@ -135,18 +136,20 @@ impl MassModelBuf {
     }
 
     /// Adds a force acting at `at`, its value given to each evaluation.
-    pub fn with_force(mut self, name: &'static str, at: Point) -> Result<Self, DynamicsError> {
-        check_point("load", name, at, self.dims())?;
+    pub fn with_force(mut self, name: impl Into<Cow<'static, str>>, at: Point) -> Result<Self, DynamicsError> {
+        let name = name.into();
+        check_point("load", &name, at, self.dims())?;
         self.loads.push(Applied::Force { name, at });
         Ok(self)
     }
 
     /// Adds a torque acting on `on`, its value given to each evaluation.
-    pub fn with_torque(mut self, name: &'static str, on: Rotation) -> Result<Self, DynamicsError> {
+    pub fn with_torque(mut self, name: impl Into<Cow<'static, str>>, on: Rotation) -> Result<Self, DynamicsError> {
+        let name = name.into();
         if on == Rotation::None {
             return Err(DynamicsError::TorqueOnSlider { name });
         }
-        check_rotation("load", name, on, self.dims())?;
+        check_rotation("load", &name, on, self.dims())?;
         self.loads.push(Applied::Torque { name, on });
         Ok(self)
     }
@@ -197,12 +200,12 @@ impl MassModelBuf {
         let mut values = loads.iter().copied();
         let mut next = || values.next().unwrap_or(f64::NAN);
         for load in &self.loads {
-            match *load {
-                Applied::Force { name, at } => {
+            match load {
+                &Applied::Force { ref name, at } => {
                     let f = force_value(name, [next(), next()], k.inputs())?;
                     terms::force_into(k, at, f, q);
                 }
-                Applied::Torque { name, on } => {
+                &Applied::Torque { ref name, on } => {
                     let t = torque_value(name, next(), k.inputs())?;
                     terms::torque_into(k, on, t, q);
                 }
@@ -299,7 +302,7 @@ mod tests {
         k.dout.copy_from_slice(&[0.0, 0.1]);
         k.d2out.copy_from_slice(&[-0.1, 0.0]);
         let pin = [Coord::Output(0), Coord::Output(1)];
-        let body = Body { name: "crank", mass: 2.0, com: pin, inertia: 0.01, rotation: Rotation::Input(0) };
+        let body = Body { name: "crank".into(), mass: 2.0, com: pin, inertia: 0.01, rotation: Rotation::Input(0) };
         let m = MassModelBuf::new(sizes).with_body(body).unwrap().with_force("push", pin).unwrap();
         (m, k)
     }
@@ -317,13 +320,14 @@ mod tests {
         let e = m.shaking(&other, &[1.0], &[0.0], [0.0; 2]).unwrap_err();
         assert_eq!(e, DynamicsError::SizeMismatch { what: "unknowns of the state", expected: 1, given: 2 });
         let e = m.dynamics(&k, &[1.0], &[f64::NAN, 0.0]).unwrap_err();
-        assert!(matches!(e, DynamicsError::NonFiniteLoad { name: "push", .. }), "{e:?}");
+        assert!(matches!(&e, DynamicsError::NonFiniteLoad { name, .. } if name == "push"), "{e:?}");
         let e = m.clone().with_torque("t", Rotation::None).unwrap_err();
-        assert_eq!(e, DynamicsError::TorqueOnSlider { name: "t" });
+        assert_eq!(e, DynamicsError::TorqueOnSlider { name: "t".into() });
         let e = m.clone().with_force("f", [Coord::Output(2), Coord::Fixed(0.0)]).unwrap_err();
         assert!(matches!(e, DynamicsError::IndexOutOfRange { index: 2, len: 2, .. }), "{e:?}");
-        let heavy = Body { name: "b", mass: -1.0, com: [Coord::Fixed(0.0); 2], inertia: 0.0, rotation: Rotation::None };
-        assert!(matches!(m.clone().with_body(heavy), Err(DynamicsError::BadMass { body: "b", .. })));
+        let heavy =
+            Body { name: "b".into(), mass: -1.0, com: [Coord::Fixed(0.0); 2], inertia: 0.0, rotation: Rotation::None };
+        assert!(matches!(m.clone().with_body(heavy), Err(DynamicsError::BadMass { body, .. }) if body == "b"));
         let mut d = DynamicsBuf::zeros(1);
         let e = d.checked_drive_into(&[0.0], &[1.0], &[0.0], &mut [0.0; 2]).unwrap_err();
         assert_eq!(e, DynamicsError::SizeMismatch { what: "driving forces", expected: 1, given: 2 });
