@@ -33,15 +33,15 @@ impl Model {
     /// ```
     /// use kinloop_model::Model;
     /// use kinloop_runtime::TraceConfig;
-    /// // A double rocker: the input rocks between two limit positions.
+    /// // A triple rocker (no link turns fully): the input rocks between two limit positions.
     /// let text = "pub struct FourBar {
-    ///     params a = 3, b = 1, c = 2.5, d = 2;
+    ///     params a = 2, b = 3, c = 2.5, d = 4;
     ///     input phi;
-    ///     unknowns psi = 2.2, theta = 1.4;
+    ///     unknowns psi = 0.6, theta = 1.9;
     ///     loop abcd: a @ phi + b @ psi == (d, 0) + c @ theta;
     /// }";
     /// let mut m = Model::read("rocker.kl", text).unwrap();
-    /// let traced = m.trace_curve(&[1.2], &[3.0], &[2.2, 1.4], &TraceConfig::default()).unwrap();
+    /// let traced = m.trace_curve(&[0.0], &[3.0], &[0.6, 1.9], &TraceConfig::default()).unwrap();
     /// assert!(traced.closed && traced.folds.len() == 2);
     /// ```
     pub fn trace_curve(
