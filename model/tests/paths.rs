@@ -261,6 +261,7 @@ fn reachable_ranges_equal_the_compiled_ones_and_the_closed_form() {
     assert!(r.from_event.is_some() && r.to_event.is_some(), "{r:?}");
     assert!((r.from.0[0] - lo).abs() < FOLD_INPUT, "from {} (closed form {lo})", r.from.0[0]);
     assert!((r.to.0[0] - hi).abs() < FOLD_INPUT, "to {} (closed form {hi})", r.to.0[0]);
+    eprintln!("reach [{}, {}], closed form [{lo}, {hi}]", r.from.0[0], r.to.0[0]);
 
     // Within the range: no event, the ends of the searched stretch.
     let r = model.reachable(&[1.2], &[0.1], &guess, 5).unwrap();
@@ -300,12 +301,15 @@ fn states_at_given_inputs_equal_the_compiled_ones_and_the_closed_form() {
         gap(modes[i]).total_cmp(&gap(modes[j]))
     });
     let branch = branch.unwrap();
+    let mut worst = 0.0f64;
     for (s, &x) in r.states.iter().zip(&inputs) {
         assert_eq!(s.x[0], x);
         let m = four_bar_modes(dims.0, dims.1, dims.2, dims.3, x).unwrap()[branch];
         let gap = angle_gap(m[0], s.q[0]).max(angle_gap(m[1], s.q[1]));
         assert!(gap < CLOSED_FORM, "at {x}: {gap:e} from the closed form");
+        worst = worst.max(gap);
     }
+    eprintln!("sweep_at: {} states, {worst:e} from the closed form", r.states.len());
 }
 
 /// A rocker input meets its limit position between two inputs: the same stop, the same event,
@@ -362,6 +366,7 @@ fn assembly_modes_equal_the_compiled_ones_and_the_closed_form() {
             let gap =
                 r.iter().map(|s| angle_gap(m[0], s.q[0]).max(angle_gap(m[1], s.q[1]))).fold(f64::INFINITY, f64::min);
             assert!(gap < CLOSED_FORM, "at {phi}: mode {m:?} found to {gap:e}");
+            eprintln!("assembly mode at {phi}: {gap:e} from the closed form");
         }
     }
     // Where the loop cannot close, none.
@@ -416,6 +421,7 @@ fn scans_over_parameter_sets_equal_the_compiled_ones_and_the_closed_form() {
                 let bound = 2.0 * 4.0 * (TAU / 720.0).powi(2) / 8.0;
                 let found = r.1 - r.0;
                 assert!(found <= stroke + 1e-12 && stroke - found <= bound, "{set:?}: {found} (closed form {stroke})");
+                eprintln!("{set:?}: stroke {found}, closed form {stroke}, bound {bound:e}");
             }
             (Err(r), Err(l), Err(c)) => {
                 assert_eq!(std::mem::discriminant(r), std::mem::discriminant(c), "{r:?}\n{c:?}");
@@ -469,4 +475,128 @@ fn arguments_of_other_sizes_are_invalid() {
     let mut unset = read(fx::FOUR_BAR_TEXT);
     assert!(invalid(unset.assembly_modes(&[0.0]).unwrap_err()));
     assert!(invalid(unset.trace_curve(&[0.0], &[1.0], &[0.5, 1.5], &opts).unwrap_err()));
+}
+
+// ---------------------------------------------------------------------------------------------
+// Every fixture
+
+/// Every algorithm on one fixture, against the compiled mechanism to the last bit: the
+/// assembly modes at `from` and the traced curve from `from` towards `to` (the same kernels),
+/// and with libm's sines in the compiled sweep's steps the states at `from`, the middle, `to`
+/// and `from` again, the reachable range from `from` a quarter of the way both sides, and a
+/// scan of the model's own parameter set (each state's positions summed). Returns what was
+/// compared, for the report.
+fn every_algorithm<M, const N: usize, const NI: usize, const NO: usize>(
+    name: &str,
+    compiled: M,
+    model: &mut Model,
+    from: [f64; NI],
+    to: [f64; NI],
+) -> String
+where
+    M: Mechanism<N, NI, NO>,
+{
+    let cfg = NewtonConfig::default();
+    let c = kinloop::paths::modes::assembly_modes(&compiled, &from, 64, &cfg);
+    let r = model.assembly_modes(&from).unwrap();
+    assert_eq!(c.len(), r.len(), "{name}: modes");
+    assert!(!r.is_empty(), "{name}: no mode at {from:?}");
+    for (a, b) in c.iter().zip(&r) {
+        assert_eq!(state_diff(a, b), 0.0, "{name}: a mode");
+    }
+
+    let guess = compiled.guess_flat(&from);
+    let opts = TraceConfig::default().with_ds(0.05).with_max_points(300);
+    let c = kinloop::paths::trace::trace_curve(&compiled, from, to, guess, &opts);
+    let r = model.trace_curve(&from, &to, &guess, &opts);
+    let points = match (c, r) {
+        (Ok(c), Ok(r)) => {
+            assert_eq!((c.points.len(), c.closed), (r.points.len(), r.closed), "{name}: trace");
+            for (a, b) in c.points.iter().zip(&r.points) {
+                assert_eq!((&a.x[..], &a.q[..], a.input_rate), (&b.x.0[..], &b.q.0[..], b.input_rate), "{name}");
+            }
+            assert_eq!(strip(&c.folds), strip(&r.folds), "{name}: folds");
+            r.points.len()
+        }
+        (Err(c), Err(r)) => {
+            assert_eq!(std::mem::discriminant(&c), std::mem::discriminant(&r), "{name}: {c}\n{r}");
+            0
+        }
+        (c, r) => panic!("{name}: compiled {:?}, run time {:?}", c.map(|t| t.points.len()), r.map(|t| t.points.len())),
+    };
+
+    let libm = Libm(compiled);
+    let mut mid = from;
+    for i in 0..NI {
+        mid[i] = 0.5 * (from[i] + to[i]);
+    }
+    let inputs = [from, mid, to, from];
+    let c = kinloop::paths::sweep_at::sweep_at_of(&kinloop_runtime::Compiled(&libm), inputs, guess);
+    let r = model.sweep_at(inputs, &guess).unwrap();
+    assert_eq!(c.states.len(), r.states.len(), "{name}: sweep_at {:?} {:?}", c.stop, r.stop);
+    for (a, b) in c.states.iter().zip(&r.states) {
+        assert_eq!(state_diff(a, b), 0.0, "{name}: sweep_at");
+    }
+    assert_eq!(strip(&c.events), strip(&r.events), "{name}: sweep_at's events");
+
+    let mut delta = from;
+    for i in 0..NI {
+        delta[i] = 0.25 * (to[i] - from[i]);
+    }
+    let c = kinloop::paths::reach::reachable(&libm, from, delta, guess, 9);
+    let r = model.reachable(&from, &delta, &guess, 9);
+    match (c, r) {
+        (Ok(c), Ok(r)) => {
+            assert_eq!((&c.from[..], &c.to[..]), (&r.from.0[..], &r.to.0[..]), "{name}: reach");
+            assert_eq!(strip(c.from_event.as_slice()), strip(r.from_event.as_slice()), "{name}");
+            assert_eq!(strip(c.to_event.as_slice()), strip(r.to_event.as_slice()), "{name}");
+        }
+        (Err(c), Err(r)) => assert_eq!(std::mem::discriminant(&c), std::mem::discriminant(&r), "{name}: {c}\n{r}"),
+        (c, r) => panic!("{name}: reach: compiled {c:?}, run time {r:?}"),
+    }
+
+    let sum = |acc: f64, q: &[f64]| q.iter().fold(acc, |s, v| s + v);
+    let spec = ScanConfig::new(from, to, 37);
+    let c = kinloop::scan(std::slice::from_ref(&libm), &spec, |_| 0.0, |acc, _, k| sum(acc, &k.q));
+    let none: [[f64; 0]; 1] = [[]];
+    let r = model.scan(&[], &none, &ParamScanConfig::new(&from, &to, 37), |_| 0.0, |acc, _, k| sum(acc, &k.q));
+    match (&c[0], &r[0]) {
+        (Ok(c), Ok(r)) => assert_eq!(c.to_bits(), r.to_bits(), "{name}: scan"),
+        (Err(c), Err(r)) => assert_eq!(std::mem::discriminant(c), std::mem::discriminant(r), "{name}: {c}\n{r}"),
+        (c, r) => panic!("{name}: scan: compiled {c:?}, run time {r:?}"),
+    }
+    format!(
+        "{name}: {} modes, {points} traced points, scan {}",
+        model.assembly_modes(&from).unwrap().len(),
+        r[0].is_ok()
+    )
+}
+
+/// Every fixture of `parity.rs`, every algorithm, over a turn of its first input.
+#[test]
+fn every_fixture_runs_every_algorithm_as_the_compiled_one() {
+    let (turn, end) = ([0.0], [TAU]);
+    let mut report = Vec::new();
+    let mut m = read(fx::RHOMBIC_DRIVE_TEXT);
+    report.push(every_algorithm("rhombic drive", fx::RhombicDrive::default(), &mut m, turn, end));
+    let mut m = read(fx::SLIDER_CRANK_TEXT);
+    set(&mut m, &[("r", 1.0), ("l", 3.0), ("e", 0.4)]);
+    report.push(every_algorithm("slider-crank", fx::SliderCrank { r: 1.0, l: 3.0, e: 0.4 }, &mut m, turn, end));
+    let mut m = read(fx::FIVE_BAR_TEXT);
+    report.push(every_algorithm("five-bar", fx::FiveBar::default(), &mut m, [0.0, 0.4], [TAU, 0.4]));
+    let mut m = read(fx::CLASS_FOUR_TEXT);
+    report.push(every_algorithm("class IV", fx::ClassFour::default(), &mut m, turn, end));
+    let mut m = read(fx::DISPLACER_ROD_DRIVE_TEXT);
+    report.push(every_algorithm("displacer-rod drive", fx::DisplacerRodDrive::default(), &mut m, turn, end));
+    let mut m = read(fx::WORKING_ROD_DRIVE_TEXT);
+    report.push(every_algorithm("working-rod drive", fx::WorkingRodDrive::default(), &mut m, turn, end));
+    let mut m = read(fx::gear_lever::GEAR_LEVER_TEXT);
+    report.push(every_algorithm("gear lever", fx::gear_lever::GearLever::default(), &mut m, turn, end));
+    let mut m = read(fx::roller_edger::ROLLER_EDGER_TEXT);
+    report.push(every_algorithm("roller edger", fx::roller_edger::RollerEdger::default(), &mut m, turn, end));
+    let mut m = read(fx::balancing::BALANCE_TEXT);
+    report.push(every_algorithm("balance", fx::balancing::Balance::default(), &mut m, turn, end));
+    let mut m = read(fx::CLASS_FOUR_CORE_TEXT);
+    report.push(every_algorithm("class IV core", fx::ClassFourCore::default(), &mut m, turn, end));
+    eprintln!("{}", report.join("\n"));
 }
