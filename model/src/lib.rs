@@ -120,7 +120,7 @@ pub use blocks::StepFailure;
 pub use factor::MAX_DENSE;
 pub use mechanism::ModelKernel;
 pub use model::{Model, ReadError, State, StepError};
-pub use paths::{ModelTraced, ParamScanConfig};
+pub use paths::{ModelTraced, ParamScanConfig, ParamScanStart};
 pub use sensitivities::Sensitivities;
 pub use source::{Diagnostic, Diagnostics, Level};
 pub use sparse::MAX_SPARSE;

@@ -174,18 +174,34 @@ impl Model {
         }
         let k = self.kernel(spec.config)?;
         let from = heap(&spec.from);
-        let guess = match &spec.guess {
-            Some(g) => heap(g),
-            None => k.guess(&from),
+        let guess = match &spec.start {
+            ParamScanStart::Declared => k.guess(&from),
+            ParamScanStart::Guess(g) => heap(g),
+            ParamScanStart::With(f) => heap(&f(set)),
         };
         fold_sweep_of(k, from, heap(&spec.to), spec.samples, guess, None, || init(set), |acc, s| fold(acc, set, s))
     }
 }
 
+/// How each sweep of a [`Model::scan`] starts: the initial guess at the start of the range,
+/// which picks the assembly mode (branch) the sweep then follows (the compiled scans'
+/// `ScanStart`, for parameter sets).
+#[derive(Clone, Debug)]
+pub enum ParamScanStart {
+    /// Each set's declared initial guess at the start of the range (the `unknowns q = guess`
+    /// of the declaration, with the set's parameter values).
+    Declared,
+    /// The same guess (unknowns in declaration order) for every set.
+    Guess(Vec<f64>),
+    /// A guess computed from each set's values (in the order of the parameters scanned); a
+    /// closure that captures nothing converts to this function pointer.
+    With(fn(&[f64]) -> Vec<f64>),
+}
+
 /// What every sweep of a [`Model::scan`] does: `samples` equally spaced inputs from `from` to
-/// `to` (both included, as in [`Model::sweep`]), from `guess` at `from` (or each set's declared
-/// guess there), with `config`. Built with [`ParamScanConfig::new`] and the builder methods.
-#[derive(Clone, Debug, PartialEq)]
+/// `to` (both included, as in [`Model::sweep`]), starting as `start` says, with `config`.
+/// Built with [`ParamScanConfig::new`] and the builder methods.
+#[derive(Clone, Debug)]
 #[non_exhaustive]
 pub struct ParamScanConfig {
     /// Inputs at the first sample.
@@ -194,23 +210,23 @@ pub struct ParamScanConfig {
     pub to: Vec<f64>,
     /// Number of samples (at least 1; at least 2 when `to` differs from `from`).
     pub samples: usize,
-    /// The initial guess at `from` (unknowns in declaration order), which picks the assembly
-    /// mode; `None` (default): each set's declared guess at `from`.
-    pub guess: Option<Vec<f64>>,
+    /// The initial guess at `from` (default: each set's declared guess there).
+    pub start: ParamScanStart,
     /// The sweeps' configuration (default: the defaults).
     pub config: SweepConfig,
 }
 
 impl ParamScanConfig {
-    /// Sweeps of `samples` inputs from `from` to `to`, from each set's declared guess, with the
-    /// default configuration.
+    /// Sweeps of `samples` inputs from `from` to `to`, from each set's declared guess
+    /// ([`ParamScanStart::Declared`]), with the default configuration.
     pub fn new(from: &[f64], to: &[f64], samples: usize) -> Self {
-        ParamScanConfig { from: from.to_vec(), to: to.to_vec(), samples, guess: None, config: SweepConfig::default() }
+        let (from, to) = (from.to_vec(), to.to_vec());
+        ParamScanConfig { from, to, samples, start: ParamScanStart::Declared, config: SweepConfig::default() }
     }
 
-    /// Starts every sweep from `guess` (unknowns in declaration order).
-    pub fn with_guess(mut self, guess: &[f64]) -> Self {
-        self.guess = Some(guess.to_vec());
+    /// Replaces the starting guess policy.
+    pub fn start(mut self, start: ParamScanStart) -> Self {
+        self.start = start;
         self
     }
 

@@ -12,11 +12,11 @@
 //! steps advance the sines and cosines by rotation (a few units in the last place off libm's),
 //! they agree to `REL` (`sweeps.rs`'s tolerance).
 
-use kinloop::{Event, Kin, Mechanism, NewtonConfig, ScanConfig, TraceConfig};
+use kinloop::{Event, Kin, Mechanism, NewtonConfig, ScanConfig, ScanStart, TraceConfig};
 use kinloop_fixtures as fx;
-use kinloop_model::{Model, ParamScanConfig};
+use kinloop_model::{Model, ParamScanConfig, ParamScanStart};
 use kinloop_runtime::dims::KinBuf;
-use std::f64::consts::TAU;
+use std::f64::consts::{PI, TAU};
 
 /// Relative agreement with the compiled mechanism's own sweep (see `sweeps.rs`: the kernels'
 /// 1e-15 with room for the rotation cache's few ulps amplified by a step's Newton correction).
@@ -432,6 +432,32 @@ fn scans_over_parameter_sets_equal_the_compiled_ones_and_the_closed_form() {
         }
     }
     assert!(r[3].is_err() && r[..3].iter().all(Result::is_ok));
+}
+
+/// A guess computed from each set picks the other assembly mode (the slider on the crank's +x
+/// side): the same sweeps as the compiled scan's `ScanStart::With`, the same stroke as the
+/// closed form's on that side.
+#[test]
+fn a_scan_started_from_a_guess_of_each_set_is_the_compiled_one() {
+    let sets = [[1.0, 3.0, 0.4], [1.2, 4.0, -0.7]];
+    let mut model = read(fx::SLIDER_CRANK_TEXT);
+    let init = |_: &[f64]| (f64::INFINITY, f64::NEG_INFINITY);
+    let fold = |(lo, hi): (f64, f64), _: &[f64], k: &KinBuf| (lo.min(k.q[1]), hi.max(k.q[1]));
+    let spec = ParamScanConfig::new(&[0.0], &[TAU], 721).start(ParamScanStart::With(|p| vec![PI, p[1]]));
+    let r = model.scan(&["r", "l", "e"], &sets, &spec, init, fold);
+    let libm = sets.map(|[r, l, e]| Libm(fx::SliderCrank { r, l, e }));
+    let cspec = ScanConfig::new([0.0], [TAU], 721).start(ScanStart::With(|m: &Libm<fx::SliderCrank>| [PI, m.0.l]));
+    let cfold = |(lo, hi): (f64, f64), _: &Libm<fx::SliderCrank>, k: &Kin<2, 1, 0>| (lo.min(k.q[1]), hi.max(k.q[1]));
+    let c = kinloop::scan(&libm, &cspec, |_| init(&[]), cfold);
+    for ((r, c), [cr, cl, ce]) in r.iter().zip(&c).zip(sets) {
+        let (r, c) = (r.as_ref().unwrap(), c.as_ref().unwrap());
+        assert_eq!(r, c);
+        // On the +x side, and the same stroke (see the scan test above for the bound).
+        assert!(r.0 > 0.0, "{r:?}");
+        let stroke = ((cl + cr).powi(2) - ce * ce).sqrt() - ((cl - cr).powi(2) - ce * ce).sqrt();
+        let found = r.1 - r.0;
+        assert!(found <= stroke + 1e-12 && stroke - found <= 7.7e-5, "{found} (closed form {stroke})");
+    }
 }
 
 /// A scan's arguments that cannot be used: an error in each slot, never a panic.
