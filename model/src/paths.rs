@@ -1,8 +1,9 @@
 //! The runtime's path algorithms on a run-time model: each is the runtime's one implementation
-//! over its [`Kernel`](kinloop_runtime::Kernel) (here [`ModelKernel`](crate::ModelKernel), from [`Model::kernel`]),
-//! the compiled mechanisms' through `Compiled`: curve tracing (`trace_curve_of`), the reachable
-//! range (`reachable_of`), the states at given inputs (`sweep_at_of`), the assembly modes
-//! (`assembly_modes_of`) and scans over parameter sets (`fold_sweep_of`, one set's sweep).
+//! over its [`Kernel`](kinloop_runtime::Kernel) (here [`ModelKernel`](crate::ModelKernel), from
+//! [`Model::kernel`]), the compiled mechanisms' through `Compiled`: curve tracing
+//! (`trace_curve_of`), the reachable range (`reachable_of`), the states at given inputs
+//! (`sweep_at_of`), the assembly modes (`assembly_modes_of`) and scans over parameter sets
+//! (`fold_sweep_of`, one set's sweep).
 //!
 //! Each entry point lends the model with the default solver configuration; the generic
 //! functions take a kernel of any configuration (`m.kernel(config)`).
@@ -123,6 +124,7 @@ impl Model {
     ///
     /// ```
     /// use kinloop_model::{Model, ParamScanConfig};
+    /// use kinloop_runtime::dims::KinBuf;
     /// let text = "pub struct SliderCrank {
     ///     params r = 1, l = 3;
     ///     input phi;
@@ -132,9 +134,9 @@ impl Model {
     /// let mut m = Model::read("slider_crank.kl", text).unwrap();
     /// let spec = ParamScanConfig::new(&[0.0], &[std::f64::consts::TAU], 73);
     /// // The stroke of each crank radius: twice the radius.
-    /// let strokes = m.scan(&["r"], &[[0.5], [1.0]], &spec, |_| (f64::MAX, f64::MIN), |(lo, hi), _, k| {
-    ///     (lo.min(k.q[1]), hi.max(k.q[1]))
-    /// });
+    /// let init = |_: &[f64]| (f64::MAX, f64::MIN);
+    /// let fold = |(lo, hi): (f64, f64), _: &[f64], k: &KinBuf| (lo.min(k.q[1]), hi.max(k.q[1]));
+    /// let strokes = m.scan(&["r"], &[[0.5], [1.0]], &spec, init, fold);
     /// let (lo, hi) = strokes[1].clone().unwrap();
     /// assert!((hi - lo - 2.0).abs() < 1e-9);
     /// ```

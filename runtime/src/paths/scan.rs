@@ -1,4 +1,5 @@
-//! Design-space scans: one [`Sweep`](crate::Sweep) per parameter set, each reduced to a value by a fold.
+//! Design-space scans: one [`Sweep`](crate::Sweep) per parameter set, each reduced to a value by
+//! a fold.
 //!
 //! A scan runs the same sweep (input range, samples, configuration) over every mechanism of a
 //! slice — the parameter sets of a design study — and folds each sweep's states into one value
@@ -71,9 +72,9 @@ impl<M, const N: usize> ScanStart<M, N> {
 }
 
 /// What every sweep of a scan does: `samples` equally spaced inputs from `from` to `to` (both
-/// included, as in [`Sweep::new`](crate::Sweep::new)), starting as `start` says, with `config` (or each
-/// mechanism's own, [`Mechanism::solver_config`]). Built with
-/// [`ScanConfig::new`] and the builder methods.
+/// included, as in [`Sweep::new`](crate::Sweep::new)), starting as `start` says, with `config`
+/// (or each mechanism's own, [`Mechanism::solver_config`]). Built with [`ScanConfig::new`] and
+/// the builder methods.
 #[non_exhaustive]
 pub struct ScanConfig<M, const N: usize, const NI: usize> {
     /// Inputs at the first sample.
