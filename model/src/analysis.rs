@@ -8,10 +8,9 @@
 use crate::mechanism::ModelKernel;
 use crate::model::Model;
 use kinloop_runtime::analysis::{Lend, SampledOf};
-use kinloop_runtime::dims::{Heap, JacBuf, KinBuf, Sizes};
-use kinloop_runtime::generated::InputTrig;
+use kinloop_runtime::dims::Heap;
 use kinloop_runtime::metrics::{LimitReport, limits_of};
-use kinloop_runtime::{BlockInfo, Error, Kernel, Location, NewtonConfig, QuantityKind, SweepConfig};
+use kinloop_runtime::{Error, Kernel, SweepConfig};
 
 /// A sweep of a run-time model kept in memory and analysed column by column (the runtime's
 /// [`SampledOf`]: extremes, ranges, dwells, harmonics, unbalance, time ratio, transmission
@@ -106,74 +105,5 @@ impl<'m> Lend for ModelKernel<'m> {
         Self: 'a;
     fn lend(&self) -> &ModelKernel<'m> {
         self
-    }
-}
-
-/// A model's kernel lent by reference: every method the kernel's own.
-impl Kernel for &ModelKernel<'_> {
-    type Dims = Sizes;
-    fn dims(&self) -> Sizes {
-        (**self).dims()
-    }
-    fn name(&self) -> &str {
-        (**self).name()
-    }
-    fn input_name(&self, i: usize) -> &str {
-        (**self).input_name(i)
-    }
-    fn unknown_name(&self, u: usize) -> &str {
-        (**self).unknown_name(u)
-    }
-    fn output_name(&self, o: usize) -> &str {
-        (**self).output_name(o)
-    }
-    fn input_kind(&self, i: usize) -> QuantityKind {
-        (**self).input_kind(i)
-    }
-    fn unknown_kind(&self, u: usize) -> QuantityKind {
-        (**self).unknown_kind(u)
-    }
-    fn output_kind(&self, o: usize) -> QuantityKind {
-        (**self).output_kind(o)
-    }
-    fn block_count(&self) -> usize {
-        (**self).block_count()
-    }
-    fn block_info(&self, b: usize) -> Option<BlockInfo> {
-        (**self).block_info(b)
-    }
-    fn block_rows_cols(&self, b: usize) -> Option<(Vec<usize>, Vec<usize>)> {
-        (**self).block_rows_cols(b)
-    }
-    fn judged(&self) -> &[usize] {
-        (**self).judged()
-    }
-    fn closed_form_angle(&self, u: usize) -> bool {
-        (**self).closed_form_angle(u)
-    }
-    fn location(&self, x: &[f64], block: Option<usize>) -> Box<Location> {
-        (**self).location(x, block)
-    }
-    fn solver_config(&self) -> SweepConfig {
-        (**self).solver_config()
-    }
-    fn kinematics(&self, x: &Heap, guess: &Heap, cfg: &NewtonConfig) -> Result<KinBuf, Error> {
-        (**self).kinematics(x, guess, cfg)
-    }
-    fn kinematics_at(&self, x: &Heap, q: &Heap, cfg: &NewtonConfig) -> Result<KinBuf, Error> {
-        (**self).kinematics_at(x, q, cfg)
-    }
-    fn jacobian(&self, x: &Heap, q: &Heap) -> JacBuf {
-        (**self).jacobian(x, q)
-    }
-    fn step_into<T: InputTrig>(
-        &self,
-        x: &Heap,
-        guess: &Heap,
-        cfg: &NewtonConfig,
-        trig: &mut T,
-        into: &mut KinBuf,
-    ) -> Result<(), Error> {
-        (**self).step_into(x, guess, cfg, trig, into)
     }
 }

@@ -85,23 +85,42 @@
 //! of the velocity analog, ranges, dwells, harmonics, unbalance, time ratio, transmission angle;
 //! columns by name) and the limit report ([`Model::limits`]), each the one implementation a
 //! compiled mechanism runs (`tests/analysis.rs`: equal bit for bit to the compiled
-//! mechanism's where the sweeps' sines are the same, and to the closed forms). Still on
-//! compiled sizes (`Mechanism<N, NI, NO>` and `Kin<N, NI, NO>`): `trace_curve` (its result type
-//! `Traced<N, NI>` holds arrays; its continuation is already the kernel-generic one), the
-//! reachable ranges and `sweep_at` (stretches of sweeps: they need their result types generic),
-//! the assembly modes (multi-start Newton over `position_flat`, which a model does not expose
-//! as a kernel method), scans, sensitivities-based synthesis and the objectives with parameter
-//! gradients (`Sensitivities<N, NI, NO, NP>`) and the forward simulation of the dynamics (the
-//! inverse dynamics is served: see above). Each needs its state and result types over `Dims` as
-//! the sweep's are, and the kernel methods it calls (`position`, `sensitivities`) added to
-//! `Kernel`.
+//! mechanism's where the sweeps' sines are the same, and to the closed forms).
+//!
+//! The runtime's other path algorithms are written once over `Kernel` too, and serve a model
+//! through the same kernel (the compiled mechanisms' public functions call them through
+//! `Compiled`):
+//!
+//! * [`Model::trace_curve`]: the whole solution curve through limit positions
+//!   (`trace_curve_of`; its result [`ModelTraced`] is the generic `TracedOf` over boxed slices);
+//! * [`Model::reachable`]: how far the input goes on one assembly mode (`reachable_of`);
+//! * [`Model::sweep_at`]: the states at given inputs, stretch by stretch (`sweep_at_of`);
+//! * [`Model::assembly_modes`]: the distinct assembly modes at an input (`assembly_modes_of`,
+//!   multi-start Newton from the declared guess, `Kernel::guess`);
+//! * [`Model::scan`]: a design-space scan over parameter sets ([`ParamScanConfig`]), each set's
+//!   sweep folded into one value (`fold_sweep_of`, the compiled `scan`'s fold).
+//!
+//! They equal the compiled mechanism's to the last bit where the operations are the same (curve
+//! tracing and the assembly modes call the same kernels; the others, whose sweep steps take
+//! libm's sines and cosines here where a compiled sweep rotates them, against a compiled
+//! mechanism stepping with libm's), and its own to the sweeps' rounding otherwise
+//! (`tests/paths.rs`, with the four-bar's and slider-crank's closed forms as independent checks).
+//! Each lends the model with the default solver configuration; the generic functions take
+//! any kernel, `m.kernel(config)`.
+//!
+//! Still on compiled sizes (`Mechanism<N, NI, NO>` and `Kin<N, NI, NO>`): sensitivities-based
+//! synthesis and the objectives with parameter gradients (`Sensitivities<N, NI, NO, NP>`), the
+//! forward simulation of the dynamics (the inverse dynamics is served: see above), and the
+//! parallel scan (`par_scan`: a model is one workspace, lent to one sweep at a time). Each needs
+//! its state and result types over `Dims` as the sweep's are, and the kernel methods it calls
+//! (`sensitivities`) added to `Kernel`.
 //!
 //! A run-time model's events carry no block description (`Event::block` is `None`): the
 //! runtime's `BlockInfo` holds `&'static` names, which a model read at run time does not have;
 //! its errors name the model and its inputs with owned strings (`Location`'s names are
 //! `Cow<'static, str>`).
 //!
-//! Besides sweeps a run-time model offers single-point solves with their analogs and
+//! Besides these a run-time model offers single-point solves with their analogs and
 //! sensitivities ([`Model::kinematics`], [`Model::sensitivities`], [`Model::solve`]) and the
 //! structure report.
 
@@ -116,6 +135,7 @@ mod factor;
 mod mechanism;
 mod model;
 mod newton;
+mod paths;
 mod sensitivities;
 pub mod source;
 mod sparse;
@@ -128,6 +148,7 @@ pub use dynamics::ModelCycle;
 pub use factor::MAX_DENSE;
 pub use mechanism::ModelKernel;
 pub use model::{Model, ReadError, State, StepError};
+pub use paths::{ModelTraced, ParamScanConfig, ParamScanStart};
 pub use sensitivities::Sensitivities;
 pub use source::{Diagnostic, Diagnostics, Level};
 pub use sparse::MAX_SPARSE;

@@ -207,6 +207,16 @@ impl Kernel for ModelKernel<'_> {
     fn solver_config(&self) -> SweepConfig {
         self.config
     }
+    /// The model's declared guess (`Model::guess`); NaN where it cannot be computed, which the
+    /// kernel's checks rule out (its parameters are set, `x` is of its size where an algorithm
+    /// checked it): a solve from it then fails, as from a compiled guess outside its domain.
+    fn guess(&self, x: &kinloop_runtime::dims::Heap) -> kinloop_runtime::dims::Heap {
+        let mut out = self.sizes.q();
+        if self.model.borrow_mut().guess(&x.0, &mut out.0).is_err() {
+            out.0.fill(f64::NAN);
+        }
+        out
+    }
     fn kinematics(
         &self,
         x: &kinloop_runtime::dims::Heap,

@@ -63,7 +63,7 @@ pub use paths::reach::Reach;
 pub use paths::scan::par_scan;
 pub use paths::scan::{ScanConfig, ScanStart, scan};
 pub use paths::sweep::{AtSingular, Sweep, SweepConfig, SweepOf};
-pub use paths::trace::{TraceConfig, Traced, TracedPoint};
+pub use paths::trace::{TraceConfig, Traced, TracedOf, TracedPoint, TracedPointOf};
 pub use solvers::newton::{NewtonConfig, NewtonStop, SolveReport};
 pub use table::{ColumnKey, Table};
 pub use vec2::Vec2;

@@ -5,6 +5,7 @@ use crate::error::{Error, Quantity};
 use crate::events::{BlockInfo, Location};
 use crate::kin::{ByValue, Jac, Kin, KinSink, Sens};
 use crate::kinds::QuantityKind;
+use crate::mechanism::kernel::Compiled;
 use crate::paths::outcome::SweepResult;
 use crate::paths::reach::Reach;
 use crate::paths::sweep::{Sweep, SweepConfig};
@@ -367,32 +368,8 @@ pub trait Named<const N: usize, const NI: usize, const NO: usize>: Mechanism<N, 
         inputs: impl IntoIterator<Item = I>,
         guess: &Self::Unknowns,
     ) -> SweepResult<Self::State> {
-        let (mut states, mut events) = (Vec::new(), Vec::new());
-        let mut prev: Option<Kin<N, NI, NO>> = None;
-        for input in inputs {
-            let x: [f64; NI] = input.into().into();
-            let stretch = match prev {
-                Some(p) if p.x == x => Ok((p, Vec::new())),
-                Some(p) => Sweep::<Self, Kin<N, NI, NO>, N, NI, NO>::new(self, p.x, x, 2, p.q)
-                    .map_err(|e| (e, Vec::new()))
-                    .and_then(stretch_end),
-                None => Sweep::<Self, Kin<N, NI, NO>, N, NI, NO>::new(self, x, x, 1, (*guess).into())
-                    .map_err(|e| (e, Vec::new()))
-                    .and_then(stretch_end),
-            };
-            match stretch {
-                Ok((k, met)) => {
-                    events.extend(met);
-                    states.push(k);
-                    prev = Some(k);
-                }
-                Err((e, met)) => {
-                    events.extend(met);
-                    return SweepResult::new(states, Some(e), events).map(Self::State::from);
-                }
-            }
-        }
-        SweepResult::new(states, None, events).map(Self::State::from)
+        let inputs = inputs.into_iter().map(|input| -> [f64; NI] { input.into().into() });
+        crate::paths::sweep_at::sweep_at_of(&Compiled(self), inputs, (*guess).into()).map(Self::State::from)
     }
 
     /// How far the input can move from `at` towards `at + delta` and `at - delta` on the
@@ -431,25 +408,6 @@ pub trait Named<const N: usize, const NI: usize, const NO: usize>: Mechanism<N, 
             .into_iter()
             .map(Self::State::from)
             .collect()
-    }
-}
-
-/// The last state of a sweep run to its end, with the events it met; its error otherwise.
-#[allow(clippy::type_complexity)]
-fn stretch_end<M, const N: usize, const NI: usize, const NO: usize>(
-    sweep: Sweep<'_, M, Kin<N, NI, NO>, N, NI, NO>,
-) -> Result<(Kin<N, NI, NO>, Vec<crate::Event>), (Error, Vec<crate::Event>)>
-where
-    M: Mechanism<N, NI, NO>,
-{
-    let run = sweep.run();
-    let events = run.events.clone();
-    match run.into_result() {
-        Ok(states) => match states.last() {
-            Some(&k) => Ok((k, events)),
-            None => Err((Error::InvalidArgument("a sweep without samples".into()), events)),
-        },
-        Err(e) => Err((e, events)),
     }
 }
 

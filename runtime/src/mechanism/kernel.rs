@@ -63,6 +63,9 @@ pub trait Kernel {
     fn location(&self, x: &[f64], block: Option<usize>) -> Box<Location>;
     /// The solver configuration used where none is given ([`Mechanism::solver_config`]).
     fn solver_config(&self) -> SweepConfig;
+    /// The declared initial guess at input `x` ([`Mechanism::guess_flat`]): the assembly mode
+    /// an assembly-mode search and a scan start from.
+    fn guess(&self, x: &<Self::Dims as Dims>::X) -> <Self::Dims as Dims>::Q;
     /// Positions, analogs and outputs solved from `guess` ([`Mechanism::kinematics_flat`]).
     fn kinematics(
         &self,
@@ -197,6 +200,10 @@ where
         self.0.solver_config()
     }
     #[inline(always)]
+    fn guess(&self, x: &[f64; NI]) -> [f64; N] {
+        self.0.guess_flat(x)
+    }
+    #[inline(always)]
     fn kinematics(&self, x: &[f64; NI], guess: &[f64; N], cfg: &NewtonConfig) -> Result<Kin<N, NI, NO>, Error> {
         self.0.kinematics_flat(x, guess, cfg)
     }
@@ -219,4 +226,104 @@ where
     ) -> Result<(), Error> {
         self.0.kinematics_step_sink::<T, _, false>(x, guess, cfg, trig, into)
     }
+}
+
+/// A kernel lent: the algorithms that run several sweeps over one mechanism (the reachable
+/// range's two, `sweep_at`'s stretches) lend it to each (every method forwards, inlined).
+impl<K: Kernel> Kernel for &K {
+    type Dims = K::Dims;
+    #[inline(always)]
+    fn dims(&self) -> K::Dims {
+        (**self).dims()
+    }
+    fn name(&self) -> &str {
+        (**self).name()
+    }
+    fn input_name(&self, i: usize) -> &str {
+        (**self).input_name(i)
+    }
+    fn unknown_name(&self, u: usize) -> &str {
+        (**self).unknown_name(u)
+    }
+    fn output_name(&self, o: usize) -> &str {
+        (**self).output_name(o)
+    }
+    fn input_kind(&self, i: usize) -> QuantityKind {
+        (**self).input_kind(i)
+    }
+    fn unknown_kind(&self, u: usize) -> QuantityKind {
+        (**self).unknown_kind(u)
+    }
+    fn output_kind(&self, o: usize) -> QuantityKind {
+        (**self).output_kind(o)
+    }
+    #[inline(always)]
+    fn block_count(&self) -> usize {
+        (**self).block_count()
+    }
+    fn block_info(&self, b: usize) -> Option<BlockInfo> {
+        (**self).block_info(b)
+    }
+    fn block_rows_cols(&self, b: usize) -> Option<(Vec<usize>, Vec<usize>)> {
+        (**self).block_rows_cols(b)
+    }
+    #[inline(always)]
+    fn judged(&self) -> &[usize] {
+        (**self).judged()
+    }
+    #[inline(always)]
+    fn closed_form_angle(&self, u: usize) -> bool {
+        (**self).closed_form_angle(u)
+    }
+    fn location(&self, x: &[f64], block: Option<usize>) -> Box<Location> {
+        (**self).location(x, block)
+    }
+    #[inline(always)]
+    fn solver_config(&self) -> SweepConfig {
+        (**self).solver_config()
+    }
+    #[inline(always)]
+    fn guess(&self, x: &X<K>) -> Q<K> {
+        (**self).guess(x)
+    }
+    #[inline(always)]
+    fn kinematics(&self, x: &X<K>, guess: &Q<K>, cfg: &NewtonConfig) -> Result<KinOf<K>, Error> {
+        (**self).kinematics(x, guess, cfg)
+    }
+    #[inline(always)]
+    fn kinematics_at(&self, x: &X<K>, q: &Q<K>, cfg: &NewtonConfig) -> Result<KinOf<K>, Error> {
+        (**self).kinematics_at(x, q, cfg)
+    }
+    #[inline(always)]
+    fn jacobian(&self, x: &X<K>, q: &Q<K>) -> <K::Dims as Dims>::Jac {
+        (**self).jacobian(x, q)
+    }
+    #[inline(always)]
+    fn step_into<T: InputTrig>(
+        &self,
+        x: &X<K>,
+        guess: &Q<K>,
+        cfg: &NewtonConfig,
+        trig: &mut T,
+        into: &mut KinOf<K>,
+    ) -> Result<(), Error> {
+        (**self).step_into(x, guess, cfg, trig, into)
+    }
+}
+
+/// Checks that the inputs `xs` and the unknowns `qs` given to algorithm `what` have kernel
+/// `m`'s sizes (always so for a compiled mechanism's arrays: the test folds away): an
+/// `Error::InvalidArgument` naming the sizes otherwise.
+pub(crate) fn check_sizes<K: Kernel>(m: &K, what: &str, xs: &[&X<K>], qs: &[&Q<K>]) -> Result<(), Error> {
+    let d = m.dims();
+    let inputs_fit = xs.iter().all(|&x| x.as_ref().len() == d.ni());
+    if inputs_fit && qs.iter().all(|&q| q.as_ref().len() == d.n()) {
+        return Ok(());
+    }
+    Err(Error::InvalidArgument(format!(
+        "{what} of `{}` needs {} inputs at each input point and {} unknowns in a guess",
+        m.name(),
+        d.ni(),
+        d.n()
+    )))
 }

@@ -1,6 +1,7 @@
 //! Following a mechanism along its inputs: sweeps that never jump branches ([`sweep`]) and their
 //! results with the reason they stopped ([`outcome`]), pseudo-arclength continuation through
-//! limit positions ([`curve`], [`trace`]), the reachable input range ([`reach`]), design-space
+//! limit positions ([`curve`], [`trace`]), the states at given inputs ([`sweep_at`]), the reachable
+//! input range ([`reach`]), design-space
 //! scans ([`scan`]) and the search for assembly modes ([`modes`]).
 
 pub mod curve;
@@ -9,4 +10,5 @@ pub mod outcome;
 pub mod reach;
 pub mod scan;
 pub mod sweep;
+pub mod sweep_at;
 pub mod trace;

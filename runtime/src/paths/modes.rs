@@ -1,7 +1,10 @@
-//! Assembly modes: the distinct solutions of the position equations at one input.
+//! Assembly modes: the distinct solutions of the position equations at one input, over any
+//! [`Kernel`] ([`assembly_modes_of`]).
 
+use crate::dims::{Dims, KinState};
 use crate::kin::Kin;
 use crate::mechanism::Mechanism;
+use crate::mechanism::kernel::{Compiled, Kernel, KinOf, Q, X, check_sizes};
 use crate::solvers::newton::NewtonConfig;
 use std::f64::consts::PI;
 
@@ -20,6 +23,8 @@ fn turn_distance(a: f64, b: f64) -> f64 {
 /// agrees modulo whole turns. Modes are sorted by their determinant signs, so the order is
 /// stable. Pick one with a readable rule on the named state, e.g.
 /// `modes.into_iter().find(|s| s.out.c.y > 0.0)` ("elbow up").
+///
+/// A compiled mechanism's [`assembly_modes_of`] (through [`Compiled`]).
 pub fn assembly_modes<M, const N: usize, const NI: usize, const NO: usize>(
     m: &M,
     x: &[f64; NI],
@@ -29,25 +34,36 @@ pub fn assembly_modes<M, const N: usize, const NI: usize, const NO: usize>(
 where
     M: Mechanism<N, NI, NO>,
 {
-    let g0 = m.guess_flat(x);
-    let mut found: Vec<Kin<N, NI, NO>> = Vec::new();
-    let try_start = |g: [f64; N], found: &mut Vec<Kin<N, NI, NO>>| {
-        if let Ok(k) = m.kinematics_flat(x, &g, cfg) {
+    assembly_modes_of(&Compiled(m), x, starts, cfg)
+}
+
+/// [`assembly_modes`] over any [`Kernel`]: a compiled mechanism's, or one whose sizes are known
+/// at run time (`kinloop_model::Model::assembly_modes`). `x` of the kernel's size (none is found
+/// at an input of another size: every solve fails).
+pub fn assembly_modes_of<K: Kernel>(m: &K, x: &X<K>, starts: usize, cfg: &NewtonConfig) -> Vec<KinOf<K>> {
+    if check_sizes(m, "assembly_modes", &[x], &[]).is_err() {
+        return Vec::new();
+    }
+    let n = m.dims().n();
+    let g0 = m.guess(x);
+    let mut found: Vec<KinOf<K>> = Vec::new();
+    let try_start = |g: &Q<K>, found: &mut Vec<KinOf<K>>| {
+        if let Ok(k) = m.kinematics(x, g, cfg) {
             let same = found.iter().any(|f| {
-                f.health.det_signs == k.health.det_signs
-                    && (0..N).all(|u| turn_distance(f.q[u], k.q[u]) < 1e-7 * (1.0 + k.q[u].abs()))
+                f.health().det_signs == k.health().det_signs
+                    && (0..n).all(|u| turn_distance(f.q()[u], k.q()[u]) < 1e-7 * (1.0 + k.q()[u].abs()))
             });
             if !same {
                 found.push(k);
             }
         }
     };
-    try_start(g0, &mut found);
-    let mut neg = g0;
-    for v in &mut neg {
+    try_start(&g0, &mut found);
+    let mut neg = g0.clone();
+    for v in neg.as_mut() {
         *v = -*v;
     }
-    try_start(neg, &mut found);
+    try_start(&neg, &mut found);
     // Additive recurrence with irrational steps per unknown (a Kronecker sequence).
     let alpha: [f64; 8] = [
         0.618_033_988_749_895,
@@ -59,15 +75,16 @@ where
         0.605_551_275_463_989,
         0.123_105_625_617_661,
     ];
+    let mut g = g0.clone();
     for k in 1..=starts {
-        let mut g = g0;
-        for (u, v) in g.iter_mut().enumerate() {
+        g.as_mut().copy_from_slice(g0.as_ref());
+        for (u, v) in g.as_mut().iter_mut().enumerate() {
             let a = alpha[u % 8] + 0.01 * (u / 8) as f64;
             let frac = (k as f64 * a).fract();
             *v += (2.0 * frac - 1.0) * PI * (1.0 + 0.25 * v.abs());
         }
-        try_start(g, &mut found);
+        try_start(&g, &mut found);
     }
-    found.sort_by(|a, b| a.health.det_signs.cmp(&b.health.det_signs).then(a.q[0].total_cmp(&b.q[0])));
+    found.sort_by(|a, b| a.health().det_signs.cmp(&b.health().det_signs).then(a.q()[0].total_cmp(&b.q()[0])));
     found
 }

@@ -1,17 +1,19 @@
 //! How far the input can move on one assembly mode ([`reachable`], answering in input values
-//! with [`Reach`]).
+//! with [`Reach`]), over any [`Kernel`] ([`reachable_of`]).
 
 use super::outcome::SweepStop;
-use super::sweep::Sweep;
+use super::sweep::SweepOf;
+use crate::dims::{Dims, KinState};
 use crate::error::Error;
 use crate::events::Event;
-use crate::kin::Kin;
 use crate::mechanism::Mechanism;
+use crate::mechanism::kernel::{Compiled, Kernel, KinOf, Q, X, check_sizes};
 
 /// The reachable stretch of the input from a starting value on one assembly mode, in input
 /// values, with the limit positions that end it (`None` where the end of the searched range is
 /// reached first). `X` is the input type: `[f64; NI]` from [`reachable`], the generated
-/// `NameInputs` from [`Named::reachable`](crate::Named::reachable).
+/// `NameInputs` from [`Named::reachable`](crate::Named::reachable), the kernel's input vector
+/// from [`reachable_of`].
 #[derive(Clone, Debug, PartialEq)]
 #[non_exhaustive]
 pub struct Reach<X> {
@@ -34,7 +36,8 @@ impl<X> Reach<X> {
 
 /// Finds how far the input can move from `at` towards `at + delta` and `at - delta` on the
 /// assembly mode of `guess` before a limit position, sweeping both ways with `samples` samples
-/// each (with the mechanism's [`Mechanism::solver_config`]), and answers in input values.
+/// each (with the mechanism's [`Mechanism::solver_config`]), and answers in input values: a
+/// compiled mechanism's [`reachable_of`] (through [`Compiled`]).
 ///
 /// Errors: those of the sweeps, except the limit positions that end them (a singular crossing
 /// that the configuration stops at is an error).
@@ -48,24 +51,42 @@ pub fn reachable<M, const N: usize, const NI: usize, const NO: usize>(
 where
     M: Mechanism<N, NI, NO>,
 {
-    let mut ends = [(at, None), (at, None)];
+    reachable_of(&Compiled(m), at, delta, guess, samples)
+}
+
+/// [`reachable`] over any [`Kernel`] (a compiled mechanism's, or one whose sizes are known at
+/// run time: `kinloop_model::Model::reachable`), with the kernel's configuration
+/// ([`Kernel::solver_config`]); `at`, `delta` and `guess` of the kernel's sizes (a mismatch is
+/// an `Error::InvalidArgument`).
+pub fn reachable_of<K: Kernel>(
+    m: &K,
+    at: X<K>,
+    delta: X<K>,
+    guess: Q<K>,
+    samples: usize,
+) -> Result<Reach<X<K>>, Error> {
+    check_sizes(m, "reachable", &[&at, &delta], &[&guess])?;
+    let ni = m.dims().ni();
+    // The end of a stretch: `x` copied into an input of the kernel's size.
+    let input = |x: &[f64]| {
+        let mut v = at.clone();
+        v.as_mut().copy_from_slice(x);
+        v
+    };
+    let mut ends = [(at.clone(), None), (at.clone(), None)];
     for (side, sign) in [(0usize, -1.0), (1, 1.0)] {
-        let mut to = at;
-        for i in 0..NI {
+        let mut to = at.clone();
+        for i in 0..ni {
             to[i] += sign * delta[i];
         }
-        let run = Sweep::<M, Kin<N, NI, NO>, N, NI, NO>::new(m, at, to, samples.max(2), guess)?.run();
-        let last = run.states.last().map_or(at, |k| k.x);
+        let run = SweepOf::<&K, KinOf<K>>::over(m, at.clone(), to, samples.max(2), guess.clone())?.run();
+        let last = run.states.last().map_or_else(|| at.clone(), |k| input(k.x()));
         ends[side] = match run.stop {
             SweepStop::Completed => (last, None),
-            SweepStop::LimitPosition(ev) => {
-                let mut x = last;
-                x.copy_from_slice(&ev.x);
-                (x, Some(ev))
-            }
+            SweepStop::LimitPosition(ev) => (input(&ev.x), Some(ev)),
             _ => match run.into_result() {
                 Err(e) => return Err(e),
-                Ok(states) => (states.last().map_or(at, |k| k.x), None),
+                Ok(states) => (states.last().map_or_else(|| at.clone(), |k| input(k.x())), None),
             },
         };
     }

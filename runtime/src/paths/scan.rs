@@ -1,4 +1,5 @@
-//! Design-space scans: one [`Sweep`] per parameter set, each reduced to a value by a fold.
+//! Design-space scans: one [`Sweep`](crate::Sweep) per parameter set, each reduced to a value by
+//! a fold.
 //!
 //! A scan runs the same sweep (input range, samples, configuration) over every mechanism of a
 //! slice — the parameter sets of a design study — and folds each sweep's states into one value
@@ -13,12 +14,16 @@
 //! [`Error`] in its slot and the others go on. A set whose sweep fails at any sample yields that
 //! error, not the fold of the samples before it.
 //!
+//! One set's sweep and fold is written once, over any [`Kernel`] ([`fold_sweep_of`]): a run-time
+//! model's scan over parameter sets (`kinloop_model::Model::scan`) is the same.
+//!
 //! The `kinloop` facade crate has a runnable example (its documentation, "Design-space scans").
 
 use crate::error::Error;
 use crate::kin::Kin;
 use crate::mechanism::Mechanism;
-use crate::paths::sweep::{Sweep, SweepConfig};
+use crate::mechanism::kernel::{Compiled, Kernel, KinOf, Q, X};
+use crate::paths::sweep::{SweepConfig, SweepOf};
 use std::fmt;
 
 /// How each sweep of a scan starts: the initial guess at the start of the range, which picks
@@ -67,9 +72,9 @@ impl<M, const N: usize> ScanStart<M, N> {
 }
 
 /// What every sweep of a scan does: `samples` equally spaced inputs from `from` to `to` (both
-/// included, as in [`Sweep::new`]), starting as `start` says, with `config` (or each
-/// mechanism's own, [`Mechanism::solver_config`]). Built with
-/// [`ScanConfig::new`] and the builder methods.
+/// included, as in [`Sweep::new`](crate::Sweep::new)), starting as `start` says, with `config`
+/// (or each mechanism's own, [`Mechanism::solver_config`]). Built with [`ScanConfig::new`] and
+/// the builder methods.
 #[non_exhaustive]
 pub struct ScanConfig<M, const N: usize, const NI: usize> {
     /// Inputs at the first sample.
@@ -139,13 +144,43 @@ where
     F: Fn(A, &M, &Kin<N, NI, NO>) -> A,
 {
     let guess = spec.start.guess::<NI, NO>(m, &spec.from);
-    let mut sweep = Sweep::<M, Kin<N, NI, NO>, N, NI, NO>::new(m, spec.from, spec.to, spec.samples, guess)?;
-    if let Some(config) = spec.config {
+    fold_sweep_of(
+        Compiled(m),
+        spec.from,
+        spec.to,
+        spec.samples,
+        guess,
+        spec.config,
+        || init(m),
+        |acc, k| fold(acc, m, k),
+    )
+}
+
+/// One set of a scan over any [`Kernel`] (a compiled mechanism's, or a run-time model's with
+/// one parameter set: `kinloop_model::Model::scan`): the sweep of `samples` inputs from `from`
+/// to `to` from `guess` at `from`, with `config` (or the kernel's own,
+/// [`Kernel::solver_config`]), its states folded in order into the accumulator, which starts
+/// as `init()` once the sweep is made (`acc = fold(acc, &state)`, each state lent where the
+/// sweep keeps it). The sweep's error,
+/// where it fails at any sample, rather than the fold of the samples before it.
+#[allow(clippy::too_many_arguments)]
+pub fn fold_sweep_of<K: Kernel, A>(
+    m: K,
+    from: X<K>,
+    to: X<K>,
+    samples: usize,
+    guess: Q<K>,
+    config: Option<SweepConfig>,
+    init: impl FnOnce() -> A,
+    mut fold: impl FnMut(A, &KinOf<K>) -> A,
+) -> Result<A, Error> {
+    let mut sweep = SweepOf::<K, KinOf<K>>::over(m, from, to, samples, guess)?;
+    if let Some(config) = config {
         sweep = sweep.with_config(config);
     }
-    let mut acc = init(m);
-    while let Some(k) = sweep.next_kin() {
-        acc = fold(acc, m, &k?);
+    let mut acc = init();
+    while let Some(k) = sweep.next_ref() {
+        acc = fold(acc, k?);
     }
     Ok(acc)
 }

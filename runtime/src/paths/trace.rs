@@ -1,11 +1,12 @@
 //! Tracing a whole solution curve through its limit positions ([`trace_curve`], configured by
-//! [`TraceConfig`]).
+//! [`TraceConfig`]), over any [`Kernel`] ([`trace_curve_of`]).
 
 use super::curve::{CurvePoint, Metric, Path, arc_step, event_at, locate_fold, tangent_from_analogs};
+use crate::dims::KinState;
 use crate::error::Error;
 use crate::events::{Event, EventKind};
 use crate::mechanism::Mechanism;
-use crate::mechanism::kernel::{Compiled, Kernel};
+use crate::mechanism::kernel::{Compiled, Kernel, Q, X, check_sizes};
 use crate::solvers::newton::NewtonConfig;
 
 /// Options of [`trace_curve`], built from the default with the `with_*` methods.
@@ -79,29 +80,38 @@ impl TraceConfig {
     }
 }
 
-/// One point of a traced solution curve.
+/// One point of a traced solution curve, its inputs in `X` and positions in `Q`: arrays for a
+/// compiled mechanism ([`TracedPoint`]), boxed slices ([`Heap`](crate::dims::Heap)) for a
+/// mechanism whose sizes are known at run time.
 #[derive(Clone, Copy, Debug, PartialEq)]
-pub struct TracedPoint<const N: usize, const NI: usize> {
+pub struct TracedPointOf<Q, X> {
     /// Input values.
-    pub x: [f64; NI],
+    pub x: X,
     /// Positions of the unknowns.
-    pub q: [f64; N],
+    pub q: Q,
     /// The rate of the input along the curve (the path coordinate's share of the unit tangent,
     /// in scaled coordinates): positive while the input advances along the path, negative after
     /// a limit position reversed it, zero at one.
     pub input_rate: f64,
 }
 
-/// A solution curve traced by pseudo-arclength continuation.
+/// One point of a compiled mechanism's traced solution curve (`N` unknowns, `NI` inputs).
+pub type TracedPoint<const N: usize, const NI: usize> = TracedPointOf<[f64; N], [f64; NI]>;
+
+/// A solution curve traced by pseudo-arclength continuation ([`trace_curve_of`]), its points'
+/// positions in `Q` and inputs in `X` (see [`TracedPointOf`]).
 #[derive(Clone, Debug, PartialEq)]
-pub struct Traced<const N: usize, const NI: usize> {
+pub struct TracedOf<Q, X> {
     /// Points along the curve, about `ds` apart.
-    pub points: Vec<TracedPoint<N, NI>>,
+    pub points: Vec<TracedPointOf<Q, X>>,
     /// The limit positions passed (where the input reversed), located precisely.
     pub folds: Vec<Event>,
     /// The curve closed on itself (it came back to its first point).
     pub closed: bool,
 }
+
+/// A compiled mechanism's traced solution curve ([`trace_curve`]).
+pub type Traced<const N: usize, const NI: usize> = TracedOf<[f64; N], [f64; NI]>;
 
 /// Traces the whole solution curve through `guess` at input `from`, moving first towards `to`,
 /// by pseudo-arclength continuation in `(q, input)`: unlike a sweep it passes limit positions,
@@ -111,6 +121,8 @@ pub struct Traced<const N: usize, const NI: usize> {
 /// [`TraceConfig::max_points`]. Arclength is measured in scaled coordinates (see
 /// [`TraceConfig::ds`]): the same points in any unit of length.
 /// Allocates (it returns a `Vec`); use [`Sweep`](crate::Sweep) in hot loops.
+///
+/// A compiled mechanism's [`trace_curve_of`] (through [`Compiled`]).
 ///
 /// Errors: `InvalidArgument` for invalid options (naming the field) or `to == from`; the
 /// errors of the first solve at `from`; `Branch` where the continuation cannot proceed.
@@ -124,39 +136,54 @@ pub fn trace_curve<M, const N: usize, const NI: usize, const NO: usize>(
 where
     M: Mechanism<N, NI, NO>,
 {
+    trace_curve_of(&Compiled(m), from, to, guess, opts)
+}
+
+/// [`trace_curve`] over any [`Kernel`]: a compiled mechanism's ([`Compiled`]) or one whose sizes
+/// are known at run time (`kinloop_model::Model::trace_curve`). `from`, `to` and `guess` of the
+/// kernel's sizes (a mismatch is an `Error::InvalidArgument`); the corrector's configuration is
+/// [`TraceConfig::newton`], or the kernel's ([`Kernel::solver_config`]).
+pub fn trace_curve_of<K: Kernel>(
+    m: &K,
+    from: X<K>,
+    to: X<K>,
+    guess: Q<K>,
+    opts: &TraceConfig,
+) -> Result<TracedOf<Q<K>, X<K>>, Error> {
     opts.validate()?;
+    check_sizes(m, "trace_curve", &[&from, &to], &[&guess])?;
     let cfg = opts.newton.unwrap_or(m.solver_config().newton);
     cfg.validate()?;
-    let path = Path::new(from, to);
+    let path = Path::new(from.clone(), to);
     if !(path.len > 0.0 && path.len.is_finite()) {
         return Err(Error::InvalidArgument(
             "trace_curve needs finite `from` and `to` with `to` different from `from`".into(),
         ));
     }
-    let k0 = m.kinematics_flat(&from, &guess, &cfg)?;
-    // The continuation is written over any kernel (see `curve`); a compiled mechanism's is its
-    // arrays and kernels.
-    let m = Compiled(m);
-    let metric = Metric::at(&m, &path, &from, &k0.q);
-    let start = CurvePoint { q: k0.q, sigma: 0.0, tangent: tangent_from_analogs(&k0, &path, &metric) };
+    let k0 = m.kinematics(&from, &guess, &cfg)?;
+    let mut q0 = guess;
+    q0.as_mut().copy_from_slice(k0.q());
+    let metric = Metric::at(m, &path, &from, &q0);
+    let start = CurvePoint { tangent: tangent_from_analogs(&k0, &path, &metric), q: q0, sigma: 0.0 };
     let start_z = start.z(&metric);
-    let point = |p: &CurvePoint<[f64; N]>| TracedPoint { x: path.at_sigma(p.sigma), q: p.q, input_rate: p.dsigma() };
-    let mut out = Traced { points: vec![point(&start)], folds: Vec::new(), closed: false };
+    let point =
+        |p: &CurvePoint<Q<K>>| TracedPointOf { x: path.at_sigma(p.sigma), q: p.q.clone(), input_rate: p.dsigma() };
+    let mut out = TracedOf { points: vec![point(&start)], folds: Vec::new(), closed: false };
     let (ds, mut p, mut walked) = (opts.ds, start, 0.0);
     let mut step = ds;
     while out.points.len() < opts.max_points {
-        let Some(next) = arc_step(&m, &path, &metric, &p, step, &cfg) else {
+        let Some(next) = arc_step(m, &path, &metric, &p, step, &cfg) else {
             step *= 0.5;
             if step < ds * 1e-6 {
                 return Err(Error::Branch {
                     message: "pseudo-arclength continuation cannot proceed (the curve bifurcates or ends here)".into(),
-                    at: m.location(&path.at_sigma(p.sigma), None),
+                    at: m.location(path.at_sigma(p.sigma).as_ref(), None),
                 });
             }
             continue;
         };
         if (p.dsigma() > 0.0) != (next.dsigma() > 0.0)
-            && let Some(f) = locate_fold(&m, &path, &metric, &p, step, next.dsigma(), &cfg)
+            && let Some(f) = locate_fold(m, &path, &metric, &p, step, next.dsigma(), &cfg)
         {
             out.folds.push(event_at(EventKind::LimitPosition, &path, &f, None));
         }

@@ -1,0 +1,240 @@
+//! The runtime's path algorithms on a run-time model: each is the runtime's one implementation
+//! over its [`Kernel`](kinloop_runtime::Kernel) (here [`ModelKernel`](crate::ModelKernel), from
+//! [`Model::kernel`]), the compiled mechanisms' through `Compiled`: curve tracing
+//! (`trace_curve_of`), the reachable range (`reachable_of`), the states at given inputs
+//! (`sweep_at_of`), the assembly modes (`assembly_modes_of`) and scans over parameter sets
+//! (`fold_sweep_of`, one set's sweep).
+//!
+//! Each entry point lends the model with the default solver configuration; the generic
+//! functions take a kernel of any configuration (`m.kernel(config)`).
+
+use crate::model::Model;
+use kinloop_runtime::dims::{Heap, KinBuf};
+use kinloop_runtime::paths::modes::assembly_modes_of;
+use kinloop_runtime::paths::reach::reachable_of;
+use kinloop_runtime::paths::scan::fold_sweep_of;
+use kinloop_runtime::paths::sweep_at::sweep_at_of;
+use kinloop_runtime::paths::trace::{TracedOf, trace_curve_of};
+use kinloop_runtime::{Error, Kernel, Reach, SweepConfig, SweepResult, TraceConfig};
+
+/// A vector of the model's sizes from a slice (checked by the algorithm it is given to).
+fn heap(v: &[f64]) -> Heap {
+    Heap(v.into())
+}
+
+/// A run-time model's traced solution curve: positions and inputs in boxed slices.
+pub type ModelTraced = TracedOf<Heap, Heap>;
+
+impl Model {
+    /// The whole solution curve through `guess` at `from`, first towards `to`, through limit
+    /// positions: the runtime's `trace_curve` over this model (see
+    /// [`trace_curve_of`](kinloop_runtime::paths::trace::trace_curve_of)), with the default
+    /// solver configuration (or [`TraceConfig::newton`]).
+    ///
+    /// ```
+    /// use kinloop_model::Model;
+    /// use kinloop_runtime::TraceConfig;
+    /// // A triple rocker (no link turns fully): the input rocks between two limit positions.
+    /// let text = "pub struct FourBar {
+    ///     params a = 2, b = 3, c = 2.5, d = 4;
+    ///     input phi;
+    ///     unknowns psi = 0.6, theta = 1.9;
+    ///     loop abcd: a @ phi + b @ psi == (d, 0) + c @ theta;
+    /// }";
+    /// let mut m = Model::read("rocker.kl", text).unwrap();
+    /// let traced = m.trace_curve(&[0.0], &[3.0], &[0.6, 1.9], &TraceConfig::default()).unwrap();
+    /// assert!(traced.closed && traced.folds.len() == 2);
+    /// ```
+    pub fn trace_curve(
+        &mut self,
+        from: &[f64],
+        to: &[f64],
+        guess: &[f64],
+        opts: &TraceConfig,
+    ) -> Result<ModelTraced, Error> {
+        let k = self.kernel(SweepConfig::default())?;
+        trace_curve_of(&k, heap(from), heap(to), heap(guess), opts)
+    }
+
+    /// How far the input can move from `at` towards `at + delta` and `at - delta` on the
+    /// assembly mode of `guess` before a limit position, in input values, sweeping both ways
+    /// with `samples` samples each: the runtime's `reachable` over this model (see
+    /// [`reachable_of`](kinloop_runtime::paths::reach::reachable_of)), with the default solver
+    /// configuration.
+    pub fn reachable(
+        &mut self,
+        at: &[f64],
+        delta: &[f64],
+        guess: &[f64],
+        samples: usize,
+    ) -> Result<Reach<Heap>, Error> {
+        let k = self.kernel(SweepConfig::default())?;
+        reachable_of(&k, heap(at), heap(delta), heap(guess), samples)
+    }
+
+    /// The states at the given inputs, in their order, followed along the path through them
+    /// without jumping branches (each stretch between consecutive inputs a sweep of its own):
+    /// the runtime's `sweep_at` over this model (see
+    /// [`sweep_at_of`](kinloop_runtime::paths::sweep_at::sweep_at_of)), with the default solver
+    /// configuration. The result keeps the states before a stop, says why and where it stopped
+    /// and lists the events met; the error here is that of lending the model (a parameter
+    /// without a value).
+    pub fn sweep_at<I: AsRef<[f64]>>(
+        &mut self,
+        inputs: impl IntoIterator<Item = I>,
+        guess: &[f64],
+    ) -> Result<SweepResult<KinBuf>, Error> {
+        let k = self.kernel(SweepConfig::default())?;
+        Ok(sweep_at_of(&k, inputs.into_iter().map(|x| heap(x.as_ref())), heap(guess)))
+    }
+
+    /// The distinct assembly modes at input `x` (multi-start Newton from the declared guess and
+    /// 64 starts around it), sorted by their determinant signs: the runtime's `assembly_modes`
+    /// over this model (see
+    /// [`assembly_modes_of`](kinloop_runtime::paths::modes::assembly_modes_of)), with the
+    /// default solver configuration. `Error::InvalidArgument` for an `x` of another size than
+    /// the model's inputs.
+    pub fn assembly_modes(&mut self, x: &[f64]) -> Result<Vec<KinBuf>, Error> {
+        if x.len() != self.inputs().len() {
+            return Err(Error::InvalidArgument(format!(
+                "assembly_modes of `{}` needs {} inputs, not {}",
+                self.name(),
+                self.inputs().len(),
+                x.len()
+            )));
+        }
+        let k = self.kernel(SweepConfig::default())?;
+        let cfg = k.solver_config().newton;
+        Ok(assembly_modes_of(&k, &heap(x), 64, &cfg))
+    }
+
+    /// A design-space scan over parameter sets: for each set of `sets` (values of the
+    /// parameters named `params`, in that order; the others keep theirs), the model's sweep as
+    /// `spec` says, its states folded into one value: `acc = init(set)`, then
+    /// `acc = fold(acc, set, &state)` for every state in order. The runtime's scan over this
+    /// model, one set after the other (see
+    /// [`fold_sweep_of`](kinloop_runtime::paths::scan::fold_sweep_of)): the compiled
+    /// mechanisms' `scan` over the same parameter values gives the same results.
+    ///
+    /// One slot per set, in order: the final accumulator, or the error that ended that set's
+    /// sweep (it cannot be assembled at `from`, meets a limit position, a parameter is not
+    /// finite, the set has another number of values than `params`); a failing set never stops
+    /// the others. A name that is not a parameter gives every set the same error. The model
+    /// keeps the last set's values.
+    ///
+    /// ```
+    /// use kinloop_model::{Model, ParamScanConfig};
+    /// use kinloop_runtime::dims::KinBuf;
+    /// let text = "pub struct SliderCrank {
+    ///     params r = 1, l = 3;
+    ///     input phi;
+    ///     unknowns beta = 0, s = 4;
+    ///     loop rod: r @ phi + l @ beta == (s, 0);
+    /// }";
+    /// let mut m = Model::read("slider_crank.kl", text).unwrap();
+    /// let spec = ParamScanConfig::new(&[0.0], &[std::f64::consts::TAU], 73);
+    /// // The stroke of each crank radius: twice the radius.
+    /// let init = |_: &[f64]| (f64::MAX, f64::MIN);
+    /// let fold = |(lo, hi): (f64, f64), _: &[f64], k: &KinBuf| (lo.min(k.q[1]), hi.max(k.q[1]));
+    /// let strokes = m.scan(&["r"], &[[0.5], [1.0]], &spec, init, fold);
+    /// let (lo, hi) = strokes[1].clone().unwrap();
+    /// assert!((hi - lo - 2.0).abs() < 1e-9);
+    /// ```
+    pub fn scan<P: AsRef<[f64]>, A>(
+        &mut self,
+        params: &[&str],
+        sets: &[P],
+        spec: &ParamScanConfig,
+        init: impl Fn(&[f64]) -> A,
+        fold: impl Fn(A, &[f64], &KinBuf) -> A,
+    ) -> Vec<Result<A, Error>> {
+        if let Some(name) = params.iter().find(|&&p| !self.params().iter().any(|q| q == p)) {
+            let e = Error::InvalidArgument(format!("`{}` has no parameter `{name}` to scan", self.name()));
+            return sets.iter().map(|_| Err(e.clone())).collect();
+        }
+        sets.iter().map(|set| self.scan_one(params, set.as_ref(), spec, &init, &fold)).collect()
+    }
+
+    /// One set of [`Model::scan`].
+    fn scan_one<A>(
+        &mut self,
+        params: &[&str],
+        set: &[f64],
+        spec: &ParamScanConfig,
+        init: &impl Fn(&[f64]) -> A,
+        fold: &impl Fn(A, &[f64], &KinBuf) -> A,
+    ) -> Result<A, Error> {
+        if set.len() != params.len() {
+            return Err(Error::InvalidArgument(format!(
+                "a parameter set of {} values for the {} parameters scanned",
+                set.len(),
+                params.len()
+            )));
+        }
+        for (name, &value) in params.iter().zip(set) {
+            self.set_param(name, value);
+        }
+        let k = self.kernel(spec.config)?;
+        let from = heap(&spec.from);
+        let guess = match &spec.start {
+            ParamScanStart::Declared => k.guess(&from),
+            ParamScanStart::Guess(g) => heap(g),
+            ParamScanStart::With(f) => heap(&f(set)),
+        };
+        fold_sweep_of(k, from, heap(&spec.to), spec.samples, guess, None, || init(set), |acc, s| fold(acc, set, s))
+    }
+}
+
+/// How each sweep of a [`Model::scan`] starts: the initial guess at the start of the range,
+/// which picks the assembly mode (branch) the sweep then follows (the compiled scans'
+/// `ScanStart`, for parameter sets).
+#[derive(Clone, Debug)]
+pub enum ParamScanStart {
+    /// Each set's declared initial guess at the start of the range (the `unknowns q = guess`
+    /// of the declaration, with the set's parameter values).
+    Declared,
+    /// The same guess (unknowns in declaration order) for every set.
+    Guess(Vec<f64>),
+    /// A guess computed from each set's values (in the order of the parameters scanned); a
+    /// closure that captures nothing converts to this function pointer.
+    With(fn(&[f64]) -> Vec<f64>),
+}
+
+/// What every sweep of a [`Model::scan`] does: `samples` equally spaced inputs from `from` to
+/// `to` (both included, as in [`Model::sweep`]), starting as `start` says, with `config`.
+/// Built with [`ParamScanConfig::new`] and the builder methods.
+#[derive(Clone, Debug)]
+#[non_exhaustive]
+pub struct ParamScanConfig {
+    /// Inputs at the first sample.
+    pub from: Vec<f64>,
+    /// Inputs at the last sample.
+    pub to: Vec<f64>,
+    /// Number of samples (at least 1; at least 2 when `to` differs from `from`).
+    pub samples: usize,
+    /// The initial guess at `from` (default: each set's declared guess there).
+    pub start: ParamScanStart,
+    /// The sweeps' configuration (default: the defaults).
+    pub config: SweepConfig,
+}
+
+impl ParamScanConfig {
+    /// Sweeps of `samples` inputs from `from` to `to`, from each set's declared guess
+    /// ([`ParamScanStart::Declared`]), with the default configuration.
+    pub fn new(from: &[f64], to: &[f64], samples: usize) -> Self {
+        let (from, to) = (from.to_vec(), to.to_vec());
+        ParamScanConfig { from, to, samples, start: ParamScanStart::Declared, config: SweepConfig::default() }
+    }
+
+    /// Replaces the starting guess policy.
+    pub fn start(mut self, start: ParamScanStart) -> Self {
+        self.start = start;
+        self
+    }
+
+    /// Gives every sweep this configuration.
+    pub fn with_config(mut self, config: SweepConfig) -> Self {
+        self.config = config;
+        self
+    }
+}
