@@ -223,6 +223,21 @@ impl Fac {
         }
     }
 
+    /// Solves the 2x2 `J z = rhs` (a block of two unknowns: `Inverse2`, `Lu<2>`), with no copy
+    /// through a slice.
+    #[inline]
+    pub(crate) fn solve2(&self, rhs: [f64; 2]) -> [f64; 2] {
+        match self {
+            Fac::Inverse2(f) => f.solve(rhs),
+            Fac::L2(lu) => lu.solve(rhs),
+            other => {
+                let mut z = rhs;
+                other.solve(&mut z);
+                z
+            }
+        }
+    }
+
     /// Solves `J z = rhs` in place (`rhs.len()` is the block's size).
     pub(crate) fn solve(&self, rhs: &mut [f64]) {
         macro_rules! s {
