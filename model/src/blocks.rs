@@ -117,12 +117,25 @@ impl Columns {
     }
 
     /// [`Columns::solve`] for one unknown: the runtime's 1x1 solve on each value, no gathering.
+    /// The factorisation's kind is matched once, not per value.
     #[inline]
     fn solve1(&self, r: &mut [f64], fac: &Fac, out: &mut [f64]) {
-        for ((&s, &d), &g) in self.src.iter().zip(&self.dst).zip(&self.reg) {
-            let z = fac.solve1(r[s as usize]);
-            out[d as usize] = z;
-            r[g as usize] = z;
+        match fac {
+            Fac::Fixed(f) => self.each1(r, out, |b| f.solve([b])[0]),
+            Fac::L1(lu) => self.each1(r, out, |b| lu.solve([b])[0]),
+            other => self.each1(r, out, |b| other.solve1(b)),
+        }
+    }
+
+    /// `z = solve(rhs)` for each value of a block of one unknown.
+    #[inline(always)]
+    fn each1(&self, r: &mut [f64], out: &mut [f64], solve: impl Fn(f64) -> f64) {
+        let n = self.src.len();
+        let (dst, reg) = (&self.dst[..n], &self.reg[..n]);
+        for k in 0..n {
+            let z = solve(r[self.src[k] as usize]);
+            out[dst[k] as usize] = z;
+            r[reg[k] as usize] = z;
         }
     }
 
@@ -196,7 +209,7 @@ impl BlockProg {
         let n = self.unknowns.len();
         let v = |regs: &[u32]| max_abs(regs.iter().map(|&k| r[k as usize]));
         match (n, self.in_col) {
-            (1, Some(_)) => *fac = Fac::in_col(r[self.jac[0] as usize], v(&self.col[0])),
+            (1, Some(_)) => fac.set_in_col(r[self.jac[0] as usize], v(&self.col[0])),
             (2, _) => {
                 let j = [
                     [r[self.jac[0] as usize], r[self.jac[1] as usize]],
@@ -208,7 +221,7 @@ impl BlockProg {
                     [one] => Some(r[*one as usize]),
                     many => Some(v(many)),
                 };
-                *fac = Fac::inverse2(&j, beyond, [floor(0), floor(1)]);
+                fac.set_inverse2(&j, beyond, [floor(0), floor(1)]);
             }
             _ => self.factor_cols(r, fac),
         }
@@ -255,7 +268,7 @@ impl BlockProg {
         match &self.how {
             How::Fixed { coefficient, rhs } => {
                 let f = kinloop_runtime::generated::Fixed(*coefficient);
-                *fac = Fac::Fixed(f);
+                fac.set_fixed(*coefficient);
                 self.set_unknowns(r, q, &f.solve([r[*rhs as usize]]));
             }
             How::Linear { rhs } => {
@@ -340,10 +353,20 @@ impl BlockProg {
                 true
             }
         };
-        if tested && singular(fac.pivot_ratio(), cfg) {
-            return Err(StepFailure::Singular { pivot_ratio: fac.pivot_ratio() });
+        match fac.conditioning() {
+            Some(c) => {
+                if tested && singular(c.pivot_ratio, cfg) {
+                    return Err(StepFailure::Singular { pivot_ratio: c.pivot_ratio });
+                }
+                health.note(b, &c);
+            }
+            None => {
+                if tested && singular(fac.pivot_ratio(), cfg) {
+                    return Err(StepFailure::Singular { pivot_ratio: fac.pivot_ratio() });
+                }
+                fac.note(health, b);
+            }
         }
-        fac.note(health, b);
         self.vel_cols.solve(self.unknowns.len(), r, fac, dq);
         let _ = ni;
         Ok(())
