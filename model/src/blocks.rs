@@ -145,7 +145,9 @@ impl Columns {
     #[inline(never)]
     fn solve_n(&self, n: usize, r: &mut [f64], fac: &Fac, out: &mut [f64]) {
         if n == 2 {
-            for ((src, dst), reg) in self.src.chunks_exact(2).zip(self.dst.chunks_exact(2)).zip(self.reg.chunks_exact(2)) {
+            for ((src, dst), reg) in
+                self.src.chunks_exact(2).zip(self.dst.chunks_exact(2)).zip(self.reg.chunks_exact(2))
+            {
                 let z = fac.solve2([r[src[0] as usize], r[src[1] as usize]]);
                 out[dst[0] as usize] = z[0];
                 out[dst[1] as usize] = z[1];

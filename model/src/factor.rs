@@ -155,10 +155,10 @@ impl Fac {
         }
     }
 
-    /// `Lu::<1>::factor_in_col` into this slot: the scalar `entry`, its column's largest magnitude `col_max`
-    /// (the emitted code passes the whole column, whose `max_abs` it is).
-    /// Written in place: the slot keeps its kind from step to step, so no drop of the old value
-    /// and no move of the whole enum.
+    /// `Lu::<1>::factor_in_col` of the scalar `entry`, its column's largest magnitude `col_max`
+    /// (the emitted code passes the whole column, whose `max_abs` it is), written into this
+    /// slot in place: the slot keeps its kind from step to step, so the old value is neither
+    /// dropped nor the whole enum moved.
     #[inline]
     pub(crate) fn set_in_col(&mut self, entry: f64, col_max: f64) {
         let lu = Lu::<1>::factor_in_col([entry, col_max], 0);
@@ -168,12 +168,12 @@ impl Fac {
         }
     }
 
-    /// `Inverse2::in_cols_floored` of `j` into this slot, with each column's largest magnitude beyond the block
-    /// (`None`: the columns have no entries beyond it) and its floor. The emitted code passes
+    /// `Inverse2::in_cols_floored` of `j` with each column's largest magnitude beyond the block
+    /// (`None`: the columns have no entries beyond it) and its floor, into this slot. The emitted code passes
     /// the entries themselves; their largest magnitude gives the same maximum, and the same
     /// verdict on a non-finite entry, except where finite entries beyond the block sum to an
     /// infinity (magnitudes near `f64::MAX`), which the compiled test would call singular.
-    /// Written in place, as [`Fac::set_in_col`].
+    /// Written in place, as by [`Fac::set_in_col`].
     #[inline]
     pub(crate) fn set_inverse2(&mut self, j: &[[f64; 2]; 2], beyond: Option<[f64; 2]>, floor: [Option<f64>; 2]) {
         let inv = match beyond {
