@@ -3,7 +3,7 @@
 //! and with the factorisations the emitted fused kernel uses.
 
 use crate::closed;
-use crate::factor::{Fac, max_abs};
+use crate::factor::{Fac, MAX_DENSE, max_abs};
 use crate::newton::{self, NewtonProg};
 use crate::tape::Segment;
 use kinloop_codegen::graph::dag::Graph;
@@ -117,23 +117,57 @@ impl Columns {
     }
 
     /// [`Columns::solve`] for one unknown: the runtime's 1x1 solve on each value, no gathering.
+    /// The factorisation's kind is matched once, not per value.
     #[inline]
     fn solve1(&self, r: &mut [f64], fac: &Fac, out: &mut [f64]) {
-        for ((&s, &d), &g) in self.src.iter().zip(&self.dst).zip(&self.reg) {
-            let z = fac.solve1(r[s as usize]);
-            out[d as usize] = z;
-            r[g as usize] = z;
+        match fac {
+            Fac::Fixed(f) => self.each1(r, out, |b| f.solve([b])[0]),
+            Fac::L1(lu) => self.each1(r, out, |b| lu.solve([b])[0]),
+            other => self.each1(r, out, |b| other.solve1(b)),
         }
     }
 
-    /// [`Columns::solve`] for `n` unknowns.
+    /// `z = solve(rhs)` for each value of a block of one unknown.
+    #[inline(always)]
+    fn each1(&self, r: &mut [f64], out: &mut [f64], solve: impl Fn(f64) -> f64) {
+        let n = self.src.len();
+        let (dst, reg) = (&self.dst[..n], &self.reg[..n]);
+        for k in 0..n {
+            let z = solve(r[self.src[k] as usize]);
+            out[dst[k] as usize] = z;
+            r[reg[k] as usize] = z;
+        }
+    }
+
+    /// [`Columns::solve`] for `n` unknowns: two straight (the dyads' blocks), up to
+    /// [`MAX_DENSE`] through an array of that size, larger (sparse) blocks through one of
+    /// theirs. No array of the largest size is zeroed for a small block.
     #[inline(never)]
     fn solve_n(&self, n: usize, r: &mut [f64], fac: &Fac, out: &mut [f64]) {
+        if n == 2 {
+            for ((src, dst), reg) in
+                self.src.chunks_exact(2).zip(self.dst.chunks_exact(2)).zip(self.reg.chunks_exact(2))
+            {
+                let z = fac.solve2([r[src[0] as usize], r[src[1] as usize]]);
+                out[dst[0] as usize] = z[0];
+                out[dst[1] as usize] = z[1];
+                r[reg[0] as usize] = z[0];
+                r[reg[1] as usize] = z[1];
+            }
+        } else if n <= MAX_DENSE {
+            self.solve_in(&mut [0.0; MAX_DENSE][..n], r, fac, out);
+        } else {
+            self.solve_in(&mut [0.0; crate::sparse::MAX_BLOCK][..n], r, fac, out);
+        }
+    }
+
+    /// [`Columns::solve`] through the array `z` of the block's size.
+    #[inline(always)]
+    fn solve_in(&self, z: &mut [f64], r: &mut [f64], fac: &Fac, out: &mut [f64]) {
+        let n = z.len();
         if n == 0 {
             return;
         }
-        let mut z = [0.0; crate::sparse::MAX_BLOCK];
-        let z = &mut z[..n];
         for c in 0..self.src.len() / n {
             let at = c * n;
             for (k, zk) in z.iter_mut().enumerate() {
@@ -177,7 +211,7 @@ impl BlockProg {
         let n = self.unknowns.len();
         let v = |regs: &[u32]| max_abs(regs.iter().map(|&k| r[k as usize]));
         match (n, self.in_col) {
-            (1, Some(_)) => *fac = Fac::in_col(r[self.jac[0] as usize], v(&self.col[0])),
+            (1, Some(_)) => fac.set_in_col(r[self.jac[0] as usize], v(&self.col[0])),
             (2, _) => {
                 let j = [
                     [r[self.jac[0] as usize], r[self.jac[1] as usize]],
@@ -189,7 +223,7 @@ impl BlockProg {
                     [one] => Some(r[*one as usize]),
                     many => Some(v(many)),
                 };
-                *fac = Fac::inverse2(&j, beyond, [floor(0), floor(1)]);
+                fac.set_inverse2(&j, beyond, [floor(0), floor(1)]);
             }
             _ => self.factor_cols(r, fac),
         }
@@ -198,17 +232,28 @@ impl BlockProg {
     /// `Lu::factor_cols` of the Jacobian in the registers.
     fn factor_cols(&self, r: &[f64], fac: &mut Fac) {
         let n = self.unknowns.len();
-        let mut scale = [0.0; crate::sparse::MAX_BLOCK];
-        for (c, s) in scale.iter_mut().enumerate().take(n) {
+        // No array of the sparse capacity zeroed for a dense block.
+        if n <= MAX_DENSE {
+            self.factor_cols_in(r, fac, &mut [0.0; MAX_DENSE][..n]);
+        } else {
+            self.factor_cols_in(r, fac, &mut [0.0; crate::sparse::MAX_BLOCK][..n]);
+        }
+    }
+
+    /// [`BlockProg::factor_cols`] with the column scales computed into `scale`.
+    #[inline(always)]
+    fn factor_cols_in(&self, r: &[f64], fac: &mut Fac, scale: &mut [f64]) {
+        let n = scale.len();
+        for (c, s) in scale.iter_mut().enumerate() {
             *s = max_abs(self.col[c].iter().map(|&k| r[k as usize]));
         }
         if let Fac::Sparse(s) = fac {
             // The non-zeros, read from the registers by the block's own tables.
-            s.factor_cols(r, &scale[..n]);
+            s.factor_cols(r, scale);
             return;
         }
         // The matrix is read from the registers straight into the size's array.
-        fac.factor_cols(n, |k| r[self.jac[k] as usize], &scale[..n]);
+        fac.factor_cols(n, |k| r[self.jac[k] as usize], scale);
     }
 
     /// Solves the block's positions; writes them into `q` and the registers.
@@ -225,7 +270,7 @@ impl BlockProg {
         match &self.how {
             How::Fixed { coefficient, rhs } => {
                 let f = kinloop_runtime::generated::Fixed(*coefficient);
-                *fac = Fac::Fixed(f);
+                fac.set_fixed(*coefficient);
                 self.set_unknowns(r, q, &f.solve([r[*rhs as usize]]));
             }
             How::Linear { rhs } => {
@@ -310,10 +355,20 @@ impl BlockProg {
                 true
             }
         };
-        if tested && singular(fac.pivot_ratio(), cfg) {
-            return Err(StepFailure::Singular { pivot_ratio: fac.pivot_ratio() });
+        match fac.conditioning() {
+            Some(c) => {
+                if tested && singular(c.pivot_ratio, cfg) {
+                    return Err(StepFailure::Singular { pivot_ratio: c.pivot_ratio });
+                }
+                health.note(b, &c);
+            }
+            None => {
+                if tested && singular(fac.pivot_ratio(), cfg) {
+                    return Err(StepFailure::Singular { pivot_ratio: fac.pivot_ratio() });
+                }
+                fac.note(health, b);
+            }
         }
-        fac.note(health, b);
         self.vel_cols.solve(self.unknowns.len(), r, fac, dq);
         let _ = ni;
         Ok(())

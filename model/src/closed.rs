@@ -91,6 +91,7 @@ struct Read<'a> {
 }
 
 impl Read<'_> {
+    #[inline(always)]
     fn v(&self, n: NodeId) -> V {
         match self.g.as_const(n) {
             Some(c) => V::C(c),
@@ -98,8 +99,10 @@ impl Read<'_> {
         }
     }
 
+    /// Written out: `array::map` is not always inlined, and this runs on every step.
+    #[inline(always)]
     fn m(&self, m: &[[NodeId; 2]; 2]) -> [[V; 2]; 2] {
-        m.map(|row| row.map(|n| self.v(n)))
+        [[self.v(m[0][0]), self.v(m[0][1])], [self.v(m[1][0]), self.v(m[1][1])]]
     }
 }
 

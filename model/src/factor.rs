@@ -7,7 +7,7 @@
 //! Newton holds its own solver and factorisation (`sparse`), of any size up to `MAX_SPARSE`.
 
 use crate::sparse::SparseBlock;
-use kinloop_runtime::generated::{Factor as _, Fixed, Health, Inverse2, Lu};
+use kinloop_runtime::generated::{Factor, Fixed, Health, Inverse2, Lu};
 
 /// The largest dense block evaluated at run time (the runtime's types are instantiated for
 /// every size up to it).
@@ -155,22 +155,35 @@ impl Fac {
         }
     }
 
-    /// `Lu::<1>::factor_in_col`: the scalar `entry`, its column's largest magnitude `col_max`
-    /// (the emitted code passes the whole column, whose `max_abs` it is).
-    pub(crate) fn in_col(entry: f64, col_max: f64) -> Fac {
-        Fac::L1(Lu::<1>::factor_in_col([entry, col_max], 0))
+    /// `Lu::<1>::factor_in_col` of the scalar `entry`, its column's largest magnitude `col_max`
+    /// (the emitted code passes the whole column, whose `max_abs` it is), written into this
+    /// slot in place: the slot keeps its kind from step to step, so the old value is neither
+    /// dropped nor the whole enum moved.
+    #[inline]
+    pub(crate) fn set_in_col(&mut self, entry: f64, col_max: f64) {
+        let lu = Lu::<1>::factor_in_col([entry, col_max], 0);
+        match self {
+            Fac::L1(slot) => *slot = lu,
+            other => *other = Fac::L1(lu),
+        }
     }
 
     /// `Inverse2::in_cols_floored` of `j` with each column's largest magnitude beyond the block
-    /// (`None`: the columns have no entries beyond it) and its floor. The emitted code passes
+    /// (`None`: the columns have no entries beyond it) and its floor, into this slot. The emitted code passes
     /// the entries themselves; their largest magnitude gives the same maximum, and the same
     /// verdict on a non-finite entry, except where finite entries beyond the block sum to an
     /// infinity (magnitudes near `f64::MAX`), which the compiled test would call singular.
-    pub(crate) fn inverse2(j: &[[f64; 2]; 2], beyond: Option<[f64; 2]>, floor: [Option<f64>; 2]) -> Fac {
-        Fac::Inverse2(match beyond {
+    /// Written in place, as by [`Fac::set_in_col`].
+    #[inline]
+    pub(crate) fn set_inverse2(&mut self, j: &[[f64; 2]; 2], beyond: Option<[f64; 2]>, floor: [Option<f64>; 2]) {
+        let inv = match beyond {
             None => Inverse2::in_cols_floored::<0>(j, [[]; 2], floor),
             Some([b0, b1]) => Inverse2::in_cols_floored::<1>(j, [[b0], [b1]], floor),
-        })
+        };
+        match self {
+            Fac::Inverse2(slot) => *slot = inv,
+            other => *other = Fac::Inverse2(inv),
+        }
     }
 
     /// The smallest pivot of the equilibrated matrix (0 when singular or not factorised).
@@ -181,6 +194,27 @@ impl Fac {
             Fac::Sparse(s) => s.pivot_ratio(),
             _ => 0.0,
         })
+    }
+
+    /// The pivot ratio and determinant sign, read with one match on the kind (`None` for a
+    /// sparse block, which notes its own, and for no factorisation).
+    #[inline]
+    pub(crate) fn conditioning(&self) -> Option<Conditioning> {
+        let c = |pivot_ratio: f64, negative_det: bool| Some(Conditioning { pivot_ratio, negative_det });
+        each_lu!(self, lu => c(lu.pivot_ratio(), lu.negative_det()), other => match other {
+            Fac::Fixed(f) => c(f.pivot_ratio(), f.negative_det()),
+            Fac::Inverse2(f) => c(Factor::pivot_ratio(f), f.negative_det()),
+            _ => None,
+        })
+    }
+
+    /// `Fixed(coefficient)` written into this slot (in place when it holds one already).
+    #[inline]
+    pub(crate) fn set_fixed(&mut self, coefficient: f64) {
+        match self {
+            Fac::Fixed(f) => f.0 = coefficient,
+            other => *other = Fac::Fixed(Fixed(coefficient)),
+        }
     }
 
     /// Records the factorisation's conditioning for block `b`.
@@ -223,6 +257,21 @@ impl Fac {
         }
     }
 
+    /// Solves the 2x2 `J z = rhs` (a block of two unknowns: `Inverse2`, `Lu<2>`), with no copy
+    /// through a slice.
+    #[inline]
+    pub(crate) fn solve2(&self, rhs: [f64; 2]) -> [f64; 2] {
+        match self {
+            Fac::Inverse2(f) => f.solve(rhs),
+            Fac::L2(lu) => lu.solve(rhs),
+            other => {
+                let mut z = rhs;
+                other.solve(&mut z);
+                z
+            }
+        }
+    }
+
     /// Solves `J z = rhs` in place (`rhs.len()` is the block's size).
     pub(crate) fn solve(&self, rhs: &mut [f64]) {
         macro_rules! s {
@@ -253,6 +302,25 @@ impl Fac {
             Fac::Sparse(s) => s.solve(rhs),
             Fac::None => rhs.fill(f64::NAN),
         }
+    }
+}
+
+/// What `Health::note` reads of a factorisation, read once ([`Fac::conditioning`]): the same
+/// values its own `Factor` methods give.
+#[derive(Clone, Copy, Debug)]
+pub(crate) struct Conditioning {
+    pub(crate) pivot_ratio: f64,
+    negative_det: bool,
+}
+
+impl Factor for Conditioning {
+    #[inline]
+    fn pivot_ratio(&self) -> f64 {
+        self.pivot_ratio
+    }
+    #[inline]
+    fn negative_det(&self) -> bool {
+        self.negative_det
     }
 }
 

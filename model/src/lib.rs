@@ -59,11 +59,14 @@
 //!
 //! A step is an interpreted tape (nodes of the parameters alone computed when they are set, a
 //! sine and cosine of one argument as one instruction, consecutive arithmetic operations
-//! sharing a dispatch): on the gallery's rhombic drive it executes about 5.4 times the compiled
-//! step's instructions (about 2.5 times its time), on the four-bar 4.6 times, on a
-//! Newton-dominated class IV block 2 times, on the ring of 64 four-bar loops (one sparse block
-//! of 128 unknowns) 2.4 times; reading and planning a declaration takes one to
-//! three milliseconds (`BENCHMARKS.md`, "Mechanisms read at run time").
+//! sharing a dispatch), the blocks' factorisations written in place: on the gallery's rhombic
+//! drive it executes about 5.1 times the compiled step's instructions (about 3 times its time),
+//! on the four-bar 4.0 times (2.9 times its time), on a Newton-dominated class IV block 2 times
+//! (1.7 times), on the ring of 64 four-bar loops (one sparse block of 128 unknowns) 2.4 times.
+//! The closed forms' fold of the emitter's constants, decided again on every step, and the
+//! per-block bookkeeping of small blocks are what keeps the first two above 3 times. Reading
+//! and planning a declaration takes one to three milliseconds (`BENCHMARKS.md`, "Mechanisms
+//! read at run time").
 //!
 //! # Sweeps and the runtime's algorithms
 //!

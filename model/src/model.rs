@@ -113,6 +113,8 @@ pub struct Model {
     graph: Graph,
     params: Vec<String>,
     param_values: Vec<Option<f64>>,
+    /// The first parameter without a value (kept by `load_params`).
+    first_unset: Option<usize>,
     param_regs: Vec<Option<u32>>,
     inputs: Vec<String>,
     input_regs: Vec<Option<u32>>,
@@ -322,6 +324,7 @@ impl Model {
             warnings: None,
             params: model.params.iter().map(|p| name_of(&p.name)).collect(),
             param_values,
+            first_unset: None,
             param_regs: (0..np).map(|k| find(Leaf::Param(k as u16))).collect(),
             inputs: model.inputs.iter().map(|p| name_of(&p.name)).collect(),
             input_regs: (0..ni).map(|k| find(Leaf::Input(k as u16))).collect(),
@@ -364,7 +367,11 @@ impl Model {
         (&mut self.regs, self.dynamics.as_mut())
     }
 
+    /// Writes the parameters' registers and computes what depends on them alone. Every change
+    /// of a parameter goes through here (the registers must follow it), so the first unset
+    /// parameter is found here too, not on every step.
     fn load_params(&mut self) {
+        self.first_unset = self.param_values.iter().position(Option::is_none);
         for (k, reg) in self.param_regs.iter().enumerate() {
             if let Some(reg) = reg {
                 self.regs[*reg as usize] = self.param_values[k].unwrap_or(f64::NAN);
@@ -464,7 +471,7 @@ impl Model {
     }
 
     fn check_ready(&self, x: &[f64]) -> Result<(), StepError> {
-        if let Some(k) = self.param_values.iter().position(Option::is_none) {
+        if let Some(k) = self.first_unset {
             return Err(StepError::UnsetParam(self.params[k].clone()));
         }
         if x.len() != self.inputs.len() {
@@ -562,24 +569,23 @@ impl Model {
                 .map_err(|failure| StepError::Block { block: b, failure })?;
         }
         let np = ni * (ni + 1) / 2;
+        // One input: one pair, the pairs' array is the full one; the analogs go straight there.
+        let acc_out = if ni == 1 { &mut st.d2q } else { &mut self.pair_d2 };
         for (b, prog) in self.blocks.iter().enumerate() {
-            prog.acceleration(&mut self.regs, &mut self.pair_d2, np, &self.facs[b], at.then(|| &self.at_kin.acc[b]));
+            prog.acceleration(&mut self.regs, acc_out, np, &self.facs[b], at.then(|| &self.at_kin.acc[b]));
         }
         // Pairs (i <= j) to the full symmetric second analogs.
         let pair_of = &self.pair_of;
         let full = |pair_vals: &[f64], rows: usize, out: &mut [f64]| {
-            if ni == 1 {
-                // One input: one pair, the arrays are the same.
-                out[..rows].copy_from_slice(&pair_vals[..rows]);
-                return;
-            }
             for (row, pairs) in out.chunks_exact_mut(ni * ni).zip(pair_vals.chunks_exact(np)).take(rows) {
                 for (o, &p) in row.iter_mut().zip(pair_of) {
                     *o = pairs[p];
                 }
             }
         };
-        full(&self.pair_d2, self.unknowns.len(), &mut st.d2q);
+        if ni != 1 {
+            full(&self.pair_d2, self.unknowns.len(), &mut st.d2q);
+        }
         if at { &self.at_kin.out } else { &self.outputs_seg }.run(&mut self.regs);
         let r = &self.regs;
         for (o, &reg) in st.out.iter_mut().zip(&self.out_regs) {
@@ -588,10 +594,16 @@ impl Model {
         for (o, &reg) in st.dout.iter_mut().zip(&self.out_d1_regs) {
             *o = r[reg as usize];
         }
-        for (o, &reg) in self.pair_d2.iter_mut().zip(&self.out_d2_regs) {
-            *o = r[reg as usize];
+        if ni == 1 {
+            for (o, &reg) in st.d2out.iter_mut().zip(&self.out_d2_regs) {
+                *o = r[reg as usize];
+            }
+        } else {
+            for (o, &reg) in self.pair_d2.iter_mut().zip(&self.out_d2_regs) {
+                *o = r[reg as usize];
+            }
+            full(&self.pair_d2, self.outputs.len(), &mut st.d2out);
         }
-        full(&self.pair_d2, self.outputs.len(), &mut st.d2out);
         let finite = [&st.q, &st.dq, &st.d2q, &st.out, &st.dout, &st.d2out].iter().all(|v| all_finite(v));
         if !finite {
             return Err(StepError::NonFinite);
