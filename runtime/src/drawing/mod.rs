@@ -43,12 +43,14 @@
 //! ```
 
 mod parse;
+mod source;
 mod tape;
 
 use crate::error::Error;
 use crate::mechanism::Mechanism;
 use std::fmt;
 use tape::TapeOp;
+pub use source::{Columns, Drawable};
 pub use tape::Values;
 
 /// The version line the macro writes first: a description in another format is refused.
@@ -133,16 +135,26 @@ impl Description {
     /// one `mechanism!` emitted with this version of kinloop).
     pub fn of<M: Mechanism<N, NI, NO>, const N: usize, const NI: usize, const NO: usize>() -> Result<Description, Error>
     {
-        if M::DRAWING.is_empty() {
+        Description::from_text(M::NAME, M::DRAWING)
+    }
+
+    /// The description `text` of mechanism `name` ([`Drawable::description_text`]), as
+    /// [`Description::of`] reads a compiled mechanism's: an empty text is an empty description
+    /// with a note saying so.
+    ///
+    /// # Errors
+    /// [`Error::InvalidArgument`] when the text is not a description of this format.
+    pub fn from_text(name: &str, text: &str) -> Result<Description, Error> {
+        if text.is_empty() {
             return Ok(Description {
                 joints: Vec::new(),
                 segments: Vec::new(),
                 plates: Vec::new(),
-                notes: vec![format!("`{}` was not declared with `mechanism!`: it describes no drawing", M::NAME)],
+                notes: vec![format!("`{name}` was not declared with `mechanism!`: it describes no drawing")],
                 tape: Vec::new(),
             });
         }
-        Description::parse(M::DRAWING)
+        Description::parse(text)
     }
 
     /// Reads a description in the macro's text format.
