@@ -88,6 +88,7 @@
 mod at;
 mod blocks;
 mod closed;
+mod drawing;
 mod factor;
 mod mechanism;
 mod model;
