@@ -59,10 +59,12 @@ fn point_animations(svg: &str) -> Vec<Vec<Vec<[f64; 2]>>> {
 fn an_svg_animation_of_a_turn() {
     let path = out("four_bar.svg");
     let p = path.display().to_string();
-    let o = kinloop(&["animate", &shipped("four_bar.kl"), "--from", "0", "--to", "360", "--deg", "--samples", "37"]
-        .into_iter()
-        .chain(["--params", FOUR_BAR, "--out", &p])
-        .collect::<Vec<_>>());
+    let o = kinloop(
+        &["animate", &shipped("four_bar.kl"), "--from", "0", "--to", "360", "--deg", "--samples", "37"]
+            .into_iter()
+            .chain(["--params", FOUR_BAR, "--out", &p])
+            .collect::<Vec<_>>(),
+    );
     ok(&o);
     let svg = std::fs::read_to_string(&path).expect("the SVG is written");
     assert!(!svg.contains("NaN"));

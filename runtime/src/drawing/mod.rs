@@ -21,6 +21,11 @@
 //!   [`Plate`]; a named point reached from a plate's joint by vectors turning with the plate
 //!   belongs to it; a plate whose angle a declared `body` turns with takes the body's name.
 //!
+//! A mechanism read at run time (`kinloop_model::Model`) carries the same text, written by the
+//! same function of the macro's pipeline; [`Drawable`] is what a drawing reads from either kind
+//! of mechanism (implemented by [`Compiled`](crate::Compiled) and by the model), so that
+//! `kinloop_viz` draws both with one code.
+//!
 //! With `mechanism!`, `Description::of::<Name, N, NI, NO>()` reads a mechanism's; here one
 //! written out, of a crank `r @ phi` from the origin (the tape evaluates the parameter `r`,
 //! the input `phi` and `r cos phi`, `r sin phi`):
@@ -48,9 +53,9 @@ mod tape;
 
 use crate::error::Error;
 use crate::mechanism::Mechanism;
+pub use source::{Columns, Drawable};
 use std::fmt;
 use tape::TapeOp;
-pub use source::{Columns, Drawable};
 pub use tape::Values;
 
 /// The version line the macro writes first: a description in another format is refused.
