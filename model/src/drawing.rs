@@ -6,7 +6,7 @@
 use crate::model::Model;
 use kinloop_runtime::drawing::{Columns, Drawable};
 use kinloop_runtime::{NewtonConfig, SweepConfig};
-use kinloop_viz::draw::{DefaultDrawing, DrawError, Motion};
+use kinloop_viz::draw::{DefaultDrawing, DrawError, GridMotion, Motion, Pose};
 
 impl Model {
     /// The default drawing's description in the runtime's text format
@@ -65,6 +65,20 @@ impl Model {
         let events = motion.follow(self.sweep_with(from, to, samples, guess, config).map_err(DrawError::Sweep)?)?;
         motion.mark(self, &events);
         Ok(motion)
+    }
+
+    /// The model over a grid of its inputs, `counts[k]` values evenly spaced from `from[k]` to
+    /// `to[k]` on each axis, from `guess` at `from`, for an interactive page with one slider per
+    /// input (`kinloop_viz::html::html_grid_of`): `GridMotion::record` of a compiled mechanism,
+    /// the assembly mode carried from cell to cell by this model's sweeps.
+    ///
+    /// # Errors
+    /// As `GridMotion::record`.
+    pub fn grid(&mut self, from: &[f64], to: &[f64], counts: &[usize], guess: &[f64]) -> Result<GridMotion, DrawError> {
+        let motion = Motion::of(self);
+        GridMotion::record_by(motion, from, to, counts, guess, |from, to, samples, guess| {
+            Ok(self.sweep(from, to, samples, guess)?.last().map(|k| k.map(|k| Pose::from(&k))))
+        })
     }
 }
 

@@ -86,8 +86,8 @@
 //! pipeline) and is the runtime's `drawing::Drawable`: [`Model::drawing`] and
 //! [`Model::motion`] give `kinloop_viz`'s `DefaultDrawing` and `Motion`, whose SVG animations,
 //! exposures and interactive pages (`kinloop_viz::html::html_of`) are the compiled mechanism's
-//! code; over the same states they are the same bytes (`tests/drawings.rs`). Grids of several
-//! inputs (`GridMotion::record`) are recorded for compiled mechanisms only.
+//! code; over the same states they are the same bytes (`tests/drawings.rs`), grids of several
+//! inputs ([`Model::grid`], for `html_grid_of`) too.
 //!
 //! Besides sweeps a run-time model offers single-point solves with their analogs and
 //! sensitivities ([`Model::kinematics`], [`Model::sensitivities`], [`Model::solve`]) and the

@@ -8,8 +8,8 @@
 use kinloop::{Kin, Mechanism, Sweep};
 use kinloop_fixtures as fx;
 use kinloop_model::Model;
-use kinloop_viz::draw::{Animation, DefaultDrawing, Motion};
-use kinloop_viz::html::{HtmlConfig, html, html_of};
+use kinloop_viz::draw::{Animation, DefaultDrawing, GridMotion, Motion};
+use kinloop_viz::html::{HtmlConfig, html, html_grid, html_grid_of, html_of};
 use std::f64::consts::TAU;
 
 fn read(text: &str) -> Model {
@@ -165,6 +165,26 @@ fn figures_equal_the_compiled_ones_byte_for_byte() {
     let mut m = read(fx::RHOMBIC_DRIVE_TEXT);
     let motion = same_figures(fx::RhombicDrive::default(), &mut m, [0.0], [TAU], 91, "x_c");
     assert_eq!(motion.poses.len(), 91);
+}
+
+/// The five-bar over a grid of its two inputs: the same cells reached, the same poses, the same
+/// page with one slider per input.
+#[test]
+fn grid_pages_equal_the_compiled_ones_byte_for_byte() {
+    let compiled = Libm(fx::FiveBar::default());
+    let mut m = read(fx::FIVE_BAR_TEXT);
+    let (from, to, counts) = ([0.0, 0.4], [3.0, 3.0], [9, 7]);
+    let guess = compiled.guess_flat(&from);
+    let c_grid = GridMotion::record(&compiled, from, to, counts, guess).unwrap();
+    let r_grid = m.grid(&from, &to, &counts, &guess).unwrap();
+    assert_eq!(c_grid, r_grid);
+    assert_eq!(r_grid.cells.len(), 63);
+    let config = HtmlConfig::new("Five-bar");
+    let c_page = html_grid(&compiled, &DefaultDrawing::new(&compiled).into_drawing(), &c_grid, &config).unwrap();
+    let r_drawing = m.drawing().into_drawing();
+    let r_page = html_grid_of(&m, &r_drawing, &r_grid, &config).unwrap();
+    assert_eq!(c_page, r_page);
+    assert!(c_page.contains(r#"id="kl-slider-1""#));
 }
 
 /// The four-bar's joints C (`pc`, from the outputs) and B (`abcd.l1`, from the description's
