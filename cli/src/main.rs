@@ -8,15 +8,17 @@
 //! kinloop sweep four_bar.kl --from 0 --to 360 --samples 73 --deg --params a=1,b=3,c=2.5,d=3.2
 //! kinloop dynamics engine.kl --speed 150 --delta 0.02 --flywheel flywheel.csv
 //! kinloop extremes four_bar.kl --from 0 --to 360 --deg --table   # each unknown's min and max
+//! kinloop animate four_bar.kl --from 0 --to 360 --samples 91 --deg --out four_bar.svg
 //! ```
 //!
 //! Long sweeps (from 2000 samples) show a progress bar on standard error when it is a terminal.
 //!
 //! Exit codes ([`exit`]): 0 success, 1 a solve failed, 2 a usage error, 65 the declaration is
 //! rejected (diagnostics on standard error), 66 the file cannot be read, 69 the declaration uses
-//! what the run-time evaluator does not evaluate yet, 73 the `--events` file cannot be created,
-//! 74 an output cannot be written.
+//! what the run-time evaluator does not evaluate yet, 73 the `--events` file (or the
+//! `animate --out` file) cannot be created, 74 an output cannot be written.
 
+mod animate;
 mod dynamics;
 mod exit;
 mod extremes;
@@ -162,6 +164,44 @@ enum Command {
         #[arg(long)]
         table: bool,
     },
+    /// Draws the mechanism from its declaration moving through a branch-safe sweep from
+    /// `--from` to `--to` (from the declared initial guess at `--from`), and writes an animated
+    /// SVG or an interactive HTML page (slider, play/pause, readouts and charts). A sweep that
+    /// stops at a limit position is drawn up to there, plays back and forth, and the event is
+    /// listed on standard error.
+    Animate {
+        /// The declaration (`.kl`).
+        file: PathBuf,
+        /// The inputs at the start, separated by commas (one value per input).
+        #[arg(long, value_name = "X,...", allow_hyphen_values = true)]
+        from: String,
+        /// The inputs at the end.
+        #[arg(long, value_name = "X,...", allow_hyphen_values = true)]
+        to: String,
+        /// Samples, equally spaced, both ends included.
+        #[arg(long, default_value_t = 181)]
+        samples: usize,
+        /// Angles in degrees (inputs given); otherwise radians.
+        #[arg(long)]
+        deg: bool,
+        /// Parameter values, `name=value` separated by commas (overriding the defaults).
+        #[arg(long, value_name = "NAME=VALUE,...")]
+        params: Option<String>,
+        /// The file written: its extension (`.svg`, `.html`) tells the format unless `--format`
+        /// does.
+        #[arg(long, value_name = "FILE")]
+        out: PathBuf,
+        /// The format written, whatever the extension of `--out`.
+        #[arg(long, value_enum)]
+        format: Option<animate::Format>,
+        /// A column shown as a readout with its chart on the HTML page (repeat for more).
+        #[arg(long, value_name = "COLUMN")]
+        show: Vec<String>,
+        /// The largest number of frames written: key frames of the SVG (default 90), poses of
+        /// the page (default 721).
+        #[arg(long)]
+        frames: Option<usize>,
+    },
 }
 
 /// A failure with its exit code; the message is already written.
@@ -208,6 +248,11 @@ fn run(cli: Cli) -> Result<(), Failed> {
             let mut model = load(&file, params.as_deref())?;
             let req = extremes::Request { from: &from, to: &to, samples, deg, columns: columns.as_deref(), table };
             extremes::run(&mut model, &req)
+        }
+        Command::Animate { file, from, to, samples, deg, params, out, format, show, frames } => {
+            let mut model = load(&file, params.as_deref())?;
+            let req = animate::Request { from: &from, to: &to, samples, deg, out: &out, format, show: &show, frames };
+            animate::run(&mut model, &req)
         }
     }
 }

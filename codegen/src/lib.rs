@@ -100,6 +100,13 @@ pub fn decomposition(planned: &Planned) -> String {
     emit::describe::decomposition(&planned.model, &planned.plan)
 }
 
+/// The default drawing's description of a planned declaration, in the runtime's text format
+/// (`kinloop_runtime::drawing`): the text the generated constant `Mechanism::DRAWING` holds,
+/// from the same function.
+pub fn drawing(planned: &Planned) -> String {
+    emit::drawing::description(&planned.model)
+}
+
 /// Expands a `mechanism!` invocation. Never panics. Errors come back as `compile_error!`
 /// invocations, all of them together; once the mechanism's name is known they come with the
 /// mechanism's named types, declared from the syntax alone, so code that uses those types adds

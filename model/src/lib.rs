@@ -123,6 +123,16 @@
 //! its errors name the model and its inputs with owned strings (`Location`'s names are
 //! `Cow<'static, str>`).
 //!
+//! # Drawings
+//!
+//! A model carries the default drawing's description of its declaration
+//! ([`Model::drawing_text`]: the compiled `Mechanism::DRAWING`, from the same function of the
+//! pipeline) and is the runtime's `drawing::Drawable`: [`Model::drawing`] and
+//! [`Model::motion`] give `kinloop_viz`'s `DefaultDrawing` and `Motion`, whose SVG animations,
+//! exposures and interactive pages (`kinloop_viz::html::html_of`) are the compiled mechanism's
+//! code; over the same states they are the same bytes (`tests/drawings.rs`), grids of several
+//! inputs ([`Model::grid`], for `html_grid_of`) too.
+//!
 //! Besides these a run-time model offers single-point solves with their analogs and
 //! sensitivities ([`Model::kinematics`], [`Model::sensitivities`], [`Model::solve`]) and the
 //! structure report.
@@ -133,6 +143,7 @@ mod analysis;
 mod at;
 mod blocks;
 mod closed;
+mod drawing;
 mod dynamics;
 mod factor;
 mod mechanism;

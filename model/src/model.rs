@@ -109,6 +109,8 @@ pub struct State {
 pub struct Model {
     name: String,
     decomposition: String,
+    /// The default drawing's description (the compiled `Mechanism::DRAWING`).
+    pub(crate) drawing: String,
     warnings: Option<Diagnostics>,
     graph: Graph,
     params: Vec<String>,
@@ -184,6 +186,7 @@ impl Model {
     /// Builds the run-time program of a planned declaration.
     pub fn from_planned(planned: Planned) -> Result<Model, ReadError> {
         let decomposition = kinloop_codegen::decomposition(&planned);
+        let drawing = kinloop_codegen::drawing(&planned);
         let Planned { model, plan, .. } = planned;
         let g = &plan.graph;
         let unsupported = |what: String| Err(ReadError::Unsupported(what));
@@ -321,6 +324,7 @@ impl Model {
             sens_state,
             name: name_of(&model.name),
             decomposition,
+            drawing,
             warnings: None,
             params: model.params.iter().map(|p| name_of(&p.name)).collect(),
             param_values,

@@ -21,6 +21,11 @@
 //!   [`Plate`]; a named point reached from a plate's joint by vectors turning with the plate
 //!   belongs to it; a plate whose angle a declared `body` turns with takes the body's name.
 //!
+//! A mechanism read at run time (`kinloop_model::Model`) carries the same text, written by the
+//! same function of the macro's pipeline; [`Drawable`] is what a drawing reads from either kind
+//! of mechanism (implemented by [`Compiled`](crate::Compiled) and by the model), so that
+//! `kinloop_viz` draws both with one code.
+//!
 //! With `mechanism!`, `Description::of::<Name, N, NI, NO>()` reads a mechanism's; here one
 //! written out, of a crank `r @ phi` from the origin (the tape evaluates the parameter `r`,
 //! the input `phi` and `r cos phi`, `r sin phi`):
@@ -43,10 +48,12 @@
 //! ```
 
 mod parse;
+mod source;
 mod tape;
 
 use crate::error::Error;
 use crate::mechanism::Mechanism;
+pub use source::{Columns, Drawable};
 use std::fmt;
 use tape::TapeOp;
 pub use tape::Values;
@@ -133,16 +140,26 @@ impl Description {
     /// one `mechanism!` emitted with this version of kinloop).
     pub fn of<M: Mechanism<N, NI, NO>, const N: usize, const NI: usize, const NO: usize>() -> Result<Description, Error>
     {
-        if M::DRAWING.is_empty() {
+        Description::from_text(M::NAME, M::DRAWING)
+    }
+
+    /// The description `text` of mechanism `name` ([`Drawable::description_text`]), as
+    /// [`Description::of`] reads a compiled mechanism's: an empty text is an empty description
+    /// with a note saying so.
+    ///
+    /// # Errors
+    /// [`Error::InvalidArgument`] when the text is not a description of this format.
+    pub fn from_text(name: &str, text: &str) -> Result<Description, Error> {
+        if text.is_empty() {
             return Ok(Description {
                 joints: Vec::new(),
                 segments: Vec::new(),
                 plates: Vec::new(),
-                notes: vec![format!("`{}` was not declared with `mechanism!`: it describes no drawing", M::NAME)],
+                notes: vec![format!("`{name}` was not declared with `mechanism!`: it describes no drawing")],
                 tape: Vec::new(),
             });
         }
-        Description::parse(M::DRAWING)
+        Description::parse(text)
     }
 
     /// Reads a description in the macro's text format.

@@ -359,7 +359,7 @@ where
     let mut fit = drawing.clone();
     fit.items.extend(targets.iter().map(|t| Item::Joint { at: Pt::Fixed(*t) }));
     let view = fit.view(&motion)?;
-    html_marked(&m, &drawing, &motion, page, targets, Some(view))
+    html_marked(&kinloop_runtime::Compiled(&m), &drawing, &motion, page, targets, Some(view))
 }
 
 /// The figure's map from the plane to pixels: `x -> x0 + s x`, `y -> y0 - s y`.

@@ -6,8 +6,8 @@ use super::motion::Motion;
 use super::spec::{Drawing, Item, Pt, Scalar};
 use super::style::Style;
 use super::view::Canvas;
-use kinloop_runtime::drawing::{Description, SegmentKind};
-use kinloop_runtime::{Mechanism, NewtonConfig};
+use kinloop_runtime::drawing::{Description, Drawable, SegmentKind};
+use kinloop_runtime::{Compiled, Mechanism};
 use std::sync::Arc;
 
 /// `m.drawing()`: the default drawing of a mechanism, from its declaration. It reads the
@@ -91,17 +91,23 @@ impl DefaultDrawing {
     /// as the mechanism stands at the inputs `0` solved from the declared guess (the reference
     /// state); where that does not solve, in the declared order, with a note.
     pub fn new<M: Mechanism<N, NI, NO>, const N: usize, const NI: usize, const NO: usize>(m: &M) -> DefaultDrawing {
-        let (description, mut notes) = match Description::of::<M, N, NI, NO>() {
+        DefaultDrawing::of(&mut Compiled(m))
+    }
+
+    /// The default drawing of any [`Drawable`] mechanism: a compiled one (as
+    /// [`DefaultDrawing::new`]) or a `kinloop_model::Model` read at run time, which carries
+    /// the same description as the compiled mechanism of its declaration and so draws the same.
+    pub fn of<D: Drawable + ?Sized>(m: &mut D) -> DefaultDrawing {
+        let (description, mut notes) = match Description::from_text(m.name(), m.description_text()) {
             Ok(d) => (d, Vec::new()),
             Err(e) => (Description::default(), vec![e.to_string()]),
         };
         notes.extend(description.notes.iter().cloned());
         let params = m.param_values();
-        let x = [0.0; NI];
-        let reference = m
-            .position_flat(&x, &m.guess_flat(&x), &NewtonConfig::default())
-            .ok()
-            .and_then(|(q, _)| description.evaluate(&params, &x, &q).ok());
+        let columns = m.columns();
+        let (ni, n) = (columns.inputs.len(), columns.unknowns.len());
+        let x = vec![0.0; ni];
+        let reference = m.reference().and_then(|q| description.evaluate(&params, &x, &q).ok());
         if let Some(v) = &reference {
             notes.extend(coincident(&description, &v.joints));
         }
@@ -124,7 +130,7 @@ impl DefaultDrawing {
         let names = description.joints.iter().map(|j| j.name.clone()).collect();
         let (nj, ns) = (description.joints.len(), description.segments.len());
         DefaultDrawing {
-            source: Arc::new(Source { description, params, zero: [vec![0.0; NI], vec![0.0; N]] }),
+            source: Arc::new(Source { description, params, zero: [x, vec![0.0; n]] }),
             names,
             hidden_joints: vec![false; nj],
             hidden_segments: vec![false; ns],

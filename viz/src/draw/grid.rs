@@ -3,8 +3,8 @@
 //! cells that cannot be reached so marked.
 
 use super::error::DrawError;
-use super::motion::Motion;
-use kinloop_runtime::{Kin, Mechanism, Sweep};
+use super::motion::{Motion, Pose};
+use kinloop_runtime::{Error, Kin, Mechanism, Sweep};
 
 /// Largest number of cells a grid may have: a page holds at most a few thousand poses, and a
 /// grid beyond this is a mistake in its counts rather than a wish.
@@ -84,11 +84,51 @@ impl GridMotion {
     where
         M: Mechanism<N, NI, NO>,
     {
-        if NI == 0 {
-            return Err(DrawError::InvalidSetting(format!("`{}` has no input to make a grid of", M::NAME)));
+        let sweep = |from: &[f64], to: &[f64], samples: usize, guess: &[f64]| {
+            let (Ok(from), Ok(to), Ok(guess)) =
+                (<[f64; NI]>::try_from(from), <[f64; NI]>::try_from(to), <[f64; N]>::try_from(guess))
+            else {
+                return Err(Error::InvalidArgument("a grid's sweep of another size".into()));
+            };
+            let sweep = Sweep::<M, Kin<N, NI, NO>, N, NI, NO>::new(m, from, to, samples, guess)?;
+            Ok(sweep.last().map(|k| k.map(|k| Pose::from(&k))))
+        };
+        GridMotion::record_by(Motion::empty::<M, N, NI, NO>(), &from, &to, &counts, &guess, sweep)
+    }
+
+    /// [`GridMotion::record`] of any mechanism, compiled or read at run time: `motion` is an
+    /// empty motion of the mechanism ([`Motion::of`]), and `sweep(from, to, samples, guess)`
+    /// makes its branch-safe sweep (for a `kinloop_model::Model`, `Model::sweep`) and returns
+    /// its last item (`None` for a sweep of no item).
+    ///
+    /// # Errors
+    /// As [`GridMotion::record`], and [`DrawError::InvalidSetting`] when `from`, `to`, `counts`
+    /// do not have one value per input of the motion.
+    pub fn record_by<F>(
+        motion: Motion,
+        from: &[f64],
+        to: &[f64],
+        counts: &[usize],
+        guess: &[f64],
+        mut sweep: F,
+    ) -> Result<GridMotion, DrawError>
+    where
+        F: FnMut(&[f64], &[f64], usize, &[f64]) -> Result<Option<Result<Pose, Error>>, Error>,
+    {
+        let ni = motion.inputs.len();
+        if ni == 0 {
+            return Err(DrawError::InvalidSetting("the mechanism has no input to make a grid of".into()));
         }
-        for k in 0..NI {
-            let name = M::INPUTS[k];
+        if from.len() != ni || to.len() != ni || counts.len() != ni {
+            return Err(DrawError::InvalidSetting(format!(
+                "a grid of {ni} inputs needs {ni} values in `from`, `to` and `counts` (given {}, {}, {})",
+                from.len(),
+                to.len(),
+                counts.len()
+            )));
+        }
+        for k in 0..ni {
+            let name = &motion.inputs[k];
             if counts[k] == 0 {
                 return Err(DrawError::InvalidSetting(format!("the grid has no value of input `{name}`")));
             }
@@ -111,65 +151,59 @@ impl GridMotion {
                 "a grid of {counts:?} values has more than {MAX_GRID_CELLS} cells"
             )));
         };
-        let axes: Vec<Vec<f64>> = (0..NI).map(|k| spaced(from[k], to[k], counts[k])).collect();
-        let mut grid = GridMotion { motion: Motion::empty::<M, N, NI, NO>(), axes, cells: vec![None; cells] };
-        grid.flood(m, from, guess)?;
+        let axes: Vec<Vec<f64>> = (0..ni).map(|k| spaced(from[k], to[k], counts[k])).collect();
+        let mut grid = GridMotion { motion, axes, cells: vec![None; cells] };
+        grid.flood(&mut sweep, from, guess)?;
         Ok(grid)
     }
 
     /// The input values of cell `cell`.
-    fn inputs<const NI: usize>(&self, cell: usize) -> [f64; NI] {
+    fn inputs(&self, cell: usize) -> Vec<f64> {
         let mut rest = cell;
-        core::array::from_fn(|k| {
-            let axis = &self.axes[k];
-            let i = rest % axis.len();
-            rest /= axis.len();
-            axis[i]
-        })
+        self.axes
+            .iter()
+            .map(|axis| {
+                let i = rest % axis.len();
+                rest /= axis.len();
+                axis[i]
+            })
+            .collect()
     }
 
     /// Solves the first cell at `from` from `guess`, then every cell reached from a reached
     /// neighbour by a sweep of two samples (branch-safe: its steps in between are its own).
-    fn flood<M, const N: usize, const NI: usize, const NO: usize>(
-        &mut self,
-        m: &M,
-        from: [f64; NI],
-        guess: [f64; N],
-    ) -> Result<(), DrawError>
+    fn flood<F>(&mut self, sweep: &mut F, from: &[f64], guess: &[f64]) -> Result<(), DrawError>
     where
-        M: Mechanism<N, NI, NO>,
+        F: FnMut(&[f64], &[f64], usize, &[f64]) -> Result<Option<Result<Pose, Error>>, Error>,
     {
-        let first = Sweep::<M, Kin<N, NI, NO>, N, NI, NO>::new(m, from, from, 1, guess)
+        let first = sweep(from, from, 1, guess)
             .map_err(DrawError::Sweep)?
-            .next_kin()
             .ok_or_else(|| DrawError::InvalidSetting("the first cell's sweep has no sample".into()))?
             .map_err(DrawError::Sweep)?;
-        let mut states = vec![None; self.cells.len()];
+        let mut states: Vec<Option<Pose>> = vec![None; self.cells.len()];
         states[0] = Some(first);
         let mut queue = std::collections::VecDeque::from([0usize]);
         while let Some(cell) = queue.pop_front() {
-            let Some(k) = states[cell] else { continue };
+            let Some(k) = states[cell].clone() else { continue };
             self.cells[cell] = Some(self.motion.poses.len());
-            self.motion.push(&k);
             let mut stride = 1;
-            for axis in &self.axes {
-                let i = (cell / stride) % axis.len();
-                let next = [(i > 0).then(|| cell - stride), (i + 1 < axis.len()).then(|| cell + stride)];
+            for a in 0..self.axes.len() {
+                let len = self.axes[a].len();
+                let i = (cell / stride) % len;
+                let next = [(i > 0).then(|| cell - stride), (i + 1 < len).then(|| cell + stride)];
                 for n in next.into_iter().flatten() {
                     if states[n].is_some() {
                         continue;
                     }
-                    let to = self.inputs::<NI>(n);
-                    let reached = Sweep::<M, Kin<N, NI, NO>, N, NI, NO>::new(m, k.x, to, 2, k.q)
-                        .ok()
-                        .and_then(|sweep| sweep.last().and_then(Result::ok));
-                    if let Some(state) = reached {
+                    let to = self.inputs(n);
+                    if let Ok(Some(Ok(state))) = sweep(&k.x, &to, 2, &k.q) {
                         states[n] = Some(state);
                         queue.push_back(n);
                     }
                 }
-                stride *= axis.len();
+                stride *= len;
             }
+            self.motion.push(k);
         }
         Ok(())
     }

@@ -96,4 +96,4 @@ pub use style::Style;
 pub use view::{Canvas, View};
 
 // Interactive pages of a drawing (`kinloop::draw::html`), from the crate's `html` module.
-pub use crate::html::{HtmlConfig, HtmlError, Readout, html, html_grid};
+pub use crate::html::{HtmlConfig, HtmlError, Readout, html, html_grid, html_grid_of, html_of};

@@ -2,7 +2,9 @@
 //! mechanism's const generics, so one drawing description serves any mechanism.
 
 use super::error::DrawError;
-use kinloop_runtime::{Error, EventKind, Kin, Mechanism, QuantityKind, Sweep};
+use kinloop_runtime::dims::{Dims, KinBuf};
+use kinloop_runtime::drawing::{Columns, Drawable};
+use kinloop_runtime::{Compiled, Error, Event, EventKind, Kernel, Kin, Mechanism, QuantityKind, Sweep, SweepOf};
 
 /// One pose of the mechanism: inputs `x`, unknowns `q` and output columns `out`, in
 /// declaration order (as in [`Kin`]).
@@ -18,6 +20,12 @@ pub struct Pose {
 
 impl<const N: usize, const NI: usize, const NO: usize> From<&Kin<N, NI, NO>> for Pose {
     fn from(k: &Kin<N, NI, NO>) -> Self {
+        Pose { x: k.x.to_vec(), q: k.q.to_vec(), out: k.out.to_vec() }
+    }
+}
+
+impl From<&KinBuf> for Pose {
+    fn from(k: &KinBuf) -> Self {
         Pose { x: k.x.to_vec(), q: k.q.to_vec(), out: k.out.to_vec() }
     }
 }
@@ -55,10 +63,21 @@ impl Motion {
     where
         M: Mechanism<N, NI, NO>,
     {
+        Motion::with_columns(Columns::of::<M, N, NI, NO>())
+    }
+
+    /// A motion without poses of any [`Drawable`] mechanism (compiled, or a
+    /// `kinloop_model::Model` read at run time), to fill with [`Motion::push`] or
+    /// [`Motion::follow`].
+    pub fn of<D: Drawable + ?Sized>(m: &D) -> Motion {
+        Motion::with_columns(m.columns())
+    }
+
+    fn with_columns(c: Columns) -> Motion {
         Motion {
-            inputs: M::INPUTS.iter().map(|s| s.to_string()).collect(),
-            input_kinds: M::INPUT_KINDS.to_vec(),
-            outputs: M::OUTPUTS.iter().map(|s| s.to_string()).collect(),
+            inputs: c.inputs,
+            input_kinds: c.input_kinds,
+            outputs: c.outputs,
             poses: Vec::new(),
             events: Vec::new(),
             stopped: false,
@@ -100,28 +119,49 @@ impl Motion {
     /// See the [module documentation](super) for an example.
     pub fn record<M, S, const N: usize, const NI: usize, const NO: usize>(
         m: &M,
-        mut sweep: Sweep<'_, M, S, N, NI, NO>,
+        sweep: Sweep<'_, M, S, N, NI, NO>,
     ) -> Result<Motion, DrawError>
     where
         M: Mechanism<N, NI, NO>,
         S: From<Kin<N, NI, NO>>,
     {
         let mut motion = Motion::empty::<M, N, NI, NO>();
+        let events = motion.follow(sweep)?;
+        motion.mark(&mut Compiled(m), &events);
+        Ok(motion)
+    }
+
+    /// Runs `sweep` (over any [`Kernel`]: a compiled mechanism's, or a run-time model's) to its
+    /// end and appends every sample, as [`Motion::record`] does; returns the sweep's events,
+    /// for [`Motion::mark`] (their poses need the mechanism, which the sweep holds until it is
+    /// dropped). A stop at a located event sets [`Motion::stopped`]; any other failure is
+    /// [`DrawError::Sweep`].
+    pub fn follow<K, S>(&mut self, mut sweep: SweepOf<K, S>) -> Result<Vec<Event>, DrawError>
+    where
+        K: Kernel,
+        S: From<<K::Dims as Dims>::Kin>,
+        for<'k> Pose: From<&'k <K::Dims as Dims>::Kin>,
+    {
         while let Some(k) = sweep.next_kin() {
             match k {
-                Ok(k) => motion.push(&k),
-                Err(Error::SweepStopped { .. }) => motion.stopped = true,
+                Ok(k) => self.push(&k),
+                Err(Error::SweepStopped { .. }) => self.stopped = true,
                 Err(e) => return Err(DrawError::Sweep(e)),
             }
         }
-        for e in sweep.events() {
-            let (Ok(x), Ok(q)) = (<[f64; NI]>::try_from(&e.x[..]), <[f64; N]>::try_from(&e.q[..])) else {
+        Ok(sweep.events().to_vec())
+    }
+
+    /// Appends `events` (of a sweep of `m`, from [`Motion::follow`]) with the mechanism's pose
+    /// at each: its outputs evaluated at the event's position. An event whose outputs cannot be
+    /// evaluated is left out.
+    pub fn mark<D: Drawable + ?Sized>(&mut self, m: &mut D, events: &[Event]) {
+        for e in events {
+            let Some(out) = m.outputs_at(&e.x, &e.q) else {
                 continue;
             };
-            let out = m.outputs_flat(&x, &q).to_vec();
-            motion.events.push(Marked { kind: e.kind, pose: Pose { x: e.x.clone(), q: e.q.clone(), out } });
+            self.events.push(Marked { kind: e.kind, pose: Pose { x: e.x.clone(), q: e.q.clone(), out } });
         }
-        Ok(motion)
     }
 
     /// Checks every pose against the motion's columns (a [`Pose`] pushed by hand can have any

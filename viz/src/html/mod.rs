@@ -83,7 +83,8 @@ pub use config::{HtmlConfig, Readout, Value};
 pub use error::HtmlError;
 
 use crate::draw::{Drawing, GridMotion, Item, Motion, Pt};
-use kinloop_runtime::Mechanism;
+use kinloop_runtime::drawing::Drawable;
+use kinloop_runtime::{Compiled, Mechanism};
 
 /// The names of the joints of each item (the `point` outputs among its points).
 fn joint_names(d: &Drawing) -> Vec<Vec<Option<String>>> {
@@ -118,42 +119,54 @@ pub fn html<M, const N: usize, const NI: usize, const NO: usize>(
 where
     M: Mechanism<N, NI, NO>,
 {
+    html_of(&Compiled(m), drawing, motion, config)
+}
+
+/// [`html`] of any [`Drawable`] mechanism: a compiled one, or a `kinloop_model::Model` read
+/// at run time (whose motion is recorded with [`Motion::of`] and [`Motion::follow`]).
+///
+/// # Errors
+/// As [`html`].
+pub fn html_of<D: Drawable + ?Sized>(
+    m: &D,
+    drawing: &Drawing,
+    motion: &Motion,
+    config: &HtmlConfig,
+) -> Result<String, HtmlError> {
     html_marked(m, drawing, motion, config, &[], None)
 }
 
 /// [`html`] with fixed points `marks` marked and numbered over the picture, in `view` (fitted
 /// to the drawing over the motion when `None`).
-pub(crate) fn html_marked<M, const N: usize, const NI: usize, const NO: usize>(
-    m: &M,
+pub(crate) fn html_marked<D: Drawable + ?Sized>(
+    m: &D,
     drawing: &Drawing,
     motion: &Motion,
     config: &HtmlConfig,
     marks: &[[f64; 2]],
     view: Option<crate::draw::View>,
-) -> Result<String, HtmlError>
-where
-    M: Mechanism<N, NI, NO>,
-{
-    let _ = m;
+) -> Result<String, HtmlError> {
     config.check()?;
-    if motion.inputs != M::INPUTS || motion.outputs != M::OUTPUTS {
+    let columns = m.columns();
+    if motion.inputs != columns.inputs || motion.outputs != columns.outputs {
         return Err(HtmlError::InvalidSetting(format!(
             "the motion (inputs {:?}) is not a motion of the mechanism {} (inputs {:?})",
             motion.inputs,
-            M::NAME,
-            M::INPUTS
+            m.name(),
+            columns.inputs
         )));
     }
+    let ni = columns.inputs.len();
     let path = frames::path(motion);
     let fr = frames::Frames::build(drawing, motion, frames::spread(&path, config.max_frames), &[path], view)?;
-    let channels = readouts::channels::<M, N, NI, NO>(config, motion, &fr.poses)?;
-    let against_input = NI == 1;
+    let channels = readouts::channels(&columns, config, motion, &fr.poses)?;
+    let against_input = ni == 1;
     let labels: Vec<String> = motion
         .events
         .iter()
         .enumerate()
         .map(|(j, e)| {
-            let at: Vec<String> = channels[..NI]
+            let at: Vec<String> = channels[..ni]
                 .iter()
                 .map(|c| format!("{} = {}{}", c.label, c.text(c.at_events[j]), c.unit()))
                 .collect();
@@ -242,16 +255,30 @@ pub fn html_grid<M, const N: usize, const NI: usize, const NO: usize>(
 where
     M: Mechanism<N, NI, NO>,
 {
-    let _ = m;
+    html_grid_of(&Compiled(m), drawing, grid, config)
+}
+
+/// [`html_grid`] of any [`Drawable`] mechanism (a compiled one, or a `kinloop_model::Model`
+/// read at run time).
+///
+/// # Errors
+/// As [`html_grid`].
+pub fn html_grid_of<D: Drawable + ?Sized>(
+    m: &D,
+    drawing: &Drawing,
+    grid: &GridMotion,
+    config: &HtmlConfig,
+) -> Result<String, HtmlError> {
     config.check()?;
+    let columns = m.columns();
     let motion = &grid.motion;
     let counts = grid.counts();
-    if motion.inputs != M::INPUTS || motion.outputs != M::OUTPUTS || counts.len() != NI {
+    if motion.inputs != columns.inputs || motion.outputs != columns.outputs || counts.len() != columns.inputs.len() {
         return Err(HtmlError::InvalidSetting(format!(
             "the grid (inputs {:?}) is not a grid of the mechanism {} (inputs {:?})",
             motion.inputs,
-            M::NAME,
-            M::INPUTS
+            m.name(),
+            columns.inputs
         )));
     }
     if grid.cells.len() != counts.iter().product::<usize>()
@@ -268,7 +295,7 @@ where
         )));
     }
     let fr = frames::Frames::build(drawing, motion, (0..motion.poses.len()).collect(), &grid.runs(), None)?;
-    let mut channels = readouts::channels::<M, N, NI, NO>(config, motion, &fr.poses)?;
+    let mut channels = readouts::channels(&columns, config, motion, &fr.poses)?;
     for (c, axis) in channels.iter_mut().zip(&grid.axes) {
         readouts::on_axis(c, axis);
     }
@@ -289,6 +316,6 @@ where
         seconds: config.seconds,
         back_and_forth: config.back_and_forth,
         autoplay: config.autoplay,
-        grid: Some(page::GridPart { counts, cells, inputs: M::INPUTS.iter().map(|s| s.to_string()).collect() }),
+        grid: Some(page::GridPart { counts, cells, inputs: columns.inputs.clone() }),
     })
 }

@@ -6,7 +6,8 @@ use super::config::{HtmlConfig, Readout, Value};
 use super::frames::{pose, state};
 use crate::draw::{Motion, Scalar};
 use crate::plot::Kind;
-use kinloop_runtime::{Mechanism, QuantityKind};
+use kinloop_runtime::QuantityKind;
+use kinloop_runtime::drawing::Columns;
 
 /// The largest magnitude of a readout (shown units).
 const LARGEST: f64 = 1e100;
@@ -57,24 +58,18 @@ fn kind_of(k: QuantityKind, length_unit: &str) -> Kind {
     }
 }
 
-/// The column `name` of mechanism `M`, with its inferred kind.
-fn column<M, const N: usize, const NI: usize, const NO: usize>(
-    name: &str,
-    unit: &str,
-) -> Result<(Source, Kind), HtmlError>
-where
-    M: Mechanism<N, NI, NO>,
-{
-    if let Some(i) = M::INPUTS.iter().position(|n| *n == name) {
-        return Ok((Source::Input(i), kind_of(M::INPUT_KINDS[i], unit)));
+/// The column `name` of a mechanism of columns `c`, with its inferred kind.
+fn column(c: &Columns, name: &str, unit: &str) -> Result<(Source, Kind), HtmlError> {
+    if let Some(i) = c.inputs.iter().position(|n| *n == name) {
+        return Ok((Source::Input(i), kind_of(c.input_kinds[i], unit)));
     }
-    if let Some(i) = M::UNKNOWNS.iter().position(|n| *n == name) {
-        return Ok((Source::Unknown(i), kind_of(M::UNKNOWN_KINDS[i], unit)));
+    if let Some(i) = c.unknowns.iter().position(|n| *n == name) {
+        return Ok((Source::Unknown(i), kind_of(c.unknown_kinds[i], unit)));
     }
-    if let Some(i) = M::OUTPUTS.iter().position(|n| *n == name) {
-        return Ok((Source::Output(i), kind_of(M::OUTPUT_KINDS[i], unit)));
+    if let Some(i) = c.outputs.iter().position(|n| *n == name) {
+        return Ok((Source::Output(i), kind_of(c.output_kinds[i], unit)));
     }
-    let available = M::INPUTS.iter().chain(&M::UNKNOWNS).chain(&M::OUTPUTS).map(|s| s.to_string()).collect();
+    let available = c.inputs.iter().chain(&c.unknowns).chain(&c.outputs).cloned().collect();
     Err(HtmlError::UnknownColumn { name: name.to_string(), available })
 }
 
@@ -99,19 +94,18 @@ fn rounded(v: f64, decimals: usize) -> f64 {
 
 /// The inputs' readouts (each replaced by a readout of the config naming it), then the
 /// config's other readouts, at the frames `poses` and at the motion's events.
-pub(crate) fn channels<M, const N: usize, const NI: usize, const NO: usize>(
+pub(crate) fn channels(
+    c: &Columns,
     config: &HtmlConfig,
     motion: &Motion,
     poses: &[usize],
-) -> Result<Vec<Channel>, HtmlError>
-where
-    M: Mechanism<N, NI, NO>,
-{
+) -> Result<Vec<Channel>, HtmlError> {
     let names_input = |r: &Readout| match &r.value {
-        Value::Column(c) => M::INPUTS.iter().position(|n| n == c),
+        Value::Column(col) => c.inputs.iter().position(|n| n == col),
         Value::Expr(_) => None,
     };
-    let mut list: Vec<Readout> = M::INPUTS
+    let mut list: Vec<Readout> = c
+        .inputs
         .iter()
         .enumerate()
         .map(|(i, n)| {
@@ -120,7 +114,7 @@ where
                 .iter()
                 .find(|r| names_input(r) == Some(i))
                 .cloned()
-                .unwrap_or_else(|| Readout::column(*n).without_chart())
+                .unwrap_or_else(|| Readout::column(n.as_str()).without_chart())
         })
         .collect();
     list.extend(config.readouts.iter().filter(|r| names_input(r).is_none()).cloned());
@@ -130,7 +124,7 @@ where
     for r in list {
         let (label, kind, get): (String, Kind, Box<dyn Fn(usize) -> f64>) = match &r.value {
             Value::Column(name) => {
-                let (src, inferred) = column::<M, N, NI, NO>(name, &config.length_unit)?;
+                let (src, inferred) = column(c, name, &config.length_unit)?;
                 let get = move |i: usize| {
                     let p = pose(motion, i);
                     match src {

@@ -1,0 +1,191 @@
+//! `kinloop animate` end to end: the built binary on the shipped `.kl` files, its SVG read back
+//! as XML (frames counted, the crank's drawn angle against the input it was swept through),
+//! its HTML page's structure, and its exit codes.
+
+use std::path::{Path, PathBuf};
+use std::process::{Command, Output};
+
+fn kinloop(args: &[&str]) -> Output {
+    Command::new(env!("CARGO_BIN_EXE_kinloop")).args(args).output().expect("the kinloop binary runs")
+}
+
+fn shipped(name: &str) -> String {
+    PathBuf::from(env!("CARGO_MANIFEST_DIR")).join("mechanisms").join(name).display().to_string()
+}
+
+/// A file in a directory of this test's own under the target directory.
+fn out(name: &str) -> PathBuf {
+    let dir = PathBuf::from(env!("CARGO_TARGET_TMPDIR")).join("animate");
+    std::fs::create_dir_all(&dir).expect("a directory for the outputs");
+    let path = dir.join(name);
+    let _ = std::fs::remove_file(&path);
+    path
+}
+
+fn ok(o: &Output) {
+    assert!(o.status.success(), "exit {:?}: {}", o.status.code(), String::from_utf8_lossy(&o.stderr));
+}
+
+const FOUR_BAR: &str = "a=1,b=3,c=2.5,d=3.2";
+
+/// The `points` animations of the SVG: per element, the frames, each a list of pixels.
+fn point_animations(svg: &str) -> Vec<Vec<Vec<[f64; 2]>>> {
+    let doc = roxmltree::Document::parse(svg).expect("well-formed SVG");
+    assert_eq!(doc.root_element().tag_name().name(), "svg");
+    doc.descendants()
+        .filter(|n| n.has_tag_name("animate") && n.attribute("attributeName") == Some("points"))
+        .map(|n| {
+            let values = n.attribute("values").expect("values");
+            values
+                .split(';')
+                .map(|frame| {
+                    frame
+                        .split(' ')
+                        .map(|p| {
+                            let (x, y) = p.split_once(',').expect("x,y");
+                            [x.parse().expect("x"), y.parse().expect("y")]
+                        })
+                        .collect()
+                })
+                .collect()
+        })
+        .collect()
+}
+
+/// A whole turn of the four-bar's crank in 37 samples: an SVG of 37 key frames, in which the
+/// crank (a bar from a fixed pixel) turns through the swept angles: at frame k its angle from
+/// the pivot is 10 k degrees, to the rounding of pixels written to a tenth.
+#[test]
+fn an_svg_animation_of_a_turn() {
+    let path = out("four_bar.svg");
+    let p = path.display().to_string();
+    let o = kinloop(
+        &["animate", &shipped("four_bar.kl"), "--from", "0", "--to", "360", "--deg", "--samples", "37"]
+            .into_iter()
+            .chain(["--params", FOUR_BAR, "--out", &p])
+            .collect::<Vec<_>>(),
+    );
+    ok(&o);
+    let svg = std::fs::read_to_string(&path).expect("the SVG is written");
+    assert!(!svg.contains("NaN"));
+    let anims = point_animations(&svg);
+    assert!(!anims.is_empty());
+    assert!(anims.iter().all(|a| a.len() == 37), "frames: {:?}", anims.iter().map(Vec::len).collect::<Vec<_>>());
+    // The crank: two points, the first fixed, the second at a constant distance, turning with
+    // the input. Its length is 1 of the mechanism's 4.2-wide span: tens of pixels, so a tenth
+    // of a pixel at each end is under 0.01 rad.
+    let crank = anims.iter().find(|a| {
+        a.iter().all(|f| f.len() == 2 && f[0] == a[0][0])
+            && a.iter().enumerate().all(|(k, f)| {
+                let angle = (-(f[1][1] - f[0][1])).atan2(f[1][0] - f[0][0]);
+                let want = (10.0 * k as f64).to_radians();
+                let d = (angle - want).rem_euclid(std::f64::consts::TAU);
+                d.min(std::f64::consts::TAU - d) < 0.01
+            })
+    });
+    assert!(crank.is_some(), "no bar turns with the input: {anims:?}");
+}
+
+/// The rhombic drive as an interactive page: one document, its figure well-formed SVG, a slider
+/// over every sample, the readout asked for.
+#[test]
+fn an_interactive_page() {
+    let path = out("rhombic.html");
+    let p = path.display().to_string();
+    let o = kinloop(&[
+        "animate",
+        &shipped("rhombic_drive.kl"),
+        "--from",
+        "0",
+        "--to",
+        "6.283185307179586",
+        "--samples",
+        "61",
+        "--show",
+        "x_c",
+        "--out",
+        &p,
+    ]);
+    ok(&o);
+    let page = std::fs::read_to_string(&path).expect("the page is written");
+    assert!(page.starts_with("<!DOCTYPE html>") && page.trim_end().ends_with("</html>"));
+    assert_eq!(page.matches("<html").count(), 1);
+    assert!(page.contains(r#"id="kl-slider" type="range" min="0" max="60""#), "61 poses");
+    assert!(page.contains(r#"<th scope="row">x_c</th>"#));
+    assert!(!page.contains("NaN"));
+    let start = page.find("<svg").expect("a figure");
+    let end = page[start..].find("</svg>").expect("closed") + start + "</svg>".len();
+    let doc = roxmltree::Document::parse(&page[start..end]).expect("the figure is well-formed SVG");
+    assert_eq!(doc.root_element().attribute("id"), Some("kl-drawing"));
+}
+
+/// `--format` names the format whatever the extension; a rocker stopping at its limit position
+/// is drawn there and plays back and forth (2 k - 1 key frames for k poses), exit 0.
+#[test]
+fn format_option_and_a_stop_at_a_limit_position() {
+    let path = out("rocker.drawing");
+    let p = path.display().to_string();
+    let params = "a=1.5,b=3,c=1,d=3.2";
+    let args = ["animate", &shipped("four_bar.kl"), "--from", "70", "--to", "430", "--deg", "--samples", "19"];
+    let o = kinloop(&args.into_iter().chain(["--params", params, "--out", &p, "--format", "svg"]).collect::<Vec<_>>());
+    ok(&o);
+    let stderr = String::from_utf8_lossy(&o.stderr);
+    assert!(stderr.contains("stopped at limit position at phi = "), "{stderr}");
+    let anims = point_animations(&std::fs::read_to_string(&path).expect("written"));
+    let k = anims[0].len();
+    assert!(k % 2 == 1 && k > 3 && k < 2 * 19 - 1, "{k} key frames");
+    assert!(anims.iter().all(|a| a.len() == k && a[0] == a[k - 1]), "back and forth");
+}
+
+fn fails_without_output(args: &[&str], out: &Path, code: i32, says: &str) {
+    let o = kinloop(args);
+    let stderr = String::from_utf8_lossy(&o.stderr);
+    assert_eq!(o.status.code(), Some(code), "{args:?}: {stderr}");
+    assert!(stderr.contains(says), "{args:?}: {stderr}");
+    assert!(!out.exists(), "{args:?} left {}", out.display());
+}
+
+#[test]
+fn exit_codes() {
+    let fb = shipped("four_bar.kl");
+    let path = out("bad.svg");
+    let p = path.display().to_string();
+    let with = |extra: &[&'static str]| {
+        let mut a = vec!["animate", fb.as_str(), "--from", "0", "--to", "1"];
+        a.extend_from_slice(extra);
+        a
+    };
+    let mut a = with(&["--params", FOUR_BAR, "--out"]);
+    a.push(&p);
+    // Usage: the format of an unknown extension, equal ends, a column that is not one.
+    let txt = out("bad.txt");
+    let t = txt.display().to_string();
+    let mut b = with(&["--params", FOUR_BAR, "--out"]);
+    b.push(&t);
+    fails_without_output(&b, &txt, 2, "cannot tell the format");
+    let mut c = vec!["animate", fb.as_str(), "--from", "1", "--to", "1", "--params", FOUR_BAR, "--out"];
+    c.push(&p);
+    fails_without_output(&c, &path, 2, "needs `to` different from `from`");
+    let mut d = a.clone();
+    d.extend(["--format", "html", "--show", "delta"]);
+    fails_without_output(&d, &path, 2, "delta");
+    // A parameter without a value: the solve fails (1).
+    let mut e = with(&["--out"]);
+    e.push(&p);
+    fails_without_output(&e, &path, 1, "parameter `a` has no value");
+    // No assembly at the start (|AD| shorter than |b - c|): 1.
+    let mut f = with(&["--params", "a=1.5,b=3,c=1,d=3.2", "--out"]);
+    f.push(&p);
+    fails_without_output(&f, &path, 1, "FourBar");
+    // The declaration cannot be read (66), the output cannot be created (73).
+    let missing = out("missing.kl").display().to_string();
+    fails_without_output(&["animate", &missing, "--from", "0", "--to", "1", "--out", &p], &path, 66, "cannot read");
+    let nowhere = out("no-such-dir").join("x.svg");
+    let n = nowhere.display().to_string();
+    let mut g = with(&["--params", FOUR_BAR, "--out"]);
+    g.push(&n);
+    fails_without_output(&g, &nowhere, 73, "cannot create");
+    // And the same arguments with a good output succeed.
+    ok(&kinloop(&a));
+    assert!(path.exists());
+}
