@@ -90,7 +90,7 @@ fn change_point() -> Result<(), Box<dyn std::error::Error>> {
             ev.kind,
             ev.x[0],
             2.0 * PI,
-            ev.block.map(|b| b.0)
+            ev.block.as_ref().map(|b| b.0)
         );
     }
     let cfg = SweepConfig::default().with_at_singular(AtSingular::Continue);

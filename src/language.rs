@@ -196,7 +196,7 @@
 //!   block 0 (closed form, angle equation): psi <- oabo.y
 //!   block 1 (linear, 1x1): x <- oabo.x"
 //! );
-//! assert_eq!(SliderCrank::BLOCKS[1].unknowns, ["x"]);
+//! assert_eq!(SliderCrank::BLOCKS[1].unknowns, &["x"][..]);
 //! assert!(SliderCrank::BLOCKS[1].linear);
 //! ```
 //!

@@ -118,10 +118,10 @@
 //! its state and result types over `Dims` as the sweep's are, and the kernel methods it calls
 //! (`sensitivities`) added to `Kernel`.
 //!
-//! A run-time model's events carry no block description (`Event::block` is `None`): the
-//! runtime's `BlockInfo` holds `&'static` names, which a model read at run time does not have;
-//! its errors name the model and its inputs with owned strings (`Location`'s names are
-//! `Cow<'static, str>`).
+//! A run-time model's errors and events name the model, its inputs and the failed or singular
+//! block's unknowns and equations as the compiled mechanism's do, with owned strings (the names
+//! of `Location`, `BlockInfo` and the errors are `Cow<'static, str>`: borrowed constants for a
+//! compiled mechanism).
 //!
 //! # Drawings
 //!

@@ -29,6 +29,7 @@ pub struct ModelKernel<'a> {
     judged: Vec<usize>,
     closed_form_angles: Vec<bool>,
     block_rows_cols: Vec<(Vec<usize>, Vec<usize>)>,
+    block_infos: Vec<BlockInfo>,
     config: SweepConfig,
 }
 
@@ -55,6 +56,7 @@ impl Model {
             judged: (0..sizes.n).filter(|&u| !self.followers[u]).collect(),
             closed_form_angles: self.closed_form_angles.clone(),
             block_rows_cols: self.block_rows_cols.clone(),
+            block_infos: self.block_infos.clone(),
             jac: RefCell::new(Jacobian::default()),
             model: RefCell::new(self),
             config,
@@ -105,9 +107,9 @@ impl Model {
 
 impl ModelKernel<'_> {
     /// The error of a failed step at `x`, with the model's names: the variant the compiled
-    /// mechanism's step returns for the same failure (`block_error`, the runtime's own). The
-    /// model's equation and unknown names are not `&'static`: they are `?`, as for a compiled
-    /// block that names none, and the location names the model and its inputs.
+    /// mechanism's step returns for the same failure (`block_error`, the runtime's own), its
+    /// location naming the model, its inputs and the failed block's unknowns and equations, and
+    /// the equation it names the block's own (owned names, as the compiled ones are constants).
     fn error(&self, e: StepError, x: &[f64], cfg: &NewtonConfig) -> Error {
         match e {
             StepError::Block { block, failure: StepFailure::Singular { pivot_ratio } } => {
@@ -117,7 +119,9 @@ impl ModelKernel<'_> {
                 block_error(f, *self.location(x, Some(block)))
             }
             // As the compiled step's `non_finite` when it cannot tell which value.
-            StepError::NonFinite => Error::Domain { what: "value", name: "?", at: self.location(x, None) },
+            StepError::NonFinite => {
+                Error::Domain { what: "value", name: Cow::Borrowed("?"), at: self.location(x, None) }
+            }
             // Arguments the compiled mechanism's types or checks rule out before a step.
             e @ (StepError::UnsetParam(_) | StepError::Size { .. }) => {
                 Error::InvalidArgument(format!("{e}, {}", self.location(x, None)))
@@ -182,11 +186,10 @@ impl Kernel for ModelKernel<'_> {
     fn block_count(&self) -> usize {
         self.block_rows_cols.len()
     }
-    /// None: a block's static description names the compiled mechanism's equations
-    /// (`&'static` names); a run-time model's events and locations give the block's index only
-    /// through its errors.
-    fn block_info(&self, _: usize) -> Option<BlockInfo> {
-        None
+    /// The block's description with the model's own names (the compiled mechanism's
+    /// `BLOCKS`, owned).
+    fn block_info(&self, b: usize) -> Option<BlockInfo> {
+        self.block_infos.get(b).cloned()
     }
     fn block_rows_cols(&self, b: usize) -> Option<(Vec<usize>, Vec<usize>)> {
         self.block_rows_cols.get(b).cloned()
@@ -197,11 +200,11 @@ impl Kernel for ModelKernel<'_> {
     fn closed_form_angle(&self, u: usize) -> bool {
         self.closed_form_angles[u]
     }
-    fn location(&self, x: &[f64], _block: Option<usize>) -> Box<Location> {
+    fn location(&self, x: &[f64], block: Option<usize>) -> Box<Location> {
         Box::new(Location {
             mechanism: Cow::Owned(self.name.clone()),
             inputs: self.inputs.iter().map(|n| Cow::Owned(n.clone())).zip(x.iter().copied()).collect(),
-            block: None,
+            block: block.and_then(|b| self.block_info(b).map(|info| (b, info))),
         })
     }
     fn solver_config(&self) -> SweepConfig {

@@ -16,7 +16,7 @@ use kinloop_codegen::plan::kinds::{self, Kind};
 use kinloop_codegen::plan::solve::Solve;
 use kinloop_codegen::plan::{BlockPlan, Plan, pairs};
 use kinloop_runtime::generated::{Health, SolveReport};
-use kinloop_runtime::{NewtonConfig, QuantityKind};
+use kinloop_runtime::{BlockInfo, NewtonConfig, QuantityKind};
 use std::fmt;
 
 /// Why a text could not become a [`Model`].
@@ -131,6 +131,9 @@ pub struct Model {
     pub(crate) closed_form_angles: Vec<bool>,
     /// Per block in solve order: its equations (rows) and unknowns (columns).
     pub(crate) block_rows_cols: Vec<(Vec<usize>, Vec<usize>)>,
+    /// Per block in solve order: its description with the model's names (the compiled
+    /// mechanism's `BLOCKS`, owned), for its errors and events.
+    pub(crate) block_infos: Vec<BlockInfo>,
     /// The nodes of the parameters alone, run when they are set.
     statics: Segment,
     guess: Segment,
@@ -285,6 +288,17 @@ impl Model {
         let followers = kinloop_codegen::plan::followers::followers(&plan.graph, &plan.blocks, n);
         let closed_form_angles = kinloop_codegen::plan::closed_form_angles(&plan);
         let block_rows_cols = plan.blocks.iter().map(|bp| (bp.equations.clone(), bp.unknowns.clone())).collect();
+        // Named as the emitter names `BLOCKS`: unknowns by their declared names, equations by
+        // theirs (`loop.x`, `loop.y`, an `eq` name).
+        let block_infos = plan
+            .blocks
+            .iter()
+            .map(|bp| {
+                let unknowns = bp.unknowns.iter().map(|&u| name_of(&model.unknowns[u].name)).collect();
+                let equations = bp.equations.iter().map(|&e| model.equations[e].name.clone()).collect();
+                BlockInfo::owned(unknowns, equations, bp.solve.is_linear())
+            })
+            .collect();
         let state = State {
             x: vec![0.0; ni],
             q: vec![0.0; n],
@@ -340,6 +354,7 @@ impl Model {
             followers,
             closed_form_angles,
             block_rows_cols,
+            block_infos,
             statics: statics(g),
             guess,
             guess_regs,

@@ -509,3 +509,69 @@ fn the_ring_of_128_equals_the_compiled_one() {
     assert_eq!(seen.states, 90, "{seen:?}");
     eprintln!("ring of 128: {seen:?}");
 }
+
+/// The ring of 128 at link lengths (2, 2, 4, 2), solved compiled and at run time from the
+/// declared guesses at inputs next to its limit position at `phi = 0`: from there Newton's
+/// first steps meet a weak static pivot, and the block (256 unknowns, the largest) is
+/// factorised by the dense fallback (a debugger shows one fallback per solve at 0.01, 0.02 and
+/// 0.03, in both). At `phi = 0` itself both end singular through the failure paths (the
+/// fallback, the descent's normal equations, the extreme-size check). Returns what each solve gave: the positions as bits,
+/// or the error's message. Every loop of a solved position is checked closed from the positions
+/// alone: `a e^(i theta) + b e^(i u) - d - c e^(i v)`, `theta` the half sum of the input and the
+/// last rocker for the first loop and the previous loop's rocker for the others (the
+/// declaration, written out apart from the library's residuals).
+fn weak_ring128() -> Vec<Result<Vec<u64>, String>> {
+    let (a, b, c, d) = (2.0, 2.0, 4.0, 2.0);
+    let cfg = NewtonConfig::default();
+    let compiled = Ring128 { a, b, c, d };
+    let mut model = read(RING128_TEXT);
+    for (p, v) in [("a", a), ("b", b), ("c", c), ("d", d)] {
+        assert!(model.set_param(p, v));
+    }
+    let open = |phi: f64, q: &[f64]| {
+        let mut worst = 0.0f64;
+        for i in 0..128 {
+            let (u, v) = (q[2 * i], q[2 * i + 1]);
+            let theta = if i == 0 { 0.5 * (phi + q[255]) } else { q[2 * i - 1] };
+            let x = a * theta.cos() + b * u.cos() - d - c * v.cos();
+            let y = a * theta.sin() + b * u.sin() - c * v.sin();
+            worst = worst.max(x.abs()).max(y.abs());
+        }
+        worst
+    };
+    // A loop's closure sums four terms of at most the longest link (4): closed to rounding is a
+    // few of its ulps (the solve ends with a correction at the rounding level).
+    let closed_tol = 16.0 * f64::EPSILON * c;
+    let mut seen = vec![];
+    for phi in [0.0, 0.01, 0.02, 0.03] {
+        let guess = compiled.guess_flat(&[phi]);
+        let ck = compiled.kinematics_flat(&[phi], &guess, &cfg).map(|k| k.q.to_vec());
+        let rk = model.kinematics(&[phi], &guess, &cfg).map(|k| k.q.clone());
+        for q in [ck.as_ref().ok(), rk.as_ref().ok()].into_iter().flatten() {
+            let worst = open(phi, q);
+            assert!(worst <= closed_tol, "at {phi}: a loop open by {worst:e}");
+        }
+        assert_eq!(ck.is_ok(), rk.is_ok(), "at {phi}");
+        seen.push(ck.map(|q| bits(&q)).map_err(|e| e.to_string()));
+        seen.push(rk.map(|q| bits(&q)).map_err(|e| e.to_string()));
+    }
+    seen
+}
+
+/// The largest block (256 unknowns) through the dense fallback and the descent, compiled and at
+/// run time, in a test build on a thread with the default 2 MiB stack: its evaluations and
+/// matrices are kept off the stack. The same as on a thread with a 64 MiB stack, bit for bit,
+/// and closed. `KINLOOP_STACK_KIB` sets the small thread's stack instead (to measure the
+/// high-water mark by bisection: the smallest that does not overflow).
+#[test]
+fn the_largest_block_falls_back_to_the_dense_lu_on_a_default_stack() {
+    let on = |stack: usize| {
+        std::thread::Builder::new().stack_size(stack).spawn(weak_ring128).expect("thread").join().expect("solved")
+    };
+    let kib = std::env::var("KINLOOP_STACK_KIB").ok().and_then(|s| s.parse::<usize>().ok()).unwrap_or(2048);
+    let small = on(kib << 10);
+    // The limit position fails (singular), the solves beside it succeed.
+    let solved: Vec<bool> = small.iter().map(Result::is_ok).collect();
+    assert_eq!(solved, [false, false, true, true, true, true, true, true], "{small:?}");
+    assert_eq!(small, on(64 << 20));
+}

@@ -83,11 +83,13 @@ where
     (worst, compared, c.events().to_vec(), r.events().to_vec(), c_err, r_err)
 }
 
-/// The same events: kind, and input, fraction and positions to the states' agreement.
+/// The same events: kind and block (its index and names), and input, fraction and positions to
+/// the states' agreement.
 fn same_events(c: &[Event], r: &[Event]) {
     assert_eq!(c.len(), r.len(), "compiled {c:?}\nrun time {r:?}");
     for (a, b) in c.iter().zip(r) {
         assert_eq!(a.kind, b.kind);
+        assert_eq!(a.block, b.block, "{a:?}\n{b:?}");
         assert!(rel_diff(&a.x, &b.x) <= REL, "{a:?}\n{b:?}");
         assert!((a.tau - b.tau).abs() <= REL, "{a:?}\n{b:?}");
         assert!(rel_diff(&a.q, &b.q) <= REL, "{a:?}\n{b:?}");
@@ -327,6 +329,11 @@ fn a_singular_crossing_is_the_same_event() {
     assert_eq!(ce.len(), 1, "{ce:?}");
     assert_eq!(ce[0].kind, kinloop::EventKind::SingularCrossing);
     same_events(&ce, &re);
+    // The singular block named alike: the compiled constants, the model's own names.
+    let (Some((_, c_info)), Some((_, r_info))) = (&ce[0].block, &re[0].block) else { panic!("{ce:?}\n{re:?}") };
+    assert!(matches!(c_info.equations, std::borrow::Cow::Borrowed(_)), "{c_info:?}");
+    assert!(matches!(r_info.equations, std::borrow::Cow::Owned(_)), "{r_info:?}");
+    assert_eq!(r_info.equations, &["abcd.x", "abcd.y"][..], "{r_info:?}");
     assert!((re[0].x[0] - std::f64::consts::PI).abs() < 1e-6, "crossing at {}", re[0].x[0]);
 }
 
@@ -357,5 +364,14 @@ fn a_failed_start_names_the_model() {
     // The residual is where Newton's method stalls (a length of the order of the gap
     // |b - c| - |AD| = 0.3): the same to a few rounding steps of that length.
     assert!((c_res - r_res).abs() <= 1e-12 * c_res.abs().max(1.0), "{c_res:e} {r_res:e}");
+    // Named alike, to the block: with the compiled residual, the run-time error reads as the
+    // compiled one, character for character (the model's names owned, the compiled constants).
+    let kinloop::Error::NoAssembly { equation, .. } = &r_err else { unreachable!() };
+    assert!(matches!(equation, std::borrow::Cow::Owned(_)), "{r_err:?}");
+    let r_named =
+        kinloop::Error::NoAssembly { residual: *c_res, equation: equation.clone(), at: Box::new(r_at.clone()) };
+    assert_eq!(c_err.to_string(), r_named.to_string());
+    assert_eq!(c_at.block, r_at.block);
+    assert!(c_at.block.is_some(), "{c_err:?}");
     eprintln!("compiled: {c_err}\nrun time: {r_err}");
 }

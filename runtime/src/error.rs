@@ -3,6 +3,7 @@
 //! equations.
 
 use crate::events::EventKind;
+use std::borrow::Cow;
 use std::fmt;
 
 use crate::events::Location;
@@ -45,7 +46,7 @@ pub enum Error {
         /// Which kind of value.
         what: Quantity,
         /// Its declared name.
-        name: &'static str,
+        name: Cow<'static, str>,
         /// The value given.
         value: f64,
         /// Where.
@@ -62,7 +63,7 @@ pub enum Error {
         /// Largest scaled residual at the end.
         residual: f64,
         /// The equation with the largest residual.
-        equation: &'static str,
+        equation: Cow<'static, str>,
         /// Where.
         at: Box<Location>,
     },
@@ -77,7 +78,7 @@ pub enum Error {
         /// The scaled residual where it stalled.
         residual: f64,
         /// The equation with the largest residual.
-        equation: &'static str,
+        equation: Cow<'static, str>,
         /// Where.
         at: Box<Location>,
     },
@@ -104,7 +105,7 @@ pub enum Error {
         /// `"equation"`, `"position"`, `"velocity analog"`, `"output"`, ...
         what: &'static str,
         /// Name of the equation, unknown or output column.
-        name: &'static str,
+        name: Cow<'static, str>,
         /// Where.
         at: Box<Location>,
     },
@@ -115,7 +116,7 @@ pub enum Error {
         /// `"velocity"`, `"acceleration"`, `"output velocity"` or `"output acceleration"`.
         what: &'static str,
         /// Name of the unknown or output column.
-        name: &'static str,
+        name: Cow<'static, str>,
         /// Where.
         at: Box<Location>,
     },
@@ -149,7 +150,7 @@ pub enum Error {
     )]
     TooManyTurns {
         /// The unknown.
-        name: &'static str,
+        name: Cow<'static, str>,
         /// Its guess (or the closed form's root on the guess's turn).
         value: f64,
         /// `value` in whole turns.

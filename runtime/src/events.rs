@@ -5,16 +5,39 @@
 use std::borrow::Cow;
 use std::fmt;
 
-/// Static description of one block of a mechanism's block-triangular decomposition.
-#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+/// Names as a block description holds them: the constants of a compiled mechanism (borrowed,
+/// nothing allocated), or the names of a mechanism read at run time (owned).
+pub type BlockNames = Cow<'static, [Cow<'static, str>]>;
+
+/// Description of one block of a mechanism's block-triangular decomposition. A compiled
+/// mechanism's are constants (`Name::BLOCKS`, borrowed names); a mechanism read at run time
+/// holds its own names.
+#[derive(Clone, Debug, PartialEq, Eq)]
 #[cfg_attr(feature = "serde", derive(serde::Serialize))]
 pub struct BlockInfo {
     /// Unknowns solved in this block (declaration order).
-    pub unknowns: &'static [&'static str],
+    pub unknowns: BlockNames,
     /// Scalar equations of this block (`loop.x`, `loop.y` or an `eq` name).
-    pub equations: &'static [&'static str],
+    pub equations: BlockNames,
     /// The block's unknowns appear linearly: it is solved in closed form, without iteration.
     pub linear: bool,
+}
+
+impl BlockInfo {
+    /// A block of a compiled mechanism: its names are constants (what `mechanism!` emits).
+    pub const fn borrowed(
+        unknowns: &'static [Cow<'static, str>],
+        equations: &'static [Cow<'static, str>],
+        linear: bool,
+    ) -> Self {
+        BlockInfo { unknowns: Cow::Borrowed(unknowns), equations: Cow::Borrowed(equations), linear }
+    }
+
+    /// A block of a mechanism read at run time: its unknowns and equations by name.
+    pub fn owned(unknowns: Vec<String>, equations: Vec<String>, linear: bool) -> Self {
+        let names = |v: Vec<String>| Cow::Owned(v.into_iter().map(Cow::Owned).collect());
+        BlockInfo { unknowns: names(unknowns), equations: names(equations), linear }
+    }
 }
 
 /// Where an error happened.

@@ -28,6 +28,10 @@ pub use crate::solvers::sparse_lu_dyn::{PaddedJac, PaddedLu, PaddedWork, SparseT
 pub use crate::solvers::sparse_steps::{Pivots, SparseSteps, Tables, scaled};
 pub use crate::trig::{InputTrig, Libm};
 pub use crate::vec2::Vec2;
+pub use std::borrow::Cow;
+/// A compiled mechanism's names in its block descriptions (`Name("beta")`, `Cow::Borrowed`: a
+/// constant, nothing allocated; the short name keeps the expansion's lines short).
+pub use std::borrow::Cow::Borrowed as Name;
 
 /// serde, for the derives of generated types (feature `serde`): users need no serde dependency.
 #[cfg(feature = "serde")]
@@ -45,9 +49,9 @@ where
     M: Mechanism<N, NI, NO>,
 {
     Location {
-        mechanism: std::borrow::Cow::Borrowed(M::NAME),
-        inputs: M::INPUTS.iter().map(|&n| std::borrow::Cow::Borrowed(n)).zip(x.iter().copied()).collect(),
-        block: block.and_then(|b| M::BLOCKS.get(b).map(|i| (b, *i))),
+        mechanism: Cow::Borrowed(M::NAME),
+        inputs: M::INPUTS.iter().map(|&n| Cow::Borrowed(n)).zip(x.iter().copied()).collect(),
+        block: block.and_then(|b| M::BLOCKS.get(b).map(|i| (b, i.clone()))),
     }
 }
 
@@ -80,7 +84,7 @@ where
         .map(|bad| (Quantity::Parameter, bad))
         .or_else(|| first_non_finite(&M::INPUTS, x).map(|bad| (Quantity::Input, bad)))
         .or_else(|| guess.and_then(|g| first_non_finite(&M::UNKNOWNS, g)).map(|bad| (Quantity::Guess, bad)));
-    found.map(|(what, (name, value))| Error::NonFinite { what, name, value, at: at() })
+    found.map(|(what, (name, value))| Error::NonFinite { what, name: Cow::Borrowed(name), value, at: at() })
 }
 
 /// The error for a block that failed (`fail`, with the configuration `cfg`), unless a bad
@@ -103,7 +107,7 @@ where
     }
     let at = location::<M, N, NI, NO>(x, Some(block));
     match too_many_turns::<M, N, NI, NO>(block, fail, guess, cfg) {
-        Some((name, value)) => turns_error(name, value, at),
+        Some((name, value)) => turns_error(Cow::Borrowed(name), value, at),
         None => block_error(fail, at),
     }
 }
@@ -156,7 +160,7 @@ fn too_many_turns<M, const N: usize, const NI: usize, const NO: usize>(
 where
     M: Mechanism<N, NI, NO>,
 {
-    let unknowns = M::BLOCKS.get(block).map_or(&[][..], |info| info.unknowns);
+    let unknowns = M::BLOCKS.get(block).map_or(&[][..], |info| &info.unknowns);
     let largest = unknowns
         .iter()
         .filter_map(|name| M::UNKNOWNS.iter().position(|u| u == name))
@@ -177,8 +181,8 @@ where
 #[cold]
 #[inline(never)]
 pub fn block_error(fail: BlockFailure, at: Location) -> Error {
-    let equations = at.block.map_or(&[][..], |(_, info)| info.equations);
-    let name = |row: usize| equations.get(row).copied().unwrap_or("?");
+    let equations = at.block.as_ref().map_or(&[][..], |(_, info)| &info.equations);
+    let name = |row: usize| equations.get(row).cloned().unwrap_or(Cow::Borrowed("?"));
     match fail {
         BlockFailure::NonFinite { row, .. } => Error::Domain { what: "equation", name: name(row), at: Box::new(at) },
         BlockFailure::NoConvergence { row, iterations, residual } => {
@@ -194,12 +198,12 @@ pub fn block_error(fail: BlockFailure, at: Location) -> Error {
             "NewtonConfig::{field} is out of its valid range (see its documentation), {at}"
         )),
         // Named by `block_failure`, which knows the guesses.
-        BlockFailure::TooManyTurns { value } => turns_error("?", value, at),
+        BlockFailure::TooManyTurns { value } => turns_error(Cow::Borrowed("?"), value, at),
     }
 }
 
 /// [`Error::TooManyTurns`] of the angle `name` at `value`.
-fn turns_error(name: &'static str, value: f64, at: Location) -> Error {
+fn turns_error(name: Cow<'static, str>, value: f64, at: Location) -> Error {
     // The distance to the next double away from zero.
     let spacing = f64::from_bits(value.abs().to_bits() + 1) - value.abs();
     Error::TooManyTurns { name, value, turns: value / core::f64::consts::TAU, spacing, at: Box::new(at) }
@@ -225,7 +229,7 @@ where
     }
     let at = Box::new(location::<M, N, NI, NO>(x, Some(block)));
     if let Some(row) = bad_row {
-        let name = M::BLOCKS.get(block).and_then(|b| b.equations.get(row)).copied().unwrap_or("?");
+        let name = M::BLOCKS.get(block).and_then(|b| b.equations.get(row)).cloned().unwrap_or(Cow::Borrowed("?"));
         return Error::Domain { what: "equation", name, at };
     }
     Error::Singular { pivot_ratio, tolerance: cfg.singular_tol, at }
@@ -247,7 +251,11 @@ where
     }
     let (what, index) = kin.first_non_finite().unwrap_or(("value", 0));
     let name = if what.starts_with("output") { M::OUTPUTS.get(index) } else { M::UNKNOWNS.get(index) };
-    Error::Domain { what, name: name.copied().unwrap_or("?"), at: Box::new(location::<M, N, NI, NO>(&kin.x, None)) }
+    Error::Domain {
+        what,
+        name: Cow::Borrowed(name.copied().unwrap_or("?")),
+        at: Box::new(location::<M, N, NI, NO>(&kin.x, None)),
+    }
 }
 
 /// The kinematic state `kin` when every value is finite, otherwise the error naming the first
@@ -350,7 +358,7 @@ where
     if !sens.all_finite() {
         return Err(Error::Domain {
             what: "parameter sensitivity of",
-            name: sens.first_non_finite(&M::UNKNOWNS, &M::OUTPUTS),
+            name: Cow::Borrowed(sens.first_non_finite(&M::UNKNOWNS, &M::OUTPUTS)),
             at: Box::new(location::<M, N, NI, NO>(&kin.x, None)),
         });
     }
@@ -370,7 +378,7 @@ where
     let names = M::INPUTS.iter().chain(M::INPUTS.iter());
     if let Some((name, value)) = names.zip(omega.iter().chain(eps.iter())).find(|(_, v)| !v.is_finite()) {
         let at = Box::new(location::<M, N, NI, NO>(&kin.x, None));
-        return Err(Error::NonFinite { what: Quantity::Motion, name, value: *value, at });
+        return Err(Error::NonFinite { what: Quantity::Motion, name: Cow::Borrowed(name), value: *value, at });
     }
     kin.checked_motion::<M>(&omega, &eps)
 }

@@ -52,7 +52,7 @@ pub use analysis::objective::Extremum;
 pub use angles::{deg, to_deg};
 pub use configured::Configured;
 pub use error::{Error, Quantity, Source};
-pub use events::{BlockInfo, Event, EventKind, Location};
+pub use events::{BlockInfo, BlockNames, Event, EventKind, Location};
 pub use kin::{DetSigns, FlatMotion, Health, Jac, Kin, Sens};
 pub use kinds::{LENGTH_UNIT, QuantityKind};
 pub use mechanism::kernel::{Compiled, Kernel};

@@ -193,7 +193,7 @@ pub trait Mechanism<const N: usize, const NI: usize, const NO: usize> {
         match Self::PARAMS.iter().zip(&values).find(|(_, v)| !v.is_finite()) {
             Some((name, value)) => Err(Error::NonFinite {
                 what: Quantity::Parameter,
-                name,
+                name: (*name).into(),
                 value: *value,
                 at: Location::boxed(Self::NAME, &Self::INPUTS, &[0.0; NI], None),
             }),

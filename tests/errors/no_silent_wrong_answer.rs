@@ -37,7 +37,7 @@ fn ok_with_a_large_residual_is_impossible() {
     // meets the tolerance on that turn, and the error says so.
     match CRANK_ROCKER.kinematics_flat(&[0.3], &[1e15, 1.5], &NewtonConfig::default()) {
         Ok(k) => assert!(scaled_residual(&CRANK_ROCKER, 0.3, &k.q) <= tol::SOLVE, "{k:?}"),
-        Err(e) => assert!(matches!(e, Error::TooManyTurns { name: "beta", .. }), "{e}"),
+        Err(e) => assert!(matches!(e, Error::TooManyTurns { ref name, .. } if name == "beta"), "{e}"),
     }
 }
 

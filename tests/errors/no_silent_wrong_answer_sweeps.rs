@@ -170,8 +170,8 @@ fn a_branch_flip_in_block_seventy_is_caught() {
     let stop = s.by_ref().find_map(|r| r.err()).expect("the crossing must stop the sweep");
     assert!(matches!(stop, Error::SweepStopped { kind: EventKind::SingularCrossing, .. }), "{stop}");
     let ev = &s.events()[0];
-    let (index, info) = ev.block.expect("the flipped block is named");
-    assert_eq!(info.unknowns, ["s70"]);
+    let (index, info) = ev.block.clone().expect("the flipped block is named");
+    assert_eq!(info.unknowns, &["s70"][..]);
     assert!(index >= 64, "{index}");
     assert_close!(ev.x[0], 0.0, tol::LOCATED, "{:?}", ev.x);
     // Passing it, the mode of block 70 is seen to change.

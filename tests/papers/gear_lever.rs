@@ -55,6 +55,6 @@ fn gear_lever_analogs_match_central_finite_differences() {
 fn gear_lever_is_one_coupled_block() {
     // s and phi appear together in both projections: one 2x2 nonlinear block.
     assert_eq!(GearLever::BLOCKS.len(), 1);
-    assert_eq!(GearLever::BLOCKS[0].unknowns, &["s", "phi"]);
+    assert_eq!(GearLever::BLOCKS[0].unknowns, &["s", "phi"][..]);
     assert!(!GearLever::BLOCKS[0].linear);
 }

@@ -33,7 +33,7 @@ fn close_with(m: &ClassFour, phi: f64, th2: f64, side: f64) -> (f64, f64, f64, f
 fn the_class_four_group_is_one_block() {
     let b = ClassFour::BLOCKS;
     assert_eq!(b.len(), 1, "{b:?}");
-    assert_eq!(b[0].unknowns, &["th1", "th2", "psi1", "psi2"]);
+    assert_eq!(b[0].unknowns, &["th1", "th2", "psi1", "psi2"][..]);
     assert!(!b[0].linear);
 }
 

@@ -154,7 +154,7 @@ fn decomposition_separates_the_two_groups() {
     assert_eq!(blocks.len(), 4, "{blocks:?}");
     for b in blocks {
         assert_eq!(b.unknowns.len(), 1);
-        let u = b.unknowns[0];
+        let u = &b.unknowns[0];
         assert_eq!(b.linear, u.starts_with("x_"), "{b:?}");
     }
     let pos = |n: &str| blocks.iter().position(|b| b.unknowns[0] == n).unwrap();

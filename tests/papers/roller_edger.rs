@@ -54,6 +54,6 @@ fn roller_edger_matches_closed_forms_in_time() {
 fn roller_edger_solves_contour_one_before_contour_two() {
     let b = RollerEdger::BLOCKS;
     assert_eq!(b.len(), 2);
-    assert_eq!(b[0].unknowns, &["phi1", "phi3"]);
-    assert_eq!(b[1].unknowns, &["phi2", "phi4"]);
+    assert_eq!(b[0].unknowns, &["phi1", "phi3"][..]);
+    assert_eq!(b[1].unknowns, &["phi2", "phi4"][..]);
 }

@@ -450,13 +450,13 @@ fn unreachable_positions_are_no_assembly() {
     assert!(matches!(f.solve(0.0), Err(Error::NoAssembly { .. })));
     // A non-finite parameter is still named as such.
     let bad = FourBar { c: f64::NAN, ..FourBar::default() };
-    assert!(matches!(bad.solve(0.0), Err(Error::NonFinite { name: "c", .. })));
+    assert!(matches!(bad.solve(0.0), Err(Error::NonFinite { ref name, .. }) if name == "c"));
     // A non-finite guess too (the closed form reads it for the branch and the turn).
     let nan = FourBarUnknowns { beta: f64::NAN, gamma: 1.0 };
     let e = FourBar::default().position(0.3, &nan).unwrap_err();
-    assert!(matches!(e, Error::NonFinite { what: kinloop::Quantity::Guess, name: "beta", .. }), "{e}");
+    assert!(matches!(e, Error::NonFinite { what: kinloop::Quantity::Guess, ref name, .. } if name == "beta"), "{e}");
     let e = FourBar::default().kinematics(0.3, &nan).unwrap_err();
-    assert!(matches!(e, Error::NonFinite { what: kinloop::Quantity::Guess, name: "beta", .. }), "{e}");
+    assert!(matches!(e, Error::NonFinite { what: kinloop::Quantity::Guess, ref name, .. } if name == "beta"), "{e}");
 }
 
 /// A slider-crank designed to touch its limit (`r - e = l`: at `phi = pi / 2` the rod stands

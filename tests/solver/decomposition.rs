@@ -18,8 +18,8 @@ fn class_four_is_one_coupled_four_unknown_block() {
     // both loops are needed at once for all four angles.
     let blocks = ClassFour::BLOCKS;
     assert_eq!(blocks.len(), 1, "{}", ClassFour::DECOMPOSITION);
-    assert_eq!(blocks[0].unknowns, &["th1", "th2", "psi1", "psi2"]);
-    assert_eq!(blocks[0].equations, &["acdb.x", "acdb.y", "aefb.x", "aefb.y"]);
+    assert_eq!(blocks[0].unknowns, &["th1", "th2", "psi1", "psi2"][..]);
+    assert_eq!(blocks[0].equations, &["acdb.x", "acdb.y", "aefb.x", "aefb.y"][..]);
     assert!(!blocks[0].linear);
     assert_eq!(
         ClassFour::DECOMPOSITION,
@@ -43,7 +43,7 @@ fn rhombic_drive_splits_into_its_groups_with_sliders_in_closed_form() {
     // displacer group (oadff1o: phi4, x_f) never share a block.
     for b in blocks {
         assert_eq!(b.unknowns.len(), 1, "{b:?}");
-        let group = if ["phi2", "x_c"].contains(&b.unknowns[0]) { "oabco." } else { "oadff1o." };
+        let group = if ["phi2", "x_c"].contains(&&*b.unknowns[0]) { "oabco." } else { "oadff1o." };
         assert!(b.equations.iter().all(|e| e.starts_with(group)), "{b:?}");
         // Slider coordinates appear linearly: one linear solve, no iteration.
         assert_eq!(b.linear, b.unknowns[0].starts_with("x_"), "{b:?}");
@@ -51,8 +51,8 @@ fn rhombic_drive_splits_into_its_groups_with_sliders_in_closed_form() {
     let at = |u: &str| blocks.iter().position(|b| b.unknowns[0] == u).unwrap();
     assert!(at("phi2") < at("x_c") && at("phi4") < at("x_f"));
     // The rod angle comes from the y projection (the slider is not in it), the slider from x.
-    assert_eq!(blocks[at("phi2")].equations, &["oabco.y"]);
-    assert_eq!(blocks[at("x_c")].equations, &["oabco.x"]);
+    assert_eq!(blocks[at("phi2")].equations, &["oabco.y"][..]);
+    assert_eq!(blocks[at("x_c")].equations, &["oabco.x"][..]);
     let text = RhombicDrive::DECOMPOSITION;
     assert!(
         text.starts_with("RhombicDrive: 4 unknowns, 4 scalar equations, 1 input (mobility W = 1); 4 blocks"),

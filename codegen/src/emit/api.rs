@@ -37,7 +37,7 @@ fn constants(model: &Model, plan: &Plan, t: &Types) -> TokenStream {
         let us = b.unknowns.iter().map(|&u| &ustrs[u]);
         let es = b.equations.iter().map(|&e| &estrs[e]);
         let linear = b.solve.is_linear();
-        quote!(#rt::BlockInfo { unknowns: &[#(#us),*], equations: &[#(#es),*], linear: #linear })
+        quote!(#rt::BlockInfo::borrowed(&[#(#rt::Name(#us)),*], &[#(#rt::Name(#es)),*], #linear))
     });
     quote! {
         impl #name {

@@ -8,6 +8,7 @@ use crate::events::{BlockInfo, Location};
 use crate::kin::{Health, Jac, Kin};
 use crate::mechanism::Mechanism;
 use crate::solvers::newton::{NewtonConfig, NewtonStop, SolveReport};
+use std::borrow::Cow;
 
 /// Offset slider-crank: crank `r` about the origin at angle `phi`, rod `l`, slider at `(x, e)`
 /// on the right (`x > r cos phi`). Equation `rod`: `(x - r cos phi)^2 + (r sin phi - e)^2 = l^2`.
@@ -54,7 +55,7 @@ impl Mechanism<1, 1, 1> for SliderCrank {
     const UNKNOWNS: [&'static str; 1] = ["x"];
     const EQUATIONS: [&'static str; 1] = ["rod"];
     const OUTPUTS: [&'static str; 1] = ["h"];
-    const BLOCKS: &'static [BlockInfo] = &[BlockInfo { unknowns: &["x"], equations: &["rod"], linear: false }];
+    const BLOCKS: &'static [BlockInfo] = &[BlockInfo::borrowed(&[Cow::Borrowed("x")], &[Cow::Borrowed("rod")], false)];
 
     fn param_values(&self) -> Vec<f64> {
         vec![self.r, self.l, self.e]
@@ -96,7 +97,7 @@ impl Mechanism<1, 1, 1> for SliderCrank {
             q -= f / j;
         }
         let residual = self.residual_flat(x, &[q])[0].abs();
-        Err(Error::NoAssembly { residual, equation: "rod", at: self.at(x[0]) })
+        Err(Error::NoAssembly { residual, equation: Cow::Borrowed("rod"), at: self.at(x[0]) })
     }
 
     fn kinematics_flat(&self, x: &[f64; 1], guess: &[f64; 1], cfg: &NewtonConfig) -> Result<Kin<1, 1, 1>, Error> {
@@ -163,7 +164,7 @@ impl Mechanism<1, 1, 1> for SliderCrank {
             if !value.is_finite() {
                 return Err(Error::NonFinite {
                     what: crate::error::Quantity::Parameter,
-                    name,
+                    name: Cow::Borrowed(name),
                     value,
                     at: Location::boxed("SliderCrank", &[], &[], None),
                 });

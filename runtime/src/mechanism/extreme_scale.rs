@@ -17,7 +17,7 @@
 //! hot path pays nothing (this runs only after a failure).
 
 use crate::error::Error;
-use crate::kin::Kin;
+use crate::kin::{Jac, Kin};
 use crate::kinds::QuantityKind;
 use crate::mechanism::Mechanism;
 use crate::solvers::newton::{BlockEval, Magnitudes, NewtonConfig, SolveReport, newton};
@@ -58,10 +58,43 @@ where
     if !guess.iter().chain(x.iter()).all(|v| v.is_finite()) {
         return Err(error);
     }
-    let jac = m.jacobian_flat(x, guess);
-    if !outside_closed_form_sizes(&jac.scale) {
-        return Err(error);
+    match jacobian_outside(m, x, guess) {
+        Some(jac) => solve_whole(m, x, guess, cfg, error, &jac),
+        None => Err(error),
     }
+}
+
+/// The Jacobian at `guess` when its magnitudes put the mechanism outside
+/// [`CLOSED_FORM_SIZES`]. Its own function, the Jacobian moved to the heap: for a large
+/// mechanism it is big (512 KiB for 256 unknowns), and in an unoptimised build a frame keeps
+/// every value it made, so the common case (an ordinary size, nothing to rescue) must not
+/// share one with the whole-system solve.
+#[inline(never)]
+fn jacobian_outside<M, const N: usize, const NI: usize, const NO: usize>(
+    m: &M,
+    x: &[f64; NI],
+    guess: &[f64; N],
+) -> Option<Box<Jac<N, NI>>>
+where
+    M: Mechanism<N, NI, NO> + ?Sized,
+{
+    let jac = Box::new(m.jacobian_flat(x, guess));
+    outside_closed_form_sizes(&jac.scale).then_some(jac)
+}
+
+/// [`rescue`]'s Newton over the whole system from `guess`, whose Jacobian is `jac`.
+#[inline(never)]
+fn solve_whole<M, const N: usize, const NI: usize, const NO: usize>(
+    m: &M,
+    x: &[f64; NI],
+    guess: &[f64; N],
+    cfg: &NewtonConfig,
+    error: Error,
+    jac: &Jac<N, NI>,
+) -> Result<Kin<N, NI, NO>, Error>
+where
+    M: Mechanism<N, NI, NO> + ?Sized,
+{
     // Newton in dimensionless unknowns `z = q / unit` (radians for an angle, fractions of its
     // loop's size for a length): the columns of the Jacobian are then of one magnitude, as a
     // block of the generated Newton solver has them.

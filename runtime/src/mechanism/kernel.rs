@@ -175,7 +175,7 @@ where
         M::BLOCKS.len()
     }
     fn block_info(&self, b: usize) -> Option<BlockInfo> {
-        M::BLOCKS.get(b).copied()
+        M::BLOCKS.get(b).cloned()
     }
     fn block_rows_cols(&self, b: usize) -> Option<(Vec<usize>, Vec<usize>)> {
         let info = M::BLOCKS.get(b)?;
@@ -193,7 +193,7 @@ where
         M::CLOSED_FORM_ANGLES[u]
     }
     fn location(&self, x: &[f64], block: Option<usize>) -> Box<Location> {
-        Location::boxed(M::NAME, &M::INPUTS, x, block.and_then(|b| M::BLOCKS.get(b).map(|info| (b, *info))))
+        Location::boxed(M::NAME, &M::INPUTS, x, block.and_then(|b| M::BLOCKS.get(b).map(|info| (b, info.clone()))))
     }
     #[inline(always)]
     fn solver_config(&self) -> SweepConfig {

@@ -35,9 +35,11 @@ impl<const N: usize, const NI: usize, const NO: usize> Kin<N, NI, NO> {
         .find_map(|(what, index, names)| index.map(|i| (what, names.get(i).copied().unwrap_or("?"))));
         match found {
             None => Ok(m),
-            Some((what, name)) => {
-                Err(Error::Overflow { what, name, at: Location::boxed(M::NAME, &M::INPUTS, &self.x, None) })
-            }
+            Some((what, name)) => Err(Error::Overflow {
+                what,
+                name: name.into(),
+                at: Location::boxed(M::NAME, &M::INPUTS, &self.x, None),
+            }),
         }
     }
 }

@@ -346,7 +346,9 @@ pub struct SweepOf<K: Kernel, S> {
 
 fn check_finite<K: Kernel>(what: &'static str, v: &[f64], m: &K) -> Result<(), Error> {
     match v.iter().find(|x| !x.is_finite()) {
-        Some(&value) => Err(Error::NonFinite { what: Quantity::Range, name: what, value, at: m.location(&[], None) }),
+        Some(&value) => {
+            Err(Error::NonFinite { what: Quantity::Range, name: what.into(), value, at: m.location(&[], None) })
+        }
         None => Ok(()),
     }
 }
@@ -970,11 +972,12 @@ mod tests {
     use crate::events::BlockInfo;
     use crate::kin::Jac;
     use crate::solvers::newton::SolveReport;
+    use std::borrow::Cow;
 
     /// A hand-written mechanism claiming more blocks than the determinant signs can track.
     struct TooManyBlocks(SliderCrank);
 
-    const BLOCK: BlockInfo = BlockInfo { unknowns: &["x"], equations: &["rod"], linear: false };
+    const BLOCK: BlockInfo = BlockInfo::borrowed(&[Cow::Borrowed("x")], &[Cow::Borrowed("rod")], false);
 
     impl Mechanism<1, 1, 1> for TooManyBlocks {
         const NAME: &'static str = "TooManyBlocks";

@@ -2,7 +2,7 @@
 //! iteration serves both representations: dense rows (`[[f64; N]; N]`, small blocks) and the
 //! structural non-zeros of a large sparse block ([`SparseJac`](super::sparse_lu::SparseJac)).
 
-use super::lu::{Factor, Lu, RowScales, solve_row_scaled};
+use super::lu::{Factor, Lu, RowScales, boxed_zeros, solve_row_scaled};
 
 /// A factorised block Jacobian: solves and the pivot diagnostics of [`Factor`].
 #[doc(hidden)]
@@ -32,8 +32,9 @@ pub trait BlockJacobian<const N: usize>: Copy {
     fn mul(&self, dz: &[f64; N]) -> [f64; N];
     /// The entry `J_00` (the whole matrix of a scalar block).
     fn first(&self) -> f64;
-    /// The matrix as dense rows (cold paths only: Levenberg-Marquardt steps).
-    fn to_dense(&self) -> [[f64; N]; N];
+    /// The matrix as dense rows (cold paths only: Levenberg-Marquardt steps, the dense fallback
+    /// of a sparse block), on the heap: a block of 256 unknowns is 512 KiB.
+    fn to_dense(&self) -> Box<[[f64; N]; N]>;
 }
 
 impl<const N: usize> BlockFactor<N> for Lu<N> {
@@ -96,7 +97,9 @@ impl<const N: usize> BlockJacobian<N> for [[f64; N]; N] {
         self[0][0]
     }
 
-    fn to_dense(&self) -> [[f64; N]; N] {
-        *self
+    fn to_dense(&self) -> Box<[[f64; N]; N]> {
+        let mut d = boxed_zeros();
+        d.copy_from_slice(self);
+        d
     }
 }

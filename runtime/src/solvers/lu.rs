@@ -48,6 +48,12 @@ pub(crate) fn inverses<const N: usize>(scale: [f64; N], degenerate: &mut bool) -
     inv
 }
 
+/// An `N x N` matrix of zeros on the heap, made row by row (never whole on the stack): the cold
+/// paths' dense copies of a large block's Jacobian (512 KiB for 256 unknowns).
+pub(crate) fn boxed_zeros<const N: usize>() -> Box<[[f64; N]; N]> {
+    vec![[0.0; N]; N].into_boxed_slice().try_into().expect("N rows")
+}
+
 /// Whether every value is positive and finite: their bit patterns lie in `1 ..= f64::MAX`, so
 /// one subtraction and one unsigned maximum per value and a single comparison test them all
 /// (zero, negative values and `-0` wrap or carry the sign bit; infinity and NaN lie above).
@@ -243,6 +249,19 @@ impl<const N: usize> Lu<N> {
             negative_det: false,
             det: 0.0,
         }
+    }
+
+    /// [`Lu::unfactored`] made on the heap, never on the stack: the cold paths of large blocks
+    /// keep their dense factorisations there (a block of 256 unknowns is 512 KiB, and a value
+    /// built and then moved into a box takes that much of the stack in an unoptimised build).
+    #[doc(hidden)]
+    pub fn boxed_unfactored() -> Box<Self> {
+        // SAFETY: every field of `Lu` is a float, an integer or a bool, or an array of them,
+        // for which all-zero bytes are a valid value (0.0, 0, `false`).
+        let mut lu = unsafe { Box::<Self>::new_zeroed().assume_init() };
+        // The one field of `Lu::unfactored` that is not zero.
+        lu.rows_scaled = true;
+        lu
     }
 
     /// [`Lu::factor_scaled`] for any size: partial pivoting on the equilibrated matrix.

@@ -22,7 +22,7 @@
 //! so the same factor bit for bit.
 
 use super::jacobian::{BlockFactor, BlockJacobian};
-use super::lu::{Factor, Lu, RowScales, inverses};
+use super::lu::{Factor, Lu, RowScales, boxed_zeros, inverses};
 pub use super::sparse_steps::SparsePattern;
 use super::sparse_steps::{SparseSteps, Tables};
 use core::marker::PhantomData;
@@ -145,8 +145,8 @@ impl<const N: usize, const NNZ: usize, const NLU: usize, E: SparseSteps<N, NLU>>
         self.entries(0).find(|&e| self.pattern.col[e] == 0).map_or(0.0, |e| self.v[e])
     }
 
-    fn to_dense(&self) -> [[f64; N]; N] {
-        let mut d = [[0.0; N]; N];
+    fn to_dense(&self) -> Box<[[f64; N]; N]> {
+        let mut d = boxed_zeros::<N>();
         for (r, row) in d.iter_mut().enumerate() {
             for e in self.entries(r) {
                 row[self.pattern.col[e] as usize] = self.v[e];
@@ -262,9 +262,10 @@ impl<const N: usize, const NLU: usize, E: SparseSteps<N, NLU>> SparseLu<N, NLU, 
 #[cold]
 #[inline(never)]
 fn dense_fallback<const N: usize, J: BlockJacobian<N>>(j: &J, row_scale: [f64; N], col_scale: [f64; N]) -> Box<Lu<N>> {
-    // Factorised where it is kept: the dense matrix and the factorisation are 512 KiB each for
-    // a block of 256 unknowns, and a copy of each more would overflow a thread's default stack.
-    let mut lu = Box::new(Lu::unfactored());
+    // Both on the heap, the factorisation made where it is kept: the dense matrix and the
+    // factorisation are 512 KiB each for a block of 256 unknowns, which on the stack (as built
+    // by an unoptimised build) overflow a thread's default 2 MiB.
+    let mut lu = Lu::boxed_unfactored();
     lu.refactor_scaled(&j.to_dense(), row_scale, col_scale);
     lu
 }
@@ -400,7 +401,7 @@ mod tests {
     #[test]
     fn the_newton_view_of_the_matrix() {
         let s = sparse::<4, 16>(&J, full_pattern(PROW, PCOL));
-        assert_eq!(s.to_dense(), J);
+        assert_eq!(*s.to_dense(), J);
         assert_eq!(s.first(), J[0][0]);
         assert_eq!(s.row_abs_sum(1), 5.0);
         assert_eq!(s.mul(&[1.0, 0.0, 0.0, 1.0]), J.map(|r| r[0] + r[3]));

@@ -18,7 +18,7 @@
 //! into `+0` there, where a zero product of the padding is subtracted: equal values).
 
 use super::jacobian::BlockJacobian;
-use super::lu::{Factor, Lu, RowScales, inverses};
+use super::lu::{Factor, Lu, RowScales, boxed_zeros, inverses};
 use super::sparse_steps::PatternView;
 use std::sync::Mutex;
 
@@ -97,8 +97,9 @@ impl SparseTables {
     }
 
     /// The matrix of entry values `v` padded to `P` with the identity (dense rows).
-    fn padded_dense<const P: usize>(&self, v: &[f64]) -> [[f64; P]; P] {
-        let mut d = [[0.0; P]; P];
+    /// On the heap: a block of 256 unknowns is 512 KiB.
+    fn padded_dense<const P: usize>(&self, v: &[f64]) -> Box<[[f64; P]; P]> {
+        let mut d = boxed_zeros::<P>();
         for (r, row) in d.iter_mut().enumerate() {
             if r < self.n {
                 for e in self.entries(r) {
@@ -142,7 +143,7 @@ impl<const P: usize> PaddedLu<P> {
             negative_det: false,
             det: 0.0,
             is_dense: false,
-            dense: Box::new(Lu::unfactored()),
+            dense: Lu::boxed_unfactored(),
         }
     }
 
@@ -334,7 +335,7 @@ impl<const P: usize, const CAP: usize> BlockJacobian<P> for PaddedJac<'_, P, CAP
         t.entries(0).find(|&e| t.col[e] == 0).map_or(0.0, |e| self.v[e])
     }
 
-    fn to_dense(&self) -> [[f64; P]; P] {
+    fn to_dense(&self) -> Box<[[f64; P]; P]> {
         self.t().padded_dense::<P>(&self.v)
     }
 }

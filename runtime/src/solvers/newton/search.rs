@@ -7,7 +7,7 @@ use super::norms::{scaled_norms, sum_sq_scaled};
 use super::scales::BlockEval;
 use super::state::Iter;
 use crate::solvers::jacobian::BlockJacobian;
-use crate::solvers::lu::{Lu, RowScales};
+use crate::solvers::lu::{Lu, RowScales, boxed_zeros};
 
 /// The smallest pivot of a row-equilibrated factorisation from which its Newton step is taken
 /// to be exact to rounding (the residual `J dz + f` is then a few rounding units of the
@@ -129,14 +129,15 @@ impl<const N: usize, const K: usize, J: BlockJacobian<N>> Iter<'_, N, K, J> {
         if !(trace > 0.0 && trace.is_finite()) {
             return false;
         }
-        let mut damped = vec![[0.0; N]; N].into_boxed_slice();
+        // The damped copy and its factorisation on the heap too, made once for the four dampings.
+        let mut damped = boxed_zeros::<N>();
+        let mut lu = Lu::boxed_unfactored();
         for mu in [1e-9, 1e-6, 1e-3, 1.0] {
-            damped.copy_from_slice(&a);
+            damped.copy_from_slice(&*a);
             for k in 0..N {
                 damped[k][k] += mu * trace;
             }
-            let damped: &[[f64; N]; N] = (&*damped).try_into().expect("N rows");
-            let lu = Lu::factor(damped, [1.0; N]);
+            lu.refactor_scaled(&damped, [1.0; N], [1.0; N]);
             let mut neg_g = g;
             for v in &mut neg_g {
                 *v = -*v;
@@ -171,15 +172,16 @@ fn directional_slope<const N: usize, const K: usize, J: BlockJacobian<N>>(
 
 /// `A = (D^-1 J)^T (D^-1 J)` and `g = (D^-1 J)^T D^-1 f` with `D` the row magnitudes.
 ///
-/// `A` lives on the heap: with the dense Jacobian, its damped copy and their factorisation it
-/// would put four `N x N` matrices on the stack, which for the largest blocks (256 unknowns,
-/// 512 KiB each) overflows a thread's default 2 MiB (this is the cold path of a failing step).
+/// `A` lives on the heap, as do the dense Jacobian, its damped copy and their factorisation:
+/// on the stack they would be four `N x N` matrices, which for the largest blocks (256
+/// unknowns, 512 KiB each) overflow a thread's default 2 MiB (this is the cold path of a
+/// failing step).
 fn normal_equations<const N: usize, const K: usize, J: BlockJacobian<N>>(
     ev: &BlockEval<N, K, J>,
     s: &[f64; N],
-) -> (Box<[[f64; N]]>, [f64; N]) {
+) -> (Box<[[f64; N]; N]>, [f64; N]) {
     let j = ev.j.to_dense();
-    let mut a = vec![[0.0; N]; N].into_boxed_slice();
+    let mut a = boxed_zeros::<N>();
     let mut g = [0.0; N];
     for r in 0..N {
         let w = 1.0 / s[r];
