@@ -219,6 +219,8 @@ pub(crate) fn check_body(body: &Body, total: f64, sizes: [usize; 3]) -> Result<(
 }
 
 /// A point's indices checked against the sizes `[n, ni, no]`, its constants finite.
+// A `&Cow` (not `&str`): the error clones it, which keeps a borrowed name borrowed.
+#[allow(clippy::ptr_arg)]
 pub(crate) fn check_point(
     owner: &'static str,
     name: &Cow<'static, str>,
@@ -242,6 +244,7 @@ pub(crate) fn check_point(
 }
 
 /// An angle's index checked against the sizes `[n, ni, no]`.
+#[allow(clippy::ptr_arg)]
 pub(crate) fn check_rotation(
     owner: &'static str,
     name: &Cow<'static, str>,
