@@ -1,8 +1,8 @@
 //! The machine's dynamics in the model: bodies, forces, torques and gravity, their expressions
 //! lowered into the one graph, their points and angles resolved against the kinematic state.
 //!
-//! Items are lowered in body order ([`Pending`]); their points are resolved once every output
-//! is known ([`resolve`](Pending::resolve)): a point coordinate is an unknown (a slider's
+//! Items are lowered in body order (`Pending`); their points are resolved once every output
+//! is known (`Pending::resolve`): a point coordinate is an unknown (a slider's
 //! coordinate), a constant of the parameters, or a column of a declared `point` or `output`.
 //! Anything else would need its own analogs, so the message asks to declare it as a `point`.
 
