@@ -323,6 +323,43 @@ impl<const N: usize> Lu<N> {
                 lu[r][c] = j[r][c] * inv_row[r] * inv_col[c];
             }
         }
+        self.eliminate(degenerate);
+    }
+
+    /// [`Lu::refactor_scaled`] of the matrix that `load` writes (unscaled, every entry) into the
+    /// factorisation's own storage: a large matrix then needs no copy of its own (a block of 256
+    /// unknowns is 512 KiB), nor an allocation. The same operations as from a matrix, so the
+    /// same bits.
+    pub(crate) fn refactor_scaled_loaded(
+        &mut self,
+        load: impl FnOnce(&mut [[f64; N]; N]),
+        row_scale: [f64; N],
+        col_scale: [f64; N],
+    ) {
+        // The general elimination for every size (the 2x2 form of `factor_scaled` gives the same
+        // bits); no matrix-sized temporary, which a debug build would keep on the stack.
+        let mut degenerate = false;
+        let inv_row = inverses(row_scale, &mut degenerate);
+        let inv_col = inverses(col_scale, &mut degenerate);
+        self.inv_row = inv_row;
+        self.rows_scaled = inv_row != [1.0; N];
+        self.inv_col = inv_col;
+        load(&mut self.lu);
+        let lu = &mut self.lu;
+        for r in 0..N {
+            for c in 0..N {
+                lu[r][c] = lu[r][c] * inv_row[r] * inv_col[c];
+            }
+        }
+        self.eliminate(degenerate);
+    }
+
+    /// The partial-pivoting elimination of the scaled matrix in `self.lu`; `degenerate` when a
+    /// scale was invalid.
+    #[inline(always)]
+    #[allow(clippy::neg_cmp_op_on_partial_ord)] // the negation is what lets NaN through
+    fn eliminate(&mut self, degenerate: bool) {
+        let lu = &mut self.lu;
         for (k, p) in self.perm.iter_mut().enumerate() {
             *p = k;
         }

@@ -100,7 +100,14 @@ impl SparseTables {
     /// On the heap: a block of 256 unknowns is 512 KiB.
     fn padded_dense<const P: usize>(&self, v: &[f64]) -> Box<[[f64; P]; P]> {
         let mut d = boxed_zeros::<P>();
+        self.load_padded(v, &mut d);
+        d
+    }
+
+    /// The matrix of entry values `v` padded to `P` with the identity, written over `d`.
+    fn load_padded<const P: usize>(&self, v: &[f64], d: &mut [[f64; P]; P]) {
         for (r, row) in d.iter_mut().enumerate() {
+            row.fill(0.0);
             if r < self.n {
                 for e in self.entries(r) {
                     row[self.col[e] as usize] = v[e];
@@ -109,7 +116,6 @@ impl SparseTables {
                 row[r] = 1.0;
             }
         }
-        d
     }
 }
 
@@ -185,7 +191,8 @@ impl<const P: usize> PaddedLu<P> {
     #[cold]
     #[inline(never)]
     fn dense_fallback(&mut self, t: &SparseTables, v: &[f64], row_scale: [f64; P], col_scale: [f64; P]) {
-        self.dense.refactor_scaled(&t.padded_dense::<P>(v), row_scale, col_scale);
+        // Written into the factorisation's own storage: no copy, no allocation per fallback.
+        self.dense.refactor_scaled_loaded(|d| t.load_padded(v, d), row_scale, col_scale);
         self.is_dense = true;
     }
 
