@@ -2,8 +2,9 @@
 //! animated SVG or an interactive HTML page, with the drawing code of compiled mechanisms
 //! (`kinloop_viz`) over the run-time model.
 
+use crate::exit::usage;
 use crate::solve::parse_inputs;
-use crate::{Failed, exit};
+use crate::{Failed, exit, samples};
 use kinloop_model::Model;
 use kinloop_runtime::{Error, QuantityKind};
 use kinloop_viz::draw::{Animation, DrawError};
@@ -51,11 +52,6 @@ pub struct Request<'a> {
     pub frames: Option<usize>,
 }
 
-fn usage(msg: impl std::fmt::Display) -> Failed {
-    eprintln!("error: {msg}");
-    Failed(exit::USAGE)
-}
-
 /// Sweeps from the declared guess at `from`, draws the motion and writes it to `out`. A sweep
 /// that stops at a located limit position or singular crossing is drawn up to there, the
 /// mechanism shown at the event as a ghost, and the event listed on standard error; a sweep that
@@ -73,6 +69,7 @@ pub fn run(model: &mut Model, req: &Request) -> Result<(), Failed> {
     if req.samples < 2 {
         return Err(usage(format!("an animation needs at least 2 samples, not {}", req.samples)));
     }
+    samples::check(req.samples)?;
     if req.frames.is_some_and(|f| f < 2) {
         return Err(usage("--frames must be at least 2"));
     }

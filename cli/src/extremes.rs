@@ -5,7 +5,7 @@
 //! range). Written as CSV with units, or as a readable table.
 
 use crate::solve::parse_inputs;
-use crate::{Failed, exit, progress};
+use crate::{Failed, exit, progress, samples};
 use kinloop_model::Model;
 use kinloop_runtime::analysis::SampledOf;
 use kinloop_runtime::dims::Heap;
@@ -51,6 +51,7 @@ fn written(k: QuantityKind, deg: bool, v: f64) -> f64 {
 /// Samples the range from the declared guess at `from`, locates each column's extremes and
 /// writes them to standard output.
 pub fn run(model: &mut Model, req: &Request) -> Result<(), Failed> {
+    samples::check(req.samples)?;
     let name = model.name().to_string();
     let input_names = model.inputs().to_vec();
     let input_kinds = model.input_kinds().to_vec();
@@ -83,7 +84,7 @@ pub fn run(model: &mut Model, req: &Request) -> Result<(), Failed> {
     let mut guess = vec![0.0; model.unknowns().len()];
     model.guess(&from, &mut guess).map_err(|e| failed(&e))?;
     let kernel = model.kernel(SweepConfig::default()).map_err(|e| failed(&e))?;
-    let bar = progress::bar(&format!("{name}: sampling"), req.samples + columns.len(), req.samples);
+    let bar = progress::bar(&format!("{name}: sampling"), req.samples.saturating_add(columns.len()), req.samples);
     let cfg = SweepConfig::default();
     let sampled = SampledOf::over_reporting(
         kernel,
@@ -99,10 +100,7 @@ pub fn run(model: &mut Model, req: &Request) -> Result<(), Failed> {
     let sampled = sampled.map_err(|e| {
         bar.finish_and_clear();
         match e {
-            Error::InvalidArgument(_) => {
-                eprintln!("error: {name}: {e}");
-                Failed(exit::USAGE)
-            }
+            Error::InvalidArgument(_) => exit::usage(format!("{name}: {e}")),
             e => failed(&e),
         }
     })?;
@@ -149,8 +147,7 @@ fn select(
         .map(|c| {
             quantities.iter().find(|(n, _)| n == c).cloned().ok_or_else(|| {
                 let known: Vec<&str> = quantities.iter().map(|(n, _)| n.as_str()).collect();
-                eprintln!("error: {name} has no unknown or output `{c}` (they are: {})", known.join(", "));
-                Failed(exit::USAGE)
+                exit::usage(format!("{name} has no unknown or output `{c}` (they are: {})", known.join(", ")))
             })
         })
         .collect()
