@@ -97,14 +97,14 @@ pub fn run(model: &mut Model, req: &Request) -> Result<(), Failed> {
         DrawError::Sweep(e @ Error::InvalidArgument(_)) => usage(format!("{name}: {e}")),
         e => failed(&e),
     })?;
-    for e in &motion.events {
+    for (k, e) in motion.events.iter().enumerate() {
         let at: Vec<String> = (motion.inputs.iter().zip(&e.pose.x).zip(&kinds))
             .map(|((n, v), k)| match req.deg && *k == QuantityKind::Angle {
                 true => format!("{n} = {} deg", v.to_degrees()),
                 false => format!("{n} = {v}"),
             })
             .collect();
-        let what = if motion.stopped { "the sweep stopped at" } else { "event:" };
+        let what = event_label(k, motion.events.len(), motion.stopped);
         eprintln!("{what} {} at {}", e.kind, at.join(", "));
     }
     let drawing = model.drawing();
@@ -143,4 +143,22 @@ pub fn run(model: &mut Model, req: &Request) -> Result<(), Failed> {
         eprintln!("error: cannot write {}: {e}", req.out.display());
         Failed(exit::IO_ERR)
     })
+}
+
+/// How the event `k` of `n` is listed: the last one of a sweep that stopped is where it
+/// stopped; the others were met and crossed.
+fn event_label(k: usize, n: usize, stopped: bool) -> &'static str {
+    if stopped && k + 1 == n { "the sweep stopped at" } else { "event:" }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::event_label;
+
+    #[test]
+    fn only_the_last_event_of_a_stopped_sweep_is_the_stop() {
+        let labels: Vec<&str> = (0..3).map(|k| event_label(k, 3, true)).collect();
+        assert_eq!(labels, ["event:", "event:", "the sweep stopped at"]);
+        assert!((0..3).all(|k| event_label(k, 3, false) == "event:"));
+    }
 }

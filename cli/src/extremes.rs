@@ -188,19 +188,26 @@ fn csv(rows: &[Row], inputs: &[String], units: &[&str]) -> String {
     s
 }
 
+/// `v` to ten significant digits: in positional notation from 1e-3 to 1e6 (and zero), in
+/// scientific notation otherwise (subnormal, tiny, huge, not finite).
+fn ten_digits(v: f64) -> String {
+    let a = v.abs();
+    if a == 0.0 {
+        // The logarithm of zero is minus infinity: no leading digit to count from.
+        format!("{v:.9}")
+    } else if (1e-3..1e6).contains(&a) {
+        // The leading digit's place is floor(log10 a), from -3 to 5 here: nine more after it.
+        let digits = (9 - a.log10().floor() as i32).max(0) as usize;
+        format!("{v:.digits$}")
+    } else {
+        format!("{v:.9e}")
+    }
+}
+
 /// A table aligned in columns, numbers to ten significant digits.
 fn table(rows: &[Row], inputs: &[String], units: &[&str]) -> String {
-    let number = |v: f64| {
-        let a = v.abs();
-        if a == 0.0 || (1e-3..1e6).contains(&a) {
-            let digits = 9usize.saturating_sub(a.log10().floor().max(0.0) as usize);
-            format!("{v:.digits$}")
-        } else {
-            format!("{v:.9e}")
-        }
-    };
     let lines: Vec<Vec<String>> =
-        std::iter::once(header(inputs, units)).chain(rows.iter().map(|r| cells(r, number))).collect();
+        std::iter::once(header(inputs, units)).chain(rows.iter().map(|r| cells(r, ten_digits))).collect();
     let widths: Vec<usize> =
         (0..lines[0].len()).map(|c| lines.iter().map(|l| l[c].chars().count()).max().unwrap_or(0)).collect();
     let mut s = String::new();
@@ -216,4 +223,38 @@ fn table(rows: &[Row], inputs: &[String], units: &[&str]) -> String {
         s.push('\n');
     }
     s
+}
+
+#[cfg(test)]
+mod tests {
+    use super::ten_digits;
+
+    /// The significant digits of a number as written (without sign, point, exponent and
+    /// leading zeros).
+    fn significant(s: &str) -> usize {
+        let mantissa = s.split('e').next().unwrap();
+        mantissa.chars().filter(char::is_ascii_digit).skip_while(|&c| c == '0').count()
+    }
+
+    #[test]
+    fn ten_significant_digits_at_every_magnitude() {
+        for v in
+            [1e-3, 0.0012345678901, 0.5, 0.123456789012, -0.987654321098, 1.0, 3.14159265358979, 99999.5, 123456.789]
+        {
+            let s = ten_digits(v);
+            assert_eq!(significant(&s), 10, "{v}: {s}");
+            let back: f64 = s.parse().unwrap();
+            assert!((back - v).abs() <= 5e-10 * v.abs(), "{v}: {s}");
+        }
+        assert_eq!(ten_digits(0.5), "0.5000000000");
+        assert_eq!(ten_digits(0.001), "0.001000000000");
+        assert_eq!(ten_digits(0.0), "0.000000000");
+        assert_eq!(ten_digits(-0.0), "-0.000000000");
+        // Subnormal, tiny and huge magnitudes: scientific, ten digits still.
+        assert_eq!(ten_digits(5e-324), "4.940656458e-324");
+        assert_eq!(ten_digits(1.5e-4), "1.500000000e-4");
+        assert_eq!(ten_digits(1e6), "1.000000000e6");
+        assert_eq!(ten_digits(-2.5e10), "-2.500000000e10");
+        assert_eq!(ten_digits(f64::INFINITY), "inf");
+    }
 }
