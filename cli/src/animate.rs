@@ -3,7 +3,7 @@
 //! (`kinloop_viz`) over the run-time model.
 
 use crate::exit::usage;
-use crate::solve::parse_inputs;
+use crate::solve::model_inputs;
 use crate::{Failed, exit, samples};
 use kinloop_model::Model;
 use kinloop_runtime::{Error, QuantityKind};
@@ -73,18 +73,9 @@ pub fn run(model: &mut Model, req: &Request) -> Result<(), Failed> {
     if req.frames.is_some_and(|f| f < 2) {
         return Err(usage("--frames must be at least 2"));
     }
-    let ni = model.inputs().len();
     let kinds = model.input_kinds().to_vec();
-    let to_rad = |spec: &str, option: &str| -> Result<Vec<f64>, Failed> {
-        let mut x = parse_inputs(spec, ni, option)?;
-        for (v, k) in x.iter_mut().zip(&kinds) {
-            if req.deg && *k == QuantityKind::Angle {
-                *v = v.to_radians();
-            }
-        }
-        Ok(x)
-    };
-    let (from, to) = (to_rad(req.from, "--from")?, to_rad(req.to, "--to")?);
+    let from = model_inputs(req.from, &kinds, req.deg, "--from")?;
+    let to = model_inputs(req.to, &kinds, req.deg, "--to")?;
     let name = model.name().to_string();
     let failed = |e: &dyn std::fmt::Display| {
         eprintln!("error: {name}: {e}");

@@ -4,11 +4,9 @@
 //! velocity analog, refined between samples on the sweep's branch; otherwise an end of the
 //! range). Written as CSV with units, or as a readable table.
 
-use crate::solve::parse_inputs;
+use crate::solve::model_inputs;
 use crate::{Failed, exit, progress, samples};
 use kinloop_model::Model;
-use kinloop_runtime::analysis::SampledOf;
-use kinloop_runtime::dims::Heap;
 use kinloop_runtime::{Error, QuantityKind, SweepConfig};
 use std::io::Write;
 
@@ -55,17 +53,8 @@ pub fn run(model: &mut Model, req: &Request) -> Result<(), Failed> {
     let name = model.name().to_string();
     let input_names = model.inputs().to_vec();
     let input_kinds = model.input_kinds().to_vec();
-    let ni = input_names.len();
-    let to_model = |spec: &str, option: &str| -> Result<Vec<f64>, Failed> {
-        let mut x = parse_inputs(spec, ni, option)?;
-        for (v, k) in x.iter_mut().zip(&input_kinds) {
-            if req.deg && *k == QuantityKind::Angle {
-                *v = v.to_radians();
-            }
-        }
-        Ok(x)
-    };
-    let (from, to) = (to_model(req.from, "--from")?, to_model(req.to, "--to")?);
+    let from = model_inputs(req.from, &input_kinds, req.deg, "--from")?;
+    let to = model_inputs(req.to, &input_kinds, req.deg, "--to")?;
     let quantities: Vec<(String, QuantityKind)> = model
         .unknowns()
         .iter()
@@ -83,18 +72,9 @@ pub fn run(model: &mut Model, req: &Request) -> Result<(), Failed> {
     };
     let mut guess = vec![0.0; model.unknowns().len()];
     model.guess(&from, &mut guess).map_err(|e| failed(&e))?;
-    let kernel = model.kernel(SweepConfig::default()).map_err(|e| failed(&e))?;
     let bar = progress::bar(&format!("{name}: sampling"), req.samples.saturating_add(columns.len()), req.samples);
-    let cfg = SweepConfig::default();
-    let sampled = SampledOf::over_reporting(
-        kernel,
-        Heap(from.into()),
-        Heap(to.into()),
-        req.samples,
-        Heap(guess.into()),
-        cfg,
-        |n| bar.set_position(n as u64),
-    );
+    let sampled = model
+        .sampled_reporting(&from, &to, req.samples, &guess, SweepConfig::default(), |n| bar.set_position(n as u64));
     // The runtime checks the arguments (at least three samples, `to` apart from `from`, and
     // past it for one input): its refusal is a usage error, not a failed solve.
     let sampled = sampled.map_err(|e| {

@@ -2,7 +2,7 @@
 //! the runtime's own sweep over the model (the events it meets listed on standard error, or
 //! written to `--events`).
 
-use crate::solve::{factors, parse_inputs, units};
+use crate::solve::{factors, model_inputs, units};
 use crate::{Failed, exit, progress, samples};
 use kinloop_model::Model;
 use kinloop_runtime::dims::KinState;
@@ -31,16 +31,8 @@ pub fn run(model: &mut Model, req: &Request) -> Result<(), Failed> {
     samples::check(req.samples)?;
     let kinds: Vec<QuantityKind> = model.quantities().iter().map(|(_, k)| *k).collect();
     let ni = model.inputs().len();
-    let to_rad = |spec: &str, option: &str| -> Result<Vec<f64>, Failed> {
-        let mut x = parse_inputs(spec, ni, option)?;
-        for (v, k) in x.iter_mut().zip(&kinds[..ni]) {
-            if req.deg && *k == QuantityKind::Angle {
-                *v = v.to_radians();
-            }
-        }
-        Ok(x)
-    };
-    let (from, to) = (to_rad(req.from, "--from")?, to_rad(req.to, "--to")?);
+    let from = model_inputs(req.from, &kinds[..ni], req.deg, "--from")?;
+    let to = model_inputs(req.to, &kinds[..ni], req.deg, "--to")?;
     let name = model.name().to_string();
     let factors = factors(model, &kinds, req.deg);
     let columns = model.columns();
