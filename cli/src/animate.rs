@@ -2,8 +2,9 @@
 //! animated SVG or an interactive HTML page, with the drawing code of compiled mechanisms
 //! (`kinloop_viz`) over the run-time model.
 
-use crate::solve::parse_inputs;
-use crate::{Failed, exit};
+use crate::exit::usage;
+use crate::solve::model_inputs;
+use crate::{Failed, exit, samples};
 use kinloop_model::Model;
 use kinloop_runtime::{Error, QuantityKind};
 use kinloop_viz::draw::{Animation, DrawError};
@@ -51,11 +52,6 @@ pub struct Request<'a> {
     pub frames: Option<usize>,
 }
 
-fn usage(msg: impl std::fmt::Display) -> Failed {
-    eprintln!("error: {msg}");
-    Failed(exit::USAGE)
-}
-
 /// Sweeps from the declared guess at `from`, draws the motion and writes it to `out`. A sweep
 /// that stops at a located limit position or singular crossing is drawn up to there, the
 /// mechanism shown at the event as a ghost, and the event listed on standard error; a sweep that
@@ -73,21 +69,13 @@ pub fn run(model: &mut Model, req: &Request) -> Result<(), Failed> {
     if req.samples < 2 {
         return Err(usage(format!("an animation needs at least 2 samples, not {}", req.samples)));
     }
+    samples::check(req.samples)?;
     if req.frames.is_some_and(|f| f < 2) {
         return Err(usage("--frames must be at least 2"));
     }
-    let ni = model.inputs().len();
     let kinds = model.input_kinds().to_vec();
-    let to_rad = |spec: &str, option: &str| -> Result<Vec<f64>, Failed> {
-        let mut x = parse_inputs(spec, ni, option)?;
-        for (v, k) in x.iter_mut().zip(&kinds) {
-            if req.deg && *k == QuantityKind::Angle {
-                *v = v.to_radians();
-            }
-        }
-        Ok(x)
-    };
-    let (from, to) = (to_rad(req.from, "--from")?, to_rad(req.to, "--to")?);
+    let from = model_inputs(req.from, &kinds, req.deg, "--from")?;
+    let to = model_inputs(req.to, &kinds, req.deg, "--to")?;
     let name = model.name().to_string();
     let failed = |e: &dyn std::fmt::Display| {
         eprintln!("error: {name}: {e}");
@@ -100,14 +88,14 @@ pub fn run(model: &mut Model, req: &Request) -> Result<(), Failed> {
         DrawError::Sweep(e @ Error::InvalidArgument(_)) => usage(format!("{name}: {e}")),
         e => failed(&e),
     })?;
-    for e in &motion.events {
+    for (k, e) in motion.events.iter().enumerate() {
         let at: Vec<String> = (motion.inputs.iter().zip(&e.pose.x).zip(&kinds))
             .map(|((n, v), k)| match req.deg && *k == QuantityKind::Angle {
                 true => format!("{n} = {} deg", v.to_degrees()),
                 false => format!("{n} = {v}"),
             })
             .collect();
-        let what = if motion.stopped { "the sweep stopped at" } else { "event:" };
+        let what = event_label(k, motion.events.len(), motion.stopped);
         eprintln!("{what} {} at {}", e.kind, at.join(", "));
     }
     let drawing = model.drawing();
@@ -146,4 +134,22 @@ pub fn run(model: &mut Model, req: &Request) -> Result<(), Failed> {
         eprintln!("error: cannot write {}: {e}", req.out.display());
         Failed(exit::IO_ERR)
     })
+}
+
+/// How the event `k` of `n` is listed: the last one of a sweep that stopped is where it
+/// stopped; the others were met and crossed.
+fn event_label(k: usize, n: usize, stopped: bool) -> &'static str {
+    if stopped && k + 1 == n { "the sweep stopped at" } else { "event:" }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::event_label;
+
+    #[test]
+    fn only_the_last_event_of_a_stopped_sweep_is_the_stop() {
+        let labels: Vec<&str> = (0..3).map(|k| event_label(k, 3, true)).collect();
+        assert_eq!(labels, ["event:", "event:", "the sweep stopped at"]);
+        assert!((0..3).all(|k| event_label(k, 3, false) == "event:"));
+    }
 }

@@ -7,10 +7,11 @@
 //! Units: masses and lengths in the units of the parameters (`mass unit`, `length unit`), time
 //! in the unit of the speed (`time unit`): with kg, m and s, torques in N m and forces in N.
 
-use crate::{Failed, exit};
+use crate::exit::usage;
+use crate::{Failed, exit, samples};
 use kinloop_model::Model;
-use kinloop_runtime::dynamics::{Cycle, Flywheel, SpeedLaw};
-use kinloop_runtime::{QuantityKind, Table};
+use kinloop_runtime::dynamics::{Cycle, DynamicsError, Flywheel, SpeedLaw};
+use kinloop_runtime::{Error, QuantityKind, Table};
 use std::io::Write;
 use std::path::Path;
 
@@ -35,11 +36,6 @@ pub struct Request<'a> {
 const INERTIA: &str = "mass unit length unit^2";
 const TORQUE: &str = "mass unit length unit^2/time unit^2";
 const FORCE: &str = "mass unit length unit/time unit^2";
-
-fn usage(message: String) -> Failed {
-    eprintln!("error: {message}");
-    Failed(exit::USAGE)
-}
 
 /// The frame point of `--about`: two finite numbers.
 fn parse_about(spec: Option<&str>) -> Result<[f64; 2], Failed> {
@@ -69,6 +65,7 @@ pub fn run(model: &mut Model, req: &Request) -> Result<(), Failed> {
     if req.samples < 8 {
         return Err(usage(format!("--samples {} is too few: a turn needs at least 8", req.samples)));
     }
+    samples::check(req.samples)?;
     if !(req.speed.is_finite() && req.speed > 0.0) {
         return Err(usage(format!("--speed {} must be a positive number", req.speed)));
     }
@@ -82,9 +79,21 @@ pub fn run(model: &mut Model, req: &Request) -> Result<(), Failed> {
     let angle = if req.deg { 180.0 / std::f64::consts::PI } else { 1.0 };
     let (speed, start) = (req.speed / angle, req.start / angle);
     let cycle = model.inverse_cycle(SpeedLaw::Constant(speed)).start(start).samples(req.samples).about(about).run();
-    // The request is checked above: what remains is the model's (a parameter without a
-    // value, a limit position on the turn, a mass or load that is not finite).
+    // The runtime refuses a start angle too large for the samples of a turn to be told apart
+    // (or more samples than memory holds): bad arguments, a usage error. What remains is the
+    // model's (a parameter without a value, a limit position on the turn, a mass or load that
+    // is not finite).
     let cycle = cycle.map_err(|e| {
+        let bad_argument = match &e {
+            Error::Dynamics(source) => matches!(
+                source.downcast_ref::<DynamicsError>(),
+                Some(DynamicsError::BadValue { what: "start angle" | "samples", .. })
+            ),
+            _ => false,
+        };
+        if bad_argument {
+            return usage(format!("{name}: {e}"));
+        }
         eprintln!("error: {name}: {e}");
         Failed(exit::SOLVE_FAILED)
     })?;

@@ -14,3 +14,9 @@ pub const UNAVAILABLE: u8 = 69;
 pub const CANT_CREATE: u8 = 73;
 /// Writing an output (the table, the events) failed.
 pub const IO_ERR: u8 = 74;
+
+/// A usage error: writes `message` on standard error and fails with [`USAGE`].
+pub fn usage(message: impl std::fmt::Display) -> crate::Failed {
+    eprintln!("error: {message}");
+    crate::Failed(USAGE)
+}

@@ -4,11 +4,9 @@
 //! velocity analog, refined between samples on the sweep's branch; otherwise an end of the
 //! range). Written as CSV with units, or as a readable table.
 
-use crate::solve::parse_inputs;
-use crate::{Failed, exit, progress};
+use crate::solve::model_inputs;
+use crate::{Failed, exit, progress, samples};
 use kinloop_model::Model;
-use kinloop_runtime::analysis::SampledOf;
-use kinloop_runtime::dims::Heap;
 use kinloop_runtime::{Error, QuantityKind, SweepConfig};
 use std::io::Write;
 
@@ -51,20 +49,12 @@ fn written(k: QuantityKind, deg: bool, v: f64) -> f64 {
 /// Samples the range from the declared guess at `from`, locates each column's extremes and
 /// writes them to standard output.
 pub fn run(model: &mut Model, req: &Request) -> Result<(), Failed> {
+    samples::check(req.samples)?;
     let name = model.name().to_string();
     let input_names = model.inputs().to_vec();
     let input_kinds = model.input_kinds().to_vec();
-    let ni = input_names.len();
-    let to_model = |spec: &str, option: &str| -> Result<Vec<f64>, Failed> {
-        let mut x = parse_inputs(spec, ni, option)?;
-        for (v, k) in x.iter_mut().zip(&input_kinds) {
-            if req.deg && *k == QuantityKind::Angle {
-                *v = v.to_radians();
-            }
-        }
-        Ok(x)
-    };
-    let (from, to) = (to_model(req.from, "--from")?, to_model(req.to, "--to")?);
+    let from = model_inputs(req.from, &input_kinds, req.deg, "--from")?;
+    let to = model_inputs(req.to, &input_kinds, req.deg, "--to")?;
     let quantities: Vec<(String, QuantityKind)> = model
         .unknowns()
         .iter()
@@ -82,27 +72,15 @@ pub fn run(model: &mut Model, req: &Request) -> Result<(), Failed> {
     };
     let mut guess = vec![0.0; model.unknowns().len()];
     model.guess(&from, &mut guess).map_err(|e| failed(&e))?;
-    let kernel = model.kernel(SweepConfig::default()).map_err(|e| failed(&e))?;
-    let bar = progress::bar(&format!("{name}: sampling"), req.samples + columns.len(), req.samples);
-    let cfg = SweepConfig::default();
-    let sampled = SampledOf::over_reporting(
-        kernel,
-        Heap(from.into()),
-        Heap(to.into()),
-        req.samples,
-        Heap(guess.into()),
-        cfg,
-        |n| bar.set_position(n as u64),
-    );
+    let bar = progress::bar(&format!("{name}: sampling"), req.samples.saturating_add(columns.len()), req.samples);
+    let sampled = model
+        .sampled_reporting(&from, &to, req.samples, &guess, SweepConfig::default(), |n| bar.set_position(n as u64));
     // The runtime checks the arguments (at least three samples, `to` apart from `from`, and
     // past it for one input): its refusal is a usage error, not a failed solve.
     let sampled = sampled.map_err(|e| {
         bar.finish_and_clear();
         match e {
-            Error::InvalidArgument(_) => {
-                eprintln!("error: {name}: {e}");
-                Failed(exit::USAGE)
-            }
+            Error::InvalidArgument(_) => exit::usage(format!("{name}: {e}")),
             e => failed(&e),
         }
     })?;
@@ -149,8 +127,7 @@ fn select(
         .map(|c| {
             quantities.iter().find(|(n, _)| n == c).cloned().ok_or_else(|| {
                 let known: Vec<&str> = quantities.iter().map(|(n, _)| n.as_str()).collect();
-                eprintln!("error: {name} has no unknown or output `{c}` (they are: {})", known.join(", "));
-                Failed(exit::USAGE)
+                exit::usage(format!("{name} has no unknown or output `{c}` (they are: {})", known.join(", ")))
             })
         })
         .collect()
@@ -191,19 +168,26 @@ fn csv(rows: &[Row], inputs: &[String], units: &[&str]) -> String {
     s
 }
 
+/// `v` to ten significant digits: in positional notation from 1e-3 to 1e6 (and zero), in
+/// scientific notation otherwise (subnormal, tiny, huge, not finite).
+fn ten_digits(v: f64) -> String {
+    let a = v.abs();
+    if a == 0.0 {
+        // The logarithm of zero is minus infinity: no leading digit to count from.
+        format!("{v:.9}")
+    } else if (1e-3..1e6).contains(&a) {
+        // The leading digit's place is floor(log10 a), from -3 to 5 here: nine more after it.
+        let digits = (9 - a.log10().floor() as i32).max(0) as usize;
+        format!("{v:.digits$}")
+    } else {
+        format!("{v:.9e}")
+    }
+}
+
 /// A table aligned in columns, numbers to ten significant digits.
 fn table(rows: &[Row], inputs: &[String], units: &[&str]) -> String {
-    let number = |v: f64| {
-        let a = v.abs();
-        if a == 0.0 || (1e-3..1e6).contains(&a) {
-            let digits = 9usize.saturating_sub(a.log10().floor().max(0.0) as usize);
-            format!("{v:.digits$}")
-        } else {
-            format!("{v:.9e}")
-        }
-    };
     let lines: Vec<Vec<String>> =
-        std::iter::once(header(inputs, units)).chain(rows.iter().map(|r| cells(r, number))).collect();
+        std::iter::once(header(inputs, units)).chain(rows.iter().map(|r| cells(r, ten_digits))).collect();
     let widths: Vec<usize> =
         (0..lines[0].len()).map(|c| lines.iter().map(|l| l[c].chars().count()).max().unwrap_or(0)).collect();
     let mut s = String::new();
@@ -219,4 +203,37 @@ fn table(rows: &[Row], inputs: &[String], units: &[&str]) -> String {
         s.push('\n');
     }
     s
+}
+
+#[cfg(test)]
+mod tests {
+    use super::ten_digits;
+
+    /// The significant digits of a number as written (without sign, point, exponent and
+    /// leading zeros).
+    fn significant(s: &str) -> usize {
+        let mantissa = s.split('e').next().unwrap();
+        mantissa.chars().filter(char::is_ascii_digit).skip_while(|&c| c == '0').count()
+    }
+
+    #[test]
+    fn ten_significant_digits_at_every_magnitude() {
+        for v in [1e-3, 0.0012345678901, 0.5, 0.123456789012, -0.987654321098, 1.0, 4.56789012345, 99999.5, 123456.789]
+        {
+            let s = ten_digits(v);
+            assert_eq!(significant(&s), 10, "{v}: {s}");
+            let back: f64 = s.parse().unwrap();
+            assert!((back - v).abs() <= 5e-10 * v.abs(), "{v}: {s}");
+        }
+        assert_eq!(ten_digits(0.5), "0.5000000000");
+        assert_eq!(ten_digits(0.001), "0.001000000000");
+        assert_eq!(ten_digits(0.0), "0.000000000");
+        assert_eq!(ten_digits(-0.0), "-0.000000000");
+        // Subnormal, tiny and huge magnitudes: scientific, ten digits still.
+        assert_eq!(ten_digits(5e-324), "4.940656458e-324");
+        assert_eq!(ten_digits(1.5e-4), "1.500000000e-4");
+        assert_eq!(ten_digits(1e6), "1.000000000e6");
+        assert_eq!(ten_digits(-2.5e10), "-2.500000000e10");
+        assert_eq!(ten_digits(f64::INFINITY), "inf");
+    }
 }

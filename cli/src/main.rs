@@ -25,6 +25,7 @@ mod extremes;
 mod params;
 mod progress;
 mod report;
+mod samples;
 mod solve;
 mod sweep;
 
@@ -84,7 +85,7 @@ enum Command {
         /// The inputs at the end.
         #[arg(long, value_name = "X,...", allow_hyphen_values = true)]
         to: String,
-        /// Samples, equally spaced, both ends included.
+        /// Samples, equally spaced, both ends included (at most 10000000).
         #[arg(long, default_value_t = 361)]
         samples: usize,
         /// Angles in degrees (inputs given and values written); otherwise radians.
@@ -113,7 +114,7 @@ enum Command {
         /// The input angle the turn starts at.
         #[arg(long, default_value_t = 0.0, allow_hyphen_values = true)]
         start: f64,
-        /// Equally spaced angles per turn (at least 8).
+        /// Equally spaced angles per turn (at least 8, at most 10000000).
         #[arg(long, default_value_t = 360)]
         samples: usize,
         /// The coefficient of speed fluctuation `(omega_max - omega_min) / omega_mean` the
@@ -148,7 +149,7 @@ enum Command {
         /// The inputs at the end (past `--from` for one input).
         #[arg(long, value_name = "X,...", allow_hyphen_values = true)]
         to: String,
-        /// Samples, equally spaced, both ends included (at least 3).
+        /// Samples, equally spaced, both ends included (at least 3, at most 10000000).
         #[arg(long, default_value_t = 361)]
         samples: usize,
         /// Angles in degrees (inputs given and values written); otherwise radians.
@@ -178,7 +179,7 @@ enum Command {
         /// The inputs at the end.
         #[arg(long, value_name = "X,...", allow_hyphen_values = true)]
         to: String,
-        /// Samples, equally spaced, both ends included.
+        /// Samples, equally spaced, both ends included (at most 10000000).
         #[arg(long, default_value_t = 181)]
         samples: usize,
         /// Angles in degrees (inputs given); otherwise radians.

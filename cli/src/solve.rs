@@ -12,12 +12,7 @@ pub fn run(model: &mut Model, at: &[String], deg: bool) -> Result<(), Failed> {
     let name = model.name().to_string();
     let mut table = Table::new(model.columns());
     for spec in at {
-        let mut x = parse_inputs(spec, ni, "--at")?;
-        for (v, k) in x.iter_mut().zip(&kinds[..ni]) {
-            if deg && *k == QuantityKind::Angle {
-                *v = v.to_radians();
-            }
-        }
+        let x = model_inputs(spec, &kinds[..ni], deg, "--at")?;
         let state = model.solve(&x).map_err(|e| {
             eprintln!("error: {name} at {spec}: {e}");
             Failed(exit::SOLVE_FAILED)
@@ -42,6 +37,18 @@ pub fn units(model: &Model, kinds: &[QuantityKind], deg: bool) -> Vec<(String, &
         .zip(kinds)
         .map(|((n, _), k)| (n.to_string(), if deg && *k == QuantityKind::Angle { "deg" } else { k.unit() }))
         .collect()
+}
+
+/// One list of inputs (of the option `option`) in the model's units: one number per input of
+/// kind `kinds`, angles given in degrees where `deg` is set and turned into radians.
+pub fn model_inputs(spec: &str, kinds: &[QuantityKind], deg: bool, option: &str) -> Result<Vec<f64>, Failed> {
+    let mut x = parse_inputs(spec, kinds.len(), option)?;
+    for (v, k) in x.iter_mut().zip(kinds) {
+        if deg && *k == QuantityKind::Angle {
+            *v = v.to_radians();
+        }
+    }
+    Ok(x)
 }
 
 /// One list of inputs (of the option `option`): one number per input.

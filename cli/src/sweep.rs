@@ -2,8 +2,8 @@
 //! the runtime's own sweep over the model (the events it meets listed on standard error, or
 //! written to `--events`).
 
-use crate::solve::{factors, parse_inputs, units};
-use crate::{Failed, exit, progress};
+use crate::solve::{factors, model_inputs, units};
+use crate::{Failed, exit, progress, samples};
 use kinloop_model::Model;
 use kinloop_runtime::dims::KinState;
 use kinloop_runtime::{Error, Event, QuantityKind, Table};
@@ -28,18 +28,11 @@ pub struct Request<'a> {
 /// that stops (a limit position, no assembly) writes the states before the stop, the events,
 /// and the reason on standard error, and fails.
 pub fn run(model: &mut Model, req: &Request) -> Result<(), Failed> {
+    samples::check(req.samples)?;
     let kinds: Vec<QuantityKind> = model.quantities().iter().map(|(_, k)| *k).collect();
     let ni = model.inputs().len();
-    let to_rad = |spec: &str, option: &str| -> Result<Vec<f64>, Failed> {
-        let mut x = parse_inputs(spec, ni, option)?;
-        for (v, k) in x.iter_mut().zip(&kinds[..ni]) {
-            if req.deg && *k == QuantityKind::Angle {
-                *v = v.to_radians();
-            }
-        }
-        Ok(x)
-    };
-    let (from, to) = (to_rad(req.from, "--from")?, to_rad(req.to, "--to")?);
+    let from = model_inputs(req.from, &kinds[..ni], req.deg, "--from")?;
+    let to = model_inputs(req.to, &kinds[..ni], req.deg, "--to")?;
     let name = model.name().to_string();
     let factors = factors(model, &kinds, req.deg);
     let columns = model.columns();
@@ -53,10 +46,7 @@ pub fn run(model: &mut Model, req: &Request) -> Result<(), Failed> {
     // The runtime checks the arguments (at least one sample, `to` apart from `from` for
     // several): its refusal is a usage error, not a failed solve.
     let mut sweep = model.sweep(&from, &to, req.samples, &guess).map_err(|e| match e {
-        Error::InvalidArgument(_) => {
-            eprintln!("error: {name}: {e}");
-            Failed(exit::USAGE)
-        }
+        Error::InvalidArgument(_) => exit::usage(format!("{name}: {e}")),
         e => failed(&e),
     })?;
     // Created before the sweep runs: a path that cannot be written stops before any output.

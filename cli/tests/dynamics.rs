@@ -182,12 +182,25 @@ fn bad_requests_are_usage_errors_and_bad_values_failures() {
     let (c, e) = code(&["dynamics", &shipped("four_bar.kl"), "--speed", "1", "--params", "a=1,b=3,c=2.5,d=3.2"]);
     assert_eq!(c, Some(2), "{e}");
     assert!(e.contains("declares no bodies"), "{e}");
-    for args in [["--samples", "4"], ["--speed", "-3"], ["--delta", "2.5"], ["--about", "1"]] {
+    for args in [["--samples", "4"], ["--delta", "2.5"], ["--about", "1"]] {
         let mut all = vec!["dynamics", engine.as_str(), "--speed", "10"];
         all.extend(args);
         let (c, e) = code(&all);
         assert_eq!(c, Some(2), "{args:?}: {e}");
         assert!(e.contains(args[0]), "{args:?}: {e}");
+    }
+    // The speed on its own (given twice, clap refuses the repetition before the check).
+    for speed in ["-3", "0", "inf", "NaN"] {
+        let (c, e) = code(&["dynamics", engine.as_str(), "--speed", speed]);
+        assert_eq!(c, Some(2), "{speed}: {e}");
+        assert!(e.contains(&format!("--speed {} must be a positive number", speed.parse::<f64>().unwrap())), "{e}");
+    }
+    // A start angle: not finite (checked here) or too large for the samples of a turn to be
+    // told apart (checked by the runtime): both bad arguments.
+    for (start, says) in [("inf", "--start inf must be a finite number"), ("1e20", "invalid start angle")] {
+        let (c, e) = code(&["dynamics", engine.as_str(), "--speed", "10", "--start", start]);
+        assert_eq!(c, Some(2), "{start}: {e}");
+        assert!(e.contains(says), "{start}: {e}");
     }
     // A parameter without a value fails as a solve does.
     let dir = std::env::temp_dir().join(format!("kinloop-dynamics-unset-{}", std::process::id()));

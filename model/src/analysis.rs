@@ -59,6 +59,20 @@ impl Model {
         guess: &[f64],
         config: SweepConfig,
     ) -> Result<ModelSampled<'_>, Error> {
+        self.sampled_reporting(from, to, samples, guess, config, |_| ())
+    }
+
+    /// [`Model::sampled_with`], telling `progress` how many samples are taken after each (for
+    /// a progress bar on long sweeps).
+    pub fn sampled_reporting(
+        &mut self,
+        from: &[f64],
+        to: &[f64],
+        samples: usize,
+        guess: &[f64],
+        config: SweepConfig,
+        progress: impl FnMut(usize),
+    ) -> Result<ModelSampled<'_>, Error> {
         let k = self.kernel(config)?;
         let sizes = k.dims();
         if from.len() != sizes.ni || to.len() != sizes.ni || guess.len() != sizes.n {
@@ -70,7 +84,7 @@ impl Model {
             )));
         }
         let v = |s: &[f64]| Heap(s.into());
-        SampledOf::over(k, v(from), v(to), samples, v(guess), config)
+        SampledOf::over_reporting(k, v(from), v(to), samples, v(guess), config, progress)
     }
 
     /// Dead centres and limit positions of a single-input model over its input from `from` to

@@ -339,7 +339,7 @@ impl BlockProg {
         at.unwrap_or(&self.vel).run(r);
         let tested = match (&self.how, at) {
             (How::Fixed { coefficient, .. }, Some(_)) => {
-                *fac = Fac::Fixed(kinloop_runtime::generated::Fixed(*coefficient));
+                fac.set_fixed(*coefficient);
                 false
             }
             (How::Fixed { .. }, None) => false,

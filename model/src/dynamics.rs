@@ -348,7 +348,7 @@ impl Model {
                 self.name()
             )));
         };
-        if let Some(k) = self.param_values().iter().position(Option::is_none) {
+        if let Some(k) = self.first_unset() {
             return Err(Error::InvalidArgument(format!(
                 "parameter `{}` has no value (it has no default: give one), in `{}`",
                 self.params()[k],

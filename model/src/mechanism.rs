@@ -38,7 +38,7 @@ impl Model {
     /// generic algorithms. Every parameter must have a value (`Error::InvalidArgument` names
     /// the first that has none).
     pub fn kernel(&mut self, config: SweepConfig) -> Result<ModelKernel<'_>, Error> {
-        if let Some(k) = self.param_values().iter().position(Option::is_none) {
+        if let Some(k) = self.first_unset() {
             let unset = StepError::UnsetParam(self.params()[k].to_string());
             return Err(Error::InvalidArgument(format!("{unset}, in `{}`", self.name())));
         }

@@ -489,6 +489,12 @@ impl Model {
         self.regs.len()
     }
 
+    /// The first parameter without a value, kept by `load_params` (every change of a parameter
+    /// goes through it), so that a check costs no scan of the parameters.
+    pub(crate) fn first_unset(&self) -> Option<usize> {
+        self.first_unset
+    }
+
     fn check_ready(&self, x: &[f64]) -> Result<(), StepError> {
         if let Some(k) = self.first_unset {
             return Err(StepError::UnsetParam(self.params[k].clone()));
