@@ -155,6 +155,15 @@ mod tests {
         assert!(Sampled::sweep(&M, 1.0, 0.0, 10, [3.0]).is_err());
     }
 
+    /// A sample count far beyond memory (given on a command line, say) is not reserved up
+    /// front: the sweep starts, and its failure at the first solve (a guess that is not a
+    /// number) is the error, rather than the process aborting on an allocation.
+    #[test]
+    fn a_huge_sample_count_is_not_reserved_up_front() {
+        let r = Sampled::sweep(&M, 0.0, 1.0, 1 << 40, [f64::NAN]);
+        assert!(r.is_err());
+    }
+
     #[test]
     fn fourier_and_residual_of_the_slider_position() {
         let turn = Sampled::sweep(&M, 0.0, TAU, 129, [3.0]).unwrap();

@@ -331,7 +331,7 @@ impl<K: Lend> SampledOf<K> {
                 to.as_ref()
             )));
         }
-        let mut states = Vec::with_capacity(samples);
+        let mut states = Vec::with_capacity(crate::mechanism::kernel::reserve_for(samples));
         {
             let mut sweep = SweepOf::<K::Lent<'_>, KinOf<K>>::over(k.lend(), from.clone(), to.clone(), samples, guess)?
                 .with_config(cfg);
