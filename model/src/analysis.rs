@@ -10,7 +10,7 @@ use crate::model::Model;
 use kinloop_runtime::analysis::{Lend, SampledOf};
 use kinloop_runtime::dims::Heap;
 use kinloop_runtime::metrics::{LimitReport, limits_of};
-use kinloop_runtime::{Error, Kernel, SweepConfig};
+use kinloop_runtime::{Error, SweepConfig};
 
 /// A sweep of a run-time model kept in memory and analysed column by column (the runtime's
 /// [`SampledOf`]: extremes, ranges, dwells, harmonics, unbalance, time ratio, transmission
@@ -60,15 +60,6 @@ impl Model {
         config: SweepConfig,
     ) -> Result<ModelSampled<'_>, Error> {
         let k = self.kernel(config)?;
-        let sizes = k.dims();
-        if from.len() != sizes.ni || to.len() != sizes.ni || guess.len() != sizes.n {
-            return Err(Error::InvalidArgument(format!(
-                "a sampled sweep of `{}` needs {} inputs at each end and a guess of {} unknowns",
-                k.name(),
-                sizes.ni,
-                sizes.n
-            )));
-        }
         let v = |s: &[f64]| Heap(s.into());
         SampledOf::over(k, v(from), v(to), samples, v(guess), config)
     }
@@ -87,13 +78,6 @@ impl Model {
         columns: &[&str],
     ) -> Result<LimitReport, Error> {
         let k = self.kernel(SweepConfig::default())?;
-        if guess.len() != k.dims().n {
-            return Err(Error::InvalidArgument(format!(
-                "the limits of `{}` need a guess of {} unknowns",
-                k.name(),
-                k.dims().n
-            )));
-        }
         limits_of(k, from, to, samples, Heap(guess.into()), columns)
     }
 }

@@ -9,7 +9,7 @@ use crate::Kernel;
 use crate::dims::{Dims, KinState, Store};
 use crate::error::Error;
 use crate::mechanism::Mechanism;
-use crate::mechanism::kernel::{Compiled, KinOf, Q, X};
+use crate::mechanism::kernel::{Compiled, KinOf, Q, X, check_sizes};
 use crate::paths::sweep::{SweepConfig, SweepOf};
 
 /// A [`Kernel`] that [`SampledOf`] can lend to the sweeps it solves with (the samples, and
@@ -295,6 +295,7 @@ impl<K: Lend> SampledOf<K> {
         cfg: SweepConfig,
         progress: &mut impl FnMut(usize),
     ) -> Result<Self, Error> {
+        check_sizes(&k, "a sampled sweep", &[&from, &to], &[&guess])?;
         if k.dims().ni() != 1 {
             return Err(Error::InvalidArgument(format!(
                 "a sampled sweep of one input: `{}` has {}",
