@@ -447,7 +447,8 @@ impl<K: Lend> SampledOf<K> {
         from.as_mut().copy_from_slice(near.x());
         guess.as_mut().copy_from_slice(near.q());
         let mut step = SweepOf::<K::Lent<'_>, KinOf<K>>::over(self.k.lend(), from, x, 2, guess)?.with_config(self.cfg);
-        let _start = step.next_kin().transpose()?;
+        // The start (the sample itself), looked at in place: a refinement allocates nothing more.
+        step.next_ref().transpose()?;
         step.next_kin().unwrap_or_else(|| Err(Error::InvalidArgument("empty refinement sweep".into())))
     }
 
