@@ -1,13 +1,12 @@
 //! The runtime's analyses of sampled sweeps and its limit report on a run-time model: the one
 //! implementation ([`SampledOf`], `limits_of`), over the model's [`Kernel`].
 //!
-//! A [`SampledOf`] keeps its kernel and lends it to the sweeps it solves with (the samples and
-//! every refinement between them, [`Lend`]): a model's kernel lends itself by reference, so
-//! `&ModelKernel` is a kernel too (each method forwarded).
+//! A [`SampledOf`] keeps its kernel and lends it by reference to the sweeps it solves with
+//! (the samples and every refinement between them): `&ModelKernel` is a kernel too.
 
 use crate::mechanism::ModelKernel;
 use crate::model::Model;
-use kinloop_runtime::analysis::{Lend, SampledOf};
+use kinloop_runtime::analysis::SampledOf;
 use kinloop_runtime::dims::Heap;
 use kinloop_runtime::metrics::{LimitReport, limits_of};
 use kinloop_runtime::{Error, SweepConfig};
@@ -79,15 +78,5 @@ impl Model {
     ) -> Result<LimitReport, Error> {
         let k = self.kernel(SweepConfig::default())?;
         limits_of(k, from, to, samples, Heap(guess.into()), columns)
-    }
-}
-
-impl<'m> Lend for ModelKernel<'m> {
-    type Lent<'a>
-        = &'a ModelKernel<'m>
-    where
-        Self: 'a;
-    fn lend(&self) -> &ModelKernel<'m> {
-        self
     }
 }

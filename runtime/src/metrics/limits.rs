@@ -10,12 +10,12 @@
 //!   output's column.
 
 use crate::analysis::column::column_name;
-use crate::analysis::{Column, ColumnOf, Lend, LocalExtreme, SampledOf};
+use crate::analysis::{Column, ColumnOf, LocalExtreme, SampledOf};
 use crate::dims::{Dims, KinState};
 use crate::error::Error;
 use crate::events::{Event, EventKind};
 use crate::mechanism::Mechanism;
-use crate::mechanism::kernel::{Compiled, KinOf, Q};
+use crate::mechanism::kernel::{Compiled, Kernel, KinOf, Q};
 use crate::paths::sweep::{AtSingular, SweepConfig, SweepOf};
 use std::fmt;
 
@@ -152,7 +152,7 @@ impl<'a, M, const N: usize> Limits<'a, M, N> {
 /// reports the input's limit positions and crossings and the located extremes of `columns`
 /// (typed handles, names or indices, see [`ColumnOf`]) over the range reached. A column `k`
 /// does not have is an error, even where the range reached is the start alone.
-pub fn limits_of<K: Lend, C: ColumnOf<K>>(
+pub fn limits_of<K: Kernel, C: ColumnOf<K>>(
     k: K,
     from: f64,
     to: f64,
@@ -177,8 +177,7 @@ pub fn limits_of<K: Lend, C: ColumnOf<K>>(
     let (mut last, mut last_q, mut count) = (from, guess.clone(), 0usize);
     let events = {
         let mut sweep =
-            SweepOf::<K::Lent<'_>, KinOf<K>>::over(k.lend(), input(from), input(to), samples, guess.clone())?
-                .with_config(cfg);
+            SweepOf::<&K, KinOf<K>>::over(&k, input(from), input(to), samples, guess.clone())?.with_config(cfg);
         while let Some(step) = sweep.next_ref() {
             match step {
                 Ok(st) => {
