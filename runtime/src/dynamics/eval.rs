@@ -202,6 +202,8 @@ pub(crate) fn checked_drive_into(
 }
 
 /// A force's value checked finite, else [`DynamicsError::NonFiniteLoad`] at inputs `x`.
+// The name stays a `Cow`: a `'static` name is then put into the error without a copy.
+#[allow(clippy::ptr_arg)]
 pub(crate) fn force_value(name: &Cow<'static, str>, f: [f64; 2], x: &[f64]) -> Result<[f64; 2], DynamicsError> {
     match f.iter().find(|v| !v.is_finite()) {
         Some(&value) => Err(DynamicsError::NonFiniteLoad { name: name.clone(), value, x: x.to_vec() }),
@@ -210,6 +212,8 @@ pub(crate) fn force_value(name: &Cow<'static, str>, f: [f64; 2], x: &[f64]) -> R
 }
 
 /// A torque's value checked finite, else [`DynamicsError::NonFiniteLoad`] at inputs `x`.
+// The name stays a `Cow`: a `'static` name is then put into the error without a copy.
+#[allow(clippy::ptr_arg)]
 pub(crate) fn torque_value(name: &Cow<'static, str>, t: f64, x: &[f64]) -> Result<f64, DynamicsError> {
     if t.is_finite() {
         Ok(t)

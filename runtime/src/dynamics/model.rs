@@ -219,6 +219,8 @@ pub(crate) fn check_body(body: &Body, total: f64, sizes: [usize; 3]) -> Result<(
 }
 
 /// A point's indices checked against the sizes `[n, ni, no]`, its constants finite.
+// The name stays a `Cow`: a `'static` name is then put into the error without a copy.
+#[allow(clippy::ptr_arg)]
 pub(crate) fn check_point(
     owner: &'static str,
     name: &Cow<'static, str>,
@@ -242,6 +244,8 @@ pub(crate) fn check_point(
 }
 
 /// An angle's index checked against the sizes `[n, ni, no]`.
+// The name stays a `Cow`: a `'static` name is then put into the error without a copy.
+#[allow(clippy::ptr_arg)]
 pub(crate) fn check_rotation(
     owner: &'static str,
     name: &Cow<'static, str>,

@@ -201,12 +201,12 @@ impl MassModelBuf {
         let mut values = loads.iter().copied();
         let mut next = || values.next().unwrap_or(f64::NAN);
         for load in &self.loads {
-            match load {
-                &Applied::Force { ref name, at } => {
+            match *load {
+                Applied::Force { ref name, at } => {
                     let f = force_value(name, [next(), next()], k.inputs())?;
                     terms::force_into(k, at, f, q);
                 }
-                &Applied::Torque { ref name, on } => {
+                Applied::Torque { ref name, on } => {
                     let t = torque_value(name, next(), k.inputs())?;
                     terms::torque_into(k, on, t, q);
                 }
