@@ -1,16 +1,15 @@
 //! The runtime's analyses of sampled sweeps and its limit report on a run-time model: the one
 //! implementation ([`SampledOf`], `limits_of`), over the model's [`Kernel`].
 //!
-//! A [`SampledOf`] keeps its kernel and lends it to the sweeps it solves with (the samples and
-//! every refinement between them, [`Lend`]): a model's kernel lends itself by reference, so
-//! `&ModelKernel` is a kernel too (each method forwarded).
+//! A [`SampledOf`] keeps its kernel and lends it by reference to the sweeps it solves with
+//! (the samples and every refinement between them): `&ModelKernel` is a kernel too.
 
 use crate::mechanism::ModelKernel;
 use crate::model::Model;
-use kinloop_runtime::analysis::{Lend, SampledOf};
+use kinloop_runtime::analysis::SampledOf;
 use kinloop_runtime::dims::Heap;
 use kinloop_runtime::metrics::{LimitReport, limits_of};
-use kinloop_runtime::{Error, Kernel, SweepConfig};
+use kinloop_runtime::{Error, SweepConfig};
 
 /// A sweep of a run-time model kept in memory and analysed column by column (the runtime's
 /// [`SampledOf`]: extremes, ranges, dwells, harmonics, unbalance, time ratio, transmission
@@ -74,15 +73,6 @@ impl Model {
         progress: impl FnMut(usize),
     ) -> Result<ModelSampled<'_>, Error> {
         let k = self.kernel(config)?;
-        let sizes = k.dims();
-        if from.len() != sizes.ni || to.len() != sizes.ni || guess.len() != sizes.n {
-            return Err(Error::InvalidArgument(format!(
-                "a sampled sweep of `{}` needs {} inputs at each end and a guess of {} unknowns",
-                k.name(),
-                sizes.ni,
-                sizes.n
-            )));
-        }
         let v = |s: &[f64]| Heap(s.into());
         SampledOf::over_reporting(k, v(from), v(to), samples, v(guess), config, progress)
     }
@@ -101,23 +91,6 @@ impl Model {
         columns: &[&str],
     ) -> Result<LimitReport, Error> {
         let k = self.kernel(SweepConfig::default())?;
-        if guess.len() != k.dims().n {
-            return Err(Error::InvalidArgument(format!(
-                "the limits of `{}` need a guess of {} unknowns",
-                k.name(),
-                k.dims().n
-            )));
-        }
         limits_of(k, from, to, samples, Heap(guess.into()), columns)
-    }
-}
-
-impl<'m> Lend for ModelKernel<'m> {
-    type Lent<'a>
-        = &'a ModelKernel<'m>
-    where
-        Self: 'a;
-    fn lend(&self) -> &ModelKernel<'m> {
-        self
     }
 }

@@ -250,6 +250,16 @@ fn slider_crank_stroke_and_dead_centres_from_the_closed_form() {
     let d = &report.outputs[0].extremes;
     assert!((d[0].value() - -far).abs() < 1e-12 && (d[1].value() - -near).abs() < 1e-12, "{report}");
     assert!(matches!(m.limits(0.0, TAU, 73, &guess, &["y"]), Err(kinloop::Error::InvalidArgument(_))));
+    // Inputs or a guess of the wrong size: typed errors, also straight from the runtime's
+    // `SampledOf` over the model's kernel (an empty input used to be indexed before any check).
+    let bad = |r: Result<_, kinloop::Error>| matches!(r, Err(kinloop::Error::InvalidArgument(_)));
+    assert!(bad(m.sampled(&[], &[TAU], 73, &guess).map(|_| ())));
+    assert!(bad(m.sampled(&[0.0], &[TAU], 73, &[]).map(|_| ())));
+    assert!(bad(m.limits(0.0, TAU, 73, &[], &["x"]).map(|_| ())));
+    let cfg = kinloop_runtime::SweepConfig::default();
+    let k = m.kernel(cfg).unwrap();
+    let (h, g) = (kinloop_runtime::dims::Heap(Box::new([])), kinloop_runtime::dims::Heap(guess.as_slice().into()));
+    assert!(bad(kinloop_runtime::analysis::SampledOf::over(k, h.clone(), h, 73, g, cfg).map(|_| ())));
 }
 
 /// A crank-rocker (`a @ phi + b @ beta == (d, 0) + c @ gamma`, crank `a` shortest): the rocker's

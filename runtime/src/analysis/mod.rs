@@ -53,7 +53,7 @@ mod sampled;
 pub mod unbalance;
 
 pub use column::{Column, ColumnIndex, ColumnOf};
-pub use sampled::{Lend, Sampled, SampledOf};
+pub use sampled::{Sampled, SampledOf};
 
 pub use dwell::{Dwell, dwells};
 pub use extremes::{Extreme, GlobalRange, LocalExtreme, bracketed_root, extremes, global_range, maximize};
@@ -153,6 +153,15 @@ mod tests {
         assert_eq!(Column::<SliderCrank>::named("h").unwrap(), SliderCrank::COL.h);
         assert_eq!(Column::<SliderCrank>::named("phi").unwrap().index(), ColumnIndex::Input(0));
         assert!(Sampled::sweep(&M, 1.0, 0.0, 10, [3.0]).is_err());
+    }
+
+    /// A sample count far beyond memory (given on a command line, say) is not reserved up
+    /// front: the sweep starts, and its failure at the first solve (a guess that is not a
+    /// number) is the error, rather than the process aborting on an allocation.
+    #[test]
+    fn a_huge_sample_count_is_not_reserved_up_front() {
+        let r = Sampled::sweep(&M, 0.0, 1.0, 1 << 40, [f64::NAN]);
+        assert!(r.is_err());
     }
 
     #[test]

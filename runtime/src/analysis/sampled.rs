@@ -9,34 +9,8 @@ use crate::Kernel;
 use crate::dims::{Dims, KinState, Store};
 use crate::error::Error;
 use crate::mechanism::Mechanism;
-use crate::mechanism::kernel::{Compiled, KinOf, Q, X};
+use crate::mechanism::kernel::{Compiled, KinOf, Q, X, check_sizes};
 use crate::paths::sweep::{SweepConfig, SweepOf};
-
-/// A [`Kernel`] that [`SampledOf`] can lend to the sweeps it solves with (the samples, and
-/// every refinement between them) while keeping it: a compiled mechanism's [`Compiled`] lends
-/// a copy of itself (the very sweep of before), a run-time model's kernel a reference.
-pub trait Lend: Kernel {
-    /// The kernel lent, of the same sizes.
-    type Lent<'a>: Kernel<Dims = Self::Dims>
-    where
-        Self: 'a;
-    /// This kernel, lent for one sweep.
-    fn lend(&self) -> Self::Lent<'_>;
-}
-
-impl<M, const N: usize, const NI: usize, const NO: usize> Lend for Compiled<'_, M, N, NI, NO>
-where
-    M: Mechanism<N, NI, NO>,
-{
-    type Lent<'a>
-        = Self
-    where
-        Self: 'a;
-    #[inline(always)]
-    fn lend(&self) -> Self {
-        *self
-    }
-}
 
 /// The straight path of a [`SampledOf`] in input space and its parameter `s`.
 #[derive(Clone, Debug)]
@@ -118,7 +92,7 @@ pub type Sampled<'m, M, const N: usize, const NO: usize, const NI: usize = 1> = 
 /// from the nearest sample and stepped there by a two-sample [`Sweep`](crate::Sweep), so the refinement never
 /// leaves the sweep's branch).
 ///
-/// Written once over any [`Kernel`] that can [`Lend`] itself: [`Sampled`] is a compiled
+/// Written once over any [`Kernel`] (lent by reference to the sweeps it solves with): [`Sampled`] is a compiled
 /// mechanism's, `kinloop_model::Model::sampled` a run-time model's.
 ///
 /// Columns are the generated typed handles `Name::COL.field` (see [`Column`](super::Column)), or for any
@@ -156,7 +130,7 @@ pub type Sampled<'m, M, const N: usize, const NO: usize, const NI: usize = 1> = 
 /// assert!((turn.at(1.0)?.q[0] - (1f64.cos() + (9.0 - 1f64.sin().powi(2)).sqrt())).abs() < 1e-12);
 /// # Ok::<(), kinloop_runtime::Error>(())
 /// ```
-pub struct SampledOf<K: Lend> {
+pub struct SampledOf<K: Kernel> {
     k: K,
     states: Vec<KinOf<K>>,
     /// The path parameter of each state.
@@ -245,7 +219,7 @@ where
     }
 }
 
-impl<K: Lend> SampledOf<K> {
+impl<K: Kernel> SampledOf<K> {
     /// Sweeps `samples` equally spaced points of the straight path from inputs `from` to `to`
     /// (both included, of the kernel's sizes) from `guess` at `from`, with the sweep
     /// configuration `cfg` (also used for every refinement): the path parameter is the input
@@ -295,6 +269,7 @@ impl<K: Lend> SampledOf<K> {
         cfg: SweepConfig,
         progress: &mut impl FnMut(usize),
     ) -> Result<Self, Error> {
+        check_sizes(&k, "a sampled sweep", &[&from, &to], &[&guess])?;
         if k.dims().ni() != 1 {
             return Err(Error::InvalidArgument(format!(
                 "a sampled sweep of one input: `{}` has {}",
@@ -331,10 +306,10 @@ impl<K: Lend> SampledOf<K> {
                 to.as_ref()
             )));
         }
-        let mut states = Vec::with_capacity(samples);
+        let mut states = Vec::with_capacity(crate::mechanism::kernel::reserve_for(samples));
         {
-            let mut sweep = SweepOf::<K::Lent<'_>, KinOf<K>>::over(k.lend(), from.clone(), to.clone(), samples, guess)?
-                .with_config(cfg);
+            let mut sweep =
+                SweepOf::<&K, KinOf<K>>::over(&k, from.clone(), to.clone(), samples, guess)?.with_config(cfg);
             while let Some(state) = sweep.next_kin() {
                 states.push(state?);
                 progress(states.len());
@@ -445,8 +420,9 @@ impl<K: Lend> SampledOf<K> {
         let (mut from, mut guess) = (self.k.dims().x(), self.k.dims().q());
         from.as_mut().copy_from_slice(near.x());
         guess.as_mut().copy_from_slice(near.q());
-        let mut step = SweepOf::<K::Lent<'_>, KinOf<K>>::over(self.k.lend(), from, x, 2, guess)?.with_config(self.cfg);
-        let _start = step.next_kin().transpose()?;
+        let mut step = SweepOf::<&K, KinOf<K>>::over(&self.k, from, x, 2, guess)?.with_config(self.cfg);
+        // The start (the sample itself), looked at in place: a refinement allocates nothing more.
+        step.next_ref().transpose()?;
         step.next_kin().unwrap_or_else(|| Err(Error::InvalidArgument("empty refinement sweep".into())))
     }
 

@@ -208,7 +208,7 @@ pub fn turn_states<K: Kernel>(
     let mut sweep = SweepOf::<K, <K::Dims as Dims>::Kin>::over(k, from, to, samples + 1, guess)
         .map_err(DynamicsError::kin)?
         .with_config(SweepConfig::default());
-    let mut states = Vec::with_capacity(samples + 1);
+    let mut states = Vec::with_capacity(crate::mechanism::kernel::reserve_for(samples + 1));
     while let Some(state) = sweep.next_kin() {
         states.push(state.map_err(DynamicsError::kin)?);
     }

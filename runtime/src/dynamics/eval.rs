@@ -92,9 +92,7 @@ impl<const NI: usize> Dynamics<NI> {
     /// The coefficients finite (those of [`MassModel::dynamics`] are; fields set by hand may
     /// not be), else [`DynamicsError::BadValue`].
     fn check(&self) -> Result<(), DynamicsError> {
-        let gamma = self.gamma.iter().flatten().flatten();
-        let all: Vec<f64> = self.mass.iter().flatten().chain(gamma).chain(&self.forces).copied().collect();
-        finite_values("coefficient of the dynamics", &all)
+        finite_coefficients(self.mass.as_flattened(), self.gamma.as_flattened().as_flattened(), &self.forces)
     }
 
     /// Forward dynamics: the input accelerations under driving forces `tau` at speeds `w`,
@@ -160,6 +158,17 @@ pub(crate) fn finite_values(what: &'static str, values: &[f64]) -> Result<(), Dy
     }
 }
 
+/// The mass matrix, velocity-product coefficients and forces finite (fields set by hand may
+/// not be), else [`DynamicsError::BadValue`]; no allocation.
+fn finite_coefficients(mass: &[f64], gamma: &[f64], forces: &[f64]) -> Result<(), DynamicsError> {
+    match mass.iter().chain(gamma).chain(forces).find(|v| !v.is_finite()) {
+        Some(&value) => {
+            Err(DynamicsError::BadValue { what: "coefficient of the dynamics", value, why: "must be finite" })
+        }
+        None => Ok(()),
+    }
+}
+
 /// Every number of state `k` finite (a state made by hand can hold anything), else
 /// [`DynamicsError::BadValue`].
 pub(crate) fn finite_state<S: AnalogState + ?Sized>(k: &S) -> Result<(), DynamicsError> {
@@ -181,9 +190,7 @@ pub(crate) fn checked_drive_into(
     eps: &[f64],
     tau: &mut [f64],
 ) -> Result<(), DynamicsError> {
-    if let Some(&value) = mass.iter().chain(gamma).chain(forces).find(|v| !v.is_finite()) {
-        return Err(DynamicsError::BadValue { what: "coefficient of the dynamics", value, why: "must be finite" });
-    }
+    finite_coefficients(mass, gamma, forces)?;
     finite_values("input speed", w)?;
     finite_values("input acceleration", eps)?;
     terms::drive_into(mass, gamma, forces, w, eps, tau);

@@ -184,6 +184,7 @@ impl MassModelBuf {
     ) -> Result<(), DynamicsError> {
         let ni = self.sizes.ni;
         self.check_sizes(k, &[("input speeds", w.len()), ("inputs of the result", out.forces.len())])?;
+        out.check_shape(ni)?;
         if loads.len() != self.load_values() {
             return Err(DynamicsError::SizeMismatch {
                 what: "load values",
@@ -258,6 +259,21 @@ impl DynamicsBuf {
         DynamicsBuf { mass: vec![0.0; ni * ni], gamma: vec![0.0; ni * ni * ni], forces: vec![0.0; ni] }
     }
 
+    /// The mass matrix and velocity-product coefficients of `ni` inputs (`ni * ni` and `ni^3`
+    /// values: the fields are public, so a caller may have resized one), else
+    /// [`DynamicsError::SizeMismatch`].
+    fn check_shape(&self, ni: usize) -> Result<(), DynamicsError> {
+        let shape = [
+            ("inputs of the result", self.forces.len(), ni),
+            ("mass matrix entries of the result", self.mass.len(), ni * ni),
+            ("velocity-product coefficients of the result", self.gamma.len(), ni * ni * ni),
+        ];
+        match shape.into_iter().find(|(_, given, expected)| given != expected) {
+            Some((what, given, expected)) => Err(DynamicsError::SizeMismatch { what, expected, given }),
+            None => Ok(()),
+        }
+    }
+
     /// The reduced moment of inertia `J = M_00` (first input).
     pub fn reduced_inertia(&self) -> f64 {
         self.mass[0]
@@ -278,6 +294,7 @@ impl DynamicsBuf {
     /// `M eps + h(w) - Q` at inputs `x`, speeds `w` and accelerations `eps` into `tau`.
     pub fn checked_drive_into(&self, x: &[f64], w: &[f64], eps: &[f64], tau: &mut [f64]) -> Result<(), DynamicsError> {
         let ni = self.forces.len();
+        self.check_shape(ni)?;
         for (what, given) in
             [("input speeds", w.len()), ("input accelerations", eps.len()), ("driving forces", tau.len())]
         {
@@ -331,6 +348,18 @@ mod tests {
         let mut d = DynamicsBuf::zeros(1);
         let e = d.checked_drive_into(&[0.0], &[1.0], &[0.0], &mut [0.0; 2]).unwrap_err();
         assert_eq!(e, DynamicsError::SizeMismatch { what: "driving forces", expected: 1, given: 2 });
+        // The public fields resized by a caller: a typed error, not a panic in the evaluation.
+        let mut short = DynamicsBuf::zeros(1);
+        short.mass.clear();
+        let e = short.checked_drive_into(&[0.0], &[1.0], &[0.0], &mut [0.0]).unwrap_err();
+        assert_eq!(e, DynamicsError::SizeMismatch { what: "mass matrix entries of the result", expected: 1, given: 0 });
+        let e = m.dynamics_into(&k, &[1.0], &[0.0, 0.0], &mut short).unwrap_err();
+        assert_eq!(e, DynamicsError::SizeMismatch { what: "mass matrix entries of the result", expected: 1, given: 0 });
+        let mut short = DynamicsBuf::zeros(1);
+        short.gamma.clear();
+        let e = m.dynamics_into(&k, &[1.0], &[0.0, 0.0], &mut short).unwrap_err();
+        let what = "velocity-product coefficients of the result";
+        assert_eq!(e, DynamicsError::SizeMismatch { what, expected: 1, given: 0 });
         d.mass[0] = f64::INFINITY;
         assert!(matches!(
             d.checked_drive_into(&[0.0], &[1.0], &[0.0], &mut [0.0]),

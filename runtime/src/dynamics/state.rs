@@ -3,8 +3,9 @@
 //! dynamics are written once over this trait.
 
 use super::model::{Coord, Rotation};
-use crate::dims::KinBuf;
-use crate::kin::Kin;
+use crate::dims::KinState;
+#[cfg(doc)]
+use crate::{dims::KinBuf, kin::Kin};
 
 /// Positions, analogs and outputs of one kinematic state, by index.
 pub trait AnalogState {
@@ -27,77 +28,51 @@ pub trait AnalogState {
     fn non_finite(&self) -> Option<f64>;
 }
 
-impl<const N: usize, const NI: usize, const NO: usize> AnalogState for Kin<N, NI, NO> {
+/// Every kinematic state of the generic algorithms ([`Kin`], [`KinBuf`]) is one the dynamics
+/// reads: the same numbers, by index.
+impl<S: KinState> AnalogState for S {
     #[inline(always)]
     fn inputs(&self) -> &[f64] {
-        &self.x
+        self.x()
     }
     #[inline(always)]
     fn unknowns(&self) -> &[f64] {
-        &self.q
+        self.q()
     }
     #[inline(always)]
     fn outputs(&self) -> &[f64] {
-        &self.out
+        self.out()
     }
     #[inline(always)]
     fn unknown_d1(&self, u: usize, i: usize) -> f64 {
-        self.dq[u][i]
+        self.dq(u)[i]
     }
     #[inline(always)]
     fn unknown_d2(&self, u: usize, i: usize, j: usize) -> f64 {
-        self.d2q[u][i][j]
+        self.d2q(u, i, j)
     }
     #[inline(always)]
     fn output_d1(&self, o: usize, i: usize) -> f64 {
-        self.dout[o][i]
+        self.dout(o)[i]
     }
     #[inline(always)]
     fn output_d2(&self, o: usize, i: usize, j: usize) -> f64 {
-        self.d2out[o][i][j]
+        self.d2out(o, i, j)
     }
     fn non_finite(&self) -> Option<f64> {
-        let analogs = self.dq.iter().flatten().chain(self.d2q.iter().flatten().flatten());
-        let outputs = self.dout.iter().flatten().chain(self.d2out.iter().flatten().flatten());
-        self.x.iter().chain(&self.q).chain(analogs).chain(&self.out).chain(outputs).copied().find(|v| !v.is_finite())
-    }
-}
-
-impl AnalogState for KinBuf {
-    #[inline]
-    fn inputs(&self) -> &[f64] {
-        &self.x
-    }
-    #[inline]
-    fn unknowns(&self) -> &[f64] {
-        &self.q
-    }
-    #[inline]
-    fn outputs(&self) -> &[f64] {
-        &self.out
-    }
-    #[inline]
-    fn unknown_d1(&self, u: usize, i: usize) -> f64 {
-        self.dq[u * self.x.len() + i]
-    }
-    #[inline]
-    fn unknown_d2(&self, u: usize, i: usize, j: usize) -> f64 {
-        let ni = self.x.len();
-        self.d2q[(u * ni + i) * ni + j]
-    }
-    #[inline]
-    fn output_d1(&self, o: usize, i: usize) -> f64 {
-        self.dout[o * self.x.len() + i]
-    }
-    #[inline]
-    fn output_d2(&self, o: usize, i: usize, j: usize) -> f64 {
-        let ni = self.x.len();
-        self.d2out[(o * ni + i) * ni + j]
-    }
-    fn non_finite(&self) -> Option<f64> {
-        [&self.x, &self.q, &self.dq, &self.d2q, &self.out, &self.dout, &self.d2out]
-            .into_iter()
-            .flat_map(|v| v.iter().copied())
+        let (n, ni, no) = (self.q().len(), self.x().len(), self.out().len());
+        let pairs = move || (0..ni).flat_map(move |i| (0..ni).map(move |j| (i, j)));
+        let dq = (0..n).flat_map(|u| self.dq(u).iter().copied());
+        let d2q = (0..n).flat_map(|u| pairs().map(move |(i, j)| self.d2q(u, i, j)));
+        let dout = (0..no).flat_map(|o| self.dout(o).iter().copied());
+        let d2out = (0..no).flat_map(|o| pairs().map(move |(i, j)| self.d2out(o, i, j)));
+        let positions = self.x().iter().chain(self.q()).copied();
+        positions
+            .chain(dq)
+            .chain(d2q)
+            .chain(self.out().iter().copied())
+            .chain(dout)
+            .chain(d2out)
             .find(|v| !v.is_finite())
     }
 }

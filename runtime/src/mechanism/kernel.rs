@@ -311,6 +311,13 @@ impl<K: Kernel> Kernel for &K {
     }
 }
 
+/// The room reserved up front for `samples` states or points: at most `1 << 16`, the vector
+/// growing past it, so that a huge count (given on a command line, say) fails, if it does, in
+/// the work rather than aborting the process on one allocation it cannot make.
+pub(crate) fn reserve_for(samples: usize) -> usize {
+    samples.min(1 << 16)
+}
+
 /// Checks that the inputs `xs` and the unknowns `qs` given to algorithm `what` have kernel
 /// `m`'s sizes (always so for a compiled mechanism's arrays: the test folds away): an
 /// `Error::InvalidArgument` naming the sizes otherwise.

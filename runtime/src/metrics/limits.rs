@@ -10,12 +10,12 @@
 //!   output's column.
 
 use crate::analysis::column::column_name;
-use crate::analysis::{Column, ColumnOf, Lend, LocalExtreme, SampledOf};
+use crate::analysis::{Column, ColumnOf, LocalExtreme, SampledOf};
 use crate::dims::{Dims, KinState};
 use crate::error::Error;
 use crate::events::{Event, EventKind};
 use crate::mechanism::Mechanism;
-use crate::mechanism::kernel::{Compiled, KinOf, Q};
+use crate::mechanism::kernel::{Compiled, Kernel, KinOf, Q};
 use crate::paths::sweep::{AtSingular, SweepConfig, SweepOf};
 use std::fmt;
 
@@ -152,7 +152,7 @@ impl<'a, M, const N: usize> Limits<'a, M, N> {
 /// reports the input's limit positions and crossings and the located extremes of `columns`
 /// (typed handles, names or indices, see [`ColumnOf`]) over the range reached. A column `k`
 /// does not have is an error, even where the range reached is the start alone.
-pub fn limits_of<K: Lend, C: ColumnOf<K>>(
+pub fn limits_of<K: Kernel, C: ColumnOf<K>>(
     k: K,
     from: f64,
     to: f64,
@@ -174,15 +174,17 @@ pub fn limits_of<K: Lend, C: ColumnOf<K>>(
         x
     };
     let cfg = SweepConfig { at_singular: AtSingular::Continue, ..SweepConfig::default() };
-    let (mut last, mut count) = (from, 0usize);
+    let (mut last, mut last_q, mut count) = (from, guess.clone(), 0usize);
     let events = {
         let mut sweep =
-            SweepOf::<K::Lent<'_>, KinOf<K>>::over(k.lend(), input(from), input(to), samples, guess.clone())?
-                .with_config(cfg);
+            SweepOf::<&K, KinOf<K>>::over(&k, input(from), input(to), samples, guess.clone())?.with_config(cfg);
         while let Some(step) = sweep.next_ref() {
             match step {
                 Ok(st) => {
                     last = st.x()[0];
+                    if !columns.is_empty() {
+                        last_q.as_mut().copy_from_slice(st.q());
+                    }
                     count += 1;
                 }
                 Err(Error::SweepStopped { kind: EventKind::LimitPosition, .. }) => break,
@@ -193,11 +195,14 @@ pub fn limits_of<K: Lend, C: ColumnOf<K>>(
     };
     // The samples over the reached range kept in memory to locate the extremes (at least three,
     // as a sampled range needs: the two reached and their midpoint). A range that is the start
-    // alone has no interior extreme.
-    let range = if count < 2 {
+    // alone has no interior extreme, and without columns there is nothing to locate. A range
+    // swept downward is sampled upward from its far end (the state reached there the guess).
+    let range = if count < 2 || columns.is_empty() {
         None
-    } else {
+    } else if from < last {
         Some(SampledOf::input_with(k, input(from), input(last), count.max(3), guess, cfg)?)
+    } else {
+        Some(SampledOf::input_with(k, input(last), input(from), count.max(3), last_q, cfg)?)
     };
     let outputs = columns
         .into_iter()
@@ -257,6 +262,29 @@ mod tests {
             Limits::new(&m, from, from - 1.0).samples(11).guess(guess).columns(&[bad]).run(),
             Err(Error::InvalidArgument(_))
         ));
+    }
+
+    /// The same dead centres found sweeping the input downward over one turn: the range is
+    /// reported as swept (from the start down) and the extremes match the collinear triangles.
+    #[test]
+    fn dead_centres_found_sweeping_downward() {
+        let m = SliderCrank { r: 1.0, l: 3.0, e: 0.5 };
+        let r = Limits::new(&m, 0.3 + TAU, 0.3).samples(73).guess([3.9]).columns(&[SliderCrank::COL.x]).run().unwrap();
+        assert!(r.events.is_empty(), "{r}");
+        // The last sample is the start less 72 steps of TAU / 72: equal to 0.3 up to rounding.
+        assert_eq!(r.reached.0, 0.3 + TAU);
+        assert!((r.reached.1 - 0.3).abs() < 1e-12, "{r}");
+        let [(x_out, outer), (x_in, inner)] = m.dead_centres();
+        let e = &r.outputs[0].extremes;
+        assert_eq!(e.len(), 2, "{r}");
+        assert_eq!(e[0].kind, Extreme::Min);
+        assert!((e[0].x() - (x_in + TAU)).abs() < 1e-10 && (e[0].value() - inner).abs() < 1e-12, "{r}");
+        assert!((e[1].x() - (x_out + TAU)).abs() < 1e-10 && (e[1].value() - outer).abs() < 1e-12, "{r}");
+        // Without columns a downward range is reported too.
+        let r = Limits::new(&m, 1.0, 0.0).samples(11).guess([3.9]).run().unwrap();
+        assert_eq!(r.reached.0, 1.0);
+        assert!(r.reached.1.abs() < 1e-12, "{r}");
+        assert!(r.outputs.is_empty());
     }
 
     #[test]

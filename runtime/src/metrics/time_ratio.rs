@@ -2,7 +2,8 @@
 //! the input angle spent while the output rises from its minimum to its maximum, against the
 //! angle spent while it falls back.
 
-use crate::analysis::{ColumnOf, Extreme, Jet, Lend, SampledOf, extremes};
+use crate::Kernel;
+use crate::analysis::{ColumnOf, Extreme, Jet, SampledOf, extremes};
 use crate::error::Error;
 
 /// The strokes of an output over one input turn, from its located extremes.
@@ -77,7 +78,7 @@ pub fn time_ratio(samples: &[Jet], eval: impl FnMut(f64) -> Result<Jet, Error>) 
     Ok(TimeRatio { min, max, rising, falling: period - rising })
 }
 
-impl<K: Lend> SampledOf<K> {
+impl<K: Kernel> SampledOf<K> {
     /// The time (quick-return) ratio ([`time_ratio()`]) of a column (`Name::COL.psi`, or its
     /// name) of a sweep over one full input turn (one period of the path parameter).
     pub fn time_ratio(&self, column: impl ColumnOf<K>) -> Result<TimeRatio, Error> {

@@ -2,8 +2,9 @@
 //! drives. Near zero the coupler pushes along the follower and cannot turn it (a dead point);
 //! designers keep its minimum above about 40 degrees.
 
+use crate::Kernel;
 use crate::analysis::column::jet_along;
-use crate::analysis::{ColumnOf, Jet, Lend, SampledOf, bracketed_root, extremes};
+use crate::analysis::{ColumnOf, Jet, SampledOf, bracketed_root, extremes};
 use crate::error::Error;
 use std::f64::consts::{FRAC_PI_2, PI};
 
@@ -110,7 +111,7 @@ pub fn transmission_range(
     Ok(TransmissionRange { min, max, dead_points })
 }
 
-impl<K: Lend> SampledOf<K> {
+impl<K: Kernel> SampledOf<K> {
     /// The transmission angle's range ([`transmission_range`]) over a sampled sweep, the coupler
     /// and follower angles given by their columns (`Name::COL.beta`, `Name::COL.gamma`, or their
     /// names), as functions of the path parameter (the input, for one input).

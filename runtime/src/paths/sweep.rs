@@ -46,7 +46,7 @@ use crate::error::{Error, Quantity};
 use crate::events::{Event, EventKind, Location};
 use crate::kin::{DetSigns, Kin};
 use crate::mechanism::Mechanism;
-use crate::mechanism::kernel::{Compiled, D, Kernel, KinOf, Q, X};
+use crate::mechanism::kernel::{Compiled, D, Kernel, KinOf, Q, X, check_sizes};
 use crate::solvers::newton::NewtonConfig;
 use crate::table::Table;
 use crate::trig::Rotating;
@@ -376,14 +376,7 @@ where
     /// mismatch is an `Error::InvalidArgument`).
     pub fn over(m: K, from: X<K>, to: X<K>, samples: usize, guess: Q<K>) -> Result<Self, Error> {
         let d = m.dims();
-        if from.as_ref().len() != d.ni() || to.as_ref().len() != d.ni() || guess.as_ref().len() != d.n() {
-            return Err(Error::InvalidArgument(format!(
-                "a sweep of `{}` needs {} inputs at each end and a guess of {} unknowns",
-                m.name(),
-                d.ni(),
-                d.n()
-            )));
-        }
+        check_sizes(&m, "a sweep", &[&from, &to], &[&guess])?;
         check_finite("from", from.as_ref(), &m)?;
         check_finite("to", to.as_ref(), &m)?;
         if samples == 0 {

@@ -22,13 +22,13 @@ use crate::mechanism::kernel::{Kernel, KinOf, Q, X, check_sizes};
 /// kernel's stops it with `Error::InvalidArgument`.
 pub fn sweep_at_of<K: Kernel>(m: &K, inputs: impl IntoIterator<Item = X<K>>, guess: Q<K>) -> SweepResult<KinOf<K>> {
     let (mut states, mut events) = (Vec::new(), Vec::new());
-    let mut prev: Option<KinOf<K>> = None;
     for x in inputs {
         if let Err(e) = check_sizes(m, "sweep_at", &[&x], &[&guess]) {
             return SweepResult::new(states, Some(e), events);
         }
-        let stretch = match prev {
-            Some(p) if p.x() == x.as_ref() => Ok((p, Vec::new())),
+        // From the last state kept (none before the first input).
+        let stretch = match states.last() {
+            Some(p) if p.x() == x.as_ref() => Ok((p.clone(), Vec::new())),
             Some(p) => {
                 // From the last state, in the kernel's storage.
                 let (mut from, mut q) = (x.clone(), guess.clone());
@@ -43,8 +43,7 @@ pub fn sweep_at_of<K: Kernel>(m: &K, inputs: impl IntoIterator<Item = X<K>>, gue
         match stretch {
             Ok((k, met)) => {
                 events.extend(met);
-                states.push(k.clone());
-                prev = Some(k);
+                states.push(k);
             }
             Err((e, met)) => {
                 events.extend(met);
