@@ -146,7 +146,7 @@ impl<'a, M, const N: usize> Limits<'a, M, N> {
     }
 }
 
-/// The search behind [`Limits::run`], over any [`Kernel`](crate::Kernel) of one input (a
+/// The search behind [`Limits::run`], over any [`Kernel`] of one input (a
 /// compiled mechanism's [`Compiled`], a run-time model's): sweeps from `guess` at `from` to
 /// `to` (either direction) in `samples` equally spaced inputs, passing singular crossings, and
 /// reports the input's limit positions and crossings and the located extremes of `columns`
