@@ -5,22 +5,15 @@
 //! the compiled sweep takes libm's sines, as a run-time model's does (`sweeps.rs`). A drawn
 //! joint is checked independently against the four-bar's closed form.
 
+mod common;
+
+use common::{Libm, read, set};
 use kinloop::{Kin, Mechanism, Sweep};
 use kinloop_fixtures as fx;
 use kinloop_model::Model;
 use kinloop_viz::draw::{Animation, DefaultDrawing, GridMotion, Motion};
 use kinloop_viz::html::{HtmlConfig, html, html_grid, html_grid_of, html_of};
 use std::f64::consts::TAU;
-
-fn read(text: &str) -> Model {
-    Model::read("fixture.kl", text).unwrap_or_else(|e| panic!("{e}"))
-}
-
-fn set(m: &mut Model, values: &[(&str, f64)]) {
-    for (p, v) in values {
-        assert!(m.set_param(p, *v), "{p}");
-    }
-}
 
 /// The `#[kinloop(dense)]` twin of a fixture's text, named `dense` (as `parity.rs` has it).
 fn dense_text(text: &str, name: &str, dense: &str) -> String {
@@ -51,65 +44,6 @@ fn descriptions_equal_the_compiled_ones() {
         let m = read(&text);
         assert!(compiled.starts_with("kinloop-drawing 1\n"), "{}: {compiled}", m.name());
         assert_eq!(m.drawing_text(), compiled, "{}", m.name());
-    }
-}
-
-/// A compiled mechanism whose sweep steps take libm's sines and cosines, as a run-time model's
-/// do (see `sweeps.rs`): every kernel and constant forwarded except the sweep's fast step.
-struct Libm<M>(M);
-
-impl<M, const N: usize, const NI: usize, const NO: usize> Mechanism<N, NI, NO> for Libm<M>
-where
-    M: Mechanism<N, NI, NO>,
-{
-    const NAME: &'static str = M::NAME;
-    const PARAMS: &'static [&'static str] = M::PARAMS;
-    const INPUTS: [&'static str; NI] = M::INPUTS;
-    const UNKNOWNS: [&'static str; N] = M::UNKNOWNS;
-    const EQUATIONS: [&'static str; N] = M::EQUATIONS;
-    const OUTPUTS: [&'static str; NO] = M::OUTPUTS;
-    const BLOCKS: &'static [kinloop::BlockInfo] = M::BLOCKS;
-    const INPUT_KINDS: [kinloop::QuantityKind; NI] = M::INPUT_KINDS;
-    const UNKNOWN_KINDS: [kinloop::QuantityKind; N] = M::UNKNOWN_KINDS;
-    const OUTPUT_KINDS: [kinloop::QuantityKind; NO] = M::OUTPUT_KINDS;
-    const FOLLOWERS: [bool; N] = M::FOLLOWERS;
-    const CLOSED_FORM_ANGLES: [bool; N] = M::CLOSED_FORM_ANGLES;
-    const DRAWING: &'static str = M::DRAWING;
-    fn param_values(&self) -> Vec<f64> {
-        self.0.param_values()
-    }
-    fn guess_flat(&self, x: &[f64; NI]) -> [f64; N] {
-        self.0.guess_flat(x)
-    }
-    fn position_flat(
-        &self,
-        x: &[f64; NI],
-        g: &[f64; N],
-        c: &kinloop::NewtonConfig,
-    ) -> Result<([f64; N], kinloop::SolveReport), kinloop::Error> {
-        self.0.position_flat(x, g, c)
-    }
-    fn kinematics_flat(
-        &self,
-        x: &[f64; NI],
-        g: &[f64; N],
-        c: &kinloop::NewtonConfig,
-    ) -> Result<Kin<N, NI, NO>, kinloop::Error> {
-        self.0.kinematics_flat(x, g, c)
-    }
-    fn kinematics_at_flat(
-        &self,
-        x: &[f64; NI],
-        q: &[f64; N],
-        c: &kinloop::NewtonConfig,
-    ) -> Result<Kin<N, NI, NO>, kinloop::Error> {
-        self.0.kinematics_at_flat(x, q, c)
-    }
-    fn outputs_flat(&self, x: &[f64; NI], q: &[f64; N]) -> [f64; NO] {
-        self.0.outputs_flat(x, q)
-    }
-    fn jacobian_flat(&self, x: &[f64; NI], q: &[f64; N]) -> kinloop::Jac<N, NI> {
-        self.0.jacobian_flat(x, q)
     }
 }
 

@@ -12,6 +12,9 @@
 //! steps advance the sines and cosines by rotation (a few units in the last place off libm's),
 //! they agree to `REL` (`sweeps.rs`'s tolerance).
 
+mod common;
+
+use common::{Libm, read, set};
 use kinloop::{Event, Kin, Mechanism, NewtonConfig, ScanConfig, ScanStart, TraceConfig};
 use kinloop_fixtures as fx;
 use kinloop_model::{Model, ParamScanConfig, ParamScanStart};
@@ -31,16 +34,6 @@ const FOLD_INPUT: f64 = 1e-9;
 /// Agreement of a solved position with the closed form (both to rounding of angles of order
 /// one, through an `acos`/`atan2` of well-conditioned arguments away from the limit positions).
 const CLOSED_FORM: f64 = 1e-12;
-
-fn read(text: &str) -> Model {
-    Model::read("fixture.kl", text).unwrap_or_else(|e| panic!("{e}"))
-}
-
-fn set(m: &mut Model, values: &[(&str, f64)]) {
-    for (p, v) in values {
-        assert!(m.set_param(p, *v), "{p}");
-    }
-}
 
 fn four_bar(a: f64, b: f64, c: f64, d: f64) -> (fx::FourBar, Model) {
     let mut m = read(fx::FOUR_BAR_TEXT);
@@ -75,59 +68,6 @@ fn state_diff<const N: usize, const NI: usize, const NO: usize>(c: &Kin<N, NI, N
 /// An event without its block description (a run-time model's carries none).
 fn strip(e: &[Event]) -> Vec<(kinloop::EventKind, Vec<f64>, f64, Vec<f64>)> {
     e.iter().map(|e| (e.kind, e.x.clone(), e.tau, e.q.clone())).collect()
-}
-
-/// A compiled mechanism whose sweep steps take libm's sines and cosines, as a run-time model's
-/// do (see `sweeps.rs`): every kernel forwarded except the sweep's fast step.
-struct Libm<M>(M);
-
-impl<M, const N: usize, const NI: usize, const NO: usize> Mechanism<N, NI, NO> for Libm<M>
-where
-    M: Mechanism<N, NI, NO>,
-{
-    const NAME: &'static str = M::NAME;
-    const PARAMS: &'static [&'static str] = M::PARAMS;
-    const INPUTS: [&'static str; NI] = M::INPUTS;
-    const UNKNOWNS: [&'static str; N] = M::UNKNOWNS;
-    const EQUATIONS: [&'static str; N] = M::EQUATIONS;
-    const OUTPUTS: [&'static str; NO] = M::OUTPUTS;
-    const BLOCKS: &'static [kinloop::BlockInfo] = M::BLOCKS;
-    const INPUT_KINDS: [kinloop::QuantityKind; NI] = M::INPUT_KINDS;
-    const UNKNOWN_KINDS: [kinloop::QuantityKind; N] = M::UNKNOWN_KINDS;
-    const OUTPUT_KINDS: [kinloop::QuantityKind; NO] = M::OUTPUT_KINDS;
-    const FOLLOWERS: [bool; N] = M::FOLLOWERS;
-    const CLOSED_FORM_ANGLES: [bool; N] = M::CLOSED_FORM_ANGLES;
-    fn param_values(&self) -> Vec<f64> {
-        self.0.param_values()
-    }
-    fn guess_flat(&self, x: &[f64; NI]) -> [f64; N] {
-        self.0.guess_flat(x)
-    }
-    fn position_flat(
-        &self,
-        x: &[f64; NI],
-        g: &[f64; N],
-        c: &NewtonConfig,
-    ) -> Result<([f64; N], kinloop::SolveReport), kinloop::Error> {
-        self.0.position_flat(x, g, c)
-    }
-    fn kinematics_flat(&self, x: &[f64; NI], g: &[f64; N], c: &NewtonConfig) -> Result<Kin<N, NI, NO>, kinloop::Error> {
-        self.0.kinematics_flat(x, g, c)
-    }
-    fn kinematics_at_flat(
-        &self,
-        x: &[f64; NI],
-        q: &[f64; N],
-        c: &NewtonConfig,
-    ) -> Result<Kin<N, NI, NO>, kinloop::Error> {
-        self.0.kinematics_at_flat(x, q, c)
-    }
-    fn outputs_flat(&self, x: &[f64; NI], q: &[f64; N]) -> [f64; NO] {
-        self.0.outputs_flat(x, q)
-    }
-    fn jacobian_flat(&self, x: &[f64; NI], q: &[f64; N]) -> kinloop::Jac<N, NI> {
-        self.0.jacobian_flat(x, q)
-    }
 }
 
 /// The four-bar's two assembly modes at input `phi` from the geometry alone: the joint C where
