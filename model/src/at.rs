@@ -24,6 +24,7 @@ pub struct Jacobian {
 }
 
 /// The segments of the evaluations at a position, each on its own (the unknowns given).
+#[derive(Clone)]
 pub(crate) struct AtProg {
     pub(crate) unknown_regs: Vec<Option<u32>>,
     residual: Segment,

@@ -25,6 +25,7 @@ pub enum StepFailure {
 }
 
 /// How a block's positions are solved at run time.
+#[derive(Clone)]
 pub(crate) enum How {
     /// One division by a constant coefficient.
     Fixed { coefficient: f64, rhs: u32 },
@@ -44,6 +45,7 @@ pub(crate) enum How {
 }
 
 /// One block of the step.
+#[derive(Clone)]
 pub(crate) struct BlockProg {
     pub(crate) unknowns: Vec<usize>,
     /// Registers of the unknowns' leaves (`None`: no node reads the unknown).

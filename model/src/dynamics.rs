@@ -31,6 +31,7 @@ enum Col {
     Fixed(u32),
 }
 
+#[derive(Clone)]
 struct BodyItem {
     name: String,
     mass: u32,
@@ -39,12 +40,14 @@ struct BodyItem {
     turns: Rotation,
 }
 
+#[derive(Clone)]
 enum LoadItem {
     Force { name: String, at: [Col; 2], value: [u32; 2] },
     Torque { name: String, on: Rotation, value: u32 },
 }
 
 /// The program of the declared dynamics items (see the [module documentation](self)).
+#[derive(Clone)]
 pub(crate) struct DynamicsProg {
     bodies: Vec<BodyItem>,
     /// Forces, then torques: the order the emitted `mass_model` adds them in.

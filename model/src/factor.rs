@@ -16,7 +16,7 @@ pub const MAX_DENSE: usize = 16;
 /// One block's factorisation, of the type the emitted code would use. Factorisations of three
 /// unknowns and more are boxed, allocated once for the block ([`Fac::for_size`]) and written in
 /// place by every step: the enum stays small, so moving it costs no large copy.
-#[derive(Debug)]
+#[derive(Clone, Debug)]
 pub(crate) enum Fac {
     /// Not factorised yet.
     None,

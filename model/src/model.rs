@@ -106,6 +106,10 @@ pub struct State {
 }
 
 /// A mechanism read at run time (see the crate documentation).
+///
+/// A model is one mutable workspace (its parameters and the registers and factorisations each
+/// step writes); `clone` makes an independent one with the same parameters, e.g. one per thread.
+#[derive(Clone)]
 pub struct Model {
     name: String,
     decomposition: String,
@@ -872,6 +876,7 @@ impl Model {
 
 /// The segments of [`Model::kinematics_at`]: the residuals at the given position, then per
 /// block the analogs' right-hand sides and Jacobian, then the outputs (the emitter's mode `At`).
+#[derive(Clone)]
 struct AtKin {
     residual: Segment,
     residual_regs: Vec<u32>,

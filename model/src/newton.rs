@@ -9,6 +9,7 @@ use kinloop_runtime::generated::{BlockEval, BlockFailure, Lu, Magnitudes, SolveR
 
 /// What the Newton iteration of one block reads: registers of its unknowns, residuals,
 /// Jacobian (row-major), magnitudes, and the segment that evaluates them.
+#[derive(Clone)]
 pub(crate) struct NewtonProg {
     /// The block's evaluation: every node of its residuals, Jacobian and magnitudes that
     /// depends on its unknowns.

@@ -27,6 +27,7 @@ pub struct Sensitivities {
 }
 
 /// One stage of one block: its right-hand sides and where the solutions go.
+#[derive(Clone)]
 struct StageProg {
     seg: Segment,
     /// `rows[r * width + c]`.
@@ -38,6 +39,7 @@ struct StageProg {
 }
 
 /// The sensitivity program of a planned declaration.
+#[derive(Clone)]
 pub(crate) struct SensProg {
     np: usize,
     ni: usize,

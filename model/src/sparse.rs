@@ -50,6 +50,14 @@ pub(crate) trait SparseBlock: fmt::Debug + Send + Sync {
     fn note(&self, health: &mut Health, b: usize);
     /// Whether the analogs' factorisation is the dense fallback.
     fn is_dense(&self) -> bool;
+    /// A copy of the block's solver (its tables and its factorisations' current values).
+    fn boxed_clone(&self) -> Box<dyn SparseBlock>;
+}
+
+impl Clone for Box<dyn SparseBlock> {
+    fn clone(&self) -> Self {
+        self.boxed_clone()
+    }
 }
 
 /// The tables of the plan's symbolic factorisation.
@@ -102,6 +110,7 @@ pub(crate) fn block(t: SparseTables, entries: Vec<u32>) -> Option<Box<dyn Sparse
 }
 
 /// A sparse block padded to `P` unknowns with at most `CAP` non-zeros (`K2 = 2P`).
+#[derive(Clone)]
 struct Padded<const P: usize, const CAP: usize, const K2: usize> {
     work: PaddedWork<P>,
     lu: PaddedLu<P>,
@@ -216,5 +225,9 @@ impl<const P: usize, const CAP: usize, const K2: usize> SparseBlock for Padded<P
 
     fn is_dense(&self) -> bool {
         self.lu.is_dense()
+    }
+
+    fn boxed_clone(&self) -> Box<dyn SparseBlock> {
+        Box::new(self.clone())
     }
 }

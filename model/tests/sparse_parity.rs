@@ -319,6 +319,28 @@ fn a_model_with_a_sparse_block_is_send_and_sync() {
     send_sync(&read(RING9_TEXT));
 }
 
+/// A clone is an independent workspace with the original's parameters: over a turn it equals
+/// the compiled mechanism as the original does, and a parameter set on the clone leaves the
+/// original's states as they were (the ring of nine: a sparse block, the one solver the model
+/// copies through its trait).
+#[test]
+fn a_clone_is_an_independent_model() {
+    let mut original = read(RING9_TEXT);
+    let mut copy = original.clone();
+    assert_eq!(turn(&Ring9::default(), &mut copy, 36).states, 36);
+    assert!(copy.set_param("c", 2.6));
+    let cfg = NewtonConfig::default();
+    let mut guess = vec![0.0; original.unknowns().len()];
+    original.guess(&[0.3], &mut guess).unwrap();
+    let before = original.kinematics(&[0.3], &guess, &cfg).unwrap().clone();
+    copy.guess(&[0.3], &mut guess).unwrap();
+    let changed = copy.kinematics(&[0.3], &guess, &cfg).unwrap().q.clone();
+    assert_ne!(bits(&changed), bits(&before.q), "the clone's parameter took no effect");
+    assert_eq!(turn(&Ring9::default(), &mut original, 36).states, 36);
+    original.guess(&[0.3], &mut guess).unwrap();
+    assert_eq!(bits(&original.kinematics(&[0.3], &guess, &cfg).unwrap().q), bits(&before.q));
+}
+
 /// The comparison can fail: the ring of nine read with one link length changed by one part in
 /// 10^12 differs from the compiled mechanism.
 #[test]

@@ -280,6 +280,15 @@ impl<const P: usize> PaddedWork<P> {
     }
 }
 
+/// A copy with its own lock: the factorisation in it is scratch written by each Newton step, so
+/// the copy holds the same values without sharing the original's lock.
+impl<const P: usize> Clone for PaddedWork<P> {
+    fn clone(&self) -> Self {
+        let step = self.step.lock().unwrap_or_else(std::sync::PoisonError::into_inner).clone();
+        PaddedWork { tables: self.tables.clone(), step: Mutex::new(step) }
+    }
+}
+
 /// One evaluation's Jacobian of a sparse block of `n <= P` unknowns with at most `CAP`
 /// structural non-zeros, as Newton's method reads it (see the module documentation): the
 /// compiled `SparseJac`'s operations on the real rows, the identity on the padding.
