@@ -11,6 +11,7 @@
 //! of the dynamics, the inverse cycle and the flywheel are the runtime's, written once over any
 //! state ([`AnalogState`]) and any `Kernel`.
 
+use crate::mechanism::ModelKernel;
 use crate::model::Model;
 use crate::tape::{Builder, Segment, Unavailable};
 use kinloop_codegen::dynamics::{AngleModel, CoordModel, DynamicsModel};
@@ -18,10 +19,11 @@ use kinloop_codegen::graph::dag::{Leaf, NodeId, Op};
 use kinloop_codegen::plan::Plan;
 use kinloop_runtime::dims::{Heap, KinBuf, Sizes};
 use kinloop_runtime::dynamics::{
-    AnalogState, Body, Coord, Cycle, CyclePoint, DynamicsBuf, DynamicsError, MassModelBuf, Rotation, Shaking, SpeedLaw,
-    turn_states,
+    AnalogState, Body, Coord, Cycle, CyclePoint, Dynamics, DynamicsBuf, DynamicsError, KinematicsInto, MassModelBuf,
+    Rotation, RunConfig, Shaking, SpeedLaw, Trajectory, simulate_of, turn_states,
 };
-use kinloop_runtime::{Error, SweepConfig};
+use kinloop_runtime::generated::Libm;
+use kinloop_runtime::{Error, Kernel, NewtonConfig, SweepConfig};
 
 /// A coordinate as the plan gives it: a state column or the register of a constant.
 #[derive(Clone, Copy, Debug)]
@@ -228,18 +230,7 @@ impl ModelCycle<'_, '_> {
     pub fn run(self) -> Result<Cycle, Error> {
         let m = self.model;
         let mass = m.mass_model()?;
-        let guess = match self.guess {
-            Some(g) => g,
-            None => {
-                let mut g = vec![0.0; m.unknowns().len()];
-                m.guess(&[self.phi0], &mut g).map_err(|e| Error::InvalidArgument(format!("{e}, in `{}`", m.name())))?;
-                g
-            }
-        };
-        if guess.len() != m.unknowns().len() {
-            let n = m.unknowns().len();
-            return Err(Error::InvalidArgument(format!("a guess of {} values given, {n} expected", guess.len())));
-        }
+        let guess = start_guess(m, self.phi0, self.guess)?;
         let states: Vec<KinBuf> =
             turn_states(m.kernel(SweepConfig::default())?, self.phi0, self.samples, Heap(guess.into()))?;
         let about = self.about;
@@ -255,7 +246,151 @@ impl ModelCycle<'_, '_> {
     }
 }
 
+/// The guess at input `phi0` that picks the assembly branch: `given`, or the declared one; a
+/// guess of another length than the unknowns is [`Error::InvalidArgument`].
+fn start_guess(m: &mut Model, phi0: f64, given: Option<Vec<f64>>) -> Result<Vec<f64>, Error> {
+    let guess = match given {
+        Some(g) => g,
+        None => {
+            let mut g = vec![0.0; m.unknowns().len()];
+            m.guess(&[phi0], &mut g).map_err(|e| Error::InvalidArgument(format!("{e}, in `{}`", m.name())))?;
+            g
+        }
+    };
+    if guess.len() != m.unknowns().len() {
+        let n = m.unknowns().len();
+        return Err(Error::InvalidArgument(format!("a guess of {} values given, {n} expected", guess.len())));
+    }
+    Ok(guess)
+}
+
+/// No driving torque.
+type NoDrive = fn(f64, f64, f64) -> f64;
+/// Never stop early.
+type NoStop = fn(f64, &[f64; 2]) -> bool;
+
+/// A forward simulation of a run-time model of one input, set up by name and run by
+/// [`ModelSimulation::run`]: the compiled mechanism's
+/// [`Simulation`](kinloop_runtime::dynamics::Simulation), with the same setters and defaults
+/// (at rest at input 0, from the declared guess there, no driving torque, never stopped early,
+/// the default [`RunConfig`]), its mass model the declared bodies, loads and gravity.
+#[must_use = "a simulation does nothing until `run`"]
+pub struct ModelSimulation<'a, D, S> {
+    model: &'a mut Model,
+    drive: D,
+    stop: S,
+    start: [f64; 2],
+    guess: Option<Vec<f64>>,
+    cfg: RunConfig,
+}
+
+impl<'a, D, S> ModelSimulation<'a, D, S> {
+    /// Starts from input `phi0` at speed `omega0`.
+    pub fn start(mut self, phi0: f64, omega0: f64) -> Self {
+        self.start = [phi0, omega0];
+        self
+    }
+
+    /// The positions that choose the assembly branch at the start (the unknowns in
+    /// declaration order).
+    pub fn guess(mut self, guess: &[f64]) -> Self {
+        self.guess = Some(guess.to_vec());
+        self
+    }
+
+    /// The integrator's, the solver's and the flywheel's settings.
+    pub fn config(mut self, cfg: RunConfig) -> Self {
+        self.cfg = cfg;
+        self
+    }
+
+    /// The driving torque on the input, `drive(t, phi, omega)` (a motor characteristic).
+    pub fn drive<D2: Fn(f64, f64, f64) -> f64>(self, drive: D2) -> ModelSimulation<'a, D2, S> {
+        let ModelSimulation { model, stop, start, guess, cfg, .. } = self;
+        ModelSimulation { model, drive, stop, start, guess, cfg }
+    }
+
+    /// Ends the run early when `stop(t, [phi, omega])`, asked after every step, returns `true`.
+    pub fn stop_when<S2: FnMut(f64, &[f64; 2]) -> bool>(self, stop: S2) -> ModelSimulation<'a, D, S2> {
+        let ModelSimulation { model, drive, start, guess, cfg, .. } = self;
+        ModelSimulation { model, drive, stop, start, guess, cfg }
+    }
+
+    /// Simulates for `t_end` time units from the start: the runtime's integration
+    /// ([`simulate_of`]) over this model's kernel, each evaluation the model's step written in
+    /// place, its declared loads' segment and [`MassModelBuf::dynamics_into`] (no allocation
+    /// but the trajectory's growth).
+    ///
+    /// Errors: those of the compiled `Simulation::run` (the kinematic error as it is, with the
+    /// model's names and the input reached; the others as [`Error::Dynamics`]); a guess of
+    /// another length, a parameter without a value, a model without declared dynamics
+    /// ([`Error::InvalidArgument`]); a model of other than one input
+    /// ([`DynamicsError::SizeMismatch`] in [`Error::Dynamics`]).
+    pub fn run(self, t_end: f64) -> Result<Trajectory, Error>
+    where
+        D: Fn(f64, f64, f64) -> f64,
+        S: FnMut(f64, &[f64; 2]) -> bool,
+    {
+        let m = self.model;
+        let mass = m.mass_model()?;
+        let guess = start_guess(m, self.start[0], self.guess)?;
+        // The loads are evaluated over a copy of the registers (the parameters' values with
+        // them): the kernel lends the model itself to the kinematics.
+        let mut prog = m.dynamics_ready()?.clone();
+        let mut regs = m.registers_view().to_vec();
+        let mut d = DynamicsBuf::zeros(1);
+        let reduced = |k: &KinBuf, omega: f64| -> Result<Dynamics<1>, DynamicsError> {
+            let loads = prog.loads(&mut regs, k);
+            mass.dynamics_into(k, &[omega], loads, &mut d)?;
+            Ok(Dynamics { mass: [[d.mass[0]]], gamma: [[[d.gamma[0]]]], forces: [d.forces[0]] })
+        };
+        let kernel = m.kernel(SweepConfig::default())?;
+        let (start, cfg) = (self.start, self.cfg);
+        Ok(simulate_of(kernel, reduced, self.drive, start, t_end, Heap(guess.into()), &cfg, self.stop)?)
+    }
+}
+
+/// A run-time model's step written into the simulation's state in place
+/// ([`Kernel::step_into`](kinloop_runtime::Kernel::step_into): the model's own step, with
+/// libm's sines and cosines as its point solve takes them).
+impl KinematicsInto for ModelKernel<'_> {
+    fn kinematics_into(&self, x: &Heap, guess: &Heap, cfg: &NewtonConfig, into: &mut KinBuf) -> Result<(), Error> {
+        self.step_into(x, guess, cfg, &mut Libm, into)
+    }
+}
+
 impl Model {
+    /// A forward simulation of this one-input model under its declared bodies, loads and
+    /// gravity: see [`ModelSimulation`] (the compiled `Simulation`).
+    ///
+    /// ```
+    /// use kinloop_model::Model;
+    /// let text = "pub struct Crank {
+    ///     params r = 0.1, l = 0.4, m = 2.0, j = 0.01;
+    ///     input phi;
+    ///     unknowns beta = 0, x = 0.5;
+    ///     loop abc: r @ phi + l @ beta == (x, 0);
+    ///     body crank: mass 0, com (0, 0), inertia j, turns phi;
+    ///     body piston: mass m, com (x, 0);
+    /// }";
+    /// let mut model = Model::read("crank.kl", text).unwrap();
+    /// // Free: the kinetic energy 1/2 J(phi) omega^2 is kept, with J = j + m x'^2.
+    /// let run = model.simulation().start(0.0, 10.0).run(2.0).unwrap();
+    /// let [phi, omega] = run.end;
+    /// // J >= j everywhere: the crank never turns faster than at the start.
+    /// assert!(phi > 6.3 && omega > 0.0 && omega < 10.0 + 1e-6);
+    /// ```
+    pub fn simulation(&mut self) -> ModelSimulation<'_, NoDrive, NoStop> {
+        ModelSimulation {
+            model: self,
+            drive: |_, _, _| 0.0,
+            stop: |_, _| false,
+            start: [0.0, 0.0],
+            guess: None,
+            cfg: RunConfig::default(),
+        }
+    }
+
     /// Whether the declaration has dynamics items (bodies, forces, torques, gravity): then
     /// [`Model::mass_model`] exists (the compiled mechanism's `mass_model`).
     pub fn has_dynamics(&self) -> bool {

@@ -158,7 +158,7 @@ mod tape;
 pub use analysis::ModelSampled;
 pub use at::Jacobian;
 pub use blocks::StepFailure;
-pub use dynamics::ModelCycle;
+pub use dynamics::{ModelCycle, ModelSimulation};
 pub use factor::MAX_DENSE;
 pub use mechanism::ModelKernel;
 pub use model::{Model, ReadError, State, StepError};

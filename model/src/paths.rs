@@ -148,11 +148,60 @@ impl Model {
         init: impl Fn(&[f64]) -> A,
         fold: impl Fn(A, &[f64], &KinBuf) -> A,
     ) -> Vec<Result<A, Error>> {
-        if let Some(name) = params.iter().find(|&&p| !self.params().iter().any(|q| q == p)) {
-            let e = Error::InvalidArgument(format!("`{}` has no parameter `{name}` to scan", self.name()));
+        if let Some(e) = self.unknown_param(params) {
             return sets.iter().map(|_| Err(e.clone())).collect();
         }
         sets.iter().map(|set| self.scan_one(params, set.as_ref(), spec, &init, &fold)).collect()
+    }
+
+    /// [`Model::scan`] on all cores (cargo feature `rayon`): the sets are distributed over
+    /// rayon's global thread pool by the runtime's
+    /// [`par_sets`](kinloop_runtime::paths::scan::par_sets) (the compiled `par_scan`'s), each
+    /// rayon job scanning its sets on its own clone of this model, made once per job (at most
+    /// about sixteen per thread), not per set. This model is left as it is.
+    ///
+    /// The results are bitwise those of [`Model::scan`] and in the same order: a set's result
+    /// is computed from its values alone (every parameter scanned is set, the other parameters
+    /// are this model's, and a step depends on nothing a previous one left in the workspace).
+    /// Run it inside `rayon::ThreadPool::install` to choose the number of threads.
+    ///
+    /// ```
+    /// use kinloop_model::{Model, ParamScanConfig};
+    /// use kinloop_runtime::dims::KinBuf;
+    /// let text = "pub struct SliderCrank {
+    ///     params r = 1, l = 3;
+    ///     input phi;
+    ///     unknowns beta = 0, s = 4;
+    ///     loop rod: r @ phi + l @ beta == (s, 0);
+    /// }";
+    /// let mut m = Model::read("slider_crank.kl", text).unwrap();
+    /// let spec = ParamScanConfig::new(&[0.0], &[std::f64::consts::TAU], 73);
+    /// let sets: Vec<[f64; 1]> = (1..=40).map(|k| [0.05 * k as f64]).collect();
+    /// let init = |_: &[f64]| (f64::MAX, f64::MIN);
+    /// let fold = |(lo, hi): (f64, f64), _: &[f64], k: &KinBuf| (lo.min(k.q[1]), hi.max(k.q[1]));
+    /// let par = m.par_scan(&["r"], &sets, &spec, init, fold);
+    /// assert_eq!(par, m.scan(&["r"], &sets, &spec, init, fold));
+    /// ```
+    #[cfg(feature = "rayon")]
+    pub fn par_scan<P: AsRef<[f64]> + Sync, A: Send>(
+        &self,
+        params: &[&str],
+        sets: &[P],
+        spec: &ParamScanConfig,
+        init: impl Fn(&[f64]) -> A + Sync + Send,
+        fold: impl Fn(A, &[f64], &KinBuf) -> A + Sync + Send,
+    ) -> Vec<Result<A, Error>> {
+        if let Some(e) = self.unknown_param(params) {
+            return sets.iter().map(|_| Err(e.clone())).collect();
+        }
+        let one = |m: &mut Model, set: &P| m.scan_one(params, set.as_ref(), spec, &init, &fold);
+        kinloop_runtime::paths::scan::par_sets(sets, || self.clone(), one)
+    }
+
+    /// The error of a scan over `params` when one of them is not a parameter of this model.
+    fn unknown_param(&self, params: &[&str]) -> Option<Error> {
+        let name = params.iter().find(|&&p| !self.params().iter().any(|q| q == p))?;
+        Some(Error::InvalidArgument(format!("`{}` has no parameter `{name}` to scan", self.name())))
     }
 
     /// One set of [`Model::scan`].

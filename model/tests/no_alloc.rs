@@ -136,3 +136,29 @@ fn the_dynamics_of_a_step_does_not_allocate() {
     assert!(torque.is_finite());
     assert_eq!(after - before, 0, "allocations over 100 steps of the dynamics");
 }
+
+/// A run-time model's simulation allocates nothing per step: each evaluation of the right-hand
+/// side (the model's step written in place, the loads' segment, the mass model) allocates
+/// nothing, and the recorded trajectory grows by doubling. A run of over twenty times the steps of a
+/// short one costs at most one allocation per doubling of the trajectory more.
+#[test]
+fn a_simulation_s_steps_do_not_allocate() {
+    let _one = ONE_AT_A_TIME.lock().unwrap_or_else(|e| e.into_inner());
+    let mut m = Model::read("engine.kl", fx::ENGINE_MACHINE_TEXT).expect("valid");
+    let cfg = kinloop::dynamics::RunConfig::default().with_flywheel(0.05);
+    let mut run = |turns: f64| {
+        let stop = move |_: f64, y: &[f64; 2]| y[0] > turns * std::f64::consts::TAU;
+        let before = ALLOCATIONS.load(Ordering::Relaxed);
+        let run =
+            m.simulation().start(0.3, 150.0).drive(|_, _, w| 4.0 - 0.01 * w).config(cfg).stop_when(stop).run(10.0);
+        let during = ALLOCATIONS.load(Ordering::Relaxed) - before;
+        (during, run.expect("a run").steps.len())
+    };
+    let (short, short_steps) = run(0.5);
+    let (long, long_steps) = run(15.0);
+    assert!(long_steps > 20 * short_steps, "{long_steps} steps against {short_steps}");
+    // Each step evaluates the right-hand side six times: thousands of evaluations more.
+    let doublings = long_steps.ilog2() as usize + 1;
+    assert!(long <= short + doublings, "{long} allocations in {long_steps} steps, {short} in {short_steps}");
+    eprintln!("simulation: {short} allocations in {short_steps} steps, {long} in {long_steps}");
+}

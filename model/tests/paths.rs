@@ -400,6 +400,58 @@ fn a_scan_started_from_a_guess_of_each_set_is_the_compiled_one() {
     }
 }
 
+/// What a parallel scan's test folds each sweep into: the extremes of every unknown, the sum of
+/// the velocity analogs and of Newton's iterations (a value that would show any difference of a
+/// step's history: a position, an analog or a solve that took another path).
+type Folded = (Vec<f64>, Vec<f64>, f64, usize);
+
+fn fold_all(mut a: Folded, _: &[f64], k: &KinBuf) -> Folded {
+    for (u, &q) in k.q.iter().enumerate() {
+        a.0[u] = a.0[u].min(q);
+        a.1[u] = a.1[u].max(q);
+    }
+    a.2 += k.dq.iter().sum::<f64>();
+    a.3 += k.report.iterations as usize;
+    a
+}
+
+/// The bits of a scan's results: each value's, or the error's text.
+fn scan_bits(r: &[Result<Folded, kinloop::Error>]) -> Vec<Result<(Vec<u64>, usize), String>> {
+    let bits = |(lo, hi, s, n): &Folded| (lo.iter().chain(hi).chain([s]).map(|v| v.to_bits()).collect(), *n);
+    r.iter().map(|r| r.as_ref().map(bits).map_err(|e| format!("{e:?}"))).collect()
+}
+
+/// `Model::par_scan` returns `Model::scan`'s results bit for bit and in the same order, over
+/// several hundred designs: 360 offset slider-cranks (closed forms; the offsets beyond the
+/// rod's reach of the crank fail at a limit position) and 150 class IV linkages (a Newton
+/// block, whose iterations are folded too). The model itself is left as it is.
+#[test]
+fn a_parallel_scan_equals_the_scan_bit_for_bit() {
+    let spec = ParamScanConfig::new(&[0.0], &[TAU], 91);
+    let mut crank = read(fx::SLIDER_CRANK_TEXT);
+    let sets: Vec<[f64; 3]> = (0..360)
+        .map(|k| [0.5 + 0.2 * (k % 6) as f64, 1.2 + 0.5 * (k / 6 % 6) as f64, -1.8 + 0.36 * (k / 36) as f64])
+        .collect();
+    let init = |_: &[f64]| (vec![f64::INFINITY; 2], vec![f64::NEG_INFINITY; 2], 0.0, 0);
+    let par = crank.par_scan(&["r", "l", "e"], &sets, &spec, init, fold_all);
+    assert_eq!(crank.param_values(), &[None, None, None], "par_scan leaves the model as it is");
+    let seq = crank.scan(&["r", "l", "e"], &sets, &spec, init, fold_all);
+    let failed = seq.iter().filter(|r| r.is_err()).count();
+    assert!(failed > 10 && failed < 300, "{failed} of the designs fail");
+    assert_eq!(scan_bits(&par), scan_bits(&seq));
+
+    let mut four = read(fx::CLASS_FOUR_TEXT);
+    let sets: Vec<[f64; 2]> = (0..150).map(|k| [4.2 + 0.004 * k as f64, 3.3 + 0.003 * (k % 50) as f64]).collect();
+    let init = |_: &[f64]| (vec![f64::INFINITY; 4], vec![f64::NEG_INFINITY; 4], 0.0, 0);
+    let par = four.par_scan(&["xb", "ef"], &sets, &spec, init, fold_all);
+    let seq = four.scan(&["xb", "ef"], &sets, &spec, init, fold_all);
+    assert!(seq.iter().all(Result::is_ok) && seq.iter().all(|r| r.as_ref().unwrap().3 > 91), "Newton iterates");
+    assert_eq!(scan_bits(&par), scan_bits(&seq));
+    // A name that is not a parameter: the same error in every slot, as the scan's.
+    let bad = four.par_scan(&["xb", "length"], &sets[..3], &spec, init, fold_all);
+    assert_eq!(scan_bits(&bad), scan_bits(&four.scan(&["xb", "length"], &sets[..3], &spec, init, fold_all)));
+}
+
 /// A scan's arguments that cannot be used: an error in each slot, never a panic.
 #[test]
 fn scan_arguments_that_do_not_fit_are_errors() {

@@ -1,12 +1,16 @@
 //! Forward simulation of a one-input machine:
 //! `(J(phi) + J_fly) phi'' + 1/2 J'(phi) phi'^2 = M_drive(t, phi, phi') + Q(phi, phi')`,
 //! integrated by [`dopri5`] with the kinematics solved at every evaluation (warm-started from
-//! the previous one, so the machine stays on its assembly branch).
+//! the previous one, so the machine stays on its assembly branch). The integration is written
+//! once over any kernel ([`simulate_of`]); a run-time model's simulation is the same.
 
 use super::error::DynamicsError;
 use super::model::MassModel;
-use super::ode::{DenseStep, OdeConfig, dopri5};
+use super::ode::{DenseStep, OdeConfig};
+use super::simulate_of::simulate_of;
+use crate::kin::Kin;
 use crate::mechanism::Mechanism;
+use crate::mechanism::kernel::Compiled;
 use crate::solvers::newton::NewtonConfig;
 
 /// Settings of a [`Simulation`].
@@ -171,71 +175,8 @@ where
         S: FnMut(f64, &[f64; 2]) -> bool,
     {
         let guess = self.guess.unwrap_or_else(|| self.m.guess_flat(&[self.start[0]]));
-        integrate(self.m, self.model, &self.drive, self.start, t_end, guess, &self.cfg, &mut self.stop)
-    }
-}
-
-/// The integration behind [`Simulation::run`].
-#[allow(clippy::too_many_arguments)]
-fn integrate<M, const N: usize, const NO: usize>(
-    m: &M,
-    model: &MassModel<N, 1, NO>,
-    drive: impl Fn(f64, f64, f64) -> f64,
-    start: [f64; 2],
-    t_end: f64,
-    guess: [f64; N],
-    cfg: &RunConfig,
-    mut stop: impl FnMut(f64, &[f64; 2]) -> bool,
-) -> Result<Trajectory, DynamicsError>
-where
-    M: Mechanism<N, 1, NO>,
-{
-    if !(cfg.flywheel >= 0.0 && cfg.flywheel.is_finite()) {
-        return Err(DynamicsError::BadValue {
-            what: "flywheel inertia",
-            value: cfg.flywheel,
-            why: "must be finite, not negative",
-        });
-    }
-    for v in start {
-        if !v.is_finite() {
-            return Err(DynamicsError::BadValue { what: "initial state", value: v, why: "must be finite" });
-        }
-    }
-    let mut q = guess;
-    // The first solve is from the caller's guess; every later one from the last position, where
-    // a restart would find another branch.
-    let mut newton = cfg.newton;
-    let rhs = |t: f64, y: &[f64; 2]| -> Result<[f64; 2], DynamicsError> {
-        let [phi, omega] = *y;
-        let k = m
-            .kinematics_flat(&[phi], &q, &newton)
-            .map_err(|source| DynamicsError::Kinematics { t: Some(t), source })?;
-        q = k.q;
-        newton.restarts = false;
-        let d = model.dynamics(&k, &[omega])?;
-        let tau = drive(t, phi, omega);
-        if !tau.is_finite() {
-            return Err(DynamicsError::NonFiniteLoad { name: "drive".into(), value: tau, x: vec![phi] });
-        }
-        let mut d = d;
-        d.mass[0][0] += cfg.flywheel;
-        let eps = d.accelerations(&[phi], &[omega], &[tau])?;
-        Ok([omega, eps[0]])
-    };
-    let mut steps = Vec::new();
-    let mut reached = start;
-    let run = dopri5(rhs, 0.0, start, t_end, &cfg.ode, |s, y| {
-        steps.push(*s);
-        reached = *y;
-        Ok(stop(s.t1(), y))
-    });
-    match run {
-        Ok((t, end)) => Ok(Trajectory { steps, t_end: t, end }),
-        // Say where: the input and speed of the last accepted step.
-        Err(DynamicsError::StepTooSmall { t, h }) => {
-            Err(DynamicsError::SingularMotion { t, h, x: vec![reached[0]], speed: vec![reached[1]] })
-        }
-        Err(e) => Err(e),
+        let model = self.model;
+        let reduced = |k: &Kin<N, 1, NO>, omega: f64| model.dynamics(k, &[omega]);
+        simulate_of(Compiled(self.m), reduced, &self.drive, self.start, t_end, guess, &self.cfg, &mut self.stop)
     }
 }

@@ -1,0 +1,144 @@
+//! The forward simulation written once, over any [`Kernel`] and any evaluation of a one-input
+//! mass model at a state: a compiled mechanism's [`Simulation`](super::Simulation) (through
+//! [`Compiled`] and its [`MassModel`](super::MassModel)) and a run-time model's
+//! (`kinloop_model::Model::simulation`, its `MassModelBuf` and its load expressions) run this
+//! integration, with the same operations in the same order.
+
+use super::error::DynamicsError;
+use super::eval::Dynamics;
+use super::ode::dopri5;
+use super::simulate::{RunConfig, Trajectory};
+use crate::dims::{Dims, KinState};
+use crate::error::Error;
+use crate::mechanism::Mechanism;
+use crate::mechanism::kernel::{Compiled, Kernel};
+use crate::solvers::newton::NewtonConfig;
+
+/// A [`Kernel`] whose kinematics a simulation writes into one state it keeps, so that an
+/// evaluation of the right-hand side allocates nothing whatever the kernel's storage.
+///
+/// The default is [`Kernel::kinematics`] assigned (a compiled mechanism's state is an array:
+/// its `kinematics_flat`, nothing allocated); a kernel whose states live on the heap (a run-time
+/// model's) writes in place.
+pub trait KinematicsInto: Kernel {
+    /// [`Kernel::kinematics`] written into `into` (of this kernel's sizes).
+    fn kinematics_into(
+        &self,
+        x: &<Self::Dims as Dims>::X,
+        guess: &<Self::Dims as Dims>::Q,
+        cfg: &NewtonConfig,
+        into: &mut <Self::Dims as Dims>::Kin,
+    ) -> Result<(), Error> {
+        *into = self.kinematics(x, guess, cfg)?;
+        Ok(())
+    }
+}
+
+/// A compiled mechanism's `kinematics_flat`, assigned.
+impl<M, const N: usize, const NI: usize, const NO: usize> KinematicsInto for Compiled<'_, M, N, NI, NO> where
+    M: Mechanism<N, NI, NO>
+{
+}
+
+/// A kernel lent: its own in-place kinematics.
+impl<K: KinematicsInto> KinematicsInto for &K {
+    #[inline(always)]
+    fn kinematics_into(
+        &self,
+        x: &<K::Dims as Dims>::X,
+        guess: &<K::Dims as Dims>::Q,
+        cfg: &NewtonConfig,
+        into: &mut <K::Dims as Dims>::Kin,
+    ) -> Result<(), Error> {
+        (**self).kinematics_into(x, guess, cfg, into)
+    }
+}
+
+/// Simulates the one-input machine `m` for `t_end` time units from `start = [phi0, omega0]`:
+/// `(J + J_fly) phi'' + 1/2 J' phi'^2 = M_drive + Q` by [`dopri5`], the kinematics solved at
+/// every evaluation (the first from `guess`, every later one warm-started from the last
+/// position, without restarts, so that the machine stays on its assembly branch).
+///
+/// `reduced(state, omega)` gives the one-input dynamics at a solved state and input speed (the
+/// reduced inertia `J = mass[0][0]`, `1/2 J' = gamma[0][0][0]`, the generalised force `Q`: a
+/// compiled `MassModel::dynamics`, a run-time `MassModelBuf::dynamics_into`); `drive(t, phi,
+/// omega)` the driving torque; `stop(t, [phi, omega])`, asked after every step, ends the run
+/// early. The errors of [`Simulation::run`](super::Simulation::run); besides, a kernel with
+/// other than one input, or a guess of another size than its unknowns, is
+/// [`DynamicsError::SizeMismatch`]. Besides the recorded trajectory (one entry per accepted
+/// step, amortised growth), a step allocates nothing unless `reduced` does.
+#[allow(clippy::too_many_arguments)]
+pub fn simulate_of<K: KinematicsInto>(
+    m: K,
+    mut reduced: impl FnMut(&<K::Dims as Dims>::Kin, f64) -> Result<Dynamics<1>, DynamicsError>,
+    drive: impl Fn(f64, f64, f64) -> f64,
+    start: [f64; 2],
+    t_end: f64,
+    guess: <K::Dims as Dims>::Q,
+    cfg: &RunConfig,
+    mut stop: impl FnMut(f64, &[f64; 2]) -> bool,
+) -> Result<Trajectory, DynamicsError> {
+    let d = m.dims();
+    if d.ni() != 1 {
+        return Err(DynamicsError::SizeMismatch {
+            what: "inputs of a one-input simulation",
+            expected: 1,
+            given: d.ni(),
+        });
+    }
+    if guess.as_ref().len() != d.n() {
+        return Err(DynamicsError::SizeMismatch {
+            what: "unknowns of the guess",
+            expected: d.n(),
+            given: guess.as_ref().len(),
+        });
+    }
+    if !(cfg.flywheel >= 0.0 && cfg.flywheel.is_finite()) {
+        return Err(DynamicsError::BadValue {
+            what: "flywheel inertia",
+            value: cfg.flywheel,
+            why: "must be finite, not negative",
+        });
+    }
+    for v in start {
+        if !v.is_finite() {
+            return Err(DynamicsError::BadValue { what: "initial state", value: v, why: "must be finite" });
+        }
+    }
+    // The workspace of every evaluation, made once: the input, the last position, the state.
+    let (mut x, mut q, mut k) = (d.x(), guess, d.kin());
+    // The first solve is from the caller's guess; every later one from the last position, where
+    // a restart would find another branch.
+    let mut newton = cfg.newton;
+    let rhs = |t: f64, y: &[f64; 2]| -> Result<[f64; 2], DynamicsError> {
+        let [phi, omega] = *y;
+        x[0] = phi;
+        m.kinematics_into(&x, &q, &newton, &mut k)
+            .map_err(|source| DynamicsError::Kinematics { t: Some(t), source })?;
+        q.as_mut().copy_from_slice(k.q());
+        newton.restarts = false;
+        let mut d = reduced(&k, omega)?;
+        let tau = drive(t, phi, omega);
+        if !tau.is_finite() {
+            return Err(DynamicsError::NonFiniteLoad { name: "drive".into(), value: tau, x: vec![phi] });
+        }
+        d.mass[0][0] += cfg.flywheel;
+        let eps = d.accelerations(&[phi], &[omega], &[tau])?;
+        Ok([omega, eps[0]])
+    };
+    let mut steps = Vec::new();
+    let mut reached = start;
+    let run = dopri5(rhs, 0.0, start, t_end, &cfg.ode, |s, y| {
+        steps.push(*s);
+        reached = *y;
+        Ok(stop(s.t1(), y))
+    });
+    match run {
+        Ok((t, end)) => Ok(Trajectory { steps, t_end: t, end }),
+        // Say where: the input and speed of the last accepted step.
+        Err(DynamicsError::StepTooSmall { t, h }) => {
+            Err(DynamicsError::SingularMotion { t, h, x: vec![reached[0]], speed: vec![reached[1]] })
+        }
+        Err(e) => Err(e),
+    }
+}
