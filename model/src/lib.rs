@@ -52,8 +52,12 @@
 //! ([`Model::dynamics`], [`Model::shaking`]), its inverse cycle over a turn of the input and the
 //! flywheel sizing ([`Model::inverse_cycle`]) are the compiled mechanism's, computed by the same
 //! code: they equal the compiled ones to 1e-14 of each quantity's magnitude
-//! (`tests/dynamics.rs`). The forward simulation (`dynamics::Simulation`) stays on compiled
-//! sizes.
+//! (`tests/dynamics.rs`). So is the forward simulation ([`Model::simulation`]: the runtime's
+//! `dynamics::simulate_of`, the compiled `Simulation`'s integration, over the model's kernel,
+//! each evaluation the model's step written in place and the declared loads' segment, no
+//! allocation but the trajectory's): the same trajectory to the last bit on the engine and
+//! Stirling fixtures, and a free slider-crank's energy and time of a turn as the closed forms
+//! give them.
 //!
 //! # Speed
 //!
@@ -101,7 +105,10 @@
 //! * [`Model::assembly_modes`]: the distinct assembly modes at an input (`assembly_modes_of`,
 //!   multi-start Newton from the declared guess, `Kernel::guess`);
 //! * [`Model::scan`]: a design-space scan over parameter sets ([`ParamScanConfig`]), each set's
-//!   sweep folded into one value (`fold_sweep_of`, the compiled `scan`'s fold).
+//!   sweep folded into one value (`fold_sweep_of`, the compiled `scan`'s fold);
+//! * `Model::par_scan` (cargo feature `rayon`): the same on all cores (`par_sets`, the compiled
+//!   `par_scan`'s distribution over rayon's pool), a clone of the model per rayon job, the
+//!   results bitwise [`Model::scan`]'s.
 //!
 //! They equal the compiled mechanism's to the last bit where the operations are the same (curve
 //! tracing and the assembly modes call the same kernels; the others, whose sweep steps take
@@ -112,11 +119,9 @@
 //! any kernel, `m.kernel(config)`.
 //!
 //! Still on compiled sizes (`Mechanism<N, NI, NO>` and `Kin<N, NI, NO>`): sensitivities-based
-//! synthesis and the objectives with parameter gradients (`Sensitivities<N, NI, NO, NP>`), the
-//! forward simulation of the dynamics (the inverse dynamics is served: see above), and the
-//! parallel scan (`par_scan`: a model is one workspace, lent to one sweep at a time). Each needs
-//! its state and result types over `Dims` as the sweep's are, and the kernel methods it calls
-//! (`sensitivities`) added to `Kernel`.
+//! synthesis and the objectives with parameter gradients (`Sensitivities<N, NI, NO, NP>`). They
+//! need their state and result types over `Dims` as the sweep's are, and the kernel methods
+//! they call (`sensitivities`) added to `Kernel`.
 //!
 //! A run-time model's errors and events name the model, its inputs and the failed or singular
 //! block's unknowns and equations as the compiled mechanism's do, with owned strings (the names

@@ -15,7 +15,9 @@
 //! gravity with the sizes it learns when read (its loads' values computed by the model and
 //! given to each evaluation), and [`turn_states`] sweeps a turn of any
 //! [`Kernel`](crate::Kernel)'s input for [`Cycle::over_states`], the inverse cycle
-//! [`InverseCycle::run`] computes.
+//! [`InverseCycle::run`] computes. The forward simulation is written once too
+//! ([`simulate_of`], over any kernel that writes its kinematics in place, [`KinematicsInto`]):
+//! [`Simulation::run`] is it over a compiled mechanism.
 //!
 //! ```
 //! use kinloop_runtime::dynamics::{Body, Coord, MassModel, Rotation};

@@ -15,7 +15,9 @@
 //! error, not the fold of the samples before it.
 //!
 //! One set's sweep and fold is written once, over any [`Kernel`] ([`fold_sweep_of`]): a run-time
-//! model's scan over parameter sets (`kinloop_model::Model::scan`) is the same.
+//! model's scan over parameter sets (`kinloop_model::Model::scan`) is the same. The parallel
+//! distribution is written once too (`par_sets`: a workspace per rayon job, a run-time model's
+//! clone for `kinloop_model::Model::par_scan`).
 //!
 //! The `kinloop` facade crate has a runnable example (its documentation, "Design-space scans").
 
