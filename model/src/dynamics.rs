@@ -317,7 +317,7 @@ impl<'a, D, S> ModelSimulation<'a, D, S> {
     }
 
     /// Simulates for `t_end` time units from the start: the runtime's integration
-    /// ([`simulate_of`]) over this model's kernel, each evaluation the model's step written in
+    /// ([`simulate_of()`]) over this model's kernel, each evaluation the model's step written in
     /// place, its declared loads' segment and [`MassModelBuf::dynamics_into`] (no allocation
     /// but the trajectory's growth).
     ///

@@ -16,7 +16,7 @@
 //! given to each evaluation), and [`turn_states`] sweeps a turn of any
 //! [`Kernel`](crate::Kernel)'s input for [`Cycle::over_states`], the inverse cycle
 //! [`InverseCycle::run`] computes. The forward simulation is written once too
-//! ([`simulate_of`], over any kernel that writes its kinematics in place, [`KinematicsInto`]):
+//! ([`simulate_of()`], over any kernel that writes its kinematics in place, [`KinematicsInto`]):
 //! [`Simulation::run`] is it over a compiled mechanism.
 //!
 //! ```
