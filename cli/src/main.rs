@@ -7,6 +7,7 @@
 //! kinloop solve four_bar.kl --at 0 --at 0.5 --params a=1.2,b=3
 //! kinloop sweep four_bar.kl --from 0 --to 360 --samples 73 --deg --params a=1,b=3,c=2.5,d=3.2
 //! kinloop dynamics engine.kl --speed 150 --delta 0.02 --flywheel flywheel.csv
+//! kinloop simulate engine.kl --speed 150 --torque 2.5 --flywheel 0.05 --time 0.5
 //! kinloop extremes four_bar.kl --from 0 --to 360 --deg --table   # each unknown's min and max
 //! kinloop animate four_bar.kl --from 0 --to 360 --samples 91 --deg --out four_bar.svg
 //! ```
@@ -26,6 +27,7 @@ mod params;
 mod progress;
 mod report;
 mod samples;
+mod simulate;
 mod solve;
 mod sweep;
 
@@ -134,6 +136,38 @@ enum Command {
         /// error.
         #[arg(long, value_name = "FILE")]
         flywheel: Option<PathBuf>,
+    },
+    /// The forward simulation of a one-input machine from its declared bodies, loads and
+    /// gravity under a constant driving torque, from a start angle and speed: the input angle
+    /// and speed at equally spaced times, as CSV with units (masses and lengths in the
+    /// parameters' units, time in the speed's). A limit position reached fails.
+    Simulate {
+        /// The declaration (`.kl`), with `body`, `force`, `torque` or `gravity` items.
+        file: PathBuf,
+        /// The input speed at time 0, in rad (or degrees with `--deg`) per time unit.
+        #[arg(long, default_value_t = 0.0, allow_hyphen_values = true)]
+        speed: f64,
+        /// The input angle at time 0.
+        #[arg(long, default_value_t = 0.0, allow_hyphen_values = true)]
+        start: f64,
+        /// The time simulated (positive).
+        #[arg(long)]
+        time: f64,
+        /// The constant driving torque on the input.
+        #[arg(long, default_value_t = 0.0, allow_hyphen_values = true)]
+        torque: f64,
+        /// The moment of inertia of a flywheel on the input shaft.
+        #[arg(long, default_value_t = 0.0)]
+        flywheel: f64,
+        /// Equally spaced times written, both ends included (at least 2, at most 10000000).
+        #[arg(long, default_value_t = 101)]
+        samples: usize,
+        /// Angles in degrees (the start, the speed, the input written); otherwise radians.
+        #[arg(long)]
+        deg: bool,
+        /// Parameter values, `name=value` separated by commas (overriding the defaults).
+        #[arg(long, value_name = "NAME=VALUE,...")]
+        params: Option<String>,
     },
     /// Sweeps the inputs along the straight path from `--from` to `--to` as `sweep` does and
     /// writes the smallest and largest value of each unknown and output with the inputs where
@@ -244,6 +278,11 @@ fn run(cli: Cli) -> Result<(), Failed> {
                 flywheel: flywheel.as_deref(),
             };
             dynamics::run(&mut model, &req)
+        }
+        Command::Simulate { file, speed, start, time, torque, flywheel, samples, deg, params } => {
+            let mut model = load(&file, params.as_deref())?;
+            let req = simulate::Request { start, speed, time, torque, flywheel, samples, deg };
+            simulate::run(&mut model, &req)
         }
         Command::Extremes { file, from, to, samples, deg, params, columns, table } => {
             let mut model = load(&file, params.as_deref())?;

@@ -1,0 +1,97 @@
+//! `kinloop simulate` end to end: the built binary on the shipped engine, its CSV parsed and
+//! compared with the compiled mechanism of the same declaration (the fixtures' `EngineMachine`,
+//! its `mass_model` and the compiled `Simulation`), its units, options and exit codes.
+
+use kinloop::dynamics::{RunConfig, Simulation};
+use kinloop_fixtures as fx;
+use std::path::PathBuf;
+use std::process::{Command, Output};
+
+/// Agreement demanded with the compiled simulation, of each column's largest magnitude: both
+/// integrate by the same code with the same operations (the library's test finds no
+/// difference at all), and the CSV writes each value with the digits that read back exactly.
+const REL: f64 = 1e-14;
+
+fn kinloop(args: &[&str]) -> Output {
+    Command::new(env!("CARGO_BIN_EXE_kinloop")).args(args).output().expect("the kinloop binary runs")
+}
+
+fn shipped(name: &str) -> String {
+    PathBuf::from(env!("CARGO_MANIFEST_DIR")).join("mechanisms").join(name).display().to_string()
+}
+
+/// A CSV's header and rows.
+fn csv(out: &Output) -> (Vec<String>, Vec<Vec<f64>>) {
+    assert!(out.status.success(), "{}", String::from_utf8_lossy(&out.stderr));
+    let text = String::from_utf8(out.stdout.clone()).expect("utf-8");
+    let mut lines = text.lines();
+    let header = lines.next().expect("header").split(',').map(str::to_string).collect();
+    let rows = lines.map(|l| l.split(',').map(|v| v.parse().expect("a number")).collect()).collect();
+    (header, rows)
+}
+
+/// The engine driven by a constant torque with a flywheel: the command's times, angles and
+/// speeds are the compiled simulation's dense output at those times; in degrees they are the
+/// same values converted.
+#[test]
+fn simulate_writes_the_compiled_engine_s_motion() {
+    let engine = fx::EngineMachine::default();
+    let mass = engine.mass_model().unwrap();
+    let cfg = RunConfig::default().with_flywheel(0.05);
+    let compiled = Simulation::new(&engine, &mass).start(0.3, 150.0).drive(|_, _, _| 2.5).config(cfg).run(0.2).unwrap();
+    let args = ["simulate", &shipped("engine.kl"), "--start", "0.3", "--speed", "150", "--torque", "2.5"];
+    let out = kinloop(&[&args[..], &["--flywheel", "0.05", "--time", "0.2", "--samples", "41"]].concat());
+    let (header, rows) = csv(&out);
+    assert_eq!(header, ["t [time unit]", "phi [rad]", "omega [rad/time unit]"]);
+    assert_eq!(rows.len(), 41);
+    let want: Vec<[f64; 3]> = rows
+        .iter()
+        .map(|r| {
+            let [phi, omega] = compiled.at(r[0]);
+            [r[0], phi, omega]
+        })
+        .collect();
+    assert_eq!((rows[0][0], rows[40][0]), (0.0, 0.2));
+    for c in 0..3 {
+        let scale = want.iter().fold(0.0f64, |m, w| m.max(w[c].abs()));
+        for (r, w) in rows.iter().zip(&want) {
+            assert!((r[c] - w[c]).abs() <= REL * scale, "column {c}: {r:?} against {w:?}");
+        }
+    }
+    // The machine turns: more than four turns in 0.2 time units.
+    assert!(rows[40][1] > 0.3 + 4.0 * std::f64::consts::TAU, "{:?}", rows[40]);
+    let deg = ["simulate", &shipped("engine.kl"), "--start", "17.188733853924695", "--speed", "8594.366926962348"];
+    let out = kinloop(
+        &[&deg[..], &["--torque", "2.5", "--flywheel", "0.05", "--time", "0.2", "--samples", "41", "--deg"]].concat(),
+    );
+    let (header, deg_rows) = csv(&out);
+    assert_eq!(header, ["t [time unit]", "phi [deg]", "omega [deg/time unit]"]);
+    for (d, r) in deg_rows.iter().zip(&rows) {
+        assert!((d[1].to_radians() - r[1]).abs() <= 1e-12 * r[1].abs(), "{d:?} against {r:?}");
+        assert!((d[2].to_radians() - r[2]).abs() <= 1e-12 * r[2].abs(), "{d:?} against {r:?}");
+    }
+}
+
+/// Arguments that cannot be used are usage errors (exit 2); a machine that cannot move on
+/// (a rocker driven into its limit position) fails with exit 1 and says where.
+#[test]
+fn simulate_s_bad_arguments_and_failures_have_their_exit_codes() {
+    let engine = shipped("engine.kl");
+    for bad in [
+        vec!["--time", "0"],
+        vec!["--time", "1", "--samples", "1"],
+        vec!["--time", "1", "--flywheel", "-1"],
+        vec!["--time", "1", "--speed", "inf"],
+    ] {
+        let out = kinloop(&[&["simulate", engine.as_str()][..], &bad].concat());
+        assert_eq!(out.status.code(), Some(2), "{bad:?}: {}", String::from_utf8_lossy(&out.stderr));
+    }
+    let out = kinloop(&["simulate", &shipped("four_bar.kl"), "--time", "1", "--params", "a=1,b=3,c=2.5,d=3.2"]);
+    assert_eq!(out.status.code(), Some(2));
+    assert!(String::from_utf8_lossy(&out.stderr).contains("declares no bodies"));
+    // A crank longer than the rod: the engine rocks to a limit position.
+    let out = kinloop(&["simulate", &engine, "--time", "1", "--speed", "100", "--params", "r=0.3,l=0.2"]);
+    let stderr = String::from_utf8_lossy(&out.stderr);
+    assert_eq!(out.status.code(), Some(1), "{stderr}");
+    assert!(stderr.contains("EngineMachine"), "{stderr}");
+}
