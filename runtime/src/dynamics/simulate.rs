@@ -1,8 +1,9 @@
 //! Forward simulation of a one-input machine:
 //! `(J(phi) + J_fly) phi'' + 1/2 J'(phi) phi'^2 = M_drive(t, phi, phi') + Q(phi, phi')`,
-//! integrated by [`dopri5`](super::dopri5) with the kinematics solved at every evaluation (warm-started from
-//! the previous one, so the machine stays on its assembly branch). The integration is written
-//! once over any kernel ([`simulate_of`]); a run-time model's simulation is the same.
+//! integrated by [`dopri5`](super::dopri5) with the kinematics solved at every evaluation
+//! (warm-started from the previous one, so the machine stays on its assembly branch). The
+//! integration is written once over any kernel ([`simulate_of`]); a run-time model's
+//! simulation is the same.
 
 use super::error::DynamicsError;
 use super::model::MassModel;
