@@ -286,6 +286,7 @@ mod tests {
         let (made, threads) = (made.load(Ordering::Relaxed), rayon::current_num_threads());
         // A job holds at least floor(1000 / (16 threads)) sets.
         let bound = sets.len() / (sets.len() / (16 * threads)).max(1);
+        eprintln!("{made} workspaces for {} sets on {threads} threads (at most {bound})", sets.len());
         assert!(made >= 1 && made <= bound, "{made} workspaces for {threads} threads");
         // Fewer workspaces than sets by far, on any machine of up to 31 threads.
         assert!(threads > 31 || bound <= sets.len() / 15, "{bound}");
