@@ -403,6 +403,11 @@ impl Model {
         self.statics.run(&mut self.regs);
     }
 
+    /// The state the last step wrote (where a failed step stopped, its values so far).
+    pub(crate) fn state(&self) -> &State {
+        &self.state
+    }
+
     /// The mechanism's name.
     pub fn name(&self) -> &str {
         &self.name
