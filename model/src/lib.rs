@@ -146,6 +146,7 @@ mod closed;
 mod drawing;
 mod dynamics;
 mod factor;
+mod levers;
 mod mechanism;
 mod model;
 mod newton;
