@@ -12,6 +12,9 @@ use kinloop_codegen::plan::solve::Solve;
 use kinloop_runtime::NewtonConfig;
 use kinloop_runtime::generated::{BlockFailure, check_centres, check_guess, check_lever};
 
+/// An angle and the nodes of its lever vector.
+type Arm = (usize, [NodeId; 2]);
+
 /// A closed-form block's position-only tests.
 #[derive(Clone, Debug)]
 pub(crate) struct Levers {
@@ -37,7 +40,8 @@ impl Levers {
             let c = bp.unknowns.iter().position(|&v| v == u)?;
             (!bp.lever_floor[c].is_empty()).then(|| bp.lever_floor[c].iter().map(|n| n.0).collect())
         };
-        let (guess, arms): (Option<[usize; 2]>, Vec<(usize, [NodeId; 2])>) = match &rec.form {
+        // Per angle, its lever vector's nodes.
+        let (guess, arms): (Option<[usize; 2]>, Vec<Arm>) = match &rec.form {
             ClosedForm::AngleEquation { angle, a, b, .. } => (None, vec![(*angle, [*a, *b])]),
             ClosedForm::Dyad { angles, m, .. } => {
                 (None, (0..2).map(|i| (angles[i], [m[i][0][0], m[i][1][0]])).collect())
