@@ -114,11 +114,19 @@ impl ModelKernel<'_> {
     /// too many turns out is named; a non-finite state names its first bad value.
     fn error(&self, m: &Model, e: StepError, x: &[f64], guess: Option<&[f64]>, cfg: &NewtonConfig) -> Error {
         match e {
+            // A failed factorisation: a bad value, an equation outside its domain (a non-finite
+            // row), or a singular position (the compiled `singular`).
             StepError::Block { block, failure: StepFailure::Singular { pivot_ratio } } => {
-                self.bad_values(m, x, None).unwrap_or_else(|| Error::Singular {
-                    pivot_ratio,
-                    tolerance: cfg.singular_tol,
-                    at: self.location(x, Some(block)),
+                self.bad_values(m, x, None).unwrap_or_else(|| {
+                    let at = self.location(x, Some(block));
+                    match m.bad_row(block, guess.is_none()) {
+                        Some(row) => {
+                            let equations = self.block_infos.get(block).map(|b| b.equations.clone());
+                            let name = equations.and_then(|e| e.get(row).cloned()).unwrap_or(Cow::Borrowed("?"));
+                            Error::Domain { what: "equation", name, at }
+                        }
+                        None => Error::Singular { pivot_ratio, tolerance: cfg.singular_tol, at },
+                    }
                 })
             }
             StepError::Block { block, failure: StepFailure::Block(f) } => {

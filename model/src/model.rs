@@ -414,6 +414,23 @@ impl Model {
         &self.state
     }
 
+    /// The first row of block `b`'s system holding a non-finite value after its factorisation
+    /// failed, as the compiled step diagnoses it (`first_bad_row`): a linear block's position
+    /// solve reads its rows with their right-hand sides; the analogs (`at`: at a given position,
+    /// where a linear block is tested too) the Jacobian's rows, then the velocity's.
+    pub(crate) fn bad_row(&self, b: usize, at: bool) -> Option<usize> {
+        let prog = self.blocks.get(b)?;
+        let r = &self.regs;
+        let bad = |k: &u32| !r[*k as usize].is_finite();
+        let mut rows = prog.jac.chunks(prog.unknowns.len().max(1));
+        match (&prog.how, at) {
+            (How::Linear { rhs }, false) => rows.zip(rhs).position(|(row, k)| row.iter().any(bad) || bad(k)),
+            _ => rows
+                .position(|row| row.iter().any(bad))
+                .or_else(|| prog.vel_rows.chunks(self.inputs.len().max(1)).position(|row| row.iter().any(bad))),
+        }
+    }
+
     /// The mechanism's name.
     pub fn name(&self) -> &str {
         &self.name

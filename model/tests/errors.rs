@@ -2,7 +2,7 @@
 //! the same variant with the same fields (the model's names owned, the compiled ones constants,
 //! equal as text), so the same message character for character. Each case also names the value
 //! the test expects, written out here: the output that divides by zero, the angle guessed too
-//! many turns out, the non-finite parameter.
+//! many turns out, the non-finite parameter, the equation whose linear block is not finite.
 
 mod common;
 
@@ -165,4 +165,31 @@ fn a_non_finite_parameter_is_named_first() {
     let e = same_error(&compiled, &mut model, [0.3], [0.5, 1.5]);
     assert!(matches!(e, Error::NonFinite { what: Quantity::Parameter, .. }), "{e:?}");
     assert_eq!(name_of(&e), "b");
+}
+
+kinloop_fixtures::declare! {
+    /// A slider solved by one linear equation whose coefficient is `sqrt(phi)`: NaN below 0.
+    LINEAR_TEXT => {
+        pub struct Linear {
+            params a = 1;
+            input phi;
+            unknowns s = 1;
+            eq e: sqrt(phi) * s == a;
+        }
+    }
+}
+
+/// A linear block whose matrix is not finite (an input outside a coefficient's domain) is an
+/// equation outside its domain, named, not a singular position: the compiled step's diagnosis
+/// of a failed factorisation.
+#[test]
+fn a_non_finite_linear_block_names_its_equation() {
+    let compiled = Linear::default();
+    let mut model = read(LINEAR_TEXT);
+    let e = same_error(&compiled, &mut model, [-1.0], [1.0]);
+    assert!(matches!(e, Error::Domain { what: "equation", .. }), "{e:?}");
+    assert_eq!(name_of(&e), "e");
+    // At 0 the coefficient is 0: singular.
+    let e = same_error(&compiled, &mut model, [0.0], [1.0]);
+    assert!(matches!(e, Error::Singular { .. }), "{e:?}");
 }
