@@ -409,6 +409,9 @@ fn positions_alone_equal_the_full_steps() {
     assert!(positions_parity(&fx::roller_edger::RollerEdger::default(), edger, [0.0], 180) > 0);
     let n = positions_parity(&fx::balancing::Balance::default(), &mut read(fx::balancing::BALANCE_TEXT), [0.0], 180);
     assert!(n > 0);
+    // One sparse Newton block of 128 unknowns.
+    let ring = &mut read(kinloop_bench::ring::RING);
+    assert_eq!(positions_parity(&kinloop_bench::ring::Ring::default(), ring, [0.0], 24), 24);
 }
 
 /// A position the data do not determine fails the positions-only solve as the compiled
