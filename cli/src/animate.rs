@@ -1,6 +1,7 @@
 //! `kinloop animate`: the mechanism's default drawing moving through a branch-safe sweep, as an
-//! animated SVG or an interactive HTML page, with the drawing code of compiled mechanisms
-//! (`kinloop_viz`) over the run-time model.
+//! animated SVG or an interactive HTML page, or (`--grid`) over a grid of its inputs as a page
+//! with one slider per input, with the drawing code of compiled mechanisms (`kinloop_viz`) over
+//! the run-time model.
 
 use crate::exit::usage;
 use crate::solve::model_inputs;
@@ -8,7 +9,7 @@ use crate::{Failed, exit, samples};
 use kinloop_model::Model;
 use kinloop_runtime::{Error, QuantityKind};
 use kinloop_viz::draw::{Animation, DrawError};
-use kinloop_viz::html::{HtmlConfig, HtmlError, html_of};
+use kinloop_viz::html::{HtmlConfig, HtmlError, html_grid_of, html_of};
 use std::io::Write;
 use std::path::Path;
 
@@ -38,8 +39,11 @@ pub struct Request<'a> {
     pub from: &'a str,
     /// The inputs at the end.
     pub to: &'a str,
-    /// Samples, both ends included.
-    pub samples: usize,
+    /// `--samples`: the samples of the sweep, both ends included (one count); with `grid`, the
+    /// values of each input (one count for all, or one per input). `None`: the defaults.
+    pub samples: Option<&'a str>,
+    /// A grid of the inputs instead of a sweep, drawn as a page with one slider per input.
+    pub grid: bool,
     /// Angles of `--from` and `--to` in degrees.
     pub deg: bool,
     /// Where to write.
@@ -66,13 +70,22 @@ pub fn run(model: &mut Model, req: &Request) -> Result<(), Failed> {
             )));
         }
     };
-    if req.samples < 2 {
-        return Err(usage(format!("an animation needs at least 2 samples, not {}", req.samples)));
-    }
-    samples::check(req.samples)?;
     if req.frames.is_some_and(|f| f < 2) {
         return Err(usage("--frames must be at least 2"));
     }
+    if req.grid {
+        return grid(model, req, format);
+    }
+    let samples = match req.samples.map(str::trim) {
+        None => DEFAULT_SAMPLES,
+        Some(s) => s.parse::<usize>().map_err(|_| {
+            usage(format!("--samples {s} is not a count (a list of counts is for a grid, with --grid)"))
+        })?,
+    };
+    if samples < 2 {
+        return Err(usage(format!("an animation needs at least 2 samples, not {samples}")));
+    }
+    samples::check(samples)?;
     let kinds = model.input_kinds().to_vec();
     let from = model_inputs(req.from, &kinds, req.deg, "--from")?;
     let to = model_inputs(req.to, &kinds, req.deg, "--to")?;
@@ -83,7 +96,7 @@ pub fn run(model: &mut Model, req: &Request) -> Result<(), Failed> {
     };
     let mut guess = vec![0.0; model.unknowns().len()];
     model.guess(&from, &mut guess).map_err(|e| failed(&e))?;
-    let motion = model.motion(&from, &to, req.samples, &guess).map_err(|e| match e {
+    let motion = model.motion(&from, &to, samples, &guess).map_err(|e| match e {
         // The runtime's refusal of the arguments (`to` equal to `from`) is a usage error.
         DrawError::Sweep(e @ Error::InvalidArgument(_)) => usage(format!("{name}: {e}")),
         e => failed(&e),
@@ -125,13 +138,91 @@ pub fn run(model: &mut Model, req: &Request) -> Result<(), Failed> {
             })?
         }
     };
-    // Created once the figure is made: a failed sweep or drawing leaves no file behind.
-    let mut file = std::fs::File::create(req.out).map_err(|e| {
-        eprintln!("error: cannot create {}: {e}", req.out.display());
+    write_out(req.out, &text)
+}
+
+/// The samples of a sweep when `--samples` is not given.
+const DEFAULT_SAMPLES: usize = 181;
+
+/// The values of each input of a grid when `--samples` is not given: 19 x 19 cells fit the
+/// page's default 721 poses.
+const DEFAULT_GRID_VALUES: usize = 19;
+
+/// `kinloop animate --grid`: the model over a grid of its inputs (`Model::grid`, the assembly
+/// mode carried from cell to cell), drawn as the interactive page with one slider per input
+/// (`html_grid_of`). Only a page: an SVG animation plays one path, not a grid.
+fn grid(model: &mut Model, req: &Request, format: Format) -> Result<(), Failed> {
+    let name = model.name().to_string();
+    let ni = model.inputs().len();
+    if ni < 2 {
+        return Err(usage(format!(
+            "--grid needs a mechanism of two inputs or more: `{name}` has {ni}; animate a sweep without --grid"
+        )));
+    }
+    if format != Format::Html {
+        return Err(usage("--grid draws an interactive page: write it to a .html file (or give --format html)"));
+    }
+    let counts: Vec<usize> = match req.samples {
+        None => vec![DEFAULT_GRID_VALUES; ni],
+        Some(spec) => {
+            let counts: Result<Vec<usize>, _> = spec.split(',').map(|v| v.trim().parse::<usize>()).collect();
+            match counts {
+                Ok(c) if c.len() == 1 => vec![c[0]; ni],
+                Ok(c) if c.len() == ni => c,
+                _ => {
+                    return Err(usage(format!(
+                        "--samples {spec}: give one count of values for every input, or one per input ({ni})"
+                    )));
+                }
+            }
+        }
+    };
+    let kinds = model.input_kinds().to_vec();
+    let from = model_inputs(req.from, &kinds, req.deg, "--from")?;
+    let to = model_inputs(req.to, &kinds, req.deg, "--to")?;
+    let failed = |e: &dyn std::fmt::Display| {
+        eprintln!("error: {name}: {e}");
+        Failed(exit::SOLVE_FAILED)
+    };
+    let mut guess = vec![0.0; model.unknowns().len()];
+    model.guess(&from, &mut guess).map_err(|e| failed(&e))?;
+    let grid = model.grid(&from, &to, &counts, &guess).map_err(|e| match e {
+        // The counts or ranges refused (no value of an input, equal ends, too many cells).
+        DrawError::InvalidSetting(_) | DrawError::Sweep(Error::InvalidArgument(_)) => usage(format!("{name}: {e}")),
+        e => failed(&e),
+    })?;
+    let unreached = grid.cells.iter().filter(|c| c.is_none()).count();
+    if unreached > 0 {
+        eprintln!("note: {unreached} of {} cells are not reached from the first (no assembly there)", grid.cells.len());
+    }
+    let drawing = model.drawing();
+    for n in drawing.notes() {
+        eprintln!("note: {n}");
+    }
+    let mut config = HtmlConfig::new(&name);
+    if let Some(f) = req.frames {
+        config = config.with_max_frames(f);
+    }
+    for col in req.show {
+        config = config.show(col.as_str());
+    }
+    let text = html_grid_of(model, &drawing.into_drawing(), &grid, &config).map_err(|e| match e {
+        HtmlError::UnknownColumn { .. } => usage(format!("--show: {e}")),
+        // More cells than the page's poses (`--frames`).
+        HtmlError::InvalidSetting(_) => usage(format!("{e} (fewer --samples, or more --frames)")),
+        e => failed(&e),
+    })?;
+    write_out(req.out, &text)
+}
+
+/// Writes `text` to `out`, created only now: a failed sweep or drawing leaves no file behind.
+fn write_out(out: &Path, text: &str) -> Result<(), Failed> {
+    let mut file = std::fs::File::create(out).map_err(|e| {
+        eprintln!("error: cannot create {}: {e}", out.display());
         Failed(exit::CANT_CREATE)
     })?;
     file.write_all(text.as_bytes()).map_err(|e| {
-        eprintln!("error: cannot write {}: {e}", req.out.display());
+        eprintln!("error: cannot write {}: {e}", out.display());
         Failed(exit::IO_ERR)
     })
 }

@@ -10,6 +10,7 @@
 //! kinloop simulate engine.kl --speed 150 --torque 2.5 --flywheel 0.05 --time 0.5
 //! kinloop extremes four_bar.kl --from 0 --to 360 --deg --table   # each unknown's min and max
 //! kinloop animate four_bar.kl --from 0 --to 360 --samples 91 --deg --out four_bar.svg
+//! kinloop animate five_bar.kl --grid --from 0,0.4 --to 3,3 --samples 9,7 --out five_bar.html
 //! ```
 //!
 //! Long sweeps (from 2000 samples) show a progress bar on standard error when it is a terminal.
@@ -203,7 +204,8 @@ enum Command {
     /// `--from` to `--to` (from the declared initial guess at `--from`), and writes an animated
     /// SVG or an interactive HTML page (slider, play/pause, readouts and charts). A sweep that
     /// stops at a limit position is drawn up to there, plays back and forth, and the event is
-    /// listed on standard error.
+    /// listed on standard error. With `--grid`, a mechanism of several inputs over the grid of
+    /// its inputs, as a page with one slider per input.
     Animate {
         /// The declaration (`.kl`).
         file: PathBuf,
@@ -213,9 +215,14 @@ enum Command {
         /// The inputs at the end.
         #[arg(long, value_name = "X,...", allow_hyphen_values = true)]
         to: String,
-        /// Samples, equally spaced, both ends included (at most 10000000).
-        #[arg(long, default_value_t = 181)]
-        samples: usize,
+        /// Samples, equally spaced, both ends included (default 181, at most 10000000); with
+        /// `--grid`, the values of each input: one count for all or one per input (default 19).
+        #[arg(long, value_name = "N[,N...]")]
+        samples: Option<String>,
+        /// A grid of the inputs from `--from` to `--to` instead of a sweep (a mechanism of two
+        /// inputs or more), drawn as an interactive page with one slider per input (`.html`).
+        #[arg(long)]
+        grid: bool,
         /// Angles in degrees (inputs given); otherwise radians.
         #[arg(long)]
         deg: bool,
@@ -289,9 +296,11 @@ fn run(cli: Cli) -> Result<(), Failed> {
             let req = extremes::Request { from: &from, to: &to, samples, deg, columns: columns.as_deref(), table };
             extremes::run(&mut model, &req)
         }
-        Command::Animate { file, from, to, samples, deg, params, out, format, show, frames } => {
+        Command::Animate { file, from, to, samples, grid, deg, params, out, format, show, frames } => {
             let mut model = load(&file, params.as_deref())?;
-            let req = animate::Request { from: &from, to: &to, samples, deg, out: &out, format, show: &show, frames };
+            let samples = samples.as_deref();
+            let req =
+                animate::Request { from: &from, to: &to, samples, grid, deg, out: &out, format, show: &show, frames };
             animate::run(&mut model, &req)
         }
     }

@@ -189,3 +189,71 @@ fn exit_codes() {
     ok(&kinloop(&a));
     assert!(path.exists());
 }
+
+/// `--grid`: the five-bar over a grid of its two inputs, 9 x 7 values, is the library's page of
+/// the same model and grid (`Model::grid`, `html_grid_of`) byte for byte, with one slider per
+/// input.
+#[test]
+fn a_grid_page_of_two_inputs_is_the_librarys() {
+    let path = out("five_bar.html");
+    let p = path.display().to_string();
+    let file = shipped("five_bar.kl");
+    let args = ["animate", &file, "--grid", "--from", "0,0.4", "--to", "3,3", "--samples", "9,7", "--show", "pc.x"];
+    ok(&kinloop(&args.into_iter().chain(["--out", &p]).collect::<Vec<_>>()));
+    let page = std::fs::read_to_string(&path).expect("the page is written");
+
+    let text = std::fs::read_to_string(&file).expect("shipped file");
+    let mut m = kinloop_model::Model::read("five_bar.kl", &text).expect("valid");
+    let (from, to) = ([0.0, 0.4], [3.0, 3.0]);
+    let mut guess = vec![0.0; 2];
+    m.guess(&from, &mut guess).expect("guess");
+    let grid = m.grid(&from, &to, &[9, 7], &guess).expect("grid");
+    assert_eq!(grid.cells.len(), 63);
+    let drawing = m.drawing().into_drawing();
+    let config = kinloop_viz::html::HtmlConfig::new("FiveBar").show("pc.x");
+    let library = kinloop_viz::html::html_grid_of(&m, &drawing, &grid, &config).expect("page");
+    assert!(page == library, "the command's page differs from the library's");
+    assert!(page.contains(r#"id="kl-slider-0""#) && page.contains(r#"id="kl-slider-1""#));
+    assert!(page.contains(r#"<th scope="row">pc.x</th>"#) && !page.contains("NaN"));
+
+    // One count for both inputs: 5 x 5 cells, a page of its own.
+    let path5 = out("five_bar_5.html");
+    let p5 = path5.display().to_string();
+    let args = ["animate", &file, "--grid", "--from", "0,0.4", "--to", "3,3", "--samples", "5", "--out", &p5];
+    ok(&kinloop(&args));
+    let grid = m.grid(&from, &to, &[5, 5], &guess).expect("grid");
+    let library = kinloop_viz::html::html_grid_of(&m, &drawing, &grid, &kinloop_viz::html::HtmlConfig::new("FiveBar"));
+    assert!(std::fs::read_to_string(&path5).expect("written") == library.expect("page"));
+}
+
+/// `--grid` is for a mechanism of several inputs, drawn as a page; its counts are one per input
+/// or one for all: anything else is a usage error (2) that writes nothing.
+#[test]
+fn grid_usage_errors() {
+    let path = out("grid_bad.html");
+    let p = path.display().to_string();
+    let fb = shipped("four_bar.kl");
+    let one_input = ["animate", &fb, "--grid", "--from", "0", "--to", "1", "--params", FOUR_BAR, "--out", &p];
+    fails_without_output(&one_input, &path, 2, "--grid needs a mechanism of two inputs or more: `FourBar` has 1");
+    let five = shipped("five_bar.kl");
+    let svg = out("grid_bad.svg");
+    let s = svg.display().to_string();
+    let grid = |extra: &[&'static str], out: &str| {
+        let mut a = vec!["animate", five.as_str(), "--grid", "--from", "0,0.4", "--to", "3,3"];
+        a.extend_from_slice(extra);
+        a.extend(["--out", out]);
+        a.into_iter().map(str::to_string).collect::<Vec<String>>()
+    };
+    let run = |a: Vec<String>, file: &Path, says: &str| {
+        let a: Vec<&str> = a.iter().map(String::as_str).collect();
+        fails_without_output(&a, file, 2, says);
+    };
+    run(grid(&[], &s), &svg, "interactive page");
+    run(grid(&["--samples", "9,7,5"], &p), &path, "one per input (2)");
+    run(grid(&["--samples", "0"], &p), &path, "no value of input `th1`");
+    // More cells than the page's poses.
+    run(grid(&["--samples", "30"], &p), &path, "--frames");
+    // Without --grid, a list of counts is not a sample count.
+    let list = ["animate", &fb, "--from", "0", "--to", "1", "--samples", "9,7", "--params", FOUR_BAR, "--out", &p];
+    fails_without_output(&list, &path, 2, "--grid");
+}

@@ -35,7 +35,12 @@ fn shipped_files_are_the_fixtures_declarations() {
     // `stringify!` writes doc comments as raw strings, the lexer as plain ones: the same text.
     let tokens = |t: &str| t.parse::<proc_macro2::TokenStream>().expect("tokens").to_string().replace("= r\"", "= \"");
     let rhombic = fx::RHOMBIC_DRIVE_TEXT.to_string();
-    for (file, text) in [("four_bar.kl", fx::FOUR_BAR_TEXT), ("rhombic_drive.kl", rhombic.as_str())] {
+    let shipped_files = [
+        ("four_bar.kl", fx::FOUR_BAR_TEXT),
+        ("rhombic_drive.kl", rhombic.as_str()),
+        ("five_bar.kl", fx::FIVE_BAR_TEXT),
+    ];
+    for (file, text) in shipped_files {
         let shipped = std::fs::read_to_string(shipped(file)).expect("shipped file");
         assert_eq!(tokens(&shipped), tokens(text), "{file}");
     }

@@ -106,11 +106,13 @@ impl Drawable for Model {
             output_kinds: self.output_kinds().to_vec(),
         }
     }
+    /// The positions alone (the compiled `position_flat`, as the compiled reference): a
+    /// mechanism whose analogs are singular at inputs 0 still has its reference state.
     fn reference(&mut self) -> Option<Vec<f64>> {
         let x = vec![0.0; self.inputs().len()];
         let mut guess = vec![0.0; self.unknowns().len()];
         self.guess(&x, &mut guess).ok()?;
-        Some(self.kinematics(&x, &guess, &NewtonConfig::default()).ok()?.q.clone())
+        Some(self.positions(&x, &guess, &NewtonConfig::default()).ok()?.to_vec())
     }
     fn outputs_at(&mut self, x: &[f64], q: &[f64]) -> Option<Vec<f64>> {
         let mut out = vec![0.0; self.outputs().len()];

@@ -33,7 +33,9 @@
 //! fallback included; it is solved at a compiled size padded with unknowns that stay zero,
 //! which changes no value and no test. A step ([`Model::kinematics`]) computes what the compiled mechanism's
 //! `kinematics_flat` computes, with the same operations in the same order, and allocates
-//! nothing.
+//! nothing; [`Model::positions`] solves the positions alone, as `position_flat` (the drawings'
+//! reference state). Through the runtime's `Kernel` ([`ModelKernel`]), a failed step is the
+//! compiled mechanism's error, field for field and named alike (`tests/errors.rs`).
 //!
 //! Not evaluated yet: dense blocks of more than [`MAX_DENSE`] unknowns
 //! ([`ReadError::Unsupported`]; sparse blocks are, up to [`MAX_SPARSE`], the language's limit of
@@ -151,6 +153,7 @@ mod closed;
 mod drawing;
 mod dynamics;
 mod factor;
+mod levers;
 mod mechanism;
 mod model;
 mod newton;

@@ -6,9 +6,9 @@ use crate::at::Jacobian;
 use crate::blocks::StepFailure;
 use crate::model::{Model, State, StepError};
 use kinloop_runtime::dims::{Dims, JacBuf, KinBuf, Sizes};
-use kinloop_runtime::generated::{BlockFailure, block_error};
+use kinloop_runtime::generated::{BlockFailure, block_error, largest_precise_angle};
 use kinloop_runtime::paths::sweep::SweepOf;
-use kinloop_runtime::{BlockInfo, Error, Kernel, Location, NewtonConfig, QuantityKind, SweepConfig};
+use kinloop_runtime::{BlockInfo, Error, Kernel, Location, NewtonConfig, Quantity, QuantityKind, SweepConfig};
 use std::borrow::Cow;
 use std::cell::RefCell;
 
@@ -106,22 +106,50 @@ impl Model {
 }
 
 impl ModelKernel<'_> {
-    /// The error of a failed step at `x`, with the model's names: the variant the compiled
-    /// mechanism's step returns for the same failure (`block_error`, the runtime's own), its
-    /// location naming the model, its inputs and the failed block's unknowns and equations, and
-    /// the equation it names the block's own (owned names, as the compiled ones are constants).
-    fn error(&self, e: StepError, x: &[f64], cfg: &NewtonConfig) -> Error {
+    /// The error of a failed step of `m` at `x` from `guess` (`None`: at a given position), with
+    /// the model's names: what the compiled mechanism's step returns for the same failure
+    /// (`generated::block_failure`, `singular` and `non_finite`, the runtime's own), its
+    /// location naming the model, its inputs and the failed block's unknowns and equations. As
+    /// there, a non-finite parameter, input or guess explains a failure first; an angle guessed
+    /// too many turns out is named; a non-finite state names its first bad value.
+    fn error(&self, m: &Model, e: StepError, x: &[f64], guess: Option<&[f64]>, cfg: &NewtonConfig) -> Error {
         match e {
+            // A failed factorisation: a bad value, an equation outside its domain (a non-finite
+            // row), or a singular position (the compiled `singular`).
             StepError::Block { block, failure: StepFailure::Singular { pivot_ratio } } => {
-                Error::Singular { pivot_ratio, tolerance: cfg.singular_tol, at: self.location(x, Some(block)) }
+                self.bad_values(m, x, None).unwrap_or_else(|| {
+                    let at = self.location(x, Some(block));
+                    match m.bad_row(block, guess.is_none()) {
+                        Some(row) => {
+                            let equations = self.block_infos.get(block).map(|b| b.equations.clone());
+                            let name = equations.and_then(|e| e.get(row).cloned()).unwrap_or(Cow::Borrowed("?"));
+                            Error::Domain { what: "equation", name, at }
+                        }
+                        None => Error::Singular { pivot_ratio, tolerance: cfg.singular_tol, at },
+                    }
+                })
             }
             StepError::Block { block, failure: StepFailure::Block(f) } => {
-                block_error(f, *self.location(x, Some(block)))
+                if let Some(e) = self.bad_values(m, x, guess) {
+                    return e;
+                }
+                let at = *self.location(x, Some(block));
+                match guess.and_then(|g| self.too_many_turns(block, f, g, cfg)) {
+                    Some((name, value)) => match block_error(BlockFailure::TooManyTurns { value }, at) {
+                        Error::TooManyTurns { value, turns, spacing, at, .. } => {
+                            Error::TooManyTurns { name, value, turns, spacing, at }
+                        }
+                        other => other,
+                    },
+                    None => block_error(f, at),
+                }
             }
-            // As the compiled step's `non_finite` when it cannot tell which value.
-            StepError::NonFinite => {
-                Error::Domain { what: "value", name: Cow::Borrowed("?"), at: self.location(x, None) }
-            }
+            StepError::NonFinite => self.bad_values(m, x, guess).unwrap_or_else(|| {
+                let (what, index) = first_non_finite(m.state()).unwrap_or(("value", 0));
+                let names = if what.starts_with("output") { &self.outputs } else { &self.unknowns };
+                let name = names.get(index).map_or(Cow::Borrowed("?"), |n| Cow::Owned(n.clone()));
+                Error::Domain { what, name, at: self.location(x, None) }
+            }),
             // Arguments the compiled mechanism's types or checks rule out before a step.
             e @ (StepError::UnsetParam(_) | StepError::Size { .. }) => {
                 Error::InvalidArgument(format!("{e}, {}", self.location(x, None)))
@@ -129,6 +157,46 @@ impl ModelKernel<'_> {
             StepError::InvalidConfig(field) => {
                 block_error(BlockFailure::InvalidConfig { field }, *self.location(x, None))
             }
+        }
+    }
+
+    /// The first non-finite parameter, input or guess, as the compiled `bad_values` finds it.
+    fn bad_values(&self, m: &Model, x: &[f64], guess: Option<&[f64]>) -> Option<Error> {
+        let first = |names: &[String], values: &mut dyn Iterator<Item = f64>| {
+            names.iter().zip(values).find(|(_, v)| !v.is_finite()).map(|(n, v)| (Cow::Owned(n.clone()), v))
+        };
+        let params = m.param_values().iter().map(|v| v.unwrap_or(f64::NAN));
+        let found = first(m.params(), &mut params.into_iter())
+            .map(|bad| (Quantity::Parameter, bad))
+            .or_else(|| first(&self.inputs, &mut x.iter().copied()).map(|bad| (Quantity::Input, bad)))
+            .or_else(|| {
+                guess.and_then(|g| first(&self.unknowns, &mut g.iter().copied())).map(|bad| (Quantity::Guess, bad))
+            });
+        found.map(|(what, (name, value))| Error::NonFinite { what, name, value, at: self.location(x, None) })
+    }
+
+    /// The angle of block `block` guessed too many turns out, and its value, when that explains
+    /// the failure `fail` (the compiled `too_many_turns`): the block's angle with the largest
+    /// guess.
+    fn too_many_turns(
+        &self,
+        block: usize,
+        fail: BlockFailure,
+        guess: &[f64],
+        cfg: &NewtonConfig,
+    ) -> Option<(Cow<'static, str>, f64)> {
+        let unknowns = self.block_rows_cols.get(block).map_or(&[][..], |(_, cols)| &cols[..]);
+        let largest = unknowns
+            .iter()
+            .copied()
+            .filter(|&u| self.unknown_kinds[u] == QuantityKind::Angle)
+            .max_by(|&a, &b| guess[a].abs().total_cmp(&guess[b].abs()));
+        let name = |u: usize| Cow::Owned(self.unknowns[u].clone());
+        match (fail, largest) {
+            (BlockFailure::TooManyTurns { value }, u) => Some((u.map_or(Cow::Borrowed("?"), name), value)),
+            (BlockFailure::InvalidConfig { .. } | BlockFailure::NonFinite { .. }, _) => None,
+            (_, Some(u)) if guess[u].abs() > largest_precise_angle(cfg) => Some((name(u), guess[u])),
+            _ => None,
         }
     }
 
@@ -145,14 +213,22 @@ impl ModelKernel<'_> {
         into.health = st.health;
     }
 
-    fn owned(&self, st: Result<&State, StepError>, x: &[f64], cfg: &NewtonConfig) -> Result<KinBuf, Error> {
+    /// The state of a step of `m` (`Ok`: its state is `m`'s) as an owned buffer, or its error.
+    fn owned(
+        &self,
+        m: &Model,
+        st: Result<(), StepError>,
+        x: &[f64],
+        guess: Option<&[f64]>,
+        cfg: &NewtonConfig,
+    ) -> Result<KinBuf, Error> {
         let mut k = self.sizes.kin();
         match st {
-            Ok(st) => {
-                Self::copy_state(st, &mut k);
+            Ok(()) => {
+                Self::copy_state(m.state(), &mut k);
                 Ok(k)
             }
-            Err(e) => Err(self.error(e, x, cfg)),
+            Err(e) => Err(self.error(m, e, x, guess, cfg)),
         }
     }
 }
@@ -227,7 +303,8 @@ impl Kernel for ModelKernel<'_> {
         cfg: &NewtonConfig,
     ) -> Result<KinBuf, Error> {
         let mut m = self.model.borrow_mut();
-        self.owned(m.kinematics(&x.0, &guess.0, cfg), &x.0, cfg)
+        let st = m.kinematics(&x.0, &guess.0, cfg).map(drop);
+        self.owned(&m, st, &x.0, Some(&guess.0), cfg)
     }
     fn kinematics_at(
         &self,
@@ -236,7 +313,8 @@ impl Kernel for ModelKernel<'_> {
         cfg: &NewtonConfig,
     ) -> Result<KinBuf, Error> {
         let mut m = self.model.borrow_mut();
-        self.owned(m.kinematics_at(&x.0, &q.0, cfg), &x.0, cfg)
+        let st = m.kinematics_at(&x.0, &q.0, cfg).map(drop);
+        self.owned(&m, st, &x.0, None, cfg)
     }
     fn jacobian(&self, x: &kinloop_runtime::dims::Heap, q: &kinloop_runtime::dims::Heap) -> JacBuf {
         let mut m = self.model.borrow_mut();
@@ -268,12 +346,28 @@ impl Kernel for ModelKernel<'_> {
         into: &mut KinBuf,
     ) -> Result<(), Error> {
         let mut m = self.model.borrow_mut();
-        match m.kinematics(&x.0, &guess.0, cfg) {
-            Ok(st) => {
-                Self::copy_state(st, into);
+        match m.kinematics(&x.0, &guess.0, cfg).map(drop) {
+            Ok(()) => {
+                Self::copy_state(m.state(), into);
                 Ok(())
             }
-            Err(e) => Err(self.error(e, &x.0, cfg)),
+            Err(e) => Err(self.error(&m, e, &x.0, Some(&guess.0), cfg)),
         }
     }
+}
+
+/// The kind and index of the first non-finite value of a state, in the order of the compiled
+/// `Kin::first_non_finite`: positions, their analogs, then the outputs and theirs.
+fn first_non_finite(st: &State) -> Option<(&'static str, usize)> {
+    let bad = |v: &[f64]| v.iter().any(|x| !x.is_finite());
+    let ni = st.x.len().max(1);
+    let parts: [(&'static str, &[f64], usize); 6] = [
+        ("position", &st.q, 1),
+        ("velocity analog", &st.dq, ni),
+        ("acceleration analog", &st.d2q, ni * ni),
+        ("output", &st.out, 1),
+        ("output velocity analog", &st.dout, ni),
+        ("output acceleration analog", &st.d2out, ni * ni),
+    ];
+    parts.into_iter().find_map(|(what, values, per)| values.chunks(per).position(bad).map(|k| (what, k)))
 }

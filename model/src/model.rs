@@ -5,6 +5,7 @@ use crate::at::{AtProg, Jacobian};
 use crate::blocks::{BlockProg, Columns, How, StepFailure, Work, other_unknown};
 use crate::dynamics::DynamicsProg;
 use crate::factor::{Fac, MAX_DENSE};
+use crate::levers::Levers;
 use crate::newton::NewtonProg;
 use crate::sensitivities::{SensProg, Sensitivities};
 use crate::source::{self, Diagnostics};
@@ -161,6 +162,8 @@ pub struct Model {
     pair_of: Vec<usize>,
     /// The declared bodies, loads and gravity (`None`: none declared).
     pub(crate) dynamics: Option<DynamicsProg>,
+    /// Per block: a closed form's tests in a position-only solve ([`Model::positions`]).
+    levers: Vec<Option<Levers>>,
 }
 
 fn kind(k: Kind) -> QuantityKind {
@@ -266,6 +269,8 @@ impl Model {
         let at = AtProg::build(&plan).map_err(internal)?;
         let at_kin = at_kinematics(&plan, &blocks, &out_roots).map_err(internal)?;
         let dynamics = DynamicsProg::build(&model.dynamics, &plan).map_err(internal)?;
+        let levers =
+            (0..plan.blocks.len()).map(|b| Levers::build(&plan, b)).collect::<Result<_, _>>().map_err(internal)?;
         let instructions = guess.len()
             + outputs_seg.len()
             + blocks
@@ -375,6 +380,7 @@ impl Model {
             pair_of: (0..ni * ni).map(|ij| kinloop_codegen::plan::pair_index(ni, ij / ni, ij % ni)).collect(),
             graph: plan.graph,
             dynamics,
+            levers,
         };
         m.load_params();
         Ok(m)
@@ -401,6 +407,28 @@ impl Model {
             }
         }
         self.statics.run(&mut self.regs);
+    }
+
+    /// The state the last step wrote (where a failed step stopped, its values so far).
+    pub(crate) fn state(&self) -> &State {
+        &self.state
+    }
+
+    /// The first row of block `b`'s system holding a non-finite value after its factorisation
+    /// failed, as the compiled step diagnoses it (`first_bad_row`): a linear block's position
+    /// solve reads its rows with their right-hand sides; the analogs (`at`: at a given position,
+    /// where a linear block is tested too) the Jacobian's rows, then the velocity's.
+    pub(crate) fn bad_row(&self, b: usize, at: bool) -> Option<usize> {
+        let prog = self.blocks.get(b)?;
+        let r = &self.regs;
+        let bad = |k: &u32| !r[*k as usize].is_finite();
+        let mut rows = prog.jac.chunks(prog.unknowns.len().max(1));
+        match (&prog.how, at) {
+            (How::Linear { rhs }, false) => rows.zip(rhs).position(|(row, k)| row.iter().any(bad) || bad(k)),
+            _ => rows
+                .position(|row| row.iter().any(bad))
+                .or_else(|| prog.vel_rows.chunks(self.inputs.len().max(1)).position(|row| row.iter().any(bad))),
+        }
     }
 
     /// The mechanism's name.
@@ -553,6 +581,49 @@ impl Model {
         }
         self.analogs(cfg, false)?;
         Ok(&self.state)
+    }
+
+    /// Positions only, at inputs `x` solved from `guess` with `cfg`: every block's unknowns, no
+    /// analogs and no outputs (the compiled mechanism's `position_flat`). A closed form tests
+    /// itself for a position its data do not determine (a lever short against its floor, a
+    /// dyad on coincident centres), as there; a position where only the analogs are singular (a
+    /// limit position) is solved. No allocation.
+    ///
+    /// ```
+    /// use kinloop_model::Model;
+    /// use kinloop_runtime::NewtonConfig;
+    /// let text = "pub struct FourBar {
+    ///     params a = 1, b = 3, c = 2.5, d = 3.2;
+    ///     input phi;
+    ///     unknowns psi = 0.6, theta = 1.9;
+    ///     loop abcd: a @ phi + b @ psi == (d, 0) + c @ theta;
+    /// }";
+    /// let mut m = Model::read("four_bar.kl", text).unwrap();
+    /// let q = m.positions(&[0.5], &[0.6, 1.9], &NewtonConfig::default()).unwrap().to_vec();
+    /// assert_eq!(q, m.kinematics(&[0.5], &[0.6, 1.9], &NewtonConfig::default()).unwrap().q);
+    /// ```
+    pub fn positions(&mut self, x: &[f64], guess: &[f64], cfg: &NewtonConfig) -> Result<&[f64], StepError> {
+        self.check_ready(x)?;
+        if guess.len() != self.unknowns.len() {
+            return Err(StepError::Size { what: "guess", expected: self.unknowns.len(), given: guess.len() });
+        }
+        if let Some(field) = cfg.invalid_field() {
+            return Err(StepError::InvalidConfig(field));
+        }
+        self.load_inputs(x);
+        let st = &mut self.state;
+        st.x.copy_from_slice(x);
+        st.report = SolveReport::direct();
+        st.health = Health::default();
+        for (b, prog) in self.blocks.iter().enumerate() {
+            let fail = |failure| StepError::Block { block: b, failure };
+            if let Some(levers) = &self.levers[b] {
+                levers.check(&mut self.regs, guess, cfg).map_err(|f| fail(StepFailure::Block(f)))?;
+            }
+            let w = Work { r: &mut self.regs, fac: &mut self.facs[b], cfg };
+            prog.position(&self.graph, w, &mut st.q, guess, &mut st.report).map_err(fail)?;
+        }
+        Ok(&self.state.q)
     }
 
     fn check_at(&mut self, x: &[f64], q: &[f64]) -> Result<(), StepError> {

@@ -174,3 +174,48 @@ fn a_drawn_joint_is_where_the_closed_form_puts_it() {
         assert!(near <= tol, "joint {name}: no circle within {tol} px of {want:?} in {circles:?}");
     }
 }
+
+kinloop_fixtures::declare! {
+    /// A four-bar stretched at input 0 (`a + |d| = b + c`: coupler and rocker in line, the
+    /// analogs singular, the positions solved) with a coupler plate of four joints: B, C and
+    /// the points `p` and `r` turning with the coupler.
+    STRETCHED_TEXT => {
+        pub struct Stretched {
+            params a = 1, b = 1.75, c = 1.25, d = -2, e = 1.5, f = 0.8;
+            input phi;
+            unknowns beta = 3.0, gamma = 0.2;
+            loop abcd: a @ phi + b @ beta == (d, 0) + c @ gamma;
+            point p = a @ phi + e @ (beta + 0.6);
+            point r = a @ phi + f @ (beta - 0.9);
+        }
+    }
+}
+
+/// The reference state of a mechanism whose analogs are singular at inputs 0 is its positions
+/// there (`Model::positions`, as the compiled `position_flat`): its plate is drawn around its
+/// centre, as the compiled one draws it, not in the declared order with a note. The drawing
+/// and its SVG of a motion away from the limit equal the compiled ones byte for byte.
+#[test]
+fn a_mechanism_singular_at_zero_is_drawn_as_the_compiled_one() {
+    let compiled = Libm(Stretched::default());
+    let mut m = read(STRETCHED_TEXT);
+    let cfg = kinloop::NewtonConfig::default();
+    let guess = compiled.guess_flat(&[0.0]);
+    // Singular at 0 for the full step, solved by positions alone: beta = pi, gamma = 0.
+    assert!(compiled.kinematics_flat(&[0.0], &guess, &cfg).is_err());
+    assert!(m.kinematics(&[0.0], &guess, &cfg).is_err());
+    let q = m.positions(&[0.0], &guess, &cfg).unwrap().to_vec();
+    assert!((q[0] - std::f64::consts::PI).abs() < 1e-7 && q[1].abs() < 1e-7, "{q:?}");
+    let (c_draw, r_draw) = (DefaultDrawing::new(&compiled), m.drawing());
+    assert_eq!(c_draw.notes(), r_draw.notes());
+    assert!(r_draw.notes().iter().all(|n| !n.contains("does not assemble")), "{:?}", r_draw.notes());
+    let motion = m.motion(&[0.3], &[2.0], 9, &compiled.guess_flat(&[0.3])).unwrap();
+    let sweep =
+        Sweep::<_, Kin<2, 1, 4>, 2, 1, 4>::new(&compiled, [0.3], [2.0], 9, compiled.guess_flat(&[0.3])).unwrap();
+    assert_eq!(motion, Motion::record(&compiled, sweep).unwrap());
+    for pose in [0, 4, 8] {
+        assert_eq!(c_draw.svg(&motion, pose).unwrap(), r_draw.svg(&motion, pose).unwrap());
+    }
+    let anim = Animation::default();
+    assert_eq!(c_draw.animate(&motion, &anim).unwrap(), r_draw.animate(&motion, &anim).unwrap());
+}

@@ -9,16 +9,26 @@ use kinloop::dynamics::DynamicsBuf;
 use kinloop_fixtures as fx;
 use kinloop_model::Model;
 use std::alloc::{GlobalAlloc, Layout, System};
-use std::sync::atomic::{AtomicUsize, Ordering};
+use std::cell::Cell;
 
 struct Counting;
 
-static ALLOCATIONS: AtomicUsize = AtomicUsize::new(0);
+thread_local! {
+    /// Allocations made by this thread: the test harness's own, on the threads of other tests
+    /// (a test that ends while another counts), are not the counted code's.
+    static ALLOCATIONS: Cell<usize> = const { Cell::new(0) };
+}
+
+/// The allocations this thread has made so far.
+fn allocations() -> usize {
+    ALLOCATIONS.with(Cell::get)
+}
 
 // SAFETY: forwards to the system allocator, only counting.
 unsafe impl GlobalAlloc for Counting {
     unsafe fn alloc(&self, layout: Layout) -> *mut u8 {
-        ALLOCATIONS.fetch_add(1, Ordering::Relaxed);
+        // A const-initialised cell: no allocation of its own; none after the thread's end.
+        let _ = ALLOCATIONS.try_with(|n| n.set(n.get() + 1));
         // SAFETY: the caller's layout is passed on unchanged.
         unsafe { System.alloc(layout) }
     }
@@ -31,7 +41,7 @@ unsafe impl GlobalAlloc for Counting {
 #[global_allocator]
 static GLOBAL: Counting = Counting;
 
-/// The tests count allocations of the whole process: one at a time.
+/// The tests run one at a time (each counts its own thread's allocations).
 static ONE_AT_A_TIME: std::sync::Mutex<()> = std::sync::Mutex::new(());
 
 #[test]
@@ -58,7 +68,7 @@ fn steps_do_not_allocate() {
         let mut q = vec![0.0; m.unknowns().len()];
         let mut x = [0.0];
         m.guess(&x, &mut q).expect("guess");
-        let before = ALLOCATIONS.load(Ordering::Relaxed);
+        let before = allocations();
         let mut dense = 0;
         for k in 0..200 {
             x[0] = k as f64 * 0.03;
@@ -69,7 +79,7 @@ fn steps_do_not_allocate() {
         if text == ring {
             assert!(dense > 0, "the dense fallback was not exercised");
         }
-        let during = ALLOCATIONS.load(Ordering::Relaxed) - before;
+        let during = allocations() - before;
         assert_eq!(during, 0, "{}: {during} allocations in 200 steps", m.name());
     }
 }
@@ -86,13 +96,13 @@ fn sweep_steps_do_not_allocate() {
         m.guess(&[0.0], &mut g).expect("guess");
         let mut sweep = m.sweep(&[0.0], &[std::f64::consts::TAU], 200, &g).expect("sweep");
         sweep.next_ref().expect("a first sample").expect("solved");
-        let before = ALLOCATIONS.load(Ordering::Relaxed);
+        let before = allocations();
         let mut samples = 1;
         while let Some(k) = sweep.next_ref() {
             k.expect("solved");
             samples += 1;
         }
-        let during = ALLOCATIONS.load(Ordering::Relaxed) - before;
+        let during = allocations() - before;
         assert_eq!(samples, 200);
         assert_eq!(during, 0, "{during} allocations in 199 samples");
     }
@@ -114,7 +124,7 @@ fn the_dynamics_of_a_step_does_not_allocate() {
     let mut guess = vec![0.0; sizes.n];
     m.guess(&[0.0], &mut guess).expect("guess");
     let (w, eps) = ([150.0], [3.0]);
-    let before = ALLOCATIONS.load(Ordering::Relaxed);
+    let before = allocations();
     let mut torque = 0.0;
     for step in 0..100 {
         let x = [std::f64::consts::TAU * step as f64 / 100.0];
@@ -132,7 +142,7 @@ fn the_dynamics_of_a_step_does_not_allocate() {
         d.checked_drive_into(&x, &w, &eps, &mut tau).expect("torque");
         torque += tau[0] + s.moment;
     }
-    let after = ALLOCATIONS.load(Ordering::Relaxed);
+    let after = allocations();
     assert!(torque.is_finite());
     assert_eq!(after - before, 0, "allocations over 100 steps of the dynamics");
 }
@@ -148,10 +158,10 @@ fn a_simulation_s_steps_do_not_allocate() {
     let cfg = kinloop::dynamics::RunConfig::default().with_flywheel(0.05);
     let mut run = |turns: f64| {
         let stop = move |_: f64, y: &[f64; 2]| y[0] > turns * std::f64::consts::TAU;
-        let before = ALLOCATIONS.load(Ordering::Relaxed);
+        let before = allocations();
         let run =
             m.simulation().start(0.3, 150.0).drive(|_, _, w| 4.0 - 0.01 * w).config(cfg).stop_when(stop).run(10.0);
-        let during = ALLOCATIONS.load(Ordering::Relaxed) - before;
+        let during = allocations() - before;
         (during, run.expect("a run").steps.len())
     };
     let (short, short_steps) = run(0.5);
@@ -161,4 +171,59 @@ fn a_simulation_s_steps_do_not_allocate() {
     let doublings = long_steps.ilog2() as usize + 1;
     assert!(long <= short + doublings, "{long} allocations in {long_steps} steps, {short} in {short_steps}");
     eprintln!("simulation: {short} allocations in {short_steps} steps, {long} in {long_steps}");
+}
+
+/// A column found by name on a run-time model's kernel (`ColumnOf<K> for &str`) allocates
+/// nothing, and is the column the compiled mechanism's `Column::named` finds; a name that is no
+/// column gives the compiled lookup's error, listing the columns.
+#[test]
+fn a_column_found_by_name_does_not_allocate() {
+    use kinloop::analysis::{Column, ColumnOf};
+    let _one = ONE_AT_A_TIME.lock().unwrap_or_else(|e| e.into_inner());
+    let mut m = Model::read("four_bar.kl", fx::FOUR_BAR_TEXT).expect("valid");
+    for p in ["a", "b", "c", "d"] {
+        m.set_param(p, 1.0);
+    }
+    let k = m.kernel(kinloop::SweepConfig::default()).expect("a kernel");
+    let names = ["phi", "beta", "gamma", "pc.x", "pc.y"];
+    let mut found = [None; 5];
+    let before = allocations();
+    for (slot, name) in found.iter_mut().zip(names) {
+        *slot = Some(name.resolve(&k).expect("a column"));
+    }
+    let after = allocations();
+    assert_eq!(after - before, 0, "allocations resolving {} names", names.len());
+    for (index, name) in found.iter().zip(names) {
+        assert_eq!(*index, Some(Column::<fx::FourBar>::named(name).expect("compiled").index()), "{name}");
+    }
+    // The error lists the columns: the counter sees its allocations.
+    let before = allocations();
+    let r_err = "delta".resolve(&k).unwrap_err();
+    assert!(allocations() > before);
+    assert_eq!(r_err, Column::<fx::FourBar>::named("delta").unwrap_err());
+    assert_eq!(
+        r_err.to_string(),
+        "invalid argument: `delta` is no column of `FourBar`: inputs phi; unknowns beta, gamma; outputs pc.x, pc.y"
+    );
+}
+
+/// The positions-only solve allocates nothing: closed forms with their lever tests (the rhombic
+/// drive) and a Newton block (the class IV group), over a turn.
+#[test]
+fn positions_do_not_allocate() {
+    let _one = ONE_AT_A_TIME.lock().unwrap_or_else(|e| e.into_inner());
+    for text in [fx::RHOMBIC_DRIVE_TEXT, fx::CLASS_FOUR_TEXT] {
+        let mut m = Model::read("m.kl", text).expect("valid");
+        let cfg = NewtonConfig::default();
+        let mut q = vec![0.0; m.unknowns().len()];
+        m.guess(&[0.0], &mut q).expect("guess");
+        let before = allocations();
+        for step in 0..100 {
+            let x = [std::f64::consts::TAU * step as f64 / 100.0];
+            let p = m.positions(&x, &q, &cfg).expect("positions");
+            q.copy_from_slice(p);
+        }
+        let after = allocations();
+        assert_eq!(after - before, 0, "{}: allocations over 100 positions-only solves", m.name());
+    }
 }

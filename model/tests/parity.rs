@@ -339,3 +339,107 @@ fn a_dense_block_of_ten_unknowns_equals_the_compiled_one() {
     assert!(n >= 300, "only {n} states compared");
     eprintln!("dense ring of ten unknowns: {n} states, largest relative difference {worst:e}");
 }
+
+/// The positions-only solve over a turn (warm-started as `sweep_parity`): where the full step
+/// solves, the same positions bit for bit (the same block solves in the same order); and where
+/// the compiled mechanism's `position_flat` solves, the model's too, to the kernels' agreement.
+/// Returns the states compared.
+fn positions_parity<M, const N: usize, const NI: usize, const NO: usize>(
+    compiled: &M,
+    model: &mut Model,
+    x0: [f64; NI],
+    samples: usize,
+) -> usize
+where
+    M: Mechanism<N, NI, NO>,
+{
+    let cfg = NewtonConfig::default();
+    let name = model.name().to_string();
+    let mut guess = compiled.guess_flat(&x0);
+    let mut compared = 0;
+    for k in 0..samples {
+        let mut x = x0;
+        x[0] = x0[0] + TAU * k as f64 / samples as f64;
+        let full = model.kinematics(&x, &guess, &cfg).map(|s| s.q.clone());
+        let positions = model.positions(&x, &guess, &cfg).map(<[f64]>::to_vec);
+        if let Ok(q) = &full {
+            let p = positions.as_ref().unwrap_or_else(|e| panic!("{name} at {x:?}: {e}"));
+            let bits = |v: &[f64]| v.iter().map(|v| v.to_bits()).collect::<Vec<u64>>();
+            assert_eq!(bits(p), bits(q), "{name} at {x:?}: positions {p:?}, full step {q:?}");
+            compared += 1;
+        }
+        match (compiled.position_flat(&x, &guess, &cfg), &positions) {
+            (Ok((c, _)), Ok(r)) => {
+                let d = rel_diff(&c, r);
+                assert!(d <= REL, "{name} at {x:?}: positions differ from position_flat by {d:e}");
+                guess = c;
+            }
+            (Err(_), Err(_)) => guess = compiled.guess_flat(&x),
+            (c, r) => panic!("{name} at {x:?}: position_flat {c:?}, positions {r:?}"),
+        }
+    }
+    compared
+}
+
+#[test]
+fn positions_alone_equal_the_full_steps() {
+    let mut m = read(fx::FOUR_BAR_TEXT);
+    for (p, v) in [("a", 1.0), ("b", 3.0), ("c", 2.5), ("d", 3.2)] {
+        m.set_param(p, v);
+    }
+    assert_eq!(positions_parity(&fx::FourBar { a: 1.0, b: 3.0, c: 2.5, d: 3.2 }, &mut m, [0.0], 180), 180);
+    let mut m = read(fx::SLIDER_CRANK_TEXT);
+    for (p, v) in [("r", 1.0), ("l", 3.0), ("e", 0.4)] {
+        m.set_param(p, v);
+    }
+    assert_eq!(positions_parity(&fx::SliderCrank { r: 1.0, l: 3.0, e: 0.4 }, &mut m, [0.0], 180), 180);
+    let mut m = read(fx::RHOMBIC_DRIVE_TEXT);
+    assert_eq!(positions_parity(&fx::RhombicDrive::default(), &mut m, [0.0], 180), 180);
+    let mut dense = read(&dense_text(fx::RHOMBIC_DRIVE_TEXT, "RhombicDrive", "RhombicDriveDense"));
+    assert_eq!(positions_parity(&fx::RhombicDriveDense::default(), &mut dense, [0.0], 180), 180);
+    let n = positions_parity(&fx::FiveBar::default(), &mut read(fx::FIVE_BAR_TEXT), [0.0, 0.4], 180);
+    assert!(n > 0);
+    let n = positions_parity(&fx::ClassFour::default(), &mut read(fx::CLASS_FOUR_TEXT), [0.0], 180);
+    assert!(n > 0);
+    let mut dense = read(&dense_text(fx::CLASS_FOUR_TEXT, "ClassFour", "ClassFourDense"));
+    assert!(positions_parity(&fx::ClassFourDense::default(), &mut dense, [0.0], 180) > 0);
+    let gear = &mut read(fx::gear_lever::GEAR_LEVER_TEXT);
+    assert!(positions_parity(&fx::gear_lever::GearLever::default(), gear, [0.0], 180) > 0);
+    let edger = &mut read(fx::roller_edger::ROLLER_EDGER_TEXT);
+    assert!(positions_parity(&fx::roller_edger::RollerEdger::default(), edger, [0.0], 180) > 0);
+    let n = positions_parity(&fx::balancing::Balance::default(), &mut read(fx::balancing::BALANCE_TEXT), [0.0], 180);
+    assert!(n > 0);
+    // One sparse Newton block of 128 unknowns.
+    let ring = &mut read(kinloop_bench::ring::RING);
+    assert_eq!(positions_parity(&kinloop_bench::ring::Ring::default(), ring, [0.0], 24), 24);
+}
+
+/// A position the data do not determine fails the positions-only solve as the compiled
+/// `position_flat` fails it: at phi = 0 the four-bar's joint B is 1e-11 from the rocker's pivot
+/// D (`d = a + 1e-11`), equal links (`b = c`) about centres closer than `singular_tol` times a
+/// link leave the dyad's orientation to the rounding. The dyad's solve finds a root there; the
+/// test of its centres reports the block singular before it, with the same pivot ratio.
+#[test]
+fn positions_the_data_do_not_determine_fail_alike() {
+    use kinloop_model::{StepError, StepFailure};
+    use kinloop_runtime::generated::BlockFailure;
+    let (a, b, c, d) = (1.0, 2.0, 2.0, 1.0 + 1e-11);
+    let compiled = fx::FourBar { a, b, c, d };
+    let mut m = read(fx::FOUR_BAR_TEXT);
+    for (p, v) in [("a", a), ("b", b), ("c", c), ("d", d)] {
+        m.set_param(p, v);
+    }
+    let cfg = NewtonConfig::default();
+    let guess = compiled.guess_flat(&[0.0]);
+    let c_err = compiled.position_flat(&[0.0], &guess, &cfg).unwrap_err();
+    let kinloop::Error::Singular { pivot_ratio, .. } = c_err else { panic!("{c_err:?}") };
+    let r_err = m.positions(&[0.0], &guess, &cfg).unwrap_err();
+    let StepError::Block { block: 0, failure: StepFailure::Block(BlockFailure::Singular { pivot_ratio: r, .. }) } =
+        r_err
+    else {
+        panic!("{r_err:?}")
+    };
+    assert_eq!(r.to_bits(), pivot_ratio.to_bits());
+    // Away from it, both solve.
+    assert!(m.positions(&[0.5], &guess, &cfg).is_ok() && compiled.position_flat(&[0.5], &guess, &cfg).is_ok());
+}

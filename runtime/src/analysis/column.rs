@@ -251,27 +251,34 @@ impl<K: Kernel> ColumnOf<K> for ColumnIndex {
     }
 }
 
+/// Found by comparing the kernel's names in place: a resolved name allocates nothing (a
+/// sampled analysis may resolve a column per call); only the error lists the columns.
 impl<K: Kernel> ColumnOf<K> for &str {
     fn resolve(self, k: &K) -> Result<ColumnIndex, Error> {
         let d = k.dims();
-        let inputs: Vec<&str> = (0..d.ni()).map(|i| k.input_name(i)).collect();
-        let unknowns: Vec<&str> = (0..d.n()).map(|u| k.unknown_name(u)).collect();
-        let outputs: Vec<&str> = (0..d.no()).map(|o| k.output_name(o)).collect();
-        let find = |names: &[&str]| names.iter().position(|n| *n == self);
-        find(&inputs)
-            .map(ColumnIndex::Input)
-            .or_else(|| find(&unknowns).map(ColumnIndex::Unknown))
-            .or_else(|| find(&outputs).map(ColumnIndex::Output))
-            .ok_or_else(|| {
-                Error::InvalidArgument(format!(
-                    "`{self}` is no column of `{}`: inputs {}; unknowns {}; outputs {}",
-                    k.name(),
-                    inputs.join(", "),
-                    unknowns.join(", "),
-                    outputs.join(", ")
-                ))
-            })
+        let found = (0..d.ni()).position(|i| k.input_name(i) == self).map(ColumnIndex::Input);
+        found
+            .or_else(|| (0..d.n()).position(|u| k.unknown_name(u) == self).map(ColumnIndex::Unknown))
+            .or_else(|| (0..d.no()).position(|o| k.output_name(o) == self).map(ColumnIndex::Output))
+            .ok_or_else(|| no_column(self, k))
     }
+}
+
+/// The error of a name that is no column of `k`, listing its columns.
+#[cold]
+#[inline(never)]
+fn no_column<K: Kernel>(name: &str, k: &K) -> Error {
+    let d = k.dims();
+    let inputs: Vec<&str> = (0..d.ni()).map(|i| k.input_name(i)).collect();
+    let unknowns: Vec<&str> = (0..d.n()).map(|u| k.unknown_name(u)).collect();
+    let outputs: Vec<&str> = (0..d.no()).map(|o| k.output_name(o)).collect();
+    Error::InvalidArgument(format!(
+        "`{name}` is no column of `{}`: inputs {}; unknowns {}; outputs {}",
+        k.name(),
+        inputs.join(", "),
+        unknowns.join(", "),
+        outputs.join(", ")
+    ))
 }
 
 /// The name of column `index` of `k` (`"?"` outside its ranges).

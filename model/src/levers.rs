@@ -1,0 +1,104 @@
+//! The tests a position-only solve makes before a closed-form block's solve (the emitter's
+//! `lever_checks`, in the compiled mechanism's `position_flat`): with no analogs after it, whose
+//! pivot ratio would report a position the data do not determine, the solve tests for one
+//! itself. An angle's lever vector (the length of the angle's Jacobian column) against its lever
+//! floor, when it has one; a dyad's centres against its longer link.
+
+use crate::tape::{Builder, Segment, Unavailable};
+use kinloop_codegen::graph::dag::{Leaf, NodeId, Op};
+use kinloop_codegen::plan::Plan;
+use kinloop_codegen::plan::closed_form::ClosedForm;
+use kinloop_codegen::plan::solve::Solve;
+use kinloop_runtime::NewtonConfig;
+use kinloop_runtime::generated::{BlockFailure, check_centres, check_guess, check_lever};
+
+/// An angle and the nodes of its lever vector.
+type Arm = (usize, [NodeId; 2]);
+
+/// A closed-form block's position-only tests.
+#[derive(Clone, Debug)]
+pub(crate) struct Levers {
+    /// Computes every register the tests read, from what the earlier blocks' solves wrote.
+    seg: Segment,
+    /// The guesses of a form with a length or slider (its angle, then the other), whose sum
+    /// the solve checks first (`check_guess`), as the compiled solve does before its levers.
+    guess: Option<[usize; 2]>,
+    /// Per angle with a lever floor: the lever's registers and the floors' (one is the floor
+    /// itself, several their largest magnitude).
+    levers: Vec<([u32; 2], Vec<u32>)>,
+    /// A dyad's centres' offset and its two links' vectors.
+    centres: Option<([u32; 2], [[u32; 2]; 2])>,
+}
+
+impl Levers {
+    /// The tests of block `b` of `plan`, `None` for a block that is not a closed form.
+    pub(crate) fn build(plan: &Plan, b: usize) -> Result<Option<Levers>, Unavailable> {
+        let bp = &plan.blocks[b];
+        let Solve::ClosedForm(rec) = &bp.solve else { return Ok(None) };
+        let g = &plan.graph;
+        let floors = |u: usize| -> Option<Vec<u32>> {
+            let c = bp.unknowns.iter().position(|&v| v == u)?;
+            (!bp.lever_floor[c].is_empty()).then(|| bp.lever_floor[c].iter().map(|n| n.0).collect())
+        };
+        // Per angle, its lever vector's nodes.
+        let (guess, arms): (Option<[usize; 2]>, Vec<Arm>) = match &rec.form {
+            ClosedForm::AngleEquation { angle, a, b, .. } => (None, vec![(*angle, [*a, *b])]),
+            ClosedForm::Dyad { angles, m, .. } => {
+                (None, (0..2).map(|i| (angles[i], [m[i][0][0], m[i][1][0]])).collect())
+            }
+            // `s w(q) = -e`: the lever `s` is as long as the offset (`w` a rotation).
+            ClosedForm::PolarLength { angle, length, e, .. } => (Some([*angle, *length]), vec![(*angle, *e)]),
+            ClosedForm::AngleSlider { angle, slider, m, .. } => {
+                (Some([*angle, *slider]), vec![(*angle, [m[0][0], m[1][0]])])
+            }
+        };
+        let levers: Vec<([u32; 2], Vec<u32>)> =
+            arms.iter().filter_map(|&(u, [x, y])| floors(u).map(|f| ([x.0, y.0], f))).collect();
+        let centres = match &rec.form {
+            ClosedForm::Dyad { m, e, .. } => {
+                let link = |i: usize| [m[i][0][0].0, m[i][1][0].0];
+                Some(([e[0].0, e[1].0], [link(0), link(1)]))
+            }
+            _ => None,
+        };
+        let mut roots: Vec<NodeId> = levers.iter().flat_map(|(l, f)| l.iter().chain(f)).map(|&r| NodeId(r)).collect();
+        if let Some((e, links)) = &centres {
+            roots.extend(e.iter().chain(links.iter().flatten()).map(|&r| NodeId(r)));
+        }
+        // What the earlier blocks' solves wrote: their unknowns, and a closed form's sines and
+        // cosines (its own values, not libm's of its angle). Everything else is computed here
+        // again with the operations of the step's own segments, so the same values.
+        let mut tape = Builder::new(g);
+        for earlier in &plan.blocks[..b] {
+            tape.provide(earlier.unknowns.iter().filter_map(|&u| g.find(Op::Leaf(Leaf::Unknown(u as u16)))));
+            if let Solve::ClosedForm(r) = &earlier.solve {
+                tape.provide(r.sin_cos.concat());
+            }
+        }
+        let seg = tape.segment(&roots, None)?;
+        Ok(Some(Levers { seg, guess, levers, centres }))
+    }
+
+    /// The tests, on the registers `r` (the earlier blocks solved) from `guess`.
+    pub(crate) fn check(&self, r: &mut [f64], guess: &[f64], cfg: &NewtonConfig) -> Result<(), BlockFailure> {
+        self.seg.run(r);
+        if let Some([a, o]) = self.guess {
+            check_guess(guess[a] + guess[o])?;
+        }
+        for ([x, y], floors) in &self.levers {
+            let floor = match floors[..] {
+                [one] => r[one as usize],
+                _ => crate::factor::max_abs(floors.iter().map(|&f| r[f as usize])),
+            };
+            check_lever(r[*x as usize], r[*y as usize], floor, cfg)?;
+        }
+        if let Some(([e0, e1], links)) = &self.centres {
+            let sq = |[x, y]: [u32; 2]| {
+                let (x, y) = (r[x as usize], r[y as usize]);
+                x * x + y * y
+            };
+            check_centres(r[*e0 as usize], r[*e1 as usize], sq(links[0]), sq(links[1]), cfg)?;
+        }
+        Ok(())
+    }
+}

@@ -1,0 +1,195 @@
+//! A run-time model's failed steps against the compiled mechanism's of the same declaration:
+//! the same variant with the same fields (the model's names owned, the compiled ones constants,
+//! equal as text), so the same message character for character. Each case also names the value
+//! the test expects, written out here: the output that divides by zero, the angle guessed too
+//! many turns out, the non-finite parameter, the equation whose linear block is not finite.
+
+mod common;
+
+use common::{Libm, read, set};
+use kinloop::dims::Heap;
+use kinloop::{Error, Kernel, Kin, Mechanism, NewtonConfig, Quantity, Sweep, SweepConfig};
+use kinloop_fixtures as fx;
+use kinloop_model::Model;
+use std::borrow::Cow;
+
+kinloop_fixtures::declare! {
+    /// A four-bar with an output that divides by the input: finite positions and analogs
+    /// everywhere, a non-finite output at 0.
+    RECIPROCAL_TEXT => {
+        pub struct Reciprocal {
+            params a = 1, b = 3, c = 2.5, d = 3.2;
+            input phi;
+            unknowns psi = 0.6, theta = 1.9;
+            loop abcd: a @ phi + b @ psi == (d, 0) + c @ theta;
+            output k = c / phi;
+        }
+    }
+}
+
+kinloop_fixtures::declare! {
+    /// The four-bar with the square root of its input as an output: NaN below 0, and at 0 a
+    /// finite output whose analog `1 / (2 sqrt(phi))` is not.
+    ROOT_TEXT => {
+        pub struct Root {
+            params a = 1, b = 3, c = 2.5, d = 3.2;
+            input phi;
+            unknowns psi = 0.6, theta = 1.9;
+            loop abcd: a @ phi + b @ psi == (d, 0) + c @ theta;
+            output root = sqrt(phi);
+        }
+    }
+}
+
+/// The compiled step's error and the model's (through its `Kernel`, as every algorithm of the
+/// runtime calls it) at `x` from `guess`: equal, and returned.
+fn same_error<M, const N: usize, const NI: usize, const NO: usize>(
+    compiled: &M,
+    model: &mut Model,
+    x: [f64; NI],
+    guess: [f64; N],
+) -> Error
+where
+    M: Mechanism<N, NI, NO>,
+{
+    let cfg = NewtonConfig::default();
+    let c_err = compiled.kinematics_flat(&x, &guess, &cfg).unwrap_err();
+    let k = model.kernel(SweepConfig::default()).unwrap();
+    let r_err = k.kinematics(&Heap(x.into()), &Heap(guess.into()), &cfg).unwrap_err();
+    same(&c_err, &r_err);
+    r_err
+}
+
+/// Equal errors: every field (as `Debug` writes them, so that NaN values compare) and the
+/// message.
+fn same(c_err: &Error, r_err: &Error) {
+    assert_eq!(format!("{c_err:?}"), format!("{r_err:?}"));
+    assert_eq!(c_err.to_string(), r_err.to_string());
+}
+
+/// The name an error carries, owned (the model's) or not.
+fn name_of(e: &Error) -> &Cow<'static, str> {
+    match e {
+        Error::Domain { name, .. } | Error::TooManyTurns { name, .. } | Error::NonFinite { name, .. } => name,
+        other => panic!("unexpected variant: {other:?}"),
+    }
+}
+
+#[test]
+fn a_non_finite_output_is_named_as_the_compiled_one_names_it() {
+    let compiled = Reciprocal::default();
+    let mut model = read(RECIPROCAL_TEXT);
+    let e = same_error(&compiled, &mut model, [0.0], compiled.guess_flat(&[0.0]));
+    assert!(matches!(e, Error::Domain { what: "output", .. }), "{e:?}");
+    assert_eq!(name_of(&e), "k");
+    assert!(matches!(name_of(&e), Cow::Owned(_)));
+    eprintln!("{e}");
+
+    let compiled = Root::default();
+    let mut model = read(ROOT_TEXT);
+    // At 0 the output is 0, its analog is not: the first bad value in the compiled order
+    // (positions, their analogs, outputs, their analogs).
+    let e = same_error(&compiled, &mut model, [0.0], compiled.guess_flat(&[0.0]));
+    assert!(matches!(e, Error::Domain { what: "output velocity analog", .. }), "{e:?}");
+    assert_eq!(name_of(&e), "root");
+    let e = same_error(&compiled, &mut model, [-0.5], compiled.guess_flat(&[-0.5]));
+    assert!(matches!(e, Error::Domain { what: "output", .. }), "{e:?}");
+    assert_eq!(name_of(&e), "root");
+}
+
+/// A sweep through the input where an output divides by zero stops there with the same error
+/// (the compiled sweep taking libm's sines, as the model's steps do).
+#[test]
+fn a_sweep_through_a_division_by_zero_fails_alike() {
+    let compiled = Libm(Reciprocal::default());
+    let mut model = read(RECIPROCAL_TEXT);
+    let (from, to) = ([-1.0], [1.0]);
+    let guess = compiled.guess_flat(&from);
+    let c_sweep = Sweep::<_, Kin<2, 1, 1>, 2, 1, 1>::new(&compiled, from, to, 5, guess).unwrap();
+    let c_err = c_sweep.filter_map(Result::err).next().expect("the compiled sweep fails");
+    let r_err = model.sweep(&from, &to, 5, &guess).unwrap().filter_map(Result::err).next().expect("fails");
+    same(&c_err, &r_err);
+    let Error::Domain { what, name, at } = &r_err else { panic!("{r_err:?}") };
+    assert_eq!((*what, name.as_ref(), &at.inputs[..]), ("output", "k", &[(Cow::Borrowed("phi"), 0.0)][..]));
+}
+
+/// An angle guessed a billion radians out: the closed form's root on the guess's turn is too
+/// coarse (the four-bar's dyad), or Newton stalls at the angle's rounding (the class IV group).
+/// Both name the block's angle with the largest guess.
+#[test]
+fn an_angle_too_many_turns_out_is_named() {
+    let compiled = fx::FourBar { a: 1.0, b: 3.0, c: 2.5, d: 3.2 };
+    let mut model = read(fx::FOUR_BAR_TEXT);
+    set(&mut model, &[("a", 1.0), ("b", 3.0), ("c", 2.5), ("d", 3.2)]);
+    let e = same_error(&compiled, &mut model, [0.3], [0.5, 1.5e9]);
+    assert!(matches!(e, Error::TooManyTurns { .. }), "{e:?}");
+    assert_eq!(name_of(&e), "gamma");
+
+    let compiled = fx::ClassFour::default();
+    let mut model = read(fx::CLASS_FOUR_TEXT);
+    let mut guess = compiled.guess_flat(&[0.0]);
+    let angle = (0..guess.len()).find(|&u| fx::ClassFour::UNKNOWN_KINDS[u] == kinloop::QuantityKind::Angle).unwrap();
+    guess[angle] += 1e9;
+    let e = same_error(&compiled, &mut model, [0.0], guess);
+    assert!(matches!(e, Error::TooManyTurns { .. }), "{e:?}");
+    assert_eq!(name_of(&e), fx::ClassFour::UNKNOWNS[angle]);
+    eprintln!("{e}");
+}
+
+/// A sweep whose angle has turned a billion radians (its guess carried over that many turns)
+/// fails at its first step, alike.
+#[test]
+fn a_sweep_turned_too_many_times_fails_alike() {
+    let compiled = Libm(fx::FourBar { a: 1.0, b: 3.0, c: 2.5, d: 3.2 });
+    let mut model = read(fx::FOUR_BAR_TEXT);
+    set(&mut model, &[("a", 1.0), ("b", 3.0), ("c", 2.5), ("d", 3.2)]);
+    let guess = [0.5 + 2e8 * std::f64::consts::TAU, 1.5];
+    let c_err = Sweep::<_, Kin<2, 1, 2>, 2, 1, 2>::new(&compiled, [0.0], [1.0], 5, guess)
+        .map(|mut s| s.next().expect("a sample").unwrap_err())
+        .unwrap_or_else(|e| e);
+    let r_err = match model.sweep(&[0.0], &[1.0], 5, &guess) {
+        Ok(mut s) => s.next().expect("a sample").unwrap_err(),
+        Err(e) => e,
+    };
+    same(&c_err, &r_err);
+    assert_eq!(name_of(&r_err), "beta");
+}
+
+/// A non-finite parameter explains a failure before the failure itself, as in the compiled
+/// step.
+#[test]
+fn a_non_finite_parameter_is_named_first() {
+    let compiled = fx::FourBar { a: 1.0, b: f64::NAN, c: 2.5, d: 3.2 };
+    let mut model = read(fx::FOUR_BAR_TEXT);
+    set(&mut model, &[("a", 1.0), ("b", f64::NAN), ("c", 2.5), ("d", 3.2)]);
+    let e = same_error(&compiled, &mut model, [0.3], [0.5, 1.5]);
+    assert!(matches!(e, Error::NonFinite { what: Quantity::Parameter, .. }), "{e:?}");
+    assert_eq!(name_of(&e), "b");
+}
+
+kinloop_fixtures::declare! {
+    /// A slider solved by one linear equation whose coefficient is `sqrt(phi)`: NaN below 0.
+    LINEAR_TEXT => {
+        pub struct Linear {
+            params a = 1;
+            input phi;
+            unknowns s = 1;
+            eq e: sqrt(phi) * s == a;
+        }
+    }
+}
+
+/// A linear block whose matrix is not finite (an input outside a coefficient's domain) is an
+/// equation outside its domain, named, not a singular position: the compiled step's diagnosis
+/// of a failed factorisation.
+#[test]
+fn a_non_finite_linear_block_names_its_equation() {
+    let compiled = Linear::default();
+    let mut model = read(LINEAR_TEXT);
+    let e = same_error(&compiled, &mut model, [-1.0], [1.0]);
+    assert!(matches!(e, Error::Domain { what: "equation", .. }), "{e:?}");
+    assert_eq!(name_of(&e), "e");
+    // At 0 the coefficient is 0: singular.
+    let e = same_error(&compiled, &mut model, [0.0], [1.0]);
+    assert!(matches!(e, Error::Singular { .. }), "{e:?}");
+}
