@@ -73,10 +73,11 @@ pub const SLOTS: usize = 8;
 
 /// Largest `|sin(q - q_a)|` over which an unknown's angle `q` is advanced from its anchor `q_a`
 /// (`2^-3`, about 7 degrees); beyond it libm computes the angle and it becomes the new anchor.
-/// On `|x| <= 2^-3` the polynomial of `asin x` in [`small_asin`] is within 2.1e-19 of it. (Half
-/// this range, a polynomial two terms shorter does as well, but the angles are re-anchored by
-/// libm twice as often: measured with callgrind at 720 samples a turn, the gear-lever's sample
-/// cost 6 instructions more, the rhombic drive's 5 fewer.)
+/// On `|x| <= 2^-3` the polynomial of `asin x` in [`small_asin`] is within 2.1e-19 of it. (On
+/// half this range a polynomial one term shorter does better still, 1.1e-20, but the angles
+/// are re-anchored by libm twice as often: measured with callgrind at 720 samples a turn, the
+/// gear-lever's sample cost 6 instructions more, the four-bar's 2 more, the rhombic drive's 2
+/// fewer; see BENCHMARKS.md.)
 pub const ANCHOR_RANGE: f64 = 0.125;
 
 /// One argument's last values.
