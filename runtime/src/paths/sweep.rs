@@ -8,9 +8,12 @@
 //!
 //! **Branch safety.** The branch is identified by the signs of the block Jacobians'
 //! determinants (the assembly mode of each block). A step is accepted only when the corrected
-//! position keeps those signs and lies close to its prediction, with velocity analogs close to
-//! theirs (the unknowns that merely follow the others, [`Mechanism::FOLLOWERS`], are judged
-//! through those they follow); otherwise the step is halved. When
+//! position keeps those signs and lies close to its prediction (where every unknown judged is
+//! an angle a closed form gives, unique once its assembly mode and turn are known: on its
+//! prediction's turn), with velocity
+//! analogs close to theirs (the unknowns that merely follow the others,
+//! [`Mechanism::FOLLOWERS`], are judged through those they follow); otherwise the step is
+//! halved. When
 //! a step cannot be made however small, the sweep finds out why:
 //! * a **limit position** (the input cannot advance: a fold of the solution curve), located by
 //!   following the curve by pseudo-arclength continuation to the point where the input reverses;
@@ -257,7 +260,8 @@ struct Prediction<Q> {
     /// `Sweep::predict`).
     slope1: Q,
     /// How far the solved position may be from `q`: `corrector_rel` times the largest predicted
-    /// change of an unknown, plus `corrector_abs`.
+    /// change of an unknown, plus `corrector_abs` (set only where a position is judged, see
+    /// `positions_judged`).
     max_dist: f64,
     /// How far the solved slopes may be from `slope1`: `corrector_rel` times the largest change
     /// of a slope plus a tenth of the largest slope, plus `corrector_abs` (in the slopes' units).
@@ -611,14 +615,18 @@ where
             p.slope1[u] = s1;
         }
         let rel = self.cfg.corrector_rel;
-        p.max_dist = rel * change + self.cfg.corrector_abs;
+        if positions_judged(&self.m) {
+            p.max_dist = rel * change + self.cfg.corrector_abs;
+        }
         p.max_slope_err = rel * (slope_change + 0.1 * slope) + self.slope_abs;
         p.long = too_long(slope_change, MAX_SLOPE_CHANGE * slope + self.slope_floor);
     }
 
     /// Judges the state `n` solved from the prediction `p`.
     ///
-    /// Positions must land near their prediction, and the velocity analogs near theirs: a kink
+    /// Positions must land near their prediction (where every judged unknown is an angle a
+    /// closed form gives, only within a radian, on the prediction's turn: see
+    /// [`positions_judged`]), and the velocity analogs near theirs: a kink
     /// in the analogs means the corrector slid onto another branch through a singular position
     /// (e.g. at a change point) even if the positions are close.
     #[inline(always)]
@@ -628,9 +636,11 @@ where
         // Followers are smooth functions of the judged unknowns (see `Mechanism::FOLLOWERS`).
         for &u in self.m.judged() {
             let e = (nq[u] - p.q[u]).abs();
-            dist = dist.max(e);
-            // A constant after unrolling: where every judged unknown is such an angle, `turn`
-            // is `dist` and costs one comparison.
+            // Constants after unrolling (see `positions_judged`): where every judged unknown is
+            // a closed-form angle, `dist` is not computed and `turn` costs one comparison.
+            if positions_judged(&self.m) {
+                dist = dist.max(e);
+            }
             if self.m.closed_form_angle(u) {
                 turn = turn.max(e);
             }
@@ -640,7 +650,7 @@ where
         if !health.det_signs.same_for(&self.signs, self.m.block_count()) {
             Outcome::Flip
         } else if (health.min_pivot < self.cfg.singular_pivot)
-            | (dist > p.max_dist)
+            | (positions_judged(&self.m) & (dist > p.max_dist))
             | (slope_err > p.max_slope_err)
             | (turn > ANGLE_CAP)
             | p.long
@@ -651,6 +661,9 @@ where
             //   onto a crossing branch (told apart from a far step by that state's pivot, should
             //   the step become the last one tried: a separate outcome costs every step an
             //   instruction);
+            // * `dist`: a position the corrector took far from its prediction (Newton can
+            //   converge to another root); not judged where every judged unknown is a
+            //   closed-form angle, see `positions_judged`;
             // * `turn`: an angle the cache advanced from an anchor on another turn (see
             //   `InputTrig::angle`), whatever the units of the other unknowns make `max_dist`;
             // * `long`: a step longer than the predictor's error bound (`MAX_SLOPE_CHANGE`).
@@ -921,6 +934,27 @@ where
             },
         })
     }
+}
+
+/// Whether a judged unknown of `m` is not a closed-form angle ([`Kernel::closed_form_angle`]):
+/// then the distance of every judged position from its prediction is tested (as ever: in
+/// every unit, the angles' too); otherwise not. A constant after inlining for a compiled
+/// mechanism.
+///
+/// A closed-form angle needs no such test. Its block's equations have two roots a turn (two
+/// intersections, mirror images of each other: a dyad's elbow up and down, a rod on either
+/// side of its slide) whose Jacobian determinants have opposite signs, or one (a polar
+/// angle). Given the assembly mode, the determinant's sign (tested first, `Flip`), and the
+/// turn (the angle within [`ANGLE_CAP`] of its prediction, tested with the far bounds), the
+/// angle is therefore the one root the smooth continuation reaches, however far the
+/// prediction was: nothing for a distance test to find. What else a step can do wrong is
+/// tested as before: a root past a singular position where the sign does not change (a kink:
+/// the slopes' test), a step across a limit position (no root: the solve fails) or beyond the
+/// gap after it (the slope-change bound, `long`). The prediction still picks the branch and
+/// the turn; those tests judge what it picked.
+#[inline(always)]
+fn positions_judged<K: Kernel>(m: &K) -> bool {
+    m.judged().iter().any(|&u| !m.closed_form_angle(u))
 }
 
 /// Whether a predicted slope change `turn` exceeds `bound`, or either is NaN: one comparison.
