@@ -2,11 +2,10 @@
 //! `Solve` says), then its velocity and acceleration analogs on one factorisation, in the order
 //! and with the factorisations the emitted fused kernel uses.
 
-use crate::closed;
+use crate::closed::ClosedProg;
 use crate::factor::{Fac, MAX_DENSE, max_abs};
 use crate::newton::{self, NewtonProg};
 use crate::tape::Segment;
-use kinloop_codegen::graph::dag::Graph;
 use kinloop_codegen::plan::closed_form::ClosedForm;
 use kinloop_runtime::NewtonConfig;
 use kinloop_runtime::generated::{BlockFailure, Health, SolveReport};
@@ -31,15 +30,9 @@ pub(crate) enum How {
     Fixed { coefficient: f64, rhs: u32 },
     /// One linear solve with the block's Jacobian.
     Linear { rhs: Vec<u32> },
-    /// The closed form; the registers of each angle's `[sin, cos]` nodes, which the solve
-    /// defines.
-    Closed {
-        form: ClosedForm,
-        sin_cos: Vec<[Option<u32>; 2]>,
-        /// The unknowns in the order the solve gives them (the angles, then the length or
-        /// slider), each with its register.
-        order: Vec<(usize, Option<u32>)>,
-    },
+    /// The closed form, compiled: it leaves the unknowns and the angles' sines and cosines in
+    /// their registers.
+    Closed(ClosedProg),
     /// Newton.
     Newton(NewtonProg),
 }
@@ -261,7 +254,6 @@ impl BlockProg {
     /// Solves the block's positions; writes them into `q` and the registers.
     pub(crate) fn position(
         &self,
-        g: &Graph,
         w: Work<'_>,
         q: &mut [f64],
         guess: &[f64],
@@ -288,25 +280,11 @@ impl BlockProg {
                 fac.solve(&mut z[..n]);
                 self.set_unknowns(r, q, &z[..n]);
             }
-            How::Closed { form, sin_cos, order } => {
-                let out = closed::solve(form, g, r, guess, cfg).map_err(StepFailure::Block)?;
-                let n = self.unknowns.len();
-                for (k, &(u, reg)) in order.iter().enumerate() {
-                    q[u] = out.values[k];
-                    if let Some(reg) = reg {
-                        r[reg as usize] = out.values[k];
-                    }
+            How::Closed(p) => {
+                p.run(r, guess, cfg).map_err(StepFailure::Block)?;
+                for &(u, reg) in &p.unknowns {
+                    q[u] = r[reg as usize];
                 }
-                for (a, [s, c]) in sin_cos.iter().enumerate() {
-                    let (cv, sv) = (out.values[n + 2 * a], out.values[n + 2 * a + 1]);
-                    if let Some(c) = c {
-                        r[*c as usize] = cv;
-                    }
-                    if let Some(s) = s {
-                        r[*s as usize] = sv;
-                    }
-                }
-                debug_assert_eq!(out.len, n + 2 * sin_cos.len());
             }
             How::Newton(p) => {
                 match fac {

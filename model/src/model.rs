@@ -2,6 +2,7 @@
 //! evaluated step by step without allocating.
 
 use crate::at::{AtProg, Jacobian};
+use crate::closed::{ClosedProg, Extra};
 use crate::blocks::{BlockProg, Columns, How, StepFailure, Work, other_unknown};
 use crate::dynamics::DynamicsProg;
 use crate::factor::{Fac, MAX_DENSE};
@@ -219,8 +220,10 @@ impl Model {
 
         let mut tape = Builder::new(g);
         let mut blocks: Vec<BlockProg> = Vec::with_capacity(plan.blocks.len());
+        // The closed forms' registers, after the graph's and the scratch register below.
+        let mut extra = Extra::new(g.len() as u32 + 1);
         for (b, bp) in plan.blocks.iter().enumerate() {
-            blocks.push(position_program(&plan, b, bp, &mut tape).map_err(internal)?);
+            blocks.push(position_program(&plan, b, bp, &mut tape, &mut extra).map_err(internal)?);
         }
         for (b, bp) in plan.blocks.iter().enumerate() {
             let prog = &mut blocks[b];
@@ -369,7 +372,12 @@ impl Model {
             out_d1_regs: plan.out_d1.concat().iter().map(|n| n.0).collect(),
             out_d2_regs: plan.out_d2.concat().iter().map(|n| n.0).collect(),
             instructions,
-            regs: registers(g).into_iter().chain([0.0]).collect(),
+            regs: {
+                let mut r = registers(g);
+                r.resize(extra.len(), 0.0);
+                extra.write_constants(&mut r);
+                r
+            },
             state,
             pair_d2: vec![0.0; n.max(no) * npairs],
             pair_of: (0..ni * ni).map(|ij| kinloop_codegen::plan::pair_index(ni, ij / ni, ij % ni)).collect(),
@@ -548,7 +556,7 @@ impl Model {
         st.health = Health::default();
         for (b, prog) in self.blocks.iter().enumerate() {
             let w = Work { r: &mut self.regs, fac: &mut self.facs[b], cfg };
-            prog.position(&self.graph, w, &mut st.q, guess, &mut st.report)
+            prog.position(w, &mut st.q, guess, &mut st.report)
                 .map_err(|failure| StepError::Block { block: b, failure })?;
         }
         self.analogs(cfg, false)?;
@@ -702,6 +710,7 @@ fn position_program(
     b: usize,
     bp: &BlockPlan,
     tape: &mut Builder<'_>,
+    extra: &mut Extra,
 ) -> Result<BlockProg, crate::tape::Unavailable> {
     let g = &plan.graph;
     let find = |l: Leaf| g.find(Op::Leaf(l));
@@ -743,14 +752,14 @@ fn position_program(
             let pre = tape.segment(&rec.form.coefficients(), None)?;
             let sin_cos: Vec<[Option<u32>; 2]> = rec.sin_cos.iter().map(|[s, c]| [Some(s.0), Some(c.0)]).collect();
             tape.provide(rec.sin_cos.concat());
-            let order = rec
+            let unknown_regs: Vec<Option<u32>> = rec
                 .form
                 .angles()
                 .into_iter()
                 .chain(other_unknown(&rec.form))
-                .map(|u| (u, find(Leaf::Unknown(u as u16)).map(|n| n.0)))
+                .map(|u| find(Leaf::Unknown(u as u16)).map(|n| n.0))
                 .collect();
-            (pre, How::Closed { form: rec.form.clone(), sin_cos, order })
+            (pre, How::Closed(ClosedProg::build(&rec.form, g, &unknown_regs, &sin_cos, extra)))
         }
         Solve::Newton | Solve::NewtonSparse(_) => {
             // Every unknown of a Newton block is read by its equations: its leaf is in the graph.
