@@ -87,31 +87,98 @@ enum Op {
     CheckGuess(u32, u32),
     /// `[r, right, flip]` of the guess `g` of `b sin q = c`: `r = reduce_turn(g)`, `right =
     /// |r| < π/2`, `flip = (b > 0) == right` (the emitter's `angle_equation` with `a` zero).
-    Side { r: u32, right: u32, flip: u32, b: u32, g: u32 },
+    Side {
+        r: u32,
+        right: u32,
+        flip: u32,
+        b: u32,
+        g: u32,
+    },
     /// `flip = (b > 0) == (|reduce_turn(g)| < π/2)` (`flip_at_guess` with `a` zero).
-    FlipZeroA { flip: u32, b: u32, g: u32 },
+    FlipZeroA {
+        flip: u32,
+        b: u32,
+        g: u32,
+    },
     /// `flip = (a > 0) == (reduce_turn(g) < 0)` (`flip_at_guess` with `b` zero).
-    FlipZeroB { flip: u32, a: u32, g: u32 },
+    FlipZeroB {
+        flip: u32,
+        a: u32,
+        g: u32,
+    },
     /// `flip = sign_at_guess(g, 3 bound, |(s, c)| b c - a s) > 0` (`flip_at_guess`).
-    FlipSign { flip: u32, a: u32, b: u32, bound: u32, g: u32 },
+    FlipSign {
+        flip: u32,
+        a: u32,
+        b: u32,
+        bound: u32,
+        g: u32,
+    },
     /// `flip = a reduce_turn(g) < 0` (the dyad's rule when its `b` is zero).
-    FlipProduct { flip: u32, a: u32, g: u32 },
+    FlipProduct {
+        flip: u32,
+        a: u32,
+        g: u32,
+    },
     /// `(cq, sq) = dyad_roots(a, b, c, flip)`.
-    DyadRoots { cq: u32, sq: u32, a: u32, b: u32, c: u32, flip: u32 },
+    DyadRoots {
+        cq: u32,
+        sq: u32,
+        a: u32,
+        b: u32,
+        c: u32,
+        flip: u32,
+    },
     /// `d = root_offset(d2, r2, c, flip)`.
-    RootOffset { d: u32, d2: u32, r2: u32, c: u32, flip: u32 },
+    RootOffset {
+        d: u32,
+        d2: u32,
+        r2: u32,
+        c: u32,
+        flip: u32,
+    },
     /// `d = polar_norm(r2, e0, e1)`.
-    PolarNorm { d: u32, r2: u32, e0: u32, e1: u32 },
+    PolarNorm {
+        d: u32,
+        r2: u32,
+        e0: u32,
+        e1: u32,
+    },
     /// A polar length's half turn: `s`, `cq`, `sq` negated when `s gs < 0`.
-    PolarSide { s: u32, cq: u32, sq: u32, gs: u32 },
+    PolarSide {
+        s: u32,
+        cq: u32,
+        sq: u32,
+        gs: u32,
+    },
     /// `d = unwrap_to_turn(s.atan2(c), g)`.
-    Atan2Unwrap { d: u32, s: u32, c: u32, g: u32 },
+    Atan2Unwrap {
+        d: u32,
+        s: u32,
+        c: u32,
+        g: u32,
+    },
     /// `d = unwrap_to_turn(acos_on_side(c, s), g)`.
-    AcosUnwrap { d: u32, c: u32, s: u32, g: u32 },
+    AcosUnwrap {
+        d: u32,
+        c: u32,
+        s: u32,
+        g: u32,
+    },
     /// `d = asin_near(s, right, r, g)`.
-    AsinNear { d: u32, s: u32, right: u32, r: u32, g: u32 },
+    AsinNear {
+        d: u32,
+        s: u32,
+        right: u32,
+        r: u32,
+        g: u32,
+    },
     /// `check_closed(out[..len], angles)`.
-    Check { out: [u32; 6], len: u8, angles: u8 },
+    Check {
+        out: [u32; 6],
+        len: u8,
+        angles: u8,
+    },
 }
 
 impl Op {
@@ -281,11 +348,6 @@ impl ClosedProg {
             }
         }
         Ok(())
-    }
-
-    /// The number of operations.
-    pub(crate) fn len(&self) -> usize {
-        self.ops.len()
     }
 }
 
@@ -549,11 +611,8 @@ impl Build<'_> {
             self.sub(x, y)
         };
         let (k00, k01) = (k(0, 0), k(0, 1));
-        let sigma = if reflect[0] == reflect[1] {
-            self.op(|d| Op::Sub(d, g1, g0))
-        } else {
-            self.op(|d| Op::Add(d, g1, g0))
-        };
+        let sigma =
+            if reflect[0] == reflect[1] { self.op(|d| Op::Sub(d, g1, g0)) } else { self.op(|d| Op::Add(d, g1, g0)) };
         let sigma = self.reg(sigma);
         let (ca, cb) = if reflect[0] { (self.neg(k01), k00) } else { (k01, self.neg(k00)) };
         let flip = if cb.is_zero() {

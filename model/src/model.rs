@@ -2,8 +2,8 @@
 //! evaluated step by step without allocating.
 
 use crate::at::{AtProg, Jacobian};
-use crate::closed::{ClosedProg, Extra};
 use crate::blocks::{BlockProg, Columns, How, StepFailure, Work, other_unknown};
+use crate::closed::{ClosedProg, Extra};
 use crate::dynamics::DynamicsProg;
 use crate::factor::{Fac, MAX_DENSE};
 use crate::newton::NewtonProg;
@@ -12,7 +12,7 @@ use crate::source::{self, Diagnostics};
 use crate::sparse::{self, MAX_SPARSE};
 use crate::tape::{Builder, Segment, registers, statics};
 use kinloop_codegen::Planned;
-use kinloop_codegen::graph::dag::{Graph, Leaf, NodeId, Op};
+use kinloop_codegen::graph::dag::{Leaf, NodeId, Op};
 use kinloop_codegen::plan::kinds::{self, Kind};
 use kinloop_codegen::plan::solve::Solve;
 use kinloop_codegen::plan::{BlockPlan, Plan, pairs};
@@ -117,7 +117,6 @@ pub struct Model {
     /// The default drawing's description (the compiled `Mechanism::DRAWING`).
     pub(crate) drawing: String,
     warnings: Option<Diagnostics>,
-    graph: Graph,
     params: Vec<String>,
     param_values: Vec<Option<f64>>,
     /// The first parameter without a value (kept by `load_params`).
@@ -335,6 +334,8 @@ impl Model {
                     })?;
                     Fac::Sparse(block)
                 }
+                // Never changes: written once, not by every step.
+                Solve::Fixed { coefficient, .. } => Fac::Fixed(kinloop_runtime::generated::Fixed(*coefficient)),
                 _ => Fac::for_size(bp.unknowns.len()),
             });
         }
@@ -381,7 +382,6 @@ impl Model {
             state,
             pair_d2: vec![0.0; n.max(no) * npairs],
             pair_of: (0..ni * ni).map(|ij| kinloop_codegen::plan::pair_index(ni, ij / ni, ij % ni)).collect(),
-            graph: plan.graph,
             dynamics,
         };
         m.load_params();
@@ -624,7 +624,8 @@ impl Model {
             full(&self.pair_d2, self.unknowns.len(), &mut st.d2q);
         }
         if at { &self.at_kin.out } else { &self.outputs_seg }.run(&mut self.regs);
-        let r = &self.regs;
+        // A slice: its address and length stay in registers through the copies below.
+        let r: &[f64] = &self.regs;
         for (o, &reg) in st.out.iter_mut().zip(&self.out_regs) {
             *o = r[reg as usize];
         }
