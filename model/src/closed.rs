@@ -477,7 +477,7 @@ impl Build<'_> {
     fn add(&mut self, a: V, b: V) -> V {
         match (a, b) {
             (V::C(x), V::C(y)) => V::C(x + y),
-            (V::C(z), e) | (e, V::C(z)) if z == 0.0 => e,
+            (V::C(0.0), e) | (e, V::C(0.0)) => e,
             _ => self.bin(a, b, Op::Add),
         }
     }
@@ -485,8 +485,8 @@ impl Build<'_> {
     fn sub(&mut self, a: V, b: V) -> V {
         match (a, b) {
             (V::C(x), V::C(y)) => V::C(x - y),
-            (e, V::C(z)) if z == 0.0 => e,
-            (V::C(z), e) if z == 0.0 => self.neg(e),
+            (e, V::C(0.0)) => e,
+            (V::C(0.0), e) => self.neg(e),
             _ => self.bin(a, b, Op::Sub),
         }
     }
