@@ -496,7 +496,8 @@ impl Model {
         }
     }
 
-    /// The graph's size: registers of one step.
+    /// The registers of one step: one per graph node, then the closed forms' constants and
+    /// intermediate values.
     pub fn registers(&self) -> usize {
         self.regs.len()
     }
