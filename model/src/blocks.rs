@@ -2,11 +2,10 @@
 //! `Solve` says), then its velocity and acceleration analogs on one factorisation, in the order
 //! and with the factorisations the emitted fused kernel uses.
 
-use crate::closed;
+use crate::closed::ClosedProg;
 use crate::factor::{Fac, MAX_DENSE, max_abs};
 use crate::newton::{self, NewtonProg};
 use crate::tape::Segment;
-use kinloop_codegen::graph::dag::Graph;
 use kinloop_codegen::plan::closed_form::ClosedForm;
 use kinloop_runtime::NewtonConfig;
 use kinloop_runtime::generated::{BlockFailure, Health, SolveReport};
@@ -31,15 +30,9 @@ pub(crate) enum How {
     Fixed { coefficient: f64, rhs: u32 },
     /// One linear solve with the block's Jacobian.
     Linear { rhs: Vec<u32> },
-    /// The closed form; the registers of each angle's `[sin, cos]` nodes, which the solve
-    /// defines.
-    Closed {
-        form: ClosedForm,
-        sin_cos: Vec<[Option<u32>; 2]>,
-        /// The unknowns in the order the solve gives them (the angles, then the length or
-        /// slider), each with its register.
-        order: Vec<(usize, Option<u32>)>,
-    },
+    /// The closed form, compiled: it leaves the unknowns and the angles' sines and cosines in
+    /// their registers.
+    Closed(ClosedProg),
     /// Newton.
     Newton(NewtonProg),
 }
@@ -119,11 +112,16 @@ impl Columns {
     }
 
     /// [`Columns::solve`] for one unknown: the runtime's 1x1 solve on each value, no gathering.
-    /// The factorisation's kind is matched once, not per value.
-    #[inline]
+    /// The factorisation's kind is matched once, not per value; inlined in the block's step (a
+    /// call per block and stage cost more than the division).
+    #[inline(always)]
     fn solve1(&self, r: &mut [f64], fac: &Fac, out: &mut [f64]) {
         match fac {
-            Fac::Fixed(f) => self.each1(r, out, |b| f.solve([b])[0]),
+            Fac::Fixed(f) => {
+                let c = f.0;
+                // `Fixed::solve`: one division.
+                self.each1(r, out, |b| b / c)
+            }
             Fac::L1(lu) => self.each1(r, out, |b| lu.solve([b])[0]),
             other => self.each1(r, out, |b| other.solve1(b)),
         }
@@ -132,6 +130,13 @@ impl Columns {
     /// `z = solve(rhs)` for each value of a block of one unknown.
     #[inline(always)]
     fn each1(&self, r: &mut [f64], out: &mut [f64], solve: impl Fn(f64) -> f64) {
+        if let ([s], [d], [g]) = (&self.src[..], &self.dst[..], &self.reg[..]) {
+            // One value (one input): no loop.
+            let z = solve(r[*s as usize]);
+            out[*d as usize] = z;
+            r[*g as usize] = z;
+            return;
+        }
         let n = self.src.len();
         let (dst, reg) = (&self.dst[..n], &self.reg[..n]);
         for k in 0..n {
@@ -146,7 +151,14 @@ impl Columns {
     /// theirs. No array of the largest size is zeroed for a small block.
     #[inline(never)]
     fn solve_n(&self, n: usize, r: &mut [f64], fac: &Fac, out: &mut [f64]) {
-        if n == 2 {
+        if let (2, [s0, s1], [d0, d1], [g0, g1]) = (n, &self.src[..], &self.dst[..], &self.reg[..]) {
+            // One column (one input): no loop, whose set-up costs more than its one pass.
+            let z = fac.solve2([r[*s0 as usize], r[*s1 as usize]]);
+            out[*d0 as usize] = z[0];
+            out[*d1 as usize] = z[1];
+            r[*g0 as usize] = z[0];
+            r[*g1 as usize] = z[1];
+        } else if n == 2 {
             for ((src, dst), reg) in
                 self.src.chunks_exact(2).zip(self.dst.chunks_exact(2)).zip(self.reg.chunks_exact(2))
             {
@@ -208,8 +220,21 @@ impl BlockProg {
     }
 
     /// The factorisation of the Jacobian evaluated from the graph, by the emitter's rule: the
-    /// scalar in its column, the 2x2 inverse, or the column-equilibrated LU.
+    /// scalar in its column (inlined: a few operations), the 2x2 inverse, or the
+    /// column-equilibrated LU.
+    #[inline(always)]
     fn factor_from_graph(&self, r: &[f64], fac: &mut Fac) {
+        if let (1, Some(_)) = (self.unknowns.len(), self.in_col) {
+            fac.set_in_col(r[self.jac[0] as usize], max_abs(self.col[0].iter().map(|&k| r[k as usize])));
+        } else {
+            self.factor_larger(r, fac);
+        }
+    }
+
+    /// [`BlockProg::factor_from_graph`] of a block of two unknowns or more, or of one whose
+    /// entry is not among its column's.
+    #[inline(never)]
+    fn factor_larger(&self, r: &[f64], fac: &mut Fac) {
         let n = self.unknowns.len();
         let v = |regs: &[u32]| max_abs(regs.iter().map(|&k| r[k as usize]));
         match (n, self.in_col) {
@@ -261,7 +286,6 @@ impl BlockProg {
     /// Solves the block's positions; writes them into `q` and the registers.
     pub(crate) fn position(
         &self,
-        g: &Graph,
         w: Work<'_>,
         q: &mut [f64],
         guess: &[f64],
@@ -271,8 +295,8 @@ impl BlockProg {
         self.pre.run(r);
         match &self.how {
             How::Fixed { coefficient, rhs } => {
+                // The block's slot holds `Fixed(coefficient)` from the model's build on.
                 let f = kinloop_runtime::generated::Fixed(*coefficient);
-                fac.set_fixed(*coefficient);
                 self.set_unknowns(r, q, &f.solve([r[*rhs as usize]]));
             }
             How::Linear { rhs } => {
@@ -288,25 +312,11 @@ impl BlockProg {
                 fac.solve(&mut z[..n]);
                 self.set_unknowns(r, q, &z[..n]);
             }
-            How::Closed { form, sin_cos, order } => {
-                let out = closed::solve(form, g, r, guess, cfg).map_err(StepFailure::Block)?;
-                let n = self.unknowns.len();
-                for (k, &(u, reg)) in order.iter().enumerate() {
-                    q[u] = out.values[k];
-                    if let Some(reg) = reg {
-                        r[reg as usize] = out.values[k];
-                    }
+            How::Closed(p) => {
+                p.run(r, guess, cfg).map_err(StepFailure::Block)?;
+                for &(u, reg) in &p.unknowns {
+                    q[u] = r[reg as usize];
                 }
-                for (a, [s, c]) in sin_cos.iter().enumerate() {
-                    let (cv, sv) = (out.values[n + 2 * a], out.values[n + 2 * a + 1]);
-                    if let Some(c) = c {
-                        r[*c as usize] = cv;
-                    }
-                    if let Some(s) = s {
-                        r[*s as usize] = sv;
-                    }
-                }
-                debug_assert_eq!(out.len, n + 2 * sin_cos.len());
             }
             How::Newton(p) => {
                 match fac {

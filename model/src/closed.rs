@@ -1,13 +1,18 @@
 //! The closed-form solve of a recognised block at run time: the operations the emitter's
-//! `closed_form` writes, in the same order, on values instead of tokens.
+//! `closed_form` writes, in the same order, compiled when the model is built into a small
+//! program over the registers.
 //!
 //! The emitter folds the coefficients that are constants of the graph while it writes the
 //! solve (a link along an axis costs no multiplication) and picks other formulas when a
-//! coefficient is the constant zero. [`V`] keeps that distinction at run time: a constant
-//! folds by the emitter's rules, any other value is computed as the emitted expression would
-//! compute it. The runtime's functions (`dyad_roots`, `root_offset`, `unwrap_to_turn`, ...) are
-//! called as the emitted code calls them, so the angles, sines and cosines are the compiled
-//! mechanism's.
+//! coefficient is the constant zero. Those decisions depend only on the graph's constants, so
+//! they are made once, here, by the same rules on [`V`] (a constant folds, a register is
+//! computed as the emitted expression computes it), and what remains is a list of [`Op`]s:
+//! straight arithmetic over registers and calls of the runtime's functions (`dyad_roots`,
+//! `root_offset`, `polar_norm`, the flip rules, `unwrap_to_turn`, ...) as the emitted code calls
+//! them, so the angles, sines and cosines are the compiled mechanism's to the last bit.
+//!
+//! Each form's arithmetic is one function below ([`Build::angle_equation`], [`Build::dyad`],
+//! [`Build::polar`], [`Build::angle_slider`]), beside the emitter's function of the same name.
 
 use kinloop_codegen::graph::dag::{Graph, NodeId};
 use kinloop_codegen::plan::closed_form::ClosedForm;
@@ -16,231 +21,695 @@ use kinloop_runtime::generated::{
     BlockFailure, acos_on_side, asin_near, check_closed, check_guess, dyad_roots, polar_norm, reduce_turn, root_offset,
     sign_at_guess, unwrap_to_turn,
 };
+use std::collections::HashMap;
 use std::f64::consts::FRAC_PI_2;
 
-/// A value of the solve: a constant of the graph (folded as the emitter folds it) or a value
-/// computed at run time.
-#[derive(Clone, Copy, Debug)]
-enum V {
-    C(f64),
-    E(f64),
+/// The registers beyond the graph's that the closed forms' programs use: their constants
+/// (written once, when the model is built) and their intermediate values.
+#[derive(Debug, Default)]
+pub(crate) struct Extra {
+    next: u32,
+    /// The constants' registers and values.
+    consts: Vec<(u32, f64)>,
+    /// A constant's register by its bits.
+    by_bits: HashMap<u64, u32>,
 }
 
-impl V {
-    fn val(self) -> f64 {
-        match self {
-            V::C(x) | V::E(x) => x,
+impl Extra {
+    /// Registers from `first` on.
+    pub(crate) fn new(first: u32) -> Extra {
+        Extra { next: first, ..Extra::default() }
+    }
+
+    /// The size of the register file with these registers.
+    pub(crate) fn len(&self) -> usize {
+        self.next as usize
+    }
+
+    /// Writes the constants into the registers (`r.len() >= self.len()`).
+    pub(crate) fn write_constants(&self, r: &mut [f64]) {
+        for &(k, x) in &self.consts {
+            r[k as usize] = x;
         }
     }
 
+    fn fresh(&mut self) -> u32 {
+        let k = self.next;
+        self.next += 1;
+        k
+    }
+
+    fn constant(&mut self, x: f64) -> u32 {
+        if let Some(&k) = self.by_bits.get(&x.to_bits()) {
+            return k;
+        }
+        let k = self.fresh();
+        self.consts.push((k, x));
+        self.by_bits.insert(x.to_bits(), k);
+        k
+    }
+}
+
+/// One operation of a closed form's program, on registers (`u32` indices, checked once when
+/// the program is built). A flag (a root's side) is a register holding 1 or 0.
+#[derive(Clone, Copy, Debug)]
+enum Op {
+    Add(u32, u32, u32),
+    Sub(u32, u32, u32),
+    Mul(u32, u32, u32),
+    Div(u32, u32, u32),
+    Neg(u32, u32),
+    Abs(u32, u32),
+    Mov(u32, u32),
+    /// `r[d] = guess[u]`.
+    Guess(u32, u32),
+    /// `check_guess(a + b)`.
+    CheckGuess(u32, u32),
+    /// `[r, right, flip]` of the guess `g` of `b sin q = c`: `r = reduce_turn(g)`, `right =
+    /// |r| < π/2`, `flip = (b > 0) == right` (the emitter's `angle_equation` with `a` zero).
+    Side {
+        r: u32,
+        right: u32,
+        flip: u32,
+        b: u32,
+        g: u32,
+    },
+    /// `flip = (b > 0) == (|reduce_turn(g)| < π/2)` (`flip_at_guess` with `a` zero).
+    FlipZeroA {
+        flip: u32,
+        b: u32,
+        g: u32,
+    },
+    /// `flip = (a > 0) == (reduce_turn(g) < 0)` (`flip_at_guess` with `b` zero).
+    FlipZeroB {
+        flip: u32,
+        a: u32,
+        g: u32,
+    },
+    /// `flip = sign_at_guess(g, 3 bound, |(s, c)| b c - a s) > 0` (`flip_at_guess`).
+    FlipSign {
+        flip: u32,
+        a: u32,
+        b: u32,
+        bound: u32,
+        g: u32,
+    },
+    /// `flip = a reduce_turn(g) < 0` (the dyad's rule when its `b` is zero).
+    FlipProduct {
+        flip: u32,
+        a: u32,
+        g: u32,
+    },
+    /// `(cq, sq) = dyad_roots(a, b, c, flip)`.
+    DyadRoots {
+        cq: u32,
+        sq: u32,
+        a: u32,
+        b: u32,
+        c: u32,
+        flip: u32,
+    },
+    /// `d = root_offset(d2, r2, c, flip)`.
+    RootOffset {
+        d: u32,
+        d2: u32,
+        r2: u32,
+        c: u32,
+        flip: u32,
+    },
+    /// `d = polar_norm(r2, e0, e1)`.
+    PolarNorm {
+        d: u32,
+        r2: u32,
+        e0: u32,
+        e1: u32,
+    },
+    /// A polar length's half turn: `s`, `cq`, `sq` negated when `s gs < 0`.
+    PolarSide {
+        s: u32,
+        cq: u32,
+        sq: u32,
+        gs: u32,
+    },
+    /// `d = unwrap_to_turn(s.atan2(c), g)`.
+    Atan2Unwrap {
+        d: u32,
+        s: u32,
+        c: u32,
+        g: u32,
+    },
+    /// `d = unwrap_to_turn(acos_on_side(c, s), g)`.
+    AcosUnwrap {
+        d: u32,
+        c: u32,
+        s: u32,
+        g: u32,
+    },
+    /// `d = asin_near(s, right, r, g)`.
+    AsinNear {
+        d: u32,
+        s: u32,
+        right: u32,
+        r: u32,
+        g: u32,
+    },
+    /// `check_closed(out[..len], angles)`.
+    Check {
+        out: [u32; 6],
+        len: u8,
+        angles: u8,
+    },
+}
+
+impl Op {
+    /// Every register the operation names, for renaming and for the bound check (a guess's
+    /// index is not a register).
+    fn registers_mut(&mut self) -> Vec<&mut u32> {
+        match self {
+            Op::Add(d, a, b) | Op::Sub(d, a, b) | Op::Mul(d, a, b) | Op::Div(d, a, b) => vec![d, a, b],
+            Op::Neg(d, a) | Op::Abs(d, a) | Op::Mov(d, a) | Op::CheckGuess(d, a) => vec![d, a],
+            Op::Guess(d, _) => vec![d],
+            Op::Side { r, right, flip, b, g } => vec![r, right, flip, b, g],
+            Op::FlipZeroA { flip, b: x, g } | Op::FlipZeroB { flip, a: x, g } | Op::FlipProduct { flip, a: x, g } => {
+                vec![flip, x, g]
+            }
+            Op::FlipSign { flip, a, b, bound, g } => vec![flip, a, b, bound, g],
+            Op::DyadRoots { cq, sq, a, b, c, flip } => vec![cq, sq, a, b, c, flip],
+            Op::RootOffset { d, d2, r2, c, flip } => vec![d, d2, r2, c, flip],
+            Op::PolarNorm { d, r2, e0, e1 } => vec![d, r2, e0, e1],
+            Op::PolarSide { s, cq, sq, gs } => vec![s, cq, sq, gs],
+            Op::Atan2Unwrap { d, s, c, g } | Op::AcosUnwrap { d, c, s, g } => vec![d, s, c, g],
+            Op::AsinNear { d, s, right, r, g } => vec![d, s, right, r, g],
+            Op::Check { out, len, .. } => out[..*len as usize].iter_mut().collect(),
+        }
+    }
+}
+
+/// A closed form compiled: its operations, and where its solution is left.
+#[derive(Clone, Debug)]
+pub(crate) struct ClosedProg {
+    ops: Vec<Op>,
+    /// One more than the largest register named: the registers a run needs.
+    needs: usize,
+    /// One more than the largest guess read.
+    guesses: usize,
+    /// The unknowns in the order the solve gives them (the angles, then the length or slider),
+    /// each with the register that holds its value after a run (its leaf's when it has one).
+    pub(crate) unknowns: Vec<(usize, u32)>,
+}
+
+impl ClosedProg {
+    /// Compiles the solve of `form` over the graph `g`: `unknown_regs` are the registers of the
+    /// leaves of the unknowns in the order of the solve, `sin_cos` those of each angle's `[sin,
+    /// cos]` nodes (where the solve leaves its values; a fresh register for a missing one).
+    pub(crate) fn build(
+        form: &ClosedForm,
+        g: &Graph,
+        unknown_regs: &[Option<u32>],
+        sin_cos: &[[Option<u32>; 2]],
+        extra: &mut Extra,
+    ) -> ClosedProg {
+        let mut b = Build { g, extra, ops: Vec::new(), temps: HashMap::new(), guess_regs: HashMap::new() };
+        let order: Vec<usize> = form.angles().into_iter().chain(crate::blocks::other_unknown(form)).collect();
+        // The targets of the solution's values, in the order of the emitter's `__out`.
+        let mut targets: Vec<u32> = unknown_regs.iter().map(|r| r.unwrap_or_else(|| b.extra.fresh())).collect();
+        for [s, c] in sin_cos {
+            for t in [c, s] {
+                targets.push(t.unwrap_or_else(|| b.extra.fresh()));
+            }
+        }
+        // The guess of a length or slider only picks the branch, through comparisons: checked
+        // first, with the angle's (the forms with a length or slider have one angle).
+        if let [angle, other] = order[..] {
+            let (ga, go) = (b.guess(angle), b.guess(other));
+            b.ops.push(Op::CheckGuess(ga, go));
+        }
+        let out: Vec<V> = match form {
+            ClosedForm::AngleEquation { angle, a, b: bb, c } => {
+                let (a, bb, c) = (b.v(*a), b.v(*bb), b.v(*c));
+                b.angle_equation(a, bb, c, *angle).to_vec()
+            }
+            ClosedForm::Dyad { angles, m, reflect, e } => {
+                let (m0, m1, e) = (b.m(&m[0]), b.m(&m[1]), [b.v(e[0]), b.v(e[1])]);
+                b.dyad(&m0, &m1, *reflect, e, *angles, &targets).to_vec()
+            }
+            ClosedForm::PolarLength { angle, length, w, e } => {
+                let (w, e) = (b.m(w), [b.v(e[0]), b.v(e[1])]);
+                b.polar(&w, e, *angle, *length, &targets).to_vec()
+            }
+            ClosedForm::AngleSlider { angle, m, d, e, .. } => {
+                let (m, d, e) = (b.m(m), [b.v(d[0]), b.v(d[1])], [b.v(e[0]), b.v(e[1])]);
+                b.angle_slider(&m, d, e, *angle).to_vec()
+            }
+        };
+        debug_assert_eq!(out.len(), targets.len());
+        let placed: Vec<u32> = out.into_iter().zip(&targets).map(|(v, &t)| b.place(v, t)).collect();
+        let mut check = [0; 6];
+        check[..placed.len()].copy_from_slice(&placed);
+        b.ops.push(Op::Check { out: check, len: placed.len() as u8, angles: form.angles().len() as u8 });
+        let mut ops = b.ops;
+        let needs = ops.iter_mut().flat_map(|o| o.registers_mut().into_iter().map(|r| *r)).max().map_or(0, |m| m + 1);
+        let guesses = ops.iter().filter_map(|o| if let Op::Guess(_, u) = o { Some(*u + 1) } else { None }).max();
+        ClosedProg {
+            ops,
+            needs: needs as usize,
+            guesses: guesses.unwrap_or(0) as usize,
+            unknowns: order.into_iter().zip(placed).collect(),
+        }
+    }
+
+    /// Solves the block from the coefficients in the registers `r` and the guesses: the
+    /// solution's values are left in their registers.
+    pub(crate) fn run(&self, r: &mut [f64], guess: &[f64], cfg: &NewtonConfig) -> Result<(), BlockFailure> {
+        // Every register an operation names is below `needs`, every guess read below `guesses`
+        // (checked when the program was built): one test here instead of one per operand.
+        assert!(r.len() >= self.needs && guess.len() >= self.guesses, "registers of another model");
+        let p = r.as_mut_ptr();
+        // SAFETY: every index is below `needs` <= `r.len()`, every guess below `guess.len()`.
+        unsafe {
+            let v = |k: u32| *p.add(k as usize);
+            let set = |k: u32, x: f64| *p.add(k as usize) = x;
+            let flag = |k: u32| *p.add(k as usize) != 0.0;
+            let bit = |b: bool| if b { 1.0 } else { 0.0 };
+            for op in &self.ops {
+                match *op {
+                    Op::Add(d, a, b) => set(d, v(a) + v(b)),
+                    Op::Sub(d, a, b) => set(d, v(a) - v(b)),
+                    Op::Mul(d, a, b) => set(d, v(a) * v(b)),
+                    Op::Div(d, a, b) => set(d, v(a) / v(b)),
+                    Op::Neg(d, a) => set(d, -v(a)),
+                    Op::Abs(d, a) => set(d, v(a).abs()),
+                    Op::Mov(d, a) => set(d, v(a)),
+                    Op::Guess(d, u) => set(d, *guess.get_unchecked(u as usize)),
+                    Op::CheckGuess(a, b) => check_guess(v(a) + v(b))?,
+                    Op::Side { r, right, flip, b, g } => {
+                        let red = reduce_turn(v(g));
+                        let is_right = red.abs() < FRAC_PI_2;
+                        set(r, red);
+                        set(right, bit(is_right));
+                        set(flip, bit((v(b) > 0.0) == is_right));
+                    }
+                    Op::FlipZeroA { flip, b, g } => {
+                        set(flip, bit((v(b) > 0.0) == (reduce_turn(v(g)).abs() < FRAC_PI_2)));
+                    }
+                    Op::FlipZeroB { flip, a, g } => set(flip, bit((v(a) > 0.0) == (reduce_turn(v(g)) < 0.0))),
+                    Op::FlipSign { flip, a, b, bound, g } => {
+                        let (av, bv) = (v(a), v(b));
+                        set(flip, bit(sign_at_guess(v(g), 3.0 * v(bound), |(sg, cg)| bv * cg - av * sg) > 0.0));
+                    }
+                    Op::FlipProduct { flip, a, g } => set(flip, bit((v(a) * reduce_turn(v(g))) < 0.0)),
+                    Op::DyadRoots { cq, sq, a, b, c, flip } => {
+                        let (c0, s0) = dyad_roots(v(a), v(b), v(c), flag(flip), cfg)?;
+                        set(cq, c0);
+                        set(sq, s0);
+                    }
+                    Op::RootOffset { d, d2, r2, c, flip } => set(d, root_offset(v(d2), v(r2), v(c), flag(flip), cfg)?),
+                    Op::PolarNorm { d, r2, e0, e1 } => set(d, polar_norm(v(r2), v(e0), v(e1), cfg)?),
+                    Op::PolarSide { s, cq, sq, gs } => {
+                        if v(s) * v(gs) < 0.0 {
+                            set(s, -v(s));
+                            set(cq, -v(cq));
+                            set(sq, -v(sq));
+                        }
+                    }
+                    Op::Atan2Unwrap { d, s, c, g } => set(d, unwrap_to_turn(v(s).atan2(v(c)), v(g))),
+                    Op::AcosUnwrap { d, c, s, g } => set(d, unwrap_to_turn(acos_on_side(v(c), v(s)), v(g))),
+                    Op::AsinNear { d, s, right, r, g } => set(d, asin_near(v(s), flag(right), v(r), v(g))),
+                    Op::Check { out, len, angles } => {
+                        let o = out.map(v);
+                        let angles = angles as usize;
+                        match len {
+                            3 => check_closed(&[o[0], o[1], o[2]], angles, cfg)?,
+                            4 => check_closed(&[o[0], o[1], o[2], o[3]], angles, cfg)?,
+                            _ => check_closed(&o, angles, cfg)?,
+                        }
+                    }
+                }
+            }
+        }
+        Ok(())
+    }
+}
+
+/// A value while a program is built: a constant of the graph (folded as the emitter folds it)
+/// or a register (computed as the emitted expression computes it).
+#[derive(Clone, Copy, Debug)]
+enum V {
+    C(f64),
+    R(u32),
+}
+
+impl V {
     fn is_zero(self) -> bool {
         matches!(self, V::C(z) if z == 0.0)
     }
 }
 
-fn neg(a: V) -> V {
-    match a {
-        V::C(x) => V::C(-x),
-        V::E(t) => V::E(-t),
-    }
-}
-
-fn mul(a: V, b: V) -> V {
-    match (a, b) {
-        (V::C(x), V::C(y)) => V::C(x * y),
-        _ if a.is_zero() || b.is_zero() => V::C(0.0),
-        (V::C(o), e) | (e, V::C(o)) if o == 1.0 => e,
-        (V::C(m), e) | (e, V::C(m)) if m == -1.0 => neg(e),
-        _ => V::E(a.val() * b.val()),
-    }
-}
-
-fn add(a: V, b: V) -> V {
-    match (a, b) {
-        (V::C(x), V::C(y)) => V::C(x + y),
-        (V::C(0.0), e) | (e, V::C(0.0)) => e,
-        _ => V::E(a.val() + b.val()),
-    }
-}
-
-fn sub(a: V, b: V) -> V {
-    match (a, b) {
-        (V::C(x), V::C(y)) => V::C(x - y),
-        (e, V::C(0.0)) => e,
-        (V::C(0.0), e) => neg(e),
-        _ => V::E(a.val() - b.val()),
-    }
-}
-
-fn abs(a: V) -> V {
-    match a {
-        V::C(x) => V::C(x.abs()),
-        V::E(t) => V::E(t.abs()),
-    }
-}
-
-/// `a · x` for pairs `(a, x)`, summed from zero as the emitter does.
-fn dot(terms: &[(V, V)]) -> V {
-    terms.iter().fold(V::C(0.0), |acc, &(a, x)| add(acc, mul(a, x)))
-}
-
-/// Reads a block's coefficients: a constant node as a constant, any other from its register.
-struct Read<'a> {
+/// A program being built.
+struct Build<'a> {
     g: &'a Graph,
-    r: &'a [f64],
+    extra: &'a mut Extra,
+    ops: Vec<Op>,
+    /// The registers this program computed whose name is still free to change (see
+    /// [`Build::place`]), and what a renamed one became.
+    temps: HashMap<u32, Option<u32>>,
+    /// Per unknown: the register its guess was loaded into.
+    guess_regs: HashMap<usize, u32>,
 }
 
-impl Read<'_> {
-    #[inline(always)]
+impl Build<'_> {
+    /// A coefficient: a constant node as a constant, any other as its register.
     fn v(&self, n: NodeId) -> V {
         match self.g.as_const(n) {
             Some(c) => V::C(c),
-            None => V::E(self.r[n.index()]),
+            None => V::R(n.0),
         }
     }
 
-    /// Written out: `array::map` is not always inlined, and this runs on every step.
-    #[inline(always)]
     fn m(&self, m: &[[NodeId; 2]; 2]) -> [[V; 2]; 2] {
         [[self.v(m[0][0]), self.v(m[0][1])], [self.v(m[1][0]), self.v(m[1][1])]]
     }
-}
 
-/// What a closed-form solve produced: the angles, then the length or slider, then each angle's
-/// cosine and sine (the emitter's `__out` array), `len` values of it.
-pub(crate) struct Out {
-    pub(crate) values: [f64; 6],
-    pub(crate) len: usize,
-}
+    /// The register of `v` (a constant's, written once).
+    fn reg(&mut self, v: V) -> u32 {
+        match v {
+            V::C(x) => self.extra.constant(x),
+            V::R(k) => match self.temps.get(&k) {
+                Some(Some(renamed)) => *renamed,
+                _ => k,
+            },
+        }
+    }
 
-/// Solves the block of `form` from the coefficients in the registers `r` and the guesses.
-pub(crate) fn solve(
-    form: &ClosedForm,
-    g: &Graph,
-    r: &[f64],
-    guess: &[f64],
-    cfg: &NewtonConfig,
-) -> Result<Out, BlockFailure> {
-    let rd = Read { g, r };
-    // The guess of a length or slider only picks the branch, through comparisons: checked first.
-    let others = match form {
-        ClosedForm::PolarLength { length, .. } => Some(*length),
-        ClosedForm::AngleSlider { slider, .. } => Some(*slider),
-        ClosedForm::AngleEquation { .. } | ClosedForm::Dyad { .. } => None,
-    };
-    if let Some(o) = others {
-        // The angle's guess, then the other's (the forms with a length or slider have one angle).
-        let angle = match form {
-            ClosedForm::PolarLength { angle, .. } | ClosedForm::AngleSlider { angle, .. } => *angle,
-            ClosedForm::AngleEquation { angle, .. } => *angle,
-            ClosedForm::Dyad { angles, .. } => angles[0],
+    /// A new register computed by `make(destination)`.
+    fn op(&mut self, make: impl FnOnce(u32) -> Op) -> V {
+        let d = self.extra.fresh();
+        self.temps.insert(d, None);
+        self.ops.push(make(d));
+        V::R(d)
+    }
+
+    /// `v` as a value the folds no longer see through (the emitter binds it to a local): a
+    /// constant becomes its register.
+    fn opaque(&mut self, v: V) -> V {
+        V::R(self.reg(v))
+    }
+
+    fn guess(&mut self, u: usize) -> u32 {
+        if let Some(&k) = self.guess_regs.get(&u) {
+            return k;
+        }
+        let k = self.extra.fresh();
+        self.ops.push(Op::Guess(k, u as u32));
+        self.guess_regs.insert(u, k);
+        k
+    }
+
+    /// Leaves `v` in register `target` (which nothing else writes) and returns it: the
+    /// operation that computed `v` writes there directly when `v` is this program's own
+    /// register, otherwise a copy.
+    fn place(&mut self, v: V, target: u32) -> u32 {
+        if let V::R(k) = v
+            && let Some(None) = self.temps.get(&k)
+        {
+            for op in &mut self.ops {
+                for r in op.registers_mut() {
+                    if *r == k {
+                        *r = target;
+                    }
+                }
+            }
+            self.temps.insert(k, Some(target));
+            return target;
+        }
+        let from = self.reg(v);
+        if from != target {
+            self.ops.push(Op::Mov(target, from));
+        }
+        target
+    }
+
+    fn neg(&mut self, a: V) -> V {
+        match a {
+            V::C(x) => V::C(-x),
+            V::R(_) => {
+                let a = self.reg(a);
+                self.op(|d| Op::Neg(d, a))
+            }
+        }
+    }
+
+    fn bin(&mut self, a: V, b: V, make: fn(u32, u32, u32) -> Op) -> V {
+        let (a, b) = (self.reg(a), self.reg(b));
+        self.op(|d| make(d, a, b))
+    }
+
+    fn mul(&mut self, a: V, b: V) -> V {
+        match (a, b) {
+            (V::C(x), V::C(y)) => V::C(x * y),
+            _ if a.is_zero() || b.is_zero() => V::C(0.0),
+            (V::C(o), e) | (e, V::C(o)) if o == 1.0 => e,
+            (V::C(m), e) | (e, V::C(m)) if m == -1.0 => self.neg(e),
+            _ => self.bin(a, b, Op::Mul),
+        }
+    }
+
+    fn add(&mut self, a: V, b: V) -> V {
+        match (a, b) {
+            (V::C(x), V::C(y)) => V::C(x + y),
+            (V::C(0.0), e) | (e, V::C(0.0)) => e,
+            _ => self.bin(a, b, Op::Add),
+        }
+    }
+
+    fn sub(&mut self, a: V, b: V) -> V {
+        match (a, b) {
+            (V::C(x), V::C(y)) => V::C(x - y),
+            (e, V::C(0.0)) => e,
+            (V::C(0.0), e) => self.neg(e),
+            _ => self.bin(a, b, Op::Sub),
+        }
+    }
+
+    fn abs(&mut self, a: V) -> V {
+        match a {
+            V::C(x) => V::C(x.abs()),
+            V::R(_) => {
+                let a = self.reg(a);
+                self.op(|d| Op::Abs(d, a))
+            }
+        }
+    }
+
+    /// `a / b` as the emitted code writes it, never folded afterwards (a constant quotient is
+    /// the compiler's constant, the same value).
+    fn div(&mut self, a: V, b: V) -> V {
+        match (a, b) {
+            (V::C(x), V::C(y)) => self.opaque(V::C(x / y)),
+            _ => self.bin(a, b, Op::Div),
+        }
+    }
+
+    /// `a · x` for pairs `(a, x)`, summed from zero as the emitter does.
+    fn dot(&mut self, terms: &[(V, V)]) -> V {
+        terms.iter().fold(V::C(0.0), |acc, &(a, x)| {
+            let ax = self.mul(a, x);
+            self.add(acc, ax)
+        })
+    }
+
+    /// The root `(cos q, sin q)` of `a cos q + b sin q = c` on the side the register `flip`
+    /// picks (the emitter's `root`).
+    fn root(&mut self, a: V, b: V, c: V, flip: u32) -> (V, V) {
+        if let (V::R(_), V::R(_), V::R(_)) = (a, b, c) {
+            let (a, b, c) = (self.reg(a), self.reg(b), self.reg(c));
+            let (cq, sq) = (self.extra.fresh(), self.extra.fresh());
+            self.temps.insert(cq, None);
+            self.temps.insert(sq, None);
+            self.ops.push(Op::DyadRoots { cq, sq, a, b, c, flip });
+            return (V::R(cq), V::R(sq));
+        }
+        let (aa, bb) = (self.mul(a, a), self.mul(b, b));
+        let r2 = self.add(aa, bb);
+        let cc = self.mul(c, c);
+        let d2 = self.sub(r2, cc);
+        let (d2, r2r, cr) = (self.reg(d2), self.reg(r2), self.reg(c));
+        let d = self.op(|d| Op::RootOffset { d, d2, r2: r2r, c: cr, flip });
+        let (cq, sq) = if a.is_zero() {
+            let ib = self.div(V::C(1.0), b);
+            let dib = self.mul(d, ib);
+            (self.neg(dib), self.mul(c, ib))
+        } else if b.is_zero() {
+            let ia = self.div(V::C(1.0), a);
+            (self.mul(c, ia), self.mul(d, ia))
+        } else {
+            let inv = self.div(V::C(1.0), r2);
+            let (ac, bd) = (self.mul(a, c), self.mul(b, d));
+            let x = self.sub(ac, bd);
+            let cq = self.mul(x, inv);
+            let (bc, ad) = (self.mul(b, c), self.mul(a, d));
+            let y = self.add(bc, ad);
+            (cq, self.mul(y, inv))
         };
-        check_guess(guess[angle] + guess[o])?;
+        (self.opaque(cq), self.opaque(sq))
     }
-    let (values, len) = match form {
-        ClosedForm::AngleEquation { angle, a, b, c } => {
-            let out = angle_equation(rd.v(*a), rd.v(*b), rd.v(*c), guess[*angle], cfg)?;
-            check_closed(&out, 1, cfg)?;
-            ([out[0], out[1], out[2], 0.0, 0.0, 0.0], 3)
-        }
-        ClosedForm::Dyad { angles, m, reflect, e } => {
-            let out = dyad(&rd.m(&m[0]), &rd.m(&m[1]), *reflect, [rd.v(e[0]), rd.v(e[1])], *angles, guess, cfg)?;
-            check_closed(&out, 2, cfg)?;
-            (out, 6)
-        }
-        ClosedForm::PolarLength { angle, length, w, e } => {
-            let out = polar(&rd.m(w), [rd.v(e[0]), rd.v(e[1])], guess[*angle], guess[*length], cfg)?;
-            check_closed(&out, 1, cfg)?;
-            ([out[0], out[1], out[2], out[3], 0.0, 0.0], 4)
-        }
-        ClosedForm::AngleSlider { angle, m, d, e, .. } => {
-            let out = angle_slider(&rd.m(m), [rd.v(d[0]), rd.v(d[1])], [rd.v(e[0]), rd.v(e[1])], guess[*angle], cfg)?;
-            check_closed(&out, 1, cfg)?;
-            ([out[0], out[1], out[2], out[3], 0.0, 0.0], 4)
-        }
-    };
-    Ok(Out { values, len })
-}
 
-/// The root `(cos q, sin q)` of `a cos q + b sin q = c` on the side `flip` picks.
-fn root(a: V, b: V, c: V, flip: bool, cfg: &NewtonConfig) -> Result<(f64, f64), BlockFailure> {
-    if let (V::E(a), V::E(b), V::E(c)) = (a, b, c) {
-        return dyad_roots(a, b, c, flip, cfg);
+    /// The sign rule at the guess in register `g` (the emitter's `flip_at_guess`).
+    fn flip_at_guess(&mut self, a: V, b: V, g: u32) -> u32 {
+        let flip = self.extra.fresh();
+        if a.is_zero() {
+            let b = self.reg(b);
+            self.ops.push(Op::FlipZeroA { flip, b, g });
+        } else if b.is_zero() {
+            let a = self.reg(a);
+            self.ops.push(Op::FlipZeroB { flip, a, g });
+        } else {
+            let (aa, ab) = (self.abs(a), self.abs(b));
+            let bound = self.add(aa, ab);
+            let (a, b, bound) = (self.reg(a), self.reg(b), self.reg(bound));
+            self.ops.push(Op::FlipSign { flip, a, b, bound, g });
+        }
+        flip
     }
-    let r2 = add(mul(a, a), mul(b, b));
-    let d2 = sub(r2, mul(c, c));
-    let d = V::E(root_offset(d2.val(), r2.val(), c.val(), flip, cfg)?);
-    let (cq, sq) = if a.is_zero() {
-        let ib = V::E(1.0 / b.val());
-        (neg(mul(d, ib)), mul(c, ib))
-    } else if b.is_zero() {
-        let ia = V::E(1.0 / a.val());
-        (mul(c, ia), mul(d, ia))
-    } else {
-        let inv = V::E(1.0 / r2.val());
-        (mul(sub(mul(a, c), mul(b, d)), inv), mul(add(mul(b, c), mul(a, d)), inv))
-    };
-    Ok((cq.val(), sq.val()))
-}
 
-/// The sign rule at the guess `g` (the emitter's `flip_at_guess`).
-fn flip_at_guess(a: V, b: V, g: f64) -> bool {
-    if a.is_zero() {
-        (b.val() > 0.0) == (reduce_turn(g).abs() < FRAC_PI_2)
-    } else if b.is_zero() {
-        (a.val() > 0.0) == (reduce_turn(g) < 0.0)
-    } else {
-        let bound = add(abs(a), abs(b)).val();
-        let (av, bv) = (a.val(), b.val());
-        sign_at_guess(g, 3.0 * bound, |(sg, cg)| bv * cg - av * sg) > 0.0
+    fn angle_equation(&mut self, a: V, b: V, c: V, u: usize) -> [V; 3] {
+        let g = self.guess(u);
+        if a.is_zero() {
+            let (r, right, flip) = (self.extra.fresh(), self.extra.fresh(), self.extra.fresh());
+            let breg = self.reg(b);
+            self.ops.push(Op::Side { r, right, flip, b: breg, g });
+            let (cq, sq) = self.root(a, b, c, flip);
+            let s = self.reg(sq);
+            let q = self.op(|d| Op::AsinNear { d, s, right, r, g });
+            return [q, cq, sq];
+        }
+        let flip = self.flip_at_guess(a, b, g);
+        let (cq, sq) = self.root(a, b, c, flip);
+        let (c, s) = (self.reg(cq), self.reg(sq));
+        let q = if b.is_zero() {
+            self.op(|d| Op::AcosUnwrap { d, c, s, g })
+        } else {
+            self.op(|d| Op::Atan2Unwrap { d, s, c, g })
+        };
+        [q, cq, sq]
     }
-}
 
-fn angle_equation(a: V, b: V, c: V, g: f64, cfg: &NewtonConfig) -> Result<[f64; 3], BlockFailure> {
-    if a.is_zero() {
-        let r = reduce_turn(g);
-        let right = r.abs() < FRAC_PI_2;
-        let flip = (b.val() > 0.0) == right;
-        let (cq, sq) = root(a, b, c, flip, cfg)?;
-        return Ok([asin_near(sq, right, r, g), cq, sq]);
+    /// The dyad; its cosine and sine of the first angle are placed in their `targets` as soon
+    /// as they are known.
+    fn dyad(
+        &mut self,
+        a: &[[V; 2]; 2],
+        b: &[[V; 2]; 2],
+        reflect: [bool; 2],
+        e: [V; 2],
+        angles: [usize; 2],
+        targets: &[u32],
+    ) -> [V; 6] {
+        let (g0, g1) = (self.guess(angles[0]), self.guess(angles[1]));
+        let mut k = |i: usize, j: usize| {
+            let (x, y) = (self.mul(a[0][i], b[1][j]), self.mul(a[1][i], b[0][j]));
+            self.sub(x, y)
+        };
+        let (k00, k01) = (k(0, 0), k(0, 1));
+        let sigma =
+            if reflect[0] == reflect[1] { self.op(|d| Op::Sub(d, g1, g0)) } else { self.op(|d| Op::Add(d, g1, g0)) };
+        let sigma = self.reg(sigma);
+        let (ca, cb) = if reflect[0] { (self.neg(k01), k00) } else { (k01, self.neg(k00)) };
+        let flip = if cb.is_zero() {
+            let flip = self.extra.fresh();
+            let a = self.reg(ca);
+            self.ops.push(Op::FlipProduct { flip, a, g: sigma });
+            flip
+        } else {
+            self.flip_at_guess(ca, cb, sigma)
+        };
+        let ca = self.dot(&[(a[0][0], e[0]), (a[1][0], e[1])]);
+        let cb = self.dot(&[(a[0][1], e[0]), (a[1][1], e[1])]);
+        let l0 = self.dot(&[(a[0][0], a[0][0]), (a[1][0], a[1][0])]);
+        let l1 = self.dot(&[(b[0][0], b[0][0]), (b[1][0], b[1][0])]);
+        let ee = self.dot(&[(e[0], e[0]), (e[1], e[1])]);
+        let l1l0 = self.sub(l1, l0);
+        let x = self.sub(l1l0, ee);
+        let cc = self.mul(V::C(0.5), x);
+        let (cq, sq) = self.root(ca, cb, cc, flip);
+        let (cq, sq) = (V::R(self.place(cq, targets[2])), V::R(self.place(sq, targets[3])));
+        let dx = self.dot(&[(a[0][0], cq), (a[0][1], sq)]);
+        let vx = self.add(e[0], dx);
+        let dy = self.dot(&[(a[1][0], cq), (a[1][1], sq)]);
+        let vy = self.add(e[1], dy);
+        let il1 = self.div(V::C(-1.0), l1);
+        let c1 = self.dot(&[(b[0][0], vx), (b[1][0], vy)]);
+        let c1 = self.mul(c1, il1);
+        let s1 = self.dot(&[(b[0][1], vx), (b[1][1], vy)]);
+        let s1 = self.mul(s1, il1);
+        let (c1, s1) = (V::R(self.place(c1, targets[4])), V::R(self.place(s1, targets[5])));
+        let (c, s, c1r, s1r) = (self.reg(cq), self.reg(sq), self.reg(c1), self.reg(s1));
+        let q0 = self.op(|d| Op::Atan2Unwrap { d, s, c, g: g0 });
+        let q1 = self.op(|d| Op::Atan2Unwrap { d, s: s1r, c: c1r, g: g1 });
+        [q0, q1, cq, sq, c1, s1]
     }
-    let flip = flip_at_guess(a, b, g);
-    let (cq, sq) = root(a, b, c, flip, cfg)?;
-    let q = if b.is_zero() { unwrap_to_turn(acos_on_side(cq, sq), g) } else { unwrap_to_turn(sq.atan2(cq), g) };
-    Ok([q, cq, sq])
-}
 
-fn dyad(
-    a: &[[V; 2]; 2],
-    b: &[[V; 2]; 2],
-    reflect: [bool; 2],
-    e: [V; 2],
-    angles: [usize; 2],
-    guess: &[f64],
-    cfg: &NewtonConfig,
-) -> Result<[f64; 6], BlockFailure> {
-    let (g0, g1) = (guess[angles[0]], guess[angles[1]]);
-    let k = |i: usize, j: usize| sub(mul(a[0][i], b[1][j]), mul(a[1][i], b[0][j]));
-    let (k00, k01) = (k(0, 0), k(0, 1));
-    let sigma = if reflect[0] == reflect[1] { g1 - g0 } else { g1 + g0 };
-    let (ca, cb) = if reflect[0] { (neg(k01), k00) } else { (k01, neg(k00)) };
-    let flip = if cb.is_zero() { (ca.val() * reduce_turn(sigma)) < 0.0 } else { flip_at_guess(ca, cb, sigma) };
-    let ca = dot(&[(a[0][0], e[0]), (a[1][0], e[1])]);
-    let cb = dot(&[(a[0][1], e[0]), (a[1][1], e[1])]);
-    let l0 = dot(&[(a[0][0], a[0][0]), (a[1][0], a[1][0])]);
-    let l1 = dot(&[(b[0][0], b[0][0]), (b[1][0], b[1][0])]);
-    let ee = dot(&[(e[0], e[0]), (e[1], e[1])]);
-    let cc = mul(V::C(0.5), sub(sub(l1, l0), ee));
-    let (cq, sq) = root(ca, cb, cc, flip, cfg)?;
-    let (cqv, sqv) = (V::E(cq), V::E(sq));
-    let vx = add(e[0], dot(&[(a[0][0], cqv), (a[0][1], sqv)]));
-    let vy = add(e[1], dot(&[(a[1][0], cqv), (a[1][1], sqv)]));
-    let il1 = V::E(-1.0 / l1.val());
-    let c1 = mul(dot(&[(b[0][0], vx), (b[1][0], vy)]), il1).val();
-    let s1 = mul(dot(&[(b[0][1], vx), (b[1][1], vy)]), il1).val();
-    let q0 = unwrap_to_turn(sq.atan2(cq), g0);
-    let q1 = unwrap_to_turn(s1.atan2(c1), g1);
-    Ok([q0, q1, cq, sq, c1, s1])
+    /// The polar length; its length, cosine and sine are placed in their `targets` before the
+    /// half turn that may negate them in place.
+    fn polar(&mut self, w: &[[V; 2]; 2], e: [V; 2], u: usize, length: usize, targets: &[u32]) -> [V; 4] {
+        let (g, gs) = (self.guess(u), self.guess(length));
+        let (x, y) = (self.mul(w[0][0], e[1]), self.mul(w[1][0], e[0]));
+        let a = self.sub(x, y);
+        let (x, y) = (self.mul(w[0][1], e[1]), self.mul(w[1][1], e[0]));
+        let b = self.sub(x, y);
+        let (aa, bb) = (self.mul(a, a), self.mul(b, b));
+        let r2 = self.add(aa, bb);
+        let (r2, e0, e1) = (self.reg(r2), self.reg(e[0]), self.reg(e[1]));
+        let ir = self.op(|d| Op::PolarNorm { d, r2, e0, e1 });
+        let c0 = self.mul(b, ir);
+        let s0 = self.mul(a, ir);
+        let s0 = self.neg(s0);
+        let cq = V::R(self.place(c0, targets[2]));
+        let sq = V::R(self.place(s0, targets[3]));
+        let w0 = self.dot(&[(w[0][0], cq), (w[0][1], sq)]);
+        let w1 = self.dot(&[(w[1][0], cq), (w[1][1], sq)]);
+        let num = self.dot(&[(w0, e[0]), (w1, e[1])]);
+        let s = match constant_norm2(w) {
+            Some(1.0) => self.neg(num),
+            Some(k2) => {
+                let n = self.neg(num);
+                self.div(n, V::C(k2))
+            }
+            None => {
+                let den = self.dot(&[(w0, w0), (w1, w1)]);
+                let n = self.neg(num);
+                self.div(n, den)
+            }
+        };
+        let s = self.place(s, targets[1]);
+        let (c, sr) = (targets[2], targets[3]);
+        self.ops.push(Op::PolarSide { s, cq: c, sq: sr, gs });
+        let q = self.op(|d| Op::Atan2Unwrap { d, s: sr, c, g });
+        [q, V::R(s), cq, sq]
+    }
+
+    fn angle_slider(&mut self, m: &[[V; 2]; 2], d: [V; 2], e: [V; 2], u: usize) -> [V; 4] {
+        let g = self.guess(u);
+        let (x, y) = (self.mul(d[1], m[0][0]), self.mul(d[0], m[1][0]));
+        let a = self.sub(x, y);
+        let (x, y) = (self.mul(d[1], m[0][1]), self.mul(d[0], m[1][1]));
+        let b = self.sub(x, y);
+        let (x, y) = (self.mul(d[0], e[1]), self.mul(d[1], e[0]));
+        let c = self.sub(x, y);
+        let flip = self.flip_at_guess(a, b, g);
+        let (cq, sq) = self.root(a, b, c, flip);
+        let t = self.dot(&[(m[0][0], cq), (m[0][1], sq)]);
+        let r0 = self.add(t, e[0]);
+        let t = self.dot(&[(m[1][0], cq), (m[1][1], sq)]);
+        let r1 = self.add(t, e[1]);
+        let num = self.dot(&[(d[0], r0), (d[1], r1)]);
+        let den = self.dot(&[(d[0], d[0]), (d[1], d[1])]);
+        let (c, s) = (self.reg(cq), self.reg(sq));
+        let q = self.op(|d| Op::Atan2Unwrap { d, s, c, g });
+        let n = self.neg(num);
+        let s = self.div(n, den);
+        [q, s, cq, sq]
+    }
 }
 
 /// `|w (cos q, sin q)|²` when it is the same constant for every `q` (the emitter's rule).
@@ -250,45 +719,4 @@ fn constant_norm2(w: &[[V; 2]; 2]) -> Option<f64> {
     };
     let (n0, n1) = (a * a + c * c, b * b + d * d);
     (a * b + c * d == 0.0 && n0 == n1).then_some(n0)
-}
-
-fn polar(w: &[[V; 2]; 2], e: [V; 2], g: f64, gs: f64, cfg: &NewtonConfig) -> Result<[f64; 4], BlockFailure> {
-    let a = sub(mul(w[0][0], e[1]), mul(w[1][0], e[0]));
-    let b = sub(mul(w[0][1], e[1]), mul(w[1][1], e[0]));
-    let r2 = add(mul(a, a), mul(b, b));
-    let ir = V::E(polar_norm(r2.val(), e[0].val(), e[1].val(), cfg)?);
-    let (mut cq, mut sq) = (mul(b, ir).val(), neg(mul(a, ir)).val());
-    let (cqv, sqv) = (V::E(cq), V::E(sq));
-    let w0 = dot(&[(w[0][0], cqv), (w[0][1], sqv)]);
-    let w1 = dot(&[(w[1][0], cqv), (w[1][1], sqv)]);
-    let num = dot(&[(w0, e[0]), (w1, e[1])]);
-    let mut s = match constant_norm2(w) {
-        Some(1.0) => neg(num).val(),
-        Some(k2) => -num.val() / k2,
-        None => {
-            let den = dot(&[(w0, w0), (w1, w1)]);
-            -num.val() / den.val()
-        }
-    };
-    if s * gs < 0.0 {
-        s = -s;
-        cq = -cq;
-        sq = -sq;
-    }
-    Ok([unwrap_to_turn(sq.atan2(cq), g), s, cq, sq])
-}
-
-fn angle_slider(m: &[[V; 2]; 2], d: [V; 2], e: [V; 2], g: f64, cfg: &NewtonConfig) -> Result<[f64; 4], BlockFailure> {
-    let a = sub(mul(d[1], m[0][0]), mul(d[0], m[1][0]));
-    let b = sub(mul(d[1], m[0][1]), mul(d[0], m[1][1]));
-    let c = sub(mul(d[0], e[1]), mul(d[1], e[0]));
-    let flip = flip_at_guess(a, b, g);
-    let (cq, sq) = root(a, b, c, flip, cfg)?;
-    let (cqv, sqv) = (V::E(cq), V::E(sq));
-    let r0 = add(dot(&[(m[0][0], cqv), (m[0][1], sqv)]), e[0]);
-    let r1 = add(dot(&[(m[1][0], cqv), (m[1][1], sqv)]), e[1]);
-    let num = dot(&[(d[0], r0), (d[1], r1)]);
-    let den = dot(&[(d[0], d[0]), (d[1], d[1])]);
-    let q = unwrap_to_turn(sq.atan2(cq), g);
-    Ok([q, -num.val() / den.val(), cq, sq])
 }

@@ -197,8 +197,9 @@ impl Fac {
     }
 
     /// The pivot ratio and determinant sign, read with one match on the kind (`None` for a
-    /// sparse block, which notes its own, and for no factorisation).
-    #[inline]
+    /// sparse block, which notes its own, and for no factorisation). Inlined in the block's
+    /// step: a call per block cost more than the match.
+    #[inline(always)]
     pub(crate) fn conditioning(&self) -> Option<Conditioning> {
         let c = |pivot_ratio: f64, negative_det: bool| Some(Conditioning { pivot_ratio, negative_det });
         each_lu!(self, lu => c(lu.pivot_ratio(), lu.negative_det()), other => match other {

@@ -65,14 +65,14 @@
 //!
 //! A step is an interpreted tape (nodes of the parameters alone computed when they are set, a
 //! sine and cosine of one argument as one instruction, consecutive arithmetic operations
-//! sharing a dispatch), the blocks' factorisations written in place: on the gallery's rhombic
-//! drive it executes about 5.1 times the compiled step's instructions (about 3 times its time),
-//! on the four-bar 4.0 times (2.9 times its time), on a Newton-dominated class IV block 2 times
-//! (1.7 times), on the ring of 64 four-bar loops (one sparse block of 128 unknowns) 2.4 times.
-//! The closed forms' fold of the emitter's constants, decided again on every step, and the
-//! per-block bookkeeping of small blocks are what keeps the first two above 3 times. Reading
-//! and planning a declaration takes one to three milliseconds (`BENCHMARKS.md`, "Mechanisms
-//! read at run time").
+//! sharing a dispatch) and, per closed-form block, a small program compiled when the model is
+//! built (the emitter's folds of the graph's constants decided once), the blocks'
+//! factorisations written in place: on the gallery's rhombic drive it executes about 4.5 times
+//! the compiled step's instructions, on the four-bar 3.7 times, on a Newton-dominated class IV
+//! block 1.9 times, on the ring of 64 four-bar loops (one sparse block of 128 unknowns) 2.3
+//! times. The interpretation's dispatch per operation and the per-block bookkeeping of small
+//! blocks are what keeps the first two above 3 times. Reading and planning a declaration takes
+//! half a millisecond to three milliseconds (`BENCHMARKS.md`, "Mechanisms read at run time").
 //!
 //! # Sweeps and the runtime's algorithms
 //!

@@ -3,6 +3,7 @@
 
 use crate::at::{AtProg, Jacobian};
 use crate::blocks::{BlockProg, Columns, How, StepFailure, Work, other_unknown};
+use crate::closed::{ClosedProg, Extra};
 use crate::dynamics::DynamicsProg;
 use crate::factor::{Fac, MAX_DENSE};
 use crate::levers::Levers;
@@ -12,7 +13,7 @@ use crate::source::{self, Diagnostics};
 use crate::sparse::{self, MAX_SPARSE};
 use crate::tape::{Builder, Segment, registers, statics};
 use kinloop_codegen::Planned;
-use kinloop_codegen::graph::dag::{Graph, Leaf, NodeId, Op};
+use kinloop_codegen::graph::dag::{Leaf, NodeId, Op};
 use kinloop_codegen::plan::kinds::{self, Kind};
 use kinloop_codegen::plan::solve::Solve;
 use kinloop_codegen::plan::{BlockPlan, Plan, pairs};
@@ -117,7 +118,6 @@ pub struct Model {
     /// The default drawing's description (the compiled `Mechanism::DRAWING`).
     pub(crate) drawing: String,
     warnings: Option<Diagnostics>,
-    graph: Graph,
     params: Vec<String>,
     param_values: Vec<Option<f64>>,
     /// The first parameter without a value (kept by `load_params`).
@@ -222,8 +222,10 @@ impl Model {
 
         let mut tape = Builder::new(g);
         let mut blocks: Vec<BlockProg> = Vec::with_capacity(plan.blocks.len());
+        // The closed forms' registers, after the graph's and the scratch register below.
+        let mut extra = Extra::new(g.len() as u32 + 1);
         for (b, bp) in plan.blocks.iter().enumerate() {
-            blocks.push(position_program(&plan, b, bp, &mut tape).map_err(internal)?);
+            blocks.push(position_program(&plan, b, bp, &mut tape, &mut extra).map_err(internal)?);
         }
         for (b, bp) in plan.blocks.iter().enumerate() {
             let prog = &mut blocks[b];
@@ -337,6 +339,8 @@ impl Model {
                     })?;
                     Fac::Sparse(block)
                 }
+                // Never changes: written once, not by every step.
+                Solve::Fixed { coefficient, .. } => Fac::Fixed(kinloop_runtime::generated::Fixed(*coefficient)),
                 _ => Fac::for_size(bp.unknowns.len()),
             });
         }
@@ -374,11 +378,15 @@ impl Model {
             out_d1_regs: plan.out_d1.concat().iter().map(|n| n.0).collect(),
             out_d2_regs: plan.out_d2.concat().iter().map(|n| n.0).collect(),
             instructions,
-            regs: registers(g).into_iter().chain([0.0]).collect(),
+            regs: {
+                let mut r = registers(g);
+                r.resize(extra.len(), 0.0);
+                extra.write_constants(&mut r);
+                r
+            },
             state,
             pair_d2: vec![0.0; n.max(no) * npairs],
             pair_of: (0..ni * ni).map(|ij| kinloop_codegen::plan::pair_index(ni, ij / ni, ij % ni)).collect(),
-            graph: plan.graph,
             dynamics,
             levers,
         };
@@ -516,7 +524,8 @@ impl Model {
         }
     }
 
-    /// The graph's size: registers of one step.
+    /// The registers of one step: one per graph node, then the closed forms' constants and
+    /// intermediate values.
     pub fn registers(&self) -> usize {
         self.regs.len()
     }
@@ -576,7 +585,7 @@ impl Model {
         st.health = Health::default();
         for (b, prog) in self.blocks.iter().enumerate() {
             let w = Work { r: &mut self.regs, fac: &mut self.facs[b], cfg };
-            prog.position(&self.graph, w, &mut st.q, guess, &mut st.report)
+            prog.position(w, &mut st.q, guess, &mut st.report)
                 .map_err(|failure| StepError::Block { block: b, failure })?;
         }
         self.analogs(cfg, false)?;
@@ -687,7 +696,8 @@ impl Model {
             full(&self.pair_d2, self.unknowns.len(), &mut st.d2q);
         }
         if at { &self.at_kin.out } else { &self.outputs_seg }.run(&mut self.regs);
-        let r = &self.regs;
+        // A slice: its address and length stay in registers through the copies below.
+        let r: &[f64] = &self.regs;
         for (o, &reg) in st.out.iter_mut().zip(&self.out_regs) {
             *o = r[reg as usize];
         }
@@ -773,6 +783,7 @@ fn position_program(
     b: usize,
     bp: &BlockPlan,
     tape: &mut Builder<'_>,
+    extra: &mut Extra,
 ) -> Result<BlockProg, crate::tape::Unavailable> {
     let g = &plan.graph;
     let find = |l: Leaf| g.find(Op::Leaf(l));
@@ -814,14 +825,14 @@ fn position_program(
             let pre = tape.segment(&rec.form.coefficients(), None)?;
             let sin_cos: Vec<[Option<u32>; 2]> = rec.sin_cos.iter().map(|[s, c]| [Some(s.0), Some(c.0)]).collect();
             tape.provide(rec.sin_cos.concat());
-            let order = rec
+            let unknown_regs: Vec<Option<u32>> = rec
                 .form
                 .angles()
                 .into_iter()
                 .chain(other_unknown(&rec.form))
-                .map(|u| (u, find(Leaf::Unknown(u as u16)).map(|n| n.0)))
+                .map(|u| find(Leaf::Unknown(u as u16)).map(|n| n.0))
                 .collect();
-            (pre, How::Closed { form: rec.form.clone(), sin_cos, order })
+            (pre, How::Closed(ClosedProg::build(&rec.form, g, &unknown_regs, &sin_cos, extra)))
         }
         Solve::Newton | Solve::NewtonSparse(_) => {
             // Every unknown of a Newton block is read by its equations: its leaf is in the graph.

@@ -340,6 +340,24 @@ impl<'g> Builder<'g> {
             }
             stack.extend(self.g.op(n).operands());
         }
+        // A sine or cosine brings its partner of the same argument, when the graph has one that
+        // no segment computed yet: the two are then one instruction (one libm call for both)
+        // instead of one here and one in a later segment. The partner's value is the same
+        // wherever it is computed.
+        for k in 0..order.len() {
+            let partner = match self.g.op(order[k]) {
+                Op::Func(Func::Sin, a) => self.g.find(Op::Func(Func::Cos, a)),
+                Op::Func(Func::Cos, a) => self.g.find(Op::Func(Func::Sin, a)),
+                _ => None,
+            };
+            if let Some(p) = partner
+                && !self.known[p.index()]
+                && !std::mem::replace(&mut seen[p.index()], true)
+                && only.is_none_or(|f| f(p))
+            {
+                order.push(p);
+            }
+        }
         order.sort_unstable();
         for n in order {
             let d = n.0;
