@@ -630,7 +630,7 @@ impl Model {
                 levers.check(&mut self.regs, guess, cfg).map_err(|f| fail(StepFailure::Block(f)))?;
             }
             let w = Work { r: &mut self.regs, fac: &mut self.facs[b], cfg };
-            prog.position(&self.graph, w, &mut st.q, guess, &mut st.report).map_err(fail)?;
+            prog.position(w, &mut st.q, guess, &mut st.report).map_err(fail)?;
         }
         Ok(&self.state.q)
     }
