@@ -13,8 +13,8 @@ use kinloop_codegen::graph::dag::{Graph, NodeId};
 use kinloop_codegen::plan::closed_form::ClosedForm;
 use kinloop_runtime::NewtonConfig;
 use kinloop_runtime::generated::{
-    BlockFailure, acos_on_side, asin_near, check_closed, check_guess, dyad_roots, polar_norm, reduce_turn, root_offset,
-    sign_at_guess, unwrap_to_turn,
+    BlockFailure, acos_on_side, asin_near, check_closed, check_guess, dyad_roots, half_turn_if, polar_norm,
+    reduce_turn, root_offset, sign_at_guess, unwrap_to_turn,
 };
 use std::f64::consts::FRAC_PI_2;
 
@@ -256,6 +256,7 @@ fn polar(w: &[[V; 2]; 2], e: [V; 2], g: f64, gs: f64, cfg: &NewtonConfig) -> Res
     let a = sub(mul(w[0][0], e[1]), mul(w[1][0], e[0]));
     let b = sub(mul(w[0][1], e[1]), mul(w[1][1], e[0]));
     let r2 = add(mul(a, a), mul(b, b));
+    let q0 = (-a.val()).atan2(b.val());
     let ir = V::E(polar_norm(r2.val(), e[0].val(), e[1].val(), cfg)?);
     let (mut cq, mut sq) = (mul(b, ir).val(), neg(mul(a, ir)).val());
     let (cqv, sqv) = (V::E(cq), V::E(sq));
@@ -270,12 +271,13 @@ fn polar(w: &[[V; 2]; 2], e: [V; 2], g: f64, gs: f64, cfg: &NewtonConfig) -> Res
             -num.val() / den.val()
         }
     };
-    if s * gs < 0.0 {
+    let flip = s * gs < 0.0;
+    if flip {
         s = -s;
         cq = -cq;
         sq = -sq;
     }
-    Ok([unwrap_to_turn(sq.atan2(cq), g), s, cq, sq])
+    Ok([unwrap_to_turn(half_turn_if(q0, flip), g), s, cq, sq])
 }
 
 fn angle_slider(m: &[[V; 2]; 2], d: [V; 2], e: [V; 2], g: f64, cfg: &NewtonConfig) -> Result<[f64; 4], BlockFailure> {
