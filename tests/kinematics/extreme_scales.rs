@@ -53,6 +53,32 @@ with_newton_twin! {
     }
 }
 
+with_newton_twin! {
+    /// The gear-lever drive's polar length (`kinloop_fixtures::gear_lever`): a pin on a carrier
+    /// and a planet, read as the distance `s` and angle `phi` of a block on a rocker. The
+    /// closed form's angle is `atan2` of the pin's unnormalised coordinates, which stay in
+    /// range wherever their squares do.
+    pub struct PolarPin, PolarPinNewton {
+        params l_c, l_p, u;
+        input alpha;
+        unknowns s = l_c + l_p, phi = 0;
+        let pin = (l_c * sin(alpha), l_c * cos(alpha))
+                + (l_p * sin((1 - u) * alpha), l_p * cos((1 - u) * alpha));
+        loop oab: pin == s * (sin(phi), cos(phi));
+        point b = pin;
+    }
+}
+
+/// The gear-lever's pin at size `k` (carrier 2, planet pin 1.3 times `k`; the ratio is no
+/// length).
+fn polar_pin(k: f64) -> PolarPin {
+    PolarPin { l_c: 2.0 * k, l_p: 1.3 * k, u: 3.0 }
+}
+
+fn polar_pin_newton(k: f64) -> PolarPinNewton {
+    PolarPinNewton { l_c: 2.0 * k, l_p: 1.3 * k, u: 3.0 }
+}
+
 /// The chain at size `k` (every four-bar's links 1, 3.5, 3, 4 times `k`).
 fn chain(k: f64) -> FourBarChain {
     FourBarChain { a: k, b: 3.5 * k, c: 3.0 * k, d: 4.0 * k }
@@ -81,10 +107,12 @@ fn slider_crank_newton(k: f64) -> SliderCrankNewton {
 }
 
 /// Every tenth power of ten from `1e-300` to `1e300`, and powers of two next to the ends of
-/// the closed forms' own range (`2^±480`) and of `f64`'s.
+/// the closed forms' own range (`2^±480`; `2^±509` and `2^±511` for a polar length, whose
+/// squares leave `f64`'s normal range at about `2^±511`) and of `f64`'s.
 fn scales() -> Vec<f64> {
     let mut k: Vec<f64> = (-30..=30).map(|e| 10f64.powi(10 * e)).collect();
     k.extend([2f64.powi(480), 2f64.powi(481), 2f64.powi(-480), 2f64.powi(-481), 2f64.powi(1000), 2f64.powi(-1000)]);
+    k.extend([2f64.powi(509), 2f64.powi(511), 2f64.powi(-509), 2f64.powi(-511)]);
     k
 }
 
@@ -182,6 +210,19 @@ fn slider_crank_solves_at_every_scale() {
     assert!(closed <= SCALE_TOL && newton <= SCALE_TOL, "{closed:e} {newton:e}");
     let swept = sweeps(slider_crank, [false, true]);
     assert!(swept <= SCALE_TOL, "slider-crank sweeps differ by {swept:e}");
+}
+
+/// The polar length's angle is `atan2` of the pin's coordinates as they are, not normalised:
+/// near the ends of the range (the pin's squared distance subnormal or overflowing, where the
+/// closed form hands the block to Newton) and everywhere between, the scale-1 angles.
+#[test]
+fn a_polar_length_solves_at_every_scale() {
+    let closed = point_solves(polar_pin, [true, false]);
+    let newton = point_solves(polar_pin_newton, [true, false]);
+    eprintln!("polar pin point solves over scales: closed form {closed:.1e}, Newton {newton:.1e}");
+    assert!(closed <= SCALE_TOL && newton <= SCALE_TOL, "{closed:e} {newton:e}");
+    let swept = sweeps(polar_pin, [true, false]);
+    assert!(swept <= SCALE_TOL, "polar pin sweeps differ by {swept:e}");
 }
 
 /// A mechanism of more unknowns than a sweep inlines has its own `kinematics_flat`; a failure
