@@ -18,8 +18,8 @@ use kinloop_codegen::graph::dag::{Graph, NodeId};
 use kinloop_codegen::plan::closed_form::ClosedForm;
 use kinloop_runtime::NewtonConfig;
 use kinloop_runtime::generated::{
-    BlockFailure, acos_on_side, asin_near, check_closed, check_guess, dyad_roots, polar_norm, reduce_turn, root_offset,
-    sign_at_guess, unwrap_to_turn,
+    BlockFailure, acos_on_side, asin_near, check_closed, check_guess, dyad_roots, half_turn_if, polar_norm,
+    reduce_turn, root_offset, sign_at_guess, unwrap_to_turn,
 };
 use std::collections::HashMap;
 use std::f64::consts::FRAC_PI_2;
@@ -151,6 +151,21 @@ enum Op {
         sq: u32,
         gs: u32,
     },
+    /// `d = s.atan2(c)`.
+    Atan2 {
+        d: u32,
+        s: u32,
+        c: u32,
+    },
+    /// A polar angle: `d = unwrap_to_turn(half_turn_if(q0, s gs < 0), g)`, read before
+    /// [`Op::PolarSide`] negates `s`.
+    PolarAngle {
+        d: u32,
+        q0: u32,
+        s: u32,
+        gs: u32,
+        g: u32,
+    },
     /// `d = unwrap_to_turn(s.atan2(c), g)`.
     Atan2Unwrap {
         d: u32,
@@ -198,6 +213,8 @@ impl Op {
             Op::RootOffset { d, d2, r2, c, flip } => vec![d, d2, r2, c, flip],
             Op::PolarNorm { d, r2, e0, e1 } => vec![d, r2, e0, e1],
             Op::PolarSide { s, cq, sq, gs } => vec![s, cq, sq, gs],
+            Op::Atan2 { d, s, c } => vec![d, s, c],
+            Op::PolarAngle { d, q0, s, gs, g } => vec![d, q0, s, gs, g],
             Op::Atan2Unwrap { d, s, c, g } | Op::AcosUnwrap { d, c, s, g } => vec![d, s, c, g],
             Op::AsinNear { d, s, right, r, g } => vec![d, s, right, r, g],
             Op::Check { out, len, .. } => out[..*len as usize].iter_mut().collect(),
@@ -331,6 +348,10 @@ impl ClosedProg {
                             set(cq, -v(cq));
                             set(sq, -v(sq));
                         }
+                    }
+                    Op::Atan2 { d, s, c } => set(d, v(s).atan2(v(c))),
+                    Op::PolarAngle { d, q0, s, gs, g } => {
+                        set(d, unwrap_to_turn(half_turn_if(v(q0), v(s) * v(gs) < 0.0), v(g)));
                     }
                     Op::Atan2Unwrap { d, s, c, g } => set(d, unwrap_to_turn(v(s).atan2(v(c)), v(g))),
                     Op::AcosUnwrap { d, c, s, g } => set(d, unwrap_to_turn(acos_on_side(v(c), v(s)), v(g))),
@@ -659,6 +680,11 @@ impl Build<'_> {
         let b = self.sub(x, y);
         let (aa, bb) = (self.mul(a, a), self.mul(b, b));
         let r2 = self.add(aa, bb);
+        // The angle from the unnormalised direction `(-a, b)`, as the emitted code takes it (it
+        // need not wait for the normalisation); a half turn below when the length flips it.
+        let na = self.neg(a);
+        let (na, br) = (self.reg(na), self.reg(b));
+        let q0 = self.op(|d| Op::Atan2 { d, s: na, c: br });
         let (r2, e0, e1) = (self.reg(r2), self.reg(e[0]), self.reg(e[1]));
         let ir = self.op(|d| Op::PolarNorm { d, r2, e0, e1 });
         let c0 = self.mul(b, ir);
@@ -683,8 +709,9 @@ impl Build<'_> {
         };
         let s = self.place(s, targets[1]);
         let (c, sr) = (targets[2], targets[3]);
+        let q0 = self.reg(q0);
+        let q = self.op(|d| Op::PolarAngle { d, q0, s, gs, g });
         self.ops.push(Op::PolarSide { s, cq: c, sq: sr, gs });
-        let q = self.op(|d| Op::Atan2Unwrap { d, s: sr, c, g });
         [q, V::R(s), cq, sq]
     }
 

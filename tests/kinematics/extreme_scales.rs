@@ -12,7 +12,7 @@
 
 use kinloop::{Kin, Mechanism, NewtonConfig, Sweep};
 
-use crate::support::tol;
+use crate::support::{gear_lever_explicit, tol, wrap};
 
 with_newton_twin! {
     /// Four-bar (RRR dyad) with a coupler point.
@@ -51,6 +51,28 @@ with_newton_twin! {
         loop l5: a @ g4 + b @ b5 == (d, 0) + c @ g5;
         point p5 = (d, 0) + c @ g5;
     }
+}
+
+kinloop::mechanism! {
+    /// The gear-lever drive's polar length (`kinloop_fixtures::gear_lever`): a pin on a carrier
+    /// and a planet, read as the distance `s` and angle `phi` of a block on a rocker. The
+    /// closed form's angle is `atan2` of the pin's unnormalised coordinates, which stay in
+    /// range wherever their squares do.
+    pub struct PolarPin {
+        params l_c, l_p, u;
+        input alpha;
+        unknowns s = l_c + l_p, phi = 0;
+        let pin = (l_c * sin(alpha), l_c * cos(alpha))
+                + (l_p * sin((1 - u) * alpha), l_p * cos((1 - u) * alpha));
+        loop oab: pin == s * (sin(phi), cos(phi));
+        point b = pin;
+    }
+}
+
+/// The gear-lever's pin at size `k` (carrier 2, planet pin 1.3 times `k`; the ratio is no
+/// length).
+fn polar_pin(k: f64) -> PolarPin {
+    PolarPin { l_c: 2.0 * k, l_p: 1.3 * k, u: 3.0 }
 }
 
 /// The chain at size `k` (every four-bar's links 1, 3.5, 3, 4 times `k`).
@@ -121,10 +143,19 @@ fn point_solves<M: Mechanism<N, 1, NO>, const N: usize, const NO: usize>(
     at: impl Fn(f64) -> M,
     lengths: [bool; N],
 ) -> f64 {
+    point_solves_at(at, lengths, &scales())
+}
+
+/// [`point_solves`] at the scales `ks`.
+fn point_solves_at<M: Mechanism<N, 1, NO>, const N: usize, const NO: usize>(
+    at: impl Fn(f64) -> M,
+    lengths: [bool; N],
+    ks: &[f64],
+) -> f64 {
     let cfg = NewtonConfig::default();
     let one = at(1.0);
     let mut worst = 0.0f64;
-    for k in scales() {
+    for &k in ks {
         let m = at(k);
         for i in 0..12 {
             let x = [0.3 + i as f64 * 0.5];
@@ -141,6 +172,15 @@ fn point_solves<M: Mechanism<N, 1, NO>, const N: usize, const NO: usize>(
 /// A sweep of a turn in 73 samples at every scale against the one at scale 1: the largest
 /// difference over all samples.
 fn sweeps<M: Mechanism<N, 1, NO>, const N: usize, const NO: usize>(at: impl Fn(f64) -> M, lengths: [bool; N]) -> f64 {
+    sweeps_at(at, lengths, &scales())
+}
+
+/// [`sweeps`] at the scales `ks`.
+fn sweeps_at<M: Mechanism<N, 1, NO>, const N: usize, const NO: usize>(
+    at: impl Fn(f64) -> M,
+    lengths: [bool; N],
+    ks: &[f64],
+) -> f64 {
     let run = |m: &M| -> Vec<Kin<N, 1, NO>> {
         Sweep::<M, Kin<N, 1, NO>, N, 1, NO>::new(m, [0.3], [0.3 + std::f64::consts::TAU], 73, m.guess_flat(&[0.3]))
             .unwrap()
@@ -149,7 +189,7 @@ fn sweeps<M: Mechanism<N, 1, NO>, const N: usize, const NO: usize>(at: impl Fn(f
     };
     let base = run(&at(1.0));
     let mut worst = 0.0f64;
-    for k in scales() {
+    for &k in ks {
         let got = run(&at(k));
         assert_eq!(got.len(), base.len(), "{} at size {k:e}", M::NAME);
         for (g, b) in got.iter().zip(&base) {
@@ -182,6 +222,37 @@ fn slider_crank_solves_at_every_scale() {
     assert!(closed <= SCALE_TOL && newton <= SCALE_TOL, "{closed:e} {newton:e}");
     let swept = sweeps(slider_crank, [false, true]);
     assert!(swept <= SCALE_TOL, "slider-crank sweeps differ by {swept:e}");
+}
+
+/// The polar length's angle is `atan2` of the pin's coordinates as they are, not normalised:
+/// at every size where the normalisation's squares stay in range (up to `2^±509`, and `2^-511`,
+/// whose squares are just normal), the scale-1 angles. The reference is the scale-1 solve,
+/// checked here against paper 001's explicit polar coordinates of the pin (a Newton twin is no
+/// reference: declared `#[kinloop(newton)]`, this block stalls from its declared guess at some
+/// sizes, 1e20 among them).
+#[test]
+fn a_polar_length_solves_at_every_scale_of_its_closed_form() {
+    let one = polar_pin(1.0);
+    let cfg = NewtonConfig::default();
+    for i in 0..12 {
+        let x = [0.3 + i as f64 * 0.5];
+        let k = one.kinematics_flat(&x, &one.guess_flat(&x), &cfg).unwrap();
+        let [phi, omega, _, s, ds, _] = gear_lever_explicit(2.0, 1.3, 3.0, x[0]);
+        assert_close!(wrap(k.q[1] - phi), 0.0, tol::ULPS, "phi at {x:?}");
+        assert_close!(k.q[0], s, tol::ULPS, "s at {x:?}");
+        assert_close!(k.dq[1][0], omega, tol::ULPS * omega.abs().max(1.0), "phi' at {x:?}");
+        assert_close!(k.dq[0][0], ds, tol::ULPS * ds.abs().max(1.0), "s' at {x:?}");
+    }
+    let mut ks: Vec<f64> = scales().into_iter().filter(|k| k.log2().abs() <= 509.0).collect();
+    ks.extend([2f64.powi(509), 2f64.powi(-509), 2f64.powi(-511)]);
+    // `SCALE_TOL` of the analogs' largest magnitude, about 30 at these inputs (the pin passes
+    // near the rocker's pivot): the differences are absolute.
+    const POLAR_TOL: f64 = 30.0 * SCALE_TOL;
+    let closed = point_solves_at(polar_pin, [true, false], &ks);
+    eprintln!("polar pin point solves over scales: closed form {closed:.1e}");
+    assert!(closed <= POLAR_TOL, "{closed:e}");
+    let swept = sweeps_at(polar_pin, [true, false], &ks);
+    assert!(swept <= POLAR_TOL, "polar pin sweeps differ by {swept:e}");
 }
 
 /// A mechanism of more unknowns than a sweep inlines has its own `kinematics_flat`; a failure

@@ -445,7 +445,10 @@ fn dyad(
 }
 
 /// `s w(q) + e = 0`: `w(q) ∥ e` gives `q` up to a half turn, `s = -(w·e) / |w|²`; the half turn
-/// that keeps the guessed length's sign.
+/// that keeps the guessed length's sign. The angle is `atan2` of the unnormalised direction
+/// `(-a, b)`, called at once in a point step (it need not wait for the normalisation's division
+/// and square root, which only the sine, cosine and length read), turned by a half turn when
+/// the length's sign flips the direction.
 fn polar(w: &[[NodeId; 2]; 2], e: &[NodeId; 2], u: usize, gs: &TokenStream, cx: &Context) -> TokenStream {
     let w = cx.m(w);
     let e = e.map(|n| cx.v(n));
@@ -454,6 +457,15 @@ fn polar(w: &[[NodeId; 2]; 2], e: &[NodeId; 2], u: usize, gs: &TokenStream, cx: 
     let b = bind(&mut out, "__b", sub(&mul(&w[0][1], &e[1]), &mul(&w[1][1], &e[0])));
     let r2 = add(&mul(&a, &a), &mul(&b, &b));
     let (e0, e1, rt) = (&e[0], &e[1], cx.rt);
+    // Not folded: `-a` keeps the sign of a zero, as the run-time model's `-a` does.
+    let direction = quote!((-(#a)).atan2(#b));
+    // A sweep's kernel asks its cache for the angle, which calls libm only when it must.
+    let q0 = if cx.trig {
+        direction
+    } else {
+        out.extend(quote!(let __q0: f64 = #direction;));
+        quote!(__q0)
+    };
     let f = if cx.deferred { quote!(__mode.polar_norm) } else { quote!(#rt::polar_norm) };
     out.extend(quote!(let __ir: f64 = #f(#r2, #e0, #e1, __cfg).map_err(__fail)?;));
     let ir = local("__ir");
@@ -475,10 +487,12 @@ fn polar(w: &[[NodeId; 2]; 2], e: &[NodeId; 2], u: usize, gs: &TokenStream, cx: 
             V::E(quote!((-#num / #den)))
         }
     };
-    let q = unwrapped(u, quote!(__sq), quote!(__cq), cx);
+    let exact = on_turn(quote!(#rt::half_turn_if(#q0, __flip)), &guess_of(u), cx);
+    let q = angle_of(u, quote!(__sq), quote!(__cq), exact, cx);
     out.extend(quote! {
         let mut __s: f64 = #s;
-        if __s * #gs < 0.0 {
+        let __flip: bool = __s * #gs < 0.0;
+        if __flip {
             __s = -__s;
             __cq = -__cq;
             __sq = -__sq;

@@ -37,6 +37,23 @@ pub fn unwrap_to_turn(q: f64, guess: f64) -> f64 {
     q + TAU * whole_turns((guess - q) * (1.0 / TAU))
 }
 
+/// The angle `q` of `[-π, π]` turned by a half turn when `flip` holds, kept in `[-π, π]`: the
+/// angle of the reversed direction. A polar length's angle is `atan2` of its direction before
+/// the length's sign is known (the call need not wait for the sign, nor for the direction's
+/// normalisation); reversing it costs one rounding of `π`'s size, below `4.5e-16` rad.
+///
+/// ```
+/// use kinloop_runtime::generated::half_turn_if;
+/// use std::f64::consts::PI;
+/// assert_eq!(half_turn_if(0.5, false), 0.5);
+/// assert!((half_turn_if(0.5, true) - (0.5 - PI)).abs() < 1e-15);
+/// assert!((half_turn_if(-3.0, true) - (PI - 3.0)).abs() < 1e-15);
+/// ```
+#[inline(always)]
+pub fn half_turn_if(q: f64, flip: bool) -> f64 {
+    if flip { q - PI.copysign(q) } else { q }
+}
+
 /// `g` reduced to `[-π, π]` (the signs of its sine and cosine without libm).
 #[inline]
 pub fn reduce_turn(g: f64) -> f64 {
@@ -426,6 +443,28 @@ mod tests {
             assert!((cq * cq + sq * sq - 1.0).abs() < 1e-15);
             assert_eq!(b * cq - a * sq > 0.0, flip);
         }
+    }
+
+    /// The half turn of an angle is the angle of the reversed direction (libm's `atan2` of the
+    /// negated components, exact negations) to the rounding of one addition of `π`'s size, in
+    /// `[-π, π]`, for directions all round the circle and at scales where the direction's
+    /// squares under- or overflow.
+    #[test]
+    fn the_half_turn_is_the_angle_of_the_reversed_direction() {
+        for scale in [1.0, 1e-300, 5e-324 * 1e3, 1e300, f64::MAX / 4.0] {
+            for i in 0..=96 {
+                let t = -PI + TAU * i as f64 / 96.0;
+                let (y, x) = (scale * t.sin(), scale * t.cos());
+                let reversed = half_turn_if(y.atan2(x), true);
+                let want = (-y).atan2(-x);
+                // Both in `[-π, π]`; at `±π` either sign names the same direction.
+                let d = (reversed - want).abs();
+                assert!(d <= 4.5e-16 || (TAU - d).abs() <= 4.5e-16, "{scale:e} {t}: {reversed} {want}");
+                assert!(reversed.abs() <= PI, "{reversed}");
+                assert_eq!(half_turn_if(y.atan2(x), false), y.atan2(x));
+            }
+        }
+        assert!(half_turn_if(f64::NAN, true).is_nan());
     }
 
     #[test]

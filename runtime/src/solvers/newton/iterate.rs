@@ -79,7 +79,7 @@ pub(super) fn iterate<const N: usize, const K: usize, J: BlockJacobian<N>>(
         // fixed scales was judged by that step.
         let (rho, phi) = match it.judged.take() {
             Some(judged) => judged,
-            None if it.iterations == 0 => (rho0, sum_sq_scaled(&it.ev.f, s)),
+            None if it.iterations == 0 => (rho0, sum_sq_scaled(&it.ev.f, rows)),
             None => scaled_norms(&it.ev.f, rows),
         };
         // A residual that is not finite makes the sum of squares infinite or NaN (which it
@@ -123,7 +123,7 @@ pub(super) fn iterate<const N: usize, const K: usize, J: BlockJacobian<N>>(
         let newton_ok = pivot > cfg.singular_tol * 1e-3 && step.is_finite();
         // At the rounding floor only the Newton step is worth trying.
         let moved = (newton_ok && it.full_step(&dz, pivot, rows, fixed_rows, phi, cfg, &mut eval))
-            || (rho > floor && it.descend(s, cfg, &mut eval));
+            || (rho > floor && it.descend(rows, cfg, &mut eval));
         if !moved {
             if rho <= floor {
                 // No step decreases a residual already at its rounding floor.
@@ -251,7 +251,7 @@ impl<const N: usize, const K: usize, J: BlockJacobian<N>> Iter<'_, N, K, J> {
         self.evaluations += 1;
         let m = magnitudes_at!(mags, self.ev, after);
         let rows = rows_at!(m, self.ev, fallback);
-        let moved_rho = scaled_residual(&self.ev.f, &rows.s);
+        let moved_rho = scaled_residual(&self.ev.f, rows);
         let (dz, _) = newton_step(self.ev, rows);
         let finite = dz.iter().all(|v| v.is_finite());
         self.evaluations += u32::from(finite);

@@ -183,7 +183,7 @@ fn newton_last<const N: usize, const K: usize, J: BlockJacobian<N>>(
     let (current, fallback);
     let m = magnitudes_at!(mags, ev, current);
     let rows = rows_at!(m, ev, fallback);
-    let rho = scaled_residual(&ev.f, &rows.s);
+    let rho = scaled_residual(&ev.f, rows);
     // NaN fails both tests; an out-of-range tolerance is diagnosed by `iterate`.
     if rho <= cfg.residual_tol
         && cfg.residual_tol <= 1e-3

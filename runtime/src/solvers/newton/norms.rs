@@ -5,18 +5,25 @@ use crate::solvers::lu::{RowScales, largest};
 use core::f64::consts::PI;
 
 /// `max_i |f_i| / s_i`; NaN propagates, a non-zero residual over a zero scale is infinite.
+/// With valid scales, `|f_i| · (1 / s_i)`: the reciprocals the equilibration made once
+/// (`RowScales::inv`), by which the Newton step scales the same residuals, not a division per
+/// row each time.
 #[inline(always)]
-pub(super) fn scaled_residual<const N: usize>(f: &[f64; N], s: &[f64; N]) -> f64 {
+pub(super) fn scaled_residual<const N: usize>(f: &[f64; N], rows: &RowScales<N>) -> f64 {
+    if !rows.degenerate {
+        return largest::<N>(core::array::from_fn(|r| f[r].abs() * rows.inv[r]));
+    }
+    let s = &rows.s;
     largest::<N>(core::array::from_fn(|r| {
         let a = f[r].abs();
         if a == 0.0 { 0.0 } else { a / s[r] }
     }))
 }
 
-/// [`scaled_residual`] and [`sum_sq_scaled`] in one pass (one division per row). The maximum
-/// skips a NaN (one `maxsd` per row): the sum of squares, which the callers test first, does
-/// not. Valid scales need no test of a zero residual (measured: the loop without it is 80
-/// instructions a class IV step cheaper than one loop with the test made conditional).
+/// [`scaled_residual`] and [`sum_sq_scaled`] in one pass. The maximum skips a NaN (one `maxsd`
+/// per row): the sum of squares, which the callers test first, does not. Valid scales need no
+/// test of a zero residual (measured: the loop without it is 80 instructions a class IV step
+/// cheaper than one loop with the test made conditional), nor a division: their reciprocals.
 #[inline(always)]
 pub(super) fn scaled_norms<const N: usize>(f: &[f64; N], rows: &RowScales<N>) -> (f64, f64) {
     let s = &rows.s;
@@ -32,7 +39,7 @@ pub(super) fn scaled_norms<const N: usize>(f: &[f64; N], rows: &RowScales<N>) ->
         }
     } else {
         for r in 0..N {
-            let v = f[r] / s[r];
+            let v = f[r] * rows.inv[r];
             let a = v.abs();
             m = if a > m { a } else { m };
             acc += v * v;
@@ -65,10 +72,12 @@ pub(super) fn beyond_half_turn<const N: usize>(z: &[f64; N], guess: &[f64; N]) -
     far
 }
 
-pub(super) fn sum_sq_scaled<const N: usize>(f: &[f64; N], s: &[f64; N]) -> f64 {
+/// `sum_i (f_i / s_i)²` (infinite for NaN), by the reciprocals of valid scales as
+/// [`scaled_norms`].
+pub(super) fn sum_sq_scaled<const N: usize>(f: &[f64; N], rows: &RowScales<N>) -> f64 {
     let mut acc = 0.0;
     for r in 0..N {
-        let v = f[r] / s[r];
+        let v = if rows.degenerate { f[r] / rows.s[r] } else { f[r] * rows.inv[r] };
         acc += v * v;
     }
     if acc.is_nan() { f64::INFINITY } else { acc }

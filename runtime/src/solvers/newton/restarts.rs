@@ -160,7 +160,7 @@ fn residual_at<const N: usize, const K: usize, J: BlockJacobian<N>>(
     let (current, fallback);
     let m = magnitudes_at!(mags, ev, current);
     let rows = rows_at!(m, ev, fallback);
-    scaled_residual(&ev.f, &rows.s)
+    scaled_residual(&ev.f, rows)
 }
 
 #[cfg(test)]

@@ -53,7 +53,7 @@ impl<const N: usize, const K: usize, J: BlockJacobian<N>> Iter<'_, N, K, J> {
             self.judged = if fixed_rows { Some((rho, phi)) } else { None };
             return true;
         }
-        self.rejected(dz, s, phi0, slope, cfg, eval)
+        self.rejected(dz, rows, phi0, slope, cfg, eval)
     }
 
     /// After a rejected full step (its evaluation in `self.ev`): backtracking from half the
@@ -65,13 +65,13 @@ impl<const N: usize, const K: usize, J: BlockJacobian<N>> Iter<'_, N, K, J> {
     fn rejected(
         &mut self,
         dz: &[f64; N],
-        s: &[f64; N],
+        rows: &RowScales<N>,
         phi0: f64,
         slope: f64,
         cfg: &NewtonConfig,
         eval: &mut impl FnMut(&[f64; N]) -> BlockEval<N, K, J>,
     ) -> bool {
-        if self.search(dz, s, phi0, slope, 0.5, cfg, eval) {
+        if self.search(dz, rows, phi0, slope, 0.5, cfg, eval) {
             return true;
         }
         *self.ev = eval(&self.z);
@@ -88,7 +88,7 @@ impl<const N: usize, const K: usize, J: BlockJacobian<N>> Iter<'_, N, K, J> {
     fn search(
         &mut self,
         dz: &[f64; N],
-        s: &[f64; N],
+        rows: &RowScales<N>,
         phi0: f64,
         slope: f64,
         mut t: f64,
@@ -102,7 +102,7 @@ impl<const N: usize, const K: usize, J: BlockJacobian<N>> Iter<'_, N, K, J> {
             }
             let ev_t = eval(&trial);
             self.evaluations += 1;
-            let phi = sum_sq_scaled(&ev_t.f, s);
+            let phi = sum_sq_scaled(&ev_t.f, rows);
             if phi <= phi0 + 1e-4 * t * slope {
                 self.z = trial;
                 *self.ev = ev_t;
@@ -120,10 +120,11 @@ impl<const N: usize, const K: usize, J: BlockJacobian<N>> Iter<'_, N, K, J> {
     #[inline(never)]
     pub(super) fn descend(
         &mut self,
-        s: &[f64; N],
+        rows: &RowScales<N>,
         cfg: &NewtonConfig,
         eval: &mut impl FnMut(&[f64; N]) -> BlockEval<N, K, J>,
     ) -> bool {
+        let s = &rows.s;
         let (a, g) = normal_equations(self.ev, s);
         let trace: f64 = (0..N).map(|k| a[k][k]).sum();
         if !(trace > 0.0 && trace.is_finite()) {
@@ -146,9 +147,9 @@ impl<const N: usize, const K: usize, J: BlockJacobian<N>> Iter<'_, N, K, J> {
             if !dz.iter().all(|v| v.is_finite()) {
                 continue;
             }
-            let phi0 = sum_sq_scaled(&self.ev.f, s);
+            let phi0 = sum_sq_scaled(&self.ev.f, rows);
             let slope = directional_slope(self.ev, s, &dz);
-            if !(slope.is_nan() || slope >= 0.0) && self.search(&dz, s, phi0, slope, 1.0, cfg, eval) {
+            if !(slope.is_nan() || slope >= 0.0) && self.search(&dz, rows, phi0, slope, 1.0, cfg, eval) {
                 return true;
             }
         }

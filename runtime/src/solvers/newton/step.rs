@@ -52,7 +52,7 @@ pub(super) fn evaluated_correction<const N: usize, const K: usize, J: BlockJacob
     let ev1 = eval(&z1);
     let (current, fallback);
     let m = magnitudes_at!(mags, &ev1, current);
-    let rho = scaled_residual(&ev1.f, &rows_at!(m, &ev1, fallback).s);
+    let rho = scaled_residual(&ev1.f, rows_at!(m, &ev1, fallback));
     if rho <= bound {
         *z = z1;
         *ev = ev1;
