@@ -153,6 +153,7 @@ mod paths;
 mod sensitivities;
 pub mod source;
 mod sparse;
+mod synthesis;
 mod tape;
 
 pub use analysis::ModelSampled;
@@ -166,3 +167,4 @@ pub use paths::{ModelTraced, ParamScanConfig, ParamScanStart};
 pub use sensitivities::Sensitivities;
 pub use source::{Diagnostic, Diagnostics, Level};
 pub use sparse::MAX_SPARSE;
+pub use synthesis::{ModelProblem, ModelSens};

@@ -105,12 +105,12 @@ impl Model {
     }
 }
 
-impl ModelKernel<'_> {
+impl<'a> ModelKernel<'a> {
     /// The error of a failed step at `x`, with the model's names: the variant the compiled
     /// mechanism's step returns for the same failure (`block_error`, the runtime's own), its
     /// location naming the model, its inputs and the failed block's unknowns and equations, and
     /// the equation it names the block's own (owned names, as the compiled ones are constants).
-    fn error(&self, e: StepError, x: &[f64], cfg: &NewtonConfig) -> Error {
+    pub(crate) fn error(&self, e: StepError, x: &[f64], cfg: &NewtonConfig) -> Error {
         match e {
             StepError::Block { block, failure: StepFailure::Singular { pivot_ratio } } => {
                 Error::Singular { pivot_ratio, tolerance: cfg.singular_tol, at: self.location(x, Some(block)) }
@@ -132,8 +132,13 @@ impl ModelKernel<'_> {
         }
     }
 
+    /// The model lent (the synthesis sets its parameters through it).
+    pub(crate) fn model(&self) -> &RefCell<&'a mut Model> {
+        &self.model
+    }
+
     /// The model's state into `into`.
-    fn copy_state(st: &State, into: &mut KinBuf) {
+    pub(crate) fn copy_state(st: &State, into: &mut KinBuf) {
         into.x.copy_from_slice(&st.x);
         into.q.copy_from_slice(&st.q);
         into.dq.copy_from_slice(&st.dq);
