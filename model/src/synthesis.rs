@@ -198,3 +198,12 @@ impl ModelKernel<'_> {
         old
     }
 }
+
+/// The kernel by the model it lends (so that a [`ModelProblem`] is `Debug`, as a compiled
+/// `Problem` is: `unwrap_err` on its result).
+impl std::fmt::Debug for ModelKernel<'_> {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        let d = self.dims();
+        f.debug_struct("ModelKernel").field("name", &self.name()).field("sizes", &d).finish_non_exhaustive()
+    }
+}
