@@ -111,12 +111,18 @@
 //! Each lends the model with the default solver configuration; the generic functions take
 //! any kernel, `m.kernel(config)`.
 //!
-//! Still on compiled sizes (`Mechanism<N, NI, NO>` and `Kin<N, NI, NO>`): sensitivities-based
-//! synthesis and the objectives with parameter gradients (`Sensitivities<N, NI, NO, NP>`), the
-//! forward simulation of the dynamics (the inverse dynamics is served: see above), and the
-//! parallel scan (`par_scan`: a model is one workspace, lent to one sweep at a time). Each needs
-//! its state and result types over `Dims` as the sweep's are, and the kernel methods it calls
-//! (`sensitivities`) added to `Kernel`.
+//! Synthesis is served too: the runtime's `synthesis` is written once over `SensKernel` (a
+//! `Kernel` with parameters to set and the sensitivities of its states), which the model's
+//! kernel implements; [`Model::synthesis_problem`] gives the problem ([`ModelProblem`]) that
+//! `Search::run` solves with the compiled mechanism's code, to the same candidates bit for bit
+//! (`tests/synthesis.rs`). A search over a model runs one evaluation after the other (`par_run`
+//! needs a problem shared between threads; a model is one workspace).
+//!
+//! Still on compiled sizes (`Mechanism<N, NI, NO>` and `Kin<N, NI, NO>`): the objectives with
+//! parameter gradients (`Sensitivities<N, NI, NO, NP>`), the forward simulation of the dynamics
+//! (the inverse dynamics is served: see above), and the parallel scan (`par_scan`: a model is
+//! one workspace, lent to one sweep at a time). Each needs its state and result types over
+//! `Dims` as the sweep's are.
 //!
 //! A run-time model's errors and events name the model, its inputs and the failed or singular
 //! block's unknowns and equations as the compiled mechanism's do, with owned strings (the names
