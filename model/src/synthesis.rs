@@ -110,6 +110,8 @@ impl SensKernel for ModelKernel<'_> {
     /// `f` called with the model's parameters set to `p`, its own put back after it (so that
     /// calls nest). `p` has one value per parameter.
     fn with_params<R>(&self, p: &[f64], f: impl FnOnce(&Self) -> R) -> R {
+        let np = self.param_count();
+        assert_eq!(p.len(), np, "{} values for the {np} parameters of `{}`", p.len(), self.name());
         let old = self.set_all(p.iter().copied().map(Some).collect());
         let r = f(self);
         self.set_all(old);

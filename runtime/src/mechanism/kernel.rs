@@ -373,6 +373,10 @@ pub trait SensKernel: Kernel {
     /// declaration order): a compiled mechanism gives `f` a copy with those values (so that a
     /// kernel shared between threads is never changed); a kernel over one workspace (a run-time
     /// model) sets them for the call and puts its own back after it.
+    ///
+    /// # Panics
+    ///
+    /// Where `p` has another length than [`SensKernel::param_count`].
     fn with_params<R>(&self, p: &[f64], f: impl FnOnce(&Self) -> R) -> R;
     /// Sensitivities of the right sizes, zero (the buffer [`SensKernel::sensitivities_into`]
     /// writes into).
