@@ -41,6 +41,9 @@ pub struct Request<'a> {
 /// Runs the search and writes its ranked candidates: success when one is valid, exit code 1
 /// when none is.
 pub fn run(model: &mut Model, req: &Request) -> Result<(), Failed> {
+    if req.keep == 0 {
+        return Err(exit::usage("--keep 0 would write no candidate: keep at least 1"));
+    }
     let design = design(req.vary)?;
     let rows = read_targets(req.targets)?;
     let task = task(model, req, &rows)?;
