@@ -11,11 +11,12 @@
 //! kinloop extremes four_bar.kl --from 0 --to 360 --deg --table   # each unknown's min and max
 //! kinloop animate four_bar.kl --from 0 --to 360 --samples 91 --deg --out four_bar.svg
 //! kinloop animate five_bar.kl --grid --from 0,0.4 --to 3,3 --samples 9,7 --out five_bar.html
+//! kinloop synth coupler_four_bar.kl --targets points.csv --path p --vary a=0.5..2,b=2..4 --starts 64
 //! ```
 //!
 //! Long sweeps (from 2000 samples) show a progress bar on standard error when it is a terminal.
 //!
-//! Exit codes ([`exit`]): 0 success, 1 a solve failed, 2 a usage error, 65 the declaration is
+//! Exit codes ([`exit`]): 0 success, 1 a solve failed (for `synth`: no valid candidate), 2 a usage error, 65 the declaration is
 //! rejected (diagnostics on standard error), 66 the file cannot be read, 69 the declaration uses
 //! what the run-time evaluator does not evaluate yet, 73 the `--events` file (or the
 //! `animate --out` file) cannot be created, 74 an output cannot be written.
@@ -31,6 +32,7 @@ mod samples;
 mod simulate;
 mod solve;
 mod sweep;
+mod synth;
 
 use clap::{Parser, Subcommand};
 use kinloop_model::{Model, ReadError};
@@ -244,6 +246,53 @@ enum Command {
         #[arg(long)]
         frames: Option<usize>,
     },
+    /// Dimensional synthesis: finds values of the design variables (`--vary`) for which the
+    /// point `--path` passes through the targets, or the output of `--function` takes them, by
+    /// Levenberg–Marquardt from `--starts` Halton starts; verifies every candidate by a
+    /// branch-safe sweep through the targets in order, and writes the ranked candidates with
+    /// their defects (branch, circuit, order) as a table or CSV. Exit code 1 when no candidate
+    /// is valid. The declaration needs `#[kinloop(sensitivities)]`.
+    Synth {
+        /// The declaration (`.kl`), with `#[kinloop(sensitivities)]`.
+        file: PathBuf,
+        /// The targets, CSV: rows `x,y` (a path, inputs free along `--range`), `input,x,y` (a
+        /// path at given inputs) or `input,output` (a function); a header line and `#`
+        /// comments are skipped.
+        #[arg(long, value_name = "FILE")]
+        targets: PathBuf,
+        /// The point whose path goes through the targets.
+        #[arg(long, value_name = "POINT", conflicts_with = "function")]
+        path: Option<String>,
+        /// The function generated: the input and the unknown or output that follows it.
+        #[arg(long, value_name = "INPUT:OUTPUT")]
+        function: Option<String>,
+        /// The design variables with their bounds, in the declaration's units (parameters, not
+        /// converted by `--deg`).
+        #[arg(long, value_name = "NAME=LO..HI,...", allow_hyphen_values = true)]
+        vary: String,
+        /// The input range of path targets without inputs (a full turn of an angle otherwise).
+        #[arg(long, value_name = "LO..HI", allow_hyphen_values = true)]
+        range: Option<String>,
+        /// Halton starts of the local solve.
+        #[arg(long, default_value_t = 64)]
+        starts: usize,
+        /// The seed of the starts' sequence.
+        #[arg(long, default_value_t = 0)]
+        seed: u64,
+        /// The number of ranked candidates written.
+        #[arg(long, default_value_t = 10)]
+        keep: usize,
+        /// Angles in degrees (inputs, angle outputs, the range); otherwise radians.
+        #[arg(long)]
+        deg: bool,
+        /// Parameter values, `name=value` separated by commas (the fixed ones; overriding the
+        /// defaults).
+        #[arg(long, value_name = "NAME=VALUE,...")]
+        params: Option<String>,
+        /// CSV instead of a table.
+        #[arg(long)]
+        csv: bool,
+    },
 }
 
 /// A failure with its exit code; the message is already written.
@@ -302,6 +351,22 @@ fn run(cli: Cli) -> Result<(), Failed> {
             let req =
                 animate::Request { from: &from, to: &to, samples, grid, deg, out: &out, format, show: &show, frames };
             animate::run(&mut model, &req)
+        }
+        Command::Synth { file, targets, path, function, vary, range, starts, seed, keep, deg, params, csv } => {
+            let mut model = load(&file, params.as_deref())?;
+            let req = synth::Request {
+                targets: &targets,
+                path: path.as_deref(),
+                function: function.as_deref(),
+                vary: &vary,
+                range: range.as_deref(),
+                starts,
+                seed,
+                keep,
+                deg,
+                csv,
+            };
+            synth::run(&mut model, &req)
         }
     }
 }

@@ -120,10 +120,16 @@
 //! Each lends the model with the default solver configuration; the generic functions take
 //! any kernel, `m.kernel(config)`.
 //!
-//! Still on compiled sizes (`Mechanism<N, NI, NO>` and `Kin<N, NI, NO>`): sensitivities-based
-//! synthesis and the objectives with parameter gradients (`Sensitivities<N, NI, NO, NP>`). They
-//! need their state and result types over `Dims` as the sweep's are, and the kernel methods
-//! they call (`sensitivities`) added to `Kernel`.
+//! Synthesis is served too: the runtime's `synthesis` is written once over `SensKernel` (a
+//! `Kernel` with parameters to set and the sensitivities of its states), which the model's
+//! kernel implements; [`Model::synthesis_problem`] gives the problem ([`ModelProblem`]) that
+//! `Search::run` solves with the compiled mechanism's code, to the same candidates bit for bit
+//! (`tests/synthesis.rs`). A search over a model runs one evaluation after the other (`par_run`
+//! needs a problem shared between threads; a model is one workspace).
+//!
+//! Still on compiled sizes (`Mechanism<N, NI, NO>` and `Kin<N, NI, NO>`): the objectives with
+//! parameter gradients (`Sensitivities<N, NI, NO, NP>`), which need their state and result
+//! types over `Dims` as the sweep's are.
 //!
 //! A run-time model's errors and events name the model, its inputs and the failed or singular
 //! block's unknowns and equations as the compiled mechanism's do, with owned strings (the names
@@ -161,6 +167,7 @@ mod paths;
 mod sensitivities;
 pub mod source;
 mod sparse;
+mod synthesis;
 mod tape;
 
 pub use analysis::ModelSampled;
@@ -174,3 +181,4 @@ pub use paths::{ModelTraced, ParamScanConfig, ParamScanStart};
 pub use sensitivities::Sensitivities;
 pub use source::{Diagnostic, Diagnostics, Level};
 pub use sparse::MAX_SPARSE;
+pub use synthesis::{ModelProblem, ModelSens};

@@ -105,14 +105,14 @@ impl Model {
     }
 }
 
-impl ModelKernel<'_> {
+impl<'a> ModelKernel<'a> {
     /// The error of a failed step of `m` at `x` from `guess` (`None`: at a given position), with
     /// the model's names: what the compiled mechanism's step returns for the same failure
     /// (`generated::block_failure`, `singular` and `non_finite`, the runtime's own), its
     /// location naming the model, its inputs and the failed block's unknowns and equations. As
     /// there, a non-finite parameter, input or guess explains a failure first; an angle guessed
     /// too many turns out is named; a non-finite state names its first bad value.
-    fn error(&self, m: &Model, e: StepError, x: &[f64], guess: Option<&[f64]>, cfg: &NewtonConfig) -> Error {
+    pub(crate) fn error(&self, m: &Model, e: StepError, x: &[f64], guess: Option<&[f64]>, cfg: &NewtonConfig) -> Error {
         match e {
             // A failed factorisation: a bad value, an equation outside its domain (a non-finite
             // row), or a singular position (the compiled `singular`).
@@ -200,8 +200,13 @@ impl ModelKernel<'_> {
         }
     }
 
+    /// The model lent (the synthesis sets its parameters through it).
+    pub(crate) fn model(&self) -> &RefCell<&'a mut Model> {
+        &self.model
+    }
+
     /// The model's state into `into`.
-    fn copy_state(st: &State, into: &mut KinBuf) {
+    pub(crate) fn copy_state(st: &State, into: &mut KinBuf) {
         into.x.copy_from_slice(&st.x);
         into.q.copy_from_slice(&st.q);
         into.dq.copy_from_slice(&st.dq);

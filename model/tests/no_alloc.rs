@@ -227,3 +227,30 @@ fn positions_do_not_allocate() {
         assert_eq!(after - before, 0, "{}: allocations over 100 positions-only solves", m.name());
     }
 }
+
+/// The synthesis kernel's calls on a model (`SensKernel::sensitivities_into`, `position_into`:
+/// a step with its sensitivities, a position with its outputs, copied into the caller's buffers)
+/// allocate nothing.
+#[test]
+fn synthesis_kernel_calls_do_not_allocate() {
+    use kinloop::dims::Dims;
+    use kinloop::{Kernel, SensKernel};
+    let _one = ONE_AT_A_TIME.lock().unwrap_or_else(|e| e.into_inner());
+    let mut m = Model::read("m.kl", fx::RHOMBIC_DRIVE_TEXT).expect("valid");
+    let k = m.kernel(kinloop::SweepConfig::default()).expect("parameters set");
+    let cfg = NewtonConfig::default();
+    let mut x = k.dims().x();
+    let mut q = k.guess(&x);
+    let (mut kin, mut sens, mut out) = (k.dims().kin(), k.sens(), vec![0.0; k.dims().no()]);
+    let mut at = k.dims().q();
+    let before = allocations();
+    for step in 0..100 {
+        x.0[0] = step as f64 * 0.06;
+        k.sensitivities_into(&x, &q, &cfg, &mut kin, &mut sens).expect("step");
+        k.position_into(&x, &q, &cfg, &mut at, &mut out).expect("position");
+        q.0.copy_from_slice(&kin.q);
+    }
+    let during = allocations() - before;
+    assert_eq!(during, 0, "{during} allocations in 100 steps");
+    assert!(sens.values.q.iter().any(|v| *v != 0.0), "sensitivities written");
+}

@@ -55,7 +55,7 @@ pub use error::{Error, Quantity, Source};
 pub use events::{BlockInfo, BlockNames, Event, EventKind, Location};
 pub use kin::{DetSigns, FlatMotion, Health, Jac, Kin, Sens};
 pub use kinds::{LENGTH_UNIT, QuantityKind};
-pub use mechanism::kernel::{Compiled, Kernel};
+pub use mechanism::kernel::{Compiled, CompiledSens, Kernel, SensKernel, SensState};
 pub use mechanism::{Mechanism, Named, NamedSensitivities, Sensitivities};
 pub use paths::outcome::{SweepResult, SweepStop};
 pub use paths::reach::Reach;

@@ -6,9 +6,9 @@
 use crate::dims::{Dims, Fixed};
 use crate::error::Error;
 use crate::events::{BlockInfo, Location};
-use crate::kin::{Jac, Kin};
+use crate::kin::{Jac, Kin, Sens};
 use crate::kinds::QuantityKind;
-use crate::mechanism::Mechanism;
+use crate::mechanism::{Mechanism, Sensitivities};
 use crate::paths::sweep::SweepConfig;
 use crate::solvers::newton::NewtonConfig;
 use crate::trig::InputTrig;
@@ -333,4 +333,239 @@ pub(crate) fn check_sizes<K: Kernel>(m: &K, what: &str, xs: &[&X<K>], qs: &[&Q<K
         d.ni(),
         d.n()
     )))
+}
+
+/// The parameter sensitivities of a state as the generic synthesis reads them: [`Sens`] when
+/// compiled, a run-time model's flat buffer.
+pub trait SensState: Clone + std::fmt::Debug {
+    /// `d q_u / d p_k`: the sensitivity of unknown `u` to parameter `k`.
+    fn q(&self, u: usize, k: usize) -> f64;
+    /// `d out_o / d p_k`: the sensitivity of output column `o` to parameter `k`.
+    fn out(&self, o: usize, k: usize) -> f64;
+}
+
+impl<const N: usize, const NI: usize, const NO: usize, const NP: usize> SensState for Sens<N, NI, NO, NP> {
+    #[inline(always)]
+    fn q(&self, u: usize, k: usize) -> f64 {
+        self.q[u][k]
+    }
+    #[inline(always)]
+    fn out(&self, o: usize, k: usize) -> f64 {
+        self.out[o][k]
+    }
+}
+
+/// A [`Kernel`] whose parameters can be varied, with the parameter sensitivities of its states:
+/// what synthesis (`synthesis::ProblemOf`) is written over. A compiled mechanism declared with
+/// sensitivities through [`CompiledSens`]; a `kinloop_model::Model` through its kernel.
+pub trait SensKernel: Kernel {
+    /// The sensitivities of one state.
+    type Sens: SensState;
+    /// The number of parameters.
+    fn param_count(&self) -> usize;
+    /// The parameters' names, in declaration order.
+    fn param_names(&self) -> Vec<String>;
+    /// The value of parameter `k`.
+    fn param(&self, k: usize) -> f64;
+    /// Every parameter is finite (the mechanism's `check_params`).
+    fn check_params(&self) -> Result<(), Error>;
+    /// `f` called with this kernel's parameters set to `p` (one value per parameter, in
+    /// declaration order): a compiled mechanism gives `f` a copy with those values (so that a
+    /// kernel shared between threads is never changed); a kernel over one workspace (a run-time
+    /// model) sets them for the call and puts its own back after it.
+    ///
+    /// # Panics
+    ///
+    /// Where `p` has another length than [`SensKernel::param_count`].
+    fn with_params<R>(&self, p: &[f64], f: impl FnOnce(&Self) -> R) -> R;
+    /// Sensitivities of the right sizes, zero (the buffer [`SensKernel::sensitivities_into`]
+    /// writes into).
+    fn sens(&self) -> Self::Sens;
+    /// The kinematics solved from `guess` ([`Kernel::kinematics`]) into `kin`, and the
+    /// sensitivities of its positions and outputs to every parameter into `sens`
+    /// ([`Sensitivities::sensitivities_flat`]), on the same factorisations. No allocation.
+    fn sensitivities_into(
+        &self,
+        x: &<Self::Dims as Dims>::X,
+        guess: &<Self::Dims as Dims>::Q,
+        cfg: &NewtonConfig,
+        kin: &mut <Self::Dims as Dims>::Kin,
+        sens: &mut Self::Sens,
+    ) -> Result<(), Error>;
+    /// The position solved from `guess` into `q` and the output columns there into `out`
+    /// ([`Mechanism::position_flat`] and [`Mechanism::outputs_flat`]): what an objective
+    /// without derivatives needs.
+    fn position_into(
+        &self,
+        x: &<Self::Dims as Dims>::X,
+        guess: &<Self::Dims as Dims>::Q,
+        cfg: &NewtonConfig,
+        q: &mut <Self::Dims as Dims>::Q,
+        out: &mut [f64],
+    ) -> Result<(), Error>;
+}
+
+/// A compiled mechanism declared with sensitivities, owned, as a [`SensKernel`] (its [`Kernel`]
+/// methods those of [`Compiled`]): the kernel of the compiled synthesis API
+/// (`synthesis::Problem`).
+#[derive(Clone, Debug)]
+pub struct CompiledSens<M, const N: usize, const NI: usize, const NO: usize, const NP: usize>(pub M);
+
+impl<M, const N: usize, const NI: usize, const NO: usize, const NP: usize> CompiledSens<M, N, NI, NO, NP>
+where
+    M: Mechanism<N, NI, NO>,
+{
+    /// The unknowns a step is judged by (as [`Compiled`]'s).
+    const JUDGED: Judged<N> = Judged::of(M::FOLLOWERS);
+
+    #[inline(always)]
+    fn c(&self) -> Compiled<'_, M, N, NI, NO> {
+        Compiled(&self.0)
+    }
+}
+
+impl<M, const N: usize, const NI: usize, const NO: usize, const NP: usize> Kernel for CompiledSens<M, N, NI, NO, NP>
+where
+    M: Mechanism<N, NI, NO>,
+{
+    type Dims = Fixed<N, NI, NO>;
+    #[inline(always)]
+    fn dims(&self) -> Fixed<N, NI, NO> {
+        Fixed
+    }
+    fn name(&self) -> &str {
+        M::NAME
+    }
+    fn input_name(&self, i: usize) -> &str {
+        M::INPUTS[i]
+    }
+    fn unknown_name(&self, u: usize) -> &str {
+        M::UNKNOWNS[u]
+    }
+    fn output_name(&self, o: usize) -> &str {
+        M::OUTPUTS[o]
+    }
+    fn input_kind(&self, i: usize) -> QuantityKind {
+        M::INPUT_KINDS[i]
+    }
+    fn unknown_kind(&self, u: usize) -> QuantityKind {
+        M::UNKNOWN_KINDS[u]
+    }
+    fn output_kind(&self, o: usize) -> QuantityKind {
+        M::OUTPUT_KINDS[o]
+    }
+    #[inline(always)]
+    fn block_count(&self) -> usize {
+        M::BLOCKS.len()
+    }
+    fn block_info(&self, b: usize) -> Option<BlockInfo> {
+        self.c().block_info(b)
+    }
+    fn block_rows_cols(&self, b: usize) -> Option<(Vec<usize>, Vec<usize>)> {
+        self.c().block_rows_cols(b)
+    }
+    #[inline(always)]
+    fn judged(&self) -> &[usize] {
+        const { &Self::JUDGED }.as_slice()
+    }
+    #[inline(always)]
+    fn closed_form_angle(&self, u: usize) -> bool {
+        M::CLOSED_FORM_ANGLES[u]
+    }
+    fn location(&self, x: &[f64], block: Option<usize>) -> Box<Location> {
+        self.c().location(x, block)
+    }
+    #[inline(always)]
+    fn solver_config(&self) -> SweepConfig {
+        self.0.solver_config()
+    }
+    #[inline(always)]
+    fn guess(&self, x: &[f64; NI]) -> [f64; N] {
+        self.0.guess_flat(x)
+    }
+    #[inline(always)]
+    fn kinematics(&self, x: &[f64; NI], guess: &[f64; N], cfg: &NewtonConfig) -> Result<Kin<N, NI, NO>, Error> {
+        self.0.kinematics_flat(x, guess, cfg)
+    }
+    #[inline(always)]
+    fn kinematics_at(&self, x: &[f64; NI], q: &[f64; N], cfg: &NewtonConfig) -> Result<Kin<N, NI, NO>, Error> {
+        self.0.kinematics_at_flat(x, q, cfg)
+    }
+    #[inline(always)]
+    fn jacobian(&self, x: &[f64; NI], q: &[f64; N]) -> Jac<N, NI> {
+        self.0.jacobian_flat(x, q)
+    }
+    #[inline(always)]
+    fn step_into<T: InputTrig>(
+        &self,
+        x: &[f64; NI],
+        guess: &[f64; N],
+        cfg: &NewtonConfig,
+        trig: &mut T,
+        into: &mut Kin<N, NI, NO>,
+    ) -> Result<(), Error> {
+        self.c().step_into(x, guess, cfg, trig, into)
+    }
+}
+
+impl<M, const N: usize, const NI: usize, const NO: usize, const NP: usize> SensKernel for CompiledSens<M, N, NI, NO, NP>
+where
+    M: Sensitivities<N, NI, NO, NP> + Clone,
+{
+    type Sens = Sens<N, NI, NO, NP>;
+    fn param_count(&self) -> usize {
+        NP
+    }
+    fn param_names(&self) -> Vec<String> {
+        M::PARAMS.iter().map(|p| p.to_string()).collect()
+    }
+    fn param(&self, k: usize) -> f64 {
+        self.0.params_flat()[k]
+    }
+    fn check_params(&self) -> Result<(), Error> {
+        self.0.check_params()
+    }
+    /// `f` called with a copy of the mechanism with the parameters `p`
+    /// ([`Sensitivities::with_params_flat`]); `p` must have `NP` values.
+    #[inline]
+    fn with_params<R>(&self, p: &[f64], f: impl FnOnce(&Self) -> R) -> R {
+        let mut flat = self.0.params_flat();
+        flat.copy_from_slice(p);
+        f(&CompiledSens(self.0.with_params_flat(flat)))
+    }
+    fn sens(&self) -> Sens<N, NI, NO, NP> {
+        Sens {
+            q: [[0.0; NP]; N],
+            dq: [[[0.0; NP]; NI]; N],
+            d2q: [[[[0.0; NP]; NI]; NI]; N],
+            out: [[0.0; NP]; NO],
+            dout: [[[0.0; NP]; NI]; NO],
+            d2out: [[[[0.0; NP]; NI]; NI]; NO],
+        }
+    }
+    #[inline]
+    fn sensitivities_into(
+        &self,
+        x: &[f64; NI],
+        guess: &[f64; N],
+        cfg: &NewtonConfig,
+        kin: &mut Kin<N, NI, NO>,
+        sens: &mut Sens<N, NI, NO, NP>,
+    ) -> Result<(), Error> {
+        (*kin, *sens) = self.0.sensitivities_flat(x, guess, cfg)?;
+        Ok(())
+    }
+    #[inline]
+    fn position_into(
+        &self,
+        x: &[f64; NI],
+        guess: &[f64; N],
+        cfg: &NewtonConfig,
+        q: &mut [f64; N],
+        out: &mut [f64],
+    ) -> Result<(), Error> {
+        (*q, _) = self.0.position_flat(x, guess, cfg)?;
+        out.copy_from_slice(&self.0.outputs_flat(x, q));
+        Ok(())
+    }
 }

@@ -3,6 +3,7 @@
 //! unknowns) is refused when it is built, with a message that names what is wrong.
 
 use crate::error::Error;
+use std::borrow::Cow;
 
 /// What is wrong with a synthesis problem or its search: a problem that is not well posed is
 /// refused when it is built, with a message that names what is wrong.
@@ -14,8 +15,8 @@ pub enum SynthesisError {
     UnknownVariable {
         /// The name given.
         name: String,
-        /// The mechanism's type name.
-        mechanism: &'static str,
+        /// The mechanism's name (a compiled mechanism's type name).
+        mechanism: Cow<'static, str>,
         /// Its parameters, comma-separated.
         params: String,
     },
@@ -41,8 +42,8 @@ pub enum SynthesisError {
     UnknownColumn {
         /// The name given.
         name: String,
-        /// The mechanism's type name.
-        mechanism: &'static str,
+        /// The mechanism's name (a compiled mechanism's type name).
+        mechanism: Cow<'static, str>,
         /// Its unknowns and outputs, comma-separated.
         columns: String,
     },

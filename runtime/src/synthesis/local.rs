@@ -2,11 +2,11 @@
 //! the bounds (a variable on a bound that the step would push out is held there for that step),
 //! each evaluation solving the positions from the last accepted ones.
 
-use super::problem::Problem;
+use super::problem::ProblemOf;
 use super::residuals::Eval;
 use crate::analysis::optimize::OptimizerStop;
 use crate::error::Error;
-use crate::mechanism::Sensitivities;
+use crate::mechanism::kernel::{Q, SensKernel};
 
 /// Settings of the local solve.
 #[derive(Clone, Copy, Debug, PartialEq)]
@@ -96,17 +96,17 @@ enum Step {
     Exhausted,
 }
 
+/// A local solve's result: the unknowns, their evaluation, and what the solve did.
+pub(crate) type Solved<Q> = (Vec<f64>, Eval<Q>, LocalReport);
+
 fn norm(r: &[f64]) -> f64 {
     r.iter().map(|v| v * v).sum::<f64>().sqrt()
 }
 
-impl<M, const N: usize, const NI: usize, const NO: usize, const NP: usize> Problem<M, N, NI, NO, NP>
-where
-    M: Sensitivities<N, NI, NO, NP> + Clone,
-{
+impl<K: SensKernel> ProblemOf<K> {
     /// Levenberg–Marquardt from `z0` (inside the bounds); an error where `z0` cannot be
     /// evaluated (the design cannot assemble at a target).
-    pub(crate) fn local(&self, z0: Vec<f64>, cfg: &LocalConfig) -> Result<(Vec<f64>, Eval<N>, LocalReport), Error> {
+    pub(crate) fn local(&self, z0: Vec<f64>, cfg: &LocalConfig) -> Result<Solved<Q<K>>, Error> {
         let (lo, hi) = self.bounds();
         let n = z0.len();
         let mut z = z0;

@@ -1,6 +1,11 @@
 //! Synthesis: from the motion a designer needs to the dimensions of a declared mechanism that
 //! makes it, for any mechanism declared with `#[kinloop(sensitivities)]`.
 //!
+//! Written once over [`SensKernel`](crate::SensKernel) ([`ProblemOf`]): a compiled mechanism's
+//! problem is [`Problem`] (over [`CompiledSens`](crate::CompiledSens)), a run-time model's
+//! `kinloop_model::Model::synthesis_problem`; the search, the local solve and the verification
+//! are the same code, and give the same candidates where the kernels give the same states.
+//!
 //! A [`Problem`] names the design variables (parameters, with bounds: [`Design`]), the
 //! [`Task`] (path generation with or without prescribed timing, path fitting with a free
 //! placement, function generation, motion generation) and optional [`Constraints`]. A
@@ -38,7 +43,7 @@ pub use error::SynthesisError;
 pub use evolution::{DeConfig, Global};
 pub use halton::Halton;
 pub use local::{LocalConfig, LocalReport};
-pub use problem::Problem;
+pub use problem::{Problem, ProblemOf};
 pub use report::{Rejections, SynthesisReport, grashof_code};
 pub use residuals::Residuals;
 pub use search::Search;

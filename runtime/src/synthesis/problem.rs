@@ -1,5 +1,7 @@
-//! A synthesis problem: a mechanism with sensitivities, its design variables, a task and
-//! constraints, checked and resolved against the mechanism's names once, when it is built.
+//! A synthesis problem: a mechanism with sensitivities (any [`SensKernel`]: a compiled
+//! mechanism through [`CompiledSens`], a run-time model through its kernel), its design
+//! variables, a task and constraints, checked and resolved against the mechanism's names once,
+//! when it is built.
 
 use super::constraints::Constraints;
 use super::error::SynthesisError;
@@ -7,20 +9,21 @@ use super::resolve::{Inputs, Resolved, resolve_channel, resolve_timing, scalar_c
 use super::task::{Channel, PlacementBounds, Task};
 use super::vars::{Bound, Design, check_bounds, param_index};
 use crate::analysis::ColumnIndex;
+use crate::dims::Dims;
 use crate::mechanism::Sensitivities;
+use crate::mechanism::kernel::{CompiledSens, Kernel, Q, SensKernel, X};
 use crate::paths::sweep::SweepConfig;
 use crate::solvers::newton::NewtonConfig;
-use std::marker::PhantomData;
 
 /// Where the first evaluation of a local solve starts its position solves.
 #[derive(Clone, Debug, PartialEq)]
-pub(crate) enum Guess<const N: usize> {
+pub(crate) enum Guess<Q> {
     /// The declared guess at the first target, each next target from the one before.
     Declared,
     /// This position at the first target, each next target from the one before.
-    First([f64; N]),
+    First(Q),
     /// A position at every target.
-    Every(Vec<[f64; N]>),
+    Every(Vec<Q>),
 }
 
 /// The constraints resolved to indices.
@@ -35,16 +38,23 @@ pub(crate) struct Checks {
     pub four_bar: Option<[usize; 4]>,
 }
 
-/// A synthesis problem over the mechanism type `M` (declared with `#[kinloop(sensitivities)]`):
-/// the mechanism whose parameters not varied keep their values, the design variables, the
-/// task, the constraints, and the solver settings of its analyses. Solved by a
+/// A synthesis problem over a compiled mechanism type `M` (declared with
+/// `#[kinloop(sensitivities)]`): [`ProblemOf`] over [`CompiledSens`]. Built with
+/// [`Problem::new`]; everything else is [`ProblemOf`]'s.
+pub type Problem<M, const N: usize, const NI: usize, const NO: usize, const NP: usize> =
+    ProblemOf<CompiledSens<M, N, NI, NO, NP>>;
+
+/// A synthesis problem over any mechanism with sensitivities ([`SensKernel`]: a compiled one
+/// through [`CompiledSens`], the alias [`Problem`]; a run-time model through its kernel): the
+/// mechanism whose parameters not varied keep their values, the design variables, the task,
+/// the constraints, and the solver settings of its analyses. Solved by a
 /// [`Search`](super::Search).
 ///
 /// The search's unknowns are, in order: the design variables; with [`Timing::Free`](super::Timing::Free) the input
 /// value of every target; with a placement its translation `dx`, `dy`, rotation and scale.
 #[derive(Clone, Debug)]
-pub struct Problem<M, const N: usize, const NI: usize, const NO: usize, const NP: usize> {
-    pub(crate) base: M,
+pub struct ProblemOf<K: Kernel> {
+    pub(crate) base: K,
     pub(crate) names: Vec<String>,
     pub(crate) vars: Vec<Bound>,
     pub(crate) channels: Vec<(Resolved, f64)>,
@@ -52,18 +62,16 @@ pub struct Problem<M, const N: usize, const NI: usize, const NO: usize, const NP
     pub(crate) width: usize,
     /// Target values, `width` per target.
     pub(crate) targets: Vec<f64>,
-    pub(crate) inputs: Inputs<NI>,
+    pub(crate) inputs: Inputs<X<K>>,
     pub(crate) placement: Option<PlacementBounds>,
     pub(crate) checks: Checks,
     /// The positions the first evaluation starts from: at the first target, or at every one.
-    pub(crate) guess: Guess<N>,
+    pub(crate) guess: Guess<Q<K>>,
     pub(crate) newton: NewtonConfig,
     pub(crate) sweep: SweepConfig,
     /// The size of the targets (their largest distance from their centroid, 1 without
     /// lengths): the unit of the search's residual tolerance.
     pub(crate) scale: f64,
-    _sizes: PhantomData<[(); NO]>,
-    _params: PhantomData<[(); NP]>,
 }
 
 impl<M, const N: usize, const NI: usize, const NO: usize, const NP: usize> Problem<M, N, NI, NO, NP>
@@ -75,8 +83,17 @@ where
     /// bounds for holding a value, and the targets for giving at least as many equations as
     /// the search has unknowns.
     pub fn new(mechanism: M, design: &Design, task: &Task) -> Result<Self, SynthesisError> {
-        mechanism.check_params()?;
-        let vars = design.resolve(M::NAME, M::PARAMS)?;
+        ProblemOf::over(CompiledSens(mechanism), design, task)
+    }
+}
+
+impl<K: SensKernel> ProblemOf<K> {
+    /// The problem of varying `design` of the mechanism `kernel` (whose other parameters stay)
+    /// to do `task` ([`Problem::new`] over any [`SensKernel`]).
+    pub fn over(kernel: K, design: &Design, task: &Task) -> Result<Self, SynthesisError> {
+        kernel.check_params()?;
+        let params = kernel.param_names();
+        let vars = design.resolve(kernel.name(), &params)?;
         let names = design.variables().iter().map(|v| v.name.clone()).collect();
         if task.channels.is_empty() {
             return Err(SynthesisError::Mismatch(
@@ -95,7 +112,7 @@ where
             if !(w.is_finite() && w > 0.0) {
                 return Err(SynthesisError::InvalidConfig(format!("the weight {w} must be positive and finite")));
             }
-            channels.push((resolve_channel::<M, N, NI, NO>(c)?, w));
+            channels.push((resolve_channel(&kernel, c)?, w));
         }
         let width: usize = task.channels.iter().map(Channel::width).sum();
         if task.targets.is_empty() {
@@ -114,7 +131,7 @@ where
             }
             targets.extend_from_slice(row);
         }
-        let inputs = resolve_timing::<NI>(&task.timing, task.targets.len())?;
+        let inputs = resolve_timing(kernel.dims(), &task.timing, task.targets.len())?;
         if let Some(p) = &task.placement {
             for (name, (lo, hi)) in [("dx", p.dx), ("dy", p.dy), ("angle", p.angle), ("scale", p.scale)] {
                 check_bounds(name, lo, hi)?;
@@ -124,8 +141,8 @@ where
             }
         }
         let scale = target_scale(&channels, &targets, width);
-        let p = Problem {
-            base: mechanism,
+        let p = ProblemOf {
+            base: kernel,
             names,
             vars,
             channels,
@@ -138,8 +155,6 @@ where
             newton: NewtonConfig::default().with_residual_tol(1e-14).with_step_tol(1e-16),
             sweep: SweepConfig::default(),
             scale,
-            _sizes: PhantomData,
-            _params: PhantomData,
         };
         let (residuals, variables) = (p.targets.len(), p.dims());
         if residuals < variables && !design.is_underdetermined() {
@@ -151,15 +166,16 @@ where
     /// The problem with `constraints` checked on every candidate (names resolved here).
     pub fn with_constraints(mut self, constraints: &Constraints) -> Result<Self, SynthesisError> {
         let mut checks = Checks { full_rotation: constraints.full_rotation, ..Checks::default() };
-        if constraints.full_rotation && NI != 1 {
+        let ni = self.base.dims().ni();
+        if constraints.full_rotation && ni != 1 {
             return Err(SynthesisError::Unsupported(format!(
-                "full rotation is checked for a mechanism with one input; `{}` has {NI}",
-                M::NAME
+                "full rotation is checked for a mechanism with one input; `{}` has {ni}",
+                self.base.name()
             )));
         }
         if let Some(t) = &constraints.transmission {
-            let c = scalar_column::<M, N, NI, NO>(&t.coupler)?;
-            let f = scalar_column::<M, N, NI, NO>(&t.follower)?;
+            let c = scalar_column(&self.base, &t.coupler)?;
+            let f = scalar_column(&self.base, &t.follower)?;
             if !(t.min.is_finite() && (0.0..=std::f64::consts::FRAC_PI_2).contains(&t.min)) {
                 return Err(SynthesisError::InvalidConfig(format!(
                     "the smallest transmission angle {} must lie in [0, pi/2]",
@@ -168,10 +184,11 @@ where
             }
             checks.transmission = Some((c, f, t.min));
         }
+        let params = self.base.param_names();
         if let Some(r) = &constraints.link_ratio {
             let mut idx = Vec::new();
             for name in &r.links {
-                let i = param_index(M::NAME, M::PARAMS, name)?;
+                let i = param_index(self.base.name(), &params, name)?;
                 if idx.contains(&i) {
                     return Err(SynthesisError::DuplicateVariable { name: name.clone() });
                 }
@@ -187,7 +204,7 @@ where
         if let Some(f) = &constraints.four_bar {
             let mut idx = [0; 4];
             for (k, name) in [&f.ground, &f.input, &f.coupler, &f.output].into_iter().enumerate() {
-                idx[k] = param_index(M::NAME, M::PARAMS, name)?;
+                idx[k] = param_index(self.base.name(), &params, name)?;
                 if idx[..k].contains(&idx[k]) {
                     return Err(SynthesisError::DuplicateVariable { name: name.clone() });
                 }
@@ -200,18 +217,22 @@ where
 
     /// The position at the first target that picks the assembly mode (by default the
     /// mechanism's declared guess there).
-    pub fn with_guess(mut self, guess: [f64; N]) -> Self {
+    pub fn with_guess(mut self, guess: <K::Dims as Dims>::Q) -> Self {
         self.guess = Guess::First(guess);
         self
     }
 
     /// A position at every target, to start the first evaluation of every local solve from
     /// (e.g. from a design whose assembly mode at each target is known); one per target.
-    pub fn with_guesses(mut self, guesses: Vec<[f64; N]>) -> Result<Self, SynthesisError> {
+    pub fn with_guesses(mut self, guesses: Vec<<K::Dims as Dims>::Q>) -> Result<Self, SynthesisError> {
         if guesses.len() != self.targets() {
             return Err(SynthesisError::Mismatch(format!("{} guesses for {} targets", guesses.len(), self.targets())));
         }
-        if guesses.iter().flatten().any(|v| !v.is_finite()) {
+        let n = self.base.dims().n();
+        if let Some(g) = guesses.iter().find(|g| g.as_ref().len() != n) {
+            return Err(SynthesisError::Mismatch(format!("a guess of {} values for {n} unknowns", g.as_ref().len())));
+        }
+        if guesses.iter().flat_map(|g| g.as_ref()).any(|v| !v.is_finite()) {
             return Err(SynthesisError::InvalidConfig("a guess is not finite".into()));
         }
         self.guess = Guess::Every(guesses);
@@ -274,8 +295,8 @@ where
     }
 
     /// The parameters with the design variables of `z`.
-    pub(crate) fn params(&self, z: &[f64]) -> [f64; NP] {
-        let mut p = self.base.params_flat();
+    pub(crate) fn params(&self, z: &[f64]) -> Vec<f64> {
+        let mut p: Vec<f64> = (0..self.base.param_count()).map(|k| self.base.param(k)).collect();
         for (b, v) in self.vars.iter().zip(z) {
             p[b.index] = *v;
         }
@@ -283,13 +304,20 @@ where
     }
 
     /// The inputs of every target for the unknowns `z`.
-    pub(crate) fn input_values(&self, z: &[f64]) -> Vec<[f64; NI]> {
+    pub(crate) fn input_values(&self, z: &[f64]) -> Vec<X<K>> {
         match &self.inputs {
             Inputs::Prescribed(x) => x.clone(),
             Inputs::Free { .. } => {
                 let nv = self.vars.len();
-                z[nv..nv + self.targets()].iter().map(|&v| [v; NI]).collect()
+                z[nv..nv + self.targets()].iter().map(|&v| self.input_point(v)).collect()
             }
         }
+    }
+
+    /// The input point with every input `v` (free timing: one input).
+    pub(crate) fn input_point(&self, v: f64) -> X<K> {
+        let mut x = self.base.dims().x();
+        x.as_mut().fill(v);
+        x
     }
 }

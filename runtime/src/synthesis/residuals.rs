@@ -3,21 +3,21 @@
 //! from the velocity analogs, to the placement in closed form.
 
 use super::error::SynthesisError;
-use super::problem::{Guess, Problem};
+use super::problem::{Guess, ProblemOf};
 use super::resolve::Resolved;
 use crate::analysis::ColumnIndex;
+use crate::dims::{Dims, KinState};
 use crate::error::Error;
-use crate::kin::{Kin, Sens};
-use crate::mechanism::Sensitivities;
+use crate::mechanism::kernel::{Q, SensKernel, SensState};
 use std::f64::consts::TAU;
 
 /// Residuals and Jacobian at one point of the search (row-major, `rows x cols`), with the
 /// positions solved at every target (the guesses of the next evaluation).
 #[derive(Clone, Debug)]
-pub(crate) struct Eval<const N: usize> {
+pub(crate) struct Eval<Q> {
     pub r: Vec<f64>,
     pub jac: Vec<f64>,
-    pub qs: Vec<[f64; N]>,
+    pub qs: Vec<Q>,
 }
 
 /// The residuals of a problem and their Jacobian at a point of the search.
@@ -36,41 +36,34 @@ pub(crate) fn wrap(d: f64) -> f64 {
 }
 
 /// A column's value, its sensitivity to parameter `p`, and its velocity analog.
-fn value<const N: usize, const NI: usize, const NO: usize>(k: &Kin<N, NI, NO>, c: ColumnIndex) -> f64 {
+pub(crate) fn value<S: KinState>(k: &S, c: ColumnIndex) -> f64 {
     match c {
-        ColumnIndex::Unknown(u) => k.q[u],
-        ColumnIndex::Output(o) => k.out[o],
-        ColumnIndex::Input(i) => k.x[i],
+        ColumnIndex::Unknown(u) => k.q()[u],
+        ColumnIndex::Output(o) => k.out()[o],
+        ColumnIndex::Input(i) => k.x()[i],
     }
 }
 
-fn by_param<const N: usize, const NI: usize, const NO: usize, const NP: usize>(
-    s: &Sens<N, NI, NO, NP>,
-    c: ColumnIndex,
-    p: usize,
-) -> f64 {
+fn by_param<S: SensState>(s: &S, c: ColumnIndex, p: usize) -> f64 {
     match c {
-        ColumnIndex::Unknown(u) => s.q[u][p],
-        ColumnIndex::Output(o) => s.out[o][p],
+        ColumnIndex::Unknown(u) => s.q(u, p),
+        ColumnIndex::Output(o) => s.out(o, p),
         ColumnIndex::Input(_) => 0.0,
     }
 }
 
-fn by_input<const N: usize, const NI: usize, const NO: usize>(k: &Kin<N, NI, NO>, c: ColumnIndex) -> f64 {
+fn by_input<S: KinState>(k: &S, c: ColumnIndex) -> f64 {
     match c {
-        ColumnIndex::Unknown(u) => k.dq[u][0],
-        ColumnIndex::Output(o) => k.dout[o][0],
+        ColumnIndex::Unknown(u) => k.dq(u)[0],
+        ColumnIndex::Output(o) => k.dout(o)[0],
         ColumnIndex::Input(i) => (i == 0) as u8 as f64,
     }
 }
 
-impl<M, const N: usize, const NI: usize, const NO: usize, const NP: usize> Problem<M, N, NI, NO, NP>
-where
-    M: Sensitivities<N, NI, NO, NP> + Clone,
-{
-    /// The residuals and their exact Jacobian at the search's unknowns `z` (see [`Problem`] for
+impl<K: SensKernel> ProblemOf<K> {
+    /// The residuals and their exact Jacobian at the search's unknowns `z` (see [`ProblemOf`] for
     /// their order), the positions solved from the declared guess (or those of
-    /// [`Problem::with_guess`], [`Problem::with_guesses`]) at the first target and each from the
+    /// [`ProblemOf::with_guess`], [`ProblemOf::with_guesses`]) at the first target and each from the
     /// one before.
     pub fn residuals(&self, z: &[f64]) -> Result<Residuals, SynthesisError> {
         self.check_point(z)?;
@@ -91,7 +84,7 @@ where
     }
 
     /// The norm of the residuals at the search's unknowns `z`, without their Jacobian (positions
-    /// and outputs only, each target's position solved as for [`Problem::residuals`]): the
+    /// and outputs only, each target's position solved as for [`ProblemOf::residuals`]): the
     /// objective of differential evolution, cheaper than a Jacobian. An error where the design
     /// cannot be assembled at a target.
     pub fn residual_norm(&self, z: &[f64]) -> Result<f64, SynthesisError> {
@@ -99,9 +92,15 @@ where
         Ok(self.norm_at(z)?)
     }
 
-    /// [`Problem::residual_norm`] without the check of `z`.
+    /// [`ProblemOf::residual_norm`] without the check of `z`.
     pub(crate) fn norm_at(&self, z: &[f64]) -> Result<f64, Error> {
-        let m = self.base.with_params_flat(self.params(z));
+        self.base.with_params(&self.params(z), |m| self.norm_with(m, z))
+    }
+
+    /// [`ProblemOf::norm_at`] on `m`, the mechanism with `z`'s parameters.
+    fn norm_with(&self, m: &K, z: &[f64]) -> Result<f64, Error> {
+        let d = m.dims();
+        let (mut q, mut out) = (d.q(), vec![0.0; d.no()]);
         let inputs = self.input_values(z);
         let at = self.vars.len() + self.free_inputs();
         let (dx, dy, c, sn, s) = match self.placement {
@@ -109,18 +108,16 @@ where
             None => (0.0, 0.0, 1.0, 0.0, 1.0),
         };
         let mut sum = 0.0;
-        let mut last: Option<[f64; N]> = None;
         for (k, x) in inputs.iter().enumerate() {
             // The guesses and Newton's settings of `evaluate` without previous positions.
-            let guess = match (&self.guess, last) {
-                (Guess::Every(g), _) => g[k],
-                (_, Some(q)) => q,
-                (Guess::First(g), None) => *g,
-                (Guess::Declared, None) => m.guess_flat(x),
+            let guess = match (&self.guess, k) {
+                (Guess::Every(g), _) => g[k].clone(),
+                (_, 1..) => q.clone(),
+                (Guess::First(g), 0) => g.clone(),
+                (Guess::Declared, 0) => m.guess(x),
             };
             let cfg = if k == 0 { self.newton } else { self.newton.with_restarts(false) };
-            let (q, _) = m.position_flat(x, &guess, &cfg)?;
-            let out = m.outputs_flat(x, &q);
+            m.position_into(x, &guess, &cfg, &mut q, &mut out)?;
             let value = |col: ColumnIndex| match col {
                 ColumnIndex::Unknown(u) => q[u],
                 ColumnIndex::Output(o) => out[o],
@@ -149,7 +146,6 @@ where
                     }
                 }
             }
-            last = Some(q);
         }
         Ok(sum.sqrt())
     }
@@ -157,14 +153,19 @@ where
     /// The residuals, Jacobian and positions at `z`, each target's position solved from
     /// `guesses` (the previous evaluation's), or else from the first target's guess and each
     /// from the one before.
-    pub(crate) fn evaluate(&self, z: &[f64], guesses: Option<&[[f64; N]]>) -> Result<Eval<N>, Error> {
-        let m = self.base.with_params_flat(self.params(z));
+    pub(crate) fn evaluate(&self, z: &[f64], guesses: Option<&[Q<K>]>) -> Result<Eval<Q<K>>, Error> {
+        self.base.with_params(&self.params(z), |m| self.evaluate_with(m, z, guesses))
+    }
+
+    /// [`ProblemOf::evaluate`] on `m`, the mechanism with `z`'s parameters.
+    fn evaluate_with(&self, m: &K, z: &[f64], guesses: Option<&[Q<K>]>) -> Result<Eval<Q<K>>, Error> {
         let inputs = self.input_values(z);
+        let (mut kin, mut sens) = (m.dims().kin(), m.sens());
         let (nv, nt, cols) = (self.vars.len(), self.free_inputs(), self.dims());
         let n = inputs.len();
         let mut r = vec![0.0; n * self.width];
         let mut jac = vec![0.0; n * self.width * cols];
-        let mut qs: Vec<[f64; N]> = Vec::with_capacity(n);
+        let mut qs: Vec<Q<K>> = Vec::with_capacity(n);
         let place = self.placement.map(|_| {
             let at = nv + nt;
             let (th, s) = (z[at + 2], z[at + 3]);
@@ -172,19 +173,21 @@ where
         });
         for (k, x) in inputs.iter().enumerate() {
             let guess = match (guesses, &self.guess, qs.last()) {
-                (Some(g), _, _) => g[k],
-                (None, Guess::Every(g), _) => g[k],
-                (None, _, Some(q)) => *q,
-                (None, Guess::First(g), None) => *g,
-                (None, Guess::Declared, None) => m.guess_flat(x),
+                (Some(g), _, _) => g[k].clone(),
+                (None, Guess::Every(g), _) => g[k].clone(),
+                (None, _, Some(q)) => q.clone(),
+                (None, Guess::First(g), None) => g.clone(),
+                (None, Guess::Declared, None) => m.guess(x),
             };
             // Newton's restarts (roots from turned guesses) only where the assembly mode is
             // chosen: at the first target of a start. Elsewhere a root from a turned guess would
             // be another assembly mode than the guess's; a failed solve rejects the step instead.
             let choose = guesses.is_none() && k == 0;
             let cfg = if choose { self.newton } else { self.newton.with_restarts(false) };
-            let (kin, sens) = m.sensitivities_flat(x, &guess, &cfg)?;
-            qs.push(kin.q);
+            m.sensitivities_into(x, &guess, &cfg, &mut kin, &mut sens)?;
+            let mut q = m.dims().q();
+            q.as_mut().copy_from_slice(kin.q());
+            qs.push(q);
             let mut row = k * self.width;
             for &(ch, w) in &self.channels {
                 match ch {

@@ -5,7 +5,9 @@ use super::error::SynthesisError;
 use super::task::{Channel, Timing};
 use super::vars::check_bounds;
 use crate::analysis::ColumnIndex;
+use crate::dims::Dims;
 use crate::kinds::QuantityKind;
+use crate::mechanism::kernel::Kernel;
 
 /// A target channel resolved to the mechanism's columns.
 #[derive(Clone, Copy, Debug, PartialEq)]
@@ -21,30 +23,24 @@ pub(crate) enum Resolved {
 
 /// The timing resolved: the inputs of every target, or free inputs within bounds.
 #[derive(Clone, Debug, PartialEq)]
-pub(crate) enum Inputs<const NI: usize> {
-    Prescribed(Vec<[f64; NI]>),
+pub(crate) enum Inputs<X> {
+    Prescribed(Vec<X>),
     Free { lo: f64, hi: f64 },
 }
 
 /// A channel's columns.
-pub(crate) fn resolve_channel<M, const N: usize, const NI: usize, const NO: usize>(
-    c: &Channel,
-) -> Result<Resolved, SynthesisError>
-where
-    M: crate::mechanism::Mechanism<N, NI, NO>,
-{
+pub(crate) fn resolve_channel<K: Kernel>(m: &K, c: &Channel) -> Result<Resolved, SynthesisError> {
     Ok(match c {
-        Channel::Point(name) => Resolved::Point(
-            scalar_column::<M, N, NI, NO>(&format!("{name}.x"))?,
-            scalar_column::<M, N, NI, NO>(&format!("{name}.y"))?,
-        ),
-        Channel::Angle(name) => Resolved::Angle { col: scalar_column::<M, N, NI, NO>(name)?, rotates: true },
+        Channel::Point(name) => {
+            Resolved::Point(scalar_column(m, &format!("{name}.x"))?, scalar_column(m, &format!("{name}.y"))?)
+        }
+        Channel::Angle(name) => Resolved::Angle { col: scalar_column(m, name)?, rotates: true },
         Channel::Value(name) => {
-            let col = scalar_column::<M, N, NI, NO>(name)?;
+            let col = scalar_column(m, name)?;
             let kind = match col {
-                ColumnIndex::Unknown(u) => M::UNKNOWN_KINDS[u],
-                ColumnIndex::Output(o) => M::OUTPUT_KINDS[o],
-                ColumnIndex::Input(i) => M::INPUT_KINDS[i],
+                ColumnIndex::Unknown(u) => m.unknown_kind(u),
+                ColumnIndex::Output(o) => m.output_kind(o),
+                ColumnIndex::Input(i) => m.input_kind(i),
             };
             if kind == QuantityKind::Angle { Resolved::Angle { col, rotates: false } } else { Resolved::Value(col) }
         }
@@ -52,24 +48,25 @@ where
 }
 
 /// An unknown or output column by name.
-pub(crate) fn scalar_column<M, const N: usize, const NI: usize, const NO: usize>(
-    name: &str,
-) -> Result<ColumnIndex, SynthesisError>
-where
-    M: crate::mechanism::Mechanism<N, NI, NO>,
-{
-    let find = |names: &[&'static str]| names.iter().position(|n| *n == name);
-    find(&M::UNKNOWNS).map(ColumnIndex::Unknown).or_else(|| find(&M::OUTPUTS).map(ColumnIndex::Output)).ok_or_else(
-        || SynthesisError::UnknownColumn {
+pub(crate) fn scalar_column<K: Kernel>(m: &K, name: &str) -> Result<ColumnIndex, SynthesisError> {
+    let d = m.dims();
+    let unknowns = (0..d.n()).map(|u| m.unknown_name(u));
+    let outputs = (0..d.no()).map(|o| m.output_name(o));
+    unknowns
+        .clone()
+        .position(|n| n == name)
+        .map(ColumnIndex::Unknown)
+        .or_else(|| outputs.clone().position(|n| n == name).map(ColumnIndex::Output))
+        .ok_or_else(|| SynthesisError::UnknownColumn {
             name: name.to_string(),
-            mechanism: M::NAME,
-            columns: M::UNKNOWNS.iter().chain(M::OUTPUTS.iter()).copied().collect::<Vec<_>>().join(", "),
-        },
-    )
+            mechanism: m.name().to_string().into(),
+            columns: unknowns.chain(outputs).collect::<Vec<_>>().join(", "),
+        })
 }
 
-/// The timing checked against the targets and the mechanism's inputs.
-pub(crate) fn resolve_timing<const NI: usize>(timing: &Timing, targets: usize) -> Result<Inputs<NI>, SynthesisError> {
+/// The timing checked against the targets and the mechanism's inputs (`d` its sizes).
+pub(crate) fn resolve_timing<D: Dims>(d: D, timing: &Timing, targets: usize) -> Result<Inputs<D::X>, SynthesisError> {
+    let ni = d.ni();
     match timing {
         Timing::Unset => Err(SynthesisError::Mismatch(
             "the task has no timing: give the inputs (`timed`) or their range (`untimed`)".into(),
@@ -80,23 +77,25 @@ pub(crate) fn resolve_timing<const NI: usize>(timing: &Timing, targets: usize) -
             }
             let mut out = Vec::with_capacity(targets);
             for (k, row) in rows.iter().enumerate() {
-                let x: [f64; NI] = row.as_slice().try_into().map_err(|_| {
-                    SynthesisError::Mismatch(format!(
-                        "target {k} has {} input values; the mechanism has {NI}",
+                if row.len() != ni {
+                    return Err(SynthesisError::Mismatch(format!(
+                        "target {k} has {} input values; the mechanism has {ni}",
                         row.len()
-                    ))
-                })?;
-                if let Some(&v) = x.iter().find(|v| !v.is_finite()) {
+                    )));
+                }
+                if let Some(&v) = row.iter().find(|v| !v.is_finite()) {
                     return Err(SynthesisError::NonFinite { what: "the input", target: k, value: v });
                 }
+                let mut x = d.x();
+                x.as_mut().copy_from_slice(row);
                 out.push(x);
             }
             Ok(Inputs::Prescribed(out))
         }
         &Timing::Free { lo, hi } => {
-            if NI != 1 {
+            if ni != 1 {
                 return Err(SynthesisError::Unsupported(format!(
-                    "free timing moves one input; the mechanism has {NI} (prescribe the inputs)"
+                    "free timing moves one input; the mechanism has {ni} (prescribe the inputs)"
                 )));
             }
             check_bounds("input", lo, hi)?;

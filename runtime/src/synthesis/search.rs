@@ -10,10 +10,10 @@ use super::error::SynthesisError;
 use super::evolution::{DeConfig, Global, IslandRng, best, evolve};
 use super::halton::Halton;
 use super::local::LocalConfig;
-use super::problem::Problem;
+use super::problem::ProblemOf;
 use super::report::{Rejections, SynthesisReport, distinct};
 use super::resolve::Inputs;
-use crate::mechanism::Sensitivities;
+use crate::mechanism::kernel::SensKernel;
 use std::ops::Range;
 
 /// Settings of a global search, apart from the problem (build once, run on many problems).
@@ -95,7 +95,7 @@ impl Search {
         self
     }
     /// Sets [`Search::seeds`]: each a point of the search's unknowns (see
-    /// [`Problem`](super::Problem); clamped into their bounds), e.g. a four-bar of
+    /// [`ProblemOf`](super::ProblemOf); clamped into their bounds), e.g. a four-bar of
     /// [`classical`](super::classical) mapped onto the declaration's parameters.
     pub fn with_seeds(mut self, seeds: Vec<Vec<f64>>) -> Self {
         self.seeds = seeds;
@@ -131,12 +131,9 @@ impl Search {
     }
 
     /// [`Search::validate`], and every seed a point of `problem`'s unknowns.
-    fn validate_for<M, const N: usize, const NI: usize, const NO: usize, const NP: usize>(
-        &self,
-        problem: &Problem<M, N, NI, NO, NP>,
-    ) -> Result<(), SynthesisError>
+    fn validate_for<K>(&self, problem: &ProblemOf<K>) -> Result<(), SynthesisError>
     where
-        M: Sensitivities<N, NI, NO, NP> + Clone,
+        K: SensKernel,
     {
         self.validate()?;
         for (k, seed) in self.seeds.iter().enumerate() {
@@ -163,13 +160,9 @@ impl Search {
     /// The starting point `index` of the search: the design variables (and placement) from the
     /// Halton sequence scaled to their box; free inputs evenly spaced over their range, in
     /// order, `lo + (hi - lo) (k + 1/2) / n`.
-    pub fn start<M, const N: usize, const NI: usize, const NO: usize, const NP: usize>(
-        &self,
-        problem: &Problem<M, N, NI, NO, NP>,
-        index: usize,
-    ) -> Vec<f64>
+    pub fn start<K>(&self, problem: &ProblemOf<K>, index: usize) -> Vec<f64>
     where
-        M: Sensitivities<N, NI, NO, NP> + Clone,
+        K: SensKernel,
     {
         let (lo, hi) = problem.bounds();
         let nv = problem.vars.len();
@@ -189,27 +182,18 @@ impl Search {
     }
 
     /// The local solve from `z0`, verified (`None` where `z0` cannot be assembled).
-    fn solve<M, const N: usize, const NI: usize, const NO: usize, const NP: usize>(
-        &self,
-        problem: &Problem<M, N, NI, NO, NP>,
-        z0: Vec<f64>,
-        origin: Origin,
-        index: usize,
-    ) -> Option<Candidate>
+    fn solve<K>(&self, problem: &ProblemOf<K>, z0: Vec<f64>, origin: Origin, index: usize) -> Option<Candidate>
     where
-        M: Sensitivities<N, NI, NO, NP> + Clone,
+        K: SensKernel,
     {
         let (z, e, report) = problem.local(z0, &self.local).ok()?;
         Some(problem.verify(origin, index, z, e, report))
     }
 
     /// A point clamped into the bounds of the unknowns.
-    fn clamped<M, const N: usize, const NI: usize, const NO: usize, const NP: usize>(
-        problem: &Problem<M, N, NI, NO, NP>,
-        z: &[f64],
-    ) -> Vec<f64>
+    fn clamped<K>(problem: &ProblemOf<K>, z: &[f64]) -> Vec<f64>
     where
-        M: Sensitivities<N, NI, NO, NP> + Clone,
+        K: SensKernel,
     {
         let (lo, hi) = problem.bounds();
         z.iter().zip(lo.iter().zip(&hi)).map(|(v, (a, b))| v.clamp(*a, *b)).collect()
@@ -219,14 +203,9 @@ impl Search {
     /// solves of its best members. `batch` evaluates the residual norms of a generation's
     /// trial vectors (one after the other, or on all cores), `inf` where one cannot be
     /// assembled.
-    fn job<M, const N: usize, const NI: usize, const NO: usize, const NP: usize>(
-        &self,
-        problem: &Problem<M, N, NI, NO, NP>,
-        job: Job,
-        batch: impl Fn(&[Vec<f64>]) -> Vec<f64>,
-    ) -> Found
+    fn job<K>(&self, problem: &ProblemOf<K>, job: Job, batch: impl Fn(&[Vec<f64>]) -> Vec<f64>) -> Found
     where
-        M: Sensitivities<N, NI, NO, NP> + Clone,
+        K: SensKernel,
     {
         match job {
             // A point that cannot be assembled costs its one evaluation.
@@ -248,15 +227,15 @@ impl Search {
     /// random in all members but the first), evolved, its
     /// best `polish` members solved locally (a missing member, where fewer could be assembled,
     /// is a `None`).
-    fn island<M, const N: usize, const NI: usize, const NO: usize, const NP: usize>(
+    fn island<K>(
         &self,
-        problem: &Problem<M, N, NI, NO, NP>,
+        problem: &ProblemOf<K>,
         island: usize,
         de: &DeConfig,
         batch: impl Fn(&[Vec<f64>]) -> Vec<f64>,
     ) -> Found
     where
-        M: Sensitivities<N, NI, NO, NP> + Clone,
+        K: SensKernel,
     {
         let (lo, hi) = problem.bounds();
         let first = island.saturating_mul(de.population);
@@ -288,37 +267,31 @@ impl Search {
 
     /// The residual norm at `z`, `inf` where the design cannot be assembled at every target:
     /// the objective of the evolution.
-    fn norm<M, const N: usize, const NI: usize, const NO: usize, const NP: usize>(
-        problem: &Problem<M, N, NI, NO, NP>,
-        z: &[f64],
-    ) -> f64
+    fn norm<K>(problem: &ProblemOf<K>, z: &[f64]) -> f64
     where
-        M: Sensitivities<N, NI, NO, NP> + Clone,
+        K: SensKernel,
     {
         // A NaN (a position solve that returned one) counts as unassembled too.
         problem.norm_at(z).ok().filter(|v| !v.is_nan()).unwrap_or(f64::INFINITY)
     }
 
     /// Runs the seeds, then the starts (or islands), one after the other.
-    pub fn run<M, const N: usize, const NI: usize, const NO: usize, const NP: usize>(
-        &self,
-        problem: &Problem<M, N, NI, NO, NP>,
-    ) -> Result<SynthesisReport, SynthesisError>
+    pub fn run<K>(&self, problem: &ProblemOf<K>) -> Result<SynthesisReport, SynthesisError>
     where
-        M: Sensitivities<N, NI, NO, NP> + Clone,
+        K: SensKernel,
     {
         self.run_with_progress(problem, |_, _| {})
     }
 
     /// [`Search::run`], calling `progress(done, total)` after each seed, start or island (e.g.
     /// to drive a progress bar on a long search).
-    pub fn run_with_progress<M, const N: usize, const NI: usize, const NO: usize, const NP: usize>(
+    pub fn run_with_progress<K>(
         &self,
-        problem: &Problem<M, N, NI, NO, NP>,
+        problem: &ProblemOf<K>,
         mut progress: impl FnMut(usize, usize),
     ) -> Result<SynthesisReport, SynthesisError>
     where
-        M: Sensitivities<N, NI, NO, NP> + Clone,
+        K: SensKernel,
     {
         self.validate_for(problem)?;
         let jobs = self.jobs();
@@ -341,12 +314,10 @@ impl Search {
     /// and each generation's trial vectors of an island are evaluated in parallel and selected
     /// in member order.
     #[cfg(feature = "rayon")]
-    pub fn par_run<M, const N: usize, const NI: usize, const NO: usize, const NP: usize>(
-        &self,
-        problem: &Problem<M, N, NI, NO, NP>,
-    ) -> Result<SynthesisReport, SynthesisError>
+    pub fn par_run<K>(&self, problem: &ProblemOf<K>) -> Result<SynthesisReport, SynthesisError>
     where
-        M: Sensitivities<N, NI, NO, NP> + Clone + Sync,
+        K: SensKernel,
+        ProblemOf<K>: Sync,
     {
         self.par_run_with_progress(problem, |_, _| {})
     }
@@ -354,13 +325,14 @@ impl Search {
     /// [`Search::par_run`], calling `progress(done, total)` from the worker threads after each
     /// seed, start or island (`done` counts those finished, in whatever order they finish).
     #[cfg(feature = "rayon")]
-    pub fn par_run_with_progress<M, const N: usize, const NI: usize, const NO: usize, const NP: usize>(
+    pub fn par_run_with_progress<K>(
         &self,
-        problem: &Problem<M, N, NI, NO, NP>,
+        problem: &ProblemOf<K>,
         progress: impl Fn(usize, usize) + Sync,
     ) -> Result<SynthesisReport, SynthesisError>
     where
-        M: Sensitivities<N, NI, NO, NP> + Clone + Sync,
+        K: SensKernel,
+        ProblemOf<K>: Sync,
     {
         use rayon::prelude::*;
         use std::sync::atomic::{AtomicUsize, Ordering};
@@ -382,13 +354,9 @@ impl Search {
 
     /// Counts, ranks and removes duplicates (in job order, so that the result does not depend
     /// on how the jobs were run).
-    fn report<M, const N: usize, const NI: usize, const NO: usize, const NP: usize>(
-        &self,
-        problem: &Problem<M, N, NI, NO, NP>,
-        found: Vec<Found>,
-    ) -> SynthesisReport
+    fn report<K>(&self, problem: &ProblemOf<K>, found: Vec<Found>) -> SynthesisReport
     where
-        M: Sensitivities<N, NI, NO, NP> + Clone,
+        K: SensKernel,
     {
         let mut report = SynthesisReport {
             variables: problem.names.clone(),
@@ -423,17 +391,13 @@ impl Search {
         report
     }
 
-    /// Runs the local solve from `z0` (the search's unknowns, see [`Problem`]; clamped into
+    /// Runs the local solve from `z0` (the search's unknowns, see [`ProblemOf`]; clamped into
     /// their bounds) and verifies its result: e.g. from a classical closed-form design, or to
     /// polish a candidate with other settings. An error where the design cannot be assembled
     /// at every target at `z0`.
-    pub fn refine<M, const N: usize, const NI: usize, const NO: usize, const NP: usize>(
-        &self,
-        problem: &Problem<M, N, NI, NO, NP>,
-        z0: &[f64],
-    ) -> Result<Candidate, SynthesisError>
+    pub fn refine<K>(&self, problem: &ProblemOf<K>, z0: &[f64]) -> Result<Candidate, SynthesisError>
     where
-        M: Sensitivities<N, NI, NO, NP> + Clone,
+        K: SensKernel,
     {
         self.validate()?;
         problem.check_point(z0)?;

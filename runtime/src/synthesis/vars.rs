@@ -75,7 +75,7 @@ impl Design {
 
     /// Each variable's index into `params` (the mechanism's parameter names) and its bounds;
     /// an unknown or repeated name, or bounds that hold no value, is an error.
-    pub(crate) fn resolve(&self, mechanism: &'static str, params: &[&str]) -> Result<Vec<Bound>, SynthesisError> {
+    pub(crate) fn resolve(&self, mechanism: &str, params: &[String]) -> Result<Vec<Bound>, SynthesisError> {
         if self.variables.is_empty() {
             return Err(SynthesisError::NoVariables);
         }
@@ -101,10 +101,10 @@ pub(crate) struct Bound {
 }
 
 /// The index of the parameter `name`, or an error listing the parameters.
-pub(crate) fn param_index(mechanism: &'static str, params: &[&str], name: &str) -> Result<usize, SynthesisError> {
-    params.iter().position(|p| *p == name).ok_or_else(|| SynthesisError::UnknownVariable {
+pub(crate) fn param_index(mechanism: &str, params: &[String], name: &str) -> Result<usize, SynthesisError> {
+    params.iter().position(|p| p == name).ok_or_else(|| SynthesisError::UnknownVariable {
         name: name.to_string(),
-        mechanism,
+        mechanism: mechanism.to_string().into(),
         params: params.join(", "),
     })
 }

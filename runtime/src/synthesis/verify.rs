@@ -4,16 +4,15 @@
 
 use super::candidate::{Candidate, Defect, FourBarClass, Origin};
 use super::local::LocalReport;
-use super::problem::Problem;
-use super::residuals::{Eval, wrap};
+use super::problem::ProblemOf;
+use super::residuals::{Eval, value, wrap};
 use super::resolve::Inputs;
-use crate::analysis::ColumnIndex;
-use crate::kin::Kin;
+use crate::dims::KinState;
 use crate::kinds::QuantityKind;
-use crate::mechanism::Sensitivities;
+use crate::mechanism::kernel::{KinOf, Q, SensKernel};
 use crate::metrics::{FourBarLinks, grashof, transmission_angle};
 use crate::paths::outcome::SweepStop;
-use crate::paths::sweep::Sweep;
+use crate::paths::sweep::SweepOf;
 use std::f64::consts::TAU;
 
 /// Samples of each sweep between consecutive targets (the transmission angle is their
@@ -26,20 +25,12 @@ const TURN_SAMPLES: usize = 73;
 /// between distinct assembly modes of a design that is not near singular.
 const SAME_POSITION: f64 = 1e-6;
 
-/// `size` is the unit of a length (the targets' size).
-fn same_position<const N: usize>(kinds: &[QuantityKind; N], a: &[f64; N], b: &[f64; N], size: f64) -> bool {
-    (0..N).all(|u| match kinds[u] {
+/// `size` is the unit of a length (the targets' size); `m` tells the unknowns' kinds.
+fn same_position<K: SensKernel>(m: &K, a: &[f64], b: &[f64], size: f64) -> bool {
+    (0..a.len()).all(|u| match m.unknown_kind(u) {
         QuantityKind::Angle => wrap(a[u] - b[u]).abs() <= SAME_POSITION,
         _ => (a[u] - b[u]).abs() <= SAME_POSITION * (size + b[u].abs()),
     })
-}
-
-fn value<const N: usize, const NI: usize, const NO: usize>(k: &Kin<N, NI, NO>, c: ColumnIndex) -> f64 {
-    match c {
-        ColumnIndex::Unknown(u) => k.q[u],
-        ColumnIndex::Output(o) => k.out[o],
-        ColumnIndex::Input(i) => k.x[i],
-    }
 }
 
 /// The free inputs as one monotone motion: themselves if strictly monotone; for an angle,
@@ -92,46 +83,62 @@ pub(crate) fn four_bar_class([d, a, b, c]: [f64; 4]) -> Option<FourBarClass> {
     Some(FourBarClass { class: g.class, margin: g.margin, min_transmission })
 }
 
-impl<M, const N: usize, const NI: usize, const NO: usize, const NP: usize> Problem<M, N, NI, NO, NP>
-where
-    M: Sensitivities<N, NI, NO, NP> + Clone,
-{
+impl<K: SensKernel> ProblemOf<K> {
     /// The candidate of the local solution `z` (evaluated as `e`), verified.
     pub(crate) fn verify(
         &self,
         origin: Origin,
         start: usize,
         z: Vec<f64>,
-        e: Eval<N>,
+        e: Eval<Q<K>>,
         local: LocalReport,
     ) -> Candidate {
         let params = self.params(&z);
-        let m = self.base.with_params_flat(params);
+        self.base.with_params(&params, |m| self.verify_with(m, origin, start, z, e, local, params.clone()))
+    }
+
+    /// [`ProblemOf::verify`] on `m`, the mechanism with the parameters `params` of `z`.
+    #[allow(clippy::too_many_arguments)]
+    fn verify_with(
+        &self,
+        m: &K,
+        origin: Origin,
+        start: usize,
+        z: Vec<f64>,
+        e: Eval<Q<K>>,
+        local: LocalReport,
+        params: Vec<f64>,
+    ) -> Candidate {
         let mut inputs = self.input_values(&z);
         let n = inputs.len();
         let mut defects = Vec::new();
         if matches!(self.inputs, Inputs::Free { .. }) && n > 1 {
             let free: Vec<f64> = inputs.iter().map(|x| x[0]).collect();
-            match in_order(&free, M::INPUT_KINDS[0] == QuantityKind::Angle) {
-                Some(x) => inputs = x.into_iter().map(|v| [v; NI]).collect(),
+            match in_order(&free, m.input_kind(0) == QuantityKind::Angle) {
+                Some(x) => inputs = x.into_iter().map(|v| self.input_point(v)).collect(),
                 None => defects.push(Defect::Order),
             }
         }
         // The motion from target to target on the first target's assembly mode.
-        let mut samples: Vec<Kin<N, NI, NO>> = Vec::new();
+        let mut samples: Vec<KinOf<K>> = Vec::new();
         for k in 1..n {
-            if inputs[k] == inputs[k - 1] {
+            if inputs[k].as_ref() == inputs[k - 1].as_ref() {
                 continue;
             }
-            let run =
-                Sweep::<M, Kin<N, NI, NO>, N, NI, NO>::new(&m, inputs[k - 1], inputs[k], STRETCH_SAMPLES, e.qs[k - 1])
-                    .map(|s| s.with_config(self.sweep).run());
+            let run = SweepOf::<&K, KinOf<K>>::over(
+                m,
+                inputs[k - 1].clone(),
+                inputs[k].clone(),
+                STRETCH_SAMPLES,
+                e.qs[k - 1].clone(),
+            )
+            .map(|s| s.with_config(self.sweep).run());
             let defect = match run {
                 Ok(r) => match (&r.stop, r.states.last()) {
                     (SweepStop::Completed, Some(last)) => {
+                        let reached = same_position(m, last.q(), e.qs[k].as_ref(), self.scale);
                         samples.extend_from_slice(&r.states);
-                        (!same_position(&M::UNKNOWN_KINDS, &last.q, &e.qs[k], self.scale))
-                            .then_some(Defect::Branch { target: k })
+                        (!reached).then_some(Defect::Branch { target: k })
                     }
                     (SweepStop::LimitPosition(ev), _) => {
                         Some(Defect::Circuit { target: k, at: ev.x.first().copied().unwrap_or(f64::NAN) })
@@ -148,15 +155,14 @@ where
         }
         if self.checks.full_rotation {
             let dir = if n > 1 && inputs[n - 1][0] < inputs[0][0] { -1.0 } else { 1.0 };
-            let to = inputs[0].map(|x| x + dir * TAU);
-            let run = Sweep::<M, Kin<N, NI, NO>, N, NI, NO>::new(&m, inputs[0], to, TURN_SAMPLES, e.qs[0])
+            let mut to = inputs[0].clone();
+            to.as_mut().iter_mut().for_each(|x| *x += dir * TAU);
+            let run = SweepOf::<&K, KinOf<K>>::over(m, inputs[0].clone(), to, TURN_SAMPLES, e.qs[0].clone())
                 .map(|s| s.with_config(self.sweep).run());
             match run {
                 Ok(r)
                     if r.is_completed()
-                        && r.states
-                            .last()
-                            .is_some_and(|l| same_position(&M::UNKNOWN_KINDS, &l.q, &e.qs[0], self.scale)) =>
+                        && r.states.last().is_some_and(|l| same_position(m, l.q(), e.qs[0].as_ref(), self.scale)) =>
                 {
                     samples = r.states;
                 }
@@ -165,11 +171,10 @@ where
         }
         let mut min_transmission = None;
         if let Some((c, f, min)) = self.checks.transmission {
-            let at_targets =
-                e.qs.iter().zip(&inputs).filter_map(|(q, x)| m.kinematics_at_flat(x, q, &self.newton).ok());
+            let at_targets = e.qs.iter().zip(&inputs).filter_map(|(q, x)| m.kinematics_at(x, q, &self.newton).ok());
             let angle = samples
                 .iter()
-                .copied()
+                .cloned()
                 .chain(at_targets)
                 .map(|k| transmission_angle(value(&k, c), value(&k, f)))
                 .fold(f64::INFINITY, f64::min);
@@ -202,10 +207,10 @@ where
             start,
             origin,
             values: z[..self.vars.len()].to_vec(),
-            params: params.to_vec(),
-            inputs: inputs.iter().map(|x| x.to_vec()).collect(),
+            params,
+            inputs: inputs.iter().map(|x| x.as_ref().to_vec()).collect(),
             placement,
-            positions: e.qs.iter().map(|q| q.to_vec()).collect(),
+            positions: e.qs.iter().map(|q| q.as_ref().to_vec()).collect(),
             errors,
             max_error,
             rms_error,

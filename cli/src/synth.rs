@@ -1,0 +1,302 @@
+//! `kinloop synth`: dimensional synthesis of a declaration read at run time, the library's
+//! synthesis (`kinloop_runtime::synthesis`: Levenberg–Marquardt from Halton starts on the exact
+//! Jacobian, every candidate verified by a branch-safe sweep through the targets) over the
+//! model (`Model::synthesis_problem`). The targets come from a CSV file: points of a path
+//! (`x,y`, or `input,x,y` at given inputs) or pairs of a function (`input,output`). The ranked
+//! candidates are written as a table or as CSV, each with its defects.
+
+use crate::{Failed, exit};
+use kinloop_model::Model;
+use kinloop_runtime::QuantityKind;
+use kinloop_runtime::synthesis::{Candidate, Defect, Design, Search, SynthesisError, SynthesisReport, Task};
+use std::f64::consts::TAU;
+use std::fmt::Write as _;
+use std::io::Write;
+use std::path::Path;
+
+/// What `kinloop synth` was asked.
+pub struct Request<'a> {
+    /// The CSV file of the targets.
+    pub targets: &'a Path,
+    /// The point whose path is synthesised (`--path`).
+    pub path: Option<&'a str>,
+    /// `input:output` of a function generator (`--function`).
+    pub function: Option<&'a str>,
+    /// The design variables, `name=lo..hi` separated by commas.
+    pub vary: &'a str,
+    /// The input range of a path whose targets have no inputs, `lo..hi`.
+    pub range: Option<&'a str>,
+    /// Halton starts.
+    pub starts: usize,
+    /// The seed of the starts.
+    pub seed: u64,
+    /// Candidates kept.
+    pub keep: usize,
+    /// Angles in degrees (inputs, angle outputs, the range); otherwise radians.
+    pub deg: bool,
+    /// CSV instead of a table.
+    pub csv: bool,
+}
+
+/// Runs the search and writes its ranked candidates: success when one is valid, exit code 1
+/// when none is.
+pub fn run(model: &mut Model, req: &Request) -> Result<(), Failed> {
+    if req.keep == 0 {
+        return Err(exit::usage("--keep 0 would write no candidate: keep at least 1"));
+    }
+    let design = design(req.vary)?;
+    let rows = read_targets(req.targets)?;
+    let task = task(model, req, &rows)?;
+    let name = model.name().to_string();
+    let problem = model.synthesis_problem(&design, &task).map_err(|e| problem_error(&name, e))?;
+    let search = Search::default().with_starts(0..req.starts).with_seed(req.seed).with_keep(req.keep);
+    let report = search.run(&problem).map_err(|e| problem_error(&name, e))?;
+    let text = if req.csv { csv(&report) } else { table(&report) };
+    let mut out = std::io::stdout().lock();
+    if out.write_all(text.as_bytes()).and_then(|()| out.flush()).is_err() {
+        return Err(Failed(exit::IO_ERR));
+    }
+    eprintln!("{}", summary(&report));
+    if report.best().is_some() {
+        Ok(())
+    } else {
+        eprintln!("error: {name}: no valid candidate");
+        Err(Failed(exit::SOLVE_FAILED))
+    }
+}
+
+/// A problem the library refuses: a usage error (names, bounds, targets), or a failed solve.
+fn problem_error(name: &str, e: SynthesisError) -> Failed {
+    eprintln!("error: {name}: {e}");
+    match e {
+        SynthesisError::Kinematics(_) => Failed(exit::SOLVE_FAILED),
+        _ => Failed(exit::USAGE),
+    }
+}
+
+/// `lo..hi` as two finite numbers, lower first.
+fn bounds(spec: &str, what: &str) -> Result<(f64, f64), Failed> {
+    let parsed =
+        spec.split_once("..").and_then(|(a, b)| Some((a.trim().parse::<f64>().ok()?, b.trim().parse::<f64>().ok()?)));
+    match parsed {
+        Some((lo, hi)) if lo.is_finite() && hi.is_finite() && lo <= hi => Ok((lo, hi)),
+        _ => Err(exit::usage(format!("{what} `{spec}` is not `lo..hi` with finite lo <= hi"))),
+    }
+}
+
+/// `--vary a=0.5..3,b=1..4`.
+fn design(vary: &str) -> Result<Design, Failed> {
+    let mut d = Design::new();
+    for item in vary.split(',').map(str::trim).filter(|s| !s.is_empty()) {
+        let Some((name, range)) = item.split_once('=') else {
+            return Err(exit::usage(format!("`{item}` in --vary is not `name=lo..hi`")));
+        };
+        let (lo, hi) = bounds(range, &format!("the range of `{}` in --vary", name.trim()))?;
+        d = d.var(name.trim(), lo, hi);
+    }
+    if d.variables().is_empty() {
+        return Err(exit::usage("--vary names no design variable"));
+    }
+    Ok(d)
+}
+
+/// The numeric rows of the targets file: blank lines and `#` comments skipped, a first line
+/// that is not numbers taken for a header; every row the same width.
+fn read_targets(path: &Path) -> Result<Vec<Vec<f64>>, Failed> {
+    let text = std::fs::read_to_string(path).map_err(|e| {
+        eprintln!("error: cannot read {}: {e}", path.display());
+        Failed(exit::NO_INPUT)
+    })?;
+    let mut rows: Vec<Vec<f64>> = Vec::new();
+    let lines = text.lines().enumerate().filter(|(_, l)| !l.trim().is_empty() && !l.trim_start().starts_with('#'));
+    for (k, (n, line)) in lines.enumerate() {
+        let row: Result<Vec<f64>, _> = line.split(',').map(|v| v.trim().parse::<f64>()).collect();
+        match row {
+            Ok(row) if row.iter().all(|v| v.is_finite()) => {
+                if let Some(first) = rows.first().filter(|f| f.len() != row.len()) {
+                    return Err(exit::usage(format!(
+                        "{} line {}: {} values, the rows before have {}",
+                        path.display(),
+                        n + 1,
+                        row.len(),
+                        first.len()
+                    )));
+                }
+                rows.push(row);
+            }
+            // A header.
+            Err(_) if k == 0 => {}
+            _ => {
+                return Err(exit::usage(format!(
+                    "{} line {}: `{line}` is not a row of finite numbers",
+                    path.display(),
+                    n + 1
+                )));
+            }
+        }
+    }
+    if rows.is_empty() {
+        return Err(exit::usage(format!("{} holds no targets", path.display())));
+    }
+    Ok(rows)
+}
+
+/// An angle given in degrees with `--deg` in radians; any other value as it is.
+fn angle_in(kind: QuantityKind, deg: bool, v: f64) -> f64 {
+    if deg && kind == QuantityKind::Angle { v.to_radians() } else { v }
+}
+
+/// The task of `--path` or `--function` over the rows.
+fn task(model: &Model, req: &Request, rows: &[Vec<f64>]) -> Result<Task, Failed> {
+    let (ni, input_kind) = (model.inputs().len(), model.input_kinds().first().copied());
+    let width = rows[0].len();
+    match (req.path, req.function) {
+        (Some(point), None) => {
+            let xy = |r: &Vec<f64>| [r[width - 2], r[width - 1]];
+            match width {
+                2 => {
+                    if ni != 1 {
+                        return Err(exit::usage(format!(
+                            "targets without inputs move one input along --range; `{}` has {ni}",
+                            model.name()
+                        )));
+                    }
+                    let kind = input_kind.unwrap_or(QuantityKind::Other);
+                    let (lo, hi) = match req.range {
+                        Some(r) => {
+                            let (lo, hi) = bounds(r, "--range")?;
+                            (angle_in(kind, req.deg, lo), angle_in(kind, req.deg, hi))
+                        }
+                        None if kind == QuantityKind::Angle => (0.0, TAU),
+                        None => return Err(exit::usage("targets without inputs need --range lo..hi")),
+                    };
+                    Ok(Task::path(point, rows.iter().map(xy)).untimed(lo, hi))
+                }
+                w if w == ni + 2 => {
+                    let kinds = model.input_kinds();
+                    let inputs = rows
+                        .iter()
+                        .map(|r| r[..ni].iter().zip(kinds).map(|(v, k)| angle_in(*k, req.deg, *v)).collect())
+                        .collect();
+                    Ok(Task::path(point, rows.iter().map(xy)).timed_inputs(inputs))
+                }
+                _ => Err(exit::usage(format!(
+                    "--path targets are rows `x,y` or `{}x,y`: {} has {width} values per row",
+                    "input,".repeat(ni),
+                    req.targets.display()
+                ))),
+            }
+        }
+        (None, Some(spec)) => {
+            let Some((input, output)) = spec.split_once(':').map(|(a, b)| (a.trim(), b.trim())) else {
+                return Err(exit::usage(format!("--function `{spec}` is not `input:output`")));
+            };
+            if ni != 1 || model.inputs()[0] != input {
+                return Err(exit::usage(format!(
+                    "--function: `{input}` is not the one input of `{}` (its inputs: {})",
+                    model.name(),
+                    model.inputs().join(", ")
+                )));
+            }
+            if width != 2 {
+                return Err(exit::usage(format!(
+                    "--function targets are rows `input,output`: {} has {width} values per row",
+                    req.targets.display()
+                )));
+            }
+            let out_kind = column_kind(model, output).unwrap_or(QuantityKind::Other);
+            let kind = input_kind.unwrap_or(QuantityKind::Other);
+            let pairs = rows.iter().map(|r| (angle_in(kind, req.deg, r[0]), angle_in(out_kind, req.deg, r[1])));
+            Ok(Task::function(output, pairs))
+        }
+        _ => Err(exit::usage("give the channel: --path POINT or --function INPUT:OUTPUT")),
+    }
+}
+
+/// The kind of the unknown or output `name` (the library names a missing one).
+fn column_kind(model: &Model, name: &str) -> Option<QuantityKind> {
+    let unknowns = model.unknowns().iter().zip(model.unknown_kinds());
+    let outputs = model.outputs().iter().zip(model.output_kinds());
+    unknowns.chain(outputs).find(|(n, _)| *n == name).map(|(_, k)| *k)
+}
+
+/// A defect in words, with where it happened.
+fn defect(d: &Defect) -> String {
+    match d {
+        Defect::Order => "order".into(),
+        Defect::Branch { target } => format!("branch at target {target}"),
+        Defect::Circuit { target, at } => format!("circuit before target {target} (limit at {at:.6})"),
+        Defect::NoAssembly { target } => format!("no assembly before target {target}"),
+        Defect::NoFullRotation => "no full rotation".into(),
+        Defect::Transmission { min } => format!("transmission angle {min:.6}"),
+        Defect::LinkRatio { ratio } => format!("link ratio {ratio:.6}"),
+        _ => format!("{d:?}"),
+    }
+}
+
+/// The defects of a candidate, `;`-separated (empty for a valid one).
+fn defects(c: &Candidate) -> String {
+    c.defects.iter().map(defect).collect::<Vec<_>>().join("; ")
+}
+
+/// The columns: rank, start, valid, the design variables, the errors, evaluations, defects.
+fn header(report: &SynthesisReport) -> Vec<String> {
+    let mut h: Vec<String> = ["rank", "start", "valid"].map(String::from).to_vec();
+    h.extend(report.variables.iter().cloned());
+    h.extend(["max_error", "rms_error", "evaluations", "defects"].map(String::from));
+    h
+}
+
+/// One candidate's cells (values in full precision: `{:?}` reads back to the same bits).
+fn cells(rank: usize, c: &Candidate) -> Vec<String> {
+    let mut r = vec![rank.to_string(), c.start.to_string(), u8::from(c.is_valid()).to_string()];
+    r.extend(c.values.iter().map(|v| format!("{v:?}")));
+    r.extend([format!("{:?}", c.max_error), format!("{:?}", c.rms_error), c.local.evaluations.to_string()]);
+    r.push(defects(c));
+    r
+}
+
+/// The candidates as CSV (the defects quoted).
+fn csv(report: &SynthesisReport) -> String {
+    let mut s = header(report).join(",");
+    s.push('\n');
+    for (k, c) in report.candidates.iter().enumerate() {
+        let mut r = cells(k + 1, c);
+        let last = r.len() - 1;
+        r[last] = format!("\"{}\"", r[last]);
+        let _ = writeln!(s, "{}", r.join(","));
+    }
+    s
+}
+
+/// The candidates as a table aligned in columns.
+fn table(report: &SynthesisReport) -> String {
+    let head = header(report);
+    let rows: Vec<Vec<String>> = report.candidates.iter().enumerate().map(|(k, c)| cells(k + 1, c)).collect();
+    let widths: Vec<usize> =
+        (0..head.len()).map(|j| rows.iter().map(|r| r[j].len()).chain([head[j].len()]).max().unwrap_or(0)).collect();
+    let mut s = String::new();
+    for r in std::iter::once(&head).chain(&rows) {
+        let line: Vec<String> = r.iter().zip(&widths).map(|(v, w)| format!("{v:<w$}")).collect();
+        let _ = writeln!(s, "{}", line.join("  ").trim_end());
+    }
+    s
+}
+
+/// What happened to the starts, in one line.
+fn summary(r: &SynthesisReport) -> String {
+    format!(
+        "{} starts: {} valid, {} converged, {} could not be assembled, {} rejected (order {}, branch {}, circuit {}, \
+         no assembly {}), {} evaluations",
+        r.starts.len() + r.seeds,
+        r.valid,
+        r.converged,
+        r.unassembled,
+        r.rejected.total(),
+        r.rejected.order,
+        r.rejected.branch,
+        r.rejected.circuit,
+        r.rejected.no_assembly,
+        r.evaluations
+    )
+}

@@ -1,0 +1,201 @@
+//! `kinloop synth` end to end: the built binary on the shipped `coupler_four_bar.kl`, with
+//! targets computed here in closed form from known dimensions; its CSV parsed and compared
+//! with the library's search over the same model (the same candidates, to the bit: values are
+//! written in full precision) and with the known dimensions; its table, usage errors and exit
+//! codes.
+
+use kinloop::synthesis::{Design, Search, Task};
+use kinloop_model::Model;
+use std::path::PathBuf;
+use std::process::{Command, Output};
+
+fn kinloop(args: &[&str]) -> Output {
+    Command::new(env!("CARGO_BIN_EXE_kinloop")).args(args).output().expect("the kinloop binary runs")
+}
+
+fn shipped(name: &str) -> String {
+    PathBuf::from(env!("CARGO_MANIFEST_DIR")).join("mechanisms").join(name).display().to_string()
+}
+
+/// The dimensions `[a, b, c, d, e, alpha]` the targets are made from.
+const TRUTH: [f64; 6] = [1.1, 2.8, 2.3, 3.2, 1.7, 0.45];
+const VARY: &str = "a=0.77..1.43,b=1.96..3.64,c=1.61..2.99,d=2.24..4.16,e=1.19..2.21,alpha=0.315..0.585";
+
+/// The coupler point at crank angle `phi` in closed form (joint C where the circles about the
+/// crank pin and about D meet, left of B -> D: the declared guess's assembly mode).
+fn coupler_point([a, b, c, d, e, alpha]: [f64; 6], phi: f64) -> [f64; 2] {
+    let (bx, by) = (a * phi.cos(), a * phi.sin());
+    let (ux, uy) = (d - bx, -by);
+    let dist = ux.hypot(uy);
+    let along = (b * b - c * c + dist * dist) / (2.0 * dist);
+    let h = (b * b - along * along).sqrt();
+    let (cx, cy) = (bx + (along * ux - h * uy) / dist, by + (along * uy + h * ux) / dist);
+    let beta = (cy - by).atan2(cx - bx);
+    [bx + e * (beta + alpha).cos(), by + e * (beta + alpha).sin()]
+}
+
+/// The crank angles of the targets (radians).
+fn phis() -> Vec<f64> {
+    (0..5).map(|k| 0.3 + 1.1 * k as f64).collect()
+}
+
+/// Writes `text` to a file of the test's own and returns its path.
+fn file(name: &str, text: &str) -> String {
+    let path = PathBuf::from(env!("CARGO_TARGET_TMPDIR")).join(name);
+    std::fs::write(&path, text).expect("write the targets");
+    path.display().to_string()
+}
+
+/// Path targets `phi,x,y` with the crank angle in degrees.
+fn timed_targets() -> String {
+    let rows: Vec<String> = phis()
+        .iter()
+        .map(|&p| {
+            let [x, y] = coupler_point(TRUTH, p);
+            format!("{:?},{x:?},{y:?}", p.to_degrees())
+        })
+        .collect();
+    file("synth_timed.csv", &format!("# five points of a known four-bar\nphi,x,y\n{}\n", rows.join("\n")))
+}
+
+/// The CSV's header and rows of cells.
+fn csv(out: &Output) -> (Vec<String>, Vec<Vec<String>>) {
+    let text = String::from_utf8(out.stdout.clone()).expect("utf-8");
+    let mut lines = text.lines();
+    let header = lines.next().expect("header").split(',').map(str::to_string).collect();
+    (header, lines.map(|l| l.split(',').map(str::to_string).collect()).collect())
+}
+
+#[test]
+fn path_synthesis_recovers_the_four_bar_and_equals_the_library() {
+    let targets = timed_targets();
+    let file = shipped("coupler_four_bar.kl");
+    let out = kinloop(&[
+        "synth",
+        &file,
+        "--targets",
+        &targets,
+        "--path",
+        "p",
+        "--deg",
+        "--vary",
+        VARY,
+        "--starts",
+        "12",
+        "--csv",
+    ]);
+    assert_eq!(out.status.code(), Some(0), "{}", String::from_utf8_lossy(&out.stderr));
+    let (header, rows) = csv(&out);
+    let names = ["a", "b", "c", "d", "e", "alpha"];
+    assert_eq!(header[..3], ["rank", "start", "valid"]);
+    assert_eq!(header[3..9], names);
+    assert_eq!(header[9..], ["max_error", "rms_error", "evaluations", "defects"]);
+    let best = &rows[0];
+    assert_eq!((best[0].as_str(), best[2].as_str(), best[12].as_str()), ("1", "1", "\"\""));
+    // Ten equations of a consistent system: met to rounding, the dimensions to 1e-8.
+    let values: Vec<f64> = best[3..9].iter().map(|v| v.parse().expect("a number")).collect();
+    assert!(best[9].parse::<f64>().unwrap() <= 1e-13, "max error {}", best[9]);
+    for ((name, got), want) in names.iter().zip(&values).zip(TRUTH) {
+        assert!((got - want).abs() <= 1e-8 * want, "{name}: {got} vs {want}");
+    }
+    // The library's search over the same model, task and starts: the same candidates.
+    let mut model = Model::read(&file, &std::fs::read_to_string(&file).unwrap()).unwrap();
+    let design = VARY.split(',').fold(Design::new(), |d, item| {
+        let (n, r) = item.split_once('=').unwrap();
+        let (lo, hi) = r.split_once("..").unwrap();
+        d.var(n, lo.parse().unwrap(), hi.parse().unwrap())
+    });
+    // The inputs as the command reads them: degrees converted to radians.
+    let inputs: Vec<f64> = phis().iter().map(|p| p.to_degrees().to_radians()).collect();
+    let task = Task::path("p", phis().iter().map(|&p| coupler_point(TRUTH, p))).timed(inputs);
+    let problem = model.synthesis_problem(&design, &task).unwrap();
+    let report = Search::default().with_starts(0..12).run(&problem).unwrap();
+    assert_eq!(rows.len(), report.candidates.len());
+    for (row, c) in rows.iter().zip(&report.candidates) {
+        let parsed: Vec<f64> = row[3..9].iter().map(|v| v.parse().unwrap()).collect();
+        assert_eq!(parsed, c.values, "bit for bit");
+        assert_eq!(row[1], c.start.to_string());
+    }
+}
+
+#[test]
+fn function_synthesis_in_degrees_writes_a_table() {
+    // The rocker angle gamma of the four-bar (a, b, c; d fixed) at six crank angles, closed form.
+    let [a, b, c, d, ..] = TRUTH;
+    let rows: Vec<String> = (0..6)
+        .map(|k| {
+            let phi = 0.5 + 0.8 * k as f64;
+            let [x, y] = coupler_point([a, b, c, d, b, 0.0], phi);
+            format!("{:?},{:?}", phi.to_degrees(), y.atan2(x - d).to_degrees())
+        })
+        .collect();
+    let targets = file("synth_function.csv", &rows.join("\n"));
+    let out = kinloop(&[
+        "synth",
+        &shipped("coupler_four_bar.kl"),
+        "--targets",
+        &targets,
+        "--function",
+        "phi:gamma",
+        "--deg",
+        "--vary",
+        "a=0.77..1.43,b=1.96..3.64,c=1.61..2.99",
+        "--params",
+        "d=3.2",
+        "--starts",
+        "10",
+    ]);
+    assert_eq!(out.status.code(), Some(0), "{}", String::from_utf8_lossy(&out.stderr));
+    let text = String::from_utf8(out.stdout).unwrap();
+    let first: Vec<&str> = text.lines().nth(1).expect("a candidate").split_whitespace().collect();
+    assert_eq!(first[..3], ["1", first[1], "1"]);
+    for (got, want) in first[3..6].iter().zip([a, b, c]) {
+        let got: f64 = got.parse().unwrap();
+        assert!((got - want).abs() <= 1e-8 * want, "{got} vs {want}");
+    }
+}
+
+#[test]
+fn usage_errors_and_no_candidate_have_their_exit_codes() {
+    let targets = timed_targets();
+    let four_bar = shipped("coupler_four_bar.kl");
+    let run = |extra: &[&str]| {
+        let mut args = vec!["synth", four_bar.as_str(), "--targets", targets.as_str()];
+        args.extend_from_slice(extra);
+        kinloop(&args)
+    };
+    let stderr = |o: &Output| String::from_utf8_lossy(&o.stderr).to_string();
+    // No channel; a variable that is no parameter; bounds that are no range; a point that is
+    // no column: usage errors (2), each naming what is wrong.
+    let o = run(&["--vary", "a=1..2", "--deg"]);
+    assert_eq!(o.status.code(), Some(2));
+    assert!(stderr(&o).contains("--path POINT or --function"), "{}", stderr(&o));
+    let o = run(&["--path", "p", "--deg", "--vary", "length=1..2"]);
+    assert_eq!(o.status.code(), Some(2));
+    assert!(stderr(&o).contains("`length` is no parameter of `CouplerFourBar`"), "{}", stderr(&o));
+    let o = run(&["--path", "p", "--deg", "--vary", "a=2..1"]);
+    assert_eq!(o.status.code(), Some(2));
+    let o = run(&["--path", "q", "--deg", "--vary", "a=1..2"]);
+    assert_eq!(o.status.code(), Some(2));
+    assert!(stderr(&o).contains("`q.x` is no unknown or output column"), "{}", stderr(&o));
+    // A declaration without sensitivities.
+    let o = kinloop(&[
+        "synth",
+        &shipped("four_bar.kl"),
+        "--targets",
+        &targets,
+        "--path",
+        "pc",
+        "--vary",
+        "a=1..2",
+        "--params",
+        "a=1,b=3,c=2.5,d=3.2",
+    ]);
+    assert_eq!(o.status.code(), Some(2));
+    assert!(stderr(&o).contains("#[kinloop(sensitivities)]"), "{}", stderr(&o));
+    // No start at all: no candidate, exit code 1, the (empty) table still written.
+    let o = run(&["--path", "p", "--deg", "--vary", VARY, "--starts", "0"]);
+    assert_eq!(o.status.code(), Some(1));
+    assert!(stderr(&o).contains("no valid candidate"), "{}", stderr(&o));
+    assert!(String::from_utf8_lossy(&o.stdout).starts_with("rank"));
+}

@@ -1,0 +1,210 @@
+//! Synthesis on a run-time model: the runtime's one implementation (`kinloop_runtime::synthesis`,
+//! written over `SensKernel`) with the model's kernel. A model declared with
+//! `#[kinloop(sensitivities)]` gives [`Model::synthesis_problem`], the compiled
+//! `Problem::new`'s counterpart; the search (`Search::run`), the local solve and the
+//! verification by branch-safe sweeps are the compiled mechanism's code. Where the model's
+//! states equal the compiled mechanism's bit for bit (its kinematics and sensitivities do, on
+//! the same operations), so do the candidates (`tests/synthesis.rs`).
+
+use crate::mechanism::ModelKernel;
+use crate::model::{Model, StepError};
+use crate::sensitivities::Sensitivities;
+use kinloop_runtime::dims::{Dims, Heap, KinBuf};
+use kinloop_runtime::synthesis::{Design, ProblemOf, SynthesisError, Task};
+use kinloop_runtime::{Error, Kernel, NewtonConfig, Quantity, SensKernel, SensState, SweepConfig};
+use std::borrow::Cow;
+
+/// A synthesis problem over a run-time model ([`Model::synthesis_problem`]): the runtime's
+/// `ProblemOf` over the model's kernel, solved by `kinloop_runtime::synthesis::Search` as a
+/// compiled mechanism's `Problem` is (one after the other: a model is one workspace, so
+/// `Search::par_run` is for compiled mechanisms).
+pub type ModelProblem<'a> = ProblemOf<ModelKernel<'a>>;
+
+/// The parameter sensitivities of one state of a model, with the number of parameters that
+/// indexes them (the runtime's `SensState` over [`Sensitivities`]).
+#[derive(Clone, Debug, Default, PartialEq)]
+pub struct ModelSens {
+    /// The number of parameters.
+    pub np: usize,
+    /// The sensitivities, flat with the parameter innermost.
+    pub values: Sensitivities,
+}
+
+impl SensState for ModelSens {
+    fn q(&self, u: usize, k: usize) -> f64 {
+        self.values.q[u * self.np + k]
+    }
+    fn out(&self, o: usize, k: usize) -> f64 {
+        self.values.out[o * self.np + k]
+    }
+}
+
+impl Model {
+    /// The synthesis problem of varying `design` of this model (its other parameters keep their
+    /// values) to do `task`: the compiled `Problem::new` over the model's kernel, with the
+    /// default solver configuration. The model must be declared with
+    /// `#[kinloop(sensitivities)]` (`SynthesisError::Unsupported` otherwise) and have a value
+    /// for every parameter; the names, bounds and targets are checked as for a compiled
+    /// mechanism. The problem lends the model: a search sets its parameters for each
+    /// evaluation and puts them back after it.
+    ///
+    /// ```
+    /// use kinloop_model::Model;
+    /// use kinloop_runtime::synthesis::{Design, Search, Task};
+    /// let text = "#[kinloop(sensitivities)]
+    /// pub struct SliderCrank {
+    ///     params r = 1, l = 3;
+    ///     input phi;
+    ///     unknowns beta = 0, s = 4;
+    ///     loop rod: r @ phi + l @ beta == (s, 0);
+    /// }";
+    /// let mut m = Model::read("slider_crank.kl", text).unwrap();
+    /// // The slider's positions of a crank of 1.5 and a rod of 4, at three crank angles.
+    /// let s = |phi: f64| 1.5 * phi.cos() + (16.0 - (1.5 * phi.sin()).powi(2)).sqrt();
+    /// let task = Task::function("s", [(0.2, s(0.2)), (0.9, s(0.9)), (1.6, s(1.6))]);
+    /// let design = Design::new().var("r", 0.5, 2.0).var("l", 3.0, 5.0);
+    /// let problem = m.synthesis_problem(&design, &task).unwrap();
+    /// let report = Search::default().with_starts(0..8).run(&problem).unwrap();
+    /// let best = report.best().unwrap();
+    /// assert!((best.values[0] - 1.5).abs() < 1e-9 && (best.values[1] - 4.0).abs() < 1e-9);
+    /// ```
+    pub fn synthesis_problem(&mut self, design: &Design, task: &Task) -> Result<ModelProblem<'_>, SynthesisError> {
+        if !self.has_sensitivities() {
+            return Err(SynthesisError::Unsupported(format!(
+                "`{}` was declared without parameter sensitivities: add `#[kinloop(sensitivities)]` before \
+                 `pub struct`",
+                self.name()
+            )));
+        }
+        let kernel = self.kernel(SweepConfig::default())?;
+        ProblemOf::over(kernel, design, task)
+    }
+}
+
+impl SensKernel for ModelKernel<'_> {
+    type Sens = ModelSens;
+    fn param_count(&self) -> usize {
+        self.model().borrow().params().len()
+    }
+    fn param_names(&self) -> Vec<String> {
+        self.model().borrow().params().to_vec()
+    }
+    /// The parameter's value (NaN where it has none, which lending the model rules out).
+    fn param(&self, k: usize) -> f64 {
+        self.model().borrow().param_values()[k].unwrap_or(f64::NAN)
+    }
+    /// Every parameter finite: the compiled `check_params`'s error otherwise.
+    fn check_params(&self) -> Result<(), Error> {
+        let m = self.model().borrow();
+        let unset = |v: &Option<f64>| v.unwrap_or(f64::NAN);
+        match m.params().iter().zip(m.param_values()).find(|(_, v)| !unset(v).is_finite()) {
+            Some((name, v)) => Err(Error::NonFinite {
+                what: Quantity::Parameter,
+                name: Cow::Owned(name.clone()),
+                value: unset(v),
+                at: self.location(&vec![0.0; self.dims().ni()], None),
+            }),
+            None => Ok(()),
+        }
+    }
+    /// `f` called with the model's parameters set to `p`, its own put back after it (so that
+    /// calls nest). `p` has one value per parameter.
+    fn with_params<R>(&self, p: &[f64], f: impl FnOnce(&Self) -> R) -> R {
+        let np = self.param_count();
+        assert_eq!(p.len(), np, "{} values for the {np} parameters of `{}`", p.len(), self.name());
+        let old = self.set_all(p.iter().copied().map(Some).collect());
+        let r = f(self);
+        self.set_all(old);
+        r
+    }
+    fn sens(&self) -> ModelSens {
+        let np = self.param_count();
+        let d = self.dims();
+        let z = |len: usize| vec![0.0; len];
+        let (n, ni, no) = (d.n(), d.ni(), d.no());
+        ModelSens {
+            np,
+            values: Sensitivities {
+                q: z(n * np),
+                dq: z(n * ni * np),
+                d2q: z(n * ni * ni * np),
+                out: z(no * np),
+                dout: z(no * ni * np),
+                d2out: z(no * ni * ni * np),
+            },
+        }
+    }
+    /// The model's `sensitivities` copied into `kin` and `sens` (no allocation).
+    fn sensitivities_into(
+        &self,
+        x: &Heap,
+        guess: &Heap,
+        cfg: &NewtonConfig,
+        kin: &mut KinBuf,
+        sens: &mut ModelSens,
+    ) -> Result<(), Error> {
+        let mut m = self.model().borrow_mut();
+        match m.sensitivities(&x.0, &guess.0, cfg) {
+            Ok((st, Some(s))) => {
+                Self::copy_state(st, kin);
+                let to = &mut sens.values;
+                to.q.copy_from_slice(&s.q);
+                to.dq.copy_from_slice(&s.dq);
+                to.d2q.copy_from_slice(&s.d2q);
+                to.out.copy_from_slice(&s.out);
+                to.dout.copy_from_slice(&s.dout);
+                to.d2out.copy_from_slice(&s.d2out);
+                Ok(())
+            }
+            // `synthesis_problem` refuses such a model; a kernel lent otherwise says why.
+            Ok((_, None)) => {
+                Err(Error::InvalidArgument(format!("`{}` was declared without parameter sensitivities", self.name())))
+            }
+            Err(e) => Err(self.error(&m, e, &x.0, Some(&guess.0), cfg)),
+        }
+    }
+    /// The position alone (`Model::positions`, the compiled `position_flat`) and the outputs
+    /// there (`Model::outputs_at`, the compiled `outputs_flat`).
+    fn position_into(
+        &self,
+        x: &Heap,
+        guess: &Heap,
+        cfg: &NewtonConfig,
+        q: &mut Heap,
+        out: &mut [f64],
+    ) -> Result<(), Error> {
+        let mut m = self.model().borrow_mut();
+        let solved: Result<(), StepError> = m.positions(&x.0, &guess.0, cfg).map(|p| q.0.copy_from_slice(p));
+        match solved.and_then(|()| m.outputs_at(&x.0, &q.0, out)) {
+            Ok(()) => Ok(()),
+            Err(e) => Err(self.error(&m, e, &x.0, Some(&guess.0), cfg)),
+        }
+    }
+}
+
+impl ModelKernel<'_> {
+    /// Sets every parameter of the lent model to `values` (in declaration order) and returns the
+    /// values it had.
+    fn set_all(&self, values: Vec<Option<f64>>) -> Vec<Option<f64>> {
+        let mut m = self.model().borrow_mut();
+        let old = m.param_values().to_vec();
+        for (k, v) in values.into_iter().enumerate() {
+            if let Some(v) = v
+                && old[k].map(f64::to_bits) != Some(v.to_bits())
+            {
+                let name = m.params()[k].clone();
+                m.set_param(&name, v);
+            }
+        }
+        old
+    }
+}
+
+/// The kernel by the model it lends (so that a [`ModelProblem`] is `Debug`, as a compiled
+/// `Problem` is: `unwrap_err` on its result).
+impl std::fmt::Debug for ModelKernel<'_> {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        let d = self.dims();
+        f.debug_struct("ModelKernel").field("name", &self.name()).field("sizes", &d).finish_non_exhaustive()
+    }
+}

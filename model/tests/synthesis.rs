@@ -1,0 +1,143 @@
+//! Synthesis on a run-time model: the runtime's one implementation over the model's kernel.
+//! The same problem, seed and starts give the same report as the compiled mechanism's, bit for
+//! bit (path generation and function generation, with Halton starts and with differential
+//! evolution); and a four-bar whose coupler points are computed here in closed form from known
+//! dimensions is recovered to rounding.
+
+mod common;
+
+use common::read;
+use kinloop::synthesis::{DeConfig, Design, Global, Problem, Search, SynthesisError, Task};
+
+/// `kinloop::mechanism! { decl }` and `const TEXT: &str` holding the same declaration's text:
+/// the compiled mechanism and the run-time model of one declaration.
+macro_rules! both {
+    ($text:ident => { $($decl:tt)* }) => {
+        kinloop::mechanism! { $($decl)* }
+        const $text: &str = stringify!($($decl)*);
+    };
+}
+
+both! { COUPLER_TEXT => {
+    /// Four-bar with a coupler point: crank `a` at the origin, coupler `b`, rocker `c` at (d, 0);
+    /// the point `p` at distance `e` from the crank pin, `alpha` off the coupler line.
+    #[kinloop(sensitivities)]
+    pub struct CouplerFourBar {
+        params a = 1.0, b = 3.0, c = 2.5, d = 3.0, e = 1.5, alpha = 0.6;
+        input phi;
+        unknowns beta = 0.5, gamma = 1.5;
+        loop abcd: a @ phi + b @ beta == (d, 0) + c @ gamma;
+        point p = a @ phi + e @ (beta + alpha);
+    }
+}}
+
+both! { PLAIN_TEXT => {
+    /// The same four-bar without sensitivities: refused by synthesis.
+    pub struct PlainFourBar {
+        params a = 1.0, b = 3.0, c = 2.5, d = 3.0;
+        input phi;
+        unknowns beta = 0.5, gamma = 1.5;
+        loop abcd: a @ phi + b @ beta == (d, 0) + c @ gamma;
+    }
+}}
+
+/// The dimensions `[a, b, c, d, e, alpha]` the targets are made from.
+const TRUTH: [f64; 6] = [1.1, 2.8, 2.3, 3.2, 1.7, 0.45];
+const NAMES: [&str; 6] = ["a", "b", "c", "d", "e", "alpha"];
+
+/// The coupler point of `[a, b, c, d, e, alpha]` at crank angle `phi` in closed form (plain
+/// trigonometry: joint C where the circles about the crank pin B (radius b) and about D (radius
+/// c) meet, on the left of B -> D, the assembly mode of the declared guess).
+fn coupler_point([a, b, c, d, e, alpha]: [f64; 6], phi: f64) -> [f64; 2] {
+    let (bx, by) = (a * phi.cos(), a * phi.sin());
+    let (ux, uy) = (d - bx, -by);
+    let dist = ux.hypot(uy);
+    let along = (b * b - c * c + dist * dist) / (2.0 * dist);
+    let h = (b * b - along * along).sqrt();
+    let (cx, cy) = (bx + (along * ux - h * uy) / dist, by + (along * uy + h * ux) / dist);
+    let beta = (cy - by).atan2(cx - bx);
+    [bx + e * (beta + alpha).cos(), by + e * (beta + alpha).sin()]
+}
+
+/// The rocker angle `gamma` of the four-bar `[a, b, c, d]` at crank angle `phi`, closed form.
+fn rocker_angle([a, b, c, d]: [f64; 4], phi: f64) -> f64 {
+    let [x, y] = coupler_point([a, b, c, d, b, 0.0], phi);
+    y.atan2(x - d)
+}
+
+fn design(names: &[&str], values: &[f64], spread: f64) -> Design {
+    names.iter().zip(values).fold(Design::new(), |d, (n, v)| d.var(*n, v * (1.0 - spread), v * (1.0 + spread)))
+}
+
+fn path_task() -> Task {
+    let phis: Vec<f64> = (0..5).map(|k| 0.3 + 1.1 * k as f64).collect();
+    Task::path("p", phis.iter().map(|&p| coupler_point(TRUTH, p))).timed(phis)
+}
+
+#[test]
+fn path_generation_equals_the_compiled_search_bit_for_bit() {
+    let (task, design) = (path_task(), design(&NAMES, &TRUTH, 0.3));
+    let search = Search::default().with_starts(0..12).with_seed(3);
+    let compiled = Problem::new(CouplerFourBar::default(), &design, &task).unwrap();
+    let want = search.run(&compiled).unwrap();
+    let mut model = read(COUPLER_TEXT);
+    let problem = model.synthesis_problem(&design, &task).unwrap();
+    let got = search.run(&problem).unwrap();
+    assert!(want.valid >= 1, "{want:#?}");
+    // `PartialEq` of the reports: every value of every candidate equal (f64 `==`), the counts too.
+    assert_eq!(got, want);
+    // Differential evolution: the residual norms (positions only) steer the populations.
+    let de = search.with_global(Global::DifferentialEvolution(DeConfig::default().with_population(12)));
+    let de = de.with_starts(0..1);
+    assert_eq!(de.run(&problem).unwrap(), de.run(&compiled).unwrap());
+}
+
+#[test]
+fn function_generation_equals_the_compiled_search_bit_for_bit() {
+    let (a, b, c, d) = (TRUTH[0], TRUTH[1], TRUTH[2], TRUTH[3]);
+    let phis: Vec<f64> = (0..6).map(|k| 0.5 + 0.8 * k as f64).collect();
+    let task = Task::function("gamma", phis.iter().map(|&p| (p, rocker_angle([a, b, c, d], p))));
+    let design = design(&["a", "b", "c"], &[a, b, c], 0.3);
+    let search = Search::default().with_starts(0..10).with_seed(11);
+    let compiled = Problem::new(CouplerFourBar { d, ..CouplerFourBar::default() }, &design, &task).unwrap();
+    let want = search.run(&compiled).unwrap();
+    let mut model = read(COUPLER_TEXT);
+    assert!(model.set_param("d", d));
+    let got = search.run(&model.synthesis_problem(&design, &task).unwrap()).unwrap();
+    assert!(want.valid >= 1, "{want:#?}");
+    assert_eq!(got, want);
+    // The problem lends the model and puts its parameters back after every evaluation.
+    assert_eq!(model.param_values()[0], Some(1.0));
+}
+
+#[test]
+fn a_four_bar_from_closed_form_coupler_points_is_recovered() {
+    let mut model = read(COUPLER_TEXT);
+    let problem = model.synthesis_problem(&design(&NAMES, &TRUTH, 0.3), &path_task()).unwrap();
+    let report = Search::default().with_starts(0..24).run(&problem).unwrap();
+    let best = report.best().unwrap_or_else(|| panic!("no valid candidate: {report:#?}"));
+    // Targets of size ~3 met to rounding: ten equations in six unknowns, a consistent system.
+    assert!(best.max_error <= 1e-13, "max error {:e}", best.max_error);
+    for (name, (got, want)) in NAMES.iter().zip(best.values.iter().zip(&TRUTH)) {
+        // A zero residual fixes the dimensions to its conditioning: 1e-8 relative.
+        assert!((got - want).abs() <= 1e-8 * want.abs(), "{name}: {got} vs {want}");
+    }
+}
+
+#[test]
+fn names_and_missing_sensitivities_are_typed_errors() {
+    let mut model = read(COUPLER_TEXT);
+    let bad = Design::new().var("length", 1.0, 2.0);
+    let e = model.synthesis_problem(&bad, &path_task()).unwrap_err();
+    assert!(
+        matches!(&e, SynthesisError::UnknownVariable { name, mechanism, .. }
+            if name == "length" && mechanism == "CouplerFourBar"),
+        "{e}"
+    );
+    let e = model.synthesis_problem(&design(&NAMES, &TRUTH, 0.3), &Task::path("q", [[1.0, 2.0]; 6]).timed([0.0; 6]));
+    assert!(matches!(&e, Err(SynthesisError::UnknownColumn { name, .. }) if name == "q.x"), "{e:?}");
+    let mut plain = read(PLAIN_TEXT);
+    let _ = PlainFourBar::default();
+    let e = plain.synthesis_problem(&design(&["a"], &[1.0], 0.3), &path_task()).unwrap_err();
+    assert!(matches!(&e, SynthesisError::Unsupported(m) if m.contains("#[kinloop(sensitivities)]")), "{e}");
+}
