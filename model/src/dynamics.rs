@@ -11,7 +11,6 @@
 //! of the dynamics, the inverse cycle and the flywheel are the runtime's, written once over any
 //! state ([`AnalogState`]) and any `Kernel`.
 
-use crate::mechanism::ModelKernel;
 use crate::model::Model;
 use crate::tape::{Builder, Segment, Unavailable};
 use kinloop_codegen::dynamics::{AngleModel, CoordModel, DynamicsModel};
@@ -19,11 +18,10 @@ use kinloop_codegen::graph::dag::{Leaf, NodeId, Op};
 use kinloop_codegen::plan::Plan;
 use kinloop_runtime::dims::{Heap, KinBuf, Sizes};
 use kinloop_runtime::dynamics::{
-    AnalogState, Body, Coord, Cycle, CyclePoint, Dynamics, DynamicsBuf, DynamicsError, KinematicsInto, MassModelBuf,
-    Rotation, RunConfig, Shaking, SpeedLaw, Trajectory, simulate_of, turn_states,
+    AnalogState, Body, Coord, Cycle, CyclePoint, Dynamics, DynamicsBuf, DynamicsError, MassModelBuf, Rotation,
+    RunConfig, Shaking, SpeedLaw, Trajectory, simulate_of, turn_states,
 };
-use kinloop_runtime::generated::Libm;
-use kinloop_runtime::{Error, Kernel, NewtonConfig, SweepConfig};
+use kinloop_runtime::{Error, SweepConfig};
 
 /// A coordinate as the plan gives it: a state column or the register of a constant.
 #[derive(Clone, Copy, Debug)]
@@ -347,15 +345,6 @@ impl<'a, D, S> ModelSimulation<'a, D, S> {
         let kernel = m.kernel(SweepConfig::default())?;
         let (start, cfg) = (self.start, self.cfg);
         Ok(simulate_of(kernel, reduced, self.drive, start, t_end, Heap(guess.into()), &cfg, self.stop)?)
-    }
-}
-
-/// A run-time model's step written into the simulation's state in place
-/// ([`Kernel::step_into`](kinloop_runtime::Kernel::step_into): the model's own step, with
-/// libm's sines and cosines as its point solve takes them).
-impl KinematicsInto for ModelKernel<'_> {
-    fn kinematics_into(&self, x: &Heap, guess: &Heap, cfg: &NewtonConfig, into: &mut KinBuf) -> Result<(), Error> {
-        self.step_into(x, guess, cfg, &mut Libm, into)
     }
 }
 
