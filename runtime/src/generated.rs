@@ -743,3 +743,9 @@ pub use rejected::{MassModelDeclared, rejected};
 pub use crate::__state_by_name as state_by_name;
 mod state_by_name;
 pub use state_by_name::StateByName;
+
+// The parallel half of a scan over sets, shared with a run-time model's (see `par_sets`).
+#[cfg(feature = "rayon")]
+mod par_sets;
+#[cfg(feature = "rayon")]
+pub use par_sets::par_sets;
