@@ -144,9 +144,18 @@ pub fn run(model: &mut Model, req: &Request) -> Result<(), Failed> {
 /// The samples of a sweep when `--samples` is not given.
 const DEFAULT_SAMPLES: usize = 181;
 
-/// The values of each input of a grid when `--samples` is not given: 19 x 19 cells fit the
-/// page's default 721 poses.
-const DEFAULT_GRID_VALUES: usize = 19;
+/// The values of each input of a grid of `ni` inputs when `--samples` is not given: the most
+/// whose grid fits the page's `max` poses (`c^ni <= max`: 26 x 26 or 8 x 8 x 8 of the default
+/// 721), at least 2 (a grid of two values per input that does not fit is refused as too many
+/// cells).
+fn default_grid_values(ni: usize, max: usize) -> usize {
+    let fits = |c: usize| (0..ni).try_fold(1usize, |p, _| p.checked_mul(c)).is_some_and(|cells| cells <= max);
+    let mut c = 2;
+    while fits(c + 1) {
+        c += 1;
+    }
+    c
+}
 
 /// `kinloop animate --grid`: the model over a grid of its inputs (`Model::grid`, the assembly
 /// mode carried from cell to cell), drawn as the interactive page with one slider per input
@@ -162,8 +171,18 @@ fn grid(model: &mut Model, req: &Request, format: Format) -> Result<(), Failed> 
     if format != Format::Html {
         return Err(usage("--grid draws an interactive page: write it to a .html file (or give --format html)"));
     }
+    // The page's settings first: its largest number of poses bounds the grid, checked before
+    // any cell is solved.
+    let mut config = HtmlConfig::new(&name);
+    if let Some(f) = req.frames {
+        config = config.with_max_frames(f);
+    }
+    for col in req.show {
+        config = config.show(col.as_str());
+    }
+    let max = config.max_frames;
     let counts: Vec<usize> = match req.samples {
-        None => vec![DEFAULT_GRID_VALUES; ni],
+        None => vec![default_grid_values(ni, max); ni],
         Some(spec) => {
             let counts: Result<Vec<usize>, _> = spec.split(',').map(|v| v.trim().parse::<usize>()).collect();
             match counts {
@@ -177,6 +196,13 @@ fn grid(model: &mut Model, req: &Request, format: Format) -> Result<(), Failed> 
             }
         }
     };
+    // The product saturates: a count too large for usize is more cells than any page.
+    let cells = counts.iter().fold(1usize, |p, &c| p.saturating_mul(c));
+    if cells > max {
+        return Err(usage(format!(
+            "a grid of {cells} cells is more than the page's {max} poses: fewer --samples, or more --frames"
+        )));
+    }
     let kinds = model.input_kinds().to_vec();
     let from = model_inputs(req.from, &kinds, req.deg, "--from")?;
     let to = model_inputs(req.to, &kinds, req.deg, "--to")?;
@@ -199,16 +225,8 @@ fn grid(model: &mut Model, req: &Request, format: Format) -> Result<(), Failed> 
     for n in drawing.notes() {
         eprintln!("note: {n}");
     }
-    let mut config = HtmlConfig::new(&name);
-    if let Some(f) = req.frames {
-        config = config.with_max_frames(f);
-    }
-    for col in req.show {
-        config = config.show(col.as_str());
-    }
     let text = html_grid_of(model, &drawing.into_drawing(), &grid, &config).map_err(|e| match e {
         HtmlError::UnknownColumn { .. } => usage(format!("--show: {e}")),
-        // More cells than the page's poses (`--frames`).
         HtmlError::InvalidSetting(_) => usage(format!("{e} (fewer --samples, or more --frames)")),
         e => failed(&e),
     })?;
@@ -235,7 +253,19 @@ fn event_label(k: usize, n: usize, stopped: bool) -> &'static str {
 
 #[cfg(test)]
 mod tests {
-    use super::event_label;
+    use super::{default_grid_values, event_label};
+
+    /// The default values per input: the largest `c` with `c^ni` cells within the page, by hand.
+    #[test]
+    fn the_default_grid_is_the_largest_that_fits() {
+        // 26^2 = 676 <= 721 < 729 = 27^2; 8^3 = 512 <= 721 < 729 = 9^3; 10^2 = 100.
+        assert_eq!(default_grid_values(2, 721), 26);
+        assert_eq!(default_grid_values(3, 721), 8);
+        assert_eq!(default_grid_values(2, 100), 10);
+        assert_eq!(default_grid_values(2, 99), 9);
+        // Too few poses for two values per input: 2, refused by the cells' check.
+        assert_eq!(default_grid_values(3, 7), 2);
+    }
 
     #[test]
     fn only_the_last_event_of_a_stopped_sweep_is_the_stop() {
