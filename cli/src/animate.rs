@@ -8,7 +8,7 @@ use crate::solve::model_inputs;
 use crate::{Failed, exit, samples};
 use kinloop_model::Model;
 use kinloop_runtime::{Error, QuantityKind};
-use kinloop_viz::draw::{Animation, DrawError};
+use kinloop_viz::draw::{Animation, DefaultDrawing, DrawError};
 use kinloop_viz::html::{HtmlConfig, HtmlError, html_grid_of, html_of};
 use std::io::Write;
 use std::path::Path;
@@ -86,16 +86,10 @@ pub fn run(model: &mut Model, req: &Request) -> Result<(), Failed> {
         return Err(usage(format!("an animation needs at least 2 samples, not {samples}")));
     }
     samples::check(samples)?;
-    let kinds = model.input_kinds().to_vec();
-    let from = model_inputs(req.from, &kinds, req.deg, "--from")?;
-    let to = model_inputs(req.to, &kinds, req.deg, "--to")?;
     let name = model.name().to_string();
-    let failed = |e: &dyn std::fmt::Display| {
-        eprintln!("error: {name}: {e}");
-        Failed(exit::SOLVE_FAILED)
-    };
-    let mut guess = vec![0.0; model.unknowns().len()];
-    model.guess(&from, &mut guess).map_err(|e| failed(&e))?;
+    let failed = |e: &dyn std::fmt::Display| failed(&name, e);
+    let (from, to, guess) = endpoints(model, req)?;
+    let kinds = model.input_kinds().to_vec();
     let motion = model.motion(&from, &to, samples, &guess).map_err(|e| match e {
         // The runtime's refusal of the arguments (`to` equal to `from`) is a usage error.
         DrawError::Sweep(e @ Error::InvalidArgument(_)) => usage(format!("{name}: {e}")),
@@ -111,10 +105,7 @@ pub fn run(model: &mut Model, req: &Request) -> Result<(), Failed> {
         let what = event_label(k, motion.events.len(), motion.stopped);
         eprintln!("{what} {} at {}", e.kind, at.join(", "));
     }
-    let drawing = model.drawing();
-    for n in drawing.notes() {
-        eprintln!("note: {n}");
-    }
+    let drawing = noted_drawing(model);
     let text = match format {
         Format::Svg => {
             let mut anim = Animation::default();
@@ -125,13 +116,7 @@ pub fn run(model: &mut Model, req: &Request) -> Result<(), Failed> {
             drawing.animate(&motion, &anim).map_err(|e| failed(&e))?
         }
         Format::Html => {
-            let mut config = HtmlConfig::new(&name).with_back_and_forth(motion.stopped);
-            if let Some(f) = req.frames {
-                config = config.with_max_frames(f);
-            }
-            for col in req.show {
-                config = config.show(col.as_str());
-            }
+            let config = page_config(&name, req).with_back_and_forth(motion.stopped);
             html_of(model, &drawing.into_drawing(), &motion, &config).map_err(|e| match e {
                 HtmlError::UnknownColumn { .. } => usage(format!("--show: {e}")),
                 e => failed(&e),
@@ -173,13 +158,7 @@ fn grid(model: &mut Model, req: &Request, format: Format) -> Result<(), Failed> 
     }
     // The page's settings first: its largest number of poses bounds the grid, checked before
     // any cell is solved.
-    let mut config = HtmlConfig::new(&name);
-    if let Some(f) = req.frames {
-        config = config.with_max_frames(f);
-    }
-    for col in req.show {
-        config = config.show(col.as_str());
-    }
+    let config = page_config(&name, req);
     let max = config.max_frames;
     let counts: Vec<usize> = match req.samples {
         None => vec![default_grid_values(ni, max); ni],
@@ -203,15 +182,8 @@ fn grid(model: &mut Model, req: &Request, format: Format) -> Result<(), Failed> 
             "a grid of {cells} cells is more than the page's {max} poses: fewer --samples, or more --frames"
         )));
     }
-    let kinds = model.input_kinds().to_vec();
-    let from = model_inputs(req.from, &kinds, req.deg, "--from")?;
-    let to = model_inputs(req.to, &kinds, req.deg, "--to")?;
-    let failed = |e: &dyn std::fmt::Display| {
-        eprintln!("error: {name}: {e}");
-        Failed(exit::SOLVE_FAILED)
-    };
-    let mut guess = vec![0.0; model.unknowns().len()];
-    model.guess(&from, &mut guess).map_err(|e| failed(&e))?;
+    let failed = |e: &dyn std::fmt::Display| failed(&name, e);
+    let (from, to, guess) = endpoints(model, req)?;
     let grid = model.grid(&from, &to, &counts, &guess).map_err(|e| match e {
         // The counts or ranges refused (no value of an input, equal ends, too many cells).
         DrawError::InvalidSetting(_) | DrawError::Sweep(Error::InvalidArgument(_)) => usage(format!("{name}: {e}")),
@@ -221,16 +193,51 @@ fn grid(model: &mut Model, req: &Request, format: Format) -> Result<(), Failed> 
     if unreached > 0 {
         eprintln!("note: {unreached} of {} cells are not reached from the first (no assembly there)", grid.cells.len());
     }
-    let drawing = model.drawing();
-    for n in drawing.notes() {
-        eprintln!("note: {n}");
-    }
+    let drawing = noted_drawing(model);
     let text = html_grid_of(model, &drawing.into_drawing(), &grid, &config).map_err(|e| match e {
         HtmlError::UnknownColumn { .. } => usage(format!("--show: {e}")),
         HtmlError::InvalidSetting(_) => usage(format!("{e} (fewer --samples, or more --frames)")),
         e => failed(&e),
     })?;
     write_out(req.out, &text)
+}
+
+/// The inputs at `--from` and `--to`, and the declared guess at `--from` (what a sweep and a
+/// grid start from).
+fn endpoints(model: &mut Model, req: &Request) -> Result<(Vec<f64>, Vec<f64>, Vec<f64>), Failed> {
+    let kinds = model.input_kinds().to_vec();
+    let from = model_inputs(req.from, &kinds, req.deg, "--from")?;
+    let to = model_inputs(req.to, &kinds, req.deg, "--to")?;
+    let mut guess = vec![0.0; model.unknowns().len()];
+    model.guess(&from, &mut guess).map_err(|e| failed(model.name(), &e))?;
+    Ok((from, to, guess))
+}
+
+/// The page's settings of the request: the model's name, `--frames` and `--show`.
+fn page_config(name: &str, req: &Request) -> HtmlConfig {
+    let mut config = HtmlConfig::new(name);
+    if let Some(f) = req.frames {
+        config = config.with_max_frames(f);
+    }
+    for col in req.show {
+        config = config.show(col.as_str());
+    }
+    config
+}
+
+/// The model's default drawing, its notes (what it could not draw) listed on standard error.
+fn noted_drawing(model: &mut Model) -> DefaultDrawing {
+    let drawing = model.drawing();
+    for n in drawing.notes() {
+        eprintln!("note: {n}");
+    }
+    drawing
+}
+
+/// A failure of the model `name` to solve or draw: reported, exit code 1.
+fn failed(name: &str, e: &dyn std::fmt::Display) -> Failed {
+    eprintln!("error: {name}: {e}");
+    Failed(exit::SOLVE_FAILED)
 }
 
 /// Writes `text` to `out`, created only now: a failed sweep or drawing leaves no file behind.
