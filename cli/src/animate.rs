@@ -88,7 +88,7 @@ pub fn run(model: &mut Model, req: &Request) -> Result<(), Failed> {
     samples::check(samples)?;
     let name = model.name().to_string();
     let failed = |e: &dyn std::fmt::Display| failed(&name, e);
-    let (from, to, guess) = endpoints(model, req)?;
+    let Endpoints { from, to, guess } = endpoints(model, req)?;
     let kinds = model.input_kinds().to_vec();
     let motion = model.motion(&from, &to, samples, &guess).map_err(|e| match e {
         // The runtime's refusal of the arguments (`to` equal to `from`) is a usage error.
@@ -183,7 +183,7 @@ fn grid(model: &mut Model, req: &Request, format: Format) -> Result<(), Failed> 
         )));
     }
     let failed = |e: &dyn std::fmt::Display| failed(&name, e);
-    let (from, to, guess) = endpoints(model, req)?;
+    let Endpoints { from, to, guess } = endpoints(model, req)?;
     let grid = model.grid(&from, &to, &counts, &guess).map_err(|e| match e {
         // The counts or ranges refused (no value of an input, equal ends, too many cells).
         DrawError::InvalidSetting(_) | DrawError::Sweep(Error::InvalidArgument(_)) => usage(format!("{name}: {e}")),
@@ -202,15 +202,22 @@ fn grid(model: &mut Model, req: &Request, format: Format) -> Result<(), Failed> 
     write_out(req.out, &text)
 }
 
-/// The inputs at `--from` and `--to`, and the declared guess at `--from` (what a sweep and a
-/// grid start from).
-fn endpoints(model: &mut Model, req: &Request) -> Result<(Vec<f64>, Vec<f64>, Vec<f64>), Failed> {
+/// The inputs at `--from` and `--to`, and the declared guess at `--from`.
+struct Endpoints {
+    from: Vec<f64>,
+    to: Vec<f64>,
+    /// What a sweep and a grid start from.
+    guess: Vec<f64>,
+}
+
+/// The request's [`Endpoints`] for the model.
+fn endpoints(model: &mut Model, req: &Request) -> Result<Endpoints, Failed> {
     let kinds = model.input_kinds().to_vec();
     let from = model_inputs(req.from, &kinds, req.deg, "--from")?;
     let to = model_inputs(req.to, &kinds, req.deg, "--to")?;
     let mut guess = vec![0.0; model.unknowns().len()];
     model.guess(&from, &mut guess).map_err(|e| failed(model.name(), &e))?;
-    Ok((from, to, guess))
+    Ok(Endpoints { from, to, guess })
 }
 
 /// The page's settings of the request: the model's name, `--frames` and `--show`.
