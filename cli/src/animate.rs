@@ -8,7 +8,7 @@ use crate::solve::model_inputs;
 use crate::{Failed, exit, samples};
 use kinloop_model::Model;
 use kinloop_runtime::{Error, QuantityKind};
-use kinloop_viz::draw::{Animation, DrawError};
+use kinloop_viz::draw::{Animation, DefaultDrawing, DrawError};
 use kinloop_viz::html::{HtmlConfig, HtmlError, html_grid_of, html_of};
 use std::io::Write;
 use std::path::Path;
@@ -86,16 +86,10 @@ pub fn run(model: &mut Model, req: &Request) -> Result<(), Failed> {
         return Err(usage(format!("an animation needs at least 2 samples, not {samples}")));
     }
     samples::check(samples)?;
-    let kinds = model.input_kinds().to_vec();
-    let from = model_inputs(req.from, &kinds, req.deg, "--from")?;
-    let to = model_inputs(req.to, &kinds, req.deg, "--to")?;
     let name = model.name().to_string();
-    let failed = |e: &dyn std::fmt::Display| {
-        eprintln!("error: {name}: {e}");
-        Failed(exit::SOLVE_FAILED)
-    };
-    let mut guess = vec![0.0; model.unknowns().len()];
-    model.guess(&from, &mut guess).map_err(|e| failed(&e))?;
+    let failed = |e: &dyn std::fmt::Display| failed(&name, e);
+    let Endpoints { from, to, guess } = endpoints(model, req)?;
+    let kinds = model.input_kinds().to_vec();
     let motion = model.motion(&from, &to, samples, &guess).map_err(|e| match e {
         // The runtime's refusal of the arguments (`to` equal to `from`) is a usage error.
         DrawError::Sweep(e @ Error::InvalidArgument(_)) => usage(format!("{name}: {e}")),
@@ -111,10 +105,7 @@ pub fn run(model: &mut Model, req: &Request) -> Result<(), Failed> {
         let what = event_label(k, motion.events.len(), motion.stopped);
         eprintln!("{what} {} at {}", e.kind, at.join(", "));
     }
-    let drawing = model.drawing();
-    for n in drawing.notes() {
-        eprintln!("note: {n}");
-    }
+    let drawing = noted_drawing(model);
     let text = match format {
         Format::Svg => {
             let mut anim = Animation::default();
@@ -125,13 +116,7 @@ pub fn run(model: &mut Model, req: &Request) -> Result<(), Failed> {
             drawing.animate(&motion, &anim).map_err(|e| failed(&e))?
         }
         Format::Html => {
-            let mut config = HtmlConfig::new(&name).with_back_and_forth(motion.stopped);
-            if let Some(f) = req.frames {
-                config = config.with_max_frames(f);
-            }
-            for col in req.show {
-                config = config.show(col.as_str());
-            }
+            let config = page_config(&name, req).with_back_and_forth(motion.stopped);
             html_of(model, &drawing.into_drawing(), &motion, &config).map_err(|e| match e {
                 HtmlError::UnknownColumn { .. } => usage(format!("--show: {e}")),
                 e => failed(&e),
@@ -144,9 +129,18 @@ pub fn run(model: &mut Model, req: &Request) -> Result<(), Failed> {
 /// The samples of a sweep when `--samples` is not given.
 const DEFAULT_SAMPLES: usize = 181;
 
-/// The values of each input of a grid when `--samples` is not given: 19 x 19 cells fit the
-/// page's default 721 poses.
-const DEFAULT_GRID_VALUES: usize = 19;
+/// The values of each input of a grid of `ni` inputs when `--samples` is not given: the most
+/// whose grid fits the page's `max` poses (`c^ni <= max`: 26 x 26 or 8 x 8 x 8 of the default
+/// 721), at least 2 (a grid of two values per input that does not fit is refused as too many
+/// cells).
+fn default_grid_values(ni: usize, max: usize) -> usize {
+    let fits = |c: usize| (0..ni).try_fold(1usize, |p, _| p.checked_mul(c)).is_some_and(|cells| cells <= max);
+    let mut c = 2;
+    while fits(c + 1) {
+        c += 1;
+    }
+    c
+}
 
 /// `kinloop animate --grid`: the model over a grid of its inputs (`Model::grid`, the assembly
 /// mode carried from cell to cell), drawn as the interactive page with one slider per input
@@ -162,8 +156,12 @@ fn grid(model: &mut Model, req: &Request, format: Format) -> Result<(), Failed> 
     if format != Format::Html {
         return Err(usage("--grid draws an interactive page: write it to a .html file (or give --format html)"));
     }
+    // The page's settings first: its largest number of poses bounds the grid, checked before
+    // any cell is solved.
+    let config = page_config(&name, req);
+    let max = config.max_frames;
     let counts: Vec<usize> = match req.samples {
-        None => vec![DEFAULT_GRID_VALUES; ni],
+        None => vec![default_grid_values(ni, max); ni],
         Some(spec) => {
             let counts: Result<Vec<usize>, _> = spec.split(',').map(|v| v.trim().parse::<usize>()).collect();
             match counts {
@@ -177,15 +175,15 @@ fn grid(model: &mut Model, req: &Request, format: Format) -> Result<(), Failed> 
             }
         }
     };
-    let kinds = model.input_kinds().to_vec();
-    let from = model_inputs(req.from, &kinds, req.deg, "--from")?;
-    let to = model_inputs(req.to, &kinds, req.deg, "--to")?;
-    let failed = |e: &dyn std::fmt::Display| {
-        eprintln!("error: {name}: {e}");
-        Failed(exit::SOLVE_FAILED)
-    };
-    let mut guess = vec![0.0; model.unknowns().len()];
-    model.guess(&from, &mut guess).map_err(|e| failed(&e))?;
+    // The product saturates: a count too large for usize is more cells than any page.
+    let cells = counts.iter().fold(1usize, |p, &c| p.saturating_mul(c));
+    if cells > max {
+        return Err(usage(format!(
+            "a grid of {cells} cells is more than the page's {max} poses: fewer --samples, or more --frames"
+        )));
+    }
+    let failed = |e: &dyn std::fmt::Display| failed(&name, e);
+    let Endpoints { from, to, guess } = endpoints(model, req)?;
     let grid = model.grid(&from, &to, &counts, &guess).map_err(|e| match e {
         // The counts or ranges refused (no value of an input, equal ends, too many cells).
         DrawError::InvalidSetting(_) | DrawError::Sweep(Error::InvalidArgument(_)) => usage(format!("{name}: {e}")),
@@ -195,24 +193,58 @@ fn grid(model: &mut Model, req: &Request, format: Format) -> Result<(), Failed> 
     if unreached > 0 {
         eprintln!("note: {unreached} of {} cells are not reached from the first (no assembly there)", grid.cells.len());
     }
-    let drawing = model.drawing();
-    for n in drawing.notes() {
-        eprintln!("note: {n}");
-    }
-    let mut config = HtmlConfig::new(&name);
+    let drawing = noted_drawing(model);
+    let text = html_grid_of(model, &drawing.into_drawing(), &grid, &config).map_err(|e| match e {
+        HtmlError::UnknownColumn { .. } => usage(format!("--show: {e}")),
+        HtmlError::InvalidSetting(_) => usage(format!("{e} (fewer --samples, or more --frames)")),
+        e => failed(&e),
+    })?;
+    write_out(req.out, &text)
+}
+
+/// The inputs at `--from` and `--to`, and the declared guess at `--from`.
+struct Endpoints {
+    from: Vec<f64>,
+    to: Vec<f64>,
+    /// What a sweep and a grid start from.
+    guess: Vec<f64>,
+}
+
+/// The request's [`Endpoints`] for the model.
+fn endpoints(model: &mut Model, req: &Request) -> Result<Endpoints, Failed> {
+    let kinds = model.input_kinds().to_vec();
+    let from = model_inputs(req.from, &kinds, req.deg, "--from")?;
+    let to = model_inputs(req.to, &kinds, req.deg, "--to")?;
+    let mut guess = vec![0.0; model.unknowns().len()];
+    model.guess(&from, &mut guess).map_err(|e| failed(model.name(), &e))?;
+    Ok(Endpoints { from, to, guess })
+}
+
+/// The page's settings of the request: the model's name, `--frames` and `--show`.
+fn page_config(name: &str, req: &Request) -> HtmlConfig {
+    let mut config = HtmlConfig::new(name);
     if let Some(f) = req.frames {
         config = config.with_max_frames(f);
     }
     for col in req.show {
         config = config.show(col.as_str());
     }
-    let text = html_grid_of(model, &drawing.into_drawing(), &grid, &config).map_err(|e| match e {
-        HtmlError::UnknownColumn { .. } => usage(format!("--show: {e}")),
-        // More cells than the page's poses (`--frames`).
-        HtmlError::InvalidSetting(_) => usage(format!("{e} (fewer --samples, or more --frames)")),
-        e => failed(&e),
-    })?;
-    write_out(req.out, &text)
+    config
+}
+
+/// The model's default drawing, its notes (what it could not draw) listed on standard error.
+fn noted_drawing(model: &mut Model) -> DefaultDrawing {
+    let drawing = model.drawing();
+    for n in drawing.notes() {
+        eprintln!("note: {n}");
+    }
+    drawing
+}
+
+/// A failure of the model `name` to solve or draw: reported, exit code 1.
+fn failed(name: &str, e: &dyn std::fmt::Display) -> Failed {
+    eprintln!("error: {name}: {e}");
+    Failed(exit::SOLVE_FAILED)
 }
 
 /// Writes `text` to `out`, created only now: a failed sweep or drawing leaves no file behind.
@@ -235,7 +267,19 @@ fn event_label(k: usize, n: usize, stopped: bool) -> &'static str {
 
 #[cfg(test)]
 mod tests {
-    use super::event_label;
+    use super::{default_grid_values, event_label};
+
+    /// The default values per input: the largest `c` with `c^ni` cells within the page, by hand.
+    #[test]
+    fn the_default_grid_is_the_largest_that_fits() {
+        // 26^2 = 676 <= 721 < 729 = 27^2; 8^3 = 512 <= 721 < 729 = 9^3; 10^2 = 100.
+        assert_eq!(default_grid_values(2, 721), 26);
+        assert_eq!(default_grid_values(3, 721), 8);
+        assert_eq!(default_grid_values(2, 100), 10);
+        assert_eq!(default_grid_values(2, 99), 9);
+        // Too few poses for two values per input: 2, refused by the cells' check.
+        assert_eq!(default_grid_values(3, 7), 2);
+    }
 
     #[test]
     fn only_the_last_event_of_a_stopped_sweep_is_the_stop() {

@@ -37,6 +37,24 @@ const INERTIA: &str = "mass unit length unit^2";
 const TORQUE: &str = "mass unit length unit^2/time unit^2";
 const FORCE: &str = "mass unit length unit/time unit^2";
 
+/// The usage error of `kinloop COMMAND` (`dynamics`, `simulate`) on a model that is not a
+/// machine turned by a crank: without declared dynamics, or with other than one angle input.
+pub(crate) fn check_crank(model: &Model, command: &str) -> Result<(), Failed> {
+    let name = model.name();
+    if !model.has_dynamics() {
+        return Err(usage(format!(
+            "{name} declares no bodies, loads or gravity: declare them (`body`, `force`, `torque`, `gravity`) for its dynamics"
+        )));
+    }
+    if model.inputs().len() != 1 || model.input_kinds()[0] != QuantityKind::Angle {
+        return Err(usage(format!(
+            "kinloop {command} turns a crank: {name} must have one input, an angle (its inputs: {})",
+            model.inputs().join(", ")
+        )));
+    }
+    Ok(())
+}
+
 /// The frame point of `--about`: two finite numbers.
 fn parse_about(spec: Option<&str>) -> Result<[f64; 2], Failed> {
     let Some(spec) = spec else { return Ok([0.0, 0.0]) };
@@ -51,17 +69,7 @@ fn parse_about(spec: Option<&str>) -> Result<[f64; 2], Failed> {
 /// output and the flywheel sizing to `--flywheel` or standard error.
 pub fn run(model: &mut Model, req: &Request) -> Result<(), Failed> {
     let name = model.name().to_string();
-    if !model.has_dynamics() {
-        return Err(usage(format!(
-            "{name} declares no bodies, loads or gravity: declare them (`body`, `force`, `torque`, `gravity`) for its dynamics"
-        )));
-    }
-    if model.inputs().len() != 1 || model.input_kinds()[0] != QuantityKind::Angle {
-        return Err(usage(format!(
-            "kinloop dynamics turns a crank: {name} must have one input, an angle (its inputs: {})",
-            model.inputs().join(", ")
-        )));
-    }
+    check_crank(model, "dynamics")?;
     if req.samples < 8 {
         return Err(usage(format!("--samples {} is too few: a turn needs at least 8", req.samples)));
     }

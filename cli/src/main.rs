@@ -218,7 +218,8 @@ enum Command {
         #[arg(long, value_name = "X,...", allow_hyphen_values = true)]
         to: String,
         /// Samples, equally spaced, both ends included (default 181, at most 10000000); with
-        /// `--grid`, the values of each input: one count for all or one per input (default 19).
+        /// `--grid`, the values of each input: one count for all or one per input (default: the
+        /// most whose grid fits the page's frames, 26 per input for two inputs, 8 for three).
         #[arg(long, value_name = "N[,N...]")]
         samples: Option<String>,
         /// A grid of the inputs from `--from` to `--to` instead of a sweep (a mechanism of two

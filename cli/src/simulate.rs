@@ -7,11 +7,12 @@
 //! Units as `kinloop dynamics`'s: masses and lengths in the parameters' units, time in the
 //! unit of the speed.
 
+use crate::dynamics::check_crank;
 use crate::exit::usage;
 use crate::{Failed, exit, samples};
 use kinloop_model::Model;
 use kinloop_runtime::dynamics::{DynamicsError, RunConfig, Trajectory};
-use kinloop_runtime::{Error, QuantityKind, Table};
+use kinloop_runtime::{Error, Table};
 
 /// What `kinloop simulate` was asked.
 pub struct Request {
@@ -34,17 +35,7 @@ pub struct Request {
 /// Checks the request against the model, simulates and writes the table to standard output.
 pub fn run(model: &mut Model, req: &Request) -> Result<(), Failed> {
     let name = model.name().to_string();
-    if !model.has_dynamics() {
-        return Err(usage(format!(
-            "{name} declares no bodies, loads or gravity: declare them (`body`, `force`, `torque`, `gravity`) for its dynamics"
-        )));
-    }
-    if model.inputs().len() != 1 || model.input_kinds()[0] != QuantityKind::Angle {
-        return Err(usage(format!(
-            "kinloop simulate turns a crank: {name} must have one input, an angle (its inputs: {})",
-            model.inputs().join(", ")
-        )));
-    }
+    check_crank(model, "simulate")?;
     if req.samples < 2 {
         return Err(usage(format!("--samples {} is too few: the start and the end at least", req.samples)));
     }

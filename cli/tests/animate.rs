@@ -226,6 +226,72 @@ fn a_grid_page_of_two_inputs_is_the_librarys() {
     assert!(std::fs::read_to_string(&path5).expect("written") == library.expect("page"));
 }
 
+/// A three-input mechanism for the default grid: a two-link arm on a slider, its tip `(x, y)`.
+const ARM_ON_SLIDER: &str = "pub struct ArmOnSlider {
+    params a = 1.0, b = 0.8;
+    inputs s, th1, th2;
+    unknowns x = 1.0, y = 0.5;
+    loop tip: (s, 0) + a @ th1 + b @ th2 == (x, y);
+    point p = (s, 0) + a @ th1;
+}";
+
+/// `kinloop animate --grid FILE --from .. --to .. [--frames F]` and the library's page of the
+/// same model over the grid of `counts` values per input: byte for byte the same.
+fn default_grid_is(file: &str, text: &str, from: &[f64], to: &[f64], frames: Option<&str>, counts: &[usize]) {
+    let path = out(&format!("default_grid_{}_{}.html", counts.len(), frames.unwrap_or("all")));
+    let p = path.display().to_string();
+    let join = |v: &[f64]| v.iter().map(f64::to_string).collect::<Vec<_>>().join(",");
+    let (f, t) = (join(from), join(to));
+    let mut args = vec!["animate", file, "--grid", "--from", &f, "--to", &t, "--out", &p];
+    if let Some(frames) = frames {
+        args.extend(["--frames", frames]);
+    }
+    ok(&kinloop(&args));
+    let page = std::fs::read_to_string(&path).expect("the page is written");
+    let mut m = kinloop_model::Model::read("grid.kl", text).expect("valid");
+    let mut guess = vec![0.0; m.unknowns().len()];
+    m.guess(from, &mut guess).expect("guess");
+    let grid = m.grid(from, to, counts, &guess).expect("grid");
+    let mut config = kinloop_viz::html::HtmlConfig::new(m.name());
+    if let Some(frames) = frames {
+        config = config.with_max_frames(frames.parse().expect("a count"));
+    }
+    let drawing = m.drawing().into_drawing();
+    let library = kinloop_viz::html::html_grid_of(&m, &drawing, &grid, &config).expect("page");
+    assert!(page == library, "the default grid of {} inputs is not {counts:?}", counts.len());
+}
+
+/// Without `--samples`, a grid has the most values per input that fit the page's poses
+/// (`c^ni <= frames`, by hand: 26^2 = 676 <= 721 < 27^2; 10^2 = 100; 8^3 = 512 <= 721 < 9^3):
+/// the plain command succeeds for two and three inputs and with `--frames 100`.
+#[test]
+fn the_default_grid_fits_the_page() {
+    let five = shipped("five_bar.kl");
+    let text = std::fs::read_to_string(&five).expect("shipped file");
+    default_grid_is(&five, &text, &[0.0, 0.4], &[3.0, 3.0], None, &[26, 26]);
+    default_grid_is(&five, &text, &[0.0, 0.4], &[3.0, 3.0], Some("100"), &[10, 10]);
+    let arm = out("arm_on_slider.kl");
+    std::fs::write(&arm, ARM_ON_SLIDER).expect("written");
+    let arm = arm.display().to_string();
+    default_grid_is(&arm, ARM_ON_SLIDER, &[0.0, 0.0, 0.5], &[1.0, 1.5, 2.0], None, &[8, 8, 8]);
+}
+
+/// Too many cells for the page is refused before any cell is solved: a five-bar that cannot be
+/// assembled anywhere (links of 0.1 across a gap of more than 1) fails its solve (1) when the
+/// grid fits, and is a usage error (2) about the cells when it does not.
+#[test]
+fn too_many_cells_is_refused_before_solving() {
+    let path = out("too_many_cells.html");
+    let p = path.display().to_string();
+    let five = shipped("five_bar.kl");
+    let args = |samples: &'static str| {
+        let base = ["animate", five.as_str(), "--grid", "--from", "0,0.4", "--to", "3,3", "--params", "b=0.1,c=0.1"];
+        base.into_iter().chain(["--samples", samples, "--out", p.as_str()]).collect::<Vec<&str>>()
+    };
+    fails_without_output(&args("5"), &path, 1, "FiveBar");
+    fails_without_output(&args("30"), &path, 2, "a grid of 900 cells is more than the page's 721 poses");
+}
+
 /// `--grid` is for a mechanism of several inputs, drawn as a page; its counts are one per input
 /// or one for all: anything else is a usage error (2) that writes nothing.
 #[test]

@@ -11,7 +11,6 @@
 //! of the dynamics, the inverse cycle and the flywheel are the runtime's, written once over any
 //! state ([`AnalogState`]) and any `Kernel`.
 
-use crate::mechanism::ModelKernel;
 use crate::model::Model;
 use crate::tape::{Builder, Segment, Unavailable};
 use kinloop_codegen::dynamics::{AngleModel, CoordModel, DynamicsModel};
@@ -19,11 +18,10 @@ use kinloop_codegen::graph::dag::{Leaf, NodeId, Op};
 use kinloop_codegen::plan::Plan;
 use kinloop_runtime::dims::{Heap, KinBuf, Sizes};
 use kinloop_runtime::dynamics::{
-    AnalogState, Body, Coord, Cycle, CyclePoint, Dynamics, DynamicsBuf, DynamicsError, KinematicsInto, MassModelBuf,
-    Rotation, RunConfig, Shaking, SpeedLaw, Trajectory, simulate_of, turn_states,
+    AnalogState, Body, Coord, Cycle, CyclePoint, Dynamics, DynamicsBuf, DynamicsError, MassModelBuf, Rotation,
+    RunConfig, Shaking, SpeedLaw, Trajectory, simulate_of, turn_states,
 };
-use kinloop_runtime::generated::Libm;
-use kinloop_runtime::{Error, Kernel, NewtonConfig, SweepConfig};
+use kinloop_runtime::{Error, Source, SweepConfig};
 
 /// A coordinate as the plan gives it: a state column or the register of a constant.
 #[derive(Clone, Copy, Debug)]
@@ -321,10 +319,11 @@ impl<'a, D, S> ModelSimulation<'a, D, S> {
     /// place, its declared loads' segment and [`MassModelBuf::dynamics_into`] (no allocation
     /// but the trajectory's growth).
     ///
-    /// Errors: those of the compiled `Simulation::run` (the kinematic error as it is, with the
-    /// model's names and the input reached; the others as [`Error::Dynamics`]); a guess of
-    /// another length, a parameter without a value, a model without declared dynamics
-    /// ([`Error::InvalidArgument`]); a model of other than one input
+    /// Errors: those of the compiled `Simulation::run`, as [`Error::Dynamics`] (a kinematic
+    /// failure as [`DynamicsError::Kinematics`] with its time, its source with the model's
+    /// names and the input reached; a start that is not finite as [`DynamicsError::BadValue`]);
+    /// a guess of another length, a parameter without a value, a model without declared
+    /// dynamics ([`Error::InvalidArgument`]); a model of other than one input
     /// ([`DynamicsError::SizeMismatch`] in [`Error::Dynamics`]).
     pub fn run(self, t_end: f64) -> Result<Trajectory, Error>
     where
@@ -332,6 +331,17 @@ impl<'a, D, S> ModelSimulation<'a, D, S> {
         S: FnMut(f64, &[f64; 2]) -> bool,
     {
         let m = self.model;
+        // The compiled simulation's errors for what its types rule out there, before the
+        // declared guess is asked at the start: one input, a finite start.
+        if m.inputs().len() != 1 {
+            let given = m.inputs().len();
+            return Err(
+                DynamicsError::SizeMismatch { what: "inputs of a one-input simulation", expected: 1, given }.into()
+            );
+        }
+        if let Some(&value) = self.start.iter().find(|v| !v.is_finite()) {
+            return Err(DynamicsError::BadValue { what: "initial state", value, why: "must be finite" }.into());
+        }
         let mass = m.mass_model()?;
         let guess = start_guess(m, self.start[0], self.guess)?;
         // The loads are evaluated over a copy of the registers (the parameters' values with
@@ -346,16 +356,12 @@ impl<'a, D, S> ModelSimulation<'a, D, S> {
         };
         let kernel = m.kernel(SweepConfig::default())?;
         let (start, cfg) = (self.start, self.cfg);
-        Ok(simulate_of(kernel, reduced, self.drive, start, t_end, Heap(guess.into()), &cfg, self.stop)?)
-    }
-}
-
-/// A run-time model's step written into the simulation's state in place
-/// ([`Kernel::step_into`](kinloop_runtime::Kernel::step_into): the model's own step, with
-/// libm's sines and cosines as its point solve takes them).
-impl KinematicsInto for ModelKernel<'_> {
-    fn kinematics_into(&self, x: &Heap, guess: &Heap, cfg: &NewtonConfig, into: &mut KinBuf) -> Result<(), Error> {
-        self.step_into(x, guess, cfg, &mut Libm, into)
+        simulate_of(kernel, reduced, self.drive, start, t_end, Heap(guess.into()), &cfg, self.stop).map_err(|e| match e
+        {
+            // A kinematic failure keeps the time it happened at, as the compiled simulation's.
+            e @ DynamicsError::Kinematics { t: Some(_), .. } => Error::Dynamics(Source::new(e)),
+            e => e.into(),
+        })
     }
 }
 

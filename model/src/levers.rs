@@ -12,9 +12,6 @@ use kinloop_codegen::plan::solve::Solve;
 use kinloop_runtime::NewtonConfig;
 use kinloop_runtime::generated::{BlockFailure, check_centres, check_guess, check_lever};
 
-/// An angle and the nodes of its lever vector.
-type Arm = (usize, [NodeId; 2]);
-
 /// A closed-form block's position-only tests.
 #[derive(Clone, Debug)]
 pub(crate) struct Levers {
@@ -40,27 +37,15 @@ impl Levers {
             let c = bp.unknowns.iter().position(|&v| v == u)?;
             (!bp.lever_floor[c].is_empty()).then(|| bp.lever_floor[c].iter().map(|n| n.0).collect())
         };
-        // Per angle, its lever vector's nodes.
-        let (guess, arms): (Option<[usize; 2]>, Vec<Arm>) = match &rec.form {
-            ClosedForm::AngleEquation { angle, a, b, .. } => (None, vec![(*angle, [*a, *b])]),
-            ClosedForm::Dyad { angles, m, .. } => {
-                (None, (0..2).map(|i| (angles[i], [m[i][0][0], m[i][1][0]])).collect())
-            }
-            // `s w(q) = -e`: the lever `s` is as long as the offset (`w` a rotation).
-            ClosedForm::PolarLength { angle, length, e, .. } => (Some([*angle, *length]), vec![(*angle, *e)]),
-            ClosedForm::AngleSlider { angle, slider, m, .. } => {
-                (Some([*angle, *slider]), vec![(*angle, [m[0][0], m[1][0]])])
-            }
+        // A form with a length or slider has its guesses' sum checked first.
+        let guess = match &rec.form {
+            ClosedForm::PolarLength { angle, length, .. } => Some([*angle, *length]),
+            ClosedForm::AngleSlider { angle, slider, .. } => Some([*angle, *slider]),
+            ClosedForm::AngleEquation { .. } | ClosedForm::Dyad { .. } => None,
         };
         let levers: Vec<([u32; 2], Vec<u32>)> =
-            arms.iter().filter_map(|&(u, [x, y])| floors(u).map(|f| ([x.0, y.0], f))).collect();
-        let centres = match &rec.form {
-            ClosedForm::Dyad { m, e, .. } => {
-                let link = |i: usize| [m[i][0][0].0, m[i][1][0].0];
-                Some(([e[0].0, e[1].0], [link(0), link(1)]))
-            }
-            _ => None,
-        };
+            rec.form.levers().into_iter().filter_map(|(u, [x, y])| floors(u).map(|f| ([x.0, y.0], f))).collect();
+        let centres = rec.form.centres().map(|(e, links)| ([e[0].0, e[1].0], links.map(|[x, y]| [x.0, y.0])));
         let mut roots: Vec<NodeId> = levers.iter().flat_map(|(l, f)| l.iter().chain(f)).map(|&r| NodeId(r)).collect();
         if let Some((e, links)) = &centres {
             roots.extend(e.iter().chain(links.iter().flatten()).map(|&r| NodeId(r)));

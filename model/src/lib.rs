@@ -108,7 +108,7 @@
 //!   multi-start Newton from the declared guess, `Kernel::guess`);
 //! * [`Model::scan`]: a design-space scan over parameter sets ([`ParamScanConfig`]), each set's
 //!   sweep folded into one value (`fold_sweep_of`, the compiled `scan`'s fold);
-//! * `Model::par_scan` (cargo feature `rayon`): the same on all cores (`par_sets`, the compiled
+//! * `Model::par_scan` (cargo feature `rayon`): the same on all cores (the compiled
 //!   `par_scan`'s distribution over rayon's pool), a clone of the model per rayon job, the
 //!   results bitwise [`Model::scan`]'s.
 //!

@@ -6,7 +6,9 @@ use crate::at::Jacobian;
 use crate::blocks::StepFailure;
 use crate::model::{Model, State, StepError};
 use kinloop_runtime::dims::{Dims, JacBuf, KinBuf, Sizes};
-use kinloop_runtime::generated::{BlockFailure, block_error, largest_precise_angle};
+use kinloop_runtime::generated::{
+    BlockFailure, block_error, first_bad_value, first_non_finite_state, turns_culprit, turns_error,
+};
 use kinloop_runtime::paths::sweep::SweepOf;
 use kinloop_runtime::{BlockInfo, Error, Kernel, Location, NewtonConfig, Quantity, QuantityKind, SweepConfig};
 use std::borrow::Cow;
@@ -134,18 +136,19 @@ impl<'a> ModelKernel<'a> {
                     return e;
                 }
                 let at = *self.location(x, Some(block));
-                match guess.and_then(|g| self.too_many_turns(block, f, g, cfg)) {
-                    Some((name, value)) => match block_error(BlockFailure::TooManyTurns { value }, at) {
-                        Error::TooManyTurns { value, turns, spacing, at, .. } => {
-                            Error::TooManyTurns { name, value, turns, spacing, at }
-                        }
-                        other => other,
-                    },
+                let unknowns = self.block_rows_cols.get(block).map_or(&[][..], |(_, cols)| &cols[..]);
+                match guess.and_then(|g| turns_culprit(unknowns.iter().copied(), &self.unknown_kinds, f, g, cfg)) {
+                    Some((u, value)) => {
+                        let name = u.map_or(Cow::Borrowed("?"), |u| Cow::Owned(self.unknowns[u].clone()));
+                        turns_error(name, value, at)
+                    }
                     None => block_error(f, at),
                 }
             }
             StepError::NonFinite => self.bad_values(m, x, guess).unwrap_or_else(|| {
-                let (what, index) = first_non_finite(m.state()).unwrap_or(("value", 0));
+                let st = m.state();
+                let parts = [&st.q[..], &st.dq, &st.d2q, &st.out, &st.dout, &st.d2out];
+                let (what, index) = first_non_finite_state(parts, st.x.len()).unwrap_or(("value", 0));
                 let names = if what.starts_with("output") { &self.outputs } else { &self.unknowns };
                 let name = names.get(index).map_or(Cow::Borrowed("?"), |n| Cow::Owned(n.clone()));
                 Error::Domain { what, name, at: self.location(x, None) }
@@ -162,42 +165,15 @@ impl<'a> ModelKernel<'a> {
 
     /// The first non-finite parameter, input or guess, as the compiled `bad_values` finds it.
     fn bad_values(&self, m: &Model, x: &[f64], guess: Option<&[f64]>) -> Option<Error> {
-        let first = |names: &[String], values: &mut dyn Iterator<Item = f64>| {
-            names.iter().zip(values).find(|(_, v)| !v.is_finite()).map(|(n, v)| (Cow::Owned(n.clone()), v))
-        };
         let params = m.param_values().iter().map(|v| v.unwrap_or(f64::NAN));
-        let found = first(m.params(), &mut params.into_iter())
-            .map(|bad| (Quantity::Parameter, bad))
-            .or_else(|| first(&self.inputs, &mut x.iter().copied()).map(|bad| (Quantity::Input, bad)))
-            .or_else(|| {
-                guess.and_then(|g| first(&self.unknowns, &mut g.iter().copied())).map(|bad| (Quantity::Guess, bad))
-            });
-        found.map(|(what, (name, value))| Error::NonFinite { what, name, value, at: self.location(x, None) })
-    }
-
-    /// The angle of block `block` guessed too many turns out, and its value, when that explains
-    /// the failure `fail` (the compiled `too_many_turns`): the block's angle with the largest
-    /// guess.
-    fn too_many_turns(
-        &self,
-        block: usize,
-        fail: BlockFailure,
-        guess: &[f64],
-        cfg: &NewtonConfig,
-    ) -> Option<(Cow<'static, str>, f64)> {
-        let unknowns = self.block_rows_cols.get(block).map_or(&[][..], |(_, cols)| &cols[..]);
-        let largest = unknowns
-            .iter()
-            .copied()
-            .filter(|&u| self.unknown_kinds[u] == QuantityKind::Angle)
-            .max_by(|&a, &b| guess[a].abs().total_cmp(&guess[b].abs()));
-        let name = |u: usize| Cow::Owned(self.unknowns[u].clone());
-        match (fail, largest) {
-            (BlockFailure::TooManyTurns { value }, u) => Some((u.map_or(Cow::Borrowed("?"), name), value)),
-            (BlockFailure::InvalidConfig { .. } | BlockFailure::NonFinite { .. }, _) => None,
-            (_, Some(u)) if guess[u].abs() > largest_precise_angle(cfg) => Some((name(u), guess[u])),
-            _ => None,
-        }
+        let (what, index, value) = first_bad_value(params, x, guess)?;
+        let names = match what {
+            Quantity::Parameter => m.params(),
+            Quantity::Input => &self.inputs[..],
+            _ => &self.unknowns[..],
+        };
+        let name = names.get(index).map_or(Cow::Borrowed("?"), |n| Cow::Owned(n.clone()));
+        Some(Error::NonFinite { what, name, value, at: self.location(x, None) })
     }
 
     /// The model lent (the synthesis sets its parameters through it).
@@ -359,20 +335,4 @@ impl Kernel for ModelKernel<'_> {
             Err(e) => Err(self.error(&m, e, &x.0, Some(&guess.0), cfg)),
         }
     }
-}
-
-/// The kind and index of the first non-finite value of a state, in the order of the compiled
-/// `Kin::first_non_finite`: positions, their analogs, then the outputs and theirs.
-fn first_non_finite(st: &State) -> Option<(&'static str, usize)> {
-    let bad = |v: &[f64]| v.iter().any(|x| !x.is_finite());
-    let ni = st.x.len().max(1);
-    let parts: [(&'static str, &[f64], usize); 6] = [
-        ("position", &st.q, 1),
-        ("velocity analog", &st.dq, ni),
-        ("acceleration analog", &st.d2q, ni * ni),
-        ("output", &st.out, 1),
-        ("output velocity analog", &st.dout, ni),
-        ("output acceleration analog", &st.d2out, ni * ni),
-    ];
-    parts.into_iter().find_map(|(what, values, per)| values.chunks(per).position(bad).map(|k| (what, k)))
 }

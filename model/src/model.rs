@@ -571,6 +571,22 @@ impl Model {
     /// Positions, velocity and acceleration analogs and outputs at inputs `x`, solved from
     /// `guess` with `cfg`: the compiled mechanism's `kinematics_flat`. No allocation.
     pub fn kinematics(&mut self, x: &[f64], guess: &[f64], cfg: &NewtonConfig) -> Result<&State, StepError> {
+        self.solve_positions(x, guess, cfg, false)?;
+        self.analogs(cfg, false)?;
+        Ok(&self.state)
+    }
+
+    /// Every block's unknowns at inputs `x` solved from `guess` with `cfg` into the state (its
+    /// inputs, report and health reset first), after the arguments and settings are checked:
+    /// the position half of [`Model::kinematics`] and all of [`Model::positions`], which asks
+    /// the closed forms' lever tests (`lever_tests`) where the analogs would find the fault.
+    fn solve_positions(
+        &mut self,
+        x: &[f64],
+        guess: &[f64],
+        cfg: &NewtonConfig,
+        lever_tests: bool,
+    ) -> Result<(), StepError> {
         self.check_ready(x)?;
         if guess.len() != self.unknowns.len() {
             return Err(StepError::Size { what: "guess", expected: self.unknowns.len(), given: guess.len() });
@@ -584,12 +600,14 @@ impl Model {
         st.report = SolveReport::direct();
         st.health = Health::default();
         for (b, prog) in self.blocks.iter().enumerate() {
+            let fail = |failure| StepError::Block { block: b, failure };
+            if let (true, Some(levers)) = (lever_tests, &self.levers[b]) {
+                levers.check(&mut self.regs, guess, cfg).map_err(|f| fail(StepFailure::Block(f)))?;
+            }
             let w = Work { r: &mut self.regs, fac: &mut self.facs[b], cfg };
-            prog.position(w, &mut st.q, guess, &mut st.report)
-                .map_err(|failure| StepError::Block { block: b, failure })?;
+            prog.position(w, &mut st.q, guess, &mut st.report).map_err(fail)?;
         }
-        self.analogs(cfg, false)?;
-        Ok(&self.state)
+        Ok(())
     }
 
     /// Positions only, at inputs `x` solved from `guess` with `cfg`: every block's unknowns, no
@@ -612,26 +630,7 @@ impl Model {
     /// assert_eq!(q, m.kinematics(&[0.5], &[0.6, 1.9], &NewtonConfig::default()).unwrap().q);
     /// ```
     pub fn positions(&mut self, x: &[f64], guess: &[f64], cfg: &NewtonConfig) -> Result<&[f64], StepError> {
-        self.check_ready(x)?;
-        if guess.len() != self.unknowns.len() {
-            return Err(StepError::Size { what: "guess", expected: self.unknowns.len(), given: guess.len() });
-        }
-        if let Some(field) = cfg.invalid_field() {
-            return Err(StepError::InvalidConfig(field));
-        }
-        self.load_inputs(x);
-        let st = &mut self.state;
-        st.x.copy_from_slice(x);
-        st.report = SolveReport::direct();
-        st.health = Health::default();
-        for (b, prog) in self.blocks.iter().enumerate() {
-            let fail = |failure| StepError::Block { block: b, failure };
-            if let Some(levers) = &self.levers[b] {
-                levers.check(&mut self.regs, guess, cfg).map_err(|f| fail(StepFailure::Block(f)))?;
-            }
-            let w = Work { r: &mut self.regs, fac: &mut self.facs[b], cfg };
-            prog.position(w, &mut st.q, guess, &mut st.report).map_err(fail)?;
-        }
+        self.solve_positions(x, guess, cfg, true)?;
         Ok(&self.state.q)
     }
 

@@ -155,8 +155,7 @@ impl Model {
     }
 
     /// [`Model::scan`] on all cores (cargo feature `rayon`): the sets are distributed over
-    /// rayon's global thread pool by the runtime's
-    /// [`par_sets`](kinloop_runtime::paths::scan::par_sets) (the compiled `par_scan`'s), each
+    /// rayon's global thread pool by the runtime's distribution (the compiled `par_scan`'s), each
     /// rayon job scanning its sets on its own clone of this model, made once per job (at most
     /// about sixteen per thread), not per set. This model is left as it is.
     ///
@@ -195,7 +194,7 @@ impl Model {
             return sets.iter().map(|_| Err(e.clone())).collect();
         }
         let one = |m: &mut Model, set: &P| m.scan_one(params, set.as_ref(), spec, &init, &fold);
-        kinloop_runtime::paths::scan::par_sets(sets, || self.clone(), one)
+        kinloop_runtime::generated::par_sets(sets, || self.clone(), one)
     }
 
     /// The error of a scan over `params` when one of them is not a parameter of this model.

@@ -397,13 +397,25 @@ fn a_simulation_s_bad_arguments_are_typed_errors() {
     let e = engine.simulation().config(RunConfig::default().with_flywheel(-1.0)).run(1.0).unwrap_err();
     assert!(e.to_string().contains("flywheel"), "{e}");
     let e = engine.simulation().start(f64::NAN, 0.0).run(1.0).unwrap_err();
-    eprintln!("start at NaN: {e}");
-    assert!(matches!(&e, Error::InvalidArgument(_) | Error::Dynamics(_)), "{e}");
+    assert!(
+        matches!(dynamics_error(&e), DynamicsError::BadValue { what: "initial state", value, .. } if value.is_nan()),
+        "{e}"
+    );
     let e = engine.simulation().drive(|_, _, _| f64::NAN).run(1.0).unwrap_err();
     assert!(e.to_string().contains("drive"), "{e}");
     let mut five = Model::read("five_bar.kl", fx::FIVE_BAR_MACHINE_TEXT).unwrap();
     let e = five.simulation().guess(&[1.2, 2.0]).run(1.0).unwrap_err();
     assert!(e.to_string().contains("one-input"), "{e}");
+    // Without a guess too: the size, not the declared guess asked at one input.
+    let e = five.simulation().run(1.0).unwrap_err();
+    let sizes = dynamics_error(&e);
+    assert!(
+        matches!(
+            sizes,
+            DynamicsError::SizeMismatch { what: "inputs of a one-input simulation", expected: 1, given: 2 }
+        ),
+        "{e}"
+    );
     let mut plain = Model::read("free.kl", &FREE.replace("body", "// body")).unwrap();
     let e = plain.simulation().run(1.0).unwrap_err();
     assert!(matches!(&e, Error::InvalidArgument(m) if m.contains("declares no bodies")), "{e}");
@@ -412,4 +424,21 @@ fn a_simulation_s_bad_arguments_are_typed_errors() {
     let e = rocker.simulation().guess(&[0.0, 0.08]).start(0.0, 1.0).run(1.0).unwrap_err();
     eprintln!("rocker: {e}");
     assert!(e.to_string().contains("Free"), "{e}");
+    // With the time it happened at, as the compiled simulation reports it.
+    match dynamics_error(&e) {
+        DynamicsError::Kinematics { t: Some(t), source } => {
+            assert!(*t > 0.0 && *t < 1.0, "{t}");
+            assert!(source.to_string().contains("Free"), "{source}");
+            assert!(e.to_string().contains(&format!("at t = {t}")), "{e}");
+        }
+        d => panic!("{d:?}"),
+    }
+}
+
+/// The dynamics error inside `e` (any other error fails the test).
+fn dynamics_error(e: &Error) -> &DynamicsError {
+    match e {
+        Error::Dynamics(source) => source.downcast_ref::<DynamicsError>().expect("a dynamics error"),
+        e => panic!("not a dynamics error: {e:?}"),
+    }
 }

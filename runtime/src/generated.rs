@@ -55,11 +55,6 @@ where
     }
 }
 
-/// Finds the first non-finite value among named values (parameters, inputs, guesses).
-fn first_non_finite(names: &[&'static str], values: &[f64]) -> Option<(&'static str, f64)> {
-    names.iter().zip(values).find(|(_, v)| !v.is_finite()).map(|(n, v)| (*n, *v))
-}
-
 /// The first row holding a non-finite value (cold-path diagnosis of a failed factorisation).
 #[cold]
 pub fn first_bad_row<const M: usize, const R: usize>(rows: &[[f64; M]; R]) -> Option<usize> {
@@ -78,13 +73,14 @@ fn bad_values<M, const N: usize, const NI: usize, const NO: usize>(
 where
     M: Mechanism<N, NI, NO>,
 {
-    let at = || Box::new(location::<M, N, NI, NO>(x, None));
-    let values = m.param_values();
-    let found = first_non_finite(M::PARAMS, &values)
-        .map(|bad| (Quantity::Parameter, bad))
-        .or_else(|| first_non_finite(&M::INPUTS, x).map(|bad| (Quantity::Input, bad)))
-        .or_else(|| guess.and_then(|g| first_non_finite(&M::UNKNOWNS, g)).map(|bad| (Quantity::Guess, bad)));
-    found.map(|(what, (name, value))| Error::NonFinite { what, name: Cow::Borrowed(name), value, at: at() })
+    let (what, index, value) = first_bad_value(m.param_values(), x, guess.map(|g| &g[..]))?;
+    let names: &[&'static str] = match what {
+        Quantity::Parameter => M::PARAMS,
+        Quantity::Input => &M::INPUTS,
+        _ => &M::UNKNOWNS,
+    };
+    let name = Cow::Borrowed(names.get(index).copied().unwrap_or("?"));
+    Some(Error::NonFinite { what, name, value, at: Box::new(location::<M, N, NI, NO>(x, None)) })
 }
 
 /// The error for a block that failed (`fail`, with the configuration `cfg`), unless a bad
@@ -161,17 +157,9 @@ where
     M: Mechanism<N, NI, NO>,
 {
     let unknowns = M::BLOCKS.get(block).map_or(&[][..], |info| &info.unknowns);
-    let largest = unknowns
-        .iter()
-        .filter_map(|name| M::UNKNOWNS.iter().position(|u| u == name))
-        .filter(|&u| M::UNKNOWN_KINDS[u] == QuantityKind::Angle)
-        .max_by(|&a, &b| guess[a].abs().total_cmp(&guess[b].abs()));
-    match (fail, largest) {
-        (BlockFailure::TooManyTurns { value }, u) => Some((u.map_or("?", |u| M::UNKNOWNS[u]), value)),
-        (BlockFailure::InvalidConfig { .. } | BlockFailure::NonFinite { .. }, _) => None,
-        (_, Some(u)) if guess[u].abs() > largest_precise_angle(cfg) => Some((M::UNKNOWNS[u], guess[u])),
-        _ => None,
-    }
+    let unknowns = unknowns.iter().filter_map(|name| M::UNKNOWNS.iter().position(|u| u == name));
+    let (u, value) = turns_culprit(unknowns, &M::UNKNOWN_KINDS, fail, guess, cfg)?;
+    Some((u.map_or("?", |u| M::UNKNOWNS[u]), value))
 }
 
 /// Builds the error for a failed block at a known location: equations the location's block
@@ -202,8 +190,11 @@ pub fn block_error(fail: BlockFailure, at: Location) -> Error {
     }
 }
 
-/// [`Error::TooManyTurns`] of the angle `name` at `value`.
-fn turns_error(name: Cow<'static, str>, value: f64, at: Location) -> Error {
+/// [`Error::TooManyTurns`] of the angle `name` at `value`. Public for a mechanism read at run
+/// time (`kinloop_model`), which names the angle [`turns_culprit`] finds.
+#[cold]
+#[inline(never)]
+pub fn turns_error(name: Cow<'static, str>, value: f64, at: Location) -> Error {
     // The distance to the next double away from zero.
     let spacing = f64::from_bits(value.abs().to_bits() + 1) - value.abs();
     Error::TooManyTurns { name, value, turns: value / core::f64::consts::TAU, spacing, at: Box::new(at) }
@@ -743,3 +734,13 @@ pub use rejected::{MassModelDeclared, rejected};
 pub use crate::__state_by_name as state_by_name;
 mod state_by_name;
 pub use state_by_name::StateByName;
+
+// The parallel half of a scan over sets, shared with a run-time model's (see `par_sets`).
+#[cfg(feature = "rayon")]
+mod par_sets;
+#[cfg(feature = "rayon")]
+pub use par_sets::par_sets;
+
+// The name-agnostic cores of a failed step's diagnosis (see `diagnosis`).
+mod diagnosis;
+pub use diagnosis::{first_bad_value, first_non_finite_state, turns_culprit};

@@ -324,25 +324,15 @@ impl<const N: usize, const NI: usize, const NO: usize> Kin<N, NI, NO> {
     /// Index of the first non-finite value, as a label for error messages.
     #[doc(hidden)]
     pub fn first_non_finite(&self) -> Option<(&'static str, usize)> {
-        if let Some(u) = (0..N).find(|&u| !self.q[u].is_finite()) {
-            return Some(("position", u));
-        }
-        if let Some(u) = (0..N).find(|&u| self.dq[u].iter().any(|v| !v.is_finite())) {
-            return Some(("velocity analog", u));
-        }
-        if let Some(u) = (0..N).find(|&u| self.d2q[u].iter().flatten().any(|v| !v.is_finite())) {
-            return Some(("acceleration analog", u));
-        }
-        if let Some(o) = (0..NO).find(|&o| !self.out[o].is_finite()) {
-            return Some(("output", o));
-        }
-        if let Some(o) = (0..NO).find(|&o| self.dout[o].iter().any(|v| !v.is_finite())) {
-            return Some(("output velocity analog", o));
-        }
-        if let Some(o) = (0..NO).find(|&o| self.d2out[o].iter().flatten().any(|v| !v.is_finite())) {
-            return Some(("output acceleration analog", o));
-        }
-        None
+        let parts = [
+            &self.q[..],
+            self.dq.as_flattened(),
+            self.d2q.as_flattened().as_flattened(),
+            &self.out[..],
+            self.dout.as_flattened(),
+            self.d2out.as_flattened().as_flattened(),
+        ];
+        crate::generated::first_non_finite_state(parts, NI)
     }
 
     /// Fast check that every value is finite (one sum; NaN and infinity propagate).

@@ -226,25 +226,18 @@ fn lever_checks(form: &ClosedForm, cx: &Context) -> TokenStream {
         return out;
     }
     let rt = cx.rt;
-    let levers: Vec<(usize, [NodeId; 2])> = match form {
-        ClosedForm::AngleEquation { angle, a, b, .. } => vec![(*angle, [*a, *b])],
-        ClosedForm::Dyad { angles, m, .. } => (0..2).map(|i| (angles[i], [m[i][0][0], m[i][1][0]])).collect(),
-        // `s w(q) = -e`: the lever `s` is as long as the offset (`w` a rotation).
-        ClosedForm::PolarLength { angle, e, .. } => vec![(*angle, *e)],
-        ClosedForm::AngleSlider { angle, m, .. } => vec![(*angle, [m[0][0], m[1][0]])],
-    };
-    for (u, [x, y]) in levers {
+    for (u, [x, y]) in form.levers() {
         if let Some(floor) = (cx.lever_floor)(u) {
             let (x, y) = (cx.v(x), cx.v(y));
             out.extend(quote!(#rt::check_lever(#x, #y, #floor, __cfg).map_err(__fail)?;));
         }
     }
-    if let ClosedForm::Dyad { m, e, .. } = form {
-        let link = |i: usize| {
-            let (x, y) = (cx.v(m[i][0][0]), cx.v(m[i][1][0]));
+    if let Some((e, links)) = form.centres() {
+        let link = |[x, y]: [NodeId; 2]| {
+            let (x, y) = (cx.v(x), cx.v(y));
             add(&mul(&x, &x), &mul(&y, &y))
         };
-        let (l0, l1) = (link(0), link(1));
+        let (l0, l1) = (link(links[0]), link(links[1]));
         let (e0, e1) = (cx.v(e[0]), cx.v(e[1]));
         out.extend(quote!(#rt::check_centres(#e0, #e1, #l0, #l1, __cfg).map_err(__fail)?;));
     }

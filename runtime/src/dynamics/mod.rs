@@ -16,7 +16,7 @@
 //! given to each evaluation), and [`turn_states`] sweeps a turn of any
 //! [`Kernel`](crate::Kernel)'s input for [`Cycle::over_states`], the inverse cycle
 //! [`InverseCycle::run`] computes. The forward simulation is written once too
-//! ([`simulate_of()`], over any kernel that writes its kinematics in place, [`KinematicsInto`]):
+//! ([`simulate_of()`], over any [`Kernel`](crate::Kernel), its step written in place):
 //! [`Simulation::run`] is it over a compiled mechanism.
 //!
 //! ```
@@ -66,6 +66,6 @@ pub use eval::{Dynamics, Shaking};
 pub use model::{Body, Coord, ForceLaw, Load, MassModel, Point, Rotation, TorqueLaw};
 pub use ode::{DenseStep, OdeConfig, dopri5};
 pub use simulate::{RunConfig, Simulation, Trajectory};
-pub use simulate_of::{KinematicsInto, simulate_of};
+pub use simulate_of::simulate_of;
 pub use sized::{Applied, DynamicsBuf, MassModelBuf};
 pub use state::AnalogState;

@@ -1,6 +1,6 @@
 //! The forward simulation written once, over any [`Kernel`] and any evaluation of a one-input
 //! mass model at a state: a compiled mechanism's [`Simulation`](super::Simulation) (through
-//! [`Compiled`] and its [`MassModel`](super::MassModel)) and a run-time model's
+//! [`Compiled`](crate::mechanism::kernel::Compiled) and its [`MassModel`](super::MassModel)) and a run-time model's
 //! (`kinloop_model::Model::simulation`, its `MassModelBuf` and its load expressions) run this
 //! integration, with the same operations in the same order.
 
@@ -9,50 +9,8 @@ use super::eval::Dynamics;
 use super::ode::dopri5;
 use super::simulate::{RunConfig, Trajectory};
 use crate::dims::{Dims, KinState};
-use crate::error::Error;
-use crate::mechanism::Mechanism;
-use crate::mechanism::kernel::{Compiled, Kernel};
-use crate::solvers::newton::NewtonConfig;
-
-/// A [`Kernel`] whose kinematics a simulation writes into one state it keeps, so that an
-/// evaluation of the right-hand side allocates nothing whatever the kernel's storage.
-///
-/// The default is [`Kernel::kinematics`] assigned (a compiled mechanism's state is an array:
-/// its `kinematics_flat`, nothing allocated); a kernel whose states live on the heap (a run-time
-/// model's) writes in place.
-pub trait KinematicsInto: Kernel {
-    /// [`Kernel::kinematics`] written into `into` (of this kernel's sizes).
-    fn kinematics_into(
-        &self,
-        x: &<Self::Dims as Dims>::X,
-        guess: &<Self::Dims as Dims>::Q,
-        cfg: &NewtonConfig,
-        into: &mut <Self::Dims as Dims>::Kin,
-    ) -> Result<(), Error> {
-        *into = self.kinematics(x, guess, cfg)?;
-        Ok(())
-    }
-}
-
-/// A compiled mechanism's `kinematics_flat`, assigned.
-impl<M, const N: usize, const NI: usize, const NO: usize> KinematicsInto for Compiled<'_, M, N, NI, NO> where
-    M: Mechanism<N, NI, NO>
-{
-}
-
-/// A kernel lent: its own in-place kinematics.
-impl<K: KinematicsInto> KinematicsInto for &K {
-    #[inline(always)]
-    fn kinematics_into(
-        &self,
-        x: &<K::Dims as Dims>::X,
-        guess: &<K::Dims as Dims>::Q,
-        cfg: &NewtonConfig,
-        into: &mut <K::Dims as Dims>::Kin,
-    ) -> Result<(), Error> {
-        (**self).kinematics_into(x, guess, cfg, into)
-    }
-}
+use crate::mechanism::kernel::Kernel;
+use crate::trig::Libm;
 
 /// Simulates the one-input machine `m` for `t_end` time units from `start = [phi0, omega0]`:
 /// `(J + J_fly) phi'' + 1/2 J' phi'^2 = M_drive + Q` by [`dopri5`], the kinematics solved at
@@ -68,7 +26,7 @@ impl<K: KinematicsInto> KinematicsInto for &K {
 /// [`DynamicsError::SizeMismatch`]. Besides the recorded trajectory (one entry per accepted
 /// step, amortised growth), a step allocates nothing unless `reduced` does.
 #[allow(clippy::too_many_arguments)]
-pub fn simulate_of<K: KinematicsInto>(
+pub fn simulate_of<K: Kernel>(
     m: K,
     mut reduced: impl FnMut(&<K::Dims as Dims>::Kin, f64) -> Result<Dynamics<1>, DynamicsError>,
     drive: impl Fn(f64, f64, f64) -> f64,
@@ -105,6 +63,8 @@ pub fn simulate_of<K: KinematicsInto>(
             return Err(DynamicsError::BadValue { what: "initial state", value: v, why: "must be finite" });
         }
     }
+    // The kernel's step requires valid settings: checked once, as the first solve's error.
+    cfg.newton.validate().map_err(|source| DynamicsError::Kinematics { t: Some(0.0), source })?;
     // The workspace of every evaluation, made once: the input, the last position, the state.
     let (mut x, mut q, mut k) = (d.x(), guess, d.kin());
     // The first solve is from the caller's guess; every later one from the last position, where
@@ -113,7 +73,9 @@ pub fn simulate_of<K: KinematicsInto>(
     let rhs = |t: f64, y: &[f64; 2]| -> Result<[f64; 2], DynamicsError> {
         let [phi, omega] = *y;
         x[0] = phi;
-        m.kinematics_into(&x, &q, &newton, &mut k)
+        // The kernel's step with libm's sines and cosines: the same result as its kinematics,
+        // written in place (nothing built and copied per evaluation).
+        m.step_into(&x, &q, &newton, &mut Libm, &mut k)
             .map_err(|source| DynamicsError::Kinematics { t: Some(t), source })?;
         q.as_mut().copy_from_slice(k.q());
         newton.restarts = false;

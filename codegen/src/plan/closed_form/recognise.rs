@@ -60,6 +60,29 @@ impl ClosedForm {
             ClosedForm::Dyad { angles, .. } => angles.to_vec(),
         }
     }
+
+    /// Per angle, the nodes `[x, y]` of its lever vector, whose length is the magnitude of the
+    /// angle's Jacobian column: what a position-only solve tests against the angle's lever
+    /// floor (a lever that vanishes leaves the angle undetermined).
+    pub fn levers(&self) -> Vec<(usize, [NodeId; 2])> {
+        match self {
+            ClosedForm::AngleEquation { angle, a, b, .. } => vec![(*angle, [*a, *b])],
+            ClosedForm::Dyad { angles, m, .. } => (0..2).map(|i| (angles[i], [m[i][0][0], m[i][1][0]])).collect(),
+            // `s w(q) = -e`: the lever `s` is as long as the offset (`w` a rotation).
+            ClosedForm::PolarLength { angle, e, .. } => vec![(*angle, *e)],
+            ClosedForm::AngleSlider { angle, m, .. } => vec![(*angle, [m[0][0], m[1][0]])],
+        }
+    }
+
+    /// A dyad's centres' offset `e` and its two links' vectors `[x, y]` (the first column of
+    /// each `m[i]`, as long as the link): centres that coincide leave the dyad free to turn
+    /// about them. `None` for the other forms.
+    pub fn centres(&self) -> Option<([NodeId; 2], [[NodeId; 2]; 2])> {
+        match self {
+            ClosedForm::Dyad { m, e, .. } => Some((*e, [[m[0][0][0], m[0][1][0]], [m[1][0][0], m[1][1][0]]])),
+            _ => None,
+        }
+    }
 }
 
 /// A recognised block: its form and, per angle (in [`ClosedForm::angles`] order), the graph's

@@ -1,0 +1,68 @@
+//! The name-agnostic cores of a failed step's diagnosis: which value given by the caller is not
+//! finite, which angle was guessed too many turns out, which value of a state is not finite. A
+//! compiled mechanism names what they find by its constants; a mechanism read at run time
+//! (`kinloop_model`) by the names it read, so that its errors are the compiled ones.
+
+use crate::error::Quantity;
+use crate::kinds::QuantityKind;
+use crate::solvers::closed::largest_precise_angle;
+use crate::solvers::newton::{BlockFailure, NewtonConfig};
+
+/// The first non-finite parameter, input or guess, in that order, as its kind, index and
+/// value: a bad value given by the caller explains a failure better than the failure itself.
+#[cold]
+#[inline(never)]
+pub fn first_bad_value(
+    params: impl IntoIterator<Item = f64>,
+    x: &[f64],
+    guess: Option<&[f64]>,
+) -> Option<(Quantity, usize, f64)> {
+    let first = |values: &mut dyn Iterator<Item = f64>| values.enumerate().find(|(_, v)| !v.is_finite());
+    first(&mut params.into_iter())
+        .map(|(i, v)| (Quantity::Parameter, i, v))
+        .or_else(|| first(&mut x.iter().copied()).map(|(i, v)| (Quantity::Input, i, v)))
+        .or_else(|| guess.and_then(|g| first(&mut g.iter().copied())).map(|(i, v)| (Quantity::Guess, i, v)))
+}
+
+/// The angle of a block guessed too many turns out to be solved to the tolerance of `cfg`
+/// (see [`Error::TooManyTurns`](crate::Error::TooManyTurns)) and its value, when that explains
+/// the failure `fail`: a closed form's own finding (its root on the guess's turn; the angle
+/// `None` when the block has none), or any failure of Newton's from such a guess, whose
+/// residual stalls at the angle's rounding. `unknowns` are the block's, `kinds` and `guess` all
+/// the mechanism's; the angle is the block's with the largest guess.
+pub fn turns_culprit(
+    unknowns: impl IntoIterator<Item = usize>,
+    kinds: &[QuantityKind],
+    fail: BlockFailure,
+    guess: &[f64],
+    cfg: &NewtonConfig,
+) -> Option<(Option<usize>, f64)> {
+    let largest = unknowns
+        .into_iter()
+        .filter(|&u| kinds[u] == QuantityKind::Angle)
+        .max_by(|&a, &b| guess[a].abs().total_cmp(&guess[b].abs()));
+    match (fail, largest) {
+        (BlockFailure::TooManyTurns { value }, u) => Some((u, value)),
+        (BlockFailure::InvalidConfig { .. } | BlockFailure::NonFinite { .. }, _) => None,
+        (_, Some(u)) if guess[u].abs() > largest_precise_angle(cfg) => Some((Some(u), guess[u])),
+        _ => None,
+    }
+}
+
+/// The kind and index of the first non-finite value of a state of `ni` inputs given flat
+/// (each unknown's or output's analogs contiguous, as a compiled `Kin` lays them out):
+/// positions, their velocity and acceleration analogs, then the outputs and theirs.
+pub fn first_non_finite_state([q, dq, d2q, out, dout, d2out]: [&[f64]; 6], ni: usize) -> Option<(&'static str, usize)> {
+    let bad = |v: &[f64]| v.iter().any(|x| !x.is_finite());
+    // No analogs without inputs: chunks of one over empty slices.
+    let (per1, per2) = (ni.max(1), (ni * ni).max(1));
+    let parts: [(&'static str, &[f64], usize); 6] = [
+        ("position", q, 1),
+        ("velocity analog", dq, per1),
+        ("acceleration analog", d2q, per2),
+        ("output", out, 1),
+        ("output velocity analog", dout, per1),
+        ("output acceleration analog", d2out, per2),
+    ];
+    parts.into_iter().find_map(|(what, values, per)| values.chunks(per).position(bad).map(|k| (what, k)))
+}
