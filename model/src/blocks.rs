@@ -232,14 +232,14 @@ impl BlockProg {
     }
 
     /// [`BlockProg::factor_from_graph`] of a block of two unknowns or more, or of one whose
-    /// entry is not among its column's.
+    /// entry is not among its column's (the one-unknown block with its entry in its column is
+    /// handled inline there).
     #[inline(never)]
     fn factor_larger(&self, r: &[f64], fac: &mut Fac) {
         let n = self.unknowns.len();
         let v = |regs: &[u32]| max_abs(regs.iter().map(|&k| r[k as usize]));
-        match (n, self.in_col) {
-            (1, Some(_)) => fac.set_in_col(r[self.jac[0] as usize], v(&self.col[0])),
-            (2, _) => {
+        match n {
+            2 => {
                 let j = [
                     [r[self.jac[0] as usize], r[self.jac[1] as usize]],
                     [r[self.jac[2] as usize], r[self.jac[3] as usize]],
