@@ -350,11 +350,8 @@ impl BlockProg {
         let Work { r, fac, cfg } = w;
         at.unwrap_or(&self.vel).run(r);
         let tested = match (&self.how, at) {
-            (How::Fixed { coefficient, .. }, Some(_)) => {
-                fac.set_fixed(*coefficient);
-                false
-            }
-            (How::Fixed { .. }, None) => false,
+            // The slot holds `Fixed(coefficient)` from the model's build on: nothing to factor.
+            (How::Fixed { .. }, _) => false,
             (_, Some(_)) | (How::Closed { .. }, None) => {
                 self.factor_from_graph(r, fac);
                 true
