@@ -15,7 +15,7 @@
 //! [`Build::polar`], [`Build::angle_slider`]), beside the emitter's function of the same name.
 
 use kinloop_codegen::graph::dag::{Graph, NodeId};
-use kinloop_codegen::plan::closed_form::ClosedForm;
+use kinloop_codegen::plan::closed_form::{ClosedForm, constant_norm2};
 use kinloop_runtime::NewtonConfig;
 use kinloop_runtime::generated::{
     BlockFailure, acos_on_side, asin_near, check_closed, check_guess, dyad_roots, half_turn_if, polar_norm,
@@ -384,6 +384,14 @@ impl V {
     fn is_zero(self) -> bool {
         matches!(self, V::C(z) if z == 0.0)
     }
+
+    /// The constant, if this is one.
+    fn constant(self) -> Option<f64> {
+        match self {
+            V::C(c) => Some(c),
+            V::R(_) => None,
+        }
+    }
 }
 
 /// A program being built.
@@ -695,7 +703,7 @@ impl Build<'_> {
         let w0 = self.dot(&[(w[0][0], cq), (w[0][1], sq)]);
         let w1 = self.dot(&[(w[1][0], cq), (w[1][1], sq)]);
         let num = self.dot(&[(w0, e[0]), (w1, e[1])]);
-        let s = match constant_norm2(w) {
+        let s = match constant_norm2(w.map(|r| r.map(V::constant))) {
             Some(1.0) => self.neg(num),
             Some(k2) => {
                 let n = self.neg(num);
@@ -737,13 +745,4 @@ impl Build<'_> {
         let s = self.div(n, den);
         [q, s, cq, sq]
     }
-}
-
-/// `|w (cos q, sin q)|²` when it is the same constant for every `q` (the emitter's rule).
-fn constant_norm2(w: &[[V; 2]; 2]) -> Option<f64> {
-    let [[V::C(a), V::C(b)], [V::C(c), V::C(d)]] = *w else {
-        return None;
-    };
-    let (n0, n1) = (a * a + c * c, b * b + d * d);
-    (a * b + c * d == 0.0 && n0 == n1).then_some(n0)
 }

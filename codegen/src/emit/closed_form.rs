@@ -16,7 +16,7 @@
 use super::names::float;
 use crate::graph::dag::{Graph, NodeId};
 use crate::plan::Plan;
-use crate::plan::closed_form::{ClosedForm, Recognised};
+use crate::plan::closed_form::{ClosedForm, Recognised, constant_norm2};
 use proc_macro2::{Ident, Literal, TokenStream};
 use quote::{format_ident, quote};
 use std::collections::HashSet;
@@ -59,6 +59,16 @@ pub struct Context<'a> {
 enum V {
     C(f64),
     E(TokenStream),
+}
+
+impl V {
+    /// The constant, if this is one.
+    fn constant(&self) -> Option<f64> {
+        match self {
+            V::C(c) => Some(*c),
+            V::E(_) => None,
+        }
+    }
 }
 
 impl quote::ToTokens for V {
@@ -475,7 +485,7 @@ fn polar(w: &[[NodeId; 2]; 2], e: &[NodeId; 2], u: usize, gs: &TokenStream, cx: 
     let w0 = bind(&mut out, "__w0", dot(&[(&w[0][0], &cq), (&w[0][1], &sq)]));
     let w1 = bind(&mut out, "__w1", dot(&[(&w[1][0], &cq), (&w[1][1], &sq)]));
     let num = dot(&[(&w0, &e[0]), (&w1, &e[1])]);
-    let s = match constant_norm2(&w) {
+    let s = match constant_norm2(w.each_ref().map(|r| r.each_ref().map(V::constant))) {
         // `w` a unit rotation or reflection: `|w(q)|² = 1`, nothing to divide by.
         Some(1.0) => neg(&num),
         Some(k2) => {
@@ -500,16 +510,6 @@ fn polar(w: &[[NodeId; 2]; 2], e: &[NodeId; 2], u: usize, gs: &TokenStream, cx: 
         let __out: [f64; 4] = [#q, __s, __cq, __sq];
     });
     out
-}
-
-/// `|w (cos q, sin q)|²` when it is the same constant for every `q`: `w` constant with orthogonal
-/// columns of equal length (a scaled rotation or reflection), as `s (sin q, cos q)` gives.
-fn constant_norm2(w: &[[V; 2]; 2]) -> Option<f64> {
-    let [[V::C(a), V::C(b)], [V::C(c), V::C(d)]] = w else {
-        return None;
-    };
-    let (n0, n1) = (a * a + c * c, b * b + d * d);
-    (a * b + c * d == 0.0 && n0 == n1).then_some(n0)
 }
 
 /// `m c + d s + e = 0`: the combination `d1 row0 - d0 row1` is free of `s` (and its derivative
