@@ -6,7 +6,6 @@ use crate::closed::ClosedProg;
 use crate::factor::{Fac, MAX_DENSE, max_abs};
 use crate::newton::{self, NewtonProg};
 use crate::tape::Segment;
-use kinloop_codegen::plan::closed_form::ClosedForm;
 use kinloop_runtime::NewtonConfig;
 use kinloop_runtime::generated::{BlockFailure, Health, SolveReport};
 
@@ -389,14 +388,5 @@ impl BlockProg {
         at.unwrap_or(&self.acc).run(r);
         let _ = pairs;
         self.acc_cols.solve(self.unknowns.len(), r, fac, d2q);
-    }
-}
-
-/// The unknown of a closed form that is not an angle (a length or a slider).
-pub(crate) fn other_unknown(form: &ClosedForm) -> Option<usize> {
-    match form {
-        ClosedForm::PolarLength { length, .. } => Some(*length),
-        ClosedForm::AngleSlider { slider, .. } => Some(*slider),
-        ClosedForm::AngleEquation { .. } | ClosedForm::Dyad { .. } => None,
     }
 }

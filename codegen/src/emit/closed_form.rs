@@ -169,7 +169,7 @@ pub fn solve(rec: &Recognised, cx: &Context) -> TokenStream {
     };
     // Unknowns: the angles, then the slider or length; then each angle's cosine and sine.
     let mut outs: Vec<TokenStream> = Vec::new();
-    for u in rec.form.angles().into_iter().chain(others_of(&rec.form)) {
+    for u in rec.form.solve_order() {
         let q = &cx.unknowns[u];
         outs.push(quote!(#q));
     }
@@ -186,8 +186,8 @@ pub fn solve(rec: &Recognised, cx: &Context) -> TokenStream {
     // The guess only picks the branch and the turn, through comparisons that a NaN would
     // silently answer. An angle's guess reaches the angle (moved to the guess's turn, it is
     // non-finite too) and `check_closed` rejects it; a length's or a slider's is checked first.
-    let guess_check = others_of(&rec.form).map(|_| {
-        let guesses = rec.form.angles().into_iter().chain(others_of(&rec.form)).map(guess_of);
+    let guess_check = rec.form.other_unknown().map(|_| {
+        let guesses = rec.form.solve_order().into_iter().map(guess_of);
         quote!(#rt::check_guess(#(#guesses)+*).map_err(__fail)?;)
     });
     let angles = Literal::usize_unsuffixed(rec.form.angles().len());
@@ -198,7 +198,7 @@ pub fn solve(rec: &Recognised, cx: &Context) -> TokenStream {
         // (The angles' magnitudes are tested on their guesses, at the kernel's entry.)
         let check = format_ident!("__check{}", cx.block);
         let trig = (outs.len() - 2 * rec.sin_cos.len()..outs.len()).map(Literal::usize_unsuffixed);
-        let guesses: Vec<TokenStream> = others_of(&rec.form).map(guess_of).into_iter().collect();
+        let guesses: Vec<TokenStream> = rec.form.other_unknown().map(guess_of).into_iter().collect();
         let guess_check = guess_check.map(|c| quote!(if __CHECKED { #c }));
         return quote! {
             let ([#(#outs),*], #check) = {
@@ -259,15 +259,6 @@ fn lever_checks(form: &ClosedForm, cx: &Context) -> TokenStream {
         out.extend(quote!(#rt::check_centres(#e0, #e1, #l0, #l1, __cfg).map_err(__fail)?;));
     }
     out
-}
-
-/// The block's unknowns that are not angles (a length or a slider).
-fn others_of(form: &ClosedForm) -> Option<usize> {
-    match form {
-        ClosedForm::PolarLength { length, .. } => Some(*length),
-        ClosedForm::AngleSlider { slider, .. } => Some(*slider),
-        ClosedForm::AngleEquation { .. } | ClosedForm::Dyad { .. } => None,
-    }
 }
 
 /// Binds `__cq`, `__sq`: the root of `a cos q + b sin q = c` with `h' = -d < 0`, or with
