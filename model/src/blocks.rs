@@ -6,7 +6,6 @@ use crate::closed::ClosedProg;
 use crate::factor::{Fac, MAX_DENSE, max_abs};
 use crate::newton::{self, NewtonProg};
 use crate::tape::Segment;
-use kinloop_codegen::plan::closed_form::ClosedForm;
 use kinloop_runtime::NewtonConfig;
 use kinloop_runtime::generated::{BlockFailure, Health, SolveReport};
 
@@ -232,14 +231,14 @@ impl BlockProg {
     }
 
     /// [`BlockProg::factor_from_graph`] of a block of two unknowns or more, or of one whose
-    /// entry is not among its column's.
+    /// entry is not among its column's (the one-unknown block with its entry in its column is
+    /// handled inline there).
     #[inline(never)]
     fn factor_larger(&self, r: &[f64], fac: &mut Fac) {
         let n = self.unknowns.len();
         let v = |regs: &[u32]| max_abs(regs.iter().map(|&k| r[k as usize]));
-        match (n, self.in_col) {
-            (1, Some(_)) => fac.set_in_col(r[self.jac[0] as usize], v(&self.col[0])),
-            (2, _) => {
+        match n {
+            2 => {
                 let j = [
                     [r[self.jac[0] as usize], r[self.jac[1] as usize]],
                     [r[self.jac[2] as usize], r[self.jac[3] as usize]],
@@ -350,11 +349,8 @@ impl BlockProg {
         let Work { r, fac, cfg } = w;
         at.unwrap_or(&self.vel).run(r);
         let tested = match (&self.how, at) {
-            (How::Fixed { coefficient, .. }, Some(_)) => {
-                fac.set_fixed(*coefficient);
-                false
-            }
-            (How::Fixed { .. }, None) => false,
+            // The slot holds `Fixed(coefficient)` from the model's build on: nothing to factor.
+            (How::Fixed { .. }, _) => false,
             (_, Some(_)) | (How::Closed { .. }, None) => {
                 self.factor_from_graph(r, fac);
                 true
@@ -392,14 +388,5 @@ impl BlockProg {
         at.unwrap_or(&self.acc).run(r);
         let _ = pairs;
         self.acc_cols.solve(self.unknowns.len(), r, fac, d2q);
-    }
-}
-
-/// The unknown of a closed form that is not an angle (a length or a slider).
-pub(crate) fn other_unknown(form: &ClosedForm) -> Option<usize> {
-    match form {
-        ClosedForm::PolarLength { length, .. } => Some(*length),
-        ClosedForm::AngleSlider { slider, .. } => Some(*slider),
-        ClosedForm::AngleEquation { .. } | ClosedForm::Dyad { .. } => None,
     }
 }

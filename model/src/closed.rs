@@ -14,8 +14,8 @@
 //! Each form's arithmetic is one function below ([`Build::angle_equation`], [`Build::dyad`],
 //! [`Build::polar`], [`Build::angle_slider`]), beside the emitter's function of the same name.
 
-use kinloop_codegen::graph::dag::{Graph, NodeId};
-use kinloop_codegen::plan::closed_form::ClosedForm;
+use kinloop_codegen::graph::dag::{self, Graph, Leaf, NodeId};
+use kinloop_codegen::plan::closed_form::{ClosedForm, constant_norm2};
 use kinloop_runtime::NewtonConfig;
 use kinloop_runtime::generated::{
     BlockFailure, acos_on_side, asin_near, check_closed, check_guess, dyad_roots, half_turn_if, polar_norm,
@@ -236,20 +236,18 @@ pub(crate) struct ClosedProg {
 }
 
 impl ClosedProg {
-    /// Compiles the solve of `form` over the graph `g`: `unknown_regs` are the registers of the
-    /// leaves of the unknowns in the order of the solve, `sin_cos` those of each angle's `[sin,
-    /// cos]` nodes (where the solve leaves its values; a fresh register for a missing one).
-    pub(crate) fn build(
-        form: &ClosedForm,
-        g: &Graph,
-        unknown_regs: &[Option<u32>],
-        sin_cos: &[[Option<u32>; 2]],
-        extra: &mut Extra,
-    ) -> ClosedProg {
+    /// Compiles the solve of `form` over the graph `g`: `sin_cos` are the registers of each
+    /// angle's `[sin, cos]` nodes (where the solve leaves its values; a fresh register for a
+    /// missing one). Each unknown's value is left in its leaf's register, a fresh one for an
+    /// unknown the graph does not read.
+    pub(crate) fn build(form: &ClosedForm, g: &Graph, sin_cos: &[[Option<u32>; 2]], extra: &mut Extra) -> ClosedProg {
         let mut b = Build { g, extra, ops: Vec::new(), temps: HashMap::new(), guess_regs: HashMap::new() };
-        let order: Vec<usize> = form.angles().into_iter().chain(crate::blocks::other_unknown(form)).collect();
+        let order = form.solve_order();
         // The targets of the solution's values, in the order of the emitter's `__out`.
-        let mut targets: Vec<u32> = unknown_regs.iter().map(|r| r.unwrap_or_else(|| b.extra.fresh())).collect();
+        let mut targets: Vec<u32> = order
+            .iter()
+            .map(|&u| g.find(dag::Op::Leaf(Leaf::Unknown(u as u16))).map_or_else(|| b.extra.fresh(), |n| n.0))
+            .collect();
         for [s, c] in sin_cos {
             for t in [c, s] {
                 targets.push(t.unwrap_or_else(|| b.extra.fresh()));
@@ -383,6 +381,14 @@ enum V {
 impl V {
     fn is_zero(self) -> bool {
         matches!(self, V::C(z) if z == 0.0)
+    }
+
+    /// The constant, if this is one.
+    fn constant(self) -> Option<f64> {
+        match self {
+            V::C(c) => Some(c),
+            V::R(_) => None,
+        }
     }
 }
 
@@ -695,7 +701,7 @@ impl Build<'_> {
         let w0 = self.dot(&[(w[0][0], cq), (w[0][1], sq)]);
         let w1 = self.dot(&[(w[1][0], cq), (w[1][1], sq)]);
         let num = self.dot(&[(w0, e[0]), (w1, e[1])]);
-        let s = match constant_norm2(w) {
+        let s = match constant_norm2(w.map(|r| r.map(V::constant))) {
             Some(1.0) => self.neg(num),
             Some(k2) => {
                 let n = self.neg(num);
@@ -737,13 +743,4 @@ impl Build<'_> {
         let s = self.div(n, den);
         [q, s, cq, sq]
     }
-}
-
-/// `|w (cos q, sin q)|²` when it is the same constant for every `q` (the emitter's rule).
-fn constant_norm2(w: &[[V; 2]; 2]) -> Option<f64> {
-    let [[V::C(a), V::C(b)], [V::C(c), V::C(d)]] = *w else {
-        return None;
-    };
-    let (n0, n1) = (a * a + c * c, b * b + d * d);
-    (a * b + c * d == 0.0 && n0 == n1).then_some(n0)
 }

@@ -209,15 +209,6 @@ impl Fac {
         })
     }
 
-    /// `Fixed(coefficient)` written into this slot (in place when it holds one already).
-    #[inline]
-    pub(crate) fn set_fixed(&mut self, coefficient: f64) {
-        match self {
-            Fac::Fixed(f) => f.0 = coefficient,
-            other => *other = Fac::Fixed(Fixed(coefficient)),
-        }
-    }
-
     /// Records the factorisation's conditioning for block `b`.
     pub(crate) fn note(&self, health: &mut Health, b: usize) {
         match self {

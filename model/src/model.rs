@@ -2,7 +2,7 @@
 //! evaluated step by step without allocating.
 
 use crate::at::{AtProg, Jacobian};
-use crate::blocks::{BlockProg, Columns, How, StepFailure, Work, other_unknown};
+use crate::blocks::{BlockProg, Columns, How, StepFailure, Work};
 use crate::closed::{ClosedProg, Extra};
 use crate::dynamics::DynamicsProg;
 use crate::factor::{Fac, MAX_DENSE};
@@ -824,14 +824,7 @@ fn position_program(
             let pre = tape.segment(&rec.form.coefficients(), None)?;
             let sin_cos: Vec<[Option<u32>; 2]> = rec.sin_cos.iter().map(|[s, c]| [Some(s.0), Some(c.0)]).collect();
             tape.provide(rec.sin_cos.concat());
-            let unknown_regs: Vec<Option<u32>> = rec
-                .form
-                .angles()
-                .into_iter()
-                .chain(other_unknown(&rec.form))
-                .map(|u| find(Leaf::Unknown(u as u16)).map(|n| n.0))
-                .collect();
-            (pre, How::Closed(ClosedProg::build(&rec.form, g, &unknown_regs, &sin_cos, extra)))
+            (pre, How::Closed(ClosedProg::build(&rec.form, g, &sin_cos, extra)))
         }
         Solve::Newton | Solve::NewtonSparse(_) => {
             // Every unknown of a Newton block is read by its equations: its leaf is in the graph.

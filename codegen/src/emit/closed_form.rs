@@ -16,7 +16,7 @@
 use super::names::float;
 use crate::graph::dag::{Graph, NodeId};
 use crate::plan::Plan;
-use crate::plan::closed_form::{ClosedForm, Recognised};
+use crate::plan::closed_form::{ClosedForm, Recognised, constant_norm2};
 use proc_macro2::{Ident, Literal, TokenStream};
 use quote::{format_ident, quote};
 use std::collections::HashSet;
@@ -59,6 +59,16 @@ pub struct Context<'a> {
 enum V {
     C(f64),
     E(TokenStream),
+}
+
+impl V {
+    /// The constant, if this is one.
+    fn constant(&self) -> Option<f64> {
+        match self {
+            V::C(c) => Some(*c),
+            V::E(_) => None,
+        }
+    }
 }
 
 impl quote::ToTokens for V {
@@ -159,7 +169,7 @@ pub fn solve(rec: &Recognised, cx: &Context) -> TokenStream {
     };
     // Unknowns: the angles, then the slider or length; then each angle's cosine and sine.
     let mut outs: Vec<TokenStream> = Vec::new();
-    for u in rec.form.angles().into_iter().chain(others_of(&rec.form)) {
+    for u in rec.form.solve_order() {
         let q = &cx.unknowns[u];
         outs.push(quote!(#q));
     }
@@ -176,8 +186,8 @@ pub fn solve(rec: &Recognised, cx: &Context) -> TokenStream {
     // The guess only picks the branch and the turn, through comparisons that a NaN would
     // silently answer. An angle's guess reaches the angle (moved to the guess's turn, it is
     // non-finite too) and `check_closed` rejects it; a length's or a slider's is checked first.
-    let guess_check = others_of(&rec.form).map(|_| {
-        let guesses = rec.form.angles().into_iter().chain(others_of(&rec.form)).map(guess_of);
+    let guess_check = rec.form.other_unknown().map(|_| {
+        let guesses = rec.form.solve_order().into_iter().map(guess_of);
         quote!(#rt::check_guess(#(#guesses)+*).map_err(__fail)?;)
     });
     let angles = Literal::usize_unsuffixed(rec.form.angles().len());
@@ -188,7 +198,7 @@ pub fn solve(rec: &Recognised, cx: &Context) -> TokenStream {
         // (The angles' magnitudes are tested on their guesses, at the kernel's entry.)
         let check = format_ident!("__check{}", cx.block);
         let trig = (outs.len() - 2 * rec.sin_cos.len()..outs.len()).map(Literal::usize_unsuffixed);
-        let guesses: Vec<TokenStream> = others_of(&rec.form).map(guess_of).into_iter().collect();
+        let guesses: Vec<TokenStream> = rec.form.other_unknown().map(guess_of).into_iter().collect();
         let guess_check = guess_check.map(|c| quote!(if __CHECKED { #c }));
         return quote! {
             let ([#(#outs),*], #check) = {
@@ -242,15 +252,6 @@ fn lever_checks(form: &ClosedForm, cx: &Context) -> TokenStream {
         out.extend(quote!(#rt::check_centres(#e0, #e1, #l0, #l1, __cfg).map_err(__fail)?;));
     }
     out
-}
-
-/// The block's unknowns that are not angles (a length or a slider).
-fn others_of(form: &ClosedForm) -> Option<usize> {
-    match form {
-        ClosedForm::PolarLength { length, .. } => Some(*length),
-        ClosedForm::AngleSlider { slider, .. } => Some(*slider),
-        ClosedForm::AngleEquation { .. } | ClosedForm::Dyad { .. } => None,
-    }
 }
 
 /// Binds `__cq`, `__sq`: the root of `a cos q + b sin q = c` with `h' = -d < 0`, or with
@@ -468,7 +469,7 @@ fn polar(w: &[[NodeId; 2]; 2], e: &[NodeId; 2], u: usize, gs: &TokenStream, cx: 
     let w0 = bind(&mut out, "__w0", dot(&[(&w[0][0], &cq), (&w[0][1], &sq)]));
     let w1 = bind(&mut out, "__w1", dot(&[(&w[1][0], &cq), (&w[1][1], &sq)]));
     let num = dot(&[(&w0, &e[0]), (&w1, &e[1])]);
-    let s = match constant_norm2(&w) {
+    let s = match constant_norm2(w.each_ref().map(|r| r.each_ref().map(V::constant))) {
         // `w` a unit rotation or reflection: `|w(q)|² = 1`, nothing to divide by.
         Some(1.0) => neg(&num),
         Some(k2) => {
@@ -493,16 +494,6 @@ fn polar(w: &[[NodeId; 2]; 2], e: &[NodeId; 2], u: usize, gs: &TokenStream, cx: 
         let __out: [f64; 4] = [#q, __s, __cq, __sq];
     });
     out
-}
-
-/// `|w (cos q, sin q)|²` when it is the same constant for every `q`: `w` constant with orthogonal
-/// columns of equal length (a scaled rotation or reflection), as `s (sin q, cos q)` gives.
-fn constant_norm2(w: &[[V; 2]; 2]) -> Option<f64> {
-    let [[V::C(a), V::C(b)], [V::C(c), V::C(d)]] = w else {
-        return None;
-    };
-    let (n0, n1) = (a * a + c * c, b * b + d * d);
-    (a * b + c * d == 0.0 && n0 == n1).then_some(n0)
 }
 
 /// `m c + d s + e = 0`: the combination `d1 row0 - d0 row1` is free of `s` (and its derivative

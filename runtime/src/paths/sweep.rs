@@ -633,12 +633,15 @@ where
     fn judge(&self, n: &KinOf<K>, p: &Prediction<Q<K>>) -> Outcome {
         let (mut dist, mut turn, mut slope_err) = (0.0f64, 0.0f64, 0.0f64);
         let nq = n.q();
+        // Once per step, not per unknown: a constant for a compiled mechanism, but a run-time
+        // model's `judged` and `closed_form_angle` are table lookups.
+        let judge_positions = positions_judged(&self.m);
         // Followers are smooth functions of the judged unknowns (see `Mechanism::FOLLOWERS`).
         for &u in self.m.judged() {
             let e = (nq[u] - p.q[u]).abs();
             // Constants after unrolling (see `positions_judged`): where every judged unknown is
             // a closed-form angle, `dist` is not computed and `turn` costs one comparison.
-            if positions_judged(&self.m) {
+            if judge_positions {
                 dist = dist.max(e);
             }
             if self.m.closed_form_angle(u) {
@@ -650,7 +653,7 @@ where
         if !health.det_signs.same_for(&self.signs, self.m.block_count()) {
             Outcome::Flip
         } else if (health.min_pivot < self.cfg.singular_pivot)
-            | (positions_judged(&self.m) & (dist > p.max_dist))
+            | (judge_positions & (dist > p.max_dist))
             | (slope_err > p.max_slope_err)
             | (turn > ANGLE_CAP)
             | p.long

@@ -22,5 +22,18 @@ pub mod recognise;
 
 pub use recognise::{ClosedForm, Recognised, recognise};
 
+/// `|w (cos q, sin q)|²` when it is the same constant for every `q`: `w` constant (an entry
+/// `None` where it is not) with orthogonal columns of equal length (a scaled rotation or
+/// reflection), as `s (sin q, cos q)` gives. The length of [`ClosedForm::PolarLength`] divides
+/// by it in place of `|w(q)|²` (by nothing where it is 1): the emitter and the run-time model
+/// both ask here, so both fold the same constants to the same bits.
+pub fn constant_norm2(w: [[Option<f64>; 2]; 2]) -> Option<f64> {
+    let [[Some(a), Some(b)], [Some(c), Some(d)]] = w else {
+        return None;
+    };
+    let (n0, n1) = (a * a + c * c, b * b + d * d);
+    (a * b + c * d == 0.0 && n0 == n1).then_some(n0)
+}
+
 #[cfg(test)]
 mod tests;

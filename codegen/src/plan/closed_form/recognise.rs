@@ -83,6 +83,21 @@ impl ClosedForm {
             _ => None,
         }
     }
+
+    /// The unknown that is not an angle: a length or a slider, solved after its angle.
+    pub fn other_unknown(&self) -> Option<usize> {
+        match self {
+            ClosedForm::PolarLength { length, .. } => Some(*length),
+            ClosedForm::AngleSlider { slider, .. } => Some(*slider),
+            ClosedForm::AngleEquation { .. } | ClosedForm::Dyad { .. } => None,
+        }
+    }
+
+    /// The block's unknowns in the order the solve gives them: the angles (in
+    /// [`ClosedForm::angles`] order), then the length or slider.
+    pub fn solve_order(&self) -> Vec<usize> {
+        self.angles().into_iter().chain(self.other_unknown()).collect()
+    }
 }
 
 /// A recognised block: its form and, per angle (in [`ClosedForm::angles`] order), the graph's

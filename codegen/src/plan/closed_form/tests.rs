@@ -161,3 +161,27 @@ fn class_four_group_keeps_newton() {
         loop aefb: oa @ phi + ae @ (th1 + al) + ef @ psi2 == (xb, yb) + bf @ (th2 + bl); }";
     assert_eq!(kinds(src), ["none"]);
 }
+
+/// `constant_norm2` against `|w (cos q, sin q)|²` evaluated directly at a few angles: constant
+/// (and returned) for a scaled rotation and a scaled reflection; `None` where the columns differ
+/// in length, are not orthogonal, or an entry is not a constant.
+#[test]
+fn constant_norm2_is_the_norm_of_w_at_every_angle() {
+    use super::constant_norm2;
+    let norm2 = |w: [[f64; 2]; 2], q: f64| {
+        let (c, s) = (q.cos(), q.sin());
+        (w[0][0] * c + w[0][1] * s).powi(2) + (w[1][0] * c + w[1][1] * s).powi(2)
+    };
+    let known = |w: [[f64; 2]; 2]| w.map(|r| r.map(Some));
+    // 3-4-5: the scaled rotation and reflection of length 5.
+    for w in [[[3.0, -4.0], [4.0, 3.0]], [[3.0, 4.0], [4.0, -3.0]], [[0.0, 1.0], [1.0, 0.0]]] {
+        let k2 = constant_norm2(known(w)).expect("a scaled rotation or reflection");
+        for q in [0.0, 0.7, 2.0, -2.9] {
+            assert!((norm2(w, q) - k2).abs() <= 4.0 * f64::EPSILON * k2, "{w:?} at {q}");
+        }
+    }
+    assert_eq!(constant_norm2(known([[0.0, 1.0], [1.0, 0.0]])), Some(1.0));
+    assert_eq!(constant_norm2(known([[2.0, 0.0], [0.0, 1.0]])), None, "unequal columns");
+    assert_eq!(constant_norm2(known([[1.0, 1.0], [0.0, 0.0]])), None, "not orthogonal");
+    assert_eq!(constant_norm2([[Some(1.0), Some(0.0)], [None, Some(1.0)]]), None, "not constant");
+}
