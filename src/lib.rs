@@ -387,8 +387,8 @@ pub use kinloop_macros::mechanism;
 pub use kinloop_runtime::nalgebra;
 pub use kinloop_runtime::{
     AtSingular, BlockInfo, BlockNames, ColumnKey, Compiled, CompiledSens, Configured, DetSigns, Error, Event,
-    EventKind, Extreme, Extremum, FlatMotion, Health, Jac, Kernel, Kin, LENGTH_UNIT, Location, Mechanism, Named,
-    NamedSensitivities, NewtonConfig, NewtonStop, Quantity, QuantityKind, Reach, Sens, SensKernel, SensState,
+    EventKind, Extreme, Extremum, ExtremumOf, FlatMotion, Health, Jac, Kernel, Kin, LENGTH_UNIT, Location, Mechanism,
+    Named, NamedSensitivities, NewtonConfig, NewtonStop, Quantity, QuantityKind, Reach, Sens, SensKernel, SensState,
     Sensitivities, SolveReport, Source, Sweep, SweepConfig, SweepOf, SweepResult, SweepStop, Table, TraceConfig,
     Traced, TracedOf, TracedPoint, TracedPointOf, Vec2, deg, to_deg,
 };

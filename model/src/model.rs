@@ -756,6 +756,25 @@ impl Model {
         cfg: &NewtonConfig,
     ) -> Result<(&State, Option<&Sensitivities>), StepError> {
         self.kinematics(x, guess, cfg)?;
+        self.sensitivities_here()
+    }
+
+    /// [`Model::kinematics_at`] and the sensitivities of the state to every parameter, at a
+    /// position `q` the caller already solved (the compiled mechanism's
+    /// `sensitivities_at_flat`); `None` in place of the sensitivities when the declaration did
+    /// not ask for them. No allocation.
+    pub fn sensitivities_at(
+        &mut self,
+        x: &[f64],
+        q: &[f64],
+        cfg: &NewtonConfig,
+    ) -> Result<(&State, Option<&Sensitivities>), StepError> {
+        self.kinematics_at(x, q, cfg)?;
+        self.sensitivities_here()
+    }
+
+    /// The sensitivities of the state just computed, on its factorisations (checked finite).
+    fn sensitivities_here(&mut self) -> Result<(&State, Option<&Sensitivities>), StepError> {
         if let (Some(p), Some(s)) = (&self.sens, &mut self.sens_state) {
             p.run(&mut self.regs, &self.facs, s);
             let all = [&s.q, &s.dq, &s.d2q, &s.out, &s.dout, &s.d2out];

@@ -7,7 +7,7 @@
 //! the same operations), so do the candidates (`tests/synthesis.rs`).
 
 use crate::mechanism::ModelKernel;
-use crate::model::{Model, StepError};
+use crate::model::{Model, State, StepError};
 use crate::sensitivities::Sensitivities;
 use kinloop_runtime::dims::{Dims, Heap, KinBuf};
 use kinloop_runtime::synthesis::{Design, ProblemOf, SynthesisError, Task};
@@ -26,6 +26,8 @@ pub type ModelProblem<'a> = ProblemOf<ModelKernel<'a>>;
 pub struct ModelSens {
     /// The number of parameters.
     pub np: usize,
+    /// The number of inputs (indexing the analogs' sensitivities).
+    pub ni: usize,
     /// The sensitivities, flat with the parameter innermost.
     pub values: Sensitivities,
 }
@@ -36,6 +38,12 @@ impl SensState for ModelSens {
     }
     fn out(&self, o: usize, k: usize) -> f64 {
         self.values.out[o * self.np + k]
+    }
+    fn dq(&self, u: usize, i: usize, k: usize) -> f64 {
+        self.values.dq[(u * self.ni + i) * self.np + k]
+    }
+    fn dout(&self, o: usize, i: usize, k: usize) -> f64 {
+        self.values.dout[(o * self.ni + i) * self.np + k]
     }
 }
 
@@ -124,6 +132,7 @@ impl SensKernel for ModelKernel<'_> {
         let (n, ni, no) = (d.n(), d.ni(), d.no());
         ModelSens {
             np,
+            ni,
             values: Sensitivities {
                 q: z(n * np),
                 dq: z(n * ni * np),
@@ -144,23 +153,26 @@ impl SensKernel for ModelKernel<'_> {
         sens: &mut ModelSens,
     ) -> Result<(), Error> {
         let mut m = self.model().borrow_mut();
-        match m.sensitivities(&x.0, &guess.0, cfg) {
-            Ok((st, Some(s))) => {
-                Self::copy_state(st, kin);
-                let to = &mut sens.values;
-                to.q.copy_from_slice(&s.q);
-                to.dq.copy_from_slice(&s.dq);
-                to.d2q.copy_from_slice(&s.d2q);
-                to.out.copy_from_slice(&s.out);
-                to.dout.copy_from_slice(&s.dout);
-                to.d2out.copy_from_slice(&s.d2out);
-                Ok(())
-            }
-            // `synthesis_problem` refuses such a model; a kernel lent otherwise says why.
-            Ok((_, None)) => {
-                Err(Error::InvalidArgument(format!("`{}` was declared without parameter sensitivities", self.name())))
-            }
+        let solved = m.sensitivities(&x.0, &guess.0, cfg);
+        match solved {
+            Ok((st, s)) => self.copy_sens(st, s, kin, sens),
             Err(e) => Err(self.error(&m, e, &x.0, Some(&guess.0), cfg)),
+        }
+    }
+    /// The model's `sensitivities_at` copied into `kin` and `sens` (no allocation).
+    fn sensitivities_at_into(
+        &self,
+        x: &Heap,
+        q: &Heap,
+        cfg: &NewtonConfig,
+        kin: &mut KinBuf,
+        sens: &mut ModelSens,
+    ) -> Result<(), Error> {
+        let mut m = self.model().borrow_mut();
+        let solved = m.sensitivities_at(&x.0, &q.0, cfg);
+        match solved {
+            Ok((st, s)) => self.copy_sens(st, s, kin, sens),
+            Err(e) => Err(self.error(&m, e, &x.0, None, cfg)),
         }
     }
     /// The position alone (`Model::positions`, the compiled `position_flat`) and the outputs
@@ -183,6 +195,32 @@ impl SensKernel for ModelKernel<'_> {
 }
 
 impl ModelKernel<'_> {
+    /// A state and its sensitivities copied into the kernel's buffers.
+    fn copy_sens(
+        &self,
+        st: &State,
+        s: Option<&Sensitivities>,
+        kin: &mut KinBuf,
+        sens: &mut ModelSens,
+    ) -> Result<(), Error> {
+        // `synthesis_problem` refuses a model without sensitivities; a kernel lent otherwise says why.
+        let Some(s) = s else {
+            return Err(Error::InvalidArgument(format!(
+                "`{}` was declared without parameter sensitivities",
+                self.name()
+            )));
+        };
+        Self::copy_state(st, kin);
+        let to = &mut sens.values;
+        to.q.copy_from_slice(&s.q);
+        to.dq.copy_from_slice(&s.dq);
+        to.d2q.copy_from_slice(&s.d2q);
+        to.out.copy_from_slice(&s.out);
+        to.dout.copy_from_slice(&s.dout);
+        to.d2out.copy_from_slice(&s.d2out);
+        Ok(())
+    }
+
     /// Sets every parameter of the lent model to `values` (in declaration order) and returns the
     /// values it had.
     fn set_all(&self, values: Vec<Option<f64>>) -> Vec<Option<f64>> {

@@ -48,7 +48,7 @@ mod trig;
 mod vec2;
 
 pub use analysis::Extreme;
-pub use analysis::objective::Extremum;
+pub use analysis::objective::{Extremum, ExtremumOf};
 pub use angles::{deg, to_deg};
 pub use configured::Configured;
 pub use error::{Error, Quantity, Source};

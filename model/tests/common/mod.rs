@@ -77,3 +77,33 @@ where
         self.0.jacobian_flat(x, q)
     }
 }
+
+/// The sensitivities forwarded too, for the objectives with gradients over the same sweep.
+impl<M, const N: usize, const NI: usize, const NO: usize, const NP: usize> kinloop::Sensitivities<N, NI, NO, NP>
+    for Libm<M>
+where
+    M: kinloop::Sensitivities<N, NI, NO, NP>,
+{
+    fn params_flat(&self) -> [f64; NP] {
+        self.0.params_flat()
+    }
+    fn with_params_flat(&self, p: [f64; NP]) -> Self {
+        Libm(self.0.with_params_flat(p))
+    }
+    fn sensitivities_flat(
+        &self,
+        x: &[f64; NI],
+        g: &[f64; N],
+        c: &kinloop::NewtonConfig,
+    ) -> Result<(Kin<N, NI, NO>, kinloop::Sens<N, NI, NO, NP>), kinloop::Error> {
+        self.0.sensitivities_flat(x, g, c)
+    }
+    fn sensitivities_at_flat(
+        &self,
+        x: &[f64; NI],
+        q: &[f64; N],
+        c: &kinloop::NewtonConfig,
+    ) -> Result<(Kin<N, NI, NO>, kinloop::Sens<N, NI, NO, NP>), kinloop::Error> {
+        self.0.sensitivities_at_flat(x, q, c)
+    }
+}

@@ -1,5 +1,8 @@
 //! Objectives over a whole sweep with exact parameter gradients (for synthesis with
-//! [`LevenbergMarquardt`](super::optimize::LevenbergMarquardt)).
+//! [`LevenbergMarquardt`](super::optimize::LevenbergMarquardt)), written once over
+//! [`SampledOf`] for any kernel with sensitivities at a kept state: a compiled mechanism's
+//! [`Sampled`] (gradients as arrays) and a [`SensKernel`]'s, a run-time model's included
+//! (gradients as vectors).
 //!
 //! * [`Sampled::extremum_with_gradient`]: the maximum or minimum of a quantity over a sampled
 //!   range, located as a root of its velocity analog, with the gradient of its value (by the envelope theorem,
@@ -8,34 +11,162 @@
 //! * [`Sampled::integral_with_gradient`]: the trapezoidal integral of a quantity over the
 //!   samples and its exact gradient.
 
-use crate::analysis::{Column, ColumnIndex, Extreme, Sampled};
+use crate::analysis::column::jet_along;
+use crate::analysis::{Column, ColumnIndex, ColumnOf, Extreme, Jet, Sampled, SampledOf};
+use crate::dims::{Dims, KinState};
 use crate::error::Error;
-use crate::kin::Sens;
+use crate::kin::{Kin, Sens};
+use crate::mechanism::kernel::{Kernel, KinOf, SensKernel, SensState};
 use crate::mechanism::{Mechanism, Sensitivities};
 
-/// A located extremum of a quantity over an input range, with parameter gradients.
+/// A located extremum of a quantity over an input range, with parameter gradients `G`
+/// (`[f64; NP]` for a compiled mechanism, [`Extremum`]; `Vec<f64>` for a [`SensKernel`]).
 #[derive(Clone, Copy, Debug, PartialEq)]
-pub struct Extremum<const NP: usize> {
+pub struct ExtremumOf<G> {
     /// Input value at the extremum.
     pub x: f64,
     /// The extreme value.
     pub value: f64,
     /// `d value / d p_k` (envelope theorem).
-    pub grad: [f64; NP],
+    pub grad: G,
     /// `d x / d p_k`: how the extremum moves with the parameters.
-    pub x_grad: [f64; NP],
+    pub x_grad: G,
 }
 
-/// (d value/dp, d first analog/dp) of a column.
-fn column_sens<M, const N: usize, const NO: usize, const NP: usize>(
-    s: &Sens<N, 1, NO, NP>,
-    c: Column<M>,
-) -> ([f64; NP], [f64; NP]) {
-    match c.index() {
+/// A located extremum of a compiled mechanism's quantity, with its `NP` parameter gradients.
+pub type Extremum<const NP: usize> = ExtremumOf<[f64; NP]>;
+
+/// (d value/dp_k, d first analog/dp_k) of a column, on a single-input state.
+fn column_sens<S: SensState>(s: &S, c: ColumnIndex, k: usize) -> (f64, f64) {
+    match c {
         // An input does not depend on the parameters.
-        ColumnIndex::Input(_) => ([0.0; NP], [0.0; NP]),
-        ColumnIndex::Unknown(u) => (s.q[u], s.dq[u][0]),
-        ColumnIndex::Output(o) => (s.out[o], s.dout[o][0]),
+        ColumnIndex::Input(_) => (0.0, 0.0),
+        ColumnIndex::Unknown(u) => (s.q(u, k), s.dq(u, 0, k)),
+        ColumnIndex::Output(o) => (s.out(o, k), s.dout(o, 0, k)),
+    }
+}
+
+/// Zero sensitivities of a compiled mechanism (the buffer its objectives write into).
+fn zero_sens<const N: usize, const NO: usize, const NP: usize>() -> Sens<N, 1, NO, NP> {
+    Sens {
+        q: [[0.0; NP]; N],
+        dq: [[[0.0; NP]; 1]; N],
+        d2q: [[[[0.0; NP]; 1]; 1]; N],
+        out: [[0.0; NP]; NO],
+        dout: [[[0.0; NP]; 1]; NO],
+        d2out: [[[[0.0; NP]; 1]; 1]; NO],
+    }
+}
+
+/// The column's jet in a single-input state, as a function of the input.
+fn jet<S: KinState>(c: ColumnIndex, k: &S) -> Jet {
+    jet_along(c, k, k.x()[0], &[1.0])
+}
+
+/// The objectives take one input: the extremum's location and the trapezoid's abscissa are it.
+fn one_input<K: Kernel>(k: &K) -> Result<(), Error> {
+    match k.dims().ni() {
+        1 => Ok(()),
+        ni => Err(Error::InvalidArgument(format!(
+            "the objectives with gradients take a mechanism of one input; `{}` has {ni}",
+            k.name()
+        ))),
+    }
+}
+
+impl<K: Kernel> SampledOf<K> {
+    /// The one implementation of the extremum with gradients: `sens_at(state, kin, sens)`
+    /// writes the kinematics and sensitivities at a state's position into `kin` and `sens`;
+    /// `grad` and `x_grad` (one value per parameter) receive the gradients. Returns `(x, value)`.
+    fn extremum_by<S: SensState>(
+        &self,
+        c: ColumnIndex,
+        which: Extreme,
+        sens: &mut S,
+        sens_at: impl FnOnce(&KinOf<K>, &mut KinOf<K>, &mut S) -> Result<(), Error>,
+        grad: &mut [f64],
+        x_grad: &mut [f64],
+    ) -> Result<(f64, f64), Error> {
+        one_input(self.kernel())?;
+        let global = self.range(c)?;
+        let at = if which == Extreme::Max { global.max } else { global.min };
+        let interior = global.extremes.iter().any(|e| e.at.x == at.x);
+        let state = self.at(at.x)?;
+        let mut kin = state.clone();
+        sens_at(&state, &mut kin, sens)?;
+        let jet = jet(c, &kin);
+        for p in 0..grad.len() {
+            let (g, dg) = column_sens(sens, c, p);
+            grad[p] = g;
+            // At an end of the range the analog does not vanish: the extremum stays there.
+            x_grad[p] = if interior && jet.d2 != 0.0 { -dg / jet.d2 } else { 0.0 };
+        }
+        Ok((jet.x, jet.value))
+    }
+
+    /// The one implementation of the integral with gradient (`sens_at` as for the extremum);
+    /// `grad` receives the gradient. Returns the integral.
+    fn integral_by<S: SensState>(
+        &self,
+        c: ColumnIndex,
+        sens: &mut S,
+        mut sens_at: impl FnMut(&KinOf<K>, &mut KinOf<K>, &mut S) -> Result<(), Error>,
+        grad: &mut [f64],
+    ) -> Result<f64, Error> {
+        one_input(self.kernel())?;
+        let (states, s) = (self.states(), self.path_values());
+        let mut kin = states[0].clone();
+        let mut value = 0.0;
+        grad.fill(0.0);
+        for (i, state) in states.iter().enumerate() {
+            // Trapezoid weights: half of each neighbouring interval.
+            let left = if i > 0 { s[i] - s[i - 1] } else { 0.0 };
+            let right = if i + 1 < states.len() { s[i + 1] - s[i] } else { 0.0 };
+            let w = 0.5 * (left + right);
+            sens_at(state, &mut kin, sens)?;
+            value += w * jet(c, &kin).value;
+            for (p, g) in grad.iter_mut().enumerate() {
+                *g += w * column_sens(sens, c, p).0;
+            }
+        }
+        Ok(value)
+    }
+}
+
+impl<K: SensKernel> SampledOf<K> {
+    /// The kernel's sensitivities at a kept state's position, through buffers made once.
+    fn kernel_sens_at(&self) -> impl FnMut(&KinOf<K>, &mut KinOf<K>, &mut K::Sens) -> Result<(), Error> + '_ {
+        let d = self.kernel().dims();
+        let (mut x, mut q) = (d.x(), d.q());
+        move |state, kin, sens| {
+            x.as_mut().copy_from_slice(state.x());
+            q.as_mut().copy_from_slice(state.q());
+            self.kernel().sensitivities_at_into(&x, &q, &self.config().newton, kin, sens)
+        }
+    }
+
+    /// The maximum or minimum of the column `col` over the sampled range, with its gradients
+    /// by every parameter ([`SensKernel::param_count`] values each, in declaration order): the
+    /// compiled [`Sampled::extremum_with_gradient`] for any kernel with sensitivities (a
+    /// run-time model declared with `#[kinloop(sensitivities)]`), of a mechanism of one input.
+    pub fn extremum_with_gradient(&self, col: impl ColumnOf<K>, which: Extreme) -> Result<ExtremumOf<Vec<f64>>, Error> {
+        let c = col.resolve(self.kernel())?;
+        let np = self.kernel().param_count();
+        let (mut grad, mut x_grad) = (vec![0.0; np], vec![0.0; np]);
+        let mut sens = self.kernel().sens();
+        let (x, value) = self.extremum_by(c, which, &mut sens, self.kernel_sens_at(), &mut grad, &mut x_grad)?;
+        Ok(ExtremumOf { x, value, grad, x_grad })
+    }
+
+    /// The trapezoidal integral of the column `col` over the samples and its gradient by every
+    /// parameter: the compiled [`Sampled::integral_with_gradient`] for any kernel with
+    /// sensitivities, of a mechanism of one input.
+    pub fn integral_with_gradient(&self, col: impl ColumnOf<K>) -> Result<(f64, Vec<f64>), Error> {
+        let c = col.resolve(self.kernel())?;
+        let mut grad = vec![0.0; self.kernel().param_count()];
+        let mut sens = self.kernel().sens();
+        let value = self.integral_by(c, &mut sens, self.kernel_sens_at(), &mut grad)?;
+        Ok((value, grad))
     }
 }
 
@@ -43,6 +174,19 @@ impl<M, const N: usize, const NO: usize> Sampled<'_, M, N, NO, 1>
 where
     M: Mechanism<N, 1, NO>,
 {
+    /// The compiled mechanism's sensitivities at a kept state's position.
+    fn compiled_sens_at<const NP: usize>(
+        &self,
+    ) -> impl FnMut(&Kin<N, 1, NO>, &mut Kin<N, 1, NO>, &mut Sens<N, 1, NO, NP>) -> Result<(), Error> + '_
+    where
+        M: Sensitivities<N, 1, NO, NP>,
+    {
+        move |state, kin, sens| {
+            (*kin, *sens) = self.mechanism().sensitivities_at_flat(&state.x, &state.q, &self.config().newton)?;
+            Ok(())
+        }
+    }
+
     /// The maximum or minimum of the column `col` (`Name::COL.x_f`) over the sampled range
     /// (located as a root of its velocity analog, as [`Sampled::range`] does) with its parameter
     /// gradients, for a mechanism declared with `#[kinloop(sensitivities)]`. The sensitivities
@@ -59,20 +203,11 @@ where
     where
         M: Sensitivities<N, 1, NO, NP>,
     {
-        let global = self.range(col)?;
-        let at = if which == Extreme::Max { global.max } else { global.min };
-        let interior = global.extremes.iter().any(|e| e.at.x == at.x);
-        let k = self.at(at.x)?;
-        let (k, s) = self.mechanism().sensitivities_at_flat(&k.x, &k.q, &self.config().newton)?;
-        let jet = col.jet(&k);
-        let (grad, dgrad) = column_sens(&s, col);
-        let mut x_grad = [0.0; NP];
-        if interior && jet.d2 != 0.0 {
-            for p in 0..NP {
-                x_grad[p] = -dgrad[p] / jet.d2;
-            }
-        }
-        Ok(Extremum { x: jet.x, value: jet.value, grad, x_grad })
+        let c = col.resolve(self.kernel())?;
+        let (mut grad, mut x_grad) = ([0.0; NP], [0.0; NP]);
+        let mut sens = zero_sens();
+        let (x, value) = self.extremum_by(c, which, &mut sens, self.compiled_sens_at(), &mut grad, &mut x_grad)?;
+        Ok(Extremum { x, value, grad, x_grad })
     }
 
     /// The trapezoidal integral of the column `col` (`Name::COL.gap`) over the samples and its
@@ -83,22 +218,10 @@ where
     where
         M: Sensitivities<N, 1, NO, NP>,
     {
-        let col = col.check::<N, 1, NO>()?;
-        let (states, s) = (self.states(), self.path_values());
-        let mut value = 0.0;
+        let c = col.resolve(self.kernel())?;
         let mut grad = [0.0; NP];
-        for (i, k) in states.iter().enumerate() {
-            // Trapezoid weights: half of each neighbouring interval.
-            let left = if i > 0 { s[i] - s[i - 1] } else { 0.0 };
-            let right = if i + 1 < states.len() { s[i + 1] - s[i] } else { 0.0 };
-            let w = 0.5 * (left + right);
-            let (k, sens) = self.mechanism().sensitivities_at_flat(&k.x, &k.q, &self.config().newton)?;
-            let (g, _) = column_sens(&sens, col);
-            value += w * col.jet(&k).value;
-            for p in 0..NP {
-                grad[p] += w * g[p];
-            }
-        }
+        let mut sens = zero_sens();
+        let value = self.integral_by(c, &mut sens, self.compiled_sens_at(), &mut grad)?;
         Ok((value, grad))
     }
 }

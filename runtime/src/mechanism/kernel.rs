@@ -342,6 +342,12 @@ pub trait SensState: Clone + std::fmt::Debug {
     fn q(&self, u: usize, k: usize) -> f64;
     /// `d out_o / d p_k`: the sensitivity of output column `o` to parameter `k`.
     fn out(&self, o: usize, k: usize) -> f64;
+    /// `d (d q_u / d x_i) / d p_k`: the sensitivity of unknown `u`'s first analog by input `i`
+    /// to parameter `k`.
+    fn dq(&self, u: usize, i: usize, k: usize) -> f64;
+    /// `d (d out_o / d x_i) / d p_k`: the sensitivity of output column `o`'s first analog by
+    /// input `i` to parameter `k`.
+    fn dout(&self, o: usize, i: usize, k: usize) -> f64;
 }
 
 impl<const N: usize, const NI: usize, const NO: usize, const NP: usize> SensState for Sens<N, NI, NO, NP> {
@@ -352,6 +358,14 @@ impl<const N: usize, const NI: usize, const NO: usize, const NP: usize> SensStat
     #[inline(always)]
     fn out(&self, o: usize, k: usize) -> f64 {
         self.out[o][k]
+    }
+    #[inline(always)]
+    fn dq(&self, u: usize, i: usize, k: usize) -> f64 {
+        self.dq[u][i][k]
+    }
+    #[inline(always)]
+    fn dout(&self, o: usize, i: usize, k: usize) -> f64 {
+        self.dout[o][i][k]
     }
 }
 
@@ -388,6 +402,17 @@ pub trait SensKernel: Kernel {
         &self,
         x: &<Self::Dims as Dims>::X,
         guess: &<Self::Dims as Dims>::Q,
+        cfg: &NewtonConfig,
+        kin: &mut <Self::Dims as Dims>::Kin,
+        sens: &mut Self::Sens,
+    ) -> Result<(), Error>;
+    /// The same at a position `q` the caller already solved ([`Kernel::kinematics_at`] and
+    /// [`Sensitivities::sensitivities_at_flat`]): what an objective over a kept sweep needs at
+    /// one of its states. No allocation.
+    fn sensitivities_at_into(
+        &self,
+        x: &<Self::Dims as Dims>::X,
+        q: &<Self::Dims as Dims>::Q,
         cfg: &NewtonConfig,
         kin: &mut <Self::Dims as Dims>::Kin,
         sens: &mut Self::Sens,
@@ -553,6 +578,18 @@ where
         sens: &mut Sens<N, NI, NO, NP>,
     ) -> Result<(), Error> {
         (*kin, *sens) = self.0.sensitivities_flat(x, guess, cfg)?;
+        Ok(())
+    }
+    #[inline]
+    fn sensitivities_at_into(
+        &self,
+        x: &[f64; NI],
+        q: &[f64; N],
+        cfg: &NewtonConfig,
+        kin: &mut Kin<N, NI, NO>,
+        sens: &mut Sens<N, NI, NO, NP>,
+    ) -> Result<(), Error> {
+        (*kin, *sens) = self.0.sensitivities_at_flat(x, q, cfg)?;
         Ok(())
     }
     #[inline]
