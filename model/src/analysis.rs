@@ -1,6 +1,32 @@
 //! The runtime's analyses of sampled sweeps and its limit report on a run-time model: the one
 //! implementation ([`SampledOf`], `limits_of`), over the model's [`Kernel`].
 //!
+//! A model declared with `#[kinloop(sensitivities)]` gets the objectives with parameter
+//! gradients on its [`ModelSampled`] as well (`extremum_with_gradient`,
+//! `integral_with_gradient`: the runtime's one implementation, over `SensKernel`), each
+//! gradient a vector with one value per parameter in declaration order.
+//!
+//! ```
+//! use kinloop_model::Model;
+//! use kinloop_runtime::Extreme;
+//! let text = "#[kinloop(sensitivities)]
+//! pub struct SliderCrank {
+//!     params r = 1, l = 3;
+//!     input phi;
+//!     unknowns beta = 0, s = 4;
+//!     loop rod: r @ phi + l @ beta == (s, 0);
+//! }";
+//! let mut m = Model::read("slider_crank.kl", text).unwrap();
+//! // From -1 rad, so that both dead centres (0 and pi) are interior.
+//! let turn = m.sampled(&[-1.0], &[std::f64::consts::TAU - 1.0], 73, &[0.0, 4.0]).unwrap();
+//! let (top, bottom) = (turn.extremum_with_gradient("s", Extreme::Max).unwrap(),
+//!                      turn.extremum_with_gradient("s", Extreme::Min).unwrap());
+//! // The stroke of a centred slider-crank is 2 r: its gradient by r is 2, by l zero.
+//! let stroke_grad = [top.grad[0] - bottom.grad[0], top.grad[1] - bottom.grad[1]];
+//! assert!((top.value - bottom.value - 2.0).abs() < 1e-12);
+//! assert!((stroke_grad[0] - 2.0).abs() < 1e-12 && stroke_grad[1].abs() < 1e-12);
+//! ```
+//!
 //! A [`SampledOf`] keeps its kernel and lends it by reference to the sweeps it solves with
 //! (the samples and every refinement between them): `&ModelKernel` is a kernel too.
 

@@ -127,9 +127,10 @@
 //! (`tests/synthesis.rs`). A search over a model runs one evaluation after the other (`par_run`
 //! needs a problem shared between threads; a model is one workspace).
 //!
-//! Still on compiled sizes (`Mechanism<N, NI, NO>` and `Kin<N, NI, NO>`): the objectives with
-//! parameter gradients (`Sensitivities<N, NI, NO, NP>`), which need their state and result
-//! types over `Dims` as the sweep's are.
+//! The objectives with parameter gradients (`extremum_with_gradient`, `integral_with_gradient`)
+//! are written once over `SampledOf` for any `SensKernel` too: a [`ModelSampled`] of a model
+//! declared with `#[kinloop(sensitivities)]` gives them with gradients as vectors, equal bit for
+//! bit to the compiled ones with the same sines (`tests/objectives.rs`).
 //!
 //! A run-time model's errors and events name the model, its inputs and the failed or singular
 //! block's unknowns and equations as the compiled mechanism's do, with owned strings (the names
