@@ -228,9 +228,9 @@ fn positions_do_not_allocate() {
     }
 }
 
-/// The synthesis kernel's calls on a model (`SensKernel::sensitivities_into`, `position_into`:
-/// a step with its sensitivities, a position with its outputs, copied into the caller's buffers)
-/// allocate nothing.
+/// The synthesis kernel's calls on a model (`SensKernel::sensitivities_into`, `position_into`,
+/// `sensitivities_at_into`: a step with its sensitivities, a position with its outputs, the
+/// sensitivities at a solved position, copied into the caller's buffers) allocate nothing.
 #[test]
 fn synthesis_kernel_calls_do_not_allocate() {
     use kinloop::dims::Dims;
@@ -248,6 +248,7 @@ fn synthesis_kernel_calls_do_not_allocate() {
         x.0[0] = step as f64 * 0.06;
         k.sensitivities_into(&x, &q, &cfg, &mut kin, &mut sens).expect("step");
         k.position_into(&x, &q, &cfg, &mut at, &mut out).expect("position");
+        k.sensitivities_at_into(&x, &at, &cfg, &mut kin, &mut sens).expect("at a position");
         q.0.copy_from_slice(&kin.q);
     }
     let during = allocations() - before;
