@@ -158,3 +158,14 @@ fn two_inputs_are_refused() {
     assert!(refused(t.integral_with_gradient(ColumnIndex::Unknown(0)).map(drop)));
     assert!(refused(t.extremum_with_gradient(ColumnIndex::Unknown(0), Extreme::Max).map(drop)));
 }
+
+/// A model declared without sensitivities is refused with a typed error naming the attribute's
+/// absence, not a panic.
+#[test]
+fn a_model_without_sensitivities_is_refused() {
+    let mut m = read(&SLIDER.replace("#[kinloop(sensitivities)]\n", ""));
+    let turn = m.sampled(&[-1.0], &[TAU - 1.0], 37, &[0.0, 4.0]).unwrap();
+    let refused = |r: Result<(), kinloop::Error>| matches!(r, Err(kinloop::Error::InvalidArgument(ref s)) if s.contains("without parameter sensitivities"));
+    assert!(refused(turn.extremum_with_gradient("s", Extreme::Max).map(drop)));
+    assert!(refused(turn.integral_with_gradient("s").map(drop)));
+}
