@@ -108,14 +108,20 @@ impl SensKernel for ModelKernel<'_> {
         }
     }
     /// `f` called with the model's parameters set to `p`, its own put back after it (so that
-    /// calls nest). `p` has one value per parameter.
-    fn with_params<R>(&self, p: &[f64], f: impl FnOnce(&Self) -> R) -> R {
+    /// calls nest), also where `f` panics. `p` has one value per parameter
+    /// (`Error::InvalidArgument` otherwise, the model untouched).
+    fn with_params<R>(&self, p: &[f64], f: impl FnOnce(&Self) -> R) -> Result<R, Error> {
         let np = self.param_count();
-        assert_eq!(p.len(), np, "{} values for the {np} parameters of `{}`", p.len(), self.name());
+        if p.len() != np {
+            return Err(Error::InvalidArgument(format!(
+                "{} parameter values for the {np} parameters of `{}`",
+                p.len(),
+                self.name()
+            )));
+        }
         let old = self.set_all(p.iter().copied().map(Some).collect());
-        let r = f(self);
-        self.set_all(old);
-        r
+        let restore = Restore { kernel: self, old: Some(old) };
+        Ok(f(restore.kernel))
     }
     fn sens(&self) -> ModelSens {
         let np = self.param_count();
@@ -197,6 +203,21 @@ impl ModelKernel<'_> {
             }
         }
         old
+    }
+}
+
+/// Puts the lent model's parameters back when dropped: after the evaluation, or while `f`
+/// unwinds.
+struct Restore<'k, 'a> {
+    kernel: &'k ModelKernel<'a>,
+    old: Option<Vec<Option<f64>>>,
+}
+
+impl Drop for Restore<'_, '_> {
+    fn drop(&mut self) {
+        if let Some(old) = self.old.take() {
+            self.kernel.set_all(old);
+        }
     }
 }
 

@@ -94,7 +94,7 @@ impl<K: SensKernel> ProblemOf<K> {
 
     /// [`ProblemOf::residual_norm`] without the check of `z`.
     pub(crate) fn norm_at(&self, z: &[f64]) -> Result<f64, Error> {
-        self.base.with_params(&self.params(z), |m| self.norm_with(m, z))
+        self.base.with_params(&self.params(z), |m| self.norm_with(m, z))?
     }
 
     /// [`ProblemOf::norm_at`] on `m`, the mechanism with `z`'s parameters.
@@ -154,7 +154,7 @@ impl<K: SensKernel> ProblemOf<K> {
     /// `guesses` (the previous evaluation's), or else from the first target's guess and each
     /// from the one before.
     pub(crate) fn evaluate(&self, z: &[f64], guesses: Option<&[Q<K>]>) -> Result<Eval<Q<K>>, Error> {
-        self.base.with_params(&self.params(z), |m| self.evaluate_with(m, z, guesses))
+        self.base.with_params(&self.params(z), |m| self.evaluate_with(m, z, guesses))?
     }
 
     /// [`ProblemOf::evaluate`] on `m`, the mechanism with `z`'s parameters.

@@ -8,6 +8,7 @@ use super::problem::ProblemOf;
 use super::residuals::{Eval, value, wrap};
 use super::resolve::Inputs;
 use crate::dims::KinState;
+use crate::error::Error;
 use crate::kinds::QuantityKind;
 use crate::mechanism::kernel::{KinOf, Q, SensKernel};
 use crate::metrics::{FourBarLinks, grashof, transmission_angle};
@@ -84,7 +85,8 @@ pub(crate) fn four_bar_class([d, a, b, c]: [f64; 4]) -> Option<FourBarClass> {
 }
 
 impl<K: SensKernel> ProblemOf<K> {
-    /// The candidate of the local solution `z` (evaluated as `e`), verified.
+    /// The candidate of the local solution `z` (evaluated as `e`), verified. An error only where
+    /// the kernel refuses `z`'s parameters (which `params` sizes to its count).
     pub(crate) fn verify(
         &self,
         origin: Origin,
@@ -92,7 +94,7 @@ impl<K: SensKernel> ProblemOf<K> {
         z: Vec<f64>,
         e: Eval<Q<K>>,
         local: LocalReport,
-    ) -> Candidate {
+    ) -> Result<Candidate, Error> {
         let params = self.params(&z);
         self.base.with_params(&params, |m| self.verify_with(m, origin, start, z, e, local, params.clone()))
     }
