@@ -119,8 +119,9 @@ impl SensKernel for ModelKernel<'_> {
                 self.name()
             )));
         }
-        let old = self.set_all(p.iter().copied().map(Some).collect());
-        let restore = Restore { kernel: self, old: Some(old) };
+        let mut values: Vec<Option<f64>> = p.iter().copied().map(Some).collect();
+        self.model().borrow_mut().swap_params(&mut values);
+        let restore = Restore { kernel: self, old: values };
         Ok(f(restore.kernel))
     }
     fn sens(&self) -> ModelSens {
@@ -188,36 +189,16 @@ impl SensKernel for ModelKernel<'_> {
     }
 }
 
-impl ModelKernel<'_> {
-    /// Sets every parameter of the lent model to `values` (in declaration order) and returns the
-    /// values it had.
-    fn set_all(&self, values: Vec<Option<f64>>) -> Vec<Option<f64>> {
-        let mut m = self.model().borrow_mut();
-        let old = m.param_values().to_vec();
-        for (k, v) in values.into_iter().enumerate() {
-            if let Some(v) = v
-                && old[k].map(f64::to_bits) != Some(v.to_bits())
-            {
-                let name = m.params()[k].clone();
-                m.set_param(&name, v);
-            }
-        }
-        old
-    }
-}
-
 /// Puts the lent model's parameters back when dropped: after the evaluation, or while `f`
 /// unwinds.
 struct Restore<'k, 'a> {
     kernel: &'k ModelKernel<'a>,
-    old: Option<Vec<Option<f64>>>,
+    old: Vec<Option<f64>>,
 }
 
 impl Drop for Restore<'_, '_> {
     fn drop(&mut self) {
-        if let Some(old) = self.old.take() {
-            self.kernel.set_all(old);
-        }
+        self.kernel.model().borrow_mut().swap_params(&mut self.old);
     }
 }
 
