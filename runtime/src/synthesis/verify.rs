@@ -14,6 +14,7 @@ use crate::mechanism::kernel::{KinOf, Q, SensKernel};
 use crate::metrics::{FourBarLinks, grashof, transmission_angle};
 use crate::paths::outcome::SweepStop;
 use crate::paths::sweep::SweepOf;
+use std::borrow::Cow;
 use std::f64::consts::TAU;
 
 /// Samples of each sweep between consecutive targets (the transmission angle is their
@@ -117,7 +118,7 @@ impl<K: SensKernel> ProblemOf<K> {
         if matches!(self.inputs, Inputs::Free { .. }) && n > 1 {
             let free: Vec<f64> = inputs.iter().map(|x| x[0]).collect();
             match in_order(&free, m.input_kind(0) == QuantityKind::Angle) {
-                Some(x) => inputs = x.into_iter().map(|v| self.input_point(v)).collect(),
+                Some(x) => inputs = Cow::Owned(x.into_iter().map(|v| self.input_point(v)).collect()),
                 None => defects.push(Defect::Order),
             }
         }
@@ -173,7 +174,8 @@ impl<K: SensKernel> ProblemOf<K> {
         }
         let mut min_transmission = None;
         if let Some((c, f, min)) = self.checks.transmission {
-            let at_targets = e.qs.iter().zip(&inputs).filter_map(|(q, x)| m.kinematics_at(x, q, &self.newton).ok());
+            let at_targets =
+                e.qs.iter().zip(inputs.iter()).filter_map(|(q, x)| m.kinematics_at(x, q, &self.newton).ok());
             let angle = samples
                 .iter()
                 .cloned()
