@@ -8,7 +8,6 @@
 
 use crate::mechanism::ModelKernel;
 use crate::model::{Model, StepError};
-use crate::sensitivities::Sensitivities;
 use kinloop_runtime::dims::{Dims, Heap, KinBuf};
 use kinloop_runtime::synthesis::{Design, ProblemOf, SynthesisError, Task};
 use kinloop_runtime::{Error, Kernel, NewtonConfig, Quantity, SensKernel, SensState, SweepConfig};
@@ -20,22 +19,28 @@ use std::borrow::Cow;
 /// `Search::par_run` is for compiled mechanisms).
 pub type ModelProblem<'a> = ProblemOf<ModelKernel<'a>>;
 
-/// The parameter sensitivities of one state of a model, with the number of parameters that
-/// indexes them (the runtime's `SensState` over [`Sensitivities`]).
+/// The parameter sensitivities of one state of a model that synthesis reads (the runtime's
+/// `SensState`): those of the positions and of the outputs, with the number of parameters that
+/// indexes them. The model's [`Sensitivities`](crate::Sensitivities) also hold those of the
+/// analogs, which synthesis does not read and which are therefore not copied.
 #[derive(Clone, Debug, Default, PartialEq)]
 pub struct ModelSens {
     /// The number of parameters.
     pub np: usize,
-    /// The sensitivities, flat with the parameter innermost.
-    pub values: Sensitivities,
+    /// The positions' sensitivities, `q[u * np + k]` = ∂q_u/∂p_k (as
+    /// [`Sensitivities::q`](crate::Sensitivities::q)).
+    pub q: Vec<f64>,
+    /// The outputs' sensitivities, `out[o * np + k]` = ∂out_o/∂p_k (as
+    /// [`Sensitivities::out`](crate::Sensitivities::out)).
+    pub out: Vec<f64>,
 }
 
 impl SensState for ModelSens {
     fn q(&self, u: usize, k: usize) -> f64 {
-        self.values.q[u * self.np + k]
+        self.q[u * self.np + k]
     }
     fn out(&self, o: usize, k: usize) -> f64 {
-        self.values.out[o * self.np + k]
+        self.out[o * self.np + k]
     }
 }
 
@@ -127,21 +132,10 @@ impl SensKernel for ModelKernel<'_> {
     fn sens(&self) -> ModelSens {
         let np = self.param_count();
         let d = self.dims();
-        let z = |len: usize| vec![0.0; len];
-        let (n, ni, no) = (d.n(), d.ni(), d.no());
-        ModelSens {
-            np,
-            values: Sensitivities {
-                q: z(n * np),
-                dq: z(n * ni * np),
-                d2q: z(n * ni * ni * np),
-                out: z(no * np),
-                dout: z(no * ni * np),
-                d2out: z(no * ni * ni * np),
-            },
-        }
+        ModelSens { np, q: vec![0.0; d.n() * np], out: vec![0.0; d.no() * np] }
     }
-    /// The model's `sensitivities` copied into `kin` and `sens` (no allocation).
+    /// The model's `sensitivities` copied into `kin` and `sens` (those of the positions and
+    /// outputs; no allocation).
     fn sensitivities_into(
         &self,
         x: &Heap,
@@ -154,13 +148,8 @@ impl SensKernel for ModelKernel<'_> {
         match m.sensitivities(&x.0, &guess.0, cfg) {
             Ok((st, Some(s))) => {
                 Self::copy_state(st, kin);
-                let to = &mut sens.values;
-                to.q.copy_from_slice(&s.q);
-                to.dq.copy_from_slice(&s.dq);
-                to.d2q.copy_from_slice(&s.d2q);
-                to.out.copy_from_slice(&s.out);
-                to.dout.copy_from_slice(&s.dout);
-                to.d2out.copy_from_slice(&s.d2out);
+                sens.q.copy_from_slice(&s.q);
+                sens.out.copy_from_slice(&s.out);
                 Ok(())
             }
             // `synthesis_problem` refuses such a model; a kernel lent otherwise says why.
