@@ -101,7 +101,7 @@ fn design(vary: &str) -> Result<Design, Failed> {
 }
 
 /// The numeric rows of the targets file: blank lines and `#` comments skipped, a first line
-/// that is not numbers taken for a header; every row the same width.
+/// without any number taken for a header; every row the same width.
 fn read_targets(path: &Path) -> Result<Vec<Vec<f64>>, Failed> {
     let text = std::fs::read_to_string(path).map_err(|e| {
         eprintln!("error: cannot read {}: {e}", path.display());
@@ -124,8 +124,9 @@ fn read_targets(path: &Path) -> Result<Vec<Vec<f64>>, Failed> {
                 }
                 rows.push(row);
             }
-            // A header.
-            Err(_) if k == 0 => {}
+            // A header: the first line with no number in it (one with a typo in a number, or
+            // a trailing comma, is a bad row, not a header).
+            Err(_) if k == 0 && line.split(',').all(|v| v.trim().parse::<f64>().is_err()) => {}
             _ => {
                 return Err(exit::usage(format!(
                     "{} line {}: `{line}` is not a row of finite numbers",

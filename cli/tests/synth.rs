@@ -199,3 +199,28 @@ fn usage_errors_and_no_candidate_have_their_exit_codes() {
     assert!(stderr(&o).contains("no valid candidate"), "{}", stderr(&o));
     assert!(String::from_utf8_lossy(&o.stdout).starts_with("rank"));
 }
+
+#[test]
+fn bad_targets_files_are_usage_errors_naming_the_file_and_line() {
+    let four_bar = shipped("coupler_four_bar.kl");
+    let stderr = |o: &Output| String::from_utf8_lossy(&o.stderr).to_string();
+    let cases = [
+        // A row of another width than the ones before.
+        ("synth_ragged.csv", "phi,x,y\n10,1.0,2.0\n20,1.5\n", "line 3: 2 values, the rows before have 3"),
+        // A later row that is not numbers.
+        ("synth_word.csv", "phi,x,y\n10,1.0,2.0\n20,1.5,two\n", "line 3: `20,1.5,two` is not a row"),
+        // A first row with a typo: not a header, so not dropped.
+        ("synth_typo.csv", "# targets\n10,1.0,2.0x\n20,1.5,2.2\n", "line 2: `10,1.0,2.0x` is not a row"),
+        // A first row with a trailing comma.
+        ("synth_comma.csv", "10,1.0,2.0,\n20,1.5,2.2\n", "line 1: `10,1.0,2.0,` is not a row"),
+        // Nothing but a header and a comment.
+        ("synth_empty.csv", "phi,x,y\n# none\n", "holds no targets"),
+        ("synth_nothing.csv", "", "holds no targets"),
+    ];
+    for (name, text, says) in cases {
+        let targets = file(name, text);
+        let o = kinloop(&["synth", &four_bar, "--targets", &targets, "--path", "p", "--deg", "--vary", VARY]);
+        assert_eq!(o.status.code(), Some(2), "{name}: {}", stderr(&o));
+        assert!(stderr(&o).contains(&format!("{targets} {says}")), "{name}: {}", stderr(&o));
+    }
+}

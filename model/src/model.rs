@@ -472,6 +472,15 @@ impl Model {
         }
     }
 
+    /// Exchanges the parameters' values (one per parameter, in declaration order) with `values`
+    /// and loads them, as [`Model::set_param`] does one: the whole set at once, without a name
+    /// lookup (synthesis sets and puts back every parameter per evaluation).
+    pub(crate) fn swap_params(&mut self, values: &mut Vec<Option<f64>>) {
+        debug_assert_eq!(values.len(), self.param_values.len());
+        std::mem::swap(&mut self.param_values, values);
+        self.load_params();
+    }
+
     /// Input names.
     pub fn inputs(&self) -> &[String] {
         &self.inputs

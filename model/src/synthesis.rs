@@ -20,30 +20,42 @@ use std::borrow::Cow;
 /// `Search::par_run` is for compiled mechanisms).
 pub type ModelProblem<'a> = ProblemOf<ModelKernel<'a>>;
 
-/// The parameter sensitivities of one state of a model, with the number of parameters that
-/// indexes them (the runtime's `SensState` over [`Sensitivities`]).
+/// The parameter sensitivities of one state of a model that synthesis reads (the runtime's
+/// `SensState`): those of the positions and of the outputs, with the number of parameters that
+/// indexes them. The model's [`Sensitivities`](crate::Sensitivities) also hold those of the
+/// analogs, which synthesis does not read and which are therefore not copied.
 #[derive(Clone, Debug, Default, PartialEq)]
 pub struct ModelSens {
     /// The number of parameters.
     pub np: usize,
     /// The number of inputs (indexing the analogs' sensitivities).
     pub ni: usize,
-    /// The sensitivities, flat with the parameter innermost.
-    pub values: Sensitivities,
+    /// The positions' sensitivities, `q[u * np + k]` = ∂q_u/∂p_k (as
+    /// [`Sensitivities::q`](crate::Sensitivities::q)).
+    pub q: Vec<f64>,
+    /// The first analogs' sensitivities, `dq[(u * ni + i) * np + k]` (as
+    /// [`Sensitivities::dq`](crate::Sensitivities::dq)).
+    pub dq: Vec<f64>,
+    /// The outputs' sensitivities, `out[o * np + k]` = ∂out_o/∂p_k (as
+    /// [`Sensitivities::out`](crate::Sensitivities::out)).
+    pub out: Vec<f64>,
+    /// The outputs' first analogs' sensitivities, `dout[(o * ni + i) * np + k]` (as
+    /// [`Sensitivities::dout`](crate::Sensitivities::dout)).
+    pub dout: Vec<f64>,
 }
 
 impl SensState for ModelSens {
     fn q(&self, u: usize, k: usize) -> f64 {
-        self.values.q[u * self.np + k]
+        self.q[u * self.np + k]
     }
     fn out(&self, o: usize, k: usize) -> f64 {
-        self.values.out[o * self.np + k]
+        self.out[o * self.np + k]
     }
     fn dq(&self, u: usize, i: usize, k: usize) -> f64 {
-        self.values.dq[(u * self.ni + i) * self.np + k]
+        self.dq[(u * self.ni + i) * self.np + k]
     }
     fn dout(&self, o: usize, i: usize, k: usize) -> f64 {
-        self.values.dout[(o * self.ni + i) * self.np + k]
+        self.dout[(o * self.ni + i) * self.np + k]
     }
 }
 
@@ -116,34 +128,31 @@ impl SensKernel for ModelKernel<'_> {
         }
     }
     /// `f` called with the model's parameters set to `p`, its own put back after it (so that
-    /// calls nest). `p` has one value per parameter.
-    fn with_params<R>(&self, p: &[f64], f: impl FnOnce(&Self) -> R) -> R {
+    /// calls nest), also where `f` panics. `p` has one value per parameter
+    /// (`Error::InvalidArgument` otherwise, the model untouched).
+    fn with_params<R>(&self, p: &[f64], f: impl FnOnce(&Self) -> R) -> Result<R, Error> {
         let np = self.param_count();
-        assert_eq!(p.len(), np, "{} values for the {np} parameters of `{}`", p.len(), self.name());
-        let old = self.set_all(p.iter().copied().map(Some).collect());
-        let r = f(self);
-        self.set_all(old);
-        r
+        if p.len() != np {
+            return Err(Error::InvalidArgument(format!(
+                "{} parameter values for the {np} parameters of `{}`",
+                p.len(),
+                self.name()
+            )));
+        }
+        let mut values: Vec<Option<f64>> = p.iter().copied().map(Some).collect();
+        self.model().borrow_mut().swap_params(&mut values);
+        let restore = Restore { kernel: self, old: values };
+        Ok(f(restore.kernel))
     }
     fn sens(&self) -> ModelSens {
         let np = self.param_count();
         let d = self.dims();
-        let z = |len: usize| vec![0.0; len];
         let (n, ni, no) = (d.n(), d.ni(), d.no());
-        ModelSens {
-            np,
-            ni,
-            values: Sensitivities {
-                q: z(n * np),
-                dq: z(n * ni * np),
-                d2q: z(n * ni * ni * np),
-                out: z(no * np),
-                dout: z(no * ni * np),
-                d2out: z(no * ni * ni * np),
-            },
-        }
+        let z = |len: usize| vec![0.0; len];
+        ModelSens { np, ni, q: z(n * np), dq: z(n * ni * np), out: z(no * np), dout: z(no * ni * np) }
     }
-    /// The model's `sensitivities` copied into `kin` and `sens` (no allocation).
+    /// The model's `sensitivities` copied into `kin` and `sens` (those of the positions and
+    /// outputs; no allocation).
     fn sensitivities_into(
         &self,
         x: &Heap,
@@ -211,30 +220,24 @@ impl ModelKernel<'_> {
             )));
         };
         Self::copy_state(st, kin);
-        let to = &mut sens.values;
-        to.q.copy_from_slice(&s.q);
-        to.dq.copy_from_slice(&s.dq);
-        to.d2q.copy_from_slice(&s.d2q);
-        to.out.copy_from_slice(&s.out);
-        to.dout.copy_from_slice(&s.dout);
-        to.d2out.copy_from_slice(&s.d2out);
+        sens.q.copy_from_slice(&s.q);
+        sens.dq.copy_from_slice(&s.dq);
+        sens.out.copy_from_slice(&s.out);
+        sens.dout.copy_from_slice(&s.dout);
         Ok(())
     }
+}
 
-    /// Sets every parameter of the lent model to `values` (in declaration order) and returns the
-    /// values it had.
-    fn set_all(&self, values: Vec<Option<f64>>) -> Vec<Option<f64>> {
-        let mut m = self.model().borrow_mut();
-        let old = m.param_values().to_vec();
-        for (k, v) in values.into_iter().enumerate() {
-            if let Some(v) = v
-                && old[k].map(f64::to_bits) != Some(v.to_bits())
-            {
-                let name = m.params()[k].clone();
-                m.set_param(&name, v);
-            }
-        }
-        old
+/// Puts the lent model's parameters back when dropped: after the evaluation, or while `f`
+/// unwinds.
+struct Restore<'k, 'a> {
+    kernel: &'k ModelKernel<'a>,
+    old: Vec<Option<f64>>,
+}
+
+impl Drop for Restore<'_, '_> {
+    fn drop(&mut self) {
+        self.kernel.model().borrow_mut().swap_params(&mut self.old);
     }
 }
 

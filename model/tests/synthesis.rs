@@ -141,3 +141,34 @@ fn names_and_missing_sensitivities_are_typed_errors() {
     let e = plain.synthesis_problem(&design(&["a"], &[1.0], 0.3), &path_task()).unwrap_err();
     assert!(matches!(&e, SynthesisError::Unsupported(m) if m.contains("#[kinloop(sensitivities)]")), "{e}");
 }
+
+#[test]
+fn the_kernel_refuses_another_parameter_count_and_puts_the_parameters_back() {
+    use kinloop::{Error, SensKernel, SweepConfig};
+    use std::panic::{AssertUnwindSafe, catch_unwind};
+    let mut model = read(COUPLER_TEXT);
+    let declared = model.param_values().to_vec();
+    {
+        let k = model.kernel(SweepConfig::default()).unwrap();
+        let now = |k: &kinloop_model::ModelKernel<'_>| (0..6).map(|i| Some(k.param(i))).collect::<Vec<_>>();
+        for p in [&[1.0][..], &[1.0; 7]] {
+            let e = k.with_params(p, |_| unreachable!("not called with a wrong length")).unwrap_err();
+            let says = format!("{} parameter values for the 6 parameters of `CouplerFourBar`", p.len());
+            assert!(matches!(&e, Error::InvalidArgument(m) if m.contains(&says)), "{e}");
+            assert_eq!(now(&k), declared);
+        }
+        // Set for the evaluation, put back after it.
+        let seen = k.with_params(&TRUTH, |m| (0..6).map(|i| m.param(i)).collect::<Vec<_>>()).unwrap();
+        assert_eq!(seen, TRUTH);
+        assert_eq!(now(&k), declared);
+        // An evaluation that fails: put back too.
+        let failed = k.with_params(&[f64::NAN; 6], |m| m.check_params()).unwrap();
+        assert!(matches!(failed, Err(Error::NonFinite { .. })), "{failed:?}");
+        assert_eq!(now(&k), declared);
+        // An evaluation that panics: put back while unwinding.
+        let unwound = catch_unwind(AssertUnwindSafe(|| k.with_params(&TRUTH, |_| panic!("an evaluation panics"))));
+        assert!(unwound.is_err());
+        assert_eq!(now(&k), declared);
+    }
+    assert_eq!(model.param_values(), declared);
+}

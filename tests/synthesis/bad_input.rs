@@ -96,3 +96,17 @@ fn designs_that_never_assemble_are_counted_not_fatal() {
     assert!(report.best().is_none());
     assert!(Search::default().refine(&problem, &[55.0, 1.5]).is_err());
 }
+
+#[test]
+fn a_parameter_vector_of_another_length_is_an_error_not_a_panic() {
+    use kinloop::{CompiledSens, Error, SensKernel};
+    let k = CompiledSens(CouplerFourBar::default());
+    for p in [&[1.0][..], &[1.0; 7]] {
+        let e = k.with_params(p, |_| unreachable!("not called with a wrong length")).unwrap_err();
+        let says = format!("{} parameter values for the 6 parameters of `CouplerFourBar`", p.len());
+        assert!(matches!(&e, Error::InvalidArgument(m) if m.contains(&says)), "{e}");
+    }
+    let p = [1.1, 2.8, 2.3, 3.2, 1.7, 0.45];
+    let seen = k.with_params(&p, |m| (0..6).map(|i| m.param(i)).collect::<Vec<_>>()).unwrap();
+    assert_eq!(seen, p);
+}

@@ -369,6 +369,12 @@ impl<const N: usize, const NI: usize, const NO: usize, const NP: usize> SensStat
     }
 }
 
+/// The error of [`SensKernel::with_params`] given `got` values for the `want` parameters of
+/// mechanism `name` (a run-time model's kernel says the same).
+fn wrong_param_count(got: usize, want: usize, name: &str) -> Error {
+    Error::InvalidArgument(format!("{got} parameter values for the {want} parameters of `{name}`"))
+}
+
 /// A [`Kernel`] whose parameters can be varied, with the parameter sensitivities of its states:
 /// what synthesis (`synthesis::ProblemOf`) is written over. A compiled mechanism declared with
 /// sensitivities through [`CompiledSens`]; a `kinloop_model::Model` through its kernel.
@@ -386,12 +392,10 @@ pub trait SensKernel: Kernel {
     /// `f` called with this kernel's parameters set to `p` (one value per parameter, in
     /// declaration order): a compiled mechanism gives `f` a copy with those values (so that a
     /// kernel shared between threads is never changed); a kernel over one workspace (a run-time
-    /// model) sets them for the call and puts its own back after it.
-    ///
-    /// # Panics
-    ///
-    /// Where `p` has another length than [`SensKernel::param_count`].
-    fn with_params<R>(&self, p: &[f64], f: impl FnOnce(&Self) -> R) -> R;
+    /// model) sets them for the call and puts its own back after it (also where `f` fails or
+    /// panics). `Error::InvalidArgument` where `p` has another length than
+    /// [`SensKernel::param_count`] (and `f` is not called).
+    fn with_params<R>(&self, p: &[f64], f: impl FnOnce(&Self) -> R) -> Result<R, Error>;
     /// Sensitivities of the right sizes, zero (the buffer [`SensKernel::sensitivities_into`]
     /// writes into).
     fn sens(&self) -> Self::Sens;
@@ -553,10 +557,9 @@ where
     /// `f` called with a copy of the mechanism with the parameters `p`
     /// ([`Sensitivities::with_params_flat`]); `p` must have `NP` values.
     #[inline]
-    fn with_params<R>(&self, p: &[f64], f: impl FnOnce(&Self) -> R) -> R {
-        let mut flat = self.0.params_flat();
-        flat.copy_from_slice(p);
-        f(&CompiledSens(self.0.with_params_flat(flat)))
+    fn with_params<R>(&self, p: &[f64], f: impl FnOnce(&Self) -> R) -> Result<R, Error> {
+        let flat: [f64; NP] = p.try_into().map_err(|_| wrong_param_count(p.len(), NP, self.name()))?;
+        Ok(f(&CompiledSens(self.0.with_params_flat(flat))))
     }
     fn sens(&self) -> Sens<N, NI, NO, NP> {
         Sens {

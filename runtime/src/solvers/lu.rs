@@ -31,8 +31,10 @@ pub struct Lu<const N: usize> {
     det: f64,
 }
 
-/// The reciprocals of the equilibration scales; a zero, negative, infinite or NaN scale gives 0
-/// and marks the factorisation `degenerate`. All the reciprocals are computed, and one test
+/// The reciprocals of the equilibration scales; a zero, negative, infinite or NaN scale, or a
+/// positive one so small that its reciprocal overflows (below `1 / f64::MAX`, about 5.6e-309),
+/// gives 0 and marks the factorisation `degenerate` (an infinite reciprocal would make a zero
+/// residual `0 * inf`, NaN). All the reciprocals are computed, and two tests
 /// ([`all_positive_finite`]) and one branch decide for the whole set: this runs for every row
 /// and column of every factorisation, dense or sparse, and the scales are almost always valid.
 #[inline(always)]
@@ -41,7 +43,7 @@ pub(crate) fn inverses<const N: usize>(scale: [f64; N], degenerate: &mut bool) -
     for k in 0..N {
         inv[k] = 1.0 / scale[k];
     }
-    if !all_positive_finite(&scale) {
+    if !all_positive_finite(&scale) || !all_positive_finite(&inv) {
         *degenerate = true;
         return invalid_inverses(scale);
     }
@@ -66,11 +68,12 @@ pub(crate) fn all_positive_finite<const N: usize>(v: &[f64; N]) -> bool {
     worst < f64::MAX.to_bits()
 }
 
-/// [`inverses`] of a set with an invalid scale: those give 0.
+/// [`inverses`] of a set with an invalid scale: those, and those whose reciprocal overflows,
+/// give 0.
 #[cold]
 #[inline(never)]
 fn invalid_inverses<const N: usize>(scale: [f64; N]) -> [f64; N] {
-    scale.map(|s| if s > 0.0 && s < f64::INFINITY { 1.0 / s } else { 0.0 })
+    scale.map(|s| if s > 0.0 && s < f64::INFINITY && 1.0 / s < f64::INFINITY { 1.0 / s } else { 0.0 })
 }
 
 /// Partial pivoting: the row at or below `k` with the largest magnitude in column `k` (the
@@ -112,9 +115,10 @@ fn back_substitute<const N: usize>(u: &[[f64; N]; N], inv_diag: &[f64; N], z: &m
 pub struct RowScales<const N: usize> {
     /// Row `r` is divided by `s[r]`.
     pub s: [f64; N],
-    /// `1 / s`, 0 where `s` is invalid.
+    /// `1 / s`, 0 where `s` is invalid or its reciprocal overflows.
     pub inv: [f64; N],
-    /// Whether a scale is zero, negative, infinite or NaN (the factorisation is then degenerate).
+    /// Whether a scale is zero, negative, infinite or NaN, or has no finite reciprocal (the
+    /// factorisation is then degenerate).
     pub degenerate: bool,
 }
 
@@ -650,6 +654,28 @@ pub(crate) fn largest<const M: usize>(v: [f64; M]) -> f64 {
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    /// A positive scale below `1 / f64::MAX` has an infinite reciprocal: the set is degenerate
+    /// and that reciprocal 0 (an infinite one would turn a zero residual into NaN), as for a
+    /// zero scale; a small scale with a finite reciprocal stays valid.
+    #[test]
+    fn a_positive_scale_whose_reciprocal_overflows_is_degenerate() {
+        let tiny = 1e-310_f64; // positive (subnormal): 1 / tiny overflows to infinity
+        assert!(tiny > 0.0 && (1.0 / tiny).is_infinite());
+        let mut degenerate = false;
+        assert_eq!(inverses([2.0, tiny, 4.0], &mut degenerate), [0.5, 0.0, 0.25]);
+        assert!(degenerate);
+        let mut degenerate = false;
+        // 2^-1000 and 2^1000: exact reciprocals.
+        assert_eq!(inverses([2.0, 0.5f64.powi(1000)], &mut degenerate), [0.5, 2f64.powi(1000)]);
+        assert!(!degenerate);
+        let rows = RowScales::new([1.0, tiny, 1.0]);
+        assert!(rows.degenerate);
+        assert_eq!(rows.inv, [1.0, 0.0, 1.0]);
+        let j = [[2.0, 0.0, 0.0], [0.0, 3.0, 0.0], [0.0, 0.0, 5.0]];
+        assert_eq!(Lu::<3>::factor(&j, [1.0, tiny, 1.0]).pivot_ratio(), 0.0);
+        assert_eq!(Lu::<3>::factor_cols(&j, [1.0, 1.0, tiny]).pivot_ratio(), 0.0);
+    }
 
     #[test]
     fn solves_with_pivoting() {

@@ -14,6 +14,7 @@ use crate::mechanism::Sensitivities;
 use crate::mechanism::kernel::{CompiledSens, Kernel, Q, SensKernel, X};
 use crate::paths::sweep::SweepConfig;
 use crate::solvers::newton::NewtonConfig;
+use std::borrow::Cow;
 
 /// Where the first evaluation of a local solve starts its position solves.
 #[derive(Clone, Debug, PartialEq)]
@@ -303,13 +304,14 @@ impl<K: SensKernel> ProblemOf<K> {
         p
     }
 
-    /// The inputs of every target for the unknowns `z`.
-    pub(crate) fn input_values(&self, z: &[f64]) -> Vec<X<K>> {
+    /// The inputs of every target for the unknowns `z` (prescribed ones borrowed: no copy per
+    /// evaluation).
+    pub(crate) fn input_values(&self, z: &[f64]) -> Cow<'_, [X<K>]> {
         match &self.inputs {
-            Inputs::Prescribed(x) => x.clone(),
+            Inputs::Prescribed(x) => Cow::Borrowed(x),
             Inputs::Free { .. } => {
                 let nv = self.vars.len();
-                z[nv..nv + self.targets()].iter().map(|&v| self.input_point(v)).collect()
+                Cow::Owned(z[nv..nv + self.targets()].iter().map(|&v| self.input_point(v)).collect())
             }
         }
     }

@@ -94,13 +94,14 @@ impl<K: SensKernel> ProblemOf<K> {
 
     /// [`ProblemOf::residual_norm`] without the check of `z`.
     pub(crate) fn norm_at(&self, z: &[f64]) -> Result<f64, Error> {
-        self.base.with_params(&self.params(z), |m| self.norm_with(m, z))
+        self.base.with_params(&self.params(z), |m| self.norm_with(m, z))?
     }
 
     /// [`ProblemOf::norm_at`] on `m`, the mechanism with `z`'s parameters.
     fn norm_with(&self, m: &K, z: &[f64]) -> Result<f64, Error> {
         let d = m.dims();
-        let (mut q, mut out) = (d.q(), vec![0.0; d.no()]);
+        // `q` the target's position, `prev` the one before (swapped, not cloned, per target).
+        let (mut q, mut prev, mut out) = (d.q(), d.q(), vec![0.0; d.no()]);
         let inputs = self.input_values(z);
         let at = self.vars.len() + self.free_inputs();
         let (dx, dy, c, sn, s) = match self.placement {
@@ -110,14 +111,18 @@ impl<K: SensKernel> ProblemOf<K> {
         let mut sum = 0.0;
         for (k, x) in inputs.iter().enumerate() {
             // The guesses and Newton's settings of `evaluate` without previous positions.
-            let guess = match (&self.guess, k) {
-                (Guess::Every(g), _) => g[k].clone(),
-                (_, 1..) => q.clone(),
-                (Guess::First(g), 0) => g.clone(),
-                (Guess::Declared, 0) => m.guess(x),
+            let declared;
+            let guess: &Q<K> = match (&self.guess, k) {
+                (Guess::Every(g), _) => &g[k],
+                (_, 1..) => &prev,
+                (Guess::First(g), 0) => g,
+                (Guess::Declared, 0) => {
+                    declared = m.guess(x);
+                    &declared
+                }
             };
             let cfg = if k == 0 { self.newton } else { self.newton.with_restarts(false) };
-            m.position_into(x, &guess, &cfg, &mut q, &mut out)?;
+            m.position_into(x, guess, &cfg, &mut q, &mut out)?;
             let value = |col: ColumnIndex| match col {
                 ColumnIndex::Unknown(u) => q[u],
                 ColumnIndex::Output(o) => out[o],
@@ -146,6 +151,7 @@ impl<K: SensKernel> ProblemOf<K> {
                     }
                 }
             }
+            std::mem::swap(&mut prev, &mut q);
         }
         Ok(sum.sqrt())
     }
@@ -154,7 +160,7 @@ impl<K: SensKernel> ProblemOf<K> {
     /// `guesses` (the previous evaluation's), or else from the first target's guess and each
     /// from the one before.
     pub(crate) fn evaluate(&self, z: &[f64], guesses: Option<&[Q<K>]>) -> Result<Eval<Q<K>>, Error> {
-        self.base.with_params(&self.params(z), |m| self.evaluate_with(m, z, guesses))
+        self.base.with_params(&self.params(z), |m| self.evaluate_with(m, z, guesses))?
     }
 
     /// [`ProblemOf::evaluate`] on `m`, the mechanism with `z`'s parameters.
@@ -172,19 +178,23 @@ impl<K: SensKernel> ProblemOf<K> {
             (z[at], z[at + 1], th.cos(), th.sin(), s)
         });
         for (k, x) in inputs.iter().enumerate() {
-            let guess = match (guesses, &self.guess, qs.last()) {
-                (Some(g), _, _) => g[k].clone(),
-                (None, Guess::Every(g), _) => g[k].clone(),
-                (None, _, Some(q)) => q.clone(),
-                (None, Guess::First(g), None) => g.clone(),
-                (None, Guess::Declared, None) => m.guess(x),
+            let declared;
+            let guess: &Q<K> = match (guesses, &self.guess, qs.last()) {
+                (Some(g), _, _) => &g[k],
+                (None, Guess::Every(g), _) => &g[k],
+                (None, _, Some(q)) => q,
+                (None, Guess::First(g), None) => g,
+                (None, Guess::Declared, None) => {
+                    declared = m.guess(x);
+                    &declared
+                }
             };
             // Newton's restarts (roots from turned guesses) only where the assembly mode is
             // chosen: at the first target of a start. Elsewhere a root from a turned guess would
             // be another assembly mode than the guess's; a failed solve rejects the step instead.
             let choose = guesses.is_none() && k == 0;
             let cfg = if choose { self.newton } else { self.newton.with_restarts(false) };
-            m.sensitivities_into(x, &guess, &cfg, &mut kin, &mut sens)?;
+            m.sensitivities_into(x, guess, &cfg, &mut kin, &mut sens)?;
             let mut q = m.dims().q();
             q.as_mut().copy_from_slice(kin.q());
             qs.push(q);

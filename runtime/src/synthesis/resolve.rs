@@ -4,7 +4,7 @@
 use super::error::SynthesisError;
 use super::task::{Channel, Timing};
 use super::vars::check_bounds;
-use crate::analysis::ColumnIndex;
+use crate::analysis::{ColumnIndex, ColumnOf};
 use crate::dims::Dims;
 use crate::kinds::QuantityKind;
 use crate::mechanism::kernel::Kernel;
@@ -47,21 +47,21 @@ pub(crate) fn resolve_channel<K: Kernel>(m: &K, c: &Channel) -> Result<Resolved,
     })
 }
 
-/// An unknown or output column by name.
+/// An unknown or output column by name (the analysis's lookup; an input is no target column).
 pub(crate) fn scalar_column<K: Kernel>(m: &K, name: &str) -> Result<ColumnIndex, SynthesisError> {
-    let d = m.dims();
-    let unknowns = (0..d.n()).map(|u| m.unknown_name(u));
-    let outputs = (0..d.no()).map(|o| m.output_name(o));
-    unknowns
-        .clone()
-        .position(|n| n == name)
-        .map(ColumnIndex::Unknown)
-        .or_else(|| outputs.clone().position(|n| n == name).map(ColumnIndex::Output))
-        .ok_or_else(|| SynthesisError::UnknownColumn {
-            name: name.to_string(),
-            mechanism: m.name().to_string().into(),
-            columns: unknowns.chain(outputs).collect::<Vec<_>>().join(", "),
-        })
+    match ColumnOf::resolve(name, m) {
+        Ok(c @ (ColumnIndex::Unknown(_) | ColumnIndex::Output(_))) => Ok(c),
+        _ => {
+            let d = m.dims();
+            let unknowns = (0..d.n()).map(|u| m.unknown_name(u));
+            let outputs = (0..d.no()).map(|o| m.output_name(o));
+            Err(SynthesisError::UnknownColumn {
+                name: name.to_string(),
+                mechanism: m.name().to_string().into(),
+                columns: unknowns.chain(outputs).collect::<Vec<_>>().join(", "),
+            })
+        }
+    }
 }
 
 /// The timing checked against the targets and the mechanism's inputs (`d` its sizes).

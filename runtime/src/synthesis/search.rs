@@ -187,7 +187,7 @@ impl Search {
         K: SensKernel,
     {
         let (z, e, report) = problem.local(z0, &self.local).ok()?;
-        Some(problem.verify(origin, index, z, e, report))
+        problem.verify(origin, index, z, e, report).ok()
     }
 
     /// A point clamped into the bounds of the unknowns.
@@ -402,6 +402,6 @@ impl Search {
         self.validate()?;
         problem.check_point(z0)?;
         let (z, e, report) = problem.local(Self::clamped(problem, z0), &self.local)?;
-        Ok(problem.verify(Origin::Refine, usize::MAX, z, e, report))
+        Ok(problem.verify(Origin::Refine, usize::MAX, z, e, report)?)
     }
 }

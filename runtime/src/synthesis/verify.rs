@@ -8,11 +8,13 @@ use super::problem::ProblemOf;
 use super::residuals::{Eval, value, wrap};
 use super::resolve::Inputs;
 use crate::dims::KinState;
+use crate::error::Error;
 use crate::kinds::QuantityKind;
 use crate::mechanism::kernel::{KinOf, Q, SensKernel};
 use crate::metrics::{FourBarLinks, grashof, transmission_angle};
 use crate::paths::outcome::SweepStop;
 use crate::paths::sweep::SweepOf;
+use std::borrow::Cow;
 use std::f64::consts::TAU;
 
 /// Samples of each sweep between consecutive targets (the transmission angle is their
@@ -84,7 +86,8 @@ pub(crate) fn four_bar_class([d, a, b, c]: [f64; 4]) -> Option<FourBarClass> {
 }
 
 impl<K: SensKernel> ProblemOf<K> {
-    /// The candidate of the local solution `z` (evaluated as `e`), verified.
+    /// The candidate of the local solution `z` (evaluated as `e`), verified. An error only where
+    /// the kernel refuses `z`'s parameters (which `params` sizes to its count).
     pub(crate) fn verify(
         &self,
         origin: Origin,
@@ -92,7 +95,7 @@ impl<K: SensKernel> ProblemOf<K> {
         z: Vec<f64>,
         e: Eval<Q<K>>,
         local: LocalReport,
-    ) -> Candidate {
+    ) -> Result<Candidate, Error> {
         let params = self.params(&z);
         self.base.with_params(&params, |m| self.verify_with(m, origin, start, z, e, local, params.clone()))
     }
@@ -115,7 +118,7 @@ impl<K: SensKernel> ProblemOf<K> {
         if matches!(self.inputs, Inputs::Free { .. }) && n > 1 {
             let free: Vec<f64> = inputs.iter().map(|x| x[0]).collect();
             match in_order(&free, m.input_kind(0) == QuantityKind::Angle) {
-                Some(x) => inputs = x.into_iter().map(|v| self.input_point(v)).collect(),
+                Some(x) => inputs = Cow::Owned(x.into_iter().map(|v| self.input_point(v)).collect()),
                 None => defects.push(Defect::Order),
             }
         }
@@ -171,7 +174,8 @@ impl<K: SensKernel> ProblemOf<K> {
         }
         let mut min_transmission = None;
         if let Some((c, f, min)) = self.checks.transmission {
-            let at_targets = e.qs.iter().zip(&inputs).filter_map(|(q, x)| m.kinematics_at(x, q, &self.newton).ok());
+            let at_targets =
+                e.qs.iter().zip(inputs.iter()).filter_map(|(q, x)| m.kinematics_at(x, q, &self.newton).ok());
             let angle = samples
                 .iter()
                 .cloned()

@@ -82,3 +82,22 @@ pub(super) fn sum_sq_scaled<const N: usize>(f: &[f64; N], rows: &RowScales<N>) -
     }
     if acc.is_nan() { f64::INFINITY } else { acc }
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// A zero residual over a positive scale whose reciprocal overflows (below `1 / f64::MAX`)
+    /// is zero in every norm, not `0 * inf` = NaN; a non-zero one is large, not NaN.
+    #[test]
+    fn a_zero_residual_over_a_scale_without_a_finite_reciprocal_is_zero() {
+        let rows = RowScales::new([1.0, 1e-310, 1.0]);
+        let f = [0.5, 0.0, -0.25];
+        assert_eq!(scaled_residual(&f, &rows), 0.5);
+        assert_eq!(scaled_norms(&f, &rows), (0.5, 0.3125));
+        assert_eq!(sum_sq_scaled(&f, &rows), 0.3125);
+        let g = [0.0, 1e-300, 0.0];
+        assert!(scaled_residual(&g, &rows) > 1e9, "{}", scaled_residual(&g, &rows));
+        assert!(!scaled_norms(&g, &rows).0.is_nan());
+    }
+}
