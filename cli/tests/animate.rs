@@ -2,16 +2,11 @@
 //! as XML (frames counted, the crank's drawn angle against the input it was swept through),
 //! its HTML page's structure, and its exit codes.
 
+mod common;
+
+use common::{kinloop, shipped};
 use std::path::{Path, PathBuf};
-use std::process::{Command, Output};
-
-fn kinloop(args: &[&str]) -> Output {
-    Command::new(env!("CARGO_BIN_EXE_kinloop")).args(args).output().expect("the kinloop binary runs")
-}
-
-fn shipped(name: &str) -> String {
-    PathBuf::from(env!("CARGO_MANIFEST_DIR")).join("mechanisms").join(name).display().to_string()
-}
+use std::process::Output;
 
 /// A file in a directory of this test's own under the target directory.
 fn out(name: &str) -> PathBuf {

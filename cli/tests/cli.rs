@@ -2,28 +2,11 @@
 //! compared with the compiled mechanisms of the same declarations (kinloop's fixtures), its
 //! diagnostics and exit codes.
 
+mod common;
+
+use common::{csv, kinloop, shipped};
 use kinloop::Mechanism;
 use kinloop_fixtures as fx;
-use std::path::PathBuf;
-use std::process::{Command, Output};
-
-fn kinloop(args: &[&str]) -> Output {
-    Command::new(env!("CARGO_BIN_EXE_kinloop")).args(args).output().expect("the kinloop binary runs")
-}
-
-fn shipped(name: &str) -> String {
-    PathBuf::from(env!("CARGO_MANIFEST_DIR")).join("mechanisms").join(name).display().to_string()
-}
-
-/// The CSV's header and rows.
-fn csv(out: &Output) -> (Vec<String>, Vec<Vec<f64>>) {
-    assert!(out.status.success(), "{}", String::from_utf8_lossy(&out.stderr));
-    let text = String::from_utf8(out.stdout.clone()).expect("utf-8");
-    let mut lines = text.lines();
-    let header = lines.next().expect("header").split(',').map(str::to_string).collect();
-    let rows = lines.map(|l| l.split(',').map(|v| v.parse().expect("a number")).collect()).collect();
-    (header, rows)
-}
 
 fn column(header: &[String], name: &str) -> usize {
     header.iter().position(|h| h == name).unwrap_or_else(|| panic!("no column {name} in {header:?}"))

@@ -2,23 +2,17 @@
 //! and the flywheel) parsed and compared with the compiled mechanism of the same declaration
 //! (the fixtures' `EngineMachine` and its `mass_model`), its units, options and exit codes.
 
+mod common;
+
+use common::{kinloop, shipped};
 use kinloop::dynamics::{InverseCycle, SpeedLaw};
 use kinloop_fixtures as fx;
-use std::path::PathBuf;
-use std::process::{Command, Output};
+use std::process::Output;
 
 /// Agreement demanded with the compiled mechanism, of each column's largest magnitude: both
 /// evaluate the same plan with the same operations (a few roundings apart), and the CSV
 /// writes each value with the digits that read back exactly.
 const REL: f64 = 1e-14;
-
-fn kinloop(args: &[&str]) -> Output {
-    Command::new(env!("CARGO_BIN_EXE_kinloop")).args(args).output().expect("the kinloop binary runs")
-}
-
-fn shipped(name: &str) -> String {
-    PathBuf::from(env!("CARGO_MANIFEST_DIR")).join("mechanisms").join(name).display().to_string()
-}
 
 /// A CSV's header and rows.
 fn parse(text: &str) -> (Vec<String>, Vec<Vec<f64>>) {

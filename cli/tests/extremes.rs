@@ -7,18 +7,12 @@
 //! input; its value, where the analog vanishes, moves to second order only: within 1e-12 of the
 //! links' size. Degrees add one conversion (a relative rounding).
 
+mod common;
+
+use common::{kinloop, shipped};
 use kinloop_fixtures as fx;
 use std::f64::consts::TAU;
-use std::path::PathBuf;
-use std::process::{Command, Output};
-
-fn kinloop(args: &[&str]) -> Output {
-    Command::new(env!("CARGO_BIN_EXE_kinloop")).args(args).output().expect("the kinloop binary runs")
-}
-
-fn shipped(name: &str) -> String {
-    PathBuf::from(env!("CARGO_MANIFEST_DIR")).join("mechanisms").join(name).display().to_string()
-}
+use std::process::Output;
 
 /// A row of the output: the column's name, its unit and the numbers.
 type Row = (String, String, Vec<f64>);

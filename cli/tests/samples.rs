@@ -2,19 +2,12 @@
 //! long they run, so one past the limit is a usage error (exit 2) naming the limit, for every
 //! command that samples, instead of an overflow, an aborted allocation or a run without end.
 
-use std::path::PathBuf;
-use std::process::{Command, Output};
+mod common;
+
+use common::{kinloop, shipped};
 
 /// The limit the help of each command states.
 const MAX_SAMPLES: &str = "10000000";
-
-fn kinloop(args: &[&str]) -> Output {
-    Command::new(env!("CARGO_BIN_EXE_kinloop")).args(args).output().expect("the kinloop binary runs")
-}
-
-fn shipped(name: &str) -> String {
-    PathBuf::from(env!("CARGO_MANIFEST_DIR")).join("mechanisms").join(name).display().to_string()
-}
 
 /// `args` fails as a usage error naming `--samples` and the limit, writing nothing.
 fn refused(args: &[&str]) {

@@ -2,33 +2,16 @@
 //! compared with the compiled mechanism of the same declaration (the fixtures' `EngineMachine`,
 //! its `mass_model` and the compiled `Simulation`), its units, options and exit codes.
 
+mod common;
+
+use common::{csv, kinloop, shipped};
 use kinloop::dynamics::{RunConfig, Simulation};
 use kinloop_fixtures as fx;
-use std::path::PathBuf;
-use std::process::{Command, Output};
 
 /// Agreement demanded with the compiled simulation, of each column's largest magnitude: both
 /// integrate by the same code with the same operations (the library's test finds no
 /// difference at all), and the CSV writes each value with the digits that read back exactly.
 const REL: f64 = 1e-14;
-
-fn kinloop(args: &[&str]) -> Output {
-    Command::new(env!("CARGO_BIN_EXE_kinloop")).args(args).output().expect("the kinloop binary runs")
-}
-
-fn shipped(name: &str) -> String {
-    PathBuf::from(env!("CARGO_MANIFEST_DIR")).join("mechanisms").join(name).display().to_string()
-}
-
-/// A CSV's header and rows.
-fn csv(out: &Output) -> (Vec<String>, Vec<Vec<f64>>) {
-    assert!(out.status.success(), "{}", String::from_utf8_lossy(&out.stderr));
-    let text = String::from_utf8(out.stdout.clone()).expect("utf-8");
-    let mut lines = text.lines();
-    let header = lines.next().expect("header").split(',').map(str::to_string).collect();
-    let rows = lines.map(|l| l.split(',').map(|v| v.parse().expect("a number")).collect()).collect();
-    (header, rows)
-}
 
 /// The engine driven by a constant torque with a flywheel: the command's times, angles and
 /// speeds are the compiled simulation's dense output at those times; in degrees they are the

@@ -4,18 +4,13 @@
 //! written in full precision) and with the known dimensions; its table, usage errors and exit
 //! codes.
 
+mod common;
+
+use common::{kinloop, shipped};
 use kinloop::synthesis::{Design, Search, Task};
 use kinloop_model::Model;
 use std::path::PathBuf;
-use std::process::{Command, Output};
-
-fn kinloop(args: &[&str]) -> Output {
-    Command::new(env!("CARGO_BIN_EXE_kinloop")).args(args).output().expect("the kinloop binary runs")
-}
-
-fn shipped(name: &str) -> String {
-    PathBuf::from(env!("CARGO_MANIFEST_DIR")).join("mechanisms").join(name).display().to_string()
-}
+use std::process::Output;
 
 /// The dimensions `[a, b, c, d, e, alpha]` the targets are made from.
 const TRUTH: [f64; 6] = [1.1, 2.8, 2.3, 3.2, 1.7, 0.45];
