@@ -20,10 +20,11 @@ use std::borrow::Cow;
 /// `Search::par_run` is for compiled mechanisms).
 pub type ModelProblem<'a> = ProblemOf<ModelKernel<'a>>;
 
-/// The parameter sensitivities of one state of a model that synthesis reads (the runtime's
-/// `SensState`): those of the positions and of the outputs, with the number of parameters that
-/// indexes them. The model's [`Sensitivities`](crate::Sensitivities) also hold those of the
-/// analogs, which synthesis does not read and which are therefore not copied.
+/// The parameter sensitivities of one state of a model that synthesis and the gradient
+/// objectives read (the runtime's `SensState`): those of the positions, the outputs and their
+/// first analogs, with the numbers of parameters and inputs that index them. The model's
+/// [`Sensitivities`](crate::Sensitivities) also hold those of the second analogs, which nothing
+/// here reads and which are therefore not copied.
 #[derive(Clone, Debug, Default, PartialEq)]
 pub struct ModelSens {
     /// The number of parameters.
@@ -131,14 +132,7 @@ impl SensKernel for ModelKernel<'_> {
     /// calls nest), also where `f` panics. `p` has one value per parameter
     /// (`Error::InvalidArgument` otherwise, the model untouched).
     fn with_params<R>(&self, p: &[f64], f: impl FnOnce(&Self) -> R) -> Result<R, Error> {
-        let np = self.param_count();
-        if p.len() != np {
-            return Err(Error::InvalidArgument(format!(
-                "{} parameter values for the {np} parameters of `{}`",
-                p.len(),
-                self.name()
-            )));
-        }
+        self.check_param_count(p)?;
         let mut values: Vec<Option<f64>> = p.iter().copied().map(Some).collect();
         self.model().borrow_mut().swap_params(&mut values);
         let restore = Restore { kernel: self, old: values };
@@ -151,8 +145,8 @@ impl SensKernel for ModelKernel<'_> {
         let z = |len: usize| vec![0.0; len];
         ModelSens { np, ni, q: z(n * np), dq: z(n * ni * np), out: z(no * np), dout: z(no * ni * np) }
     }
-    /// The model's `sensitivities` copied into `kin` and `sens` (those of the positions and
-    /// outputs; no allocation).
+    /// The model's `sensitivities` copied into `kin` and `sens` (all but the second analogs';
+    /// no allocation).
     fn sensitivities_into(
         &self,
         x: &Heap,

@@ -205,6 +205,16 @@ pub struct Sens<const N: usize, const NI: usize, const NO: usize, const NP: usiz
 }
 
 impl<const N: usize, const NI: usize, const NO: usize, const NP: usize> Sens<N, NI, NO, NP> {
+    /// Every sensitivity zero (a buffer to write into).
+    pub const ZERO: Self = Sens {
+        q: [[0.0; NP]; N],
+        dq: [[[0.0; NP]; NI]; N],
+        d2q: [[[[0.0; NP]; NI]; NI]; N],
+        out: [[0.0; NP]; NO],
+        dout: [[[0.0; NP]; NI]; NO],
+        d2out: [[[[0.0; NP]; NI]; NI]; NO],
+    };
+
     /// Every value is finite.
     ///
     /// One test of all values, without a branch per value: the early exits of chained

@@ -89,3 +89,21 @@ fn integral_of_an_output_and_its_gradient() {
     let fd = (trapezoid(&mp) - trapezoid(&mm)) / (2.0 * dh);
     assert_close!(g[l], fd, 1e-6 * fd.abs(), "{} vs {fd}", g[l]);
 }
+
+/// The integral is over the input whatever parametrises the range: over a range given as a path
+/// (whose parameter is the fraction of the path, `0 ..= 1`) it is the same integral over the
+/// input as over the sweep of the same samples, not that divided by the path's length.
+#[test]
+fn the_integral_over_a_path_is_over_the_input() {
+    use kinloop::analysis::Sampled;
+    let col = RhombicDrive::COL.gap;
+    let by_sweep = M.sampled(0.0, 2.0 * PI, 181, &M.guess(0.0)).unwrap().integral_with_gradient(col).unwrap();
+    let path = Sampled::path(&M, [0.0], [2.0 * PI], 181, M.guess(0.0)).unwrap();
+    let (v, g) = path.integral_with_gradient(col).unwrap();
+    // The same samples, their inputs made the same way up to rounding: the sums agree to a few
+    // ulps of the integral's magnitude (about 2 pi times the gap's), far from a factor 2 pi.
+    assert_close!(v, by_sweep.0, 1e-12 * by_sweep.0.abs(), "{v} vs {}", by_sweep.0);
+    for (a, b) in g.iter().zip(&by_sweep.1) {
+        assert_close!(*a, *b, 1e-12 * (1.0 + b.abs()), "{a} vs {b}");
+    }
+}

@@ -186,8 +186,13 @@ impl<M> Column<M> {
 
     /// The column's value and analogs in a single-input state, as a function of the input.
     pub fn jet<const N: usize, const NO: usize>(self, k: &Kin<N, 1, NO>) -> super::Jet {
-        self.jet_along(k, k.x[0], &[1.0])
+        jet_of_input(self.index, k)
     }
+}
+
+/// The column `index` in a single-input state `k`, as a function of the input.
+pub(crate) fn jet_of_input<S: KinState>(index: ColumnIndex, k: &S) -> super::Jet {
+    jet_along(index, k, k.x()[0], &[1.0])
 }
 
 /// The column `index` along a straight path through state `k` at path parameter `s`, the inputs

@@ -11,8 +11,8 @@
 //! * [`Sampled::integral_with_gradient`]: the trapezoidal integral of a quantity over the
 //!   samples and its exact gradient.
 
-use crate::analysis::column::jet_along;
-use crate::analysis::{Column, ColumnIndex, ColumnOf, Extreme, Jet, Sampled, SampledOf};
+use crate::analysis::column::jet_of_input;
+use crate::analysis::{Column, ColumnIndex, ColumnOf, Extreme, Sampled, SampledOf};
 use crate::dims::{Dims, KinState};
 use crate::error::Error;
 use crate::kin::{Kin, Sens};
@@ -46,23 +46,6 @@ fn column_sens<S: SensState>(s: &S, c: ColumnIndex, k: usize) -> (f64, f64) {
     }
 }
 
-/// Zero sensitivities of a compiled mechanism (the buffer its objectives write into).
-fn zero_sens<const N: usize, const NO: usize, const NP: usize>() -> Sens<N, 1, NO, NP> {
-    Sens {
-        q: [[0.0; NP]; N],
-        dq: [[[0.0; NP]; 1]; N],
-        d2q: [[[[0.0; NP]; 1]; 1]; N],
-        out: [[0.0; NP]; NO],
-        dout: [[[0.0; NP]; 1]; NO],
-        d2out: [[[[0.0; NP]; 1]; 1]; NO],
-    }
-}
-
-/// The column's jet in a single-input state, as a function of the input.
-fn jet<S: KinState>(c: ColumnIndex, k: &S) -> Jet {
-    jet_along(c, k, k.x()[0], &[1.0])
-}
-
 /// The objectives take one input: the extremum's location and the trapezoid's abscissa are it.
 fn one_input<K: Kernel>(k: &K) -> Result<(), Error> {
     match k.dims().ni() {
@@ -94,7 +77,7 @@ impl<K: Kernel> SampledOf<K> {
         let state = self.at(at.x)?;
         let mut kin = state.clone();
         sens_at(&state, &mut kin, sens)?;
-        let jet = jet(c, &kin);
+        let jet = jet_of_input(c, &kin);
         for p in 0..grad.len() {
             let (g, dg) = column_sens(sens, c, p);
             grad[p] = g;
@@ -114,17 +97,20 @@ impl<K: Kernel> SampledOf<K> {
         grad: &mut [f64],
     ) -> Result<f64, Error> {
         one_input(self.kernel())?;
-        let (states, s) = (self.states(), self.path_values());
+        let states = self.states();
+        // The abscissa is the input, not the path's parameter (a fraction of the path for a
+        // range given as a path).
+        let x = |i: usize| states[i].x()[0];
         let mut kin = states[0].clone();
         let mut value = 0.0;
         grad.fill(0.0);
         for (i, state) in states.iter().enumerate() {
             // Trapezoid weights: half of each neighbouring interval.
-            let left = if i > 0 { s[i] - s[i - 1] } else { 0.0 };
-            let right = if i + 1 < states.len() { s[i + 1] - s[i] } else { 0.0 };
+            let left = if i > 0 { x(i) - x(i - 1) } else { 0.0 };
+            let right = if i + 1 < states.len() { x(i + 1) - x(i) } else { 0.0 };
             let w = 0.5 * (left + right);
             sens_at(state, &mut kin, sens)?;
-            value += w * jet(c, &kin).value;
+            value += w * jet_of_input(c, &kin).value;
             for (p, g) in grad.iter_mut().enumerate() {
                 *g += w * column_sens(sens, c, p).0;
             }
@@ -205,7 +191,7 @@ where
     {
         let c = col.resolve(self.kernel())?;
         let (mut grad, mut x_grad) = ([0.0; NP], [0.0; NP]);
-        let mut sens = zero_sens();
+        let mut sens = Sens::ZERO;
         let (x, value) = self.extremum_by(c, which, &mut sens, self.compiled_sens_at(), &mut grad, &mut x_grad)?;
         Ok(Extremum { x, value, grad, x_grad })
     }
@@ -220,7 +206,7 @@ where
     {
         let c = col.resolve(self.kernel())?;
         let mut grad = [0.0; NP];
-        let mut sens = zero_sens();
+        let mut sens = Sens::ZERO;
         let value = self.integral_by(c, &mut sens, self.compiled_sens_at(), &mut grad)?;
         Ok((value, grad))
     }

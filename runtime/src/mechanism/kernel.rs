@@ -140,92 +140,102 @@ where
     const JUDGED: Judged<N> = Judged::of(M::FOLLOWERS);
 }
 
+/// The body of the kernel of a compiled mechanism, borrowed ([`Compiled`]) or owned
+/// ([`CompiledSens`]): every method forwards to the mechanism's constants and generated
+/// functions (`self.0` is the mechanism or a reference to it).
+macro_rules! compiled_kernel_body {
+    () => {
+        type Dims = Fixed<N, NI, NO>;
+        #[inline(always)]
+        fn dims(&self) -> Fixed<N, NI, NO> {
+            Fixed
+        }
+        fn name(&self) -> &str {
+            M::NAME
+        }
+        fn input_name(&self, i: usize) -> &str {
+            M::INPUTS[i]
+        }
+        fn unknown_name(&self, u: usize) -> &str {
+            M::UNKNOWNS[u]
+        }
+        fn output_name(&self, o: usize) -> &str {
+            M::OUTPUTS[o]
+        }
+        fn input_kind(&self, i: usize) -> QuantityKind {
+            M::INPUT_KINDS[i]
+        }
+        fn unknown_kind(&self, u: usize) -> QuantityKind {
+            M::UNKNOWN_KINDS[u]
+        }
+        fn output_kind(&self, o: usize) -> QuantityKind {
+            M::OUTPUT_KINDS[o]
+        }
+        #[inline(always)]
+        fn block_count(&self) -> usize {
+            M::BLOCKS.len()
+        }
+        fn block_info(&self, b: usize) -> Option<BlockInfo> {
+            M::BLOCKS.get(b).cloned()
+        }
+        fn block_rows_cols(&self, b: usize) -> Option<(Vec<usize>, Vec<usize>)> {
+            let info = M::BLOCKS.get(b)?;
+            let rows: Option<Vec<usize>> =
+                info.equations.iter().map(|e| M::EQUATIONS.iter().position(|n| n == e)).collect();
+            let cols: Option<Vec<usize>> =
+                info.unknowns.iter().map(|u| M::UNKNOWNS.iter().position(|n| n == u)).collect();
+            Some((rows?, cols?))
+        }
+        #[inline(always)]
+        fn judged(&self) -> &[usize] {
+            const { &Self::JUDGED }.as_slice()
+        }
+        #[inline(always)]
+        fn closed_form_angle(&self, u: usize) -> bool {
+            M::CLOSED_FORM_ANGLES[u]
+        }
+        fn location(&self, x: &[f64], block: Option<usize>) -> Box<Location> {
+            Location::boxed(M::NAME, &M::INPUTS, x, block.and_then(|b| M::BLOCKS.get(b).map(|info| (b, info.clone()))))
+        }
+        #[inline(always)]
+        fn solver_config(&self) -> SweepConfig {
+            self.0.solver_config()
+        }
+        #[inline(always)]
+        fn guess(&self, x: &[f64; NI]) -> [f64; N] {
+            self.0.guess_flat(x)
+        }
+        #[inline(always)]
+        fn kinematics(&self, x: &[f64; NI], guess: &[f64; N], cfg: &NewtonConfig) -> Result<Kin<N, NI, NO>, Error> {
+            self.0.kinematics_flat(x, guess, cfg)
+        }
+        #[inline(always)]
+        fn kinematics_at(&self, x: &[f64; NI], q: &[f64; N], cfg: &NewtonConfig) -> Result<Kin<N, NI, NO>, Error> {
+            self.0.kinematics_at_flat(x, q, cfg)
+        }
+        #[inline(always)]
+        fn jacobian(&self, x: &[f64; NI], q: &[f64; N]) -> Jac<N, NI> {
+            self.0.jacobian_flat(x, q)
+        }
+        #[inline(always)]
+        fn step_into<T: InputTrig>(
+            &self,
+            x: &[f64; NI],
+            guess: &[f64; N],
+            cfg: &NewtonConfig,
+            trig: &mut T,
+            into: &mut Kin<N, NI, NO>,
+        ) -> Result<(), Error> {
+            self.0.kinematics_step_sink::<T, _, false>(x, guess, cfg, trig, into)
+        }
+    };
+}
+
 impl<'m, M, const N: usize, const NI: usize, const NO: usize> Kernel for Compiled<'m, M, N, NI, NO>
 where
     M: Mechanism<N, NI, NO>,
 {
-    type Dims = Fixed<N, NI, NO>;
-    #[inline(always)]
-    fn dims(&self) -> Fixed<N, NI, NO> {
-        Fixed
-    }
-    fn name(&self) -> &str {
-        M::NAME
-    }
-    fn input_name(&self, i: usize) -> &str {
-        M::INPUTS[i]
-    }
-    fn unknown_name(&self, u: usize) -> &str {
-        M::UNKNOWNS[u]
-    }
-    fn output_name(&self, o: usize) -> &str {
-        M::OUTPUTS[o]
-    }
-    fn input_kind(&self, i: usize) -> QuantityKind {
-        M::INPUT_KINDS[i]
-    }
-    fn unknown_kind(&self, u: usize) -> QuantityKind {
-        M::UNKNOWN_KINDS[u]
-    }
-    fn output_kind(&self, o: usize) -> QuantityKind {
-        M::OUTPUT_KINDS[o]
-    }
-    #[inline(always)]
-    fn block_count(&self) -> usize {
-        M::BLOCKS.len()
-    }
-    fn block_info(&self, b: usize) -> Option<BlockInfo> {
-        M::BLOCKS.get(b).cloned()
-    }
-    fn block_rows_cols(&self, b: usize) -> Option<(Vec<usize>, Vec<usize>)> {
-        let info = M::BLOCKS.get(b)?;
-        let rows: Option<Vec<usize>> =
-            info.equations.iter().map(|e| M::EQUATIONS.iter().position(|n| n == e)).collect();
-        let cols: Option<Vec<usize>> = info.unknowns.iter().map(|u| M::UNKNOWNS.iter().position(|n| n == u)).collect();
-        Some((rows?, cols?))
-    }
-    #[inline(always)]
-    fn judged(&self) -> &[usize] {
-        const { &Self::JUDGED }.as_slice()
-    }
-    #[inline(always)]
-    fn closed_form_angle(&self, u: usize) -> bool {
-        M::CLOSED_FORM_ANGLES[u]
-    }
-    fn location(&self, x: &[f64], block: Option<usize>) -> Box<Location> {
-        Location::boxed(M::NAME, &M::INPUTS, x, block.and_then(|b| M::BLOCKS.get(b).map(|info| (b, info.clone()))))
-    }
-    #[inline(always)]
-    fn solver_config(&self) -> SweepConfig {
-        self.0.solver_config()
-    }
-    #[inline(always)]
-    fn guess(&self, x: &[f64; NI]) -> [f64; N] {
-        self.0.guess_flat(x)
-    }
-    #[inline(always)]
-    fn kinematics(&self, x: &[f64; NI], guess: &[f64; N], cfg: &NewtonConfig) -> Result<Kin<N, NI, NO>, Error> {
-        self.0.kinematics_flat(x, guess, cfg)
-    }
-    #[inline(always)]
-    fn kinematics_at(&self, x: &[f64; NI], q: &[f64; N], cfg: &NewtonConfig) -> Result<Kin<N, NI, NO>, Error> {
-        self.0.kinematics_at_flat(x, q, cfg)
-    }
-    #[inline(always)]
-    fn jacobian(&self, x: &[f64; NI], q: &[f64; N]) -> Jac<N, NI> {
-        self.0.jacobian_flat(x, q)
-    }
-    #[inline(always)]
-    fn step_into<T: InputTrig>(
-        &self,
-        x: &[f64; NI],
-        guess: &[f64; N],
-        cfg: &NewtonConfig,
-        trig: &mut T,
-        into: &mut Kin<N, NI, NO>,
-    ) -> Result<(), Error> {
-        self.0.kinematics_step_sink::<T, _, false>(x, guess, cfg, trig, into)
-    }
+    compiled_kernel_body!();
 }
 
 /// A kernel lent: the algorithms that run several sweeps over one mechanism (the reachable
@@ -370,7 +380,7 @@ impl<const N: usize, const NI: usize, const NO: usize, const NP: usize> SensStat
 }
 
 /// The error of [`SensKernel::with_params`] given `got` values for the `want` parameters of
-/// mechanism `name` (a run-time model's kernel says the same).
+/// mechanism `name` ([`SensKernel::check_param_count`]).
 fn wrong_param_count(got: usize, want: usize, name: &str) -> Error {
     Error::InvalidArgument(format!("{got} parameter values for the {want} parameters of `{name}`"))
 }
@@ -396,6 +406,14 @@ pub trait SensKernel: Kernel {
     /// panics). `Error::InvalidArgument` where `p` has another length than
     /// [`SensKernel::param_count`] (and `f` is not called).
     fn with_params<R>(&self, p: &[f64], f: impl FnOnce(&Self) -> R) -> Result<R, Error>;
+    /// `p` holds one value per parameter: the length [`SensKernel::with_params`] demands, with
+    /// its error.
+    fn check_param_count(&self, p: &[f64]) -> Result<(), Error> {
+        match p.len() == self.param_count() {
+            true => Ok(()),
+            false => Err(wrong_param_count(p.len(), self.param_count(), self.name())),
+        }
+    }
     /// Sensitivities of the right sizes, zero (the buffer [`SensKernel::sensitivities_into`]
     /// writes into).
     fn sens(&self) -> Self::Sens;
@@ -446,95 +464,13 @@ where
 {
     /// The unknowns a step is judged by (as [`Compiled`]'s).
     const JUDGED: Judged<N> = Judged::of(M::FOLLOWERS);
-
-    #[inline(always)]
-    fn c(&self) -> Compiled<'_, M, N, NI, NO> {
-        Compiled(&self.0)
-    }
 }
 
 impl<M, const N: usize, const NI: usize, const NO: usize, const NP: usize> Kernel for CompiledSens<M, N, NI, NO, NP>
 where
     M: Mechanism<N, NI, NO>,
 {
-    type Dims = Fixed<N, NI, NO>;
-    #[inline(always)]
-    fn dims(&self) -> Fixed<N, NI, NO> {
-        Fixed
-    }
-    fn name(&self) -> &str {
-        M::NAME
-    }
-    fn input_name(&self, i: usize) -> &str {
-        M::INPUTS[i]
-    }
-    fn unknown_name(&self, u: usize) -> &str {
-        M::UNKNOWNS[u]
-    }
-    fn output_name(&self, o: usize) -> &str {
-        M::OUTPUTS[o]
-    }
-    fn input_kind(&self, i: usize) -> QuantityKind {
-        M::INPUT_KINDS[i]
-    }
-    fn unknown_kind(&self, u: usize) -> QuantityKind {
-        M::UNKNOWN_KINDS[u]
-    }
-    fn output_kind(&self, o: usize) -> QuantityKind {
-        M::OUTPUT_KINDS[o]
-    }
-    #[inline(always)]
-    fn block_count(&self) -> usize {
-        M::BLOCKS.len()
-    }
-    fn block_info(&self, b: usize) -> Option<BlockInfo> {
-        self.c().block_info(b)
-    }
-    fn block_rows_cols(&self, b: usize) -> Option<(Vec<usize>, Vec<usize>)> {
-        self.c().block_rows_cols(b)
-    }
-    #[inline(always)]
-    fn judged(&self) -> &[usize] {
-        const { &Self::JUDGED }.as_slice()
-    }
-    #[inline(always)]
-    fn closed_form_angle(&self, u: usize) -> bool {
-        M::CLOSED_FORM_ANGLES[u]
-    }
-    fn location(&self, x: &[f64], block: Option<usize>) -> Box<Location> {
-        self.c().location(x, block)
-    }
-    #[inline(always)]
-    fn solver_config(&self) -> SweepConfig {
-        self.0.solver_config()
-    }
-    #[inline(always)]
-    fn guess(&self, x: &[f64; NI]) -> [f64; N] {
-        self.0.guess_flat(x)
-    }
-    #[inline(always)]
-    fn kinematics(&self, x: &[f64; NI], guess: &[f64; N], cfg: &NewtonConfig) -> Result<Kin<N, NI, NO>, Error> {
-        self.0.kinematics_flat(x, guess, cfg)
-    }
-    #[inline(always)]
-    fn kinematics_at(&self, x: &[f64; NI], q: &[f64; N], cfg: &NewtonConfig) -> Result<Kin<N, NI, NO>, Error> {
-        self.0.kinematics_at_flat(x, q, cfg)
-    }
-    #[inline(always)]
-    fn jacobian(&self, x: &[f64; NI], q: &[f64; N]) -> Jac<N, NI> {
-        self.0.jacobian_flat(x, q)
-    }
-    #[inline(always)]
-    fn step_into<T: InputTrig>(
-        &self,
-        x: &[f64; NI],
-        guess: &[f64; N],
-        cfg: &NewtonConfig,
-        trig: &mut T,
-        into: &mut Kin<N, NI, NO>,
-    ) -> Result<(), Error> {
-        self.c().step_into(x, guess, cfg, trig, into)
-    }
+    compiled_kernel_body!();
 }
 
 impl<M, const N: usize, const NI: usize, const NO: usize, const NP: usize> SensKernel for CompiledSens<M, N, NI, NO, NP>
@@ -562,14 +498,7 @@ where
         Ok(f(&CompiledSens(self.0.with_params_flat(flat))))
     }
     fn sens(&self) -> Sens<N, NI, NO, NP> {
-        Sens {
-            q: [[0.0; NP]; N],
-            dq: [[[0.0; NP]; NI]; N],
-            d2q: [[[[0.0; NP]; NI]; NI]; N],
-            out: [[0.0; NP]; NO],
-            dout: [[[0.0; NP]; NI]; NO],
-            d2out: [[[[0.0; NP]; NI]; NI]; NO],
-        }
+        Sens::ZERO
     }
     #[inline]
     fn sensitivities_into(

@@ -34,16 +34,18 @@ pub struct Lu<const N: usize> {
 /// The reciprocals of the equilibration scales; a zero, negative, infinite or NaN scale, or a
 /// positive one so small that its reciprocal overflows (below `1 / f64::MAX`, about 5.6e-309),
 /// gives 0 and marks the factorisation `degenerate` (an infinite reciprocal would make a zero
-/// residual `0 * inf`, NaN). All the reciprocals are computed, and two tests
+/// residual `0 * inf`, NaN). All the reciprocals are computed, and one test of them
 /// ([`all_positive_finite`]) and one branch decide for the whole set: this runs for every row
 /// and column of every factorisation, dense or sparse, and the scales are almost always valid.
+/// The reciprocals alone tell: a zero scale gives infinity, a negative one (or `-0`) a negative
+/// reciprocal, NaN stays NaN, an infinite scale gives 0 and a tiny one overflows.
 #[inline(always)]
 pub(crate) fn inverses<const N: usize>(scale: [f64; N], degenerate: &mut bool) -> [f64; N] {
     let mut inv = [0.0; N];
     for k in 0..N {
         inv[k] = 1.0 / scale[k];
     }
-    if !all_positive_finite(&scale) || !all_positive_finite(&inv) {
+    if !all_positive_finite(&inv) {
         *degenerate = true;
         return invalid_inverses(scale);
     }
