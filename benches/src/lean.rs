@@ -121,8 +121,8 @@ pub const SCAN_SAMPLES: usize = 100;
 /// from their index, each swept over a turn in [`SCAN_SAMPLES`] samples from its declared
 /// guess, every sample's numbers added into one accumulator by the scan's fold: the sum over
 /// the designs. Its cost per sample against [`sweep_turns`] at `SCAN_SAMPLES - 1` steps a turn
-/// is the scan's cost per design (a new sweep, its first solve from the guess, the fold's copy
-/// of each state) spread over its samples.
+/// is the scan's cost per design (a new sweep and its first solve from the guess; the fold reads
+/// each state in place) spread over its samples.
 pub fn scan_designs<M: Mechanism<N, 1, NO>, const N: usize, const NO: usize>(
     design: impl Fn(usize) -> M,
     steps: usize,
