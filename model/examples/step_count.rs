@@ -23,7 +23,7 @@ use std::time::Instant;
 const TURN: usize = 720;
 
 fn compiled<M: Mechanism<N, NI, NO>, const N: usize, const NI: usize, const NO: usize>(m: &M, steps: usize) -> f64 {
-    let cfg = NewtonConfig::default();
+    let cfg = black_box(NewtonConfig::default());
     let mut q = m.guess_flat(&[0.0; NI]);
     let mut sum = 0.0;
     for k in 0..steps {
@@ -37,7 +37,7 @@ fn compiled<M: Mechanism<N, NI, NO>, const N: usize, const NI: usize, const NO: 
 }
 
 fn runtime(m: &mut Model, steps: usize) -> f64 {
-    let cfg = NewtonConfig::default();
+    let cfg = black_box(NewtonConfig::default());
     let ni = m.inputs().len();
     let mut q = vec![0.0; m.unknowns().len()];
     m.guess(&vec![0.0; ni], &mut q).expect("guess");

@@ -283,6 +283,11 @@ impl BlockProg {
     }
 
     /// Solves the block's positions; writes them into `q` and the registers.
+    ///
+    /// Inlined, as the velocity and acceleration below: the step's hot path, which the compiler
+    /// stopped inlining once the positions-only solve became a second caller (about 400
+    /// instructions a step more on the rhombic drive, callgrind).
+    #[inline(always)]
     pub(crate) fn position(
         &self,
         w: Work<'_>,
@@ -337,6 +342,7 @@ impl BlockProg {
     /// With `at` (the emitter's mode `At`: analogs at a position the caller gives, no position
     /// solve before), `at` is the segment to run, and every block but a fixed one factorises
     /// its Jacobian from the graph and tests it.
+    #[inline(always)]
     pub(crate) fn velocity(
         &self,
         b: usize,
@@ -384,6 +390,7 @@ impl BlockProg {
 
     /// The acceleration analogs `d2q[u * pairs + p]` on the velocity's factorisation.
     /// (With `at`, that segment instead of the step's: see [`BlockProg::velocity`].)
+    #[inline(always)]
     pub(crate) fn acceleration(&self, r: &mut [f64], d2q: &mut [f64], pairs: usize, fac: &Fac, at: Option<&Segment>) {
         at.unwrap_or(&self.acc).run(r);
         let _ = pairs;

@@ -589,6 +589,7 @@ impl Model {
     /// inputs, report and health reset first), after the arguments and settings are checked:
     /// the position half of [`Model::kinematics`] and all of [`Model::positions`], which asks
     /// the closed forms' lever tests (`lever_tests`) where the analogs would find the fault.
+    #[inline(always)]
     fn solve_positions(
         &mut self,
         x: &[f64],
