@@ -5,7 +5,7 @@
 use crate::at::Jacobian;
 use crate::blocks::StepFailure;
 use crate::model::{Model, State, StepError};
-use kinloop_runtime::dims::{Dims, JacBuf, KinBuf, Sizes};
+use kinloop_runtime::dims::{Dims, Heap, JacBuf, KinBuf, Sizes};
 use kinloop_runtime::generated::{
     BlockFailure, block_error, first_bad_value, first_non_finite_state, turns_culprit, turns_error,
 };
@@ -13,6 +13,7 @@ use kinloop_runtime::paths::sweep::SweepOf;
 use kinloop_runtime::{BlockInfo, Error, Kernel, Location, NewtonConfig, Quantity, QuantityKind, SweepConfig};
 use std::borrow::Cow;
 use std::cell::RefCell;
+use std::sync::Arc;
 
 /// A [`Model`] lent to the runtime's algorithms as a [`Kernel`] (see [`Model::kernel`]): the
 /// model's names, kinds and structure copied once, its kernels called through the model's own
@@ -20,19 +21,57 @@ use std::cell::RefCell;
 pub struct ModelKernel<'a> {
     model: RefCell<&'a mut Model>,
     jac: RefCell<Jacobian>,
-    sizes: Sizes,
-    name: String,
-    inputs: Vec<String>,
-    unknowns: Vec<String>,
-    outputs: Vec<String>,
-    input_kinds: Vec<QuantityKind>,
-    unknown_kinds: Vec<QuantityKind>,
-    output_kinds: Vec<QuantityKind>,
-    judged: Vec<usize>,
-    closed_form_angles: Vec<bool>,
-    block_rows_cols: Vec<(Vec<usize>, Vec<usize>)>,
-    block_infos: Vec<BlockInfo>,
-    config: SweepConfig,
+    info: Arc<Info>,
+}
+
+/// What a kernel over a model copies from it once: its names, kinds, structure and the solver
+/// configuration; and what a kernel does with a model it holds (its errors, its states copied
+/// out). Shared by the kernel lending one model ([`ModelKernel`]) and the one lending clones
+/// from a pool ([`SharedModelKernel`](crate::SharedModelKernel)).
+pub(crate) struct Info {
+    pub(crate) sizes: Sizes,
+    pub(crate) name: String,
+    pub(crate) params: Vec<String>,
+    pub(crate) inputs: Vec<String>,
+    pub(crate) unknowns: Vec<String>,
+    pub(crate) outputs: Vec<String>,
+    pub(crate) input_kinds: Vec<QuantityKind>,
+    pub(crate) unknown_kinds: Vec<QuantityKind>,
+    pub(crate) output_kinds: Vec<QuantityKind>,
+    pub(crate) judged: Vec<usize>,
+    pub(crate) closed_form_angles: Vec<bool>,
+    pub(crate) block_rows_cols: Vec<(Vec<usize>, Vec<usize>)>,
+    pub(crate) block_infos: Vec<BlockInfo>,
+    pub(crate) config: SweepConfig,
+}
+
+impl Info {
+    /// `model`'s names, kinds and structure, with the solver configuration `config`. Every
+    /// parameter must have a value (`Error::InvalidArgument` names the first that has none).
+    pub(crate) fn of(model: &Model, config: SweepConfig) -> Result<Info, Error> {
+        if let Some(k) = model.first_unset() {
+            let unset = StepError::UnsetParam(model.params()[k].to_string());
+            return Err(Error::InvalidArgument(format!("{unset}, in `{}`", model.name())));
+        }
+        config.validate()?;
+        let sizes = Sizes { n: model.unknowns().len(), ni: model.inputs().len(), no: model.outputs().len() };
+        Ok(Info {
+            sizes,
+            name: model.name().to_string(),
+            params: model.params().to_vec(),
+            inputs: model.inputs().to_vec(),
+            unknowns: model.unknowns().to_vec(),
+            outputs: model.outputs().to_vec(),
+            input_kinds: model.input_kinds().to_vec(),
+            unknown_kinds: model.unknown_kinds().to_vec(),
+            output_kinds: model.output_kinds().to_vec(),
+            judged: (0..sizes.n).filter(|&u| !model.followers[u]).collect(),
+            closed_form_angles: model.closed_form_angles.clone(),
+            block_rows_cols: model.block_rows_cols.clone(),
+            block_infos: model.block_infos.clone(),
+            config,
+        })
+    }
 }
 
 impl Model {
@@ -40,29 +79,8 @@ impl Model {
     /// generic algorithms. Every parameter must have a value (`Error::InvalidArgument` names
     /// the first that has none).
     pub fn kernel(&mut self, config: SweepConfig) -> Result<ModelKernel<'_>, Error> {
-        if let Some(k) = self.first_unset() {
-            let unset = StepError::UnsetParam(self.params()[k].to_string());
-            return Err(Error::InvalidArgument(format!("{unset}, in `{}`", self.name())));
-        }
-        config.validate()?;
-        let sizes = Sizes { n: self.unknowns().len(), ni: self.inputs().len(), no: self.outputs().len() };
-        Ok(ModelKernel {
-            sizes,
-            name: self.name().to_string(),
-            inputs: self.inputs().to_vec(),
-            unknowns: self.unknowns().to_vec(),
-            outputs: self.outputs().to_vec(),
-            input_kinds: self.input_kinds().to_vec(),
-            unknown_kinds: self.unknown_kinds().to_vec(),
-            output_kinds: self.output_kinds().to_vec(),
-            judged: (0..sizes.n).filter(|&u| !self.followers[u]).collect(),
-            closed_form_angles: self.closed_form_angles.clone(),
-            block_rows_cols: self.block_rows_cols.clone(),
-            block_infos: self.block_infos.clone(),
-            jac: RefCell::new(Jacobian::default()),
-            model: RefCell::new(self),
-            config,
-        })
+        let info = Arc::new(Info::of(self, config)?);
+        Ok(ModelKernel { model: RefCell::new(self), jac: RefCell::new(Jacobian::default()), info })
     }
 
     /// A lazy, branch-safe sweep of `samples` equally spaced inputs from `from` to `to` (both
@@ -107,7 +125,7 @@ impl Model {
     }
 }
 
-impl<'a> ModelKernel<'a> {
+impl Info {
     /// The error of a failed step of `m` at `x` from `guess` (`None`: at a given position), with
     /// the model's names: what the compiled mechanism's step returns for the same failure
     /// (`generated::block_failure`, `singular` and `non_finite`, the runtime's own), its
@@ -176,9 +194,13 @@ impl<'a> ModelKernel<'a> {
         Some(Error::NonFinite { what, name, value, at: self.location(x, None) })
     }
 
-    /// The model lent (the synthesis sets its parameters through it).
-    pub(crate) fn model(&self) -> &RefCell<&'a mut Model> {
-        &self.model
+    /// Where a step at `x` failed (in `block`): the model's name, its inputs and the block.
+    pub(crate) fn location(&self, x: &[f64], block: Option<usize>) -> Box<Location> {
+        Box::new(Location {
+            mechanism: Cow::Owned(self.name.clone()),
+            inputs: self.inputs.iter().map(|n| Cow::Owned(n.clone())).zip(x.iter().copied()).collect(),
+            block: block.and_then(|b| self.block_infos.get(b).cloned().map(|info| (b, info))),
+        })
     }
 
     /// The model's state into `into`.
@@ -212,96 +234,38 @@ impl<'a> ModelKernel<'a> {
             Err(e) => Err(self.error(m, e, x, guess, cfg)),
         }
     }
-}
 
-impl Kernel for ModelKernel<'_> {
-    type Dims = Sizes;
-    fn dims(&self) -> Sizes {
-        self.sizes
-    }
-    fn name(&self) -> &str {
-        &self.name
-    }
-    fn input_name(&self, i: usize) -> &str {
-        &self.inputs[i]
-    }
-    fn unknown_name(&self, u: usize) -> &str {
-        &self.unknowns[u]
-    }
-    fn output_name(&self, o: usize) -> &str {
-        &self.outputs[o]
-    }
-    fn input_kind(&self, i: usize) -> QuantityKind {
-        self.input_kinds[i]
-    }
-    fn unknown_kind(&self, u: usize) -> QuantityKind {
-        self.unknown_kinds[u]
-    }
-    fn output_kind(&self, o: usize) -> QuantityKind {
-        self.output_kinds[o]
-    }
-    fn block_count(&self) -> usize {
-        self.block_rows_cols.len()
-    }
-    /// The block's description with the model's own names (the compiled mechanism's
-    /// `BLOCKS`, owned).
-    fn block_info(&self, b: usize) -> Option<BlockInfo> {
-        self.block_infos.get(b).cloned()
-    }
-    fn block_rows_cols(&self, b: usize) -> Option<(Vec<usize>, Vec<usize>)> {
-        self.block_rows_cols.get(b).cloned()
-    }
-    fn judged(&self) -> &[usize] {
-        &self.judged
-    }
-    fn closed_form_angle(&self, u: usize) -> bool {
-        self.closed_form_angles[u]
-    }
-    fn location(&self, x: &[f64], block: Option<usize>) -> Box<Location> {
-        Box::new(Location {
-            mechanism: Cow::Owned(self.name.clone()),
-            inputs: self.inputs.iter().map(|n| Cow::Owned(n.clone())).zip(x.iter().copied()).collect(),
-            block: block.and_then(|b| self.block_info(b).map(|info| (b, info))),
-        })
-    }
-    fn solver_config(&self) -> SweepConfig {
-        self.config
-    }
-    /// The model's declared guess (`Model::guess`); NaN where it cannot be computed, which the
-    /// kernel's checks rule out (its parameters are set, `x` is of its size where an algorithm
-    /// checked it): a solve from it then fails, as from a compiled guess outside its domain.
-    fn guess(&self, x: &kinloop_runtime::dims::Heap) -> kinloop_runtime::dims::Heap {
+    /// `m`'s declared guess (`Model::guess`); NaN where it cannot be computed.
+    pub(crate) fn guess(&self, m: &mut Model, x: &Heap) -> Heap {
         let mut out = self.sizes.q();
-        if self.model.borrow_mut().guess(&x.0, &mut out.0).is_err() {
+        if m.guess(&x.0, &mut out.0).is_err() {
             out.0.fill(f64::NAN);
         }
         out
     }
-    fn kinematics(
+
+    /// `m`'s kinematics at `x` from `guess`, owned.
+    pub(crate) fn kinematics(
         &self,
-        x: &kinloop_runtime::dims::Heap,
-        guess: &kinloop_runtime::dims::Heap,
+        m: &mut Model,
+        x: &Heap,
+        guess: &Heap,
         cfg: &NewtonConfig,
     ) -> Result<KinBuf, Error> {
-        let mut m = self.model.borrow_mut();
         let st = m.kinematics(&x.0, &guess.0, cfg).map(drop);
-        self.owned(&m, st, &x.0, Some(&guess.0), cfg)
+        self.owned(m, st, &x.0, Some(&guess.0), cfg)
     }
-    fn kinematics_at(
-        &self,
-        x: &kinloop_runtime::dims::Heap,
-        q: &kinloop_runtime::dims::Heap,
-        cfg: &NewtonConfig,
-    ) -> Result<KinBuf, Error> {
-        let mut m = self.model.borrow_mut();
+
+    /// `m`'s kinematics at a given position `q`, owned.
+    pub(crate) fn kinematics_at(&self, m: &mut Model, x: &Heap, q: &Heap, cfg: &NewtonConfig) -> Result<KinBuf, Error> {
         let st = m.kinematics_at(&x.0, &q.0, cfg).map(drop);
-        self.owned(&m, st, &x.0, None, cfg)
+        self.owned(m, st, &x.0, None, cfg)
     }
-    fn jacobian(&self, x: &kinloop_runtime::dims::Heap, q: &kinloop_runtime::dims::Heap) -> JacBuf {
-        let mut m = self.model.borrow_mut();
-        let mut jac = self.jac.borrow_mut();
+
+    /// `m`'s residuals, Jacobians and magnitudes at `(x, q)`, through the scratch `jac`.
+    pub(crate) fn jacobian(&self, m: &mut Model, jac: &mut Jacobian, x: &Heap, q: &Heap) -> JacBuf {
         let mut out = JacBuf::zeros(self.sizes);
-        match m.jacobian(&x.0, &q.0, &mut jac) {
+        match m.jacobian(&x.0, &q.0, jac) {
             Ok(()) => {
                 out.f.copy_from_slice(&jac.f);
                 out.j.copy_from_slice(&jac.j);
@@ -316,23 +280,142 @@ impl Kernel for ModelKernel<'_> {
         }
         out
     }
-    /// The model's step (`Model::kinematics`, libm's sines and cosines: a run-time model has no
-    /// trigonometry cache) copied into `into`.
-    fn step_into<T: kinloop_runtime::generated::InputTrig>(
+
+    /// `m`'s step at `x` from `guess` copied into `into` (no allocation).
+    pub(crate) fn step_into(
         &self,
-        x: &kinloop_runtime::dims::Heap,
-        guess: &kinloop_runtime::dims::Heap,
+        m: &mut Model,
+        x: &Heap,
+        guess: &Heap,
         cfg: &NewtonConfig,
-        _trig: &mut T,
         into: &mut KinBuf,
     ) -> Result<(), Error> {
-        let mut m = self.model.borrow_mut();
         match m.kinematics(&x.0, &guess.0, cfg).map(drop) {
             Ok(()) => {
                 Self::copy_state(m.state(), into);
                 Ok(())
             }
-            Err(e) => Err(self.error(&m, e, &x.0, Some(&guess.0), cfg)),
+            Err(e) => Err(self.error(m, e, &x.0, Some(&guess.0), cfg)),
         }
     }
+}
+
+impl<'a> ModelKernel<'a> {
+    /// The model lent (the synthesis sets its parameters through it).
+    pub(crate) fn model(&self) -> &RefCell<&'a mut Model> {
+        &self.model
+    }
+
+    /// What the kernel copied from the model.
+    pub(crate) fn info(&self) -> &Info {
+        &self.info
+    }
+
+    /// `f` called with the model lent and the kernel's scratch Jacobian.
+    pub(crate) fn lend<R>(&self, f: impl FnOnce(&mut Model, &mut Jacobian) -> R) -> R {
+        f(&mut self.model.borrow_mut(), &mut self.jac.borrow_mut())
+    }
+}
+
+/// The body of the [`Kernel`] of a model, lent alone ([`ModelKernel`]) or from a pool of clones
+/// ([`SharedModelKernel`](crate::SharedModelKernel)): the names, kinds and structure from
+/// `self.info()`, every kernel called on the model `self.lend` gives.
+macro_rules! model_kernel_body {
+    () => {
+        type Dims = kinloop_runtime::dims::Sizes;
+        fn dims(&self) -> kinloop_runtime::dims::Sizes {
+            self.info().sizes
+        }
+        fn name(&self) -> &str {
+            &self.info().name
+        }
+        fn input_name(&self, i: usize) -> &str {
+            &self.info().inputs[i]
+        }
+        fn unknown_name(&self, u: usize) -> &str {
+            &self.info().unknowns[u]
+        }
+        fn output_name(&self, o: usize) -> &str {
+            &self.info().outputs[o]
+        }
+        fn input_kind(&self, i: usize) -> kinloop_runtime::QuantityKind {
+            self.info().input_kinds[i]
+        }
+        fn unknown_kind(&self, u: usize) -> kinloop_runtime::QuantityKind {
+            self.info().unknown_kinds[u]
+        }
+        fn output_kind(&self, o: usize) -> kinloop_runtime::QuantityKind {
+            self.info().output_kinds[o]
+        }
+        fn block_count(&self) -> usize {
+            self.info().block_rows_cols.len()
+        }
+        /// The block's description with the model's own names (the compiled mechanism's
+        /// `BLOCKS`, owned).
+        fn block_info(&self, b: usize) -> Option<kinloop_runtime::BlockInfo> {
+            self.info().block_infos.get(b).cloned()
+        }
+        fn block_rows_cols(&self, b: usize) -> Option<(Vec<usize>, Vec<usize>)> {
+            self.info().block_rows_cols.get(b).cloned()
+        }
+        fn judged(&self) -> &[usize] {
+            &self.info().judged
+        }
+        fn closed_form_angle(&self, u: usize) -> bool {
+            self.info().closed_form_angles[u]
+        }
+        fn location(&self, x: &[f64], block: Option<usize>) -> Box<kinloop_runtime::Location> {
+            self.info().location(x, block)
+        }
+        fn solver_config(&self) -> kinloop_runtime::SweepConfig {
+            self.info().config
+        }
+        /// The model's declared guess (`Model::guess`); NaN where it cannot be computed, which
+        /// the kernel's checks rule out (its parameters are set, `x` is of its size where an
+        /// algorithm checked it): a solve from it then fails, as from a compiled guess outside
+        /// its domain.
+        fn guess(&self, x: &kinloop_runtime::dims::Heap) -> kinloop_runtime::dims::Heap {
+            self.lend(|m, _| self.info().guess(m, x))
+        }
+        fn kinematics(
+            &self,
+            x: &kinloop_runtime::dims::Heap,
+            guess: &kinloop_runtime::dims::Heap,
+            cfg: &kinloop_runtime::NewtonConfig,
+        ) -> Result<kinloop_runtime::dims::KinBuf, kinloop_runtime::Error> {
+            self.lend(|m, _| self.info().kinematics(m, x, guess, cfg))
+        }
+        fn kinematics_at(
+            &self,
+            x: &kinloop_runtime::dims::Heap,
+            q: &kinloop_runtime::dims::Heap,
+            cfg: &kinloop_runtime::NewtonConfig,
+        ) -> Result<kinloop_runtime::dims::KinBuf, kinloop_runtime::Error> {
+            self.lend(|m, _| self.info().kinematics_at(m, x, q, cfg))
+        }
+        fn jacobian(
+            &self,
+            x: &kinloop_runtime::dims::Heap,
+            q: &kinloop_runtime::dims::Heap,
+        ) -> kinloop_runtime::dims::JacBuf {
+            self.lend(|m, jac| self.info().jacobian(m, jac, x, q))
+        }
+        /// The model's step (`Model::kinematics`, libm's sines and cosines: a run-time model
+        /// has no trigonometry cache) copied into `into`.
+        fn step_into<T: kinloop_runtime::generated::InputTrig>(
+            &self,
+            x: &kinloop_runtime::dims::Heap,
+            guess: &kinloop_runtime::dims::Heap,
+            cfg: &kinloop_runtime::NewtonConfig,
+            _trig: &mut T,
+            into: &mut kinloop_runtime::dims::KinBuf,
+        ) -> Result<(), kinloop_runtime::Error> {
+            self.lend(|m, _| self.info().step_into(m, x, guess, cfg, into))
+        }
+    };
+}
+pub(crate) use model_kernel_body;
+
+impl Kernel for ModelKernel<'_> {
+    model_kernel_body!();
 }

@@ -1,0 +1,215 @@
+//! A run-time model as a kernel that threads can share ([`SharedModelKernel`]): a model is one
+//! workspace (its registers and factorisations written by every step), so each evaluation
+//! checks a clone out of a pool, sets its parameters, runs on it alone and gives it back. What
+//! `Search::par_run` needs of a synthesis problem ([`Model::shared_synthesis_problem`]).
+//!
+//! A step's result depends on its parameters, inputs, guess and configuration only: the
+//! parameters' registers are written and the nodes of the parameters alone computed when they
+//! are set, and a step writes the inputs' registers, every block's factorisation and the state
+//! before reading them. So a clone checked out with the parameters of an evaluation computes what
+//! any other would, whatever it ran before (`tests/synthesis.rs`: a search on all cores equals
+//! the search one evaluation after another, bit for bit).
+
+use crate::at::Jacobian;
+use crate::mechanism::{Info, model_kernel_body};
+use crate::model::{Model, StepError};
+use crate::synthesis::{ModelSens, copy_sens, model_sens_body};
+use kinloop_runtime::dims::{Dims, Heap, KinBuf};
+use kinloop_runtime::{Error, Kernel, NewtonConfig, Quantity, SensKernel, SweepConfig};
+use std::borrow::Cow;
+use std::sync::atomic::{AtomicUsize, Ordering};
+use std::sync::{Arc, Mutex, MutexGuard, PoisonError};
+
+/// A [`Model`] as a [`Kernel`] (and, declared with `#[kinloop(sensitivities)]`, a
+/// [`SensKernel`]) that threads can share: `Send + Sync`, each evaluation run on a clone of the
+/// model checked out of a pool (made on demand, so at most one per evaluation running at a
+/// time) and given back after it. [`SensKernel::with_params`] checks out a clone with the
+/// parameters asked for, as a compiled mechanism's kernel gives `f` a copy with them; its other
+/// methods run on a clone with the kernel's own parameters, those of the model it was made from
+/// ([`Model::shared_kernel`]).
+///
+/// A clone whose evaluation panicked is dropped, not given back (its workspace may be half
+/// written); a failed evaluation's clone is given back, its parameters set anew by the next
+/// evaluation that checks it out.
+///
+/// ```
+/// use kinloop_model::Model;
+/// use kinloop_runtime::{Kernel, SensKernel, SweepConfig};
+/// let text = "#[kinloop(sensitivities)]
+/// pub struct SliderCrank {
+///     params r = 1, l = 3;
+///     input phi;
+///     unknowns beta = 0, s = 4;
+///     loop rod: r @ phi + l @ beta == (s, 0);
+/// }";
+/// let m = Model::read("slider_crank.kl", text).unwrap();
+/// let k = m.shared_kernel(SweepConfig::default()).unwrap();
+/// let x = kinloop_runtime::dims::Heap(vec![0.0].into());
+/// let guess = k.guess(&x);
+/// let cfg = kinloop_runtime::NewtonConfig::default();
+/// // Two threads, each with its own parameters, on one kernel.
+/// let (s1, s2) = std::thread::scope(|scope| {
+///     let run = |p: [f64; 2]| {
+///         let (k, x, guess, cfg) = (&k, &x, &guess, &cfg);
+///         scope.spawn(move || k.with_params(&p, |k| k.kinematics(x, guess, cfg).unwrap().q[1]).unwrap())
+///     };
+///     let (a, b) = (run([1.0, 3.0]), run([1.5, 4.0]));
+///     (a.join().unwrap(), b.join().unwrap())
+/// });
+/// assert!((s1 - 4.0).abs() < 1e-12 && (s2 - 5.5).abs() < 1e-12);
+/// ```
+pub struct SharedModelKernel {
+    info: Arc<Info>,
+    pool: Arc<Pool>,
+    /// The parameters every evaluation on this kernel runs with: the model's, or inside
+    /// `with_params` those it was called with.
+    params: Vec<f64>,
+    /// Inside `with_params`: the clone checked out for the call (a mutex, so that the kernel
+    /// handed to the call stays `Sync`; only that call's thread locks it, once per kernel call).
+    lent: Option<Mutex<Lent>>,
+}
+
+/// The clones of a model waiting to be checked out, and the model they are cloned from.
+struct Pool {
+    model: Model,
+    free: Mutex<Vec<Lent>>,
+    /// The clones made so far.
+    clones: AtomicUsize,
+}
+
+/// A clone of the model and its scratch Jacobian.
+#[derive(Clone)]
+struct Lent {
+    model: Model,
+    jac: Jacobian,
+}
+
+impl Pool {
+    /// The free list, also after a thread panicked while holding it (it only ever pushes or pops
+    /// a whole clone, so the list is whole).
+    fn free(&self) -> MutexGuard<'_, Vec<Lent>> {
+        self.free.lock().unwrap_or_else(PoisonError::into_inner)
+    }
+
+    /// A clone with the parameters `p` (one per parameter): a free one, or a new one.
+    fn check_out(&self, p: &[f64]) -> Lent {
+        let free = self.free().pop();
+        let mut lent = free.unwrap_or_else(|| {
+            self.clones.fetch_add(1, Ordering::Relaxed);
+            Lent { model: self.model.clone(), jac: Jacobian::default() }
+        });
+        let mut values: Vec<Option<f64>> = p.iter().copied().map(Some).collect();
+        lent.model.swap_params(&mut values);
+        lent
+    }
+}
+
+/// Gives the clone of `kernel` back to its pool when dropped: after the evaluation, not while
+/// it unwinds from a panic (the clone is dropped then).
+struct CheckedOut(SharedModelKernel);
+
+impl Drop for CheckedOut {
+    fn drop(&mut self) {
+        if let Some(lent) = self.0.lent.take()
+            && !std::thread::panicking()
+        {
+            let lent = lent.into_inner().unwrap_or_else(PoisonError::into_inner);
+            self.0.pool.free().push(lent);
+        }
+    }
+}
+
+impl Model {
+    /// This model as a [`Kernel`] that threads can share ([`SharedModelKernel`]), with the
+    /// solver configuration `config`: the model is cloned, each evaluation runs on a clone of
+    /// that. Every parameter must have a value (`Error::InvalidArgument` names the first that
+    /// has none).
+    pub fn shared_kernel(&self, config: SweepConfig) -> Result<SharedModelKernel, Error> {
+        let info = Arc::new(Info::of(self, config)?);
+        let params = self.param_values().iter().map(|v| v.unwrap_or(f64::NAN)).collect();
+        let pool = Arc::new(Pool { model: self.clone(), free: Mutex::new(Vec::new()), clones: AtomicUsize::new(0) });
+        Ok(SharedModelKernel { info, pool, params, lent: None })
+    }
+}
+
+impl SharedModelKernel {
+    /// How many clones of the model its pool has made so far (shared by this kernel's clones
+    /// and the kernels `with_params` hands out): the most evaluations that ran at the same
+    /// time, plus one for each evaluation that panicked (its clone is dropped). Each holds the
+    /// model's workspace.
+    pub fn clones(&self) -> usize {
+        self.pool.clones.load(Ordering::Relaxed)
+    }
+
+    /// What the kernel copied from the model.
+    fn info(&self) -> &Info {
+        &self.info
+    }
+
+    /// `f` called with a model of this kernel's parameters and a scratch Jacobian: the clone
+    /// checked out by `with_params`, or one checked out for the call.
+    fn lend<R>(&self, f: impl FnOnce(&mut Model, &mut Jacobian) -> R) -> R {
+        match &self.lent {
+            Some(lent) => {
+                let mut lent = lent.lock().unwrap_or_else(PoisonError::into_inner);
+                let Lent { model, jac } = &mut *lent;
+                f(model, jac)
+            }
+            None => {
+                let kernel = self.checked_out(&self.params);
+                kernel.0.lend(f)
+            }
+        }
+    }
+
+    /// A kernel over a clone checked out with the parameters `p`, given back when dropped.
+    fn checked_out(&self, p: &[f64]) -> CheckedOut {
+        let lent = self.pool.check_out(p);
+        CheckedOut(SharedModelKernel {
+            info: Arc::clone(&self.info),
+            pool: Arc::clone(&self.pool),
+            params: p.to_vec(),
+            lent: Some(Mutex::new(lent)),
+        })
+    }
+}
+
+/// A kernel of the same model and parameters (its evaluations on clones of the same pool).
+impl Clone for SharedModelKernel {
+    fn clone(&self) -> Self {
+        let (info, pool) = (Arc::clone(&self.info), Arc::clone(&self.pool));
+        SharedModelKernel { info, pool, params: self.params.clone(), lent: None }
+    }
+}
+
+impl Kernel for SharedModelKernel {
+    model_kernel_body!();
+}
+
+impl SensKernel for SharedModelKernel {
+    model_sens_body!();
+    /// The parameter's value (NaN where the model had none, which making the kernel rules out).
+    fn param(&self, k: usize) -> f64 {
+        self.params[k]
+    }
+    /// `f` called with a kernel over a clone of the model with the parameters `p`, checked out
+    /// of the pool for the call and given back after it (dropped where `f` panics): this kernel
+    /// and its parameters are never changed, so calls on other threads and nested calls each
+    /// have their own clone. `p` has one value per parameter (`Error::InvalidArgument`
+    /// otherwise).
+    fn with_params<R>(&self, p: &[f64], f: impl FnOnce(&Self) -> R) -> Result<R, Error> {
+        self.check_param_count(p)?;
+        let kernel = self.checked_out(p);
+        Ok(f(&kernel.0))
+    }
+}
+
+/// The kernel by its model's name and sizes (so that a problem over it is `Debug`, as a compiled
+/// `Problem` is: `unwrap_err` on its result).
+impl std::fmt::Debug for SharedModelKernel {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        let info = self.info();
+        let mut d = f.debug_struct("SharedModelKernel");
+        d.field("name", &info.name).field("sizes", &info.sizes).field("params", &self.params).finish_non_exhaustive()
+    }
+}
