@@ -14,7 +14,8 @@
 //! kinloop synth coupler_four_bar.kl --targets points.csv --path p --vary a=0.5..2,b=2..4 --starts 64
 //! ```
 //!
-//! Long sweeps (from 2000 samples) show a progress bar on standard error when it is a terminal.
+//! Long sweeps (from 2000 samples) and long searches (from 256 starts) show a progress bar on
+//! standard error when it is a terminal.
 //!
 //! Exit codes ([`exit`]): 0 success, 1 a solve failed (for `synth`: no valid candidate), 2 a usage error, 65 the declaration is
 //! rejected (diagnostics on standard error), 66 the file cannot be read, 69 the declaration uses
@@ -249,10 +250,10 @@ enum Command {
     },
     /// Dimensional synthesis: finds values of the design variables (`--vary`) for which the
     /// point `--path` passes through the targets, or the output of `--function` takes them, by
-    /// Levenberg–Marquardt from `--starts` Halton starts; verifies every candidate by a
-    /// branch-safe sweep through the targets in order, and writes the ranked candidates with
-    /// their defects (branch, circuit, order) as a table or CSV. Exit code 1 when no candidate
-    /// is valid. The declaration needs `#[kinloop(sensitivities)]`.
+    /// Levenberg–Marquardt from `--starts` Halton starts on all cores (`--jobs`); verifies every
+    /// candidate by a branch-safe sweep through the targets in order, and writes the ranked
+    /// candidates with their defects (branch, circuit, order) as a table or CSV. Exit code 1
+    /// when no candidate is valid. The declaration needs `#[kinloop(sensitivities)]`.
     Synth {
         /// The declaration (`.kl`), with `#[kinloop(sensitivities)]`.
         file: PathBuf,
@@ -283,6 +284,10 @@ enum Command {
         /// The number of ranked candidates written.
         #[arg(long, default_value_t = 10)]
         keep: usize,
+        /// Threads of the search (all cores by default); 1 runs the starts one after another.
+        /// The candidates are the same whatever the number.
+        #[arg(long, value_name = "N")]
+        jobs: Option<usize>,
         /// Angles in degrees (inputs, angle outputs, the range); otherwise radians.
         #[arg(long)]
         deg: bool,
@@ -353,8 +358,8 @@ fn run(cli: Cli) -> Result<(), Failed> {
                 animate::Request { from: &from, to: &to, samples, grid, deg, out: &out, format, show: &show, frames };
             animate::run(&mut model, &req)
         }
-        Command::Synth { file, targets, path, function, vary, range, starts, seed, keep, deg, params, csv } => {
-            let mut model = load(&file, params.as_deref())?;
+        Command::Synth { file, targets, path, function, vary, range, starts, seed, keep, jobs, deg, params, csv } => {
+            let model = load(&file, params.as_deref())?;
             let req = synth::Request {
                 targets: &targets,
                 path: path.as_deref(),
@@ -364,10 +369,11 @@ fn run(cli: Cli) -> Result<(), Failed> {
                 starts,
                 seed,
                 keep,
+                jobs,
                 deg,
                 csv,
             };
-            synth::run(&mut model, &req)
+            synth::run(&model, &req)
         }
     }
 }

@@ -8,10 +8,20 @@ use std::io::IsTerminal;
 /// finish in a blink, where a bar would only flicker.
 pub const MIN_SAMPLES: usize = 2000;
 
+/// Starts from which a synthesis search's progress is shown: each is a local solve and a
+/// verifying sweep, a few milliseconds; fewer finish within a second or two on all cores.
+pub const MIN_STARTS: usize = 256;
+
 /// A bar of `len` steps (samples, then columns) titled `what`, or a hidden one where standard
 /// error is not a terminal or `samples` is below [`MIN_SAMPLES`].
 pub fn bar(what: &str, len: usize, samples: usize) -> ProgressBar {
-    if samples < MIN_SAMPLES || !std::io::stderr().is_terminal() {
+    bar_if(samples >= MIN_SAMPLES, what, len)
+}
+
+/// A bar of `len` steps titled `what` where the work is `long` and standard error is a
+/// terminal; a hidden one otherwise.
+pub fn bar_if(long: bool, what: &str, len: usize) -> ProgressBar {
+    if !long || !std::io::stderr().is_terminal() {
         return ProgressBar::hidden();
     }
     let bar = ProgressBar::with_draw_target(Some(len as u64), ProgressDrawTarget::stderr());

@@ -1,11 +1,13 @@
 //! `kinloop synth`: dimensional synthesis of a declaration read at run time, the library's
 //! synthesis (`kinloop_runtime::synthesis`: Levenberg–Marquardt from Halton starts on the exact
 //! Jacobian, every candidate verified by a branch-safe sweep through the targets) over the
-//! model (`Model::synthesis_problem`). The targets come from a CSV file: points of a path
-//! (`x,y`, or `input,x,y` at given inputs) or pairs of a function (`input,output`). The ranked
-//! candidates are written as a table or as CSV, each with its defects.
+//! model (`Model::shared_synthesis_problem`), on all cores (`Search::par_run`, each
+//! evaluation on a clone of the model; the same candidates as one start after another,
+//! `--jobs 1`). The targets come from a CSV file: points of a path (`x,y`, or `input,x,y` at
+//! given inputs) or pairs of a function (`input,output`). The ranked candidates are written as
+//! a table or as CSV, each with its defects.
 
-use crate::{Failed, exit};
+use crate::{Failed, exit, progress};
 use kinloop_model::Model;
 use kinloop_runtime::QuantityKind;
 use kinloop_runtime::synthesis::{Candidate, Defect, Design, Search, SynthesisError, SynthesisReport, Task};
@@ -32,6 +34,8 @@ pub struct Request<'a> {
     pub seed: u64,
     /// Candidates kept.
     pub keep: usize,
+    /// Threads of the search (`None`: all cores; 1: one start after another).
+    pub jobs: Option<usize>,
     /// Angles in degrees (inputs, angle outputs, the range); otherwise radians.
     pub deg: bool,
     /// CSV instead of a table.
@@ -40,17 +44,33 @@ pub struct Request<'a> {
 
 /// Runs the search and writes its ranked candidates: success when one is valid, exit code 1
 /// when none is.
-pub fn run(model: &mut Model, req: &Request) -> Result<(), Failed> {
+pub fn run(model: &Model, req: &Request) -> Result<(), Failed> {
     if req.keep == 0 {
         return Err(exit::usage("--keep 0 would write no candidate: keep at least 1"));
+    }
+    if req.jobs == Some(0) {
+        return Err(exit::usage("--jobs 0 would run no start: give at least 1"));
     }
     let design = design(req.vary)?;
     let rows = read_targets(req.targets)?;
     let task = task(model, req, &rows)?;
     let name = model.name().to_string();
-    let problem = model.synthesis_problem(&design, &task).map_err(|e| problem_error(&name, e))?;
+    let problem = model.shared_synthesis_problem(&design, &task).map_err(|e| problem_error(&name, e))?;
     let search = Search::default().with_starts(0..req.starts).with_seed(req.seed).with_keep(req.keep);
-    let report = search.run(&problem).map_err(|e| problem_error(&name, e))?;
+    let bar = progress::bar_if(req.starts >= progress::MIN_STARTS, &format!("{name}: searching"), req.starts);
+    let tick = |_: usize, _: usize| bar.inc(1);
+    let report = match req.jobs {
+        Some(1) => search.run_with_progress(&problem, tick),
+        // A pool of its own: `--jobs N` threads.
+        Some(n) => match rayon::ThreadPoolBuilder::new().num_threads(n).build() {
+            Ok(pool) => pool.install(|| search.par_run_with_progress(&problem, tick)),
+            Err(e) => return Err(exit::usage(format!("--jobs {n}: cannot start the threads: {e}"))),
+        },
+        // Rayon's global pool: all cores.
+        None => search.par_run_with_progress(&problem, tick),
+    };
+    bar.finish_and_clear();
+    let report = report.map_err(|e| problem_error(&name, e))?;
     let text = if req.csv { csv(&report) } else { table(&report) };
     let mut out = std::io::stdout().lock();
     if out.write_all(text.as_bytes()).and_then(|()| out.flush()).is_err() {

@@ -1,8 +1,8 @@
 //! `kinloop synth` end to end: the built binary on the shipped `coupler_four_bar.kl`, with
 //! targets computed here in closed form from known dimensions; its CSV parsed and compared
 //! with the library's search over the same model (the same candidates, to the bit: values are
-//! written in full precision) and with the known dimensions; its table, usage errors and exit
-//! codes.
+//! written in full precision) and with the known dimensions, on all cores and with `--jobs`;
+//! its table, usage errors and exit codes.
 
 mod common;
 
@@ -110,6 +110,30 @@ fn path_synthesis_recovers_the_four_bar_and_equals_the_library() {
         let parsed: Vec<f64> = row[3..9].iter().map(|v| v.parse().unwrap()).collect();
         assert_eq!(parsed, c.values, "bit for bit");
         assert_eq!(row[1], c.start.to_string());
+        assert_eq!(row[11], c.local.evaluations.to_string());
+    }
+    // The search on all cores (above), one start after another, and on three threads: the same
+    // output, byte for byte.
+    for jobs in ["1", "3"] {
+        let again = kinloop(&[
+            "synth",
+            &file,
+            "--targets",
+            &targets,
+            "--path",
+            "p",
+            "--deg",
+            "--vary",
+            VARY,
+            "--starts",
+            "12",
+            "--csv",
+            "--jobs",
+            jobs,
+        ]);
+        assert_eq!(again.status.code(), Some(0), "{}", String::from_utf8_lossy(&again.stderr));
+        assert_eq!(again.stdout, out.stdout, "--jobs {jobs}");
+        assert_eq!(again.stderr, out.stderr, "--jobs {jobs}: the summary");
     }
 }
 
@@ -173,6 +197,9 @@ fn usage_errors_and_no_candidate_have_their_exit_codes() {
     let o = run(&["--path", "q", "--deg", "--vary", "a=1..2"]);
     assert_eq!(o.status.code(), Some(2));
     assert!(stderr(&o).contains("`q.x` is no unknown or output column"), "{}", stderr(&o));
+    let o = run(&["--path", "p", "--deg", "--vary", "a=1..2", "--jobs", "0"]);
+    assert_eq!(o.status.code(), Some(2));
+    assert!(stderr(&o).contains("--jobs 0"), "{}", stderr(&o));
     // A declaration without sensitivities.
     let o = kinloop(&[
         "synth",
