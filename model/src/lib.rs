@@ -124,8 +124,13 @@
 //! `Kernel` with parameters to set and the sensitivities of its states), which the model's
 //! kernel implements; [`Model::synthesis_problem`] gives the problem ([`ModelProblem`]) that
 //! `Search::run` solves with the compiled mechanism's code, to the same candidates bit for bit
-//! (`tests/synthesis.rs`). A search over a model runs one evaluation after the other (`par_run`
-//! needs a problem shared between threads; a model is one workspace).
+//! (`tests/synthesis.rs`). That problem lends the model, one evaluation after the other (a
+//! model is one workspace); [`Model::shared_synthesis_problem`] gives one that threads can share
+//! ([`SharedModelProblem`], over a [`SharedModelKernel`]: each evaluation checks a clone of the
+//! model out of a pool, with the parameters of its point, and gives it back), which
+//! `Search::par_run` runs on all cores with `Search::run`'s report, bit for bit, and the compiled
+//! mechanism's `par_run`'s (a step's result depends on its parameters, inputs, guess and
+//! configuration alone, not on what the clone ran before).
 //!
 //! The objectives with parameter gradients (`extremum_with_gradient`, `integral_with_gradient`)
 //! are written once over `SampledOf` for any `SensKernel` too: a [`ModelSampled`] of a model

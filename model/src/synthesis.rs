@@ -4,7 +4,10 @@
 //! `Problem::new`'s counterpart; the search (`Search::run`), the local solve and the
 //! verification by branch-safe sweeps are the compiled mechanism's code. Where the model's
 //! states equal the compiled mechanism's bit for bit (its kinematics and sensitivities do, on
-//! the same operations), so do the candidates (`tests/synthesis.rs`).
+//! the same operations), so do the candidates (`tests/synthesis.rs`). The problem lends the
+//! model, one evaluation after the other; [`Model::shared_synthesis_problem`] gives one that
+//! threads can share (each evaluation on a clone of the model: `crate::shared`), for
+//! `Search::par_run`, with the same report.
 
 use crate::mechanism::{Info, ModelKernel};
 use crate::model::{Model, State, StepError};
