@@ -78,7 +78,6 @@ struct Pool {
 }
 
 /// A clone of the model and its scratch Jacobian.
-#[derive(Clone)]
 struct Lent {
     model: Model,
     jac: Jacobian,
@@ -98,24 +97,21 @@ impl Pool {
             self.clones.fetch_add(1, Ordering::Relaxed);
             Lent { model: self.model.clone(), jac: Jacobian::default() }
         });
-        let mut values: Vec<Option<f64>> = p.iter().copied().map(Some).collect();
-        lent.model.swap_params(&mut values);
+        // Loaded unless the clone holds them already, to the bit: the kernel's own evaluations
+        // outside `with_params` (a sweep's steps) then neither allocate nor load anything.
+        let held = lent.model.param_values().iter().zip(p).all(|(v, p)| v.map(f64::to_bits) == Some(p.to_bits()));
+        if !held {
+            let mut values: Vec<Option<f64>> = p.iter().copied().map(Some).collect();
+            lent.model.swap_params(&mut values);
+        }
         lent
     }
-}
 
-/// Gives the clone of `kernel` back to its pool when dropped: after the evaluation, not while
-/// it unwinds from a panic (the clone is dropped then).
-struct CheckedOut(SharedModelKernel);
-
-impl Drop for CheckedOut {
-    fn drop(&mut self) {
-        if let Some(lent) = self.0.lent.take()
-            && !std::thread::panicking()
-        {
-            let lent = lent.into_inner().unwrap_or_else(PoisonError::into_inner);
-            self.0.pool.free().push(lent);
-        }
+    /// Gives `lent` back after its evaluation. (A clone whose evaluation panicked is never
+    /// given back: it is dropped while the panic unwinds, for the panic may have stopped a step
+    /// half way through its workspace.)
+    fn give_back(&self, lent: Lent) {
+        self.free().push(lent);
     }
 }
 
@@ -156,21 +152,12 @@ impl SharedModelKernel {
                 f(model, jac)
             }
             None => {
-                let kernel = self.checked_out(&self.params);
-                kernel.0.lend(f)
+                let mut lent = self.pool.check_out(&self.params);
+                let r = f(&mut lent.model, &mut lent.jac);
+                self.pool.give_back(lent);
+                r
             }
         }
-    }
-
-    /// A kernel over a clone checked out with the parameters `p`, given back when dropped.
-    fn checked_out(&self, p: &[f64]) -> CheckedOut {
-        let lent = self.pool.check_out(p);
-        CheckedOut(SharedModelKernel {
-            info: Arc::clone(&self.info),
-            pool: Arc::clone(&self.pool),
-            params: p.to_vec(),
-            lent: Some(Mutex::new(lent)),
-        })
     }
 }
 
@@ -199,8 +186,14 @@ impl SensKernel for SharedModelKernel {
     /// otherwise).
     fn with_params<R>(&self, p: &[f64], f: impl FnOnce(&Self) -> R) -> Result<R, Error> {
         self.check_param_count(p)?;
-        let kernel = self.checked_out(p);
-        Ok(f(&kernel.0))
+        let lent = self.pool.check_out(p);
+        let (info, pool) = (Arc::clone(&self.info), Arc::clone(&self.pool));
+        let kernel = SharedModelKernel { info, pool, params: p.to_vec(), lent: Some(Mutex::new(lent)) };
+        let r = f(&kernel);
+        if let Some(lent) = kernel.lent {
+            self.pool.give_back(lent.into_inner().unwrap_or_else(PoisonError::into_inner));
+        }
+        Ok(r)
     }
 }
 

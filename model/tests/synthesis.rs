@@ -290,9 +290,11 @@ fn a_failing_or_panicking_evaluation_leaves_the_pool_whole() {
     // A wrong parameter count: refused before a clone is checked out.
     let e = k.with_params(&[1.0; 7], |_| unreachable!("not called with a wrong length")).unwrap_err();
     assert!(matches!(&e, Error::InvalidArgument(m) if m.contains("7 parameter values")), "{e}");
-    // The kernel's own parameters never changed, and its own evaluations use them.
+    // The kernel's own parameters never changed, and its own evaluations use them (on the
+    // clone in the pool, last checked out with other parameters: no new clone).
     assert_eq!(params(&k), declared);
     let own = state_and_sens(&k).unwrap();
+    assert_eq!(k.clones(), 2);
     assert!(
         own.1.iter().zip(coupler_point(declared.clone().try_into().unwrap(), 0.7)).all(|(g, w)| (g - w).abs() <= 1e-12)
     );
@@ -329,4 +331,22 @@ fn concurrent_evaluations_each_run_on_their_own_clone_with_their_own_parameters(
         // Coordinates of size ~3, one position solve to rounding: 1e-12.
         assert!(got.iter().zip(want).all(|(g, w)| (g - w).abs() <= 1e-12), "{p:?}: {got:?} vs {want:?}");
     }
+}
+
+#[test]
+fn a_shared_kernel_sweeps_as_the_lent_model_does() {
+    use kinloop_runtime::dims::Heap;
+    use kinloop_runtime::paths::sweep::SweepOf;
+    let mut model = read(COUPLER_TEXT);
+    let k = model.shared_kernel(kinloop::SweepConfig::default()).unwrap();
+    let v = |s: &[f64]| Heap(s.into());
+    let (from, to, guess) = ([0.0], [std::f64::consts::TAU], [0.5, 1.5]);
+    let sweep: SweepOf<_, kinloop_runtime::dims::KinBuf> =
+        SweepOf::over(k.clone(), v(&from), v(&to), 73, v(&guess)).unwrap();
+    let shared = sweep.table().unwrap();
+    let lent = model.sweep(&from, &to, 73, &guess).unwrap().table().unwrap();
+    // The same steps on the same operations: every column equal to the bit.
+    assert_eq!(shared, lent);
+    // Every step on the one clone, its parameters loaded once.
+    assert_eq!(k.clones(), 1);
 }
