@@ -13,7 +13,6 @@ use kinloop_runtime::paths::sweep::SweepOf;
 use kinloop_runtime::{BlockInfo, Error, Kernel, Location, NewtonConfig, Quantity, QuantityKind, SweepConfig};
 use std::borrow::Cow;
 use std::cell::RefCell;
-use std::sync::Arc;
 
 /// A [`Model`] lent to the runtime's algorithms as a [`Kernel`] (see [`Model::kernel`]): the
 /// model's names, kinds and structure copied once, its kernels called through the model's own
@@ -21,7 +20,7 @@ use std::sync::Arc;
 pub struct ModelKernel<'a> {
     model: RefCell<&'a mut Model>,
     jac: RefCell<Jacobian>,
-    info: Arc<Info>,
+    info: Info,
 }
 
 /// What a kernel over a model copies from it once: its names, kinds, structure and the solver
@@ -79,7 +78,7 @@ impl Model {
     /// generic algorithms. Every parameter must have a value (`Error::InvalidArgument` names
     /// the first that has none).
     pub fn kernel(&mut self, config: SweepConfig) -> Result<ModelKernel<'_>, Error> {
-        let info = Arc::new(Info::of(self, config)?);
+        let info = Info::of(self, config)?;
         Ok(ModelKernel { model: RefCell::new(self), jac: RefCell::new(Jacobian::default()), info })
     }
 

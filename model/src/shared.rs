@@ -66,13 +66,15 @@ pub struct SharedModelKernel {
     params: Vec<f64>,
     /// Inside `with_params`: the clone checked out for the call (a mutex, so that the kernel
     /// handed to the call stays `Sync`; only that call's thread locks it, once per kernel call).
-    lent: Option<Mutex<Lent>>,
+    lent: Option<Mutex<Box<Lent>>>,
 }
 
 /// The clones of a model waiting to be checked out, and the model they are cloned from.
 struct Pool {
     model: Model,
-    free: Mutex<Vec<Lent>>,
+    /// Boxed: a model is kilobytes, moved in and out of the list on every call.
+    #[allow(clippy::vec_box)]
+    free: Mutex<Vec<Box<Lent>>>,
     /// The clones made so far.
     clones: AtomicUsize,
 }
@@ -86,16 +88,17 @@ struct Lent {
 impl Pool {
     /// The free list, also after a thread panicked while holding it (it only ever pushes or pops
     /// a whole clone, so the list is whole).
-    fn free(&self) -> MutexGuard<'_, Vec<Lent>> {
+    #[allow(clippy::vec_box)] // see `Pool::free`
+    fn free(&self) -> MutexGuard<'_, Vec<Box<Lent>>> {
         self.free.lock().unwrap_or_else(PoisonError::into_inner)
     }
 
     /// A clone with the parameters `p` (one per parameter): a free one, or a new one.
-    fn check_out(&self, p: &[f64]) -> Lent {
+    fn check_out(&self, p: &[f64]) -> Box<Lent> {
         let free = self.free().pop();
         let mut lent = free.unwrap_or_else(|| {
             self.clones.fetch_add(1, Ordering::Relaxed);
-            Lent { model: self.model.clone(), jac: Jacobian::default() }
+            Box::new(Lent { model: self.model.clone(), jac: Jacobian::default() })
         });
         // Loaded unless the clone holds them already, to the bit: the kernel's own evaluations
         // outside `with_params` (a sweep's steps) then neither allocate nor load anything.
@@ -110,7 +113,7 @@ impl Pool {
     /// Gives `lent` back after its evaluation. (A clone whose evaluation panicked is never
     /// given back: it is dropped while the panic unwinds, for the panic may have stopped a step
     /// half way through its workspace.)
-    fn give_back(&self, lent: Lent) {
+    fn give_back(&self, lent: Box<Lent>) {
         self.free().push(lent);
     }
 }
@@ -148,7 +151,7 @@ impl SharedModelKernel {
         match &self.lent {
             Some(lent) => {
                 let mut lent = lent.lock().unwrap_or_else(PoisonError::into_inner);
-                let Lent { model, jac } = &mut *lent;
+                let Lent { model, jac } = &mut **lent;
                 f(model, jac)
             }
             None => {
@@ -190,8 +193,10 @@ impl SensKernel for SharedModelKernel {
         let (info, pool) = (Arc::clone(&self.info), Arc::clone(&self.pool));
         let kernel = SharedModelKernel { info, pool, params: p.to_vec(), lent: Some(Mutex::new(lent)) };
         let r = f(&kernel);
-        if let Some(lent) = kernel.lent {
-            self.pool.give_back(lent.into_inner().unwrap_or_else(PoisonError::into_inner));
+        // A clone whose step panicked (its lock poisoned, the panic caught inside `f`) is
+        // dropped, as one whose `f` unwinds is.
+        if let Some(Ok(lent)) = kernel.lent.map(Mutex::into_inner) {
+            self.pool.give_back(lent);
         }
         Ok(r)
     }
