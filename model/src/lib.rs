@@ -160,6 +160,8 @@ mod closed;
 mod drawing;
 mod dynamics;
 mod factor;
+mod finite;
+mod gather;
 mod levers;
 mod mechanism;
 mod model;
