@@ -4,10 +4,11 @@
 
 use crate::closed::ClosedProg;
 use crate::factor::{Fac, MAX_DENSE, max_abs};
+use crate::levers::Levers;
 use crate::newton::{self, NewtonProg};
 use crate::tape::Segment;
 use kinloop_runtime::NewtonConfig;
-use kinloop_runtime::generated::{BlockFailure, Health, SolveReport};
+use kinloop_runtime::generated::{BlockFailure, Factor, Fixed, Health, Inverse2, Lu, SolveReport};
 
 /// Why a step failed in a block.
 #[derive(Clone, Copy, Debug, PartialEq)]
@@ -36,6 +37,61 @@ pub(crate) enum How {
     Newton(NewtonProg),
 }
 
+/// Where a block's analogs take their factorisation from and whether they test it, decided when
+/// the model is built (from the block's solve and size), so that the step matches once per
+/// block and stage instead of on the solve, the size and the factorisation's kind in turn.
+#[derive(Clone, Copy, Debug)]
+pub(crate) enum Analog {
+    /// A constant coefficient (the block's slot holds it from the build on): not tested.
+    Fixed(Fixed),
+    /// One unknown whose entry is among its column's entries: `Lu::<1>::factor_in_col` from
+    /// the graph, tested.
+    InCol,
+    /// One unknown factorised by the position solve (a linear block): not tested again.
+    KeptOne,
+    /// Two unknowns: the 2x2 inverse from the graph (`Inverse2::in_cols_floored`), tested.
+    Two,
+    /// Factorised from the graph by the emitter's rule for its size, tested.
+    Graph,
+    /// Factorised by the position solve (a linear block of two unknowns or more): not tested
+    /// again.
+    Kept,
+    /// A Newton block's Jacobian factorised by columns, tested.
+    Cols,
+    /// A Newton block whose final correction's factorisation is kept, tested.
+    NewtonLu,
+}
+
+impl Analog {
+    /// The analogs of a step (`at`: of an evaluation at a given position, where every block but
+    /// a fixed one factorises its Jacobian from the graph) for a block of `n` unknowns solved
+    /// as `how`, `in_col` when its one entry is among its column's.
+    pub(crate) fn of(how: &How, n: usize, in_col: bool, at: bool) -> Analog {
+        match (how, at) {
+            (How::Fixed { coefficient, .. }, _) => Analog::Fixed(Fixed(*coefficient)),
+            (_, true) | (How::Closed(_), false) => match (n, in_col) {
+                (1, true) => Analog::InCol,
+                (2, _) => Analog::Two,
+                _ => Analog::Graph,
+            },
+            (How::Linear { .. }, false) => {
+                if n == 1 {
+                    Analog::KeptOne
+                } else {
+                    Analog::Kept
+                }
+            }
+            (How::Newton(p), false) => {
+                if p.keeps_lu {
+                    Analog::NewtonLu
+                } else {
+                    Analog::Cols
+                }
+            }
+        }
+    }
+}
+
 /// One block of the step.
 #[derive(Clone)]
 pub(crate) struct BlockProg {
@@ -53,8 +109,9 @@ pub(crate) struct BlockProg {
     pub(crate) col: Vec<Vec<u32>>,
     /// Per column: its lever floors only.
     pub(crate) floors: Vec<Vec<u32>>,
-    /// Per column: its entries beyond the block (rows of later blocks).
-    pub(crate) beyond: Vec<Vec<u32>>,
+    /// A block of two unknowns whose columns have entries beyond the block (rows of later
+    /// blocks): per column, those entries.
+    pub(crate) beyond: Option<[Vec<u32>; 2]>,
     /// A 1x1 block whose entry is among its column's entries: the position of the entry there.
     pub(crate) in_col: Option<usize>,
     pub(crate) vel: Segment,
@@ -69,18 +126,21 @@ pub(crate) struct BlockProg {
     pub(crate) vel_cols: Columns,
     /// The acceleration analogs' solves.
     pub(crate) acc_cols: Columns,
+    /// The analogs' factorisation in a step.
+    pub(crate) analog: Analog,
+    /// The analogs' factorisation at a given position.
+    pub(crate) analog_at: Analog,
 }
 
 /// The right-hand sides of a block's analog solves, one column per input (or input pair), as
-/// flat tables made once: per column `c` and block row or unknown `k` (index `c * n + k`), the
-/// register of the right-hand side, the place of the solution in the state's array, and the
+/// one flat table made once: per column `c` and block row or unknown `k` (entry `c * n + k`),
+/// the register of the right-hand side, the place of the solution in the state's array, and the
 /// register the solution is written to (the scratch register when no node reads it). The hot
 /// loop then has no nested index arithmetic and no branch per value.
 #[derive(Clone, Debug, Default)]
 pub(crate) struct Columns {
-    src: Vec<u32>,
-    dst: Vec<u32>,
-    reg: Vec<u32>,
+    /// `[right-hand side's register, place in the state's array, solution's register]`.
+    t: Vec<[u32; 3]>,
 }
 
 impl Columns {
@@ -89,15 +149,13 @@ impl Columns {
     /// written in place of a missing one.
     pub(crate) fn new(unknowns: &[usize], cols: usize, rows: &[u32], regs: &[Option<u32>], scratch: u32) -> Columns {
         let n = unknowns.len();
-        let mut t = Columns::default();
+        let mut t = Vec::with_capacity(cols * n);
         for c in 0..cols {
             for k in 0..n {
-                t.src.push(rows[k * cols + c]);
-                t.dst.push((unknowns[k] * cols + c) as u32);
-                t.reg.push(regs[k * cols + c].unwrap_or(scratch));
+                t.push([rows[k * cols + c], (unknowns[k] * cols + c) as u32, regs[k * cols + c].unwrap_or(scratch)]);
             }
         }
-        t
+        Columns { t }
     }
 
     /// Solves every column on `fac` and writes the solutions into `out` and the registers.
@@ -111,37 +169,65 @@ impl Columns {
     }
 
     /// [`Columns::solve`] for one unknown: the runtime's 1x1 solve on each value, no gathering.
-    /// The factorisation's kind is matched once, not per value; inlined in the block's step (a
-    /// call per block and stage cost more than the division).
+    /// The factorisation's kind is matched once, not per value.
     #[inline(always)]
     fn solve1(&self, r: &mut [f64], fac: &Fac, out: &mut [f64]) {
         match fac {
-            Fac::Fixed(f) => {
-                let c = f.0;
-                // `Fixed::solve`: one division.
-                self.each1(r, out, |b| b / c)
-            }
-            Fac::L1(lu) => self.each1(r, out, |b| lu.solve([b])[0]),
+            Fac::Fixed(f) => self.fixed(*f, r, out),
+            Fac::L1(lu) => self.lu1(lu, r, out),
             other => self.each1(r, out, |b| other.solve1(b)),
+        }
+    }
+
+    /// [`Columns::solve`] on a constant coefficient (`Fixed::solve`: one division).
+    #[inline(always)]
+    fn fixed(&self, f: Fixed, r: &mut [f64], out: &mut [f64]) {
+        let c = f.0;
+        self.each1(r, out, |b| b / c)
+    }
+
+    /// [`Columns::solve`] on a 1x1 LU (`Lu::<1>::solve`: one multiplication).
+    #[inline(always)]
+    fn lu1(&self, lu: &Lu<1>, r: &mut [f64], out: &mut [f64]) {
+        self.each1(r, out, |b| lu.solve([b])[0])
+    }
+
+    /// [`Columns::solve`] on a 2x2 inverse, inlined in the block's step.
+    #[inline(always)]
+    fn two(&self, inv: &Inverse2, r: &mut [f64], out: &mut [f64]) {
+        if let [[s0, d0, g0], [s1, d1, g1]] = self.t[..] {
+            // One column (one input): no loop, whose set-up costs more than its one pass.
+            let z = inv.solve([r[s0 as usize], r[s1 as usize]]);
+            out[d0 as usize] = z[0];
+            out[d1 as usize] = z[1];
+            r[g0 as usize] = z[0];
+            r[g1 as usize] = z[1];
+            return;
+        }
+        for t in self.t.chunks_exact(2) {
+            let ([s0, d0, g0], [s1, d1, g1]) = (t[0], t[1]);
+            let z = inv.solve([r[s0 as usize], r[s1 as usize]]);
+            out[d0 as usize] = z[0];
+            out[d1 as usize] = z[1];
+            r[g0 as usize] = z[0];
+            r[g1 as usize] = z[1];
         }
     }
 
     /// `z = solve(rhs)` for each value of a block of one unknown.
     #[inline(always)]
     fn each1(&self, r: &mut [f64], out: &mut [f64], solve: impl Fn(f64) -> f64) {
-        if let ([s], [d], [g]) = (&self.src[..], &self.dst[..], &self.reg[..]) {
+        if let [[s, d, g]] = self.t[..] {
             // One value (one input): no loop.
-            let z = solve(r[*s as usize]);
-            out[*d as usize] = z;
-            r[*g as usize] = z;
+            let z = solve(r[s as usize]);
+            out[d as usize] = z;
+            r[g as usize] = z;
             return;
         }
-        let n = self.src.len();
-        let (dst, reg) = (&self.dst[..n], &self.reg[..n]);
-        for k in 0..n {
-            let z = solve(r[self.src[k] as usize]);
-            out[dst[k] as usize] = z;
-            r[reg[k] as usize] = z;
+        for &[s, d, g] in &self.t {
+            let z = solve(r[s as usize]);
+            out[d as usize] = z;
+            r[g as usize] = z;
         }
     }
 
@@ -150,7 +236,7 @@ impl Columns {
     /// theirs. No array of the largest size is zeroed for a small block.
     #[inline(never)]
     fn solve_n(&self, n: usize, r: &mut [f64], fac: &Fac, out: &mut [f64]) {
-        if let (2, [s0, s1], [d0, d1], [g0, g1]) = (n, &self.src[..], &self.dst[..], &self.reg[..]) {
+        if let (2, [[s0, d0, g0], [s1, d1, g1]]) = (n, &self.t[..]) {
             // One column (one input): no loop, whose set-up costs more than its one pass.
             let z = fac.solve2([r[*s0 as usize], r[*s1 as usize]]);
             out[*d0 as usize] = z[0];
@@ -158,14 +244,13 @@ impl Columns {
             r[*g0 as usize] = z[0];
             r[*g1 as usize] = z[1];
         } else if n == 2 {
-            for ((src, dst), reg) in
-                self.src.chunks_exact(2).zip(self.dst.chunks_exact(2)).zip(self.reg.chunks_exact(2))
-            {
-                let z = fac.solve2([r[src[0] as usize], r[src[1] as usize]]);
-                out[dst[0] as usize] = z[0];
-                out[dst[1] as usize] = z[1];
-                r[reg[0] as usize] = z[0];
-                r[reg[1] as usize] = z[1];
+            for t in self.t.chunks_exact(2) {
+                let ([s0, d0, g0], [s1, d1, g1]) = (t[0], t[1]);
+                let z = fac.solve2([r[s0 as usize], r[s1 as usize]]);
+                out[d0 as usize] = z[0];
+                out[d1 as usize] = z[1];
+                r[g0 as usize] = z[0];
+                r[g1 as usize] = z[1];
             }
         } else if n <= MAX_DENSE {
             self.solve_in(&mut [0.0; MAX_DENSE][..n], r, fac, out);
@@ -181,15 +266,14 @@ impl Columns {
         if n == 0 {
             return;
         }
-        for c in 0..self.src.len() / n {
-            let at = c * n;
-            for (k, zk) in z.iter_mut().enumerate() {
-                *zk = r[self.src[at + k] as usize];
+        for t in self.t.chunks_exact(n) {
+            for (zk, &[s, _, _]) in z.iter_mut().zip(t) {
+                *zk = r[s as usize];
             }
             fac.solve(z);
-            for (k, &zk) in z.iter().enumerate() {
-                out[self.dst[at + k] as usize] = zk;
-                r[self.reg[at + k] as usize] = zk;
+            for (&zk, &[_, d, g]) in z.iter().zip(t) {
+                out[d as usize] = zk;
+                r[g as usize] = zk;
             }
         }
     }
@@ -224,7 +308,7 @@ impl BlockProg {
     #[inline(always)]
     fn factor_from_graph(&self, r: &[f64], fac: &mut Fac) {
         if let (1, Some(_)) = (self.unknowns.len(), self.in_col) {
-            fac.set_in_col(r[self.jac[0] as usize], max_abs(self.col[0].iter().map(|&k| r[k as usize])));
+            fac.set_in_col(r[self.jac[0] as usize], self.col_max(r, 0));
         } else {
             self.factor_larger(r, fac);
         }
@@ -235,24 +319,26 @@ impl BlockProg {
     /// handled inline there).
     #[inline(never)]
     fn factor_larger(&self, r: &[f64], fac: &mut Fac) {
-        let n = self.unknowns.len();
-        let v = |regs: &[u32]| max_abs(regs.iter().map(|&k| r[k as usize]));
-        match n {
-            2 => {
-                let j = [
-                    [r[self.jac[0] as usize], r[self.jac[1] as usize]],
-                    [r[self.jac[2] as usize], r[self.jac[3] as usize]],
-                ];
-                let beyond = (!self.beyond.iter().all(Vec::is_empty)).then(|| [v(&self.beyond[0]), v(&self.beyond[1])]);
-                let floor = |c: usize| match self.floors[c].as_slice() {
-                    [] => None,
-                    [one] => Some(r[*one as usize]),
-                    many => Some(v(many)),
-                };
-                fac.set_inverse2(&j, beyond, [floor(0), floor(1)]);
-            }
+        match self.unknowns.len() {
+            2 => fac.put_inverse2(self.inverse2(r)),
             _ => self.factor_cols(r, fac),
         }
+    }
+
+    /// The 2x2 inverse of the Jacobian in the registers, equilibrated by its columns' entries
+    /// beyond the block and their lever floors (`Fac::inverse2`).
+    #[inline(always)]
+    fn inverse2(&self, r: &[f64]) -> Inverse2 {
+        let v = |regs: &[u32]| max_abs(regs.iter().map(|&k| r[k as usize]));
+        let j =
+            [[r[self.jac[0] as usize], r[self.jac[1] as usize]], [r[self.jac[2] as usize], r[self.jac[3] as usize]]];
+        let beyond = self.beyond.as_ref().map(|[b0, b1]| [v(b0), v(b1)]);
+        let floor = |c: usize| match self.floors[c].as_slice() {
+            [] => None,
+            [one] => Some(r[*one as usize]),
+            many => Some(v(many)),
+        };
+        Fac::inverse2(&j, beyond, [floor(0), floor(1)])
     }
 
     /// `Lu::factor_cols` of the Jacobian in the registers.
@@ -282,7 +368,8 @@ impl BlockProg {
         fac.factor_cols(n, |k| r[self.jac[k] as usize], scale);
     }
 
-    /// Solves the block's positions; writes them into `q` and the registers.
+    /// Solves the block's positions; writes them into `q` and the registers. With `levers` (a
+    /// position-only solve of a closed form), its tests after the coefficients are computed.
     ///
     /// Inlined, as the velocity and acceleration below: the step's hot path, which the compiler
     /// stopped inlining once the positions-only solve became a second caller (about 400
@@ -294,6 +381,7 @@ impl BlockProg {
         q: &mut [f64],
         guess: &[f64],
         report: &mut SolveReport,
+        levers: Option<&Levers>,
     ) -> Result<(), StepFailure> {
         let Work { r, fac, cfg } = w;
         self.pre.run(r);
@@ -317,6 +405,10 @@ impl BlockProg {
                 self.set_unknowns(r, q, &z[..n]);
             }
             How::Closed(p) => {
+                // A position-only solve's tests, before the solve as in the compiled one.
+                if let Some(levers) = levers {
+                    levers.check(r, guess, cfg).map_err(StepFailure::Block)?;
+                }
                 p.run(r, guess, cfg).map_err(StepFailure::Block)?;
                 for &(u, reg) in &p.unknowns {
                     q[u] = r[reg as usize];
@@ -337,7 +429,8 @@ impl BlockProg {
     }
 
     /// The velocity analogs `dq[u * ni + i]`, factorising the Jacobian where the position solve
-    /// did not (the factorisation is kept in `fac` for the accelerations).
+    /// did not (the factorisation is kept in `fac` for the accelerations), as the block's
+    /// [`Analog`] says.
     ///
     /// With `at` (the emitter's mode `At`: analogs at a position the caller gives, no position
     /// solve before), `at` is the segment to run, and every block but a fixed one factorises
@@ -348,26 +441,68 @@ impl BlockProg {
         b: usize,
         w: Work<'_>,
         dq: &mut [f64],
-        ni: usize,
         health: &mut Health,
         at: Option<&Segment>,
     ) -> Result<(), StepFailure> {
         let Work { r, fac, cfg } = w;
-        at.unwrap_or(&self.vel).run(r);
-        let tested = match (&self.how, at) {
-            // The slot holds `Fixed(coefficient)` from the model's build on: nothing to factor.
-            (How::Fixed { .. }, _) => false,
-            (_, Some(_)) | (How::Closed { .. }, None) => {
-                self.factor_from_graph(r, fac);
-                true
+        let analog = match at {
+            Some(seg) => {
+                seg.run(r);
+                self.analog_at
             }
-            (How::Linear { .. }, None) => false,
-            (How::Newton(p), None) => {
-                if !p.keeps_lu {
-                    self.factor_cols(r, fac);
+            None => {
+                self.vel.run(r);
+                self.analog
+            }
+        };
+        let tested = match analog {
+            // The slot holds `Fixed(coefficient)` from the model's build on: nothing to factor,
+            // and its conditioning is the constant's.
+            Analog::Fixed(f) => {
+                health.note(b, &f);
+                self.vel_cols.fixed(f, r, dq);
+                return Ok(());
+            }
+            Analog::InCol => {
+                let lu = Lu::<1>::factor_in_col([r[self.jac[0] as usize], self.col_max(r, 0)], 0);
+                // Kept for the accelerations (and the sensitivities), even when it fails.
+                fac.put_l1(lu);
+                if singular(lu.pivot_ratio(), cfg) {
+                    return Err(StepFailure::Singular { pivot_ratio: lu.pivot_ratio() });
                 }
+                health.note(b, &lu);
+                self.vel_cols.lu1(&lu, r, dq);
+                return Ok(());
+            }
+            Analog::KeptOne => {
+                if let Fac::L1(lu) = fac {
+                    health.note(b, lu);
+                    self.vel_cols.lu1(lu, r, dq);
+                    return Ok(());
+                }
+                false
+            }
+            Analog::Two => {
+                let inv = self.inverse2(r);
+                fac.put_inverse2(inv);
+                let p = Factor::pivot_ratio(&inv);
+                if singular(p, cfg) {
+                    return Err(StepFailure::Singular { pivot_ratio: p });
+                }
+                health.note(b, &inv);
+                self.vel_cols.two(&inv, r, dq);
+                return Ok(());
+            }
+            Analog::Graph => {
+                self.factor_larger(r, fac);
                 true
             }
+            Analog::Kept => false,
+            Analog::Cols => {
+                self.factor_cols(r, fac);
+                true
+            }
+            Analog::NewtonLu => true,
         };
         match fac.conditioning() {
             Some(c) => {
@@ -384,16 +519,34 @@ impl BlockProg {
             }
         }
         self.vel_cols.solve(self.unknowns.len(), r, fac, dq);
-        let _ = ni;
         Ok(())
     }
 
     /// The acceleration analogs `d2q[u * pairs + p]` on the velocity's factorisation.
     /// (With `at`, that segment instead of the step's: see [`BlockProg::velocity`].)
     #[inline(always)]
-    pub(crate) fn acceleration(&self, r: &mut [f64], d2q: &mut [f64], pairs: usize, fac: &Fac, at: Option<&Segment>) {
-        at.unwrap_or(&self.acc).run(r);
-        let _ = pairs;
-        self.acc_cols.solve(self.unknowns.len(), r, fac, d2q);
+    pub(crate) fn acceleration(&self, r: &mut [f64], d2q: &mut [f64], fac: &Fac, at: Option<&Segment>) {
+        let analog = match at {
+            Some(seg) => {
+                seg.run(r);
+                self.analog_at
+            }
+            None => {
+                self.acc.run(r);
+                self.analog
+            }
+        };
+        match (analog, fac) {
+            (Analog::Fixed(f), _) => self.acc_cols.fixed(f, r, d2q),
+            (Analog::InCol | Analog::KeptOne, Fac::L1(lu)) => self.acc_cols.lu1(lu, r, d2q),
+            (Analog::Two, Fac::Inverse2(inv)) => self.acc_cols.two(inv, r, d2q),
+            _ => self.acc_cols.solve(self.unknowns.len(), r, fac, d2q),
+        }
+    }
+
+    /// The largest magnitude of column `c`'s entries and lever floors (its equilibration).
+    #[inline(always)]
+    fn col_max(&self, r: &[f64], c: usize) -> f64 {
+        max_abs(self.col[c].iter().map(|&k| r[k as usize]))
     }
 }

@@ -161,7 +161,12 @@ impl Fac {
     /// dropped nor the whole enum moved.
     #[inline]
     pub(crate) fn set_in_col(&mut self, entry: f64, col_max: f64) {
-        let lu = Lu::<1>::factor_in_col([entry, col_max], 0);
+        self.put_l1(Lu::<1>::factor_in_col([entry, col_max], 0));
+    }
+
+    /// Writes the 1x1 factorisation `lu` into this slot, in place as by [`Fac::set_in_col`].
+    #[inline(always)]
+    pub(crate) fn put_l1(&mut self, lu: Lu<1>) {
         match self {
             Fac::L1(slot) => *slot = lu,
             other => *other = Fac::L1(lu),
@@ -169,17 +174,21 @@ impl Fac {
     }
 
     /// `Inverse2::in_cols_floored` of `j` with each column's largest magnitude beyond the block
-    /// (`None`: the columns have no entries beyond it) and its floor, into this slot. The emitted code passes
+    /// (`None`: the columns have no entries beyond it) and its floor. The emitted code passes
     /// the entries themselves; their largest magnitude gives the same maximum, and the same
     /// verdict on a non-finite entry, except where finite entries beyond the block sum to an
     /// infinity (magnitudes near `f64::MAX`), which the compiled test would call singular.
-    /// Written in place, as by [`Fac::set_in_col`].
-    #[inline]
-    pub(crate) fn set_inverse2(&mut self, j: &[[f64; 2]; 2], beyond: Option<[f64; 2]>, floor: [Option<f64>; 2]) {
-        let inv = match beyond {
+    #[inline(always)]
+    pub(crate) fn inverse2(j: &[[f64; 2]; 2], beyond: Option<[f64; 2]>, floor: [Option<f64>; 2]) -> Inverse2 {
+        match beyond {
             None => Inverse2::in_cols_floored::<0>(j, [[]; 2], floor),
             Some([b0, b1]) => Inverse2::in_cols_floored::<1>(j, [[b0], [b1]], floor),
-        };
+        }
+    }
+
+    /// Writes the 2x2 inverse `inv` into this slot, in place as by [`Fac::set_in_col`].
+    #[inline(always)]
+    pub(crate) fn put_inverse2(&mut self, inv: Inverse2) {
         match self {
             Fac::Inverse2(slot) => *slot = inv,
             other => *other = Fac::Inverse2(inv),

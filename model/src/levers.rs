@@ -15,7 +15,8 @@ use kinloop_runtime::generated::{BlockFailure, check_centres, check_guess, check
 /// A closed-form block's position-only tests.
 #[derive(Clone, Debug)]
 pub(crate) struct Levers {
-    /// Computes every register the tests read, from what the earlier blocks' solves wrote.
+    /// Computes every register the tests read beyond the block's coefficients, from what the
+    /// earlier blocks' solves wrote.
     seg: Segment,
     /// The guesses of a form with a length or slider (its angle, then the other), whose sum
     /// the solve checks first (`check_guess`), as the compiled solve does before its levers.
@@ -51,8 +52,9 @@ impl Levers {
             roots.extend(e.iter().chain(links.iter().flatten()).map(|&r| NodeId(r)));
         }
         // What the earlier blocks' solves wrote: their unknowns, and a closed form's sines and
-        // cosines (its own values, not libm's of its angle). Everything else is computed here
-        // again with the operations of the step's own segments, so the same values.
+        // cosines (its own values, not libm's of its angle); and the block's coefficients. The
+        // rest is computed here with the operations of the step's own segments, so the same
+        // values.
         let mut tape = Builder::new(g);
         for earlier in &plan.blocks[..b] {
             tape.provide(earlier.unknowns.iter().filter_map(|&u| g.find(Op::Leaf(Leaf::Unknown(u as u16)))));
@@ -60,11 +62,14 @@ impl Levers {
                 tape.provide(r.sin_cos.concat());
             }
         }
+        // The tests run after the block's own segment, which computed its coefficients.
+        tape.provide(rec.form.coefficients());
         let seg = tape.segment(&roots, None)?;
         Ok(Some(Levers { seg, guess, levers, centres }))
     }
 
-    /// The tests, on the registers `r` (the earlier blocks solved) from `guess`.
+    /// The tests, on the registers `r` (the earlier blocks solved, the block's coefficients
+    /// computed) from `guess`.
     pub(crate) fn check(&self, r: &mut [f64], guess: &[f64], cfg: &NewtonConfig) -> Result<(), BlockFailure> {
         self.seg.run(r);
         if let Some([a, o]) = self.guess {

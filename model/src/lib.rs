@@ -165,6 +165,8 @@ mod closed;
 mod drawing;
 mod dynamics;
 mod factor;
+mod finite;
+mod gather;
 mod levers;
 mod mechanism;
 mod model;

@@ -2,10 +2,12 @@
 //! evaluated step by step without allocating.
 
 use crate::at::{AtProg, Jacobian};
-use crate::blocks::{BlockProg, Columns, How, StepFailure, Work};
+use crate::blocks::{Analog, BlockProg, Columns, How, StepFailure, Work};
 use crate::closed::{ClosedProg, Extra};
 use crate::dynamics::DynamicsProg;
 use crate::factor::{Fac, MAX_DENSE};
+use crate::finite::{Finite, all_finite};
+use crate::gather::Gather;
 use crate::levers::Levers;
 use crate::newton::NewtonProg;
 use crate::sensitivities::{SensProg, Sensitivities};
@@ -145,9 +147,9 @@ pub struct Model {
     guess_regs: Vec<u32>,
     blocks: Vec<BlockProg>,
     outputs_seg: Segment,
-    out_regs: Vec<u32>,
-    out_d1_regs: Vec<u32>,
-    out_d2_regs: Vec<u32>,
+    out_regs: Gather,
+    out_d1_regs: Gather,
+    out_d2_regs: Gather,
     instructions: usize,
     // The workspace of a step: written by every step, never reallocated.
     regs: Vec<f64>,
@@ -164,6 +166,8 @@ pub struct Model {
     pub(crate) dynamics: Option<DynamicsProg>,
     /// Per block: a closed form's tests in a position-only solve ([`Model::positions`]).
     levers: Vec<Option<Levers>>,
+    /// What the step's finiteness test adds up.
+    finite: Finite,
 }
 
 fn kind(k: Kind) -> QuantityKind {
@@ -263,6 +267,9 @@ impl Model {
         for prog in &mut blocks {
             prog.vel_cols = Columns::new(&prog.unknowns, ni, &prog.vel_rows, &prog.tan_regs, scratch);
             prog.acc_cols = Columns::new(&prog.unknowns, npairs, &prog.acc_rows, &prog.tan2_regs, scratch);
+            let (nb, in_col) = (prog.unknowns.len(), prog.in_col.is_some());
+            prog.analog = Analog::of(&prog.how, nb, in_col, false);
+            prog.analog_at = Analog::of(&prog.how, nb, in_col, true);
         }
         let out_roots: Vec<NodeId> =
             plan.outputs.iter().copied().chain(plan.out_d1.concat()).chain(plan.out_d2.concat()).collect();
@@ -374,9 +381,9 @@ impl Model {
             facs,
             blocks,
             outputs_seg,
-            out_regs: plan.outputs.iter().map(|n| n.0).collect(),
-            out_d1_regs: plan.out_d1.concat().iter().map(|n| n.0).collect(),
-            out_d2_regs: plan.out_d2.concat().iter().map(|n| n.0).collect(),
+            out_regs: Gather::new(plan.outputs.iter().map(|n| n.0).collect()),
+            out_d1_regs: Gather::new(plan.out_d1.concat().iter().map(|n| n.0).collect()),
+            out_d2_regs: Gather::new(plan.out_d2.concat().iter().map(|n| n.0).collect()),
             instructions,
             regs: {
                 let mut r = registers(g);
@@ -389,6 +396,7 @@ impl Model {
             pair_of: (0..ni * ni).map(|ij| kinloop_codegen::plan::pair_index(ni, ij / ni, ij % ni)).collect(),
             dynamics,
             levers,
+            finite: Finite::build(&plan),
         };
         m.load_params();
         Ok(m)
@@ -609,13 +617,11 @@ impl Model {
         st.x.copy_from_slice(x);
         st.report = SolveReport::direct();
         st.health = Health::default();
-        for (b, prog) in self.blocks.iter().enumerate() {
-            let fail = |failure| StepError::Block { block: b, failure };
-            if let (true, Some(levers)) = (lever_tests, &self.levers[b]) {
-                levers.check(&mut self.regs, guess, cfg).map_err(|f| fail(StepFailure::Block(f)))?;
-            }
-            let w = Work { r: &mut self.regs, fac: &mut self.facs[b], cfg };
-            prog.position(w, &mut st.q, guess, &mut st.report).map_err(fail)?;
+        let (regs, q, report) = (&mut self.regs[..], &mut st.q[..], &mut st.report);
+        for (b, (prog, fac)) in self.blocks.iter().zip(self.facs.iter_mut()).enumerate() {
+            let levers = if lever_tests { self.levers[b].as_ref() } else { None };
+            let w = Work { r: &mut *regs, fac, cfg };
+            prog.position(w, q, guess, report, levers).map_err(|failure| StepError::Block { block: b, failure })?;
         }
         Ok(())
     }
@@ -681,16 +687,18 @@ impl Model {
     fn analogs(&mut self, cfg: &NewtonConfig, at: bool) -> Result<(), StepError> {
         let ni = self.inputs.len();
         let st = &mut self.state;
-        for (b, prog) in self.blocks.iter().enumerate() {
-            let w = Work { r: &mut self.regs, fac: &mut self.facs[b], cfg };
-            prog.velocity(b, w, &mut st.dq, ni, &mut st.health, at.then(|| &self.at_kin.vel[b]))
+        // Slices taken once: their addresses and lengths stay in registers through the blocks.
+        let (regs, dq, health) = (&mut self.regs[..], &mut st.dq[..], &mut st.health);
+        for (b, (prog, fac)) in self.blocks.iter().zip(self.facs.iter_mut()).enumerate() {
+            let w = Work { r: &mut *regs, fac, cfg };
+            prog.velocity(b, w, dq, health, at.then(|| &self.at_kin.vel[b]))
                 .map_err(|failure| StepError::Block { block: b, failure })?;
         }
         let np = ni * (ni + 1) / 2;
         // One input: one pair, the pairs' array is the full one; the analogs go straight there.
-        let acc_out = if ni == 1 { &mut st.d2q } else { &mut self.pair_d2 };
-        for (b, prog) in self.blocks.iter().enumerate() {
-            prog.acceleration(&mut self.regs, acc_out, np, &self.facs[b], at.then(|| &self.at_kin.acc[b]));
+        let acc_out = if ni == 1 { &mut st.d2q[..] } else { &mut self.pair_d2[..] };
+        for (b, (prog, fac)) in self.blocks.iter().zip(&self.facs).enumerate() {
+            prog.acceleration(regs, acc_out, fac, at.then(|| &self.at_kin.acc[b]));
         }
         // Pairs (i <= j) to the full symmetric second analogs.
         let pair_of = &self.pair_of;
@@ -707,23 +715,19 @@ impl Model {
         if at { &self.at_kin.out } else { &self.outputs_seg }.run(&mut self.regs);
         // A slice: its address and length stay in registers through the copies below.
         let r: &[f64] = &self.regs;
-        for (o, &reg) in st.out.iter_mut().zip(&self.out_regs) {
-            *o = r[reg as usize];
-        }
-        for (o, &reg) in st.dout.iter_mut().zip(&self.out_d1_regs) {
-            *o = r[reg as usize];
-        }
+        self.out_regs.run(r, &mut st.out);
+        self.out_d1_regs.run(r, &mut st.dout);
         if ni == 1 {
-            for (o, &reg) in st.d2out.iter_mut().zip(&self.out_d2_regs) {
-                *o = r[reg as usize];
-            }
+            self.out_d2_regs.run(r, &mut st.d2out);
         } else {
-            for (o, &reg) in self.pair_d2.iter_mut().zip(&self.out_d2_regs) {
-                *o = r[reg as usize];
-            }
+            self.out_d2_regs.run(r, &mut self.pair_d2);
             full(&self.pair_d2, self.outputs.len(), &mut st.d2out);
         }
-        let finite = [&st.q, &st.dq, &st.d2q, &st.out, &st.dout, &st.d2out].iter().all(|v| all_finite(v));
+        // The compiled step's test: one sum of the values the others' finiteness does not
+        // cover, the whole state examined only when it is not finite. At a given position
+        // (whose unknowns no solve checked) the whole state, as the compiled `At` kernel.
+        let all = || [&st.q, &st.dq, &st.d2q, &st.out, &st.dout, &st.d2out].iter().all(|v| all_finite(v));
+        let finite = if at { all() } else { self.finite.sum(r, &st.q, &st.dq, &st.d2q).is_finite() || all() };
         if !finite {
             return Err(StepError::NonFinite);
         }
@@ -822,16 +826,15 @@ fn position_program(
     let col: Vec<Vec<u32>> =
         (0..nb).map(|c| bp.col_scale[c].iter().chain(&bp.lever_floor[c]).map(|n| n.0).collect()).collect();
     let floors: Vec<Vec<u32>> = bp.lever_floor.iter().map(|f| regs(f)).collect();
-    let beyond: Vec<Vec<u32>> = if nb == 2 {
-        (0..2)
-            .map(|c| {
+    // A block of two unknowns: its columns' entries in the rows of later blocks, when any.
+    let beyond: Option<[Vec<u32>; 2]> = (nb == 2)
+        .then(|| {
+            [0, 1].map(|c| {
                 let own = [bp.jac[0][c], bp.jac[1][c]];
-                bp.col_scale[c].iter().filter(|e| !own.contains(e)).map(|n| n.0).collect()
+                bp.col_scale[c].iter().filter(|e| !own.contains(e)).map(|n| n.0).collect::<Vec<u32>>()
             })
-            .collect()
-    } else {
-        vec![Vec::new(); nb]
-    };
+        })
+        .filter(|b| b.iter().any(|c| !c.is_empty()));
     let in_col = (nb == 1).then(|| bp.col_scale[0].iter().position(|&e| e == bp.jac[0][0])).flatten();
     let level_below = |n: NodeId| plan.level[n.index()] < b as i32;
     let (pre, how) = match &bp.solve {
@@ -906,6 +909,9 @@ fn position_program(
         tan2_regs: Vec::new(),
         vel_cols: Default::default(),
         acc_cols: Default::default(),
+        // Decided with the analogs' tables (`Model::from_planned`).
+        analog: Analog::Kept,
+        analog_at: Analog::Kept,
     })
 }
 
@@ -1007,11 +1013,4 @@ fn at_kinematics(plan: &Plan, blocks: &[BlockProg], out_roots: &[NodeId]) -> Res
     }
     let out = tape.segment(out_roots, None)?;
     Ok(AtKin { residual, residual_regs: plan.residuals.iter().map(|n| n.0).collect(), vel, acc, out })
-}
-
-/// Whether every value of `v` is finite: an exponent test on the bits, without a branch per
-/// value (the loop vectorises).
-fn all_finite(v: &[f64]) -> bool {
-    const EXP: u64 = 0x7ff0_0000_0000_0000;
-    !v.iter().fold(false, |bad, x| bad | (x.to_bits() & EXP == EXP))
 }
