@@ -195,22 +195,26 @@ impl Columns {
     /// [`Columns::solve`] on a 2x2 inverse, inlined in the block's step.
     #[inline(always)]
     fn two(&self, inv: &Inverse2, r: &mut [f64], out: &mut [f64]) {
-        if let [[s0, d0, g0], [s1, d1, g1]] = self.t[..] {
-            // One column (one input): no loop, whose set-up costs more than its one pass.
-            let z = inv.solve([r[s0 as usize], r[s1 as usize]]);
+        self.each2(r, out, |b| inv.solve(b))
+    }
+
+    /// `z = solve(rhs)` for each column of a block of two unknowns.
+    #[inline(always)]
+    fn each2(&self, r: &mut [f64], out: &mut [f64], solve: impl Fn([f64; 2]) -> [f64; 2]) {
+        let mut put = |[s0, d0, g0]: [u32; 3], [s1, d1, g1]: [u32; 3]| {
+            let z = solve([r[s0 as usize], r[s1 as usize]]);
             out[d0 as usize] = z[0];
             out[d1 as usize] = z[1];
             r[g0 as usize] = z[0];
             r[g1 as usize] = z[1];
+        };
+        if let [a, b] = self.t[..] {
+            // One column (one input): no loop, whose set-up costs more than its one pass.
+            put(a, b);
             return;
         }
         for t in self.t.chunks_exact(2) {
-            let ([s0, d0, g0], [s1, d1, g1]) = (t[0], t[1]);
-            let z = inv.solve([r[s0 as usize], r[s1 as usize]]);
-            out[d0 as usize] = z[0];
-            out[d1 as usize] = z[1];
-            r[g0 as usize] = z[0];
-            r[g1 as usize] = z[1];
+            put(t[0], t[1]);
         }
     }
 
@@ -236,22 +240,8 @@ impl Columns {
     /// theirs. No array of the largest size is zeroed for a small block.
     #[inline(never)]
     fn solve_n(&self, n: usize, r: &mut [f64], fac: &Fac, out: &mut [f64]) {
-        if let (2, [[s0, d0, g0], [s1, d1, g1]]) = (n, &self.t[..]) {
-            // One column (one input): no loop, whose set-up costs more than its one pass.
-            let z = fac.solve2([r[*s0 as usize], r[*s1 as usize]]);
-            out[*d0 as usize] = z[0];
-            out[*d1 as usize] = z[1];
-            r[*g0 as usize] = z[0];
-            r[*g1 as usize] = z[1];
-        } else if n == 2 {
-            for t in self.t.chunks_exact(2) {
-                let ([s0, d0, g0], [s1, d1, g1]) = (t[0], t[1]);
-                let z = fac.solve2([r[s0 as usize], r[s1 as usize]]);
-                out[d0 as usize] = z[0];
-                out[d1 as usize] = z[1];
-                r[g0 as usize] = z[0];
-                r[g1 as usize] = z[1];
-            }
+        if n == 2 {
+            self.each2(r, out, |b| fac.solve2(b));
         } else if n <= MAX_DENSE {
             self.solve_in(&mut [0.0; MAX_DENSE][..n], r, fac, out);
         } else {
@@ -290,6 +280,18 @@ pub(crate) struct Work<'a> {
 #[allow(clippy::neg_cmp_op_on_partial_ord)] // the negation is what lets NaN through
 fn singular(pivot_ratio: f64, cfg: &NewtonConfig) -> bool {
     !(pivot_ratio >= cfg.singular_tol)
+}
+
+/// The velocity's verdict on a factorisation `f` of block `b` made from the graph: singular by
+/// the configuration's test, or noted in the step's health.
+#[inline(always)]
+fn accept(b: usize, f: &impl Factor, cfg: &NewtonConfig, health: &mut Health) -> Result<(), StepFailure> {
+    let pivot_ratio = f.pivot_ratio();
+    if singular(pivot_ratio, cfg) {
+        return Err(StepFailure::Singular { pivot_ratio });
+    }
+    health.note(b, f);
+    Ok(())
 }
 
 impl BlockProg {
@@ -445,16 +447,7 @@ impl BlockProg {
         at: Option<&Segment>,
     ) -> Result<(), StepFailure> {
         let Work { r, fac, cfg } = w;
-        let analog = match at {
-            Some(seg) => {
-                seg.run(r);
-                self.analog_at
-            }
-            None => {
-                self.vel.run(r);
-                self.analog
-            }
-        };
+        let analog = self.stage(&self.vel, at, r);
         let tested = match analog {
             // The slot holds `Fixed(coefficient)` from the model's build on: nothing to factor,
             // and its conditioning is the constant's.
@@ -464,32 +457,27 @@ impl BlockProg {
                 return Ok(());
             }
             Analog::InCol => {
-                let lu = Lu::<1>::factor_in_col([r[self.jac[0] as usize], self.col_max(r, 0)], 0);
                 // Kept for the accelerations (and the sensitivities), even when it fails.
-                fac.put_l1(lu);
-                if singular(lu.pivot_ratio(), cfg) {
-                    return Err(StepFailure::Singular { pivot_ratio: lu.pivot_ratio() });
-                }
-                health.note(b, &lu);
+                let lu = fac.set_in_col(r[self.jac[0] as usize], self.col_max(r, 0));
+                accept(b, &lu, cfg, health)?;
                 self.vel_cols.lu1(&lu, r, dq);
                 return Ok(());
             }
             Analog::KeptOne => {
+                // A linear block of one unknown leaves its `L1` (`set_in_col` or
+                // `factor_cols(1)`): the general path below is never reached from here.
                 if let Fac::L1(lu) = fac {
                     health.note(b, lu);
                     self.vel_cols.lu1(lu, r, dq);
                     return Ok(());
                 }
+                debug_assert!(false, "a linear 1x1 block without its L1 factorisation");
                 false
             }
             Analog::Two => {
                 let inv = self.inverse2(r);
                 fac.put_inverse2(inv);
-                let p = Factor::pivot_ratio(&inv);
-                if singular(p, cfg) {
-                    return Err(StepFailure::Singular { pivot_ratio: p });
-                }
-                health.note(b, &inv);
+                accept(b, &inv, cfg, health)?;
                 self.vel_cols.two(&inv, r, dq);
                 return Ok(());
             }
@@ -526,21 +514,28 @@ impl BlockProg {
     /// (With `at`, that segment instead of the step's: see [`BlockProg::velocity`].)
     #[inline(always)]
     pub(crate) fn acceleration(&self, r: &mut [f64], d2q: &mut [f64], fac: &Fac, at: Option<&Segment>) {
-        let analog = match at {
-            Some(seg) => {
-                seg.run(r);
-                self.analog_at
-            }
-            None => {
-                self.acc.run(r);
-                self.analog
-            }
-        };
+        let analog = self.stage(&self.acc, at, r);
         match (analog, fac) {
             (Analog::Fixed(f), _) => self.acc_cols.fixed(f, r, d2q),
             (Analog::InCol | Analog::KeptOne, Fac::L1(lu)) => self.acc_cols.lu1(lu, r, d2q),
             (Analog::Two, Fac::Inverse2(inv)) => self.acc_cols.two(inv, r, d2q),
             _ => self.acc_cols.solve(self.unknowns.len(), r, fac, d2q),
+        }
+    }
+
+    /// Runs the stage's segment (`own`, or with `at` that one) and gives the block's analogs'
+    /// factorisation in that mode.
+    #[inline(always)]
+    fn stage(&self, own: &Segment, at: Option<&Segment>, r: &mut [f64]) -> Analog {
+        match at {
+            Some(seg) => {
+                seg.run(r);
+                self.analog_at
+            }
+            None => {
+                own.run(r);
+                self.analog
+            }
         }
     }
 

@@ -160,8 +160,10 @@ impl Fac {
     /// slot in place: the slot keeps its kind from step to step, so the old value is neither
     /// dropped nor the whole enum moved.
     #[inline]
-    pub(crate) fn set_in_col(&mut self, entry: f64, col_max: f64) {
-        self.put_l1(Lu::<1>::factor_in_col([entry, col_max], 0));
+    pub(crate) fn set_in_col(&mut self, entry: f64, col_max: f64) -> Lu<1> {
+        let lu = Lu::<1>::factor_in_col([entry, col_max], 0);
+        self.put_l1(lu);
+        lu
     }
 
     /// Writes the 1x1 factorisation `lu` into this slot, in place as by [`Fac::set_in_col`].

@@ -267,9 +267,6 @@ impl Model {
         for prog in &mut blocks {
             prog.vel_cols = Columns::new(&prog.unknowns, ni, &prog.vel_rows, &prog.tan_regs, scratch);
             prog.acc_cols = Columns::new(&prog.unknowns, npairs, &prog.acc_rows, &prog.tan2_regs, scratch);
-            let (nb, in_col) = (prog.unknowns.len(), prog.in_col.is_some());
-            prog.analog = Analog::of(&prog.how, nb, in_col, false);
-            prog.analog_at = Analog::of(&prog.how, nb, in_col, true);
         }
         let out_roots: Vec<NodeId> =
             plan.outputs.iter().copied().chain(plan.out_d1.concat()).chain(plan.out_d2.concat()).collect();
@@ -891,6 +888,8 @@ fn position_program(
         }
     };
     tape.provide(unknown_nodes.iter().flatten().copied());
+    let analog = |at: bool| Analog::of(&how, nb, in_col.is_some(), at);
+    let (analog, analog_at) = (analog(false), analog(true));
     Ok(BlockProg {
         unknowns: bp.unknowns.clone(),
         unknown_regs: unknown_nodes.iter().map(|n| n.map(|n| n.0)).collect(),
@@ -909,9 +908,8 @@ fn position_program(
         tan2_regs: Vec::new(),
         vel_cols: Default::default(),
         acc_cols: Default::default(),
-        // Decided with the analogs' tables (`Model::from_planned`).
-        analog: Analog::Kept,
-        analog_at: Analog::Kept,
+        analog,
+        analog_at,
     })
 }
 
