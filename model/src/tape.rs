@@ -131,16 +131,24 @@ impl Ins {
 }
 
 /// What a step executes: a function of the registers (`p`, at least the segment's `needs` of
-/// them) and of the step's register indices.
-type Exec = unsafe fn(p: *mut f64, r: &[u32; 9]);
+/// them) and of the step itself (`s`, whose registers it reads), which then executes the next
+/// step (see [`next`]).
+///
+/// # Safety
+/// `p` holds every register the steps from `s` to the next [`ret`] name, and a [`ret`] follows
+/// `s` in its array.
+type Exec = unsafe fn(p: *mut f64, s: *const Step);
 
 /// One dispatch of a segment: up to three consecutive arithmetic instructions, or one other.
 ///
-/// A step calls its function through a pointer: one indirect call per step, and the grouped
-/// arithmetic instructions are one function each (`arith3::<MUL, MUL, ADD>`, ...) that performs
-/// the operations one after the other, each rounded on its own and stored to its register
-/// before the next reads the registers (no fused multiply-add, no reordering): the values are
-/// those of the separate operations.
+/// A step's function performs it and then calls the next step's function (threaded code: the
+/// call is in tail position with the same arguments, which the optimiser compiles to a jump,
+/// two instructions a dispatch instead of a loop's seven); a segment's steps form chains of at
+/// most [`CHAIN`] steps ended by [`ret`], so that without that optimisation (a debug build) the
+/// calls nest at most [`CHAIN`] deep. The grouped arithmetic instructions are one function each
+/// (`arith3::<MUL, MUL, ADD>`, ...) that performs the operations one after the other, each
+/// rounded on its own and stored to its register before the next reads the registers (no fused
+/// multiply-add, no reordering): the values are those of the separate operations.
 #[derive(Clone, Copy, Debug)]
 pub(crate) struct Step {
     exec: Exec,
@@ -155,6 +163,28 @@ const MUL: u8 = 2;
 const DIV: u8 = 3;
 /// `-a` (its `b` is not read).
 const NEG: u8 = 4;
+
+/// The steps of a chain (a [`ret`] after them).
+const CHAIN: usize = 32;
+
+/// Executes the step after `s`.
+///
+/// # Safety
+/// As [`Exec`]: `s` is not a [`ret`].
+#[inline(always)]
+unsafe fn next(p: *mut f64, s: *const Step) {
+    // SAFETY: a `ret` ends every chain, so the step after a step that is not one exists.
+    unsafe {
+        let n = s.add(1);
+        ((*n).exec)(p, n)
+    }
+}
+
+/// The end of a chain.
+///
+/// # Safety
+/// None needed (it reads nothing), an [`Exec`] for its type.
+unsafe fn ret(_: *mut f64, _: *const Step) {}
 
 /// The operation `K` on `a` and `b`, as the emitted code writes it.
 #[inline(always)]
@@ -182,20 +212,26 @@ unsafe fn arith<const K: u8>(p: *mut f64, d: u32, a: u32, b: u32) {
 ///
 /// # Safety
 /// Every register index of `r` below the number of registers at `p` (as for every [`Exec`]).
-unsafe fn arith1<const F: u8>(p: *mut f64, r: &[u32; 9]) {
+unsafe fn arith1<const F: u8>(p: *mut f64, s: *const Step) {
     // SAFETY: the caller's.
-    unsafe { arith::<F>(p, r[0], r[1], r[2]) }
+    unsafe {
+        let r = &(*s).r;
+        arith::<F>(p, r[0], r[1], r[2]);
+        next(p, s)
+    }
 }
 
 /// Two arithmetic operations, in order.
 ///
 /// # Safety
 /// As [`arith1`].
-unsafe fn arith2<const F: u8, const G: u8>(p: *mut f64, r: &[u32; 9]) {
+unsafe fn arith2<const F: u8, const G: u8>(p: *mut f64, s: *const Step) {
     // SAFETY: the caller's.
     unsafe {
+        let r = &(*s).r;
         arith::<F>(p, r[0], r[1], r[2]);
         arith::<G>(p, r[3], r[4], r[5]);
+        next(p, s)
     }
 }
 
@@ -203,12 +239,14 @@ unsafe fn arith2<const F: u8, const G: u8>(p: *mut f64, r: &[u32; 9]) {
 ///
 /// # Safety
 /// As [`arith1`].
-unsafe fn arith3<const F: u8, const G: u8, const H: u8>(p: *mut f64, r: &[u32; 9]) {
+unsafe fn arith3<const F: u8, const G: u8, const H: u8>(p: *mut f64, s: *const Step) {
     // SAFETY: the caller's.
     unsafe {
+        let r = &(*s).r;
         arith::<F>(p, r[0], r[1], r[2]);
         arith::<G>(p, r[3], r[4], r[5]);
         arith::<H>(p, r[6], r[7], r[8]);
+        next(p, s)
     }
 }
 
@@ -245,9 +283,10 @@ const SIGNUM: u8 = 10;
 ///
 /// # Safety
 /// As [`arith1`].
-unsafe fn unary<const F: u8>(p: *mut f64, r: &[u32; 9]) {
+unsafe fn unary<const F: u8>(p: *mut f64, s: *const Step) {
     // SAFETY: the caller's.
     unsafe {
+        let r = &(*s).r;
         let x = *p.add(r[1] as usize);
         *p.add(r[0] as usize) = match F {
             SIN => x.sin(),
@@ -264,6 +303,7 @@ unsafe fn unary<const F: u8>(p: *mut f64, r: &[u32; 9]) {
             // gives 0 at 0).
             _ => x.signum(),
         };
+        next(p, s)
     }
 }
 
@@ -271,11 +311,13 @@ unsafe fn unary<const F: u8>(p: *mut f64, r: &[u32; 9]) {
 ///
 /// # Safety
 /// As [`arith1`].
-unsafe fn square(p: *mut f64, r: &[u32; 9]) {
+unsafe fn square(p: *mut f64, s: *const Step) {
     // SAFETY: the caller's.
     unsafe {
+        let r = &(*s).r;
         let x = *p.add(r[1] as usize);
         *p.add(r[0] as usize) = x * x;
+        next(p, s)
     }
 }
 
@@ -283,48 +325,66 @@ unsafe fn square(p: *mut f64, r: &[u32; 9]) {
 ///
 /// # Safety
 /// As [`arith1`].
-unsafe fn recip(p: *mut f64, r: &[u32; 9]) {
+unsafe fn recip(p: *mut f64, s: *const Step) {
     // SAFETY: the caller's.
-    unsafe { *p.add(r[0] as usize) = 1.0 / *p.add(r[1] as usize) }
+    unsafe {
+        let r = &(*s).r;
+        *p.add(r[0] as usize) = 1.0 / *p.add(r[1] as usize);
+        next(p, s)
+    }
 }
 
 /// `r[d] = r[a].powi(k)`, the exponent's bits in `r[2]`.
 ///
 /// # Safety
 /// As [`arith1`] (`r[2]` is not a register).
-unsafe fn powi(p: *mut f64, r: &[u32; 9]) {
+unsafe fn powi(p: *mut f64, s: *const Step) {
     // SAFETY: the caller's.
-    unsafe { *p.add(r[0] as usize) = (*p.add(r[1] as usize)).powi(r[2] as i32) }
+    unsafe {
+        let r = &(*s).r;
+        *p.add(r[0] as usize) = (*p.add(r[1] as usize)).powi(r[2] as i32);
+        next(p, s)
+    }
 }
 
 /// `r[d] = r[a].powf(r[b])`.
 ///
 /// # Safety
 /// As [`arith1`].
-unsafe fn powf(p: *mut f64, r: &[u32; 9]) {
+unsafe fn powf(p: *mut f64, s: *const Step) {
     // SAFETY: the caller's.
-    unsafe { *p.add(r[0] as usize) = (*p.add(r[1] as usize)).powf(*p.add(r[2] as usize)) }
+    unsafe {
+        let r = &(*s).r;
+        *p.add(r[0] as usize) = (*p.add(r[1] as usize)).powf(*p.add(r[2] as usize));
+        next(p, s)
+    }
 }
 
 /// `r[d] = r[y].atan2(r[x])`.
 ///
 /// # Safety
 /// As [`arith1`].
-unsafe fn atan2(p: *mut f64, r: &[u32; 9]) {
+unsafe fn atan2(p: *mut f64, s: *const Step) {
     // SAFETY: the caller's.
-    unsafe { *p.add(r[0] as usize) = (*p.add(r[1] as usize)).atan2(*p.add(r[2] as usize)) }
+    unsafe {
+        let r = &(*s).r;
+        *p.add(r[0] as usize) = (*p.add(r[1] as usize)).atan2(*p.add(r[2] as usize));
+        next(p, s)
+    }
 }
 
 /// `(r[s], r[c]) = r[a].sin_cos()`.
 ///
 /// # Safety
 /// As [`arith1`].
-unsafe fn sin_cos_step(p: *mut f64, r: &[u32; 9]) {
+unsafe fn sin_cos_step(p: *mut f64, s: *const Step) {
     // SAFETY: the caller's.
     unsafe {
+        let r = &(*s).r;
         let (sin, cos) = (*p.add(r[2] as usize)).sin_cos();
         *p.add(r[0] as usize) = sin;
         *p.add(r[1] as usize) = cos;
+        next(p, s)
     }
 }
 
@@ -358,10 +418,14 @@ impl Segment {
     /// `p` points to at least [`Segment::needs`] registers.
     #[inline]
     pub(crate) unsafe fn run_raw(&self, p: *mut f64) {
-        for s in &self.steps {
-            // SAFETY: every register index of a step is below `needs` (see `Segment::new`),
-            // and the caller's `p` holds `needs` registers.
-            unsafe { (s.exec)(p, &s.r) }
+        // The chains start every `CHAIN + 1` steps (see `Segment::of`); past the last one the
+        // pointer may leave the array (`wrapping_add`: only compared, never read).
+        let (mut chain, end) = (self.steps.as_ptr(), self.steps.as_ptr_range().end);
+        while chain < end {
+            // SAFETY: every register index of a step is below `needs` (see `Segment::of`), the
+            // caller's `p` holds `needs` registers, and every chain ends with a `ret`.
+            unsafe { ((*chain).exec)(p, chain) };
+            chain = chain.wrapping_add(CHAIN + 1);
         }
     }
 
@@ -376,7 +440,13 @@ impl Segment {
     pub(crate) fn of(ins: Vec<Ins>) -> Segment {
         let ops = ins.iter().map(|i| if matches!(i, Ins::SinCos(..)) { 2 } else { 1 }).sum();
         let needs = ins.iter().flat_map(Ins::registers).max().map_or(0, |m| m as usize + 1);
-        Segment { steps: group(&ins), needs, ops }
+        // Chains of `CHAIN` steps, each followed by a `ret` (the last one shorter).
+        let mut steps = Vec::new();
+        for chain in group(&ins).chunks(CHAIN) {
+            steps.extend_from_slice(chain);
+            steps.push(Step { exec: ret, r: [0; 9] });
+        }
+        Segment { steps, needs, ops }
     }
 
     /// The number of graph operations.
@@ -626,7 +696,7 @@ mod tests {
         // The sine and cosine are one step, the seven arithmetic operations three (3 + 3 + 1),
         // the parameters' nodes hoisted: four steps for nine operations.
         assert_eq!(seg.len(), 9, "{seg:?}");
-        assert_eq!(seg.steps.len(), 4, "{seg:?}");
+        assert_eq!(dispatches(&seg), 4, "{seg:?}");
         assert!(seg.steps.iter().any(|s| std::ptr::fn_addr_eq(s.exec, sin_cos_step as Exec)), "{seg:?}");
 
         for (xv, yv, pv) in [(0.3, -1.7, 2.5), (1e-3, 4.0, -0.7), (-2.9, 1e5, 1e-9)] {
@@ -641,6 +711,35 @@ mod tests {
             let want_t = ((xv - yv) / (xv + yv)) * (pv * pv).sqrt();
             assert_eq!(r[s.index()].to_bits(), want_s.to_bits());
             assert_eq!(r[t.index()].to_bits(), want_t.to_bits());
+        }
+    }
+
+    /// The steps of a segment that perform instructions (not the chains' ends).
+    fn dispatches(seg: &Segment) -> usize {
+        seg.steps.iter().filter(|s| !std::ptr::fn_addr_eq(s.exec, ret as Exec)).count()
+    }
+
+    /// A segment of many steps (several chains) performs every instruction once, in order, and
+    /// its steps are chained as [`CHAIN`] says.
+    #[test]
+    fn a_long_segment_runs_every_chain_in_order() {
+        // Register k + 1 from register k: three subtractions of register 0, then an absolute
+        // value (a step of its own), 200 instructions, 100 steps.
+        let n = 200;
+        let ins: Vec<Ins> =
+            (0..n as u32).map(|k| if k % 4 == 3 { Ins::Abs(k + 1, k) } else { Ins::Sub(k + 1, k, 0) }).collect();
+        let seg = Segment::of(ins);
+        assert_eq!(dispatches(&seg), 100);
+        assert_eq!(seg.steps.len(), 100 + 100usize.div_ceil(CHAIN));
+        for x in [0.3, -2.0, 1e-3] {
+            let mut r = vec![0.0; n + 1];
+            r[0] = x;
+            seg.run(&mut r);
+            let mut want = x;
+            for k in 0..n {
+                want = if k % 4 == 3 { want.abs() } else { want - x };
+                assert_eq!(r[k + 1].to_bits(), want.to_bits(), "register {}", k + 1);
+            }
         }
     }
 
@@ -698,7 +797,7 @@ mod tests {
                 })
                 .collect();
             let seg = Segment::of(ins);
-            assert_eq!(seg.steps.len(), 1, "one step for {group:?}");
+            assert_eq!(dispatches(&seg), 1, "one step for {group:?}");
             for x in inputs {
                 let mut r = [x[0], x[1], x[2], x[3], 0.0, 0.0, 0.0];
                 seg.run(&mut r);
@@ -730,7 +829,7 @@ mod tests {
             Ins::Div(7, 6, 1),
         ];
         let seg = Segment::of(ins);
-        assert_eq!(seg.steps.len(), 5);
+        assert_eq!(dispatches(&seg), 5);
         assert_eq!((seg.len(), seg.needs), (7, 8));
         for x in [0.7, -1.3, 1e-8] {
             let mut r = [x, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0];
