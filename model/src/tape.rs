@@ -12,10 +12,11 @@
 //!
 //! What makes a step cheaper without changing a value: the nodes of the parameters alone are
 //! computed when the parameters are set ([`statics`]; the compiled step recomputes them with
-//! the same operations), a sine and a cosine of one argument are one instruction, and two
+//! the same operations), a sine and a cosine of one argument are one instruction, up to three
 //! consecutive arithmetic operations share one dispatch (each still rounds on its own, in its
-//! order: no fused multiply-add, which the emitted code does not use). Operands are `u32`
-//! register indices checked once per segment when it is built.
+//! order: no fused multiply-add, which the emitted code does not use), and each step jumps to
+//! the next one's function ([`Step`]: threaded code, no loop between two steps). Operands are
+//! `u32` register indices checked once per segment when it is built.
 
 use kinloop_codegen::graph::dag::{Func, Graph, Leaf, NodeId, Op};
 
@@ -669,11 +670,11 @@ mod tests {
     use super::*;
     use kinloop_codegen::graph::dag::Func;
 
-    /// The merged and paired instructions compute what the separate operations compute, bit for
+    /// The merged and grouped instructions compute what the separate operations compute, bit for
     /// bit: the reference is the same expression written out in Rust, as the emitted code
     /// writes it.
     #[test]
-    fn merged_and_paired_instructions_give_the_separate_operations_values() {
+    fn merged_and_grouped_instructions_give_the_separate_operations_values() {
         let mut g = Graph::new();
         let x = g.leaf(Leaf::Input(0));
         let y = g.leaf(Leaf::Input(1));
