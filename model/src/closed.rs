@@ -14,7 +14,7 @@
 //! Each form's arithmetic is one function below ([`Build::angle_equation`], [`Build::dyad`],
 //! [`Build::polar`], [`Build::angle_slider`]), beside the emitter's function of the same name.
 
-use crate::tape::{Ins, Segment};
+use crate::tape::{Chains, Ins};
 use kinloop_codegen::graph::dag::{self, Graph, Leaf, NodeId};
 use kinloop_codegen::plan::closed_form::{ClosedForm, constant_norm2};
 use kinloop_runtime::NewtonConfig;
@@ -189,8 +189,8 @@ enum Op {
         r: u32,
         g: u32,
     },
-    /// The arithmetic of `ClosedProg::runs[k]`: consecutive [`Op::Add`] ... [`Op::Neg`]
-    /// executed as a tape segment (three operations a dispatch).
+    /// The chain of `ClosedProg::runs` starting at this step: consecutive [`Op::Add`] ...
+    /// [`Op::Neg`] executed as the tape executes them (three operations a dispatch).
     Run(u32),
     /// `check_closed(out[..len], angles)`.
     Check {
@@ -241,24 +241,23 @@ impl Op {
 }
 
 /// The operations with each run of two or more consecutive arithmetic operations replaced by
-/// an [`Op::Run`] of the returned segments (the same operations in the same order; a single one
+/// [`Op::Run`]s of the returned chains (the same operations in the same order; a single one
 /// stays, one dispatch either way).
-fn runs(ops: Vec<Op>) -> (Vec<Op>, Vec<Segment>) {
+fn runs(ops: Vec<Op>) -> (Vec<Op>, Chains) {
     let mut out = Vec::with_capacity(ops.len());
-    let mut segs = Vec::new();
+    let mut chains = Chains::default();
     let mut k = 0;
     while k < ops.len() {
         let run: Vec<Ins> = ops[k..].iter().map_while(|o| o.arith()).collect();
         if run.len() >= 2 {
             k += run.len();
-            out.push(Op::Run(segs.len() as u32));
-            segs.push(Segment::of(run));
+            out.extend(chains.push(&run).into_iter().map(Op::Run));
         } else {
             out.push(ops[k]);
             k += 1;
         }
     }
-    (out, segs)
+    (out, chains)
 }
 
 /// A closed form compiled: its operations, and where its solution is left.
@@ -266,7 +265,7 @@ fn runs(ops: Vec<Op>) -> (Vec<Op>, Vec<Segment>) {
 pub(crate) struct ClosedProg {
     ops: Vec<Op>,
     /// The runs of arithmetic operations ([`Op::Run`]).
-    runs: Vec<Segment>,
+    runs: Chains,
     /// One more than the largest register named: the registers a run needs.
     needs: usize,
     /// One more than the largest guess read.
@@ -327,6 +326,7 @@ impl ClosedProg {
         let needs = ops.iter_mut().flat_map(|o| o.registers_mut().into_iter().map(|r| *r)).max().map_or(0, |m| m + 1);
         let guesses = ops.iter().filter_map(|o| if let Op::Guess(_, u) = o { Some(*u + 1) } else { None }).max();
         let (ops, runs) = runs(ops);
+        debug_assert!(runs.needs() <= needs as usize, "the runs' registers are the program's");
         ClosedProg {
             ops,
             runs,
@@ -344,7 +344,7 @@ impl ClosedProg {
         assert!(r.len() >= self.needs && guess.len() >= self.guesses, "registers of another model");
         let p = r.as_mut_ptr();
         // SAFETY: every index is below `needs` <= `r.len()`, every guess below `guess.len()`, every
-        // run below `runs.len()` (made with the program, `runs`).
+        // run's start one that `runs` returned (made with the program, `runs`).
         unsafe {
             let v = |k: u32| *p.add(k as usize);
             let set = |k: u32, x: f64| *p.add(k as usize) = x;
@@ -359,8 +359,8 @@ impl ClosedProg {
                     Op::Neg(d, a) => set(d, -v(a)),
                     Op::Abs(d, a) => set(d, v(a).abs()),
                     Op::Mov(d, a) => set(d, v(a)),
-                    // The run's registers are among the program's, below `needs`.
-                    Op::Run(k) => self.runs.get_unchecked(k as usize).run_raw(p),
+                    // The chain's registers are among the program's, below `needs`.
+                    Op::Run(start) => self.runs.run(p, start),
                     Op::Guess(d, u) => set(d, *guess.get_unchecked(u as usize)),
                     Op::CheckGuess(a, b) => check_guess(v(a) + v(b))?,
                     Op::Side { r, right, flip, b, g } => {

@@ -416,9 +416,9 @@ impl Segment {
     /// Executes the segment over the registers at `p`.
     ///
     /// # Safety
-    /// `p` points to at least [`Segment::needs`] registers.
+    /// `p` points to at least `needs` registers.
     #[inline]
-    pub(crate) unsafe fn run_raw(&self, p: *mut f64) {
+    unsafe fn run_raw(&self, p: *mut f64) {
         // The chains start every `CHAIN + 1` steps (see `Segment::of`); past the last one the
         // pointer may leave the array (`wrapping_add`: only compared, never read).
         let (mut chain, end) = (self.steps.as_ptr(), self.steps.as_ptr_range().end);
@@ -453,6 +453,50 @@ impl Segment {
     /// The number of graph operations.
     pub(crate) fn len(&self) -> usize {
         self.ops
+    }
+}
+
+/// Chains of steps in one array, each entered by where it starts: the arithmetic of a closed
+/// form's program, entered from its operations without a segment's bookkeeping.
+#[derive(Clone, Debug, Default)]
+pub(crate) struct Chains {
+    steps: Vec<Step>,
+    /// One more than the largest register a step names.
+    needs: usize,
+}
+
+impl Chains {
+    /// Appends the steps of `ins` (in order, grouped as a segment's) and returns where each of
+    /// their chains starts: executing the chains in that order executes `ins`.
+    pub(crate) fn push(&mut self, ins: &[Ins]) -> Vec<u32> {
+        let regs = ins.iter().flat_map(Ins::registers).max().map_or(0, |m| m as usize + 1);
+        self.needs = self.needs.max(regs);
+        let mut starts = Vec::new();
+        for chain in group(ins).chunks(CHAIN) {
+            starts.push(self.steps.len() as u32);
+            self.steps.extend_from_slice(chain);
+            self.steps.push(Step { exec: ret, r: [0; 9] });
+        }
+        starts
+    }
+
+    /// One more than the largest register a step names: the registers a run needs.
+    pub(crate) fn needs(&self) -> usize {
+        self.needs
+    }
+
+    /// Executes the chain starting at `start`.
+    ///
+    /// # Safety
+    /// `start` is one that [`Chains::push`] returned, and `p` points to at least
+    /// [`Chains::needs`] registers.
+    #[inline]
+    pub(crate) unsafe fn run(&self, p: *mut f64, start: u32) {
+        // SAFETY: the caller's; the chain ends with a `ret` (see `Chains::push`).
+        unsafe {
+            let s = self.steps.as_ptr().add(start as usize);
+            ((*s).exec)(p, s)
+        }
     }
 }
 
@@ -842,5 +886,38 @@ mod tests {
             let want = [x, s, t, t * t, u, x - u, w, w / s];
             assert_eq!(r.map(f64::to_bits), want.map(f64::to_bits));
         }
+    }
+
+    /// Chains entered by their starts execute their instructions as a segment does: a run too
+    /// long for one chain is several, executed in order, and a second run's chain is entered
+    /// without running the first's.
+    #[test]
+    fn chains_run_from_their_starts() {
+        let n = 3 * CHAIN + 5;
+        let long: Vec<Ins> = (0..n as u32).map(|k| Ins::Mul(k + 1, k, 0)).collect();
+        let mut chains = Chains::default();
+        let starts = chains.push(&long);
+        assert_eq!(starts.len(), 2);
+        let other = chains.push(&[Ins::Add(n as u32 + 1, 0, 1), Ins::Neg(n as u32 + 2, n as u32 + 1)]);
+        assert_eq!(other.len(), 1);
+        assert_eq!(chains.needs(), n + 3);
+        let x = 1.0 + 1e-3;
+        let mut r = vec![0.0; n + 3];
+        r[0] = x;
+        for &s in &starts {
+            // SAFETY: `s` from `push`, `r` holds `needs` registers.
+            unsafe { chains.run(r.as_mut_ptr(), s) };
+        }
+        let mut want = x;
+        for k in 1..=n {
+            want *= x;
+            assert_eq!(r[k].to_bits(), want.to_bits(), "register {k}");
+        }
+        // The second run reads register 1, written by the first: entered alone after it.
+        let before = r[1];
+        // SAFETY: as above.
+        unsafe { chains.run(r.as_mut_ptr(), other[0]) };
+        let sum = x + before;
+        assert_eq!([r[n + 1], r[n + 2]].map(f64::to_bits), [sum, -sum].map(f64::to_bits));
     }
 }
