@@ -12,7 +12,7 @@
 //!
 //! What makes a step cheaper without changing a value: the nodes of the parameters alone are
 //! computed when the parameters are set ([`statics`]; the compiled step recomputes them with
-//! the same operations), a sine and a cosine of one argument are one instruction, up to three
+//! the same operations), a sine and a cosine of one argument are one instruction, up to four
 //! consecutive arithmetic operations share one dispatch (each still rounds on its own, in its
 //! order: no fused multiply-add, which the emitted code does not use), and each step jumps to
 //! the next one's function ([`Step`]: threaded code, no loop between two steps). Operands are
@@ -100,7 +100,7 @@ impl Ins {
     /// The step executing this instruction alone.
     fn step(self) -> Step {
         let f = |exec: Exec, r: &[u32]| {
-            let mut regs = [0; 9];
+            let mut regs = [0; 12];
             regs[..r.len()].copy_from_slice(r);
             Step { exec, r: regs }
         };
@@ -140,7 +140,7 @@ impl Ins {
 /// `s` in its array.
 type Exec = unsafe fn(p: *mut f64, s: *const Step);
 
-/// One dispatch of a segment: up to three consecutive arithmetic instructions, or one other.
+/// One dispatch of a segment: up to four consecutive arithmetic instructions, or one other.
 ///
 /// A step's function performs it and then calls the next step's function (threaded code: the
 /// call is in tail position with the same arguments, which the optimiser compiles to a jump,
@@ -154,7 +154,7 @@ type Exec = unsafe fn(p: *mut f64, s: *const Step);
 pub(crate) struct Step {
     exec: Exec,
     /// The registers, as the function reads them (`[d, a, b]` per arithmetic operation).
-    r: [u32; 9],
+    r: [u32; 12],
 }
 
 /// The arithmetic operations' codes (a const parameter of the grouped steps' functions).
@@ -251,7 +251,23 @@ unsafe fn arith3<const F: u8, const G: u8, const H: u8>(p: *mut f64, s: *const S
     }
 }
 
-/// The functions of one, two and three arithmetic operations, by their codes.
+/// Four arithmetic operations, in order.
+///
+/// # Safety
+/// As [`arith1`].
+unsafe fn arith4<const F: u8, const G: u8, const H: u8, const I: u8>(p: *mut f64, s: *const Step) {
+    // SAFETY: the caller's.
+    unsafe {
+        let r = &(*s).r;
+        arith::<F>(p, r[0], r[1], r[2]);
+        arith::<G>(p, r[3], r[4], r[5]);
+        arith::<H>(p, r[6], r[7], r[8]);
+        arith::<I>(p, r[9], r[10], r[11]);
+        next(p, s)
+    }
+}
+
+/// The functions of one, two, three and four arithmetic operations, by their codes.
 macro_rules! by_code {
     ($f:ident; $($k:literal),*) => {
         [$f::<$($k,)* 0> as Exec, $f::<$($k,)* 1>, $f::<$($k,)* 2>, $f::<$($k,)* 3>, $f::<$($k,)* 4>]
@@ -266,6 +282,13 @@ const ARITH1: [Exec; 5] = by_code!(arith1;);
 const ARITH2: [[Exec; 5]; 5] = by_codes!(arith2;);
 const ARITH3: [[[Exec; 5]; 5]; 5] =
     [by_codes!(arith3; 0), by_codes!(arith3; 1), by_codes!(arith3; 2), by_codes!(arith3; 3), by_codes!(arith3; 4)];
+macro_rules! by_codes3 {
+    ($f:ident; $($k:literal),*) => {
+        [by_codes!($f; $($k,)* 0), by_codes!($f; $($k,)* 1), by_codes!($f; $($k,)* 2), by_codes!($f; $($k,)* 3), by_codes!($f; $($k,)* 4)]
+    };
+}
+const ARITH4: [[[[Exec; 5]; 5]; 5]; 5] =
+    [by_codes3!(arith4; 0), by_codes3!(arith4; 1), by_codes3!(arith4; 2), by_codes3!(arith4; 3), by_codes3!(arith4; 4)];
 
 /// The elementary functions' codes (a const parameter of [`unary`]).
 const SIN: u8 = 0;
@@ -395,7 +418,7 @@ pub(crate) struct Segment {
     steps: Vec<Step>,
     /// One more than the largest register an instruction names: the registers a run needs.
     needs: usize,
-    /// The graph operations the segment performs (a step may perform three).
+    /// The graph operations the segment performs (a step may perform four).
     ops: usize,
 }
 
@@ -431,13 +454,13 @@ impl Segment {
     }
 
     /// A segment of `ins` (one instruction per graph operation, in order): a sine and a cosine
-    /// of one argument merged, consecutive arithmetic operations grouped by three, the
+    /// of one argument merged, consecutive arithmetic operations grouped by four, the
     /// registers counted.
     fn new(ins: Vec<Ins>) -> Segment {
         Segment::of(sin_cos(ins))
     }
 
-    /// A segment executing `ins` in order, consecutive arithmetic operations grouped by three.
+    /// A segment executing `ins` in order, consecutive arithmetic operations grouped by four.
     pub(crate) fn of(ins: Vec<Ins>) -> Segment {
         let ops = ins.iter().map(|i| if matches!(i, Ins::SinCos(..)) { 2 } else { 1 }).sum();
         let needs = ins.iter().flat_map(Ins::registers).max().map_or(0, |m| m as usize + 1);
@@ -445,7 +468,7 @@ impl Segment {
         let mut steps = Vec::new();
         for chain in group(&ins).chunks(CHAIN) {
             steps.extend_from_slice(chain);
-            steps.push(Step { exec: ret, r: [0; 9] });
+            steps.push(Step { exec: ret, r: [0; 12] });
         }
         Segment { steps, needs, ops }
     }
@@ -475,7 +498,7 @@ impl Chains {
         for chain in group(ins).chunks(CHAIN) {
             starts.push(self.steps.len() as u32);
             self.steps.extend_from_slice(chain);
-            self.steps.push(Step { exec: ret, r: [0; 9] });
+            self.steps.push(Step { exec: ret, r: [0; 12] });
         }
         starts
     }
@@ -528,19 +551,20 @@ fn sin_cos(ins: Vec<Ins>) -> Vec<Ins> {
     out
 }
 
-/// The steps of `ins`: each run of consecutive arithmetic instructions in steps of three (the
-/// last of a run two or one), every other instruction a step of its own.
+/// The steps of `ins`: each run of consecutive arithmetic instructions in steps of four (the
+/// last of a run three, two or one), every other instruction a step of its own.
 fn group(ins: &[Ins]) -> Vec<Step> {
     let mut out = Vec::with_capacity(ins.len());
     let mut k = 0;
     while k < ins.len() {
-        let run: Vec<(u8, [u32; 3])> = ins[k..].iter().map_while(Ins::arith).take(3).collect();
+        let run: Vec<(u8, [u32; 3])> = ins[k..].iter().map_while(Ins::arith).take(4).collect();
         let step = match run[..] {
             [] => ins[k].step(),
             [(f, a)] => Step { exec: ARITH1[f as usize], r: regs(&[a]) },
             [(f, a), (g, b)] => Step { exec: ARITH2[f as usize][g as usize], r: regs(&[a, b]) },
-            [(f, a), (g, b), (h, c), ..] => {
-                Step { exec: ARITH3[f as usize][g as usize][h as usize], r: regs(&[a, b, c]) }
+            [(f, a), (g, b), (h, c)] => Step { exec: ARITH3[f as usize][g as usize][h as usize], r: regs(&[a, b, c]) },
+            [(f, a), (g, b), (h, c), (i, d), ..] => {
+                Step { exec: ARITH4[f as usize][g as usize][h as usize][i as usize], r: regs(&[a, b, c, d]) }
             }
         };
         k += run.len().max(1);
@@ -550,8 +574,8 @@ fn group(ins: &[Ins]) -> Vec<Step> {
 }
 
 /// The registers of a step's arithmetic operations, in order.
-fn regs(ops: &[[u32; 3]]) -> [u32; 9] {
-    let mut r = [0; 9];
+fn regs(ops: &[[u32; 3]]) -> [u32; 12] {
+    let mut r = [0; 12];
     for (k, o) in ops.iter().enumerate() {
         r[3 * k..3 * k + 3].copy_from_slice(o);
     }
@@ -738,10 +762,10 @@ mod tests {
 
         let statics = statics(&g);
         let seg = Builder::new(&g).segment(&roots, None).expect("every leaf is known");
-        // The sine and cosine are one step, the seven arithmetic operations three (3 + 3 + 1),
-        // the parameters' nodes hoisted: four steps for nine operations.
+        // The sine and cosine are one step, the seven arithmetic operations two (4 + 3), the
+        // parameters' nodes hoisted: three steps for nine operations.
         assert_eq!(seg.len(), 9, "{seg:?}");
-        assert_eq!(dispatches(&seg), 4, "{seg:?}");
+        assert_eq!(dispatches(&seg), 3, "{seg:?}");
         assert!(seg.steps.iter().any(|s| std::ptr::fn_addr_eq(s.exec, sin_cos_step as Exec)), "{seg:?}");
 
         for (xv, yv, pv) in [(0.3, -1.7, 2.5), (1e-3, 4.0, -0.7), (-2.9, 1e5, 1e-9)] {
@@ -800,38 +824,41 @@ mod tests {
         }
     }
 
-    /// Every grouped step (one, two or three arithmetic operations of every kind) computes the
+    /// Every grouped step (one to four arithmetic operations of every kind) computes the
     /// separate operations' values bit for bit, in their order: each operation reads what the
     /// one before it wrote, and the inputs are such that reassociating (`(a + b) - c` against
     /// `a + (b - c)` at `a = 1, b = c = 1e16`), contracting a product and a sum into one
     /// rounding or reading a register before it is written would change the result.
     #[test]
     fn grouped_arithmetic_steps_give_the_separate_operations_values() {
-        let inputs: [[f64; 4]; 4] = [
-            [1.0, 1e16, 1e16, 0.1],
+        let inputs: [[f64; 5]; 4] = [
+            [1.0, 1e16, 1e16, 0.1, -3.0],
             // (1 + 2^-30)^2 - (1 + 2^-29) is 2^-60 exactly, rounded to 0 when the product is
             // rounded first.
-            [1.0 + 2f64.powi(-30), 1.0 + 2f64.powi(-30), 1.0 + 2f64.powi(-29), 3.0],
-            [0.1, 0.2, 0.3, -7.0],
-            [-2.5e-300, 1e300, 1e-10, 1e10],
+            [1.0 + 2f64.powi(-30), 1.0 + 2f64.powi(-30), 1.0 + 2f64.powi(-29), 3.0, 1e-5],
+            [0.1, 0.2, 0.3, -7.0, 0.7],
+            [-2.5e-300, 1e300, 1e-10, 1e10, 1e300],
         ];
         let codes = [ADD, SUB, MUL, DIV, NEG];
-        let mut groups: Vec<Vec<u8>> = codes.iter().map(|&f| vec![f]).collect();
-        for f in codes {
-            for g in codes {
-                groups.push(vec![f, g]);
-                groups.extend(codes.iter().map(|&h| vec![f, g, h]));
-            }
+        let mut groups: Vec<Vec<u8>> = vec![vec![]];
+        for len in 1..=4 {
+            let longer: Vec<Vec<u8>> = groups
+                .iter()
+                .filter(|g| g.len() == len - 1)
+                .flat_map(|g| codes.map(|k| [g.clone(), vec![k]].concat()))
+                .collect();
+            groups.extend(longer);
         }
-        assert_eq!(groups.len(), 5 + 25 + 125);
+        groups.remove(0);
+        assert_eq!(groups.len(), 5 + 25 + 125 + 625);
         for group in &groups {
-            // Registers 0..4 the inputs, 4.. the results: operation `j` reads the previous
-            // result (or input 0) and input `j + 1`, and writes register `4 + j`.
+            // Registers 0..5 the inputs, 5.. the results: operation `j` reads the previous
+            // result (or input 0) and input `j + 1`, and writes register `5 + j`.
             let ins: Vec<Ins> = group
                 .iter()
                 .enumerate()
                 .map(|(j, &k)| {
-                    let (d, a, b) = (4 + j as u32, if j == 0 { 0 } else { 3 + j as u32 }, 1 + j as u32);
+                    let (d, a, b) = (5 + j as u32, if j == 0 { 0 } else { 4 + j as u32 }, 1 + j as u32);
                     match k {
                         ADD => Ins::Add(d, a, b),
                         SUB => Ins::Sub(d, a, b),
@@ -844,46 +871,50 @@ mod tests {
             let seg = Segment::of(ins);
             assert_eq!(dispatches(&seg), 1, "one step for {group:?}");
             for x in inputs {
-                let mut r = [x[0], x[1], x[2], x[3], 0.0, 0.0, 0.0];
+                let mut r = [x[0], x[1], x[2], x[3], x[4], 0.0, 0.0, 0.0, 0.0];
                 seg.run(&mut r);
                 let mut prev = x[0];
                 for (j, &k) in group.iter().enumerate() {
                     prev = reference(k, prev, x[j + 1]);
-                    assert_eq!(r[4 + j].to_bits(), prev.to_bits(), "{group:?} at {x:?}, operation {j}");
+                    assert_eq!(r[5 + j].to_bits(), prev.to_bits(), "{group:?} at {x:?}, operation {j}");
                 }
             }
         }
         // The inputs tell the orders apart.
-        let [a, b, c, _] = inputs[0];
+        let [a, b, c, ..] = inputs[0];
         assert_ne!((a + b) - c, a + (b - c));
-        let [a, b, c, _] = inputs[1];
+        let [a, b, c, ..] = inputs[1];
         assert_ne!((a * b) - c, a.mul_add(b, -c));
     }
 
-    /// A long run of arithmetic operations is cut into steps of three, in order, and the
+    /// A long run of arithmetic operations is cut into steps of four, in order, and the
     /// instructions around it stay steps of their own.
     #[test]
-    fn a_run_is_grouped_by_three_between_other_instructions() {
+    fn a_run_is_grouped_by_four_between_other_instructions() {
         let ins = vec![
             Ins::Sin(1, 0),
             Ins::Add(2, 0, 1),
             Ins::Mul(3, 2, 2),
             Ins::Neg(4, 3),
             Ins::Sub(5, 0, 4),
-            Ins::Sqrt(6, 5),
-            Ins::Div(7, 6, 1),
+            Ins::Add(6, 5, 0),
+            Ins::Mul(7, 6, 1),
+            Ins::Sqrt(8, 5),
+            Ins::Div(9, 8, 1),
         ];
         let seg = Segment::of(ins);
+        // The sine, four and two arithmetic operations, the square root, the division.
         assert_eq!(dispatches(&seg), 5);
-        assert_eq!((seg.len(), seg.needs), (7, 8));
+        assert_eq!((seg.len(), seg.needs), (9, 10));
         for x in [0.7, -1.3, 1e-8] {
-            let mut r = [x, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0];
+            let mut r = [x, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0];
             seg.run(&mut r);
             let s = x.sin();
             let t = x + s;
             let u = -(t * t);
-            let w = (x - u).sqrt();
-            let want = [x, s, t, t * t, u, x - u, w, w / s];
+            let v = x - u;
+            let w = v.sqrt();
+            let want = [x, s, t, t * t, u, v, v + x, (v + x) * s, w, w / s];
             assert_eq!(r.map(f64::to_bits), want.map(f64::to_bits));
         }
     }
@@ -893,7 +924,7 @@ mod tests {
     /// without running the first's.
     #[test]
     fn chains_run_from_their_starts() {
-        let n = 3 * CHAIN + 5;
+        let n = 4 * CHAIN + 5;
         let long: Vec<Ins> = (0..n as u32).map(|k| Ins::Mul(k + 1, k, 0)).collect();
         let mut chains = Chains::default();
         let starts = chains.push(&long);
