@@ -190,7 +190,7 @@ enum Op {
         g: u32,
     },
     /// The chain of `ClosedProg::runs` starting at this step: consecutive [`Op::Add`] ...
-    /// [`Op::Neg`] executed as the tape executes them (three operations a dispatch).
+    /// [`Op::Neg`] executed as the tape executes them (up to four operations a dispatch).
     Run(u32),
     /// `check_closed(out[..len], angles)`.
     Check {
