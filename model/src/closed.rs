@@ -14,6 +14,7 @@
 //! Each form's arithmetic is one function below ([`Build::angle_equation`], [`Build::dyad`],
 //! [`Build::polar`], [`Build::angle_slider`]), beside the emitter's function of the same name.
 
+use crate::tape::{Chains, Ins};
 use kinloop_codegen::graph::dag::{self, Graph, Leaf, NodeId};
 use kinloop_codegen::plan::closed_form::{ClosedForm, constant_norm2};
 use kinloop_runtime::NewtonConfig;
@@ -188,6 +189,9 @@ enum Op {
         r: u32,
         g: u32,
     },
+    /// The chain of `ClosedProg::runs` starting at this step: consecutive [`Op::Add`] ...
+    /// [`Op::Neg`] executed as the tape executes them (up to four operations a dispatch).
+    Run(u32),
     /// `check_closed(out[..len], angles)`.
     Check {
         out: [u32; 6],
@@ -218,14 +222,50 @@ impl Op {
             Op::Atan2Unwrap { d, s, c, g } | Op::AcosUnwrap { d, c, s, g } => vec![d, s, c, g],
             Op::AsinNear { d, s, right, r, g } => vec![d, s, right, r, g],
             Op::Check { out, len, .. } => out[..*len as usize].iter_mut().collect(),
+            // Made when the program is complete, from operations already counted.
+            Op::Run(_) => Vec::new(),
         }
     }
+
+    /// The operation as a tape instruction, if it is arithmetic.
+    fn arith(self) -> Option<Ins> {
+        match self {
+            Op::Add(d, a, b) => Some(Ins::Add(d, a, b)),
+            Op::Sub(d, a, b) => Some(Ins::Sub(d, a, b)),
+            Op::Mul(d, a, b) => Some(Ins::Mul(d, a, b)),
+            Op::Div(d, a, b) => Some(Ins::Div(d, a, b)),
+            Op::Neg(d, a) => Some(Ins::Neg(d, a)),
+            _ => None,
+        }
+    }
+}
+
+/// The operations with each run of two or more consecutive arithmetic operations replaced by
+/// [`Op::Run`]s of the returned chains (the same operations in the same order; a single one
+/// stays, one dispatch either way).
+fn runs(ops: Vec<Op>) -> (Vec<Op>, Chains) {
+    let mut out = Vec::with_capacity(ops.len());
+    let mut chains = Chains::default();
+    let mut k = 0;
+    while k < ops.len() {
+        let run: Vec<Ins> = ops[k..].iter().map_while(|o| o.arith()).collect();
+        if run.len() >= 2 {
+            k += run.len();
+            out.extend(chains.push(&run).into_iter().map(Op::Run));
+        } else {
+            out.push(ops[k]);
+            k += 1;
+        }
+    }
+    (out, chains)
 }
 
 /// A closed form compiled: its operations, and where its solution is left.
 #[derive(Clone, Debug)]
 pub(crate) struct ClosedProg {
     ops: Vec<Op>,
+    /// The runs of arithmetic operations ([`Op::Run`]).
+    runs: Chains,
     /// One more than the largest register named: the registers a run needs.
     needs: usize,
     /// One more than the largest guess read.
@@ -285,8 +325,11 @@ impl ClosedProg {
         let mut ops = b.ops;
         let needs = ops.iter_mut().flat_map(|o| o.registers_mut().into_iter().map(|r| *r)).max().map_or(0, |m| m + 1);
         let guesses = ops.iter().filter_map(|o| if let Op::Guess(_, u) = o { Some(*u + 1) } else { None }).max();
+        let (ops, runs) = runs(ops);
+        debug_assert!(runs.needs() <= needs as usize, "the runs' registers are the program's");
         ClosedProg {
             ops,
+            runs,
             needs: needs as usize,
             guesses: guesses.unwrap_or(0) as usize,
             unknowns: order.into_iter().zip(placed).collect(),
@@ -300,7 +343,8 @@ impl ClosedProg {
         // (checked when the program was built): one test here instead of one per operand.
         assert!(r.len() >= self.needs && guess.len() >= self.guesses, "registers of another model");
         let p = r.as_mut_ptr();
-        // SAFETY: every index is below `needs` <= `r.len()`, every guess below `guess.len()`.
+        // SAFETY: every index is below `needs` <= `r.len()`, every guess below `guess.len()`, every
+        // run's start one that `runs` returned (made with the program, `runs`).
         unsafe {
             let v = |k: u32| *p.add(k as usize);
             let set = |k: u32, x: f64| *p.add(k as usize) = x;
@@ -315,6 +359,8 @@ impl ClosedProg {
                     Op::Neg(d, a) => set(d, -v(a)),
                     Op::Abs(d, a) => set(d, v(a).abs()),
                     Op::Mov(d, a) => set(d, v(a)),
+                    // The chain's registers are among the program's, below `needs`.
+                    Op::Run(start) => self.runs.run(p, start),
                     Op::Guess(d, u) => set(d, *guess.get_unchecked(u as usize)),
                     Op::CheckGuess(a, b) => check_guess(v(a) + v(b))?,
                     Op::Side { r, right, flip, b, g } => {

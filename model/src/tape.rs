@@ -12,20 +12,19 @@
 //!
 //! What makes a step cheaper without changing a value: the nodes of the parameters alone are
 //! computed when the parameters are set ([`statics`]; the compiled step recomputes them with
-//! the same operations), a sine and a cosine of one argument are one instruction, and two
+//! the same operations), a sine and a cosine of one argument are one instruction, up to four
 //! consecutive arithmetic operations share one dispatch (each still rounds on its own, in its
-//! order: no fused multiply-add, which the emitted code does not use). Operands are `u32`
-//! register indices checked once per segment when it is built.
+//! order: no fused multiply-add, which the emitted code does not use), and each step jumps to
+//! the next one's function ([`Step`]: threaded code, no loop between two steps). Operands are
+//! `u32` register indices checked once per segment when it is built.
 
 use kinloop_codegen::graph::dag::{Func, Graph, Leaf, NodeId, Op};
 
 /// One operation: destination register first, then the operands' registers.
 ///
-/// The elementary functions are variants of their own (one dispatch, not two), a sine and a
-/// cosine of one argument are one instruction ([`Ins::SinCos`], as the emitted code's
-/// `sin_cos`, which computes `(sin, cos)`), and two consecutive arithmetic operations are one
-/// instruction (`Ins::MulAdd`, ...): each still performs its own rounding in its own order, so the
-/// values are those of the separate operations; only the dispatch is shared.
+/// The elementary functions are variants of their own, and a sine and a cosine of one argument
+/// are one instruction ([`Ins::SinCos`], as the emitted code's `sin_cos`, which computes
+/// `(sin, cos)`). A segment executes them as [`Step`]s.
 #[derive(Clone, Copy, Debug)]
 pub(crate) enum Ins {
     Add(u32, u32, u32),
@@ -53,38 +52,19 @@ pub(crate) enum Ins {
     Abs(u32, u32),
     Signum(u32, u32),
     Atan2(u32, u32, u32),
-    /// Two arithmetic operations executed in order (the second may read the first's result),
-    /// named by the first's operation and the second's: `AddMul([d, a, b], [e, x, y])` is
-    /// `d = a + b; e = x * y`.
-    AddAdd([u32; 3], [u32; 3]),
-    AddSub([u32; 3], [u32; 3]),
-    AddMul([u32; 3], [u32; 3]),
-    AddDiv([u32; 3], [u32; 3]),
-    SubAdd([u32; 3], [u32; 3]),
-    SubSub([u32; 3], [u32; 3]),
-    SubMul([u32; 3], [u32; 3]),
-    SubDiv([u32; 3], [u32; 3]),
-    MulAdd([u32; 3], [u32; 3]),
-    MulSub([u32; 3], [u32; 3]),
-    MulMul([u32; 3], [u32; 3]),
-    MulDiv([u32; 3], [u32; 3]),
-    DivAdd([u32; 3], [u32; 3]),
-    DivSub([u32; 3], [u32; 3]),
-    DivMul([u32; 3], [u32; 3]),
-    DivDiv([u32; 3], [u32; 3]),
 }
 
 impl Ins {
     /// The registers the instruction writes, then those it reads.
     fn registers(&self) -> impl Iterator<Item = u32> {
-        let (v, n): ([u32; 6], usize) = match *self {
+        let (v, n): ([u32; 3], usize) = match *self {
             Ins::Add(d, a, b)
             | Ins::Sub(d, a, b)
             | Ins::Mul(d, a, b)
             | Ins::Div(d, a, b)
             | Ins::Powf(d, a, b)
             | Ins::Atan2(d, a, b)
-            | Ins::SinCos(d, a, b) => ([d, a, b, 0, 0, 0], 3),
+            | Ins::SinCos(d, a, b) => ([d, a, b], 3),
             Ins::Neg(d, a)
             | Ins::Square(d, a)
             | Ins::Recip(d, a)
@@ -99,46 +79,346 @@ impl Ins {
             | Ins::Exp(d, a)
             | Ins::Ln(d, a)
             | Ins::Abs(d, a)
-            | Ins::Signum(d, a) => ([d, a, 0, 0, 0, 0], 2),
-            Ins::AddAdd([d, a, b], [e, x, y])
-            | Ins::AddSub([d, a, b], [e, x, y])
-            | Ins::AddMul([d, a, b], [e, x, y])
-            | Ins::AddDiv([d, a, b], [e, x, y])
-            | Ins::SubAdd([d, a, b], [e, x, y])
-            | Ins::SubSub([d, a, b], [e, x, y])
-            | Ins::SubMul([d, a, b], [e, x, y])
-            | Ins::SubDiv([d, a, b], [e, x, y])
-            | Ins::MulAdd([d, a, b], [e, x, y])
-            | Ins::MulSub([d, a, b], [e, x, y])
-            | Ins::MulMul([d, a, b], [e, x, y])
-            | Ins::MulDiv([d, a, b], [e, x, y])
-            | Ins::DivAdd([d, a, b], [e, x, y])
-            | Ins::DivSub([d, a, b], [e, x, y])
-            | Ins::DivMul([d, a, b], [e, x, y])
-            | Ins::DivDiv([d, a, b], [e, x, y]) => ([d, a, b, e, x, y], 6),
+            | Ins::Signum(d, a) => ([d, a, 0], 2),
         };
         v.into_iter().take(n)
     }
 
-    /// The arithmetic operation `(op, [d, a, b])` of a single instruction, for pairing.
+    /// The arithmetic operation `(code, [d, a, b])` of the instruction ([`ADD`], ... [`NEG`],
+    /// whose `b` is its `a`), for grouping.
     fn arith(&self) -> Option<(u8, [u32; 3])> {
         match *self {
-            Ins::Add(d, a, b) => Some((0, [d, a, b])),
-            Ins::Sub(d, a, b) => Some((1, [d, a, b])),
-            Ins::Mul(d, a, b) => Some((2, [d, a, b])),
-            Ins::Div(d, a, b) => Some((3, [d, a, b])),
+            Ins::Add(d, a, b) => Some((ADD, [d, a, b])),
+            Ins::Sub(d, a, b) => Some((SUB, [d, a, b])),
+            Ins::Mul(d, a, b) => Some((MUL, [d, a, b])),
+            Ins::Div(d, a, b) => Some((DIV, [d, a, b])),
+            Ins::Neg(d, a) => Some((NEG, [d, a, a])),
             _ => None,
         }
+    }
+
+    /// The step executing this instruction alone.
+    fn step(self) -> Step {
+        let f = |exec: Exec, r: &[u32]| {
+            let mut regs = [0; 12];
+            regs[..r.len()].copy_from_slice(r);
+            Step { exec, r: regs }
+        };
+        match self {
+            Ins::Add(..) | Ins::Sub(..) | Ins::Mul(..) | Ins::Div(..) | Ins::Neg(..) => {
+                let (k, r) = self.arith().expect("an arithmetic instruction");
+                f(ARITH1[k as usize], &r)
+            }
+            Ins::Square(d, a) => f(square, &[d, a]),
+            Ins::Recip(d, a) => f(recip, &[d, a]),
+            // The exponent's bits in the operand's place.
+            Ins::Powi(d, a, k) => f(powi, &[d, a, k as u32]),
+            Ins::Powf(d, a, b) => f(powf, &[d, a, b]),
+            Ins::Sin(d, a) => f(unary::<SIN>, &[d, a]),
+            Ins::Cos(d, a) => f(unary::<COS>, &[d, a]),
+            Ins::SinCos(s, c, a) => f(sin_cos_step, &[s, c, a]),
+            Ins::Tan(d, a) => f(unary::<TAN>, &[d, a]),
+            Ins::Asin(d, a) => f(unary::<ASIN>, &[d, a]),
+            Ins::Acos(d, a) => f(unary::<ACOS>, &[d, a]),
+            Ins::Atan(d, a) => f(unary::<ATAN>, &[d, a]),
+            Ins::Sqrt(d, a) => f(unary::<SQRT>, &[d, a]),
+            Ins::Exp(d, a) => f(unary::<EXP>, &[d, a]),
+            Ins::Ln(d, a) => f(unary::<LN>, &[d, a]),
+            Ins::Abs(d, a) => f(unary::<ABS>, &[d, a]),
+            Ins::Signum(d, a) => f(unary::<SIGNUM>, &[d, a]),
+            Ins::Atan2(d, y, x) => f(atan2, &[d, y, x]),
+        }
+    }
+}
+
+/// What a step executes: a function of the registers (`p`, at least the segment's `needs` of
+/// them) and of the step itself (`s`, whose registers it reads), which then executes the next
+/// step (see [`next`]).
+///
+/// # Safety
+/// `p` holds every register the steps from `s` to the next [`ret`] name, and a [`ret`] follows
+/// `s` in its array.
+type Exec = unsafe fn(p: *mut f64, s: *const Step);
+
+/// One dispatch of a segment: up to four consecutive arithmetic instructions, or one other.
+///
+/// A step's function performs it and then calls the next step's function (threaded code: the
+/// call is in tail position with the same arguments, which the optimiser compiles to a jump,
+/// two instructions a dispatch instead of a loop's seven); a segment's steps form chains of at
+/// most [`CHAIN`] steps ended by [`ret`], so that without that optimisation (a debug build) the
+/// calls nest at most [`CHAIN`] deep. The grouped arithmetic instructions are one function each
+/// (`arith3::<MUL, MUL, ADD>`, ...) that performs the operations one after the other, each
+/// rounded on its own and stored to its register before the next reads the registers (no fused
+/// multiply-add, no reordering): the values are those of the separate operations.
+#[derive(Clone, Copy, Debug)]
+pub(crate) struct Step {
+    exec: Exec,
+    /// The registers, as the function reads them (`[d, a, b]` per arithmetic operation).
+    r: [u32; 12],
+}
+
+/// The arithmetic operations' codes (a const parameter of the grouped steps' functions).
+const ADD: u8 = 0;
+const SUB: u8 = 1;
+const MUL: u8 = 2;
+const DIV: u8 = 3;
+/// `-a` (its `b` is not read).
+const NEG: u8 = 4;
+
+/// The steps of a chain (a [`ret`] after them).
+const CHAIN: usize = 32;
+
+/// Executes the step after `s`.
+///
+/// # Safety
+/// As [`Exec`]: `s` is not a [`ret`].
+#[inline(always)]
+unsafe fn next(p: *mut f64, s: *const Step) {
+    // SAFETY: a `ret` ends every chain, so the step after a step that is not one exists.
+    unsafe {
+        let n = s.add(1);
+        ((*n).exec)(p, n)
+    }
+}
+
+/// The end of a chain.
+///
+/// # Safety
+/// None needed (it reads nothing), an [`Exec`] for its type.
+unsafe fn ret(_: *mut f64, _: *const Step) {}
+
+/// The operation `K` on `a` and `b`, as the emitted code writes it.
+#[inline(always)]
+fn op<const K: u8>(a: f64, b: f64) -> f64 {
+    match K {
+        ADD => a + b,
+        SUB => a - b,
+        MUL => a * b,
+        DIV => a / b,
+        _ => -a,
+    }
+}
+
+/// `r[d] = K(r[a], r[b])`.
+///
+/// # Safety
+/// `d`, `a`, `b` below the number of registers at `p`.
+#[inline(always)]
+unsafe fn arith<const K: u8>(p: *mut f64, d: u32, a: u32, b: u32) {
+    // SAFETY: the caller's.
+    unsafe { *p.add(d as usize) = op::<K>(*p.add(a as usize), *p.add(b as usize)) }
+}
+
+/// One arithmetic operation.
+///
+/// # Safety
+/// Every register index of `r` below the number of registers at `p` (as for every [`Exec`]).
+unsafe fn arith1<const F: u8>(p: *mut f64, s: *const Step) {
+    // SAFETY: the caller's.
+    unsafe {
+        let r = &(*s).r;
+        arith::<F>(p, r[0], r[1], r[2]);
+        next(p, s)
+    }
+}
+
+/// Two arithmetic operations, in order.
+///
+/// # Safety
+/// As [`arith1`].
+unsafe fn arith2<const F: u8, const G: u8>(p: *mut f64, s: *const Step) {
+    // SAFETY: the caller's.
+    unsafe {
+        let r = &(*s).r;
+        arith::<F>(p, r[0], r[1], r[2]);
+        arith::<G>(p, r[3], r[4], r[5]);
+        next(p, s)
+    }
+}
+
+/// Three arithmetic operations, in order.
+///
+/// # Safety
+/// As [`arith1`].
+unsafe fn arith3<const F: u8, const G: u8, const H: u8>(p: *mut f64, s: *const Step) {
+    // SAFETY: the caller's.
+    unsafe {
+        let r = &(*s).r;
+        arith::<F>(p, r[0], r[1], r[2]);
+        arith::<G>(p, r[3], r[4], r[5]);
+        arith::<H>(p, r[6], r[7], r[8]);
+        next(p, s)
+    }
+}
+
+/// Four arithmetic operations, in order.
+///
+/// # Safety
+/// As [`arith1`].
+unsafe fn arith4<const F: u8, const G: u8, const H: u8, const I: u8>(p: *mut f64, s: *const Step) {
+    // SAFETY: the caller's.
+    unsafe {
+        let r = &(*s).r;
+        arith::<F>(p, r[0], r[1], r[2]);
+        arith::<G>(p, r[3], r[4], r[5]);
+        arith::<H>(p, r[6], r[7], r[8]);
+        arith::<I>(p, r[9], r[10], r[11]);
+        next(p, s)
+    }
+}
+
+/// The functions of one, two, three and four arithmetic operations, by their codes.
+macro_rules! by_code {
+    ($f:ident; $($k:literal),*) => {
+        [$f::<$($k,)* 0> as Exec, $f::<$($k,)* 1>, $f::<$($k,)* 2>, $f::<$($k,)* 3>, $f::<$($k,)* 4>]
+    };
+}
+macro_rules! by_codes {
+    ($f:ident; $($k:literal),*) => {
+        [by_code!($f; $($k,)* 0), by_code!($f; $($k,)* 1), by_code!($f; $($k,)* 2), by_code!($f; $($k,)* 3), by_code!($f; $($k,)* 4)]
+    };
+}
+const ARITH1: [Exec; 5] = by_code!(arith1;);
+const ARITH2: [[Exec; 5]; 5] = by_codes!(arith2;);
+const ARITH3: [[[Exec; 5]; 5]; 5] =
+    [by_codes!(arith3; 0), by_codes!(arith3; 1), by_codes!(arith3; 2), by_codes!(arith3; 3), by_codes!(arith3; 4)];
+macro_rules! by_codes3 {
+    ($f:ident; $($k:literal),*) => {
+        [by_codes!($f; $($k,)* 0), by_codes!($f; $($k,)* 1), by_codes!($f; $($k,)* 2), by_codes!($f; $($k,)* 3), by_codes!($f; $($k,)* 4)]
+    };
+}
+const ARITH4: [[[[Exec; 5]; 5]; 5]; 5] =
+    [by_codes3!(arith4; 0), by_codes3!(arith4; 1), by_codes3!(arith4; 2), by_codes3!(arith4; 3), by_codes3!(arith4; 4)];
+
+/// The elementary functions' codes (a const parameter of [`unary`]).
+const SIN: u8 = 0;
+const COS: u8 = 1;
+const TAN: u8 = 2;
+const ASIN: u8 = 3;
+const ACOS: u8 = 4;
+const ATAN: u8 = 5;
+const SQRT: u8 = 6;
+const EXP: u8 = 7;
+const LN: u8 = 8;
+const ABS: u8 = 9;
+const SIGNUM: u8 = 10;
+
+/// `r[d] = F(r[a])`.
+///
+/// # Safety
+/// As [`arith1`].
+unsafe fn unary<const F: u8>(p: *mut f64, s: *const Step) {
+    // SAFETY: the caller's.
+    unsafe {
+        let r = &(*s).r;
+        let x = *p.add(r[1] as usize);
+        *p.add(r[0] as usize) = match F {
+            SIN => x.sin(),
+            COS => x.cos(),
+            TAN => x.tan(),
+            ASIN => x.asin(),
+            ACOS => x.acos(),
+            ATAN => x.atan(),
+            SQRT => x.sqrt(),
+            EXP => x.exp(),
+            LN => x.ln(),
+            ABS => x.abs(),
+            // `f64::signum`, as the emitted code calls it (not the constant folder's, which
+            // gives 0 at 0).
+            _ => x.signum(),
+        };
+        next(p, s)
+    }
+}
+
+/// `r[d] = r[a] * r[a]` (the emitter's square).
+///
+/// # Safety
+/// As [`arith1`].
+unsafe fn square(p: *mut f64, s: *const Step) {
+    // SAFETY: the caller's.
+    unsafe {
+        let r = &(*s).r;
+        let x = *p.add(r[1] as usize);
+        *p.add(r[0] as usize) = x * x;
+        next(p, s)
+    }
+}
+
+/// `r[d] = 1.0 / r[a]` (the emitter's reciprocal).
+///
+/// # Safety
+/// As [`arith1`].
+unsafe fn recip(p: *mut f64, s: *const Step) {
+    // SAFETY: the caller's.
+    unsafe {
+        let r = &(*s).r;
+        *p.add(r[0] as usize) = 1.0 / *p.add(r[1] as usize);
+        next(p, s)
+    }
+}
+
+/// `r[d] = r[a].powi(k)`, the exponent's bits in `r[2]`.
+///
+/// # Safety
+/// As [`arith1`] (`r[2]` is not a register).
+unsafe fn powi(p: *mut f64, s: *const Step) {
+    // SAFETY: the caller's.
+    unsafe {
+        let r = &(*s).r;
+        *p.add(r[0] as usize) = (*p.add(r[1] as usize)).powi(r[2] as i32);
+        next(p, s)
+    }
+}
+
+/// `r[d] = r[a].powf(r[b])`.
+///
+/// # Safety
+/// As [`arith1`].
+unsafe fn powf(p: *mut f64, s: *const Step) {
+    // SAFETY: the caller's.
+    unsafe {
+        let r = &(*s).r;
+        *p.add(r[0] as usize) = (*p.add(r[1] as usize)).powf(*p.add(r[2] as usize));
+        next(p, s)
+    }
+}
+
+/// `r[d] = r[y].atan2(r[x])`.
+///
+/// # Safety
+/// As [`arith1`].
+unsafe fn atan2(p: *mut f64, s: *const Step) {
+    // SAFETY: the caller's.
+    unsafe {
+        let r = &(*s).r;
+        *p.add(r[0] as usize) = (*p.add(r[1] as usize)).atan2(*p.add(r[2] as usize));
+        next(p, s)
+    }
+}
+
+/// `(r[s], r[c]) = r[a].sin_cos()`.
+///
+/// # Safety
+/// As [`arith1`].
+unsafe fn sin_cos_step(p: *mut f64, s: *const Step) {
+    // SAFETY: the caller's.
+    unsafe {
+        let r = &(*s).r;
+        let (sin, cos) = (*p.add(r[2] as usize)).sin_cos();
+        *p.add(r[0] as usize) = sin;
+        *p.add(r[1] as usize) = cos;
+        next(p, s)
     }
 }
 
 /// A run of instructions, executed in order.
 #[derive(Clone, Debug, Default)]
 pub(crate) struct Segment {
-    ins: Vec<Ins>,
+    steps: Vec<Step>,
     /// One more than the largest register an instruction names: the registers a run needs.
     needs: usize,
-    /// The graph operations the segment performs (an instruction may perform two).
+    /// The graph operations the segment performs (a step may perform four).
     ops: usize,
 }
 
@@ -146,89 +426,100 @@ impl Segment {
     /// Executes the segment over the registers.
     #[inline]
     pub(crate) fn run(&self, r: &mut [f64]) {
-        // Every register an instruction names is below `needs` (checked when the segment was
-        // built): one test here instead of one per operand.
-        if self.ins.is_empty() {
+        if self.steps.is_empty() {
             return;
         }
+        // Every register a step names is below `needs` (checked when the segment was built):
+        // one test here instead of one per operand.
         assert!(r.len() >= self.needs, "registers of another tape");
-        let p = r[..self.needs].as_mut_ptr();
-        for ins in &self.ins {
-            // SAFETY: every index is below `needs` <= `r.len()` (see `Segment::new`).
-            unsafe {
-                let v = |k: u32| *p.add(k as usize);
-                macro_rules! pair {
-                    ($d:ident, $a:ident, $f:tt, $b:ident, $e:ident, $x:ident, $g:tt, $y:ident) => {{
-                        *p.add($d as usize) = v($a) $f v($b);
-                        ($e, v($x) $g v($y))
-                    }};
-                }
-                let (d, x) = match *ins {
-                    Ins::Add(d, a, b) => (d, v(a) + v(b)),
-                    Ins::Sub(d, a, b) => (d, v(a) - v(b)),
-                    Ins::Mul(d, a, b) => (d, v(a) * v(b)),
-                    Ins::Div(d, a, b) => (d, v(a) / v(b)),
-                    Ins::Neg(d, a) => (d, -v(a)),
-                    Ins::Square(d, a) => {
-                        let x = v(a);
-                        (d, x * x)
-                    }
-                    Ins::Recip(d, a) => (d, 1.0 / v(a)),
-                    Ins::Powi(d, a, k) => (d, v(a).powi(k)),
-                    Ins::Powf(d, a, b) => (d, v(a).powf(v(b))),
-                    Ins::Sin(d, a) => (d, v(a).sin()),
-                    Ins::Cos(d, a) => (d, v(a).cos()),
-                    Ins::SinCos(s, c, a) => {
-                        let (sin, cos) = v(a).sin_cos();
-                        *p.add(s as usize) = sin;
-                        (c, cos)
-                    }
-                    Ins::Tan(d, a) => (d, v(a).tan()),
-                    Ins::Asin(d, a) => (d, v(a).asin()),
-                    Ins::Acos(d, a) => (d, v(a).acos()),
-                    Ins::Atan(d, a) => (d, v(a).atan()),
-                    Ins::Sqrt(d, a) => (d, v(a).sqrt()),
-                    Ins::Exp(d, a) => (d, v(a).exp()),
-                    Ins::Ln(d, a) => (d, v(a).ln()),
-                    Ins::Abs(d, a) => (d, v(a).abs()),
-                    // `f64::signum`, as the emitted code calls it (not the constant folder's,
-                    // which gives 0 at 0).
-                    Ins::Signum(d, a) => (d, v(a).signum()),
-                    Ins::Atan2(d, y, x) => (d, v(y).atan2(v(x))),
-                    Ins::AddAdd([d, a, b], [e, x, y]) => pair!(d, a, +, b, e, x, +, y),
-                    Ins::AddSub([d, a, b], [e, x, y]) => pair!(d, a, +, b, e, x, -, y),
-                    Ins::AddMul([d, a, b], [e, x, y]) => pair!(d, a, +, b, e, x, *, y),
-                    Ins::AddDiv([d, a, b], [e, x, y]) => pair!(d, a, +, b, e, x, /, y),
-                    Ins::SubAdd([d, a, b], [e, x, y]) => pair!(d, a, -, b, e, x, +, y),
-                    Ins::SubSub([d, a, b], [e, x, y]) => pair!(d, a, -, b, e, x, -, y),
-                    Ins::SubMul([d, a, b], [e, x, y]) => pair!(d, a, -, b, e, x, *, y),
-                    Ins::SubDiv([d, a, b], [e, x, y]) => pair!(d, a, -, b, e, x, /, y),
-                    Ins::MulAdd([d, a, b], [e, x, y]) => pair!(d, a, *, b, e, x, +, y),
-                    Ins::MulSub([d, a, b], [e, x, y]) => pair!(d, a, *, b, e, x, -, y),
-                    Ins::MulMul([d, a, b], [e, x, y]) => pair!(d, a, *, b, e, x, *, y),
-                    Ins::MulDiv([d, a, b], [e, x, y]) => pair!(d, a, *, b, e, x, /, y),
-                    Ins::DivAdd([d, a, b], [e, x, y]) => pair!(d, a, /, b, e, x, +, y),
-                    Ins::DivSub([d, a, b], [e, x, y]) => pair!(d, a, /, b, e, x, -, y),
-                    Ins::DivMul([d, a, b], [e, x, y]) => pair!(d, a, /, b, e, x, *, y),
-                    Ins::DivDiv([d, a, b], [e, x, y]) => pair!(d, a, /, b, e, x, /, y),
-                };
-                *p.add(d as usize) = x;
-            }
+        // SAFETY: `r` holds at least `needs` registers.
+        unsafe { self.run_raw(r.as_mut_ptr()) }
+    }
+
+    /// Executes the segment over the registers at `p`.
+    ///
+    /// # Safety
+    /// `p` points to at least `needs` registers.
+    #[inline]
+    unsafe fn run_raw(&self, p: *mut f64) {
+        // The chains start every `CHAIN + 1` steps (see `Segment::of`); past the last one the
+        // pointer may leave the array (`wrapping_add`: only compared, never read).
+        let (mut chain, end) = (self.steps.as_ptr(), self.steps.as_ptr_range().end);
+        while chain < end {
+            // SAFETY: every register index of a step is below `needs` (see `Segment::of`), the
+            // caller's `p` holds `needs` registers, and every chain ends with a `ret`.
+            unsafe { ((*chain).exec)(p, chain) };
+            chain = chain.wrapping_add(CHAIN + 1);
         }
     }
 
     /// A segment of `ins` (one instruction per graph operation, in order): a sine and a cosine
-    /// of one argument merged, consecutive arithmetic operations paired, the registers counted.
+    /// of one argument merged, consecutive arithmetic operations grouped by four, the
+    /// registers counted.
     fn new(ins: Vec<Ins>) -> Segment {
-        let ops = ins.len();
-        let ins = pair(sin_cos(ins));
+        Segment::of(sin_cos(ins))
+    }
+
+    /// A segment executing `ins` in order, consecutive arithmetic operations grouped by four.
+    pub(crate) fn of(ins: Vec<Ins>) -> Segment {
+        let ops = ins.iter().map(|i| if matches!(i, Ins::SinCos(..)) { 2 } else { 1 }).sum();
         let needs = ins.iter().flat_map(Ins::registers).max().map_or(0, |m| m as usize + 1);
-        Segment { ins, needs, ops }
+        // Chains of `CHAIN` steps, each followed by a `ret` (the last one shorter).
+        let mut steps = Vec::new();
+        for chain in group(&ins).chunks(CHAIN) {
+            steps.extend_from_slice(chain);
+            steps.push(Step { exec: ret, r: [0; 12] });
+        }
+        Segment { steps, needs, ops }
     }
 
     /// The number of graph operations.
     pub(crate) fn len(&self) -> usize {
         self.ops
+    }
+}
+
+/// Chains of steps in one array, each entered by where it starts: the arithmetic of a closed
+/// form's program, entered from its operations without a segment's bookkeeping.
+#[derive(Clone, Debug, Default)]
+pub(crate) struct Chains {
+    steps: Vec<Step>,
+    /// One more than the largest register a step names.
+    needs: usize,
+}
+
+impl Chains {
+    /// Appends the steps of `ins` (in order, grouped as a segment's) and returns where each of
+    /// their chains starts: executing the chains in that order executes `ins`.
+    pub(crate) fn push(&mut self, ins: &[Ins]) -> Vec<u32> {
+        let regs = ins.iter().flat_map(Ins::registers).max().map_or(0, |m| m as usize + 1);
+        self.needs = self.needs.max(regs);
+        let mut starts = Vec::new();
+        for chain in group(ins).chunks(CHAIN) {
+            starts.push(self.steps.len() as u32);
+            self.steps.extend_from_slice(chain);
+            self.steps.push(Step { exec: ret, r: [0; 12] });
+        }
+        starts
+    }
+
+    /// One more than the largest register a step names: the registers a run needs.
+    pub(crate) fn needs(&self) -> usize {
+        self.needs
+    }
+
+    /// Executes the chain starting at `start`.
+    ///
+    /// # Safety
+    /// `start` is one that [`Chains::push`] returned, and `p` points to at least
+    /// [`Chains::needs`] registers.
+    #[inline]
+    pub(crate) unsafe fn run(&self, p: *mut f64, start: u32) {
+        // SAFETY: the caller's; the chain ends with a `ret` (see `Chains::push`).
+        unsafe {
+            let s = self.steps.as_ptr().add(start as usize);
+            ((*s).exec)(p, s)
+        }
     }
 }
 
@@ -241,7 +532,7 @@ fn sin_cos(ins: Vec<Ins>) -> Vec<Ins> {
     let mut lone: std::collections::HashMap<u32, usize> = std::collections::HashMap::new();
     for i in ins {
         match i {
-            Ins::Sin(d, a) | Ins::Cos(d, a) => {
+            Ins::Sin(_, a) | Ins::Cos(_, a) => {
                 if let Some(k) = lone.remove(&a) {
                     match (out[k], i) {
                         (Ins::Sin(s, _), Ins::Cos(c, _)) | (Ins::Cos(c, _), Ins::Sin(s, _)) => {
@@ -252,7 +543,6 @@ fn sin_cos(ins: Vec<Ins>) -> Vec<Ins> {
                     }
                 }
                 lone.insert(a, out.len());
-                let _ = d;
                 out.push(i);
             }
             _ => out.push(i),
@@ -261,31 +551,35 @@ fn sin_cos(ins: Vec<Ins>) -> Vec<Ins> {
     out
 }
 
-/// Pairs consecutive arithmetic instructions into one (`Ins::AddMul`, ...: same operations,
-/// same order).
-fn pair(ins: Vec<Ins>) -> Vec<Ins> {
-    type Make = fn([u32; 3], [u32; 3]) -> Ins;
-    const TABLE: [[Make; 4]; 4] = [
-        [Ins::AddAdd, Ins::AddSub, Ins::AddMul, Ins::AddDiv],
-        [Ins::SubAdd, Ins::SubSub, Ins::SubMul, Ins::SubDiv],
-        [Ins::MulAdd, Ins::MulSub, Ins::MulMul, Ins::MulDiv],
-        [Ins::DivAdd, Ins::DivSub, Ins::DivMul, Ins::DivDiv],
-    ];
+/// The steps of `ins`: each run of consecutive arithmetic instructions in steps of four (the
+/// last of a run three, two or one), every other instruction a step of its own.
+fn group(ins: &[Ins]) -> Vec<Step> {
     let mut out = Vec::with_capacity(ins.len());
     let mut k = 0;
     while k < ins.len() {
-        match (ins[k].arith(), ins.get(k + 1).and_then(Ins::arith)) {
-            (Some((f, first)), Some((g, second))) => {
-                out.push(TABLE[f as usize][g as usize](first, second));
-                k += 2;
+        let run: Vec<(u8, [u32; 3])> = ins[k..].iter().map_while(Ins::arith).take(4).collect();
+        let step = match run[..] {
+            [] => ins[k].step(),
+            [(f, a)] => Step { exec: ARITH1[f as usize], r: regs(&[a]) },
+            [(f, a), (g, b)] => Step { exec: ARITH2[f as usize][g as usize], r: regs(&[a, b]) },
+            [(f, a), (g, b), (h, c)] => Step { exec: ARITH3[f as usize][g as usize][h as usize], r: regs(&[a, b, c]) },
+            [(f, a), (g, b), (h, c), (i, d), ..] => {
+                Step { exec: ARITH4[f as usize][g as usize][h as usize][i as usize], r: regs(&[a, b, c, d]) }
             }
-            _ => {
-                out.push(ins[k]);
-                k += 1;
-            }
-        }
+        };
+        k += run.len().max(1);
+        out.push(step);
     }
     out
+}
+
+/// The registers of a step's arithmetic operations, in order.
+fn regs(ops: &[[u32; 3]]) -> [u32; 12] {
+    let mut r = [0; 12];
+    for (k, o) in ops.iter().enumerate() {
+        r[3 * k..3 * k + 3].copy_from_slice(o);
+    }
+    r
 }
 
 /// Builds segments in the order a step runs them, each computing only what no earlier one did.
@@ -444,11 +738,11 @@ mod tests {
     use super::*;
     use kinloop_codegen::graph::dag::Func;
 
-    /// The merged and paired instructions compute what the separate operations compute, bit for
+    /// The merged and grouped instructions compute what the separate operations compute, bit for
     /// bit: the reference is the same expression written out in Rust, as the emitted code
     /// writes it.
     #[test]
-    fn merged_and_paired_instructions_give_the_separate_operations_values() {
+    fn merged_and_grouped_instructions_give_the_separate_operations_values() {
         let mut g = Graph::new();
         let x = g.leaf(Leaf::Input(0));
         let y = g.leaf(Leaf::Input(1));
@@ -468,13 +762,11 @@ mod tests {
 
         let statics = statics(&g);
         let seg = Builder::new(&g).segment(&roots, None).expect("every leaf is known");
-        assert!(seg.ins.iter().any(|i| matches!(i, Ins::SinCos(..))), "{:?}", seg.ins);
-        assert!(
-            seg.ins.iter().any(|i| matches!(i, Ins::MulMul(..) | Ins::MulAdd(..) | Ins::SubAdd(..))),
-            "{:?}",
-            seg.ins
-        );
-        assert!(!seg.ins.iter().any(|i| matches!(i, Ins::Sqrt(..))), "the parameters' nodes are hoisted");
+        // The sine and cosine are one step, the seven arithmetic operations two (4 + 3), the
+        // parameters' nodes hoisted: three steps for nine operations.
+        assert_eq!(seg.len(), 9, "{seg:?}");
+        assert_eq!(dispatches(&seg), 3, "{seg:?}");
+        assert!(seg.steps.iter().any(|s| std::ptr::fn_addr_eq(s.exec, sin_cos_step as Exec)), "{seg:?}");
 
         for (xv, yv, pv) in [(0.3, -1.7, 2.5), (1e-3, 4.0, -0.7), (-2.9, 1e5, 1e-9)] {
             let mut r = registers(&g);
@@ -489,5 +781,174 @@ mod tests {
             assert_eq!(r[s.index()].to_bits(), want_s.to_bits());
             assert_eq!(r[t.index()].to_bits(), want_t.to_bits());
         }
+    }
+
+    /// The steps of a segment that perform instructions (not the chains' ends).
+    fn dispatches(seg: &Segment) -> usize {
+        seg.steps.iter().filter(|s| !std::ptr::fn_addr_eq(s.exec, ret as Exec)).count()
+    }
+
+    /// A segment of many steps (several chains) performs every instruction once, in order, and
+    /// its steps are chained as [`CHAIN`] says.
+    #[test]
+    fn a_long_segment_runs_every_chain_in_order() {
+        // Register k + 1 from register k: three subtractions of register 0, then an absolute
+        // value (a step of its own), 200 instructions, 100 steps.
+        let n = 200;
+        let ins: Vec<Ins> =
+            (0..n as u32).map(|k| if k % 4 == 3 { Ins::Abs(k + 1, k) } else { Ins::Sub(k + 1, k, 0) }).collect();
+        let seg = Segment::of(ins);
+        assert_eq!(dispatches(&seg), 100);
+        assert_eq!(seg.steps.len(), 100 + 100usize.div_ceil(CHAIN));
+        for x in [0.3, -2.0, 1e-3] {
+            let mut r = vec![0.0; n + 1];
+            r[0] = x;
+            seg.run(&mut r);
+            let mut want = x;
+            for k in 0..n {
+                want = if k % 4 == 3 { want.abs() } else { want - x };
+                assert_eq!(r[k + 1].to_bits(), want.to_bits(), "register {}", k + 1);
+            }
+        }
+    }
+
+    /// The operation of code `k` as the emitted code writes it (the reference for the grouped
+    /// steps: separate Rust operations, each rounded on its own).
+    fn reference(k: u8, a: f64, b: f64) -> f64 {
+        match k {
+            0 => a + b,
+            1 => a - b,
+            2 => a * b,
+            3 => a / b,
+            _ => -a,
+        }
+    }
+
+    /// Every grouped step (one to four arithmetic operations of every kind) computes the
+    /// separate operations' values bit for bit, in their order: each operation reads what the
+    /// one before it wrote, and the inputs are such that reassociating (`(a + b) - c` against
+    /// `a + (b - c)` at `a = 1, b = c = 1e16`), contracting a product and a sum into one
+    /// rounding or reading a register before it is written would change the result.
+    #[test]
+    fn grouped_arithmetic_steps_give_the_separate_operations_values() {
+        let inputs: [[f64; 5]; 4] = [
+            [1.0, 1e16, 1e16, 0.1, -3.0],
+            // (1 + 2^-30)^2 - (1 + 2^-29) is 2^-60 exactly, rounded to 0 when the product is
+            // rounded first.
+            [1.0 + 2f64.powi(-30), 1.0 + 2f64.powi(-30), 1.0 + 2f64.powi(-29), 3.0, 1e-5],
+            [0.1, 0.2, 0.3, -7.0, 0.7],
+            [-2.5e-300, 1e300, 1e-10, 1e10, 1e300],
+        ];
+        let codes = [ADD, SUB, MUL, DIV, NEG];
+        let mut groups: Vec<Vec<u8>> = vec![vec![]];
+        for len in 1..=4 {
+            let longer: Vec<Vec<u8>> = groups
+                .iter()
+                .filter(|g| g.len() == len - 1)
+                .flat_map(|g| codes.map(|k| [g.clone(), vec![k]].concat()))
+                .collect();
+            groups.extend(longer);
+        }
+        groups.remove(0);
+        assert_eq!(groups.len(), 5 + 25 + 125 + 625);
+        for group in &groups {
+            // Registers 0..5 the inputs, 5.. the results: operation `j` reads the previous
+            // result (or input 0) and input `j + 1`, and writes register `5 + j`.
+            let ins: Vec<Ins> = group
+                .iter()
+                .enumerate()
+                .map(|(j, &k)| {
+                    let (d, a, b) = (5 + j as u32, if j == 0 { 0 } else { 4 + j as u32 }, 1 + j as u32);
+                    match k {
+                        ADD => Ins::Add(d, a, b),
+                        SUB => Ins::Sub(d, a, b),
+                        MUL => Ins::Mul(d, a, b),
+                        DIV => Ins::Div(d, a, b),
+                        _ => Ins::Neg(d, a),
+                    }
+                })
+                .collect();
+            let seg = Segment::of(ins);
+            assert_eq!(dispatches(&seg), 1, "one step for {group:?}");
+            for x in inputs {
+                let mut r = [x[0], x[1], x[2], x[3], x[4], 0.0, 0.0, 0.0, 0.0];
+                seg.run(&mut r);
+                let mut prev = x[0];
+                for (j, &k) in group.iter().enumerate() {
+                    prev = reference(k, prev, x[j + 1]);
+                    assert_eq!(r[5 + j].to_bits(), prev.to_bits(), "{group:?} at {x:?}, operation {j}");
+                }
+            }
+        }
+        // The inputs tell the orders apart.
+        let [a, b, c, ..] = inputs[0];
+        assert_ne!((a + b) - c, a + (b - c));
+        let [a, b, c, ..] = inputs[1];
+        assert_ne!((a * b) - c, a.mul_add(b, -c));
+    }
+
+    /// A long run of arithmetic operations is cut into steps of four, in order, and the
+    /// instructions around it stay steps of their own.
+    #[test]
+    fn a_run_is_grouped_by_four_between_other_instructions() {
+        let ins = vec![
+            Ins::Sin(1, 0),
+            Ins::Add(2, 0, 1),
+            Ins::Mul(3, 2, 2),
+            Ins::Neg(4, 3),
+            Ins::Sub(5, 0, 4),
+            Ins::Add(6, 5, 0),
+            Ins::Mul(7, 6, 1),
+            Ins::Sqrt(8, 5),
+            Ins::Div(9, 8, 1),
+        ];
+        let seg = Segment::of(ins);
+        // The sine, four and two arithmetic operations, the square root, the division.
+        assert_eq!(dispatches(&seg), 5);
+        assert_eq!((seg.len(), seg.needs), (9, 10));
+        for x in [0.7, -1.3, 1e-8] {
+            let mut r = [x, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0];
+            seg.run(&mut r);
+            let s = x.sin();
+            let t = x + s;
+            let u = -(t * t);
+            let v = x - u;
+            let w = v.sqrt();
+            let want = [x, s, t, t * t, u, v, v + x, (v + x) * s, w, w / s];
+            assert_eq!(r.map(f64::to_bits), want.map(f64::to_bits));
+        }
+    }
+
+    /// Chains entered by their starts execute their instructions as a segment does: a run too
+    /// long for one chain is several, executed in order, and a second run's chain is entered
+    /// without running the first's.
+    #[test]
+    fn chains_run_from_their_starts() {
+        let n = 4 * CHAIN + 5;
+        let long: Vec<Ins> = (0..n as u32).map(|k| Ins::Mul(k + 1, k, 0)).collect();
+        let mut chains = Chains::default();
+        let starts = chains.push(&long);
+        assert_eq!(starts.len(), 2);
+        let other = chains.push(&[Ins::Add(n as u32 + 1, 0, 1), Ins::Neg(n as u32 + 2, n as u32 + 1)]);
+        assert_eq!(other.len(), 1);
+        assert_eq!(chains.needs(), n + 3);
+        let x = 1.0 + 1e-3;
+        let mut r = vec![0.0; n + 3];
+        r[0] = x;
+        for &s in &starts {
+            // SAFETY: `s` from `push`, `r` holds `needs` registers.
+            unsafe { chains.run(r.as_mut_ptr(), s) };
+        }
+        let mut want = x;
+        for (k, got) in r.iter().enumerate().take(n + 1).skip(1) {
+            want *= x;
+            assert_eq!(got.to_bits(), want.to_bits(), "register {k}");
+        }
+        // The second run reads register 1, written by the first: entered alone after it.
+        let before = r[1];
+        // SAFETY: as above.
+        unsafe { chains.run(r.as_mut_ptr(), other[0]) };
+        let sum = x + before;
+        assert_eq!([r[n + 1], r[n + 2]].map(f64::to_bits), [sum, -sum].map(f64::to_bits));
     }
 }
