@@ -37,17 +37,75 @@ pub enum Term {
     Check(usize),
 }
 
-/// Largest `terms × nodes` the analysis visits; beyond it every term is summed (a block of
-/// hundreds of coupled loops, where the sum's additions do not matter).
-const BUDGET: usize = 50_000_000;
+/// A value of a kernel's state, by its place in the state: what the finiteness test adds up,
+/// named once for the compiled kernel (which maps it to a local) and the run-time model (which
+/// maps it to a register or a place in its state).
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum Value {
+    /// Unknown `u`.
+    Q(usize),
+    /// `Dq(u, i)`: the analog of unknown `u` with respect to input `i`.
+    Dq(usize, usize),
+    /// `D2q(u, i, j)`: the second analog of unknown `u` with respect to inputs `i` and `j` (both
+    /// orders are in the state: one node).
+    D2q(usize, usize, usize),
+    /// A graph node: an output or one of its analogs.
+    Node(NodeId),
+}
+
+/// The values of a fused kernel's state in the order its finiteness test takes them (the
+/// unknowns, per unknown its analogs and second analogs, then per output its value and
+/// analogs: the values others are computed from first), each with its term (`None`: a leaf the
+/// graph does not hold, an unknown or analog nothing reads).
+pub fn state_terms(plan: &Plan) -> Vec<(Option<Term>, Value)> {
+    let (g, ni) = (&plan.graph, plan.ni);
+    let leaf = |l: Leaf| g.find(Op::Leaf(l)).map(Term::Node);
+    let mut terms = Vec::new();
+    for u in 0..plan.n {
+        terms.push((leaf(Leaf::Unknown(u as u16)), Value::Q(u)));
+    }
+    for u in 0..plan.n {
+        for i in 0..ni {
+            terms.push((leaf(Leaf::Tan { unknown: u as u16, input: i as u16 }), Value::Dq(u, i)));
+            for j in 0..ni {
+                let (a, b) = (i.min(j) as u16, i.max(j) as u16);
+                terms.push((leaf(Leaf::Tan2 { unknown: u as u16, i: a, j: b }), Value::D2q(u, i, j)));
+            }
+        }
+    }
+    for (o, &node) in plan.outputs.iter().enumerate() {
+        for n in std::iter::once(node).chain(plan.out_d1[o].iter().copied()).chain(plan.out_d2[o].iter().copied()) {
+            terms.push((Some(Term::Node(n)), Value::Node(n)));
+        }
+    }
+    terms
+}
+
+/// Largest `terms × nodes` the analysis visits in the macro; beyond it every term is summed (a
+/// block of hundreds of coupled loops, where the sum's additions do not matter).
+pub const BUDGET: usize = 50_000_000;
+
+/// Largest `terms × nodes` the analysis visits when a model is read at run time: the analysis
+/// visits the graph once per term, and on the ring of 64 coupled loops (128 unknowns) it took
+/// two thirds as many instructions again as the rest of the reading and one step (callgrind:
+/// 366M against 219M). Beyond it the model sums what the compiled kernel sums beyond
+/// [`BUDGET`]. Either sum accepts exactly the finite states (see the module's rules), so the
+/// smaller budget changes the step's cost, never its verdict.
+pub const READ_BUDGET: usize = 200_000;
+
+/// [`summed_within`] the macro's [`BUDGET`].
+pub fn summed(plan: &Plan, terms: &[Term]) -> Vec<bool> {
+    summed_within(plan, terms, BUDGET)
+}
 
 /// Per term, whether the sum must include it: the terms left out are finite whenever the terms
-/// kept are. A term given twice is kept at most once. Terms are left out greedily in the order
-/// given (put the values that others are computed from first).
-pub fn summed(plan: &Plan, terms: &[Term]) -> Vec<bool> {
+/// kept are. A term given twice is kept at most once, a finite constant never. Terms are left
+/// out greedily in the order given (put the values that others are computed from first). When
+/// `terms × nodes` exceeds `budget`, nothing else is left out.
+pub fn summed_within(plan: &Plan, terms: &[Term], budget: usize) -> Vec<bool> {
     let mut seen = HashSet::new();
     let mut keep: Vec<bool> = terms.iter().map(|t| !is_finite_constant(plan, t) && seen.insert(*t)).collect();
-    if terms.len().saturating_mul(plan.graph.len()) > BUDGET {
+    if terms.len().saturating_mul(plan.graph.len()) > budget {
         return keep;
     }
     let rules = Rules::new(plan);
@@ -61,6 +119,15 @@ pub fn summed(plan: &Plan, terms: &[Term]) -> Vec<bool> {
         keep[t] = !hit[rules.id(terms[t])];
     }
     keep
+}
+
+/// Per value of `terms` (each with its term, `None` for a value no graph node holds), whether
+/// the sum includes it: a value with no node always (nothing implies it, and no other value is
+/// it), the others as [`summed_within`] `budget` keeps their terms.
+pub fn kept<V>(plan: &Plan, terms: &[(Option<Term>, V)], budget: usize) -> Vec<bool> {
+    let ids: Vec<Term> = terms.iter().filter_map(|(t, _)| *t).collect();
+    let mut summed = summed_within(plan, &ids, budget).into_iter();
+    terms.iter().map(|(t, _)| t.is_none() || summed.next() == Some(true)).collect()
 }
 
 fn is_finite_constant(plan: &Plan, t: &Term) -> bool {
