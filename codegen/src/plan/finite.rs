@@ -278,32 +278,31 @@ fn column(m: &[Vec<NodeId>], k: usize) -> Vec<NodeId> {
 mod tests {
     use super::*;
 
-    /// The terms of a fused kernel's state (unknowns, analogs, outputs and their analogs, the
-    /// closed-form blocks' checks) for a one-input declaration, with their names, and the names
-    /// of those the sum keeps.
+    /// The names of the terms a fused kernel's sum keeps for a one-input declaration: its
+    /// state's terms ([`state_terms`]) then, as in a deferred kernel, the closed-form blocks'
+    /// checks.
     fn kept(src: &str) -> Vec<String> {
         let a = crate::analyze(src.parse().expect("tokens")).unwrap_or_else(|e| panic!("{e}"));
         let mut model = a.model;
         let plan = crate::plan::build(&mut model, &a.blocks, false);
-        let g = &plan.graph;
-        let leaf = |l: Leaf| Term::Node(g.find(Op::Leaf(l)).expect("leaf"));
-        let mut terms = Vec::new();
-        for (k, u) in model.unknowns.iter().enumerate() {
-            let k = k as u16;
-            terms.push((leaf(Leaf::Unknown(k)), u.name.to_string()));
-            terms.push((leaf(Leaf::Tan { unknown: k, input: 0 }), format!("d{}", u.name)));
-            terms.push((leaf(Leaf::Tan2 { unknown: k, i: 0, j: 0 }), format!("d2{}", u.name)));
-        }
-        for (o, &n) in plan.outputs.iter().enumerate() {
-            terms.push((Term::Node(n), format!("out{o}")));
-            terms.push((Term::Node(plan.out_d1[o][0]), format!("dout{o}")));
-            terms.push((Term::Node(plan.out_d2[o][0]), format!("d2out{o}")));
-        }
+        let output = |n: NodeId| {
+            let slots = [("out", &plan.outputs), ("dout", &plan.out_d1.concat()), ("d2out", &plan.out_d2.concat())];
+            let mut named =
+                slots.iter().flat_map(|(what, nodes)| nodes.iter().position(|&m| m == n).map(|o| format!("{what}{o}")));
+            named.next().expect("an output's node")
+        };
+        let name = |v: Value| match v {
+            Value::Q(u) => model.unknowns[u].name.to_string(),
+            Value::Dq(u, _) => format!("d{}", model.unknowns[u].name),
+            Value::D2q(u, ..) => format!("d2{}", model.unknowns[u].name),
+            Value::Node(n) => output(n),
+        };
+        let mut terms: Vec<(Option<Term>, String)> =
+            state_terms(&plan).into_iter().map(|(t, v)| (t, name(v))).collect();
         for b in (0..plan.blocks.len()).filter(|&b| plan.blocks[b].solve.closed_form().is_some()) {
-            terms.push((Term::Check(b), format!("check{b}")));
+            terms.push((Some(Term::Check(b)), format!("check{b}")));
         }
-        let ids: Vec<Term> = terms.iter().map(|(t, _)| *t).collect();
-        let summed = summed(&plan, &ids);
+        let summed = super::kept(&plan, &terms, BUDGET);
         terms.into_iter().zip(summed).filter(|(_, s)| *s).map(|((_, name), _)| name).collect()
     }
 
