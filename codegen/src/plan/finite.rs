@@ -89,8 +89,9 @@ pub const BUDGET: usize = 50_000_000;
 /// visits the graph once per term, and on the ring of 64 coupled loops (128 unknowns) it took
 /// two thirds as many instructions again as the rest of the reading and one step (callgrind:
 /// 366M against 219M). Beyond it the model sums what the compiled kernel sums beyond
-/// [`BUDGET`]. Either sum accepts exactly the finite states (see the module's rules), so the
-/// smaller budget changes the step's cost, never its verdict.
+/// [`BUDGET`] (on the ring 384 values instead of 256: 128 additions in a step of ~460k
+/// instructions). Either sum accepts exactly the finite states (see the module's rules), so
+/// the smaller budget changes the step's cost, never its verdict.
 pub const READ_BUDGET: usize = 200_000;
 
 /// [`summed_within`] the macro's [`BUDGET`].
