@@ -9,8 +9,11 @@ mod common;
 use common::{Libm, read, set};
 use kinloop::dims::Heap;
 use kinloop::{Error, Kernel, Kin, Mechanism, NewtonConfig, Quantity, Sweep, SweepConfig};
+use kinloop_codegen::graph::dag::NodeId;
+use kinloop_codegen::plan::Plan;
+use kinloop_codegen::plan::finite::{BUDGET, READ_BUDGET, Value, kept, state_terms};
 use kinloop_fixtures as fx;
-use kinloop_model::Model;
+use kinloop_model::{Model, StepError};
 use std::borrow::Cow;
 
 kinloop_fixtures::declare! {
@@ -95,6 +98,42 @@ fn a_non_finite_output_is_named_as_the_compiled_one_names_it() {
     let e = same_error(&compiled, &mut model, [-0.5], compiled.guess_flat(&[-0.5]));
     assert!(matches!(e, Error::Domain { what: "output", .. }), "{e:?}");
     assert_eq!(name_of(&e), "root");
+}
+
+/// Whether the finiteness sum of `text`'s compiled kernel and of its run-time model (within
+/// either budget) leaves out the value `node` picks among the plan's nodes.
+fn left_out(text: &str, node: impl Fn(&Plan) -> NodeId) -> bool {
+    let planned = kinloop_codegen::plan_declaration(text.parse().expect("tokens")).expect("plans");
+    let plan = &planned.plan;
+    let terms = state_terms(plan);
+    let at = terms.iter().position(|(_, v)| *v == Value::Node(node(plan))).expect("a value of the state");
+    let (compiled, read) = (kept(plan, &terms, BUDGET), kept(plan, &terms, READ_BUDGET));
+    assert_eq!(compiled, read, "a small declaration is analysed within both budgets");
+    !compiled[at]
+}
+
+/// A value the finiteness sum leaves out (its finiteness follows from a value kept) that is
+/// not finite still fails the step: the square root's analog `1 / (2 sqrt(phi))`, infinite at
+/// 0, is an operand of its second analog; the reciprocal `c / phi`, infinite at 0, of its
+/// analogs. The model's step reports a non-finite state, and the error is the compiled one.
+#[test]
+fn a_value_left_out_of_the_finiteness_sum_still_fails_the_step() {
+    let cfg = NewtonConfig::default();
+    assert!(left_out(ROOT_TEXT, |p| p.out_d1[0][0]));
+    let compiled = Root::default();
+    let mut model = read(ROOT_TEXT);
+    let guess = compiled.guess_flat(&[0.0]);
+    assert!(matches!(model.kinematics(&[0.0], &guess, &cfg), Err(StepError::NonFinite)));
+    let e = same_error(&compiled, &mut model, [0.0], guess);
+    assert!(matches!(e, Error::Domain { what: "output velocity analog", .. }), "{e:?}");
+
+    assert!(left_out(RECIPROCAL_TEXT, |p| p.outputs[0]));
+    let compiled = Reciprocal::default();
+    let mut model = read(RECIPROCAL_TEXT);
+    let guess = compiled.guess_flat(&[0.0]);
+    assert!(matches!(model.kinematics(&[0.0], &guess, &cfg), Err(StepError::NonFinite)));
+    let e = same_error(&compiled, &mut model, [0.0], guess);
+    assert!(matches!(e, Error::Domain { what: "output", .. }), "{e:?}");
 }
 
 /// A sweep through the input where an output divides by zero stops there with the same error

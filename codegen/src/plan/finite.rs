@@ -37,17 +37,76 @@ pub enum Term {
     Check(usize),
 }
 
-/// Largest `terms × nodes` the analysis visits; beyond it every term is summed (a block of
-/// hundreds of coupled loops, where the sum's additions do not matter).
-const BUDGET: usize = 50_000_000;
+/// A value of a kernel's state, by its place in the state: what the finiteness test adds up,
+/// named once for the compiled kernel (which maps it to a local) and the run-time model (which
+/// maps it to a register or a place in its state).
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum Value {
+    /// Unknown `u`.
+    Q(usize),
+    /// `Dq(u, i)`: the analog of unknown `u` with respect to input `i`.
+    Dq(usize, usize),
+    /// `D2q(u, i, j)`: the second analog of unknown `u` with respect to inputs `i` and `j` (both
+    /// orders are in the state: one node).
+    D2q(usize, usize, usize),
+    /// A graph node: an output or one of its analogs.
+    Node(NodeId),
+}
+
+/// The values of a fused kernel's state in the order its finiteness test takes them (the
+/// unknowns, per unknown its analogs and second analogs, then per output its value and
+/// analogs: the values others are computed from first), each with its term (`None`: a leaf the
+/// graph does not hold, an unknown or analog nothing reads).
+pub fn state_terms(plan: &Plan) -> Vec<(Option<Term>, Value)> {
+    let (g, ni) = (&plan.graph, plan.ni);
+    let leaf = |l: Leaf| g.find(Op::Leaf(l)).map(Term::Node);
+    let mut terms = Vec::new();
+    for u in 0..plan.n {
+        terms.push((leaf(Leaf::Unknown(u as u16)), Value::Q(u)));
+    }
+    for u in 0..plan.n {
+        for i in 0..ni {
+            terms.push((leaf(Leaf::Tan { unknown: u as u16, input: i as u16 }), Value::Dq(u, i)));
+            for j in 0..ni {
+                let (a, b) = (i.min(j) as u16, i.max(j) as u16);
+                terms.push((leaf(Leaf::Tan2 { unknown: u as u16, i: a, j: b }), Value::D2q(u, i, j)));
+            }
+        }
+    }
+    for (o, &node) in plan.outputs.iter().enumerate() {
+        for n in std::iter::once(node).chain(plan.out_d1[o].iter().copied()).chain(plan.out_d2[o].iter().copied()) {
+            terms.push((Some(Term::Node(n)), Value::Node(n)));
+        }
+    }
+    terms
+}
+
+/// Largest `terms × nodes` the analysis visits in the macro; beyond it every term is summed (a
+/// block of hundreds of coupled loops, where the sum's additions do not matter).
+pub const BUDGET: usize = 50_000_000;
+
+/// Largest `terms × nodes` the analysis visits when a model is read at run time: the analysis
+/// visits the graph once per term, and on the ring of 64 coupled loops (128 unknowns) it took
+/// two thirds as many instructions again as the rest of the reading and one step (callgrind:
+/// 366M against 219M). Beyond it the model sums what the compiled kernel sums beyond
+/// [`BUDGET`] (on the ring 384 values instead of 256: 128 additions in a step of ~460k
+/// instructions). Either sum accepts exactly the finite states (see the module's rules), so
+/// the smaller budget changes the step's cost, never its verdict.
+pub const READ_BUDGET: usize = 200_000;
+
+/// [`summed_within`] the macro's [`BUDGET`].
+pub fn summed(plan: &Plan, terms: &[Term]) -> Vec<bool> {
+    summed_within(plan, terms, BUDGET)
+}
 
 /// Per term, whether the sum must include it: the terms left out are finite whenever the terms
-/// kept are. A term given twice is kept at most once. Terms are left out greedily in the order
-/// given (put the values that others are computed from first).
-pub fn summed(plan: &Plan, terms: &[Term]) -> Vec<bool> {
+/// kept are. A term given twice is kept at most once, a finite constant never. Terms are left
+/// out greedily in the order given (put the values that others are computed from first). When
+/// `terms × nodes` exceeds `budget`, nothing else is left out.
+pub fn summed_within(plan: &Plan, terms: &[Term], budget: usize) -> Vec<bool> {
     let mut seen = HashSet::new();
     let mut keep: Vec<bool> = terms.iter().map(|t| !is_finite_constant(plan, t) && seen.insert(*t)).collect();
-    if terms.len().saturating_mul(plan.graph.len()) > BUDGET {
+    if terms.len().saturating_mul(plan.graph.len()) > budget {
         return keep;
     }
     let rules = Rules::new(plan);
@@ -61,6 +120,15 @@ pub fn summed(plan: &Plan, terms: &[Term]) -> Vec<bool> {
         keep[t] = !hit[rules.id(terms[t])];
     }
     keep
+}
+
+/// Per value of `terms` (each with its term, `None` for a value no graph node holds), whether
+/// the sum includes it: a value with no node always (nothing implies it, and no other value is
+/// it), the others as [`summed_within`] `budget` keeps their terms.
+pub fn kept<V>(plan: &Plan, terms: &[(Option<Term>, V)], budget: usize) -> Vec<bool> {
+    let ids: Vec<Term> = terms.iter().filter_map(|(t, _)| *t).collect();
+    let mut summed = summed_within(plan, &ids, budget).into_iter();
+    terms.iter().map(|(t, _)| t.is_none() || summed.next() == Some(true)).collect()
 }
 
 fn is_finite_constant(plan: &Plan, t: &Term) -> bool {
@@ -211,32 +279,31 @@ fn column(m: &[Vec<NodeId>], k: usize) -> Vec<NodeId> {
 mod tests {
     use super::*;
 
-    /// The terms of a fused kernel's state (unknowns, analogs, outputs and their analogs, the
-    /// closed-form blocks' checks) for a one-input declaration, with their names, and the names
-    /// of those the sum keeps.
+    /// The names of the terms a fused kernel's sum keeps for a one-input declaration: its
+    /// state's terms ([`state_terms`]) then, as in a deferred kernel, the closed-form blocks'
+    /// checks.
     fn kept(src: &str) -> Vec<String> {
         let a = crate::analyze(src.parse().expect("tokens")).unwrap_or_else(|e| panic!("{e}"));
         let mut model = a.model;
         let plan = crate::plan::build(&mut model, &a.blocks, false);
-        let g = &plan.graph;
-        let leaf = |l: Leaf| Term::Node(g.find(Op::Leaf(l)).expect("leaf"));
-        let mut terms = Vec::new();
-        for (k, u) in model.unknowns.iter().enumerate() {
-            let k = k as u16;
-            terms.push((leaf(Leaf::Unknown(k)), u.name.to_string()));
-            terms.push((leaf(Leaf::Tan { unknown: k, input: 0 }), format!("d{}", u.name)));
-            terms.push((leaf(Leaf::Tan2 { unknown: k, i: 0, j: 0 }), format!("d2{}", u.name)));
-        }
-        for (o, &n) in plan.outputs.iter().enumerate() {
-            terms.push((Term::Node(n), format!("out{o}")));
-            terms.push((Term::Node(plan.out_d1[o][0]), format!("dout{o}")));
-            terms.push((Term::Node(plan.out_d2[o][0]), format!("d2out{o}")));
-        }
+        let output = |n: NodeId| {
+            let slots = [("out", &plan.outputs), ("dout", &plan.out_d1.concat()), ("d2out", &plan.out_d2.concat())];
+            let mut named =
+                slots.iter().flat_map(|(what, nodes)| nodes.iter().position(|&m| m == n).map(|o| format!("{what}{o}")));
+            named.next().expect("an output's node")
+        };
+        let name = |v: Value| match v {
+            Value::Q(u) => model.unknowns[u].name.to_string(),
+            Value::Dq(u, _) => format!("d{}", model.unknowns[u].name),
+            Value::D2q(u, ..) => format!("d2{}", model.unknowns[u].name),
+            Value::Node(n) => output(n),
+        };
+        let mut terms: Vec<(Option<Term>, String)> =
+            state_terms(&plan).into_iter().map(|(t, v)| (t, name(v))).collect();
         for b in (0..plan.blocks.len()).filter(|&b| plan.blocks[b].solve.closed_form().is_some()) {
-            terms.push((Term::Check(b), format!("check{b}")));
+            terms.push((Some(Term::Check(b)), format!("check{b}")));
         }
-        let ids: Vec<Term> = terms.iter().map(|(t, _)| *t).collect();
-        let summed = summed(&plan, &ids);
+        let summed = super::kept(&plan, &terms, BUDGET);
         terms.into_iter().zip(summed).filter(|(_, s)| *s).map(|((_, name), _)| name).collect()
     }
 

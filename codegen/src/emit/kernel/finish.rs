@@ -2,8 +2,8 @@
 //! the locals, and the one test of its finiteness that accepts it.
 
 use super::{Kernel, Mode};
-use crate::graph::dag::{Leaf, NodeId, Op};
-use crate::plan::finite::{self, Term};
+use crate::graph::dag::NodeId;
+use crate::plan::finite::{self, Term, Value};
 use crate::plan::{Stages, pair_index};
 use proc_macro2::{Ident, TokenStream};
 use quote::{format_ident, quote};
@@ -77,29 +77,24 @@ impl Kernel<'_> {
     /// finiteness the others' does not imply (see `plan::finite`); a sum of the whole state
     /// elsewhere.
     fn finite_sum(&self) -> (TokenStream, Vec<TokenStream>) {
-        let (plan, names, g) = (self.plan, self.names, self.g);
-        let ni = plan.ni;
-        let leaf = |l: Leaf| g.find(Op::Leaf(l)).map(Term::Node);
-        let mut terms: Vec<(Option<Term>, TokenStream)> = Vec::new();
-        for (u, q) in names.unknowns.iter().enumerate() {
-            terms.push((leaf(Leaf::Unknown(u as u16)), quote!(#q)));
-        }
-        for u in 0..plan.n {
-            for i in 0..ni {
+        let (plan, names) = (self.plan, self.names);
+        let value = |v: Value| match v {
+            Value::Q(u) => {
+                let q = &names.unknowns[u];
+                quote!(#q)
+            }
+            Value::Dq(u, i) => {
                 let v = names.tan(u, i);
-                terms.push((leaf(Leaf::Tan { unknown: u as u16, input: i as u16 }), quote!(#v)));
-                for j in 0..ni {
-                    let (a, b) = (i.min(j) as u16, i.max(j) as u16);
-                    let w = names.tan2(u, i, j);
-                    terms.push((leaf(Leaf::Tan2 { unknown: u as u16, i: a, j: b }), quote!(#w)));
-                }
+                quote!(#v)
             }
-        }
-        for (o, &node) in plan.outputs.iter().enumerate() {
-            for n in std::iter::once(node).chain(plan.out_d1[o].iter().copied()).chain(plan.out_d2[o].iter().copied()) {
-                terms.push((Some(Term::Node(n)), self.op(n)));
+            Value::D2q(u, i, j) => {
+                let w = names.tan2(u, i, j);
+                quote!(#w)
             }
-        }
+            Value::Node(n) => self.op(n),
+        };
+        let mut terms: Vec<(Option<Term>, TokenStream)> =
+            finite::state_terms(plan).into_iter().map(|(t, v)| (t, value(v))).collect();
         let first_check = terms.len();
         if self.deferred {
             for b in (0..plan.blocks.len()).filter(|&b| plan.blocks[b].solve.closed_form().is_some()) {
@@ -124,10 +119,7 @@ impl Kernel<'_> {
         if self.mode != Mode::Fused {
             return vec![true; terms.len()];
         }
-        let ids: Vec<Term> = terms.iter().filter_map(|(t, _)| *t).collect();
-        let mut summed = finite::summed(self.plan, &ids).into_iter();
-        // A term with no graph node (a leaf the graph does not hold) is always summed.
-        terms.iter().map(|(t, _)| t.is_none() || summed.next() != Some(false)).collect()
+        finite::kept(self.plan, terms, finite::BUDGET)
     }
 
     /// The end of a kernel whose checks are switched by `__CHECKED`: with it, the checked
