@@ -105,9 +105,9 @@ impl Ins {
             Step { exec, r: regs }
         };
         match self {
+            // `group` makes the steps of every arithmetic instruction.
             Ins::Add(..) | Ins::Sub(..) | Ins::Mul(..) | Ins::Div(..) | Ins::Neg(..) => {
-                let (k, r) = self.arith().expect("an arithmetic instruction");
-                f(ARITH1[k as usize], &r)
+                unreachable!("an arithmetic instruction is grouped")
             }
             Ins::Square(d, a) => f(square, &[d, a]),
             Ins::Recip(d, a) => f(recip, &[d, a]),
@@ -162,7 +162,7 @@ const ADD: u8 = 0;
 const SUB: u8 = 1;
 const MUL: u8 = 2;
 const DIV: u8 = 3;
-/// `-a` (its `b` is not read).
+/// `-a` (its `b` is its `a`: loaded, unused).
 const NEG: u8 = 4;
 
 /// The steps of a chain (a [`ret`] after them).
@@ -280,13 +280,12 @@ macro_rules! by_codes {
 }
 const ARITH1: [Exec; 5] = by_code!(arith1;);
 const ARITH2: [[Exec; 5]; 5] = by_codes!(arith2;);
-const ARITH3: [[[Exec; 5]; 5]; 5] =
-    [by_codes!(arith3; 0), by_codes!(arith3; 1), by_codes!(arith3; 2), by_codes!(arith3; 3), by_codes!(arith3; 4)];
 macro_rules! by_codes3 {
     ($f:ident; $($k:literal),*) => {
         [by_codes!($f; $($k,)* 0), by_codes!($f; $($k,)* 1), by_codes!($f; $($k,)* 2), by_codes!($f; $($k,)* 3), by_codes!($f; $($k,)* 4)]
     };
 }
+const ARITH3: [[[Exec; 5]; 5]; 5] = by_codes3!(arith3;);
 const ARITH4: [[[[Exec; 5]; 5]; 5]; 5] =
     [by_codes3!(arith4; 0), by_codes3!(arith4; 1), by_codes3!(arith4; 2), by_codes3!(arith4; 3), by_codes3!(arith4; 4)];
 
@@ -461,7 +460,7 @@ impl Segment {
     }
 
     /// A segment executing `ins` in order, consecutive arithmetic operations grouped by four.
-    pub(crate) fn of(ins: Vec<Ins>) -> Segment {
+    fn of(ins: Vec<Ins>) -> Segment {
         let ops = ins.iter().map(|i| if matches!(i, Ins::SinCos(..)) { 2 } else { 1 }).sum();
         let needs = ins.iter().flat_map(Ins::registers).max().map_or(0, |m| m as usize + 1);
         // Chains of `CHAIN` steps, each followed by a `ret` (the last one shorter).
@@ -515,6 +514,7 @@ impl Chains {
     /// [`Chains::needs`] registers.
     #[inline]
     pub(crate) unsafe fn run(&self, p: *mut f64, start: u32) {
+        debug_assert!((start as usize) < self.steps.len(), "a start that `push` returned");
         // SAFETY: the caller's; the chain ends with a `ret` (see `Chains::push`).
         unsafe {
             let s = self.steps.as_ptr().add(start as usize);
@@ -829,6 +829,27 @@ mod tests {
     /// one before it wrote, and the inputs are such that reassociating (`(a + b) - c` against
     /// `a + (b - c)` at `a = 1, b = c = 1e16`), contracting a product and a sum into one
     /// rounding or reading a register before it is written would change the result.
+    /// A group whose operations write registers in place and overwrite what an earlier one
+    /// read performs them one after the other, as separate statements do: the sequential
+    /// contract a closed form's program relies on once its registers are reused.
+    #[test]
+    fn a_group_writing_registers_in_place_runs_its_operations_in_order() {
+        // r0 = r0 + r1; r1 = r0 * r1; r0 = r1 - r0; r2 = r0 / r1.
+        let ins = vec![Ins::Add(0, 0, 1), Ins::Mul(1, 0, 1), Ins::Sub(0, 1, 0), Ins::Div(2, 0, 1)];
+        let seg = Segment::of(ins);
+        assert_eq!(dispatches(&seg), 1);
+        for [a, b] in [[0.1, 0.2], [1e16, 1.0], [-3.0, 7.5e-8]] {
+            let mut r = [a, b, 0.0];
+            seg.run(&mut r);
+            let (mut x, mut y) = (a, b);
+            x += y;
+            y *= x;
+            x = y - x;
+            let z = x / y;
+            assert_eq!(r.map(f64::to_bits), [x, y, z].map(f64::to_bits), "at {a}, {b}");
+        }
+    }
+
     #[test]
     fn grouped_arithmetic_steps_give_the_separate_operations_values() {
         let inputs: [[f64; 5]; 4] = [
