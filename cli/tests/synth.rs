@@ -65,20 +65,12 @@ fn csv(out: &Output) -> (Vec<String>, Vec<Vec<String>>) {
 fn path_synthesis_recovers_the_four_bar_and_equals_the_library() {
     let targets = timed_targets();
     let file = shipped("coupler_four_bar.kl");
-    let out = kinloop(&[
-        "synth",
-        &file,
-        "--targets",
-        &targets,
-        "--path",
-        "p",
-        "--deg",
-        "--vary",
-        VARY,
-        "--starts",
-        "12",
-        "--csv",
-    ]);
+    // The path task on 12 starts, with extra arguments.
+    let search = |extra: &[&str]| {
+        let args = ["synth", &file, "--targets", &targets, "--path", "p", "--deg", "--vary", VARY, "--starts", "12"];
+        kinloop(&[&args[..], &["--csv"], extra].concat())
+    };
+    let out = search(&[]);
     assert_eq!(out.status.code(), Some(0), "{}", String::from_utf8_lossy(&out.stderr));
     let (header, rows) = csv(&out);
     let names = ["a", "b", "c", "d", "e", "alpha"];
@@ -115,22 +107,7 @@ fn path_synthesis_recovers_the_four_bar_and_equals_the_library() {
     // The search on all cores (above), one start after another, and on three threads: the same
     // output, byte for byte.
     for jobs in ["1", "3"] {
-        let again = kinloop(&[
-            "synth",
-            &file,
-            "--targets",
-            &targets,
-            "--path",
-            "p",
-            "--deg",
-            "--vary",
-            VARY,
-            "--starts",
-            "12",
-            "--csv",
-            "--jobs",
-            jobs,
-        ]);
+        let again = search(&["--jobs", jobs]);
         assert_eq!(again.status.code(), Some(0), "{}", String::from_utf8_lossy(&again.stderr));
         assert_eq!(again.stdout, out.stdout, "--jobs {jobs}");
         assert_eq!(again.stderr, out.stderr, "--jobs {jobs}: the summary");

@@ -233,11 +233,20 @@ fn positions_do_not_allocate() {
 /// sensitivities at a solved position, copied into the caller's buffers) allocate nothing.
 #[test]
 fn synthesis_kernel_calls_do_not_allocate() {
-    use kinloop::dims::Dims;
-    use kinloop::{Kernel, SensKernel};
     let _one = ONE_AT_A_TIME.lock().unwrap_or_else(|e| e.into_inner());
     let mut m = Model::read("m.kl", fx::RHOMBIC_DRIVE_TEXT).expect("valid");
     let k = m.kernel(kinloop::SweepConfig::default()).expect("parameters set");
+    let during = synthesis_calls_allocations(&k);
+    assert_eq!(during, 0, "{during} allocations in 100 steps");
+}
+
+/// The allocations of 100 steps of the synthesis kernel's calls on `k` (their buffers made
+/// before), with a check that the sensitivities were written.
+fn synthesis_calls_allocations<K>(k: &K) -> usize
+where
+    K: kinloop::SensKernel<Sens = kinloop_model::ModelSens, Dims = kinloop::dims::Sizes>,
+{
+    use kinloop::dims::Dims;
     let cfg = NewtonConfig::default();
     let mut x = k.dims().x();
     let mut q = k.guess(&x);
@@ -252,8 +261,8 @@ fn synthesis_kernel_calls_do_not_allocate() {
         q.0.copy_from_slice(&kin.q);
     }
     let during = allocations() - before;
-    assert_eq!(during, 0, "{during} allocations in 100 steps");
     assert!(sens.q.iter().any(|v| *v != 0.0), "sensitivities written");
+    during
 }
 
 /// The same calls on a model's kernel that threads can share (`Model::shared_kernel`) allocate
@@ -262,29 +271,12 @@ fn synthesis_kernel_calls_do_not_allocate() {
 /// per call, nothing loaded).
 #[test]
 fn shared_kernel_calls_do_not_allocate() {
-    use kinloop::dims::Dims;
-    use kinloop::{Kernel, SensKernel};
+    use kinloop::SensKernel;
     let _one = ONE_AT_A_TIME.lock().unwrap_or_else(|e| e.into_inner());
     let m = Model::read("m.kl", fx::RHOMBIC_DRIVE_TEXT).expect("valid");
     let shared = m.shared_kernel(kinloop::SweepConfig::default()).expect("parameters set");
     let own: Vec<f64> = (0..shared.param_count()).map(|k| shared.param(k)).collect();
-    let cfg = NewtonConfig::default();
-    let count = |k: &kinloop_model::SharedModelKernel| {
-        let mut x = k.dims().x();
-        let mut q = k.guess(&x);
-        let (mut kin, mut sens, mut out) = (k.dims().kin(), k.sens(), vec![0.0; k.dims().no()]);
-        let mut at = k.dims().q();
-        let before = allocations();
-        for step in 0..100 {
-            x.0[0] = step as f64 * 0.06;
-            k.sensitivities_into(&x, &q, &cfg, &mut kin, &mut sens).expect("step");
-            k.position_into(&x, &q, &cfg, &mut at, &mut out).expect("position");
-            k.sensitivities_at_into(&x, &at, &cfg, &mut kin, &mut sens).expect("at a position");
-            q.0.copy_from_slice(&kin.q);
-        }
-        assert!(sens.q.iter().any(|v| *v != 0.0), "sensitivities written");
-        allocations() - before
-    };
+    let count = synthesis_calls_allocations::<kinloop_model::SharedModelKernel>;
     let inside = shared.with_params(&own, count).expect("as many values as parameters");
     assert_eq!(inside, 0, "{inside} allocations in 100 steps inside with_params");
     let outside = count(&shared);
