@@ -586,7 +586,7 @@ impl Model {
     /// `guess` with `cfg`: the compiled mechanism's `kinematics_flat`. No allocation.
     pub fn kinematics(&mut self, x: &[f64], guess: &[f64], cfg: &NewtonConfig) -> Result<&State, StepError> {
         self.solve_positions(x, guess, cfg, false)?;
-        self.analogs(cfg, false)?;
+        self.analogs::<false>(cfg)?;
         Ok(&self.state)
     }
 
@@ -679,9 +679,12 @@ impl Model {
         Ok(())
     }
 
-    /// The analogs and outputs after the positions (`at`: of the evaluation at a given position,
-    /// [`Model::kinematics_at`]), and the state's finiteness test.
-    fn analogs(&mut self, cfg: &NewtonConfig, at: bool) -> Result<(), StepError> {
+    /// The analogs and outputs after the positions (`AT`: of the evaluation at a given position,
+    /// [`Model::kinematics_at`]), and the state's finiteness test. One instance per mode: the
+    /// step's choices between the two fold away (about 100 instructions a rhombic-drive step
+    /// when the mode was an argument).
+    fn analogs<const AT: bool>(&mut self, cfg: &NewtonConfig) -> Result<(), StepError> {
+        let at = AT;
         let ni = self.inputs.len();
         let st = &mut self.state;
         // Slices taken once: their addresses and lengths stay in registers through the blocks.
@@ -756,7 +759,7 @@ impl Model {
         st.q.copy_from_slice(q);
         st.report = SolveReport::given(residual);
         st.health = Health::default();
-        self.analogs(cfg, true)?;
+        self.analogs::<true>(cfg)?;
         Ok(&self.state)
     }
 
