@@ -340,6 +340,7 @@ impl ClosedProg {
 
     /// Solves the block from the coefficients in the registers `r` and the guesses: the
     /// solution's values are left in their registers.
+    #[inline(always)]
     pub(crate) fn run(&self, r: &mut [f64], guess: &[f64], cfg: &NewtonConfig) -> Result<(), BlockFailure> {
         // Every register an operation names is below `needs`, every guess read below `guesses`
         // (checked when the program was built): one test here instead of one per operand.

@@ -609,9 +609,16 @@ impl Model {
         if let Some(field) = cfg.invalid_field() {
             return Err(StepError::InvalidConfig(field));
         }
-        self.load_inputs(x);
+        if let ([Some(reg)], [d], [v]) = (&self.input_regs[..], &mut self.state.x[..], x) {
+            // One input (most mechanisms): into its register and the state with no loop and no
+            // call of `memcpy` (which `copy_from_slice` of a slice of unknown length is).
+            self.regs[*reg as usize] = *v;
+            *d = *v;
+        } else {
+            self.load_inputs(x);
+            self.state.x.copy_from_slice(x);
+        }
         let st = &mut self.state;
-        st.x.copy_from_slice(x);
         st.report = SolveReport::direct();
         st.health = Health::default();
         let (regs, q, report) = (&mut self.regs[..], &mut st.q[..], &mut st.report);
