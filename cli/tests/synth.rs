@@ -8,6 +8,7 @@ mod common;
 
 use common::{kinloop, shipped};
 use kinloop::synthesis::{Design, Search, Task};
+use kinloop_fixtures::linkages::coupler_point;
 use kinloop_model::Model;
 use std::path::PathBuf;
 use std::process::Output;
@@ -15,19 +16,6 @@ use std::process::Output;
 /// The dimensions `[a, b, c, d, e, alpha]` the targets are made from.
 const TRUTH: [f64; 6] = [1.1, 2.8, 2.3, 3.2, 1.7, 0.45];
 const VARY: &str = "a=0.77..1.43,b=1.96..3.64,c=1.61..2.99,d=2.24..4.16,e=1.19..2.21,alpha=0.315..0.585";
-
-/// The coupler point at crank angle `phi` in closed form (joint C where the circles about the
-/// crank pin and about D meet, left of B -> D: the declared guess's assembly mode).
-fn coupler_point([a, b, c, d, e, alpha]: [f64; 6], phi: f64) -> [f64; 2] {
-    let (bx, by) = (a * phi.cos(), a * phi.sin());
-    let (ux, uy) = (d - bx, -by);
-    let dist = ux.hypot(uy);
-    let along = (b * b - c * c + dist * dist) / (2.0 * dist);
-    let h = (b * b - along * along).sqrt();
-    let (cx, cy) = (bx + (along * ux - h * uy) / dist, by + (along * uy + h * ux) / dist);
-    let beta = (cy - by).atan2(cx - bx);
-    [bx + e * (beta + alpha).cos(), by + e * (beta + alpha).sin()]
-}
 
 /// The crank angles of the targets (radians).
 fn phis() -> Vec<f64> {

@@ -8,6 +8,7 @@ mod common;
 
 use common::read;
 use kinloop::synthesis::{DeConfig, Design, Global, Problem, Search, SynthesisError, Task};
+use kinloop_fixtures::linkages::coupler_point;
 
 /// `kinloop::mechanism! { decl }` and `const TEXT: &str` holding the same declaration's text:
 /// the compiled mechanism and the run-time model of one declaration.
@@ -44,20 +45,6 @@ both! { PLAIN_TEXT => {
 /// The dimensions `[a, b, c, d, e, alpha]` the targets are made from.
 const TRUTH: [f64; 6] = [1.1, 2.8, 2.3, 3.2, 1.7, 0.45];
 const NAMES: [&str; 6] = ["a", "b", "c", "d", "e", "alpha"];
-
-/// The coupler point of `[a, b, c, d, e, alpha]` at crank angle `phi` in closed form (plain
-/// trigonometry: joint C where the circles about the crank pin B (radius b) and about D (radius
-/// c) meet, on the left of B -> D, the assembly mode of the declared guess).
-fn coupler_point([a, b, c, d, e, alpha]: [f64; 6], phi: f64) -> [f64; 2] {
-    let (bx, by) = (a * phi.cos(), a * phi.sin());
-    let (ux, uy) = (d - bx, -by);
-    let dist = ux.hypot(uy);
-    let along = (b * b - c * c + dist * dist) / (2.0 * dist);
-    let h = (b * b - along * along).sqrt();
-    let (cx, cy) = (bx + (along * ux - h * uy) / dist, by + (along * uy + h * ux) / dist);
-    let beta = (cy - by).atan2(cx - bx);
-    [bx + e * (beta + alpha).cos(), by + e * (beta + alpha).sin()]
-}
 
 /// The rocker angle `gamma` of the four-bar `[a, b, c, d]` at crank angle `phi`, closed form.
 fn rocker_angle([a, b, c, d]: [f64; 4], phi: f64) -> f64 {
