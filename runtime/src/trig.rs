@@ -80,14 +80,94 @@ pub const SLOTS: usize = 8;
 /// fewer; see BENCHMARKS.md.)
 pub const ANCHOR_RANGE: f64 = 0.125;
 
-/// One argument's last values.
-#[derive(Clone, Copy, Debug)]
-struct Slot {
-    arg: f64,
-    sin: f64,
-    cos: f64,
+/// One argument's last sine and cosine, from which the next are rotated (see
+/// [`NearSlot::sin_cos`]): a slot of a sweep's [`Rotating`] cache, or of a Newton block's
+/// [`NearTrig`].
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct NearSlot {
+    /// The argument of the last call.
+    pub arg: f64,
+    /// Its sine.
+    pub sin: f64,
+    /// Its cosine.
+    pub cos: f64,
     /// Rotations since libm last computed the values.
-    age: u32,
+    pub age: u32,
+}
+
+impl NearSlot {
+    /// A slot whose first call goes to libm (its NaN argument makes any change unbounded).
+    pub const FRESH: NearSlot = NearSlot { arg: f64::NAN, sin: 0.0, cos: 1.0, age: 0 };
+
+    /// `(sin arg, cos arg)`: the stored values when `arg` is the last call's; rotated from them
+    /// by the change `d` when `|d| <=` [`MAX_ROTATION`] and fewer than [`RESYNC`] rotations
+    /// followed libm's last values; otherwise libm's, after which the slot's age is `libm_age`
+    /// (`RESYNC` keeps every later call on libm). A rotation's values are within about one unit
+    /// in the last place of those it starts from, so a slot stays within [`RESYNC`] units of
+    /// libm's (see the tests).
+    #[inline(always)]
+    pub fn sin_cos(&mut self, arg: f64, libm_age: u32) -> (f64, f64) {
+        let d = arg - self.arg;
+        if d == 0.0 {
+            return (self.sin, self.cos);
+        }
+        if d.abs() <= MAX_ROTATION && self.age < RESYNC {
+            let (sd, cm1) = small_sin_cosm1(d);
+            let (sin, cos) = (self.sin, self.cos);
+            self.sin = sin + (sin * cm1 + cos * sd);
+            self.cos = cos + (cos * cm1 - sin * sd);
+            self.age += 1;
+        } else {
+            // Also a NaN `d`: the first call, or a non-finite argument (libm's NaN, as ever).
+            (self.sin, self.cos) = arg.sin_cos();
+            self.age = libm_age;
+        }
+        self.arg = arg;
+        (self.sin, self.cos)
+    }
+}
+
+/// The sines and cosines of the arguments of one Newton block's evaluation that depend on its
+/// unknowns, one [`NearSlot`] per argument, made fresh for each solve of the block.
+///
+/// The first evaluation of a solve (the guess) calls libm; each later one is near the one
+/// before (Newton's corrections shrink quadratically: after the guess's they are far below
+/// [`MAX_ROTATION`]), so its values are the previous ones rotated by the change of the
+/// argument, at a fraction of a libm call, within a few units in the last place of libm's. A
+/// trial far from the last evaluation (a restart, a long line-search step) calls libm. Nothing
+/// carries over from one solve to the next, so nothing accumulates along a sweep.
+///
+/// ```
+/// use kinloop_runtime::generated::NearTrig;
+/// let mut trig = NearTrig::<1>::new();
+/// let (s0, _) = trig.sin_cos(0, 0.7); // libm
+/// let (s1, c1) = trig.sin_cos(0, 0.7 + 1e-3); // rotated from 0.7's values
+/// assert_eq!(s0, 0.7f64.sin());
+/// assert!((s1 - 0.701f64.sin()).abs() <= 2e-16 && (c1 - 0.701f64.cos()).abs() <= 2e-16);
+/// ```
+#[derive(Clone, Copy, Debug)]
+pub struct NearTrig<const S: usize> {
+    slots: [NearSlot; S],
+}
+
+impl<const S: usize> NearTrig<S> {
+    /// Every slot fresh: the first call of each goes to libm.
+    #[inline(always)]
+    pub fn new() -> Self {
+        NearTrig { slots: [NearSlot::FRESH; S] }
+    }
+
+    /// `(sin arg, cos arg)` of argument `slot` ([`NearSlot::sin_cos`]).
+    #[inline(always)]
+    pub fn sin_cos(&mut self, slot: usize, arg: f64) -> (f64, f64) {
+        self.slots[slot].sin_cos(arg, 0)
+    }
+}
+
+impl<const S: usize> Default for NearTrig<S> {
+    fn default() -> Self {
+        Self::new()
+    }
 }
 
 /// An unknown's angle as libm last computed it, with the sine and cosine it was computed from.
@@ -107,7 +187,7 @@ impl Anchor {
 /// of its closed-form angles (see the module documentation).
 #[derive(Clone, Copy, Debug)]
 pub struct Rotating {
-    slots: [Slot; SLOTS],
+    slots: [NearSlot; SLOTS],
     anchors: [Anchor; SLOTS],
     /// Every value from libm (see [`Rotating::exact`]): while it holds, every slot is kept at
     /// the age that sends it to libm and every anchor is invalid, so the per-call paths need not
@@ -119,11 +199,7 @@ impl Default for Rotating {
     fn default() -> Self {
         // A NaN argument makes the first call of every slot go to libm.
         // A zero anchor (sine and cosine both 0) sends the first call of every angle to libm.
-        Rotating {
-            slots: [Slot { arg: f64::NAN, sin: 0.0, cos: 1.0, age: 0 }; SLOTS],
-            anchors: [Anchor::INVALID; SLOTS],
-            exact: false,
-        }
+        Rotating { slots: [NearSlot::FRESH; SLOTS], anchors: [Anchor::INVALID; SLOTS], exact: false }
     }
 }
 
@@ -191,24 +267,8 @@ impl InputTrig for Rotating {
         let Some(s) = self.slots.get_mut(slot) else {
             return arg.sin_cos();
         };
-        let d = arg - s.arg;
-        if d == 0.0 {
-            return (s.sin, s.cos);
-        }
-        if d.abs() <= MAX_ROTATION && s.age < RESYNC {
-            let (sd, cm1) = small_sin_cosm1(d);
-            let (sin, cos) = (s.sin, s.cos);
-            s.sin = sin + (sin * cm1 + cos * sd);
-            s.cos = cos + (cos * cm1 - sin * sd);
-            s.age += 1;
-        } else {
-            // Also a NaN `d`: the first call, or a non-finite argument (libm's NaN, as ever).
-            (s.sin, s.cos) = arg.sin_cos();
-            // An exact cache stays at the age that calls libm.
-            s.age = if self.exact { RESYNC } else { 0 };
-        }
-        s.arg = arg;
-        (s.sin, s.cos)
+        // An exact cache stays at the age that calls libm.
+        s.sin_cos(arg, if self.exact { RESYNC } else { 0 })
     }
 
     /// By angle addition, `sin(a + b) = sin a cos b + cos a sin b` and
@@ -451,6 +511,42 @@ mod tests {
             }
         }
         assert!(worst <= 3.4e-16, "worst deviation {worst:e} (libm of the rounded sum: {worst_libm:e})");
+    }
+
+    /// A Newton block's slots: the first call of a solve is libm's to the bit; corrections
+    /// shrinking as Newton's do are rotated, within a few units in the last place of libm's; a
+    /// jump (a restart) is libm's again; [`RESYNC`] rotations at most between two libm calls.
+    #[test]
+    fn near_trig_follows_newton_corrections_within_a_few_ulps() {
+        let mut rng = Rng(0x2545_f491_4f6c_dd1d);
+        let mut worst = 0.0f64;
+        for _ in 0..500 {
+            let mut trig = NearTrig::<2>::new();
+            let mut z = 20.0 * (rng.uniform(0.0, 1.0) - 0.5);
+            let first = trig.sin_cos(1, z);
+            assert_eq!(first, z.sin_cos(), "the first call of a solve is libm's");
+            let mut step = 0.02 * (rng.uniform(0.0, 1.0) - 0.5);
+            for _ in 0..6 {
+                z += step;
+                step *= step * 10.0;
+                let (s, c) = trig.sin_cos(1, z);
+                let (sl, cl) = z.sin_cos();
+                worst = worst.max((s - sl).abs()).max((c - cl).abs());
+            }
+            let jump = z + 0.5;
+            assert_eq!(trig.sin_cos(1, jump), jump.sin_cos(), "a jump is libm's");
+        }
+        assert!(worst <= 4e-16, "worst deviation from libm {worst:e}");
+        assert!(worst > 0.0, "the corrections must have rotated");
+        let mut trig = NearTrig::<1>::new();
+        let mut libm_calls = 0;
+        for k in 0..40 {
+            let arg = 1.0 + 1e-3 * k as f64;
+            if trig.sin_cos(0, arg) == arg.sin_cos() && trig.slots[0].age == 0 {
+                libm_calls += 1;
+            }
+        }
+        assert!(libm_calls >= 40 / (RESYNC as usize + 1), "a slot goes back to libm every RESYNC rotations");
     }
 
     /// Slots are independent, and a repeated argument returns the stored values unchanged.
