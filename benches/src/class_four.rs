@@ -127,65 +127,65 @@ impl Stepper<4> for HandNewtonNear {
 /// The hand-written Newton of [`HandNewton`] (with `NEAR`, of [`HandNewtonNear`]).
 #[inline(always)]
 fn hand_newton<const NEAR: bool>(p: &Params, phi: f64, guess: &[f64; 4]) -> Result<Step<4>, Failed> {
-        let (sph, cph) = phi.sin_cos();
-        let (ax, ay) = (p.oa * cph, p.oa * sph);
-        // With `NEAR`, each iterate's sines and cosines are rotated from the previous
-        // iterate's where the angle moved little (the runtime's `NearTrig`, as kinloop's
-        // Newton blocks do); otherwise all from libm.
-        let near = NearTrig::<6>::new();
-        let sin_cos = |slot: usize, arg: f64| if NEAR { near.sin_cos(slot, arg) } else { arg.sin_cos() };
-        let eval = |z: &[f64; 4]| {
-            let [th1, th2, psi1, psi2] = *z;
-            let (s1, c1) = sin_cos(0, th1);
-            let (s1a, c1a) = sin_cos(1, th1 + p.alpha_a);
-            let (s2, c2) = sin_cos(2, th2);
-            let (s2b, c2b) = sin_cos(3, th2 + p.alpha_b);
-            let (sp1, cp1) = sin_cos(4, psi1);
-            let (sp2, cp2) = sin_cos(5, psi2);
-            let f = [
-                ax + p.ac * c1 + p.cd * cp1 - p.xb - p.bd * c2,
-                ay + p.ac * s1 + p.cd * sp1 - p.yb - p.bd * s2,
-                ax + p.ae * c1a + p.ef * cp2 - p.xb - p.bf * c2b,
-                ay + p.ae * s1a + p.ef * sp2 - p.yb - p.bf * s2b,
-            ];
-            (f, Trig { s1, c1, s1a, c1a, s2, c2, s2b, c2b, sp1, cp1, sp2, cp2 })
-        };
-        let jacobian = |t: &Trig| {
-            [
-                [-p.ac * t.s1, p.bd * t.s2, -p.cd * t.sp1, 0.0],
-                [p.ac * t.c1, -p.bd * t.c2, p.cd * t.cp1, 0.0],
-                [-p.ae * t.s1a, p.bf * t.s2b, 0.0, -p.ef * t.sp2],
-                [p.ae * t.c1a, -p.bf * t.c2b, 0.0, p.ef * t.cp2],
-            ]
-        };
-        let mut z = *guess;
-        let mut iterations = 0;
-        let (t, lu) = loop {
-            let (f, t) = eval(&z);
-            let res = max_abs(&f);
-            let lu = Lu::factor(jacobian(&t)).ok_or_else(|| Failed::new("hand Newton: singular block"))?;
-            if res <= TOL {
-                break (t, lu);
-            }
-            if !res.is_finite() || iterations >= MAX_ITERATIONS {
-                return Err(Failed::new("hand Newton: no convergence"));
-            }
-            let dz = lu.solve(f.map(|v| -v));
-            for u in 0..4 {
-                z[u] += dz[u];
-            }
-            iterations += 1;
-        };
-        // Velocity analogs: df/dphi = (-oa sin phi, oa cos phi) in both loops.
-        let dq = lu.solve([ay, -ax, ay, -ax]);
-        let [w1, w2, v1, v2] = dq;
-        let (w1, w2, v1, v2) = (w1 * w1, w2 * w2, v1 * v1, v2 * v2);
-        let second = [
-            -ax - p.ac * t.c1 * w1 - p.cd * t.cp1 * v1 + p.bd * t.c2 * w2,
-            -ay - p.ac * t.s1 * w1 - p.cd * t.sp1 * v1 + p.bd * t.s2 * w2,
-            -ax - p.ae * t.c1a * w1 - p.ef * t.cp2 * v2 + p.bf * t.c2b * w2,
-            -ay - p.ae * t.s1a * w1 - p.ef * t.sp2 * v2 + p.bf * t.s2b * w2,
+    let (sph, cph) = phi.sin_cos();
+    let (ax, ay) = (p.oa * cph, p.oa * sph);
+    // With `NEAR`, each iterate's sines and cosines are rotated from the previous
+    // iterate's where the angle moved little (the runtime's `NearTrig`, as kinloop's
+    // Newton blocks do); otherwise all from libm.
+    let near = NearTrig::<6>::new();
+    let sin_cos = |slot: usize, arg: f64| if NEAR { near.sin_cos(slot, arg) } else { arg.sin_cos() };
+    let eval = |z: &[f64; 4]| {
+        let [th1, th2, psi1, psi2] = *z;
+        let (s1, c1) = sin_cos(0, th1);
+        let (s1a, c1a) = sin_cos(1, th1 + p.alpha_a);
+        let (s2, c2) = sin_cos(2, th2);
+        let (s2b, c2b) = sin_cos(3, th2 + p.alpha_b);
+        let (sp1, cp1) = sin_cos(4, psi1);
+        let (sp2, cp2) = sin_cos(5, psi2);
+        let f = [
+            ax + p.ac * c1 + p.cd * cp1 - p.xb - p.bd * c2,
+            ay + p.ac * s1 + p.cd * sp1 - p.yb - p.bd * s2,
+            ax + p.ae * c1a + p.ef * cp2 - p.xb - p.bf * c2b,
+            ay + p.ae * s1a + p.ef * sp2 - p.yb - p.bf * s2b,
         ];
-        let d2q = lu.solve(second.map(|v| -v));
-        Ok(Step { q: z, dq, d2q, iterations })
+        (f, Trig { s1, c1, s1a, c1a, s2, c2, s2b, c2b, sp1, cp1, sp2, cp2 })
+    };
+    let jacobian = |t: &Trig| {
+        [
+            [-p.ac * t.s1, p.bd * t.s2, -p.cd * t.sp1, 0.0],
+            [p.ac * t.c1, -p.bd * t.c2, p.cd * t.cp1, 0.0],
+            [-p.ae * t.s1a, p.bf * t.s2b, 0.0, -p.ef * t.sp2],
+            [p.ae * t.c1a, -p.bf * t.c2b, 0.0, p.ef * t.cp2],
+        ]
+    };
+    let mut z = *guess;
+    let mut iterations = 0;
+    let (t, lu) = loop {
+        let (f, t) = eval(&z);
+        let res = max_abs(&f);
+        let lu = Lu::factor(jacobian(&t)).ok_or_else(|| Failed::new("hand Newton: singular block"))?;
+        if res <= TOL {
+            break (t, lu);
+        }
+        if !res.is_finite() || iterations >= MAX_ITERATIONS {
+            return Err(Failed::new("hand Newton: no convergence"));
+        }
+        let dz = lu.solve(f.map(|v| -v));
+        for u in 0..4 {
+            z[u] += dz[u];
+        }
+        iterations += 1;
+    };
+    // Velocity analogs: df/dphi = (-oa sin phi, oa cos phi) in both loops.
+    let dq = lu.solve([ay, -ax, ay, -ax]);
+    let [w1, w2, v1, v2] = dq;
+    let (w1, w2, v1, v2) = (w1 * w1, w2 * w2, v1 * v1, v2 * v2);
+    let second = [
+        -ax - p.ac * t.c1 * w1 - p.cd * t.cp1 * v1 + p.bd * t.c2 * w2,
+        -ay - p.ac * t.s1 * w1 - p.cd * t.sp1 * v1 + p.bd * t.s2 * w2,
+        -ax - p.ae * t.c1a * w1 - p.ef * t.cp2 * v2 + p.bf * t.c2b * w2,
+        -ay - p.ae * t.s1a * w1 - p.ef * t.sp2 * v2 + p.bf * t.s2b * w2,
+    ];
+    let d2q = lu.solve(second.map(|v| -v));
+    Ok(Step { q: z, dq, d2q, iterations })
 }

@@ -18,7 +18,7 @@
 //! difference stays small for several steps). Each angle is one anchor's plus one well
 //! conditioned correction, so nothing accumulates: the angles are within a few ulps of libm's.
 
-use core::cell::Cell;
+use core::cell::UnsafeCell;
 
 /// Where a generated kernel gets the sine and cosine of an argument free of the unknowns.
 pub trait InputTrig {
@@ -147,28 +147,46 @@ impl NearSlot {
 /// assert_eq!(s0, 0.7f64.sin());
 /// assert!((s1 - 0.701f64.sin()).abs() <= 2e-16 && (c1 - 0.701f64.cos()).abs() <= 2e-16);
 /// ```
-#[derive(Clone, Debug)]
 pub struct NearTrig<const S: usize> {
     // Cells, so that the evaluation closure that asks the cache stays `Fn` (it reads its
     // captures only): the solver then writes each evaluation straight into its slot.
-    slots: [Cell<NearSlot>; S],
+    slots: [UnsafeCell<NearSlot>; S],
 }
 
 impl<const S: usize> NearTrig<S> {
     /// Every slot fresh: the first call of each goes to libm.
     #[inline(always)]
     pub fn new() -> Self {
-        NearTrig { slots: [const { Cell::new(NearSlot::FRESH) }; S] }
+        NearTrig { slots: [const { UnsafeCell::new(NearSlot::FRESH) }; S] }
     }
 
     /// `(sin arg, cos arg)` of argument `slot` ([`NearSlot::sin_cos`]).
     #[inline(always)]
     pub fn sin_cos(&self, slot: usize, arg: f64) -> (f64, f64) {
-        let cell = &self.slots[slot];
-        let mut s = cell.get();
-        let sc = s.sin_cos(arg, 0);
-        cell.set(s);
-        sc
+        // SAFETY: the only reference to the slot while it lives: `NearTrig` is not `Sync`
+        // (an `UnsafeCell`), and `NearSlot::sin_cos` calls nothing that could reach this
+        // cache again. (A `Cell`'s `get` and `set` would copy the whole slot at every call.)
+        let s = unsafe { &mut *self.slots[slot].get() };
+        s.sin_cos(arg, 0)
+    }
+
+    /// `(sin arg, cos arg)` from libm, kept in `slot` for the next call: what
+    /// [`NearTrig::sin_cos`] gives and leaves on a fresh slot, without its tests. The generated
+    /// code seeds every slot in the guess's evaluation, which is then the plain libm evaluation
+    /// and four stores an argument.
+    #[inline(always)]
+    pub fn seed(&self, slot: usize, arg: f64) -> (f64, f64) {
+        // SAFETY: as in `sin_cos`.
+        let s = unsafe { &mut *self.slots[slot].get() };
+        let (sin, cos) = arg.sin_cos();
+        *s = NearSlot { arg, sin, cos, age: 0 };
+        (sin, cos)
+    }
+}
+
+impl<const S: usize> core::fmt::Debug for NearTrig<S> {
+    fn fmt(&self, f: &mut core::fmt::Formatter<'_>) -> core::fmt::Result {
+        f.debug_struct("NearTrig").field("slots", &S).finish_non_exhaustive()
     }
 }
 
@@ -550,7 +568,7 @@ mod tests {
         let mut libm_calls = 0;
         for k in 0..40 {
             let arg = 1.0 + 1e-3 * k as f64;
-            if trig.sin_cos(0, arg) == arg.sin_cos() && trig.slots[0].get().age == 0 {
+            if trig.sin_cos(0, arg) == arg.sin_cos() && unsafe { (*trig.slots[0].get()).age } == 0 {
                 libm_calls += 1;
             }
         }

@@ -250,14 +250,29 @@ impl Names {
     }
 
     /// [`Names::lets`] of a Newton block's evaluation: each `sin_cos` pair is asked of the
-    /// solve's cache `near` (a `NearTrig`, one slot per pair, numbered in order), which rotates
-    /// the previous evaluation's values where the argument moved little. Also returns the
-    /// number of slots.
-    pub fn lets_near(&self, g: &Graph, sched: &Schedule, nodes: &[NodeId], near: &Ident) -> (TokenStream, usize) {
-        self.lets_with(g, sched, nodes, Some(near))
+    /// solve's cache `near` (a `NearTrig`, one slot per pair, numbered in order) by `method`:
+    /// `sin_cos`, which rotates the previous evaluation's values where the argument moved
+    /// little, or `seed` (the guess's evaluation: libm's values, kept). Also returns the number
+    /// of slots.
+    pub fn lets_near(
+        &self,
+        g: &Graph,
+        sched: &Schedule,
+        nodes: &[NodeId],
+        near: &Ident,
+        method: &str,
+    ) -> (TokenStream, usize) {
+        let method = Ident::new(method, Span::call_site());
+        self.lets_with(g, sched, nodes, Some((near, &method)))
     }
 
-    fn lets_with(&self, g: &Graph, sched: &Schedule, nodes: &[NodeId], near: Option<&Ident>) -> (TokenStream, usize) {
+    fn lets_with(
+        &self,
+        g: &Graph,
+        sched: &Schedule,
+        nodes: &[NodeId],
+        near: Option<(&Ident, &Ident)>,
+    ) -> (TokenStream, usize) {
         let mut slots = 0;
         let mut done = HashSet::new();
         let mut out = TokenStream::new();
@@ -278,10 +293,10 @@ impl Names {
                             let slot = Literal::usize_unsuffixed(slot);
                             quote!(let (#s, #c): (f64, f64) = __trig.sin_cos(#slot, #arg);)
                         }
-                        (None, Some(near)) => {
+                        (None, Some((near, method))) => {
                             let slot = Literal::usize_unsuffixed(slots);
                             slots += 1;
-                            quote!(let (#s, #c): (f64, f64) = #near.sin_cos(#slot, #arg);)
+                            quote!(let (#s, #c): (f64, f64) = #near.#method(#slot, #arg);)
                         }
                         (None, None) => quote!(let (#s, #c): (f64, f64) = #arg.sin_cos();),
                     });

@@ -63,17 +63,14 @@ impl Kernel<'_> {
         let rt = &self.rt;
         let (n, bl) = (lit(bp.unknowns.len()), lit(b));
         let l = self.scopes.newton[b];
-        // The evaluation's sines and cosines from the solve's own cache: the guess's from libm,
-        // each later evaluation's rotated from the one before where the argument moved little
-        // (Newton's corrections), at a fraction of a libm call.
+        // The evaluation's sines and cosines from the solve's own cache: the guess's from libm
+        // (evaluated in place, once, so the compiler inlines it: no closure call), kept in the
+        // cache; each later evaluation's rotated from the one before where the argument moved
+        // little (Newton's corrections), at a fraction of a libm call.
         let near = format_ident!("__near{}", b);
-        let (inner, slots) = self.names.lets_near(self.g, &self.sched, &self.sched.lets[l], &near);
-        let near_cache = if slots == 0 {
-            TokenStream::new()
-        } else {
-            let slots = lit(slots);
-            quote!(let #near = #rt::NearTrig::<#slots>::new();)
-        };
+        let lets = &self.sched.lets[l];
+        let (inner, slots) = self.names.lets_near(self.g, &self.sched, lets, &near, "sin_cos");
+        let (inner_guess, _) = self.names.lets_near(self.g, &self.sched, lets, &near, "seed");
         let (scale, unit) = (self.names.operands(self.g, &bp.scale), self.names.operands(self.g, &bp.unit));
         let (scale, unit): (Vec<TokenStream>, Vec<TokenStream>) = (scale.collect(), unit.collect());
         // The magnitudes the tests judge in: made once for the solve when they do not depend on
@@ -92,7 +89,7 @@ impl Kernel<'_> {
             let u = lit(u);
             quote!(__guess[#u])
         });
-        let f = self.names.operands(self.g, &bp.f);
+        let f: Vec<TokenStream> = self.names.operands(self.g, &bp.f).collect();
         let (s, ev, r) = (format_ident!("__s{}", b), format_ident!("__eval{}", b), format_ident!("__r{}", b));
         let at = evaluation_ident(b);
         // A large sparse block: its non-zeros only, and Newton over its sparse factorisation.
@@ -155,6 +152,18 @@ impl Kernel<'_> {
         } else {
             failure
         };
+        // The guess's evaluation, seeding the cache.
+        let (near_cache, guess_eval) = if slots == 0 {
+            (TokenStream::new(), quote!(#ev(&__z0)))
+        } else {
+            let slots = lit(slots);
+            let evaluation = quote!({
+                let [#(#qs),*] = __z0;
+                #inner_guess
+                #rt::BlockEval { f: [#(#f),*], j: #jrows, keep: [#(#exports,)* #(#kept_mags),*] }
+            });
+            (quote!(let #near = #rt::NearTrig::<#slots>::new();), evaluation)
+        };
         // The block's evaluation is one closure handed to the runtime's Newton, which checks
         // the guess, corrects it at least once and always checks the final residual.
         quote! {
@@ -168,7 +177,7 @@ impl Kernel<'_> {
             let __z0: [f64; #n] = [#(#guess),*];
             // The guess evaluated here, into the slot the iteration updates in place: the
             // block's evaluation is never copied into or out of the solver.
-            let mut #at = #ev(&__z0);
+            let mut #at = #guess_eval;
             #slot
             let #r = #newton(__z0, &mut #at, __cfg, #ev, #mags #lu_arg);
             let #s = match &#r {
