@@ -170,6 +170,7 @@ mod gather;
 mod levers;
 mod mechanism;
 mod model;
+mod near;
 mod newton;
 mod paths;
 mod sensitivities;

@@ -1,0 +1,106 @@
+//! The sines and cosines of a Newton block's evaluation, rotated from the solve's previous
+//! evaluation, as the compiled block computes them.
+//!
+//! The emitted Newton block computes every `sin_cos` pair of its evaluation (each depends on the
+//! block's unknowns) through a `NearSlot` of its own (the runtime's `NearTrig`), fresh at the
+//! start of each solve of the block, kept across that solve's evaluations: the guess's values
+//! are libm's, each later evaluation's are the previous ones rotated by the change of the
+//! argument, or libm's again after a jump or a number of rotations.
+//! The values differ from libm's in the last bits, so the model does the same, with the same
+//! function (`NearSlot::sin_cos`): the same bits.
+//!
+//! Each sine and cosine instruction of a block's evaluation segment (`Ins::NearSinCos`) keeps
+//! its slot in four registers of its own ([`WIDTH`]: argument, sine, cosine, age), beside the
+//! others of the block ([`NearSlots`]); [`NearSlots::reset`] makes them fresh before a solve's
+//! first evaluation. The state lives in registers, like every other value of a step: no
+//! allocation, and one copy of the block's slots per evaluation.
+//!
+//! That copy is a snapshot of the slots before each evaluation, kept with the evaluation's
+//! unknowns (`newton::RECENT` of them): after the solve, `newton::restore_returned` may make an
+//! earlier evaluation again to leave its values in the registers (what the emitted code hands
+//! to later scopes is that evaluation's), and the replay must give the values that evaluation
+//! had, so it starts from the slots as they were then ([`NearSlots::restore`]). Any other run
+//! of a block's nodes (the analogs at a given position, the Jacobian, the sensitivities) is a
+//! segment of its own with libm's `sin_cos`, as the emitted straight-line code there.
+
+use crate::closed::Extra;
+use crate::newton::RECENT;
+use kinloop_runtime::generated::NearSlot;
+
+/// Registers of one slot: its argument, sine, cosine and age (the `u32` in the register's bits:
+/// copied, never computed with).
+pub(crate) const WIDTH: usize = 4;
+
+/// A fresh slot's registers (`NearSlot::FRESH`: its first call goes to libm).
+const FRESH: [f64; WIDTH] = [NearSlot::FRESH.arg, NearSlot::FRESH.sin, NearSlot::FRESH.cos, 0.0];
+
+/// The rotation slots of one Newton block's evaluation: `slots` slots of [`WIDTH`] registers from
+/// `first` on (the live state), then [`RECENT`] snapshots of them.
+#[derive(Clone, Copy, Debug, Default)]
+pub(crate) struct NearSlots {
+    first: usize,
+    /// Registers of the live state: [`WIDTH`] per slot.
+    len: usize,
+}
+
+impl NearSlots {
+    /// `slots` slots in fresh registers of `extra`.
+    pub(crate) fn new(extra: &mut Extra, slots: usize) -> NearSlots {
+        let len = WIDTH * slots;
+        let first = extra.block((len * (1 + RECENT)) as u32) as usize;
+        NearSlots { first, len }
+    }
+
+    /// The first register of slot `k` (its argument's).
+    pub(crate) fn slot(&self, k: usize) -> u32 {
+        (self.first + WIDTH * k) as u32
+    }
+
+    /// Makes every slot fresh: the start of a solve, whose guess is evaluated by libm.
+    #[inline]
+    pub(crate) fn reset(&self, r: &mut [f64]) {
+        for s in r[self.first..self.first + self.len].chunks_exact_mut(WIDTH) {
+            s.copy_from_slice(&FRESH);
+        }
+    }
+
+    /// Keeps the slots in snapshot `k` (before evaluation `k` modulo [`RECENT`]).
+    #[inline]
+    pub(crate) fn save(&self, r: &mut [f64], k: usize) {
+        if self.len > 0 {
+            r.copy_within(self.first..self.first + self.len, self.snapshot(k));
+        }
+    }
+
+    /// Sets the slots back to snapshot `k`: an evaluation made again gives the values it gave.
+    #[inline]
+    pub(crate) fn restore(&self, r: &mut [f64], k: usize) {
+        if self.len > 0 {
+            let s = self.snapshot(k);
+            r.copy_within(s..s + self.len, self.first);
+        }
+    }
+
+    fn snapshot(&self, k: usize) -> usize {
+        self.first + self.len * (1 + k)
+    }
+}
+
+/// `(sin arg, cos arg)` by the slot at `st` (`NearSlot::sin_cos` with the emitted `NearTrig`'s
+/// age after libm, 0), which it updates.
+///
+/// # Safety
+/// `st` points to the slot's [`WIDTH`] registers.
+#[inline(always)]
+pub(crate) unsafe fn sin_cos(st: *mut f64, arg: f64) -> (f64, f64) {
+    // SAFETY: the caller's.
+    unsafe {
+        let mut slot = NearSlot { arg: *st, sin: *st.add(1), cos: *st.add(2), age: (*st.add(3)).to_bits() as u32 };
+        let sc = slot.sin_cos(arg, 0);
+        *st = slot.arg;
+        *st.add(1) = slot.sin;
+        *st.add(2) = slot.cos;
+        *st.add(3) = f64::from_bits(u64::from(slot.age));
+        sc
+    }
+}
