@@ -404,6 +404,18 @@ impl Model {
         &self.regs
     }
 
+    /// The rotation slots of the Newton blocks' evaluations, block by block.
+    #[cfg(test)]
+    pub(crate) fn near_slots(&self) -> Vec<crate::near::NearSlots> {
+        self.blocks
+            .iter()
+            .filter_map(|b| match &b.how {
+                How::Newton(p) => Some(p.near),
+                _ => None,
+            })
+            .collect()
+    }
+
     /// The registers and the dynamics program, borrowed together.
     pub(crate) fn regs_and_dynamics(&mut self) -> (&mut [f64], Option<&mut DynamicsProg>) {
         (&mut self.regs, self.dynamics.as_mut())

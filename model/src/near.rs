@@ -84,6 +84,15 @@ impl NearSlots {
     fn snapshot(&self, k: usize) -> usize {
         self.first + self.len * (1 + k)
     }
+
+    /// The slots as the registers `r` hold them.
+    #[cfg(test)]
+    fn live(&self, r: &[f64]) -> Vec<NearSlot> {
+        r[self.first..self.first + self.len]
+            .chunks_exact(WIDTH)
+            .map(|s| NearSlot { arg: s[0], sin: s[1], cos: s[2], age: s[3].to_bits() as u32 })
+            .collect()
+    }
 }
 
 /// `(sin arg, cos arg)` by the slot at `st` (`NearSlot::sin_cos` with the emitted `NearTrig`'s
@@ -102,5 +111,56 @@ pub(crate) unsafe fn sin_cos(st: *mut f64, arg: f64) -> (f64, f64) {
         *st.add(2) = slot.cos;
         *st.add(3) = f64::from_bits(u64::from(slot.age));
         sc
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use crate::Model;
+    use kinloop::Mechanism;
+    use kinloop_fixtures as fx;
+    use kinloop_runtime::NewtonConfig;
+    use std::f64::consts::TAU;
+
+    /// The class IV group (one Newton block of four unknowns, its sines and cosines rotated)
+    /// solved from guesses a little off the solution: the model's positions and analogs are the
+    /// compiled mechanism's to the bit. The compiled block is the independent reference (the
+    /// emitted straight-line code with its own `NearTrig`); with libm's values in the model
+    /// instead, the analogs (made from the returned evaluation's Jacobian) differ from it in the
+    /// last bits. That the rotation is in use: after the solves, slots whose last values were
+    /// rotated (age above 0), and among them values other than libm's of the same argument.
+    #[test]
+    fn a_newton_block_rotates_its_sines_and_cosines_as_the_compiled_one() {
+        let compiled = fx::ClassFour::default();
+        let mut m = Model::read("class_four.kl", fx::CLASS_FOUR_TEXT).unwrap_or_else(|e| panic!("{e}"));
+        let cfg = NewtonConfig::default();
+        let (mut q, mut rotated, mut not_libm) = (compiled.guess_flat(&[0.0]), 0, 0);
+        for k in 0..24 {
+            let x = [TAU * k as f64 / 24.0];
+            q = compiled.kinematics_flat(&x, &q, &cfg).expect("assembles over a turn").q;
+            // Off the solution by 1e-4 to 4e-4 rad: Newton's corrections are rotated.
+            let guess: [f64; 4] =
+                std::array::from_fn(|u| q[u] + 1e-4 * (u as f64 + 1.0) * if u % 2 == 0 { 1.0 } else { -1.0 });
+            let c = compiled.kinematics_flat(&x, &guess, &cfg).expect("compiled");
+            let r = m.kinematics(&x, &guess, &cfg).expect("run time");
+            let bits = |v: &mut dyn Iterator<Item = f64>| v.map(f64::to_bits).collect::<Vec<u64>>();
+            assert_eq!(bits(&mut c.q.iter().copied()), bits(&mut r.q.iter().copied()), "q at {x:?}");
+            assert_eq!(bits(&mut c.dq.iter().flatten().copied()), bits(&mut r.dq.iter().copied()), "dq at {x:?}");
+            assert_eq!(
+                bits(&mut c.d2q.iter().flatten().flatten().copied()),
+                bits(&mut r.d2q.iter().copied()),
+                "d2q at {x:?}"
+            );
+            for slots in m.near_slots() {
+                for s in slots.live(m.registers_view()) {
+                    if s.age > 0 {
+                        rotated += 1;
+                        not_libm += usize::from((s.sin, s.cos) != s.arg.sin_cos());
+                    }
+                }
+            }
+        }
+        assert!(rotated > 0 && not_libm > 0, "{rotated} slots rotated, {not_libm} of them not libm's");
+        eprintln!("{rotated} slots rotated, {not_libm} of them with values other than libm's");
     }
 }
