@@ -18,6 +18,8 @@
 //! difference stays small for several steps). Each angle is one anchor's plus one well
 //! conditioned correction, so nothing accumulates: the angles are within a few ulps of libm's.
 
+use core::cell::Cell;
+
 /// Where a generated kernel gets the sine and cosine of an argument free of the unknowns.
 pub trait InputTrig {
     /// `(sin arg, cos arg)`; `slot` identifies the argument within the kernel (the same
@@ -139,28 +141,34 @@ impl NearSlot {
 ///
 /// ```
 /// use kinloop_runtime::generated::NearTrig;
-/// let mut trig = NearTrig::<1>::new();
+/// let trig = NearTrig::<1>::new();
 /// let (s0, _) = trig.sin_cos(0, 0.7); // libm
 /// let (s1, c1) = trig.sin_cos(0, 0.7 + 1e-3); // rotated from 0.7's values
 /// assert_eq!(s0, 0.7f64.sin());
 /// assert!((s1 - 0.701f64.sin()).abs() <= 2e-16 && (c1 - 0.701f64.cos()).abs() <= 2e-16);
 /// ```
-#[derive(Clone, Copy, Debug)]
+#[derive(Clone, Debug)]
 pub struct NearTrig<const S: usize> {
-    slots: [NearSlot; S],
+    // Cells, so that the evaluation closure that asks the cache stays `Fn` (it reads its
+    // captures only): the solver then writes each evaluation straight into its slot.
+    slots: [Cell<NearSlot>; S],
 }
 
 impl<const S: usize> NearTrig<S> {
     /// Every slot fresh: the first call of each goes to libm.
     #[inline(always)]
     pub fn new() -> Self {
-        NearTrig { slots: [NearSlot::FRESH; S] }
+        NearTrig { slots: [const { Cell::new(NearSlot::FRESH) }; S] }
     }
 
     /// `(sin arg, cos arg)` of argument `slot` ([`NearSlot::sin_cos`]).
     #[inline(always)]
-    pub fn sin_cos(&mut self, slot: usize, arg: f64) -> (f64, f64) {
-        self.slots[slot].sin_cos(arg, 0)
+    pub fn sin_cos(&self, slot: usize, arg: f64) -> (f64, f64) {
+        let cell = &self.slots[slot];
+        let mut s = cell.get();
+        let sc = s.sin_cos(arg, 0);
+        cell.set(s);
+        sc
     }
 }
 
@@ -521,7 +529,7 @@ mod tests {
         let mut rng = Rng(0x2545_f491_4f6c_dd1d);
         let mut worst = 0.0f64;
         for _ in 0..500 {
-            let mut trig = NearTrig::<2>::new();
+            let trig = NearTrig::<2>::new();
             let mut z = 20.0 * (rng.uniform(0.0, 1.0) - 0.5);
             let first = trig.sin_cos(1, z);
             assert_eq!(first, z.sin_cos(), "the first call of a solve is libm's");
@@ -538,11 +546,11 @@ mod tests {
         }
         assert!(worst <= 4e-16, "worst deviation from libm {worst:e}");
         assert!(worst > 0.0, "the corrections must have rotated");
-        let mut trig = NearTrig::<1>::new();
+        let trig = NearTrig::<1>::new();
         let mut libm_calls = 0;
         for k in 0..40 {
             let arg = 1.0 + 1e-3 * k as f64;
-            if trig.sin_cos(0, arg) == arg.sin_cos() && trig.slots[0].age == 0 {
+            if trig.sin_cos(0, arg) == arg.sin_cos() && trig.slots[0].get().age == 0 {
                 libm_calls += 1;
             }
         }

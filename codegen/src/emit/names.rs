@@ -246,6 +246,19 @@ impl Names {
     /// `let tN: f64 = ...;` for each node, in order. A sine and a cosine paired by the schedule
     /// become one `sin_cos()` call, at the place of whichever of the two comes first.
     pub fn lets(&self, g: &Graph, sched: &Schedule, nodes: &[NodeId]) -> TokenStream {
+        self.lets_with(g, sched, nodes, None).0
+    }
+
+    /// [`Names::lets`] of a Newton block's evaluation: each `sin_cos` pair is asked of the
+    /// solve's cache `near` (a `NearTrig`, one slot per pair, numbered in order), which rotates
+    /// the previous evaluation's values where the argument moved little. Also returns the
+    /// number of slots.
+    pub fn lets_near(&self, g: &Graph, sched: &Schedule, nodes: &[NodeId], near: &Ident) -> (TokenStream, usize) {
+        self.lets_with(g, sched, nodes, Some(near))
+    }
+
+    fn lets_with(&self, g: &Graph, sched: &Schedule, nodes: &[NodeId], near: Option<&Ident>) -> (TokenStream, usize) {
+        let mut slots = 0;
         let mut done = HashSet::new();
         let mut out = TokenStream::new();
         for &n in nodes {
@@ -260,12 +273,17 @@ impl Names {
                         Op::Func(_, a) => self.operand(g, a),
                         _ => self.operand(g, sn),
                     };
-                    out.extend(match self.trig_slots.get(&sn) {
-                        Some(&slot) => {
+                    out.extend(match (self.trig_slots.get(&sn), near) {
+                        (Some(&slot), _) => {
                             let slot = Literal::usize_unsuffixed(slot);
                             quote!(let (#s, #c): (f64, f64) = __trig.sin_cos(#slot, #arg);)
                         }
-                        None => quote!(let (#s, #c): (f64, f64) = #arg.sin_cos();),
+                        (None, Some(near)) => {
+                            let slot = Literal::usize_unsuffixed(slots);
+                            slots += 1;
+                            quote!(let (#s, #c): (f64, f64) = #near.sin_cos(#slot, #arg);)
+                        }
+                        (None, None) => quote!(let (#s, #c): (f64, f64) = #arg.sin_cos();),
                     });
                 }
                 continue;
@@ -273,7 +291,7 @@ impl Names {
             let (name, e) = (self.temp(n), self.expr(g, n));
             out.extend(quote!(let #name: f64 = #e;));
         }
-        out
+        (out, slots)
     }
 
     /// In a sweep's kernel, the sine and cosine `(sn, cn)` of a sum of angles `a + b` with

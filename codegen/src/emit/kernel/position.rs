@@ -63,7 +63,17 @@ impl Kernel<'_> {
         let rt = &self.rt;
         let (n, bl) = (lit(bp.unknowns.len()), lit(b));
         let l = self.scopes.newton[b];
-        let inner = self.lets(l);
+        // The evaluation's sines and cosines from the solve's own cache: the guess's from libm,
+        // each later evaluation's rotated from the one before where the argument moved little
+        // (Newton's corrections), at a fraction of a libm call.
+        let near = format_ident!("__near{}", b);
+        let (inner, slots) = self.names.lets_near(self.g, &self.sched, &self.sched.lets[l], &near);
+        let near_cache = if slots == 0 {
+            TokenStream::new()
+        } else {
+            let slots = lit(slots);
+            quote!(let #near = #rt::NearTrig::<#slots>::new();)
+        };
         let (scale, unit) = (self.names.operands(self.g, &bp.scale), self.names.operands(self.g, &bp.unit));
         let (scale, unit): (Vec<TokenStream>, Vec<TokenStream>) = (scale.collect(), unit.collect());
         // The magnitudes the tests judge in: made once for the solve when they do not depend on
@@ -148,6 +158,7 @@ impl Kernel<'_> {
         // The block's evaluation is one closure handed to the runtime's Newton, which checks
         // the guess, corrects it at least once and always checks the final residual.
         quote! {
+            #near_cache
             let #ev = |__z: &[f64; #n]| -> #ty {
                 let [#(#qs),*] = *__z;
                 #inner
