@@ -31,9 +31,6 @@ use kinloop_runtime::generated::NearSlot;
 /// copied, never computed with).
 pub(crate) const WIDTH: usize = 4;
 
-/// A fresh slot's registers (`NearSlot::FRESH`: its first call goes to libm).
-const FRESH: [f64; WIDTH] = [NearSlot::FRESH.arg, NearSlot::FRESH.sin, NearSlot::FRESH.cos, 0.0];
-
 /// The rotation slots of one Newton block's evaluation: `slots` slots of [`WIDTH`] registers from
 /// `first` on (the live state), then [`RECENT`] snapshots of them.
 #[derive(Clone, Copy, Debug, Default)]
@@ -56,33 +53,41 @@ impl NearSlots {
         (self.first + WIDTH * k) as u32
     }
 
-    /// Makes every slot fresh: the start of a solve, whose guess is evaluated by libm.
+    /// Makes every slot fresh: the start of a solve, whose guess is evaluated by libm. Only the
+    /// arguments are written (`NearSlot::FRESH`'s NaN): a NaN argument sends the next call to
+    /// libm whatever the slot's other registers hold, and that call writes them.
     #[inline]
     pub(crate) fn reset(&self, r: &mut [f64]) {
         for s in r[self.first..self.first + self.len].chunks_exact_mut(WIDTH) {
-            s.copy_from_slice(&FRESH);
+            s[0] = NearSlot::FRESH.arg;
         }
     }
 
-    /// Keeps the slots in snapshot `k` (before evaluation `k` modulo [`RECENT`]).
+    /// Keeps the slots as they are before the solve's evaluation `eval` (its snapshot, modulo
+    /// [`RECENT`]). Before the first they are fresh: nothing to keep.
     #[inline]
-    pub(crate) fn save(&self, r: &mut [f64], k: usize) {
-        if self.len > 0 {
-            r.copy_within(self.first..self.first + self.len, self.snapshot(k));
+    pub(crate) fn save(&self, r: &mut [f64], eval: usize) {
+        if eval > 0 && self.len > 0 {
+            r.copy_within(self.first..self.first + self.len, self.snapshot(eval));
         }
     }
 
-    /// Sets the slots back to snapshot `k`: an evaluation made again gives the values it gave.
+    /// Sets the slots back to how they were before the solve's evaluation `eval` (kept by
+    /// [`NearSlots::save`] within the last [`RECENT`] evaluations): made again, it gives the
+    /// values it gave.
     #[inline]
-    pub(crate) fn restore(&self, r: &mut [f64], k: usize) {
-        if self.len > 0 {
-            let s = self.snapshot(k);
+    pub(crate) fn restore(&self, r: &mut [f64], eval: usize) {
+        if eval == 0 {
+            self.reset(r);
+        } else if self.len > 0 {
+            let s = self.snapshot(eval);
             r.copy_within(s..s + self.len, self.first);
         }
     }
 
-    fn snapshot(&self, k: usize) -> usize {
-        self.first + self.len * (1 + k)
+    /// The first register of the snapshot of evaluation `eval`.
+    fn snapshot(&self, eval: usize) -> usize {
+        self.first + self.len * (1 + eval % RECENT)
     }
 
     /// The slots as the registers `r` hold them.

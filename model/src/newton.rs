@@ -109,7 +109,7 @@ where
             r[reg as usize] = z[k];
         }
         recent[calls % RECENT] = *z;
-        p.near.save(r, calls % RECENT);
+        p.near.save(r, calls);
         calls += 1;
         p.eval.run(r);
         let j: [[f64; N]; N] = std::array::from_fn(|row| read::<N>(r, &p.jac[row * N..]));
@@ -163,7 +163,7 @@ pub(crate) fn restore_returned<const P: usize>(
             for (k, &reg) in p.unknown_regs.iter().enumerate() {
                 r[reg as usize] = zb[k];
             }
-            p.near.restore(r, (calls - back) % RECENT);
+            p.near.restore(r, calls - back);
             p.eval.run(r);
             if matches(r) {
                 break;

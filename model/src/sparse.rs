@@ -160,7 +160,7 @@ impl<const P: usize, const CAP: usize, const K2: usize> Padded<P, CAP, K2> {
                 r[reg as usize] = z[k];
             }
             recent[calls % RECENT] = *z;
-            p.near.save(r, calls % RECENT);
+            p.near.save(r, calls);
             calls += 1;
             p.eval.run(r);
             let mut v = [0.0; CAP];
