@@ -404,13 +404,13 @@ impl Model {
         &self.regs
     }
 
-    /// The rotation slots of the Newton blocks' evaluations, block by block.
+    /// The programs of the Newton blocks, block by block.
     #[cfg(test)]
-    pub(crate) fn near_slots(&self) -> Vec<crate::near::NearSlots> {
+    pub(crate) fn newton_progs(&self) -> Vec<crate::newton::NewtonProg> {
         self.blocks
             .iter()
             .filter_map(|b| match &b.how {
-                How::Newton(p) => Some(p.near),
+                How::Newton(p) => Some(p.clone()),
                 _ => None,
             })
             .collect()

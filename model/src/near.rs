@@ -122,6 +122,7 @@ pub(crate) unsafe fn sin_cos(st: *mut f64, arg: f64) -> (f64, f64) {
 #[cfg(test)]
 mod tests {
     use crate::Model;
+    use crate::newton::{RECENT, restore_returned};
     use kinloop::Mechanism;
     use kinloop_fixtures as fx;
     use kinloop_runtime::NewtonConfig;
@@ -131,8 +132,8 @@ mod tests {
     /// solved from guesses a little off the solution: the model's positions and analogs are the
     /// compiled mechanism's to the bit. The compiled block is the independent reference (the
     /// emitted straight-line code with its own `NearTrig`); with libm's values in the model
-    /// instead, the analogs (made from the returned evaluation's Jacobian) differ from it in the
-    /// last bits. That the rotation is in use: after the solves, slots whose last values were
+    /// instead, positions and analogs differ from it in the last bits (the first sample's `q`
+    /// already). That the rotation is in use: after the solves, slots whose last values were
     /// rotated (age above 0), and among them values other than libm's of the same argument.
     #[test]
     fn a_newton_block_rotates_its_sines_and_cosines_as_the_compiled_one() {
@@ -156,8 +157,8 @@ mod tests {
                 bits(&mut r.d2q.iter().copied()),
                 "d2q at {x:?}"
             );
-            for slots in m.near_slots() {
-                for s in slots.live(m.registers_view()) {
+            for p in m.newton_progs() {
+                for s in p.near.live(m.registers_view()) {
                     if s.age > 0 {
                         rotated += 1;
                         not_libm += usize::from((s.sin, s.cos) != s.arg.sin_cos());
@@ -167,5 +168,67 @@ mod tests {
         }
         assert!(rotated > 0 && not_libm > 0, "{rotated} slots rotated, {not_libm} of them not libm's");
         eprintln!("{rotated} slots rotated, {not_libm} of them with values other than libm's");
+    }
+
+    /// `restore_returned` makes an earlier evaluation of the solve again (the one the solver
+    /// returned, when later trials were rejected): from the slots kept before it, the replay
+    /// gives every register of the block's evaluation the bits it had, rotated values included.
+    /// The reference is the evaluation itself, run in sequence as a solve runs it: a guess, a
+    /// correction (rotated), then a long trial (libm's) and one near it (rotated), both
+    /// rejected. A replay from the slots as the trials left them computes the correction's
+    /// values by libm, and gives other bits somewhere along the turn (counted: the test would
+    /// not see a missing restore otherwise).
+    #[test]
+    fn a_replayed_evaluation_gives_the_values_it_gave() {
+        let compiled = fx::ClassFour::default();
+        let mut m = Model::read("class_four.kl", fx::CLASS_FOUR_TEXT).unwrap_or_else(|e| panic!("{e}"));
+        let cfg = NewtonConfig::default();
+        let (mut q, mut history_shows) = (compiled.guess_flat(&[0.0]), 0);
+        for k in 0..12 {
+            let x = [TAU * k as f64 / 12.0];
+            q = compiled.kinematics_flat(&x, &q, &cfg).expect("assembles over a turn").q;
+            // The registers before the block's solve (inputs, coefficients) as a step leaves them.
+            m.kinematics(&x, &q, &cfg).expect("run time");
+            let p = m.newton_progs().remove(0);
+            assert_eq!(p.unknowns.len(), 4, "the class IV group is one block");
+            let r = m.regs_and_dynamics().0;
+            // The guess, its correction, a long trial (beyond the rotation's range) and one near it.
+            let zs: [[f64; 4]; 4] = std::array::from_fn(|i| {
+                std::array::from_fn(|u| q[u] + [2e-2, 3e-4, 0.3, 0.3 + 1e-4][i] * (u as f64 - 1.3))
+            });
+            let mut recent = [[f64::NAN; 4]; RECENT];
+            let mut after = Vec::new();
+            p.near.reset(r);
+            for (i, z) in zs.iter().enumerate() {
+                for (k, &reg) in p.unknown_regs.iter().enumerate() {
+                    r[reg as usize] = z[k];
+                }
+                recent[i % RECENT] = *z;
+                p.near.save(r, i);
+                p.eval.run(r);
+                after.push(r[..p.near.first].to_vec());
+            }
+            assert!(p.near.live(r).iter().all(|s| s.age == 1), "the last trial rotates from the long one");
+            let end = r.to_vec();
+            let differ = |a: &[f64], b: &[f64]| {
+                let unknown = |k: usize| p.unknown_regs.contains(&(k as u32));
+                (0..a.len()).filter(|&k| !unknown(k) && a[k].to_bits() != b[k].to_bits()).count()
+            };
+            // The correction made again from the slots as the trials left them.
+            for (k, &reg) in p.unknown_regs.iter().enumerate() {
+                r[reg as usize] = zs[1][k];
+            }
+            p.eval.run(r);
+            history_shows += usize::from(differ(&r[..p.near.first], &after[1]) > 0);
+            // The solver returned the correction's evaluation: its residuals and Jacobian.
+            r.copy_from_slice(&end);
+            let regs = |v: &[f64], of: &[u32]| of.iter().map(|&k| v[k as usize]).collect::<Vec<f64>>();
+            let (f, jac) = (regs(&after[1], &p.f), regs(&after[1], &p.jac));
+            restore_returned(&p, r, &recent, zs.len(), (&f, &p.jac, &jac), &q);
+            assert_eq!(differ(&r[..p.near.first], &after[1]), 0, "at {x:?}: the correction's bits");
+            assert!(differ(&after[3], &after[1]) > 0, "the evaluations differ");
+        }
+        assert!(history_shows > 0, "the slots' history changes the bits somewhere");
+        eprintln!("{history_shows} of 12 replays from the trials' slots give other bits");
     }
 }
