@@ -17,6 +17,11 @@
 //! order: no fused multiply-add, which the emitted code does not use), and each step jumps to
 //! the next one's function ([`Step`]: threaded code, no loop between two steps). Operands are
 //! `u32` register indices checked once per segment when it is built.
+//!
+//! A Newton block's evaluation segment ([`Builder::near_segment`]) computes each sine and cosine
+//! of one argument by a rotation slot of its own ([`Ins::NearSinCos`], `crate::near`), as the
+//! emitted evaluation asks its `NearTrig`: every other segment calls libm, as the emitted
+//! straight-line code does.
 
 use crate::near::NearSlots;
 use kinloop_codegen::graph::dag::{Func, Graph, Leaf, NodeId, Op};
