@@ -6,6 +6,8 @@ use crate::decls::ClassFour;
 use crate::linalg::{Lu, max_abs};
 use crate::rhombic::{MAX_ITERATIONS, TOL};
 use crate::sweep::{Failed, Step, Stepper};
+// The same cache the generated Newton blocks use (from the expanded code's support module).
+use kinloop::__gen::NearTrig;
 
 /// Parameters of the mechanism (the declaration's defaults).
 #[derive(Clone, Copy, Debug, PartialEq)]
@@ -102,17 +104,44 @@ struct Trig {
 impl Stepper<4> for HandNewton {
     #[inline(always)]
     fn step(&self, phi: f64, guess: &[f64; 4]) -> Result<Step<4>, Failed> {
-        let p = &self.p;
+        hand_newton::<false>(&self.p, phi, guess)
+    }
+}
+
+/// [`HandNewton`] with each iterate's sines and cosines rotated from the previous iterate's,
+/// by the runtime's `NearTrig` (what kinloop's generated Newton blocks do): the hand-written
+/// reference given the same trigonometry as kinloop.
+#[derive(Clone, Copy, Debug)]
+pub struct HandNewtonNear {
+    /// The mechanism's dimensions.
+    pub p: Params,
+}
+
+impl Stepper<4> for HandNewtonNear {
+    #[inline(always)]
+    fn step(&self, phi: f64, guess: &[f64; 4]) -> Result<Step<4>, Failed> {
+        hand_newton::<true>(&self.p, phi, guess)
+    }
+}
+
+/// The hand-written Newton of [`HandNewton`] (with `NEAR`, of [`HandNewtonNear`]).
+#[inline(always)]
+fn hand_newton<const NEAR: bool>(p: &Params, phi: f64, guess: &[f64; 4]) -> Result<Step<4>, Failed> {
         let (sph, cph) = phi.sin_cos();
         let (ax, ay) = (p.oa * cph, p.oa * sph);
+        // With `NEAR`, each iterate's sines and cosines are rotated from the previous
+        // iterate's where the angle moved little (the runtime's `NearTrig`, as kinloop's
+        // Newton blocks do); otherwise all from libm.
+        let near = NearTrig::<6>::new();
+        let sin_cos = |slot: usize, arg: f64| if NEAR { near.sin_cos(slot, arg) } else { arg.sin_cos() };
         let eval = |z: &[f64; 4]| {
             let [th1, th2, psi1, psi2] = *z;
-            let (s1, c1) = th1.sin_cos();
-            let (s1a, c1a) = (th1 + p.alpha_a).sin_cos();
-            let (s2, c2) = th2.sin_cos();
-            let (s2b, c2b) = (th2 + p.alpha_b).sin_cos();
-            let (sp1, cp1) = psi1.sin_cos();
-            let (sp2, cp2) = psi2.sin_cos();
+            let (s1, c1) = sin_cos(0, th1);
+            let (s1a, c1a) = sin_cos(1, th1 + p.alpha_a);
+            let (s2, c2) = sin_cos(2, th2);
+            let (s2b, c2b) = sin_cos(3, th2 + p.alpha_b);
+            let (sp1, cp1) = sin_cos(4, psi1);
+            let (sp2, cp2) = sin_cos(5, psi2);
             let f = [
                 ax + p.ac * c1 + p.cd * cp1 - p.xb - p.bd * c2,
                 ay + p.ac * s1 + p.cd * sp1 - p.yb - p.bd * s2,
@@ -159,5 +188,4 @@ impl Stepper<4> for HandNewton {
         ];
         let d2q = lu.solve(second.map(|v| -v));
         Ok(Step { q: z, dq, d2q, iterations })
-    }
 }

@@ -7,8 +7,9 @@
 //! * four-bar with its coupler point, gear-lever rocker: `four-bar-hand`, `four-bar-point`,
 //!   `four-bar-sweep`, `gear-lever-hand`, `gear-lever-point`, `gear-lever-sweep` (the hand
 //!   closed forms of `kinloop_bench::hand`);
-//! * class IV block (Newton): `class-four-hand` (the hand-written Newton), `class-four-point`,
-//!   `class-four-sweep`, and `class-four-hand-taylor`, `class-four-point-taylor` warm-started by
+//! * class IV block (Newton): `class-four-hand` (the hand-written Newton), `class-four-hand-near`
+//!   (the same with each iterate's sines and cosines rotated from the previous iterate's, as
+//!   kinloop's Newton blocks do), `class-four-point`, `class-four-sweep`, and `class-four-hand-taylor`, `class-four-point-taylor` warm-started by
 //!   the benchmarks' second-order predictor instead of the previous position;
 //! * design-space scan: `four-bar-scan` (`kinloop::scan` over four-bars whose cranks differ
 //!   by 0.1 %, each swept over a turn in 100 samples; against `four-bar-sweep@99`, the same
@@ -26,7 +27,7 @@
 //! Instructions per step = difference of the totals of two runs with different `STEPS`, divided
 //! by the difference of the steps (the setup cancels).
 
-use kinloop_bench::class_four::{self, HandNewton};
+use kinloop_bench::class_four::{self, HandNewton, HandNewtonNear};
 use kinloop_bench::decls::{ClassFour, FourBarSens, RhombicDrive, four_sens};
 use kinloop_bench::hand::{FOUR_BAR, FourBarClosed, GearLeverClosed, gear_lever};
 use kinloop_bench::kinloop_variants::{Kinloop, KinloopSens};
@@ -123,6 +124,7 @@ fn main() {
         "gear-lever-point" => steps_of(&Kinloop::<GearLever, 2>::new(gear), gg, steps),
         "gear-lever-sweep" => sweep_of(&gear, gg, steps),
         "class-four-hand" => steps_of(&HandNewton { p: c4 }, g4, steps),
+        "class-four-hand-near" => steps_of(&HandNewtonNear { p: c4 }, g4, steps),
         "class-four-point" => steps_of(&Kinloop::<ClassFour, 0>::new(c4.kinloop()), g4, steps),
         "class-four-hand-taylor" => policy_steps(&HandNewton { p: c4 }, WarmStart::Taylor, g4, steps),
         "class-four-point-taylor" => {
