@@ -25,8 +25,9 @@ use kinloop_runtime::generated::{
 use std::collections::HashMap;
 use std::f64::consts::FRAC_PI_2;
 
-/// The registers beyond the graph's that the closed forms' programs use: their constants
-/// (written once, when the model is built) and their intermediate values.
+/// The registers beyond the graph's that the closed forms' programs use (their constants,
+/// written once when the model is built, and their intermediate values), and the Newton
+/// blocks' rotation slots (`crate::near`).
 #[derive(Debug, Default)]
 pub(crate) struct Extra {
     next: u32,
@@ -55,8 +56,13 @@ impl Extra {
     }
 
     fn fresh(&mut self) -> u32 {
+        self.block(1)
+    }
+
+    /// The first of `n` consecutive fresh registers.
+    pub(crate) fn block(&mut self, n: u32) -> u32 {
         let k = self.next;
-        self.next += 1;
+        self.next += n;
         k
     }
 

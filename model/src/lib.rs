@@ -25,7 +25,9 @@
 //! (`tape`): one register per graph node, one instruction per operation, each the operation the
 //! emitted code performs for that node. Each block is solved as the plan decided, with the
 //! runtime's own solvers: the closed forms by the emitter's formulas on values (`closed`),
-//! Newton by the runtime's `newton` (`newton`), the factorisations by the runtime's `Lu`,
+//! Newton by the runtime's `newton` (`newton`; its evaluation's sines and cosines rotated from
+//! the solve's previous evaluation by the runtime's `NearSlot`, as the emitted block's
+//! `NearTrig` rotates them: `near`), the factorisations by the runtime's `Lu`,
 //! `Inverse2` and `Fixed`, chosen by the emitter's rules (`factor`), dispatched over the block
 //! size once per call. A large block the plan solves by sparse Newton keeps the plan's pattern
 //! and elimination order as tables and runs the runtime's `newton_with` over its non-zeros,
@@ -84,9 +86,10 @@
 //! crossings, located by the same continuation), `next_ref`/`next_kin`, `table()` with the
 //! model's column names and units, `run`. It equals the compiled mechanism's sweep to rounding
 //! (`tests/sweeps.rs`: the fixtures of the parity tests over a whole turn, the same events at the
-//! same inputs). Its step is [`Model::kinematics`] (libm's sines and cosines: a run-time model has
-//! no trigonometry cache, nor deferred checks), copied into the sweep's slot: no allocation per
-//! step.
+//! same inputs). Its step is [`Model::kinematics`] (libm's sines and cosines of the inputs: a
+//! run-time model has no sweep's trigonometry cache, nor deferred checks; its Newton blocks
+//! rotate theirs as a point solve of the compiled mechanism does), copied into the sweep's slot:
+//! no allocation per step.
 //!
 //! Served to run-time models: the sweep and what it uses (the event location by
 //! pseudo-arclength continuation, the equilibrated determinants, the table), and the analyses
@@ -170,6 +173,7 @@ mod gather;
 mod levers;
 mod mechanism;
 mod model;
+mod near;
 mod newton;
 mod paths;
 mod sensitivities;

@@ -399,8 +399,8 @@ macro_rules! model_kernel_body {
         ) -> kinloop_runtime::dims::JacBuf {
             self.lend(|m, jac| self.info().jacobian(m, jac, x, q))
         }
-        /// The model's step (`Model::kinematics`, libm's sines and cosines: a run-time model
-        /// has no trigonometry cache) copied into `into`.
+        /// The model's step (`Model::kinematics`, libm's sines and cosines of the inputs: a
+        /// run-time model has no sweep's trigonometry cache) copied into `into`.
         fn step_into<T: kinloop_runtime::generated::InputTrig>(
             &self,
             x: &kinloop_runtime::dims::Heap,

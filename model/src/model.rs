@@ -404,6 +404,18 @@ impl Model {
         &self.regs
     }
 
+    /// The programs of the Newton blocks, block by block.
+    #[cfg(test)]
+    pub(crate) fn newton_progs(&self) -> Vec<crate::newton::NewtonProg> {
+        self.blocks
+            .iter()
+            .filter_map(|b| match &b.how {
+                How::Newton(p) => Some(p.clone()),
+                _ => None,
+            })
+            .collect()
+    }
+
     /// The registers and the dynamics program, borrowed together.
     pub(crate) fn regs_and_dynamics(&mut self) -> (&mut [f64], Option<&mut DynamicsProg>) {
         (&mut self.regs, self.dynamics.as_mut())
@@ -888,10 +900,12 @@ fn position_program(
             // What does not depend on the block's unknowns is computed once, before the solve.
             let pre = tape.segment(&roots, Some(&level_below))?;
             tape.provide(unknown_nodes.iter().flatten().copied());
-            let eval = tape.segment(&roots, None)?;
+            // Its sines and cosines rotated from the solve's previous evaluation (`crate::near`).
+            let (eval, near) = tape.near_segment(&roots, extra)?;
             let fixed_mags = bp.scale.iter().chain(&bp.unit).all(|m| level_below(*m));
             let prog = NewtonProg {
                 eval,
+                near,
                 unknowns: bp.unknowns.clone(),
                 unknown_regs: unknown_nodes.iter().map(|n| n.map_or(u32::MAX, |n| n.0)).collect(),
                 f: regs(&bp.f),

@@ -1,8 +1,14 @@
 //! A Newton block at run time: the runtime's own `newton` (or `newton_keeping_lu`, where the
 //! emitted code keeps the final factorisation for the analogs), with the block's evaluation a
 //! run of the tape instead of emitted straight-line code.
+//!
+//! The evaluation's sines and cosines are rotated from the solve's previous evaluation, as the
+//! emitted block's `NearTrig` rotates them (`crate::near`): its slots are made fresh before
+//! each solve and kept before each evaluation with the evaluation's unknowns, so that
+//! [`restore_returned`]'s replay of an earlier evaluation gives the values it gave.
 
 use crate::factor::{Fac, LuSlot};
+use crate::near::NearSlots;
 use crate::tape::Segment;
 use kinloop_runtime::NewtonConfig;
 use kinloop_runtime::generated::{BlockEval, BlockFailure, Lu, Magnitudes, SolveReport, newton, newton_keeping_lu};
@@ -14,6 +20,8 @@ pub(crate) struct NewtonProg {
     /// The block's evaluation: every node of its residuals, Jacobian and magnitudes that
     /// depends on its unknowns.
     pub(crate) eval: Segment,
+    /// The rotation slots of the evaluation's sines and cosines.
+    pub(crate) near: NearSlots,
     pub(crate) unknowns: Vec<usize>,
     pub(crate) unknown_regs: Vec<u32>,
     pub(crate) f: Vec<u32>,
@@ -94,11 +102,14 @@ where
     let fixed = Magnitudes::new(read::<N>(r, &p.scale), read::<N>(r, &p.unit)).with_turns(turns);
     let mut recent = [[f64::NAN; N]; RECENT];
     let mut calls = 0usize;
+    // A fresh `NearTrig` for this solve, as the emitted block makes one.
+    p.near.reset(r);
     let mut eval = |z: &[f64; N]| -> BlockEval<N, K> {
         for (k, &reg) in p.unknown_regs.iter().enumerate() {
             r[reg as usize] = z[k];
         }
         recent[calls % RECENT] = *z;
+        p.near.save(r, calls);
         calls += 1;
         p.eval.run(r);
         let j: [[f64; N]; N] = std::array::from_fn(|row| read::<N>(r, &p.jac[row * N..]));
@@ -132,7 +143,8 @@ where
 /// evaluation, which the solver may have made before a rejected trial (or, after a correction
 /// at the rounding level, before that correction), so the most recent evaluation whose
 /// residuals `f` and Jacobian values `jac` (in registers `jac_regs`) are the returned ones is made
-/// again from `recent` (evaluations are deterministic); then the solution `z`.
+/// again from `recent`, its rotation slots as they were before it (`NearSlots::save`), so
+/// that it gives the values it gave; then the solution `z`.
 pub(crate) fn restore_returned<const P: usize>(
     p: &NewtonProg,
     r: &mut [f64],
@@ -151,6 +163,7 @@ pub(crate) fn restore_returned<const P: usize>(
             for (k, &reg) in p.unknown_regs.iter().enumerate() {
                 r[reg as usize] = zb[k];
             }
+            p.near.restore(r, calls - back);
             p.eval.run(r);
             if matches(r) {
                 break;

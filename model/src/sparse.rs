@@ -9,6 +9,9 @@
 //! (see the runtime's `sparse_lu_dyn` for why every test and every real value is unchanged),
 //! its non-zeros in an array of `CAP >= nnz` values; both are chosen once, when the model is
 //! built, and the workspace (factor slots, the dense fallback) is allocated then.
+//!
+//! The evaluation's sines and cosines are rotated as a dense block's are (`crate::near`, see
+//! `newton`): the emitted sparse block makes its `NearTrig` the same way.
 
 use crate::newton::{NewtonProg, RECENT, restore_returned};
 use kinloop_codegen::plan::sparse::Sparse;
@@ -150,11 +153,14 @@ impl<const P: usize, const CAP: usize, const K2: usize> Padded<P, CAP, K2> {
         let (work, entries) = (&self.work, &self.entries);
         let mut recent = [[f64::NAN; P]; RECENT];
         let mut calls = 0usize;
+        // Rotation slots fresh for this solve, kept before each evaluation (see `newton`).
+        p.near.reset(r);
         let mut eval = |z: &[f64; P]| -> BlockEval<P, K, PaddedJac<'_, P, CAP>> {
             for (k, &reg) in p.unknown_regs.iter().enumerate() {
                 r[reg as usize] = z[k];
             }
             recent[calls % RECENT] = *z;
+            p.near.save(r, calls);
             calls += 1;
             p.eval.run(r);
             let mut v = [0.0; CAP];

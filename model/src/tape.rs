@@ -17,7 +17,13 @@
 //! order: no fused multiply-add, which the emitted code does not use), and each step jumps to
 //! the next one's function ([`Step`]: threaded code, no loop between two steps). Operands are
 //! `u32` register indices checked once per segment when it is built.
+//!
+//! A Newton block's evaluation segment ([`Builder::near_segment`]) computes each sine and cosine
+//! of one argument by a rotation slot of its own ([`Ins::NearSinCos`], `crate::near`), as the
+//! emitted evaluation asks its `NearTrig`: every other segment calls libm, as the emitted
+//! straight-line code does.
 
+use crate::near::NearSlots;
 use kinloop_codegen::graph::dag::{Func, Graph, Leaf, NodeId, Op};
 
 /// One operation: destination register first, then the operands' registers.
@@ -42,6 +48,10 @@ pub(crate) enum Ins {
     Cos(u32, u32),
     /// `(sin a, cos a)` into the first two registers.
     SinCos(u32, u32, u32),
+    /// `(sin a, cos a)` into the first two registers by a Newton block's rotation slot, whose
+    /// [`WIDTH`](crate::near::WIDTH) registers start at the fourth (`crate::near`: rotated from
+    /// the slot's previous argument, as the emitted block's `NearTrig`).
+    NearSinCos(u32, u32, u32, u32),
     Tan(u32, u32),
     Asin(u32, u32),
     Acos(u32, u32),
@@ -55,16 +65,18 @@ pub(crate) enum Ins {
 }
 
 impl Ins {
-    /// The registers the instruction writes, then those it reads.
+    /// The registers the instruction writes, then those it reads (of a rotation slot's, the
+    /// last: the registers a run needs are counted from the largest).
     fn registers(&self) -> impl Iterator<Item = u32> {
-        let (v, n): ([u32; 3], usize) = match *self {
+        let (v, n): ([u32; 4], usize) = match *self {
+            Ins::NearSinCos(s, c, a, st) => ([s, c, a, st + crate::near::WIDTH as u32 - 1], 4),
             Ins::Add(d, a, b)
             | Ins::Sub(d, a, b)
             | Ins::Mul(d, a, b)
             | Ins::Div(d, a, b)
             | Ins::Powf(d, a, b)
             | Ins::Atan2(d, a, b)
-            | Ins::SinCos(d, a, b) => ([d, a, b], 3),
+            | Ins::SinCos(d, a, b) => ([d, a, b, 0], 3),
             Ins::Neg(d, a)
             | Ins::Square(d, a)
             | Ins::Recip(d, a)
@@ -79,7 +91,7 @@ impl Ins {
             | Ins::Exp(d, a)
             | Ins::Ln(d, a)
             | Ins::Abs(d, a)
-            | Ins::Signum(d, a) => ([d, a, 0], 2),
+            | Ins::Signum(d, a) => ([d, a, 0, 0], 2),
         };
         v.into_iter().take(n)
     }
@@ -117,6 +129,7 @@ impl Ins {
             Ins::Sin(d, a) => f(unary::<SIN>, &[d, a]),
             Ins::Cos(d, a) => f(unary::<COS>, &[d, a]),
             Ins::SinCos(s, c, a) => f(sin_cos_step, &[s, c, a]),
+            Ins::NearSinCos(s, c, a, st) => f(near_sin_cos_step, &[s, c, a, st]),
             Ins::Tan(d, a) => f(unary::<TAN>, &[d, a]),
             Ins::Asin(d, a) => f(unary::<ASIN>, &[d, a]),
             Ins::Acos(d, a) => f(unary::<ACOS>, &[d, a]),
@@ -411,6 +424,22 @@ unsafe fn sin_cos_step(p: *mut f64, s: *const Step) {
     }
 }
 
+/// `(r[s], r[c]) = (sin r[a], cos r[a])` by the rotation slot in the registers from `r[3]` on
+/// (`crate::near::sin_cos`).
+///
+/// # Safety
+/// As [`arith1`] (the slot's registers too: counted in `needs` by [`Ins::registers`]).
+unsafe fn near_sin_cos_step(p: *mut f64, s: *const Step) {
+    // SAFETY: the caller's.
+    unsafe {
+        let r = &(*s).r;
+        let (sin, cos) = crate::near::sin_cos(p.add(r[3] as usize), *p.add(r[2] as usize));
+        *p.add(r[0] as usize) = sin;
+        *p.add(r[1] as usize) = cos;
+        next(p, s)
+    }
+}
+
 /// A run of instructions, executed in order.
 #[derive(Clone, Debug, Default)]
 pub(crate) struct Segment {
@@ -461,7 +490,7 @@ impl Segment {
 
     /// A segment executing `ins` in order, consecutive arithmetic operations grouped by four.
     fn of(ins: Vec<Ins>) -> Segment {
-        let ops = ins.iter().map(|i| if matches!(i, Ins::SinCos(..)) { 2 } else { 1 }).sum();
+        let ops = ins.iter().map(|i| if matches!(i, Ins::SinCos(..) | Ins::NearSinCos(..)) { 2 } else { 1 }).sum();
         let needs = ins.iter().flat_map(Ins::registers).max().map_or(0, |m| m as usize + 1);
         // Chains of `CHAIN` steps, each followed by a `ret` (the last one shorter).
         let mut steps = Vec::new();
@@ -620,6 +649,40 @@ impl<'g> Builder<'g> {
         roots: &[NodeId],
         only: Option<&dyn Fn(NodeId) -> bool>,
     ) -> Result<Segment, Unavailable> {
+        Ok(Segment::new(self.instructions(roots, only)?))
+    }
+
+    /// The segment computing `roots` as a Newton block's evaluation: each sine and cosine of one
+    /// argument by a rotation slot of its own ([`Ins::NearSinCos`], see `crate::near`), the
+    /// slots in fresh registers of `extra`. A lone sine or cosine stays libm's (the emitted
+    /// evaluation pairs the same ones).
+    pub(crate) fn near_segment(
+        &mut self,
+        roots: &[NodeId],
+        extra: &mut crate::closed::Extra,
+    ) -> Result<(Segment, NearSlots), Unavailable> {
+        let ins = sin_cos(self.instructions(roots, None)?);
+        let slots = NearSlots::new(extra, ins.iter().filter(|i| matches!(i, Ins::SinCos(..))).count());
+        let mut k = 0;
+        let ins = ins
+            .into_iter()
+            .map(|i| match i {
+                Ins::SinCos(s, c, a) => {
+                    k += 1;
+                    Ins::NearSinCos(s, c, a, slots.slot(k - 1))
+                }
+                i => i,
+            })
+            .collect();
+        Ok((Segment::of(ins), slots))
+    }
+
+    /// The instructions computing `roots` (see [`Builder::segment`]), one per graph operation.
+    fn instructions(
+        &mut self,
+        roots: &[NodeId],
+        only: Option<&dyn Fn(NodeId) -> bool>,
+    ) -> Result<Vec<Ins>, Unavailable> {
         let mut out = Vec::new();
         let mut seen = vec![false; self.g.len()];
         let mut stack: Vec<NodeId> = roots.to_vec();
@@ -693,7 +756,7 @@ impl<'g> Builder<'g> {
                 self.known[d as usize] = true;
             }
         }
-        Ok(Segment::new(out))
+        Ok(out)
     }
 }
 

@@ -1,0 +1,234 @@
+//! The sines and cosines of a Newton block's evaluation, rotated from the solve's previous
+//! evaluation, as the compiled block computes them.
+//!
+//! The emitted Newton block computes every `sin_cos` pair of its evaluation (each depends on the
+//! block's unknowns) through a `NearSlot` of its own (the runtime's `NearTrig`), fresh at the
+//! start of each solve of the block, kept across that solve's evaluations: the guess's values
+//! are libm's, each later evaluation's are the previous ones rotated by the change of the
+//! argument, or libm's again after a jump or a number of rotations.
+//! The values differ from libm's in the last bits, so the model does the same, with the same
+//! function (`NearSlot::sin_cos`): the same bits.
+//!
+//! Each sine and cosine instruction of a block's evaluation segment (`Ins::NearSinCos`) keeps
+//! its slot in four registers of its own ([`WIDTH`]: argument, sine, cosine, age), beside the
+//! others of the block ([`NearSlots`]); [`NearSlots::reset`] makes them fresh before a solve's
+//! first evaluation. The state lives in registers, like every other value of a step: no
+//! allocation, and one copy of the block's slots per evaluation.
+//!
+//! That copy is a snapshot of the slots before each evaluation, kept with the evaluation's
+//! unknowns (`newton::RECENT` of them): after the solve, `newton::restore_returned` may make an
+//! earlier evaluation again to leave its values in the registers (what the emitted code hands
+//! to later scopes is that evaluation's), and the replay must give the values that evaluation
+//! had, so it starts from the slots as they were then ([`NearSlots::restore`]). Any other run
+//! of a block's nodes (the analogs at a given position, the Jacobian, the sensitivities) is a
+//! segment of its own with libm's `sin_cos`, as the emitted straight-line code there.
+
+use crate::closed::Extra;
+use crate::newton::RECENT;
+use kinloop_runtime::generated::NearSlot;
+
+/// Registers of one slot: its argument, sine, cosine and age (the `u32` in the register's bits:
+/// copied, never computed with).
+pub(crate) const WIDTH: usize = 4;
+
+/// The rotation slots of one Newton block's evaluation: `slots` slots of [`WIDTH`] registers from
+/// `first` on (the live state), then [`RECENT`] snapshots of them.
+#[derive(Clone, Copy, Debug, Default)]
+pub(crate) struct NearSlots {
+    first: usize,
+    /// Registers of the live state: [`WIDTH`] per slot.
+    len: usize,
+}
+
+impl NearSlots {
+    /// `slots` slots in fresh registers of `extra`.
+    pub(crate) fn new(extra: &mut Extra, slots: usize) -> NearSlots {
+        let len = WIDTH * slots;
+        let first = extra.block((len * (1 + RECENT)) as u32) as usize;
+        NearSlots { first, len }
+    }
+
+    /// The first register of slot `k` (its argument's).
+    pub(crate) fn slot(&self, k: usize) -> u32 {
+        (self.first + WIDTH * k) as u32
+    }
+
+    /// Makes every slot fresh: the start of a solve, whose guess is evaluated by libm. Only the
+    /// arguments are written (`NearSlot::FRESH`'s NaN): a NaN argument sends the next call to
+    /// libm whatever the slot's other registers hold, and that call writes them.
+    #[inline]
+    pub(crate) fn reset(&self, r: &mut [f64]) {
+        for s in r[self.first..self.first + self.len].chunks_exact_mut(WIDTH) {
+            s[0] = NearSlot::FRESH.arg;
+        }
+    }
+
+    /// Keeps the slots as they are before the solve's evaluation `eval` (its snapshot, modulo
+    /// [`RECENT`]). Before the first they are fresh: nothing to keep.
+    #[inline]
+    pub(crate) fn save(&self, r: &mut [f64], eval: usize) {
+        if eval > 0 && self.len > 0 {
+            r.copy_within(self.first..self.first + self.len, self.snapshot(eval));
+        }
+    }
+
+    /// Sets the slots back to how they were before the solve's evaluation `eval` (kept by
+    /// [`NearSlots::save`] within the last [`RECENT`] evaluations): made again, it gives the
+    /// values it gave.
+    #[inline]
+    pub(crate) fn restore(&self, r: &mut [f64], eval: usize) {
+        if eval == 0 {
+            self.reset(r);
+        } else if self.len > 0 {
+            let s = self.snapshot(eval);
+            r.copy_within(s..s + self.len, self.first);
+        }
+    }
+
+    /// The first register of the snapshot of evaluation `eval`.
+    fn snapshot(&self, eval: usize) -> usize {
+        self.first + self.len * (1 + eval % RECENT)
+    }
+
+    /// The slots as the registers `r` hold them.
+    #[cfg(test)]
+    fn live(&self, r: &[f64]) -> Vec<NearSlot> {
+        r[self.first..self.first + self.len]
+            .chunks_exact(WIDTH)
+            .map(|s| NearSlot { arg: s[0], sin: s[1], cos: s[2], age: s[3].to_bits() as u32 })
+            .collect()
+    }
+}
+
+/// `(sin arg, cos arg)` by the slot at `st` (`NearSlot::sin_cos` with the emitted `NearTrig`'s
+/// age after libm, 0), which it updates.
+///
+/// # Safety
+/// `st` points to the slot's [`WIDTH`] registers.
+#[inline(always)]
+pub(crate) unsafe fn sin_cos(st: *mut f64, arg: f64) -> (f64, f64) {
+    // SAFETY: the caller's.
+    unsafe {
+        let mut slot = NearSlot { arg: *st, sin: *st.add(1), cos: *st.add(2), age: (*st.add(3)).to_bits() as u32 };
+        let sc = slot.sin_cos(arg, 0);
+        *st = slot.arg;
+        *st.add(1) = slot.sin;
+        *st.add(2) = slot.cos;
+        *st.add(3) = f64::from_bits(u64::from(slot.age));
+        sc
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use crate::Model;
+    use crate::newton::{RECENT, restore_returned};
+    use kinloop::Mechanism;
+    use kinloop_fixtures as fx;
+    use kinloop_runtime::NewtonConfig;
+    use std::f64::consts::TAU;
+
+    /// The class IV group (one Newton block of four unknowns, its sines and cosines rotated)
+    /// solved from guesses a little off the solution: the model's positions and analogs are the
+    /// compiled mechanism's to the bit. The compiled block is the independent reference (the
+    /// emitted straight-line code with its own `NearTrig`); with libm's values in the model
+    /// instead, positions and analogs differ from it in the last bits (the first sample's `q`
+    /// already). That the rotation is in use: after the solves, slots whose last values were
+    /// rotated (age above 0), and among them values other than libm's of the same argument.
+    #[test]
+    fn a_newton_block_rotates_its_sines_and_cosines_as_the_compiled_one() {
+        let compiled = fx::ClassFour::default();
+        let mut m = Model::read("class_four.kl", fx::CLASS_FOUR_TEXT).unwrap_or_else(|e| panic!("{e}"));
+        let cfg = NewtonConfig::default();
+        let (mut q, mut rotated, mut not_libm) = (compiled.guess_flat(&[0.0]), 0, 0);
+        for k in 0..24 {
+            let x = [TAU * k as f64 / 24.0];
+            q = compiled.kinematics_flat(&x, &q, &cfg).expect("assembles over a turn").q;
+            // Off the solution by 1e-4 to 4e-4 rad: Newton's corrections are rotated.
+            let guess: [f64; 4] =
+                std::array::from_fn(|u| q[u] + 1e-4 * (u as f64 + 1.0) * if u % 2 == 0 { 1.0 } else { -1.0 });
+            let c = compiled.kinematics_flat(&x, &guess, &cfg).expect("compiled");
+            let r = m.kinematics(&x, &guess, &cfg).expect("run time");
+            let bits = |v: &mut dyn Iterator<Item = f64>| v.map(f64::to_bits).collect::<Vec<u64>>();
+            assert_eq!(bits(&mut c.q.iter().copied()), bits(&mut r.q.iter().copied()), "q at {x:?}");
+            assert_eq!(bits(&mut c.dq.iter().flatten().copied()), bits(&mut r.dq.iter().copied()), "dq at {x:?}");
+            assert_eq!(
+                bits(&mut c.d2q.iter().flatten().flatten().copied()),
+                bits(&mut r.d2q.iter().copied()),
+                "d2q at {x:?}"
+            );
+            for p in m.newton_progs() {
+                for s in p.near.live(m.registers_view()) {
+                    if s.age > 0 {
+                        rotated += 1;
+                        not_libm += usize::from((s.sin, s.cos) != s.arg.sin_cos());
+                    }
+                }
+            }
+        }
+        assert!(rotated > 0 && not_libm > 0, "{rotated} slots rotated, {not_libm} of them not libm's");
+        eprintln!("{rotated} slots rotated, {not_libm} of them with values other than libm's");
+    }
+
+    /// `restore_returned` makes an earlier evaluation of the solve again (the one the solver
+    /// returned, when later trials were rejected): from the slots kept before it, the replay
+    /// gives every register of the block's evaluation the bits it had, rotated values included.
+    /// The reference is the evaluation itself, run in sequence as a solve runs it: a guess, a
+    /// correction (rotated), then a long trial (libm's) and one near it (rotated), both
+    /// rejected. A replay from the slots as the trials left them computes the correction's
+    /// values by libm, and gives other bits somewhere along the turn (counted: the test would
+    /// not see a missing restore otherwise).
+    #[test]
+    fn a_replayed_evaluation_gives_the_values_it_gave() {
+        let compiled = fx::ClassFour::default();
+        let mut m = Model::read("class_four.kl", fx::CLASS_FOUR_TEXT).unwrap_or_else(|e| panic!("{e}"));
+        let cfg = NewtonConfig::default();
+        let (mut q, mut history_shows) = (compiled.guess_flat(&[0.0]), 0);
+        for k in 0..12 {
+            let x = [TAU * k as f64 / 12.0];
+            q = compiled.kinematics_flat(&x, &q, &cfg).expect("assembles over a turn").q;
+            // The registers before the block's solve (inputs, coefficients) as a step leaves them.
+            m.kinematics(&x, &q, &cfg).expect("run time");
+            let p = m.newton_progs().remove(0);
+            assert_eq!(p.unknowns.len(), 4, "the class IV group is one block");
+            let r = m.regs_and_dynamics().0;
+            // The guess, its correction, a long trial (beyond the rotation's range) and one near it.
+            let zs: [[f64; 4]; 4] = std::array::from_fn(|i| {
+                std::array::from_fn(|u| q[u] + [2e-2, 3e-4, 0.3, 0.3 + 1e-4][i] * (u as f64 - 1.3))
+            });
+            let mut recent = [[f64::NAN; 4]; RECENT];
+            let mut after = Vec::new();
+            p.near.reset(r);
+            for (i, z) in zs.iter().enumerate() {
+                for (k, &reg) in p.unknown_regs.iter().enumerate() {
+                    r[reg as usize] = z[k];
+                }
+                recent[i % RECENT] = *z;
+                p.near.save(r, i);
+                p.eval.run(r);
+                after.push(r[..p.near.first].to_vec());
+            }
+            assert!(p.near.live(r).iter().all(|s| s.age == 1), "the last trial rotates from the long one");
+            let end = r.to_vec();
+            let differ = |a: &[f64], b: &[f64]| {
+                let unknown = |k: usize| p.unknown_regs.contains(&(k as u32));
+                (0..a.len()).filter(|&k| !unknown(k) && a[k].to_bits() != b[k].to_bits()).count()
+            };
+            // The correction made again from the slots as the trials left them.
+            for (k, &reg) in p.unknown_regs.iter().enumerate() {
+                r[reg as usize] = zs[1][k];
+            }
+            p.eval.run(r);
+            history_shows += usize::from(differ(&r[..p.near.first], &after[1]) > 0);
+            // The solver returned the correction's evaluation: its residuals and Jacobian.
+            r.copy_from_slice(&end);
+            let regs = |v: &[f64], of: &[u32]| of.iter().map(|&k| v[k as usize]).collect::<Vec<f64>>();
+            let (f, jac) = (regs(&after[1], &p.f), regs(&after[1], &p.jac));
+            restore_returned(&p, r, &recent, zs.len(), (&f, &p.jac, &jac), &q);
+            assert_eq!(differ(&r[..p.near.first], &after[1]), 0, "at {x:?}: the correction's bits");
+            assert!(differ(&after[3], &after[1]) > 0, "the evaluations differ");
+        }
+        assert!(history_shows > 0, "the slots' history changes the bits somewhere");
+        eprintln!("{history_shows} of 12 replays from the trials' slots give other bits");
+    }
+}
