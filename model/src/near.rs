@@ -7,7 +7,7 @@
 //! are libm's, each later evaluation's are the previous ones rotated by the change of the
 //! argument, or libm's again after a jump or a number of rotations.
 //! The values differ from libm's in the last bits, so the model does the same, with the same
-//! function (`NearSlot::sin_cos`): the same bits.
+//! function (`NearSlot::newton_sin_cos`): the same bits.
 //!
 //! Each sine and cosine instruction of a block's evaluation segment (`Ins::NearSinCos`) keeps
 //! its slot in four registers of its own ([`WIDTH`]: argument, sine, cosine, age), beside the
@@ -100,8 +100,9 @@ impl NearSlots {
     }
 }
 
-/// `(sin arg, cos arg)` by the slot at `st` (`NearSlot::sin_cos` with the emitted `NearTrig`'s
-/// age after libm, 0), which it updates.
+/// `(sin arg, cos arg)` by the slot at `st` (`NearSlot::newton_sin_cos`, as the emitted
+/// `NearTrig` computes it), which it updates. The age is kept in its register as the bits of an
+/// `f64` (a small integer's bits, a subnormal: only ever copied, never computed with).
 ///
 /// # Safety
 /// `st` points to the slot's [`WIDTH`] registers.
@@ -110,7 +111,7 @@ pub(crate) unsafe fn sin_cos(st: *mut f64, arg: f64) -> (f64, f64) {
     // SAFETY: the caller's.
     unsafe {
         let mut slot = NearSlot { arg: *st, sin: *st.add(1), cos: *st.add(2), age: (*st.add(3)).to_bits() as u32 };
-        let sc = slot.sin_cos(arg, 0);
+        let sc = slot.newton_sin_cos(arg);
         *st = slot.arg;
         *st.add(1) = slot.sin;
         *st.add(2) = slot.cos;

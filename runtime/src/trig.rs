@@ -1,5 +1,6 @@
-//! Sines and cosines of the arguments a kernel computes before any unknown: the input angles
-//! and expressions of inputs and parameters (`phi1 + gamma`).
+//! Sines and cosines that a kernel need not take from libm: those of the arguments it computes
+//! before any unknown (the input angles, expressions of inputs and parameters: `phi1 + gamma`),
+//! and, in a Newton block's later evaluations, those of its unknowns' angles ([`NearTrig`]).
 //!
 //! A generated kernel asks an [`InputTrig`] for them, by slot (one per argument). A point solve
 //! passes [`Libm`]: the standard library's `sin_cos`. A sweep passes its [`Rotating`] cache: its
@@ -17,6 +18,11 @@
 //! `q_a + asin(sin(q - q_a))` from an anchor `q_a` that libm computed, by a short polynomial (the
 //! difference stays small for several steps). Each angle is one anchor's plus one well
 //! conditioned correction, so nothing accumulates: the angles are within a few ulps of libm's.
+//!
+//! A Newton block's evaluation asks its solve's [`NearTrig`] for the sines and cosines of its
+//! angles: the guess's evaluation seeds it with libm's, and each later one (Newton's
+//! corrections are small, soon very small) rotates the previous values, at most
+//! [`NEWTON_RESYNC`] times before libm again. Nothing carries over from one solve to the next.
 
 use core::cell::UnsafeCell;
 
@@ -70,6 +76,13 @@ pub const MAX_ROTATION: f64 = 0.031_25;
 /// more than this many units off libm's values.
 pub const RESYNC: u32 = 16;
 
+/// Rotations between two libm evaluations of a Newton block's argument ([`NearTrig`]): a solve
+/// warm-started from a near position evaluates its block two to four times after the guess, so
+/// these are rotated; a long iteration (near a singular position, where the positions amplify
+/// the last bits of the sines) goes back to libm after them, its values never more than a few
+/// units in the last place off libm's.
+pub const NEWTON_RESYNC: u32 = 4;
+
 /// Slots a [`Rotating`] cache holds; a kernel's further arguments are computed by libm.
 pub const SLOTS: usize = 8;
 
@@ -109,11 +122,24 @@ impl NearSlot {
     /// libm's (see the tests).
     #[inline(always)]
     pub fn sin_cos(&mut self, arg: f64, libm_age: u32) -> (f64, f64) {
+        self.sin_cos_within(arg, libm_age, RESYNC)
+    }
+
+    /// [`NearSlot::sin_cos`] of a Newton block's evaluation: at most [`NEWTON_RESYNC`]
+    /// rotations between two libm calls (what [`NearTrig`] computes; the run-time model calls
+    /// it for the same bits).
+    #[inline(always)]
+    pub fn newton_sin_cos(&mut self, arg: f64) -> (f64, f64) {
+        self.sin_cos_within(arg, 0, NEWTON_RESYNC)
+    }
+
+    #[inline(always)]
+    fn sin_cos_within(&mut self, arg: f64, libm_age: u32, resync: u32) -> (f64, f64) {
         let d = arg - self.arg;
         if d == 0.0 {
             return (self.sin, self.cos);
         }
-        if d.abs() <= MAX_ROTATION && self.age < RESYNC {
+        if d.abs() <= MAX_ROTATION && self.age < resync {
             let (sd, cm1) = small_sin_cosm1(d);
             let (sin, cos) = (self.sin, self.cos);
             self.sin = sin + (sin * cm1 + cos * sd);
@@ -160,14 +186,17 @@ impl<const S: usize> NearTrig<S> {
         NearTrig { slots: [const { UnsafeCell::new(NearSlot::FRESH) }; S] }
     }
 
-    /// `(sin arg, cos arg)` of argument `slot` ([`NearSlot::sin_cos`]).
+    /// `(sin arg, cos arg)` of argument `slot` ([`NearSlot::newton_sin_cos`]).
     #[inline(always)]
     pub fn sin_cos(&self, slot: usize, arg: f64) -> (f64, f64) {
-        // SAFETY: the only reference to the slot while it lives: `NearTrig` is not `Sync`
-        // (an `UnsafeCell`), and `NearSlot::sin_cos` calls nothing that could reach this
-        // cache again. (A `Cell`'s `get` and `set` would copy the whole slot at every call.)
+        // SAFETY: no other reference to the slot exists while this one lives, and none
+        // outlives the call: `NearTrig` is not `Sync` (its `UnsafeCell`s), so no other thread
+        // reaches it; `newton_sin_cos` calls nothing but libm, so nothing re-enters this cache;
+        // the index is checked before the reference is made. (Cells would be safe, but a
+        // `Cell`'s `get` and `set` copy the whole slot at every call: measured, 36 instructions
+        // a class IV step.)
         let s = unsafe { &mut *self.slots[slot].get() };
-        s.sin_cos(arg, 0)
+        s.newton_sin_cos(arg)
     }
 
     /// `(sin arg, cos arg)` from libm, kept in `slot` for the next call: what
@@ -176,7 +205,7 @@ impl<const S: usize> NearTrig<S> {
     /// and four stores an argument.
     #[inline(always)]
     pub fn seed(&self, slot: usize, arg: f64) -> (f64, f64) {
-        // SAFETY: as in `sin_cos`.
+        // SAFETY: as in `sin_cos` (libm is all this calls).
         let s = unsafe { &mut *self.slots[slot].get() };
         let (sin, cos) = arg.sin_cos();
         *s = NearSlot { arg, sin, cos, age: 0 };
@@ -541,7 +570,8 @@ mod tests {
 
     /// A Newton block's slots: the first call of a solve is libm's to the bit; corrections
     /// shrinking as Newton's do are rotated, within a few units in the last place of libm's; a
-    /// jump (a restart) is libm's again; [`RESYNC`] rotations at most between two libm calls.
+    /// jump (a restart) is libm's again; [`NEWTON_RESYNC`] rotations at most between two libm
+    /// calls.
     #[test]
     fn near_trig_follows_newton_corrections_within_a_few_ulps() {
         let mut rng = Rng(0x2545_f491_4f6c_dd1d);
@@ -572,7 +602,10 @@ mod tests {
                 libm_calls += 1;
             }
         }
-        assert!(libm_calls >= 40 / (RESYNC as usize + 1), "a slot goes back to libm every RESYNC rotations");
+        assert!(
+            libm_calls >= 40 / (NEWTON_RESYNC as usize + 1),
+            "a slot goes back to libm every NEWTON_RESYNC rotations"
+        );
     }
 
     /// Slots are independent, and a repeated argument returns the stored values unchanged.

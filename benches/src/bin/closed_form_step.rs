@@ -7,9 +7,10 @@
 //! * four-bar with its coupler point, gear-lever rocker: `four-bar-hand`, `four-bar-point`,
 //!   `four-bar-sweep`, `gear-lever-hand`, `gear-lever-point`, `gear-lever-sweep` (the hand
 //!   closed forms of `kinloop_bench::hand`);
-//! * class IV block (Newton): `class-four-hand` (the hand-written Newton), `class-four-hand-near`
-//!   (the same with each iterate's sines and cosines rotated from the previous iterate's, as
-//!   kinloop's Newton blocks do), `class-four-point`, `class-four-sweep`, and `class-four-hand-taylor`, `class-four-point-taylor` warm-started by
+//! * class IV block (Newton): `class-four-hand` (the hand-written Newton),
+//!   `class-four-hand-near` (the same with each iterate's sines and cosines rotated from the
+//!   previous iterate's, as kinloop's Newton blocks do), `class-four-point`,
+//!   `class-four-sweep`, and `class-four-hand-taylor`, `class-four-point-taylor` warm-started by
 //!   the benchmarks' second-order predictor instead of the previous position;
 //! * design-space scan: `four-bar-scan` (`kinloop::scan` over four-bars whose cranks differ
 //!   by 0.1 %, each swept over a turn in 100 samples; against `four-bar-sweep@99`, the same

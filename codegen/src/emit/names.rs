@@ -47,6 +47,17 @@ pub struct Names {
     sweep_kernel: bool,
 }
 
+/// How a Newton block's evaluation asks its `NearTrig` for a sine and cosine
+/// ([`Names::lets_near`]).
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum NearCall {
+    /// The guess's evaluation: libm's values, kept in the slot (`seed`).
+    Seed,
+    /// A later evaluation: the slot's values rotated where the argument moved little
+    /// (`sin_cos`).
+    Rotate,
+}
+
 /// An identifier without `r#`: the one spelling of a name in derived identifiers (the
 /// mechanism's types, its sparse blocks' items, the kernels' temporaries).
 pub(crate) fn plain(id: &Ident) -> String {
@@ -250,19 +261,23 @@ impl Names {
     }
 
     /// [`Names::lets`] of a Newton block's evaluation: each `sin_cos` pair is asked of the
-    /// solve's cache `near` (a `NearTrig`, one slot per pair, numbered in order) by `method`:
-    /// `sin_cos`, which rotates the previous evaluation's values where the argument moved
-    /// little, or `seed` (the guess's evaluation: libm's values, kept). Also returns the number
-    /// of slots.
+    /// solve's cache `near` (a `NearTrig`, one slot per pair, numbered in order), as `call`
+    /// says. Also returns the number of slots.
     pub fn lets_near(
         &self,
         g: &Graph,
         sched: &Schedule,
         nodes: &[NodeId],
         near: &Ident,
-        method: &str,
+        call: NearCall,
     ) -> (TokenStream, usize) {
-        let method = Ident::new(method, Span::call_site());
+        let method = Ident::new(
+            match call {
+                NearCall::Seed => "seed",
+                NearCall::Rotate => "sin_cos",
+            },
+            Span::call_site(),
+        );
         self.lets_with(g, sched, nodes, Some((near, &method)))
     }
 

@@ -3,7 +3,7 @@
 
 use super::scopes::keeps_lu;
 use super::{Kernel, Mode, evaluation_ident};
-use crate::emit::names::float_arg;
+use crate::emit::names::{NearCall, float_arg};
 use crate::emit::{closed_form, lit, sparse};
 use crate::graph::dag::NodeId;
 use crate::plan::BlockPlan;
@@ -69,8 +69,10 @@ impl Kernel<'_> {
         // little (Newton's corrections), at a fraction of a libm call.
         let near = format_ident!("__near{}", b);
         let lets = &self.sched.lets[l];
-        let (inner, slots) = self.names.lets_near(self.g, &self.sched, lets, &near, "sin_cos");
-        let (inner_guess, _) = self.names.lets_near(self.g, &self.sched, lets, &near, "seed");
+        let (inner, slots) = self.names.lets_near(self.g, &self.sched, lets, &near, NearCall::Rotate);
+        let (inner_guess, seeded) = self.names.lets_near(self.g, &self.sched, lets, &near, NearCall::Seed);
+        // The guess's evaluation seeds every slot the later ones rotate.
+        debug_assert_eq!(seeded, slots);
         let (scale, unit) = (self.names.operands(self.g, &bp.scale), self.names.operands(self.g, &bp.unit));
         let (scale, unit): (Vec<TokenStream>, Vec<TokenStream>) = (scale.collect(), unit.collect());
         // The magnitudes the tests judge in: made once for the solve when they do not depend on
