@@ -97,3 +97,21 @@ fn rejected_declaration_fallback() {
     assert!(!code.contains("fn solve"), "the fallback must not pretend to solve:\n{code}");
     insta::assert_snapshot!(code);
 }
+
+/// A Newton block (the four-bar's loop solved by Newton): the guess's evaluation seeds the
+/// solve's `NearTrig` with libm's sines and cosines, and the solver's evaluation closure rotates
+/// them.
+#[test]
+fn newton_block() {
+    let code = expanded(
+        "/// Four-bar linkage solved by Newton.
+         #[kinloop(newton)]
+         pub struct FourBarNewton {
+             params a, b, c, d;
+             input phi;
+             unknowns beta = 0.5, gamma = 1.5;
+             loop abcd: a @ phi + b @ beta == (d, 0) + c @ gamma;
+         }",
+    );
+    insta::assert_snapshot!(code);
+}
