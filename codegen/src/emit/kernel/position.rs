@@ -155,31 +155,44 @@ impl Kernel<'_> {
             failure
         };
         // The guess's evaluation, seeding the cache.
-        let (near_cache, guess_eval) = if slots == 0 {
-            (TokenStream::new(), quote!(#ev(&__z0)))
+        let closure = quote! {
+            |__z: &[f64; #n]| -> #ty {
+                let [#(#qs),*] = *__z;
+                #inner
+                #rt::BlockEval { f: [#(#f),*], j: #jrows, keep: [#(#exports,)* #(#kept_mags),*] }
+            }
+        };
+        let z0 = quote!(let __z0: [f64; #n] = [#(#guess),*];);
+        // The guess evaluated here, into the slot the iteration updates in place: the block's
+        // evaluation is never copied into or out of the solver. With sines and cosines, the
+        // guess's evaluation is made in place (libm's values, seeding the cache), and the
+        // closure then owns the cache (`move`): its stores stay within the closure's own
+        // memory, which lets the compiler write each evaluation straight into the solver's slot.
+        let evaluations = if slots == 0 {
+            quote! {
+                let #ev = #closure;
+                #mags_once
+                #z0
+                let mut #at = #ev(&__z0);
+            }
         } else {
             let slots = lit(slots);
-            let evaluation = quote!({
-                let [#(#qs),*] = __z0;
-                #inner_guess
-                #rt::BlockEval { f: [#(#f),*], j: #jrows, keep: [#(#exports,)* #(#kept_mags),*] }
-            });
-            (quote!(let #near = #rt::NearTrig::<#slots>::new();), evaluation)
+            quote! {
+                let #near = #rt::NearTrig::<#slots>::new();
+                #mags_once
+                #z0
+                let mut #at = {
+                    let [#(#qs),*] = __z0;
+                    #inner_guess
+                    #rt::BlockEval { f: [#(#f),*], j: #jrows, keep: [#(#exports,)* #(#kept_mags),*] }
+                };
+                let #ev = move #closure;
+            }
         };
         // The block's evaluation is one closure handed to the runtime's Newton, which checks
         // the guess, corrects it at least once and always checks the final residual.
         quote! {
-            #near_cache
-            let #ev = |__z: &[f64; #n]| -> #ty {
-                let [#(#qs),*] = *__z;
-                #inner
-                #rt::BlockEval { f: [#(#f),*], j: #jrows, keep: [#(#exports,)* #(#kept_mags),*] }
-            };
-            #mags_once
-            let __z0: [f64; #n] = [#(#guess),*];
-            // The guess evaluated here, into the slot the iteration updates in place: the
-            // block's evaluation is never copied into or out of the solver.
-            let mut #at = #guess_eval;
+            #evaluations
             #slot
             let #r = #newton(__z0, &mut #at, __cfg, #ev, #mags #lu_arg);
             let #s = match &#r {
