@@ -69,12 +69,12 @@
 //! sine and cosine of one argument as one instruction, consecutive arithmetic operations
 //! sharing a dispatch) and, per closed-form block, a small program compiled when the model is
 //! built (the emitter's folds of the graph's constants decided once), the blocks'
-//! factorisations written in place: on the gallery's rhombic drive it executes about 4.5 times
-//! the compiled step's instructions, on the four-bar 3.7 times, on a Newton-dominated class IV
-//! block 1.9 times, on the ring of 64 four-bar loops (one sparse block of 128 unknowns) 2.3
-//! times. The interpretation's dispatch per operation and the per-block bookkeeping of small
-//! blocks are what keeps the first two above 3 times. Reading and planning a declaration takes
-//! half a millisecond to three milliseconds (`BENCHMARKS.md`, "Mechanisms read at run time").
+//! factorisations written in place: on the gallery's rhombic drive it executes about 3.0 times
+//! the compiled step's instructions, on the four-bar 2.6 times, on a Newton-dominated class IV
+//! block 1.9 times, on the ring of 64 four-bar loops (one sparse block of 128 unknowns) 2.2
+//! times. What remains is the interpretation's dispatch per operation and the per-block
+//! bookkeeping of small blocks. Reading and planning a declaration takes half a millisecond to
+//! two milliseconds (`BENCHMARKS.md`, "Mechanisms read at run time").
 //!
 //! # Sweeps and the runtime's algorithms
 //!

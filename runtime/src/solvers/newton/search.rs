@@ -59,7 +59,7 @@ impl<const N: usize, const K: usize, J: BlockJacobian<N>> Iter<'_, N, K, J> {
     /// After a rejected full step (its evaluation in `self.ev`): backtracking from half the
     /// step; if that fails too, the evaluation at the unmoved `z` is restored (evaluated again:
     /// the same position gives the same values, to the rounding of a generated block's sines and
-    /// cosines, which its `NearTrig` may now rotate back from the trial's), which the callers'
+    /// cosines, which its `NearTrig` rotates back from the trial's), which the callers'
     /// fallbacks read.
     #[allow(clippy::too_many_arguments)]
     #[cold]

@@ -9,8 +9,9 @@ use crate::solvers::lu::RowScales;
 /// The largest scaled final correction of an iteration applied without evaluating the block
 /// again: a few rounding units, below which the values the generated code keeps from the last
 /// evaluation (sines and cosines of the unknowns, from which later unknowns and outputs are
-/// computed) are as accurate as new ones. A larger correction is checked by a new evaluation
-/// (and undone if it made the residual worse).
+/// computed) are as accurate as a new evaluation's (which would rotate them by the correction,
+/// a few units in the last place off libm's as they are). A larger correction is checked by a
+/// new evaluation (and undone if it made the residual worse).
 pub(super) const MAX_UNCHECKED_CORRECTION: f64 = 16.0 * f64::EPSILON;
 
 /// The Newton step `-J^-1 f` with `J` equilibrated by the row magnitudes, and the pivot ratio.
