@@ -96,7 +96,7 @@ pub const SLOTS: usize = 8;
 pub const ANCHOR_RANGE: f64 = 0.125;
 
 /// One argument's last sine and cosine, from which the next are rotated (see
-/// [`NearSlot::sin_cos`]): a slot of a sweep's [`Rotating`] cache, or of a Newton block's
+/// [`NearSlot::sin_cos`]): a slot of a sweep's `Rotating` cache, or of a Newton block's
 /// [`NearTrig`].
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct NearSlot {
@@ -160,7 +160,7 @@ impl NearSlot {
 ///
 /// The first evaluation of a solve (the guess) calls libm; each later one is near the one
 /// before (Newton's corrections shrink quadratically: after the guess's they are far below
-/// [`MAX_ROTATION`]), so its values are the previous ones rotated by the change of the
+/// `MAX_ROTATION`), so its values are the previous ones rotated by the change of the
 /// argument, at a fraction of a libm call, within a few units in the last place of libm's. A
 /// trial far from the last evaluation (a restart, a long line-search step) calls libm. Nothing
 /// carries over from one solve to the next, so nothing accumulates along a sweep.
@@ -584,7 +584,7 @@ mod tests {
             let mut step = 0.02 * (rng.uniform(0.0, 1.0) - 0.5);
             for _ in 0..6 {
                 z += step;
-                step *= step * 10.0;
+                step = step * step * 10.0;
                 let (s, c) = trig.sin_cos(1, z);
                 let (sl, cl) = z.sin_cos();
                 worst = worst.max((s - sl).abs()).max((c - cl).abs());
