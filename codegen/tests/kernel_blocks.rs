@@ -74,7 +74,23 @@ fn magnitudes_free_of_the_unknowns_are_made_once_per_solve() {
     for b in 0..2 {
         let made = kernel.find(&format!("let__mag{b}=::kinloop::__gen::Magnitudes::new(")).expect("made once");
         let evaluation = kernel.find(&format!("let__eval{b}=")).expect("the evaluation closure");
-        assert!(made > evaluation, "made after the closure is defined, outside it");
+        // The closure's body: from its first brace to the one that closes it.
+        let open = evaluation + kernel[evaluation..].find('{').expect("the closure's body");
+        let mut depth = 0;
+        let close = open
+            + kernel[open..]
+                .char_indices()
+                .find(|&(_, ch)| {
+                    depth += match ch {
+                        '{' => 1,
+                        '}' => -1,
+                        _ => 0,
+                    };
+                    depth == 0
+                })
+                .expect("the body closes")
+                .0;
+        assert!(made < open || made > close, "made outside the evaluation closure");
         let call = newton_call(WATT, b);
         assert!(call.contains(&format!("__eval{b},&__mag{b}")), "{call}");
     }
