@@ -174,8 +174,9 @@ impl NearSlot {
 /// assert!((s1 - 0.701f64.sin()).abs() <= 2e-16 && (c1 - 0.701f64.cos()).abs() <= 2e-16);
 /// ```
 pub struct NearTrig<const S: usize> {
-    // Cells, so that the evaluation closure that asks the cache stays `Fn` (it reads its
-    // captures only): the solver then writes each evaluation straight into its slot.
+    // Cells, so that asking the cache takes only `&self`: the guess's evaluation, made in
+    // place, seeds it through a shared reference, and the solver's closure (`Fn`, owning the
+    // cache after that) rotates it.
     slots: [UnsafeCell<NearSlot>; S],
 }
 
