@@ -20,7 +20,7 @@ pub fn gear_lever() -> GearLever {
 
 /// `q` moved by whole turns to the turn of `guess` (a sweep's angles stay continuous).
 #[inline]
-fn on_turn(q: f64, guess: f64) -> f64 {
+pub fn on_turn(q: f64, guess: f64) -> f64 {
     q + TAU * ((guess - q) / TAU).round()
 }
 
@@ -50,13 +50,39 @@ impl FourBarClosed {
     }
 }
 
+/// The four-bar's joints at one crank position: the crank's sine and cosine, B, the coupler's
+/// and the rocker's sines and cosines, and C (the coupler point). Everything of a step but the
+/// two angles, which a closed form makes by `atan2` and a hand-written sweep by increments.
+#[derive(Clone, Copy, Debug)]
+pub struct FourBarPose {
+    /// `sin(phi)`, `cos(phi)`.
+    pub s1: f64,
+    /// See [`FourBarPose::s1`].
+    pub c1: f64,
+    /// B = `a (cos phi, sin phi)`.
+    pub bx: f64,
+    /// See [`FourBarPose::bx`].
+    pub by: f64,
+    /// `cos(beta)`, `sin(beta)`.
+    pub cb: f64,
+    /// See [`FourBarPose::cb`].
+    pub sb: f64,
+    /// `cos(gamma)`, `sin(gamma)`.
+    pub cg: f64,
+    /// See [`FourBarPose::cg`].
+    pub sg: f64,
+    /// C, the coupler point.
+    pub cx: f64,
+    /// See [`FourBarPose::cx`].
+    pub cy: f64,
+}
+
 impl FourBarClosed {
-    /// The step at crank angle `phi` (angles on the turns of `guess`) and the coupler point with
-    /// its analogs `[x, y, x', y', x'', y'']`.
+    /// The joints at the crank's sine `s1` and cosine `c1` by circle intersection (the assembly
+    /// test `h2 >= 0` protects the square root).
     #[inline(always)]
-    pub fn full(&self, phi: f64, guess: &[f64; 2]) -> Result<(Step<2>, [f64; 6]), Failed> {
+    pub fn pose(&self, s1: f64, c1: f64) -> Result<FourBarPose, Failed> {
         let (a, b, c) = (self.a, self.b, self.c);
-        let (s1, c1) = phi.sin_cos();
         let (bx, by) = (a * c1, a * s1);
         let (ex, ey) = (self.d - bx, -by);
         let e2 = ex * ex + ey * ey;
@@ -71,8 +97,17 @@ impl FourBarClosed {
         let (cb, sb) = (ux / b, uy / b);
         let (cx, cy) = (bx + ux, by + uy);
         let (cg, sg) = ((cx - self.d) / c, cy / c);
-        let beta = on_turn(sb.atan2(cb), guess[0]);
-        let gamma = on_turn(sg.atan2(cg), guess[1]);
+        Ok(FourBarPose { s1, c1, bx, by, cb, sb, cg, sg, cx, cy })
+    }
+
+    /// The step and the coupler point with its analogs `[x, y, x', y', x'', y'']` from the
+    /// joints `p` and the angles `beta`, `gamma`. [`FourBarClosed::full`] and the hand-written
+    /// sweep ([`crate::hand_sweep::FourBarSweep`]) share it: they differ only in their
+    /// trigonometry.
+    #[inline(always)]
+    pub fn finish(&self, p: &FourBarPose, beta: f64, gamma: f64) -> (Step<2>, [f64; 6]) {
+        let (a, b, c) = (self.a, self.b, self.c);
+        let FourBarPose { s1, c1, bx, by, cb, sb, cg, sg, cx, cy } = *p;
         // a phi' e^{i phi} + b beta' e^{i beta} = c gamma' e^{i gamma}, projected.
         let sbg = sb * cg - cb * sg;
         let w_b = -a * (s1 * cg - c1 * sg) / (b * sbg);
@@ -90,7 +125,18 @@ impl FourBarClosed {
             -bx - b * e_b * sb - b * w_b * w_b * cb,
             -by + b * e_b * cb - b * w_b * w_b * sb,
         ];
-        Ok((Step { q: [beta, gamma], dq: [w_b, w_g], d2q: [e_b, e_g], iterations: 0 }, point))
+        (Step { q: [beta, gamma], dq: [w_b, w_g], d2q: [e_b, e_g], iterations: 0 }, point)
+    }
+
+    /// The step at crank angle `phi` (angles on the turns of `guess`) and the coupler point with
+    /// its analogs `[x, y, x', y', x'', y'']`.
+    #[inline(always)]
+    pub fn full(&self, phi: f64, guess: &[f64; 2]) -> Result<(Step<2>, [f64; 6]), Failed> {
+        let (s1, c1) = phi.sin_cos();
+        let p = self.pose(s1, c1)?;
+        let beta = on_turn(p.sb.atan2(p.cb), guess[0]);
+        let gamma = on_turn(p.sg.atan2(p.cg), guess[1]);
+        Ok(self.finish(&p, beta, gamma))
     }
 }
 
@@ -135,14 +181,34 @@ impl GearLeverClosed {
     }
 }
 
+/// The gear-lever's pin at one carrier position: the pin `p`, its analogs `dp`, `ddp`, and its
+/// squared distance `s2` and distance `s` from the rocker's pivot. Everything of a step but the
+/// rocker angle, which a closed form makes by `atan2` and a hand-written sweep by increments.
+#[derive(Clone, Copy, Debug)]
+pub struct GearLeverPose {
+    /// The pin.
+    pub p: [f64; 2],
+    /// Its velocity analog.
+    pub dp: [f64; 2],
+    /// Its acceleration analog.
+    pub ddp: [f64; 2],
+    /// `|p|^2`.
+    pub s2: f64,
+    /// `|p|`.
+    pub s: f64,
+}
+
 impl GearLeverClosed {
-    /// The step at carrier angle `alpha` (the rocker angle on the turn of `guess`) and the pin
-    /// with its analogs `[x, y, x', y', x'', y'']`.
+    /// `k = 1 - u`: the planet arm's angle is `k alpha`.
+    pub fn ratio(&self) -> f64 {
+        1.0 - self.u
+    }
+
+    /// The pin at the carrier's sine `sa` and cosine `ca` and the planet arm's `sk`, `ck` (the
+    /// test `s2 > 0` protects the division by the distance).
     #[inline(always)]
-    pub fn full(&self, alpha: f64, guess: &[f64; 2]) -> Result<(Step<2>, [f64; 6]), Failed> {
+    pub fn pose(&self, sa: f64, ca: f64, sk: f64, ck: f64) -> Result<GearLeverPose, Failed> {
         let k = 1.0 - self.u;
-        let (sa, ca) = alpha.sin_cos();
-        let (sk, ck) = (k * alpha).sin_cos();
         let p = [self.l_c * sa + self.l_p * sk, self.l_c * ca + self.l_p * ck];
         let dp = [self.l_c * ca + self.l_p * k * ck, -self.l_c * sa - self.l_p * k * sk];
         let ddp = [-self.l_c * sa - self.l_p * k * k * sk, -self.l_c * ca - self.l_p * k * k * ck];
@@ -150,14 +216,33 @@ impl GearLeverClosed {
         if s2.is_nan() || s2 <= 0.0 {
             return Err(Failed::new("gear-lever closed form: the pin is on the pivot"));
         }
-        let s = s2.sqrt();
-        let phi = on_turn(p[0].atan2(p[1]), guess[1]);
+        Ok(GearLeverPose { p, dp, ddp, s2, s: s2.sqrt() })
+    }
+
+    /// The step and the pin with its analogs `[x, y, x', y', x'', y'']` from the pin `q` and the
+    /// rocker angle `phi`. [`GearLeverClosed::full`] and the hand-written sweep
+    /// ([`crate::hand_sweep::GearLeverSweep`]) share it: they differ only in their
+    /// trigonometry.
+    #[inline(always)]
+    pub fn finish(&self, q: &GearLeverPose, phi: f64) -> (Step<2>, [f64; 6]) {
+        let GearLeverPose { p, dp, ddp, s2, s } = *q;
         let ds = (p[0] * dp[0] + p[1] * dp[1]) / s;
         let dphi = (dp[0] * p[1] - p[0] * dp[1]) / s2;
         let dds = (dp[0] * dp[0] + dp[1] * dp[1] + p[0] * ddp[0] + p[1] * ddp[1] - ds * ds) / s;
         let ddphi = (ddp[0] * p[1] - p[0] * ddp[1]) / s2 - 2.0 * dphi * ds / s;
         let pin = [p[0], p[1], dp[0], dp[1], ddp[0], ddp[1]];
-        Ok((Step { q: [s, phi], dq: [ds, dphi], d2q: [dds, ddphi], iterations: 0 }, pin))
+        (Step { q: [s, phi], dq: [ds, dphi], d2q: [dds, ddphi], iterations: 0 }, pin)
+    }
+
+    /// The step at carrier angle `alpha` (the rocker angle on the turn of `guess`) and the pin
+    /// with its analogs `[x, y, x', y', x'', y'']`.
+    #[inline(always)]
+    pub fn full(&self, alpha: f64, guess: &[f64; 2]) -> Result<(Step<2>, [f64; 6]), Failed> {
+        let (sa, ca) = alpha.sin_cos();
+        let (sk, ck) = (self.ratio() * alpha).sin_cos();
+        let q = self.pose(sa, ca, sk, ck)?;
+        let phi = on_turn(q.p[0].atan2(q.p[1]), guess[1]);
+        Ok(self.finish(&q, phi))
     }
 }
 

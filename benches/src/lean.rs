@@ -7,6 +7,7 @@
 
 use kinloop::Mechanism;
 
+use crate::hand_sweep::HandSweep;
 use crate::kinloop_variants::KinloopSweep;
 use std::f64::consts::TAU;
 
@@ -111,6 +112,61 @@ pub fn sweep_turns<M: Mechanism<N, 1, NO>, const N: usize, const NO: usize>(
         acc += sweep.advance_sum()?;
     }
     Ok(acc)
+}
+
+/// The sum of an output point's coordinates and analogs (0 without a point), added as the hand
+/// closed forms' `step_summed` adds them.
+#[inline(always)]
+fn point_sum<const NP: usize>(p: &[f64; NP]) -> f64 {
+    match NP {
+        6 => ((p[0] + p[1]) + (p[2] + p[3])) + (p[4] + p[5]),
+        _ => p.iter().fold(-0.0, |acc, v| acc + v),
+    }
+}
+
+/// Each of `steps` samples of the hand-written sweep `s` after its first (at input 0) over
+/// turns of `s.turn()` samples, with its input: `f(acc, x, step, point)` folds them. The
+/// sample is re-synchronised with libm ([`HandSweep::sync`]) every `s.period()` samples and at
+/// the first of every turn (input 0), advanced by rotation ([`HandSweep::advance`]) otherwise.
+#[inline(always)]
+pub fn hand_sweep_fold<S: HandSweep<N, NP>, A, const N: usize, const NP: usize>(
+    s: &mut S,
+    steps: usize,
+    init: A,
+    mut f: impl FnMut(A, f64, &Step<N>, &[f64; NP]) -> A,
+) -> Result<A, Failed> {
+    let (turn, period) = (s.turn(), s.period());
+    let (h, mut k, mut since_sync) = (TAU / turn as f64, 0usize, 0usize);
+    first_sync(s)?;
+    let mut acc = init;
+    for _ in 0..steps {
+        let x = next_input(&mut k, turn, h);
+        since_sync += 1;
+        let (step, point) = if k == 0 || since_sync == period {
+            since_sync = 0;
+            s.sync(x)?
+        } else {
+            s.advance()?
+        };
+        acc = f(acc, x, &step, &point);
+    }
+    Ok(acc)
+}
+
+/// The first sample of a hand-written sweep, at input 0 (out of the loop, as [`first_step`]).
+#[inline(never)]
+fn first_sync<S: HandSweep<N, NP>, const N: usize, const NP: usize>(s: &mut S) -> Result<(), Failed> {
+    s.sync(0.0).map(|_| ())
+}
+
+/// `steps` samples of the hand-written sweep `s` (see [`hand_sweep_fold`]): the sum of every
+/// sample's numbers, as [`stepper_turns`] sums its steps'.
+#[inline(never)]
+pub fn hand_sweep_turns<S: HandSweep<N, NP>, const N: usize, const NP: usize>(
+    s: &mut S,
+    steps: usize,
+) -> Result<f64, Failed> {
+    hand_sweep_fold(s, steps, 0.0, |acc, _, step, point| acc + (step_sum(step) + point_sum(point)))
 }
 
 /// Samples of each design's sweep in [`scan_designs`]: a turn from 0 to `2 pi`, both ends

@@ -96,22 +96,27 @@ impl ClosedForm {
     }
 }
 
-impl Stepper<4> for ClosedForm {
-    const WARM: bool = false;
-
+impl ClosedForm {
+    /// The rods' sines and cosines `[s2, c2, s4, c4]` from the crank arms' sines `s1 = sin(phi1)`
+    /// and `sa = sin(phi1 + gamma)` (the assembly test `|s| < 1` protects the square roots).
     #[inline(always)]
-    fn step(&self, phi1: f64, _guess: &[f64; 4]) -> Result<Step<4>, Failed> {
-        let (s1, c1) = phi1.sin_cos();
-        let (sa, ca) = (phi1 + self.gamma).sin_cos();
+    pub fn rods(&self, s1: f64, sa: f64) -> Result<[f64; 4], Failed> {
         let s2 = self.lam_p * (self.k_p + s1);
         let s4 = self.lam_b * (self.k_b + sa);
         if !(s2.abs() < 1.0 && s4.abs() < 1.0) {
             return Err(Failed::new("closed form: the drive cannot be assembled"));
         }
-        let c2 = (1.0 - s2 * s2).sqrt();
-        let c4 = -(1.0 - s4 * s4).sqrt();
-        let phi2 = s2.asin();
-        let phi4 = PI - s4.asin();
+        Ok([s2, (1.0 - s2 * s2).sqrt(), s4, -(1.0 - s4 * s4).sqrt()])
+    }
+
+    /// The step from the crank arms' sines and cosines `[s1, c1, sa, ca]`, the rods' (see
+    /// [`ClosedForm::rods`]) and the rod angles `phi2`, `phi4`: the paper's formulas for the
+    /// sliders and every analog. [`Stepper::step`] and the hand-written sweep
+    /// ([`crate::hand_sweep::RhombicSweep`]) share it: they differ only in their trigonometry.
+    #[inline(always)]
+    pub fn assemble(&self, crank: [f64; 4], rods: [f64; 4], phi2: f64, phi4: f64) -> Step<4> {
+        let [s1, c1, sa, ca] = crank;
+        let [s2, c2, s4, c4] = rods;
         let x_c = self.l_p * (self.lam_p * c1 - c2);
         let x_f = self.l_b * (self.lam_b * ca - c4);
         let u21 = self.lam_p * c1 / c2;
@@ -122,7 +127,26 @@ impl Stepper<4> for ClosedForm {
         let e4 = (u41 * u41 * s4 - self.lam_b * sa) / c4;
         let a_c = self.l_p * (e2 * s2 + u21 * u21 * c2 - self.lam_p * c1);
         let a_f = self.l_b * (e4 * s4 + u41 * u41 * c4 - self.lam_b * ca);
-        Ok(Step { q: [phi2, phi4, x_c, x_f], dq: [u21, u41, v_c, v_f], d2q: [e2, e4, a_c, a_f], iterations: 0 })
+        Step { q: [phi2, phi4, x_c, x_f], dq: [u21, u41, v_c, v_f], d2q: [e2, e4, a_c, a_f], iterations: 0 }
+    }
+
+    /// The angle between the crank arms (radians).
+    pub fn gamma(&self) -> f64 {
+        self.gamma
+    }
+}
+
+impl Stepper<4> for ClosedForm {
+    const WARM: bool = false;
+
+    #[inline(always)]
+    fn step(&self, phi1: f64, _guess: &[f64; 4]) -> Result<Step<4>, Failed> {
+        let (s1, c1) = phi1.sin_cos();
+        let (sa, ca) = (phi1 + self.gamma).sin_cos();
+        let rods = self.rods(s1, sa)?;
+        let phi2 = rods[0].asin();
+        let phi4 = PI - rods[2].asin();
+        Ok(self.assemble([s1, c1, sa, ca], rods, phi2, phi4))
     }
 }
 

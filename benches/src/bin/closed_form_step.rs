@@ -7,6 +7,9 @@
 //! * four-bar with its coupler point, gear-lever rocker: `four-bar-hand`, `four-bar-point`,
 //!   `four-bar-sweep`, `gear-lever-hand`, `gear-lever-point`, `gear-lever-sweep` (the hand
 //!   closed forms of `kinloop_bench::hand`);
+//! * the sweep recipe written by hand (`kinloop_bench::hand_sweep`: inputs' sines and cosines
+//!   rotated, angles advanced by increments, libm only to re-synchronise): `hand-sweep`,
+//!   `four-bar-hand-sweep`, `gear-lever-hand-sweep`;
 //! * class IV block (Newton): `class-four-hand` (the hand-written Newton),
 //!   `class-four-hand-near` (the same with each iterate's sines and cosines rotated from the
 //!   previous iterate's, as kinloop's Newton blocks do), `class-four-point`,
@@ -31,6 +34,9 @@
 use kinloop_bench::class_four::{self, HandNewton, HandNewtonNear};
 use kinloop_bench::decls::{ClassFour, FourBarSens, RhombicDrive, four_sens};
 use kinloop_bench::hand::{FOUR_BAR, FourBarClosed, GearLeverClosed, gear_lever};
+use kinloop_bench::hand_sweep::{
+    FOUR_BAR_TERMS, FourBarSweep, GEAR_LEVER_TERMS, GearLeverSweep, HandSweep, PERIOD, RHOMBIC_TERMS, RhombicSweep,
+};
 use kinloop_bench::kinloop_variants::{Kinloop, KinloopSens};
 use kinloop_bench::lean;
 use kinloop_bench::rhombic::{ClosedForm, PARAMS, initial_guess};
@@ -78,6 +84,10 @@ fn sweep_of<M: kinloop::Mechanism<N, 1, NO>, const N: usize, const NO: usize>(
     lean::sweep_turns(m, turn(), guess, steps).expect("sample")
 }
 
+fn hand_sweep_of<S: HandSweep<N, NP>, const N: usize, const NP: usize>(mut s: S, steps: usize) -> f64 {
+    lean::hand_sweep_turns(&mut s, steps).expect("sample")
+}
+
 /// The ring's position at input 0.
 fn ring_guess() -> [f64; 128] {
     Ring::default().solve(0.0).expect("the ring assembles").q.into()
@@ -103,6 +113,7 @@ fn main() {
     let (c4, g4) = (class_four::PARAMS, class_four::INITIAL_GUESS);
     let acc = match variant {
         "hand" => steps_of(&ClosedForm::new(&PARAMS), g, steps),
+        "hand-sweep" => hand_sweep_of(RhombicSweep::<RHOMBIC_TERMS>::new(&PARAMS, turn(), PERIOD), steps),
         "point" => steps_of(&Kinloop::<RhombicDrive, 0>::new(m), g, steps),
         "newton" => steps_of(&Kinloop::<RhombicNewton, 0>::new(RhombicNewton::default()), g, steps),
         "sweep" => sweep_of(&m, g, steps),
@@ -111,6 +122,7 @@ fn main() {
         }
         "newton-sweep" => sweep_of(&RhombicNewton::default(), g, steps),
         "four-bar-hand" => steps_of(&four_hand, gf, steps),
+        "four-bar-hand-sweep" => hand_sweep_of(FourBarSweep::<FOUR_BAR_TERMS>::new(four_hand, turn(), PERIOD, gf), steps),
         "four-bar-point" => steps_of(&Kinloop::<FourBar, 2>::new(four), gf, steps),
         "four-bar-sweep" => sweep_of(&four, gf, steps),
         "four-bar-scan" => lean::scan_designs(
@@ -122,6 +134,9 @@ fn main() {
         "four-bar-sens" => steps_of(&KinloopSens::<FourBarSens, 2, 4>::new(four_sens(&four)), gf, steps),
         "four-bar-sens-point" => steps_of(&Kinloop::<FourBarSens, 2>::new(four_sens(&four)), gf, steps),
         "gear-lever-hand" => steps_of(&gear_hand, gg, steps),
+        "gear-lever-hand-sweep" => {
+            hand_sweep_of(GearLeverSweep::<GEAR_LEVER_TERMS>::new(gear_hand, turn(), PERIOD, gg), steps)
+        }
         "gear-lever-point" => steps_of(&Kinloop::<GearLever, 2>::new(gear), gg, steps),
         "gear-lever-sweep" => sweep_of(&gear, gg, steps),
         "class-four-hand" => steps_of(&HandNewton { p: c4 }, g4, steps),

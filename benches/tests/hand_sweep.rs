@@ -1,0 +1,131 @@
+//! The sweep recipe written by hand (`kinloop_bench::hand_sweep`: inputs' sines and cosines
+//! rotated, angles advanced by a short `asin` series, libm only to re-synchronise) against the
+//! hand closed forms evaluated with libm at every sample: an independent check of the rotation
+//! and the increments, since the closed form computes every sample from scratch (`sin_cos`,
+//! `asin`, `atan2`) and carries nothing from one sample to the next.
+//!
+//! Tolerances, relative to `max(1, |value|)`: positions (the unknowns and the output point) 1e-14,
+//! the recipe's promise. Analogs 1e-13: they are the same formulas as the closed form's, evaluated
+//! on sines and cosines that differ from libm's by the rotation's drift (a few 1e-16 between two
+//! re-synchronisations); the formulas divide by `cos(phi2)`, `sin(beta - gamma)` (the
+//! transmission angle) or the pin's distance, which amplify that drift by their condition (at
+//! most about 10 along these turns), so the analogs may carry ten times the positions' error.
+
+use std::f64::consts::TAU;
+
+use kinloop::Mechanism;
+use kinloop_bench::hand::{FOUR_BAR, FourBarClosed, GearLeverClosed, gear_lever};
+use kinloop_bench::hand_sweep::{
+    FOUR_BAR_TERMS, FourBarSweep, GEAR_LEVER_TERMS, GearLeverSweep, HandSweep, PERIOD, RHOMBIC_TERMS,
+    RhombicSweep,
+};
+use kinloop_bench::lean::hand_sweep_fold;
+use kinloop_bench::rhombic::{self, ClosedForm};
+use kinloop_bench::sweep::{Failed, Step, Stepper, rel_err};
+
+/// Positions: the recipe's promise.
+const POSITION_TOL: f64 = 1e-14;
+/// Analogs: the positions' tolerance times the largest condition of the analog formulas (see
+/// the module documentation).
+const ANALOG_TOL: f64 = 1e-13;
+
+/// Largest deviations `[positions, analogs]` of a hand sweep from its closed form over `steps`
+/// samples after the first; the numbers of a sample are `q`, the point's first two (positions),
+/// and `dq`, `d2q`, the point's last four (analogs).
+fn deviation<S: HandSweep<N, NP>, const N: usize, const NP: usize>(
+    mut s: S,
+    reference: impl Fn(f64, &[f64; N]) -> Result<(Step<N>, [f64; NP]), Failed>,
+    guess0: [f64; N],
+    steps: usize,
+) -> [f64; 2] {
+    let (mut prev, _) = reference(0.0, &guess0).unwrap();
+    let dev = hand_sweep_fold(&mut s, steps, [0.0f64; 2], |mut dev, x, got, point| {
+        let (want, want_point) = reference(x, &prev.q).unwrap();
+        prev = want;
+        let positions = (0..N).map(|u| rel_err(got.q[u], want.q[u]));
+        let analogs = (0..N).flat_map(|u| [rel_err(got.dq[u], want.dq[u]), rel_err(got.d2q[u], want.d2q[u])]);
+        let (pp, pa) = (0..NP).map(|i| (i, rel_err(point[i], want_point[i]))).partition::<Vec<_>, _>(|(i, _)| *i < 2);
+        for d in positions.chain(pp.into_iter().map(|(_, d)| d)) {
+            dev[0] = dev[0].max(if d.is_nan() { f64::INFINITY } else { d });
+        }
+        for d in analogs.chain(pa.into_iter().map(|(_, d)| d)) {
+            dev[1] = dev[1].max(if d.is_nan() { f64::INFINITY } else { d });
+        }
+        dev
+    });
+    dev.unwrap()
+}
+
+fn rhombic_dev<const T: usize>(turn: usize, period: usize, steps: usize) -> [f64; 2] {
+    let p = rhombic::PARAMS;
+    let closed = ClosedForm::new(&p);
+    let guess0 = rhombic::initial_guess(&p);
+    deviation(RhombicSweep::<T>::new(&p, turn, period), |x, g| closed.step(x, g).map(|s| (s, [])), guess0, steps)
+}
+
+fn four_bar_guess() -> [f64; 2] {
+    FOUR_BAR.solve(0.0).unwrap().q.into()
+}
+
+fn four_bar_dev<const T: usize>(turn: usize, period: usize, steps: usize) -> [f64; 2] {
+    let closed = FourBarClosed::of(&FOUR_BAR);
+    let g = four_bar_guess();
+    deviation(FourBarSweep::<T>::new(closed, turn, period, g), |x, g| closed.full(x, g), g, steps)
+}
+
+fn gear_lever_guess() -> [f64; 2] {
+    gear_lever().solve(0.0).unwrap().q.into()
+}
+
+fn gear_lever_dev<const T: usize>(turn: usize, period: usize, steps: usize) -> [f64; 2] {
+    let closed = GearLeverClosed::of(&gear_lever());
+    let g = gear_lever_guess();
+    deviation(GearLeverSweep::<T>::new(closed, turn, period, g), |x, g| closed.full(x, g), g, steps)
+}
+
+fn assert_within(name: &str, dev: [f64; 2]) {
+    assert!(dev[0] <= POSITION_TOL && dev[1] <= ANALOG_TOL, "{name}: positions {:e}, analogs {:e}", dev[0], dev[1]);
+}
+
+/// 20 turns of 720 samples and one of 20,000 (a second or two in debug mode).
+#[test]
+fn hand_sweeps_match_the_closed_forms() {
+    for (turn, steps) in [(720, 20 * 720), (20_000, 20_000)] {
+        assert_within(&format!("rhombic, {turn}"), rhombic_dev::<RHOMBIC_TERMS>(turn, PERIOD, steps));
+        assert_within(&format!("four-bar, {turn}"), four_bar_dev::<FOUR_BAR_TERMS>(turn, PERIOD, steps));
+        assert_within(&format!("gear-lever, {turn}"), gear_lever_dev::<GEAR_LEVER_TERMS>(turn, PERIOD, steps));
+    }
+}
+
+/// 10^6 samples at each density (1389 turns of 720, 50 of 20,000).
+#[test]
+#[ignore = "10^6 samples per sweep: run in release mode"]
+fn hand_sweeps_match_the_closed_forms_over_a_million_samples() {
+    for turn in [720, 20_000] {
+        let steps = 1_000_000;
+        assert_within(&format!("rhombic, {turn}"), rhombic_dev::<RHOMBIC_TERMS>(turn, PERIOD, steps));
+        assert_within(&format!("four-bar, {turn}"), four_bar_dev::<FOUR_BAR_TERMS>(turn, PERIOD, steps));
+        assert_within(&format!("gear-lever, {turn}"), gear_lever_dev::<GEAR_LEVER_TERMS>(turn, PERIOD, steps));
+    }
+}
+
+/// The drift behind the choice of period and series terms: the largest deviations over 10^6
+/// samples for several periods and term counts
+/// (`cargo test --release -p kinloop-bench --test hand_sweep -- --ignored --nocapture drift`).
+#[test]
+#[ignore = "a table of measurements: run in release mode with --nocapture"]
+fn drift_by_period_and_terms() {
+    let steps = 1_000_000;
+    for turn in [720, 20_000] {
+        for period in [80, 160, 320, 720, 2000, 20_000] {
+            let row = |name: &str, d: [f64; 2]| println!("{name} turn {turn} period {period}: {:.1e} {:.1e}", d[0], d[1]);
+            row("rhombic T2", rhombic_dev::<2>(turn, period, steps));
+            row("rhombic T3", rhombic_dev::<3>(turn, period, steps));
+            row("four-bar T2", four_bar_dev::<2>(turn, period, steps));
+            row("four-bar T3", four_bar_dev::<3>(turn, period, steps));
+            row("gear-lever T4", gear_lever_dev::<4>(turn, period, steps));
+            row("gear-lever T5", gear_lever_dev::<5>(turn, period, steps));
+            row("gear-lever T6", gear_lever_dev::<6>(turn, period, steps));
+        }
+    }
+}
