@@ -9,7 +9,8 @@
 //! * `rhombic_*`, `class_four_*`: 1,000,000 steps a turn, both warm-start policies;
 //! * `closed_form_rhombic`, `closed_form_four_bar`, `closed_form_gear_lever`: the closed-form
 //!   rows of the callgrind harness `closed_form_step` (720 steps a turn, previous position, the
-//!   hand closed forms, kinloop's point step and kinloop's own `Sweep`), see
+//!   hand closed forms, kinloop's point step, kinloop's own `Sweep` and the sweep recipe
+//!   written by hand, `hand_sweep`), see
 //!   [`closed_form_row`]; `class_four_720_previous`: the class IV block on that turn;
 //! * `ring_720_previous`: the ring of 64 four-bar loops (one sparse block) and the same loops in
 //!   series; `sensitivities_four_bar`: the four-bar's sensitivity solve and its kinematic step
@@ -28,12 +29,15 @@ use kinloop::Mechanism;
 use kinloop_bench::class_four::{self, HandNewton};
 use kinloop_bench::decls::{FourBarSens, four_sens};
 use kinloop_bench::hand::{FOUR_BAR, FourBarClosed, GearLeverClosed, gear_lever};
+use kinloop_bench::hand_sweep::{
+    FOUR_BAR_TERMS, FourBarSweep, GEAR_LEVER_TERMS, GearLeverSweep, HandSweep, PERIOD, RHOMBIC_TERMS, RhombicSweep,
+};
 use kinloop_bench::kinloop_variants::{Kinloop, KinloopNamed, KinloopSens, KinloopSweep, check_kinloop_sweep};
-use kinloop_bench::lean::step_sum;
+use kinloop_bench::lean::{HandSweepCursor, point_sum, step_sum};
 use kinloop_bench::rhombic::{self, ClosedForm, DenseFiniteDifference, DenseHandJacobian, DenseNumDual, TwoLoopNewton};
 use kinloop_bench::ring::{Ring, RingDense, Series};
 use kinloop_bench::sweep::{
-    DIFFERENCED, EXACT, Failed, STEPS, Step, Stepper, Sweep, SweepCheck, WarmStart, check_sweep,
+    DIFFERENCED, EXACT, Failed, STEPS, Step, Stepper, Sweep, SweepCheck, WarmStart, check_sweep, check_turn,
 };
 
 /// Prints a variant's check over a whole turn and asserts its deviations are within `tol`.
@@ -131,6 +135,32 @@ fn bench_lean<S: Stepper<N>, R: Stepper<N>, const N: usize>(
     });
 }
 
+/// The sweep recipe written by hand (`kinloop_bench::hand_sweep`), checked over a whole turn
+/// against the hand closed form `reference`, then timed one sample at a time in the lean
+/// harness of the callgrind counts (its twelve numbers summed, the sum passed to `black_box`).
+fn bench_hand_sweep<S: HandSweep<N, NP>, R: Stepper<N>, const N: usize, const NP: usize>(
+    g: &mut BenchmarkGroup<'_, WallTime>,
+    mut s: S,
+    reference: &R,
+    guess0: [f64; N],
+) {
+    let name = "hand_sweep";
+    let steps = s.turn();
+    let (first, _) = s.sync(0.0).unwrap();
+    let mut cursor = HandSweepCursor::new(&s);
+    let mut checked = s.clone();
+    let check = check_turn(reference, steps, WarmStart::Previous, guess0, (0.0, first), || {
+        cursor.next(&mut checked).map(|(x, step, _)| (x, step))
+    });
+    assert_check(name, WarmStart::Previous, check, EXACT);
+    let mut cursor = HandSweepCursor::new(&s);
+    time_step(g, name, || {
+        let (_, step, point) = cursor.next(&mut s)?;
+        black_box(step_sum(&step) + point_sum(&point));
+        Ok(())
+    });
+}
+
 /// [`bench_kinloop_sweep`] in the lean harness of the callgrind counts: the sample's twelve
 /// numbers summed where the sweep keeps them, the sum passed to `black_box`.
 fn bench_kinloop_sweep_lean<M: Mechanism<N, 1, NO>, R: Stepper<N>, const N: usize, const NO: usize>(
@@ -206,13 +236,21 @@ const TURN_720: usize = 720;
 /// One closed-form row at [`TURN_720`] steps a turn, each variant checked over a whole turn
 /// against the hand closed form `hand` first: `closed_form` (the hand closed form, which ignores
 /// the guess), `kinloop` (the generated point step `kinematics_flat` from the previous position)
-/// and `kinloop_sweep` (one sample of kinloop's own `Sweep`), all in the lean harness of the
-/// callgrind counts.
-fn closed_form_row<M: Mechanism<N, 1, NO>, H: Stepper<N>, const N: usize, const NO: usize>(
+/// `kinloop_sweep` (one sample of kinloop's own `Sweep`) and `hand_sweep` (the sweep recipe
+/// written by hand, `sweep`), all in the lean harness of the callgrind counts.
+fn closed_form_row<
+    M: Mechanism<N, 1, NO>,
+    H: Stepper<N>,
+    S: HandSweep<N, NP>,
+    const N: usize,
+    const NO: usize,
+    const NP: usize,
+>(
     c: &mut Criterion,
     group: &str,
     m: M,
     hand: &H,
+    sweep: S,
     guess0: [f64; N],
 ) {
     let mut g = c.benchmark_group(group);
@@ -220,6 +258,7 @@ fn closed_form_row<M: Mechanism<N, 1, NO>, H: Stepper<N>, const N: usize, const 
     bench_lean(&mut g, "closed_form", hand, hand, guess0, TURN_720);
     bench_lean(&mut g, "kinloop", &kl, hand, guess0, TURN_720);
     bench_kinloop_sweep_lean(&mut g, &kl.m, hand, guess0, TURN_720);
+    bench_hand_sweep(&mut g, sweep, hand, guess0);
     g.finish();
 }
 
@@ -228,15 +267,18 @@ fn closed_form_row<M: Mechanism<N, 1, NO>, H: Stepper<N>, const N: usize, const 
 /// `closed_form_step` (passed through `black_box`, as in the other groups).
 fn closed_form_blocks(c: &mut Criterion) {
     let p = black_box(rhombic::PARAMS);
-    closed_form_row(c, "closed_form_rhombic", p.kinloop(), &ClosedForm::new(&p), rhombic::initial_guess(&p));
+    let sweep = RhombicSweep::<RHOMBIC_TERMS>::new(&p, TURN_720, PERIOD);
+    closed_form_row(c, "closed_form_rhombic", p.kinloop(), &ClosedForm::new(&p), sweep, rhombic::initial_guess(&p));
     let four = black_box(FOUR_BAR);
     let four_hand = FourBarClosed::of(&four);
     let g: [f64; 2] = four.solve(0.0).expect("the four-bar assembles").q.into();
-    closed_form_row(c, "closed_form_four_bar", four, &four_hand, g);
+    let sweep = FourBarSweep::<FOUR_BAR_TERMS>::new(four_hand, TURN_720, PERIOD, g);
+    closed_form_row(c, "closed_form_four_bar", four, &four_hand, sweep, g);
     let gear = black_box(gear_lever());
     let gear_hand = GearLeverClosed::of(&gear);
     let g: [f64; 2] = gear.solve(0.0).expect("the gear lever assembles").q.into();
-    closed_form_row(c, "closed_form_gear_lever", gear, &gear_hand, g);
+    let sweep = GearLeverSweep::<GEAR_LEVER_TERMS>::new(gear_hand, TURN_720, PERIOD, g);
+    closed_form_row(c, "closed_form_gear_lever", gear, &gear_hand, sweep, g);
 }
 
 /// The class IV block (Newton) at [`TURN_720`] steps a turn from the previous position: the

@@ -101,9 +101,9 @@ impl FourBarClosed {
     }
 
     /// The step and the coupler point with its analogs `[x, y, x', y', x'', y'']` from the
-    /// joints `p` and the angles `beta`, `gamma`. [`FourBarClosed::full`] and the hand-written
-    /// sweep ([`crate::hand_sweep::FourBarSweep`]) share it: they differ only in their
-    /// trigonometry.
+    /// joints `p` and the angles `beta`, `gamma`. The hand-written sweep
+    /// ([`crate::hand_sweep::FourBarSweep`]) computes with it what [`FourBarClosed::full`]
+    /// computes: they differ only in their trigonometry.
     #[inline(always)]
     pub fn finish(&self, p: &FourBarPose, beta: f64, gamma: f64) -> (Step<2>, [f64; 6]) {
         let (a, b, c) = (self.a, self.b, self.c);
@@ -130,13 +130,49 @@ impl FourBarClosed {
 
     /// The step at crank angle `phi` (angles on the turns of `guess`) and the coupler point with
     /// its analogs `[x, y, x', y', x'', y'']`.
+    ///
+    /// The formulas of [`FourBarClosed::pose`] and [`FourBarClosed::finish`], written out: the
+    /// reference of the closed-form rows stays the code their counts were measured on (composed
+    /// of those two, the compiler allocates its registers otherwise: 4 instructions more a step
+    /// under callgrind). The `hand_sweep` tests compare the two at every sample.
     #[inline(always)]
     pub fn full(&self, phi: f64, guess: &[f64; 2]) -> Result<(Step<2>, [f64; 6]), Failed> {
+        let (a, b, c) = (self.a, self.b, self.c);
         let (s1, c1) = phi.sin_cos();
-        let p = self.pose(s1, c1)?;
-        let beta = on_turn(p.sb.atan2(p.cb), guess[0]);
-        let gamma = on_turn(p.sg.atan2(p.cg), guess[1]);
-        Ok(self.finish(&p, beta, gamma))
+        let (bx, by) = (a * c1, a * s1);
+        let (ex, ey) = (self.d - bx, -by);
+        let e2 = ex * ex + ey * ey;
+        let along = (b * b - c * c + e2) / (2.0 * e2);
+        let h2 = b * b / e2 - along * along;
+        if h2.is_nan() || h2 < 0.0 {
+            return Err(Failed::new("four-bar closed form: no assembly"));
+        }
+        let h = if self.left { h2.sqrt() } else { -h2.sqrt() };
+        // C - B = along (D - B) + h perp(D - B).
+        let (ux, uy) = (along * ex - h * ey, along * ey + h * ex);
+        let (cb, sb) = (ux / b, uy / b);
+        let (cx, cy) = (bx + ux, by + uy);
+        let (cg, sg) = ((cx - self.d) / c, cy / c);
+        let beta = on_turn(sb.atan2(cb), guess[0]);
+        let gamma = on_turn(sg.atan2(cg), guess[1]);
+        // a phi' e^{i phi} + b beta' e^{i beta} = c gamma' e^{i gamma}, projected.
+        let sbg = sb * cg - cb * sg;
+        let w_b = -a * (s1 * cg - c1 * sg) / (b * sbg);
+        let w_g = -a * (s1 * cb - c1 * sb) / (c * sbg);
+        // R = -a e^{i phi} - b beta'^2 e^{i beta} + c gamma'^2 e^{i gamma}.
+        let rx = -bx - b * w_b * w_b * cb + c * w_g * w_g * cg;
+        let ry = -by - b * w_b * w_b * sb + c * w_g * w_g * sg;
+        let e_b = (rx * cg + ry * sg) / (b * sbg);
+        let e_g = (rx * cb + ry * sb) / (c * sbg);
+        let point = [
+            cx,
+            cy,
+            -by - b * w_b * sb,
+            bx + b * w_b * cb,
+            -bx - b * e_b * sb - b * w_b * w_b * cb,
+            -by + b * e_b * cb - b * w_b * w_b * sb,
+        ];
+        Ok((Step { q: [beta, gamma], dq: [w_b, w_g], d2q: [e_b, e_g], iterations: 0 }, point))
     }
 }
 
@@ -220,9 +256,9 @@ impl GearLeverClosed {
     }
 
     /// The step and the pin with its analogs `[x, y, x', y', x'', y'']` from the pin `q` and the
-    /// rocker angle `phi`. [`GearLeverClosed::full`] and the hand-written sweep
-    /// ([`crate::hand_sweep::GearLeverSweep`]) share it: they differ only in their
-    /// trigonometry.
+    /// rocker angle `phi`. The hand-written sweep
+    /// ([`crate::hand_sweep::GearLeverSweep`]) computes with it what [`GearLeverClosed::full`]
+    /// computes: they differ only in their trigonometry.
     #[inline(always)]
     pub fn finish(&self, q: &GearLeverPose, phi: f64) -> (Step<2>, [f64; 6]) {
         let GearLeverPose { p, dp, ddp, s2, s } = *q;
@@ -236,13 +272,29 @@ impl GearLeverClosed {
 
     /// The step at carrier angle `alpha` (the rocker angle on the turn of `guess`) and the pin
     /// with its analogs `[x, y, x', y', x'', y'']`.
+    ///
+    /// The formulas of [`GearLeverClosed::pose`] and [`GearLeverClosed::finish`], written out,
+    /// as [`FourBarClosed::full`] (composed of those two: 3 instructions more a step).
     #[inline(always)]
     pub fn full(&self, alpha: f64, guess: &[f64; 2]) -> Result<(Step<2>, [f64; 6]), Failed> {
+        let k = 1.0 - self.u;
         let (sa, ca) = alpha.sin_cos();
-        let (sk, ck) = (self.ratio() * alpha).sin_cos();
-        let q = self.pose(sa, ca, sk, ck)?;
-        let phi = on_turn(q.p[0].atan2(q.p[1]), guess[1]);
-        Ok(self.finish(&q, phi))
+        let (sk, ck) = (k * alpha).sin_cos();
+        let p = [self.l_c * sa + self.l_p * sk, self.l_c * ca + self.l_p * ck];
+        let dp = [self.l_c * ca + self.l_p * k * ck, -self.l_c * sa - self.l_p * k * sk];
+        let ddp = [-self.l_c * sa - self.l_p * k * k * sk, -self.l_c * ca - self.l_p * k * k * ck];
+        let s2 = p[0] * p[0] + p[1] * p[1];
+        if s2.is_nan() || s2 <= 0.0 {
+            return Err(Failed::new("gear-lever closed form: the pin is on the pivot"));
+        }
+        let s = s2.sqrt();
+        let phi = on_turn(p[0].atan2(p[1]), guess[1]);
+        let ds = (p[0] * dp[0] + p[1] * dp[1]) / s;
+        let dphi = (dp[0] * p[1] - p[0] * dp[1]) / s2;
+        let dds = (dp[0] * dp[0] + dp[1] * dp[1] + p[0] * ddp[0] + p[1] * ddp[1] - ds * ds) / s;
+        let ddphi = (ddp[0] * p[1] - p[0] * ddp[1]) / s2 - 2.0 * dphi * ds / s;
+        let pin = [p[0], p[1], dp[0], dp[1], ddp[0], ddp[1]];
+        Ok((Step { q: [s, phi], dq: [ds, dphi], d2q: [dds, ddphi], iterations: 0 }, pin))
     }
 }
 

@@ -3,11 +3,11 @@
 //! step (angle addition), and the unknown angles by increments, the short Maclaurin series of
 //! `asin` of the cross product of each new sine and cosine with the previous sample's; libm
 //! (`sin_cos`, `asin`, `atan2`) computes only the re-synchronised samples: every `period`-th,
-//! and the first of every turn. Everything else is the hand closed form's own code
+//! and the first of every turn. Everything else is the hand closed form's formulas
 //! ([`ClosedForm::rods`], [`ClosedForm::assemble`], [`FourBarClosed::pose`],
 //! [`FourBarClosed::finish`], [`GearLeverClosed::pose`], [`GearLeverClosed::finish`]), so a
-//! sample computes the same twelve numbers by the same formulas, with the closed form's own
-//! assembly tests and no other check: no prediction, no determinant signs, no step control.
+//! sample computes the same twelve numbers, with the closed form's own assembly tests and no
+//! other check: no prediction, no determinant signs, no step control.
 //!
 //! The loop that drives a sweep along its turns is [`crate::lean::hand_sweep_turns`].
 
@@ -19,16 +19,8 @@ use crate::sweep::{Failed, Step};
 
 /// Coefficients of the Maclaurin series `asin x = sum c_n x^(2n+1)`,
 /// `c_n = (2n)! / (4^n (n!)^2 (2n + 1))`.
-const ASIN: [f64; 8] = [
-    1.0,
-    1.0 / 6.0,
-    3.0 / 40.0,
-    5.0 / 112.0,
-    35.0 / 1152.0,
-    63.0 / 2816.0,
-    231.0 / 13312.0,
-    143.0 / 10240.0,
-];
+const ASIN: [f64; 8] =
+    [1.0, 1.0 / 6.0, 3.0 / 40.0, 5.0 / 112.0, 35.0 / 1152.0, 63.0 / 2816.0, 231.0 / 13312.0, 143.0 / 10240.0];
 
 /// `asin x` for a small `x` by the first `TERMS` terms of its series (`TERMS >= 1`); the
 /// leading term is added last, so the sum is rounded once at the scale of `x`. The remainder is
@@ -69,7 +61,7 @@ impl Rotation {
 
 /// A sweep written by hand over turns of equally spaced inputs: each sample's step and output
 /// point with its analogs (`NP` numbers, none for the rhombic drive).
-pub trait HandSweep<const N: usize, const NP: usize> {
+pub trait HandSweep<const N: usize, const NP: usize>: Clone {
     /// Samples per turn: the inputs are `k 2 pi / turn`, `k = 0 .. turn - 1`.
     fn turn(&self) -> usize;
     /// The re-synchronisation period: every `period`-th sample (and the first of every turn) is

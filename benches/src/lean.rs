@@ -117,45 +117,74 @@ pub fn sweep_turns<M: Mechanism<N, 1, NO>, const N: usize, const NO: usize>(
 /// The sum of an output point's coordinates and analogs (0 without a point), added as the hand
 /// closed forms' `step_summed` adds them.
 #[inline(always)]
-fn point_sum<const NP: usize>(p: &[f64; NP]) -> f64 {
+pub fn point_sum<const NP: usize>(p: &[f64; NP]) -> f64 {
     match NP {
         6 => ((p[0] + p[1]) + (p[2] + p[3])) + (p[4] + p[5]),
         _ => p.iter().fold(-0.0, |acc, v| acc + v),
     }
 }
 
-/// Each of `steps` samples of the hand-written sweep `s` after its first (at input 0) over
-/// turns of `s.turn()` samples, with its input: `f(acc, x, step, point)` folds them. The
-/// sample is re-synchronised with libm ([`HandSweep::sync`]) every `s.period()` samples and at
-/// the first of every turn (input 0), advanced by rotation ([`HandSweep::advance`]) otherwise.
+/// Each of `steps` samples of the hand-written sweep `s` after its first (at input 0), with
+/// its input: `f(acc, x, step, point)` folds them (see [`HandSweepCursor`]).
 #[inline(always)]
 pub fn hand_sweep_fold<S: HandSweep<N, NP>, A, const N: usize, const NP: usize>(
-    s: &mut S,
+    mut s: S,
     steps: usize,
     init: A,
     mut f: impl FnMut(A, f64, &Step<N>, &[f64; NP]) -> A,
 ) -> Result<A, Failed> {
-    let (turn, period) = (s.turn(), s.period());
-    let (h, mut k, mut since_sync) = (TAU / turn as f64, 0usize, 0usize);
-    first_sync(s)?;
+    first_sync(&mut s)?;
+    let mut cursor = HandSweepCursor::new(&s);
     let mut acc = init;
     for _ in 0..steps {
-        let x = next_input(&mut k, turn, h);
-        since_sync += 1;
-        let (step, point) = if k == 0 || since_sync == period {
-            since_sync = 0;
-            s.sync(x)?
-        } else {
-            s.advance()?
-        };
+        let (x, step, point) = cursor.next(&mut s)?;
         acc = f(acc, x, &step, &point);
     }
     Ok(acc)
 }
 
+/// Where a hand-written sweep is along its turns of `turn` samples: the index `k` of its last
+/// sample in the turn (input `h k`, advanced as [`next_input`] advances the other rows') and the
+/// samples since the last re-synchronisation.
+#[derive(Clone, Copy, Debug)]
+pub struct HandSweepCursor {
+    turn: usize,
+    period: usize,
+    h: f64,
+    k: usize,
+    since_sync: usize,
+}
+
+impl HandSweepCursor {
+    /// The cursor of `s` at the first sample of a turn (input 0).
+    #[inline(always)]
+    pub fn new<S: HandSweep<N, NP>, const N: usize, const NP: usize>(s: &S) -> Self {
+        HandSweepCursor { turn: s.turn(), period: s.period(), h: TAU / s.turn() as f64, k: 0, since_sync: 0 }
+    }
+
+    /// The next sample of `s` and its input: re-synchronised with libm ([`HandSweep::sync`])
+    /// every `s.period()` samples and at the first of every turn (input 0), advanced by
+    /// rotation ([`HandSweep::advance`]) otherwise.
+    #[inline(always)]
+    pub fn next<S: HandSweep<N, NP>, const N: usize, const NP: usize>(
+        &mut self,
+        s: &mut S,
+    ) -> Result<(f64, Step<N>, [f64; NP]), Failed> {
+        let x = next_input(&mut self.k, self.turn, self.h);
+        self.since_sync += 1;
+        let (step, point) = if self.k == 0 || self.since_sync == self.period {
+            self.since_sync = 0;
+            s.sync(x)?
+        } else {
+            s.advance()?
+        };
+        Ok((x, step, point))
+    }
+}
+
 /// The first sample of a hand-written sweep, at input 0 (out of the loop, as [`first_step`]).
 #[inline(never)]
-fn first_sync<S: HandSweep<N, NP>, const N: usize, const NP: usize>(s: &mut S) -> Result<(), Failed> {
+pub fn first_sync<S: HandSweep<N, NP>, const N: usize, const NP: usize>(s: &mut S) -> Result<(), Failed> {
     s.sync(0.0).map(|_| ())
 }
 
@@ -163,7 +192,7 @@ fn first_sync<S: HandSweep<N, NP>, const N: usize, const NP: usize>(s: &mut S) -
 /// sample's numbers, as [`stepper_turns`] sums its steps'.
 #[inline(never)]
 pub fn hand_sweep_turns<S: HandSweep<N, NP>, const N: usize, const NP: usize>(
-    s: &mut S,
+    s: S,
     steps: usize,
 ) -> Result<f64, Failed> {
     hand_sweep_fold(s, steps, 0.0, |acc, _, step, point| acc + (step_sum(step) + point_sum(point)))

@@ -84,8 +84,8 @@ fn sweep_of<M: kinloop::Mechanism<N, 1, NO>, const N: usize, const NO: usize>(
     lean::sweep_turns(m, turn(), guess, steps).expect("sample")
 }
 
-fn hand_sweep_of<S: HandSweep<N, NP>, const N: usize, const NP: usize>(mut s: S, steps: usize) -> f64 {
-    lean::hand_sweep_turns(&mut s, steps).expect("sample")
+fn hand_sweep_of<S: HandSweep<N, NP>, const N: usize, const NP: usize>(s: S, steps: usize) -> f64 {
+    lean::hand_sweep_turns(s, steps).expect("sample")
 }
 
 /// The ring's position at input 0.
@@ -122,7 +122,9 @@ fn main() {
         }
         "newton-sweep" => sweep_of(&RhombicNewton::default(), g, steps),
         "four-bar-hand" => steps_of(&four_hand, gf, steps),
-        "four-bar-hand-sweep" => hand_sweep_of(FourBarSweep::<FOUR_BAR_TERMS>::new(four_hand, turn(), PERIOD, gf), steps),
+        "four-bar-hand-sweep" => {
+            hand_sweep_of(FourBarSweep::<FOUR_BAR_TERMS>::new(four_hand, turn(), PERIOD, gf), steps)
+        }
         "four-bar-point" => steps_of(&Kinloop::<FourBar, 2>::new(four), gf, steps),
         "four-bar-sweep" => sweep_of(&four, gf, steps),
         "four-bar-scan" => lean::scan_designs(

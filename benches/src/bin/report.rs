@@ -43,6 +43,10 @@ const CLASS_FOUR: [&str; 4] = ["hand_newton", "kinloop", "kinloop_named", SWEEP]
 /// groups only.
 const SWEEP: &str = "kinloop_sweep";
 
+/// The sweep recipe written by hand (`kinloop_bench::hand_sweep`): the floor of a sweep's
+/// sample, without a general sweep's checks.
+const HAND_SWEEP: &str = "hand_sweep";
+
 fn measured_with(bench: &str, policy: WarmStart) -> bool {
     bench != SWEEP || policy == WarmStart::Taylor
 }
@@ -189,17 +193,27 @@ const CLOSED_FORM_ROWS: [Row; 4] = [
     Row {
         group: "closed_form_rhombic",
         mechanism: "rhombic drive",
-        variants: &[("closed_form", "hand"), ("kinloop", "point"), (SWEEP, "sweep")],
+        variants: &[("closed_form", "hand"), ("kinloop", "point"), (SWEEP, "sweep"), (HAND_SWEEP, "hand-sweep")],
     },
     Row {
         group: "closed_form_four_bar",
         mechanism: "four-bar with its coupler point",
-        variants: &[("closed_form", "four-bar-hand"), ("kinloop", "four-bar-point"), (SWEEP, "four-bar-sweep")],
+        variants: &[
+            ("closed_form", "four-bar-hand"),
+            ("kinloop", "four-bar-point"),
+            (SWEEP, "four-bar-sweep"),
+            (HAND_SWEEP, "four-bar-hand-sweep"),
+        ],
     },
     Row {
         group: "closed_form_gear_lever",
         mechanism: "gear-lever rocker",
-        variants: &[("closed_form", "gear-lever-hand"), ("kinloop", "gear-lever-point"), (SWEEP, "gear-lever-sweep")],
+        variants: &[
+            ("closed_form", "gear-lever-hand"),
+            ("kinloop", "gear-lever-point"),
+            (SWEEP, "gear-lever-sweep"),
+            (HAND_SWEEP, "gear-lever-hand-sweep"),
+        ],
     },
     Row {
         group: "class_four_720_previous",
@@ -217,12 +231,18 @@ struct CountRow {
     target: Option<f64>,
 }
 
-const COUNT_ROWS: [CountRow; 14] = [
+const COUNT_ROWS: [CountRow; 17] = [
     CountRow {
         what: "rhombic drive, kinloop's own `Sweep`, 20,000 steps a turn",
         variant: "sweep@20000",
         reference: "hand@20000",
         target: Some(0.6),
+    },
+    CountRow {
+        what: "rhombic drive, the sweep recipe written by hand (no branch checks), 20,000 steps a turn",
+        variant: "hand-sweep@20000",
+        reference: "hand@20000",
+        target: None,
     },
     CountRow {
         what: "rhombic drive, point step, 20,000 steps a turn",
@@ -237,6 +257,12 @@ const COUNT_ROWS: [CountRow; 14] = [
         target: Some(0.6),
     },
     CountRow {
+        what: "four-bar with its coupler point, the sweep recipe written by hand (no branch checks), 20,000 steps a turn",
+        variant: "four-bar-hand-sweep@20000",
+        reference: "four-bar-hand@20000",
+        target: None,
+    },
+    CountRow {
         what: "four-bar with its coupler point, point step, 20,000 steps a turn",
         variant: "four-bar-point@20000",
         reference: "four-bar-hand@20000",
@@ -247,6 +273,12 @@ const COUNT_ROWS: [CountRow; 14] = [
         variant: "gear-lever-sweep@20000",
         reference: "gear-lever-hand@20000",
         target: Some(0.6),
+    },
+    CountRow {
+        what: "gear-lever rocker, the sweep recipe written by hand (no branch checks), 20,000 steps a turn",
+        variant: "gear-lever-hand-sweep@20000",
+        reference: "gear-lever-hand@20000",
+        target: None,
     },
     CountRow {
         what: "gear-lever rocker, point step, 20,000 steps a turn",
