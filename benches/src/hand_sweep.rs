@@ -35,10 +35,14 @@ pub fn asin_series<const TERMS: usize>(x: f64) -> f64 {
     x + x * (x2 * tail)
 }
 
-/// The rotation of a sine and cosine by a fixed angle `h`, in the form whose rounding errors do
-/// not grow the radius: `sin(t + h) = s - (v s - w c)`, `cos(t + h) = c - (v c + w s)` with
-/// `w = sin h`, `v = 1 - cos h = 2 sin^2(h / 2)` (both small, and exact to their last bit, where
-/// `cos h` rounded to 1 would lose half the digits of `1 - cos h`).
+/// The rotation of a sine and cosine by a fixed angle `h` as a small correction of each:
+/// `sin(t + h) = s - (v s - w c)`, `cos(t + h) = c - (v c + w s)` with `w = sin h` and
+/// `v = 1 - cos h = 2 sin^2(h / 2)`, both to their full relative precision. The plain form
+/// `s cos h + c sin h` multiplies by a `cos h` rounded near 1, whose error (up to 5.5e-17)
+/// scales the radius by the same factor every step: a drift that grows with the period. Measured
+/// as [`PERIOD`] was (10^6 samples, 20,000 a turn), the plain form's positions deviate by up to
+/// 1.3e-14 at a period of 80 and 4.6e-14 at 320 (the gear-lever), this form's by 4.7e-15 and
+/// 3.7e-15; it costs two additions more per rotation.
 #[derive(Clone, Copy, Debug)]
 pub struct Rotation {
     w: f64,

@@ -125,7 +125,8 @@ pub fn point_sum<const NP: usize>(p: &[f64; NP]) -> f64 {
 }
 
 /// Each of `steps` samples of the hand-written sweep `s` after its first (at input 0), with
-/// its input: `f(acc, x, step, point)` folds them (see [`HandSweepCursor`]).
+/// its input: `f(acc, x, step, point)` folds them (see [`HandSweepCursor`]). The tests compare
+/// the samples with the closed form's through it, so they check what the counts measure.
 #[inline(always)]
 pub fn hand_sweep_fold<S: HandSweep<N, NP>, A, const N: usize, const NP: usize>(
     mut s: S,
@@ -144,7 +145,7 @@ pub fn hand_sweep_fold<S: HandSweep<N, NP>, A, const N: usize, const NP: usize>(
 }
 
 /// Where a hand-written sweep is along its turns of `turn` samples: the index `k` of its last
-/// sample in the turn (input `h k`, advanced as [`next_input`] advances the other rows') and the
+/// sample in the turn (input `h k`, advanced as `next_input` advances the other rows') and the
 /// samples since the last re-synchronisation.
 #[derive(Clone, Copy, Debug)]
 pub struct HandSweepCursor {
@@ -184,12 +185,15 @@ impl HandSweepCursor {
 
 /// The first sample of a hand-written sweep, at input 0 (out of the loop, as [`first_step`]).
 #[inline(never)]
-pub fn first_sync<S: HandSweep<N, NP>, const N: usize, const NP: usize>(s: &mut S) -> Result<(), Failed> {
+fn first_sync<S: HandSweep<N, NP>, const N: usize, const NP: usize>(s: &mut S) -> Result<(), Failed> {
     s.sync(0.0).map(|_| ())
 }
 
 /// `steps` samples of the hand-written sweep `s` (see [`hand_sweep_fold`]): the sum of every
-/// sample's numbers, as [`stepper_turns`] sums its steps'.
+/// sample's numbers, as [`stepper_turns`] sums its steps'. The sweep is taken by value: its
+/// carried values are the loop's own locals, as a sweep written by hand keeps them (through a
+/// reference to the caller's, the compiler stores them back every sample; the counts moved by
+/// -10 to +5 instructions a sample between the two, with the register allocation).
 #[inline(never)]
 pub fn hand_sweep_turns<S: HandSweep<N, NP>, const N: usize, const NP: usize>(
     s: S,
