@@ -18,6 +18,7 @@ use std::f64::consts::TAU;
 use kinloop_bench::hand::{FOUR_BAR, FourBarClosed, GearLeverClosed, gear_lever};
 use kinloop_bench::hand_sweep::{
     FOUR_BAR_TERMS, FourBarSweep, GEAR_LEVER_TERMS, GearLeverSweep, HandSweep, PERIOD, RHOMBIC_TERMS, RhombicSweep,
+    asin_series,
 };
 use kinloop_bench::lean::hand_sweep_fold;
 use kinloop_bench::rhombic::{self, ClosedForm};
@@ -118,6 +119,22 @@ fn gear_lever_analog_tolerance_covers_its_third_derivative() {
         .fold(0.0, f64::max);
     assert!(third > 600.0 && third < 700.0, "largest |q'''| {third}");
     assert!(third * ANGLE_ROUNDING <= GEAR_LEVER_ANALOG_TOL, "largest |q'''| {third}");
+}
+
+/// The series against libm's `asin` over the increments' range (up to 0.06): within the first
+/// neglected term over `1 - x^2` (the remainder's bound), plus the rounding of both (a few ulps
+/// of `x`).
+#[test]
+fn asin_series_is_within_its_remainder() {
+    for i in -600..=600 {
+        let x = f64::from(i) * 1e-4;
+        let check = |terms: usize, got: f64, first_neglected: f64| {
+            let bound = first_neglected / (1.0 - x * x) + 4.0 * f64::EPSILON * x.abs();
+            assert!((got - x.asin()).abs() <= bound, "{terms} terms at {x}: {got} vs {}", x.asin());
+        };
+        check(3, asin_series::<3>(x), 5.0 / 112.0 * x.abs().powi(7));
+        check(6, asin_series::<6>(x), 231.0 / 13312.0 * x.abs().powi(13));
+    }
 }
 
 /// 20 turns of 720 samples and one of 20,000 (a second or two in debug mode).
