@@ -23,9 +23,13 @@ use kinloop_bench::class_four::{self, HandNewton};
 use kinloop_bench::decls::paper_mechanisms;
 use kinloop_bench::expansion::{four_bar_chain, four_bar_chain_dense, size};
 use kinloop_bench::hand::{FOUR_BAR, FourBarClosed, GearLeverClosed, gear_lever};
+use kinloop_bench::hand_sweep::{
+    FOUR_BAR_TERMS, FourBarSweep, GEAR_LEVER_TERMS, GearLeverSweep, HandSweep, PERIOD, RHOMBIC_TERMS, RhombicSweep,
+};
 use kinloop_bench::kinloop_variants::{Kinloop, KinloopNamed, KinloopSweep, check_kinloop_sweep};
+use kinloop_bench::lean::HandSweepCursor;
 use kinloop_bench::rhombic::{self, ClosedForm, DenseFiniteDifference, DenseHandJacobian, DenseNumDual, TwoLoopNewton};
-use kinloop_bench::sweep::{Failed, STEPS, Stepper, Sweep, SweepCheck, WarmStart, check_sweep};
+use kinloop_bench::sweep::{Failed, STEPS, Stepper, Sweep, SweepCheck, WarmStart, check_sweep, check_turn};
 
 const RHOMBIC: [&str; 8] = [
     "closed_form",
@@ -538,6 +542,28 @@ fn timed_sweep<'a, M: Mechanism<N, 1, NO>, const N: usize, const NO: usize>(
     })
 }
 
+/// The sweep recipe written by hand, one sample per call (see `kinloop_bench::hand_sweep`).
+fn timed_hand_sweep<'a, S: HandSweep<N, NP> + 'a, const N: usize, const NP: usize>(mut s: S) -> Timed<'a> {
+    s.sync(0.0).expect("the sweep starts");
+    let mut cursor = HandSweepCursor::new(&s);
+    timed_steps(HAND_SWEEP, move || {
+        black_box(cursor.next(&mut s).expect("the sweep goes on"));
+    })
+}
+
+/// The sweep recipe written by hand over one turn against the hand closed form `reference`.
+fn check_hand_sweep<S: HandSweep<N, NP>, R: Stepper<N>, const N: usize, const NP: usize>(
+    mut s: S,
+    reference: &R,
+    guess0: [f64; N],
+) -> Result<SweepCheck, Failed> {
+    let (first, _) = s.sync(0.0)?;
+    let mut cursor = HandSweepCursor::new(&s);
+    check_turn(reference, s.turn(), WarmStart::Previous, guess0, (0.0, first), || {
+        cursor.next(&mut s).map(|(x, step, _)| (x, step))
+    })
+}
+
 fn median(mut v: Vec<f64>) -> f64 {
     v.sort_by(f64::total_cmp);
     v[v.len() / 2]
@@ -610,13 +636,22 @@ fn paired_all(rounds: usize) {
 
 /// What is done with each closed-form row (see [`closed_form_rows`]).
 trait RowVisitor {
-    /// One row: the mechanism `m` as kinloop solves it, its hand closed form `hand`, and the
-    /// position at input 0.
-    fn row<M: Mechanism<N, 1, NO>, H: Stepper<N>, const N: usize, const NO: usize>(
+    /// One row: the mechanism `m` as kinloop solves it, its hand closed form `hand`, the sweep
+    /// recipe written by hand `sweep` (`kinloop_bench::hand_sweep`), and the position at input
+    /// 0.
+    fn row<
+        M: Mechanism<N, 1, NO>,
+        H: Stepper<N>,
+        S: HandSweep<N, NP>,
+        const N: usize,
+        const NO: usize,
+        const NP: usize,
+    >(
         &mut self,
         title: &str,
         m: M,
         hand: &H,
+        sweep: S,
         guess0: [f64; N],
     );
 }
@@ -625,27 +660,39 @@ trait RowVisitor {
 /// criterion groups.
 fn closed_form_rows(v: &mut impl RowVisitor) {
     let p = rhombic::PARAMS;
-    v.row("rhombic drive", p.kinloop(), &ClosedForm::new(&p), rhombic::initial_guess(&p));
+    let sweep = RhombicSweep::<RHOMBIC_TERMS>::new(&p, TURN_720, PERIOD);
+    v.row("rhombic drive", p.kinloop(), &ClosedForm::new(&p), sweep, rhombic::initial_guess(&p));
     let four = FOUR_BAR;
     let four_hand = FourBarClosed::of(&four);
     let g: [f64; 2] = four.solve(0.0).expect("the four-bar assembles").q.into();
-    v.row("four-bar with its coupler point", four, &four_hand, g);
+    let sweep = FourBarSweep::<FOUR_BAR_TERMS>::new(four_hand, TURN_720, PERIOD, g);
+    v.row("four-bar with its coupler point", four, &four_hand, sweep, g);
     let gear = gear_lever();
     let gear_hand = GearLeverClosed::of(&gear);
     let g: [f64; 2] = gear.solve(0.0).expect("the gear lever assembles").q.into();
-    v.row("gear-lever rocker", gear, &gear_hand, g);
+    let sweep = GearLeverSweep::<GEAR_LEVER_TERMS>::new(gear_hand, TURN_720, PERIOD, g);
+    v.row("gear-lever rocker", gear, &gear_hand, sweep, g);
 }
 
 /// Times each closed-form row by [`paired`]: the hand closed form, kinloop's point step from
-/// the previous position and kinloop's own sweep, along turns of [`TURN_720`] steps.
+/// the previous position, kinloop's own sweep and the sweep recipe written by hand, along turns
+/// of [`TURN_720`] steps.
 struct PairedRows(usize);
 
 impl RowVisitor for PairedRows {
-    fn row<M: Mechanism<N, 1, NO>, H: Stepper<N>, const N: usize, const NO: usize>(
+    fn row<
+        M: Mechanism<N, 1, NO>,
+        H: Stepper<N>,
+        S: HandSweep<N, NP>,
+        const N: usize,
+        const NO: usize,
+        const NP: usize,
+    >(
         &mut self,
         title: &str,
         m: M,
         hand: &H,
+        sweep: S,
         guess0: [f64; N],
     ) {
         let policy = WarmStart::Previous;
@@ -654,27 +701,38 @@ impl RowVisitor for PairedRows {
             timed_turn("closed_form", hand, policy, guess0, TURN_720),
             timed_turn("kinloop", &kl, policy, guess0, TURN_720),
             timed_sweep(&kl.m, guess0, TURN_720),
+            timed_hand_sweep(sweep),
         ];
         paired(&format!("{title}, {TURN_720} steps a turn"), variants, 100_000, self.0);
     }
 }
 
 /// Prints the iterations and deviations from the hand closed form of kinloop's point step
-/// (previous position) and of its own sweep over one turn of [`TURN_720`] steps.
+/// (previous position), of its own sweep and of the sweep recipe written by hand over one turn
+/// of [`TURN_720`] steps.
 struct CheckedRows;
 
 impl RowVisitor for CheckedRows {
-    fn row<M: Mechanism<N, 1, NO>, H: Stepper<N>, const N: usize, const NO: usize>(
+    fn row<
+        M: Mechanism<N, 1, NO>,
+        H: Stepper<N>,
+        S: HandSweep<N, NP>,
+        const N: usize,
+        const NO: usize,
+        const NP: usize,
+    >(
         &mut self,
         title: &str,
         m: M,
         hand: &H,
+        sweep: S,
         guess0: [f64; N],
     ) {
         let kl = Kinloop::<M, NO>::new(m);
         let point = check_sweep(&kl, hand, TURN_720, WarmStart::Previous, guess0);
         println!("| {title}: `kinloop` | {} |", iteration_cells(point));
         println!("| {title}: `{SWEEP}` | {} |", iteration_cells(check_kinloop_sweep(&kl.m, hand, TURN_720, guess0)));
+        println!("| {title}: `{HAND_SWEEP}` | {} |", iteration_cells(check_hand_sweep(sweep, hand, guess0)));
     }
 }
 
