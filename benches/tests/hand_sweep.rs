@@ -11,7 +11,7 @@
 //! so an analog `q'` or `q''` is defined only to that angle times `|q''|` or `|q'''|` (see
 //! [`ANGLE_ROUNDING`]): 1e-13 for the rhombic drive and the four-bar (`|q'''|` below 10), 3e-12
 //! for the gear-lever, whose rocker's third derivative reaches 675 where the pin passes closest
-//! to the pivot (checked by `gear_lever_analog_tolerance_covers_its_third_derivative`).
+//! to the pivot (checked by `analog_tolerances_cover_the_third_derivatives`).
 
 use std::f64::consts::TAU;
 
@@ -102,23 +102,37 @@ fn all_within(turn: usize, steps: usize) {
     assert_within(&format!("gear-lever, {turn}"), dev, GEAR_LEVER_ANALOG_TOL);
 }
 
-/// The gear-lever's analog tolerance: the largest third derivative of its unknowns along a turn
-/// (central differences of the closed form's acceleration analogs, step 1e-4: truncation
-/// ~1e-8 relative) times [`ANGLE_ROUNDING`] is within it.
-#[test]
-fn gear_lever_analog_tolerance_covers_its_third_derivative() {
-    let closed = GearLeverClosed::of(&gear_lever());
+/// The largest third derivative of the unknowns along a turn: central differences of the
+/// acceleration analogs `d2q(x)` (step 1e-4: truncation ~1e-8 relative), 20,000 points.
+fn max_third<const N: usize>(d2q: impl Fn(f64) -> [f64; N]) -> f64 {
     let (n, e) = (20_000, 1e-4);
-    let third = (0..n)
-        .map(|k| {
+    (0..n)
+        .flat_map(|k| {
             let x = TAU * k as f64 / n as f64;
-            let (plus, _) = closed.full(x + e, &[0.0; 2]).unwrap();
-            let (minus, _) = closed.full(x - e, &[0.0; 2]).unwrap();
-            (0..2).map(|u| ((plus.d2q[u] - minus.d2q[u]) / (2.0 * e)).abs()).fold(0.0, f64::max)
+            let (plus, minus) = (d2q(x + e), d2q(x - e));
+            (0..N).map(move |u| ((plus[u] - minus[u]) / (2.0 * e)).abs())
         })
-        .fold(0.0, f64::max);
-    assert!(third > 600.0 && third < 700.0, "largest |q'''| {third}");
-    assert!(third * ANGLE_ROUNDING <= GEAR_LEVER_ANALOG_TOL, "largest |q'''| {third}");
+        .fold(0.0, f64::max)
+}
+
+/// The analog tolerances: the largest third derivative of each mechanism's unknowns along a
+/// turn times [`ANGLE_ROUNDING`] is within its tolerance (below 10 for the rhombic drive and
+/// the four-bar, about 675 for the gear-lever).
+#[test]
+fn analog_tolerances_cover_the_third_derivatives() {
+    let rhombic = ClosedForm::new(&rhombic::PARAMS);
+    let four = FourBarClosed::of(&FOUR_BAR);
+    let gear = GearLeverClosed::of(&gear_lever());
+    let thirds = [
+        ("rhombic", max_third(|x| rhombic.step(x, &[0.0; 4]).unwrap().d2q), ANALOG_TOL),
+        ("four-bar", max_third(|x| four.full(x, &[0.0; 2]).unwrap().0.d2q), ANALOG_TOL),
+        ("gear-lever", max_third(|x| gear.full(x, &[0.0; 2]).unwrap().0.d2q), GEAR_LEVER_ANALOG_TOL),
+    ];
+    for (name, third, tol) in thirds {
+        assert!(third * ANGLE_ROUNDING <= tol, "{name}: largest third derivative {third}");
+    }
+    assert!(thirds[0].1 < 10.0 && thirds[1].1 < 10.0, "{thirds:?}");
+    assert!(thirds[2].1 > 600.0 && thirds[2].1 < 700.0, "{thirds:?}");
 }
 
 /// The series against libm's `asin` over the increments' range (up to 0.06): within the first
