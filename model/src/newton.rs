@@ -104,7 +104,8 @@ where
     let mut calls = 0usize;
     // A fresh `NearTrig` for this solve, as the emitted block makes one.
     p.near.reset(r);
-    let mut eval = |z: &[f64; N]| -> BlockEval<N, K> {
+    // Written over the solver's slot, every field, as the emitted block's evaluation is.
+    let mut eval = |z: &[f64; N], e: &mut BlockEval<N, K>| {
         for (k, &reg) in p.unknown_regs.iter().enumerate() {
             r[reg as usize] = z[k];
         }
@@ -112,12 +113,16 @@ where
         p.near.save(r, calls);
         calls += 1;
         p.eval.run(r);
-        let j: [[f64; N]; N] = std::array::from_fn(|row| read::<N>(r, &p.jac[row * N..]));
-        let keep: [f64; K] =
-            std::array::from_fn(|k| if k < N { r[p.scale[k] as usize] } else { r[p.unit[k - N] as usize] });
-        BlockEval { f: read::<N>(r, &p.f), j, keep }
+        e.f = read::<N>(r, &p.f);
+        for (row, out) in e.j.iter_mut().enumerate() {
+            *out = read::<N>(r, &p.jac[row * N..]);
+        }
+        for (k, out) in e.keep.iter_mut().enumerate() {
+            *out = if k < N { r[p.scale[k] as usize] } else { r[p.unit[k - N] as usize] };
+        }
     };
-    let mut ev = eval(&z0);
+    let mut ev = BlockEval { f: [0.0; N], j: [[0.0; N]; N], keep: [0.0; K] };
+    eval(&z0, &mut ev);
     let per_eval = |e: &BlockEval<N, K>| {
         Magnitudes::new(std::array::from_fn(|k| e.keep[k]), std::array::from_fn(|k| e.keep[N + k])).with_turns(turns)
     };

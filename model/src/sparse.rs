@@ -155,7 +155,9 @@ impl<const P: usize, const CAP: usize, const K2: usize> Padded<P, CAP, K2> {
         let mut calls = 0usize;
         // Rotation slots fresh for this solve, kept before each evaluation (see `newton`).
         p.near.reset(r);
-        let mut eval = |z: &[f64; P]| -> BlockEval<P, K, PaddedJac<'_, P, CAP>> {
+        // Written over the solver's slot, every field, as the emitted block's evaluation is (the
+        // entries past the block's own stay the zeros the slot is made with).
+        let mut eval = |z: &[f64; P], e: &mut BlockEval<P, K, PaddedJac<'_, P, CAP>>| {
             for (k, &reg) in p.unknown_regs.iter().enumerate() {
                 r[reg as usize] = z[k];
             }
@@ -163,18 +165,20 @@ impl<const P: usize, const CAP: usize, const K2: usize> Padded<P, CAP, K2> {
             p.near.save(r, calls);
             calls += 1;
             p.eval.run(r);
-            let mut v = [0.0; CAP];
-            for (x, &reg) in v.iter_mut().zip(entries) {
+            for (x, &reg) in e.j.v.iter_mut().zip(entries) {
                 *x = r[reg as usize];
             }
-            let keep: [f64; K] = std::array::from_fn(|k| match (k < P, k % P) {
-                (true, m) if m < n => r[p.scale[m] as usize],
-                (false, m) if m < n => r[p.unit[m] as usize],
-                _ => 1.0,
-            });
-            BlockEval { f: padded(r, &p.f, 0.0), j: PaddedJac::new(v, work), keep }
+            for (k, out) in e.keep.iter_mut().enumerate() {
+                *out = match (k < P, k % P) {
+                    (true, m) if m < n => r[p.scale[m] as usize],
+                    (false, m) if m < n => r[p.unit[m] as usize],
+                    _ => 1.0,
+                };
+            }
+            e.f = padded(r, &p.f, 0.0);
         };
-        let mut ev = eval(&z0);
+        let mut ev = BlockEval { f: [0.0; P], j: PaddedJac::new([0.0; CAP], work), keep: [0.0; K] };
+        eval(&z0, &mut ev);
         let per_eval = |e: &BlockEval<P, K, PaddedJac<'_, P, CAP>>| {
             Magnitudes::new(std::array::from_fn(|k| e.keep[k]), std::array::from_fn(|k| e.keep[P + k]))
                 .with_turns(turns)

@@ -102,18 +102,20 @@ where
     let turns = M::UNKNOWN_KINDS.map(|k| k == QuantityKind::Angle);
     let mags = Magnitudes::new(jac.scale, [1.0; N]).with_turns(turns);
     let q_of = |z: &[f64; N]| core::array::from_fn::<f64, N, _>(|u| z[u] * unit[u]);
-    let eval = |z: &[f64; N]| {
+    // Written over the solver's slot, as the generated blocks' evaluations are.
+    let eval = |z: &[f64; N], ev: &mut BlockEval<N, 0>| {
         let jz = m.jacobian_flat(x, &q_of(z));
-        let mut j = jz.j;
-        for row in &mut j {
+        ev.f = jz.f;
+        ev.j = jz.j;
+        for row in &mut ev.j {
             for u in 0..N {
                 row[u] *= unit[u];
             }
         }
-        BlockEval { f: jz.f, j, keep: [] }
     };
     let z0 = core::array::from_fn::<f64, N, _>(|u| guess[u] / unit[u]);
-    let mut ev: BlockEval<N, 0> = eval(&z0);
+    let mut ev: BlockEval<N, 0> = BlockEval { f: [0.0; N], j: [[0.0; N]; N], keep: [] };
+    eval(&z0, &mut ev);
     let Ok(mut solved) = newton(z0, &mut ev, cfg, eval, &mags) else { return Err(error) };
     solved.z = q_of(&solved.z);
     let mut report = SolveReport::direct();

@@ -153,27 +153,44 @@ impl Kernel<'_> {
         } else {
             failure
         };
-        // What an evaluation returns, the guess's and the solver's closure's alike.
-        let value = quote!(#rt::BlockEval { f: [#(#f),*], j: #jrows, keep: [#(#exports,)* #(#kept_mags),*] });
+        // The guess's evaluation, made as the value of the slot the iteration updates in place
+        // (no closure call, which the rotations make too large to inline); the solver's closure
+        // writes every field of that slot instead (a block's evaluation is hundreds of bytes, a
+        // large sparse block's kilobytes: one returned by value from the closure, which owns
+        // the sine and cosine cache, was made in a temporary and copied into the slot).
+        let kept_values = quote!([#(#exports,)* #(#kept_mags),*]);
+        let value = quote!(#rt::BlockEval { f: [#(#f),*], j: #jrows, keep: #kept_values });
+        let keep_field = if exports.is_empty() && kept_mags.is_empty() {
+            TokenStream::new()
+        } else {
+            quote!(__e.keep = #kept_values;)
+        };
         let closure = quote! {
-            |__z: &[f64; #n]| -> #ty {
+            |__z: &[f64; #n], __e: &mut #ty| {
                 let [#(#qs),*] = *__z;
                 #inner
-                #value
+                __e.f = [#(#f),*];
+                __e.j = #jrows;
+                #keep_field
             }
         };
         let z0 = quote!(let __z0: [f64; #n] = [#(#guess),*];);
-        // The guess evaluated here, into the slot the iteration updates in place: the block's
-        // evaluation is never moved into the solver. With sines and cosines, the guess's
-        // evaluation is made in place (libm's values, seeding the cache: no closure call, which
-        // the rotations make too large to inline), and the closure then owns the cache (`move`:
-        // measured, 57 instructions fewer a class IV step from the predictor than borrowing it).
+        let guess_eval = quote! {
+            let mut #at = {
+                let [#(#qs),*] = __z0;
+                #inner_guess
+                #value
+            };
+        };
+        // With sines and cosines, the guess's are libm's, seeding the cache, and the closure
+        // then owns the cache (`move`: measured, 57 instructions fewer a class IV step from the
+        // predictor than borrowing it).
         let evaluations = if slots == 0 {
             quote! {
-                let #ev = #closure;
                 #mags_once
                 #z0
-                let mut #at = #ev(&__z0);
+                #guess_eval
+                let #ev = #closure;
             }
         } else {
             let slots = lit(slots);
@@ -181,11 +198,7 @@ impl Kernel<'_> {
                 let #near = #rt::NearTrig::<#slots>::new();
                 #mags_once
                 #z0
-                let mut #at = {
-                    let [#(#qs),*] = __z0;
-                    #inner_guess
-                    #value
-                };
+                #guess_eval
                 let #ev = move #closure;
             }
         };

@@ -113,7 +113,7 @@ impl<const N: usize, const K: usize, J: BlockJacobian<N>> Iter<'_, N, K, J> {
 #[cfg(test)]
 mod tests {
     use super::super::newton_keeping_lu;
-    use super::super::test_blocks::{circle, mags, solve, varying};
+    use super::super::test_blocks::{circle, in_place, mags, solve, varying};
     use crate::solvers::lu::Lu;
     use crate::solvers::newton::{BlockFailure, NewtonConfig};
 
@@ -150,7 +150,7 @@ mod tests {
         // The same where the final correction is made with the analogs' factorisation (which
         // vouches for a finite Jacobian only through a positive pivot ratio).
         let (mut ev, mut kept) = (cube_root(&[0.0, 2.0]), Lu::unfactored());
-        let e = newton_keeping_lu([0.0, 2.0], &mut ev, &NewtonConfig::default(), cube_root, &mags, &mut kept);
+        let e = newton_keeping_lu([0.0, 2.0], &mut ev, &NewtonConfig::default(), in_place(cube_root), &mags, &mut kept);
         assert!(matches!(e, Err(BlockFailure::NonFinite { row: 0, .. })), "{e:?}");
         // A 3x3 block (the general factorisation, whose column magnitudes are not screened):
         // an infinite or NaN entry, anywhere, at a root the guess already meets.
@@ -161,7 +161,14 @@ mod tests {
                 varying::<3, 6>([z[0] - 1.0, z[1] - 2.0, z[2] - 3.0], j, [1.0; 3], [1.0; 3])
             };
             let (mut ev, mut kept) = (block(&[1.0, 2.0, 3.0]), Lu::unfactored());
-            let e = newton_keeping_lu([1.0, 2.0, 3.0], &mut ev, &NewtonConfig::default(), block, &mags, &mut kept);
+            let e = newton_keeping_lu(
+                [1.0, 2.0, 3.0],
+                &mut ev,
+                &NewtonConfig::default(),
+                in_place(block),
+                &mags,
+                &mut kept,
+            );
             assert!(matches!(e, Err(BlockFailure::NonFinite { row, .. }) if row == r), "{r} {c}: {e:?}");
         }
         let nan_slope = |z: &[f64; 2]| {

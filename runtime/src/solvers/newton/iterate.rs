@@ -29,8 +29,8 @@ pub(super) const LINEAR_CONTRACTION: f64 = 0.1;
 /// confirm it.
 const LINEAR_EXTRA: u32 = 4;
 
-/// Newton iterations from `z0`, whose evaluation is `ev` (updated in place: each accepted
-/// step's evaluation is written over it, never copied). The generated code calls it through
+/// Newton iterations from `z0`, whose evaluation is `ev` (updated in place: `eval` writes each
+/// trial's evaluation over it, never a copy). The generated code calls it through
 /// [`newton`] when the guess does not meet the tolerance; the correction at a converged
 /// iterate comes from `last`.
 ///
@@ -44,7 +44,7 @@ pub(super) fn iterate<const N: usize, const K: usize, J: BlockJacobian<N>>(
     z0: [f64; N],
     ev: &mut BlockEval<N, K, J>,
     cfg: &NewtonConfig,
-    mut eval: impl FnMut(&[f64; N]) -> BlockEval<N, K, J>,
+    mut eval: impl FnMut(&[f64; N], &mut BlockEval<N, K, J>),
     mags: &impl MagnitudesOf<N, K, J>,
     last: &mut impl LastStep<N, K, J>,
     rho0: f64,
@@ -157,7 +157,7 @@ impl<const N: usize, const K: usize, J: BlockJacobian<N>> Iter<'_, N, K, J> {
         s: &[f64; N],
         termination: NewtonStop,
         cfg: &NewtonConfig,
-        eval: &mut impl FnMut(&[f64; N]) -> BlockEval<N, K, J>,
+        eval: &mut impl FnMut(&[f64; N], &mut BlockEval<N, K, J>),
         mags: &impl MagnitudesOf<N, K, J>,
         last: &mut impl LastStep<N, K, J>,
     ) -> Result<Solved<N>, BlockFailure> {
@@ -224,7 +224,7 @@ impl<const N: usize, const K: usize, J: BlockJacobian<N>> Iter<'_, N, K, J> {
         &mut self,
         rho: f64,
         cfg: &NewtonConfig,
-        eval: &mut impl FnMut(&[f64; N]) -> BlockEval<N, K, J>,
+        eval: &mut impl FnMut(&[f64; N], &mut BlockEval<N, K, J>),
         mags: &impl MagnitudesOf<N, K, J>,
         last: &mut impl LastStep<N, K, J>,
     ) {
@@ -247,7 +247,7 @@ impl<const N: usize, const K: usize, J: BlockJacobian<N>> Iter<'_, N, K, J> {
         }
         last.forget();
         let bound = rho.max(cfg.residual_tol);
-        *self.ev = eval(&self.z);
+        eval(&self.z, self.ev);
         self.evaluations += 1;
         let m = magnitudes_at!(mags, self.ev, after);
         let rows = rows_at!(m, self.ev, fallback);
@@ -261,7 +261,7 @@ impl<const N: usize, const K: usize, J: BlockJacobian<N>> Iter<'_, N, K, J> {
         if !kept {
             // Not a position of the block: back to where the iteration ended.
             self.z = unmoved;
-            *self.ev = eval(&self.z);
+            eval(&self.z, self.ev);
             self.evaluations += 1;
         }
     }
@@ -275,7 +275,7 @@ impl<const N: usize, const K: usize, J: BlockJacobian<N>> Iter<'_, N, K, J> {
         dz: &[f64; N],
         rho: f64,
         cfg: &NewtonConfig,
-        eval: &mut impl FnMut(&[f64; N]) -> BlockEval<N, K, J>,
+        eval: &mut impl FnMut(&[f64; N], &mut BlockEval<N, K, J>),
         mags: &impl MagnitudesOf<N, K, J>,
     ) {
         self.evaluations += 1;
@@ -286,6 +286,7 @@ impl<const N: usize, const K: usize, J: BlockJacobian<N>> Iter<'_, N, K, J> {
 #[cfg(test)]
 mod tests {
     use super::super::newton;
+    use super::super::test_blocks::in_place;
     use crate::solvers::newton::{BlockEval, Magnitudes, NewtonConfig, Solved};
     use core::f64::consts::{FRAC_PI_2, PI};
 
@@ -295,7 +296,7 @@ mod tests {
         let eval = |z: &[f64; 1]| BlockEval { f: [z[0].sin() - 0.5], j: [[z[0].cos()]], keep: [] };
         let mags = Magnitudes::new([1.5], [1.0]).with_turns([turns]);
         let mut ev: BlockEval<1, 0> = eval(&[guess]);
-        newton([guess], &mut ev, &NewtonConfig::default(), eval, &mags).unwrap()
+        newton([guess], &mut ev, &NewtonConfig::default(), in_place(eval), &mags).unwrap()
     }
 
     #[test]
@@ -321,7 +322,7 @@ mod tests {
         let eval = |z: &[f64; 1]| BlockEval { f: [z[0].powi(3) - 1000.0], j: [[3.0 * z[0] * z[0]]], keep: [] };
         let mags = Magnitudes::new([1000.0], [1.0]).with_turns([true]);
         let mut ev: BlockEval<1, 0> = eval(&[1.0]);
-        let s = newton([1.0], &mut ev, &NewtonConfig::default(), eval, &mags).unwrap();
+        let s = newton([1.0], &mut ev, &NewtonConfig::default(), in_place(eval), &mags).unwrap();
         assert!(s.iterations > 1);
         assert!((s.z[0] - 10.0).abs() <= 8.0 * f64::EPSILON, "{}", s.z[0]);
         assert_eq!(ev.f, eval(&s.z).f, "the evaluation is the returned position's");

@@ -109,7 +109,7 @@ fn refactor_columns<const N: usize, const K: usize>(lu: &mut Lu<N>, ev: &BlockEv
 #[cfg(test)]
 mod tests {
     use super::super::newton_keeping_lu;
-    use super::super::test_blocks::{circle, mags, solve, sphere};
+    use super::super::test_blocks::{circle, in_place, mags, solve, sphere};
     use super::*;
     use crate::solvers::lu::max_abs;
     use crate::solvers::newton::{NewtonConfig, NewtonStop};
@@ -128,7 +128,7 @@ mod tests {
         ) -> NewtonStop {
             let mut kept = Lu::unfactored();
             let mut ev = eval(&guess);
-            let s = newton_keeping_lu(guess, &mut ev, cfg, eval, &mags, &mut kept).unwrap();
+            let s = newton_keeping_lu(guess, &mut ev, cfg, in_place(eval), &mags, &mut kept).unwrap();
             let cols: [f64; N] = core::array::from_fn(|c| max_abs(ev.j.map(|row| row[c])));
             let own = Lu::factor_cols(&ev.j, cols);
             assert_eq!(kept.pivot_ratio().to_bits(), own.pivot_ratio().to_bits());

@@ -4,6 +4,16 @@
 //! evaluation closure) and the outcome carries its diagnostics ([`SolveReport`]): iterations,
 //! evaluations, final residual and why it stopped.
 //!
+//! **Evaluations written in place.** The evaluation closure `eval(z, ev)` writes the evaluation
+//! at `z` over the caller's slot `ev`, every field of it: a block's evaluation is hundreds of
+//! bytes (a large sparse block's, kilobytes), and one returned by value is made in a temporary
+//! and copied wherever the compiler cannot make it in the slot (as for a closure that owns its
+//! solve's sine and cosine cache). The solver keeps one slot, the evaluation at the current
+//! iterate: a trial is evaluated over it, and where a trial is rejected and the iterate's
+//! evaluation is read again it is either evaluated again (after a rejected step) or copied
+//! back from a copy made before the trial (a final correction undone, the descent's failed
+//! searches), never left holding the trial's.
+//!
 //! **Scale-free tests.** Every test is made in the units of the problem: residual `i` is divided
 //! by its row magnitude `scale_i` (see [`Magnitudes`]), a step in unknown `j` by that
 //! unknown's magnitude, and the pivots of the factorisation are those of the row-equilibrated
@@ -113,7 +123,7 @@ fn checked_free_correction<const N: usize, const K: usize, J: BlockJacobian<N>>(
     ev: &mut BlockEval<N, K, J>,
     rho0: f64,
     dz: &[f64; N],
-    eval: &mut impl FnMut(&[f64; N]) -> BlockEval<N, K, J>,
+    eval: &mut impl FnMut(&[f64; N], &mut BlockEval<N, K, J>),
     mags: &impl MagnitudesOf<N, K, J>,
     last: &mut impl LastStep<N, K, J>,
 ) -> Solved<N> {
@@ -124,10 +134,10 @@ fn checked_free_correction<const N: usize, const K: usize, J: BlockJacobian<N>>(
 }
 
 /// Solves one block from the guess `z0`, whose evaluation the caller has made into `ev`: the
-/// iteration updates it in place (each accepted step's evaluation is written over it), and on
-/// return it is the evaluation at the returned position ([`Solved`]). The caller's slot, not a
-/// value moved through the result: a block's evaluation is hundreds of bytes (a large sparse
-/// block's, kilobytes). In the common warm-started case this costs one evaluation and one small
+/// iteration updates it in place (`eval(z, ev)` writes the evaluation at `z` over it, every
+/// field), and on return it is the evaluation at the returned position ([`Solved`]). The
+/// caller's slot, not a value moved through the result or returned by `eval`: a block's
+/// evaluation is hundreds of bytes (a large sparse block's, kilobytes). In the common warm-started case this costs one evaluation and one small
 /// factorisation: the guess already meets the tolerance and is corrected once by the Newton step
 /// (its Jacobian is the one the analogs use). The iteration itself is a separate, out-of-line
 /// function.
@@ -137,7 +147,7 @@ pub fn newton<const N: usize, const K: usize>(
     z0: [f64; N],
     ev: &mut BlockEval<N, K>,
     cfg: &NewtonConfig,
-    eval: impl FnMut(&[f64; N]) -> BlockEval<N, K>,
+    eval: impl FnMut(&[f64; N], &mut BlockEval<N, K>),
     mags: &impl MagnitudesOf<N, K, [[f64; N]; N]>,
 ) -> Result<Solved<N>, BlockFailure> {
     newton_with(z0, ev, cfg, eval, mags)
@@ -150,7 +160,7 @@ pub fn newton_with<const N: usize, const K: usize, J: BlockJacobian<N>>(
     z0: [f64; N],
     ev: &mut BlockEval<N, K, J>,
     cfg: &NewtonConfig,
-    eval: impl FnMut(&[f64; N]) -> BlockEval<N, K, J>,
+    eval: impl FnMut(&[f64; N], &mut BlockEval<N, K, J>),
     mags: &impl MagnitudesOf<N, K, J>,
 ) -> Result<Solved<N>, BlockFailure> {
     newton_last(z0, ev, cfg, eval, mags, &mut RowSteps)
@@ -169,7 +179,7 @@ pub fn newton_keeping_lu<const N: usize, const K: usize>(
     z0: [f64; N],
     ev: &mut BlockEval<N, K>,
     cfg: &NewtonConfig,
-    eval: impl FnMut(&[f64; N]) -> BlockEval<N, K>,
+    eval: impl FnMut(&[f64; N], &mut BlockEval<N, K>),
     mags: &impl MagnitudesOf<N, K, [[f64; N]; N]>,
     lu: &mut Lu<N>,
 ) -> Result<Solved<N>, BlockFailure> {
@@ -182,7 +192,7 @@ fn newton_last<const N: usize, const K: usize, J: BlockJacobian<N>>(
     z0: [f64; N],
     ev: &mut BlockEval<N, K, J>,
     cfg: &NewtonConfig,
-    mut eval: impl FnMut(&[f64; N]) -> BlockEval<N, K, J>,
+    mut eval: impl FnMut(&[f64; N], &mut BlockEval<N, K, J>),
     mags: &impl MagnitudesOf<N, K, J>,
     last: &mut impl LastStep<N, K, J>,
 ) -> Result<Solved<N>, BlockFailure> {

@@ -64,14 +64,14 @@ pub(super) fn iterate_restarting<const N: usize, const K: usize, J: BlockJacobia
     z0: [f64; N],
     ev: &mut BlockEval<N, K, J>,
     cfg: &NewtonConfig,
-    mut eval: impl FnMut(&[f64; N]) -> BlockEval<N, K, J>,
+    mut eval: impl FnMut(&[f64; N], &mut BlockEval<N, K, J>),
     mags: &impl MagnitudesOf<N, K, J>,
     last: &mut impl LastStep<N, K, J>,
     rho0: f64,
 ) -> Result<Solved<N>, BlockFailure> {
     // The iteration calls `eval` itself, not through a reference to it (whose forwarding call
     // is not inlined into the iteration as the evaluation itself is).
-    match iterate(z0, ev, cfg, |z: &[f64; N]| eval(z), mags, last, rho0) {
+    match iterate(z0, ev, cfg, |z: &[f64; N], e: &mut BlockEval<N, K, J>| eval(z, e), mags, last, rho0) {
         Err(fail) => after(fail, z0, ev, cfg, &mut eval, mags, last),
         solved => solved,
     }
@@ -89,7 +89,7 @@ fn after<const N: usize, const K: usize, J: BlockJacobian<N>>(
     z0: [f64; N],
     ev: &mut BlockEval<N, K, J>,
     cfg: &NewtonConfig,
-    eval: &mut impl FnMut(&[f64; N]) -> BlockEval<N, K, J>,
+    eval: &mut impl FnMut(&[f64; N], &mut BlockEval<N, K, J>),
     mags: &impl MagnitudesOf<N, K, J>,
     last: &mut impl LastStep<N, K, J>,
 ) -> Result<Solved<N>, BlockFailure> {
@@ -109,21 +109,21 @@ fn after<const N: usize, const K: usize, J: BlockJacobian<N>>(
     // Every evaluation is counted, the failed restarts' too (a failure does not report them),
     // from the stalled iteration's on.
     let mut evaluations = evaluations;
-    let mut counted = |z: &[f64; N]| {
+    let mut counted = |z: &[f64; N], e: &mut BlockEval<N, K, J>| {
         evaluations += 1;
-        eval(z)
+        eval(z, e);
     };
     // Called through a trait object: one instance of the iteration serves the restarts of every
     // evaluation type. (When the iteration itself called this function, the closure's own type
     // would have instantiated both functions anew at every level, without end.)
-    let counted: &mut dyn FnMut(&[f64; N]) -> BlockEval<N, K, J> = &mut counted;
+    let counted: &mut dyn FnMut(&[f64; N], &mut BlockEval<N, K, J>) = &mut counted;
     let mut iterations = iterations;
     let mut best: Option<([f64; N], f64)> = None;
     for c in (0..N).filter(|&c| turns[c]) {
         for turn in TURNS {
             let mut g = z0;
             g[c] += turn;
-            *ev = counted(&g);
+            counted(&g, ev);
             let rho = residual_at(ev, mags);
             match iterate(g, ev, &once, &mut *counted, mags, last, rho) {
                 Ok(s) => {
@@ -146,7 +146,7 @@ fn after<const N: usize, const K: usize, J: BlockJacobian<N>>(
     for c in (0..N).filter(|&c| turns[c]) {
         z[c] = unwrap_to_turn(z[c], z0[c]);
     }
-    *ev = counted(&z);
+    counted(&z, ev);
     let rho = residual_at(ev, mags);
     let s = iterate(z, ev, &once, &mut *counted, mags, last, rho)?;
     Ok(Solved { iterations: iterations + s.iterations, evaluations, ..s })
@@ -165,6 +165,7 @@ fn residual_at<const N: usize, const K: usize, J: BlockJacobian<N>>(
 
 #[cfg(test)]
 mod tests {
+    use super::super::test_blocks::in_place;
     use crate::solvers::newton::{BlockEval, BlockFailure, Magnitudes, NewtonConfig, Solved, newton};
     use core::f64::consts::PI;
 
@@ -179,7 +180,7 @@ mod tests {
         };
         let mags = Magnitudes::new([2.2], [1.0]).with_turns([turns]);
         let mut ev: BlockEval<1, 0> = eval(&[guess]);
-        newton([guess], &mut ev, cfg, eval, &mags)
+        newton([guess], &mut ev, cfg, in_place(eval), &mags)
     }
 
     /// The root `1.4791...` of [`folded`] in closed form: `2 t^2 - 2 t - 0.2 = 0` gives
@@ -221,7 +222,7 @@ mod tests {
         let eval = |z: &[f64; 1]| BlockEval { f: [2.0 + z[0].cos()], j: [[-z[0].sin()]], keep: [] };
         let mags = Magnitudes::new([3.0], [1.0]).with_turns([true]);
         let mut ev: BlockEval<1, 0> = eval(&[2.0]);
-        let e = newton([2.0], &mut ev, &NewtonConfig::default(), eval, &mags).unwrap_err();
+        let e = newton([2.0], &mut ev, &NewtonConfig::default(), in_place(eval), &mags).unwrap_err();
         let BlockFailure::NoAssembly { residual, .. } = e else { panic!("{e:?}") };
         assert!((residual - 1.0 / 3.0).abs() < 1e-4, "{residual}");
     }

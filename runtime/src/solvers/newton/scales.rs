@@ -150,7 +150,7 @@ fn fallback_units<const N: usize>(unit: &[f64; N]) -> [f64; N] {
 #[cfg(test)]
 mod tests {
     use super::super::newton;
-    use super::super::test_blocks::{circle, solve, varying};
+    use super::super::test_blocks::{circle, in_place, solve, varying};
     use super::*;
     use crate::solvers::newton::NewtonConfig;
 
@@ -169,7 +169,7 @@ mod tests {
                 let (each, ev_each) = solve(guess, &cfg, eval).unwrap();
                 let once = Magnitudes::new(scale, [1.0, 0.0]);
                 let mut ev_once = eval(&guess);
-                let s = newton(guess, &mut ev_once, &cfg, eval, &once).unwrap();
+                let s = newton(guess, &mut ev_once, &cfg, in_place(eval), &once).unwrap();
                 assert_eq!(s.z.map(f64::to_bits), each.z.map(f64::to_bits), "{scale:?} {guess:?}");
                 assert_eq!((s.iterations, s.evaluations), (each.iterations, each.evaluations));
                 assert_eq!(

@@ -28,7 +28,7 @@ impl<const N: usize, const K: usize, J: BlockJacobian<N>> Iter<'_, N, K, J> {
         fixed_rows: bool,
         phi0: f64,
         cfg: &NewtonConfig,
-        eval: &mut impl FnMut(&[f64; N]) -> BlockEval<N, K, J>,
+        eval: &mut impl FnMut(&[f64; N], &mut BlockEval<N, K, J>),
     ) -> bool {
         let s = &rows.s;
         // The slope of phi along dz is -2 phi0 for a Newton step. A well-conditioned
@@ -44,7 +44,7 @@ impl<const N: usize, const K: usize, J: BlockJacobian<N>> Iter<'_, N, K, J> {
         }
         // Evaluated in place (no copy of the evaluation on the common path, the step accepted);
         // a rejected step's evaluation is replaced by the backtracking's or restored.
-        *self.ev = eval(&trial);
+        eval(&trial, self.ev);
         self.evaluations += 1;
         let (rho, phi) = scaled_norms(&self.ev.f, rows);
         if phi <= phi0 + 1e-4 * slope {
@@ -57,10 +57,10 @@ impl<const N: usize, const K: usize, J: BlockJacobian<N>> Iter<'_, N, K, J> {
     }
 
     /// After a rejected full step (its evaluation in `self.ev`): backtracking from half the
-    /// step; if that fails too, the evaluation at the unmoved `z` is restored (evaluated again:
-    /// the same position gives the same values, to the rounding of a generated block's sines and
-    /// cosines, which its `NearTrig` rotates back from the trial's), which the callers'
-    /// fallbacks read.
+    /// step; if that fails too (its last trial's evaluation in `self.ev`), the evaluation at the
+    /// unmoved `z` is restored (evaluated again: the same position gives the same values, to the
+    /// rounding of a generated block's sines and cosines, which its `NearTrig` rotates back from
+    /// the trial's), which the callers' fallbacks read.
     #[allow(clippy::too_many_arguments)]
     #[cold]
     #[inline(never)]
@@ -71,19 +71,21 @@ impl<const N: usize, const K: usize, J: BlockJacobian<N>> Iter<'_, N, K, J> {
         phi0: f64,
         slope: f64,
         cfg: &NewtonConfig,
-        eval: &mut impl FnMut(&[f64; N]) -> BlockEval<N, K, J>,
+        eval: &mut impl FnMut(&[f64; N], &mut BlockEval<N, K, J>),
     ) -> bool {
         if self.search(dz, rows, phi0, slope, 0.5, cfg, eval) {
             return true;
         }
-        *self.ev = eval(&self.z);
+        eval(&self.z, self.ev);
         self.evaluations += 1;
         false
     }
 
     /// Backtracking (Armijo, `c = 1e-4`) along `dz` on the squared scaled residual from the
     /// damping `t` down to the configured minimum, given its value `phi0` and `slope` at the
-    /// current iterate; moves and returns `true` on success.
+    /// current iterate; moves and returns `true` on success. Each trial is evaluated in place,
+    /// over `self.ev`: on success it holds the accepted trial's evaluation, on failure the last
+    /// rejected one's (not the evaluation at the unmoved `z`: the callers restore that).
     #[allow(clippy::too_many_arguments)]
     #[cold]
     #[inline(never)]
@@ -95,19 +97,18 @@ impl<const N: usize, const K: usize, J: BlockJacobian<N>> Iter<'_, N, K, J> {
         slope: f64,
         mut t: f64,
         cfg: &NewtonConfig,
-        eval: &mut impl FnMut(&[f64; N]) -> BlockEval<N, K, J>,
+        eval: &mut impl FnMut(&[f64; N], &mut BlockEval<N, K, J>),
     ) -> bool {
         while t >= cfg.min_damping {
             let mut trial = self.z;
             for c in 0..N {
                 trial[c] += t * dz[c];
             }
-            let ev_t = eval(&trial);
+            eval(&trial, self.ev);
             self.evaluations += 1;
-            let phi = sum_sq_scaled(&ev_t.f, rows);
+            let phi = sum_sq_scaled(&self.ev.f, rows);
             if phi <= phi0 + 1e-4 * t * slope {
                 self.z = trial;
-                *self.ev = ev_t;
                 return true;
             }
             t *= 0.5;
@@ -117,14 +118,18 @@ impl<const N: usize, const K: usize, J: BlockJacobian<N>> Iter<'_, N, K, J> {
 
     /// Where the Newton step fails (singular Jacobian, no decrease), Levenberg-Marquardt steps
     /// of increasing damping, down to steepest descent: they leave saddles of the squared
-    /// residual that a far guess can lead to. Returns `true` when one decreased the residual.
+    /// residual that a far guess can lead to. Returns `true` when one decreased the residual;
+    /// otherwise `self.ev` is the evaluation at the unmoved `z` still (each failed search's
+    /// trials are evaluated over it: the evaluation at `z` is copied back from a copy made once,
+    /// on the heap like the matrices below, not evaluated again, which for a generated block
+    /// would change its rotated sines and cosines in the last places).
     #[cold]
     #[inline(never)]
     pub(super) fn descend(
         &mut self,
         rows: &RowScales<N>,
         cfg: &NewtonConfig,
-        eval: &mut impl FnMut(&[f64; N]) -> BlockEval<N, K, J>,
+        eval: &mut impl FnMut(&[f64; N], &mut BlockEval<N, K, J>),
     ) -> bool {
         let s = &rows.s;
         let (a, g) = normal_equations(self.ev, s);
@@ -135,6 +140,8 @@ impl<const N: usize, const K: usize, J: BlockJacobian<N>> Iter<'_, N, K, J> {
         // The damped copy and its factorisation on the heap too, made once for the four dampings.
         let mut damped = boxed_zeros::<N>();
         let mut lu = Lu::boxed_unfactored();
+        // The evaluation at `z`, made a copy of before the first search.
+        let mut at_z: Option<Box<BlockEval<N, K, J>>> = None;
         for mu in [1e-9, 1e-6, 1e-3, 1.0] {
             damped.copy_from_slice(&*a);
             for k in 0..N {
@@ -151,9 +158,14 @@ impl<const N: usize, const K: usize, J: BlockJacobian<N>> Iter<'_, N, K, J> {
             }
             let phi0 = sum_sq_scaled(&self.ev.f, rows);
             let slope = directional_slope(self.ev, s, &dz);
-            if !(slope.is_nan() || slope >= 0.0) && self.search(&dz, rows, phi0, slope, 1.0, cfg, eval) {
+            if slope.is_nan() || slope >= 0.0 {
+                continue;
+            }
+            let at_z = at_z.get_or_insert_with(|| Box::new(*self.ev));
+            if self.search(&dz, rows, phi0, slope, 1.0, cfg, eval) {
                 return true;
             }
+            *self.ev = **at_z;
         }
         false
     }

@@ -8,7 +8,8 @@ pub(super) struct Iter<'e, const N: usize, const K: usize, J> {
     pub(super) z: [f64; N],
     /// Where the iteration started.
     pub(super) guess: &'e [f64; N],
-    /// The evaluation at `z`.
+    /// The evaluation at `z` (a trial's while the trial is judged: each evaluation is written
+    /// over it in place).
     pub(super) ev: &'e mut BlockEval<N, K, J>,
     pub(super) iterations: u32,
     pub(super) evaluations: u32,

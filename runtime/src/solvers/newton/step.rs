@@ -35,30 +35,34 @@ pub(super) fn newton_step<const N: usize, const K: usize, J: BlockJacobian<N>>(
 /// Moves `z` (evaluated as `ev`) to `z + dz` and its evaluation, and returns the scaled residual
 /// there, when that residual is at most `bound` (NaN fails); otherwise leaves both as they are:
 /// a final correction is kept only if it did not make things worse (rounding noise near a
-/// singular position can). The new evaluation is moved into `ev` once (a large block's
-/// evaluation is kilobytes).
+/// singular position can). The new evaluation is written over `ev` in place; the evaluation at
+/// `z` is copied aside first and copied back if the correction is undone (one copy either way,
+/// as moving a new evaluation into `ev` was; copied back rather than evaluated again, which for
+/// a generated block would rotate its sines and cosines back to a few units in the last place
+/// off the values it had).
 #[inline(always)]
 pub(super) fn evaluated_correction<const N: usize, const K: usize, J: BlockJacobian<N>>(
     z: &mut [f64; N],
     ev: &mut BlockEval<N, K, J>,
     dz: &[f64; N],
     bound: f64,
-    eval: &mut impl FnMut(&[f64; N]) -> BlockEval<N, K, J>,
+    eval: &mut impl FnMut(&[f64; N], &mut BlockEval<N, K, J>),
     mags: &impl MagnitudesOf<N, K, J>,
 ) -> Option<f64> {
     let mut z1 = *z;
     for c in 0..N {
         z1[c] += dz[c];
     }
-    let ev1 = eval(&z1);
+    let before = *ev;
+    eval(&z1, ev);
     let (current, fallback);
-    let m = magnitudes_at!(mags, &ev1, current);
-    let rho = scaled_residual(&ev1.f, rows_at!(m, &ev1, fallback));
+    let m = magnitudes_at!(mags, &*ev, current);
+    let rho = scaled_residual(&ev.f, rows_at!(m, &*ev, fallback));
     if rho <= bound {
         *z = z1;
-        *ev = ev1;
         Some(rho)
     } else {
+        *ev = before;
         None
     }
 }

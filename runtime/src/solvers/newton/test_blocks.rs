@@ -14,7 +14,15 @@ pub(super) fn solve<const N: usize, const K: usize>(
     mut eval: impl FnMut(&[f64; N]) -> BlockEval<N, K>,
 ) -> Result<(Solved<N>, BlockEval<N, K>), BlockFailure> {
     let mut ev = eval(&z0);
-    newton(z0, &mut ev, cfg, eval, &mags).map(|s| (s, ev))
+    newton(z0, &mut ev, cfg, in_place(eval), &mags).map(|s| (s, ev))
+}
+
+/// The evaluation closure the solver takes (one that writes into its slot) from one that
+/// returns its evaluation: the tests' blocks are small, and written more plainly returning.
+pub(super) fn in_place<const N: usize, const K: usize, J>(
+    mut eval: impl FnMut(&[f64; N]) -> BlockEval<N, K, J>,
+) -> impl FnMut(&[f64; N], &mut BlockEval<N, K, J>) {
+    move |z, ev| *ev = eval(z)
 }
 
 /// An evaluation whose magnitudes depend on the unknowns: `scale` and `unit` kept after
