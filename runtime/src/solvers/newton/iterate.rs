@@ -254,8 +254,8 @@ impl<const N: usize, const K: usize, J: BlockJacobian<N>> Iter<'_, N, K, J> {
         let moved_rho = scaled_residual(&self.ev.f, rows);
         let (dz, _) = newton_step(self.ev, rows);
         let finite = dz.iter().all(|v| v.is_finite());
-        self.evaluations += u32::from(finite);
-        let corrected = finite && evaluated_correction(&mut self.z, self.ev, &dz, bound, eval, mags).is_some();
+        let corrected = finite
+            && evaluated_correction(&mut self.z, self.ev, &dz, bound, eval, mags, &mut self.evaluations).is_some();
         // NaN fails the comparison: not kept.
         let kept = corrected || moved_rho <= bound;
         if !kept {
@@ -278,8 +278,7 @@ impl<const N: usize, const K: usize, J: BlockJacobian<N>> Iter<'_, N, K, J> {
         eval: &mut impl FnMut(&[f64; N], &mut BlockEval<N, K, J>),
         mags: &impl MagnitudesOf<N, K, J>,
     ) {
-        self.evaluations += 1;
-        evaluated_correction(&mut self.z, self.ev, dz, rho.max(cfg.residual_tol), eval, mags);
+        evaluated_correction(&mut self.z, self.ev, dz, rho.max(cfg.residual_tol), eval, mags, &mut self.evaluations);
     }
 }
 

@@ -10,9 +10,12 @@
 //! and copied wherever the compiler cannot make it in the slot (as for a closure that owns its
 //! solve's sine and cosine cache). The solver keeps one slot, the evaluation at the current
 //! iterate: a trial is evaluated over it, and where a trial is rejected and the iterate's
-//! evaluation is read again it is either evaluated again (after a rejected step) or copied
-//! back from a copy made before the trial (a final correction undone, the descent's failed
-//! searches), never left holding the trial's.
+//! evaluation is read again, the slot is never left holding the trial's. After a rejected step
+//! or an undone final correction (both rare) the iterate is evaluated again: the same values,
+//! to the rounding of a generated block's sines and cosines (rotated back from the trial's), at
+//! no cost to the common path, where a copy kept for the undo would cost every checked
+//! correction a copy of the evaluation. Between the descent's searches (a cold path that reads
+//! the iterate's Jacobian again) it is copied back from a copy made once.
 //!
 //! **Scale-free tests.** Every test is made in the units of the problem: residual `i` is divided
 //! by its row magnitude `scale_i` (see [`Magnitudes`]), a step in unknown `j` by that
@@ -127,20 +130,20 @@ fn checked_free_correction<const N: usize, const K: usize, J: BlockJacobian<N>>(
     mags: &impl MagnitudesOf<N, K, J>,
     last: &mut impl LastStep<N, K, J>,
 ) -> Solved<N> {
-    let mut z = z0;
-    let residual = evaluated_correction(&mut z, ev, dz, rho0, eval, mags).unwrap_or(rho0);
+    let (mut z, mut evaluations) = (z0, 1);
+    let residual = evaluated_correction(&mut z, ev, dz, rho0, eval, mags, &mut evaluations).unwrap_or(rho0);
     last.keep(ev);
-    Solved { z, iterations: 0, evaluations: 2, residual, termination: NewtonStop::ResidualTolerance }
+    Solved { z, iterations: 0, evaluations, residual, termination: NewtonStop::ResidualTolerance }
 }
 
 /// Solves one block from the guess `z0`, whose evaluation the caller has made into `ev`: the
 /// iteration updates it in place (`eval(z, ev)` writes the evaluation at `z` over it, every
 /// field), and on return it is the evaluation at the returned position ([`Solved`]). The
 /// caller's slot, not a value moved through the result or returned by `eval`: a block's
-/// evaluation is hundreds of bytes (a large sparse block's, kilobytes). In the common warm-started case this costs one evaluation and one small
-/// factorisation: the guess already meets the tolerance and is corrected once by the Newton step
-/// (its Jacobian is the one the analogs use). The iteration itself is a separate, out-of-line
-/// function.
+/// evaluation is hundreds of bytes (a large sparse block's, kilobytes). In the common
+/// warm-started case this costs one evaluation and one small factorisation: the guess already
+/// meets the tolerance and is corrected once by the Newton step (its Jacobian is the one the
+/// analogs use). The iteration itself is a separate, out-of-line function.
 #[doc(hidden)]
 #[inline(always)]
 pub fn newton<const N: usize, const K: usize>(
@@ -238,6 +241,27 @@ mod tests {
         let (again, _) = solve(s.z, &NewtonConfig::default(), circle).unwrap();
         assert_eq!(again.iterations, 0);
         assert_eq!(again.evaluations, 1);
+    }
+
+    /// A final correction that makes the residual worse is undone, and the evaluation left in
+    /// the caller's slot is the one at the returned position (every field), not the rejected
+    /// correction's. The block `x = 1` is evaluated with noise exactly at its root (where the
+    /// correction from a guess one part in 10^13 off lands, `x0 + (1 - x0)` being exact).
+    #[test]
+    fn an_undone_correction_leaves_the_returned_positions_evaluation() {
+        let noisy = |z: &[f64; 1]| {
+            let f = if z[0] == 1.0 { 1e-9 } else { z[0] - 1.0 };
+            BlockEval::<1, 1> { f: [f], j: [[1.0]], keep: [z[0]] }
+        };
+        let x0 = 1.0 + 1e-13;
+        let mags = Magnitudes::new([1.0], [1.0]);
+        let mut ev = noisy(&[x0]);
+        let s = newton([x0], &mut ev, &NewtonConfig::default(), test_blocks::in_place(noisy), &mags).unwrap();
+        assert_eq!(s.z, [x0]);
+        assert_eq!(s.residual.to_bits(), (x0 - 1.0).to_bits());
+        assert_eq!((ev.f[0].to_bits(), ev.keep), ((x0 - 1.0).to_bits(), [x0]));
+        // The guess's evaluation, the correction's and the guess's again.
+        assert_eq!(s.evaluations, 3);
     }
 
     /// The same circle in units a billion times smaller: the same iterations and the same

@@ -33,13 +33,15 @@ pub(super) fn newton_step<const N: usize, const K: usize, J: BlockJacobian<N>>(
 }
 
 /// Moves `z` (evaluated as `ev`) to `z + dz` and its evaluation, and returns the scaled residual
-/// there, when that residual is at most `bound` (NaN fails); otherwise leaves both as they are:
-/// a final correction is kept only if it did not make things worse (rounding noise near a
-/// singular position can). The new evaluation is written over `ev` in place; the evaluation at
-/// `z` is copied aside first and copied back if the correction is undone (one copy either way,
-/// as moving a new evaluation into `ev` was; copied back rather than evaluated again, which for
-/// a generated block would rotate its sines and cosines back to a few units in the last place
-/// off the values it had).
+/// there, when that residual is at most `bound` (NaN fails); otherwise leaves `z` as it is and
+/// `ev` its evaluation: a final correction is kept only if it did not make things worse
+/// (rounding noise near a singular position can). Counts its evaluations in `evaluations`.
+///
+/// The new evaluation is written over `ev` in place, with no copy of the old one: a correction
+/// undone (rare) evaluates `z` again instead, which gives the values `ev` had to the rounding of
+/// a generated block's sines and cosines (its `NearTrig` rotates them back from the
+/// correction's), as after a rejected Newton step. A copy kept for the undo would cost every
+/// checked correction a copy of the evaluation (kilobytes for a large sparse block).
 #[inline(always)]
 pub(super) fn evaluated_correction<const N: usize, const K: usize, J: BlockJacobian<N>>(
     z: &mut [f64; N],
@@ -48,13 +50,14 @@ pub(super) fn evaluated_correction<const N: usize, const K: usize, J: BlockJacob
     bound: f64,
     eval: &mut impl FnMut(&[f64; N], &mut BlockEval<N, K, J>),
     mags: &impl MagnitudesOf<N, K, J>,
+    evaluations: &mut u32,
 ) -> Option<f64> {
     let mut z1 = *z;
     for c in 0..N {
         z1[c] += dz[c];
     }
-    let before = *ev;
     eval(&z1, ev);
+    *evaluations += 1;
     let (current, fallback);
     let m = magnitudes_at!(mags, &*ev, current);
     let rho = scaled_residual(&ev.f, rows_at!(m, &*ev, fallback));
@@ -62,7 +65,8 @@ pub(super) fn evaluated_correction<const N: usize, const K: usize, J: BlockJacob
         *z = z1;
         Some(rho)
     } else {
-        *ev = before;
+        eval(z, ev);
+        *evaluations += 1;
         None
     }
 }
