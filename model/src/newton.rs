@@ -5,7 +5,10 @@
 //! The evaluation's sines and cosines are rotated from the solve's previous evaluation, as the
 //! emitted block's `NearTrig` rotates them (`crate::near`): its slots are made fresh before
 //! each solve and kept before each evaluation with the evaluation's unknowns, so that
-//! [`restore_returned`]'s replay of an earlier evaluation gives the values it gave.
+//! [`restore_returned`]'s replay of an earlier evaluation gives the values it gave. The solver
+//! writes each evaluation over its one slot, so on every path that returns a solution the
+//! returned evaluation is the last one made and the registers already hold it; the replay guards
+//! that invariant (a debug build asserts that it finds the returned evaluation).
 
 use crate::factor::{Fac, LuSlot};
 use crate::near::NearSlots;
@@ -145,11 +148,12 @@ where
 }
 
 /// Leaves the block's registers as the solver's result needs them: holding the returned
-/// evaluation, which the solver may have made before a rejected trial (or, after a correction
-/// at the rounding level, before that correction), so the most recent evaluation whose
-/// residuals `f` and Jacobian values `jac` (in registers `jac_regs`) are the returned ones is made
-/// again from `recent`, its rotation slots as they were before it (`NearSlots::save`), so
-/// that it gives the values it gave; then the solution `z`.
+/// evaluation (after a correction at the rounding level, the one before that correction, which
+/// is not evaluated). The solver writes every evaluation over its slot, so that is the last one
+/// made and the registers hold it already. Should a path return an earlier one, the most recent
+/// evaluation whose residuals `f` and Jacobian values `jac` (in registers `jac_regs`) are the
+/// returned ones is made again from `recent`, its rotation slots as they were before it
+/// (`NearSlots::save`), so that it gives the values it gave. Then the solution `z`.
 pub(crate) fn restore_returned<const P: usize>(
     p: &NewtonProg,
     r: &mut [f64],
@@ -175,6 +179,7 @@ pub(crate) fn restore_returned<const P: usize>(
             }
         }
     }
+    debug_assert!(matches(r), "the returned evaluation is none of the last {RECENT} made");
     for (k, &reg) in p.unknown_regs.iter().enumerate() {
         r[reg as usize] = z[k];
     }

@@ -30,7 +30,7 @@ pub(super) const LINEAR_CONTRACTION: f64 = 0.1;
 const LINEAR_EXTRA: u32 = 4;
 
 /// Newton iterations from `z0`, whose evaluation is `ev` (updated in place: `eval` writes each
-/// trial's evaluation over it, never a copy). The generated code calls it through
+/// trial's evaluation over it; only the descent's failed searches restore it from a copy). The generated code calls it through
 /// [`newton`] when the guess does not meet the tolerance; the correction at a converged
 /// iterate comes from `last`.
 ///

@@ -119,10 +119,10 @@ impl<const N: usize, const K: usize, J: BlockJacobian<N>> Iter<'_, N, K, J> {
     /// Where the Newton step fails (singular Jacobian, no decrease), Levenberg-Marquardt steps
     /// of increasing damping, down to steepest descent: they leave saddles of the squared
     /// residual that a far guess can lead to. Returns `true` when one decreased the residual;
-    /// otherwise `self.ev` is the evaluation at the unmoved `z` still (each failed search's
-    /// trials are evaluated over it: the evaluation at `z` is copied back from a copy made once,
-    /// on the heap like the matrices below, not evaluated again, which for a generated block
-    /// would change its rotated sines and cosines in the last places).
+    /// otherwise `self.ev` is the evaluation at the unmoved `z` still: each failed search's
+    /// trials are evaluated over it, and it is copied back from a copy made once (on the heap,
+    /// like the matrices below) rather than evaluated again after each of up to four searches,
+    /// so that the next search starts from the same bits as the first.
     #[cold]
     #[inline(never)]
     pub(super) fn descend(
