@@ -26,13 +26,14 @@ high=4000
 if [ "$#" -gt 0 ]; then
   variants=("$@")
 else
-  variants=(hand point sweep hand-sweep
-    four-bar-hand four-bar-point four-bar-sweep four-bar-hand-sweep
-    gear-lever-hand gear-lever-point gear-lever-sweep gear-lever-hand-sweep
-    hand@20000 point@20000 sweep@20000 hand-sweep@20000
+  variants=(hand point sweep hand-sweep hand-sweep-checked
+    four-bar-hand four-bar-point four-bar-sweep four-bar-hand-sweep four-bar-hand-sweep-checked
+    gear-lever-hand gear-lever-point gear-lever-sweep gear-lever-hand-sweep gear-lever-hand-sweep-checked
+    hand@20000 point@20000 sweep@20000 hand-sweep@20000 hand-sweep-checked@20000
     four-bar-hand@20000 four-bar-point@20000 four-bar-sweep@20000 four-bar-hand-sweep@20000
+    four-bar-hand-sweep-checked@20000
     gear-lever-hand@20000 gear-lever-point@20000 gear-lever-sweep@20000
-    gear-lever-hand-sweep@20000
+    gear-lever-hand-sweep@20000 gear-lever-hand-sweep-checked@20000
     class-four-hand class-four-point
     class-four-hand-taylor class-four-point-taylor class-four-sweep
     class-four-hand@1000000 class-four-point@1000000

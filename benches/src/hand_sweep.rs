@@ -76,6 +76,20 @@ pub trait HandSweep<const N: usize, const NP: usize>: Clone {
     fn sync(&mut self, x: f64) -> Result<(Step<N>, [f64; NP]), Failed>;
     /// The sample one step after the previous one, by rotation and increments.
     fn advance(&mut self) -> Result<(Step<N>, [f64; NP]), Failed>;
+    /// The first sample of a sweep, at input `x`: [`HandSweep::sync`], unless the sweep has a
+    /// carried state to set up that a sample does not judge (see
+    /// [`crate::hand_check::Checked`]).
+    #[inline(always)]
+    fn start(&mut self, x: f64) -> Result<(Step<N>, [f64; NP]), Failed> {
+        self.sync(x)
+    }
+    /// Whether the next sample must come from libm ([`HandSweep::sync`]) whatever the period:
+    /// never, unless the sweep watches its conditioning (see [`crate::hand_check::Checked`]).
+    /// A constant `false` costs the sweeps that do not nothing.
+    #[inline(always)]
+    fn exact_next(&self) -> bool {
+        false
+    }
 }
 
 /// The re-synchronisation period of every sweep here, chosen from the drift measured over 10^6
@@ -105,7 +119,7 @@ pub struct RhombicSweep<const TERMS: usize = RHOMBIC_TERMS> {
     /// `[s1, c1, sa, ca]` of the previous sample.
     crank: [f64; 4],
     /// `[s2, c2, s4, c4]` of the previous sample.
-    rods: [f64; 4],
+    pub(crate) rods: [f64; 4],
     phi2: f64,
     phi4: f64,
 }
@@ -171,13 +185,13 @@ impl<const TERMS: usize> HandSweep<4, 0> for RhombicSweep<TERMS> {
 /// rotated, the coupler's and rocker's angles advanced by `TERMS` terms of `asin`'s series.
 #[derive(Clone, Debug)]
 pub struct FourBarSweep<const TERMS: usize = FOUR_BAR_TERMS> {
-    closed: FourBarClosed,
+    pub(crate) closed: FourBarClosed,
     turn: usize,
     period: usize,
     rotation: Rotation,
     /// `[s1, c1, sb, cb, sg, cg]` of the previous sample.
-    sines: [f64; 6],
-    beta: f64,
+    pub(crate) sines: [f64; 6],
+    pub(crate) beta: f64,
     gamma: f64,
 }
 
@@ -241,7 +255,7 @@ impl<const TERMS: usize> HandSweep<2, 6> for FourBarSweep<TERMS> {
 /// `TERMS` terms of `asin`'s series of the cross product of the pin's directions.
 #[derive(Clone, Debug)]
 pub struct GearLeverSweep<const TERMS: usize = GEAR_LEVER_TERMS> {
-    closed: GearLeverClosed,
+    pub(crate) closed: GearLeverClosed,
     turn: usize,
     period: usize,
     carrier: Rotation,

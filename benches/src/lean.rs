@@ -164,8 +164,9 @@ impl HandSweepCursor {
     }
 
     /// The next sample of `s` and its input: re-synchronised with libm ([`HandSweep::sync`])
-    /// every `s.period()` samples and at the first of every turn (input 0), advanced by
-    /// rotation ([`HandSweep::advance`]) otherwise.
+    /// every `s.period()` samples, at the first of every turn (input 0) and where the sweep
+    /// asks for it ([`HandSweep::exact_next`]), advanced by rotation ([`HandSweep::advance`])
+    /// otherwise.
     #[inline(always)]
     pub fn next<S: HandSweep<N, NP>, const N: usize, const NP: usize>(
         &mut self,
@@ -173,7 +174,7 @@ impl HandSweepCursor {
     ) -> Result<(f64, Step<N>, [f64; NP]), Failed> {
         let x = next_input(&mut self.k, self.turn, self.h);
         self.since_sync += 1;
-        let (step, point) = if self.k == 0 || self.since_sync == self.period {
+        let (step, point) = if self.k == 0 || self.since_sync == self.period || s.exact_next() {
             self.since_sync = 0;
             s.sync(x)?
         } else {
@@ -186,7 +187,7 @@ impl HandSweepCursor {
 /// The first sample of a hand-written sweep, at input 0 (out of the loop, as [`first_step`]).
 #[inline(never)]
 fn first_sync<S: HandSweep<N, NP>, const N: usize, const NP: usize>(s: &mut S) -> Result<(), Failed> {
-    s.sync(0.0).map(|_| ())
+    s.start(0.0).map(|_| ())
 }
 
 /// `steps` samples of the hand-written sweep `s` (see [`hand_sweep_fold`]): the sum of every

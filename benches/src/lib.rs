@@ -14,6 +14,7 @@ pub mod class_four;
 pub mod decls;
 pub mod expansion;
 pub mod hand;
+pub mod hand_check;
 pub mod hand_sweep;
 pub mod kinloop_variants;
 pub mod lean;

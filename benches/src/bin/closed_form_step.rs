@@ -9,7 +9,10 @@
 //!   closed forms of `kinloop_bench::hand`);
 //! * the sweep recipe written by hand (`kinloop_bench::hand_sweep`: inputs' sines and cosines
 //!   rotated, angles advanced by increments, libm only to re-synchronise): `hand-sweep`,
-//!   `four-bar-hand-sweep`, `gear-lever-hand-sweep`;
+//!   `four-bar-hand-sweep`, `gear-lever-hand-sweep`; the same with kinloop's per-sample checks
+//!   (`kinloop_bench::hand_check`: prediction, determinant signs, pivot ratio, slopes, angles,
+//!   the gear-lever's positions): `hand-sweep-checked`, `four-bar-hand-sweep-checked`,
+//!   `gear-lever-hand-sweep-checked`;
 //! * class IV block (Newton): `class-four-hand` (the hand-written Newton),
 //!   `class-four-hand-near` (the same with each iterate's sines and cosines rotated from the
 //!   previous iterate's, as kinloop's Newton blocks do), `class-four-point`,
@@ -34,6 +37,7 @@
 use kinloop_bench::class_four::{self, HandNewton, HandNewtonNear};
 use kinloop_bench::decls::{ClassFour, FourBarSens, RhombicDrive, four_sens};
 use kinloop_bench::hand::{FOUR_BAR, FourBarClosed, GearLeverClosed, gear_lever};
+use kinloop_bench::hand_check::Checked;
 use kinloop_bench::hand_sweep::{
     FOUR_BAR_TERMS, FourBarSweep, GEAR_LEVER_TERMS, GearLeverSweep, HandSweep, PERIOD, RHOMBIC_TERMS, RhombicSweep,
 };
@@ -114,6 +118,9 @@ fn main() {
     let acc = match variant {
         "hand" => steps_of(&ClosedForm::new(&PARAMS), g, steps),
         "hand-sweep" => hand_sweep_of(RhombicSweep::<RHOMBIC_TERMS>::new(&PARAMS, turn(), PERIOD), steps),
+        "hand-sweep-checked" => {
+            hand_sweep_of(Checked::new(RhombicSweep::<RHOMBIC_TERMS>::new(&PARAMS, turn(), PERIOD)), steps)
+        }
         "point" => steps_of(&Kinloop::<RhombicDrive, 0>::new(m), g, steps),
         "newton" => steps_of(&Kinloop::<RhombicNewton, 0>::new(RhombicNewton::default()), g, steps),
         "sweep" => sweep_of(&m, g, steps),
@@ -124,6 +131,9 @@ fn main() {
         "four-bar-hand" => steps_of(&four_hand, gf, steps),
         "four-bar-hand-sweep" => {
             hand_sweep_of(FourBarSweep::<FOUR_BAR_TERMS>::new(four_hand, turn(), PERIOD, gf), steps)
+        }
+        "four-bar-hand-sweep-checked" => {
+            hand_sweep_of(Checked::new(FourBarSweep::<FOUR_BAR_TERMS>::new(four_hand, turn(), PERIOD, gf)), steps)
         }
         "four-bar-point" => steps_of(&Kinloop::<FourBar, 2>::new(four), gf, steps),
         "four-bar-sweep" => sweep_of(&four, gf, steps),
@@ -138,6 +148,9 @@ fn main() {
         "gear-lever-hand" => steps_of(&gear_hand, gg, steps),
         "gear-lever-hand-sweep" => {
             hand_sweep_of(GearLeverSweep::<GEAR_LEVER_TERMS>::new(gear_hand, turn(), PERIOD, gg), steps)
+        }
+        "gear-lever-hand-sweep-checked" => {
+            hand_sweep_of(Checked::new(GearLeverSweep::<GEAR_LEVER_TERMS>::new(gear_hand, turn(), PERIOD, gg)), steps)
         }
         "gear-lever-point" => steps_of(&Kinloop::<GearLever, 2>::new(gear), gg, steps),
         "gear-lever-sweep" => sweep_of(&gear, gg, steps),
