@@ -332,7 +332,8 @@ impl<const TERMS: usize> Branch<2, 6> for FourBarSweep<TERMS> {
 /// kinloop raises that column's scale to its lever floor, so that the pin passing near the pivot,
 /// where `phi` is undetermined, shows as singular: over its own norm `s` the ratio would be 1
 /// everywhere). The length `s` is judged (kinloop: not a closed-form angle), in kinloop's unit of
-/// a slide, its loop's lengths `l_c + l_p`.
+/// a slide, its loop's lengths `l_c + l_p + s` at the sweep's start (kinloop takes its units
+/// there): at input 0, where `s = l_c + l_p`, twice `l_c + l_p`.
 impl<const TERMS: usize> Branch<2, 6> for GearLeverSweep<TERMS> {
     const ANGLES: [bool; 2] = [false, true];
 
@@ -343,7 +344,8 @@ impl<const TERMS: usize> Branch<2, 6> for GearLeverSweep<TERMS> {
     }
 
     fn judged_unit(&self) -> f64 {
-        (self.closed.l_c + self.closed.l_p).max(1.0)
+        // The loop's lengths with the slide's at input 0, where every sweep here starts.
+        (2.0 * (self.closed.l_c + self.closed.l_p)).max(1.0)
     }
 }
 
@@ -354,3 +356,6 @@ impl<const TERMS: usize> GearLeverSweep<TERMS> {
         1.0 / (self.closed.l_c + self.closed.l_p)
     }
 }
+
+#[cfg(test)]
+mod tests;
