@@ -169,6 +169,7 @@ impl<S> Checked<S> {
 
     /// The measures of `step` against the prediction from the previous sample (kinloop's
     /// `predict` and `judge`, with one input: the step `h`, the slopes `q'`).
+    #[allow(clippy::neg_cmp_op_on_partial_ord)] // the negation is what makes a NaN too long
     #[inline(always)]
     fn measure<const N: usize, const NP: usize>(&self, step: &Step<N>) -> Measures
     where

@@ -64,14 +64,16 @@ fn the_judged_unknowns_are_kinloops() {
     let (follow, angles) = flags(&PARAMS.kinloop());
     assert_eq!(follow, [false, false, true, true]);
     assert_eq!(angles[..2], <RhombicSweep as Branch<4, 0>>::ANGLES);
+    // kinloop's `positions_judged`: some judged unknown is not a closed-form angle.
+    assert_eq!(!(angles[0] & angles[1]), <RhombicSweep as Branch<4, 0>>::POSITIONS_JUDGED);
     let (follow, angles) = flags(&FOUR_BAR);
     assert_eq!(follow, [false; 2]);
     assert_eq!(angles, <FourBarSweep as Branch<2, 6>>::ANGLES);
+    assert_eq!(!(angles[0] & angles[1]), <FourBarSweep as Branch<2, 6>>::POSITIONS_JUDGED);
     let (follow, angles) = flags(&gear_lever());
     assert_eq!(follow, [false; 2]);
     assert_eq!(angles, <GearLeverSweep as Branch<2, 6>>::ANGLES);
-    assert!(<GearLeverSweep as Branch<2, 6>>::POSITIONS_JUDGED);
-    assert!(!<FourBarSweep as Branch<2, 6>>::POSITIONS_JUDGED && !<RhombicSweep as Branch<4, 0>>::POSITIONS_JUDGED);
+    assert_eq!(!(angles[0] & angles[1]), <GearLeverSweep as Branch<2, 6>>::POSITIONS_JUDGED);
 }
 
 /// The gear-lever's length is judged in kinloop's unit of it at the sweep's start (its loop's
