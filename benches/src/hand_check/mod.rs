@@ -71,8 +71,14 @@ pub trait Branch<const N: usize, const NP: usize>: HandSweep<N, NP> {
     const POSITIONS_JUDGED: bool = !(Self::ANGLES[0] & Self::ANGLES[1]);
     /// At the last sample (`step`): the determinant signs of the blocks (bit `b` set where block
     /// `b`'s determinant is negative) and the smallest pivot ratio of the blocks, each block's
-    /// determinant over the product of its columns' norms.
-    fn health(&self, step: &Step<N>) -> (u8, f64);
+    /// determinant over the product of its columns' norms; `unit` is [`Branch::pivot_unit`],
+    /// computed once by the caller.
+    fn health(&self, step: &Step<N>, unit: f64) -> (u8, f64);
+    /// A constant of the pivot ratio that [`Branch::health`] is given rather than computing it
+    /// every sample (the reciprocal of a lever floor; 1 where there is none).
+    fn pivot_unit(&self) -> f64 {
+        1.0
+    }
     /// The largest unit of a judged unknown per unit of input (one for an angle): the floor of
     /// the slope-change bound is [`MAX_SLOPE_CHANGE`] times it.
     fn judged_unit(&self) -> f64;
@@ -98,6 +104,8 @@ pub struct Checked<S> {
     slope_abs: f64,
     /// [`MAX_SLOPE_CHANGE`] times the judged unknowns' largest unit.
     slope_floor: f64,
+    /// [`Branch::pivot_unit`].
+    pivot_unit: f64,
     /// The checks the last failed sample failed ([`fired`]'s bits; 0 while none has failed).
     fired: u8,
     /// Samples that came from libm because the previous pivot ratio was small.
@@ -128,6 +136,7 @@ impl<S> Checked<S> {
         let h = TAU / turn as f64;
         let span = h * (turn - 1) as f64;
         let slope_floor = MAX_SLOPE_CHANGE * s.judged_unit();
+        let pivot_unit = s.pivot_unit();
         Checked {
             inner: s,
             q: [0.0; 2],
@@ -138,6 +147,7 @@ impl<S> Checked<S> {
             h,
             slope_abs: CORRECTOR_ABS / span,
             slope_floor,
+            pivot_unit,
             fired: 0,
             exact_samples: 0,
         }
@@ -196,7 +206,7 @@ impl<S> Checked<S> {
             }
             slope_err = slope_err.max((step.dq[u] - slope1).abs());
         }
-        let (signs, pivot) = self.inner.health(step);
+        let (signs, pivot) = self.inner.health(step, self.pivot_unit);
         Measures {
             signs,
             pivot,
@@ -257,7 +267,7 @@ impl<S: Branch<N, NP>, const N: usize, const NP: usize> HandSweep<N, NP> for Che
     #[inline(always)]
     fn start(&mut self, x: f64) -> Result<(Step<N>, [f64; NP]), Failed> {
         let (step, point) = self.inner.start(x)?;
-        let (signs, pivot) = self.inner.health(&step);
+        let (signs, pivot) = self.inner.health(&step, self.pivot_unit);
         self.signs = signs;
         self.exact = pivot < ROTATE_MIN_PIVOT;
         self.keep(&step);
@@ -297,7 +307,7 @@ impl<const TERMS: usize> Branch<4, 0> for RhombicSweep<TERMS> {
     const ANGLES: [bool; 2] = [true, true];
 
     #[inline(always)]
-    fn health(&self, _step: &Step<4>) -> (u8, f64) {
+    fn health(&self, _step: &Step<4>, _unit: f64) -> (u8, f64) {
         let [_, c2, _, c4] = self.rods;
         (u8::from(c2.is_sign_negative()) | (u8::from(c4.is_sign_negative()) << 1), c2.abs().min(c4.abs()))
     }
@@ -316,7 +326,7 @@ impl<const TERMS: usize> Branch<2, 6> for FourBarSweep<TERMS> {
     const ANGLES: [bool; 2] = [true, true];
 
     #[inline(always)]
-    fn health(&self, _step: &Step<2>) -> (u8, f64) {
+    fn health(&self, _step: &Step<2>, _unit: f64) -> (u8, f64) {
         let [_, _, sb, cb, sg, cg] = self.sines;
         let sbg = sb * cg - cb * sg;
         (u8::from(sbg.is_sign_negative()), sbg.abs())
@@ -339,22 +349,19 @@ impl<const TERMS: usize> Branch<2, 6> for GearLeverSweep<TERMS> {
     const ANGLES: [bool; 2] = [false, true];
 
     #[inline(always)]
-    fn health(&self, step: &Step<2>) -> (u8, f64) {
+    fn health(&self, step: &Step<2>, unit: f64) -> (u8, f64) {
         let s = step.q[0];
-        (u8::from(s.is_sign_negative()), s.abs() * self.inv_floor())
+        (u8::from(s.is_sign_negative()), s.abs() * unit)
+    }
+
+    /// `1 / (l_c + l_p)`, the reciprocal of the rocker column's lever floor.
+    fn pivot_unit(&self) -> f64 {
+        1.0 / (self.closed.l_c + self.closed.l_p)
     }
 
     fn judged_unit(&self) -> f64 {
         // The loop's lengths with the slide's at input 0, where every sweep here starts.
         (2.0 * (self.closed.l_c + self.closed.l_p)).max(1.0)
-    }
-}
-
-impl<const TERMS: usize> GearLeverSweep<TERMS> {
-    /// `1 / (l_c + l_p)`, the reciprocal of the rocker column's lever floor.
-    #[inline(always)]
-    fn inv_floor(&self) -> f64 {
-        1.0 / (self.closed.l_c + self.closed.l_p)
     }
 }
 

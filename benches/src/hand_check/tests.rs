@@ -105,7 +105,7 @@ fn the_pivot_ratios_are_kinloops_up_to_the_columns_scales() {
         let (step, _) = sweep.sync(x).unwrap();
         let kin = rhombic.kinematics_flat(&[x], &guess, &Default::default()).unwrap();
         guess = kin.q;
-        let (_, hand) = sweep.health(&step);
+        let (_, hand) = sweep.health(&step, sweep.pivot_unit());
         let ratio = hand / kin.health.min_pivot;
         assert!(
             (0.5f64.sqrt() - 1e-12..=1.0 + 1e-12).contains(&ratio),
@@ -120,7 +120,7 @@ fn the_pivot_ratios_are_kinloops_up_to_the_columns_scales() {
         let (step, _) = sweep.sync(x).unwrap();
         let kin = FOUR_BAR.kinematics_flat(&[x], &guess, &Default::default()).unwrap();
         guess = kin.q;
-        let (_, hand) = sweep.health(&step);
+        let (_, hand) = sweep.health(&step, sweep.pivot_unit());
         let ratio = hand / kin.health.min_pivot;
         assert!(
             (0.5 - 1e-12..=1.0 + 1e-12).contains(&ratio),
@@ -136,7 +136,7 @@ fn the_pivot_ratios_are_kinloops_up_to_the_columns_scales() {
         let (step, _) = sweep.sync(x).unwrap();
         let kin = m.kinematics_flat(&[x], &guess, &Default::default()).unwrap();
         guess = kin.q;
-        let (_, hand) = sweep.health(&step);
+        let (_, hand) = sweep.health(&step, sweep.pivot_unit());
         let ratio = hand / kin.health.min_pivot;
         assert!((0.5..=1.0 + 1e-12).contains(&ratio), "gear-lever at {x}: {hand} against {}", kin.health.min_pivot);
     }
