@@ -235,7 +235,7 @@ struct CountRow {
     target: Option<f64>,
 }
 
-const COUNT_ROWS: [CountRow; 17] = [
+const COUNT_ROWS: [CountRow; 23] = [
     CountRow {
         what: "rhombic drive, kinloop's own `Sweep`, 20,000 steps a turn",
         variant: "sweep@20000",
@@ -245,6 +245,18 @@ const COUNT_ROWS: [CountRow; 17] = [
     CountRow {
         what: "rhombic drive, the sweep recipe written by hand (no branch checks), 20,000 steps a turn",
         variant: "hand-sweep@20000",
+        reference: "hand@20000",
+        target: None,
+    },
+    CountRow {
+        what: "rhombic drive, the sweep recipe written by hand with kinloop's per-sample branch checks",
+        variant: "hand-sweep-checked",
+        reference: "hand",
+        target: None,
+    },
+    CountRow {
+        what: "rhombic drive, the sweep recipe written by hand with kinloop's per-sample branch checks, 20,000 steps a turn",
+        variant: "hand-sweep-checked@20000",
         reference: "hand@20000",
         target: None,
     },
@@ -267,6 +279,18 @@ const COUNT_ROWS: [CountRow; 17] = [
         target: None,
     },
     CountRow {
+        what: "four-bar with its coupler point, the sweep recipe written by hand with kinloop's per-sample branch checks",
+        variant: "four-bar-hand-sweep-checked",
+        reference: "four-bar-hand",
+        target: None,
+    },
+    CountRow {
+        what: "four-bar with its coupler point, the sweep recipe written by hand with kinloop's per-sample branch checks, 20,000 steps a turn",
+        variant: "four-bar-hand-sweep-checked@20000",
+        reference: "four-bar-hand@20000",
+        target: None,
+    },
+    CountRow {
         what: "four-bar with its coupler point, point step, 20,000 steps a turn",
         variant: "four-bar-point@20000",
         reference: "four-bar-hand@20000",
@@ -281,6 +305,18 @@ const COUNT_ROWS: [CountRow; 17] = [
     CountRow {
         what: "gear-lever rocker, the sweep recipe written by hand (no branch checks), 20,000 steps a turn",
         variant: "gear-lever-hand-sweep@20000",
+        reference: "gear-lever-hand@20000",
+        target: None,
+    },
+    CountRow {
+        what: "gear-lever rocker, the sweep recipe written by hand with kinloop's per-sample branch checks",
+        variant: "gear-lever-hand-sweep-checked",
+        reference: "gear-lever-hand",
+        target: None,
+    },
+    CountRow {
+        what: "gear-lever rocker, the sweep recipe written by hand with kinloop's per-sample branch checks, 20,000 steps a turn",
+        variant: "gear-lever-hand-sweep-checked@20000",
         reference: "gear-lever-hand@20000",
         target: None,
     },
