@@ -7,7 +7,8 @@
 //! ([`ClosedForm::rods`], [`ClosedForm::assemble`], [`FourBarClosed::pose`],
 //! [`FourBarClosed::finish`], [`GearLeverClosed::pose`], [`GearLeverClosed::finish`]), so a
 //! sample computes the same twelve numbers, with the closed form's own assembly tests and no
-//! other check: no prediction, no determinant signs, no step control.
+//! other check: no prediction, no determinant signs, no step control
+//! ([`crate::hand_check::Checked`] adds the checks kinloop's sweep makes on every step).
 //!
 //! The loop that drives a sweep along its turns is [`crate::lean::hand_sweep_turns`].
 

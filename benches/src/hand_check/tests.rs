@@ -171,7 +171,8 @@ fn four_bar_sweep(closed: FourBarClosed, turn: usize) -> FourBarSweep {
 }
 
 /// The four-bar's closed form switched to the other assembly mode mid-sweep (as a solve that
-/// slid onto the mirror image): the determinant's sign flips.
+/// slid onto the mirror image): the determinant's sign flips (and the mirror image is more than
+/// a radian away, its slopes far from the prediction: those checks fire with it).
 #[test]
 fn a_change_of_assembly_mode_flips_the_determinants_sign() {
     let (fired, at) = fire(four_bar_sweep(FourBarClosed::of(&FOUR_BAR), 720), 400, 100, |s| s.closed.left = false);
@@ -179,7 +180,19 @@ fn a_change_of_assembly_mode_flips_the_determinants_sign() {
     assert!(fired & fired::FLIP != 0, "{fired:#b}");
 }
 
-/// The carried rocker angle a turn off (an angle on the wrong turn): only the angle's cap
+/// The carried signs forced to the other assembly mode (the sweep's first sample on the mirror
+/// image): the first judged sample, on the branch, fails the determinant's sign alone.
+#[test]
+fn carried_signs_of_the_other_mode_fail_the_sign_check_alone() {
+    let mut s = Checked::new(four_bar_sweep(FourBarClosed::of(&FOUR_BAR), 720));
+    s.start(0.0).unwrap();
+    s.signs ^= 1;
+    let mut cursor = HandSweepCursor::new(&s);
+    assert!(cursor.next(&mut s).is_err());
+    assert_eq!(s.fired(), fired::FLIP);
+}
+
+/// The carried coupler angle a turn off (an angle on the wrong turn): only the angle's cap
 /// fires (the slopes and the signs are those of the branch).
 #[test]
 fn an_angle_a_turn_off_exceeds_the_angle_cap() {
@@ -198,14 +211,15 @@ fn a_jump_of_the_slopes_fails_the_slope_check() {
 }
 
 /// The gear-lever's carrier 2 % longer mid-sweep: the length `s` jumps by about 0.04, beyond
-/// `max_dist` (a quarter of the predicted change, at most 0.014 along a turn of 720).
+/// `max_dist` (a quarter of the predicted change, at most 0.014 along a turn of 720): only that
+/// check fires.
 #[test]
 fn a_jump_of_the_length_fails_the_position_check() {
     let m = gear_lever();
     let s = GearLeverSweep::<GEAR_LEVER_TERMS>::new(GearLeverClosed::of(&m), 720, PERIOD, gear_lever_guess(&m));
     let (fired, at) = fire(s, 400, 100, |s| s.closed.l_c *= 1.02);
     assert_eq!(at, Some(100));
-    assert!(fired & fired::DIST != 0, "{fired:#b}");
+    assert_eq!(fired, fired::DIST, "{fired:#b}");
 }
 
 /// A four-bar whose dyad is within `1e-13` of folding at crank angle 0 (coupler minus rocker
@@ -244,14 +258,14 @@ fn a_small_pivot_ratio_takes_the_next_sample_from_libm() {
     assert_eq!(s.exact_samples(), 0);
 }
 
-/// The gear-lever sampled 16 times a turn: where the pin passes nearest the pivot the rocker's
-/// slope changes over a step by more than the slope-change bound allows.
+/// The gear-lever sampled 16 times a turn: its rocker's slope changes over the first step by
+/// more than the slope-change bound allows (only that check fires).
 #[test]
 fn a_coarse_step_near_a_fast_passage_is_too_long() {
     let m = gear_lever();
     let s = GearLeverSweep::<GEAR_LEVER_TERMS>::new(GearLeverClosed::of(&m), 16, PERIOD, gear_lever_guess(&m));
     let (fired, at) = fire(s, 16, usize::MAX, |_| {});
-    assert!(at.is_some() && fired & fired::LONG != 0, "{fired:#b} at {at:?}");
+    assert_eq!((fired, at), (fired::LONG, Some(0)), "{fired:#b}");
 }
 
 /// The rhombic drive's rods: a drive whose working rod's sine reaches `1 - 1e-14` at
