@@ -63,12 +63,15 @@ mod kept_lu;
 mod norms;
 mod report;
 mod restarts;
+#[cfg(test)]
+mod returned_evaluation;
 mod scales;
 mod search;
 mod state;
 mod step;
 #[cfg(test)]
 mod test_blocks;
+mod trace;
 
 pub use config::NewtonConfig;
 pub use report::{BlockFailure, NewtonStop, SolveReport, Solved};
@@ -80,6 +83,7 @@ use kept_lu::{KeptLu, LastStep, RowSteps};
 use norms::{scaled_residual, scaled_step};
 use scales::{fallback_rows, magnitudes_at, rows_at};
 use step::{MAX_UNCHECKED_CORRECTION, evaluated_correction};
+use trace::{Path, note};
 
 /// The largest scaled correction applied to an accepted guess without iterating (larger ones,
 /// from an ill-conditioned block, are iterated and checked).
@@ -212,6 +216,7 @@ fn newton_last<const N: usize, const K: usize, J: BlockJacobian<N>>(
             last.forget();
             return Ok(checked_free_correction(z0, ev, rho, &dz, &mut eval, mags, last));
         }
+        note(Path::UncheckedCorrection);
         last.keep(ev);
         return Ok(Solved {
             z,
