@@ -13,18 +13,13 @@
 //! its slot in four registers of its own ([`WIDTH`]: argument, sine, cosine, age), beside the
 //! others of the block ([`NearSlots`]); [`NearSlots::reset`] makes them fresh before a solve's
 //! first evaluation. The state lives in registers, like every other value of a step: no
-//! allocation, and one copy of the block's slots per evaluation.
-//!
-//! That copy is a snapshot of the slots before each evaluation, kept with the evaluation's
-//! unknowns (`newton::RECENT` of them): after the solve, `newton::restore_returned` may make an
-//! earlier evaluation again to leave its values in the registers (what the emitted code hands
-//! to later scopes is that evaluation's), and the replay must give the values that evaluation
-//! had, so it starts from the slots as they were then ([`NearSlots::restore`]). Any other run
-//! of a block's nodes (the analogs at a given position, the Jacobian, the sensitivities) is a
-//! segment of its own with libm's `sin_cos`, as the emitted straight-line code there.
+//! allocation, and no copy: the solver returns the evaluation it made last (see `newton`), so
+//! the values the registers hold after a solve are the returned evaluation's, as the emitted
+//! block's are. Any other run of a block's nodes (the analogs at a given position, the
+//! Jacobian, the sensitivities) is a segment of its own with libm's `sin_cos`, as the emitted
+//! straight-line code there.
 
 use crate::closed::Extra;
-use crate::newton::RECENT;
 use kinloop_runtime::generated::NearSlot;
 
 /// Registers of one slot: its argument, sine, cosine and age (the `u32` in the register's bits:
@@ -32,11 +27,11 @@ use kinloop_runtime::generated::NearSlot;
 pub(crate) const WIDTH: usize = 4;
 
 /// The rotation slots of one Newton block's evaluation: `slots` slots of [`WIDTH`] registers from
-/// `first` on (the live state), then [`RECENT`] snapshots of them.
+/// `first` on.
 #[derive(Clone, Copy, Debug, Default)]
 pub(crate) struct NearSlots {
     first: usize,
-    /// Registers of the live state: [`WIDTH`] per slot.
+    /// Registers of the slots: [`WIDTH`] per slot.
     len: usize,
 }
 
@@ -44,7 +39,7 @@ impl NearSlots {
     /// `slots` slots in fresh registers of `extra`.
     pub(crate) fn new(extra: &mut Extra, slots: usize) -> NearSlots {
         let len = WIDTH * slots;
-        let first = extra.block((len * (1 + RECENT)) as u32) as usize;
+        let first = extra.block(len as u32) as usize;
         NearSlots { first, len }
     }
 
@@ -61,33 +56,6 @@ impl NearSlots {
         for s in r[self.first..self.first + self.len].chunks_exact_mut(WIDTH) {
             s[0] = NearSlot::FRESH.arg;
         }
-    }
-
-    /// Keeps the slots as they are before the solve's evaluation `eval` (its snapshot, modulo
-    /// [`RECENT`]). Before the first they are fresh: nothing to keep.
-    #[inline]
-    pub(crate) fn save(&self, r: &mut [f64], eval: usize) {
-        if eval > 0 && self.len > 0 {
-            r.copy_within(self.first..self.first + self.len, self.snapshot(eval));
-        }
-    }
-
-    /// Sets the slots back to how they were before the solve's evaluation `eval` (kept by
-    /// [`NearSlots::save`] within the last [`RECENT`] evaluations): made again, it gives the
-    /// values it gave.
-    #[inline]
-    pub(crate) fn restore(&self, r: &mut [f64], eval: usize) {
-        if eval == 0 {
-            self.reset(r);
-        } else if self.len > 0 {
-            let s = self.snapshot(eval);
-            r.copy_within(s..s + self.len, self.first);
-        }
-    }
-
-    /// The first register of the snapshot of evaluation `eval`.
-    fn snapshot(&self, eval: usize) -> usize {
-        self.first + self.len * (1 + eval % RECENT)
     }
 
     /// The slots as the registers `r` hold them.
@@ -123,7 +91,6 @@ pub(crate) unsafe fn sin_cos(st: *mut f64, arg: f64) -> (f64, f64) {
 #[cfg(test)]
 mod tests {
     use crate::Model;
-    use crate::newton::{RECENT, restore_returned};
     use kinloop::Mechanism;
     use kinloop_fixtures as fx;
     use kinloop_runtime::NewtonConfig;
@@ -169,67 +136,5 @@ mod tests {
         }
         assert!(rotated > 0 && not_libm > 0, "{rotated} slots rotated, {not_libm} of them not libm's");
         eprintln!("{rotated} slots rotated, {not_libm} of them with values other than libm's");
-    }
-
-    /// `restore_returned` makes an earlier evaluation of the solve again (the one the solver
-    /// returned, when later trials were rejected): from the slots kept before it, the replay
-    /// gives every register of the block's evaluation the bits it had, rotated values included.
-    /// The reference is the evaluation itself, run in sequence as a solve runs it: a guess, a
-    /// correction (rotated), then a long trial (libm's) and one near it (rotated), both
-    /// rejected. A replay from the slots as the trials left them computes the correction's
-    /// values by libm, and gives other bits somewhere along the turn (counted: the test would
-    /// not see a missing restore otherwise).
-    #[test]
-    fn a_replayed_evaluation_gives_the_values_it_gave() {
-        let compiled = fx::ClassFour::default();
-        let mut m = Model::read("class_four.kl", fx::CLASS_FOUR_TEXT).unwrap_or_else(|e| panic!("{e}"));
-        let cfg = NewtonConfig::default();
-        let (mut q, mut history_shows) = (compiled.guess_flat(&[0.0]), 0);
-        for k in 0..12 {
-            let x = [TAU * k as f64 / 12.0];
-            q = compiled.kinematics_flat(&x, &q, &cfg).expect("assembles over a turn").q;
-            // The registers before the block's solve (inputs, coefficients) as a step leaves them.
-            m.kinematics(&x, &q, &cfg).expect("run time");
-            let p = m.newton_progs().remove(0);
-            assert_eq!(p.unknowns.len(), 4, "the class IV group is one block");
-            let r = m.regs_and_dynamics().0;
-            // The guess, its correction, a long trial (beyond the rotation's range) and one near it.
-            let zs: [[f64; 4]; 4] = std::array::from_fn(|i| {
-                std::array::from_fn(|u| q[u] + [2e-2, 3e-4, 0.3, 0.3 + 1e-4][i] * (u as f64 - 1.3))
-            });
-            let mut recent = [[f64::NAN; 4]; RECENT];
-            let mut after = Vec::new();
-            p.near.reset(r);
-            for (i, z) in zs.iter().enumerate() {
-                for (k, &reg) in p.unknown_regs.iter().enumerate() {
-                    r[reg as usize] = z[k];
-                }
-                recent[i % RECENT] = *z;
-                p.near.save(r, i);
-                p.eval.run(r);
-                after.push(r[..p.near.first].to_vec());
-            }
-            assert!(p.near.live(r).iter().all(|s| s.age == 1), "the last trial rotates from the long one");
-            let end = r.to_vec();
-            let differ = |a: &[f64], b: &[f64]| {
-                let unknown = |k: usize| p.unknown_regs.contains(&(k as u32));
-                (0..a.len()).filter(|&k| !unknown(k) && a[k].to_bits() != b[k].to_bits()).count()
-            };
-            // The correction made again from the slots as the trials left them.
-            for (k, &reg) in p.unknown_regs.iter().enumerate() {
-                r[reg as usize] = zs[1][k];
-            }
-            p.eval.run(r);
-            history_shows += usize::from(differ(&r[..p.near.first], &after[1]) > 0);
-            // The solver returned the correction's evaluation: its residuals and Jacobian.
-            r.copy_from_slice(&end);
-            let regs = |v: &[f64], of: &[u32]| of.iter().map(|&k| v[k as usize]).collect::<Vec<f64>>();
-            let (f, jac) = (regs(&after[1], &p.f), regs(&after[1], &p.jac));
-            restore_returned(&p, r, &recent, zs.len(), (&f, &p.jac, &jac), &q);
-            assert_eq!(differ(&r[..p.near.first], &after[1]), 0, "at {x:?}: the correction's bits");
-            assert!(differ(&after[3], &after[1]) > 0, "the evaluations differ");
-        }
-        assert!(history_shows > 0, "the slots' history changes the bits somewhere");
-        eprintln!("{history_shows} of 12 replays from the trials' slots give other bits");
     }
 }

@@ -13,7 +13,7 @@
 //! The evaluation's sines and cosines are rotated as a dense block's are (`crate::near`, see
 //! `newton`): the emitted sparse block makes its `NearTrig` the same way.
 
-use crate::newton::{NewtonProg, RECENT, restore_returned};
+use crate::newton::{NewtonProg, write_solution};
 use kinloop_codegen::plan::sparse::Sparse;
 use kinloop_runtime::NewtonConfig;
 use kinloop_runtime::generated::{
@@ -151,9 +151,7 @@ impl<const P: usize, const CAP: usize, const K2: usize> Padded<P, CAP, K2> {
         let turns: [bool; P] = std::array::from_fn(|k| k < n && p.turns[k]);
         let fixed = Magnitudes::new(padded(r, &p.scale, 1.0), padded(r, &p.unit, 1.0)).with_turns(turns);
         let (work, entries) = (&self.work, &self.entries);
-        let mut recent = [[f64::NAN; P]; RECENT];
-        let mut calls = 0usize;
-        // Rotation slots fresh for this solve, kept before each evaluation (see `newton`).
+        // Rotation slots fresh for this solve (see `newton`).
         p.near.reset(r);
         // Written over the solver's slot, every field, as the emitted block's evaluation is (the
         // entries past the block's own stay the zeros the slot is made with).
@@ -161,9 +159,6 @@ impl<const P: usize, const CAP: usize, const K2: usize> Padded<P, CAP, K2> {
             for (k, &reg) in p.unknown_regs.iter().enumerate() {
                 r[reg as usize] = z[k];
             }
-            recent[calls % RECENT] = *z;
-            p.near.save(r, calls);
-            calls += 1;
             p.eval.run(r);
             for (x, &reg) in e.j.v.iter_mut().zip(entries) {
                 *x = r[reg as usize];
@@ -189,7 +184,7 @@ impl<const P: usize, const CAP: usize, const K2: usize> Padded<P, CAP, K2> {
             newton_with::<P, K, _>(z0, &mut ev, cfg, &mut eval, &per_eval)
         }?;
         report.absorb(&solved);
-        restore_returned(p, r, &recent, calls, (&ev.f, entries, &ev.j.v), &solved.z);
+        write_solution(p, r, (&ev.f, entries, &ev.j.v), &solved.z);
         Ok(())
     }
 }

@@ -17,6 +17,16 @@
 //! correction a copy of the evaluation. Between the descent's searches (a cold path that reads
 //! the iterate's Jacobian again) it is copied back from a copy made once.
 //!
+//! **The returned evaluation is the last one made.** On every path that returns a solution the
+//! slot holds the evaluation made by the last call of `eval`, at the returned position (or, after
+//! a final correction at the rounding level, which is applied without evaluating, at the
+//! position it corrected): a generated block reads values its evaluation computed after the
+//! solve (sines and cosines its `NearTrig` rotated from the previous evaluation's), which are
+//! the last evaluation's, and so does the run-time model. The descent's copy-back is always
+//! followed by another search's evaluations, or by a failure. The tests of
+//! `returned_evaluation` drive each path (shown by the solver's trace of the paths it takes,
+//! `trace`, recorded in the unit tests only) and check this.
+//!
 //! **Scale-free tests.** Every test is made in the units of the problem: residual `i` is divided
 //! by its row magnitude `scale_i` (see [`Magnitudes`]), a step in unknown `j` by that
 //! unknown's magnitude, and the pivots of the factorisation are those of the row-equilibrated
@@ -54,7 +64,8 @@
 //! final correction from the analogs' kept factorisation (`kept_lu`); the diagnosis of a failed
 //! iteration (`diagnose`) and the line search and descent (`search`); the iteration
 //! (`iterate`); the restarts of a block that stalled (`restarts`); and here, the entry points
-//! ([`newton`], [`newton_with`], [`newton_keeping_lu`]).
+//! ([`newton`], [`newton_with`], [`newton_keeping_lu`]). Beside them, the trace of the paths a
+//! solve took, for the unit tests (`trace`).
 
 mod config;
 mod diagnose;
@@ -63,12 +74,15 @@ mod kept_lu;
 mod norms;
 mod report;
 mod restarts;
+#[cfg(test)]
+mod returned_evaluation;
 mod scales;
 mod search;
 mod state;
 mod step;
 #[cfg(test)]
 mod test_blocks;
+mod trace;
 
 pub use config::NewtonConfig;
 pub use report::{BlockFailure, NewtonStop, SolveReport, Solved};
@@ -80,6 +94,7 @@ use kept_lu::{KeptLu, LastStep, RowSteps};
 use norms::{scaled_residual, scaled_step};
 use scales::{fallback_rows, magnitudes_at, rows_at};
 use step::{MAX_UNCHECKED_CORRECTION, evaluated_correction};
+use trace::{Path, note};
 
 /// The largest scaled correction applied to an accepted guess without iterating (larger ones,
 /// from an ill-conditioned block, are iterated and checked).
@@ -212,6 +227,7 @@ fn newton_last<const N: usize, const K: usize, J: BlockJacobian<N>>(
             last.forget();
             return Ok(checked_free_correction(z0, ev, rho, &dz, &mut eval, mags, last));
         }
+        note(Path::UncheckedCorrection);
         last.keep(ev);
         return Ok(Solved {
             z,

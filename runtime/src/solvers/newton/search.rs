@@ -6,6 +6,7 @@ use super::config::NewtonConfig;
 use super::norms::{scaled_norms, sum_sq_scaled};
 use super::scales::BlockEval;
 use super::state::Iter;
+use super::trace::{Path, note};
 use crate::solvers::jacobian::BlockJacobian;
 use crate::solvers::lu::{Lu, RowScales, boxed_zeros};
 
@@ -48,6 +49,7 @@ impl<const N: usize, const K: usize, J: BlockJacobian<N>> Iter<'_, N, K, J> {
         self.evaluations += 1;
         let (rho, phi) = scaled_norms(&self.ev.f, rows);
         if phi <= phi0 + 1e-4 * slope {
+            note(Path::FullStep);
             self.z = trial;
             // In scales that stay the same, the next iteration's test of this iterate.
             self.judged = if fixed_rows { Some((rho, phi)) } else { None };
@@ -76,6 +78,7 @@ impl<const N: usize, const K: usize, J: BlockJacobian<N>> Iter<'_, N, K, J> {
         if self.search(dz, rows, phi0, slope, 0.5, cfg, eval) {
             return true;
         }
+        note(Path::Reevaluated);
         eval(&self.z, self.ev);
         self.evaluations += 1;
         false
@@ -108,6 +111,7 @@ impl<const N: usize, const K: usize, J: BlockJacobian<N>> Iter<'_, N, K, J> {
             self.evaluations += 1;
             let phi = sum_sq_scaled(&self.ev.f, rows);
             if phi <= phi0 + 1e-4 * t * slope {
+                note(Path::SearchAccepted);
                 self.z = trial;
                 return true;
             }
@@ -131,6 +135,7 @@ impl<const N: usize, const K: usize, J: BlockJacobian<N>> Iter<'_, N, K, J> {
         cfg: &NewtonConfig,
         eval: &mut impl FnMut(&[f64; N], &mut BlockEval<N, K, J>),
     ) -> bool {
+        note(Path::Descend);
         let s = &rows.s;
         let (a, g) = normal_equations(self.ev, s);
         let trace: f64 = (0..N).map(|k| a[k][k]).sum();
@@ -165,6 +170,7 @@ impl<const N: usize, const K: usize, J: BlockJacobian<N>> Iter<'_, N, K, J> {
             if self.search(&dz, rows, phi0, slope, 1.0, cfg, eval) {
                 return true;
             }
+            note(Path::CopyBack);
             *self.ev = **at_z;
         }
         false
