@@ -137,36 +137,63 @@ impl NearSlot {
 
     #[inline(always)]
     fn sin_cos_within(&mut self, arg: f64, libm_age: u32, resync: u32) -> (f64, f64) {
-        self.sin_cos_by(arg, libm_age, resync, small_sin_cosm1)
-    }
-
-    /// [`NearSlot::sin_cos_within`] with `(sin d, cos d - 1)` of the change `d` from `small`
-    /// (the polynomials, or a sweep's [`StepBase`]).
-    #[inline(always)]
-    fn sin_cos_by(
-        &mut self,
-        arg: f64,
-        libm_age: u32,
-        resync: u32,
-        small: impl FnOnce(f64) -> (f64, f64),
-    ) -> (f64, f64) {
         let d = arg - self.arg;
         if d == 0.0 {
             return (self.sin, self.cos);
         }
         if d.abs() <= MAX_ROTATION && self.age < resync {
-            let (sd, cm1) = small(d);
-            let (sin, cos) = (self.sin, self.cos);
-            self.sin = sin + (sin * cm1 + cos * sd);
-            self.cos = cos + (cos * cm1 - sin * sd);
-            self.age += 1;
+            let (sd, cm1) = small_sin_cosm1(d);
+            self.rotate(sd, cm1);
         } else {
             // Also a NaN `d`: the first call, or a non-finite argument (libm's NaN, as ever).
-            (self.sin, self.cos) = arg.sin_cos();
-            self.age = libm_age;
+            self.libm(arg, libm_age);
         }
         self.arg = arg;
         (self.sin, self.cos)
+    }
+
+    /// [`NearSlot::sin_cos`] of a sweep's input slot, whose last step computed by the
+    /// polynomials is `base`: the same values, where a step within `base`'s bound of it takes
+    /// the base's corrected values ([`StepBase::reuse`]), tested first: such a step is
+    /// neither 0 nor beyond [`MAX_ROTATION`] (see [`StepBase::rebase`]), so it is rotated
+    /// after the same two tests as any (`d` not 0, fewer than [`RESYNC`] rotations) and
+    /// saves the range test and the polynomials. `libm_age` is asked only where libm is called.
+    #[inline(always)]
+    fn sin_cos_stepped(&mut self, arg: f64, libm_age: impl FnOnce() -> u32, base: &mut StepBase) -> (f64, f64) {
+        let d = arg - self.arg;
+        if d == 0.0 {
+            return (self.sin, self.cos);
+        }
+        let young = self.age < RESYNC;
+        let e = d - base.d;
+        // NaN (no base, or a non-finite `d`) fails the comparison.
+        if young && e.abs() <= base.tol {
+            let (sd, cm1) = base.reuse(e);
+            self.rotate(sd, cm1);
+        } else if young && d.abs() <= MAX_ROTATION {
+            let (sd, cm1) = base.rebase(d);
+            self.rotate(sd, cm1);
+        } else {
+            self.libm(arg, libm_age());
+        }
+        self.arg = arg;
+        (self.sin, self.cos)
+    }
+
+    /// Rotates the values by the change whose `(sin d, cos d - 1)` are `(sd, cm1)`.
+    #[inline(always)]
+    fn rotate(&mut self, sd: f64, cm1: f64) {
+        let (sin, cos) = (self.sin, self.cos);
+        self.sin = sin + (sin * cm1 + cos * sd);
+        self.cos = cos + (cos * cm1 - sin * sd);
+        self.age += 1;
+    }
+
+    /// libm's values of `arg`, after which the slot's age is `age`.
+    #[inline(always)]
+    fn libm(&mut self, arg: f64, age: u32) {
+        (self.sin, self.cos) = arg.sin_cos();
+        self.age = age;
     }
 }
 
@@ -243,7 +270,7 @@ impl<const S: usize> Default for NearTrig<S> {
 
 /// Largest change `e` of a slot's argument step, relative to the step `d0` whose sine and
 /// cosine the slot's [`StepBase`] holds, over which those values are reused with a first-order
-/// correction (`2^-30`): see [`StepBase::sin_cosm1`].
+/// correction (`2^-30`): see [`StepBase::reuse`].
 const STEP_REUSE: f64 = 1.0 / (1u64 << 30) as f64;
 
 /// The last step of a sweep's input slot whose `(sin d0, cos d0 - 1)` the polynomials
@@ -262,7 +289,8 @@ struct StepBase {
     cosm1: f64,
     /// `cos d0`, `1 + cosm1` rounded.
     cos: f64,
-    /// `STEP_REUSE |d0|`, the largest `|d - d0|` corrected from this base (NaN: none).
+    /// The largest `|d - d0|` corrected from this base: `STEP_REUSE |d0|`, or 0 near
+    /// [`MAX_ROTATION`] (see [`StepBase::rebase`]; NaN: no base).
     tol: f64,
 }
 
@@ -270,10 +298,10 @@ impl StepBase {
     /// No base: the next step goes to the polynomials.
     const NONE: StepBase = StepBase { d: f64::NAN, sin: 0.0, cosm1: 0.0, cos: 1.0, tol: f64::NAN };
 
-    /// `(sin d, cos d - 1)` for `|d| <= MAX_ROTATION`: from the base `d0` when `e = d - d0`
-    /// (exact: the two steps are within a factor two of each other) has `|e| <= rho |d0|`,
-    /// `rho = 2^-30` ([`STEP_REUSE`]); otherwise the polynomials', and `d` becomes the base. By
-    /// the addition formulas, with `s0 = sin d0`, `c0 = cos d0`, `m0 = c0 - 1`:
+    /// `(sin d, cos d - 1)` of the step `d = d0 + e` from the base `d0`, for `|e|` within the
+    /// bound, `rho |d0|` at most, `rho = 2^-30` ([`STEP_REUSE`]; `e = d - d0` is exact: the two
+    /// steps are within a factor two of each other). By the addition formulas, with
+    /// `s0 = sin d0`, `c0 = cos d0`, `m0 = c0 - 1`:
     ///
     /// * `sin d = s0 + e c0 + r_s`, `r_s = s0 (cos e - 1) + c0 (sin e - e)`, so
     ///   `|r_s| <= |s0| e^2 / 2 + |e|^3 / 6 <= |d0|^3 (rho^2 / 2 + rho^3 / 6)`, where
@@ -292,16 +320,19 @@ impl StepBase {
     /// leave unchanged to far below an ulp (the tests measure both against libm). Corrections
     /// never chain: a base is only ever the polynomials' values.
     #[inline(always)]
-    fn sin_cosm1(&mut self, d: f64) -> (f64, f64) {
-        let e = d - self.d;
-        // NaN (no base) fails the comparison.
-        if e.abs() <= self.tol {
-            (self.sin + e * self.cos, self.cosm1 - self.sin * e)
-        } else {
-            let (sin, cosm1) = small_sin_cosm1(d);
-            *self = StepBase { d, sin, cosm1, cos: 1.0 + cosm1, tol: STEP_REUSE * d.abs() };
-            (sin, cosm1)
-        }
+    fn reuse(&self, e: f64) -> (f64, f64) {
+        (self.sin + e * self.cos, self.cosm1 - self.sin * e)
+    }
+
+    /// The polynomials' `(sin d, cos d - 1)` of a step `0 < |d| <= MAX_ROTATION`, which becomes
+    /// the base. Its bound is `2^-30 |d|`, or 0 (only `d` itself is reused) where a step within
+    /// that could exceed [`MAX_ROTATION`]: every step reused is within the polynomials' range.
+    #[inline(always)]
+    fn rebase(&mut self, d: f64) -> (f64, f64) {
+        let (sin, cosm1) = small_sin_cosm1(d);
+        let tol = if d.abs() <= MAX_ROTATION * (1.0 - 2.0 * STEP_REUSE) { STEP_REUSE * d.abs() } else { 0.0 };
+        *self = StepBase { d, sin, cosm1, cos: 1.0 + cosm1, tol };
+        (sin, cosm1)
     }
 }
 
@@ -405,7 +436,8 @@ impl InputTrig for Rotating {
             return arg.sin_cos();
         };
         // An exact cache stays at the age that calls libm.
-        s.sin_cos_by(arg, if self.exact { RESYNC } else { 0 }, RESYNC, |d| base.sin_cosm1(d))
+        let exact = self.exact;
+        s.sin_cos_stepped(arg, || if exact { RESYNC } else { 0 }, base)
     }
 
     /// By angle addition, `sin(a + b) = sin a cos b + cos a sin b` and
@@ -514,11 +546,11 @@ mod tests {
     }
 
     /// A step within `2^-30` of the base's (both signs, nearly up to the bound), for bases from
-    /// `1e-8` to [`MAX_ROTATION`] of either sign: reused, not recomputed, and within 2.5 ulps of
+    /// `1e-8` to [`MAX_ROTATION`] of either sign: within the bound, and within 2.5 ulps of
     /// libm's `sin d` and of `cos d - 1 = -2 sin^2(d / 2)` (whose own rounding is up to about
     /// 1.5 ulps), about as close as the polynomials themselves (measured: 1.0 and 2.0 ulps, the
-    /// polynomials 0.0 and 2.0). A step beyond the bound is the polynomials' and becomes the
-    /// base.
+    /// polynomials 0.0 and 2.0). Twice the bound is beyond it; near [`MAX_ROTATION`], where a
+    /// reused step could exceed it, the bound is 0.
     #[test]
     fn reused_steps_are_libm_within_a_few_ulps() {
         let ulps = |got: f64, want: f64| (got - want).abs() / (f64::EPSILON * want.abs());
@@ -526,15 +558,16 @@ mod tests {
         for k in 0..=400 {
             let magnitude = 1e-8 * (MAX_ROTATION / 1e-8).powf(f64::from(k) / 400.0);
             for d0 in [magnitude, -magnitude] {
+                let mut base = StepBase::NONE;
+                assert_eq!(base.rebase(d0), small_sin_cosm1(d0));
+                let near_max = d0.abs() > MAX_ROTATION * (1.0 - 2.0 * STEP_REUSE);
+                assert_eq!(base.tol, if near_max { 0.0 } else { STEP_REUSE * d0.abs() });
+                assert!((d0 * (1.0 + 2.0 * STEP_REUSE) - d0).abs() > base.tol, "twice the bound is beyond it");
                 for f in [0.0, 0.3, -0.3, 0.999, -0.999] {
-                    let mut base = StepBase::NONE;
-                    base.sin_cosm1(d0);
-                    let d = d0 + f * STEP_REUSE * d0.abs();
-                    if d.abs() > MAX_ROTATION {
-                        continue;
-                    }
-                    let (s, cm1) = base.sin_cosm1(d);
-                    assert_eq!(base.d, d0, "a step within the bound reuses the base");
+                    let d = d0 + f * base.tol;
+                    let e = d - d0;
+                    assert!(e.abs() <= base.tol && d.abs() <= MAX_ROTATION);
+                    let (s, cm1) = base.reuse(e);
                     let half = (0.5 * d).sin();
                     let (want_s, want_cm1) = (d.sin(), -2.0 * half * half);
                     worst = [worst[0].max(ulps(s, want_s)), worst[1].max(ulps(cm1, want_cm1))];
@@ -542,14 +575,28 @@ mod tests {
                     worst_polynomials =
                         [worst_polynomials[0].max(ulps(ps, want_s)), worst_polynomials[1].max(ulps(pcm1, want_cm1))];
                 }
-                let mut base = StepBase::NONE;
-                base.sin_cosm1(d0);
-                let d = d0 * (1.0 + 2.0 * STEP_REUSE);
-                assert_eq!(base.sin_cosm1(d), small_sin_cosm1(d));
-                assert_eq!(base.d, d, "a step beyond the bound becomes the base");
             }
         }
         assert!(worst[0] <= 2.5 && worst[1] <= 2.5, "worst {worst:?} ulps (polynomials: {worst_polynomials:?})");
+    }
+
+    /// A slot's steps: the first rotation and a step beyond the base's bound rebase it, a step
+    /// within it keeps it; the values stay libm's to a few ulps throughout.
+    #[test]
+    fn a_slot_rebases_beyond_the_bound_and_reuses_within() {
+        let mut cache = Rotating::default();
+        let mut arg = 0.4;
+        cache.sin_cos(0, arg);
+        assert!(cache.slots[0].1.d.is_nan(), "libm's first values leave no base");
+        for (step, rebased) in [(0.01, true), (0.01, false), (0.01 * (1.0 + 1e-6), true), (0.01 * (1.0 + 1e-6), false)]
+        {
+            let before = cache.slots[0].1.d;
+            let next = arg + step;
+            let (s, c) = cache.sin_cos(0, next);
+            assert_eq!(cache.slots[0].1.d != before, rebased, "step {step} after {before}");
+            assert!((s - next.sin()).abs() <= 4e-16 && (c - next.cos()).abs() <= 4e-16);
+            arg = next;
+        }
     }
 
     /// The first call, a jump, a non-finite argument and slots beyond the cache are libm's own.
