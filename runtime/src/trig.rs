@@ -160,10 +160,13 @@ impl NearSlot {
     /// saves the range test and the polynomials. `libm_age` is asked only where libm is called.
     #[inline(always)]
     fn sin_cos_stepped(&mut self, arg: f64, libm_age: impl FnOnce() -> u32, base: &mut StepBase) -> (f64, f64) {
-        let d = arg - self.arg;
-        if d == 0.0 {
+        // `d == 0` but for two equal infinities (whose `d` is NaN, libm's NaN values, which the
+        // slot then holds): the same values, one subtraction fewer for an argument that does
+        // not change (a parameter's, see `InputTrig::sin_cos_sum`).
+        if arg == self.arg {
             return (self.sin, self.cos);
         }
+        let d = arg - self.arg;
         let young = self.age < RESYNC;
         let e = d - base.d;
         // NaN (no base, or a non-finite `d`) fails the comparison.
@@ -377,10 +380,10 @@ impl Rotating {
     /// in the last place more (a rotation's) would cost precision a point solve has.
     #[inline(always)]
     pub fn exact(&mut self, exact: bool) {
+        self.exact = exact;
         if exact {
             self.send_to_libm();
         }
-        self.exact = exact;
     }
 
     /// Sends the next call of every slot and angle to libm: rare (near singular positions), so
