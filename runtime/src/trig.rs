@@ -177,7 +177,9 @@ impl NearSlot {
             let (sd, cm1) = base.rebase(d);
             self.rotate(sd, cm1);
         } else {
-            self.libm(arg, libm_age());
+            (self.sin, self.cos) = arg.sin_cos();
+            // Asked after libm's call: nothing it needs is then kept across the call.
+            self.age = libm_age();
         }
         self.arg = arg;
         (self.sin, self.cos)
@@ -441,8 +443,8 @@ impl InputTrig for Rotating {
         // An exact cache stays at the age that calls libm. (Asked only where libm is called:
         // passed as a value, the test of `exact` came before each slot's first test, measured
         // 4 instructions a slot and step.)
-        let exact = self.exact;
-        s.sin_cos_stepped(arg, || if exact { RESYNC } else { 0 }, base)
+        let exact = &self.exact;
+        s.sin_cos_stepped(arg, || if *exact { RESYNC } else { 0 }, base)
     }
 
     /// By angle addition, `sin(a + b) = sin a cos b + cos a sin b` and
