@@ -71,7 +71,7 @@
 //! built (the emitter's folds of the graph's constants decided once), the blocks'
 //! factorisations written in place: on the gallery's rhombic drive it executes about 3.0 times
 //! the compiled step's instructions, on the four-bar 2.6 times, on a Newton-dominated class IV
-//! block 1.8 times, on the ring of 64 four-bar loops (one sparse block of 128 unknowns) 2.5
+//! block 1.7 times, on the ring of 64 four-bar loops (one sparse block of 128 unknowns) 2.4
 //! times. What remains is the interpretation's dispatch per operation and the per-block
 //! bookkeeping of small blocks. Reading and planning a declaration takes half a millisecond to
 //! two milliseconds (`BENCHMARKS.md`, "Mechanisms read at run time").
