@@ -165,6 +165,8 @@ mod analysis;
 mod at;
 mod blocks;
 mod closed;
+#[cfg(test)]
+mod compiled_reference;
 mod drawing;
 mod dynamics;
 mod factor;

@@ -14,8 +14,8 @@
 //! others of the block ([`NearSlots`]); [`NearSlots::reset`] makes them fresh before a solve's
 //! first evaluation. The state lives in registers, like every other value of a step: no
 //! allocation, and no copy: the solver returns the evaluation it made last (see `newton`), so
-//! the values the registers hold after a solve are the returned evaluation's, as the emitted
-//! block's are. Any other run of a block's nodes (the analogs at a given position, the
+//! the values the registers hold after a solve are the returned evaluation's, those the emitted
+//! block reads from that evaluation. Any other run of a block's nodes (the analogs at a given position, the
 //! Jacobian, the sensitivities) is a segment of its own with libm's `sin_cos`, as the emitted
 //! straight-line code there.
 
@@ -90,9 +90,8 @@ pub(crate) unsafe fn sin_cos(st: *mut f64, arg: f64) -> (f64, f64) {
 
 #[cfg(test)]
 mod tests {
-    use crate::Model;
+    use crate::compiled_reference::{assert_same_bits, class_four};
     use kinloop::Mechanism;
-    use kinloop_fixtures as fx;
     use kinloop_runtime::NewtonConfig;
     use std::f64::consts::TAU;
 
@@ -105,8 +104,7 @@ mod tests {
     /// rotated (age above 0), and among them values other than libm's of the same argument.
     #[test]
     fn a_newton_block_rotates_its_sines_and_cosines_as_the_compiled_one() {
-        let compiled = fx::ClassFour::default();
-        let mut m = Model::read("class_four.kl", fx::CLASS_FOUR_TEXT).unwrap_or_else(|e| panic!("{e}"));
+        let (compiled, mut m) = class_four();
         let cfg = NewtonConfig::default();
         let (mut q, mut rotated, mut not_libm) = (compiled.guess_flat(&[0.0]), 0, 0);
         for k in 0..24 {
@@ -116,15 +114,7 @@ mod tests {
             let guess: [f64; 4] =
                 std::array::from_fn(|u| q[u] + 1e-4 * (u as f64 + 1.0) * if u % 2 == 0 { 1.0 } else { -1.0 });
             let c = compiled.kinematics_flat(&x, &guess, &cfg).expect("compiled");
-            let r = m.kinematics(&x, &guess, &cfg).expect("run time");
-            let bits = |v: &mut dyn Iterator<Item = f64>| v.map(f64::to_bits).collect::<Vec<u64>>();
-            assert_eq!(bits(&mut c.q.iter().copied()), bits(&mut r.q.iter().copied()), "q at {x:?}");
-            assert_eq!(bits(&mut c.dq.iter().flatten().copied()), bits(&mut r.dq.iter().copied()), "dq at {x:?}");
-            assert_eq!(
-                bits(&mut c.d2q.iter().flatten().flatten().copied()),
-                bits(&mut r.d2q.iter().copied()),
-                "d2q at {x:?}"
-            );
+            assert_same_bits(&c, m.kinematics(&x, &guess, &cfg).expect("run time"), &x);
             for p in m.newton_progs() {
                 for s in p.near.live(m.registers_view()) {
                     if s.age > 0 {

@@ -10,7 +10,7 @@ use super::report::{BlockFailure, NewtonStop, Solved};
 use super::scales::{BlockEval, MagnitudesOf, fallback_rows, magnitudes_at, rows_at};
 use super::state::Iter;
 use super::step::{MAX_UNCHECKED_CORRECTION, evaluated_correction, newton_step};
-use super::trace::{Path, note};
+use super::trace::{SolvePath, note};
 use crate::solvers::closed::unwrap_to_turn;
 use crate::solvers::jacobian::BlockJacobian;
 
@@ -100,7 +100,7 @@ pub(super) fn iterate<const N: usize, const K: usize, J: BlockJacobian<N>>(
             }
             // Reached linearly, yet the Jacobian here is regular by the tolerance: perhaps a
             // root just inside a limit position (see `LINEAR_EXTRA`). A few more steps tell.
-            note(Path::PastTolerance);
+            note(SolvePath::PastTolerance);
             it.past_tolerance += 1;
             last.forget();
         }
@@ -129,7 +129,7 @@ pub(super) fn iterate<const N: usize, const K: usize, J: BlockJacobian<N>>(
         if !moved {
             if rho <= floor {
                 // No step decreases a residual already at its rounding floor.
-                note(Path::AtFloor);
+                note(SolvePath::AtFloor);
                 last.forget();
                 return it.finish(dz, step, pivot, rho, s, NewtonStop::StepTolerance, cfg, &mut eval, mags, last);
             }
@@ -179,7 +179,7 @@ impl<const N: usize, const K: usize, J: BlockJacobian<N>> Iter<'_, N, K, J> {
             if pivot > cfg.singular_tol && step <= MAX_UNCHECKED_CORRECTION {
                 // A quadratically converging iteration often ends with a correction at the
                 // rounding level: the last evaluation holds at `z` to rounding.
-                note(Path::UncheckedCorrection);
+                note(SolvePath::UncheckedCorrection);
                 for c in 0..N {
                     self.z[c] += dz[c];
                 }
@@ -249,7 +249,7 @@ impl<const N: usize, const K: usize, J: BlockJacobian<N>> Iter<'_, N, K, J> {
         if !moved {
             return;
         }
-        note(Path::TurnsMoved);
+        note(SolvePath::TurnsMoved);
         last.forget();
         let bound = rho.max(cfg.residual_tol);
         eval(&self.z, self.ev);
@@ -265,7 +265,7 @@ impl<const N: usize, const K: usize, J: BlockJacobian<N>> Iter<'_, N, K, J> {
         let kept = corrected || moved_rho <= bound;
         if !kept {
             // Not a position of the block: back to where the iteration ended.
-            note(Path::TurnsUndone);
+            note(SolvePath::TurnsUndone);
             self.z = unmoved;
             eval(&self.z, self.ev);
             self.evaluations += 1;

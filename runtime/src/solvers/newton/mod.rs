@@ -18,14 +18,18 @@
 //! the iterate's Jacobian again) it is copied back from a copy made once.
 //!
 //! **The returned evaluation is the last one made.** On every path that returns a solution the
-//! slot holds the evaluation made by the last call of `eval`, at the returned position (or, after
-//! a final correction at the rounding level, which is applied without evaluating, at the
-//! position it corrected): a generated block reads values its evaluation computed after the
-//! solve (sines and cosines its `NearTrig` rotated from the previous evaluation's), which are
-//! the last evaluation's, and so does the run-time model. The descent's copy-back is always
-//! followed by another search's evaluations, or by a failure. The tests of
-//! `returned_evaluation` drive each path (shown by the solver's trace of the paths it takes,
-//! `trace`, recorded in the unit tests only) and check this.
+//! slot holds the evaluation made by the last call of `eval`, at the returned position (or,
+//! after a final correction at the rounding level, which is applied without evaluating, at the
+//! position it corrected). A generated block needs only the second half: after the solve it
+//! reads the values it kept and its Jacobian entries from the returned slot, whichever call
+//! made that evaluation. The run-time model needs the first half too: its evaluation writes
+//! every value of the block into its registers, which it reads after the solve, so they are the
+//! last call's, and the returned evaluation's only if the slot holds the last call's. (That is
+//! why the compiled block is an independent reference for the model.) The descent's
+//! copy-back is always followed by another search's evaluations, or by a failure. The tests
+//! of `returned_evaluation` drive the paths that decide which evaluation is returned (shown by
+//! the solver's trace of the paths it takes, `trace`, recorded in the unit tests only) and
+//! check this.
 //!
 //! **Scale-free tests.** Every test is made in the units of the problem: residual `i` is divided
 //! by its row magnitude `scale_i` (see [`Magnitudes`]), a step in unknown `j` by that
@@ -94,7 +98,7 @@ use kept_lu::{KeptLu, LastStep, RowSteps};
 use norms::{scaled_residual, scaled_step};
 use scales::{fallback_rows, magnitudes_at, rows_at};
 use step::{MAX_UNCHECKED_CORRECTION, evaluated_correction};
-use trace::{Path, note};
+use trace::{SolvePath, note};
 
 /// The largest scaled correction applied to an accepted guess without iterating (larger ones,
 /// from an ill-conditioned block, are iterated and checked).
@@ -227,7 +231,7 @@ fn newton_last<const N: usize, const K: usize, J: BlockJacobian<N>>(
             last.forget();
             return Ok(checked_free_correction(z0, ev, rho, &dz, &mut eval, mags, last));
         }
-        note(Path::UncheckedCorrection);
+        note(SolvePath::UncheckedCorrection);
         last.keep(ev);
         return Ok(Solved {
             z,

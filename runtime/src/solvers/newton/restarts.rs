@@ -19,7 +19,7 @@ use super::kept_lu::LastStep;
 use super::norms::scaled_residual;
 use super::report::{BlockFailure, Solved};
 use super::scales::{BlockEval, MagnitudesOf, fallback_rows, magnitudes_at, rows_at};
-use super::trace::{Path, note};
+use super::trace::{SolvePath, note};
 use crate::solvers::closed::{reduce_turn, unwrap_to_turn};
 use crate::solvers::jacobian::BlockJacobian;
 use core::f64::consts::{FRAC_PI_2, PI};
@@ -122,7 +122,7 @@ fn after<const N: usize, const K: usize, J: BlockJacobian<N>>(
     let mut best: Option<([f64; N], f64)> = None;
     for c in (0..N).filter(|&c| turns[c]) {
         for turn in TURNS {
-            note(Path::Restart);
+            note(SolvePath::Restart);
             let mut g = z0;
             g[c] += turn;
             counted(&g, ev);
@@ -148,7 +148,7 @@ fn after<const N: usize, const K: usize, J: BlockJacobian<N>>(
     for c in (0..N).filter(|&c| turns[c]) {
         z[c] = unwrap_to_turn(z[c], z0[c]);
     }
-    note(Path::RestartReturned);
+    note(SolvePath::RestartReturned);
     counted(&z, ev);
     let rho = residual_at(ev, mags);
     let s = iterate(z, ev, &once, &mut *counted, mags, last, rho)?;

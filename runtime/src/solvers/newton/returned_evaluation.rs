@@ -1,23 +1,30 @@
 //! The evaluation a solve returns is the one made by the LAST call of the evaluation closure,
 //! at the returned position (or at the position before a correction at the rounding level,
-//! which is applied without evaluating): on every path that returns a solution. The generated
-//! code reads values its evaluation computed (sines and cosines that its solve's `NearTrig`
-//! rotated from the previous evaluation's) after the solve, and the run-time model reads them
-//! from its registers; both hold the last evaluation's, which must therefore be the returned
-//! one.
+//! which is applied without evaluating): on every path that returns a solution.
 //!
-//! Each test drives one path of the solver, shown by the solver's trace of the paths taken, on
-//! both entry points (`newton` and `newton_keeping_lu`), and checks the contract with an
-//! evaluation closure that marks each evaluation with its call's number and records the last
-//! call's argument: the slot must carry the last call's mark and the values of the block at
-//! that argument, and the argument must be the returned position.
+//! The generated code needs only the second half of this: after the solve it reads the values
+//! it kept and the Jacobian entries it uses from the returned slot itself, so it is right
+//! whichever call made that evaluation, as long as it is one at the returned position. The
+//! run-time model needs the first half too: its evaluation writes every value of the block into
+//! its registers, which it reads after the solve, and those are the last call's; they are the
+//! returned evaluation's only when the slot holds the last call's. That is why the compiled
+//! block, reading its slot, is an independent reference for the model, reading its registers.
+//!
+//! The tests drive the paths of the solver that decide which evaluation is returned (each path
+//! the solver's trace names, and a move to the guess's turns kept after its correction was
+//! undone), each shown by that trace, on both entry points (`newton` and `newton_keeping_lu`),
+//! and check the contract with an evaluation closure that marks each evaluation with its
+//! call's number and records the last call's argument: the slot must carry the last call's
+//! mark and the values of the block at that argument, the argument must be the returned
+//! position, and the solve must count every call (`Solved::evaluations`, the caller's
+//! evaluation of the guess included).
 
 use super::config::NewtonConfig;
 use super::norms::scaled_step;
 use super::report::{NewtonStop, Solved};
 use super::scales::{BlockEval, Magnitudes};
 use super::step::MAX_UNCHECKED_CORRECTION;
-use super::trace::{self, Path};
+use super::trace::{self, SolvePath};
 use super::{newton, newton_keeping_lu};
 use crate::solvers::lu::Lu;
 use core::cell::Cell;
@@ -33,7 +40,7 @@ struct Run<const N: usize> {
     ev: BlockEval<N, 1>,
     calls: u32,
     last: [f64; N],
-    paths: Vec<Path>,
+    paths: Vec<SolvePath>,
 }
 
 /// Solves `block` from `z0` as the generated code does (the guess evaluated into the caller's
@@ -67,7 +74,8 @@ fn run<const N: usize>(
 impl<const N: usize> Run<N> {
     /// The solution, after checking the contract on it: the slot holds the last call's
     /// evaluation (its mark, and `block`'s values at its argument, bit for bit), made at the
-    /// returned position, or at the one a rounding-level correction moved unevaluated.
+    /// returned position, or at the one a rounding-level correction moved unevaluated; and the
+    /// solve counted every call.
     fn returned(&self, block: impl Fn(&[f64; N]) -> Values<N>, mags: &Magnitudes<N>) -> Solved<N> {
         let s = match &self.solved {
             Ok(s) => *s,
@@ -78,17 +86,22 @@ impl<const N: usize> Run<N> {
         let bits = |v: &[f64]| v.iter().map(|x| x.to_bits()).collect::<Vec<u64>>();
         assert_eq!(bits(&self.ev.f), bits(&f), "residuals");
         assert_eq!(bits(self.ev.j.as_flattened()), bits(j.as_flattened()), "Jacobian");
-        if self.paths.last() == Some(&Path::UncheckedCorrection) {
+        assert_eq!(s.evaluations, self.calls, "evaluations counted: {:?}", self.paths);
+        if self.paths.last() == Some(&SolvePath::UncheckedCorrection) {
             let dz: [f64; N] = core::array::from_fn(|c| s.z[c] - self.last[c]);
             let step = scaled_step(&dz, &self.last, &mags.unit);
-            assert!(step <= MAX_UNCHECKED_CORRECTION, "{step:e}: {:?} {:?}", s.z, self.last);
+            // The solver's step `dz` was at most `MAX_UNCHECKED_CORRECTION` of the larger of
+            // `|last|` and the unit; `last + dz` rounds by half a unit in the last place of the
+            // sum, and the difference here by half one of itself: one more epsilon in all.
+            let slack = f64::EPSILON;
+            assert!(step <= MAX_UNCHECKED_CORRECTION + slack, "{step:e}: {:?} {:?}", s.z, self.last);
         } else {
             assert_eq!(bits(&s.z), bits(&self.last), "the last evaluation's position: {:?}", self.paths);
         }
         s
     }
 
-    fn took(&self, path: Path) -> usize {
+    fn took(&self, path: SolvePath) -> usize {
         self.paths.iter().filter(|&&p| p == path).count()
     }
 }
@@ -126,21 +139,41 @@ fn full_steps_and_corrections_of_a_guess() {
     for keeping_lu in ENTRIES {
         let r = run([1.0, 1.0], &cfg, &mags, circle, keeping_lu);
         let root = r.returned(circle, &mags).z;
-        assert!(r.took(Path::FullStep) >= 3 && r.took(Path::SearchAccepted) == 0, "{:?}", r.paths);
+        assert!(r.took(SolvePath::FullStep) >= 3 && r.took(SolvePath::SearchAccepted) == 0, "{:?}", r.paths);
 
         let r = run(root, &cfg, &mags, circle, keeping_lu);
         r.returned(circle, &mags);
-        assert_eq!((r.calls, &r.paths[..]), (1, &[Path::UncheckedCorrection][..]));
+        assert_eq!((r.calls, &r.paths[..]), (1, &[SolvePath::UncheckedCorrection][..]));
 
         let near = [root[0] * (1.0 + 1e-13), root[1]];
         let r = run(near, &cfg, &mags, circle, keeping_lu);
         let kept = r.returned(circle, &mags).z;
-        assert_eq!((r.calls, &r.paths[..]), (2, &[Path::CorrectionKept][..]));
+        assert_eq!((r.calls, &r.paths[..]), (2, &[SolvePath::CorrectionKept][..]));
 
         let spoilt = spoilt_at(circle, kept);
         let r = run(near, &cfg, &mags, &spoilt, keeping_lu);
         assert_eq!(r.returned(&spoilt, &mags).z, near);
-        assert_eq!((r.calls, &r.paths[..]), (3, &[Path::CorrectionUndone][..]));
+        assert_eq!((r.calls, &r.paths[..]), (3, &[SolvePath::CorrectionUndone][..]));
+    }
+}
+
+/// A guess just below 1 corrected unevaluated by a step of exactly `MAX_UNCHECKED_CORRECTION`
+/// (the largest applied so): `1 - 2^-53 + 2^-48` is a tie between doubles, rounded to the even
+/// `1 + 2^-48`, so the returned position is `2^-48 + 2^-53` (16.5 epsilon) from the evaluated
+/// one, the rounding beyond the step that `returned` allows.
+#[test]
+fn a_correction_rounded_beyond_its_step() {
+    let last = 1.0 - f64::EPSILON / 2.0;
+    let step = MAX_UNCHECKED_CORRECTION;
+    // The residual `-2^-48` at `last`, exactly: the Newton step is `2^-48`.
+    let tilted = move |z: &[f64; 1]| ([(z[0] - last) - step], [[1.0]]);
+    let (cfg, mags) = (NewtonConfig::default(), Magnitudes::new([1.0], [1.0]));
+    for keeping_lu in ENTRIES {
+        let r = run([last], &cfg, &mags, tilted, keeping_lu);
+        let z = r.returned(tilted, &mags).z[0];
+        assert_eq!((r.calls, &r.paths[..]), (1, &[SolvePath::UncheckedCorrection][..]));
+        assert_eq!(z, 1.0 + step);
+        assert_eq!(z - last, step + f64::EPSILON / 2.0);
     }
 }
 
@@ -154,13 +187,13 @@ fn final_corrections_of_an_iteration() {
     for keeping_lu in ENTRIES {
         let r = run([1.5, 0.5], &loose, &mags, circle, keeping_lu);
         let kept = r.returned(circle, &mags);
-        assert_eq!(r.paths.last(), Some(&Path::CorrectionKept), "{:?}", r.paths);
+        assert_eq!(r.paths.last(), Some(&SolvePath::CorrectionKept), "{:?}", r.paths);
         assert!(kept.iterations > 0);
 
         let spoilt = spoilt_at(circle, kept.z);
         let r = run([1.5, 0.5], &loose, &mags, &spoilt, keeping_lu);
         let undone = r.returned(&spoilt, &mags);
-        assert_eq!(r.paths.last(), Some(&Path::CorrectionUndone), "{:?}", r.paths);
+        assert_eq!(r.paths.last(), Some(&SolvePath::CorrectionUndone), "{:?}", r.paths);
         assert_ne!(undone.z, kept.z);
 
         let unreachable = NewtonConfig { residual_tol: 0.0, ..NewtonConfig::default() };
@@ -178,8 +211,8 @@ fn a_line_search() {
     for keeping_lu in ENTRIES {
         let r = run([3.0], &cfg, &mags, atan, keeping_lu);
         assert!((r.returned(atan, &mags).z[0] - 1.0).abs() <= f64::EPSILON);
-        assert_eq!(r.paths.first(), Some(&Path::SearchAccepted), "{:?}", r.paths);
-        assert_eq!(r.took(Path::Descend), 0);
+        assert_eq!(r.paths.first(), Some(&SolvePath::SearchAccepted), "{:?}", r.paths);
+        assert_eq!(r.took(SolvePath::Descend), 0);
     }
 }
 
@@ -202,8 +235,8 @@ fn a_descent_after_failed_searches() {
         let r = run(guess, &cfg, &mags, wrong, keeping_lu);
         let s = r.returned(wrong, &mags);
         assert!(s.z.iter().zip(target).all(|(z, t)| (z - t).abs() <= f64::EPSILON), "{:?}", s.z);
-        let (back, descend) = (Path::CopyBack, Path::Descend);
-        let start = [Path::Reevaluated, descend, back, back, back, Path::SearchAccepted];
+        let (back, descend) = (SolvePath::CopyBack, SolvePath::Descend);
+        let start = [SolvePath::Reevaluated, descend, back, back, back, SolvePath::SearchAccepted];
         assert_eq!(r.paths[..6], start, "{:?}", r.paths);
     }
     // At a guess where the circle's Jacobian is singular (`x y = -1/3`) no Newton step is
@@ -212,7 +245,7 @@ fn a_descent_after_failed_searches() {
     for keeping_lu in ENTRIES {
         let r = run([1.0, -1.0 / 3.0], &cfg, &mags, circle, keeping_lu);
         r.returned(circle, &mags);
-        assert_eq!(&r.paths[..2], &[Path::Descend, Path::SearchAccepted], "{:?}", r.paths);
+        assert_eq!(&r.paths[..2], &[SolvePath::Descend, SolvePath::SearchAccepted], "{:?}", r.paths);
     }
 }
 
@@ -227,7 +260,7 @@ fn an_iteration_past_the_tolerance() {
         let r = run([1.0], &cfg, &mags, near_fold, keeping_lu);
         let s = r.returned(near_fold, &mags);
         assert!((s.z[0] - 5e-7).abs() <= 1e-15, "{}", s.z[0]);
-        assert!(r.took(Path::PastTolerance) > 0, "{:?}", r.paths);
+        assert!(r.took(SolvePath::PastTolerance) > 0, "{:?}", r.paths);
     }
 }
 
@@ -243,13 +276,15 @@ fn an_iterate_at_its_floor() {
         let r = run(guess, &cfg, &mags, floor, keeping_lu);
         let s = r.returned(floor, &mags);
         assert_eq!((s.z, s.termination), (guess, NewtonStop::StepTolerance));
-        assert_eq!(r.took(Path::AtFloor), 1, "{:?}", r.paths);
+        assert_eq!(r.took(SolvePath::AtFloor), 1, "{:?}", r.paths);
     }
 }
 
 /// `sin q = 1/2` from near the top of the crank (where the first Newton step is long): an angle
-/// carried turns away comes back to the guess's turn, evaluated and corrected there; and
-/// `q^3 = 1000` marked as if it repeated every turn: its move is undone.
+/// carried turns away comes back to the guess's turn, evaluated and corrected there, or, with
+/// the corrected position spoilt, kept uncorrected (its residual there within the tolerance: the
+/// correction undone, the iterate on the guess's turn evaluated again); and `q^3 = 1000` marked
+/// as if it repeated every turn: its move is undone.
 #[test]
 fn angles_back_on_the_guess_turn() {
     let pin = |z: &[f64; 1]| ([z[0].sin() - 0.5], [[z[0].cos()]]);
@@ -261,15 +296,36 @@ fn angles_back_on_the_guess_turn() {
             let g = FRAC_PI_2 + (k as f64 - 19.5) * 1e-4;
             let r = run([g], &cfg, &mags, pin, keeping_lu);
             assert!((r.returned(pin, &mags).z[0] - g).abs() <= PI);
-            moved += r.took(Path::TurnsMoved);
+            moved += r.took(SolvePath::TurnsMoved);
         }
         assert!(moved > 2, "{moved} of 40 solves moved back a turn");
+
+        // The move kept while its correction is undone: the correction's position spoilt.
+        let mut kept = 0;
+        for k in 0..40 {
+            let g = FRAC_PI_2 + (k as f64 - 19.5) * 1e-4;
+            let r = run([g], &cfg, &mags, pin, keeping_lu);
+            if !r.paths.ends_with(&[SolvePath::TurnsMoved, SolvePath::CorrectionKept]) {
+                continue;
+            }
+            let spoilt = spoilt_at(pin, r.returned(pin, &mags).z);
+            let r = run([g], &cfg, &mags, &spoilt, keeping_lu);
+            let s = r.returned(&spoilt, &mags);
+            assert!(r.paths.ends_with(&[SolvePath::TurnsMoved, SolvePath::CorrectionUndone]), "{:?}", r.paths);
+            assert!(
+                (s.z[0] - g).abs() <= PI && (s.z[0].sin() - 0.5).abs() <= 1.5 * cfg.residual_tol,
+                "{g}: {}",
+                s.z[0]
+            );
+            kept += 1;
+        }
+        assert!(kept > 2, "{kept} of 40 solves kept their move with the correction undone");
 
         let cube = |z: &[f64; 1]| ([z[0].powi(3) - 1000.0], [[3.0 * z[0] * z[0]]]);
         let marked = Magnitudes::new([1000.0], [1.0]).with_turns([true]);
         let r = run([1.0], &cfg, &marked, cube, keeping_lu);
         assert!((r.returned(cube, &marked).z[0] - 10.0).abs() <= 8.0 * f64::EPSILON);
-        assert_eq!(r.took(Path::TurnsUndone), 1, "{:?}", r.paths);
+        assert_eq!(r.took(SolvePath::TurnsUndone), 1, "{:?}", r.paths);
     }
 }
 
@@ -289,8 +345,8 @@ fn restarts() {
             let r = run([PI + side], &cfg, &mags, folded, keeping_lu);
             let s = r.returned(folded, &mags);
             assert!(s.residual <= cfg.residual_tol);
-            assert_eq!(r.took(Path::Restart), 3, "{:?}", r.paths);
-            assert_eq!(r.took(Path::RestartReturned), 1, "{:?}", r.paths);
+            assert_eq!(r.took(SolvePath::Restart), 3, "{:?}", r.paths);
+            assert_eq!(r.took(SolvePath::RestartReturned), 1, "{:?}", r.paths);
         }
     }
 }

@@ -54,6 +54,13 @@ impl<const N: usize> Magnitudes<N> {
         self.turns = turns;
         self
     }
+
+    /// The units of the unknowns the tests use (see [`Magnitudes::unit`]: an invalid one
+    /// replaced by `1`), for a caller that checks a solve's steps in the solver's own units.
+    #[inline(always)]
+    pub fn unit(&self) -> &[f64; N] {
+        &self.unit
+    }
 }
 
 /// Where a block's magnitudes come from: made once for the solve ([`Magnitudes`] itself), or

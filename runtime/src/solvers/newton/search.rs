@@ -6,7 +6,7 @@ use super::config::NewtonConfig;
 use super::norms::{scaled_norms, sum_sq_scaled};
 use super::scales::BlockEval;
 use super::state::Iter;
-use super::trace::{Path, note};
+use super::trace::{SolvePath, note};
 use crate::solvers::jacobian::BlockJacobian;
 use crate::solvers::lu::{Lu, RowScales, boxed_zeros};
 
@@ -49,7 +49,7 @@ impl<const N: usize, const K: usize, J: BlockJacobian<N>> Iter<'_, N, K, J> {
         self.evaluations += 1;
         let (rho, phi) = scaled_norms(&self.ev.f, rows);
         if phi <= phi0 + 1e-4 * slope {
-            note(Path::FullStep);
+            note(SolvePath::FullStep);
             self.z = trial;
             // In scales that stay the same, the next iteration's test of this iterate.
             self.judged = if fixed_rows { Some((rho, phi)) } else { None };
@@ -78,7 +78,7 @@ impl<const N: usize, const K: usize, J: BlockJacobian<N>> Iter<'_, N, K, J> {
         if self.search(dz, rows, phi0, slope, 0.5, cfg, eval) {
             return true;
         }
-        note(Path::Reevaluated);
+        note(SolvePath::Reevaluated);
         eval(&self.z, self.ev);
         self.evaluations += 1;
         false
@@ -111,7 +111,7 @@ impl<const N: usize, const K: usize, J: BlockJacobian<N>> Iter<'_, N, K, J> {
             self.evaluations += 1;
             let phi = sum_sq_scaled(&self.ev.f, rows);
             if phi <= phi0 + 1e-4 * t * slope {
-                note(Path::SearchAccepted);
+                note(SolvePath::SearchAccepted);
                 self.z = trial;
                 return true;
             }
@@ -135,7 +135,7 @@ impl<const N: usize, const K: usize, J: BlockJacobian<N>> Iter<'_, N, K, J> {
         cfg: &NewtonConfig,
         eval: &mut impl FnMut(&[f64; N], &mut BlockEval<N, K, J>),
     ) -> bool {
-        note(Path::Descend);
+        note(SolvePath::Descend);
         let s = &rows.s;
         let (a, g) = normal_equations(self.ev, s);
         let trace: f64 = (0..N).map(|k| a[k][k]).sum();
@@ -170,7 +170,7 @@ impl<const N: usize, const K: usize, J: BlockJacobian<N>> Iter<'_, N, K, J> {
             if self.search(&dz, rows, phi0, slope, 1.0, cfg, eval) {
                 return true;
             }
-            note(Path::CopyBack);
+            note(SolvePath::CopyBack);
             *self.ev = **at_z;
         }
         false

@@ -3,7 +3,7 @@
 
 use super::norms::scaled_residual;
 use super::scales::{BlockEval, MagnitudesOf, fallback_rows, magnitudes_at, rows_at};
-use super::trace::{Path, note};
+use super::trace::{SolvePath, note};
 use crate::solvers::jacobian::BlockJacobian;
 use crate::solvers::lu::RowScales;
 
@@ -63,11 +63,11 @@ pub(super) fn evaluated_correction<const N: usize, const K: usize, J: BlockJacob
     let m = magnitudes_at!(mags, &*ev, current);
     let rho = scaled_residual(&ev.f, rows_at!(m, &*ev, fallback));
     if rho <= bound {
-        note(Path::CorrectionKept);
+        note(SolvePath::CorrectionKept);
         *z = z1;
         Some(rho)
     } else {
-        note(Path::CorrectionUndone);
+        note(SolvePath::CorrectionUndone);
         eval(z, ev);
         *evaluations += 1;
         None

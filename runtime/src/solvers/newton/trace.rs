@@ -4,7 +4,7 @@
 
 /// A path of the solver that decides which evaluation a solve returns.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
-pub(super) enum Path {
+pub(super) enum SolvePath {
     /// A correction at the rounding level applied without evaluating (at the guess or at the
     /// end of an iteration): the one position returned that is not the last evaluated.
     UncheckedCorrection,
@@ -38,12 +38,12 @@ pub(super) enum Path {
 
 #[cfg(test)]
 std::thread_local! {
-    static TAKEN: core::cell::RefCell<Vec<Path>> = const { core::cell::RefCell::new(Vec::new()) };
+    static TAKEN: core::cell::RefCell<Vec<SolvePath>> = const { core::cell::RefCell::new(Vec::new()) };
 }
 
 /// Records that the solve took `path` (in the unit tests; nothing otherwise).
 #[inline(always)]
-pub(super) fn note(path: Path) {
+pub(super) fn note(path: SolvePath) {
     #[cfg(test)]
     TAKEN.with(|t| t.borrow_mut().push(path));
     #[cfg(not(test))]
@@ -52,6 +52,6 @@ pub(super) fn note(path: Path) {
 
 /// The paths recorded on this thread since the last call, in order.
 #[cfg(test)]
-pub(super) fn take() -> Vec<Path> {
+pub(super) fn take() -> Vec<SolvePath> {
     TAKEN.with(|t| core::mem::take(&mut *t.borrow_mut()))
 }
