@@ -7,11 +7,11 @@
 //! last place off libm's), and the outputs, analogs and later blocks read the rotated values of
 //! the evaluation the solve returned; in a sweep's kernel an argument free of the unknowns is
 //! asked of the sweep's cache (`Rotating`; a sum `phi + gamma` by angle addition from `phi`'s
-//! pair). The declarations below put each half of a pair in a different scope:
+//! pair). The declarations below put each half of a pair in a different scope ([`TwoStageNewton`]):
 //!
 //! * `sin(psi)` only in block 0's equation, `cos(psi)` only in block 1's equation and in an
 //!   output: block 0's evaluation computes both (its Jacobian needs the cosine), block 1 and the
-//!   output read them from its `keep`;
+//!   output read them from it;
 //! * `cos(s)` only in block 1's equation, `sin(s)` only in an output: the same, the other way
 //!   round;
 //! * `sin(phi)` of the input only in block 0's equation, `cos(phi)` only in the analogs and an
@@ -19,12 +19,21 @@
 //! * `sin(phi + gamma)` only in block 1's equation, `cos(phi + gamma)` only in an output: one
 //!   pair before block 1, in a sweep's kernel from `phi`'s pair by angle addition.
 //!
-//! [`TwoStageNewton`] solves both blocks by Newton, [`TwoStage`] block 0 by its closed form
-//! (an angle from its sine) and block 1 by Newton. That the pairs span those scopes is checked
-//! on the expansion itself (`the_expansion_pairs_across_scopes`). The reference is the compiled
-//! code (straight-line Rust the macro emitted): point steps and the runtime's sweep with libm's
-//! input sines must be equal to the last bit, the sweep with the compiled kernel's rotation
-//! cache to rounding (a run-time model has no such cache, `sweeps.rs`).
+//! [`TwoStage`] swaps `phi` and `phi + gamma` (the sum's pair needed first, in block 0: `phi`'s
+//! pair moves there too, though neither of its halves is needed before block 1) and solves
+//! block 0 by its closed form (the angle from its sine; the sine and cosine of `psi` from the
+//! equation, no `sin_cos`). That the pairs span those scopes is checked on the expansion itself
+//! (`the_expansion_pairs_across_scopes`).
+//!
+//! A sine or cosine of an argument that depends on a Newton block's unknowns never has its
+//! partner only outside the block's evaluation: the Jacobian there needs the partner
+//! (`d sin(a) / du = cos(a) da/du`). What crosses the scopes is the reading: later blocks, the
+//! analogs and the outputs take the rotated values of the evaluation the solve returned.
+//!
+//! The reference is the compiled code (straight-line Rust the macro emitted): point steps,
+//! positions, steps at a position, sensitivities and the runtime's sweep with libm's input
+//! sines must be equal to the last bit, the sweep with the compiled kernel's rotation cache to
+//! rounding (a run-time model has no such cache, see `sweeps.rs`).
 
 mod common;
 
@@ -47,6 +56,7 @@ declared! {
     /// `s - m cos s = k cos psi + r sin(phi + gamma)` (`m < 1`: one root, found by Newton).
     /// Both blocks solved by Newton.
     #[kinloop(newton)]
+    #[kinloop(sensitivities)]
     pub struct TwoStageNewton {
         params r = 1.0, l = 3.0, e = 0.4, gamma = 0.3, k = 2.0, m = 0.5;
         input phi;
@@ -61,16 +71,17 @@ declared! {
 
 declared! {
     TWO_STAGE_TEXT =>
-    /// [`TwoStageNewton`] with block 0 by its closed form.
+    /// [`TwoStageNewton`] with the angle sum and the input's own angle swapped (the sum's pair
+    /// now needed first), and block 0 by its closed form (an angle from its sine).
     pub struct TwoStage {
         params r = 1.0, l = 3.0, e = 0.4, gamma = 0.3, k = 2.0, m = 0.5;
         input phi;
         unknowns psi = 0.1, s = 2.5;
-        eq lift: r * sin(phi) + l * sin(psi) == e;
-        eq slide: s - m * cos(s) == k * cos(psi) + r * sin(phi + gamma);
-        output reach = r * cos(phi) + l * cos(psi);
+        eq lift: r * sin(phi + gamma) + l * sin(psi) == e;
+        eq slide: s - m * cos(s) == k * cos(psi) + r * sin(phi);
+        output reach = r * cos(phi + gamma) + l * cos(psi);
         output drop = m * sin(s);
-        output lead = cos(phi + gamma);
+        output lead = cos(phi);
     }
 }
 
@@ -89,46 +100,60 @@ fn at(code: &str, what: &str) -> usize {
     code.find(what).unwrap_or_else(|| panic!("`{what}` not in the step kernel:\n{code}"))
 }
 
-/// The premise: each pair is one call in the earlier scope, and the later scopes read it.
+/// `cos(s)` in block 1's equation, `sin(s)` only in the output `drop`: one rotated pair of
+/// block 1's evaluation (`m sin s` is its Jacobian's too), the output handed out of it. Returns
+/// where block 1 starts.
+fn block_1_hands_out_drop(k: &str) -> usize {
+    let block1 = at(k, "let__near1=");
+    // The guess's evaluation (libm's values, kept in the slot), then the later ones (rotated).
+    let seed = at(k, "let(sin_s,cos_s):(f64,f64)=__near1.seed(0,q_s);");
+    let drop = at(k, "letout_drop:f64=self.m*sin_s;");
+    let rotated = at(k, "let(sin_s,cos_s):(f64,f64)=__near1.sin_cos(0,q_s);");
+    let read = at(k, "let[cos_s,sin_s,out_drop,_,_]=__ev1.keep;");
+    assert!(block1 < seed && seed < drop && drop < rotated && rotated < read, "{k}");
+    block1
+}
+
+/// The premise: each pair is one call in the earlier of its two scopes, the later one reads it.
+/// Checked on the step kernel (`kinematics_step_sink`, the point step and the sweep's step).
 #[test]
 fn the_expansion_pairs_across_scopes() {
-    for (name, text) in [("newton", TWO_STAGE_NEWTON_TEXT), ("closed form", TWO_STAGE_TEXT)] {
+    for text in [TWO_STAGE_NEWTON_TEXT, TWO_STAGE_TEXT] {
         let k = step_kernel(text);
-        // No lone sine or cosine: every one is half of a pair.
-        assert!(!k.contains(".sin()") && !k.contains(".cos()"), "{name}: a lone sine or cosine\n{k}");
-        // The input's pair before block 0 (its sine's scope), read by the analogs (`cos_phi`'s
-        // only use in the declaration) after block 1.
-        let phi_pair = at(&k, "let(sin_phi,cos_phi):(f64,f64)=__trig.sin_cos(0,x_phi);");
-        let block1 = at(&k, "let__near1=");
-        assert!(phi_pair < block1 && block1 < at(&k, "self.r*cos_phi"), "{name}: cos(phi)\n{k}");
-        // `phi + gamma`'s pair before block 1 (its sine's scope), its cosine the output `lead`,
-        // by angle addition from `phi`'s pair.
-        let sum = at(&k, ",out_lead):(f64,f64)=__trig.sin_cos_sum(");
-        assert!(phi_pair < sum && sum < block1, "{name}: cos(phi + gamma)\n{k}");
-        // `cos(s)` in block 1's equation, `sin(s)` in the output `drop`: one rotated pair of block
-        // 1's evaluation, the output handed out of it.
-        at(&k, "let(sin_s,cos_s):(f64,f64)=__near1.sin_cos(0,q_s);letm_cos_s");
-        let drop = at(&k, "letout_drop:f64=self.m*sin_s;");
-        assert!(block1 < drop && drop < at(&k, "let[cos_s,sin_s,out_drop,_,_]=__ev1.keep;"), "{name}: drop\n{k}");
-        // `cos(psi)` is read by block 1 and the output `reach`.
-        let cos_psi = at(&k, "self.k*cos_psi");
-        assert!(cos_psi < block1 && block1 < at(&k, "letout_reach"), "{name}: cos(psi)\n{k}");
-        if name == "newton" {
-            // `sin(psi)` in block 0's equation, `cos(psi)` in its Jacobian: one rotated pair of
-            // block 0's evaluation, handed to block 1's scope before it.
-            at(&k, "let(sin_psi,cos_psi):(f64,f64)=__near0.sin_cos(0,q_psi);");
-            assert!(
-                at(&k, "let[sin_psi,cos_psi") < at(&k, "]=__ev0.keep;") && at(&k, "]=__ev0.keep;") < cos_psi,
-                "{k}"
-            );
-            // The output `reach` reads `l cos(psi)` from the Jacobian of the returned evaluation.
-            at(&k, "letl_cos_psi:f64=__ev0.j[0][0];");
-        } else {
-            // The closed form gives `psi`'s sine and cosine from its equation, the angle asked of
-            // the sweep's cache.
-            assert!(phi_pair < at(&k, "let([q_psi,cos_psi,sin_psi],__check0)") && at(&k, "__trig.angle(0,") < cos_psi);
-        }
+        assert!(!k.contains(".sin()") && !k.contains(".cos()"), "a sine or cosine not paired\n{k}");
     }
+    let k = step_kernel(TWO_STAGE_NEWTON_TEXT);
+    let block1 = block_1_hands_out_drop(&k);
+    // `sin(psi)` in block 0's equation, `cos(psi)` in its Jacobian: one rotated pair of block 0's
+    // evaluation, handed out to block 1 (`k cos psi`, before its solve) and to the output `reach`
+    // (`l cos psi`, the Jacobian's entry of the returned evaluation).
+    let block0 = at(&k, "let__near0=");
+    assert!(block0 < at(&k, "let(sin_psi,cos_psi):(f64,f64)=__near0.sin_cos(0,q_psi);"));
+    let (kept, cos_psi) = (at(&k, "let[sin_psi,cos_psi"), at(&k, "self.k*cos_psi"));
+    assert!(kept < at(&k, "]=__ev0.keep;") && kept < cos_psi && cos_psi < block1, "{k}");
+    assert!(at(&k, "letl_cos_psi:f64=__ev0.j[0][0];") < at(&k, "letout_reach:f64=fx_lift_phi+l_cos_psi;"));
+    // The input's pair before block 0 (its sine's scope); its cosine's first use is the analogs'
+    // `r cos phi`, after block 1.
+    let phi = at(&k, "let(sin_phi,cos_phi):(f64,f64)=__trig.sin_cos(0,x_phi);");
+    assert!(phi < block0 && block1 < at(&k, "letfx_lift_phi:f64=self.r*cos_phi;"), "{k}");
+    // `phi + gamma`'s pair before block 1 (its sine's scope), its cosine the output `lead`, from
+    // `phi`'s pair by angle addition in a sweep.
+    let sum = at(&k, ",out_lead):(f64,f64)=__trig.sin_cos_sum(1,");
+    assert!(block0 < sum && sum < at(&k, "(sin_phi,cos_phi),self.gamma);") && sum < block1, "{k}");
+
+    let k = step_kernel(TWO_STAGE_TEXT);
+    let block1 = block_1_hands_out_drop(&k);
+    // The closed form gives `psi`, its sine and its cosine (the angle asked of a sweep's cache);
+    // block 1 reads the cosine.
+    let block0 = at(&k, "let([q_psi,cos_psi,sin_psi],__check0)");
+    assert!(block0 < at(&k, "__trig.angle(0,") && at(&k, "__trig.angle(0,") < at(&k, "self.k*cos_psi"));
+    // `sin(phi + gamma)` in block 0, `sin(phi)` only in block 1's equation, `cos(phi)` only in the
+    // output `lead`: `phi`'s pair moves before block 0, the sum's from it by angle addition.
+    let phi = at(&k, "let(sin_phi,out_lead):(f64,f64)=__trig.sin_cos(1,x_phi);");
+    let sum = at(&k, "=__trig.sin_cos_sum(0,");
+    assert!(sum < at(&k, "(sin_phi,out_lead),self.gamma);"), "{k}");
+    let sin_phi_use = at(&k, "self.r*sin_phi");
+    assert!(phi < sum && sum < block0 && block0 < sin_phi_use && sin_phi_use < block1, "{k}");
 }
 
 /// Bits of a slice, for comparisons to the last bit with a readable failure.
@@ -160,9 +185,14 @@ fn same_bits<const N: usize, const NO: usize>(c: &Kin<N, 1, NO>, r: &kinloop_mod
 /// step at the solved position too. Returns how many outputs `reach` and `drop` (read out of the
 /// Newton evaluations) differ from libm's values at the same positions: the rotated values
 /// are in use, a model recomputing them by libm would be caught.
-fn point_steps<M: Mechanism<2, 1, 3>>(compiled: &M, model: &mut Model, samples: usize) -> usize {
+fn point_steps<M: Mechanism<2, 1, 3>>(
+    compiled: &M,
+    model: &mut Model,
+    samples: usize,
+    reach: impl Fn(f64, f64) -> f64,
+) -> usize {
     let cfg = NewtonConfig::default();
-    let (r, l, m) = (1.0, 3.0, 0.5);
+    let m = 0.5;
     let mut q = compiled.guess_flat(&[0.0]);
     let mut not_libm = 0;
     for k in 0..samples {
@@ -175,7 +205,7 @@ fn point_steps<M: Mechanism<2, 1, 3>>(compiled: &M, model: &mut Model, samples: 
             assert_eq!(bits(&p), bits(model.positions(&x, &g, &cfg).expect("positions")), "{what}: positions");
             let at = compiled.kinematics_at_flat(&x, &c.q, &cfg).expect("at the position");
             same_bits(&at, model.kinematics_at(&x, &c.q, &cfg).expect("at the position"), &format!("{what}, at"));
-            let libm = [r * x[0].cos() + l * c.q[0].cos(), m * c.q[1].sin()];
+            let libm = [reach(x[0], c.q[0]), m * c.q[1].sin()];
             not_libm += usize::from(bits(&c.out[..2]) != bits(&libm));
             if from == "the previous position" {
                 q = c.q;
@@ -187,12 +217,44 @@ fn point_steps<M: Mechanism<2, 1, 3>>(compiled: &M, model: &mut Model, samples: 
 
 #[test]
 fn point_steps_equal_the_compiled_ones_to_the_bit() {
-    let n = point_steps(&TwoStageNewton::default(), &mut read(TWO_STAGE_NEWTON_TEXT), 360);
+    let (r, l, gamma) = (1.0, 3.0, 0.3);
+    let reach = |phi: f64, psi: f64| r * phi.cos() + l * psi.cos();
+    let n = point_steps(&TwoStageNewton::default(), &mut read(TWO_STAGE_NEWTON_TEXT), 360, reach);
     assert!(n > 0, "no output with rotated values");
     eprintln!("two Newton blocks: {n} of 720 steps with outputs other than libm's");
-    let n = point_steps(&TwoStage::default(), &mut read(TWO_STAGE_TEXT), 360);
+    let reach = |phi: f64, psi: f64| r * (phi + gamma).cos() + l * psi.cos();
+    let n = point_steps(&TwoStage::default(), &mut read(TWO_STAGE_TEXT), 360, reach);
     assert!(n > 0, "no output with rotated values");
     eprintln!("closed form then Newton: {n} of 720 steps with outputs other than libm's");
+}
+
+/// The sensitivities to every parameter (the compiled `sensitivities_flat`, its own solve and
+/// its own schedule over the same pairs) over a turn, bit for bit.
+#[test]
+fn sensitivities_equal_the_compiled_ones_to_the_bit() {
+    use kinloop::Sensitivities;
+    let cfg = NewtonConfig::default();
+    let compiled = TwoStageNewton::default();
+    let mut model = read(TWO_STAGE_NEWTON_TEXT);
+    let mut q = compiled.guess_flat(&[0.0]);
+    for k in 0..90 {
+        let x = [TAU * k as f64 / 90.0];
+        let (c, cs) = compiled.sensitivities_flat(&x, &q, &cfg).expect("compiled");
+        let (r, rs) = model.sensitivities(&x, &q, &cfg).expect("run time");
+        same_bits(&c, r, &format!("phi = {}", x[0]));
+        let rs = rs.expect("declared with sensitivities");
+        for (name, a, b) in [
+            ("q", cs.q.iter().flatten().copied().collect::<Vec<f64>>(), &rs.q),
+            ("dq", cs.dq.iter().flatten().flatten().copied().collect(), &rs.dq),
+            ("d2q", cs.d2q.iter().flatten().flatten().flatten().copied().collect(), &rs.d2q),
+            ("out", cs.out.iter().flatten().copied().collect(), &rs.out),
+            ("dout", cs.dout.iter().flatten().flatten().copied().collect(), &rs.dout),
+            ("d2out", cs.d2out.iter().flatten().flatten().flatten().copied().collect(), &rs.d2out),
+        ] {
+            assert_eq!(bits(&a), bits(b), "phi = {}: sensitivities of {name}", x[0]);
+        }
+        q = c.q;
+    }
 }
 
 /// Relative agreement demanded of the sweep with the compiled rotation cache, of each array's
