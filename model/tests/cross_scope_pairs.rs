@@ -228,6 +228,32 @@ fn point_steps_equal_the_compiled_ones_to_the_bit() {
     eprintln!("closed form then Newton: {n} of 720 steps with outputs other than libm's");
 }
 
+/// A coupled Newton block of four unknowns (the class IV group, `kinloop_fixtures`): its
+/// equations hold `sin` and `cos` of `th1 + alpha_a` and `th2 + alpha_b`, rotated in its
+/// evaluation, which hands them (and the output points, partial sums of its equations) to the
+/// analogs and the outputs. Point steps over a turn from the
+/// previous position and from a guess off it, every array bit for bit.
+#[test]
+fn a_coupled_block_hands_its_pairs_to_the_outputs_bit_for_bit() {
+    use kinloop_fixtures as fx;
+    let cfg = NewtonConfig::default();
+    let compiled = fx::ClassFour::default();
+    let mut model = read(fx::CLASS_FOUR_TEXT);
+    let mut q = compiled.guess_flat(&[0.0]);
+    for k in 0..180 {
+        let x = [TAU * k as f64 / 180.0];
+        let off: [f64; 4] = std::array::from_fn(|u| q[u] + if u % 2 == 0 { 2e-3 } else { -3e-3 });
+        for (g, from) in [(q, "the previous position"), (off, "a guess off it")] {
+            let what = format!("class IV at phi = {} from {from}", x[0]);
+            let c = compiled.kinematics_flat(&x, &g, &cfg).unwrap_or_else(|e| panic!("{what}: {e}"));
+            same_bits(&c, model.kinematics(&x, &g, &cfg).unwrap_or_else(|e| panic!("{what}: {e}")), &what);
+            if from == "the previous position" {
+                q = c.q;
+            }
+        }
+    }
+}
+
 /// The sensitivities to every parameter (the compiled `sensitivities_flat`, its own solve and
 /// its own schedule over the same pairs) over a turn, bit for bit.
 #[test]
