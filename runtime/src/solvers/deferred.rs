@@ -59,6 +59,10 @@ pub fn largest_deferred_guess(cfg: &NewtonConfig) -> f64 {
     largest_precise_angle(cfg) - GUESS_MARGIN
 }
 
+/// [`largest_deferred_guess`] at the smallest residual tolerance (16 eps), the least of all:
+/// `1000 · 16 eps / eps - 8`, 15,992 rad (2545 turns).
+pub const LEAST_DEFERRED_GUESS: f64 = 16_000.0 - GUESS_MARGIN;
+
 /// How a kernel tests: every check on the way (`CHECKED`), or deferred to its end. The kernel
 /// binds it once (`__mode`) and asks it for its closed-form steps, which are then the checked
 /// ones or the deferred ones (see [`root_offset_deferred`]), and for what follows a failed test
@@ -121,7 +125,15 @@ impl<const CHECKED: bool> Checks<CHECKED> {
     #[allow(clippy::neg_cmp_op_on_partial_ord)]
     #[inline(always)]
     pub fn far(self, magnitudes: f64, cfg: &NewtonConfig) -> bool {
-        !CHECKED && !(magnitudes <= largest_deferred_guess(cfg))
+        // `!(magnitudes <= largest_deferred_guess(cfg))`, tested in two: the bound is the larger
+        // of `LEAST_DEFERRED_GUESS` and the same formula of the unclamped tolerance (rounding is
+        // monotone, so the maximum passes through it; `1000 / eps` is exact, so one product
+        // rounds as the two of `largest_precise_angle` do). Nearly every step passes the constant,
+        // without reading the configuration: tested at once, the bound cost a sweep's sample 4
+        // instructions (callgrind), against none.
+        !CHECKED
+            && !(magnitudes <= LEAST_DEFERRED_GUESS)
+            && !(magnitudes <= cfg.residual_tol * (1000.0 / f64::EPSILON) - GUESS_MARGIN)
     }
 }
 
@@ -253,6 +265,28 @@ mod tests {
         let default = NewtonConfig::default();
         assert_close(largest_deferred_guess(&default), 1e-9 / f64::EPSILON - 8.0);
         assert!(!Checks::<false>.far(4.5e6, &default) && Checks::<false>.far(4.6e6, &default));
+    }
+
+    /// The entry test in two is the test against [`largest_deferred_guess`]: at the bound's
+    /// neighbours and at random magnitudes, under tolerances from zero (and subnormal) to the
+    /// largest valid, 16 eps and its neighbours among them.
+    #[test]
+    fn the_entry_test_in_two_is_the_test_against_the_bound() {
+        let mut rng = Rng(0x5851_f42d_4c95_7f2d);
+        let eps16 = 16.0 * f64::EPSILON;
+        let mut tols =
+            vec![0.0, f64::from_bits(1), 1e-300, eps16.next_down(), eps16, eps16.next_up(), 1e-14, 1e-12, 1e-3];
+        tols.extend((0..200).map(|_| 10f64.powf(rng.uniform(-17.0, -3.0))));
+        assert_eq!(LEAST_DEFERRED_GUESS, largest_deferred_guess(&NewtonConfig::default().with_residual_tol(eps16)));
+        for tol in tols {
+            let cfg = NewtonConfig::default().with_residual_tol(tol);
+            let bound = largest_deferred_guess(&cfg);
+            let mut ms = vec![0.0, bound, bound.next_up(), bound.next_down(), LEAST_DEFERRED_GUESS.next_up(), f64::NAN];
+            ms.extend((0..200).map(|_| bound * rng.uniform(0.0, 2.0)));
+            for m in ms {
+                assert_eq!(Checks::<false>.far(m, &cfg), !(m <= bound), "{m} under {tol:e}");
+            }
+        }
     }
 
     /// `a` equal to `b` to a few units in the last place.
