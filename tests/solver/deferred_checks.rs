@@ -4,8 +4,9 @@
 //! checked kernel (`Mechanism::kinematics_step_checked`) tests every root, guess, angle and
 //! pivot where it arises. Compared here over inputs and guesses that reach every failure: links
 //! that cannot reach, a pin over its pivot, change points, non-finite inputs and guesses, angles
-//! too many turns out, an angle between the conservative bound of the entry test and the
-//! configured one, a Newton block fed by a closed form that failed, and parameters non-finite,
+//! too many turns out (under the default configuration and that of the smallest residual
+//! tolerance), guesses around the entry test's bound (the configured one less a margin) and
+//! angles around the configured one, a Newton block fed by a closed form that failed, and parameters non-finite,
 //! zero, negative, huge or tiny. (The deferred kernel's end sums only the values whose
 //! finiteness the others' does not imply: a value left out that the sum missed would show as a
 //! state where the checked kernel finds an error.)
@@ -43,14 +44,20 @@ fn agree<M: Mechanism<N, NI, NO>, const N: usize, const NI: usize, const NO: usi
     guess: [f64; N],
     tally: &mut Tally,
 ) {
-    let cfg = NewtonConfig::default();
-    let deferred = m.kinematics_step_sink::<_, _, false>(&x, &guess, &cfg, &mut Libm, ByValue);
-    let checked = m.kinematics_step_checked(&x, &guess, &cfg, &mut Libm, ByValue);
-    let (d, c) = (format!("{deferred:?}"), format!("{checked:?}"));
-    assert_eq!(d, c, "{} at {x:?} from {guess:?}", M::NAME);
-    match deferred {
-        Ok(_) => tally.states += 1,
-        Err(e) => tally.errors.push(format!("{e:?}").split([' ', '{', '(']).next().unwrap_or("").to_owned()),
+    // The default configuration (the entry test's bound 4.5e6 rad) and, for guesses between
+    // 16,000 rad, the bound of the smallest residual tolerance, and the default bound, that
+    // configuration too (the guesses beyond both, or NaN, take the same path under both).
+    let configs = [NewtonConfig::default(), NewtonConfig::default().with_residual_tol(16.0 * f64::EPSILON)];
+    let far = guess.iter().any(|g| g.abs() > 1e4 && g.abs() < 1e6);
+    for cfg in &configs[..if far { 2 } else { 1 }] {
+        let deferred = m.kinematics_step_sink::<_, _, false>(&x, &guess, cfg, &mut Libm, ByValue);
+        let checked = m.kinematics_step_checked(&x, &guess, cfg, &mut Libm, ByValue);
+        let (d, c) = (format!("{deferred:?}"), format!("{checked:?}"));
+        assert_eq!(d, c, "{} at {x:?} from {guess:?}", M::NAME);
+        match deferred {
+            Ok(_) => tally.states += 1,
+            Err(e) => tally.errors.push(format!("{e:?}").split([' ', '{', '(']).next().unwrap_or("").to_owned()),
+        }
     }
 }
 
@@ -61,11 +68,14 @@ fn inputs() -> Vec<f64> {
     x
 }
 
-/// From `base`: itself; moved by whole turns (the entry test's bound is 15,992 rad, the
-/// configured one 4.5e6: 1e5 passes only the checked kernel's test, 1e7 neither); each entry
-/// NaN in turn; and moved by up to 3 in each entry (the other assembly mode, often).
+/// From `base`: itself; moved by whole turns (the configured bound is 4.5e6 rad by default,
+/// the entry test's 8 less, and 16,000 at the smallest residual tolerance: 1e5 passes both
+/// tests under the default and neither under the smallest; 4,503,584 puts the guesses' sum
+/// around the default entry bound, the angles around the configured one; 1e7 passes neither);
+/// each entry NaN in turn; and moved by up to 3 in each entry (the other assembly mode, often).
 fn guesses<const N: usize>(base: [f64; N], k: usize) -> Vec<[f64; N]> {
-    let mut out = vec![base, base.map(|g| g + 15_915.0 * TAU), base.map(|g| g + 1e7)];
+    let mut out =
+        vec![base, base.map(|g| g + 15_915.0 * TAU), base.map(|g| g + 716_770.0 * TAU), base.map(|g| g + 1e7)];
     for i in 0..N {
         let mut g = base;
         g[i] = f64::NAN;

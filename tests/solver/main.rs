@@ -16,6 +16,7 @@ mod closed_form;
 mod closed_form_prop;
 mod decomposition;
 mod deferred_checks;
+mod deferred_entry_bound;
 mod lever_singularity;
 mod newton_restarts;
 mod sin_cos_order;

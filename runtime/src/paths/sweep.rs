@@ -466,6 +466,9 @@ where
         match cfg.validate() {
             Ok(()) => {
                 self.cfg = cfg;
+                // The cache's anchors come from guesses the deferred kernel accepted under the
+                // old configuration's bound (`largest_deferred_guess`), which may be larger.
+                self.trig.forget_anchors();
                 self.first_restarts = cfg.newton.restarts;
                 self.cfg.newton.restarts = false;
                 self.invalid = None;
