@@ -35,20 +35,13 @@
 //! sines must be equal to the last bit, the sweep with the compiled kernel's rotation cache to
 //! rounding (a run-time model has no such cache, see `sweeps.rs`).
 
+#[macro_use]
 mod common;
 
 use common::{Libm, read};
 use kinloop::{Kin, Mechanism, NewtonConfig, Sweep};
 use kinloop_model::Model;
 use std::f64::consts::TAU;
-
-/// Declares a mechanism with `kinloop::mechanism!` and keeps its text.
-macro_rules! declared {
-    ($text:ident => $($t:tt)*) => {
-        kinloop::mechanism! { $($t)* }
-        const $text: &str = stringify!($($t)*);
-    };
-}
 
 declared! {
     TWO_STAGE_NEWTON_TEXT =>

@@ -9,6 +9,9 @@
 //! nothing in IEEE arithmetic, but libm calls may be inlined differently), and the test reports
 //! the largest difference it saw.
 
+#[macro_use]
+mod common;
+
 use kinloop::Mechanism;
 use kinloop::NewtonConfig;
 use kinloop_fixtures as fx;
@@ -301,14 +304,6 @@ fn kinematics_at_a_position_equal_the_compiled_ones() {
         m.set_param(p, v);
     }
     kinematics_at_parity(&fx::SliderCrank { r: 1.0, l: 3.0, e: 0.4 }, &mut m, [0.0]);
-}
-
-/// Declares a mechanism with `kinloop::mechanism!` and keeps its text.
-macro_rules! declared {
-    ($text:ident => $($t:tt)*) => {
-        kinloop::mechanism! { $($t)* }
-        const $text: &str = stringify!($($t)*);
-    };
 }
 
 declared! {

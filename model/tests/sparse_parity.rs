@@ -10,6 +10,9 @@
 //! operations in the same order, so the states are demanded equal bit for bit; the test counts
 //! and asserts it.
 
+#[macro_use]
+mod common;
+
 use kinloop::{Mechanism, NewtonConfig};
 use kinloop_model::Model;
 use std::f64::consts::TAU;
@@ -80,14 +83,6 @@ where
 
 fn read(text: &str) -> Model {
     Model::read("sparse.kl", text).unwrap_or_else(|e| panic!("{e}"))
-}
-
-/// Declares a mechanism with `kinloop::mechanism!` and keeps its text.
-macro_rules! declared {
-    ($text:ident => $($t:tt)*) => {
-        kinloop::mechanism! { $($t)* }
-        const $text: &str = stringify!($($t)*);
-    };
 }
 
 declared! {

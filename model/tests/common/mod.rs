@@ -4,6 +4,16 @@
 #![allow(dead_code)]
 
 use kinloop::{Kin, Mechanism};
+
+/// Declares a mechanism with `kinloop::mechanism!` and keeps its text (`#[macro_use] mod common;`
+/// makes it visible to the test file).
+#[allow(unused_macros)] // Not every test binary declares mechanisms.
+macro_rules! declared {
+    ($text:ident => $($t:tt)*) => {
+        kinloop::mechanism! { $($t)* }
+        const $text: &str = stringify!($($t)*);
+    };
+}
 use kinloop_model::Model;
 
 /// The model of a fixture's text (a fixture is valid: a rejection is a test failure).
