@@ -28,14 +28,13 @@ use criterion::{BenchmarkGroup, Criterion, criterion_group, criterion_main};
 use kinloop::Mechanism;
 use kinloop_bench::class_four::{self, HandNewton};
 use kinloop_bench::decls::{FourBarSens, four_sens};
-use kinloop_bench::hand::{FOUR_BAR, FourBarClosed, GearLeverClosed, gear_lever};
-use kinloop_bench::hand_sweep::{
-    FOUR_BAR_TERMS, FourBarSweep, GEAR_LEVER_TERMS, GearLeverSweep, HandSweep, PERIOD, RHOMBIC_TERMS, RhombicSweep,
-};
+use kinloop_bench::hand::{FOUR_BAR, FourBarClosed};
+use kinloop_bench::hand_sweep::HandSweep;
 use kinloop_bench::kinloop_variants::{Kinloop, KinloopNamed, KinloopSens, KinloopSweep, check_kinloop_sweep};
 use kinloop_bench::lean::{HandSweepCursor, point_sum, step_sum};
 use kinloop_bench::rhombic::{self, ClosedForm, DenseFiniteDifference, DenseHandJacobian, DenseNumDual, TwoLoopNewton};
 use kinloop_bench::ring::{Ring, RingDense, Series};
+use kinloop_bench::rows::{RowVisitor, TURN_720, closed_form_rows};
 use kinloop_bench::sweep::{
     DIFFERENCED, EXACT, Failed, STEPS, Step, Stepper, Sweep, SweepCheck, WarmStart, check_sweep, check_turn,
 };
@@ -229,56 +228,45 @@ fn class_four_block(c: &mut Criterion) {
     }
 }
 
-/// Steps per turn of the closed-form rows (0.5 degree): the turn of the callgrind harness
-/// `closed_form_step`, so both measure the same steps.
-const TURN_720: usize = 720;
+/// The criterion groups of the closed-form rows ([`closed_form_rows`]), one a row
+/// (`closed_form_rhombic`, ...), each variant checked over a whole turn against the hand closed
+/// form first: `closed_form` (the hand closed form, which ignores the guess), `kinloop` (the
+/// generated point step `kinematics_flat` from the previous position), `kinloop_sweep` (one
+/// sample of kinloop's own `Sweep`) and `hand_sweep` (the sweep recipe written by hand), all in
+/// the lean harness of the callgrind counts, at [`TURN_720`] steps a turn.
+struct CriterionRows<'c>(&'c mut Criterion);
 
-/// One closed-form row at [`TURN_720`] steps a turn, each variant checked over a whole turn
-/// against the hand closed form `hand` first: `closed_form` (the hand closed form, which ignores
-/// the guess), `kinloop` (the generated point step `kinematics_flat` from the previous position)
-/// `kinloop_sweep` (one sample of kinloop's own `Sweep`) and `hand_sweep` (the sweep recipe
-/// written by hand, `sweep`), all in the lean harness of the callgrind counts.
-fn closed_form_row<
-    M: Mechanism<N, 1, NO>,
-    H: Stepper<N>,
-    S: HandSweep<N, NP>,
-    const N: usize,
-    const NO: usize,
-    const NP: usize,
->(
-    c: &mut Criterion,
-    group: &str,
-    m: M,
-    hand: &H,
-    sweep: S,
-    guess0: [f64; N],
-) {
-    let mut g = c.benchmark_group(group);
-    let kl = Kinloop::<M, NO>::new(m);
-    bench_lean(&mut g, "closed_form", hand, hand, guess0, TURN_720);
-    bench_lean(&mut g, "kinloop", &kl, hand, guess0, TURN_720);
-    bench_kinloop_sweep_lean(&mut g, &kl.m, hand, guess0, TURN_720);
-    bench_hand_sweep(&mut g, sweep, hand, guess0);
-    g.finish();
+impl RowVisitor for CriterionRows<'_> {
+    fn row<
+        M: Mechanism<N, 1, NO>,
+        H: Stepper<N>,
+        S: HandSweep<N, NP>,
+        const N: usize,
+        const NO: usize,
+        const NP: usize,
+    >(
+        &mut self,
+        name: &str,
+        _title: &str,
+        m: M,
+        hand: &H,
+        sweep: S,
+        guess0: [f64; N],
+    ) {
+        let mut g = self.0.benchmark_group(format!("closed_form_{name}"));
+        let kl = Kinloop::<M, NO>::new(m);
+        bench_lean(&mut g, "closed_form", hand, hand, guess0, TURN_720);
+        bench_lean(&mut g, "kinloop", &kl, hand, guess0, TURN_720);
+        bench_kinloop_sweep_lean(&mut g, &kl.m, hand, guess0, TURN_720);
+        bench_hand_sweep(&mut g, sweep, hand, guess0);
+        g.finish();
+    }
 }
 
 /// The closed-form rows: the rhombic drive, the four-bar with its coupler point and the
-/// gear-lever rocker against their closed forms written by hand, with the mechanism values of
-/// `closed_form_step` (passed through `black_box`, as in the other groups).
+/// gear-lever rocker against their closed forms written by hand.
 fn closed_form_blocks(c: &mut Criterion) {
-    let p = black_box(rhombic::PARAMS);
-    let sweep = RhombicSweep::<RHOMBIC_TERMS>::new(&p, TURN_720, PERIOD);
-    closed_form_row(c, "closed_form_rhombic", p.kinloop(), &ClosedForm::new(&p), sweep, rhombic::initial_guess(&p));
-    let four = black_box(FOUR_BAR);
-    let four_hand = FourBarClosed::of(&four);
-    let g: [f64; 2] = four.solve(0.0).expect("the four-bar assembles").q.into();
-    let sweep = FourBarSweep::<FOUR_BAR_TERMS>::new(four_hand, TURN_720, PERIOD, g);
-    closed_form_row(c, "closed_form_four_bar", four, &four_hand, sweep, g);
-    let gear = black_box(gear_lever());
-    let gear_hand = GearLeverClosed::of(&gear);
-    let g: [f64; 2] = gear.solve(0.0).expect("the gear lever assembles").q.into();
-    let sweep = GearLeverSweep::<GEAR_LEVER_TERMS>::new(gear_hand, TURN_720, PERIOD, g);
-    closed_form_row(c, "closed_form_gear_lever", gear, &gear_hand, sweep, g);
+    closed_form_rows(&mut CriterionRows(c));
 }
 
 /// The class IV block (Newton) at [`TURN_720`] steps a turn from the previous position: the

@@ -22,4 +22,5 @@ pub mod linalg;
 pub mod literature;
 pub mod rhombic;
 pub mod ring;
+pub mod rows;
 pub mod sweep;

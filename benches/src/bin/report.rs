@@ -22,13 +22,11 @@ use kinloop::Mechanism;
 use kinloop_bench::class_four::{self, HandNewton};
 use kinloop_bench::decls::paper_mechanisms;
 use kinloop_bench::expansion::{four_bar_chain, four_bar_chain_dense, size};
-use kinloop_bench::hand::{FOUR_BAR, FourBarClosed, GearLeverClosed, gear_lever};
-use kinloop_bench::hand_sweep::{
-    FOUR_BAR_TERMS, FourBarSweep, GEAR_LEVER_TERMS, GearLeverSweep, HandSweep, PERIOD, RHOMBIC_TERMS, RhombicSweep,
-};
+use kinloop_bench::hand_sweep::HandSweep;
 use kinloop_bench::kinloop_variants::{Kinloop, KinloopNamed, KinloopSweep, check_kinloop_sweep};
 use kinloop_bench::lean::HandSweepCursor;
 use kinloop_bench::rhombic::{self, ClosedForm, DenseFiniteDifference, DenseHandJacobian, DenseNumDual, TwoLoopNewton};
+use kinloop_bench::rows::{RowVisitor, TURN_720, closed_form_rows};
 use kinloop_bench::sweep::{Failed, STEPS, Stepper, Sweep, SweepCheck, WarmStart, check_sweep, check_turn};
 
 const RHOMBIC: [&str; 8] = [
@@ -180,10 +178,6 @@ fn speedups(dir: &Path) {
     }
     println!();
 }
-
-/// Steps per turn of the closed-form rows (0.5 degree): the turn of the callgrind harness
-/// `closed_form_step`, whose variants measure the same steps.
-const TURN_720: usize = 720;
 
 /// A closed-form row: its criterion group, its mechanism, and each variant's bench id beside
 /// the same variant of `closed_form_step` (the reference first).
@@ -670,46 +664,6 @@ fn paired_all(rounds: usize) {
     }
 }
 
-/// What is done with each closed-form row (see [`closed_form_rows`]).
-trait RowVisitor {
-    /// One row: the mechanism `m` as kinloop solves it, its hand closed form `hand`, the sweep
-    /// recipe written by hand `sweep` (`kinloop_bench::hand_sweep`), and the position at input
-    /// 0.
-    fn row<
-        M: Mechanism<N, 1, NO>,
-        H: Stepper<N>,
-        S: HandSweep<N, NP>,
-        const N: usize,
-        const NO: usize,
-        const NP: usize,
-    >(
-        &mut self,
-        title: &str,
-        m: M,
-        hand: &H,
-        sweep: S,
-        guess0: [f64; N],
-    );
-}
-
-/// Visits the three closed-form rows with the mechanism values of `closed_form_step` and of the
-/// criterion groups.
-fn closed_form_rows(v: &mut impl RowVisitor) {
-    let p = rhombic::PARAMS;
-    let sweep = RhombicSweep::<RHOMBIC_TERMS>::new(&p, TURN_720, PERIOD);
-    v.row("rhombic drive", p.kinloop(), &ClosedForm::new(&p), sweep, rhombic::initial_guess(&p));
-    let four = FOUR_BAR;
-    let four_hand = FourBarClosed::of(&four);
-    let g: [f64; 2] = four.solve(0.0).expect("the four-bar assembles").q.into();
-    let sweep = FourBarSweep::<FOUR_BAR_TERMS>::new(four_hand, TURN_720, PERIOD, g);
-    v.row("four-bar with its coupler point", four, &four_hand, sweep, g);
-    let gear = gear_lever();
-    let gear_hand = GearLeverClosed::of(&gear);
-    let g: [f64; 2] = gear.solve(0.0).expect("the gear lever assembles").q.into();
-    let sweep = GearLeverSweep::<GEAR_LEVER_TERMS>::new(gear_hand, TURN_720, PERIOD, g);
-    v.row("gear-lever rocker", gear, &gear_hand, sweep, g);
-}
-
 /// Times each closed-form row by [`paired`]: the hand closed form, kinloop's point step from
 /// the previous position, kinloop's own sweep and the sweep recipe written by hand, along turns
 /// of [`TURN_720`] steps.
@@ -725,6 +679,7 @@ impl RowVisitor for PairedRows {
         const NP: usize,
     >(
         &mut self,
+        _name: &str,
         title: &str,
         m: M,
         hand: &H,
@@ -758,6 +713,7 @@ impl RowVisitor for CheckedRows {
         const NP: usize,
     >(
         &mut self,
+        _name: &str,
         title: &str,
         m: M,
         hand: &H,
