@@ -18,6 +18,7 @@ pub mod hand_check;
 pub mod hand_sweep;
 pub mod kinloop_variants;
 pub mod lean;
+pub mod libm;
 pub mod linalg;
 pub mod literature;
 pub mod rhombic;

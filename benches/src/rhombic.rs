@@ -9,6 +9,7 @@
 
 use std::f64::consts::PI;
 
+use crate::libm::sin_cos;
 use nalgebra::{SMatrix, SVector};
 use num_dual::{Dual2, DualNum, DualSVec64};
 
@@ -141,8 +142,8 @@ impl Stepper<4> for ClosedForm {
 
     #[inline(always)]
     fn step(&self, phi1: f64, _guess: &[f64; 4]) -> Result<Step<4>, Failed> {
-        let (s1, c1) = phi1.sin_cos();
-        let (sa, ca) = (phi1 + self.gamma).sin_cos();
+        let (s1, c1) = sin_cos(phi1);
+        let (sa, ca) = sin_cos(phi1 + self.gamma);
         let rods = self.rods(s1, sa)?;
         let phi2 = rods[0].asin();
         let phi4 = PI - rods[2].asin();
@@ -183,18 +184,18 @@ impl Stepper<4> for TwoLoopNewton {
     #[inline]
     fn step(&self, phi1: f64, guess: &[f64; 4]) -> Result<Step<4>, Failed> {
         let p = &self.p;
-        let (s1, c1) = phi1.sin_cos();
-        let (sa, ca) = (phi1 + p.gamma).sin_cos();
+        let (s1, c1) = sin_cos(phi1);
+        let (sa, ca) = sin_cos(phi1 + p.gamma);
         // Working group: e_p + r_p sin(phi1) = l_p sin(phi2); x_c = r_p cos(phi1) - l_p cos(phi2).
         let yb = p.e_p + p.r_p * s1;
         let (phi2, s2, c2, it2) = newton1(guess[0], |t| {
-            let (s, c) = t.sin_cos();
+            let (s, c) = sin_cos(t);
             (yb - p.l_p * s, -p.l_p * c, s, c)
         })?;
         // Displacer group: e_p + r_b sin(phi1 + gamma) = de + l_b sin(phi4).
         let yd = p.e_p - p.de + p.r_b * sa;
         let (phi4, s4, c4, it4) = newton1(guess[1], |t| {
-            let (s, c) = t.sin_cos();
+            let (s, c) = sin_cos(t);
             (yd - p.l_b * s, -p.l_b * c, s, c)
         })?;
         let (rs1, rc1, rsa, rca) = (p.r_p * s1, p.r_p * c1, p.r_b * sa, p.r_b * ca);
@@ -290,12 +291,12 @@ impl Stepper<4> for DenseHandJacobian {
     #[inline]
     fn step(&self, phi1: f64, guess: &[f64; 4]) -> Result<Step<4>, Failed> {
         let p = &self.p;
-        let (s1, c1) = phi1.sin_cos();
-        let (sa, ca) = (phi1 + p.gamma).sin_cos();
+        let (s1, c1) = sin_cos(phi1);
+        let (sa, ca) = sin_cos(phi1 + p.gamma);
         let (z, j, (s2, c2, s4, c4), iterations) = dense_newton(*guess, |z| {
             let [phi2, phi4, x_c, x_f] = *z;
-            let (s2, c2) = phi2.sin_cos();
-            let (s4, c4) = phi4.sin_cos();
+            let (s2, c2) = sin_cos(phi2);
+            let (s4, c4) = sin_cos(phi4);
             let f = [
                 p.r_p * c1 - x_c - p.l_p * c2,
                 p.e_p + p.r_p * s1 - p.l_p * s2,
