@@ -268,22 +268,34 @@ fn root(out: &mut TokenStream, a: &V, b: &V, c: &V, flip: &TokenStream, cx: &Con
     let d2 = sub(&r2, &mul(c, c));
     // Deferred, a root that does not exist is NaN; a zero radius gives `0 · ∞` below, NaN too.
     let f = if cx.deferred { quote!(__mode.root_offset) } else { quote!(#rt::root_offset) };
-    out.extend(quote!(let __d: f64 = #f(#d2, #r2, #c, #flip, __cfg).map_err(__fail)?;));
+    let root_offset = quote!(let __d: f64 = #f(#d2, #r2, #c, #flip, __cfg).map_err(__fail)?;);
     let d = local("__d");
     let zero = |v: &V| matches!(v, V::C(z) if *z == 0.0);
     // With one coefficient zero the formulas divide by the other, not by its square: `b sin q
-    // = c` gives `(cos q, sin q) = (-d / b, c / b)`, `a cos q = c` gives `(c / a, d / a)`.
-    let (cq, sq) = if zero(a) {
+    // = c` gives `(cos q, sin q) = (-d / b, c / b)`, `a cos q = c` gives `(c / a, d / a)`. The
+    // value free of the square root is bound before it, ahead of the checked kernel's test of
+    // the root: in one basic block with the other, LLVM multiplies the two as one vector, and
+    // the angle's libm call (given that value) then waits for the square root (measured: an
+    // eighth of the rhombic drive's point step in time).
+    if zero(a) {
         let ib = bind(out, "__ib", V::E(quote!((1.0 / #b))));
-        (neg(&mul(&d, &ib)), mul(c, &ib))
+        let sq = mul(c, &ib);
+        out.extend(quote!(let __sq: f64 = #sq; #root_offset));
+        let cq = neg(&mul(&d, &ib));
+        out.extend(quote!(let __cq: f64 = #cq;));
     } else if zero(b) {
         let ia = bind(out, "__ia", V::E(quote!((1.0 / #a))));
-        (mul(c, &ia), mul(&d, &ia))
+        let cq = mul(c, &ia);
+        out.extend(quote!(let __cq: f64 = #cq; #root_offset));
+        let sq = mul(&d, &ia);
+        out.extend(quote!(let __sq: f64 = #sq;));
     } else {
+        out.extend(root_offset);
         let inv = bind(out, "__inv", V::E(quote!((1.0 / #r2))));
-        (mul(&sub(&mul(a, c), &mul(b, &d)), &inv), mul(&add(&mul(b, c), &mul(a, &d)), &inv))
-    };
-    out.extend(quote!(let __cq: f64 = #cq; let __sq: f64 = #sq;));
+        let cq = mul(&sub(&mul(a, c), &mul(b, &d)), &inv);
+        let sq = mul(&add(&mul(b, c), &mul(a, &d)), &inv);
+        out.extend(quote!(let __cq: f64 = #cq; let __sq: f64 = #sq;));
+    }
 }
 
 /// `angle` moved by whole turns to the turn of `guess`.
