@@ -15,9 +15,17 @@ use super::lu::Factor;
 /// LU (see the module documentation).
 #[derive(Clone, Copy, Debug)]
 pub struct Inverse2 {
-    /// `[[d, b], [c, a]] / det` for `J = [[a, b], [c, d]]`: `J⁻¹` with its off-diagonal signs
-    /// flipped (see [`Inverse2::solve`]).
-    inv: [[f64; 2]; 2],
+    /// `[d, a] / det` for `J = [[a, b], [c, d]]`: the diagonal of `J⁻¹`.
+    diag: [f64; 2],
+    /// `[b, c] / det`: the off-diagonal of `J⁻¹` with its signs flipped (see
+    /// [`Inverse2::solve`]).
+    ///
+    /// Kept apart from the diagonal as [`Inverse2::solve`] reads them, one pair each: where the
+    /// inverse is made in memory (it is the value of a branch whose other arm is out of line),
+    /// a solve that read two rows' halves as one pair would wait for both stores to retire (a
+    /// store cannot be forwarded to a load that spans two of them): a tenth of the gear-lever's
+    /// point step in time, measured.
+    off: [f64; 2],
     pivot_ratio: f64,
     negative_det: bool,
 }
@@ -92,7 +100,7 @@ impl Inverse2 {
         // A NaN or infinite pivot, or a NaN or infinite entry beyond the block, or a determinant
         // whose reciprocal is not finite, fails the test however the selections went.
         if p0 + p1 + 0.0 * (sum + id) < f64::INFINITY {
-            Ok(Inverse2 { inv: [[d * id, b * id], [c * id, a * id]], pivot_ratio: smaller, negative_det: det < 0.0 })
+            Ok(Inverse2 { diag: [d * id, a * id], off: [b * id, c * id], pivot_ratio: smaller, negative_det: det < 0.0 })
         } else {
             Err(m)
         }
@@ -114,17 +122,18 @@ impl Inverse2 {
         let beyond = [beyond[0].map(|v| v * s[0]), beyond[1].map(|v| v * s[1])];
         let floor = [floor[0].map(|f| f * s[0]), floor[1].map(|f| f * s[1])];
         match Self::unscaled(&scaled, beyond, floor) {
-            // Row `k` of the inverse (the unknown `k`) scaled back by `s[k]`.
+            // Row `k` of the inverse (the unknown `k`) scaled back by `s[k]`: the diagonal's and
+            // the off-diagonal's entry `k`.
             Ok(mut inverse) => {
-                inverse.inv[0] = inverse.inv[0].map(|v| v * s[0]);
-                inverse.inv[1] = inverse.inv[1].map(|v| v * s[1]);
+                inverse.diag = [inverse.diag[0] * s[0], inverse.diag[1] * s[1]];
+                inverse.off = [inverse.off[0] * s[0], inverse.off[1] * s[1]];
                 inverse
             }
             Err(_) => {
                 let [[a, b], [c, d]] = *j;
                 let det = a * d - b * c;
                 let id = 1.0 / det;
-                Inverse2 { inv: [[d * id, b * id], [c * id, a * id]], pivot_ratio: 0.0, negative_det: det < 0.0 }
+                Inverse2 { diag: [d * id, a * id], off: [b * id, c * id], pivot_ratio: 0.0, negative_det: det < 0.0 }
             }
         }
     }
@@ -138,9 +147,9 @@ impl Inverse2 {
     /// Solves `J z = r`.
     #[inline(always)]
     pub fn solve(&self, r: [f64; 2]) -> [f64; 2] {
-        // `inv` holds the inverse's off-diagonal entries with their signs flipped (a subtraction
+        // `off` holds the inverse's off-diagonal entries with their signs flipped (a subtraction
         // here instead of a negation per entry when it is made).
-        let [[i00, i01], [i10, i11]] = self.inv;
+        let ([i00, i11], [i01, i10]) = (self.diag, self.off);
         [i00 * r[0] - i01 * r[1], i11 * r[1] - i10 * r[0]]
     }
 
