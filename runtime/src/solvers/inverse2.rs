@@ -100,7 +100,12 @@ impl Inverse2 {
         // A NaN or infinite pivot, or a NaN or infinite entry beyond the block, or a determinant
         // whose reciprocal is not finite, fails the test however the selections went.
         if p0 + p1 + 0.0 * (sum + id) < f64::INFINITY {
-            Ok(Inverse2 { diag: [d * id, a * id], off: [b * id, c * id], pivot_ratio: smaller, negative_det: det < 0.0 })
+            Ok(Inverse2 {
+                diag: [d * id, a * id],
+                off: [b * id, c * id],
+                pivot_ratio: smaller,
+                negative_det: det < 0.0,
+            })
         } else {
             Err(m)
         }
