@@ -616,15 +616,22 @@ impl Build<'_> {
         let cc = self.mul(c, c);
         let d2 = self.sub(r2, cc);
         let (d2, r2r, cr) = (self.reg(d2), self.reg(r2), self.reg(c));
-        let d = self.op(|d| Op::RootOffset { d, d2, r2: r2r, c: cr, flip });
+        // In the emitter's order: the value free of the root ahead of it (`root` in
+        // `codegen/src/emit/closed_form.rs`).
+        let root_offset = |this: &mut Self| this.op(|d| Op::RootOffset { d, d2, r2: r2r, c: cr, flip });
         let (cq, sq) = if a.is_zero() {
             let ib = self.div(V::C(1.0), b);
+            let sq = self.mul(c, ib);
+            let d = root_offset(self);
             let dib = self.mul(d, ib);
-            (self.neg(dib), self.mul(c, ib))
+            (self.neg(dib), sq)
         } else if b.is_zero() {
             let ia = self.div(V::C(1.0), a);
-            (self.mul(c, ia), self.mul(d, ia))
+            let cq = self.mul(c, ia);
+            let d = root_offset(self);
+            (cq, self.mul(d, ia))
         } else {
+            let d = root_offset(self);
             let inv = self.div(V::C(1.0), r2);
             let (ac, bd) = (self.mul(a, c), self.mul(b, d));
             let x = self.sub(ac, bd);

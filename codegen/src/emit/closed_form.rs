@@ -275,8 +275,8 @@ fn root(out: &mut TokenStream, a: &V, b: &V, c: &V, flip: &TokenStream, cx: &Con
     // = c` gives `(cos q, sin q) = (-d / b, c / b)`, `a cos q = c` gives `(c / a, d / a)`. The
     // value free of the square root is bound before it, ahead of the checked kernel's test of
     // the root: in one basic block with the other, LLVM multiplies the two as one vector, and
-    // the angle's libm call (given that value) then waits for the square root (measured: an
-    // eighth of the rhombic drive's point step in time).
+    // the angle's libm call (given that value) then waits for the square root (measured in
+    // paired CPU time: the rhombic drive's point step takes 8 % longer so).
     if zero(a) {
         let ib = bind(out, "__ib", V::E(quote!((1.0 / #b))));
         let sq = mul(c, &ib);
@@ -365,9 +365,9 @@ fn angle_equation(a: &V, b: &V, c: &V, u: usize, cx: &Context) -> TokenStream {
         };
         root(&mut out, a, b, c, &quote!(__flip), cx);
         // A sweep's cache advances it from its anchor, as every other closed-form angle: on the
-        // rhombic drive that executes 62 fewer instructions a sample than libm's `asin`, though
-        // it waits for the cosine (the root's square root) where `asin` needs only the sine, and
-        // takes about as long in time (BENCHMARKS.md).
+        // rhombic drive that executed 62 fewer instructions a sample than libm's `asin` when it
+        // was measured, though it waits for the cosine (the root's square root) where `asin`
+        // needs only the sine, and took about as long in time.
         let exact = quote!(#rt::asin_near(__sq, __right, __r, #g));
         let q = angle_of(u, quote!(__sq), quote!(__cq), exact, cx);
         out.extend(quote!(let __out: [f64; 3] = [#q, __cq, __sq];));
