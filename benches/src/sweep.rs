@@ -147,9 +147,14 @@ impl<const N: usize> Sweep<N> {
         self.solve_at(s, phi)
     }
 
-    /// Like [`Sweep::advance`], with the sum of the outputs (see [`Stepper::step_summed`]).
+    /// Like [`Sweep::advance`], but returns the sum of the step's numbers and its outputs (see
+    /// [`Stepper::step_summed`]), added up from the step as computed, before it is stored, as
+    /// the lean harness adds them ([`crate::lean`]). Summed from the stored step instead, the
+    /// sum's 16-byte loads span the step's 8-byte stores where a step stores its numbers one at
+    /// a time (kinloop's state, converted field by field), and wait for them to retire (no
+    /// store-to-load forwarding): a harness cost one variant pays and another not.
     #[inline(always)]
-    pub fn advance_summed<S: Stepper<N>>(&mut self, s: &S) -> Result<(&Step<N>, f64), Failed> {
+    pub fn advance_summed<S: Stepper<N>>(&mut self, s: &S) -> Result<f64, Failed> {
         self.k += 1;
         if self.k == self.steps {
             self.k = 0;
@@ -157,8 +162,9 @@ impl<const N: usize> Sweep<N> {
         let phi = self.h * self.k as i64 as f64;
         let guess = if S::WARM { self.guess() } else { self.prev.q };
         let (step, out) = s.step_summed(phi, &guess)?;
+        let sum = crate::lean::step_sum(&step) + out;
         self.prev = step;
-        Ok((&self.prev, out))
+        Ok(sum)
     }
 
     #[inline(always)]
