@@ -58,6 +58,19 @@ total() {
   echo "$out" | sed -n 's/.*Collected : *\([0-9][0-9]*\).*/\1/p'
 }
 
+# Warns when a hand closed form calls libm's `sin` or `cos` on its own: a split `f64::sin_cos`
+# (LLVM merges the pair into `sincos` only within one basic block) costs the reference about 45
+# instructions an angle and flatters every ratio against it (see BENCHMARKS.md, "The harness").
+check_lean_reference() {
+  local file
+  file="$(mktemp)"
+  valgrind --tool=callgrind --callgrind-out-file="$file" "$bin" "$1" "$low" "$2" >/dev/null 2>&1 || true
+  if grep -Eq '^c?fn=.*__(sin|cos)_fma' "$file"; then
+    echo "callgrind.sh: WARNING: $1 calls sin or cos on its own (a split sin_cos): its count is not the lean reference's" >&2
+  fi
+  rm -f "$file"
+}
+
 echo "# closed_form_step instructions per step: difference of the totals of two runs over the difference of their steps (whole turns up to 20,000 steps a turn; otherwise $low and $high steps, ring and series 200 and 400), 720 steps a turn unless VARIANT@TURN, $(valgrind --version)"
 for v in "${variants[@]}"; do
   name="${v%@*}"
@@ -71,6 +84,7 @@ for v in "${variants[@]}"; do
     hi=$((2 * lo))
   fi
   case "$name" in ring-* | series-*) lo=200 hi=400 ;; esac
+  case "$name" in hand | four-bar-hand | gear-lever-hand) check_lean_reference "$name" "$turn" ;; esac
   a="$(total "$name" "$lo" "$turn")"
   b="$(total "$name" "$hi" "$turn")"
   if [ -z "$a" ] || [ -z "$b" ]; then
