@@ -1,5 +1,5 @@
 //! The runtime's analyses of sampled sweeps and its limit report on a run-time model: the one
-//! implementation ([`SampledOf`], `limits_of`), over the model's [`Kernel`].
+//! implementation ([`SampledOf`], `limits_of`), over the model's [`Kernel`](kinloop_runtime::Kernel).
 //!
 //! A model declared with `#[kinloop(sensitivities)]` gets the objectives with parameter
 //! gradients on its [`ModelSampled`] as well (`extremum_with_gradient`,

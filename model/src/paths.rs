@@ -1,5 +1,5 @@
 //! The runtime's path algorithms on a run-time model: each is the runtime's one implementation
-//! over its [`Kernel`](kinloop_runtime::Kernel) (here [`ModelKernel`](crate::ModelKernel), from
+//! over its [`Kernel`] (here [`ModelKernel`](crate::ModelKernel), from
 //! [`Model::kernel`]), the compiled mechanisms' through `Compiled`: curve tracing
 //! (`trace_curve_of`), the reachable range (`reachable_of`), the states at given inputs
 //! (`sweep_at_of`), the assembly modes (`assembly_modes_of`) and scans over parameter sets
@@ -28,7 +28,7 @@ pub type ModelTraced = TracedOf<Heap, Heap>;
 impl Model {
     /// The whole solution curve through `guess` at `from`, first towards `to`, through limit
     /// positions: the runtime's `trace_curve` over this model (see
-    /// [`trace_curve_of`](kinloop_runtime::paths::trace::trace_curve_of)), with the default
+    /// [`trace_curve_of`]), with the default
     /// solver configuration (or [`TraceConfig::newton`]).
     ///
     /// ```
@@ -59,7 +59,7 @@ impl Model {
     /// How far the input can move from `at` towards `at + delta` and `at - delta` on the
     /// assembly mode of `guess` before a limit position, in input values, sweeping both ways
     /// with `samples` samples each: the runtime's `reachable` over this model (see
-    /// [`reachable_of`](kinloop_runtime::paths::reach::reachable_of)), with the default solver
+    /// [`reachable_of`]), with the default solver
     /// configuration.
     pub fn reachable(
         &mut self,
@@ -75,7 +75,7 @@ impl Model {
     /// The states at the given inputs, in their order, followed along the path through them
     /// without jumping branches (each stretch between consecutive inputs a sweep of its own):
     /// the runtime's `sweep_at` over this model (see
-    /// [`sweep_at_of`](kinloop_runtime::paths::sweep_at::sweep_at_of)), with the default solver
+    /// [`sweep_at_of`]), with the default solver
     /// configuration. The result keeps the states before a stop, says why and where it stopped
     /// and lists the events met; the error here is that of lending the model (a parameter
     /// without a value).
@@ -91,7 +91,7 @@ impl Model {
     /// The distinct assembly modes at input `x` (multi-start Newton from the declared guess and
     /// 64 starts around it), sorted by their determinant signs: the runtime's `assembly_modes`
     /// over this model (see
-    /// [`assembly_modes_of`](kinloop_runtime::paths::modes::assembly_modes_of)), with the
+    /// [`assembly_modes_of`]), with the
     /// default solver configuration. `Error::InvalidArgument` for an `x` of another size than
     /// the model's inputs.
     pub fn assembly_modes(&mut self, x: &[f64]) -> Result<Vec<KinBuf>, Error> {
@@ -113,7 +113,7 @@ impl Model {
     /// `spec` says, its states folded into one value: `acc = init(set)`, then
     /// `acc = fold(acc, set, &state)` for every state in order. The runtime's scan over this
     /// model, one set after the other (see
-    /// [`fold_sweep_of`](kinloop_runtime::paths::scan::fold_sweep_of)): the compiled
+    /// [`fold_sweep_of`]): the compiled
     /// mechanisms' `scan` over the same parameter values gives the same results.
     ///
     /// One slot per set, in order: the final accumulator, or the error that ended that set's

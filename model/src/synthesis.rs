@@ -35,7 +35,7 @@ pub type SharedModelProblem = ProblemOf<SharedModelKernel>;
 /// The parameter sensitivities of one state of a model that synthesis and the gradient
 /// objectives read (the runtime's `SensState`): those of the positions, the outputs and their
 /// first analogs, with the numbers of parameters and inputs that index them. The model's
-/// [`Sensitivities`](crate::Sensitivities) also hold those of the second analogs, which nothing
+/// [`Sensitivities`] also hold those of the second analogs, which nothing
 /// here reads and which are therefore not copied.
 #[derive(Clone, Debug, Default, PartialEq)]
 pub struct ModelSens {
@@ -155,7 +155,7 @@ impl Model {
 }
 
 /// The body of the [`SensKernel`] of a model, lent alone ([`ModelKernel`]) or from a pool of
-/// clones ([`SharedModelKernel`](crate::SharedModelKernel)), but for `param` and `with_params`:
+/// clones ([`SharedModelKernel`]), but for `param` and `with_params`:
 /// the names from `self.info()`, every kernel called on the model `self.lend` gives.
 macro_rules! model_sens_body {
     () => {

@@ -47,11 +47,11 @@ pub trait Mechanism<const N: usize, const NI: usize, const NO: usize> {
     /// inputs and of the unknowns solved before it, with no second branch, pole or kink (its
     /// block is linear with a constant matrix and an entire right-hand side, as a slider's
     /// coordinate next to its rod's angle). It stays on its branch wherever those do, so a
-    /// [`Sweep`](crate::Sweep) judges its steps by the other unknowns only. `mechanism!` finds
+    /// [`Sweep`] judges its steps by the other unknowns only. `mechanism!` finds
     /// them; by default none follows, for hand-written implementations.
     const FOLLOWERS: [bool; N] = [false; N];
     /// Per unknown: whether a closed-form block gives it as an angle from its sine and cosine.
-    /// A [`Sweep`](crate::Sweep)'s cache then advances it from an anchor, an earlier angle of
+    /// A [`Sweep`]'s cache then advances it from an anchor, an earlier angle of
     /// the same unknown, and the sweep rejects a step that leaves such an angle more than a
     /// radian from its prediction (an anchor a turn away would put it there). `mechanism!`
     /// finds them; by default none is, for hand-written implementations.

@@ -118,10 +118,10 @@ impl NearSlot {
 
     /// `(sin arg, cos arg)` of a Newton block's evaluation (what [`NearTrig`] computes; the
     /// run-time model calls it for the same bits): the stored values when `arg` is the last
-    /// call's; rotated from them by the change `d` when `|d| <=` [`MAX_ROTATION`] and fewer
-    /// than [`NEWTON_RESYNC`] rotations followed libm's last values; otherwise libm's, after
-    /// which the slot's age is 0. A rotation's values are within about one unit in the last
-    /// place of those it starts from, so a slot stays within [`NEWTON_RESYNC`] units of libm's
+    /// call's; rotated from them by the change `d` when `|d| <= MAX_ROTATION` (`2^-5`) and
+    /// fewer than `NEWTON_RESYNC` (4) rotations followed libm's last values; otherwise libm's,
+    /// after which the slot's age is 0. A rotation's values are within about one unit in the
+    /// last place of those it starts from, so a slot stays within `NEWTON_RESYNC` units of libm's
     /// (see the tests).
     #[inline(always)]
     pub fn newton_sin_cos(&mut self, arg: f64) -> (f64, f64) {

@@ -23,7 +23,7 @@
 //! Where a test fails, the kernel runs again with every check on the way, which returns the
 //! error the checked kernel reports (with its block, input and guess), or the state where every
 //! check passes after all (a limit position rounded past, see
-//! [`root_offset`](super::closed::root_offset); an angle whose guess lies within the margin of
+//! [`root_offset`]; an angle whose guess lies within the margin of
 //! the configured bound). The tests are conservative only: they never accept what a check
 //! rejects (`tests/solver/deferred_checks.rs` compares the two kernels where every check fails).
 //!
@@ -72,7 +72,7 @@ pub const LEAST_DEFERRED_GUESS: f64 = 16_000.0 - GUESS_MARGIN;
 pub struct Checks<const CHECKED: bool>;
 
 impl<const CHECKED: bool> Checks<CHECKED> {
-    /// [`root_offset`](super::closed::root_offset), or deferred [`root_offset_deferred`] (never
+    /// [`root_offset`], or deferred [`root_offset_deferred`] (never
     /// a failure).
     #[inline(always)]
     pub fn root_offset(self, d2: f64, r2: f64, c: f64, flip: bool, cfg: &NewtonConfig) -> Result<f64, BlockFailure> {
@@ -84,7 +84,7 @@ impl<const CHECKED: bool> Checks<CHECKED> {
         }
     }
 
-    /// [`dyad_roots`](super::closed::dyad_roots), or deferred [`dyad_roots_deferred`].
+    /// [`dyad_roots`], or deferred [`dyad_roots_deferred`].
     #[inline(always)]
     pub fn dyad_roots(
         self,
@@ -97,13 +97,13 @@ impl<const CHECKED: bool> Checks<CHECKED> {
         if CHECKED { dyad_roots(a, b, c, flip, cfg) } else { Ok(dyad_roots_deferred(a, b, c, flip)) }
     }
 
-    /// [`polar_norm`](super::closed::polar_norm), or deferred [`polar_norm_deferred`].
+    /// [`polar_norm`], or deferred [`polar_norm_deferred`].
     #[inline(always)]
     pub fn polar_norm(self, d2: f64, e0: f64, e1: f64, cfg: &NewtonConfig) -> Result<f64, BlockFailure> {
         if CHECKED { polar_norm(d2, e0, e1, cfg) } else { Ok(polar_norm_deferred(d2)) }
     }
 
-    /// [`check_closed`](super::closed::check_closed), or deferred nothing (the kernel's end tests
+    /// [`check_closed`], or deferred nothing (the kernel's end tests
     /// the block's check sum, its entry the angles' guesses).
     #[inline(always)]
     pub fn check_closed<const K: usize>(

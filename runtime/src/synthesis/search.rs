@@ -95,7 +95,7 @@ impl Search {
         self
     }
     /// Sets [`Search::seeds`]: each a point of the search's unknowns (see
-    /// [`ProblemOf`](super::ProblemOf); clamped into their bounds), e.g. a four-bar of
+    /// [`ProblemOf`]; clamped into their bounds), e.g. a four-bar of
     /// [`classical`](super::classical) mapped onto the declaration's parameters.
     pub fn with_seeds(mut self, seeds: Vec<Vec<f64>>) -> Self {
         self.seeds = seeds;

@@ -32,7 +32,7 @@ const LINEAR_EXTRA: u32 = 4;
 
 /// Newton iterations from `z0`, whose evaluation is `ev` (updated in place: `eval` writes each
 /// trial's evaluation over it; only the descent's failed searches restore it from a copy). The generated code calls it through
-/// [`newton`] when the guess does not meet the tolerance; the correction at a converged
+/// [`newton`](super::newton) when the guess does not meet the tolerance; the correction at a converged
 /// iterate comes from `last`.
 ///
 /// The common path (a full Newton step accepted, then convergence) runs in this one function;
@@ -214,7 +214,7 @@ impl<const N: usize, const K: usize, J: BlockJacobian<N>> Iter<'_, N, K, J> {
             || (self.slow_run >= 2 && self.prev_step.is_finite() && self.prev_step > visible)
     }
 
-    /// Moves every unknown whose equations repeat every turn (see [`Magnitudes::turns`]) and
+    /// Moves every unknown whose equations repeat every turn (see [`Magnitudes::turns`](super::scales::Magnitudes::turns)) and
     /// that ended more than half a turn from its guess to the guess's turn. A long Newton step
     /// (from a near-singular Jacobian far from the root) can carry an angle many turns out.
     /// The position is the same; its numbers are not: many turns out the spacing of doubles is

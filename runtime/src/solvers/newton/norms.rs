@@ -49,7 +49,7 @@ pub(super) fn scaled_norms<const N: usize>(f: &[f64; N], rows: &RowScales<N>) ->
 }
 
 /// `max_j |dz_j| / max(|z_j|, unit_j)`: steps relative to each unknown's magnitude, in its own
-/// unit (see [`Magnitudes::unit`], checked); NaN propagates.
+/// unit (see [`Magnitudes::unit`](super::scales::Magnitudes::unit), checked); NaN propagates.
 #[inline(always)]
 pub(super) fn scaled_step<const N: usize>(dz: &[f64; N], z: &[f64; N], unit: &[f64; N]) -> f64 {
     largest::<N>(core::array::from_fn(|c| {

@@ -1,6 +1,6 @@
 //! Errors of the classical closed forms: input they cannot use, and problems whose answer does
 //! not exist or is not a linkage. Each converts into [`crate::Error`] (as
-//! [`Error::InvalidArgument`](crate::Error::InvalidArgument) with the same message), so `?`
+//! [`Error::InvalidArgument`] with the same message), so `?`
 //! works in code that returns kinloop's error.
 
 use crate::error::Error;
