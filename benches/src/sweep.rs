@@ -160,8 +160,15 @@ impl<const N: usize> Sweep<N> {
             self.k = 0;
         }
         let phi = self.h * self.k as i64 as f64;
-        let guess = if S::WARM { self.guess() } else { self.prev.q };
-        let (step, out) = s.step_summed(phi, &guess)?;
+        let (step, out) = if S::WARM && self.policy == WarmStart::Taylor {
+            s.step_summed(phi, &self.guess())?
+        } else {
+            // The last positions read where they lie, as the lean harness passes its own: a copy
+            // would load them in pairs across the 8-byte stores a step may have written them
+            // with, and wait for those (no store-to-load forwarding), a cost of the harness that
+            // only a step which reads its guess would pay.
+            s.step_summed(phi, &self.prev.q)?
+        };
         let sum = crate::lean::step_sum(&step) + out;
         self.prev = step;
         Ok(sum)
