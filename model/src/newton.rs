@@ -250,6 +250,45 @@ mod tests {
         assert_same_bits(&c, m.kinematics(&x, &stalls, &cfg).expect("the restarts assemble it"), &x);
     }
 
+    /// A guess where the class IV group's Newton block has an exactly singular Jacobian: with
+    /// `th1`, `th2` and `psi1` zero, the row of loop `acdb`'s `x` projection (whose entries
+    /// are its links' sines) is zero, and no Newton step can be made. With restarts off, what
+    /// solves it is the descent (its first search moves, see the solver's
+    /// `a_descent_after_failed_searches`), so every solve takes more evaluations than
+    /// iterations. The model's descent runs on the tape's evaluations, its registers written by
+    /// each trial: the compiled block's solve is the independent reference, to the bit, at
+    /// inputs over a turn; and the positions close both loops, their residuals (evaluated
+    /// apart from the solve) within the solver's tolerance of the loops' sizes.
+    #[test]
+    fn a_singular_guess_descends_as_in_the_compiled_block() {
+        let (compiled, mut m) = class_four();
+        let cfg = NewtonConfig::default().with_restarts(false);
+        let singular = [0.0, 0.0, 0.0, -1.0];
+        let jac = compiled.jacobian_flat(&[0.3], &singular);
+        assert!(
+            jac.j.iter().any(|row| row.iter().all(|&v| v == 0.0)),
+            "a row of the guess's Jacobian is zero: {:?}",
+            jac.j
+        );
+        let mut solved = 0;
+        for k in 0..24 {
+            let x = [TAU * k as f64 / 24.0];
+            match (compiled.kinematics_flat(&x, &singular, &cfg), m.kinematics(&x, &singular, &cfg)) {
+                (Ok(c), Ok(r)) => {
+                    assert_same_bits(&c, r, &x);
+                    assert!(c.report.evaluations > c.report.iterations, "at {x:?}: {:?}", c.report);
+                    let at = compiled.jacobian_flat(&x, &c.q);
+                    let closed = at.f.iter().zip(at.scale).all(|(f, s)| f.abs() <= cfg.residual_tol * s);
+                    assert!(closed, "at {x:?}: residuals {:?} against sizes {:?}", at.f, at.scale);
+                    solved += 1;
+                }
+                (Err(_), Err(_)) => {}
+                (c, r) => panic!("at {x:?}: compiled {:?}, run time {:?}", c.map(|k| k.q), r.map(|s| s.q.clone())),
+            }
+        }
+        assert!(solved >= 20, "{solved} of 24 solved from the singular guess");
+    }
+
     /// `write_solution`'s test of the returned position, by hand. A unit that is not valid
     /// (here 0) counts as 1 in the solver, which may then correct `0.25` by 16 epsilon
     /// unevaluated: 64 epsilon of `|z|`, beyond the bound in the raw unit. And the largest such
