@@ -56,8 +56,10 @@ where
 }
 
 /// The first row holding a non-finite value (cold-path diagnosis of a failed factorisation).
+/// Given the rows, not a reference to them: a reference would keep the kernel's Jacobian and
+/// right-hand sides in memory on the path where the factorisation passes.
 #[cold]
-pub fn first_bad_row<const M: usize, const R: usize>(rows: &[[f64; M]; R]) -> Option<usize> {
+pub fn first_bad_row<const M: usize, const R: usize>(rows: [[f64; M]; R]) -> Option<usize> {
     rows.iter().position(|r| r.iter().any(|v| !v.is_finite()))
 }
 

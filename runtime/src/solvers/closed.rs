@@ -379,15 +379,19 @@ pub fn check_closed<const K: usize>(out: &[f64; K], angles: usize, cfg: &NewtonC
     }
     // Each angle against the limit: the test of their largest magnitude, without the maximum.
     let limit = largest_precise_angle(cfg);
-    if out[..angles].iter().all(|q| q.abs() <= limit) { Ok(()) } else { Err(imprecise(&out[..angles])) }
+    if out[..angles].iter().all(|q| q.abs() <= limit) { Ok(()) } else { Err(imprecise(*out, angles)) }
 }
 
-/// The failure of angles too large to be accurate: the largest (the error names the block's
-/// angle whose guess it is on the turn of).
+/// The failure of angles too large to be accurate: the largest of the first `angles` values of
+/// `out` (the error names the block's angle whose guess it is on the turn of). Given the values,
+/// not a reference to them: a reference would keep a solution's array in memory on the path
+/// that passes its checks (the stores of every block's values at every step of a point solve),
+/// where a copy is made on this path only.
 #[cold]
 #[inline(never)]
-fn imprecise(angles: &[f64]) -> BlockFailure {
-    BlockFailure::TooManyTurns { value: angles.iter().fold(0.0f64, |m, q| if q.abs() > m.abs() { *q } else { m }) }
+fn imprecise<const K: usize>(out: [f64; K], angles: usize) -> BlockFailure {
+    let value = out[..angles].iter().fold(0.0f64, |m, q| if q.abs() > m.abs() { *q } else { m });
+    BlockFailure::TooManyTurns { value }
 }
 
 // The steps without their tests, for a kernel whose checks are deferred to its end (see

@@ -79,7 +79,7 @@ impl Kernel<'_> {
             let __j: [[f64; #n]; #n] = #j;
             #factor
             if #checked !(#lu.pivot_ratio() >= __cfg.singular_tol) {
-                let bad = #rt::first_bad_row(&__j).or(#rt::first_bad_row(&#rv));
+                let bad = #rt::first_bad_row(__j).or(#rt::first_bad_row(#rv));
                 return Err(#rt::singular(self, #bl, #lu.pivot_ratio(), __cfg, __x, bad));
             }
         }
@@ -101,7 +101,7 @@ impl Kernel<'_> {
             let __j = #j;
             let #lu = __j.factor_cols([#(#scale),*]);
             if !(#lu.pivot_ratio() >= __cfg.singular_tol) {
-                let bad = __j.first_bad_row().or(#rt::first_bad_row(&#rv));
+                let bad = __j.first_bad_row().or(#rt::first_bad_row(#rv));
                 return Err(#rt::singular(self, #bl, #lu.pivot_ratio(), __cfg, __x, bad));
             }
         }

@@ -51,7 +51,7 @@ impl Kernel<'_> {
         quote! {
             let #lu = #factor;
             if !(#lu.pivot_ratio() >= __cfg.singular_tol) {
-                return Err(#rt::singular(self, #bl, #lu.pivot_ratio(), __cfg, __x, #rt::first_bad_row(&#aug)));
+                return Err(#rt::singular(self, #bl, #lu.pivot_ratio(), __cfg, __x, #rt::first_bad_row(#aug)));
             }
             let [#(#qs),*] = #lu.solve([#(#rhs),*]);
         }
