@@ -61,7 +61,7 @@ impl Inverse2 {
     pub fn in_cols_floored<const K: usize>(j: &[[f64; 2]; 2], beyond: [[f64; K]; 2], floor: [Option<f64>; 2]) -> Self {
         match Self::unscaled(j, beyond, floor) {
             Ok(inverse) => inverse,
-            Err(magnitudes) => Self::column_scaled(j, beyond, floor, magnitudes),
+            Err(magnitudes) => Self::column_scaled(*j, beyond, floor, magnitudes),
         }
     }
 
@@ -113,11 +113,13 @@ impl Inverse2 {
 
     /// The inverse made from `J D`, `D` the powers of two nearest the reciprocals of the
     /// columns' magnitudes `m`: `J⁻¹ = D (J D)⁻¹`. Pivot ratio 0 where that fails too (a
-    /// singular block, or a NaN or infinite entry), as the LU's.
+    /// singular block, or a NaN or infinite entry), as the LU's. Given the block's entries, not
+    /// a reference to them: a reference passed to this function out of line would keep the
+    /// entries in memory on the path that does not call it (four stores at every step).
     #[cold]
     #[inline(never)]
     fn column_scaled<const K: usize>(
-        j: &[[f64; 2]; 2],
+        j: [[f64; 2]; 2],
         beyond: [[f64; K]; 2],
         floor: [Option<f64>; 2],
         m: [f64; 2],
@@ -135,7 +137,7 @@ impl Inverse2 {
                 inverse
             }
             Err(_) => {
-                let [[a, b], [c, d]] = *j;
+                let [[a, b], [c, d]] = j;
                 let det = a * d - b * c;
                 let id = 1.0 / det;
                 Inverse2 { diag: [d * id, a * id], off: [b * id, c * id], pivot_ratio: 0.0, negative_det: det < 0.0 }
