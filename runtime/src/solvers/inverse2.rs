@@ -61,7 +61,10 @@ impl Inverse2 {
     pub fn in_cols_floored<const K: usize>(j: &[[f64; 2]; 2], beyond: [[f64; K]; 2], floor: [Option<f64>; 2]) -> Self {
         match Self::unscaled(j, beyond, floor) {
             Ok(inverse) => inverse,
-            Err(magnitudes) => Self::column_scaled(*j, beyond, floor, magnitudes),
+            Err(magnitudes) => {
+                let [[a, b], [c, d]] = *j;
+                Self::column_scaled(a, b, c, d, beyond, floor[0], floor[1], magnitudes)
+            }
         }
     }
 
@@ -113,17 +116,24 @@ impl Inverse2 {
 
     /// The inverse made from `J D`, `D` the powers of two nearest the reciprocals of the
     /// columns' magnitudes `m`: `J⁻¹ = D (J D)⁻¹`. Pivot ratio 0 where that fails too (a
-    /// singular block, or a NaN or infinite entry), as the LU's. Given the block's entries, not
-    /// a reference to them: a reference passed to this function out of line would keep the
-    /// entries in memory on the path that does not call it (four stores at every step).
+    /// singular block, or a NaN or infinite entry), as the LU's. Given the block's entries
+    /// (rows `[a, b]`, `[c, d]`) and each floor one by one, which are passed in registers: a
+    /// reference to them, or an array of them (passed as a reference to a copy), would keep them
+    /// in memory on the path that does not call this function out of line, stored at every step.
+    #[allow(clippy::too_many_arguments)] // one by one, for the registers (see above)
     #[cold]
     #[inline(never)]
     fn column_scaled<const K: usize>(
-        j: [[f64; 2]; 2],
+        a: f64,
+        b: f64,
+        c: f64,
+        d: f64,
         beyond: [[f64; K]; 2],
-        floor: [Option<f64>; 2],
+        floor0: Option<f64>,
+        floor1: Option<f64>,
         m: [f64; 2],
     ) -> Self {
+        let (j, floor) = ([[a, b], [c, d]], [floor0, floor1]);
         let s = m.map(reciprocal_power_of_two);
         let scaled = [[j[0][0] * s[0], j[0][1] * s[1]], [j[1][0] * s[0], j[1][1] * s[1]]];
         let beyond = [beyond[0].map(|v| v * s[0]), beyond[1].map(|v| v * s[1])];
@@ -137,7 +147,6 @@ impl Inverse2 {
                 inverse
             }
             Err(_) => {
-                let [[a, b], [c, d]] = j;
                 let det = a * d - b * c;
                 let id = 1.0 / det;
                 Inverse2 { diag: [d * id, a * id], off: [b * id, c * id], pivot_ratio: 0.0, negative_det: det < 0.0 }
