@@ -134,11 +134,10 @@ impl Inverse2 {
         floor1: Option<f64>,
         m: [f64; 2],
     ) -> Self {
-        let (j, floor) = ([[a, b], [c, d]], [floor0, floor1]);
         let s = m.map(reciprocal_power_of_two);
-        let scaled = [[j[0][0] * s[0], j[0][1] * s[1]], [j[1][0] * s[0], j[1][1] * s[1]]];
+        let scaled = [[a * s[0], b * s[1]], [c * s[0], d * s[1]]];
         let beyond = [beyond[0].map(|v| v * s[0]), beyond[1].map(|v| v * s[1])];
-        let floor = [floor[0].map(|f| f * s[0]), floor[1].map(|f| f * s[1])];
+        let floor = [floor0.map(|f| f * s[0]), floor1.map(|f| f * s[1])];
         match Self::unscaled(&scaled, beyond, floor) {
             // Row `k` of the inverse (the unknown `k`) scaled back by `s[k]`: the diagonal's and
             // the off-diagonal's entry `k`.
