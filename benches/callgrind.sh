@@ -34,6 +34,8 @@ else
     four-bar-hand-sweep-checked@20000
     gear-lever-hand@20000 gear-lever-point@20000 gear-lever-sweep@20000
     gear-lever-hand-sweep@20000 gear-lever-hand-sweep-checked@20000
+    kernel-lane four-bar-kernel-lane gear-lever-kernel-lane
+    kernel-lane@20000 four-bar-kernel-lane@20000 gear-lever-kernel-lane@20000
     class-four-hand class-four-point
     class-four-hand-taylor class-four-point-taylor class-four-sweep
     class-four-hand@1000000 class-four-point@1000000

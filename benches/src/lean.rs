@@ -8,7 +8,8 @@
 use kinloop::Mechanism;
 
 use crate::hand_sweep::HandSweep;
-use crate::kinloop_variants::KinloopSweep;
+use crate::kernel_lane::kernel_lane_fold;
+use crate::kinloop_variants::{KinloopSweep, state_sum};
 use std::f64::consts::TAU;
 
 use crate::sweep::{Failed, Step, Stepper, WarmStart};
@@ -201,6 +202,19 @@ pub fn hand_sweep_turns<S: HandSweep<N, NP>, const N: usize, const NP: usize>(
     steps: usize,
 ) -> Result<f64, Failed> {
     hand_sweep_fold(s, steps, 0.0, |acc, _, step, point| acc + (step_sum(step) + point_sum(point)))
+}
+
+/// `steps` samples of kinloop's kernel driven by the hand sweep's trigonometry
+/// ([`crate::kernel_lane`]): the sum of every sample's numbers, as [`sweep_turns`] sums a
+/// `Sweep`'s.
+#[inline(never)]
+pub fn kernel_lane_turns<M: Mechanism<N, 1, NO>, const N: usize, const NO: usize, const TERMS: usize>(
+    m: &M,
+    turn: usize,
+    guess: [f64; N],
+    steps: usize,
+) -> Result<f64, Failed> {
+    kernel_lane_fold::<M, f64, N, NO, TERMS>(m, turn, guess, steps, 0.0, |acc, k| acc + state_sum(k))
 }
 
 /// Samples of each design's sweep in [`scan_designs`]: a turn from 0 to `2 pi`, both ends

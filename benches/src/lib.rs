@@ -16,6 +16,7 @@ pub mod expansion;
 pub mod hand;
 pub mod hand_check;
 pub mod hand_sweep;
+pub mod kernel_lane;
 pub mod kinloop_variants;
 pub mod lean;
 pub mod libm;

@@ -13,6 +13,9 @@
 //!   (`kinloop_bench::hand_check`: prediction, determinant signs, pivot ratio, slopes, angles,
 //!   the gear-lever's positions): `hand-sweep-checked`, `four-bar-hand-sweep-checked`,
 //!   `gear-lever-hand-sweep-checked`;
+//! * kinloop's kernel (the one its `Sweep` runs) driven by the hand sweep's trigonometry, with
+//!   no check and no judgment (`kinloop_bench::kernel_lane`): `kernel-lane`,
+//!   `four-bar-kernel-lane`, `gear-lever-kernel-lane`;
 //! * class IV block (Newton): `class-four-hand` (the hand-written Newton),
 //!   `class-four-hand-near` (the same with each iterate's sines and cosines rotated from the
 //!   previous iterate's, as kinloop's Newton blocks do), `class-four-point`,
@@ -88,6 +91,14 @@ fn sweep_of<M: kinloop::Mechanism<N, 1, NO>, const N: usize, const NO: usize>(
     lean::sweep_turns(m, turn(), guess, steps).expect("sample")
 }
 
+fn lane_of<M: kinloop::Mechanism<N, 1, NO>, const N: usize, const NO: usize, const TERMS: usize>(
+    m: &M,
+    guess: [f64; N],
+    steps: usize,
+) -> f64 {
+    lean::kernel_lane_turns::<M, N, NO, TERMS>(m, turn(), guess, steps).expect("sample")
+}
+
 fn hand_sweep_of<S: HandSweep<N, NP>, const N: usize, const NP: usize>(s: S, steps: usize) -> f64 {
     lean::hand_sweep_turns(s, steps).expect("sample")
 }
@@ -124,6 +135,7 @@ fn main() {
         "point" => steps_of(&Kinloop::<RhombicDrive, 0>::new(m), g, steps),
         "newton" => steps_of(&Kinloop::<RhombicNewton, 0>::new(RhombicNewton::default()), g, steps),
         "sweep" => sweep_of(&m, g, steps),
+        "kernel-lane" => lane_of::<_, 4, 0, RHOMBIC_TERMS>(&m, g, steps),
         "newton-taylor" => {
             policy_steps(&Kinloop::<RhombicNewton, 0>::new(RhombicNewton::default()), WarmStart::Taylor, g, steps)
         }
@@ -137,6 +149,7 @@ fn main() {
         }
         "four-bar-point" => steps_of(&Kinloop::<FourBar, 2>::new(four), gf, steps),
         "four-bar-sweep" => sweep_of(&four, gf, steps),
+        "four-bar-kernel-lane" => lane_of::<_, 2, 2, FOUR_BAR_TERMS>(&four, gf, steps),
         "four-bar-scan" => lean::scan_designs(
             // Designs 0.1 % apart in the crank: every one a crank-rocker like the four-bar.
             |i| FourBar { a: four.a * (1.0 + 1e-3 * (i % 100) as f64), ..four },
@@ -154,6 +167,7 @@ fn main() {
         }
         "gear-lever-point" => steps_of(&Kinloop::<GearLever, 2>::new(gear), gg, steps),
         "gear-lever-sweep" => sweep_of(&gear, gg, steps),
+        "gear-lever-kernel-lane" => lane_of::<_, 2, 2, GEAR_LEVER_TERMS>(&gear, gg, steps),
         "class-four-hand" => steps_of(&HandNewton { p: c4 }, g4, steps),
         "class-four-hand-near" => steps_of(&HandNewtonNear { p: c4 }, g4, steps),
         "class-four-point" => steps_of(&Kinloop::<ClassFour, 0>::new(c4.kinloop()), g4, steps),

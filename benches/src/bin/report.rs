@@ -229,7 +229,7 @@ struct CountRow {
     target: Option<f64>,
 }
 
-const COUNT_ROWS: [CountRow; 23] = [
+const COUNT_ROWS: [CountRow; 29] = [
     CountRow {
         what: "rhombic drive, kinloop's own `Sweep`, 20,000 steps a turn",
         variant: "sweep@20000",
@@ -319,6 +319,42 @@ const COUNT_ROWS: [CountRow; 23] = [
         variant: "gear-lever-point@20000",
         reference: "gear-lever-hand@20000",
         target: Some(1.3),
+    },
+    CountRow {
+        what: "rhombic drive, kinloop's kernel driven by the hand sweep's trigonometry, no check and no judgment (the floor of a sweep that calls the kernel)",
+        variant: "kernel-lane",
+        reference: "hand",
+        target: None,
+    },
+    CountRow {
+        what: "rhombic drive, kinloop's kernel driven by the hand sweep's trigonometry, no check and no judgment (the floor of a sweep that calls the kernel), 20,000 steps a turn",
+        variant: "kernel-lane@20000",
+        reference: "hand@20000",
+        target: None,
+    },
+    CountRow {
+        what: "four-bar with its coupler point, kinloop's kernel driven by the hand sweep's trigonometry, no check and no judgment (the floor of a sweep that calls the kernel)",
+        variant: "four-bar-kernel-lane",
+        reference: "four-bar-hand",
+        target: None,
+    },
+    CountRow {
+        what: "four-bar with its coupler point, kinloop's kernel driven by the hand sweep's trigonometry, no check and no judgment (the floor of a sweep that calls the kernel), 20,000 steps a turn",
+        variant: "four-bar-kernel-lane@20000",
+        reference: "four-bar-hand@20000",
+        target: None,
+    },
+    CountRow {
+        what: "gear-lever rocker, kinloop's kernel driven by the hand sweep's trigonometry, no check and no judgment (the floor of a sweep that calls the kernel)",
+        variant: "gear-lever-kernel-lane",
+        reference: "gear-lever-hand",
+        target: None,
+    },
+    CountRow {
+        what: "gear-lever rocker, kinloop's kernel driven by the hand sweep's trigonometry, no check and no judgment (the floor of a sweep that calls the kernel), 20,000 steps a turn",
+        variant: "gear-lever-kernel-lane@20000",
+        reference: "gear-lever-hand@20000",
+        target: None,
     },
     CountRow {
         what: "class IV block, second-order predictor (hand Newton with the same predictor)",

@@ -1,0 +1,257 @@
+//! kinloop's generated kernel driven along equally spaced inputs by the hand sweep's
+//! trigonometry, with no check and no judgment: what any sweep costs that calls the kernel once
+//! a sample, however lean its driver.
+//!
+//! The kernel is the one kinloop's `Sweep` runs (`kinematics_step_sink` with its checks
+//! deferred, writing its state in place). It is given the previous sample's positions as its
+//! guess and a [`FixedStepTrig`] in place of the sweep's cache: the recipe of
+//! [`crate::hand_sweep`] behind kinloop's `InputTrig` interface. The inputs' sines and cosines
+//! are rotated by their fixed step, the unknown angles advanced from the previous sample by a
+//! short `asin` series of a cross product, and libm computes the re-synchronised samples. What
+//! the driver leaves out is everything a sweep adds to the kernel: the prediction, the branch
+//! checks, step control.
+//!
+//! The numbers it computes are checked against the kernel with libm's sines and cosines
+//! (`tests/kernel_lane.rs`), so the count it gives is the floor of a sweep built on the kernel:
+//! with the checks of a sample on top, a sweep that reuses the kernel cannot reach what the
+//! checked recipe by hand costs ([`crate::hand_check`]). See BENCHMARKS.md.
+
+use std::f64::consts::TAU;
+
+use kinloop::__gen::{ByValue, InputTrig};
+use kinloop::{Kin, Mechanism, NewtonConfig};
+
+use crate::hand_sweep::{PERIOD, Rotation, asin_series};
+use crate::sweep::Failed;
+
+/// Slots of a [`FixedStepTrig`]: of the inputs' arguments, of the parameter angles added to
+/// them, and of the unknown angles (a kernel's slot numbers; the benchmarks' mechanisms use
+/// fewer).
+const SLOTS: usize = 8;
+
+/// The largest term the [`asin_series`] of an angle's increment may leave out (rad): a 64th of
+/// an ulp of a one-radian angle. [`FixedStepTrig`] advances an angle by the series where its
+/// first neglected term is below this, and asks libm otherwise.
+const SERIES_TAIL: f64 = 3.5e-18;
+
+/// The coefficient `c_n` of `x^(2n+1)` in `asin`'s Maclaurin series.
+fn asin_coefficient(n: usize) -> f64 {
+    (1..=n).fold(1.0, |c, k| c * (2 * k - 1) as f64 / (2 * k) as f64) / (2 * n + 1) as f64
+}
+
+/// A kernel's sines, cosines and closed-form angles along equally spaced inputs, as the hand
+/// sweep computes them (see the module documentation): each argument's values rotated by its
+/// step, which the lane's first two samples measure (libm computes both); each
+/// closed-form angle the previous one plus `TERMS` terms of `asin` of the cross product of the
+/// new sine and cosine with the previous, or libm's where that increment is too large for them.
+#[derive(Clone, Debug)]
+pub struct FixedStepTrig<const TERMS: usize> {
+    /// This sample comes from libm (the first of a turn, and every [`PERIOD`]-th).
+    sync: bool,
+    /// This sample comes from libm and measures each argument's step: the second of the lane.
+    learn: bool,
+    /// The steps are measured.
+    learned: bool,
+    /// Each argument's rotation by its step.
+    rotation: [Rotation; SLOTS],
+    /// Each argument at the lane's first sample. Its step is measured there, where the
+    /// arguments are their multiples of the first input step (`h`, `(1 - u) h`, exact but for
+    /// one rounding of the step): measured later, the difference of two arguments near `2 pi`
+    /// would carry their rounding, up to 4.4e-16 rad, into every rotation until the next sync
+    /// (measured: the four-bar's positions then deviate by 1.7e-14 from libm's). An argument
+    /// with a constant part would carry that part's rounding; the benchmarks' have none.
+    arg: [f64; SLOTS],
+    /// Each argument's sine and cosine.
+    sin_cos: [(f64, f64); SLOTS],
+    /// The sine and cosine of each parameter angle added to an argument.
+    offset: [(f64, f64); SLOTS],
+    /// Each closed-form angle's sine, cosine and value at the last sample.
+    angle: [(f64, f64, f64); SLOTS],
+    /// The largest increment's sine the series is used for.
+    series_range: f64,
+}
+
+impl<const TERMS: usize> FixedStepTrig<TERMS> {
+    /// A cache whose first sample comes from libm.
+    pub fn new() -> Self {
+        let tail = asin_coefficient(TERMS);
+        FixedStepTrig {
+            sync: true,
+            learn: false,
+            learned: false,
+            rotation: [Rotation::new(0.0); SLOTS],
+            arg: [0.0; SLOTS],
+            sin_cos: [(0.0, 1.0); SLOTS],
+            offset: [(0.0, 1.0); SLOTS],
+            angle: [(0.0, 1.0, 0.0); SLOTS],
+            series_range: (SERIES_TAIL / tail).powf(1.0 / (2 * TERMS + 1) as f64),
+        }
+    }
+
+    /// Sets up the next sample: from libm where `sync` holds, and the lane's second.
+    #[inline(always)]
+    pub fn next_sample(&mut self, sync: bool) {
+        self.learn = !self.learned;
+        self.learned = true;
+        self.sync = sync;
+    }
+}
+
+impl<const TERMS: usize> Default for FixedStepTrig<TERMS> {
+    fn default() -> Self {
+        Self::new()
+    }
+}
+
+impl<const TERMS: usize> InputTrig for FixedStepTrig<TERMS> {
+    #[inline(always)]
+    fn sin_cos(&mut self, slot: usize, arg: f64) -> (f64, f64) {
+        let values = if self.learn {
+            self.rotation[slot] = Rotation::new(arg - self.arg[slot]);
+            arg.sin_cos()
+        } else if self.sync {
+            self.arg[slot] = arg;
+            arg.sin_cos()
+        } else {
+            let (s, c) = self.sin_cos[slot];
+            self.rotation[slot].turn(s, c)
+        };
+        self.sin_cos[slot] = values;
+        values
+    }
+
+    #[inline(always)]
+    fn sin_cos_sum(&mut self, slot: usize, _arg: f64, (sa, ca): (f64, f64), b: f64) -> (f64, f64) {
+        if self.sync {
+            self.offset[slot] = b.sin_cos();
+        }
+        let (sb, cb) = self.offset[slot];
+        (sa * cb + ca * sb, ca * cb - sa * sb)
+    }
+
+    #[inline(always)]
+    fn angle(&mut self, slot: usize, s: f64, c: f64, exact: impl FnOnce() -> f64) -> f64 {
+        let (s0, c0, q0) = self.angle[slot];
+        // sin(q - q0) = s c0 - c s0.
+        let x = s * c0 - c * s0;
+        let q = if !(self.sync | self.learn) && x.abs() <= self.series_range {
+            q0 + asin_series::<TERMS>(x)
+        } else {
+            exact()
+        };
+        self.angle[slot] = (s, c, q);
+        q
+    }
+}
+
+/// Each of `steps` samples after the first (at input 0, from `guess`) of the kernel of `m` over
+/// turns of `turn` equally spaced inputs, each from the previous sample's positions with a
+/// [`FixedStepTrig`]: `f(acc, state)` folds the states. The first sample of every turn and
+/// every [`PERIOD`]-th come from libm, as in the hand sweep.
+#[inline(always)]
+pub fn kernel_lane_fold<M, A, const N: usize, const NO: usize, const TERMS: usize>(
+    m: &M,
+    turn: usize,
+    guess: [f64; N],
+    steps: usize,
+    init: A,
+    mut f: impl FnMut(A, &Kin<N, 1, NO>) -> A,
+) -> Result<A, Failed>
+where
+    M: Mechanism<N, 1, NO>,
+{
+    let h = TAU / turn as f64;
+    let cfg = NewtonConfig::default();
+    let mut trig = FixedStepTrig::<TERMS>::new();
+    let mut kin =
+        m.kinematics_step_sink::<_, ByValue, false>(&[0.0], &guess, &cfg, &mut trig, ByValue).map_err(Failed::new)?;
+    let (mut k, mut age, mut acc) = (0usize, 0usize, init);
+    for _ in 0..steps {
+        k += 1;
+        if k == turn {
+            k = 0;
+        }
+        age += 1;
+        let sync = k == 0 || age == PERIOD;
+        if sync {
+            age = 0;
+        }
+        trig.next_sample(sync);
+        let guess = kin.q;
+        // Written in place, as a sweep's kernel writes its state.
+        m.kinematics_step_sink::<_, &mut Kin<N, 1, NO>, false>(
+            &[h * k as i64 as f64],
+            &guess,
+            &cfg,
+            &mut trig,
+            &mut kin,
+        )
+        .map_err(Failed::new)?;
+        acc = f(acc, &kin);
+    }
+    Ok(acc)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn the_series_coefficients_are_asin_s() {
+        // 1, 1/6, 3/40, 5/112, 35/1152.
+        let want = [1.0, 1.0 / 6.0, 3.0 / 40.0, 5.0 / 112.0, 35.0 / 1152.0];
+        for (n, w) in want.into_iter().enumerate() {
+            assert!((asin_coefficient(n) - w).abs() <= 1e-16 * w, "c_{n}");
+        }
+    }
+
+    /// At the end of its range, the series with `TERMS` terms is within the tail it leaves
+    /// out (plus two roundings of the result) of libm's `asin`.
+    fn series_at_range<const TERMS: usize>() {
+        let x = FixedStepTrig::<TERMS>::new().series_range;
+        let left_out = asin_coefficient(TERMS) * x.powi(2 * TERMS as i32 + 1);
+        assert!((left_out - SERIES_TAIL).abs() <= 1e-12 * SERIES_TAIL, "{TERMS} terms: {left_out}");
+        let err = (asin_series::<TERMS>(x) - x.asin()).abs();
+        assert!(err <= 2.0 * SERIES_TAIL + 2.0 * f64::EPSILON * x, "{TERMS} terms at {x}: {err}");
+    }
+
+    #[test]
+    fn the_series_range_leaves_out_the_tail() {
+        series_at_range::<3>();
+        series_at_range::<6>();
+    }
+
+    #[test]
+    fn after_two_libm_samples_values_are_rotated_and_angles_advanced() {
+        let mut trig = FixedStepTrig::<3>::new();
+        let (h, q) = (1e-3, 0.7f64);
+        let mut exact_calls = 0;
+        // The sync and the learning sample: libm's values, libm's angles.
+        for k in 0..2 {
+            let x = h * k as f64;
+            assert_eq!(trig.sin_cos(0, 2.0 * x), (2.0 * x).sin_cos());
+            let (s, c) = (q + x).sin_cos();
+            trig.angle(1, s, c, || {
+                exact_calls += 1;
+                q + x
+            });
+            trig.next_sample(false);
+        }
+        assert_eq!(exact_calls, 2);
+        for k in 2..300 {
+            let x = h * k as f64;
+            // The argument `2 x` rotated by the step it took, `2 h`.
+            let (s, c) = trig.sin_cos(0, 2.0 * x);
+            let (s_want, c_want) = (2.0 * x).sin_cos();
+            assert!((s - s_want).abs() <= 1e-14 && (c - c_want).abs() <= 1e-14, "sample {k}");
+            // The angle `q + x` by the series of its increment: libm is not asked.
+            let (s, c) = (q + x).sin_cos();
+            let got = trig.angle(1, s, c, || panic!("libm asked at sample {k}"));
+            assert!((got - (q + x)).abs() <= 1e-14, "sample {k}: {got}");
+            trig.next_sample(false);
+        }
+        // An increment beyond the series' range goes to libm.
+        let (s, c) = (q + 1.0).sin_cos();
+        assert_eq!(trig.angle(1, s, c, || q + 1.0), q + 1.0);
+    }
+}

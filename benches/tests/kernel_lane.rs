@@ -1,0 +1,74 @@
+//! The kernel driven by the hand sweep's trigonometry (`kinloop_bench::kernel_lane`) against
+//! the same kernel with libm's sines, cosines and angles at every sample (`kinematics_flat` from
+//! the previous sample's positions): the count `closed_form_step` gives for it is that of the
+//! same numbers, not of a cheaper wrong computation.
+//!
+//! Tolerances, relative to `max(1, |value|)`, as in `tests/hand_sweep.rs` and for the same
+//! reasons: positions (unknowns and outputs) 1e-14; analogs 1e-13, 3e-12 for the gear-lever,
+//! whose analogs are defined only to the rounding of libm's arguments times third derivatives
+//! up to 675.
+
+use kinloop::{Kin, Mechanism, NewtonConfig};
+use kinloop_bench::hand::{FOUR_BAR, gear_lever};
+use kinloop_bench::hand_sweep::{FOUR_BAR_TERMS, GEAR_LEVER_TERMS, RHOMBIC_TERMS};
+use kinloop_bench::kernel_lane::kernel_lane_fold;
+use kinloop_bench::rhombic::{PARAMS, initial_guess};
+use kinloop_bench::sweep::rel_err;
+
+const POSITION_TOL: f64 = 1e-14;
+const ANALOG_TOL: f64 = 1e-13;
+const GEAR_LEVER_ANALOG_TOL: f64 = 3e-12;
+
+/// Largest deviations `[positions, analogs]` of the lane's samples from libm's over `steps`
+/// samples of turns of `turn`.
+fn deviation<M: Mechanism<N, 1, NO>, const N: usize, const NO: usize, const TERMS: usize>(
+    m: &M,
+    guess: [f64; N],
+    turn: usize,
+    steps: usize,
+) -> [f64; 2] {
+    let cfg = NewtonConfig::default();
+    let mut prev = m.kinematics_flat(&[0.0], &guess, &cfg).unwrap();
+    kernel_lane_fold::<M, _, N, NO, TERMS>(m, turn, guess, steps, [0.0f64; 2], |mut dev, got: &Kin<N, 1, NO>| {
+        let want = m.kinematics_flat(&got.x, &prev.q, &cfg).unwrap();
+        assert_eq!(got.x, want.x);
+        let positions =
+            (0..N).map(|u| rel_err(got.q[u], want.q[u])).chain((0..NO).map(|o| rel_err(got.out[o], want.out[o])));
+        let analogs = (0..N)
+            .flat_map(|u| [rel_err(got.dq[u][0], want.dq[u][0]), rel_err(got.d2q[u][0][0], want.d2q[u][0][0])])
+            .chain((0..NO).flat_map(|o| {
+                [rel_err(got.dout[o][0], want.dout[o][0]), rel_err(got.d2out[o][0][0], want.d2out[o][0][0])]
+            }));
+        for d in positions {
+            dev[0] = dev[0].max(if d.is_nan() { f64::INFINITY } else { d });
+        }
+        for d in analogs {
+            dev[1] = dev[1].max(if d.is_nan() { f64::INFINITY } else { d });
+        }
+        prev = want;
+        dev
+    })
+    .unwrap()
+}
+
+fn check(name: &str, dev: [f64; 2], analog_tol: f64) {
+    assert!(dev[0] <= POSITION_TOL, "{name}: positions deviate by {:e}", dev[0]);
+    assert!(dev[1] <= analog_tol, "{name}: analogs deviate by {:e}", dev[1]);
+}
+
+#[test]
+fn the_lane_computes_the_kernel_s_numbers() {
+    // Three turns of 720 (each sample from the rotation but the re-synchronised ones) and part
+    // of a turn of 20,000, where the increments are smaller.
+    for (turn, steps) in [(720, 3 * 720), (20_000, 4000)] {
+        let rhombic = deviation::<_, 4, 0, RHOMBIC_TERMS>(&PARAMS.kinloop(), initial_guess(&PARAMS), turn, steps);
+        check(&format!("rhombic drive at {turn}"), rhombic, ANALOG_TOL);
+        let four: [f64; 2] = FOUR_BAR.solve(0.0).unwrap().q.into();
+        let four = deviation::<_, 2, 2, FOUR_BAR_TERMS>(&FOUR_BAR, four, turn, steps);
+        check(&format!("four-bar at {turn}"), four, ANALOG_TOL);
+        let gear = gear_lever();
+        let g: [f64; 2] = gear.solve(0.0).unwrap().q.into();
+        let gear = deviation::<_, 2, 2, GEAR_LEVER_TERMS>(&gear, g, turn, steps);
+        check(&format!("gear-lever at {turn}"), gear, GEAR_LEVER_ANALOG_TOL);
+    }
+}
