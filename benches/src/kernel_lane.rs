@@ -39,6 +39,12 @@ fn asin_coefficient(n: usize) -> f64 {
     (1..=n).fold(1.0, |c, k| c * (2 * k - 1) as f64 / (2 * k) as f64) / (2 * n + 1) as f64
 }
 
+/// The largest increment's sine that `TERMS` terms of [`asin_series`] advance an angle by: where
+/// the first term left out is [`SERIES_TAIL`].
+pub fn series_range(terms: usize) -> f64 {
+    (SERIES_TAIL / asin_coefficient(terms)).powf(1.0 / (2 * terms + 1) as f64)
+}
+
 /// A kernel's sines, cosines and closed-form angles along equally spaced inputs, as the hand
 /// sweep computes them (see the module documentation): each argument's values rotated by its
 /// step, which the lane's first two samples measure (libm computes both); each
@@ -74,7 +80,6 @@ pub struct FixedStepTrig<const TERMS: usize> {
 impl<const TERMS: usize> FixedStepTrig<TERMS> {
     /// A cache whose first sample comes from libm.
     pub fn new() -> Self {
-        let tail = asin_coefficient(TERMS);
         FixedStepTrig {
             sync: true,
             learn: false,
@@ -84,7 +89,7 @@ impl<const TERMS: usize> FixedStepTrig<TERMS> {
             sin_cos: [(0.0, 1.0); SLOTS],
             offset: [(0.0, 1.0); SLOTS],
             angle: [(0.0, 1.0, 0.0); SLOTS],
-            series_range: (SERIES_TAIL / tail).powf(1.0 / (2 * TERMS + 1) as f64),
+            series_range: series_range(TERMS),
         }
     }
 

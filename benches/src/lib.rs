@@ -18,6 +18,7 @@ pub mod hand_check;
 pub mod hand_sweep;
 pub mod kernel_lane;
 pub mod kinloop_variants;
+pub mod lane_sketch;
 pub mod lean;
 pub mod libm;
 pub mod linalg;

@@ -1,7 +1,8 @@
-//! The kernel driven by the hand sweep's trigonometry (`kinloop_bench::kernel_lane`) against
-//! the same kernel with libm's sines, cosines and angles at every sample (`kinematics_flat` from
-//! the previous sample's positions): the count `closed_form_step` gives for it is that of the
-//! same numbers, not of a cheaper wrong computation.
+//! The kernel driven by the hand sweep's trigonometry (`kinloop_bench::kernel_lane`), and the
+//! four-bar's sweep loop sketched as the macro would emit it (`kinloop_bench::lane_sketch`, with
+//! the sweep's checks), against the kernel with libm's sines, cosines and angles at every sample
+//! (`kinematics_flat` from the previous sample's positions): the counts `closed_form_step`
+//! gives for them are those of the same numbers, not of a cheaper wrong computation.
 //!
 //! Tolerances, relative to `max(1, |value|)`, as in `tests/hand_sweep.rs` and for the same
 //! reasons: positions (unknowns and outputs) 1e-14; analogs 1e-13, 3e-12 for the gear-lever,
@@ -10,8 +11,12 @@
 
 use kinloop::{Kin, Mechanism, NewtonConfig};
 use kinloop_bench::hand::{FOUR_BAR, gear_lever};
+use kinloop_bench::hand_check::Checked;
+use kinloop_bench::hand_sweep::PERIOD;
 use kinloop_bench::hand_sweep::{FOUR_BAR_TERMS, GEAR_LEVER_TERMS, RHOMBIC_TERMS};
 use kinloop_bench::kernel_lane::kernel_lane_fold;
+use kinloop_bench::lane_sketch::FourBarLaneSketch;
+use kinloop_bench::lean::hand_sweep_fold;
 use kinloop_bench::rhombic::{PARAMS, initial_guess};
 use kinloop_bench::sweep::rel_err;
 
@@ -70,5 +75,44 @@ fn the_lane_computes_the_kernel_s_numbers() {
         let g: [f64; 2] = gear.solve(0.0).unwrap().q.into();
         let gear = deviation::<_, 2, 2, GEAR_LEVER_TERMS>(&gear, g, turn, steps);
         check(&format!("gear-lever at {turn}"), gear, GEAR_LEVER_ANALOG_TOL);
+    }
+}
+
+#[test]
+fn the_four_bar_lane_sketch_computes_the_kernel_s_numbers() {
+    let cfg = NewtonConfig::default();
+    for (turn, steps) in [(720, 3 * 720), (20_000, 4000)] {
+        let guess: [f64; 2] = FOUR_BAR.solve(0.0).unwrap().q.into();
+        let lane = Checked::new(FourBarLaneSketch::<FOUR_BAR_TERMS>::new(FOUR_BAR, turn, PERIOD, guess));
+        let mut prev = FOUR_BAR.kinematics_flat(&[0.0], &guess, &cfg).unwrap();
+        let dev = hand_sweep_fold(lane, steps, [0.0f64; 2], |mut dev, x, got, point| {
+            let want = FOUR_BAR.kinematics_flat(&[x], &prev.q, &cfg).unwrap();
+            let positions = [
+                rel_err(got.q[0], want.q[0]),
+                rel_err(got.q[1], want.q[1]),
+                rel_err(point[0], want.out[0]),
+                rel_err(point[1], want.out[1]),
+            ];
+            let analogs = [
+                rel_err(got.dq[0], want.dq[0][0]),
+                rel_err(got.dq[1], want.dq[1][0]),
+                rel_err(got.d2q[0], want.d2q[0][0][0]),
+                rel_err(got.d2q[1], want.d2q[1][0][0]),
+                rel_err(point[2], want.dout[0][0]),
+                rel_err(point[3], want.dout[1][0]),
+                rel_err(point[4], want.d2out[0][0][0]),
+                rel_err(point[5], want.d2out[1][0][0]),
+            ];
+            for d in positions {
+                dev[0] = dev[0].max(if d.is_nan() { f64::INFINITY } else { d });
+            }
+            for d in analogs {
+                dev[1] = dev[1].max(if d.is_nan() { f64::INFINITY } else { d });
+            }
+            prev = want;
+            dev
+        })
+        .unwrap();
+        check(&format!("four-bar lane sketch at {turn}"), dev, ANALOG_TOL);
     }
 }

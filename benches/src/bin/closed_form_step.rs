@@ -16,6 +16,8 @@
 //! * kinloop's kernel (the one its `Sweep` runs) driven by the hand sweep's trigonometry, with
 //!   no check and no judgment (`kinloop_bench::kernel_lane`): `kernel-lane`,
 //!   `four-bar-kernel-lane`, `gear-lever-kernel-lane`;
+//! * the four-bar's sweep loop sketched as the macro would emit it, with the sweep's checks
+//!   (`kinloop_bench::lane_sketch`): `four-bar-lane-sketch`;
 //! * class IV block (Newton): `class-four-hand` (the hand-written Newton),
 //!   `class-four-hand-near` (the same with each iterate's sines and cosines rotated from the
 //!   previous iterate's, as kinloop's Newton blocks do), `class-four-point`,
@@ -45,6 +47,7 @@ use kinloop_bench::hand_sweep::{
     FOUR_BAR_TERMS, FourBarSweep, GEAR_LEVER_TERMS, GearLeverSweep, HandSweep, PERIOD, RHOMBIC_TERMS, RhombicSweep,
 };
 use kinloop_bench::kinloop_variants::{Kinloop, KinloopSens};
+use kinloop_bench::lane_sketch::FourBarLaneSketch;
 use kinloop_bench::lean;
 use kinloop_bench::rhombic::{ClosedForm, PARAMS, initial_guess};
 use kinloop_bench::ring::{Ring, RingDense, Series};
@@ -149,6 +152,9 @@ fn main() {
         }
         "four-bar-point" => steps_of(&Kinloop::<FourBar, 2>::new(four), gf, steps),
         "four-bar-sweep" => sweep_of(&four, gf, steps),
+        "four-bar-lane-sketch" => {
+            hand_sweep_of(Checked::new(FourBarLaneSketch::<FOUR_BAR_TERMS>::new(four, turn(), PERIOD, gf)), steps)
+        }
         "four-bar-kernel-lane" => lane_of::<_, 2, 2, FOUR_BAR_TERMS>(&four, gf, steps),
         "four-bar-scan" => lean::scan_designs(
             // Designs 0.1 % apart in the crank: every one a crank-rocker like the four-bar.

@@ -229,7 +229,7 @@ struct CountRow {
     target: Option<f64>,
 }
 
-const COUNT_ROWS: [CountRow; 29] = [
+const COUNT_ROWS: [CountRow; 31] = [
     CountRow {
         what: "rhombic drive, kinloop's own `Sweep`, 20,000 steps a turn",
         variant: "sweep@20000",
@@ -354,6 +354,18 @@ const COUNT_ROWS: [CountRow; 29] = [
         what: "gear-lever rocker, kinloop's kernel driven by the hand sweep's trigonometry, no check and no judgment (the floor of a sweep that calls the kernel), 20,000 steps a turn",
         variant: "gear-lever-kernel-lane@20000",
         reference: "gear-lever-hand@20000",
+        target: None,
+    },
+    CountRow {
+        what: "four-bar with its coupler point, its sweep loop sketched as the macro would emit it (the kernel's formulas and run-time pieces, the sweep's checks)",
+        variant: "four-bar-lane-sketch",
+        reference: "four-bar-hand",
+        target: None,
+    },
+    CountRow {
+        what: "four-bar with its coupler point, its sweep loop sketched as the macro would emit it (the kernel's formulas and run-time pieces, the sweep's checks), 20,000 steps a turn",
+        variant: "four-bar-lane-sketch@20000",
+        reference: "four-bar-hand@20000",
         target: None,
     },
     CountRow {

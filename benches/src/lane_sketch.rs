@@ -1,0 +1,172 @@
+//! The four-bar's sweep loop as the macro would emit it, written by hand from the four-bar's
+//! expansion: the kernel's own formulas and kinloop's run-time pieces (the deferred dyad roots,
+//! `Inverse2` for the analogs, its pivot ratio and determinant sign as the block's health),
+//! with the carried values as the loop's locals and the sweep's checks of every sample
+//! ([`crate::hand_check::Checked`]). It measures what an emitted closed-form sweep path would
+//! cost with kinloop's pieces, against the checked recipe by hand (the hand closed form's own
+//! formulas) and the general `Sweep`. Not a library path: the numbers are checked against the
+//! kernel with libm (`tests/kernel_lane.rs`), the cost measured by `closed_form_step`'s
+//! `four-bar-lane-sketch`.
+//!
+//! What it carries from sample to sample, as an emitted loop would: the crank's sine and cosine
+//! (rotated by the fixed step), the angles' sines, cosines and values (advanced by the
+//! increments' series, or by libm's `atan2` where an increment leaves the series' range), and
+//! the dyad's branch flag (taken from the guesses at each libm sample, as the kernel takes it
+//! from its guess at every step).
+
+use kinloop::__gen::{Factor, Inverse2, dyad_roots_deferred, reduce_turn, unwrap_to_turn};
+use kinloop_fixtures::FourBar;
+
+use crate::hand_check::Branch;
+use crate::hand_sweep::{HandSweep, Rotation, asin_series};
+use crate::kernel_lane::series_range;
+use crate::sweep::{Failed, Step};
+
+/// The four-bar's emitted sweep loop, sketched (see the module documentation).
+#[derive(Clone, Debug)]
+pub struct FourBarLaneSketch<const TERMS: usize> {
+    m: FourBar,
+    turn: usize,
+    period: usize,
+    rotation: Rotation,
+    /// `[s_phi, c_phi, sin beta, cos beta, sin gamma, cos gamma]` of the previous sample.
+    sines: [f64; 6],
+    q: [f64; 2],
+    /// The dyad's branch flag.
+    flip: bool,
+    /// The analogs' block at the last sample: its determinant's sign and pivot ratio.
+    negative_det: bool,
+    pivot: f64,
+    /// The largest increment's sine the series is used for.
+    range: f64,
+    /// `NewtonConfig::singular_tol`'s default, the kernel's end test of the pivot.
+    singular_tol: f64,
+}
+
+impl<const TERMS: usize> FourBarLaneSketch<TERMS> {
+    /// The sweep of `m` over turns of `turn` samples, libm every `period`, from the angles
+    /// `guess` (the branch).
+    pub fn new(m: FourBar, turn: usize, period: usize, guess: [f64; 2]) -> Self {
+        FourBarLaneSketch {
+            m,
+            turn,
+            period,
+            rotation: Rotation::new(std::f64::consts::TAU / turn as f64),
+            sines: [0.0; 6],
+            q: guess,
+            flip: false,
+            negative_det: false,
+            pivot: 0.0,
+            range: series_range(TERMS),
+            singular_tol: kinloop::NewtonConfig::default().singular_tol,
+        }
+    }
+
+    /// A sample from the crank's sine and cosine: the kernel's formulas; the angles by `angle`
+    /// from their new sines and cosines.
+    #[inline(always)]
+    fn sample(
+        &mut self,
+        (sin_phi, cos_phi): (f64, f64),
+        angle: impl Fn(&Self, usize, f64, f64) -> f64,
+    ) -> Result<(Step<2>, [f64; 6]), Failed> {
+        let FourBar { a, b, c, d } = self.m;
+        let a_cos_phi = a * cos_phi;
+        let a_sin_phi = a * sin_phi;
+        let neg_c = -c;
+        let t53 = a_cos_phi - d;
+        let l1 = neg_c * neg_c;
+        let cc = 0.5 * ((l1 - b * b) - (t53 * t53 + a_sin_phi * a_sin_phi));
+        let (cos_beta, sin_beta) = dyad_roots_deferred(b * t53, b * a_sin_phi, cc, self.flip);
+        let vx = t53 + b * cos_beta;
+        let vy = a_sin_phi + b * sin_beta;
+        let il1 = -1.0 / l1;
+        let cos_gamma = neg_c * vx * il1;
+        let sin_gamma = neg_c * vy * il1;
+        let q_beta = angle(self, 0, sin_beta, cos_beta);
+        let q_gamma = angle(self, 1, sin_gamma, cos_gamma);
+        let b_cos_beta = b * cos_beta;
+        let b_sin_beta = b * sin_beta;
+        let j = [[-b_sin_beta, c * sin_gamma], [b_cos_beta, -(c * cos_gamma)]];
+        let lu = Inverse2::in_cols(&j, [[], []]);
+        let neg_a_cos_phi = -a_cos_phi;
+        let [[dq_beta], [dq_gamma]] = lu.solve_cols([[a_sin_phi], [neg_a_cos_phi]]);
+        let t70 = sin_beta * dq_beta;
+        let t72 = cos_beta * dq_beta;
+        let t86 = dq_beta * t72;
+        let t87 = dq_beta * t70;
+        let t94 = dq_gamma * (cos_gamma * dq_gamma);
+        let t95 = dq_gamma * (sin_gamma * dq_gamma);
+        let r0 = -((neg_a_cos_phi - b * t86) + c * t94);
+        let r1 = -((-a_sin_phi - b * t87) + c * t95);
+        let [[d2q_beta], [d2q_gamma]] = lu.solve_cols([[r0], [r1]]);
+        let point = [
+            a_cos_phi + b_cos_beta,
+            a_sin_phi + b_sin_beta,
+            -a_sin_phi - b * t70,
+            a_cos_phi + b * t72,
+            neg_a_cos_phi - b * (t86 + sin_beta * d2q_beta),
+            b * (cos_beta * d2q_beta - t87) - a_sin_phi,
+        ];
+        // The kernel's end test: every value finite (a failed root is NaN) and the block not
+        // singular (a factorisation reports a NaN pivot ratio as 0).
+        let sum = ((d2q_gamma + point[0]) + (point[2] + point[4])) + ((point[1] + point[3]) + point[5]);
+        let sum = sum + (q_beta + q_gamma) + (dq_beta + dq_gamma) + d2q_beta;
+        if !sum.is_finite() || lu.pivot_ratio() < self.singular_tol {
+            return Err(Failed::new("four-bar lane: the kernel's end test failed"));
+        }
+        self.sines = [sin_phi, cos_phi, sin_beta, cos_beta, sin_gamma, cos_gamma];
+        self.q = [q_beta, q_gamma];
+        self.negative_det = lu.negative_det();
+        self.pivot = lu.pivot_ratio();
+        Ok((Step { q: self.q, dq: [dq_beta, dq_gamma], d2q: [d2q_beta, d2q_gamma], iterations: 0 }, point))
+    }
+}
+
+impl<const TERMS: usize> HandSweep<2, 6> for FourBarLaneSketch<TERMS> {
+    fn turn(&self) -> usize {
+        self.turn
+    }
+
+    fn period(&self) -> usize {
+        self.period
+    }
+
+    #[inline(always)]
+    fn sync(&mut self, x: f64) -> Result<(Step<2>, [f64; 6]), Failed> {
+        // The branch flag from the guesses, as the kernel's.
+        let [g_beta, g_gamma] = self.q;
+        self.flip = (self.m.b * -self.m.c) * reduce_turn(g_gamma - g_beta) < 0.0;
+        self.sample(x.sin_cos(), |lane, u, s, c| unwrap_to_turn(s.atan2(c), lane.q[u]))
+    }
+
+    #[inline(always)]
+    fn advance(&mut self) -> Result<(Step<2>, [f64; 6]), Failed> {
+        let [s, c, ..] = self.sines;
+        let sc = self.rotation.turn(s, c);
+        self.sample(sc, |lane, u, s, c| {
+            let (s0, c0) = (lane.sines[2 + 2 * u], lane.sines[3 + 2 * u]);
+            let x = s * c0 - c * s0;
+            if x.abs() <= lane.range {
+                lane.q[u] + asin_series::<TERMS>(x)
+            } else {
+                unwrap_to_turn(s.atan2(c), lane.q[u])
+            }
+        })
+    }
+}
+
+/// The health the general sweep judges: the block's determinant sign and pivot ratio, as the
+/// kernel notes them.
+impl<const TERMS: usize> Branch<2, 6> for FourBarLaneSketch<TERMS> {
+    const ANGLES: [bool; 2] = [true, true];
+
+    #[inline(always)]
+    fn health(&self, _step: &Step<2>, _unit: f64) -> (u8, f64) {
+        (u8::from(self.negative_det), self.pivot)
+    }
+
+    fn judged_unit(&self) -> f64 {
+        1.0
+    }
+}
