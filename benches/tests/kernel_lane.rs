@@ -24,6 +24,13 @@ const POSITION_TOL: f64 = 1e-14;
 const ANALOG_TOL: f64 = 1e-13;
 const GEAR_LEVER_ANALOG_TOL: f64 = 3e-12;
 
+/// The largest deviations `[positions, analogs]` so far, `dev`, with a sample's (a NaN counts
+/// as infinite).
+fn widen(dev: [f64; 2], positions: impl IntoIterator<Item = f64>, analogs: impl IntoIterator<Item = f64>) -> [f64; 2] {
+    let largest = |d: f64, e: f64| d.max(if e.is_nan() { f64::INFINITY } else { e });
+    [positions.into_iter().fold(dev[0], largest), analogs.into_iter().fold(dev[1], largest)]
+}
+
 /// Largest deviations `[positions, analogs]` of the lane's samples from libm's over `steps`
 /// samples of turns of `turn`.
 fn deviation<M: Mechanism<N, 1, NO>, const N: usize, const NO: usize, const TERMS: usize>(
@@ -34,7 +41,7 @@ fn deviation<M: Mechanism<N, 1, NO>, const N: usize, const NO: usize, const TERM
 ) -> [f64; 2] {
     let cfg = NewtonConfig::default();
     let mut prev = m.kinematics_flat(&[0.0], &guess, &cfg).unwrap();
-    kernel_lane_fold::<M, _, N, NO, TERMS>(m, turn, guess, steps, [0.0f64; 2], |mut dev, got: &Kin<N, 1, NO>| {
+    kernel_lane_fold::<M, _, N, NO, TERMS>(m, turn, guess, steps, [0.0f64; 2], |dev, got: &Kin<N, 1, NO>| {
         let want = m.kinematics_flat(&got.x, &prev.q, &cfg).unwrap();
         assert_eq!(got.x, want.x);
         let positions =
@@ -44,14 +51,8 @@ fn deviation<M: Mechanism<N, 1, NO>, const N: usize, const NO: usize, const TERM
             .chain((0..NO).flat_map(|o| {
                 [rel_err(got.dout[o][0], want.dout[o][0]), rel_err(got.d2out[o][0][0], want.d2out[o][0][0])]
             }));
-        for d in positions {
-            dev[0] = dev[0].max(if d.is_nan() { f64::INFINITY } else { d });
-        }
-        for d in analogs {
-            dev[1] = dev[1].max(if d.is_nan() { f64::INFINITY } else { d });
-        }
         prev = want;
-        dev
+        widen(dev, positions, analogs)
     })
     .unwrap()
 }
@@ -85,7 +86,7 @@ fn the_four_bar_lane_sketch_computes_the_kernel_s_numbers() {
         let guess: [f64; 2] = FOUR_BAR.solve(0.0).unwrap().q.into();
         let lane = Checked::new(FourBarLaneSketch::<FOUR_BAR_TERMS>::new(FOUR_BAR, turn, PERIOD, guess));
         let mut prev = FOUR_BAR.kinematics_flat(&[0.0], &guess, &cfg).unwrap();
-        let dev = hand_sweep_fold(lane, steps, [0.0f64; 2], |mut dev, x, got, point| {
+        let dev = hand_sweep_fold(lane, steps, [0.0f64; 2], |dev, x, got, point| {
             let want = FOUR_BAR.kinematics_flat(&[x], &prev.q, &cfg).unwrap();
             let positions = [
                 rel_err(got.q[0], want.q[0]),
@@ -103,14 +104,8 @@ fn the_four_bar_lane_sketch_computes_the_kernel_s_numbers() {
                 rel_err(point[4], want.d2out[0][0][0]),
                 rel_err(point[5], want.d2out[1][0][0]),
             ];
-            for d in positions {
-                dev[0] = dev[0].max(if d.is_nan() { f64::INFINITY } else { d });
-            }
-            for d in analogs {
-                dev[1] = dev[1].max(if d.is_nan() { f64::INFINITY } else { d });
-            }
             prev = want;
-            dev
+            widen(dev, positions, analogs)
         })
         .unwrap();
         check(&format!("four-bar lane sketch at {turn}"), dev, ANALOG_TOL);
