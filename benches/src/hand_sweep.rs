@@ -20,7 +20,7 @@ use crate::sweep::{Failed, Step};
 
 /// Coefficients of the Maclaurin series `asin x = sum c_n x^(2n+1)`,
 /// `c_n = (2n)! / (4^n (n!)^2 (2n + 1))`.
-const ASIN: [f64; 8] =
+pub(crate) const ASIN: [f64; 8] =
     [1.0, 1.0 / 6.0, 3.0 / 40.0, 5.0 / 112.0, 35.0 / 1152.0, 63.0 / 2816.0, 231.0 / 13312.0, 143.0 / 10240.0];
 
 /// `asin x` for a small `x` by the first `TERMS` terms of its series (`TERMS >= 1`); the

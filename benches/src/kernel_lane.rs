@@ -21,35 +21,36 @@ use std::f64::consts::TAU;
 use kinloop::__gen::{ByValue, InputTrig};
 use kinloop::{Kin, Mechanism, NewtonConfig};
 
-use crate::hand_sweep::{PERIOD, Rotation, asin_series};
+use crate::hand_sweep::{ASIN, PERIOD, Rotation, asin_series};
 use crate::sweep::Failed;
 
 /// Slots of a [`FixedStepTrig`]: of the inputs' arguments, of the parameter angles added to
 /// them, and of the unknown angles (a kernel's slot numbers; the benchmarks' mechanisms use
-/// fewer).
+/// fewer). A slot beyond them is computed by libm at every sample.
 const SLOTS: usize = 8;
 
 /// The largest term the [`asin_series`] of an angle's increment may leave out (rad): a 64th of
 /// an ulp of a one-radian angle. [`FixedStepTrig`] advances an angle by the series where its
 /// first neglected term is below this, and asks libm otherwise.
-const SERIES_TAIL: f64 = 3.5e-18;
+pub const SERIES_TAIL: f64 = 3.5e-18;
 
-/// The coefficient `c_n` of `x^(2n+1)` in `asin`'s Maclaurin series.
-fn asin_coefficient(n: usize) -> f64 {
-    (1..=n).fold(1.0, |c, k| c * (2 * k - 1) as f64 / (2 * k) as f64) / (2 * n + 1) as f64
-}
-
-/// The largest increment's sine that `TERMS` terms of [`asin_series`] advance an angle by: where
-/// the first term left out is [`SERIES_TAIL`].
+/// The largest increment's sine that `terms` terms of [`asin_series`] (1 to 7) advance an angle
+/// by: where the first term left out is [`SERIES_TAIL`].
 pub fn series_range(terms: usize) -> f64 {
-    (SERIES_TAIL / asin_coefficient(terms)).powf(1.0 / (2 * terms + 1) as f64)
+    (SERIES_TAIL / ASIN[terms]).powf(1.0 / (2 * terms + 1) as f64)
 }
 
 /// A kernel's sines, cosines and closed-form angles along equally spaced inputs, as the hand
-/// sweep computes them (see the module documentation): each argument's values rotated by its
-/// step, which the lane's first two samples measure (libm computes both); each
-/// closed-form angle the previous one plus `TERMS` terms of `asin` of the cross product of the
-/// new sine and cosine with the previous, or libm's where that increment is too large for them.
+/// sweep computes them (see the module documentation). Each argument's values are rotated by
+/// its step, which the lane's first two samples measure (libm computes both); an argument that
+/// is another plus a parameter angle comes by angle addition, with the parameter's values from
+/// libm at every libm sample. Each closed-form angle is the previous sample's plus `TERMS` terms
+/// of `asin` of the cross product of the new sine and cosine with the previous, or libm's where
+/// that increment is too large for them.
+///
+/// A sample's values are computed from the previous sample's and committed by
+/// [`FixedStepTrig::next_sample`], so that a kernel that runs a sample twice (its checked re-run,
+/// where a deferred test failed) gets the same values both times.
 #[derive(Clone, Debug)]
 pub struct FixedStepTrig<const TERMS: usize> {
     /// This sample comes from libm (the first of a turn, and every [`PERIOD`]-th).
@@ -60,19 +61,21 @@ pub struct FixedStepTrig<const TERMS: usize> {
     learned: bool,
     /// Each argument's rotation by its step.
     rotation: [Rotation; SLOTS],
-    /// Each argument at the lane's first sample. Its step is measured there, where the
+    /// Each argument at the lane's first sample. Its step is measured from there, where the
     /// arguments are their multiples of the first input step (`h`, `(1 - u) h`, exact but for
     /// one rounding of the step): measured later, the difference of two arguments near `2 pi`
     /// would carry their rounding, up to 4.4e-16 rad, into every rotation until the next sync
     /// (measured: the four-bar's positions then deviate by 1.7e-14 from libm's). An argument
     /// with a constant part would carry that part's rounding; the benchmarks' have none.
-    arg: [f64; SLOTS],
-    /// Each argument's sine and cosine.
+    first_arg: [f64; SLOTS],
+    /// Each argument's sine and cosine at the previous sample, and at this one.
     sin_cos: [(f64, f64); SLOTS],
+    sin_cos_next: [(f64, f64); SLOTS],
     /// The sine and cosine of each parameter angle added to an argument.
     offset: [(f64, f64); SLOTS],
-    /// Each closed-form angle's sine, cosine and value at the last sample.
+    /// Each closed-form angle's sine, cosine and value at the previous sample, and at this one.
     angle: [(f64, f64, f64); SLOTS],
+    angle_next: [(f64, f64, f64); SLOTS],
     /// The largest increment's sine the series is used for.
     series_range: f64,
 }
@@ -85,17 +88,22 @@ impl<const TERMS: usize> FixedStepTrig<TERMS> {
             learn: false,
             learned: false,
             rotation: [Rotation::new(0.0); SLOTS],
-            arg: [0.0; SLOTS],
+            first_arg: [0.0; SLOTS],
             sin_cos: [(0.0, 1.0); SLOTS],
+            sin_cos_next: [(0.0, 1.0); SLOTS],
             offset: [(0.0, 1.0); SLOTS],
             angle: [(0.0, 1.0, 0.0); SLOTS],
+            angle_next: [(0.0, 1.0, 0.0); SLOTS],
             series_range: series_range(TERMS),
         }
     }
 
-    /// Sets up the next sample: from libm where `sync` holds, and the lane's second.
+    /// Commits the sample just computed and sets up the next: from libm where `sync` holds,
+    /// and the lane's second.
     #[inline(always)]
     pub fn next_sample(&mut self, sync: bool) {
+        self.sin_cos = self.sin_cos_next;
+        self.angle = self.angle_next;
         self.learn = !self.learned;
         self.learned = true;
         self.sync = sync;
@@ -111,22 +119,30 @@ impl<const TERMS: usize> Default for FixedStepTrig<TERMS> {
 impl<const TERMS: usize> InputTrig for FixedStepTrig<TERMS> {
     #[inline(always)]
     fn sin_cos(&mut self, slot: usize, arg: f64) -> (f64, f64) {
+        if slot >= SLOTS {
+            return arg.sin_cos();
+        }
         let values = if self.learn {
-            self.rotation[slot] = Rotation::new(arg - self.arg[slot]);
+            self.rotation[slot] = Rotation::new(arg - self.first_arg[slot]);
             arg.sin_cos()
         } else if self.sync {
-            self.arg[slot] = arg;
+            if !self.learned {
+                self.first_arg[slot] = arg;
+            }
             arg.sin_cos()
         } else {
             let (s, c) = self.sin_cos[slot];
             self.rotation[slot].turn(s, c)
         };
-        self.sin_cos[slot] = values;
+        self.sin_cos_next[slot] = values;
         values
     }
 
     #[inline(always)]
-    fn sin_cos_sum(&mut self, slot: usize, _arg: f64, (sa, ca): (f64, f64), b: f64) -> (f64, f64) {
+    fn sin_cos_sum(&mut self, slot: usize, arg: f64, (sa, ca): (f64, f64), b: f64) -> (f64, f64) {
+        if slot >= SLOTS {
+            return arg.sin_cos();
+        }
         if self.sync {
             self.offset[slot] = b.sin_cos();
         }
@@ -136,6 +152,9 @@ impl<const TERMS: usize> InputTrig for FixedStepTrig<TERMS> {
 
     #[inline(always)]
     fn angle(&mut self, slot: usize, s: f64, c: f64, exact: impl FnOnce() -> f64) -> f64 {
+        if slot >= SLOTS {
+            return exact();
+        }
         let (s0, c0, q0) = self.angle[slot];
         // sin(q - q0) = s c0 - c s0.
         let x = s * c0 - c * s0;
@@ -144,7 +163,7 @@ impl<const TERMS: usize> InputTrig for FixedStepTrig<TERMS> {
         } else {
             exact()
         };
-        self.angle[slot] = (s, c, q);
+        self.angle_next[slot] = (s, c, q);
         q
     }
 }
@@ -201,20 +220,11 @@ where
 mod tests {
     use super::*;
 
-    #[test]
-    fn the_series_coefficients_are_asin_s() {
-        // 1, 1/6, 3/40, 5/112, 35/1152.
-        let want = [1.0, 1.0 / 6.0, 3.0 / 40.0, 5.0 / 112.0, 35.0 / 1152.0];
-        for (n, w) in want.into_iter().enumerate() {
-            assert!((asin_coefficient(n) - w).abs() <= 1e-16 * w, "c_{n}");
-        }
-    }
-
     /// At the end of its range, the series with `TERMS` terms is within the tail it leaves
     /// out (plus two roundings of the result) of libm's `asin`.
     fn series_at_range<const TERMS: usize>() {
         let x = FixedStepTrig::<TERMS>::new().series_range;
-        let left_out = asin_coefficient(TERMS) * x.powi(2 * TERMS as i32 + 1);
+        let left_out = ASIN[TERMS] * x.powi(2 * TERMS as i32 + 1);
         assert!((left_out - SERIES_TAIL).abs() <= 1e-12 * SERIES_TAIL, "{TERMS} terms: {left_out}");
         let err = (asin_series::<TERMS>(x) - x.asin()).abs();
         assert!(err <= 2.0 * SERIES_TAIL + 2.0 * f64::EPSILON * x, "{TERMS} terms at {x}: {err}");
@@ -246,13 +256,16 @@ mod tests {
         for k in 2..300 {
             let x = h * k as f64;
             // The argument `2 x` rotated by the step it took, `2 h`.
-            let (s, c) = trig.sin_cos(0, 2.0 * x);
+            let rotated = trig.sin_cos(0, 2.0 * x);
             let (s_want, c_want) = (2.0 * x).sin_cos();
-            assert!((s - s_want).abs() <= 1e-14 && (c - c_want).abs() <= 1e-14, "sample {k}");
+            assert!((rotated.0 - s_want).abs() <= 1e-14 && (rotated.1 - c_want).abs() <= 1e-14, "sample {k}");
             // The angle `q + x` by the series of its increment: libm is not asked.
             let (s, c) = (q + x).sin_cos();
             let got = trig.angle(1, s, c, || panic!("libm asked at sample {k}"));
             assert!((got - (q + x)).abs() <= 1e-14, "sample {k}: {got}");
+            // A kernel's re-run of the sample gets the same values.
+            assert_eq!(trig.sin_cos(0, 2.0 * x), rotated, "re-run of sample {k}");
+            assert_eq!(trig.angle(1, s, c, || panic!("libm asked at sample {k}")), got, "re-run of sample {k}");
             trig.next_sample(false);
         }
         // An increment beyond the series' range goes to libm.

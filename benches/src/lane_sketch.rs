@@ -11,8 +11,8 @@
 //! What it carries from sample to sample, as an emitted loop would: the crank's sine and cosine
 //! (rotated by the fixed step), the angles' sines, cosines and values (advanced by the
 //! increments' series, or by libm's `atan2` where an increment leaves the series' range), and
-//! the dyad's branch flag (taken from the guesses at each libm sample, as the kernel takes it
-//! from its guess at every step).
+//! the positions, from which the dyad's branch flag is taken at every sample as the kernel takes
+//! it from its guess.
 
 use kinloop::__gen::{Factor, Inverse2, dyad_roots_deferred, reduce_turn, unwrap_to_turn};
 use kinloop_fixtures::FourBar;
@@ -32,8 +32,6 @@ pub struct FourBarLaneSketch<const TERMS: usize> {
     /// `[s_phi, c_phi, sin beta, cos beta, sin gamma, cos gamma]` of the previous sample.
     sines: [f64; 6],
     q: [f64; 2],
-    /// The dyad's branch flag.
-    flip: bool,
     /// The analogs' block at the last sample: its determinant's sign and pivot ratio.
     negative_det: bool,
     pivot: f64,
@@ -54,7 +52,6 @@ impl<const TERMS: usize> FourBarLaneSketch<TERMS> {
             rotation: Rotation::new(std::f64::consts::TAU / turn as f64),
             sines: [0.0; 6],
             q: guess,
-            flip: false,
             negative_det: false,
             pivot: 0.0,
             range: series_range(TERMS),
@@ -71,13 +68,15 @@ impl<const TERMS: usize> FourBarLaneSketch<TERMS> {
         angle: impl Fn(&Self, usize, f64, f64) -> f64,
     ) -> Result<(Step<2>, [f64; 6]), Failed> {
         let FourBar { a, b, c, d } = self.m;
+        // The dyad's branch flag from the previous positions, as the kernel's from its guess.
+        let flip = (b * -c) * reduce_turn(self.q[1] - self.q[0]) < 0.0;
         let a_cos_phi = a * cos_phi;
         let a_sin_phi = a * sin_phi;
         let neg_c = -c;
         let t53 = a_cos_phi - d;
         let l1 = neg_c * neg_c;
         let cc = 0.5 * ((l1 - b * b) - (t53 * t53 + a_sin_phi * a_sin_phi));
-        let (cos_beta, sin_beta) = dyad_roots_deferred(b * t53, b * a_sin_phi, cc, self.flip);
+        let (cos_beta, sin_beta) = dyad_roots_deferred(b * t53, b * a_sin_phi, cc, flip);
         let vx = t53 + b * cos_beta;
         let vy = a_sin_phi + b * sin_beta;
         let il1 = -1.0 / l1;
@@ -134,9 +133,6 @@ impl<const TERMS: usize> HandSweep<2, 6> for FourBarLaneSketch<TERMS> {
 
     #[inline(always)]
     fn sync(&mut self, x: f64) -> Result<(Step<2>, [f64; 6]), Failed> {
-        // The branch flag from the guesses, as the kernel's.
-        let [g_beta, g_gamma] = self.q;
-        self.flip = (self.m.b * -self.m.c) * reduce_turn(g_gamma - g_beta) < 0.0;
         self.sample(x.sin_cos(), |lane, u, s, c| unwrap_to_turn(s.atan2(c), lane.q[u]))
     }
 

@@ -41,9 +41,12 @@ fn deviation<M: Mechanism<N, 1, NO>, const N: usize, const NO: usize, const TERM
 ) -> [f64; 2] {
     let cfg = NewtonConfig::default();
     let mut prev = m.kinematics_flat(&[0.0], &guess, &cfg).unwrap();
+    let (h, mut k) = (std::f64::consts::TAU / turn as f64, 0usize);
     kernel_lane_fold::<M, _, N, NO, TERMS>(m, turn, guess, steps, [0.0f64; 2], |dev, got: &Kin<N, 1, NO>| {
+        // The lane's input: the next of the turn's equally spaced inputs.
+        k = (k + 1) % turn;
+        assert_eq!(got.x, [h * k as f64]);
         let want = m.kinematics_flat(&got.x, &prev.q, &cfg).unwrap();
-        assert_eq!(got.x, want.x);
         let positions =
             (0..N).map(|u| rel_err(got.q[u], want.q[u])).chain((0..NO).map(|o| rel_err(got.out[o], want.out[o])));
         let analogs = (0..N)
