@@ -48,9 +48,9 @@ pub fn series_range(terms: usize) -> f64 {
 /// of `asin` of the cross product of the new sine and cosine with the previous, or libm's where
 /// that increment is too large for them.
 ///
-/// A sample's values are computed from the previous sample's and committed by
-/// [`FixedStepTrig::next_sample`], so that a kernel that runs a sample twice (its checked re-run,
-/// where a deferred test failed) gets the same values both times.
+/// A kernel that runs a sample twice (its checked re-run, where a deferred test failed) gets
+/// the same values both times: an argument the same as the last call's gets its last values,
+/// and so does an angle whose sine and cosine are the last call's (its increment is zero).
 #[derive(Clone, Debug)]
 pub struct FixedStepTrig<const TERMS: usize> {
     /// This sample comes from libm (the first of a turn, and every [`PERIOD`]-th).
@@ -68,14 +68,13 @@ pub struct FixedStepTrig<const TERMS: usize> {
     /// (measured: the four-bar's positions then deviate by 1.7e-14 from libm's). An argument
     /// with a constant part would carry that part's rounding; the benchmarks' have none.
     first_arg: [f64; SLOTS],
-    /// Each argument's sine and cosine at the previous sample, and at this one.
+    /// Each argument at the last call, and its sine and cosine.
+    arg: [f64; SLOTS],
     sin_cos: [(f64, f64); SLOTS],
-    sin_cos_next: [(f64, f64); SLOTS],
     /// The sine and cosine of each parameter angle added to an argument.
     offset: [(f64, f64); SLOTS],
-    /// Each closed-form angle's sine, cosine and value at the previous sample, and at this one.
+    /// Each closed-form angle's sine, cosine and value at the last call.
     angle: [(f64, f64, f64); SLOTS],
-    angle_next: [(f64, f64, f64); SLOTS],
     /// The largest increment's sine the series is used for.
     series_range: f64,
 }
@@ -89,21 +88,17 @@ impl<const TERMS: usize> FixedStepTrig<TERMS> {
             learned: false,
             rotation: [Rotation::new(0.0); SLOTS],
             first_arg: [0.0; SLOTS],
+            arg: [f64::NAN; SLOTS],
             sin_cos: [(0.0, 1.0); SLOTS],
-            sin_cos_next: [(0.0, 1.0); SLOTS],
             offset: [(0.0, 1.0); SLOTS],
-            angle: [(0.0, 1.0, 0.0); SLOTS],
-            angle_next: [(0.0, 1.0, 0.0); SLOTS],
+            angle: [(f64::NAN, f64::NAN, 0.0); SLOTS],
             series_range: series_range(TERMS),
         }
     }
 
-    /// Commits the sample just computed and sets up the next: from libm where `sync` holds,
-    /// and the lane's second.
+    /// Sets up the next sample: from libm where `sync` holds, and the lane's second.
     #[inline(always)]
     pub fn next_sample(&mut self, sync: bool) {
-        self.sin_cos = self.sin_cos_next;
-        self.angle = self.angle_next;
         self.learn = !self.learned;
         self.learned = true;
         self.sync = sync;
@@ -122,6 +117,9 @@ impl<const TERMS: usize> InputTrig for FixedStepTrig<TERMS> {
         if slot >= SLOTS {
             return arg.sin_cos();
         }
+        if arg == self.arg[slot] {
+            return self.sin_cos[slot];
+        }
         let values = if self.learn {
             self.rotation[slot] = Rotation::new(arg - self.first_arg[slot]);
             arg.sin_cos()
@@ -134,7 +132,7 @@ impl<const TERMS: usize> InputTrig for FixedStepTrig<TERMS> {
             let (s, c) = self.sin_cos[slot];
             self.rotation[slot].turn(s, c)
         };
-        self.sin_cos_next[slot] = values;
+        (self.arg[slot], self.sin_cos[slot]) = (arg, values);
         values
     }
 
@@ -156,6 +154,9 @@ impl<const TERMS: usize> InputTrig for FixedStepTrig<TERMS> {
             return exact();
         }
         let (s0, c0, q0) = self.angle[slot];
+        if s == s0 && c == c0 {
+            return q0;
+        }
         // sin(q - q0) = s c0 - c s0.
         let x = s * c0 - c * s0;
         let q = if !(self.sync | self.learn) && x.abs() <= self.series_range {
@@ -163,7 +164,7 @@ impl<const TERMS: usize> InputTrig for FixedStepTrig<TERMS> {
         } else {
             exact()
         };
-        self.angle_next[slot] = (s, c, q);
+        self.angle[slot] = (s, c, q);
         q
     }
 }
