@@ -22,6 +22,7 @@ use kinloop::__gen::{ByValue, InputTrig};
 use kinloop::{Kin, Mechanism, NewtonConfig};
 
 use crate::hand_sweep::{ASIN, PERIOD, Rotation, asin_series};
+use crate::lean::next_input;
 use crate::sweep::Failed;
 
 /// Slots of a [`FixedStepTrig`]: of the inputs' arguments, of the parameter angles added to
@@ -192,10 +193,7 @@ where
         m.kinematics_step_sink::<_, ByValue, false>(&[0.0], &guess, &cfg, &mut trig, ByValue).map_err(Failed::new)?;
     let (mut k, mut age, mut acc) = (0usize, 0usize, init);
     for _ in 0..steps {
-        k += 1;
-        if k == turn {
-            k = 0;
-        }
+        let x = next_input(&mut k, turn, h);
         age += 1;
         let sync = k == 0 || age == PERIOD;
         if sync {
@@ -204,14 +202,8 @@ where
         trig.next_sample(sync);
         let guess = kin.q;
         // Written in place, as a sweep's kernel writes its state.
-        m.kinematics_step_sink::<_, &mut Kin<N, 1, NO>, false>(
-            &[h * k as i64 as f64],
-            &guess,
-            &cfg,
-            &mut trig,
-            &mut kin,
-        )
-        .map_err(Failed::new)?;
+        m.kinematics_step_sink::<_, &mut Kin<N, 1, NO>, false>(&[x], &guess, &cfg, &mut trig, &mut kin)
+            .map_err(Failed::new)?;
         acc = f(acc, &kin);
     }
     Ok(acc)

@@ -38,7 +38,7 @@ pub fn stepper_turns<S: Stepper<N>, const N: usize>(
 
 /// The input of the step after the `k`-th of a turn of `turn` steps of `h`, `k` advanced.
 #[inline(always)]
-fn next_input(k: &mut usize, turn: usize, h: f64) -> f64 {
+pub(crate) fn next_input(k: &mut usize, turn: usize, h: f64) -> f64 {
     *k += 1;
     if *k == turn {
         *k = 0;
