@@ -86,7 +86,8 @@ pub enum Error {
     /// centre, a limit position of the input, or a change point. Velocity analogs do not exist.
     #[error("singular position {at}: {}; this is a dead centre or a limit position", singular_cause(*pivot_ratio, *tolerance))]
     Singular {
-        /// Smallest row-equilibrated pivot ratio of the block's Jacobian where the solve ended.
+        /// Smallest equilibrated pivot ratio of the block's Jacobian where the solve ended (see
+        /// `NewtonConfig::singular_tol`).
         pivot_ratio: f64,
         /// The singular tolerance (`NewtonConfig::singular_tol`). The pivot ratio is below it,
         /// or Newton reached the position only linearly, as at a root where the Jacobian is

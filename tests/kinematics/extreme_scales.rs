@@ -53,12 +53,13 @@ with_newton_twin! {
     }
 }
 
-kinloop::mechanism! {
+with_newton_twin! {
     /// The gear-lever drive's polar length (`kinloop_fixtures::gear_lever`): a pin on a carrier
     /// and a planet, read as the distance `s` and angle `phi` of a block on a rocker. The
     /// closed form's angle is `atan2` of the pin's unnormalised coordinates, which stay in
-    /// range wherever their squares do.
-    pub struct PolarPin {
+    /// range wherever their squares do. Newton's block mixes a length and an angle: the pivots
+    /// of its singularity tests are measured in the unknowns' units.
+    pub struct PolarPin, PolarPinNewton {
         params l_c, l_p, u;
         input alpha;
         unknowns s = l_c + l_p, phi = 0;
@@ -73,6 +74,10 @@ kinloop::mechanism! {
 /// length).
 fn polar_pin(k: f64) -> PolarPin {
     PolarPin { l_c: 2.0 * k, l_p: 1.3 * k, u: 3.0 }
+}
+
+fn polar_pin_newton(k: f64) -> PolarPinNewton {
+    PolarPinNewton { l_c: 2.0 * k, l_p: 1.3 * k, u: 3.0 }
 }
 
 /// The chain at size `k` (every four-bar's links 1, 3.5, 3, 4 times `k`).
@@ -203,6 +208,10 @@ fn sweeps_at<M: Mechanism<N, 1, NO>, const N: usize, const NO: usize>(
 /// rounded, 1.1e-16 relative) amplified by the mechanism's condition, as in `units.rs`.
 const SCALE_TOL: f64 = 1e-14;
 
+/// [`SCALE_TOL`] of the polar pin's analogs' largest magnitude, about 30 at its inputs (the pin
+/// passes near the rocker's pivot): the differences are absolute.
+const POLAR_TOL: f64 = 30.0 * SCALE_TOL;
+
 #[test]
 fn four_bar_solves_at_every_scale() {
     let closed = point_solves(four_bar, [false, false]);
@@ -227,9 +236,8 @@ fn slider_crank_solves_at_every_scale() {
 /// The polar length's angle is `atan2` of the pin's coordinates as they are, not normalised:
 /// at every size where the normalisation's squares stay in range (up to `2^±509`, and `2^-511`,
 /// whose squares are just normal), the scale-1 angles. The reference is the scale-1 solve,
-/// checked here against paper 001's explicit polar coordinates of the pin (a Newton twin is no
-/// reference: declared `#[kinloop(newton)]`, this block stalls from its declared guess at some
-/// sizes, 1e20 among them).
+/// checked here against paper 001's explicit polar coordinates of the pin, and the Newton twin
+/// at every size (next test).
 #[test]
 fn a_polar_length_solves_at_every_scale_of_its_closed_form() {
     let one = polar_pin(1.0);
@@ -245,14 +253,43 @@ fn a_polar_length_solves_at_every_scale_of_its_closed_form() {
     }
     let mut ks: Vec<f64> = scales().into_iter().filter(|k| k.log2().abs() <= 509.0).collect();
     ks.extend([2f64.powi(509), 2f64.powi(-509), 2f64.powi(-511)]);
-    // `SCALE_TOL` of the analogs' largest magnitude, about 30 at these inputs (the pin passes
-    // near the rocker's pivot): the differences are absolute.
-    const POLAR_TOL: f64 = 30.0 * SCALE_TOL;
     let closed = point_solves_at(polar_pin, [true, false], &ks);
     eprintln!("polar pin point solves over scales: closed form {closed:.1e}");
     assert!(closed <= POLAR_TOL, "{closed:e}");
     let swept = sweeps_at(polar_pin, [true, false], &ks);
     assert!(swept <= POLAR_TOL, "polar pin sweeps differ by {swept:e}");
+}
+
+/// Newton's block of a length and an angle (the polar pin declared `#[kinloop(newton)]`) at
+/// every size from `1e-300` to `1e300` and `2^±1000`: the scale-1 solve, from the declared
+/// guess, for point solves and sweeps. Its Jacobian's length column holds pure numbers (the
+/// direction) and its angle column lengths: a singularity test in the rows' units alone saw a
+/// pivot shrink as one over the size and, from `1e15` up, refused every Newton step (the
+/// iteration stalled, "the links cannot reach"); measured in the unknowns' units it is the
+/// same at every size.
+#[test]
+fn a_newton_block_of_a_length_and_an_angle_solves_at_every_scale() {
+    // Its own scale-1 solve is the closed form's (an independent solver), in the closed form's
+    // mode: from the declared guess Newton reaches, at some inputs, the same pin with the
+    // length negative and the angle half a turn away (the other mode of `s (sin phi, cos phi)`).
+    let cfg = NewtonConfig::default();
+    let (closed, newton) = (polar_pin(1.0), polar_pin_newton(1.0));
+    for i in 0..12 {
+        let x = [0.3 + i as f64 * 0.5];
+        let c = closed.kinematics_flat(&x, &closed.guess_flat(&x), &cfg).unwrap();
+        let mut n = newton.kinematics_flat(&x, &newton.guess_flat(&x), &cfg).unwrap();
+        if n.q[0] < 0.0 {
+            (n.q[0], n.dq[0][0], n.d2q[0][0][0]) = (-n.q[0], -n.dq[0][0], -n.d2q[0][0][0]);
+            n.q[1] = wrap(n.q[1] + std::f64::consts::PI);
+        }
+        n.q[1] = c.q[1] + wrap(n.q[1] - c.q[1]);
+        assert!(difference(&n, &c, [true, false], 1.0) <= POLAR_TOL, "{x:?}: {n:?} {c:?}");
+    }
+    let solved = point_solves(polar_pin_newton, [true, false]);
+    eprintln!("polar pin point solves over scales: Newton {solved:.1e}");
+    assert!(solved <= POLAR_TOL, "{solved:e}");
+    let swept = sweeps(polar_pin_newton, [true, false]);
+    assert!(swept <= POLAR_TOL, "polar pin Newton sweeps differ by {swept:e}");
 }
 
 /// A mechanism of more unknowns than a sweep inlines has its own `kinematics_flat`; a failure

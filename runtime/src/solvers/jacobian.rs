@@ -17,8 +17,14 @@ pub trait BlockJacobian<const N: usize>: Copy {
     /// Its factorisation.
     type Factor: BlockFactor<N>;
     /// The Newton step `-J^-1 f` with row `r` divided by `rows.s[r]`, and the smallest pivot
-    /// of that row-equilibrated matrix ([`Factor::pivot_ratio`] of its factorisation).
-    fn newton_step(&self, f: &[f64; N], rows: &RowScales<N>) -> ([f64; N], f64);
+    /// of that row-equilibrated matrix with column `c` multiplied by `unit[c]`, the unknown's
+    /// unit ([`Factor::pivot_ratio`] of its factorisation): the matrix that maps a step in
+    /// the unknowns' units to residuals in the rows' units. Its pivots are the same in metres,
+    /// millimetres or light years, where those of the rows' equilibration alone shrink with
+    /// the size of the mechanism in a column of a length (whose entries are pure numbers, as a
+    /// slider's or a polar length's direction) beside columns of angles (whose entries are
+    /// lengths).
+    fn newton_step(&self, f: &[f64; N], rows: &RowScales<N>, unit: &[f64; N]) -> ([f64; N], f64);
     /// `sum_c |J_rc|`.
     fn row_abs_sum(&self, r: usize) -> f64;
     /// Whether every entry of row `r` is finite.
@@ -49,8 +55,8 @@ impl<const N: usize> BlockJacobian<N> for [[f64; N]; N] {
 
     /// Eliminates the right-hand side with the matrix: no factorisation is kept.
     #[inline(always)]
-    fn newton_step(&self, f: &[f64; N], rows: &RowScales<N>) -> ([f64; N], f64) {
-        solve_row_scaled(self, f, rows)
+    fn newton_step(&self, f: &[f64; N], rows: &RowScales<N>, unit: &[f64; N]) -> ([f64; N], f64) {
+        solve_row_scaled(self, f, rows, unit)
     }
 
     #[inline(always)]

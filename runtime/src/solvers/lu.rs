@@ -135,17 +135,20 @@ impl<const N: usize> RowScales<N> {
 }
 
 /// Solves `J x = -f` with the rows of `J` divided by `rows.s`, and returns `x` with the
-/// smallest pivot of the row-equilibrated matrix (0 when degenerate or not finite, as
-/// [`Lu::pivot_ratio`]): the Newton step of a dense block. The same operations in the same
-/// order as [`Lu::factor`] followed by [`Lu::solve`] of `-f` (so the results are bit for bit
-/// the same), without the factorisation's record (permutation, determinant, column scales):
-/// the right-hand side is eliminated with the matrix.
+/// smallest pivot of the row-equilibrated matrix with column `c` multiplied by `unit[c]` (0
+/// when degenerate or not finite, as [`Lu::pivot_ratio`]): the Newton step of a dense block.
+/// The same operations in the same order as [`Lu::factor`] followed by [`Lu::solve`] of `-f`
+/// (so the step is bit for bit the same), without the factorisation's record (permutation,
+/// determinant, column scales): the right-hand side is eliminated with the matrix. The
+/// columns' units change no choice of pivot row (each scales a whole column) and no step:
+/// pivot `k`, of column `k`, is multiplied by `unit[k]` where it is measured.
 #[inline(always)]
 #[allow(clippy::neg_cmp_op_on_partial_ord)] // the negation is what lets NaN through
 pub(crate) fn solve_row_scaled<const N: usize>(
     j: &[[f64; N]; N],
     f: &[f64; N],
     rows: &RowScales<N>,
+    unit: &[f64; N],
 ) -> ([f64; N], f64) {
     let (inv_row, degenerate) = (rows.inv, rows.degenerate);
     // Scaled in place: no zero-filled array to overwrite.
@@ -166,10 +169,11 @@ pub(crate) fn solve_row_scaled<const N: usize>(
             b.swap(k, best);
         }
         let pivot = a[k][k];
+        let measured = pivot.abs() * unit[k];
         // `f64::min` would skip a NaN pivot; a NaN must never pass as a regular pivot (the
         // negated comparison holds for a smaller magnitude and for NaN).
-        if !(pivot.abs() >= min_pivot) {
-            min_pivot = pivot.abs();
+        if !(measured >= min_pivot) {
+            min_pivot = measured;
         }
         let inv = 1.0 / pivot;
         inv_diag[k] = inv;
@@ -829,7 +833,7 @@ mod tests {
     fn the_newton_step_is_the_factorisation_and_solve() {
         fn check<const N: usize>(j: [[f64; N]; N], f: [f64; N], s: [f64; N]) {
             let canon = |x: f64| if x.is_nan() { u64::MAX } else { x.to_bits() };
-            let (x, ratio) = solve_row_scaled(&j, &f, &RowScales::new(s));
+            let (x, ratio) = solve_row_scaled(&j, &f, &RowScales::new(s), &[1.0; N]);
             let lu = Lu::factor(&j, s);
             let z = lu.solve(f.map(|v| -v));
             assert_eq!(x.map(canon), z.map(canon), "{j:?} {f:?} {s:?}");

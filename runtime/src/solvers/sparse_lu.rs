@@ -118,10 +118,11 @@ impl<const N: usize, const NNZ: usize, const NLU: usize, E: SparseSteps<N, NLU>>
 {
     type Factor = SparseLu<N, NLU, E>;
 
-    /// Factorises with the row scales' reciprocals of `rows` (not taken again).
+    /// Factorises with the row scales' reciprocals of `rows` (not taken again), each column
+    /// multiplied by its unknown's unit (divided by its reciprocal).
     #[inline(always)]
-    fn newton_step(&self, f: &[f64; N], rows: &RowScales<N>) -> ([f64; N], f64) {
-        let lu = SparseLu::factor_inverses(self, rows.s, rows.inv, rows.degenerate, [1.0; N]);
+    fn newton_step(&self, f: &[f64; N], rows: &RowScales<N>, unit: &[f64; N]) -> ([f64; N], f64) {
+        let lu = SparseLu::factor_inverses(self, rows.s, rows.inv, rows.degenerate, unit.map(|u| 1.0 / u));
         (lu.solve(f.map(|v| -v)), lu.pivot_ratio())
     }
 

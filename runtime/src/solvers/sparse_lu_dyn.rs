@@ -318,11 +318,11 @@ impl<const P: usize, const CAP: usize> BlockJacobian<P> for PaddedJac<'_, P, CAP
     /// factorisation of the padded matrix is what one would be.
     type Factor = Lu<P>;
 
-    fn newton_step(&self, f: &[f64; P], rows: &RowScales<P>) -> ([f64; P], f64) {
+    fn newton_step(&self, f: &[f64; P], rows: &RowScales<P>, unit: &[f64; P]) -> ([f64; P], f64) {
         // A poisoned lock (a panic elsewhere mid-step) still holds a slot this step rewrites.
         let mut lu = self.work.step.lock().unwrap_or_else(|e| e.into_inner());
         let t = self.t();
-        lu.factor_inverses(t, &self.v, rows.s, rows.inv, rows.degenerate, [1.0; P]);
+        lu.factor_inverses(t, &self.v, rows.s, rows.inv, rows.degenerate, unit.map(|u| 1.0 / u));
         (lu.solve(t, f.map(|v| -v)), lu.pivot_ratio())
     }
 
@@ -503,9 +503,13 @@ mod tests {
         assert_eq!(j.first(), compiled.first());
         let f = [0.1, -0.2, 0.3, 0.05, -0.4, 0.6, 0.0, 0.0];
         let rows = RowScales::new([2.0, 1.0, 4.0, 0.5, 3.0, 1.5, 1.0, 1.0]);
-        let (dz, pivot) = j.newton_step(&f, &rows);
-        let (cdz, cpivot) =
-            compiled.newton_step(&std::array::from_fn(|k| f[k]), &RowScales::new(std::array::from_fn(|k| rows.s[k])));
+        let unit = [1.5, 1.0, 0.25, 3.0, 1.0, 2.0, 1.0, 1.0];
+        let (dz, pivot) = j.newton_step(&f, &rows, &unit);
+        let (cdz, cpivot) = compiled.newton_step(
+            &std::array::from_fn(|k| f[k]),
+            &RowScales::new(std::array::from_fn(|k| rows.s[k])),
+            &std::array::from_fn(|k| unit[k]),
+        );
         assert_eq!(dz[..6].iter().map(|x| x.to_bits()).collect::<Vec<_>>(), cdz.map(f64::to_bits));
         assert_eq!(pivot.to_bits(), cpivot.to_bits());
         assert_eq!(&dz[6..], &[0.0, 0.0]);

@@ -28,8 +28,11 @@ pub struct NewtonConfig {
     pub step_tol: f64,
     /// Iteration cap per block (default `50`; at most `10_000`).
     pub max_iterations: u32,
-    /// A block whose row-equilibrated pivot ratio falls below this is singular (default
-    /// `1e-10`; valid range `[0, 1)`).
+    /// A block whose equilibrated pivot ratio falls below this is singular (default `1e-10`;
+    /// valid range `[0, 1)`): Newton's factorisations have their rows divided by the rows'
+    /// magnitudes and their columns multiplied by the unknowns' units, the analogs' their
+    /// columns divided by their largest entries, so that the test is the same at every size of
+    /// the mechanism.
     pub singular_tol: f64,
     /// Smallest damping factor of the backtracking line search (default `2^-12`; valid range
     /// `[1e-12, 1)`).

@@ -92,7 +92,7 @@ pub(super) fn iterate<const N: usize, const K: usize, J: BlockJacobian<N>>(
         }
         if rho <= cfg.residual_tol {
             // Converged: the last correction, from the factorisation `last` keeps.
-            let (dz, pivot) = last.correction(it.ev, rows, rho);
+            let (dz, pivot) = last.correction(it.ev, rows, &m.unit, rho);
             let step = scaled_step(&dz, &it.z, &m.unit);
             let again = it.past_tolerance < LINEAR_EXTRA && it.iterations < cfg.max_iterations;
             if !(again && pivot > cfg.singular_tol && it.reached_linearly(step, cfg)) {
@@ -104,7 +104,7 @@ pub(super) fn iterate<const N: usize, const K: usize, J: BlockJacobian<N>>(
             it.past_tolerance += 1;
             last.forget();
         }
-        let (dz, pivot) = newton_step(it.ev, rows);
+        let (dz, pivot) = newton_step(it.ev, rows, &m.unit);
         let step = scaled_step(&dz, &it.z, &m.unit);
         // At the rounding floor the step no longer shrinks below `step_tol` or the residual no
         // longer decreases (a singular root still divides it by about four per iteration).
@@ -257,7 +257,7 @@ impl<const N: usize, const K: usize, J: BlockJacobian<N>> Iter<'_, N, K, J> {
         let m = magnitudes_at!(mags, self.ev, after);
         let rows = rows_at!(m, self.ev, fallback);
         let moved_rho = scaled_residual(&self.ev.f, rows);
-        let (dz, _) = newton_step(self.ev, rows);
+        let (dz, _) = newton_step(self.ev, rows, &m.unit);
         let finite = dz.iter().all(|v| v.is_finite());
         let corrected = finite
             && evaluated_correction(&mut self.z, self.ev, &dz, bound, eval, mags, &mut self.evaluations).is_some();

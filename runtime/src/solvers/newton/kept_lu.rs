@@ -13,9 +13,15 @@ use crate::solvers::lu::{Lu, RowScales};
 /// ends otherwise has kept nothing and says so (`forget` again: measured 12 instructions
 /// cheaper on the class IV block than leaving `keep` to test it), and `keep` makes it.
 pub(super) trait LastStep<const N: usize, const K: usize, J> {
-    /// The correction `-J^-1 f` at `ev` (rows equilibrated by `rows`, scaled residual `rho`)
-    /// and the smallest pivot of its factorisation.
-    fn correction(&mut self, ev: &BlockEval<N, K, J>, rows: &RowScales<N>, rho: f64) -> ([f64; N], f64);
+    /// The correction `-J^-1 f` at `ev` (rows equilibrated by `rows`, the unknowns' units
+    /// `unit`, scaled residual `rho`) and the smallest pivot of its factorisation.
+    fn correction(
+        &mut self,
+        ev: &BlockEval<N, K, J>,
+        rows: &RowScales<N>,
+        unit: &[f64; N],
+        rho: f64,
+    ) -> ([f64; N], f64);
     /// The evaluation last corrected is not the one returned: nothing it factorised is valid.
     fn forget(&mut self);
     /// Makes what is kept describe `ev`, the returned evaluation.
@@ -30,8 +36,14 @@ pub(super) struct RowSteps;
 
 impl<const N: usize, const K: usize, J: BlockJacobian<N>> LastStep<N, K, J> for RowSteps {
     #[inline(always)]
-    fn correction(&mut self, ev: &BlockEval<N, K, J>, rows: &RowScales<N>, _rho: f64) -> ([f64; N], f64) {
-        newton_step(ev, rows)
+    fn correction(
+        &mut self,
+        ev: &BlockEval<N, K, J>,
+        rows: &RowScales<N>,
+        unit: &[f64; N],
+        _rho: f64,
+    ) -> ([f64; N], f64) {
+        newton_step(ev, rows, unit)
     }
     #[inline(always)]
     fn forget(&mut self) {}
@@ -55,7 +67,7 @@ pub(super) struct KeptLu<'a, const N: usize> {
 
 impl<const N: usize, const K: usize> LastStep<N, K, [[f64; N]; N]> for KeptLu<'_, N> {
     #[inline(always)]
-    fn correction(&mut self, ev: &BlockEval<N, K>, rows: &RowScales<N>, rho: f64) -> ([f64; N], f64) {
+    fn correction(&mut self, ev: &BlockEval<N, K>, rows: &RowScales<N>, unit: &[f64; N], rho: f64) -> ([f64; N], f64) {
         if rho > MAX_UNCHECKED_CORRECTION {
             // A residual above the rounding level means, for all but an ill-conditioned block,
             // a correction above it too, which is checked by a new evaluation whose Jacobian
@@ -63,7 +75,7 @@ impl<const N: usize, const K: usize> LastStep<N, K, [[f64; N]; N]> for KeptLu<'_
             // The cheaper row-equilibrated step instead; `keep` factorises what is returned
             // (whichever way the guess goes, only the cost differs).
             self.valid = false;
-            return newton_step(ev, rows);
+            return newton_step(ev, rows, unit);
         }
         refactor_columns(self.lu, ev);
         self.valid = true;

@@ -33,10 +33,13 @@
 //!
 //! **Scale-free tests.** Every test is made in the units of the problem: residual `i` is divided
 //! by its row magnitude `scale_i` (see [`Magnitudes`]), a step in unknown `j` by that
-//! unknown's magnitude, and the pivots of the factorisation are those of the row-equilibrated
-//! Jacobian (of the column-equilibrated one for a final correction made with the analogs'
-//! factorisation, below). A mechanism in metres, millimetres or micrometres therefore stops at
-//! the same relative accuracy.
+//! unknown's magnitude, and the pivots of the factorisation are those of the Jacobian with its
+//! rows divided by their magnitudes and its columns multiplied by the unknowns' units (of the
+//! column-equilibrated one for a final correction made with the analogs' factorisation,
+//! below): where a block mixes a length (a column of pure numbers) with angles (columns of
+//! lengths), the rows' equilibration alone would make its pivots shrink with the mechanism's
+//! size. A mechanism in metres, millimetres or micrometres therefore stops at the same relative
+//! accuracy, and is judged singular at the same positions.
 //!
 //! **No silent wrong answer.** Whatever stops the iteration, the final scaled residual is
 //! checked; the last Newton correction is applied (a prediction that already meets the
@@ -118,7 +121,7 @@ fn free_correction<const N: usize, const K: usize, J: BlockJacobian<N>>(
     cfg: &NewtonConfig,
     last: &mut impl LastStep<N, K, J>,
 ) -> Option<([f64; N], [f64; N], f64)> {
-    let (dz, pivot) = last.correction(ev, rows, rho);
+    let (dz, pivot) = last.correction(ev, rows, unit, rho);
     let step = scaled_step(&dz, &z0, unit);
     // NaN fails both tests.
     if !(pivot > cfg.singular_tol && step <= MAX_FREE_CORRECTION) {
@@ -304,5 +307,41 @@ mod tests {
         assert_eq!(a.iterations, b.iterations);
         assert!((a.z[0] - b.z[0]).abs() <= 4.0 * f64::EPSILON, "{:?} {:?}", a.z, b.z);
         assert!((a.z[1] - b.z[1] / k).abs() <= 8.0 * f64::EPSILON * a.z[1], "{:?} {:?}", a.z, b.z);
+    }
+
+    /// A block of a length `s` and an angle `q` (a point at `k (2.98, -0.143)` reached by
+    /// `s (cos q, sin q)`, a slotted rocker), as large as `k`: its rows' magnitudes and the
+    /// length's unit are `4 k`. By powers of two every product and quotient of the solve
+    /// scales exactly, so at every size it takes the same iterations to the same angle and the
+    /// same length over `k`, bit for bit. The length's Jacobian column is a direction (pure
+    /// numbers), the angle's a length: in the rows' units alone the first is `1 / (4 k)` and
+    /// its pivot fell below the singularity test from `2^50` up, where every Newton step was
+    /// refused and the iteration stalled.
+    #[test]
+    fn a_length_beside_an_angle_is_solved_alike_at_every_size() {
+        let solve_at = |k: f64| {
+            let eval = move |z: &[f64; 2]| {
+                let [s, q] = *z;
+                let (sin, cos) = q.sin_cos();
+                BlockEval::<2, 0> {
+                    f: [s * cos - 2.98 * k, s * sin + 0.143 * k],
+                    j: [[cos, -s * sin], [sin, s * cos]],
+                    keep: [],
+                }
+            };
+            let mags = Magnitudes::new([4.0 * k; 2], [4.0 * k, 1.0]);
+            let guess = [3.3 * k, 0.0];
+            let mut ev = eval(&guess);
+            newton(guess, &mut ev, &NewtonConfig::default(), test_blocks::in_place(eval), &mags)
+                .unwrap_or_else(|e| panic!("size {k:e}: {e:?}"))
+        };
+        let one = solve_at(1.0);
+        assert!(one.iterations > 1, "{one:?}");
+        for e in [-1000, -500, -100, -50, -10, 10, 50, 100, 500, 1000] {
+            let k = 2f64.powi(e);
+            let got = solve_at(k);
+            assert_eq!((got.iterations, got.evaluations), (one.iterations, one.evaluations), "2^{e}");
+            assert_eq!([got.z[0] / k, got.z[1]].map(f64::to_bits), one.z.map(f64::to_bits), "2^{e}");
+        }
     }
 }

@@ -10,7 +10,7 @@ use super::trace::{SolvePath, note};
 use crate::solvers::jacobian::BlockJacobian;
 use crate::solvers::lu::{Lu, RowScales, boxed_zeros};
 
-/// The smallest pivot of a row-equilibrated factorisation from which its Newton step is taken
+/// The smallest pivot of an equilibrated factorisation from which its Newton step is taken
 /// to be exact to rounding (the residual `J dz + f` is then a few rounding units of the
 /// equations' magnitudes, far below what the descent test can see).
 pub(super) const ACCURATE_PIVOT: f64 = 1e-3;

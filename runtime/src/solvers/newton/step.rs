@@ -15,22 +15,25 @@ use crate::solvers::lu::RowScales;
 /// new evaluation (and undone if it made the residual worse).
 pub(super) const MAX_UNCHECKED_CORRECTION: f64 = 16.0 * f64::EPSILON;
 
-/// The Newton step `-J^-1 f` with `J` equilibrated by the row magnitudes, and the pivot ratio.
+/// The Newton step `-J^-1 f` with `J` equilibrated by the row magnitudes, and the pivot ratio
+/// of `J` equilibrated by the rows' magnitudes and the unknowns' units `unit` (see
+/// [`BlockJacobian::newton_step`]).
 #[inline(always)]
 pub(super) fn newton_step<const N: usize, const K: usize, J: BlockJacobian<N>>(
     ev: &BlockEval<N, K, J>,
     rows: &RowScales<N>,
+    unit: &[f64; N],
 ) -> ([f64; N], f64) {
     if N == 1 {
-        // A scalar block needs no factorisation: the row-equilibrated pivot is `|J| / s` (NaN
-        // when both vanish, which fails every test and is reported as 0; a non-finite `J` is
-        // caught by the callers).
+        // A scalar block needs no factorisation: the equilibrated pivot is `|J| / s * unit`
+        // (NaN when `J` and `s` both vanish, which fails every test and is reported as 0; a
+        // non-finite `J` is caught by the callers).
         let j = ev.j.first();
         let mut dz = [0.0; N];
         dz[0] = -ev.f[0] / j;
-        return (dz, j.abs() / rows.s[0]);
+        return (dz, j.abs() / rows.s[0] * unit[0]);
     }
-    ev.j.newton_step(&ev.f, rows)
+    ev.j.newton_step(&ev.f, rows, unit)
 }
 
 /// Moves `z` (evaluated as `ev`) to `z + dz` and its evaluation, and returns the scaled residual
