@@ -10,7 +10,9 @@
 // The loops walk parallel fixed-size arrays (states, dimensions) by one index.
 #![allow(clippy::needless_range_loop)]
 
-use kinloop::{Kin, Mechanism, NewtonConfig, Sweep};
+use kinloop::{Kin, Mechanism, NewtonConfig, Sensitivities, Sweep};
+
+use kinloop_fixtures::RhombicDriveDense;
 
 use crate::support::{gear_lever_explicit, tol, wrap};
 
@@ -78,6 +80,19 @@ fn polar_pin(k: f64) -> PolarPin {
 
 fn polar_pin_newton(k: f64) -> PolarPinNewton {
     PolarPinNewton { l_c: 2.0 * k, l_p: 1.3 * k, u: 3.0 }
+}
+
+/// The rhombic drive solved as one dense Newton block at size `k`: every parameter a length
+/// but the crank's angle `gamma` and the centre of mass's `psi_s1`.
+fn rhombic_dense(k: f64) -> RhombicDriveDense {
+    let d = RhombicDriveDense::default();
+    let mut p = d.params_flat();
+    for (i, v) in p.iter_mut().enumerate() {
+        if i != 6 && i != 8 {
+            *v *= k;
+        }
+    }
+    d.with_params_flat(p)
 }
 
 /// The chain at size `k` (every four-bar's links 1, 3.5, 3, 4 times `k`).
@@ -303,4 +318,17 @@ fn a_chain_of_ten_unknowns_solves_at_every_scale() {
     assert!(closed <= SCALE_TOL && newton <= SCALE_TOL, "{closed:e} {newton:e}");
     let swept = sweeps(chain, [false; 10]);
     assert!(swept <= SCALE_TOL, "chain sweeps differ by {swept:e}");
+}
+
+/// The rhombic drive solved as one dense Newton block (`RhombicDriveDense`): its rods' angles
+/// beside the piston's and the displacer's positions, whose Jacobian columns hold pure numbers
+/// where the angles' hold lengths. At every size its point solves and sweeps are the scale-1
+/// ones (which `tests/papers` checks against the paper's closed form).
+#[test]
+fn a_dense_block_of_lengths_and_angles_solves_at_every_scale() {
+    let solved = point_solves(rhombic_dense, [false, false, true, true]);
+    eprintln!("rhombic drive, one dense block, point solves over scales: {solved:.1e}");
+    assert!(solved <= SCALE_TOL, "{solved:e}");
+    let swept = sweeps(rhombic_dense, [false, false, true, true]);
+    assert!(swept <= SCALE_TOL, "rhombic drive dense sweeps differ by {swept:e}");
 }
