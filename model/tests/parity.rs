@@ -12,8 +12,8 @@
 #[macro_use]
 mod common;
 
-use kinloop::Mechanism;
 use kinloop::NewtonConfig;
+use kinloop::{Mechanism, Sensitivities};
 use kinloop_fixtures as fx;
 use kinloop_model::Model;
 use std::f64::consts::TAU;
@@ -111,6 +111,22 @@ fn rhombic_drive_equals_the_compiled_one() {
     let (worst, n) = sweep_parity(&fx::RhombicDriveDense::default(), &mut dense, [0.0], 360);
     assert_eq!(n, 360);
     eprintln!("rhombic drive (dense Newton): {n} states, largest relative difference {worst:e}");
+    // At 1e20 and 1e-20 times its size: one Newton block of two angles and two positions,
+    // whose pivots are measured in the unknowns' units, solves every state there too.
+    for k in [1e20, 1e-20] {
+        let d = fx::RhombicDriveDense::default();
+        let mut p = d.params_flat();
+        let names = <fx::RhombicDriveDense as Mechanism<4, 1, 7>>::PARAMS;
+        for (name, v) in names.iter().zip(p.iter_mut()) {
+            if !["gamma", "psi_s1"].contains(name) {
+                *v *= k;
+                assert!(dense.set_param(name, *v));
+            }
+        }
+        let (worst, n) = sweep_parity(&d.with_params_flat(p), &mut dense, [0.0], 360);
+        assert_eq!(n, 360, "at {k:e} times its size");
+        eprintln!("rhombic drive (dense Newton) at {k:e} times its size: largest relative difference {worst:e}");
+    }
 }
 
 #[test]
