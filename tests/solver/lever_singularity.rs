@@ -133,7 +133,8 @@ fn a_slide_near_its_pivot_is_as_accurate_as_its_pivot_ratio_says() {
 fn a_position_solve_refuses_the_lever_the_kinematics_refuse() {
     // Without analogs there is no pivot ratio to report: a position-only solve tests the lever
     // itself, on both paths, and agrees with the kinematics (`Singular` from a lever of 1e-11
-    // of the loop on; Newton's own test, on its row-equilibrated Jacobian, may already refuse or
+    // of the loop on; Newton's own test, on its Jacobian equilibrated by the rows' magnitudes
+    // and the unknowns' units, may already refuse or
     // still accept at 1e-10, the edge of the tolerance).
     let eps = f64::EPSILON;
     for scale in SCALES {

@@ -11,7 +11,9 @@
 //! dividing each column by the largest magnitude in the *full* Jacobian column (all equations,
 //! not just the block's) makes the pivots fall to zero exactly at dead centres, limit positions
 //! and change points, whatever the units. The generated code passes those column scales; the
-//! Newton iteration, which only sees its block, scales rows.
+//! Newton iteration, which only sees its block, scales rows, and measures each pivot in its
+//! column's unknown's unit (`solve_row_scaled`; the sparse factorisations take the units as
+//! column factors), so that a length beside angles is judged alike at every size.
 
 /// A factorised `N x N` block: `P D_r J D_c = L U` with `D_r`, `D_c` the equilibrations.
 #[derive(Clone, Copy, Debug)]
@@ -106,6 +108,38 @@ fn back_substitute<const N: usize>(u: &[[f64; N]; N], inv_diag: &[f64; N], z: &m
             }
         }
         z[r] = acc * inv_diag[r];
+    }
+}
+
+/// How a sparse factorisation's columns are equilibrated: divided by scales (the analogs'
+/// columns' magnitudes), whose reciprocals it takes, or multiplied by the unknowns' units (a
+/// Newton step's, positive and finite by construction), which are those reciprocals already:
+/// their own reciprocals, the scales, only the cold dense fallback needs.
+#[derive(Clone, Copy, Debug)]
+pub(crate) enum ColScales<const N: usize> {
+    /// Column `c` divided by `scale[c]`.
+    Divided([f64; N]),
+    /// Column `c` multiplied by `unit[c]`.
+    Multiplied([f64; N]),
+}
+
+impl<const N: usize> ColScales<N> {
+    /// The factors the columns are multiplied by (`degenerate` set where a scale is invalid).
+    #[inline(always)]
+    pub(crate) fn factors(&self, degenerate: &mut bool) -> [f64; N] {
+        match self {
+            ColScales::Divided(scale) => inverses(*scale, degenerate),
+            ColScales::Multiplied(unit) => *unit,
+        }
+    }
+
+    /// The scales the columns are divided by, as the dense factorisation takes them.
+    #[inline(always)]
+    pub(crate) fn scales(&self) -> [f64; N] {
+        match self {
+            ColScales::Divided(scale) => *scale,
+            ColScales::Multiplied(unit) => unit.map(|u| 1.0 / u),
+        }
     }
 }
 
@@ -828,7 +862,9 @@ mod tests {
 
     /// The Newton step's elimination with its right-hand side is the factorisation followed by
     /// the solve, bit for bit (step and pivot ratio), on regular, row-exchanging, singular,
-    /// infinite and NaN matrices and degenerate scales, for 3x3 and 4x4 blocks.
+    /// infinite and NaN matrices and degenerate scales, for 3x3 and 4x4 blocks. With the
+    /// unknowns' units (powers of two, which scale exactly) the step is the same and the pivot
+    /// ratio that of the matrix with its columns multiplied by them.
     #[test]
     fn the_newton_step_is_the_factorisation_and_solve() {
         fn check<const N: usize>(j: [[f64; N]; N], f: [f64; N], s: [f64; N]) {
@@ -838,6 +874,11 @@ mod tests {
             let z = lu.solve(f.map(|v| -v));
             assert_eq!(x.map(canon), z.map(canon), "{j:?} {f:?} {s:?}");
             assert_eq!(canon(ratio), canon(lu.pivot_ratio()), "{j:?} {s:?}");
+            let unit: [f64; N] = std::array::from_fn(|c| [2f64.powi(20), 1.0, 2f64.powi(-7), 4.0][c]);
+            let (xu, ratio_u) = solve_row_scaled(&j, &f, &RowScales::new(s), &unit);
+            assert_eq!(xu.map(canon), x.map(canon), "{j:?} {f:?} {s:?}");
+            let scaled = Lu::factor_scaled(&j, s, unit.map(|u| 1.0 / u));
+            assert_eq!(canon(ratio_u), canon(scaled.pivot_ratio()), "{j:?} {s:?}");
         }
         let values = [0.0, 1.0, -2.5, 3.0e-7, 7.0e5, 1.0 + 1e-14, -0.75, 4.25, f64::INFINITY, f64::NAN];
         let scales = [1.0, 2.0, 0.3, 0.0, f64::INFINITY, f64::NAN];

@@ -22,7 +22,7 @@
 //! so the same factor bit for bit.
 
 use super::jacobian::{BlockFactor, BlockJacobian};
-use super::lu::{Factor, Lu, RowScales, boxed_zeros, inverses};
+use super::lu::{ColScales, Factor, Lu, RowScales, boxed_zeros, inverses};
 pub use super::sparse_steps::SparsePattern;
 use super::sparse_steps::{SparseSteps, Tables};
 use core::marker::PhantomData;
@@ -119,10 +119,10 @@ impl<const N: usize, const NNZ: usize, const NLU: usize, E: SparseSteps<N, NLU>>
     type Factor = SparseLu<N, NLU, E>;
 
     /// Factorises with the row scales' reciprocals of `rows` (not taken again), each column
-    /// multiplied by its unknown's unit (divided by its reciprocal).
+    /// multiplied by its unknown's unit.
     #[inline(always)]
     fn newton_step(&self, f: &[f64; N], rows: &RowScales<N>, unit: &[f64; N]) -> ([f64; N], f64) {
-        let lu = SparseLu::factor_inverses(self, rows.s, rows.inv, rows.degenerate, unit.map(|u| 1.0 / u));
+        let lu = SparseLu::factor_inverses(self, rows.s, rows.inv, rows.degenerate, ColScales::Multiplied(*unit));
         (lu.solve(f.map(|v| -v)), lu.pivot_ratio())
     }
 
@@ -163,21 +163,22 @@ impl<const N: usize, const NLU: usize, E: SparseSteps<N, NLU>> SparseLu<N, NLU, 
     pub fn factor<const NNZ: usize>(j: &SparseJac<N, NNZ, NLU, E>, row_scale: [f64; N], col_scale: [f64; N]) -> Self {
         let mut degenerate = false;
         let inv_row = inverses(row_scale, &mut degenerate);
-        Self::factor_inverses(j, row_scale, inv_row, degenerate, col_scale)
+        Self::factor_inverses(j, row_scale, inv_row, degenerate, ColScales::Divided(col_scale))
     }
 
     /// [`SparseLu::factor`] with the row scales' reciprocals `inv_row` already taken
-    /// (`degenerate` when a row scale is not positive and finite).
+    /// (`degenerate` when a row scale is not positive and finite), the columns equilibrated by
+    /// `cols`.
     #[inline(always)]
     fn factor_inverses<const NNZ: usize>(
         j: &SparseJac<N, NNZ, NLU, E>,
         row_scale: [f64; N],
         inv_row: [f64; N],
         mut degenerate: bool,
-        col_scale: [f64; N],
+        cols: ColScales<N>,
     ) -> Self {
         let p = j.pattern;
-        let inv_col = inverses(col_scale, &mut degenerate);
+        let inv_col = cols.factors(&mut degenerate);
         let mut f = SparseLu {
             lu: E::load(p, &j.v, &inv_row, &inv_col),
             pattern: p,
@@ -193,7 +194,7 @@ impl<const N: usize, const NLU: usize, E: SparseSteps<N, NLU>> SparseLu<N, NLU, 
         match E::eliminate(p, &mut f.lu, &mut f.inv_diag, &mut f.det, &mut f.negative_det) {
             Some(min_pivot) if !degenerate => f.pivot_ratio = min_pivot,
             Some(_) => {}
-            None => f.dense = Some(dense_fallback(j, row_scale, col_scale)),
+            None => f.dense = Some(dense_fallback(j, row_scale, cols.scales())),
         }
         f
     }
@@ -374,6 +375,36 @@ mod tests {
         assert!(s.pivot_ratio() > 0.1 && d.pivot_ratio() > 0.1);
         let cols2 = s.solve_cols([[1.0, 0.0], [-2.0, 0.0], [0.5, 0.0], [3.0, 1.0]]);
         assert_eq!(cols2.map(|r| r[0]), zs);
+    }
+
+    /// A Newton step multiplies each column by its unknown's unit: the step is the dense one's
+    /// and the pivot ratio that of the matrix with its columns so scaled (powers of two, exact),
+    /// as the analogs' factorisation divided by their reciprocals gives it.
+    #[test]
+    fn a_newton_step_measures_its_pivots_in_the_units() {
+        let s = sparse::<4, 16>(&J, full_pattern(PROW, PCOL));
+        let (rows, unit) = (RowScales::new([2.0, 1.0, 4.0, 0.5]), [2f64.powi(20), 1.0, 2f64.powi(-7), 4.0]);
+        let f = [1.0, -2.0, 0.5, 3.0];
+        let (dz, pivot) = s.newton_step(&f, &rows, &unit);
+        let (dense, dense_pivot) = crate::solvers::lu::solve_row_scaled(&J, &f, &rows, &unit);
+        for k in 0..4 {
+            assert!((dz[k] - dense[k]).abs() <= 1e-14 * dense[k].abs().max(1.0), "{dz:?} {dense:?}");
+        }
+        let divided = s.factor_scaled(rows.s, unit.map(|u| 1.0 / u));
+        assert!(!divided.is_dense());
+        assert_eq!(pivot.to_bits(), divided.pivot_ratio().to_bits());
+        // The units move the pivots: the static order's and the dense order's both see them.
+        let (_, ones) = s.newton_step(&f, &rows, &[1.0; 4]);
+        assert!(pivot != ones && dense_pivot > 0.0 && pivot > 0.0, "{pivot} {ones} {dense_pivot}");
+        // A weak static pivot: the dense fallback, given the units' reciprocals as scales.
+        let mut weak = J;
+        weak[1][0] = 0.01;
+        let s = sparse::<4, 16>(&weak, full_pattern(PROW, PCOL));
+        let (dz, pivot) = s.newton_step(&f, &rows, &unit);
+        let (dense, dense_pivot) = crate::solvers::lu::solve_row_scaled(&weak, &f, &rows, &unit);
+        assert!(s.factor_scaled(rows.s, unit.map(|u| 1.0 / u)).is_dense());
+        assert_eq!(dz.map(f64::to_bits), dense.map(f64::to_bits));
+        assert_eq!(pivot.to_bits(), dense_pivot.to_bits());
     }
 
     #[test]

@@ -18,7 +18,7 @@
 //! into `+0` there, where a zero product of the padding is subtracted: equal values).
 
 use super::jacobian::BlockJacobian;
-use super::lu::{Factor, Lu, RowScales, boxed_zeros, inverses};
+use super::lu::{ColScales, Factor, Lu, RowScales, boxed_zeros, inverses};
 use super::sparse_steps::PatternView;
 use std::sync::Mutex;
 
@@ -158,7 +158,7 @@ impl<const P: usize> PaddedLu<P> {
     pub fn factor(&mut self, t: &SparseTables, v: &[f64], row_scale: [f64; P], col_scale: [f64; P]) {
         let mut degenerate = false;
         let inv_row = inverses(row_scale, &mut degenerate);
-        self.factor_inverses(t, v, row_scale, inv_row, degenerate, col_scale);
+        self.factor_inverses(t, v, row_scale, inv_row, degenerate, ColScales::Divided(col_scale));
     }
 
     /// `SparseLu::factor_inverses`.
@@ -169,10 +169,10 @@ impl<const P: usize> PaddedLu<P> {
         row_scale: [f64; P],
         inv_row: [f64; P],
         mut degenerate: bool,
-        col_scale: [f64; P],
+        cols: ColScales<P>,
     ) {
         let n = t.n;
-        self.inv_col = inverses(col_scale, &mut degenerate);
+        self.inv_col = cols.factors(&mut degenerate);
         self.inv_row = inv_row;
         t.load(v, &inv_row[..n], &self.inv_col[..n], &mut self.lu);
         self.inv_diag = [0.0; P];
@@ -183,7 +183,7 @@ impl<const P: usize> PaddedLu<P> {
         match t.view().eliminate(&mut self.lu, &mut self.inv_diag[..n], &mut self.det, &mut self.negative_det) {
             Some(min_pivot) if !degenerate => self.pivot_ratio = min_pivot,
             Some(_) => {}
-            None => self.dense_fallback(t, v, row_scale, col_scale),
+            None => self.dense_fallback(t, v, row_scale, cols.scales()),
         }
     }
 
@@ -322,7 +322,7 @@ impl<const P: usize, const CAP: usize> BlockJacobian<P> for PaddedJac<'_, P, CAP
         // A poisoned lock (a panic elsewhere mid-step) still holds a slot this step rewrites.
         let mut lu = self.work.step.lock().unwrap_or_else(|e| e.into_inner());
         let t = self.t();
-        lu.factor_inverses(t, &self.v, rows.s, rows.inv, rows.degenerate, unit.map(|u| 1.0 / u));
+        lu.factor_inverses(t, &self.v, rows.s, rows.inv, rows.degenerate, ColScales::Multiplied(*unit));
         (lu.solve(t, f.map(|v| -v)), lu.pivot_ratio())
     }
 

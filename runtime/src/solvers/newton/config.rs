@@ -32,7 +32,7 @@ pub struct NewtonConfig {
     /// valid range `[0, 1)`): Newton's factorisations have their rows divided by the rows'
     /// magnitudes and their columns multiplied by the unknowns' units, the analogs' their
     /// columns divided by their largest entries, so that the test is the same at every size of
-    /// the mechanism.
+    /// the mechanism. (A Newton pivot may exceed 1 where a length's unit exceeds its entries.)
     pub singular_tol: f64,
     /// Smallest damping factor of the backtracking line search (default `2^-12`; valid range
     /// `[1e-12, 1)`).

@@ -125,7 +125,7 @@ pub(super) fn iterate<const N: usize, const K: usize, J: BlockJacobian<N>>(
         let newton_ok = pivot > cfg.singular_tol * 1e-3 && step.is_finite();
         // At the rounding floor only the Newton step is worth trying.
         let moved = (newton_ok && it.full_step(&dz, pivot, rows, fixed_rows, phi, cfg, &mut eval))
-            || (rho > floor && it.descend(rows, cfg, &mut eval));
+            || (rho > floor && it.descend(rows, &m.unit, cfg, &mut eval));
         if !moved {
             if rho <= floor {
                 // No step decreases a residual already at its rounding floor.

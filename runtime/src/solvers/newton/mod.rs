@@ -314,32 +314,55 @@ mod tests {
     /// length's unit are `4 k`. By powers of two every product and quotient of the solve
     /// scales exactly, so at every size it takes the same iterations to the same angle and the
     /// same length over `k`, bit for bit. The length's Jacobian column is a direction (pure
-    /// numbers), the angle's a length: in the rows' units alone the first is `1 / (4 k)` and
-    /// its pivot fell below the singularity test from `2^50` up, where every Newton step was
-    /// refused and the iteration stalled.
+    /// numbers), the angle's a length: in the rows' units alone the first is `1 / (4 k)`, and
+    /// its pivot was below the singularity test at `2^50` and every larger size tried, where
+    /// every Newton step was refused and the iteration stalled.
     #[test]
     fn a_length_beside_an_angle_is_solved_alike_at_every_size() {
-        let solve_at = |k: f64| {
-            let eval = move |z: &[f64; 2]| {
-                let [s, q] = *z;
-                let (sin, cos) = q.sin_cos();
-                BlockEval::<2, 0> {
-                    f: [s * cos - 2.98 * k, s * sin + 0.143 * k],
-                    j: [[cos, -s * sin], [sin, s * cos]],
-                    keep: [],
-                }
-            };
-            let mags = Magnitudes::new([4.0 * k; 2], [4.0 * k, 1.0]);
-            let guess = [3.3 * k, 0.0];
-            let mut ev = eval(&guess);
-            newton(guess, &mut ev, &NewtonConfig::default(), test_blocks::in_place(eval), &mags)
-                .unwrap_or_else(|e| panic!("size {k:e}: {e:?}"))
-        };
-        let one = solve_at(1.0);
+        let one = slotted_rocker([3.3, 0.0], 1.0);
         assert!(one.iterations > 1, "{one:?}");
-        for e in [-1000, -500, -100, -50, -10, 10, 50, 100, 500, 1000] {
+        alike_at_every_size([3.3, 0.0], &one, &[-1000, -500, -100, -50, -10, 10, 50, 100, 500, 1000]);
+    }
+
+    /// The slotted rocker of the test above from a guess whose length is nearly zero: its
+    /// Jacobian is nearly singular there, Newton's step is refused and Levenberg-Marquardt steps
+    /// move it away first. Made in the unknowns' units, they are the same at every size (in the
+    /// length's own units the damping weighed the length's column by one over the size).
+    #[test]
+    fn a_descent_from_a_near_singular_guess_is_alike_at_every_size() {
+        let guess = [2f64.powi(-47), 0.3];
+        let _ = trace::take();
+        let one = slotted_rocker(guess, 1.0);
+        assert!(trace::take().contains(&SolvePath::Descend), "the guess is not refused");
+        // (Not to `2^-1000`, where the guess's length, `2^-1047`, is subnormal.)
+        alike_at_every_size(guess, &one, &[-500, -100, -50, -10, 10, 50, 100, 500, 1000]);
+    }
+
+    /// The slotted rocker `s (cos q, sin q) = k (2.98, -0.143)` solved from the guess `[s / k,
+    /// q]` at size `k`.
+    fn slotted_rocker(guess: [f64; 2], k: f64) -> Solved<2> {
+        let eval = move |z: &[f64; 2]| {
+            let [s, q] = *z;
+            let (sin, cos) = q.sin_cos();
+            BlockEval::<2, 0> {
+                f: [s * cos - 2.98 * k, s * sin + 0.143 * k],
+                j: [[cos, -s * sin], [sin, s * cos]],
+                keep: [],
+            }
+        };
+        let mags = Magnitudes::new([4.0 * k; 2], [4.0 * k, 1.0]);
+        let guess = [guess[0] * k, guess[1]];
+        let mut ev = eval(&guess);
+        newton(guess, &mut ev, &NewtonConfig::default(), test_blocks::in_place(eval), &mags)
+            .unwrap_or_else(|e| panic!("size {k:e}: {e:?}"))
+    }
+
+    /// The slotted rocker from `guess` at the sizes `2^e` of `exponents`: the solve `one` of
+    /// size 1, bit for bit (powers of two scale every product and quotient exactly).
+    fn alike_at_every_size(guess: [f64; 2], one: &Solved<2>, exponents: &[i32]) {
+        for &e in exponents {
             let k = 2f64.powi(e);
-            let got = solve_at(k);
+            let got = slotted_rocker(guess, k);
             assert_eq!((got.iterations, got.evaluations), (one.iterations, one.evaluations), "2^{e}");
             assert_eq!([got.z[0] / k, got.z[1]].map(f64::to_bits), one.z.map(f64::to_bits), "2^{e}");
         }

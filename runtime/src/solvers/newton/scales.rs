@@ -31,8 +31,9 @@ pub struct Magnitudes<const N: usize> {
     pub(super) rows: RowScales<N>,
     /// The unit of each unknown: one radian for an angle, the magnitude of the rows it appears
     /// in per unit of its Jacobian entry otherwise (a slider coordinate: its loop's lengths). A
-    /// step `dz_j` is judged relative to `max(|z_j|, unit_j)`; a value that is not positive and
-    /// finite counts as `1` (replaced here).
+    /// step `dz_j` is judged relative to `max(|z_j|, unit_j)`, and the Newton factorisations'
+    /// column `j` is multiplied by it where their pivots are measured; a value that is not
+    /// positive and finite counts as `1` (replaced here).
     pub(super) unit: [f64; N],
     /// The unknowns whose equations repeat every turn (angles that enter the block through
     /// sines and cosines of whole multiples of themselves): an iteration that carried one more

@@ -122,7 +122,11 @@ impl<const N: usize, const K: usize, J: BlockJacobian<N>> Iter<'_, N, K, J> {
 
     /// Where the Newton step fails (singular Jacobian, no decrease), Levenberg-Marquardt steps
     /// of increasing damping, down to steepest descent: they leave saddles of the squared
-    /// residual that a far guess can lead to. Returns `true` when one decreased the residual;
+    /// residual that a far guess can lead to. The steps are made in the unknowns' units `unit`
+    /// (residuals in the rows' units): the damping, a multiple of the identity, then weighs a
+    /// length's column as an angle's at every size of the mechanism, where in the lengths' own
+    /// units it would freeze a length beside angles the more, the larger the mechanism. Returns
+    /// `true` when one decreased the residual;
     /// otherwise `self.ev` is the evaluation at the unmoved `z` still: each failed search's
     /// trials are evaluated over it, and it is copied back from a copy made once (on the heap,
     /// like the matrices below) rather than evaluated again after each of up to four searches,
@@ -132,12 +136,13 @@ impl<const N: usize, const K: usize, J: BlockJacobian<N>> Iter<'_, N, K, J> {
     pub(super) fn descend(
         &mut self,
         rows: &RowScales<N>,
+        unit: &[f64; N],
         cfg: &NewtonConfig,
         eval: &mut impl FnMut(&[f64; N], &mut BlockEval<N, K, J>),
     ) -> bool {
         note(SolvePath::Descend);
         let s = &rows.s;
-        let (a, g) = normal_equations(self.ev, s);
+        let (a, g) = normal_equations(self.ev, s, unit);
         let trace: f64 = (0..N).map(|k| a[k][k]).sum();
         if !(trace > 0.0 && trace.is_finite()) {
             return false;
@@ -157,7 +162,11 @@ impl<const N: usize, const K: usize, J: BlockJacobian<N>> Iter<'_, N, K, J> {
             for v in &mut neg_g {
                 *v = -*v;
             }
-            let dz = lu.solve(neg_g);
+            // Back from the units to the unknowns.
+            let mut dz = lu.solve(neg_g);
+            for c in 0..N {
+                dz[c] *= unit[c];
+            }
             if !dz.iter().all(|v| v.is_finite()) {
                 continue;
             }
@@ -186,12 +195,15 @@ fn directional_slope<const N: usize, const K: usize, J: BlockJacobian<N>>(
     let jd = ev.j.mul(dz);
     let mut acc = 0.0;
     for r in 0..N {
-        acc += ev.f[r] * jd[r] / (s[r] * s[r]);
+        // Each factor in its row's units: `s^2` leaves the range of `f64` for magnitudes
+        // beyond `1e154`, where the residual and the step do not.
+        acc += (ev.f[r] / s[r]) * (jd[r] / s[r]);
     }
     2.0 * acc
 }
 
-/// `A = (D^-1 J)^T (D^-1 J)` and `g = (D^-1 J)^T D^-1 f` with `D` the row magnitudes.
+/// `A = B^T B` and `g = B^T D^-1 f` with `B = D^-1 J U`, `D` the row magnitudes and `U` the
+/// unknowns' units `unit`: the normal equations of a step in the units (`dz = U y`).
 ///
 /// `A` lives on the heap, as do the dense Jacobian, its damped copy and their factorisation:
 /// on the stack they would be four `N x N` matrices, which for the largest blocks (256
@@ -200,8 +212,15 @@ fn directional_slope<const N: usize, const K: usize, J: BlockJacobian<N>>(
 fn normal_equations<const N: usize, const K: usize, J: BlockJacobian<N>>(
     ev: &BlockEval<N, K, J>,
     s: &[f64; N],
+    unit: &[f64; N],
 ) -> (Box<[[f64; N]; N]>, [f64; N]) {
-    let j = ev.j.to_dense();
+    // Each column in its unit first (a product by one, exact, for an angle's).
+    let mut j = ev.j.to_dense();
+    for row in j.iter_mut() {
+        for c in 0..N {
+            row[c] *= unit[c];
+        }
+    }
     let mut a = boxed_zeros::<N>();
     let mut g = [0.0; N];
     for r in 0..N {
