@@ -280,8 +280,8 @@ fn a_polar_length_solves_at_every_scale_of_its_closed_form() {
 /// every size from `1e-300` to `1e300` and `2^±1000`: the scale-1 solve, from the declared
 /// guess, for point solves and sweeps. Its Jacobian's length column holds pure numbers (the
 /// direction) and its angle column lengths: a singularity test in the rows' units alone saw a
-/// pivot shrink as one over the size and, from about `1e13` up to where the whole system's
-/// rescale took over (about `1e144`), refused every Newton step (the iteration stalled, "the
+/// pivot shrink as one over the size and, from about `1e13` up to about `1e143` (beyond, the
+/// whole system's rescale took over), refused every Newton step (the iteration stalled, "the
 /// links cannot reach"); measured in the unknowns' units it is the same at every size.
 #[test]
 fn a_newton_block_of_a_length_and_an_angle_solves_at_every_scale() {

@@ -129,11 +129,16 @@ impl<const N: usize> ColScales<N> {
     pub(crate) fn factors(&self, degenerate: &mut bool) -> [f64; N] {
         match self {
             ColScales::Divided(scale) => inverses(*scale, degenerate),
-            ColScales::Multiplied(unit) => *unit,
+            ColScales::Multiplied(unit) => {
+                debug_assert!(all_positive_finite(unit), "the units are checked when they are made");
+                *unit
+            }
         }
     }
 
-    /// The scales the columns are divided by, as the dense factorisation takes them.
+    /// The scales the columns are divided by, as the dense factorisation takes them (a unit
+    /// below about `5.6e-309`, whose reciprocal overflows, makes the dense fallback degenerate:
+    /// a mechanism that small in its own unit).
     #[inline(always)]
     pub(crate) fn scales(&self) -> [f64; N] {
         match self {

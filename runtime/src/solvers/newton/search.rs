@@ -125,9 +125,9 @@ impl<const N: usize, const K: usize, J: BlockJacobian<N>> Iter<'_, N, K, J> {
     /// residual that a far guess can lead to. The steps are made in the unknowns' units `unit`
     /// (residuals in the rows' units): the damping, a multiple of the identity, then weighs a
     /// length's column as an angle's at every size of the mechanism, where in the lengths' own
-    /// units it would freeze a length beside angles the more, the larger the mechanism. Returns
-    /// `true` when one decreased the residual;
-    /// otherwise `self.ev` is the evaluation at the unmoved `z` still: each failed search's
+    /// units it would weigh a length beside angles by the mechanism's size. Returns `true` when
+    /// one decreased the residual; otherwise `self.ev` is the evaluation at the unmoved `z`
+    /// still: each failed search's
     /// trials are evaluated over it, and it is copied back from a copy made once (on the heap,
     /// like the matrices below) rather than evaluated again after each of up to four searches,
     /// so that the next search starts from the same bits as the first.
@@ -195,8 +195,9 @@ fn directional_slope<const N: usize, const K: usize, J: BlockJacobian<N>>(
     let jd = ev.j.mul(dz);
     let mut acc = 0.0;
     for r in 0..N {
-        // Each factor in its row's units: `s^2` leaves the range of `f64` for magnitudes
-        // beyond `1e154`, where the residual and the step do not.
+        // Each factor in its row's units: `s^2` leaves the range of `f64` (or loses its
+        // precision) for magnitudes outside about `1e-154 .. 1e154`, where the residual and the
+        // step do not.
         acc += (ev.f[r] / s[r]) * (jd[r] / s[r]);
     }
     2.0 * acc
