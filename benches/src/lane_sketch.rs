@@ -161,8 +161,4 @@ impl<const TERMS: usize> Branch<2, 6> for FourBarLaneSketch<TERMS> {
     fn health(&self, _step: &Step<2>, _unit: f64) -> (u8, f64) {
         (u8::from(self.negative_det), self.pivot)
     }
-
-    fn judged_unit(&self) -> f64 {
-        1.0
-    }
 }

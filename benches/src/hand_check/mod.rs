@@ -79,9 +79,11 @@ pub trait Branch<const N: usize, const NP: usize>: HandSweep<N, NP> {
     fn pivot_unit(&self) -> f64 {
         1.0
     }
-    /// The largest unit of a judged unknown per unit of input (one for an angle): the floor of
-    /// the slope-change bound is [`MAX_SLOPE_CHANGE`] times it.
-    fn judged_unit(&self) -> f64;
+    /// The units of the judged unknowns (kinloop's, one radian for an angle): the changes,
+    /// distances and slopes of each are measured in its unit, as kinloop's judge measures them.
+    fn judged_units(&self) -> [f64; 2] {
+        [1.0; 2]
+    }
 }
 
 /// A hand sweep `S` with kinloop's checks on every sample after its first (see the module
@@ -102,8 +104,10 @@ pub struct Checked<S> {
     /// `corrector_abs` in the slopes' units: kinloop divides it by the length of a turn's path,
     /// `h (turn - 1)` (its sweep of a turn ends at the turn's last sample).
     slope_abs: f64,
-    /// [`MAX_SLOPE_CHANGE`] times the judged unknowns' largest unit.
+    /// [`MAX_SLOPE_CHANGE`] times one unit per unit of input.
     slope_floor: f64,
+    /// The reciprocals of [`Branch::judged_units`].
+    inv_unit: [f64; 2],
     /// [`Branch::pivot_unit`].
     pivot_unit: f64,
     /// The checks the last failed sample failed ([`fired`]'s bits; 0 while none has failed).
@@ -135,8 +139,9 @@ impl<S> Checked<S> {
         let turn = s.turn();
         let h = TAU / turn as f64;
         let span = h * (turn - 1) as f64;
-        let slope_floor = MAX_SLOPE_CHANGE * s.judged_unit();
+        let slope_floor = MAX_SLOPE_CHANGE;
         let pivot_unit = s.pivot_unit();
+        let inv_unit = s.judged_units().map(|u| 1.0 / u);
         Checked {
             inner: s,
             q: [0.0; 2],
@@ -147,6 +152,7 @@ impl<S> Checked<S> {
             h,
             slope_abs: CORRECTOR_ABS / span,
             slope_floor,
+            inv_unit,
             pivot_unit,
             fired: 0,
             exact_samples: 0,
@@ -195,16 +201,18 @@ impl<S> Checked<S> {
             let slope1 = slope0 + bend;
             let du = (0.5 * h) * (slope0 + slope1);
             let e = (step.q[u] - (self.q[u] + du)).abs();
-            change = change.max(du.abs());
-            slope_change = slope_change.max(bend.abs());
-            slope = slope.max(slope0.abs());
+            // In the unknown's unit (an angle's, one, is not multiplied by: kinloop's).
+            let w = |v: f64| if S::ANGLES[u] { v } else { v * self.inv_unit[u] };
+            change = change.max(w(du.abs()));
+            slope_change = slope_change.max(w(bend.abs()));
+            slope = slope.max(w(slope0.abs()));
             if S::POSITIONS_JUDGED {
-                dist = dist.max(e);
+                dist = dist.max(w(e));
             }
             if S::ANGLES[u] {
                 turn = turn.max(e);
             }
-            slope_err = slope_err.max((step.dq[u] - slope1).abs());
+            slope_err = slope_err.max(w((step.dq[u] - slope1).abs()));
         }
         let (signs, pivot) = self.inner.health(step, self.pivot_unit);
         Measures {
@@ -311,10 +319,6 @@ impl<const TERMS: usize> Branch<4, 0> for RhombicSweep<TERMS> {
         let [_, c2, _, c4] = self.rods;
         (u8::from(c2.is_sign_negative()) | (u8::from(c4.is_sign_negative()) << 1), c2.abs().min(c4.abs()))
     }
-
-    fn judged_unit(&self) -> f64 {
-        1.0
-    }
 }
 
 /// The four-bar: one block, the dyad `(beta, gamma)` with the Jacobian columns `b (-sin beta,
@@ -330,10 +334,6 @@ impl<const TERMS: usize> Branch<2, 6> for FourBarSweep<TERMS> {
         let [_, _, sb, cb, sg, cg] = self.sines;
         let sbg = sb * cg - cb * sg;
         (u8::from(sbg.is_sign_negative()), sbg.abs())
-    }
-
-    fn judged_unit(&self) -> f64 {
-        1.0
     }
 }
 
@@ -359,9 +359,10 @@ impl<const TERMS: usize> Branch<2, 6> for GearLeverSweep<TERMS> {
         1.0 / (self.closed.l_c + self.closed.l_p)
     }
 
-    fn judged_unit(&self) -> f64 {
-        // The loop's lengths with the slide's at input 0, where every sweep here starts.
-        (2.0 * (self.closed.l_c + self.closed.l_p)).max(1.0)
+    fn judged_units(&self) -> [f64; 2] {
+        // The slide's: the loop's lengths with the slide's at input 0, where every sweep here
+        // starts; the rocker's, one radian.
+        [2.0 * (self.closed.l_c + self.closed.l_p), 1.0]
     }
 }
 

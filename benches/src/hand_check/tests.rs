@@ -77,7 +77,7 @@ fn the_judged_unknowns_are_kinloops() {
 }
 
 /// The gear-lever's length is judged in kinloop's unit of it at the sweep's start (its loop's
-/// lengths, `l_c + l_p + s` with `s = l_c + l_p` at input 0), the slope-change bound's floor.
+/// lengths, `l_c + l_p + s` with `s = l_c + l_p` at input 0), its rocker angle in radians.
 #[test]
 fn the_gear_levers_length_unit_is_kinloops() {
     let m = gear_lever();
@@ -85,7 +85,9 @@ fn the_gear_levers_length_unit_is_kinloops() {
     let hand = GearLeverSweep::<GEAR_LEVER_TERMS>::new(GearLeverClosed::of(&m), 720, PERIOD, gear_lever_guess(&m));
     assert_eq!(jac.unit[1], 1.0, "the rocker angle's unit is a radian");
     // The same sum of lengths, up to its rounding.
-    assert!((jac.unit[0] - hand.judged_unit()).abs() <= 1e-15 * jac.unit[0], "{} {}", jac.unit[0], hand.judged_unit());
+    let units = hand.judged_units();
+    assert!((jac.unit[0] - units[0]).abs() <= 1e-15 * jac.unit[0], "{} {units:?}", jac.unit[0]);
+    assert_eq!(units[1], 1.0);
 }
 
 /// The hand pivot ratios (over the columns' norms) against kinloop's smallest pivot ratio (over
@@ -258,13 +260,15 @@ fn a_small_pivot_ratio_takes_the_next_sample_from_libm() {
     assert_eq!(s.exact_samples(), 0);
 }
 
-/// The gear-lever sampled 16 times a turn: its rocker's slope changes over the first step by
-/// more than the slope-change bound allows (only that check fires).
+/// The gear-lever sampled 20 times a turn: its rocker's slope changes over the first step by
+/// more than the slope-change bound allows (only that check fires; sampled more coarsely, the
+/// slopes' test fires too, the rocker's slope being judged in radians beside the length's in
+/// its unit).
 #[test]
 fn a_coarse_step_near_a_fast_passage_is_too_long() {
     let m = gear_lever();
-    let s = GearLeverSweep::<GEAR_LEVER_TERMS>::new(GearLeverClosed::of(&m), 16, PERIOD, gear_lever_guess(&m));
-    let (fired, at) = fire(s, 16, usize::MAX, |_| {});
+    let s = GearLeverSweep::<GEAR_LEVER_TERMS>::new(GearLeverClosed::of(&m), 20, PERIOD, gear_lever_guess(&m));
+    let (fired, at) = fire(s, 20, usize::MAX, |_| {});
     assert_eq!((fired, at), (fired::LONG, Some(0)), "{fired:#b}");
 }
 

@@ -48,6 +48,7 @@ use crate::dims::{Dims, KinState, Square};
 use crate::error::{Error, Quantity};
 use crate::events::{Event, EventKind, Location};
 use crate::kin::{DetSigns, Kin};
+use crate::kinds::QuantityKind;
 use crate::mechanism::Mechanism;
 use crate::mechanism::kernel::{Compiled, D, Kernel, KinOf, Q, X, check_sizes};
 use crate::solvers::newton::NewtonConfig;
@@ -96,7 +97,9 @@ pub struct SweepConfig {
     /// (default `40`, i.e. steps down to about `1e-12` of the sample spacing).
     pub max_halvings: u32,
     /// A corrected position is accepted only within `corrector_rel` times the predicted change
-    /// plus `corrector_abs` of its prediction (defaults `0.25` and `1e-6`).
+    /// plus `corrector_abs` of its prediction (defaults `0.25` and `1e-6`), and its slopes
+    /// likewise: every unknown in its own unit (radians for an angle, its loop's size for a
+    /// length), so that the test is the same in any unit of length.
     pub corrector_rel: f64,
     /// See [`SweepConfig::corrector_rel`].
     pub corrector_abs: f64,
@@ -259,12 +262,13 @@ struct Prediction<Q> {
     /// The predicted slopes at the new point: `dq/dtau`, or with one input `dq/dx` (see
     /// `Sweep::predict`).
     slope1: Q,
-    /// How far the solved position may be from `q`: `corrector_rel` times the largest predicted
-    /// change of an unknown, plus `corrector_abs` (set only where a position is judged, see
-    /// `positions_judged`).
+    /// How far the solved position may be from `q`, in the unknowns' units: `corrector_rel`
+    /// times the largest predicted change of an unknown, plus `corrector_abs` (set only where a
+    /// position is judged, see `positions_judged`).
     max_dist: f64,
-    /// How far the solved slopes may be from `slope1`: `corrector_rel` times the largest change
-    /// of a slope plus a tenth of the largest slope, plus `corrector_abs` (in the slopes' units).
+    /// How far the solved slopes may be from `slope1`, in the unknowns' units: `corrector_rel`
+    /// times the largest change of a slope plus a tenth of the largest slope, plus
+    /// `corrector_abs` (per unit of the path, or of the input).
     max_slope_err: f64,
     /// The step is longer than the predictor's error bound allows ([`MAX_SLOPE_CHANGE`]).
     long: bool,
@@ -310,9 +314,15 @@ pub struct SweepOf<K: Kernel, S> {
     /// The largest step in the inputs' natural scale ([`MAX_INPUT_STEP`]) as a fraction of the
     /// path (infinite for a path of no length).
     h_nat: f64,
-    /// `MAX_SLOPE_CHANGE` times the largest unit of a judged unknown per unit of input, in the
-    /// units the slopes are compared in (see [`Sweep::predict`]); set with `h_nat`.
+    /// `MAX_SLOPE_CHANGE` times one unit of an unknown per unit of input, in the units the
+    /// slopes are compared in (see [`Sweep::predict`]); set with `h_nat`.
     slope_floor: f64,
+    /// Per unknown, the reciprocal of its unit (the generated one, as [`Metric`] reads it: one
+    /// for an angle, its loop's size for a length). The prediction and the judgment measure
+    /// each judged unknown's change, distance and slopes in its unit, so that their maxima
+    /// weigh a length as an angle and the bounds are the same in any unit of length (see
+    /// [`in_unit`]).
+    inv_unit: Q<K>,
     /// The attempts a sample may take (see [`MAX_ATTEMPTS_PER_SAMPLE`]).
     max_attempts: u64,
     next: usize,
@@ -435,6 +445,7 @@ where
             h_min: 0.0,
             h_nat: f64::INFINITY,
             slope_floor: 0.0,
+            inv_unit: d.q(),
             max_attempts: MAX_ATTEMPTS_PER_SAMPLE,
             next: 0,
             first_q: guess.clone(),
@@ -508,11 +519,16 @@ where
         // (A range too long in these units was refused by `new`.)
         self.h_nat = if input_len > 0.0 && input_len.is_finite() { MAX_INPUT_STEP / input_len } else { f64::INFINITY };
         // One unit of an unknown per unit of input, in the slopes' units: per fraction of the
-        // path `unit * input_len`, per unit of a single input that over `|delta|`.
+        // path `input_len` units, per unit of a single input that over `|delta|`.
         let per = if self.d.ni() == 1 { input_len / self.path.delta[0].abs() } else { input_len };
-        let unit = self.m.judged().iter().fold(0.0f64, |m, &u| m.max(metric.unit[u]));
-        let floor = MAX_SLOPE_CHANGE * unit * per;
+        let floor = MAX_SLOPE_CHANGE * per;
         self.slope_floor = if floor.is_finite() { floor } else { 0.0 };
+        for u in 0..self.d.n() {
+            // A unit is positive and finite (`Metric`); one so small that its reciprocal
+            // overflows (a mechanism of `1e-308` in its unit) is judged in its own unit.
+            let w = 1.0 / metric.unit[u];
+            self.inv_unit[u] = if w < f64::INFINITY { w } else { 1.0 };
+        }
         self.set_step_bounds();
     }
 
@@ -592,7 +608,7 @@ where
         let (mut change, mut slope_change, mut slope) = (0.0f64, 0.0f64, 0.0f64);
         let k = &self.states[usize::from(self.at)];
         let p = &mut self.pred;
-        let (d, path) = (self.d, &self.path);
+        let (d, path, inv_unit) = (self.d, &self.path, &self.inv_unit);
         let ni = d.ni();
         p.q.as_mut().copy_from_slice(k.q());
         // With one input (a constant), `dt` becomes the input's step.
@@ -612,9 +628,10 @@ where
             let s1 = slope0 + turn;
             let du = (0.5 * dt) * (slope0 + s1);
             p.q[u] += du;
-            change = change.max(du.abs());
-            slope_change = slope_change.max(turn.abs());
-            slope = slope.max(slope0.abs());
+            // The maxima in the unknowns' units.
+            change = change.max(in_unit(&self.m, inv_unit, u, du.abs()));
+            slope_change = slope_change.max(in_unit(&self.m, inv_unit, u, turn.abs()));
+            slope = slope.max(in_unit(&self.m, inv_unit, u, slope0.abs()));
             p.slope1[u] = s1;
         }
         let rel = self.cfg.corrector_rel;
@@ -645,12 +662,13 @@ where
             // Constants after unrolling (see `positions_judged`): where every judged unknown is
             // a closed-form angle, `dist` is not computed and `turn` costs one comparison.
             if judge_positions {
-                dist = dist.max(e);
+                dist = dist.max(in_unit(&self.m, &self.inv_unit, u, e));
             }
             if self.m.closed_form_angle(u) {
                 turn = turn.max(e);
             }
-            slope_err = slope_err.max((slope_of(self.d, &self.path, n.dq(u)) - p.slope1[u]).abs());
+            let off = (slope_of(self.d, &self.path, n.dq(u)) - p.slope1[u]).abs();
+            slope_err = slope_err.max(in_unit(&self.m, &self.inv_unit, u, off));
         }
         let health = n.health();
         if !health.det_signs.same_for(&self.signs, self.m.block_count()) {
@@ -961,6 +979,15 @@ where
 #[inline(always)]
 fn positions_judged<K: Kernel>(m: &K) -> bool {
     m.judged().iter().any(|&u| !m.closed_form_angle(u))
+}
+
+/// `v`, a change, distance or slope of unknown `u` in its own unit, in units of `u`
+/// (`inv_unit`, see [`SweepOf::inv_unit`]). An angle's unit is one radian: its value as it is,
+/// with no product (constants after unrolling for a compiled mechanism, so that a sweep whose
+/// judged unknowns are all angles pays nothing).
+#[inline(always)]
+fn in_unit<K: Kernel>(m: &K, inv_unit: &Q<K>, u: usize, v: f64) -> f64 {
+    if m.closed_form_angle(u) || m.unknown_kind(u) == QuantityKind::Angle { v } else { v * inv_unit[u] }
 }
 
 /// Whether a predicted slope change `turn` exceeds `bound`, or either is NaN: one comparison.
