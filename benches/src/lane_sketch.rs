@@ -161,4 +161,8 @@ impl<const TERMS: usize> Branch<2, 6> for FourBarLaneSketch<TERMS> {
     fn health(&self, _step: &Step<2>, _unit: f64) -> (u8, f64) {
         (u8::from(self.negative_det), self.pivot)
     }
+
+    fn judged_units(&self) -> [f64; 2] {
+        [1.0; 2]
+    }
 }

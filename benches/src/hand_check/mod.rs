@@ -81,9 +81,7 @@ pub trait Branch<const N: usize, const NP: usize>: HandSweep<N, NP> {
     }
     /// The units of the judged unknowns (kinloop's, one radian for an angle): the changes,
     /// distances and slopes of each are measured in its unit, as kinloop's judge measures them.
-    fn judged_units(&self) -> [f64; 2] {
-        [1.0; 2]
-    }
+    fn judged_units(&self) -> [f64; 2];
 }
 
 /// A hand sweep `S` with kinloop's checks on every sample after its first (see the module
@@ -319,6 +317,9 @@ impl<const TERMS: usize> Branch<4, 0> for RhombicSweep<TERMS> {
         let [_, c2, _, c4] = self.rods;
         (u8::from(c2.is_sign_negative()) | (u8::from(c4.is_sign_negative()) << 1), c2.abs().min(c4.abs()))
     }
+    fn judged_units(&self) -> [f64; 2] {
+        [1.0; 2]
+    }
 }
 
 /// The four-bar: one block, the dyad `(beta, gamma)` with the Jacobian columns `b (-sin beta,
@@ -334,6 +335,9 @@ impl<const TERMS: usize> Branch<2, 6> for FourBarSweep<TERMS> {
         let [_, _, sb, cb, sg, cg] = self.sines;
         let sbg = sb * cg - cb * sg;
         (u8::from(sbg.is_sign_negative()), sbg.abs())
+    }
+    fn judged_units(&self) -> [f64; 2] {
+        [1.0; 2]
     }
 }
 

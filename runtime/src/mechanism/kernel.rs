@@ -165,6 +165,7 @@ macro_rules! compiled_kernel_body {
         fn input_kind(&self, i: usize) -> QuantityKind {
             M::INPUT_KINDS[i]
         }
+        #[inline(always)]
         fn unknown_kind(&self, u: usize) -> QuantityKind {
             M::UNKNOWN_KINDS[u]
         }
@@ -261,6 +262,7 @@ impl<K: Kernel> Kernel for &K {
     fn input_kind(&self, i: usize) -> QuantityKind {
         (**self).input_kind(i)
     }
+    #[inline(always)]
     fn unknown_kind(&self, u: usize) -> QuantityKind {
         (**self).unknown_kind(u)
     }

@@ -227,8 +227,8 @@ const MIN_MAX_STEP: f64 = 1e-6;
 pub const MAX_INPUT_STEP: f64 = 0.25;
 
 /// Largest change, relative to the largest slope, of the judged unknowns' slopes that a step's
-/// prediction may make (`max |q'' dt| <= MAX_SLOPE_CHANGE (max |q'| + unit)`, the unit the
-/// largest of the judged unknowns' units per unit of input): the predictor's error bound.
+/// prediction may make (`max |q'' dt| <= MAX_SLOPE_CHANGE (max |q'| + 1)`, each slope in its
+/// unknown's unit per unit of input): the predictor's error bound.
 /// Approaching a limit position, where the unknowns of the block that folds go as the square
 /// root of the distance to it (and their slopes outgrow every other), the slopes' relative change
 /// over a step is the step over twice that distance; at a quarter, no step goes more than halfway
@@ -252,8 +252,9 @@ const ROTATE_MIN_PIVOT: f64 = 0.1;
 
 /// Largest distance (radians) of a `Mechanism::CLOSED_FORM_ANGLES` angle from its prediction in
 /// an accepted step. A step this long is far too coarse for the prediction anyway; a limit that
-/// holds in every unit of length (`max_dist` mixes the unknowns' units) and that an angle on the
-/// wrong turn (2 pi off) always exceeds.
+/// holds where `max_dist` is not computed (every judged unknown a closed-form angle) or is
+/// large (a long predicted change), and that an angle on the wrong turn (2 pi off) always
+/// exceeds.
 const ANGLE_CAP: f64 = 1.0;
 
 /// A step's prediction (see `Sweep::predict`), kept in the sweep and rewritten every step.
@@ -523,13 +524,18 @@ where
         let per = if self.d.ni() == 1 { input_len / self.path.delta[0].abs() } else { input_len };
         let floor = MAX_SLOPE_CHANGE * per;
         self.slope_floor = if floor.is_finite() { floor } else { 0.0 };
+        self.set_units(metric);
+        self.set_step_bounds();
+    }
+
+    /// [`SweepOf::inv_unit`] from `metric`'s units; an angle's is one, as [`in_unit`] takes it.
+    fn set_units(&mut self, metric: &Metric<Q<K>>) {
         for u in 0..self.d.n() {
             // A unit is positive and finite (`Metric`); one so small that its reciprocal
             // overflows (a mechanism of `1e-308` in its unit) is judged in its own unit.
             let w = 1.0 / metric.unit[u];
-            self.inv_unit[u] = if w < f64::INFINITY { w } else { 1.0 };
+            self.inv_unit[u] = if w < f64::INFINITY && !is_angle(&self.m, u) { w } else { 1.0 };
         }
-        self.set_step_bounds();
     }
 
     /// Singular positions met so far.
@@ -689,7 +695,7 @@ where
             //   converge to another root); not judged where every judged unknown is a
             //   closed-form angle, see `positions_judged`;
             // * `turn`: an angle the cache advanced from an anchor on another turn (see
-            //   `InputTrig::angle`), whatever the units of the other unknowns make `max_dist`;
+            //   `InputTrig::angle`), however large the predicted changes make `max_dist`;
             // * `long`: a step longer than the predictor's error bound (`MAX_SLOPE_CHANGE`).
             Outcome::Far
         } else {
@@ -705,6 +711,13 @@ where
                 self.started = true;
                 self.stepping = true;
                 self.first_q.as_mut().copy_from_slice(k.q());
+                // A length's unit depends on the position (a slide's loop includes the slide):
+                // taken again at the solved first sample, not at the caller's guess, which may
+                // be far off. (An angle's is one: nothing to take for a sweep of angles.)
+                if self.m.judged().iter().any(|&u| !is_angle(&self.m, u)) {
+                    let metric = Metric::at(&self.m, &self.path, &self.path.from, &self.first_q);
+                    self.set_units(&metric);
+                }
                 self.signs = k.health().det_signs;
                 *self.cur_mut() = k;
                 self.h = self.h_max;
@@ -961,8 +974,8 @@ where
 }
 
 /// Whether a judged unknown of `m` is not a closed-form angle ([`Kernel::closed_form_angle`]):
-/// then the distance of every judged position from its prediction is tested (as ever: in
-/// every unit, the angles' too); otherwise not. A constant after inlining for a compiled
+/// then the distance of every judged position from its prediction is tested (each in its unit,
+/// the angles' too); otherwise not. A constant after inlining for a compiled
 /// mechanism.
 ///
 /// A closed-form angle needs no such test. Its block's equations have two roots a turn (two
@@ -981,13 +994,20 @@ fn positions_judged<K: Kernel>(m: &K) -> bool {
     m.judged().iter().any(|&u| !m.closed_form_angle(u))
 }
 
-/// `v`, a change, distance or slope of unknown `u` in its own unit, in units of `u`
-/// (`inv_unit`, see [`SweepOf::inv_unit`]). An angle's unit is one radian: its value as it is,
-/// with no product (constants after unrolling for a compiled mechanism, so that a sweep whose
-/// judged unknowns are all angles pays nothing).
+/// `v`, a change, distance or slope of unknown `u` as the kernel gives it, measured in `u`'s
+/// unit (times `inv_unit[u]`, see [`SweepOf::inv_unit`]). An angle's unit is one radian: its
+/// value as it is, with no product (constants after unrolling for a compiled mechanism, so that
+/// a sweep whose judged unknowns are all angles pays nothing).
 #[inline(always)]
 fn in_unit<K: Kernel>(m: &K, inv_unit: &Q<K>, u: usize, v: f64) -> f64 {
-    if m.closed_form_angle(u) || m.unknown_kind(u) == QuantityKind::Angle { v } else { v * inv_unit[u] }
+    if is_angle(m, u) { v } else { v * inv_unit[u] }
+}
+
+/// Whether unknown `u` is an angle, measured in radians by the sweep's tests: a closed form's
+/// angle, or an unknown of the kind.
+#[inline(always)]
+fn is_angle<K: Kernel>(m: &K, u: usize) -> bool {
+    m.closed_form_angle(u) || m.unknown_kind(u) == QuantityKind::Angle
 }
 
 /// Whether a predicted slope change `turn` exceeds `bound`, or either is NaN: one comparison.
