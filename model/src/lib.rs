@@ -73,8 +73,8 @@
 //! the compiled step's instructions, on the four-bar 2.6 times, on a Newton-dominated class IV
 //! block 1.7 times, on the ring of 64 four-bar loops (one sparse block of 128 unknowns) 2.4
 //! times. What remains is the interpretation's dispatch per operation and the per-block
-//! bookkeeping of small blocks. Reading and planning a declaration takes half a millisecond to
-//! two milliseconds (`BENCHMARKS.md`, "Mechanisms read at run time").
+//! bookkeeping of small blocks. Reading and planning a declaration takes 0.4 to 2.1
+//! milliseconds (`BENCHMARKS.md`, "The run: mechanisms read at run time").
 //!
 //! # Sweeps and the runtime's algorithms
 //!
