@@ -6,7 +6,7 @@
 # on the host meanwhile: a build beside the paired rounds widens their ranges (the report then
 # says which pairs were run again).
 #
-#   benches/run-all.sh                 # about 25 minutes on a 2-core host once built
+#   benches/run-all.sh                 # about 20 minutes on a 2-core host once built
 #   benches/run-all.sh /tmp/run        # the files elsewhere
 #
 # The files: `commit` (what was measured), `callgrind.txt` (benches/callgrind.sh), `model.txt`
