@@ -212,9 +212,10 @@ fn steps_and_states<M: Mechanism<4, 1, 0>>(m: &M, k: f64, o: f64, samples: usize
 
 /// Where a judged unknown is a length, the sweep measures its changes and slopes in its unit
 /// (its loop's size), as an angle's in radians: in any unit of length it takes the same number
-/// of steps to the same states (the old judgment took 22 at size 1 where it took 14 at `2^10`). (Measured in the length's own unit, its bounds grew
-/// with the unit against the angles': a polar pin passing near its pivot, swept over a turn in
-/// 7 samples, took 132 steps in millimetres, 285 in metres and 345 in kilometres.) The sizes
+/// of steps to the same states (the old judgment took 22 at size 1 where it took 14 at
+/// `2^10`). (Measured in the length's own unit, its bounds grew with the unit against the
+/// angles': a polar pin passing near its pivot, swept over a turn in 7 samples, took 132 steps
+/// in millimetres, 285 in metres and 345 in kilometres.) The sizes
 /// are powers of two; the sweeps are coarse (3 to 9 samples) and approach the four-bar's limit
 /// position, so that every one of them cuts steps below the longest a step may be (a quarter
 /// radian of the crank).

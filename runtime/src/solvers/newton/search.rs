@@ -127,10 +127,10 @@ impl<const N: usize, const K: usize, J: BlockJacobian<N>> Iter<'_, N, K, J> {
     /// length's column as an angle's at every size of the mechanism, where in the lengths' own
     /// units it would weigh a length beside angles by the mechanism's size. Returns `true` when
     /// one decreased the residual; otherwise `self.ev` is the evaluation at the unmoved `z`
-    /// still: each failed search's
-    /// trials are evaluated over it, and it is copied back from a copy made once (on the heap,
-    /// like the matrices below) rather than evaluated again after each of up to four searches,
-    /// so that the next search starts from the same bits as the first.
+    /// still: each failed search's trials are evaluated over it, and it is copied back from a
+    /// copy made once (on the heap, like the matrices below) rather than evaluated again after
+    /// each of up to four searches, so that the next search starts from the same bits as the
+    /// first.
     #[cold]
     #[inline(never)]
     pub(super) fn descend(
