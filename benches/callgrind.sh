@@ -37,6 +37,7 @@ else
     kernel-lane four-bar-kernel-lane gear-lever-kernel-lane
     kernel-lane@20000 four-bar-kernel-lane@20000 gear-lever-kernel-lane@20000
     four-bar-lane-sketch four-bar-lane-sketch@20000
+    sweep-for four-bar-sweep-for gear-lever-sweep-for
     class-four-hand class-four-hand-near class-four-point
     class-four-hand-taylor class-four-point-taylor class-four-sweep
     class-four-hand@1000000 class-four-point@1000000

@@ -5,7 +5,7 @@
 //! hand closed form keeps them in registers, kinloop's `Sweep` is read where it keeps its state.
 //! The step functions are inlined into the loop, which is a function of its own per variant.
 
-use kinloop::Mechanism;
+use kinloop::{Kin, Mechanism};
 
 use crate::hand_sweep::HandSweep;
 use crate::kernel_lane::kernel_lane_fold;
@@ -111,6 +111,33 @@ pub fn sweep_turns<M: Mechanism<N, 1, NO>, const N: usize, const NO: usize>(
     let mut acc = 0.0;
     for _ in 0..steps {
         acc += sweep.advance_sum()?;
+    }
+    Ok(acc)
+}
+
+/// [`sweep_turns`] as a program usually writes it: a `for` loop over the sweep's items (each
+/// sample's state a copy, `Result<Kin, Error>`), a new sweep per turn from the last position,
+/// the last one shortened to the samples left (at the same spacing). The sweep's `next` is
+/// inlined into the loop as `next_ref` is into [`sweep_turns`]'s, so both cost the same.
+#[inline(never)]
+pub fn sweep_for_turns<M: Mechanism<N, 1, NO>, const N: usize, const NO: usize>(
+    m: &M,
+    turn: usize,
+    guess: [f64; N],
+    steps: usize,
+) -> Result<f64, Failed> {
+    let h = TAU / turn as f64;
+    let (mut acc, mut q, mut left) = (0.0, guess, steps);
+    while left > 0 {
+        let n = left.min(turn);
+        let sweep = kinloop::Sweep::<M, Kin<N, 1, NO>, N, 1, NO>::new(m, [0.0], [h * (n - 1) as f64], n, q)
+            .map_err(Failed::new)?;
+        for k in sweep {
+            let k = k.map_err(Failed::new)?;
+            acc += state_sum(&k);
+            q = k.q;
+        }
+        left -= n;
     }
     Ok(acc)
 }

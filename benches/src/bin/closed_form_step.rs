@@ -3,10 +3,11 @@
 //! * rhombic drive: `hand` (the paper's closed form written by hand), `point` (kinloop's
 //!   `kinematics_flat` from the previous position: closed-form blocks), `newton` (the same with
 //!   `#[kinloop(newton)]`), `newton-taylor` (that, warm-started by the benchmarks' second-order
-//!   predictor), `sweep` (kinloop's own `Sweep`), `newton-sweep`;
+//!   predictor), `sweep` (kinloop's own `Sweep`, each sample read where the sweep keeps it),
+//!   `sweep-for` (the same sweep consumed by a `for` loop over its items), `newton-sweep`;
 //! * four-bar with its coupler point, gear-lever rocker: `four-bar-hand`, `four-bar-point`,
-//!   `four-bar-sweep`, `gear-lever-hand`, `gear-lever-point`, `gear-lever-sweep` (the hand
-//!   closed forms of `kinloop_bench::hand`);
+//!   `four-bar-sweep`, `four-bar-sweep-for`, `gear-lever-hand`, `gear-lever-point`,
+//!   `gear-lever-sweep`, `gear-lever-sweep-for` (the hand closed forms of `kinloop_bench::hand`);
 //! * the sweep recipe written by hand (`kinloop_bench::hand_sweep`: inputs' sines and cosines
 //!   rotated, angles advanced by increments, libm only to re-synchronise): `hand-sweep`,
 //!   `four-bar-hand-sweep`, `gear-lever-hand-sweep`; the same with kinloop's per-sample checks
@@ -94,6 +95,14 @@ fn sweep_of<M: kinloop::Mechanism<N, 1, NO>, const N: usize, const NO: usize>(
     lean::sweep_turns(m, turn(), guess, steps).expect("sample")
 }
 
+fn sweep_for_of<M: kinloop::Mechanism<N, 1, NO>, const N: usize, const NO: usize>(
+    m: &M,
+    guess: [f64; N],
+    steps: usize,
+) -> f64 {
+    lean::sweep_for_turns(m, turn(), guess, steps).expect("sample")
+}
+
 fn lane_of<M: kinloop::Mechanism<N, 1, NO>, const N: usize, const NO: usize, const TERMS: usize>(
     m: &M,
     guess: [f64; N],
@@ -138,6 +147,7 @@ fn main() {
         "point" => steps_of(&Kinloop::<RhombicDrive, 0>::new(m), g, steps),
         "newton" => steps_of(&Kinloop::<RhombicNewton, 0>::new(RhombicNewton::default()), g, steps),
         "sweep" => sweep_of(&m, g, steps),
+        "sweep-for" => sweep_for_of(&m, g, steps),
         "kernel-lane" => lane_of::<_, 4, 0, RHOMBIC_TERMS>(&m, g, steps),
         "newton-taylor" => {
             policy_steps(&Kinloop::<RhombicNewton, 0>::new(RhombicNewton::default()), WarmStart::Taylor, g, steps)
@@ -152,6 +162,7 @@ fn main() {
         }
         "four-bar-point" => steps_of(&Kinloop::<FourBar, 2>::new(four), gf, steps),
         "four-bar-sweep" => sweep_of(&four, gf, steps),
+        "four-bar-sweep-for" => sweep_for_of(&four, gf, steps),
         "four-bar-lane-sketch" => {
             hand_sweep_of(Checked::new(FourBarLaneSketch::<FOUR_BAR_TERMS>::new(four, turn(), PERIOD, gf)), steps)
         }
@@ -173,6 +184,7 @@ fn main() {
         }
         "gear-lever-point" => steps_of(&Kinloop::<GearLever, 2>::new(gear), gg, steps),
         "gear-lever-sweep" => sweep_of(&gear, gg, steps),
+        "gear-lever-sweep-for" => sweep_for_of(&gear, gg, steps),
         "gear-lever-kernel-lane" => lane_of::<_, 2, 2, GEAR_LEVER_TERMS>(&gear, gg, steps),
         "class-four-hand" => steps_of(&HandNewton { p: c4 }, g4, steps),
         "class-four-hand-near" => steps_of(&HandNewtonNear { p: c4 }, g4, steps),
