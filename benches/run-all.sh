@@ -39,6 +39,8 @@ benches/cputime.sh 15 hand:point:20000000 four-bar-hand:four-bar-point:20000000 
   gear-lever-hand:gear-lever-point:20000000 >"$out/cputime-point.txt"
 benches/cputime.sh 15 hand:sweep:20000000 four-bar-hand:four-bar-sweep:20000000 \
   gear-lever-hand:gear-lever-sweep:20000000 >"$out/cputime-sweep.txt"
+benches/cputime.sh 9 hand:sweep-for:20000000 four-bar-hand:four-bar-sweep-for:20000000 \
+  gear-lever-hand:gear-lever-sweep-for:20000000 >"$out/cputime-sweep-for.txt"
 benches/cputime.sh 9 hand:hand-sweep-checked:20000000 four-bar-hand:four-bar-hand-sweep-checked:20000000 \
   gear-lever-hand:gear-lever-hand-sweep-checked:20000000 hand:kernel-lane:20000000 \
   four-bar-hand:four-bar-kernel-lane:20000000 gear-lever-hand:gear-lever-kernel-lane:20000000 \
