@@ -780,15 +780,15 @@ where
     /// (reading it where it lies saves copying the state of every sample). The same states as
     /// [`Sweep::next_kin`] and the iterator.
     ///
-    /// Always inlined, as [`Sweep::next_kin`] and the iterator's `next` are: a sweep's step is
-    /// the body of its caller's loop. Called out of line (where a program drives the same
-    /// mechanism's sweep from more than one place, the compiler keeps so large a function out
-    /// of line), the carried values and the state go through memory and the caller's reads of
-    /// the state wait for the stores just made: measured on the benchmarks' closed-form
-    /// mechanisms, a `for` loop over a sweep's items took 1.3x–1.5x the time of the same loop
-    /// with the step inlined, and about 100 more instructions a sample (the state's copy among
-    /// them). Not so in a build with debug assertions, which is not optimised: there a copy of
-    /// the step at every caller would only slow the build.
+    /// Always inlined, as [`Sweep::next_kin`] and the iterator's `next` are: a sweep's step is the
+    /// body of its caller's loop, and the compiler keeps so large a function out of line when it
+    /// may (the iterator's `next` even where a single loop calls it). Out of line, the carried
+    /// values and the state go through memory and the caller's reads of the state wait for the
+    /// stores just made: measured on the benchmarks' closed-form mechanisms, a `for` loop over a
+    /// sweep's items took 1.3x–1.5x the time of the same loop with the step inlined, and about 100
+    /// more instructions a sample (the state's copy among them). Not so in a build with debug
+    /// assertions, which is not optimised: there a copy of the step at every caller would only slow
+    /// the build.
     #[cfg_attr(debug_assertions, inline)]
     #[cfg_attr(not(debug_assertions), inline(always))]
     pub fn next_ref(&mut self) -> Option<Result<&KinOf<K>, Error>> {
