@@ -22,6 +22,7 @@ pub use crate::solvers::jacobian::{BlockFactor, BlockJacobian};
 pub use crate::solvers::lu::{Factor, Fixed, Lu, max_abs};
 pub use crate::solvers::newton::{
     BlockEval, BlockFailure, Magnitudes, NewtonConfig, SolveReport, Solved, newton, newton_keeping_lu, newton_with,
+    newton_with_work,
 };
 pub use crate::solvers::sparse_lu::{SparseJac, SparseLu, SparsePattern};
 pub use crate::solvers::sparse_lu_dyn::{PaddedJac, PaddedLu, PaddedWork, SparseTables};

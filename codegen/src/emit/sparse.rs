@@ -96,22 +96,22 @@ pub fn pattern_item(sp: &Sparse, m: &str, b: usize, n: usize, rt: &TokenStream) 
 /// same factor bit for bit.
 pub fn steps_item(sp: &Sparse, m: &str, b: usize, rt: &TokenStream) -> TokenStream {
     let (id, n, nlu, pattern) = (steps_ident(m, b), lit(sp.diag.len()), lit(sp.nlu), pattern_ident(m, b));
-    // Load: the factor's slots in order, each an entry times its row's and column's scale, or
-    // a zero of fill.
+    // Load: the factor's slots in order, each written with an entry times its row's and
+    // column's scale, or a zero of fill.
     let mut at: Vec<Option<usize>> = vec![None; sp.nlu];
     for (e, &s) in sp.slot.iter().enumerate() {
         at[s as usize] = Some(e);
     }
-    let load = at.iter().map(|e| match *e {
-        Some(e) => {
-            let (r, c) = sp.entries[e];
-            let (e, r, c) = (lit(e), lit(r), lit(c));
-            // A call, not a product, as an element: a binary operator in an array literal
-            // whose tokens all carry the invocation's span looks like a missing comma to
-            // clippy.
-            quote!(#rt::scaled(v[#e], r[#r], c[#c]))
+    let load = at.iter().enumerate().map(|(s, e)| {
+        let s = lit(s);
+        match *e {
+            Some(e) => {
+                let (r, c) = sp.entries[e];
+                let (e, r, c) = (lit(e), lit(r), lit(c));
+                quote!(a[#s] = #rt::scaled(v[#e], r[#r], c[#c]);)
+            }
+            None => quote!(a[#s] = 0.0;),
         }
-        None => quote!(0.0),
     });
     // Elimination: per pivot its test, its reciprocal, then per row below it the multiplier
     // and the updates of that row's entries right of the pivot.
@@ -164,10 +164,16 @@ pub fn steps_item(sp: &Sparse, m: &str, b: usize, rt: &TokenStream) -> TokenStre
         struct #id;
         impl #rt::SparseSteps<#n, #nlu> for #id {
             #[inline]
-            fn load<const NNZ: usize>(p: &#rt::SparsePattern, v: &[f64; NNZ], r: &[f64; #n], c: &[f64; #n]) -> [f64; #nlu] {
+            fn load<const NNZ: usize>(
+                p: &#rt::SparsePattern,
+                v: &[f64; NNZ],
+                r: &[f64; #n],
+                c: &[f64; #n],
+                a: &mut [f64; #nlu],
+            ) {
                 // The code below is this block's pattern's: paired with another, it would be wrong.
                 debug_assert!(::core::ptr::eq(p, &#pattern));
-                [#(#load),*]
+                #(#load)*
             }
             #[inline]
             fn eliminate(

@@ -16,6 +16,14 @@ pub trait BlockFactor<const N: usize>: Factor {
 pub trait BlockJacobian<const N: usize>: Copy {
     /// Its factorisation.
     type Factor: BlockFactor<N>;
+    /// Where its Newton steps factorise: nothing for dense rows (the step eliminates the
+    /// right-hand side with the matrix) or a run-time model's block (which has its own slot), a
+    /// factorisation written over by each step for a compiled sparse block (kilobytes: a new
+    /// one made and moved by each step would be copied, and the analogs factorise into the
+    /// same slot after the solve).
+    type Work;
+    /// A [`Work`](BlockJacobian::Work) for a solve given none, holding no factorisation yet.
+    fn work(&self) -> Self::Work;
     /// The Newton step `-J^-1 f` with row `r` divided by `rows.s[r]`, and the smallest pivot
     /// of that row-equilibrated matrix with column `c` multiplied by `unit[c]`, the unknown's
     /// unit ([`Factor::pivot_ratio`] of its factorisation): the matrix that maps a step in
@@ -24,7 +32,19 @@ pub trait BlockJacobian<const N: usize>: Copy {
     /// the size of the mechanism in a column of a length (whose entries are pure numbers, as a
     /// slider's or a polar length's direction) beside columns of angles (whose entries are
     /// lengths).
-    fn newton_step(&self, f: &[f64; N], rows: &RowScales<N>, unit: &[f64; N]) -> ([f64; N], f64);
+    #[inline(always)]
+    fn newton_step(&self, f: &[f64; N], rows: &RowScales<N>, unit: &[f64; N]) -> ([f64; N], f64) {
+        self.newton_step_in(f, rows, unit, &mut self.work())
+    }
+    /// [`newton_step`](BlockJacobian::newton_step), factorising into `work` (the same step bit
+    /// for bit).
+    fn newton_step_in(
+        &self,
+        f: &[f64; N],
+        rows: &RowScales<N>,
+        unit: &[f64; N],
+        work: &mut Self::Work,
+    ) -> ([f64; N], f64);
     /// `sum_c |J_rc|`.
     fn row_abs_sum(&self, r: usize) -> f64;
     /// Whether every entry of row `r` is finite.
@@ -52,10 +72,14 @@ impl<const N: usize> BlockFactor<N> for Lu<N> {
 
 impl<const N: usize> BlockJacobian<N> for [[f64; N]; N] {
     type Factor = Lu<N>;
+    type Work = ();
+
+    #[inline(always)]
+    fn work(&self) {}
 
     /// Eliminates the right-hand side with the matrix: no factorisation is kept.
     #[inline(always)]
-    fn newton_step(&self, f: &[f64; N], rows: &RowScales<N>, unit: &[f64; N]) -> ([f64; N], f64) {
+    fn newton_step_in(&self, f: &[f64; N], rows: &RowScales<N>, unit: &[f64; N], _: &mut ()) -> ([f64; N], f64) {
         solve_row_scaled(self, f, rows, unit)
     }
 

@@ -44,14 +44,21 @@ pub struct Lu<const N: usize> {
 #[inline(always)]
 pub(crate) fn inverses<const N: usize>(scale: [f64; N], degenerate: &mut bool) -> [f64; N] {
     let mut inv = [0.0; N];
+    inverses_into(&scale, &mut inv, degenerate);
+    inv
+}
+
+/// [`inverses`] written over `inv`: a factorisation's own storage, where a returned value
+/// would be copied (a kilobyte for a block of 128 unknowns).
+#[inline(always)]
+pub(crate) fn inverses_into<const N: usize>(scale: &[f64; N], inv: &mut [f64; N], degenerate: &mut bool) {
     for k in 0..N {
         inv[k] = 1.0 / scale[k];
     }
-    if !all_positive_finite(&inv) {
+    if !all_positive_finite(inv) {
         *degenerate = true;
-        return invalid_inverses(scale);
+        *inv = invalid_inverses(*scale);
     }
-    inv
 }
 
 /// An `N x N` matrix of zeros on the heap, made row by row (never whole on the stack): the cold
@@ -114,24 +121,26 @@ fn back_substitute<const N: usize>(u: &[[f64; N]; N], inv_diag: &[f64; N], z: &m
 /// How a sparse factorisation's columns are equilibrated: divided by scales (the analogs'
 /// columns' magnitudes), whose reciprocals it takes, or multiplied by the unknowns' units (a
 /// Newton step's, positive and finite by construction), which are those reciprocals already:
-/// their own reciprocals, the scales, only the cold dense fallback needs.
+/// their own reciprocals, the scales, only the cold dense fallback needs. Borrowed: a large
+/// block's are kilobytes, read once.
 #[derive(Clone, Copy, Debug)]
-pub(crate) enum ColScales<const N: usize> {
+pub(crate) enum ColScales<'a, const N: usize> {
     /// Column `c` divided by `scale[c]`.
-    Divided([f64; N]),
+    Divided(&'a [f64; N]),
     /// Column `c` multiplied by `unit[c]`.
-    Multiplied([f64; N]),
+    Multiplied(&'a [f64; N]),
 }
 
-impl<const N: usize> ColScales<N> {
-    /// The factors the columns are multiplied by (`degenerate` set where a scale is invalid).
+impl<const N: usize> ColScales<'_, N> {
+    /// Writes the factors the columns are multiplied by over `factors` (`degenerate` set where
+    /// a scale is invalid).
     #[inline(always)]
-    pub(crate) fn factors(&self, degenerate: &mut bool) -> [f64; N] {
+    pub(crate) fn factors_into(&self, factors: &mut [f64; N], degenerate: &mut bool) {
         match self {
-            ColScales::Divided(scale) => inverses(*scale, degenerate),
+            ColScales::Divided(scale) => inverses_into(scale, factors, degenerate),
             ColScales::Multiplied(unit) => {
                 debug_assert!(all_positive_finite(unit), "the units are checked when they are made");
-                *unit
+                *factors = **unit;
             }
         }
     }
@@ -142,7 +151,7 @@ impl<const N: usize> ColScales<N> {
     #[inline(always)]
     pub(crate) fn scales(&self) -> [f64; N] {
         match self {
-            ColScales::Divided(scale) => *scale,
+            ColScales::Divided(scale) => **scale,
             ColScales::Multiplied(unit) => unit.map(|u| 1.0 / u),
         }
     }

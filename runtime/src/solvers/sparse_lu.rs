@@ -22,7 +22,7 @@
 //! so the same factor bit for bit.
 
 use super::jacobian::{BlockFactor, BlockJacobian};
-use super::lu::{ColScales, Factor, Lu, RowScales, boxed_zeros, inverses};
+use super::lu::{ColScales, Factor, Lu, RowScales, boxed_zeros, inverses_into};
 pub use super::sparse_steps::SparsePattern;
 use super::sparse_steps::{SparseSteps, Tables};
 use core::marker::PhantomData;
@@ -101,6 +101,13 @@ impl<const N: usize, const NNZ: usize, const NLU: usize, E: SparseSteps<N, NLU>>
         SparseLu::factor(self, [1.0; N], col_scale)
     }
 
+    /// [`SparseJac::factor_cols`] written over `lu` (see [`SparseLu::refactor`]): the analogs'
+    /// factorisation in the slot the Newton steps factorised into.
+    #[inline]
+    pub fn factor_cols_into(&self, lu: &mut SparseLu<N, NLU, E>, col_scale: &[f64; N]) {
+        lu.refactor(self, &[1.0; N], col_scale);
+    }
+
     /// The first row holding a non-finite value (cold-path diagnosis of a failed
     /// factorisation).
     #[cold]
@@ -117,13 +124,27 @@ impl<const N: usize, const NNZ: usize, const NLU: usize, E: SparseSteps<N, NLU>>
     for SparseJac<N, NNZ, NLU, E>
 {
     type Factor = SparseLu<N, NLU, E>;
+    type Work = SparseLu<N, NLU, E>;
 
-    /// Factorises with the row scales' reciprocals of `rows` (not taken again), each column
-    /// multiplied by its unknown's unit.
     #[inline(always)]
-    fn newton_step(&self, f: &[f64; N], rows: &RowScales<N>, unit: &[f64; N]) -> ([f64; N], f64) {
-        let lu = SparseLu::factor_inverses(self, rows.s, rows.inv, rows.degenerate, ColScales::Multiplied(*unit));
-        (lu.solve(f.map(|v| -v)), lu.pivot_ratio())
+    fn work(&self) -> SparseLu<N, NLU, E> {
+        SparseLu::unfactored(self.pattern)
+    }
+
+    /// Factorises over `lu` with the row scales' reciprocals of `rows` (not taken again), each
+    /// column multiplied by its unknown's unit.
+    #[inline(always)]
+    fn newton_step_in(
+        &self,
+        f: &[f64; N],
+        rows: &RowScales<N>,
+        unit: &[f64; N],
+        lu: &mut SparseLu<N, NLU, E>,
+    ) -> ([f64; N], f64) {
+        lu.refactor_inverses(self, &rows.s, &rows.inv, rows.degenerate, ColScales::Multiplied(unit));
+        let mut dz = f.map(|v| -v);
+        lu.solve_in_place(&mut dz);
+        (dz, lu.pivot_ratio())
     }
 
     fn row_abs_sum(&self, r: usize) -> f64 {
@@ -158,45 +179,90 @@ impl<const N: usize, const NNZ: usize, const NLU: usize, E: SparseSteps<N, NLU>>
 }
 
 impl<const N: usize, const NLU: usize, E: SparseSteps<N, NLU>> SparseLu<N, NLU, E> {
+    /// A slot for the factorisations of blocks of `pattern`, holding none yet: every value NaN
+    /// (its pivot ratio reads 0, singular). A solve makes one and factorises over it
+    /// ([`SparseLu::refactor`]): its kilobytes are written in place by each factorisation,
+    /// where a new one returned by value would be made in a temporary and copied. NaN, not
+    /// zero: a fill of zeros is a `memset`, which for kilobytes is a `rep stosb` that
+    /// `callgrind` counts byte by byte (the benchmarks count instructions); NaN is a copy.
+    #[inline(always)]
+    pub fn unfactored(pattern: &'static SparsePattern) -> Self {
+        SparseLu {
+            lu: [f64::NAN; NLU],
+            pattern,
+            inv_row: [f64::NAN; N],
+            inv_col: [f64::NAN; N],
+            inv_diag: [f64::NAN; N],
+            pivot_ratio: f64::NAN,
+            negative_det: false,
+            det: f64::NAN,
+            dense: None,
+            steps: PhantomData,
+        }
+    }
+
     /// Factorises `j` equilibrated by `row_scale` and `col_scale` along its static order, or
     /// densely when a static pivot is weak (see the module documentation).
     pub fn factor<const NNZ: usize>(j: &SparseJac<N, NNZ, NLU, E>, row_scale: [f64; N], col_scale: [f64; N]) -> Self {
-        let mut degenerate = false;
-        let inv_row = inverses(row_scale, &mut degenerate);
-        Self::factor_inverses(j, row_scale, inv_row, degenerate, ColScales::Divided(col_scale))
+        let mut f = Self::unfactored(j.pattern);
+        f.refactor(j, &row_scale, &col_scale);
+        f
     }
 
-    /// [`SparseLu::factor`] with the row scales' reciprocals `inv_row` already taken
+    /// [`SparseLu::factor`] written over `self`, every field: whatever it held before (another
+    /// factorisation, of any block of the same size, or none) is not read.
+    pub fn refactor<const NNZ: usize>(
+        &mut self,
+        j: &SparseJac<N, NNZ, NLU, E>,
+        row_scale: &[f64; N],
+        col_scale: &[f64; N],
+    ) {
+        let mut degenerate = false;
+        inverses_into(row_scale, &mut self.inv_row, &mut degenerate);
+        self.factor_rows_taken(j, row_scale, degenerate, ColScales::Divided(col_scale));
+    }
+
+    /// [`SparseLu::refactor`] with the row scales' reciprocals `inv_row` already taken
     /// (`degenerate` when a row scale is not positive and finite), the columns equilibrated by
     /// `cols`.
     #[inline(always)]
-    fn factor_inverses<const NNZ: usize>(
+    fn refactor_inverses<const NNZ: usize>(
+        &mut self,
         j: &SparseJac<N, NNZ, NLU, E>,
-        row_scale: [f64; N],
-        inv_row: [f64; N],
+        row_scale: &[f64; N],
+        inv_row: &[f64; N],
+        degenerate: bool,
+        cols: ColScales<'_, N>,
+    ) {
+        self.inv_row = *inv_row;
+        self.factor_rows_taken(j, row_scale, degenerate, cols);
+    }
+
+    /// The factorisation, every field written, once the row scales' reciprocals are in
+    /// `self.inv_row`.
+    #[inline(always)]
+    fn factor_rows_taken<const NNZ: usize>(
+        &mut self,
+        j: &SparseJac<N, NNZ, NLU, E>,
+        row_scale: &[f64; N],
         mut degenerate: bool,
-        cols: ColScales<N>,
-    ) -> Self {
+        cols: ColScales<'_, N>,
+    ) {
         let p = j.pattern;
-        let inv_col = cols.factors(&mut degenerate);
-        let mut f = SparseLu {
-            lu: E::load(p, &j.v, &inv_row, &inv_col),
-            pattern: p,
-            inv_row,
-            inv_col,
-            inv_diag: [0.0; N],
-            pivot_ratio: 0.0,
-            negative_det: p.odd,
-            det: if p.odd { -1.0 } else { 1.0 },
-            dense: None,
-            steps: PhantomData,
-        };
-        match E::eliminate(p, &mut f.lu, &mut f.inv_diag, &mut f.det, &mut f.negative_det) {
-            Some(min_pivot) if !degenerate => f.pivot_ratio = min_pivot,
+        self.pattern = p;
+        cols.factors_into(&mut self.inv_col, &mut degenerate);
+        E::load(p, &j.v, &self.inv_row, &self.inv_col, &mut self.lu);
+        self.pivot_ratio = 0.0;
+        self.negative_det = p.odd;
+        self.det = if p.odd { -1.0 } else { 1.0 };
+        self.dense = None;
+        // The elimination writes every pivot's reciprocal (up to a weak pivot, after which the
+        // dense fallback's are read instead).
+        match E::eliminate(p, &mut self.lu, &mut self.inv_diag, &mut self.det, &mut self.negative_det) {
+            Some(min_pivot) if !degenerate => self.pivot_ratio = min_pivot,
             Some(_) => {}
-            None => f.dense = Some(dense_fallback(j, row_scale, cols.scales())),
+            None => self.dense = Some(dense_fallback(j, *row_scale, cols.scales())),
         }
-        f
     }
 
     /// Whether the dense fallback factorised this block.
@@ -228,29 +294,41 @@ impl<const N: usize, const NLU: usize, E: SparseSteps<N, NLU>> SparseLu<N, NLU, 
 
     /// Solves `J z = b`.
     pub fn solve(&self, b: [f64; N]) -> [f64; N] {
+        let mut x = b;
+        self.solve_in_place(&mut x);
+        x
+    }
+
+    /// Solves `J z = b`, `z` written over `b`: no array moved in or out (a kilobyte each for
+    /// a block of 128 unknowns).
+    pub fn solve_in_place(&self, b: &mut [f64; N]) {
         if let Some(d) = &self.dense {
-            return d.solve(b);
+            *b = d.solve(*b);
+            return;
         }
         let p = self.pattern;
-        let mut z = [0.0; N];
-        for (k, zk) in z.iter_mut().enumerate() {
+        // Made value by value (measured: fewer instructions than zeroed, then written).
+        let mut z: [f64; N] = core::array::from_fn(|k| {
             let r = p.prow[k] as usize;
-            *zk = b[r] * self.inv_row[r];
-        }
+            b[r] * self.inv_row[r]
+        });
         E::substitute(p, &self.lu, &self.inv_diag, &mut z);
-        let mut x = [0.0; N];
+        // `pcol` is a permutation: every value of `b` is written.
         for (k, &zk) in z.iter().enumerate() {
             let c = p.pcol[k] as usize;
-            x[c] = zk * self.inv_col[c];
+            b[c] = zk * self.inv_col[c];
         }
-        x
     }
 
     /// Solves `J Z = B` for `M` right-hand sides given as rows `B[r][m]`.
     pub fn solve_cols<const M: usize>(&self, b: [[f64; M]; N]) -> [[f64; M]; N] {
-        let mut out = [[0.0; M]; N];
+        let mut out = b;
         for m in 0..M {
-            let z = self.solve(core::array::from_fn(|r| b[r][m]));
+            let mut z = [0.0; N];
+            for r in 0..N {
+                z[r] = out[r][m];
+            }
+            self.solve_in_place(&mut z);
             for r in 0..N {
                 out[r][m] = z[r];
             }

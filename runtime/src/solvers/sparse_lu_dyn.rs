@@ -153,15 +153,15 @@ impl<const P: usize> PaddedLu<P> {
         }
     }
 
-    /// `SparseLu::factor`: the block with entry values `v`, equilibrated by `row_scale` and
+    /// `SparseLu::refactor`: the block with entry values `v`, equilibrated by `row_scale` and
     /// `col_scale` (padded with ones).
     pub fn factor(&mut self, t: &SparseTables, v: &[f64], row_scale: [f64; P], col_scale: [f64; P]) {
         let mut degenerate = false;
         let inv_row = inverses(row_scale, &mut degenerate);
-        self.factor_inverses(t, v, row_scale, inv_row, degenerate, ColScales::Divided(col_scale));
+        self.factor_inverses(t, v, row_scale, inv_row, degenerate, ColScales::Divided(&col_scale));
     }
 
-    /// `SparseLu::factor_inverses`.
+    /// `SparseLu::refactor_inverses`.
     fn factor_inverses(
         &mut self,
         t: &SparseTables,
@@ -169,10 +169,10 @@ impl<const P: usize> PaddedLu<P> {
         row_scale: [f64; P],
         inv_row: [f64; P],
         mut degenerate: bool,
-        cols: ColScales<P>,
+        cols: ColScales<'_, P>,
     ) {
         let n = t.n;
-        self.inv_col = cols.factors(&mut degenerate);
+        cols.factors_into(&mut self.inv_col, &mut degenerate);
         self.inv_row = inv_row;
         t.load(v, &inv_row[..n], &self.inv_col[..n], &mut self.lu);
         self.inv_diag = [0.0; P];
@@ -313,16 +313,20 @@ impl<'w, const P: usize, const CAP: usize> PaddedJac<'w, P, CAP> {
 }
 
 impl<const P: usize, const CAP: usize> BlockJacobian<P> for PaddedJac<'_, P, CAP> {
-    /// Newton's method makes its steps through [`BlockJacobian::newton_step`] and keeps no
+    /// Newton's method makes its steps through [`BlockJacobian::newton_step_in`] and keeps no
     /// factorisation of a sparse block (the analogs make theirs, a [`PaddedLu`]): the dense
     /// factorisation of the padded matrix is what one would be.
     type Factor = Lu<P>;
+    /// The slot is the block's own ([`PaddedWork`]).
+    type Work = ();
 
-    fn newton_step(&self, f: &[f64; P], rows: &RowScales<P>, unit: &[f64; P]) -> ([f64; P], f64) {
+    fn work(&self) {}
+
+    fn newton_step_in(&self, f: &[f64; P], rows: &RowScales<P>, unit: &[f64; P], _: &mut ()) -> ([f64; P], f64) {
         // A poisoned lock (a panic elsewhere mid-step) still holds a slot this step rewrites.
         let mut lu = self.work.step.lock().unwrap_or_else(|e| e.into_inner());
         let t = self.t();
-        lu.factor_inverses(t, &self.v, rows.s, rows.inv, rows.degenerate, ColScales::Multiplied(*unit));
+        lu.factor_inverses(t, &self.v, rows.s, rows.inv, rows.degenerate, ColScales::Multiplied(unit));
         (lu.solve(t, f.map(|v| -v)), lu.pivot_ratio())
     }
 

@@ -59,9 +59,17 @@ pub struct SparsePattern {
 /// documentation). `N` unknowns, `NLU` slots of the factor.
 #[doc(hidden)]
 pub trait SparseSteps<const N: usize, const NLU: usize> {
-    /// The factor's slots before elimination: entry `e` of row `r`, column `c` (value `v[e]`)
-    /// as `v[e] * inv_row[r] * inv_col[c]` at its slot, fill slots zero.
-    fn load<const NNZ: usize>(p: &SparsePattern, v: &[f64; NNZ], inv_row: &[f64; N], inv_col: &[f64; N]) -> [f64; NLU];
+    /// Writes the factor's slots before elimination over `lu`, every slot: entry `e` of row
+    /// `r`, column `c` (value `v[e]`) as `v[e] * inv_row[r] * inv_col[c]` at its slot, fill
+    /// slots zero. Written in place: the factor is kilobytes, which a value returned would be
+    /// made in a temporary and copied.
+    fn load<const NNZ: usize>(
+        p: &SparsePattern,
+        v: &[f64; NNZ],
+        inv_row: &[f64; N],
+        inv_col: &[f64; N],
+        lu: &mut [f64; NLU],
+    );
 
     /// Eliminates `lu` in place: `L` below the pivots (multipliers), `U` above, the pivots'
     /// reciprocals in `inv_diag`; multiplies `det` by every pivot and flips `negative` at every
@@ -86,10 +94,15 @@ pub trait SparseSteps<const N: usize, const NLU: usize> {
 pub struct Tables;
 
 impl<const N: usize, const NLU: usize> SparseSteps<N, NLU> for Tables {
-    fn load<const NNZ: usize>(p: &SparsePattern, v: &[f64; NNZ], inv_row: &[f64; N], inv_col: &[f64; N]) -> [f64; NLU] {
-        let mut lu = [0.0; NLU];
-        p.view().load(v, inv_row, inv_col, &mut lu);
-        lu
+    fn load<const NNZ: usize>(
+        p: &SparsePattern,
+        v: &[f64; NNZ],
+        inv_row: &[f64; N],
+        inv_col: &[f64; N],
+        lu: &mut [f64; NLU],
+    ) {
+        lu.fill(0.0);
+        p.view().load(v, inv_row, inv_col, lu);
     }
 
     fn eliminate(

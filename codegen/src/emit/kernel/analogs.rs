@@ -86,20 +86,25 @@ impl Kernel<'_> {
     }
 
     /// The factorisation of a sparse block for its analogs: the Newton evaluation's Jacobian,
-    /// or (mode `At`) its non-zeros at the given position.
+    /// written over the slot its Newton steps factorised into, or (mode `At`) its non-zeros at
+    /// the given position, into a slot made here.
     fn sparse_factor(&self, b: usize, sp: &Sparse, rv: &Ident) -> TokenStream {
         let (bp, rt, bl) = (&self.plan.blocks[b], &self.rt, lit(b));
         let (lu, scale) = (format_ident!("__lu{}", b), self.col_scales(bp));
-        let j = if self.mode == Mode::At {
-            sparse::jac_value(sp, b, self.g, self.names, &bp.jac)
+        let (j, slot) = if self.mode == Mode::At {
+            (
+                sparse::jac_value(sp, b, self.g, self.names, &bp.jac),
+                quote!(let mut #lu = #rt::BlockJacobian::work(&__j);),
+            )
         } else {
             // Borrowed: the Jacobian of a large block is kilobytes.
             let at = evaluation_ident(b);
-            quote!(&#at.j)
+            (quote!(&#at.j), TokenStream::new())
         };
         quote! {
             let __j = #j;
-            let #lu = __j.factor_cols([#(#scale),*]);
+            #slot
+            __j.factor_cols_into(&mut #lu, &[#(#scale),*]);
             if !(#lu.pivot_ratio() >= __cfg.singular_tol) {
                 let bad = __j.first_bad_row().or(#rt::first_bad_row(#rv));
                 return Err(#rt::singular(self, #bl, #lu.pivot_ratio(), __cfg, __x, bad));

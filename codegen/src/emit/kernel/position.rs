@@ -97,7 +97,7 @@ impl Kernel<'_> {
         let (ty, jrows, newton) = match sparse {
             Some(sp) => {
                 let ty = sparse::jac_ident(&self.names.mechanism, b);
-                (quote!(#ty), sparse::jac_value(sp, b, self.g, self.names, &bp.jac), quote!(#rt::newton_with))
+                (quote!(#ty), sparse::jac_value(sp, b, self.g, self.names, &bp.jac), quote!(#rt::newton_with_work))
             }
             None => (quote!(), self.names.rows(self.g, &bp.jac), quote!(#rt::newton::<#n, #k>)),
         };
@@ -110,6 +110,10 @@ impl Kernel<'_> {
                 quote!(#rt::newton_keeping_lu::<#n, #k>),
                 quote!(, &mut #lu),
             )
+        } else if sparse.is_some() {
+            // A sparse block: one factorisation slot (kilobytes) for the solve's steps and
+            // then its analogs, each factorisation written over it.
+            (quote!(let mut #lu = #rt::BlockJacobian::work(&#at.j);), newton, quote!(, &mut #lu))
         } else {
             (TokenStream::new(), newton, TokenStream::new())
         };

@@ -9,7 +9,7 @@ use super::norms::{beyond_half_turn, scaled_norms, scaled_residual, scaled_step,
 use super::report::{BlockFailure, NewtonStop, Solved};
 use super::scales::{BlockEval, MagnitudesOf, fallback_rows, magnitudes_at, rows_at};
 use super::state::Iter;
-use super::step::{MAX_UNCHECKED_CORRECTION, evaluated_correction, newton_step};
+use super::step::{MAX_UNCHECKED_CORRECTION, evaluated_correction};
 use super::trace::{SolvePath, note};
 use crate::solvers::closed::unwrap_to_turn;
 use crate::solvers::jacobian::BlockJacobian;
@@ -33,7 +33,8 @@ const LINEAR_EXTRA: u32 = 4;
 /// Newton iterations from `z0`, whose evaluation is `ev` (updated in place: `eval` writes each
 /// trial's evaluation over it; only the descent's failed searches restore it from a copy). The generated code calls it through
 /// [`newton`](super::newton) when the guess does not meet the tolerance; the correction at a converged
-/// iterate comes from `last`.
+/// iterate comes from `last`. The guess is borrowed: a large block's is a kilobyte, which passed
+/// by value to this out-of-line function would be copied.
 ///
 /// The common path (a full Newton step accepted, then convergence) runs in this one function;
 /// the rare paths (backtracking, descent, failures, a final correction that must be checked)
@@ -42,7 +43,7 @@ const LINEAR_EXTRA: u32 = 4;
 #[inline(never)]
 #[allow(clippy::neg_cmp_op_on_partial_ord)] // the negation is what lets NaN through
 pub(super) fn iterate<const N: usize, const K: usize, J: BlockJacobian<N>>(
-    z0: [f64; N],
+    z0: &[f64; N],
     ev: &mut BlockEval<N, K, J>,
     cfg: &NewtonConfig,
     mut eval: impl FnMut(&[f64; N], &mut BlockEval<N, K, J>),
@@ -58,8 +59,8 @@ pub(super) fn iterate<const N: usize, const K: usize, J: BlockJacobian<N>>(
     // iterate is judged in the same scales.
     let fixed_rows = mags.fixed().is_some_and(|m| !m.rows.degenerate);
     let mut it = Iter {
-        z: z0,
-        guess: &z0,
+        z: *z0,
+        guess: z0,
         // The caller's evaluation, not a copy: the iteration updates it in place.
         ev,
         iterations: 0,
@@ -96,7 +97,7 @@ pub(super) fn iterate<const N: usize, const K: usize, J: BlockJacobian<N>>(
             let step = scaled_step(&dz, &it.z, &m.unit);
             let again = it.past_tolerance < LINEAR_EXTRA && it.iterations < cfg.max_iterations;
             if !(again && pivot > cfg.singular_tol && it.reached_linearly(step, cfg)) {
-                return it.finish(dz, step, pivot, rho, s, NewtonStop::ResidualTolerance, cfg, &mut eval, mags, last);
+                return it.finish(&dz, step, pivot, rho, s, NewtonStop::ResidualTolerance, cfg, &mut eval, mags, last);
             }
             // Reached linearly, yet the Jacobian here is regular by the tolerance: perhaps a
             // root just inside a limit position (see `LINEAR_EXTRA`). A few more steps tell.
@@ -104,14 +105,14 @@ pub(super) fn iterate<const N: usize, const K: usize, J: BlockJacobian<N>>(
             it.past_tolerance += 1;
             last.forget();
         }
-        let (dz, pivot) = newton_step(it.ev, rows, &m.unit);
+        let (dz, pivot) = last.step(it.ev, rows, &m.unit);
         let step = scaled_step(&dz, &it.z, &m.unit);
         // At the rounding floor the step no longer shrinks below `step_tol` or the residual no
         // longer decreases (a singular root still divides it by about four per iteration).
         let stagnant = rho >= 0.5 * it.prev_rho;
         if (step <= cfg.step_tol || stagnant) && rho <= floor {
             last.forget();
-            return it.finish(dz, step, pivot, rho, s, NewtonStop::StepTolerance, cfg, &mut eval, mags, last);
+            return it.finish(&dz, step, pivot, rho, s, NewtonStop::StepTolerance, cfg, &mut eval, mags, last);
         }
         if it.iterations >= cfg.max_iterations {
             let capped = it.capped(rho, s, cfg);
@@ -131,7 +132,7 @@ pub(super) fn iterate<const N: usize, const K: usize, J: BlockJacobian<N>>(
                 // No step decreases a residual already at its rounding floor.
                 note(SolvePath::AtFloor);
                 last.forget();
-                return it.finish(dz, step, pivot, rho, s, NewtonStop::StepTolerance, cfg, &mut eval, mags, last);
+                return it.finish(&dz, step, pivot, rho, s, NewtonStop::StepTolerance, cfg, &mut eval, mags, last);
             }
             let stalled = it.stalled(rho, pivot, s, cfg);
             return Err(stalled);
@@ -148,12 +149,13 @@ impl<const N: usize, const K: usize, J: BlockJacobian<N>> Iter<'_, N, K, J> {
     /// Ends a converged iteration: diagnoses linear convergence (a singular root), then applies
     /// the last correction `dz`. A correction far below the tolerance is applied as it is; a
     /// larger one is checked by a new evaluation (so the Jacobian and kept values match the
-    /// returned position) and undone if it made the residual worse.
+    /// returned position) and undone if it made the residual worse. The iteration is borrowed,
+    /// not moved into its end (its position is a kilobyte for a large block).
     #[allow(clippy::too_many_arguments)]
     #[inline(always)]
     pub(super) fn finish(
-        mut self,
-        dz: [f64; N],
+        &mut self,
+        dz: &[f64; N],
         step: f64,
         pivot: f64,
         rho: f64,
@@ -185,7 +187,7 @@ impl<const N: usize, const K: usize, J: BlockJacobian<N>> Iter<'_, N, K, J> {
                 }
             } else {
                 last.forget();
-                self.checked_correction(&dz, rho, cfg, eval, mags);
+                self.checked_correction(dz, rho, cfg, eval, mags);
             }
         }
         // After one step the test is skipped (it would cost the common path: a solve from a
@@ -257,7 +259,7 @@ impl<const N: usize, const K: usize, J: BlockJacobian<N>> Iter<'_, N, K, J> {
         let m = magnitudes_at!(mags, self.ev, after);
         let rows = rows_at!(m, self.ev, fallback);
         let moved_rho = scaled_residual(&self.ev.f, rows);
-        let (dz, _) = newton_step(self.ev, rows, &m.unit);
+        let (dz, _) = last.step(self.ev, rows, &m.unit);
         let finite = dz.iter().all(|v| v.is_finite());
         let corrected = finite
             && evaluated_correction(&mut self.z, self.ev, &dz, bound, eval, mags, &mut self.evaluations).is_some();

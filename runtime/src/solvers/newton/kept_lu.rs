@@ -13,6 +13,9 @@ use crate::solvers::lu::{Lu, RowScales};
 /// ends otherwise has kept nothing and says so (`forget` again: measured 12 instructions
 /// cheaper on the class IV block than leaving `keep` to test it), and `keep` makes it.
 pub(super) trait LastStep<const N: usize, const K: usize, J> {
+    /// The iteration's Newton step at `ev` (see [`newton_step`]), factorised where the solve
+    /// factorises its steps.
+    fn step(&mut self, ev: &BlockEval<N, K, J>, rows: &RowScales<N>, unit: &[f64; N]) -> ([f64; N], f64);
     /// The correction `-J^-1 f` at `ev` (rows equilibrated by `rows`, the unknowns' units
     /// `unit`, scaled residual `rho`) and the smallest pivot of its factorisation.
     fn correction(
@@ -31,10 +34,15 @@ pub(super) trait LastStep<const N: usize, const K: usize, J> {
     fn finite_jacobian(&self) -> bool;
 }
 
-/// The iteration's own row-equilibrated step; nothing is kept.
-pub(super) struct RowSteps;
+/// The iteration's own row-equilibrated step, factorised into the solve's slot `.0` (see
+/// [`BlockJacobian::Work`]); nothing is kept.
+pub(super) struct RowSteps<'a, W>(pub(super) &'a mut W);
 
-impl<const N: usize, const K: usize, J: BlockJacobian<N>> LastStep<N, K, J> for RowSteps {
+impl<const N: usize, const K: usize, J: BlockJacobian<N>> LastStep<N, K, J> for RowSteps<'_, J::Work> {
+    #[inline(always)]
+    fn step(&mut self, ev: &BlockEval<N, K, J>, rows: &RowScales<N>, unit: &[f64; N]) -> ([f64; N], f64) {
+        newton_step(ev, rows, unit, self.0)
+    }
     #[inline(always)]
     fn correction(
         &mut self,
@@ -43,7 +51,7 @@ impl<const N: usize, const K: usize, J: BlockJacobian<N>> LastStep<N, K, J> for 
         unit: &[f64; N],
         _rho: f64,
     ) -> ([f64; N], f64) {
-        newton_step(ev, rows, unit)
+        newton_step(ev, rows, unit, self.0)
     }
     #[inline(always)]
     fn forget(&mut self) {}
@@ -66,6 +74,11 @@ pub(super) struct KeptLu<'a, const N: usize> {
 }
 
 impl<const N: usize, const K: usize> LastStep<N, K, [[f64; N]; N]> for KeptLu<'_, N> {
+    /// A dense step factorises nothing it keeps.
+    #[inline(always)]
+    fn step(&mut self, ev: &BlockEval<N, K>, rows: &RowScales<N>, unit: &[f64; N]) -> ([f64; N], f64) {
+        newton_step(ev, rows, unit, &mut ())
+    }
     #[inline(always)]
     fn correction(&mut self, ev: &BlockEval<N, K>, rows: &RowScales<N>, unit: &[f64; N], rho: f64) -> ([f64; N], f64) {
         if rho > MAX_UNCHECKED_CORRECTION {
@@ -75,7 +88,7 @@ impl<const N: usize, const K: usize> LastStep<N, K, [[f64; N]; N]> for KeptLu<'_
             // The cheaper row-equilibrated step instead; `keep` factorises what is returned
             // (whichever way the guess goes, only the cost differs).
             self.valid = false;
-            return newton_step(ev, rows, unit);
+            return newton_step(ev, rows, unit, &mut ());
         }
         refactor_columns(self.lu, ev);
         self.valid = true;

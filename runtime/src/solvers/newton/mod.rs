@@ -71,8 +71,8 @@
 //! final correction from the analogs' kept factorisation (`kept_lu`); the diagnosis of a failed
 //! iteration (`diagnose`) and the line search and descent (`search`); the iteration
 //! (`iterate`); the restarts of a block that stalled (`restarts`); and here, the entry points
-//! ([`newton`], [`newton_with`], [`newton_keeping_lu`]). Beside them, the trace of the paths a
-//! solve took, for the unit tests (`trace`).
+//! ([`newton`], [`newton_with`], [`newton_with_work`], [`newton_keeping_lu`]). Beside them, the
+//! trace of the paths a solve took, for the unit tests (`trace`).
 
 mod config;
 mod diagnose;
@@ -188,7 +188,26 @@ pub fn newton_with<const N: usize, const K: usize, J: BlockJacobian<N>>(
     eval: impl FnMut(&[f64; N], &mut BlockEval<N, K, J>),
     mags: &impl MagnitudesOf<N, K, J>,
 ) -> Result<Solved<N>, BlockFailure> {
-    newton_last(z0, ev, cfg, eval, mags, &mut RowSteps)
+    let mut work = ev.j.work();
+    newton_with_work(z0, ev, cfg, eval, mags, &mut work)
+}
+
+/// [`newton_with`] whose Newton steps factorise into the caller's `work` (see
+/// [`BlockJacobian::Work`]): a compiled sparse block's kernel makes one slot for its solve and
+/// its analogs, and each factorisation is written over it, where one made and returned by
+/// each step would be copied (kilobytes). On return it holds the last step's factorisation,
+/// or none; the analogs factorise over it again.
+#[doc(hidden)]
+#[inline(always)]
+pub fn newton_with_work<const N: usize, const K: usize, J: BlockJacobian<N>>(
+    z0: [f64; N],
+    ev: &mut BlockEval<N, K, J>,
+    cfg: &NewtonConfig,
+    eval: impl FnMut(&[f64; N], &mut BlockEval<N, K, J>),
+    mags: &impl MagnitudesOf<N, K, J>,
+    work: &mut J::Work,
+) -> Result<Solved<N>, BlockFailure> {
+    newton_last(z0, ev, cfg, eval, mags, &mut RowSteps(work))
 }
 
 /// [`newton`] that also writes into `lu` the factorisation the analogs use: `J` with each

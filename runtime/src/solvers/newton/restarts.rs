@@ -72,7 +72,7 @@ pub(super) fn iterate_restarting<const N: usize, const K: usize, J: BlockJacobia
 ) -> Result<Solved<N>, BlockFailure> {
     // The iteration calls `eval` itself, not through a reference to it (whose forwarding call
     // is not inlined into the iteration as the evaluation itself is).
-    match iterate(z0, ev, cfg, |z: &[f64; N], e: &mut BlockEval<N, K, J>| eval(z, e), mags, last, rho0) {
+    match iterate(&z0, ev, cfg, |z: &[f64; N], e: &mut BlockEval<N, K, J>| eval(z, e), mags, last, rho0) {
         Err(fail) => after(fail, z0, ev, cfg, &mut eval, mags, last),
         solved => solved,
     }
@@ -127,7 +127,7 @@ fn after<const N: usize, const K: usize, J: BlockJacobian<N>>(
             g[c] += turn;
             counted(&g, ev);
             let rho = residual_at(ev, mags);
-            match iterate(g, ev, &once, &mut *counted, mags, last, rho) {
+            match iterate(&g, ev, &once, &mut *counted, mags, last, rho) {
                 Ok(s) => {
                     iterations += s.iterations;
                     let d = distance(&s.z, &z0, &turns, &unit);
@@ -151,7 +151,7 @@ fn after<const N: usize, const K: usize, J: BlockJacobian<N>>(
     note(SolvePath::RestartReturned);
     counted(&z, ev);
     let rho = residual_at(ev, mags);
-    let s = iterate(z, ev, &once, &mut *counted, mags, last, rho)?;
+    let s = iterate(&z, ev, &once, &mut *counted, mags, last, rho)?;
     Ok(Solved { iterations: iterations + s.iterations, evaluations, ..s })
 }
 

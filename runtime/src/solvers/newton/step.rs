@@ -17,12 +17,13 @@ pub(super) const MAX_UNCHECKED_CORRECTION: f64 = 16.0 * f64::EPSILON;
 
 /// The Newton step `-J^-1 f` with `J` equilibrated by the row magnitudes, and the pivot ratio
 /// of `J` equilibrated by the rows' magnitudes and the unknowns' units `unit` (see
-/// [`BlockJacobian::newton_step`]).
+/// [`BlockJacobian::newton_step`]), factorising into `work`.
 #[inline(always)]
 pub(super) fn newton_step<const N: usize, const K: usize, J: BlockJacobian<N>>(
     ev: &BlockEval<N, K, J>,
     rows: &RowScales<N>,
     unit: &[f64; N],
+    work: &mut J::Work,
 ) -> ([f64; N], f64) {
     if N == 1 {
         // A scalar block needs no factorisation: the equilibrated pivot is `|J| / s * unit`
@@ -33,7 +34,7 @@ pub(super) fn newton_step<const N: usize, const K: usize, J: BlockJacobian<N>>(
         dz[0] = -ev.f[0] / j;
         return (dz, j.abs() / rows.s[0] * unit[0]);
     }
-    ev.j.newton_step(&ev.f, rows, unit)
+    ev.j.newton_step_in(&ev.f, rows, unit, work)
 }
 
 /// Moves `z` (evaluated as `ev`) to `z + dz` and its evaluation, and returns the scaled residual
