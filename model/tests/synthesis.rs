@@ -182,8 +182,11 @@ fn par_run_on_a_shared_model_equals_run_and_the_compiled_par_run_bit_for_bit() {
     let got = on_four_threads(|| search.par_run(&shared).unwrap());
     assert_eq!(got, serial);
     assert_eq!(got, want);
-    // Evaluations overlapped: a clone is made only when every one made before is checked out.
-    assert!(k.clones() >= 2, "{} clones", k.clones());
+    // The evaluations ran on the pool's clones: at least one. How many overlapped is the
+    // scheduler's (on a loaded host the four threads may take turns); that a clone is made
+    // exactly when every one made before is checked out is pinned with a barrier below
+    // (`concurrent_evaluations_each_run_on_their_own_clone_with_their_own_parameters`).
+    assert!(k.clones() >= 1, "{} clones", k.clones());
     // `Model::shared_synthesis_problem` is that problem; serially it gives the same report.
     let shared = model.shared_synthesis_problem(&design, &task).unwrap();
     assert_eq!(search.run(&shared).unwrap(), want);
