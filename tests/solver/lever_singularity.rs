@@ -12,7 +12,7 @@
 use kinloop::{Error, EventKind, SweepConfig};
 use std::f64::consts::{FRAC_PI_2, PI};
 
-use crate::support::angle_apart;
+use crate::support::{angle_apart, tol};
 
 kinloop::mechanism! {
     /// A crank `r` about `(0, h)` driving a block in a rocker slot pivoted at the origin.
@@ -237,21 +237,91 @@ fn a_sweep_never_passes_a_slide_near_its_pivot_silently() {
     }
 }
 
+/// The sample counts the crossings are swept with: a step of a whole sample spacing (at most a
+/// quarter radian) down to a hundredth of a radian.
+const SAMPLES: [usize; 3] = [13, 73, 721];
+
+/// Where the sweep of `sweep` stops, with the event it records there.
+fn stop_at<I: Iterator<Item = Result<T, Error>>, T>(sweep: &mut I) -> Error {
+    sweep.by_ref().find_map(Result::err).expect("the sweep stops at the crossing")
+}
+
 #[test]
 fn a_slide_through_its_pivot_is_a_located_singular_crossing() {
     // `h = r`: the slide passes exactly through the pivot at `phi = 3 pi / 2`, where `s = 0`
     // and the smooth continuation turns `s` negative (the determinant `s` changes sign).
-    for scale in [1e-3, 1.0, 1e3] {
-        let m = SlottedRocker { h: scale, r: scale };
-        let g = m.position(0.0, &SlottedRockerUnknowns { s: 1.4 * scale, theta: 0.7 }).unwrap().0;
-        let mut sweep = m.sweep(0.0, 2.0 * PI, 73, &g).unwrap();
-        let stop = sweep.by_ref().find_map(Result::err);
-        assert!(matches!(stop, Some(Error::SweepStopped { kind: EventKind::SingularCrossing, .. })), "{stop:?}");
-        // Located by following the curve along its tangent, which comes from the analogs: the
-        // rocker's is only known to `eps (L / s)^2` (see above), so the continuation is blind
-        // within a lever of about `sqrt(eps) L` times a few of the crossing. Measured: within
-        // 8.3e-7 at scales 1e-6 to 1e6 and 13 to 721 samples, on both paths.
-        let ev = &sweep.events()[0];
-        assert_close!(ev.x[0], 1.5 * PI, 2e-6, "scale {scale:e}: crossing at {}", ev.x[0]);
+    //
+    // Located from positions solved on both sides, well away from the pivot: the determinant
+    // along the branch is the lever over the loop's size, `2 sin(e / 2) r / L` with the offset
+    // `e` from the crossing, rounded to a few `eps` and of slope about one per radian there. Its
+    // interpolant passes that rounding on about doubled (its Lebesgue constant between the
+    // nearest samples) and the input path rounds the crossing to a few ulps of `3 pi / 2`: ten
+    // to twenty `eps` of a radian in all, within `tol::ULPS` (45 `eps`). Before, the crossing
+    // was read off the continuation's points, whose angle the residual tolerance pins only to
+    // `tol L / s`: about `sqrt(tol)` off (up to 8.3e-7 rad).
+    for scale in SCALES {
+        for samples in SAMPLES {
+            let closed = SlottedRocker { h: scale, r: scale };
+            let g = closed.position(0.0, &SlottedRockerUnknowns { s: 1.4 * scale, theta: 0.7 }).unwrap().0;
+            let mut sweep = closed.sweep(0.0, 2.0 * PI, samples, &g).unwrap();
+            let stop = stop_at(&mut sweep);
+            let closed_events = sweep.events().to_vec();
+            let newton = SlottedRockerNewton { h: scale, r: scale };
+            let g = newton.position(0.0, &SlottedRockerNewtonUnknowns { s: 1.4 * scale, theta: 0.7 }).unwrap().0;
+            let mut sweep = newton.sweep(0.0, 2.0 * PI, samples, &g).unwrap();
+            let newton_stop = stop_at(&mut sweep);
+            for (path, stop, events) in
+                [("closed form", stop, closed_events), ("Newton", newton_stop, sweep.events().to_vec())]
+            {
+                let at = format!("{path}, scale {scale:e}, {samples} samples");
+                assert!(matches!(stop, Error::SweepStopped { kind: EventKind::SingularCrossing, .. }), "{at}: {stop}");
+                assert_eq!(events.len(), 1, "{at}: {events:?}");
+                let ev = &events[0];
+                assert_close!(ev.x[0], 1.5 * PI, <= tol::ULPS, "{at}: crossing at {}", ev.x[0]);
+                // The position there from the samples' positions, whose angles are pinned to
+                // `eps L / s` with a lever of at least a thousandth of the loop (the samples' smallest
+                // pivot ratio), passed on about doubled: the slide on the pivot, `theta = pi`.
+                assert_close!(ev.q[0] / scale, 0.0, <= tol::ULPS, "{at}: s {:e}", ev.q[0]);
+                assert!(angle_apart(ev.q[1], PI) <= 1e-12, "{at}: theta {}", ev.q[1]);
+            }
+        }
+    }
+}
+
+#[test]
+fn a_crank_pin_through_its_cylinders_pivot_is_a_located_singular_crossing() {
+    // `d = r`: shortening the cylinder to `len = 0` brings the crank pin onto its pivot, where
+    // the cylinder's angle is undetermined; on the branch above the axis `cos(theta) = len /
+    // (2 r)` goes on smoothly to negative lengths, and the determinant `-len r sin(theta)`
+    // changes sign. Located as the slotted rocker's crossing is, in the length's unit: its
+    // determinant is exact in the input and rounded to a few `eps` in the angles, and the
+    // input path `r - 2 r tau` rounds `len = 0` to an ulp of `r`, so within `tol::ULPS` of the
+    // mechanism's size (before: up to 8.4e-7 of it).
+    for scale in SCALES {
+        for samples in SAMPLES {
+            let (d, r) = (scale, scale);
+            let start = CylinderCrankUnknowns { theta: PI / 3.0, phi: 2.0 * PI / 3.0 };
+            let closed = CylinderCrank { d, r };
+            let g = closed.position(r, &start).unwrap().0;
+            let mut sweep = closed.sweep(r, -r, samples, &g).unwrap();
+            let stop = stop_at(&mut sweep);
+            let closed_events = sweep.events().to_vec();
+            let newton = CylinderCrankNewton { d, r };
+            let g = newton.position(r, &CylinderCrankNewtonUnknowns { theta: start.theta, phi: start.phi }).unwrap().0;
+            let mut sweep = newton.sweep(r, -r, samples, &g).unwrap();
+            let newton_stop = stop_at(&mut sweep);
+            for (path, stop, events) in
+                [("closed form", stop, closed_events), ("Newton", newton_stop, sweep.events().to_vec())]
+            {
+                let at = format!("{path}, scale {scale:e}, {samples} samples");
+                assert!(matches!(stop, Error::SweepStopped { kind: EventKind::SingularCrossing, .. }), "{at}: {stop}");
+                assert_eq!(events.len(), 1, "{at}: {events:?}");
+                let ev = &events[0];
+                assert_close!(ev.x[0] / scale, 0.0, <= tol::ULPS, "{at}: crossing at {}", ev.x[0]);
+                // The position as the rocker's: the cylinder across, the crank pointing back.
+                assert!(angle_apart(ev.q[0], FRAC_PI_2) <= 1e-12, "{at}: theta {}", ev.q[0]);
+                assert!(angle_apart(ev.q[1], PI) <= 1e-12, "{at}: phi {}", ev.q[1]);
+            }
+        }
     }
 }

@@ -529,7 +529,9 @@ pub(crate) enum Found<Q> {
 
 /// Follows the curve from `start` (tangent oriented with increasing sigma) for at most
 /// `max_arc` of arclength (`ds0` and `max_arc` in the scaled coordinates of `metric`), watching for a limit position (the tangent's sigma component changing
-/// sign) and for a sign change of the Jacobian determinant; locates the first one found.
+/// sign) and for a sign change of the Jacobian determinant; locates the first one found (a
+/// crossing from the well-conditioned positions on both sides of it where it can, see
+/// [`crossing`](super::crossing)).
 pub(crate) fn trace<K: Kernel>(
     m: &K,
     path: &Path<X<K>>,
@@ -597,6 +599,8 @@ pub(crate) fn trace<K: Kernel>(
             if block_folds(m, path, &at) {
                 return Some(Found::Fold(at));
             }
+            // Located again from the well-conditioned positions on both sides.
+            let at = super::crossing::refine(m, path, metric, &base, &at, cfg).unwrap_or(at);
             return Some(Found::Crossing(at, b));
         }
         walked += ds;

@@ -4,6 +4,7 @@
 //! input range ([`reach`]), design-space
 //! scans ([`scan`]) and the search for assembly modes ([`modes`]).
 
+mod crossing;
 pub mod curve;
 pub mod modes;
 pub mod outcome;
