@@ -165,7 +165,9 @@ fn sample<K: Kernel>(
             }
             dist = dist.max(((q[u] - guess[u]) / metric.unit[u]).abs());
         }
-        if !(dist <= 0.25 * change + 1e-6) {
+        // NaN is not close.
+        let close = dist <= 0.25 * change + 1e-6;
+        if !close {
             return Sampled::Missed;
         }
         out.push(Sample { t: (sigma - sigma0) / spacing, det: scales.det(m, &x, &q), q });
@@ -219,7 +221,9 @@ fn root<Q: Store>(samples: &[Sample<Q>], spacing: f64, unit: f64) -> Option<(f64
     let pick = |v: &[f64]| inner.iter().map(|&i| v[i]).collect::<Vec<f64>>();
     let cubic = Interpolant::through(&pick(&t), &pick(&det));
     let check = illinois(|x| Some(cubic.at(x)), t[a], t[b], det[a], det[b], ROOT_TOL)?;
-    if !((at - check).abs() * spacing <= LOCATE_TOL * unit) {
+    // NaN does not agree.
+    let agree = (at - check).abs() * spacing <= LOCATE_TOL * unit;
+    if !agree {
         return None;
     }
     let mut q = samples[0].q.clone();
