@@ -200,6 +200,12 @@ unsafe fn next(p: *mut f64, s: *const Step) {
 /// None needed (it reads nothing), an [`Exec`] for its type.
 unsafe fn ret(_: *mut f64, _: *const Step) {}
 
+/// The registers of a chain's end, which [`ret`] does not read: an index no register has, so
+/// that an end is told from a step by its registers (function pointers are no test: the
+/// compiler may merge functions of the same code, or give one function an address in each
+/// codegen unit).
+const END: [u32; 12] = [u32::MAX; 12];
+
 /// The operation `K` on `a` and `b`, as the emitted code writes it.
 #[inline(always)]
 fn op<const K: u8>(a: f64, b: f64) -> f64 {
@@ -496,7 +502,7 @@ impl Segment {
         let mut steps = Vec::new();
         for chain in group(&ins).chunks(CHAIN) {
             steps.extend_from_slice(chain);
-            steps.push(Step { exec: ret, r: [0; 12] });
+            steps.push(Step { exec: ret, r: END });
         }
         Segment { steps, needs, ops }
     }
@@ -526,7 +532,7 @@ impl Chains {
         for chain in group(ins).chunks(CHAIN) {
             starts.push(self.steps.len() as u32);
             self.steps.extend_from_slice(chain);
-            self.steps.push(Step { exec: ret, r: [0; 12] });
+            self.steps.push(Step { exec: ret, r: END });
         }
         starts
     }
@@ -848,7 +854,7 @@ mod tests {
 
     /// The steps of a segment that perform instructions (not the chains' ends).
     fn dispatches(seg: &Segment) -> usize {
-        seg.steps.iter().filter(|s| !std::ptr::fn_addr_eq(s.exec, ret as Exec)).count()
+        seg.steps.iter().filter(|s| s.r != END).count()
     }
 
     /// A segment of many steps (several chains) performs every instruction once, in order, and
