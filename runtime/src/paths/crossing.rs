@@ -15,12 +15,12 @@
 //! interpolated through them, and its root taken. Rare (once per crossing), so it allocates.
 
 use super::curve::{CurvePoint, Metric, Path, illinois, signed_det};
+use super::sweep::is_angle;
 use crate::dims::{Dims, JacState, KinState, Store};
-use crate::kinds::QuantityKind;
 use crate::mechanism::kernel::{Kernel, Q, X};
+use crate::solvers::closed::unwrap_to_turn;
 use crate::solvers::newton::NewtonConfig;
 use nalgebra::DMatrix;
-use std::f64::consts::TAU;
 
 /// Samples on each side of the crossing, at `1, 2, 3` spacings from the trace's estimate: an
 /// interpolant of degree five, and of degree three through the inner four to check it.
@@ -161,7 +161,7 @@ fn sample<K: Kernel>(
         let mut dist = 0.0f64;
         for u in 0..n {
             if is_angle(m, u) {
-                q[u] -= TAU * ((q[u] - guess[u]) / TAU).round();
+                q[u] = unwrap_to_turn(q[u], guess[u]);
             }
             dist = dist.max(((q[u] - guess[u]) / metric.unit[u]).abs());
         }
@@ -173,11 +173,6 @@ fn sample<K: Kernel>(
         out.push(Sample { t: (sigma - sigma0) / spacing, det: scales.det(m, &x, &q), q });
     }
     Sampled::Branch(out)
-}
-
-/// Whether unknown `u` is an angle (one turn is the same position).
-fn is_angle<K: Kernel>(m: &K, u: usize) -> bool {
-    m.closed_form_angle(u) || m.unknown_kind(u) == QuantityKind::Angle
 }
 
 /// The fixed scalings of the determinant: rows over their magnitudes at `near`, columns times

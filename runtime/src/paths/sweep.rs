@@ -1018,7 +1018,7 @@ fn in_unit<K: Kernel>(m: &K, inv_unit: &Q<K>, u: usize, v: f64) -> f64 {
 /// Whether unknown `u` is an angle, measured in radians by the sweep's tests: a closed form's
 /// angle, or an unknown of the kind.
 #[inline(always)]
-fn is_angle<K: Kernel>(m: &K, u: usize) -> bool {
+pub(super) fn is_angle<K: Kernel>(m: &K, u: usize) -> bool {
     m.closed_form_angle(u) || m.unknown_kind(u) == QuantityKind::Angle
 }
 
