@@ -4,18 +4,18 @@ use crate::error::Error;
 use crate::events::BlockInfo;
 use crate::kin::{Jac, Kin, KinSink};
 use crate::kinds::QuantityKind;
-use crate::mechanism::{Mechanism, Named};
-use crate::paths::sweep::SweepConfig;
+use crate::mechanism::Mechanism;
+use crate::paths::config::SweepConfig;
 use crate::solvers::newton::{NewtonConfig, SolveReport};
 use crate::trig::InputTrig;
 
 /// A mechanism that carries its solver configuration: every solve, sweep, reachable range,
 /// assembly-mode search and curve trace of it uses that configuration wherever no explicit one
-/// is given. Made by `m.with_config(cfg)` ([`Named::with_config`]), which validates the
+/// is given. Made by `m.with_config(cfg)` ([`Named::with_config`](crate::Named::with_config)), which validates the
 /// configuration once.
 ///
-/// It implements [`Mechanism`] and [`Named`] like the mechanism itself; its named methods are
-/// those of the [`Named`] trait (bring it into scope with `use kinloop::Named;`). The
+/// It implements [`Mechanism`] and [`Named`](crate::Named) like the mechanism itself; its named methods are
+/// those of the [`Named`](crate::Named) trait (bring it into scope with `use kinloop::Named;`). The
 /// mechanism's parameters are read through [`Configured::mechanism`].
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct Configured<M> {
@@ -112,14 +112,4 @@ where
     fn check_params(&self) -> Result<(), Error> {
         self.mechanism.check_params()
     }
-}
-
-impl<M, const N: usize, const NI: usize, const NO: usize> Named<N, NI, NO> for Configured<M>
-where
-    M: Named<N, NI, NO>,
-{
-    type Inputs = M::Inputs;
-    type Unknowns = M::Unknowns;
-    type Outputs = M::Outputs;
-    type State = M::State;
 }

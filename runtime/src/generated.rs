@@ -11,10 +11,11 @@ pub use crate::analysis::{Column, ColumnIndex};
 pub use crate::dynamics::{Body, Coord, DynamicsError, MassModel, Rotation};
 pub use crate::error::Error;
 pub use crate::events::BlockInfo;
-pub use crate::kin::{ByValue, Health, Jac, Kin, KinSink, Sens};
+pub use crate::kin::{ByValue, Health, Jac, Kin, KinSink, Sens, first_non_finite_state};
 pub use crate::kinds::QuantityKind;
-pub use crate::mechanism::extreme_scale::rescue;
-pub use crate::mechanism::{Mechanism, NamedSensitivities, Sensitivities, SensitivitiesRequested};
+pub use crate::mechanism::rescue;
+pub use crate::mechanism::{Mechanism, Sensitivities};
+pub use crate::named::{NamedSensitivities, SensitivitiesRequested};
 pub use crate::solvers::closed::*;
 pub use crate::solvers::deferred::*;
 pub use crate::solvers::inverse2::Inverse2;
@@ -27,6 +28,7 @@ pub use crate::solvers::newton::{
 pub use crate::solvers::sparse_lu::{SparseJac, SparseLu, SparsePattern};
 pub use crate::solvers::sparse_lu_dyn::{PaddedJac, PaddedLu, PaddedWork, SparseTables};
 pub use crate::solvers::sparse_steps::{Pivots, SparseSteps, Tables, scaled};
+pub use crate::solvers::turns::*;
 pub use crate::trig::{InputTrig, Libm, NearSlot, NearTrig};
 pub use crate::vec2::Vec2;
 pub use std::borrow::Cow;
@@ -746,4 +748,4 @@ pub use par_sets::par_sets;
 
 // The name-agnostic cores of a failed step's diagnosis (see `diagnosis`).
 mod diagnosis;
-pub use diagnosis::{first_bad_value, first_non_finite_state, turns_culprit};
+pub use diagnosis::{first_bad_value, turns_culprit};

@@ -342,7 +342,7 @@ impl<const N: usize, const NI: usize, const NO: usize> Kin<N, NI, NO> {
             self.dout.as_flattened(),
             self.d2out.as_flattened().as_flattened(),
         ];
-        crate::generated::first_non_finite_state(parts, NI)
+        first_non_finite_state(parts, NI)
     }
 
     /// Fast check that every value is finite (one sum; NaN and infinity propagate).
@@ -372,6 +372,24 @@ impl<const N: usize, const NI: usize, const NO: usize> Kin<N, NI, NO> {
         // element by element.
         s.is_finite() || self.first_non_finite().is_none()
     }
+}
+
+/// The kind and index of the first non-finite value of a state of `ni` inputs given flat
+/// (each unknown's or output's analogs contiguous, as a compiled `Kin` lays them out):
+/// positions, their velocity and acceleration analogs, then the outputs and theirs.
+pub fn first_non_finite_state([q, dq, d2q, out, dout, d2out]: [&[f64]; 6], ni: usize) -> Option<(&'static str, usize)> {
+    let bad = |v: &[f64]| v.iter().any(|x| !x.is_finite());
+    // No analogs without inputs: chunks of one over empty slices.
+    let (per1, per2) = (ni.max(1), (ni * ni).max(1));
+    let parts: [(&'static str, &[f64], usize); 6] = [
+        ("position", q, 1),
+        ("velocity analog", dq, per1),
+        ("acceleration analog", d2q, per2),
+        ("output", out, 1),
+        ("output velocity analog", dout, per1),
+        ("output acceleration analog", d2out, per2),
+    ];
+    parts.into_iter().find_map(|(what, values, per)| values.chunks(per).position(bad).map(|k| (what, k)))
 }
 
 #[cfg(test)]

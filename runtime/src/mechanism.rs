@@ -1,15 +1,12 @@
-//! The interface every generated mechanism implements, for generic code (sweeps, analyses).
+//! The interface every generated mechanism implements, for generic code (sweeps, analyses): its
+//! flat kernels ([`Mechanism`], [`Sensitivities`]). The named API written on top of them, which
+//! reaches every path and analysis, is [`named`](crate::named).
 
-use crate::configured::Configured;
 use crate::error::{Error, Quantity};
 use crate::events::{BlockInfo, Location};
 use crate::kin::{ByValue, Jac, Kin, KinSink, Sens};
 use crate::kinds::QuantityKind;
-use crate::mechanism::kernel::Compiled;
-use crate::paths::outcome::SweepResult;
-use crate::paths::reach::Reach;
-use crate::paths::sweep::{Sweep, SweepConfig};
-use crate::paths::trace::{TraceConfig, Traced};
+use crate::paths::config::SweepConfig;
 use crate::solvers::newton::{NewtonConfig, SolveReport};
 use crate::trig::InputTrig;
 
@@ -47,11 +44,11 @@ pub trait Mechanism<const N: usize, const NI: usize, const NO: usize> {
     /// inputs and of the unknowns solved before it, with no second branch, pole or kink (its
     /// block is linear with a constant matrix and an entire right-hand side, as a slider's
     /// coordinate next to its rod's angle). It stays on its branch wherever those do, so a
-    /// [`Sweep`] judges its steps by the other unknowns only. `mechanism!` finds
+    /// [`Sweep`](crate::Sweep) judges its steps by the other unknowns only. `mechanism!` finds
     /// them; by default none follows, for hand-written implementations.
     const FOLLOWERS: [bool; N] = [false; N];
     /// Per unknown: whether a closed-form block gives it as an angle from its sine and cosine.
-    /// A [`Sweep`]'s cache then advances it from an anchor, an earlier angle of
+    /// A [`Sweep`](crate::Sweep)'s cache then advances it from an anchor, an earlier angle of
     /// the same unknown, and the sweep rejects a step that leaves such an angle more than a
     /// radian from its prediction (an anchor a turn away would put it there). `mechanism!`
     /// finds them; by default none is, for hand-written implementations.
@@ -72,7 +69,7 @@ pub trait Mechanism<const N: usize, const NI: usize, const NO: usize> {
     fn param_values(&self) -> Vec<f64>;
     /// The solver configuration every solve, sweep, reachable range, assembly-mode search and
     /// curve trace of this value uses where none is given explicitly: the defaults, or the one
-    /// a [`Configured`] mechanism carries (`m.with_config(cfg)`).
+    /// a [`Configured`](crate::Configured) mechanism carries (`m.with_config(cfg)`).
     #[inline]
     fn solver_config(&self) -> SweepConfig {
         SweepConfig::default()
@@ -127,7 +124,7 @@ pub trait Mechanism<const N: usize, const NI: usize, const NO: usize> {
         cfg: &NewtonConfig,
     ) -> Result<Kin<N, NI, NO>, Error> {
         match self.kinematics_step_flat(x, guess, cfg, &mut crate::trig::Libm) {
-            Err(e) => extreme_scale::rescue(self, x, guess, cfg, e),
+            Err(e) => rescue(self, x, guess, cfg, e),
             ok => ok,
         }
     }
@@ -176,7 +173,7 @@ pub trait Mechanism<const N: usize, const NI: usize, const NO: usize> {
         // Through the state by value, which a failure at an extreme size can still be turned
         // into (see `extreme_scale`); this path runs only where a deferred test failed.
         let kin = match self.kinematics_step_flat(x, guess, cfg, trig) {
-            Err(e) => extreme_scale::rescue(self, x, guess, cfg, e)?,
+            Err(e) => rescue(self, x, guess, cfg, e)?,
             Ok(kin) => kin,
         };
         Ok(sink.put(|| kin))
@@ -235,221 +232,30 @@ pub trait Sensitivities<const N: usize, const NI: usize, const NO: usize, const 
     ) -> Result<(Kin<N, NI, NO>, Sens<N, NI, NO, NP>), Error>;
 }
 
-/// The named, typed API of a generated mechanism (`m.solve(phi)`, `s.q.beta`), written once for
-/// every mechanism on top of its flat kernels ([`Mechanism`]). Generated types forward their
-/// inherent methods here, so calling them needs no import; generic code can use this trait.
-pub trait Named<const N: usize, const NI: usize, const NO: usize>: Mechanism<N, NI, NO> + Sized {
-    /// `NameInputs`: the input values by name.
-    type Inputs: Copy + From<[f64; NI]> + Into<[f64; NI]>;
-    /// `NameUnknowns`: positions by name.
-    type Unknowns: Copy + From<[f64; N]> + Into<[f64; N]>;
-    /// `NameOutputs`: output values by name.
-    type Outputs: From<[f64; NO]>;
-    /// `NameState`: the kinematic state by name.
-    type State: From<Kin<N, NI, NO>>;
-
-    /// Checks that every parameter is finite.
-    fn check(&self) -> Result<(), Error> {
-        self.check_params()
-    }
-
-    /// This mechanism with its own solver configuration (a [`SweepConfig`], or a
-    /// [`NewtonConfig`] with the other sweep settings at their defaults), used by every solve,
-    /// sweep, reachable range, assembly-mode search and curve trace of the result; validated
-    /// here (`Error::InvalidArgument` names the field).
-    fn with_config(self, config: impl Into<SweepConfig>) -> Result<Configured<Self>, Error> {
-        Configured::new(self, config)
-    }
-
-    /// The declared initial guess (assembly mode) at `input`.
-    fn guess(&self, input: impl Into<Self::Inputs>) -> Self::Unknowns {
-        self.guess_flat(&input.into().into()).into()
-    }
-
-    /// Residuals of the scalar equations (named by `EQUATIONS`) at a position.
-    fn residual(&self, input: impl Into<Self::Inputs>, q: &Self::Unknowns) -> [f64; N] {
-        self.residual_flat(&input.into().into(), &(*q).into())
-    }
-
-    /// Output values at a position.
-    fn outputs(&self, input: impl Into<Self::Inputs>, q: &Self::Unknowns) -> Self::Outputs {
-        self.outputs_flat(&input.into().into(), &(*q).into()).into()
-    }
-
-    /// Solves the positions by Newton's method from `guess` (which picks the assembly mode).
-    fn position(
-        &self,
-        input: impl Into<Self::Inputs>,
-        guess: &Self::Unknowns,
-    ) -> Result<(Self::Unknowns, SolveReport), Error> {
-        self.position_with(input, guess, &self.solver_config().newton)
-    }
-
-    /// [`Named::position`] with an explicit solver configuration.
-    fn position_with(
-        &self,
-        input: impl Into<Self::Inputs>,
-        guess: &Self::Unknowns,
-        cfg: &NewtonConfig,
-    ) -> Result<(Self::Unknowns, SolveReport), Error> {
-        let (x, guess) = (input.into().into(), (*guess).into());
-        let (q, report) = match self.position_flat(&x, &guess, cfg) {
-            Ok(solved) => solved,
-            // A closed form outside the sizes it computes exactly: see `extreme_scale`.
-            Err(e) => extreme_scale::rescue(self, &x, &guess, cfg, e).map(|k| (k.q, k.report))?,
-        };
-        Ok((q.into(), report))
-    }
-
-    /// Positions, velocity and acceleration analogs, and outputs, solved from `guess`.
-    fn kinematics(&self, input: impl Into<Self::Inputs>, guess: &Self::Unknowns) -> Result<Self::State, Error> {
-        self.kinematics_with(input, guess, &self.solver_config().newton)
-    }
-
-    /// [`Named::kinematics`] with an explicit solver configuration.
-    #[inline]
-    fn kinematics_with(
-        &self,
-        input: impl Into<Self::Inputs>,
-        guess: &Self::Unknowns,
-        cfg: &NewtonConfig,
-    ) -> Result<Self::State, Error> {
-        self.kinematics_flat(&input.into().into(), &(*guess).into(), cfg).map(Self::State::from)
-    }
-
-    /// Analogs and outputs at a position the caller already solved.
-    fn kinematics_at(&self, input: impl Into<Self::Inputs>, q: &Self::Unknowns) -> Result<Self::State, Error> {
-        self.kinematics_at_flat(&input.into().into(), &(*q).into(), &self.solver_config().newton).map(Self::State::from)
-    }
-
-    /// Full kinematics at `input`, starting from the declared initial guess.
-    fn solve(&self, input: impl Into<Self::Inputs>) -> Result<Self::State, Error> {
-        let x: [f64; NI] = input.into().into();
-        self.kinematics_flat(&x, &self.guess_flat(&x), &self.solver_config().newton).map(Self::State::from)
-    }
-
-    /// A lazy sweep of `samples` equally spaced inputs from `from` to `to` (both included) that
-    /// never jumps branches: see [`Sweep`]. `guess` at `from` picks the assembly mode.
-    #[allow(clippy::type_complexity)]
-    fn sweep(
-        &self,
-        from: impl Into<Self::Inputs>,
-        to: impl Into<Self::Inputs>,
-        samples: usize,
-        guess: &Self::Unknowns,
-    ) -> Result<Sweep<'_, Self, Self::State, N, NI, NO>, Error> {
-        Sweep::new(self, from.into().into(), to.into().into(), samples, (*guess).into())
-    }
-
-    /// `samples` equally spaced points of the straight path from `from` to `to`, solved by a
-    /// branch-safe sweep from `guess` and kept in memory for analysis by column
-    /// (`Name::COL.x`): see [`Sampled`](crate::analysis::Sampled). The path parameter is the
-    /// input itself for one input ([`Sampled::sweep`](crate::analysis::Sampled::sweep)), the
-    /// fraction of the path for several ([`Sampled::path`](crate::analysis::Sampled::path)).
-    fn sampled(
-        &self,
-        from: impl Into<Self::Inputs>,
-        to: impl Into<Self::Inputs>,
-        samples: usize,
-        guess: &Self::Unknowns,
-    ) -> Result<crate::analysis::Sampled<'_, Self, N, NO, NI>, Error> {
-        crate::analysis::Sampled::natural(self, from.into().into(), to.into().into(), samples, (*guess).into())
-    }
-
-    /// The states at the given inputs, in their order, followed along the path through them
-    /// without jumping branches: each stretch between consecutive inputs is a [`Sweep`] with its
-    /// own step control, so inputs may be unevenly spaced, far apart or repeated (measured input
-    /// angles, a motion law). `guess` at the first input picks the assembly mode. The first error
-    /// stops it; the result keeps the states before it, says why and where it stopped (a limit
-    /// position between two inputs is located as in a sweep) and lists the events met
-    /// ([`SweepResult::into_result`] for `?`).
-    fn sweep_at<I: Into<Self::Inputs>>(
-        &self,
-        inputs: impl IntoIterator<Item = I>,
-        guess: &Self::Unknowns,
-    ) -> SweepResult<Self::State> {
-        let inputs = inputs.into_iter().map(|input| -> [f64; NI] { input.into().into() });
-        crate::paths::sweep_at::sweep_at_of(&Compiled(self), inputs, (*guess).into()).map(Self::State::from)
-    }
-
-    /// How far the input can move from `at` towards `at + delta` and `at - delta` on the
-    /// assembly mode of `guess` before a limit position, in input values (see
-    /// [`reachable`](crate::paths::reach::reachable); `samples` per direction).
-    fn reachable(
-        &self,
-        at: impl Into<Self::Inputs>,
-        delta: impl Into<Self::Inputs>,
-        guess: &Self::Unknowns,
-        samples: usize,
-    ) -> Result<Reach<Self::Inputs>, Error> {
-        let reach =
-            crate::paths::reach::reachable(self, at.into().into(), delta.into().into(), (*guess).into(), samples)?;
-        Ok(reach.map_inputs(Self::Inputs::from))
-    }
-
-    /// The whole solution curve through `guess` at `from`, first towards `to`, through limit
-    /// positions (see [`trace_curve`](crate::paths::trace::trace_curve)).
-    fn trace_curve(
-        &self,
-        from: impl Into<Self::Inputs>,
-        to: impl Into<Self::Inputs>,
-        guess: &Self::Unknowns,
-        opts: &TraceConfig,
-    ) -> Result<Traced<N, NI>, Error> {
-        crate::paths::trace::trace_curve(self, from.into().into(), to.into().into(), (*guess).into(), opts)
-    }
-
-    /// The distinct assembly modes at `input` (multi-start Newton; see
-    /// [`assembly_modes`](crate::paths::modes::assembly_modes)), e.g. to pick "elbow up" with
-    /// `.into_iter().find(|s| ...)`.
-    fn assembly_modes(&self, input: impl Into<Self::Inputs>) -> Vec<Self::State> {
-        let x: [f64; NI] = input.into().into();
-        crate::paths::modes::assembly_modes(self, &x, 64, &self.solver_config().newton)
-            .into_iter()
-            .map(Self::State::from)
-            .collect()
-    }
-}
-
-/// Why `sensitivities` does not compile on a mechanism declared without them: the generated
-/// `sensitivities` of such a mechanism requires this trait, which no type implements (its only
-/// method would have to return a value of the empty type `Infallible`).
-#[diagnostic::on_unimplemented(
-    message = "`{Self}` was declared without parameter sensitivities",
-    label = "sensitivities are generated only on request",
-    note = "add `#[kinloop(sensitivities)]` before `pub struct` in the `mechanism!` declaration of `{Self}`"
-)]
-pub trait SensitivitiesRequested<I> {
-    /// Never called: no type implements this trait.
-    fn absurd(self) -> core::convert::Infallible;
-}
-
-/// The named sensitivity API of a mechanism declared with `#[kinloop(sensitivities)]`
-/// (`sens.dq.x_c.l_p`), forwarded to by its inherent methods.
-pub trait NamedSensitivities<const N: usize, const NI: usize, const NO: usize, const NP: usize>:
-    Named<N, NI, NO> + Sensitivities<N, NI, NO, NP>
+/// The answer to a checked kernel's failure `error` at input `x` from `guess`: for a mechanism
+/// whose lengths leave the sizes the closed forms compute exactly in
+/// ([`CLOSED_FORM_SIZES`](extreme_scale::CLOSED_FORM_SIZES)), the kinematics solved by Newton
+/// over the whole system from `m`'s Jacobian, and the analogs at that position (see
+/// `extreme_scale`; `error` where that fails too); otherwise `error`. The macro's
+/// `kinematics_flat` of a mechanism of more unknowns than a sweep inlines ends with it
+/// (`kinloop::__gen::rescue`).
+#[doc(hidden)]
+#[cold]
+#[inline(never)]
+pub fn rescue<M, const N: usize, const NI: usize, const NO: usize>(
+    m: &M,
+    x: &[f64; NI],
+    guess: &[f64; N],
+    cfg: &NewtonConfig,
+    error: Error,
+) -> Result<Kin<N, NI, NO>, Error>
+where
+    M: Mechanism<N, NI, NO> + ?Sized,
 {
-    /// `NameSensitivities`: the sensitivities by name.
-    type Sens: From<Sens<N, NI, NO, NP>>;
-
-    /// Solves the kinematics from `guess` and the exact sensitivities of positions, analogs and
-    /// outputs to every parameter (implicit function theorem on the same factorisations).
-    fn sensitivities(
-        &self,
-        input: impl Into<Self::Inputs>,
-        guess: &Self::Unknowns,
-    ) -> Result<(Self::State, Self::Sens), Error> {
-        let (k, s) = self.sensitivities_flat(&input.into().into(), &(*guess).into(), &self.solver_config().newton)?;
-        Ok((k.into(), s.into()))
-    }
-
-    /// [`NamedSensitivities::sensitivities`] at a position the caller already solved.
-    fn sensitivities_at(
-        &self,
-        input: impl Into<Self::Inputs>,
-        q: &Self::Unknowns,
-    ) -> Result<(Self::State, Self::Sens), Error> {
-        let (k, s) = self.sensitivities_at_flat(&input.into().into(), &(*q).into(), &self.solver_config().newton)?;
-        Ok((k.into(), s.into()))
-    }
+    let whole = extreme_scale::Whole {
+        kinds: M::UNKNOWN_KINDS,
+        jacobian: |q: &[f64; N]| m.jacobian_flat(x, q),
+        kinematics_at: |q: &[f64; N]| m.kinematics_at_flat(x, q, cfg),
+    };
+    extreme_scale::rescue(&whole, x, guess, cfg, error)
 }

@@ -10,7 +10,8 @@ use crate::dims::{Dims, KinState, Store};
 use crate::error::Error;
 use crate::mechanism::Mechanism;
 use crate::mechanism::kernel::{Compiled, KinOf, Q, X, check_sizes};
-use crate::paths::sweep::{SweepConfig, SweepOf};
+use crate::paths::config::SweepConfig;
+use crate::paths::sweep::SweepOf;
 
 /// The straight path of a [`SampledOf`] in input space and its parameter `s`.
 #[derive(Clone, Debug)]

@@ -162,14 +162,6 @@ impl Description {
         Description::parse(text)
     }
 
-    /// Reads a description in the macro's text format.
-    ///
-    /// # Errors
-    /// [`Error::InvalidArgument`] naming the line that does not read.
-    pub fn parse(text: &str) -> Result<Description, Error> {
-        parse::parse(text)
-    }
-
     /// The index of the joint `name`.
     pub fn joint(&self, name: &str) -> Option<usize> {
         self.joints.iter().position(|j| j.name == name)

@@ -18,36 +18,43 @@ use super::tape::{Func, TapeOp};
 use super::{Description, FORMAT, Joint, Plate, Segment, SegmentKind};
 use crate::error::Error;
 
-pub(super) fn parse(text: &str) -> Result<Description, Error> {
-    let mut lines = text.lines();
-    if lines.next() != Some(FORMAT) {
-        return Err(bad(1, &format!("the first line must be `{FORMAT}`")));
-    }
-    let mut d = Description {
-        joints: Vec::new(),
-        segments: Vec::new(),
-        plates: Vec::new(),
-        notes: Vec::new(),
-        tape: Vec::new(),
-    };
-    for (i, line) in lines.enumerate() {
-        let n = i + 2;
-        let (tag, rest) = line.split_once(' ').unwrap_or((line, ""));
-        match tag {
-            "t" => {
-                for entry in rest.split_whitespace() {
-                    let op = tape_entry(entry, d.tape.len()).ok_or_else(|| bad(n, &format!("tape entry `{entry}`")))?;
-                    d.tape.push(op);
-                }
-            }
-            "j" => d.joints.push(joint(rest, d.tape.len()).ok_or_else(|| bad(n, "a joint"))?),
-            "s" => d.segments.push(segment(rest, d.tape.len(), d.joints.len()).ok_or_else(|| bad(n, "a segment"))?),
-            "p" => d.plates.push(plate(rest, d.joints.len()).ok_or_else(|| bad(n, "a plate"))?),
-            "n" => d.notes.push(rest.to_string()),
-            _ => return Err(bad(n, &format!("unknown line `{tag}`"))),
+impl Description {
+    /// Reads a description in the macro's text format.
+    ///
+    /// # Errors
+    /// [`Error::InvalidArgument`] naming the line that does not read.
+    pub fn parse(text: &str) -> Result<Description, Error> {
+        let mut lines = text.lines();
+        if lines.next() != Some(FORMAT) {
+            return Err(bad(1, &format!("the first line must be `{FORMAT}`")));
         }
+        let mut d = Description {
+            joints: Vec::new(),
+            segments: Vec::new(),
+            plates: Vec::new(),
+            notes: Vec::new(),
+            tape: Vec::new(),
+        };
+        for (i, line) in lines.enumerate() {
+            let n = i + 2;
+            let (tag, rest) = line.split_once(' ').unwrap_or((line, ""));
+            match tag {
+                "t" => {
+                    for entry in rest.split_whitespace() {
+                        let op =
+                            tape_entry(entry, d.tape.len()).ok_or_else(|| bad(n, &format!("tape entry `{entry}`")))?;
+                        d.tape.push(op);
+                    }
+                }
+                "j" => d.joints.push(joint(rest, d.tape.len()).ok_or_else(|| bad(n, "a joint"))?),
+                "s" => d.segments.push(segment(rest, d.tape.len(), d.joints.len()).ok_or_else(|| bad(n, "a segment"))?),
+                "p" => d.plates.push(plate(rest, d.joints.len()).ok_or_else(|| bad(n, "a plate"))?),
+                "n" => d.notes.push(rest.to_string()),
+                _ => return Err(bad(n, &format!("unknown line `{tag}`"))),
+            }
+        }
+        Ok(d)
     }
-    Ok(d)
 }
 
 fn bad(line: usize, what: &str) -> Error {
@@ -141,7 +148,7 @@ n a note, with spaces";
 
     #[test]
     fn a_description_reads_and_evaluates() {
-        let d = parse(SLIDER_CRANK).unwrap();
+        let d = Description::parse(SLIDER_CRANK).unwrap();
         assert_eq!(d.joints.len(), 2);
         assert_eq!(d.segments[0].term, "a: r @ phi");
         assert_eq!(d.segments[1].kind, SegmentKind::Slider { fixed_guide: true });
@@ -166,10 +173,10 @@ n a note, with spaces";
             "kinloop-drawing 1\nz",
             "kinloop-drawing 1\nt frob:0",
         ] {
-            assert!(matches!(parse(broken), Err(Error::InvalidArgument(_))), "{broken:?}");
+            assert!(matches!(Description::parse(broken), Err(Error::InvalidArgument(_))), "{broken:?}");
         }
         // Leaves beyond the slices given are an error at evaluation.
-        let d = parse(SLIDER_CRANK).unwrap();
+        let d = Description::parse(SLIDER_CRANK).unwrap();
         assert!(matches!(d.evaluate(&[2.0], &[0.3], &[0.0, 1.0]), Err(Error::InvalidArgument(_))));
     }
 }

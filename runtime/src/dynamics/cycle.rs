@@ -9,7 +9,8 @@ use crate::analysis::fourier::{Fourier, fourier};
 use crate::dims::Dims;
 use crate::mechanism::Mechanism;
 use crate::mechanism::kernel::{Compiled, Kernel};
-use crate::paths::sweep::{SweepConfig, SweepOf};
+use crate::paths::config::SweepConfig;
+use crate::paths::sweep::SweepOf;
 use std::f64::consts::TAU;
 
 /// How the input turns over the cycle.

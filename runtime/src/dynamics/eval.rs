@@ -19,6 +19,7 @@ use super::error::DynamicsError;
 use super::model::{Body, Load, MassModel};
 use super::state::AnalogState;
 use super::terms;
+pub use super::terms::Shaking;
 use crate::kin::Kin;
 use std::borrow::Cow;
 
@@ -32,16 +33,6 @@ pub struct Dynamics<const NI: usize> {
     pub gamma: [[[f64; NI]; NI]; NI],
     /// Generalised forces of the loads and gravity, `Q_i`.
     pub forces: [f64; NI],
-}
-
-/// Shaking force and moment transmitted to the frame by the moving bodies' inertia.
-#[derive(Clone, Copy, Debug, PartialEq)]
-pub struct Shaking {
-    /// `-sum m a_S`: the resultant of the inertia forces (equal to `-M_total a_G`).
-    pub force: [f64; 2],
-    /// `-sum ((r_S - O) x m a_S + J_S alpha)`: the moment of the inertia forces and couples
-    /// about the frame point `O`.
-    pub moment: f64,
 }
 
 impl<const NI: usize> Dynamics<NI> {

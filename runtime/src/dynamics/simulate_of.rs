@@ -2,15 +2,75 @@
 //! mass model at a state: a compiled mechanism's [`Simulation`](super::Simulation) (through
 //! [`Compiled`](crate::mechanism::kernel::Compiled) and its [`MassModel`](super::MassModel)) and a run-time model's
 //! (`kinloop_model::Model::simulation`, its `MassModelBuf` and its load expressions) run this
-//! integration, with the same operations in the same order.
+//! integration, with the same operations in the same order. Its settings ([`RunConfig`]) and
+//! result ([`Trajectory`]) are every simulation's.
 
 use super::error::DynamicsError;
 use super::eval::Dynamics;
-use super::ode::dopri5;
-use super::simulate::{RunConfig, Trajectory};
+use super::ode::{DenseStep, OdeConfig, dopri5};
 use crate::dims::{Dims, KinState};
 use crate::mechanism::kernel::Kernel;
+use crate::solvers::newton::NewtonConfig;
 use crate::trig::Libm;
+
+/// Settings of a simulation ([`Simulation`](super::Simulation), [`simulate_of`]).
+#[derive(Clone, Copy, Debug, PartialEq)]
+#[non_exhaustive]
+pub struct RunConfig {
+    /// Integrator tolerances (the state is `[phi, omega]`).
+    pub ode: OdeConfig,
+    /// Newton settings of the kinematic solves.
+    pub newton: NewtonConfig,
+    /// Moment of inertia of a flywheel on the input shaft (added to `J`).
+    pub flywheel: f64,
+}
+
+impl Default for RunConfig {
+    fn default() -> Self {
+        RunConfig { ode: OdeConfig::default(), newton: NewtonConfig::default(), flywheel: 0.0 }
+    }
+}
+
+impl RunConfig {
+    /// Sets [`RunConfig::ode`].
+    pub fn with_ode(mut self, ode: OdeConfig) -> Self {
+        self.ode = ode;
+        self
+    }
+    /// Sets [`RunConfig::newton`].
+    pub fn with_newton(mut self, newton: NewtonConfig) -> Self {
+        self.newton = newton;
+        self
+    }
+    /// Sets [`RunConfig::flywheel`].
+    pub fn with_flywheel(mut self, inertia: f64) -> Self {
+        self.flywheel = inertia;
+        self
+    }
+}
+
+/// The simulated motion: every accepted step with its dense output.
+#[derive(Clone, Debug, PartialEq)]
+pub struct Trajectory {
+    /// The accepted steps in time order.
+    pub steps: Vec<DenseStep<2>>,
+    /// Time reached.
+    pub t_end: f64,
+    /// `[phi, omega]` reached.
+    pub end: [f64; 2],
+}
+
+impl Trajectory {
+    /// `[phi, omega]` at time `t` (clamped to the simulated interval), from the dense output.
+    pub fn at(&self, t: f64) -> [f64; 2] {
+        if self.steps.is_empty() {
+            return self.end;
+        }
+        let i = self.steps.partition_point(|s| s.t1() < t).min(self.steps.len() - 1);
+        let s = &self.steps[i];
+        s.at(t.clamp(s.t0, s.t1()))
+    }
+}
 
 /// Simulates the one-input machine `m` for `t_end` time units from `start = [phi0, omega0]`:
 /// `(J + J_fly) phi'' + 1/2 J' phi'^2 = M_drive + Q` by [`dopri5`], the kinematics solved at

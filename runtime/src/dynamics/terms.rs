@@ -4,9 +4,18 @@
 //! mass model writes them into its arrays, a run-time one ([`MassModelBuf`](super::MassModelBuf))
 //! into its vectors, with the same operations in the same order.
 
-use super::eval::Shaking;
 use super::model::{Body, Point, Rotation};
 use super::state::{AnalogState, d1, d2, value, w1, w2};
+
+/// Shaking force and moment transmitted to the frame by the moving bodies' inertia.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Shaking {
+    /// `-sum m a_S`: the resultant of the inertia forces (equal to `-M_total a_G`).
+    pub force: [f64; 2],
+    /// `-sum ((r_S - O) x m a_S + J_S alpha)`: the moment of the inertia forces and couples
+    /// about the frame point `O`.
+    pub moment: f64,
+}
 
 /// Adds the bodies' mass matrix `M_ij` to `m` and their velocity-product coefficients `G_ijk`
 /// to `g`.

@@ -1,7 +1,8 @@
 //! The name-agnostic cores of a failed step's diagnosis: which value given by the caller is not
-//! finite, which angle was guessed too many turns out, which value of a state is not finite. A
-//! compiled mechanism names what they find by its constants; a mechanism read at run time
-//! (`kinloop_model`) by the names it read, so that its errors are the compiled ones.
+//! finite, and which angle was guessed too many turns out (which value of a state is not finite
+//! is the state's own, `kin::first_non_finite_state`). A compiled mechanism names what they find
+//! by its constants; a mechanism read at run time (`kinloop_model`) by the names it read, so
+//! that its errors are the compiled ones.
 
 use crate::error::Quantity;
 use crate::kinds::QuantityKind;
@@ -47,22 +48,4 @@ pub fn turns_culprit(
         (_, Some(u)) if guess[u].abs() > largest_precise_angle(cfg) => Some((Some(u), guess[u])),
         _ => None,
     }
-}
-
-/// The kind and index of the first non-finite value of a state of `ni` inputs given flat
-/// (each unknown's or output's analogs contiguous, as a compiled `Kin` lays them out):
-/// positions, their velocity and acceleration analogs, then the outputs and theirs.
-pub fn first_non_finite_state([q, dq, d2q, out, dout, d2out]: [&[f64]; 6], ni: usize) -> Option<(&'static str, usize)> {
-    let bad = |v: &[f64]| v.iter().any(|x| !x.is_finite());
-    // No analogs without inputs: chunks of one over empty slices.
-    let (per1, per2) = (ni.max(1), (ni * ni).max(1));
-    let parts: [(&'static str, &[f64], usize); 6] = [
-        ("position", q, 1),
-        ("velocity analog", dq, per1),
-        ("acceleration analog", d2q, per2),
-        ("output", out, 1),
-        ("output velocity analog", dout, per1),
-        ("output acceleration analog", d2out, per2),
-    ];
-    parts.into_iter().find_map(|(what, values, per)| values.chunks(per).position(bad).map(|k| (what, k)))
 }

@@ -11,15 +11,19 @@
 //!
 //! So where a checked kernel fails for a mechanism outside [`CLOSED_FORM_SIZES`], the position
 //! is solved again by Newton over the whole system (its residuals and Jacobian from
-//! [`Mechanism::jacobian_flat`], from the same guess), and the analogs and outputs at that
-//! position by [`Mechanism::kinematics_at_flat`], whose factorisations are scaled. Inside the
-//! range the kernel's own error stands: nothing changes for a mechanism of ordinary size, and the
-//! hot path pays nothing (this runs only after a failure).
+//! [`Mechanism::jacobian_flat`](crate::Mechanism::jacobian_flat), from the same guess), and the
+//! analogs and outputs at that position by
+//! [`Mechanism::kinematics_at_flat`](crate::Mechanism::kinematics_at_flat), whose factorisations
+//! are scaled. Inside the range the kernel's own error stands: nothing changes for a mechanism
+//! of ordinary size, and the hot path pays nothing (this runs only after a failure).
+//!
+//! The mechanism is seen through those two functions only ([`Whole`]): the entry point that
+//! takes a mechanism, `mechanism::rescue`, hands them over, so that this module needs nothing of
+//! the mechanism's traits (which call it).
 
 use crate::error::Error;
 use crate::kin::{Jac, Kin};
 use crate::kinds::QuantityKind;
-use crate::mechanism::Mechanism;
 use crate::solvers::newton::{BlockEval, Magnitudes, NewtonConfig, SolveReport, newton};
 
 /// The sizes (largest magnitude of an equation's terms: the sum of a loop's link lengths) at
@@ -38,28 +42,36 @@ fn outside_closed_form_sizes(scale: &[f64]) -> bool {
     size > 0.0 && !(size >= CLOSED_FORM_SIZES.0 && size <= CLOSED_FORM_SIZES.1)
 }
 
-/// The answer to a checked kernel's failure `error` at input `x` from `guess`: for a mechanism
-/// outside [`CLOSED_FORM_SIZES`], the kinematics solved by Newton over the whole system (and
-/// `error` where that fails too); otherwise `error`. The macro's `kinematics_flat` of a mechanism
-/// of more unknowns than a sweep inlines ends with it (`kinloop::__gen::rescue`).
-#[doc(hidden)]
-#[cold]
-#[inline(never)]
-pub fn rescue<M, const N: usize, const NI: usize, const NO: usize>(
-    m: &M,
+/// What the rescue needs of a mechanism: the kinds of its unknowns (which are angles, whose
+/// equations repeat every turn), and at input `x`, the whole system's residuals and Jacobian at
+/// a position (`jacobian`: [`Mechanism::jacobian_flat`](crate::Mechanism::jacobian_flat)) and
+/// the analogs and outputs at a solved one (`kinematics_at`:
+/// [`Mechanism::kinematics_at_flat`](crate::Mechanism::kinematics_at_flat)).
+pub(crate) struct Whole<J, A, const N: usize> {
+    pub(crate) kinds: [QuantityKind; N],
+    pub(crate) jacobian: J,
+    pub(crate) kinematics_at: A,
+}
+
+/// The answer to a checked kernel's failure `error` at input `x` from `guess`, for the mechanism
+/// `m` sees: for a mechanism outside [`CLOSED_FORM_SIZES`], the kinematics solved by Newton over
+/// the whole system (and `error` where that fails too); otherwise `error`.
+pub(crate) fn rescue<J, A, const N: usize, const NI: usize, const NO: usize>(
+    m: &Whole<J, A, N>,
     x: &[f64; NI],
     guess: &[f64; N],
     cfg: &NewtonConfig,
     error: Error,
 ) -> Result<Kin<N, NI, NO>, Error>
 where
-    M: Mechanism<N, NI, NO> + ?Sized,
+    J: Fn(&[f64; N]) -> Jac<N, NI>,
+    A: Fn(&[f64; N]) -> Result<Kin<N, NI, NO>, Error>,
 {
     if !guess.iter().chain(x.iter()).all(|v| v.is_finite()) {
         return Err(error);
     }
-    match jacobian_outside(m, x, guess) {
-        Some(jac) => solve_whole(m, x, guess, cfg, error, &jac),
+    match jacobian_outside(m, guess) {
+        Some(jac) => solve_whole(m, guess, cfg, error, &jac),
         None => Err(error),
     }
 }
@@ -70,41 +82,40 @@ where
 /// every value it made, so the common case (an ordinary size, nothing to rescue) must not
 /// share one with the whole-system solve.
 #[inline(never)]
-fn jacobian_outside<M, const N: usize, const NI: usize, const NO: usize>(
-    m: &M,
-    x: &[f64; NI],
+fn jacobian_outside<J, A, const N: usize, const NI: usize>(
+    m: &Whole<J, A, N>,
     guess: &[f64; N],
 ) -> Option<Box<Jac<N, NI>>>
 where
-    M: Mechanism<N, NI, NO> + ?Sized,
+    J: Fn(&[f64; N]) -> Jac<N, NI>,
 {
-    let jac = Box::new(m.jacobian_flat(x, guess));
+    let jac = Box::new((m.jacobian)(guess));
     outside_closed_form_sizes(&jac.scale).then_some(jac)
 }
 
 /// [`rescue`]'s Newton over the whole system from `guess`, whose Jacobian is `jac`.
 #[inline(never)]
-fn solve_whole<M, const N: usize, const NI: usize, const NO: usize>(
-    m: &M,
-    x: &[f64; NI],
+fn solve_whole<J, A, const N: usize, const NI: usize, const NO: usize>(
+    m: &Whole<J, A, N>,
     guess: &[f64; N],
     cfg: &NewtonConfig,
     error: Error,
     jac: &Jac<N, NI>,
 ) -> Result<Kin<N, NI, NO>, Error>
 where
-    M: Mechanism<N, NI, NO> + ?Sized,
+    J: Fn(&[f64; N]) -> Jac<N, NI>,
+    A: Fn(&[f64; N]) -> Result<Kin<N, NI, NO>, Error>,
 {
     // Newton in dimensionless unknowns `z = q / unit` (radians for an angle, fractions of its
     // loop's size for a length): the columns of the Jacobian are then of one magnitude, as a
     // block of the generated Newton solver has them.
     let unit = jac.unit.map(|u| if u > 0.0 && u.is_finite() { u } else { 1.0 });
-    let turns = M::UNKNOWN_KINDS.map(|k| k == QuantityKind::Angle);
+    let turns = m.kinds.map(|k| k == QuantityKind::Angle);
     let mags = Magnitudes::new(jac.scale, [1.0; N]).with_turns(turns);
     let q_of = |z: &[f64; N]| core::array::from_fn::<f64, N, _>(|u| z[u] * unit[u]);
     // Written over the solver's slot, as the generated blocks' evaluations are.
     let eval = |z: &[f64; N], ev: &mut BlockEval<N, 0>| {
-        let jz = m.jacobian_flat(x, &q_of(z));
+        let jz = (m.jacobian)(&q_of(z));
         ev.f = jz.f;
         ev.j = jz.j;
         for row in &mut ev.j {
@@ -120,7 +131,7 @@ where
     solved.z = q_of(&solved.z);
     let mut report = SolveReport::direct();
     report.absorb(&solved);
-    let mut kin = m.kinematics_at_flat(x, &solved.z, cfg).map_err(|_| error)?;
+    let mut kin = (m.kinematics_at)(&solved.z).map_err(|_| error)?;
     kin.report = report;
     Ok(kin)
 }

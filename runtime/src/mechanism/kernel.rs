@@ -9,7 +9,7 @@ use crate::events::{BlockInfo, Location};
 use crate::kin::{Jac, Kin, Sens};
 use crate::kinds::QuantityKind;
 use crate::mechanism::{Mechanism, Sensitivities};
-use crate::paths::sweep::SweepConfig;
+use crate::paths::config::SweepConfig;
 use crate::solvers::newton::NewtonConfig;
 use crate::trig::InputTrig;
 
@@ -539,4 +539,11 @@ where
         out.copy_from_slice(&self.0.outputs_flat(x, q));
         Ok(())
     }
+}
+
+/// Whether unknown `u` of `m` is an angle, measured in radians by a sweep's tests and the
+/// location of its events: a closed form's angle, or an unknown of the kind.
+#[inline(always)]
+pub(crate) fn is_angle<K: Kernel>(m: &K, u: usize) -> bool {
+    m.closed_form_angle(u) || m.unknown_kind(u) == QuantityKind::Angle
 }

@@ -16,7 +16,8 @@ use crate::error::Error;
 use crate::events::{Event, EventKind};
 use crate::mechanism::Mechanism;
 use crate::mechanism::kernel::{Compiled, Kernel, KinOf, Q};
-use crate::paths::sweep::{AtSingular, SweepConfig, SweepOf};
+use crate::paths::config::{AtSingular, SweepConfig};
+use crate::paths::sweep::SweepOf;
 use std::fmt;
 
 /// The located extremes (limit positions) of one output column.

@@ -1,6 +1,6 @@
 //! A singular crossing located from the well-conditioned positions on both sides of it.
 //!
-//! [`trace`](super::curve::trace) brackets a crossing by the sign of the determinant at points of
+//! [`trace`](super::locate::trace) brackets a crossing by the sign of the determinant at points of
 //! the continuation. Those points are only as good as the residual tolerance pins them: where
 //! the crossing is a lever through zero (a polar block `s @ theta` whose `s` vanishes) the
 //! tolerance leaves the angle loose by `tol L / s`, the arclength constraint turns that into an
@@ -15,11 +15,10 @@
 //! interpolated through them, and its root taken. Rare (once per crossing), so it allocates.
 
 use super::curve::{CurvePoint, Metric, Path, illinois, signed_det};
-use super::sweep::is_angle;
 use crate::dims::{Dims, JacState, KinState, Store};
-use crate::mechanism::kernel::{Kernel, Q, X};
-use crate::solvers::closed::unwrap_to_turn;
+use crate::mechanism::kernel::{Kernel, Q, X, is_angle};
 use crate::solvers::newton::NewtonConfig;
+use crate::solvers::turns::unwrap_to_turn;
 use nalgebra::DMatrix;
 
 /// Samples on each side of the crossing, at `1, 2, 3` spacings from the trace's estimate: an

@@ -1,11 +1,13 @@
-//! Following a mechanism along its inputs: sweeps that never jump branches ([`sweep`]) and their
-//! results with the reason they stopped ([`outcome`]), pseudo-arclength continuation through
+//! Following a mechanism along its inputs: sweeps that never jump branches ([`sweep`], configured
+//! by [`config`]) and their results with the reason they stopped ([`outcome`]), pseudo-arclength continuation through
 //! limit positions ([`curve`], [`trace`]), the states at given inputs ([`sweep_at`]), the reachable
 //! input range ([`reach`]), design-space
 //! scans ([`scan`]) and the search for assembly modes ([`modes`]).
 
+pub mod config;
 mod crossing;
 pub mod curve;
+mod locate;
 pub mod modes;
 pub mod outcome;
 pub mod reach;

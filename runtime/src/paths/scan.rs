@@ -25,7 +25,8 @@ use crate::error::Error;
 use crate::kin::Kin;
 use crate::mechanism::Mechanism;
 use crate::mechanism::kernel::{Compiled, Kernel, KinOf, Q, X};
-use crate::paths::sweep::{SweepConfig, SweepOf};
+use crate::paths::config::SweepConfig;
+use crate::paths::sweep::SweepOf;
 use std::fmt;
 
 /// How each sweep of a scan starts: the initial guess at the start of the range, which picks

@@ -210,7 +210,8 @@ mod tests {
     /// configuration and random angles: every angle passes the checked kernel's test.
     #[test]
     fn a_closed_form_angle_from_an_accepted_guess_passes_the_configured_bound() {
-        use crate::solvers::closed::{acos_on_side, asin_near, reduce_turn, unwrap_to_turn};
+        use crate::solvers::closed::{acos_on_side, asin_near};
+        use crate::solvers::turns::{reduce_turn, unwrap_to_turn};
         use core::f64::consts::{FRAC_PI_2, PI};
         let mut rng = Rng(0x0123_4567_89ab_cdef);
         for cfg in configs() {

@@ -3,6 +3,7 @@
 //! that Newton, the analogs and the sensitivities share ([`lu`]); large sparse blocks factorise
 //! along an elimination order fixed at compile time ([`sparse_lu`]), by the numeric steps of
 //! [`sparse_steps`]; a sparse block read at run time, along its owned tables ([`sparse_lu_dyn`]).
+//! Angles stay on their guesses' turns by [`turns`]; the closed forms' steps are [`closed`].
 //!
 //! The bottom layer of the runtime: nothing here knows a mechanism, its states or its sweeps.
 //! The solvers use each other and the small leaves `error` and `events` only, so each can be
@@ -17,3 +18,4 @@ pub mod newton;
 pub mod sparse_lu;
 pub mod sparse_lu_dyn;
 pub mod sparse_steps;
+pub mod turns;

@@ -12,7 +12,7 @@ use crate::analysis::ColumnIndex;
 use crate::dims::Dims;
 use crate::mechanism::Sensitivities;
 use crate::mechanism::kernel::{CompiledSens, Kernel, Q, SensKernel, X};
-use crate::paths::sweep::SweepConfig;
+use crate::paths::config::SweepConfig;
 use crate::solvers::newton::NewtonConfig;
 use std::borrow::Cow;
 

@@ -2,7 +2,6 @@
 //! other starts; merged across parts of a split search; as a table for CSV.
 
 use super::candidate::{Candidate, Defect};
-use super::search::Search;
 use crate::metrics::GrashofClass;
 use crate::table::Table;
 use std::ops::Range;
@@ -20,7 +19,7 @@ pub struct SynthesisReport {
     pub candidates: Vec<Candidate>,
     /// The starts run (Halton indices, or with differential evolution islands).
     pub starts: Range<usize>,
-    /// The seeds run ([`Search::seeds`]; with the part of a split search whose starts begin
+    /// The seeds run ([`Search::seeds`](super::Search::seeds); with the part of a split search whose starts begin
     /// at `0`).
     pub seeds: usize,
     /// Seeds and starts (with differential evolution: members to polish) at which the design
@@ -43,55 +42,6 @@ impl SynthesisReport {
     pub fn best(&self) -> Option<&Candidate> {
         self.candidates.first().filter(|c| c.is_valid())
     }
-
-    /// The reports of two parts of one search (disjoint start ranges of the same problem,
-    /// `search` the settings both ran with but for the range) as one: ranked again, duplicates
-    /// removed, cut to [`Search::keep`].
-    pub fn merge(mut self, other: SynthesisReport, search: &Search) -> SynthesisReport {
-        let mut all = std::mem::take(&mut self.candidates);
-        all.extend(other.candidates);
-        self.candidates = distinct(all, &self.bounds, search);
-        self.starts = self.starts.start.min(other.starts.start)..self.starts.end.max(other.starts.end);
-        self.seeds += other.seeds;
-        self.unassembled += other.unassembled;
-        self.converged += other.converged;
-        self.valid += other.valid;
-        self.rejected.add(&other.rejected);
-        self.evaluations += other.evaluations;
-        self
-    }
-}
-
-/// Valid first, then by RMS error, then by origin (seeds first) and start.
-fn rank(c: &mut [Candidate]) {
-    c.sort_by(|a, b| {
-        b.is_valid()
-            .cmp(&a.is_valid())
-            .then(a.rms_error.total_cmp(&b.rms_error))
-            .then(a.origin.cmp(&b.origin))
-            .then(a.start.cmp(&b.start))
-    });
-}
-
-/// The candidates ranked, without duplicates (a candidate of the same validity whose every
-/// value is within `distinct` of the range of one ranked before it), at most `keep`.
-pub(crate) fn distinct(mut all: Vec<Candidate>, bounds: &[(f64, f64)], search: &Search) -> Vec<Candidate> {
-    rank(&mut all);
-    let span: Vec<f64> = bounds.iter().map(|(lo, hi)| (hi - lo).max(f64::MIN_POSITIVE)).collect();
-    let mut out: Vec<Candidate> = Vec::new();
-    for c in all {
-        if out.len() >= search.keep {
-            break;
-        }
-        let same = |o: &Candidate| {
-            o.is_valid() == c.is_valid()
-                && o.values.iter().zip(&c.values).zip(&span).all(|((a, b), s)| (a - b).abs() <= search.distinct * s)
-        };
-        if !out.iter().any(same) {
-            out.push(c);
-        }
-    }
-    out
 }
 
 /// How many candidates of a search were rejected, by their first [`Defect`].

@@ -11,7 +11,7 @@ use super::evolution::{DeConfig, Global, IslandRng, best, evolve};
 use super::halton::Halton;
 use super::local::LocalConfig;
 use super::problem::ProblemOf;
-use super::report::{Rejections, SynthesisReport, distinct};
+use super::report::{Rejections, SynthesisReport};
 use super::resolve::Inputs;
 use crate::mechanism::kernel::SensKernel;
 use std::ops::Range;
@@ -404,4 +404,55 @@ impl Search {
         let (z, e, report) = problem.local(Self::clamped(problem, z0), &self.local)?;
         Ok(problem.verify(Origin::Refine, usize::MAX, z, e, report)?)
     }
+}
+
+impl SynthesisReport {
+    /// The reports of two parts of one search (disjoint start ranges of the same problem,
+    /// `search` the settings both ran with but for the range) as one: ranked again, duplicates
+    /// removed, cut to [`Search::keep`].
+    pub fn merge(mut self, other: SynthesisReport, search: &Search) -> SynthesisReport {
+        let mut all = std::mem::take(&mut self.candidates);
+        all.extend(other.candidates);
+        self.candidates = distinct(all, &self.bounds, search);
+        self.starts = self.starts.start.min(other.starts.start)..self.starts.end.max(other.starts.end);
+        self.seeds += other.seeds;
+        self.unassembled += other.unassembled;
+        self.converged += other.converged;
+        self.valid += other.valid;
+        self.rejected.add(&other.rejected);
+        self.evaluations += other.evaluations;
+        self
+    }
+}
+
+/// Valid first, then by RMS error, then by origin (seeds first) and start.
+fn rank(c: &mut [Candidate]) {
+    c.sort_by(|a, b| {
+        b.is_valid()
+            .cmp(&a.is_valid())
+            .then(a.rms_error.total_cmp(&b.rms_error))
+            .then(a.origin.cmp(&b.origin))
+            .then(a.start.cmp(&b.start))
+    });
+}
+
+/// The candidates ranked, without duplicates (a candidate of the same validity whose every
+/// value is within `distinct` of the range of one ranked before it), at most `keep`.
+fn distinct(mut all: Vec<Candidate>, bounds: &[(f64, f64)], search: &Search) -> Vec<Candidate> {
+    rank(&mut all);
+    let span: Vec<f64> = bounds.iter().map(|(lo, hi)| (hi - lo).max(f64::MIN_POSITIVE)).collect();
+    let mut out: Vec<Candidate> = Vec::new();
+    for c in all {
+        if out.len() >= search.keep {
+            break;
+        }
+        let same = |o: &Candidate| {
+            o.is_valid() == c.is_valid()
+                && o.values.iter().zip(&c.values).zip(&span).all(|((a, b), s)| (a - b).abs() <= search.distinct * s)
+        };
+        if !out.iter().any(same) {
+            out.push(c);
+        }
+    }
+    out
 }

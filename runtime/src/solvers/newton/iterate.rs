@@ -11,8 +11,8 @@ use super::scales::{BlockEval, MagnitudesOf, fallback_rows, magnitudes_at, rows_
 use super::state::Iter;
 use super::step::{MAX_UNCHECKED_CORRECTION, evaluated_correction};
 use super::trace::{SolvePath, note};
-use crate::solvers::closed::unwrap_to_turn;
 use crate::solvers::jacobian::BlockJacobian;
+use crate::solvers::turns::unwrap_to_turn;
 
 /// The scaled residual may exceed `residual_tol` by this factor when the iteration stops on the
 /// step test (rows whose terms are much larger than their derivatives have a higher floor).

@@ -20,8 +20,8 @@ use super::norms::scaled_residual;
 use super::report::{BlockFailure, Solved};
 use super::scales::{BlockEval, MagnitudesOf, fallback_rows, magnitudes_at, rows_at};
 use super::trace::{SolvePath, note};
-use crate::solvers::closed::{reduce_turn, unwrap_to_turn};
 use crate::solvers::jacobian::BlockJacobian;
+use crate::solvers::turns::{reduce_turn, unwrap_to_turn};
 use core::f64::consts::{FRAC_PI_2, PI};
 
 /// The turns of an angle a restart starts from, relative to the guess.

@@ -1,0 +1,166 @@
+//! The configuration of a sweep ([`SweepConfig`], with what it does at a singular crossing,
+//! [`AtSingular`]), apart from the sweep it configures: a mechanism carries one as its solver
+//! configuration (`Mechanism::solver_config`), and every path of the runtime takes one, so it
+//! sits below them all and below the mechanism's traits.
+
+use crate::error::Error;
+use crate::solvers::newton::NewtonConfig;
+
+/// What a sweep does at a singular crossing (a change point where a block's determinant changes
+/// sign and the mechanism can continue on either branch).
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+#[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
+#[non_exhaustive]
+pub enum AtSingular {
+    /// Record the event and stop with [`Error::SweepStopped`] (default).
+    Stop,
+    /// Record the event and continue on the smooth continuation of the path.
+    Continue,
+}
+
+/// Configuration of a sweep, built from the default with the `with_*` methods.
+///
+/// ```
+/// use kinloop_runtime::{AtSingular, NewtonConfig, SweepConfig};
+/// let cfg = SweepConfig::default()
+///     .with_newton(NewtonConfig::default().with_residual_tol(1e-14))
+///     .with_max_step(0.5)
+///     .with_at_singular(AtSingular::Continue);
+/// assert_eq!(cfg.max_step, 0.5);
+/// assert_eq!(cfg.newton.residual_tol, 1e-14);
+/// assert!(cfg.validate().is_ok());
+/// ```
+#[derive(Clone, Copy, Debug, PartialEq)]
+#[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
+#[non_exhaustive]
+pub struct SweepConfig {
+    /// The Newton solver used at every step. Its [`NewtonConfig::restarts`] apply to the first
+    /// sample only, solved from the caller's guess: a step's guess is a prediction, and a root
+    /// reached from a turned guess would be another branch.
+    pub newton: NewtonConfig,
+    /// Largest internal step as a fraction of the sample spacing (default `1`; at least `1e-6`,
+    /// so that a sample takes at most a million steps). Whatever it is, a step is also at most
+    /// [`Sweep`](super::sweep::Sweep)'s natural bound (a quarter radian of an angle input), so the number of samples
+    /// never sets how far a step goes.
+    pub max_step: f64,
+    /// How many times a step may be halved before the sweep diagnoses a singular position
+    /// (default `40`, i.e. steps down to about `1e-12` of the sample spacing).
+    pub max_halvings: u32,
+    /// A corrected position is accepted only within `corrector_rel` times the predicted change
+    /// plus `corrector_abs` of its prediction (defaults `0.25` and `1e-6`), and its slopes
+    /// likewise: every unknown in its own unit (radians for an angle, its loop's size for a
+    /// length), so that the test is the same in any unit of length.
+    pub corrector_rel: f64,
+    /// See [`SweepConfig::corrector_rel`].
+    pub corrector_abs: f64,
+    /// Behaviour at a singular crossing.
+    pub at_singular: AtSingular,
+    /// A step is not accepted at a position whose smallest pivot ratio
+    /// ([`Health::min_pivot`](crate::Health::min_pivot)) is below this (default `1e-6`): so close
+    /// to a singular position the residual tolerance no longer pins the branch. The sweep then locates the singular position by arclength
+    /// continuation; where it finds none (the path only passes close to one, e.g. a slide within
+    /// a millionth of its loop's size from its pivot) it stops with [`Error::Branch`], and a lower
+    /// value lets it pass.
+    pub singular_pivot: f64,
+}
+
+/// The sweep defaults with this Newton configuration.
+impl From<NewtonConfig> for SweepConfig {
+    fn from(newton: NewtonConfig) -> Self {
+        SweepConfig::default().with_newton(newton)
+    }
+}
+
+impl Default for SweepConfig {
+    fn default() -> Self {
+        SweepConfig {
+            newton: NewtonConfig::default(),
+            max_step: 1.0,
+            max_halvings: 40,
+            corrector_rel: 0.25,
+            corrector_abs: 1e-6,
+            at_singular: AtSingular::Stop,
+            singular_pivot: 1e-6,
+        }
+    }
+}
+
+impl SweepConfig {
+    /// Sets [`SweepConfig::newton`].
+    pub fn with_newton(mut self, newton: NewtonConfig) -> Self {
+        self.newton = newton;
+        self
+    }
+    /// Sets [`SweepConfig::max_step`].
+    pub fn with_max_step(mut self, fraction: f64) -> Self {
+        self.max_step = fraction;
+        self
+    }
+    /// Sets [`SweepConfig::max_halvings`].
+    pub fn with_max_halvings(mut self, n: u32) -> Self {
+        self.max_halvings = n;
+        self
+    }
+    /// Sets [`SweepConfig::corrector_rel`] and [`SweepConfig::corrector_abs`].
+    pub fn with_corrector(mut self, rel: f64, abs: f64) -> Self {
+        self.corrector_rel = rel;
+        self.corrector_abs = abs;
+        self
+    }
+    /// Sets [`SweepConfig::at_singular`].
+    pub fn with_at_singular(mut self, at_singular: AtSingular) -> Self {
+        self.at_singular = at_singular;
+        self
+    }
+    /// Sets [`SweepConfig::singular_pivot`].
+    pub fn with_singular_pivot(mut self, ratio: f64) -> Self {
+        self.singular_pivot = ratio;
+        self
+    }
+
+    /// The first field outside its valid range (NaN is outside every range), including the
+    /// fields of [`SweepConfig::newton`].
+    pub fn invalid_field(&self) -> Option<&'static str> {
+        let finite_positive = |v: f64| v > 0.0 && v < f64::INFINITY;
+        if let Some(field) = self.newton.invalid_field() {
+            Some(field)
+        } else if !(self.max_step >= MIN_MAX_STEP && self.max_step <= 1.0) {
+            Some("max_step")
+        } else if !(1..=60).contains(&self.max_halvings) {
+            Some("max_halvings")
+        } else if !finite_positive(self.corrector_rel) {
+            Some("corrector_rel")
+        } else if !(self.corrector_abs >= 0.0 && self.corrector_abs < f64::INFINITY) {
+            Some("corrector_abs")
+        } else if !(self.singular_pivot >= 0.0 && self.singular_pivot < 1.0) {
+            Some("singular_pivot")
+        } else {
+            None
+        }
+    }
+
+    /// Checks every field: `Error::InvalidArgument` names the first one out of range
+    /// (`max_step` in `[1e-6, 1]`, `max_halvings` in `1..=60`, `corrector_rel` positive and finite,
+    /// `corrector_abs` non-negative and finite, `singular_pivot` in `[0, 1)`, and the Newton
+    /// configuration's ranges).
+    ///
+    /// ```
+    /// use kinloop_runtime::SweepConfig;
+    /// assert!(SweepConfig::default().validate().is_ok());
+    /// let bad = SweepConfig::default().with_max_step(0.0);
+    /// assert!(bad.validate().unwrap_err().to_string().contains("max_step"));
+    /// ```
+    pub fn validate(&self) -> Result<(), Error> {
+        let prefix = if self.newton.invalid_field().is_some() { "newton." } else { "" };
+        match self.invalid_field() {
+            None => Ok(()),
+            Some(field) => Err(Error::InvalidArgument(format!(
+                "SweepConfig::{prefix}{field} is out of its valid range (see its documentation): {self:?}"
+            ))),
+        }
+    }
+}
+
+/// Smallest valid [`SweepConfig::max_step`]: below it a sample would take more than a million
+/// steps, beyond any use (the sample spacing is the user's to choose instead).
+const MIN_MAX_STEP: f64 = 1e-6;

@@ -1,0 +1,254 @@
+//! Following the solution curve from where a sweep's step could not be made to the event that
+//! stopped it ([`trace`]): a limit position (the input reverses, [`Found::Fold`]), located as the
+//! root of the input's rate along the curve, or a singular crossing (a block's determinant
+//! changes sign while the input advances, [`Found::Crossing`]), located as the root of the
+//! determinant and then again from the well-conditioned positions on both sides
+//! ([`crossing`](super::crossing)). Where several branches meet (coincident joints, several
+//! blocks folding at once) the rank of the augmented Jacobian and of each block's tell a
+//! crossing from a fold.
+//!
+//! Built on the continuation's primitives ([`curve`](super::curve)); run only where a sweep
+//! diagnoses a failed step, so it uses nalgebra's dynamic matrices.
+
+use super::crossing::refine;
+use super::curve::{
+    CurvePoint, Metric, Path, arc_step, f_sigma, illinois, locate_fold, signed_det, tangent_from_analogs,
+};
+use crate::dims::{Dims, JacState, KinState};
+use crate::mechanism::kernel::{Kernel, Q, X};
+use crate::solvers::newton::NewtonConfig;
+use nalgebra::{DMatrix, DVector};
+
+/// Whether the augmented Jacobian `[J | dF/dsigma]` at `p` has full rank `N`: its smallest
+/// singular value, with rows scaled by their magnitudes and columns by their largest entry, is
+/// not negligible. At a limit position `J` alone is singular and the augmented matrix is not
+/// (the input cannot go on); where both are singular branches cross.
+fn augmented_full_rank<K: Kernel>(m: &K, path: &Path<X<K>>, p: &CurvePoint<Q<K>>) -> bool {
+    let n = m.dims().n();
+    let jac = m.jacobian(&path.at_sigma(p.sigma), &p.q);
+    let fs = f_sigma(&jac, path, n);
+    let mut a = DMatrix::zeros(n, n + 1);
+    for e in 0..n {
+        let row = jac.scale(e);
+        let row = if row > 0.0 && row.is_finite() { row } else { 1.0 };
+        for u in 0..n {
+            a[(e, u)] = jac.j(e, u) / row;
+        }
+        a[(e, n)] = fs[e] / row;
+    }
+    for c in 0..=n {
+        let big = a.column(c).amax();
+        if big > 0.0 {
+            a.column_mut(c).unscale_mut(big);
+        }
+    }
+    let sv = a.svd(false, false).singular_values;
+    let (lo, hi) = (sv.min(), sv.max());
+    // A fold located to about the rounding of `s` leaves a smallest singular value of order
+    // one; a crossing, one of the order of the distance to it (`sqrt(eps)` at most).
+    hi > 0.0 && lo > RANK_TOL * hi
+}
+
+/// Relative singular value below which the augmented Jacobian is rank deficient.
+const RANK_TOL: f64 = 1e-6;
+
+/// The smallest and largest singular values of `a` with its rows over `rows` (the equations'
+/// magnitudes) and each column over its largest entry.
+fn singular_range(mut a: DMatrix<f64>, rows: &[f64]) -> (f64, f64) {
+    for (e, &row) in rows.iter().enumerate() {
+        a.row_mut(e).unscale_mut(if row > 0.0 && row.is_finite() { row } else { 1.0 });
+    }
+    for c in 0..a.ncols() {
+        let big = a.column(c).amax();
+        if big > 0.0 {
+            a.column_mut(c).unscale_mut(big);
+        }
+    }
+    let sv = a.svd(false, false).singular_values;
+    (sv.min(), sv.max())
+}
+
+/// Whether one block of the decomposition is at a limit position of its own at `p`: the first
+/// block (in solve order) whose Jacobian is singular there has a full-rank Jacobian augmented by
+/// its equations' rate along the path (the path's own and, through the blocks solved before it,
+/// theirs), so that block, and with it the input path, cannot advance. Where several blocks fold
+/// at once (a five-bar driven by its end effector to where both arms stretch) the whole system's
+/// augmented Jacobian loses rank as at a crossing, yet no branch goes on. `false` where the
+/// blocks cannot be told from the names (a hand-written mechanism's) or no block folds.
+pub(crate) fn block_folds<K: Kernel>(m: &K, path: &Path<X<K>>, p: &CurvePoint<Q<K>>) -> bool {
+    let jac = m.jacobian(&path.at_sigma(p.sigma), &p.q);
+    let fs = f_sigma(&jac, path, m.dims().n());
+    // The rows and columns of the blocks solved so far.
+    let (mut rows, mut cols) = (Vec::new(), Vec::new());
+    for b in 0..m.block_count() {
+        let Some((own_rows, own_cols)) = m.block_rows_cols(b) else { return false };
+        if own_rows.len() != own_cols.len() || own_rows.is_empty() {
+            return false;
+        }
+        let k = own_rows.len();
+        let a = DMatrix::from_fn(k, k, |i, j| jac.j(own_rows[i], own_cols[j]));
+        let scale: Vec<f64> = own_rows.iter().map(|&e| jac.scale(e)).collect();
+        let (lo, hi) = singular_range(a.clone(), &scale);
+        if hi > 0.0 && lo > FOLD_PIVOT * hi {
+            rows.extend(own_rows);
+            cols.extend(own_cols);
+            continue;
+        }
+        // The earlier blocks' rates `dq/dsigma` (regular: they were not singular).
+        let earlier = DMatrix::from_fn(rows.len(), cols.len(), |i, j| jac.j(rows[i], cols[j]));
+        let rhs = DVector::from_fn(rows.len(), |i, _| -fs[rows[i]]);
+        let rates = if rows.is_empty() { Some(DVector::zeros(0)) } else { earlier.lu().solve(&rhs) };
+        let Some(rates) = rates else { return false };
+        let rate = |i: usize| {
+            fs[own_rows[i]] + cols.iter().enumerate().map(|(c, &u)| jac.j(own_rows[i], u) * rates[c]).sum::<f64>()
+        };
+        let augmented = DMatrix::from_fn(k, k + 1, |i, j| if j < k { a[(i, j)] } else { rate(i) });
+        let (lo, hi) = singular_range(augmented, &scale);
+        return hi > 0.0 && lo > RANK_TOL * hi;
+    }
+    false
+}
+
+/// Relative smallest singular value of a block's scaled Jacobian below which [`block_folds`]
+/// counts it singular: that of a limit position located to the rounding of the arclength.
+const FOLD_PIVOT: f64 = 1e-6;
+
+/// The point past the branch point `at` that the path tangent at `a` continues to: solved at
+/// fixed input from the straight (tangent) prediction, beyond `at` by up to eight times the
+/// distance from `a` to it, with the far side's determinant sign.
+fn straight_past<K: Kernel>(
+    m: &K,
+    path: &Path<X<K>>,
+    metric: &Metric<Q<K>>,
+    a: &CurvePoint<Q<K>>,
+    at: &CurvePoint<Q<K>>,
+    cfg: &NewtonConfig,
+) -> Option<CurvePoint<Q<K>>> {
+    let rate = a.dsigma();
+    let gap = at.sigma - a.sigma;
+    if !(rate > 0.0 && gap > 0.0) {
+        return None;
+    }
+    let det_a = signed_det(m, &path.at_sigma(a.sigma), &a.q);
+    for k in [1.0, 2.0, 4.0, 8.0] {
+        let sigma = at.sigma + k * gap;
+        let mut guess = a.q.clone();
+        for u in 0..m.dims().n() {
+            guess[u] += a.dq_dsigma(u, metric) * (sigma - a.sigma);
+        }
+        // From a prediction: a restart would find another branch.
+        let Ok(n) = m.kinematics(&path.at_sigma(sigma), &guess, &cfg.with_restarts(false)) else { continue };
+        let mut q = guess;
+        q.as_mut().copy_from_slice(n.q());
+        if (signed_det(m, &path.at_sigma(sigma), &q) > 0.0) == (det_a > 0.0) {
+            continue;
+        }
+        let tangent = tangent_from_analogs(&n, path, metric);
+        return Some(CurvePoint { q, sigma, tangent });
+    }
+    None
+}
+
+/// What following the curve found.
+pub(crate) enum Found<Q> {
+    /// A limit position: the input reverses here.
+    Fold(CurvePoint<Q>),
+    /// The Jacobian's determinant changes sign here while the input keeps advancing; the second
+    /// point lies just past it on the smooth continuation.
+    Crossing(CurvePoint<Q>, CurvePoint<Q>),
+}
+
+/// Follows the curve from `start` (tangent oriented with increasing sigma) for at most
+/// `max_arc` of arclength (`ds0` and `max_arc` in the scaled coordinates of `metric`), watching
+/// for a limit position (the tangent's sigma component changing sign) and for a sign change of
+/// the Jacobian determinant; locates the first one found (a crossing from the well-conditioned
+/// positions on both sides of it where it can, see [`crossing`](super::crossing)).
+pub(crate) fn trace<K: Kernel>(
+    m: &K,
+    path: &Path<X<K>>,
+    metric: &Metric<Q<K>>,
+    start: &CurvePoint<Q<K>>,
+    ds0: f64,
+    max_arc: f64,
+    cfg: &NewtonConfig,
+) -> Option<Found<Q<K>>> {
+    if !(ds0 > 0.0 && ds0.is_finite() && max_arc.is_finite()) {
+        return None;
+    }
+    let det_at = |p: &CurvePoint<Q<K>>| signed_det(m, &path.at_sigma(p.sigma), &p.q);
+    let mut a = start.clone();
+    let mut det_a = det_at(&a);
+    let mut ds = ds0.min(MAX_ARC_STEP);
+    let mut walked = 0.0;
+    while walked < max_arc {
+        // A step whose tangent turns sharply has left the curve being followed: at a branch
+        // point (e.g. two coincident joints) the corrector can land on a crossing curve, along
+        // which the input may not move at all. A smaller step stays on the curve; a larger one
+        // later jumps the branch point onto the curve's smooth continuation.
+        let Some(b) = arc_step(m, path, metric, &a, ds, cfg).filter(|b| a.tangent.dot(&b.tangent) >= MIN_TURN_COS)
+        else {
+            ds *= 0.5;
+            if ds < 1e-14 * (1.0 + max_arc) {
+                return None;
+            }
+            continue;
+        };
+        let det_b = det_at(&b);
+        if b.dsigma() <= 0.0 {
+            let fold = locate_fold(m, path, metric, &a, ds, b.dsigma(), cfg)?;
+            // Where `[J | dF/dsigma]` loses rank too, the input is not stopped: several
+            // branches meet (e.g. two coincident joints), and the one the path tangent
+            // continues goes on.
+            if !augmented_full_rank(m, path, &fold) && !block_folds(m, path, &fold) {
+                return straight_past(m, path, metric, &a, &fold, cfg).map(|past| Found::Crossing(fold, past));
+            }
+            return Some(Found::Fold(fold));
+        }
+        if (det_a > 0.0) != (det_b > 0.0) && det_a != 0.0 {
+            // Near a crossing the bordered system is itself nearly singular and a corrector may
+            // fail: the root search then settles for the bracket it has.
+            let base = a.clone();
+            let (mut lo, mut hi) = (0.0, ds);
+            let s = illinois(
+                |s| {
+                    let g = arc_step(m, path, metric, &base, s, cfg).map(|p| det_at(&p));
+                    if let Some(v) = g {
+                        if (v > 0.0) == (det_a > 0.0) { lo = s } else { hi = s }
+                    }
+                    g
+                },
+                0.0,
+                ds,
+                det_a,
+                det_b,
+                1e-15 * (1.0 + ds),
+            )
+            .unwrap_or(0.5 * (lo + hi));
+            let at = arc_step(m, path, metric, &base, s, cfg).unwrap_or_else(|| b.clone());
+            // Where a block folds, the input cannot pass, whatever the determinant of the whole
+            // does beyond (several blocks folding at once make a branch point of the whole).
+            if block_folds(m, path, &at) {
+                return Some(Found::Fold(at));
+            }
+            // Located again from the well-conditioned positions on both sides.
+            let at = refine(m, path, metric, &base, &at, cfg).unwrap_or(at);
+            return Some(Found::Crossing(at, b));
+        }
+        walked += ds;
+        a = b;
+        det_a = det_b;
+        ds = (ds * 1.5).min(max_arc).min(MAX_ARC_STEP);
+    }
+    None
+}
+
+/// Longest step of [`trace`] (scaled coordinates: a quarter radian of an angle, a quarter of the
+/// mechanism's size of a length), however far it may follow the curve: a longer step could pass
+/// a limit position and the gap beyond it, or a crossing, in one stride and land on another part
+/// of the solution set, where the input happens to advance again.
+const MAX_ARC_STEP: f64 = 0.25;
+
+/// Smallest cosine of the angle between the unit tangents at the two ends of an accepted
+/// continuation step (about 26 degrees): a smooth curve turns less over a step small against its
+/// radius of curvature, a step landing on another curve through a branch point turns more.
+const MIN_TURN_COS: f64 = 0.9;
