@@ -9,5 +9,6 @@
 #![warn(missing_docs)]
 
 pub mod draw;
+mod escape;
 pub mod html;
 pub mod plot;

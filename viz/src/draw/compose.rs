@@ -6,8 +6,9 @@ use super::motion::Motion;
 use super::scene::{Scene, Shape};
 use super::shapes::{Pen, dot, guide, item, joints};
 use super::spec::Drawing;
-use super::svg::{Timing, animate, animate_transform, escape, num, pair, round};
+use super::svg::{Timing, animate, animate_transform, num, pair, round};
 use super::view::View;
+use crate::escape::escape;
 use std::fmt::Write;
 
 /// How an animation plays (see [`Drawing::animate`]).

@@ -85,8 +85,3 @@ pub(crate) fn animate_transform(out: &mut String, kind: &str, values: &[String],
         values.join(";")
     );
 }
-
-/// Escapes text for an SVG text node or attribute.
-pub(crate) fn escape(s: &str) -> String {
-    s.replace('&', "&amp;").replace('<', "&lt;").replace('>', "&gt;").replace('"', "&quot;")
-}

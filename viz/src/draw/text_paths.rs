@@ -12,7 +12,8 @@
 //! face is a plain sans-serif of strokes rather than the viewer's.
 
 use super::hershey::{GREEK_LOWER, GREEK_UPPER, LATIN};
-use super::svg::{escape, num};
+use super::svg::num;
+use crate::escape::escape;
 use std::fmt::Write;
 
 /// Cap line and baseline of the glyphs, in glyph units (y down).

@@ -1,7 +1,7 @@
 //! Small charts of a readout against the input, with a cursor the page moves with the slider.
 
-use super::page::escape;
 use super::readouts::Channel;
+use crate::escape::escape;
 use std::fmt::Write;
 
 /// Plot area insets in pixels: left (tick labels and the y title), right, top, bottom (tick

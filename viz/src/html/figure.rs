@@ -4,8 +4,8 @@
 
 use super::chart::px;
 use super::frames::{Frames, Slot};
-use super::page::escape;
 use crate::draw::Style;
+use crate::escape::escape;
 use std::fmt::Write;
 
 /// Tenths of a pixel as written: `123.4`, `12` (the script writes the same).

@@ -6,12 +6,8 @@ use super::chart::Map;
 use super::frames::{Frames, Slot};
 use super::readouts::Channel;
 use super::{css, script};
+use crate::escape::escape;
 use std::fmt::Write;
-
-/// Escapes text for HTML and SVG text and attributes.
-pub(crate) fn escape(s: &str) -> String {
-    s.replace('&', "&amp;").replace('<', "&lt;").replace('>', "&gt;").replace('"', "&quot;")
-}
 
 /// A finite number as JSON (the shortest text that reads back to it).
 fn number(v: f64, what: &str) -> Result<String, HtmlError> {

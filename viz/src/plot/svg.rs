@@ -1,12 +1,8 @@
 //! A minimal SVG writer: shapes with fractional coordinates (no pixel snapping, so curves are
 //! smooth), escaped text, and curves thinned to what the resolution can show.
 
+use crate::escape::escape;
 use std::fmt::Write;
-
-/// Text safe inside an SVG element or attribute.
-pub(crate) fn escape(s: &str) -> String {
-    s.replace('&', "&amp;").replace('<', "&lt;").replace('>', "&gt;").replace('"', "&quot;")
-}
 
 /// A coordinate with two decimals (1/100 pixel), trailing zeros dropped.
 pub(crate) fn num(v: f64) -> String {
