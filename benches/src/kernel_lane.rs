@@ -22,8 +22,7 @@ use kinloop::__gen::{ByValue, InputTrig};
 use kinloop::{Kin, Mechanism, NewtonConfig};
 
 use crate::hand_sweep::{ASIN, PERIOD, Rotation, asin_series};
-use crate::lean::next_input;
-use crate::sweep::Failed;
+use crate::sweep::{Failed, next_input};
 
 /// Slots of a [`FixedStepTrig`]: of the inputs' arguments, of the parameter angles added to
 /// them, and of the unknown angles (a kernel's slot numbers; the benchmarks' mechanisms use

@@ -12,13 +12,10 @@ use crate::kernel_lane::kernel_lane_fold;
 use crate::kinloop_variants::{KinloopSweep, state_sum};
 use std::f64::consts::TAU;
 
-use crate::sweep::{Failed, Step, Stepper, WarmStart};
-
-/// The sum of a step's positions and analogs.
-#[inline(always)]
-pub fn step_sum<const N: usize>(s: &Step<N>) -> f64 {
-    (0..N).fold(-0.0, |acc, u| acc + ((s.q[u] + s.dq[u]) + s.d2q[u]))
-}
+use crate::sweep::{Failed, Step, Stepper, WarmStart, next_input};
+// Declared beside `Step` in `crate::sweep`, whose `Sweep` adds its steps up with it too; the
+// criterion benchmarks (`benches/step.rs`) take it from here.
+pub use crate::sweep::step_sum;
 
 /// `steps` steps of `s` over turns of `turn` equally spaced inputs, each warm-started from the
 /// previous step by `policy` (a closed form ignores it): the sum of every step's numbers (see
@@ -34,16 +31,6 @@ pub fn stepper_turns<S: Stepper<N>, const N: usize>(
         WarmStart::Previous => previous_turns(s, turn, guess, steps),
         WarmStart::Taylor => taylor_turns(s, turn, guess, steps),
     }
-}
-
-/// The input of the step after the `k`-th of a turn of `turn` steps of `h`, `k` advanced.
-#[inline(always)]
-pub(crate) fn next_input(k: &mut usize, turn: usize, h: f64) -> f64 {
-    *k += 1;
-    if *k == turn {
-        *k = 0;
-    }
-    h * *k as i64 as f64
 }
 
 /// The first step, at input 0: out of the loops' functions, so that the step has one call site

@@ -1,5 +1,10 @@
 //! One step of a sweep: the common interface of kinloop and of every peer, and the warm-start
-//! policies that drive them along a turn of the crank.
+//! policies that drive them along a turn of the crank, with what every harness counts with (the
+//! sum of a step's numbers, [`step_sum`], and the input of the next step of a turn,
+//! `next_input`).
+//!
+//! This is the vocabulary of the benchmarks: the peers and kinloop's variants implement it and
+//! the lean harness ([`crate::lean`]) drives them with it, and it imports none of them.
 
 use std::f64::consts::TAU;
 
@@ -17,6 +22,12 @@ pub struct Step<const N: usize> {
     pub d2q: [f64; N],
     /// Newton iterations spent on this step (0 when the warm start already met the tolerance).
     pub iterations: u32,
+}
+
+/// The sum of a step's positions and analogs.
+#[inline(always)]
+pub fn step_sum<const N: usize>(s: &Step<N>) -> f64 {
+    (0..N).fold(-0.0, |acc, u| acc + ((s.q[u] + s.dq[u]) + s.d2q[u]))
 }
 
 /// A failed step (never expected along the benchmark sweeps).
@@ -169,7 +180,7 @@ impl<const N: usize> Sweep<N> {
             // only a step which reads its guess would pay.
             s.step_summed(phi, &self.prev.q)?
         };
-        let sum = crate::lean::step_sum(&step) + out;
+        let sum = step_sum(&step) + out;
         self.prev = step;
         Ok(sum)
     }
@@ -180,6 +191,16 @@ impl<const N: usize> Sweep<N> {
         self.prev = s.step(phi, &guess)?;
         Ok(&self.prev)
     }
+}
+
+/// The input of the step after the `k`-th of a turn of `turn` steps of `h`, `k` advanced.
+#[inline(always)]
+pub(crate) fn next_input(k: &mut usize, turn: usize, h: f64) -> f64 {
+    *k += 1;
+    if *k == turn {
+        *k = 0;
+    }
+    h * *k as i64 as f64
 }
 
 /// Relative difference, absolute near zero: `|a - b| / max(|b|, 1)`.

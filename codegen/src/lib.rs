@@ -5,8 +5,9 @@
 //!
 //! The pipeline's stages are the crate's private folders:
 //!
-//! 1. `front` parses the declaration (`syntax`, with a Pratt parser for expressions, `expr`)
-//!    after checking its size and nesting without recursion;
+//! 1. `front` parses the declaration (`declaration`) into its syntax tree (`syntax`), with a
+//!    Pratt parser for expressions (`expr`), after checking its size and nesting without
+//!    recursion;
 //! 2. `semantics` resolves names, checks vector/scalar types against one table of built-in
 //!    functions and lowers everything into one hash-consed expression graph (`graph`);
 //! 3. `structure` checks the structure (counts, mobility, Dulmage–Mendelsohn diagnosis) and
@@ -46,7 +47,7 @@ pub use semantics::dynamics;
 pub use semantics::model;
 pub use structure::{Block, diag};
 
-use front::syntax;
+use front::declaration;
 use proc_macro2::TokenStream;
 use structure::analysis;
 
@@ -63,7 +64,7 @@ pub struct Analyzed {
 
 /// Parses and checks a declaration without generating code. Never panics.
 pub fn analyze(input: TokenStream) -> Result<Analyzed, syn::Error> {
-    let def = syntax::parse(input)?;
+    let def = declaration::parse(input)?;
     let model = model::build(def)?;
     let blocks = analysis::analyze(&model)?;
     let warnings = analysis::warnings(&model);
@@ -112,7 +113,7 @@ pub fn drawing(planned: &Planned) -> String {
 /// mechanism's named types, declared from the syntax alone, so code that uses those types adds
 /// no secondary errors.
 pub fn expand(input: TokenStream) -> TokenStream {
-    let (def, syntax_errors) = syntax::parse_recover(input);
+    let (def, syntax_errors) = declaration::parse_recover(input);
     let Some(def) = def else {
         return syntax_errors.map(|e| e.to_compile_error()).unwrap_or_default();
     };

@@ -9,7 +9,7 @@
 //! ```
 
 use super::expr::{Expr, parse_expr};
-use super::syntax::{BodyDef, ItemKind};
+use super::syntax::{BodyDef, ItemKind, kw};
 use syn::parse::ParseStream;
 use syn::{Ident, Token};
 
@@ -81,10 +81,10 @@ pub(super) fn parse_body(input: ParseStream) -> syn::Result<BodyDef> {
 pub(super) fn parse_force(input: ParseStream) -> syn::Result<ItemKind> {
     const FORCE: &str = "`force name at point = (fx, fy);`";
     let name = load_name(input, FORCE)?;
-    if !input.peek(super::item::kw::at) {
+    if !input.peek(kw::at) {
         return Err(input.error(format!("expected `at` and the point the force acts at: {FORCE}")));
     }
-    input.parse::<super::item::kw::at>()?;
+    input.parse::<kw::at>()?;
     let at = parse_expr(input)?;
     let value = load_value(input, &name, FORCE)?;
     Ok(ItemKind::Force { name, at, value })
@@ -94,10 +94,10 @@ pub(super) fn parse_force(input: ParseStream) -> syn::Result<ItemKind> {
 pub(super) fn parse_torque(input: ParseStream) -> syn::Result<ItemKind> {
     const TORQUE: &str = "`torque name on angle = scalar;`";
     let name = load_name(input, TORQUE)?;
-    if !input.peek(super::item::kw::on) {
+    if !input.peek(kw::on) {
         return Err(input.error(format!("expected `on` and the angle the torque acts on: {TORQUE}")));
     }
-    input.parse::<super::item::kw::on>()?;
+    input.parse::<kw::on>()?;
     if !input.peek(Ident) {
         return Err(input.error(format!("expected the angle (an input or an angle unknown): {TORQUE}")));
     }

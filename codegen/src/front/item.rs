@@ -1,31 +1,14 @@
 //! Parsing one item of a declaration's body (`params ...;`, `let ...;`, `loop ...;`, ...), with
-//! the messages that say what to write instead.
+//! the messages that say what to write instead, and the recovery that skips a broken item.
+//! The dynamics' items are parsed in `dynamics`; the declaration around the items in
+//! `declaration`.
 
 use super::dynamics::{parse_body, parse_force, parse_torque};
 use super::expr::{Expr, SpanRange, parse_expr};
-use super::syntax::{Decl, DeclKind, Errors, Item, ItemKind, skip_item};
+use super::syntax::{Decl, DeclKind, Errors, Item, ItemKind, kw};
 use proc_macro2::Span;
 use syn::parse::ParseStream;
 use syn::{Attribute, Ident, Token};
-
-pub(super) mod kw {
-    syn::custom_keyword!(params);
-    syn::custom_keyword!(param);
-    syn::custom_keyword!(input);
-    syn::custom_keyword!(inputs);
-    syn::custom_keyword!(unknowns);
-    syn::custom_keyword!(unknown);
-    syn::custom_keyword!(point);
-    syn::custom_keyword!(output);
-    syn::custom_keyword!(eq);
-    syn::custom_keyword!(dense);
-    syn::custom_keyword!(body);
-    syn::custom_keyword!(force);
-    syn::custom_keyword!(torque);
-    syn::custom_keyword!(gravity);
-    syn::custom_keyword!(at);
-    syn::custom_keyword!(on);
-}
 
 /// Parses one item. A missing `;` after a complete item is pushed to `errors` and the item is
 /// kept, so the next item is parsed normally.
@@ -253,4 +236,20 @@ fn parse_equation(input: ParseStream, what: &str) -> syn::Result<(Ident, Expr, E
     let eq = input.parse::<Token![==]>()?.spans[0];
     let rhs = parse_expr(input)?;
     Ok((name, lhs, rhs, eq))
+}
+
+/// Skips to just after the next top-level `;` (error recovery).
+pub(super) fn skip_item(input: ParseStream) {
+    let _ = input.step(|cursor| {
+        let mut rest = *cursor;
+        while let Some((tt, next)) = rest.token_tree() {
+            rest = next;
+            if let proc_macro2::TokenTree::Punct(p) = &tt
+                && p.as_char() == ';'
+            {
+                break;
+            }
+        }
+        Ok(((), rest))
+    });
 }

@@ -1,10 +1,12 @@
 //! The front of the pipeline: tokens to a syntax tree.
 //!
 //! [`limits`] first measures the raw tokens without recursion (nesting depth, size), so that no
-//! input can overflow the stack in the recursive parsers behind it; [`syntax`] then parses the
-//! declaration (one item at a time in `item`), with [`expr`] for expressions, and [`names`] rejects names the generated code
-//! cannot use.
+//! input can overflow the stack in the recursive parsers behind it; [`declaration`] then parses
+//! the declaration (one item at a time in `item`, the dynamics' items in `dynamics`) into the
+//! tree of [`syntax`], with [`expr`] for expressions, and [`names`] rejects names the generated
+//! code cannot use.
 
+pub mod declaration;
 mod dynamics;
 pub mod expr;
 mod item;

@@ -39,6 +39,7 @@ pub mod turns;
 use crate::graph::dag::{Graph, Leaf, NodeId, Op};
 use crate::semantics::model::Model;
 use crate::structure::Block;
+use positions::Position;
 use seeds::Seeds;
 use solve::Solve;
 
@@ -73,6 +74,30 @@ pub struct BlockPlan {
     /// Per block unknown of a Newton block: whether its equations repeat every turn of it
     /// (see [`turns`]); all `false` for the other blocks.
     pub turns: Vec<bool>,
+}
+
+impl BlockPlan {
+    /// The plan of block `blk` from its position part and its solve (its magnitudes, analogs and
+    /// sensitivities are filled in later).
+    pub fn new(blk: &Block, pos: Position, solve: Solve) -> BlockPlan {
+        // The linear right-hand side went into `solve`.
+        let Position { f, jac, col_scale, rhs: _ } = pos;
+        BlockPlan {
+            unknowns: blk.unknowns.clone(),
+            equations: blk.equations.clone(),
+            solve,
+            f,
+            jac,
+            col_scale,
+            lever_floor: vec![Vec::new(); blk.unknowns.len()],
+            turns: vec![false; blk.unknowns.len()],
+            vel: Vec::new(),
+            acc: Vec::new(),
+            sens: None,
+            scale: Vec::new(),
+            unit: Vec::new(),
+        }
+    }
 }
 
 /// Right-hand sides (per row) or values (per output) of the parameter sensitivities, by stage:

@@ -1,8 +1,10 @@
 //! Positions: the full Jacobians, and per block its residuals, Jacobian, column scales and
 //! whether it is linear in its unknowns.
+//!
+//! How a block is solved is decided from its [`Position`] in [`super::solve`], which imports it
+//! from here; the block's plan is assembled from both by [`super::BlockPlan::new`].
 
-use super::solve::Solve;
-use super::{BlockPlan, rows_from_columns};
+use super::rows_from_columns;
 use crate::graph::dag::{Graph, Leaf, NodeId};
 use crate::structure::Block;
 
@@ -21,7 +23,8 @@ pub fn full_jacobians(
     (rows_from_columns(residuals.len(), dq), rows_from_columns(residuals.len(), dx))
 }
 
-/// The position part of a block, from which its solve is decided (see [`Solve::decide`]).
+/// The position part of a block, from which its solve is decided (see
+/// [`super::solve::Solve::decide`]).
 pub struct Position {
     /// Residuals of the block's equations.
     pub f: Vec<NodeId>,
@@ -50,28 +53,4 @@ pub fn block(g: &mut Graph, blk: &Block, residuals: &[NodeId], jac_full: &[Vec<N
         f0.into_iter().map(|x| g.neg(x)).collect()
     });
     Position { f, jac, col_scale, rhs }
-}
-
-impl BlockPlan {
-    /// The plan of block `blk` from its position part and its solve (its magnitudes, analogs and
-    /// sensitivities are filled in later).
-    pub fn new(blk: &Block, pos: Position, solve: Solve) -> BlockPlan {
-        // The linear right-hand side went into `solve`.
-        let Position { f, jac, col_scale, rhs: _ } = pos;
-        BlockPlan {
-            unknowns: blk.unknowns.clone(),
-            equations: blk.equations.clone(),
-            solve,
-            f,
-            jac,
-            col_scale,
-            lever_floor: vec![Vec::new(); blk.unknowns.len()],
-            turns: vec![false; blk.unknowns.len()],
-            vel: Vec::new(),
-            acc: Vec::new(),
-            sens: None,
-            scale: Vec::new(),
-            unit: Vec::new(),
-        }
-    }
 }

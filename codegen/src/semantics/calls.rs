@@ -1,8 +1,9 @@
 //! Calls of built-in functions: checked and lowered from the table in [`super::builtins`].
 
 use super::builtins::{self, Builtin, HINTS, Kind, Lowering};
-use super::lower::{Lowerer, Val, integer_exponent};
+use super::lower::{Lowerer, integer_exponent};
 use super::suggest::similar;
+use super::symbols::Val;
 use crate::front::expr::Expr;
 use crate::graph::dag::{Func, Graph, NodeId};
 use proc_macro2::Span;

@@ -2,7 +2,8 @@
 //! sides split at their top-level `+` and `-` into terms (through parentheses, negations and
 //! the `let`s and `point`s they name), each term lowered to its two coordinates.
 
-use super::lower::{Lowerer, Val};
+use super::lower::Lowerer;
+use super::symbols::Val;
 use crate::front::expr::{BinOp, Expr};
 use crate::front::syntax::{Item, ItemKind};
 use crate::graph::dag::{Graph, NodeId};

@@ -6,8 +6,8 @@
 //! coordinate), a constant of the parameters, or a column of a declared `point` or `output`.
 //! Anything else would need its own analogs, so the message asks to declare it as a `point`.
 
-use super::lower::{Lowerer, Val};
-use super::scope::Symbol;
+use super::lower::Lowerer;
+use super::symbols::{Symbol, Val};
 use crate::front::expr::{Expr, SpanRange};
 use crate::front::syntax::BodyDef;
 use crate::graph::dag::{Func, Graph, Leaf, NodeId, Op};

@@ -1,28 +1,12 @@
-//! Lowering expressions into the graph, with the vector/scalar type checks of operators.
+//! Lowering expressions into the graph, with the vector/scalar type checks of operators, and the
+//! state of model building ([`Lowerer`]). The values it returns and the table of names it keeps
+//! are declared in `symbols`; the names it meets are resolved by the methods of `scope`.
 
-use super::scope::Scope;
+use super::symbols::{Scope, Val};
 use crate::front::expr::{BinOp, Component, Expr};
 use crate::front::syntax::Errors;
 use crate::graph::dag::{Func, Graph, Leaf, NodeId};
 use proc_macro2::Span;
-
-/// The type of a lowered expression.
-#[derive(Clone, Copy)]
-pub enum Val {
-    /// A scalar: one node.
-    S(NodeId),
-    /// A vector: the nodes of its x and y components.
-    V(NodeId, NodeId),
-}
-
-impl Val {
-    pub(super) fn kind_name(self) -> &'static str {
-        match self {
-            Val::S(_) => "scalar",
-            Val::V(..) => "vector",
-        }
-    }
-}
 
 /// The state of model building: the graph being built, the names in scope and the errors found.
 pub struct Lowerer {

@@ -1,6 +1,6 @@
-//! From syntax to a checked model: names resolved ([`scope`]), vector/scalar types checked and
-//! every expression lowered into one graph ([`lower`], with the built-in functions of
-//! [`builtins`]), assembled by [`model`].
+//! From syntax to a checked model: names resolved ([`scope`], over the table of [`symbols`]),
+//! vector/scalar types checked and every expression lowered into one graph ([`lower`], with the
+//! built-in functions of [`builtins`]), assembled by [`model`].
 
 pub mod builtins;
 mod calls;
@@ -10,3 +10,4 @@ pub mod lower;
 pub mod model;
 mod scope;
 pub mod suggest;
+mod symbols;

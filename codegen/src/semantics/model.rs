@@ -3,8 +3,8 @@
 
 use super::drawing::DrawingModel;
 use super::dynamics::{DynamicsModel, Pending};
-use super::lower::{Lowerer, Val};
-use super::scope::Symbol;
+use super::lower::Lowerer;
+use super::symbols::{Symbol, Val};
 use crate::front::expr::{Expr, SpanRange};
 use crate::front::syntax::{Decl, DeclKind, Item, ItemKind, MechanismDef, Options};
 use crate::graph::dag::{Graph, NodeId};

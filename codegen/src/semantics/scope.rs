@@ -1,29 +1,12 @@
-//! Names in scope while lowering: declaring, defining in order, and resolving each use.
+//! Names in scope while lowering: declaring, defining in order, and resolving each use, as
+//! methods of the [`Lowerer`] over its table of names (the table's types are in `symbols`,
+//! below both this file and the lowering).
 
-use super::lower::{Lowerer, Val};
+use super::lower::Lowerer;
 use super::suggest::similar;
+use super::symbols::{Symbol, Val};
 use crate::graph::dag::Leaf;
-use proc_macro2::Span;
-use std::collections::HashMap;
 use syn::Ident;
-
-#[derive(Clone, Copy)]
-pub(super) enum Symbol {
-    Param(u16),
-    Input(u16),
-    Unknown(u16),
-    Let(Val),
-    /// Declared later in the body by the item with this keyword (`let`, `point`, `output`):
-    /// using it now is an ordering mistake.
-    Later(&'static str),
-    /// Its definition had an error (already reported): uses stay silent.
-    Poisoned,
-}
-
-#[derive(Default)]
-pub(super) struct Scope {
-    pub(super) symbols: HashMap<String, (Symbol, Span)>,
-}
 
 fn describe(s: Symbol) -> &'static str {
     match s {

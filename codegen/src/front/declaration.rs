@@ -1,0 +1,195 @@
+//! Parsing a whole declaration: the entry points of the front, from tokens to a checked syntax
+//! tree.
+//!
+//! [`parse_recover`] runs the front's stages in order: the size limits on the raw tokens
+//! ([`super::limits`]), the declaration's head (attributes, visibility, name) and its body, one
+//! item at a time (`item`), then the names the generated code cannot use ([`super::names`]).
+//! It sits above them all and above the tree they share ([`super::syntax`]), so none of them
+//! imports it.
+//!
+//! The parser recovers at `;` after an error, so all syntax errors of a declaration are reported
+//! together.
+
+use super::item::{parse_item, skip_item};
+use super::syntax::{Errors, MechanismDef, Options};
+use super::{limits, names};
+use proc_macro2::{Span, TokenStream};
+use syn::parse::{ParseStream, Parser};
+use syn::{Attribute, Ident, Token, Visibility};
+
+/// Parses a declaration. Never panics; all syntax errors found are combined into one.
+pub fn parse(tokens: TokenStream) -> Result<MechanismDef, syn::Error> {
+    match parse_recover(tokens) {
+        (Some(def), None) => Ok(def),
+        (_, Some(e)) => Err(e),
+        (None, None) => Err(syn::Error::new(Span::call_site(), SHAPE)),
+    }
+}
+
+/// Parses a declaration as far as it goes: the declaration (with the items that parsed) as soon
+/// as its name is known, and the combined syntax errors, if any. The partial declaration lets
+/// the macro emit fallback items next to the errors.
+pub fn parse_recover(tokens: TokenStream) -> (Option<MechanismDef>, Option<syn::Error>) {
+    // Before syn sees the tokens: its token buffer recurses into every bracket.
+    if let Err(e) = limits::check(&tokens) {
+        return (None, Some(e));
+    }
+    let (def, errors) = parse_tokens(tokens);
+    let Some(mut def) = def else { return (None, errors) };
+    let (name_ok, problems) = names::check(&mut def);
+    let mut all = Errors(errors);
+    for e in problems {
+        all.push(e);
+    }
+    (name_ok.then_some(def), all.into_error())
+}
+
+/// The parser proper, on tokens whose size and depth [`limits::check`] accepted.
+fn parse_tokens(tokens: TokenStream) -> (Option<MechanismDef>, Option<syn::Error>) {
+    let mut out = None;
+    // The parser stores its own verdict in `out`: syn's end-of-input checks cannot then replace
+    // the collected errors by a generic "unexpected token" after recovery skipped some tokens.
+    let verdict = (|input: ParseStream| {
+        out = Some(parse_def(input));
+        skip_all(input);
+        Ok(())
+    })
+    .parse2(tokens);
+    match out {
+        Some((def, errors)) => (def, errors.into_error()),
+        None => (None, Some(verdict.err().unwrap_or_else(|| syn::Error::new(Span::call_site(), SHAPE)))),
+    }
+}
+
+fn skip_all(input: ParseStream) {
+    let _ = input.step(|cursor| {
+        let mut rest = *cursor;
+        while let Some((_, next)) = rest.token_tree() {
+            rest = next;
+        }
+        Ok(((), rest))
+    });
+}
+
+const SHAPE: &str = "expected a declaration: `pub struct Name { params ...; input ...; unknowns ...; loop ...; }`";
+
+fn parse_def(input: ParseStream) -> (Option<MechanismDef>, Errors) {
+    let mut errors = Errors::default();
+    let def = parse_def_into(input, &mut errors);
+    (def, errors)
+}
+
+/// Parses the declaration, pushing every error into `errors`; returns the declaration once its
+/// name is known (with the items that parsed), `None` before that.
+fn parse_def_into(input: ParseStream, errors: &mut Errors) -> Option<MechanismDef> {
+    let fail = |errors: &mut Errors, e: syn::Error| {
+        errors.push(e);
+        None
+    };
+    if input.is_empty() {
+        return fail(errors, input.error(SHAPE));
+    }
+    let attrs = match Attribute::parse_outer(input) {
+        Ok(a) => a,
+        Err(e) => return fail(errors, e),
+    };
+    let (docs, options) = split_attributes(attrs, errors);
+    let vis: Visibility = match input.parse() {
+        Ok(v) => v,
+        Err(e) => return fail(errors, e),
+    };
+    if !input.peek(Token![struct]) {
+        return fail(errors, input.error(SHAPE));
+    }
+    if let Err(e) = input.parse::<Token![struct]>() {
+        return fail(errors, e);
+    }
+    let name: Ident = match input.parse() {
+        Ok(n) => n,
+        Err(_) => return fail(errors, input.error("expected the mechanism's name: `pub struct Name { ... }`")),
+    };
+    let mut def = MechanismDef { docs, options, vis, name, items: Vec::new(), body: Span::call_site() };
+    def.body = def.name.span();
+    if input.peek(Token![<]) {
+        errors.push(input.error(
+            "a mechanism cannot be generic; remove `<...>`: its parameters are `f64` fields declared with `params`",
+        ));
+        return Some(def);
+    }
+    if !input.peek(syn::token::Brace) {
+        errors.push(input.error("expected `{` with the mechanism's items: `pub struct Name { params ...; ... }`"));
+        return Some(def);
+    }
+    if let Err(e) = parse_body(input, &mut def, errors) {
+        errors.push(e);
+    }
+    if !input.is_empty() {
+        errors.push(
+            input.error("unexpected tokens after the mechanism's `{ ... }`; declare one mechanism per `mechanism!`"),
+        );
+        skip_all(input);
+    }
+    Some(def)
+}
+
+/// Splits the attributes before a mechanism into its doc comments and its `#[kinloop(...)]`
+/// options, pushing an error for any other attribute.
+fn split_attributes(attrs: Vec<Attribute>, errors: &mut Errors) -> (Vec<Attribute>, Options) {
+    let mut docs = Vec::new();
+    let mut options = Options::default();
+    for attr in attrs {
+        if attr.path().is_ident("doc") {
+            docs.push(attr);
+        } else if attr.path().is_ident("kinloop") {
+            if let Err(e) = attr.parse_nested_meta(|meta| parse_option(&meta, &mut options)) {
+                errors.push(e);
+            }
+        } else {
+            let msg = if attr.path().is_ident("derive") {
+                "remove `#[derive(...)]`: kinloop derives Clone, Copy, Debug and PartialEq itself, \
+                 and implements Default when every parameter has a default value"
+            } else {
+                "only doc comments (`///`) and `#[kinloop(...)]` options (`dense`, `newton`, `sensitivities`) are \
+                 accepted before a mechanism"
+            };
+            errors.push(syn::Error::new_spanned(attr.path(), msg));
+        }
+    }
+    (docs, options)
+}
+
+/// One option of `#[kinloop(...)]`, recorded with its span.
+fn parse_option(meta: &syn::meta::ParseNestedMeta, options: &mut Options) -> syn::Result<()> {
+    let span = meta.path.get_ident().map_or(Span::call_site(), Ident::span);
+    if meta.path.is_ident("dense") {
+        options.dense = Some(span);
+    } else if meta.path.is_ident("sensitivities") {
+        options.sensitivities = Some(span);
+    } else if meta.path.is_ident("newton") {
+        // Closed-form hook: the option forcing Newton.
+        options.newton = Some(span);
+    } else {
+        return Err(meta.error(
+            "unknown kinloop option; the supported options are `#[kinloop(dense)]`, \
+             `#[kinloop(newton)]` and `#[kinloop(sensitivities)]`",
+        ));
+    }
+    Ok(())
+}
+
+/// Parses `{ items }`, recovering at `;` after an item's error.
+fn parse_body(input: ParseStream, def: &mut MechanismDef, errors: &mut Errors) -> syn::Result<()> {
+    let content;
+    let brace = syn::braced!(content in input);
+    def.body = brace.span.join();
+    while !content.is_empty() {
+        match parse_item(&content, errors) {
+            Ok(item) => def.items.push(item),
+            Err(e) => {
+                errors.push(e);
+                skip_item(&content);
+            }
+        }
+    }
+    Ok(())
+}
