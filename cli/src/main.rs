@@ -37,7 +37,7 @@ mod synth;
 
 use clap::{Parser, Subcommand};
 use kinloop_model::{Model, ReadError};
-use std::io::IsTerminal;
+use std::io::{IsTerminal, Write};
 use std::path::{Path, PathBuf};
 use std::process::ExitCode;
 
@@ -316,8 +316,11 @@ fn run(cli: Cli) -> Result<(), Failed> {
     match cli.command {
         Command::Check { file, params } => {
             let model = load(&file, params.as_deref())?;
-            print!("{}", report::structure(&model));
-            Ok(())
+            // Written, not printed: `print!` panics where standard output cannot be written.
+            std::io::stdout().lock().write_all(report::structure(&model).as_bytes()).map_err(|e| {
+                eprintln!("error: cannot write the report: {e}");
+                Failed(exit::IO_ERR)
+            })
         }
         Command::Solve { file, at, deg, params } => {
             let mut model = load(&file, params.as_deref())?;

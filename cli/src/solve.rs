@@ -1,8 +1,9 @@
 //! `kinloop solve`: states at given inputs as CSV, with units in the header.
 
 use crate::{Failed, exit};
-use kinloop_model::Model;
-use kinloop_runtime::{QuantityKind, Table};
+use kinloop_model::{Model, StepError};
+use kinloop_runtime::dims::Heap;
+use kinloop_runtime::{Kernel, NewtonConfig, QuantityKind, SweepConfig, Table};
 
 /// Solves at every `--at` and writes the table to standard output.
 pub fn run(model: &mut Model, at: &[String], deg: bool) -> Result<(), Failed> {
@@ -13,19 +14,39 @@ pub fn run(model: &mut Model, at: &[String], deg: bool) -> Result<(), Failed> {
     let mut table = Table::new(model.columns());
     for spec in at {
         let x = model_inputs(spec, &kinds[..ni], deg, "--at")?;
-        let state = model.solve(&x).map_err(|e| {
-            eprintln!("error: {name} at {spec}: {e}");
-            Failed(exit::SOLVE_FAILED)
-        })?;
-        table.push(state.row().iter().zip(&factors).map(|(v, f)| v * f).collect());
+        let row = match model.solve(&x) {
+            Ok(state) => state.row(),
+            Err(e) => {
+                eprintln!("error: {name} at {spec}: {}", explain(model, &x, e));
+                return Err(Failed(exit::SOLVE_FAILED));
+            }
+        };
+        table.push(row.iter().zip(&factors).map(|(v, f)| v * f).collect());
     }
     let base = units(model, &kinds, deg);
     let table = table.with_units(&base.iter().map(|(n, u)| (n.as_str(), *u)).collect::<Vec<_>>());
     let stdout = std::io::stdout();
     table.write_csv(stdout.lock()).map_err(|e| {
         eprintln!("error: cannot write the table: {e}");
-        Failed(exit::SOLVE_FAILED)
+        Failed(exit::IO_ERR)
     })
+}
+
+/// Why the solve of `model` at `x` failed with `e`, as the runtime says it (no assembly, a
+/// singular position, a value out of its domain, with the failed block's unknowns and
+/// equations): the same step again through the model's [`Kernel`], whose errors a sweep's
+/// are. A [`StepError`] is the evaluator's record of the failure, not an explanation.
+fn explain(model: &mut Model, x: &[f64], e: StepError) -> String {
+    // A parameter without a value: no kernel, and the step's own message says so.
+    let Ok(kernel) = model.kernel(SweepConfig::default()) else {
+        return e.to_string();
+    };
+    let x = Heap(x.into());
+    match kernel.kinematics(&x, &kernel.guess(&x), &NewtonConfig::default()) {
+        Err(explained) => explained.to_string(),
+        // The same step on the same model fails alike: not reached.
+        Ok(_) => e.to_string(),
+    }
 }
 
 /// The base quantities with their units: `deg` for angles where angles are written in

@@ -73,7 +73,8 @@ pub fn run(model: &Model, req: &Request) -> Result<(), Failed> {
     let report = report.map_err(|e| problem_error(&name, e))?;
     let text = if req.csv { csv(&report) } else { table(&report) };
     let mut out = std::io::stdout().lock();
-    if out.write_all(text.as_bytes()).and_then(|()| out.flush()).is_err() {
+    if let Err(e) = out.write_all(text.as_bytes()).and_then(|()| out.flush()) {
+        eprintln!("error: cannot write the candidates: {e}");
         return Err(Failed(exit::IO_ERR));
     }
     eprintln!("{}", summary(&report));

@@ -221,3 +221,54 @@ fn sweep_arguments_the_runtime_refuses_are_usage_errors() {
     assert!(err.contains("cannot create the events file"), "{err}");
     assert!(out.stdout.is_empty());
 }
+
+/// A solve that fails says why as a sweep's failure does (no assembly, a singular position,
+/// with the block's unknowns and equations), not as the evaluator's internal record of it.
+#[test]
+fn solve_failures_are_explained() {
+    let four_bar = shipped("four_bar.kl");
+    // The frame longer than the other three links together: no assembly at any angle.
+    let out = kinloop(&["solve", &four_bar, "--at", "0", "--params", "a=1,b=3,c=2.5,d=10"]);
+    let err = String::from_utf8_lossy(&out.stderr);
+    assert_eq!(out.status.code(), Some(1), "{err}");
+    assert!(err.contains("cannot be assembled") && err.contains("unknowns beta, gamma"), "{err}");
+    assert!(!err.contains("NoAssembly {"), "{err}");
+    // d - a = b - c: at phi = 0 the coupler folds onto the rocker, a change point.
+    let out = kinloop(&["solve", &four_bar, "--at", "0", "--params", "a=1,b=3,c=2.5,d=1.5"]);
+    let err = String::from_utf8_lossy(&out.stderr);
+    assert_eq!(out.status.code(), Some(1), "{err}");
+    assert!(err.contains("singular position") && err.contains("dead centre"), "{err}");
+    assert!(!err.contains("Singular {"), "{err}");
+    assert!(out.stdout.is_empty());
+}
+
+/// Standard output that cannot be written (a full disk) is exit 74 with a message, for every
+/// command that writes there, never a panic.
+#[test]
+fn standard_output_that_cannot_be_written_is_exit_74() {
+    let Ok(full) = std::fs::OpenOptions::new().write(true).open("/dev/full") else {
+        return;
+    };
+    let targets = std::path::PathBuf::from(env!("CARGO_TARGET_TMPDIR")).join("full_targets.csv");
+    std::fs::write(&targets, "0.97,1.49\n1.12,2.34\n0.15,2.28\n-0.61,1.42\n").expect("write the targets");
+    let targets = targets.display().to_string();
+    let coupler = shipped("coupler_four_bar.kl");
+    let synth = ["synth", &coupler, "--targets", &targets, "--path", "p", "--vary", "a=0.8..1.4", "--starts", "2"];
+    let runs: [&[&str]; 5] = [
+        &["check", &shipped("rhombic_drive.kl")],
+        &["solve", &shipped("rhombic_drive.kl"), "--at", "0"],
+        &["sweep", &shipped("rhombic_drive.kl"), "--from", "0", "--to", "1"],
+        &["extremes", &shipped("rhombic_drive.kl"), "--from", "0", "--to", "1"],
+        &synth,
+    ];
+    for args in runs {
+        let out = std::process::Command::new(env!("CARGO_BIN_EXE_kinloop"))
+            .args(args)
+            .stdout(full.try_clone().expect("/dev/full"))
+            .output()
+            .expect("the kinloop binary runs");
+        let err = String::from_utf8_lossy(&out.stderr);
+        assert_eq!(out.status.code(), Some(74), "{args:?}: {err}");
+        assert!(err.contains("error: cannot write") && !err.contains("panicked"), "{args:?}: {err}");
+    }
+}
