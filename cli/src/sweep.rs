@@ -2,7 +2,7 @@
 //! the runtime's own sweep over the model (the events it meets listed on standard error, or
 //! written to `--events`).
 
-use crate::solve::{factors, model_inputs, units};
+use crate::solve::{factors, in_units, model_inputs, units};
 use crate::{Failed, exit, progress, samples};
 use kinloop_model::Model;
 use kinloop_runtime::dims::KinState;
@@ -47,7 +47,7 @@ pub fn run(model: &mut Model, req: &Request) -> Result<(), Failed> {
     // several): its refusal is a usage error, not a failed solve.
     let mut sweep = model.sweep(&from, &to, req.samples, &guess).map_err(|e| match e {
         Error::InvalidArgument(_) => exit::usage(format!("{name}: {e}")),
-        e => failed(&e),
+        e => failed(&in_units(e, &kinds[..ni], req.deg)),
     })?;
     // Created before the sweep runs: a path that cannot be written stops before any output.
     let events_file = match req.events {
@@ -82,7 +82,7 @@ pub fn run(model: &mut Model, req: &Request) -> Result<(), Failed> {
     table.write_csv(stdout.lock()).map_err(|e| io_error("the table", e))?;
     write_events(model, &events, req.deg, events_file).map_err(|e| io_error("the events", e))?;
     match stop {
-        Some(e) => Err(failed(&e)),
+        Some(e) => Err(failed(&in_units(e, &kinds[..ni], req.deg))),
         None => Ok(()),
     }
 }

@@ -272,3 +272,34 @@ fn standard_output_that_cannot_be_written_is_exit_74() {
         assert!(err.contains("error: cannot write") && !err.contains("panicked"), "{args:?}: {err}");
     }
 }
+
+/// With `--deg`, inputs are named in degrees everywhere: the input written by `solve` is the
+/// one given (`30`, the angle whose radians were solved at), and the arguments refused and
+/// the places of failures are named as given, not in the radians the model computes in.
+#[test]
+fn with_deg_inputs_are_named_in_degrees() {
+    let four_bar = shipped("four_bar.kl");
+    let (header, rows) = csv(&kinloop(&["solve", &four_bar, "--params", "a=1,b=3,c=2.5,d=3.2", "--at", "30", "--deg"]));
+    assert_eq!(header[0], "phi [deg]");
+    assert_eq!(rows[0][0], 30.0);
+    let err = |args: &[&str], code: i32| {
+        let out = kinloop(args);
+        let err = String::from_utf8_lossy(&out.stderr).into_owned();
+        assert_eq!(out.status.code(), Some(code), "{args:?}: {err}");
+        err
+    };
+    let unreachable = "a=1,b=3,c=2.5,d=10";
+    let e = err(&["solve", &four_bar, "--params", unreachable, "--at", "30", "--deg"], 1);
+    assert!(e.contains("cannot be assembled") && e.contains("at phi = 30 "), "{e}");
+    let e = err(&["sweep", &four_bar, "--params", unreachable, "--from", "30", "--to", "60", "--deg"], 1);
+    assert!(e.contains("cannot be assembled") && e.contains("at phi = 30 "), "{e}");
+    let e = err(&["extremes", &four_bar, "--params", unreachable, "--from", "30", "--to", "60", "--deg"], 1);
+    assert!(e.contains("cannot be assembled") && e.contains("at phi = 30 "), "{e}");
+    let svg = std::path::PathBuf::from(env!("CARGO_TARGET_TMPDIR")).join("unreachable.svg");
+    let svg = svg.display().to_string();
+    let e =
+        err(&["animate", &four_bar, "--params", unreachable, "--from", "30", "--to", "60", "--deg", "--out", &svg], 1);
+    assert!(e.contains("cannot be assembled") && e.contains("at phi = 30 "), "{e}");
+    let e = err(&["extremes", &four_bar, "--params", "a=1,b=3,c=2.5,d=3.2", "--from", "90", "--to", "30", "--deg"], 2);
+    assert!(e.contains("from < to") && e.contains("90") && !e.contains("1.57"), "{e}");
+}
