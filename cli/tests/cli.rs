@@ -303,3 +303,14 @@ fn with_deg_inputs_are_named_in_degrees() {
     let e = err(&["extremes", &four_bar, "--params", "a=1,b=3,c=2.5,d=3.2", "--from", "90", "--to", "30", "--deg"], 2);
     assert!(e.contains("from < to") && e.contains("90") && !e.contains("1.57"), "{e}");
 }
+
+/// A parameter given twice in `--params` is a usage error naming it, not the last value
+/// silently.
+#[test]
+fn a_parameter_given_twice_is_a_usage_error() {
+    let out = kinloop(&["solve", &shipped("four_bar.kl"), "--at", "0", "--params", "a=1,b=3,c=2.5,d=3.2,a=1.5"]);
+    let err = String::from_utf8_lossy(&out.stderr);
+    assert_eq!(out.status.code(), Some(2), "{err}");
+    assert!(err.contains("`a`") && err.contains("twice"), "{err}");
+    assert!(out.stdout.is_empty());
+}
