@@ -36,8 +36,9 @@ mod sweep;
 mod synth;
 
 use clap::{Parser, Subcommand};
+use kinloop_model::source::MAX_SOURCE_BYTES;
 use kinloop_model::{Model, ReadError};
-use std::io::{IsTerminal, Write};
+use std::io::{IsTerminal, Read, Write};
 use std::path::{Path, PathBuf};
 use std::process::ExitCode;
 
@@ -384,10 +385,7 @@ fn run(cli: Cli) -> Result<(), Failed> {
 /// Reads, checks and plans the declaration in `file`, with the parameters `params`; writes the
 /// diagnostics (with a caret, coloured on a terminal) on failure and the warnings.
 fn load(file: &Path, params: Option<&str>) -> Result<Model, Failed> {
-    let text = std::fs::read_to_string(file).map_err(|e| {
-        eprintln!("error: cannot read {}: {e}", file.display());
-        Failed(exit::NO_INPUT)
-    })?;
+    let text = read_text(file)?;
     let color = std::io::stderr().is_terminal();
     let mut model = match Model::read(&file.display().to_string(), &text) {
         Ok(m) => m,
@@ -407,4 +405,26 @@ fn load(file: &Path, params: Option<&str>) -> Result<Model, Failed> {
         params::apply(&mut model, p)?;
     }
     Ok(model)
+}
+
+/// The text of `file`, read up to one byte past the most a declaration may have
+/// ([`MAX_SOURCE_BYTES`]): a large file named by mistake (a table, a device that never ends)
+/// is refused after a megabyte, not read whole into memory and echoed in the diagnostic.
+fn read_text(file: &Path) -> Result<String, Failed> {
+    let cannot = |e: std::io::Error| {
+        eprintln!("error: cannot read {}: {e}", file.display());
+        Failed(exit::NO_INPUT)
+    };
+    let mut bytes = Vec::new();
+    let limit = MAX_SOURCE_BYTES as u64 + 1;
+    std::fs::File::open(file).and_then(|f| f.take(limit).read_to_end(&mut bytes)).map_err(cannot)?;
+    if bytes.len() > MAX_SOURCE_BYTES {
+        eprintln!(
+            "error: {} has more than {MAX_SOURCE_BYTES} bytes, more than a declaration read at run time may have \
+             (a declaration is a few kilobytes)",
+            file.display()
+        );
+        return Err(Failed(exit::DATA_ERR));
+    }
+    String::from_utf8(bytes).map_err(|_| cannot(std::io::Error::other("stream did not contain valid UTF-8")))
 }

@@ -314,3 +314,16 @@ fn a_parameter_given_twice_is_a_usage_error() {
     assert!(err.contains("`a`") && err.contains("twice"), "{err}");
     assert!(out.stdout.is_empty());
 }
+
+/// A file far larger than a declaration (a table or a log named by mistake) is refused after
+/// the most a declaration may have, with a short message: not read whole, and not echoed.
+#[test]
+fn a_file_too_large_for_a_declaration_is_refused_briefly() {
+    let big = std::path::PathBuf::from(env!("CARGO_TARGET_TMPDIR")).join("too_large.kl");
+    std::fs::write(&big, " ".repeat(3 << 20)).expect("write");
+    let out = kinloop(&["check", &big.display().to_string()]);
+    let err = String::from_utf8_lossy(&out.stderr);
+    assert_eq!(out.status.code(), Some(65), "{}", &err[..err.len().min(500)]);
+    assert!(err.len() < 1000, "{} bytes on standard error", err.len());
+    assert!(err.contains("more than 1048576 bytes"), "{err}");
+}
