@@ -187,6 +187,10 @@ fn task(model: &Model, req: &Request, rows: &[Vec<f64>]) -> Result<Task, Failed>
                     let (lo, hi) = match req.range {
                         Some(r) => {
                             let (lo, hi) = bounds(r, "--range")?;
+                            // Targets along no range at all: every candidate would be rejected.
+                            if lo == hi {
+                                return Err(exit::usage(format!("--range `{r}` is empty: give lo < hi")));
+                            }
                             (angle_in(kind, req.deg, lo), angle_in(kind, req.deg, hi))
                         }
                         None if kind == QuantityKind::Angle => (0.0, TAU),
