@@ -128,12 +128,17 @@ pub fn run(model: &mut Model, req: &Request) -> Result<(), Failed> {
     })
 }
 
-/// The columns named in `list` (unknowns or outputs), in its order.
+/// The columns named in `list` (unknowns or outputs), in its order; at least one.
 fn select(
     quantities: &[(String, QuantityKind)],
     list: &str,
     name: &str,
 ) -> Result<Vec<(String, QuantityKind)>, Failed> {
+    // An empty list (an unset shell variable) would write an empty table with success.
+    if list.split(',').all(|c| c.trim().is_empty()) {
+        let known: Vec<&str> = quantities.iter().map(|(n, _)| n.as_str()).collect();
+        return Err(exit::usage(format!("--columns `{list}` names no column (they are: {})", known.join(", "))));
+    }
     list.split(',')
         .map(str::trim)
         .filter(|c| !c.is_empty())
