@@ -282,6 +282,12 @@ fn with_deg_inputs_are_named_in_degrees() {
     let (header, rows) = csv(&kinloop(&["solve", &four_bar, "--params", "a=1,b=3,c=2.5,d=3.2", "--at", "30", "--deg"]));
     assert_eq!(header[0], "phi [deg]");
     assert_eq!(rows[0][0], 30.0);
+    // A sweep's inputs: the equally spaced values from `--from` to `--to` as given (each
+    // sample's radians within a rounding of them).
+    let args = ["sweep", &four_bar, "--params", "a=1,b=3,c=2.5,d=3.2", "--from", "0", "--to", "360", "--samples", "73"];
+    let (_, rows) = csv(&kinloop(&[&args[..], &["--deg"]].concat()));
+    let phis: Vec<f64> = rows.iter().map(|r| r[0]).collect();
+    assert_eq!(phis, (0..73).map(|k| 5.0 * k as f64).collect::<Vec<f64>>());
     let err = |args: &[&str], code: i32| {
         let out = kinloop(args);
         let err = String::from_utf8_lossy(&out.stderr).into_owned();
