@@ -426,5 +426,13 @@ fn read_text(file: &Path) -> Result<String, Failed> {
         );
         return Err(Failed(exit::DATA_ERR));
     }
-    String::from_utf8(bytes).map_err(|_| cannot(std::io::Error::other("stream did not contain valid UTF-8")))
+    String::from_utf8(bytes).map_err(|e| {
+        // Where the first byte that is not UTF-8 is: a binary, or text in another encoding.
+        let good = &e.as_bytes()[..e.utf8_error().valid_up_to()];
+        let line = good.iter().filter(|&&b| b == b'\n').count() + 1;
+        let start = good.iter().rposition(|&b| b == b'\n').map_or(0, |p| p + 1);
+        let column = String::from_utf8_lossy(&good[start..]).chars().count() + 1;
+        let why = format!("it is not UTF-8 text (line {line}, column {column}): save the declaration as UTF-8");
+        cannot(std::io::Error::other(why))
+    })
 }

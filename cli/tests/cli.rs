@@ -333,3 +333,16 @@ fn a_file_too_large_for_a_declaration_is_refused_briefly() {
     assert!(err.len() < 1000, "{} bytes on standard error", err.len());
     assert!(err.contains("more than 1048576 bytes"), "{err}");
 }
+
+/// A file that is not text (a binary, a file in another encoding) is named as such, with the
+/// place of its first byte that is not UTF-8.
+#[test]
+fn a_file_that_is_not_text_says_where() {
+    let bin = std::path::PathBuf::from(env!("CARGO_TARGET_TMPDIR")).join("latin1.kl");
+    // `°` in Latin-1 on the second line.
+    std::fs::write(&bin, b"pub struct S {\n    params a = 90\xb0;\n}\n").expect("write");
+    let out = kinloop(&["check", &bin.display().to_string()]);
+    let err = String::from_utf8_lossy(&out.stderr);
+    assert_eq!(out.status.code(), Some(66), "{err}");
+    assert!(err.contains("not UTF-8 text") && err.contains("line 2, column 18"), "{err}");
+}
