@@ -4,7 +4,7 @@
 //! the run-time model.
 
 use crate::exit::usage;
-use crate::solve::model_inputs;
+use crate::solve::{in_units, model_inputs};
 use crate::{Failed, exit, samples};
 use kinloop_model::Model;
 use kinloop_runtime::{Error, QuantityKind};
@@ -93,6 +93,7 @@ pub fn run(model: &mut Model, req: &Request) -> Result<(), Failed> {
     let motion = model.motion(&from, &to, samples, &guess).map_err(|e| match e {
         // The runtime's refusal of the arguments (`to` equal to `from`) is a usage error.
         DrawError::Sweep(e @ Error::InvalidArgument(_)) => usage(format!("{name}: {e}")),
+        DrawError::Sweep(e) => failed(&DrawError::Sweep(in_units(e, &kinds, req.deg))),
         e => failed(&e),
     })?;
     for (k, e) in motion.events.iter().enumerate() {

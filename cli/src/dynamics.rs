@@ -8,6 +8,7 @@
 //! in the unit of the speed (`time unit`): with kg, m and s, torques in N m and forces in N.
 
 use crate::exit::usage;
+use crate::solve::in_units;
 use crate::{Failed, exit, samples};
 use kinloop_model::Model;
 use kinloop_runtime::dynamics::{Cycle, DynamicsError, Flywheel, SpeedLaw};
@@ -102,7 +103,7 @@ pub fn run(model: &mut Model, req: &Request) -> Result<(), Failed> {
         if bad_argument {
             return usage(format!("{name}: {e}"));
         }
-        eprintln!("error: {name}: {e}");
+        eprintln!("error: {name}: {}", in_units(e, model.input_kinds(), req.deg));
         Failed(exit::SOLVE_FAILED)
     })?;
     let flywheel = cycle.flywheel(req.delta).map_err(|e| {

@@ -4,7 +4,7 @@
 //! velocity analog, refined between samples on the sweep's branch; otherwise an end of the
 //! range). Written as CSV with units, or as a readable table.
 
-use crate::solve::model_inputs;
+use crate::solve::{in_units, model_inputs};
 use crate::{Failed, exit, progress, samples};
 use kinloop_model::Model;
 use kinloop_runtime::{Error, QuantityKind, SweepConfig};
@@ -55,6 +55,19 @@ pub fn run(model: &mut Model, req: &Request) -> Result<(), Failed> {
     let input_kinds = model.input_kinds().to_vec();
     let from = model_inputs(req.from, &input_kinds, req.deg, "--from")?;
     let to = model_inputs(req.to, &input_kinds, req.deg, "--to")?;
+    // Checked here in the units given (the runtime checks them too, in radians).
+    if req.samples < 3 {
+        return Err(exit::usage(format!("--samples {}: extremes needs at least 3 samples", req.samples)));
+    }
+    if from.len() == 1 && to[0] <= from[0] {
+        return Err(exit::usage(format!(
+            "--from {} --to {}: extremes of one input need from < to (the input increasing)",
+            req.from, req.to
+        )));
+    }
+    if from == to {
+        return Err(exit::usage(format!("--from {} --to {}: the path between them is empty", req.from, req.to)));
+    }
     let quantities: Vec<(String, QuantityKind)> = model
         .unknowns()
         .iter()
@@ -81,7 +94,7 @@ pub fn run(model: &mut Model, req: &Request) -> Result<(), Failed> {
         bar.finish_and_clear();
         match e {
             Error::InvalidArgument(_) => exit::usage(format!("{name}: {e}")),
-            e => failed(&e),
+            e => failed(&in_units(e, &input_kinds, req.deg)),
         }
     })?;
     bar.set_message(format!("{name}: locating extremes"));
@@ -89,7 +102,7 @@ pub fn run(model: &mut Model, req: &Request) -> Result<(), Failed> {
     for (column, kind) in &columns {
         let range = sampled.range(column.as_str()).map_err(|e| {
             bar.finish_and_clear();
-            failed(&format!("the extremes of {column}: {e}"))
+            failed(&format!("the extremes of {column}: {}", in_units(e, &input_kinds, req.deg)))
         })?;
         let inputs = |s: f64| -> Vec<f64> {
             let x = sampled.inputs_at(s);
@@ -115,12 +128,17 @@ pub fn run(model: &mut Model, req: &Request) -> Result<(), Failed> {
     })
 }
 
-/// The columns named in `list` (unknowns or outputs), in its order.
+/// The columns named in `list` (unknowns or outputs), in its order; at least one.
 fn select(
     quantities: &[(String, QuantityKind)],
     list: &str,
     name: &str,
 ) -> Result<Vec<(String, QuantityKind)>, Failed> {
+    // An empty list (an unset shell variable) would write an empty table with success.
+    if list.split(',').all(|c| c.trim().is_empty()) {
+        let known: Vec<&str> = quantities.iter().map(|(n, _)| n.as_str()).collect();
+        return Err(exit::usage(format!("--columns `{list}` names no column (they are: {})", known.join(", "))));
+    }
     list.split(',')
         .map(str::trim)
         .filter(|c| !c.is_empty())

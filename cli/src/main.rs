@@ -36,8 +36,9 @@ mod sweep;
 mod synth;
 
 use clap::{Parser, Subcommand};
+use kinloop_model::source::MAX_SOURCE_BYTES;
 use kinloop_model::{Model, ReadError};
-use std::io::IsTerminal;
+use std::io::{IsTerminal, Read, Write};
 use std::path::{Path, PathBuf};
 use std::process::ExitCode;
 
@@ -316,8 +317,11 @@ fn run(cli: Cli) -> Result<(), Failed> {
     match cli.command {
         Command::Check { file, params } => {
             let model = load(&file, params.as_deref())?;
-            print!("{}", report::structure(&model));
-            Ok(())
+            // Written, not printed: `print!` panics where standard output cannot be written.
+            std::io::stdout().lock().write_all(report::structure(&model).as_bytes()).map_err(|e| {
+                eprintln!("error: cannot write the report: {e}");
+                Failed(exit::IO_ERR)
+            })
         }
         Command::Solve { file, at, deg, params } => {
             let mut model = load(&file, params.as_deref())?;
@@ -381,10 +385,7 @@ fn run(cli: Cli) -> Result<(), Failed> {
 /// Reads, checks and plans the declaration in `file`, with the parameters `params`; writes the
 /// diagnostics (with a caret, coloured on a terminal) on failure and the warnings.
 fn load(file: &Path, params: Option<&str>) -> Result<Model, Failed> {
-    let text = std::fs::read_to_string(file).map_err(|e| {
-        eprintln!("error: cannot read {}: {e}", file.display());
-        Failed(exit::NO_INPUT)
-    })?;
+    let text = read_text(file)?;
     let color = std::io::stderr().is_terminal();
     let mut model = match Model::read(&file.display().to_string(), &text) {
         Ok(m) => m,
@@ -404,4 +405,34 @@ fn load(file: &Path, params: Option<&str>) -> Result<Model, Failed> {
         params::apply(&mut model, p)?;
     }
     Ok(model)
+}
+
+/// The text of `file`, read up to one byte past the most a declaration may have
+/// ([`MAX_SOURCE_BYTES`]): a large file named by mistake (a table, a device that never ends)
+/// is refused after a megabyte, not read whole into memory and echoed in the diagnostic.
+fn read_text(file: &Path) -> Result<String, Failed> {
+    let cannot = |e: std::io::Error| {
+        eprintln!("error: cannot read {}: {e}", file.display());
+        Failed(exit::NO_INPUT)
+    };
+    let mut bytes = Vec::new();
+    let limit = MAX_SOURCE_BYTES as u64 + 1;
+    std::fs::File::open(file).and_then(|f| f.take(limit).read_to_end(&mut bytes)).map_err(cannot)?;
+    if bytes.len() > MAX_SOURCE_BYTES {
+        eprintln!(
+            "error: {} has more than {MAX_SOURCE_BYTES} bytes, more than a declaration read at run time may have \
+             (a declaration is a few kilobytes)",
+            file.display()
+        );
+        return Err(Failed(exit::DATA_ERR));
+    }
+    String::from_utf8(bytes).map_err(|e| {
+        // Where the first byte that is not UTF-8 is: a binary, or text in another encoding.
+        let good = &e.as_bytes()[..e.utf8_error().valid_up_to()];
+        let line = good.iter().filter(|&&b| b == b'\n').count() + 1;
+        let start = good.iter().rposition(|&b| b == b'\n').map_or(0, |p| p + 1);
+        let column = String::from_utf8_lossy(&good[start..]).chars().count() + 1;
+        let why = format!("it is not UTF-8 text (line {line}, column {column}): save the declaration as UTF-8");
+        cannot(std::io::Error::other(why))
+    })
 }

@@ -3,14 +3,21 @@
 use crate::{Failed, exit};
 use kinloop_model::Model;
 
-/// Sets the parameters listed in `list` (`name=value` separated by commas).
+/// Sets the parameters listed in `list` (`name=value` separated by commas), each at most once.
 pub fn apply(model: &mut Model, list: &str) -> Result<(), Failed> {
+    let mut given: Vec<&str> = Vec::new();
     for item in list.split(',').map(str::trim).filter(|s| !s.is_empty()) {
         let Some((name, value)) = item.split_once('=') else {
             eprintln!("error: `{item}` in --params is not `name=value`");
             return Err(Failed(exit::USAGE));
         };
         let (name, value) = (name.trim(), value.trim());
+        // Twice is a mistake in one of the two (a copied item not renamed): neither wins.
+        if given.contains(&name) {
+            eprintln!("error: `{name}` is given twice in --params");
+            return Err(Failed(exit::USAGE));
+        }
+        given.push(name);
         let Ok(v) = value.parse::<f64>() else {
             eprintln!("error: the value of `{name}` in --params, `{value}`, is not a number");
             return Err(Failed(exit::USAGE));

@@ -1,8 +1,9 @@
 //! `kinloop solve`: states at given inputs as CSV, with units in the header.
 
 use crate::{Failed, exit};
-use kinloop_model::Model;
-use kinloop_runtime::{QuantityKind, Table};
+use kinloop_model::{Model, StepError};
+use kinloop_runtime::dims::Heap;
+use kinloop_runtime::{Error, Kernel, Location, NewtonConfig, QuantityKind, SweepConfig, Table};
 
 /// Solves at every `--at` and writes the table to standard output.
 pub fn run(model: &mut Model, at: &[String], deg: bool) -> Result<(), Failed> {
@@ -13,19 +14,47 @@ pub fn run(model: &mut Model, at: &[String], deg: bool) -> Result<(), Failed> {
     let mut table = Table::new(model.columns());
     for spec in at {
         let x = model_inputs(spec, &kinds[..ni], deg, "--at")?;
-        let state = model.solve(&x).map_err(|e| {
-            eprintln!("error: {name} at {spec}: {e}");
-            Failed(exit::SOLVE_FAILED)
-        })?;
-        table.push(state.row().iter().zip(&factors).map(|(v, f)| v * f).collect());
+        let row = match model.solve(&x) {
+            Ok(state) => state.row(),
+            Err(e) => {
+                eprintln!("error: {name} at {spec}: {}", explain(model, &x, e, &kinds[..ni], deg));
+                return Err(Failed(exit::SOLVE_FAILED));
+            }
+        };
+        let mut row: Vec<f64> = row.iter().zip(&factors).map(|(v, f)| v * f).collect();
+        // The inputs as given: the product with `180/π` may end a unit in the last place off.
+        for (i, k) in kinds[..ni].iter().enumerate() {
+            if deg && *k == QuantityKind::Angle {
+                row[i] = degrees(x[i]);
+            }
+        }
+        table.push(row);
     }
     let base = units(model, &kinds, deg);
     let table = table.with_units(&base.iter().map(|(n, u)| (n.as_str(), *u)).collect::<Vec<_>>());
     let stdout = std::io::stdout();
     table.write_csv(stdout.lock()).map_err(|e| {
         eprintln!("error: cannot write the table: {e}");
-        Failed(exit::SOLVE_FAILED)
+        Failed(exit::IO_ERR)
     })
+}
+
+/// Why the solve of `model` at `x` failed with `e`, as the runtime says it (no assembly, a
+/// singular position, a value out of its domain, with the failed block's unknowns and
+/// equations): the same step again through the model's [`Kernel`], whose errors a sweep's
+/// are. A [`StepError`] is the evaluator's record of the failure, not an explanation. The
+/// inputs of kinds `kinds` are named in degrees where `deg` is set.
+fn explain(model: &mut Model, x: &[f64], e: StepError, kinds: &[QuantityKind], deg: bool) -> String {
+    // A parameter without a value: no kernel, and the step's own message says so.
+    let Ok(kernel) = model.kernel(SweepConfig::default()) else {
+        return e.to_string();
+    };
+    let x = Heap(x.into());
+    match kernel.kinematics(&x, &kernel.guess(&x), &NewtonConfig::default()) {
+        Err(explained) => in_units(explained, kinds, deg).to_string(),
+        // The same step on the same model fails alike: not reached.
+        Ok(_) => e.to_string(),
+    }
 }
 
 /// The base quantities with their units: `deg` for angles where angles are written in
@@ -37,6 +66,45 @@ pub fn units(model: &Model, kinds: &[QuantityKind], deg: bool) -> Vec<(String, &
         .zip(kinds)
         .map(|((n, _), k)| (n.to_string(), if deg && *k == QuantityKind::Angle { "deg" } else { k.unit() }))
         .collect()
+}
+
+/// An angle `v` in radians in degrees as `--deg` reads them: of `v.to_degrees()` and the
+/// numbers next to it, the shortest in decimal that turns back into exactly `v` (`30` for
+/// `30f64.to_radians()`, whose product with `180/π` is `29.999999999999996`).
+pub fn degrees(v: f64) -> f64 {
+    let d = v.to_degrees();
+    let near = [d, d.next_up(), d.next_down(), d.next_up().next_up(), d.next_down().next_down()];
+    near.into_iter().filter(|c| c.to_radians() == v).min_by_key(|c| c.to_string().len()).unwrap_or(d)
+}
+
+/// `e` with the inputs of its location (of kinds `kinds`) in the units written: angles in
+/// degrees where `deg` is set, as they were given and as the table writes them.
+pub fn in_units(mut e: Error, kinds: &[QuantityKind], deg: bool) -> Error {
+    if let (true, Some(at)) = (deg, location_mut(&mut e)) {
+        for ((_, v), k) in at.inputs.iter_mut().zip(kinds) {
+            if *k == QuantityKind::Angle {
+                *v = degrees(*v);
+            }
+        }
+    }
+    e
+}
+
+/// The location an error carries ([`Error::location`], to be changed).
+fn location_mut(e: &mut Error) -> Option<&mut Location> {
+    match e {
+        Error::NonFinite { at, .. }
+        | Error::NoConvergence { at, .. }
+        | Error::NoAssembly { at, .. }
+        | Error::Singular { at, .. }
+        | Error::Domain { at, .. }
+        | Error::Overflow { at, .. }
+        | Error::SweepStopped { at, .. }
+        | Error::Branch { at, .. }
+        | Error::TooManyTurns { at, .. }
+        | Error::RangeTooLong { at, .. } => Some(at),
+        _ => None,
+    }
 }
 
 /// One list of inputs (of the option `option`) in the model's units: one number per input of

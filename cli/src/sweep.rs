@@ -2,7 +2,7 @@
 //! the runtime's own sweep over the model (the events it meets listed on standard error, or
 //! written to `--events`).
 
-use crate::solve::{factors, model_inputs, units};
+use crate::solve::{factors, in_units, model_inputs, parse_inputs, units};
 use crate::{Failed, exit, progress, samples};
 use kinloop_model::Model;
 use kinloop_runtime::dims::KinState;
@@ -33,6 +33,14 @@ pub fn run(model: &mut Model, req: &Request) -> Result<(), Failed> {
     let ni = model.inputs().len();
     let from = model_inputs(req.from, &kinds[..ni], req.deg, "--from")?;
     let to = model_inputs(req.to, &kinds[..ni], req.deg, "--to")?;
+    // The angle inputs in degrees as given, whose samples the table writes.
+    let degrees: Vec<Option<(f64, f64)>> = match req.deg {
+        true => {
+            let (a, b) = (parse_inputs(req.from, ni, "--from")?, parse_inputs(req.to, ni, "--to")?);
+            (0..ni).map(|i| (kinds[i] == QuantityKind::Angle).then_some((a[i], b[i]))).collect()
+        }
+        false => vec![None; ni],
+    };
     let name = model.name().to_string();
     let factors = factors(model, &kinds, req.deg);
     let columns = model.columns();
@@ -47,7 +55,7 @@ pub fn run(model: &mut Model, req: &Request) -> Result<(), Failed> {
     // several): its refusal is a usage error, not a failed solve.
     let mut sweep = model.sweep(&from, &to, req.samples, &guess).map_err(|e| match e {
         Error::InvalidArgument(_) => exit::usage(format!("{name}: {e}")),
-        e => failed(&e),
+        e => failed(&in_units(e, &kinds[..ni], req.deg)),
     })?;
     // Created before the sweep runs: a path that cannot be written stops before any output.
     let events_file = match req.events {
@@ -60,9 +68,25 @@ pub fn run(model: &mut Model, req: &Request) -> Result<(), Failed> {
     let mut table = Table::new(columns);
     let mut stop = None;
     let bar = progress::bar(&format!("{name}: sweeping"), req.samples, req.samples);
+    let last = req.samples.saturating_sub(1).max(1) as f64;
     while let Some(k) = sweep.next_ref() {
         match k {
-            Ok(k) => table.push(k.table_row().iter().zip(&factors).map(|(v, f)| v * f).collect()),
+            Ok(k) => {
+                let mut row: Vec<f64> = k.table_row().iter().zip(&factors).map(|(v, f)| v * f).collect();
+                // An angle input in degrees: the sample's value between the ends given, not
+                // its radians times `180/π` (`59.99999999999999` for the sample at 60), as
+                // `solve` writes the input given. Exact where the samples fall on round numbers.
+                let s = table.rows.len() as f64;
+                for (i, ends) in degrees.iter().enumerate() {
+                    let Some((a, b)) = ends else { continue };
+                    let given = (a * (last - s) + b * s) / last;
+                    // Ends near the largest `f64`: the products overflow, the product stays.
+                    if given.is_finite() {
+                        row[i] = given;
+                    }
+                }
+                table.push(row);
+            }
             Err(e) => {
                 stop = Some(e);
                 break;
@@ -82,7 +106,7 @@ pub fn run(model: &mut Model, req: &Request) -> Result<(), Failed> {
     table.write_csv(stdout.lock()).map_err(|e| io_error("the table", e))?;
     write_events(model, &events, req.deg, events_file).map_err(|e| io_error("the events", e))?;
     match stop {
-        Some(e) => Err(failed(&e)),
+        Some(e) => Err(failed(&in_units(e, &kinds[..ni], req.deg))),
         None => Ok(()),
     }
 }

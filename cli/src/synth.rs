@@ -73,7 +73,8 @@ pub fn run(model: &Model, req: &Request) -> Result<(), Failed> {
     let report = report.map_err(|e| problem_error(&name, e))?;
     let text = if req.csv { csv(&report) } else { table(&report) };
     let mut out = std::io::stdout().lock();
-    if out.write_all(text.as_bytes()).and_then(|()| out.flush()).is_err() {
+    if let Err(e) = out.write_all(text.as_bytes()).and_then(|()| out.flush()) {
+        eprintln!("error: cannot write the candidates: {e}");
         return Err(Failed(exit::IO_ERR));
     }
     eprintln!("{}", summary(&report));
@@ -186,6 +187,10 @@ fn task(model: &Model, req: &Request, rows: &[Vec<f64>]) -> Result<Task, Failed>
                     let (lo, hi) = match req.range {
                         Some(r) => {
                             let (lo, hi) = bounds(r, "--range")?;
+                            // Targets along no range at all: every candidate would be rejected.
+                            if lo == hi {
+                                return Err(exit::usage(format!("--range `{r}` is empty: give lo < hi")));
+                            }
                             (angle_in(kind, req.deg, lo), angle_in(kind, req.deg, hi))
                         }
                         None if kind == QuantityKind::Angle => (0.0, TAU),

@@ -221,3 +221,128 @@ fn sweep_arguments_the_runtime_refuses_are_usage_errors() {
     assert!(err.contains("cannot create the events file"), "{err}");
     assert!(out.stdout.is_empty());
 }
+
+/// A solve that fails says why as a sweep's failure does (no assembly, a singular position,
+/// with the block's unknowns and equations), not as the evaluator's internal record of it.
+#[test]
+fn solve_failures_are_explained() {
+    let four_bar = shipped("four_bar.kl");
+    // The frame longer than the other three links together: no assembly at any angle.
+    let out = kinloop(&["solve", &four_bar, "--at", "0", "--params", "a=1,b=3,c=2.5,d=10"]);
+    let err = String::from_utf8_lossy(&out.stderr);
+    assert_eq!(out.status.code(), Some(1), "{err}");
+    assert!(err.contains("cannot be assembled") && err.contains("unknowns beta, gamma"), "{err}");
+    assert!(!err.contains("NoAssembly {"), "{err}");
+    // d - a = b - c: at phi = 0 the coupler folds onto the rocker, a change point.
+    let out = kinloop(&["solve", &four_bar, "--at", "0", "--params", "a=1,b=3,c=2.5,d=1.5"]);
+    let err = String::from_utf8_lossy(&out.stderr);
+    assert_eq!(out.status.code(), Some(1), "{err}");
+    assert!(err.contains("singular position") && err.contains("dead centre"), "{err}");
+    assert!(!err.contains("Singular {"), "{err}");
+    assert!(out.stdout.is_empty());
+}
+
+/// Standard output that cannot be written (a full disk) is exit 74 with a message, for every
+/// command that writes there, never a panic.
+#[test]
+fn standard_output_that_cannot_be_written_is_exit_74() {
+    let Ok(full) = std::fs::OpenOptions::new().write(true).open("/dev/full") else {
+        return;
+    };
+    let targets = std::path::PathBuf::from(env!("CARGO_TARGET_TMPDIR")).join("full_targets.csv");
+    std::fs::write(&targets, "0.97,1.49\n1.12,2.34\n0.15,2.28\n-0.61,1.42\n").expect("write the targets");
+    let targets = targets.display().to_string();
+    let coupler = shipped("coupler_four_bar.kl");
+    let synth = ["synth", &coupler, "--targets", &targets, "--path", "p", "--vary", "a=0.8..1.4", "--starts", "2"];
+    let runs: [&[&str]; 5] = [
+        &["check", &shipped("rhombic_drive.kl")],
+        &["solve", &shipped("rhombic_drive.kl"), "--at", "0"],
+        &["sweep", &shipped("rhombic_drive.kl"), "--from", "0", "--to", "1"],
+        &["extremes", &shipped("rhombic_drive.kl"), "--from", "0", "--to", "1"],
+        &synth,
+    ];
+    for args in runs {
+        let out = std::process::Command::new(env!("CARGO_BIN_EXE_kinloop"))
+            .args(args)
+            .stdout(full.try_clone().expect("/dev/full"))
+            .output()
+            .expect("the kinloop binary runs");
+        let err = String::from_utf8_lossy(&out.stderr);
+        assert_eq!(out.status.code(), Some(74), "{args:?}: {err}");
+        assert!(err.contains("error: cannot write") && !err.contains("panicked"), "{args:?}: {err}");
+    }
+}
+
+/// With `--deg`, inputs are named in degrees everywhere: the input written by `solve` is the
+/// one given (`30`, the angle whose radians were solved at), and the arguments refused and
+/// the places of failures are named as given, not in the radians the model computes in.
+#[test]
+fn with_deg_inputs_are_named_in_degrees() {
+    let four_bar = shipped("four_bar.kl");
+    let (header, rows) = csv(&kinloop(&["solve", &four_bar, "--params", "a=1,b=3,c=2.5,d=3.2", "--at", "30", "--deg"]));
+    assert_eq!(header[0], "phi [deg]");
+    assert_eq!(rows[0][0], 30.0);
+    // A sweep's inputs: the equally spaced values from `--from` to `--to` as given (each
+    // sample's radians within a rounding of them).
+    let args = ["sweep", &four_bar, "--params", "a=1,b=3,c=2.5,d=3.2", "--from", "0", "--to", "360", "--samples", "73"];
+    let (_, rows) = csv(&kinloop(&[&args[..], &["--deg"]].concat()));
+    let phis: Vec<f64> = rows.iter().map(|r| r[0]).collect();
+    assert_eq!(phis, (0..73).map(|k| 5.0 * k as f64).collect::<Vec<f64>>());
+    let err = |args: &[&str], code: i32| {
+        let out = kinloop(args);
+        let err = String::from_utf8_lossy(&out.stderr).into_owned();
+        assert_eq!(out.status.code(), Some(code), "{args:?}: {err}");
+        err
+    };
+    let unreachable = "a=1,b=3,c=2.5,d=10";
+    let e = err(&["solve", &four_bar, "--params", unreachable, "--at", "30", "--deg"], 1);
+    assert!(e.contains("cannot be assembled") && e.contains("at phi = 30 "), "{e}");
+    let e = err(&["sweep", &four_bar, "--params", unreachable, "--from", "30", "--to", "60", "--deg"], 1);
+    assert!(e.contains("cannot be assembled") && e.contains("at phi = 30 "), "{e}");
+    let e = err(&["extremes", &four_bar, "--params", unreachable, "--from", "30", "--to", "60", "--deg"], 1);
+    assert!(e.contains("cannot be assembled") && e.contains("at phi = 30 "), "{e}");
+    let svg = std::path::PathBuf::from(env!("CARGO_TARGET_TMPDIR")).join("unreachable.svg");
+    let svg = svg.display().to_string();
+    let e =
+        err(&["animate", &four_bar, "--params", unreachable, "--from", "30", "--to", "60", "--deg", "--out", &svg], 1);
+    assert!(e.contains("cannot be assembled") && e.contains("at phi = 30 "), "{e}");
+    let e = err(&["extremes", &four_bar, "--params", "a=1,b=3,c=2.5,d=3.2", "--from", "90", "--to", "30", "--deg"], 2);
+    assert!(e.contains("from < to") && e.contains("90") && !e.contains("1.57"), "{e}");
+}
+
+/// A parameter given twice in `--params` is a usage error naming it, not the last value
+/// silently.
+#[test]
+fn a_parameter_given_twice_is_a_usage_error() {
+    let out = kinloop(&["solve", &shipped("four_bar.kl"), "--at", "0", "--params", "a=1,b=3,c=2.5,d=3.2,a=1.5"]);
+    let err = String::from_utf8_lossy(&out.stderr);
+    assert_eq!(out.status.code(), Some(2), "{err}");
+    assert!(err.contains("`a`") && err.contains("twice"), "{err}");
+    assert!(out.stdout.is_empty());
+}
+
+/// A file far larger than a declaration (a table or a log named by mistake) is refused after
+/// the most a declaration may have, with a short message: not read whole, and not echoed.
+#[test]
+fn a_file_too_large_for_a_declaration_is_refused_briefly() {
+    let big = std::path::PathBuf::from(env!("CARGO_TARGET_TMPDIR")).join("too_large.kl");
+    std::fs::write(&big, " ".repeat(3 << 20)).expect("write");
+    let out = kinloop(&["check", &big.display().to_string()]);
+    let err = String::from_utf8_lossy(&out.stderr);
+    assert_eq!(out.status.code(), Some(65), "{}", &err[..err.len().min(500)]);
+    assert!(err.len() < 1000, "{} bytes on standard error", err.len());
+    assert!(err.contains("more than 1048576 bytes"), "{err}");
+}
+
+/// A file that is not text (a binary, a file in another encoding) is named as such, with the
+/// place of its first byte that is not UTF-8.
+#[test]
+fn a_file_that_is_not_text_says_where() {
+    let bin = std::path::PathBuf::from(env!("CARGO_TARGET_TMPDIR")).join("latin1.kl");
+    // `°` in Latin-1 on the second line.
+    std::fs::write(&bin, b"pub struct S {\n    params a = 90\xb0;\n}\n").expect("write");
+    let out = kinloop(&["check", &bin.display().to_string()]);
+    let err = String::from_utf8_lossy(&out.stderr);
+    assert_eq!(out.status.code(), Some(66), "{err}");
+    assert!(err.contains("not UTF-8 text") && err.contains("line 2, column 18"), "{err}");
+}

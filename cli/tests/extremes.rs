@@ -254,3 +254,17 @@ fn a_path_of_two_inputs_gives_both_inputs_at_each_extreme() {
     }
     std::fs::remove_dir_all(&dir).ok();
 }
+
+/// `--columns` that names no column (an empty list, commas only) is a usage error, not an
+/// empty table written with success.
+#[test]
+fn columns_naming_nothing_is_a_usage_error() {
+    for list in ["", ",", " , "] {
+        let args = ["extremes", &shipped("rhombic_drive.kl"), "--from", "0", "--to", "1", "--columns", list];
+        let out = kinloop(&args);
+        let err = String::from_utf8_lossy(&out.stderr);
+        assert_eq!(out.status.code(), Some(2), "{list:?}: {err}");
+        assert!(err.contains("--columns"), "{err}");
+        assert!(out.stdout.is_empty());
+    }
+}

@@ -211,3 +211,24 @@ fn bad_targets_files_are_usage_errors_naming_the_file_and_line() {
         assert!(stderr(&o).contains(&format!("{targets} {says}")), "{name}: {}", stderr(&o));
     }
 }
+
+/// An empty `--range` (`lo..lo`) for targets without inputs is a usage error naming it, not a
+/// search whose every candidate is rejected.
+#[test]
+fn an_empty_range_is_a_usage_error() {
+    let rows: Vec<String> = phis()
+        .iter()
+        .map(|&p| {
+            let [x, y] = coupler_point(TRUTH, p);
+            format!("{x:?},{y:?}")
+        })
+        .collect();
+    let targets = file("synth_untimed.csv", &rows.join("\n"));
+    let four_bar = shipped("coupler_four_bar.kl");
+    let args = ["synth", &four_bar, "--targets", &targets, "--path", "p", "--vary", "a=1..2", "--range", "1..1"];
+    let o = kinloop(&args);
+    let err = String::from_utf8_lossy(&o.stderr);
+    assert_eq!(o.status.code(), Some(2), "{err}");
+    assert!(err.contains("--range `1..1`"), "{err}");
+    assert!(o.stdout.is_empty());
+}

@@ -178,6 +178,7 @@ mod model;
 mod near;
 mod newton;
 mod paths;
+mod scale;
 mod sensitivities;
 mod shared;
 pub mod source;

@@ -597,8 +597,10 @@ impl Model {
     /// Positions, velocity and acceleration analogs and outputs at inputs `x`, solved from
     /// `guess` with `cfg`: the compiled mechanism's `kinematics_flat`. No allocation.
     pub fn kinematics(&mut self, x: &[f64], guess: &[f64], cfg: &NewtonConfig) -> Result<&State, StepError> {
-        self.solve_positions(x, guess, cfg, false)?;
-        self.analogs::<false>(cfg)?;
+        if let Err(e) = self.solve_positions(x, guess, cfg, false).and_then(|()| self.analogs::<false>(cfg)) {
+            // A mechanism of extreme size is solved again, as the compiled step solves it.
+            self.rescue(x, guess, cfg, e)?;
+        }
         Ok(&self.state)
     }
 
@@ -780,6 +782,12 @@ impl Model {
         st.health = Health::default();
         self.analogs::<true>(cfg)?;
         Ok(&self.state)
+    }
+
+    /// The position solve's report of the state (a solve that gave the position to
+    /// [`Model::kinematics_at`] its own).
+    pub(crate) fn set_report(&mut self, report: SolveReport) {
+        self.state.report = report;
     }
 
     /// Whether the declaration asks for parameter sensitivities (`#[kinloop(sensitivities)]`).

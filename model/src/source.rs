@@ -147,18 +147,25 @@ pub fn tokens(name: &str, text: &str) -> Result<TokenStream, Diagnostics> {
     }
     text.parse::<TokenStream>().map_err(|e| {
         let mut d = at_span(text, e.span(), String::new());
-        d.message = lex_message(text[d.range.start..].chars().next(), &e);
+        d.message = lex_message(&text[d.range.start..], &e);
         Diagnostics { level: Level::Error, name: name.to_string(), text: text.to_string(), items: vec![d] }
     })
 }
 
-/// The compiler's message for a text its lexer rejects at character `at`, for the two mistakes
-/// it names (a character no token starts with, a closing bracket without its opening one);
+/// The compiler's message for a text its lexer rejects at the start of `rest`, for the
+/// mistakes it names (a character no token starts with, a closing bracket without its opening
+/// one, an opening one never closed, a string or block comment without its end);
 /// proc-macro2's own message otherwise.
-fn lex_message(at: Option<char>, e: &proc_macro2::LexError) -> String {
-    match at {
-        Some(c @ (')' | ']' | '}')) => format!("unexpected closing delimiter: `{c}`"),
-        Some(c) if !c.is_ascii() && !unicode_ident_start(c) => {
+fn lex_message(rest: &str, e: &proc_macro2::LexError) -> String {
+    let mut chars = rest.chars();
+    match (chars.next(), chars.next()) {
+        (Some(c @ (')' | ']' | '}')), _) => format!("unexpected closing delimiter: `{c}`"),
+        (Some(c @ ('(' | '[' | '{')), _) => format!("unclosed delimiter: this `{c}` is never closed"),
+        (Some('"'), _) => "unterminated double quote string".to_string(),
+        (Some('/'), Some('*')) => "unterminated block comment".to_string(),
+        // ASCII characters that start no token: the compiler writes them as they are.
+        (Some(c @ ('`' | '\\')), _) => format!("unknown start of token: {c}"),
+        (Some(c), _) if !c.is_ascii() && !unicode_ident_start(c) => {
             format!("unknown start of token: {}", c.escape_default())
         }
         _ => format!("cannot read the declaration: {e}"),

@@ -166,3 +166,33 @@ fn ui_declarations_read_at_run_time_give_the_macros_messages() {
     eprintln!("{cases} UI cases, {compared} messages compared");
     assert!(compared >= 50, "only {compared} messages compared");
 }
+
+/// Texts the lexer rejects before the macro sees them (the compiler's lexer would): the
+/// mistake named as the compiler names it, at the character that starts it, not the lexer's
+/// bare "cannot parse string into token stream".
+#[test]
+fn texts_the_lexer_rejects_name_the_mistake() {
+    let body = "    params a = 1;\n    input phi;\n    unknowns x = 0;\n";
+    let cases = [
+        (
+            format!("pub struct S {{\n{body}    eq e: x == a * phi;\n"),
+            "unclosed delimiter: this `{` is never closed",
+            1,
+            14,
+        ),
+        (format!("pub struct S {{\n{body}    eq e: x == \"a * phi;\n}}\n"), "unterminated double quote string", 5, 16),
+        (
+            format!("pub struct S {{\n{body}    eq e: x == a * phi; /* no end\n}}\n"),
+            "unterminated block comment",
+            5,
+            25,
+        ),
+        (format!("pub struct S {{\n{body}    eq e: x == a ` phi;\n}}\n"), "unknown start of token: `", 5, 18),
+        (format!("pub struct S {{\n{body}    eq e: x == a \\ phi;\n}}\n"), "unknown start of token: \\", 5, 18),
+    ];
+    for (text, message, line, column) in cases {
+        let Err(ReadError::Rejected(d)) = Model::read("lex.kl", &text) else { panic!("accepted: {text}") };
+        let got: Vec<(&str, usize, usize)> = d.items.iter().map(|i| (i.message.as_str(), i.line, i.column)).collect();
+        assert_eq!(got, [(message, line, column)], "{text}");
+    }
+}
