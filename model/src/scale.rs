@@ -7,23 +7,14 @@
 //! rounded away) where the mechanism is fine. The compiled mechanism's checked step then solves
 //! the position again by Newton over the whole system in dimensionless unknowns
 //! (`kinloop::__gen::rescue`, the runtime's `extreme_scale`), and the analogs at it; the model
-//! does the same here, with the runtime's Newton and magnitudes, after a failed step only.
+//! does the same here, after a failed step only, with the runtime's own size test and
+//! whole-system solve (`outside_closed_form_sizes`, `whole_position`), so that both reach the
+//! same position to the bit.
 
 use crate::at::Jacobian;
 use crate::model::{Model, StepError};
-use kinloop_runtime::generated::{BlockEval, Magnitudes, SolveReport, newton};
+use kinloop_runtime::generated::{BlockEval, SolveReport, outside_closed_form_sizes, whole_position};
 use kinloop_runtime::{NewtonConfig, QuantityKind};
-
-/// `2^480`, exact: every closed form computes exactly for equation magnitudes from `2^-480` to
-/// `2^480` (about `1e±144`; the runtime's `CLOSED_FORM_SIZES`).
-const TWO_480: f64 = (1u128 << 120) as f64 * (1u128 << 120) as f64 * (1u128 << 120) as f64 * (1u128 << 120) as f64;
-
-/// Whether equation magnitudes `scale` (the finite ones) put the mechanism outside the sizes at
-/// which the closed forms compute exactly: its largest beyond either end.
-fn outside_closed_form_sizes(scale: &[f64]) -> bool {
-    let size = scale.iter().fold(0.0f64, |s, v| if v.is_finite() { s.max(v.abs()) } else { s });
-    size > 0.0 && !(1.0 / TWO_480..=TWO_480).contains(&size)
-}
 
 impl Model {
     /// The answer to a step at `x` from `guess` that failed with `error`: for a mechanism
@@ -67,10 +58,10 @@ impl Model {
         Ok(())
     }
 
-    /// Newton over the whole system of `N` unknowns from `guess`, whose Jacobian is `jac`, in
-    /// dimensionless unknowns `z = q / unit` (radians for an angle, fractions of its loop's size
-    /// for a length): the columns are then of one magnitude, as a generated Newton block has
-    /// them. The position and the solve's report, or `None` where Newton fails.
+    /// Newton over the whole system of `N` unknowns from `guess`, whose Jacobian is `jac`: the
+    /// runtime's own (`whole_position`, the compiled step's), the residuals and Jacobian
+    /// evaluated by the model. The position and the solve's report, or `None` where Newton
+    /// fails.
     fn solve_whole<const N: usize>(
         &mut self,
         x: &[f64],
@@ -78,32 +69,23 @@ impl Model {
         cfg: &NewtonConfig,
         jac: &Jacobian,
     ) -> Option<(Vec<f64>, SolveReport)> {
-        if jac.f.len() != N || jac.scale.len() != N || jac.unit.len() != N {
+        if guess.len() != N || jac.f.len() != N || jac.scale.len() != N || jac.unit.len() != N {
             return None;
         }
-        let unit: [f64; N] = std::array::from_fn(|u| {
-            let v = jac.unit[u];
-            if v > 0.0 && v.is_finite() { v } else { 1.0 }
-        });
         let turns: [bool; N] = std::array::from_fn(|u| self.unknown_kinds()[u] == QuantityKind::Angle);
-        let mags = Magnitudes::new(std::array::from_fn(|e| jac.scale[e]), [1.0; N]).with_turns(turns);
-        let q_of = move |z: &[f64; N]| -> [f64; N] { std::array::from_fn(|u| z[u] * unit[u]) };
         let mut at = Jacobian::default();
-        let mut eval = |z: &[f64; N], ev: &mut BlockEval<N, 0>| {
+        let eval = |q: &[f64; N], ev: &mut BlockEval<N, 0>| {
             // The sizes were checked: not reached. NaN where it were, which Newton refuses.
-            if self.jacobian(x, &q_of(z), &mut at).is_err() {
+            if self.jacobian(x, q, &mut at).is_err() {
                 ev.f = [f64::NAN; N];
                 return;
             }
             ev.f = std::array::from_fn(|e| at.f[e]);
-            ev.j = std::array::from_fn(|e| std::array::from_fn(|u| at.j[e * N + u] * unit[u]));
+            ev.j = std::array::from_fn(|e| std::array::from_fn(|u| at.j[e * N + u]));
         };
-        let z0: [f64; N] = std::array::from_fn(|u| guess[u] / unit[u]);
-        let mut ev: BlockEval<N, 0> = BlockEval { f: [0.0; N], j: [[0.0; N]; N], keep: [] };
-        eval(&z0, &mut ev);
-        let solved = newton(z0, &mut ev, cfg, eval, &mags).ok()?;
-        let mut report = SolveReport::direct();
-        report.absorb(&solved);
-        Some((q_of(&solved.z).to_vec(), report))
+        let guess: [f64; N] = std::array::from_fn(|u| guess[u]);
+        let (scale, unit) = (std::array::from_fn(|e| jac.scale[e]), std::array::from_fn(|u| jac.unit[u]));
+        let (q, report) = whole_position(&guess, scale, unit, turns, cfg, eval)?;
+        Some((q.to_vec(), report))
     }
 }

@@ -13,6 +13,7 @@ pub use crate::error::Error;
 pub use crate::events::BlockInfo;
 pub use crate::kin::{ByValue, Health, Jac, Kin, KinSink, Sens, first_non_finite_state};
 pub use crate::kinds::QuantityKind;
+pub use crate::mechanism::extreme_scale::{outside_closed_form_sizes, whole_position};
 pub use crate::mechanism::rescue;
 pub use crate::mechanism::{Mechanism, Sensitivities};
 pub use crate::named::{NamedSensitivities, SensitivitiesRequested};

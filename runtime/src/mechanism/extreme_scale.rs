@@ -35,9 +35,11 @@ pub const CLOSED_FORM_SIZES: (f64, f64) = (1.0 / TWO_480, TWO_480);
 /// `2^480`, exact.
 const TWO_480: f64 = (1u128 << 120) as f64 * (1u128 << 120) as f64 * (1u128 << 120) as f64 * (1u128 << 120) as f64;
 
-/// Whether equation magnitudes `scale` (finite and positive ones) put the mechanism outside
-/// [`CLOSED_FORM_SIZES`]: its largest beyond either end.
-fn outside_closed_form_sizes(scale: &[f64]) -> bool {
+/// Whether equation magnitudes `scale` (the finite ones) put the mechanism outside
+/// [`CLOSED_FORM_SIZES`]: its largest beyond either end. A run-time model asks the same
+/// (`kinloop_runtime::generated::outside_closed_form_sizes`).
+#[doc(hidden)]
+pub fn outside_closed_form_sizes(scale: &[f64]) -> bool {
     let size = scale.iter().fold(0.0f64, |s, v| if v.is_finite() { s.max(v.abs()) } else { s });
     size > 0.0 && !(size >= CLOSED_FORM_SIZES.0 && size <= CLOSED_FORM_SIZES.1)
 }
@@ -93,7 +95,8 @@ where
     outside_closed_form_sizes(&jac.scale).then_some(jac)
 }
 
-/// [`rescue`]'s Newton over the whole system from `guess`, whose Jacobian is `jac`.
+/// [`rescue`]'s Newton over the whole system from `guess`, whose Jacobian is `jac`, and the
+/// analogs and outputs at the position it reaches.
 #[inline(never)]
 fn solve_whole<J, A, const N: usize, const NI: usize, const NO: usize>(
     m: &Whole<J, A, N>,
@@ -106,18 +109,42 @@ where
     J: Fn(&[f64; N]) -> Jac<N, NI>,
     A: Fn(&[f64; N]) -> Result<Kin<N, NI, NO>, Error>,
 {
-    // Newton in dimensionless unknowns `z = q / unit` (radians for an angle, fractions of its
-    // loop's size for a length): the columns of the Jacobian are then of one magnitude, as a
-    // block of the generated Newton solver has them.
-    let unit = jac.unit.map(|u| if u > 0.0 && u.is_finite() { u } else { 1.0 });
     let turns = m.kinds.map(|k| k == QuantityKind::Angle);
-    let mags = Magnitudes::new(jac.scale, [1.0; N]).with_turns(turns);
+    let at = |q: &[f64; N], ev: &mut BlockEval<N, 0>| {
+        let jq = (m.jacobian)(q);
+        ev.f = jq.f;
+        ev.j = jq.j;
+    };
+    let Some((q, report)) = whole_position(guess, jac.scale, jac.unit, turns, cfg, at) else { return Err(error) };
+    let mut kin = (m.kinematics_at)(&q).map_err(|_| error)?;
+    kin.report = report;
+    Ok(kin)
+}
+
+/// The position of a mechanism of `N` unknowns solved by Newton over the whole system from
+/// `guess`: `scale` its equations' magnitudes and `unit` its unknowns' units at the guess (a
+/// unit that is not finite and positive counts as one), `turns` which unknowns are angles, and
+/// `at(q, ev)` writing the residuals and the Jacobian at `q` into `ev` (a residual NaN where they
+/// cannot be evaluated, which Newton refuses). The iteration runs in dimensionless unknowns
+/// `z = q / unit` (radians for an angle, fractions of its loop's size for a length), so that the
+/// columns of the Jacobian are of one magnitude, as a block of the generated Newton solver has
+/// them. The position and the solve's report, or `None` where Newton fails. What a compiled
+/// mechanism's [`rescue`] and a run-time model's solve, to the same bits.
+#[doc(hidden)]
+pub fn whole_position<const N: usize>(
+    guess: &[f64; N],
+    scale: [f64; N],
+    unit: [f64; N],
+    turns: [bool; N],
+    cfg: &NewtonConfig,
+    mut at: impl FnMut(&[f64; N], &mut BlockEval<N, 0>),
+) -> Option<([f64; N], SolveReport)> {
+    let unit = unit.map(|u| if u > 0.0 && u.is_finite() { u } else { 1.0 });
+    let mags = Magnitudes::new(scale, [1.0; N]).with_turns(turns);
     let q_of = |z: &[f64; N]| core::array::from_fn::<f64, N, _>(|u| z[u] * unit[u]);
     // Written over the solver's slot, as the generated blocks' evaluations are.
     let eval = |z: &[f64; N], ev: &mut BlockEval<N, 0>| {
-        let jz = (m.jacobian)(&q_of(z));
-        ev.f = jz.f;
-        ev.j = jz.j;
+        at(&q_of(z), ev);
         for row in &mut ev.j {
             for u in 0..N {
                 row[u] *= unit[u];
@@ -126,12 +153,10 @@ where
     };
     let z0 = core::array::from_fn::<f64, N, _>(|u| guess[u] / unit[u]);
     let mut ev: BlockEval<N, 0> = BlockEval { f: [0.0; N], j: [[0.0; N]; N], keep: [] };
+    let mut eval = eval;
     eval(&z0, &mut ev);
-    let Ok(mut solved) = newton(z0, &mut ev, cfg, eval, &mags) else { return Err(error) };
-    solved.z = q_of(&solved.z);
+    let solved = newton(z0, &mut ev, cfg, eval, &mags).ok()?;
     let mut report = SolveReport::direct();
     report.absorb(&solved);
-    let mut kin = (m.kinematics_at)(&solved.z).map_err(|_| error)?;
-    kin.report = report;
-    Ok(kin)
+    Some((q_of(&solved.z), report))
 }
