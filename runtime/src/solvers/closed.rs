@@ -17,7 +17,7 @@ use core::f64::consts::PI;
 /// The angle of sine `s` nearest to the guess `g` on its side of the vertical (`right`: the
 /// guess's cosine is positive), given `r = reduce_turn(g)`, with `right = |r| < π/2`: `asin`
 /// or its supplement, moved to the guess's turn by `g - r`, the whole turns the reduction took
-/// off (no second reduction, as [`unwrap_to_turn`] would make).
+/// off (no second reduction, as [`unwrap_to_turn`](super::turns::unwrap_to_turn) would make).
 ///
 /// ```
 /// use kinloop_runtime::generated::{asin_near, reduce_turn};
