@@ -31,10 +31,11 @@ use kinloop_bench::decls::{FourBarSens, four_sens};
 use kinloop_bench::hand::{FOUR_BAR, FourBarClosed};
 use kinloop_bench::hand_sweep::HandSweep;
 use kinloop_bench::kinloop_variants::{Kinloop, KinloopNamed, KinloopSens, KinloopSweep, check_kinloop_sweep};
-use kinloop_bench::lean::{HandSweepCursor, point_sum, step_sum};
+use kinloop_bench::lean::{HandSweepCursor, point_sum};
 use kinloop_bench::rhombic::{self, ClosedForm, DenseFiniteDifference, DenseHandJacobian, DenseNumDual, TwoLoopNewton};
 use kinloop_bench::ring::{Ring, RingDense, Series};
 use kinloop_bench::rows::{RowVisitor, TURN_720, closed_form_rows};
+use kinloop_bench::sweep::step_sum;
 use kinloop_bench::sweep::{
     DIFFERENCED, EXACT, Failed, STEPS, Step, Stepper, Sweep, SweepCheck, WarmStart, check_sweep, check_turn,
 };

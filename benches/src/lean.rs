@@ -12,10 +12,7 @@ use crate::kernel_lane::kernel_lane_fold;
 use crate::kinloop_variants::{KinloopSweep, state_sum};
 use std::f64::consts::TAU;
 
-use crate::sweep::{Failed, Step, Stepper, WarmStart, next_input};
-// Declared beside `Step` in `crate::sweep`, whose `Sweep` adds its steps up with it too; the
-// criterion benchmarks (`benches/step.rs`) take it from here.
-pub use crate::sweep::step_sum;
+use crate::sweep::{Failed, Step, Stepper, WarmStart, next_input, step_sum};
 
 /// `steps` steps of `s` over turns of `turn` equally spaced inputs, each warm-started from the
 /// previous step by `policy` (a closed form ignores it): the sum of every step's numbers (see
