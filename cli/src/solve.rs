@@ -3,7 +3,7 @@
 use crate::{Failed, exit};
 use kinloop_model::{Model, StepError};
 use kinloop_runtime::dims::Heap;
-use kinloop_runtime::{Error, Kernel, Location, NewtonConfig, QuantityKind, SweepConfig, Table};
+use kinloop_runtime::{Error, Kernel, NewtonConfig, QuantityKind, SweepConfig, Table};
 
 /// Solves at every `--at` and writes the table to standard output.
 pub fn run(model: &mut Model, at: &[String], deg: bool) -> Result<(), Failed> {
@@ -80,7 +80,7 @@ pub fn degrees(v: f64) -> f64 {
 /// `e` with the inputs of its location (of kinds `kinds`) in the units written: angles in
 /// degrees where `deg` is set, as they were given and as the table writes them.
 pub fn in_units(mut e: Error, kinds: &[QuantityKind], deg: bool) -> Error {
-    if let (true, Some(at)) = (deg, location_mut(&mut e)) {
+    if let (true, Some(at)) = (deg, e.location_mut()) {
         for ((_, v), k) in at.inputs.iter_mut().zip(kinds) {
             if *k == QuantityKind::Angle {
                 *v = degrees(*v);
@@ -88,23 +88,6 @@ pub fn in_units(mut e: Error, kinds: &[QuantityKind], deg: bool) -> Error {
         }
     }
     e
-}
-
-/// The location an error carries ([`Error::location`], to be changed).
-fn location_mut(e: &mut Error) -> Option<&mut Location> {
-    match e {
-        Error::NonFinite { at, .. }
-        | Error::NoConvergence { at, .. }
-        | Error::NoAssembly { at, .. }
-        | Error::Singular { at, .. }
-        | Error::Domain { at, .. }
-        | Error::Overflow { at, .. }
-        | Error::SweepStopped { at, .. }
-        | Error::Branch { at, .. }
-        | Error::TooManyTurns { at, .. }
-        | Error::RangeTooLong { at, .. } => Some(at),
-        _ => None,
-    }
 }
 
 /// One list of inputs (of the option `option`) in the model's units: one number per input of

@@ -257,6 +257,24 @@ impl Error {
             Error::InvalidArgument(_) | Error::Dynamics(_) | Error::Figure(_) => None,
         }
     }
+
+    /// The location carried by the error, to be changed: e.g. its inputs written in the units
+    /// a program reads them in (a command line's degrees).
+    pub fn location_mut(&mut self) -> Option<&mut Location> {
+        match self {
+            Error::NonFinite { at, .. }
+            | Error::NoConvergence { at, .. }
+            | Error::NoAssembly { at, .. }
+            | Error::Singular { at, .. }
+            | Error::Domain { at, .. }
+            | Error::Overflow { at, .. }
+            | Error::SweepStopped { at, .. }
+            | Error::Branch { at, .. }
+            | Error::TooManyTurns { at, .. }
+            | Error::RangeTooLong { at, .. } => Some(at),
+            Error::InvalidArgument(_) | Error::Dynamics(_) | Error::Figure(_) => None,
+        }
+    }
 }
 
 /// Why a position is singular, with the numbers as they are: a pivot ratio below the tolerance,
