@@ -1,6 +1,6 @@
 //! Why a figure could not be made.
 
-use super::Kind;
+use super::{Axis, Kind};
 use std::fmt;
 
 /// Why a figure could not be made.
@@ -92,5 +92,17 @@ impl std::error::Error for PlotError {
 impl From<PlotError> for kinloop_runtime::Error {
     fn from(e: PlotError) -> Self {
         kinloop_runtime::Error::Figure(kinloop_runtime::Source::new(e))
+    }
+}
+
+impl Axis {
+    /// Refuses a name with a bracketed unit in it ([`PlotError::UnitInName`]): the axis writes
+    /// its unit itself. Beside the error it gives, so that the axes' vocabulary needs nothing of
+    /// the errors.
+    pub(crate) fn check(&self) -> Result<(), PlotError> {
+        match self.name.find('[') {
+            Some(open) if self.name[open..].contains(']') => Err(PlotError::UnitInName { axis: self.name.clone() }),
+            _ => Ok(()),
+        }
     }
 }

@@ -1,7 +1,6 @@
 //! What a series holds: the quantity kind of its values, which fixes the axis unit and how the
 //! values are shown (angles in degrees).
 
-use super::PlotError;
 use kinloop_runtime::QuantityKind;
 use std::fmt;
 
@@ -209,14 +208,6 @@ impl Axis {
     /// An axis named after its kind (`"length [mm]"`).
     pub fn of(kind: Kind) -> Axis {
         Axis { name: kind.quantity(), kind }
-    }
-
-    /// Refuses a name with a bracketed unit in it ([`PlotError::UnitInName`]).
-    pub(crate) fn check(&self) -> Result<(), PlotError> {
-        match self.name.find('[') {
-            Some(open) if self.name[open..].contains(']') => Err(PlotError::UnitInName { axis: self.name.clone() }),
-            _ => Ok(()),
-        }
     }
 
     /// The axis title with its unit: `"crank angle φ [°]"`.
