@@ -39,6 +39,16 @@ fn bounds_that_hold_no_value() {
     }
     let e = error(&design(), &Task::path("p", [[1.0, 2.0]; 3]).untimed(1.0, 0.0));
     assert!(matches!(&e, SynthesisError::BadBounds { name, .. } if name == "input"), "{e:?}");
+    // Free inputs within a range of one value: several targets cannot be met in order along one
+    // motion (every start would end in an order defect). One target can.
+    let e = error(&design(), &Task::path("p", [[1.0, 2.0], [1.5, 2.2], [2.0, 2.1]]).untimed(1.0, 1.0));
+    assert!(matches!(&e, SynthesisError::InvalidConfig(m) if m.contains("[1, 1]")), "{e:?}");
+    let one = Problem::new(
+        CouplerFourBar::default(),
+        &Design::new().var("a", 0.5, 2.0),
+        &Task::path("p", [[1.0, 2.0]]).untimed(1.0, 1.0),
+    );
+    assert!(one.is_ok(), "{one:?}");
     let placement = PlacementBounds::translation((0.0, 1.0), (0.0, 1.0)).with_scale((0.0, 2.0));
     let e = error(&design(), &Task::path("p", [[1.0, 2.0]; 9]).timed([0.0; 9]).with_placement(placement));
     assert!(matches!(&e, SynthesisError::BadBounds { name, .. } if name == "scale"), "{e:?}");

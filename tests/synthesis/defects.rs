@@ -116,3 +116,37 @@ fn constraints_full_rotation_transmission_and_link_ratio() {
         .unwrap();
     assert_eq!(verify(&problem, &[TRIPLE_ROCKER[4]]).defects, [Defect::NoFullRotation]);
 }
+
+#[test]
+fn the_smallest_transmission_angle_is_located_between_samples() {
+    // The crank-rocker's transmission angle is smallest with crank and frame in line (phi = 0 or
+    // pi). Here no sample lies there: the targets start 2.5 degrees past phi = 0, so the turn
+    // checked for full rotation (samples every 5 degrees from the first target) passes both
+    // extremes 2.5 degrees away, and the stretch from 3.0 to 3.3 passes phi = pi between
+    // its samples. The verification reports the located minimum, the closed form's.
+    let [a, b, c, d, ..] = FOUR_BAR;
+    let mu = |ad: f64| {
+        let m = ((b * b + c * c - ad * ad) / (2.0 * b * c)).acos();
+        m.min(PI - m)
+    };
+    let expected = mu(d - a).min(mu(d + a));
+    let start = 2.5f64.to_radians();
+    let turn = Constraints::default().with_full_rotation().with_transmission("beta", "gamma", 0.0);
+    let problem = exact(FOUR_BAR, &[start, 1.0, 2.0], &[1.0; 3], true).with_constraints(&turn).unwrap();
+    let cand = verify(&problem, &[FOUR_BAR[4]]);
+    assert_close!(cand.min_transmission.unwrap(), expected, crate::support::tol::SOLVE);
+    assert!(cand.is_valid(), "{cand:?}");
+
+    let stretch = Constraints::default().with_transmission("beta", "gamma", 0.0);
+    let problem = exact(FOUR_BAR, &[3.0, 3.3], &[1.0; 2], true).with_constraints(&stretch).unwrap();
+    let cand = verify(&problem, &[FOUR_BAR[4]]);
+    assert_close!(cand.min_transmission.unwrap(), mu(d + a), crate::support::tol::SOLVE);
+
+    // A bound just below the located minimum holds; one just above it (below every sample's
+    // angle) is violated.
+    for (bound, valid) in [(expected - 1e-9, true), (expected + 1e-9, false)] {
+        let c = Constraints::default().with_full_rotation().with_transmission("beta", "gamma", bound);
+        let problem = exact(FOUR_BAR, &[start, 1.0, 2.0], &[1.0; 3], true).with_constraints(&c).unwrap();
+        assert_eq!(verify(&problem, &[FOUR_BAR[4]]).is_valid(), valid, "bound {bound}");
+    }
+}

@@ -61,7 +61,8 @@ pub struct Constraints {
     /// a four-bar, found for any mechanism).
     pub full_rotation: bool,
     /// Transmission angle to report and bound (over the motion checked: from the first to the
-    /// last target, or the whole turn with [`Constraints::full_rotation`]).
+    /// last target, or the whole turn with [`Constraints::full_rotation`]; its minimum located
+    /// between the verifying sweep's samples, at a root of the relative angle's velocity analog).
     pub transmission: Option<TransmissionBound>,
     /// Bound on a ratio of link lengths.
     pub link_ratio: Option<LinkRatioBound>,

@@ -99,6 +99,14 @@ pub(crate) fn resolve_timing<D: Dims>(d: D, timing: &Timing, targets: usize) -> 
                 )));
             }
             check_bounds("input", lo, hi)?;
+            // Every free input would be `lo`: targets met in order along one motion need
+            // distinct inputs, so each start would end in an order defect.
+            if lo == hi && targets > 1 {
+                return Err(SynthesisError::InvalidConfig(format!(
+                    "free timing within [{lo}, {hi}] gives every one of the {targets} targets the same input: \
+                     give a range the motion can run through, or prescribe the inputs (`timed`)"
+                )));
+            }
             Ok(Inputs::Free { lo, hi })
         }
     }

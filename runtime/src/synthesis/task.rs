@@ -161,7 +161,8 @@ impl Task {
     }
 
     /// The input value of each target is free within `[lo, hi]` (a mechanism with one input);
-    /// the targets must be met in order along one monotone motion.
+    /// the targets must be met in order along one monotone motion (so with more than one target
+    /// `lo < hi`).
     pub fn untimed(mut self, lo: f64, hi: f64) -> Self {
         self.timing = Timing::Free { lo, hi };
         self

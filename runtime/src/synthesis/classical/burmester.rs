@@ -156,9 +156,11 @@ pub(crate) fn dyads_at(poses: &[Pose], beta2: f64) -> Result<[Option<Dyad>; 2], 
 /// The first compatibility condition's solutions are sampled over `beta_2`
 /// ([`config.samples`](BurmesterConfig::samples) a turn, on both branches); where the second
 /// condition changes sign along them a root is bracketed, then refined by Newton's method on
-/// both conditions together (four real equations in `beta_2 .. beta_5`). The solution where
-/// every crank rotation equals the body's own satisfies both conditions but determines no dyad,
-/// and is dropped.
+/// both conditions together (four real equations in `beta_2 .. beta_5`). The solutions where
+/// every crank rotation equals the body's own, or is zero, satisfy both conditions but
+/// determine no dyad, and are dropped; the sample steps holding them are searched again more
+/// finely, since a Burmester point with a long crank (turning nearly as the body does, or
+/// hardly at all) lies close to one of them.
 ///
 /// Errors: not exactly five poses, and the errors of [`center_point_curve`] (for poses 1-4 and
 /// 1, 2, 3, 5).
@@ -186,7 +188,7 @@ pub fn burmester_points(poses: &[Pose], config: &BurmesterConfig) -> Result<Burm
     let second = Compatibility::new(poses, [1, 2, 4])?;
     let trivial: Vec<f64> = poses.iter().map(|p| p.angle - poses[0].angle).collect();
     let mut dyads: Vec<Dyad> = Vec::new();
-    for seed in brackets(&first, &second, config.samples) {
+    for seed in brackets(&first, &second, config.samples, trivial[1]) {
         let Some(betas) = newton(&first, &second, seed) else { continue };
         let all = [0.0, betas[0], betas[1], betas[2], betas[3]];
         let is_trivial = (1..5).all(|j| angle_difference(all[j], trivial[j]).abs() < 1e-6);
@@ -208,7 +210,17 @@ pub fn burmester_points(poses: &[Pose], config: &BurmesterConfig) -> Result<Burm
 /// neighbouring samples along the first condition's solutions. Where the first condition's
 /// solutions stop at a `beta_2` (its linkage is stretched flat), its two branches meet, so the
 /// chain runs out along one branch and back along the other.
-fn brackets(first: &Compatibility, second: &Compatibility, samples: usize) -> Vec<[f64; 4]> {
+///
+/// The residual also vanishes where no dyad is determined: at the body's own rotation
+/// `alpha_2` and at no rotation (`0`: every crank rotation zero, also a solution of both
+/// conditions). A Burmester point with a long crank lies close to one of them (a far circle
+/// point is carried nearly as the body turns, so its crank turns nearly as the body; a far
+/// center point's crank nearly slides, hardly turning). Two roots within one step keep the
+/// residual's sign across it, and a bracket whose better end is the degenerate solution starts
+/// Newton's method there: so a step holding `alpha_2` or `0` is searched again on a grid halving
+/// towards it (down to `2^-40` of the step), and a fold's step on a finer grid out to the fold
+/// and back.
+fn brackets(first: &Compatibility, second: &Compatibility, samples: usize, alpha2: f64) -> Vec<[f64; 4]> {
     let beta2 = |k: usize| k as f64 * TAU / samples as f64;
     let grid: Vec<[Option<(f64, f64)>; 2]> = (0..samples).map(|k| first.closures(beta2(k))).collect();
     let exists = |k: usize| grid[k % samples][0].is_some();
@@ -235,22 +247,88 @@ fn brackets(first: &Compatibility, second: &Compatibility, samples: usize) -> Ve
             k += 1;
         }
     }
-    let seed = |(k, b): (usize, usize)| {
-        let (b3, b4) = grid[k][b]?;
-        let b2 = beta2(k);
+    // The starting rotations and the second condition's residual at `b2` on a first-condition
+    // solution `(b3, b4)`.
+    let at = |b2: f64, (b3, b4): (f64, f64)| {
         let [e1, e2, e3, e5] = second.d;
         let known = e1 + e2 * Complex::from_polar(1.0, b2) + e3 * Complex::from_polar(1.0, b3);
         let b5 = (-known / e5).arg();
-        Some(([b2, b3, b4, b5], known.norm() - e5.norm()))
+        ([b2, b3, b4, b5], known.norm() - e5.norm())
     };
+    // A sample on `branch` at `b2`: the branch, the starting rotations, the residual.
+    let on = |b2: f64, branch: usize| first.closures(b2)[branch].map(|c| (branch, at(b2, c)));
+    let seed = |(k, b): (usize, usize)| grid[k][b].map(|c| (b, at(beta2(k), c)));
+    let step = TAU / samples as f64;
     let mut seeds = Vec::new();
+    // Where the residual changes sign from one sample to the next, the better end starts
+    // Newton's method; between two samples of one branch the change is first narrowed by
+    // bisection, so that Newton's method starts at the root rather than at a degenerate
+    // solution close to it.
+    let mut bracket = |(b0, (s0, f0)): (usize, ([f64; 4], f64)), (b1, (s1, f1)): (usize, ([f64; 4], f64))| {
+        if f0 != 0.0 && f0.signum() == f1.signum() {
+            return;
+        }
+        let (mut lo, mut hi) = ((s0, f0), (s1, f1));
+        if b0 == b1 && f0 != 0.0 && f1 != 0.0 {
+            let span = angle_difference(s1[0], s0[0]);
+            let (mut a, mut b) = (0.0, 1.0);
+            for _ in 0..60 {
+                let t = 0.5 * (a + b);
+                let Some((_, m)) = on(s0[0] + t * span, b0) else { break };
+                if m.1.signum() == lo.1.signum() {
+                    (lo, a) = (m, t);
+                } else {
+                    (hi, b) = (m, t);
+                }
+            }
+        }
+        seeds.push(if lo.1.abs() <= hi.1.abs() { lo.0 } else { hi.0 });
+    };
+    // The rotation `t` from sample `k`, when the step from `k` towards `t`'s side holds
+    // alpha_2 or 0 (a sample on one is held by the steps on both sides).
+    let held = |k: usize, after: bool| {
+        [alpha2, 0.0].into_iter().find_map(|a| {
+            let t = angle_difference(a, beta2(k));
+            let inside = if after { (0.0..=step).contains(&t) } else { (-step..=0.0).contains(&t) };
+            inside.then_some(t)
+        })
+    };
+    // Rotations from a sample into the step on its `after` side (or the other), increasing
+    // away from it: halving towards a held degenerate rotation, and for a fold (whose place in
+    // the step is not known) also every 1/32 of the step.
+    let fine = |k: usize, after: bool, fold: bool| {
+        let sign = if after { 1.0 } else { -1.0 };
+        let mut t: Vec<f64> = Vec::new();
+        if let Some(off) = held(k, after) {
+            let off = off.abs();
+            t.extend((1..=40).flat_map(|j| [off - step * 0.5f64.powi(j), off + step * 0.5f64.powi(j)]));
+        }
+        if fold {
+            t.extend((1..32).map(|j| step * j as f64 / 32.0));
+        }
+        t.retain(|&t| t > 0.0 && t < step);
+        t.sort_by(f64::total_cmp);
+        t.into_iter().map(move |t| beta2(k) + sign * t)
+    };
     for chain in &chains {
         for i in 0..chain.len() {
-            let (Some((s0, f0)), Some((s1, f1))) = (seed(chain[i]), seed(chain[(i + 1) % chain.len()])) else {
-                continue;
-            };
-            if f0 == 0.0 || f0.signum() != f1.signum() {
-                seeds.push(if f0.abs() <= f1.abs() { s0 } else { s1 });
+            let (p, q) = (chain[i], chain[(i + 1) % chain.len()]);
+            let (Some(s0), Some(s1)) = (seed(p), seed(q)) else { continue };
+            let mut run = vec![s0];
+            if p.0 == q.0 && p.1 != q.1 {
+                // A fold: out along branch p.1 beyond sample k (after it from branch 0, before
+                // it from branch 1) and back along branch q.1.
+                let (k, after) = (p.0, p.1 == 0);
+                run.extend(fine(k, after, true).filter_map(|b2| on(b2, p.1)));
+                let back: Vec<f64> = fine(k, after, true).collect();
+                run.extend(back.into_iter().rev().filter_map(|b2| on(b2, q.1)));
+            } else if p.1 == q.1 && held(p.0, (p.0 + 1) % samples == q.0).is_some() {
+                // A step along one branch holding alpha_2 or 0.
+                run.extend(fine(p.0, (p.0 + 1) % samples == q.0, false).filter_map(|b2| on(b2, p.1)));
+            }
+            run.push(s1);
+            for w in run.windows(2) {
+                bracket(w[0], w[1]);
             }
         }
     }

@@ -228,3 +228,59 @@ fn random_five_pose_problems_give_the_reference_burmester_pairs() {
     }
     assert!(folds >= 6, "{folds}");
 }
+
+/// A Burmester point with a long crank turns it nearly as the body turns (a far circle point is
+/// carried nearly as a point of the body), or hardly at all (a far center point: the crank
+/// nearly slides): its `beta_2` lies next to the body's own rotation or to zero. Both of those
+/// satisfy the compatibility conditions without giving a dyad, and within one sample step of
+/// such a solution the second condition's residual vanishes twice and keeps its sign across the
+/// step. The references: mpmath's 40-digit solutions of the Cartesian conditions
+/// `|k_j - M| = |k_1 - M|` (Newton from many random starts, independent of the rotations).
+#[test]
+fn burmester_points_next_to_the_degenerate_rotations_are_found() {
+    // A crank 18 times the problem's size turning 22.81 degrees to the second pose, the body
+    // 22.92 (0.4 rad); and another 18 times the size turning 0.39 degrees.
+    let problems = [
+        (
+            [(0.0, 0.0, 0.0), (1.0, 0.3, 0.4), (1.8, 1.1, 0.9), (2.1, 2.2, 1.6), (2.0, 3.0, 2.0)],
+            vec![
+                (Vec2::new(-0.1906444455094678, 2.3014434632447087), Vec2::new(2.6904612613342547, 68.09073833989245)),
+                (
+                    Vec2::new(-0.10524526529716793, 2.155663407246796),
+                    Vec2::new(-0.24635339402304407, 2.692007219303523),
+                ),
+            ],
+        ),
+        (
+            [
+                (0.246, 1.748, 0.581),
+                (3.224, 3.933, 0.273),
+                (2.186, 3.787, 1.119),
+                (3.514, 3.164, 0.196),
+                (1.726, 2.383, 1.193),
+            ],
+            vec![
+                (
+                    Vec2::new(0.4874620627371702, 1.9192866486395948),
+                    Vec2::new(-0.4507006413118078, 0.32042525284926204),
+                ),
+                (Vec2::new(1.3751658348056557, -5.539186254558906), Vec2::new(-1.8821029845804051, -6.661557155203552)),
+                (Vec2::new(2.9530044322454647, 4.709988590246466), Vec2::new(0.874543287225142, 4.2223544070955334)),
+                (Vec2::new(70.08104775592834, -38.053531565778655), Vec2::new(10.178178212847563, -7.214423349269937)),
+            ],
+        ),
+    ];
+    for (i, (poses, pairs)) in problems.iter().enumerate() {
+        let poses = poses.map(|(x, y, a)| Pose::new(x, y, a));
+        let found = burmester_points(&poses, &BurmesterConfig::default()).unwrap();
+        assert_eq!(found.dyads.len(), pairs.len(), "problem {i}: {found:?}");
+        assert!(found.max_deviation <= DEVIATION, "problem {i}: {:e}", found.max_deviation);
+        for (center, circle) in pairs {
+            let hit = found.dyads.iter().any(|d| {
+                let scale = found.size.max(d.radius());
+                (d.center - *center).norm() <= 1e-10 * scale && (d.circle - *circle).norm() <= 1e-10 * scale
+            });
+            assert!(hit, "problem {i}: {center:?} not among {:?}", found.dyads);
+        }
+    }
+}
