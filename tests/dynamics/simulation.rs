@@ -260,6 +260,40 @@ fn running_into_a_limit_position_is_a_typed_error() {
     }
 }
 
+/// A simulation over a span far longer than it can step through: it starts as a short one
+/// would (the steps of a fast crank, ~1e-4, are finer than the span's rounding, 8 eps 1e12 =
+/// 1.8e-3, but not than the time's at t = 0) and ends on its step budget, saying so, not as a
+/// singular motion at t = 0.
+#[test]
+fn a_long_simulation_ends_on_its_step_budget_not_as_a_singular_motion() {
+    let sc = SliderCrank::default();
+    // A piston makes the reduced inertia vary over a turn, so the steps stay short (a constant
+    // one would make the motion a parabola, which the method integrates exactly in any step).
+    let model = crank_model(0.5)
+        .and_then(|m| {
+            m.with_body(Body {
+                name: "piston".into(),
+                mass: 0.8,
+                com: [Coord::Unknown(1), Coord::Fixed(0.3)],
+                inertia: 0.0,
+                rotation: Rotation::None,
+            })
+        })
+        .unwrap();
+    let cfg = RunConfig::default().with_flywheel(0.05).with_ode(OdeConfig::default().with_max_steps(2000));
+    let sim = || Simulation::new(&sc, &model).start(0.0, 1000.0).guess(sc.guess_flat(&[0.0])).config(cfg);
+    let err = sim().drive(|_, _, _| 2.5).run(1e12).unwrap_err();
+    let DynamicsError::TooManySteps { steps: 2000, t, t_end } = err else { panic!("{err}") };
+    assert!(t > 0.0 && t_end == 1e12, "{err}");
+    assert!(err.to_string().contains("`--time`") && err.to_string().contains("`OdeConfig::max_steps`"), "{err}");
+    // Its first steps are those of a short run: the same motion to the same time.
+    let long = sim().drive(|_, _, _| 2.5).stop_when(|t, _| t >= 0.05).run(1e12).unwrap();
+    let short = sim().drive(|_, _, _| 2.5).run(long.t_end).unwrap();
+    assert!(long.steps[0].h < 1.8e-3, "first step {}", long.steps[0].h);
+    assert_close!(long.end[0], short.end[0], 1e-8, "{:?} vs {:?}", long.end, short.end);
+    assert_close!(long.end[1], short.end[1], 1e-6, "{:?} vs {:?}", long.end, short.end);
+}
+
 /// A crank of moment of inertia `inertia` about its axis (centre of mass on the axis), turning
 /// with the input.
 fn crank_model(inertia: f64) -> Result<MassModel<2, 1, 2>, DynamicsError> {

@@ -3,6 +3,7 @@
 //! and integrator failures. Each converts into [`crate::Error`].
 
 use crate::error::Error;
+use crate::number::Number;
 use std::borrow::Cow;
 
 /// What went wrong in a dynamic analysis; see the [module documentation](self).
@@ -161,13 +162,23 @@ pub enum DynamicsError {
         /// The size given.
         given: usize,
     },
-    /// The integrator made its maximum number of steps.
-    #[error("the integration made {steps} steps and reached only t = {t}; raise `max_steps`")]
+    /// The integrator made its maximum number of steps (its budget,
+    /// [`OdeConfig::max_steps`](super::OdeConfig::max_steps)) before the end time: the span
+    /// asks for more steps than the budget allows at the step size the tolerances need.
+    #[error(
+        "the integration made its budget of {steps} steps and reached only t = {} of {}: simulate a \
+         shorter span (on the command line, a smaller `--time`), or raise the budget \
+         (`OdeConfig::max_steps`) or loosen the tolerances",
+        Number(*.t),
+        Number(*.t_end)
+    )]
     TooManySteps {
         /// Steps made.
         steps: usize,
         /// Time reached.
         t: f64,
+        /// The end time asked for.
+        t_end: f64,
     },
 }
 
