@@ -247,6 +247,10 @@ fn running_into_a_limit_position_is_a_typed_error() {
             eprintln!("stopped at phi = {}, limit - phi = {:e}, speed {:e}", x[0], limit - x[0], speed[0]);
             assert!(t.is_finite() && (limit - x[0]).abs() < 1e-9, "{err}");
             assert_close!(speed[0], 0.0, 1e-3, "the speed must fall to zero at the limit: {err}");
+            // The input by its name and the speed as numbers read, not as Rust's debug text.
+            let message = err.to_string();
+            assert!(message.starts_with(&format!("the motion is singular at phi = {}, speed ", x[0])), "{err}");
+            assert!(!message.contains('['), "{err}");
         }
         // With the rocker's dyad solved in closed form, the kinematic solve may meet the fold
         // first (its discriminant vanishes there): a typed singular position, located as
@@ -292,6 +296,23 @@ fn a_long_simulation_ends_on_its_step_budget_not_as_a_singular_motion() {
     assert!(long.steps[0].h < 1.8e-3, "first step {}", long.steps[0].h);
     assert_close!(long.end[0], short.end[0], 1e-8, "{:?} vs {:?}", long.end, short.end);
     assert_close!(long.end[1], short.end[1], 1e-6, "{:?} vs {:?}", long.end, short.end);
+}
+
+/// A drive that grows without bound at t = 1/2 drives the speed to infinity there (`omega` like
+/// `1 / (1/2 - t)`): the step collapses, and the error says where, the input by its name.
+#[test]
+fn a_collapsing_step_names_the_input_and_its_speed() {
+    let sc = SliderCrank::default();
+    let model = crank_model(1.0).unwrap();
+    let drive = |t: f64, _: f64, _: f64| if t < 0.5 { (0.5 - t).powi(-2) } else { 0.0 };
+    let err =
+        Simulation::new(&sc, &model).start(0.0, 2.0).guess(sc.guess_flat(&[0.0])).drive(drive).run(1.0).unwrap_err();
+    let DynamicsError::SingularMotion { t, x, speed, names, .. } = &err else { panic!("{err}") };
+    assert!((t - 0.5).abs() < 1e-6 && speed[0] > 1e6, "{err}");
+    assert_eq!(names, &["phi"]);
+    let message = err.to_string();
+    let expected = format!("the motion is singular at phi = {}, speed {} (t = {t}): ", x[0], speed[0]);
+    assert!(message.starts_with(&expected), "{message}\nexpected {expected}");
 }
 
 /// A crank of moment of inertia `inertia` about its axis (centre of mass on the axis), turning
