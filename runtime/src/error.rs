@@ -213,7 +213,7 @@ impl Source {
     /// ```
     /// use kinloop_runtime::Error;
     /// use kinloop_runtime::dynamics::DynamicsError;
-    /// let e = Error::from(DynamicsError::Overflow { what: "total mass", x: Vec::new() });
+    /// let e = Error::from(DynamicsError::Overflow { what: "total mass", x: Vec::new(), names: Vec::new() });
     /// let Error::Dynamics(source) = &e else { panic!("{e:?}") };
     /// assert!(matches!(source.downcast_ref::<DynamicsError>(), Some(DynamicsError::Overflow { .. })));
     /// ```

@@ -1,7 +1,9 @@
 //! Where things happen: the blocks of a decomposition, locations of errors, and the singular
 //! positions (events) met along a path. This vocabulary depends on nothing else in the crate,
-//! so errors, sweeps and continuation can all name it.
+//! so errors, sweeps and continuation can all name it (and the leaf that writes a number,
+//! which imports nothing).
 
+use crate::number::Number;
 use std::borrow::Cow;
 use std::fmt;
 
@@ -78,7 +80,7 @@ impl fmt::Display for Location {
                 if k > 0 {
                     write!(f, ", ")?;
                 }
-                write!(f, "{name} = {value}")?;
+                write!(f, "{name} = {}", Number(*value))?;
             }
         }
         if let Some((index, info)) = &self.block {
@@ -133,4 +135,20 @@ pub struct Event {
     /// The block that became singular, if identified, with its index in solve order.
     #[cfg_attr(feature = "serde", serde(skip_deserializing))]
     pub block: Option<(usize, BlockInfo)>,
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// An input's value is written as a table's CSV writes it: positional when ordinary, in
+    /// exponent notation when far from one (not 301 digits, nor 300 zeros).
+    #[test]
+    fn a_location_writes_its_inputs_as_numbers_read() {
+        let at = |x: &[f64]| Location::boxed("FourBar", &["phi", "s"][..x.len()], x, None).to_string();
+        assert_eq!(at(&[0.5]), "in `FourBar` at phi = 0.5");
+        assert_eq!(at(&[1e300, -0.0]), "in `FourBar` at phi = 1e300, s = -0");
+        assert_eq!(at(&[1e-300, 2.0816681711721685e-17]), "in `FourBar` at phi = 1e-300, s = 2.0816681711721685e-17");
+        assert_eq!(at(&[150.0, 0.1 + 0.2]), "in `FourBar` at phi = 150, s = 0.30000000000000004");
+    }
 }

@@ -38,6 +38,7 @@ mod kinds;
 mod mechanism;
 pub mod metrics;
 mod named;
+mod number;
 pub mod paths;
 mod solvers;
 pub mod synthesis;

@@ -5,6 +5,7 @@
 //! [`Mechanism`](crate::Mechanism) trait, above this module.
 
 use crate::kin::Kin;
+use crate::number::number;
 use crate::table_units;
 use std::io::{self, Write};
 use std::path::Path;
@@ -153,9 +154,10 @@ impl Table {
     }
 
     /// Writes the table as CSV (header line with the units, then one line per row; shortest
-    /// round-trip formatting of every value, so reading it back gives the same bits; names
-    /// and units read back exactly, and a unit the header cannot hold, one containing ` [`,
-    /// is an `InvalidInput` error).
+    /// round-trip formatting of every value, so reading it back gives the same bits, positional
+    /// for ordinary magnitudes and in exponent notation (`1e300`, `2.08e-17`) for `|v| >= 1e16`
+    /// or `0 < |v| < 1e-5`; names and units read back exactly, and a unit the header cannot
+    /// hold, one containing ` [`, is an `InvalidInput` error).
     pub fn write_csv(&self, w: impl Write) -> io::Result<()> {
         let mut out = csv::WriterBuilder::new().terminator(csv::Terminator::Any(b'\n')).from_writer(w);
         let header = self
@@ -165,14 +167,14 @@ impl Table {
             .map(|(k, c)| table_units::header(c, self.units.get(k).map_or("", String::as_str)));
         out.write_record(header.collect::<io::Result<Vec<_>>>()?)?;
         for row in &self.rows {
-            out.write_record(row.iter().map(|v| v.to_string()))?;
+            out.write_record(row.iter().map(|&v| number(v)))?;
         }
         out.flush()
     }
 
     /// Reads a table written by [`Table::write_csv`] (or any CSV with a header line and numeric
-    /// fields; `nan`, `inf` and `-inf` as Rust writes them): a field that is not a number is an
-    /// `InvalidData` error naming its line and column.
+    /// fields, positional or in exponent notation; `NaN`, `inf` and `-inf` as Rust writes
+    /// them): a field that is not a number is an `InvalidData` error naming its line and column.
     pub fn read_csv(r: impl io::Read) -> io::Result<Table> {
         let mut input = csv::ReaderBuilder::new().has_headers(true).from_reader(r);
         let (columns, units) = input.headers()?.iter().map(table_units::split_header).unzip();

@@ -52,3 +52,25 @@ fn a_field_that_is_not_a_number_is_a_typed_error() {
     assert_eq!(err.kind(), std::io::ErrorKind::InvalidData);
     assert!(err.to_string().contains("line 3") && err.to_string().contains("column `b`"), "{err}");
 }
+
+#[test]
+fn far_magnitudes_are_written_in_exponent_notation_and_read_back() {
+    let mut t = Table::new(vec!["phi".into(), "x".into()]);
+    t.push(vec![1e300, 1e-300]);
+    t.push(vec![2.0816681711721685e-17, -1.5e16]);
+    // Ordinary magnitudes, and both ends of the positional range, as before.
+    t.push(vec![0.00001, 9999999999999998.0]);
+    t.push(vec![-0.0, 1234567.875]);
+    t.push(vec![5e-324, f64::MAX]);
+    let mut bytes = Vec::new();
+    t.write_csv(&mut bytes).unwrap();
+    assert_eq!(
+        String::from_utf8(bytes.clone()).unwrap(),
+        "phi,x\n1e300,1e-300\n2.0816681711721685e-17,-1.5e16\n0.00001,9999999999999998\n-0,1234567.875\n\
+         5e-324,1.7976931348623157e308\n"
+    );
+    let back = Table::read_csv(&bytes[..]).unwrap();
+    for (read, written) in back.rows.iter().flatten().zip(t.rows.iter().flatten()) {
+        assert_eq!(read.to_bits(), written.to_bits(), "{read} vs {written}");
+    }
+}

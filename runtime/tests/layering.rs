@@ -33,7 +33,7 @@ use std::path::{Path, PathBuf};
 /// The modules (and everything below them) that the solvers may use besides themselves: small
 /// leaves that import nothing from above them either (checked: they reference only each
 /// other).
-const SOLVERS_MAY_USE: [&str; 7] = ["error", "events", "kinds", "trig", "vec2", "angles", "test_rng"];
+const SOLVERS_MAY_USE: [&str; 8] = ["error", "events", "kinds", "trig", "vec2", "angles", "number", "test_rng"];
 
 /// Modules of the crate root's `use` declarations that may name a module (a second path to it,
 /// such as `crate::newton` beside `crate::solvers::newton`), with why each stays: none. A

@@ -110,6 +110,8 @@ fn bad_loads_and_gravity() {
         .run()
         .unwrap_err();
     assert!(matches!(&err, DynamicsError::NonFiniteLoad { name, x, .. } if name == "gas" && x.len() == 1), "{err}");
+    // The cycle names the input the mass model saw only the value of.
+    assert!(err.to_string().starts_with("the load `gas` is not finite (NaN) at phi = "), "{err}");
 }
 
 #[test]
@@ -141,7 +143,9 @@ fn bad_arguments_and_a_machine_without_inertia() {
     assert!(matches!(run(&model, &bad_tol, [0.0, 1.0], 1.0), Err(DynamicsError::BadValue { .. })));
     // No mass at all: the reduced inertia is zero, the motion undefined.
     let empty = Model::new();
-    assert!(matches!(run(&empty, &cfg, [0.0, 1.0], 1.0), Err(DynamicsError::SingularMass { .. })));
+    let err = run(&empty, &cfg, [0.0, 1.0], 1.0).unwrap_err();
+    assert!(matches!(err, DynamicsError::SingularMass { .. }), "{err}");
+    assert!(err.to_string().starts_with("the mass matrix is not positive definite at phi = 0 (pivot "), "{err}");
     // A drive that is not finite.
     let err = Simulation::new(&m, &model)
         .start(0.0, 1.0)
@@ -151,6 +155,7 @@ fn bad_arguments_and_a_machine_without_inertia() {
         .run(1.0)
         .unwrap_err();
     assert!(matches!(&err, DynamicsError::NonFiniteLoad { name, .. } if name == "drive"));
+    assert_eq!(err.to_string(), "the load `drive` is not finite (NaN) at phi = 0");
     // Too few steps allowed.
     let short = cfg.with_ode(cfg.ode.with_max_steps(3));
     assert!(matches!(run(&model, &short, [0.0, 1.0], 100.0), Err(DynamicsError::TooManySteps { steps: 3, .. })));

@@ -247,6 +247,10 @@ fn running_into_a_limit_position_is_a_typed_error() {
             eprintln!("stopped at phi = {}, limit - phi = {:e}, speed {:e}", x[0], limit - x[0], speed[0]);
             assert!(t.is_finite() && (limit - x[0]).abs() < 1e-9, "{err}");
             assert_close!(speed[0], 0.0, 1e-3, "the speed must fall to zero at the limit: {err}");
+            // The input by its name and the speed as numbers read, not as Rust's debug text.
+            let message = err.to_string();
+            assert!(message.starts_with(&format!("the motion is singular at phi = {}, speed ", x[0])), "{err}");
+            assert!(!message.contains('['), "{err}");
         }
         // With the rocker's dyad solved in closed form, the kinematic solve may meet the fold
         // first (its discriminant vanishes there): a typed singular position, located as
@@ -258,6 +262,57 @@ fn running_into_a_limit_position_is_a_typed_error() {
         }
         other => panic!("expected a singular motion or position, got {other}"),
     }
+}
+
+/// A simulation over a span far longer than it can step through: it starts as a short one
+/// would (the steps of a fast crank, ~1e-4, are finer than the span's rounding, 8 eps 1e12 =
+/// 1.8e-3, but not than the time's at t = 0) and ends on its step budget, saying so, not as a
+/// singular motion at t = 0.
+#[test]
+fn a_long_simulation_ends_on_its_step_budget_not_as_a_singular_motion() {
+    let sc = SliderCrank::default();
+    // A piston makes the reduced inertia vary over a turn, so the steps stay short (a constant
+    // one would make the motion a parabola, which the method integrates exactly in any step).
+    let model = crank_model(0.5)
+        .and_then(|m| {
+            m.with_body(Body {
+                name: "piston".into(),
+                mass: 0.8,
+                com: [Coord::Unknown(1), Coord::Fixed(0.3)],
+                inertia: 0.0,
+                rotation: Rotation::None,
+            })
+        })
+        .unwrap();
+    let cfg = RunConfig::default().with_flywheel(0.05).with_ode(OdeConfig::default().with_max_steps(2000));
+    let sim = || Simulation::new(&sc, &model).start(0.0, 1000.0).guess(sc.guess_flat(&[0.0])).config(cfg);
+    let err = sim().drive(|_, _, _| 2.5).run(1e12).unwrap_err();
+    let DynamicsError::TooManySteps { steps: 2000, t, t_end } = err else { panic!("{err}") };
+    assert!(t > 0.0 && t_end == 1e12, "{err}");
+    assert!(err.to_string().contains("`--time`") && err.to_string().contains("`OdeConfig::max_steps`"), "{err}");
+    // Its first steps are those of a short run: the same motion to the same time.
+    let long = sim().drive(|_, _, _| 2.5).stop_when(|t, _| t >= 0.05).run(1e12).unwrap();
+    let short = sim().drive(|_, _, _| 2.5).run(long.t_end).unwrap();
+    assert!(long.steps[0].h < 1.8e-3, "first step {}", long.steps[0].h);
+    assert_close!(long.end[0], short.end[0], 1e-8, "{:?} vs {:?}", long.end, short.end);
+    assert_close!(long.end[1], short.end[1], 1e-6, "{:?} vs {:?}", long.end, short.end);
+}
+
+/// A drive that grows without bound at t = 1/2 drives the speed to infinity there (`omega` like
+/// `1 / (1/2 - t)`): the step collapses, and the error says where, the input by its name.
+#[test]
+fn a_collapsing_step_names_the_input_and_its_speed() {
+    let sc = SliderCrank::default();
+    let model = crank_model(1.0).unwrap();
+    let drive = |t: f64, _: f64, _: f64| if t < 0.5 { (0.5 - t).powi(-2) } else { 0.0 };
+    let err =
+        Simulation::new(&sc, &model).start(0.0, 2.0).guess(sc.guess_flat(&[0.0])).drive(drive).run(1.0).unwrap_err();
+    let DynamicsError::SingularMotion { t, x, speed, names, .. } = &err else { panic!("{err}") };
+    assert!((t - 0.5).abs() < 1e-6 && speed[0] > 1e6, "{err}");
+    assert_eq!(names, &["phi"]);
+    let message = err.to_string();
+    let expected = format!("the motion is singular at phi = {}, speed {} (t = {t}): ", x[0], speed[0]);
+    assert!(message.starts_with(&expected), "{message}\nexpected {expected}");
 }
 
 /// A crank of moment of inertia `inertia` about its axis (centre of mass on the axis), turning

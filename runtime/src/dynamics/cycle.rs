@@ -163,6 +163,8 @@ where
             let gamma = d.gamma.as_flattened().as_flattened();
             CyclePoint::of(k.x[0], omega, eps, d.mass.as_flattened(), gamma, &d.forces, shaking)
         })
+        // The mass model's errors carry the input's value; the mechanism knows its name.
+        .map_err(|e| e.with_input_names(&M::INPUTS))
     }
 }
 
@@ -310,7 +312,7 @@ impl Cycle {
         if series.a.iter().chain(&series.b).chain([&series.a0]).all(|c| c.is_finite()) {
             Ok(series)
         } else {
-            Err(DynamicsError::Overflow { what: "Fourier coefficients", x: Vec::new() })
+            Err(DynamicsError::Overflow { what: "Fourier coefficients", x: Vec::new(), names: Vec::new() })
         }
     }
 
@@ -383,7 +385,7 @@ impl Cycle {
         let work = self.work(mean_torque);
         let lo = work.iter().copied().fold(f64::INFINITY, f64::min);
         let energy_swing = work.iter().copied().fold(f64::NEG_INFINITY, f64::max) - lo;
-        let overflow = |what| DynamicsError::Overflow { what, x: Vec::new() };
+        let overflow = |what| DynamicsError::Overflow { what, x: Vec::new(), names: Vec::new() };
         if !energy_swing.is_finite() {
             return Err(overflow("work of the loads over the cycle"));
         }

@@ -109,7 +109,7 @@ impl<const NI: usize> Dynamics<NI> {
             }
             let scale = self.mass[j][j].abs();
             if !d.is_finite() || d <= 1e-13 * scale {
-                return Err(DynamicsError::SingularMass { x: x.to_vec(), pivot: d });
+                return Err(DynamicsError::SingularMass { x: x.to_vec(), pivot: d, names: Vec::new() });
             }
             let d = d.sqrt();
             l[j][j] = d;
@@ -136,7 +136,7 @@ impl<const NI: usize> Dynamics<NI> {
         if b.iter().all(|v| v.is_finite()) {
             Ok(b)
         } else {
-            Err(DynamicsError::Overflow { what: "input accelerations", x: x.to_vec() })
+            Err(DynamicsError::Overflow { what: "input accelerations", x: x.to_vec(), names: Vec::new() })
         }
     }
 }
@@ -188,7 +188,7 @@ pub(crate) fn checked_drive_into(
     if tau.iter().all(|v| v.is_finite()) {
         Ok(())
     } else {
-        Err(DynamicsError::Overflow { what: "driving force", x: x.to_vec() })
+        Err(DynamicsError::Overflow { what: "driving force", x: x.to_vec(), names: Vec::new() })
     }
 }
 
@@ -198,7 +198,9 @@ pub(crate) fn checked_drive_into(
 #[allow(clippy::ptr_arg)]
 pub(crate) fn force_value(name: &Cow<'static, str>, f: [f64; 2], x: &[f64]) -> Result<[f64; 2], DynamicsError> {
     match f.iter().find(|v| !v.is_finite()) {
-        Some(&value) => Err(DynamicsError::NonFiniteLoad { name: name.clone(), value, x: x.to_vec() }),
+        Some(&value) => {
+            Err(DynamicsError::NonFiniteLoad { name: name.clone(), value, x: x.to_vec(), names: Vec::new() })
+        }
         None => Ok(f),
     }
 }
@@ -209,7 +211,7 @@ pub(crate) fn torque_value(name: &Cow<'static, str>, t: f64, x: &[f64]) -> Resul
     if t.is_finite() {
         Ok(t)
     } else {
-        Err(DynamicsError::NonFiniteLoad { name: name.clone(), value: t, x: x.to_vec() })
+        Err(DynamicsError::NonFiniteLoad { name: name.clone(), value: t, x: x.to_vec(), names: Vec::new() })
     }
 }
 
@@ -222,7 +224,7 @@ pub(crate) fn checked_forces<S: AnalogState + ?Sized>(q: &[f64], k: &S, w: &[f64
     }
     finite_state(k)?;
     finite_values("input speed", w)?;
-    Err(DynamicsError::Overflow { what: "generalised forces", x: k.inputs().to_vec() })
+    Err(DynamicsError::Overflow { what: "generalised forces", x: k.inputs().to_vec(), names: Vec::new() })
 }
 
 /// A mass matrix and velocity-product coefficients checked finite (see [`checked_forces`]).
@@ -231,7 +233,11 @@ pub(crate) fn checked_inertia<S: AnalogState + ?Sized>(finite: bool, k: &S) -> R
         return Ok(());
     }
     finite_state(k)?;
-    Err(DynamicsError::Overflow { what: "mass matrix or velocity-product coefficients", x: k.inputs().to_vec() })
+    Err(DynamicsError::Overflow {
+        what: "mass matrix or velocity-product coefficients",
+        x: k.inputs().to_vec(),
+        names: Vec::new(),
+    })
 }
 
 /// The centre of mass of `bodies` of total mass `m`, checked (see [`MassModel::centre_of_mass`]).
@@ -270,7 +276,7 @@ pub(crate) fn checked_shaking<S: AnalogState + ?Sized>(
         return Ok(s);
     }
     finite_state(k)?;
-    Err(DynamicsError::Overflow { what: "shaking force or moment", x: k.inputs().to_vec() })
+    Err(DynamicsError::Overflow { what: "shaking force or moment", x: k.inputs().to_vec(), names: Vec::new() })
 }
 
 impl<const N: usize, const NI: usize, const NO: usize> MassModel<N, NI, NO> {

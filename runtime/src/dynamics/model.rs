@@ -212,7 +212,7 @@ pub(crate) fn check_body(body: &Body, total: f64, sizes: [usize; 3]) -> Result<(
     }
     // The sum in the order `total_mass` takes it.
     if !(total + body.mass).is_finite() {
-        return Err(DynamicsError::Overflow { what: "total mass", x: Vec::new() });
+        return Err(DynamicsError::Overflow { what: "total mass", x: Vec::new(), names: Vec::new() });
     }
     check_point("body", &body.name, body.com, sizes)?;
     check_rotation("body", &body.name, body.rotation, sizes)

@@ -132,6 +132,9 @@ fn norm<const D: usize>(v: &[f64; D], y0: &[f64; D], y1: &[f64; D], cfg: &OdeCon
 /// state reached. An error of `f` or `on_step` stops the integration and is returned; a step
 /// that cannot change a component of the state by a change larger than the absolute tolerance
 /// (the component's value is too large to register it) is [`DynamicsError::CannotAdvance`].
+/// A step that collapses below the resolution of the time where it is (a few units in the last
+/// place of `t`, whatever the span) is [`DynamicsError::StepTooSmall`]; a span that needs more
+/// than [`OdeConfig::max_steps`] steps is [`DynamicsError::TooManySteps`].
 pub fn dopri5<const D: usize>(
     mut f: impl FnMut(f64, &[f64; D]) -> Result<[f64; D], DynamicsError>,
     t0: f64,
@@ -150,7 +153,7 @@ pub fn dopri5<const D: usize>(
         if last {
             h = t_end - t;
         }
-        if h <= 8.0 * f64::EPSILON * t.abs().max(t_end - t0) {
+        if h <= step_floor(t0, t) {
             return Err(DynamicsError::StepTooSmall { t, h });
         }
         k[1] = f(t + C[0] * h, &combine(&y, h, &A2, &k))?;
@@ -193,7 +196,21 @@ pub fn dopri5<const D: usize>(
         }
         h = (h * grow).min(cfg.h_max);
     }
-    Err(DynamicsError::TooManySteps { steps: cfg.max_steps, t })
+    Err(DynamicsError::TooManySteps { steps: cfg.max_steps, t, t_end })
+}
+
+/// The smallest step that still moves the time at `t` of an integration started at `t0`:
+/// 8 units of rounding of the largest time on the way (the time only grows, so that is `|t|`
+/// or `|t0|`; each `t + h` is rounded there, so the time carries that much error). A step
+/// below it adds nothing the time can hold: the step has collapsed. It depends on where the
+/// integration is, not on how far it is to go: a floor growing with the span (as
+/// `8 eps (t_end - t0)` would) rejects at `t = 0` every step of a long simulation (a span of
+/// 1e12 puts it at 1.8e-3) and calls a smooth motion singular. `f64::MIN_POSITIVE` keeps it
+/// positive at `t = 0`, where any positive normal step moves the time: a motion that is
+/// singular there makes the step collapse to it, a few hundred rejections of at least a fifth
+/// each.
+fn step_floor(t0: f64, t: f64) -> f64 {
+    8.0 * f64::EPSILON * t.abs().max(t0.abs()).max(f64::MIN_POSITIVE)
 }
 
 /// Shampine's interpolant of the step from `(t, y0)` to `y1`.

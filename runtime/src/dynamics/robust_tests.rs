@@ -219,3 +219,44 @@ fn a_huge_turn_is_not_reserved_up_front() {
     let r = turn_states(crate::Compiled(&m), 0.0, 1 << 40, [f64::NAN]);
     assert!(matches!(r, Err(DynamicsError::Kinematics { .. })), "{r:?}");
 }
+
+/// `y'' = -w^2 y` from `y = 1, y' = 0`, as `[y, y' / w]`: `y = cos(w t)`, `y' / w = -sin(w t)`.
+fn oscillator(w: f64) -> impl FnMut(f64, &[f64; 2]) -> Result<[f64; 2], DynamicsError> {
+    move |_, y| Ok([w * y[1], -w * y[0]])
+}
+
+#[test]
+fn a_long_span_steps_as_finely_as_a_short_one() {
+    // A fast oscillator's steps (about 1e-5 at these tolerances) are far below the span's
+    // rounding (8 eps 1e12 = 1.8e-3): the steps are fine at t = 0 all the same, where the time
+    // resolves any step, and the motion is that of a short run.
+    let w = 1000.0;
+    let cfg = OdeConfig::default();
+    let mut first = None;
+    let (t, y) = dopri5(oscillator(w), 0.0, [1.0, 0.0], 1e12, &cfg, |s, _| {
+        first.get_or_insert(s.h);
+        Ok(s.t1() >= 0.01)
+    })
+    .unwrap();
+    assert!(first.is_some_and(|h| h < 1e-3), "first step {first:?}");
+    assert!((0.01..0.011).contains(&t), "{t}");
+    assert!((y[0] - (w * t).cos()).abs() < 1e-8 && (y[1] + (w * t).sin()).abs() < 1e-8, "{y:?} at t = {t}");
+    // The same run to 0.01 exactly, over a short span: the same steps, the same state.
+    let short = dopri5(oscillator(w), 0.0, [1.0, 0.0], 0.01, &cfg, |_, _| Ok(false)).unwrap().1;
+    assert!((short[0] - (w * 0.01f64).cos()).abs() < 1e-8, "{short:?}");
+    // A start far out in time resolves steps only as its time does: 8 eps 1e12 there.
+    let far = dopri5(oscillator(w), 1e12, [1.0, 0.0], 2e12, &cfg, |_, _| Ok(false)).unwrap_err();
+    assert!(matches!(far, DynamicsError::StepTooSmall { t: 1e12, .. }), "{far}");
+}
+
+#[test]
+fn a_span_beyond_the_step_budget_says_what_to_do() {
+    let cfg = OdeConfig::default().with_max_steps(500);
+    let err = dopri5(oscillator(1000.0), 0.0, [1.0, 0.0], 1e12, &cfg, |_, _| Ok(false)).unwrap_err();
+    let DynamicsError::TooManySteps { steps: 500, t, t_end } = err else { panic!("{err}") };
+    assert!(t > 0.0 && t < 1.0 && t_end == 1e12, "{err}");
+    let message = err.to_string();
+    for what in ["budget of 500 steps", " of 1000000000000:", "`--time`", "`OdeConfig::max_steps`"] {
+        assert!(message.contains(what), "`{what}` missing: {message}");
+    }
+}

@@ -107,7 +107,9 @@ where
     /// [`DynamicsError::SingularMass`]; a drive or load that is not finite as
     /// [`DynamicsError::NonFiniteLoad`]; a start so far out (an input of 1e300) that a step cannot
     /// change it as [`DynamicsError::CannotAdvance`]; results beyond the range of `f64` as
-    /// [`DynamicsError::Overflow`]; integrator failures. Besides the recorded trajectory (one
+    /// [`DynamicsError::Overflow`]; a span that needs more steps than the budget
+    /// ([`OdeConfig::max_steps`](super::OdeConfig::max_steps) of the configuration's `ode`) as
+    /// [`DynamicsError::TooManySteps`]; integrator failures. Besides the recorded trajectory (one
     /// entry per accepted step, amortised growth), a step allocates nothing.
     pub fn run(mut self, t_end: f64) -> Result<Trajectory, DynamicsError>
     where

@@ -130,6 +130,10 @@ pub fn simulate_of<K: Kernel>(
     // The first solve is from the caller's guess; every later one from the last position, where
     // a restart would find another branch.
     let mut newton = cfg.newton;
+    // The input's name, for the errors of the mass model's evaluations (which see its value
+    // only): copied into an error on its way out, never per evaluation.
+    let input = [m.input_name(0)];
+    let named = |e: DynamicsError| e.with_input_names(&input);
     let rhs = |t: f64, y: &[f64; 2]| -> Result<[f64; 2], DynamicsError> {
         let [phi, omega] = *y;
         x[0] = phi;
@@ -139,13 +143,14 @@ pub fn simulate_of<K: Kernel>(
             .map_err(|source| DynamicsError::Kinematics { t: Some(t), source })?;
         q.as_mut().copy_from_slice(k.q());
         newton.restarts = false;
-        let mut d = reduced(&k, omega)?;
+        let mut d = reduced(&k, omega).map_err(named)?;
         let tau = drive(t, phi, omega);
         if !tau.is_finite() {
-            return Err(DynamicsError::NonFiniteLoad { name: "drive".into(), value: tau, x: vec![phi] });
+            let e = DynamicsError::NonFiniteLoad { name: "drive".into(), value: tau, x: vec![phi], names: Vec::new() };
+            return Err(named(e));
         }
         d.mass[0][0] += cfg.flywheel;
-        let eps = d.accelerations(&[phi], &[omega], &[tau])?;
+        let eps = d.accelerations(&[phi], &[omega], &[tau]).map_err(named)?;
         Ok([omega, eps[0]])
     };
     let mut steps = Vec::new();
@@ -158,9 +163,13 @@ pub fn simulate_of<K: Kernel>(
     match run {
         Ok((t, end)) => Ok(Trajectory { steps, t_end: t, end }),
         // Say where: the input and speed of the last accepted step.
-        Err(DynamicsError::StepTooSmall { t, h }) => {
-            Err(DynamicsError::SingularMotion { t, h, x: vec![reached[0]], speed: vec![reached[1]] })
-        }
+        Err(DynamicsError::StepTooSmall { t, h }) => Err(named(DynamicsError::SingularMotion {
+            t,
+            h,
+            x: vec![reached[0]],
+            speed: vec![reached[1]],
+            names: Vec::new(),
+        })),
         Err(e) => Err(e),
     }
 }

@@ -1,0 +1,146 @@
+//! How kinloop writes a number for people and files: the shortest digits that read back to the
+//! same `f64`, positional for ordinary magnitudes and in exponent notation beyond them. One
+//! function for every place that writes numbers (a table's CSV, the location of an error), so
+//! that they agree. A leaf: it imports nothing from the crate.
+
+use std::fmt;
+
+/// The smallest magnitude written in exponent notation at the large end. From 2^53 (about
+/// 9.007e15) on, doubles are integers spaced 2 or more apart, and the shortest digits that
+/// identify one are at most 17 significant ones: positionally, 1e16 already needs trailing
+/// zeros that carry no information (`10000000000000000`), and 1e300 needs 301 digits. Below it,
+/// an integer-valued double is written as the integer, as it reads (the same cut as Python's
+/// `repr`).
+const LARGE: f64 = 1e16;
+
+/// The largest magnitude written in exponent notation at the small end (exclusive): `1e-5`
+/// itself is still `0.00001`, four zeros after the point, which a reader counts at a glance;
+/// below it the leading zeros outnumber the significant digits of most values (2e-17 would be
+/// sixteen zeros and then `2`), and 5e-324 would be 323 zeros.
+const SMALL: f64 = 1e-5;
+
+/// `v` written as [`fmt::Display`] writes it for an ordinary magnitude (`0.1`, `-2.5`, `150`,
+/// `1234567.875`), in exponent notation (`1e300`, `2.08e-17`, `-1.5e16`, `5e-324`) for
+/// `|v| >= 1e16` or `0 < |v| < 1e-5`; both the shortest digits that read back (`str::parse`)
+/// to the same bits. Zero, infinities and NaN are written as Rust writes them (`0`, `-0`, `inf`,
+/// `-inf`, `NaN`). Formatting flags (width, precision) are not applied: the digits are the
+/// number's own.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub(crate) struct Number(pub(crate) f64);
+
+impl fmt::Display for Number {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        let a = self.0.abs();
+        if a.is_finite() && a != 0.0 && !(SMALL..LARGE).contains(&a) {
+            write!(f, "{:e}", self.0)
+        } else {
+            write!(f, "{}", self.0)
+        }
+    }
+}
+
+/// `v` as [`Number`] writes it, as a `String`.
+pub(crate) fn number(v: f64) -> String {
+    Number(v).to_string()
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// Reads `s` back and checks it is `v`, bit for bit (any NaN for a NaN).
+    fn reads_back(v: f64, s: &str) {
+        let back: f64 = s.parse().unwrap_or_else(|e| panic!("`{s}` (written for {v:?}) does not parse: {e}"));
+        assert!(
+            back.to_bits() == v.to_bits() || (v.is_nan() && back.is_nan()),
+            "`{s}` reads back as {back:?}, not {v:?}"
+        );
+    }
+
+    /// Checks the form of `v`'s text: the positional text of today inside the range, exponent
+    /// notation outside, no more characters than the shortest digits need.
+    fn form(v: f64, s: &str) {
+        let a = v.abs();
+        if a.is_finite() && a != 0.0 && !(SMALL..LARGE).contains(&a) {
+            assert!(s.contains('e'), "{v:?} written `{s}`: exponent notation expected");
+            // Mantissa digits and an exponent of at most three digits and its sign: a double
+            // needs at most 17 significant digits.
+            assert!(s.len() <= 1 + 17 + 1 + 1 + 4, "{v:?} written `{s}`: too long");
+        } else {
+            assert_eq!(s, v.to_string(), "{v:?}: an ordinary number is written as before");
+        }
+    }
+
+    fn check(v: f64) {
+        let s = number(v);
+        reads_back(v, &s);
+        form(v, &s);
+    }
+
+    #[test]
+    fn the_examples_read_as_documented() {
+        assert_eq!(number(1e300), "1e300");
+        assert_eq!(number(1e-300), "1e-300");
+        assert_eq!(number(2.08e-17), "2.08e-17");
+        assert_eq!(number(-1.5e16), "-1.5e16");
+        assert_eq!(number(5e-324), "5e-324");
+        assert_eq!(number(f64::MAX), "1.7976931348623157e308");
+        // Ordinary numbers as Display writes them.
+        assert_eq!(number(0.1), "0.1");
+        assert_eq!(number(150.0), "150");
+        assert_eq!(number(-2.5), "-2.5");
+        assert_eq!(number(1e-5), "0.00001");
+        assert_eq!(number(9999999999999998.0), "9999999999999998");
+        assert_eq!(number(0.1 + 0.2), "0.30000000000000004");
+        // The specials as Rust writes them, as today.
+        assert_eq!(number(0.0), "0");
+        assert_eq!(number(-0.0), "-0");
+        assert_eq!(number(f64::INFINITY), "inf");
+        assert_eq!(number(f64::NEG_INFINITY), "-inf");
+        assert_eq!(number(f64::NAN), "NaN");
+        // The Display wrapper writes the same.
+        assert_eq!(format!("x = {}", Number(1e300)), "x = 1e300");
+    }
+
+    #[test]
+    fn every_number_written_reads_back_to_its_bits() {
+        let mut special = vec![
+            0.0,
+            -0.0,
+            f64::INFINITY,
+            f64::NEG_INFINITY,
+            f64::NAN,
+            -f64::NAN,
+            f64::MAX,
+            f64::MIN,
+            f64::MIN_POSITIVE,
+            f64::EPSILON,
+            1.0 / 3.0,
+            std::f64::consts::PI,
+        ];
+        // The subnormals: the least, the largest, and some between.
+        special.extend([f64::from_bits(1), f64::from_bits(2), f64::from_bits(0x000f_ffff_ffff_ffff)]);
+        special.extend((0..52).map(|k| f64::from_bits(1u64 << k)));
+        // Both sides of both cuts, and every power of ten.
+        for cut in [SMALL, LARGE] {
+            special.extend([cut, cut.next_down(), cut.next_up()]);
+        }
+        special.extend((-324..=308).map(|e| format!("1e{e}").parse::<f64>().unwrap_or(0.0)));
+        for v in special {
+            check(v);
+            check(-v);
+        }
+        // Random bit patterns (every exponent, every sign, NaNs with payloads).
+        let mut rng = crate::test_rng::Rng(0x9e37_79b9_7f4a_7c15);
+        for _ in 0..200_000 {
+            let hi = (rng.uniform(0.0, 1.0) * (1u64 << 32) as f64) as u64;
+            let lo = (rng.uniform(0.0, 1.0) * (1u64 << 32) as f64) as u64;
+            check(f64::from_bits(hi << 32 | lo));
+        }
+        // Random magnitudes spread over the decades around the cuts.
+        for _ in 0..100_000 {
+            let v = 10f64.powf(rng.uniform(-30.0, 30.0)) * rng.uniform(-1.0, 1.0);
+            check(v);
+        }
+    }
+}
