@@ -169,6 +169,7 @@ mod closed;
 mod compiled_reference;
 mod drawing;
 mod dynamics;
+mod extra;
 mod factor;
 mod finite;
 mod gather;
