@@ -169,6 +169,7 @@ mod closed;
 mod compiled_reference;
 mod drawing;
 mod dynamics;
+mod dynamics_prog;
 mod extra;
 mod factor;
 mod finite;

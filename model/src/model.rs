@@ -4,7 +4,7 @@
 use crate::at::{AtProg, Jacobian};
 use crate::blocks::{Analog, BlockProg, Columns, How, StepFailure, Work};
 use crate::closed::ClosedProg;
-use crate::dynamics::DynamicsProg;
+use crate::dynamics_prog::DynamicsProg;
 use crate::extra::Extra;
 use crate::factor::{Fac, MAX_DENSE};
 use crate::finite::{Finite, all_finite};
