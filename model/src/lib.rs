@@ -25,11 +25,12 @@
 //! (`tape`): one register per graph node, one instruction per operation, each the operation the
 //! emitted code performs for that node. Each block is solved as the plan decided, with the
 //! runtime's own solvers: the closed forms by the emitter's formulas on values (`closed`),
-//! Newton by the runtime's `newton` (`newton`; its evaluation's sines and cosines rotated from
-//! the solve's previous evaluation by the runtime's `NearSlot`, as the emitted block's
-//! `NearTrig` rotates them: `near`), the factorisations by the runtime's `Lu`,
-//! `Inverse2` and `Fixed`, chosen by the emitter's rules (`factor`), dispatched over the block
-//! size once per call. A large block the plan solves by sparse Newton keeps the plan's pattern
+//! Newton by the runtime's `newton` (`dense`, the block's program in `newton`; its
+//! evaluation's sines and cosines rotated from the solve's previous evaluation by the runtime's
+//! `NearSlot`, as the emitted block's `NearTrig` rotates them: `near`), the factorisations by
+//! the runtime's `Lu`, `Inverse2` and `Fixed`, chosen by the emitter's rules (`factor`),
+//! dispatched over the block size once per call. A large block the plan solves by sparse
+//! Newton keeps the plan's pattern
 //! and elimination order as tables and runs the runtime's `newton_with` over its non-zeros,
 //! its numeric steps the loops the compiled tables run (`sparse`), the weak-pivot dense
 //! fallback included; it is solved at a compiled size padded with unknowns that stay zero,
@@ -167,6 +168,7 @@ mod blocks;
 mod closed;
 #[cfg(test)]
 mod compiled_reference;
+mod dense;
 mod drawing;
 mod dynamics;
 mod dynamics_prog;
