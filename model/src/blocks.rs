@@ -3,9 +3,10 @@
 //! and with the factorisations the emitted fused kernel uses.
 
 use crate::closed::ClosedProg;
+use crate::dense;
 use crate::factor::{Fac, MAX_DENSE, max_abs};
 use crate::levers::Levers;
-use crate::newton::{self, NewtonProg};
+use crate::newton::NewtonProg;
 use crate::tape::Segment;
 use kinloop_runtime::NewtonConfig;
 use kinloop_runtime::generated::{BlockFailure, Factor, Fixed, Health, Inverse2, Lu, SolveReport};
@@ -431,7 +432,7 @@ impl BlockProg {
             How::Newton(p) => {
                 match fac {
                     Fac::Sparse(s) => s.newton(p, r, guess, cfg, report),
-                    _ => newton::solve(p, r, guess, cfg, report, fac),
+                    _ => dense::solve(p, r, guess, cfg, report, fac),
                 }
                 .map_err(StepFailure::Block)?;
                 for (k, &u) in self.unknowns.iter().enumerate() {

@@ -14,6 +14,7 @@
 //! Each form's arithmetic is one function below ([`Build::angle_equation`], [`Build::dyad`],
 //! [`Build::polar`], [`Build::angle_slider`]), beside the emitter's function of the same name.
 
+use crate::extra::Extra;
 use crate::tape::{Chains, Ins};
 use kinloop_codegen::graph::dag::{self, Graph, Leaf, NodeId};
 use kinloop_codegen::plan::closed_form::{ClosedForm, constant_norm2};
@@ -24,58 +25,6 @@ use kinloop_runtime::generated::{
 };
 use std::collections::HashMap;
 use std::f64::consts::FRAC_PI_2;
-
-/// The registers beyond the graph's that the closed forms' programs use (their constants,
-/// written once when the model is built, and their intermediate values), and the Newton
-/// blocks' rotation slots (`crate::near`).
-#[derive(Debug, Default)]
-pub(crate) struct Extra {
-    next: u32,
-    /// The constants' registers and values.
-    consts: Vec<(u32, f64)>,
-    /// A constant's register by its bits.
-    by_bits: HashMap<u64, u32>,
-}
-
-impl Extra {
-    /// Registers from `first` on.
-    pub(crate) fn new(first: u32) -> Extra {
-        Extra { next: first, ..Extra::default() }
-    }
-
-    /// The size of the register file with these registers.
-    pub(crate) fn len(&self) -> usize {
-        self.next as usize
-    }
-
-    /// Writes the constants into the registers (`r.len() >= self.len()`).
-    pub(crate) fn write_constants(&self, r: &mut [f64]) {
-        for &(k, x) in &self.consts {
-            r[k as usize] = x;
-        }
-    }
-
-    fn fresh(&mut self) -> u32 {
-        self.block(1)
-    }
-
-    /// The first of `n` consecutive fresh registers.
-    pub(crate) fn block(&mut self, n: u32) -> u32 {
-        let k = self.next;
-        self.next += n;
-        k
-    }
-
-    fn constant(&mut self, x: f64) -> u32 {
-        if let Some(&k) = self.by_bits.get(&x.to_bits()) {
-            return k;
-        }
-        let k = self.fresh();
-        self.consts.push((k, x));
-        self.by_bits.insert(x.to_bits(), k);
-        k
-    }
-}
 
 /// One operation of a closed form's program, on registers (`u32` indices, checked once when
 /// the program is built). A flag (a root's side) is a register holding 1 or 0.

@@ -25,11 +25,12 @@
 //! (`tape`): one register per graph node, one instruction per operation, each the operation the
 //! emitted code performs for that node. Each block is solved as the plan decided, with the
 //! runtime's own solvers: the closed forms by the emitter's formulas on values (`closed`),
-//! Newton by the runtime's `newton` (`newton`; its evaluation's sines and cosines rotated from
-//! the solve's previous evaluation by the runtime's `NearSlot`, as the emitted block's
-//! `NearTrig` rotates them: `near`), the factorisations by the runtime's `Lu`,
-//! `Inverse2` and `Fixed`, chosen by the emitter's rules (`factor`), dispatched over the block
-//! size once per call. A large block the plan solves by sparse Newton keeps the plan's pattern
+//! Newton by the runtime's `newton` (`dense`, the block's program in `newton`; its
+//! evaluation's sines and cosines rotated from the solve's previous evaluation by the runtime's
+//! `NearSlot`, as the emitted block's `NearTrig` rotates them: `near`), the factorisations by
+//! the runtime's `Lu`, `Inverse2` and `Fixed`, chosen by the emitter's rules (`factor`),
+//! dispatched over the block size once per call. A large block the plan solves by sparse
+//! Newton keeps the plan's pattern
 //! and elimination order as tables and runs the runtime's `newton_with` over its non-zeros,
 //! its numeric steps the loops the compiled tables run (`sparse`), the weak-pivot dense
 //! fallback included; it is solved at a compiled size padded with unknowns that stay zero,
@@ -167,8 +168,11 @@ mod blocks;
 mod closed;
 #[cfg(test)]
 mod compiled_reference;
+mod dense;
 mod drawing;
 mod dynamics;
+mod dynamics_prog;
+mod extra;
 mod factor;
 mod finite;
 mod gather;
@@ -179,6 +183,7 @@ mod near;
 mod newton;
 mod paths;
 mod scale;
+mod sens_kernel;
 mod sensitivities;
 mod shared;
 pub mod source;
@@ -194,8 +199,9 @@ pub use factor::MAX_DENSE;
 pub use mechanism::ModelKernel;
 pub use model::{Model, ReadError, State, StepError};
 pub use paths::{ModelTraced, ParamScanConfig, ParamScanStart};
+pub use sens_kernel::ModelSens;
 pub use sensitivities::Sensitivities;
 pub use shared::SharedModelKernel;
 pub use source::{Diagnostic, Diagnostics, Level};
 pub use sparse::MAX_SPARSE;
-pub use synthesis::{ModelProblem, ModelSens, SharedModelProblem};
+pub use synthesis::{ModelProblem, SharedModelProblem};

@@ -3,8 +3,9 @@
 
 use crate::at::{AtProg, Jacobian};
 use crate::blocks::{Analog, BlockProg, Columns, How, StepFailure, Work};
-use crate::closed::{ClosedProg, Extra};
-use crate::dynamics::DynamicsProg;
+use crate::closed::ClosedProg;
+use crate::dynamics_prog::DynamicsProg;
+use crate::extra::Extra;
 use crate::factor::{Fac, MAX_DENSE};
 use crate::finite::{Finite, all_finite};
 use crate::gather::Gather;

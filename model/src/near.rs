@@ -19,7 +19,7 @@
 //! Jacobian, the sensitivities) is a segment of its own with libm's `sin_cos`, as the emitted
 //! straight-line code there.
 
-use crate::closed::Extra;
+use crate::extra::Extra;
 use kinloop_runtime::generated::NearSlot;
 
 /// Registers of one slot: its argument, sine, cosine and age (the `u32` in the register's bits:

@@ -13,7 +13,7 @@
 use crate::at::Jacobian;
 use crate::mechanism::{Info, model_kernel_body};
 use crate::model::{Model, StepError};
-use crate::synthesis::{ModelSens, copy_sens, model_sens_body};
+use crate::sens_kernel::{ModelSens, copy_sens, model_sens_body};
 use kinloop_runtime::dims::{Dims, Heap, KinBuf};
 use kinloop_runtime::{Error, Kernel, NewtonConfig, Quantity, SensKernel, SweepConfig};
 use std::borrow::Cow;

@@ -32,7 +32,7 @@ pub(crate) const MAX_BLOCK: usize = MAX_SPARSE;
 
 /// A sparse block's solver state, of its padded size.
 pub(crate) trait SparseBlock: fmt::Debug + Send + Sync {
-    /// Solves the block's positions from the guesses (see `newton::solve`: on return the
+    /// Solves the block's positions from the guesses (see `dense::solve`: on return the
     /// registers hold the returned evaluation's values and the solution).
     fn newton(
         &self,

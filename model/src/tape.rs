@@ -23,6 +23,7 @@
 //! emitted evaluation asks its `NearTrig`: every other segment calls libm, as the emitted
 //! straight-line code does.
 
+use crate::extra::Extra;
 use crate::near::NearSlots;
 use kinloop_codegen::graph::dag::{Func, Graph, Leaf, NodeId, Op};
 
@@ -665,7 +666,7 @@ impl<'g> Builder<'g> {
     pub(crate) fn near_segment(
         &mut self,
         roots: &[NodeId],
-        extra: &mut crate::closed::Extra,
+        extra: &mut Extra,
     ) -> Result<(Segment, NearSlots), Unavailable> {
         let ins = sin_cos(self.instructions(roots, None)?);
         let slots = NearSlots::new(extra, ins.iter().filter(|i| matches!(i, Ins::SinCos(..))).count());
