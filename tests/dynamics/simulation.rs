@@ -166,17 +166,7 @@ fn energy_method_is_exact_for_constant_inertia() {
 #[test]
 fn run_up_from_rest_reaches_the_synchronous_speed_on_average() {
     let sc = SliderCrank::default();
-    let model = crank_model(2.0)
-        .and_then(|m| {
-            m.with_body(Body {
-                name: "piston".into(),
-                mass: 0.8,
-                com: [Coord::Unknown(1), Coord::Fixed(0.3)],
-                inertia: 0.0,
-                rotation: Rotation::None,
-            })
-        })
-        .unwrap();
+    let model = crank_and_piston(2.0);
     let (m_s, omega_s) = (40.0, 6.0);
     let motor = move |_: f64, _: f64, omega: f64| m_s * (1.0 - omega / omega_s);
     let run = Simulation::new(&sc, &model).start(0.0, 0.0).guess(sc.guess_flat(&[0.0])).drive(motor).run(60.0).unwrap();
@@ -273,17 +263,7 @@ fn a_long_simulation_ends_on_its_step_budget_not_as_a_singular_motion() {
     let sc = SliderCrank::default();
     // A piston makes the reduced inertia vary over a turn, so the steps stay short (a constant
     // one would make the motion a parabola, which the method integrates exactly in any step).
-    let model = crank_model(0.5)
-        .and_then(|m| {
-            m.with_body(Body {
-                name: "piston".into(),
-                mass: 0.8,
-                com: [Coord::Unknown(1), Coord::Fixed(0.3)],
-                inertia: 0.0,
-                rotation: Rotation::None,
-            })
-        })
-        .unwrap();
+    let model = crank_and_piston(0.5);
     let cfg = RunConfig::default().with_flywheel(0.05).with_ode(OdeConfig::default().with_max_steps(2000));
     let sim = || Simulation::new(&sc, &model).start(0.0, 1000.0).guess(sc.guess_flat(&[0.0])).config(cfg);
     let err = sim().drive(|_, _, _| 2.5).run(1e12).unwrap_err();
@@ -325,4 +305,20 @@ fn crank_model(inertia: f64) -> Result<MassModel<2, 1, 2>, DynamicsError> {
         inertia,
         rotation: Rotation::Input(0),
     })
+}
+
+/// [`crank_model`] with a piston of 0.8 on the slider (its centre of mass at the slider's
+/// coordinate, 0.3 above the line), whose motion makes the reduced inertia vary over a turn.
+fn crank_and_piston(inertia: f64) -> MassModel<2, 1, 2> {
+    crank_model(inertia)
+        .and_then(|m| {
+            m.with_body(Body {
+                name: "piston".into(),
+                mass: 0.8,
+                com: [Coord::Unknown(1), Coord::Fixed(0.3)],
+                inertia: 0.0,
+                rotation: Rotation::None,
+            })
+        })
+        .unwrap()
 }
