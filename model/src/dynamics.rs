@@ -71,13 +71,17 @@ impl ModelCycle<'_, '_> {
             turn_states(m.kernel(SweepConfig::default())?, self.phi0, self.samples, Heap(guess.into()))?;
         let about = self.about;
         let mut d = DynamicsBuf::zeros(1);
+        // The mass model's errors carry the input's value; the model knows its name, as the
+        // compiled cycle knows its mechanism's.
+        let input_names = m.inputs().to_vec();
         let (regs, prog) = m.dynamics_parts();
         let cycle = Cycle::over_states(&states, self.law, |k, omega, eps| {
             let loads = prog.loads(regs, k);
             mass.dynamics_into(k, &[omega], loads, &mut d)?;
             let shaking = mass.shaking(k, &[omega], &[eps], about)?;
             CyclePoint::of(k.x[0], omega, eps, &d.mass, &d.gamma, &d.forces, shaking)
-        })?;
+        })
+        .map_err(|e| e.with_input_names(&input_names.iter().map(String::as_str).collect::<Vec<_>>()))?;
         Ok(cycle)
     }
 }

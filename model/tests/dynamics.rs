@@ -219,6 +219,8 @@ fn bad_values_and_missing_items_are_typed_errors() {
     engine.set_param("p0", f64::INFINITY);
     let e = engine.inverse_cycle(SpeedLaw::Constant(1.0)).run().unwrap_err();
     assert!(e.to_string().contains("gas"), "{e}");
+    // And where: by the input's name, as the compiled cycle says it.
+    assert!(e.to_string().contains("is not finite (inf) at phi = "), "{e}");
     // A two-input model has no one-input cycle.
     let mut five = Model::read("five_bar.kl", fx::FIVE_BAR_MACHINE_TEXT).unwrap();
     let e = five.inverse_cycle(SpeedLaw::Constant(1.0)).guess(&[1.2, 2.0]).run().unwrap_err();

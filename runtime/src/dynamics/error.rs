@@ -272,8 +272,15 @@ impl DynamicsError {
     /// The error with the names of the inputs it was raised at, for an error raised where only
     /// their values were known (a mass model's evaluation), passed up through code that knows
     /// the mechanism. Names already given, and names of another count than the values, are
-    /// left as they are. Called on the way out of an error only: the names are copied then.
-    pub(crate) fn with_input_names(mut self, input_names: &[&str]) -> Self {
+    /// left as they are. Called on the way out of an error only: the names are copied then. A
+    /// mechanism read at run time names its inputs with it as a compiled one does.
+    ///
+    /// ```
+    /// use kinloop_runtime::dynamics::DynamicsError;
+    /// let e = DynamicsError::NonFiniteLoad { name: "gas".into(), value: f64::NAN, x: vec![0.5], names: vec![] };
+    /// assert_eq!(e.with_input_names(&["phi"]).to_string(), "the load `gas` is not finite (NaN) at phi = 0.5");
+    /// ```
+    pub fn with_input_names(mut self, input_names: &[&str]) -> Self {
         if let DynamicsError::NonFiniteLoad { x, names, .. }
         | DynamicsError::SingularMass { x, names, .. }
         | DynamicsError::SingularMotion { x, names, .. }
