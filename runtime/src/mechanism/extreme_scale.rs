@@ -56,7 +56,7 @@ pub(crate) struct Whole<J, A, const N: usize> {
 }
 
 /// The answer to a checked kernel's failure `error` at input `x` from `guess`, for the mechanism
-/// `m` sees: for a mechanism outside [`CLOSED_FORM_SIZES`], the kinematics solved by Newton over
+/// `m` describes: for a mechanism outside [`CLOSED_FORM_SIZES`], the kinematics solved by Newton over
 /// the whole system (and `error` where that fails too); otherwise `error`.
 pub(crate) fn rescue<J, A, const N: usize, const NI: usize, const NO: usize>(
     m: &Whole<J, A, N>,
@@ -143,7 +143,7 @@ pub fn whole_position<const N: usize>(
     let mags = Magnitudes::new(scale, [1.0; N]).with_turns(turns);
     let q_of = |z: &[f64; N]| core::array::from_fn::<f64, N, _>(|u| z[u] * unit[u]);
     // Written over the solver's slot, as the generated blocks' evaluations are.
-    let eval = |z: &[f64; N], ev: &mut BlockEval<N, 0>| {
+    let mut eval = |z: &[f64; N], ev: &mut BlockEval<N, 0>| {
         at(&q_of(z), ev);
         for row in &mut ev.j {
             for u in 0..N {
@@ -153,7 +153,6 @@ pub fn whole_position<const N: usize>(
     };
     let z0 = core::array::from_fn::<f64, N, _>(|u| guess[u] / unit[u]);
     let mut ev: BlockEval<N, 0> = BlockEval { f: [0.0; N], j: [[0.0; N]; N], keep: [] };
-    let mut eval = eval;
     eval(&z0, &mut ev);
     let solved = newton(z0, &mut ev, cfg, eval, &mags).ok()?;
     let mut report = SolveReport::direct();
