@@ -10,25 +10,31 @@ use super::position::angle_difference;
 /// over the whole range; from [`structural_error`].
 #[derive(Clone, Debug, PartialEq)]
 pub struct StructuralError {
-    /// The largest output angle error over the samples (radians, absolute).
+    /// The largest output angle error over the samples (radians, absolute); infinite when the
+    /// linkage cannot be assembled at some sample.
     pub max: f64,
-    /// The argument `x` where it occurs.
+    /// The argument `x` where it occurs: the first unassembled sample's when there is one.
     pub at_x: f64,
     /// The largest error in units of the function value `y` (the angle error scaled by
-    /// `(y1 - y0) / dpsi`).
+    /// `(y1 - y0) / dpsi`); infinite with `max`.
     pub max_y: f64,
-    /// The root mean square of the output angle error over the samples (radians).
+    /// The root mean square of the output angle error over the samples (radians); infinite
+    /// with `max`.
     pub rms: f64,
     /// How many samples were taken (evenly spaced over `x0 ..= x1`).
     pub samples: usize,
-    /// How many of them the linkage cannot be assembled at (on its closure). They are left
-    /// out of `max` and `rms`; a design with any is not usable over the range.
+    /// How many of them the linkage cannot be assembled at (on its closure). There the linkage
+    /// has no output angle, so its error is unbounded: `max`, `max_y` and `rms` are infinite
+    /// whenever this is not zero, and a test such as `e.max < tolerance` rejects the design.
     pub unassembled: usize,
 }
 
 /// The structural error of `generator` against `f` over the range of `map`, from `samples`
 /// evenly spaced arguments: at each the linkage is analysed by intersecting circles (on the
 /// closure of its first precision point) and its output angle compared with `map.psi(f(x))`.
+/// A sample where the linkage cannot be assembled counts as an infinite error: a design that
+/// does not move over the whole range never reports a small one (see
+/// [`StructuralError::unassembled`]).
 ///
 /// Errors: fewer than two samples; `f` not finite at a sample.
 ///
@@ -40,6 +46,14 @@ pub struct StructuralError {
 /// let e = structural_error(&g, &map, f64::log10, 201)?;
 /// assert_eq!(e.unassembled, 0);
 /// assert!(e.max < deg(1.0)); // under a degree over the whole range
+///
+/// // Other ranges (the input from -120 degrees, the output from -150 through 120): the
+/// // linkage cannot be assembled over part of the range, and its error is infinite there,
+/// // not that of the part it reaches.
+/// let map = FunctionMap::new(f64::log10, 1.0, 2.0, deg(-120.0), deg(90.0), deg(-150.0), deg(120.0))?;
+/// let g = freudenstein(&map.precision_points(f64::log10, &chebyshev_points(3, 1.0, 2.0)?)?)?;
+/// let e = structural_error(&g, &map, f64::log10, 201)?;
+/// assert!(e.unassembled > 0 && e.max == f64::INFINITY);
 /// # Ok::<(), kinloop_runtime::synthesis::classical::ClassicalError>(())
 /// ```
 pub fn structural_error(
@@ -54,22 +68,111 @@ pub fn structural_error(
             why: format!("{samples}: the ends of the range take two"),
         });
     }
-    let (mut max, mut at_x, mut sum_sq, mut assembled) = (0.0f64, map.x0, 0.0, 0usize);
+    let (mut max, mut at_x, mut sum_sq, mut unassembled) = (0.0f64, map.x0, 0.0, 0usize);
     for i in 0..samples {
         let x = map.x0 + (map.x1 - map.x0) * i as f64 / (samples - 1) as f64;
         let y = f(x);
         if !y.is_finite() {
             return Err(ClassicalError::NonFinite { what: format!("f({x})"), value: y });
         }
-        let Some(psi) = generator.output_angle(map.phi(x)) else { continue };
-        let e = angle_difference(psi, map.psi(y)).abs();
-        assembled += 1;
+        // No output angle (or a NaN one, from lengths not finite): an unbounded error, at the
+        // first such sample.
+        let e = generator.output_angle(map.phi(x)).map(|psi| angle_difference(psi, map.psi(y)).abs());
+        let Some(e) = e.filter(|e| e.is_finite()) else {
+            if unassembled == 0 {
+                (max, at_x) = (f64::INFINITY, x);
+            }
+            unassembled += 1;
+            continue;
+        };
         sum_sq += e * e;
         if e > max {
             (max, at_x) = (e, x);
         }
     }
-    let rms = if assembled > 0 { (sum_sq / assembled as f64).sqrt() } else { 0.0 };
+    let rms = if unassembled > 0 { f64::INFINITY } else { (sum_sq / samples as f64).sqrt() };
     let max_y = max * ((map.y1 - map.y0) / map.dpsi).abs();
-    Ok(StructuralError { max, at_x, max_y, rms, samples, unassembled: samples - assembled })
+    Ok(StructuralError { max, at_x, max_y, rms, samples, unassembled })
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::metrics::FourBarLinks;
+    use crate::synthesis::classical::Closure;
+
+    /// A generator of the given lengths (ground 1); its ratios and fit do not enter the analysis.
+    fn generator(input: f64, coupler: f64, output: f64) -> FunctionGenerator {
+        FunctionGenerator {
+            k: [1.0 / input, 1.0 / output, 0.0],
+            links: FourBarLinks { ground: 1.0, input, coupler, output },
+            residual: 0.0,
+            max_residual: 0.0,
+            rcond: 1.0,
+            closure: Closure::CounterClockwise,
+            one_closure: true,
+        }
+    }
+
+    /// `y = x` over `0 ..= 1` onto the input angles `0.5 ..= 3.0` (output `1 ..= 2`).
+    fn map() -> FunctionMap {
+        FunctionMap::new(|x| x, 0.0, 1.0, 0.5, 2.5, 1.0, 1.0).unwrap()
+    }
+
+    /// A coupler far longer than the other links: the loop closes at no input angle, and the
+    /// error must not look small (it used to be reported as zero).
+    #[test]
+    fn a_design_assembled_nowhere_has_an_infinite_error() {
+        let g = generator(0.1, 5.0, 0.1);
+        let e = structural_error(&g, &map(), |x| x, 11).unwrap();
+        assert_eq!((e.samples, e.unassembled), (11, 11));
+        assert!(e.max == f64::INFINITY && e.max_y == f64::INFINITY && e.rms == f64::INFINITY, "{e:?}");
+        assert_eq!(e.at_x, 0.0, "the first unassembled argument");
+        assert!(e.max >= 1e-3 && e.max_y >= 1e-3, "a test `e.max < tolerance` rejects it");
+    }
+
+    /// Input 0.5, coupler 0.7, output 0.5: the loop closes while `|B - D| <= b + c`, i.e.
+    /// `1.25 - cos(phi) <= 1.44`, `phi <= acos(-0.19) = 1.7619` rad: the samples at
+    /// `phi = 0.5 + 0.25 i` for `i <= 5` only.
+    #[test]
+    fn a_design_assembled_over_part_of_the_range_has_an_infinite_error_at_the_first_gap() {
+        let (a, b, c): (f64, f64, f64) = (0.5, 0.7, 0.5);
+        let m = map();
+        let limit = ((a * a + 1.0 - (b + c) * (b + c)) / (2.0 * a)).acos();
+        assert!((limit - 1.7619).abs() < 1e-4 && limit > m.phi(0.5) + 0.01 && limit < m.phi(0.6) - 0.01);
+        let g = generator(a, b, c);
+        let e = structural_error(&g, &m, |x| x, 11).unwrap();
+        assert_eq!(e.unassembled, 5, "{e:?}");
+        assert!(e.max == f64::INFINITY && e.max_y == f64::INFINITY && e.rms == f64::INFINITY, "{e:?}");
+        assert!((e.at_x - 0.6).abs() < 1e-15, "{e:?}");
+        // Over the assembled part alone the error is finite: it is not what is reported.
+        assert!(g.output_angle(m.phi(0.5)).is_some() && g.output_angle(m.phi(0.6)).is_none());
+    }
+
+    /// The `log10` generator over other ranges (the doc example): an mpmath solution of the
+    /// same system at 40 digits, checked for assembly by `|b - c| <= |B - D| <= b + c` at the
+    /// same 201 inputs, cannot be assembled at the first 12 (`x = 1 ..= 1.055`; no input within
+    /// 0.0019 of either bound, so rounding cannot move one across).
+    #[test]
+    fn the_log10_generator_over_ranges_it_cannot_reach_counts_the_samples_it_misses() {
+        use crate::deg;
+        use crate::synthesis::classical::{chebyshev_points, freudenstein};
+        let map = FunctionMap::new(f64::log10, 1.0, 2.0, deg(-120.0), deg(90.0), deg(-150.0), deg(120.0)).unwrap();
+        let g =
+            freudenstein(&map.precision_points(f64::log10, &chebyshev_points(3, 1.0, 2.0).unwrap()).unwrap()).unwrap();
+        for (got, want) in [(g.links.input, 1.9347320415003865), (g.links.coupler, 0.823812960566072)] {
+            assert!((got - want).abs() < 1e-12, "{got} vs {want}");
+        }
+        let e = structural_error(&g, &map, f64::log10, 201).unwrap();
+        assert_eq!(e.unassembled, 12, "{e:?}");
+        assert_eq!((e.max, e.rms, e.at_x), (f64::INFINITY, f64::INFINITY, 1.0));
+    }
+
+    #[test]
+    fn fewer_than_two_samples_or_a_function_not_finite_is_an_error() {
+        let g = generator(0.5, 0.7, 0.5);
+        assert!(matches!(structural_error(&g, &map(), |x| x, 1), Err(ClassicalError::BadRange { .. })));
+        let bad = |x: f64| if x > 0.5 { f64::NAN } else { x };
+        assert!(matches!(structural_error(&g, &map(), bad, 11), Err(ClassicalError::NonFinite { .. })));
+    }
 }
