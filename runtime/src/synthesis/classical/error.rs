@@ -72,8 +72,9 @@ pub enum ClassicalError {
         /// What is wrong with it.
         why: String,
     },
-    /// The poses are a special case the general formulas do not cover.
-    #[error("degenerate poses: {0}")]
+    /// The poses or precision points are a special case the general formulas do not cover (or
+    /// the result is not a linkage they can describe).
+    #[error("degenerate input: {0}")]
     Degenerate(String),
 }
 

@@ -58,19 +58,33 @@ pub struct FunctionGenerator {
     pub max_residual: f64,
     /// Reciprocal condition number of the linear system (smallest over largest singular value).
     pub rcond: f64,
-    /// The closure the linkage is on at the first precision point.
+    /// The closure the linkage is on: the one of the first precision point, or, when the
+    /// coupler and the output link lie in line there (see [`freudenstein`]), of the first point
+    /// after it where they do not.
     pub closure: Closure,
-    /// Whether every precision point lies on that same closure. When not, the linkage meets the
-    /// points only by being taken apart and reassembled: a branch defect.
+    /// Whether every precision point lies on that same closure (a point where the coupler and
+    /// the output link lie in line lies on both). When not, the linkage meets the points only
+    /// by being taken apart and reassembled: a branch defect.
     pub one_closure: bool,
 }
 
 /// The four-bar function generator through the precision points: the exact solution of
 /// Freudenstein's equation for three points, the least-squares one for more.
 ///
+/// The linkage's closure (which side of the line from the input's end `B` to the output's
+/// pivot `D` the coupler's end `C` lies on) is read from the precision points in order. At a
+/// point where `B`, `C` and `D` lie in line (the coupler and the output link stretched out or
+/// folded over each other: a limit position of the input, the transmission angle 0 or 180
+/// degrees) both closures are one and the same position, so that point does not decide it:
+/// the linkage passes from it into the closure of the next point, and the first point that
+/// decides is taken. In line means: the angle at `D` between `D -> B` and `D -> C` has a sine
+/// of at most [`COINCIDENT_ANGLE`], or of the fit's relative accuracy `16 eps / rcond` where
+/// that is larger (the side the rounding of the lengths puts `C` on is not a closure).
+///
 /// Errors: fewer than three points; an angle not finite; two points coinciding (within
 /// [`COINCIDENT_ANGLE`] in both angles); a singular or ill-conditioned system (reciprocal
-/// condition number below [`MIN_RCOND`]); a link length not positive and finite.
+/// condition number below [`MIN_RCOND`]); a link length not positive and finite; `B`, `C` and
+/// `D` in line at every point ([`ClassicalError::Degenerate`]: the closure is not determined).
 ///
 /// ```
 /// use kinloop_runtime::deg;
@@ -123,10 +137,24 @@ pub fn freudenstein(points: &[PrecisionPoint]) -> Result<FunctionGenerator, Clas
     let residual = (misfit.norm_squared() / n as f64).sqrt();
     let max_residual = misfit.amax();
     let frame = Frame { links };
-    let closures: Vec<Option<Closure>> = points.iter().map(|p| frame.closure(p.phi, p.psi)).collect();
-    let closure = closures[0].unwrap_or(Closure::CounterClockwise);
-    let one_closure = closures.iter().all(|c| c.is_none_or(|c| c == closure));
+    let in_line = COINCIDENT_ANGLE.max(16.0 * f64::EPSILON / rcond);
+    let closures: Vec<Option<Closure>> = points.iter().map(|p| frame.closure(p.phi, p.psi, in_line)).collect();
+    let (closure, one_closure) = common_closure(&closures)?;
     Ok(FunctionGenerator { k, links, residual, max_residual, rcond, closure, one_closure })
+}
+
+/// The closure of the first point that has one (`None`: the coupler and the output in line
+/// there), and whether every point that has one has the same.
+fn common_closure(closures: &[Option<Closure>]) -> Result<(Closure, bool), ClassicalError> {
+    let Some(closure) = closures.iter().flatten().next().copied() else {
+        return Err(ClassicalError::Degenerate(
+            "the coupler and the output link lie in line at every precision point, so the closure (the side \
+             of the line from the input's end to the output's pivot the coupler's end lies on) is not \
+             determined: add a precision point away from the input's limit positions"
+                .into(),
+        ));
+    };
+    Ok((closure, closures.iter().all(|c| c.is_none_or(|c| c == closure))))
 }
 
 /// Two points with both angles the same (modulo a turn) within [`COINCIDENT_ANGLE`].

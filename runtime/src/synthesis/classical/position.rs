@@ -44,14 +44,18 @@ impl Frame {
         self.d() + Vec2::new(self.links.output * c, self.links.output * s)
     }
 
-    /// The closure the output angle `psi` is on at the input angle `phi` (`None` when `B`, `D`
-    /// and `C` line up).
-    pub fn closure(&self, phi: f64, psi: f64) -> Option<Closure> {
+    /// The closure the output angle `psi` is on at the input angle `phi`; `None` when `B`, `D`
+    /// and `C` line up to within `sine`: the sine of the angle at `D` between `D -> B` and
+    /// `D -> C` is at most `sine` in magnitude (both closures are then the same position, to
+    /// that angle), or `B` is on `D`, or a value is not finite.
+    pub fn closure(&self, phi: f64, psi: f64, sine: f64) -> Option<Closure> {
         let (b, d, c) = (self.b(phi), self.d(), self.c(psi));
+        // (D - B) x (C - B) = (D - B) x (C - D) = |D - B| |C - D| sin(angle at D).
         let turn = (d - b).cross(c - b);
-        if turn > 0.0 {
+        let bound = sine * (d - b).norm() * (c - d).norm();
+        if turn > bound && bound.is_finite() {
             Some(Closure::CounterClockwise)
-        } else if turn < 0.0 {
+        } else if turn < -bound && bound.is_finite() {
             Some(Closure::Clockwise)
         } else {
             None
@@ -112,9 +116,24 @@ mod tests {
             for closure in [Closure::CounterClockwise, Closure::Clockwise] {
                 let psi = f.output_angle(phi, closure).unwrap();
                 assert!(((f.c(psi) - f.b(phi)).norm() - 3.0).abs() < 1e-14, "{phi} {closure:?}");
-                assert_eq!(f.closure(phi, psi), Some(closure));
+                assert_eq!(f.closure(phi, psi, 1e-12), Some(closure));
             }
         }
+    }
+
+    /// Coupler and output in line (input 0.75, coupler 0.5, output 0.75, ground 1 at `phi =
+    /// 90` degrees: `|B - D| = 1.25 = b + c`, `C = (0.4, 0.45)`): no closure within a sine of
+    /// `1e-12`, whichever side rounding puts `C` on; a point off the line by more has one.
+    #[test]
+    fn no_closure_where_coupler_and_output_lie_in_line() {
+        let f = Frame { links: FourBarLinks { ground: 1.0, input: 0.75, coupler: 0.5, output: 0.75 } };
+        let (phi, psi) = (std::f64::consts::FRAC_PI_2, 0.45f64.atan2(-0.6));
+        assert_eq!(f.closure(phi, psi, 1e-12), None);
+        assert_eq!(f.closure(phi, psi + 1e-9, 1e-12), Some(Closure::Clockwise));
+        assert_eq!(f.closure(phi, psi - 1e-9, 1e-12), Some(Closure::CounterClockwise));
+        assert_eq!(f.closure(phi, f64::NAN, 1e-12), None);
+        let on_d = Frame { links: FourBarLinks { ground: 1.0, input: 1.0, coupler: 1.0, output: 1.0 } };
+        assert_eq!(on_d.closure(0.0, 1.0, 1e-12), None, "B on D");
     }
 
     #[test]

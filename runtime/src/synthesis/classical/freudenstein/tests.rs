@@ -176,3 +176,53 @@ fn bad_input_is_an_error_not_a_panic() {
     assert!(matches!(lengths([1.0, 1.0, 5.0]), Err(ClassicalError::BadLength { link: "coupler", .. })));
     assert!(matches!(lengths([0.0, 1.0, 0.5]), Err(ClassicalError::BadLength { link: "input", .. })));
 }
+
+/// Input 0.75, coupler 0.5, output 0.75 (ground 1): at `phi = 90` degrees `|B - D| = 1.25 =
+/// b + c`, so the coupler and the output lie in line (`C = (0.4, 0.45)`, the input at the end
+/// of its travel, both closures the same position). The other points, at smaller input angles,
+/// are on one closure: that is the linkage's, whichever it is, and every point lies on it.
+#[test]
+fn a_first_point_with_coupler_and_output_in_line_takes_the_closure_of_the_others() {
+    use std::f64::consts::FRAC_PI_2;
+    let known = FourBarLinks { ground: 1.0, input: 0.75, coupler: 0.5, output: 0.75 };
+    let frame = Frame { links: known };
+    // The toggle position in closed form: C on B-D at b from B.
+    let toggle = PrecisionPoint { phi: FRAC_PI_2, psi: 0.45f64.atan2(-0.6) };
+    assert!(((frame.c(toggle.psi) - frame.b(toggle.phi)).norm() - 0.5).abs() < 1e-15);
+    for closure in [Closure::CounterClockwise, Closure::Clockwise] {
+        let point = |phi| PrecisionPoint { phi, psi: frame.output_angle(phi, closure).unwrap() };
+        for points in [
+            vec![toggle, point(FRAC_PI_2 - 0.4), point(FRAC_PI_2 - 0.8)],
+            vec![toggle, point(FRAC_PI_2 - 0.3), point(FRAC_PI_2 - 0.7), point(FRAC_PI_2 - 1.1)],
+            // In line at a later point: no branch defect either.
+            vec![point(FRAC_PI_2 - 0.8), toggle, point(FRAC_PI_2 - 0.4)],
+        ] {
+            let g = freudenstein(&points).unwrap();
+            for (got, want) in [(g.links.input, 0.75), (g.links.coupler, 0.5), (g.links.output, 0.75)] {
+                assert!((got - want).abs() < 1e-12, "{closure:?}: {got} vs {want}");
+            }
+            assert_eq!(g.closure, closure, "{} points", points.len());
+            assert!(g.one_closure, "{g:?}");
+            for p in &points {
+                // At the limit position the circles touch: the output angle moves as the square
+                // root of the lengths' rounding there (about 1e-8 rad), as the first power
+                // elsewhere.
+                let tolerance = if *p == toggle { 1e-6 } else { 1e-12 };
+                assert!(g.output_error(*p).unwrap().abs() < tolerance, "{closure:?} {p:?}");
+            }
+        }
+    }
+}
+
+/// No precision point with a closure: an error naming why, not a closure picked by default.
+#[test]
+fn a_closure_undetermined_at_every_point_is_an_error() {
+    let (ccw, cw) = (Some(Closure::CounterClockwise), Some(Closure::Clockwise));
+    assert_eq!(common_closure(&[None, cw, ccw]), Ok((Closure::Clockwise, false)));
+    assert_eq!(common_closure(&[None, ccw, None, ccw]), Ok((Closure::CounterClockwise, true)));
+    let e = common_closure(&[None, None, None]).unwrap_err();
+    assert!(
+        matches!(e, ClassicalError::Degenerate(ref why) if why.contains("in line at every precision point")),
+        "{e}"
+    );
+}
