@@ -243,3 +243,84 @@ fn candidates_are_drawn_through_their_targets_on_axes_with_units() {
     let turn = candidates(&Coupler::default(), &best[..1], &targets, &config.clone().with_span(TAU)).unwrap();
     assert!(roxmltree::Document::parse(&turn).is_ok() && !turn.contains("NaN"));
 }
+
+/// The known design itself as a candidate, drawn by a placement of scale `scale` (the whole
+/// mechanism, about 4.5 units across at scale 1, made that much smaller) over its own coupler
+/// curve's points made as small: the same figure at any scale.
+fn scaled_figure(scale: f64) -> (String, Vec<[f64; 2]>) {
+    use kinloop::analysis::OptimizerStop;
+    use kinloop::synthesis::{Candidate, LocalReport, Origin};
+    let truth = Coupler::default();
+    let phis: Vec<f64> = (0..6).map(|k| 0.3 + 1.0 * k as f64).collect();
+    let states: Vec<_> = phis.iter().map(|&phi| truth.solve(phi).unwrap()).collect();
+    let targets: Vec<[f64; 2]> = states.iter().map(|s| [scale * s.out.p.x, scale * s.out.p.y]).collect();
+    let c = Candidate {
+        start: 0,
+        origin: Origin::Seed,
+        values: vec![],
+        params: vec![1.0, 3.0, 2.5, 3.0, 1.5, 0.6],
+        inputs: phis.iter().map(|&phi| vec![phi]).collect(),
+        placement: Some([0.0, 0.0, 0.0, scale]),
+        positions: states.iter().map(|s| vec![s.q.beta, s.q.gamma]).collect(),
+        errors: vec![0.0; phis.len()],
+        max_error: 0.0,
+        rms_error: 0.0,
+        defects: vec![],
+        min_transmission: None,
+        four_bar: None,
+        local: LocalReport { evaluations: 0, iterations: 0, stop: OptimizerStop::Converged, residual: 0.0 },
+    };
+    let config = CandidatesConfig::new("p").with_length_unit("m");
+    (candidates(&Coupler::default(), &[c], &targets, &config).unwrap(), targets)
+}
+
+/// Tick labels at metre, millimetre and micrometre scale: short (a few significant digits, the
+/// plot module's style: decimals down to 1e-5, a power of ten below), the same digits at every
+/// scale, and each at its tick (the targets read back through them at their coordinates).
+#[test]
+fn tick_labels_are_readable_at_metre_millimetre_and_micrometre_scale() {
+    let mut shapes = Vec::new();
+    for (scale, power) in [(1.0, ""), (1e-3, ""), (1e-6, "e-6")] {
+        let (svg, targets) = scaled_figure(scale);
+        let doc = roxmltree::Document::parse(&svg).unwrap();
+        let labels = |class: &str| -> Vec<String> {
+            doc.descendants()
+                .filter(|n| n.attribute("class") == Some(class))
+                .map(|n| n.text().unwrap().to_string())
+                .collect()
+        };
+        let (x_labels, y_labels) = (labels("tick-x"), labels("tick-y"));
+        for label in x_labels.iter().chain(&y_labels) {
+            let (mantissa, exponent) = label.split_once('e').unwrap_or((label, ""));
+            let digits = mantissa.trim_start_matches('-').replace('.', "");
+            let significant = digits.trim_start_matches('0').trim_end_matches('0');
+            assert!(significant.len() <= 3 && label.len() <= 8, "scale {scale}: label {label:?} of {x_labels:?}");
+            assert!(!mantissa.contains("0.000") || scale == 1e-3, "scale {scale}: {label:?}");
+            if !power.is_empty() {
+                assert_eq!(format!("e{exponent}"), power, "scale {scale}: {label:?}");
+            }
+        }
+        // The same ticks at every scale: the labels' values over the scale.
+        let values = |l: &[String]| l.iter().map(|l| l.parse::<f64>().unwrap() / scale).collect::<Vec<_>>();
+        shapes.push((values(&x_labels), values(&y_labels)));
+        // Each label at its tick: the targets read back through the labels.
+        let (xt, yt) = (ticks(&doc, "tick-x", "x"), ticks(&doc, "tick-y", "y"));
+        let sx = (xt[xt.len() - 1].1 - xt[0].1) / (xt[xt.len() - 1].0 - xt[0].0);
+        let tol = 0.2 / sx;
+        for (i, n) in doc.descendants().filter(|n| n.attribute("class") == Some("target")).enumerate() {
+            let at = |k: &str| n.attribute(k).unwrap().parse::<f64>().unwrap();
+            let q = world(&xt, &yt, [at("cx"), at("cy")]);
+            let t = targets[i];
+            assert!(
+                (q[0] - t[0]).abs() <= tol && (q[1] - t[1]).abs() <= tol,
+                "scale {scale}, target {i}: {q:?} vs {t:?}"
+            );
+        }
+    }
+    for (x, y) in &shapes[1..] {
+        for (a, b) in x.iter().zip(&shapes[0].0).chain(y.iter().zip(&shapes[0].1)) {
+            assert!((a - b).abs() <= 1e-9 * b.abs().max(1.0), "{shapes:?}");
+        }
+        assert_eq!((x.len(), y.len()), (shapes[0].0.len(), shapes[0].1.len()));
+    }
+}

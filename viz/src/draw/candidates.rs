@@ -9,8 +9,8 @@ use super::motion::{Motion, Pose};
 use super::spec::{Drawing, Item, Pt, Scalar, StateRef};
 use super::svg::num;
 use crate::escape::escape;
-use crate::html::chart::ticks;
 use crate::html::{HtmlConfig, HtmlError, html_marked};
+use crate::plot::ticks::{Ticks, binade};
 use kinloop_runtime::synthesis::Candidate;
 use kinloop_runtime::{Kin, Sensitivities, Sweep};
 use std::fmt::Write;
@@ -467,12 +467,17 @@ where
         return Err(DrawError::Unscalable { width: hi[0] - lo[0], height: hi[1] - lo[1] });
     }
     let pad = 0.03 * span;
-    let (xt, yt) = (ticks(lo[0] - pad, hi[0] + pad, false), ticks(lo[1] - pad, hi[1] + pad, false));
+    let (xt, yt) = axes([lo[0] - pad, hi[0] + pad], [lo[1] - pad, hi[1] + pad]);
+    // The axes' ends in the plane's units (the ticks hold them divided by a power of two).
+    let (x_lo, x_hi, y_lo, y_hi) = (xt.lo * xt.unit, xt.hi * xt.unit, yt.lo * yt.unit, yt.hi * yt.unit);
+    if ![x_lo, x_hi, y_lo, y_hi].iter().all(|v| v.is_finite()) {
+        return Err(DrawError::Unscalable { width: hi[0] - lo[0], height: hi[1] - lo[1] });
+    }
     let [w_max, h_max] = config.size;
-    let s = (w_max / (xt.hi - xt.lo)).min(h_max / (yt.hi - yt.lo));
-    let (pw, ph) = ((xt.hi - xt.lo) * s, (yt.hi - yt.lo) * s);
+    let s = (w_max / (x_hi - x_lo)).min(h_max / (y_hi - y_lo));
+    let (pw, ph) = ((x_hi - x_lo) * s, (y_hi - y_lo) * s);
     let [left, right, top, bottom] = INSETS;
-    let map = Map { x0: left - xt.lo * s, y0: top + ph + yt.lo * s, s };
+    let map = Map { x0: left - x_lo * s, y0: top + ph + y_lo * s, s };
     let legend_top = top + ph + bottom;
     let legend: Vec<String> = candidates
         .iter()
@@ -499,8 +504,8 @@ where
     );
     // Axes: grid lines, tick labels, titles with their unit.
     let (x_left, x_right, y_top, y_bottom) = (left, left + pw, top, top + ph);
-    for (v, label) in &xt.ticks {
-        let x = num(map.px([*v, 0.0])[0]);
+    for &(v, k) in &xt.values {
+        let (x, label) = (num(map.px([v * xt.unit, 0.0])[0]), escape(&xt.label(k)));
         let _ = write!(
             out,
             r##"<line class="grid" x1="{x}" y1="{}" x2="{x}" y2="{}" stroke="#e6e6e6"/><text class="tick-x" x="{x}" y="{}" text-anchor="middle">{label}</text>"##,
@@ -509,8 +514,8 @@ where
             num(y_bottom + 14.0)
         );
     }
-    for (v, label) in &yt.ticks {
-        let y = map.px([0.0, *v])[1];
+    for &(v, k) in &yt.values {
+        let (y, label) = (map.px([0.0, v * yt.unit])[1], escape(&yt.label(k)));
         let _ = write!(
             out,
             r##"<line class="grid" x1="{}" y1="{}" x2="{}" y2="{}" stroke="#e6e6e6"/><text class="tick-y" x="{}" y="{}" text-anchor="end">{label}</text>"##,
@@ -641,6 +646,25 @@ where
     );
     out.push_str("</svg>");
     Ok(out)
+}
+
+/// The ticks of the two axes over `[x0, x1]` and `[y0, y1]` (the plane's units): one step on
+/// both (the one of the larger range), so that the grid's squares are square on the one scale,
+/// each range widened to whole steps. The labels are the plot module's: as many decimals as
+/// the step needs (`"0.0005"`), a power of ten for very small or large values (`"2e-6"`).
+fn axes([x0, x1]: [f64; 2], [y0, y1]: [f64; 2]) -> (Ticks, Ticks) {
+    // Scaled by one power of two (exact), as the plot module holds its ticks.
+    let unit = binade(x0.abs().max(x1.abs()).max(y0.abs()).max(y1.abs()));
+    let (x0, x1, y0, y1) = (x0 / unit, x1 / unit, y0 / unit, y1 / unit);
+    let wider = if x1 - x0 >= y1 - y0 { (x0, x1) } else { (y0, y1) };
+    let step = Ticks::scaled(wider.0, wider.1, unit, 1.0, false, true, 0.0);
+    // Integer multiples of the step, ends within rounding of a tick taken to it.
+    let widened = |lo: f64, hi: f64| {
+        let slack = 1e-9;
+        let (lo, hi) = ((lo / step.step + slack).floor() * step.step, (hi / step.step - slack).ceil() * step.step);
+        Ticks::with_step(lo, hi, &step)
+    };
+    (widened(x0, x1), widened(y0, y1))
 }
 
 /// What the legend says of the targets.

@@ -41,7 +41,7 @@ mod legend;
 mod lines;
 mod series;
 mod svg;
-mod ticks;
+pub(crate) mod ticks;
 mod xy;
 
 pub use bars::bar_chart_svg;
