@@ -9,8 +9,12 @@
 //! run, because a crate with a `compile_error!` does not compile; they only let the user's calls
 //! (`m.solve(x)?.q.beta`) type-check, so that the declaration's errors are the only ones.
 
+use crate::emit::dims::Dims;
+use crate::emit::literals::lit;
+use crate::emit::runtime_path::runtime;
 use crate::emit::surface::{Field, Surface, items};
-use crate::emit::{Dims, Types, dynamics, lit, runtime, sensitivities};
+use crate::emit::type_names::Types;
+use crate::emit::{dynamics, sensitivities};
 use crate::front::expr::Expr;
 use crate::front::syntax::{DeclKind, ItemKind, MechanismDef};
 use crate::plan::param_defaults;

@@ -2,10 +2,13 @@
 //! with the named types), its constants, and its inherent methods: one-line forwarders into the
 //! runtime's generic code, so that `m.solve(x)` needs no import.
 
+use super::dims::Dims;
 use super::evaluate::{jacobian_body, straight_line};
 use super::kernel::{Mode, closed_config_check, deferred_body, solver_body};
+use super::lints::kernel_lints;
 use super::names::Names;
-use super::{Dims, Types, kernel_lints, runtime};
+use super::runtime_path::runtime;
+use super::type_names::Types;
 use crate::plan::Plan;
 use crate::plan::kinds::Kind;
 use crate::semantics::model::Model;
@@ -100,7 +103,7 @@ fn kind_constants(model: &Model, plan: &Plan) -> TokenStream {
 /// `FOLLOWERS` of the `Mechanism` implementation (see [`crate::plan::followers`]), when an
 /// unknown follows the others (the default says none does).
 fn followers_constant(plan: &Plan) -> TokenStream {
-    let n = super::lit(plan.n);
+    let n = super::literals::lit(plan.n);
     let follows = crate::plan::followers::followers(&plan.graph, &plan.blocks, plan.n);
     if follows.iter().any(|&f| f) { quote!(const FOLLOWERS: [bool; #n] = [#(#follows),*];) } else { TokenStream::new() }
 }

@@ -6,9 +6,13 @@
 //! of the parameters they use, so the model does not borrow the mechanism. Their virtual power
 //! uses the analogs of the points they act at, which the state already holds.
 
+use super::dims::Dims;
+use super::lints::kernel_lints;
+use super::literals::lit;
 use super::names::Names;
+use super::runtime_path::runtime;
 use super::schedule::{ScopeKind, ScopeSpec, schedule};
-use super::{Dims, Types, kernel_lints, lit, runtime};
+use super::type_names::Types;
 use crate::graph::dag::{Graph, Leaf, NodeId};
 use crate::plan::Plan;
 use crate::semantics::dynamics::{AngleModel, BodyModel, CoordModel, ForceModel, TorqueModel};

@@ -2,9 +2,10 @@
 //! roots of the graph (the outputs, the guesses), and the residuals with the full Jacobian.
 
 use super::kernel::{bind_q, prologue};
+use super::literals::lit;
 use super::names::Names;
+use super::runtime_path::runtime;
 use super::schedule::{ScopeKind, ScopeSpec, schedule};
-use super::{lit, runtime};
 use crate::graph::dag::{Leaf, NodeId};
 use crate::plan::Plan;
 use proc_macro2::TokenStream;

@@ -7,10 +7,13 @@
 //! Without the attribute, [`absent`] declares the two methods with a bound no type satisfies,
 //! so calling them is a compile error that says to add the attribute.
 
+use super::dims::Dims;
 use super::kernel::{Mode, solver_body};
+use super::lints::kernel_lints;
 use super::names::Names;
+use super::runtime_path::runtime;
 use super::surface::{Field, analog_conversions, analog_types, named_struct};
-use super::{Dims, Types, kernel_lints, runtime};
+use super::type_names::Types;
 use crate::plan::Plan;
 use crate::semantics::model::Model;
 use proc_macro2::TokenStream;

@@ -4,7 +4,7 @@
 //! its Jacobian as the structural non-zeros only, so that the generated code grows with the
 //! number of non-zeros and fill, not with `n^2`.
 
-use super::lit;
+use super::literals::lit;
 use super::names::Names;
 use crate::graph::dag::{Graph, NodeId};
 use crate::plan::Plan;

@@ -5,7 +5,9 @@
 //! They depend only on the declared names, so the fallback after a rejected declaration emits
 //! the same items from the syntax ([`Surface`] is built from either).
 
-use super::{Types, lit, runtime};
+use super::literals::lit;
+use super::runtime_path::runtime;
+use super::type_names::Types;
 use crate::semantics::model::Model;
 use proc_macro2::{Ident, Span, TokenStream};
 use quote::quote;

@@ -1,8 +1,8 @@
 //! Velocity and acceleration analogs of a block: the right-hand sides of `J_bb q'_b = -T_i f_b`
 //! and `J_bb q''_b = -T_j T_i f_b`.
 
-use super::BlockPlan;
-use super::rows_from_columns;
+use super::block_plan::BlockPlan;
+use super::columns::rows_from_columns;
 use super::seeds::Seeds;
 use crate::graph::dag::{Graph, NodeId};
 

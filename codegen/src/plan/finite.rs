@@ -21,9 +21,11 @@
 //! its argument), an unknown that Newton solved, and every other function (`atan2(∞, ∞)` is
 //! finite).
 
+use super::block_plan::BlockPlan;
 use super::closed_form::Recognised;
+use super::finished::Plan;
+use super::input_pairs::pairs;
 use super::solve::Solve;
-use super::{BlockPlan, Plan, pairs};
 use crate::graph::dag::{Func, Leaf, NodeId, Op};
 use std::collections::HashSet;
 

@@ -15,7 +15,7 @@
 //! `tan`, a division by a varying value (poles), `sqrt`, `asin`, `acos`, `ln` or `powf` (ends
 //! of their domains).
 
-use super::BlockPlan;
+use super::block_plan::BlockPlan;
 use crate::graph::dag::{Func, Graph, Leaf, Op};
 
 /// Per unknown, whether it follows the others (see the module documentation).

@@ -45,7 +45,7 @@
 //! pivot ratio about `|s| / floor` near the pivot, the factor by which the rounding of the
 //! loop's lengths is magnified in `th` there.
 
-use super::BlockPlan;
+use super::block_plan::BlockPlan;
 use crate::graph::dag::{Func, Graph, Leaf, NodeId, Op};
 use std::collections::{HashMap, HashSet};
 

@@ -19,13 +19,24 @@
 //!   add up, the others' finiteness implying the rest ([`finite`]).
 //!
 //! The analogs themselves are leaves of the graph (`Tan`, `Tan2`, ...), created by [`seeds`].
-//! Each pass adds nodes to the graph; [`build`] runs them in order and returns a [`Plan`] that
-//! owns the finished graph and is not changed afterwards.
+//! Each pass adds nodes to the graph; [`build`] runs them in order and returns a [`Plan`]
+//! ([`finished`]) that owns the finished graph and is not changed afterwards, with a
+//! [`BlockPlan`] per block ([`block_plan`]) and the sensitivities by [`Stages`] ([`stages`]).
+//! What the passes share has a module of its own: the order of input pairs ([`input_pairs`]),
+//! rows from columns ([`columns`]), the parameters' defaults ([`defaults`]); and so has what more
+//! than one back end reads from the finished plan: the closed-form angles
+//! ([`closed_form_angles`](mod@closed_form_angles)).
 
 pub mod analogs;
+pub mod block_plan;
 pub mod closed_form;
+pub mod closed_form_angles;
+pub mod columns;
+pub mod defaults;
+pub mod finished;
 pub mod finite;
 pub mod followers;
+pub mod input_pairs;
 pub mod kinds;
 pub mod magnitudes;
 pub mod outputs;
@@ -34,174 +45,22 @@ pub mod seeds;
 pub mod sensitivities;
 pub mod solve;
 pub mod sparse;
+pub mod stages;
 pub mod turns;
+
+pub use block_plan::BlockPlan;
+pub use closed_form_angles::closed_form_angles;
+pub use columns::rows_from_columns;
+pub use defaults::{model_defaults, param_defaults};
+pub use finished::Plan;
+pub use input_pairs::{pair_index, pairs};
+pub use stages::Stages;
 
 use crate::graph::dag::{Graph, Leaf, NodeId, Op};
 use crate::semantics::model::Model;
 use crate::structure::Block;
-use positions::Position;
 use seeds::Seeds;
 use solve::Solve;
-
-/// Everything computed for one block of the decomposition.
-pub struct BlockPlan {
-    /// The block's unknowns (indices into the model's unknowns).
-    pub unknowns: Vec<usize>,
-    /// The block's equations (indices into the model's equations).
-    pub equations: Vec<usize>,
-    /// How the block's positions are solved.
-    pub solve: Solve,
-    /// Residuals of the block's equations.
-    pub f: Vec<NodeId>,
-    /// `jac[r][c] = d f_r / d q_c` over the block's unknowns.
-    pub jac: Vec<Vec<NodeId>>,
-    /// Per block unknown: the non-zero entries of its column of the full Jacobian, whose largest
-    /// magnitude equilibrates the column (see `kinloop_runtime::Lu`).
-    pub col_scale: Vec<Vec<NodeId>>,
-    /// Per block unknown: the lever floors its column's magnitude is raised to (see
-    /// [`magnitudes`]); empty for most columns.
-    pub lever_floor: Vec<Vec<NodeId>>,
-    /// `vel[r][i]`: the velocity right-hand side.
-    pub vel: Vec<Vec<NodeId>>,
-    /// `acc[r][p]`: the acceleration right-hand side for input pair `p`.
-    pub acc: Vec<Vec<NodeId>>,
-    /// Right-hand sides of the parameter sensitivities, when requested.
-    pub sens: Option<Stages>,
-    /// Per row: the magnitude of the equation's terms (see [`magnitudes`]).
-    pub scale: Vec<NodeId>,
-    /// Per block unknown: the unit its Newton steps are judged in (see [`magnitudes`]).
-    pub unit: Vec<NodeId>,
-    /// Per block unknown of a Newton block: whether its equations repeat every turn of it
-    /// (see [`turns`]); all `false` for the other blocks.
-    pub turns: Vec<bool>,
-}
-
-impl BlockPlan {
-    /// The plan of block `blk` from its position part and its solve (its magnitudes, analogs and
-    /// sensitivities are filled in later).
-    pub fn new(blk: &Block, pos: Position, solve: Solve) -> BlockPlan {
-        // The linear right-hand side went into `solve`.
-        let Position { f, jac, col_scale, rhs: _ } = pos;
-        BlockPlan {
-            unknowns: blk.unknowns.clone(),
-            equations: blk.equations.clone(),
-            solve,
-            f,
-            jac,
-            col_scale,
-            lever_floor: vec![Vec::new(); blk.unknowns.len()],
-            turns: vec![false; blk.unknowns.len()],
-            vel: Vec::new(),
-            acc: Vec::new(),
-            sens: None,
-            scale: Vec::new(),
-            unit: Vec::new(),
-        }
-    }
-}
-
-/// Right-hand sides (per row) or values (per output) of the parameter sensitivities, by stage:
-/// `q[r][k]`, `v[r][i * np + k]`, `a[r][p * np + k]` for parameter `k`, input `i`, input pair `p`.
-pub struct Stages {
-    /// Position stage, per parameter.
-    pub q: Vec<Vec<NodeId>>,
-    /// Velocity-analog stage, per input and parameter.
-    pub v: Vec<Vec<NodeId>>,
-    /// Acceleration-analog stage, per input pair and parameter.
-    pub a: Vec<Vec<NodeId>>,
-}
-
-/// The finished plan; it owns the graph every `NodeId` refers to.
-pub struct Plan {
-    /// The finished expression graph.
-    pub graph: Graph,
-    /// Number of unknowns (and scalar equations).
-    pub n: usize,
-    /// Number of inputs.
-    pub ni: usize,
-    /// Number of parameters.
-    pub np: usize,
-    /// The blocks in solve order.
-    pub blocks: Vec<BlockPlan>,
-    /// Residuals of all equations, in declaration order.
-    pub residuals: Vec<NodeId>,
-    /// Output columns: each point's x and y, then each scalar output.
-    pub outputs: Vec<NodeId>,
-    /// `out_d1[o][i]`.
-    pub out_d1: Vec<Vec<NodeId>>,
-    /// `out_d2[o][p]` for input pair `p`.
-    pub out_d2: Vec<Vec<NodeId>>,
-    /// Output sensitivities, when requested.
-    pub out_sens: Option<Stages>,
-    /// Declared initial guesses (0 when not declared).
-    pub guesses: Vec<NodeId>,
-    /// The full Jacobian `jac_full[e][u] = d f_e / d q_u` (for continuation and event location).
-    pub jac_full: Vec<Vec<NodeId>>,
-    /// `fx_full[e][i] = d f_e / d x_i`.
-    pub fx_full: Vec<Vec<NodeId>>,
-    /// `scale_full[e]`: the magnitude of equation `e`'s terms (see [`magnitudes`]).
-    pub scale_full: Vec<NodeId>,
-    /// `unit_full[u]`: the unit of unknown `u` (its block's, see [`magnitudes`]).
-    pub unit_full: Vec<NodeId>,
-    /// `input_unit[i]`: the unit of input `i` (see [`magnitudes::Magnitudes::input_unit`]).
-    pub input_unit: Vec<NodeId>,
-    /// Parameter defaults, when every parameter has one.
-    pub defaults: Option<Vec<f64>>,
-    /// Per node: highest block whose unknowns it depends on (`-1`: none).
-    pub level: Vec<i32>,
-}
-
-impl Plan {
-    /// Whether the parameter sensitivities were requested.
-    pub fn has_sensitivities(&self) -> bool {
-        self.out_sens.is_some()
-    }
-}
-
-/// Per unknown, whether a closed-form block gives it as an angle: the runtime's
-/// `CLOSED_FORM_ANGLES`, written by the emitter and read by a run-time model, from one place
-/// (see also [`followers::followers`]).
-pub fn closed_form_angles(plan: &Plan) -> Vec<bool> {
-    let mut out = vec![false; plan.n];
-    for u in plan.blocks.iter().filter_map(|bp| bp.solve.closed_form()).flat_map(|r| r.form.angles()) {
-        out[u] = true;
-    }
-    out
-}
-
-/// Input pairs `(i, j)` with `i <= j`, in the order second analogs are stored.
-pub fn pairs(ni: usize) -> Vec<(usize, usize)> {
-    (0..ni).flat_map(|i| (i..ni).map(move |j| (i, j))).collect()
-}
-
-/// Index of the input pair `(i, j)` (in either order) among [`pairs`].
-pub fn pair_index(ni: usize, i: usize, j: usize) -> usize {
-    let (i, j) = if i <= j { (i, j) } else { (j, i) };
-    pairs(ni).iter().position(|&p| p == (i, j)).unwrap_or(0)
-}
-
-/// Rows from columns: `columns[c][r]` becomes `rows[r][c]` (every pass differentiates one
-/// column at a time: one input, one parameter).
-pub fn rows_from_columns(rows: usize, columns: impl IntoIterator<Item = Vec<NodeId>>) -> Vec<Vec<NodeId>> {
-    let mut out = vec![Vec::new(); rows];
-    for col in columns {
-        for (r, node) in col.into_iter().enumerate() {
-            out[r].push(node);
-        }
-    }
-    out
-}
-
-/// The parameters' default values when every parameter has one that is a finite constant: the
-/// one rule for `Default`, used by the generated items and by the fallback after an error.
-pub fn param_defaults(values: impl IntoIterator<Item = Option<f64>>) -> Option<Vec<f64>> {
-    values.into_iter().map(|v| v.filter(|v| v.is_finite())).collect()
-}
-
-/// The defaults of a resolved model's parameters (see [`param_defaults`]).
-pub fn model_defaults(model: &Model) -> Option<Vec<f64>> {
-    param_defaults(model.params.iter().map(|p| p.value.and_then(|v| model.graph.as_const(v))))
-}
 
 /// Runs every pass over the model's graph, which the plan takes over.
 pub fn build(model: &mut Model, blocks: &[Block], with_sensitivities: bool) -> Plan {

@@ -1,6 +1,6 @@
 //! The outputs' analogs, by the chain rule through the unknowns' analog leaves.
 
-use super::rows_from_columns;
+use super::columns::rows_from_columns;
 use super::seeds::Seeds;
 use crate::graph::dag::{Graph, NodeId};
 

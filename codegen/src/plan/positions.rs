@@ -2,9 +2,9 @@
 //! whether it is linear in its unknowns.
 //!
 //! How a block is solved is decided from its [`Position`] in [`super::solve`], which imports it
-//! from here; the block's plan is assembled from both by [`super::BlockPlan::new`].
+//! from here; the block's plan is assembled from both by [`super::block_plan::BlockPlan::new`].
 
-use super::rows_from_columns;
+use super::columns::rows_from_columns;
 use crate::graph::dag::{Graph, Leaf, NodeId};
 use crate::structure::Block;
 

@@ -1,7 +1,7 @@
 //! The leaves that stand for derived quantities (analogs, sensitivities) and the directional
 //! derivatives seeded with them.
 
-use super::pairs;
+use super::input_pairs::pairs;
 use crate::graph::dag::{Graph, Leaf, NodeId};
 use crate::structure::Block;
 

@@ -3,8 +3,9 @@
 //! factorisations), and the outputs' sensitivities by the chain rule.
 
 use super::analogs::negated;
+use super::columns::rows_from_columns;
 use super::seeds::Seeds;
-use super::{Stages, rows_from_columns};
+use super::stages::Stages;
 use crate::graph::dag::{Graph, NodeId};
 
 /// One stage: every parameter's derivative of every column in `columns`, parameter innermost,

@@ -13,7 +13,7 @@
 //! Jacobian entry in `q`'s column is not the constant zero are looked at (the others do not
 //! contain `q`), so the pass costs about the block's own graph, not the graph times the block.
 
-use super::BlockPlan;
+use super::block_plan::BlockPlan;
 use crate::graph::dag::{Func, Graph, Leaf, NodeId, Op};
 use std::collections::{HashMap, HashSet};
 

@@ -2,10 +2,13 @@
 //! one factorisation of its Jacobian: the position solve's where it made one, otherwise made
 //! with the velocity analogs.
 
+use super::evaluation_slot::evaluation_ident;
+use super::generator::Kernel;
+use super::mode::Mode;
 use super::scopes::{keeps_lu, stage_rows};
-use super::{Kernel, Mode, evaluation_ident};
+use crate::emit::literals::lit;
 use crate::emit::names::float_arg;
-use crate::emit::{lit, sparse};
+use crate::emit::sparse;
 use crate::plan::pairs;
 use crate::plan::solve::Solve;
 use crate::plan::sparse::Sparse;

@@ -1,9 +1,11 @@
 //! The entry of a solver kernel: the solve report it starts, the configuration check when no
 //! Newton block makes it, and a deferred kernel's mode and test of its guesses.
 
+use super::bindings::bind_q;
 use super::finish::balanced_sum;
-use super::{Kernel, bind_q};
-use crate::emit::{lit, runtime};
+use super::generator::Kernel;
+use crate::emit::literals::lit;
+use crate::emit::runtime_path::runtime;
 use crate::plan::Plan;
 use proc_macro2::TokenStream;
 use quote::quote;

@@ -1,8 +1,8 @@
 //! The factorisation of a block's Jacobian evaluated from the graph, and the column magnitudes
 //! (entries and lever floors) it is equilibrated by.
 
-use super::Kernel;
-use crate::emit::lit;
+use super::generator::Kernel;
+use crate::emit::literals::lit;
 use crate::graph::dag::NodeId;
 use crate::plan::BlockPlan;
 use proc_macro2::TokenStream;

@@ -1,7 +1,8 @@
 //! The end of a solver kernel: the state (`Kin`, and `Sens` with the sensitivities) built from
 //! the locals, and the one test of its finiteness that accepts it.
 
-use super::{Kernel, Mode};
+use super::generator::Kernel;
+use super::mode::Mode;
 use crate::graph::dag::NodeId;
 use crate::plan::finite::{self, Term, Value};
 use crate::plan::{Stages, pair_index};

@@ -14,61 +14,36 @@
 //! A kernel is written in order: its scopes (which graph nodes each part computes,
 //! [`scopes`]), its entry ([`entry`]), each block's position solve ([`position`], with the
 //! factorisations of [`factor`]), the analogs and sensitivities ([`analogs`]) and its end, which
-//! checks and returns the state ([`finish`]).
+//! checks and returns the state ([`finish`]). They are all methods of one [`Kernel`]
+//! ([`generator`]: the plan, the names, the schedule and the scopes it is written from), with the
+//! `let`s binding what it reads ([`bindings`]) and the slots of the Newton evaluations
+//! ([`evaluation_slot`]).
 
 mod analogs;
+mod bindings;
 mod entry;
+mod evaluation_slot;
 mod factor;
 mod finish;
+mod generator;
+mod mode;
 mod position;
 mod scopes;
 
+pub(super) use bindings::{bind_q, prologue};
 pub use entry::closed_config_check;
+pub use mode::Mode;
 
 use super::names::Names;
-use super::runtime;
-use super::schedule::{Schedule, ScopeSpec, schedule};
+use super::runtime_path::runtime;
+use super::schedule::{ScopeSpec, schedule};
 use crate::graph::dag::{Graph, Leaf, NodeId};
-use crate::plan::{BlockPlan, Plan};
-use proc_macro2::{Ident, TokenStream};
-use quote::{format_ident, quote};
-use scopes::{Scopes, plan_scopes};
+use crate::plan::Plan;
+use generator::Kernel;
+use proc_macro2::TokenStream;
+use quote::quote;
+use scopes::plan_scopes;
 use std::collections::HashSet;
-
-/// What a solver kernel computes (see the module documentation).
-#[derive(Clone, Copy, PartialEq, Eq)]
-pub enum Mode {
-    /// The positions only.
-    Position,
-    /// The positions, then their analogs and the outputs.
-    Fused,
-    /// The analogs and the outputs at a position the caller gives.
-    At,
-}
-
-/// The pieces of a solver kernel being generated.
-struct Kernel<'a> {
-    plan: &'a Plan,
-    g: &'a Graph,
-    names: &'a Names,
-    mode: Mode,
-    sched: Schedule,
-    scopes: Scopes,
-    rt: TokenStream,
-    /// Checks switched by the kernel's constant `__CHECKED`, deferred to its end when it is
-    /// false (see [`deferred_body`]).
-    deferred: bool,
-    /// The leaves the kernel reads.
-    used: HashSet<Leaf>,
-    /// The `sin`/`cos` nodes that closed-form solves define.
-    closed_trig: HashSet<NodeId>,
-}
-
-/// The slot holding Newton block `b`'s evaluation (`__ev{b}`: residuals, Jacobian, kept
-/// values), which the runtime's iteration updates in place.
-fn evaluation_ident(b: usize) -> Ident {
-    format_ident!("__ev{}", b)
-}
 
 /// The body of a solver kernel with arguments `__x`, `__guess` (or `__q` in mode `At`) and
 /// `__cfg`, returning a `Kin` (or `(Kin, Sens)` with `sens`).
@@ -136,41 +111,4 @@ fn body(plan: &Plan, names: &Names, mode: Mode, sens: bool, deferred: bool) -> T
 fn used_leaves(g: &Graph, specs: &[ScopeSpec]) -> HashSet<Leaf> {
     let roots: Vec<NodeId> = specs.iter().flat_map(|s| s.roots.iter().copied()).collect();
     g.leaves_of(&roots).into_iter().collect()
-}
-
-/// `let [a, _, c] = *from;` binding only the used elements; nothing when none is used.
-fn bind_used(ids: &[Ident], used: impl Fn(usize) -> bool, from: TokenStream) -> TokenStream {
-    if !(0..ids.len()).any(&used) {
-        return TokenStream::new();
-    }
-    let pats = ids.iter().enumerate().map(|(k, id)| if used(k) { quote!(#id) } else { quote!(_) });
-    quote!(let [#(#pats),*] = *#from;)
-}
-
-/// Binds the inputs the kernel reads to locals (parameters are read as `self.a`).
-pub(super) fn prologue(names: &Names, used: &HashSet<Leaf>) -> TokenStream {
-    bind_used(&names.inputs, |k| used.contains(&Leaf::Input(k as u16)), quote!(__x))
-}
-
-/// Binds the unknowns the kernel reads from `__q`.
-pub(super) fn bind_q(names: &Names, used: &HashSet<Leaf>) -> TokenStream {
-    bind_used(&names.unknowns, |k| used.contains(&Leaf::Unknown(k as u16)), quote!(__q))
-}
-
-impl Kernel<'_> {
-    fn lets(&self, scope: usize) -> TokenStream {
-        self.names.lets(self.g, &self.sched, &self.sched.lets[scope])
-    }
-
-    fn op(&self, n: NodeId) -> TokenStream {
-        self.names.operand(self.g, n)
-    }
-
-    fn unknowns_of(&self, bp: &BlockPlan) -> Vec<&Ident> {
-        bp.unknowns.iter().map(|&u| &self.names.unknowns[u]).collect()
-    }
-
-    fn guess_arg(&self) -> TokenStream {
-        if self.mode == Mode::At { quote!(None) } else { quote!(Some(__guess)) }
-    }
 }

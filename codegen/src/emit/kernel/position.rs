@@ -1,10 +1,13 @@
 //! Each block's position solve, as its plan's `Solve` says: one division, one linear solve,
 //! the straight-line solve of a closed form, or Newton over the block's evaluation.
 
+use super::evaluation_slot::evaluation_ident;
+use super::generator::Kernel;
+use super::mode::Mode;
 use super::scopes::keeps_lu;
-use super::{Kernel, Mode, evaluation_ident};
+use crate::emit::literals::lit;
 use crate::emit::names::{NearCall, float_arg};
-use crate::emit::{closed_form, lit, sparse};
+use crate::emit::{closed_form, sparse};
 use crate::graph::dag::NodeId;
 use crate::plan::BlockPlan;
 use crate::plan::closed_form::Recognised;

@@ -2,7 +2,7 @@
 //! and its sensitivities compute, then the outputs'; the scheduler places every node in the
 //! first scope that needs it.
 
-use super::Mode;
+use super::mode::Mode;
 use crate::emit::schedule::{ScopeKind, ScopeSpec};
 use crate::graph::dag::NodeId;
 use crate::plan::solve::Solve;

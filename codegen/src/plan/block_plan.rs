@@ -1,0 +1,66 @@
+//! The plan of one block of the decomposition: how its positions are solved, and every
+//! derivative and magnitude computed for it.
+
+use super::positions::Position;
+use super::solve::Solve;
+use super::stages::Stages;
+use crate::graph::dag::NodeId;
+use crate::structure::Block;
+
+/// Everything computed for one block of the decomposition.
+pub struct BlockPlan {
+    /// The block's unknowns (indices into the model's unknowns).
+    pub unknowns: Vec<usize>,
+    /// The block's equations (indices into the model's equations).
+    pub equations: Vec<usize>,
+    /// How the block's positions are solved.
+    pub solve: Solve,
+    /// Residuals of the block's equations.
+    pub f: Vec<NodeId>,
+    /// `jac[r][c] = d f_r / d q_c` over the block's unknowns.
+    pub jac: Vec<Vec<NodeId>>,
+    /// Per block unknown: the non-zero entries of its column of the full Jacobian, whose largest
+    /// magnitude equilibrates the column (see `kinloop_runtime::Lu`).
+    pub col_scale: Vec<Vec<NodeId>>,
+    /// Per block unknown: the lever floors its column's magnitude is raised to (see
+    /// [`magnitudes`](super::magnitudes)); empty for most columns.
+    pub lever_floor: Vec<Vec<NodeId>>,
+    /// `vel[r][i]`: the velocity right-hand side.
+    pub vel: Vec<Vec<NodeId>>,
+    /// `acc[r][p]`: the acceleration right-hand side for input pair `p`.
+    pub acc: Vec<Vec<NodeId>>,
+    /// Right-hand sides of the parameter sensitivities, when requested.
+    pub sens: Option<Stages>,
+    /// Per row: the magnitude of the equation's terms (see [`magnitudes`](super::magnitudes)).
+    pub scale: Vec<NodeId>,
+    /// Per block unknown: the unit its Newton steps are judged in (see
+    /// [`magnitudes`](super::magnitudes)).
+    pub unit: Vec<NodeId>,
+    /// Per block unknown of a Newton block: whether its equations repeat every turn of it
+    /// (see [`turns`](super::turns)); all `false` for the other blocks.
+    pub turns: Vec<bool>,
+}
+
+impl BlockPlan {
+    /// The plan of block `blk` from its position part and its solve (its magnitudes, analogs and
+    /// sensitivities are filled in later).
+    pub fn new(blk: &Block, pos: Position, solve: Solve) -> BlockPlan {
+        // The linear right-hand side went into `solve`.
+        let Position { f, jac, col_scale, rhs: _ } = pos;
+        BlockPlan {
+            unknowns: blk.unknowns.clone(),
+            equations: blk.equations.clone(),
+            solve,
+            f,
+            jac,
+            col_scale,
+            lever_floor: vec![Vec::new(); blk.unknowns.len()],
+            turns: vec![false; blk.unknowns.len()],
+            vel: Vec::new(),
+            acc: Vec::new(),
+            sens: None,
+            scale: Vec::new(),
+            unit: Vec::new(),
+        }
+    }
+}
