@@ -83,16 +83,20 @@ fn the_solvers_are_the_bottom_layer() {
 
 /// A small crate whose solver imports the mechanism above it (inline, in a `use` through a
 /// re-export, and in its tests), whose two sweep modules import each other, with an alias path
-/// and a `#[path]` mount: every rule fires. Neither the parent's re-export of its child's item
-/// nor the test's import closes a circle.
+/// and a `#[path]` mount: every rule fires. Neither the parent's re-export of its child's item,
+/// nor the test's import, nor a visibility's path (`pub(in crate::drawing)`) closes a circle.
 #[test]
 fn an_upward_import_is_found() {
     let dir = std::env::temp_dir().join(format!("kinloop-layering-{}", std::process::id()));
     let files = [
         (
             "lib.rs",
-            "mod mechanism;\nmod solvers;\nmod error;\nmod paths;\nuse solvers::closed;\npub use mechanism::Mechanism;\n",
+            "mod mechanism;\nmod solvers;\nmod error;\nmod paths;\nmod drawing;\nuse solvers::closed;\n\
+             pub use mechanism::Mechanism;\n",
         ),
+        // A visibility's path (`pub(in crate::drawing)`) restricts an item; it imports nothing.
+        ("drawing/mod.rs", "pub mod part;\npub fn draw() { part::line() }\n"),
+        ("drawing/part.rs", "pub(in crate::drawing) fn line() {}\n"),
         ("paths/mod.rs", "pub mod sweep;\npub mod curve;\n"),
         ("paths/sweep.rs", "use super::curve::Point;\npub struct Sweep(Point);\n"),
         ("paths/curve.rs", "pub struct Point;\npub fn trace(_: &super::sweep::Sweep) {}\n"),

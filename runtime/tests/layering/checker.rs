@@ -296,6 +296,12 @@ impl Crate {
                 cfg_test = false;
                 continue;
             }
+            // A visibility (`pub(crate)`, `pub(super)`, `pub(in crate::emit)`): its path names
+            // where an item may be seen from, not something the module uses.
+            if t.is_ident("pub") && toks.get(i + 1).is_some_and(|t| t.is_punct('(')) {
+                i = matching(&toks, i + 1, '(', ')') + 1;
+                continue;
+            }
             if t.is_ident("use") {
                 let reexport = match toks[..i].last() {
                     Some(p) if p.is_ident("pub") => true,
