@@ -346,3 +346,36 @@ fn a_file_that_is_not_text_says_where() {
     assert_eq!(out.status.code(), Some(66), "{err}");
     assert!(err.contains("not UTF-8 text") && err.contains("line 2, column 18"), "{err}");
 }
+
+/// A range longer than the turns a sweep follows is a mistake of the arguments, found before
+/// any step: a usage error (exit 2) of `sweep`, `extremes` and `animate` alike, saying how far
+/// apart `--from` and `--to` may be, with nothing written.
+#[test]
+fn a_range_of_too_many_turns_is_a_usage_error() {
+    let four_bar = shipped("four_bar.kl");
+    let params = "a=1,b=3,c=2.5,d=3.2";
+    let out_file = std::env::temp_dir().join(format!("kinloop-cli-turns-{}.svg", std::process::id()));
+    let out_file = out_file.display().to_string();
+    for (command, to, deg, span) in [
+        ("sweep", "1e7", false, "6283185.3"),
+        ("sweep", "4e8", true, "360000000 deg"),
+        ("extremes", "1e7", false, "6283185.3"),
+        ("animate", "1e7", false, "6283185.3"),
+    ] {
+        let mut args = vec![command, four_bar.as_str(), "--from", "0", "--to", to, "--params", params];
+        if deg {
+            args.push("--deg");
+        }
+        if command == "animate" {
+            args.extend(["--out", out_file.as_str()]);
+        }
+        let out = kinloop(&args);
+        let err = String::from_utf8_lossy(&out.stderr);
+        assert_eq!(out.status.code(), Some(2), "{command} --to {to}: {err}");
+        for what in [&format!("--from 0 --to {to}"), "turns", "at most 1e6 turns apart", span] {
+            assert!(err.contains(what), "{command} --to {to}: `{what}` missing: {err}");
+        }
+        assert!(out.stdout.is_empty(), "{command}: {}", String::from_utf8_lossy(&out.stdout));
+    }
+    assert!(!std::path::Path::new(&out_file).exists());
+}
