@@ -379,3 +379,49 @@ fn a_range_of_too_many_turns_is_a_usage_error() {
     }
     assert!(!std::path::Path::new(&out_file).exists());
 }
+
+/// An opening bracket never closed before the brace that ends the block is reported where it
+/// is, not at the brace (which closes the block and is no mistake of its own).
+#[test]
+fn an_unclosed_parenthesis_is_reported_where_it_opens() {
+    let dir = std::env::temp_dir().join(format!("kinloop-cli-unclosed-{}", std::process::id()));
+    std::fs::create_dir_all(&dir).expect("temp dir");
+    let cases = [
+        // In a loop's equation, the block's `}` after it.
+        (
+            "paren.kl",
+            "pub struct S {\n    params a = 1;\n    input phi;\n    unknowns x = 0;\n    loop l: a @ phi == (x, 0;\n}\n",
+            "(",
+            "paren.kl:5:24",
+            "line 6, column 1",
+        ),
+        // A bracket inside a parenthesis inside the block: the innermost one is never closed.
+        (
+            "bracket.kl",
+            "pub struct S {\n    params a = 1;\n    input phi;\n    unknowns x = (0, [1;\n}\n",
+            "[",
+            "bracket.kl:4:22",
+            "line 5, column 1",
+        ),
+    ];
+    for (name, text, open, place, brace) in cases {
+        let file = dir.join(name);
+        std::fs::write(&file, text).expect("write");
+        let out = kinloop(&["check", &file.display().to_string()]);
+        let err = String::from_utf8_lossy(&out.stderr);
+        assert_eq!(out.status.code(), Some(65), "{err}");
+        assert!(err.contains(&format!("unclosed delimiter: this `{open}` is never closed")), "{err}");
+        assert!(err.contains(place), "{err}");
+        assert!(err.contains(&format!("the `}}` at {brace}")), "the brace that met it is named: {err}");
+        assert!(!err.contains("unexpected closing delimiter"), "{err}");
+    }
+    // A closing parenthesis that closes nothing open around it: the mistake is where it is.
+    let stray = dir.join("stray.kl");
+    let text = "pub struct S {\n    params a = 1;\n    input phi;\n    unknowns x = 0;\n    loop l: a @ phi == (x, 0);\n    )\n}\n";
+    std::fs::write(&stray, text).expect("write");
+    let out = kinloop(&["check", &stray.display().to_string()]);
+    let err = String::from_utf8_lossy(&out.stderr);
+    assert_eq!(out.status.code(), Some(65), "{err}");
+    assert!(err.contains("unexpected closing delimiter: `)`") && err.contains("stray.kl:6:5"), "{err}");
+    std::fs::remove_dir_all(&dir).ok();
+}
