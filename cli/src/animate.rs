@@ -5,6 +5,7 @@
 
 use crate::exit::usage;
 use crate::solve::{in_units, model_inputs};
+use crate::sweep::range_too_long;
 use crate::{Failed, exit, samples};
 use kinloop_model::Model;
 use kinloop_runtime::{Error, QuantityKind};
@@ -91,8 +92,12 @@ pub fn run(model: &mut Model, req: &Request) -> Result<(), Failed> {
     let Endpoints { from, to, guess } = endpoints(model, req)?;
     let kinds = model.input_kinds().to_vec();
     let motion = model.motion(&from, &to, samples, &guess).map_err(|e| match e {
-        // The runtime's refusal of the arguments (`to` equal to `from`) is a usage error.
+        // The runtime's refusal of the arguments (`to` equal to `from`, a range of more turns
+        // than a sweep follows) is a usage error.
         DrawError::Sweep(e @ Error::InvalidArgument(_)) => usage(format!("{name}: {e}")),
+        DrawError::Sweep(e @ Error::RangeTooLong { .. }) => {
+            range_too_long(&name, &e, req.from, req.to, req.deg).unwrap_or_else(|| failed(&e))
+        }
         DrawError::Sweep(e) => failed(&DrawError::Sweep(in_units(e, &kinds, req.deg))),
         e => failed(&e),
     })?;

@@ -5,6 +5,7 @@
 //! range). Written as CSV with units, or as a readable table.
 
 use crate::solve::{in_units, model_inputs};
+use crate::sweep::range_too_long;
 use crate::{Failed, exit, progress, samples};
 use kinloop_model::Model;
 use kinloop_runtime::{Error, QuantityKind, SweepConfig};
@@ -89,9 +90,13 @@ pub fn run(model: &mut Model, req: &Request) -> Result<(), Failed> {
     let sampled = model
         .sampled_reporting(&from, &to, req.samples, &guess, SweepConfig::default(), |n| bar.set_position(n as u64));
     // The runtime checks the arguments (at least three samples, `to` apart from `from`, and
-    // past it for one input): its refusal is a usage error, not a failed solve.
+    // past it for one input; a range of at most the turns a sweep follows): its refusal is a
+    // usage error, not a failed solve.
     let sampled = sampled.map_err(|e| {
         bar.finish_and_clear();
+        if let Some(usage) = range_too_long(&name, &e, req.from, req.to, req.deg) {
+            return usage;
+        }
         match e {
             Error::InvalidArgument(_) => exit::usage(format!("{name}: {e}")),
             e => failed(&in_units(e, &input_kinds, req.deg)),

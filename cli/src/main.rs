@@ -167,6 +167,11 @@ enum Command {
         /// Equally spaced times written, both ends included (at least 2, at most 10000000).
         #[arg(long, default_value_t = 101)]
         samples: usize,
+        /// The integrator's step budget (at least 1): a `--time` that needs more steps stops
+        /// with a usage error. Every step is kept until the end (about 100 bytes each), so the
+        /// budget bounds the memory the run takes.
+        #[arg(long, value_name = "N", default_value_t = simulate::MAX_STEPS, allow_hyphen_values = true)]
+        max_steps: usize,
         /// Angles in degrees (the start, the speed, the input written); otherwise radians.
         #[arg(long)]
         deg: bool,
@@ -276,7 +281,7 @@ enum Command {
         /// The input range of path targets without inputs (a full turn of an angle otherwise).
         #[arg(long, value_name = "LO..HI", allow_hyphen_values = true)]
         range: Option<String>,
-        /// Halton starts of the local solve.
+        /// Halton starts of the local solve (at least 1).
         #[arg(long, default_value_t = 64)]
         starts: usize,
         /// The seed of the starts' sequence.
@@ -345,9 +350,9 @@ fn run(cli: Cli) -> Result<(), Failed> {
             };
             dynamics::run(&mut model, &req)
         }
-        Command::Simulate { file, speed, start, time, torque, flywheel, samples, deg, params } => {
+        Command::Simulate { file, speed, start, time, torque, flywheel, samples, max_steps, deg, params } => {
             let mut model = load(&file, params.as_deref())?;
-            let req = simulate::Request { start, speed, time, torque, flywheel, samples, deg };
+            let req = simulate::Request { start, speed, time, torque, flywheel, samples, deg, max_steps };
             simulate::run(&mut model, &req)
         }
         Command::Extremes { file, from, to, samples, deg, params, columns, table } => {

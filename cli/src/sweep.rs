@@ -57,7 +57,38 @@ pub fn run(model: &mut Model, req: &Request) -> Result<(), Failed> {
         Error::InvalidArgument(_) => exit::usage(format!("{name}: {e}")),
         e => failed(&in_units(e, &kinds[..ni], req.deg)),
     })?;
-    // Created before the sweep runs: a path that cannot be written stops before any output.
+    let mut table = Table::new(columns);
+    let mut stop = None;
+    let last = req.samples.saturating_sub(1).max(1) as f64;
+    // A state's row (`table_row`) in the units written, appended to the table.
+    let push = |table: &mut Table, state: Vec<f64>| {
+        let mut row: Vec<f64> = state.iter().zip(&factors).map(|(v, f)| v * f).collect();
+        // An angle input in degrees: the sample's value between the ends given, not its
+        // radians times `180/π` (`59.99999999999999` for the sample at 60), as `solve` writes
+        // the input given. Exact where the samples fall on round numbers.
+        let s = table.rows.len() as f64;
+        for (i, ends) in degrees.iter().enumerate() {
+            let Some((a, b)) = ends else { continue };
+            let given = (a * (last - s) + b * s) / last;
+            // Ends near the largest `f64`: the products overflow, the product stays.
+            if given.is_finite() {
+                row[i] = given;
+            }
+        }
+        table.push(row);
+    };
+    // The first sample, before anything is created: a range longer than a sweep follows is
+    // refused there, a usage error.
+    match sweep.next_ref() {
+        Some(Ok(k)) => push(&mut table, k.table_row()),
+        Some(Err(e)) => match range_too_long(&name, &e, req.from, req.to, req.deg) {
+            Some(usage) => return Err(usage),
+            None => stop = Some(e),
+        },
+        None => {}
+    }
+    // Created before the rest of the sweep runs: a path that cannot be written stops before
+    // any output.
     let events_file = match req.events {
         Some(path) => Some(std::fs::File::create(path).map_err(|e| {
             eprintln!("error: cannot create the events file {}: {e}", path.display());
@@ -65,32 +96,13 @@ pub fn run(model: &mut Model, req: &Request) -> Result<(), Failed> {
         })?),
         None => None,
     };
-    let mut table = Table::new(columns);
-    let mut stop = None;
     let bar = progress::bar(&format!("{name}: sweeping"), req.samples, req.samples);
-    let last = req.samples.saturating_sub(1).max(1) as f64;
-    while let Some(k) = sweep.next_ref() {
-        match k {
-            Ok(k) => {
-                let mut row: Vec<f64> = k.table_row().iter().zip(&factors).map(|(v, f)| v * f).collect();
-                // An angle input in degrees: the sample's value between the ends given, not
-                // its radians times `180/π` (`59.99999999999999` for the sample at 60), as
-                // `solve` writes the input given. Exact where the samples fall on round numbers.
-                let s = table.rows.len() as f64;
-                for (i, ends) in degrees.iter().enumerate() {
-                    let Some((a, b)) = ends else { continue };
-                    let given = (a * (last - s) + b * s) / last;
-                    // Ends near the largest `f64`: the products overflow, the product stays.
-                    if given.is_finite() {
-                        row[i] = given;
-                    }
-                }
-                table.push(row);
-            }
-            Err(e) => {
-                stop = Some(e);
-                break;
-            }
+    bar.inc(table.rows.len() as u64);
+    while stop.is_none() {
+        match sweep.next_ref() {
+            Some(Ok(k)) => push(&mut table, k.table_row()),
+            Some(Err(e)) => stop = Some(e),
+            None => break,
         }
         bar.inc(1);
     }
@@ -109,6 +121,22 @@ pub fn run(model: &mut Model, req: &Request) -> Result<(), Failed> {
         Some(e) => Err(failed(&in_units(e, &kinds[..ni], req.deg))),
         None => Ok(()),
     }
+}
+
+/// The usage error of a range longer than a sweep follows ([`Error::RangeTooLong`], which a
+/// sweep finds before its first step): how far apart `--from` and `--to` may be, in the units
+/// given. `None` for any other error.
+pub(crate) fn range_too_long(name: &str, e: &Error, from: &str, to: &str, deg: bool) -> Option<Failed> {
+    let &Error::RangeTooLong { turns, max_turns, .. } = e else { return None };
+    let span = match deg {
+        true => format!("{:.0} deg", 360.0 * max_turns),
+        false => format!("{:.1} rad", std::f64::consts::TAU * max_turns),
+    };
+    Some(exit::usage(format!(
+        "{name}: --from {from} --to {to} spans {turns:.3e} turns of the inputs, more than the {max_turns:e} turns a \
+         sweep follows: give --from and --to at most {max_turns:e} turns apart ({span} of an angle input); split a \
+         longer range into several sweeps, or reduce a periodic input by whole turns"
+    )))
 }
 
 /// The events as CSV (`kind,tau,` the inputs and the unknowns, in the sweep's units, named

@@ -48,6 +48,9 @@ pub fn run(model: &Model, req: &Request) -> Result<(), Failed> {
     if req.keep == 0 {
         return Err(exit::usage("--keep 0 would write no candidate: keep at least 1"));
     }
+    if req.starts == 0 {
+        return Err(exit::usage("--starts 0 would search from no start: give at least 1 (e.g. --starts 64)"));
+    }
     if req.jobs == Some(0) {
         return Err(exit::usage("--jobs 0 would run no start: give at least 1"));
     }

@@ -346,3 +346,82 @@ fn a_file_that_is_not_text_says_where() {
     assert_eq!(out.status.code(), Some(66), "{err}");
     assert!(err.contains("not UTF-8 text") && err.contains("line 2, column 18"), "{err}");
 }
+
+/// A range longer than the turns a sweep follows is a mistake of the arguments, found before
+/// any step: a usage error (exit 2) of `sweep`, `extremes` and `animate` alike, saying how far
+/// apart `--from` and `--to` may be, with nothing written.
+#[test]
+fn a_range_of_too_many_turns_is_a_usage_error() {
+    let four_bar = shipped("four_bar.kl");
+    let params = "a=1,b=3,c=2.5,d=3.2";
+    let out_file = std::env::temp_dir().join(format!("kinloop-cli-turns-{}.svg", std::process::id()));
+    let out_file = out_file.display().to_string();
+    for (command, to, deg, span) in [
+        ("sweep", "1e7", false, "6283185.3"),
+        ("sweep", "4e8", true, "360000000 deg"),
+        ("extremes", "1e7", false, "6283185.3"),
+        ("animate", "1e7", false, "6283185.3"),
+    ] {
+        let mut args = vec![command, four_bar.as_str(), "--from", "0", "--to", to, "--params", params];
+        if deg {
+            args.push("--deg");
+        }
+        if command == "animate" {
+            args.extend(["--out", out_file.as_str()]);
+        }
+        let out = kinloop(&args);
+        let err = String::from_utf8_lossy(&out.stderr);
+        assert_eq!(out.status.code(), Some(2), "{command} --to {to}: {err}");
+        for what in [&format!("--from 0 --to {to}"), "turns", "at most 1e6 turns apart", span] {
+            assert!(err.contains(what), "{command} --to {to}: `{what}` missing: {err}");
+        }
+        assert!(out.stdout.is_empty(), "{command}: {}", String::from_utf8_lossy(&out.stdout));
+    }
+    assert!(!std::path::Path::new(&out_file).exists());
+}
+
+/// An opening bracket never closed before the brace that ends the block is reported where it
+/// is, not at the brace (which closes the block and is no mistake of its own).
+#[test]
+fn an_unclosed_parenthesis_is_reported_where_it_opens() {
+    let dir = std::env::temp_dir().join(format!("kinloop-cli-unclosed-{}", std::process::id()));
+    std::fs::create_dir_all(&dir).expect("temp dir");
+    let cases = [
+        // In a loop's equation, the block's `}` after it.
+        (
+            "paren.kl",
+            "pub struct S {\n    params a = 1;\n    input phi;\n    unknowns x = 0;\n    loop l: a @ phi == (x, 0;\n}\n",
+            "(",
+            "paren.kl:5:24",
+            "line 6, column 1",
+        ),
+        // A bracket inside a parenthesis inside the block: the innermost one is never closed.
+        (
+            "bracket.kl",
+            "pub struct S {\n    params a = 1;\n    input phi;\n    unknowns x = (0, [1;\n}\n",
+            "[",
+            "bracket.kl:4:22",
+            "line 5, column 1",
+        ),
+    ];
+    for (name, text, open, place, brace) in cases {
+        let file = dir.join(name);
+        std::fs::write(&file, text).expect("write");
+        let out = kinloop(&["check", &file.display().to_string()]);
+        let err = String::from_utf8_lossy(&out.stderr);
+        assert_eq!(out.status.code(), Some(65), "{err}");
+        assert!(err.contains(&format!("unclosed delimiter: this `{open}` is never closed")), "{err}");
+        assert!(err.contains(place), "{err}");
+        assert!(err.contains(&format!("the `}}` at {brace}")), "the brace that met it is named: {err}");
+        assert!(!err.contains("unexpected closing delimiter"), "{err}");
+    }
+    // A closing parenthesis that closes nothing open around it: the mistake is where it is.
+    let stray = dir.join("stray.kl");
+    let text = "pub struct S {\n    params a = 1;\n    input phi;\n    unknowns x = 0;\n    loop l: a @ phi == (x, 0);\n    )\n}\n";
+    std::fs::write(&stray, text).expect("write");
+    let out = kinloop(&["check", &stray.display().to_string()]);
+    let err = String::from_utf8_lossy(&out.stderr);
+    assert_eq!(out.status.code(), Some(65), "{err}");
+    assert!(err.contains("unexpected closing delimiter: `)`") && err.contains("stray.kl:6:5"), "{err}");
+    std::fs::remove_dir_all(&dir).ok();
+}

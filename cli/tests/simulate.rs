@@ -78,3 +78,43 @@ fn simulate_s_bad_arguments_and_failures_have_their_exit_codes() {
     assert_eq!(out.status.code(), Some(1), "{stderr}");
     assert!(stderr.contains("EngineMachine"), "{stderr}");
 }
+
+/// The step budget is an option: `--max-steps` that is no count of at least 1 is a usage
+/// error; a `--time` that needs more steps than the budget stops when the budget is spent (a
+/// trajectory of at most that many steps is kept, not one of millions) and says which option
+/// to raise; a budget that suffices changes nothing in the output.
+#[test]
+fn simulate_s_step_budget_is_an_option_that_bounds_the_run() {
+    let engine = shipped("engine.kl");
+    let run = |extra: &[&str]| {
+        let args = ["simulate", engine.as_str(), "--speed", "150", "--torque", "2.5", "--flywheel", "0.05"];
+        kinloop(&[&args[..], extra].concat())
+    };
+    let stderr = |o: &std::process::Output| String::from_utf8_lossy(&o.stderr).to_string();
+    for bad in ["0", "many", "-3", "1.5"] {
+        let out = run(&["--time", "0.2", "--max-steps", bad]);
+        assert_eq!(out.status.code(), Some(2), "--max-steps {bad}: {}", stderr(&out));
+        assert!(stderr(&out).contains("--max-steps"), "--max-steps {bad}: {}", stderr(&out));
+        assert!(out.stdout.is_empty());
+    }
+    let out = run(&["--time", "0.2", "--max-steps", "0"]);
+    assert!(stderr(&out).contains("at least 1"), "{}", stderr(&out));
+    // A span of a million million time units: the budget of 1000 steps is spent long before
+    // its end, in a moment and without the memory of the default budget's trajectory.
+    let started = std::time::Instant::now();
+    let out = run(&["--time", "1e12", "--max-steps", "1000"]);
+    let err = stderr(&out);
+    assert_eq!(out.status.code(), Some(2), "{err}");
+    assert!(started.elapsed() < std::time::Duration::from_secs(60), "{:?}", started.elapsed());
+    assert!(out.stdout.is_empty(), "no table of a simulation that did not reach its time");
+    for what in ["EngineMachine", "budget of 1000 steps", "raise --max-steps", "--time"] {
+        assert!(err.contains(what), "`{what}` missing: {err}");
+    }
+    assert!(!err.contains("OdeConfig"), "the library's setting named to a command-line user: {err}");
+    // A budget the run fits in: the same table as the default's.
+    let fits = run(&["--time", "0.2", "--samples", "11"]);
+    assert!(fits.status.success(), "{}", stderr(&fits));
+    let budget = run(&["--time", "0.2", "--samples", "11", "--max-steps", "100000"]);
+    assert!(budget.status.success(), "{}", stderr(&budget));
+    assert_eq!(fits.stdout, budget.stdout);
+}

@@ -180,9 +180,15 @@ fn usage_errors_and_no_candidate_have_their_exit_codes() {
     ]);
     assert_eq!(o.status.code(), Some(2));
     assert!(stderr(&o).contains("#[kinloop(sensitivities)]"), "{}", stderr(&o));
-    // No start at all: no candidate, exit code 1, the (empty) table still written.
+    // No start at all: a search that cannot find anything, a usage error saying what to give.
     let o = run(&["--path", "p", "--deg", "--vary", VARY, "--starts", "0"]);
-    assert_eq!(o.status.code(), Some(1));
+    assert_eq!(o.status.code(), Some(2), "{}", stderr(&o));
+    assert!(stderr(&o).contains("--starts 0") && stderr(&o).contains("at least 1"), "{}", stderr(&o));
+    assert!(o.stdout.is_empty());
+    // Starts of which none assembles (a crank ten times the coupler): no candidate, exit code 1,
+    // the (empty) table still written.
+    let o = run(&["--path", "p", "--deg", "--vary", "a=10..11", "--starts", "2"]);
+    assert_eq!(o.status.code(), Some(1), "{}", stderr(&o));
     assert!(stderr(&o).contains("no valid candidate"), "{}", stderr(&o));
     assert!(String::from_utf8_lossy(&o.stdout).starts_with("rank"));
 }

@@ -148,8 +148,61 @@ pub fn tokens(name: &str, text: &str) -> Result<TokenStream, Diagnostics> {
     text.parse::<TokenStream>().map_err(|e| {
         let mut d = at_span(text, e.span(), String::new());
         d.message = lex_message(&text[d.range.start..], &e);
+        if let Some(open) = unclosed_before(text, &d) {
+            d = open;
+        }
         Diagnostics { level: Level::Error, name: name.to_string(), text: text.to_string(), items: vec![d] }
     })
+}
+
+/// How many brackets open around a rejected closing one [`unclosed_before`] looks through for
+/// the one it closes (each a lexing of the text before it): far more than a declaration nests.
+const UNCLOSED_DEPTH: usize = 16;
+
+/// Where a closing bracket the lexer rejects (`d`, at the `}` of `{ (x }`) ends a block in
+/// which an opening one is never closed: the innermost bracket still open before it, where the
+/// compiler reports the mistake (the closing one only ends an outer bracket). The text before
+/// the closing bracket, lexed, is refused at that innermost open bracket; the text before that
+/// one at the next bracket out, and so on until one of the closing bracket's kind. `None`
+/// otherwise: `d` is no closing bracket, or it closes no bracket open around it (`{ ) }`: a
+/// closing bracket too many, reported where it is).
+fn unclosed_before(text: &str, d: &Diagnostic) -> Option<Diagnostic> {
+    let close = text[d.range.start..].chars().next().filter(|c| matches!(c, ')' | ']' | '}'))?;
+    // The innermost open bracket with its closing one, once found.
+    let mut innermost: Option<(Diagnostic, char, char)> = None;
+    let mut end = d.range.start;
+    for _ in 0..UNCLOSED_DEPTH {
+        let before = &text[..end];
+        // Every bracket before `end` closed: `close` closes nothing.
+        let e = before.parse::<TokenStream>().err()?;
+        let open = at_span(before, e.span(), String::new());
+        let c = before[open.range.start..].chars().next()?;
+        let closing = closing_of(c)?;
+        end = open.range.start;
+        match innermost {
+            None => innermost = Some((open, c, closing)),
+            Some((mut inner, c, inner_closing)) if closing == close => {
+                inner.message = format!(
+                    "unclosed delimiter: this `{c}` is never closed: close it with `{inner_closing}` before the \
+                     `{close}` at line {}, column {}",
+                    d.line, d.column
+                );
+                return Some(inner);
+            }
+            Some(_) => {}
+        }
+    }
+    None
+}
+
+/// The closing bracket of the opening one `c`.
+fn closing_of(c: char) -> Option<char> {
+    match c {
+        '(' => Some(')'),
+        '[' => Some(']'),
+        '{' => Some('}'),
+        _ => None,
+    }
 }
 
 /// The compiler's message for a text its lexer rejects at the start of `rest`, for the
