@@ -109,6 +109,20 @@ fn padded(lo: f64, hi: f64, pad: f64) -> (f64, f64) {
     (if lo >= 0.0 { plo.max(0.0) } else { plo }, if hi <= 0.0 { phi.min(0.0) } else { phi })
 }
 
+/// The scaled range `[lo, hi]` padded (see [`padded`]), a zero-width one opened around its
+/// value.
+fn opened(lo: f64, hi: f64, pad: f64) -> (f64, f64) {
+    // The pad never crosses zero: data that are all non-negative (an amplitude, a length from
+    // a datum) get an axis from 0, not one reaching below it for the pad alone.
+    let (lo, hi) = padded(lo, hi, pad);
+    if hi > lo {
+        (lo, hi)
+    } else {
+        let half = if lo == 0.0 { 1.0 } else { 0.05 * lo.abs() };
+        (lo - half, hi + half)
+    }
+}
+
 impl Ticks {
     /// Ticks for data in `[lo, hi]` (library units, finite), shown times `factor`: about six
     /// intervals for angles (90 degree steps over a turn), about seven otherwise. The range
@@ -122,16 +136,22 @@ impl Ticks {
 
     /// [`Ticks::new`] for a range already scaled by `unit` and `factor`.
     pub fn scaled(lo: f64, hi: f64, unit: f64, factor: f64, angle: bool, widen: bool, pad: f64) -> Ticks {
-        // The pad never crosses zero: data that are all non-negative (an amplitude, a length
-        // from a datum) get an axis from 0, not one reaching below it for the pad alone.
-        let (lo, hi) = padded(lo, hi, pad);
-        let (lo, hi) = if hi > lo {
-            (lo, hi)
-        } else {
-            let half = if lo == 0.0 { 1.0 } else { 0.05 * lo.abs() };
-            (lo - half, hi + half)
-        };
-        let raw = (hi - lo) / if angle { 6.0 } else { 7.0 };
+        let (lo, hi) = opened(lo, hi, pad);
+        Ticks::stepped(lo, hi, unit, factor, angle, widen, if angle { 6.0 } else { 7.0 })
+    }
+
+    /// Ticks for values in `[lo, hi]` (finite, already in shown units: degrees for angles),
+    /// about `intervals` of them, the range widened to whole steps and not padded: a small
+    /// chart's axis (the interactive pages'), with the steps and labels of the plot module's.
+    pub fn widened(lo: f64, hi: f64, angle: bool, intervals: f64) -> Ticks {
+        let unit = binade(lo.abs().max(hi.abs()));
+        let (lo, hi) = opened(lo / unit, hi / unit, 0.0);
+        Ticks::stepped(lo, hi, unit, 1.0, angle, true, intervals)
+    }
+
+    /// Ticks over the scaled range `[lo, hi]` (`hi > lo`), about `intervals` steps.
+    fn stepped(lo: f64, hi: f64, unit: f64, factor: f64, angle: bool, widen: bool, intervals: f64) -> Ticks {
+        let raw = (hi - lo) / intervals;
         let (mant, exp) = nice_step(raw * unit, raw.log10() + log10_of_binade(unit), angle);
         let shown = decimal_value(mant, exp);
         let step = if shown.is_normal() && (shown / unit).is_normal() {
@@ -259,6 +279,18 @@ mod tests {
         // Decimals keep the step's digits, zero too.
         let t = Ticks::new(-0.0023, 0.0021, 1.0, false, true, 0.0);
         assert_eq!(labels(&t), ["-0.003", "-0.002", "-0.001", "0.000", "0.001", "0.002", "0.003"]);
+    }
+
+    #[test]
+    fn a_small_charts_axis_has_fewer_steps_and_the_same_labels() {
+        let t = Ticks::widened(-1.0e-6, 1.4e-6, false, 5.0);
+        assert_eq!(labels(&t), ["-1.0e-6", "-0.5e-6", "0", "0.5e-6", "1.0e-6", "1.5e-6"]);
+        assert_eq!((t.lo * t.unit, t.hi * t.unit), (-1.0e-6, 1.5e-6));
+        let t = Ticks::widened(0.0, 180.0, true, 5.0);
+        assert_eq!(labels(&t), ["0", "45", "90", "135", "180"]);
+        consistent(&Ticks::widened(7.0, 7.0, false, 5.0));
+        consistent(&Ticks::widened(0.0, 0.0, true, 5.0));
+        consistent(&Ticks::widened(-1e100, 1e100, false, 5.0));
     }
 
     /// Every tick of `t` at its place: labels parse back to finite numbers, increasing by
