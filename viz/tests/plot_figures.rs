@@ -259,10 +259,12 @@ fn mixing_quantity_kinds_on_one_axis_is_an_error() {
 }
 
 /// The value of tick label `l` (`m` or `me<e>`) times `2^s`, computed without leaving the
-/// f64 range (the label itself may lie beyond it, or among the subnormals).
+/// f64 range (the label itself may lie beyond it, or among the subnormals). Zero is `"0"`
+/// on any axis, and stays zero whatever `2^s`.
 fn label_times_pow2(l: &str, s: i32) -> f64 {
     let (m, e) = l.split_once('e').map_or((l, 0), |(m, e)| (m, e.parse().unwrap()));
-    m.parse::<f64>().unwrap() * 10f64.powf(e as f64 + s as f64 * std::f64::consts::LOG10_2)
+    let m = m.parse::<f64>().unwrap();
+    if m == 0.0 { 0.0 } else { m * 10f64.powf(e as f64 + s as f64 * std::f64::consts::LOG10_2) }
 }
 
 /// Every attribute value and text of `svg` is free of `NaN` and `inf`.

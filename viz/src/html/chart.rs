@@ -2,6 +2,7 @@
 
 use super::readouts::Channel;
 use crate::escape::escape;
+use crate::plot::ticks::Ticks;
 use std::fmt::Write;
 
 /// Plot area insets in pixels: left (tick labels and the y title), right, top, bottom (tick
@@ -17,51 +18,28 @@ pub(crate) fn px(v: f64) -> String {
     format!("{r}")
 }
 
-/// An axis range widened to whole steps, and its ticks.
-pub(crate) struct Ticks {
+/// About this many intervals between ticks on each axis: fewer than the plot module's larger
+/// charts, so that the labels of a small chart stay apart.
+const INTERVALS: f64 = 5.0;
+
+/// A chart's axis: its range widened to whole steps, and its ticks (shown units).
+pub(crate) struct Axis {
     pub lo: f64,
     pub hi: f64,
     /// The tick values and their labels.
     pub ticks: Vec<(f64, String)>,
 }
 
-/// The step between ticks: 1, 2, 2.5 or 5 times a power of ten, or for degrees above ten a
-/// division of a turn (15, 30, 45, 90, 180, 360 degrees) or whole turns; with the digits its
-/// labels need.
-fn step(raw: f64, degrees: bool) -> (f64, usize) {
-    if degrees && raw > 10.0 {
-        if let Some(&s) = [15.0, 30.0, 45.0, 90.0, 180.0, 360.0].iter().find(|&&s| s >= raw) {
-            return (s, 0);
-        }
-        let (turns, _) = step(raw / 360.0, false);
-        return (360.0 * turns.ceil(), 0);
-    }
-    let p = 10f64.powf(raw.log10().floor());
-    let m = [1.0, 2.0, 2.5, 5.0, 10.0].into_iter().find(|&m| m * p >= raw * (1.0 - 1e-12)).unwrap_or(10.0);
-    let digits = -(p.log10().round()) + if m == 2.5 { 1.0 } else { 0.0 };
-    ((m * p), digits.max(0.0) as usize)
-}
-
-/// Ticks over `[lo, hi]` (shown units), about five, the range widened to whole steps.
-pub(crate) fn ticks(lo: f64, hi: f64, degrees: bool) -> Ticks {
-    let (mut lo, mut hi) = (lo, hi);
-    if hi - lo <= 1e-12 * lo.abs().max(hi.abs()) {
-        // A constant: a range around it.
-        let pad = if lo == 0.0 { 1.0 } else { 0.1 * lo.abs() };
-        (lo, hi) = (lo - pad, hi + pad);
-    }
-    let (s, digits) = step((hi - lo) / 5.0, degrees);
-    let (k0, k1) = ((lo / s + 1e-9).floor() as i64, (hi / s - 1e-9).ceil() as i64);
-    let ticks = (k0..=k1)
-        .map(|k| {
-            let v = k as f64 * s;
-            let label = format!("{:.*}", digits, v + 0.0);
-            let label =
-                if label.trim_start_matches(['-', '0', '.']).is_empty() { label.replace('-', "") } else { label };
-            (v, label)
-        })
-        .collect();
-    Ticks { lo: k0 as f64 * s, hi: k1 as f64 * s, ticks }
+/// The axis of values in `[lo, hi]` (shown units, degrees when `degrees`), about
+/// [`INTERVALS`] steps, the range widened to whole steps: the plot module's steps (1, 2, 2.5
+/// or 5 times a power of ten; for degrees a division of a turn) and labels (the decimals the
+/// step needs, a power of ten for very small or large values).
+pub(crate) fn axis(lo: f64, hi: f64, degrees: bool) -> Axis {
+    let t = Ticks::widened(lo, hi, degrees, INTERVALS);
+    // The scaled values times their power of two: exact, and finite (readouts are at most
+    // 1e100).
+    let ticks = t.values.iter().map(|&(v, k)| (v * t.unit, t.label(k))).collect();
+    Axis { lo: t.lo * t.unit, hi: t.hi * t.unit, ticks }
 }
 
 /// A chart's map from shown values to pixels: `px = a + b v` on each axis.
@@ -88,8 +66,8 @@ pub(crate) fn chart(k: usize, x: Option<&Channel>, y: &Channel, events: &[f64], 
     let fold = |v: &[f64]| v.iter().fold((f64::INFINITY, f64::NEG_INFINITY), |(a, b), v| (a.min(*v), b.max(*v)));
     let (x0, x1) = fold(&xs);
     let (y0, y1) = fold(&y.values);
-    let xt = ticks(x0, x1, x.is_some_and(|c| c.kind.is_angle()));
-    let yt = ticks(y0, y1, y.kind.is_angle());
+    let xt = axis(x0, x1, x.is_some_and(|c| c.kind.is_angle()));
+    let yt = axis(y0, y1, y.kind.is_angle());
     let [w, h] = size;
     let (l, r, t, b) = (LEFT, w - RIGHT, TOP, h - BOTTOM);
     let bx = (r - l) / (xt.hi - xt.lo);
@@ -183,25 +161,52 @@ pub(crate) fn chart(k: usize, x: Option<&Channel>, y: &Channel, events: &[f64], 
 mod tests {
     use super::*;
 
+    fn labels(a: &Axis) -> Vec<&str> {
+        a.ticks.iter().map(|(_, l)| l.as_str()).collect()
+    }
+
     #[test]
     fn a_turn_is_ticked_every_90_degrees_up_to_360() {
-        let t = ticks(0.0, 360.0, true);
-        let labels: Vec<&str> = t.ticks.iter().map(|(_, l)| l.as_str()).collect();
-        assert_eq!(labels, ["0", "90", "180", "270", "360"]);
+        let t = axis(0.0, 360.0, true);
+        assert_eq!(labels(&t), ["0", "90", "180", "270", "360"]);
         assert_eq!((t.lo, t.hi), (0.0, 360.0));
+        // A sampled turn ends on the 360 tick; smaller ranges on divisions of a turn.
+        assert_eq!(labels(&axis(0.0, 355.0, true)), ["0", "90", "180", "270", "360"]);
+        assert_eq!(labels(&axis(0.0, 180.0, true)), ["0", "45", "90", "135", "180"]);
+        assert_eq!(labels(&axis(-30.0, 40.0, true)), ["-30", "-15", "0", "15", "30", "45"]);
+        assert_eq!(labels(&axis(0.0, 12.0, true)), ["0", "5", "10", "15"]);
+        assert_eq!(labels(&axis(0.0, 4.0, true)), ["0", "1", "2", "3", "4"]);
     }
 
     #[test]
     fn decimal_steps_cover_the_data_with_their_digits() {
-        let t = ticks(-0.013, 0.0415, false);
-        let labels: Vec<&str> = t.ticks.iter().map(|(_, l)| l.as_str()).collect();
-        assert_eq!(labels, ["-0.02", "0.00", "0.02", "0.04", "0.06"]);
-        let t = ticks(2.0, 2.0, false);
+        let t = axis(-0.013, 0.0415, false);
+        assert_eq!(labels(&t), ["-0.02", "0.00", "0.02", "0.04", "0.06"]);
+        let t = axis(2.0, 2.0, false);
         assert!(t.lo < 2.0 && t.hi > 2.0);
-        let t = ticks(0.0, 12.5, false);
+        let t = axis(0.0, 12.5, false);
+        assert_eq!(labels(&t), ["0.0", "2.5", "5.0", "7.5", "10.0", "12.5"]);
+        assert_eq!(labels(&axis(0.0, 1.0, false)), ["0.0", "0.2", "0.4", "0.6", "0.8", "1.0"]);
+    }
+
+    #[test]
+    fn tiny_and_huge_values_are_labelled_with_a_power_of_ten() {
+        let t = axis(-1.0e-6, 1.4e-6, false);
+        assert_eq!(labels(&t), ["-1.0e-6", "-0.5e-6", "0", "0.5e-6", "1.0e-6", "1.5e-6"]);
+        assert_eq!((t.lo, t.hi), (-1.0e-6, 1.5e-6));
+        let t = axis(-0.9e9, 1.4e9, false);
+        assert_eq!(labels(&t), ["-1.0e9", "-0.5e9", "0", "0.5e9", "1.0e9", "1.5e9"]);
+        // Millimetres in metres: decimals still.
         assert_eq!(
-            t.ticks.iter().map(|(_, l)| l.as_str()).collect::<Vec<_>>(),
-            ["0.0", "2.5", "5.0", "7.5", "10.0", "12.5"]
+            labels(&axis(-1.0e-3, 1.4e-3, false)),
+            ["-0.0010", "-0.0005", "0.0000", "0.0005", "0.0010", "0.0015"]
         );
+        // Each label reads back to its tick's value.
+        for t in [axis(-1.0e-6, 1.4e-6, false), axis(-0.9e9, 1.4e9, false), axis(3e-100, 7e-100, false)] {
+            for (v, l) in &t.ticks {
+                let read: f64 = l.parse().unwrap();
+                assert!((read - v).abs() <= 1e-12 * (t.hi - t.lo), "{l} at {v}");
+            }
+        }
     }
 }

@@ -109,6 +109,20 @@ fn padded(lo: f64, hi: f64, pad: f64) -> (f64, f64) {
     (if lo >= 0.0 { plo.max(0.0) } else { plo }, if hi <= 0.0 { phi.min(0.0) } else { phi })
 }
 
+/// The scaled range `[lo, hi]` padded (see [`padded`]), a zero-width one opened around its
+/// value.
+fn opened(lo: f64, hi: f64, pad: f64) -> (f64, f64) {
+    // The pad never crosses zero: data that are all non-negative (an amplitude, a length from
+    // a datum) get an axis from 0, not one reaching below it for the pad alone.
+    let (lo, hi) = padded(lo, hi, pad);
+    if hi > lo {
+        (lo, hi)
+    } else {
+        let half = if lo == 0.0 { 1.0 } else { 0.05 * lo.abs() };
+        (lo - half, hi + half)
+    }
+}
+
 impl Ticks {
     /// Ticks for data in `[lo, hi]` (library units, finite), shown times `factor`: about six
     /// intervals for angles (90 degree steps over a turn), about seven otherwise. The range
@@ -122,16 +136,22 @@ impl Ticks {
 
     /// [`Ticks::new`] for a range already scaled by `unit` and `factor`.
     pub fn scaled(lo: f64, hi: f64, unit: f64, factor: f64, angle: bool, widen: bool, pad: f64) -> Ticks {
-        // The pad never crosses zero: data that are all non-negative (an amplitude, a length
-        // from a datum) get an axis from 0, not one reaching below it for the pad alone.
-        let (lo, hi) = padded(lo, hi, pad);
-        let (lo, hi) = if hi > lo {
-            (lo, hi)
-        } else {
-            let half = if lo == 0.0 { 1.0 } else { 0.05 * lo.abs() };
-            (lo - half, hi + half)
-        };
-        let raw = (hi - lo) / if angle { 6.0 } else { 7.0 };
+        let (lo, hi) = opened(lo, hi, pad);
+        Ticks::stepped(lo, hi, unit, factor, angle, widen, if angle { 6.0 } else { 7.0 })
+    }
+
+    /// Ticks for values in `[lo, hi]` (finite, already in shown units: degrees for angles),
+    /// about `intervals` of them, the range widened to whole steps and not padded: a small
+    /// chart's axis (the interactive pages'), with the steps and labels of the plot module's.
+    pub fn widened(lo: f64, hi: f64, angle: bool, intervals: f64) -> Ticks {
+        let unit = binade(lo.abs().max(hi.abs()));
+        let (lo, hi) = opened(lo / unit, hi / unit, 0.0);
+        Ticks::stepped(lo, hi, unit, 1.0, angle, true, intervals)
+    }
+
+    /// Ticks over the scaled range `[lo, hi]` (`hi > lo`), about `intervals` steps.
+    fn stepped(lo: f64, hi: f64, unit: f64, factor: f64, angle: bool, widen: bool, intervals: f64) -> Ticks {
+        let raw = (hi - lo) / intervals;
         let (mant, exp) = nice_step(raw * unit, raw.log10() + log10_of_binade(unit), angle);
         let shown = decimal_value(mant, exp);
         let step = if shown.is_normal() && (shown / unit).is_normal() {
@@ -184,7 +204,9 @@ impl Ticks {
     }
 
     /// The label of tick `k`: as many decimals as the step needs, or scientific notation for
-    /// very large or very small values.
+    /// very large or very small values (steps below 1e-5, values of a million or more), all
+    /// of one axis with the power of ten of its largest end (`"0.5e-6"`, `"1.5e-6"`); zero is
+    /// then `"0"`.
     pub fn label(&self, k: i128) -> String {
         let big = self.lo.abs().max(self.hi.abs());
         let shown = big * self.unit;
@@ -192,6 +214,8 @@ impl Ticks {
         let value = k * self.mant as i128;
         if self.exp >= -5 && shown < 1e6 && shown.is_normal() {
             decimal(value, self.exp)
+        } else if value == 0 {
+            "0".into()
         } else {
             let e = lg.floor() as i32;
             format!("{}e{e}", decimal(value, self.exp - e))
@@ -241,9 +265,32 @@ mod tests {
         assert_eq!(labels(&t), ["-3", "-2", "-1", "0", "1", "2", "3"]);
         assert!(t.values.iter().any(|v| v.0 == 0.0) && t.lo * t.unit <= -2.3 && t.hi * t.unit >= 2.1);
         let t = Ticks::new(2.0e-6, 9.0e-6, 1.0, false, true, 0.0);
-        assert!(labels(&t).iter().all(|l| l.contains('e')), "{:?}", labels(&t));
+        assert_eq!(labels(&t), ["2e-6", "3e-6", "4e-6", "5e-6", "6e-6", "7e-6", "8e-6", "9e-6"]);
         let t = Ticks::new(5.0, 5.0, 1.0, false, true, 0.0);
         assert!(t.lo * t.unit < 5.0 && t.hi * t.unit > 5.0);
+    }
+
+    #[test]
+    fn zero_is_0_on_an_axis_labelled_with_a_power_of_ten() {
+        let t = Ticks::new(-2.3e-6, 2.1e-6, 1.0, false, true, 0.0);
+        assert_eq!(labels(&t), ["-3e-6", "-2e-6", "-1e-6", "0", "1e-6", "2e-6", "3e-6"]);
+        let t = Ticks::new(0.0, 6.5e9, 1.0, false, true, 0.0);
+        assert_eq!(labels(&t), ["0", "1e9", "2e9", "3e9", "4e9", "5e9", "6e9", "7e9"]);
+        // Decimals keep the step's digits, zero too.
+        let t = Ticks::new(-0.0023, 0.0021, 1.0, false, true, 0.0);
+        assert_eq!(labels(&t), ["-0.003", "-0.002", "-0.001", "0.000", "0.001", "0.002", "0.003"]);
+    }
+
+    #[test]
+    fn a_small_charts_axis_has_fewer_steps_and_the_same_labels() {
+        let t = Ticks::widened(-1.0e-6, 1.4e-6, false, 5.0);
+        assert_eq!(labels(&t), ["-1.0e-6", "-0.5e-6", "0", "0.5e-6", "1.0e-6", "1.5e-6"]);
+        assert_eq!((t.lo * t.unit, t.hi * t.unit), (-1.0e-6, 1.5e-6));
+        let t = Ticks::widened(0.0, 180.0, true, 5.0);
+        assert_eq!(labels(&t), ["0", "45", "90", "135", "180"]);
+        consistent(&Ticks::widened(7.0, 7.0, false, 5.0));
+        consistent(&Ticks::widened(0.0, 0.0, true, 5.0));
+        consistent(&Ticks::widened(-1e100, 1e100, false, 5.0));
     }
 
     /// Every tick of `t` at its place: labels parse back to finite numbers, increasing by
@@ -272,7 +319,7 @@ mod tests {
         assert_eq!(labels(&t)[0], "-1.5e308");
         let t = Ticks::new(0.0, 1e-320, 1.0, false, false, 0.0);
         consistent(&t);
-        assert_eq!(labels(&t)[1], "0.2e-320", "{:?}", labels(&t));
+        assert_eq!(labels(&t)[..2], ["0", "0.2e-320"], "{:?}", labels(&t));
         consistent(&Ticks::new(f64::MIN, f64::MAX, 1.0, false, true, 0.03));
         consistent(&Ticks::new(5e-324, 5e-324, 1.0, false, true, 0.03));
         consistent(&Ticks::new(f64::MAX, f64::MAX, 1.0, false, true, 0.0));
@@ -281,7 +328,7 @@ mod tests {
         // Angles whose degrees overflow.
         let t = Ticks::new(-1e307, 1e307, 180.0 / std::f64::consts::PI, true, false, 0.0);
         consistent(&t);
-        assert!(labels(&t).iter().all(|l| l.ends_with("e308")), "{:?}", labels(&t));
+        assert_eq!(labels(&t), ["-3.6e308", "0", "3.6e308"]);
         assert_eq!(decimal(-25, -3), "-0.025");
         assert_eq!(decimal(0, -2), "0.00");
         assert_eq!(decimal(12, 2), "1200");
