@@ -306,8 +306,14 @@ fn bad_data_is_an_error_and_pages_are_deterministic() {
     let few = HtmlConfig::new("x").with_max_frames(10);
     let page = html(&m, &drawing, &motion, &few).unwrap();
     assert!(page.contains(r#"max="9""#), "ten frames");
-    let inputs =
-        page.split(r#""ch":[{"dec":2,"v":["#).nth(1).and_then(|r| r.split(']').next()).expect("the input's values");
+    let inputs = page
+        .split(r#""ch":[{"#)
+        .nth(1)
+        .and_then(|r| r.split(r#""v":["#).nth(1))
+        .and_then(|r| r.split(']').next())
+        .expect("the input's values");
+    // Written as the readout shows them: to a hundredth of a degree.
+    assert!(inputs.split(',').all(|t| browser_support::resolution(t) == 0.01), "{inputs}");
     let inputs: Vec<f64> = inputs.split(',').map(|v| v.parse().unwrap()).collect();
     assert_eq!(inputs.len(), 10);
     assert_eq!(inputs[0], 0.0);
@@ -520,8 +526,8 @@ fn a_grid_of_two_inputs_has_a_slider_each_and_marks_what_cannot_be_assembled() {
         let q = read.world([dot.num("x"), dot.num("y")]);
         assert!((q[0] - p[0]).abs() <= tol && (q[1] - p[1]).abs() <= tol, "cell {i}:{j}: dot {q:?} vs {p:?}");
         let shown: f64 = text(2).parse().unwrap();
-        let decimals = text(2).split_once('.').map_or(0, |(_, d)| d.len());
-        assert!((shown - p[1]).abs() <= 0.5 * 10f64.powi(-(decimals as i32)) + 1e-12, "cell {i}:{j}: p.y {}", text(2));
+        let half = 0.5 * browser_support::resolution(text(2));
+        assert!((shown - p[1]).abs() <= half + 1e-12, "cell {i}:{j}: p.y {}", text(2));
     }
     let unreachable = cells.iter().filter(|[i, j]| grid.cells[grid.cell(&[*i, *j]).unwrap()].is_none()).count();
     assert_eq!(unreachable, 1, "one probed cell cannot be assembled");

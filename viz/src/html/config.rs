@@ -18,6 +18,12 @@ pub enum Value {
 /// One live value of the page: shown beside the drawing with its unit as the slider moves
 /// (angles in degrees), and, unless turned off, charted against the input with a cursor that
 /// follows the slider.
+///
+/// The value is shown to a hundredth of a degree for an angle, else to five significant
+/// digits of its largest value over the motion, with decimals for ordinary magnitudes
+/// (`"-0.0123"`, `"1.2345"`) and with a power of ten for tiny or huge ones (a largest value
+/// below about 1e-4 or from 1e5: `"-5.661e-7"`, `"1.5896e9"`), as the charts' axes are
+/// labelled.
 #[derive(Clone, Debug)]
 pub struct Readout {
     /// Where the value comes from.

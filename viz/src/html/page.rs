@@ -89,10 +89,13 @@ fn data(p: &Parts) -> Result<String, HtmlError> {
         if k > 0 {
             s.push(',');
         }
+        // Each value written as its readout shows it (a JSON number), with the readout's
+        // format, by which the script writes it again.
         let _ = write!(
             s,
-            r#"{{"dec":{},"v":[{}]}}"#,
-            c.decimals,
+            r#"{{"last":{},"sci":{},"v":[{}]}}"#,
+            c.format.last,
+            c.format.sci,
             c.values.iter().map(|v| c.text(*v)).collect::<Vec<_>>().join(",")
         );
     }

@@ -2,6 +2,10 @@
 //! traced points' dots, the readouts and the charts' cursors), plays and pauses, follows the
 //! slider, and jumps to an event when its mark is clicked.
 //!
+//! The readouts are written by the rule of [`Format`](super::readouts::Format), repeated
+//! here (`format`): from the page's numbers, which are the readouts' texts as Rust wrote
+//! them, the same texts again.
+//!
 //! The page's address can ask for a pose: `page.html#i=40` shows frame 40 and does not play;
 //! `page.html#probe=0,40,80` moves the slider to each frame in turn, as a user would, and
 //! writes what is then drawn (every joint and traced dot, the readouts' texts, the charts'
@@ -47,6 +51,20 @@ pub(crate) const SCRIPT: &str = r#"
     return { c: c, line: el.querySelector('.kl-cursor'), dot: el.querySelector('.kl-cursor-dot') };
   });
   var current = 0;
+  // Value `v` of readout `c` as the page's Rust writes it (`html::readouts::Format`): `v` is
+  // a whole multiple of 10^c.last (the page holds the readouts' texts), written with decimals
+  // down to 10^c.last, or, when c.sci, as its own digits down to 10^c.last in a mantissa and
+  // a power of ten ('-5.661e-7', '1.5896e9', zero '0'); never a negative zero.
+  function format(c, v) {
+    if (!c.sci) {
+      var s = v.toFixed(Math.max(0, -c.last));
+      return /^-[0.]*$/.test(s) ? s.slice(1) : s;
+    }
+    if (v === 0) { return '0'; }
+    // The power of ten of the leading digit: the shortest text of `v` has it.
+    var e = parseInt(v.toExponential().split('e')[1], 10);
+    return v.toExponential(Math.max(0, Math.min(100, e - c.last))).replace('e+', 'e');
+  }
   // The first input's readout names the slider's value for assistive technology.
   var row = document.querySelector('tr.kl-readout[data-ch="0"]');
 
@@ -73,7 +91,7 @@ pub(crate) const SCRIPT: &str = r#"
       d.setAttribute('cx', t(f[o]));
       d.setAttribute('cy', t(f[o + 1]));
     });
-    values.forEach(function (el, k) { if (k >= ni) { el.textContent = D.ch[k].v[i].toFixed(D.ch[k].dec); } });
+    values.forEach(function (el, k) { if (k >= ni) { el.textContent = format(D.ch[k], D.ch[k].v[i]); } });
     charts.forEach(function (c) {
       var xv = c.c.x < 0 ? i / Math.max(n - 1, 1) : D.ch[c.c.x].v[i];
       var m = c.c.map;
@@ -105,7 +123,7 @@ pub(crate) const SCRIPT: &str = r#"
     sliders.forEach(function (s, k) {
       var j = Math.max(0, Math.min(idx[k], G.n[k] - 1));
       s.value = String(j);
-      values[k].textContent = D.ch[k].v[j].toFixed(D.ch[k].dec);
+      values[k].textContent = format(D.ch[k], D.ch[k].v[j]);
       var r = document.querySelector('tr.kl-readout[data-ch="' + k + '"]');
       s.setAttribute('aria-valuetext', r.cells[0].textContent + ' = ' + r.cells[1].textContent + ' ' + r.cells[2].textContent);
     });

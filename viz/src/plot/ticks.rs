@@ -90,7 +90,7 @@ fn nice_step(raw: f64, lg: f64, angle: bool) -> (i64, i32) {
 }
 
 /// `k * 10^p` written with `max(0, -p)` decimals, exactly (from the integer).
-fn decimal(k: i128, p: i32) -> String {
+pub(crate) fn decimal(k: i128, p: i32) -> String {
     let digits = k.unsigned_abs().to_string();
     let sign = if k < 0 { "-" } else { "" };
     if p >= 0 {

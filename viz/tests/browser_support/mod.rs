@@ -85,6 +85,16 @@ pub fn unescape(s: &str) -> String {
     s.replace("&lt;", "<").replace("&gt;", ">").replace("&quot;", "\"").replace("&amp;", "&")
 }
 
+/// The place of the last digit a readout's text shows: `0.01` for `"12.34"`, `1e-10` for
+/// `"-5.661e-7"`, `1e5` for `"1.5896e9"` (1 for `"0"`). The value it reads is within half
+/// of it.
+pub fn resolution(text: &str) -> f64 {
+    let (mantissa, exp) = text.split_once('e').unwrap_or((text, "0"));
+    let exp: i32 = exp.parse().unwrap_or_else(|_| panic!("readout {text:?}: power of ten"));
+    let decimals = mantissa.split_once('.').map_or(0, |(_, d)| d.len()) as i32;
+    10f64.powi(exp - decimals)
+}
+
 /// One line the page's probe wrote: `frame=40 joint item=3 point=1 name=b x=1.5 y=2`.
 pub struct Line {
     pub frame: usize,
@@ -305,15 +315,14 @@ pub fn check_in_browser(
             let ch = page.channel(label);
             let line = at.iter().find(|l| l.what == "value" && l.get("ch") == ch.to_string()).expect("readout");
             let text = line.get("text");
-            let decimals = text.split_once('.').map_or(0, |(_, d)| d.len());
             let shown: f64 = text.parse().expect("a number");
-            let half = 0.5 * 10f64.powi(-(decimals as i32));
+            let half = 0.5 * resolution(text);
             assert!(
-                (shown - v).abs() <= half * (1.0 + 1e-9) + 1e-12,
+                (shown - v).abs() <= half * (1.0 + 1e-9) + 1e-12 * v.abs().max(1.0),
                 "{name} frame {f}: {label} shows {text}, exact {v}"
             );
             if page.readouts[ch].1 == "°" {
-                assert_eq!(decimals, 2, "{name}: angles to a hundredth of a degree");
+                assert_eq!(resolution(text), 0.01, "{name}: angles to a hundredth of a degree ({text})");
             }
             // The chart of this readout (if any): its cursor at the input and at the value,
             // on the chart's own tick labels, within the 0.1 px rounding and the value's.
