@@ -2,6 +2,8 @@
 //! a scale bar, a readout of the inputs at the pose shown, and the events' labels; and the
 //! sizes of text, to fit the picture to everything drawn.
 
+use crate::plot::Kind;
+use crate::plot::digits::Format;
 use kinloop_runtime::{LENGTH_UNIT, QuantityKind};
 
 /// Which annotations a drawing writes (all by default). Turning them off leaves the mechanism
@@ -56,9 +58,10 @@ pub(crate) fn input_value(kind: Option<&QuantityKind>, v: f64, unit: Option<&str
     }
 }
 
-/// A number with four significant decimals, or in scientific notation when very large or small.
+/// A number as an interactive page's readout writes it ([`Format`]): five significant digits,
+/// with decimals for ordinary magnitudes and a power of ten for tiny and huge ones.
 fn short(v: f64) -> String {
-    if v == 0.0 || (1e-3..1e6).contains(&v.abs()) { format!("{v:.4}") } else { format!("{v:.4e}") }
+    Format::of(&Kind::Dimensionless, v.abs()).text(v)
 }
 
 /// `phi = 12.5°, s = 3.0000 mm`: the inputs `names` at values `x`.
@@ -123,5 +126,11 @@ mod tests {
         let text = readout(&names, &kinds, &[1.3716, 2.5], Some("mm"), 2);
         assert_eq!(text, "phi = 78.59°, s = 2.5000 mm");
         assert_eq!(input_value(None, 1e-9, None, 1), "1.0000e-9");
+        // Five significant digits at every magnitude, as a page's readouts (no negative zero).
+        let length = Some(&QuantityKind::Length);
+        assert_eq!(input_value(length, 0.5, Some("m"), 1), "0.50000 m");
+        assert_eq!(input_value(length, 25.0, Some("m"), 1), "25.000 m");
+        assert_eq!(input_value(length, 250_000.0, Some("mm"), 1), "2.5000e5 mm");
+        assert_eq!(input_value(length, -0.0, Some("mm"), 1), "0.0000 mm");
     }
 }

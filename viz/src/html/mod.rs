@@ -169,10 +169,8 @@ pub(crate) fn html_marked<D: Drawable + ?Sized>(
         .iter()
         .enumerate()
         .map(|(j, e)| {
-            let at: Vec<String> = channels[..ni]
-                .iter()
-                .map(|c| format!("{} = {}{}", c.label, c.text(c.at_events[j]), c.unit()))
-                .collect();
+            let at: Vec<String> =
+                channels[..ni].iter().map(|c| format!("{} = {}", c.label, c.text_with_unit(c.at_events[j]))).collect();
             format!("{} at {}", e.kind, at.join(", "))
         })
         .collect();

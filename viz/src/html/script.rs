@@ -2,7 +2,7 @@
 //! traced points' dots, the readouts and the charts' cursors), plays and pauses, follows the
 //! slider, and jumps to an event when its mark is clicked.
 //!
-//! The readouts are written by the rule of [`Format`](super::readouts::Format), repeated
+//! The readouts are written by the rule of [`Format`](crate::plot::digits::Format), repeated
 //! here (`format`): from the page's numbers, which are the readouts' texts as Rust wrote
 //! them, the same texts again.
 //!
@@ -51,7 +51,7 @@ pub(crate) const SCRIPT: &str = r#"
     return { c: c, line: el.querySelector('.kl-cursor'), dot: el.querySelector('.kl-cursor-dot') };
   });
   var current = 0;
-  // Value `v` of readout `c` as the page's Rust writes it (`html::readouts::Format`): `v` is
+  // Value `v` of readout `c` as the page's Rust writes it (`plot::digits::Format`): `v` is
   // a whole multiple of 10^c.last (the page holds the readouts' texts), written with decimals
   // down to 10^c.last, or, when c.sci, as its own digits down to 10^c.last in a mantissa and
   // a power of ten ('-5.661e-7', '1.5896e9', zero '0'); never a negative zero.

@@ -33,6 +33,7 @@
 //! ```
 
 mod bars;
+pub(crate) mod digits;
 mod error;
 mod files;
 mod frame;
