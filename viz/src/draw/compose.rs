@@ -74,6 +74,9 @@ struct Layers<'a> {
     strip: f64,
     /// The scale bar: its length in pixels and its label.
     bar: Option<(f64, String)>,
+    /// Per input, its largest magnitude over the poses: a readout writes every pose's value
+    /// to the same digits.
+    largest: Vec<f64>,
 }
 
 /// Decimals of the degrees in the readout (what a slider shows) and in the events' labels
@@ -202,7 +205,7 @@ impl Layers<'_> {
         format!(
             "{} at {}",
             e.kind,
-            readout(&self.motion.inputs, &self.motion.input_kinds, &e.pose.x, unit, EVENT_DECIMALS)
+            readout(&self.motion.inputs, &self.motion.input_kinds, &e.pose.x, &self.largest, unit, EVENT_DECIMALS)
         )
     }
 
@@ -210,7 +213,7 @@ impl Layers<'_> {
     fn readout_text(&self, i: usize) -> String {
         let x = &self.motion.all_poses().nth(i).map_or(&[][..], |p| &p.x[..]);
         let unit = self.d.length_unit.as_deref();
-        readout(&self.motion.inputs, &self.motion.input_kinds, x, unit, READOUT_DECIMALS)
+        readout(&self.motion.inputs, &self.motion.input_kinds, x, &self.largest, unit, READOUT_DECIMALS)
     }
 
     /// Whether the strip's first line holds the scale bar and the readout.
@@ -345,7 +348,10 @@ impl Drawing {
         let room = (scene.view.width / 3.0).max(60.0);
         let bar =
             if self.annotate.scale_bar { scale_bar(scene.view.scale, room, self.length_unit.as_deref()) } else { None };
-        let mut l = Layers { d: self, motion, scene, strip, bar };
+        let largest = (0..motion.inputs.len())
+            .map(|k| motion.all_poses().filter_map(|p| p.x.get(k)).fold(0.0f64, |m, v| m.max(v.abs())))
+            .collect();
+        let mut l = Layers { d: self, motion, scene, strip, bar, largest };
         // The strip under the mechanism: the scale bar and readout, then one line per event,
         // then one per note; the picture is widened (when fitted) to hold its longest line.
         let lines = l.first_event_line() + motion.events.len() + self.notes.len();
