@@ -168,8 +168,9 @@ enum Command {
         #[arg(long, default_value_t = 101)]
         samples: usize,
         /// The integrator's step budget (at least 1): a `--time` that needs more steps stops
-        /// with a usage error. Every step is kept until the end (about 100 bytes each), so the
-        /// budget bounds the memory the run takes.
+        /// with a usage error, so the budget bounds the time the run takes. No step is kept
+        /// (each row is read from its step as the run passes it): the memory is that of the
+        /// `--samples` rows, whatever the number of steps.
         #[arg(long, value_name = "N", default_value_t = simulate::MAX_STEPS, allow_hyphen_values = true)]
         max_steps: usize,
         /// Angles in degrees (the start, the speed, the input written); otherwise radians.

@@ -7,25 +7,26 @@
 //! Units as `kinloop dynamics`'s: masses and lengths in the parameters' units, time in the
 //! unit of the speed.
 //!
-//! Memory: the integration keeps every accepted step with its dense output (the values at the
-//! written times are read from it once the run has reached its end), [`STEP_BYTES`] a step. The
-//! step budget `--max-steps` ([`MAX_STEPS`] by default) is passed to the integrator, which stops
-//! when it is spent: the steps kept are at most that many, whatever `--time` asks for.
+//! Memory: the integration hands each accepted step to the table as it is made
+//! (`ModelSimulation::run_steps`) and keeps none; the table reads the rows whose times the step
+//! covers from its dense output ([`Rows`]), the values sampling the whole trajectory afterwards
+//! (`Trajectory::at`) gives, bit for bit. So the run takes the memory of its `--samples` rows,
+//! however many steps it makes. The step budget `--max-steps` ([`MAX_STEPS`] by default) is
+//! passed to the integrator, which stops when it is spent: it bounds the time a run takes,
+//! whatever `--time` asks for.
 
 use crate::dynamics::check_crank;
 use crate::exit::usage;
 use crate::{Failed, exit, samples};
 use kinloop_model::Model;
-use kinloop_runtime::dynamics::{DenseStep, DynamicsError, RunConfig, Trajectory};
+use kinloop_runtime::dynamics::{DenseStep, DynamicsError, RunConfig};
 use kinloop_runtime::{Error, Table};
 
-/// The default step budget of the integration (`--max-steps`): about 100 MB of steps kept
-/// ([`STEP_BYTES`] each), where the runtime's own default (ten million, a gigabyte) is meant
-/// for a program that chose it. The shipped engine at 150 rad/s takes about 60 steps a turn.
+/// The default step budget of the integration (`--max-steps`): a run of at most seconds (the
+/// shipped engine at 150 rad/s takes about 60 steps a turn, a million steps in about four
+/// seconds of a release build), where the runtime's own default (ten million) is meant for a
+/// program that chose it. It bounds the time, not the memory: no step is kept.
 pub const MAX_STEPS: usize = 1_000_000;
-
-/// The memory a step of the trajectory takes while the simulation runs.
-pub const STEP_BYTES: usize = std::mem::size_of::<DenseStep<2>>();
 
 /// What `kinloop simulate` was asked.
 pub struct Request {
@@ -70,20 +71,97 @@ pub fn run(model: &mut Model, req: &Request) -> Result<(), Failed> {
         return Err(usage(format!("--max-steps 0 allows no step: give at least 1 (the default is {MAX_STEPS})")));
     }
     let angle = if req.deg { 180.0 / std::f64::consts::PI } else { 1.0 };
-    let torque = req.torque;
-    let run = model
-        .simulation()
-        .start(req.start / angle, req.speed / angle)
-        .drive(move |_, _, _| torque)
-        .config(config(req))
-        .run(req.time)
-        .map_err(|e| failure(&name, e))?;
-    let input = model.inputs()[0].clone();
-    let table = trajectory_table(&run, req, &input, angle);
+    let table = simulate_table(model, req, angle).map_err(|e| failure(&name, e))?;
     table.write_csv(std::io::stdout().lock()).map_err(|e| {
         eprintln!("error: cannot write the table: {e}");
         Failed(exit::IO_ERR)
     })
+}
+
+/// Simulates the request (checked) and gives its table: the time, the input and its speed at
+/// `req.samples` equally spaced times from 0 to `--time`, from the dense output of the steps as
+/// they pass those times (no step kept), with units; `angle` converts radians to the unit
+/// written.
+fn simulate_table(model: &mut Model, req: &Request, angle: f64) -> Result<Table, Error> {
+    let input = model.inputs()[0].clone();
+    let last = req.samples - 1;
+    // The ends exactly: the start and the time reached (`--time`: the run is never ended
+    // early, and its last step ends there).
+    let time = req.time;
+    let at = move |k: usize| if k == last { time } else { time * k as f64 / last as f64 };
+    let mut rows = Rows::new(req.samples, at, input, req.deg, angle);
+    let torque = req.torque;
+    let (_, end) = model
+        .simulation()
+        .start(req.start / angle, req.speed / angle)
+        .drive(move |_, _, _| torque)
+        .config(config(req))
+        .run_steps(req.time, |step, _| {
+            rows.step(step);
+            false
+        })?;
+    Ok(rows.finish(end))
+}
+
+/// The rows of the table, read from each step's dense output as the steps pass their times:
+/// row `k` at time `at(k)` (not decreasing in `k`) from the first step that ends at or after
+/// it, the time clamped to the step, and the rows after the last step from that step (a time
+/// beyond its end by a rounding of `t0 + h`): what `Trajectory::at` gives at those times once
+/// the run is over, bit for bit, without the trajectory.
+struct Rows<F> {
+    /// The rows to write.
+    count: usize,
+    /// The time of row `k`.
+    at: F,
+    /// The next row to read.
+    next: usize,
+    /// The last step seen.
+    last: Option<DenseStep<2>>,
+    /// The angle's unit: the factor from radians, and its name.
+    angle: (f64, &'static str),
+    input: String,
+    table: Table,
+}
+
+impl<F: Fn(usize) -> f64> Rows<F> {
+    /// The table of the time, the input named `input` and its speed, in degrees with `deg`
+    /// (`angle` the factor from radians).
+    fn new(count: usize, at: F, input: String, deg: bool, angle: f64) -> Self {
+        let table = Table::new(vec!["t".into(), input.clone(), "omega".into()]);
+        let unit = if deg { "deg" } else { "rad" };
+        Rows { count, at, next: 0, last: None, angle: (angle, unit), input, table }
+    }
+
+    /// Reads the rows whose times `step` reaches (those not after its end).
+    fn step(&mut self, step: &DenseStep<2>) {
+        while self.next < self.count {
+            let t = (self.at)(self.next);
+            if step.t1() < t {
+                break;
+            }
+            self.push(t, step.at(t.clamp(step.t0, step.t1())));
+        }
+        self.last = Some(*step);
+    }
+
+    /// The table, the rows beyond the last step's end read from it (or the state `end` reached,
+    /// where no step was made).
+    fn finish(mut self, end: [f64; 2]) -> Table {
+        while self.next < self.count {
+            let t = (self.at)(self.next);
+            let y = self.last.map_or(end, |s| s.at(t.clamp(s.t0, s.t1())));
+            self.push(t, y);
+        }
+        let (a, input) = (self.angle.1, self.input.as_str());
+        let speed = format!("{a}/time unit");
+        self.table.with_units(&[("t", "time unit"), (input, a), ("omega", &speed)])
+    }
+
+    fn push(&mut self, t: f64, [phi, omega]: [f64; 2]) {
+        let angle = self.angle.0;
+        self.table.push(vec![t, phi * angle, omega * angle]);
+        self.next += 1;
+    }
 }
 
 /// The runtime's settings of the request: its flywheel and its step budget, the rest the
@@ -114,22 +192,17 @@ fn failure(name: &str, e: Error) -> Failed {
 
 /// The message of a simulation that spent its step budget before `--time`: the options to
 /// change (the runtime's own message names its library setting), and at the pace so far the
-/// steps the whole span needs with the memory they take.
+/// steps the whole span needs.
 fn budget_spent(name: &str, steps: usize, t: f64, t_end: f64) -> String {
     let need = if t > 0.0 { steps as f64 * (t_end / t) } else { f64::INFINITY };
     let pace = if need.is_finite() {
-        format!(
-            "; at that pace the whole span needs about {} steps, {} of memory",
-            significant(need),
-            bytes(need * STEP_BYTES as f64)
-        )
+        format!("; at that pace the whole span needs about {} steps", significant(need))
     } else {
         String::new()
     };
     format!(
         "{name}: the simulation made its budget of {steps} steps (--max-steps) and reached only t = {} of \
-         --time {t_end}{pace}: raise --max-steps (each step takes {STEP_BYTES} bytes of memory until the end), \
-         or simulate a shorter --time",
+         --time {t_end}{pace}: raise --max-steps, or simulate a shorter --time",
         significant(t)
     )
 }
@@ -147,27 +220,114 @@ fn significant(v: f64) -> String {
     }
 }
 
-/// A number of bytes in kB, MB, GB or TB.
-fn bytes(b: f64) -> String {
-    const UNITS: [(&str, f64); 4] = [("TB", 1e12), ("GB", 1e9), ("MB", 1e6), ("kB", 1e3)];
-    match UNITS.iter().find(|(_, scale)| b >= *scale) {
-        Some((unit, scale)) => format!("{} {unit}", significant(b / scale)),
-        None => format!("{b:.0} bytes"),
-    }
-}
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use kinloop_runtime::dynamics::Trajectory;
 
-/// The time, the input and its speed at `req.samples` equally spaced times from 0 to the time
-/// reached, from the dense output, with units.
-fn trajectory_table(run: &Trajectory, req: &Request, input: &str, angle: f64) -> Table {
-    let a = if req.deg { "deg" } else { "rad" };
-    let mut t = Table::new(vec!["t".into(), input.into(), "omega".into()]);
-    let last = req.samples - 1;
-    for k in 0..req.samples {
-        // The ends exactly: the start and the time reached.
-        let time = if k == last { run.t_end } else { run.t_end * k as f64 / last as f64 };
-        let [phi, omega] = run.at(time);
-        t.push(vec![time, phi * angle, omega * angle]);
+    /// The shipped engine under a constant torque with a flywheel (the model of
+    /// `tests/simulate.rs`'s first test).
+    fn engine() -> Model {
+        Model::read("engine.kl", include_str!("../mechanisms/engine.kl")).expect("the shipped engine")
     }
-    let speed = format!("{a}/time unit");
-    t.with_units(&[("t", "time unit"), (input, a), ("omega", &speed)])
+
+    fn request(samples: usize, deg: bool) -> Request {
+        let angle = if deg { 180.0 / std::f64::consts::PI } else { 1.0 };
+        let (start, speed) = (0.3 * angle, 150.0 * angle);
+        Request { start, speed, time: 0.2, torque: 2.5, flywheel: 0.05, samples, deg, max_steps: MAX_STEPS }
+    }
+
+    /// The recorded trajectory of the request, as the command ran it before it streamed.
+    fn trajectory(model: &mut Model, req: &Request, angle: f64) -> Trajectory {
+        let torque = req.torque;
+        model
+            .simulation()
+            .start(req.start / angle, req.speed / angle)
+            .drive(move |_, _, _| torque)
+            .config(config(req))
+            .run(req.time)
+            .expect("a run")
+    }
+
+    /// The table sampled from the whole recorded trajectory, as the command wrote it before it
+    /// streamed: the times from the time reached, each value `Trajectory::at`.
+    fn table_of(run: &Trajectory, req: &Request, input: &str, angle: f64) -> Table {
+        let a = if req.deg { "deg" } else { "rad" };
+        let mut t = Table::new(vec!["t".into(), input.into(), "omega".into()]);
+        let last = req.samples - 1;
+        for k in 0..req.samples {
+            let time = if k == last { run.t_end } else { run.t_end * k as f64 / last as f64 };
+            let [phi, omega] = run.at(time);
+            t.push(vec![time, phi * angle, omega * angle]);
+        }
+        let speed = format!("{a}/time unit");
+        t.with_units(&[("t", "time unit"), (input, a), ("omega", &speed)])
+    }
+
+    /// Every value of two tables as bits (with their columns and units): equal only if the
+    /// tables are the same to the last bit.
+    fn bits(t: &Table) -> (&[String], &[String], Vec<u64>) {
+        (&t.columns, &t.units, t.rows.iter().flatten().map(|v| v.to_bits()).collect())
+    }
+
+    /// The streamed table is the one sampled from the recorded trajectory, bit for bit: few
+    /// samples and many (several in a step), in radians and in degrees.
+    #[test]
+    fn the_streamed_table_is_the_recorded_trajectory_s() {
+        let mut model = engine();
+        for deg in [false, true] {
+            let angle = if deg { 180.0 / std::f64::consts::PI } else { 1.0 };
+            let run = trajectory(&mut model, &request(2, deg), angle);
+            let steps = run.steps.len();
+            assert!(steps > 20, "{steps} steps");
+            for samples in [2, 3, 41, steps, steps + 1, 2 * steps - 1, 10 * steps + 3] {
+                let req = request(samples, deg);
+                let streamed = simulate_table(&mut model, &req, angle).expect("a run");
+                let want = table_of(&run, &req, "phi", angle);
+                assert_eq!(streamed.rows.len(), samples);
+                assert_eq!(bits(&streamed), bits(&want), "{samples} samples, degrees {deg}");
+            }
+        }
+    }
+
+    /// Rows at the times where the steps meet (each step's start, its end `t0 + h`, the next
+    /// one's start, a time a rounding beyond them) and inside the steps read what
+    /// `Trajectory::at` reads there, bit for bit: the step a time on a boundary is read from,
+    /// and the rows past the last step's end.
+    #[test]
+    fn rows_on_the_steps_boundaries_are_the_trajectory_s() {
+        let mut model = engine();
+        let run = trajectory(&mut model, &request(2, false), 1.0);
+        let mut times = vec![0.0];
+        for s in &run.steps {
+            times.extend([s.t0, s.t0 + 0.3 * s.h, s.t1(), s.t1().next_up()]);
+        }
+        times.extend([run.t_end, run.t_end.next_up(), 2.0 * run.t_end]);
+        times.sort_by(f64::total_cmp);
+        let mut rows = Rows::new(times.len(), |k| times[k], "phi".into(), false, 1.0);
+        for s in &run.steps {
+            rows.step(s);
+        }
+        let table = rows.finish(run.end);
+        for (row, &t) in table.rows.iter().zip(&times) {
+            let want = run.at(t);
+            assert_eq!([row[0], row[1], row[2]].map(f64::to_bits), [t, want[0], want[1]].map(f64::to_bits), "at {t}");
+        }
+        assert_eq!(table.rows.len(), times.len());
+        // No step: every row is the state reached.
+        let rows = Rows::new(3, |k| k as f64, "phi".into(), false, 1.0);
+        let table = rows.finish([1.0, 2.0]);
+        assert!(table.rows.iter().all(|r| r[1..] == [1.0, 2.0]));
+    }
+
+    /// A spent budget says which options to change and the steps the span needs, no longer
+    /// memory.
+    #[test]
+    fn a_spent_budget_names_the_options() {
+        let m = budget_spent("Engine", 1000, 0.5, 10.0);
+        for what in ["budget of 1000 steps", "about 20000 steps", "raise --max-steps", "shorter --time"] {
+            assert!(m.contains(what), "`{what}` missing: {m}");
+        }
+        assert!(!m.contains("memory"), "{m}");
+    }
 }

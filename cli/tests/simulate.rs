@@ -118,3 +118,40 @@ fn simulate_s_step_budget_is_an_option_that_bounds_the_run() {
     assert!(budget.status.success(), "{}", stderr(&budget));
     assert_eq!(fits.stdout, budget.stdout);
 }
+
+/// The table the command streams (each row read from a step's dense output as the steps pass
+/// its time) is, bit for bit, the one sampled from the whole recorded trajectory of the same
+/// run-time model: every time and value of the CSV, read back, is the trajectory's
+/// `Trajectory::at` at that time, the times those from the time reached, in radians and in
+/// degrees, with more rows than the run has steps.
+#[test]
+fn simulate_s_streamed_table_is_the_recorded_trajectory_s() {
+    let mut model = kinloop_model::Model::read("engine.kl", &std::fs::read_to_string(shipped("engine.kl")).unwrap())
+        .expect("the shipped engine");
+    for (deg, angle) in [(false, 1.0), (true, 180.0 / std::f64::consts::PI)] {
+        // The start as the command reads it: the value written, converted to radians.
+        let (start, speed) = (0.3 * angle, 150.0 * angle);
+        let run = model
+            .simulation()
+            .start(start / angle, speed / angle)
+            .drive(|_, _, _| 2.5)
+            .config(RunConfig::default().with_flywheel(0.05))
+            .run(0.2)
+            .unwrap();
+        let samples = 3 * run.steps.len() + 1;
+        let n = samples.to_string();
+        let (start, speed) = (start.to_string(), speed.to_string());
+        let args = ["simulate", &shipped("engine.kl"), "--start", &start, "--speed", &speed, "--torque", "2.5"];
+        let more: &[&str] = if deg { &["--deg"] } else { &[] };
+        let out = kinloop(&[&args[..], &["--flywheel", "0.05", "--time", "0.2", "--samples", &n], more].concat());
+        let (_, rows) = csv(&out);
+        assert_eq!(rows.len(), samples);
+        let last = samples - 1;
+        for (k, r) in rows.iter().enumerate() {
+            let time = if k == last { run.t_end } else { run.t_end * k as f64 / last as f64 };
+            let [phi, omega] = run.at(time);
+            let want = [time, phi * angle, omega * angle];
+            assert_eq!(r.iter().map(|v| v.to_bits()).collect::<Vec<_>>(), want.map(f64::to_bits), "row {k}: {r:?}");
+        }
+    }
+}

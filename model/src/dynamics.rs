@@ -6,15 +6,15 @@
 //! `MassModel`'s ([`MassModelBuf`]); the loads at a state are the load expressions' segment run
 //! over the model's registers: evaluating them allocates nothing. The formulas of the dynamics,
 //! the inverse cycle ([`ModelCycle`]), the flywheel and the forward simulation
-//! ([`ModelSimulation`]) are the runtime's, written once over any state ([`AnalogState`]) and
+//! ([`ModelSimulation`], its steps recorded or handed over as they are made) are the runtime's, written once over any state ([`AnalogState`]) and
 //! any `Kernel`.
 
 use crate::dynamics_prog::DynamicsProg;
 use crate::model::Model;
 use kinloop_runtime::dims::{Heap, KinBuf, Sizes};
 use kinloop_runtime::dynamics::{
-    AnalogState, Cycle, CyclePoint, Dynamics, DynamicsBuf, DynamicsError, MassModelBuf, RunConfig, Shaking, SpeedLaw,
-    Trajectory, simulate_of, turn_states,
+    AnalogState, Cycle, CyclePoint, DenseStep, Dynamics, DynamicsBuf, DynamicsError, MassModelBuf, RunConfig, Shaking,
+    SpeedLaw, Trajectory, simulate_steps_of, turn_states,
 };
 use kinloop_runtime::{Error, Source, SweepConfig};
 
@@ -157,9 +157,10 @@ impl<'a, D, S> ModelSimulation<'a, D, S> {
     }
 
     /// Simulates for `t_end` time units from the start: the runtime's integration
-    /// ([`simulate_of()`]) over this model's kernel, each evaluation the model's step written in
-    /// place, its declared loads' segment and [`MassModelBuf::dynamics_into`] (no allocation
-    /// but the trajectory's growth).
+    /// ([`simulate_of`](kinloop_runtime::dynamics::simulate_of())) over this model's kernel,
+    /// each evaluation the model's step written in place, its declared loads' segment and
+    /// [`MassModelBuf::dynamics_into`] (no allocation but the trajectory's growth): every
+    /// accepted step of [`ModelSimulation::run_steps`] recorded.
     ///
     /// Errors: those of the compiled `Simulation::run`, as [`Error::Dynamics`] (a kinematic
     /// failure as [`DynamicsError::Kinematics`] with its time, its source with the model's
@@ -168,6 +169,62 @@ impl<'a, D, S> ModelSimulation<'a, D, S> {
     /// dynamics ([`Error::InvalidArgument`]); a model of other than one input
     /// ([`DynamicsError::SizeMismatch`] in [`Error::Dynamics`]).
     pub fn run(self, t_end: f64) -> Result<Trajectory, Error>
+    where
+        D: Fn(f64, f64, f64) -> f64,
+        S: FnMut(f64, &[f64; 2]) -> bool,
+    {
+        let mut steps = Vec::new();
+        let (t_end, end) = self.run_steps(t_end, |s, _| {
+            steps.push(*s);
+            false
+        })?;
+        Ok(Trajectory { steps, t_end, end })
+    }
+
+    /// Simulates for `t_end` time units from the start, as [`ModelSimulation::run`] does,
+    /// keeping nothing: the runtime's [`simulate_steps_of`] over this model's kernel (the
+    /// compiled `Simulation::run_steps`). Each accepted step is handed to `on_step(step, [phi,
+    /// omega])` as it is made (its dense output, [`DenseStep::at`] anywhere in `step.t0 ..=
+    /// step.t1()`, and the state at its end); `on_step` returning `true` ends the run there, as
+    /// the [`ModelSimulation::stop_when`] predicate does (asked after `on_step`, unless that
+    /// ended the run). Returns the time and the state `[phi, omega]` reached.
+    ///
+    /// The steps are those of [`ModelSimulation::run`]'s trajectory, bit for bit, and so are
+    /// the errors, which end the run after the steps before them were handed over. Besides
+    /// the setup (the mass model, a copy of the registers), a step allocates nothing unless
+    /// `on_step` does.
+    ///
+    /// ```
+    /// use kinloop_model::Model;
+    /// let text = "pub struct Crank {
+    ///     params r = 0.1, l = 0.4, m = 2.0, j = 0.01;
+    ///     input phi;
+    ///     unknowns beta = 0, x = 0.5;
+    ///     loop abc: r @ phi + l @ beta == (x, 0);
+    ///     body crank: mass 0, com (0, 0), inertia j, turns phi;
+    ///     body piston: mass m, com (x, 0);
+    /// }";
+    /// let mut model = Model::read("crank.kl", text).unwrap();
+    /// // The slowest speed over the run, read from each step's end and middle: no trajectory
+    /// // kept; the run ends after the first turn.
+    /// let mut slowest = f64::INFINITY;
+    /// let (t, [phi, _]) = model
+    ///     .simulation()
+    ///     .start(0.0, 10.0)
+    ///     .run_steps(2.0, |step, &[phi, omega]| {
+    ///         slowest = slowest.min(omega).min(step.at(step.t0 + 0.5 * step.h)[1]);
+    ///         phi >= std::f64::consts::TAU
+    ///     })
+    ///     .unwrap();
+    /// assert!(t < 2.0 && phi >= std::f64::consts::TAU);
+    /// // Free: J = j + m x'^2 >= j, so the crank slows down where the piston moves fast.
+    /// assert!(slowest > 0.0 && slowest < 10.0);
+    /// ```
+    pub fn run_steps(
+        self,
+        t_end: f64,
+        mut on_step: impl FnMut(&DenseStep<2>, &[f64; 2]) -> bool,
+    ) -> Result<(f64, [f64; 2]), Error>
     where
         D: Fn(f64, f64, f64) -> f64,
         S: FnMut(f64, &[f64; 2]) -> bool,
@@ -197,13 +254,15 @@ impl<'a, D, S> ModelSimulation<'a, D, S> {
             Ok(Dynamics { mass: [[d.mass[0]]], gamma: [[[d.gamma[0]]]], forces: [d.forces[0]] })
         };
         let kernel = m.kernel(SweepConfig::default())?;
-        let (start, cfg) = (self.start, self.cfg);
-        simulate_of(kernel, reduced, self.drive, start, t_end, Heap(guess.into()), &cfg, self.stop).map_err(|e| match e
-        {
-            // A kinematic failure keeps the time it happened at, as the compiled simulation's.
-            e @ DynamicsError::Kinematics { t: Some(_), .. } => Error::Dynamics(Source::new(e)),
-            e => e.into(),
-        })
+        let (start, cfg, mut stop) = (self.start, self.cfg, self.stop);
+        let each = |s: &DenseStep<2>, y: &[f64; 2]| on_step(s, y) || stop(s.t1(), y);
+        simulate_steps_of(kernel, reduced, self.drive, start, t_end, Heap(guess.into()), &cfg, each).map_err(
+            |e| match e {
+                // A kinematic failure keeps the time it happened at, as the compiled simulation's.
+                e @ DynamicsError::Kinematics { t: Some(_), .. } => Error::Dynamics(Source::new(e)),
+                e => e.into(),
+            },
+        )
     }
 }
 

@@ -60,7 +60,8 @@
 //! (`tests/dynamics.rs`). So is the forward simulation ([`Model::simulation`]: the runtime's
 //! `dynamics::simulate_of`, the compiled `Simulation`'s integration, over the model's kernel,
 //! each evaluation the model's step written in place and the declared loads' segment, no
-//! allocation but the trajectory's): the same trajectory to the last bit on the engine and
+//! allocation but the trajectory's, none at all when [`ModelSimulation::run_steps`] hands each
+//! step over as it is made): the same trajectory to the last bit on the engine and
 //! Stirling fixtures, and a free slider-crank's energy and time of a turn as the closed forms
 //! give them.
 //!

@@ -11,7 +11,7 @@
 use kinloop::Mechanism;
 use kinloop::NewtonConfig;
 use kinloop::dynamics::{
-    Cycle, CyclePoint, DynamicsError, InverseCycle, OdeConfig, RunConfig, Simulation, SpeedLaw, Trajectory,
+    Cycle, CyclePoint, DenseStep, DynamicsError, InverseCycle, OdeConfig, RunConfig, Simulation, SpeedLaw, Trajectory,
 };
 use kinloop_fixtures as fx;
 use kinloop_model::Model;
@@ -330,6 +330,99 @@ fn the_engine_s_simulation_equals_the_compiled_one() {
     let worst = trajectories_differ(&compiled, &run_time);
     eprintln!("Stirling engine simulation: {} steps, largest relative difference {worst:e}", compiled.steps.len());
     assert!(worst <= REL, "{worst:e}");
+}
+
+/// Each step's start, size and dense output at five points (its ends and three inside), as
+/// bits: equal only if the steps are the same to the last bit.
+fn step_bits(steps: &[DenseStep<2>]) -> Vec<u64> {
+    let mut bits = Vec::new();
+    for s in steps {
+        bits.extend([s.t0.to_bits(), s.h.to_bits()]);
+        for k in 0..=4 {
+            bits.extend(s.at(s.t0 + s.h * k as f64 / 4.0).map(f64::to_bits));
+        }
+    }
+    bits
+}
+
+/// A run-time model's streamed steps (`run_steps`) are its recorded trajectory's, bit for bit,
+/// with the state at each one's end, and the compiled mechanism streams the same steps as it
+/// records; the consumer ends the run where it says (with the stop predicate still asked), and
+/// an error ends the streamed run as it ends the recorded one, where it happened.
+#[test]
+fn the_engine_s_streamed_steps_are_its_trajectory_s() {
+    let engine = fx::EngineMachine::default();
+    let mass = engine.mass_model().unwrap();
+    let mut model = Model::read("engine.kl", fx::ENGINE_MACHINE_TEXT).unwrap();
+    let motor = |_: f64, _: f64, omega: f64| 4.0 - 0.01 * omega;
+    let cfg = RunConfig::default().with_flywheel(0.05);
+    let stop = |_: f64, y: &[f64; 2]| y[0] > 4.0 * TAU;
+    let stored = model.simulation().start(0.3, 150.0).drive(motor).config(cfg).stop_when(stop).run(5.0).unwrap();
+    assert!(stored.end[0] > 4.0 * TAU && stored.steps.len() > 100, "{} steps", stored.steps.len());
+    let mut steps = Vec::new();
+    let (t, end) = model
+        .simulation()
+        .start(0.3, 150.0)
+        .drive(motor)
+        .config(cfg)
+        .stop_when(stop)
+        .run_steps(5.0, |s, y| {
+            steps.push((*s, *y));
+            false
+        })
+        .unwrap();
+    let (only, ends): (Vec<DenseStep<2>>, Vec<[f64; 2]>) = steps.iter().copied().unzip();
+    assert_eq!(step_bits(&only), step_bits(&stored.steps));
+    assert_eq!((t.to_bits(), end.map(f64::to_bits)), (stored.t_end.to_bits(), stored.end.map(f64::to_bits)));
+    assert_eq!(ends.last().map(|y| y.map(f64::to_bits)), Some(end.map(f64::to_bits)));
+    // The compiled mechanism streams what it records.
+    let compiled = || Simulation::new(&engine, &mass).start(0.3, 150.0).drive(motor).config(cfg).stop_when(stop);
+    let recorded = compiled().run(5.0).unwrap();
+    let mut streamed = Vec::new();
+    compiled()
+        .run_steps(5.0, |s, _| {
+            streamed.push(*s);
+            false
+        })
+        .unwrap();
+    assert_eq!(step_bits(&streamed), step_bits(&recorded.steps));
+    // Ended by the consumer after 25 steps: the recorded run's first 25, the 25th's end reached.
+    let mut count = 0;
+    let (t, end) = model
+        .simulation()
+        .start(0.3, 150.0)
+        .drive(motor)
+        .config(cfg)
+        .stop_when(stop)
+        .run_steps(5.0, |_, _| {
+            count += 1;
+            count == 25
+        })
+        .unwrap();
+    assert_eq!(count, 25);
+    assert_eq!((t.to_bits(), end.map(f64::to_bits)), (stored.steps[24].t1().to_bits(), ends[24].map(f64::to_bits)));
+    // A rocker driven into its limit position: the recorded run's error, with its time, after
+    // the steps before it.
+    let mut rocker = Model::read("rocker.kl", &FREE.replace("l = 0.2", "l = 0.03")).unwrap();
+    let recorded = rocker.simulation().guess(&[0.0, 0.08]).start(0.0, 1.0).run(1.0).unwrap_err();
+    let mut last = None;
+    let e = rocker
+        .simulation()
+        .guess(&[0.0, 0.08])
+        .start(0.0, 1.0)
+        .run_steps(1.0, |s, _| {
+            last = Some(s.t1());
+            false
+        })
+        .unwrap_err();
+    assert_eq!(e.to_string(), recorded.to_string());
+    match dynamics_error(&e) {
+        DynamicsError::Kinematics { t: Some(t), .. } => {
+            let last = last.expect("steps before the failure");
+            assert!(last <= *t && *t < 1.0, "the last step ends at {last}, the failure at {t}");
+        }
+        d => panic!("{d:?}"),
+    }
 }
 
 const FREE: &str = "pub struct Free {

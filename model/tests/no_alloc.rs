@@ -173,6 +173,51 @@ fn a_simulation_s_steps_do_not_allocate() {
     eprintln!("simulation: {short} allocations in {short_steps} steps, {long} in {long_steps}");
 }
 
+/// A simulation that hands each step over as it is made (`run_steps`) allocates nothing per
+/// step, the run-time model's and the compiled mechanism's: a run of over twenty times the
+/// steps of a short one makes exactly as many allocations (the setup's).
+#[test]
+fn a_streamed_simulation_allocates_nothing_per_step() {
+    let _one = ONE_AT_A_TIME.lock().unwrap_or_else(|e| e.into_inner());
+    let mut m = Model::read("engine.kl", fx::ENGINE_MACHINE_TEXT).expect("valid");
+    let engine = fx::EngineMachine::default();
+    let mass = engine.mass_model().expect("a mass model");
+    let cfg = kinloop::dynamics::RunConfig::default().with_flywheel(0.05);
+    let motor = |_: f64, _: f64, w: f64| 4.0 - 0.01 * w;
+    // The allocations of a run to `turns` turns and its steps, of the run-time model and of the
+    // compiled mechanism.
+    let mut run = |turns: f64| {
+        let until = move |y: &[f64; 2]| y[0] > turns * std::f64::consts::TAU;
+        let (mut model_steps, mut compiled_steps) = (0usize, 0usize);
+        let before = allocations();
+        let r = m.simulation().start(0.3, 150.0).drive(motor).config(cfg).run_steps(10.0, |_, y| {
+            model_steps += 1;
+            until(y)
+        });
+        let model = allocations() - before;
+        r.expect("a run");
+        let before = allocations();
+        let r = kinloop::dynamics::Simulation::new(&engine, &mass)
+            .start(0.3, 150.0)
+            .drive(motor)
+            .config(cfg)
+            .run_steps(10.0, |_, y| {
+                compiled_steps += 1;
+                until(y)
+            });
+        let compiled = allocations() - before;
+        r.expect("a run");
+        ((model, model_steps), (compiled, compiled_steps))
+    };
+    let (short_model, short_compiled) = run(0.5);
+    let (long_model, long_compiled) = run(15.0);
+    for (what, short, long) in [("model", short_model, long_model), ("compiled", short_compiled, long_compiled)] {
+        assert!(long.1 > 20 * short.1, "{what}: {} steps against {}", long.1, short.1);
+        assert_eq!(long.0, short.0, "{what}: allocations in {} steps, in {}", long.1, short.1);
+        eprintln!("streamed {what} simulation: {} allocations in {} steps, {} in {}", short.0, short.1, long.0, long.1);
+    }
+}
+
 /// A column found by name on a run-time model's kernel (`ColumnOf<K> for &str`) allocates
 /// nothing, and is the column the compiled mechanism's `Column::named` finds; a name that is no
 /// column gives the compiled lookup's error, listing the columns.

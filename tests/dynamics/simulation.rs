@@ -1,13 +1,14 @@
 //! Forward dynamics: the Dormand–Prince integrator against closed-form solutions, energy
 //! conservation of the free rhombic drive over 100 turns, the flywheel's speed fluctuation
 //! reproduced by simulation, the run-up from rest under a motor characteristic, and a typed
-//! stop at a limit position.
+//! stop at a limit position; the steps handed over as they are made (`run_steps`) are the
+//! recorded trajectory's, bit for bit.
 
 use crate::fixtures::{RhombicDrive, SliderCrank, rhombic_bodies, rhombic_model};
 use kinloop::Mechanism;
 use kinloop::dynamics::{
-    Body, Coord, DynamicsError, InverseCycle, MassModel, OdeConfig, Rotation, RunConfig, Simulation, SpeedLaw,
-    Trajectory, dopri5,
+    Body, Coord, DenseStep, DynamicsError, InverseCycle, MassModel, OdeConfig, Rotation, RunConfig, Simulation,
+    SpeedLaw, Trajectory, dopri5,
 };
 use std::f64::consts::TAU;
 
@@ -321,4 +322,104 @@ fn crank_and_piston(inertia: f64) -> MassModel<2, 1, 2> {
             })
         })
         .unwrap()
+}
+
+/// The steps a run hands over (`run_steps`) and the state at each one's end, recorded by the
+/// caller.
+type Handed = (Vec<DenseStep<2>>, Vec<[f64; 2]>);
+
+/// Each step's start, size and dense output at five points (its ends and three inside), and
+/// the state at its end, as bits: equal only if the steps are the same to the last bit.
+fn step_bits(steps: &[DenseStep<2>]) -> Vec<u64> {
+    let mut bits = Vec::new();
+    for s in steps {
+        bits.extend([s.t0.to_bits(), s.h.to_bits()]);
+        for k in 0..=4 {
+            bits.extend(s.at(s.t0 + s.h * k as f64 / 4.0).map(f64::to_bits));
+        }
+    }
+    bits
+}
+
+/// The compiled mechanism's streamed steps are its recorded trajectory's, bit for bit: the
+/// rhombic drive under a motor characteristic with a flywheel and a stop predicate; the state
+/// handed with each step is the state at its end, and the run reaches the trajectory's end.
+#[test]
+fn the_streamed_steps_are_the_trajectory_s_bit_for_bit() {
+    let drive = RhombicDrive::default();
+    let model = rhombic_model([0.0, 0.0]);
+    let cfg = RunConfig::default().with_flywheel(0.02);
+    let sim = || {
+        Simulation::new(&drive, &model)
+            .start(0.0, 8.0)
+            .guess(drive.guess_flat(&[0.0]))
+            .drive(|_, _, omega| 3.0 - 0.2 * omega)
+            .config(cfg)
+            .stop_when(|_, y| y[0] >= 3.0 * TAU)
+    };
+    let stored = sim().run(50.0).unwrap();
+    assert!(stored.end[0] >= 3.0 * TAU && stored.steps.len() > 50, "{} steps", stored.steps.len());
+    let (mut steps, mut ends): Handed = (Vec::new(), Vec::new());
+    let (t, end) = sim()
+        .run_steps(50.0, |s, y| {
+            steps.push(*s);
+            ends.push(*y);
+            false
+        })
+        .unwrap();
+    assert_eq!(step_bits(&steps), step_bits(&stored.steps));
+    assert_eq!((t.to_bits(), end.map(f64::to_bits)), (stored.t_end.to_bits(), stored.end.map(f64::to_bits)));
+    assert_eq!(ends.last().map(|y| y.map(f64::to_bits)), Some(end.map(f64::to_bits)));
+    // The state handed with a step is where the next one starts.
+    for (y, next) in ends.iter().zip(&steps[1..]) {
+        assert_eq!(y.map(f64::to_bits), next.at(next.t0).map(f64::to_bits));
+    }
+}
+
+/// A consumer ends the run where it says: after the tenth step the run returns that step's
+/// end, having made the recorded trajectory's first ten steps (and no more).
+#[test]
+fn the_consumer_of_the_steps_ends_the_run_early() {
+    let sc = SliderCrank::default();
+    let model = crank_and_piston(0.5);
+    let sim = || Simulation::new(&sc, &model).start(0.0, 20.0).guess(sc.guess_flat(&[0.0])).drive(|_, _, _| 1.0);
+    let stored = sim().run(2.0).unwrap();
+    assert!(stored.steps.len() > 20, "{} steps", stored.steps.len());
+    let (mut steps, mut ends): Handed = (Vec::new(), Vec::new());
+    let (t, end) = sim()
+        .run_steps(2.0, |s, y| {
+            steps.push(*s);
+            ends.push(*y);
+            steps.len() == 10
+        })
+        .unwrap();
+    assert_eq!(step_bits(&steps), step_bits(&stored.steps[..10]));
+    assert_eq!(t.to_bits(), stored.steps[9].t1().to_bits());
+    assert_eq!(end.map(f64::to_bits), ends[9].map(f64::to_bits));
+    assert!(t < 2.0);
+}
+
+/// An error ends a streamed run as it ends the recorded one, with the same location (the time,
+/// the input and its speed reached), after the steps before it were handed over: the last of
+/// them ends where the error says the motion was.
+#[test]
+fn an_error_ends_the_streamed_run_where_it_happens() {
+    let sc = SliderCrank::default();
+    let model = crank_model(1.0).unwrap();
+    let drive = |t: f64, _: f64, _: f64| if t < 0.5 { (0.5 - t).powi(-2) } else { 0.0 };
+    let sim = || Simulation::new(&sc, &model).start(0.0, 2.0).guess(sc.guess_flat(&[0.0])).drive(drive);
+    let stored = sim().run(1.0).unwrap_err();
+    let (mut count, mut last) = (0, None);
+    let streamed = sim()
+        .run_steps(1.0, |s, y| {
+            count += 1;
+            last = Some((s.t1(), *y));
+            false
+        })
+        .unwrap_err();
+    assert_eq!(format!("{streamed:?}"), format!("{stored:?}"));
+    let DynamicsError::SingularMotion { t, x, speed, .. } = &streamed else { panic!("{streamed}") };
+    let (t1, y) = last.expect("steps before the error");
+    assert!(count > 10, "{count} steps");
+    assert_eq!((t1.to_bits(), y.map(f64::to_bits)), (t.to_bits(), [x[0].to_bits(), speed[0].to_bits()]));
 }

@@ -17,7 +17,9 @@
 //! [`Kernel`](crate::Kernel)'s input for [`Cycle::over_states`], the inverse cycle
 //! [`InverseCycle::run`] computes. The forward simulation is written once too
 //! ([`simulate_of()`], over any [`Kernel`](crate::Kernel), its step written in place):
-//! [`Simulation::run`] is it over a compiled mechanism.
+//! [`Simulation::run`] is it over a compiled mechanism. [`simulate_steps_of()`] and
+//! [`Simulation::run_steps`] hand each accepted step (its [`DenseStep`]) to the caller as it is
+//! made and keep nothing: the recorded [`Trajectory`] is one consumer of them.
 //!
 //! ```
 //! use kinloop_runtime::dynamics::{Body, Coord, MassModel, Rotation};
@@ -66,6 +68,6 @@ pub use eval::{Dynamics, Shaking};
 pub use model::{Body, Coord, ForceLaw, Load, MassModel, Point, Rotation, TorqueLaw};
 pub use ode::{DenseStep, OdeConfig, dopri5};
 pub use simulate::Simulation;
-pub use simulate_of::{RunConfig, Trajectory, simulate_of};
+pub use simulate_of::{RunConfig, Trajectory, simulate_of, simulate_steps_of};
 pub use sized::{Applied, DynamicsBuf, MassModelBuf};
 pub use state::AnalogState;

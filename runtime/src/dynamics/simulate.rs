@@ -7,7 +7,8 @@
 
 use super::error::DynamicsError;
 use super::model::MassModel;
-use super::simulate_of::{RunConfig, Trajectory, simulate_of};
+use super::ode::DenseStep;
+use super::simulate_of::{RunConfig, Trajectory, simulate_of, simulate_steps_of};
 use crate::kin::Kin;
 use crate::mechanism::Mechanism;
 use crate::mechanism::kernel::Compiled;
@@ -24,6 +25,9 @@ use crate::mechanism::kernel::Compiled;
 ///     .run(3.0)?;                               // simulate 3 time units
 /// let [phi, omega] = run.at(1.5);
 /// ```
+///
+/// [`Simulation::run`] keeps every accepted step (its [`Trajectory`]);
+/// [`Simulation::run_steps`] hands each one to the caller as it is made and keeps nothing.
 ///
 /// Without a call to each setter: at rest at input 0 (`start`), from the mechanism's declared
 /// guess there (`guess`), no driving torque (`drive`), never stopped early (`stop_when`), the
@@ -120,5 +124,82 @@ where
         let model = self.model;
         let reduced = |k: &Kin<N, 1, NO>, omega: f64| model.dynamics(k, &[omega]);
         simulate_of(Compiled(self.m), reduced, &self.drive, self.start, t_end, guess, &self.cfg, &mut self.stop)
+    }
+
+    /// Simulates for `t_end` time units from the start, as [`Simulation::run`] does, keeping
+    /// nothing: each accepted step is handed to `on_step(step, [phi, omega])` as it is made (its
+    /// dense output, [`DenseStep::at`] anywhere in `step.t0 ..= step.t1()`, and the state at its
+    /// end), and `on_step` returning `true` ends the run there, as
+    /// [`Simulation::stop_when`]'s predicate does (asked after `on_step`, unless that ended the
+    /// run). Returns the time and the state `[phi, omega]` reached.
+    ///
+    /// The steps are those of [`Simulation::run`]'s [`Trajectory`], bit for bit (that is this
+    /// run with each step pushed), and so are the errors, which end the run after the steps
+    /// before them were handed over. A step allocates nothing unless `on_step` does: a run of
+    /// any length takes the memory of what `on_step` keeps.
+    ///
+    /// ```
+    /// use kinloop_runtime::dynamics::{Body, Coord, MassModel, Rotation, Simulation};
+    /// # use kinloop_runtime::{BlockInfo, Error, Health, Jac, Kin, Mechanism, NewtonConfig, SolveReport};
+    /// # /// A wheel turning with its input: no unknowns, no outputs.
+    /// # struct Wheel;
+    /// # impl Mechanism<0, 1, 0> for Wheel {
+    /// #     const NAME: &'static str = "Wheel";
+    /// #     const PARAMS: &'static [&'static str] = &[];
+    /// #     const INPUTS: [&'static str; 1] = ["phi"];
+    /// #     const UNKNOWNS: [&'static str; 0] = [];
+    /// #     const EQUATIONS: [&'static str; 0] = [];
+    /// #     const OUTPUTS: [&'static str; 0] = [];
+    /// #     const BLOCKS: &'static [BlockInfo] = &[];
+    /// #     fn param_values(&self) -> Vec<f64> { Vec::new() }
+    /// #     fn guess_flat(&self, _: &[f64; 1]) -> [f64; 0] { [] }
+    /// #     fn position_flat(&self, _: &[f64; 1], _: &[f64; 0], _: &NewtonConfig) -> Result<([f64; 0], SolveReport), Error> {
+    /// #         Ok(([], SolveReport::given(0.0)))
+    /// #     }
+    /// #     fn kinematics_flat(&self, x: &[f64; 1], q: &[f64; 0], cfg: &NewtonConfig) -> Result<Kin<0, 1, 0>, Error> {
+    /// #         self.kinematics_at_flat(x, q, cfg)
+    /// #     }
+    /// #     fn kinematics_at_flat(&self, x: &[f64; 1], _: &[f64; 0], _: &NewtonConfig) -> Result<Kin<0, 1, 0>, Error> {
+    /// #         let (q, dq, d2q, out, dout, d2out) = ([], [], [], [], [], []);
+    /// #         Ok(Kin { x: *x, q, dq, d2q, out, dout, d2out, report: SolveReport::given(0.0), health: Health::default() })
+    /// #     }
+    /// #     fn outputs_flat(&self, _: &[f64; 1], _: &[f64; 0]) -> [f64; 0] { [] }
+    /// #     fn jacobian_flat(&self, _: &[f64; 1], _: &[f64; 0]) -> Jac<0, 1> {
+    /// #         Jac { f: [], j: [], fx: [], scale: [], unit: [], input_unit: [1.0] }
+    /// #     }
+    /// # }
+    /// // A wheel of moment of inertia 2 turning with the input, driven by a torque of 1.
+    /// let wheel = Body { name: "wheel".into(), mass: 0.0, com: [Coord::Fixed(0.0); 2], inertia: 2.0, rotation: Rotation::Input(0) };
+    /// let model = MassModel::<0, 1, 0>::new().with_body(wheel)?;
+    /// // The mean speed over the run, from each step's dense output at its middle: no
+    /// // trajectory kept, the run ended once the wheel has turned 1 radian.
+    /// let (mut angle, mut steps) = (0.0, 0);
+    /// let (t, [phi, omega]) = Simulation::new(&Wheel, &model)
+    ///     .drive(|_t, _phi, _omega| 1.0)
+    ///     .run_steps(10.0, |step, &[phi, _omega]| {
+    ///         angle += step.at(step.t0 + 0.5 * step.h)[1] * step.h;
+    ///         steps += 1;
+    ///         phi >= 1.0
+    ///     })?;
+    /// // From rest: omega = t / 2, phi = t^2 / 4, reached 1 at t = 2 (within the last step).
+    /// assert!(t < 10.0 && phi >= 1.0 && (omega - t / 2.0).abs() < 1e-9);
+    /// assert!(steps > 1 && (angle - phi).abs() < 1e-6, "{angle} against {phi}");
+    /// # Ok::<(), kinloop_runtime::dynamics::DynamicsError>(())
+    /// ```
+    pub fn run_steps(
+        mut self,
+        t_end: f64,
+        mut on_step: impl FnMut(&DenseStep<2>, &[f64; 2]) -> bool,
+    ) -> Result<(f64, [f64; 2]), DynamicsError>
+    where
+        D: Fn(f64, f64, f64) -> f64,
+        S: FnMut(f64, &[f64; 2]) -> bool,
+    {
+        let guess = self.guess.unwrap_or_else(|| self.m.guess_flat(&[self.start[0]]));
+        let model = self.model;
+        let reduced = |k: &Kin<N, 1, NO>, omega: f64| model.dynamics(k, &[omega]);
+        let stop = &mut self.stop;
+        let each = |s: &DenseStep<2>, y: &[f64; 2]| on_step(s, y) || stop(s.t1(), y);
+        simulate_steps_of(Compiled(self.m), reduced, &self.drive, self.start, t_end, guess, &self.cfg, each)
     }
 }

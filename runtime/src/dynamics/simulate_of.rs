@@ -3,7 +3,9 @@
 //! [`Compiled`](crate::mechanism::kernel::Compiled) and its [`MassModel`](super::MassModel)) and a run-time model's
 //! (`kinloop_model::Model::simulation`, its `MassModelBuf` and its load expressions) run this
 //! integration, with the same operations in the same order. Its settings ([`RunConfig`]) and
-//! result ([`Trajectory`]) are every simulation's.
+//! result ([`Trajectory`]) are every simulation's. The integration hands each accepted step
+//! to its caller as it is made ([`simulate_steps_of`]); recording them into the trajectory
+//! ([`simulate_of`]) is one use of them.
 
 use super::error::DynamicsError;
 use super::eval::Dynamics;
@@ -75,7 +77,8 @@ impl Trajectory {
 /// Simulates the one-input machine `m` for `t_end` time units from `start = [phi0, omega0]`:
 /// `(J + J_fly) phi'' + 1/2 J' phi'^2 = M_drive + Q` by [`dopri5`], the kinematics solved at
 /// every evaluation (the first from `guess`, every later one warm-started from the last
-/// position, without restarts, so that the machine stays on its assembly branch).
+/// position, without restarts, so that the machine stays on its assembly branch), and records
+/// the motion: [`simulate_steps_of`] with every accepted step pushed into the [`Trajectory`].
 ///
 /// `reduced(state, omega)` gives the one-input dynamics at a solved state and input speed (the
 /// reduced inertia `J = mass[0][0]`, `1/2 J' = gamma[0][0][0]`, the generalised force `Q`: a
@@ -88,7 +91,7 @@ impl Trajectory {
 #[allow(clippy::too_many_arguments)]
 pub fn simulate_of<K: Kernel>(
     m: K,
-    mut reduced: impl FnMut(&<K::Dims as Dims>::Kin, f64) -> Result<Dynamics<1>, DynamicsError>,
+    reduced: impl FnMut(&<K::Dims as Dims>::Kin, f64) -> Result<Dynamics<1>, DynamicsError>,
     drive: impl Fn(f64, f64, f64) -> f64,
     start: [f64; 2],
     t_end: f64,
@@ -96,6 +99,88 @@ pub fn simulate_of<K: Kernel>(
     cfg: &RunConfig,
     mut stop: impl FnMut(f64, &[f64; 2]) -> bool,
 ) -> Result<Trajectory, DynamicsError> {
+    let mut steps = Vec::new();
+    let (t_end, end) = simulate_steps_of(m, reduced, drive, start, t_end, guess, cfg, |s, y| {
+        steps.push(*s);
+        stop(s.t1(), y)
+    })?;
+    Ok(Trajectory { steps, t_end, end })
+}
+
+/// The forward simulation of [`simulate_of`], keeping nothing: each accepted step is handed to
+/// `on_step(step, [phi, omega])` as it is made (its dense output, which gives the state
+/// anywhere in `step.t0 ..= step.t1()`, and the state at its end), and `on_step` returning
+/// `true` ends the run there. Returns the time and the state `[phi, omega]` reached (`t_end`
+/// unless `on_step` ended the run early), as [`dopri5`] does.
+///
+/// The steps are those [`simulate_of`] records, bit for bit (it is this function with each
+/// step pushed into its trajectory), so a consumer that samples them as they pass sees what
+/// [`Trajectory::at`] gives afterwards, in the memory of what it keeps. The arguments and
+/// errors are [`simulate_of`]'s: an error (with its time, and the input and speed reached for
+/// a collapsing step) ends the run after the steps before it were handed over. A step
+/// allocates nothing unless `reduced` or `on_step` does.
+///
+/// ```
+/// use kinloop_runtime::dynamics::{Dynamics, RunConfig, simulate_steps_of};
+/// use kinloop_runtime::{Compiled, Kin};
+/// # use kinloop_runtime::{BlockInfo, Error, Health, Jac, Mechanism, NewtonConfig, SolveReport};
+/// # /// A wheel turning with its input: no unknowns, no outputs.
+/// # struct Wheel;
+/// # impl Mechanism<0, 1, 0> for Wheel {
+/// #     const NAME: &'static str = "Wheel";
+/// #     const PARAMS: &'static [&'static str] = &[];
+/// #     const INPUTS: [&'static str; 1] = ["phi"];
+/// #     const UNKNOWNS: [&'static str; 0] = [];
+/// #     const EQUATIONS: [&'static str; 0] = [];
+/// #     const OUTPUTS: [&'static str; 0] = [];
+/// #     const BLOCKS: &'static [BlockInfo] = &[];
+/// #     fn param_values(&self) -> Vec<f64> { Vec::new() }
+/// #     fn guess_flat(&self, _: &[f64; 1]) -> [f64; 0] { [] }
+/// #     fn position_flat(&self, _: &[f64; 1], _: &[f64; 0], _: &NewtonConfig) -> Result<([f64; 0], SolveReport), Error> {
+/// #         Ok(([], SolveReport::given(0.0)))
+/// #     }
+/// #     fn kinematics_flat(&self, x: &[f64; 1], q: &[f64; 0], cfg: &NewtonConfig) -> Result<Kin<0, 1, 0>, Error> {
+/// #         self.kinematics_at_flat(x, q, cfg)
+/// #     }
+/// #     fn kinematics_at_flat(&self, x: &[f64; 1], _: &[f64; 0], _: &NewtonConfig) -> Result<Kin<0, 1, 0>, Error> {
+/// #         let (q, dq, d2q, out, dout, d2out) = ([], [], [], [], [], []);
+/// #         Ok(Kin { x: *x, q, dq, d2q, out, dout, d2out, report: SolveReport::given(0.0), health: Health::default() })
+/// #     }
+/// #     fn outputs_flat(&self, _: &[f64; 1], _: &[f64; 0]) -> [f64; 0] { [] }
+/// #     fn jacobian_flat(&self, _: &[f64; 1], _: &[f64; 0]) -> Jac<0, 1> {
+/// #         Jac { f: [], j: [], fx: [], scale: [], unit: [], input_unit: [1.0] }
+/// #     }
+/// # }
+/// // A wheel of reduced inertia 2 (`Wheel`: the input is its angle) under a torque of 1.
+/// let reduced = |_: &Kin<0, 1, 0>, _omega: f64| Ok(Dynamics { mass: [[2.0]], gamma: [[[0.0]]], forces: [0.0] });
+/// // The largest step, and the speed at each step's middle from its dense output: nothing kept.
+/// let (mut longest, mut worst) = (0.0f64, 0.0f64);
+/// let (t, [phi, omega]) = simulate_steps_of(
+///     Compiled(&Wheel), reduced, |_t, _phi, _omega| 1.0, [0.0, 0.0], 2.0, [], &RunConfig::default(),
+///     |step, _end| {
+///         let mid = step.t0 + 0.5 * step.h;
+///         longest = longest.max(step.h);
+///         worst = worst.max((step.at(mid)[1] - mid / 2.0).abs());
+///         false // never end the run early
+///     },
+/// )?;
+/// // From rest: omega = t / 2, phi = t^2 / 4.
+/// assert_eq!(t, 2.0);
+/// assert!((omega - 1.0).abs() < 1e-9 && (phi - 1.0).abs() < 1e-9 && worst < 1e-9);
+/// assert!(longest > 0.0 && longest <= 2.0);
+/// # Ok::<(), kinloop_runtime::dynamics::DynamicsError>(())
+/// ```
+#[allow(clippy::too_many_arguments)]
+pub fn simulate_steps_of<K: Kernel>(
+    m: K,
+    mut reduced: impl FnMut(&<K::Dims as Dims>::Kin, f64) -> Result<Dynamics<1>, DynamicsError>,
+    drive: impl Fn(f64, f64, f64) -> f64,
+    start: [f64; 2],
+    t_end: f64,
+    guess: <K::Dims as Dims>::Q,
+    cfg: &RunConfig,
+    mut on_step: impl FnMut(&DenseStep<2>, &[f64; 2]) -> bool,
+) -> Result<(f64, [f64; 2]), DynamicsError> {
     let d = m.dims();
     if d.ni() != 1 {
         return Err(DynamicsError::SizeMismatch {
@@ -153,15 +238,13 @@ pub fn simulate_of<K: Kernel>(
         let eps = d.accelerations(&[phi], &[omega], &[tau]).map_err(named)?;
         Ok([omega, eps[0]])
     };
-    let mut steps = Vec::new();
     let mut reached = start;
     let run = dopri5(rhs, 0.0, start, t_end, &cfg.ode, |s, y| {
-        steps.push(*s);
         reached = *y;
-        Ok(stop(s.t1(), y))
+        Ok(on_step(s, y))
     });
     match run {
-        Ok((t, end)) => Ok(Trajectory { steps, t_end: t, end }),
+        Ok(end) => Ok(end),
         // Say where: the input and speed of the last accepted step.
         Err(DynamicsError::StepTooSmall { t, h }) => Err(named(DynamicsError::SingularMotion {
             t,
