@@ -80,9 +80,9 @@ fn simulate_s_bad_arguments_and_failures_have_their_exit_codes() {
 }
 
 /// The step budget is an option: `--max-steps` that is no count of at least 1 is a usage
-/// error; a `--time` that needs more steps than the budget stops when the budget is spent (a
-/// trajectory of at most that many steps is kept, not one of millions) and says which option
-/// to raise; a budget that suffices changes nothing in the output.
+/// error; a `--time` that needs more steps than the budget stops when the budget is spent (not
+/// after millions of steps) and says which option to raise; a budget that suffices changes
+/// nothing in the output.
 #[test]
 fn simulate_s_step_budget_is_an_option_that_bounds_the_run() {
     let engine = shipped("engine.kl");
