@@ -2,13 +2,13 @@
 //! `(J(phi) + J_fly) phi'' + 1/2 J'(phi) phi'^2 = M_drive(t, phi, phi') + Q(phi, phi')`,
 //! integrated by [`dopri5`](super::dopri5) with the kinematics solved at every evaluation
 //! (warm-started from the previous one, so the machine stays on its assembly branch). The
-//! integration is written once over any kernel ([`simulate_of`]); a run-time model's
+//! integration is written once over any kernel ([`simulate_of`](super::simulate_of::simulate_of)); a run-time model's
 //! simulation is the same.
 
 use super::error::DynamicsError;
 use super::model::MassModel;
 use super::ode::DenseStep;
-use super::simulate_of::{RunConfig, Trajectory, simulate_of, simulate_steps_of};
+use super::simulate_of::{RunConfig, Trajectory, simulate_steps_of};
 use crate::kin::Kin;
 use crate::mechanism::Mechanism;
 use crate::mechanism::kernel::Compiled;
@@ -115,15 +115,17 @@ where
     /// ([`OdeConfig::max_steps`](super::OdeConfig::max_steps) of the configuration's `ode`) as
     /// [`DynamicsError::TooManySteps`]; integrator failures. Besides the recorded trajectory (one
     /// entry per accepted step, amortised growth), a step allocates nothing.
-    pub fn run(mut self, t_end: f64) -> Result<Trajectory, DynamicsError>
+    pub fn run(self, t_end: f64) -> Result<Trajectory, DynamicsError>
     where
         D: Fn(f64, f64, f64) -> f64,
         S: FnMut(f64, &[f64; 2]) -> bool,
     {
-        let guess = self.guess.unwrap_or_else(|| self.m.guess_flat(&[self.start[0]]));
-        let model = self.model;
-        let reduced = |k: &Kin<N, 1, NO>, omega: f64| model.dynamics(k, &[omega]);
-        simulate_of(Compiled(self.m), reduced, &self.drive, self.start, t_end, guess, &self.cfg, &mut self.stop)
+        let mut steps = Vec::new();
+        let (t_end, end) = self.run_steps(t_end, |s, _| {
+            steps.push(*s);
+            false
+        })?;
+        Ok(Trajectory { steps, t_end, end })
     }
 
     /// Simulates for `t_end` time units from the start, as [`Simulation::run`] does, keeping
