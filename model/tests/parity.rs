@@ -165,6 +165,13 @@ fn other_fixtures_equal_the_compiled_ones() {
     let w =
         sweep_parity(&fx::cam_linkage::CamLinkage::default(), &mut read(fx::cam_linkage::CAM_LINKAGE_TEXT), [0.0], 180);
     eprintln!("cam linkage: {w:?}");
+    let w = sweep_parity(
+        &fx::cam_linkage::HarmonicCamRocker::default(),
+        &mut read(fx::cam_linkage::HARMONIC_CAM_ROCKER_TEXT),
+        [0.0],
+        180,
+    );
+    eprintln!("harmonic cam rocker: {w:?}");
 }
 
 /// The comparison can fail: a run-time model with one parameter changed by one part in 10^12

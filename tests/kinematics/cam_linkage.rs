@@ -2,10 +2,12 @@
 //! slider) over a full turn against its closed form written here by hand: the equivalent
 //! four-bar's joint as the intersection of two circles, the slider from the rod's length; the
 //! analogs against central differences (one Richardson step) of that closed form; the rocker's
-//! swing and the slider's stroke against the four-bar's limit positions.
+//! swing and the slider's stroke against the four-bar's limit positions. The drive with a
+//! prescribed law (double-harmonic rise and return moving a translating follower that swings a
+//! rocker) against the law's own derivatives and the rocker's circle intersection.
 
 use crate::support::richardson;
-use kinloop_fixtures::cam_linkage::CamLinkage;
+use kinloop_fixtures::cam_linkage::{CamLinkage, HarmonicCamRocker};
 use std::f64::consts::{FRAC_PI_2, PI, TAU};
 
 /// The closed form's pose at cam angle `phi`: `[beta, psi, gamma, x]`.
@@ -158,6 +160,78 @@ fn swing_and_stroke_match_the_limit_positions() -> Result<(), kinloop::Error> {
             .iter()
             .map(|&(a, b)| angle_diff(a, b).abs())
             .fold(0.0, f64::max)
+    );
+    Ok(())
+}
+
+/// The double-harmonic law and its first two derivatives by hand: `[s, ds/dphi, d2s/dphi2]`.
+fn law(m: &HarmonicCamRocker, phi: f64) -> [f64; 3] {
+    let k = m.lift / 2.0;
+    [
+        k * ((1.0 - phi.cos()) - (1.0 - (2.0 * phi).cos()) / 4.0),
+        k * (phi.sin() - (2.0 * phi).sin() / 2.0),
+        k * (phi.cos() - (2.0 * phi).cos()),
+    ]
+}
+
+/// The rocker's angle at follower lift `s`: its pin where the circle about D (radius `c`) meets
+/// the circle about the follower's pin F (radius `l_rod`), on the left of D -> F (the rocker to
+/// the right of its pivot, the rod above the follower).
+fn rocker(m: &HarmonicCamRocker, s: f64) -> f64 {
+    let (rx, ry) = left_intersection(m.d_x, m.d_y, m.c, 0.0, m.y0 + s, m.l_rod);
+    (ry - m.d_y).atan2(rx - m.d_x)
+}
+
+#[test]
+fn harmonic_cam_follows_its_law_and_swings_the_rocker() -> Result<(), kinloop::Error> {
+    let m = HarmonicCamRocker::default();
+    // Positions to rounding; the follower's analogs are the law's own derivatives (rounding of
+    // the lift's size); the rocker's against Richardson differences of its closed form with
+    // h = 0.01 (errors as estimated for the first drive).
+    let (tol_q, tol_d1, tol_d2) = (1e-12, 1e-9, 1e-8);
+    let mut guess = m.guess(0.0);
+    let mut worst = [0.0f64; 4];
+    for k in 0..=360 {
+        let phi = f64::from(k).to_radians();
+        let s = m.kinematics(phi, &guess)?;
+        guess = s.q;
+        let [lift, v, a] = law(&m, phi);
+        let follower = [s.out.follower.y - (m.y0 + lift), s.dout.follower.y - v, s.d2out.follower.y - a];
+        let e_follower = follower.iter().map(|e| e.abs() / m.l_rod).fold(s.out.follower.x.abs() / m.l_rod, f64::max);
+        assert!(e_follower <= tol_q, "follower at {k}°: {follower:?}");
+        let psi = |p: f64| rocker(&m, law(&m, p)[0]);
+        let (fd1, fd2) = richardson(psi, phi, 1e-2);
+        let errors = [angle_diff(s.q.psi, psi(phi)).abs(), (s.dq.psi - fd1).abs(), (s.d2q.psi - fd2).abs()];
+        assert!(errors[0] <= tol_q, "rocker at {k}°: {} vs {}", s.q.psi, psi(phi));
+        assert!(errors[1] <= tol_d1, "rocker's velocity analog at {k}°: {} vs {fd1}", s.dq.psi);
+        assert!(errors[2] <= tol_d2, "rocker's acceleration analog at {k}°: {} vs {fd2}", s.d2q.psi);
+        worst = [worst[0].max(e_follower), worst[1].max(errors[0]), worst[2].max(errors[1]), worst[3].max(errors[2])];
+    }
+    // The rest at the bottom: follower and rocker stand still with zero acceleration.
+    let bottom = m.solve(0.0)?;
+    for v in [bottom.dout.follower.y / m.lift, bottom.d2out.follower.y / m.lift, bottom.dq.psi, bottom.d2q.psi] {
+        assert!(v.abs() <= tol_q, "not at rest at the bottom: {v:e}");
+    }
+    // Rise to the top at half a turn: the follower's range is the lift, the rocker's swing is
+    // between its angles at the bottom and at the top (the rocker follows the lift monotonically).
+    let turn = m.sampled(0.0, TAU, 361, &m.guess(0.0))?;
+    let rise = turn.range(HarmonicCamRocker::COL.follower.y)?;
+    let swing = turn.range(HarmonicCamRocker::COL.psi)?;
+    assert!((rise.span() - m.lift).abs() <= tol_q * m.lift, "rise {}", rise.span());
+    assert!(angle_diff(rise.max.x, PI).abs() <= 1e-10, "the top at {}", rise.max.x);
+    let (top, low) = (rocker(&m, m.lift), rocker(&m, 0.0));
+    let (hi, lo) = if top > low { (swing.max, swing.min) } else { (swing.min, swing.max) };
+    assert!(angle_diff(hi.value, top).abs() <= tol_q && angle_diff(lo.value, low).abs() <= tol_q);
+    assert!(angle_diff(hi.x, PI).abs() <= 1e-10, "the rocker's top at {}", hi.x);
+    assert!((swing.span() - (top - low).abs()).abs() <= tol_q);
+    println!(
+        "harmonic cam: max errors follower {:.1e}, rocker {:.1e} / {:.1e} / {:.1e}; swing {:.9}° (error {:.1e})",
+        worst[0],
+        worst[1],
+        worst[2],
+        worst[3],
+        swing.span().to_degrees(),
+        (swing.span() - (top - low).abs()).abs()
     );
     Ok(())
 }
