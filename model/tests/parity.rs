@@ -162,6 +162,16 @@ fn other_fixtures_equal_the_compiled_ones() {
     eprintln!("balance: {w:?}");
     let w = sweep_parity(&fx::ClassFourCore::default(), &mut read(fx::CLASS_FOUR_CORE_TEXT), [0.0], 180);
     eprintln!("class IV core: {w:?}");
+    let w =
+        sweep_parity(&fx::cam_linkage::CamLinkage::default(), &mut read(fx::cam_linkage::CAM_LINKAGE_TEXT), [0.0], 180);
+    eprintln!("cam linkage: {w:?}");
+    let w = sweep_parity(
+        &fx::cam_linkage::HarmonicCamRocker::default(),
+        &mut read(fx::cam_linkage::HARMONIC_CAM_ROCKER_TEXT),
+        [0.0],
+        180,
+    );
+    eprintln!("harmonic cam rocker: {w:?}");
 }
 
 /// The comparison can fail: a run-time model with one parameter changed by one part in 10^12

@@ -11,6 +11,7 @@
 #[path = "../support/mod.rs"]
 mod support;
 
+mod cam_linkage;
 mod degrees;
 mod drawing;
 mod extreme_scales;
