@@ -31,8 +31,15 @@
 //!   `r @ (phi + gamma)`.
 //! * Scalars: numbers, `+ - * /`, unary `-`, powers `x ^ 2` (an integer exponent becomes
 //!   `powi`), `pi`, and the functions `sin cos tan asin acos atan atan2(y, x) sqrt exp ln abs
-//!   pow(x, y) hypot(a, b) deg(degrees)`; for vectors `norm(v) dot(a, b) cross(a, b) angle(v)
-//!   rot(v, theta)`.
+//!   pow(x, y) hypot(a, b) deg(degrees) min(a, b) max(a, b) clamp(x, lo, hi)`; for vectors
+//!   `norm(v) dot(a, b) cross(a, b) angle(v) rot(v, theta)`.
+//! * `min`, `max` and `clamp(x, lo, hi)` (= `min(max(x, lo), hi)`) return exactly one of their
+//!   arguments, for piecewise laws such as a cam's rise-dwell-return-dwell
+//!   (`let u = clamp((phi - phi0) / beta, 0, 1);`). A NaN argument gives NaN (unlike
+//!   `f64::min`), so a bad value is still reported. Their analogs are those of the chosen
+//!   argument; at a tie the first argument is chosen, so `clamp` at a bound takes the analogs
+//!   of `x`. The arguments must be of one kind, as for `+`. Constant bounds with `lo > hi` are a
+//!   compile error; bounds that vary are not checked, and where `lo > hi` the result is `hi`.
 //! * **Angles are in radians** everywhere: in the declaration (`@`, `sin`, `rot`, initial
 //!   guesses), in the inputs passed at run time, in every result (`s.q.phi2`, analogs per radian)
 //!   and in tables and their CSV files (label the columns with [`Table::with_units`](crate::Table::with_units):

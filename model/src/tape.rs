@@ -63,21 +63,25 @@ pub(crate) enum Ins {
     Abs(u32, u32),
     Signum(u32, u32),
     Atan2(u32, u32, u32),
+    /// `select(a, b, x, y)` (`graph::dag::select`: `min`, `max`, `clamp` and their derivatives),
+    /// as `d, a, b, x, y`.
+    Select(u32, u32, u32, u32, u32),
 }
 
 impl Ins {
     /// The registers the instruction writes, then those it reads (of a rotation slot's, the
     /// last: the registers a run needs are counted from the largest).
     fn registers(&self) -> impl Iterator<Item = u32> {
-        let (v, n): ([u32; 4], usize) = match *self {
-            Ins::NearSinCos(s, c, a, st) => ([s, c, a, st + crate::near::WIDTH as u32 - 1], 4),
+        let (v, n): ([u32; 5], usize) = match *self {
+            Ins::Select(d, a, b, x, y) => ([d, a, b, x, y], 5),
+            Ins::NearSinCos(s, c, a, st) => ([s, c, a, st + crate::near::WIDTH as u32 - 1, 0], 4),
             Ins::Add(d, a, b)
             | Ins::Sub(d, a, b)
             | Ins::Mul(d, a, b)
             | Ins::Div(d, a, b)
             | Ins::Powf(d, a, b)
             | Ins::Atan2(d, a, b)
-            | Ins::SinCos(d, a, b) => ([d, a, b, 0], 3),
+            | Ins::SinCos(d, a, b) => ([d, a, b, 0, 0], 3),
             Ins::Neg(d, a)
             | Ins::Square(d, a)
             | Ins::Recip(d, a)
@@ -92,7 +96,7 @@ impl Ins {
             | Ins::Exp(d, a)
             | Ins::Ln(d, a)
             | Ins::Abs(d, a)
-            | Ins::Signum(d, a) => ([d, a, 0, 0], 2),
+            | Ins::Signum(d, a) => ([d, a, 0, 0, 0], 2),
         };
         v.into_iter().take(n)
     }
@@ -141,6 +145,7 @@ impl Ins {
             Ins::Abs(d, a) => f(unary::<ABS>, &[d, a]),
             Ins::Signum(d, a) => f(unary::<SIGNUM>, &[d, a]),
             Ins::Atan2(d, y, x) => f(atan2, &[d, y, x]),
+            Ins::Select(d, a, b, x, y) => f(select, &[d, a, b, x, y]),
         }
     }
 }
@@ -412,6 +417,20 @@ unsafe fn atan2(p: *mut f64, s: *const Step) {
     unsafe {
         let r = &(*s).r;
         *p.add(r[0] as usize) = (*p.add(r[1] as usize)).atan2(*p.add(r[2] as usize));
+        next(p, s)
+    }
+}
+
+/// `r[d] = select(r[a], r[b], r[x], r[y])` (the emitted code's comparisons).
+///
+/// # Safety
+/// As [`arith1`].
+unsafe fn select(p: *mut f64, s: *const Step) {
+    // SAFETY: the caller's.
+    unsafe {
+        let r = &(*s).r;
+        let v = |k: usize| *p.add(r[k] as usize);
+        *p.add(r[0] as usize) = kinloop_codegen::graph::dag::select(v(1), v(2), v(3), v(4));
         next(p, s)
     }
 }
@@ -755,6 +774,7 @@ impl<'g> Builder<'g> {
                     }
                 }
                 Op::Atan2(y, x) => Ins::Atan2(d, o(y), o(x)),
+                Op::Select(a, b, x, y) => Ins::Select(d, o(a), o(b), o(x), o(y)),
             });
         }
         for ins in &out {

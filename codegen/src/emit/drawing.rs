@@ -237,6 +237,7 @@ impl Tape {
                 Op::Powf(a, b) => format!("powf:{},{}", m(a), m(b)),
                 Op::Func(f, a) => format!("{}:{}", f.method(), m(a)),
                 Op::Atan2(a, b) => format!("atan2:{},{}", m(a), m(b)),
+                Op::Select(a, b, x, y) => format!("select:{},{},{},{}", m(a), m(b), m(x), m(y)),
             };
             let i = self.push(e);
             self.memo.insert(n, i);

@@ -251,6 +251,11 @@ impl Names {
             Op::Powf(a, b) => method(o(a), "powf", Some(o(b))),
             Op::Func(f, a) => method(o(a), f.method(), None),
             Op::Atan2(y, x) => method(o(y), "atan2", Some(o(x))),
+            // `graph::dag::select`: the chosen operand itself, NaN when `a` and `b` do not compare.
+            Op::Select(a, b, x, y) => {
+                let (a, b, x, y) = (o(a), o(b), o(x), o(y));
+                quote!(if #a <= #b { #x } else if #b < #a { #y } else { f64::NAN })
+            }
         }
     }
 

@@ -147,19 +147,41 @@ pub enum Op {
     Func(Func, NodeId),
     /// `atan2(y, x)`.
     Atan2(NodeId, NodeId),
+    /// `Select(a, b, x, y)`: `x` when `a <= b`, `y` when `b < a`, NaN when `a` or `b` is NaN
+    /// (see [`select`]). `min(a, b)` is `Select(a, b, a, b)` and `max(a, b)` is
+    /// `Select(b, a, a, b)`; a tie picks the first argument. Its derivative picks the chosen
+    /// argument's derivative, `Select(a, b, dx, dy)`: the other one is never multiplied in, so a
+    /// non-finite derivative of the unused argument cannot leak into the result.
+    Select(NodeId, NodeId, NodeId, NodeId),
+}
+
+/// The value of [`Op::Select`]: `x` when `a <= b`, `y` when `b < a`, and NaN when the two
+/// cannot be compared (one of them is NaN), so that a NaN argument of `min`, `max` or `clamp`
+/// is never hidden (unlike `f64::min`, which returns the other argument). The emitted code
+/// writes exactly these comparisons, and the run-time model calls this function.
+#[inline]
+pub fn select(a: f64, b: f64, x: f64, y: f64) -> f64 {
+    if a <= b {
+        x
+    } else if b < a {
+        y
+    } else {
+        f64::NAN
+    }
 }
 
 impl Op {
-    /// The operands of this node (at most two).
+    /// The operands of this node (at most four, a [`Op::Select`]'s).
     pub fn operands(&self) -> impl Iterator<Item = NodeId> {
-        let (a, b) = match *self {
-            Op::Const(_) | Op::Leaf(_) => (None, None),
-            Op::Neg(a) | Op::Powi(a, _) | Op::Func(_, a) => (Some(a), None),
+        let (v, n): ([NodeId; 4], usize) = match *self {
+            Op::Const(_) | Op::Leaf(_) => ([NodeId(0); 4], 0),
+            Op::Neg(a) | Op::Powi(a, _) | Op::Func(_, a) => ([a, a, a, a], 1),
             Op::Add(a, b) | Op::Sub(a, b) | Op::Mul(a, b) | Op::Div(a, b) | Op::Powf(a, b) | Op::Atan2(a, b) => {
-                (Some(a), Some(b))
+                ([a, b, b, b], 2)
             }
+            Op::Select(a, b, x, y) => ([a, b, x, y], 4),
         };
-        a.into_iter().chain(b)
+        v.into_iter().take(n)
     }
 }
 
@@ -472,6 +494,34 @@ impl Graph {
         self.intern(Op::Atan2(y, x))
     }
 
+    /// `Select(a, b, x, y)` ([`Op::Select`]), simplified: folded when `a` and `b` are
+    /// comparable constants (the chosen operand), and when `x` and `y` are one node (that
+    /// node: a derivative `Select(a, b, 0, 0)` is zero).
+    pub fn select(&mut self, a: NodeId, b: NodeId, x: NodeId, y: NodeId) -> NodeId {
+        if x == y {
+            return x;
+        }
+        if let (Some(av), Some(bv)) = (self.as_const(a), self.as_const(b)) {
+            if av <= bv {
+                return x;
+            }
+            if bv < av {
+                return y;
+            }
+        }
+        self.intern(Op::Select(a, b, x, y))
+    }
+
+    /// `min(a, b)`: exactly the smaller argument, the first at a tie, NaN when either is NaN.
+    pub fn min(&mut self, a: NodeId, b: NodeId) -> NodeId {
+        self.select(a, b, a, b)
+    }
+
+    /// `max(a, b)`: exactly the larger argument, the first at a tie, NaN when either is NaN.
+    pub fn max(&mut self, a: NodeId, b: NodeId) -> NodeId {
+        self.select(b, a, a, b)
+    }
+
     /// All nodes reachable from `roots`, in increasing (topological) order.
     pub fn reachable(&self, roots: &[NodeId]) -> Vec<NodeId> {
         let mut seen = vec![false; self.nodes.len()];
@@ -517,6 +567,7 @@ impl Graph {
                 Op::Powf(a, b) => v(a).powf(v(b)),
                 Op::Func(f, a) => f.eval(v(a)),
                 Op::Atan2(a, b) => v(a).atan2(v(b)),
+                Op::Select(a, b, x, y) => select(v(a), v(b), v(x), v(y)),
             };
             val.insert(n, r);
         }
@@ -606,6 +657,100 @@ mod tests {
             let fd = (plus[i] - minus[i]) / (2.0 * h);
             assert!((fd - exact[i]).abs() <= 1e-7 * (1.0 + fd.abs()), "root {i}: fd {fd} vs ad {}", exact[i]);
         }
+    }
+
+    /// `min`, `max`: exactly one argument (tiny values kept, the first at a tie, told by the
+    /// sign of zero), NaN whichever argument is NaN, constants folded, nodes shared.
+    #[test]
+    fn min_max_pick_an_argument_exactly() {
+        let mut g = Graph::new();
+        let (a, b) = (g.leaf(Leaf::Unknown(0)), g.leaf(Leaf::Unknown(1)));
+        let (mn, mx) = (g.min(a, b), g.max(a, b));
+        assert_eq!(g.min(a, b), mn, "hash-consed");
+        assert_ne!(mn, mx);
+        let at = |g: &Graph, x: f64, y: f64| {
+            let v = g.eval(&[mn, mx], &|l| if l == Leaf::Unknown(0) { x } else { y });
+            (v[0], v[1])
+        };
+        assert_eq!(at(&g, 1e-300, 1.0), (1e-300, 1.0));
+        assert_eq!(at(&g, 1.0, -1e-310), (-1e-310, 1.0));
+        // A tie picks the first argument: -0.0 and 0.0 compare equal.
+        let (m0, x0) = at(&g, -0.0, 0.0);
+        assert!(m0.is_sign_negative() && x0.is_sign_negative());
+        let (m1, x1) = at(&g, 0.0, -0.0);
+        assert!(m1.is_sign_positive() && x1.is_sign_positive());
+        for (x, y) in [(f64::NAN, 1.0), (1.0, f64::NAN), (f64::NAN, f64::INFINITY), (f64::NAN, f64::NAN)] {
+            let (lo, hi) = at(&g, x, y);
+            assert!(lo.is_nan() && hi.is_nan(), "min/max({x}, {y}) = {lo}, {hi}");
+        }
+        assert_eq!(at(&g, f64::INFINITY, 2.0), (2.0, f64::INFINITY));
+        assert_eq!(select(1.0, 2.0, 3.0, 4.0), 3.0);
+        assert_eq!(select(2.0, 1.0, 3.0, 4.0), 4.0);
+        assert!(select(f64::NAN, 1.0, 3.0, 4.0).is_nan());
+        // Constant folding and simplification.
+        let (c2, c3) = (g.constant(2.0), g.constant(3.0));
+        assert_eq!(g.min(c2, c3), c2);
+        assert_eq!(g.max(c2, c3), c3);
+        assert_eq!(g.min(a, a), a);
+        let nan = g.constant(f64::NAN);
+        let with_nan = g.min(nan, c2);
+        assert!(matches!(g.op(with_nan), Op::Select(..)), "a NaN constant is not folded away");
+        let clamp = {
+            let low = g.max(c3, c2);
+            let hi = g.constant(2.5);
+            g.min(low, hi)
+        };
+        assert_eq!(g.as_const(clamp), Some(2.5));
+    }
+
+    /// The derivative of `min`/`max` is the chosen argument's (the first's at a tie), to second
+    /// order, and the unused argument's non-finite derivative does not leak.
+    #[test]
+    fn min_max_derivatives_follow_the_chosen_argument() {
+        let mut g = Graph::new();
+        let (q, p) = leaves(&mut g);
+        let q2 = g.powi(q, 3);
+        let three_q = {
+            let c = g.constant(3.0);
+            g.mul(c, q)
+        };
+        let mn = g.min(q2, three_q);
+        let mx = g.max(q2, three_q);
+        let one = g.one();
+        let seed = |l: Leaf| (l == Leaf::Unknown(0)).then_some(one);
+        let d1 = g.tangent(&[mn, mx], &seed);
+        let d2 = g.tangent(&d1, &seed);
+        let at = |g: &Graph, qv: f64, n: &[NodeId]| g.eval(n, &|l| if l == Leaf::Unknown(0) { qv } else { 1.0 });
+        // q^3 < 3q for q = 1: min is q^3 (3q^2, 6q), max 3q (3, 0).
+        assert_eq!(at(&g, 1.0, &d1), [3.0, 3.0]);
+        assert_eq!(at(&g, 1.0, &d2), [6.0, 0.0]);
+        // q = 2: q^3 = 8 > 6.
+        assert_eq!(at(&g, 2.0, &d1), [3.0, 12.0]);
+        assert_eq!(at(&g, 2.0, &d2), [0.0, 12.0]);
+        // A tie (q = sqrt 3, rounded, is not one; q = 0 is): the first argument's, q^3's.
+        assert_eq!(at(&g, 0.0, &d1), [0.0, 0.0]);
+        assert_eq!(at(&g, 0.0, &d2), [0.0, 0.0]);
+        // max(q, sqrt(p - q)) at q = p = 1: q is chosen, the square root's derivative is -inf.
+        let r = {
+            let d = g.sub(p, q);
+            g.func(Func::Sqrt, d)
+        };
+        let m = g.max(q, r);
+        let dm = g.tangent(&[m, r], &seed);
+        let v = g.eval(&dm, &|l| if l == Leaf::Unknown(0) || l == Leaf::Param(0) { 1.0 } else { 0.0 });
+        assert!(v[1].is_infinite(), "the unused derivative is infinite: {}", v[1]);
+        assert_eq!(v[0], 1.0);
+        // A constant argument's zero derivative: `min(q, 2)` has derivative 1 or 0, a NaN q NaN.
+        let c2 = g.constant(2.0);
+        let mc = g.min(q, c2);
+        let dmc = g.tangent(&[mc], &seed)[0];
+        assert!(matches!(g.op(dmc), Op::Select(..)));
+        assert_eq!(at(&g, 1.0, &[dmc]), [1.0]);
+        assert_eq!(at(&g, 3.0, &[dmc]), [0.0]);
+        assert!(at(&g, f64::NAN, &[mc, dmc]).iter().all(|v| v.is_nan()));
+        // Substitution rebuilds and folds.
+        let s = g.substitute(&[mc], &|l| (l == Leaf::Unknown(0)).then_some(one))[0];
+        assert_eq!(g.as_const(s), Some(1.0));
     }
 
     #[test]

@@ -77,6 +77,10 @@ impl Graph {
                 let den = self.add(x2, y2);
                 self.div(num, den)
             }
+            // The derivative of the chosen argument, chosen by the same comparison (at a tie,
+            // the first's, as the value): no weights, so the unused argument's derivative never
+            // enters the result, and differentiating again selects again.
+            Op::Select(a, b, x, y) => self.select(a, b, d(x), d(y)),
             Op::Func(f, a) => {
                 let da = d(a);
                 if self.is_zero(da) {
@@ -151,6 +155,7 @@ impl Graph {
                 Op::Powf(a, b) => self.powf(m(a), m(b)),
                 Op::Func(f, a) => self.func(f, m(a)),
                 Op::Atan2(a, b) => self.atan2(m(a), m(b)),
+                Op::Select(a, b, x, y) => self.select(m(a), m(b), m(x), m(y)),
             };
             memo.insert(n, new);
         }

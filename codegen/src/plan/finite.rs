@@ -267,6 +267,9 @@ fn operands(plan: &Plan, w: NodeId, closed_trig: &HashSet<NodeId>, newton: &Hash
         Op::Powi(a, k) if k >= 1 => vec![a],
         Op::Func(Func::Sqrt | Func::Abs, a) => vec![a],
         Op::Func(Func::Sin | Func::Cos, a) if !closed_trig.contains(&w) && plan.level[a.index()] >= 0 => vec![a],
+        // A finite `min`/`max` implies nothing: the argument it did not choose may be infinite
+        // (`min(inf, 1)`), and the compared ones only are not NaN.
+        Op::Select(..) => Vec::new(),
         _ => Vec::new(),
     };
     ops.into_iter().filter(|a| !newton.contains(a)).map(|a| a.index()).collect()

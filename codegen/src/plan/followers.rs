@@ -44,7 +44,7 @@ fn is_entire(g: &Graph, op: Op) -> bool {
         Op::Powi(_, k) => k >= 0,
         Op::Func(f, _) => matches!(f, Func::Sin | Func::Cos | Func::Exp),
         Op::Div(_, d) => g.leaves_of(&[d]).iter().all(|l| matches!(l, Leaf::Param(_))),
-        Op::Powf(..) | Op::Atan2(..) => false,
+        Op::Powf(..) | Op::Atan2(..) | Op::Select(..) => false,
     }
 }
 

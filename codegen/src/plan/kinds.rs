@@ -77,6 +77,15 @@ fn leaf_kinds(model: &Model, g: &Graph, residuals: &[NodeId], outputs: &[NodeId]
             }
             Op::Add(a, b) | Op::Sub(a, b) => stack.extend([(a, kind), (b, kind)]),
             Op::Neg(a) | Op::Func(Func::Abs, a) => stack.push((a, kind)),
+            // `min`, `max`, `clamp`: the result is one of the compared arguments (as a sum's
+            // terms, all of one kind). A select whose comparison is of other nodes (a
+            // derivative's) passes the kind to its chosen operands only.
+            Op::Select(a, b, x, y) => {
+                stack.extend([(x, kind), (y, kind)]);
+                if [a, b] == [x, y] || [b, a] == [x, y] {
+                    stack.extend([(a, kind), (b, kind)]);
+                }
+            }
             Op::Mul(a, b) if pure_number(g, a, 8) => stack.push((b, kind)),
             Op::Mul(a, b) | Op::Div(a, b) if pure_number(g, b, 8) => stack.push((a, kind)),
             _ => {}
@@ -166,6 +175,9 @@ fn dimensions(g: &Graph, roots: &[NodeId], leaf: &dyn Fn(Leaf) -> Kind) -> HashM
             Op::Func(Func::Asin | Func::Acos | Func::Atan, a) if d(a).unitless() => Dim::Angle,
             Op::Func(_, a) if d(a).unitless() => Dim::L(0),
             Op::Atan2(y, x) if sum(d(y), d(x)) != Dim::Other => Dim::Angle,
+            // As a sum: the compared arguments of one kind (an angle against a length is not
+            // inferred), and the result the kind of the chosen operands.
+            Op::Select(a, b, x, y) if sum(d(a), d(b)) != Dim::Other => sum(d(x), d(y)),
             _ => Dim::Other,
         };
         dim.insert(n, v);

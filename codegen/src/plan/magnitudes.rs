@@ -19,6 +19,7 @@
 //! | `sin`, `cos`, `signum`| `1`                                   |
 //! | `asin`, `atan`        | `pi / 2`                              |
 //! | `acos`, `atan2`       | `pi`                                  |
+//! | `min`, `max`, `clamp` | the largest of the chosen ones' `M`   |
 //! | anything else         | its absolute value                    |
 //!
 //! A polar vector `l @ th` therefore contributes `|l|` to each of its projections, and a loop's
@@ -105,6 +106,8 @@ impl Magnitudes {
             Op::Func(Func::Sin | Func::Cos | Func::Signum, _) => g.one(),
             Op::Func(Func::Asin | Func::Atan, _) => g.constant(std::f64::consts::FRAC_PI_2),
             Op::Func(Func::Acos, _) | Op::Atan2(..) => g.constant(std::f64::consts::PI),
+            // The result is `x` or `y`: bounded by the larger of their magnitudes.
+            Op::Select(_, _, x, y) => g.max(m(x), m(y)),
             Op::Powi(..) | Op::Powf(..) | Op::Func(..) => g.func(Func::Abs, n),
         }
     }
@@ -232,6 +235,25 @@ mod tests {
     /// column, whose lever `s` is an unknown, gets one floor (the Y projection's `|h| + |r|`;
     /// the X projection's `|r|` is a term of it), the length's column none. So does the angle
     /// of a lever that is an input (a cylinder's length); a fixed lever `l @ th` gets none.
+    /// `min`/`max` are bounded by the larger magnitude of the two arguments, whichever is
+    /// chosen.
+    #[test]
+    fn min_and_max_get_the_larger_magnitude() {
+        let mut g = Graph::new();
+        let (x, l) = (g.leaf(Leaf::Unknown(0)), g.leaf(Leaf::Param(0)));
+        let two = g.constant(2.0);
+        let two_l = g.mul(two, l);
+        let lo = g.min(x, two_l);
+        let hi = g.max(x, two_l);
+        let mut mags = Magnitudes::new(&g, &[lo, hi]);
+        let (ml, mh) = (mags.of(&mut g, lo), mags.of(&mut g, hi));
+        for (xv, lv) in [(1.0, 3.0), (-7.0, 3.0), (5.0, -1.0), (0.0, 0.0)] {
+            let v = g.eval(&[ml, mh], &|leaf| if leaf == Leaf::Unknown(0) { xv } else { lv });
+            let want = f64::max(f64::abs(xv), 2.0 * f64::abs(lv));
+            assert_eq!(v, [want, want], "x = {xv}, l = {lv}");
+        }
+    }
+
     #[test]
     fn only_an_angle_with_a_variable_lever_gets_a_floor() {
         use crate::structure::Block;

@@ -75,6 +75,7 @@ fn classify(g: &Graph, u: usize, roots: &[NodeId]) -> HashMap<NodeId, Class> {
                 (x, y, ..) => combined(x, y),
             },
             Op::Div(a, b) | Op::Powf(a, b) | Op::Atan2(a, b) => combined(of(a), of(b)),
+            Op::Select(a, b, x, y) => combined(combined(of(a), of(b)), combined(of(x), of(y))),
             Op::Powi(a, _) => combined(of(a), Free),
             Op::Func(Func::Sin | Func::Cos | Func::Tan, a) if matches!(of(a), Multiple(_)) => Periodic,
             Op::Func(_, a) => combined(of(a), Free),

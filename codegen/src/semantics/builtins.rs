@@ -47,6 +47,12 @@ pub enum Lowering {
     Rot,
     /// An angle written in degrees, in radians: `x * (pi / 180)`.
     Degrees,
+    /// `min(a, b)`: exactly one of the arguments (the first at a tie), NaN when one is NaN.
+    Min,
+    /// `max(a, b)`: exactly one of the arguments (the first at a tie), NaN when one is NaN.
+    Max,
+    /// `clamp(x, lo, hi)` = `min(max(x, lo), hi)`; constant bounds with `lo > hi` are an error.
+    Clamp,
 }
 
 /// One built-in function.
@@ -88,6 +94,9 @@ pub static BUILTINS: &[Builtin] = &[
     Builtin { name: "pow", args: &[("base", S), ("exponent", S)], result: S, lowering: Lowering::Pow },
     Builtin { name: "hypot", args: &[("a", S), ("b", S)], result: S, lowering: Lowering::Hypot },
     Builtin { name: "deg", args: &[("degrees", S)], result: S, lowering: Lowering::Degrees },
+    Builtin { name: "min", args: &[("a", S), ("b", S)], result: S, lowering: Lowering::Min },
+    Builtin { name: "max", args: &[("a", S), ("b", S)], result: S, lowering: Lowering::Max },
+    Builtin { name: "clamp", args: &[("x", S), ("lo", S), ("hi", S)], result: S, lowering: Lowering::Clamp },
     Builtin { name: "norm", args: &[("vector", V)], result: S, lowering: Lowering::Norm },
     Builtin { name: "dot", args: &[("vector", V), ("vector", V)], result: S, lowering: Lowering::Dot },
     Builtin { name: "cross", args: &[("vector", V), ("vector", V)], result: S, lowering: Lowering::Cross },
@@ -149,7 +158,7 @@ mod tests {
         for (k, b) in BUILTINS.iter().enumerate() {
             assert!(BUILTINS[..k].iter().all(|o| o.name != b.name), "`{}` twice", b.name);
             assert!(std::ptr::eq(lookup(b.name).expect("found"), b));
-            assert!(!b.args.is_empty() && b.arity() <= 2, "`{}`", b.name);
+            assert!(!b.args.is_empty() && b.arity() <= 3, "`{}`", b.name);
         }
         assert!(lookup("log").is_none());
         // A hint is only for names the table does not have.
@@ -162,6 +171,7 @@ mod tests {
         assert_eq!(sig("atan2").as_deref(), Some("atan2(y, x)"));
         assert_eq!(sig("rot").as_deref(), Some("rot(vector, angle)"));
         assert_eq!(sig("sin").as_deref(), Some("sin(x)"));
+        assert_eq!(sig("clamp").as_deref(), Some("clamp(x, lo, hi)"));
         let rot = lookup("rot").expect("rot");
         assert_eq!((rot.args[0].1, rot.args[1].1, rot.result), (V, S, V));
         // The vector functions are exactly those that take a vector; only `rot` returns one.
@@ -173,7 +183,7 @@ mod tests {
     fn listing_keeps_scalar_and_vector_groups() {
         assert_eq!(
             listing(),
-            "sin, cos, tan, asin, acos, atan, atan2, sqrt, exp, ln, abs, pow, hypot, deg; \
+            "sin, cos, tan, asin, acos, atan, atan2, sqrt, exp, ln, abs, pow, hypot, deg, min, max, clamp; \
              for vectors: norm, dot, cross, angle, rot"
         );
     }

@@ -32,6 +32,21 @@ impl Lowerer {
         if !ok {
             return None;
         }
+        if builtin.lowering == Lowering::Clamp {
+            let bound = |k: usize| match vals[k] {
+                Val::S(n) => self.graph.as_const(n),
+                Val::V(..) => None,
+            };
+            if let (Some(lo), Some(hi)) = (bound(1), bound(2))
+                && lo > hi
+            {
+                self.errors.push(args[1].range().error(format!(
+                    "`clamp(x, lo, hi)` needs `lo <= hi`, but `lo` is {lo:?} and `hi` is {hi:?}; \
+                     swap the bounds (with `lo > hi` the result would always be `hi`)"
+                )));
+                return None;
+            }
+        }
         let exponent = args.get(1).and_then(integer_exponent);
         Some(lower_builtin(&mut self.graph, builtin.lowering, &vals, exponent))
     }
@@ -116,6 +131,12 @@ fn lower_builtin(g: &mut Graph, how: Lowering, vals: &[Val], exponent: Option<i3
         Lowering::Degrees => {
             let per_degree = g.constant(std::f64::consts::PI / 180.0);
             g.mul(s(0), per_degree)
+        }
+        Lowering::Min => g.min(s(0), s(1)),
+        Lowering::Max => g.max(s(0), s(1)),
+        Lowering::Clamp => {
+            let low = g.max(s(0), s(1));
+            g.min(low, s(2))
         }
     })
 }

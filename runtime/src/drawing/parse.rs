@@ -4,6 +4,7 @@
 //! kinloop-drawing 1
 //! t <entry> <entry> ...                 the tape: c:1.5 p:0 x:0 q:1 add:a,b sub:a,b mul:a,b
 //!                                       div:a,b neg:a powi:a,n powf:a,b atan2:y,x sin:a ...
+//!                                       select:a,b,x,y (x if a <= b, y if b < a, else NaN)
 //! j <name> <g|m> <n|-> <x> <y>          a joint: fixed or moving, named or not, tape entries
 //! s <from> <to> <kind> <angle|-> <term> a segment: link, ground, slider-fixed,
 //!                                       slider-turning or construction
@@ -86,6 +87,11 @@ fn tape_entry(entry: &str, len: usize) -> Option<TapeOp> {
         "powf" => two().map(|(a, b)| TapeOp::Powf(a, b))?,
         "atan2" => two().map(|(a, b)| TapeOp::Atan2(a, b))?,
         "neg" => TapeOp::Neg(one()?),
+        "select" => {
+            let v: Vec<usize> = args.split(',').map(|a| index(a, len)).collect::<Option<_>>()?;
+            let [a, b, x, y] = v[..] else { return None };
+            TapeOp::Select(a, b, x, y)
+        }
         "powi" => {
             let (a, n) = args.split_once(',')?;
             TapeOp::Powi(index(a, len)?, n.parse().ok()?)

@@ -75,6 +75,8 @@ pub(super) enum TapeOp {
     Powi(usize, i32),
     Powf(usize, usize),
     Atan2(usize, usize),
+    /// `x` when `a <= b`, `y` when `b < a`, NaN otherwise (`min`, `max`, `clamp`).
+    Select(usize, usize, usize, usize),
     Func(Func, usize),
 }
 
@@ -114,6 +116,15 @@ pub(super) fn run(tape: &[TapeOp], params: &[f64], x: &[f64], q: &[f64]) -> Resu
             TapeOp::Powi(a, n) => v[a].powi(n),
             TapeOp::Powf(a, b) => v[a].powf(v[b]),
             TapeOp::Atan2(a, b) => v[a].atan2(v[b]),
+            TapeOp::Select(a, b, x, y) => {
+                if v[a] <= v[b] {
+                    v[x]
+                } else if v[b] < v[a] {
+                    v[y]
+                } else {
+                    f64::NAN
+                }
+            }
             TapeOp::Func(f, a) => f.eval(v[a]),
         };
         v.push(value);

@@ -184,6 +184,15 @@ fn rewrite(g: &mut Graph, roots: &[NodeId], angles: &[Angle], block: &[usize]) -
             {
                 trig(g, f == Func::Sin, arg, angles, block)
             }
+            // A `min`/`max` of the block's unknowns is no closed form: kept as it is only when
+            // it is free of them (a coefficient, e.g. a cam law of the input).
+            Op::Select(..) => {
+                let unknowns = g.leaves_of(&[n]);
+                let moves = unknowns
+                    .iter()
+                    .any(|l| matches!(l, Leaf::Unknown(u) if is_angle(*u) || block.contains(&(*u as usize))));
+                if moves { None } else { Some(n) }
+            }
             op => {
                 let m: Vec<Option<NodeId>> = op.operands().map(|o| memo[&o]).collect();
                 if m.iter().any(Option::is_none) {
@@ -200,7 +209,7 @@ fn rewrite(g: &mut Graph, roots: &[NodeId], angles: &[Angle], block: &[usize]) -
                         Op::Powf(..) => g.powf(x(0), x(1)),
                         Op::Func(f, _) => g.func(f, x(0)),
                         Op::Atan2(..) => g.atan2(x(0), x(1)),
-                        Op::Const(_) | Op::Leaf(_) => n,
+                        Op::Const(_) | Op::Leaf(_) | Op::Select(..) => n,
                     })
                 }
             }

@@ -153,6 +153,28 @@ fn near_misses_keep_newton() {
     }
 }
 
+/// `min`, `max`, `clamp` of the block's unknowns keep Newton; of the input alone (a cam law, a
+/// coefficient of the block) the block is still the four-bar's circle intersection.
+#[test]
+fn min_and_max_of_unknowns_keep_newton() {
+    let newton = [
+        "pub struct S { params l; input y; unknowns q; eq e: l * sin(min(q, 1)) == y; }",
+        "pub struct S { params l; input y; unknowns q; eq e: l * sin(q) + max(q, 0) == y; }",
+    ];
+    for src in newton {
+        let k = kinds(src);
+        assert!(k.iter().all(|k| *k == "none"), "{src}: {k:?}");
+    }
+    // The Y projection alone gives the rod's angle in closed form; the slider, inside `clamp`,
+    // keeps Newton.
+    let clamped = "pub struct Trial { params r, l; input phi; unknowns psi, x;
+        loop o: r @ phi == (clamp(x, 0, 5), 0) + l @ psi; }";
+    assert_eq!(kinds(clamped), ["closed form, angle equation", "none"]);
+    let law = "pub struct F { params a, b, c, d; input phi; unknowns beta, gamma;
+        loop o: clamp(a * phi, 0, a) @ phi + b @ beta == (d, 0) + c @ gamma; }";
+    assert_eq!(kinds(law), ["closed form, RRR dyad"]);
+}
+
 #[test]
 fn class_four_group_keeps_newton() {
     let src = "pub struct C { params oa, xb, yb, ac, ae, al, bd, bf, bl, cd, ef; input phi;
