@@ -172,6 +172,50 @@ fn other_fixtures_equal_the_compiled_ones() {
         180,
     );
     eprintln!("harmonic cam rocker: {w:?}");
+    let w = sweep_parity(
+        &fx::cam_linkage::DwellCamRocker::default(),
+        &mut read(fx::cam_linkage::DWELL_CAM_ROCKER_TEXT),
+        [0.0],
+        180,
+    );
+    eprintln!("dwell cam rocker: {w:?}");
+}
+
+/// The piecewise cam law (`clamp`, `min`, `max`) to the bit: every array of the state at the
+/// segments' ends and beside them, where the comparisons of the law change their choice, and the
+/// same error where the law is NaN (`fall = 0` at the return's start, 0 / 0).
+#[test]
+fn dwell_cam_equals_the_compiled_one_to_the_bit() {
+    let compiled = fx::cam_linkage::DwellCamRocker::default();
+    let mut model = read(fx::cam_linkage::DWELL_CAM_ROCKER_TEXT);
+    let cfg = NewtonConfig::default();
+    let m = &compiled;
+    let mut compared = 0;
+    for end in [0.0, m.phi0, m.phi0 + m.rise, m.phi1, m.phi1 + m.fall, TAU] {
+        for d in [0.0, -1e-12, 1e-12, -1e-6, 1e-6, -0.3, 0.3] {
+            let x = [end + d];
+            let guess = compiled.guess_flat(&x);
+            let c = compiled.kinematics_flat(&x, &guess, &cfg).expect("compiled");
+            let r = model.kinematics(&x, &guess, &cfg).expect("run time").clone();
+            let bits = |v: &[f64]| v.iter().map(|v| v.to_bits()).collect::<Vec<u64>>();
+            let flat = |v: &[[f64; 1]]| v.iter().flatten().copied().collect::<Vec<f64>>();
+            let flat3 = |v: &[[[f64; 1]; 1]]| v.iter().flatten().flatten().copied().collect::<Vec<f64>>();
+            assert_eq!(bits(&c.q), bits(&r.q), "q at {x:?}");
+            assert_eq!(bits(&flat(&c.dq)), bits(&r.dq), "dq at {x:?}");
+            assert_eq!(bits(&flat3(&c.d2q)), bits(&r.d2q), "d2q at {x:?}");
+            assert_eq!(bits(&c.out), bits(&r.out), "out at {x:?}");
+            assert_eq!(bits(&flat(&c.dout)), bits(&r.dout), "dout at {x:?}");
+            assert_eq!(bits(&flat3(&c.d2out)), bits(&r.d2out), "d2out at {x:?}");
+            compared += 1;
+        }
+    }
+    assert_eq!(compared, 42);
+    let nan = fx::cam_linkage::DwellCamRocker { fall: 0.0, ..Default::default() };
+    assert!(model.set_param("fall", 0.0));
+    let x = [nan.phi1];
+    let guess = nan.guess_flat(&x);
+    assert!(nan.kinematics_flat(&x, &guess, &cfg).is_err(), "compiled: a NaN law went unnoticed");
+    assert!(model.kinematics(&x, &guess, &cfg).is_err(), "run time: a NaN law went unnoticed");
 }
 
 /// The comparison can fail: a run-time model with one parameter changed by one part in 10^12

@@ -4,10 +4,11 @@
 //! analogs against central differences (one Richardson step) of that closed form; the rocker's
 //! swing and the slider's stroke against the four-bar's limit positions. The drive with a
 //! prescribed law (double-harmonic rise and return moving a translating follower that swings a
-//! rocker) against the law's own derivatives and the rocker's circle intersection.
+//! rocker) against the law's own derivatives and the rocker's circle intersection; the same with
+//! a piecewise rise-dwell-return-dwell law (`clamp`), sampled at and beside its segments' ends.
 
 use crate::support::richardson;
-use kinloop_fixtures::cam_linkage::{CamLinkage, HarmonicCamRocker};
+use kinloop_fixtures::cam_linkage::{CamLinkage, DwellCamRocker, HarmonicCamRocker};
 use std::f64::consts::{FRAC_PI_2, PI, TAU};
 
 /// The closed form's pose at cam angle `phi`: `[beta, psi, gamma, x]`.
@@ -233,5 +234,134 @@ fn harmonic_cam_follows_its_law_and_swings_the_rocker() -> Result<(), kinloop::E
         swing.span().to_degrees(),
         (swing.span() - (top - low).abs()).abs()
     );
+    Ok(())
+}
+
+/// The 3-4-5 rise-dwell-return-dwell law by hand, segment by segment: `[s, ds/dphi, d2s/dphi2]`.
+fn dwell_law(m: &DwellCamRocker, phi: f64) -> [f64; 3] {
+    // The polynomial of the normalised cam angle and its first two derivatives.
+    let p = |u: f64| {
+        [
+            10.0 * u.powi(3) - 15.0 * u.powi(4) + 6.0 * u.powi(5),
+            30.0 * u * u * (1.0 - u) * (1.0 - u),
+            60.0 * u * (1.0 - u) * (1.0 - 2.0 * u),
+        ]
+    };
+    if phi < m.phi0 {
+        [0.0; 3]
+    } else if phi <= m.phi0 + m.rise {
+        let [v, d, dd] = p((phi - m.phi0) / m.rise);
+        [m.lift * v, m.lift * d / m.rise, m.lift * dd / (m.rise * m.rise)]
+    } else if phi < m.phi1 {
+        [m.lift, 0.0, 0.0]
+    } else if phi <= m.phi1 + m.fall {
+        let [v, d, dd] = p((phi - m.phi1) / m.fall);
+        [m.lift * (1.0 - v), -m.lift * d / m.fall, -m.lift * dd / (m.fall * m.fall)]
+    } else {
+        [0.0; 3]
+    }
+}
+
+/// The rocker's angle at follower lift `s` (the circle intersection of the harmonic drive, the
+/// same geometry).
+fn dwell_rocker(m: &DwellCamRocker, s: f64) -> f64 {
+    let (rx, ry) = left_intersection(m.d_x, m.d_y, m.c, 0.0, m.y0 + s, m.l_rod);
+    (ry - m.d_y).atan2(rx - m.d_x)
+}
+
+/// The cam angles of a turn: every degree, and each segment's ends exactly and 1e-9, 1e-6 and
+/// 1e-3 rad to either side.
+fn dwell_samples(m: &DwellCamRocker) -> Vec<f64> {
+    let mut phis: Vec<f64> = (0..360).map(|k| f64::from(k).to_radians()).collect();
+    for end in [m.phi0, m.phi0 + m.rise, m.phi1, m.phi1 + m.fall] {
+        phis.push(end);
+        for d in [1e-9, 1e-6, 1e-3] {
+            phis.extend([end - d, end + d]);
+        }
+    }
+    phis.sort_by(f64::total_cmp);
+    phis
+}
+
+#[test]
+fn dwell_cam_follows_its_piecewise_law_and_swings_the_rocker() -> Result<(), kinloop::Error> {
+    let m = DwellCamRocker::default();
+    // The follower's values against the law to rounding (relative to the lift); the rocker's
+    // position against the circle intersection, its analogs against the chain rule through the
+    // law: psi(s(phi))' = psi'(s) s', '' = psi''(s) s'^2 + psi'(s) s'', with psi' and psi'' as
+    // Richardson differences in the lift with h = 0.1 mm (smooth there, unlike the law at its
+    // segments' ends).
+    let (tol_q, tol_d1, tol_d2) = (1e-12, 1e-11, 1e-9);
+    let mut guess = m.guess(0.0);
+    let mut worst = [0.0f64; 4];
+    let samples = dwell_samples(&m);
+    for &phi in &samples {
+        let s = m.kinematics(phi, &guess)?;
+        guess = s.q;
+        let [lift, v, a] = dwell_law(&m, phi);
+        let follower = [s.out.follower.y - (m.y0 + lift), s.dout.follower.y - v, s.d2out.follower.y - a];
+        let e_follower = follower.iter().map(|e| e.abs() / m.lift).fold(s.out.follower.x.abs(), f64::max);
+        assert!(e_follower <= tol_q, "follower at {phi}: {follower:?}");
+        // A step of 0.1 mm: the rounding of the second difference, magnified by s'^2 (up to
+        // about 320), stays near 1e-10; the truncation (h^4) is below it.
+        let (d1s, d2s) = richardson(|x| dwell_rocker(&m, x), lift, 0.1);
+        let (fd1, fd2) = (d1s * v, d2s * v * v + d1s * a);
+        let errors =
+            [angle_diff(s.q.psi, dwell_rocker(&m, lift)).abs(), (s.dq.psi - fd1).abs(), (s.d2q.psi - fd2).abs()];
+        assert!(errors[0] <= tol_q, "rocker at {phi}: {} vs {}", s.q.psi, dwell_rocker(&m, lift));
+        assert!(errors[1] <= tol_d1, "rocker's velocity analog at {phi}: {} vs {fd1}", s.dq.psi);
+        assert!(errors[2] <= tol_d2, "rocker's acceleration analog at {phi}: {} vs {fd2}", s.d2q.psi);
+        worst = [worst[0].max(e_follower), worst[1].max(errors[0]), worst[2].max(errors[1]), worst[3].max(errors[2])];
+    }
+    // The dwells: exactly at rest, at the bottom (zero lift) and at the top (the full lift).
+    for phi in [0.0, m.phi0 / 2.0, m.phi1 + m.fall + 0.1, TAU - 1e-3] {
+        let s = m.solve(phi)?;
+        assert_eq!([s.out.follower.y, s.dout.follower.y, s.d2out.follower.y], [m.y0, 0.0, 0.0], "at {phi}");
+        assert_eq!([s.dq.psi, s.d2q.psi], [0.0, 0.0]);
+    }
+    let top = m.solve((m.phi0 + m.rise + m.phi1) / 2.0)?;
+    assert_eq!([top.out.follower.y, top.dout.follower.y, top.d2out.follower.y], [m.y0 + m.lift, 0.0, 0.0]);
+    // Mid-rise: the fastest point, 15/8 lift / rise.
+    let mid = m.solve(m.phi0 + m.rise / 2.0)?;
+    assert!((mid.dout.follower.y - 1.875 * m.lift / m.rise).abs() <= 1e-12 * m.lift);
+    println!(
+        "dwell cam ({} samples): max errors follower {:.1e} (of the lift), rocker {:.1e} / {:.1e} / {:.1e}",
+        samples.len(),
+        worst[0],
+        worst[1],
+        worst[2],
+        worst[3]
+    );
+    Ok(())
+}
+
+/// A NaN in the law is reported, not hidden by `clamp`: with `fall = 0` the return is a jump,
+/// and exactly at it `(phi - phi1) / fall` is 0 / 0.
+#[test]
+fn dwell_cam_reports_a_nan_in_its_law() {
+    let m = DwellCamRocker { fall: 0.0, ..DwellCamRocker::default() };
+    let err = m.solve(m.phi1);
+    assert!(err.is_err(), "a NaN lift went unnoticed: {err:?}");
+    // Beside the jump the law is defined: the follower is down again, or still up.
+    let after = m.solve(m.phi1 + 0.1).expect("after the jump");
+    assert_eq!(after.out.follower.y, m.y0);
+    let before = m.solve(m.phi1 - 0.1).expect("before the jump");
+    assert_eq!(before.out.follower.y, m.y0 + m.lift);
+}
+
+/// The default drawing reads the law's `clamp` from its description (`select` entries) and
+/// draws the follower's pin where the law puts it, in the rise and in both dwells.
+#[test]
+fn dwell_cam_drawing_follows_the_law() -> Result<(), kinloop::Error> {
+    use kinloop::drawing::Description;
+    let m = DwellCamRocker::default();
+    let d = Description::of::<DwellCamRocker, 2, 1, 4>()?;
+    for phi in [0.1, m.phi0 + 0.4 * m.rise, m.phi1 - 0.1, TAU - 0.1] {
+        let s = m.solve(phi)?;
+        let at = d.evaluate(&m.param_values(), &[phi], &[s.q.gamma, s.q.psi])?;
+        let pin = [0.0, m.y0 + dwell_law(&m, phi)[0]];
+        let nearest = at.joints.iter().map(|j| (j[0] - pin[0]).hypot(j[1] - pin[1])).fold(f64::INFINITY, f64::min);
+        assert!(nearest <= 1e-12 * m.y0, "at {phi}: no joint at the follower's pin {pin:?}: {:?}", at.joints);
+    }
     Ok(())
 }
