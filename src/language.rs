@@ -31,8 +31,8 @@
 //!   `r @ (phi + gamma)`.
 //! * Scalars: numbers, `+ - * /`, unary `-`, powers `x ^ 2` (an integer exponent becomes
 //!   `powi`), `pi`, and the functions `sin cos tan asin acos atan atan2(y, x) sqrt exp ln abs
-//!   pow(x, y) hypot(a, b) deg(degrees) min(a, b) max(a, b) clamp(x, lo, hi)`; for vectors
-//!   `norm(v) dot(a, b) cross(a, b) angle(v) rot(v, theta)`.
+//!   pow(x, y) hypot(a, b) deg(degrees) min(a, b) max(a, b) clamp(x, lo, hi) floor
+//!   wrap(x, period)`; for vectors `norm(v) dot(a, b) cross(a, b) angle(v) rot(v, theta)`.
 //! * `min`, `max` and `clamp(x, lo, hi)` (= `min(max(x, lo), hi)`) return exactly one of their
 //!   arguments, for piecewise laws such as a cam's rise-dwell-return-dwell
 //!   (`let u = clamp((phi - phi0) / beta, 0, 1);`). A NaN argument gives NaN (unlike
@@ -40,6 +40,17 @@
 //!   argument; at a tie the first argument is chosen, so `clamp` at a bound takes the analogs
 //!   of `x`. The arguments must be of one kind, as for `+`. Constant bounds with `lo > hi` are a
 //!   compile error; bounds that vary are not checked, and where `lo > hi` the result is `hi`.
+//! * `floor(x)` is the largest integer not above `x` (`floor(-0.5)` is `-1`; NaN and the
+//!   infinities are their own floor); its analogs are zero, at the jumps too. It reduces an
+//!   input by whole turns, so that a law written over one turn holds over every turn:
+//!   `let u = phi - 2 * pi * floor(phi / (2 * pi));`, which `wrap(phi, 2 * pi)` writes for you.
+//!   `wrap(x, period)` is `x - period * floor(x / period)`, in `[0, period)` but for rounding,
+//!   with the analogs of `x` exactly (for a `period` that is a constant or a parameter). It is
+//!   `x` itself for `0 <= x < period`; elsewhere it is computed as written, so just below a
+//!   multiple of `period` it may come out as `period` itself, and it may miss `[0, period]` by
+//!   a few units in the last place of `x`. A law of the wrapped value should therefore agree
+//!   at `0` and at `period` (a cam's dwell at both ends does, and `clamp` keeps its argument
+//!   in range). A constant `period` must be positive and finite (a compile error otherwise).
 //! * **Angles are in radians** everywhere: in the declaration (`@`, `sin`, `rot`, initial
 //!   guesses), in the inputs passed at run time, in every result (`s.q.phi2`, analogs per radian)
 //!   and in tables and their CSV files (label the columns with [`Table::with_units`](crate::Table::with_units):

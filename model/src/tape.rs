@@ -62,6 +62,7 @@ pub(crate) enum Ins {
     Ln(u32, u32),
     Abs(u32, u32),
     Signum(u32, u32),
+    Floor(u32, u32),
     Atan2(u32, u32, u32),
     /// `select(a, b, x, y)` (`graph::dag::select`: `min`, `max`, `clamp` and their derivatives),
     /// as `d, a, b, x, y`.
@@ -96,7 +97,8 @@ impl Ins {
             | Ins::Exp(d, a)
             | Ins::Ln(d, a)
             | Ins::Abs(d, a)
-            | Ins::Signum(d, a) => ([d, a, 0, 0, 0], 2),
+            | Ins::Signum(d, a)
+            | Ins::Floor(d, a) => ([d, a, 0, 0, 0], 2),
         };
         v.into_iter().take(n)
     }
@@ -144,6 +146,7 @@ impl Ins {
             Ins::Ln(d, a) => f(unary::<LN>, &[d, a]),
             Ins::Abs(d, a) => f(unary::<ABS>, &[d, a]),
             Ins::Signum(d, a) => f(unary::<SIGNUM>, &[d, a]),
+            Ins::Floor(d, a) => f(unary::<FLOOR>, &[d, a]),
             Ins::Atan2(d, y, x) => f(atan2, &[d, y, x]),
             Ins::Select(d, a, b, x, y) => f(select, &[d, a, b, x, y]),
         }
@@ -326,6 +329,7 @@ const EXP: u8 = 7;
 const LN: u8 = 8;
 const ABS: u8 = 9;
 const SIGNUM: u8 = 10;
+const FLOOR: u8 = 11;
 
 /// `r[d] = F(r[a])`.
 ///
@@ -347,6 +351,7 @@ unsafe fn unary<const F: u8>(p: *mut f64, s: *const Step) {
             EXP => x.exp(),
             LN => x.ln(),
             ABS => x.abs(),
+            FLOOR => x.floor(),
             // `f64::signum`, as the emitted code calls it (not the constant folder's, which
             // gives 0 at 0).
             _ => x.signum(),
@@ -771,6 +776,7 @@ impl<'g> Builder<'g> {
                         Func::Ln => Ins::Ln(d, a),
                         Func::Abs => Ins::Abs(d, a),
                         Func::Signum => Ins::Signum(d, a),
+                        Func::Floor => Ins::Floor(d, a),
                     }
                 }
                 Op::Atan2(y, x) => Ins::Atan2(d, o(y), o(x)),

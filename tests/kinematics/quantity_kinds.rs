@@ -34,6 +34,21 @@ kinloop::mechanism! {
     }
 }
 
+kinloop::mechanism! {
+    /// A slider-crank turned by its input less whole turns: `floor` and `wrap` keep the kind of
+    /// their argument, as `abs` does; of a pure number, a pure number.
+    pub struct Wrapped {
+        params r = 1.0, l = 3.0;
+        input phi;
+        unknowns psi = 0, x = 4.0;
+        let t = phi - 2 * pi * floor(phi / (2 * pi));
+        loop rod: r @ t == (x, 0) + l @ psi;
+        output stroke = wrap(x, l);
+        output angle = wrap(phi, 2 * pi);
+        output count = floor(3 * sin(phi));
+    }
+}
+
 /// The header of a table's CSV, read by the `csv` crate: column name -> unit.
 fn header(t: &Table) -> HashMap<String, String> {
     let mut bytes = Vec::new();
@@ -73,6 +88,13 @@ fn kinds_are_inferred_from_the_declaration() {
     assert_eq!(Oscillator::UNKNOWN_KINDS, [Length, Angle, Length]);
     // The trait carries the same constants for generic code.
     assert_eq!(<Kinds as Mechanism<2, 1, 5>>::OUTPUT_KINDS, Kinds::OUTPUT_KINDS);
+}
+
+#[test]
+fn floor_and_wrap_keep_the_kinds() {
+    assert_eq!(Wrapped::INPUT_KINDS, [Angle]);
+    assert_eq!(Wrapped::UNKNOWN_KINDS, [Angle, Length]);
+    assert_eq!(Wrapped::OUTPUT_KINDS, [Length, Angle, Dimensionless]);
 }
 
 #[test]

@@ -76,6 +76,9 @@ pub enum Func {
     Abs,
     /// Sign of the argument (derivative of `abs`); its own derivative is zero.
     Signum,
+    /// `floor x`, the largest integer not above `x` (`f64::floor`: NaN and the infinities are
+    /// their own floor); its derivative is zero (at the jumps too, as for `signum`).
+    Floor,
 }
 
 impl Func {
@@ -101,6 +104,7 @@ impl Func {
                     0.0
                 }
             }
+            Func::Floor => x.floor(),
         }
     }
 
@@ -118,6 +122,7 @@ impl Func {
             Func::Ln => "ln",
             Func::Abs => "abs",
             Func::Signum => "signum",
+            Func::Floor => "floor",
         }
     }
 }
@@ -469,7 +474,8 @@ impl Graph {
         self.intern(Op::Powf(a, b))
     }
 
-    /// `f(a)`: constants folded, `abs(abs x) = abs x` and `signum(signum x) = signum x`.
+    /// `f(a)`: constants folded, `abs(abs x) = abs x`, `signum(signum x) = signum x` and
+    /// `floor(floor x) = floor x`.
     pub fn func(&mut self, f: Func, a: NodeId) -> NodeId {
         if let Some(x) = self.as_const(a)
             && let Some(c) = self.fold(f.eval(x))
@@ -479,6 +485,7 @@ impl Graph {
         match (f, self.op(a)) {
             (Func::Abs, Op::Func(Func::Abs, _)) => return a,
             (Func::Signum, Op::Func(Func::Signum, _)) => return a,
+            (Func::Floor, Op::Func(Func::Floor, _)) => return a,
             _ => {}
         }
         self.intern(Op::Func(f, a))
@@ -751,6 +758,93 @@ mod tests {
         // Substitution rebuilds and folds.
         let s = g.substitute(&[mc], &|l| (l == Leaf::Unknown(0)).then_some(one))[0];
         assert_eq!(g.as_const(s), Some(1.0));
+    }
+
+    /// `floor`: the largest integer not above the argument, exactly (negative arguments round
+    /// away from zero, integers and huge values are their own floor, the sign of zero kept), NaN
+    /// and the infinities their own floor; folded for finite constants, `floor(floor x)` shared.
+    #[test]
+    fn floor_is_the_largest_integer_not_above() {
+        let mut g = Graph::new();
+        let (q, _) = leaves(&mut g);
+        let fl = g.func(Func::Floor, q);
+        assert_eq!(g.func(Func::Floor, fl), fl, "floor(floor x) = floor x");
+        let at = |g: &Graph, x: f64| g.eval(&[fl], &|_| x)[0];
+        let cases = [
+            (2.5, 2.0),
+            (2.0, 2.0),
+            (-2.0, -2.0),
+            (-2.5, -3.0),
+            (-0.5, -1.0),
+            (-1e-300, -1.0),
+            (1e-300, 0.0),
+            (0.999_999_999_999_999_9, 0.0),
+            (-0.999_999_999_999_999_9, -1.0),
+            (4_503_599_627_370_495.5, 4_503_599_627_370_495.0),
+            (-4_503_599_627_370_495.5, -4_503_599_627_370_496.0),
+            (1e300, 1e300),
+            (-1e300, -1e300),
+            (f64::INFINITY, f64::INFINITY),
+            (f64::NEG_INFINITY, f64::NEG_INFINITY),
+        ];
+        for (x, want) in cases {
+            assert_eq!(Func::Floor.eval(x).to_bits(), want.to_bits(), "floor({x})");
+            assert_eq!(at(&g, x).to_bits(), want.to_bits(), "floor({x}) in the graph");
+        }
+        assert!(at(&g, 0.0).is_sign_positive() && at(&g, -0.0).is_sign_negative());
+        assert!(Func::Floor.eval(f64::NAN).is_nan() && at(&g, f64::NAN).is_nan());
+        assert_eq!(Func::Floor.method(), "floor");
+        // Constants: folded when finite.
+        let c = g.constant(-7.25);
+        let folded = g.func(Func::Floor, c);
+        assert_eq!(g.as_const(folded), Some(-8.0));
+        let nan = g.constant(f64::NAN);
+        let kept = g.func(Func::Floor, nan);
+        assert!(matches!(g.op(kept), Op::Func(Func::Floor, _)), "a NaN constant is not folded away");
+    }
+
+    /// The derivative of `floor` is zero to second order, also where its argument's derivative
+    /// is infinite; `x - p floor(x / p)` (`wrap`) has the derivatives of `x`.
+    #[test]
+    fn floor_has_zero_derivatives() {
+        let mut g = Graph::new();
+        let (q, p) = leaves(&mut g);
+        let q3 = g.powi(q, 3);
+        let fl = g.func(Func::Floor, q3);
+        let one = g.one();
+        let seed = |l: Leaf| (l == Leaf::Unknown(0)).then_some(one);
+        let d1 = g.tangent(&[fl], &seed);
+        assert!(g.is_zero(d1[0]), "d floor(q^3) is the zero node");
+        let d2 = g.tangent(&d1, &seed);
+        assert!(g.is_zero(d2[0]));
+        // floor(sqrt(p - q)) at q = p: the argument's derivative is -inf, the floor's still 0.
+        let r = {
+            let d = g.sub(p, q);
+            g.func(Func::Sqrt, d)
+        };
+        let fr = g.func(Func::Floor, r);
+        let dr = g.tangent(&[fr], &seed);
+        assert_eq!(g.eval(&dr, &|_| 1.0), [0.0]);
+        // wrap(q^3, p) = q^3 - p floor(q^3 / p): analogs 3q^2 and 6q, in every turn.
+        let w = {
+            let t = g.div(q3, p);
+            let f = g.func(Func::Floor, t);
+            let back = g.mul(p, f);
+            g.sub(q3, back)
+        };
+        let w1 = g.tangent(&[w], &seed);
+        let w2 = g.tangent(&w1, &seed);
+        let x1 = g.tangent(&[q3], &seed);
+        let x2 = g.tangent(&x1, &seed);
+        assert_eq!((w1[0], w2[0]), (x1[0], x2[0]), "the analogs of q^3 itself");
+        for qv in [-2.5, -1.0, 0.3, 1.7, 4.0] {
+            let leaf = |l: Leaf| if l == Leaf::Unknown(0) { qv } else { 1.5 };
+            let v = g.eval(&[w, w1[0], w2[0]], &leaf);
+            let want = qv.powi(3) - 1.5 * (qv.powi(3) / 1.5).floor();
+            assert_eq!(v[0], want, "q = {qv}");
+            assert!((v[1] - 3.0 * qv * qv).abs() <= 1e-14 * v[1] && v[2] == 6.0 * qv, "q = {qv}: {v:?}");
+            assert!((0.0..1.5).contains(&v[0]), "q = {qv}: {}", v[0]);
+        }
     }
 
     #[test]

@@ -132,7 +132,7 @@ impl Graph {
                 self.div(one, a)
             }
             Func::Abs => self.func(Func::Signum, a),
-            Func::Signum => self.zero(),
+            Func::Signum | Func::Floor => self.zero(),
         }
     }
 

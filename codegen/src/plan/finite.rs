@@ -265,7 +265,8 @@ fn operands(plan: &Plan, w: NodeId, closed_trig: &HashSet<NodeId>, newton: &Hash
         Op::Add(a, b) | Op::Sub(a, b) | Op::Mul(a, b) => vec![a, b],
         Op::Div(a, _) | Op::Neg(a) => vec![a],
         Op::Powi(a, k) if k >= 1 => vec![a],
-        Op::Func(Func::Sqrt | Func::Abs, a) => vec![a],
+        // `f64::floor` of NaN or an infinity is itself: a finite floor has a finite argument.
+        Op::Func(Func::Sqrt | Func::Abs | Func::Floor, a) => vec![a],
         Op::Func(Func::Sin | Func::Cos, a) if !closed_trig.contains(&w) && plan.level[a.index()] >= 0 => vec![a],
         // A finite `min`/`max` implies nothing: the argument it did not choose may be infinite
         // (`min(inf, 1)`), and the compared ones only are not NaN.

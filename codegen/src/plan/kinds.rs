@@ -76,7 +76,9 @@ fn leaf_kinds(model: &Model, g: &Graph, residuals: &[NodeId], outputs: &[NodeId]
                 }
             }
             Op::Add(a, b) | Op::Sub(a, b) => stack.extend([(a, kind), (b, kind)]),
-            Op::Neg(a) | Op::Func(Func::Abs, a) => stack.push((a, kind)),
+            // `floor` as `abs`: of an angle (a count of turns, times a period) the argument is
+            // of the result's kind.
+            Op::Neg(a) | Op::Func(Func::Abs | Func::Floor, a) => stack.push((a, kind)),
             // `min`, `max`, `clamp`: the result is one of the compared arguments (as a sum's
             // terms, all of one kind). A select whose comparison is of other nodes (a
             // derivative's) passes the kind to its chosen operands only.
@@ -94,15 +96,15 @@ fn leaf_kinds(model: &Model, g: &Graph, residuals: &[NodeId], outputs: &[NodeId]
     kinds
 }
 
-/// Whether `n` is a pure number: a constant, a sine, cosine or tangent, or products, quotients
-/// and powers of those (looked at to `depth` levels).
+/// Whether `n` is a pure number: a constant, a sine, cosine or tangent, or products, quotients,
+/// powers and floors of those (looked at to `depth` levels).
 fn pure_number(g: &Graph, n: NodeId, depth: u32) -> bool {
     if depth == 0 {
         return false;
     }
     match g.op(n) {
         Op::Const(_) | Op::Func(Func::Sin | Func::Cos | Func::Tan | Func::Signum, _) => true,
-        Op::Neg(a) | Op::Powi(a, _) => pure_number(g, a, depth - 1),
+        Op::Neg(a) | Op::Powi(a, _) | Op::Func(Func::Floor, a) => pure_number(g, a, depth - 1),
         Op::Mul(a, b) | Op::Div(a, b) => pure_number(g, a, depth - 1) && pure_number(g, b, depth - 1),
         _ => false,
     }
@@ -157,7 +159,7 @@ fn dimensions(g: &Graph, roots: &[NodeId], leaf: &dyn Fn(Leaf) -> Kind) -> HashM
                 Kind::Other => Dim::Other,
             },
             Op::Add(a, b) | Op::Sub(a, b) => sum(d(a), d(b)),
-            Op::Neg(a) | Op::Func(Func::Abs, a) => d(a),
+            Op::Neg(a) | Op::Func(Func::Abs | Func::Floor, a) => d(a),
             Op::Mul(a, b) => product(d(a), d(b), 1),
             Op::Div(a, b) => product(d(a), d(b), -1),
             Op::Powi(a, k) => match d(a) {

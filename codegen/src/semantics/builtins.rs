@@ -53,6 +53,9 @@ pub enum Lowering {
     Max,
     /// `clamp(x, lo, hi)` = `min(max(x, lo), hi)`; constant bounds with `lo > hi` are an error.
     Clamp,
+    /// `wrap(x, period)` = `x - period * floor(x / period)`, `x` reduced by whole periods into
+    /// `[0, period)` (`period` itself within rounding); a constant `period` must be positive.
+    Wrap,
 }
 
 /// One built-in function.
@@ -97,6 +100,8 @@ pub static BUILTINS: &[Builtin] = &[
     Builtin { name: "min", args: &[("a", S), ("b", S)], result: S, lowering: Lowering::Min },
     Builtin { name: "max", args: &[("a", S), ("b", S)], result: S, lowering: Lowering::Max },
     Builtin { name: "clamp", args: &[("x", S), ("lo", S), ("hi", S)], result: S, lowering: Lowering::Clamp },
+    unary("floor", Func::Floor),
+    Builtin { name: "wrap", args: &[("x", S), ("period", S)], result: S, lowering: Lowering::Wrap },
     Builtin { name: "norm", args: &[("vector", V)], result: S, lowering: Lowering::Norm },
     Builtin { name: "dot", args: &[("vector", V), ("vector", V)], result: S, lowering: Lowering::Dot },
     Builtin { name: "cross", args: &[("vector", V), ("vector", V)], result: S, lowering: Lowering::Cross },
@@ -116,6 +121,8 @@ pub const HINTS: &[(&str, &str)] = &[
     ("tand", "angles are in radians: write `tan(deg(30))` for the tangent of 30 degrees"),
     ("degrees", "write `deg(30)` for 30 degrees in radians"),
     ("radians", "angles are in radians already; `deg(30)` converts 30 degrees"),
+    ("fmod", "write `wrap(x, period)` for `x` reduced by whole periods into `[0, period)`"),
+    ("rem_euclid", "write `wrap(x, period)` for `x` reduced by whole periods into `[0, period)`"),
 ];
 
 /// The built-in function called `name`.
@@ -172,6 +179,8 @@ mod tests {
         assert_eq!(sig("rot").as_deref(), Some("rot(vector, angle)"));
         assert_eq!(sig("sin").as_deref(), Some("sin(x)"));
         assert_eq!(sig("clamp").as_deref(), Some("clamp(x, lo, hi)"));
+        assert_eq!(sig("wrap").as_deref(), Some("wrap(x, period)"));
+        assert_eq!(lookup("floor").map(|b| b.lowering), Some(Lowering::Unary(Func::Floor)));
         let rot = lookup("rot").expect("rot");
         assert_eq!((rot.args[0].1, rot.args[1].1, rot.result), (V, S, V));
         // The vector functions are exactly those that take a vector; only `rot` returns one.
@@ -183,7 +192,8 @@ mod tests {
     fn listing_keeps_scalar_and_vector_groups() {
         assert_eq!(
             listing(),
-            "sin, cos, tan, asin, acos, atan, atan2, sqrt, exp, ln, abs, pow, hypot, deg, min, max, clamp; \
+            "sin, cos, tan, asin, acos, atan, atan2, sqrt, exp, ln, abs, pow, hypot, deg, min, max, clamp, \
+             floor, wrap; \
              for vectors: norm, dot, cross, angle, rot"
         );
     }

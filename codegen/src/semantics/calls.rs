@@ -47,6 +47,17 @@ impl Lowerer {
                 return None;
             }
         }
+        if builtin.lowering == Lowering::Wrap
+            && let Val::S(n) = vals[1]
+            && let Some(period) = self.graph.as_const(n)
+            && !(period > 0.0 && period.is_finite())
+        {
+            self.errors.push(args[1].range().error(format!(
+                "`wrap(x, period)` needs a positive, finite `period`, but it is {period:?}; \
+                 for a turn write `wrap(phi, 2 * pi)`"
+            )));
+            return None;
+        }
         let exponent = args.get(1).and_then(integer_exponent);
         Some(lower_builtin(&mut self.graph, builtin.lowering, &vals, exponent))
     }
@@ -137,6 +148,12 @@ fn lower_builtin(g: &mut Graph, how: Lowering, vals: &[Val], exponent: Option<i3
         Lowering::Clamp => {
             let low = g.max(s(0), s(1));
             g.min(low, s(2))
+        }
+        Lowering::Wrap => {
+            let turns = g.div(s(0), s(1));
+            let whole = g.func(Func::Floor, turns);
+            let back = g.mul(s(1), whole);
+            g.sub(s(0), back)
         }
     })
 }

@@ -3,7 +3,7 @@
 //! ```text
 //! kinloop-drawing 1
 //! t <entry> <entry> ...                 the tape: c:1.5 p:0 x:0 q:1 add:a,b sub:a,b mul:a,b
-//!                                       div:a,b neg:a powi:a,n powf:a,b atan2:y,x sin:a ...
+//!                                       div:a,b neg:a powi:a,n powf:a,b atan2:y,x sin:a floor:a ...
 //!                                       select:a,b,x,y (x if a <= b, y if b < a, else NaN)
 //! j <name> <g|m> <n|-> <x> <y>          a joint: fixed or moving, named or not, tape entries
 //! s <from> <to> <kind> <angle|-> <term> a segment: link, ground, slider-fixed,
@@ -164,6 +164,28 @@ n a note, with spaces";
         assert_eq!(v.angles, [Some(0.3), None]);
     }
 
+    /// `floor:a` (the declaration's `floor`, and `wrap(x, p)` = `x - p floor(x / p)`): the
+    /// largest integer not above, negative arguments and NaN included.
+    #[test]
+    fn floor_reads_and_evaluates() {
+        let text = "kinloop-drawing 1
+t x:0 floor:0 c:6.283185307179586 div:0,2 floor:3 mul:2,4 sub:0,5
+j f m - 1 6";
+        let d = Description::parse(text).unwrap();
+        let p = std::f64::consts::TAU;
+        for x in [-7.5, -1e-300, 0.0, 2.0, p, 20.0] {
+            let v = d.evaluate(&[], &[x], &[]).unwrap();
+            let want = [x.floor(), x - p * (x / p).floor()];
+            assert_eq!(v.joints, [want], "at {x}");
+            assert!((0.0..=p).contains(&v.joints[0][1]), "at {x}");
+        }
+        assert_eq!(d.evaluate(&[], &[-0.5], &[]).unwrap().joints[0][0], -1.0);
+        let nan = d.evaluate(&[], &[f64::NAN], &[]).unwrap();
+        assert!(nan.joints[0].iter().all(|v| v.is_nan()));
+        let inf = d.evaluate(&[], &[f64::NEG_INFINITY], &[]).unwrap();
+        assert_eq!(inf.joints[0][0], f64::NEG_INFINITY);
+    }
+
     #[test]
     fn a_broken_description_is_an_error_not_a_panic() {
         for broken in [
@@ -178,6 +200,8 @@ n a note, with spaces";
             "kinloop-drawing 1\nt c:1\nj a g - 0 0\np - 0",
             "kinloop-drawing 1\nz",
             "kinloop-drawing 1\nt frob:0",
+            "kinloop-drawing 1\nt c:1 floor:1",
+            "kinloop-drawing 1\nt c:1 floor:0,0",
         ] {
             assert!(matches!(Description::parse(broken), Err(Error::InvalidArgument(_))), "{broken:?}");
         }

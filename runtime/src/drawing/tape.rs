@@ -17,10 +17,11 @@ pub(super) enum Func {
     Ln,
     Abs,
     Signum,
+    Floor,
 }
 
 impl Func {
-    pub(super) const ALL: [(&'static str, Func); 11] = [
+    pub(super) const ALL: [(&'static str, Func); 12] = [
         ("sin", Func::Sin),
         ("cos", Func::Cos),
         ("tan", Func::Tan),
@@ -32,6 +33,7 @@ impl Func {
         ("ln", Func::Ln),
         ("abs", Func::Abs),
         ("signum", Func::Signum),
+        ("floor", Func::Floor),
     ];
 
     fn eval(self, v: f64) -> f64 {
@@ -46,6 +48,7 @@ impl Func {
             Func::Exp => v.exp(),
             Func::Ln => v.ln(),
             Func::Abs => v.abs(),
+            Func::Floor => v.floor(),
             // The sign as the macro's graph defines it: 0 at 0.
             Func::Signum => {
                 if v > 0.0 {

@@ -184,9 +184,10 @@ fn rewrite(g: &mut Graph, roots: &[NodeId], angles: &[Angle], block: &[usize]) -
             {
                 trig(g, f == Func::Sin, arg, angles, block)
             }
-            // A `min`/`max` of the block's unknowns is no closed form: kept as it is only when
-            // it is free of them (a coefficient, e.g. a cam law of the input).
-            Op::Select(..) => {
+            // A `min`/`max` or a `floor` of the block's unknowns is no closed form: kept as it
+            // is only when it is free of them (a coefficient, e.g. a cam law of the input
+            // reduced by whole turns).
+            Op::Select(..) | Op::Func(Func::Floor, _) => {
                 let unknowns = g.leaves_of(&[n]);
                 let moves = unknowns
                     .iter()

@@ -175,6 +175,26 @@ fn min_and_max_of_unknowns_keep_newton() {
     assert_eq!(kinds(law), ["closed form, RRR dyad"]);
 }
 
+/// `floor` of the block's unknowns keeps Newton; `wrap` (by `floor`) of the input alone is a
+/// coefficient: the four-bar driven by a law of the wrapped input is still a dyad.
+#[test]
+fn floor_of_unknowns_keeps_newton() {
+    let newton = [
+        "pub struct S { params l; input y; unknowns q; eq e: l * sin(q) + floor(q) == y; }",
+        "pub struct S { params l; input y; unknowns q; eq e: l * floor(q) == y; }",
+    ];
+    for src in newton {
+        let k = kinds(src);
+        assert!(k.iter().all(|k| *k == "none"), "{src}: {k:?}");
+    }
+    let floored = "pub struct Trial { params r, l; input phi; unknowns psi, x;
+        loop o: r @ phi == (floor(x), 0) + l @ psi; }";
+    assert_eq!(kinds(floored), ["closed form, angle equation", "none"]);
+    let law = "pub struct F { params a, b, c, d; input phi; unknowns beta, gamma;
+        loop o: (a + floor(phi) + wrap(phi, 2 * pi)) @ phi + b @ beta == (d, 0) + c @ gamma; }";
+    assert_eq!(kinds(law), ["closed form, RRR dyad"]);
+}
+
 #[test]
 fn class_four_group_keeps_newton() {
     let src = "pub struct C { params oa, xb, yb, ac, ae, al, bd, bf, bl, cd, ef; input phi;
