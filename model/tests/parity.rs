@@ -179,10 +179,18 @@ fn other_fixtures_equal_the_compiled_ones() {
         180,
     );
     eprintln!("dwell cam rocker: {w:?}");
+    let w = sweep_parity(
+        &fx::cam_linkage::DwellCamRocker::default(),
+        &mut read(fx::cam_linkage::DWELL_CAM_ROCKER_TEXT),
+        [-3.0 * TAU - 0.1],
+        180,
+    );
+    eprintln!("dwell cam rocker, three turns back: {w:?}");
 }
 
-/// The piecewise cam law (`clamp`, `min`, `max`) to the bit: every array of the state at the
-/// segments' ends and beside them, where the comparisons of the law change their choice, and the
+/// The piecewise cam law (`clamp`, `min`, `max`, and `wrap` by `floor`) to the bit: every array
+/// of the state at the segments' ends and beside them, where the comparisons of the law change
+/// their choice, in four turns (where `floor` jumps at the turns' boundaries), and the
 /// same error where the law is NaN (`fall = 0` at the return's start, 0 / 0).
 #[test]
 fn dwell_cam_equals_the_compiled_one_to_the_bit() {
@@ -191,7 +199,9 @@ fn dwell_cam_equals_the_compiled_one_to_the_bit() {
     let cfg = NewtonConfig::default();
     let m = &compiled;
     let mut compared = 0;
-    for end in [0.0, m.phi0, m.phi0 + m.rise, m.phi1, m.phi1 + m.fall, TAU] {
+    // Over four turns: the law of the wrapped angle (`floor`) repeats every turn.
+    let ends = [0.0, m.phi0, m.phi0 + m.rise, m.phi1, m.phi1 + m.fall, TAU];
+    for end in [-TAU, 0.0, TAU, 2.0 * TAU].into_iter().flat_map(|turn| ends.map(|e| turn + e)) {
         for d in [0.0, -1e-12, 1e-12, -1e-6, 1e-6, -0.3, 0.3] {
             let x = [end + d];
             let guess = compiled.guess_flat(&x);
@@ -209,7 +219,7 @@ fn dwell_cam_equals_the_compiled_one_to_the_bit() {
             compared += 1;
         }
     }
-    assert_eq!(compared, 42);
+    assert_eq!(compared, 168);
     let nan = fx::cam_linkage::DwellCamRocker { fall: 0.0, ..Default::default() };
     assert!(model.set_param("fall", 0.0));
     let x = [nan.phi1];

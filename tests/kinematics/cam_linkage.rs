@@ -5,10 +5,11 @@
 //! swing and the slider's stroke against the four-bar's limit positions. The drive with a
 //! prescribed law (double-harmonic rise and return moving a translating follower that swings a
 //! rocker) against the law's own derivatives and the rocker's circle intersection; the same with
-//! a piecewise rise-dwell-return-dwell law (`clamp`), sampled at and beside its segments' ends.
+//! a piecewise rise-dwell-return-dwell law (`clamp`), sampled at and beside its segments' ends,
+//! and over four turns against the law of `phi mod 2 pi` (the declaration's `wrap`).
 
 use crate::support::richardson;
-use kinloop_fixtures::cam_linkage::{CamLinkage, DwellCamRocker, HarmonicCamRocker};
+use kinloop_fixtures::cam_linkage::{CamLinkage, DwellCamRocker, DwellCamRockerState, HarmonicCamRocker};
 use std::f64::consts::{FRAC_PI_2, PI, TAU};
 
 /// The closed form's pose at cam angle `phi`: `[beta, psi, gamma, x]`.
@@ -349,19 +350,115 @@ fn dwell_cam_reports_a_nan_in_its_law() {
     assert_eq!(before.out.follower.y, m.y0 + m.lift);
 }
 
-/// The default drawing reads the law's `clamp` from its description (`select` entries) and
-/// draws the follower's pin where the law puts it, in the rise and in both dwells.
+/// The default drawing reads the law's `clamp` and `wrap` from its description (`select` and
+/// `floor` entries) and draws the follower's pin where the law puts it, in the rise and in both
+/// dwells, in the first turn and in others.
 #[test]
 fn dwell_cam_drawing_follows_the_law() -> Result<(), kinloop::Error> {
+    use kinloop::Mechanism;
     use kinloop::drawing::Description;
     let m = DwellCamRocker::default();
+    let text = <DwellCamRocker as Mechanism<2, 1, 4>>::DRAWING;
+    assert!(text.contains(" floor:") && text.contains(" select:"), "{text}");
     let d = Description::of::<DwellCamRocker, 2, 1, 4>()?;
-    for phi in [0.1, m.phi0 + 0.4 * m.rise, m.phi1 - 0.1, TAU - 0.1] {
+    let first = [0.1, m.phi0 + 0.4 * m.rise, m.phi1 - 0.1, TAU - 0.1];
+    let others = [-TAU, TAU, 2.0 * TAU, 5.0 * TAU].into_iter().flat_map(|turn| first.map(|p| turn + p));
+    for phi in first.into_iter().chain(others) {
         let s = m.solve(phi)?;
         let at = d.evaluate(&m.param_values(), &[phi], &[s.q.gamma, s.q.psi])?;
-        let pin = [0.0, m.y0 + dwell_law(&m, phi)[0]];
+        let pin = [0.0, m.y0 + dwell_law_any_turn(&m, phi)[0]];
         let nearest = at.joints.iter().map(|j| (j[0] - pin[0]).hypot(j[1] - pin[1])).fold(f64::INFINITY, f64::min);
         assert!(nearest <= 1e-12 * m.y0, "at {phi}: no joint at the follower's pin {pin:?}: {:?}", at.joints);
     }
+    Ok(())
+}
+
+/// The law of any cam angle: that of `phi mod 2 pi` (`rem_euclid`, an exact remainder), by hand.
+fn dwell_law_any_turn(m: &DwellCamRocker, phi: f64) -> [f64; 3] {
+    dwell_law(m, phi.rem_euclid(TAU))
+}
+
+/// Compares one state with the law of `phi mod 2 pi` (follower, to rounding of the lift) and
+/// the rocker's circle intersection and chain rule: the errors of the follower, then of the
+/// rocker's angle and its two analogs.
+fn dwell_errors(m: &DwellCamRocker, phi: f64, s: &DwellCamRockerState) -> [f64; 4] {
+    let [lift, v, a] = dwell_law_any_turn(m, phi);
+    let follower = [s.out.follower.y - (m.y0 + lift), s.dout.follower.y - v, s.d2out.follower.y - a];
+    let e_follower = follower.iter().map(|e| e.abs() / m.lift).fold(s.out.follower.x.abs(), f64::max);
+    let (d1s, d2s) = richardson(|x| dwell_rocker(m, x), lift, 0.1);
+    let (fd1, fd2) = (d1s * v, d2s * v * v + d1s * a);
+    [e_follower, angle_diff(s.q.psi, dwell_rocker(m, lift)).abs(), (s.dq.psi - fd1).abs(), (s.d2q.psi - fd2).abs()]
+}
+
+/// The law repeats every turn (`wrap(phi, 2 pi)` in the declaration): over four turns, from
+/// `-2 pi` to `6 pi`, the follower and the rocker follow the law of `phi mod 2 pi`, both in
+/// point solves at each turn's samples (the segments' ends and the turn's own boundary, exactly
+/// and beside them) and along one sweep, which passes the turns' boundaries (in the dwell, at
+/// rest) without an event.
+#[test]
+fn dwell_cam_repeats_its_law_every_turn() -> Result<(), kinloop::Error> {
+    let m = DwellCamRocker::default();
+    let tol = [1e-12, 1e-12, 1e-11, 1e-9];
+    let check = |phi: f64, s: &DwellCamRockerState, worst: &mut [f64; 4]| {
+        let e = dwell_errors(&m, phi, s);
+        for (k, what) in
+            ["follower", "rocker", "rocker's velocity analog", "rocker's acceleration analog"].into_iter().enumerate()
+        {
+            assert!(e[k] <= tol[k], "{what} at {phi} (turn {}): error {:e}", (phi / TAU).floor(), e[k]);
+            worst[k] = worst[k].max(e[k]);
+        }
+    };
+    // Point solves: each turn's samples, and the boundaries between turns.
+    let mut worst_points = [0.0f64; 4];
+    let mut points = 0;
+    let mut guess = m.guess(0.0);
+    for turn in -1..3 {
+        let base = f64::from(turn) * TAU;
+        let mut phis: Vec<f64> = dwell_samples(&m).into_iter().map(|p| base + p).collect();
+        for d in [0.0, 1e-12, 1e-9, 1e-6, 1e-3] {
+            phis.extend([base - d, base + d]);
+        }
+        for phi in phis {
+            let s = m.kinematics(phi, &guess)?;
+            guess = s.q;
+            check(phi, &s, &mut worst_points);
+            points += 1;
+        }
+    }
+    // At rest at every boundary, and the same state as at 0 (to rounding of the turns).
+    let zero = m.solve(0.0)?;
+    for turn in [-1.0, 1.0, 2.0, 3.0] {
+        let s = m.solve(turn * TAU)?;
+        assert_eq!([s.dout.follower.y, s.d2out.follower.y, s.dq.psi, s.d2q.psi], [0.0; 4], "turn {turn}");
+        assert_eq!((s.out.follower.y, s.q.psi), (zero.out.follower.y, zero.q.psi), "turn {turn}");
+    }
+    // Mid-rise in the fourth turn: the fastest point, as in the first.
+    let mid = m.solve(3.0 * TAU + m.phi0 + m.rise / 2.0)?;
+    assert!((mid.dout.follower.y - 1.875 * m.lift / m.rise).abs() <= 1e-12 * m.lift);
+    // One sweep over four turns, every half degree.
+    let samples = 4 * 720 + 1;
+    let start = m.solve(-TAU)?;
+    let mut sweep = m.sweep(-TAU, 3.0 * TAU, samples, &start.q)?;
+    let mut worst_sweep = [0.0f64; 4];
+    let mut seen = 0;
+    for s in sweep.by_ref() {
+        let s = s?;
+        check(s.input.phi, &s, &mut worst_sweep);
+        seen += 1;
+    }
+    assert_eq!(seen, samples);
+    assert!(sweep.events().is_empty(), "events at the turns' boundaries: {:?}", sweep.events());
+    println!(
+        "dwell cam over four turns: {points} point solves, max errors follower {:.1e} (of the lift), rocker \
+         {:.1e} / {:.1e} / {:.1e}; sweep of {seen} samples {:.1e}, {:.1e} / {:.1e} / {:.1e}, no events",
+        worst_points[0],
+        worst_points[1],
+        worst_points[2],
+        worst_points[3],
+        worst_sweep[0],
+        worst_sweep[1],
+        worst_sweep[2],
+        worst_sweep[3]
+    );
     Ok(())
 }
