@@ -100,12 +100,10 @@ fn simulate_s_step_budget_is_an_option_that_bounds_the_run() {
     let out = run(&["--time", "0.2", "--max-steps", "0"]);
     assert!(stderr(&out).contains("at least 1"), "{}", stderr(&out));
     // A span of a million million time units: the budget of 1000 steps is spent long before
-    // its end, in a moment and without the memory of the default budget's trajectory.
-    let started = std::time::Instant::now();
+    // its end, and the run stops there (the message names the budget it spent).
     let out = run(&["--time", "1e12", "--max-steps", "1000"]);
     let err = stderr(&out);
     assert_eq!(out.status.code(), Some(2), "{err}");
-    assert!(started.elapsed() < std::time::Duration::from_secs(60), "{:?}", started.elapsed());
     assert!(out.stdout.is_empty(), "no table of a simulation that did not reach its time");
     for what in ["EngineMachine", "budget of 1000 steps", "raise --max-steps", "--time"] {
         assert!(err.contains(what), "`{what}` missing: {err}");
