@@ -221,6 +221,20 @@ fn a_grid_page_of_two_inputs_is_the_librarys() {
     assert!(std::fs::read_to_string(&path5).expect("written") == library.expect("page"));
 }
 
+/// `--grid` over a range no sweep follows is a usage error naming the input, whether a sweep
+/// between two cells could follow it (a wide range: each cell a sweep of up to a million turns)
+/// or not (each cell read as unreachable, "no assembly there").
+#[test]
+fn a_grid_over_a_range_no_sweep_follows_is_a_usage_error() {
+    let path = out("five_bar_far.html");
+    let p = path.display().to_string();
+    let file = shipped("five_bar.kl");
+    for to in ["1e7,3", "1e12,3"] {
+        let args = ["animate", &file, "--grid", "--from", "0,0.4", "--to", to, "--samples", "5", "--out", &p];
+        fails_without_output(&args, &path, 2, "the grid sweeps input `th1` over its range 0 to");
+    }
+}
+
 /// A three-input mechanism for the default grid: a two-link arm on a slider, its tip `(x, y)`.
 const ARM_ON_SLIDER: &str = "pub struct ArmOnSlider {
     params a = 1.0, b = 0.8;

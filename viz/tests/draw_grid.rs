@@ -131,6 +131,30 @@ fn bad_grids_are_errors() {
     assert!(matches!(html_grid(&m, &d, &broken, &HtmlConfig::new("x")), Err(HtmlError::InvalidSetting(_))));
 }
 
+/// A range no sweep follows is refused before any neighbour is swept, naming the input: past a
+/// sweep's million turns between two cells (each cell's sweep refused its range, and the cells
+/// read as if the mechanism could not be assembled there), and within it between cells but not
+/// over all the grid's lines along the input (each cell a sweep of up to a million turns: hours).
+#[test]
+fn ranges_no_sweep_follows_are_refused_not_unreached() {
+    let m = Stretch::default();
+    let from = [0.5, 0.0, 2.0];
+    let g = m.guess_flat(&from);
+    for (to, counts) in [([1e12, 1.0, 2.5], [3, 3, 3]), ([2e6, 1.0, 2.5], [3, 3, 3]), ([1.0, 1.0, 1e12], [2, 2, 2])] {
+        let r = GridMotion::record(&m, from, to, counts, g);
+        let Err(DrawError::InvalidSetting(msg)) = &r else { panic!("to {to:?}: {r:?}") };
+        let name = if to[2] > 1e3 { "`s`" } else { "`th1`" };
+        assert!(msg.contains(name) && msg.contains("turns a sweep follows"), "{msg}");
+    }
+    // Between cells 1.2e5 turns of `th1`, within what a sweep follows; on its 9 lines (3 values
+    // of each other input) 1.08e6 turns in all, which the message counts (an angle input's
+    // unit is the radian).
+    let to = [0.5 + std::f64::consts::TAU * 1.2e5, 1.0, 2.5];
+    let r = GridMotion::record(&m, from, to, [2, 3, 3], g);
+    let Err(DrawError::InvalidSetting(msg)) = &r else { panic!("{r:?}") };
+    assert!(msg.contains("1.080e6 turns"), "{msg}");
+}
+
 /// The gallery's five-bar over a whole turn of each crank: where the links cannot span the
 /// pins (closer than `|b - c|`) a row is interrupted, and the cells after the interruption are
 /// reached around it (from the neighbouring rows) on the same assembly mode; every cell whose

@@ -28,6 +28,12 @@ pub struct GridMotion {
     pub cells: Vec<Option<usize>>,
 }
 
+/// Whether a sweep's error refuses its arguments (a range too long, an invalid argument) rather
+/// than reporting where the mechanism goes.
+fn refused(e: &Error) -> bool {
+    matches!(e, Error::RangeTooLong { .. } | Error::InvalidArgument(_))
+}
+
 /// `count` values evenly spaced from `from` to `to` (as a sweep samples them).
 fn spaced(from: f64, to: f64, count: usize) -> Vec<f64> {
     if count == 1 {
@@ -72,8 +78,11 @@ impl GridMotion {
     ///
     /// # Errors
     /// [`DrawError::InvalidSetting`] for a count of zero, a count above one with `from` equal
-    /// to `to`, non-finite ends, or more than [`MAX_GRID_CELLS`] cells;
-    /// [`DrawError::Sweep`] when the mechanism cannot be assembled at the first cell.
+    /// to `to`, non-finite ends, more than [`MAX_GRID_CELLS`] cells, or a range along an input
+    /// that the grid's sweeps, over all its lines along that input, would follow for more than
+    /// the [`MAX_TURNS`](kinloop_runtime::paths::sweep::MAX_TURNS) turns of one sweep;
+    /// [`DrawError::Sweep`] when the mechanism cannot be assembled at the first cell, or when a
+    /// sweep between two cells refuses its range.
     pub fn record<M, const N: usize, const NI: usize, const NO: usize>(
         m: &M,
         from: [f64; NI],
@@ -180,6 +189,7 @@ impl GridMotion {
             .map_err(DrawError::Sweep)?
             .ok_or_else(|| DrawError::InvalidSetting("the first cell's sweep has no sample".into()))?
             .map_err(DrawError::Sweep)?;
+        self.check_travel(sweep, &first)?;
         let mut states: Vec<Option<Pose>> = vec![None; self.cells.len()];
         states[0] = Some(first);
         let mut queue = std::collections::VecDeque::from([0usize]);
@@ -196,14 +206,62 @@ impl GridMotion {
                         continue;
                     }
                     let to = self.inputs(n);
-                    if let Ok(Some(Ok(state))) = sweep(&k.x, &to, 2, &k.q) {
-                        states[n] = Some(state);
-                        queue.push_back(n);
+                    match sweep(&k.x, &to, 2, &k.q) {
+                        Ok(Some(Ok(state))) => {
+                            states[n] = Some(state);
+                            queue.push_back(n);
+                        }
+                        // A sweep that refuses its arguments says nothing of the mechanism: not
+                        // an unreachable cell but a grid no sweep can follow.
+                        Err(e) | Ok(Some(Err(e))) if refused(&e) => return Err(DrawError::Sweep(e)),
+                        _ => {}
                     }
                 }
                 stride *= len;
             }
             self.motion.push(k);
+        }
+        Ok(())
+    }
+
+    /// Refuses, before any neighbour is swept, a grid whose sweeps would travel along an input
+    /// farther in all than one sweep follows ([`MAX_TURNS`](kinloop_runtime::paths::sweep::MAX_TURNS) turns, in the sweep's own units of
+    /// the inputs): its lines along that input, each the input's whole range, measured by a
+    /// sweep of that length from the first cell, which refuses a range too long before it takes
+    /// a step. Without it a wide range made every cell a sweep of up to a million turns (hours),
+    /// or, beyond that, unreachable, as if the mechanism could not be assembled there.
+    fn check_travel<F>(&self, sweep: &mut F, first: &Pose) -> Result<(), DrawError>
+    where
+        F: FnMut(&[f64], &[f64], usize, &[f64]) -> Result<Option<Result<Pose, Error>>, Error>,
+    {
+        let cells = self.cells.len();
+        for (a, axis) in self.axes.iter().enumerate() {
+            let (Some(&lo), Some(&hi)) = (axis.first(), axis.last()) else { continue };
+            if axis.len() < 2 {
+                continue;
+            }
+            let lines = cells / axis.len();
+            let travel = (hi - lo) * lines as f64;
+            let mut to = first.x.clone();
+            to[a] += travel;
+            let name = &self.motion.inputs[a];
+            match sweep(&first.x, &to, 1, &first.q) {
+                Err(Error::RangeTooLong { turns, max_turns, .. })
+                | Ok(Some(Err(Error::RangeTooLong { turns, max_turns, .. }))) => {
+                    return Err(DrawError::InvalidSetting(format!(
+                        "the grid sweeps input `{name}` over its range {lo} to {hi} on each of its {lines} lines, \
+                         {turns:.3e} turns of the inputs in all, more than the {max_turns:e} turns a sweep follows: \
+                         give `{name}` a shorter range, or the other inputs fewer values"
+                    )));
+                }
+                Err(e @ Error::InvalidArgument(_)) | Ok(Some(Err(e @ Error::InvalidArgument(_)))) => {
+                    return Err(DrawError::InvalidSetting(format!(
+                        "the grid sweeps input `{name}` over its range {lo} to {hi} on each of its {lines} lines, \
+                         a length no sweep can measure ({e}): give `{name}` a shorter range"
+                    )));
+                }
+                _ => {}
+            }
         }
         Ok(())
     }
