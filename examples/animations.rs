@@ -1,6 +1,7 @@
 //! Animations of every mechanism of the gallery, with the curves their points trace: the
 //! rhombic drive and its two variants, the gear-lever drive, the roller edger, the class IV
-//! mechanism, and four-bars (a coupler curve, and a rocker stopping at its limit position).
+//! mechanism, four-bars (a coupler curve, and a rocker stopping at its limit position), the
+//! five-bar, and the cam drives (the cam-linkage drive and the dwell cam).
 //!
 //! Run with `cargo run --release -p kinloop-examples --example animations -- docs/animations`
 //! (the folder defaults to `out/animations`). Each mechanism gives `<name>.svg`, an animated
@@ -16,16 +17,19 @@
 //!
 //! Each mechanism is drawn as its declaration describes it (`m.drawing()`: links, frame
 //! pivots, sliders, rigid plates, the named points traced), with at most a trace removed or
-//! added and, for the gear-lever drive, its gears, which no loop describes.
+//! added and, for the gear-lever drive, its gears, which no loop describes. The cam drives'
+//! disc, roller and cam profile, which no loop describes either, are not drawn: a note under
+//! the picture says so.
 
-use kinloop::Mechanism;
 use kinloop::draw::{Animation, DefaultDrawing, Draw, GridMotion, HtmlConfig, Motion, Readout, html, html_grid};
 use kinloop::plot::Kind;
+use kinloop::{Mechanism, QuantityKind};
 use std::error::Error;
 use std::f64::consts::{PI, TAU};
 use std::path::{Path, PathBuf};
 
 // The gallery's mechanisms, declared once in the fixtures crate.
+use kinloop_fixtures::cam_linkage::{CamLinkage, DwellCamRocker};
 use kinloop_fixtures::gear_lever::GearLever;
 use kinloop_fixtures::roller_edger::RollerEdger;
 use kinloop_fixtures::{ClassFour, DisplacerRodDrive, FiveBar, RhombicDrive, WorkingRodDrive};
@@ -90,6 +94,33 @@ fn class_four() -> Result<(DefaultDrawing, Motion), Box<dyn Error>> {
     Ok((drawing, Motion::record(&m, m.sweep(0.0, TAU, 361, &m.guess(0.0))?)?))
 }
 
+/// The cam-linkage drive: the declaration closes the cam's contact as the equivalent four-bar
+/// (the eccentric `e` as a crank, the line of centres `r_cam + r_roller`, the rocker's arm). The
+/// disc and the roller, which no loop describes, are not added: a drawing's only circle is a
+/// gear, whose teeth would show a gear pair where a disc and a roller touch; a note says so.
+fn cam_linkage() -> Result<(DefaultDrawing, Motion), Box<dyn Error>> {
+    let m = CamLinkage::default();
+    let drawing = m
+        .drawing()
+        .extend(|d| d.length_unit("mm").note("disc and roller not drawn: cam_centre-roller is their line of centres"));
+    Ok((drawing, Motion::record(&m, m.sweep(0.0, TAU, 361, &m.guess(0.0))?)?))
+}
+
+/// The dwell cam: the declaration's follower pin on its guide, rod and rocker, the pin rising
+/// and returning by the 3-4-5 law and resting in the dwells. The cam's profile is whatever
+/// produces the law (only the law enters the kinematics), so it is not drawn. The cam angle
+/// enters the declaration only through the law, not through a sine or cosine, so it is not
+/// inferred to be an angle: the motion is told so, and its readout is in degrees.
+fn dwell_cam() -> Result<(DefaultDrawing, Motion), Box<dyn Error>> {
+    let m = DwellCamRocker::default();
+    let drawing = m
+        .drawing()
+        .extend(|d| d.length_unit("mm").note("the cam's profile is not drawn: the follower moves by the law"));
+    let mut motion = Motion::record(&m, m.sweep(0.0, TAU, 361, &m.guess(0.0))?)?;
+    motion.input_kinds = vec![QuantityKind::Angle];
+    Ok((drawing, motion))
+}
+
 /// The five-bar with two cranks: both turned together (a one-to-one gearing), the coupler
 /// point C tracing its path. (Its page is a grid of the two cranks: one slider each.)
 fn five_bar() -> Result<(DefaultDrawing, Motion), Box<dyn Error>> {
@@ -149,6 +180,8 @@ fn main() -> Result<(), Box<dyn Error>> {
         show("four_bar_coupler", coupler_curve, true, true),
         show("four_bar_limit", limit_position, false, false),
         show("five_bar", five_bar, true, false),
+        show("cam_linkage", cam_linkage, true, false),
+        show("dwell_cam", dwell_cam, true, false),
     ];
     for s in shows {
         let (drawing, motion) = (s.scene)()?;
@@ -237,6 +270,22 @@ fn pages(dir: &Path) -> Result<(), Box<dyn Error>> {
         .with_readout(Readout::column(CouplerFourBar::COL.beta).without_chart())
         .with_back_and_forth(true);
     write_page(dir, "four_bar_limit", &html(&m, &d.clone().into_drawing(), &motion, &config)?)?;
+    let (d, motion) = cam_linkage()?;
+    let config = HtmlConfig::new("Cam-linkage drive: disc cam, roller on a bell-crank rocker, rod and slider")
+        .show(CamLinkage::COL.psi)
+        .show(CamLinkage::COL.x)
+        .show(CamLinkage::COL.pressure)
+        .with_readout(Readout::column(CamLinkage::COL.beta).without_chart())
+        .with_length_unit("mm");
+    write_page(dir, "cam_linkage", &html(&CamLinkage::default(), &d.clone().into_drawing(), &motion, &config)?)?;
+    let (d, motion) = dwell_cam()?;
+    let config = HtmlConfig::new("Dwell cam: 3-4-5 rise-dwell-return-dwell, follower swinging a rocker")
+        .with_readout(Readout::column(DwellCamRocker::COL.phi).kind(Kind::Angle).without_chart())
+        .show(DwellCamRocker::COL.follower.y)
+        .show(DwellCamRocker::COL.psi)
+        .with_readout(Readout::column(DwellCamRocker::COL.gamma).without_chart())
+        .with_length_unit("mm");
+    write_page(dir, "dwell_cam", &html(&DwellCamRocker::default(), &d.clone().into_drawing(), &motion, &config)?)?;
     // Two inputs: a grid of both cranks over a turn each (25 x 25 cells), one slider per crank;
     // where the links cannot reach each other the page says so.
     let m = FiveBar::default();
