@@ -4,6 +4,7 @@
 
 use kinloop::QuantityKind::{Angle, Dimensionless, Length, Other};
 use kinloop::{Mechanism, Table};
+use kinloop_fixtures::cam_linkage::DwellCamRocker;
 use kinloop_fixtures::roller_edger::RollerEdger;
 use kinloop_fixtures::{FiveBar, RhombicDrive};
 use std::collections::HashMap;
@@ -49,6 +50,26 @@ kinloop::mechanism! {
     }
 }
 
+kinloop::mechanism! {
+    /// A rise of a cam over `rise` from `phi0`, both written in degrees, moving a follower that
+    /// swings a rocker: the input never meets a sine, and is an angle because it is compared
+    /// with `phi0` (through `wrap`, a difference and `clamp`). `w`, which meets no sine either,
+    /// is an angle by its guess in degrees; `z`, a multiple of a ratio, is not inferred.
+    pub struct CamRise {
+        params lift = 20.0, y0 = 60.0, l = 70.0, c = 40.0, dx = -40.0, dy = 140.0,
+               phi0 = deg(30), rise = deg(120), k = 2.0;
+        input phi;
+        unknowns gamma = 1.6, psi = -0.25, z = 1.0, w = deg(10);
+        let u = clamp((wrap(phi, 2 * pi) - phi0) / rise, 0, 1);
+        loop rod: (0, y0 + lift * u ^ 2) + l @ gamma == (dx, dy) + c @ psi;
+        eq spare: z == k * u ^ 2;
+        eq lag: w == phi0 * u ^ 2;
+        output lead = phi - phi0;
+        output beyond = max(phi, rise);
+        output turn = psi - gamma;
+    }
+}
+
 /// The header of a table's CSV, read by the `csv` crate: column name -> unit.
 fn header(t: &Table) -> HashMap<String, String> {
     let mut bytes = Vec::new();
@@ -88,6 +109,22 @@ fn kinds_are_inferred_from_the_declaration() {
     assert_eq!(Oscillator::UNKNOWN_KINDS, [Length, Angle, Length]);
     // The trait carries the same constants for generic code.
     assert_eq!(<Kinds as Mechanism<2, 1, 5>>::OUTPUT_KINDS, Kinds::OUTPUT_KINDS);
+}
+
+/// Values written in degrees are angles, and so is whatever is added to or compared with an
+/// angle without a dimension of its own; a ratio of angles and what it multiplies are not
+/// guessed.
+#[test]
+fn angles_written_in_degrees_and_what_is_added_to_them() {
+    assert_eq!(CamRise::INPUT_KINDS, [Angle]);
+    assert_eq!(CamRise::UNKNOWN_KINDS, [Angle, Angle, Other, Angle]);
+    assert_eq!(CamRise::OUTPUT_KINDS, [Angle, Angle, Angle]);
+    let m = CamRise::default();
+    let states: Vec<_> = m.sweep(0.0, 1.0, 3, &m.guess(0.0)).unwrap().map(Result::unwrap).collect();
+    let h = header(&Table::from_states::<CamRise, _, _, _>(states.iter().map(|s| &s.flat)));
+    assert_eq!((h["phi"].as_str(), h["psi"].as_str(), h["lead"].as_str()), ("rad", "rad", "rad"));
+    // The fixtures' dwell cam, whose law is written so.
+    assert_eq!(DwellCamRocker::INPUT_KINDS, [Angle]);
 }
 
 #[test]

@@ -163,6 +163,17 @@ pub enum Expr {
 }
 
 impl Expr {
+    /// Whether the expression is written in degrees, `deg(...)` (negated or in parentheses
+    /// too): the value is then certainly an angle, whatever number it is.
+    pub fn written_in_degrees(&self) -> bool {
+        match self {
+            Expr::Call { func, .. } => func == "deg",
+            Expr::Neg { expr, .. } => expr.written_in_degrees(),
+            Expr::Paren { inner, .. } => inner.written_in_degrees(),
+            _ => false,
+        }
+    }
+
     /// The tokens the expression spans, for errors about it.
     pub fn range(&self) -> SpanRange {
         match self {

@@ -9,13 +9,20 @@
 //! `2 phi` the angle `phi` a constant, but in `sin(k t)` neither `k` nor `t` is known to be an
 //! angle. A leaf reached as two different kinds is not classified.
 //!
+//! A parameter or unknown whose value is written in degrees (`params phi0 = deg(30);`) is an
+//! angle too, and so is whatever of no dimension yet is added to, subtracted from or compared
+//! with an angle: in a cam law `clamp((wrap(phi, 2 pi) - phi0) / rise, 0, 1)` the input `phi`
+//! is an angle because `phi0` is, though it never meets a sine. Such sums are looked at once
+//! the kinds above are known (by the dimensions below), and again after whatever they
+//! classify, until nothing changes.
+//!
 //! **Scalar outputs** get the kind of their expression, computed bottom-up with lengths
 //! carrying a power (`L^k`): `atan2` of two lengths is an angle, a difference of lengths a
 //! length, a ratio of lengths dimensionless, `sqrt` of a sum of squares of lengths a length.
 //! Whatever does not follow from the classified leaves is [`Kind::Other`]: nothing is guessed.
 
 use crate::graph::dag::{Func, Graph, Leaf, NodeId, Op};
-use crate::semantics::model::Model;
+use crate::semantics::model::{Model, Named};
 use std::collections::{HashMap, HashSet};
 
 /// The kind of quantity of a column.
@@ -62,8 +69,58 @@ fn leaf_kinds(model: &Model, g: &Graph, residuals: &[NodeId], outputs: &[NodeId]
     start.extend(loops.map(|(_, &r)| (r, Kind::Length)));
     start.extend(outputs.iter().take(2 * model.points.len()).map(|&p| (p, Kind::Length)));
     let mut kinds: HashMap<Leaf, Option<Kind>> = HashMap::new();
+    let degrees = |list: &[Named]| {
+        list.iter().enumerate().filter(|(_, n)| n.in_degrees).map(|(i, _)| i as u16).collect::<Vec<_>>()
+    };
+    for leaf in degrees(&model.params)
+        .into_iter()
+        .map(Leaf::Param)
+        .chain(degrees(&model.unknowns).into_iter().map(Leaf::Unknown))
+    {
+        kinds.insert(leaf, Some(Kind::Angle));
+    }
     let mut seen: HashSet<(NodeId, Kind)> = HashSet::new();
     let mut stack = start;
+    // The certain places first, where a leaf reached as two kinds is not classified; then the
+    // sums, which only classify leaves nothing has classified (an inconsistent declaration,
+    // an angle plus a difference of lengths, leaves the lengths as they are).
+    let mut certain = true;
+    loop {
+        descend(g, &mut stack, &mut seen, &mut kinds, certain);
+        certain = false;
+        // The terms of a sum (and the compared arguments of a select) are of one kind: an angle
+        // beside a term of no dimension yet passes down into it. A term with a dimension of its
+        // own keeps it (`y + phi` with `y` a length: the sum is nothing kinloop names, and `y`
+        // stays a length).
+        let of = |l: Leaf| kinds.get(&l).copied().flatten().unwrap_or(Kind::Other);
+        let dims = dimensions(g, &roots, &of);
+        for n in g.reachable(&roots) {
+            let pair = match g.op(n) {
+                Op::Add(a, b) | Op::Sub(a, b) | Op::Select(a, b, _, _) => [a, b],
+                _ => continue,
+            };
+            for (this, other) in [(pair[0], pair[1]), (pair[1], pair[0])] {
+                if dims[&this] == Dim::Angle && dims[&other] == Dim::Other && !seen.contains(&(other, Kind::Angle)) {
+                    stack.push((other, Kind::Angle));
+                }
+            }
+        }
+        if stack.is_empty() {
+            return kinds;
+        }
+    }
+}
+
+/// Passes the kinds on `stack` down through the graph (see the module documentation), noting
+/// each leaf reached in `kinds`: where the kinds are `certain`, `None` once reached as two
+/// kinds; otherwise only a leaf not reached before.
+fn descend(
+    g: &Graph,
+    stack: &mut Vec<(NodeId, Kind)>,
+    seen: &mut HashSet<(NodeId, Kind)>,
+    kinds: &mut HashMap<Leaf, Option<Kind>>,
+    certain: bool,
+) {
     while let Some((n, kind)) = stack.pop() {
         if !seen.insert((n, kind)) {
             continue;
@@ -71,7 +128,7 @@ fn leaf_kinds(model: &Model, g: &Graph, residuals: &[NodeId], outputs: &[NodeId]
         match g.op(n) {
             Op::Leaf(l @ (Leaf::Param(_) | Leaf::Input(_) | Leaf::Unknown(_))) => {
                 let entry = kinds.entry(l).or_insert(Some(kind));
-                if *entry != Some(kind) {
+                if certain && *entry != Some(kind) {
                     *entry = None;
                 }
             }
@@ -93,7 +150,6 @@ fn leaf_kinds(model: &Model, g: &Graph, residuals: &[NodeId], outputs: &[NodeId]
             _ => {}
         }
     }
-    kinds
 }
 
 /// Whether `n` is a pure number: a constant, a sine, cosine or tangent, or products, quotients,

@@ -31,6 +31,10 @@ pub struct Named {
     /// Index of the declaring item (`params ...;`, `unknowns ...;`) in the body: names of one
     /// item are neighbours in the source, so a diagnostic can underline several at once.
     pub item: usize,
+    /// Whether its default value or guess is written in degrees (`params alpha = deg(30);`,
+    /// `unknowns psi = deg(-20);`): it is then an angle, and the kinds of quantity follow from
+    /// it ([`crate::plan::kinds`]).
+    pub in_degrees: bool,
 }
 
 /// One scalar equation: a projection of a `loop` (x or y) or an `eq`.
@@ -308,7 +312,8 @@ fn check_counts(lw: &mut Lowerer, g: &mut Globals, name: &Ident) {
 
 fn named(d: &Decl, value: Option<NodeId>, item_of: &HashMap<*const Decl, usize>) -> Named {
     let item = item_of.get(&(d as *const Decl)).copied().unwrap_or(0);
-    Named { docs: d.docs.clone(), name: d.name.clone(), value, item }
+    let in_degrees = d.value.as_ref().is_some_and(Expr::written_in_degrees);
+    Named { docs: d.docs.clone(), name: d.name.clone(), value, item, in_degrees }
 }
 
 /// Pass 2: one item at its place in the body.
