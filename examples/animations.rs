@@ -23,7 +23,7 @@
 
 use kinloop::draw::{Animation, DefaultDrawing, Draw, GridMotion, HtmlConfig, Motion, Readout, html, html_grid};
 use kinloop::plot::Kind;
-use kinloop::{Mechanism, QuantityKind};
+use kinloop::Mechanism;
 use std::error::Error;
 use std::f64::consts::{PI, TAU};
 use std::path::{Path, PathBuf};
@@ -109,16 +109,14 @@ fn cam_linkage() -> Result<(DefaultDrawing, Motion), Box<dyn Error>> {
 /// The dwell cam: the declaration's follower pin on its guide, rod and rocker, the pin rising
 /// and returning by the 3-4-5 law and resting in the dwells. The cam's profile is whatever
 /// produces the law (only the law enters the kinematics), so it is not drawn. The cam angle
-/// enters the declaration only through the law, not through a sine or cosine, so it is not
-/// inferred to be an angle: the motion is told so, and its readout is in degrees.
+/// meets no sine in the declaration; it is an angle because the law compares it with angles
+/// written in degrees, so its readout is in degrees.
 fn dwell_cam() -> Result<(DefaultDrawing, Motion), Box<dyn Error>> {
     let m = DwellCamRocker::default();
     let drawing = m
         .drawing()
         .extend(|d| d.length_unit("mm").note("the cam's profile is not drawn: the follower moves by the law"));
-    let mut motion = Motion::record(&m, m.sweep(0.0, TAU, 361, &m.guess(0.0))?)?;
-    motion.input_kinds = vec![QuantityKind::Angle];
-    Ok((drawing, motion))
+    Ok((drawing, Motion::record(&m, m.sweep(0.0, TAU, 361, &m.guess(0.0))?)?))
 }
 
 /// The five-bar with two cranks: both turned together (a one-to-one gearing), the coupler
@@ -280,7 +278,7 @@ fn pages(dir: &Path) -> Result<(), Box<dyn Error>> {
     write_page(dir, "cam_linkage", &html(&CamLinkage::default(), &d.clone().into_drawing(), &motion, &config)?)?;
     let (d, motion) = dwell_cam()?;
     let config = HtmlConfig::new("Dwell cam: 3-4-5 rise-dwell-return-dwell, follower swinging a rocker")
-        .with_readout(Readout::column(DwellCamRocker::COL.phi).kind(Kind::Angle).without_chart())
+        .with_readout(Readout::column(DwellCamRocker::COL.phi).without_chart())
         .show(DwellCamRocker::COL.follower.y)
         .show(DwellCamRocker::COL.psi)
         .with_readout(Readout::column(DwellCamRocker::COL.gamma).without_chart())
