@@ -91,7 +91,8 @@ impl Fourier {
 /// ```
 pub fn fourier(values: &[f64], x0: f64, period: f64, harmonics: usize) -> Result<Fourier, Error> {
     let n = values.len();
-    if 2 * harmonics >= n {
+    // (`2 * harmonics` overflows for a count near `usize::MAX`.)
+    if harmonics >= n.div_ceil(2) {
         return Err(Error::InvalidArgument(format!(
             "{n} samples resolve harmonics below {}, not {harmonics}",
             n.div_ceil(2)
@@ -194,5 +195,15 @@ mod tests {
         assert!(fourier(&[1.0; 8], 0.0, 1.0, 3).is_ok());
         assert!(fourier(&[1.0; 8], 0.0, 0.0, 1).is_err());
         assert!(fourier(&[1.0, f64::NAN, 1.0, 1.0, 1.0], 0.0, 1.0, 1).is_err());
+    }
+
+    /// A count of harmonics whose double overflows is an error, not an overflow panic (a debug
+    /// build) or, wrapped to a small double, a vector of that capacity (a release build).
+    #[test]
+    fn a_count_of_harmonics_near_usize_max_is_an_error() {
+        for harmonics in [usize::MAX, usize::MAX / 2 + 1] {
+            let r = fourier(&[1.0; 8], 0.0, 1.0, harmonics);
+            assert!(matches!(&r, Err(Error::InvalidArgument(m)) if m.contains("resolve harmonics below 4")), "{r:?}");
+        }
     }
 }
