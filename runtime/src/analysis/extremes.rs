@@ -296,8 +296,11 @@ pub(crate) fn check_increasing(samples: &[Jet]) -> Result<(), Error> {
 /// # Ok::<(), kinloop_runtime::Error>(())
 /// ```
 pub fn maximize(a: f64, b: f64, mut f: impl FnMut(f64) -> Result<f64, Error>) -> Result<(f64, f64), Error> {
-    if !(a.is_finite() && b.is_finite() && a < b) {
-        return Err(Error::InvalidArgument(format!("maximize needs a finite interval a < b, got [{a}, {b}]")));
+    // (A width beyond f64, `-1e308` to `1e308`, put the first trial point at infinity.)
+    if !(a < b && (b - a).is_finite()) {
+        return Err(Error::InvalidArgument(format!(
+            "maximize needs a finite interval a < b of finite width, got [{a}, {b}]"
+        )));
     }
     // Brent's `fmin` on g = -f (R. P. Brent, Algorithms for Minimization without Derivatives,
     // 1973, ch. 5).
@@ -398,6 +401,16 @@ mod tests {
         assert!(matches!(&r, Err(Error::InvalidArgument(m)) if m.contains("finite width")), "{r:?}");
         let root = bracketed_root(line(-1e307).unwrap(), line(1e307).unwrap(), |j| (j.value, j.d1), line).unwrap();
         assert_eq!(root.x, 0.0);
+    }
+
+    /// An interval whose width overflows is refused as such; its first trial point was at
+    /// infinity and the error said `f` was not finite at NaN.
+    #[test]
+    fn an_interval_of_infinite_width_is_an_error() {
+        let r = maximize(-1e308, 1e308, |x| Ok(-(x / 1e300).powi(2)));
+        assert!(matches!(&r, Err(Error::InvalidArgument(m)) if m.contains("finite width")), "{r:?}");
+        let (x, v) = maximize(-1e307, 1e307, |x| Ok(-(x / 1e300).powi(2))).unwrap();
+        assert!(x.abs() < 1e300 && v > -1.0, "{x} {v}");
     }
 
     #[test]
