@@ -211,6 +211,18 @@ mod tests {
         assert!((x - best.0).abs() < 1e-3);
     }
 
+    /// A value not finite at a sample is an error, as in the search between samples: an
+    /// infinite one was returned as the peak, a NaN with its sign bit set passed over.
+    #[test]
+    fn a_peak_of_values_not_finite_is_an_error() {
+        let turn = Sampled::sweep(&M, 0.0, TAU, 73, [3.0]).unwrap();
+        let at = turn.path_values()[20];
+        for bad in [f64::INFINITY, -f64::NAN, f64::NAN] {
+            let r = turn.peak(|k| if k.x[0] == at { bad } else { k.q[0] });
+            assert!(matches!(&r, Err(Error::InvalidArgument(m)) if m.contains("at the sample")), "{bad}: {r:?}");
+        }
+    }
+
     /// The example of the documentation above, run against the hand-written slider-crank.
     #[test]
     fn module_documentation_example() -> Result<(), crate::Error> {
