@@ -73,13 +73,20 @@ impl LevenbergMarquardt {
     }
 
     /// Minimises `|r(x)|^2` from `x0`; `f(x)` returns the residuals and their Jacobian
-    /// `J[k][i] = d r_k / d x_i`. An error at `x0` is returned; later errors reject the step.
+    /// `J[k][i] = d r_k / d x_i`. An error at `x0` is returned, and so is a residual there
+    /// that is not finite (`InvalidArgument`); later errors, and residuals not finite, reject
+    /// the step.
     pub fn minimize<const R: usize, const P: usize>(
         &self,
         mut f: impl FnMut(&[f64; P]) -> Result<([f64; R], [[f64; P]; R]), Error>,
         x0: [f64; P],
     ) -> Result<Minimum<P>, Error> {
         let (mut r, mut jac) = f(&x0)?;
+        // A NaN norm fails every comparison: no step was tried, and the NaN was returned as the
+        // value of a stalled search.
+        if let Some(k) = r.iter().position(|v| !v.is_finite()) {
+            return Err(Error::InvalidArgument(format!("residual {k} at the start {x0:?} is {}", r[k])));
+        }
         let mut x = x0;
         let mut evaluations = 1;
         let mut lambda = self.lambda;
@@ -146,6 +153,16 @@ mod tests {
         let [x, y] = r.x;
         assert!((x * x + y * y - 4.0).abs() < 1e-9 && (x * y - 1.0).abs() < 1e-9);
         assert!(r.evaluations < 30);
+    }
+
+    /// Residuals not finite at the start are an error, not a stalled search of value NaN.
+    #[test]
+    fn residuals_not_finite_at_the_start_are_an_error() {
+        for bad in [f64::NAN, f64::INFINITY] {
+            let f = |v: &[f64; 1]| Ok(([v[0] - 1.0, bad], [[1.0], [0.0]]));
+            let r = LevenbergMarquardt::default().minimize(f, [0.0]);
+            assert!(matches!(&r, Err(Error::InvalidArgument(m)) if m.contains("residual 1")), "{r:?}");
+        }
     }
 
     #[test]
