@@ -193,6 +193,10 @@ impl NelderMead {
     /// smooth minimum in `u`. The initial simplex steps are `0.25` rad in `u` (a quarter of the
     /// range near the centre). `x_tol` applies to `u`.
     ///
+    /// # Panics
+    /// If a bound is not finite or `lo[i] > hi[i]` (a box that holds no point, or one the sine
+    /// cannot map onto): a programmer's error, as for [`f64::clamp`].
+    ///
     /// ```
     /// use kinloop_runtime::analysis::optimize::NelderMead;
     /// // (x - 2)^2 + (y + 0.5)^2 over [0, 1] x [-1, 1]: the minimum is on the face x = 1.
@@ -207,6 +211,16 @@ impl NelderMead {
         lo: [f64; P],
         hi: [f64; P],
     ) -> Minimum<P> {
+        // Checked here, naming the coordinate: `clamp` panicked with its own words for
+        // `lo > hi` or a NaN, and infinite bounds made every trial point NaN.
+        for i in 0..P {
+            assert!(
+                lo[i].is_finite() && hi[i].is_finite() && lo[i] <= hi[i],
+                "NelderMead::minimize_boxed: the box of coordinate {i}, [{}, {}], needs finite bounds with lo <= hi",
+                lo[i],
+                hi[i]
+            );
+        }
         let to_x = |u: &[f64; P]| {
             let mut x = [0.0; P];
             for i in 0..P {
@@ -277,6 +291,20 @@ mod tests {
         let g = |p: &[f64; 2]| (p[0] - 0.3).powi(2) + 2.0 * (p[1] - 0.7).powi(2);
         let m = NelderMead::default().minimize_boxed(g, [0.9, -0.9], [0.0, -1.0], [1.0, 1.0]);
         assert!((m.x[0] - 0.3).abs() < 1e-6 && (m.x[1] - 0.7).abs() < 1e-6, "{m:?}");
+    }
+
+    /// A box with `lo > hi` is a documented panic naming the coordinate (it was `clamp`'s own
+    /// panic); an infinite bound too (it made every trial point NaN).
+    #[test]
+    #[should_panic(expected = "the box of coordinate 1, [1, 0]")]
+    fn an_inverted_box_panics_naming_its_coordinate() {
+        NelderMead::default().minimize_boxed(|p: &[f64; 2]| p[0] + p[1], [0.5, 0.5], [0.0, 1.0], [1.0, 0.0]);
+    }
+
+    #[test]
+    #[should_panic(expected = "the box of coordinate 0, [-inf, 1]")]
+    fn an_infinite_bound_panics_naming_its_coordinate() {
+        NelderMead::default().minimize_boxed(|p: &[f64; 1]| p[0] * p[0], [0.5], [f64::NEG_INFINITY], [1.0]);
     }
 
     #[test]
