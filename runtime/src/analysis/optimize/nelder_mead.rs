@@ -124,6 +124,11 @@ impl NelderMead {
         evaluations: &std::cell::Cell<usize>,
         iterations: &mut usize,
     ) -> bool {
+        // No variable: the one point is the minimum (the steps below need a second vertex, and
+        // tolerances the single vertex cannot meet, negative ones, reached them).
+        if P == 0 {
+            return true;
+        }
         let n = P.max(1) as f64;
         let (alpha, gamma, rho, sigma) = (1.0, 1.0 + 2.0 / n, 0.75 - 0.5 / n, 1.0 - 1.0 / n);
         loop {
@@ -305,6 +310,14 @@ mod tests {
     #[should_panic(expected = "the box of coordinate 0, [-inf, 1]")]
     fn an_infinite_bound_panics_naming_its_coordinate() {
         NelderMead::default().minimize_boxed(|p: &[f64; 1]| p[0] * p[0], [0.5], [f64::NEG_INFINITY], [1.0]);
+    }
+
+    /// No variable: the start is the minimum, whatever the tolerances (negative ones made the
+    /// search index the simplex's second vertex, a panic).
+    #[test]
+    fn no_variable_is_converged_at_the_start() {
+        let m = NelderMead::default().with_tolerances(-1.0, -1.0).minimize(|_: &[f64; 0]| 2.0, [], []);
+        assert!(m.converged() && m.value == 2.0, "{m:?}");
     }
 
     #[test]
