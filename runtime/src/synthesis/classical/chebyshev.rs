@@ -13,7 +13,7 @@ use super::error::{ClassicalError, finite};
 ///
 /// `x_j = (x0 + x1) / 2 - (x1 - x0) / 2 * cos((2 j - 1) pi / (2 n))`, `j = 1 ..= n`.
 ///
-/// Errors: `n == 0`, a bound not finite, or `x0 == x1`.
+/// Errors: `n == 0` or more than memory holds, a bound not finite, or `x0 == x1`.
 ///
 /// ```
 /// use kinloop_runtime::synthesis::classical::chebyshev_points;
@@ -29,6 +29,13 @@ pub fn chebyshev_points(n: usize, x0: f64, x1: f64) -> Result<Vec<f64>, Classica
     finite(x1, || "the end of the range".into())?;
     if n == 0 {
         return Err(ClassicalError::BadRange { what: "number of precision points", why: "it is zero".into() });
+    }
+    // More points than a vector can hold panicked in the allocator (a capacity overflow).
+    if n > isize::MAX as usize / std::mem::size_of::<f64>() {
+        return Err(ClassicalError::BadRange {
+            what: "number of precision points",
+            why: format!("{n}: too many to hold in memory"),
+        });
     }
     if x0 == x1 {
         return Err(ClassicalError::BadRange { what: "range", why: format!("it is empty ({x0} to {x1})") });
@@ -86,6 +93,13 @@ mod tests {
         assert!(matches!(chebyshev_points(3, 1.0, 1.0), Err(ClassicalError::BadRange { .. })));
         assert!(matches!(chebyshev_points(3, f64::NAN, 1.0), Err(ClassicalError::NonFinite { .. })));
         assert!(matches!(chebyshev_points(3, 0.0, f64::INFINITY), Err(ClassicalError::NonFinite { .. })));
+    }
+
+    /// A count of points no vector holds is an error, not a capacity-overflow panic.
+    #[test]
+    fn too_many_points_are_an_error() {
+        let e = chebyshev_points(usize::MAX, 0.0, 1.0).unwrap_err();
+        assert!(matches!(&e, ClassicalError::BadRange { why, .. } if why.contains("too many")), "{e:?}");
     }
 
     /// Ends whose difference overflows give the points, not infinities.
