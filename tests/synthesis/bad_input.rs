@@ -94,6 +94,14 @@ fn settings_and_points_out_of_range() {
     let c = Constraints::default().with_link_ratio(&["a", "z"], 2.0);
     assert!(matches!(problem.clone().with_constraints(&c), Err(SynthesisError::UnknownVariable { .. })));
     assert!(matches!(problem.clone().with_guesses(vec![[0.0, 0.0]]), Err(SynthesisError::Mismatch(_))));
+    // More starts than a report holds: an error before the first, not a capacity-overflow
+    // panic.
+    for search in [Search::default().with_starts(0..usize::MAX), Search::default().with_starts(1..usize::MAX)] {
+        let r = search.run(&problem);
+        assert!(matches!(&r, Err(SynthesisError::InvalidConfig(m)) if m.contains("starts")), "{r:?}");
+        let r = search.par_run(&problem);
+        assert!(matches!(&r, Err(SynthesisError::InvalidConfig(m)) if m.contains("starts")), "{r:?}");
+    }
 }
 
 #[test]

@@ -61,6 +61,9 @@ fn sign_change(a: f64, b: f64) -> bool {
 /// rounding; for a root near `x = 0` an absolute floor of `1e-6` times the initial bracket applies),
 /// or after 100 evaluations.
 ///
+/// Errors (`InvalidArgument`): no sign change of `h` between the ends, a bracket whose width
+/// is not finite, a value of `h` not finite; and those of `eval`.
+///
 /// ```
 /// use kinloop_runtime::analysis::{Jet, extremes::bracketed_root};
 /// // Root of cos(x) - x (the Dottie number) with its derivative -sin(x) - 1.
@@ -76,6 +79,14 @@ pub fn bracketed_root(
     h: impl Fn(&Jet) -> (f64, f64),
     mut eval: impl FnMut(f64) -> Result<Jet, Error>,
 ) -> Result<Jet, Error> {
+    // The tolerances are relative to the bracket's width: an infinite one (ends near the
+    // largest f64 of both signs) accepted the first step, the end `lo`, as the root.
+    if !(hi.x - lo.x).is_finite() {
+        return Err(Error::InvalidArgument(format!(
+            "bracketed_root needs a bracket of finite width, not x = {} to {}",
+            lo.x, hi.x
+        )));
+    }
     let (fa, _) = h(&lo);
     let (fb, _) = h(&hi);
     if !fa.is_finite() || !fb.is_finite() || !sign_change(fa, fb) && fa != 0.0 && fb != 0.0 {
@@ -285,8 +296,11 @@ pub(crate) fn check_increasing(samples: &[Jet]) -> Result<(), Error> {
 /// # Ok::<(), kinloop_runtime::Error>(())
 /// ```
 pub fn maximize(a: f64, b: f64, mut f: impl FnMut(f64) -> Result<f64, Error>) -> Result<(f64, f64), Error> {
-    if !(a.is_finite() && b.is_finite() && a < b) {
-        return Err(Error::InvalidArgument(format!("maximize needs a finite interval a < b, got [{a}, {b}]")));
+    // (A width beyond f64, `-1e308` to `1e308`, put the first trial point at infinity.)
+    if !(a < b && (b - a).is_finite()) {
+        return Err(Error::InvalidArgument(format!(
+            "maximize needs a finite interval a < b of finite width, got [{a}, {b}]"
+        )));
     }
     // Brent's `fmin` on g = -f (R. P. Brent, Algorithms for Minimization without Derivatives,
     // 1973, ch. 5).
@@ -376,6 +390,27 @@ mod tests {
 
     fn grid(f: impl Fn(f64) -> Result<Jet, Error>, a: f64, b: f64, n: usize) -> Vec<Jet> {
         (0..=n).map(|i| f(a + (b - a) * i as f64 / n as f64).unwrap()).collect()
+    }
+
+    /// A bracket whose width overflows is refused: its tolerances, relative to the width, took
+    /// the end `-1e308` for the root of `x` at 0.
+    #[test]
+    fn a_bracket_of_infinite_width_is_an_error() {
+        let line = |x: f64| Ok(Jet { x, value: x, d1: 1.0, d2: 0.0 });
+        let r = bracketed_root(line(-1e308).unwrap(), line(1e308).unwrap(), |j| (j.value, j.d1), line);
+        assert!(matches!(&r, Err(Error::InvalidArgument(m)) if m.contains("finite width")), "{r:?}");
+        let root = bracketed_root(line(-1e307).unwrap(), line(1e307).unwrap(), |j| (j.value, j.d1), line).unwrap();
+        assert_eq!(root.x, 0.0);
+    }
+
+    /// An interval whose width overflows is refused as such; its first trial point was at
+    /// infinity and the error said `f` was not finite at NaN.
+    #[test]
+    fn an_interval_of_infinite_width_is_an_error() {
+        let r = maximize(-1e308, 1e308, |x| Ok(-(x / 1e300).powi(2)));
+        assert!(matches!(&r, Err(Error::InvalidArgument(m)) if m.contains("finite width")), "{r:?}");
+        let (x, v) = maximize(-1e307, 1e307, |x| Ok(-(x / 1e300).powi(2))).unwrap();
+        assert!(x.abs() < 1e300 && v > -1.0, "{x} {v}");
     }
 
     #[test]

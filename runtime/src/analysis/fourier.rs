@@ -91,7 +91,8 @@ impl Fourier {
 /// ```
 pub fn fourier(values: &[f64], x0: f64, period: f64, harmonics: usize) -> Result<Fourier, Error> {
     let n = values.len();
-    if 2 * harmonics >= n {
+    // (`2 * harmonics` overflows for a count near `usize::MAX`.)
+    if harmonics >= n.div_ceil(2) {
         return Err(Error::InvalidArgument(format!(
             "{n} samples resolve harmonics below {}, not {harmonics}",
             n.div_ceil(2)
@@ -104,6 +105,18 @@ pub fn fourier(values: &[f64], x0: f64, period: f64, harmonics: usize) -> Result
         return Err(Error::InvalidArgument(format!("sample {j} is not finite")));
     }
     let nf = n as f64;
+    // Sums of samples near the largest f64 overflow (five samples of 1e308 sum to infinity)
+    // where the coefficients, at most twice the largest sample, need not: such samples are
+    // summed scaled down by a power of two, which is exact, and the coefficients scaled back.
+    let largest = values.iter().fold(0.0f64, |m, v| m.max(v.abs()));
+    let down = if largest > f64::MAX / (4.0 * nf) { (4.0 * nf).log2().ceil() as i32 } else { 0 };
+    let scaled: Vec<f64>;
+    let values = if down > 0 {
+        scaled = values.iter().map(|v| v * 2f64.powi(-down)).collect();
+        &scaled[..]
+    } else {
+        values
+    };
     // Tables of cos and sin of 2 pi i / n, indexed by the exact residue k j mod n.
     let (cos, sin): (Vec<f64>, Vec<f64>) = (0..n)
         .map(|i| {
@@ -124,7 +137,16 @@ pub fn fourier(values: &[f64], x0: f64, period: f64, harmonics: usize) -> Result
         a.push(2.0 * sa / nf);
         b.push(2.0 * sb / nf);
     }
-    Ok(Fourier { x0, period, a0, a, b })
+    let mut f = Fourier { x0, period, a0, a, b };
+    if down > 0 {
+        let up = 2f64.powi(down);
+        f.a0 *= up;
+        f.a.iter_mut().chain(&mut f.b).for_each(|c| *c *= up);
+        if !(f.a0.is_finite() && f.a.iter().chain(&f.b).all(|c| c.is_finite())) {
+            return Err(Error::InvalidArgument("the Fourier coefficients of these samples overflow f64".into()));
+        }
+    }
+    Ok(f)
 }
 
 #[cfg(test)]
@@ -194,5 +216,35 @@ mod tests {
         assert!(fourier(&[1.0; 8], 0.0, 1.0, 3).is_ok());
         assert!(fourier(&[1.0; 8], 0.0, 0.0, 1).is_err());
         assert!(fourier(&[1.0, f64::NAN, 1.0, 1.0, 1.0], 0.0, 1.0, 1).is_err());
+    }
+
+    /// A count of harmonics whose double overflows is an error, not an overflow panic (a debug
+    /// build) or, wrapped to a small double, a vector of that capacity (a release build).
+    #[test]
+    fn a_count_of_harmonics_near_usize_max_is_an_error() {
+        for harmonics in [usize::MAX, usize::MAX / 2 + 1] {
+            let r = fourier(&[1.0; 8], 0.0, 1.0, harmonics);
+            assert!(matches!(&r, Err(Error::InvalidArgument(m)) if m.contains("resolve harmonics below 4")), "{r:?}");
+        }
+    }
+
+    /// Samples near the largest f64 give their coefficients, not an infinite mean: their sums
+    /// overflow, the coefficients need not. Coefficients beyond f64 are an error.
+    #[test]
+    fn samples_near_the_largest_f64_give_finite_coefficients() {
+        // v = 1e308 (0.5 + 0.25 cos x): a0 = 0.5e308, a1 = 0.25e308, to rounding.
+        let v: Vec<f64> = (0..16).map(|j| 1e308 * (0.5 + 0.25 * (TAU * j as f64 / 16.0).cos())).collect();
+        let f = fourier(&v, 0.0, TAU, 3).unwrap();
+        assert!((f.a0 / 1e308 - 0.5).abs() < 1e-15 && (f.a[0] / 1e308 - 0.25).abs() < 1e-15, "{f:?}");
+        assert!(f.a[1].abs() < 1e293 && f.b.iter().all(|b| b.abs() < 1e293), "{f:?}");
+        // Scaled by a power of two, the same bits as the samples scaled down.
+        let small = fourier(&v.iter().map(|x| x / 2f64.powi(200)).collect::<Vec<_>>(), 0.0, TAU, 3).unwrap();
+        assert_eq!(f.a0, small.a0 * 2f64.powi(200));
+        assert_eq!(f.a[0], small.a[0] * 2f64.powi(200));
+        assert_eq!(fourier(&[f64::MAX; 16], 0.0, TAU, 3).unwrap().a0, f64::MAX);
+        // A square wave of amplitude f64::MAX: its first harmonic, 4/pi of it, is beyond f64.
+        let square: Vec<f64> = (0..16).map(|j| if (j + 4) % 16 < 8 { f64::MAX } else { -f64::MAX }).collect();
+        let r = fourier(&square, 0.0, TAU, 3);
+        assert!(matches!(&r, Err(Error::InvalidArgument(m)) if m.contains("overflow")), "{r:?}");
     }
 }

@@ -96,9 +96,14 @@ impl Jet {
         if intervals == 0 {
             return Err(Error::InvalidArgument("at least one interval is needed".into()));
         }
-        (0..=intervals)
-            .map(|i| f(if i == intervals { to } else { from + (to - from) * i as f64 / intervals as f64 }))
-            .collect()
+        // Ends far apart near the largest f64 (`-1e308` to `1e308`) overflow `to - from`, which
+        // made the first input NaN and the others infinite: weighted ends there instead.
+        let wide = !(to - from).is_finite();
+        let at = |i: usize| {
+            let t = i as f64 / intervals as f64;
+            if wide { (1.0 - t) * from + t * to } else { from + (to - from) * i as f64 / intervals as f64 }
+        };
+        (0..=intervals).map(|i| f(if i == intervals { to } else { at(i) })).collect()
     }
 }
 
@@ -209,6 +214,27 @@ mod tests {
         }
         assert!((v - best.1).abs() < 1e-6 * best.1 && v >= best.1 - 1e-12, "{v} vs {}", best.1);
         assert!((x - best.0).abs() < 1e-3);
+    }
+
+    /// Ends whose difference overflows are sampled between them, the first at `from` (it was
+    /// NaN, the others infinite).
+    #[test]
+    fn samples_between_ends_wider_than_f64_holds() {
+        let s = Jet::sample(|x| Ok(Jet { x, ..Jet::default() }), -1e308, 1e308, 4).unwrap();
+        let x: Vec<f64> = s.iter().map(|j| j.x).collect();
+        assert_eq!(x, [-1e308, -0.5e308, 0.0, 0.5e308, 1e308]);
+    }
+
+    /// A value not finite at a sample is an error, as in the search between samples: an
+    /// infinite one was returned as the peak, a NaN with its sign bit set passed over.
+    #[test]
+    fn a_peak_of_values_not_finite_is_an_error() {
+        let turn = Sampled::sweep(&M, 0.0, TAU, 73, [3.0]).unwrap();
+        let at = turn.path_values()[20];
+        for bad in [f64::INFINITY, -f64::NAN, f64::NAN] {
+            let r = turn.peak(|k| if k.x[0] == at { bad } else { k.q[0] });
+            assert!(matches!(&r, Err(Error::InvalidArgument(m)) if m.contains("at the sample")), "{bad}: {r:?}");
+        }
     }
 
     /// The example of the documentation above, run against the hand-written slider-crank.

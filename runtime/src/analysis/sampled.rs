@@ -453,7 +453,8 @@ impl<K: Kernel> SampledOf<K> {
 
     /// The maximum of a derived quantity `f(state)` (e.g. the magnitude of an acceleration
     /// analog) over the range: the best sample, refined by Brent's derivative-free search
-    /// between its neighbours. Returns `(s, f)`. For a minimum, maximise `-f`.
+    /// between its neighbours. Returns `(s, f)`. For a minimum, maximise `-f`. A value of `f`
+    /// not finite, at a sample or in the search, is an `InvalidArgument`.
     pub fn peak(&self, f: impl Fn(&KinOf<K>) -> f64) -> Result<(f64, f64), Error> {
         self.peak_by(|_, k| f(k))
     }
@@ -467,6 +468,11 @@ impl<K: Kernel> SampledOf<K> {
 
     fn peak_by(&self, f: impl Fn(f64, &KinOf<K>) -> f64) -> Result<(f64, f64), Error> {
         let values: Vec<f64> = self.states.iter().zip(&self.s).map(|(k, &s)| f(s, k)).collect();
+        // As `maximize` refuses a value not finite: an infinite sample was returned as the peak,
+        // and a NaN with its sign bit set, ordered below every number, was passed over.
+        if let Some(j) = values.iter().position(|v| !v.is_finite()) {
+            return Err(Error::InvalidArgument(format!("the quantity is {} at the sample {}", values[j], self.s[j])));
+        }
         let best = (0..values.len()).max_by(|&a, &b| values[a].total_cmp(&values[b])).unwrap_or(0);
         let lo = self.s[best.saturating_sub(1)];
         let hi = self.s[(best + 1).min(self.s.len() - 1)];

@@ -134,7 +134,9 @@ fn norm<const D: usize>(v: &[f64; D], y0: &[f64; D], y1: &[f64; D], cfg: &OdeCon
 /// (the component's value is too large to register it) is [`DynamicsError::CannotAdvance`].
 /// A step that collapses below the resolution of the time where it is (a few units in the last
 /// place of `t`, whatever the span) is [`DynamicsError::StepTooSmall`]; a span that needs more
-/// than [`OdeConfig::max_steps`] steps is [`DynamicsError::TooManySteps`].
+/// than [`OdeConfig::max_steps`] steps is [`DynamicsError::TooManySteps`]. A start time, end
+/// time or tolerance out of range, or a state or derivative at the start that is not finite,
+/// is [`DynamicsError::BadValue`].
 pub fn dopri5<const D: usize>(
     mut f: impl FnMut(f64, &[f64; D]) -> Result<[f64; D], DynamicsError>,
     t0: f64,
@@ -144,9 +146,17 @@ pub fn dopri5<const D: usize>(
     mut on_step: impl FnMut(&DenseStep<D>, &[f64; D]) -> Result<bool, DynamicsError>,
 ) -> Result<(f64, [f64; D]), DynamicsError> {
     check_config(t0, t_end, cfg)?;
+    // A start not finite is no motion to integrate: every step was rejected until it fell
+    // below the time's resolution, reported as a singular motion at `t0`.
+    let bad_start = |what, v: &[f64; D]| match v.iter().find(|v| !v.is_finite()) {
+        Some(&value) => Err(DynamicsError::BadValue { what, value, why: "must be finite" }),
+        None => Ok(()),
+    };
+    bad_start("initial state", &y0)?;
     let (mut t, mut y) = (t0, y0);
     let mut k = [[0.0; D]; 7];
     k[0] = f(t, &y)?;
+    bad_start("derivative at the start", &k[0])?;
     let mut h = initial_step(&y, &k[0], t_end - t0, cfg);
     for _ in 0..cfg.max_steps {
         let last = t + h >= t_end;

@@ -182,6 +182,18 @@ fn an_integration_that_cannot_move_a_huge_coordinate_is_an_error() {
     assert!(matches!(r, Err(DynamicsError::StepTooSmall { t, .. }) if t < 0.8), "{r:?}");
 }
 
+/// A start not finite is a bad value, not a motion singular at t = 0 (every step was
+/// rejected down to the time's resolution).
+#[test]
+fn an_integration_from_a_start_not_finite_is_a_bad_value() {
+    let cfg = OdeConfig::default();
+    let decay = |_: f64, y: &[f64; 1]| Ok([-y[0]]);
+    let r = dopri5(decay, 0.0, [f64::NAN], 1.0, &cfg, |_, _| Ok(false));
+    assert!(matches!(r, Err(DynamicsError::BadValue { what: "initial state", .. })), "{r:?}");
+    let r = dopri5(|_, _| Ok([f64::NAN]), 0.0, [1.0], 1.0, &cfg, |_, _| Ok(false));
+    assert!(matches!(r, Err(DynamicsError::BadValue { what: "derivative at the start", .. })), "{r:?}");
+}
+
 #[test]
 fn shaking_and_centre_of_mass_are_typed_errors_or_finite() {
     let model = MassModel::<0, 1, 2>::new().with_body(body(2.0, 0.01)).unwrap();

@@ -105,12 +105,18 @@ pub fn grashof(links: FourBarLinks) -> Result<Grashof, Error> {
     if let Some(bad) = lengths.iter().find(|v| !(v.is_finite() && **v > 0.0)) {
         return Err(Error::InvalidArgument(format!("four-bar link lengths must be finite and positive, got {bad}")));
     }
+    // Lengths near the largest f64 sum to infinity (and `inf - inf` made the margin NaN and the
+    // class a change point): they are classified scaled down by a power of two, which is exact
+    // and changes neither the class nor the margin.
+    let (given, scale) = (lengths, if lengths.iter().sum::<f64>().is_finite() { 1.0 } else { 0.125 });
+    let lengths = lengths.map(|v| v * scale);
+    let [d, a, b, c] = lengths;
     let sum: f64 = lengths.iter().sum();
     let tol = 8.0 * f64::EPSILON * sum;
     let longest = lengths.iter().copied().fold(0.0, f64::max);
     if longest > sum - longest + tol {
         return Err(Error::InvalidArgument(format!(
-            "a four-bar with links {lengths:?} cannot close: the longest is longer than the other three together"
+            "a four-bar with links {given:?} cannot close: the longest is longer than the other three together"
         )));
     }
     let (k_short, short) =
@@ -205,6 +211,21 @@ mod tests {
             assert_eq!(g.class, GrashofClass::ChangePoint);
             assert!(g.input_turns && g.output_turns, "{g:?}");
         }
+    }
+
+    /// Lengths near the largest f64, whose sum overflows, are classified as the same linkage in
+    /// any unit: a crank-rocker, with its margin, not a change point of NaN margin.
+    #[test]
+    fn lengths_near_the_largest_f64_are_classified() {
+        let links =
+            |k: f64| FourBarLinks { ground: 1e308 * k, input: 0.5e308 * k, coupler: 1e308 * k, output: 1e308 * k };
+        let g = grashof(links(1.0)).unwrap();
+        let small = grashof(links(2f64.powi(-800))).unwrap();
+        assert_eq!(g.class, GrashofClass::CrankRocker, "{g:?}");
+        assert_eq!(g, small);
+        assert!((g.margin + 0.5 / 3.5).abs() < 1e-15, "{g:?}");
+        let err = grashof(FourBarLinks { ground: f64::MAX, input: 1e300, coupler: 1e300, output: 1e300 }).unwrap_err();
+        assert!(err.to_string().contains("1.7976931348623157e308"), "{err}");
     }
 
     #[test]

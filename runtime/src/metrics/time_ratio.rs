@@ -33,7 +33,8 @@ impl TimeRatio {
 /// The output must have exactly one maximum and one minimum per turn. They are located as roots
 /// of the velocity analog ([`extremes()`](crate::analysis::extremes::extremes)); an extreme on
 /// the seam (at the first sample, where the analog changes sign across the period) is taken
-/// there. Errors: fewer or more extremes, a range that is not increasing.
+/// there. Errors: fewer or more extremes, a range that is not increasing, an output that does
+/// not return to its first value at the last sample (not one period).
 ///
 /// ```
 /// use kinloop_runtime::analysis::Jet;
@@ -42,8 +43,9 @@ impl TimeRatio {
 /// // An output rising for 4 pi / 3 and falling for 2 pi / 3: v(x) = -cos(g(x)), where g
 /// // runs through 0 .. pi while x runs through 0 .. 4 pi / 3, then pi .. 2 pi.
 /// let f = |x: f64| {
-///     let (k, x0, g0) = if x < 4.0 * PI / 3.0 { (0.75, 0.0, 0.0) } else { (1.5, 4.0 * PI / 3.0, PI) };
-///     let g = g0 + k * (x - x0);
+///     let y = x.rem_euclid(TAU);
+///     let (k, y0, g0) = if y < 4.0 * PI / 3.0 { (0.75, 0.0, 0.0) } else { (1.5, 4.0 * PI / 3.0, PI) };
+///     let g = g0 + k * (y - y0);
 ///     Ok(Jet { x, value: -g.cos(), d1: k * g.sin(), d2: k * k * g.cos() })
 /// };
 /// let samples = Jet::sample(f, 0.1, 0.1 + TAU, 72)?;
@@ -56,6 +58,15 @@ pub fn time_ratio(samples: &[Jet], eval: impl FnMut(f64) -> Result<Jet, Error>) 
     let mut found = extremes(samples, eval)?;
     let n = samples.len();
     let (first, last) = (samples[0], samples[n - 1]);
+    // Over less (or more) than a period the seam below is no seam: it made an extreme of the
+    // first sample and a ratio of the range's length, as `Ok`.
+    let scale = samples.iter().map(|j| j.value.abs()).fold(1.0, f64::max);
+    if (last.value - first.value).abs() > 1e-9 * scale {
+        return Err(Error::InvalidArgument(format!(
+            "a time ratio needs the output over one period (one input turn): it is {} at the start and {} at the end",
+            first.value, last.value
+        )));
+    }
     let period = last.x - first.x;
     // Seam: the analog changes sign between the last interval and the first one.
     let (before, after) = (samples[n - 2].d1, samples[1].d1);
@@ -110,6 +121,15 @@ mod tests {
         let t = time_ratio(&s, offset_cosine).unwrap();
         assert_eq!(t.max.x, 1.0);
         assert!((t.rising - TAU / 2.0).abs() < 1e-14);
+    }
+
+    /// Samples over part of a period are refused: the seam made the first sample an extreme
+    /// and the ratio one of the range's length (over a quarter turn of a cosine, `Ok`).
+    #[test]
+    fn samples_over_part_of_a_period_are_an_error() {
+        let s = Jet::sample(offset_cosine, 0.0, 3.0, 36).unwrap();
+        let r = time_ratio(&s, offset_cosine);
+        assert!(matches!(&r, Err(Error::InvalidArgument(m)) if m.contains("one period")), "{r:?}");
     }
 
     #[test]

@@ -6,6 +6,7 @@ use crate::Kernel;
 use crate::analysis::column::jet_along;
 use crate::analysis::{ColumnOf, Jet, SampledOf, bracketed_root, extremes};
 use crate::error::Error;
+use crate::paths::sweep::MAX_TURNS;
 use std::f64::consts::{FRAC_PI_2, PI};
 
 /// The acute angle, in `[0, pi/2]`, between the line of the coupler (at angle `coupler`) and
@@ -61,6 +62,10 @@ fn difference(c: &Jet, f: &Jet) -> Jet {
 /// [`extremes()`](crate::analysis::extremes::extremes)) or where `d` crosses a multiple of
 /// `pi/2` (located by [`bracketed_root`]): all are evaluated exactly. As for extremes, two
 /// events closer than one sample spacing are not separated: sample finely enough.
+///
+/// Errors (`InvalidArgument`): samples of other inputs or not increasing, a value not finite,
+/// a relative angle too large to tell its quarter turns apart (beyond `2^52` of them), or one
+/// turning more than [`MAX_TURNS`] turns over the samples.
 pub fn transmission_range(
     coupler: &[Jet],
     follower: &[Jet],
@@ -81,6 +86,7 @@ pub fn transmission_range(
             dead_points.push(j.x);
         }
     }
+    check_turns(&d)?;
     for w in d.windows(2) {
         let (lo, hi) = (w[0].value.min(w[1].value), w[0].value.max(w[1].value));
         // Multiples of pi/2 strictly inside the interval's values.
@@ -109,6 +115,27 @@ pub fn transmission_range(
     dead_points.sort_by(f64::total_cmp);
     dead_points.dedup();
     Ok(TransmissionRange { min, max, dead_points })
+}
+
+/// Refuses, before any is located, a relative angle whose multiples of `pi/2` the search
+/// cannot step through: beyond `2^52` quarter turns consecutive multiples are the same `f64`
+/// (the search would never end), and a relative angle turning more than a sweep follows
+/// ([`MAX_TURNS`] turns) over the samples would take hours of root finding.
+fn check_turns(d: &[Jet]) -> Result<(), Error> {
+    let quarters = |v: f64| (v / FRAC_PI_2).floor();
+    if let Some(j) = d.iter().find(|j| quarters(j.value).abs() >= 2f64.powi(52)) {
+        return Err(Error::InvalidArgument(format!(
+            "the relative angle of follower and coupler is {} rad at x = {}, too large to tell its quarter turns apart",
+            j.value, j.x
+        )));
+    }
+    let turns = d.windows(2).map(|w| (quarters(w[1].value) - quarters(w[0].value)).abs()).sum::<f64>() / 4.0;
+    if turns > MAX_TURNS {
+        return Err(Error::InvalidArgument(format!(
+            "the relative angle of follower and coupler turns {turns:.3e} times over the samples, more than the {MAX_TURNS:e} turns of a sweep"
+        )));
+    }
+    Ok(())
 }
 
 impl<K: Kernel> SampledOf<K> {
@@ -200,6 +227,19 @@ mod tests {
         assert_eq!(r.dead_points.len(), 2);
         assert!((r.dead_points[0] - 1.0).abs() < 1e-15 && (r.dead_points[1] - 1.0 - PI).abs() < 1e-14);
         assert_eq!(r.min.angle, 0.0);
+    }
+
+    /// A relative angle whose quarter turns cannot be stepped through is refused, not searched:
+    /// at 1e17 rad consecutive multiples of pi/2 are one `f64` (the search never ended), and
+    /// 1e12 rad between two samples is 6e11 quarter turns to locate (hours).
+    #[test]
+    fn relative_angles_beyond_the_search_are_refused() {
+        let zero = |x: f64| Jet { x, ..Jet::default() };
+        for (start, rate) in [(1e17, 64.0), (0.0, 1e12)] {
+            let f = |x: f64| Jet { x, value: start + rate * x, d1: rate, d2: 0.0 };
+            let r = transmission_range(&[zero(0.0), zero(1.0)], &[f(0.0), f(1.0)], |x| Ok((zero(x), f(x))));
+            assert!(matches!(&r, Err(Error::InvalidArgument(m)) if m.contains("relative angle")), "{r:?}");
+        }
     }
 
     #[test]

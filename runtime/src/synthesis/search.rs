@@ -124,6 +124,16 @@ impl Search {
         if !(self.distinct.is_finite() && self.distinct >= 0.0) {
             return Err(SynthesisError::InvalidConfig("distinct".into()));
         }
+        // Every start's result is held until the report: more than a vector holds panicked in
+        // the allocator (a capacity overflow) before the first start.
+        let most = isize::MAX as usize / std::mem::size_of::<Found>();
+        if self.starts.len().saturating_add(self.seeds.len()) > most {
+            return Err(SynthesisError::InvalidConfig(format!(
+                "starts {:?}: {} starts, more than a report can hold ({most})",
+                self.starts,
+                self.starts.len()
+            )));
+        }
         if let Global::DifferentialEvolution(de) = &self.global {
             de.validate()?;
         }

@@ -73,13 +73,32 @@ impl LevenbergMarquardt {
     }
 
     /// Minimises `|r(x)|^2` from `x0`; `f(x)` returns the residuals and their Jacobian
-    /// `J[k][i] = d r_k / d x_i`. An error at `x0` is returned; later errors reject the step.
+    /// `J[k][i] = d r_k / d x_i`. An error at `x0` is returned, and so is a residual there
+    /// that is not finite (`InvalidArgument`); later errors, and residuals not finite, reject
+    /// the step. A tolerance that is negative or NaN, or a damping that is not positive and
+    /// finite, is an `InvalidArgument`.
     pub fn minimize<const R: usize, const P: usize>(
         &self,
         mut f: impl FnMut(&[f64; P]) -> Result<([f64; R], [[f64; P]; R]), Error>,
         x0: [f64; P],
     ) -> Result<Minimum<P>, Error> {
+        // A NaN tolerance or damping fails every comparison: the search stopped at the start as
+        // stalled. A damping not positive never grows to reject a step.
+        if self.tol.is_nan() || self.tol < 0.0 {
+            return Err(Error::InvalidArgument(format!("LevenbergMarquardt::tol {} must not be negative", self.tol)));
+        }
+        if !(self.lambda > 0.0 && self.lambda.is_finite()) {
+            return Err(Error::InvalidArgument(format!(
+                "LevenbergMarquardt::lambda {} must be positive and finite",
+                self.lambda
+            )));
+        }
         let (mut r, mut jac) = f(&x0)?;
+        // A NaN norm fails every comparison: no step was tried, and the NaN was returned as the
+        // value of a stalled search.
+        if let Some(k) = r.iter().position(|v| !v.is_finite()) {
+            return Err(Error::InvalidArgument(format!("residual {k} at the start {x0:?} is {}", r[k])));
+        }
         let mut x = x0;
         let mut evaluations = 1;
         let mut lambda = self.lambda;
@@ -146,6 +165,36 @@ mod tests {
         let [x, y] = r.x;
         assert!((x * x + y * y - 4.0).abs() < 1e-9 && (x * y - 1.0).abs() < 1e-9);
         assert!(r.evaluations < 30);
+    }
+
+    /// Residuals not finite at the start are an error, not a stalled search of value NaN.
+    #[test]
+    fn residuals_not_finite_at_the_start_are_an_error() {
+        for bad in [f64::NAN, f64::INFINITY] {
+            let f = |v: &[f64; 1]| Ok(([v[0] - 1.0, bad], [[1.0], [0.0]]));
+            let r = LevenbergMarquardt::default().minimize(f, [0.0]);
+            assert!(matches!(&r, Err(Error::InvalidArgument(m)) if m.contains("residual 1")), "{r:?}");
+        }
+    }
+
+    /// Settings out of range are errors naming them; a NaN tolerance or damping stopped the
+    /// search at the start as stalled, a damping of zero or below never rejected a step.
+    #[test]
+    fn settings_out_of_range_are_errors() {
+        let f = |v: &[f64; 1]| Ok(([v[0] - 1.0], [[1.0]]));
+        let lm = LevenbergMarquardt::default();
+        for (cfg, field) in [
+            (lm.with_tol(f64::NAN), "tol"),
+            (lm.with_tol(-1.0), "tol"),
+            (lm.with_lambda(f64::NAN), "lambda"),
+            (lm.with_lambda(0.0), "lambda"),
+            (lm.with_lambda(-1.0), "lambda"),
+            (lm.with_lambda(f64::INFINITY), "lambda"),
+        ] {
+            let r = cfg.minimize(f, [0.0]);
+            assert!(matches!(&r, Err(Error::InvalidArgument(m)) if m.contains(field)), "{cfg:?}: {r:?}");
+        }
+        assert!(lm.with_tol(0.0).minimize(f, [0.0]).unwrap().converged());
     }
 
     #[test]

@@ -124,6 +124,11 @@ impl NelderMead {
         evaluations: &std::cell::Cell<usize>,
         iterations: &mut usize,
     ) -> bool {
+        // No variable: the one point is the minimum (the steps below need a second vertex, and
+        // tolerances the single vertex cannot meet, negative ones, reached them).
+        if P == 0 {
+            return true;
+        }
         let n = P.max(1) as f64;
         let (alpha, gamma, rho, sigma) = (1.0, 1.0 + 2.0 / n, 0.75 - 0.5 / n, 1.0 - 1.0 / n);
         loop {
@@ -193,6 +198,10 @@ impl NelderMead {
     /// smooth minimum in `u`. The initial simplex steps are `0.25` rad in `u` (a quarter of the
     /// range near the centre). `x_tol` applies to `u`.
     ///
+    /// # Panics
+    /// If a bound is not finite or `lo[i] > hi[i]` (a box that holds no point, or one the sine
+    /// cannot map onto): a programmer's error, as for [`f64::clamp`].
+    ///
     /// ```
     /// use kinloop_runtime::analysis::optimize::NelderMead;
     /// // (x - 2)^2 + (y + 0.5)^2 over [0, 1] x [-1, 1]: the minimum is on the face x = 1.
@@ -207,6 +216,16 @@ impl NelderMead {
         lo: [f64; P],
         hi: [f64; P],
     ) -> Minimum<P> {
+        // Checked here, naming the coordinate: `clamp` panicked with its own words for
+        // `lo > hi` or a NaN, and infinite bounds made every trial point NaN.
+        for i in 0..P {
+            assert!(
+                lo[i].is_finite() && hi[i].is_finite() && lo[i] <= hi[i],
+                "NelderMead::minimize_boxed: the box of coordinate {i}, [{}, {}], needs finite bounds with lo <= hi",
+                lo[i],
+                hi[i]
+            );
+        }
         let to_x = |u: &[f64; P]| {
             let mut x = [0.0; P];
             for i in 0..P {
@@ -277,6 +296,28 @@ mod tests {
         let g = |p: &[f64; 2]| (p[0] - 0.3).powi(2) + 2.0 * (p[1] - 0.7).powi(2);
         let m = NelderMead::default().minimize_boxed(g, [0.9, -0.9], [0.0, -1.0], [1.0, 1.0]);
         assert!((m.x[0] - 0.3).abs() < 1e-6 && (m.x[1] - 0.7).abs() < 1e-6, "{m:?}");
+    }
+
+    /// A box with `lo > hi` is a documented panic naming the coordinate (it was `clamp`'s own
+    /// panic); an infinite bound too (it made every trial point NaN).
+    #[test]
+    #[should_panic(expected = "the box of coordinate 1, [1, 0]")]
+    fn an_inverted_box_panics_naming_its_coordinate() {
+        NelderMead::default().minimize_boxed(|p: &[f64; 2]| p[0] + p[1], [0.5, 0.5], [0.0, 1.0], [1.0, 0.0]);
+    }
+
+    #[test]
+    #[should_panic(expected = "the box of coordinate 0, [-inf, 1]")]
+    fn an_infinite_bound_panics_naming_its_coordinate() {
+        NelderMead::default().minimize_boxed(|p: &[f64; 1]| p[0] * p[0], [0.5], [f64::NEG_INFINITY], [1.0]);
+    }
+
+    /// No variable: the start is the minimum, whatever the tolerances (negative ones made the
+    /// search index the simplex's second vertex, a panic).
+    #[test]
+    fn no_variable_is_converged_at_the_start() {
+        let m = NelderMead::default().with_tolerances(-1.0, -1.0).minimize(|_: &[f64; 0]| 2.0, [], []);
+        assert!(m.converged() && m.value == 2.0, "{m:?}");
     }
 
     #[test]

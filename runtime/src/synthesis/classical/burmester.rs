@@ -46,6 +46,14 @@ impl BurmesterConfig {
                 why: format!("{}: a turn takes at least 8", self.samples),
             });
         }
+        // Two curve points a sample: more than a vector holds panicked on its capacity
+        // (`2 * samples` overflowing first in a debug build).
+        if self.samples > isize::MAX as usize / (2 * std::mem::size_of::<CurvePoint>()) {
+            return Err(ClassicalError::BadRange {
+                what: "number of samples",
+                why: format!("{}: too many to hold in memory", self.samples),
+            });
+        }
         Ok(())
     }
 }
@@ -129,7 +137,9 @@ pub fn center_point_curve(poses: &[Pose], config: &BurmesterConfig) -> Result<Bu
     config.check()?;
     let size = check_poses(poses, 4, "the center-point curve")?;
     let condition = Compatibility::new(poses, [1, 2, 3])?;
-    let mut points = Vec::with_capacity(2 * config.samples);
+    // Reserved up to a bound, the vector growing past it: a huge count fails, if it does, in
+    // the work rather than on one allocation.
+    let mut points = Vec::with_capacity(2 * config.samples.min(1 << 16));
     for k in 0..config.samples {
         let beta2 = k as f64 * TAU / config.samples as f64;
         for (branch, closure) in condition.closures(beta2).into_iter().enumerate() {

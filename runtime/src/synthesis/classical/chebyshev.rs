@@ -13,7 +13,7 @@ use super::error::{ClassicalError, finite};
 ///
 /// `x_j = (x0 + x1) / 2 - (x1 - x0) / 2 * cos((2 j - 1) pi / (2 n))`, `j = 1 ..= n`.
 ///
-/// Errors: `n == 0`, a bound not finite, or `x0 == x1`.
+/// Errors: `n == 0` or more than memory holds, a bound not finite, or `x0 == x1`.
 ///
 /// ```
 /// use kinloop_runtime::synthesis::classical::chebyshev_points;
@@ -30,10 +30,23 @@ pub fn chebyshev_points(n: usize, x0: f64, x1: f64) -> Result<Vec<f64>, Classica
     if n == 0 {
         return Err(ClassicalError::BadRange { what: "number of precision points", why: "it is zero".into() });
     }
+    // More points than a vector can hold panicked in the allocator (a capacity overflow).
+    if n > isize::MAX as usize / std::mem::size_of::<f64>() {
+        return Err(ClassicalError::BadRange {
+            what: "number of precision points",
+            why: format!("{n}: too many to hold in memory"),
+        });
+    }
     if x0 == x1 {
         return Err(ClassicalError::BadRange { what: "range", why: format!("it is empty ({x0} to {x1})") });
     }
-    let (mid, half) = (0.5 * (x0 + x1), 0.5 * (x1 - x0));
+    // Ends far apart near the largest f64 (`-1e308` to `1e308`) overflow `x1 - x0`, which made
+    // the points infinite: halved first, which is exact there.
+    let (mid, half) = if (x1 - x0).is_finite() {
+        (0.5 * (x0 + x1), 0.5 * (x1 - x0))
+    } else {
+        (0.5 * x0 + 0.5 * x1, 0.5 * x1 - 0.5 * x0)
+    };
     let x = (1..=n)
         .map(|j| {
             let theta = (2 * j - 1) as f64 * std::f64::consts::PI / (2 * n) as f64;
@@ -80,5 +93,24 @@ mod tests {
         assert!(matches!(chebyshev_points(3, 1.0, 1.0), Err(ClassicalError::BadRange { .. })));
         assert!(matches!(chebyshev_points(3, f64::NAN, 1.0), Err(ClassicalError::NonFinite { .. })));
         assert!(matches!(chebyshev_points(3, 0.0, f64::INFINITY), Err(ClassicalError::NonFinite { .. })));
+    }
+
+    /// A count of points no vector holds is an error, not a capacity-overflow panic.
+    #[test]
+    fn too_many_points_are_an_error() {
+        let e = chebyshev_points(usize::MAX, 0.0, 1.0).unwrap_err();
+        assert!(matches!(&e, ClassicalError::BadRange { why, .. } if why.contains("too many")), "{e:?}");
+    }
+
+    /// Ends whose difference overflows give the points, not infinities.
+    #[test]
+    fn a_range_wider_than_f64_gives_finite_points() {
+        let x = chebyshev_points(3, -1e308, 1e308).unwrap();
+        let half_root3 = 3f64.sqrt() / 2.0;
+        let scaled: Vec<f64> = x.iter().map(|v| v / 1e308).collect();
+        assert!((scaled[0] + half_root3).abs() < 1e-15 && scaled[1].abs() < 1e-15, "{x:?}");
+        assert!((scaled[2] - half_root3).abs() < 1e-15, "{x:?}");
+        let x = chebyshev_points(2, -f64::MAX, f64::MAX).unwrap();
+        assert!(x.iter().all(|v| (v.abs() / f64::MAX - 0.5f64.sqrt()).abs() < 1e-15) && x[0] < 0.0, "{x:?}");
     }
 }

@@ -47,7 +47,7 @@ impl FunctionMap {
     /// angles `psi0 ..= psi0 + dpsi`.
     ///
     /// Errors: a value (or `f` at an end) not finite; an empty range of `x` or of `y`
-    /// (`f(x0) == f(x1)`); a zero rotation.
+    /// (`f(x0) == f(x1)`), or one whose width overflows; a zero rotation.
     pub fn new(
         f: impl Fn(f64) -> f64,
         x0: f64,
@@ -68,6 +68,13 @@ impl FunctionMap {
         }
         if y0 == y1 {
             return empty("range of y", format!("f(x0) = f(x1) = {y0}: the output would not move"));
+        }
+        // Ranges wider than f64 holds (`-1e308` to `1e308`) made `x1 - x0` infinite and mapped
+        // every argument onto `phi0` (every value onto `psi0`).
+        for (width, what, ends) in [(x1 - x0, "range of x", (x0, x1)), (y1 - y0, "range of y", (y0, y1))] {
+            if !width.is_finite() {
+                return empty(what, format!("{} to {} is wider than f64 holds", ends.0, ends.1));
+            }
         }
         if dphi == 0.0 || dpsi == 0.0 {
             return empty("rotation", "the input and the output must both turn (dphi, dpsi not zero)".into());
@@ -151,6 +158,11 @@ mod tests {
             ClassicalError::BadRange { .. }
         ));
         assert!(matches!(bad(FunctionMap::new(|x| x, 0.0, 1.0, 0.0, 0.0, 0.0, 1.0)), ClassicalError::BadRange { .. }));
+        // Ranges whose width overflows: every argument mapped onto phi0, every value onto psi0.
+        for (f, x1, what) in [(1.0, 1e308, "range of x"), (1e308, 1.0, "range of y")] {
+            let r = FunctionMap::new(|x| f * x, -x1, x1, 0.0, 1.0, 0.0, 1.0);
+            assert!(matches!(&r, Err(ClassicalError::BadRange { what: w, .. }) if *w == what), "{r:?}");
+        }
         let m = map();
         assert!(matches!(m.precision_points(|x| x * x, &[f64::NAN]), Err(ClassicalError::NonFinite { .. })));
         assert!(matches!(m.precision_points(|x| 1.0 / (x - 2.0), &[2.0]), Err(ClassicalError::NonFinite { .. })));

@@ -173,6 +173,13 @@ fn bad_input_is_an_error_not_a_panic() {
         Err(ClassicalError::Coincident { what: "poses", first: 1, second: 4 }).map(|_: ()| unreachable!())
     );
     assert!(matches!(center_point_curve(&poses[..4], &cfg.samples(3)), Err(ClassicalError::BadRange { .. })));
+    // More samples than memory holds: an error, not a capacity-overflow panic.
+    for huge in [usize::MAX, usize::MAX / 2 + 1] {
+        let e = center_point_curve(&poses[..4], &cfg.samples(huge)).unwrap_err();
+        assert!(matches!(&e, ClassicalError::BadRange { why, .. } if why.contains("too many")), "{e:?}");
+        let e = burmester_points(&poses, &cfg.samples(huge)).unwrap_err();
+        assert!(matches!(&e, ClassicalError::BadRange { why, .. } if why.contains("too many")), "{e:?}");
+    }
     // Poses 2 and 4 both turned about one point from pose 1: a shared pole.
     let q = Vec2::new(2.0, 1.0);
     let about = |a: f64| {
