@@ -21,9 +21,9 @@
 //! disc, roller and cam profile, which no loop describes either, are not drawn: a note under
 //! the picture says so.
 
+use kinloop::Mechanism;
 use kinloop::draw::{Animation, DefaultDrawing, Draw, GridMotion, HtmlConfig, Motion, Readout, html, html_grid};
 use kinloop::plot::Kind;
-use kinloop::Mechanism;
 use std::error::Error;
 use std::f64::consts::{PI, TAU};
 use std::path::{Path, PathBuf};

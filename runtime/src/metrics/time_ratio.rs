@@ -59,9 +59,12 @@ pub fn time_ratio(samples: &[Jet], eval: impl FnMut(f64) -> Result<Jet, Error>) 
     let n = samples.len();
     let (first, last) = (samples[0], samples[n - 1]);
     // Over less (or more) than a period the seam below is no seam: it made an extreme of the
-    // first sample and a ratio of the range's length, as `Ok`.
-    let scale = samples.iter().map(|j| j.value.abs()).fold(1.0, f64::max);
-    if (last.value - first.value).abs() > 1e-9 * scale {
+    // first sample and a ratio of the range's length, as `Ok`. Over one period the output
+    // returns to its first value but for the rounding of the input's turn (about 1e-15 of its
+    // range); the test is relative to the range, so that it is the same in any unit.
+    let (lo, hi) =
+        samples.iter().fold((f64::INFINITY, f64::NEG_INFINITY), |(l, h), j| (l.min(j.value), h.max(j.value)));
+    if (last.value - first.value).abs() > 1e-9 * (hi - lo) {
         return Err(Error::InvalidArgument(format!(
             "a time ratio needs the output over one period (one input turn): it is {} at the start and {} at the end",
             first.value, last.value
@@ -101,7 +104,7 @@ impl<K: Kernel> SampledOf<K> {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use std::f64::consts::TAU;
+    use std::f64::consts::{PI, TAU};
 
     fn offset_cosine(x: f64) -> Result<Jet, Error> {
         Ok(Jet { x, value: (x - 1.0).cos(), d1: -(x - 1.0).sin(), d2: -(x - 1.0).cos() })
@@ -130,6 +133,20 @@ mod tests {
         let s = Jet::sample(offset_cosine, 0.0, 3.0, 36).unwrap();
         let r = time_ratio(&s, offset_cosine);
         assert!(matches!(&r, Err(Error::InvalidArgument(m)) if m.contains("one period")), "{r:?}");
+    }
+
+    /// The period test is the same in any unit: a cosine of amplitude 1e-7 from its maximum over a turn less
+    /// 0.05 rad (its ends 1.2e-10 apart, within an absolute 1e-9) is refused, over a whole turn
+    /// it gives the cosine's ratio.
+    #[test]
+    fn the_period_test_is_relative_to_the_output() {
+        let small = |x: f64| Ok(Jet { x, value: 1e-7 * x.cos(), d1: -1e-7 * x.sin(), d2: -1e-7 * x.cos() });
+        let part = Jet::sample(small, 0.0, TAU - 0.05, 72).unwrap();
+        let r = time_ratio(&part, small);
+        assert!(matches!(&r, Err(Error::InvalidArgument(m)) if m.contains("one period")), "{r:?}");
+        let whole = Jet::sample(small, 0.3, 0.3 + TAU, 72).unwrap();
+        let t = time_ratio(&whole, small).unwrap();
+        assert!((t.rising - PI).abs() < 1e-12 && (t.falling - PI).abs() < 1e-12, "{t:?}");
     }
 
     #[test]
