@@ -135,9 +135,9 @@ mod tests {
         assert!(matches!(&r, Err(Error::InvalidArgument(m)) if m.contains("one period")), "{r:?}");
     }
 
-    /// The period test is the same in any unit: a cosine of amplitude 1e-7 from its maximum over a turn less
-    /// 0.05 rad (its ends 1.2e-10 apart, within an absolute 1e-9) is refused, over a whole turn
-    /// it gives the cosine's ratio.
+    /// The period test is the same in any unit: a cosine of amplitude 1e-7 from its maximum
+    /// over a turn less 0.05 rad (its ends 1.2e-10 apart, within an absolute 1e-9) is refused;
+    /// over a whole turn it gives the cosine's ratio.
     #[test]
     fn the_period_test_is_relative_to_the_output() {
         let small = |x: f64| Ok(Jet { x, value: 1e-7 * x.cos(), d1: -1e-7 * x.sin(), d2: -1e-7 * x.cos() });
