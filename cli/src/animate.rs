@@ -74,6 +74,13 @@ pub fn run(model: &mut Model, req: &Request) -> Result<(), Failed> {
     if req.frames.is_some_and(|f| f < 2) {
         return Err(usage("--frames must be at least 2"));
     }
+    // An SVG has no readouts or charts: the columns asked for would be dropped in silence.
+    if format == Format::Svg && !req.show.is_empty() {
+        return Err(usage(
+            "--show adds readouts to the interactive page: write it to a .html file (or give --format html), or \
+             leave out --show",
+        ));
+    }
     if req.grid {
         return grid(model, req, format);
     }
