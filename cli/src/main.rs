@@ -294,8 +294,8 @@ enum Command {
         /// The number of ranked candidates written.
         #[arg(long, default_value_t = 10, allow_hyphen_values = true)]
         keep: usize,
-        /// Threads of the search (all cores by default); 1 runs the starts one after another.
-        /// The candidates are the same whatever the number.
+        /// Threads of the search (all cores by default, at most 1024); 1 runs the starts one after
+        /// another. The candidates are the same whatever the number.
         #[arg(long, value_name = "N", allow_hyphen_values = true)]
         jobs: Option<usize>,
         /// Angles in degrees (inputs, angle outputs, the range); otherwise radians.

@@ -16,6 +16,11 @@ use std::fmt::Write as _;
 use std::io::Write;
 use std::path::Path;
 
+/// The most threads `--jobs` starts: more than machines have cores. The pool starts every
+/// thread before the first start is searched, and tens of thousands (a count typed with zeros
+/// too many) take minutes to start.
+pub const MAX_JOBS: usize = 1024;
+
 /// What `kinloop synth` was asked.
 pub struct Request<'a> {
     /// The CSV file of the targets.
@@ -53,6 +58,11 @@ pub fn run(model: &Model, req: &Request) -> Result<(), Failed> {
     }
     if req.jobs == Some(0) {
         return Err(exit::usage("--jobs 0 would run no start: give at least 1"));
+    }
+    if let Some(n) = req.jobs.filter(|&n| n > MAX_JOBS) {
+        return Err(exit::usage(format!(
+            "--jobs {n} is too many threads: at most {MAX_JOBS} (without --jobs the search runs on every core)"
+        )));
     }
     let design = design(req.vary)?;
     let rows = read_targets(req.targets)?;

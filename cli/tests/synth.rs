@@ -238,3 +238,17 @@ fn an_empty_range_is_a_usage_error() {
     assert!(err.contains("--range `1..1`"), "{err}");
     assert!(o.stdout.is_empty());
 }
+
+/// `--jobs` beyond the threads a machine runs (a count typed with zeros too many) is a usage
+/// error naming the limit, checked before anything is read: not minutes spent starting
+/// threads.
+#[test]
+fn too_many_jobs_is_a_usage_error() {
+    let missing = PathBuf::from(env!("CARGO_TARGET_TMPDIR")).join("no-targets-here.csv");
+    let args = ["synth", &shipped("coupler_four_bar.kl"), "--path", "p", "--vary", VARY, "--jobs", "100000"];
+    let o = kinloop(&[&args[..], &["--targets", &missing.display().to_string()]].concat());
+    let err = String::from_utf8_lossy(&o.stderr);
+    assert_eq!(o.status.code(), Some(2), "{err}");
+    assert!(err.contains("--jobs 100000") && err.contains("at most 1024"), "{err}");
+    assert!(o.stdout.is_empty());
+}
