@@ -10,6 +10,7 @@
 use crate::{Failed, exit, progress};
 use kinloop_model::Model;
 use kinloop_runtime::QuantityKind;
+use kinloop_runtime::paths::sweep::MAX_TURNS;
 use kinloop_runtime::synthesis::{Candidate, Defect, Design, Search, SynthesisError, SynthesisReport, Task};
 use std::f64::consts::TAU;
 use std::fmt::Write as _;
@@ -204,7 +205,23 @@ fn task(model: &Model, req: &Request, rows: &[Vec<f64>]) -> Result<Task, Failed>
                             if lo == hi {
                                 return Err(exit::usage(format!("--range `{r}` is empty: give lo < hi")));
                             }
-                            (angle_in(kind, req.deg, lo), angle_in(kind, req.deg, hi))
+                            let (lo, hi) = (angle_in(kind, req.deg, lo), angle_in(kind, req.deg, hi));
+                            // Candidates are verified by sweeps between the targets' inputs, which
+                            // refuse a range of more turns than they follow: every candidate would
+                            // be rejected for "no assembly" instead. Each end over a turn first:
+                            // `hi - lo` of ends near the largest f64 overflows.
+                            let turns = hi / TAU - lo / TAU;
+                            if kind == QuantityKind::Angle && turns > MAX_TURNS {
+                                let span = match req.deg {
+                                    true => format!("{:.0} deg", 360.0 * MAX_TURNS),
+                                    false => format!("{:.1} rad", TAU * MAX_TURNS),
+                                };
+                                return Err(exit::usage(format!(
+                                    "--range {r} spans {turns:.3e} turns of the input, more than the {MAX_TURNS:e} \
+                                     turns a sweep follows: give a range at most {MAX_TURNS:e} turns long ({span})"
+                                )));
+                            }
+                            (lo, hi)
                         }
                         None if kind == QuantityKind::Angle => (0.0, TAU),
                         None => return Err(exit::usage("targets without inputs need --range lo..hi")),

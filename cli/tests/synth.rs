@@ -252,3 +252,37 @@ fn too_many_jobs_is_a_usage_error() {
     assert!(err.contains("--jobs 100000") && err.contains("at most 1024"), "{err}");
     assert!(o.stdout.is_empty());
 }
+
+/// A `--range` of more turns than a sweep follows is a usage error saying how long it may be
+/// (as `sweep` says of `--from` and `--to`), found before any start: not every candidate
+/// rejected for "no assembly" or left unassembled, when the verifying sweeps refuse the range.
+#[test]
+fn a_range_of_too_many_turns_is_a_usage_error() {
+    let rows: Vec<String> = phis()
+        .iter()
+        .map(|&p| {
+            let [x, y] = coupler_point(TRUTH, p);
+            format!("{x:?},{y:?}")
+        })
+        .collect();
+    let targets = file("synth_untimed_long.csv", &rows.join("\n"));
+    let four_bar = shipped("coupler_four_bar.kl");
+    for (range, deg, span) in [
+        ("0..1e300", false, "6283185.3 rad"),
+        ("-1e308..1e308", false, "6283185.3 rad"),
+        ("0..4e8", true, "360000000 deg"),
+    ] {
+        let mut args =
+            vec!["synth", &four_bar, "--targets", &targets, "--path", "p", "--vary", "a=1..2", "--range", range];
+        if deg {
+            args.push("--deg");
+        }
+        let o = kinloop(&args);
+        let err = String::from_utf8_lossy(&o.stderr);
+        assert_eq!(o.status.code(), Some(2), "{range}: {err}");
+        for what in [&format!("--range {range}"), "turns", "at most 1e6 turns", span] {
+            assert!(err.contains(what), "{range}: `{what}` missing: {err}");
+        }
+        assert!(o.stdout.is_empty());
+    }
+}
