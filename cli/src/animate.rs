@@ -93,7 +93,7 @@ pub fn run(model: &mut Model, req: &Request) -> Result<(), Failed> {
     if samples < 2 {
         return Err(usage(format!("an animation needs at least 2 samples, not {samples}")));
     }
-    samples::check(samples)?;
+    samples::check_at_most(samples, samples::MAX_ANIMATION_SAMPLES)?;
     let name = model.name().to_string();
     let failed = |e: &dyn std::fmt::Display| failed(&name, e);
     let Endpoints { from, to, guess } = endpoints(model, req)?;
