@@ -14,13 +14,17 @@ use kinloop_runtime::paths::sweep::MAX_TURNS;
 use kinloop_runtime::synthesis::{Candidate, Defect, Design, Search, SynthesisError, SynthesisReport, Task};
 use std::f64::consts::TAU;
 use std::fmt::Write as _;
-use std::io::Write;
+use std::io::{Read, Write};
 use std::path::Path;
 
 /// The most threads `--jobs` starts: more than machines have cores. The pool starts every
 /// thread before the first start is searched, and tens of thousands (a count typed with zeros
 /// too many) take minutes to start.
 pub const MAX_JOBS: usize = 1024;
+
+/// The largest targets file read (bytes): some hundred thousand rows, far more targets than a
+/// synthesis fits.
+pub const MAX_TARGETS_BYTES: usize = 16 << 20;
 
 /// What `kinloop synth` was asked.
 pub struct Request<'a> {
@@ -138,10 +142,22 @@ fn design(vary: &str) -> Result<Design, Failed> {
 /// The numeric rows of the targets file: blank lines and `#` comments skipped, a first line
 /// without any number taken for a header; every row the same width.
 fn read_targets(path: &Path) -> Result<Vec<Vec<f64>>, Failed> {
-    let text = std::fs::read_to_string(path).map_err(|e| {
+    let cannot = |e: std::io::Error| {
         eprintln!("error: cannot read {}: {e}", path.display());
         Failed(exit::NO_INPUT)
-    })?;
+    };
+    // Read up to one byte past the most a targets file may have: a file named by mistake (a
+    // device that never ends, a large log) is refused there, not read whole into memory.
+    let mut bytes = Vec::new();
+    let limit = MAX_TARGETS_BYTES as u64 + 1;
+    std::fs::File::open(path).and_then(|f| f.take(limit).read_to_end(&mut bytes)).map_err(cannot)?;
+    if bytes.len() > MAX_TARGETS_BYTES {
+        return Err(exit::usage(format!(
+            "{} has more than {MAX_TARGETS_BYTES} bytes, more than a targets file may have (a row per target)",
+            path.display()
+        )));
+    }
+    let text = String::from_utf8(bytes).map_err(|e| cannot(std::io::Error::new(std::io::ErrorKind::InvalidData, e)))?;
     let mut rows: Vec<Vec<f64>> = Vec::new();
     let lines = text.lines().enumerate().filter(|(_, l)| !l.trim().is_empty() && !l.trim_start().starts_with('#'));
     for (k, (n, line)) in lines.enumerate() {

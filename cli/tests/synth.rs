@@ -286,3 +286,19 @@ fn a_range_of_too_many_turns_is_a_usage_error() {
         assert!(o.stdout.is_empty());
     }
 }
+
+/// A targets file far larger than any set of targets (a device that never ends, a log named by
+/// mistake) is refused after the most a targets file may have, with a short message: not read
+/// whole into memory.
+#[test]
+fn a_targets_file_too_large_is_refused_briefly() {
+    let big = PathBuf::from(env!("CARGO_TARGET_TMPDIR")).join("too_many_targets.csv");
+    std::fs::write(&big, "\n".repeat((16 << 20) + 1)).expect("write");
+    let args = ["synth", &shipped("coupler_four_bar.kl"), "--path", "p", "--vary", VARY, "--targets"];
+    let o = kinloop(&[&args[..], &[big.display().to_string().as_str()]].concat());
+    let err = String::from_utf8_lossy(&o.stderr);
+    assert_eq!(o.status.code(), Some(2), "{err}");
+    assert!(err.contains("more than 16777216 bytes") && err.len() < 1000, "{err}");
+    assert!(o.stdout.is_empty());
+    std::fs::remove_file(&big).ok();
+}
