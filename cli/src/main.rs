@@ -285,7 +285,7 @@ enum Command {
         /// The input range of path targets without inputs (a full turn of an angle otherwise).
         #[arg(long, value_name = "LO..HI", allow_hyphen_values = true)]
         range: Option<String>,
-        /// Halton starts of the local solve (at least 1).
+        /// Halton starts of the local solve (at least 1, at most 1000000).
         #[arg(long, default_value_t = 64, allow_hyphen_values = true)]
         starts: usize,
         /// The seed of the starts' sequence.

@@ -22,6 +22,11 @@ use std::path::Path;
 /// too many) take minutes to start.
 pub const MAX_JOBS: usize = 1024;
 
+/// The most starts a search takes: each is a local solve and a verifying sweep, milliseconds,
+/// so a million take many minutes. The search lays out every start's job first: a count typed
+/// with zeros too many would abort on that allocation.
+pub const MAX_STARTS: usize = 1_000_000;
+
 /// The largest targets file read (bytes): some hundred thousand rows, far more targets than a
 /// synthesis fits.
 pub const MAX_TARGETS_BYTES: usize = 16 << 20;
@@ -60,6 +65,9 @@ pub fn run(model: &Model, req: &Request) -> Result<(), Failed> {
     }
     if req.starts == 0 {
         return Err(exit::usage("--starts 0 would search from no start: give at least 1 (e.g. --starts 64)"));
+    }
+    if req.starts > MAX_STARTS {
+        return Err(exit::usage(format!("--starts {} is too many: at most {MAX_STARTS}", req.starts)));
     }
     if req.jobs == Some(0) {
         return Err(exit::usage("--jobs 0 would run no start: give at least 1"));

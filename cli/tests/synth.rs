@@ -302,3 +302,18 @@ fn a_targets_file_too_large_is_refused_briefly() {
     assert!(o.stdout.is_empty());
     std::fs::remove_file(&big).ok();
 }
+
+/// `--starts` beyond the most a search runs (a count typed with zeros too many) is a usage
+/// error naming the limit: not an abort on allocating the starts' jobs.
+#[test]
+fn too_many_starts_is_a_usage_error() {
+    let targets = timed_targets();
+    let args = ["synth", &shipped("coupler_four_bar.kl"), "--targets", &targets, "--path", "p", "--deg"];
+    for n in ["1000000000000", &usize::MAX.to_string(), "1000001"] {
+        let o = kinloop(&[&args[..], &["--vary", VARY, "--starts", n]].concat());
+        let err = String::from_utf8_lossy(&o.stderr);
+        assert_eq!(o.status.code(), Some(2), "{n}: {err}");
+        assert!(err.contains(&format!("--starts {n}")) && err.contains("at most 1000000"), "{n}: {err}");
+        assert!(o.stdout.is_empty());
+    }
+}
