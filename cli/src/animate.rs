@@ -74,6 +74,13 @@ pub fn run(model: &mut Model, req: &Request) -> Result<(), Failed> {
     if req.frames.is_some_and(|f| f < 2) {
         return Err(usage("--frames must be at least 2"));
     }
+    // An SVG has no readouts or charts: the columns asked for would be dropped in silence.
+    if format == Format::Svg && !req.show.is_empty() {
+        return Err(usage(
+            "--show adds readouts to the interactive page: write it to a .html file (or give --format html), or \
+             leave out --show",
+        ));
+    }
     if req.grid {
         return grid(model, req, format);
     }
@@ -86,7 +93,7 @@ pub fn run(model: &mut Model, req: &Request) -> Result<(), Failed> {
     if samples < 2 {
         return Err(usage(format!("an animation needs at least 2 samples, not {samples}")));
     }
-    samples::check(samples)?;
+    samples::check_at_most(samples, samples::MAX_ANIMATION_SAMPLES)?;
     let name = model.name().to_string();
     let failed = |e: &dyn std::fmt::Display| failed(&name, e);
     let Endpoints { from, to, guess } = endpoints(model, req)?;

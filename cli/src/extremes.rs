@@ -102,6 +102,17 @@ pub fn run(model: &mut Model, req: &Request) -> Result<(), Failed> {
             e => failed(&in_units(e, &input_kinds, req.deg)),
         }
     })?;
+    // Ends a few units in the last place apart: the samples' inputs round to the same numbers
+    // (or, the path's length underflowing, to NaN), and no extreme can be located between them.
+    // The runtime refuses them per column, in words about its samples: said here, once.
+    if !sampled.path_values().windows(2).all(|w| w[0] < w[1]) {
+        bar.finish_and_clear();
+        return Err(exit::usage(format!(
+            "--from {} --to {}: the ends are too close together for {} samples to be told apart (their inputs \
+             round to the same numbers): give a longer range, or fewer --samples",
+            req.from, req.to, req.samples
+        )));
+    }
     bar.set_message(format!("{name}: locating extremes"));
     let mut rows = Vec::with_capacity(columns.len());
     for (column, kind) in &columns {

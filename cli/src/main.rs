@@ -50,6 +50,9 @@ struct Cli {
     command: Command,
 }
 
+// Every option that takes a number allows values that start with `-`: a negative number is
+// then the option's value, refused by the option's own check, where clap would call it an
+// unexpected argument and suggest `-- -1` (which makes it a file name).
 /// What to do with the mechanism.
 #[derive(Subcommand)]
 enum Command {
@@ -93,7 +96,7 @@ enum Command {
         #[arg(long, value_name = "X,...", allow_hyphen_values = true)]
         to: String,
         /// Samples, equally spaced, both ends included (at most 10000000).
-        #[arg(long, default_value_t = 361)]
+        #[arg(long, default_value_t = 361, allow_hyphen_values = true)]
         samples: usize,
         /// Angles in degrees (inputs given and values written); otherwise radians.
         #[arg(long)]
@@ -122,11 +125,11 @@ enum Command {
         #[arg(long, default_value_t = 0.0, allow_hyphen_values = true)]
         start: f64,
         /// Equally spaced angles per turn (at least 8, at most 10000000).
-        #[arg(long, default_value_t = 360)]
+        #[arg(long, default_value_t = 360, allow_hyphen_values = true)]
         samples: usize,
         /// The coefficient of speed fluctuation `(omega_max - omega_min) / omega_mean` the
         /// flywheel is sized for.
-        #[arg(long, default_value_t = 0.02)]
+        #[arg(long, default_value_t = 0.02, allow_hyphen_values = true)]
         delta: f64,
         /// The frame point the shaking moments are taken about, `x,y` (the origin otherwise).
         #[arg(long, value_name = "X,Y", allow_hyphen_values = true)]
@@ -156,16 +159,16 @@ enum Command {
         #[arg(long, default_value_t = 0.0, allow_hyphen_values = true)]
         start: f64,
         /// The time simulated (positive).
-        #[arg(long)]
+        #[arg(long, allow_hyphen_values = true)]
         time: f64,
         /// The constant driving torque on the input.
         #[arg(long, default_value_t = 0.0, allow_hyphen_values = true)]
         torque: f64,
         /// The moment of inertia of a flywheel on the input shaft.
-        #[arg(long, default_value_t = 0.0)]
+        #[arg(long, default_value_t = 0.0, allow_hyphen_values = true)]
         flywheel: f64,
         /// Equally spaced times written, both ends included (at least 2, at most 10000000).
-        #[arg(long, default_value_t = 101)]
+        #[arg(long, default_value_t = 101, allow_hyphen_values = true)]
         samples: usize,
         /// The integrator's step budget (at least 1): a `--time` that needs more steps stops
         /// with a usage error, so the budget bounds the time the run takes. No step is kept
@@ -195,7 +198,7 @@ enum Command {
         #[arg(long, value_name = "X,...", allow_hyphen_values = true)]
         to: String,
         /// Samples, equally spaced, both ends included (at least 3, at most 10000000).
-        #[arg(long, default_value_t = 361)]
+        #[arg(long, default_value_t = 361, allow_hyphen_values = true)]
         samples: usize,
         /// Angles in degrees (inputs given and values written); otherwise radians.
         #[arg(long)]
@@ -225,10 +228,10 @@ enum Command {
         /// The inputs at the end.
         #[arg(long, value_name = "X,...", allow_hyphen_values = true)]
         to: String,
-        /// Samples, equally spaced, both ends included (default 181, at most 10000000); with
+        /// Samples, equally spaced, both ends included (default 181, at most 100000); with
         /// `--grid`, the values of each input: one count for all or one per input (default: the
         /// most whose grid fits the page's frames, 26 per input for two inputs, 8 for three).
-        #[arg(long, value_name = "N[,N...]")]
+        #[arg(long, value_name = "N[,N...]", allow_hyphen_values = true)]
         samples: Option<String>,
         /// A grid of the inputs from `--from` to `--to` instead of a sweep (a mechanism of two
         /// inputs or more), drawn as an interactive page with one slider per input (`.html`).
@@ -252,7 +255,7 @@ enum Command {
         show: Vec<String>,
         /// The largest number of frames written: key frames of the SVG (default 90), poses of
         /// the page (default 721).
-        #[arg(long)]
+        #[arg(long, allow_hyphen_values = true)]
         frames: Option<usize>,
     },
     /// Dimensional synthesis: finds values of the design variables (`--vary`) for which the
@@ -282,18 +285,18 @@ enum Command {
         /// The input range of path targets without inputs (a full turn of an angle otherwise).
         #[arg(long, value_name = "LO..HI", allow_hyphen_values = true)]
         range: Option<String>,
-        /// Halton starts of the local solve (at least 1).
-        #[arg(long, default_value_t = 64)]
+        /// Halton starts of the local solve (at least 1, at most 1000000).
+        #[arg(long, default_value_t = 64, allow_hyphen_values = true)]
         starts: usize,
         /// The seed of the starts' sequence.
-        #[arg(long, default_value_t = 0)]
+        #[arg(long, default_value_t = 0, allow_hyphen_values = true)]
         seed: u64,
         /// The number of ranked candidates written.
-        #[arg(long, default_value_t = 10)]
+        #[arg(long, default_value_t = 10, allow_hyphen_values = true)]
         keep: usize,
-        /// Threads of the search (all cores by default); 1 runs the starts one after another.
-        /// The candidates are the same whatever the number.
-        #[arg(long, value_name = "N")]
+        /// Threads of the search (all cores by default, at most 1024); 1 runs the starts one after
+        /// another. The candidates are the same whatever the number.
+        #[arg(long, value_name = "N", allow_hyphen_values = true)]
         jobs: Option<usize>,
         /// Angles in degrees (inputs, angle outputs, the range); otherwise radians.
         #[arg(long)]

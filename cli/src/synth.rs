@@ -10,11 +10,26 @@
 use crate::{Failed, exit, progress};
 use kinloop_model::Model;
 use kinloop_runtime::QuantityKind;
+use kinloop_runtime::paths::sweep::MAX_TURNS;
 use kinloop_runtime::synthesis::{Candidate, Defect, Design, Search, SynthesisError, SynthesisReport, Task};
 use std::f64::consts::TAU;
 use std::fmt::Write as _;
-use std::io::Write;
+use std::io::{Read, Write};
 use std::path::Path;
+
+/// The most threads `--jobs` starts: more than machines have cores. The pool starts every
+/// thread before the first start is searched, and tens of thousands (a count typed with zeros
+/// too many) take minutes to start.
+pub const MAX_JOBS: usize = 1024;
+
+/// The most starts a search takes: each is a local solve and a verifying sweep, milliseconds,
+/// so a million take many minutes. The search lays out every start's job first: a count typed
+/// with zeros too many would abort on that allocation.
+pub const MAX_STARTS: usize = 1_000_000;
+
+/// The largest targets file read (bytes): some hundred thousand rows, far more targets than a
+/// synthesis fits.
+pub const MAX_TARGETS_BYTES: usize = 16 << 20;
 
 /// What `kinloop synth` was asked.
 pub struct Request<'a> {
@@ -51,8 +66,16 @@ pub fn run(model: &Model, req: &Request) -> Result<(), Failed> {
     if req.starts == 0 {
         return Err(exit::usage("--starts 0 would search from no start: give at least 1 (e.g. --starts 64)"));
     }
+    if req.starts > MAX_STARTS {
+        return Err(exit::usage(format!("--starts {} is too many: at most {MAX_STARTS}", req.starts)));
+    }
     if req.jobs == Some(0) {
         return Err(exit::usage("--jobs 0 would run no start: give at least 1"));
+    }
+    if let Some(n) = req.jobs.filter(|&n| n > MAX_JOBS) {
+        return Err(exit::usage(format!(
+            "--jobs {n} is too many threads: at most {MAX_JOBS} (without --jobs the search runs on every core)"
+        )));
     }
     let design = design(req.vary)?;
     let rows = read_targets(req.targets)?;
@@ -127,10 +150,22 @@ fn design(vary: &str) -> Result<Design, Failed> {
 /// The numeric rows of the targets file: blank lines and `#` comments skipped, a first line
 /// without any number taken for a header; every row the same width.
 fn read_targets(path: &Path) -> Result<Vec<Vec<f64>>, Failed> {
-    let text = std::fs::read_to_string(path).map_err(|e| {
+    let cannot = |e: std::io::Error| {
         eprintln!("error: cannot read {}: {e}", path.display());
         Failed(exit::NO_INPUT)
-    })?;
+    };
+    // Read up to one byte past the most a targets file may have: a file named by mistake (a
+    // device that never ends, a large log) is refused there, not read whole into memory.
+    let mut bytes = Vec::new();
+    let limit = MAX_TARGETS_BYTES as u64 + 1;
+    std::fs::File::open(path).and_then(|f| f.take(limit).read_to_end(&mut bytes)).map_err(cannot)?;
+    if bytes.len() > MAX_TARGETS_BYTES {
+        return Err(exit::usage(format!(
+            "{} has more than {MAX_TARGETS_BYTES} bytes, more than a targets file may have (a row per target)",
+            path.display()
+        )));
+    }
+    let text = String::from_utf8(bytes).map_err(|e| cannot(std::io::Error::new(std::io::ErrorKind::InvalidData, e)))?;
     let mut rows: Vec<Vec<f64>> = Vec::new();
     let lines = text.lines().enumerate().filter(|(_, l)| !l.trim().is_empty() && !l.trim_start().starts_with('#'));
     for (k, (n, line)) in lines.enumerate() {
@@ -194,7 +229,23 @@ fn task(model: &Model, req: &Request, rows: &[Vec<f64>]) -> Result<Task, Failed>
                             if lo == hi {
                                 return Err(exit::usage(format!("--range `{r}` is empty: give lo < hi")));
                             }
-                            (angle_in(kind, req.deg, lo), angle_in(kind, req.deg, hi))
+                            let (lo, hi) = (angle_in(kind, req.deg, lo), angle_in(kind, req.deg, hi));
+                            // Candidates are verified by sweeps between the targets' inputs, which
+                            // refuse a range of more turns than they follow: every candidate would
+                            // be rejected for "no assembly" instead. Each end over a turn first:
+                            // `hi - lo` of ends near the largest f64 overflows.
+                            let turns = hi / TAU - lo / TAU;
+                            if kind == QuantityKind::Angle && turns > MAX_TURNS {
+                                let span = match req.deg {
+                                    true => format!("{:.0} deg", 360.0 * MAX_TURNS),
+                                    false => format!("{:.1} rad", TAU * MAX_TURNS),
+                                };
+                                return Err(exit::usage(format!(
+                                    "--range {r} spans {turns:.3e} turns of the input, more than the {MAX_TURNS:e} \
+                                     turns a sweep follows: give a range at most {MAX_TURNS:e} turns long ({span})"
+                                )));
+                            }
+                            (lo, hi)
                         }
                         None if kind == QuantityKind::Angle => (0.0, TAU),
                         None => return Err(exit::usage("targets without inputs need --range lo..hi")),

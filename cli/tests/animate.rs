@@ -332,3 +332,21 @@ fn grid_usage_errors() {
     let list = ["animate", &fb, "--from", "0", "--to", "1", "--samples", "9,7", "--params", FOUR_BAR, "--out", &p];
     fails_without_output(&list, &path, 2, "--grid");
 }
+
+/// `--show` adds readouts and charts to the interactive page: with an SVG, which has neither,
+/// it is a usage error saying to write a page, not ignored with success.
+#[test]
+fn show_with_an_svg_is_a_usage_error() {
+    let fb = shipped("four_bar.kl");
+    for (name, format) in [("show.svg", None), ("show.html", Some("svg"))] {
+        let path = out(name);
+        let p = path.display().to_string();
+        let mut args = vec!["animate", fb.as_str(), "--from", "0", "--to", "1", "--params", FOUR_BAR, "--out", &p];
+        if let Some(f) = format {
+            args.extend(["--format", f]);
+        }
+        args.extend(["--show", "beta"]);
+        fails_without_output(&args, &path, 2, "--show");
+        fails_without_output(&args, &path, 2, ".html");
+    }
+}

@@ -425,3 +425,40 @@ fn an_unclosed_parenthesis_is_reported_where_it_opens() {
     assert!(err.contains("unexpected closing delimiter: `)`") && err.contains("stray.kl:6:5"), "{err}");
     std::fs::remove_dir_all(&dir).ok();
 }
+
+/// A negative number given to an option that takes a number is read as the option's value and
+/// refused by the option's own check, naming it: not taken for an unknown argument, with clap's
+/// tip to write `-- -1` (which makes it a file name, not the option's value).
+#[test]
+fn a_negative_number_is_the_options_value() {
+    let (engine, four_bar) = (shipped("engine.kl"), shipped("four_bar.kl"));
+    let coupler = shipped("coupler_four_bar.kl");
+    let svg = std::env::temp_dir().join(format!("kinloop-cli-negative-{}.svg", std::process::id()));
+    let svg = svg.display().to_string();
+    let fb = ["--from", "0", "--to", "1", "--params", "a=1,b=3,c=2.5,d=3.2"];
+    let (sweep, extremes) = (["sweep", four_bar.as_str()], ["extremes", four_bar.as_str()]);
+    let animate = ["animate", four_bar.as_str(), "--out", svg.as_str()];
+    let synth = ["synth", coupler.as_str(), "--targets", "t.csv", "--path", "p", "--vary", "a=1..2"];
+    let mut cases: Vec<(Vec<&str>, &str)> = vec![
+        ([&sweep[..], &fb, &["--samples", "-1"]].concat(), "--samples"),
+        ([&extremes[..], &fb, &["--samples", "-1"]].concat(), "--samples"),
+        ([&animate[..], &fb, &["--samples", "-3"]].concat(), "--samples -3"),
+        ([&animate[..], &fb, &["--frames", "-3"]].concat(), "--frames"),
+        (vec!["dynamics", engine.as_str(), "--speed", "150", "--samples", "-8"], "--samples"),
+        (vec!["dynamics", engine.as_str(), "--speed", "150", "--delta", "-0.02"], "--delta -0.02"),
+        (vec!["simulate", engine.as_str(), "--time", "-1"], "--time -1"),
+        (vec!["simulate", engine.as_str(), "--time", "1", "--flywheel", "-1"], "--flywheel -1"),
+        (vec!["simulate", engine.as_str(), "--time", "1", "--samples", "-1"], "--samples"),
+    ];
+    for option in ["--starts", "--keep", "--jobs", "--seed"] {
+        cases.push(([&synth[..], &[option, "-1"]].concat(), option));
+    }
+    for (args, option) in cases {
+        let out = kinloop(&args);
+        let err = String::from_utf8_lossy(&out.stderr);
+        assert_eq!(out.status.code(), Some(2), "{args:?}: {err}");
+        assert!(err.contains(option), "{args:?}: `{option}` missing: {err}");
+        assert!(!err.contains("unexpected argument") && !err.contains("-- -"), "{args:?}: {err}");
+    }
+    assert!(!std::path::Path::new(&svg).exists());
+}

@@ -268,3 +268,27 @@ fn columns_naming_nothing_is_a_usage_error() {
         assert!(out.stdout.is_empty());
     }
 }
+
+/// `--from` and `--to` too close together for the samples' inputs to be told apart (a range of
+/// a few units in the last place) are a usage error saying so and what to change, not a failed
+/// solve reporting the samples' inputs out of order (`found NaN then NaN` for two inputs).
+#[test]
+fn a_range_too_short_for_its_samples_is_a_usage_error() {
+    let params = "a=1,b=3,c=2.5,d=3.2";
+    let four_bar = shipped("four_bar.kl");
+    let five_bar = shipped("five_bar.kl");
+    for args in [
+        vec!["extremes", four_bar.as_str(), "--from", "1", "--to", "1.0000000000000002", "--params", params],
+        vec!["extremes", four_bar.as_str(), "--from", "0", "--to", "5e-324", "--params", params],
+        vec!["extremes", five_bar.as_str(), "--from", "0,0", "--to", "5e-324,0"],
+    ] {
+        let out = kinloop(&args);
+        let err = String::from_utf8_lossy(&out.stderr);
+        assert_eq!(out.status.code(), Some(2), "{args:?}: {err}");
+        for what in [&format!("--from {} --to {}", args[3], args[5]), "361 samples", "--samples"] {
+            assert!(err.contains(what), "{args:?}: `{what}` missing: {err}");
+        }
+        assert!(!err.contains("NaN") && !err.contains("increasing"), "{args:?}: {err}");
+        assert!(out.stdout.is_empty(), "{args:?}");
+    }
+}

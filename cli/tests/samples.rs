@@ -9,13 +9,27 @@ use common::{kinloop, shipped};
 /// The limit the help of each command states.
 const MAX_SAMPLES: &str = "10000000";
 
+/// The limit of `animate`'s samples, each a pose recorded in full.
+const MAX_ANIMATION_SAMPLES: &str = "100000";
+
 /// `args` fails as a usage error naming `--samples` and the limit, writing nothing.
 fn refused(args: &[&str]) {
+    refused_beyond(args, MAX_SAMPLES);
+}
+
+/// `args` fails as a usage error naming `--samples` and the limit `max`, writing nothing.
+fn refused_beyond(args: &[&str], max: &str) {
     let out = kinloop(args);
     let err = String::from_utf8_lossy(&out.stderr);
     assert_eq!(out.status.code(), Some(2), "{args:?}: {err}");
-    assert!(err.contains("--samples") && err.contains(MAX_SAMPLES), "{args:?}: {err}");
+    assert!(err.contains("--samples") && states_limit(&err, max), "{args:?}: {err}");
     assert!(out.stdout.is_empty(), "{args:?}");
+}
+
+/// Whether `text` says "at most `max`", the number whole (not the start of a larger one).
+fn states_limit(text: &str, max: &str) -> bool {
+    let said = format!("at most {max}");
+    text.match_indices(&said).any(|(i, _)| !text[i + said.len()..].starts_with(|c: char| c.is_ascii_digit()))
 }
 
 #[test]
@@ -37,7 +51,7 @@ fn too_many_samples_are_usage_errors() {
         let mut args = vec!["animate", four_bar.as_str()];
         args.extend(range);
         args.extend(["--out", svg.as_str()]);
-        refused(&args);
+        refused_beyond(&args, MAX_ANIMATION_SAMPLES);
         assert!(!std::path::Path::new(&svg).exists(), "{n}: an animation was written");
         refused(&["dynamics", engine.as_str(), "--speed", "10", "--samples", n]);
     }
@@ -51,9 +65,26 @@ fn too_many_samples_are_usage_errors() {
 
 #[test]
 fn the_help_states_the_limit() {
-    for command in ["sweep", "extremes", "animate", "dynamics"] {
+    for (command, max) in [
+        ("sweep", MAX_SAMPLES),
+        ("extremes", MAX_SAMPLES),
+        ("animate", MAX_ANIMATION_SAMPLES),
+        ("dynamics", MAX_SAMPLES),
+    ] {
         let out = kinloop(&[command, "--help"]);
         let help = String::from_utf8_lossy(&out.stdout);
-        assert!(help.contains(&format!("at most {MAX_SAMPLES}")), "{command}: {help}");
+        assert!(states_limit(&help, max), "{command}: {help}");
     }
+}
+
+/// An animation records every sample's pose in full (a few kilobytes each, where a sweep's row
+/// takes a hundred bytes): its samples are bounded lower, so that the largest count taken fits
+/// in memory (ten million took some twenty gigabytes), one more is refused.
+#[test]
+fn an_animations_samples_are_bounded_by_its_poses() {
+    let svg = std::env::temp_dir().join(format!("kinloop-samples-poses-{}.svg", std::process::id()));
+    let svg = svg.display().to_string();
+    let args = ["animate", &shipped("four_bar.kl"), "--from", "0", "--to", "1", "--params", "a=1,b=3,c=2.5,d=3.2"];
+    refused_beyond(&[&args[..], &["--samples", "100001", "--out", &svg]].concat(), MAX_ANIMATION_SAMPLES);
+    assert!(!std::path::Path::new(&svg).exists());
 }

@@ -238,3 +238,82 @@ fn an_empty_range_is_a_usage_error() {
     assert!(err.contains("--range `1..1`"), "{err}");
     assert!(o.stdout.is_empty());
 }
+
+/// `--jobs` beyond the threads a machine runs (a count typed with zeros too many) is a usage
+/// error naming the limit, checked before anything is read: not minutes spent starting
+/// threads.
+#[test]
+fn too_many_jobs_is_a_usage_error() {
+    let missing = PathBuf::from(env!("CARGO_TARGET_TMPDIR")).join("no-targets-here.csv");
+    let args = ["synth", &shipped("coupler_four_bar.kl"), "--path", "p", "--vary", VARY, "--jobs", "100000"];
+    let o = kinloop(&[&args[..], &["--targets", &missing.display().to_string()]].concat());
+    let err = String::from_utf8_lossy(&o.stderr);
+    assert_eq!(o.status.code(), Some(2), "{err}");
+    assert!(err.contains("--jobs 100000") && err.contains("at most 1024"), "{err}");
+    assert!(o.stdout.is_empty());
+}
+
+/// A `--range` of more turns than a sweep follows is a usage error saying how long it may be
+/// (as `sweep` says of `--from` and `--to`), found before any start: not every candidate
+/// rejected for "no assembly" or left unassembled, when the verifying sweeps refuse the range.
+#[test]
+fn a_range_of_too_many_turns_is_a_usage_error() {
+    let rows: Vec<String> = phis()
+        .iter()
+        .map(|&p| {
+            let [x, y] = coupler_point(TRUTH, p);
+            format!("{x:?},{y:?}")
+        })
+        .collect();
+    let targets = file("synth_untimed_long.csv", &rows.join("\n"));
+    let four_bar = shipped("coupler_four_bar.kl");
+    for (range, deg, span) in [
+        ("0..1e300", false, "6283185.3 rad"),
+        ("-1e308..1e308", false, "6283185.3 rad"),
+        ("0..4e8", true, "360000000 deg"),
+    ] {
+        let mut args =
+            vec!["synth", &four_bar, "--targets", &targets, "--path", "p", "--vary", "a=1..2", "--range", range];
+        if deg {
+            args.push("--deg");
+        }
+        let o = kinloop(&args);
+        let err = String::from_utf8_lossy(&o.stderr);
+        assert_eq!(o.status.code(), Some(2), "{range}: {err}");
+        for what in [&format!("--range {range}"), "turns", "at most 1e6 turns", span] {
+            assert!(err.contains(what), "{range}: `{what}` missing: {err}");
+        }
+        assert!(o.stdout.is_empty());
+    }
+}
+
+/// A targets file far larger than any set of targets (a device that never ends, a log named by
+/// mistake) is refused after the most a targets file may have, with a short message: not read
+/// whole into memory.
+#[test]
+fn a_targets_file_too_large_is_refused_briefly() {
+    let big = PathBuf::from(env!("CARGO_TARGET_TMPDIR")).join("too_many_targets.csv");
+    std::fs::write(&big, "\n".repeat((16 << 20) + 1)).expect("write");
+    let args = ["synth", &shipped("coupler_four_bar.kl"), "--path", "p", "--vary", VARY, "--targets"];
+    let o = kinloop(&[&args[..], &[big.display().to_string().as_str()]].concat());
+    let err = String::from_utf8_lossy(&o.stderr);
+    assert_eq!(o.status.code(), Some(2), "{err}");
+    assert!(err.contains("more than 16777216 bytes") && err.len() < 1000, "{err}");
+    assert!(o.stdout.is_empty());
+    std::fs::remove_file(&big).ok();
+}
+
+/// `--starts` beyond the most a search runs (a count typed with zeros too many) is a usage
+/// error naming the limit: not an abort on allocating the starts' jobs.
+#[test]
+fn too_many_starts_is_a_usage_error() {
+    let targets = timed_targets();
+    let args = ["synth", &shipped("coupler_four_bar.kl"), "--targets", &targets, "--path", "p", "--deg"];
+    for n in ["1000000000000", &usize::MAX.to_string(), "1000001"] {
+        let o = kinloop(&[&args[..], &["--vary", VARY, "--starts", n]].concat());
+        let err = String::from_utf8_lossy(&o.stderr);
+        assert_eq!(o.status.code(), Some(2), "{n}: {err}");
+        assert!(err.contains(&format!("--starts {n}")) && err.contains("at most 1000000"), "{n}: {err}");
+        assert!(o.stdout.is_empty());
+    }
+}
