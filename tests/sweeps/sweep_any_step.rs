@@ -604,6 +604,20 @@ fn a_range_of_more_turns_than_a_sweep_follows_is_refused_up_front() {
     }
 }
 
+/// Far out, where an input's doubles are coarser than the samples' spacing (near 1e17 they are
+/// 16 apart, the samples 5.6), the sweep's failure says so, naming the input, rather than
+/// blaming a jump of the solution; near 1e9 the same sweep completes.
+#[test]
+fn a_sweep_where_the_inputs_doubles_are_too_coarse_says_so() {
+    let m = CRANK_ROCKER;
+    let g = m.guess(0.0);
+    let run = m.sweep(1e17, 1e17 + 1e3, 181, &g).unwrap().run();
+    let SweepStop::Failed(Error::Branch { message, .. }) = &run.stop else { panic!("{:?}", run.stop) };
+    assert!(message.contains("input `phi` is a double 1.6e1 apart"), "{message}");
+    assert!(message.contains("whole turns"), "{message}");
+    assert!(m.sweep(1e9, 1e9 + 1e3, 181, &g).unwrap().run().is_completed());
+}
+
 /// The cap is on the range's turns, checked before the first sample: just below it the sweep
 /// starts (its first sample is the start's), just above it the first item is the error.
 #[test]

@@ -817,11 +817,37 @@ where
                 at: self.location(x.as_ref(), Some(weakest)),
             },
             _ => Error::Branch {
-                message: "the sweep cannot stay on its branch: however small the step, the solution jumps or its \
-                          velocity analogs do (the solution curve is not smooth here, or steps land on another solution)"
-                    .into(),
+                message: match self.coarse_input(x.as_ref()) {
+                    Some((i, apart, spacing)) => format!(
+                        "the sweep cannot take its steps: input `{}` is a double {apart:e} apart from the next here, \
+                         coarser than a millionth of the samples' spacing in it ({spacing:e}), so the steps' inputs \
+                         round away from where they are predicted; reduce a periodic input by whole turns, or sample \
+                         a longer range",
+                        self.m.input_name(i)
+                    ),
+                    None => "the sweep cannot stay on its branch: however small the step, the solution jumps or its \
+                             velocity analogs do (the solution curve is not smooth here, or steps land on another \
+                             solution)"
+                        .into(),
+                },
                 at: self.location(x.as_ref(), Some(weakest)),
             },
+        })
+    }
+
+    /// The first input whose doubles at `x` are farther apart than a millionth of the samples'
+    /// spacing in it, with that distance and the spacing: there the steps' inputs are rounded by
+    /// much more than the predictions and tolerances allow for (an input near `1e17` is a
+    /// double 16 apart), and the failure is the inputs', not the mechanism's. Only looked at
+    /// where a sweep has failed.
+    #[cold]
+    fn coarse_input(&self, x: &[f64]) -> Option<(usize, f64, f64)> {
+        let intervals = self.samples.checked_sub(1).filter(|&n| n > 0)? as f64;
+        let delta = self.path.delta.as_ref();
+        x.iter().zip(delta).enumerate().find_map(|(i, (&xi, &di))| {
+            let apart = xi.abs().next_up() - xi.abs();
+            let spacing = (di / intervals).abs();
+            (spacing > 0.0 && apart > 1e-6 * spacing).then_some((i, apart, spacing))
         })
     }
 }
