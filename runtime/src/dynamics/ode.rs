@@ -256,10 +256,22 @@ fn check_config(t0: f64, t_end: f64, cfg: &OdeConfig) -> Result<(), DynamicsErro
 }
 
 /// A first step from the size of the state and of its derivative (Hairer's heuristic without
-/// the second trial evaluation).
+/// the second trial evaluation): the time in which the state changes by a hundredth of its
+/// size, or, from a state at rest (zero, in the tolerances' units), by a hundredth of the
+/// absolute tolerance. A millionth of the span where the state does not change.
+///
+/// From rest the step is not a millionth of the span: over a long span that is a step of
+/// thousands of time units, whose stages ask for the motion far beyond where it can be
+/// evaluated (a crank turned a million times in one stage, its accelerations beyond f64).
 fn initial_step<const D: usize>(y: &[f64; D], f0: &[f64; D], span: f64, cfg: &OdeConfig) -> f64 {
     let d0 = norm(y, y, y, cfg);
     let d1 = norm(f0, y, y, cfg);
-    let h = if d0 < 1e-5 || d1 < 1e-5 { 1e-6 * span } else { 0.01 * d0 / d1 };
+    let h = if d1 < 1e-5 {
+        1e-6 * span
+    } else if d0 < 1e-5 {
+        (0.01 / d1).min(1e-6 * span)
+    } else {
+        0.01 * d0 / d1
+    };
     h.min(cfg.h_max).min(span)
 }

@@ -182,6 +182,24 @@ fn an_integration_that_cannot_move_a_huge_coordinate_is_an_error() {
     assert!(matches!(r, Err(DynamicsError::StepTooSmall { t, .. }) if t < 0.8), "{r:?}");
 }
 
+/// From rest the first step is not a millionth of the span: over a span of 1e12 under a unit
+/// acceleration that was a step of 1e6, whose stages reach 1e11, beyond a domain of 1e6 where
+/// the motion itself stays until t = 1414 (as a simulation from rest over a long time asked its
+/// kinematics for the crank a million turns on, and failed). A motion that truly leaves the
+/// domain still ends with `f`'s error.
+#[test]
+fn a_first_step_from_rest_stays_near_the_start_whatever_the_span() {
+    let cfg = OdeConfig::default();
+    let out = |y: &[f64; 2]| DynamicsError::Overflow { what: "positions", x: vec![y[0]], names: Vec::new() };
+    let f = |_: f64, y: &[f64; 2]| if y[0].abs() <= 1e6 { Ok([y[1], 1.0]) } else { Err(out(y)) };
+    let (t, y) = dopri5(f, 0.0, [0.0, 0.0], 1e12, &cfg, |s, _| Ok(s.t1() >= 1.0)).unwrap();
+    assert!(t >= 1.0 && t < 1e3, "{t}");
+    assert!((y[0] - t * t / 2.0).abs() <= 1e-9 * t * t && (y[1] - t).abs() <= 1e-9 * t, "{y:?} at {t}");
+    // Beyond the domain at t = sqrt(2e6): `f`'s error.
+    let r = dopri5(f, 0.0, [0.0, 0.0], 1e12, &cfg, |_, _| Ok(false));
+    assert!(matches!(r, Err(DynamicsError::Overflow { what: "positions", .. })), "{r:?}");
+}
+
 /// A start not finite is a bad value, not a motion singular at t = 0 (every step was
 /// rejected down to the time's resolution).
 #[test]
