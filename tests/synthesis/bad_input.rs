@@ -128,3 +128,22 @@ fn a_parameter_vector_of_another_length_is_an_error_not_a_panic() {
     let seen = k.with_params(&p, |m| (0..6).map(|i| m.param(i)).collect::<Vec<_>>()).unwrap();
     assert_eq!(seen, p);
 }
+
+/// Timing whose motion from target to target turns the input more than a sweep follows is
+/// refused with the targets and the turns: every candidate's verifying sweep would refuse its
+/// range, and each be rejected as if it could not be assembled. Free timing likewise.
+#[test]
+fn timing_farther_apart_than_a_sweep_follows() {
+    let task = Task::path("p", [[1.0, 2.0], [1.5, 2.2], [2.0, 2.1]]).timed([0.0, 0.5, 1e300]);
+    let e = error(&design(), &task);
+    let m = e.to_string();
+    assert!(
+        matches!(e, SynthesisError::InvalidConfig(_)) && m.contains("targets 1 and 2") && m.contains("`phi`"),
+        "{m}"
+    );
+    let e = error(&design(), &Task::path("p", [[1.0, 2.0]; 3]).untimed(-1e308, 1e308));
+    assert!(matches!(&e, SynthesisError::InvalidConfig(m) if m.contains("turns of input `phi`")), "{e:?}");
+    // A million turns less a little is followed.
+    let far = std::f64::consts::TAU * 0.99e6;
+    assert!(Problem::new(CouplerFourBar::default(), &design(), &three().timed([0.0, 0.5, far])).is_ok());
+}

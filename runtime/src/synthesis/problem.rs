@@ -133,6 +133,7 @@ impl<K: SensKernel> ProblemOf<K> {
             targets.extend_from_slice(row);
         }
         let inputs = resolve_timing(kernel.dims(), &task.timing, task.targets.len())?;
+        check_turns(&kernel, &inputs)?;
         if let Some(p) = &task.placement {
             for (name, (lo, hi)) in [("dx", p.dx), ("dy", p.dy), ("angle", p.angle), ("scale", p.scale)] {
                 check_bounds(name, lo, hi)?;
@@ -322,4 +323,46 @@ impl<K: SensKernel> ProblemOf<K> {
         x.as_mut().fill(v);
         x
     }
+}
+
+/// Refuses timing whose motion from target to target turns an angle input more than a sweep
+/// follows ([`MAX_TURNS`](crate::paths::sweep::MAX_TURNS)): every candidate's verifying sweep
+/// would refuse its range, and each be rejected as if it could not be assembled there. Turns are
+/// taken of each end first, so that ends near the largest `f64` do not overflow. (A length
+/// input's turns depend on the mechanism's size at the candidate; its sweep's refusal is the
+/// candidate's.)
+fn check_turns<K: Kernel>(kernel: &K, inputs: &Inputs<X<K>>) -> Result<(), SynthesisError> {
+    use crate::paths::sweep::MAX_TURNS;
+    use std::f64::consts::TAU;
+    let name = |i: usize| kernel.input_name(i).to_string();
+    let angle = |i: usize| kernel.input_kind(i) == crate::QuantityKind::Angle;
+    let too_far = |a: f64, b: f64| (b / TAU - a / TAU).abs() > MAX_TURNS;
+    match inputs {
+        Inputs::Prescribed(rows) => {
+            for (k, w) in rows.windows(2).enumerate() {
+                let (a, b) = (w[0].as_ref(), w[1].as_ref());
+                if let Some(i) = (0..a.len()).find(|&i| angle(i) && too_far(a[i], b[i])) {
+                    return Err(SynthesisError::InvalidConfig(format!(
+                        "targets {k} and {} are {:.3e} turns of input `{}` apart, more than the {MAX_TURNS:e} turns \
+                         a sweep follows from one to the next: give inputs closer together (reduce a periodic \
+                         input by whole turns)",
+                        k + 1,
+                        (b[i] / TAU - a[i] / TAU).abs(),
+                        name(i)
+                    )));
+                }
+            }
+        }
+        &Inputs::Free { lo, hi } => {
+            if angle(0) && too_far(lo, hi) {
+                return Err(SynthesisError::InvalidConfig(format!(
+                    "free timing within [{lo}, {hi}] spans {:.3e} turns of input `{}`, more than the {MAX_TURNS:e} \
+                     turns a sweep follows: give a shorter range",
+                    hi / TAU - lo / TAU,
+                    name(0)
+                )));
+            }
+        }
+    }
+    Ok(())
 }
