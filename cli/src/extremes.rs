@@ -155,9 +155,13 @@ fn select(
         let known: Vec<&str> = quantities.iter().map(|(n, _)| n.as_str()).collect();
         return Err(exit::usage(format!("--columns `{list}` names no column (they are: {})", known.join(", "))));
     }
-    list.split(',')
-        .map(str::trim)
-        .filter(|c| !c.is_empty())
+    let names: Vec<&str> = list.split(',').map(str::trim).filter(|c| !c.is_empty()).collect();
+    // A column named twice would be a row written twice.
+    if let Some(c) = names.iter().enumerate().find(|(k, c)| names[..*k].contains(c)).map(|(_, c)| c) {
+        return Err(exit::usage(format!("--columns `{list}` names `{c}` twice: name each column once")));
+    }
+    names
+        .into_iter()
         .map(|c| {
             quantities.iter().find(|(n, _)| n == c).cloned().ok_or_else(|| {
                 let known: Vec<&str> = quantities.iter().map(|(n, _)| n.as_str()).collect();

@@ -62,7 +62,7 @@ pub fn run(model: &mut Model, req: &Request) -> Result<(), Failed> {
         }
     }
     if !(req.time.is_finite() && req.time > 0.0) {
-        return Err(usage(format!("--time {} must be a positive number", req.time)));
+        return Err(usage(format!("--time {} must be a positive number", echo(req.time))));
     }
     if !(req.flywheel.is_finite() && req.flywheel >= 0.0) {
         return Err(usage(format!("--flywheel {} must be a finite number, not negative", req.flywheel)));
@@ -202,9 +202,16 @@ fn budget_spent(name: &str, steps: usize, t: f64, t_end: f64) -> String {
     };
     format!(
         "{name}: the simulation made its budget of {steps} steps (--max-steps) and reached only t = {} of \
-         --time {t_end}{pace}: raise --max-steps, or simulate a shorter --time",
-        significant(t)
+         --time {}{pace}: raise --max-steps, or simulate a shorter --time",
+        significant(t),
+        echo(t_end)
     )
+}
+
+/// A number given on the command line, written back as short as it reads exactly: in positional
+/// notation from 1e-3 to 1e6, otherwise with an exponent (`1e200`, not two hundred digits).
+fn echo(v: f64) -> String {
+    if v == 0.0 || (1e-3..1e6).contains(&v.abs()) { format!("{v}") } else { format!("{v:e}") }
 }
 
 /// `v` (not negative) to about three significant digits: `1.23e-3`, `0.123`, `12.3`, `12345`,

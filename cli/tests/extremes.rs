@@ -269,6 +269,18 @@ fn columns_naming_nothing_is_a_usage_error() {
     }
 }
 
+/// `--columns` that names a column twice is a usage error naming it, not a table with the row
+/// written twice.
+#[test]
+fn columns_named_twice_are_a_usage_error() {
+    let args = ["extremes", &shipped("rhombic_drive.kl"), "--from", "0", "--to", "1", "--columns", "x_c, phi2,x_c"];
+    let out = kinloop(&args);
+    let err = String::from_utf8_lossy(&out.stderr);
+    assert_eq!(out.status.code(), Some(2), "{err}");
+    assert!(err.contains("names `x_c` twice"), "{err}");
+    assert!(out.stdout.is_empty());
+}
+
 /// `--from` and `--to` too close together for the samples' inputs to be told apart (a range of
 /// a few units in the last place) are a usage error saying so and what to change, not a failed
 /// solve reporting the samples' inputs out of order (`found NaN then NaN` for two inputs).

@@ -34,7 +34,8 @@ pub fn figure_dir(name: &str) -> Result<PathBuf, PlotError> {
 }
 
 /// At most `max` points of a curve, equally strided, keeping the first and the last (for
-/// smaller files; the charts already skip points closer than half a pixel).
+/// smaller files; the charts already skip points closer than half a pixel). A curve keeps its
+/// ends: a `max` below 2 counts as 2.
 ///
 /// ```
 /// use kinloop_viz::plot::decimate;
@@ -42,9 +43,12 @@ pub fn figure_dir(name: &str) -> Result<PathBuf, PlotError> {
 /// let d = decimate(&pts, 11);
 /// assert_eq!(d.len(), 11);
 /// assert_eq!((d[0], d[10]), (pts[0], pts[100]));
+/// assert_eq!(decimate(&pts, 0), [pts[0], pts[100]]);
 /// ```
 pub fn decimate(points: &[(f64, f64)], max: usize) -> Vec<(f64, f64)> {
-    if points.len() <= max || max < 2 {
+    // Every point was kept for a `max` of 0 or 1, against "at most `max`".
+    let max = max.max(2);
+    if points.len() <= max {
         return points.to_vec();
     }
     let stride = (points.len() - 1).div_ceil(max - 1);
