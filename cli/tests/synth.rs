@@ -41,6 +41,18 @@ fn timed_targets() -> String {
     file("synth_timed.csv", &format!("# five points of a known four-bar\nphi,x,y\n{}\n", rows.join("\n")))
 }
 
+/// Path targets `x,y` without inputs (for `--range`), in the file `name`.
+fn untimed_targets(name: &str) -> String {
+    let rows: Vec<String> = phis()
+        .iter()
+        .map(|&p| {
+            let [x, y] = coupler_point(TRUTH, p);
+            format!("{x:?},{y:?}")
+        })
+        .collect();
+    file(name, &rows.join("\n"))
+}
+
 /// The CSV's header and rows of cells.
 fn csv(out: &Output) -> (Vec<String>, Vec<Vec<String>>) {
     let text = String::from_utf8(out.stdout.clone()).expect("utf-8");
@@ -222,14 +234,7 @@ fn bad_targets_files_are_usage_errors_naming_the_file_and_line() {
 /// search whose every candidate is rejected.
 #[test]
 fn an_empty_range_is_a_usage_error() {
-    let rows: Vec<String> = phis()
-        .iter()
-        .map(|&p| {
-            let [x, y] = coupler_point(TRUTH, p);
-            format!("{x:?},{y:?}")
-        })
-        .collect();
-    let targets = file("synth_untimed.csv", &rows.join("\n"));
+    let targets = untimed_targets("synth_untimed.csv");
     let four_bar = shipped("coupler_four_bar.kl");
     let args = ["synth", &four_bar, "--targets", &targets, "--path", "p", "--vary", "a=1..2", "--range", "1..1"];
     let o = kinloop(&args);
@@ -258,14 +263,7 @@ fn too_many_jobs_is_a_usage_error() {
 /// rejected for "no assembly" or left unassembled, when the verifying sweeps refuse the range.
 #[test]
 fn a_range_of_too_many_turns_is_a_usage_error() {
-    let rows: Vec<String> = phis()
-        .iter()
-        .map(|&p| {
-            let [x, y] = coupler_point(TRUTH, p);
-            format!("{x:?},{y:?}")
-        })
-        .collect();
-    let targets = file("synth_untimed_long.csv", &rows.join("\n"));
+    let targets = untimed_targets("synth_untimed_long.csv");
     let four_bar = shipped("coupler_four_bar.kl");
     for (range, deg, span) in [
         ("0..1e300", false, "6283185.3 rad"),
