@@ -388,9 +388,9 @@ pub use kinloop_runtime::nalgebra;
 pub use kinloop_runtime::{
     AtSingular, BlockInfo, BlockNames, ColumnKey, Compiled, CompiledSens, Configured, DetSigns, Error, Event,
     EventKind, Extreme, Extremum, ExtremumOf, FlatMotion, Health, Jac, Kernel, Kin, LENGTH_UNIT, Location, Mechanism,
-    Named, NamedSensitivities, NewtonConfig, NewtonStop, Quantity, QuantityKind, Reach, Sens, SensKernel, SensState,
-    Sensitivities, SolveReport, Source, Sweep, SweepConfig, SweepOf, SweepResult, SweepStop, Table, TraceConfig,
-    Traced, TracedOf, TracedPoint, TracedPointOf, Vec2, deg, to_deg,
+    Named, NamedSensitivities, NewtonConfig, NewtonStop, Number, Quantity, QuantityKind, Reach, Sens, SensKernel,
+    SensState, Sensitivities, SolveReport, Source, Sweep, SweepConfig, SweepOf, SweepResult, SweepStop, Table,
+    TraceConfig, Traced, TracedOf, TracedPoint, TracedPointOf, Vec2, deg, to_deg,
 };
 pub use kinloop_runtime::{analysis, dims, drawing, dynamics, events, metrics, paths, synthesis};
 // A glob of the scan module: it holds `par_scan` whenever the runtime is built with rayon,

@@ -11,8 +11,8 @@ use crate::exit::usage;
 use crate::solve::in_units;
 use crate::{Failed, exit, samples};
 use kinloop_model::Model;
-use kinloop_runtime::dynamics::{Cycle, DynamicsError, Flywheel, SpeedLaw};
-use kinloop_runtime::{Error, QuantityKind, Table};
+use kinloop_runtime::dynamics::{Cycle, DynamicsError, Flywheel, MIN_DELTA, SpeedLaw};
+use kinloop_runtime::{Error, Number, QuantityKind, Table};
 use std::io::Write;
 use std::path::Path;
 
@@ -76,13 +76,14 @@ pub fn run(model: &mut Model, req: &Request) -> Result<(), Failed> {
     }
     samples::check(req.samples)?;
     if !(req.speed.is_finite() && req.speed > 0.0) {
-        return Err(usage(format!("--speed {} must be a positive number", req.speed)));
+        return Err(usage(format!("--speed {} must be a positive number", Number(req.speed))));
     }
-    if !(req.delta > 0.0 && req.delta < 2.0) {
-        return Err(usage(format!("--delta {} must lie between 0 and 2 (e.g. 0.02)", req.delta)));
+    if !(req.delta >= MIN_DELTA && req.delta < 2.0) {
+        let min = Number(MIN_DELTA);
+        return Err(usage(format!("--delta {} must lie between {min} and 2 (e.g. 0.02)", Number(req.delta))));
     }
     if !req.start.is_finite() {
-        return Err(usage(format!("--start {} must be a finite number", req.start)));
+        return Err(usage(format!("--start {} must be a finite number", Number(req.start))));
     }
     let about = parse_about(req.about)?;
     let angle = if req.deg { 180.0 / std::f64::consts::PI } else { 1.0 };
@@ -182,7 +183,7 @@ fn write_flywheel(f: &Flywheel, req: &Request, angle: f64, file: Option<std::fs:
     let Some(file) = file else {
         for (name, unit, value) in rows {
             let unit = if unit.is_empty() { String::new() } else { format!(" {unit}") };
-            eprintln!("flywheel: {name} = {value}{unit}");
+            eprintln!("flywheel: {name} = {}{unit}", Number(value));
         }
         return Ok(());
     };

@@ -128,7 +128,7 @@ enum Command {
         #[arg(long, default_value_t = 360, allow_hyphen_values = true)]
         samples: usize,
         /// The coefficient of speed fluctuation `(omega_max - omega_min) / omega_mean` the
-        /// flywheel is sized for.
+        /// flywheel is sized for (from 1e-6 to below 2).
         #[arg(long, default_value_t = 0.02, allow_hyphen_values = true)]
         delta: f64,
         /// The frame point the shaking moments are taken about, `x,y` (the origin otherwise).

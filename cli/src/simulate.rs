@@ -20,7 +20,7 @@ use crate::exit::usage;
 use crate::{Failed, exit, samples};
 use kinloop_model::Model;
 use kinloop_runtime::dynamics::{DenseStep, DynamicsError, RunConfig};
-use kinloop_runtime::{Error, Table};
+use kinloop_runtime::{Error, Number, Table};
 
 /// The default step budget of the integration (`--max-steps`): a run of at most seconds (the
 /// shipped engine at 150 rad/s takes about 60 steps a turn, a million steps in about four
@@ -62,10 +62,10 @@ pub fn run(model: &mut Model, req: &Request) -> Result<(), Failed> {
         }
     }
     if !(req.time.is_finite() && req.time > 0.0) {
-        return Err(usage(format!("--time {} must be a positive number", echo(req.time))));
+        return Err(usage(format!("--time {} must be a positive number", Number(req.time))));
     }
     if !(req.flywheel.is_finite() && req.flywheel >= 0.0) {
-        return Err(usage(format!("--flywheel {} must be a finite number, not negative", req.flywheel)));
+        return Err(usage(format!("--flywheel {} must be a finite number, not negative", Number(req.flywheel))));
     }
     if req.max_steps == 0 {
         return Err(usage(format!("--max-steps 0 allows no step: give at least 1 (the default is {MAX_STEPS})")));
@@ -204,14 +204,8 @@ fn budget_spent(name: &str, steps: usize, t: f64, t_end: f64) -> String {
         "{name}: the simulation made its budget of {steps} steps (--max-steps) and reached only t = {} of \
          --time {}{pace}: raise --max-steps, or simulate a shorter --time",
         significant(t),
-        echo(t_end)
+        Number(t_end)
     )
-}
-
-/// A number given on the command line, written back as short as it reads exactly: in positional
-/// notation from 1e-3 to 1e6, otherwise with an exponent (`1e200`, not two hundred digits).
-fn echo(v: f64) -> String {
-    if v == 0.0 || (1e-3..1e6).contains(&v.abs()) { format!("{v}") } else { format!("{v:e}") }
 }
 
 /// `v` (not negative) to about three significant digits: `1.23e-3`, `0.123`, `12.3`, `12345`,

@@ -176,7 +176,7 @@ fn bad_requests_are_usage_errors_and_bad_values_failures() {
     let (c, e) = code(&["dynamics", &shipped("four_bar.kl"), "--speed", "1", "--params", "a=1,b=3,c=2.5,d=3.2"]);
     assert_eq!(c, Some(2), "{e}");
     assert!(e.contains("declares no bodies"), "{e}");
-    for args in [["--samples", "4"], ["--delta", "2.5"], ["--about", "1"]] {
+    for args in [["--samples", "4"], ["--delta", "2.5"], ["--delta", "1e-300"], ["--about", "1"]] {
         let mut all = vec!["dynamics", engine.as_str(), "--speed", "10"];
         all.extend(args);
         let (c, e) = code(&all);

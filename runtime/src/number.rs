@@ -25,8 +25,16 @@ const SMALL: f64 = 1e-5;
 /// to the same bits. Zero, infinities and NaN are written as Rust writes them (`0`, `-0`, `inf`,
 /// `-inf`, `NaN`). Formatting flags (width, precision) are not applied: the digits are the
 /// number's own.
+///
+/// ```
+/// use kinloop_runtime::Number;
+/// assert_eq!(Number(0.1).to_string(), "0.1");
+/// assert_eq!(Number(1234567.875).to_string(), "1234567.875");
+/// assert_eq!(Number(1e300).to_string(), "1e300");
+/// assert_eq!(Number(-2.08e-17).to_string(), "-2.08e-17");
+/// ```
 #[derive(Clone, Copy, Debug, PartialEq)]
-pub(crate) struct Number(pub(crate) f64);
+pub struct Number(pub f64);
 
 impl fmt::Display for Number {
     fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {

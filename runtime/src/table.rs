@@ -79,8 +79,18 @@ impl Table {
     }
 
     /// Appends a row (it must have one value per column).
+    ///
+    /// # Panics
+    ///
+    /// If the row's length is not the number of columns: a ragged row would read as missing
+    /// values (NaN) in [`Table::column`] and fail only later, in [`Table::write_csv`].
     pub fn push(&mut self, row: Vec<f64>) {
-        debug_assert_eq!(row.len(), self.columns.len());
+        assert!(
+            row.len() == self.columns.len(),
+            "Table::push: a row of {} values for {} columns",
+            row.len(),
+            self.columns.len()
+        );
         self.rows.push(row);
     }
 

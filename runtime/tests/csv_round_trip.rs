@@ -74,3 +74,10 @@ fn far_magnitudes_are_written_in_exponent_notation_and_read_back() {
         assert_eq!(read.to_bits(), written.to_bits(), "{read} vs {written}");
     }
 }
+
+#[test]
+#[should_panic(expected = "Table::push: a row of 2 values for 6 columns")]
+fn a_row_of_the_wrong_length_is_refused_in_every_build() {
+    let mut t = sample();
+    t.push(vec![1.0, 2.0]);
+}

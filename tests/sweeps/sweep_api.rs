@@ -163,7 +163,10 @@ fn trace_options_are_validated_naming_the_field() {
     // A trace of few points stops there.
     let t = m.trace_curve(0.0, PI, &g, &TraceConfig::default().with_max_points(5)).unwrap();
     assert_eq!(t.points.len(), 5);
-    assert!(!t.closed);
+    assert!(!t.closed && t.truncated, "{t:?}");
+    // The whole curve, closed, is not truncated.
+    let t = m.trace_curve(0.0, PI, &g, &TraceConfig::default()).unwrap();
+    assert!(t.closed && !t.truncated, "{} points", t.points.len());
 }
 
 #[test]

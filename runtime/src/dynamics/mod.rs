@@ -62,7 +62,7 @@ mod terms;
 #[cfg(test)]
 mod robust_tests;
 
-pub use cycle::{Cycle, CyclePoint, Flywheel, InverseCycle, SpeedLaw, turn_states};
+pub use cycle::{Cycle, CyclePoint, Flywheel, InverseCycle, MIN_DELTA, SpeedLaw, turn_states};
 pub use error::DynamicsError;
 pub use eval::{Dynamics, Shaking};
 pub use model::{Body, Coord, ForceLaw, Load, MassModel, Point, Rotation, TorqueLaw};

@@ -140,15 +140,15 @@ fn a_flywheel_beyond_f64_is_an_error() {
         .collect();
     let err = Cycle { points }.flywheel(0.01).unwrap_err();
     assert!(matches!(err, DynamicsError::Overflow { .. }), "{err}");
-    // A fluctuation so small that the flywheel is beyond f64.
+    // A work swing so large that the flywheel for the smallest fluctuation is beyond f64.
     let n = 16;
     let points: Vec<CyclePoint> = (0..n)
         .map(|j| {
             let phi = std::f64::consts::TAU * j as f64 / n as f64;
-            point(phi, 0.0, 1e300 * phi.sin(), 1.0, 1.0)
+            point(phi, 0.0, 1e303 * phi.sin(), 1.0, 1.0)
         })
         .collect();
-    let err = Cycle { points: points.clone() }.flywheel(1e-300).unwrap_err();
+    let err = Cycle { points: points.clone() }.flywheel(super::MIN_DELTA).unwrap_err();
     assert!(matches!(err, DynamicsError::Overflow { .. }), "{err}");
     // Hand-made points that are not finite, or none.
     let mut bad = points;

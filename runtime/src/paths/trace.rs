@@ -108,6 +108,9 @@ pub struct TracedOf<Q, X> {
     pub folds: Vec<Event>,
     /// The curve closed on itself (it came back to its first point).
     pub closed: bool,
+    /// The trace stopped at [`TraceConfig::max_points`], before the curve closed or left the
+    /// segment: the curve goes on past its last point.
+    pub truncated: bool,
 }
 
 /// A compiled mechanism's traced solution curve ([`trace_curve`]).
@@ -118,7 +121,7 @@ pub type Traced<const N: usize, const NI: usize> = TracedOf<[f64; N], [f64; NI]>
 /// where the input reverses, so a mechanism whose input cannot make a full turn (a non-Grashof
 /// four-bar driven by a rocking link) yields its complete closed curve. Stops when the curve
 /// closes, leaves the segment between `from - (to - from)` and `to`, or after
-/// [`TraceConfig::max_points`]. Arclength is measured in scaled coordinates (see
+/// [`TraceConfig::max_points`] (then [`TracedOf::truncated`] says so). Arclength is measured in scaled coordinates (see
 /// [`TraceConfig::ds`]): the same points in any unit of length.
 /// Allocates (it returns a `Vec`); use [`Sweep`](crate::Sweep) in hot loops.
 ///
@@ -168,10 +171,14 @@ pub fn trace_curve_of<K: Kernel>(
     let start_z = start.z(&metric);
     let point =
         |p: &CurvePoint<Q<K>>| TracedPointOf { x: path.at_sigma(p.sigma), q: p.q.clone(), input_rate: p.dsigma() };
-    let mut out = TracedOf { points: vec![point(&start)], folds: Vec::new(), closed: false };
+    let mut out = TracedOf { points: vec![point(&start)], folds: Vec::new(), closed: false, truncated: false };
     let (ds, mut p, mut walked) = (opts.ds, start, 0.0);
     let mut step = ds;
-    while out.points.len() < opts.max_points {
+    loop {
+        if out.points.len() >= opts.max_points {
+            out.truncated = true;
+            break;
+        }
         let Some(next) = arc_step(m, &path, &metric, &p, step, &cfg) else {
             step *= 0.5;
             if step < ds * 1e-6 {
