@@ -3,13 +3,18 @@
 //! table every 15 degrees of the cam (follower lift, rocker angle, their analogs), checks that
 //! the follower and the rocker stand exactly still in each dwell (velocity and acceleration
 //! analogs zero), and sets the peak velocity and acceleration analogs of the rise and of the
-//! return, located along the sweep, beside the law's closed-form peaks.
+//! return, located along the sweep, beside the law's closed-form peaks. Then the cam itself: its
+//! pitch curve and profile for a 10 mm roller by kinematic inversion of the follower's motion,
+//! the largest pressure angle of the rise and of the return, and the sharpest point of the
+//! profile against the roller (undercut or not).
 //!
 //! Run with `cargo run --release -p kinloop-examples --example dwell_cam`. It writes the sweep
-//! as CSV into `out/dwell_cam/` and the follower's and rocker's charts as SVG into the figure
-//! folder (`KINLOOP_FIGURES=docs/figures` for the README's).
+//! and the cam's profile as CSV into `out/dwell_cam/` and the follower's, the rocker's and the
+//! cam's charts as SVG into the figure folder (`KINLOOP_FIGURES=docs/figures` for the
+//! README's).
 
 use kinloop::Table;
+use kinloop::analysis::cam::{CamProfile, FollowerSample, cam_profile};
 use kinloop::plot::{self, Axis, Kind, Panel, Series};
 use kinloop_fixtures::cam_linkage::{DwellCamRocker, DwellCamRockerState};
 use std::f64::consts::TAU;
@@ -139,15 +144,7 @@ fn main() -> Result<()> {
         deg(m.phi1),
         deg(m.phi1 + m.fall)
     );
-    // A full turn in steps of 1 degree, each solve warm-started from the previous position so
-    // the rocker stays in the declared assembly mode.
-    let mut guess = m.guess(0.0);
-    let mut states: Vec<DwellCamRockerState> = Vec::with_capacity(361);
-    for k in 0..=360 {
-        let state = m.kinematics(f64::from(k).to_radians(), &guess)?;
-        guess = state.q;
-        states.push(state);
-    }
+    let states = turn(&m, 360)?;
     println!(
         "{:>5} {:>9} {:>10} {:>11} {:>9} {:>10} {:>11}",
         "phi", "s [mm]", "ds/dphi", "d2s/dphi2", "psi [°]", "dpsi/dphi", "d2psi/dphi2"
@@ -166,7 +163,91 @@ fn main() -> Result<()> {
     }
     report_dwells(&m)?;
     report_peaks(&m)?;
-    write_outputs(&m, &states)
+    let cam = cam(&states)?;
+    report_cam(&m, &states, &cam);
+    write_outputs(&m, &states, &cam)
+}
+
+/// One turn of the cam in `steps` equal steps (`steps + 1` states, both ends included), each
+/// solve warm-started from the previous position so the rocker stays in the declared assembly
+/// mode.
+pub fn turn(m: &DwellCamRocker, steps: usize) -> Result<Vec<DwellCamRockerState>> {
+    let mut guess = m.guess(0.0);
+    let mut states = Vec::with_capacity(steps + 1);
+    for k in 0..=steps {
+        let state = m.kinematics(TAU * k as f64 / steps as f64, &guess)?;
+        guess = state.q;
+        states.push(state);
+    }
+    Ok(states)
+}
+
+/// The radius of the roller the cam is made for (mm): the designer's choice, not the law's.
+pub const ROLLER: f64 = 10.0;
+
+/// The disc cam that moves the follower by the law, found by kinematic inversion from the
+/// follower pin's positions and analogs over `states`: the cam turns with the input shaft about
+/// the origin, and the follower slides on the vertical line through it.
+pub fn cam(states: &[DwellCamRockerState]) -> Result<CamProfile> {
+    let follower: Vec<FollowerSample> = states
+        .iter()
+        .map(|s| FollowerSample {
+            cam: [s.input.phi, 1.0, 0.0],
+            point: [
+                [s.out.follower.x, s.out.follower.y],
+                [s.dout.follower.x, s.dout.follower.y],
+                [s.d2out.follower.x, s.d2out.follower.y],
+            ],
+            direction: [0.0, 1.0],
+        })
+        .collect();
+    Ok(cam_profile(&follower, [0.0, 0.0], ROLLER)?)
+}
+
+/// The largest pressure angle over the states whose cam angle lies in `[from, to]`: `(cam
+/// angle, pressure angle)`.
+pub fn max_pressure(states: &[DwellCamRockerState], cam: &CamProfile, from: f64, to: f64) -> (f64, f64) {
+    states
+        .iter()
+        .zip(&cam.pressure_angle)
+        .filter(|(s, _)| s.input.phi >= from && s.input.phi <= to)
+        .map(|(s, &a)| (s.input.phi, a))
+        .fold((from, 0.0), |best, at| if at.1 > best.1 { at } else { best })
+}
+
+/// What a cam designer checks of the cam: its size, the pressure angle on the rise and the
+/// return, and the sharpest point of the profile against the roller.
+fn report_cam(m: &DwellCamRocker, states: &[DwellCamRockerState], cam: &CamProfile) {
+    let deg = f64::to_degrees;
+    println!(
+        "\ncam, by inversion of the follower's motion (roller radius {ROLLER} mm, the follower's line through the \
+         cam's centre): pitch curve from {} to {} mm from the centre, profile from {} mm",
+        m.y0,
+        m.y0 + m.lift,
+        m.y0 - ROLLER
+    );
+    for seg in segments(m) {
+        let (at, alpha) = max_pressure(states, cam, seg.start, seg.start + seg.span);
+        println!(
+            "  {:<6} largest pressure angle {:.3}° at {:.0}° (of the samples every degree)",
+            seg.name,
+            deg(alpha),
+            deg(at)
+        );
+    }
+    if let Some((k, radius)) = cam.min_convex_radius() {
+        println!(
+            "  sharpest convex point of the pitch curve: radius of curvature {radius:.4} mm at {:.0}°; of the profile \
+             {:.4} mm: {}",
+            deg(states[k].input.phi),
+            cam.profile_radius(k),
+            if cam.undercut().is_empty() {
+                "no undercut".to_string()
+            } else {
+                format!("UNDERCUT at {} samples", cam.undercut().len())
+            }
+        );
+    }
 }
 
 /// Each dwell: where follower and rocker stand, and that they stand exactly still.
@@ -246,10 +327,18 @@ fn report_peaks(m: &DwellCamRocker) -> Result<()> {
 
 /// The sweep as CSV and the follower's and the rocker's charts as SVG, the located peaks of the
 /// follower's analogs marked.
-fn write_outputs(m: &DwellCamRocker, states: &[DwellCamRockerState]) -> Result<()> {
+fn write_outputs(m: &DwellCamRocker, states: &[DwellCamRockerState], disc: &CamProfile) -> Result<()> {
     let data = plot::out_dir("dwell_cam")?;
     let table = Table::from_states::<DwellCamRocker, _, _, _>(states.iter().map(|s| &s.flat)).with_length_unit(UNIT);
     table.save_csv(data.join("sweep.csv"))?;
+    let columns = ["phi", "pitch.x", "pitch.y", "profile.x", "profile.y", "pitch_radius", "pressure_angle"];
+    let mut profile = Table::new(columns.iter().map(|c| c.to_string()).collect());
+    for (k, s) in states.iter().enumerate() {
+        let ([px, py], [cx, cy]) = (disc.pitch[k], disc.profile[k]);
+        profile.push(vec![s.input.phi, px, py, cx, cy, disc.pitch_radius[k], disc.pressure_angle[k]]);
+    }
+    let units = [("phi", "rad"), ("pitch", UNIT), ("profile", UNIT), ("pitch_radius", UNIT), ("pressure_angle", "rad")];
+    profile.with_units(&units).save_csv(data.join("cam.csv"))?;
     let dir = plot::figure_dir("dwell_cam")?;
     let cam = Axis::angle("cam angle φ");
     let phi: Vec<f64> = states.iter().map(|s| s.input.phi).collect();
@@ -293,6 +382,24 @@ fn write_outputs(m: &DwellCamRocker, states: &[DwellCamRockerState]) -> Result<(
             )),
         ],
     )?;
-    println!("\nwrote {} and 2 charts to {}", data.join("sweep.csv").display(), dir.display());
+    let length = Kind::length(UNIT);
+    let curve = |points: &[[f64; 2]]| points.iter().map(|p| (p[0], p[1])).collect::<Vec<_>>();
+    plot::xy_chart(
+        &dir.join("cam.svg"),
+        &format!("Dwell cam: its profile for a {ROLLER} mm roller, by inversion"),
+        &Axis::new("x", length.clone()),
+        &Axis::new("y", length.clone()),
+        &[
+            Series::new("pitch curve (roller centre)", length.clone(), curve(&disc.pitch)),
+            Series::new("cam profile", length, curve(&disc.profile)),
+        ],
+        &[(0.0, 0.0)],
+    )?;
+    println!(
+        "\nwrote {} and {} and 3 charts to {}",
+        data.join("sweep.csv").display(),
+        data.join("cam.csv").display(),
+        dir.display()
+    );
     Ok(())
 }

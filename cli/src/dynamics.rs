@@ -78,7 +78,7 @@ pub fn run(model: &mut Model, req: &Request) -> Result<(), Failed> {
     if !(req.speed.is_finite() && req.speed > 0.0) {
         return Err(usage(format!("--speed {} must be a positive number", Number(req.speed))));
     }
-    if !(req.delta >= MIN_DELTA && req.delta < 2.0) {
+    if !(MIN_DELTA..2.0).contains(&req.delta) {
         let min = Number(MIN_DELTA);
         return Err(usage(format!("--delta {} must lie between {min} and 2 (e.g. 0.02)", Number(req.delta))));
     }

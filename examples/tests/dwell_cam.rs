@@ -1,8 +1,9 @@
 //! The numbers the `dwell_cam` example prints: the peaks of the follower's analogs in the rise
 //! and the return agree with the 3-4-5 law's closed form, and the follower and the rocker stand
-//! exactly still in every dwell. The closed form is worked out here from the law's polynomial
-//! (never read from the example or the library), for the default cam and for a second one with
-//! other lift, segment angles and dwells.
+//! exactly still in every dwell; the cam found by inversion has the radial follower's pressure
+//! angle and the pitch curve's radius of curvature as a polar curve. The closed forms are worked
+//! out here from the law's polynomial (never read from the example or the library), for the
+//! default cam and for a second one with other lift, segment angles and dwells.
 
 // The example's own functions, so that what is checked is what it prints (its `main` and its
 // chart writing are not called here).
@@ -10,7 +11,7 @@
 #[path = "../dwell_cam.rs"]
 mod dwell_cam;
 
-use dwell_cam::{Segment, check_dwell, dwells, segment_peaks, segments};
+use dwell_cam::{ROLLER, Segment, cam, check_dwell, dwells, max_pressure, segment_peaks, segments, turn};
 use kinloop_fixtures::cam_linkage::DwellCamRocker;
 use std::f64::consts::TAU;
 
@@ -120,5 +121,71 @@ fn the_dwell_check_sees_a_moving_follower() -> Result<(), Box<dyn std::error::Er
     let rise = dwell_cam::Dwell { name: "rise", from: m.phi0, to: m.phi0 + m.rise };
     let c = check_dwell(&m, &rise)?;
     assert!(!c.still && c.analogs.iter().all(|&a| a > 0.0), "{c:?}");
+    Ok(())
+}
+
+/// The follower's lift at cam angle `phi` in `[0, 2 pi]` and its first two derivatives, piece by
+/// piece from the polynomial: the rise `h p(u)`, `u = (phi - phi0) / rise`; the return
+/// `h (1 - p(w))`, `w = (phi - phi1) / fall`; the dwells at 0 and `h`.
+fn lift(m: &DwellCamRocker, phi: f64) -> [f64; 3] {
+    let (h, u, w) = (m.lift, (phi - m.phi0) / m.rise, (phi - m.phi1) / m.fall);
+    if (0.0..=1.0).contains(&u) {
+        let [p, dp, d2p] = law(u);
+        [h * p, h * dp / m.rise, h * d2p / (m.rise * m.rise)]
+    } else if (0.0..=1.0).contains(&w) {
+        let [p, dp, d2p] = law(w);
+        [h * (1.0 - p), -h * dp / m.fall, -h * d2p / (m.fall * m.fall)]
+    } else if phi > m.phi0 + m.rise && phi < m.phi1 {
+        [h, 0.0, 0.0]
+    } else {
+        [0.0; 3]
+    }
+}
+
+/// The cam the example prints, at every half degree: its follower's line passes through the
+/// cam's centre, so the pitch curve is the polar curve `R = y0 + s` and the pressure angle
+/// `atan(|s'| / R)`; the radius of curvature of a polar curve is
+/// `(R^2 + R'^2)^(3/2) / (R^2 + 2 R'^2 - R R'')`.
+#[test]
+fn the_cam_has_the_radial_follower_s_pressure_angle_and_curvature() -> Result<(), Box<dyn std::error::Error>> {
+    for m in cams() {
+        let states = turn(&m, 720)?;
+        let disc = cam(&states)?;
+        let mut sharpest = f64::INFINITY;
+        for (k, st) in states.iter().enumerate() {
+            let phi = st.input.phi;
+            let [sv, ds, d2s] = lift(&m, phi);
+            let r = m.y0 + sv;
+            let alpha = ds.abs().atan2(r);
+            let rho = (r * r + ds * ds).powf(1.5) / (r * r + 2.0 * ds * ds - r * d2s);
+            let what = format!("lift {} at {:.2} deg", m.lift, phi.to_degrees());
+            assert!((disc.pressure_angle[k] - alpha).abs() <= 1e-13, "{what}: {} vs {alpha}", disc.pressure_angle[k]);
+            assert!(
+                (disc.pitch_radius[k] - rho).abs() <= 1e-11 * rho.abs(),
+                "{what}: {} vs {rho}",
+                disc.pitch_radius[k]
+            );
+            assert!((disc.pitch[k][0].hypot(disc.pitch[k][1]) - r).abs() <= 1e-13 * r, "{what}");
+            if rho > 0.0 {
+                sharpest = sharpest.min(rho);
+            }
+        }
+        let (_, printed) = disc.min_convex_radius().expect("convex somewhere");
+        assert!((printed - sharpest).abs() <= 1e-11 * sharpest);
+        assert_eq!(disc.undercut().is_empty(), sharpest > ROLLER);
+        // The largest pressure angle of the rise, as printed, is the largest of the samples'.
+        let [rise, _] = segments(&m);
+        let (_, alpha) = max_pressure(&states, &disc, rise.start, rise.start + rise.span);
+        let closed = states
+            .iter()
+            .map(|st| st.input.phi)
+            .filter(|&phi| phi >= rise.start && phi <= rise.start + rise.span)
+            .map(|phi| {
+                let [sv, ds, _] = lift(&m, phi);
+                ds.abs().atan2(m.y0 + sv)
+            })
+            .fold(0.0, f64::max);
+        assert!((alpha - closed).abs() <= 1e-13, "{alpha} vs {closed}");
+    }
     Ok(())
 }

@@ -1,4 +1,4 @@
-//! Analysis on top of sweeps: design metrics, objectives with exact gradients, `Sampled` along
+//! Analysis on top of sweeps: cam profiles by inversion, design metrics, objectives with exact gradients, `Sampled` along
 //! paths through the input space, and the synthesis example.
 //!
 //! One test binary per subject: each module below was a binary of its own, and every binary
@@ -10,6 +10,7 @@
 #[path = "../support/mod.rs"]
 mod support;
 
+mod cam_profile;
 mod classical_synthesis;
 mod metrics_mechanisms;
 mod objectives;

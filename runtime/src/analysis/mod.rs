@@ -21,6 +21,7 @@
 //! | dwells of a progressive output | [`SampledOf::dwells`] | extremes plus band crossings (see [`dwell`]) |
 //! | harmonics over a cycle | [`SampledOf::fourier`] | trapezoidal rule, exact for trigonometric polynomials |
 //! | residual unbalance `max |v - v_1|` | [`SampledOf::unbalance`] | extremes of the residual |
+//! | a disc cam's pitch curve, profile, curvature and pressure angle from its follower's motion | [`cam::cam_profile`] | kinematic inversion of the positions and analogs |
 //! | design optimisation without gradients | [`NelderMead`] (`minimize`, `minimize_boxed`) | Nelder–Mead simplex (in a box: MINUIT's sine transformation) |
 //!
 //! ```ignore
@@ -41,6 +42,7 @@
 //! # Ok::<(), kinloop_runtime::Error>(())
 //! ```
 
+pub mod cam;
 pub(crate) mod column;
 #[cfg(test)]
 pub(crate) mod demo;

@@ -365,7 +365,7 @@ impl Cycle {
     /// `delta` lies in `[MIN_DELTA, 2)` ([`MIN_DELTA`]); outside it the error is
     /// [`DynamicsError::BadValue`].
     pub fn flywheel(&self, delta: f64) -> Result<Flywheel, DynamicsError> {
-        if !(delta >= MIN_DELTA && delta < 2.0) {
+        if !(MIN_DELTA..2.0).contains(&delta) {
             return Err(DynamicsError::BadValue {
                 what: "coefficient of speed fluctuation",
                 value: delta,
