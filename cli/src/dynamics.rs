@@ -86,6 +86,39 @@ pub fn run(model: &mut Model, req: &Request) -> Result<(), Failed> {
         return Err(usage(format!("--start {} must be a finite number", Number(req.start))));
     }
     let about = parse_about(req.about)?;
+    // Created before the cycle is computed (which may take minutes): a path that cannot be
+    // written stops first. Removed again if no sizing comes to be written into it.
+    let file = match req.flywheel {
+        Some(path) => Some(std::fs::File::create(path).map_err(|e| {
+            eprintln!("error: cannot create the flywheel file {}: {e}", path.display());
+            Failed(exit::CANT_CREATE)
+        })?),
+        None => None,
+    };
+    let (cycle, flywheel) = cycle_and_flywheel(model, req, about, &name).inspect_err(|_| {
+        // Best effort: the error reported is the cycle's.
+        if let Some(path) = req.flywheel {
+            let _ = std::fs::remove_file(path);
+        }
+    })?;
+    let angle = if req.deg { 180.0 / std::f64::consts::PI } else { 1.0 };
+    let input = model.inputs()[0].clone();
+    let io_error = |what: &str, e: std::io::Error| {
+        eprintln!("error: cannot write {what}: {e}");
+        Failed(exit::IO_ERR)
+    };
+    let table = cycle_table(&cycle, &input, req.deg);
+    table.write_csv(std::io::stdout().lock()).map_err(|e| io_error("the table", e))?;
+    write_flywheel(&flywheel, req, angle, file).map_err(|e| io_error("the flywheel", e))
+}
+
+/// The inverse cycle at the request's speed and the flywheel sized over it.
+fn cycle_and_flywheel(
+    model: &mut Model,
+    req: &Request,
+    about: [f64; 2],
+    name: &str,
+) -> Result<(Cycle, Flywheel), Failed> {
     let angle = if req.deg { 180.0 / std::f64::consts::PI } else { 1.0 };
     let (speed, start) = (req.speed / angle, req.start / angle);
     let cycle = model.inverse_cycle(SpeedLaw::Constant(speed)).start(start).samples(req.samples).about(about).run();
@@ -111,22 +144,7 @@ pub fn run(model: &mut Model, req: &Request) -> Result<(), Failed> {
         eprintln!("error: {name}: flywheel: {e}");
         Failed(exit::SOLVE_FAILED)
     })?;
-    let input = model.inputs()[0].clone();
-    let io_error = |what: &str, e: std::io::Error| {
-        eprintln!("error: cannot write {what}: {e}");
-        Failed(exit::IO_ERR)
-    };
-    // Created before anything is written: a path that cannot be written stops first.
-    let file = match req.flywheel {
-        Some(path) => Some(std::fs::File::create(path).map_err(|e| {
-            eprintln!("error: cannot create the flywheel file {}: {e}", path.display());
-            Failed(exit::CANT_CREATE)
-        })?),
-        None => None,
-    };
-    let table = cycle_table(&cycle, &input, req.deg);
-    table.write_csv(std::io::stdout().lock()).map_err(|e| io_error("the table", e))?;
-    write_flywheel(&flywheel, req, angle, file).map_err(|e| io_error("the flywheel", e))
+    Ok((cycle, flywheel))
 }
 
 /// The cycle as a table: per angle the input, its speed and acceleration, the reduced inertia

@@ -183,6 +183,27 @@ fn bad_requests_are_usage_errors_and_bad_values_failures() {
         assert_eq!(c, Some(2), "{args:?}: {e}");
         assert!(e.contains(args[0]), "{args:?}: {e}");
     }
+    // A flywheel file that cannot be created stops the command before the cycle is computed
+    // (here a start angle the cycle would refuse); one that can is removed again when the
+    // cycle fails.
+    let missing = std::env::temp_dir().join(format!("kinloop-no-such-dir-{}", std::process::id())).join("f.csv");
+    let (c, e) = code(&[
+        "dynamics",
+        engine.as_str(),
+        "--speed",
+        "10",
+        "--start",
+        "1e20",
+        "--flywheel",
+        missing.to_str().unwrap(),
+    ]);
+    assert_eq!(c, Some(73), "{e}");
+    assert!(e.contains("cannot create the flywheel file") && !e.contains("start"), "{e}");
+    let left = std::env::temp_dir().join(format!("kinloop-flywheel-{}.csv", std::process::id()));
+    let (c, e) =
+        code(&["dynamics", engine.as_str(), "--speed", "10", "--start", "1e20", "--flywheel", left.to_str().unwrap()]);
+    assert_eq!(c, Some(2), "{e}");
+    assert!(!left.exists(), "an empty flywheel file was left behind");
     // The speed on its own (given twice, clap refuses the repetition before the check).
     for speed in ["-3", "0", "inf", "NaN"] {
         let (c, e) = code(&["dynamics", engine.as_str(), "--speed", speed]);
