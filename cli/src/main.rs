@@ -9,6 +9,7 @@
 //! kinloop dynamics engine.kl --speed 150 --delta 0.02 --flywheel flywheel.csv
 //! kinloop simulate engine.kl --speed 150 --torque 2.5 --flywheel 0.05 --time 0.5
 //! kinloop extremes four_bar.kl --from 0 --to 360 --deg --table   # each unknown's min and max
+//! kinloop cam dwell_cam.kl --point follower --guide 0,1 --roller 10 --plot cam.svg
 //! kinloop animate four_bar.kl --from 0 --to 360 --samples 91 --deg --out four_bar.svg
 //! kinloop animate five_bar.kl --grid --from 0,0.4 --to 3,3 --samples 9,7 --out five_bar.html
 //! kinloop synth coupler_four_bar.kl --targets points.csv --path p --vary a=0.5..2,b=2..4 --starts 64
@@ -20,9 +21,10 @@
 //! Exit codes ([`exit`]): 0 success, 1 a solve failed (for `synth`: no valid candidate), 2 a usage error, 65 the declaration is
 //! rejected (diagnostics on standard error), 66 the file cannot be read, 69 the declaration uses
 //! what the run-time evaluator does not evaluate yet, 73 the `--events` file (or the
-//! `animate --out` file) cannot be created, 74 an output cannot be written.
+//! `animate --out`, `dynamics --flywheel` or `cam --plot` file) cannot be created, 74 an output cannot be written.
 
 mod animate;
+mod cam;
 mod dynamics;
 mod exit;
 mod extremes;
@@ -188,6 +190,50 @@ enum Command {
     /// it happens: an interior extreme located as a root of the velocity analog between
     /// samples, on the sweep's branch; otherwise an end of the range. CSV with units, or a
     /// table. A sweep that stops (a limit position) fails.
+    /// The disc cam that moves a follower as the declaration says, by kinematic inversion over
+    /// one turn of the cam shaft (the input): its pitch curve and profile in the cam's frame,
+    /// the pitch curve's radius of curvature and the pressure angle as CSV; the largest
+    /// pressure angle, the sharpest point and whether the roller undercuts it on standard
+    /// error.
+    Cam {
+        /// The declaration (`.kl`).
+        file: PathBuf,
+        /// The follower's point: a `point` of the declaration (the roller's centre, or the knife
+        /// edge).
+        #[arg(long)]
+        point: String,
+        /// A translating follower: the direction of its guide, `x,y`.
+        #[arg(long, value_name = "X,Y", allow_hyphen_values = true)]
+        guide: Option<String>,
+        /// A rocking follower: the pivot of its arm, `x,y`.
+        #[arg(long, value_name = "X,Y", allow_hyphen_values = true)]
+        rocker: Option<String>,
+        /// The cam's pivot, `x,y`.
+        #[arg(long, value_name = "X,Y", default_value = "0,0", allow_hyphen_values = true)]
+        pivot: String,
+        /// The roller's radius (0: a knife edge).
+        #[arg(long, default_value_t = 0.0, allow_hyphen_values = true)]
+        roller: f64,
+        /// The cam shaft's angle at the first sample.
+        #[arg(long, default_value_t = 0.0, allow_hyphen_values = true)]
+        start: f64,
+        /// Samples over the turn, equally spaced, both ends included (at least 3, at most
+        /// 10000000).
+        #[arg(long, default_value_t = 361, allow_hyphen_values = true)]
+        samples: usize,
+        /// The cam turns clockwise as the input grows (counter-clockwise otherwise).
+        #[arg(long)]
+        clockwise: bool,
+        /// Angles in degrees (given and written); otherwise radians.
+        #[arg(long)]
+        deg: bool,
+        /// Parameter values, `name=value` separated by commas (overriding the defaults).
+        #[arg(long, value_name = "NAME=VALUE,...")]
+        params: Option<String>,
+        /// Draw the pitch curve and the profile into this SVG file.
+        #[arg(long, value_name = "PATH")]
+        plot: Option<PathBuf>,
+    },
     Extremes {
         /// The declaration (`.kl`).
         file: PathBuf,
@@ -358,6 +404,22 @@ fn run(cli: Cli) -> Result<(), Failed> {
             let mut model = load(&file, params.as_deref())?;
             let req = simulate::Request { start, speed, time, torque, flywheel, samples, deg, max_steps };
             simulate::run(&mut model, &req)
+        }
+        Command::Cam { file, point, guide, rocker, pivot, roller, start, samples, clockwise, deg, params, plot } => {
+            let mut model = load(&file, params.as_deref())?;
+            let req = cam::Request {
+                point: &point,
+                guide: guide.as_deref(),
+                rocker: rocker.as_deref(),
+                pivot: &pivot,
+                roller,
+                start,
+                samples,
+                clockwise,
+                deg,
+                plot: plot.as_deref(),
+            };
+            cam::run(&mut model, &req)
         }
         Command::Extremes { file, from, to, samples, deg, params, columns, table } => {
             let mut model = load(&file, params.as_deref())?;

@@ -22,6 +22,7 @@ fn shipped_files_are_the_fixtures_declarations() {
         ("four_bar.kl", fx::FOUR_BAR_TEXT),
         ("rhombic_drive.kl", rhombic.as_str()),
         ("five_bar.kl", fx::FIVE_BAR_TEXT),
+        ("dwell_cam.kl", fx::cam_linkage::DWELL_CAM_ROCKER_TEXT),
     ];
     for (file, text) in shipped_files {
         let shipped = std::fs::read_to_string(shipped(file)).expect("shipped file");

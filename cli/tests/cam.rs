@@ -1,0 +1,183 @@
+//! `kinloop cam` end to end: the built binary on the shipped dwell cam, its CSV against the
+//! radial follower's closed forms worked out here from the 3-4-5 law (the pitch curve as the
+//! polar curve `R = y0 + s`, its radius of curvature, the pressure angle `atan(|s'| / R)`), a
+//! rocking follower on the cam-linkage drive's eccentric disc (its pitch circle about the disc's
+//! centre, the pressure angle the declaration states), and the usage errors.
+//!
+//! Tolerances: the lift and its analogs are the law's to rounding (the declaration's polynomial
+//! and the one here are evaluated in different orders): 1e-12 of the pitch radius for lengths,
+//! 1e-11 of it for the radius of curvature (a quotient of analogs), 1e-10 degrees for angles.
+
+mod common;
+
+use common::{csv, kinloop, shipped};
+use kinloop_fixtures as fx;
+
+/// The 3-4-5 law of the shipped dwell cam at cam angle `phi` (radians, one turn) and its first
+/// two derivatives, from its polynomial `p = 10 u^3 - 15 u^4 + 6 u^5` piece by piece.
+fn lift(m: &fx::cam_linkage::DwellCamRocker, phi: f64) -> [f64; 3] {
+    let law = |u: f64| {
+        [
+            10.0 * u.powi(3) - 15.0 * u.powi(4) + 6.0 * u.powi(5),
+            30.0 * (u * (1.0 - u)).powi(2),
+            60.0 * u * (1.0 - u) * (1.0 - 2.0 * u),
+        ]
+    };
+    let (h, u, w) = (m.lift, (phi - m.phi0) / m.rise, (phi - m.phi1) / m.fall);
+    if (0.0..=1.0).contains(&u) {
+        let [p, dp, d2p] = law(u);
+        [h * p, h * dp / m.rise, h * d2p / (m.rise * m.rise)]
+    } else if (0.0..=1.0).contains(&w) {
+        let [p, dp, d2p] = law(w);
+        [h * (1.0 - p), -h * dp / m.fall, -h * d2p / (m.fall * m.fall)]
+    } else if phi > m.phi0 + m.rise && phi < m.phi1 {
+        [h, 0.0, 0.0]
+    } else {
+        [0.0; 3]
+    }
+}
+
+fn stderr(out: &std::process::Output) -> String {
+    String::from_utf8_lossy(&out.stderr).to_string()
+}
+
+#[test]
+fn the_dwell_cam_has_the_radial_follower_s_closed_forms() {
+    let m = fx::cam_linkage::DwellCamRocker::default();
+    let file = shipped("dwell_cam.kl");
+    let out = kinloop(&[
+        "cam",
+        &file,
+        "--point",
+        "follower",
+        "--guide",
+        "0,1",
+        "--roller",
+        "10",
+        "--deg",
+        "--samples",
+        "721",
+    ]);
+    let (header, rows) = csv(&out);
+    assert_eq!(
+        header,
+        [
+            "input [deg]",
+            "pitch.x [length unit]",
+            "pitch.y [length unit]",
+            "profile.x [length unit]",
+            "profile.y [length unit]",
+            "pitch_radius [length unit]",
+            "pressure_angle [deg]"
+        ]
+    );
+    assert_eq!(rows.len(), 721);
+    let mut largest = 0.0f64;
+    for (k, row) in rows.iter().enumerate() {
+        assert_eq!(row[0], k as f64 / 2.0, "the samples every half degree");
+        let phi = row[0].to_radians();
+        let [s, ds, d2s] = lift(&m, phi);
+        let r = m.y0 + s;
+        let pitch = [r * phi.sin(), r * phi.cos()];
+        let rho = (r * r + ds * ds).powf(1.5) / (r * r + 2.0 * ds * ds - r * d2s);
+        let alpha = ds.abs().atan2(r).to_degrees();
+        let at = format!("at {} deg", row[0]);
+        assert!((row[1] - pitch[0]).abs() <= 1e-12 * r && (row[2] - pitch[1]).abs() <= 1e-12 * r, "{at}: {row:?}");
+        assert!(((row[3] - row[1]).hypot(row[4] - row[2]) - 10.0).abs() <= 1e-12 * r, "{at}: {row:?}");
+        assert!(row[3].hypot(row[4]) < r, "{at}: the profile inside the pitch curve");
+        assert!((row[5] - rho).abs() <= 1e-11 * rho.abs(), "{at}: {} vs {rho}", row[5]);
+        assert!((row[6] - alpha).abs() <= 1e-10, "{at}: {} vs {alpha}", row[6]);
+        largest = largest.max(alpha);
+    }
+    let err = stderr(&out);
+    assert!(err.contains("no undercut with a roller of radius 10"), "{err}");
+    let said: f64 = err
+        .split("largest pressure angle ")
+        .nth(1)
+        .and_then(|t| t.split('°').next())
+        .and_then(|v| v.parse().ok())
+        .unwrap_or_else(|| panic!("no largest pressure angle in: {err}"));
+    assert!((said - largest).abs() <= 1e-10, "{said} vs {largest}");
+    // Clockwise: the pitch curve mirrored, the same pressure angles.
+    let cw =
+        kinloop(&["cam", &file, "--point", "follower", "--guide", "0,1", "--roller", "10", "--deg", "--clockwise"]);
+    let (_, mirrored) = csv(&cw);
+    let (_, plain) = csv(&kinloop(&["cam", &file, "--point", "follower", "--guide", "0,1", "--roller", "10", "--deg"]));
+    for (a, b) in mirrored.iter().zip(&plain) {
+        assert!((a[1] + b[1]).abs() <= 1e-12 * m.y0 && a[2] == b[2] && (a[6] - b[6]).abs() <= 1e-12, "{a:?} {b:?}");
+    }
+    // A roller larger than the base circle of the pitch curve undercuts the dwells.
+    let big = kinloop(&["cam", &file, "--point", "follower", "--guide", "0,1", "--roller", "61"]);
+    assert!(big.status.success() && stderr(&big).contains("UNDERCUT"), "{}", stderr(&big));
+}
+
+#[test]
+fn a_rocking_follower_on_the_eccentric_disc() {
+    let m = fx::cam_linkage::CamLinkage::default();
+    let file = std::env::temp_dir().join(format!("kinloop-cam-linkage-{}.kl", std::process::id()));
+    std::fs::write(&file, fx::cam_linkage::CAM_LINKAGE_TEXT).unwrap();
+    let rocker = format!("{},{}", m.a_x, m.a_y);
+    let out = kinloop(&["cam", file.to_str().unwrap(), "--point", "roller", "--rocker", &rocker, "--roller", "12"]);
+    let _ = std::fs::remove_file(&file);
+    let (_, rows) = csv(&out);
+    let pitch = m.r_cam + m.r_roller;
+    let mut q = m.solve(0.0).unwrap().q;
+    for row in &rows {
+        // The disc's centre stays at (e, 0) in the cam's frame: the pitch circle and the disc.
+        assert!(((row[1] - m.e).hypot(row[2]) - pitch).abs() <= 1e-12 * pitch, "{row:?}");
+        assert!(((row[3] - m.e).hypot(row[4]) - m.r_cam).abs() <= 1e-12 * pitch, "{row:?}");
+        assert!((row[5] - pitch).abs() <= 1e-10 * pitch, "{row:?}");
+        let s = m.kinematics(row[0], &q).unwrap();
+        q = s.q;
+        let (sin, cos) = s.out.pressure.sin_cos();
+        assert!((row[6] - sin.abs().atan2(cos.abs())).abs() <= 1e-12, "{row:?} vs {}", s.out.pressure);
+    }
+}
+
+#[test]
+fn bad_requests_are_usage_errors() {
+    let (cam, five_bar) = (shipped("dwell_cam.kl"), shipped("five_bar.kl"));
+    // A folder where a file is: the plot cannot be created.
+    let plot = std::path::Path::new(&cam).join("cam.svg");
+    let base = ["cam", cam.as_str(), "--point", "follower"];
+    let cases: Vec<(Vec<&str>, &str, i32)> = vec![
+        (base.to_vec(), "--guide X,Y", 2),
+        ([&base[..], &["--guide", "0,1", "--rocker", "0,0"]].concat(), "not both", 2),
+        ([&base[..], &["--guide", "0,0"]].concat(), "has no direction", 2),
+        ([&base[..], &["--guide", "1"]].concat(), "not a point", 2),
+        ([&base[..], &["--guide", "0,1", "--roller", "-1"]].concat(), "--roller -1", 2),
+        ([&base[..], &["--guide", "0,1", "--samples", "2"]].concat(), "--samples 2", 2),
+        ([&base[..], &["--guide", "0,1", "--pivot", "a,b"]].concat(), "--pivot", 2),
+        (vec!["cam", cam.as_str(), "--point", "nope", "--guide", "0,1"], "its points: follower, rocker_pin", 2),
+        (vec!["cam", five_bar.as_str(), "--point", "p", "--guide", "0,1"], "must have one input, an angle", 2),
+        ([&base[..], &["--guide", "0,1", "--plot", plot.to_str().unwrap()]].concat(), "cannot write the plot", 73),
+    ];
+    for (args, says, code) in cases {
+        let out = kinloop(&args);
+        let err = stderr(&out);
+        assert_eq!(out.status.code(), Some(code), "{args:?}: {err}");
+        assert!(err.contains(says), "{args:?}: `{says}` missing: {err}");
+    }
+}
+
+#[test]
+fn the_plot_draws_the_pitch_curve_and_the_profile() {
+    let path = std::env::temp_dir().join(format!("kinloop-cam-{}.svg", std::process::id()));
+    let out = kinloop(&[
+        "cam",
+        &shipped("dwell_cam.kl"),
+        "--point",
+        "follower",
+        "--guide",
+        "0,1",
+        "--roller",
+        "10",
+        "--plot",
+        path.to_str().unwrap(),
+    ]);
+    assert!(out.status.success(), "{}", stderr(&out));
+    let svg = std::fs::read_to_string(&path).expect("the plot");
+    let _ = std::fs::remove_file(&path);
+    assert!(svg.starts_with("<svg") || svg.starts_with("<?xml"), "{}", &svg[..60.min(svg.len())]);
+    assert!(svg.contains("pitch curve") && svg.contains("cam profile"));
+}
