@@ -1,5 +1,5 @@
 //! `kinloop cam` end to end: the built binary on the shipped dwell cam, its CSV against the
-//! radial follower's closed forms worked out here from the 3-4-5 law (the pitch curve as the
+//! radial follower's closed forms of the 3-4-5 law by hand (`law_by_hand`: the pitch curve as the
 //! polar curve `R = y0 + s`, its radius of curvature, the pressure angle `atan(|s'| / R)`), a
 //! rocking follower on the cam-linkage drive's eccentric disc (its pitch circle about the disc's
 //! centre, the pressure angle the declaration states), and the usage errors.
@@ -12,30 +12,6 @@ mod common;
 
 use common::{csv, kinloop, shipped};
 use kinloop_fixtures as fx;
-
-/// The 3-4-5 law of the shipped dwell cam at cam angle `phi` (radians, one turn) and its first
-/// two derivatives, from its polynomial `p = 10 u^3 - 15 u^4 + 6 u^5` piece by piece.
-fn lift(m: &fx::cam_linkage::DwellCamRocker, phi: f64) -> [f64; 3] {
-    let law = |u: f64| {
-        [
-            10.0 * u.powi(3) - 15.0 * u.powi(4) + 6.0 * u.powi(5),
-            30.0 * (u * (1.0 - u)).powi(2),
-            60.0 * u * (1.0 - u) * (1.0 - 2.0 * u),
-        ]
-    };
-    let (h, u, w) = (m.lift, (phi - m.phi0) / m.rise, (phi - m.phi1) / m.fall);
-    if (0.0..=1.0).contains(&u) {
-        let [p, dp, d2p] = law(u);
-        [h * p, h * dp / m.rise, h * d2p / (m.rise * m.rise)]
-    } else if (0.0..=1.0).contains(&w) {
-        let [p, dp, d2p] = law(w);
-        [h * (1.0 - p), -h * dp / m.fall, -h * d2p / (m.fall * m.fall)]
-    } else if phi > m.phi0 + m.rise && phi < m.phi1 {
-        [h, 0.0, 0.0]
-    } else {
-        [0.0; 3]
-    }
-}
 
 fn stderr(out: &std::process::Output) -> String {
     String::from_utf8_lossy(&out.stderr).to_string()
@@ -76,7 +52,7 @@ fn the_dwell_cam_has_the_radial_follower_s_closed_forms() {
     for (k, row) in rows.iter().enumerate() {
         assert_eq!(row[0], k as f64 / 2.0, "the samples every half degree");
         let phi = row[0].to_radians();
-        let [s, ds, d2s] = lift(&m, phi);
+        let [s, ds, d2s] = m.law_by_hand(phi);
         let r = m.y0 + s;
         let pitch = [r * phi.sin(), r * phi.cos()];
         let rho = (r * r + ds * ds).powf(1.5) / (r * r + 2.0 * ds * ds - r * d2s);

@@ -2,8 +2,9 @@
 //! and the return agree with the 3-4-5 law's closed form, and the follower and the rocker stand
 //! exactly still in every dwell; the cam found by inversion has the radial follower's pressure
 //! angle and the pitch curve's radius of curvature as a polar curve. The closed forms are worked
-//! out here from the law's polynomial (never read from the example or the library), for the
-//! default cam and for a second one with other lift, segment angles and dwells.
+//! out by hand from the law's polynomial, here and in the fixtures' `law_by_hand` (never read
+//! from the example or the library), for the default cam and for a second one with other lift,
+//! segment angles and dwells.
 
 // The example's own functions, so that what is checked is what it prints (its `main` and its
 // chart writing are not called here).
@@ -124,24 +125,6 @@ fn the_dwell_check_sees_a_moving_follower() -> Result<(), Box<dyn std::error::Er
     Ok(())
 }
 
-/// The follower's lift at cam angle `phi` in `[0, 2 pi]` and its first two derivatives, piece by
-/// piece from the polynomial: the rise `h p(u)`, `u = (phi - phi0) / rise`; the return
-/// `h (1 - p(w))`, `w = (phi - phi1) / fall`; the dwells at 0 and `h`.
-fn lift(m: &DwellCamRocker, phi: f64) -> [f64; 3] {
-    let (h, u, w) = (m.lift, (phi - m.phi0) / m.rise, (phi - m.phi1) / m.fall);
-    if (0.0..=1.0).contains(&u) {
-        let [p, dp, d2p] = law(u);
-        [h * p, h * dp / m.rise, h * d2p / (m.rise * m.rise)]
-    } else if (0.0..=1.0).contains(&w) {
-        let [p, dp, d2p] = law(w);
-        [h * (1.0 - p), -h * dp / m.fall, -h * d2p / (m.fall * m.fall)]
-    } else if phi > m.phi0 + m.rise && phi < m.phi1 {
-        [h, 0.0, 0.0]
-    } else {
-        [0.0; 3]
-    }
-}
-
 /// The cam the example prints, at every half degree: its follower's line passes through the
 /// cam's centre, so the pitch curve is the polar curve `R = y0 + s` and the pressure angle
 /// `atan(|s'| / R)`; the radius of curvature of a polar curve is
@@ -154,7 +137,7 @@ fn the_cam_has_the_radial_follower_s_pressure_angle_and_curvature() -> Result<()
         let mut sharpest = f64::INFINITY;
         for (k, st) in states.iter().enumerate() {
             let phi = st.input.phi;
-            let [sv, ds, d2s] = lift(&m, phi);
+            let [sv, ds, d2s] = m.law_by_hand(phi);
             let r = m.y0 + sv;
             let alpha = ds.abs().atan2(r);
             let rho = (r * r + ds * ds).powf(1.5) / (r * r + 2.0 * ds * ds - r * d2s);
@@ -181,7 +164,7 @@ fn the_cam_has_the_radial_follower_s_pressure_angle_and_curvature() -> Result<()
             .map(|st| st.input.phi)
             .filter(|&phi| phi >= rise.start && phi <= rise.start + rise.span)
             .map(|phi| {
-                let [sv, ds, _] = lift(&m, phi);
+                let [sv, ds, _] = m.law_by_hand(phi);
                 ds.abs().atan2(m.y0 + sv)
             })
             .fold(0.0, f64::max);

@@ -238,31 +238,6 @@ fn harmonic_cam_follows_its_law_and_swings_the_rocker() -> Result<(), kinloop::E
     Ok(())
 }
 
-/// The 3-4-5 rise-dwell-return-dwell law by hand, segment by segment: `[s, ds/dphi, d2s/dphi2]`.
-fn dwell_law(m: &DwellCamRocker, phi: f64) -> [f64; 3] {
-    // The polynomial of the normalised cam angle and its first two derivatives.
-    let p = |u: f64| {
-        [
-            10.0 * u.powi(3) - 15.0 * u.powi(4) + 6.0 * u.powi(5),
-            30.0 * u * u * (1.0 - u) * (1.0 - u),
-            60.0 * u * (1.0 - u) * (1.0 - 2.0 * u),
-        ]
-    };
-    if phi < m.phi0 {
-        [0.0; 3]
-    } else if phi <= m.phi0 + m.rise {
-        let [v, d, dd] = p((phi - m.phi0) / m.rise);
-        [m.lift * v, m.lift * d / m.rise, m.lift * dd / (m.rise * m.rise)]
-    } else if phi < m.phi1 {
-        [m.lift, 0.0, 0.0]
-    } else if phi <= m.phi1 + m.fall {
-        let [v, d, dd] = p((phi - m.phi1) / m.fall);
-        [m.lift * (1.0 - v), -m.lift * d / m.fall, -m.lift * dd / (m.fall * m.fall)]
-    } else {
-        [0.0; 3]
-    }
-}
-
 /// The rocker's angle at follower lift `s` (the circle intersection of the harmonic drive, the
 /// same geometry).
 fn dwell_rocker(m: &DwellCamRocker, s: f64) -> f64 {
@@ -299,7 +274,7 @@ fn dwell_cam_follows_its_piecewise_law_and_swings_the_rocker() -> Result<(), kin
     for &phi in &samples {
         let s = m.kinematics(phi, &guess)?;
         guess = s.q;
-        let [lift, v, a] = dwell_law(&m, phi);
+        let [lift, v, a] = m.law_by_hand(phi);
         let follower = [s.out.follower.y - (m.y0 + lift), s.dout.follower.y - v, s.d2out.follower.y - a];
         let e_follower = follower.iter().map(|e| e.abs() / m.lift).fold(s.out.follower.x.abs(), f64::max);
         assert!(e_follower <= tol_q, "follower at {phi}: {follower:?}");
@@ -366,23 +341,18 @@ fn dwell_cam_drawing_follows_the_law() -> Result<(), kinloop::Error> {
     for phi in first.into_iter().chain(others) {
         let s = m.solve(phi)?;
         let at = d.evaluate(&m.param_values(), &[phi], &[s.q.gamma, s.q.psi])?;
-        let pin = [0.0, m.y0 + dwell_law_any_turn(&m, phi)[0]];
+        let pin = [0.0, m.y0 + m.law_by_hand(phi)[0]];
         let nearest = at.joints.iter().map(|j| (j[0] - pin[0]).hypot(j[1] - pin[1])).fold(f64::INFINITY, f64::min);
         assert!(nearest <= 1e-12 * m.y0, "at {phi}: no joint at the follower's pin {pin:?}: {:?}", at.joints);
     }
     Ok(())
 }
 
-/// The law of any cam angle: that of `phi mod 2 pi` (`rem_euclid`, an exact remainder), by hand.
-fn dwell_law_any_turn(m: &DwellCamRocker, phi: f64) -> [f64; 3] {
-    dwell_law(m, phi.rem_euclid(TAU))
-}
-
 /// Compares one state with the law of `phi mod 2 pi` (follower, to rounding of the lift) and
 /// the rocker's circle intersection and chain rule: the errors of the follower, then of the
 /// rocker's angle and its two analogs.
 fn dwell_errors(m: &DwellCamRocker, phi: f64, s: &DwellCamRockerState) -> [f64; 4] {
-    let [lift, v, a] = dwell_law_any_turn(m, phi);
+    let [lift, v, a] = m.law_by_hand(phi);
     let follower = [s.out.follower.y - (m.y0 + lift), s.dout.follower.y - v, s.d2out.follower.y - a];
     let e_follower = follower.iter().map(|e| e.abs() / m.lift).fold(s.out.follower.x.abs(), f64::max);
     let (d1s, d2s) = richardson(|x| dwell_rocker(m, x), lift, 0.1);
