@@ -3,7 +3,7 @@
 //! mechanism in metres and in millimetres.
 
 use kinloop::{AtSingular, EventKind, SweepConfig};
-use kinloop_viz::draw::{Animation, Annotate, Canvas, Drawing, Motion, Pt};
+use kinloop_viz::draw::{Animation, Annotate, Canvas, Drawing, Motion, Pt, Scalar};
 use std::f64::consts::{PI, TAU};
 
 #[allow(dead_code)] // not every test uses every helper
@@ -381,5 +381,66 @@ fn a_fitted_drawing_is_cropped_to_its_ink_with_the_margin() {
     // generous: each gap is the margin to within 3 px, never less than half of it.
     for g in gaps {
         assert!(g >= 0.5 * margin && g <= margin + 3.0, "gaps {gaps:?} for a margin of {margin}");
+    }
+}
+
+/// A cam-like outline on the crank: its corners, written once in the body's frame, moved by the
+/// group's translation and turned by its rotation at each key frame, land on the closed form's
+/// corners (the crank's angle turning the body-frame corners about O) in the window's pixels.
+#[test]
+fn an_outline_turns_with_its_body() {
+    let m = FourBar::default();
+    let mo = motion(&m, TAU, 361);
+    let canvas = Canvas { width: WIDTH, window: Some(WINDOW), ..Canvas::default() };
+    let corners = vec![[1.2, 0.0], [0.0, 0.6], [-0.4, -0.3]];
+    let anim = Animation { frames: 37, ..Animation::default() };
+    let d = Drawing::new().with_canvas(canvas).outline([0.0, 0.0], corners.clone(), Scalar::expr(|s| s.x[0]));
+    let svg = d.animate(&mo, &anim).unwrap();
+    let doc = checked(&svg).unwrap();
+    let polygon = doc.descendants().find(|n| n.tag_name().name() == "polygon").expect("the outline");
+    let body = pairs(polygon.attribute("points").unwrap(), ' ');
+    assert_eq!(body.len(), 3);
+    // The body's centre stays at O: its group's translation is written once, not animated.
+    let rotated = polygon.parent().unwrap();
+    let moved = rotated.parent().unwrap();
+    let translate = moved.attribute("transform").unwrap();
+    assert!(
+        translate.starts_with("translate(") && !moved.children().any(|n| n.tag_name().name() == "animateTransform")
+    );
+    let at = pairs(translate.trim_start_matches("translate(").trim_end_matches(')'), ';')[0];
+    assert_eq!(at, window_px(WINDOW, WIDTH, [0.0, 0.0]));
+    let turn = rotated.children().find(|n| n.tag_name().name() == "animateTransform").expect("the body turns");
+    let turns: Vec<&str> = turn.attribute("values").unwrap().split(';').collect();
+    let keys = d.key_poses(&mo, &anim).unwrap();
+    assert_eq!((turns.len(), keys.len()), (37, 37));
+    for (k, &pose) in keys.iter().enumerate() {
+        let phi = mo.poses[pose].x[0];
+        // SVG's rotate turns clockwise on screen by its degrees (the y axis points down).
+        let deg: f64 = turns[k].parse().unwrap();
+        let (s, c) = deg.to_radians().sin_cos();
+        for (b, w) in body.iter().zip(&corners) {
+            let on_screen = [at[0] + c * b[0] - s * b[1], at[1] + s * b[0] + c * b[1]];
+            let (sp, cp) = phi.sin_cos();
+            let world = [cp * w[0] - sp * w[1], sp * w[0] + cp * w[1]];
+            let want = window_px(WINDOW, WIDTH, world);
+            // Corners and translations written to 0.1 px, the angle to 0.01 degree (unwrapped).
+            for i in 0..2 {
+                assert!((on_screen[i] - want[i]).abs() <= 0.15, "pose {pose}: {on_screen:?} vs {want:?}");
+            }
+        }
+    }
+}
+
+#[test]
+fn a_circle_is_an_outline_at_its_radius_and_outlines_are_checked() {
+    let d = Drawing::new().circle([1.0, 2.0], 0.5);
+    let Some(kinloop_viz::draw::Item::Outline { points, .. }) = d.items.first() else { panic!("{:?}", d.items) };
+    assert_eq!(points.len(), 96);
+    assert!(points.iter().all(|p| (p[0].hypot(p[1]) - 0.5).abs() <= 1e-15));
+    let m = FourBar::default();
+    let mo = motion(&m, 1.0, 5);
+    for (corners, says) in [(vec![[0.0, 0.0]], "at least 2"), (vec![[0.0, 0.0], [f64::NAN, 1.0]], "not finite")] {
+        let e = Drawing::new().outline([0.0, 0.0], corners, 0.0).svg(&mo, 0).unwrap_err();
+        assert!(e.to_string().contains(says), "{e}");
     }
 }

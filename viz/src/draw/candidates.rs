@@ -148,6 +148,11 @@ impl Placement {
                 Item::Gear { centre, radius, angle: a } => {
                     Item::Gear { centre: pt(centre), radius: radius * scale, angle: angle(a) }
                 }
+                Item::Outline { centre, points, angle: a } => Item::Outline {
+                    centre: pt(centre),
+                    points: points.into_iter().map(|[x, y]| [x * scale, y * scale]).collect(),
+                    angle: angle(a),
+                },
                 Item::Joint { at } => Item::Joint { at: pt(at) },
             })
             .collect();
@@ -173,6 +178,8 @@ enum Shape {
     Pivot([f64; 2]),
     Slider([f64; 2], f64),
     Gear([f64; 2], f64),
+    /// An outline's corners where they are.
+    Outline(Vec<[f64; 2]>),
     Joint([f64; 2]),
 }
 
@@ -306,6 +313,15 @@ where
             Item::Pivot { at: p } => Shape::Pivot(at(p)?),
             Item::Slider { at: p, angle } => Shape::Slider(at(p)?, scalar(angle, pose) + turn),
             Item::Gear { centre, radius, .. } => Shape::Gear(at(centre)?, radius * scale),
+            Item::Outline { centre, points, angle } => {
+                // The body's frame placed as the candidate is, then turned by its angle.
+                let ([cx, cy], (s, c)) = (at(centre)?, (scalar(angle, pose) + turn).sin_cos());
+                let corner = |[x, y]: [f64; 2]| {
+                    let (x, y) = (x * scale, y * scale);
+                    finite([cx + c * x - s * y, cy + s * x + c * y], "an outline's corner", rank)
+                };
+                Shape::Outline(points.iter().copied().map(corner).collect::<Result<_, _>>()?)
+            }
             Item::Joint { at: p } => Shape::Joint(at(p)?),
         });
     }
@@ -452,7 +468,7 @@ where
         d.path.iter().for_each(&mut add);
         for s in &d.shapes {
             match s {
-                Shape::Link(pts, _) => pts.iter().for_each(&mut add),
+                Shape::Link(pts, _) | Shape::Outline(pts) => pts.iter().for_each(&mut add),
                 Shape::Pivot(p) | Shape::Slider(p, _) | Shape::Joint(p) => add(p),
                 Shape::Gear(c, r) => {
                     add(&[c[0] - r, c[1] - r]);
@@ -560,6 +576,13 @@ where
                         map.pts(pts)
                     );
                     joints.extend(pts.iter().copied());
+                }
+                Shape::Outline(pts) => {
+                    let _ = write!(
+                        out,
+                        r#"<polygon class="outline" points="{}" fill="{colour}" fill-opacity="0.1" stroke="{colour}" stroke-width="1.5" stroke-linejoin="round"/>"#,
+                        map.pts(pts)
+                    );
                 }
                 Shape::Pivot(p) => {
                     let [x, y] = map.px(*p);

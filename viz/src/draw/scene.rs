@@ -6,16 +6,43 @@ use super::motion::{Motion, Pose};
 use super::spec::{Drawing, Item, PointFn, Pt, Scalar, StateRef};
 use super::style::Style;
 use super::view::{FAR, View};
+use std::sync::Arc;
 
 /// The geometry of one item at one pose (world units, then pixels after [`Shape::to_px`]).
 /// Angles are radians counter-clockwise in world units and degrees clockwise (SVG) in pixels.
 #[derive(Clone, Debug, PartialEq)]
 pub(crate) enum Shape {
-    Link { pts: Vec<[f64; 2]>, closed: bool },
-    Pivot { at: [f64; 2] },
-    Slider { at: [f64; 2], angle: f64, fixed: bool },
-    Gear { centre: [f64; 2], radius: f64, angle: f64, turning: bool },
-    Joint { at: [f64; 2] },
+    Link {
+        pts: Vec<[f64; 2]>,
+        closed: bool,
+    },
+    Pivot {
+        at: [f64; 2],
+    },
+    Slider {
+        at: [f64; 2],
+        angle: f64,
+        fixed: bool,
+    },
+    Gear {
+        centre: [f64; 2],
+        radius: f64,
+        angle: f64,
+        turning: bool,
+    },
+    /// `pts` in the body's frame in mechanism units, drawn times `scale` (1 in world units, the
+    /// view's scale in pixels, the y axis turned down): shared by every pose, not copied.
+    /// `radius`: the farthest corner's distance from the centre, times `scale`.
+    Outline {
+        centre: [f64; 2],
+        angle: f64,
+        pts: Arc<Vec<[f64; 2]>>,
+        scale: f64,
+        radius: f64,
+    },
+    Joint {
+        at: [f64; 2],
+    },
 }
 
 impl Shape {
@@ -24,7 +51,7 @@ impl Shape {
         match self {
             Shape::Link { pts, .. } => pts.iter().for_each(|p| add(*p)),
             Shape::Pivot { at } | Shape::Slider { at, .. } | Shape::Joint { at } => add(*at),
-            Shape::Gear { centre: [x, y], radius: r, .. } => {
+            Shape::Gear { centre: [x, y], radius: r, .. } | Shape::Outline { centre: [x, y], radius: r, .. } => {
                 add([x - r, y - r]);
                 add([x + r, y + r]);
             }
@@ -43,6 +70,7 @@ impl Shape {
             Shape::Link { pts, .. } => pts.iter().for_each(|p| square(*p, joint.max(0.5 * style.link_width))),
             Shape::Joint { at } => square(*at, joint),
             Shape::Gear { centre, radius, .. } => square(*centre, radius + 3.0),
+            Shape::Outline { centre, radius, .. } => square(*centre, radius + 1.5),
             Shape::Pivot { at: [x, y] } => {
                 // The triangle, ground line and hatching (see `shapes::pivot`).
                 add([x - 18.0, y - joint]);
@@ -78,6 +106,13 @@ impl Shape {
             Shape::Gear { centre, radius, angle, turning } => {
                 Shape::Gear { centre: v.px(*centre), radius: radius * v.scale, angle: deg(*angle), turning: *turning }
             }
+            Shape::Outline { centre, angle, pts, scale, radius } => Shape::Outline {
+                centre: v.px(*centre),
+                angle: deg(*angle),
+                pts: Arc::clone(pts),
+                scale: scale * v.scale,
+                radius: radius * v.scale,
+            },
             Shape::Joint { at } => Shape::Joint { at: v.px(*at) },
         }
     }
@@ -138,13 +173,16 @@ impl Eval<'_> {
 struct BoundItems<'d> {
     items: Vec<(&'d Item, Vec<Bound<'d>>)>,
     traces: Vec<(&'d Pt, Bound<'d>)>,
+    /// Each outline's corners, shared by its shapes at every pose, and its farthest corner's
+    /// distance from its centre (`None` for the other items).
+    outlines: Vec<Option<(Arc<Vec<[f64; 2]>>, f64)>>,
 }
 
 fn item_points(item: &Item) -> Vec<&Pt> {
     match item {
         Item::Link { through, .. } => through.iter().collect(),
         Item::Pivot { at } | Item::Slider { at, .. } | Item::Joint { at } => vec![at],
-        Item::Gear { centre, .. } => vec![centre],
+        Item::Gear { centre, .. } | Item::Outline { centre, .. } => vec![centre],
     }
 }
 
@@ -156,7 +194,8 @@ impl<'d> BoundItems<'d> {
             items.push((item, bound));
         }
         let traces = d.traces.iter().map(|p| Ok((p, bind(p, motion)?))).collect::<Result<_, DrawError>>()?;
-        Ok(BoundItems { items, traces })
+        let outlines = d.items.iter().enumerate().map(|(k, item)| outline(k, item)).collect::<Result<_, _>>()?;
+        Ok(BoundItems { items, traces, outlines })
     }
 
     fn shapes(&self, e: &Eval) -> Result<Vec<Shape>, DrawError> {
@@ -170,6 +209,16 @@ impl<'d> BoundItems<'d> {
                 }
                 Item::Pivot { .. } => Shape::Pivot { at: p(0)? },
                 Item::Joint { .. } => Shape::Joint { at: p(0)? },
+                Item::Outline { angle, .. } => {
+                    let (pts, radius) = self.outlines[k].clone().unwrap_or_default();
+                    let centre = p(0)?;
+                    // The outline must fit in the plane of f64 too: its extent is fitted.
+                    let [x, y] = centre;
+                    e.check([x - radius, y - radius], || format!("extent of item {k} (outline)"))?;
+                    e.check([x + radius, y + radius], || format!("extent of item {k} (outline)"))?;
+                    let angle = e.scalar(angle, || format!("angle of item {k} (outline)"))?;
+                    Shape::Outline { centre, angle, pts, scale: 1.0, radius }
+                }
                 Item::Slider { angle, .. } => Shape::Slider {
                     at: p(0)?,
                     angle: e.scalar(angle, || format!("angle of item {k} (slider)"))?,
@@ -196,6 +245,29 @@ impl<'d> BoundItems<'d> {
         }
         Ok(shapes)
     }
+}
+
+/// The corners of item `k` when it is an outline, checked (at least two, each finite), with
+/// the farthest one's distance from the centre; `None` for another item.
+fn outline(k: usize, item: &Item) -> Result<Option<(Arc<Vec<[f64; 2]>>, f64)>, DrawError> {
+    let Item::Outline { points, .. } = item else { return Ok(None) };
+    if points.len() < 2 {
+        return Err(DrawError::InvalidSetting(format!(
+            "item {k} (outline) has {} corners: give at least 2",
+            points.len()
+        )));
+    }
+    if let Some(j) = points.iter().position(|p| !(p[0].is_finite() && p[1].is_finite())) {
+        return Err(DrawError::InvalidSetting(format!(
+            "corner {j} of item {k} (outline), {:?}, is not finite",
+            points[j]
+        )));
+    }
+    // Scaled by the largest coordinate first, so that no distance overflows.
+    let big = points.iter().fold(0.0f64, |m, p| m.max(p[0].abs()).max(p[1].abs()));
+    let radius =
+        if big > 0.0 { big * points.iter().map(|p| (p[0] / big).hypot(p[1] / big)).fold(0.0, f64::max) } else { 0.0 };
+    Ok(Some((Arc::new(points.clone()), radius)))
 }
 
 /// A label of the drawing: its text, where the middle of its line sits relative to its point
@@ -405,7 +477,7 @@ fn near(d: &Drawing, frames: &[Vec<Shape>], traced: &[Vec<[f64; 2]>]) -> Result<
         for (k, shape) in shapes.iter().enumerate() {
             let mut out = false;
             shape.extent(|[x, y]| out |= far(x) || far(y));
-            if let Shape::Gear { radius, .. } = shape {
+            if let Shape::Gear { radius, .. } | Shape::Outline { radius, .. } = shape {
                 out |= far(*radius);
             }
             if out {

@@ -31,6 +31,7 @@ pub(crate) fn item(out: &mut String, pen: &Pen, shapes: &[&Shape]) {
         Shape::Pivot { .. } => pivot(out, pen, shapes),
         Shape::Slider { .. } => slider(out, pen, shapes),
         Shape::Gear { .. } => gear(out, pen, shapes),
+        Shape::Outline { .. } => outline(out, pen, shapes),
         Shape::Joint { .. } => {}
     }
 }
@@ -180,6 +181,31 @@ fn gear(out: &mut String, pen: &Pen, shapes: &[&Shape]) {
         let _ = write!(out, r#"<path d="M0,0H{rr}" stroke="{ink}" stroke-width="2"/>"#);
     }
     out.push_str("</g></g>");
+}
+
+/// A rigid outline: its corners written once in the body's frame (pixels, y down), the frame
+/// moved and turned with the body.
+fn outline(out: &mut String, pen: &Pen, shapes: &[&Shape]) {
+    let mut at = Vec::with_capacity(shapes.len());
+    let mut deg = Vec::with_capacity(shapes.len());
+    let mut corners = String::new();
+    for s in shapes {
+        if let Shape::Outline { centre, angle, pts, scale, .. } = s {
+            if corners.is_empty() {
+                corners = points(&pts.iter().map(|p| [p[0] * scale, -p[1] * scale]).collect::<Vec<_>>());
+            }
+            at.push(*centre);
+            deg.push(*angle);
+        }
+    }
+    open_translated(out, pen, &at);
+    open_rotated(out, pen, &deg);
+    let (fill, dash) = if pen.ghost { ("none", r#" stroke-dasharray="5 3""#) } else { (pen.fill, "") };
+    let _ = write!(
+        out,
+        r#"<polygon points="{corners}" fill="{fill}" fill-opacity="0.35" stroke="{}" stroke-width="1.5" stroke-linejoin="round"{dash}/></g></g>"#,
+        pen.ink
+    );
 }
 
 /// The joint circles of item `shapes` (every point of a link, or a lone joint).

@@ -109,6 +109,10 @@ impl From<f64> for Scalar {
     }
 }
 
+/// Corners of a [`Drawing::circle`]: a chord of a 96th of a turn lies within
+/// `1 - cos(pi / 96)`, 0.05 %, of the radius.
+const CIRCLE_CORNERS: usize = 96;
+
 /// One element of a drawing (see the builder methods of [`Drawing`]).
 #[derive(Clone, Debug)]
 pub enum Item {
@@ -142,6 +146,19 @@ pub enum Item {
         /// Its pitch radius.
         radius: f64,
         /// Its turn angle (radians).
+        angle: Scalar,
+    },
+    /// A rigid outline carried by a turning body: a cam's profile, a roller's rim, a link's
+    /// true shape. `points` are in the body's own frame (mechanism units, about `centre`), turned
+    /// by `angle` and drawn as a closed outline, lightly filled. A cam's profile from
+    /// [`cam_profile`](kinloop_runtime::analysis::cam::cam_profile) is such an outline about the
+    /// cam's pivot, turned by the cam's angle.
+    Outline {
+        /// Where the body's frame has its origin.
+        centre: Pt,
+        /// The outline's corners in the body's frame, at least 2.
+        points: Vec<[f64; 2]>,
+        /// The body's turn (radians).
         angle: Scalar,
     },
     /// A lone joint circle.
@@ -218,6 +235,25 @@ impl Drawing {
     pub fn gear(mut self, centre: impl Into<Pt>, radius: f64, angle: impl Into<Scalar>) -> Drawing {
         self.items.push(Item::Gear { centre: centre.into(), radius, angle: angle.into() });
         self
+    }
+
+    /// A rigid outline of `points` (mechanism units, in the body's frame about `centre`),
+    /// turned by `angle`: a cam's profile, a roller's rim ([`Drawing::circle`]).
+    pub fn outline(mut self, centre: impl Into<Pt>, points: Vec<[f64; 2]>, angle: impl Into<Scalar>) -> Drawing {
+        self.items.push(Item::Outline { centre: centre.into(), points, angle: angle.into() });
+        self
+    }
+
+    /// A circle of `radius` (mechanism units) about `centre`: a roller, a disc. An outline of 96
+    /// corners, 0.05 % of the radius off the circle at most.
+    pub fn circle(self, centre: impl Into<Pt>, radius: f64) -> Drawing {
+        let points = (0..CIRCLE_CORNERS)
+            .map(|k| {
+                let (s, c) = (std::f64::consts::TAU * k as f64 / CIRCLE_CORNERS as f64).sin_cos();
+                [radius * c, radius * s]
+            })
+            .collect();
+        self.outline(centre, points, 0.0)
     }
 
     /// A joint circle at `at`.

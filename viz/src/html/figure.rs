@@ -136,6 +136,18 @@ fn items(out: &mut String, style: &Style, slots: &[Slot], f: &[i64], pen: &Pen, 
                 }
                 out.push_str("</g>");
             }
+            Slot::Outline { corners } => {
+                let pts: Vec<String> = corners.iter().map(|c| format!("{},{}", px(c[0]), px(c[1]))).collect();
+                let fill = if pen.ghost { "none" } else { pen.fill };
+                let _ = write!(
+                    out,
+                    r#"<g{} transform="translate({x} {y}) rotate({})"><polygon points="{}" fill="{fill}" fill-opacity="0.35" stroke="{}" stroke-width="1.5" stroke-linejoin="round"{dash}/></g>"#,
+                    mark(k),
+                    t(f[o + 2]),
+                    pts.join(" "),
+                    pen.ink
+                );
+            }
             Slot::Joint => {}
         }
         o += slot.len();

@@ -23,6 +23,9 @@ pub(crate) enum Slot {
     Slider { fixed: bool },
     /// A gear: centre and angle, 3 numbers, with its pitch radius in pixels.
     Gear { radius: f64, turning: bool },
+    /// A rigid outline: centre and angle, 3 numbers, with its corners in pixels in the body's
+    /// frame (y down).
+    Outline { corners: Vec<[f64; 2]> },
     /// A lone joint: 2 numbers.
     Joint,
 }
@@ -33,7 +36,7 @@ impl Slot {
         match self {
             Slot::Link { n, .. } => 2 * n,
             Slot::Pivot | Slot::Joint => 2,
-            Slot::Slider { .. } | Slot::Gear { .. } => 3,
+            Slot::Slider { .. } | Slot::Gear { .. } | Slot::Outline { .. } => 3,
         }
     }
 }
@@ -105,7 +108,7 @@ fn item_points(item: &Item) -> Vec<&Pt> {
     match item {
         Item::Link { through, .. } => through.iter().collect(),
         Item::Pivot { at } | Item::Slider { at, .. } | Item::Joint { at } => vec![at],
-        Item::Gear { centre, .. } => vec![centre],
+        Item::Gear { centre, .. } | Item::Outline { centre, .. } => vec![centre],
     }
 }
 
@@ -155,7 +158,9 @@ impl Eval<'_> {
                 out.extend(self.point(p, i)?);
             }
             match item {
-                Item::Slider { angle, .. } | Item::Gear { angle, .. } => out.push(self.angle(angle, i, k)?),
+                Item::Slider { angle, .. } | Item::Gear { angle, .. } | Item::Outline { angle, .. } => {
+                    out.push(self.angle(angle, i, k)?)
+                }
                 _ => {}
             }
         }
@@ -189,6 +194,9 @@ impl Frames {
                 Item::Slider { angle, .. } => Slot::Slider { fixed: matches!(angle, Scalar::Const(_)) },
                 Item::Gear { radius, angle, .. } => {
                     Slot::Gear { radius: radius * view.scale, turning: matches!(angle, Scalar::Expr(_)) }
+                }
+                Item::Outline { points, .. } => {
+                    Slot::Outline { corners: points.iter().map(|p| [p[0] * view.scale, -p[1] * view.scale]).collect() }
                 }
                 Item::Joint { .. } => Slot::Joint,
             });

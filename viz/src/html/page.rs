@@ -79,6 +79,7 @@ fn data(p: &Parts) -> Result<String, HtmlError> {
             Slot::Pivot => ("pivot", 1),
             Slot::Slider { .. } => ("slider", 1),
             Slot::Gear { .. } => ("gear", 1),
+            Slot::Outline { .. } => ("outline", 1),
             Slot::Joint => ("joint", 1),
         };
         let _ = write!(s, r#"{{"t":"{kind}","o":{o},"n":{n}}}"#);
