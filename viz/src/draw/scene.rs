@@ -175,7 +175,7 @@ struct BoundItems<'d> {
     traces: Vec<(&'d Pt, Bound<'d>)>,
     /// Each outline's corners, shared by its shapes at every pose, and its farthest corner's
     /// distance from its centre (`None` for the other items).
-    outlines: Vec<Option<(Arc<Vec<[f64; 2]>>, f64)>>,
+    outlines: Vec<Option<Corners>>,
 }
 
 fn item_points(item: &Item) -> Vec<&Pt> {
@@ -247,9 +247,13 @@ impl<'d> BoundItems<'d> {
     }
 }
 
+/// An outline's corners, shared by its shapes at every pose, and the farthest one's distance
+/// from its centre.
+type Corners = (Arc<Vec<[f64; 2]>>, f64);
+
 /// The corners of item `k` when it is an outline, checked (at least two, each finite), with
 /// the farthest one's distance from the centre; `None` for another item.
-fn outline(k: usize, item: &Item) -> Result<Option<(Arc<Vec<[f64; 2]>>, f64)>, DrawError> {
+fn outline(k: usize, item: &Item) -> Result<Option<Corners>, DrawError> {
     let Item::Outline { points, .. } = item else { return Ok(None) };
     if points.len() < 2 {
         return Err(DrawError::InvalidSetting(format!(
