@@ -301,9 +301,12 @@
 //! more than a million turns, an invalid argument). Every error of a solve or a sweep carries a
 //! [`Location`]: the mechanism, the input values and, where one is concerned, the block (an
 //! invalid argument and the wrapped errors below carry none). [`Error`] is the one error type a
-//! program needs: the errors of dynamics, charts and drawings (`DynamicsError`, `PlotError`,
-//! `DrawError`) convert into it through `?`, kept whole in [`Error::Dynamics`] and
-//! [`Error::Figure`] ([`Source::downcast_ref`] gives them back typed).
+//! program of analyses needs: the errors of dynamics, charts, drawings and pages
+//! (`DynamicsError`, `PlotError`, `DrawError`, `HtmlError`) convert into it through `?`, kept
+//! whole in [`Error::Dynamics`] and [`Error::Figure`] ([`Source::downcast_ref`] gives them back
+//! typed). A synthesis problem's [`synthesis::SynthesisError`] is the other way round: it wraps
+//! an [`Error`] of the kinematics, and a program that builds problems returns it (or a boxed
+//! error).
 //!
 //! ```
 //! kinloop::mechanism! {
