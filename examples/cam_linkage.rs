@@ -5,7 +5,8 @@
 //! positions, and the largest pressure angle of the cam.
 //!
 //! Run with `cargo run --release -p kinloop-examples --example cam_linkage`. It writes the sweep
-//! as CSV and SVG charts into `out/cam_linkage/`.
+//! as CSV and SVG charts into `out/cam_linkage/` (the charts into `$KINLOOP_FIGURES/cam_linkage/`
+//! when that variable is set).
 
 use kinloop::Table;
 use kinloop::plot::{self, Axis, Kind, Panel, Series};

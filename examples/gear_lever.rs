@@ -6,7 +6,9 @@
 //! For `k = l/r = 1.1 ... 1.5` (carrier `L = 2r`, `r = 1`) it prints the dwell duration (carrier
 //! angle during a stop), the dwell quality (rocker swing during the stop) and the peak
 //! acceleration analog, and draws the paper's Fig. 2 (rocker angle, velocity and acceleration
-//! analogs against the carrier angle, `k = 1.3`) and Fig. 3 (the three against `k`).
+//! analogs against the carrier angle, `k = 1.3`), Fig. 3 (the three against `k`) and the rocker
+//! angle for every `k` (`rocker_k13.svg`, `dwell_vs_k.svg`, `rocker_angle.svg`, in
+//! `out/gear_lever/` or `$KINLOOP_FIGURES/gear_lever/`).
 //!
 //! **Dwell** (see `kinloop::analysis::dwell`): in each loop the rocker reverses between a
 //! local maximum and the following local minimum of its angle; the dwell is the carrier-angle

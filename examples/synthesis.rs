@@ -3,8 +3,9 @@
 //! 1. path generation: a four-bar's coupler point through ten points of an ellipse met in
 //!    order along one turn of the crank, the crank angles and the frame's placement free, the
 //!    crank required to turn fully with a transmission
-//!    angle of at least 30 degrees; the best design's coupler curve is drawn with the targets
-//!    (`out/synthesis/coupler_curve.svg`);
+//!    angle of at least 30 degrees; the best three designs' coupler curves are drawn with the
+//!    targets (`out/synthesis/coupler_curve.svg`), and the best one moves through them on an
+//!    interactive page (`out/synthesis/best_candidate.html`);
 //! 2. function generation: `y = log10(x)` on `1 <= x <= 2` (the textbook case), a 60 degree
 //!    crank rotation mapped to a 90 degree rocker rotation, five precision points at Chebyshev
 //!    spacing, and the structural error over the whole range;

@@ -297,12 +297,16 @@
 //! Bad input never panics and never yields a silent NaN: see [`Error`] (non-finite parameters or
 //! inputs, no convergence, a mechanism that cannot be assembled, a singular position, an
 //! expression outside its domain, an overflow, an angle too many turns out to be solved to the
-//! tolerance, a sweep stopped at a singular position or unable to stay on its branch, an invalid
-//! argument). Every error but an invalid argument carries a [`Location`]: the mechanism,
-//! the input values and, where one is concerned, the block. [`Error`] is the one error type a
-//! program needs: the errors of dynamics, charts and drawings (`DynamicsError`, `PlotError`,
-//! `DrawError`) convert into it through `?`, kept whole in [`Error::Dynamics`] and
-//! [`Error::Figure`] ([`Source::downcast_ref`] gives them back typed).
+//! tolerance, a sweep stopped at a singular position or unable to stay on its branch, a range of
+//! more than a million turns, an invalid argument). Every error of a solve or a sweep carries a
+//! [`Location`]: the mechanism, the input values and, where one is concerned, the block (an
+//! invalid argument and the wrapped errors below carry none). [`Error`] is the one error type a
+//! program of analyses needs: the errors of dynamics, charts, drawings and pages
+//! (`DynamicsError`, `PlotError`, `DrawError`, `HtmlError`) convert into it through `?`, kept
+//! whole in [`Error::Dynamics`] and [`Error::Figure`] ([`Source::downcast_ref`] gives them back
+//! typed). A synthesis problem's [`synthesis::SynthesisError`] is the other way round: it wraps
+//! an [`Error`] of the kinematics, and a program that builds problems returns it (or a boxed
+//! error).
 //!
 //! ```
 //! kinloop::mechanism! {
