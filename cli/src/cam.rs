@@ -230,9 +230,16 @@ fn draw(cam: &CamProfile, name: &str, path: &Path) -> Result<(), Failed> {
         Series::new("cam profile", length.clone(), curve(&cam.profile)),
     ];
     let title = format!("{name}: the cam by inversion of the follower's motion");
-    plot::xy_chart(path, &title, &Axis::new("x", length.clone()), &Axis::new("y", length), &series, &[(0.0, 0.0)])
-        .map_err(|e| {
-            eprintln!("error: cannot write the plot {}: {e}", path.display());
-            Failed(exit::CANT_CREATE)
-        })
+    let svg =
+        plot::xy_chart_svg(&title, &Axis::new("x", length.clone()), &Axis::new("y", length), &series, &[(0.0, 0.0)])
+            .map_err(|e| {
+                eprintln!("error: {name}: cannot draw the cam: {e}");
+                Failed(exit::SOLVE_FAILED)
+            })?;
+    // Written as `animate --out` writes: into a folder that exists (a mistyped folder is an
+    // error, not created).
+    std::fs::write(path, svg).map_err(|e| {
+        eprintln!("error: cannot write the plot {}: {e}", path.display());
+        Failed(exit::CANT_CREATE)
+    })
 }

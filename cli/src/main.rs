@@ -3,14 +3,14 @@
 //!
 //! ```text
 //! kinloop check four_bar.kl                      # structure: counts, mobility, blocks
-//! kinloop solve four_bar.kl --at 30 --deg        # one state as CSV, with units
-//! kinloop solve four_bar.kl --at 0 --at 0.5 --params a=1.2,b=3
+//! kinloop solve four_bar.kl --at 30 --deg --params a=1,b=3,c=2.5,d=3.2   # one state as CSV
+//! kinloop solve four_bar.kl --at 0 --at 0.5 --params a=1.2,b=3,c=2.5,d=3.2
 //! kinloop sweep four_bar.kl --from 0 --to 360 --samples 73 --deg --params a=1,b=3,c=2.5,d=3.2
 //! kinloop dynamics engine.kl --speed 150 --delta 0.02 --flywheel flywheel.csv
 //! kinloop simulate engine.kl --speed 150 --torque 2.5 --flywheel 0.05 --time 0.5
-//! kinloop extremes four_bar.kl --from 0 --to 360 --deg --table   # each unknown's min and max
+//! kinloop extremes slider_crank.kl --params r=1,l=3,e=0.4 --from 0 --to 360 --deg --table   # min and max
 //! kinloop cam dwell_cam.kl --point follower --guide 0,1 --roller 10 --plot cam.svg
-//! kinloop animate four_bar.kl --from 0 --to 360 --samples 91 --deg --out four_bar.svg
+//! kinloop animate rhombic_drive.kl --from 0 --to 360 --samples 91 --deg --out rhombic.svg
 //! kinloop animate five_bar.kl --grid --from 0,0.4 --to 3,3 --samples 9,7 --out five_bar.html
 //! kinloop synth coupler_four_bar.kl --targets points.csv --path p --vary a=0.5..2,b=2..4 --starts 64
 //! ```

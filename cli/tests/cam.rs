@@ -115,6 +115,8 @@ fn bad_requests_are_usage_errors() {
     let (cam, five_bar) = (shipped("dwell_cam.kl"), shipped("five_bar.kl"));
     // A folder where a file is: the plot cannot be created.
     let plot = std::path::Path::new(&cam).join("cam.svg");
+    // A folder that does not exist is not created (as for `animate --out`).
+    let missing = std::env::temp_dir().join(format!("kinloop-no-such-dir-{}", std::process::id())).join("cam.svg");
     let base = ["cam", cam.as_str(), "--point", "follower"];
     let cases: Vec<(Vec<&str>, &str, i32)> = vec![
         (base.to_vec(), "--guide X,Y", 2),
@@ -127,6 +129,7 @@ fn bad_requests_are_usage_errors() {
         (vec!["cam", cam.as_str(), "--point", "nope", "--guide", "0,1"], "its points: follower, rocker_pin", 2),
         (vec!["cam", five_bar.as_str(), "--point", "p", "--guide", "0,1"], "must have one input, an angle", 2),
         ([&base[..], &["--guide", "0,1", "--plot", plot.to_str().unwrap()]].concat(), "cannot write the plot", 73),
+        ([&base[..], &["--guide", "0,1", "--plot", missing.to_str().unwrap()]].concat(), "cannot write the plot", 73),
     ];
     for (args, says, code) in cases {
         let out = kinloop(&args);
@@ -134,6 +137,7 @@ fn bad_requests_are_usage_errors() {
         assert_eq!(out.status.code(), Some(code), "{args:?}: {err}");
         assert!(err.contains(says), "{args:?}: `{says}` missing: {err}");
     }
+    assert!(!missing.parent().unwrap().exists());
 }
 
 #[test]
