@@ -17,12 +17,13 @@
 //!
 //! Each mechanism is drawn as its declaration describes it (`m.drawing()`: links, frame
 //! pivots, sliders, rigid plates, the named points traced), with at most a trace removed or
-//! added and, for the gear-lever drive, its gears, which no loop describes. The cam drives'
-//! disc, roller and cam profile, which no loop describes either, are not drawn: a note under
-//! the picture says so.
+//! added and, for the gear-lever drive, its gears, and for the cam drives, the disc, the roller
+//! and the cam's profile, which no loop describes.
 
 use kinloop::Mechanism;
-use kinloop::draw::{Animation, DefaultDrawing, Draw, GridMotion, HtmlConfig, Motion, Readout, html, html_grid};
+use kinloop::draw::{
+    Animation, DefaultDrawing, Draw, GridMotion, HtmlConfig, Motion, Readout, Scalar, html, html_grid,
+};
 use kinloop::plot::Kind;
 use std::error::Error;
 use std::f64::consts::{PI, TAU};
@@ -96,26 +97,32 @@ fn class_four() -> Result<(DefaultDrawing, Motion), Box<dyn Error>> {
 
 /// The cam-linkage drive: the declaration closes the cam's contact as the equivalent four-bar
 /// (the eccentric `e` as a crank, the line of centres `r_cam + r_roller`, the rocker's arm). The
-/// disc and the roller, which no loop describes, are not added: a drawing's only circle is a
-/// gear, whose teeth would show a gear pair where a disc and a roller touch; a note says so.
+/// disc and the roller, which no loop describes, are added as circles about their centres.
 fn cam_linkage() -> Result<(DefaultDrawing, Motion), Box<dyn Error>> {
     let m = CamLinkage::default();
-    let drawing = m
-        .drawing()
-        .extend(|d| d.length_unit("mm").note("disc and roller not drawn: cam_centre-roller is their line of centres"));
+    let drawing =
+        m.drawing().extend(|d| d.length_unit("mm").circle("cam_centre", m.r_cam).circle("roller", m.r_roller));
     Ok((drawing, Motion::record(&m, m.sweep(0.0, TAU, 361, &m.guess(0.0))?)?))
 }
 
 /// The dwell cam: the declaration's follower pin on its guide, rod and rocker, the pin rising
-/// and returning by the 3-4-5 law and resting in the dwells. The cam's profile is whatever
-/// produces the law (only the law enters the kinematics), so it is not drawn. The cam angle
-/// meets no sine in the declaration; it is an angle because the law compares it with angles
-/// written in degrees, so its readout is in degrees.
+/// and returning by the 3-4-5 law and resting in the dwells. Only the law enters the
+/// kinematics; the cam that produces it is found by kinematic inversion
+/// (`kinloop::analysis::cam`, as the `dwell_cam` example does) for a roller of 10 mm about the
+/// pin, and drawn turning with the shaft. The cam angle meets no sine in the declaration; it is
+/// an angle because the law compares it with angles written in degrees, so its readout is in
+/// degrees.
 fn dwell_cam() -> Result<(DefaultDrawing, Motion), Box<dyn Error>> {
     let m = DwellCamRocker::default();
-    let drawing = m
-        .drawing()
-        .extend(|d| d.length_unit("mm").note("the cam's profile is not drawn: the follower moves by the law"));
+    let cam = kinloop_examples::dwell_cam::cam(&kinloop_examples::dwell_cam::turn(&m, 720)?)?;
+    let roller = kinloop_examples::dwell_cam::ROLLER;
+    let drawing = m.drawing().extend(|d| {
+        d.length_unit("mm")
+            .pivot([0.0, 0.0])
+            .outline([0.0, 0.0], cam.profile.clone(), Scalar::expr(|s| s.x[0]))
+            .circle("follower", roller)
+            .note(format!("cam profile for a {roller} mm roller, by inversion of the follower's motion"))
+    });
     Ok((drawing, Motion::record(&m, m.sweep(0.0, TAU, 361, &m.guess(0.0))?)?))
 }
 

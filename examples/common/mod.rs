@@ -1,6 +1,8 @@
 //! Helpers shared by the examples (the library of the `kinloop-examples` package): where their
-//! data and figures go. The examples draw with `kinloop::plot`, giving each series its quantity
+//! data and figures go, and the dwell cam's profile ([`dwell_cam`]). The examples draw with `kinloop::plot`, giving each series its quantity
 //! kind.
+
+pub mod dwell_cam;
 
 use kinloop::plot;
 use std::path::PathBuf;
