@@ -206,3 +206,34 @@ fn bad_samples_are_refused_naming_what_is_wrong() -> Result<(), Error> {
     refused(&reversed, 1.0, "at sample 5 the follower's point turns around the cam's centre the other way");
     Ok(())
 }
+
+/// The same cam at 1e300 and at 1e-300 of its size: the same pressure angles and the radii scaled
+/// (computed in units of a power of two near each sample's lengths, no cube overflows).
+#[test]
+fn a_cam_at_the_ends_of_the_f64_range_has_the_same_angles() -> Result<(), Error> {
+    let m = CamLinkage::default();
+    let (samples, _) = eccentric_samples(&m)?;
+    let plain = cam_profile(&samples, [0.0, 0.0], m.r_roller)?;
+    for k in [1e300, 1e-300] {
+        let scaled: Vec<FollowerSample> = samples
+            .iter()
+            .map(|s| FollowerSample {
+                point: s.point.map(|p| p.map(|v| v * k)),
+                direction: s.direction.map(|v| v * k),
+                ..*s
+            })
+            .collect();
+        let cam = cam_profile(&scaled, [0.0, 0.0], m.r_roller * k)?;
+        for j in 0..samples.len() {
+            assert!((cam.pressure_angle[j] - plain.pressure_angle[j]).abs() <= 1e-14, "{k:e} {j}");
+            let want = plain.pitch_radius[j] * k;
+            assert!((cam.pitch_radius[j] - want).abs() <= 1e-13 * want.abs(), "{k:e} {j}: {}", cam.pitch_radius[j]);
+            for c in 0..2 {
+                let want = plain.profile[j][c] * k;
+                assert!((cam.profile[j][c] - want).abs() <= 1e-13 * m.r_cam * k, "{k:e} {j}");
+            }
+        }
+        assert!(cam.undercut().is_empty());
+    }
+    Ok(())
+}

@@ -154,19 +154,25 @@ pub fn cam_profile(samples: &[FollowerSample], pivot: [f64; 2], roller: f64) -> 
         let [theta, dtheta, d2theta] = s.cam;
         let [p, dp, d2p] = s.point;
         let q = [p[0] - pivot[0], p[1] - pivot[1]];
+        // The derivatives in units of a power of two near the sample's lengths (exact), so that
+        // the cube of the speed and the cross products neither overflow nor underflow at any
+        // scale: the radius is scaled back, the angles and the normal are free of it.
+        let unit = binade([q, dp, d2p].iter().flatten().fold(0.0, |m: f64, v| m.max(v.abs())));
+        let (qs, dps, d2ps) = (scale(1.0 / unit, q), scale(1.0 / unit, dp), scale(1.0 / unit, d2p));
         // In the fixed frame, then turned into the cam's by R(-theta) (see the module docs).
-        let dr = sub(dp, scale(dtheta, quarter(q)));
+        let dr = sub(dps, scale(dtheta, quarter(qs)));
         let d2r = [
-            d2p[0] - d2theta * quarter(q)[0] - 2.0 * dtheta * quarter(dp)[0] - dtheta * dtheta * q[0],
-            d2p[1] - d2theta * quarter(q)[1] - 2.0 * dtheta * quarter(dp)[1] - dtheta * dtheta * q[1],
+            d2ps[0] - d2theta * quarter(qs)[0] - 2.0 * dtheta * quarter(dps)[0] - dtheta * dtheta * qs[0],
+            d2ps[1] - d2theta * quarter(qs)[1] - 2.0 * dtheta * quarter(dps)[1] - dtheta * dtheta * qs[1],
         ];
         // The turn of the point around the cam's centre, r x r' (the same in either frame).
-        let turn = cross(q, dr);
+        let turn = cross(qs, dr);
         let speed = norm(dr);
         if turn == 0.0 || speed == 0.0 {
             return bad(format!(
-                "at sample {k} the follower's point does not move around the cam's centre (r' = {dr:?} relative to \
-                 the cam): the pitch curve must wind around it"
+                "at sample {k} the follower's point does not move around the cam's centre (r' = {:?} relative to \
+                 the cam): the pitch curve must wind around it",
+                scale(unit, dr)
             ));
         }
         if winding == 0.0 {
@@ -180,7 +186,7 @@ pub fn cam_profile(samples: &[FollowerSample], pivot: [f64; 2], roller: f64) -> 
         // The normal towards the inside (the cam's centre side): J r' points to the left of the
         // motion, which is the inside where the curve winds counter-clockwise.
         let inward = scale(winding / speed, quarter(dr));
-        let radius = winding * speed * speed * speed / cross(dr, d2r);
+        let radius = winding * speed * speed * speed / cross(dr, d2r) * unit;
         let back = rotate(-theta);
         out.pitch.push(apply(back, q));
         out.profile.push(apply(back, [q[0] + roller * inward[0], q[1] + roller * inward[1]]));
@@ -191,6 +197,18 @@ pub fn cam_profile(samples: &[FollowerSample], pivot: [f64; 2], roller: f64) -> 
         out.pressure_angle.push(sin.atan2(cos));
     }
     Ok(out)
+}
+
+/// The largest power of two not above `m` (1 for 0, the smallest normal one for a subnormal
+/// `m`): dividing by it is exact.
+fn binade(m: f64) -> f64 {
+    if m >= f64::MIN_POSITIVE {
+        f64::from_bits(m.to_bits() & 0x7ff0_0000_0000_0000)
+    } else if m > 0.0 {
+        f64::MIN_POSITIVE
+    } else {
+        1.0
+    }
 }
 
 /// `v` of unit length, `None` for a zero vector (scaled first, so that no length overflows).
