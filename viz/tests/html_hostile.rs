@@ -1,0 +1,37 @@
+//! Hostile inputs to the interactive pages: what the drawings refuse or bound, the pages
+//! refuse or bound too (a page's size follows its frames, not the reach of a window).
+
+use kinloop_viz::draw::{Canvas, Drawing, HtmlConfig, Motion, Pt, html};
+use std::f64::consts::TAU;
+
+#[allow(dead_code)] // not every test uses every helper
+mod draw_support;
+
+use draw_support::FourBar;
+
+fn motion() -> (FourBar, Motion) {
+    let m = FourBar::default();
+    let mo = Motion::record(&m, m.sweep(0.0, TAU, 13, &m.guess(0.0)).unwrap()).unwrap();
+    (m, mo)
+}
+
+/// The `d` attribute of every hatch path (`M x,y l dx,dy` repeated) of a page's drawing.
+fn hatch_strokes(page: &str) -> usize {
+    page.split("<path d=\"").skip(1).map(|p| p.split('"').next().unwrap().matches('l').count()).sum()
+}
+
+#[test]
+fn a_fixed_sliders_guide_on_a_page_is_cut_to_the_picture() {
+    let (m, mo) = motion();
+    // A slider travelling about 6e7 pixels along its guide through a window 480 pixels wide:
+    // the guide's ground line and hatching are drawn over the picture only, as the drawings
+    // do, not as some ten million hatch strokes.
+    let window = Canvas { window: Some([-2.0, -2.0, 6.0, 5.0]), ..Canvas::default() };
+    let far = Drawing::new().with_canvas(window).slider(Pt::expr(|s| [1e6 * s.x[0], 0.0]), 0.0).joint("b");
+    let page = html(&m, &far, &mo, &HtmlConfig::new("far slider")).unwrap();
+    let view = far.view(&mo).unwrap();
+    // One stroke every 6 pixels along the picture's diagonal at most, and a few more.
+    let most = (view.width.hypot(view.height) / 6.0).ceil() as usize + 8;
+    assert!(hatch_strokes(&page) <= most, "{} hatch strokes, {} bytes", hatch_strokes(&page), page.len());
+    assert!(page.len() < 200_000, "{} bytes", page.len());
+}
