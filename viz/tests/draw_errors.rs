@@ -198,6 +198,7 @@ fn style_sizes_and_colours_are_checked() {
         kinloop_viz::draw::Style { joint_radius: -1.0, ..Default::default() },
         kinloop_viz::draw::Style { block: [f64::INFINITY, 1.0], ..Default::default() },
         kinloop_viz::draw::Style { ink: "red\" onload=\"x".into(), ..Default::default() },
+        kinloop_viz::draw::Style { fill: "red\u{1}".into(), ..Default::default() },
     ] {
         let err = d.clone().with_style(style).svg(&mo, 0).unwrap_err();
         assert!(matches!(err, DrawError::InvalidSetting(_)), "{err}");

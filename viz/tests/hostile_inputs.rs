@@ -159,3 +159,34 @@ proptest! {
         }
     }
 }
+
+/// Names, labels, units, notes and titles holding characters that XML forbids even as
+/// entities (control characters other than tab, line feed and carriage return; U+FFFE and
+/// U+FFFF) still give well-formed SVG: each such character is written as U+FFFD; markup
+/// characters are entities; the rest of the text is kept.
+#[test]
+fn characters_xml_forbids_in_names_give_well_formed_svg() {
+    let odd = "a\u{0}b\u{1}\u{8}\u{b}\u{c}\u{1f}\u{7f}\u{fffe}\u{ffff}<&>\"'\t\n]]>--</script>φ";
+    let mm = Kind::length(odd);
+    let (x, y) = (Axis::new(odd, mm.clone()), Axis::new("y", mm.clone()));
+    let series = [Series::new(odd, mm.clone(), vec![(0.0, 1.0), (1.0, 2.0)])];
+    let charts = [
+        line_chart_svg(odd, &x, &y, &series).unwrap(),
+        xy_chart_svg(odd, &x, &Axis::new(odd, mm.clone()), &series, &[]).unwrap(),
+        kinloop_viz::plot::bar_chart_svg(odd, &x, &[Panel::new(y.clone()).with(series[0].clone())]).unwrap(),
+    ];
+    let m = FourBar::default();
+    let motion = Motion::record(&m, m.sweep(0.0, std::f64::consts::TAU, 13, &m.guess(0.0)).unwrap()).unwrap();
+    let d = Drawing::new().link(["b", "c"]).label("p", odd).note(odd).length_unit(odd).trace("p");
+    let drawings = [
+        d.svg(&motion, 0).unwrap(),
+        d.animate(&motion, &Animation::default()).unwrap(),
+        d.exposures(&motion, 3).unwrap(),
+    ];
+    for svg in charts.iter().chain(&drawings) {
+        let doc = roxmltree::Document::parse(svg).unwrap_or_else(|e| panic!("{e}"));
+        let text: String = doc.descendants().filter_map(|n| n.text()).collect();
+        assert!(text.contains("a\u{fffd}b\u{fffd}"), "{text:?}");
+        assert!(text.contains("<&>\"'") && text.contains("]]>--</script>φ"), "{text:?}");
+    }
+}

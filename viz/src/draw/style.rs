@@ -60,9 +60,10 @@ impl Style {
         }
         let colours = [&self.ink, &self.fill, &self.event, &self.ground].into_iter().chain(&self.traces);
         for c in colours {
-            if c.contains(['"', '<', '>', '&']) {
+            if c.contains(['"', '<', '>', '&']) || c.chars().any(char::is_control) {
                 return Err(DrawError::InvalidSetting(format!(
-                    "style colour {c:?} holds a character that cannot stand in an SVG attribute (\", <, > or &)"
+                    "style colour {c:?} holds a character that cannot stand in an SVG attribute (\", <, >, & or a \
+                     control character)"
                 )));
             }
         }
