@@ -190,3 +190,38 @@ fn characters_xml_forbids_in_names_give_well_formed_svg() {
         assert!(text.contains("<&>\"'") && text.contains("]]>--</script>φ"), "{text:?}");
     }
 }
+
+/// Bars at abscissae near the ends of the f64 range (their spacing, or the half spacing of
+/// room around them, overflows), at subnormal ones, and at a lone one: finite SVG, every bar
+/// as wide as the narrowest spacing allows and within the plot area, ticks that read back.
+#[test]
+fn bar_charts_at_extreme_abscissae_are_finite() {
+    let n = Kind::force("N");
+    let order = Axis::new("order", Kind::Dimensionless);
+    for xs in [
+        vec![-f64::MAX, f64::MAX],
+        vec![f64::MAX],
+        vec![-f64::MAX],
+        vec![0.5 * f64::MAX, f64::MAX],
+        vec![-1e308, 0.0, 1e308],
+        vec![5e-324, 1e-323],
+        vec![5e-324],
+        vec![1e300],
+        vec![-3.0, 7.5],
+    ] {
+        let points: Vec<(f64, f64)> = xs.iter().enumerate().map(|(k, &x)| (x, 1.0 + k as f64)).collect();
+        let panel = Panel::new(Axis::new("f", n.clone())).with(Series::new("a", n.clone(), points));
+        let svg = kinloop_viz::plot::bar_chart_svg("b", &order, &[panel]).unwrap();
+        assert_finite(&svg);
+        let doc = roxmltree::Document::parse(&svg).unwrap();
+        let area = doc.descendants().find(|e| e.attribute("class") == Some("plot-area")).unwrap();
+        let attr = |e: &roxmltree::Node, a: &str| e.attribute(a).unwrap().parse::<f64>().unwrap();
+        let (left, right) = (attr(&area, "x"), attr(&area, "x") + attr(&area, "width"));
+        let bars: Vec<_> = doc.descendants().filter(|e| e.attribute("class") == Some("bar")).collect();
+        assert_eq!(bars.len(), xs.len(), "{xs:?}");
+        for b in &bars {
+            let (x, w) = (attr(b, "x"), attr(b, "width"));
+            assert!(w > 1.0 && x >= left - 0.01 && x + w <= right + 0.01, "{xs:?}: bar {x} + {w} in {left}..{right}");
+        }
+    }
+}
