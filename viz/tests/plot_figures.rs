@@ -492,3 +492,59 @@ fn dynamics_quantities_have_kinds_with_their_units() {
         assert_eq!(parse(&svg).titles, [title, "time [s]"]);
     }
 }
+
+/// The height of a figure (its `<svg height>`).
+fn figure_height(svg: &str) -> f64 {
+    let doc = roxmltree::Document::parse(svg).expect("well-formed SVG");
+    attr(doc.root_element(), "height")
+}
+
+/// Legends of many series (more than a plot area's height of entries) stay in the picture, and
+/// the legends of stacked panels do not overlap: the figure grows to hold them.
+#[test]
+fn legends_of_many_series_stay_in_the_picture() {
+    let flat =
+        |k: usize, kind: Kind| Series::new(&format!("series {k}"), kind, vec![(0.0, k as f64), (1.0, k as f64 + 0.5)]);
+    let many = |n: usize, kind: Kind| (0..n).map(|k| flat(k, kind.clone())).collect::<Vec<_>>();
+    let x = Axis::new("x", mm());
+    let n = Kind::force("N");
+    let figures = [
+        line_chart_svg("", &x, &Axis::new("y", mm()), &many(40, mm())).unwrap(),
+        panels_svg(
+            "Panels",
+            &x,
+            &[
+                Panel { series: many(30, mm()), ..Panel::new(Axis::new("y", mm())) },
+                Panel { series: many(3, n.clone()), ..Panel::new(Axis::new("f", n.clone())) },
+                Panel { series: many(20, n.clone()), ..Panel::new(Axis::new("g", n.clone())) },
+            ],
+        )
+        .unwrap(),
+        xy_chart_svg("", &x, &Axis::new("y", mm()), &many(60, mm()), &[]).unwrap(),
+        bar_chart_svg(
+            "Bars",
+            &Axis::new("order", Kind::Dimensionless),
+            &[
+                Panel { series: many(25, n.clone()), ..Panel::new(Axis::new("f", n.clone())) },
+                Panel { series: many(2, n.clone()), ..Panel::new(Axis::new("g", n.clone())) },
+            ],
+        )
+        .unwrap(),
+    ];
+    for svg in &figures {
+        let p = parse(svg);
+        let height = figure_height(svg);
+        for l in &p.legends {
+            assert!(l[1] >= 0.0 && l[1] + l[3] <= height, "legend {l:?} in a figure {height} high");
+        }
+        for (i, a) in p.legends.iter().enumerate() {
+            for b in &p.legends[i + 1..] {
+                assert!(!overlap(a, b), "legends {a:?} and {b:?} overlap");
+            }
+        }
+        // Each panel's plot area keeps its place above the next panel's.
+        for w in p.areas.windows(2) {
+            assert!(w[0][1] + w[0][3] < w[1][1], "{:?}", p.areas);
+        }
+    }
+}

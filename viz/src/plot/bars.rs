@@ -78,7 +78,9 @@ pub fn bar_chart_svg(title: &str, x: &Axis, panels: &[Panel]) -> Result<String, 
     let spacing_scaled = spacing * (u / xt.unit) * x.kind.factor();
     let legend_w = legend::width(panels.iter().flat_map(|p| p.series.iter().map(|s| s.label.as_str())));
     let top = if title.is_empty() { 16.0 } else { 48.0 };
-    let mut svg = Svg::new(WIDTH, top + panels.len() as f64 * (PANEL_H + GAP) + 20.0);
+    // Each panel's slot, longer where its legend is taller (see `panels_svg`).
+    let slots = legend::slots(panels, PANEL_H + GAP);
+    let mut svg = Svg::new(WIDTH, top + slots.iter().sum::<f64>() + 20.0);
     if !title.is_empty() {
         svg.text("title", WIDTH / 2.0, 30.0, TITLE_FONT, "middle", 0.0, title);
     }
@@ -88,7 +90,7 @@ pub fn bar_chart_svg(title: &str, x: &Axis, panels: &[Panel]) -> Result<String, 
         let (_, _, y0, y1) = bounds(p.series.iter().flat_map(|s| s.points.iter())).ok_or_else(what)?;
         let frame = Frame {
             x: LEFT,
-            y: top + k as f64 * (PANEL_H + GAP),
+            y: top + slots[..k].iter().sum::<f64>(),
             w: plot_w,
             h: PANEL_H,
             xt: xt.clone(),

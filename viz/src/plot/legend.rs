@@ -38,6 +38,23 @@ pub(crate) fn width<'a>(labels: impl Iterator<Item = &'a str>) -> f64 {
     widest.map_or(0.0, |w| w + 48.0)
 }
 
+/// Height of the legend of these labels (0 when there is nothing to list).
+pub(crate) fn height<'a>(labels: impl Iterator<Item = &'a str>) -> f64 {
+    match labels.filter(|l| !l.is_empty()).count() {
+        0 => 0.0,
+        n => 10.0 + 20.0 * n as f64,
+    }
+}
+
+/// Room left under a legend before the next panel (or the figure's end).
+pub(crate) const BELOW: f64 = 8.0;
+
+/// The height of each panel's slot in a stack of `panels` (the top of its plot area to the
+/// next one's): `slot`, or more where the panel's legend needs more.
+pub(crate) fn slots(panels: &[super::Panel], slot: f64) -> Vec<f64> {
+    panels.iter().map(|p| slot.max(height(p.series.iter().map(|s| s.label.as_str())) + BELOW)).collect()
+}
+
 /// What a legend entry shows of its series: a stretch of line (curves) or a filled square
 /// (bars).
 #[derive(Clone, Copy, PartialEq, Eq)]

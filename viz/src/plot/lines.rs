@@ -46,7 +46,10 @@ pub fn panels_svg(title: &str, x: &Axis, panels: &[Panel]) -> Result<String, Plo
     let xt = Ticks::new(x0, x1, x.kind.factor(), x.kind.is_angle(), false, 0.0);
     let legend_w = legend::width(panels.iter().flat_map(|p| p.series.iter().map(|s| s.label.as_str())));
     let top = if title.is_empty() { 16.0 } else { 48.0 };
-    let height = top + panels.len() as f64 * (PANEL_H + GAP) + 20.0;
+    // Each panel's slot, from the top of its plot area to the next one's: longer where its
+    // legend is taller than the slot, so that every legend stays in the picture.
+    let slots = legend::slots(panels, PANEL_H + GAP);
+    let height = top + slots.iter().sum::<f64>() + 20.0;
     let mut svg = Svg::new(WIDTH, height);
     if !title.is_empty() {
         svg.text("title", WIDTH / 2.0, 30.0, TITLE_FONT, "middle", 0.0, title);
@@ -57,7 +60,7 @@ pub fn panels_svg(title: &str, x: &Axis, panels: &[Panel]) -> Result<String, Plo
         let (_, _, y0, y1) = bounds(p.series.iter().flat_map(|s| s.points.iter()).chain(&p.marks)).ok_or_else(what)?;
         let frame = Frame {
             x: LEFT,
-            y: top + k as f64 * (PANEL_H + GAP),
+            y: top + slots[..k].iter().sum::<f64>(),
             w: plot_w,
             h: PANEL_H,
             xt: xt.clone(),

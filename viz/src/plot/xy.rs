@@ -75,7 +75,9 @@ pub fn xy_chart_svg(
     // The same step on both axes: equal scales read best with equal grid squares.
     let yt = Ticks::with_step(cy - hy, cy + hy, &xt);
     let top = if title.is_empty() { 16.0 } else { 48.0 };
-    let mut svg = Svg::new(WIDTH, top + h + 64.0);
+    // Taller where the legend is taller than the plot area and the room under it.
+    let legend_h = legend::height(series.iter().map(|s| s.label.as_str()));
+    let mut svg = Svg::new(WIDTH, top + (h + 64.0).max(legend_h + legend::BELOW));
     if !title.is_empty() {
         svg.text("title", WIDTH / 2.0, 30.0, TITLE_FONT, "middle", 0.0, title);
     }
