@@ -444,3 +444,28 @@ fn a_circle_is_an_outline_at_its_radius_and_outlines_are_checked() {
         assert!(e.to_string().contains(says), "{e}");
     }
 }
+
+/// Every animated attribute of an animation lasts the seconds asked, to the digit: a quarter
+/// of a second was written `dur="0.3s"` (rounded to a tenth as a coordinate), and a few
+/// hundredths `dur="0s"` (an animation SMIL does not play). Durations no animation can show
+/// (below a millisecond) or beyond a billion seconds are errors.
+#[test]
+fn an_animation_lasts_the_seconds_asked() {
+    let m = FourBar::default();
+    let mo = motion(&m, TAU, 25);
+    let d = four_bar_drawing(&m);
+    for (seconds, dur) in [(0.25, "0.25s"), (0.04, "0.04s"), (1.125, "1.125s"), (6.0, "6s"), (3600.0, "3600s")] {
+        let svg = d.animate(&mo, &Animation { seconds, ..Animation::default() }).unwrap();
+        let doc = checked(&svg).unwrap();
+        let durs: Vec<&str> = doc.descendants().filter_map(|n| n.attribute("dur")).collect();
+        assert!(!durs.is_empty() && durs.iter().all(|d| *d == dur), "{seconds} s: {durs:?}");
+    }
+    for seconds in [1e-4, 5e-324, 2e9, 1e300] {
+        let r = d.animate(&mo, &Animation { seconds, ..Animation::default() });
+        assert!(
+            matches!(r, Err(kinloop_viz::draw::DrawError::InvalidSetting(_))),
+            "{seconds} s: {:?}",
+            r.map(|s| s.len())
+        );
+    }
+}
