@@ -469,3 +469,30 @@ fn an_animation_lasts_the_seconds_asked() {
         );
     }
 }
+
+/// An input angle of a hundred thousand degrees or more is read out as a page's readout
+/// writes it (five significant digits and a power of ten), not with every digit of its
+/// degrees: a crank turned 1e300 radians wrote a readout three hundred digits long, which
+/// widened the picture to hold it.
+#[test]
+fn huge_input_angles_are_read_out_with_a_power_of_ten() {
+    let m = FourBar::default();
+    let mo = motion(&m, TAU, 5);
+    let d = Drawing::new().link(["b", "c", "p"]);
+    let mut one = mo.clone();
+    one.poses.truncate(1);
+    let narrow = d.view(&one).unwrap().width;
+    for (phi, text) in [(1e300, "phi = 5.7296e301°"), (1e4, "phi = 5.7296e5°"), (-3e5, "phi = -1.7189e7°")] {
+        // The pose of the crank at 0, read out at `phi` (the drawing draws the outputs).
+        let mut huge = one.clone();
+        huge.poses[0].x[0] = phi;
+        let svg = d.svg(&huge, 0).unwrap();
+        let doc = checked(&svg).unwrap();
+        let readout = doc
+            .descendants()
+            .find(|n| n.tag_name().name() == "text" && n.parent().and_then(|p| p.attribute("class")) == Some("readout"))
+            .unwrap();
+        assert_eq!(readout.text().unwrap(), text);
+        assert!(d.view(&huge).unwrap().width <= narrow, "{phi}");
+    }
+}

@@ -46,7 +46,12 @@ pub(crate) fn text_width(text: &str) -> f64 {
     0.6 * FONT * text.chars().count() as f64
 }
 
-/// The value of one input as read out: an angle in degrees (`decimals` places), a length with
+/// Angles (in degrees) from this magnitude on are read out with a power of ten, as a page's
+/// readouts write them ([`Format`]).
+const ANGLE_DIGITS: f64 = 1e5;
+
+/// The value of one input as read out: an angle in degrees (`decimals` places; from 1e5
+/// degrees on, five significant digits and a power of ten), a length with
 /// its unit, anything else as a plain number; a length or a number as an interactive page's
 /// readout writes it ([`Format`]): five significant digits of `largest` (the input's largest
 /// magnitude over the poses, so that every pose's value has the same digits), with decimals
@@ -60,7 +65,18 @@ pub(crate) fn input_value(
 ) -> String {
     let short = |v: f64| Format::of(&Kind::Dimensionless, largest.max(v.abs())).text(v);
     match kind {
-        Some(QuantityKind::Angle) if v.to_degrees().is_finite() => format!("{:.decimals$}°", v.to_degrees()),
+        Some(QuantityKind::Angle) if v.to_degrees().is_finite() => {
+            let deg = v.to_degrees();
+            // Every pose's value in one format: that of the input's largest magnitude.
+            let most = Some(largest.to_degrees()).filter(|m| m.is_finite()).unwrap_or(0.0).max(deg.abs());
+            if most < ANGLE_DIGITS {
+                format!("{deg:.decimals$}°")
+            } else {
+                // As a page's readout: five significant digits and a power of ten, not every
+                // digit of a huge angle.
+                format!("{}°", Format::of(&Kind::Angle, most).text(deg))
+            }
+        }
         // Beyond about 1e306 radians the degrees overflow: say the radians.
         Some(QuantityKind::Angle) => format!("{v:e} rad"),
         Some(QuantityKind::Length) => format!("{} {}", short(v), unit.unwrap_or(LENGTH_UNIT)),
