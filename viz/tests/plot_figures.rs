@@ -548,3 +548,33 @@ fn legends_of_many_series_stay_in_the_picture() {
         }
     }
 }
+
+/// More series than colours: each curve is told apart from every other by its colour and dash
+/// (the colours repeat every seven series, the eighth drawn as the first was), and each legend
+/// entry's swatch shows its curve's colour and dash.
+#[test]
+fn curves_beyond_the_colours_are_told_apart_by_their_dashes() {
+    let series: Vec<Series> =
+        (0..20).map(|k| Series::new(&format!("s{k}"), mm(), vec![(0.0, k as f64), (1.0, k as f64 + 0.5)])).collect();
+    let x = Axis::new("x", mm());
+    for svg in [
+        line_chart_svg("", &x, &Axis::new("y", mm()), &series).unwrap(),
+        xy_chart_svg("", &x, &Axis::new("y", mm()), &series, &[]).unwrap(),
+    ] {
+        let doc = roxmltree::Document::parse(&svg).unwrap();
+        let look = |n: &roxmltree::Node| {
+            (n.attribute("stroke").unwrap().to_string(), n.attribute("stroke-dasharray").unwrap_or("").to_string())
+        };
+        let curves: Vec<_> =
+            doc.descendants().filter(|n| n.attribute("class") == Some("curve")).map(|n| look(&n)).collect();
+        let swatches: Vec<_> =
+            doc.descendants().filter(|n| n.attribute("class") == Some("legend-line")).map(|n| look(&n)).collect();
+        assert_eq!(curves.len(), 20);
+        assert_eq!(curves, swatches);
+        for (i, a) in curves.iter().enumerate() {
+            assert!(!curves[i + 1..].contains(a), "curve {i} looks like a later one: {a:?}");
+        }
+        // The first seven are solid, as they were.
+        assert!(curves[..7].iter().all(|(_, dash)| dash.is_empty()));
+    }
+}

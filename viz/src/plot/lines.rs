@@ -78,7 +78,7 @@ fn draw_panel(svg: &mut Svg, frame: &Frame, k: usize, p: &Panel, x_title: Option
     let clip = format!("area{k}");
     svg.clip(&clip, (frame.x, frame.y), (frame.w, frame.h));
     for (c, s) in p.series.iter().enumerate() {
-        svg.curve(&s.label, s.points.iter().map(|&pt| frame.px(pt)), legend::color(c), &clip);
+        svg.curve(&s.label, s.points.iter().map(|&pt| frame.px(pt)), (legend::color(c), legend::dash(c)), &clip);
     }
     for &m in p.marks.iter().filter(|(x, y)| x.is_finite() && y.is_finite()) {
         svg.dot("mark", frame.px(m), 4.0, "black");

@@ -86,7 +86,7 @@ pub fn xy_chart_svg(
     frame.draw(&mut svg, Some(x), y);
     svg.clip("area0", (frame.x, frame.y), (frame.w, frame.h));
     for (c, s) in series.iter().enumerate() {
-        svg.curve(&s.label, s.points.iter().map(|&p| frame.px(p)), legend::color(c), "area0");
+        svg.curve(&s.label, s.points.iter().map(|&p| frame.px(p)), (legend::color(c), legend::dash(c)), "area0");
     }
     for &m in marks.iter().filter(|(x, y)| x.is_finite() && y.is_finite()) {
         svg.dot("mark", frame.px(m), 4.0, "black");
