@@ -578,3 +578,49 @@ fn curves_beyond_the_colours_are_told_apart_by_their_dashes() {
         assert!(curves[..7].iter().all(|(_, dash)| dash.is_empty()));
     }
 }
+
+/// Tick labels of many digits (a range of a few ulps at 1e6, labelled to its last digit) are
+/// readable: x labels do not run into each other (some ticks go unlabelled instead), y labels
+/// fit between the picture's left edge (with the rotated axis title) and the plot area. Widths
+/// are estimated as the library estimates text: 0.6 em a character.
+#[test]
+fn long_tick_labels_neither_overlap_nor_leave_the_picture() {
+    let narrow: Vec<(f64, f64)> = (0..10).map(|i| (1e6 + i as f64 * 1.2e-10, 1e6 + i as f64 * 2.4e-10)).collect();
+    let x = Axis::new("x", mm());
+    let figures = [
+        line_chart_svg("", &x, &Axis::new("y", mm()), &[Series::new("a", mm(), narrow.clone())]).unwrap(),
+        panels_svg(
+            "",
+            &x,
+            &[Panel::new(Axis::new("y", mm())).with(Series::new("a", mm(), narrow.clone())), {
+                let wide: Vec<(f64, f64)> = narrow.iter().map(|&(x, _)| (x, 1.0)).collect();
+                Panel::new(Axis::new("z", mm())).with(Series::new("b", mm(), wide))
+            }],
+        )
+        .unwrap(),
+        xy_chart_svg("", &x, &Axis::new("y", mm()), &[Series::new("a", mm(), narrow.clone())], &[]).unwrap(),
+    ];
+    let width = |label: &str| 0.6 * 12.0 * label.chars().count() as f64;
+    for svg in &figures {
+        let p = parse(svg);
+        let doc = roxmltree::Document::parse(svg).unwrap();
+        for (k, xt) in p.x_ticks.iter().enumerate() {
+            for w in xt.windows(2) {
+                let (a, b) = (&w[0], &w[1]);
+                assert!(
+                    a.1 + 0.5 * width(&a.0) < b.1 - 0.5 * width(&b.0),
+                    "panel {k}: x labels {a:?} and {b:?} overlap"
+                );
+            }
+            assert!(k + 1 < p.x_ticks.len() || xt.len() >= 2, "{xt:?}");
+        }
+        for n in doc.descendants().filter(|n| n.attribute("class") == Some("tick-label y")) {
+            let (label, right) = (n.text().unwrap(), attr(n, "x"));
+            assert!(right - width(label) >= 30.0, "y label {label} from {} px", right - width(label));
+        }
+        // Every curve still in its plot area.
+        for (area, curves) in p.areas.iter().zip(&p.curves) {
+            assert!(curves.iter().flatten().all(|&pt| inside(area, pt)), "{area:?}");
+        }
+    }
+}

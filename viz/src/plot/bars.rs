@@ -1,7 +1,7 @@
 //! Bar charts: values at discrete abscissae (the orders of a Fourier series, cases of a
 //! study) drawn as bars from zero, grouped when a panel holds several series.
 
-use super::frame::{Frame, LEFT, TITLE_FONT, WIDTH};
+use super::frame::{Frame, TITLE_FONT, WIDTH, left_margin};
 use super::series::bounds;
 use super::svg::Svg;
 use super::ticks::{Ticks, binade};
@@ -84,18 +84,18 @@ pub fn bar_chart_svg(title: &str, x: &Axis, panels: &[Panel]) -> Result<String, 
     if !title.is_empty() {
         svg.text("title", WIDTH / 2.0, 30.0, TITLE_FONT, "middle", 0.0, title);
     }
-    let plot_w = WIDTH - LEFT - 24.0 - if legend_w > 0.0 { legend_w + 16.0 } else { 0.0 };
-    for (k, p) in panels.iter().enumerate() {
+    let mut yts = Vec::with_capacity(panels.len());
+    for p in panels {
         let what = || PlotError::Empty { what: format!("the panel `{}`", p.axis.name) };
         let (_, _, y0, y1) = bounds(p.series.iter().flat_map(|s| s.points.iter())).ok_or_else(what)?;
-        let frame = Frame {
-            x: LEFT,
-            y: top + slots[..k].iter().sum::<f64>(),
-            w: plot_w,
-            h: PANEL_H,
-            xt: xt.clone(),
-            yt: Ticks::new(y0.min(0.0), y1.max(0.0), p.axis.kind.factor(), p.axis.kind.is_angle(), true, 0.03),
-        };
+        yts.push(Ticks::new(y0.min(0.0), y1.max(0.0), p.axis.kind.factor(), p.axis.kind.is_angle(), true, 0.03));
+    }
+    // One left margin for every panel, wide enough for the widest y tick label.
+    let left = left_margin(&yts);
+    let plot_w = WIDTH - left - 24.0 - if legend_w > 0.0 { legend_w + 16.0 } else { 0.0 };
+    for (k, (p, yt)) in panels.iter().zip(yts).enumerate() {
+        let frame =
+            Frame { x: left, y: top + slots[..k].iter().sum::<f64>(), w: plot_w, h: PANEL_H, xt: xt.clone(), yt };
         svg.open("panel");
         frame.draw(&mut svg, (k + 1 == panels.len()).then_some(x), &p.axis);
         let n = p.series.len() as f64;
