@@ -5,8 +5,8 @@ use crate::escape::escape;
 use crate::plot::ticks::Ticks;
 use std::fmt::Write;
 
-/// Plot area insets in pixels: left (tick labels and the y title), right, top, bottom (tick
-/// labels and the x title).
+/// Plot area insets in pixels: left (tick labels and the y title; more for wider labels, see
+/// [`TITLE_ROOM`]), right, top, bottom (tick labels and the x title).
 const LEFT: f64 = 58.0;
 const RIGHT: f64 = 12.0;
 const TOP: f64 = 10.0;
@@ -17,6 +17,12 @@ pub(crate) fn px(v: f64) -> String {
     let r = (v * 10.0).round() / 10.0 + 0.0;
     format!("{r}")
 }
+
+/// Room at the chart's left edge for the rotated y title (its glyphs reach about 17 px), and
+/// the gap between a y tick label and the plot area: the left inset holds both and the widest
+/// label (estimated at 0.6 em a character of the charts' 11 px text).
+const TITLE_ROOM: f64 = 19.0;
+const LABEL_GAP: f64 = 5.0;
 
 /// About this many intervals between ticks on each axis: fewer than the plot module's larger
 /// charts, so that the labels of a small chart stay apart.
@@ -69,7 +75,9 @@ pub(crate) fn chart(k: usize, x: Option<&Channel>, y: &Channel, events: &[f64], 
     let xt = axis(x0, x1, x.is_some_and(|c| c.kind.is_angle()));
     let yt = axis(y0, y1, y.kind.is_angle());
     let [w, h] = size;
-    let (l, r, t, b) = (LEFT, w - RIGHT, TOP, h - BOTTOM);
+    let widest = yt.ticks.iter().map(|(_, label)| 0.6 * 11.0 * label.chars().count() as f64).fold(0.0, f64::max);
+    let l = LEFT.max((TITLE_ROOM + widest + LABEL_GAP).ceil()).min(w / 3.0);
+    let (l, r, t, b) = (l, w - RIGHT, TOP, h - BOTTOM);
     let bx = (r - l) / (xt.hi - xt.lo);
     let by = (b - t) / (yt.hi - yt.lo);
     let map = Map { x: [l - xt.lo * bx, bx], y: [b + yt.lo * by, -by] };
@@ -99,7 +107,7 @@ pub(crate) fn chart(k: usize, x: Option<&Channel>, y: &Channel, events: &[f64], 
             r##"<line class="kl-grid" x1="{}" y1="{p}" x2="{}" y2="{p}" stroke="#e3e3e3"/><text class="kl-tick-y" x="{}" y="{}" text-anchor="end">{label}</text>"##,
             px(l),
             px(r),
-            px(l - 5.0),
+            px(l - LABEL_GAP),
             px(fy(*v) + 4.0)
         );
     }
