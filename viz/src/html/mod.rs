@@ -245,8 +245,9 @@ pub(crate) fn html_marked<D: Drawable + ?Sized>(
 /// ```
 ///
 /// # Errors
-/// As [`html`], and [`HtmlError::InvalidSetting`] for a grid of another mechanism or of more
-/// cells than [`HtmlConfig::max_frames`].
+/// As [`html`], and [`HtmlError::InvalidSetting`] for a grid of another mechanism, of more
+/// cells than [`HtmlConfig::max_frames`], or (its fields set by hand) with an input of no value
+/// or cells that do not match its axes and poses.
 pub fn html_grid<M, const N: usize, const NI: usize, const NO: usize>(
     m: &M,
     drawing: &Drawing,
@@ -281,6 +282,10 @@ pub fn html_grid_of<D: Drawable + ?Sized>(
             m.name(),
             columns.inputs
         )));
+    }
+    // A grid whose fields were set by hand can have an axis of no value (no cell at all).
+    if let Some(k) = counts.iter().position(|&c| c == 0) {
+        return Err(HtmlError::InvalidSetting(format!("the grid has no value of input `{}`", columns.inputs[k])));
     }
     if grid.cells.len() != counts.iter().product::<usize>()
         || grid.cells.iter().flatten().any(|&i| i >= motion.poses.len())
