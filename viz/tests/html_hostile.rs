@@ -35,3 +35,20 @@ fn a_fixed_sliders_guide_on_a_page_is_cut_to_the_picture() {
     assert!(hatch_strokes(&page) <= most, "{} hatch strokes, {} bytes", hatch_strokes(&page), page.len());
     assert!(page.len() < 200_000, "{} bytes", page.len());
 }
+
+/// A link through no point (`Drawing::link` of an empty list) draws nothing, on a page as in
+/// the drawings; last among the items, it made the page read past the frame's numbers.
+#[test]
+fn a_link_through_no_point_draws_nothing_on_a_page() {
+    let (m, mo) = motion();
+    let none: [Pt; 0] = [];
+    for d in [
+        Drawing::new().joint("b").link(none.clone()),
+        Drawing::new().link(none.clone()).joint("b").body(none.clone()),
+        Drawing::new().joint("b").body(none.clone()).trace("p"),
+    ] {
+        let svg = d.svg(&mo, 0).unwrap();
+        let page = html(&m, &d, &mo, &HtmlConfig::new("empty links")).unwrap();
+        assert_eq!(page.matches("class=\"kl-joint\"").count(), svg.matches("<circle r=\"3.5\"").count());
+    }
+}

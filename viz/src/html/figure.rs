@@ -82,7 +82,9 @@ fn items(out: &mut String, style: &Style, slots: &[Slot], f: &[i64], pen: &Pen, 
         |k: usize, class: &str| if live { format!(r#" class="{class}" data-item="{k}""#) } else { String::new() };
     let mark = |k: usize| mark_as(k, "kl-shape");
     for (k, slot) in slots.iter().enumerate() {
-        let (x, y) = (t(f[o]), t(f[o + 1]));
+        // The position of a pivot, slider or gear (a link's points are its own; a link through
+        // no point has no numbers in the frame).
+        let at = || (t(f[o]), t(f[o + 1]));
         match slot {
             Slot::Link { n, closed } => {
                 let pts: Vec<String> =
@@ -104,6 +106,7 @@ fn items(out: &mut String, style: &Style, slots: &[Slot], f: &[i64], pen: &Pen, 
                 );
             }
             Slot::Pivot => {
+                let (x, y) = at();
                 let g = if pen.ghost { pen.ink } else { style.ground.as_str() };
                 let _ = write!(
                     out,
@@ -115,6 +118,7 @@ fn items(out: &mut String, style: &Style, slots: &[Slot], f: &[i64], pen: &Pen, 
                 out.push_str("</g>");
             }
             Slot::Slider { .. } => {
+                let (x, y) = at();
                 let [l, h] = style.block;
                 let fill = if pen.ghost { "none" } else { pen.fill };
                 let _ = write!(
@@ -130,6 +134,7 @@ fn items(out: &mut String, style: &Style, slots: &[Slot], f: &[i64], pen: &Pen, 
                 );
             }
             Slot::Gear { radius, turning } => {
+                let (x, y) = at();
                 let ink = pen.ink;
                 let rr = px(*radius);
                 let _ = write!(
@@ -145,6 +150,7 @@ fn items(out: &mut String, style: &Style, slots: &[Slot], f: &[i64], pen: &Pen, 
                 out.push_str("</g>");
             }
             Slot::Outline { corners } => {
+                let (x, y) = at();
                 let pts: Vec<String> = corners.iter().map(|c| format!("{},{}", px(c[0]), px(c[1]))).collect();
                 let fill = if pen.ghost { "none" } else { pen.fill };
                 let _ = write!(
