@@ -52,3 +52,29 @@ fn a_link_through_no_point_draws_nothing_on_a_page() {
         assert_eq!(page.matches("class=\"kl-joint\"").count(), svg.matches("<circle r=\"3.5\"").count());
     }
 }
+
+/// A sweep far from the origin of its input (a crank after a hundred thousand turns): the
+/// readouts keep the digits that tell the frames apart, and the charts against the input
+/// spread over their width. Rounded to five significant digits of the largest value, a whole
+/// turn read `5.7296e7` at every frame and each chart collapsed onto one vertical line.
+#[test]
+fn a_sweep_far_from_zero_keeps_the_digits_that_tell_its_frames_apart() {
+    let m = FourBar::default();
+    let start = 1e6;
+    let mo = Motion::record(&m, m.sweep(start, start + TAU, 73, &m.guess(start)).unwrap()).unwrap();
+    let d = Drawing::new().link(["b", "c", "p"]);
+    let page = html(&m, &d, &mo, &HtmlConfig::new("far").show("gamma")).unwrap();
+    // The readouts' values of the input at every frame: all different.
+    let data = page.split("id=\"kl-data\">").nth(1).unwrap().split("</script>").next().unwrap();
+    let phi: Vec<&str> =
+        data.split("\"v\":[").nth(1).unwrap().split(']').next().unwrap().split(',').collect::<Vec<_>>();
+    assert_eq!(phi.len(), 73);
+    let mut distinct = phi.clone();
+    distinct.dedup();
+    assert_eq!(distinct.len(), 73, "{phi:?}");
+    // The chart of gamma against phi: its curve spans most of the plot's width.
+    let curve = page.split("class=\"kl-curve\" points=\"").nth(1).unwrap().split('"').next().unwrap();
+    let xs: Vec<f64> = curve.split(' ').map(|p| p.split(',').next().unwrap().parse().unwrap()).collect();
+    let (lo, hi) = xs.iter().fold((f64::INFINITY, f64::NEG_INFINITY), |(a, b), x| (a.min(*x), b.max(*x)));
+    assert!(hi - lo > 200.0, "the curve spans {lo}..{hi} px");
+}

@@ -28,8 +28,9 @@
 //! **Rounding.** The page holds, for every pose, the drawn points in tenths of a pixel and the
 //! angles of sliders and gears in tenths of a degree (the resolution of the SVG drawings:
 //! a picture 600 pixels wide resolves 1/6000 of the mechanism's extent), and the readouts to the digits shown: a hundredth of a degree for
-//! angles, five significant digits of the largest value for anything else, written as the
-//! charts' axes are labelled: with decimals for ordinary magnitudes (a largest value from
+//! angles, five significant digits of the largest value for anything else (for values far from
+//! zero that vary little, such as an input after many turns, more: at least three significant
+//! digits of their span), written as the charts' axes are labelled: with decimals for ordinary magnitudes (a largest value from
 //! about 1e-4 to 1e5: `"-0.0123"`), with a power of ten beyond (`"-5.661e-7"`, `"1.5896e9"`;
 //! zero `"0"`), never as a negative zero. The drawing's
 //! scale (`data-scale`, pixels per unit) and the pixel of the origin (`data-origin`) are
