@@ -496,3 +496,25 @@ fn huge_input_angles_are_read_out_with_a_power_of_ten() {
         assert!(d.view(&huge).unwrap().width <= narrow, "{phi}");
     }
 }
+
+/// A sweep far from the origin of its input (a crank after a hundred thousand turns): the
+/// animated readout writes each key frame's input with the digits that tell them apart, as a
+/// page's readouts do; with five significant digits of the largest value, every key frame
+/// read `phi = 5.7296e7°`.
+#[test]
+fn a_readout_far_from_zero_tells_its_key_frames_apart() {
+    let m = FourBar::default();
+    let start = 1e6;
+    let mo = Motion::record(&m, m.sweep(start, start + TAU, 37, &m.guess(start)).unwrap()).unwrap();
+    let anim = Animation { frames: 13, ..Animation::default() };
+    let svg = Drawing::new().link(["b", "c", "p"]).animate(&mo, &anim).unwrap();
+    let doc = checked(&svg).unwrap();
+    let mut texts: Vec<&str> = doc
+        .descendants()
+        .filter(|n| n.tag_name().name() == "text" && n.parent().and_then(|p| p.attribute("class")) == Some("readout"))
+        .map(|n| n.text().unwrap())
+        .collect();
+    assert_eq!(texts.len(), 13);
+    texts.dedup();
+    assert_eq!(texts.len(), 13, "{texts:?}");
+}

@@ -83,9 +83,9 @@ struct Layers<'a> {
     strip: f64,
     /// The scale bar: its length in pixels and its label.
     bar: Option<(f64, String)>,
-    /// Per input, its largest magnitude over the poses: a readout writes every pose's value
-    /// to the same digits.
-    largest: Vec<f64>,
+    /// Per input, its largest magnitude and its span over the poses: a readout writes every
+    /// pose's value to the same digits.
+    largest: Vec<(f64, f64)>,
 }
 
 /// Decimals of the degrees in the readout (what a slider shows) and in the events' labels
@@ -358,7 +358,11 @@ impl Drawing {
         let bar =
             if self.annotate.scale_bar { scale_bar(scene.view.scale, room, self.length_unit.as_deref()) } else { None };
         let largest = (0..motion.inputs.len())
-            .map(|k| motion.all_poses().filter_map(|p| p.x.get(k)).fold(0.0f64, |m, v| m.max(v.abs())))
+            .map(|k| {
+                let values = || motion.all_poses().filter_map(|p| p.x.get(k).copied());
+                let (lo, hi) = values().fold((f64::INFINITY, f64::NEG_INFINITY), |(a, b), v| (a.min(v), b.max(v)));
+                (values().fold(0.0f64, |m, v| m.max(v.abs())), hi - lo)
+            })
             .collect();
         let mut l = Layers { d: self, motion, scene, strip, bar, largest };
         // The strip under the mechanism: the scale bar and readout, then one line per event,
