@@ -78,3 +78,29 @@ fn a_sweep_far_from_zero_keeps_the_digits_that_tell_its_frames_apart() {
     let (lo, hi) = xs.iter().fold((f64::INFINITY, f64::NEG_INFINITY), |(a, b), x| (a.min(*x), b.max(*x)));
     assert!(hi - lo > 200.0, "the curve spans {lo}..{hi} px");
 }
+
+/// The x tick labels of a page's charts do not run into each other (widths estimated at 0.6 em
+/// a character of the charts' 11 px text): on an input far from zero, labelled with many
+/// digits (`5.729580e7`), every second tick (or n-th) is labelled.
+#[test]
+fn a_charts_x_labels_stand_apart() {
+    let m = FourBar::default();
+    let start = 1e6;
+    let mo = Motion::record(&m, m.sweep(start, start + TAU, 73, &m.guess(start)).unwrap()).unwrap();
+    let d = Drawing::new().link(["b", "c", "p"]);
+    let page = html(&m, &d, &mo, &HtmlConfig::new("far").show("gamma")).unwrap();
+    let labels: Vec<(f64, String)> = page
+        .split("class=\"kl-tick-x\" x=\"")
+        .skip(1)
+        .map(|s| {
+            let x: f64 = s.split('"').next().unwrap().parse().unwrap();
+            let label = s.split('>').nth(1).unwrap().split('<').next().unwrap().to_string();
+            (x, label)
+        })
+        .collect();
+    assert!(labels.len() >= 2, "{labels:?}");
+    let half = |l: &str| 0.5 * 0.6 * 11.0 * l.chars().count() as f64;
+    for w in labels.windows(2) {
+        assert!(w[0].0 + half(&w[0].1) < w[1].0 - half(&w[1].1), "{:?} and {:?} overlap", w[0], w[1]);
+    }
+}
