@@ -192,15 +192,26 @@ fn extreme_coordinates_draw_finite_or_are_errors() {
 #[test]
 fn style_sizes_and_colours_are_checked() {
     let (_, mo) = motion();
-    let d = Drawing::new().link(["b", "c"]);
+    let d = Drawing::new().link(["b", "c"]).slider("c", 0.0).trace("p");
     for style in [
         kinloop_viz::draw::Style { link_width: f64::NAN, ..Default::default() },
         kinloop_viz::draw::Style { joint_radius: -1.0, ..Default::default() },
         kinloop_viz::draw::Style { block: [f64::INFINITY, 1.0], ..Default::default() },
         kinloop_viz::draw::Style { ink: "red\" onload=\"x".into(), ..Default::default() },
+        kinloop_viz::draw::Style { fill: "red\u{1}".into(), ..Default::default() },
+        // Sizes larger than the picture: a block 1e7 pixels long drew a picture 1e7 pixels
+        // wide with a guide of a million hatch strokes (and 1e300 never finished hatching);
+        // a link 1e300 pixels wide, a picture 1e300 pixels wide.
+        kinloop_viz::draw::Style { block: [1e7, 14.0], ..Default::default() },
+        kinloop_viz::draw::Style { block: [26.0, 1e300], ..Default::default() },
+        kinloop_viz::draw::Style { link_width: 1e300, ..Default::default() },
+        kinloop_viz::draw::Style { joint_radius: 1e9, ..Default::default() },
+        kinloop_viz::draw::Style { trace_width: 2e6, ..Default::default() },
     ] {
-        let err = d.clone().with_style(style).svg(&mo, 0).unwrap_err();
-        assert!(matches!(err, DrawError::InvalidSetting(_)), "{err}");
+        match d.clone().with_style(style.clone()).svg(&mo, 0) {
+            Err(DrawError::InvalidSetting(_)) => {}
+            other => panic!("{style:?}: {:?}", other.map(|svg| svg.len())),
+        }
     }
     let wide = Canvas { width: 1e300, ..Canvas::default() };
     assert!(matches!(d.clone().with_canvas(wide).svg(&mo, 0), Err(DrawError::InvalidSetting(_))));

@@ -198,3 +198,27 @@ fn cells_past_an_interruption_of_their_row_are_reached_around_it() {
     }
     assert!(around > 0, "no cell reached past an interruption of its row");
 }
+
+/// A grid whose public fields were set by hand with an axis of no value (no cell at all), or
+/// with every cell unreachable, is an error of the page, not a panic (a chunk of zero cells, an
+/// index past the cells).
+#[test]
+fn hand_made_grids_without_cells_are_errors() {
+    let m = Stretch::default();
+    let from = [0.5, 0.0, 2.0];
+    let grid = GridMotion::record(&m, from, [1.0, 1.0, 2.5], [3, 3, 3], m.guess_flat(&from)).unwrap();
+    let d = m.drawing().into_drawing();
+    let page = |g: &GridMotion| html_grid(&m, &d, g, &HtmlConfig::new("x"));
+    let mut empty = grid.clone();
+    empty.axes[0].clear();
+    empty.cells.clear();
+    assert!(matches!(page(&empty), Err(HtmlError::InvalidSetting(_))), "an axis of no value");
+    let mut all_empty = grid.clone();
+    all_empty.axes.iter_mut().for_each(Vec::clear);
+    all_empty.cells.clear();
+    assert!(matches!(page(&all_empty), Err(HtmlError::InvalidSetting(_))), "no axis has a value");
+    // Every cell unreachable: the page shows the pivots and says so at every cell.
+    let mut none = grid;
+    none.cells.iter_mut().for_each(|c| *c = None);
+    assert!(page(&none).is_ok(), "no cell reached");
+}

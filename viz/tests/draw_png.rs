@@ -145,3 +145,23 @@ fn png_text_is_drawn_where_the_svg_puts_it() {
         }
     }
 }
+
+/// A render that would need more pixels than `png::MAX_PIXELS` is a typed error before any
+/// pixel is allocated: a canvas a million pixels wide, or a chart zoomed ten thousand times,
+/// asked for terabytes (and aborted the process when the allocation failed).
+#[test]
+fn renders_too_large_to_allocate_are_errors() {
+    let m = FourBar::default();
+    let mo = Motion::record(&m, m.sweep(0.0, TAU, 7, &m.guess(0.0)).unwrap()).unwrap();
+    let wide = Drawing::new().with_canvas(Canvas { width: 1e6, ..Canvas::default() }).link(["b", "c", "p"]);
+    let svg = wide.svg(&mo, 0).unwrap();
+    let too_large = |r: Result<Vec<u8>, DrawError>| match r {
+        Err(DrawError::InvalidSetting(s)) => assert!(s.contains("pixels"), "{s}"),
+        other => panic!("{:?}", other.map(|b| b.len())),
+    };
+    too_large(png::render(&svg, 1.0));
+    let small = Drawing::new().link(["b", "c", "p"]).svg(&mo, 0).unwrap();
+    too_large(png::render(&small, 1e4));
+    too_large(png::render(&small, f32::MAX));
+    assert!(png::render(&small, 2.0).is_ok());
+}

@@ -444,3 +444,77 @@ fn a_circle_is_an_outline_at_its_radius_and_outlines_are_checked() {
         assert!(e.to_string().contains(says), "{e}");
     }
 }
+
+/// Every animated attribute of an animation lasts the seconds asked, to the digit: a quarter
+/// of a second was written `dur="0.3s"` (rounded to a tenth as a coordinate), and a few
+/// hundredths `dur="0s"` (an animation SMIL does not play). Durations no animation can show
+/// (below a millisecond) or beyond a billion seconds are errors.
+#[test]
+fn an_animation_lasts_the_seconds_asked() {
+    let m = FourBar::default();
+    let mo = motion(&m, TAU, 25);
+    let d = four_bar_drawing(&m);
+    for (seconds, dur) in [(0.25, "0.25s"), (0.04, "0.04s"), (1.125, "1.125s"), (6.0, "6s"), (3600.0, "3600s")] {
+        let svg = d.animate(&mo, &Animation { seconds, ..Animation::default() }).unwrap();
+        let doc = checked(&svg).unwrap();
+        let durs: Vec<&str> = doc.descendants().filter_map(|n| n.attribute("dur")).collect();
+        assert!(!durs.is_empty() && durs.iter().all(|d| *d == dur), "{seconds} s: {durs:?}");
+    }
+    for seconds in [1e-4, 5e-324, 2e9, 1e300] {
+        let r = d.animate(&mo, &Animation { seconds, ..Animation::default() });
+        assert!(
+            matches!(r, Err(kinloop_viz::draw::DrawError::InvalidSetting(_))),
+            "{seconds} s: {:?}",
+            r.map(|s| s.len())
+        );
+    }
+}
+
+/// An input angle of a hundred thousand degrees or more is read out as a page's readout
+/// writes it (five significant digits and a power of ten), not with every digit of its
+/// degrees: a crank turned 1e300 radians wrote a readout three hundred digits long, which
+/// widened the picture to hold it.
+#[test]
+fn huge_input_angles_are_read_out_with_a_power_of_ten() {
+    let m = FourBar::default();
+    let mo = motion(&m, TAU, 5);
+    let d = Drawing::new().link(["b", "c", "p"]);
+    let mut one = mo.clone();
+    one.poses.truncate(1);
+    let narrow = d.view(&one).unwrap().width;
+    for (phi, text) in [(1e300, "phi = 5.7296e301°"), (1e4, "phi = 5.7296e5°"), (-3e5, "phi = -1.7189e7°")] {
+        // The pose of the crank at 0, read out at `phi` (the drawing draws the outputs).
+        let mut huge = one.clone();
+        huge.poses[0].x[0] = phi;
+        let svg = d.svg(&huge, 0).unwrap();
+        let doc = checked(&svg).unwrap();
+        let readout = doc
+            .descendants()
+            .find(|n| n.tag_name().name() == "text" && n.parent().and_then(|p| p.attribute("class")) == Some("readout"))
+            .unwrap();
+        assert_eq!(readout.text().unwrap(), text);
+        assert!(d.view(&huge).unwrap().width <= narrow, "{phi}");
+    }
+}
+
+/// A sweep far from the origin of its input (a crank after a hundred thousand turns): the
+/// animated readout writes each key frame's input with the digits that tell them apart, as a
+/// page's readouts do; with five significant digits of the largest value, every key frame
+/// read `phi = 5.7296e7°`.
+#[test]
+fn a_readout_far_from_zero_tells_its_key_frames_apart() {
+    let m = FourBar::default();
+    let start = 1e6;
+    let mo = Motion::record(&m, m.sweep(start, start + TAU, 37, &m.guess(start)).unwrap()).unwrap();
+    let anim = Animation { frames: 13, ..Animation::default() };
+    let svg = Drawing::new().link(["b", "c", "p"]).animate(&mo, &anim).unwrap();
+    let doc = checked(&svg).unwrap();
+    let mut texts: Vec<&str> = doc
+        .descendants()
+        .filter(|n| n.tag_name().name() == "text" && n.parent().and_then(|p| p.attribute("class")) == Some("readout"))
+        .map(|n| n.text().unwrap())
+        .collect();
+    assert_eq!(texts.len(), 13);
+    texts.dedup();
+    assert_eq!(texts.len(), 13, "{texts:?}");
+}

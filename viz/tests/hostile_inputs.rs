@@ -159,3 +159,69 @@ proptest! {
         }
     }
 }
+
+/// Names, labels, units, notes and titles holding characters that XML forbids even as
+/// entities (control characters other than tab, line feed and carriage return; U+FFFE and
+/// U+FFFF) still give well-formed SVG: each such character is written as U+FFFD; markup
+/// characters are entities; the rest of the text is kept.
+#[test]
+fn characters_xml_forbids_in_names_give_well_formed_svg() {
+    let odd = "a\u{0}b\u{1}\u{8}\u{b}\u{c}\u{1f}\u{7f}\u{fffe}\u{ffff}<&>\"'\t\n]]>--</script>φ";
+    let mm = Kind::length(odd);
+    let (x, y) = (Axis::new(odd, mm.clone()), Axis::new("y", mm.clone()));
+    let series = [Series::new(odd, mm.clone(), vec![(0.0, 1.0), (1.0, 2.0)])];
+    let charts = [
+        line_chart_svg(odd, &x, &y, &series).unwrap(),
+        xy_chart_svg(odd, &x, &Axis::new(odd, mm.clone()), &series, &[]).unwrap(),
+        kinloop_viz::plot::bar_chart_svg(odd, &x, &[Panel::new(y.clone()).with(series[0].clone())]).unwrap(),
+    ];
+    let m = FourBar::default();
+    let motion = Motion::record(&m, m.sweep(0.0, std::f64::consts::TAU, 13, &m.guess(0.0)).unwrap()).unwrap();
+    let d = Drawing::new().link(["b", "c"]).label("p", odd).note(odd).length_unit(odd).trace("p");
+    let drawings = [
+        d.svg(&motion, 0).unwrap(),
+        d.animate(&motion, &Animation::default()).unwrap(),
+        d.exposures(&motion, 3).unwrap(),
+    ];
+    for svg in charts.iter().chain(&drawings) {
+        let doc = roxmltree::Document::parse(svg).unwrap_or_else(|e| panic!("{e}"));
+        let text: String = doc.descendants().filter_map(|n| n.text()).collect();
+        assert!(text.contains("a\u{fffd}b\u{fffd}"), "{text:?}");
+        assert!(text.contains("<&>\"'") && text.contains("]]>--</script>φ"), "{text:?}");
+    }
+}
+
+/// Bars at abscissae near the ends of the f64 range (their spacing, or the half spacing of
+/// room around them, overflows), at subnormal ones, and at a lone one: finite SVG, every bar
+/// as wide as the narrowest spacing allows and within the plot area, ticks that read back.
+#[test]
+fn bar_charts_at_extreme_abscissae_are_finite() {
+    let n = Kind::force("N");
+    let order = Axis::new("order", Kind::Dimensionless);
+    for xs in [
+        vec![-f64::MAX, f64::MAX],
+        vec![f64::MAX],
+        vec![-f64::MAX],
+        vec![0.5 * f64::MAX, f64::MAX],
+        vec![-1e308, 0.0, 1e308],
+        vec![5e-324, 1e-323],
+        vec![5e-324],
+        vec![1e300],
+        vec![-3.0, 7.5],
+    ] {
+        let points: Vec<(f64, f64)> = xs.iter().enumerate().map(|(k, &x)| (x, 1.0 + k as f64)).collect();
+        let panel = Panel::new(Axis::new("f", n.clone())).with(Series::new("a", n.clone(), points));
+        let svg = kinloop_viz::plot::bar_chart_svg("b", &order, &[panel]).unwrap();
+        assert_finite(&svg);
+        let doc = roxmltree::Document::parse(&svg).unwrap();
+        let area = doc.descendants().find(|e| e.attribute("class") == Some("plot-area")).unwrap();
+        let attr = |e: &roxmltree::Node, a: &str| e.attribute(a).unwrap().parse::<f64>().unwrap();
+        let (left, right) = (attr(&area, "x"), attr(&area, "x") + attr(&area, "width"));
+        let bars: Vec<_> = doc.descendants().filter(|e| e.attribute("class") == Some("bar")).collect();
+        assert_eq!(bars.len(), xs.len(), "{xs:?}");
+        for b in &bars {
+            let (x, w) = (attr(b, "x"), attr(b, "width"));
+            assert!(w > 1.0 && x >= left - 0.01 && x + w <= right + 0.01, "{xs:?}: bar {x} + {w} in {left}..{right}");
+        }
+    }
+}

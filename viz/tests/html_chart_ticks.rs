@@ -159,3 +159,23 @@ fn chart_cursors_stand_at_their_labelled_values_in_the_browser() {
         });
     }
 }
+
+/// The y tick labels of every chart, at every scale, stand clear of the rotated y title (its
+/// glyphs reach about 17 px from the chart's left edge) and inside the chart: a label of seven
+/// or eight characters (`"-1.5e-6"`, `"-0.25e-5"`) ran over the title. Widths are estimated
+/// at 0.6 em a character (11 px text).
+#[test]
+fn chart_y_labels_stand_clear_of_the_axis_title() {
+    for scale in SCALES {
+        let text = page(&scaled(scale));
+        for chart in svgs(&text).into_iter().filter(|s| s.contains("kl-chart")) {
+            let doc = roxmltree::Document::parse(&chart).unwrap();
+            for n in doc.descendants().filter(|n| n.attribute("class") == Some("kl-tick-y")) {
+                let label = n.text().unwrap();
+                let right: f64 = n.attribute("x").unwrap().parse().unwrap();
+                let left = right - 0.6 * 11.0 * label.chars().count() as f64;
+                assert!(left >= 18.0, "scale {scale}: label {label:?} from {left} px");
+            }
+        }
+    }
+}

@@ -492,3 +492,135 @@ fn dynamics_quantities_have_kinds_with_their_units() {
         assert_eq!(parse(&svg).titles, [title, "time [s]"]);
     }
 }
+
+/// The height of a figure (its `<svg height>`).
+fn figure_height(svg: &str) -> f64 {
+    let doc = roxmltree::Document::parse(svg).expect("well-formed SVG");
+    attr(doc.root_element(), "height")
+}
+
+/// Legends of many series (more than a plot area's height of entries) stay in the picture, and
+/// the legends of stacked panels do not overlap: the figure grows to hold them.
+#[test]
+fn legends_of_many_series_stay_in_the_picture() {
+    let flat =
+        |k: usize, kind: Kind| Series::new(&format!("series {k}"), kind, vec![(0.0, k as f64), (1.0, k as f64 + 0.5)]);
+    let many = |n: usize, kind: Kind| (0..n).map(|k| flat(k, kind.clone())).collect::<Vec<_>>();
+    let x = Axis::new("x", mm());
+    let n = Kind::force("N");
+    let figures = [
+        line_chart_svg("", &x, &Axis::new("y", mm()), &many(40, mm())).unwrap(),
+        panels_svg(
+            "Panels",
+            &x,
+            &[
+                Panel { series: many(30, mm()), ..Panel::new(Axis::new("y", mm())) },
+                Panel { series: many(3, n.clone()), ..Panel::new(Axis::new("f", n.clone())) },
+                Panel { series: many(20, n.clone()), ..Panel::new(Axis::new("g", n.clone())) },
+            ],
+        )
+        .unwrap(),
+        xy_chart_svg("", &x, &Axis::new("y", mm()), &many(60, mm()), &[]).unwrap(),
+        bar_chart_svg(
+            "Bars",
+            &Axis::new("order", Kind::Dimensionless),
+            &[
+                Panel { series: many(25, n.clone()), ..Panel::new(Axis::new("f", n.clone())) },
+                Panel { series: many(2, n.clone()), ..Panel::new(Axis::new("g", n.clone())) },
+            ],
+        )
+        .unwrap(),
+    ];
+    for svg in &figures {
+        let p = parse(svg);
+        let height = figure_height(svg);
+        for l in &p.legends {
+            assert!(l[1] >= 0.0 && l[1] + l[3] <= height, "legend {l:?} in a figure {height} high");
+        }
+        for (i, a) in p.legends.iter().enumerate() {
+            for b in &p.legends[i + 1..] {
+                assert!(!overlap(a, b), "legends {a:?} and {b:?} overlap");
+            }
+        }
+        // Each panel's plot area keeps its place above the next panel's.
+        for w in p.areas.windows(2) {
+            assert!(w[0][1] + w[0][3] < w[1][1], "{:?}", p.areas);
+        }
+    }
+}
+
+/// More series than colours: each curve is told apart from every other by its colour and dash
+/// (the colours repeat every seven series, the eighth drawn as the first was), and each legend
+/// entry's swatch shows its curve's colour and dash.
+#[test]
+fn curves_beyond_the_colours_are_told_apart_by_their_dashes() {
+    let series: Vec<Series> =
+        (0..20).map(|k| Series::new(&format!("s{k}"), mm(), vec![(0.0, k as f64), (1.0, k as f64 + 0.5)])).collect();
+    let x = Axis::new("x", mm());
+    for svg in [
+        line_chart_svg("", &x, &Axis::new("y", mm()), &series).unwrap(),
+        xy_chart_svg("", &x, &Axis::new("y", mm()), &series, &[]).unwrap(),
+    ] {
+        let doc = roxmltree::Document::parse(&svg).unwrap();
+        let look = |n: &roxmltree::Node| {
+            (n.attribute("stroke").unwrap().to_string(), n.attribute("stroke-dasharray").unwrap_or("").to_string())
+        };
+        let curves: Vec<_> =
+            doc.descendants().filter(|n| n.attribute("class") == Some("curve")).map(|n| look(&n)).collect();
+        let swatches: Vec<_> =
+            doc.descendants().filter(|n| n.attribute("class") == Some("legend-line")).map(|n| look(&n)).collect();
+        assert_eq!(curves.len(), 20);
+        assert_eq!(curves, swatches);
+        for (i, a) in curves.iter().enumerate() {
+            assert!(!curves[i + 1..].contains(a), "curve {i} looks like a later one: {a:?}");
+        }
+        // The first seven are solid, as they were.
+        assert!(curves[..7].iter().all(|(_, dash)| dash.is_empty()));
+    }
+}
+
+/// Tick labels of many digits (a range of a few ulps at 1e6, labelled to its last digit) are
+/// readable: x labels do not run into each other (some ticks go unlabelled instead), y labels
+/// fit between the picture's left edge (with the rotated axis title) and the plot area. Widths
+/// are estimated as the library estimates text: 0.6 em a character.
+#[test]
+fn long_tick_labels_neither_overlap_nor_leave_the_picture() {
+    let narrow: Vec<(f64, f64)> = (0..10).map(|i| (1e6 + i as f64 * 1.2e-10, 1e6 + i as f64 * 2.4e-10)).collect();
+    let x = Axis::new("x", mm());
+    let figures = [
+        line_chart_svg("", &x, &Axis::new("y", mm()), &[Series::new("a", mm(), narrow.clone())]).unwrap(),
+        panels_svg(
+            "",
+            &x,
+            &[Panel::new(Axis::new("y", mm())).with(Series::new("a", mm(), narrow.clone())), {
+                let wide: Vec<(f64, f64)> = narrow.iter().map(|&(x, _)| (x, 1.0)).collect();
+                Panel::new(Axis::new("z", mm())).with(Series::new("b", mm(), wide))
+            }],
+        )
+        .unwrap(),
+        xy_chart_svg("", &x, &Axis::new("y", mm()), &[Series::new("a", mm(), narrow.clone())], &[]).unwrap(),
+    ];
+    let width = |label: &str| 0.6 * 12.0 * label.chars().count() as f64;
+    for svg in &figures {
+        let p = parse(svg);
+        let doc = roxmltree::Document::parse(svg).unwrap();
+        for (k, xt) in p.x_ticks.iter().enumerate() {
+            for w in xt.windows(2) {
+                let (a, b) = (&w[0], &w[1]);
+                assert!(
+                    a.1 + 0.5 * width(&a.0) < b.1 - 0.5 * width(&b.0),
+                    "panel {k}: x labels {a:?} and {b:?} overlap"
+                );
+            }
+            assert!(k + 1 < p.x_ticks.len() || xt.len() >= 2, "{xt:?}");
+        }
+        for n in doc.descendants().filter(|n| n.attribute("class") == Some("tick-label y")) {
+            let (label, right) = (n.text().unwrap(), attr(n, "x"));
+            assert!(right - width(label) >= 30.0, "y label {label} from {} px", right - width(label));
+        }
+        // Every curve still in its plot area.
+        for (area, curves) in p.areas.iter().zip(&p.curves) {
+            assert!(curves.iter().flatten().all(|&pt| inside(area, pt)), "{area:?}");
+        }
+    }
+}

@@ -46,21 +46,41 @@ pub(crate) fn text_width(text: &str) -> f64 {
     0.6 * FONT * text.chars().count() as f64
 }
 
-/// The value of one input as read out: an angle in degrees (`decimals` places), a length with
+/// Angles (in degrees) from this magnitude on are read out with a power of ten, as a page's
+/// readouts write them ([`Format`]).
+const ANGLE_DIGITS: f64 = 1e5;
+
+/// The value of one input as read out: an angle in degrees (`decimals` places; from 1e5
+/// degrees on, five significant digits and a power of ten), a length with
 /// its unit, anything else as a plain number; a length or a number as an interactive page's
 /// readout writes it ([`Format`]): five significant digits of `largest` (the input's largest
 /// magnitude over the poses, so that every pose's value has the same digits), with decimals
 /// for ordinary magnitudes and a power of ten for tiny and huge ones.
+///
+/// `span` is the input's span over the poses (largest minus smallest value): values far from
+/// zero that vary little keep at least three significant digits of it ([`Format::of_range`]),
+/// so that the poses read differently.
 pub(crate) fn input_value(
     kind: Option<&QuantityKind>,
     v: f64,
-    largest: f64,
+    (largest, span): (f64, f64),
     unit: Option<&str>,
     decimals: usize,
 ) -> String {
-    let short = |v: f64| Format::of(&Kind::Dimensionless, largest.max(v.abs())).text(v);
+    let short = |v: f64| Format::of_range(&Kind::Dimensionless, largest.max(v.abs()), span).text(v);
     match kind {
-        Some(QuantityKind::Angle) if v.to_degrees().is_finite() => format!("{:.decimals$}°", v.to_degrees()),
+        Some(QuantityKind::Angle) if v.to_degrees().is_finite() => {
+            let deg = v.to_degrees();
+            // Every pose's value in one format: that of the input's largest magnitude.
+            let most = Some(largest.to_degrees()).filter(|m| m.is_finite()).unwrap_or(0.0).max(deg.abs());
+            if most < ANGLE_DIGITS {
+                format!("{deg:.decimals$}°")
+            } else {
+                // As a page's readout: five significant digits and a power of ten, not every
+                // digit of a huge angle.
+                format!("{}°", Format::of_range(&Kind::Angle, most, span.to_degrees()).text(deg))
+            }
+        }
         // Beyond about 1e306 radians the degrees overflow: say the radians.
         Some(QuantityKind::Angle) => format!("{v:e} rad"),
         Some(QuantityKind::Length) => format!("{} {}", short(v), unit.unwrap_or(LENGTH_UNIT)),
@@ -69,12 +89,12 @@ pub(crate) fn input_value(
 }
 
 /// `phi = 12.5°, s = 3.0000 mm`: the inputs `names` at values `x`, each written to the digits of
-/// its `largest` magnitude ([`input_value`]).
+/// its `largest` magnitude and span over the poses ([`input_value`]).
 pub(crate) fn readout(
     names: &[String],
     kinds: &[QuantityKind],
     x: &[f64],
-    largest: &[f64],
+    largest: &[(f64, f64)],
     unit: Option<&str>,
     decimals: usize,
 ) -> String {
@@ -83,7 +103,7 @@ pub(crate) fn readout(
         .zip(x)
         .enumerate()
         .map(|(i, (n, v))| {
-            let largest = largest.get(i).copied().unwrap_or(0.0);
+            let largest = largest.get(i).copied().unwrap_or((0.0, 0.0));
             format!("{n} = {}", input_value(kinds.get(i), *v, largest, unit, decimals))
         })
         .collect();
@@ -132,18 +152,18 @@ mod tests {
     fn angles_read_out_in_degrees() {
         let names = ["phi".to_string(), "s".to_string()];
         let kinds = [QuantityKind::Angle, QuantityKind::Length];
-        let text = readout(&names, &kinds, &[1.3716, 2.5], &[6.0, 4.0], Some("mm"), 2);
+        let text = readout(&names, &kinds, &[1.3716, 2.5], &[(6.0, 0.0), (4.0, 0.0)], Some("mm"), 2);
         assert_eq!(text, "phi = 78.59°, s = 2.5000 mm");
-        assert_eq!(input_value(None, 1e-9, 0.0, None, 1), "1.0000e-9");
+        assert_eq!(input_value(None, 1e-9, (0.0, 0.0), None, 1), "1.0000e-9");
         // Five significant digits of the input's largest magnitude, as a page's readouts: the
         // same digits at every pose (no negative zero).
         let length = Some(&QuantityKind::Length);
-        let texts = [0.0, 0.05, 0.15, 0.5].map(|v| input_value(length, v, 0.5, Some("m"), 1));
+        let texts = [0.0, 0.05, 0.15, 0.5].map(|v| input_value(length, v, (0.5, 0.0), Some("m"), 1));
         assert_eq!(texts, ["0.00000 m", "0.05000 m", "0.15000 m", "0.50000 m"]);
-        assert_eq!(input_value(length, 25.0, 30.0, Some("m"), 1), "25.000 m");
-        assert_eq!(input_value(length, 250_000.0, 300_000.0, Some("mm"), 1), "2.5000e5 mm");
-        assert_eq!(input_value(length, -0.0, 3.0, Some("mm"), 1), "0.0000 mm");
+        assert_eq!(input_value(length, 25.0, (30.0, 0.0), Some("m"), 1), "25.000 m");
+        assert_eq!(input_value(length, 250_000.0, (300_000.0, 0.0), Some("mm"), 1), "2.5000e5 mm");
+        assert_eq!(input_value(length, -0.0, (3.0, 0.0), Some("mm"), 1), "0.0000 mm");
         // A value beyond the largest given (an event's, located between poses) keeps its digits.
-        assert_eq!(input_value(None, 123.456, 2.0, None, 1), "123.46");
+        assert_eq!(input_value(None, 123.456, (2.0, 0.0), None, 1), "123.46");
     }
 }

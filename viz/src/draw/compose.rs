@@ -17,7 +17,8 @@ pub struct Animation {
     /// Largest number of key frames taken from the motion (evenly spaced, always including the
     /// first and the last pose; default 90).
     pub frames: usize,
-    /// Duration of one pass in seconds (default 4).
+    /// Duration of one pass in seconds (default 4), from a millisecond to a billion seconds;
+    /// written as given (`dur="0.25s"`).
     pub seconds: f64,
     /// Play forward then backward (for a motion that stops at a limit position, where the real
     /// mechanism turns back); the key frames are then `2 k - 1` for `k` poses.
@@ -30,6 +31,11 @@ impl Default for Animation {
     }
 }
 
+/// The shortest and longest durations of a pass, in seconds: below a millisecond no frame is
+/// seen; beyond a billion seconds (thirty years) nothing moves.
+const MIN_SECONDS: f64 = 1e-3;
+const MAX_SECONDS: f64 = 1e9;
+
 impl Animation {
     fn check(&self) -> Result<(), DrawError> {
         if self.frames < 2 {
@@ -38,8 +44,11 @@ impl Animation {
                 self.frames
             )));
         }
-        if !(self.seconds.is_finite() && self.seconds > 0.0) {
-            return Err(DrawError::InvalidSetting(format!("animation duration {} s must be positive", self.seconds)));
+        if !(MIN_SECONDS..=MAX_SECONDS).contains(&self.seconds) {
+            return Err(DrawError::InvalidSetting(format!(
+                "animation duration {} s must be from {MIN_SECONDS} s to {MAX_SECONDS:e} s",
+                self.seconds
+            )));
         }
         Ok(())
     }
@@ -74,9 +83,9 @@ struct Layers<'a> {
     strip: f64,
     /// The scale bar: its length in pixels and its label.
     bar: Option<(f64, String)>,
-    /// Per input, its largest magnitude over the poses: a readout writes every pose's value
-    /// to the same digits.
-    largest: Vec<f64>,
+    /// Per input, its largest magnitude and its span over the poses: a readout writes every
+    /// pose's value to the same digits.
+    largest: Vec<(f64, f64)>,
 }
 
 /// Decimals of the degrees in the readout (what a slider shows) and in the events' labels
@@ -286,7 +295,7 @@ impl Layers<'_> {
                 let _ = write!(
                     out,
                     r#"<animate attributeName="visibility" calcMode="discrete" dur="{}s" repeatCount="indefinite" values="{values}" keyTimes="{times}"/>"#,
-                    num(t.seconds)
+                    t.dur()
                 );
             }
             out.push_str("</text>");
@@ -349,7 +358,11 @@ impl Drawing {
         let bar =
             if self.annotate.scale_bar { scale_bar(scene.view.scale, room, self.length_unit.as_deref()) } else { None };
         let largest = (0..motion.inputs.len())
-            .map(|k| motion.all_poses().filter_map(|p| p.x.get(k)).fold(0.0f64, |m, v| m.max(v.abs())))
+            .map(|k| {
+                let values = || motion.all_poses().filter_map(|p| p.x.get(k).copied());
+                let (lo, hi) = values().fold((f64::INFINITY, f64::NEG_INFINITY), |(a, b), v| (a.min(v), b.max(v)));
+                (values().fold(0.0f64, |m, v| m.max(v.abs())), hi - lo)
+            })
             .collect();
         let mut l = Layers { d: self, motion, scene, strip, bar, largest };
         // The strip under the mechanism: the scale bar and readout, then one line per event,

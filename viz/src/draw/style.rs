@@ -1,8 +1,10 @@
 //! Colours and sizes of drawings, in pixels (independent of the mechanism's unit of length).
 
 use super::error::DrawError;
+use super::view::MAX_WIDTH;
 
-/// How a drawing looks. Sizes are pixels; colours are SVG colours.
+/// How a drawing looks. Sizes are pixels (at most a million, the widest canvas); colours are
+/// SVG colours.
 #[derive(Clone, Debug, PartialEq)]
 pub struct Style {
     /// Colour of links, sliders and gears.
@@ -43,7 +45,9 @@ impl Default for Style {
 }
 
 impl Style {
-    /// Sizes must be finite and not negative, and colours must be writable into an SVG
+    /// Sizes must be finite, not negative and at most [`MAX_WIDTH`] pixels, the widest canvas
+    /// (a larger stroke, joint or block widens the picture without bound, and a guide is
+    /// hatched along a block's whole length), and colours must be writable into an SVG
     /// attribute as they are.
     pub(crate) fn check(&self) -> Result<(), DrawError> {
         let sizes = [
@@ -54,15 +58,18 @@ impl Style {
             ("trace width", self.trace_width),
         ];
         for (what, v) in sizes {
-            if !(v.is_finite() && v >= 0.0) {
-                return Err(DrawError::InvalidSetting(format!("style {what} {v} must be finite and not negative")));
+            if !(v.is_finite() && (0.0..=MAX_WIDTH).contains(&v)) {
+                return Err(DrawError::InvalidSetting(format!(
+                    "style {what} {v} must be finite, not negative and at most {MAX_WIDTH:e} pixels"
+                )));
             }
         }
         let colours = [&self.ink, &self.fill, &self.event, &self.ground].into_iter().chain(&self.traces);
         for c in colours {
-            if c.contains(['"', '<', '>', '&']) {
+            if c.contains(['"', '<', '>', '&']) || c.chars().any(char::is_control) {
                 return Err(DrawError::InvalidSetting(format!(
-                    "style colour {c:?} holds a character that cannot stand in an SVG attribute (\", <, > or &)"
+                    "style colour {c:?} holds a character that cannot stand in an SVG attribute (\", <, >, & or a \
+                     control character)"
                 )));
             }
         }

@@ -56,6 +56,15 @@ pub(crate) struct Timing {
     pub seconds: f64,
 }
 
+impl Timing {
+    /// The duration as a SMIL clock value's number of seconds: every digit of it (the
+    /// shortest decimal that reads back to it; no exponent for the durations an animation
+    /// accepts), not rounded as a coordinate is.
+    pub(crate) fn dur(&self) -> String {
+        format!("{}", self.seconds)
+    }
+}
+
 /// Writes `<animate>` of attribute `attr` through `values` (one per key frame), or nothing
 /// when every value is the same (the element then keeps its static attribute).
 pub(crate) fn animate(out: &mut String, attr: &str, values: &[String], t: Option<Timing>) {
@@ -66,7 +75,7 @@ pub(crate) fn animate(out: &mut String, attr: &str, values: &[String], t: Option
     let _ = write!(
         out,
         r#"<animate attributeName="{attr}" dur="{}s" repeatCount="indefinite" values="{}"/>"#,
-        num(t.seconds),
+        t.dur(),
         values.join(";")
     );
 }
@@ -81,7 +90,7 @@ pub(crate) fn animate_transform(out: &mut String, kind: &str, values: &[String],
     let _ = write!(
         out,
         r#"<animateTransform attributeName="transform" type="{kind}" dur="{}s" repeatCount="indefinite" values="{}"/>"#,
-        num(t.seconds),
+        t.dur(),
         values.join(";")
     );
 }

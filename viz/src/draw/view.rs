@@ -32,7 +32,7 @@ const MAX_ASPECT: f64 = 1.25;
 
 /// Largest width (and, times [`MAX_ASPECT`], height) of a picture in pixels: a larger one is
 /// no picture any renderer draws, and its ground hatching would take that many strokes.
-const MAX_WIDTH: f64 = 1e6;
+pub(crate) const MAX_WIDTH: f64 = 1e6;
 
 /// Pixel coordinates farther than this from the origin are not written (see
 /// [`DrawError::OffCanvas`]).

@@ -5,8 +5,8 @@ use crate::escape::escape;
 use crate::plot::ticks::Ticks;
 use std::fmt::Write;
 
-/// Plot area insets in pixels: left (tick labels and the y title), right, top, bottom (tick
-/// labels and the x title).
+/// Plot area insets in pixels: left (tick labels and the y title; more for wider labels, see
+/// [`TITLE_ROOM`]), right, top, bottom (tick labels and the x title).
 const LEFT: f64 = 58.0;
 const RIGHT: f64 = 12.0;
 const TOP: f64 = 10.0;
@@ -16,6 +16,17 @@ const BOTTOM: f64 = 38.0;
 pub(crate) fn px(v: f64) -> String {
     let r = (v * 10.0).round() / 10.0 + 0.0;
     format!("{r}")
+}
+
+/// Room at the chart's left edge for the rotated y title (its glyphs reach about 17 px), and
+/// the gap between a y tick label and the plot area: the left inset holds both and the widest
+/// label (estimated at 0.6 em a character of the charts' 11 px text).
+const TITLE_ROOM: f64 = 19.0;
+const LABEL_GAP: f64 = 5.0;
+
+/// Approximate width in pixels of a tick label (0.6 em a character of the charts' 11 px text).
+fn label_width(label: &str) -> f64 {
+    0.6 * 11.0 * label.chars().count() as f64
 }
 
 /// About this many intervals between ticks on each axis: fewer than the plot module's larger
@@ -69,7 +80,9 @@ pub(crate) fn chart(k: usize, x: Option<&Channel>, y: &Channel, events: &[f64], 
     let xt = axis(x0, x1, x.is_some_and(|c| c.kind.is_angle()));
     let yt = axis(y0, y1, y.kind.is_angle());
     let [w, h] = size;
-    let (l, r, t, b) = (LEFT, w - RIGHT, TOP, h - BOTTOM);
+    let widest = yt.ticks.iter().map(|(_, label)| label_width(label)).fold(0.0, f64::max);
+    let l = LEFT.max((TITLE_ROOM + widest + LABEL_GAP).ceil()).min(w / 3.0);
+    let (l, r, t, b) = (l, w - RIGHT, TOP, h - BOTTOM);
     let bx = (r - l) / (xt.hi - xt.lo);
     let by = (b - t) / (yt.hi - yt.lo);
     let map = Map { x: [l - xt.lo * bx, bx], y: [b + yt.lo * by, -by] };
@@ -82,15 +95,24 @@ pub(crate) fn chart(k: usize, x: Option<&Channel>, y: &Channel, events: &[f64], 
         h = px(h)
     );
     let _ = write!(s, r#"<rect width="{}" height="{}" fill="white"/>"#, px(w), px(h));
-    for (v, label) in &xt.ticks {
+    // Where neighbouring x labels (values of many digits) would run into each other, every
+    // n-th tick is labelled, from the first.
+    let widest_x = xt.ticks.iter().map(|(_, label)| label_width(label)).fold(0.0, f64::max);
+    let every = match xt.ticks.as_slice() {
+        [a, b, ..] if fx(b.0) > fx(a.0) => ((widest_x + 6.0) / (fx(b.0) - fx(a.0))).ceil().clamp(1.0, 1e6) as usize,
+        _ => 1,
+    };
+    for (i, (v, label)) in xt.ticks.iter().enumerate() {
         let p = px(fx(*v));
-        let _ = write!(
-            s,
-            r##"<line class="kl-grid" x1="{p}" y1="{}" x2="{p}" y2="{}" stroke="#e3e3e3"/><text class="kl-tick-x" x="{p}" y="{}" text-anchor="middle">{label}</text>"##,
-            px(t),
-            px(b),
-            px(b + 14.0)
-        );
+        let _ =
+            write!(s, r##"<line class="kl-grid" x1="{p}" y1="{}" x2="{p}" y2="{}" stroke="#e3e3e3"/>"##, px(t), px(b));
+        if i % every == 0 {
+            let _ = write!(
+                s,
+                r#"<text class="kl-tick-x" x="{p}" y="{}" text-anchor="middle">{label}</text>"#,
+                px(b + 14.0)
+            );
+        }
     }
     for (v, label) in &yt.ticks {
         let p = px(fy(*v));
@@ -99,7 +121,7 @@ pub(crate) fn chart(k: usize, x: Option<&Channel>, y: &Channel, events: &[f64], 
             r##"<line class="kl-grid" x1="{}" y1="{p}" x2="{}" y2="{p}" stroke="#e3e3e3"/><text class="kl-tick-y" x="{}" y="{}" text-anchor="end">{label}</text>"##,
             px(l),
             px(r),
-            px(l - 5.0),
+            px(l - LABEL_GAP),
             px(fy(*v) + 4.0)
         );
     }

@@ -23,7 +23,8 @@ pub enum Value {
 /// digits of its largest value over the motion, with decimals for ordinary magnitudes
 /// (`"-0.0123"`, `"1.2345"`) and with a power of ten for tiny or huge ones (a largest value
 /// below about 1e-4 or from 1e5: `"-5.661e-7"`, `"1.5896e9"`), as the charts' axes are
-/// labelled.
+/// labelled. Values far from zero that vary little over the motion (an input after many
+/// turns) keep at least three significant digits of their span, so that the frames differ.
 #[derive(Clone, Debug)]
 pub struct Readout {
     /// Where the value comes from.

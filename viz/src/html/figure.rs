@@ -31,8 +31,9 @@ fn hatch(out: &mut String, colour: &str, from: [f64; 2], u: [f64; 2], len: f64) 
 }
 
 /// The guide of fixed slider `k` over every frame: a ground line under the block along its
-/// whole stroke, hatched on the far side.
-fn guide(out: &mut String, style: &Style, frames: &[Vec<i64>], o: usize) {
+/// whole stroke, hatched on the far side; cut to the picture of `size` pixels, as the
+/// drawings' guides are (a stroke far outside a window would take as many hatch strokes).
+fn guide(out: &mut String, style: &Style, frames: &[Vec<i64>], o: usize, size: [f64; 2]) {
     let deg = -(frames[0][o + 2] as f64 / 10.0);
     let u = [deg.to_radians().cos(), -deg.to_radians().sin()];
     let n = [-u[1], u[0]];
@@ -42,6 +43,13 @@ fn guide(out: &mut String, style: &Style, frames: &[Vec<i64>], o: usize) {
     let along = |p: [f64; 2]| (p[0] - p0[0]) * u[0] + (p[1] - p0[1]) * u[1];
     let (lo, hi) = frames.iter().map(|f| along(at(f))).fold((0.0f64, 0.0f64), |(a, b), s| (a.min(s), b.max(s)));
     let (lo, hi) = (lo - l / 2.0 - 6.0, hi + l / 2.0 + 6.0);
+    // The part of the line over the picture lies between the corners' positions along it.
+    let corners = [[0.0, 0.0], [size[0], 0.0], [0.0, size[1]], size].map(along);
+    let (first, last) = corners.iter().fold((f64::INFINITY, f64::NEG_INFINITY), |(a, b), c| (a.min(*c), b.max(*c)));
+    let (lo, hi) = (lo.max(first - 8.0), hi.min(last + 8.0));
+    if lo > hi {
+        return;
+    }
     let a = [p0[0] + lo * u[0] + h / 2.0 * n[0], p0[1] + lo * u[1] + h / 2.0 * n[1]];
     let b = [p0[0] + hi * u[0] + h / 2.0 * n[0], p0[1] + hi * u[1] + h / 2.0 * n[1]];
     let _ = write!(
@@ -74,7 +82,9 @@ fn items(out: &mut String, style: &Style, slots: &[Slot], f: &[i64], pen: &Pen, 
         |k: usize, class: &str| if live { format!(r#" class="{class}" data-item="{k}""#) } else { String::new() };
     let mark = |k: usize| mark_as(k, "kl-shape");
     for (k, slot) in slots.iter().enumerate() {
-        let (x, y) = (t(f[o]), t(f[o + 1]));
+        // The position of a pivot, slider or gear (a link's points are its own; a link through
+        // no point has no numbers in the frame).
+        let at = || (t(f[o]), t(f[o + 1]));
         match slot {
             Slot::Link { n, closed } => {
                 let pts: Vec<String> =
@@ -96,6 +106,7 @@ fn items(out: &mut String, style: &Style, slots: &[Slot], f: &[i64], pen: &Pen, 
                 );
             }
             Slot::Pivot => {
+                let (x, y) = at();
                 let g = if pen.ghost { pen.ink } else { style.ground.as_str() };
                 let _ = write!(
                     out,
@@ -107,6 +118,7 @@ fn items(out: &mut String, style: &Style, slots: &[Slot], f: &[i64], pen: &Pen, 
                 out.push_str("</g>");
             }
             Slot::Slider { .. } => {
+                let (x, y) = at();
                 let [l, h] = style.block;
                 let fill = if pen.ghost { "none" } else { pen.fill };
                 let _ = write!(
@@ -122,6 +134,7 @@ fn items(out: &mut String, style: &Style, slots: &[Slot], f: &[i64], pen: &Pen, 
                 );
             }
             Slot::Gear { radius, turning } => {
+                let (x, y) = at();
                 let ink = pen.ink;
                 let rr = px(*radius);
                 let _ = write!(
@@ -137,6 +150,7 @@ fn items(out: &mut String, style: &Style, slots: &[Slot], f: &[i64], pen: &Pen, 
                 out.push_str("</g>");
             }
             Slot::Outline { corners } => {
+                let (x, y) = at();
                 let pts: Vec<String> = corners.iter().map(|c| format!("{},{}", px(c[0]), px(c[1]))).collect();
                 let fill = if pen.ghost { "none" } else { pen.fill };
                 let _ = write!(
@@ -220,7 +234,7 @@ pub(crate) fn figure(
     let mut o = 0;
     for slot in &fr.slots {
         if let Slot::Slider { fixed: true } = slot {
-            guide(&mut s, style, &fr.frames, o);
+            guide(&mut s, style, &fr.frames, o, [fr.view.width, fr.view.height]);
         }
         o += slot.len();
     }

@@ -28,8 +28,9 @@
 //! **Rounding.** The page holds, for every pose, the drawn points in tenths of a pixel and the
 //! angles of sliders and gears in tenths of a degree (the resolution of the SVG drawings:
 //! a picture 600 pixels wide resolves 1/6000 of the mechanism's extent), and the readouts to the digits shown: a hundredth of a degree for
-//! angles, five significant digits of the largest value for anything else, written as the
-//! charts' axes are labelled: with decimals for ordinary magnitudes (a largest value from
+//! angles, five significant digits of the largest value for anything else (for values far from
+//! zero that vary little, such as an input after many turns, more: at least three significant
+//! digits of their span), written as the charts' axes are labelled: with decimals for ordinary magnitudes (a largest value from
 //! about 1e-4 to 1e5: `"-0.0123"`), with a power of ten beyond (`"-5.661e-7"`, `"1.5896e9"`;
 //! zero `"0"`), never as a negative zero. The drawing's
 //! scale (`data-scale`, pixels per unit) and the pixel of the origin (`data-origin`) are
@@ -245,8 +246,9 @@ pub(crate) fn html_marked<D: Drawable + ?Sized>(
 /// ```
 ///
 /// # Errors
-/// As [`html`], and [`HtmlError::InvalidSetting`] for a grid of another mechanism or of more
-/// cells than [`HtmlConfig::max_frames`].
+/// As [`html`], and [`HtmlError::InvalidSetting`] for a grid of another mechanism, of more
+/// cells than [`HtmlConfig::max_frames`], or (its fields set by hand) with an input of no value
+/// or cells that do not match its axes and poses.
 pub fn html_grid<M, const N: usize, const NI: usize, const NO: usize>(
     m: &M,
     drawing: &Drawing,
@@ -281,6 +283,10 @@ pub fn html_grid_of<D: Drawable + ?Sized>(
             m.name(),
             columns.inputs
         )));
+    }
+    // A grid whose fields were set by hand can have an axis of no value (no cell at all).
+    if let Some(k) = counts.iter().position(|&c| c == 0) {
+        return Err(HtmlError::InvalidSetting(format!("the grid has no value of input `{}`", columns.inputs[k])));
     }
     if grid.cells.len() != counts.iter().product::<usize>()
         || grid.cells.iter().flatten().any(|&i| i >= motion.poses.len())

@@ -154,8 +154,7 @@ pub(crate) fn channels(
             }
             shown.push(v);
         }
-        let max = shown.iter().fold(0.0f64, |m, v| m.max(v.abs()));
-        let format = Format::of(&kind, max);
+        let format = format_of(&kind, &shown);
         let mut values: Vec<f64> = shown.into_iter().map(|v| format.rounded(v)).collect();
         let at_events = values.split_off(poses.len());
         out.push(Channel { label, kind, format, values, at_events, chart: r.chart });
@@ -163,12 +162,19 @@ pub(crate) fn channels(
     Ok(out)
 }
 
+/// The format of a readout of kind `kind` taking the values `shown`: the digits of their
+/// largest magnitude, and of their span ([`Format::of_range`]).
+fn format_of(kind: &Kind, shown: &[f64]) -> Format {
+    let max = shown.iter().fold(0.0f64, |m, v| m.max(v.abs()));
+    let (lo, hi) = shown.iter().fold((f64::INFINITY, f64::NEG_INFINITY), |(a, b), v| (a.min(*v), b.max(*v)));
+    Format::of_range(kind, max, hi - lo)
+}
+
 /// Input channel `c` made to read the values `axis` (library units) of a grid's axis: shown
 /// units, with the digits those need.
 pub(crate) fn on_axis(c: &mut Channel, axis: &[f64]) {
     let shown: Vec<f64> = axis.iter().map(|v| c.kind.shown(*v)).collect();
-    let max = shown.iter().fold(0.0f64, |m, v| m.max(v.abs()));
-    c.format = Format::of(&c.kind, max);
+    c.format = format_of(&c.kind, &shown);
     c.values = shown.into_iter().map(|v| c.format.rounded(v)).collect();
     c.at_events.clear();
 }

@@ -1,10 +1,10 @@
 //! Bar charts: values at discrete abscissae (the orders of a Fourier series, cases of a
 //! study) drawn as bars from zero, grouped when a panel holds several series.
 
-use super::frame::{Frame, LEFT, TITLE_FONT, WIDTH};
+use super::frame::{Frame, TITLE_FONT, WIDTH, left_margin};
 use super::series::bounds;
 use super::svg::Svg;
-use super::ticks::Ticks;
+use super::ticks::{Ticks, binade};
 use super::{Axis, Panel, PlotError, legend};
 
 /// Height of one panel's plot area and the space between panels (x tick labels).
@@ -55,39 +55,53 @@ pub fn bar_chart_svg(title: &str, x: &Axis, panels: &[Panel]) -> Result<String, 
         return Err(PlotError::Empty { what: "the figure".into() });
     }
     // The narrowest space between neighbouring abscissae sets the width of a group of bars;
-    // a lone abscissa gets a unit's (or its own magnitude's) room.
-    let spacing = xs.windows(2).map(|w| w[1] - w[0]).filter(|d| *d > 0.0).fold(f64::INFINITY, f64::min);
-    let spacing = if spacing.is_finite() { spacing } else { xs[0].abs().max(1.0) };
-    let (lo, hi) = (xs[0] - 0.5 * spacing, xs[xs.len() - 1] + 0.5 * spacing);
+    // a lone abscissa gets a unit's (or its own magnitude's) room. Worked out scaled by a
+    // power of two `u` (exact), so that neither the spacing nor the room around the bars
+    // overflows for abscissae near the ends of the f64 range; the same numbers otherwise.
+    let (first, last) = (xs[0], xs[xs.len() - 1]);
+    let lone = if xs.len() == 1 { 1.0 } else { 0.0 };
+    let u = binade(first.abs().max(last.abs()).max(lone));
+    let spacing = xs.windows(2).map(|w| w[1] / u - w[0] / u).filter(|d| *d > 0.0).fold(f64::INFINITY, f64::min);
+    let spacing = if spacing.is_finite() { spacing } else { (first / u).abs().max(1.0 / u) };
+    let (lo, hi) = (first / u - 0.5 * spacing, last / u + 0.5 * spacing);
     let whole = xs.len() <= MAX_WHOLE_TICKS && xs.iter().all(|v| v.fract() == 0.0 && v.abs() < 1e15);
     let xt = if whole && !x.kind.is_angle() {
-        Ticks::whole(lo, hi)
+        Ticks::whole(lo * u, hi * u)
     } else {
-        Ticks::new(lo, hi, x.kind.factor(), x.kind.is_angle(), false, 0.0)
+        // The ticks' own scale (see `Ticks::new`), kept within the f64 range.
+        let b = binade(lo.abs().max(hi.abs()));
+        let (unit, b) = if (u * b).is_finite() { (u * b, b) } else { (u, 1.0) };
+        let f = x.kind.factor();
+        Ticks::scaled(lo / b * f, hi / b * f, unit, f, x.kind.is_angle(), false, 0.0)
     };
+    // The spacing as the ticks scale it.
+    let spacing_scaled = spacing * (u / xt.unit) * x.kind.factor();
     let legend_w = legend::width(panels.iter().flat_map(|p| p.series.iter().map(|s| s.label.as_str())));
     let top = if title.is_empty() { 16.0 } else { 48.0 };
-    let mut svg = Svg::new(WIDTH, top + panels.len() as f64 * (PANEL_H + GAP) + 20.0);
+    // Each panel's slot, longer where its legend is taller (see `panels_svg`).
+    let slots = legend::slots(panels, PANEL_H + GAP);
+    let mut svg = Svg::new(WIDTH, top + slots.iter().sum::<f64>() + 20.0);
     if !title.is_empty() {
         svg.text("title", WIDTH / 2.0, 30.0, TITLE_FONT, "middle", 0.0, title);
     }
-    let plot_w = WIDTH - LEFT - 24.0 - if legend_w > 0.0 { legend_w + 16.0 } else { 0.0 };
-    for (k, p) in panels.iter().enumerate() {
+    let mut yts = Vec::with_capacity(panels.len());
+    for p in panels {
         let what = || PlotError::Empty { what: format!("the panel `{}`", p.axis.name) };
         let (_, _, y0, y1) = bounds(p.series.iter().flat_map(|s| s.points.iter())).ok_or_else(what)?;
-        let frame = Frame {
-            x: LEFT,
-            y: top + k as f64 * (PANEL_H + GAP),
-            w: plot_w,
-            h: PANEL_H,
-            xt: xt.clone(),
-            yt: Ticks::new(y0.min(0.0), y1.max(0.0), p.axis.kind.factor(), p.axis.kind.is_angle(), true, 0.03),
-        };
+        yts.push(Ticks::new(y0.min(0.0), y1.max(0.0), p.axis.kind.factor(), p.axis.kind.is_angle(), true, 0.03));
+    }
+    // One left margin for every panel, wide enough for the widest y tick label.
+    let left = left_margin(&yts);
+    let plot_w = WIDTH - left - 24.0 - if legend_w > 0.0 { legend_w + 16.0 } else { 0.0 };
+    for (k, (p, yt)) in panels.iter().zip(yts).enumerate() {
+        let frame =
+            Frame { x: left, y: top + slots[..k].iter().sum::<f64>(), w: plot_w, h: PANEL_H, xt: xt.clone(), yt };
         svg.open("panel");
         frame.draw(&mut svg, (k + 1 == panels.len()).then_some(x), &p.axis);
         let n = p.series.len() as f64;
         // Pixel width of one bar: the group fills `GROUP` of the narrowest spacing.
-        let bar = (frame.px((spacing, 0.0)).0 - frame.px((0.0, 0.0)).0).abs() * GROUP / n;
+        let at = |v: f64| frame.x + frame.xt.frac_scaled(v) * frame.w;
+        let bar = (at(spacing_scaled) - at(0.0)).abs() * GROUP / n;
         for (c, s) in p.series.iter().enumerate() {
             for &(bx, by) in s.points.iter().filter(|(x, y)| x.is_finite() && y.is_finite()) {
                 let (px, py) = frame.px((bx, by));

@@ -50,6 +50,19 @@ impl Format {
         Format { last: (lg - 4).max(FINEST), sci: !DECIMALS.contains(&max) }
     }
 
+    /// [`Format::of`] for values that span `span` (their largest minus their smallest): also
+    /// at least three significant digits of the span, so that values far from zero that differ
+    /// little (an input after many turns, a time long after its origin) are told apart rather
+    /// than all written alike; at most the sixteen significant digits an f64 holds.
+    pub(crate) fn of_range(kind: &Kind, max: f64, span: f64) -> Format {
+        let f = Format::of(kind, max);
+        if !(max.is_finite() && max > 0.0 && span.is_finite() && span > 0.0) {
+            return f;
+        }
+        let (lg_max, lg_span) = (max.log10().floor() as i32, span.log10().floor() as i32);
+        Format { last: f.last.min(lg_span - 2).max(lg_max - 15).max(FINEST), ..f }
+    }
+
     /// `v` as a whole number of `10^last` (rounded to nearest; `0` for a negative zero).
     fn units(&self, v: f64) -> i128 {
         let r = self.last;
@@ -107,6 +120,22 @@ mod tests {
         // Angles in degrees to a hundredth, and as other values from 1e5 degrees.
         assert_eq!(texts(&Kind::Angle, &[359.999, -0.001, 12.5]), ["360.00", "0.00", "12.50"]);
         assert_eq!(texts(&Kind::Angle, &[572957.8, -1432394.5]), ["5.730e5", "-1.4324e6"]);
+    }
+
+    #[test]
+    fn values_far_from_zero_keep_three_digits_of_their_span() {
+        let m = Kind::length("m");
+        // A turn after a hundred thousand turns, in degrees: to a degree (three digits of the
+        // turn), not to ten thousand degrees (five of the largest value).
+        let f = Format::of_range(&Kind::Angle, 5.7296e7 + 360.0, 360.0);
+        assert_eq!([f.text(5.7295779513e7), f.text(5.7295779513e7 + 1.0)], ["5.7295780e7", "5.7295781e7"]);
+        assert_eq!(Format::of(&Kind::Angle, 5.7296e7 + 360.0).text(5.7295779513e7 + 1.0), "5.7296e7");
+        // A span of a tenth of the largest value or more: as `of`.
+        assert_eq!(Format::of_range(&m, 4.2, 3.0), Format::of(&m, 4.2));
+        assert_eq!(Format::of_range(&Kind::Angle, 360.0, 359.0), Format::of(&Kind::Angle, 360.0));
+        // No more than an f64's digits, however small the span.
+        assert_eq!(Format::of_range(&m, 1.0, 1e-300).last, -15);
+        assert_eq!(Format::of_range(&m, 1.0, 0.0), Format::of(&m, 1.0));
     }
 
     #[test]

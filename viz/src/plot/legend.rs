@@ -11,6 +11,16 @@ pub(crate) fn color(k: usize) -> &'static str {
     COLORS[k % COLORS.len()]
 }
 
+/// Dash patterns of successive rounds of the colours: the first seven curves solid, the next
+/// seven dashed, and so on, so that 35 curves each look different (a curve's colour alone
+/// repeats every seven).
+const DASHES: [&str; 5] = ["", "8 4", "2 3", "8 3 2 3", "12 3 2 3 2 3"];
+
+/// The dash pattern of curve `k` (empty: solid).
+pub(crate) fn dash(k: usize) -> &'static str {
+    DASHES[(k / COLORS.len()) % DASHES.len()]
+}
+
 /// Approximate width in pixels of `text` at the tick font size (sans-serif averages about
 /// 0.6 em per character).
 fn text_width(text: &str) -> f64 {
@@ -38,6 +48,23 @@ pub(crate) fn width<'a>(labels: impl Iterator<Item = &'a str>) -> f64 {
     widest.map_or(0.0, |w| w + 48.0)
 }
 
+/// Height of the legend of these labels (0 when there is nothing to list).
+pub(crate) fn height<'a>(labels: impl Iterator<Item = &'a str>) -> f64 {
+    match labels.filter(|l| !l.is_empty()).count() {
+        0 => 0.0,
+        n => 10.0 + 20.0 * n as f64,
+    }
+}
+
+/// Room left under a legend before the next panel (or the figure's end).
+pub(crate) const BELOW: f64 = 8.0;
+
+/// The height of each panel's slot in a stack of `panels` (the top of its plot area to the
+/// next one's): `slot`, or more where the panel's legend needs more.
+pub(crate) fn slots(panels: &[super::Panel], slot: f64) -> Vec<f64> {
+    panels.iter().map(|p| slot.max(height(p.series.iter().map(|s| s.label.as_str())) + BELOW)).collect()
+}
+
 /// What a legend entry shows of its series: a stretch of line (curves) or a filled square
 /// (bars).
 #[derive(Clone, Copy, PartialEq, Eq)]
@@ -62,7 +89,7 @@ pub(crate) fn draw_with(svg: &mut Svg, (x, y): (f64, f64), labels: &[&str], widt
     for (row, (k, label)) in entries.iter().enumerate() {
         let cy = y + 15.0 + 20.0 * row as f64;
         match swatch {
-            Swatch::Line => svg.line("legend-line", (x + 8.0, cy), (x + 30.0, cy), color(*k), 2.0),
+            Swatch::Line => svg.dashed_line("legend-line", (x + 8.0, cy), (x + 30.0, cy), color(*k), 2.0, dash(*k)),
             Swatch::Square => svg.rect("legend-swatch", (x + 13.0, cy - 6.0), (12.0, 12.0), color(*k), "none"),
         }
         svg.text("legend-label", x + 36.0, cy + 4.0, TICK_FONT, "start", 0.0, &shown(label));

@@ -1,7 +1,7 @@
 //! Line charts: curves against a common x axis, in one or several stacked panels, each panel
 //! with its own value axis of one quantity kind.
 
-use super::frame::{Frame, LEFT, TITLE_FONT, WIDTH};
+use super::frame::{Frame, TITLE_FONT, WIDTH, left_margin};
 use super::series::bounds;
 use super::svg::Svg;
 use super::ticks::Ticks;
@@ -46,23 +46,26 @@ pub fn panels_svg(title: &str, x: &Axis, panels: &[Panel]) -> Result<String, Plo
     let xt = Ticks::new(x0, x1, x.kind.factor(), x.kind.is_angle(), false, 0.0);
     let legend_w = legend::width(panels.iter().flat_map(|p| p.series.iter().map(|s| s.label.as_str())));
     let top = if title.is_empty() { 16.0 } else { 48.0 };
-    let height = top + panels.len() as f64 * (PANEL_H + GAP) + 20.0;
+    // Each panel's slot, from the top of its plot area to the next one's: longer where its
+    // legend is taller than the slot, so that every legend stays in the picture.
+    let slots = legend::slots(panels, PANEL_H + GAP);
+    let height = top + slots.iter().sum::<f64>() + 20.0;
     let mut svg = Svg::new(WIDTH, height);
     if !title.is_empty() {
         svg.text("title", WIDTH / 2.0, 30.0, TITLE_FONT, "middle", 0.0, title);
     }
-    let plot_w = WIDTH - LEFT - 24.0 - if legend_w > 0.0 { legend_w + 16.0 } else { 0.0 };
-    for (k, p) in panels.iter().enumerate() {
+    let mut yts = Vec::with_capacity(panels.len());
+    for p in panels {
         let what = || PlotError::Empty { what: format!("the panel `{}`", p.axis.name) };
         let (_, _, y0, y1) = bounds(p.series.iter().flat_map(|s| s.points.iter()).chain(&p.marks)).ok_or_else(what)?;
-        let frame = Frame {
-            x: LEFT,
-            y: top + k as f64 * (PANEL_H + GAP),
-            w: plot_w,
-            h: PANEL_H,
-            xt: xt.clone(),
-            yt: Ticks::new(y0, y1, p.axis.kind.factor(), p.axis.kind.is_angle(), true, 0.03),
-        };
+        yts.push(Ticks::new(y0, y1, p.axis.kind.factor(), p.axis.kind.is_angle(), true, 0.03));
+    }
+    // One left margin for every panel, wide enough for the widest y tick label.
+    let left = left_margin(&yts);
+    let plot_w = WIDTH - left - 24.0 - if legend_w > 0.0 { legend_w + 16.0 } else { 0.0 };
+    for (k, (p, yt)) in panels.iter().zip(yts).enumerate() {
+        let frame =
+            Frame { x: left, y: top + slots[..k].iter().sum::<f64>(), w: plot_w, h: PANEL_H, xt: xt.clone(), yt };
         draw_panel(&mut svg, &frame, k, p, (k + 1 == panels.len()).then_some(x), legend_w);
     }
     Ok(svg.finish())
@@ -75,7 +78,7 @@ fn draw_panel(svg: &mut Svg, frame: &Frame, k: usize, p: &Panel, x_title: Option
     let clip = format!("area{k}");
     svg.clip(&clip, (frame.x, frame.y), (frame.w, frame.h));
     for (c, s) in p.series.iter().enumerate() {
-        svg.curve(&s.label, s.points.iter().map(|&pt| frame.px(pt)), legend::color(c), &clip);
+        svg.curve(&s.label, s.points.iter().map(|&pt| frame.px(pt)), (legend::color(c), legend::dash(c)), &clip);
     }
     for &m in p.marks.iter().filter(|(x, y)| x.is_finite() && y.is_finite()) {
         svg.dot("mark", frame.px(m), 4.0, "black");

@@ -11,6 +11,11 @@ pub(crate) fn num(v: f64) -> String {
     if s == "-0" { "0".into() } else { s.into() }
 }
 
+/// ` stroke-dasharray="..."` for a dash array, nothing for a solid stroke.
+fn dash_attribute(dash: &str) -> String {
+    if dash.is_empty() { String::new() } else { format!(r#" stroke-dasharray="{dash}""#) }
+}
+
 /// An SVG document being written.
 pub(crate) struct Svg {
     pub out: String,
@@ -51,15 +56,29 @@ impl Svg {
     }
 
     /// A straight line.
-    pub fn line(&mut self, class: &str, (x0, y0): (f64, f64), (x1, y1): (f64, f64), stroke: &str, width: f64) {
+    pub fn line(&mut self, class: &str, from: (f64, f64), to: (f64, f64), stroke: &str, width: f64) {
+        self.dashed_line(class, from, to, stroke, width, "");
+    }
+
+    /// A straight line dashed by `dash` (an SVG dash array; empty: solid).
+    pub fn dashed_line(
+        &mut self,
+        class: &str,
+        (x0, y0): (f64, f64),
+        (x1, y1): (f64, f64),
+        stroke: &str,
+        width: f64,
+        dash: &str,
+    ) {
         let _ = write!(
             self.out,
-            r#"<line class="{class}" x1="{}" y1="{}" x2="{}" y2="{}" stroke="{stroke}" stroke-width="{}"/>"#,
+            r#"<line class="{class}" x1="{}" y1="{}" x2="{}" y2="{}" stroke="{stroke}" stroke-width="{}"{}/>"#,
             num(x0),
             num(y0),
             num(x1),
             num(y1),
-            num(width)
+            num(width),
+            dash_attribute(dash)
         );
     }
 
@@ -100,8 +119,15 @@ impl Svg {
     }
 
     /// A polyline through pixel points, broken at non-finite points and thinned: a point closer
-    /// than half a pixel to the last drawn one is skipped (the last point of a run is kept).
-    pub fn curve(&mut self, label: &str, points: impl Iterator<Item = (f64, f64)>, stroke: &str, clip: &str) {
+    /// than half a pixel to the last drawn one is skipped (the last point of a run is kept);
+    /// stroked in a colour and a dash array (empty: solid).
+    pub fn curve(
+        &mut self,
+        label: &str,
+        points: impl Iterator<Item = (f64, f64)>,
+        (stroke, dash): (&str, &str),
+        clip: &str,
+    ) {
         let mut d = String::new();
         let mut last: Option<(f64, f64)> = None;
         let mut pending: Option<(f64, f64)> = None;
@@ -131,9 +157,10 @@ impl Svg {
         }
         let _ = write!(
             self.out,
-            r#"<path class="curve" data-label="{}" d="{}" fill="none" stroke="{stroke}" stroke-width="2" stroke-linejoin="round" clip-path="url(#{clip})"/>"#,
+            r#"<path class="curve" data-label="{}" d="{}" fill="none" stroke="{stroke}" stroke-width="2" stroke-linejoin="round"{} clip-path="url(#{clip})"/>"#,
             escape(label),
-            d.trim_start()
+            d.trim_start(),
+            dash_attribute(dash)
         );
     }
 
@@ -182,7 +209,7 @@ mod tests {
     fn curves_break_at_gaps_and_thin_dense_points() {
         let mut s = Svg::new(10.0, 10.0);
         let pts = [(0.0, 0.0), (0.1, 0.1), (0.2, 0.2), (3.0, 3.0), (f64::NAN, 1.0), (5.0, 5.0), (6.0, 6.0)];
-        s.curve("c", pts.into_iter(), "black", "k");
+        s.curve("c", pts.into_iter(), ("black", ""), "k");
         assert!(s.out.contains(r#"d="M0,0 L3,3 M5,5 L6,6""#), "{}", s.out);
     }
 }

@@ -1,10 +1,10 @@
 //! x-y charts with equal scales on both axes: paths of points, a linkage at one position.
 
-use super::frame::{Frame, LEFT, TITLE_FONT, WIDTH};
+use super::frame::{Frame, LEFT, TITLE_FONT, WIDTH, left_margin};
 use super::series::bounds;
 use super::svg::Svg;
 use super::ticks::{Ticks, binade};
-use super::{Axis, PlotError, Series, legend};
+use super::{Axis, Kind, PlotError, Series, legend};
 
 /// Largest plot area height in pixels.
 const MAX_H: f64 = 460.0;
@@ -51,7 +51,43 @@ pub fn xy_chart_svg(
     let n = |v: f64| v / unit * k.factor();
     let (x0, x1, y0, y1) = (n(x0), n(x1), n(y0), n(y1));
     let legend_w = legend::width(series.iter().map(|s| s.label.as_str()));
-    let w = WIDTH - LEFT - 24.0 - if legend_w > 0.0 { legend_w + 16.0 } else { 0.0 };
+    // Laid out with the usual left margin, then again with a wider one where the y tick
+    // labels need it (values of many digits).
+    let area = |left: f64| {
+        let w = WIDTH - left - 24.0 - if legend_w > 0.0 { legend_w + 16.0 } else { 0.0 };
+        plot_area((x0, x1, y0, y1), unit, k, w)
+    };
+    let (mut left, (mut w, mut h, mut xt, mut yt)) = (LEFT, area(LEFT));
+    if left_margin([&yt]) > LEFT {
+        left = left_margin([&yt]);
+        (w, h, xt, yt) = area(left);
+    }
+    let top = if title.is_empty() { 16.0 } else { 48.0 };
+    // Taller where the legend is taller than the plot area and the room under it.
+    let legend_h = legend::height(series.iter().map(|s| s.label.as_str()));
+    let mut svg = Svg::new(WIDTH, top + (h + 64.0).max(legend_h + legend::BELOW));
+    if !title.is_empty() {
+        svg.text("title", WIDTH / 2.0, 30.0, TITLE_FONT, "middle", 0.0, title);
+    }
+    let frame = Frame { x: left, y: top, w, h, xt, yt };
+    svg.open("panel");
+    frame.draw(&mut svg, Some(x), y);
+    svg.clip("area0", (frame.x, frame.y), (frame.w, frame.h));
+    for (c, s) in series.iter().enumerate() {
+        svg.curve(&s.label, s.points.iter().map(|&p| frame.px(p)), (legend::color(c), legend::dash(c)), "area0");
+    }
+    for &m in marks.iter().filter(|(x, y)| x.is_finite() && y.is_finite()) {
+        svg.dot("mark", frame.px(m), 4.0, "black");
+    }
+    let labels: Vec<&str> = series.iter().map(|s| s.label.as_str()).collect();
+    legend::draw(&mut svg, (frame.right() + 16.0, frame.y), &labels, legend_w);
+    svg.close();
+    Ok(svg.finish())
+}
+
+/// The plot area of an x-y chart of data in `(x0, x1, y0, y1)` (scaled by `unit` and shown
+/// units of `k`) `w` pixels wide: its height and the ticks of both axes, one scale on both.
+fn plot_area((x0, x1, y0, y1): (f64, f64, f64, f64), unit: f64, k: &Kind, w: f64) -> (f64, f64, Ticks, Ticks) {
     // Scaled shown units per pixel, with a margin, from the axis that needs more.
     let mut span = ((x1 - x0) / w).max((y1 - y0) / MAX_H);
     if span == 0.0 {
@@ -74,23 +110,5 @@ pub fn xy_chart_svg(
     let xt = Ticks::with_step(cx - hx, cx + hx, &step);
     // The same step on both axes: equal scales read best with equal grid squares.
     let yt = Ticks::with_step(cy - hy, cy + hy, &xt);
-    let top = if title.is_empty() { 16.0 } else { 48.0 };
-    let mut svg = Svg::new(WIDTH, top + h + 64.0);
-    if !title.is_empty() {
-        svg.text("title", WIDTH / 2.0, 30.0, TITLE_FONT, "middle", 0.0, title);
-    }
-    let frame = Frame { x: LEFT, y: top, w, h, xt, yt };
-    svg.open("panel");
-    frame.draw(&mut svg, Some(x), y);
-    svg.clip("area0", (frame.x, frame.y), (frame.w, frame.h));
-    for (c, s) in series.iter().enumerate() {
-        svg.curve(&s.label, s.points.iter().map(|&p| frame.px(p)), legend::color(c), "area0");
-    }
-    for &m in marks.iter().filter(|(x, y)| x.is_finite() && y.is_finite()) {
-        svg.dot("mark", frame.px(m), 4.0, "black");
-    }
-    let labels: Vec<&str> = series.iter().map(|s| s.label.as_str()).collect();
-    legend::draw(&mut svg, (frame.right() + 16.0, frame.y), &labels, legend_w);
-    svg.close();
-    Ok(svg.finish())
+    (w, h, xt, yt)
 }

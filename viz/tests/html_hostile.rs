@@ -1,0 +1,106 @@
+//! Hostile inputs to the interactive pages: what the drawings refuse or bound, the pages
+//! refuse or bound too (a page's size follows its frames, not the reach of a window).
+
+use kinloop_viz::draw::{Canvas, Drawing, HtmlConfig, Motion, Pt, html};
+use std::f64::consts::TAU;
+
+#[allow(dead_code)] // not every test uses every helper
+mod draw_support;
+
+use draw_support::FourBar;
+
+fn motion() -> (FourBar, Motion) {
+    let m = FourBar::default();
+    let mo = Motion::record(&m, m.sweep(0.0, TAU, 13, &m.guess(0.0)).unwrap()).unwrap();
+    (m, mo)
+}
+
+/// The `d` attribute of every hatch path (`M x,y l dx,dy` repeated) of a page's drawing.
+fn hatch_strokes(page: &str) -> usize {
+    page.split("<path d=\"").skip(1).map(|p| p.split('"').next().unwrap().matches('l').count()).sum()
+}
+
+#[test]
+fn a_fixed_sliders_guide_on_a_page_is_cut_to_the_picture() {
+    let (m, mo) = motion();
+    // A slider travelling about 6e7 pixels along its guide through a window 480 pixels wide:
+    // the guide's ground line and hatching are drawn over the picture only, as the drawings
+    // do, not as some ten million hatch strokes.
+    let window = Canvas { window: Some([-2.0, -2.0, 6.0, 5.0]), ..Canvas::default() };
+    let far = Drawing::new().with_canvas(window).slider(Pt::expr(|s| [1e6 * s.x[0], 0.0]), 0.0).joint("b");
+    let page = html(&m, &far, &mo, &HtmlConfig::new("far slider")).unwrap();
+    let view = far.view(&mo).unwrap();
+    // One stroke every 6 pixels along the picture's diagonal at most, and a few more.
+    let most = (view.width.hypot(view.height) / 6.0).ceil() as usize + 8;
+    assert!(hatch_strokes(&page) <= most, "{} hatch strokes, {} bytes", hatch_strokes(&page), page.len());
+    assert!(page.len() < 200_000, "{} bytes", page.len());
+}
+
+/// A link through no point (`Drawing::link` of an empty list) draws nothing, on a page as in
+/// the drawings; last among the items, it made the page read past the frame's numbers.
+#[test]
+fn a_link_through_no_point_draws_nothing_on_a_page() {
+    let (m, mo) = motion();
+    let none: [Pt; 0] = [];
+    for d in [
+        Drawing::new().joint("b").link(none.clone()),
+        Drawing::new().link(none.clone()).joint("b").body(none.clone()),
+        Drawing::new().joint("b").body(none.clone()).trace("p"),
+    ] {
+        let svg = d.svg(&mo, 0).unwrap();
+        let page = html(&m, &d, &mo, &HtmlConfig::new("empty links")).unwrap();
+        assert_eq!(page.matches("class=\"kl-joint\"").count(), svg.matches("<circle r=\"3.5\"").count());
+    }
+}
+
+/// A sweep far from the origin of its input (a crank after a hundred thousand turns): the
+/// readouts keep the digits that tell the frames apart, and the charts against the input
+/// spread over their width. Rounded to five significant digits of the largest value, a whole
+/// turn read `5.7296e7` at every frame and each chart collapsed onto one vertical line.
+#[test]
+fn a_sweep_far_from_zero_keeps_the_digits_that_tell_its_frames_apart() {
+    let m = FourBar::default();
+    let start = 1e6;
+    let mo = Motion::record(&m, m.sweep(start, start + TAU, 73, &m.guess(start)).unwrap()).unwrap();
+    let d = Drawing::new().link(["b", "c", "p"]);
+    let page = html(&m, &d, &mo, &HtmlConfig::new("far").show("gamma")).unwrap();
+    // The readouts' values of the input at every frame: all different.
+    let data = page.split("id=\"kl-data\">").nth(1).unwrap().split("</script>").next().unwrap();
+    let phi: Vec<&str> =
+        data.split("\"v\":[").nth(1).unwrap().split(']').next().unwrap().split(',').collect::<Vec<_>>();
+    assert_eq!(phi.len(), 73);
+    let mut distinct = phi.clone();
+    distinct.dedup();
+    assert_eq!(distinct.len(), 73, "{phi:?}");
+    // The chart of gamma against phi: its curve spans most of the plot's width.
+    let curve = page.split("class=\"kl-curve\" points=\"").nth(1).unwrap().split('"').next().unwrap();
+    let xs: Vec<f64> = curve.split(' ').map(|p| p.split(',').next().unwrap().parse().unwrap()).collect();
+    let (lo, hi) = xs.iter().fold((f64::INFINITY, f64::NEG_INFINITY), |(a, b), x| (a.min(*x), b.max(*x)));
+    assert!(hi - lo > 200.0, "the curve spans {lo}..{hi} px");
+}
+
+/// The x tick labels of a page's charts do not run into each other (widths estimated at 0.6 em
+/// a character of the charts' 11 px text): on an input far from zero, labelled with many
+/// digits (`5.729580e7`), every second tick (or n-th) is labelled.
+#[test]
+fn a_charts_x_labels_stand_apart() {
+    let m = FourBar::default();
+    let start = 1e6;
+    let mo = Motion::record(&m, m.sweep(start, start + TAU, 73, &m.guess(start)).unwrap()).unwrap();
+    let d = Drawing::new().link(["b", "c", "p"]);
+    let page = html(&m, &d, &mo, &HtmlConfig::new("far").show("gamma")).unwrap();
+    let labels: Vec<(f64, String)> = page
+        .split("class=\"kl-tick-x\" x=\"")
+        .skip(1)
+        .map(|s| {
+            let x: f64 = s.split('"').next().unwrap().parse().unwrap();
+            let label = s.split('>').nth(1).unwrap().split('<').next().unwrap().to_string();
+            (x, label)
+        })
+        .collect();
+    assert!(labels.len() >= 2, "{labels:?}");
+    let half = |l: &str| 0.5 * 0.6 * 11.0 * l.chars().count() as f64;
+    for w in labels.windows(2) {
+        assert!(w[0].0 + half(&w[0].1) < w[1].0 - half(&w[1].1), "{:?} and {:?} overlap", w[0], w[1]);
+    }
+}
