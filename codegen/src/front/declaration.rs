@@ -10,7 +10,7 @@
 //! The parser recovers at `;` after an error, so all syntax errors of a declaration are reported
 //! together.
 
-use super::item::{parse_item, skip_item};
+use super::item::{inner_attribute, parse_item, skip_item};
 use super::syntax::{Errors, MechanismDef, Options};
 use super::{limits, names};
 use proc_macro2::{Span, TokenStream};
@@ -88,6 +88,13 @@ fn parse_def_into(input: ParseStream, errors: &mut Errors) -> Option<MechanismDe
     };
     if input.is_empty() {
         return fail(errors, input.error(SHAPE));
+    }
+    loop {
+        match inner_attribute(input) {
+            Ok(Some(e)) => errors.push(e),
+            Ok(None) => break,
+            Err(e) => return fail(errors, e),
+        }
     }
     let attrs = match Attribute::parse_outer(input) {
         Ok(a) => a,

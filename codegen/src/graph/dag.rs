@@ -404,10 +404,11 @@ impl Graph {
         self.intern(Op::Mul(a, b))
     }
 
-    /// `a / b`, simplified: `x / x = 1`, constants folded, division by 1, -1 or a power of two
-    /// turned into an exact multiplication, negations lifted.
+    /// `a / b`, simplified: `x / x = 1` (for `x` not a constant: a constant is folded, so that
+    /// `0 / 0` stays NaN), constants folded, division by 1, -1 or a power of two turned into an
+    /// exact multiplication, negations lifted.
     pub fn div(&mut self, a: NodeId, b: NodeId) -> NodeId {
-        if a == b {
+        if a == b && self.as_const(a).is_none() {
             return self.one();
         }
         match (self.as_const(a), self.as_const(b)) {
@@ -619,6 +620,20 @@ mod tests {
         assert!(g.is_zero(g.clone().sub(q, q)));
         let nq = g.neg(q);
         assert_eq!(g.neg(nq), q);
+        assert!(g.is_one(g.clone().div(q, q)));
+    }
+
+    #[test]
+    fn zero_over_zero_stays_nan() {
+        // `x / x = 1` holds for a symbol; a constant zero over itself is NaN, not one.
+        let mut g = Graph::new();
+        let zero = g.zero();
+        let nan = g.div(zero, zero);
+        assert!(g.as_const(nan).is_none(), "0 / 0 was folded");
+        assert!(g.eval(&[nan], &|_| 0.0)[0].is_nan());
+        let two = g.constant(2.0);
+        let one = g.div(two, two);
+        assert!(g.is_one(one));
     }
 
     /// Derivatives against central finite differences of the graph's own evaluation.

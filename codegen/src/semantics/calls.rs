@@ -4,7 +4,7 @@ use super::builtins::{self, Builtin, HINTS, Kind, Lowering};
 use super::lower::{Lowerer, integer_exponent};
 use super::suggest::similar;
 use super::symbols::Val;
-use crate::front::expr::Expr;
+use crate::front::expr::{Expr, SpanRange};
 use crate::graph::dag::{Func, Graph, NodeId};
 use proc_macro2::Span;
 use syn::Ident;
@@ -59,7 +59,10 @@ impl Lowerer {
             return None;
         }
         let exponent = args.get(1).and_then(integer_exponent);
-        Some(lower_builtin(&mut self.graph, builtin.lowering, &vals, exponent))
+        let result = lower_builtin(&mut self.graph, builtin.lowering, &vals, exponent);
+        let range = SpanRange { start: func.span(), end: close };
+        let show = || format!("{func}({})", args.iter().map(Expr::show).collect::<Vec<_>>().join(", "));
+        self.finite(range, &show, &vals, result)
     }
 }
 
