@@ -126,7 +126,7 @@ pub(super) struct Pending {
 /// Reports `name` if `names` has it already (`what` is the kind of item, plural, for the
 /// message); records it otherwise. Returns whether it is new.
 fn unique(lw: &mut Lowerer, names: &mut HashMap<String, Span>, name: &Ident, what: &str) -> bool {
-    let key = name.to_string();
+    let key = super::scope::key(name);
     match names.get(&key) {
         Some(first) => {
             let mut e = syn::Error::new(
@@ -316,7 +316,7 @@ fn point(lw: &mut Lowerer, e: &Expr, what: &str) -> Option<PendingPoint> {
 
 /// The input or unknown `id` names (`clause` is `turns` or `on`, for the message).
 fn angle(lw: &mut Lowerer, id: &Ident, clause: &str) -> Option<AngleModel> {
-    let found = lw.scope.symbols.get(&id.to_string()).map(|(s, _)| *s);
+    let found = lw.scope.symbols.get(&super::scope::key(id)).map(|(s, _)| *s);
     let what = match found {
         Some(Symbol::Unknown(u)) => return Some(AngleModel::Unknown(u as usize)),
         Some(Symbol::Input(i)) => return Some(AngleModel::Input(i as usize)),
