@@ -12,6 +12,19 @@ use syn::Ident;
 impl Lowerer {
     pub(super) fn call(&mut self, func: &Ident, args: &[Expr], close: Span) -> Option<Val> {
         let Some(builtin) = builtins::lookup(&func.to_string()) else {
+            let declared = self.scope.symbols.contains_key(&super::scope::key(func));
+            if declared && let Some(first) = args.first() {
+                // `h (1 - cos(phi))`: a declared name before parentheses is a product.
+                let shown = args.iter().map(Expr::show).collect::<Vec<_>>().join(", ");
+                self.errors.push(syn::Error::new(
+                    func.span(),
+                    format!(
+                        "`{func}` is a declared name, not a function: write `{func} * ({})` for a product",
+                        if args.len() == 1 { first.show() } else { shown }
+                    ),
+                ));
+                return None;
+            }
             self.errors.push(unsupported(func));
             return None;
         };
