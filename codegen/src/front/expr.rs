@@ -305,8 +305,17 @@ impl Parser {
         // `h (1 - cos(phi))`, `2(r + h)`: a parenthesised value or a number right after a
         // value, which nothing in the language allows, is a product without its `*`.
         // (On the raw tokens: syn's `peek(LitInt)` also takes `- 15` for a negative literal.)
+        // Vectors are left to the item's own message: `force f at (x, 0) (p, 0)` lacks its `=`.
         let cursor = input.cursor();
-        if cursor.group(proc_macro2::Delimiter::Parenthesis).is_some() || cursor.literal().is_some() {
+        let group = cursor.group(proc_macro2::Delimiter::Parenthesis);
+        let vector = matches!(lhs, Expr::Tuple { .. })
+            || group.is_some_and(|(inside, _, _)| {
+                inside
+                    .token_stream()
+                    .into_iter()
+                    .any(|t| matches!(t, proc_macro2::TokenTree::Punct(p) if p.as_char() == ','))
+            });
+        if !vector && (group.is_some() || cursor.literal().is_some()) {
             let next = input.cursor().token_tree().map(|(tt, _)| tt.to_string()).unwrap_or_default();
             let next: String = next.chars().take(24).collect();
             return Err(input.error(format!(
@@ -536,6 +545,34 @@ mod tests {
             let ts: TokenStream = src.parse().unwrap();
             let e = parse_expr.parse2(ts).unwrap();
             assert_eq!(e.show(), src);
+        }
+    }
+
+    #[test]
+    fn a_product_without_its_operator_is_named_but_vectors_are_left_alone() {
+        assert!(parse("2(a + b)").contains("write `2 * (a + b)` for a product"), "{}", parse("2(a + b)"));
+        assert!(parse("(a + b) 3").contains("write `(a + b) * 3` for a product"));
+        assert!(parse("2pi").contains("write `2 * pi` for a product"));
+        assert!(parse("2f32").contains("number suffixes are not needed"));
+        // `10 - 15`: syn takes `- 15` for a negative literal; it is an operator and a number.
+        assert_eq!(parse("10 - 15"), "(10 - 15)");
+        // A vector next to a value is some other mistake (`force f at (x, 0) (p, 0)` lacks `=`):
+        // parsing stops before it, for the item to report.
+        assert_eq!(parse_prefix("(x, 0) (p, 0)"), "<x, 0>");
+        assert_eq!(parse_prefix("(a + b) (p, 0)"), "(a + b)");
+    }
+
+    /// The expression at the start of `s`, leaving the rest unparsed.
+    fn parse_prefix(s: &str) -> String {
+        let ts: TokenStream = s.parse().unwrap();
+        let parser = |input: ParseStream| {
+            let e = parse_expr(input)?;
+            let _: TokenStream = input.parse()?;
+            Ok(e)
+        };
+        match parser.parse2(ts) {
+            Ok(e) => show(&e),
+            Err(e) => format!("error: {e}"),
         }
     }
 
