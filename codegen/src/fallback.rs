@@ -70,8 +70,9 @@ impl Shape {
         };
         let mut literal_defaults = Vec::new();
         let mut dynamics = false;
-        let (mut seen_p, mut seen_i, mut seen_u, mut seen_o) =
-            (HashSet::new(), HashSet::new(), HashSet::new(), HashSet::new());
+        // Inputs, unknowns, points and outputs are the columns of one table (`Name::COL`) and
+        // share one namespace, as the model's names do: the first declaration of a name keeps it.
+        let (mut seen_p, mut seen_columns) = (HashSet::new(), HashSet::new());
         for item in &def.items {
             match &item.kind {
                 ItemKind::Decls(kind, decls) => {
@@ -82,13 +83,13 @@ impl Shape {
                                     literal_defaults.push(d.value.as_ref().and_then(literal));
                                 }
                             }
-                            DeclKind::Inputs => _ = push_unique(&mut s.inputs, &mut seen_i, &d.docs, &d.name),
-                            DeclKind::Unknowns => _ = push_unique(&mut s.unknowns, &mut seen_u, &d.docs, &d.name),
+                            DeclKind::Inputs => _ = push_unique(&mut s.inputs, &mut seen_columns, &d.docs, &d.name),
+                            DeclKind::Unknowns => _ = push_unique(&mut s.unknowns, &mut seen_columns, &d.docs, &d.name),
                         }
                     }
                 }
-                ItemKind::Point { name, .. } => _ = push_unique(&mut s.points, &mut seen_o, &item.docs, name),
-                ItemKind::Output { name, .. } => _ = push_unique(&mut s.scalars, &mut seen_o, &item.docs, name),
+                ItemKind::Point { name, .. } => _ = push_unique(&mut s.points, &mut seen_columns, &item.docs, name),
+                ItemKind::Output { name, .. } => _ = push_unique(&mut s.scalars, &mut seen_columns, &item.docs, name),
                 ItemKind::Body(_) | ItemKind::Force { .. } | ItemKind::Torque { .. } | ItemKind::Gravity { .. } => {
                     dynamics = true
                 }

@@ -218,6 +218,21 @@ fn lex_message(rest: &str, e: &proc_macro2::LexError) -> String {
         (Some('/'), Some('*')) => "unterminated block comment".to_string(),
         // ASCII characters that start no token: the compiler writes them as they are.
         (Some(c @ ('`' | '\\')), _) => format!("unknown start of token: {c}"),
+        (Some('r'), Some('#')) => {
+            let word: String = rest[2..].chars().take_while(|c| c.is_alphanumeric() || *c == '_').collect();
+            if matches!(word.as_str(), "super" | "self" | "Self" | "crate" | "_") {
+                format!("`{word}` cannot be a raw identifier")
+            } else {
+                format!("cannot read the declaration: {e}")
+            }
+        }
+        (Some(c), _) if c.is_ascii_digit() => {
+            let number: String = rest.chars().take_while(|c| c.is_alphanumeric() || matches!(c, '_' | '.')).collect();
+            format!("invalid number `{number}`; write a number such as `2.5`, `1e-3` or `0x1F`")
+        }
+        (Some('\''), _) => {
+            "unexpected `'`: a declaration has no character literals; write a number or a name".to_string()
+        }
         (Some(c), _) if !c.is_ascii() && !unicode_ident_start(c) => {
             format!("unknown start of token: {}", c.escape_default())
         }

@@ -189,6 +189,27 @@ fn texts_the_lexer_rejects_name_the_mistake() {
         ),
         (format!("pub struct S {{\n{body}    eq e: x == a ` phi;\n}}\n"), "unknown start of token: `", 5, 18),
         (format!("pub struct S {{\n{body}    eq e: x == a \\ phi;\n}}\n"), "unknown start of token: \\", 5, 18),
+        // Words that cannot be raw identifiers, malformed numbers and character literals: what
+        // the compiler says, not the lexer's "cannot parse string into token stream".
+        (
+            "pub struct S {\n    params r#super = 1;\n    input phi;\n    unknowns x = 0;\n    eq e: x == phi;\n}\n"
+                .to_string(),
+            "`super` cannot be a raw identifier",
+            2,
+            12,
+        ),
+        (
+            format!("pub struct S {{\n{body}    eq e: x == a * 0b102;\n}}\n"),
+            "invalid number `0b102`; write a number such as `2.5`, `1e-3` or `0x1F`",
+            5,
+            20,
+        ),
+        (
+            format!("pub struct S {{\n{body}    eq e: x == a * 'ab';\n}}\n"),
+            "unexpected `'`: a declaration has no character literals; write a number or a name",
+            5,
+            20,
+        ),
     ];
     for (text, message, line, column) in cases {
         let Err(ReadError::Rejected(d)) = Model::read("lex.kl", &text) else { panic!("accepted: {text}") };

@@ -12,6 +12,7 @@
 mod support;
 
 mod cam_linkage;
+mod constants_named_like_declared_names;
 mod degrees;
 mod drawing;
 mod extreme_scales;

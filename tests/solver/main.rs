@@ -18,6 +18,7 @@ mod decomposition;
 mod deferred_checks;
 mod deferred_entry_bound;
 mod lever_singularity;
+mod mechanism_named_like_prelude;
 mod newton_restarts;
 mod sin_cos_order;
 mod sparse_steps;

@@ -31,6 +31,7 @@ fn constants(model: &Model, plan: &Plan, t: &Types) -> TokenStream {
     let strs = |ids: Vec<&proc_macro2::Ident>| ids.into_iter().map(|i| i.unraw().to_string()).collect::<Vec<_>>();
     let pnames: Vec<_> = model.params.iter().map(|p| &p.name).collect();
     let pstrs = strs(pnames.clone());
+    let pindex = (0..pnames.len()).map(proc_macro2::Literal::usize_unsuffixed);
     let istrs = strs(model.inputs.iter().map(|p| &p.name).collect());
     let ustrs = strs(model.unknowns.iter().map(|p| &p.name).collect());
     let estrs: Vec<String> = model.equations.iter().map(|e| e.name.clone()).collect();
@@ -68,8 +69,8 @@ fn constants(model: &Model, plan: &Plan, t: &Types) -> TokenStream {
             }
 
             /// Builds the mechanism from parameter values in declaration order.
-            pub fn from_param_values([#(#pnames),*]: [f64; #np]) -> Self {
-                #name { #(#pnames),* }
+            pub fn from_param_values(values: [f64; #np]) -> Self {
+                #name { #(#pnames: values[#pindex]),* }
             }
         }
     }

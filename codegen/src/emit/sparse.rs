@@ -182,7 +182,7 @@ pub fn steps_item(sp: &Sparse, m: &str, b: usize, rt: &TokenStream) -> TokenStre
                 d: &mut [f64; #n],
                 det: &mut f64,
                 negative: &mut bool,
-            ) -> Option<f64> {
+            ) -> ::core::option::Option<f64> {
                 let mut __p = #rt::Pivots::new(*det, *negative);
                 #elim
                 __p.finish(det, negative)

@@ -152,14 +152,13 @@ fn params_struct(s: &Surface) -> TokenStream {
         Some(values) if values.len() == s.params.len() => {
             let names: Vec<&Ident> = s.params.iter().map(|f| &f.name).collect();
             let values = values.iter().map(|&v| super::names::float(v));
-            // `let [] = [];` would leave the element type to infer.
-            let bind = (!names.is_empty()).then(|| quote!(let [#(#names),*] = [#(#values),*];));
+            // Fields set by name, not bound to locals: a constant of the user's module named
+            // like a parameter would turn such a binding into a pattern.
             quote! {
                 impl ::core::default::Default for #name {
                     /// The parameter values declared in the mechanism.
                     fn default() -> Self {
-                        #bind
-                        #name { #(#names),* }
+                        #name { #(#names: #values),* }
                     }
                 }
             }

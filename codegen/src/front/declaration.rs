@@ -10,7 +10,7 @@
 //! The parser recovers at `;` after an error, so all syntax errors of a declaration are reported
 //! together.
 
-use super::item::{parse_item, skip_item};
+use super::item::{inner_attribute, parse_item, skip_item};
 use super::syntax::{Errors, MechanismDef, Options};
 use super::{limits, names};
 use proc_macro2::{Span, TokenStream};
@@ -89,6 +89,23 @@ fn parse_def_into(input: ParseStream, errors: &mut Errors) -> Option<MechanismDe
     if input.is_empty() {
         return fail(errors, input.error(SHAPE));
     }
+    loop {
+        match inner_attribute(input) {
+            Ok(Some(e)) => errors.push(e),
+            Ok(None) => break,
+            Err(e) => return fail(errors, e),
+        }
+    }
+    if let Some(span) = macro_around(input) {
+        return fail(
+            errors,
+            syn::Error::new(
+                span,
+                "write the declaration itself, without `mechanism! { ... }` around it: \
+                 `pub struct Name { params ...; input ...; unknowns ...; loop ...; }`",
+            ),
+        );
+    }
     let attrs = match Attribute::parse_outer(input) {
         Ok(a) => a,
         Err(e) => return fail(errors, e),
@@ -130,6 +147,15 @@ fn parse_def_into(input: ParseStream, errors: &mut Errors) -> Option<MechanismDe
         skip_all(input);
     }
     Some(def)
+}
+
+/// The span of `mechanism` when `input` starts with an invocation of the macro
+/// (`mechanism!`, `kinloop::mechanism!`): a declaration copied with the macro around it.
+fn macro_around(input: ParseStream) -> Option<Span> {
+    let fork = input.fork();
+    let path = fork.call(syn::Path::parse_mod_style).ok()?;
+    let last = path.segments.last()?;
+    (last.ident == "mechanism" && fork.peek(Token![!])).then(|| last.ident.span())
 }
 
 /// Splits the attributes before a mechanism into its doc comments and its `#[kinloop(...)]`

@@ -231,6 +231,17 @@ pub fn parse_expr(input: ParseStream) -> syn::Result<Expr> {
 
 /// The value of a number literal (integer or float): finite, without a type suffix.
 fn number(digits: &str, suffix: &str, span: Span) -> syn::Result<f64> {
+    const TYPES: [&str; 16] = [
+        "f16", "f32", "f64", "f128", "i8", "i16", "i32", "i64", "i128", "isize", "u8", "u16", "u32", "u64", "u128",
+        "usize",
+    ];
+    if !suffix.is_empty() && !TYPES.contains(&suffix) && suffix.starts_with(|c: char| c.is_alphabetic()) {
+        // `2pi`: a name written right after a number, as in a textbook.
+        return Err(syn::Error::new(
+            span,
+            format!("`{digits}{suffix}` is not a number: write `{digits} * {suffix}` for a product"),
+        ));
+    }
     if !suffix.is_empty() {
         return Err(syn::Error::new(
             span,
@@ -246,6 +257,11 @@ fn number(digits: &str, suffix: &str, span: Span) -> syn::Result<f64> {
 
 struct Parser {
     depth: usize,
+}
+
+/// At most 24 characters of `s`, for quoting source in messages.
+fn short(s: &str) -> String {
+    if s.chars().count() <= 24 { s.to_string() } else { format!("{}...", s.chars().take(24).collect::<String>()) }
 }
 
 /// Binding power of an infix operator at the front of `input`, if one is there.
@@ -286,6 +302,28 @@ impl Parser {
     fn expr(&mut self, input: ParseStream, min_bp: u8) -> syn::Result<Expr> {
         self.enter(input)?;
         let mut lhs = self.prefix(input)?;
+        // `h (1 - cos(phi))`, `2(r + h)`: a parenthesised value or a number right after a
+        // value, which nothing in the language allows, is a product without its `*`.
+        // (On the raw tokens: syn's `peek(LitInt)` also takes `- 15` for a negative literal.)
+        // Vectors are left to the item's own message: `force f at (x, 0) (p, 0)` lacks its `=`.
+        let cursor = input.cursor();
+        let group = cursor.group(proc_macro2::Delimiter::Parenthesis);
+        let vector = matches!(lhs, Expr::Tuple { .. })
+            || group.is_some_and(|(inside, _, _)| {
+                inside
+                    .token_stream()
+                    .into_iter()
+                    .any(|t| matches!(t, proc_macro2::TokenTree::Punct(p) if p.as_char() == ','))
+            });
+        if !vector && (group.is_some() || cursor.literal().is_some()) {
+            let next = input.cursor().token_tree().map(|(tt, _)| tt.to_string()).unwrap_or_default();
+            let next: String = next.chars().take(24).collect();
+            return Err(input.error(format!(
+                "expected an operator between `{}` and `{next}`: write `{} * {next}` for a product",
+                short(&lhs.show()),
+                short(&lhs.show())
+            )));
+        }
         // Counts how many operators were chained at this level: a long chain `a + b + c + ...`
         // builds a left-deep tree, which must respect the depth bound too.
         let mut chain = 0usize;
@@ -507,6 +545,34 @@ mod tests {
             let ts: TokenStream = src.parse().unwrap();
             let e = parse_expr.parse2(ts).unwrap();
             assert_eq!(e.show(), src);
+        }
+    }
+
+    #[test]
+    fn a_product_without_its_operator_is_named_but_vectors_are_left_alone() {
+        assert!(parse("2(a + b)").contains("write `2 * (a + b)` for a product"), "{}", parse("2(a + b)"));
+        assert!(parse("(a + b) 3").contains("write `(a + b) * 3` for a product"));
+        assert!(parse("2pi").contains("write `2 * pi` for a product"));
+        assert!(parse("2f32").contains("number suffixes are not needed"));
+        // `10 - 15`: syn takes `- 15` for a negative literal; it is an operator and a number.
+        assert_eq!(parse("10 - 15"), "(10 - 15)");
+        // A vector next to a value is some other mistake (`force f at (x, 0) (p, 0)` lacks `=`):
+        // parsing stops before it, for the item to report.
+        assert_eq!(parse_prefix("(x, 0) (p, 0)"), "<x, 0>");
+        assert_eq!(parse_prefix("(a + b) (p, 0)"), "(a + b)");
+    }
+
+    /// The expression at the start of `s`, leaving the rest unparsed.
+    fn parse_prefix(s: &str) -> String {
+        let ts: TokenStream = s.parse().unwrap();
+        let parser = |input: ParseStream| {
+            let e = parse_expr(input)?;
+            let _: TokenStream = input.parse()?;
+            Ok(e)
+        };
+        match parser.parse2(ts) {
+            Ok(e) => show(&e),
+            Err(e) => format!("error: {e}"),
         }
     }
 

@@ -13,7 +13,22 @@ use syn::{Attribute, Ident, Token};
 /// Parses one item. A missing `;` after a complete item is pushed to `errors` and the item is
 /// kept, so the next item is parsed normally.
 pub(super) fn parse_item(input: ParseStream, errors: &mut Errors) -> syn::Result<Item> {
+    if input.peek(Token![;]) {
+        // Left for the recovery, which skips to just after it.
+        return Err(input.error("unexpected `;`: the item before it is already ended by its own `;`; remove this one"));
+    }
+    while let Some(e) = inner_attribute(input)? {
+        errors.push(e);
+    }
     let attrs = Attribute::parse_outer(input)?;
+    if input.is_empty()
+        && let Some(last) = attrs.last()
+    {
+        return Err(syn::Error::new_spanned(
+            last,
+            "this doc comment documents no item: none follows it; remove it, or write a plain comment with `//`",
+        ));
+    }
     let mut docs = Vec::new();
     for attr in attrs {
         if attr.path().is_ident("doc") {
@@ -83,6 +98,34 @@ pub(super) fn parse_item(input: ParseStream, errors: &mut Errors) -> syn::Result
     Ok(item)
 }
 
+/// An inner doc comment (`//!`, which the compiler turns into `#![doc = ...]`) or inner
+/// attribute (`#![...]`) at the front of `input`: consumed, and the error that says what to
+/// write instead. syn's own message for it ("expected square brackets") names neither.
+pub(super) fn inner_attribute(input: ParseStream) -> syn::Result<Option<syn::Error>> {
+    if !(input.peek(Token![#]) && input.peek2(Token![!])) {
+        return Ok(None);
+    }
+    let pound = input.parse::<Token![#]>()?;
+    input.parse::<Token![!]>()?;
+    let is_doc = if input.peek(syn::token::Bracket) {
+        let content;
+        syn::bracketed!(content in input);
+        let is_doc = content.peek(kw::doc);
+        content.parse::<proc_macro2::TokenStream>()?;
+        is_doc
+    } else {
+        false
+    };
+    let what = if is_doc { "an inner doc comment (`//!`)" } else { "an inner attribute (`#![...]`)" };
+    Ok(Some(syn::Error::new(
+        pound.span,
+        format!(
+            "{what} is not accepted in a declaration; document the mechanism or an item with `///` \
+             before it, or write a plain comment with `//`"
+        ),
+    )))
+}
+
 fn at_item_start(input: ParseStream) -> bool {
     input.peek(kw::params)
         || input.peek(kw::param)
@@ -148,6 +191,9 @@ fn short(s: &str) -> String {
 fn parse_decls(input: ParseStream, kind: DeclKind) -> syn::Result<Vec<Decl>> {
     let mut decls = Vec::new();
     loop {
+        if let Some(e) = inner_attribute(input)? {
+            return Err(e);
+        }
         let attrs = Attribute::parse_outer(input)?;
         if let Some(bad) = attrs.iter().find(|a| !a.path().is_ident("doc")) {
             return Err(syn::Error::new_spanned(bad, "only doc comments (`///`) are accepted before a name"));

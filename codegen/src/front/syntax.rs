@@ -48,6 +48,7 @@ pub(super) mod kw {
     syn::custom_keyword!(gravity);
     syn::custom_keyword!(at);
     syn::custom_keyword!(on);
+    syn::custom_keyword!(doc);
 }
 
 /// A whole declaration.

@@ -404,10 +404,11 @@ impl Graph {
         self.intern(Op::Mul(a, b))
     }
 
-    /// `a / b`, simplified: `x / x = 1`, constants folded, division by 1, -1 or a power of two
-    /// turned into an exact multiplication, negations lifted.
+    /// `a / b`, simplified: `x / x = 1` (for `x` not a constant: a constant is folded, so that
+    /// `0 / 0` stays NaN), constants folded, division by 1, -1 or a power of two turned into an
+    /// exact multiplication, negations lifted.
     pub fn div(&mut self, a: NodeId, b: NodeId) -> NodeId {
-        if a == b {
+        if a == b && self.as_const(a).is_none() {
             return self.one();
         }
         match (self.as_const(a), self.as_const(b)) {
@@ -556,6 +557,28 @@ impl Graph {
             .collect()
     }
 
+    /// The leaves a set of roots depends on through its derivatives: the leaves of
+    /// [`Graph::leaves_of`] but for those reached only through a function whose derivative is
+    /// zero (`floor`, `signum`) or through the comparison of a `Select` (its derivative is that
+    /// of the chosen operand).
+    pub fn differentiable_leaves_of(&self, roots: &[NodeId]) -> Vec<Leaf> {
+        let mut seen = vec![false; self.nodes.len()];
+        let mut stack: Vec<NodeId> = roots.to_vec();
+        let mut out = Vec::new();
+        while let Some(n) = stack.pop() {
+            if std::mem::replace(&mut seen[n.index()], true) {
+                continue;
+            }
+            match self.op(n) {
+                Op::Leaf(l) => out.push(l),
+                Op::Func(Func::Floor | Func::Signum, _) => {}
+                Op::Select(_, _, x, y) => stack.extend([x, y]),
+                op => stack.extend(op.operands()),
+            }
+        }
+        out
+    }
+
     /// Evaluates nodes numerically (used by the macro's own tests and by constant guesses).
     pub fn eval(&self, roots: &[NodeId], leaf: &dyn Fn(Leaf) -> f64) -> Vec<f64> {
         let order = self.reachable(roots);
@@ -619,6 +642,36 @@ mod tests {
         assert!(g.is_zero(g.clone().sub(q, q)));
         let nq = g.neg(q);
         assert_eq!(g.neg(nq), q);
+        assert!(g.is_one(g.clone().div(q, q)));
+    }
+
+    #[test]
+    fn differentiable_leaves_skip_floor_and_comparisons() {
+        let mut g = Graph::new();
+        let (q, p) = leaves(&mut g);
+        let fl = g.func(Func::Floor, q);
+        let sum = g.add(fl, p);
+        assert_eq!(g.differentiable_leaves_of(&[fl]), Vec::<Leaf>::new());
+        assert_eq!(g.leaves_of(&[fl]).len(), 1);
+        assert_eq!(g.differentiable_leaves_of(&[sum]), g.leaves_of(&[p]));
+        let one = g.one();
+        let chosen = g.select(q, p, one, p);
+        assert_eq!(g.differentiable_leaves_of(&[chosen]), g.leaves_of(&[p]));
+        let m = g.min(q, p);
+        assert_eq!(g.differentiable_leaves_of(&[m]).len(), 2);
+    }
+
+    #[test]
+    fn zero_over_zero_stays_nan() {
+        // `x / x = 1` holds for a symbol; a constant zero over itself is NaN, not one.
+        let mut g = Graph::new();
+        let zero = g.zero();
+        let nan = g.div(zero, zero);
+        assert!(g.as_const(nan).is_none(), "0 / 0 was folded");
+        assert!(g.eval(&[nan], &|_| 0.0)[0].is_nan());
+        let two = g.constant(2.0);
+        let one = g.div(two, two);
+        assert!(g.is_one(one));
     }
 
     /// Derivatives against central finite differences of the graph's own evaluation.

@@ -4,7 +4,7 @@ use super::builtins::{self, Builtin, HINTS, Kind, Lowering};
 use super::lower::{Lowerer, integer_exponent};
 use super::suggest::similar;
 use super::symbols::Val;
-use crate::front::expr::Expr;
+use crate::front::expr::{Expr, SpanRange};
 use crate::graph::dag::{Func, Graph, NodeId};
 use proc_macro2::Span;
 use syn::Ident;
@@ -12,6 +12,19 @@ use syn::Ident;
 impl Lowerer {
     pub(super) fn call(&mut self, func: &Ident, args: &[Expr], close: Span) -> Option<Val> {
         let Some(builtin) = builtins::lookup(&func.to_string()) else {
+            let declared = self.scope.symbols.contains_key(&super::scope::key(func));
+            if declared && let Some(first) = args.first() {
+                // `h (1 - cos(phi))`: a declared name before parentheses is a product.
+                let shown = args.iter().map(Expr::show).collect::<Vec<_>>().join(", ");
+                self.errors.push(syn::Error::new(
+                    func.span(),
+                    format!(
+                        "`{func}` is a declared name, not a function: write `{func} * ({})` for a product",
+                        if args.len() == 1 { first.show() } else { shown }
+                    ),
+                ));
+                return None;
+            }
             self.errors.push(unsupported(func));
             return None;
         };
@@ -59,7 +72,10 @@ impl Lowerer {
             return None;
         }
         let exponent = args.get(1).and_then(integer_exponent);
-        Some(lower_builtin(&mut self.graph, builtin.lowering, &vals, exponent))
+        let result = lower_builtin(&mut self.graph, builtin.lowering, &vals, exponent);
+        let range = SpanRange { start: func.span(), end: close };
+        let show = || format!("{func}({})", args.iter().map(Expr::show).collect::<Vec<_>>().join(", "));
+        self.finite(range, &show, &vals, result)
     }
 }
 

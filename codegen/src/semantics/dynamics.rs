@@ -117,10 +117,38 @@ pub(super) struct Pending {
     gravity: Option<[NodeId; 2]>,
     /// Angles named by `turns` and `on`, checked against the equations once all are lowered.
     angles: Vec<(Ident, AngleModel)>,
+    /// The bodies' names and the loads' (forces and torques) names, each where first declared:
+    /// the mass model reports a body or a load by its name, so each names one.
+    body_names: HashMap<String, Span>,
+    load_names: HashMap<String, Span>,
+}
+
+/// Reports `name` if `names` has it already (`what` is the kind of item, plural, for the
+/// message); records it otherwise. Returns whether it is new.
+fn unique(lw: &mut Lowerer, names: &mut HashMap<String, Span>, name: &Ident, what: &str) -> bool {
+    let key = super::scope::key(name);
+    match names.get(&key) {
+        Some(first) => {
+            let mut e = syn::Error::new(
+                name.span(),
+                format!("the name `{key}` is given to two {what}; names must be unique, rename one of them"),
+            );
+            e.combine(syn::Error::new(*first, format!("`{key}` is first used as a name here")));
+            lw.errors.push(e);
+            false
+        }
+        None => {
+            names.insert(key, name.span());
+            true
+        }
+    }
 }
 
 impl Pending {
     pub(super) fn body(&mut self, lw: &mut Lowerer, b: &BodyDef) {
+        if !unique(lw, &mut self.body_names, &b.name, "bodies") {
+            return;
+        }
         let mass = parameter_value(lw, &b.mass, "the mass");
         let inertia = match &b.inertia {
             Some(e) => parameter_value(lw, e, "the moment of inertia"),
@@ -140,6 +168,9 @@ impl Pending {
     }
 
     pub(super) fn force(&mut self, lw: &mut Lowerer, name: &Ident, at: &Expr, value: &Expr) {
+        if !unique(lw, &mut self.load_names, name, "loads (forces and torques)") {
+            return;
+        }
         let at = point(lw, at, "the point a force acts at");
         let value =
             match lw.lower(value) {
@@ -158,6 +189,9 @@ impl Pending {
     }
 
     pub(super) fn torque(&mut self, lw: &mut Lowerer, name: &Ident, on: &Ident, value: &Expr) {
+        if !unique(lw, &mut self.load_names, name, "loads (forces and torques)") {
+            return;
+        }
         let angle = angle(lw, on, "on");
         self.angles.extend(angle.map(|a| (on.clone(), a)));
         let value = match lw.lower(value) {
@@ -282,7 +316,7 @@ fn point(lw: &mut Lowerer, e: &Expr, what: &str) -> Option<PendingPoint> {
 
 /// The input or unknown `id` names (`clause` is `turns` or `on`, for the message).
 fn angle(lw: &mut Lowerer, id: &Ident, clause: &str) -> Option<AngleModel> {
-    let found = lw.scope.symbols.get(&id.to_string()).map(|(s, _)| *s);
+    let found = lw.scope.symbols.get(&super::scope::key(id)).map(|(s, _)| *s);
     let what = match found {
         Some(Symbol::Unknown(u)) => return Some(AngleModel::Unknown(u as usize)),
         Some(Symbol::Input(i)) => return Some(AngleModel::Input(i as usize)),

@@ -3,7 +3,7 @@
 //! are declared in `symbols`; the names it meets are resolved by the methods of `scope`.
 
 use super::symbols::{Scope, Val};
-use crate::front::expr::{BinOp, Component, Expr};
+use crate::front::expr::{BinOp, Component, Expr, SpanRange};
 use crate::front::syntax::Errors;
 use crate::graph::dag::{Func, Graph, Leaf, NodeId};
 use proc_macro2::Span;
@@ -125,10 +125,64 @@ impl Lowerer {
                 let l = self.lower(lhs);
                 let r = self.lower(rhs);
                 let (l, r) = (l?, r?);
-                return self.binary(*op, *op_span, (lhs, rhs), l, r);
+                if *op == BinOp::Div && self.is_constant_zero(r) {
+                    let divisor = if rhs.is_literal_zero() {
+                        String::new()
+                    } else {
+                        format!("`{}` is always 0, so ", short(&rhs.show()))
+                    };
+                    self.errors.push(rhs.range().error(format!(
+                        "division by zero: {divisor}`{}` has no finite value; divide by a value that is not zero",
+                        short(&e.show())
+                    )));
+                    return None;
+                }
+                let res = self.binary(*op, *op_span, (lhs, rhs), l, r)?;
+                return self.finite(e.range(), &|| e.show(), &[l, r], res);
             }
             Expr::Call { func, args, close } => return self.call(func, args, *close),
         })
+    }
+
+    /// Whether `v` is the scalar constant zero.
+    fn is_constant_zero(&self, v: Val) -> bool {
+        matches!(v, Val::S(n) if self.graph.as_const(n) == Some(0.0))
+    }
+
+    /// The `result` of an expression (at `range`, written as `show` gives it) whose `operands`
+    /// are all constants is a constant too, unless its value is not finite (the graph folds only
+    /// finite values): such a value is reported here, at the innermost expression that has it,
+    /// instead of failing every solve at run time.
+    pub(super) fn finite(
+        &mut self,
+        range: SpanRange,
+        show: &dyn Fn() -> String,
+        operands: &[Val],
+        result: Val,
+    ) -> Option<Val> {
+        let constant = |g: &Graph, v: &Val| match *v {
+            Val::S(n) => g.as_const(n).is_some(),
+            Val::V(x, y) => g.as_const(x).is_some() && g.as_const(y).is_some(),
+        };
+        if !operands.iter().all(|v| constant(&self.graph, v)) || constant(&self.graph, &result) {
+            return Some(result);
+        }
+        let nodes = match result {
+            Val::S(n) => vec![n],
+            Val::V(x, y) => vec![x, y],
+        };
+        let value = self.graph.eval(&nodes, &|_| f64::NAN).into_iter().find(|v| !v.is_finite()).unwrap_or(f64::NAN);
+        let shown = short(&show());
+        let why = if value.is_nan() {
+            "it is NaN (an argument outside the function's domain, such as `sqrt` or `ln` of a negative number, \
+             or `asin`/`acos` beyond ±1)"
+        } else {
+            "it is infinite (beyond the largest f64, about 1.8e308, or at a pole such as `ln(0)` or `0 ^ -1`)"
+        };
+        self.errors.push(
+            range.error(format!("`{shown}` has no finite value: {why}; write an expression whose value is finite")),
+        );
+        None
     }
 
     fn field(&mut self, base: &Expr, component: Component, name: &syn::Ident) -> Option<Val> {

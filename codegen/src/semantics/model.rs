@@ -385,7 +385,7 @@ fn lower_output(lw: &mut Lowerer, item: &Item, name: &Ident, value: &Expr, out: 
 fn lower_equation_item(lw: &mut Lowerer, item: &Item, name: &Ident, eq: (&Expr, &Expr, Span), out: &mut Lowered) {
     let (lhs, rhs, eq_span) = eq;
     let is_loop = matches!(item.kind, ItemKind::Loop { .. });
-    let key = name.to_string();
+    let key = super::scope::key(name);
     if let Some(prev) = out.item_names.insert(key.clone(), name.span()) {
         let mut e = syn::Error::new(
             name.span(),

@@ -7,6 +7,13 @@ use super::suggest::similar;
 use super::symbols::{Symbol, Val};
 use crate::graph::dag::Leaf;
 use syn::Ident;
+use syn::ext::IdentExt;
+
+/// The key of a name in the table: the identifier without `r#`, as Rust compares them (`r#a`
+/// and `a` are one name, and would be one field of the generated types).
+pub(super) fn key(name: &Ident) -> String {
+    name.unraw().to_string()
+}
 
 fn describe(s: Symbol) -> &'static str {
     match s {
@@ -25,7 +32,7 @@ impl Lowerer {
     /// Reports `name` if it cannot be declared: it is the built-in `pi`, or it names a symbol
     /// already declared that `replaceable` does not accept. Returns whether it was reported.
     fn reject(&mut self, name: &Ident, replaceable: fn(&Symbol) -> bool) -> bool {
-        let key = name.to_string();
+        let key = key(name);
         if key == "pi" {
             self.errors
                 .push(syn::Error::new(name.span(), "`pi` is the built-in constant 3.14159...; choose another name"));
@@ -51,15 +58,15 @@ impl Lowerer {
         if self.reject(name, |_| false) {
             return false;
         }
-        self.scope.symbols.insert(name.to_string(), (sym, name.span()));
+        self.scope.symbols.insert(key(name), (sym, name.span()));
         true
     }
 
     /// Marks a `let`, `point` or `output` name as defined further down, so that a use above
     /// its definition is reported as an ordering mistake rather than an unknown name.
     pub(super) fn declare_later(&mut self, name: &Ident, what: &'static str) {
-        if name != "pi" {
-            self.scope.symbols.entry(name.to_string()).or_insert_with(|| (Symbol::Later(what), name.span()));
+        if key(name) != "pi" {
+            self.scope.symbols.entry(key(name)).or_insert_with(|| (Symbol::Later(what), name.span()));
         }
     }
 
@@ -67,13 +74,13 @@ impl Lowerer {
     /// `Symbol::Later` placeholder stands).
     pub(super) fn define(&mut self, name: &Ident, v: Val) {
         if !self.reject(name, |prev| matches!(prev, Symbol::Later(_))) {
-            self.scope.symbols.insert(name.to_string(), (Symbol::Let(v), name.span()));
+            self.scope.symbols.insert(key(name), (Symbol::Let(v), name.span()));
         }
     }
 
     /// Marks a name whose definition failed, so its uses add no further errors.
     pub(super) fn poison(&mut self, name: &Ident) {
-        let key = name.to_string();
+        let key = key(name);
         if let Some((Symbol::Later(_), _)) | None = self.scope.symbols.get(&key) {
             self.scope.symbols.insert(key, (Symbol::Poisoned, name.span()));
         }
@@ -81,7 +88,7 @@ impl Lowerer {
 
     /// The value of a name where it is used.
     pub(super) fn lookup(&mut self, id: &Ident) -> Option<Val> {
-        let key = id.to_string();
+        let key = key(id);
         let g = &mut self.graph;
         match self.scope.symbols.get(&key) {
             Some((Symbol::Param(i), _)) => {
@@ -115,7 +122,7 @@ impl Lowerer {
     }
 
     fn unknown_name(&mut self, id: &Ident) {
-        let key = id.to_string();
+        let key = key(id);
         let names: Vec<String> = self
             .scope
             .symbols

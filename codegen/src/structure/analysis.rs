@@ -27,6 +27,7 @@ pub fn analyze(model: &Model) -> Result<Vec<Block>, syn::Error> {
     let inc = structure::incidence(model);
     let mut errors = Errors::default();
     let empty = equations_without_unknowns(model, &inc, &mut errors);
+    equations_without_slopes(model, &inc, &mut errors);
     let isolated = unknowns_in_no_equation(model, &inc, &mut errors);
     unused_inputs(model, &mut errors);
 
@@ -79,6 +80,34 @@ fn equations_without_unknowns(model: &Model, inc: &[BTreeSet<usize>], errors: &m
         )));
     }
     empty
+}
+
+/// Equations whose unknowns all appear only inside `floor` (or a comparison of `min`, `max`,
+/// `clamp`): their derivatives by every unknown are zero, so they can be solved for none of
+/// them (every solve would fail as singular), reported once per item.
+fn equations_without_slopes(model: &Model, inc: &[BTreeSet<usize>], errors: &mut Errors) {
+    let mut reported_items = BTreeSet::new();
+    for (e, eq) in model.equations.iter().enumerate() {
+        if inc[e].is_empty() || reported_items.contains(&eq.item.to_string()) {
+            continue;
+        }
+        let sloped = model.graph.differentiable_leaves_of(&[eq.residual]);
+        if sloped.iter().any(|l| matches!(l, crate::graph::dag::Leaf::Unknown(_))) {
+            continue;
+        }
+        reported_items.insert(eq.item.to_string());
+        let names: Vec<String> =
+            inc[e].iter().filter_map(|&u| model.unknowns.get(u)).map(|u| format!("`{}`", u.name)).collect();
+        let what =
+            if eq.is_loop { format!("`{}` of `loop {}`", eq.name, eq.item) } else { format!("`eq {}`", eq.item) };
+        errors.push(eq.range.error(format!(
+            "{what} has {} only inside `floor`, whose derivative is zero, so it cannot be solved for {}; \
+             write the equation so that an unknown appears outside `floor` (use `wrap(x, period)` to reduce \
+             an unknown by whole turns)",
+            names.join(", "),
+            if names.len() == 1 { "it" } else { "them" }
+        )));
+    }
 }
 
 /// Unknowns that appear in no equation.

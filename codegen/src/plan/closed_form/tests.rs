@@ -181,7 +181,7 @@ fn min_and_max_of_unknowns_keep_newton() {
 fn floor_of_unknowns_keeps_newton() {
     let newton = [
         "pub struct S { params l; input y; unknowns q; eq e: l * sin(q) + floor(q) == y; }",
-        "pub struct S { params l; input y; unknowns q; eq e: l * floor(q) == y; }",
+        "pub struct S { params l; input y; unknowns q; eq e: l * floor(q) + q == y; }",
     ];
     for src in newton {
         let k = kinds(src);

@@ -1,0 +1,11 @@
+kinloop::mechanism! {
+    pub struct Cam {
+        params h = 0.02;
+        input phi;
+        unknowns s;
+        eq lift: s == h * sin(phi);
+        /// The lift's speed.
+    }
+}
+
+fn main() {}
