@@ -730,6 +730,29 @@ macro_rules! __array_conversions {
 #[doc(hidden)]
 pub use crate::__array_conversions as array_conversions;
 
+/// `from_param_values` of a generated mechanism, in its `impl` block: each field set by name
+/// from the values in declaration order, `from_param_values!(N; a 0, b 1)`. No value is bound
+/// to a local named like a parameter: a constant of the user's module of that name would turn
+/// the binding into a pattern. One line of expansion instead of one per parameter.
+#[doc(hidden)]
+#[macro_export]
+macro_rules! __from_param_values {
+    (0;) => {
+        /// Builds the mechanism from parameter values in declaration order.
+        pub fn from_param_values(_: [f64; 0]) -> Self {
+            Self {}
+        }
+    };
+    ($n:literal; $($f:ident $i:tt),+) => {
+        /// Builds the mechanism from parameter values in declaration order.
+        pub fn from_param_values(v: [f64; $n]) -> Self {
+            Self { $($f: v[$i]),+ }
+        }
+    };
+}
+#[doc(hidden)]
+pub use crate::__from_param_values as from_param_values;
+
 // The named surface of a declaration `mechanism!` rejected (see `rejected`).
 pub use crate::__no_mass_model as no_mass_model;
 pub use crate::__rejected_mechanism as rejected_mechanism;

@@ -68,10 +68,7 @@ fn constants(model: &Model, plan: &Plan, t: &Types) -> TokenStream {
                 [#(self.#pnames),*]
             }
 
-            /// Builds the mechanism from parameter values in declaration order.
-            pub fn from_param_values(values: [f64; #np]) -> Self {
-                #name { #(#pnames: values[#pindex]),* }
-            }
+            #rt::from_param_values!(#np; #(#pnames #pindex),*);
         }
     }
 }

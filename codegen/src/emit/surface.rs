@@ -150,15 +150,15 @@ fn params_struct(s: &Surface) -> TokenStream {
     });
     let default = match &s.defaults {
         Some(values) if values.len() == s.params.len() => {
-            let names: Vec<&Ident> = s.params.iter().map(|f| &f.name).collect();
             let values = values.iter().map(|&v| super::names::float(v));
-            // Fields set by name, not bound to locals: a constant of the user's module named
-            // like a parameter would turn such a binding into a pattern.
+            // Through `from_param_values`, which sets the fields by name: bound to locals, a
+            // constant of the user's module named like a parameter would turn the binding into
+            // a pattern.
             quote! {
                 impl ::core::default::Default for #name {
                     /// The parameter values declared in the mechanism.
                     fn default() -> Self {
-                        #name { #(#names: #values),* }
+                        Self::from_param_values([#(#values),*])
                     }
                 }
             }
