@@ -16,7 +16,7 @@
 use kinloop::Table;
 use kinloop::analysis::cam::CamProfile;
 use kinloop::plot::{self, Axis, Kind, Panel, Series};
-pub use kinloop_examples::dwell_cam::{ROLLER, cam, turn};
+pub use kinloop_examples::dwell_cam::{ROLLER, cam, peak_pressure, turn};
 use kinloop_fixtures::cam_linkage::{DwellCamRocker, DwellCamRockerState};
 use std::f64::consts::TAU;
 
@@ -165,24 +165,13 @@ fn main() -> Result<()> {
     report_dwells(&m)?;
     report_peaks(&m)?;
     let cam = cam(&states)?;
-    report_cam(&m, &states, &cam);
+    report_cam(&m, &states, &cam)?;
     write_outputs(&m, &states, &cam)
-}
-
-/// The largest pressure angle over the states whose cam angle lies in `[from, to]`: `(cam
-/// angle, pressure angle)`.
-pub fn max_pressure(states: &[DwellCamRockerState], cam: &CamProfile, from: f64, to: f64) -> (f64, f64) {
-    states
-        .iter()
-        .zip(&cam.pressure_angle)
-        .filter(|(s, _)| s.input.phi >= from && s.input.phi <= to)
-        .map(|(s, &a)| (s.input.phi, a))
-        .fold((from, 0.0), |best, at| if at.1 > best.1 { at } else { best })
 }
 
 /// What a cam designer checks of the cam: its size, the pressure angle on the rise and the
 /// return, and the sharpest point of the profile against the roller.
-fn report_cam(m: &DwellCamRocker, states: &[DwellCamRockerState], cam: &CamProfile) {
+fn report_cam(m: &DwellCamRocker, states: &[DwellCamRockerState], cam: &CamProfile) -> Result<()> {
     let deg = f64::to_degrees;
     println!(
         "\ncam, by inversion of the follower's motion (roller radius {ROLLER} mm, the follower's line through the \
@@ -192,9 +181,9 @@ fn report_cam(m: &DwellCamRocker, states: &[DwellCamRockerState], cam: &CamProfi
         m.y0 - ROLLER
     );
     for seg in segments(m) {
-        let (at, alpha) = max_pressure(states, cam, seg.start, seg.start + seg.span);
+        let (at, alpha) = peak_pressure(m, states, cam, seg.start, seg.start + seg.span)?;
         println!(
-            "  {:<6} largest pressure angle {:.3}° at {:.0}° (of the samples every degree)",
+            "  {:<6} largest pressure angle {:.6}° at {:.5}° (located between the samples)",
             seg.name,
             deg(alpha),
             deg(at)
@@ -213,6 +202,7 @@ fn report_cam(m: &DwellCamRocker, states: &[DwellCamRockerState], cam: &CamProfi
             }
         );
     }
+    Ok(())
 }
 
 /// Each dwell: where follower and rocker stand, and that they stand exactly still.

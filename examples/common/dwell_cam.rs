@@ -42,3 +42,30 @@ pub fn cam(states: &[DwellCamRockerState]) -> Result<CamProfile> {
         .collect();
     cam_profile(&follower, [0.0, 0.0], ROLLER)
 }
+
+/// The largest pressure angle of the cam over the cam angles from `from` to `to`, located
+/// between the samples of `states` (the turn the cam was found from): Brent's search between the
+/// best sample's neighbours, each trial a solve at that cam angle from the best sample's
+/// position, inverted on its own. `(cam angle, pressure angle)`.
+pub fn peak_pressure(
+    m: &DwellCamRocker,
+    states: &[DwellCamRockerState],
+    profile: &CamProfile,
+    from: f64,
+    to: f64,
+) -> Result<(f64, f64)> {
+    let inside = |k: &usize| (from..=to).contains(&states[*k].input.phi);
+    let best = (0..states.len())
+        .filter(inside)
+        .max_by(|&a, &b| profile.pressure_angle[a].total_cmp(&profile.pressure_angle[b]));
+    let Some(k) = best else {
+        return Err(kinloop::Error::InvalidArgument(format!("no sample between {from} and {to}")));
+    };
+    let lo = states[k.saturating_sub(1)].input.phi.max(from);
+    let hi = states[(k + 1).min(states.len() - 1)].input.phi.min(to);
+    let guess = states[k].q;
+    kinloop::analysis::maximize(lo, hi, |phi| {
+        let s = m.kinematics(phi, &guess)?;
+        Ok(cam(std::slice::from_ref(&s))?.pressure_angle[0])
+    })
+}
