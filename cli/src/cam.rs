@@ -4,7 +4,7 @@
 //! of the profile against the roller on standard error, and the profile drawn with `--plot`.
 
 use crate::exit::usage;
-use crate::solve::in_units;
+use crate::solve::{in_units, point};
 use crate::{Failed, exit, samples};
 use kinloop_model::Model;
 use kinloop_runtime::analysis::cam::{CamProfile, FollowerSample, cam_profile};
@@ -60,7 +60,7 @@ pub fn run(model: &mut Model, req: &Request) -> Result<(), Failed> {
     let columns = point_columns(model, req.point)?;
     let follower = match (req.guide, req.rocker) {
         (Some(g), None) => Follower::Translating(direction(g, "--guide")?),
-        (None, Some(r)) => Follower::Rocking(pair(r, "--rocker")?),
+        (None, Some(r)) => Follower::Rocking(point(r, "--rocker")?),
         _ => {
             return Err(usage(
                 "give the follower's motion: --guide X,Y (the direction of a translating follower's guide) or \
@@ -68,7 +68,7 @@ pub fn run(model: &mut Model, req: &Request) -> Result<(), Failed> {
             ));
         }
     };
-    let pivot = pair(req.pivot, "--pivot")?;
+    let pivot = point(req.pivot, "--pivot")?;
     let angle = if req.deg { 180.0 / std::f64::consts::PI } else { 1.0 };
     let start = req.start / angle;
     let kinds = model.input_kinds().to_vec();
@@ -154,18 +154,9 @@ fn point_columns(model: &Model, name: &str) -> Result<(usize, usize), Failed> {
     }
 }
 
-/// Two finite numbers `x,y` of the option `option`.
-fn pair(spec: &str, option: &str) -> Result<[f64; 2], Failed> {
-    let v: Vec<Option<f64>> = spec.split(',').map(|v| v.trim().parse::<f64>().ok().filter(|v| v.is_finite())).collect();
-    match v[..] {
-        [Some(x), Some(y)] => Ok([x, y]),
-        _ => Err(usage(format!("{option} {spec} is not a point `x,y` of two finite numbers"))),
-    }
-}
-
 /// A direction `x,y` of the option `option`: two finite numbers, not both zero.
 fn direction(spec: &str, option: &str) -> Result<[f64; 2], Failed> {
-    let d = pair(spec, option)?;
+    let d = point(spec, option)?;
     if d == [0.0, 0.0] {
         return Err(usage(format!("{option} {spec} has no direction: give a vector along the guide, e.g. 0,1")));
     }

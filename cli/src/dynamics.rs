@@ -8,7 +8,7 @@
 //! in the unit of the speed (`time unit`): with kg, m and s, torques in N m and forces in N.
 
 use crate::exit::usage;
-use crate::solve::in_units;
+use crate::solve::{in_units, point};
 use crate::{Failed, exit, samples};
 use kinloop_model::Model;
 use kinloop_runtime::dynamics::{Cycle, DynamicsError, Flywheel, MIN_DELTA, SpeedLaw};
@@ -58,12 +58,7 @@ pub(crate) fn check_crank(model: &Model, command: &str) -> Result<(), Failed> {
 
 /// The frame point of `--about`: two finite numbers.
 fn parse_about(spec: Option<&str>) -> Result<[f64; 2], Failed> {
-    let Some(spec) = spec else { return Ok([0.0, 0.0]) };
-    let v: Result<Vec<f64>, _> = spec.split(',').map(|v| v.trim().parse::<f64>()).collect();
-    match v.as_deref() {
-        Ok(&[x, y]) if x.is_finite() && y.is_finite() => Ok([x, y]),
-        _ => Err(usage(format!("--about {spec} is not a point `x,y` of two finite numbers"))),
-    }
+    spec.map_or(Ok([0.0, 0.0]), |spec| point(spec, "--about"))
 }
 
 /// Checks the request against the model, runs the cycle and writes the table to standard

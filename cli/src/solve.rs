@@ -102,6 +102,15 @@ pub fn model_inputs(spec: &str, kinds: &[QuantityKind], deg: bool, option: &str)
     Ok(x)
 }
 
+/// A point `x,y` of two finite numbers, given to the option `option` (`--about`, `--pivot`).
+pub fn point(spec: &str, option: &str) -> Result<[f64; 2], Failed> {
+    let v: Result<Vec<f64>, _> = spec.split(',').map(|v| v.trim().parse::<f64>()).collect();
+    match v.as_deref() {
+        Ok(&[x, y]) if x.is_finite() && y.is_finite() => Ok([x, y]),
+        _ => Err(exit::usage(format!("{option} {spec} is not a point `x,y` of two finite numbers"))),
+    }
+}
+
 /// One list of inputs (of the option `option`): one number per input.
 pub fn parse_inputs(spec: &str, ni: usize, option: &str) -> Result<Vec<f64>, Failed> {
     let x: Result<Vec<f64>, _> = spec.split(',').map(|v| v.trim().parse::<f64>()).collect();

@@ -1,7 +1,8 @@
 //! How kinloop writes a number for people and files: the shortest digits that read back to the
 //! same `f64`, positional for ordinary magnitudes and in exponent notation beyond them. One
 //! function for every place that writes numbers (a table's CSV, the location of an error), so
-//! that they agree. A leaf: it imports nothing from the crate.
+//! that they agree; and the power of two that scales a number exactly ([`pow2_at_most`]). A
+//! leaf: it imports nothing from the crate.
 
 use std::fmt;
 
@@ -44,6 +45,17 @@ impl fmt::Display for Number {
         } else {
             write!(f, "{}", self.0)
         }
+    }
+}
+
+/// The largest power of two not above `m` (positive, finite): dividing by it is exact, so a
+/// computation at any scale can be made near 1 and scaled back.
+pub(crate) fn pow2_at_most(m: f64) -> f64 {
+    let bits = m.to_bits();
+    if m.is_normal() {
+        f64::from_bits(bits & 0x7ff0_0000_0000_0000)
+    } else {
+        f64::from_bits(1u64 << (63 - bits.leading_zeros()))
     }
 }
 

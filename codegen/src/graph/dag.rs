@@ -532,6 +532,14 @@ impl Graph {
 
     /// All nodes reachable from `roots`, in increasing (topological) order.
     pub fn reachable(&self, roots: &[NodeId]) -> Vec<NodeId> {
+        let mut out = self.walk(roots, |op, next| next.extend(op.operands()));
+        out.sort_unstable();
+        out
+    }
+
+    /// Every node reachable from `roots` through the operands `through` pushes for each node's
+    /// operation, each once, in the order found.
+    fn walk(&self, roots: &[NodeId], through: impl Fn(Op, &mut Vec<NodeId>)) -> Vec<NodeId> {
         let mut seen = vec![false; self.nodes.len()];
         let mut stack: Vec<NodeId> = roots.to_vec();
         let mut out = Vec::new();
@@ -540,9 +548,8 @@ impl Graph {
                 continue;
             }
             out.push(n);
-            stack.extend(self.op(n).operands());
+            through(self.op(n), &mut stack);
         }
-        out.sort_unstable();
         out
     }
 
@@ -562,21 +569,19 @@ impl Graph {
     /// zero (`floor`, `signum`) or through the comparison of a `Select` (its derivative is that
     /// of the chosen operand).
     pub fn differentiable_leaves_of(&self, roots: &[NodeId]) -> Vec<Leaf> {
-        let mut seen = vec![false; self.nodes.len()];
-        let mut stack: Vec<NodeId> = roots.to_vec();
-        let mut out = Vec::new();
-        while let Some(n) = stack.pop() {
-            if std::mem::replace(&mut seen[n.index()], true) {
-                continue;
-            }
-            match self.op(n) {
-                Op::Leaf(l) => out.push(l),
-                Op::Func(Func::Floor | Func::Signum, _) => {}
-                Op::Select(_, _, x, y) => stack.extend([x, y]),
-                op => stack.extend(op.operands()),
-            }
-        }
-        out
+        // The operands each operation passes its derivative through.
+        let sloped = |op: Op, next: &mut Vec<NodeId>| match op {
+            Op::Func(Func::Floor | Func::Signum, _) => {}
+            Op::Select(_, _, x, y) => next.extend([x, y]),
+            op => next.extend(op.operands()),
+        };
+        self.walk(roots, sloped)
+            .into_iter()
+            .filter_map(|n| match self.op(n) {
+                Op::Leaf(l) => Some(l),
+                _ => None,
+            })
+            .collect()
     }
 
     /// Evaluates nodes numerically (used by the macro's own tests and by constant guesses).

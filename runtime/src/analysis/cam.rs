@@ -29,6 +29,7 @@
 //! any unit of length.
 
 use crate::error::Error;
+use crate::number::pow2_at_most;
 
 /// One sample of the follower's motion: the cam's angle and the follower point's position, each
 /// with its first and second derivative with respect to the sweep's input (a mechanism's
@@ -157,8 +158,11 @@ pub fn cam_profile(samples: &[FollowerSample], pivot: [f64; 2], roller: f64) -> 
         // The derivatives in units of a power of two near the sample's lengths (exact), so that
         // the cube of the speed and the cross products neither overflow nor underflow at any
         // scale: the radius is scaled back, the angles and the normal are free of it.
-        let unit = binade([q, dp, d2p].iter().flatten().fold(0.0, |m: f64, v| m.max(v.abs())));
-        let (qs, dps, d2ps) = (scale(1.0 / unit, q), scale(1.0 / unit, dp), scale(1.0 / unit, d2p));
+        let big = [q, dp, d2p].iter().flatten().fold(0.0, |m: f64, v| m.max(v.abs()));
+        let unit = if big > 0.0 { pow2_at_most(big) } else { 1.0 };
+        // Divided, not multiplied by the reciprocal: that of a subnormal unit overflows.
+        let per_unit = |v: [f64; 2]| [v[0] / unit, v[1] / unit];
+        let (qs, dps, d2ps) = (per_unit(q), per_unit(dp), per_unit(d2p));
         // In the fixed frame, then turned into the cam's by R(-theta) (see the module docs).
         let dr = sub(dps, scale(dtheta, quarter(qs)));
         let d2r = [
@@ -197,18 +201,6 @@ pub fn cam_profile(samples: &[FollowerSample], pivot: [f64; 2], roller: f64) -> 
         out.pressure_angle.push(sin.atan2(cos));
     }
     Ok(out)
-}
-
-/// The largest power of two not above `m` (1 for 0, the smallest normal one for a subnormal
-/// `m`): dividing by it is exact.
-fn binade(m: f64) -> f64 {
-    if m >= f64::MIN_POSITIVE {
-        f64::from_bits(m.to_bits() & 0x7ff0_0000_0000_0000)
-    } else if m > 0.0 {
-        f64::MIN_POSITIVE
-    } else {
-        1.0
-    }
 }
 
 /// `v` of unit length, `None` for a zero vector (scaled first, so that no length overflows).

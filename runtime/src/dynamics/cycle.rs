@@ -303,7 +303,7 @@ impl Cycle {
             }
         }
         let big = v.iter().fold(0.0f64, |m, x| m.max(x.abs()));
-        let unit = if big > 0.0 { pow2_at_most(big) } else { 1.0 };
+        let unit = if big > 0.0 { crate::number::pow2_at_most(big) } else { 1.0 };
         let scaled: Vec<f64> = v.iter().map(|x| x / unit).collect();
         // Every precondition of `fourier` is checked above; should it still refuse, say so.
         let s = fourier(&scaled, phi0, TAU, harmonics).map_err(|_| DynamicsError::BadValue {
@@ -497,14 +497,4 @@ fn mean(values: impl Iterator<Item = f64> + Clone) -> f64 {
     let n = values.clone().count() as f64;
     let plain = values.clone().sum::<f64>() / n;
     if plain.is_finite() || n == 0.0 { plain } else { values.map(|v| v / n).sum() }
-}
-
-/// The largest power of two not above `m` (positive, finite): dividing by it is exact.
-fn pow2_at_most(m: f64) -> f64 {
-    let bits = m.to_bits();
-    if m.is_normal() {
-        f64::from_bits(bits & 0x7ff0_0000_0000_0000)
-    } else {
-        f64::from_bits(1u64 << (63 - bits.leading_zeros()))
-    }
 }
