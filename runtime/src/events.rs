@@ -106,6 +106,12 @@ pub enum EventKind {
     /// A block's Jacobian is singular with solutions on both sides and its determinant changes
     /// sign: a change point (bifurcation) where the assembly mode can change.
     SingularCrossing,
+    /// A corner of the solution curve where the Jacobian is regular: the positions are
+    /// continuous but the velocity analogs jump (the acceleration is unbounded there), as a
+    /// function with a corner in the equations makes (`abs`, `min`, `max`, `clamp`: e.g. a
+    /// uniform-velocity cam law). A sweep records it and goes on; `x` and `q` are the first
+    /// state past it, within the sweep's smallest step of the corner.
+    Kink,
 }
 
 impl fmt::Display for EventKind {
@@ -113,11 +119,12 @@ impl fmt::Display for EventKind {
         f.write_str(match self {
             EventKind::LimitPosition => "limit position",
             EventKind::SingularCrossing => "singular crossing",
+            EventKind::Kink => "kink",
         })
     }
 }
 
-/// A singular position located along a sweep.
+/// A singular position, or a kink, located along a sweep.
 ///
 /// With the feature `serde` it serializes completely; the block's static description is not
 /// read back (`block` deserializes as `None`), since it names the mechanism's own equations.

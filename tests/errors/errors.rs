@@ -19,12 +19,13 @@ kinloop::mechanism! {
 }
 
 kinloop::mechanism! {
-    /// A slider whose position has a kink (abs): its velocity analog jumps at phi = 1.
-    pub struct Kinked {
+    /// A slider whose position jumps (floor) at phi = 1: no step, however small, follows it.
+    /// (A corner, as `abs` makes, is swept through: `tests/sweeps/sweep_kinks.rs`.)
+    pub struct Stepped {
         params k;
         input phi;
         unknowns s = 0;
-        eq kink: s == k * abs(phi - 1);
+        eq jump: s == k * floor(phi);
     }
 }
 
@@ -106,8 +107,8 @@ fn limit_position_stops_a_sweep() {
 }
 
 #[test]
-fn non_smooth_solution_is_a_branch_error() {
-    let m = Kinked { k: 2.0 };
+fn a_jump_in_the_solution_is_a_branch_error() {
+    let m = Stepped { k: 2.0 };
     let r: Result<Vec<_>, _> = m.sweep(0.0, 2.0, 9, &m.guess(0.0)).unwrap().collect();
     match r {
         Err(Error::Branch { at, .. }) => assert!((at.inputs[0].1 - 1.0).abs() < 1e-6, "{at}"),

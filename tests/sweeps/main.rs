@@ -15,4 +15,5 @@ mod sweep_api;
 mod sweep_at;
 mod sweep_drift;
 mod sweep_judged_length;
+mod sweep_kinks;
 mod sweeps;

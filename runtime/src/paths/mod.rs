@@ -7,6 +7,7 @@
 pub mod config;
 mod crossing;
 pub mod curve;
+mod kink;
 mod locate;
 pub mod modes;
 pub mod outcome;

@@ -19,10 +19,16 @@
 //!   following the curve by pseudo-arclength continuation to the point where the input reverses;
 //! * a **singular crossing** (a block's determinant changes sign with solutions on both sides: a
 //!   change point / bifurcation), located as the root of the determinant along the path;
+//! * a **kink** (a corner of the solution curve where the Jacobian is regular: a function with a
+//!   corner in the equations, `abs`, `min`, `max` or `clamp`, as a uniform-velocity cam law has),
+//!   told from a jump by positions that stay continuous over the smallest step while the slopes
+//!   jump, one side's slopes inside it (see `kink`).
 //!
-//! Both are recorded as an [`Event`]; the sweep then stops with [`Error::SweepStopped`] naming the
-//! input value (or, with [`AtSingular::Continue`], passes a crossing and goes on). It never
-//! continues silently on another branch.
+//! Each is recorded as an [`Event`]. At a limit position or a crossing the sweep then stops with
+//! [`Error::SweepStopped`] naming the input value (or, with [`AtSingular::Continue`], passes a
+//! crossing and goes on); past a kink it goes on. A step that cannot be made for any other
+//! reason (a jump in the solution, as `floor` makes) is an [`Error::Branch`]. It never continues
+//! silently on another branch.
 //!
 //! **Steps, whatever the samples.** The samples asked for are the output grid, never the step:
 //! a step is at most [`SweepConfig::max_step`] of the sample spacing, and also at most a quarter
@@ -52,6 +58,7 @@ use crate::events::{Event, EventKind, Location};
 use crate::kin::{DetSigns, Kin};
 use crate::mechanism::Mechanism;
 use crate::mechanism::kernel::{Compiled, D, Kernel, KinOf, Q, X, check_sizes, is_angle};
+use crate::paths::kink;
 use crate::table::Table;
 use crate::trig::Rotating;
 use std::marker::PhantomData;
@@ -691,8 +698,8 @@ where
                         let k = self.cur().clone();
                         match self.diagnose(&k, tau_new, target, outcome, solved.err()) {
                             Ok(n) => {
-                                // Passed a singular crossing (AtSingular::Continue); `diagnose`
-                                // set `tau` to where the continuation resumed.
+                                // Passed a kink, or a singular crossing (AtSingular::Continue);
+                                // `diagnose` set `tau` to where the sweep resumes.
                                 self.signs = n.health().det_signs;
                                 *self.cur_mut() = n;
                                 self.h = self.h_max;
@@ -744,9 +751,9 @@ where
         None
     }
 
-    /// Explains a step that cannot be made: a limit position, a singular crossing, or another
-    /// failure (`failure`: the solve's error when `outcome` is [`Outcome::Fail`]). Returns the
-    /// state past a crossing when configured to continue through it.
+    /// Explains a step that cannot be made: a kink, a limit position, a singular crossing, or
+    /// another failure (`failure`: the solve's error when `outcome` is [`Outcome::Fail`]).
+    /// Returns the state past a kink, or past a crossing when configured to continue through it.
     fn diagnose(
         &mut self,
         k: &KinOf<K>,
@@ -757,6 +764,12 @@ where
     ) -> Result<KinOf<K>, Error> {
         let path = self.path.clone();
         let newton = self.cfg.newton;
+        // A corner of the curve, not a failure: the sweep goes on past it.
+        if matches!(outcome, Outcome::Far)
+            && let Some(n) = self.past_kink(k, tau_new)
+        {
+            return Ok(n);
+        }
         let weakest = k.health().weakest_block;
         let m = &self.m;
         let block_of = |b: usize| m.block_info(b).map(|info| (b, info));
@@ -833,6 +846,59 @@ where
                 at: self.location(x.as_ref(), Some(weakest)),
             },
         })
+    }
+
+    /// The state past a kink of the solution curve between the last accepted state `k` and the
+    /// state the smallest step solved at `tau_new` (the spare slot), with the kink recorded as an
+    /// event and `tau` set there; `None` where the step is not across a kink (see [`kink`]): a
+    /// state near a singular position, with another determinant sign, past inputs that round,
+    /// or a distance its slopes do not explain.
+    #[cold]
+    fn past_kink(&mut self, k: &KinOf<K>, tau_new: f64) -> Option<KinOf<K>> {
+        let n = self.spare();
+        let pivot = self.cfg.singular_pivot;
+        let regular = k.health().min_pivot >= pivot && n.health().min_pivot >= pivot;
+        if !regular || !n.health().det_signs.same_for(&self.signs, self.m.block_count()) {
+            return None;
+        }
+        let x = self.path.at_tau(tau_new);
+        if self.coarse_input(x.as_ref()).is_some() {
+            return None;
+        }
+        // In the slopes' parameter (see `predict`): the input's step with one input.
+        let dt = tau_new - self.tau;
+        let step = if self.d.ni() == 1 { dt * self.path.delta[0] } else { dt };
+        let (m, d, path, inv_unit) = (&self.m, self.d, &self.path, &self.inv_unit);
+        let sides = m.judged().iter().map(|&u| kink::Side {
+            change: in_unit(m, inv_unit, u, n.q()[u] - k.q()[u]),
+            slope_before: in_unit(m, inv_unit, u, slope_of(d, path, k.dq(u))),
+            slope_after: in_unit(m, inv_unit, u, slope_of(d, path, n.dq(u))),
+        });
+        if !kink::continuous(sides, step) {
+            return None;
+        }
+        // A state inside the step has one side's slopes at a corner, not a fold's between them
+        // (see `kink`): probed at a third and two thirds, should one land on the corner itself.
+        let n = n.clone();
+        let mut g = self.d.q();
+        g.as_mut().copy_from_slice(k.q());
+        for frac in [1.0 / 3.0, 2.0 / 3.0] {
+            let inside = self.m.kinematics(&self.path.at_tau(self.tau + frac * dt), &g, &self.cfg.newton).ok()?;
+            let (m, d, path, inv_unit) = (&self.m, self.d, &self.path, &self.inv_unit);
+            let slope = |s: &KinOf<K>, u: usize| in_unit(m, inv_unit, u, slope_of(d, path, s.dq(u)));
+            let slopes: Vec<kink::Slopes> = m
+                .judged()
+                .iter()
+                .map(|&u| kink::Slopes { before: slope(k, u), after: slope(&n, u), inside: slope(&inside, u) })
+                .collect();
+            if !inside.health().det_signs.same_for(&self.signs, m.block_count()) || !kink::one_sided(&slopes) {
+                return None;
+            }
+        }
+        let q = n.q().to_vec();
+        self.events.push(Event { kind: EventKind::Kink, x: x.as_ref().to_vec(), tau: tau_new, q, block: None });
+        self.tau = tau_new;
+        Some(n)
     }
 
     /// The first input whose doubles at `x` are farther apart than a millionth of the samples'
