@@ -2,12 +2,17 @@
 //! kinematic inversion over one turn of the cam shaft (the runtime's `analysis::cam`): its
 //! pitch curve and working profile as CSV with units, the pressure angle and the sharpest point
 //! of the profile against the roller on standard error, and the profile drawn with `--plot`.
+//! With `--flat`, the cam of a flat-faced follower instead (the envelope of its face): the
+//! profile, its radius of curvature, the contact's offset along the face and the pressure angle,
+//! with the face's least width and the samples where the profile is not convex.
 
 use crate::exit::usage;
 use crate::solve::{in_units, point};
 use crate::{Failed, exit, samples};
 use kinloop_model::Model;
-use kinloop_runtime::analysis::cam::{CamProfile, FollowerSample, cam_profile};
+use kinloop_runtime::analysis::cam::{
+    CamProfile, FlatFace, FlatFaceProfile, FollowerSample, cam_profile, flat_face_profile,
+};
 use kinloop_runtime::dims::KinState;
 use kinloop_runtime::{Error, Number, QuantityKind, Table};
 use kinloop_viz::plot::{self, Axis, Kind, Series};
@@ -23,8 +28,13 @@ pub struct Request<'a> {
     pub rocker: Option<&'a str>,
     /// The cam's pivot, `x,y`.
     pub pivot: &'a str,
-    /// The roller's radius (0: a knife edge).
-    pub roller: f64,
+    /// The roller's radius (none given: a knife edge).
+    pub roller: Option<f64>,
+    /// A flat-faced follower: the face's angle from square to the guide, or from the arm (in
+    /// the units of `deg`).
+    pub flat: Option<f64>,
+    /// A rocking flat face's distance from the pivot, positive on the left of the face.
+    pub face_offset: Option<f64>,
     /// The cam shaft's angle at the first sample.
     pub start: f64,
     /// Samples over the turn, both ends included.
@@ -51,8 +61,9 @@ pub fn run(model: &mut Model, req: &Request) -> Result<(), Failed> {
         return Err(usage(format!("--samples {} is too few: a turn needs at least 3", req.samples)));
     }
     samples::check(req.samples)?;
-    if !(req.roller >= 0.0 && req.roller.is_finite()) {
-        return Err(usage(format!("--roller {} must be a finite number, not negative", Number(req.roller))));
+    let roller = req.roller.unwrap_or(0.0);
+    if !(roller >= 0.0 && roller.is_finite()) {
+        return Err(usage(format!("--roller {} must be a finite number, not negative", Number(roller))));
     }
     if !req.start.is_finite() {
         return Err(usage(format!("--start {} must be a finite number", Number(req.start))));
@@ -70,6 +81,7 @@ pub fn run(model: &mut Model, req: &Request) -> Result<(), Failed> {
     };
     let pivot = point(req.pivot, "--pivot")?;
     let angle = if req.deg { 180.0 / std::f64::consts::PI } else { 1.0 };
+    let face = flat_face(req, &follower, angle)?;
     let start = req.start / angle;
     let kinds = model.input_kinds().to_vec();
     let failed = |e: Error| {
@@ -103,19 +115,74 @@ pub fn run(model: &mut Model, req: &Request) -> Result<(), Failed> {
     let last = (req.samples - 1) as f64;
     let full = if req.deg { 360.0 } else { std::f64::consts::TAU };
     let inputs: Vec<f64> = (0..req.samples).map(|k| req.start + full * k as f64 / last).collect();
-    let cam = cam_profile(&follower_samples, pivot, req.roller).map_err(|e| {
+    let refused = |e: Error| {
         eprintln!("error: {name}: {e}");
         Failed(exit::SOLVE_FAILED)
-    })?;
-    report(&cam, &inputs, req);
-    let table = table(&cam, &inputs, req.deg);
+    };
+    let (table, curves) = match face {
+        Some(face) => {
+            let cam = flat_face_profile(&follower_samples, pivot, face).map_err(refused)?;
+            report_flat(&cam, &inputs, req.deg);
+            (flat_table(&cam, &inputs, req.deg), vec![("cam profile", cam.profile)])
+        }
+        None => {
+            let cam = cam_profile(&follower_samples, pivot, roller).map_err(refused)?;
+            report(&cam, &inputs, req.deg, roller);
+            (table(&cam, &inputs, req.deg), vec![("pitch curve", cam.pitch), ("cam profile", cam.profile)])
+        }
+    };
     table.write_csv(std::io::stdout().lock()).map_err(|e| {
         eprintln!("error: cannot write the table: {e}");
         Failed(exit::IO_ERR)
     })?;
     match req.plot {
-        Some(path) => draw(&cam, &name, path),
+        Some(path) => draw(&curves, &name, path),
         None => Ok(()),
+    }
+}
+
+/// The flat face asked for with `--flat` (and `--face-offset`), `None` for a roller; `angle`
+/// converts the given angle to radians by division.
+fn flat_face(req: &Request, follower: &Follower, angle: f64) -> Result<Option<FlatFace>, Failed> {
+    let Some(tilt) = req.flat else {
+        return match req.face_offset {
+            Some(_) => Err(usage("--face-offset places a flat face: give it with --flat")),
+            None => Ok(None),
+        };
+    };
+    if req.roller.is_some() {
+        return Err(usage("give --roller R (a roller follower) or --flat (a flat-faced one), not both"));
+    }
+    let shown = |v: f64| Number(v).to_string();
+    let tilt_rad = tilt / angle;
+    match *follower {
+        Follower::Translating(_) => {
+            if req.face_offset.is_some() {
+                return Err(usage(
+                    "--face-offset places a rocking follower's face from its pivot: a translating one's face passes \
+                     through its point (use --rocker X,Y, or declare the face's point)",
+                ));
+            }
+            if tilt_rad.is_nan() || tilt_rad.abs() >= std::f64::consts::FRAC_PI_2 {
+                return Err(usage(format!(
+                    "--flat {}: a translating follower's face must be tilted less than a quarter turn from square to \
+                     its guide",
+                    shown(tilt)
+                )));
+            }
+            Ok(Some(FlatFace::Translating { tilt: tilt_rad }))
+        }
+        Follower::Rocking(pivot) => {
+            let offset = req.face_offset.unwrap_or(0.0);
+            if !tilt.is_finite() || !offset.is_finite() {
+                return Err(usage(format!(
+                    "--flat {} and --face-offset {} must be finite numbers",
+                    shown(tilt),
+                    shown(offset)
+                )));
+            }
+            Ok(Some(FlatFace::Rocking { pivot, offset, tilt: tilt_rad }))
+        }
     }
 }
 
@@ -165,8 +232,8 @@ fn direction(spec: &str, option: &str) -> Result<[f64; 2], Failed> {
 
 /// The cam's checks on standard error: the largest pressure angle, the sharpest convex point
 /// of the pitch curve and whether the roller undercuts the profile there.
-fn report(cam: &CamProfile, inputs: &[f64], req: &Request) {
-    let (unit, angle) = if req.deg { ("°", 180.0 / std::f64::consts::PI) } else { (" rad", 1.0) };
+fn report(cam: &CamProfile, inputs: &[f64], deg: bool, roller: f64) {
+    let (unit, angle) = if deg { ("°", 180.0 / std::f64::consts::PI) } else { (" rad", 1.0) };
     let (k, alpha) = cam.max_pressure_angle();
     eprintln!("cam: largest pressure angle {}{unit} at {}{unit}", Number(alpha * angle), Number(inputs[k]));
     match cam.min_convex_radius() {
@@ -186,9 +253,38 @@ fn report(cam: &CamProfile, inputs: &[f64], req: &Request) {
             undercut.len(),
             Number(inputs[a]),
             Number(inputs[b]),
-            Number(req.roller)
+            Number(roller)
         ),
-        _ => eprintln!("cam: no undercut with a roller of radius {}", Number(req.roller)),
+        _ => eprintln!("cam: no undercut with a roller of radius {}", Number(roller)),
+    }
+}
+
+/// A flat-faced follower's checks on standard error: the largest pressure angle, the smallest
+/// radius of curvature of the profile, the face's least width and the samples where the profile
+/// is not convex.
+fn report_flat(cam: &FlatFaceProfile, inputs: &[f64], deg: bool) {
+    let (unit, angle) = if deg { ("°", 180.0 / std::f64::consts::PI) } else { (" rad", 1.0) };
+    let (k, alpha) = cam.max_pressure_angle();
+    eprintln!("cam: largest pressure angle {}{unit} at {}{unit}", Number(alpha * angle), Number(inputs[k]));
+    let (k, radius) = cam.min_radius();
+    eprintln!("cam: smallest radius of curvature of the profile {} at {}{unit}", Number(radius), Number(inputs[k]));
+    let (lo, hi) = cam.offset_range();
+    eprintln!(
+        "cam: face width at least {} (the contact from {} to {} along the face)",
+        Number(cam.face_width()),
+        Number(lo),
+        Number(hi)
+    );
+    let bad = cam.not_convex();
+    match (bad.first(), bad.last()) {
+        (Some(&a), Some(&b)) => eprintln!(
+            "cam: NOT CONVEX at {} samples (the first at {}{unit}, the last at {}{unit}): the face's envelope folds \
+             there and a flat face cannot follow the law; use a larger base circle or a gentler law",
+            bad.len(),
+            Number(inputs[a]),
+            Number(inputs[b])
+        ),
+        _ => eprintln!("cam: the profile is convex at every sample"),
     }
 }
 
@@ -212,14 +308,28 @@ fn table(cam: &CamProfile, inputs: &[f64], deg: bool) -> Table {
     ])
 }
 
-/// The pitch curve and the profile drawn to `path` (SVG), the cam's pivot marked.
-fn draw(cam: &CamProfile, name: &str, path: &Path) -> Result<(), Failed> {
+/// A flat-faced follower's cam as a table: per sample the input (in the units given), the
+/// profile's point in the cam's frame, its radius of curvature, the contact's offset along the
+/// face and the pressure angle.
+fn flat_table(cam: &FlatFaceProfile, inputs: &[f64], deg: bool) -> Table {
+    let (angle, a) = if deg { (180.0 / std::f64::consts::PI, "deg") } else { (1.0, "rad") };
+    let columns = ["input", "profile.x", "profile.y", "radius", "offset", "pressure_angle"];
+    let mut t = Table::new(columns.iter().map(|c| c.to_string()).collect());
+    for (k, &x) in inputs.iter().enumerate() {
+        let [cx, cy] = cam.profile[k];
+        t.push(vec![x, cx, cy, cam.radius[k], cam.offset[k], cam.pressure_angle[k] * angle]);
+    }
+    let length = QuantityKind::Length.unit();
+    t.with_units(&[("input", a), ("profile", length), ("radius", length), ("offset", length), ("pressure_angle", a)])
+}
+
+/// The named curves (the pitch curve and the profile, or the profile alone) drawn to `path`
+/// (SVG), the cam's pivot marked.
+fn draw(curves: &[(&str, Vec<[f64; 2]>)], name: &str, path: &Path) -> Result<(), Failed> {
     let length = Kind::length(QuantityKind::Length.unit());
     let curve = |points: &[[f64; 2]]| points.iter().map(|p| (p[0], p[1])).collect::<Vec<_>>();
-    let series = [
-        Series::new("pitch curve", length.clone(), curve(&cam.pitch)),
-        Series::new("cam profile", length.clone(), curve(&cam.profile)),
-    ];
+    let series: Vec<Series> =
+        curves.iter().map(|(label, points)| Series::new(label, length.clone(), curve(points))).collect();
     let title = format!("{name}: the cam by inversion of the follower's motion");
     let svg =
         plot::xy_chart_svg(&title, &Axis::new("x", length.clone()), &Axis::new("y", length), &series, &[(0.0, 0.0)])

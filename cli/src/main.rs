@@ -10,6 +10,7 @@
 //! kinloop simulate engine.kl --speed 150 --torque 2.5 --flywheel 0.05 --time 0.5
 //! kinloop extremes slider_crank.kl --params r=1,l=3,e=0.4 --from 0 --to 360 --deg --table   # min and max
 //! kinloop cam dwell_cam.kl --point follower --guide 0,1 --roller 10 --plot cam.svg
+//! kinloop cam dwell_cam.kl --point follower --guide 0,1 --flat --deg   # a flat-faced follower
 //! kinloop animate rhombic_drive.kl --from 0 --to 360 --samples 91 --deg --out rhombic.svg
 //! kinloop animate five_bar.kl --grid --from 0,0.4 --to 3,3 --samples 9,7 --out five_bar.html
 //! kinloop synth coupler_four_bar.kl --targets points.csv --path p --vary a=0.5..2,b=2..4 --starts 64
@@ -194,7 +195,9 @@ enum Command {
     /// one turn of the cam shaft (the input): its pitch curve and profile in the cam's frame,
     /// the pitch curve's radius of curvature and the pressure angle as CSV; the largest
     /// pressure angle, the sharpest point and whether the roller undercuts it on standard
-    /// error.
+    /// error. With `--flat`, a flat-faced follower: the profile, its radius of curvature, the
+    /// contact's offset along the face and the pressure angle; the face's least width and the
+    /// samples where the profile is not convex on standard error.
     Cam {
         /// The declaration (`.kl`).
         file: PathBuf,
@@ -211,9 +214,19 @@ enum Command {
         /// The cam's pivot, `x,y`.
         #[arg(long, value_name = "X,Y", default_value = "0,0", allow_hyphen_values = true)]
         pivot: String,
-        /// The roller's radius (0: a knife edge).
-        #[arg(long, default_value_t = 0.0, allow_hyphen_values = true)]
-        roller: f64,
+        /// The roller's radius (0: a knife edge, the default).
+        #[arg(long, allow_hyphen_values = true)]
+        roller: Option<f64>,
+        /// A flat-faced follower instead of a roller: its face square to the guide through the
+        /// follower's point (`--guide`), or parallel to the arm from the pivot to the point at
+        /// `--face-offset` from the pivot (`--rocker`), turned by ANGLE (0 if not given; degrees
+        /// with `--deg`); the profile is the face's envelope.
+        #[arg(long, value_name = "ANGLE", num_args = 0..=1, default_missing_value = "0", allow_negative_numbers = true)]
+        flat: Option<f64>,
+        /// A rocking flat face's distance from the rocker's pivot, positive on the left of the
+        /// face's direction (0: the face through the pivot).
+        #[arg(long, value_name = "D", allow_hyphen_values = true)]
+        face_offset: Option<f64>,
         /// The cam shaft's angle at the first sample.
         #[arg(long, default_value_t = 0.0, allow_hyphen_values = true)]
         start: f64,
@@ -405,7 +418,22 @@ fn run(cli: Cli) -> Result<(), Failed> {
             let req = simulate::Request { start, speed, time, torque, flywheel, samples, deg, max_steps };
             simulate::run(&mut model, &req)
         }
-        Command::Cam { file, point, guide, rocker, pivot, roller, start, samples, clockwise, deg, params, plot } => {
+        Command::Cam {
+            file,
+            point,
+            guide,
+            rocker,
+            pivot,
+            roller,
+            flat,
+            face_offset,
+            start,
+            samples,
+            clockwise,
+            deg,
+            params,
+            plot,
+        } => {
             let mut model = load(&file, params.as_deref())?;
             let req = cam::Request {
                 point: &point,
@@ -413,6 +441,8 @@ fn run(cli: Cli) -> Result<(), Failed> {
                 rocker: rocker.as_deref(),
                 pivot: &pivot,
                 roller,
+                flat,
+                face_offset,
                 start,
                 samples,
                 clockwise,

@@ -2,7 +2,9 @@
 //! radial follower's closed forms of the 3-4-5 law by hand (`law_by_hand`: the pitch curve as the
 //! polar curve `R = y0 + s`, its radius of curvature, the pressure angle `atan(|s'| / R)`), a
 //! rocking follower on the cam-linkage drive's eccentric disc (its pitch circle about the disc's
-//! centre, the pressure angle the declaration states), and the usage errors.
+//! centre, the pressure angle the declaration states), flat-faced followers (the dwell cam's
+//! radial face against `R_b + s + s''` and `s'` by hand, the eccentric disc given back under a
+//! rocking face), and the usage errors.
 //!
 //! Tolerances: the lift and its analogs are the law's to rounding (the declaration's polynomial
 //! and the one here are evaluated in different orders): 1e-12 of the pitch radius for lengths,
@@ -110,6 +112,106 @@ fn a_rocking_follower_on_the_eccentric_disc() {
     }
 }
 
+/// The radial translating flat face on the dwell cam against the closed forms by hand: the cam
+/// turning counter-clockwise under the face square to the +y guide, the contact in the cam's
+/// frame is `((y0 + s) sin phi + s' cos phi, (y0 + s) cos phi - s' sin phi)` (the face's
+/// envelope `h n + dh/dpsi J n`, `h = y0 + s`, its normal at `psi = pi/2 - phi`), its radius
+/// of curvature `y0 + s + s''`, `s'` along the face from the follower's axis, the pressure
+/// angle 0.
+#[test]
+fn a_flat_face_on_the_dwell_cam_has_the_closed_forms() {
+    let m = fx::cam_linkage::DwellCamRocker::default();
+    let file = shipped("dwell_cam.kl");
+    let args = ["cam", &file, "--point", "follower", "--guide", "0,1", "--flat", "--deg", "--samples", "721"];
+    let out = kinloop(&args);
+    let (header, rows) = csv(&out);
+    assert_eq!(
+        header,
+        [
+            "input [deg]",
+            "profile.x [length unit]",
+            "profile.y [length unit]",
+            "radius [length unit]",
+            "offset [length unit]",
+            "pressure_angle [deg]"
+        ]
+    );
+    assert_eq!(rows.len(), 721);
+    let (mut lo, mut hi, mut sharpest) = (f64::INFINITY, f64::NEG_INFINITY, f64::INFINITY);
+    for row in &rows {
+        let phi = row[0].to_radians();
+        let [s, ds, d2s] = m.law_by_hand(phi);
+        let r = m.y0 + s;
+        let (sin, cos) = phi.sin_cos();
+        let at = format!("at {} deg: {row:?}", row[0]);
+        assert!((row[1] - (r * sin + ds * cos)).abs() <= 1e-12 * r, "{at}");
+        assert!((row[2] - (r * cos - ds * sin)).abs() <= 1e-12 * r, "{at}");
+        assert!((row[3] - (r + d2s)).abs() <= 1e-12 * r, "{at}");
+        assert!((row[4] - ds).abs() <= 1e-12 * r, "{at}");
+        assert_eq!(row[5], 0.0, "{at}");
+        (lo, hi, sharpest) = (lo.min(ds), hi.max(ds), sharpest.min(r + d2s));
+    }
+    // The summary: the face spans the extremes of s' (the rise's 1.875 h / beta, the return's),
+    // the smallest radius where s'' is most negative.
+    let err = stderr(&out);
+    let number = |after: &str, until: char| -> f64 {
+        err.split(after)
+            .nth(1)
+            .and_then(|t| t.split(until).next())
+            .and_then(|v| v.trim().parse().ok())
+            .unwrap_or_else(|| panic!("no `{after}` in: {err}"))
+    };
+    assert!((number("face width at least ", '(') - (hi - lo)).abs() <= 1e-12 * m.y0, "{err}");
+    assert!((hi - 1.875 * m.lift / m.rise).abs() <= 1e-6 * m.lift, "{hi}");
+    assert!((number("smallest radius of curvature of the profile ", 'a') - sharpest).abs() <= 1e-12 * m.y0, "{err}");
+    assert!(err.contains("the profile is convex at every sample"), "{err}");
+    // On a base circle of 10 (the rod lengthened to reach the rocker) the face's envelope folds
+    // early in the return: 10 + s + s'' = 10 + 18.7 - 37.9 < 0 where its deceleration peaks.
+    let params = ["--params", "y0=10,l_rod=120"];
+    let small = kinloop(&[&["cam", &file, "--point", "follower", "--guide", "0,1", "--flat"], &params[..]].concat());
+    assert!(small.status.success() && stderr(&small).contains("NOT CONVEX at"), "{}", stderr(&small));
+    // A tilted face: the pressure angle is the tilt.
+    let (_, tilted) = csv(&kinloop(&["cam", &file, "--point", "follower", "--guide", "0,1", "--flat", "-20", "--deg"]));
+    assert!(tilted.iter().all(|row| (row[5] - 20.0).abs() <= 1e-12), "{:?}", tilted[0]);
+}
+
+/// The eccentric disc (radius 40, its centre 10 from the shaft) under a flat face on a rocker
+/// pivoted at (-60, 60), the face 5 below the arm: the loop keeps the disc tangent to the face.
+const DISC_FLAT_ROCKER: &str = "
+pub struct DiscFlatRocker {
+    params e = 10.0, r = 40.0, a_x = -60.0, a_y = 60.0, d = 5.0, l = 100.0;
+    input phi;
+    unknowns gamma = -0.25, w = 62;
+    loop contact: e @ phi + r @ (gamma + pi / 2) == (a_x, a_y) + d @ (gamma - pi / 2) + w @ gamma;
+    point arm = (a_x, a_y) + l @ gamma;
+}
+";
+
+#[test]
+fn a_rocking_flat_face_on_the_eccentric_disc() {
+    let file = std::env::temp_dir().join(format!("kinloop-disc-flat-rocker-{}.kl", std::process::id()));
+    std::fs::write(&file, DISC_FLAT_ROCKER).unwrap();
+    let path = file.to_str().unwrap();
+    let args =
+        ["cam", path, "--point", "arm", "--rocker", "-60,60", "--flat", "--face-offset", "-5", "--samples", "73"];
+    let out = kinloop(&args);
+    // The same with the unknown w written out, to compare the offset with (the sweep's columns).
+    let sweep = kinloop(&["sweep", path, "--from", "0", "--to", "6.283185307179586", "--samples", "73"]);
+    let _ = std::fs::remove_file(&file);
+    let (_, rows) = csv(&out);
+    let (header, states) = csv(&sweep);
+    let w = header.iter().position(|h| h.starts_with("w")).expect("the unknown w");
+    assert_eq!(rows.len(), 73);
+    for (row, state) in rows.iter().zip(&states) {
+        // The disc given back (its centre at (10, 0) in the cam's frame), its radius the radius
+        // of curvature; the contact where the loop puts it; tan(pressure angle) = 5 / w.
+        assert!(((row[1] - 10.0).hypot(row[2]) - 40.0).abs() <= 1e-12 * 40.0, "{row:?}");
+        assert!((row[3] - 40.0).abs() <= 1e-11 * 40.0, "{row:?}");
+        assert!((row[4] - state[w]).abs() <= 1e-12 * 40.0, "{row:?} vs {state:?}");
+        assert!((row[5] - 5.0f64.atan2(state[w].abs())).abs() <= 1e-13, "{row:?}");
+    }
+}
+
 #[test]
 fn bad_requests_are_usage_errors() {
     let (cam, five_bar) = (shipped("dwell_cam.kl"), shipped("five_bar.kl"));
@@ -126,6 +228,12 @@ fn bad_requests_are_usage_errors() {
         ([&base[..], &["--guide", "0,1", "--roller", "-1"]].concat(), "--roller -1", 2),
         ([&base[..], &["--guide", "0,1", "--samples", "2"]].concat(), "--samples 2", 2),
         ([&base[..], &["--guide", "0,1", "--pivot", "a,b"]].concat(), "--pivot", 2),
+        ([&base[..], &["--guide", "0,1", "--flat", "--roller", "10"]].concat(), "not both", 2),
+        ([&base[..], &["--guide", "0,1", "--flat", "90", "--deg"]].concat(), "less than a quarter turn", 2),
+        ([&base[..], &["--guide", "0,1", "--flat", "--face-offset", "3"]].concat(), "translating", 2),
+        ([&base[..], &["--guide", "0,1", "--face-offset", "3"]].concat(), "give it with --flat", 2),
+        ([&base[..], &["--rocker", "0,0", "--flat", "inf"]].concat(), "must be finite", 2),
+        ([&base[..], &["--guide", "0,1", "--flat", "x"]].concat(), "--flat", 2),
         (vec!["cam", cam.as_str(), "--point", "nope", "--guide", "0,1"], "its points: follower, rocker_pin", 2),
         (vec!["cam", five_bar.as_str(), "--point", "p", "--guide", "0,1"], "must have one input, an angle", 2),
         ([&base[..], &["--guide", "0,1", "--plot", plot.to_str().unwrap()]].concat(), "cannot write the plot", 73),

@@ -25,11 +25,50 @@
 //! The pitch curve must wind around the cam's centre (`r x r'` of one sign at every sample):
 //! that is what makes the inner side, and so the profile, well defined.
 //!
+//! # Flat-faced followers
+//!
+//! A flat-faced follower carries a straight face (a line) instead of a roller
+//! ([`flat_face_profile`], the face given by [`FlatFace`]): square to the guide of a translating
+//! follower through its point (or tilted), or along the arm of a rocking one, through its pivot
+//! or at a distance from it. The cam is the **envelope** of the face's positions seen from the
+//! cam. With the face's direction `t` at the angle `beta` in the fixed frame, its normal `n`
+//! (square to `t`, pointing away from the cam, which lies on its pivot's side), `q` a point of
+//! the face relative to the pivot O and `h = n . q` the face's distance from O (invariant under
+//! the inversion, a rotation about O), the face in the cam's frame is the line `x . n_c = h` whose
+//! normal `n_c` lies at the angle `psi = beta - theta` (plus a constant): `h` as a function of
+//! `psi` is the profile's **support function**, and
+//!
+//! * `n' = beta' J n`, `n'' = beta'' J n - beta'^2 n`, so `h' = n' . q + n . q'` and
+//!   `h'' = n'' . q + 2 n' . q' + n . q''`; `psi' = beta' - theta'`, `psi'' = beta'' - theta''`,
+//!   `dh/dpsi = h' / psi'`, `d2h/dpsi2 = (h'' - (dh/dpsi) psi'') / psi'^2`;
+//! * the **contact** (the envelope's point) is `h n + (dh/dpsi) J n` from O, turned into the cam's
+//!   frame by `R(-theta)`; its **offset** along the face is `(contact - q) . t`;
+//! * the profile's **radius of curvature** is `h + d2h/dpsi2`: for a radial translating follower
+//!   lifted by `s(theta)` above the base circle `R_b`, `R_b + s + s''`, and the contact lies
+//!   `s'` from the follower's axis (towards where the cam's surface comes from; so the face is
+//!   at least `max s' - min s'` wide). Where the radius is zero or negative the envelope has a cusp (a swallowtail): no
+//!   convex cam moves the face as the law says, and a flat face cannot be used (a larger base
+//!   circle, or a gentler law);
+//! * the **pressure angle**, between `n` and the direction the follower's material point at the
+//!   contact can move in: the face's tilt from square to the guide for a translating follower
+//!   (0 for a face square to it), constant; for a rocking follower the contact moves square to
+//!   the line from the pivot A to it, so that `tan(pressure angle) = |d| / |l|`, `d` the face's
+//!   distance from A and `l` the contact's place along the face from A's foot: 0 throughout for
+//!   a face through the pivot, growing as the contact nears the foot.
+//!
+//! The face must turn relative to the cam the same way at every sample (`psi'` of one sign):
+//! the profile is then traced once around.
+//!
 //! Lengths come out in the mechanism's unit and angles in radians: the same profile, scaled, at
 //! any unit of length.
 
+mod flat_face;
+mod plane;
+
+pub use flat_face::{FlatFace, FlatFaceProfile, flat_face_profile};
+
 use crate::error::Error;
-use crate::number::pow2_at_most;
+use plane::{apply, cross, dot, length_unit, norm, per_unit, quarter, rotate, scale, sub, unit};
 
 /// One sample of the follower's motion: the cam's angle and the follower point's position, each
 /// with its first and second derivative with respect to the sweep's input (a mechanism's
@@ -158,11 +197,8 @@ pub fn cam_profile(samples: &[FollowerSample], pivot: [f64; 2], roller: f64) -> 
         // The derivatives in units of a power of two near the sample's lengths (exact), so that
         // the cube of the speed and the cross products neither overflow nor underflow at any
         // scale: the radius is scaled back, the angles and the normal are free of it.
-        let big = [q, dp, d2p].iter().flatten().fold(0.0, |m: f64, v| m.max(v.abs()));
-        let unit = if big > 0.0 { pow2_at_most(big) } else { 1.0 };
-        // Divided, not multiplied by the reciprocal: that of a subnormal unit overflows.
-        let per_unit = |v: [f64; 2]| [v[0] / unit, v[1] / unit];
-        let (qs, dps, d2ps) = (per_unit(q), per_unit(dp), per_unit(d2p));
+        let unit = length_unit([q, dp, d2p].iter().flatten());
+        let (qs, dps, d2ps) = (per_unit(q, unit), per_unit(dp, unit), per_unit(d2p, unit));
         // In the fixed frame, then turned into the cam's by R(-theta) (see the module docs).
         let dr = sub(dps, scale(dtheta, quarter(qs)));
         let d2r = [
@@ -197,50 +233,8 @@ pub fn cam_profile(samples: &[FollowerSample], pivot: [f64; 2], roller: f64) -> 
         out.pitch_radius.push(radius);
         // The contact normal is the same line in the fixed frame, `inward` being computed there.
         // atan2 of the sine and cosine: accurate near 0 and pi/2 alike, where acos is not.
-        let (sin, cos) = (cross(inward, e).abs(), (inward[0] * e[0] + inward[1] * e[1]).abs());
+        let (sin, cos) = (cross(inward, e).abs(), dot(inward, e).abs());
         out.pressure_angle.push(sin.atan2(cos));
     }
     Ok(out)
-}
-
-/// `v` of unit length, `None` for a zero vector (scaled first, so that no length overflows).
-fn unit(v: [f64; 2]) -> Option<[f64; 2]> {
-    let m = v[0].abs().max(v[1].abs());
-    if m == 0.0 {
-        return None;
-    }
-    let w = [v[0] / m, v[1] / m];
-    let l = norm(w);
-    Some([w[0] / l, w[1] / l])
-}
-
-fn norm(v: [f64; 2]) -> f64 {
-    v[0].hypot(v[1])
-}
-
-fn cross(a: [f64; 2], b: [f64; 2]) -> f64 {
-    a[0] * b[1] - a[1] * b[0]
-}
-
-fn sub(a: [f64; 2], b: [f64; 2]) -> [f64; 2] {
-    [a[0] - b[0], a[1] - b[1]]
-}
-
-fn scale(s: f64, v: [f64; 2]) -> [f64; 2] {
-    [s * v[0], s * v[1]]
-}
-
-/// The quarter turn `J v`: `(x, y) -> (-y, x)`.
-fn quarter(v: [f64; 2]) -> [f64; 2] {
-    [-v[1], v[0]]
-}
-
-/// The rotation by `a` as `(cos a, sin a)`.
-fn rotate(a: f64) -> (f64, f64) {
-    let (s, c) = a.sin_cos();
-    (c, s)
-}
-
-fn apply((c, s): (f64, f64), v: [f64; 2]) -> [f64; 2] {
-    [c * v[0] - s * v[1], s * v[0] + c * v[1]]
 }

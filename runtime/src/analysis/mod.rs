@@ -22,6 +22,7 @@
 //! | harmonics over a cycle | [`SampledOf::fourier`] | trapezoidal rule, exact for trigonometric polynomials |
 //! | residual unbalance `max |v - v_1|` | [`SampledOf::unbalance`] | extremes of the residual |
 //! | a disc cam's pitch curve, profile, curvature and pressure angle from its follower's motion | [`cam::cam_profile`] | kinematic inversion of the positions and analogs |
+//! | a flat-faced follower's cam: contact, curvature, offset along the face, pressure angle | [`cam::flat_face_profile`] | envelope of the face by inversion of the positions and analogs |
 //! | design optimisation without gradients | [`NelderMead`] (`minimize`, `minimize_boxed`) | Nelder–Mead simplex (in a box: MINUIT's sine transformation) |
 //!
 //! ```ignore
