@@ -18,10 +18,28 @@
 //! Long sweeps (from 2000 samples) and long searches (from 256 starts) show a progress bar on
 //! standard error when it is a terminal.
 //!
-//! Exit codes ([`exit`]): 0 success, 1 a solve failed (for `synth`: no valid candidate), 2 a usage error, 65 the declaration is
+//! Exit codes ([`exit`]): 0 success, 1 a solve failed (for `synth`: no valid candidate), 2 a usage error (a parameter without a value too), 65 the declaration is
 //! rejected (diagnostics on standard error), 66 the file cannot be read, 69 the declaration uses
 //! what the run-time evaluator does not evaluate yet, 73 the `--events` file (or the
 //! `animate --out`, `dynamics --flywheel` or `cam --plot` file) cannot be created, 74 an output cannot be written.
+
+// Std's `eprintln!` and `eprint!` panic where standard error cannot be written (its reader
+// gone: `kinloop sweep ... 2>&1 | head -1`), and the panic message is lost with it: exit code
+// 101 instead of the command's own. These, defined before the modules and so used by all of
+// them, write and let a failed write go: the message cannot reach anyone, the exit code still
+// tells the outcome.
+macro_rules! eprintln {
+    ($($arg:tt)*) => {{
+        use std::io::Write as _;
+        let _ = writeln!(std::io::stderr(), $($arg)*);
+    }};
+}
+macro_rules! eprint {
+    ($($arg:tt)*) => {{
+        use std::io::Write as _;
+        let _ = write!(std::io::stderr(), $($arg)*);
+    }};
+}
 
 mod animate;
 mod cam;
@@ -325,7 +343,8 @@ enum Command {
         #[arg(long, value_name = "INPUT:OUTPUT")]
         function: Option<String>,
         /// The design variables with their bounds, in the declaration's units (parameters, not
-        /// converted by `--deg`).
+        /// converted by `--deg`); they need no value of their own (no default, none in
+        /// `--params`).
         #[arg(long, value_name = "NAME=LO..HI,...", allow_hyphen_values = true)]
         vary: String,
         /// The input range of path targets without inputs (a full turn of an angle otherwise).
@@ -379,16 +398,16 @@ fn run(cli: Cli) -> Result<(), Failed> {
             })
         }
         Command::Solve { file, at, deg, params } => {
-            let mut model = load(&file, params.as_deref())?;
+            let mut model = solvable(&file, params.as_deref())?;
             solve::run(&mut model, &at, deg)
         }
         Command::Sweep { file, from, to, samples, deg, params, events } => {
-            let mut model = load(&file, params.as_deref())?;
+            let mut model = solvable(&file, params.as_deref())?;
             let req = sweep::Request { from: &from, to: &to, samples, deg, events: events.as_deref() };
             sweep::run(&mut model, &req)
         }
         Command::Dynamics { file, speed, start, samples, delta, about, deg, params, flywheel } => {
-            let mut model = load(&file, params.as_deref())?;
+            let mut model = solvable(&file, params.as_deref())?;
             let req = dynamics::Request {
                 speed,
                 start,
@@ -401,12 +420,12 @@ fn run(cli: Cli) -> Result<(), Failed> {
             dynamics::run(&mut model, &req)
         }
         Command::Simulate { file, speed, start, time, torque, flywheel, samples, max_steps, deg, params } => {
-            let mut model = load(&file, params.as_deref())?;
+            let mut model = solvable(&file, params.as_deref())?;
             let req = simulate::Request { start, speed, time, torque, flywheel, samples, deg, max_steps };
             simulate::run(&mut model, &req)
         }
         Command::Cam { file, point, guide, rocker, pivot, roller, start, samples, clockwise, deg, params, plot } => {
-            let mut model = load(&file, params.as_deref())?;
+            let mut model = solvable(&file, params.as_deref())?;
             let req = cam::Request {
                 point: &point,
                 guide: guide.as_deref(),
@@ -422,19 +441,20 @@ fn run(cli: Cli) -> Result<(), Failed> {
             cam::run(&mut model, &req)
         }
         Command::Extremes { file, from, to, samples, deg, params, columns, table } => {
-            let mut model = load(&file, params.as_deref())?;
+            let mut model = solvable(&file, params.as_deref())?;
             let req = extremes::Request { from: &from, to: &to, samples, deg, columns: columns.as_deref(), table };
             extremes::run(&mut model, &req)
         }
         Command::Animate { file, from, to, samples, grid, deg, params, out, format, show, frames } => {
-            let mut model = load(&file, params.as_deref())?;
+            let mut model = solvable(&file, params.as_deref())?;
             let samples = samples.as_deref();
             let req =
                 animate::Request { from: &from, to: &to, samples, grid, deg, out: &out, format, show: &show, frames };
             animate::run(&mut model, &req)
         }
         Command::Synth { file, targets, path, function, vary, range, starts, seed, keep, jobs, deg, params, csv } => {
-            let model = load(&file, params.as_deref())?;
+            // Not yet complete: the design variables need no value of their own.
+            let mut model = load(&file, params.as_deref())?;
             let req = synth::Request {
                 targets: &targets,
                 path: path.as_deref(),
@@ -448,7 +468,7 @@ fn run(cli: Cli) -> Result<(), Failed> {
                 deg,
                 csv,
             };
-            synth::run(&model, &req)
+            synth::run(&mut model, &req)
         }
     }
 }
@@ -475,6 +495,14 @@ fn load(file: &Path, params: Option<&str>) -> Result<Model, Failed> {
     if let Some(p) = params {
         params::apply(&mut model, p)?;
     }
+    Ok(model)
+}
+
+/// [`load`] for a command that solves: every parameter needs a value, from the declaration's
+/// defaults or from `params` (a usage error naming those missing otherwise).
+fn solvable(file: &Path, params: Option<&str>) -> Result<Model, Failed> {
+    let model = load(file, params)?;
+    params::require_values(&model)?;
     Ok(model)
 }
 

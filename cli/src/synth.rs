@@ -7,7 +7,7 @@
 //! given inputs) or pairs of a function (`input,output`). The ranked candidates are written as
 //! a table or as CSV, each with its defects.
 
-use crate::{Failed, exit, progress};
+use crate::{Failed, exit, params, progress};
 use kinloop_model::Model;
 use kinloop_runtime::QuantityKind;
 use kinloop_runtime::paths::sweep::MAX_TURNS;
@@ -59,7 +59,7 @@ pub struct Request<'a> {
 
 /// Runs the search and writes its ranked candidates: success when one is valid, exit code 1
 /// when none is.
-pub fn run(model: &Model, req: &Request) -> Result<(), Failed> {
+pub fn run(model: &mut Model, req: &Request) -> Result<(), Failed> {
     if req.keep == 0 {
         return Err(exit::usage("--keep 0 would write no candidate: keep at least 1"));
     }
@@ -78,6 +78,17 @@ pub fn run(model: &Model, req: &Request) -> Result<(), Failed> {
         )));
     }
     let design = design(req.vary)?;
+    // The search sets the design variables at every evaluation, so one without a value needs
+    // none of its own; the model's kernel, built before, needs one for every parameter: any
+    // within the bounds does.
+    for v in design.variables() {
+        if let Some(k) = model.params().iter().position(|p| *p == v.name)
+            && model.param_values()[k].is_none()
+        {
+            model.set_param(&v.name, 0.5 * v.lo + 0.5 * v.hi);
+        }
+    }
+    params::require_values(model)?;
     let rows = read_targets(req.targets)?;
     let task = task(model, req, &rows)?;
     let name = model.name().to_string();
