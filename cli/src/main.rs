@@ -203,11 +203,6 @@ enum Command {
         #[arg(long, value_name = "NAME=VALUE,...")]
         params: Option<String>,
     },
-    /// Sweeps the inputs along the straight path from `--from` to `--to` as `sweep` does and
-    /// writes the smallest and largest value of each unknown and output with the inputs where
-    /// it happens: an interior extreme located as a root of the velocity analog between
-    /// samples, on the sweep's branch; otherwise an end of the range. CSV with units, or a
-    /// table. A sweep that stops (a limit position) fails.
     /// The disc cam that moves a follower as the declaration says, by kinematic inversion over
     /// one turn of the cam shaft (the input): its pitch curve and profile in the cam's frame,
     /// the pitch curve's radius of curvature and the pressure angle as CSV; the largest
@@ -252,6 +247,11 @@ enum Command {
         #[arg(long, value_name = "PATH")]
         plot: Option<PathBuf>,
     },
+    /// Sweeps the inputs along the straight path from `--from` to `--to` as `sweep` does and
+    /// writes the smallest and largest value of each unknown and output with the inputs where
+    /// it happens: an interior extreme located as a root of the velocity analog between
+    /// samples, on the sweep's branch; otherwise an end of the range. CSV with units, or a
+    /// table. A sweep that stops (a limit position) fails.
     Extremes {
         /// The declaration (`.kl`).
         file: PathBuf,

@@ -541,3 +541,23 @@ fn standard_error_that_cannot_be_written_is_no_panic() {
         assert_eq!(out.status.code(), Some(code), "{args:?}");
     }
 }
+
+/// Every command is described in `kinloop --help` by its own words: `extremes` by its
+/// extremes, `cam` by its cam alone.
+#[test]
+fn each_command_has_its_own_description() {
+    let out = kinloop(&["--help"]);
+    let help = String::from_utf8_lossy(&out.stdout);
+    let line = |command: &str| {
+        help.lines()
+            .find(|l| l.trim_start().starts_with(&format!("{command} ")))
+            .unwrap_or_else(|| panic!("no {command} in {help}"))
+            .to_string()
+    };
+    assert!(line("extremes").contains("smallest and largest value"), "{help}");
+    let cam = line("cam");
+    assert!(cam.contains("disc cam") && !cam.contains("smallest and largest"), "{cam}");
+    for command in ["check", "solve", "sweep", "dynamics", "simulate", "animate", "synth"] {
+        assert!(line(command).len() > command.len() + 20, "{command} has no description: {help}");
+    }
+}
