@@ -161,7 +161,7 @@ fn exercise(name: &str, text: &str) {
 
 #[test]
 fn mutated_shipped_files_never_panic() {
-    let cases: usize = std::env::var("KINLOOP_FUZZ_CASES").ok().and_then(|s| s.parse().ok()).unwrap_or(40);
+    let cases: usize = std::env::var("KINLOOP_FUZZ_CASES").ok().and_then(|s| s.parse().ok()).unwrap_or(25);
     let mut rng = Rng(0x006b_696e_6c6f_6f70);
     for (name, text) in FILES {
         for case in 0..cases {
