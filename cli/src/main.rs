@@ -510,20 +510,29 @@ fn solvable(file: &Path, params: Option<&str>) -> Result<Model, Failed> {
 /// ([`MAX_SOURCE_BYTES`]): a large file named by mistake (a table, a device that never ends)
 /// is refused after a megabyte, not read whole into memory and echoed in the diagnostic.
 fn read_text(file: &Path) -> Result<String, Failed> {
-    let cannot = |e: std::io::Error| {
-        eprintln!("error: cannot read {}: {e}", file.display());
-        Failed(exit::NO_INPUT)
-    };
-    let mut bytes = Vec::new();
-    let limit = MAX_SOURCE_BYTES as u64 + 1;
-    std::fs::File::open(file).and_then(|f| f.take(limit).read_to_end(&mut bytes)).map_err(cannot)?;
-    if bytes.len() > MAX_SOURCE_BYTES {
+    read_at_most(file, MAX_SOURCE_BYTES, || {
         eprintln!(
             "error: {} has more than {MAX_SOURCE_BYTES} bytes, more than a declaration read at run time may have \
              (a declaration is a few kilobytes)",
             file.display()
         );
-        return Err(Failed(exit::DATA_ERR));
+        Failed(exit::DATA_ERR)
+    })
+}
+
+/// The text of `file`, read up to one byte past `max` bytes: a larger file is refused there
+/// with the failure `too_large` reports. A file that cannot be read, or is not UTF-8 text
+/// (the place of its first byte that is not named), is [`exit::NO_INPUT`].
+pub(crate) fn read_at_most(file: &Path, max: usize, too_large: impl FnOnce() -> Failed) -> Result<String, Failed> {
+    let cannot = |e: std::io::Error| {
+        eprintln!("error: cannot read {}: {e}", file.display());
+        Failed(exit::NO_INPUT)
+    };
+    let mut bytes = Vec::new();
+    let limit = max as u64 + 1;
+    std::fs::File::open(file).and_then(|f| f.take(limit).read_to_end(&mut bytes)).map_err(cannot)?;
+    if bytes.len() > max {
+        return Err(too_large());
     }
     String::from_utf8(bytes).map_err(|e| {
         // Where the first byte that is not UTF-8 is: a binary, or text in another encoding.
@@ -531,7 +540,7 @@ fn read_text(file: &Path) -> Result<String, Failed> {
         let line = good.iter().filter(|&&b| b == b'\n').count() + 1;
         let start = good.iter().rposition(|&b| b == b'\n').map_or(0, |p| p + 1);
         let column = String::from_utf8_lossy(&good[start..]).chars().count() + 1;
-        let why = format!("it is not UTF-8 text (line {line}, column {column}): save the declaration as UTF-8");
+        let why = format!("it is not UTF-8 text (line {line}, column {column}): save it as UTF-8");
         cannot(std::io::Error::other(why))
     })
 }

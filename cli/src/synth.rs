@@ -14,7 +14,7 @@ use kinloop_runtime::paths::sweep::MAX_TURNS;
 use kinloop_runtime::synthesis::{Candidate, Defect, Design, Search, SynthesisError, SynthesisReport, Task};
 use std::f64::consts::TAU;
 use std::fmt::Write as _;
-use std::io::{Read, Write};
+use std::io::Write;
 use std::path::Path;
 
 /// The most threads `--jobs` starts: more than machines have cores. The pool starts every
@@ -161,22 +161,14 @@ fn design(vary: &str) -> Result<Design, Failed> {
 /// The numeric rows of the targets file: blank lines and `#` comments skipped, a first line
 /// without any number taken for a header; every row the same width.
 fn read_targets(path: &Path) -> Result<Vec<Vec<f64>>, Failed> {
-    let cannot = |e: std::io::Error| {
-        eprintln!("error: cannot read {}: {e}", path.display());
-        Failed(exit::NO_INPUT)
-    };
-    // Read up to one byte past the most a targets file may have: a file named by mistake (a
-    // device that never ends, a large log) is refused there, not read whole into memory.
-    let mut bytes = Vec::new();
-    let limit = MAX_TARGETS_BYTES as u64 + 1;
-    std::fs::File::open(path).and_then(|f| f.take(limit).read_to_end(&mut bytes)).map_err(cannot)?;
-    if bytes.len() > MAX_TARGETS_BYTES {
-        return Err(exit::usage(format!(
+    // A file named by mistake (a device that never ends, a large log) is refused after the most
+    // a targets file may have, not read whole into memory.
+    let text = crate::read_at_most(path, MAX_TARGETS_BYTES, || {
+        exit::usage(format!(
             "{} has more than {MAX_TARGETS_BYTES} bytes, more than a targets file may have (a row per target)",
             path.display()
-        )));
-    }
-    let text = String::from_utf8(bytes).map_err(|e| cannot(std::io::Error::new(std::io::ErrorKind::InvalidData, e)))?;
+        ))
+    })?;
     let mut rows: Vec<Vec<f64>> = Vec::new();
     let lines = text.lines().enumerate().filter(|(_, l)| !l.trim().is_empty() && !l.trim_start().starts_with('#'));
     for (k, (n, line)) in lines.enumerate() {
