@@ -81,6 +81,10 @@ pub fn run(model: &mut Model, req: &Request) -> Result<(), Failed> {
              leave out --show",
         ));
     }
+    // A column named twice would be two equal readouts with their charts.
+    if let Some((_, col)) = req.show.iter().enumerate().find(|(k, c)| req.show[..*k].contains(c)) {
+        return Err(usage(format!("--show {col} is given twice: name each column once")));
+    }
     if req.grid {
         return grid(model, req, format);
     }

@@ -122,15 +122,18 @@ fn cycle_and_flywheel(
     // model's (a parameter without a value, a limit position on the turn, a mass or load that
     // is not finite).
     let cycle = cycle.map_err(|e| {
-        let bad_argument = match &e {
-            Error::Dynamics(source) => matches!(
-                source.downcast_ref::<DynamicsError>(),
-                Some(DynamicsError::BadValue { what: "start angle" | "samples", .. })
-            ),
-            _ => false,
+        let dynamics = match &e {
+            Error::Dynamics(source) => source.downcast_ref::<DynamicsError>(),
+            _ => None,
         };
-        if bad_argument {
-            return usage(format!("{name}: {e}"));
+        match dynamics {
+            // The runtime names the angle in the radians it computes in: named as given here.
+            Some(DynamicsError::BadValue { what: "start angle", why, .. }) => {
+                let unit = if req.deg { " deg" } else { "" };
+                return usage(format!("{name}: --start {}{unit}: the start angle {why}", Number(req.start)));
+            }
+            Some(DynamicsError::BadValue { what: "samples", .. }) => return usage(format!("{name}: {e}")),
+            _ => {}
         }
         eprintln!("error: {name}: {}", in_units(e, model.input_kinds(), req.deg));
         Failed(exit::SOLVE_FAILED)

@@ -1,8 +1,9 @@
 //! The exit codes of `kinloop` (those above 2 are the BSD `sysexits` conventions).
 
-/// A solve failed (no assembly, singular position, ...), or a parameter has no value.
+/// A solve failed (no assembly, singular position, ...).
 pub const SOLVE_FAILED: u8 = 1;
-/// Wrong arguments (also clap's code for its own usage errors).
+/// Wrong arguments, or a parameter without a value (also clap's code for its own usage
+/// errors).
 pub const USAGE: u8 = 2;
 /// The declaration is rejected: its diagnostics are on standard error.
 pub const DATA_ERR: u8 = 65;

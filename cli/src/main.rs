@@ -19,10 +19,28 @@
 //! Long sweeps (from 2000 samples) and long searches (from 256 starts) show a progress bar on
 //! standard error when it is a terminal.
 //!
-//! Exit codes ([`exit`]): 0 success, 1 a solve failed (for `synth`: no valid candidate), 2 a usage error, 65 the declaration is
+//! Exit codes ([`exit`]): 0 success, 1 a solve failed (for `synth`: no valid candidate), 2 a usage error (a parameter without a value too), 65 the declaration is
 //! rejected (diagnostics on standard error), 66 the file cannot be read, 69 the declaration uses
 //! what the run-time evaluator does not evaluate yet, 73 the `--events` file (or the
 //! `animate --out`, `dynamics --flywheel` or `cam --plot` file) cannot be created, 74 an output cannot be written.
+
+// Std's `eprintln!` and `eprint!` panic where standard error cannot be written (its reader
+// gone: `kinloop sweep ... 2>&1 | head -1`), and the panic message is lost with it: exit code
+// 101 instead of the command's own. These, defined before the modules and so used by all of
+// them, write and let a failed write go: the message cannot reach anyone, the exit code still
+// tells the outcome.
+macro_rules! eprintln {
+    ($($arg:tt)*) => {{
+        use std::io::Write as _;
+        let _ = writeln!(std::io::stderr(), $($arg)*);
+    }};
+}
+macro_rules! eprint {
+    ($($arg:tt)*) => {{
+        use std::io::Write as _;
+        let _ = write!(std::io::stderr(), $($arg)*);
+    }};
+}
 
 mod animate;
 mod cam;
@@ -186,11 +204,6 @@ enum Command {
         #[arg(long, value_name = "NAME=VALUE,...")]
         params: Option<String>,
     },
-    /// Sweeps the inputs along the straight path from `--from` to `--to` as `sweep` does and
-    /// writes the smallest and largest value of each unknown and output with the inputs where
-    /// it happens: an interior extreme located as a root of the velocity analog between
-    /// samples, on the sweep's branch; otherwise an end of the range. CSV with units, or a
-    /// table. A sweep that stops (a limit position) fails.
     /// The disc cam that moves a follower as the declaration says, by kinematic inversion over
     /// one turn of the cam shaft (the input): its pitch curve and profile in the cam's frame,
     /// the pitch curve's radius of curvature and the pressure angle as CSV; the largest
@@ -247,6 +260,11 @@ enum Command {
         #[arg(long, value_name = "PATH")]
         plot: Option<PathBuf>,
     },
+    /// Sweeps the inputs along the straight path from `--from` to `--to` as `sweep` does and
+    /// writes the smallest and largest value of each unknown and output with the inputs where
+    /// it happens: an interior extreme located as a root of the velocity analog between
+    /// samples, on the sweep's branch; otherwise an end of the range. CSV with units, or a
+    /// table. A sweep that stops (a limit position) fails.
     Extremes {
         /// The declaration (`.kl`).
         file: PathBuf,
@@ -338,7 +356,8 @@ enum Command {
         #[arg(long, value_name = "INPUT:OUTPUT")]
         function: Option<String>,
         /// The design variables with their bounds, in the declaration's units (parameters, not
-        /// converted by `--deg`).
+        /// converted by `--deg`); they need no value of their own (no default, none in
+        /// `--params`).
         #[arg(long, value_name = "NAME=LO..HI,...", allow_hyphen_values = true)]
         vary: String,
         /// The input range of path targets without inputs (a full turn of an angle otherwise).
@@ -392,16 +411,16 @@ fn run(cli: Cli) -> Result<(), Failed> {
             })
         }
         Command::Solve { file, at, deg, params } => {
-            let mut model = load(&file, params.as_deref())?;
+            let mut model = solvable(&file, params.as_deref())?;
             solve::run(&mut model, &at, deg)
         }
         Command::Sweep { file, from, to, samples, deg, params, events } => {
-            let mut model = load(&file, params.as_deref())?;
+            let mut model = solvable(&file, params.as_deref())?;
             let req = sweep::Request { from: &from, to: &to, samples, deg, events: events.as_deref() };
             sweep::run(&mut model, &req)
         }
         Command::Dynamics { file, speed, start, samples, delta, about, deg, params, flywheel } => {
-            let mut model = load(&file, params.as_deref())?;
+            let mut model = solvable(&file, params.as_deref())?;
             let req = dynamics::Request {
                 speed,
                 start,
@@ -414,7 +433,7 @@ fn run(cli: Cli) -> Result<(), Failed> {
             dynamics::run(&mut model, &req)
         }
         Command::Simulate { file, speed, start, time, torque, flywheel, samples, max_steps, deg, params } => {
-            let mut model = load(&file, params.as_deref())?;
+            let mut model = solvable(&file, params.as_deref())?;
             let req = simulate::Request { start, speed, time, torque, flywheel, samples, deg, max_steps };
             simulate::run(&mut model, &req)
         }
@@ -434,7 +453,7 @@ fn run(cli: Cli) -> Result<(), Failed> {
             params,
             plot,
         } => {
-            let mut model = load(&file, params.as_deref())?;
+            let mut model = solvable(&file, params.as_deref())?;
             let req = cam::Request {
                 point: &point,
                 guide: guide.as_deref(),
@@ -452,19 +471,20 @@ fn run(cli: Cli) -> Result<(), Failed> {
             cam::run(&mut model, &req)
         }
         Command::Extremes { file, from, to, samples, deg, params, columns, table } => {
-            let mut model = load(&file, params.as_deref())?;
+            let mut model = solvable(&file, params.as_deref())?;
             let req = extremes::Request { from: &from, to: &to, samples, deg, columns: columns.as_deref(), table };
             extremes::run(&mut model, &req)
         }
         Command::Animate { file, from, to, samples, grid, deg, params, out, format, show, frames } => {
-            let mut model = load(&file, params.as_deref())?;
+            let mut model = solvable(&file, params.as_deref())?;
             let samples = samples.as_deref();
             let req =
                 animate::Request { from: &from, to: &to, samples, grid, deg, out: &out, format, show: &show, frames };
             animate::run(&mut model, &req)
         }
         Command::Synth { file, targets, path, function, vary, range, starts, seed, keep, jobs, deg, params, csv } => {
-            let model = load(&file, params.as_deref())?;
+            // Not yet complete: the design variables need no value of their own.
+            let mut model = load(&file, params.as_deref())?;
             let req = synth::Request {
                 targets: &targets,
                 path: path.as_deref(),
@@ -478,7 +498,7 @@ fn run(cli: Cli) -> Result<(), Failed> {
                 deg,
                 csv,
             };
-            synth::run(&model, &req)
+            synth::run(&mut model, &req)
         }
     }
 }
@@ -508,24 +528,41 @@ fn load(file: &Path, params: Option<&str>) -> Result<Model, Failed> {
     Ok(model)
 }
 
+/// [`load`] for a command that solves: every parameter needs a value, from the declaration's
+/// defaults or from `params` (a usage error naming those missing otherwise).
+fn solvable(file: &Path, params: Option<&str>) -> Result<Model, Failed> {
+    let model = load(file, params)?;
+    params::require_values(&model)?;
+    Ok(model)
+}
+
 /// The text of `file`, read up to one byte past the most a declaration may have
 /// ([`MAX_SOURCE_BYTES`]): a large file named by mistake (a table, a device that never ends)
 /// is refused after a megabyte, not read whole into memory and echoed in the diagnostic.
 fn read_text(file: &Path) -> Result<String, Failed> {
-    let cannot = |e: std::io::Error| {
-        eprintln!("error: cannot read {}: {e}", file.display());
-        Failed(exit::NO_INPUT)
-    };
-    let mut bytes = Vec::new();
-    let limit = MAX_SOURCE_BYTES as u64 + 1;
-    std::fs::File::open(file).and_then(|f| f.take(limit).read_to_end(&mut bytes)).map_err(cannot)?;
-    if bytes.len() > MAX_SOURCE_BYTES {
+    read_at_most(file, MAX_SOURCE_BYTES, || {
         eprintln!(
             "error: {} has more than {MAX_SOURCE_BYTES} bytes, more than a declaration read at run time may have \
              (a declaration is a few kilobytes)",
             file.display()
         );
-        return Err(Failed(exit::DATA_ERR));
+        Failed(exit::DATA_ERR)
+    })
+}
+
+/// The text of `file`, read up to one byte past `max` bytes: a larger file is refused there
+/// with the failure `too_large` reports. A file that cannot be read, or is not UTF-8 text
+/// (the place of its first byte that is not named), is [`exit::NO_INPUT`].
+pub(crate) fn read_at_most(file: &Path, max: usize, too_large: impl FnOnce() -> Failed) -> Result<String, Failed> {
+    let cannot = |e: std::io::Error| {
+        eprintln!("error: cannot read {}: {e}", file.display());
+        Failed(exit::NO_INPUT)
+    };
+    let mut bytes = Vec::new();
+    let limit = max as u64 + 1;
+    std::fs::File::open(file).and_then(|f| f.take(limit).read_to_end(&mut bytes)).map_err(cannot)?;
+    if bytes.len() > max {
+        return Err(too_large());
     }
     String::from_utf8(bytes).map_err(|e| {
         // Where the first byte that is not UTF-8 is: a binary, or text in another encoding.
@@ -533,7 +570,7 @@ fn read_text(file: &Path) -> Result<String, Failed> {
         let line = good.iter().filter(|&&b| b == b'\n').count() + 1;
         let start = good.iter().rposition(|&b| b == b'\n').map_or(0, |p| p + 1);
         let column = String::from_utf8_lossy(&good[start..]).chars().count() + 1;
-        let why = format!("it is not UTF-8 text (line {line}, column {column}): save the declaration as UTF-8");
+        let why = format!("it is not UTF-8 text (line {line}, column {column}): save it as UTF-8");
         cannot(std::io::Error::other(why))
     })
 }

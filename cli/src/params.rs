@@ -37,3 +37,26 @@ pub fn apply(model: &mut Model, list: &str) -> Result<(), Failed> {
     }
     Ok(())
 }
+
+/// Every parameter of `model` has a value: a default, or one given. Otherwise a usage error
+/// naming each one missing and how to give it: the declaration leaves it to the command line,
+/// and no solve can start without it.
+pub fn require_values(model: &Model) -> Result<(), Failed> {
+    let missing: Vec<&str> = (model.params().iter().zip(model.param_values()))
+        .filter(|(_, v)| v.is_none())
+        .map(|(p, _)| p.as_str())
+        .collect();
+    if missing.is_empty() {
+        return Ok(());
+    }
+    let names = missing.iter().map(|p| format!("`{p}`")).collect::<Vec<_>>().join(", ");
+    let give = missing.iter().map(|p| format!("{p}=VALUE")).collect::<Vec<_>>().join(",");
+    let (what, verb, them) = match missing.len() {
+        1 => ("parameter", "has", "it"),
+        _ => ("parameters", "have", "them"),
+    };
+    Err(exit::usage(format!(
+        "{}: {what} {names} {verb} no value (the declaration gives {them} no default): give {them} with --params {give}",
+        model.name()
+    )))
+}

@@ -17,6 +17,7 @@
 
 use crate::dynamics::check_crank;
 use crate::exit::usage;
+use crate::solve::degrees;
 use crate::{Failed, exit, samples};
 use kinloop_model::Model;
 use kinloop_runtime::dynamics::{DenseStep, DynamicsError, RunConfig};
@@ -71,7 +72,7 @@ pub fn run(model: &mut Model, req: &Request) -> Result<(), Failed> {
         return Err(usage(format!("--max-steps 0 allows no step: give at least 1 (the default is {MAX_STEPS})")));
     }
     let angle = if req.deg { 180.0 / std::f64::consts::PI } else { 1.0 };
-    let table = simulate_table(model, req, angle).map_err(|e| failure(&name, e))?;
+    let table = simulate_table(model, req, angle).map_err(|e| failure(&name, e, req.deg))?;
     table.write_csv(std::io::stdout().lock()).map_err(|e| {
         eprintln!("error: cannot write the table: {e}");
         Failed(exit::IO_ERR)
@@ -176,13 +177,26 @@ fn config(req: &Request) -> RunConfig {
 /// more steps than `--max-steps`, is a bad argument (a usage error); the rest is the model's (a
 /// parameter without a value, a limit position or a singular motion reached, a load that is not
 /// finite).
-fn failure(name: &str, e: Error) -> Failed {
+fn failure(name: &str, e: Error, deg: bool) -> Failed {
     let dynamics = match &e {
         Error::Dynamics(source) => source.downcast_ref::<DynamicsError>(),
         _ => None,
     };
     match dynamics {
         Some(&DynamicsError::TooManySteps { steps, t, t_end }) => return usage(budget_spent(name, steps, t, t_end)),
+        // The runtime names the state in the radians it integrates in: in degrees here where
+        // they were given so (the input angle, component 0, and its speed, 1).
+        Some(&DynamicsError::CannotAdvance { t, component, value, change, .. }) if deg => {
+            let what = if component == 0 { "the input angle" } else { "the input speed" };
+            return usage(format!(
+                "{name}: the integration cannot advance at t = {}: a step changes {what} (= {} deg) by {:e} deg, \
+                 less than half the spacing of f64 numbers there, so the change is lost; start from a smaller value \
+                 (an angle modulo a turn)",
+                Number(t),
+                Number(degrees(value)),
+                change.to_degrees()
+            ));
+        }
         Some(DynamicsError::CannotAdvance { .. }) => return usage(format!("{name}: {e}")),
         _ => {}
     }

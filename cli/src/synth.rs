@@ -7,14 +7,14 @@
 //! given inputs) or pairs of a function (`input,output`). The ranked candidates are written as
 //! a table or as CSV, each with its defects.
 
-use crate::{Failed, exit, progress};
+use crate::{Failed, exit, params, progress};
 use kinloop_model::Model;
 use kinloop_runtime::QuantityKind;
 use kinloop_runtime::paths::sweep::MAX_TURNS;
 use kinloop_runtime::synthesis::{Candidate, Defect, Design, Search, SynthesisError, SynthesisReport, Task};
 use std::f64::consts::TAU;
 use std::fmt::Write as _;
-use std::io::{Read, Write};
+use std::io::Write;
 use std::path::Path;
 
 /// The most threads `--jobs` starts: more than machines have cores. The pool starts every
@@ -59,7 +59,7 @@ pub struct Request<'a> {
 
 /// Runs the search and writes its ranked candidates: success when one is valid, exit code 1
 /// when none is.
-pub fn run(model: &Model, req: &Request) -> Result<(), Failed> {
+pub fn run(model: &mut Model, req: &Request) -> Result<(), Failed> {
     if req.keep == 0 {
         return Err(exit::usage("--keep 0 would write no candidate: keep at least 1"));
     }
@@ -78,6 +78,17 @@ pub fn run(model: &Model, req: &Request) -> Result<(), Failed> {
         )));
     }
     let design = design(req.vary)?;
+    // The search sets the design variables at every evaluation, so one without a value needs
+    // none of its own; the model's kernel, built before, needs one for every parameter: any
+    // within the bounds does.
+    for v in design.variables() {
+        if let Some(k) = model.params().iter().position(|p| *p == v.name)
+            && model.param_values()[k].is_none()
+        {
+            model.set_param(&v.name, 0.5 * v.lo + 0.5 * v.hi);
+        }
+    }
+    params::require_values(model)?;
     let rows = read_targets(req.targets)?;
     let task = task(model, req, &rows)?;
     let name = model.name().to_string();
@@ -150,22 +161,14 @@ fn design(vary: &str) -> Result<Design, Failed> {
 /// The numeric rows of the targets file: blank lines and `#` comments skipped, a first line
 /// without any number taken for a header; every row the same width.
 fn read_targets(path: &Path) -> Result<Vec<Vec<f64>>, Failed> {
-    let cannot = |e: std::io::Error| {
-        eprintln!("error: cannot read {}: {e}", path.display());
-        Failed(exit::NO_INPUT)
-    };
-    // Read up to one byte past the most a targets file may have: a file named by mistake (a
-    // device that never ends, a large log) is refused there, not read whole into memory.
-    let mut bytes = Vec::new();
-    let limit = MAX_TARGETS_BYTES as u64 + 1;
-    std::fs::File::open(path).and_then(|f| f.take(limit).read_to_end(&mut bytes)).map_err(cannot)?;
-    if bytes.len() > MAX_TARGETS_BYTES {
-        return Err(exit::usage(format!(
+    // A file named by mistake (a device that never ends, a large log) is refused after the most
+    // a targets file may have, not read whole into memory.
+    let text = crate::read_at_most(path, MAX_TARGETS_BYTES, || {
+        exit::usage(format!(
             "{} has more than {MAX_TARGETS_BYTES} bytes, more than a targets file may have (a row per target)",
             path.display()
-        )));
-    }
-    let text = String::from_utf8(bytes).map_err(|e| cannot(std::io::Error::new(std::io::ErrorKind::InvalidData, e)))?;
+        ))
+    })?;
     let mut rows: Vec<Vec<f64>> = Vec::new();
     let lines = text.lines().enumerate().filter(|(_, l)| !l.trim().is_empty() && !l.trim_start().starts_with('#'));
     for (k, (n, line)) in lines.enumerate() {

@@ -164,10 +164,15 @@ fn exit_codes() {
     let mut d = a.clone();
     d.extend(["--format", "html", "--show", "delta"]);
     fails_without_output(&d, &path, 2, "delta");
-    // A parameter without a value: the solve fails (1).
+    // A column shown twice would be two equal readouts and charts: named once, as
+    // `extremes --columns` asks.
+    let mut d = a.clone();
+    d.extend(["--format", "html", "--show", "beta", "--show", "gamma", "--show", "beta"]);
+    fails_without_output(&d, &path, 2, "--show beta is given twice");
+    // Parameters without a value: a usage error (2).
     let mut e = with(&["--out"]);
     e.push(&p);
-    fails_without_output(&e, &path, 1, "parameter `a` has no value");
+    fails_without_output(&e, &path, 2, "parameters `a`, `b`, `c`, `d` have no value");
     // No assembly at the start (|AD| shorter than |b - c|): 1.
     let mut f = with(&["--params", "a=1.5,b=3,c=1,d=3.2", "--out"]);
     f.push(&p);

@@ -104,7 +104,7 @@ fn errors_have_carets_and_exit_codes() {
     let missing = kinloop(&["check", &dir.join("missing.kl").display().to_string()]);
     assert_eq!(missing.status.code(), Some(66));
     let unset = kinloop(&["solve", &shipped("four_bar.kl"), "--at", "0"]);
-    assert_eq!(unset.status.code(), Some(1), "{}", String::from_utf8_lossy(&unset.stderr));
+    assert_eq!(unset.status.code(), Some(2), "{}", String::from_utf8_lossy(&unset.stderr));
     let wrong_param = kinloop(&["solve", &shipped("rhombic_drive.kl"), "--at", "0", "--params", "nope=1"]);
     assert_eq!(wrong_param.status.code(), Some(2));
     let wrong_inputs = kinloop(&["solve", &shipped("rhombic_drive.kl"), "--at", "0,1"]);
@@ -462,4 +462,102 @@ fn a_negative_number_is_the_options_value() {
         assert!(!err.contains("unexpected argument") && !err.contains("-- -"), "{args:?}: {err}");
     }
     assert!(!std::path::Path::new(&svg).exists());
+}
+
+/// A parameter that has no value (no default in the declaration, none in `--params`) is a
+/// mistake of the arguments, found before any solve: exit 2 for every command that solves,
+/// naming every parameter missing and how to give it, with nothing written. `check` reports
+/// the structure without values; `synth` needs none for the parameters it varies.
+#[test]
+fn a_parameter_without_a_value_is_a_usage_error() {
+    let dir = std::path::PathBuf::from(env!("CARGO_TARGET_TMPDIR")).join("unset_params");
+    std::fs::create_dir_all(&dir).expect("temp dir");
+    let four_bar = shipped("four_bar.kl");
+    let svg = dir.join("unset.svg").display().to_string();
+    let engine = dir.join("engine.kl");
+    std::fs::write(&engine, fx::ENGINE_MACHINE_TEXT.replacen("m_p = 0.5", "m_p", 1)).expect("write");
+    let engine = engine.display().to_string();
+    let range = ["--from", "0", "--to", "1"];
+    let runs: [(Vec<&str>, &str); 7] = [
+        (vec!["solve", &four_bar, "--at", "0", "--params", "a=1,d=3.2"], "parameters `b`, `c` have no value"),
+        ([&["sweep", four_bar.as_str()][..], &range].concat(), "parameters `a`, `b`, `c`, `d` have no value"),
+        ([&["extremes", four_bar.as_str()][..], &range].concat(), "parameters `a`, `b`, `c`, `d` have no value"),
+        ([&["animate", four_bar.as_str(), "--out", &svg][..], &range].concat(), "`a`, `b`, `c`, `d` have no value"),
+        (vec!["dynamics", &engine, "--speed", "10"], "parameter `m_p` has no value"),
+        (vec!["simulate", &engine, "--speed", "10", "--time", "0.1"], "parameter `m_p` has no value"),
+        (vec!["solve", &four_bar, "--at", "0", "--params", "a=1,b=3,c=2.5"], "give it with --params d="),
+    ];
+    for (args, says) in runs {
+        let out = kinloop(&args);
+        let err = String::from_utf8_lossy(&out.stderr);
+        assert_eq!(out.status.code(), Some(2), "{args:?}: {err}");
+        assert!(err.contains(says) && err.contains("--params"), "{args:?}: `{says}` missing: {err}");
+        assert!(out.stdout.is_empty(), "{args:?}: {}", String::from_utf8_lossy(&out.stdout));
+    }
+    assert!(!std::path::Path::new(&svg).exists());
+    let out = kinloop(&["check", &four_bar]);
+    assert_eq!(out.status.code(), Some(0), "{}", String::from_utf8_lossy(&out.stderr));
+    assert!(String::from_utf8_lossy(&out.stdout).contains("a (no value)"));
+    // Synthesis: the varied parameters take the values of the search, the others need one.
+    let coupler = dir.join("coupler.kl");
+    let text = std::fs::read_to_string(shipped("coupler_four_bar.kl")).expect("read");
+    std::fs::write(&coupler, text.replacen("a = 1.0, b = 3.0, c = 2.5", "a, b, c", 1)).expect("write");
+    let targets = dir.join("points.csv");
+    let points = "0.9661,1.4940\n1.2330,2.2071\n0.6814,2.4363\n-0.0985,2.1152\n-0.6145,1.4192\n-0.6820,0.7191\n";
+    std::fs::write(&targets, points).expect("write");
+    let (coupler, targets) = (coupler.display().to_string(), targets.display().to_string());
+    let synth = ["synth", &coupler, "--targets", &targets, "--path", "p", "--starts", "2", "--jobs", "1"];
+    let out = kinloop(&[&synth[..], &["--vary", "a=0.8..1.4,b=2..3.5"]].concat());
+    let err = String::from_utf8_lossy(&out.stderr);
+    assert_eq!(out.status.code(), Some(2), "{err}");
+    assert!(err.contains("parameter `c` has no value") && err.contains("--params c="), "{err}");
+    assert!(!err.contains("`a`") && !err.contains("`b`"), "the varied ones need no value: {err}");
+    let out = kinloop(&[&synth[..], &["--vary", "a=0.8..1.4,b=2..3.5", "--params", "c=2.5"]].concat());
+    let err = String::from_utf8_lossy(&out.stderr);
+    assert!(matches!(out.status.code(), Some(0 | 1)), "{err}");
+    assert!(err.contains("2 starts"), "{err}");
+    std::fs::remove_dir_all(&dir).ok();
+}
+
+/// Standard error that cannot be written (`kinloop ... 2>&1 | head -1`, the reader gone) does
+/// not panic: the exit code is the command's own, here a usage error (2) and a success whose
+/// notes go to standard error (0).
+#[test]
+fn standard_error_that_cannot_be_written_is_no_panic() {
+    let runs: [(&[&str], i32); 3] = [
+        (&["sweep", &shipped("four_bar.kl"), "--from", "0", "--to", "1", "--params", "a=1,zz=2"], 2),
+        (&["dynamics", &shipped("engine.kl"), "--speed", "150", "--samples", "8"], 0),
+        (&["check", &shipped("nonexistent.kl")], 66),
+    ];
+    for (args, code) in runs {
+        // A pipe whose reader is closed before the command starts: every write to it fails.
+        let (reader, writer) = std::io::pipe().expect("a pipe");
+        drop(reader);
+        let out = std::process::Command::new(env!("CARGO_BIN_EXE_kinloop"))
+            .args(args)
+            .stderr(writer)
+            .output()
+            .expect("the kinloop binary runs");
+        assert_eq!(out.status.code(), Some(code), "{args:?}");
+    }
+}
+
+/// Every command is described in `kinloop --help` by its own words: `extremes` by its
+/// extremes, `cam` by its cam alone.
+#[test]
+fn each_command_has_its_own_description() {
+    let out = kinloop(&["--help"]);
+    let help = String::from_utf8_lossy(&out.stdout);
+    let line = |command: &str| {
+        help.lines()
+            .find(|l| l.trim_start().starts_with(&format!("{command} ")))
+            .unwrap_or_else(|| panic!("no {command} in {help}"))
+            .to_string()
+    };
+    assert!(line("extremes").contains("smallest and largest value"), "{help}");
+    let cam = line("cam");
+    assert!(cam.contains("disc cam") && !cam.contains("smallest and largest"), "{cam}");
+    for command in ["check", "solve", "sweep", "dynamics", "simulate", "animate", "synth"] {
+        assert!(line(command).len() > command.len() + 20, "{command} has no description: {help}");
+    }
 }

@@ -212,22 +212,43 @@ fn bad_requests_are_usage_errors_and_bad_values_failures() {
     }
     // A start angle: not finite (checked here) or too large for the samples of a turn to be
     // told apart (checked by the runtime): both bad arguments.
-    for (start, says) in [("inf", "--start inf must be a finite number"), ("1e20", "invalid start angle")] {
+    for (start, says) in
+        [("inf", "--start inf must be a finite number"), ("1e20", "--start 1e20: the start angle must be finite")]
+    {
         let (c, e) = code(&["dynamics", engine.as_str(), "--speed", "10", "--start", start]);
         assert_eq!(c, Some(2), "{start}: {e}");
         assert!(e.contains(says), "{start}: {e}");
     }
-    // A parameter without a value fails as a solve does.
+    // A parameter without a value: a usage error naming it.
     let dir = std::env::temp_dir().join(format!("kinloop-dynamics-unset-{}", std::process::id()));
     std::fs::create_dir_all(&dir).unwrap();
     let unset = dir.join("unset.kl");
     std::fs::write(&unset, fx::ENGINE_MACHINE_TEXT.replacen("m_p = 0.5", "m_p", 1)).unwrap();
     let (c, e) = code(&["dynamics", unset.to_str().unwrap(), "--speed", "10"]);
-    assert_eq!(c, Some(1), "{e}");
+    assert_eq!(c, Some(2), "{e}");
     assert!(e.contains("`m_p` has no value"), "{e}");
     std::fs::remove_dir_all(&dir).ok();
     // A negative mass at run time: the runtime's error naming the body.
     let (c, e) = code(&["dynamics", &engine, "--speed", "10", "--params", "m_rod=-2"]);
     assert_eq!(c, Some(1), "{e}");
     assert!(e.contains("`rod`"), "{e}");
+}
+
+/// A start angle too large for the samples of a turn to be told apart is named as given, in
+/// degrees with `--deg`, not in the radians the cycle is computed in.
+#[test]
+fn a_start_too_large_is_named_as_given() {
+    let engine = shipped("engine.kl");
+    for (deg, given) in [(true, "--start 1e300 deg"), (false, "--start 1e300")] {
+        let mut args = vec!["dynamics", engine.as_str(), "--speed", "10", "--start", "1e300"];
+        if deg {
+            args.push("--deg");
+        }
+        let out = kinloop(&args);
+        let err = String::from_utf8_lossy(&out.stderr);
+        assert_eq!(out.status.code(), Some(2), "{err}");
+        assert!(err.contains(given) && err.contains("told apart"), "{err}");
+        // 1e300 degrees are 1.745...e298 rad.
+        assert!(!err.contains("e298"), "{err}");
+    }
 }

@@ -193,7 +193,7 @@ fn errors_and_exit_codes() {
         "at least 3 samples",
     );
     code(&["extremes", &four_bar, "--from", "0", "--to", "x", "--params", params], 2, "--to x");
-    code(&["extremes", &four_bar, "--from", "0", "--to", "1"], 1, "has no value");
+    code(&["extremes", &four_bar, "--from", "0", "--to", "1"], 2, "have no value");
     // A non-Grashof rocker cannot turn through: its limit position, where coupler and rocker
     // stretch in line, stops the sweep.
     code(

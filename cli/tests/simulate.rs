@@ -163,3 +163,23 @@ fn simulate_s_streamed_table_is_the_recorded_trajectory_s() {
         }
     }
 }
+
+/// A start angle so large that no step can move it is named in the units given: in degrees
+/// with `--deg`, not in the radians the run is integrated in.
+#[test]
+fn a_start_no_step_can_move_is_named_as_given() {
+    let engine = shipped("engine.kl");
+    let base = ["simulate", engine.as_str(), "--speed", "150", "--torque", "2.5", "--flywheel", "0.05"];
+    for (deg, says) in [(true, "1e300 deg"), (false, "1e300")] {
+        let mut args = [&base[..], &["--time", "0.1", "--start", "1e300"]].concat();
+        if deg {
+            args.push("--deg");
+        }
+        let out = kinloop(&args);
+        let err = String::from_utf8_lossy(&out.stderr);
+        assert_eq!(out.status.code(), Some(2), "{err}");
+        assert!(err.contains(&format!("(= {says})")) && err.contains("cannot advance"), "{err}");
+        // 1e300 degrees are 1.745...e298 rad.
+        assert!(!err.contains("e298"), "{err}");
+    }
+}

@@ -315,3 +315,18 @@ fn too_many_starts_is_a_usage_error() {
         assert!(o.stdout.is_empty());
     }
 }
+
+/// A targets file that is not UTF-8 text (saved in another encoding) is named as such, with
+/// the place of its first byte that is not, as a declaration that is not text is.
+#[test]
+fn a_targets_file_that_is_not_text_says_where() {
+    let path = PathBuf::from(env!("CARGO_TARGET_TMPDIR")).join("synth_latin1.csv");
+    // `°` in Latin-1 in the header of the second line's comment.
+    std::fs::write(&path, b"0.97,1.49\n# angles in \xb0\n1.12,2.34\n").expect("write the targets");
+    let targets = path.display().to_string();
+    let coupler = shipped("coupler_four_bar.kl");
+    let o = kinloop(&["synth", &coupler, "--targets", &targets, "--path", "p", "--vary", "a=0.8..1.4"]);
+    let err = String::from_utf8_lossy(&o.stderr);
+    assert_eq!(o.status.code(), Some(66), "{err}");
+    assert!(err.contains("not UTF-8 text") && err.contains("line 2, column 13"), "{err}");
+}

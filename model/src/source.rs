@@ -82,11 +82,19 @@ impl Diagnostics {
 
     /// The messages rendered as the compiler shows them: `error: message`, the file, line and
     /// column, and the line of text with a caret under the span. `color` adds terminal colours.
+    ///
+    /// A line longer than [`SHOWN_LINE`] characters (a declaration written on one line, a
+    /// generated one) is shown as a window around the place, marked `…` where cut: the whole
+    /// line would repeat up to the megabyte of the text for every message.
     pub fn render(&self, color: bool) -> String {
         let file = SimpleFile::new(self.name.as_str(), self.text.as_str());
         let config = Config::default();
         let mut out = Vec::new();
         for d in &self.items {
+            if let Some(window) = self.window(d) {
+                out.extend(window.bytes());
+                continue;
+            }
             let report = match self.level {
                 Level::Error => Report::error(),
                 Level::Warning => Report::warning(),
@@ -115,6 +123,43 @@ impl Diagnostics {
             }
         }
         String::from_utf8_lossy(&out).into_owned()
+    }
+}
+
+/// The most characters of a line a rendered diagnostic shows (see [`Diagnostics::render`]).
+pub const SHOWN_LINE: usize = 160;
+
+/// Characters shown before the place of a mistake on a line longer than [`SHOWN_LINE`].
+const SHOWN_BEFORE: usize = 60;
+
+impl Diagnostics {
+    /// `d` rendered as the compiler shows it, its line cut to a window of [`SHOWN_LINE`]
+    /// characters around the place; `None` where the line is short enough to show whole.
+    fn window(&self, d: &Diagnostic) -> Option<String> {
+        let text = self.text.as_str();
+        let start = d.range.start.min(text.len());
+        let line_start = text[..start].rfind('\n').map_or(0, |k| k + 1);
+        let line_end = text[start..].find('\n').map_or(text.len(), |k| start + k);
+        let line = text[line_start..line_end].trim_end_matches('\r');
+        let chars = line.chars().count();
+        if chars <= SHOWN_LINE {
+            return None;
+        }
+        // In characters of the line: the place, the span's end on it, the window.
+        let at = text[line_start..start].chars().count();
+        let end = at + text[start..d.range.end.clamp(start, line_end)].chars().count();
+        let from = at.saturating_sub(SHOWN_BEFORE);
+        let to = (from + SHOWN_LINE).min(chars);
+        let shown: String = line.chars().skip(from).take(to - from).collect();
+        let (cut_before, cut_after) = (if from > 0 { "…" } else { "" }, if to < chars { "…" } else { "" });
+        let caret = " ".repeat(at - from + cut_before.chars().count()) + &"^".repeat((end.min(to) - at).max(1));
+        let level = if self.level == Level::Error { "error" } else { "warning" };
+        let number = d.line.to_string();
+        let pad = " ".repeat(number.len());
+        Some(format!(
+            "{level}: {}\n{pad} ┌─ {}:{}:{}\n{pad} │\n{number} │ {cut_before}{shown}{cut_after}\n{pad} │ {caret}\n\n",
+            d.message, self.name, d.line, d.column
+        ))
     }
 }
 

@@ -217,3 +217,32 @@ fn texts_the_lexer_rejects_name_the_mistake() {
         assert_eq!(got, [(message, line, column)], "{text}");
     }
 }
+
+/// A declaration written on one long line (generated, or a table named by mistake) is shown
+/// around the place of each mistake, not whole: the rendering stays a few lines long, with
+/// the line and column of the whole text and the caret under the name.
+#[test]
+fn a_long_line_is_shown_around_the_mistake() {
+    let pad = format!("/* {} */", "long ".repeat(20_000));
+    let text = format!("pub struct S {{ params a = 1; {pad} input phi; unknowns x = 0; eq e: x == a * phy; {pad} }}");
+    let column = text.find("phy").unwrap() + 1;
+    let Err(ReadError::Rejected(d)) = Model::read("long.kl", &text) else { panic!("accepted") };
+    let shown = d.render(false);
+    assert!(shown.len() < 1000, "{} bytes:\n{}", shown.len(), &shown[..shown.len().min(2000)]);
+    assert!(shown.contains("error: unknown name `phy`"), "{shown}");
+    assert!(shown.contains(&format!("long.kl:1:{column}")), "{shown}");
+    // The caret under the name: as many columns in as the name on the line above.
+    let lines: Vec<&str> = shown.lines().collect();
+    let k = lines.iter().position(|l| l.contains("a * phy")).expect("the line shown");
+    let at = lines[k].find("phy").expect("the name shown");
+    let caret = lines[k + 1];
+    assert_eq!(caret.chars().count(), lines[k][..at].chars().count() + 3, "{shown}");
+    assert!(caret.ends_with("^^^"), "{shown}");
+    // A short line keeps the compiler's rendering.
+    let Err(ReadError::Rejected(d)) =
+        Model::read("short.kl", "pub struct S { params a = 1; input phi; unknowns x = 0; eq e: x == a * phy; }")
+    else {
+        panic!("accepted")
+    };
+    assert!(d.render(false).contains("eq e: x == a * phy; }"), "{}", d.render(false));
+}
