@@ -58,8 +58,7 @@ fn a_kink_on_a_sample_is_swept_through() {
     // `abs` at zero is taken): either way the sweep goes on, with every sample on the law.
     let m = Kinked { k: 2.0 };
     for samples in [3, 5, 9, 17] {
-        let states: Vec<_> =
-            m.sweep(0.0, 2.0, samples, &m.guess(0.0)).unwrap().collect::<Result<_, _>>().unwrap();
+        let states: Vec<_> = m.sweep(0.0, 2.0, samples, &m.guess(0.0)).unwrap().collect::<Result<_, _>>().unwrap();
         assert_eq!(states.len(), samples);
         for st in &states {
             assert!((st.q.s - 2.0 * (st.input.phi - 1.0).abs()).abs() <= 1e-15, "{samples} samples");

@@ -68,7 +68,7 @@ mod plane;
 pub use flat_face::{FlatFace, FlatFaceProfile, flat_face_profile};
 
 use crate::error::Error;
-use plane::{apply, cross, dot, length_unit, norm, per_unit, quarter, rotate, scale, sub, unit};
+use plane::{apply, cross, dot, largest, length_unit, norm, per_unit, quarter, rotate, scale, sub, unit};
 
 /// One sample of the follower's motion: the cam's angle and the follower point's position, each
 /// with its first and second derivative with respect to the sweep's input (a mechanism's
@@ -130,11 +130,7 @@ impl CamProfile {
 
     /// The largest pressure angle, with its sample.
     pub fn max_pressure_angle(&self) -> (usize, f64) {
-        self.pressure_angle
-            .iter()
-            .copied()
-            .enumerate()
-            .fold((0, 0.0), |best, (k, a)| if a > best.1 { (k, a) } else { best })
+        largest(&self.pressure_angle)
     }
 }
 

@@ -2,7 +2,7 @@
 //! cam (see the [`cam`](super) module's documentation for the definitions and formulas).
 
 use super::FollowerSample;
-use super::plane::{apply, cross, dot, length_unit, norm, per_unit, quarter, rotate, scale, sub, unit};
+use super::plane::{apply, cross, dot, largest, length_unit, norm, per_unit, quarter, rotate, scale, sub, unit};
 use crate::error::Error;
 use std::f64::consts::FRAC_PI_2;
 
@@ -99,11 +99,7 @@ impl FlatFaceProfile {
 
     /// The largest pressure angle, with its sample.
     pub fn max_pressure_angle(&self) -> (usize, f64) {
-        self.pressure_angle
-            .iter()
-            .copied()
-            .enumerate()
-            .fold((0, 0.0), |best, (k, a)| if a > best.1 { (k, a) } else { best })
+        largest(&self.pressure_angle)
     }
 }
 

@@ -1,4 +1,5 @@
-//! The few operations on plane vectors (`[x, y]`) that the cam's inversions share.
+//! The few operations on plane vectors (`[x, y]`), and on the samples' angles, that the cam's
+//! inversions share.
 
 use crate::number::pow2_at_most;
 
@@ -60,4 +61,9 @@ pub(super) fn rotate(a: f64) -> (f64, f64) {
 
 pub(super) fn apply((c, s): (f64, f64), v: [f64; 2]) -> [f64; 2] {
     [c * v[0] - s * v[1], s * v[0] + c * v[1]]
+}
+
+/// The largest of `angles` (non-negative), with its sample: `(0, 0)` for none.
+pub(super) fn largest(angles: &[f64]) -> (usize, f64) {
+    angles.iter().copied().enumerate().fold((0, 0.0), |best, (k, a)| if a > best.1 { (k, a) } else { best })
 }
