@@ -248,11 +248,14 @@ impl GlobalRange {
     }
 }
 
-/// The global range of a sampled quantity: [`extremes`] plus the ends of the range.
+/// The global range of a sampled quantity: the smallest and largest of [`extremes`] and of the
+/// samples themselves (the ends of the range among them). The samples count too: where the
+/// analogs are exactly zero on every sample of a stretch (a dwell met only by samples), or jump
+/// (a kink), no sign change marks an extreme that a sample shows.
 pub fn global_range(samples: &[Jet], eval: impl FnMut(f64) -> Result<Jet, Error>) -> Result<GlobalRange, Error> {
     let found = extremes(samples, eval)?;
-    let (first, last) = (samples[0], samples[samples.len() - 1]);
-    let candidates = found.iter().map(|e| e.at).chain([first, last]);
+    let first = samples[0];
+    let candidates = found.iter().map(|e| e.at).chain(samples.iter().copied());
     let mut min = first;
     let mut max = first;
     for c in candidates {
@@ -453,6 +456,25 @@ mod tests {
         let f = |x: f64| Ok(Jet { x, value: x * x * x, d1: 3.0 * x * x, d2: 6.0 * x });
         let s = grid(f, -1.0, 1.0, 10);
         assert!(extremes(&s, f).unwrap().is_empty());
+    }
+
+    /// A rise-dwell-return-dwell law sampled only on its dwells (every analog exactly zero):
+    /// the top dwell's sample is the maximum, though no analog changes sign around it.
+    #[test]
+    fn a_dwell_between_samples_of_zero_analog_is_in_the_range() {
+        let dwell = |x: f64, value: f64| Jet { x, value, d1: 0.0, d2: 0.0 };
+        let s = [dwell(0.0, 60.0), dwell(PI, 80.0), dwell(2.0 * PI, 60.0)];
+        let r = global_range(&s, |x| Ok(dwell(x, f64::NAN))).unwrap();
+        assert_eq!((r.min.value, r.max.value, r.max.x), (60.0, 80.0, PI));
+        // A sample above every located extreme and both ends, the analogs of its neighbours of
+        // one sign (a peak between samples the analogs miss, as a kink makes).
+        let s = [
+            dwell(0.0, 0.0),
+            Jet { x: 1.0, value: 5.0, d1: 1.0, d2: 0.0 },
+            Jet { x: 2.0, value: 1.0, d1: 1.0, d2: 0.0 },
+        ];
+        let r = global_range(&s, |x| Ok(dwell(x, f64::NAN))).unwrap();
+        assert_eq!(r.max.value, 5.0);
     }
 
     #[test]
