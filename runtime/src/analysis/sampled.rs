@@ -438,7 +438,7 @@ impl<K: Kernel> SampledOf<K> {
         extremes::extremes(&self.jets_of(c), self.eval(c))
     }
 
-    /// The global minimum and maximum of a column over the range (interior extremes or ends),
+    /// The global minimum and maximum of a column over the range (interior extremes, or samples: the ends among them),
     /// e.g. the dead centres and stroke of a slider; see [`global_range`].
     pub fn range(&self, c: impl ColumnOf<K>) -> Result<GlobalRange, Error> {
         let c = c.resolve(&self.k)?;
