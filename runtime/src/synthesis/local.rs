@@ -205,6 +205,7 @@ mod stop_serde {
         s.serialize_str(match stop {
             OptimizerStop::Converged => "Converged",
             OptimizerStop::MaxEvaluations => "MaxEvaluations",
+            OptimizerStop::InfeasibleStart => "InfeasibleStart",
             _ => "Stalled",
         })
     }
@@ -213,6 +214,7 @@ mod stop_serde {
         Ok(match String::deserialize(d)?.as_str() {
             "Converged" => OptimizerStop::Converged,
             "MaxEvaluations" => OptimizerStop::MaxEvaluations,
+            "InfeasibleStart" => OptimizerStop::InfeasibleStart,
             _ => OptimizerStop::Stalled,
         })
     }
