@@ -99,8 +99,8 @@ pub struct Jet {
 impl Jet {
     /// `intervals + 1` equally spaced jets of `f` from `from` to `to` (both included).
     ///
-    /// Errors: no interval, or more than [`MAX_SAMPLES`] (before `f` is called); the first
-    /// error of `f`.
+    /// Errors: no interval, or more than [`MAX_SAMPLES`], an end not finite (before `f` is
+    /// called); the first error of `f`.
     ///
     /// ```
     /// use kinloop_runtime::analysis::Jet;
@@ -119,6 +119,9 @@ impl Jet {
             return Err(Error::InvalidArgument("at least one interval is needed".into()));
         }
         check_sample_count("intervals", intervals).map_err(Error::InvalidArgument)?;
+        if !(from.is_finite() && to.is_finite()) {
+            return Err(Error::InvalidArgument(format!("the ends of a sampled range must be finite, got {from} and {to}")));
+        }
         let mut jets = Vec::new();
         jets.try_reserve_exact(intervals + 1)
             .map_err(|e| Error::InvalidArgument(format!("{intervals} intervals: no room for their jets ({e})")))?;
@@ -274,6 +277,26 @@ mod tests {
             assert_eq!(calls, 0, "{intervals}");
         }
         assert_eq!(Jet::sample(|x| Ok(Jet { x, ..Jet::default() }), 0.0, 1.0, 1000).unwrap().len(), 1001);
+    }
+
+    /// Ends not finite are an error before `f` is called: `f` was handed NaN or infinite inputs
+    /// (and a NaN end, sampled, gave NaN jets as `Ok`).
+    #[test]
+    fn ends_not_finite_are_refused_before_sampling() {
+        for (from, to) in [(f64::NAN, 1.0), (0.0, f64::NAN), (f64::NEG_INFINITY, 1.0), (0.0, f64::INFINITY)] {
+            let mut calls = 0;
+            let r = Jet::sample(
+                |x| {
+                    calls += 1;
+                    Ok(Jet { x, ..Jet::default() })
+                },
+                from,
+                to,
+                4,
+            );
+            assert!(matches!(&r, Err(Error::InvalidArgument(m)) if m.contains("finite")), "{from} {to}: {r:?}");
+            assert_eq!(calls, 0);
+        }
     }
 
     /// A sweep of more samples than [`MAX_SAMPLES`] is refused at once: `Sampled` keeps every
