@@ -314,7 +314,8 @@ fn assembly_modes_equal_the_compiled_ones_and_the_closed_form() {
     assert!(far.assembly_modes(&[0.0]).unwrap().is_empty());
     // The compiled mechanisms' other fixtures: the same modes, bit for bit.
     let mut m = read(fx::FIVE_BAR_TEXT);
-    let c = kinloop::paths::modes::assembly_modes(&fx::FiveBar::default(), &[0.3, 0.4], 64, &NewtonConfig::default()).unwrap();
+    let c = kinloop::paths::modes::assembly_modes(&fx::FiveBar::default(), &[0.3, 0.4], 64, &NewtonConfig::default())
+        .unwrap();
     let r = m.assembly_modes(&[0.3, 0.4]).unwrap();
     assert_eq!(c.len(), r.len());
     assert!(c.len() >= 2, "{} modes", c.len());

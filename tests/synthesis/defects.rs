@@ -171,7 +171,10 @@ fn targets_near_the_largest_f64_have_finite_errors() {
         let norm = problem.residual_norm(&[e]).unwrap();
         let want = far.abs() * 2f64.sqrt() * 2f64.sqrt();
         assert!((norm / want - 1.0).abs() < 1e-15, "{far:e}: {norm:e} vs {want:e}");
-        let cand = Search::default().with_local(kinloop::synthesis::LocalConfig::default().with_max_evaluations(1)).refine(&problem, &[e]).unwrap();
+        let cand = Search::default()
+            .with_local(kinloop::synthesis::LocalConfig::default().with_max_evaluations(1))
+            .refine(&problem, &[e])
+            .unwrap();
         for (got, want) in cand.errors.iter().zip([1.0, 1.0, 2f64.sqrt()]) {
             assert!((got / (want * far.abs()) - 1.0).abs() < 1e-15, "{far:e}: {cand:?}");
         }

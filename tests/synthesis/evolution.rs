@@ -119,7 +119,10 @@ fn bad_evolution_settings_are_refused() {
         (DeConfig::default().with_population(usize::MAX), "de.population"),
         (DeConfig::default().with_population(DeConfig::MAX_POPULATION + 1), "de.population"),
         (DeConfig::default().with_generations(usize::MAX), "de.generations"),
-        (DeConfig::default().with_population(1000).with_generations(DeConfig::MAX_EVALUATIONS / 1000), "de.generations"),
+        (
+            DeConfig::default().with_population(1000).with_generations(DeConfig::MAX_EVALUATIONS / 1000),
+            "de.generations",
+        ),
     ];
     for (cfg, field) in bad {
         let search = Search::default().with_global(Global::DifferentialEvolution(cfg)).with_starts(0..1);

@@ -120,7 +120,9 @@ impl Jet {
         }
         check_sample_count("intervals", intervals).map_err(Error::InvalidArgument)?;
         if !(from.is_finite() && to.is_finite()) {
-            return Err(Error::InvalidArgument(format!("the ends of a sampled range must be finite, got {from} and {to}")));
+            return Err(Error::InvalidArgument(format!(
+                "the ends of a sampled range must be finite, got {from} and {to}"
+            )));
         }
         let mut jets = Vec::new();
         jets.try_reserve_exact(intervals + 1)
@@ -267,7 +269,11 @@ mod tests {
             let r = Jet::sample(
                 |x| {
                     calls += 1;
-                    if calls > 1000 { Err(Error::InvalidArgument("still sampling".into())) } else { Ok(Jet { x, ..Jet::default() }) }
+                    if calls > 1000 {
+                        Err(Error::InvalidArgument("still sampling".into()))
+                    } else {
+                        Ok(Jet { x, ..Jet::default() })
+                    }
                 },
                 0.0,
                 1.0,

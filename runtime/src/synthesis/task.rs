@@ -2,7 +2,6 @@
 //! angle, any unknown or output), met at prescribed input values ("timing") or at input values
 //! the search chooses, in order along one monotone motion.
 
-
 /// What one target component asks of the mechanism.
 #[derive(Clone, Debug, PartialEq)]
 #[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
@@ -225,7 +224,9 @@ mod tests {
             // A few roundings of values near 3.
             assert!((v - want).abs() < 4.0 * f64::EPSILON * 3.0, "{j}: {v} vs {want}");
         }
-        for (lo, hi, n) in [(0.0, 1.0, usize::MAX), (0.0, 1.0, 0), (f64::NAN, 1.0, 3), (0.0, f64::INFINITY, 3), (1.0, 1.0, 2)] {
+        for (lo, hi, n) in
+            [(0.0, 1.0, usize::MAX), (0.0, 1.0, 0), (f64::NAN, 1.0, 3), (0.0, f64::INFINITY, 3), (1.0, 1.0, 2)]
+        {
             assert!(chebyshev(lo, hi, n).is_err(), "{lo} {hi} {n}");
         }
     }

@@ -349,7 +349,11 @@ mod tests {
             assert_eq!(m.x, [1.0, 2.0, 3.0]);
             assert!(m.value == f64::INFINITY && !m.converged(), "{m:?}");
         }
-        let m = NelderMead::default().minimize(|p: &[f64; 1]| if p[0] < 0.0 { f64::NAN } else { p[0] * p[0] }, [-0.1], [0.5]);
+        let m = NelderMead::default().minimize(
+            |p: &[f64; 1]| if p[0] < 0.0 { f64::NAN } else { p[0] * p[0] },
+            [-0.1],
+            [0.5],
+        );
         assert!(m.converged() && m.x[0].abs() < 1e-6, "{m:?}");
     }
 
