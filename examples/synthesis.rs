@@ -169,7 +169,7 @@ fn function_generation() -> Result<(), Box<dyn std::error::Error>> {
     let (dt, dpsi, dy) = (60f64.to_radians(), 90f64.to_radians(), 2f64.log10());
     let t_of = |x: f64| (x - 1.0) * dt;
     let psi_of = |x: f64| x.log10() / dy * dpsi;
-    let xs = chebyshev(1.0, 2.0, 5);
+    let xs = chebyshev(1.0, 2.0, 5)?;
     let task = Task::function("psi", xs.iter().map(|&x| (t_of(x), psi_of(x))));
     let design = Design::new()
         .var("a", 0.05, 10.0)

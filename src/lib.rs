@@ -59,7 +59,7 @@
 //! samples)` finds the input range reachable on a branch, in input values ([`Reach`]);
 //! `m.trace_curve(from, to, &guess, &TraceConfig::default())` follows the whole solution curve
 //! through limit positions (e.g. the closed curve of a non-Grashof four-bar);
-//! `m.assembly_modes(input)` lists the distinct assembly modes so one can be picked by a readable
+//! `m.assembly_modes(input)?` lists the distinct assembly modes so one can be picked by a readable
 //! rule ("elbow up": `.into_iter().find(|s| s.out.c.y > 0.0)`). Arclength continuation measures
 //! angles in radians and lengths in units of the mechanism's size, so events are located at the
 //! same inputs whatever the unit of length.

@@ -93,7 +93,7 @@ impl Model {
     /// over this model (see
     /// [`assembly_modes_of`]), with the
     /// default solver configuration. `Error::InvalidArgument` for an `x` of another size than
-    /// the model's inputs.
+    /// the model's inputs, `Error::NonFinite` for an input or a parameter not finite.
     pub fn assembly_modes(&mut self, x: &[f64]) -> Result<Vec<KinBuf>, Error> {
         if x.len() != self.inputs().len() {
             return Err(Error::InvalidArgument(format!(
@@ -105,7 +105,7 @@ impl Model {
         }
         let k = self.kernel(SweepConfig::default())?;
         let cfg = k.solver_config().newton;
-        Ok(assembly_modes_of(&k, &heap(x), 64, &cfg))
+        assembly_modes_of(&k, &heap(x), 64, &cfg)
     }
 
     /// A design-space scan over parameter sets: for each set of `sets` (values of the

@@ -293,7 +293,7 @@ fn assembly_modes_equal_the_compiled_ones_and_the_closed_form() {
     let dims = (1.0, 3.0, 2.5, 3.2);
     let (compiled, mut model) = four_bar(dims.0, dims.1, dims.2, dims.3);
     for phi in [0.0, 0.7, 2.0, 4.5] {
-        let c = kinloop::paths::modes::assembly_modes(&compiled, &[phi], 64, &NewtonConfig::default());
+        let c = kinloop::paths::modes::assembly_modes(&compiled, &[phi], 64, &NewtonConfig::default()).unwrap();
         let r = model.assembly_modes(&[phi]).unwrap();
         assert_eq!(c.len(), r.len(), "at {phi}");
         for (a, b) in c.iter().zip(&r) {
@@ -314,7 +314,8 @@ fn assembly_modes_equal_the_compiled_ones_and_the_closed_form() {
     assert!(far.assembly_modes(&[0.0]).unwrap().is_empty());
     // The compiled mechanisms' other fixtures: the same modes, bit for bit.
     let mut m = read(fx::FIVE_BAR_TEXT);
-    let c = kinloop::paths::modes::assembly_modes(&fx::FiveBar::default(), &[0.3, 0.4], 64, &NewtonConfig::default());
+    let c = kinloop::paths::modes::assembly_modes(&fx::FiveBar::default(), &[0.3, 0.4], 64, &NewtonConfig::default())
+        .unwrap();
     let r = m.assembly_modes(&[0.3, 0.4]).unwrap();
     assert_eq!(c.len(), r.len());
     assert!(c.len() >= 2, "{} modes", c.len());
@@ -515,7 +516,7 @@ where
     M: Mechanism<N, NI, NO>,
 {
     let cfg = NewtonConfig::default();
-    let c = kinloop::paths::modes::assembly_modes(&compiled, &from, 64, &cfg);
+    let c = kinloop::paths::modes::assembly_modes(&compiled, &from, 64, &cfg).unwrap();
     let r = model.assembly_modes(&from).unwrap();
     assert_eq!(c.len(), r.len(), "{name}: modes");
     assert!(!r.is_empty(), "{name}: no mode at {from:?}");

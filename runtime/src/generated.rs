@@ -558,8 +558,12 @@ macro_rules! __named_api {
 
             /// The distinct assembly modes at `input` (multi-start Newton; see
             /// [`Named::assembly_modes`](::kinloop::Named::assembly_modes)), e.g. to pick "elbow up" with
-            /// `.into_iter().find(|s| ...)`.
-            pub fn assembly_modes(&self, input: impl ::core::convert::Into<$inputs>) -> ::std::vec::Vec<$state> {
+            /// `.into_iter().find(|s| ...)`. Empty where the links cannot close; an error for an
+            /// input or a parameter not finite.
+            pub fn assembly_modes(
+                &self,
+                input: impl ::core::convert::Into<$inputs>,
+            ) -> ::core::result::Result<::std::vec::Vec<$state>, $crate::Error> {
                 <Self as $crate::Named<$n, $ni, $no>>::assembly_modes(self, input)
             }
         }

@@ -209,7 +209,7 @@ macro_rules! five_bar_crossing {
         let size = m.a + m.b + m.c + m.d + m.e;
         let closes = |k: &Kin<2, 2, 3>| m.residual_flat(&k.x, &k.q).iter().all(|r| r.abs() <= tol::SOLVE * size);
         let through = [2.0 * star[0] - from[0], 2.0 * star[1] - from[1]];
-        let modes = kinloop::Named::assembly_modes(&m, from);
+        let modes = kinloop::Named::assembly_modes(&m, from).unwrap();
         assert_eq!(modes.len(), 2);
         for mode in &modes {
             let guess = [mode.q.phi2, mode.q.phi3];
@@ -269,7 +269,7 @@ fn five_bar_crossings_are_the_same_through_the_closed_form_and_newton() {
         let angle = 0.1 + k as f64 * std::f64::consts::PI / 6.0;
         let step = [1.2 * angle.cos(), 1.2 * angle.sin()];
         let (from, to) = ([star[0] - step[0], star[1] - step[1]], [star[0] + step[0], star[1] + step[1]]);
-        for mode in Named::assembly_modes(&closed, from) {
+        for mode in Named::assembly_modes(&closed, from).unwrap() {
             let guess = [mode.q.phi2, mode.q.phi3];
             let mut a = kinloop::Sweep::<FiveBar, Kin<2, 2, 3>, 2, 2, 3>::new(&closed, from, to, 64, guess)
                 .unwrap()

@@ -25,7 +25,7 @@ proptest! {
     #[test]
     fn crank_rockers(m in crank_rocker(), probe in 0.0f64..1.0) {
         let FourBar { a, b, c, d } = m;
-        let modes = m.assembly_modes(0.0);
+        let modes = m.assembly_modes(0.0).unwrap();
         prop_assert_eq!(modes.len(), 2);
         let start = modes[0];
         let side = side_of(a, 0.0, d, 0.0, start.out.pc.x, start.out.pc.y);

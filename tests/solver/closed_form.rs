@@ -226,7 +226,7 @@ where
     A: Mechanism<N, NI, NO>,
     B: Mechanism<N, NI, NO>,
 {
-    let modes = kinloop::paths::modes::assembly_modes(b, &from, 64, &newton_to_rounding());
+    let modes = kinloop::paths::modes::assembly_modes(b, &from, 64, &newton_to_rounding()).unwrap();
     assert!(!modes.is_empty(), "{}: no assembly mode at {from:?}", B::NAME);
     for mode in &modes {
         let (mut ga, mut gb) = (mode.q, mode.q);

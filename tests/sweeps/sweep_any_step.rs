@@ -687,7 +687,7 @@ fn a_five_bar_driven_to_its_workspace_edge_stops_at_a_limit_position() {
     let edge = ((a + b) * (a + b) - px * px).sqrt();
     let size = 2.0 * (a + b) + d;
     let m = IkFiveBar { a, b, c: b, d, e: a };
-    let modes = m.assembly_modes([px, 0.1]);
+    let modes = m.assembly_modes([px, 0.1]).unwrap();
     assert_eq!(modes.len(), 4, "two elbows on each side");
     for start in &modes {
         for n in [2, 3, 11, 101] {

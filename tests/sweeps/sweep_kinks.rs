@@ -100,7 +100,7 @@ fn a_limit_position_is_no_kink() {
     // threshold: a corner by those tests alone (this four-bar was recorded as one).
     let m = FourBar { a: 2.5300282018132223, b: 0.3, c: 2.453389628923286, d: 0.3 };
     let phi0 = 0.7156732456026534;
-    let modes = m.assembly_modes(phi0);
+    let modes = m.assembly_modes(phi0).unwrap();
     assert_eq!(modes.len(), 2);
     for mode in modes {
         let mut sweep = m.sweep(phi0, phi0 + TAU, 9, &mode.q).unwrap();

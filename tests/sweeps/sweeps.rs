@@ -1,7 +1,7 @@
 //! Sweeps: branch safety, limit positions and singular crossings located precisely, assembly
 //! modes, tables.
 
-use kinloop::{AtSingular, Error, EventKind, SweepConfig};
+use kinloop::{AtSingular, Error, EventKind, NewtonConfig, Quantity, SweepConfig};
 use kinloop_fixtures::{FourBar, FourBarUnknowns};
 use std::f64::consts::PI;
 
@@ -140,7 +140,7 @@ fn sweep_table_has_named_columns() {
 #[test]
 fn assembly_modes_of_a_four_bar_are_elbow_up_and_down() {
     let m = FourBar { a: 1.0, b: 3.0, c: 2.5, d: 3.0 };
-    let modes = m.assembly_modes(0.7);
+    let modes = m.assembly_modes(0.7).unwrap();
     assert_eq!(modes.len(), 2, "{modes:?}");
     let up = modes.iter().find(|s| s.out.pc.y > 0.0).expect("elbow up");
     let down = modes.iter().find(|s| s.out.pc.y < 0.0).expect("elbow down");
@@ -154,6 +154,24 @@ fn assembly_modes_of_a_four_bar_are_elbow_up_and_down() {
             assert_eq!(s.unwrap().health.det_signs, mode.health.det_signs);
         }
     }
+}
+
+/// An input or a parameter not finite is an error naming it: every start failed on it, and the
+/// modes came back an empty list, as where the links cannot close.
+#[test]
+fn assembly_modes_at_values_not_finite_are_errors() {
+    let m = FourBar { a: 1.0, b: 3.0, c: 2.5, d: 3.0 };
+    for x in [f64::NAN, f64::INFINITY, f64::NEG_INFINITY] {
+        let e = m.assembly_modes(x);
+        assert!(matches!(&e, Err(Error::NonFinite { what: Quantity::Input, name, .. }) if name == "phi"), "{x}: {e:?}");
+    }
+    let e = FourBar { c: f64::NAN, ..m }.assembly_modes(0.7);
+    assert!(matches!(&e, Err(Error::NonFinite { what: Quantity::Parameter, name, .. }) if name == "c"), "{e:?}");
+    let e = kinloop::paths::modes::assembly_modes(&m, &[0.7], 8, &NewtonConfig::default().with_residual_tol(-1.0));
+    assert!(matches!(&e, Err(Error::InvalidArgument(_))), "{e:?}");
+    // Where the links cannot close there is no mode, and no error.
+    let far = FourBar { a: 1.0, b: 1.0, c: 1.0, d: 9.0 };
+    assert_eq!(far.assembly_modes(0.0).unwrap().len(), 0);
 }
 
 #[test]

@@ -150,3 +150,35 @@ fn the_smallest_transmission_angle_is_located_between_samples() {
         assert_eq!(verify(&problem, &[FOUR_BAR[4]]).is_valid(), valid, "bound {bound}");
     }
 }
+
+/// Targets far beyond the design's reach, near the largest `f64` (`1e300` and `8e307` from it): the
+/// errors are the distances, about `1e300`, not infinite, though their squares leave the range
+/// of `f64` (the residual norm, the errors and the scale the tolerances are relative to
+/// overflowed).
+#[test]
+fn targets_near_the_largest_f64_have_finite_errors() {
+    let phis = [0.0, 1.0, 2.0];
+    for far in [1e300, 8e307, -8e307] {
+        // Targets spread by `far`, far apart too: their centroid and spread overflowed.
+        let targets = [[far, 0.0], [0.0, far], [far, far]];
+        let task = Task::path("p", targets).timed(phis.to_vec());
+        let [a, b, c, d, e, alpha] = FOUR_BAR;
+        let m = CouplerFourBar { a, b, c, d, e, alpha };
+        let problem = Problem::new(m, &Design::new().var("e", 0.5 * e, 2.0 * e), &task).unwrap();
+        // The design's points lie within `a + e` of the origin, 1e-290 of `far`: each error is
+        // the target's distance from the origin to that relative rounding, `|far|` or
+        // `sqrt(2) |far|`.
+        let norm = problem.residual_norm(&[e]).unwrap();
+        let want = far.abs() * 2f64.sqrt() * 2f64.sqrt();
+        assert!((norm / want - 1.0).abs() < 1e-15, "{far:e}: {norm:e} vs {want:e}");
+        let cand = Search::default()
+            .with_local(kinloop::synthesis::LocalConfig::default().with_max_evaluations(1))
+            .refine(&problem, &[e])
+            .unwrap();
+        for (got, want) in cand.errors.iter().zip([1.0, 1.0, 2f64.sqrt()]) {
+            assert!((got / (want * far.abs()) - 1.0).abs() < 1e-15, "{far:e}: {cand:?}");
+        }
+        assert!((cand.max_error / (2f64.sqrt() * far.abs()) - 1.0).abs() < 1e-15, "{cand:?}");
+        assert!((cand.rms_error / (far.abs() * (4.0f64 / 3.0).sqrt()) - 1.0).abs() < 1e-15, "{cand:?}");
+    }
+}

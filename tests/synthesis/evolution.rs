@@ -114,6 +114,15 @@ fn bad_evolution_settings_are_refused() {
         (DeConfig::default().with_cr(1.5), "de.cr"),
         (DeConfig::default().with_polish(0), "de.polish"),
         (DeConfig::default().with_population(8).with_polish(9), "de.polish"),
+        // A population no memory holds (the largest `usize` panicked on its capacity), and runs
+        // of more evaluations than any finishes.
+        (DeConfig::default().with_population(usize::MAX), "de.population"),
+        (DeConfig::default().with_population(DeConfig::MAX_POPULATION + 1), "de.population"),
+        (DeConfig::default().with_generations(usize::MAX), "de.generations"),
+        (
+            DeConfig::default().with_population(1000).with_generations(DeConfig::MAX_EVALUATIONS / 1000),
+            "de.generations",
+        ),
     ];
     for (cfg, field) in bad {
         let search = Search::default().with_global(Global::DifferentialEvolution(cfg)).with_starts(0..1);

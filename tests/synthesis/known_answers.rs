@@ -68,7 +68,7 @@ fn four_bar_path_without_timing() {
 #[test]
 fn slider_crank_function_with_chebyshev_spacing() {
     // The slider's position at five crank angles at Chebyshev spacing over half a turn.
-    let phis = chebyshev(0.2, 3.0, 5);
+    let phis = chebyshev(0.2, 3.0, 5).unwrap();
     let task = Task::function("x", phis.iter().map(|&p| (p, slider_x(SLIDER, p))));
     let problem = Problem::new(Slider::default(), &design(&["r", "l", "e"], &SLIDER, 0.4), &task).unwrap();
     let report = Search::default().with_starts(0..16).run(&problem).unwrap();
@@ -174,7 +174,7 @@ fn four_bar_path_on_the_other_assembly_mode() {
 fn an_optimum_beyond_a_bound_stops_on_it() {
     // The slider's crank is at most 1.0 here, the truth's 1.1: the local solves end on the
     // bound (held there while the others move), at a local minimum of non-zero residual.
-    let phis = chebyshev(0.2, 3.0, 5);
+    let phis = chebyshev(0.2, 3.0, 5).unwrap();
     let task = Task::function("x", phis.iter().map(|&p| (p, slider_x(SLIDER, p))));
     let design = Design::new().var("r", 0.5, 1.0).var("l", 2.0, 5.0).var("e", -1.0, 1.0);
     let problem = Problem::new(Slider::default(), &design, &task).unwrap();

@@ -66,6 +66,23 @@ pub use unbalance::{Unbalance, unbalance};
 
 use crate::error::Error;
 
+/// The most samples an analysis evaluates at (the intervals of [`Jet::sample`], the samples of
+/// a [`Sampled`] sweep and of
+/// [`structural_error`](crate::synthesis::classical::structural_error)): more is refused with
+/// an error instead of running for hours or collecting more than memory holds. A range cut into
+/// `10^8` pieces is sampled every `1e-8` of its length, where a smooth quantity changes between
+/// samples by a second-order term of about `1e-16` of its scale, the rounding of a double: more
+/// samples resolve nothing more.
+pub const MAX_SAMPLES: usize = 100_000_000;
+
+/// `Err` naming `what` and the limit when `count` is beyond [`MAX_SAMPLES`].
+pub(crate) fn check_sample_count(what: &str, count: usize) -> Result<(), String> {
+    if count > MAX_SAMPLES {
+        return Err(format!("{count} {what} asked for: at most {MAX_SAMPLES} are taken (`analysis::MAX_SAMPLES`)"));
+    }
+    Ok(())
+}
+
 /// A smooth quantity at one point: its value and its first and second derivatives with respect
 /// to `x` (for a mechanism: position, velocity analog and acceleration analog at input `x`).
 #[derive(Clone, Copy, Debug, Default, PartialEq)]
@@ -83,6 +100,9 @@ pub struct Jet {
 impl Jet {
     /// `intervals + 1` equally spaced jets of `f` from `from` to `to` (both included).
     ///
+    /// Errors: no interval, or more than [`MAX_SAMPLES`], an end not finite (before `f` is
+    /// called); the first error of `f`.
+    ///
     /// ```
     /// use kinloop_runtime::analysis::Jet;
     /// let s = Jet::sample(|x| Ok(Jet { x, value: x * x, d1: 2.0 * x, d2: 2.0 }), 0.0, 1.0, 4)?;
@@ -99,6 +119,15 @@ impl Jet {
         if intervals == 0 {
             return Err(Error::InvalidArgument("at least one interval is needed".into()));
         }
+        check_sample_count("intervals", intervals).map_err(Error::InvalidArgument)?;
+        if !(from.is_finite() && to.is_finite()) {
+            return Err(Error::InvalidArgument(format!(
+                "the ends of a sampled range must be finite, got {from} and {to}"
+            )));
+        }
+        let mut jets = Vec::new();
+        jets.try_reserve_exact(intervals + 1)
+            .map_err(|e| Error::InvalidArgument(format!("{intervals} intervals: no room for their jets ({e})")))?;
         // Ends far apart near the largest f64 (`-1e308` to `1e308`) overflow `to - from`, which
         // made the first input NaN and the others infinite: weighted ends there instead.
         let wide = !(to - from).is_finite();
@@ -106,7 +135,10 @@ impl Jet {
             let t = i as f64 / intervals as f64;
             if wide { (1.0 - t) * from + t * to } else { from + (to - from) * i as f64 / intervals as f64 }
         };
-        (0..=intervals).map(|i| f(if i == intervals { to } else { at(i) })).collect()
+        for i in 0..=intervals {
+            jets.push(f(if i == intervals { to } else { at(i) })?);
+        }
+        Ok(jets)
     }
 }
 
@@ -226,6 +258,62 @@ mod tests {
         let s = Jet::sample(|x| Ok(Jet { x, ..Jet::default() }), -1e308, 1e308, 4).unwrap();
         let x: Vec<f64> = s.iter().map(|j| j.x).collect();
         assert_eq!(x, [-1e308, -0.5e308, 0.0, 0.5e308, 1e308]);
+    }
+
+    /// A count of intervals beyond [`MAX_SAMPLES`] is refused before `f` is called once: the
+    /// largest `usize` ran practically forever (and a large one collected jets no memory holds).
+    #[test]
+    fn absurd_interval_counts_are_refused_before_sampling() {
+        for intervals in [MAX_SAMPLES + 1, usize::MAX / 64, usize::MAX] {
+            let mut calls = 0usize;
+            // Stops an unbounded run after a few calls with an error of its own.
+            let r = Jet::sample(
+                |x| {
+                    calls += 1;
+                    if calls > 1000 {
+                        Err(Error::InvalidArgument("still sampling".into()))
+                    } else {
+                        Ok(Jet { x, ..Jet::default() })
+                    }
+                },
+                0.0,
+                1.0,
+                intervals,
+            );
+            assert!(matches!(&r, Err(Error::InvalidArgument(m)) if m.contains("at most")), "{intervals}: {r:?}");
+            assert_eq!(calls, 0, "{intervals}");
+        }
+        assert_eq!(Jet::sample(|x| Ok(Jet { x, ..Jet::default() }), 0.0, 1.0, 1000).unwrap().len(), 1001);
+    }
+
+    /// Ends not finite are an error before `f` is called: `f` was handed NaN or infinite inputs
+    /// (and a NaN end, sampled, gave NaN jets as `Ok`).
+    #[test]
+    fn ends_not_finite_are_refused_before_sampling() {
+        for (from, to) in [(f64::NAN, 1.0), (0.0, f64::NAN), (f64::NEG_INFINITY, 1.0), (0.0, f64::INFINITY)] {
+            let mut calls = 0;
+            let r = Jet::sample(
+                |x| {
+                    calls += 1;
+                    Ok(Jet { x, ..Jet::default() })
+                },
+                from,
+                to,
+                4,
+            );
+            assert!(matches!(&r, Err(Error::InvalidArgument(m)) if m.contains("finite")), "{from} {to}: {r:?}");
+            assert_eq!(calls, 0);
+        }
+    }
+
+    /// A sweep of more samples than [`MAX_SAMPLES`] is refused at once: `Sampled` keeps every
+    /// state, and the largest `usize` swept until memory ran out.
+    #[test]
+    fn absurd_sample_counts_of_a_sampled_sweep_are_refused() {
+        for samples in [MAX_SAMPLES + 1, usize::MAX] {
+            let r = Sampled::sweep(&M, 0.0, TAU, samples, [3.0]);
+            assert!(matches!(&r, Err(Error::InvalidArgument(m)) if m.contains("at most")), "{samples}: {:?}", r.err());
+        }
     }
 
     /// A value not finite at a sample is an error, as in the search between samples: an

@@ -146,6 +146,8 @@ where
 {
     /// Sweeps `samples` equally spaced inputs from `from` to `to > from` (both included) from
     /// `guess` at `from` (which picks the assembly mode). The path parameter is the input.
+    /// At least 3 and at most [`MAX_SAMPLES`](super::MAX_SAMPLES) samples (every state is
+    /// kept): others are an [`Error::InvalidArgument`], as a count whose states no memory holds.
     ///
     /// A declared mechanism's `m.sampled(from, to, samples, &m.guess(from))` is this call with
     /// the named unknowns; this form serves code generic over [`Mechanism`] and hand-written
@@ -307,7 +309,11 @@ impl<K: Kernel> SampledOf<K> {
                 to.as_ref()
             )));
         }
-        let mut states = Vec::with_capacity(crate::mechanism::kernel::reserve_for(samples));
+        super::check_sample_count("samples", samples).map_err(Error::InvalidArgument)?;
+        let mut states = Vec::new();
+        states
+            .try_reserve_exact(samples)
+            .map_err(|e| Error::InvalidArgument(format!("{samples} samples: no room for their states ({e})")))?;
         {
             let mut sweep =
                 SweepOf::<&K, KinOf<K>>::over(&k, from.clone(), to.clone(), samples, guess)?.with_config(cfg);

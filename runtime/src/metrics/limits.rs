@@ -111,7 +111,8 @@ impl<'a, M, const N: usize> Limits<'a, M, N> {
         Limits { m, from, to, samples: 361, guess: None, columns: &[] }
     }
 
-    /// Equally spaced inputs of the sweep (both ends included).
+    /// Equally spaced inputs of the sweep (both ends included; at most
+    /// [`MAX_SAMPLES`](crate::analysis::MAX_SAMPLES), else [`Limits::run`] is an error).
     pub fn samples(mut self, samples: usize) -> Self {
         self.samples = samples;
         self
@@ -161,6 +162,9 @@ pub fn limits_of<K: Kernel, C: ColumnOf<K>>(
     guess: Q<K>,
     columns: &[C],
 ) -> Result<LimitReport, Error> {
+    // The samples are swept, then the range reached sampled again in memory: a count beyond the
+    // limit of the latter is refused before the former, which would sweep it for nothing.
+    crate::analysis::check_sample_count("samples", samples).map_err(Error::InvalidArgument)?;
     let d = k.dims();
     let columns = columns
         .iter()
@@ -224,6 +228,17 @@ mod tests {
     use crate::analysis::Extreme;
     use crate::analysis::demo::SliderCrank;
     use std::f64::consts::TAU;
+
+    /// A sample count beyond `analysis::MAX_SAMPLES` is refused before the sweep: the largest
+    /// `usize` swept practically forever.
+    #[test]
+    fn absurd_sample_counts_are_refused() {
+        let m = SliderCrank { r: 1.0, l: 3.0, e: 0.5 };
+        for samples in [crate::analysis::MAX_SAMPLES + 1, usize::MAX] {
+            let r = Limits::new(&m, 0.0, TAU).samples(samples).guess([3.9]).run();
+            assert!(matches!(&r, Err(Error::InvalidArgument(m)) if m.contains("at most")), "{samples}: {r:?}");
+        }
+    }
 
     #[test]
     fn dead_centres_of_a_slider_crank_against_the_collinear_triangles() {

@@ -2,6 +2,7 @@
 //! [`Kernel`] ([`assembly_modes_of`]).
 
 use crate::dims::{Dims, KinState};
+use crate::error::Error;
 use crate::kin::Kin;
 use crate::mechanism::Mechanism;
 use crate::mechanism::kernel::{Compiled, Kernel, KinOf, Q, X, check_sizes};
@@ -24,13 +25,17 @@ fn turn_distance(a: f64, b: f64) -> f64 {
 /// stable. Pick one with a readable rule on the named state, e.g.
 /// `modes.into_iter().find(|s| s.out.c.y > 0.0)` ("elbow up").
 ///
+/// Empty where no start solves (the links cannot close at `x`: no mode). Errors, not an empty
+/// list: an input or a parameter NaN or infinite ([`Error::NonFinite`], which every start
+/// would meet), an invalid `cfg` ([`Error::InvalidArgument`]).
+///
 /// A compiled mechanism's [`assembly_modes_of`] (through [`Compiled`]).
 pub fn assembly_modes<M, const N: usize, const NI: usize, const NO: usize>(
     m: &M,
     x: &[f64; NI],
     starts: usize,
     cfg: &NewtonConfig,
-) -> Vec<Kin<N, NI, NO>>
+) -> Result<Vec<Kin<N, NI, NO>>, Error>
 where
     M: Mechanism<N, NI, NO>,
 {
@@ -38,32 +43,43 @@ where
 }
 
 /// [`assembly_modes`] over any [`Kernel`]: a compiled mechanism's, or one whose sizes are known
-/// at run time (`kinloop_model::Model::assembly_modes`). `x` of the kernel's size (none is found
-/// at an input of another size: every solve fails).
-pub fn assembly_modes_of<K: Kernel>(m: &K, x: &X<K>, starts: usize, cfg: &NewtonConfig) -> Vec<KinOf<K>> {
-    if check_sizes(m, "assembly_modes", &[x], &[]).is_err() {
-        return Vec::new();
-    }
+/// at run time (`kinloop_model::Model::assembly_modes`). The errors of [`assembly_modes`], and
+/// [`Error::InvalidArgument`] for an `x` of another size than the kernel's inputs.
+pub fn assembly_modes_of<K: Kernel>(
+    m: &K,
+    x: &X<K>,
+    starts: usize,
+    cfg: &NewtonConfig,
+) -> Result<Vec<KinOf<K>>, Error> {
+    check_sizes(m, "assembly_modes", &[x], &[])?;
+    cfg.validate()?;
     let n = m.dims().n();
     let g0 = m.guess(x);
     let mut found: Vec<KinOf<K>> = Vec::new();
-    let try_start = |g: &Q<K>, found: &mut Vec<KinOf<K>>| {
-        if let Ok(k) = m.kinematics(x, g, cfg) {
-            let same = found.iter().any(|f| {
-                f.health().det_signs == k.health().det_signs
-                    && (0..n).all(|u| turn_distance(f.q()[u], k.q()[u]) < 1e-7 * (1.0 + k.q()[u].abs()))
-            });
-            if !same {
-                found.push(k);
+    let try_start = |g: &Q<K>, found: &mut Vec<KinOf<K>>| -> Result<(), Error> {
+        match m.kinematics(x, g, cfg) {
+            Ok(k) => {
+                let same = found.iter().any(|f| {
+                    f.health().det_signs == k.health().det_signs
+                        && (0..n).all(|u| turn_distance(f.q()[u], k.q()[u]) < 1e-7 * (1.0 + k.q()[u].abs()))
+                });
+                if !same {
+                    found.push(k);
+                }
+                Ok(())
             }
+            // A value not finite (an input, a parameter, or the declared guess they give) fails
+            // every start alike: the list would be empty as where the links cannot close.
+            Err(e @ Error::NonFinite { .. }) => Err(e),
+            Err(_) => Ok(()),
         }
     };
-    try_start(&g0, &mut found);
+    try_start(&g0, &mut found)?;
     let mut neg = g0.clone();
     for v in neg.as_mut() {
         *v = -*v;
     }
-    try_start(&neg, &mut found);
+    try_start(&neg, &mut found)?;
     // Additive recurrence with irrational steps per unknown (a Kronecker sequence).
     let alpha: [f64; 8] = [
         0.618_033_988_749_895,
@@ -83,8 +99,8 @@ pub fn assembly_modes_of<K: Kernel>(m: &K, x: &X<K>, starts: usize, cfg: &Newton
             let frac = (k as f64 * a).fract();
             *v += (2.0 * frac - 1.0) * PI * (1.0 + 0.25 * v.abs());
         }
-        try_start(&g, &mut found);
+        try_start(&g, &mut found)?;
     }
     found.sort_by(|a, b| a.health().det_signs.cmp(&b.health().det_signs).then(a.q()[0].total_cmp(&b.q()[0])));
-    found
+    Ok(found)
 }

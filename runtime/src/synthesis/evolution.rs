@@ -41,10 +41,12 @@ pub enum Global {
 #[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
 #[non_exhaustive]
 pub struct DeConfig {
-    /// Members of the population (at least 4: a member and three others; default `32`).
+    /// Members of the population (at least 4: a member and three others; at most
+    /// [`DeConfig::MAX_POPULATION`]; default `32`).
     pub population: usize,
     /// Generations (default `40`; `0` only polishes the best of the Halton points). The
-    /// evolution stops early when a member meets the local solve's tolerance.
+    /// evolution stops early when a member meets the local solve's tolerance. With the
+    /// population, at most [`DeConfig::MAX_EVALUATIONS`] evaluations.
     pub generations: usize,
     /// The differential weight, in `(0, 2]` (default `0.7`).
     pub f: f64,
@@ -62,6 +64,13 @@ impl Default for DeConfig {
 }
 
 impl DeConfig {
+    /// The most members of a population (`10^6`): each holds a point of the search's unknowns
+    /// and the whole population is evaluated at once.
+    pub const MAX_POPULATION: usize = 1_000_000;
+    /// The most evaluations an island may be asked for, `population * (generations + 1)`
+    /// (`10^9`: hours of position solves); more is refused rather than run practically forever.
+    pub const MAX_EVALUATIONS: usize = 1_000_000_000;
+
     /// Sets [`DeConfig::population`].
     pub fn with_population(mut self, population: usize) -> Self {
         self.population = population;
@@ -93,6 +102,25 @@ impl DeConfig {
         let bad = |field: &str, why: &str| Err(SynthesisError::InvalidConfig(format!("de.{field} {why}")));
         if self.population < 4 {
             return bad("population", &format!("is {}: DE/rand/1 needs at least 4 members", self.population));
+        }
+        if self.population > Self::MAX_POPULATION {
+            return bad(
+                "population",
+                &format!("is {}: at most {} (`DeConfig::MAX_POPULATION`)", self.population, Self::MAX_POPULATION),
+            );
+        }
+        let evaluations = self.population.saturating_mul(self.generations.saturating_add(1));
+        if evaluations > Self::MAX_EVALUATIONS {
+            return bad(
+                "generations",
+                &format!(
+                    "is {}: {} members over it make more than the {} evaluations an island makes at most \
+                     (`DeConfig::MAX_EVALUATIONS`)",
+                    self.generations,
+                    self.population,
+                    Self::MAX_EVALUATIONS
+                ),
+            );
         }
         if !(self.f.is_finite() && self.f > 0.0 && self.f <= 2.0) {
             return bad("f", &format!("is {}: the differential weight must lie in (0, 2]", self.f));

@@ -100,7 +100,7 @@ enum Step {
 pub(crate) type Solved<Q> = (Vec<f64>, Eval<Q>, LocalReport);
 
 fn norm(r: &[f64]) -> f64 {
-    r.iter().map(|v| v * v).sum::<f64>().sqrt()
+    super::norm_of(r.iter().copied())
 }
 
 impl<K: SensKernel> ProblemOf<K> {
@@ -205,6 +205,7 @@ mod stop_serde {
         s.serialize_str(match stop {
             OptimizerStop::Converged => "Converged",
             OptimizerStop::MaxEvaluations => "MaxEvaluations",
+            OptimizerStop::InfeasibleStart => "InfeasibleStart",
             _ => "Stalled",
         })
     }
@@ -213,6 +214,7 @@ mod stop_serde {
         Ok(match String::deserialize(d)?.as_str() {
             "Converged" => OptimizerStop::Converged,
             "MaxEvaluations" => OptimizerStop::MaxEvaluations,
+            "InfeasibleStart" => OptimizerStop::InfeasibleStart,
             _ => OptimizerStop::Stalled,
         })
     }

@@ -108,7 +108,9 @@ impl<K: SensKernel> ProblemOf<K> {
             Some(_) => (z[at], z[at + 1], z[at + 2].cos(), z[at + 2].sin(), z[at + 3]),
             None => (0.0, 0.0, 1.0, 0.0, 1.0),
         };
-        let mut sum = 0.0;
+        // The weighted residuals, their norm taken at the end: squared one by one, those of
+        // targets near the largest `f64` overflowed.
+        let mut rs = Vec::with_capacity(self.targets.len());
         for (k, x) in inputs.iter().enumerate() {
             // The guesses and Newton's settings of `evaluate` without previous positions.
             let declared;
@@ -135,25 +137,25 @@ impl<K: SensKernel> ProblemOf<K> {
                         let (px, py) = (value(cx), value(cy));
                         let rx = dx + s * (c * px - sn * py) - self.targets[row];
                         let ry = dy + s * (sn * px + c * py) - self.targets[row + 1];
-                        sum += w * w * (rx * rx + ry * ry);
+                        rs.extend([w * rx, w * ry]);
                         row += 2;
                     }
                     Resolved::Angle { col, rotates } => {
                         let turn = if self.placement.is_some() && rotates { sn.atan2(c) } else { 0.0 };
                         let r = wrap(value(col) + turn - self.targets[row]);
-                        sum += w * w * r * r;
+                        rs.push(w * r);
                         row += 1;
                     }
                     Resolved::Value(col) => {
                         let r = value(col) - self.targets[row];
-                        sum += w * w * r * r;
+                        rs.push(w * r);
                         row += 1;
                     }
                 }
             }
             std::mem::swap(&mut prev, &mut q);
         }
-        Ok(sum.sqrt())
+        Ok(super::norm_of(rs.iter().copied()))
     }
 
     /// The residuals, Jacobian and positions at `z`, each target's position solved from

@@ -124,11 +124,13 @@ pub(crate) fn target_scale(channels: &[(Resolved, f64)], targets: &[f64], width:
             Resolved::Angle { .. } => &[],
         };
         let n = targets.len() / width;
-        let mean = |j: usize| (0..n).map(|k| targets[k * width + at + j]).sum::<f64>() / n as f64;
+        // Each target divided by `n` before the sum, and the distances as norms: the sum and the
+        // squares of targets near the largest `f64` overflowed, and the scale fell back to 1.
+        let mean = |j: usize| (0..n).map(|k| targets[k * width + at + j] / n as f64).sum::<f64>();
         let means: Vec<f64> = cols.iter().map(|&j| mean(j)).collect();
         for k in 0..n {
-            let d2: f64 = cols.iter().zip(&means).map(|(&j, m)| (targets[k * width + at + j] - m).powi(2)).sum();
-            scale = scale.max(w * d2.sqrt());
+            let d = super::norm_of(cols.iter().zip(&means).map(|(&j, m)| targets[k * width + at + j] - m));
+            scale = scale.max(w * d);
         }
         at += match c {
             Resolved::Point(..) => 2,

@@ -2,8 +2,6 @@
 //! angle, any unknown or output), met at prescribed input values ("timing") or at input values
 //! the search chooses, in order along one monotone motion.
 
-use std::f64::consts::PI;
-
 /// What one target component asks of the mechanism.
 #[derive(Clone, Debug, PartialEq)]
 #[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
@@ -198,11 +196,38 @@ impl Task {
 /// minimise the largest structural error of a function interpolated at them (Freudenstein's
 /// choice of precision points in function generation).
 ///
+/// Errors: those of [`chebyshev_points`](super::classical::chebyshev_points), which this is:
+/// `n == 0` or more than memory holds, an end not finite, `lo == hi`.
+///
 /// ```
 /// use kinloop_runtime::synthesis::chebyshev;
-/// let x = chebyshev(1.0, 2.0, 3);
+/// let x = chebyshev(1.0, 2.0, 3)?;
 /// assert!((x[0] - 1.0669872981077808).abs() < 1e-15 && (x[1] - 1.5).abs() < 1e-15);
+/// # Ok::<(), kinloop_runtime::synthesis::classical::ClassicalError>(())
 /// ```
-pub fn chebyshev(lo: f64, hi: f64, n: usize) -> Vec<f64> {
-    (1..=n).map(|j| 0.5 * (lo + hi) - 0.5 * (hi - lo) * ((2 * j - 1) as f64 * PI / (2 * n) as f64).cos()).collect()
+pub fn chebyshev(lo: f64, hi: f64, n: usize) -> Result<Vec<f64>, super::classical::ClassicalError> {
+    super::classical::chebyshev_points(n, lo, hi)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::chebyshev;
+
+    /// Five points on `[0.2, 3]` against the closed form written out, and bad arguments as
+    /// errors: the largest `usize` overflowed `2 n` (a panic), a NaN end gave NaN points, no
+    /// point an empty list.
+    #[test]
+    fn chebyshev_spacing_and_its_bad_arguments() {
+        let x = chebyshev(0.2, 3.0, 5).unwrap();
+        for (j, v) in x.iter().enumerate() {
+            let want = 1.6 - 1.4 * ((2 * j + 1) as f64 * std::f64::consts::PI / 10.0).cos();
+            // A few roundings of values near 3.
+            assert!((v - want).abs() < 4.0 * f64::EPSILON * 3.0, "{j}: {v} vs {want}");
+        }
+        for (lo, hi, n) in
+            [(0.0, 1.0, usize::MAX), (0.0, 1.0, 0), (f64::NAN, 1.0, 3), (0.0, f64::INFINITY, 3), (1.0, 1.0, 2)]
+        {
+            assert!(chebyshev(lo, hi, n).is_err(), "{lo} {hi} {n}");
+        }
+    }
 }

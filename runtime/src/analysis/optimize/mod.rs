@@ -24,6 +24,10 @@ pub enum OptimizerStop {
     /// No step improves the objective any more (e.g. Levenberg–Marquardt's damping grew
     /// without bound) before the tolerances were met.
     Stalled,
+    /// Every point of [`NelderMead`]'s starting simplex is infeasible (its objective infinite
+    /// or NaN): with nothing to compare, no step can improve, so it stops after evaluating the
+    /// simplex. Start from a feasible point.
+    InfeasibleStart,
 }
 
 /// The result of a minimiser: the best point and its diagnostics.

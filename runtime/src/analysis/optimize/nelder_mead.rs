@@ -72,7 +72,9 @@ impl NelderMead {
 
     /// Minimises `f` over `P` variables from `x0`, with an initial simplex of `x0` and the
     /// points `x0 + step[i] e_i`. `value` is `f(x)`; `history` the best value after each round
-    /// (the first search and every restart).
+    /// (the first search and every restart). When `f` is infinite or NaN at every vertex of
+    /// that simplex it stops there, [`OptimizerStop::InfeasibleStart`] (after `P + 1`
+    /// evaluations).
     pub fn minimize<const P: usize>(
         &self,
         mut f: impl FnMut(&[f64; P]) -> f64,
@@ -99,6 +101,13 @@ impl NelderMead {
                 x[i] += step[i];
                 s.fs.push(eval(&x));
                 s.xs.push(x);
+            }
+            // Nothing feasible to move from: reflecting between infinities would spend the
+            // whole budget and end as if it had run out.
+            if P > 0 && s.fs.iter().all(|v| *v == f64::INFINITY) {
+                history.push(f_best);
+                let (evaluations, termination) = (evaluations.get(), OptimizerStop::InfeasibleStart);
+                return Minimum { x: best, value: f_best, evaluations, iterations, termination, history };
             }
             converged = self.search(&mut s, &mut eval, &evaluations, &mut iterations);
             let i = (0..=P).min_by(|&a, &b| s.fs[a].total_cmp(&s.fs[b])).unwrap_or(0);
@@ -318,6 +327,34 @@ mod tests {
     fn no_variable_is_converged_at_the_start() {
         let m = NelderMead::default().with_tolerances(-1.0, -1.0).minimize(|_: &[f64; 0]| 2.0, [], []);
         assert!(m.converged() && m.value == 2.0, "{m:?}");
+    }
+
+    /// A start whose whole simplex is infeasible (NaN or infinite everywhere) stops at once,
+    /// saying so: it spent every evaluation of the budget reflecting between infinities. A
+    /// start infeasible itself but beside a feasible vertex still searches.
+    #[test]
+    fn an_infeasible_starting_simplex_stops_at_once() {
+        for bad in [f64::NAN, f64::INFINITY] {
+            let mut calls = 0;
+            let m = NelderMead::default().minimize(
+                |_: &[f64; 3]| {
+                    calls += 1;
+                    bad
+                },
+                [1.0, 2.0, 3.0],
+                [0.1; 3],
+            );
+            assert_eq!(m.termination, OptimizerStop::InfeasibleStart, "{m:?}");
+            assert_eq!((m.evaluations, calls), (4, 4), "the start and one vertex a variable");
+            assert_eq!(m.x, [1.0, 2.0, 3.0]);
+            assert!(m.value == f64::INFINITY && !m.converged(), "{m:?}");
+        }
+        let m = NelderMead::default().minimize(
+            |p: &[f64; 1]| if p[0] < 0.0 { f64::NAN } else { p[0] * p[0] },
+            [-0.1],
+            [0.5],
+        );
+        assert!(m.converged() && m.x[0].abs() < 1e-6, "{m:?}");
     }
 
     #[test]

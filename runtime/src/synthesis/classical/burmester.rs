@@ -22,7 +22,8 @@ use std::f64::consts::TAU;
 pub struct BurmesterConfig {
     /// Samples of `beta_2` over a full turn: the points of a curve, or the grid on which the
     /// Burmester points are bracketed before Newton's method refines them (default 720, half a
-    /// degree). Two Burmester points closer than one step can be missed.
+    /// degree). Two Burmester points closer than one step can be missed. At most
+    /// [`MAX_SAMPLES`](crate::analysis::MAX_SAMPLES).
     pub samples: usize,
 }
 
@@ -54,7 +55,9 @@ impl BurmesterConfig {
                 why: format!("{}: too many to hold in memory", self.samples),
             });
         }
-        Ok(())
+        // Fewer that memory holds would still take practically forever.
+        crate::analysis::check_sample_count("samples of a turn", self.samples)
+            .map_err(|why| ClassicalError::BadRange { what: "number of samples", why })
     }
 }
 

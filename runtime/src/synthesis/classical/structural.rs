@@ -36,7 +36,8 @@ pub struct StructuralError {
 /// does not move over the whole range never reports a small one (see
 /// [`StructuralError::unassembled`]).
 ///
-/// Errors: fewer than two samples; `f` not finite at a sample.
+/// Errors: fewer than two samples or more than [`MAX_SAMPLES`](crate::analysis::MAX_SAMPLES)
+/// (before `f` is called); `f` not finite at a sample.
 ///
 /// ```
 /// use kinloop_runtime::deg;
@@ -68,6 +69,8 @@ pub fn structural_error(
             why: format!("{samples}: the ends of the range take two"),
         });
     }
+    crate::analysis::check_sample_count("samples", samples)
+        .map_err(|why| ClassicalError::BadRange { what: "number of samples", why })?;
     let (mut max, mut at_x, mut sum_sq, mut unassembled) = (0.0f64, map.x0, 0.0, 0usize);
     for i in 0..samples {
         let x = map.x0 + (map.x1 - map.x0) * i as f64 / (samples - 1) as f64;
@@ -166,6 +169,24 @@ mod tests {
         let e = structural_error(&g, &map, f64::log10, 201).unwrap();
         assert_eq!(e.unassembled, 12, "{e:?}");
         assert_eq!((e.max, e.rms, e.at_x), (f64::INFINITY, f64::INFINITY, 1.0));
+    }
+
+    /// More samples than `analysis::MAX_SAMPLES` are refused before `f` is called: the largest
+    /// `usize` evaluated practically forever.
+    #[test]
+    fn absurd_sample_counts_are_refused_before_sampling() {
+        let g = generator(0.5, 0.7, 0.5);
+        for samples in [crate::analysis::MAX_SAMPLES + 1, usize::MAX] {
+            let calls = std::cell::Cell::new(0usize);
+            // An unbounded run stops after a few calls with an error of its own.
+            let f = |x: f64| {
+                calls.set(calls.get() + 1);
+                if calls.get() > 1000 { f64::NAN } else { x }
+            };
+            let r = structural_error(&g, &map(), f, samples);
+            assert!(matches!(&r, Err(ClassicalError::BadRange { why, .. }) if why.contains("at most")), "{r:?}");
+            assert_eq!(calls.get(), 0);
+        }
     }
 
     #[test]

@@ -180,6 +180,14 @@ fn bad_input_is_an_error_not_a_panic() {
         let e = burmester_points(&poses, &cfg.samples(huge)).unwrap_err();
         assert!(matches!(&e, ClassicalError::BadRange { why, .. } if why.contains("too many")), "{e:?}");
     }
+    // Counts memory could hold but no run would finish: refused before the poses are looked
+    // at (a trillion samples passed, and ran practically forever).
+    for absurd in [crate::analysis::MAX_SAMPLES + 1, 1 << 40] {
+        let e = center_point_curve(&poses[..3], &cfg.samples(absurd)).unwrap_err();
+        assert!(matches!(&e, ClassicalError::BadRange { why, .. } if why.contains("at most")), "{e:?}");
+        let e = burmester_points(&poses[..3], &cfg.samples(absurd)).unwrap_err();
+        assert!(matches!(&e, ClassicalError::BadRange { why, .. } if why.contains("at most")), "{e:?}");
+    }
     // Poses 2 and 4 both turned about one point from pose 1: a shared pole.
     let q = Vec2::new(2.0, 1.0);
     let about = |a: f64| {
