@@ -131,10 +131,7 @@ pub fn run(model: &mut Model, req: &Request) -> Result<(), Failed> {
             (table(&cam, &inputs, req.deg), vec![("pitch curve", cam.pitch), ("cam profile", cam.profile)])
         }
     };
-    table.write_csv(std::io::stdout().lock()).map_err(|e| {
-        eprintln!("error: cannot write the table: {e}");
-        Failed(exit::IO_ERR)
-    })?;
+    crate::output::table(&table, "the table")?;
     match req.plot {
         Some(path) => draw(&curves, &name, path),
         None => Ok(()),

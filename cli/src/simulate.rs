@@ -73,10 +73,7 @@ pub fn run(model: &mut Model, req: &Request) -> Result<(), Failed> {
     }
     let angle = if req.deg { 180.0 / std::f64::consts::PI } else { 1.0 };
     let table = simulate_table(model, req, angle).map_err(|e| failure(&name, e, req.deg))?;
-    table.write_csv(std::io::stdout().lock()).map_err(|e| {
-        eprintln!("error: cannot write the table: {e}");
-        Failed(exit::IO_ERR)
-    })
+    crate::output::table(&table, "the table")
 }
 
 /// Simulates the request (checked) and gives its table: the time, the input and its speed at

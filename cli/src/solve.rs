@@ -32,11 +32,7 @@ pub fn run(model: &mut Model, at: &[String], deg: bool) -> Result<(), Failed> {
     }
     let base = units(model, &kinds, deg);
     let table = table.with_units(&base.iter().map(|(n, u)| (n.as_str(), *u)).collect::<Vec<_>>());
-    let stdout = std::io::stdout();
-    table.write_csv(stdout.lock()).map_err(|e| {
-        eprintln!("error: cannot write the table: {e}");
-        Failed(exit::IO_ERR)
-    })
+    crate::output::table(&table, "the table")
 }
 
 /// Why the solve of `model` at `x` failed with `e`, as the runtime says it (no assembly, a

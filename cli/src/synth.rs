@@ -14,7 +14,6 @@ use kinloop_runtime::paths::sweep::MAX_TURNS;
 use kinloop_runtime::synthesis::{Candidate, Defect, Design, Search, SynthesisError, SynthesisReport, Task};
 use std::f64::consts::TAU;
 use std::fmt::Write as _;
-use std::io::Write;
 use std::path::Path;
 
 /// The most threads `--jobs` starts: more than machines have cores. The pool starts every
@@ -109,11 +108,7 @@ pub fn run(model: &mut Model, req: &Request) -> Result<(), Failed> {
     bar.finish_and_clear();
     let report = report.map_err(|e| problem_error(&name, e))?;
     let text = if req.csv { csv(&report) } else { table(&report) };
-    let mut out = std::io::stdout().lock();
-    if let Err(e) = out.write_all(text.as_bytes()).and_then(|()| out.flush()) {
-        eprintln!("error: cannot write the candidates: {e}");
-        return Err(Failed(exit::IO_ERR));
-    }
+    crate::output::text(&text, "the candidates")?;
     eprintln!("{}", summary(&report));
     if report.best().is_some() {
         Ok(())
