@@ -19,7 +19,7 @@ use crate::dynamics::check_crank;
 use crate::exit::usage;
 use crate::solve::degrees;
 use crate::{Failed, exit, samples};
-use kinloop_model::Model;
+use kinloop_model::{Count, Model};
 use kinloop_runtime::dynamics::{DenseStep, DynamicsError, RunConfig};
 use kinloop_runtime::{Error, Number, Table};
 
@@ -212,8 +212,9 @@ fn budget_spent(name: &str, steps: usize, t: f64, t_end: f64) -> String {
         String::new()
     };
     format!(
-        "{name}: the simulation made its budget of {steps} steps (--max-steps) and reached only t = {} of \
+        "{name}: the simulation made its budget of {} (--max-steps) and reached only t = {} of \
          --time {}{pace}: raise --max-steps, or simulate a shorter --time",
+        Count(steps, "step"),
         significant(t),
         Number(t_end)
     )

@@ -1,7 +1,7 @@
 //! `kinloop solve`: states at given inputs as CSV, with units in the header.
 
 use crate::{Failed, exit};
-use kinloop_model::{Model, StepError};
+use kinloop_model::{Count, Model, StepError};
 use kinloop_runtime::dims::Heap;
 use kinloop_runtime::{Error, Kernel, NewtonConfig, QuantityKind, SweepConfig, Table};
 
@@ -113,7 +113,7 @@ pub fn parse_inputs(spec: &str, ni: usize, option: &str) -> Result<Vec<f64>, Fai
     match x {
         Ok(x) if x.len() == ni && x.iter().all(|v| v.is_finite()) => Ok(x),
         Ok(x) if x.len() != ni => {
-            eprintln!("error: {option} {spec} gives {} inputs, the mechanism has {ni}", x.len());
+            eprintln!("error: {option} {spec} gives {}, the mechanism has {ni}", Count(x.len(), "input"));
             Err(Failed(exit::USAGE))
         }
         _ => {

@@ -8,7 +8,7 @@
 //! a table or as CSV, each with its defects.
 
 use crate::{Failed, exit, params, progress};
-use kinloop_model::Model;
+use kinloop_model::{Count, Model};
 use kinloop_runtime::QuantityKind;
 use kinloop_runtime::paths::sweep::MAX_TURNS;
 use kinloop_runtime::synthesis::{Candidate, Defect, Design, Search, SynthesisError, SynthesisReport, Task};
@@ -259,9 +259,10 @@ fn task(model: &Model, req: &Request, rows: &[Vec<f64>]) -> Result<Task, Failed>
                     Ok(Task::path(point, rows.iter().map(xy)).timed_inputs(inputs))
                 }
                 _ => Err(exit::usage(format!(
-                    "--path targets are rows `x,y` or `{}x,y`: {} has {width} values per row",
+                    "--path targets are rows `x,y` or `{}x,y`: {} has {} per row",
                     "input,".repeat(ni),
-                    req.targets.display()
+                    req.targets.display(),
+                    Count(width, "value")
                 ))),
             }
         }
@@ -278,8 +279,9 @@ fn task(model: &Model, req: &Request, rows: &[Vec<f64>]) -> Result<Task, Failed>
             }
             if width != 2 {
                 return Err(exit::usage(format!(
-                    "--function targets are rows `input,output`: {} has {width} values per row",
-                    req.targets.display()
+                    "--function targets are rows `input,output`: {} has {} per row",
+                    req.targets.display(),
+                    Count(width, "value")
                 )));
             }
             let out_kind = column_kind(model, output).unwrap_or(QuantityKind::Other);
@@ -364,9 +366,9 @@ fn table(report: &SynthesisReport) -> String {
 /// What happened to the starts, in one line.
 fn summary(r: &SynthesisReport) -> String {
     format!(
-        "{} starts: {} valid, {} converged, {} could not be assembled, {} rejected (order {}, branch {}, circuit {}, \
-         no assembly {}), {} evaluations",
-        r.starts.len() + r.seeds,
+        "{}: {} valid, {} converged, {} could not be assembled, {} rejected (order {}, branch {}, circuit {}, \
+         no assembly {}), {}",
+        Count(r.starts.len() + r.seeds, "start"),
         r.valid,
         r.converged,
         r.unassembled,
@@ -375,6 +377,6 @@ fn summary(r: &SynthesisReport) -> String {
         r.rejected.branch,
         r.rejected.circuit,
         r.rejected.no_assembly,
-        r.evaluations
+        Count(r.evaluations, "evaluation")
     )
 }

@@ -299,6 +299,15 @@ fn standard_output_that_cannot_be_written_is_exit_74() {
     }
 }
 
+/// A count of one is named in the singular: one input given where a mechanism has two.
+#[test]
+fn one_input_is_named_in_the_singular() {
+    let out = kinloop(&["solve", &shipped("five_bar.kl"), "--at", "0.5"]);
+    let err = String::from_utf8_lossy(&out.stderr);
+    assert_eq!(out.status.code(), Some(2), "{err}");
+    assert!(err.contains("--at 0.5 gives 1 input, the mechanism has 2"), "{err}");
+}
+
 /// With `--deg`, inputs are named in degrees everywhere: the input written by `solve` is the
 /// one given (`30`, the angle whose radians were solved at), and the arguments refused and
 /// the places of failures are named as given, not in the radians the model computes in.

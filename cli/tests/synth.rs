@@ -203,6 +203,9 @@ fn usage_errors_and_no_candidate_have_their_exit_codes() {
     assert_eq!(o.status.code(), Some(1), "{}", stderr(&o));
     assert!(stderr(&o).contains("no valid candidate"), "{}", stderr(&o));
     assert!(String::from_utf8_lossy(&o.stdout).starts_with("rank"));
+    // One start is counted in the singular in the summary.
+    let o = run(&["--path", "p", "--deg", "--vary", "a=10..11", "--starts", "1"]);
+    assert!(stderr(&o).contains("1 start: 0 valid"), "{}", stderr(&o));
 }
 
 #[test]
