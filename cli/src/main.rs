@@ -56,6 +56,7 @@ mod simulate;
 mod solve;
 mod sweep;
 mod synth;
+mod targets;
 
 use clap::{Parser, Subcommand};
 use kinloop_model::source::MAX_SOURCE_BYTES;
@@ -346,8 +347,9 @@ enum Command {
         /// The declaration (`.kl`), with `#[kinloop(sensitivities)]`.
         file: PathBuf,
         /// The targets, CSV: rows `x,y` (a path, inputs free along `--range`), `input,x,y` (a
-        /// path at given inputs) or `input,output` (a function); a header line and `#`
-        /// comments are skipped.
+        /// path at given inputs) or `input,output` (a function), numbers separated by commas
+        /// (`.` the decimal point); `#` comments and a first line of names (a header) are
+        /// skipped, numbers separated otherwise (`1;2`) are an error.
         #[arg(long, value_name = "FILE")]
         targets: PathBuf,
         /// The point whose path goes through the targets.

@@ -26,10 +26,6 @@ pub const MAX_JOBS: usize = 1024;
 /// with zeros too many would abort on that allocation.
 pub const MAX_STARTS: usize = 1_000_000;
 
-/// The largest targets file read (bytes): some hundred thousand rows, far more targets than a
-/// synthesis fits.
-pub const MAX_TARGETS_BYTES: usize = 16 << 20;
-
 /// What `kinloop synth` was asked.
 pub struct Request<'a> {
     /// The CSV file of the targets.
@@ -88,7 +84,7 @@ pub fn run(model: &mut Model, req: &Request) -> Result<(), Failed> {
         }
     }
     params::require_values(model)?;
-    let rows = read_targets(req.targets)?;
+    let rows = crate::targets::read(req.targets)?;
     let task = task(model, req, &rows)?;
     let name = model.name().to_string();
     let problem = model.shared_synthesis_problem(&design, &task).map_err(|e| problem_error(&name, e))?;
@@ -151,52 +147,6 @@ fn design(vary: &str) -> Result<Design, Failed> {
         return Err(exit::usage("--vary names no design variable"));
     }
     Ok(d)
-}
-
-/// The numeric rows of the targets file: blank lines and `#` comments skipped, a first line
-/// without any number taken for a header; every row the same width.
-fn read_targets(path: &Path) -> Result<Vec<Vec<f64>>, Failed> {
-    // A file named by mistake (a device that never ends, a large log) is refused after the most
-    // a targets file may have, not read whole into memory.
-    let text = crate::read_at_most(path, MAX_TARGETS_BYTES, || {
-        exit::usage(format!(
-            "{} has more than {MAX_TARGETS_BYTES} bytes, more than a targets file may have (a row per target)",
-            path.display()
-        ))
-    })?;
-    let mut rows: Vec<Vec<f64>> = Vec::new();
-    let lines = text.lines().enumerate().filter(|(_, l)| !l.trim().is_empty() && !l.trim_start().starts_with('#'));
-    for (k, (n, line)) in lines.enumerate() {
-        let row: Result<Vec<f64>, _> = line.split(',').map(|v| v.trim().parse::<f64>()).collect();
-        match row {
-            Ok(row) if row.iter().all(|v| v.is_finite()) => {
-                if let Some(first) = rows.first().filter(|f| f.len() != row.len()) {
-                    return Err(exit::usage(format!(
-                        "{} line {}: {} values, the rows before have {}",
-                        path.display(),
-                        n + 1,
-                        row.len(),
-                        first.len()
-                    )));
-                }
-                rows.push(row);
-            }
-            // A header: the first line with no number in it (one with a typo in a number, or
-            // a trailing comma, is a bad row, not a header).
-            Err(_) if k == 0 && line.split(',').all(|v| v.trim().parse::<f64>().is_err()) => {}
-            _ => {
-                return Err(exit::usage(format!(
-                    "{} line {}: `{line}` is not a row of finite numbers",
-                    path.display(),
-                    n + 1
-                )));
-            }
-        }
-    }
-    if rows.is_empty() {
-        return Err(exit::usage(format!("{} holds no targets", path.display())));
-    }
-    Ok(rows)
 }
 
 /// An angle given in degrees with `--deg` in radians; any other value as it is.
