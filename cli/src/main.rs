@@ -44,6 +44,7 @@ macro_rules! eprint {
 
 mod animate;
 mod cam;
+mod csv_rows;
 mod dynamics;
 mod exit;
 mod extremes;
@@ -107,8 +108,10 @@ enum Command {
     /// Sweeps the inputs along the straight path from `--from` to `--to` without jumping
     /// branches, from the declared initial guess at `--from`, and writes the states as CSV
     /// with units; the singular positions met (limit positions, crossings) are listed on
-    /// standard error or written to `--events`. A sweep that stops writes the states before
-    /// the stop and fails.
+    /// standard error or written to `--events`. Each state is written as soon as it is solved
+    /// and none is kept, so the memory does not grow with `--samples`; a sweep that stops (a
+    /// limit position) has written the states before the stop, and fails; one whose standard
+    /// output closes (`| head`) stops at the next state, exit code 74.
     Sweep {
         /// The declaration (`.kl`).
         file: PathBuf,
