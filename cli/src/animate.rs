@@ -7,7 +7,7 @@ use crate::exit::usage;
 use crate::solve::{in_units, model_inputs};
 use crate::sweep::range_too_long;
 use crate::{Failed, exit, samples};
-use kinloop_model::Model;
+use kinloop_model::{Count, Model};
 use kinloop_runtime::{Error, QuantityKind};
 use kinloop_viz::draw::{Animation, DefaultDrawing, DrawError};
 use kinloop_viz::html::{HtmlConfig, HtmlError, html_grid_of, html_of};
@@ -196,7 +196,9 @@ fn grid(model: &mut Model, req: &Request, format: Format) -> Result<(), Failed> 
     let cells = counts.iter().fold(1usize, |p, &c| p.saturating_mul(c));
     if cells > max {
         return Err(usage(format!(
-            "a grid of {cells} cells is more than the page's {max} poses: fewer --samples, or more --frames"
+            "a grid of {} is more than the page's {}: fewer --samples, or more --frames",
+            Count(cells, "cell"),
+            Count(max, "pose")
         )));
     }
     let failed = |e: &dyn std::fmt::Display| failed(&name, e);
@@ -208,7 +210,8 @@ fn grid(model: &mut Model, req: &Request, format: Format) -> Result<(), Failed> 
     })?;
     let unreached = grid.cells.iter().filter(|c| c.is_none()).count();
     if unreached > 0 {
-        eprintln!("note: {unreached} of {} cells are not reached from the first (no assembly there)", grid.cells.len());
+        let (total, are) = (grid.cells.len(), if unreached == 1 { "is" } else { "are" });
+        eprintln!("note: {unreached} of {} {are} not reached from the first (no assembly there)", Count(total, "cell"));
     }
     let drawing = noted_drawing(model);
     let text = html_grid_of(model, &drawing.into_drawing(), &grid, &config).map_err(|e| match e {

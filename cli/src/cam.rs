@@ -9,7 +9,7 @@
 use crate::exit::usage;
 use crate::solve::{in_units, point};
 use crate::{Failed, exit, samples};
-use kinloop_model::Model;
+use kinloop_model::{Count, Model};
 use kinloop_runtime::analysis::cam::{
     CamProfile, FlatFace, FlatFaceProfile, FollowerSample, cam_profile, flat_face_profile,
 };
@@ -131,10 +131,7 @@ pub fn run(model: &mut Model, req: &Request) -> Result<(), Failed> {
             (table(&cam, &inputs, req.deg), vec![("pitch curve", cam.pitch), ("cam profile", cam.profile)])
         }
     };
-    table.write_csv(std::io::stdout().lock()).map_err(|e| {
-        eprintln!("error: cannot write the table: {e}");
-        Failed(exit::IO_ERR)
-    })?;
+    crate::output::table(&table, "the table")?;
     match req.plot {
         Some(path) => draw(&curves, &name, path),
         None => Ok(()),
@@ -248,9 +245,9 @@ fn report(cam: &CamProfile, inputs: &[f64], deg: bool, roller: f64) {
     let undercut = cam.undercut();
     match (undercut.first(), undercut.last()) {
         (Some(&a), Some(&b)) => eprintln!(
-            "cam: UNDERCUT at {} samples (the first at {}{unit}, the last at {}{unit}): the pitch curve is sharper \
+            "cam: UNDERCUT at {} (the first at {}{unit}, the last at {}{unit}): the pitch curve is sharper \
              there than the roller (radius {}); use a smaller roller or a larger cam",
-            undercut.len(),
+            Count(undercut.len(), "sample"),
             Number(inputs[a]),
             Number(inputs[b]),
             Number(roller)
@@ -278,9 +275,9 @@ fn report_flat(cam: &FlatFaceProfile, inputs: &[f64], deg: bool) {
     let bad = cam.not_convex();
     match (bad.first(), bad.last()) {
         (Some(&a), Some(&b)) => eprintln!(
-            "cam: NOT CONVEX at {} samples (the first at {}{unit}, the last at {}{unit}): the face's envelope folds \
+            "cam: NOT CONVEX at {} (the first at {}{unit}, the last at {}{unit}): the face's envelope folds \
              there and a flat face cannot follow the law; use a larger base circle or a gentler law",
-            bad.len(),
+            Count(bad.len(), "sample"),
             Number(inputs[a]),
             Number(inputs[b])
         ),

@@ -98,13 +98,9 @@ pub fn run(model: &mut Model, req: &Request) -> Result<(), Failed> {
     })?;
     let angle = if req.deg { 180.0 / std::f64::consts::PI } else { 1.0 };
     let input = model.inputs()[0].clone();
-    let io_error = |what: &str, e: std::io::Error| {
-        eprintln!("error: cannot write {what}: {e}");
-        Failed(exit::IO_ERR)
-    };
     let table = cycle_table(&cycle, &input, req.deg);
-    table.write_csv(std::io::stdout().lock()).map_err(|e| io_error("the table", e))?;
-    write_flywheel(&flywheel, req, angle, file).map_err(|e| io_error("the flywheel", e))
+    crate::output::table(&table, "the table")?;
+    write_flywheel(&flywheel, req, angle, file).map_err(|e| crate::output::failed("the flywheel", e))
 }
 
 /// The inverse cycle at the request's speed and the flywheel sized over it.

@@ -9,7 +9,6 @@ use crate::sweep::range_too_long;
 use crate::{Failed, exit, progress, samples};
 use kinloop_model::Model;
 use kinloop_runtime::{Error, QuantityKind, SweepConfig};
-use std::io::Write;
 
 /// What `kinloop extremes` was asked.
 pub struct Request<'a> {
@@ -138,10 +137,7 @@ pub fn run(model: &mut Model, req: &Request) -> Result<(), Failed> {
     let input_units: Vec<&str> = input_kinds.iter().map(|k| unit(*k, req.deg)).collect();
     let text =
         if req.table { table(&rows, &input_names, &input_units) } else { csv(&rows, &input_names, &input_units) };
-    std::io::stdout().lock().write_all(text.as_bytes()).map_err(|e| {
-        eprintln!("error: cannot write the extremes: {e}");
-        Failed(exit::IO_ERR)
-    })
+    crate::output::text(&text, "the extremes")
 }
 
 /// The columns named in `list` (unknowns or outputs), in its order; at least one.

@@ -22,7 +22,7 @@
 //! Exit codes ([`exit`]): 0 success, 1 a solve failed (for `synth`: no valid candidate), 2 a usage error (a parameter without a value too), 65 the declaration is
 //! rejected (diagnostics on standard error), 66 the file cannot be read, 69 the declaration uses
 //! what the run-time evaluator does not evaluate yet, 73 the `--events` file (or the
-//! `animate --out`, `dynamics --flywheel` or `cam --plot` file) cannot be created, 74 an output cannot be written.
+//! `animate --out`, `dynamics --flywheel` or `cam --plot` file) cannot be created, 74 an output cannot be written (the help and the version too).
 
 // Std's `eprintln!` and `eprint!` panic where standard error cannot be written (its reader
 // gone: `kinloop sweep ... 2>&1 | head -1`), and the panic message is lost with it: exit code
@@ -44,9 +44,11 @@ macro_rules! eprint {
 
 mod animate;
 mod cam;
+mod csv_rows;
 mod dynamics;
 mod exit;
 mod extremes;
+mod output;
 mod params;
 mod progress;
 mod report;
@@ -55,11 +57,12 @@ mod simulate;
 mod solve;
 mod sweep;
 mod synth;
+mod targets;
 
 use clap::{Parser, Subcommand};
 use kinloop_model::source::MAX_SOURCE_BYTES;
 use kinloop_model::{Model, ReadError};
-use std::io::{IsTerminal, Read, Write};
+use std::io::{IsTerminal, Read};
 use std::path::{Path, PathBuf};
 use std::process::ExitCode;
 
@@ -105,8 +108,10 @@ enum Command {
     /// Sweeps the inputs along the straight path from `--from` to `--to` without jumping
     /// branches, from the declared initial guess at `--from`, and writes the states as CSV
     /// with units; the singular positions met (limit positions, crossings) are listed on
-    /// standard error or written to `--events`. A sweep that stops writes the states before
-    /// the stop and fails.
+    /// standard error or written to `--events`. Each state is written as soon as it is solved
+    /// and none is kept, so the memory does not grow with `--samples`; a sweep that stops (a
+    /// limit position) has written the states before the stop, and fails; one whose standard
+    /// output closes (`| head`) stops at the next state, exit code 74.
     Sweep {
         /// The declaration (`.kl`).
         file: PathBuf,
@@ -345,8 +350,9 @@ enum Command {
         /// The declaration (`.kl`), with `#[kinloop(sensitivities)]`.
         file: PathBuf,
         /// The targets, CSV: rows `x,y` (a path, inputs free along `--range`), `input,x,y` (a
-        /// path at given inputs) or `input,output` (a function); a header line and `#`
-        /// comments are skipped.
+        /// path at given inputs) or `input,output` (a function), numbers separated by commas
+        /// (`.` the decimal point); `#` comments and a first line of names (a header) are
+        /// skipped, numbers separated otherwise (`1;2`) are an error.
         #[arg(long, value_name = "FILE")]
         targets: PathBuf,
         /// The point whose path goes through the targets.
@@ -393,7 +399,11 @@ enum Command {
 pub struct Failed(pub u8);
 
 fn main() -> ExitCode {
-    let cli = Cli::parse();
+    // Not `Cli::parse`: its help and version that cannot be written would succeed.
+    let cli = match Cli::try_parse() {
+        Ok(cli) => cli,
+        Err(e) => return ExitCode::from(output::parser_stop(&e)),
+    };
     match run(cli) {
         Ok(()) => ExitCode::SUCCESS,
         Err(Failed(code)) => ExitCode::from(code),
@@ -405,10 +415,7 @@ fn run(cli: Cli) -> Result<(), Failed> {
         Command::Check { file, params } => {
             let model = load(&file, params.as_deref())?;
             // Written, not printed: `print!` panics where standard output cannot be written.
-            std::io::stdout().lock().write_all(report::structure(&model).as_bytes()).map_err(|e| {
-                eprintln!("error: cannot write the report: {e}");
-                Failed(exit::IO_ERR)
-            })
+            output::text(&report::structure(&model), "the report")
         }
         Command::Solve { file, at, deg, params } => {
             let mut model = solvable(&file, params.as_deref())?;

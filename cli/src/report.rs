@@ -1,6 +1,6 @@
 //! `kinloop check`: the structure report of a declaration.
 
-use kinloop_model::Model;
+use kinloop_model::{Count, Model};
 use std::fmt::Write;
 
 /// The decomposition (counts, mobility, blocks and how each is solved), then the parameters
@@ -29,6 +29,7 @@ pub fn structure(model: &Model) -> String {
     let _ = writeln!(s, "inputs: {}", list(&quantities[..ni]));
     let _ = writeln!(s, "unknowns: {}", list(&quantities[ni..ni + nu]));
     let _ = writeln!(s, "outputs: {}", list(&quantities[ni + nu..]));
-    let _ = writeln!(s, "run-time program: {} registers, {} instructions", model.registers(), model.instructions());
+    let (registers, instructions) = (Count(model.registers(), "register"), Count(model.instructions(), "instruction"));
+    let _ = writeln!(s, "run-time program: {registers}, {instructions}");
     s
 }

@@ -19,7 +19,7 @@ use crate::dynamics::check_crank;
 use crate::exit::usage;
 use crate::solve::degrees;
 use crate::{Failed, exit, samples};
-use kinloop_model::Model;
+use kinloop_model::{Count, Model};
 use kinloop_runtime::dynamics::{DenseStep, DynamicsError, RunConfig};
 use kinloop_runtime::{Error, Number, Table};
 
@@ -73,10 +73,7 @@ pub fn run(model: &mut Model, req: &Request) -> Result<(), Failed> {
     }
     let angle = if req.deg { 180.0 / std::f64::consts::PI } else { 1.0 };
     let table = simulate_table(model, req, angle).map_err(|e| failure(&name, e, req.deg))?;
-    table.write_csv(std::io::stdout().lock()).map_err(|e| {
-        eprintln!("error: cannot write the table: {e}");
-        Failed(exit::IO_ERR)
-    })
+    crate::output::table(&table, "the table")
 }
 
 /// Simulates the request (checked) and gives its table: the time, the input and its speed at
@@ -215,8 +212,9 @@ fn budget_spent(name: &str, steps: usize, t: f64, t_end: f64) -> String {
         String::new()
     };
     format!(
-        "{name}: the simulation made its budget of {steps} steps (--max-steps) and reached only t = {} of \
+        "{name}: the simulation made its budget of {} (--max-steps) and reached only t = {} of \
          --time {}{pace}: raise --max-steps, or simulate a shorter --time",
+        Count(steps, "step"),
         significant(t),
         Number(t_end)
     )

@@ -1,7 +1,7 @@
 //! `kinloop solve`: states at given inputs as CSV, with units in the header.
 
 use crate::{Failed, exit};
-use kinloop_model::{Model, StepError};
+use kinloop_model::{Count, Model, StepError};
 use kinloop_runtime::dims::Heap;
 use kinloop_runtime::{Error, Kernel, NewtonConfig, QuantityKind, SweepConfig, Table};
 
@@ -32,11 +32,7 @@ pub fn run(model: &mut Model, at: &[String], deg: bool) -> Result<(), Failed> {
     }
     let base = units(model, &kinds, deg);
     let table = table.with_units(&base.iter().map(|(n, u)| (n.as_str(), *u)).collect::<Vec<_>>());
-    let stdout = std::io::stdout();
-    table.write_csv(stdout.lock()).map_err(|e| {
-        eprintln!("error: cannot write the table: {e}");
-        Failed(exit::IO_ERR)
-    })
+    crate::output::table(&table, "the table")
 }
 
 /// Why the solve of `model` at `x` failed with `e`, as the runtime says it (no assembly, a
@@ -117,7 +113,7 @@ pub fn parse_inputs(spec: &str, ni: usize, option: &str) -> Result<Vec<f64>, Fai
     match x {
         Ok(x) if x.len() == ni && x.iter().all(|v| v.is_finite()) => Ok(x),
         Ok(x) if x.len() != ni => {
-            eprintln!("error: {option} {spec} gives {} inputs, the mechanism has {ni}", x.len());
+            eprintln!("error: {option} {spec} gives {}, the mechanism has {ni}", Count(x.len(), "input"));
             Err(Failed(exit::USAGE))
         }
         _ => {

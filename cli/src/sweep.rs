@@ -2,8 +2,9 @@
 //! the runtime's own sweep over the model (the events it meets listed on standard error, or
 //! written to `--events`).
 
+use crate::csv_rows::CsvRows;
 use crate::solve::{factors, in_units, model_inputs, parse_inputs, units};
-use crate::{Failed, exit, progress, samples};
+use crate::{Failed, exit, output, progress, samples};
 use kinloop_model::Model;
 use kinloop_runtime::dims::KinState;
 use kinloop_runtime::{Error, Event, QuantityKind, Table};
@@ -24,9 +25,10 @@ pub struct Request<'a> {
     pub events: Option<&'a Path>,
 }
 
-/// Sweeps from the declared guess at `from` and writes the table to standard output. A sweep
-/// that stops (a limit position, no assembly) writes the states before the stop, the events,
-/// and the reason on standard error, and fails.
+/// Sweeps from the declared guess at `from` and writes the table to standard output, each
+/// state's row as soon as it is solved. A sweep that stops (a limit position, no assembly) has
+/// written the states before the stop; it writes the events and the reason on standard error,
+/// and fails.
 pub fn run(model: &mut Model, req: &Request) -> Result<(), Failed> {
     samples::check(req.samples)?;
     let kinds: Vec<QuantityKind> = model.quantities().iter().map(|(_, k)| *k).collect();
@@ -57,36 +59,17 @@ pub fn run(model: &mut Model, req: &Request) -> Result<(), Failed> {
         Error::InvalidArgument(_) => exit::usage(format!("{name}: {e}")),
         e => failed(&in_units(e, &kinds[..ni], req.deg)),
     })?;
-    let mut table = Table::new(columns);
-    let mut stop = None;
-    let last = req.samples.saturating_sub(1).max(1) as f64;
-    // A state's row (`table_row`) in the units written, appended to the table.
-    let push = |table: &mut Table, state: Vec<f64>| {
-        let mut row: Vec<f64> = state.iter().zip(&factors).map(|(v, f)| v * f).collect();
-        // An angle input in degrees: the sample's value between the ends given, not its
-        // radians times `180/π` (`59.99999999999999` for the sample at 60), as `solve` writes
-        // the input given. Exact where the samples fall on round numbers.
-        let s = table.rows.len() as f64;
-        for (i, ends) in degrees.iter().enumerate() {
-            let Some((a, b)) = ends else { continue };
-            let given = (a * (last - s) + b * s) / last;
-            // Ends near the largest `f64`: the products overflow, the product stays.
-            if given.is_finite() {
-                row[i] = given;
-            }
-        }
-        table.push(row);
-    };
+    let units = Units { factors, degrees, last: req.samples.saturating_sub(1).max(1) as f64 };
     // The first sample, before anything is created: a range longer than a sweep follows is
     // refused there, a usage error.
-    match sweep.next_ref() {
-        Some(Ok(k)) => push(&mut table, k.table_row()),
+    let first = match sweep.next_ref() {
+        Some(Ok(k)) => Some(Ok(k.table_row())),
         Some(Err(e)) => match range_too_long(&name, &e, req.from, req.to, req.deg) {
             Some(usage) => return Err(usage),
-            None => stop = Some(e),
+            None => Some(Err(e)),
         },
-        None => {}
-    }
+        None => None,
+    };
     // Created before the rest of the sweep runs: a path that cannot be written stops before
     // any output.
     let events_file = match req.events {
@@ -97,30 +80,81 @@ pub fn run(model: &mut Model, req: &Request) -> Result<(), Failed> {
         None => None,
     };
     let bar = progress::bar(&format!("{name}: sweeping"), req.samples, req.samples);
-    bar.inc(table.rows.len() as u64);
-    while stop.is_none() {
-        match sweep.next_ref() {
-            Some(Ok(k)) => push(&mut table, k.table_row()),
-            Some(Err(e)) => stop = Some(e),
-            None => break,
-        }
+    let header = Table::new(columns).with_units(&base.iter().map(|(n, u)| (n.as_str(), *u)).collect::<Vec<_>>());
+    // Buffered: a row is a write of its own, where standard output would pass each line on by
+    // itself.
+    let out = std::io::BufWriter::new(std::io::stdout().lock());
+    let mut pending = Some(first);
+    let next = || {
+        let state = match pending.take() {
+            Some(first) => first,
+            None => sweep.next_ref().map(|r| r.map(|k| k.table_row())),
+        };
         bar.inc(1);
-    }
+        state
+    };
+    let streamed = CsvRows::new(out, &header)
+        .and_then(|mut rows| stream(&mut rows, &units, next).and_then(|stop| rows.finish().map(|()| stop)));
     bar.finish_and_clear();
+    let stop = streamed.map_err(|e| output::failed("the table", e))?;
     let events = sweep.events().to_vec();
     drop(sweep);
-    let table = table.with_units(&base.iter().map(|(n, u)| (n.as_str(), *u)).collect::<Vec<_>>());
-    let stdout = std::io::stdout();
-    let io_error = |what: &str, e: std::io::Error| {
-        eprintln!("error: cannot write {what}: {e}");
-        Failed(exit::IO_ERR)
-    };
-    table.write_csv(stdout.lock()).map_err(|e| io_error("the table", e))?;
-    write_events(model, &events, req.deg, events_file).map_err(|e| io_error("the events", e))?;
+    write_events(model, &events, req.deg, events_file).map_err(|e| output::failed("the events", e))?;
     match stop {
         Some(e) => Err(failed(&in_units(e, &kinds[..ni], req.deg))),
         None => Ok(()),
     }
+}
+
+/// How a sweep's states are written: each state's row (in the order of `table_row`) times
+/// the factors of the units written, its angle inputs in degrees the samples' own values.
+struct Units {
+    /// Per column, the factor from the model's units to those written.
+    factors: Vec<f64>,
+    /// Per input, its ends in degrees as given, where it is an angle written in degrees.
+    degrees: Vec<Option<(f64, f64)>>,
+    /// The index of the last sample (1 for a sweep of one sample).
+    last: f64,
+}
+
+impl Units {
+    /// The row written for the state `state` of sample `s`.
+    fn row(&self, s: usize, state: &[f64]) -> Vec<f64> {
+        let mut row: Vec<f64> = state.iter().zip(&self.factors).map(|(v, f)| v * f).collect();
+        // An angle input in degrees: the sample's value between the ends given, not its
+        // radians times `180/π` (`59.99999999999999` for the sample at 60), as `solve` writes
+        // the input given. Exact where the samples fall on round numbers.
+        let (s, last) = (s as f64, self.last);
+        for (i, ends) in self.degrees.iter().enumerate() {
+            let Some((a, b)) = ends else { continue };
+            let given = (a * (last - s) + b * s) / last;
+            // Ends near the largest `f64`: the products overflow, the product stays.
+            if given.is_finite() {
+                row[i] = given;
+            }
+        }
+        row
+    }
+}
+
+/// Writes the row of each state `next` solves (in `units`) to `rows` as soon as it is solved,
+/// keeping none: the memory of a sweep does not grow with its samples, and a reader that is
+/// gone (`kinloop sweep ... | head`) stops the sweep at the next row, not at its end. Returns
+/// the error that stopped the sweep (`None`: it ran to its end); a failed write is the `Err`.
+fn stream<W: Write, E>(
+    rows: &mut CsvRows<W>,
+    units: &Units,
+    mut next: impl FnMut() -> Option<Result<Vec<f64>, E>>,
+) -> std::io::Result<Option<E>> {
+    let mut s = 0;
+    while let Some(state) = next() {
+        match state {
+            Ok(state) => rows.row(&units.row(s, &state))?,
+            Err(e) => return Ok(Some(e)),
+        }
+        s += 1;
+    }
+    Ok(None)
 }
 
 /// The usage error of a range longer than a sweep follows ([`Error::RangeTooLong`], which a
@@ -175,4 +209,99 @@ fn write_events(model: &Model, events: &[Event], deg: bool, file: Option<std::fs
         writeln!(w, "{},{},{}", e.kind, e.tau, values.join(","))?;
     }
     w.flush()
+}
+
+#[cfg(test)]
+mod tests {
+    use super::{CsvRows, Units, stream};
+    use kinloop_model::Model;
+    use kinloop_runtime::Table;
+    use kinloop_runtime::dims::KinState;
+    use std::cell::Cell;
+    use std::io::{self, Write};
+    use std::rc::Rc;
+
+    const FOUR_BAR: &str = "pub struct FourBar {
+        params a = 1, b = 3, c = 2.5, d = 3.2;
+        input phi;
+        unknowns psi = 0.6, theta = 1.9;
+        loop abcd: a @ phi + b @ psi == (d, 0) + c @ theta;
+    }";
+
+    /// A standard output that notes, at each write, how many states the sweep had solved; and
+    /// fails the write that would take it past `capacity` bytes (a full disk, a reader gone).
+    struct Recorder {
+        solved: Rc<Cell<usize>>,
+        bytes: Vec<u8>,
+        /// Per write: the states solved then, and the bytes written once it is done.
+        writes: Vec<(usize, usize)>,
+        capacity: usize,
+    }
+
+    impl Write for Recorder {
+        fn write(&mut self, buf: &[u8]) -> io::Result<usize> {
+            if self.bytes.len() + buf.len() > self.capacity {
+                return Err(io::Error::new(io::ErrorKind::BrokenPipe, "the reader is gone"));
+            }
+            self.bytes.extend_from_slice(buf);
+            self.writes.push((self.solved.get(), self.bytes.len()));
+            Ok(buf.len())
+        }
+        fn flush(&mut self) -> io::Result<()> {
+            Ok(())
+        }
+    }
+
+    /// Streams a sweep of the four-bar over `samples` samples into a [`Recorder`] of
+    /// `capacity` bytes: what it recorded, the states solved in all, and the result.
+    fn sweep_into(samples: usize, capacity: usize) -> (Recorder, usize, io::Result<bool>) {
+        let mut model = Model::read("four_bar.kl", FOUR_BAR).expect("the declaration reads");
+        let columns = model.columns();
+        let units = Units { factors: vec![1.0; columns.len()], degrees: vec![None], last: (samples - 1) as f64 };
+        let mut sweep = model.sweep(&[0.0], &[1.0], samples, &[0.6, 1.9]).expect("a sweep");
+        let solved = Rc::new(Cell::new(0));
+        let mut sink = Recorder { solved: solved.clone(), bytes: Vec::new(), writes: Vec::new(), capacity };
+        let mut rows = CsvRows::new(&mut sink, &Table::new(columns)).expect("the header fits");
+        let next = || {
+            let state = sweep.next_ref()?.map(|k| k.table_row());
+            solved.set(solved.get() + 1);
+            Some(state)
+        };
+        let result = stream(&mut rows, &units, next).map(|stop: Option<kinloop_runtime::Error>| stop.is_none());
+        drop(rows);
+        (sink, solved.get(), result)
+    }
+
+    /// Each row reaches the output when its state is solved, before the next one is: a sweep
+    /// that kept its rows to write them at the end would write them all after the last state.
+    #[test]
+    fn each_row_is_written_before_the_next_state_is_solved() {
+        let samples = 6;
+        let (recorder, solved, result) = sweep_into(samples, usize::MAX);
+        assert!(matches!(result, Ok(true)), "the sweep runs to its end");
+        assert_eq!(solved, samples);
+        let text = String::from_utf8(recorder.bytes.clone()).expect("utf-8");
+        let ends: Vec<usize> = text.match_indices('\n').map(|(i, _)| i + 1).collect();
+        assert_eq!(ends.len(), samples + 1, "a header and a row per sample: {text}");
+        for (line, &end) in ends.iter().enumerate() {
+            // The write that completed the line, and the states solved when it was made.
+            let &(when, _) = recorder.writes.iter().find(|(_, len)| *len >= end).expect("written");
+            assert_eq!(when, line, "line {line} (the header is line 0) written after {when} states: {text}");
+        }
+    }
+
+    /// A write that fails stops the sweep there: no state is solved past the row that could
+    /// not be written, and the failure is the result.
+    #[test]
+    fn a_failed_write_stops_the_sweep_at_once() {
+        let (full, _, _) = sweep_into(3, usize::MAX);
+        // The bytes of the header and the first row: the second row is the write that fails.
+        let lines: Vec<usize> =
+            full.bytes.iter().enumerate().filter(|(_, b)| **b == b'\n').map(|(i, _)| i + 1).collect();
+        let header_and_one_row = lines[1];
+        let (recorder, solved, result) = sweep_into(1000, header_and_one_row);
+        assert_eq!(result.expect_err("the second row does not fit").kind(), io::ErrorKind::BrokenPipe);
+        assert_eq!(solved, 2, "the sweep went on past the row that failed");
+        assert_eq!(recorder.bytes.len(), header_and_one_row);
+    }
 }

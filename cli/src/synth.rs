@@ -8,13 +8,12 @@
 //! a table or as CSV, each with its defects.
 
 use crate::{Failed, exit, params, progress};
-use kinloop_model::Model;
+use kinloop_model::{Count, Model};
 use kinloop_runtime::QuantityKind;
 use kinloop_runtime::paths::sweep::MAX_TURNS;
 use kinloop_runtime::synthesis::{Candidate, Defect, Design, Search, SynthesisError, SynthesisReport, Task};
 use std::f64::consts::TAU;
 use std::fmt::Write as _;
-use std::io::Write;
 use std::path::Path;
 
 /// The most threads `--jobs` starts: more than machines have cores. The pool starts every
@@ -26,10 +25,6 @@ pub const MAX_JOBS: usize = 1024;
 /// so a million take many minutes. The search lays out every start's job first: a count typed
 /// with zeros too many would abort on that allocation.
 pub const MAX_STARTS: usize = 1_000_000;
-
-/// The largest targets file read (bytes): some hundred thousand rows, far more targets than a
-/// synthesis fits.
-pub const MAX_TARGETS_BYTES: usize = 16 << 20;
 
 /// What `kinloop synth` was asked.
 pub struct Request<'a> {
@@ -89,7 +84,7 @@ pub fn run(model: &mut Model, req: &Request) -> Result<(), Failed> {
         }
     }
     params::require_values(model)?;
-    let rows = read_targets(req.targets)?;
+    let rows = crate::targets::read(req.targets)?;
     let task = task(model, req, &rows)?;
     let name = model.name().to_string();
     let problem = model.shared_synthesis_problem(&design, &task).map_err(|e| problem_error(&name, e))?;
@@ -109,11 +104,7 @@ pub fn run(model: &mut Model, req: &Request) -> Result<(), Failed> {
     bar.finish_and_clear();
     let report = report.map_err(|e| problem_error(&name, e))?;
     let text = if req.csv { csv(&report) } else { table(&report) };
-    let mut out = std::io::stdout().lock();
-    if let Err(e) = out.write_all(text.as_bytes()).and_then(|()| out.flush()) {
-        eprintln!("error: cannot write the candidates: {e}");
-        return Err(Failed(exit::IO_ERR));
-    }
+    crate::output::text(&text, "the candidates")?;
     eprintln!("{}", summary(&report));
     if report.best().is_some() {
         Ok(())
@@ -156,52 +147,6 @@ fn design(vary: &str) -> Result<Design, Failed> {
         return Err(exit::usage("--vary names no design variable"));
     }
     Ok(d)
-}
-
-/// The numeric rows of the targets file: blank lines and `#` comments skipped, a first line
-/// without any number taken for a header; every row the same width.
-fn read_targets(path: &Path) -> Result<Vec<Vec<f64>>, Failed> {
-    // A file named by mistake (a device that never ends, a large log) is refused after the most
-    // a targets file may have, not read whole into memory.
-    let text = crate::read_at_most(path, MAX_TARGETS_BYTES, || {
-        exit::usage(format!(
-            "{} has more than {MAX_TARGETS_BYTES} bytes, more than a targets file may have (a row per target)",
-            path.display()
-        ))
-    })?;
-    let mut rows: Vec<Vec<f64>> = Vec::new();
-    let lines = text.lines().enumerate().filter(|(_, l)| !l.trim().is_empty() && !l.trim_start().starts_with('#'));
-    for (k, (n, line)) in lines.enumerate() {
-        let row: Result<Vec<f64>, _> = line.split(',').map(|v| v.trim().parse::<f64>()).collect();
-        match row {
-            Ok(row) if row.iter().all(|v| v.is_finite()) => {
-                if let Some(first) = rows.first().filter(|f| f.len() != row.len()) {
-                    return Err(exit::usage(format!(
-                        "{} line {}: {} values, the rows before have {}",
-                        path.display(),
-                        n + 1,
-                        row.len(),
-                        first.len()
-                    )));
-                }
-                rows.push(row);
-            }
-            // A header: the first line with no number in it (one with a typo in a number, or
-            // a trailing comma, is a bad row, not a header).
-            Err(_) if k == 0 && line.split(',').all(|v| v.trim().parse::<f64>().is_err()) => {}
-            _ => {
-                return Err(exit::usage(format!(
-                    "{} line {}: `{line}` is not a row of finite numbers",
-                    path.display(),
-                    n + 1
-                )));
-            }
-        }
-    }
-    if rows.is_empty() {
-        return Err(exit::usage(format!("{} holds no targets", path.display())));
-    }
-    Ok(rows)
 }
 
 /// An angle given in degrees with `--deg` in radians; any other value as it is.
@@ -264,9 +209,10 @@ fn task(model: &Model, req: &Request, rows: &[Vec<f64>]) -> Result<Task, Failed>
                     Ok(Task::path(point, rows.iter().map(xy)).timed_inputs(inputs))
                 }
                 _ => Err(exit::usage(format!(
-                    "--path targets are rows `x,y` or `{}x,y`: {} has {width} values per row",
+                    "--path targets are rows `x,y` or `{}x,y`: {} has {} per row",
                     "input,".repeat(ni),
-                    req.targets.display()
+                    req.targets.display(),
+                    Count(width, "value")
                 ))),
             }
         }
@@ -283,8 +229,9 @@ fn task(model: &Model, req: &Request, rows: &[Vec<f64>]) -> Result<Task, Failed>
             }
             if width != 2 {
                 return Err(exit::usage(format!(
-                    "--function targets are rows `input,output`: {} has {width} values per row",
-                    req.targets.display()
+                    "--function targets are rows `input,output`: {} has {} per row",
+                    req.targets.display(),
+                    Count(width, "value")
                 )));
             }
             let out_kind = column_kind(model, output).unwrap_or(QuantityKind::Other);
@@ -369,9 +316,9 @@ fn table(report: &SynthesisReport) -> String {
 /// What happened to the starts, in one line.
 fn summary(r: &SynthesisReport) -> String {
     format!(
-        "{} starts: {} valid, {} converged, {} could not be assembled, {} rejected (order {}, branch {}, circuit {}, \
-         no assembly {}), {} evaluations",
-        r.starts.len() + r.seeds,
+        "{}: {} valid, {} converged, {} could not be assembled, {} rejected (order {}, branch {}, circuit {}, \
+         no assembly {}), {}",
+        Count(r.starts.len() + r.seeds, "start"),
         r.valid,
         r.converged,
         r.unassembled,
@@ -380,6 +327,6 @@ fn summary(r: &SynthesisReport) -> String {
         r.rejected.branch,
         r.rejected.circuit,
         r.rejected.no_assembly,
-        r.evaluations
+        Count(r.evaluations, "evaluation")
     )
 }

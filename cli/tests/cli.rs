@@ -244,7 +244,8 @@ fn solve_failures_are_explained() {
 }
 
 /// Standard output that cannot be written (a full disk) is exit 74 with a message, for every
-/// command that writes there, never a panic.
+/// command that writes there (the help and the version too), never a panic; and so is an
+/// output file that cannot be written.
 #[test]
 fn standard_output_that_cannot_be_written_is_exit_74() {
     let Ok(full) = std::fs::OpenOptions::new().write(true).open("/dev/full") else {
@@ -255,12 +256,22 @@ fn standard_output_that_cannot_be_written_is_exit_74() {
     let targets = targets.display().to_string();
     let coupler = shipped("coupler_four_bar.kl");
     let synth = ["synth", &coupler, "--targets", &targets, "--path", "p", "--vary", "a=0.8..1.4", "--starts", "2"];
-    let runs: [&[&str]; 5] = [
+    let engine = shipped("engine.kl");
+    let runs: [&[&str]; 14] = [
         &["check", &shipped("rhombic_drive.kl")],
         &["solve", &shipped("rhombic_drive.kl"), "--at", "0"],
         &["sweep", &shipped("rhombic_drive.kl"), "--from", "0", "--to", "1"],
         &["extremes", &shipped("rhombic_drive.kl"), "--from", "0", "--to", "1"],
         &synth,
+        &["cam", &shipped("dwell_cam.kl"), "--point", "follower", "--guide", "0,1", "--samples", "37"],
+        &["dynamics", &engine, "--speed", "150", "--samples", "8"],
+        &["simulate", &engine, "--speed", "150", "--time", "0.01", "--samples", "3"],
+        &["--help"],
+        &["--version"],
+        &["help"],
+        &["help", "sweep"],
+        &["sweep", "--help"],
+        &["-h"],
     ];
     for args in runs {
         let out = std::process::Command::new(env!("CARGO_BIN_EXE_kinloop"))
@@ -272,6 +283,29 @@ fn standard_output_that_cannot_be_written_is_exit_74() {
         assert_eq!(out.status.code(), Some(74), "{args:?}: {err}");
         assert!(err.contains("error: cannot write") && !err.contains("panicked"), "{args:?}: {err}");
     }
+    // Files that cannot be written: the events of a sweep, the flywheel, an animation.
+    let sweep = ["sweep", &shipped("four_bar.kl"), "--params", "a=1,b=3,c=2.5,d=3.2", "--from", "0", "--to", "1"];
+    let files: [&[&str]; 3] = [
+        &[&sweep[..], &["--events", "/dev/full"]].concat(),
+        &["dynamics", &engine, "--speed", "150", "--samples", "8", "--flywheel", "/dev/full"],
+        &["animate", &shipped("four_bar.kl"), "--params", "a=1,b=3,c=2.5,d=3.2", "--from", "0", "--to", "1"],
+    ];
+    for (k, args) in files.into_iter().enumerate() {
+        let args = if k == 2 { [args, &["--format", "svg", "--out", "/dev/full"]].concat() } else { args.to_vec() };
+        let out = kinloop(&args);
+        let err = String::from_utf8_lossy(&out.stderr);
+        assert_eq!(out.status.code(), Some(74), "{args:?}: {err}");
+        assert!(err.contains("error: cannot write") && !err.contains("panicked"), "{args:?}: {err}");
+    }
+}
+
+/// A count of one is named in the singular: one input given where a mechanism has two.
+#[test]
+fn one_input_is_named_in_the_singular() {
+    let out = kinloop(&["solve", &shipped("five_bar.kl"), "--at", "0.5"]);
+    let err = String::from_utf8_lossy(&out.stderr);
+    assert_eq!(out.status.code(), Some(2), "{err}");
+    assert!(err.contains("--at 0.5 gives 1 input, the mechanism has 2"), "{err}");
 }
 
 /// With `--deg`, inputs are named in degrees everywhere: the input written by `solve` is the

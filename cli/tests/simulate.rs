@@ -109,6 +109,9 @@ fn simulate_s_step_budget_is_an_option_that_bounds_the_run() {
         assert!(err.contains(what), "`{what}` missing: {err}");
     }
     assert!(!err.contains("OdeConfig"), "the library's setting named to a command-line user: {err}");
+    // A budget of one step is named in the singular.
+    let err = stderr(&run(&["--time", "1e12", "--max-steps", "1"]));
+    assert!(err.contains("budget of 1 step (--max-steps)"), "{err}");
     // From rest, where the first step is a millionth of the span: over 1e10 (and 1e200) its
     // stages put the crank far beyond any f64 angle, a step rejected for a shorter one, not a
     // failure of the machine ("input accelerations ... beyond the range of f64").

@@ -203,6 +203,9 @@ fn usage_errors_and_no_candidate_have_their_exit_codes() {
     assert_eq!(o.status.code(), Some(1), "{}", stderr(&o));
     assert!(stderr(&o).contains("no valid candidate"), "{}", stderr(&o));
     assert!(String::from_utf8_lossy(&o.stdout).starts_with("rank"));
+    // One start is counted in the singular in the summary.
+    let o = run(&["--path", "p", "--deg", "--vary", "a=10..11", "--starts", "1"]);
+    assert!(stderr(&o).contains("1 start: 0 valid"), "{}", stderr(&o));
 }
 
 #[test]
@@ -218,6 +221,14 @@ fn bad_targets_files_are_usage_errors_naming_the_file_and_line() {
         ("synth_typo.csv", "# targets\n10,1.0,2.0x\n20,1.5,2.2\n", "line 2: `10,1.0,2.0x` is not a row"),
         // A first row with a trailing comma.
         ("synth_comma.csv", "10,1.0,2.0,\n20,1.5,2.2\n", "line 1: `10,1.0,2.0,` is not a row"),
+        // A row of one value: in the singular.
+        ("synth_one.csv", "10,1.0,2.0\n20\n", "line 2: 1 value, the rows before have 3"),
+        // Numbers separated by semicolons, first: not a header to drop, but where the mistake is.
+        ("synth_semicolon.csv", "10;1.0;2.0\n20;1.5;2.2\n", "line 1, column 3: `;` between numbers"),
+        // Only the first line so: it was dropped, and the search ran on the other targets.
+        ("synth_first_semicolon.csv", "10;1.0;2.0\n20,1.5,2.2\n", "line 1, column 3: `;` between numbers"),
+        ("synth_decimal_comma.csv", "# phi;x;y\n10;0,97;1,49\n", "line 2, column 3: `;` between numbers"),
+        ("synth_tab.csv", "phi\tx\ty\n10\t1.0\t2.0\n", "line 2, column 3: a tab between numbers"),
         // Nothing but a header and a comment.
         ("synth_empty.csv", "phi,x,y\n# none\n", "holds no targets"),
         ("synth_nothing.csv", "", "holds no targets"),

@@ -9,6 +9,7 @@
 //! ([`ModelSimulation`], its steps recorded or handed over as they are made) are the runtime's, written once over any state ([`AnalogState`]) and
 //! any `Kernel`.
 
+use crate::count::Count;
 use crate::dynamics_prog::DynamicsProg;
 use crate::model::Model;
 use kinloop_runtime::dims::{Heap, KinBuf, Sizes};
@@ -99,7 +100,7 @@ fn start_guess(m: &mut Model, phi0: f64, given: Option<Vec<f64>>) -> Result<Vec<
     };
     if guess.len() != m.unknowns().len() {
         let n = m.unknowns().len();
-        return Err(Error::InvalidArgument(format!("a guess of {} values given, {n} expected", guess.len())));
+        return Err(Error::InvalidArgument(format!("a guess of {} given, {n} expected", Count(guess.len(), "value"))));
     }
     Ok(guess)
 }
@@ -330,9 +331,9 @@ impl Model {
         let (n, ni) = (self.unknowns().len(), self.inputs().len());
         if k.inputs().len() != ni || k.unknowns().len() != n {
             return Err(Error::InvalidArgument(format!(
-                "a state of {} inputs and {} unknowns given, {ni} and {n} expected",
-                k.inputs().len(),
-                k.unknowns().len()
+                "a state of {} and {} given, {ni} and {n} expected",
+                Count(k.inputs().len(), "input"),
+                Count(k.unknowns().len(), "unknown")
             )));
         }
         let (regs, prog) = self.dynamics_parts();

@@ -169,6 +169,7 @@ mod blocks;
 mod closed;
 #[cfg(test)]
 mod compiled_reference;
+mod count;
 mod dense;
 mod drawing;
 mod dynamics;
@@ -195,6 +196,7 @@ mod tape;
 pub use analysis::ModelSampled;
 pub use at::Jacobian;
 pub use blocks::StepFailure;
+pub use count::Count;
 pub use dynamics::{ModelCycle, ModelSimulation};
 pub use factor::MAX_DENSE;
 pub use mechanism::ModelKernel;

@@ -8,6 +8,7 @@
 //! Each entry point lends the model with the default solver configuration; the generic
 //! functions take a kernel of any configuration (`m.kernel(config)`).
 
+use crate::count::Count;
 use crate::model::Model;
 use kinloop_runtime::dims::{Heap, KinBuf};
 use kinloop_runtime::paths::modes::assembly_modes_of;
@@ -97,9 +98,9 @@ impl Model {
     pub fn assembly_modes(&mut self, x: &[f64]) -> Result<Vec<KinBuf>, Error> {
         if x.len() != self.inputs().len() {
             return Err(Error::InvalidArgument(format!(
-                "assembly_modes of `{}` needs {} inputs, not {}",
+                "assembly_modes of `{}` needs {}, not {}",
                 self.name(),
-                self.inputs().len(),
+                Count(self.inputs().len(), "input"),
                 x.len()
             )));
         }
@@ -214,9 +215,9 @@ impl Model {
     ) -> Result<A, Error> {
         if set.len() != params.len() {
             return Err(Error::InvalidArgument(format!(
-                "a parameter set of {} values for the {} parameters scanned",
-                set.len(),
-                params.len()
+                "a parameter set of {} for the {} scanned",
+                Count(set.len(), "value"),
+                Count(params.len(), "parameter")
             )));
         }
         for (name, &value) in params.iter().zip(set) {

@@ -1,0 +1,72 @@
+//! A CSV table written row by row, as its rows are made: a long sweep keeps none of them.
+
+use kinloop_runtime::{Number, Table};
+use std::fmt::Write as _;
+use std::io::{self, Write};
+
+/// A CSV table being written: the header first, then each row as it comes, in the bytes
+/// [`Table::write_csv`] writes for the same table (its numbers written as [`Number`] writes
+/// them, fields separated by commas, lines ended by `\n`; a number never needs quotes).
+pub struct CsvRows<W: Write> {
+    out: W,
+    /// The line being written, kept to be reused: no allocation per row.
+    line: String,
+}
+
+impl<W: Write> CsvRows<W> {
+    /// Writes the header of `header` (its columns with their units, and its rows if it has
+    /// any) to `out`, and returns the writer of the rows that follow.
+    pub fn new(mut out: W, header: &Table) -> io::Result<Self> {
+        header.write_csv(&mut out)?;
+        Ok(CsvRows { out, line: String::new() })
+    }
+
+    /// Writes one row, handed to the writer in one piece (a buffered `out` passes it on when
+    /// its buffer is full).
+    pub fn row(&mut self, values: &[f64]) -> io::Result<()> {
+        self.line.clear();
+        for (k, v) in values.iter().enumerate() {
+            if k > 0 {
+                self.line.push(',');
+            }
+            // Writing into a `String` does not fail.
+            let _ = write!(self.line, "{}", Number(*v));
+        }
+        self.line.push('\n');
+        self.out.write_all(self.line.as_bytes())
+    }
+
+    /// Flushes what the writer still holds: the table is written only once this succeeds.
+    pub fn finish(mut self) -> io::Result<()> {
+        self.out.flush()
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::CsvRows;
+    use kinloop_runtime::Table;
+
+    /// Row by row, the bytes of the whole table written at once by the `csv` crate: numbers at
+    /// every magnitude and the values that are not finite, one column and several.
+    #[test]
+    fn rows_written_one_by_one_are_the_tables_bytes() {
+        let values = [0.0, -0.0, 0.1, -2.5, 150.0, 1e-5, 9.9e-6, 1e16, -1e300, 5e-324, f64::NAN, f64::INFINITY];
+        for width in [1, 3] {
+            let mut table = Table::new((0..width).map(|k| format!("c{k}")).collect());
+            for chunk in values.chunks(width) {
+                table.push(chunk.to_vec());
+            }
+            let table = table.with_units(&[("c0", "mm"), ("c1", "rad")]);
+            let mut whole = Vec::new();
+            table.write_csv(&mut whole).expect("a table in memory");
+            let mut streamed = Vec::new();
+            let mut rows = CsvRows::new(&mut streamed, &Table { rows: Vec::new(), ..table.clone() }).expect("header");
+            for row in &table.rows {
+                rows.row(row).expect("a row in memory");
+            }
+            rows.finish().expect("flushed");
+            assert_eq!(String::from_utf8_lossy(&streamed), String::from_utf8_lossy(&whole));
+        }
+    }
+}

@@ -1,0 +1,148 @@
+//! The targets file of `kinloop synth`: rows of numbers separated by commas, blank lines and
+//! `#` comments skipped, and a header line allowed first.
+
+use crate::{Failed, exit};
+use kinloop_model::Count;
+use std::path::Path;
+
+/// The largest targets file read (bytes): some hundred thousand rows, far more targets than a
+/// synthesis fits.
+pub const MAX_TARGETS_BYTES: usize = 16 << 20;
+
+/// The separators of numbers other than the comma that a row might be written with (a
+/// spreadsheet's `;` where the comma is the decimal separator, a tab, spaces, `|`): a line of
+/// numbers separated by one of them is a mistake said as such, not a header to skip.
+const OTHER_SEPARATORS: [char; 4] = [';', '\t', ' ', '|'];
+
+/// The numeric rows of the targets file `path`, every row the same width; a usage error naming
+/// the file, the line (and the column of a separator that is not the comma) otherwise.
+pub fn read(path: &Path) -> Result<Vec<Vec<f64>>, Failed> {
+    // A file named by mistake (a device that never ends, a large log) is refused after the most
+    // a targets file may have, not read whole into memory.
+    let text = crate::read_at_most(path, MAX_TARGETS_BYTES, || {
+        exit::usage(format!(
+            "{} has more than {MAX_TARGETS_BYTES} bytes, more than a targets file may have (a row per target)",
+            path.display()
+        ))
+    })?;
+    rows(&text).map_err(|why| exit::usage(format!("{} {why}", path.display())))
+}
+
+/// The rows of `text`; the error is what is wrong and where (`line 3: ...`), to follow the
+/// file's name.
+fn rows(text: &str) -> Result<Vec<Vec<f64>>, String> {
+    let mut rows: Vec<Vec<f64>> = Vec::new();
+    let lines = text.lines().enumerate().filter(|(_, l)| !l.trim().is_empty() && !l.trim_start().starts_with('#'));
+    for (k, (n, line)) in lines.enumerate() {
+        let row: Result<Vec<f64>, _> = line.split(',').map(|v| v.trim().parse::<f64>()).collect();
+        match row {
+            Ok(row) if row.iter().all(|v| v.is_finite()) => {
+                if let Some(first) = rows.first().filter(|f| f.len() != row.len()) {
+                    return Err(format!(
+                        "line {}: {}, the rows before have {}",
+                        n + 1,
+                        Count(row.len(), "value"),
+                        first.len()
+                    ));
+                }
+                rows.push(row);
+            }
+            _ if k == 0 && is_header(line) => {}
+            _ => {
+                return Err(match wrong_separator(line) {
+                    Some((column, c)) => format!(
+                        "line {}, column {column}: {} between numbers, where the numbers of a row are separated by \
+                         commas `,` (and `.` is the decimal point)",
+                        n + 1,
+                        separator_name(c)
+                    ),
+                    None => format!("line {}: `{line}` is not a row of finite numbers", n + 1),
+                });
+            }
+        }
+    }
+    if rows.is_empty() {
+        return Err("holds no targets".to_string());
+    }
+    Ok(rows)
+}
+
+/// Whether the first line `line` is a header: none of its fields is a number (one with a typo
+/// in a number, or a trailing comma, is a bad row), and it is not numbers separated by another
+/// separator than the comma (`1;2` is a row written wrong, not the names of columns).
+fn is_header(line: &str) -> bool {
+    line.split(',').all(|v| v.trim().parse::<f64>().is_err()) && wrong_separator(line).is_none()
+}
+
+/// Where `line` is numbers separated, somewhere, by another separator than the comma: the
+/// column (from 1, in characters) of the first such separator and the separator. `None` where
+/// a field is not made of numbers at all, or every field is one number.
+fn wrong_separator(line: &str) -> Option<(usize, char)> {
+    let mut first = None;
+    let mut start = 0;
+    for field in line.split(',') {
+        let trimmed = field.trim();
+        if trimmed.parse::<f64>().is_err() {
+            let mut tokens = trimmed.split(OTHER_SEPARATORS).filter(|t| !t.is_empty());
+            // Two numbers at least, and nothing else: numbers with another separator.
+            let numbers = tokens.clone().count() >= 2 && tokens.all(|t| t.parse::<f64>().is_ok());
+            if !numbers {
+                return None;
+            }
+            if first.is_none() {
+                let lead = field.len() - field.trim_start().len();
+                let (at, c) = trimmed.char_indices().find(|(_, c)| OTHER_SEPARATORS.contains(c))?;
+                first = Some((line[..start + lead + at].chars().count() + 1, c));
+            }
+        }
+        start += field.len() + 1;
+    }
+    first
+}
+
+/// A separator as a message names it: a space and a tab in words, the others quoted.
+fn separator_name(c: char) -> String {
+    match c {
+        ' ' => "a space".to_string(),
+        '\t' => "a tab".to_string(),
+        c => format!("`{c}`"),
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::rows;
+
+    #[test]
+    fn a_header_is_a_first_line_of_words() {
+        assert_eq!(rows("phi,x,y\n10,1,2\n"), Ok(vec![vec![10.0, 1.0, 2.0]]));
+        // Names with another separator, and units with spaces: still words.
+        assert_eq!(rows("x [mm];y [mm]\n1, 2\n"), Ok(vec![vec![1.0, 2.0]]));
+        assert_eq!(rows("# targets\nx\ty\n1,2\n"), Ok(vec![vec![1.0, 2.0]]));
+    }
+
+    /// A first line of numbers with a separator other than the comma was taken for a header
+    /// and dropped: it is an error naming the line, the column of the separator and the comma.
+    #[test]
+    fn numbers_with_another_separator_are_an_error_where_it_is() {
+        for (text, line, column, what) in [
+            ("1;2\n3,4\n", 1, 2, "`;`"),
+            ("1;2\n3;4\n", 1, 2, "`;`"),
+            ("0,97;1,49\n", 1, 5, "`;`"),
+            ("# comment\n  0.97 1.49\n", 2, 7, "a space"),
+            ("phi\tx\ty\n10\t1.0\t2.0\n", 2, 3, "a tab"),
+            ("1,2\n3,4|5\n", 2, 4, "`|`"),
+        ] {
+            let e = rows(text).expect_err(text);
+            let want = format!("line {line}, column {column}: {what} between numbers");
+            assert!(e.starts_with(&want), "{text:?}: {e}");
+            assert!(e.contains("separated by commas `,`"), "{text:?}: {e}");
+        }
+    }
+
+    #[test]
+    fn a_row_of_another_width_counts_one_value_in_the_singular() {
+        assert_eq!(rows("1,2\n3\n"), Err("line 2: 1 value, the rows before have 2".to_string()));
+        assert_eq!(rows("1\n3,4\n"), Err("line 2: 2 values, the rows before have 1".to_string()));
+    }
+}
