@@ -10,6 +10,7 @@
 //! starting point must be feasible.
 
 use super::{Minimum, OptimizerStop};
+use crate::error::Error;
 
 /// Derivative-free minimiser: the Nelder–Mead simplex method with the dimension-adaptive
 /// coefficients of Gao and Han, restarts and evaluation counting. Infeasible points are marked
@@ -207,16 +208,20 @@ impl NelderMead {
     /// smooth minimum in `u`. The initial simplex steps are `0.25` rad in `u` (a quarter of the
     /// range near the centre). `x_tol` applies to `u`.
     ///
-    /// # Panics
-    /// If a bound is not finite or `lo[i] > hi[i]` (a box that holds no point, or one the sine
-    /// cannot map onto): a programmer's error, as for [`f64::clamp`].
+    /// Errors: `InvalidArgument` naming the coordinate and its bounds if a bound is not finite
+    /// or `lo[i] > hi[i]` (a box that holds no point, or one the sine cannot map onto), before
+    /// any evaluation.
     ///
     /// ```
     /// use kinloop_runtime::analysis::optimize::NelderMead;
     /// // (x - 2)^2 + (y + 0.5)^2 over [0, 1] x [-1, 1]: the minimum is on the face x = 1.
     /// let f = |p: &[f64; 2]| (p[0] - 2.0).powi(2) + (p[1] + 0.5).powi(2);
-    /// let m = NelderMead::default().minimize_boxed(f, [0.5, 0.0], [0.0, -1.0], [1.0, 1.0]);
+    /// let m = NelderMead::default().minimize_boxed(f, [0.5, 0.0], [0.0, -1.0], [1.0, 1.0])?;
     /// assert!((m.x[0] - 1.0).abs() < 1e-9 && (m.x[1] + 0.5).abs() < 1e-6 && m.x[0] <= 1.0);
+    /// // A box that holds no point is refused, naming the coordinate.
+    /// let bad = NelderMead::default().minimize_boxed(f, [0.5, 0.0], [0.0, 1.0], [1.0, -1.0]);
+    /// assert!(bad.unwrap_err().to_string().contains("coordinate 1"));
+    /// # Ok::<(), kinloop_runtime::Error>(())
     /// ```
     pub fn minimize_boxed<const P: usize>(
         &self,
@@ -224,16 +229,14 @@ impl NelderMead {
         x0: [f64; P],
         lo: [f64; P],
         hi: [f64; P],
-    ) -> Minimum<P> {
+    ) -> Result<Minimum<P>, Error> {
         // Checked here, naming the coordinate: `clamp` panicked with its own words for
         // `lo > hi` or a NaN, and infinite bounds made every trial point NaN.
-        for i in 0..P {
-            assert!(
-                lo[i].is_finite() && hi[i].is_finite() && lo[i] <= hi[i],
+        if let Some(i) = (0..P).find(|&i| !(lo[i].is_finite() && hi[i].is_finite() && lo[i] <= hi[i])) {
+            return Err(Error::InvalidArgument(format!(
                 "NelderMead::minimize_boxed: the box of coordinate {i}, [{}, {}], needs finite bounds with lo <= hi",
-                lo[i],
-                hi[i]
-            );
+                lo[i], hi[i]
+            )));
         }
         let to_x = |u: &[f64; P]| {
             let mut x = [0.0; P];
@@ -248,7 +251,7 @@ impl NelderMead {
             u0[i] = t.clamp(-1.0, 1.0).asin();
         }
         let m = self.minimize(|u| f(&to_x(u)), u0, [0.25; P]);
-        Minimum { x: to_x(&m.x), ..m }
+        Ok(Minimum { x: to_x(&m.x), ..m })
     }
 }
 
@@ -299,26 +302,40 @@ mod tests {
     fn boxed_search_reaches_faces_and_corners() {
         // The unconstrained minimum (2, -3) lies outside [0, 1] x [-1, 1]: the corner (1, -1).
         let f = |p: &[f64; 2]| (p[0] - 2.0).powi(2) + (p[1] + 3.0).powi(2) + 0.1 * p[0] * p[1];
-        let m = NelderMead::default().minimize_boxed(f, [0.2, 0.3], [0.0, -1.0], [1.0, 1.0]);
+        let m = NelderMead::default().minimize_boxed(f, [0.2, 0.3], [0.0, -1.0], [1.0, 1.0]).unwrap();
         assert!((m.x[0] - 1.0).abs() < 1e-9 && (m.x[1] + 1.0).abs() < 1e-9, "{m:?}");
         // An interior minimum is found as without the box.
         let g = |p: &[f64; 2]| (p[0] - 0.3).powi(2) + 2.0 * (p[1] - 0.7).powi(2);
-        let m = NelderMead::default().minimize_boxed(g, [0.9, -0.9], [0.0, -1.0], [1.0, 1.0]);
+        let m = NelderMead::default().minimize_boxed(g, [0.9, -0.9], [0.0, -1.0], [1.0, 1.0]).unwrap();
         assert!((m.x[0] - 0.3).abs() < 1e-6 && (m.x[1] - 0.7).abs() < 1e-6, "{m:?}");
     }
 
-    /// A box with `lo > hi` is a documented panic naming the coordinate (it was `clamp`'s own
-    /// panic); an infinite bound too (it made every trial point NaN).
+    /// A box with `lo > hi` is an error naming the coordinate and its bounds (it was a panic,
+    /// and before that `clamp`'s own); an infinite or NaN bound too (it made every trial point
+    /// NaN). Nothing is evaluated.
     #[test]
-    #[should_panic(expected = "the box of coordinate 1, [1, 0]")]
-    fn an_inverted_box_panics_naming_its_coordinate() {
-        NelderMead::default().minimize_boxed(|p: &[f64; 2]| p[0] + p[1], [0.5, 0.5], [0.0, 1.0], [1.0, 0.0]);
-    }
-
-    #[test]
-    #[should_panic(expected = "the box of coordinate 0, [-inf, 1]")]
-    fn an_infinite_bound_panics_naming_its_coordinate() {
-        NelderMead::default().minimize_boxed(|p: &[f64; 1]| p[0] * p[0], [0.5], [f64::NEG_INFINITY], [1.0]);
+    fn a_box_that_holds_no_point_is_an_error_naming_its_coordinate() {
+        let mut calls = 0;
+        let mut f = |p: &[f64; 2]| {
+            calls += 1;
+            p[0] + p[1]
+        };
+        let inverted = NelderMead::default().minimize_boxed(&mut f, [0.5, 0.5], [0.0, 1.0], [1.0, 0.0]);
+        let bad = [
+            (inverted, "the box of coordinate 1, [1, 0]"),
+            (
+                NelderMead::default().minimize_boxed(&mut f, [0.5, 0.5], [f64::NEG_INFINITY, 0.0], [1.0, 1.0]),
+                "the box of coordinate 0, [-inf, 1]",
+            ),
+            (
+                NelderMead::default().minimize_boxed(&mut f, [0.5, 0.5], [0.0, 0.0], [1.0, f64::NAN]),
+                "the box of coordinate 1, [0, NaN]",
+            ),
+        ];
+        for (r, want) in bad {
+            assert!(matches!(&r, Err(Error::InvalidArgument(m)) if m.contains(want)), "{want}: {r:?}");
+        }
+        assert_eq!(calls, 0, "refused before any evaluation");
     }
 
     /// No variable: the start is the minimum, whatever the tolerances (negative ones made the
