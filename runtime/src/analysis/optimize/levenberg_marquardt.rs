@@ -21,11 +21,12 @@ use crate::error::Error;
 #[derive(Clone, Copy, Debug, PartialEq)]
 #[non_exhaustive]
 pub struct LevenbergMarquardt {
-    /// Converged when the residual norm falls below this (default `1e-10`).
+    /// Converged when the residual norm falls below this (finite and not negative; default
+    /// `1e-10`).
     pub tol: f64,
-    /// Stop after this many evaluations (default `200`).
+    /// Stop after this many evaluations (at least 1, the start's; default `200`).
     pub max_evaluations: usize,
-    /// Initial damping (default `1e-3`).
+    /// Initial damping (positive and finite; default `1e-3`).
     pub lambda: f64,
 }
 
@@ -72,27 +73,43 @@ impl LevenbergMarquardt {
         self
     }
 
+    /// The first field outside its valid range (`tol` finite and not negative,
+    /// `max_evaluations` at least 1, `lambda` positive and finite; NaN is outside every range).
+    pub fn invalid_field(&self) -> Option<&'static str> {
+        // A NaN tolerance or damping fails every comparison: the search stopped at the start as
+        // stalled. A damping not positive never grows to reject a step.
+        if !(self.tol.is_finite() && self.tol >= 0.0) {
+            Some("tol")
+        } else if self.max_evaluations == 0 {
+            Some("max_evaluations")
+        } else if !(self.lambda.is_finite() && self.lambda > 0.0) {
+            Some("lambda")
+        } else {
+            None
+        }
+    }
+
+    /// Checks every field: `Error::InvalidArgument` names the first one out of range.
+    pub fn validate(&self) -> Result<(), Error> {
+        match self.invalid_field() {
+            None => Ok(()),
+            Some(field) => Err(Error::InvalidArgument(format!(
+                "LevenbergMarquardt::{field} is out of its valid range (see its documentation): {self:?}"
+            ))),
+        }
+    }
+
     /// Minimises `|r(x)|^2` from `x0`; `f(x)` returns the residuals and their Jacobian
     /// `J[k][i] = d r_k / d x_i`. An error at `x0` is returned, and so is a residual there
     /// that is not finite (`InvalidArgument`); later errors, and residuals not finite, reject
-    /// the step. A tolerance that is negative or NaN, or a damping that is not positive and
-    /// finite, is an `InvalidArgument`.
+    /// the step. A configuration out of range ([`LevenbergMarquardt::validate`]) is an
+    /// `InvalidArgument` before any evaluation.
     pub fn minimize<const R: usize, const P: usize>(
         &self,
         mut f: impl FnMut(&[f64; P]) -> Result<([f64; R], [[f64; P]; R]), Error>,
         x0: [f64; P],
     ) -> Result<Minimum<P>, Error> {
-        // A NaN tolerance or damping fails every comparison: the search stopped at the start as
-        // stalled. A damping not positive never grows to reject a step.
-        if self.tol.is_nan() || self.tol < 0.0 {
-            return Err(Error::InvalidArgument(format!("LevenbergMarquardt::tol {} must not be negative", self.tol)));
-        }
-        if !(self.lambda > 0.0 && self.lambda.is_finite()) {
-            return Err(Error::InvalidArgument(format!(
-                "LevenbergMarquardt::lambda {} must be positive and finite",
-                self.lambda
-            )));
-        }
+        self.validate()?;
         let (mut r, mut jac) = f(&x0)?;
         // A NaN norm fails every comparison: no step was tried, and the NaN was returned as the
         // value of a stalled search.
@@ -190,9 +207,19 @@ mod tests {
             (lm.with_lambda(0.0), "lambda"),
             (lm.with_lambda(-1.0), "lambda"),
             (lm.with_lambda(f64::INFINITY), "lambda"),
+            (lm.with_tol(f64::INFINITY), "tol"),
+            (lm.with_max_evaluations(0), "max_evaluations"),
         ] {
-            let r = cfg.minimize(f, [0.0]);
+            let mut calls = 0;
+            let r = cfg.minimize(
+                |v: &[f64; 1]| {
+                    calls += 1;
+                    f(v)
+                },
+                [0.0],
+            );
             assert!(matches!(&r, Err(Error::InvalidArgument(m)) if m.contains(field)), "{cfg:?}: {r:?}");
+            assert_eq!(calls, 0, "refused before any evaluation");
         }
         assert!(lm.with_tol(0.0).minimize(f, [0.0]).unwrap().converged());
     }
