@@ -100,7 +100,7 @@ enum Step {
 pub(crate) type Solved<Q> = (Vec<f64>, Eval<Q>, LocalReport);
 
 fn norm(r: &[f64]) -> f64 {
-    super::norm_of(r.iter().copied())
+    crate::number::norm_of(r.iter().copied())
 }
 
 impl<K: SensKernel> ProblemOf<K> {

@@ -242,11 +242,11 @@ impl<K: SensKernel> ProblemOf<K> {
         }
         let four_bar =
             self.checks.four_bar.and_then(|[d, a, b, c]| four_bar_class([d, a, b, c].map(|i| params[i].abs())));
-        let errors: Vec<f64> = e.r.chunks(self.width).map(|c| super::norm_of(c.iter().copied())).collect();
+        let errors: Vec<f64> = e.r.chunks(self.width).map(|c| crate::number::norm_of(c.iter().copied())).collect();
         let max_error = errors.iter().copied().fold(0.0, f64::max);
         // The root mean square as a norm over `sqrt(n)` (the squares of errors near the
         // largest `f64` overflow).
-        let rms_error = super::norm_of(errors.iter().copied()) / (n as f64).sqrt();
+        let rms_error = crate::number::norm_of(errors.iter().copied()) / (n as f64).sqrt();
         let placement = self.placement.map(|_| {
             let at = self.vars.len() + self.free_inputs();
             [z[at], z[at + 1], z[at + 2], z[at + 3]]
