@@ -72,7 +72,8 @@ fn in_order(x: &[f64], angle: bool) -> Option<Vec<f64>> {
 
 /// The Grashof class of the four-bar `[ground, input, coupler, output]` and its smallest
 /// transmission angle over the input's range (see [`FourBarClass`]); `None` where the lengths
-/// are no four-bar (one not positive, or longer than the other three together).
+/// are no four-bar that moves (one not positive, or one at least as long as the other three
+/// together).
 pub(crate) fn four_bar_class([d, a, b, c]: [f64; 4]) -> Option<FourBarClass> {
     let g = grashof(FourBarLinks { ground: d, input: a, coupler: b, output: c }).ok()?;
     let min_transmission = if g.input_turns {
