@@ -97,7 +97,7 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
 
     let (lo, hi) = ([0.5, 1.5, -1.0, -PI], [2.0, 6.0, 1.0, PI]);
     let cfg = NelderMead::default().with_max_evaluations(10_000).with_tolerances(1e-12, 1e-8);
-    let best = cfg.minimize_boxed(|p| unbalance(&design(*p), SAMPLES), [1.0, 2.0, 0.3, 0.0], lo, hi);
+    let best = cfg.minimize_boxed(|p| unbalance(&design(*p), SAMPLES), [1.0, 2.0, 0.3, 0.0], lo, hi)?;
     println!(
         "\nminimum of D over rho, gamma_b, k_b, delta (Nelder-Mead: {} evaluations, converged = {}):",
         best.evaluations,
@@ -112,7 +112,7 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
     );
 
     let (lo, hi) = ([lo[0], lo[1], lo[2]], [hi[0], hi[1], hi[2]]);
-    let best90 = cfg.minimize_boxed(|p| unbalance(&phased(*p), SAMPLES), [1.0, 2.0, 0.3], lo, hi);
+    let best90 = cfg.minimize_boxed(|p| unbalance(&phased(*p), SAMPLES), [1.0, 2.0, 0.3], lo, hi)?;
     println!(
         "\nwith the phase shift held at {}° (Nelder-Mead: {} evaluations, converged = {}):",
         PHASE.to_degrees(),

@@ -1,8 +1,9 @@
 //! How kinloop writes a number for people and files: the shortest digits that read back to the
 //! same `f64`, positional for ordinary magnitudes and in exponent notation beyond them. One
 //! function for every place that writes numbers (a table's CSV, the location of an error), so
-//! that they agree; and the power of two that scales a number exactly ([`pow2_at_most`]). A
-//! leaf: it imports nothing from the crate.
+//! that they agree; the power of two that scales a number exactly ([`pow2_at_most`]), and the
+//! Euclidean norm of values at any scale by it ([`norm_of`]). A leaf: it imports nothing from
+//! the crate.
 
 use std::fmt;
 
@@ -59,6 +60,27 @@ pub(crate) fn pow2_at_most(m: f64) -> f64 {
     }
 }
 
+/// The Euclidean norm of `values`, each divided by the power of two at most the largest first
+/// (exact) so that no square leaves the range of `f64`: the residuals of targets near `1e308`
+/// have squares beyond it. NaN if a value is NaN, infinite if one is infinite.
+pub(crate) fn norm_of(values: impl IntoIterator<Item = f64> + Clone) -> f64 {
+    let mut big = 0.0f64;
+    for v in values.clone() {
+        // `f64::max` passes over a NaN: kept here instead.
+        if v.is_nan() || v.abs() > big {
+            big = v.abs();
+        }
+        if big.is_nan() {
+            return big;
+        }
+    }
+    if big == 0.0 || big == f64::INFINITY {
+        return big;
+    }
+    let unit = pow2_at_most(big);
+    values.into_iter().map(|v| (v / unit) * (v / unit)).sum::<f64>().sqrt() * unit
+}
+
 /// `v` as [`Number`] writes it, as a `String`.
 pub(crate) fn number(v: f64) -> String {
     Number(v).to_string()
@@ -67,6 +89,20 @@ pub(crate) fn number(v: f64) -> String {
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    /// Against the plain formula where it holds, and exactly scaled beyond it.
+    #[test]
+    fn norms_of_values_whose_squares_leave_f64() {
+        assert_eq!(norm_of([3.0, 4.0]), 5.0);
+        assert_eq!(norm_of([0.0; 3]), 0.0);
+        assert_eq!(norm_of(std::iter::empty::<f64>()), 0.0);
+        for k in [-1074, -600, 600, 970] {
+            let s = 2f64.powi(k);
+            assert_eq!(norm_of([3.0 * s, -4.0 * s]), 5.0 * s, "{k}");
+        }
+        assert!(norm_of([1.0, f64::NAN, 1e308]).is_nan() && norm_of([f64::NAN, f64::INFINITY]).is_nan());
+        assert_eq!(norm_of([1.0, f64::NEG_INFINITY]), f64::INFINITY);
+    }
 
     /// Reads `s` back and checks it is `v`, bit for bit (any NaN for a NaN).
     fn reads_back(v: f64, s: &str) {

@@ -108,7 +108,7 @@ fn nelder_mead_finds_the_exact_balance() {
     // D grows linearly away from its zero, so f_tol = 1e-10 means a simplex within ~1e-10.
     let cfg = NelderMead::default().with_max_evaluations(3000).with_tolerances(1e-10, 1e-8);
     let (lo, hi) = ([0.5, 1.5, -1.0, -PI], [2.0, 6.0, 1.0, PI]);
-    let best = cfg.minimize_boxed(|p| unbalance(&design(*p), 32), [1.3, 2.7, 0.2, 0.1], lo, hi);
+    let best = cfg.minimize_boxed(|p| unbalance(&design(*p), 32), [1.3, 2.7, 0.2, 0.1], lo, hi).unwrap();
     assert!(best.converged(), "{best:?}");
     for (got, want) in best.x.iter().zip([1.5, 3.0, 0.3, 0.0]) {
         assert_close!(*got, want, 1e-6, "{best:?}");

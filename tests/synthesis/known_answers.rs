@@ -184,3 +184,27 @@ fn an_optimum_beyond_a_bound_stops_on_it() {
     assert!(best.max_error > 1e-3 && best.max_error.is_finite(), "{best:?}");
     assert_eq!(best.local.stop, kinloop::analysis::OptimizerStop::Converged, "{best:?}");
 }
+
+/// A length (`e`) and an angle (`alpha`) recovered together in any unit of length, from 1e-100
+/// to 1e100: the angle's column of the Jacobian grows with the unit and the length's does not.
+/// The local solve's damping floor, relative to the largest column, swamped the length's at
+/// 1e100: its steps came out too small to change it, and the solve stopped "converged" with
+/// the length where it started and errors the size of the mechanism.
+#[test]
+fn a_length_and_an_angle_are_recovered_in_any_unit() {
+    let phis: Vec<f64> = (0..5).map(|k| 0.3 + 1.1 * k as f64).collect();
+    for s in [1e-100, 1e-9, 1.0, 1e12, 1e100] {
+        let [a, b, c, d, e, alpha] = FOUR_BAR;
+        let truth = [a * s, b * s, c * s, d * s, e * s, alpha];
+        let targets: Vec<[f64; 2]> = phis.iter().map(|&p| coupler_point(truth, p)).collect();
+        let task = Task::path("p", targets).timed(phis.clone());
+        let m = CouplerFourBar { a: truth[0], b: truth[1], c: truth[2], d: truth[3], e: truth[4], alpha };
+        let vars = Design::new().var("e", 0.5 * truth[4], 2.0 * truth[4]).var("alpha", 0.0, 1.0);
+        let problem = Problem::new(m, &vars, &task).unwrap();
+        let cand = Search::default().refine(&problem, &[1.1 * truth[4], 0.5]).unwrap();
+        assert!(cand.local.stop == kinloop::analysis::OptimizerStop::Converged, "{s:e}: {:?}", cand.local);
+        assert!(cand.max_error <= RESIDUAL * s, "{s:e}: max error {:e}", cand.max_error);
+        assert_close!(cand.values[0], truth[4], rel = DIMENSION, "{s:e}: e");
+        assert_close!(cand.values[1], alpha, rel = DIMENSION, "{s:e}: alpha");
+    }
+}

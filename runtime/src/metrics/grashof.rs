@@ -87,8 +87,10 @@ pub struct Grashof {
 /// Classifies a four-bar loop.
 ///
 /// Lengths equal to within a few units of rounding (relative to their sum) count as equal,
-/// so a parallelogram declared in any unit is a change point. Errors: a length that is not
-/// finite and positive, or one longer than the other three together (the loop cannot close).
+/// so a parallelogram declared in any unit is a change point. Errors (`InvalidArgument`): a
+/// length that is not finite and positive, one longer than the other three together (the loop
+/// cannot close), or one as long as the other three together (it closes only lying flat, every
+/// link on one line, and cannot move).
 ///
 /// ```
 /// use kinloop_runtime::metrics::{FourBarLinks, GrashofClass, grashof};
@@ -114,9 +116,19 @@ pub fn grashof(links: FourBarLinks) -> Result<Grashof, Error> {
     let sum: f64 = lengths.iter().sum();
     let tol = 8.0 * f64::EPSILON * sum;
     let longest = lengths.iter().copied().fold(0.0, f64::max);
-    if longest > sum - longest + tol {
+    let rest = sum - longest;
+    if longest > rest + tol {
         return Err(Error::InvalidArgument(format!(
             "a four-bar with links {given:?} cannot close: the longest is longer than the other three together"
+        )));
+    }
+    // Equal to within the rounding of the sums (and of lengths declared in decimal, as
+    // `0.1 + 0.2 + 0.3` against `0.6`), the same tolerance that judges a change point: no
+    // triple rocker, which moves, but a straight line that cannot.
+    if longest >= rest - tol {
+        return Err(Error::InvalidArgument(format!(
+            "a four-bar with links {given:?} cannot move: the longest is as long as the other three together, \
+             so the loop closes only lying flat, every link on one line"
         )));
     }
     let (k_short, short) =
@@ -226,6 +238,37 @@ mod tests {
         assert!((g.margin + 0.5 / 3.5).abs() < 1e-15, "{g:?}");
         let err = grashof(FourBarLinks { ground: f64::MAX, input: 1e300, coupler: 1e300, output: 1e300 }).unwrap_err();
         assert!(err.to_string().contains("1.7976931348623157e308"), "{err}");
+    }
+
+    /// One link as long as the other three together: the loop closes only lying flat, every
+    /// link on one line, and cannot move at all. That is an error saying so (it was classified
+    /// a triple rocker, a linkage that moves), in any unit: the lengths `0.1 + 0.2 + 0.3` sum to
+    /// one unit in the last place above `0.6`, which the rounding tolerance takes as equal.
+    /// A link one part in a billion shorter is a triple rocker again, one longer cannot close.
+    #[test]
+    fn a_link_as_long_as_the_other_three_cannot_move() {
+        for scale in [1e-300, 1e-6, 1e-3, 1.0, 1e3, 1e300, 2f64.powi(1021)] {
+            let links = |long: f64| FourBarLinks {
+                ground: long * scale,
+                input: 0.1 * scale,
+                coupler: 0.2 * scale,
+                output: 0.3 * scale,
+            };
+            let err = grashof(links(0.6)).unwrap_err();
+            assert!(matches!(&err, Error::InvalidArgument(m) if m.contains("cannot move")), "{scale:e}: {err}");
+            let exact = FourBarLinks {
+                ground: 0.25 * scale,
+                input: 0.5 * scale,
+                coupler: 0.125 * scale,
+                output: 0.125 * scale,
+            };
+            let err = grashof(exact).unwrap_err();
+            assert!(err.to_string().contains("cannot move"), "{scale:e}: {err}");
+            let g = grashof(links(0.6 * (1.0 - 1e-9))).unwrap();
+            assert_eq!(g.class, GrashofClass::TripleRocker, "{scale:e}: {g:?}");
+            let err = grashof(links(0.6 * (1.0 + 1e-9))).unwrap_err();
+            assert!(err.to_string().contains("cannot close"), "{scale:e}: {err}");
+        }
     }
 
     #[test]

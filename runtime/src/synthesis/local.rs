@@ -100,7 +100,7 @@ enum Step {
 pub(crate) type Solved<Q> = (Vec<f64>, Eval<Q>, LocalReport);
 
 fn norm(r: &[f64]) -> f64 {
-    super::norm_of(r.iter().copied())
+    crate::number::norm_of(r.iter().copied())
 }
 
 impl<K: SensKernel> ProblemOf<K> {
@@ -116,6 +116,15 @@ impl<K: SensKernel> ProblemOf<K> {
         let mut iterations = 0;
         let mut lambda = cfg.lambda;
         let rows = e.r.len();
+        // Each unknown's unit for the damping floor: its bounds' width (its own magnitude where
+        // the width is zero or overflows), so that the floor compares the unknowns' effects over
+        // their ranges, in residual units, whatever the units of length and angle.
+        let width: Vec<f64> = (0..n)
+            .map(|i| {
+                let w = hi[i] - lo[i];
+                if w > 0.0 && w.is_finite() { w } else { lo[i].abs().max(hi[i].abs()).max(f64::MIN_POSITIVE) }
+            })
+            .collect();
         let stop = loop {
             if f <= cfg.tol * self.scale {
                 break OptimizerStop::Converged;
@@ -143,7 +152,15 @@ impl<K: SensKernel> ProblemOf<K> {
             // Held: on a bound with the descent direction (-g) pointing out.
             let held: Vec<bool> =
                 (0..n).map(|i| (z[i] <= lo[i] && g[i] > 0.0) || (z[i] >= hi[i] && g[i] < 0.0)).collect();
-            let floor = 1e-12 * (0..n).map(|i| a[(i, i)]).fold(0.0, f64::max);
+            // The floor keeps the damped matrix regular where a column vanishes. Relative to the
+            // largest column it swamped a column smaller by 1e6 (an angle's against a length's
+            // at a unit of 1e-100, or a length's against an angle's at 1e100): that unknown's
+            // steps came out too small to change it, and the solve stopped "converged" there.
+            // So it is judged on the unknowns scaled by their widths: the largest change any one
+            // makes over its range, `sqrt(a_ii) w_i`, a millionth of it over the unknown's own
+            // width, squared.
+            let reach = (0..n).filter(|&i| !held[i]).map(|i| a[(i, i)].sqrt() * width[i]).fold(0.0, f64::max);
+            let floor = |i: usize| (1e-6 * reach / width[i]).powi(2).min(f64::MAX);
             let mut step = Step::Exhausted;
             while evaluations < cfg.max_evaluations && lambda <= 1e16 {
                 let mut damped = a.clone();
@@ -155,7 +172,7 @@ impl<K: SensKernel> ProblemOf<K> {
                         damped[(i, i)] = 1.0;
                         rhs[i] = 0.0;
                     } else {
-                        damped[(i, i)] += lambda * a[(i, i)].max(floor).max(f64::MIN_POSITIVE);
+                        damped[(i, i)] += lambda * a[(i, i)].max(floor(i)).max(f64::MIN_POSITIVE);
                     }
                 }
                 let Some(dz) = damped.cholesky().map(|c| c.solve(&rhs)) else {

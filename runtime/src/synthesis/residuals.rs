@@ -155,7 +155,7 @@ impl<K: SensKernel> ProblemOf<K> {
             }
             std::mem::swap(&mut prev, &mut q);
         }
-        Ok(super::norm_of(rs.iter().copied()))
+        Ok(crate::number::norm_of(rs.iter().copied()))
     }
 
     /// The residuals, Jacobian and positions at `z`, each target's position solved from

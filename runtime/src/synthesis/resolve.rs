@@ -129,7 +129,7 @@ pub(crate) fn target_scale(channels: &[(Resolved, f64)], targets: &[f64], width:
         let mean = |j: usize| (0..n).map(|k| targets[k * width + at + j] / n as f64).sum::<f64>();
         let means: Vec<f64> = cols.iter().map(|&j| mean(j)).collect();
         for k in 0..n {
-            let d = super::norm_of(cols.iter().zip(&means).map(|(&j, m)| targets[k * width + at + j] - m));
+            let d = crate::number::norm_of(cols.iter().zip(&means).map(|(&j, m)| targets[k * width + at + j] - m));
             scale = scale.max(w * d);
         }
         at += match c {

@@ -72,7 +72,8 @@ fn in_order(x: &[f64], angle: bool) -> Option<Vec<f64>> {
 
 /// The Grashof class of the four-bar `[ground, input, coupler, output]` and its smallest
 /// transmission angle over the input's range (see [`FourBarClass`]); `None` where the lengths
-/// are no four-bar (one not positive, or longer than the other three together).
+/// are no four-bar that moves (one not positive, or one at least as long as the other three
+/// together).
 pub(crate) fn four_bar_class([d, a, b, c]: [f64; 4]) -> Option<FourBarClass> {
     let g = grashof(FourBarLinks { ground: d, input: a, coupler: b, output: c }).ok()?;
     let min_transmission = if g.input_turns {
@@ -242,11 +243,11 @@ impl<K: SensKernel> ProblemOf<K> {
         }
         let four_bar =
             self.checks.four_bar.and_then(|[d, a, b, c]| four_bar_class([d, a, b, c].map(|i| params[i].abs())));
-        let errors: Vec<f64> = e.r.chunks(self.width).map(|c| super::norm_of(c.iter().copied())).collect();
+        let errors: Vec<f64> = e.r.chunks(self.width).map(|c| crate::number::norm_of(c.iter().copied())).collect();
         let max_error = errors.iter().copied().fold(0.0, f64::max);
         // The root mean square as a norm over `sqrt(n)` (the squares of errors near the
         // largest `f64` overflow).
-        let rms_error = super::norm_of(errors.iter().copied()) / (n as f64).sqrt();
+        let rms_error = crate::number::norm_of(errors.iter().copied()) / (n as f64).sqrt();
         let placement = self.placement.map(|_| {
             let at = self.vars.len() + self.free_inputs();
             [z[at], z[at + 1], z[at + 2], z[at + 3]]

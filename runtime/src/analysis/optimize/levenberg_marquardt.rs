@@ -6,7 +6,9 @@ use crate::error::Error;
 /// Minimiser of `|r(x)|^2` for `R` residuals in `P` variables with the Jacobian supplied by the
 /// problem (e.g. from generated sensitivities). Steps solve
 /// `(J^T J + lambda diag(J^T J)) dx = -J^T r`; a failed evaluation (e.g. a design that cannot
-/// assemble) counts as a rejected step.
+/// assemble) counts as a rejected step. The norms and the normal equations are scaled by powers
+/// of two (exactly), so residuals and variables of any magnitude, from about 1e-300 to 1e300,
+/// give the same relative answer: nothing is squared out of the range of `f64`.
 ///
 /// ```
 /// use kinloop_runtime::analysis::optimize::LevenbergMarquardt;
@@ -21,11 +23,12 @@ use crate::error::Error;
 #[derive(Clone, Copy, Debug, PartialEq)]
 #[non_exhaustive]
 pub struct LevenbergMarquardt {
-    /// Converged when the residual norm falls below this (default `1e-10`).
+    /// Converged when the residual norm falls below this (finite and not negative; default
+    /// `1e-10`).
     pub tol: f64,
-    /// Stop after this many evaluations (default `200`).
+    /// Stop after this many evaluations (at least 1, the start's; default `200`).
     pub max_evaluations: usize,
-    /// Initial damping (default `1e-3`).
+    /// Initial damping (positive and finite; default `1e-3`).
     pub lambda: f64,
 }
 
@@ -35,24 +38,37 @@ impl Default for LevenbergMarquardt {
     }
 }
 
+/// The residual norm, scaled so that no square leaves the range of `f64` (residuals beyond
+/// about 1e154 squared to infinity, and below about 1e-154 to zero).
 fn norm<const R: usize>(r: &[f64; R]) -> f64 {
-    r.iter().map(|v| v * v).sum::<f64>().sqrt()
+    crate::number::norm_of(r.iter().copied())
 }
 
-/// The normal equations `J^T J` and `-J^T r`.
+/// The power of two at most the largest magnitude of `values` (1 when they are all zero), to
+/// divide them by exactly.
+fn unit_of<'a>(values: impl IntoIterator<Item = &'a f64>) -> f64 {
+    let big = values.into_iter().fold(0.0, |m: f64, v| m.max(v.abs()));
+    if big > 0.0 && big.is_finite() { crate::number::pow2_at_most(big) } else { 1.0 }
+}
+
+/// The normal equations `J^T J` and `-J^T r` of `J / uj` and `r / ur`, with `uj` and `ur` the
+/// powers of two of the largest entries of `J` and `r` (also returned): products of entries
+/// near 1 neither overflow nor underflow, whatever the scales of the residuals and the
+/// variables. Their solution `dx'` is the step scaled by `uj / ur`.
 fn normal<const R: usize, const P: usize>(
     r: &[f64; R],
     jac: &[[f64; P]; R],
-) -> (nalgebra::DMatrix<f64>, nalgebra::DVector<f64>) {
+) -> (nalgebra::DMatrix<f64>, nalgebra::DVector<f64>, f64) {
+    let (ur, uj) = (unit_of(r), unit_of(jac.iter().flatten()));
     let mut a = nalgebra::DMatrix::<f64>::zeros(P, P);
     let mut g = nalgebra::DVector::<f64>::zeros(P);
     for i in 0..P {
         for j in 0..P {
-            a[(i, j)] = (0..R).map(|k| jac[k][i] * jac[k][j]).sum();
+            a[(i, j)] = (0..R).map(|k| (jac[k][i] / uj) * (jac[k][j] / uj)).sum();
         }
-        g[i] = -(0..R).map(|k| jac[k][i] * r[k]).sum::<f64>();
+        g[i] = -(0..R).map(|k| (jac[k][i] / uj) * (r[k] / ur)).sum::<f64>();
     }
-    (a, g)
+    (a, g, ur / uj)
 }
 
 impl LevenbergMarquardt {
@@ -72,27 +88,43 @@ impl LevenbergMarquardt {
         self
     }
 
+    /// The first field outside its valid range (`tol` finite and not negative,
+    /// `max_evaluations` at least 1, `lambda` positive and finite; NaN is outside every range).
+    pub fn invalid_field(&self) -> Option<&'static str> {
+        // A NaN tolerance or damping fails every comparison: the search stopped at the start as
+        // stalled. A damping not positive never grows to reject a step.
+        if !(self.tol.is_finite() && self.tol >= 0.0) {
+            Some("tol")
+        } else if self.max_evaluations == 0 {
+            Some("max_evaluations")
+        } else if !(self.lambda.is_finite() && self.lambda > 0.0) {
+            Some("lambda")
+        } else {
+            None
+        }
+    }
+
+    /// Checks every field: `Error::InvalidArgument` names the first one out of range.
+    pub fn validate(&self) -> Result<(), Error> {
+        match self.invalid_field() {
+            None => Ok(()),
+            Some(field) => Err(Error::InvalidArgument(format!(
+                "LevenbergMarquardt::{field} is out of its valid range (see its documentation): {self:?}"
+            ))),
+        }
+    }
+
     /// Minimises `|r(x)|^2` from `x0`; `f(x)` returns the residuals and their Jacobian
     /// `J[k][i] = d r_k / d x_i`. An error at `x0` is returned, and so is a residual there
     /// that is not finite (`InvalidArgument`); later errors, and residuals not finite, reject
-    /// the step. A tolerance that is negative or NaN, or a damping that is not positive and
-    /// finite, is an `InvalidArgument`.
+    /// the step. A configuration out of range ([`LevenbergMarquardt::validate`]) is an
+    /// `InvalidArgument` before any evaluation.
     pub fn minimize<const R: usize, const P: usize>(
         &self,
         mut f: impl FnMut(&[f64; P]) -> Result<([f64; R], [[f64; P]; R]), Error>,
         x0: [f64; P],
     ) -> Result<Minimum<P>, Error> {
-        // A NaN tolerance or damping fails every comparison: the search stopped at the start as
-        // stalled. A damping not positive never grows to reject a step.
-        if self.tol.is_nan() || self.tol < 0.0 {
-            return Err(Error::InvalidArgument(format!("LevenbergMarquardt::tol {} must not be negative", self.tol)));
-        }
-        if !(self.lambda > 0.0 && self.lambda.is_finite()) {
-            return Err(Error::InvalidArgument(format!(
-                "LevenbergMarquardt::lambda {} must be positive and finite",
-                self.lambda
-            )));
-        }
+        self.validate()?;
         let (mut r, mut jac) = f(&x0)?;
         // A NaN norm fails every comparison: no step was tried, and the NaN was returned as the
         // value of a stalled search.
@@ -102,11 +134,14 @@ impl LevenbergMarquardt {
         let mut x = x0;
         let mut evaluations = 1;
         let mut lambda = self.lambda;
-        let mut history = vec![norm(&r)];
+        let mut value = norm(&r);
+        let mut history = vec![value];
         let mut iterations = 0;
         let mut stalled = false;
-        while norm(&r) > self.tol && evaluations < self.max_evaluations && !stalled {
-            let (a, g) = normal(&r, &jac);
+        while value > self.tol && evaluations < self.max_evaluations && !stalled {
+            // Scaled (see `normal`): the damping floor below is then relative to the largest
+            // column of the Jacobian, at any scale.
+            let (a, g, step_unit) = normal(&r, &jac);
             stalled = true;
             while evaluations < self.max_evaluations && lambda <= 1e12 {
                 let mut damped = a.clone();
@@ -119,11 +154,17 @@ impl LevenbergMarquardt {
                 };
                 let mut trial = x;
                 for i in 0..P {
-                    trial[i] += dx[i];
+                    trial[i] += dx[i] * step_unit;
+                }
+                // A step beyond the range of `f64` is too long: shorter ones are tried.
+                if trial.iter().any(|v| !v.is_finite()) {
+                    lambda *= 10.0;
+                    continue;
                 }
                 evaluations += 1;
                 match f(&trial) {
-                    Ok((rt, jt)) if norm(&rt) < norm(&r) => {
+                    Ok((rt, jt)) if norm(&rt) < value => {
+                        value = norm(&rt);
                         (x, r, jac) = (trial, rt, jt);
                         lambda = (lambda * 0.3).max(1e-12);
                         stalled = false;
@@ -134,10 +175,9 @@ impl LevenbergMarquardt {
             }
             if !stalled {
                 iterations += 1;
-                history.push(norm(&r));
+                history.push(value);
             }
         }
-        let value = norm(&r);
         let termination = if value <= self.tol {
             OptimizerStop::Converged
         } else if evaluations >= self.max_evaluations {
@@ -190,11 +230,55 @@ mod tests {
             (lm.with_lambda(0.0), "lambda"),
             (lm.with_lambda(-1.0), "lambda"),
             (lm.with_lambda(f64::INFINITY), "lambda"),
+            (lm.with_tol(f64::INFINITY), "tol"),
+            (lm.with_max_evaluations(0), "max_evaluations"),
         ] {
-            let r = cfg.minimize(f, [0.0]);
+            let mut calls = 0;
+            let r = cfg.minimize(
+                |v: &[f64; 1]| {
+                    calls += 1;
+                    f(v)
+                },
+                [0.0],
+            );
             assert!(matches!(&r, Err(Error::InvalidArgument(m)) if m.contains(field)), "{cfg:?}: {r:?}");
+            assert_eq!(calls, 0, "refused before any evaluation");
         }
         assert!(lm.with_tol(0.0).minimize(f, [0.0]).unwrap().converged());
+    }
+
+    /// The circle-and-hyperbola system of `solves_a_nonlinear_system` with its residuals scaled
+    /// by `s_r` and its variables by `s_x` (the Jacobian by `s_r / s_x`), the tolerance with the
+    /// residuals.
+    fn scaled(s_r: f64, s_x: f64) -> Result<Minimum<2>, Error> {
+        let f = |v: &[f64; 2]| {
+            let [x, y] = [v[0] / s_x, v[1] / s_x];
+            let j = s_r / s_x;
+            Ok(([s_r * (x * x + y * y - 4.0), s_r * (x * y - 1.0)], [[j * 2.0 * x, j * 2.0 * y], [j * y, j * x]]))
+        };
+        LevenbergMarquardt::default().with_tol(1e-10 * s_r).minimize(f, [2.0 * s_x, 0.1 * s_x])
+    }
+
+    /// The same relative answer at every scale of the residuals and the variables: squared,
+    /// residuals beyond about 1e154 overflowed (the search stalled at its start) and below about
+    /// 1e-154 underflowed (it was "converged" at its start); a Jacobian as large or small did
+    /// the same to the normal equations. The answer is the unscaled one to 1e-9, well within
+    /// what the tolerance 1e-10 (on residuals whose Jacobian is of order 1) pins down.
+    #[test]
+    fn every_scale_of_residuals_and_variables_gives_the_same_answer() {
+        let unscaled = scaled(1.0, 1.0).unwrap();
+        assert!(unscaled.converged(), "{unscaled:?}");
+        for s in [1e-300, 1e-200, 1e-100, 2f64.powi(-600), 1e100, 2f64.powi(600), 1e200, 1e300] {
+            for (s_r, s_x) in [(s, s), (s, 1.0), (1.0, s)] {
+                let m = scaled(s_r, s_x).unwrap();
+                assert!(m.converged(), "residuals x {s_r:e}, variables x {s_x:e}: {m:?}");
+                for i in 0..2 {
+                    let x = m.x[i] / s_x;
+                    assert!((x - unscaled.x[i]).abs() <= 1e-9 * unscaled.x[i].abs(), "{s_r:e} {s_x:e}: {m:?}");
+                }
+                assert!(m.value <= 1e-10 * s_r, "{s_r:e} {s_x:e}: {m:?}");
+            }
+        }
     }
 
     #[test]

@@ -10,6 +10,7 @@
 //! starting point must be feasible.
 
 use super::{Minimum, OptimizerStop};
+use crate::error::Error;
 
 /// Derivative-free minimiser: the Nelder–Mead simplex method with the dimension-adaptive
 /// coefficients of Gao and Han, restarts and evaluation counting. Infeasible points are marked
@@ -20,19 +21,25 @@ use super::{Minimum, OptimizerStop};
 /// use kinloop_runtime::analysis::optimize::NelderMead;
 /// // Rosenbrock's valley: minimum 0 at (1, 1).
 /// let rosenbrock = |p: &[f64; 2]| (1.0 - p[0]).powi(2) + 100.0 * (p[1] - p[0] * p[0]).powi(2);
-/// let m = NelderMead::default().minimize(rosenbrock, [-1.2, 1.0], [0.5, 0.5]);
+/// let m = NelderMead::default().minimize(rosenbrock, [-1.2, 1.0], [0.5, 0.5])?;
 /// assert!(m.converged() && (m.x[0] - 1.0).abs() < 1e-6 && (m.x[1] - 1.0).abs() < 1e-6);
 /// assert!(m.value < 1e-12 && m.evaluations < 1000);
+/// // A tolerance no simplex meets is refused before any evaluation, naming the field.
+/// let bad = NelderMead::default().with_tolerances(f64::NAN, 1e-9).minimize(rosenbrock, [-1.2, 1.0], [0.5, 0.5]);
+/// assert!(bad.unwrap_err().to_string().contains("NelderMead::f_tol"));
+/// # Ok::<(), kinloop_runtime::Error>(())
 /// ```
 #[derive(Clone, Copy, Debug, PartialEq)]
 #[non_exhaustive]
 pub struct NelderMead {
-    /// Stop after this many objective evaluations (default `2000`).
+    /// Stop after this many objective evaluations (at least 1; default `2000`). The starting
+    /// simplex is evaluated whole, and the last iteration may finish its contraction and shrink:
+    /// up to `P + 2` more.
     pub max_evaluations: usize,
     /// Converged when the simplex's objective values differ by at most `f_tol` ...
     pub f_tol: f64,
-    /// ... and every vertex lies within `x_tol` (in each coordinate) of the best one (defaults
-    /// `1e-12` and `1e-9`).
+    /// ... and every vertex lies within `x_tol` (in each coordinate) of the best one (both
+    /// finite and not negative; defaults `1e-12` and `1e-9`).
     pub x_tol: f64,
     /// After convergence, rebuild the simplex around the best point (with the initial steps) up
     /// to this many times, until a restart no longer improves the best value (default `2`). This
@@ -70,17 +77,58 @@ impl NelderMead {
         self
     }
 
+    /// The first field outside its valid range (`max_evaluations` at least 1, `f_tol` and
+    /// `x_tol` finite and not negative; NaN is outside every range).
+    pub fn invalid_field(&self) -> Option<&'static str> {
+        // A NaN or negative tolerance is met by no simplex: the search ran to its budget and
+        // reported it as the budget's fault.
+        let tol = |t: f64| t.is_finite() && t >= 0.0;
+        if self.max_evaluations == 0 {
+            Some("max_evaluations")
+        } else if !tol(self.f_tol) {
+            Some("f_tol")
+        } else if !tol(self.x_tol) {
+            Some("x_tol")
+        } else {
+            None
+        }
+    }
+
+    /// Checks every field: `Error::InvalidArgument` names the first one out of range.
+    pub fn validate(&self) -> Result<(), Error> {
+        match self.invalid_field() {
+            None => Ok(()),
+            Some(field) => Err(Error::InvalidArgument(format!(
+                "NelderMead::{field} is out of its valid range (see its documentation): {self:?}"
+            ))),
+        }
+    }
+
     /// Minimises `f` over `P` variables from `x0`, with an initial simplex of `x0` and the
     /// points `x0 + step[i] e_i`. `value` is `f(x)`; `history` the best value after each round
     /// (the first search and every restart). When `f` is infinite or NaN at every vertex of
     /// that simplex it stops there, [`OptimizerStop::InfeasibleStart`] (after `P + 1`
     /// evaluations).
+    ///
+    /// Errors: `InvalidArgument`, before any evaluation, for a configuration out of range
+    /// ([`NelderMead::validate`]), a start not finite, or a step that is zero or not finite (it
+    /// spans no simplex in its coordinate), naming the field or coordinate.
     pub fn minimize<const P: usize>(
         &self,
         mut f: impl FnMut(&[f64; P]) -> f64,
         x0: [f64; P],
         step: [f64; P],
-    ) -> Minimum<P> {
+    ) -> Result<Minimum<P>, Error> {
+        self.validate()?;
+        check_start("NelderMead::minimize", &x0)?;
+        // A zero step leaves its coordinate out of the simplex (never searched, and with every
+        // step zero the start was "converged"); a step not finite made every trial point NaN.
+        if let Some(i) = (0..P).find(|&i| !(step[i].is_finite() && step[i] != 0.0)) {
+            return Err(Error::InvalidArgument(format!(
+                "NelderMead::minimize: the step of coordinate {i} is {}; steps must be finite and non-zero",
+                step[i]
+            )));
+        }
         let evaluations = std::cell::Cell::new(0usize);
         let mut eval = |x: &[f64; P]| {
             evaluations.set(evaluations.get() + 1);
@@ -107,7 +155,7 @@ impl NelderMead {
             if P > 0 && s.fs.iter().all(|v| *v == f64::INFINITY) {
                 history.push(f_best);
                 let (evaluations, termination) = (evaluations.get(), OptimizerStop::InfeasibleStart);
-                return Minimum { x: best, value: f_best, evaluations, iterations, termination, history };
+                return Ok(Minimum { x: best, value: f_best, evaluations, iterations, termination, history });
             }
             converged = self.search(&mut s, &mut eval, &evaluations, &mut iterations);
             let i = (0..=P).min_by(|&a, &b| s.fs[a].total_cmp(&s.fs[b])).unwrap_or(0);
@@ -122,7 +170,7 @@ impl NelderMead {
             restarts_left -= 1;
         }
         let termination = if converged { OptimizerStop::Converged } else { OptimizerStop::MaxEvaluations };
-        Minimum { x: best, value: f_best, evaluations: evaluations.get(), iterations, termination, history }
+        Ok(Minimum { x: best, value: f_best, evaluations: evaluations.get(), iterations, termination, history })
     }
 
     /// Simplex iterations until the tolerances are met (`true`) or the evaluations run out.
@@ -133,8 +181,7 @@ impl NelderMead {
         evaluations: &std::cell::Cell<usize>,
         iterations: &mut usize,
     ) -> bool {
-        // No variable: the one point is the minimum (the steps below need a second vertex, and
-        // tolerances the single vertex cannot meet, negative ones, reached them).
+        // No variable: the one point is the minimum (the steps below need a second vertex).
         if P == 0 {
             return true;
         }
@@ -207,16 +254,21 @@ impl NelderMead {
     /// smooth minimum in `u`. The initial simplex steps are `0.25` rad in `u` (a quarter of the
     /// range near the centre). `x_tol` applies to `u`.
     ///
-    /// # Panics
-    /// If a bound is not finite or `lo[i] > hi[i]` (a box that holds no point, or one the sine
-    /// cannot map onto): a programmer's error, as for [`f64::clamp`].
+    /// Errors: `InvalidArgument`, before any evaluation, naming the coordinate and its bounds if
+    /// a bound is not finite or `lo[i] > hi[i]` (a box that holds no point, or one the sine
+    /// cannot map onto), and as [`NelderMead::minimize`] for the configuration and a start not
+    /// finite. A finite start outside the box starts from its nearest point in the box.
     ///
     /// ```
     /// use kinloop_runtime::analysis::optimize::NelderMead;
     /// // (x - 2)^2 + (y + 0.5)^2 over [0, 1] x [-1, 1]: the minimum is on the face x = 1.
     /// let f = |p: &[f64; 2]| (p[0] - 2.0).powi(2) + (p[1] + 0.5).powi(2);
-    /// let m = NelderMead::default().minimize_boxed(f, [0.5, 0.0], [0.0, -1.0], [1.0, 1.0]);
+    /// let m = NelderMead::default().minimize_boxed(f, [0.5, 0.0], [0.0, -1.0], [1.0, 1.0])?;
     /// assert!((m.x[0] - 1.0).abs() < 1e-9 && (m.x[1] + 0.5).abs() < 1e-6 && m.x[0] <= 1.0);
+    /// // A box that holds no point is refused, naming the coordinate.
+    /// let bad = NelderMead::default().minimize_boxed(f, [0.5, 0.0], [0.0, 1.0], [1.0, -1.0]);
+    /// assert!(bad.unwrap_err().to_string().contains("coordinate 1"));
+    /// # Ok::<(), kinloop_runtime::Error>(())
     /// ```
     pub fn minimize_boxed<const P: usize>(
         &self,
@@ -224,16 +276,16 @@ impl NelderMead {
         x0: [f64; P],
         lo: [f64; P],
         hi: [f64; P],
-    ) -> Minimum<P> {
+    ) -> Result<Minimum<P>, Error> {
+        self.validate()?;
+        check_start("NelderMead::minimize_boxed", &x0)?;
         // Checked here, naming the coordinate: `clamp` panicked with its own words for
         // `lo > hi` or a NaN, and infinite bounds made every trial point NaN.
-        for i in 0..P {
-            assert!(
-                lo[i].is_finite() && hi[i].is_finite() && lo[i] <= hi[i],
+        if let Some(i) = (0..P).find(|&i| !(lo[i].is_finite() && hi[i].is_finite() && lo[i] <= hi[i])) {
+            return Err(Error::InvalidArgument(format!(
                 "NelderMead::minimize_boxed: the box of coordinate {i}, [{}, {}], needs finite bounds with lo <= hi",
-                lo[i],
-                hi[i]
-            );
+                lo[i], hi[i]
+            )));
         }
         let to_x = |u: &[f64; P]| {
             let mut x = [0.0; P];
@@ -247,8 +299,17 @@ impl NelderMead {
             let t = if hi[i] > lo[i] { 2.0 * (x0[i] - lo[i]) / (hi[i] - lo[i]) - 1.0 } else { 0.0 };
             u0[i] = t.clamp(-1.0, 1.0).asin();
         }
-        let m = self.minimize(|u| f(&to_x(u)), u0, [0.25; P]);
-        Minimum { x: to_x(&m.x), ..m }
+        let m = self.minimize(|u| f(&to_x(u)), u0, [0.25; P])?;
+        Ok(Minimum { x: to_x(&m.x), ..m })
+    }
+}
+
+/// A start not finite, as an error naming its coordinate: the objective there is meaningless
+/// and every simplex built on it NaN.
+fn check_start<const P: usize>(method: &str, x0: &[f64; P]) -> Result<(), Error> {
+    match x0.iter().position(|v| !v.is_finite()) {
+        None => Ok(()),
+        Some(i) => Err(Error::InvalidArgument(format!("{method}: coordinate {i} of the start is {}", x0[i]))),
     }
 }
 
@@ -259,14 +320,16 @@ mod tests {
     #[test]
     fn rosenbrock_and_a_quadratic_bowl() {
         let mut calls = 0;
-        let m = NelderMead::default().minimize(
-            |p: &[f64; 2]| {
-                calls += 1;
-                (1.0 - p[0]).powi(2) + 100.0 * (p[1] - p[0] * p[0]).powi(2)
-            },
-            [-1.2, 1.0],
-            [0.5, 0.5],
-        );
+        let m = NelderMead::default()
+            .minimize(
+                |p: &[f64; 2]| {
+                    calls += 1;
+                    (1.0 - p[0]).powi(2) + 100.0 * (p[1] - p[0] * p[0]).powi(2)
+                },
+                [-1.2, 1.0],
+                [0.5, 0.5],
+            )
+            .unwrap();
         assert!(m.converged());
         assert!((m.x[0] - 1.0).abs() < 1e-6 && (m.x[1] - 1.0).abs() < 1e-6, "{m:?}");
         assert_eq!(m.evaluations, calls, "every call is counted");
@@ -277,7 +340,7 @@ mod tests {
             let d: Vec<f64> = (0..5).map(|i| p[i] - c[i]).collect();
             (0..5).map(|i| (i + 1) as f64 * d[i].powi(2)).sum::<f64>() + d[0] * d[1] + 0.5 * d[2] * d[4]
         };
-        let m = NelderMead::default().minimize(q, [0.0; 5], [0.5; 5]);
+        let m = NelderMead::default().minimize(q, [0.0; 5], [0.5; 5]).unwrap();
         assert!(m.converged(), "{m:?}");
         for i in 0..5 {
             assert!((m.x[i] - c[i]).abs() < 1e-5, "{m:?}");
@@ -288,10 +351,10 @@ mod tests {
     fn infeasible_points_are_avoided() {
         // Minimise (x - 2)^2 + y^2 subject to x <= 1: the constrained minimum is (1, 0).
         let f = |p: &[f64; 2]| if p[0] > 1.0 { f64::INFINITY } else { (p[0] - 2.0).powi(2) + p[1] * p[1] };
-        let m = NelderMead::default().minimize(f, [0.0, 0.5], [0.3, 0.3]);
+        let m = NelderMead::default().minimize(f, [0.0, 0.5], [0.3, 0.3]).unwrap();
         assert!(m.x[0] <= 1.0 && (m.x[0] - 1.0).abs() < 1e-6 && m.x[1].abs() < 1e-4, "{m:?}");
         let nan = |p: &[f64; 1]| if p[0] < 0.0 { f64::NAN } else { (p[0] - 0.5).powi(2) };
-        let m = NelderMead::default().minimize(nan, [2.0], [1.0]);
+        let m = NelderMead::default().minimize(nan, [2.0], [1.0]).unwrap();
         assert!((m.x[0] - 0.5).abs() < 1e-6, "{m:?}");
     }
 
@@ -299,33 +362,47 @@ mod tests {
     fn boxed_search_reaches_faces_and_corners() {
         // The unconstrained minimum (2, -3) lies outside [0, 1] x [-1, 1]: the corner (1, -1).
         let f = |p: &[f64; 2]| (p[0] - 2.0).powi(2) + (p[1] + 3.0).powi(2) + 0.1 * p[0] * p[1];
-        let m = NelderMead::default().minimize_boxed(f, [0.2, 0.3], [0.0, -1.0], [1.0, 1.0]);
+        let m = NelderMead::default().minimize_boxed(f, [0.2, 0.3], [0.0, -1.0], [1.0, 1.0]).unwrap();
         assert!((m.x[0] - 1.0).abs() < 1e-9 && (m.x[1] + 1.0).abs() < 1e-9, "{m:?}");
         // An interior minimum is found as without the box.
         let g = |p: &[f64; 2]| (p[0] - 0.3).powi(2) + 2.0 * (p[1] - 0.7).powi(2);
-        let m = NelderMead::default().minimize_boxed(g, [0.9, -0.9], [0.0, -1.0], [1.0, 1.0]);
+        let m = NelderMead::default().minimize_boxed(g, [0.9, -0.9], [0.0, -1.0], [1.0, 1.0]).unwrap();
         assert!((m.x[0] - 0.3).abs() < 1e-6 && (m.x[1] - 0.7).abs() < 1e-6, "{m:?}");
     }
 
-    /// A box with `lo > hi` is a documented panic naming the coordinate (it was `clamp`'s own
-    /// panic); an infinite bound too (it made every trial point NaN).
+    /// A box with `lo > hi` is an error naming the coordinate and its bounds (it was a panic,
+    /// and before that `clamp`'s own); an infinite or NaN bound too (it made every trial point
+    /// NaN). Nothing is evaluated.
     #[test]
-    #[should_panic(expected = "the box of coordinate 1, [1, 0]")]
-    fn an_inverted_box_panics_naming_its_coordinate() {
-        NelderMead::default().minimize_boxed(|p: &[f64; 2]| p[0] + p[1], [0.5, 0.5], [0.0, 1.0], [1.0, 0.0]);
+    fn a_box_that_holds_no_point_is_an_error_naming_its_coordinate() {
+        let mut calls = 0;
+        let mut f = |p: &[f64; 2]| {
+            calls += 1;
+            p[0] + p[1]
+        };
+        let inverted = NelderMead::default().minimize_boxed(&mut f, [0.5, 0.5], [0.0, 1.0], [1.0, 0.0]);
+        let bad = [
+            (inverted, "the box of coordinate 1, [1, 0]"),
+            (
+                NelderMead::default().minimize_boxed(&mut f, [0.5, 0.5], [f64::NEG_INFINITY, 0.0], [1.0, 1.0]),
+                "the box of coordinate 0, [-inf, 1]",
+            ),
+            (
+                NelderMead::default().minimize_boxed(&mut f, [0.5, 0.5], [0.0, 0.0], [1.0, f64::NAN]),
+                "the box of coordinate 1, [0, NaN]",
+            ),
+        ];
+        for (r, want) in bad {
+            assert!(matches!(&r, Err(Error::InvalidArgument(m)) if m.contains(want)), "{want}: {r:?}");
+        }
+        assert_eq!(calls, 0, "refused before any evaluation");
     }
 
-    #[test]
-    #[should_panic(expected = "the box of coordinate 0, [-inf, 1]")]
-    fn an_infinite_bound_panics_naming_its_coordinate() {
-        NelderMead::default().minimize_boxed(|p: &[f64; 1]| p[0] * p[0], [0.5], [f64::NEG_INFINITY], [1.0]);
-    }
-
-    /// No variable: the start is the minimum, whatever the tolerances (negative ones made the
-    /// search index the simplex's second vertex, a panic).
+    /// No variable: the start is the minimum, whatever the tolerances (the search indexed the
+    /// simplex's second vertex, a panic, with tolerances the single vertex could not meet).
     #[test]
     fn no_variable_is_converged_at_the_start() {
-        let m = NelderMead::default().with_tolerances(-1.0, -1.0).minimize(|_: &[f64; 0]| 2.0, [], []);
+        let m = NelderMead::default().with_tolerances(0.0, 0.0).minimize(|_: &[f64; 0]| 2.0, [], []).unwrap();
         assert!(m.converged() && m.value == 2.0, "{m:?}");
     }
 
@@ -336,35 +413,77 @@ mod tests {
     fn an_infeasible_starting_simplex_stops_at_once() {
         for bad in [f64::NAN, f64::INFINITY] {
             let mut calls = 0;
-            let m = NelderMead::default().minimize(
-                |_: &[f64; 3]| {
-                    calls += 1;
-                    bad
-                },
-                [1.0, 2.0, 3.0],
-                [0.1; 3],
-            );
+            let m = NelderMead::default()
+                .minimize(
+                    |_: &[f64; 3]| {
+                        calls += 1;
+                        bad
+                    },
+                    [1.0, 2.0, 3.0],
+                    [0.1; 3],
+                )
+                .unwrap();
             assert_eq!(m.termination, OptimizerStop::InfeasibleStart, "{m:?}");
             assert_eq!((m.evaluations, calls), (4, 4), "the start and one vertex a variable");
             assert_eq!(m.x, [1.0, 2.0, 3.0]);
             assert!(m.value == f64::INFINITY && !m.converged(), "{m:?}");
         }
-        let m = NelderMead::default().minimize(
-            |p: &[f64; 1]| if p[0] < 0.0 { f64::NAN } else { p[0] * p[0] },
-            [-0.1],
-            [0.5],
-        );
+        let m = NelderMead::default()
+            .minimize(|p: &[f64; 1]| if p[0] < 0.0 { f64::NAN } else { p[0] * p[0] }, [-0.1], [0.5])
+            .unwrap();
         assert!(m.converged() && m.x[0].abs() < 1e-6, "{m:?}");
+    }
+
+    /// Tolerances NaN or negative (which no simplex meets: it ran to the evaluation budget),
+    /// steps that span no simplex and starts not finite are refused before any evaluation.
+    #[test]
+    fn bad_settings_and_starts_are_refused_before_any_evaluation() {
+        let nm = NelderMead::default();
+        let cases = [
+            (nm.with_tolerances(f64::NAN, 1e-9), [1.0, 2.0], [0.5, 0.5]),
+            (nm.with_tolerances(1e-12, f64::NAN), [1.0, 2.0], [0.5, 0.5]),
+            (nm.with_tolerances(-1e-12, 1e-9), [1.0, 2.0], [0.5, 0.5]),
+            (nm.with_tolerances(1e-12, -1e-9), [1.0, 2.0], [0.5, 0.5]),
+            (nm.with_max_evaluations(0), [1.0, 2.0], [0.5, 0.5]),
+            (nm, [1.0, f64::NAN], [0.5, 0.5]),
+            (nm, [1.0, 2.0], [0.5, 0.0]),
+            (nm, [1.0, 2.0], [f64::INFINITY, 0.5]),
+        ];
+        let names = ["NelderMead::f_tol", "NelderMead::x_tol", "NelderMead::f_tol", "NelderMead::x_tol"];
+        let names = names.into_iter().chain(["NelderMead::max_evaluations", "coordinate 1 of the start is NaN"]);
+        let names = names.chain(["the step of coordinate 1 is 0", "the step of coordinate 0 is inf"]);
+        for ((cfg, x0, step), name) in cases.into_iter().zip(names) {
+            let mut calls = 0;
+            let r = cfg.minimize(
+                |p: &[f64; 2]| {
+                    calls += 1;
+                    (p[0] - 1.0).powi(2) + (p[1] - 3.0).powi(2)
+                },
+                x0,
+                step,
+            );
+            assert_eq!(calls, 0, "{cfg:?} from {x0:?} by {step:?}");
+            assert!(matches!(&r, Err(Error::InvalidArgument(m)) if m.contains(name)), "{name}: {r:?}");
+            if x0[1].is_finite() && step == [0.5, 0.5] {
+                // The boxed search refuses the same configurations, by the same check.
+                let r = cfg.minimize_boxed(|p: &[f64; 2]| p[0] + p[1], x0, [0.0; 2], [4.0; 2]);
+                assert!(matches!(&r, Err(Error::InvalidArgument(m)) if m.contains(name)), "{name}: {r:?}");
+            }
+        }
+        let r = nm.minimize_boxed(|p: &[f64; 1]| p[0], [f64::NAN], [0.0], [1.0]);
+        assert!(matches!(&r, Err(Error::InvalidArgument(m)) if m.contains("coordinate 0 of the start")), "{r:?}");
     }
 
     #[test]
     fn the_evaluation_limit_is_respected() {
         let cfg = NelderMead::default().with_max_evaluations(40);
-        let m = cfg.minimize(
-            |p: &[f64; 2]| (1.0 - p[0]).powi(2) + 100.0 * (p[1] - p[0] * p[0]).powi(2),
-            [-1.2, 1.0],
-            [0.5, 0.5],
-        );
+        let m = cfg
+            .minimize(
+                |p: &[f64; 2]| (1.0 - p[0]).powi(2) + 100.0 * (p[1] - p[0] * p[0]).powi(2),
+                [-1.2, 1.0],
+                [0.5, 0.5],
+            )
+            .unwrap();
         assert!(!m.converged());
         assert_eq!(m.termination, OptimizerStop::MaxEvaluations);
         // The last iteration may finish its contraction and shrink: at most P + 2 more.

@@ -13,7 +13,13 @@ use super::error::{ClassicalError, finite};
 ///
 /// `x_j = (x0 + x1) / 2 - (x1 - x0) / 2 * cos((2 j - 1) pi / (2 n))`, `j = 1 ..= n`.
 ///
-/// Errors: `n == 0` or more than memory holds, a bound not finite, or `x0 == x1`.
+/// Each point is computed from the end it lies nearer, as `x0 + (x1 - x0) sin^2(theta / 2)` or
+/// `x1 - (x1 - x0) cos^2(theta / 2)` (the same point): one rounding from that end, so the points
+/// stay inside the range and distinct as long as the doubles there allow.
+///
+/// Errors (`BadRange`): `n == 0` or more than memory holds, `x0 == x1`, or a range too narrow
+/// for `n` distinct doubles at Chebyshev spacing (points that are not distinct are no precision
+/// points); `NonFinite`: a bound not finite.
 ///
 /// ```
 /// use kinloop_runtime::synthesis::classical::chebyshev_points;
@@ -41,18 +47,27 @@ pub fn chebyshev_points(n: usize, x0: f64, x1: f64) -> Result<Vec<f64>, Classica
         return Err(ClassicalError::BadRange { what: "range", why: format!("it is empty ({x0} to {x1})") });
     }
     // Ends far apart near the largest f64 (`-1e308` to `1e308`) overflow `x1 - x0`, which made
-    // the points infinite: halved first, which is exact there.
-    let (mid, half) = if (x1 - x0).is_finite() {
-        (0.5 * (x0 + x1), 0.5 * (x1 - x0))
-    } else {
-        (0.5 * x0 + 0.5 * x1, 0.5 * x1 - 0.5 * x0)
-    };
-    let x = (1..=n)
+    // the points infinite: the span is halved then, which is exact there, and its factors
+    // doubled (at most 1 from the nearer end, so no product overflows).
+    let (span, factor) = if (x1 - x0).is_finite() { (x1 - x0, 1.0) } else { (0.5 * x1 - 0.5 * x0, 2.0) };
+    // From the midpoint (`mid - half cos(theta)`) the midpoint's own rounding moved every point:
+    // over `[1, 1 + eps]` the two points came out `1 - eps / 2`, outside the range, and `1`.
+    let x: Vec<f64> = (1..=n)
         .map(|j| {
             let theta = (2 * j - 1) as f64 * std::f64::consts::PI / (2 * n) as f64;
-            mid - half * theta.cos()
+            let (sin, cos) = (0.5 * theta).sin_cos();
+            if 2 * j - 1 <= n { x0 + span * (factor * sin * sin) } else { x1 - span * (factor * cos * cos) }
         })
         .collect();
+    // Rounding is monotone, so the points are in order; over a range of too few doubles some
+    // come out equal (all `0` over `[0, 5e-324]`).
+    let distinct = x.windows(2).all(|w| if x0 < x1 { w[0] < w[1] } else { w[0] > w[1] });
+    if !distinct {
+        return Err(ClassicalError::BadRange {
+            what: "range",
+            why: format!("{x0} to {x1} is too narrow for {n} distinct points at Chebyshev spacing"),
+        });
+    }
     Ok(x)
 }
 
@@ -93,6 +108,40 @@ mod tests {
         assert!(matches!(chebyshev_points(3, 1.0, 1.0), Err(ClassicalError::BadRange { .. })));
         assert!(matches!(chebyshev_points(3, f64::NAN, 1.0), Err(ClassicalError::NonFinite { .. })));
         assert!(matches!(chebyshev_points(3, 0.0, f64::INFINITY), Err(ClassicalError::NonFinite { .. })));
+    }
+
+    /// A range too narrow for `n` distinct doubles at Chebyshev spacing is an error saying so
+    /// (the points came out equal: all `0` over `[0, 5e-324]`), at any magnitude of the range;
+    /// a range just wide enough gives distinct points, inside it and in order (two over
+    /// `[1, 1 + eps]` came out `1 - eps / 2`, outside it, and `1`).
+    #[test]
+    fn a_range_too_narrow_for_distinct_points_is_an_error() {
+        let tiny = f64::from_bits(1); // 5e-324, the smallest double
+        for (n, x0, x1) in [
+            (3, 0.0, tiny),
+            (3, tiny, 0.0),
+            (3, 1.0, 1.0 + f64::EPSILON),
+            (3, 1e300, 1e300 * (1.0 + f64::EPSILON)),
+            (1000, 1.0, 1.0 + 1e-13),
+        ] {
+            let e = chebyshev_points(n, x0, x1).unwrap_err();
+            assert!(
+                matches!(&e, ClassicalError::BadRange { why, .. } if why.contains("too narrow")),
+                "{n} over {x0:e} to {x1:e}: {e:?}"
+            );
+        }
+        let wide_enough = [
+            (3, 0.0, 4.0 * tiny),
+            (3, 4.0 * tiny, 0.0),
+            (2, 1.0, 1.0 + f64::EPSILON),
+            (3, 1.0, 1.0 + 2.0 * f64::EPSILON),
+        ];
+        for (n, x0, x1) in wide_enough {
+            let x = chebyshev_points(n, x0, x1).unwrap();
+            let inside = |v: &f64| (x0.min(x1)..=x0.max(x1)).contains(v);
+            let ordered = x.windows(2).all(|w| if x0 < x1 { w[0] < w[1] } else { w[0] > w[1] });
+            assert!(ordered && x.iter().all(inside), "{n} over {x0:e} to {x1:e}: {x:?}");
+        }
     }
 
     /// A count of points no vector holds is an error, not a capacity-overflow panic.
