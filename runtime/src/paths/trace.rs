@@ -2,6 +2,7 @@
 //! [`TraceConfig`]), over any [`Kernel`] ([`trace_curve_of`]).
 
 use super::curve::{CurvePoint, Metric, Path, arc_step, event_at, locate_fold, tangent_from_analogs};
+use super::trace_kink::{MAX_TURN, past_kink, turn};
 use crate::dims::KinState;
 use crate::error::Error;
 use crate::events::{Event, EventKind};
@@ -106,6 +107,11 @@ pub struct TracedOf<Q, X> {
     pub points: Vec<TracedPointOf<Q, X>>,
     /// The limit positions passed (where the input reversed), located precisely.
     pub folds: Vec<Event>,
+    /// The kinks passed ([`EventKind::Kink`]): corners of the curve, where its velocity analogs
+    /// jump with the Jacobian regular (`abs`, `min`, `max`, `clamp` in the equations), located
+    /// within rounding of the input. The input goes on across a kink in the direction it had;
+    /// [`TracedOf::points`] holds the corner too.
+    pub kinks: Vec<Event>,
     /// The curve closed on itself (it came back to its first point).
     pub closed: bool,
     /// The trace stopped at [`TraceConfig::max_points`], before the curve closed or left the
@@ -119,7 +125,11 @@ pub type Traced<const N: usize, const NI: usize> = TracedOf<[f64; N], [f64; NI]>
 /// Traces the whole solution curve through `guess` at input `from`, moving first towards `to`,
 /// by pseudo-arclength continuation in `(q, input)`: unlike a sweep it passes limit positions,
 /// where the input reverses, so a mechanism whose input cannot make a full turn (a non-Grashof
-/// four-bar driven by a rocking link) yields its complete closed curve. Stops when the curve
+/// four-bar driven by a rocking link) yields its complete closed curve. Like a sweep it passes
+/// kinks (corners of the curve where the Jacobian is regular: a cam law written with `clamp`),
+/// with the input going on in its direction and on the same branch, and lists them in
+/// [`TracedOf::kinks`]; a corner where the tangent turns by less than about a tenth of a radian
+/// (scaled coordinates) is passed as a smooth point and not listed. Stops when the curve
 /// closes, leaves the segment between `from - (to - from)` and `to`, or after
 /// [`TraceConfig::max_points`] (then [`TracedOf::truncated`] says so). Arclength is measured in scaled coordinates (see
 /// [`TraceConfig::ds`]): the same points in any unit of length.
@@ -128,7 +138,8 @@ pub type Traced<const N: usize, const NI: usize> = TracedOf<[f64; N], [f64; NI]>
 /// A compiled mechanism's [`trace_curve_of`] (through [`Compiled`]).
 ///
 /// Errors: `InvalidArgument` for invalid options (naming the field) or `to == from`; the
-/// errors of the first solve at `from`; `Branch` where the continuation cannot proceed.
+/// errors of the first solve at `from`; `Branch` where the continuation cannot proceed (the
+/// curve ends, or branches meet, where no step however short stays on it).
 pub fn trace_curve<M, const N: usize, const NI: usize, const NO: usize>(
     m: &M,
     from: [f64; NI],
@@ -171,21 +182,40 @@ pub fn trace_curve_of<K: Kernel>(
     let start_z = start.z(&metric);
     let point =
         |p: &CurvePoint<Q<K>>| TracedPointOf { x: path.at_sigma(p.sigma), q: p.q.clone(), input_rate: p.dsigma() };
-    let mut out = TracedOf { points: vec![point(&start)], folds: Vec::new(), closed: false, truncated: false };
+    let mut out =
+        TracedOf { points: vec![point(&start)], folds: Vec::new(), kinks: Vec::new(), closed: false, truncated: false };
     let (ds, mut p, mut walked) = (opts.ds, start, 0.0);
+    let floor = ds * 1e-6;
+    let pivot = m.solver_config().singular_pivot;
     let mut step = ds;
     loop {
         if out.points.len() >= opts.max_points {
             out.truncated = true;
             break;
         }
-        let Some(next) = arc_step(m, &path, &metric, &p, step, &cfg) else {
+        // A step whose tangent turns too far is too long for a smooth curve, or crosses a
+        // corner (see `trace_kink`).
+        let next = arc_step(m, &path, &metric, &p, step, &cfg).filter(|n| turn(&p.tangent, &n.tangent) <= MAX_TURN);
+        let Some(next) = next else {
             step *= 0.5;
-            if step < ds * 1e-6 {
-                return Err(Error::Branch {
-                    message: "pseudo-arclength continuation cannot proceed (the curve bifurcates or ends here)".into(),
-                    at: m.location(path.at_sigma(p.sigma).as_ref(), None),
-                });
+            if step < floor {
+                // No step however short: a kink just ahead (the last step tried, twice the
+                // floor at most, crossed it), or the end of the curve.
+                let Some(passed) = past_kink(m, &path, &metric, &p, 2.0 * floor, &cfg, pivot) else {
+                    return Err(Error::Branch {
+                        message: "pseudo-arclength continuation cannot proceed (the curve bifurcates or ends here)"
+                            .into(),
+                        at: m.location(path.at_sigma(p.sigma).as_ref(), None),
+                    });
+                };
+                walked += (passed.point.z(&metric) - p.z(&metric)).norm();
+                p = passed.point;
+                if p.sigma > path.len * (1.0 + 1e-12) || p.sigma < -path.len * (1.0 + 1e-12) {
+                    break;
+                }
+                out.kinks.push(passed.event);
+                out.points.push(point(&p));
+                step = ds;
             }
             continue;
         };
