@@ -103,7 +103,8 @@ pub type TracedPoint<const N: usize, const NI: usize> = TracedPointOf<[f64; N], 
 /// positions in `Q` and inputs in `X` (see [`TracedPointOf`]).
 #[derive(Clone, Debug, PartialEq)]
 pub struct TracedOf<Q, X> {
-    /// Points along the curve, about `ds` apart.
+    /// Points along the curve, about `ds` apart (closer where the curve turns sharply, see
+    /// [`TracedOf::kinks`] for the corners, each of which is a point too).
     pub points: Vec<TracedPointOf<Q, X>>,
     /// The limit positions passed (where the input reversed), located precisely.
     pub folds: Vec<Event>,
