@@ -170,21 +170,21 @@ fn locate<K: Kernel>(
     let u = m.judged().iter().copied().max_by(|&a, &b| jump(a).abs().total_cmp(&jump(b).abs()))?;
     let middle = 0.5 * (slope(after, path, u) + slope(before, path, u));
     let (mut lo, mut hi, mut far) = (0.0f64, 1.0f64, after.clone());
-    let mut guess = far.q().to_vec();
+    // Solved from the nearest state found on the far side.
+    let mut guess = m.dims().q();
+    guess.as_mut().copy_from_slice(far.q());
     for _ in 0..LOCATE_STEPS {
         let mid = 0.5 * (lo + hi);
         if sigma0 + mid * h == sigma0 + lo * h || sigma0 + mid * h == sigma0 + hi * h {
             break;
         }
-        let mut g = m.dims().q();
-        g.as_mut().copy_from_slice(&guess);
-        let k = solve(mid, &g)?;
+        let k = solve(mid, &guess)?;
         if !regular(&k) {
             return None;
         }
         if (slope(&k, path, u) - middle) * jump(u) > 0.0 {
             hi = mid;
-            guess.copy_from_slice(k.q());
+            guess.as_mut().copy_from_slice(k.q());
             far = k;
         } else {
             lo = mid;
