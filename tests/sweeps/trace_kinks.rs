@@ -41,6 +41,17 @@ kinloop::mechanism! {
     }
 }
 
+kinloop::mechanism! {
+    /// A slider that jumps: `s = k floor(phi)`, a step of `k` at every whole `phi`, with the
+    /// curve's tangent the same on either side.
+    pub struct Jumping {
+        params k;
+        input phi;
+        unknowns s = 0;
+        eq step: s == k * floor(phi);
+    }
+}
+
 /// How far a traced point may lie from a law that is linear on either side of its corners, in
 /// units of the law's size: the corrector's last Newton step on a linear law lands on it to the
 /// rounding of its few operations (a few ulps of the size), and the state solved at a corner
@@ -152,6 +163,23 @@ fn the_end_of_a_curve_still_stops_the_trace() {
     match e {
         Error::Branch { message, .. } => assert!(message.contains("cannot proceed"), "{message}"),
         e => panic!("{e:?}"),
+    }
+}
+
+#[test]
+fn a_jump_in_the_positions_still_stops_the_trace() {
+    // The positions jump by `k` at phi = 2: past it lies another piece of the solution set, a
+    // finite distance from the curve followed, and the trace must not land on it (the
+    // corrector's plane, square to the dwell, meets it however short the step). Started where
+    // `s` is not zero, so that the trace's unit of `s` (taken from the equation's terms at the
+    // start) is the law's size.
+    for k in [2.0, 2e-6, 2e6] {
+        let m = Jumping { k };
+        let t = m.trace_curve(1.5, 2.5, &m.guess(1.5), &TraceConfig::default());
+        match t {
+            Err(Error::Branch { message, .. }) => assert!(message.contains("cannot proceed"), "{message}"),
+            t => panic!("k = {k}: {:?}", t.map(|t| t.points.last().map(|p| (p.x[0], p.q[0])))),
+        }
     }
 }
 

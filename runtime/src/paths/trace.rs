@@ -3,7 +3,7 @@
 
 use super::curve::{CurvePoint, Metric, Path, arc_step, event_at, locate_fold, tangent_from_analogs};
 use super::trace_kink::{MAX_TURN, past_kink, turn};
-use crate::dims::KinState;
+use crate::dims::{KinState, Store};
 use crate::error::Error;
 use crate::events::{Event, EventKind};
 use crate::mechanism::Mechanism;
@@ -194,9 +194,7 @@ pub fn trace_curve_of<K: Kernel>(
             out.truncated = true;
             break;
         }
-        // A step whose tangent turns too far is too long for a smooth curve, or crosses a
-        // corner (see `trace_kink`).
-        let next = arc_step(m, &path, &metric, &p, step, &cfg).filter(|n| turn(&p.tangent, &n.tangent) <= MAX_TURN);
+        let next = arc_step(m, &path, &metric, &p, step, &cfg).filter(|n| stays_on_curve(&p, n, step, &metric));
         let Some(next) = next else {
             step *= 0.5;
             if step < floor {
@@ -239,4 +237,17 @@ pub fn trace_curve_of<K: Kernel>(
         step = ds;
     }
     Ok(out)
+}
+
+/// Whether the step of length `step` (scaled coordinates) from `p` to `next` stays on the curve
+/// it follows: the unit tangent turns by at most [`MAX_TURN`] (more is a step too long for the
+/// curve's curvature, or one across a corner: see `trace_kink`), and the corrector moved the
+/// prediction by at most `MAX_TURN` times the step. On a smooth curve that turns by `MAX_TURN`
+/// the prediction is off by about half that; farther is another piece of the solution set,
+/// across a jump in the positions (as `floor` makes one), which the corrector's plane, square
+/// to the tangent, may meet however short the step. Refused, the step is halved, and at the
+/// smallest step the jump is no kink (its positions are not continuous): the trace stops there.
+fn stays_on_curve<Q: Store>(p: &CurvePoint<Q>, next: &CurvePoint<Q>, step: f64, metric: &Metric<Q>) -> bool {
+    let predicted = p.z(metric) + &p.tangent * step;
+    turn(&p.tangent, &next.tangent) <= MAX_TURN && (next.z(metric) - predicted).norm() <= MAX_TURN * step
 }
