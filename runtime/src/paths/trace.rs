@@ -130,7 +130,9 @@ pub type Traced<const N: usize, const NI: usize> = TracedOf<[f64; N], [f64; NI]>
 /// kinks (corners of the curve where the Jacobian is regular: a cam law written with `clamp`),
 /// with the input going on in its direction and on the same branch, and lists them in
 /// [`TracedOf::kinks`]; a corner where the tangent turns by less than about a tenth of a radian
-/// (scaled coordinates) is passed as a smooth point and not listed. Stops when the curve
+/// (scaled coordinates) is passed as a smooth point and not listed. It does not go on past a
+/// jump in the positions (`floor`) of more than a tenth of [`TraceConfig::ds`] (scaled
+/// coordinates): that is a `Branch` error. Stops when the curve
 /// closes, leaves the segment between `from - (to - from)` and `to`, or after
 /// [`TraceConfig::max_points`] (then [`TracedOf::truncated`] says so). Arclength is measured in scaled coordinates (see
 /// [`TraceConfig::ds`]): the same points in any unit of length.
@@ -140,7 +142,7 @@ pub type Traced<const N: usize, const NI: usize> = TracedOf<[f64; N], [f64; NI]>
 ///
 /// Errors: `InvalidArgument` for invalid options (naming the field) or `to == from`; the
 /// errors of the first solve at `from`; `Branch` where the continuation cannot proceed (the
-/// curve ends, or branches meet, where no step however short stays on it).
+/// curve ends or jumps, or branches meet, where no step however short stays on it).
 pub fn trace_curve<M, const N: usize, const NI: usize, const NO: usize>(
     m: &M,
     from: [f64; NI],
