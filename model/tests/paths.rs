@@ -12,6 +12,7 @@
 //! steps advance the sines and cosines by rotation (a few units in the last place off libm's),
 //! they agree to `REL` (`sweeps.rs`'s tolerance).
 
+#[macro_use]
 mod common;
 
 use common::{Libm, read, set};
@@ -174,6 +175,49 @@ fn a_trace_through_two_inputs_equals_the_compiled_one() {
             assert_eq!(strip(&c.folds), strip(&r.folds));
         }
         (c, r) => panic!("compiled {:?}, run time {:?}", c.map(|t| t.points.len()), r.map(|t| t.points.len())),
+    }
+}
+
+declared! {
+    KINKED_TEXT =>
+    /// A slider whose stroke has a corner on purpose: `s = k |phi - 1|`, its velocity analog
+    /// jumping from `-k` to `k` at `phi = 1`.
+    pub struct Kinked {
+        params k = 2.0;
+        input phi;
+        unknowns s = 0;
+        eq kink: s == k * abs(phi - 1);
+    }
+}
+
+/// A run-time model's trace passes a kink (here through `abs`) as the compiled mechanism's
+/// does, point by point, and lists it where the corner is.
+#[test]
+fn a_trace_passes_a_kink_as_the_compiled_one_does() {
+    for k in [2.0, 2e-6] {
+        let compiled = Kinked { k };
+        let mut model = read(KINKED_TEXT);
+        set(&mut model, &[("k", k)]);
+        let opts = TraceConfig::default();
+        let c = compiled.trace_curve(0.0, 2.0, &compiled.guess_flat(&[0.0]).into(), &opts).unwrap();
+        let r = model.trace_curve(&[0.0], &[2.0], &[0.0], &opts).unwrap();
+        assert_eq!(c.points.len(), r.points.len(), "k = {k}");
+        for (a, b) in c.points.iter().zip(&r.points) {
+            assert_eq!((&a.x[..], &a.q[..], a.input_rate), (&b.x.0[..], &b.q.0[..], b.input_rate), "k = {k}");
+        }
+        assert_eq!(strip(&c.kinks), strip(&r.kinks), "k = {k}");
+
+        // Independently: one kink at the corner (located by bisection to the rounding of the
+        // input), and every point on the law to the rounding of a Newton step on a law linear
+        // on either side of the corner (a few ulps of its size).
+        assert_eq!(r.kinks.len(), 1, "k = {k}: {:?}", r.kinks);
+        assert!((r.kinks[0].x[0] - 1.0).abs() <= 1e-12, "k = {k}: the kink at {}", r.kinks[0].x[0]);
+        assert!(r.folds.is_empty());
+        assert!(r.points.last().unwrap().x.0[0] > 1.9, "k = {k}: the trace goes on past the corner");
+        for p in &r.points {
+            let phi = p.x.0[0];
+            assert!((p.q.0[0] - k * (phi - 1.0).abs()).abs() <= 1e-14 * k, "k = {k}: s({phi}) = {}", p.q.0[0]);
+        }
     }
 }
 

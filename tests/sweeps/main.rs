@@ -17,3 +17,4 @@ mod sweep_drift;
 mod sweep_judged_length;
 mod sweep_kinks;
 mod sweeps;
+mod trace_kinks;

@@ -8,7 +8,7 @@ use std::f64::consts::PI;
 use crate::support::{four_bar_joint, four_bar_limit, tol};
 
 /// The crank angles where coupler and rocker are collinear: `|BD| = b + c` or `|b - c|`.
-fn limit_angles(m: &FourBar) -> Vec<f64> {
+pub(crate) fn limit_angles(m: &FourBar) -> Vec<f64> {
     [m.b + m.c, (m.b - m.c).abs()].into_iter().map(|r| four_bar_limit(m.a, m.d, r)).filter(|x| !x.is_nan()).collect()
 }
 

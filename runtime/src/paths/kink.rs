@@ -16,6 +16,10 @@
 //! either side of a corner the slope is constant to within the curvature over the step (far
 //! below the jump), so a state solved inside the step has the slope of one side or the other;
 //! approaching a fold the slope varies smoothly, and a state inside has one between them.
+//!
+//! Pseudo-arclength continuation asks the same question of its curve (`trace_kink`), in the
+//! same parameterisation by the input: where the Jacobian is regular the curve is a function of
+//! it.
 
 /// The largest distance, in an unknown's unit (a radian, or its loop's size), between the two
 /// sides of a corner beyond what their slopes explain: the Newton tolerance's order, far below

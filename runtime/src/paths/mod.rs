@@ -1,6 +1,6 @@
 //! Following a mechanism along its inputs: sweeps that never jump branches ([`sweep`], configured
 //! by [`config`]) and their results with the reason they stopped ([`outcome`]), pseudo-arclength continuation through
-//! limit positions ([`curve`], [`trace`]), the states at given inputs ([`sweep_at`]), the reachable
+//! limit positions and kinks ([`curve`], [`trace`]), the states at given inputs ([`sweep_at`]), the reachable
 //! input range ([`reach`]), design-space
 //! scans ([`scan`]) and the search for assembly modes ([`modes`]).
 
@@ -16,3 +16,4 @@ pub mod scan;
 pub mod sweep;
 pub mod sweep_at;
 pub mod trace;
+mod trace_kink;

@@ -2,7 +2,8 @@
 //! [`TraceConfig`]), over any [`Kernel`] ([`trace_curve_of`]).
 
 use super::curve::{CurvePoint, Metric, Path, arc_step, event_at, locate_fold, tangent_from_analogs};
-use crate::dims::KinState;
+use super::trace_kink::{MAX_TURN, past_kink, turn};
+use crate::dims::{KinState, Store};
 use crate::error::Error;
 use crate::events::{Event, EventKind};
 use crate::mechanism::Mechanism;
@@ -102,10 +103,16 @@ pub type TracedPoint<const N: usize, const NI: usize> = TracedPointOf<[f64; N], 
 /// positions in `Q` and inputs in `X` (see [`TracedPointOf`]).
 #[derive(Clone, Debug, PartialEq)]
 pub struct TracedOf<Q, X> {
-    /// Points along the curve, about `ds` apart.
+    /// Points along the curve, about `ds` apart (closer where the curve turns sharply, see
+    /// [`TracedOf::kinks`] for the corners, each of which is a point too).
     pub points: Vec<TracedPointOf<Q, X>>,
     /// The limit positions passed (where the input reversed), located precisely.
     pub folds: Vec<Event>,
+    /// The kinks passed ([`EventKind::Kink`]): corners of the curve, where its velocity analogs
+    /// jump with the Jacobian regular (`abs`, `min`, `max`, `clamp` in the equations), located
+    /// within rounding of the input. The input goes on across a kink in the direction it had;
+    /// [`TracedOf::points`] holds the corner too.
+    pub kinks: Vec<Event>,
     /// The curve closed on itself (it came back to its first point).
     pub closed: bool,
     /// The trace stopped at [`TraceConfig::max_points`], before the curve closed or left the
@@ -119,7 +126,13 @@ pub type Traced<const N: usize, const NI: usize> = TracedOf<[f64; N], [f64; NI]>
 /// Traces the whole solution curve through `guess` at input `from`, moving first towards `to`,
 /// by pseudo-arclength continuation in `(q, input)`: unlike a sweep it passes limit positions,
 /// where the input reverses, so a mechanism whose input cannot make a full turn (a non-Grashof
-/// four-bar driven by a rocking link) yields its complete closed curve. Stops when the curve
+/// four-bar driven by a rocking link) yields its complete closed curve. Like a sweep it passes
+/// kinks (corners of the curve where the Jacobian is regular: a cam law written with `clamp`),
+/// with the input going on in its direction and on the same branch, and lists them in
+/// [`TracedOf::kinks`]; a corner where the tangent turns by less than about a tenth of a radian
+/// (scaled coordinates) is passed as a smooth point and not listed. It does not go on past a
+/// jump in the positions (`floor`) of more than a tenth of [`TraceConfig::ds`] (scaled
+/// coordinates): that is a `Branch` error. Stops when the curve
 /// closes, leaves the segment between `from - (to - from)` and `to`, or after
 /// [`TraceConfig::max_points`] (then [`TracedOf::truncated`] says so). Arclength is measured in scaled coordinates (see
 /// [`TraceConfig::ds`]): the same points in any unit of length.
@@ -128,7 +141,8 @@ pub type Traced<const N: usize, const NI: usize> = TracedOf<[f64; N], [f64; NI]>
 /// A compiled mechanism's [`trace_curve_of`] (through [`Compiled`]).
 ///
 /// Errors: `InvalidArgument` for invalid options (naming the field) or `to == from`; the
-/// errors of the first solve at `from`; `Branch` where the continuation cannot proceed.
+/// errors of the first solve at `from`; `Branch` where the continuation cannot proceed (the
+/// curve ends or jumps, or branches meet, where no step however short stays on it).
 pub fn trace_curve<M, const N: usize, const NI: usize, const NO: usize>(
     m: &M,
     from: [f64; NI],
@@ -171,21 +185,38 @@ pub fn trace_curve_of<K: Kernel>(
     let start_z = start.z(&metric);
     let point =
         |p: &CurvePoint<Q<K>>| TracedPointOf { x: path.at_sigma(p.sigma), q: p.q.clone(), input_rate: p.dsigma() };
-    let mut out = TracedOf { points: vec![point(&start)], folds: Vec::new(), closed: false, truncated: false };
+    let mut out =
+        TracedOf { points: vec![point(&start)], folds: Vec::new(), kinks: Vec::new(), closed: false, truncated: false };
     let (ds, mut p, mut walked) = (opts.ds, start, 0.0);
+    let floor = ds * 1e-6;
+    let pivot = m.solver_config().singular_pivot;
     let mut step = ds;
     loop {
         if out.points.len() >= opts.max_points {
             out.truncated = true;
             break;
         }
-        let Some(next) = arc_step(m, &path, &metric, &p, step, &cfg) else {
+        let next = arc_step(m, &path, &metric, &p, step, &cfg).filter(|n| stays_on_curve(&p, n, step, &metric));
+        let Some(next) = next else {
             step *= 0.5;
-            if step < ds * 1e-6 {
-                return Err(Error::Branch {
-                    message: "pseudo-arclength continuation cannot proceed (the curve bifurcates or ends here)".into(),
-                    at: m.location(path.at_sigma(p.sigma).as_ref(), None),
-                });
+            if step < floor {
+                // No step however short: a kink just ahead (the last step tried, twice the
+                // floor at most, crossed it), or the end of the curve.
+                let Some(passed) = past_kink(m, &path, &metric, &p, 2.0 * floor, &cfg, pivot) else {
+                    return Err(Error::Branch {
+                        message: "pseudo-arclength continuation cannot proceed (the curve bifurcates or ends here)"
+                            .into(),
+                        at: m.location(path.at_sigma(p.sigma).as_ref(), None),
+                    });
+                };
+                walked += (passed.point.z(&metric) - p.z(&metric)).norm();
+                p = passed.point;
+                if p.sigma > path.len * (1.0 + 1e-12) || p.sigma < -path.len * (1.0 + 1e-12) {
+                    break;
+                }
+                out.kinks.push(passed.event);
+                out.points.push(point(&p));
+                step = ds;
             }
             continue;
         };
@@ -208,4 +239,17 @@ pub fn trace_curve_of<K: Kernel>(
         step = ds;
     }
     Ok(out)
+}
+
+/// Whether the step of length `step` (scaled coordinates) from `p` to `next` stays on the curve
+/// it follows: the unit tangent turns by at most [`MAX_TURN`] (more is a step too long for the
+/// curve's curvature, or one across a corner: see `trace_kink`), and the corrector moved the
+/// prediction by at most `MAX_TURN` times the step. On a smooth curve that turns by `MAX_TURN`
+/// the prediction is off by about half that; farther is another piece of the solution set,
+/// across a jump in the positions (as `floor` makes one), which the corrector's plane, square
+/// to the tangent, may meet however short the step. Refused, the step is halved, and at the
+/// smallest step the jump is no kink (its positions are not continuous): the trace stops there.
+fn stays_on_curve<Q: Store>(p: &CurvePoint<Q>, next: &CurvePoint<Q>, step: f64, metric: &Metric<Q>) -> bool {
+    let predicted = p.z(metric) + &p.tangent * step;
+    turn(&p.tangent, &next.tangent) <= MAX_TURN && (next.z(metric) - predicted).norm() <= MAX_TURN * step
 }

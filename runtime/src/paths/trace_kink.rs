@@ -1,0 +1,201 @@
+//! Passing a kink in pseudo-arclength continuation ([`past_kink`], for [`trace`](super::trace)).
+//!
+//! A corner of the solution curve (`abs`, `min`, `max`, `clamp` in the equations) shows in the
+//! continuation as a jump of its unit tangent in `(q, sigma)`: however short the step, the
+//! tangent past the corner differs from the one before by a finite turn, where on a smooth
+//! curve, through a limit position too, the turn shrinks with the step (the curvature times
+//! it). So the trace halves a step whose tangent turns by more than [`MAX_TURN`], and a step
+//! that cannot be made however short is judged here.
+//!
+//! The continuation cannot judge it in its own coordinates. It orients each tangent like the
+//! one before, the rule that takes it round a limit position; at a corner sharper than a right
+//! angle in the scaled coordinates (`abs` of a steep slope) the tangent so oriented points back
+//! along the far side, the input reversing as at a limit position, and the corrector's plane,
+//! square to the tangent before the corner, meets the far side behind the corner or not at
+//! all. Across a corner the unknowns may well reverse (the slider of `abs` comes back), but the
+//! input goes on: it is the input's direction that a corner keeps and a limit position
+//! reverses.
+//!
+//! What tells them apart is the Jacobian in the unknowns. Where it is regular at both ends of
+//! the step and inside it (pivots above the solver's threshold, the same determinant signs),
+//! the curve is there the graph of a function `q(sigma)` of the path coordinate (the implicit
+//! function theorem): no limit position lies on it (one needs a singular Jacobian), so the
+//! curve goes on with the input moving the same way, and the question becomes the sweep's,
+//! asked in its parameterisation by the input and answered by the same predicates (see
+//! [`kink`]): the state a short step on in the input is continuous with this one (not another
+//! solution a finite distance away), and states inside the step have one side's slopes `dq /
+//! dsigma` (a corner, not the smoothly growing slopes of a limit position close by). At a limit
+//! position the Jacobian is singular and the tangent turns smoothly: the turn shrinks with the
+//! step, the continuation turns round it as it always did, and were it judged here, the pivots
+//! and the slopes inside, between the sides', would refuse it.
+
+use super::curve::{CurvePoint, Metric, Path, tangent_from_analogs};
+use super::kink;
+use crate::dims::{Dims, KinState};
+use crate::events::{Event, EventKind};
+use crate::mechanism::kernel::{Kernel, KinOf, Q, X};
+use crate::solvers::newton::NewtonConfig;
+use nalgebra::DVector;
+
+/// The largest turn of the unit tangent (scaled coordinates, as the chord between the two unit
+/// vectors) over one step of the trace: a step that turns it more is halved. On a smooth curve
+/// it bounds the step to about `MAX_TURN` over the curvature (radius `0.1` in scaled
+/// coordinates at the default `ds` of `0.01`, sharper than any fold of a linkage the default
+/// resolves); at a corner no step is short enough, and the corner is judged by [`past_kink`]. A
+/// corner whose tangents differ by less (slopes that change by less than about a tenth, in
+/// scaled coordinates) is passed as a smooth point is.
+pub(crate) const MAX_TURN: f64 = 0.1;
+
+/// The turn of the unit tangent from `before` to `after`: the chord between them.
+pub(crate) fn turn(before: &DVector<f64>, after: &DVector<f64>) -> f64 {
+    (after - before).norm()
+}
+
+/// Bisection steps locating a corner within the step across it: `2^-60` of it is far below the
+/// rounding of the path coordinate, where the bisection stops first.
+const LOCATE_STEPS: usize = 60;
+
+/// A kink of the solution curve passed: the event where it is and the curve point there, on
+/// the far side, from which the trace goes on.
+pub(crate) struct Passed<Q> {
+    /// [`EventKind::Kink`] at the corner (within rounding of its input).
+    pub event: Event,
+    /// The curve point at the corner with the far side's tangent, oriented so that the input
+    /// keeps its direction.
+    pub point: CurvePoint<Q>,
+}
+
+/// The kink just ahead of the curve point `p` of `path`, within arclength `reach` (scaled
+/// coordinates, see [`Metric`]) along the curve, passed; `None` where no kink is there (see
+/// the module's documentation): a singular or nearly singular position at either end or
+/// inside, another assembly mode, an input that rounds to `p`'s, a step that cannot be solved,
+/// or slopes that are not one side's or the other's. `pivot` is the smallest pivot ratio of a
+/// regular position (the kernel's `SweepConfig::singular_pivot`).
+pub(crate) fn past_kink<K: Kernel>(
+    m: &K,
+    path: &Path<X<K>>,
+    metric: &Metric<Q<K>>,
+    p: &CurvePoint<Q<K>>,
+    reach: f64,
+    cfg: &NewtonConfig,
+    pivot: f64,
+) -> Option<Passed<Q<K>>> {
+    let d = m.dims();
+    let dir = p.dsigma().signum();
+    if p.dsigma() == 0.0 || !dir.is_finite() {
+        return None;
+    }
+    // The step in the input: along the curve the path coordinate changes by no more than the
+    // arclength (scaled), so twice `reach` in it is past the corner.
+    let h = dir * 2.0 * reach * metric.sigma;
+    let solve = |frac: f64, guess: &Q<K>| m.kinematics(&path.at_sigma(p.sigma + frac * h), guess, cfg).ok();
+    let before = solve(0.0, &p.q)?;
+    if path.at_sigma(p.sigma + h).as_ref() == path.at_sigma(p.sigma).as_ref() {
+        return None;
+    }
+    // Predicted along this side's tangent: off by the slopes' jump times part of the step.
+    let mut guess = p.q.clone();
+    for u in 0..d.n() {
+        guess[u] = before.q()[u] + slope(&before, path, u) * h;
+    }
+    let after = solve(1.0, &guess)?;
+    let signs = before.health().det_signs;
+    let blocks = m.block_count();
+    let regular = |k: &KinOf<K>| k.health().min_pivot >= pivot && k.health().det_signs.same_for(&signs, blocks);
+    if !regular(&before) || !regular(&after) {
+        return None;
+    }
+    // Each unknown in its unit, the slopes per unit of the path coordinate, the step's.
+    let unit = |u: usize| metric.unit[u];
+    let sides = m.judged().iter().map(|&u| kink::Side {
+        change: (after.q()[u] - before.q()[u]) / unit(u),
+        slope_before: slope(&before, path, u) / unit(u),
+        slope_after: slope(&after, path, u) / unit(u),
+    });
+    if !kink::continuous(sides, h) {
+        return None;
+    }
+    let slopes = |inside: &KinOf<K>| -> Vec<kink::Slopes> {
+        m.judged()
+            .iter()
+            .map(|&u| kink::Slopes {
+                before: slope(&before, path, u) / unit(u),
+                after: slope(&after, path, u) / unit(u),
+                inside: slope(inside, path, u) / unit(u),
+            })
+            .collect()
+    };
+    // Probed at a third and two thirds, should one land on the corner itself.
+    for frac in [1.0 / 3.0, 2.0 / 3.0] {
+        let inside = solve(frac, &p.q)?;
+        if !regular(&inside) || !kink::one_sided(&slopes(&inside)) {
+            return None;
+        }
+    }
+    let (sigma, corner) = locate(m, path, p.sigma, h, &before, &after, regular, solve)?;
+    let mut tangent = tangent_from_analogs(&corner, path, metric);
+    tangent *= dir;
+    let mut q = p.q.clone();
+    q.as_mut().copy_from_slice(corner.q());
+    let x = path.at_sigma(sigma);
+    let event = Event {
+        kind: EventKind::Kink,
+        x: x.as_ref().to_vec(),
+        tau: sigma / path.len,
+        q: q.as_ref().to_vec(),
+        block: None,
+    };
+    Some(Passed { event, point: CurvePoint { q, sigma, tangent } })
+}
+
+/// The corner between `before` (at `sigma0`) and `after` (at `sigma0 + h`), by bisection on the
+/// side whose slopes a state solved in between has (one side's or the other's, as the probes
+/// found): the path coordinate of the first state found on the far side, within rounding of the
+/// corner, and that state.
+#[allow(clippy::too_many_arguments)]
+fn locate<K: Kernel>(
+    m: &K,
+    path: &Path<X<K>>,
+    sigma0: f64,
+    h: f64,
+    before: &KinOf<K>,
+    after: &KinOf<K>,
+    regular: impl Fn(&KinOf<K>) -> bool,
+    solve: impl Fn(f64, &Q<K>) -> Option<KinOf<K>>,
+) -> Option<(f64, KinOf<K>)> {
+    // The unknown whose slope jumps most tells the sides apart (its jump is at least
+    // `kink::MIN_JUMP` of the steeper slope; the probes put every slope within
+    // `kink::ONE_SIDED` of it from one side).
+    let jump = |u: usize| slope(after, path, u) - slope(before, path, u);
+    let u = m.judged().iter().copied().max_by(|&a, &b| jump(a).abs().total_cmp(&jump(b).abs()))?;
+    let middle = 0.5 * (slope(after, path, u) + slope(before, path, u));
+    let (mut lo, mut hi, mut far) = (0.0f64, 1.0f64, after.clone());
+    // Solved from the nearest state found on the far side.
+    let mut guess = m.dims().q();
+    guess.as_mut().copy_from_slice(far.q());
+    for _ in 0..LOCATE_STEPS {
+        let mid = 0.5 * (lo + hi);
+        if sigma0 + mid * h == sigma0 + lo * h || sigma0 + mid * h == sigma0 + hi * h {
+            break;
+        }
+        let k = solve(mid, &guess)?;
+        if !regular(&k) {
+            return None;
+        }
+        if (slope(&k, path, u) - middle) * jump(u) > 0.0 {
+            hi = mid;
+            guess.as_mut().copy_from_slice(k.q());
+            far = k;
+        } else {
+            lo = mid;
+        }
+    }
+    Some((sigma0 + hi * h, far))
+}
+
+/// `d q_u / d sigma` of the state `k` on `path`: its velocity analogs along the path's
+/// direction.
+fn slope<S: KinState, X: crate::dims::Store>(k: &S, path: &Path<X>, u: usize) -> f64 {
+    let dq = k.dq(u);
+    (0..dq.len()).map(|i| dq[i] * path.delta[i]).sum::<f64>() / path.len
+}
