@@ -195,6 +195,19 @@ pub enum Error {
     Figure(Source),
 }
 
+/// What a configuration's `validate` returns: `Ok` when `field` (its first one out of range, as
+/// its `invalid_field` finds it) is `None`, otherwise the `InvalidArgument` naming
+/// `owner::field` and showing the whole configuration `cfg`. One wording for every
+/// configuration of the solvers, sweeps and optimisers.
+pub(crate) fn check_fields(owner: &str, field: Option<impl fmt::Display>, cfg: &impl fmt::Debug) -> Result<(), Error> {
+    match field {
+        None => Ok(()),
+        Some(field) => Err(Error::InvalidArgument(format!(
+            "{owner}::{field} is out of its valid range (see its documentation): {cfg:?}"
+        ))),
+    }
+}
+
 /// An error of another part of kinloop carried inside [`Error`] (see [`Error::Dynamics`] and
 /// [`Error::Figure`]), so that one error type goes through `?` everywhere. The original is kept:
 /// [`Source::downcast_ref`] gives it back typed, and `std::error::Error::source` follows its

@@ -8,28 +8,8 @@ use kinloop_fixtures::FourBar;
 use std::f64::consts::{PI, TAU};
 
 use crate::support::tol;
+use crate::sweep_kinks::{Kinked, UniformRise};
 use crate::sweeps::limit_angles;
-
-kinloop::mechanism! {
-    /// A slider whose position has a kink (abs): its velocity analog jumps at phi = 1.
-    pub struct Kinked {
-        params k;
-        input phi;
-        unknowns s = 0;
-        eq kink: s == k * abs(phi - 1);
-    }
-}
-
-kinloop::mechanism! {
-    /// A follower lifted at uniform velocity: rise `h` from `a` over `b`, dwell, return over `b`
-    /// from `a + b + c`, dwell; its velocity analog jumps at the four ends of the ramps.
-    pub struct UniformRise {
-        params h, a, b, c;
-        input phi;
-        unknowns s = 0;
-        eq lift: s == h * clamp((phi - a) / b, 0, 1) - h * clamp((phi - a - b - c) / b, 0, 1);
-    }
-}
 
 kinloop::mechanism! {
     /// A curve that ends: `s = sqrt(phi)` has no solution below `phi = 0`.

@@ -152,12 +152,7 @@ impl SweepConfig {
     /// ```
     pub fn validate(&self) -> Result<(), Error> {
         let prefix = if self.newton.invalid_field().is_some() { "newton." } else { "" };
-        match self.invalid_field() {
-            None => Ok(()),
-            Some(field) => Err(Error::InvalidArgument(format!(
-                "SweepConfig::{prefix}{field} is out of its valid range (see its documentation): {self:?}"
-            ))),
-        }
+        crate::error::check_fields("SweepConfig", self.invalid_field().map(|field| format!("{prefix}{field}")), self)
     }
 }
 

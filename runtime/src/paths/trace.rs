@@ -72,12 +72,7 @@ impl TraceConfig {
 
     /// Checks every field: `Error::InvalidArgument` names the first one out of range.
     pub fn validate(&self) -> Result<(), Error> {
-        match self.invalid_field() {
-            None => Ok(()),
-            Some(field) => Err(Error::InvalidArgument(format!(
-                "TraceConfig::{field} is out of its valid range (see its documentation): {self:?}"
-            ))),
-        }
+        crate::error::check_fields("TraceConfig", self.invalid_field(), self)
     }
 }
 

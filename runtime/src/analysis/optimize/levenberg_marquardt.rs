@@ -106,12 +106,7 @@ impl LevenbergMarquardt {
 
     /// Checks every field: `Error::InvalidArgument` names the first one out of range.
     pub fn validate(&self) -> Result<(), Error> {
-        match self.invalid_field() {
-            None => Ok(()),
-            Some(field) => Err(Error::InvalidArgument(format!(
-                "LevenbergMarquardt::{field} is out of its valid range (see its documentation): {self:?}"
-            ))),
-        }
+        crate::error::check_fields("LevenbergMarquardt", self.invalid_field(), self)
     }
 
     /// Minimises `|r(x)|^2` from `x0`; `f(x)` returns the residuals and their Jacobian

@@ -96,12 +96,7 @@ impl NelderMead {
 
     /// Checks every field: `Error::InvalidArgument` names the first one out of range.
     pub fn validate(&self) -> Result<(), Error> {
-        match self.invalid_field() {
-            None => Ok(()),
-            Some(field) => Err(Error::InvalidArgument(format!(
-                "NelderMead::{field} is out of its valid range (see its documentation): {self:?}"
-            ))),
-        }
+        crate::error::check_fields("NelderMead", self.invalid_field(), self)
     }
 
     /// Minimises `f` over `P` variables from `x0`, with an initial simplex of `x0` and the

@@ -140,16 +140,8 @@ impl NewtonConfig {
 
     /// Checks every field: `Error::InvalidArgument` names the first one out of range.
     pub fn validate(&self) -> Result<(), Error> {
-        match self.invalid_field() {
-            None => Ok(()),
-            Some(field) => Err(invalid_config(field, self)),
-        }
+        crate::error::check_fields("NewtonConfig", self.invalid_field(), self)
     }
-}
-
-/// The error for a configuration field out of range.
-pub(crate) fn invalid_config(field: &str, cfg: &NewtonConfig) -> Error {
-    Error::InvalidArgument(format!("NewtonConfig::{field} is out of its valid range (see its documentation): {cfg:?}"))
 }
 
 #[cfg(test)]
