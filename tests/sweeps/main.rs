@@ -17,4 +17,5 @@ mod sweep_drift;
 mod sweep_judged_length;
 mod sweep_kinks;
 mod sweeps;
+mod trace_branch_points;
 mod trace_kinks;

@@ -1,9 +1,11 @@
 //! Tracing a whole solution curve through its limit positions ([`trace_curve`], configured by
 //! [`TraceConfig`]), over any [`Kernel`] ([`trace_curve_of`]).
 
-use super::curve::{CurvePoint, Metric, Path, arc_step, event_at, locate_fold, tangent_from_analogs};
+use super::curve::{
+    CurvePoint, Metric, Path, arc_step, event_at, locate_fold, pivot_at, signed_det, tangent_from_analogs,
+};
 use super::trace_kink::{MAX_TURN, past_kink, turn};
-use crate::dims::{KinState, Store};
+use crate::dims::{Dims, KinState, Store};
 use crate::error::Error;
 use crate::events::{Event, EventKind};
 use crate::mechanism::Mechanism;
@@ -108,6 +110,14 @@ pub struct TracedOf<Q, X> {
     /// within rounding of the input. The input goes on across a kink in the direction it had;
     /// [`TracedOf::points`] holds the corner too.
     pub kinks: Vec<Event>,
+    /// The branch points passed ([`EventKind::SingularCrossing`]): where the curve followed
+    /// crosses another (a four-bar at a change point, all its links in line), the Jacobian
+    /// singular with the input going on. The trace goes on along the smooth continuation, the
+    /// curve its tangent carries on; the event is the first point past the crossing, within a
+    /// ten-thousandth of [`TraceConfig::ds`] of it (scaled coordinates). Where two curves only come
+    /// close (a four-bar near a change point), the trace is not taken across the gap: it
+    /// follows its own curve round its limit positions, however narrow the gap.
+    pub crossings: Vec<Event>,
     /// The curve closed on itself (it came back to its first point).
     pub closed: bool,
     /// The trace stopped at [`TraceConfig::max_points`], before the curve closed or left the
@@ -127,7 +137,11 @@ pub type Traced<const N: usize, const NI: usize> = TracedOf<[f64; N], [f64; NI]>
 /// [`TracedOf::kinks`]; a corner where the tangent turns by less than about a tenth of a radian
 /// (scaled coordinates) is passed as a smooth point and not listed. It does not go on past a
 /// jump in the positions (`floor`) of more than a tenth of [`TraceConfig::ds`] (scaled
-/// coordinates): that is a `Branch` error. Stops when the curve
+/// coordinates): that is a `Branch` error. It never steps from its curve onto another: where
+/// two come within less than a step of each other (a four-bar near a change point) it follows
+/// its own round its limit position however narrow the gap, and where two cross (at the change
+/// point) it goes on along the curve its tangent carries on and lists the crossing in
+/// [`TracedOf::crossings`]. Stops when the curve
 /// closes, leaves the segment between `from - (to - from)` and `to`, or after
 /// [`TraceConfig::max_points`] (then [`TracedOf::truncated`] says so). Arclength is measured in scaled coordinates (see
 /// [`TraceConfig::ds`]): the same points in any unit of length.
@@ -180,8 +194,23 @@ pub fn trace_curve_of<K: Kernel>(
     let start_z = start.z(&metric);
     let point =
         |p: &CurvePoint<Q<K>>| TracedPointOf { x: path.at_sigma(p.sigma), q: p.q.clone(), input_rate: p.dsigma() };
-    let mut out =
-        TracedOf { points: vec![point(&start)], folds: Vec::new(), kinks: Vec::new(), closed: false, truncated: false };
+    let mut out = TracedOf {
+        points: vec![point(&start)],
+        folds: Vec::new(),
+        kinks: Vec::new(),
+        crossings: Vec::new(),
+        closed: false,
+        truncated: false,
+    };
+    // The curve's orientation at a point is the sign of `det J` (the Jacobian in the unknowns)
+    // times the input's direction along the tangent: the determinant of the bordered matrix
+    // `[J, dF/dsigma; t^T]` is `det J` times the tangent's input component times a positive factor,
+    // and it keeps its sign along a smooth curve, through limit positions too (there both factors
+    // change sign). It changes sign at a branch point, where a step passes onto the crossing curve's
+    // continuation, and across the gap between two curves that come close, where a step lands on
+    // the other curve: the trace's test that no step jumps.
+    let orientation = |p: &CurvePoint<Q<K>>| sign(signed_det(m, &path.at_sigma(p.sigma), &p.q)) * sign(p.dsigma());
+    let mut side = orientation(&start);
     let (ds, mut p, mut walked) = (opts.ds, start, 0.0);
     let floor = ds * 1e-6;
     let pivot = m.solver_config().singular_pivot;
@@ -191,26 +220,50 @@ pub fn trace_curve_of<K: Kernel>(
             out.truncated = true;
             break;
         }
-        let next = arc_step(m, &path, &metric, &p, step, &cfg).filter(|n| stays_on_curve(&p, n, step, &metric));
-        let Some(next) = next else {
+        let stepped = arc_step(m, &path, &metric, &p, step, &cfg).filter(|n| stays_on_curve(&p, n, step, &metric));
+        // A step that changed the curve's orientation passed a branch point, or jumped the gap
+        // between two curves that come close: shorter steps follow the curve round its own
+        // limit position, and at the smallest step the branch point is a crossing, passed.
+        let next = stepped.and_then(|n| {
+            let o = orientation(&n);
+            if side * o >= 0.0 {
+                Some((n, o))
+            } else if 0.5 * step < floor {
+                out.crossings.push(event_at(EventKind::SingularCrossing, &path, &n, None));
+                Some((n, o))
+            } else {
+                None
+            }
+        });
+        let Some((next, o)) = next else {
             step *= 0.5;
             if step < floor {
                 // No step however short: a kink just ahead (the last step tried, twice the
-                // floor at most, crossed it), or the end of the curve.
-                let Some(passed) = past_kink(m, &path, &metric, &p, 2.0 * floor, &cfg, pivot) else {
+                // floor at most, crossed it), a branch point whose curves the corrector cannot
+                // tell apart there, or the end of the curve.
+                let (past, event) = if let Some(k) = past_kink(m, &path, &metric, &p, 2.0 * floor, &cfg, pivot) {
+                    (k.point, k.event)
+                } else if let Some(c) = past_crossing(m, &path, &metric, &p, 2.0 * floor, &cfg, side, orientation) {
+                    let event = event_at(EventKind::SingularCrossing, &path, &c, None);
+                    (c, event)
+                } else {
                     return Err(Error::Branch {
                         message: "pseudo-arclength continuation cannot proceed (the curve bifurcates or ends here)"
                             .into(),
                         at: m.location(path.at_sigma(p.sigma).as_ref(), None),
                     });
                 };
-                walked += (passed.point.z(&metric) - p.z(&metric)).norm();
-                p = passed.point;
+                walked += (past.z(&metric) - p.z(&metric)).norm();
+                p = past;
                 if p.sigma > path.len * (1.0 + 1e-12) || p.sigma < -path.len * (1.0 + 1e-12) {
                     break;
                 }
-                out.kinks.push(passed.event);
+                match event.kind {
+                    EventKind::Kink => out.kinks.push(event),
+                    _ => out.crossings.push(event),
+                }
                 out.points.push(point(&p));
+                side = orientation(&p);
                 step = ds;
             }
             continue;
@@ -223,6 +276,9 @@ pub fn trace_curve_of<K: Kernel>(
         walked += step;
         let back = (next.z(&metric) - &start_z).norm();
         p = next;
+        if o != 0.0 {
+            side = o;
+        }
         if p.sigma > path.len * (1.0 + 1e-12) || p.sigma < -path.len * (1.0 + 1e-12) {
             break;
         }
@@ -234,6 +290,69 @@ pub fn trace_curve_of<K: Kernel>(
         step = ds;
     }
     Ok(out)
+}
+
+/// The point just past a branch point ahead of the curve point `p`, within the arclength
+/// `reach` (scaled coordinates), where no step of the trace can be made: the two curves meet
+/// or pass within the rounding there, and the corrector's plane meets both. The straight
+/// prediction along `p`'s tangent, solved at a fixed input `reach` to 32 times `reach` on (no
+/// restart: a restart would find another branch; nearer, the position may be singular to the
+/// rounding), with the curve's orientation changed (see `trace_curve_of`) and within the
+/// arclength of the prediction (a curve that passes the other within the rounding lies that
+/// far from the straight line, no farther). `None` where `p`'s Jacobian is not
+/// nearly singular (a pivot ratio below `CROSSING_PIVOT`: no branch point is there) or no such
+/// point is found (the curve ends).
+#[allow(clippy::too_many_arguments)]
+fn past_crossing<K: Kernel>(
+    m: &K,
+    path: &Path<X<K>>,
+    metric: &Metric<Q<K>>,
+    p: &CurvePoint<Q<K>>,
+    reach: f64,
+    cfg: &NewtonConfig,
+    side: f64,
+    orientation: impl Fn(&CurvePoint<Q<K>>) -> f64,
+) -> Option<CurvePoint<Q<K>>> {
+    let dir = sign(p.dsigma());
+    let singular = pivot_at(m, &path.at_sigma(p.sigma), &p.q) < CROSSING_PIVOT;
+    if dir == 0.0 || side == 0.0 || !singular {
+        return None;
+    }
+    let cfg = cfg.with_restarts(false);
+    for k in [1.0, 2.0, 4.0, 8.0, 16.0, 32.0] {
+        let arc = k * reach;
+        let sigma = p.sigma + dir * arc * metric.sigma;
+        let mut guess = p.q.clone();
+        for u in 0..m.dims().n() {
+            guess[u] += p.dq_dsigma(u, metric) * (sigma - p.sigma);
+        }
+        let Ok(solved) = m.kinematics(&path.at_sigma(sigma), &guess, &cfg) else { continue };
+        let predicted = CurvePoint { q: guess.clone(), sigma, tangent: p.tangent.clone() }.z(metric);
+        let mut q = guess;
+        q.as_mut().copy_from_slice(solved.q());
+        let tangent = tangent_from_analogs(&solved, path, metric) * dir;
+        let past = CurvePoint { q, sigma, tangent };
+        if orientation(&past) * side < 0.0 && (past.z(metric) - predicted).norm() <= arc {
+            return Some(past);
+        }
+    }
+    None
+}
+
+/// The largest pivot ratio of the Jacobian at a point next to a branch point that the trace
+/// passes straight (see [`past_crossing`]): the Jacobian is singular there, and within the
+/// trace's smallest step of it the pivot is of that step's order, far below this.
+const CROSSING_PIVOT: f64 = 1e-6;
+
+/// The sign of `v`: `0` for zero and NaN (no orientation to compare).
+fn sign(v: f64) -> f64 {
+    if v > 0.0 {
+        1.0
+    } else if v < 0.0 {
+        -1.0
+    } else {
+        0.0
+    }
 }
 
 /// Whether the step of length `step` (scaled coordinates) from `p` to `next` stays on the curve

@@ -1,0 +1,124 @@
+//! Branch points traced: pseudo-arclength continuation near a four-bar's change point, where
+//! two solution curves meet (at the change point) or come within a gap far narrower than a
+//! step (near it). The trace must follow its own curve, never step across the gap onto the
+//! other, and must pass a true crossing on the curve its tangent carries on, saying so.
+//!
+//! The four-bar `a = 1, b = 3, c = 2.5` with the frame `d = b + c - a + eps`: at `eps = 0`
+//! (all four in binary: the sums exact) the links lie in line at `phi = pi`, a change point.
+//! For `eps > 0` the crank cannot turn (s + l > p + q): its curve turns back at limit
+//! positions `pi - delta` where coupler and rocker lie in line, `delta` of order `sqrt(eps)`,
+//! and the crank's other curve, past `pi + delta`, lies across a gap of `2 delta`. For
+//! `eps < 0` it turns fully and its two curves pass each other across such a gap, each
+//! changing its slope there. The default step `ds = 0.01` is far wider than those gaps: a
+//! straight step lands on the other curve (the trace did so for `eps` below about `1e-6`).
+
+use kinloop::{EventKind, TraceConfig};
+use kinloop_fixtures::FourBar;
+use std::f64::consts::PI;
+
+use crate::support::tol;
+
+/// The four-bar `eps` from its change point, in the unit `unit`.
+fn near_change_point(eps: f64, unit: f64) -> FourBar {
+    let (a, b, c) = (1.0, 3.0, 2.5);
+    FourBar { a: a * unit, b: b * unit, c: c * unit, d: (b + c - a + eps) * unit }
+}
+
+/// The crank's limit position below `pi` of `m` (`eps > 0`), where coupler and rocker lie in
+/// line: `|BD| = b + c` with `B` the crank's tip. `1 + cos(phi) = ((a + d)^2 - (b + c)^2) /
+/// (2 a d)`, from the difference of the sums rather than the cosine, which near `-1` would
+/// lose the digits of `delta` (`pi - phi = 2 asin(sqrt((1 + cos phi) / 2))`).
+fn limit_below_pi(m: &FourBar) -> f64 {
+    let (sum, other) = (m.a + m.d, m.b + m.c);
+    let one_plus_cos = (sum - other) * (sum + other) / (2.0 * m.a * m.d);
+    PI - 2.0 * (0.5 * one_plus_cos).sqrt().asin()
+}
+
+/// The assembly mode at a traced state: the side of the coupler the rocker lies on,
+/// `sin(gamma - beta)`. It changes sign only where coupler and rocker lie in line (a limit
+/// position, or the change point).
+fn mode(q: &[f64; 2]) -> f64 {
+    (q[1] - q[0]).sin()
+}
+
+/// Every traced state satisfies the loop equations to the solver's tolerance (relative to the
+/// mechanism's size).
+fn on_the_curve(m: &FourBar, t: &kinloop::Traced<2, 1>, unit: f64) {
+    for p in &t.points {
+        let r = m.residual(p.x[0], &p.q.into());
+        assert!(r.iter().all(|v| v.abs() <= 1e-10 * unit), "{m:?} at {}: {r:?}", p.x[0]);
+    }
+}
+
+#[test]
+fn near_a_change_point_the_trace_turns_at_its_limit_position_and_never_steps_across() {
+    for unit in [1e-3, 1.0, 1e3] {
+        for eps in [1e-4, 1e-6, 1e-8, 1e-10, 1e-12] {
+            let m = near_change_point(eps, unit);
+            let lim = limit_below_pi(&m);
+            let g = m.position(0.5, &m.guess(0.5)).unwrap().0;
+            let t = m.trace_curve(0.5, 0.5 + PI, &g, &TraceConfig::default()).unwrap();
+            on_the_curve(&m, &t, unit);
+            assert!(t.crossings.is_empty() && t.kinks.is_empty(), "eps {eps:e}: {t:?}");
+            // The limit position below pi, where the trace turns back; the other lies below
+            // the segment traced (`-pi + delta < 0.5 - pi`).
+            assert_eq!(t.folds.len(), 1, "eps {eps:e}, unit {unit:e}: {:?}", t.folds);
+            assert_close!(t.folds[0].x[0], lim, tol::LOCATED, "eps {eps:e}, unit {unit:e}");
+            // Never past it: a state beyond `pi - delta` lies on the other curve.
+            let beyond = t.points.iter().map(|p| p.x[0]).fold(f64::MIN, f64::max);
+            assert!(beyond <= lim + tol::LOCATED, "eps {eps:e}: a state at {beyond}, past the limit {lim}");
+            // One mode up to the limit position, the other after it (the input reversed).
+            let turned = t.points.iter().position(|p| p.input_rate < 0.0).unwrap();
+            let (before, after) = t.points.split_at(turned);
+            let first = mode(&before[0].q).signum();
+            assert!(before.iter().all(|p| mode(&p.q).signum() == first), "eps {eps:e}");
+            assert!(after.iter().all(|p| mode(&p.q).signum() == -first), "eps {eps:e}");
+        }
+    }
+}
+
+#[test]
+fn near_a_change_point_a_turning_crank_keeps_its_assembly_mode() {
+    // eps < 0: the crank turns fully, its two curves passing each other within the gap; the
+    // trace keeps to its own, in one assembly mode over the whole turn.
+    for eps in [-1e-4, -1e-8, -1e-12] {
+        let m = near_change_point(eps, 1.0);
+        let g = m.position(0.5, &m.guess(0.5)).unwrap().0;
+        let t = m.trace_curve(0.5, 0.5 + PI, &g, &TraceConfig::default()).unwrap();
+        on_the_curve(&m, &t, 1.0);
+        assert!(t.folds.is_empty() && t.crossings.is_empty(), "eps {eps:e}: {t:?}");
+        assert!(t.points.iter().all(|p| p.input_rate > 0.0), "eps {eps:e}: the input reversed");
+        assert!(t.points.last().unwrap().x[0] > PI + 0.4, "eps {eps:e}: it went on past pi");
+        let first = mode(&t.points[0].q).signum();
+        let switched = t.points.iter().find(|p| mode(&p.q).signum() != first);
+        assert!(switched.is_none(), "eps {eps:e}: the mode changed at {:?}", switched.map(|p| p.x[0]));
+    }
+}
+
+#[test]
+fn at_a_change_point_the_trace_passes_the_crossing_and_lists_it() {
+    // eps = 0: the curves cross at phi = pi, all links in line. The trace goes on along the
+    // curve its tangent carries on, which changes the assembly mode there, and lists the
+    // crossing, within a ten-thousandth of a step (`ds = 0.01`) of pi.
+    for unit in [1e-3, 1.0, 1e3] {
+        let m = near_change_point(0.0, unit);
+        let g = m.position(0.5, &m.guess(0.5)).unwrap().0;
+        let t = m.trace_curve(0.5, 0.5 + PI, &g, &TraceConfig::default());
+        let t = t.unwrap_or_else(|e| panic!("unit {unit:e}: {e}"));
+        on_the_curve(&m, &t, unit);
+        assert!(t.folds.is_empty() && t.kinks.is_empty(), "unit {unit:e}: {t:?}");
+        assert_eq!(t.crossings.len(), 1, "unit {unit:e}: {:?}", t.crossings);
+        let crossing = &t.crossings[0];
+        assert_eq!(crossing.kind, EventKind::SingularCrossing);
+        assert!((crossing.x[0] - PI).abs() <= 1e-6, "unit {unit:e}: the crossing at {}", crossing.x[0]);
+        assert!(t.points.iter().all(|p| p.input_rate > 0.0), "unit {unit:e}: the input reversed");
+        let first = mode(&t.points[0].q).signum();
+        for p in &t.points {
+            // Off the change point (a step either side), each side in its own mode.
+            if (p.x[0] - PI).abs() > 1e-3 {
+                let expected = if p.x[0] < PI { first } else { -first };
+                assert_eq!(mode(&p.q).signum(), expected, "unit {unit:e} at {}", p.x[0]);
+            }
+        }
+    }
+}
