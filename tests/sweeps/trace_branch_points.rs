@@ -11,10 +11,16 @@
 //! `eps < 0` it turns fully and its two curves pass each other across such a gap, each
 //! changing its slope there. The default step `ds = 0.01` is far wider than those gaps: a
 //! straight step lands on the other curve (the trace did so for `eps` below about `1e-6`).
+//!
+//! Then random four-bars, Grashof and not, traced over a turn of the crank from a random start:
+//! every limit position where the law of cosines puts it, the assembly mode changing at limit
+//! positions only, and the trace closed (its angles within whole turns) or out of its segment.
 
 use kinloop::{EventKind, TraceConfig};
 use kinloop_fixtures::FourBar;
-use std::f64::consts::PI;
+use proptest::prelude::*;
+use proptest::test_runner::RngSeed;
+use std::f64::consts::{PI, TAU};
 
 use crate::support::tol;
 
@@ -120,5 +126,57 @@ fn at_a_change_point_the_trace_passes_the_crossing_and_lists_it() {
                 assert_eq!(mode(&p.q).signum(), expected, "unit {unit:e} at {}", p.x[0]);
             }
         }
+    }
+}
+
+/// The crank angles in `[0, pi]` of the four-bar `m`'s limit positions, where coupler and
+/// rocker lie in line (`|BD| = b + c` or `|b - c|`, by the law of cosines), the ones it has.
+fn limit_angles(m: &FourBar) -> Vec<f64> {
+    let cosines = [m.b + m.c, (m.b - m.c).abs()].map(|r| (m.a * m.a + m.d * m.d - r * r) / (2.0 * m.a * m.d));
+    cosines.into_iter().filter(|c| c.abs() < 1.0).map(f64::acos).collect()
+}
+
+/// The distance from `x` to the nearer of `l` and `-l`, modulo a turn.
+fn turn_distance(x: f64, l: f64) -> f64 {
+    let d = |y: f64| {
+        let r = (x - y).rem_euclid(TAU);
+        r.min(TAU - r)
+    };
+    d(l).min(d(-l))
+}
+
+proptest! {
+    #![proptest_config(ProptestConfig {
+        cases: 24,
+        failure_persistence: None,
+        rng_seed: RngSeed::Fixed(3),
+        ..ProptestConfig::default()
+    })]
+
+    #[test]
+    fn random_four_bars_are_traced_with_their_limit_positions_and_one_mode_between(
+        lengths in prop::array::uniform4(0.2f64..3.2),
+        start in -PI..PI,
+    ) {
+        let [a, b, c, d] = lengths;
+        let m = FourBar { a, b, c, d };
+        let g = m.position(start, &m.guess(start));
+        prop_assume!(g.is_ok());
+        let g = g.unwrap().0;
+        let t = m.trace_curve(start, start + PI, &g, &TraceConfig::default()).unwrap();
+        on_the_curve(&m, &t, 1.0);
+        prop_assert!(t.crossings.is_empty() && t.kinks.is_empty(), "{:?}", t);
+        // It closes (its angles within whole turns: a crank-rocker driven by its rocker comes
+        // back with its crank a turn on) or leaves the input's segment, long before the most
+        // points (a few hundred to a thousand at the default step).
+        prop_assert!(!t.truncated && t.points.len() < 2000, "{} points", t.points.len());
+        let limits = limit_angles(&m);
+        for fold in &t.folds {
+            let near = limits.iter().map(|&l| turn_distance(fold.x[0], l)).fold(f64::INFINITY, f64::min);
+            prop_assert!(near <= tol::LOCATED, "a fold at {} against the limits {:?}", fold.x[0], limits);
+        }
+        // Coupler and rocker lie in line only at limit positions: the mode changes there only.
+        let changes = t.points.windows(2).filter(|w| (mode(&w[0].q) > 0.0) != (mode(&w[1].q) > 0.0)).count();
+        prop_assert_eq!(changes, t.folds.len(), "folds at {:?}", t.folds.iter().map(|f| f.x[0]).collect::<Vec<_>>());
     }
 }

@@ -9,8 +9,10 @@ use crate::dims::{Dims, KinState, Store};
 use crate::error::Error;
 use crate::events::{Event, EventKind};
 use crate::mechanism::Mechanism;
-use crate::mechanism::kernel::{Compiled, Kernel, Q, X, check_sizes};
+use crate::mechanism::kernel::{Compiled, Kernel, Q, X, check_sizes, is_angle};
 use crate::solvers::newton::NewtonConfig;
+use nalgebra::DVector;
+use std::f64::consts::TAU;
 
 /// Options of [`trace_curve`], built from the default with the `with_*` methods.
 ///
@@ -118,7 +120,9 @@ pub struct TracedOf<Q, X> {
     /// close (a four-bar near a change point), the trace is not taken across the gap: it
     /// follows its own curve round its limit positions, however narrow the gap.
     pub crossings: Vec<Event>,
-    /// The curve closed on itself (it came back to its first point).
+    /// The curve closed on itself: it came back to its first point, its angles to within whole
+    /// turns (a crank-rocker driven by its rocker closes after one rocking, its crank a turn
+    /// on).
     pub closed: bool,
     /// The trace stopped at [`TraceConfig::max_points`], before the curve closed or left the
     /// segment: the curve goes on past its last point.
@@ -192,6 +196,10 @@ pub fn trace_curve_of<K: Kernel>(
     let metric = Metric::at(m, &path, &from, &q0);
     let start = CurvePoint { tangent: tangent_from_analogs(&k0, &path, &metric), q: q0, sigma: 0.0 };
     let start_z = start.z(&metric);
+    // Per scaled coordinate, the whole turn of an angle unknown (0 for the others): the curve
+    // has closed when it comes back to its start to within whole turns of those.
+    let turns: Vec<f64> =
+        (0..m.dims().n()).map(|u| if is_angle(m, u) { TAU / metric.unit[u] } else { 0.0 }).chain([0.0]).collect();
     let point =
         |p: &CurvePoint<Q<K>>| TracedPointOf { x: path.at_sigma(p.sigma), q: p.q.clone(), input_rate: p.dsigma() };
     let mut out = TracedOf {
@@ -274,7 +282,7 @@ pub fn trace_curve_of<K: Kernel>(
             out.folds.push(event_at(EventKind::LimitPosition, &path, &f, None));
         }
         walked += step;
-        let back = (next.z(&metric) - &start_z).norm();
+        let back = distance_in_turns(&next.z(&metric), &start_z, &turns);
         p = next;
         if o != 0.0 {
             side = o;
@@ -343,6 +351,15 @@ fn past_crossing<K: Kernel>(
 /// passes straight (see [`past_crossing`]): the Jacobian is singular there, and within the
 /// trace's smallest step of it the pivot is of that step's order, far below this.
 const CROSSING_PIVOT: f64 = 1e-6;
+
+/// The distance between the scaled points `z` and `z0` with each coordinate's difference
+/// reduced by whole multiples of its turn in `turns` (where it is not 0).
+fn distance_in_turns(z: &DVector<f64>, z0: &DVector<f64>, turns: &[f64]) -> f64 {
+    let d = z - z0;
+    let reduced =
+        d.iter().zip(turns).map(|(&v, &t)| if t > 0.0 && t.is_finite() { v - t * (v / t).round() } else { v });
+    reduced.map(|v| v * v).sum::<f64>().sqrt()
+}
 
 /// The sign of `v`: `0` for zero and NaN (no orientation to compare).
 fn sign(v: f64) -> f64 {
