@@ -9,6 +9,7 @@
 //! kinloop dynamics engine.kl --speed 150 --delta 0.02 --flywheel flywheel.csv
 //! kinloop simulate engine.kl --speed 150 --torque 2.5 --flywheel 0.05 --time 0.5
 //! kinloop extremes slider_crank.kl --params r=1,l=3,e=0.4 --from 0 --to 360 --deg --table   # min and max
+//! kinloop trace four_bar.kl --params a=3,b=2,c=2.5,d=4 --from 0 --to 180 --deg   # through limit positions
 //! kinloop cam dwell_cam.kl --point follower --guide 0,1 --roller 10 --plot cam.svg
 //! kinloop cam dwell_cam.kl --point follower --guide 0,1 --flat --deg   # a flat-faced follower
 //! kinloop animate rhombic_drive.kl --from 0 --to 360 --samples 91 --deg --out rhombic.svg
@@ -58,6 +59,7 @@ mod solve;
 mod sweep;
 mod synth;
 mod targets;
+mod trace;
 
 use clap::{Parser, Subcommand};
 use kinloop_model::source::MAX_SOURCE_BYTES;
@@ -124,6 +126,41 @@ enum Command {
         /// Samples, equally spaced, both ends included (at most 10000000).
         #[arg(long, default_value_t = 361, allow_hyphen_values = true)]
         samples: usize,
+        /// Angles in degrees (inputs given and values written); otherwise radians.
+        #[arg(long)]
+        deg: bool,
+        /// Parameter values, `name=value` separated by commas (overriding the defaults).
+        #[arg(long, value_name = "NAME=VALUE,...")]
+        params: Option<String>,
+        /// Writes the events as CSV to this file (`kind,tau,` inputs, unknowns) instead of
+        /// listing them on standard error.
+        #[arg(long, value_name = "FILE")]
+        events: Option<PathBuf>,
+    },
+    /// Traces the whole solution curve through the declared initial guess at `--from` by
+    /// pseudo-arclength continuation, first towards `--to`: unlike `sweep` it passes limit
+    /// positions, where the input reverses, so a linkage whose input cannot turn fully (a
+    /// non-Grashof four-bar) gives its closed curve. Writes the points (inputs, unknowns,
+    /// outputs) as CSV with units, about `--ds` apart, and lists the limit positions, kinks and
+    /// crossings passed on standard error or in `--events`. Stops where the curve closes (its
+    /// angles within whole turns), where it leaves the inputs' segment from `from - (to - from)`
+    /// to `to`, or after `--max-points`.
+    Trace {
+        /// The declaration (`.kl`).
+        file: PathBuf,
+        /// The inputs at the start, separated by commas (one value per input).
+        #[arg(long, value_name = "X,...", allow_hyphen_values = true)]
+        from: String,
+        /// The inputs the trace moves towards first.
+        #[arg(long, value_name = "X,...", allow_hyphen_values = true)]
+        to: String,
+        /// Arclength between points, in radians of an angle and in units of the mechanism's
+        /// size of a length (positive).
+        #[arg(long, default_value_t = 0.01, allow_hyphen_values = true)]
+        ds: f64,
+        /// The most points written (at least 1, at most 10000000).
+        #[arg(long, default_value_t = 100_000, allow_hyphen_values = true)]
+        max_points: usize,
         /// Angles in degrees (inputs given and values written); otherwise radians.
         #[arg(long)]
         deg: bool,
@@ -425,6 +462,11 @@ fn run(cli: Cli) -> Result<(), Failed> {
             let mut model = solvable(&file, params.as_deref())?;
             let req = sweep::Request { from: &from, to: &to, samples, deg, events: events.as_deref() };
             sweep::run(&mut model, &req)
+        }
+        Command::Trace { file, from, to, ds, max_points, deg, params, events } => {
+            let mut model = solvable(&file, params.as_deref())?;
+            let req = trace::Request { from: &from, to: &to, ds, max_points, deg, events: events.as_deref() };
+            trace::run(&mut model, &req)
         }
         Command::Dynamics { file, speed, start, samples, delta, about, deg, params, flywheel } => {
             let mut model = solvable(&file, params.as_deref())?;

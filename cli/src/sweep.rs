@@ -176,7 +176,12 @@ pub(crate) fn range_too_long(name: &str, e: &Error, from: &str, to: &str, deg: b
 /// The events as CSV (`kind,tau,` the inputs and the unknowns, in the sweep's units, named
 /// `name [unit]` as the table's columns) into `file` (`--events`), or one line each on
 /// standard error.
-fn write_events(model: &Model, events: &[Event], deg: bool, file: Option<std::fs::File>) -> std::io::Result<()> {
+pub(crate) fn write_events(
+    model: &Model,
+    events: &[Event],
+    deg: bool,
+    file: Option<std::fs::File>,
+) -> std::io::Result<()> {
     let kinds: Vec<QuantityKind> = model.quantities().iter().map(|(_, k)| *k).collect();
     let angle = |k: QuantityKind, v: f64| if deg && k == QuantityKind::Angle { v.to_degrees() } else { v };
     let ni = model.inputs().len();
@@ -189,7 +194,7 @@ fn write_events(model: &Model, events: &[Event], deg: bool, file: Option<std::fs
                 .zip(&kinds)
                 .map(|((n, v), k)| format!("{n} = {}", angle(*k, *v)))
                 .collect();
-            eprintln!("event: {} at {} (fraction {} of the sweep)", e.kind, at.join(", "), e.tau);
+            eprintln!("event: {} at {} (fraction {} of the path)", e.kind, at.join(", "), e.tau);
         }
         return Ok(());
     };

@@ -1,0 +1,102 @@
+//! `kinloop trace`: the whole solution curve through the declared guess at `--from`, by the
+//! runtime's pseudo-arclength continuation over the model, as CSV with units (the inputs, the
+//! unknowns and the outputs at each point); the limit positions, kinks and crossings it passes
+//! listed on standard error, or written to `--events`.
+
+use crate::solve::{in_units, model_inputs, units};
+use crate::sweep::write_events;
+use crate::{Failed, exit, output, samples};
+use kinloop_model::Model;
+use kinloop_runtime::dims::Heap;
+use kinloop_runtime::{Error, Event, QuantityKind, Table, TraceConfig, TracedPointOf};
+use std::path::Path;
+
+/// What `kinloop trace` was asked.
+pub struct Request<'a> {
+    /// The inputs at the start, one per input.
+    pub from: &'a str,
+    /// The inputs the trace moves towards first.
+    pub to: &'a str,
+    /// Arclength between points (scaled coordinates).
+    pub ds: f64,
+    /// The most points.
+    pub max_points: usize,
+    /// Angles in degrees.
+    pub deg: bool,
+    /// Where to write the events (standard error otherwise).
+    pub events: Option<&'a Path>,
+}
+
+/// Traces from the declared guess at `from` and writes the points to standard output, then the
+/// events; says on standard error why the trace ended where it did not close.
+pub fn run(model: &mut Model, req: &Request) -> Result<(), Failed> {
+    if !(req.ds > 0.0 && req.ds.is_finite()) {
+        return Err(exit::usage(format!("--ds {} must be positive and finite", req.ds)));
+    }
+    if !(1..=samples::MAX_SAMPLES).contains(&req.max_points) {
+        let n = req.max_points;
+        return Err(exit::usage(format!(
+            "--max-points {n} is out of range: at least 1, at most {}",
+            samples::MAX_SAMPLES
+        )));
+    }
+    let kinds: Vec<QuantityKind> = model.quantities().iter().map(|(_, k)| *k).collect();
+    let ni = model.inputs().len();
+    let from = model_inputs(req.from, &kinds[..ni], req.deg, "--from")?;
+    let to = model_inputs(req.to, &kinds[..ni], req.deg, "--to")?;
+    let name = model.name().to_string();
+    let failed = |e: Error| {
+        eprintln!("error: {name}: {}", in_units(e, &kinds[..ni], req.deg));
+        Failed(exit::SOLVE_FAILED)
+    };
+    let opts = TraceConfig::default().with_ds(req.ds).with_max_points(req.max_points);
+    let mut guess = vec![0.0; model.unknowns().len()];
+    model.guess(&from, &mut guess).map_err(|e| failed(Error::InvalidArgument(e.to_string())))?;
+    // The runtime checks the options and the path (`ds` positive, `to` apart from `from`): its
+    // refusal is a usage error, not a failed trace.
+    let traced = model.trace_curve(&from, &to, &guess, &opts).map_err(|e| match e {
+        Error::InvalidArgument(m) => exit::usage(format!("{name}: {m}")),
+        e => failed(e),
+    })?;
+    // Created before anything is written: a path that cannot be written stops before any output.
+    let events_file = match req.events {
+        Some(path) => Some(std::fs::File::create(path).map_err(|e| {
+            eprintln!("error: cannot create the events file {}: {e}", path.display());
+            Failed(exit::CANT_CREATE)
+        })?),
+        None => None,
+    };
+    let base = units(model, &kinds, req.deg);
+    let mut table = Table::new(base.iter().map(|(n, _)| n.clone()).collect());
+    let angle = |k: QuantityKind, v: f64| if req.deg && k == QuantityKind::Angle { v.to_degrees() } else { v };
+    let mut outputs = vec![0.0; model.outputs().len()];
+    for p in &traced.points {
+        let (x, q): (&[f64], &[f64]) = (p.x.as_ref(), p.q.as_ref());
+        model.outputs_at(x, q, &mut outputs).map_err(|e| failed(Error::InvalidArgument(e.to_string())))?;
+        let row = x.iter().chain(q).chain(&outputs).zip(&kinds).map(|(v, k)| angle(*k, *v));
+        table.push(row.collect());
+    }
+    let table = table.with_units(&base.iter().map(|(n, u)| (n.as_str(), *u)).collect::<Vec<_>>());
+    output::table(&table, "the table")?;
+    // In the order met along the curve: by the point nearest each (a limit position is located
+    // between two points; a kink and a crossing are points).
+    let mut events: Vec<Event> = traced.folds.iter().chain(&traced.kinks).chain(&traced.crossings).cloned().collect();
+    let nearest = |e: &Event| {
+        let gap = |p: &TracedPointOf<Heap, Heap>| -> f64 {
+            let (x, q): (&[f64], &[f64]) = (p.x.as_ref(), p.q.as_ref());
+            x.iter().chain(q).zip(e.x.iter().chain(&e.q)).map(|(a, b)| (a - b) * (a - b)).sum()
+        };
+        (0..traced.points.len()).min_by(|&i, &j| gap(&traced.points[i]).total_cmp(&gap(&traced.points[j])))
+    };
+    events.sort_by_key(|e| nearest(e).unwrap_or(usize::MAX));
+    write_events(model, &events, req.deg, events_file).map_err(|e| output::failed("the events", e))?;
+    let points = traced.points.len();
+    if traced.closed {
+        eprintln!("{name}: the curve closed on itself after {points} points");
+    } else if traced.truncated {
+        eprintln!("{name}: stopped at --max-points {} before the curve closed or left the path", req.max_points);
+    } else {
+        eprintln!("{name}: the curve left the path from `from - (to - from)` to `to` after {points} points");
+    }
+    Ok(())
+}

@@ -1,0 +1,130 @@
+//! `kinloop trace` end to end: the built binary on the shipped four-bar, its CSV and its events
+//! compared with closed forms (the limit positions of a linkage whose input rocks, by the law of
+//! cosines; every point on the loop), the closure of a crank-rocker driven by its rocker, its
+//! usage errors and exit codes.
+//!
+//! Tolerances: a limit position is located to the rounding of the arclength (`1e-9` rad is far
+//! above it); every point is a corrected Newton solution, on the loop to the solver's tolerance
+//! relative to the links' size (`1e-10`). Degrees add one conversion (a relative rounding).
+
+mod common;
+
+use common::{csv, kinloop, shipped};
+use std::f64::consts::TAU;
+
+/// The crank angles `+-phi` of the limit positions of the four-bar `a, b, c, d` where coupler
+/// and rocker lie in line, stretched (`|BD| = b + c`).
+fn stretched_limit(a: f64, b: f64, c: f64, d: f64) -> f64 {
+    ((a * a + d * d - (b + c) * (b + c)) / (2.0 * a * d)).acos()
+}
+
+/// The events file: per event its kind and its numbers (`tau`, the inputs, the unknowns).
+fn events(path: &std::path::Path) -> Vec<(String, Vec<f64>)> {
+    let text = std::fs::read_to_string(path).expect("the events file");
+    let mut lines = text.lines();
+    assert_eq!(lines.next(), Some("kind,tau,phi [deg],beta [deg],gamma [deg]"));
+    lines
+        .map(|l| {
+            let (kind, rest) = l.split_once(',').expect("a kind");
+            (kind.to_string(), rest.split(',').map(|v| v.parse().expect("a number")).collect())
+        })
+        .collect()
+}
+
+/// A triple rocker (`a + d > b + c`): its input rocks between two limit positions, which a sweep
+/// stops at and the trace passes, closing its curve. In degrees, with the events in a file.
+#[test]
+fn a_rocking_inputs_closed_curve_with_its_limit_positions_in_degrees() {
+    let (a, b, c, d): (f64, f64, f64, f64) = (3.0, 2.0, 2.5, 4.0);
+    let dir = std::env::temp_dir().join(format!("kinloop-trace-{}", std::process::id()));
+    std::fs::create_dir_all(&dir).unwrap();
+    let events_path = dir.join("events.csv");
+    let params = format!("a={a},b={b},c={c},d={d}");
+    let args = ["trace", &shipped("four_bar.kl"), "--from", "0", "--to", "180", "--deg", "--params", &params];
+    let out = kinloop(&[&args[..], &["--events", events_path.to_str().unwrap()]].concat());
+    let (header, rows) = csv(&out);
+    assert_eq!(header, ["phi [deg]", "beta [deg]", "gamma [deg]", "pc.x [length unit]", "pc.y [length unit]"]);
+    let stderr = String::from_utf8_lossy(&out.stderr);
+    assert!(stderr.contains("the curve closed on itself"), "{stderr}");
+    assert!(rows.len() > 100, "{} points", rows.len());
+    for r in &rows {
+        let [phi, beta, gamma] = [r[0], r[1], r[2]].map(f64::to_radians);
+        let loop_x = a * phi.cos() + b * beta.cos() - d - c * gamma.cos();
+        let loop_y = a * phi.sin() + b * beta.sin() - c * gamma.sin();
+        assert!(loop_x.abs().max(loop_y.abs()) <= 1e-10 * d, "off the loop at {r:?}");
+        let pc = [a * phi.cos() + b * beta.cos(), a * phi.sin() + b * beta.sin()];
+        assert!((pc[0] - r[3]).abs().max((pc[1] - r[4]).abs()) <= 1e-12 * d, "the coupler point at {r:?}");
+    }
+    let lim = stretched_limit(a, b, c, d).to_degrees();
+    let found = events(&events_path);
+    assert_eq!(found.len(), 2, "{found:?}");
+    // First the one the trace meets moving towards `--to`, then the other.
+    for ((kind, v), expected) in found.iter().zip([lim, -lim]) {
+        assert_eq!(kind, "limit position");
+        assert!((v[1] - expected).abs() <= 1e-9_f64.to_degrees(), "{v:?} against {expected}");
+        // Coupler and rocker in line: `gamma - beta` a whole number of half turns.
+        let half_turns = (v[3] - v[2]) / 180.0;
+        assert!((half_turns - half_turns.round()).abs() <= 1e-8, "{v:?}");
+    }
+    std::fs::remove_dir_all(&dir).ok();
+}
+
+/// A crank-rocker driven by its rocker (the output link `c` the shortest, `c + d <= a + b`):
+/// the input rocks (between `|BD| = b - c` and `b + c`: 0.64 to 1.71 rad) while the crank turns
+/// fully. The curve closes after one rocking with the crank a turn on, its angle compared to
+/// within whole turns; events on standard error.
+#[test]
+fn a_crank_driven_by_its_rocker_closes_a_turn_on() {
+    let params = "a=2,b=3,c=1,d=3.2";
+    let out = kinloop(&["trace", &shipped("four_bar.kl"), "--from", "1.2", "--to", "2", "--params", params]);
+    let (_, rows) = csv(&out);
+    let stderr = String::from_utf8_lossy(&out.stderr);
+    assert_eq!(stderr.matches("event: limit position").count(), 2, "{stderr}");
+    assert!(stderr.contains("the curve closed on itself"), "{stderr}");
+    let (first, last) = (&rows[0], &rows[rows.len() - 1]);
+    // The last point is within a step (0.01 in the scaled coordinates) of the first.
+    assert!((last[0] - first[0]).abs() < 0.05, "{first:?} .. {last:?}");
+    let turned = (last[2] - first[2]) / TAU;
+    assert!((turned.abs() - 1.0).abs() < 0.01, "the crank turned {turned} turns");
+}
+
+#[test]
+fn bad_options_are_usage_errors_naming_them() {
+    let four_bar = shipped("four_bar.kl");
+    let params = "a=3,b=2,c=2.5,d=4";
+    for (extra, says) in [
+        (&["--from", "0", "--to", "1", "--ds", "0"][..], "--ds 0 must be positive"),
+        (&["--from", "0", "--to", "1", "--ds", "-1"][..], "--ds -1 must be positive"),
+        (&["--from", "0", "--to", "1", "--ds", "inf"][..], "--ds inf must be positive"),
+        (&["--from", "0", "--to", "1", "--max-points", "0"][..], "--max-points 0 is out of range"),
+        (&["--from", "0", "--to", "1", "--max-points", "10000001"][..], "at most 10000000"),
+        (&["--from", "1", "--to", "1"][..], "`to` different from `from`"),
+        (&["--from", "0,1", "--to", "1"][..], "gives 2 inputs"),
+    ] {
+        let out = kinloop(&[&["trace", four_bar.as_str(), "--params", params][..], extra].concat());
+        let stderr = String::from_utf8_lossy(&out.stderr);
+        assert_eq!(out.status.code(), Some(2), "{extra:?}: {stderr}");
+        assert!(stderr.contains(says), "{extra:?}: {stderr}");
+        assert!(out.stdout.is_empty(), "{extra:?}");
+    }
+}
+
+/// `--max-points` stops the trace there, and says so.
+#[test]
+fn the_most_points_stop_the_trace_and_it_says_so() {
+    let out = kinloop(&[
+        "trace",
+        &shipped("four_bar.kl"),
+        "--params",
+        "a=3,b=2,c=2.5,d=4",
+        "--from",
+        "0",
+        "--to",
+        "1",
+        "--max-points",
+        "7",
+    ]);
+    let (_, rows) = csv(&out);
+    assert_eq!(rows.len(), 7);
+    assert!(String::from_utf8_lossy(&out.stderr).contains("stopped at --max-points 7"));
+}
