@@ -4,7 +4,7 @@
 //! listed on standard error, or written to `--events`.
 
 use crate::solve::{in_units, model_inputs, units};
-use crate::sweep::write_events;
+use crate::sweep::{events_file, write_events};
 use crate::{Failed, exit, output, samples};
 use kinloop_model::Model;
 use kinloop_runtime::dims::Heap;
@@ -59,13 +59,7 @@ pub fn run(model: &mut Model, req: &Request) -> Result<(), Failed> {
         e => failed(e),
     })?;
     // Created before anything is written: a path that cannot be written stops before any output.
-    let events_file = match req.events {
-        Some(path) => Some(std::fs::File::create(path).map_err(|e| {
-            eprintln!("error: cannot create the events file {}: {e}", path.display());
-            Failed(exit::CANT_CREATE)
-        })?),
-        None => None,
-    };
+    let events_file = events_file(req.events)?;
     let base = units(model, &kinds, req.deg);
     let mut table = Table::new(base.iter().map(|(n, _)| n.clone()).collect());
     let angle = |k: QuantityKind, v: f64| if req.deg && k == QuantityKind::Angle { v.to_degrees() } else { v };
