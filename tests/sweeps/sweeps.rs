@@ -1,7 +1,7 @@
 //! Sweeps: branch safety, limit positions and singular crossings located precisely, assembly
 //! modes, tables.
 
-use kinloop::{AtSingular, Error, EventKind, NewtonConfig, Quantity, SweepConfig};
+use kinloop::{AtSingular, Error, EventKind, NewtonConfig, Quantity, SweepConfig, SweepStop};
 use kinloop_fixtures::{FourBar, FourBarUnknowns};
 use std::f64::consts::PI;
 
@@ -110,6 +110,36 @@ fn change_point_crossing_is_located_and_never_silent() {
     assert_ne!(all[0].health.det_signs, all[65].health.det_signs);
     for s in &all {
         assert!(m.residual(s.input, &s.q).iter().all(|r| r.abs() < 1e-10));
+    }
+}
+
+#[test]
+fn a_change_point_within_the_rounding_is_never_located_outside_the_sweep() {
+    // a + d = b + c + eps with eps = -1e-14 (d = 4.5 - 1e-14): the two assembly modes pass
+    // within about 1e-7 rad of each other at phi = pi, closer than the sweep can tell apart
+    // (its pivot test). The diagnosis of the failed step once located a crossing radians away,
+    // outside the swept range (at -1.79, -0.80 or 11.44 rad, depending on the samples). The
+    // sweep stops at phi = pi: at the crossing, located there, or with the branch error that
+    // says the branch cannot be pinned so close to a singular position.
+    let (a, b, c) = (1.0, 3.0, 2.5);
+    let m = FourBar { a, b, c, d: b + c - a - 1e-14 };
+    let g = m.position(0.5, &m.guess(0.5)).unwrap().0;
+    for samples in [2, 3, 5, 19, 37, 181, 2001] {
+        let r = m.sweep(0.5, 0.5 + 2.0 * PI, samples, &g).unwrap().run();
+        let at: Vec<f64> = r.events.iter().map(|e| e.x[0]).collect();
+        assert!(r.events.len() <= 1, "{samples} samples: {at:?}");
+        for e in &r.events {
+            assert_eq!(e.kind, EventKind::SingularCrossing, "{samples} samples");
+            assert_close!(e.x[0], PI, tol::LOCATED, "{samples} samples: the crossing at {}", e.x[0]);
+        }
+        match &r.stop {
+            SweepStop::SingularCrossing(e) => assert_close!(e.x[0], PI, tol::LOCATED, "{samples} samples"),
+            SweepStop::Failed(Error::Branch { at, .. }) => {
+                // Where the pivot falls below its threshold, about 1e-6 rad before pi.
+                assert_close!(at.inputs[0].1, PI, 1e-5, "{samples} samples: {:?}", r.stop)
+            }
+            stop => panic!("{samples} samples: {stop:?}"),
+        }
     }
 }
 

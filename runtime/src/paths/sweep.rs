@@ -785,7 +785,20 @@ where
         let start = CurvePoint { q, sigma: self.tau * path.len, tangent };
         let ds0 = ((tau_new - self.tau) * path.len).max(1e-9 * path.len) / metric.sigma;
         let reach = (self.scale() * path.len / metric.sigma).max(ds0 * 8.0);
+        // What the trace finds lies on the swept path and within its reach of the start: it
+        // walks at most `reach` along the curve (each step at most `reach`), a point past a
+        // branch point lies at most eight steps beyond, and the crossing's refinement samples
+        // within a few twentieths of the input's unit. Farther, the corrector's plane met the
+        // solution set elsewhere (near a change point within the rounding, crossings were
+        // located radians outside the swept range): no event, and the step's failure is
+        // reported as it is.
+        let within = |p: &CurvePoint<Q<K>>| {
+            let slack = 1e-12 * path.len;
+            (-slack..=path.len + slack).contains(&p.sigma)
+                && (p.sigma - start.sigma).abs() <= (12.0 * reach + 0.25) * metric.sigma
+        };
         match locate::trace(&self.m, &path, &metric, &start, ds0, reach, &newton) {
+            Some(Found::Fold(fold) | Found::Crossing(fold, _)) if !within(&fold) => {}
             // A true limit position is singular; a reversal where the Jacobian is regular is a
             // kink of a non-smooth curve (e.g. through `abs`), reported below as a branch error.
             Some(Found::Fold(fold)) if curve::pivot_at(&self.m, &path.at_sigma(fold.sigma), &fold.q) < 1e-6 => {
