@@ -3,7 +3,7 @@
 //! unknowns and the outputs at each point); the limit positions, kinks and crossings it passes
 //! listed on standard error, or written to `--events`.
 
-use crate::solve::{in_units, model_inputs, units};
+use crate::solve::{degrees, in_units, model_inputs, units};
 use crate::sweep::{events_file, write_events};
 use crate::{Failed, exit, output, samples};
 use kinloop_model::Model;
@@ -45,28 +45,29 @@ pub fn run(model: &mut Model, req: &Request) -> Result<(), Failed> {
     let from = model_inputs(req.from, &kinds[..ni], req.deg, "--from")?;
     let to = model_inputs(req.to, &kinds[..ni], req.deg, "--to")?;
     let name = model.name().to_string();
-    let failed = |e: Error| {
-        eprintln!("error: {name}: {}", in_units(e, &kinds[..ni], req.deg));
+    let failed = |e: &dyn std::fmt::Display| {
+        eprintln!("error: {name}: {e}");
         Failed(exit::SOLVE_FAILED)
     };
     let opts = TraceConfig::default().with_ds(req.ds).with_max_points(req.max_points);
     let mut guess = vec![0.0; model.unknowns().len()];
-    model.guess(&from, &mut guess).map_err(|e| failed(Error::InvalidArgument(e.to_string())))?;
+    model.guess(&from, &mut guess).map_err(|e| failed(&e))?;
     // The runtime checks the options and the path (`ds` positive, `to` apart from `from`): its
     // refusal is a usage error, not a failed trace.
     let traced = model.trace_curve(&from, &to, &guess, &opts).map_err(|e| match e {
         Error::InvalidArgument(m) => exit::usage(format!("{name}: {m}")),
-        e => failed(e),
+        e => failed(&in_units(e, &kinds[..ni], req.deg)),
     })?;
     // Created before anything is written: a path that cannot be written stops before any output.
     let events_file = events_file(req.events)?;
     let base = units(model, &kinds, req.deg);
     let mut table = Table::new(base.iter().map(|(n, _)| n.clone()).collect());
-    let angle = |k: QuantityKind, v: f64| if req.deg && k == QuantityKind::Angle { v.to_degrees() } else { v };
+    // Angles in degrees as `solve` writes its inputs: the shortest decimal that reads back.
+    let angle = |k: QuantityKind, v: f64| if req.deg && k == QuantityKind::Angle { degrees(v) } else { v };
     let mut outputs = vec![0.0; model.outputs().len()];
     for p in &traced.points {
         let (x, q): (&[f64], &[f64]) = (p.x.as_ref(), p.q.as_ref());
-        model.outputs_at(x, q, &mut outputs).map_err(|e| failed(Error::InvalidArgument(e.to_string())))?;
+        model.outputs_at(x, q, &mut outputs).map_err(|e| failed(&e))?;
         let row = x.iter().chain(q).chain(&outputs).zip(&kinds).map(|(v, k)| angle(*k, *v));
         table.push(row.collect());
     }

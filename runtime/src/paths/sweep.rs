@@ -798,7 +798,7 @@ where
                 && (p.sigma - start.sigma).abs() <= (12.0 * reach + 0.25) * metric.sigma
         };
         match locate::trace(&self.m, &path, &metric, &start, ds0, reach, &newton) {
-            Some(Found::Fold(fold) | Found::Crossing(fold, _)) if !within(&fold) => {}
+            Some(Found::Fold(located) | Found::Crossing(located, _)) if !within(&located) => {}
             // A true limit position is singular; a reversal where the Jacobian is regular is a
             // kink of a non-smooth curve (e.g. through `abs`), reported below as a branch error.
             Some(Found::Fold(fold)) if curve::pivot_at(&self.m, &path.at_sigma(fold.sigma), &fold.q) < 1e-6 => {
