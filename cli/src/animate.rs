@@ -3,6 +3,8 @@
 //! with one slider per input, with the drawing code of compiled mechanisms (`kinloop_viz`) over
 //! the run-time model.
 
+use crate::cam::{self, FollowerArgs, Found};
+use crate::cam_drawn;
 use crate::exit::usage;
 use crate::solve::{in_units, model_inputs};
 use crate::sweep::range_too_long;
@@ -55,6 +57,10 @@ pub struct Request<'a> {
     pub show: &'a [String],
     /// The largest number of frames written (key frames of the SVG, poses of the page).
     pub frames: Option<usize>,
+    /// The follower's point whose cam is drawn turning with the input (`--cam`).
+    pub cam: Option<&'a str>,
+    /// The cam's follower (`--guide`, `--roller`, ...: read only with `cam`).
+    pub follower: &'a FollowerArgs,
 }
 
 /// Sweeps from the declared guess at `from`, draws the motion and writes it to `out`. A sweep
@@ -85,7 +91,16 @@ pub fn run(model: &mut Model, req: &Request) -> Result<(), Failed> {
     if let Some((_, col)) = req.show.iter().enumerate().find(|(k, c)| req.show[..*k].contains(c)) {
         return Err(usage(format!("--show {col} is given twice: name each column once")));
     }
+    if let (None, Some(option)) = (req.cam, req.follower.any_given()) {
+        return Err(usage(format!(
+            "{option} describes the follower of a cam: give --cam POINT (the follower's point) to draw the cam, or \
+             leave out {option}"
+        )));
+    }
     if req.grid {
+        if req.cam.is_some() {
+            return Err(usage("--cam draws a cam turning with the one input: a sweep, not a --grid"));
+        }
         return grid(model, req, format);
     }
     let samples = match req.samples.map(str::trim) {
@@ -101,6 +116,10 @@ pub fn run(model: &mut Model, req: &Request) -> Result<(), Failed> {
     let name = model.name().to_string();
     let failed = |e: &dyn std::fmt::Display| failed(&name, e);
     let Endpoints { from, to, guess } = endpoints(model, req)?;
+    let cam = match req.cam {
+        Some(point) => Some(find_cam(model, req, point)?),
+        None => None,
+    };
     let kinds = model.input_kinds().to_vec();
     let motion = model.motion(&from, &to, samples, &guess).map_err(|e| match e {
         // The runtime's refusal of the arguments (`to` equal to `from`, a range of more turns
@@ -123,6 +142,10 @@ pub fn run(model: &mut Model, req: &Request) -> Result<(), Failed> {
         eprintln!("{what} {} at {}", e.kind, at.join(", "));
     }
     let drawing = noted_drawing(model);
+    let drawing = match cam {
+        Some((found, point, columns)) => cam_drawn::with_cam(drawing, &found, point, columns),
+        None => drawing,
+    };
     let text = match format {
         Format::Svg => {
             let mut anim = Animation::default();
@@ -141,6 +164,29 @@ pub fn run(model: &mut Model, req: &Request) -> Result<(), Failed> {
         }
     };
     write_out(req.out, &text)
+}
+
+/// The cam of `--cam POINT` over one turn from `--from`, as `kinloop cam` finds it (its checks on
+/// standard error), with the point's name and output columns.
+fn find_cam<'a>(
+    model: &mut Model,
+    req: &Request<'a>,
+    point: &'a str,
+) -> Result<(Found, &'a str, (usize, usize)), Failed> {
+    cam::one_angle_input(model)?;
+    let columns = cam::point_columns(model, point, "--cam")?;
+    // The start as given (degrees with `--deg`), as `kinloop cam --start` takes it; the model
+    // has one input, or `find` refuses it.
+    let start =
+        req.from.trim().parse::<f64>().map_err(|_| {
+            usage(format!("--cam turns the cam with the one input: --from {} is not one number", req.from))
+        })?;
+    let found = cam::find(
+        model,
+        &cam::Request { point, follower: req.follower, start, samples: cam_drawn::SAMPLES, deg: req.deg, plot: None },
+    )?;
+    found.report();
+    Ok((found, point, columns))
 }
 
 /// The samples of a sweep when `--samples` is not given.

@@ -6,6 +6,7 @@
 //! profile, its radius of curvature, the contact's offset along the face and the pressure angle,
 //! with the face's least width and the samples where the profile is not convex.
 
+use crate::cam_drawn::FaceLine;
 use crate::exit::usage;
 use crate::solve::{in_units, point};
 use crate::{Failed, exit, samples};
@@ -18,58 +19,149 @@ use kinloop_runtime::{Error, Number, QuantityKind, Table};
 use kinloop_viz::plot::{self, Axis, Kind, Series};
 use std::path::Path;
 
+/// How the cam's follower moves and what touches the cam: the options `kinloop cam` and
+/// `kinloop animate --cam` share.
+#[derive(Clone, Debug, Default, clap::Args)]
+pub struct FollowerArgs {
+    /// A translating follower: the direction of its guide, `x,y`.
+    #[arg(long, value_name = "X,Y", allow_hyphen_values = true)]
+    pub guide: Option<String>,
+    /// A rocking follower: the pivot of its arm, `x,y`.
+    #[arg(long, value_name = "X,Y", allow_hyphen_values = true)]
+    pub rocker: Option<String>,
+    /// The cam's pivot, `x,y` (0,0 if not given).
+    #[arg(long, value_name = "X,Y", allow_hyphen_values = true)]
+    pub pivot: Option<String>,
+    /// The roller's radius (0: a knife edge, the default).
+    #[arg(long, allow_hyphen_values = true)]
+    pub roller: Option<f64>,
+    /// A flat-faced follower instead of a roller: its face square to the guide through the
+    /// follower's point (`--guide`), or parallel to the arm from the pivot to the point at
+    /// `--face-offset` from the pivot (`--rocker`), turned by ANGLE (0 if not given; degrees
+    /// with `--deg`); the profile is the face's envelope.
+    #[arg(long, value_name = "ANGLE", num_args = 0..=1, default_missing_value = "0", allow_negative_numbers = true)]
+    pub flat: Option<f64>,
+    /// A rocking flat face's distance from the rocker's pivot, positive on the left of the
+    /// face's direction (0: the face through the pivot).
+    #[arg(long, value_name = "D", allow_hyphen_values = true)]
+    pub face_offset: Option<f64>,
+    /// The cam turns clockwise as the input grows (counter-clockwise otherwise).
+    #[arg(long)]
+    pub clockwise: bool,
+}
+
+impl FollowerArgs {
+    /// The first of the options given, by its name: what a command that draws no cam refuses.
+    pub fn any_given(&self) -> Option<&'static str> {
+        [
+            (self.guide.is_some(), "--guide"),
+            (self.rocker.is_some(), "--rocker"),
+            (self.pivot.is_some(), "--pivot"),
+            (self.roller.is_some(), "--roller"),
+            (self.flat.is_some(), "--flat"),
+            (self.face_offset.is_some(), "--face-offset"),
+            (self.clockwise, "--clockwise"),
+        ]
+        .into_iter()
+        .find_map(|(given, name)| given.then_some(name))
+    }
+}
+
 /// What `kinloop cam` was asked.
 pub struct Request<'a> {
     /// The follower's point: a `point` of the declaration (the roller's centre).
     pub point: &'a str,
-    /// The direction of a translating follower's guide, `x,y`.
-    pub guide: Option<&'a str>,
-    /// The pivot of a rocking follower's arm, `x,y`.
-    pub rocker: Option<&'a str>,
-    /// The cam's pivot, `x,y`.
-    pub pivot: &'a str,
-    /// The roller's radius (none given: a knife edge).
-    pub roller: Option<f64>,
-    /// A flat-faced follower: the face's angle from square to the guide, or from the arm (in
-    /// the units of `deg`).
-    pub flat: Option<f64>,
-    /// A rocking flat face's distance from the pivot, positive on the left of the face.
-    pub face_offset: Option<f64>,
-    /// The cam shaft's angle at the first sample.
+    /// How the follower moves and what touches the cam.
+    pub follower: &'a FollowerArgs,
+    /// The cam shaft's angle at the first sample (in the units of `deg`).
     pub start: f64,
     /// Samples over the turn, both ends included.
     pub samples: usize,
-    /// The cam turns clockwise as the input grows.
-    pub clockwise: bool,
     /// Angles in degrees.
     pub deg: bool,
     /// Where to draw the pitch curve and the profile (SVG).
     pub plot: Option<&'a Path>,
 }
 
+/// The cam found by inversion ([`find`]): its pivot, its sense of turning, its shape and the
+/// inputs of its samples in the units given.
+pub struct Found {
+    /// The cam's pivot, in the fixed frame.
+    pub pivot: [f64; 2],
+    /// The cam's angle per unit of input: 1 counter-clockwise, -1 clockwise.
+    pub turn: f64,
+    /// Each sample's input in the units given, between the ends as given (`86`, not
+    /// `86.00000000000001` from the radians), as `kinloop sweep` writes its samples.
+    pub inputs: Vec<f64>,
+    /// Angles in degrees.
+    pub deg: bool,
+    /// The cam for the follower asked for.
+    pub shape: Shape,
+}
+
+/// A cam for a roller (or knife edge), or for a flat face.
+pub enum Shape {
+    /// For a roller of the radius the profile holds (0: a knife edge).
+    Roller(CamProfile),
+    /// For a flat face, with where the face lies.
+    Flat(FlatFaceProfile, FaceLine),
+}
+
+impl Found {
+    /// The working profile, in the cam's frame (origin at the pivot).
+    pub fn profile(&self) -> &[[f64; 2]] {
+        match &self.shape {
+            Shape::Roller(cam) => &cam.profile,
+            Shape::Flat(cam, _) => &cam.profile,
+        }
+    }
+
+    /// The cam's checks, on standard error.
+    pub fn report(&self) {
+        match &self.shape {
+            Shape::Roller(cam) => report(cam, &self.inputs, self.deg, cam.roller),
+            Shape::Flat(cam, _) => report_flat(cam, &self.inputs, self.deg),
+        }
+    }
+}
+
 /// Sweeps one turn of the cam shaft from `--start`, finds the cam by inversion and writes its
 /// table to standard output and its checks to standard error.
 pub fn run(model: &mut Model, req: &Request) -> Result<(), Failed> {
-    let name = model.name().to_string();
-    if model.inputs().len() != 1 || model.input_kinds()[0] != QuantityKind::Angle {
-        return Err(usage(format!(
-            "kinloop cam turns the cam with the input: {name} must have one input, an angle (its inputs: {})",
-            model.inputs().join(", ")
-        )));
+    let found = find(model, req)?;
+    found.report();
+    let (table, curves) = match found.shape {
+        Shape::Flat(cam, _) => (flat_table(&cam, &found.inputs, req.deg), vec![("cam profile", cam.profile)]),
+        Shape::Roller(cam) => {
+            (table(&cam, &found.inputs, req.deg), vec![("pitch curve", cam.pitch), ("cam profile", cam.profile)])
+        }
+    };
+    crate::output::table(&table, "the table")?;
+    match req.plot {
+        Some(path) => draw(&curves, model.name(), path),
+        None => Ok(()),
     }
+}
+
+/// Sweeps one turn of the cam shaft from `req.start` and finds the cam by inversion of the
+/// follower's motion (`req.plot` is not read).
+pub fn find(model: &mut Model, req: &Request) -> Result<Found, Failed> {
+    let name = model.name().to_string();
+    one_angle_input(model)?;
     if req.samples < 3 {
         return Err(usage(format!("--samples {} is too few: a turn needs at least 3", req.samples)));
     }
     samples::check(req.samples)?;
-    let roller = req.roller.unwrap_or(0.0);
+    let fa = req.follower;
+    let roller = fa.roller.unwrap_or(0.0);
     if !(roller >= 0.0 && roller.is_finite()) {
         return Err(usage(format!("--roller {} must be a finite number, not negative", Number(roller))));
     }
     if !req.start.is_finite() {
         return Err(usage(format!("--start {} must be a finite number", Number(req.start))));
     }
-    let columns = point_columns(model, req.point)?;
-    let follower = match (req.guide, req.rocker) {
+    let columns = point_columns(model, req.point, "--point")?;
+    let follower = match (fa.guide.as_deref(), fa.rocker.as_deref()) {
         (Some(g), None) => Follower::Translating(direction(g, "--guide")?),
         (None, Some(r)) => Follower::Rocking(point(r, "--rocker")?),
         _ => {
@@ -79,9 +171,9 @@ pub fn run(model: &mut Model, req: &Request) -> Result<(), Failed> {
             ));
         }
     };
-    let pivot = point(req.pivot, "--pivot")?;
+    let pivot = point(fa.pivot.as_deref().unwrap_or("0,0"), "--pivot")?;
     let angle = if req.deg { 180.0 / std::f64::consts::PI } else { 1.0 };
-    let face = flat_face(req, &follower, angle)?;
+    let face = flat_face(fa, &follower, angle)?;
     let start = req.start / angle;
     let kinds = model.input_kinds().to_vec();
     let failed = |e: Error| {
@@ -93,7 +185,7 @@ pub fn run(model: &mut Model, req: &Request) -> Result<(), Failed> {
         eprintln!("error: {name}: {e}");
         Failed(exit::SOLVE_FAILED)
     })?;
-    let turn = if req.clockwise { -1.0 } else { 1.0 };
+    let turn = if fa.clockwise { -1.0 } else { 1.0 };
     let end = start + std::f64::consts::TAU;
     let sweep = model.sweep(&[start], &[end], req.samples, &guess).map_err(|e| match e {
         Error::InvalidArgument(_) => usage(format!("{name}: {e}")),
@@ -119,28 +211,35 @@ pub fn run(model: &mut Model, req: &Request) -> Result<(), Failed> {
         eprintln!("error: {name}: {e}");
         Failed(exit::SOLVE_FAILED)
     };
-    let (table, curves) = match face {
+    let shape = match face {
         Some(face) => {
+            let guide = match follower {
+                Follower::Translating(g) => g,
+                Follower::Rocking(_) => [0.0, 0.0],
+            };
             let cam = flat_face_profile(&follower_samples, pivot, face).map_err(refused)?;
-            report_flat(&cam, &inputs, req.deg);
-            (flat_table(&cam, &inputs, req.deg), vec![("cam profile", cam.profile)])
+            Shape::Flat(cam, FaceLine { face, guide })
         }
-        None => {
-            let cam = cam_profile(&follower_samples, pivot, roller).map_err(refused)?;
-            report(&cam, &inputs, req.deg, roller);
-            (table(&cam, &inputs, req.deg), vec![("pitch curve", cam.pitch), ("cam profile", cam.profile)])
-        }
+        None => Shape::Roller(cam_profile(&follower_samples, pivot, roller).map_err(refused)?),
     };
-    crate::output::table(&table, "the table")?;
-    match req.plot {
-        Some(path) => draw(&curves, &name, path),
-        None => Ok(()),
+    Ok(Found { pivot, turn, inputs, deg: req.deg, shape })
+}
+
+/// Refuses a model whose inputs are not one angle: the cam turns with the one input.
+pub fn one_angle_input(model: &Model) -> Result<(), Failed> {
+    if model.inputs().len() != 1 || model.input_kinds()[0] != QuantityKind::Angle {
+        return Err(usage(format!(
+            "a cam turns with the input: {} must have one input, an angle (its inputs: {})",
+            model.name(),
+            model.inputs().join(", ")
+        )));
     }
+    Ok(())
 }
 
 /// The flat face asked for with `--flat` (and `--face-offset`), `None` for a roller; `angle`
 /// converts the given angle to radians by division.
-fn flat_face(req: &Request, follower: &Follower, angle: f64) -> Result<Option<FlatFace>, Failed> {
+fn flat_face(req: &FollowerArgs, follower: &Follower, angle: f64) -> Result<Option<FlatFace>, Failed> {
     let Some(tilt) = req.flat else {
         return match req.face_offset {
             Some(_) => Err(usage("--face-offset places a flat face: give it with --flat")),
@@ -201,8 +300,8 @@ impl Follower {
     }
 }
 
-/// The output columns `NAME.x`, `NAME.y` of the point `name`.
-fn point_columns(model: &Model, name: &str) -> Result<(usize, usize), Failed> {
+/// The output columns `NAME.x`, `NAME.y` of the point `name`, given to the option `option`.
+pub fn point_columns(model: &Model, name: &str, option: &str) -> Result<(usize, usize), Failed> {
     let outputs = model.outputs();
     let at = |c: &str| outputs.iter().position(|o| o == c);
     match (at(&format!("{name}.x")), at(&format!("{name}.y"))) {
@@ -210,7 +309,7 @@ fn point_columns(model: &Model, name: &str) -> Result<(usize, usize), Failed> {
         _ => {
             let points: Vec<&str> = outputs.iter().filter_map(|o| o.strip_suffix(".x")).collect();
             Err(usage(format!(
-                "--point {name}: {} has no point of that name (its points: {})",
+                "{option} {name}: {} has no point of that name (its points: {})",
                 model.name(),
                 if points.is_empty() { "none".to_string() } else { points.join(", ") }
             )))

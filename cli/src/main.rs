@@ -13,6 +13,7 @@
 //! kinloop cam dwell_cam.kl --point follower --guide 0,1 --roller 10 --plot cam.svg
 //! kinloop cam dwell_cam.kl --point follower --guide 0,1 --flat --deg   # a flat-faced follower
 //! kinloop animate rhombic_drive.kl --from 0 --to 360 --samples 91 --deg --out rhombic.svg
+//! kinloop animate dwell_cam.kl --from 0 --to 360 --deg --cam follower --guide 0,1 --roller 10 --out cam.svg
 //! kinloop animate five_bar.kl --grid --from 0,0.4 --to 3,3 --samples 9,7 --out five_bar.html
 //! kinloop synth coupler_four_bar.kl --targets points.csv --path p --vary a=0.5..2,b=2..4 --starts 64
 //! ```
@@ -45,6 +46,7 @@ macro_rules! eprint {
 
 mod animate;
 mod cam;
+mod cam_drawn;
 mod csv_rows;
 mod dynamics;
 mod exit;
@@ -260,28 +262,8 @@ enum Command {
         /// edge).
         #[arg(long)]
         point: String,
-        /// A translating follower: the direction of its guide, `x,y`.
-        #[arg(long, value_name = "X,Y", allow_hyphen_values = true)]
-        guide: Option<String>,
-        /// A rocking follower: the pivot of its arm, `x,y`.
-        #[arg(long, value_name = "X,Y", allow_hyphen_values = true)]
-        rocker: Option<String>,
-        /// The cam's pivot, `x,y`.
-        #[arg(long, value_name = "X,Y", default_value = "0,0", allow_hyphen_values = true)]
-        pivot: String,
-        /// The roller's radius (0: a knife edge, the default).
-        #[arg(long, allow_hyphen_values = true)]
-        roller: Option<f64>,
-        /// A flat-faced follower instead of a roller: its face square to the guide through the
-        /// follower's point (`--guide`), or parallel to the arm from the pivot to the point at
-        /// `--face-offset` from the pivot (`--rocker`), turned by ANGLE (0 if not given; degrees
-        /// with `--deg`); the profile is the face's envelope.
-        #[arg(long, value_name = "ANGLE", num_args = 0..=1, default_missing_value = "0", allow_negative_numbers = true)]
-        flat: Option<f64>,
-        /// A rocking flat face's distance from the rocker's pivot, positive on the left of the
-        /// face's direction (0: the face through the pivot).
-        #[arg(long, value_name = "D", allow_hyphen_values = true)]
-        face_offset: Option<f64>,
+        #[command(flatten)]
+        follower: cam::FollowerArgs,
         /// The cam shaft's angle at the first sample.
         #[arg(long, default_value_t = 0.0, allow_hyphen_values = true)]
         start: f64,
@@ -289,9 +271,6 @@ enum Command {
         /// 10000000).
         #[arg(long, default_value_t = 361, allow_hyphen_values = true)]
         samples: usize,
-        /// The cam turns clockwise as the input grows (counter-clockwise otherwise).
-        #[arg(long)]
-        clockwise: bool,
         /// Angles in degrees (given and written); otherwise radians.
         #[arg(long)]
         deg: bool,
@@ -376,6 +355,14 @@ enum Command {
         /// the page (default 721).
         #[arg(long, allow_hyphen_values = true)]
         frames: Option<usize>,
+        /// Draws the disc cam that moves this point of the declaration (a follower's roller
+        /// centre, or its knife edge), turning with the one input: found by inversion of the
+        /// point's motion over one turn from `--from`, as `kinloop cam` finds it, for the
+        /// follower the options below describe (a roller or flat face drawn with it).
+        #[arg(long, value_name = "POINT")]
+        cam: Option<String>,
+        #[command(flatten)]
+        follower: cam::FollowerArgs,
     },
     /// Dimensional synthesis: finds values of the design variables (`--vary`) for which the
     /// point `--path` passes through the targets, or the output of `--function` takes them, by
@@ -486,37 +473,9 @@ fn run(cli: Cli) -> Result<(), Failed> {
             let req = simulate::Request { start, speed, time, torque, flywheel, samples, deg, max_steps };
             simulate::run(&mut model, &req)
         }
-        Command::Cam {
-            file,
-            point,
-            guide,
-            rocker,
-            pivot,
-            roller,
-            flat,
-            face_offset,
-            start,
-            samples,
-            clockwise,
-            deg,
-            params,
-            plot,
-        } => {
+        Command::Cam { file, point, follower, start, samples, deg, params, plot } => {
             let mut model = solvable(&file, params.as_deref())?;
-            let req = cam::Request {
-                point: &point,
-                guide: guide.as_deref(),
-                rocker: rocker.as_deref(),
-                pivot: &pivot,
-                roller,
-                flat,
-                face_offset,
-                start,
-                samples,
-                clockwise,
-                deg,
-                plot: plot.as_deref(),
-            };
+            let req = cam::Request { point: &point, follower: &follower, start, samples, deg, plot: plot.as_deref() };
             cam::run(&mut model, &req)
         }
         Command::Extremes { file, from, to, samples, deg, params, columns, table } => {
@@ -524,11 +483,23 @@ fn run(cli: Cli) -> Result<(), Failed> {
             let req = extremes::Request { from: &from, to: &to, samples, deg, columns: columns.as_deref(), table };
             extremes::run(&mut model, &req)
         }
-        Command::Animate { file, from, to, samples, grid, deg, params, out, format, show, frames } => {
+        Command::Animate { file, from, to, samples, grid, deg, params, out, format, show, frames, cam, follower } => {
             let mut model = solvable(&file, params.as_deref())?;
             let samples = samples.as_deref();
-            let req =
-                animate::Request { from: &from, to: &to, samples, grid, deg, out: &out, format, show: &show, frames };
+            let cam = cam.as_deref();
+            let req = animate::Request {
+                from: &from,
+                to: &to,
+                samples,
+                grid,
+                deg,
+                out: &out,
+                format,
+                show: &show,
+                frames,
+                cam,
+                follower: &follower,
+            };
             animate::run(&mut model, &req)
         }
         Command::Synth { file, targets, path, function, vary, range, starts, seed, keep, jobs, deg, params, csv } => {
