@@ -78,6 +78,28 @@ struct Cli {
     command: Command,
 }
 
+/// The declaration a command reads, and its parameters.
+#[derive(clap::Args)]
+struct Declaration {
+    /// The declaration (`.kl`).
+    file: PathBuf,
+    /// Parameter values, `name=value` separated by commas (overriding the defaults).
+    #[arg(long, value_name = "NAME=VALUE,...")]
+    params: Option<String>,
+}
+
+impl Declaration {
+    /// The declaration read, checked and planned ([`load`]).
+    fn load(&self) -> Result<Model, Failed> {
+        load(&self.file, self.params.as_deref())
+    }
+
+    /// The declaration read for a command that solves ([`solvable`]).
+    fn solvable(&self) -> Result<Model, Failed> {
+        solvable(&self.file, self.params.as_deref())
+    }
+}
+
 // Every option that takes a number allows values that start with `-`: a negative number is
 // then the option's value, refused by the option's own check, where clap would call it an
 // unexpected argument and suggest `-- -1` (which makes it a file name).
@@ -87,17 +109,14 @@ enum Command {
     /// Checks a declaration and reports its structure: counts, mobility, the blocks in solve
     /// order and how each is solved.
     Check {
-        /// The declaration (`.kl`).
-        file: PathBuf,
-        /// Parameter values, `name=value` separated by commas (overriding the defaults).
-        #[arg(long, value_name = "NAME=VALUE,...")]
-        params: Option<String>,
+        #[command(flatten)]
+        decl: Declaration,
     },
     /// Solves positions, velocity and acceleration analogs and outputs at given inputs, from
     /// the declared initial guess, and writes them as CSV with units.
     Solve {
-        /// The declaration (`.kl`).
-        file: PathBuf,
+        #[command(flatten)]
+        decl: Declaration,
         /// The inputs of one state, separated by commas (one value per input); repeat for more
         /// states (each solved from the declared guess).
         #[arg(long, required = true, value_name = "X,...", allow_hyphen_values = true)]
@@ -105,9 +124,6 @@ enum Command {
         /// Angles in degrees (inputs given and values written); otherwise radians.
         #[arg(long)]
         deg: bool,
-        /// Parameter values, `name=value` separated by commas (overriding the defaults).
-        #[arg(long, value_name = "NAME=VALUE,...")]
-        params: Option<String>,
     },
     /// Sweeps the inputs along the straight path from `--from` to `--to` without jumping
     /// branches, from the declared initial guess at `--from`, and writes the states as CSV
@@ -117,8 +133,8 @@ enum Command {
     /// limit position) has written the states before the stop, and fails; one whose standard
     /// output closes (`| head`) stops at the next state, exit code 74.
     Sweep {
-        /// The declaration (`.kl`).
-        file: PathBuf,
+        #[command(flatten)]
+        decl: Declaration,
         /// The inputs at the start, separated by commas (one value per input).
         #[arg(long, value_name = "X,...", allow_hyphen_values = true)]
         from: String,
@@ -131,9 +147,6 @@ enum Command {
         /// Angles in degrees (inputs given and values written); otherwise radians.
         #[arg(long)]
         deg: bool,
-        /// Parameter values, `name=value` separated by commas (overriding the defaults).
-        #[arg(long, value_name = "NAME=VALUE,...")]
-        params: Option<String>,
         /// Writes the events as CSV to this file (`kind,tau,` inputs, unknowns) instead of
         /// listing them on standard error.
         #[arg(long, value_name = "FILE")]
@@ -148,8 +161,8 @@ enum Command {
     /// angles within whole turns), where it leaves the inputs' segment from `from - (to - from)`
     /// to `to`, or after `--max-points`.
     Trace {
-        /// The declaration (`.kl`).
-        file: PathBuf,
+        #[command(flatten)]
+        decl: Declaration,
         /// The inputs at the start, separated by commas (one value per input).
         #[arg(long, value_name = "X,...", allow_hyphen_values = true)]
         from: String,
@@ -166,9 +179,6 @@ enum Command {
         /// Angles in degrees (inputs given and values written); otherwise radians.
         #[arg(long)]
         deg: bool,
-        /// Parameter values, `name=value` separated by commas (overriding the defaults).
-        #[arg(long, value_name = "NAME=VALUE,...")]
-        params: Option<String>,
         /// Writes the events as CSV to this file (`kind,tau,` inputs, unknowns) instead of
         /// listing them on standard error.
         #[arg(long, value_name = "FILE")]
@@ -181,8 +191,8 @@ enum Command {
     /// speed's); and the flywheel for a coefficient of speed fluctuation, listed on standard
     /// error or written to `--flywheel`.
     Dynamics {
-        /// The declaration (`.kl`), with `body`, `force`, `torque` or `gravity` items.
-        file: PathBuf,
+        #[command(flatten)]
+        decl: Declaration,
         /// The constant input speed, in rad (or degrees with `--deg`) per time unit.
         #[arg(long, allow_hyphen_values = true)]
         speed: f64,
@@ -202,9 +212,6 @@ enum Command {
         /// Angles in degrees (the start, the input, the speed); otherwise radians.
         #[arg(long)]
         deg: bool,
-        /// Parameter values, `name=value` separated by commas (overriding the defaults).
-        #[arg(long, value_name = "NAME=VALUE,...")]
-        params: Option<String>,
         /// Writes the flywheel sizing as CSV to this file instead of listing it on standard
         /// error.
         #[arg(long, value_name = "FILE")]
@@ -215,8 +222,8 @@ enum Command {
     /// and speed at equally spaced times, as CSV with units (masses and lengths in the
     /// parameters' units, time in the speed's). A limit position reached fails.
     Simulate {
-        /// The declaration (`.kl`), with `body`, `force`, `torque` or `gravity` items.
-        file: PathBuf,
+        #[command(flatten)]
+        decl: Declaration,
         /// The input speed at time 0, in rad (or degrees with `--deg`) per time unit.
         #[arg(long, default_value_t = 0.0, allow_hyphen_values = true)]
         speed: f64,
@@ -244,9 +251,6 @@ enum Command {
         /// Angles in degrees (the start, the speed, the input written); otherwise radians.
         #[arg(long)]
         deg: bool,
-        /// Parameter values, `name=value` separated by commas (overriding the defaults).
-        #[arg(long, value_name = "NAME=VALUE,...")]
-        params: Option<String>,
     },
     /// The disc cam that moves a follower as the declaration says, by kinematic inversion over
     /// one turn of the cam shaft (the input): its pitch curve and profile in the cam's frame,
@@ -256,8 +260,8 @@ enum Command {
     /// contact's offset along the face and the pressure angle; the face's least width and the
     /// samples where the profile is not convex on standard error.
     Cam {
-        /// The declaration (`.kl`).
-        file: PathBuf,
+        #[command(flatten)]
+        decl: Declaration,
         /// The follower's point: a `point` of the declaration (the roller's centre, or the knife
         /// edge).
         #[arg(long)]
@@ -274,9 +278,6 @@ enum Command {
         /// Angles in degrees (given and written); otherwise radians.
         #[arg(long)]
         deg: bool,
-        /// Parameter values, `name=value` separated by commas (overriding the defaults).
-        #[arg(long, value_name = "NAME=VALUE,...")]
-        params: Option<String>,
         /// Draw the pitch curve and the profile into this SVG file.
         #[arg(long, value_name = "PATH")]
         plot: Option<PathBuf>,
@@ -287,8 +288,8 @@ enum Command {
     /// samples, on the sweep's branch; otherwise an end of the range. CSV with units, or a
     /// table. A sweep that stops (a limit position) fails.
     Extremes {
-        /// The declaration (`.kl`).
-        file: PathBuf,
+        #[command(flatten)]
+        decl: Declaration,
         /// The inputs at the start, separated by commas (one value per input).
         #[arg(long, value_name = "X,...", allow_hyphen_values = true)]
         from: String,
@@ -301,9 +302,6 @@ enum Command {
         /// Angles in degrees (inputs given and values written); otherwise radians.
         #[arg(long)]
         deg: bool,
-        /// Parameter values, `name=value` separated by commas (overriding the defaults).
-        #[arg(long, value_name = "NAME=VALUE,...")]
-        params: Option<String>,
         /// The unknowns and outputs to report, separated by commas (all of them otherwise).
         #[arg(long, value_name = "NAME,...")]
         columns: Option<String>,
@@ -318,8 +316,8 @@ enum Command {
     /// listed on standard error. With `--grid`, a mechanism of several inputs over the grid of
     /// its inputs, as a page with one slider per input.
     Animate {
-        /// The declaration (`.kl`).
-        file: PathBuf,
+        #[command(flatten)]
+        decl: Declaration,
         /// The inputs at the start, separated by commas (one value per input).
         #[arg(long, value_name = "X,...", allow_hyphen_values = true)]
         from: String,
@@ -338,9 +336,6 @@ enum Command {
         /// Angles in degrees (inputs given); otherwise radians.
         #[arg(long)]
         deg: bool,
-        /// Parameter values, `name=value` separated by commas (overriding the defaults).
-        #[arg(long, value_name = "NAME=VALUE,...")]
-        params: Option<String>,
         /// The file written: its extension (`.svg`, `.html`) tells the format unless `--format`
         /// does.
         #[arg(long, value_name = "FILE")]
@@ -436,27 +431,27 @@ fn main() -> ExitCode {
 
 fn run(cli: Cli) -> Result<(), Failed> {
     match cli.command {
-        Command::Check { file, params } => {
-            let model = load(&file, params.as_deref())?;
+        Command::Check { decl } => {
+            let model = decl.load()?;
             // Written, not printed: `print!` panics where standard output cannot be written.
             output::text(&report::structure(&model), "the report")
         }
-        Command::Solve { file, at, deg, params } => {
-            let mut model = solvable(&file, params.as_deref())?;
+        Command::Solve { decl, at, deg } => {
+            let mut model = decl.solvable()?;
             solve::run(&mut model, &at, deg)
         }
-        Command::Sweep { file, from, to, samples, deg, params, events } => {
-            let mut model = solvable(&file, params.as_deref())?;
+        Command::Sweep { decl, from, to, samples, deg, events } => {
+            let mut model = decl.solvable()?;
             let req = sweep::Request { from: &from, to: &to, samples, deg, events: events.as_deref() };
             sweep::run(&mut model, &req)
         }
-        Command::Trace { file, from, to, ds, max_points, deg, params, events } => {
-            let mut model = solvable(&file, params.as_deref())?;
+        Command::Trace { decl, from, to, ds, max_points, deg, events } => {
+            let mut model = decl.solvable()?;
             let req = trace::Request { from: &from, to: &to, ds, max_points, deg, events: events.as_deref() };
             trace::run(&mut model, &req)
         }
-        Command::Dynamics { file, speed, start, samples, delta, about, deg, params, flywheel } => {
-            let mut model = solvable(&file, params.as_deref())?;
+        Command::Dynamics { decl, speed, start, samples, delta, about, deg, flywheel } => {
+            let mut model = decl.solvable()?;
             let req = dynamics::Request {
                 speed,
                 start,
@@ -468,23 +463,23 @@ fn run(cli: Cli) -> Result<(), Failed> {
             };
             dynamics::run(&mut model, &req)
         }
-        Command::Simulate { file, speed, start, time, torque, flywheel, samples, max_steps, deg, params } => {
-            let mut model = solvable(&file, params.as_deref())?;
+        Command::Simulate { decl, speed, start, time, torque, flywheel, samples, max_steps, deg } => {
+            let mut model = decl.solvable()?;
             let req = simulate::Request { start, speed, time, torque, flywheel, samples, deg, max_steps };
             simulate::run(&mut model, &req)
         }
-        Command::Cam { file, point, follower, start, samples, deg, params, plot } => {
-            let mut model = solvable(&file, params.as_deref())?;
+        Command::Cam { decl, point, follower, start, samples, deg, plot } => {
+            let mut model = decl.solvable()?;
             let req = cam::Request { point: &point, follower: &follower, start, samples, deg, plot: plot.as_deref() };
             cam::run(&mut model, &req)
         }
-        Command::Extremes { file, from, to, samples, deg, params, columns, table } => {
-            let mut model = solvable(&file, params.as_deref())?;
+        Command::Extremes { decl, from, to, samples, deg, columns, table } => {
+            let mut model = decl.solvable()?;
             let req = extremes::Request { from: &from, to: &to, samples, deg, columns: columns.as_deref(), table };
             extremes::run(&mut model, &req)
         }
-        Command::Animate { file, from, to, samples, grid, deg, params, out, format, show, frames, cam, follower } => {
-            let mut model = solvable(&file, params.as_deref())?;
+        Command::Animate { decl, from, to, samples, grid, deg, out, format, show, frames, cam, follower } => {
+            let mut model = decl.solvable()?;
             let samples = samples.as_deref();
             let cam = cam.as_deref();
             let req = animate::Request {
