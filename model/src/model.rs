@@ -598,10 +598,15 @@ impl Model {
     /// Positions, velocity and acceleration analogs and outputs at inputs `x`, solved from
     /// `guess` with `cfg`: the compiled mechanism's `kinematics_flat`. No allocation.
     pub fn kinematics(&mut self, x: &[f64], guess: &[f64], cfg: &NewtonConfig) -> Result<&State, StepError> {
-        if let Err(e) = self.solve_positions(x, guess, cfg, false).and_then(|()| self.analogs::<false>(cfg)) {
-            // A mechanism of extreme size is solved again, as the compiled step solves it.
-            self.rescue(x, guess, cfg, e)?;
-        }
+        let error = match self.solve_positions(x, guess, cfg, false) {
+            Ok(()) => match self.analogs::<false>(cfg) {
+                Ok(()) => return Ok(&self.state),
+                Err(e) => e,
+            },
+            Err(e) => e,
+        };
+        // A mechanism of extreme size is solved again, as the compiled step solves it.
+        self.rescue(x, guess, cfg, error)?;
         Ok(&self.state)
     }
 
