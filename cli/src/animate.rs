@@ -175,8 +175,8 @@ fn find_cam<'a>(
 ) -> Result<(Found, &'a str, (usize, usize)), Failed> {
     cam::one_angle_input(model)?;
     let columns = cam::point_columns(model, point, "--cam")?;
-    // The start as given (degrees with `--deg`), as `kinloop cam --start` takes it; the model
-    // has one input, or `find` refuses it.
+    // The start as given (degrees with `--deg`), as `kinloop cam --start` takes it: one number,
+    // the model having one input (and `--from` read as its inputs before).
     let start =
         req.from.trim().parse::<f64>().map_err(|_| {
             usage(format!("--cam turns the cam with the one input: --from {} is not one number", req.from))
