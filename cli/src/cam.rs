@@ -218,7 +218,10 @@ pub fn find(model: &mut Model, req: &Request) -> Result<Found, Failed> {
                 Follower::Rocking(_) => [0.0, 0.0],
             };
             let cam = flat_face_profile(&follower_samples, pivot, face).map_err(refused)?;
-            Shape::Flat(cam, FaceLine { face, guide })
+            // The first sample's side for all: the face cannot pass through the cam's pivot.
+            let line = FaceLine { face, guide, away: 1.0 };
+            let away = follower_samples.first().map_or(1.0, |s| line.side_away(s.point[0], pivot));
+            Shape::Flat(cam, FaceLine { away, ..line })
         }
         None => Shape::Roller(cam_profile(&follower_samples, pivot, roller).map_err(refused)?),
     };

@@ -5,7 +5,7 @@
 
 use crate::cam::{Found, Shape};
 use kinloop_runtime::analysis::cam::FlatFace;
-use kinloop_viz::draw::{DefaultDrawing, Pt, Scalar};
+use kinloop_viz::draw::{DefaultDrawing, Pt, Scalar, StateRef};
 
 /// Samples of the turn the drawn cam is found from: a corner every half degree.
 pub const SAMPLES: usize = 721;
@@ -23,7 +23,12 @@ pub fn with_cam(drawing: DefaultDrawing, found: &Found, point: &str, columns: (u
         Shape::Flat(cam, line) => {
             let (lo, hi) = cam.offset_range();
             let margin = 0.1 * (hi - lo) + 0.05 * size;
-            Touching::Face(*line, lo - margin, hi + margin)
+            // The face's plate, in the face's frame (its origin, its direction along x): as long
+            // as the contacts with a margin, a thirtieth of the cam's size thick, on the side of
+            // the face away from the cam.
+            let thick = line.away * size / 30.0;
+            let (lo, hi) = (lo - margin, hi + margin);
+            Touching::Face(*line, vec![[lo, 0.0], [hi, 0.0], [hi, thick], [lo, thick]])
         }
     };
     drawing.extend(move |d| {
@@ -33,9 +38,14 @@ pub fn with_cam(drawing: DefaultDrawing, found: &Found, point: &str, columns: (u
                 "the cam's profile for a roller of radius {radius}, by inversion of the follower's motion"
             )),
             Touching::KnifeEdge => d.note("the cam's profile for a knife edge, by inversion of the follower's motion"),
-            Touching::Face(line, lo, hi) => {
-                let end = |along: f64| Pt::expr(move |s| line.point([s.out[columns.0], s.out[columns.1]], along));
-                d.link([end(lo), end(hi)])
+            Touching::Face(line, plate) => {
+                let at = move |s: &StateRef| [s.out[columns.0], s.out[columns.1]];
+                let origin = Pt::expr(move |s| line.point(at(s), 0.0));
+                let angle = Scalar::expr(move |s| {
+                    let t = line.direction(at(s));
+                    t[1].atan2(t[0])
+                });
+                d.outline(origin, plate, angle)
                     .note("the cam's profile for the flat face, by inversion of the follower's motion")
             }
         }
@@ -48,8 +58,8 @@ enum Touching {
     Roller(String, f64),
     /// A knife edge: the follower's point itself, drawn by the declaration.
     KnifeEdge,
-    /// A flat face, drawn from the first offset along it to the second.
-    Face(FaceLine, f64, f64),
+    /// A flat face, drawn as a plate: its corners in the face's frame.
+    Face(FaceLine, Vec<[f64; 2]>),
 }
 
 /// Where a flat face lies, given its follower's point: the runtime's [`FlatFace`] with a
@@ -60,6 +70,9 @@ pub struct FaceLine {
     pub face: FlatFace,
     /// A translating follower's guide (any length but zero); not read for a rocking one.
     pub guide: [f64; 2],
+    /// The side of the face away from the cam: 1 on the left of the face's direction, -1 on
+    /// its right.
+    pub away: f64,
 }
 
 impl FaceLine {
@@ -68,26 +81,31 @@ impl FaceLine {
     /// of the rocker's pivot on the face for a rocking one, as `flat_face_profile` counts the
     /// contact's offsets.
     pub fn point(&self, p: [f64; 2], along: f64) -> [f64; 2] {
-        let turned = |tilt: f64, v: [f64; 2]| {
-            let (s, c) = tilt.sin_cos();
-            [c * v[0] - s * v[1], s * v[0] + c * v[1]]
+        let t = self.direction(p);
+        let origin = match self.face {
+            FlatFace::Translating { .. } => p,
+            // The foot of the pivot on the face: `offset` to the left of the face's direction.
+            FlatFace::Rocking { pivot: a, offset, .. } => [a[0] - offset * t[1], a[1] + offset * t[0]],
         };
-        match self.face {
-            FlatFace::Translating { tilt } => {
-                let g = self.guide;
-                let n = g[0].hypot(g[1]);
-                // The guide turned a quarter clockwise, then by the tilt.
-                let t = turned(tilt, [g[1] / n, -g[0] / n]);
-                [p[0] + along * t[0], p[1] + along * t[1]]
-            }
-            FlatFace::Rocking { pivot: a, offset, tilt } => {
-                let arm = [p[0] - a[0], p[1] - a[1]];
-                let n = arm[0].hypot(arm[1]);
-                let t = turned(tilt, [arm[0] / n, arm[1] / n]);
-                // The foot of the pivot on the face: `offset` to the left of the face's direction.
-                let foot = [a[0] - offset * t[1], a[1] + offset * t[0]];
-                [foot[0] + along * t[0], foot[1] + along * t[1]]
-            }
-        }
+        [origin[0] + along * t[0], origin[1] + along * t[1]]
+    }
+
+    /// The face's direction (a unit vector), where the follower's point is at `p`: the guide
+    /// turned a quarter clockwise, or the arm from the rocker's pivot to `p`, then by the tilt.
+    pub fn direction(&self, p: [f64; 2]) -> [f64; 2] {
+        let (v, tilt) = match self.face {
+            FlatFace::Translating { tilt } => ([self.guide[1], -self.guide[0]], tilt),
+            FlatFace::Rocking { pivot: a, tilt, .. } => ([p[0] - a[0], p[1] - a[1]], tilt),
+        };
+        let n = v[0].hypot(v[1]);
+        let (s, c) = tilt.sin_cos();
+        [(c * v[0] - s * v[1]) / n, (s * v[0] + c * v[1]) / n]
+    }
+
+    /// The side of the face away from the cam's pivot `centre` where the follower's point is at
+    /// `p` (see [`FaceLine::away`]).
+    pub fn side_away(&self, p: [f64; 2], centre: [f64; 2]) -> f64 {
+        let (o, t) = (self.point(p, 0.0), self.direction(p));
+        if -t[1] * (o[0] - centre[0]) + t[0] * (o[1] - centre[1]) >= 0.0 { 1.0 } else { -1.0 }
     }
 }

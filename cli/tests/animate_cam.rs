@@ -78,25 +78,6 @@ fn outlines(svg: &str, frames: usize) -> Vec<Outline> {
         .collect()
 }
 
-/// The `points` animations of the SVG's bars: per bar, the frames, each a list of pixels.
-fn bars(svg: &str) -> Vec<Vec<Vec<[f64; 2]>>> {
-    let doc = roxmltree::Document::parse(svg).expect("well-formed SVG");
-    doc.descendants()
-        .filter(|n| n.has_tag_name("animate") && n.attribute("attributeName") == Some("points"))
-        .map(|n| {
-            let frame = |f: &str| {
-                f.split(' ')
-                    .map(|p| {
-                        let (x, y) = p.split_once(',').expect("x,y");
-                        [x.parse().expect("x"), y.parse().expect("y")]
-                    })
-                    .collect()
-            };
-            n.attribute("values").expect("values").split(';').map(frame).collect()
-        })
-        .collect()
-}
-
 /// The distance from `p` to the closed polygon `corners`, negative inside it.
 fn signed_distance(p: [f64; 2], corners: &[[f64; 2]]) -> f64 {
     let mut d = f64::INFINITY;
@@ -162,19 +143,23 @@ fn the_flat_face_touches_the_turning_cam_in_every_frame() {
         let (svg, stderr) = dwell_cam_svg(&format!("flat{k}.svg"), extra);
         assert!(stderr.contains("the profile is convex at every sample"), "the cam's checks: {stderr}");
         let outlines = outlines(&svg, 91);
-        assert_eq!(outlines.len(), 1, "the cam alone: no roller");
-        let cam = &outlines[0];
-        // The face is the last bar added.
-        let face = bars(&svg).pop().expect("the face");
-        for (f, ends) in face.iter().enumerate() {
-            let [a, b] = [ends[0], ends[1]];
+        // The cam about its fixed pivot; the face's plate moving with the follower.
+        let cam = outlines.iter().find(|o| o.at.iter().all(|a| *a == o.at[0])).expect("the cam's outline");
+        let plate = outlines.iter().find(|o| o.at.iter().any(|a| *a != o.at[0])).expect("the face's plate");
+        assert_eq!((outlines.len(), plate.corners.len()), (2, 4), "the cam and the plate, no roller");
+        for f in 0..91 {
+            // The face: the plate's first edge.
+            let [a, b] = [plate.placed(f)[0], plate.placed(f)[1]];
             let length = (b[0] - a[0]).hypot(b[1] - a[1]);
-            assert!(length > 50.0, "{extra:?}, frame {f}: the face {ends:?} is {length} px long");
+            assert!(length > 50.0, "{extra:?}, frame {f}: the face from {a:?} to {b:?} is {length} px long");
             let side = |c: &[f64; 2]| ((b[0] - a[0]) * (c[1] - a[1]) - (b[1] - a[1]) * (c[0] - a[0])) / length;
             let d: Vec<f64> = cam.placed(f).iter().map(side).collect();
             let (lo, hi) = d.iter().fold((f64::INFINITY, f64::NEG_INFINITY), |(l, h), &v| (l.min(v), h.max(v)));
-            // One side: the extreme corner of that side on the line (so none beyond it).
+            // One side: the extreme corner of that side on the line (so none beyond it), and the
+            // plate on the other.
             assert!(lo.abs().min(hi.abs()) <= 0.5, "{extra:?}, frame {f}: the cam from {lo} to {hi} px");
+            let plate_side: f64 = plate.placed(f)[2..].iter().map(side).sum();
+            assert!(plate_side * (lo + hi) < 0.0, "{extra:?}, frame {f}: the plate on the cam's side");
         }
     }
 }
