@@ -1,7 +1,7 @@
 //! The cam found by inversion (`cam::find`) added to a mechanism's drawing: its profile turning
 //! about its pivot with the input, and what touches it (the roller about the follower's point, or
-//! the flat face through it), so that `kinloop animate --cam` shows the cam that makes the
-//! declared motion.
+//! the flat face's plate, moving and turning with the follower), so that `kinloop animate --cam`
+//! shows the cam that makes the declared motion.
 
 use crate::cam::{Found, Shape};
 use kinloop_runtime::analysis::cam::FlatFace;
