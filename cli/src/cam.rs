@@ -187,6 +187,14 @@ pub fn find(model: &mut Model, req: &Request) -> Result<Found, Failed> {
     })?;
     let turn = if fa.clockwise { -1.0 } else { 1.0 };
     let end = start + std::f64::consts::TAU;
+    // Far out, a turn is lost to rounding (the start is finite): the sweep would be told `to`
+    // equals `from`.
+    if end - start <= 6.0 {
+        return Err(usage(format!(
+            "a turn of the cam from {} is lost to rounding at that size: start it nearer 0",
+            Number(req.start)
+        )));
+    }
     let sweep = model.sweep(&[start], &[end], req.samples, &guess).map_err(|e| match e {
         Error::InvalidArgument(_) => usage(format!("{name}: {e}")),
         e => failed(e),

@@ -234,6 +234,7 @@ fn bad_requests_are_usage_errors() {
         ([&base[..], &["--guide", "0,1", "--face-offset", "3"]].concat(), "give it with --flat", 2),
         ([&base[..], &["--rocker", "0,0", "--flat", "inf"]].concat(), "must be finite", 2),
         ([&base[..], &["--guide", "0,1", "--flat", "x"]].concat(), "--flat", 2),
+        ([&base[..], &["--guide", "0,1", "--start", "1e300"]].concat(), "a turn of the cam from 1e300 is lost", 2),
         (vec!["cam", cam.as_str(), "--point", "nope", "--guide", "0,1"], "its points: follower, rocker_pin", 2),
         (vec!["cam", five_bar.as_str(), "--point", "p", "--guide", "0,1"], "must have one input, an angle", 2),
         ([&base[..], &["--guide", "0,1", "--plot", plot.to_str().unwrap()]].concat(), "cannot write the plot", 73),
