@@ -170,7 +170,7 @@ enum Command {
         #[arg(long, value_name = "X,...", allow_hyphen_values = true)]
         to: String,
         /// Arclength between points, in radians of an angle and in units of the mechanism's
-        /// size of a length (positive).
+        /// size of a length (from 1e-9 to 1).
         #[arg(long, default_value_t = 0.01, allow_hyphen_values = true)]
         ds: f64,
         /// The most points written (at least 1, at most 10000000).

@@ -8,7 +8,7 @@ use crate::sweep::{events_file, write_events};
 use crate::{Failed, exit, output, samples};
 use kinloop_model::Model;
 use kinloop_runtime::dims::Heap;
-use kinloop_runtime::{Error, Event, QuantityKind, Table, TraceConfig, TracedPointOf};
+use kinloop_runtime::{Error, Event, Number, QuantityKind, Table, TraceConfig, TracedPointOf};
 use std::path::Path;
 
 /// What `kinloop trace` was asked.
@@ -30,8 +30,14 @@ pub struct Request<'a> {
 /// Traces from the declared guess at `from` and writes the points to standard output, then the
 /// events; says on standard error why the trace ended where it did not close.
 pub fn run(model: &mut Model, req: &Request) -> Result<(), Failed> {
-    if !(req.ds > 0.0 && req.ds.is_finite()) {
-        return Err(exit::usage(format!("--ds {} must be positive and finite", req.ds)));
+    if !(TraceConfig::MIN_DS..=TraceConfig::MAX_DS).contains(&req.ds) {
+        return Err(exit::usage(format!(
+            "--ds {} must be from {} to {} (a radian of the scaled coordinates: longer steps pass over the \
+             curve's limit positions)",
+            Number(req.ds),
+            Number(TraceConfig::MIN_DS),
+            Number(TraceConfig::MAX_DS)
+        )));
     }
     if !(1..=samples::MAX_SAMPLES).contains(&req.max_points) {
         let n = req.max_points;

@@ -93,9 +93,10 @@ fn bad_options_are_usage_errors_naming_them() {
     let four_bar = shipped("four_bar.kl");
     let params = "a=3,b=2,c=2.5,d=4";
     for (extra, says) in [
-        (&["--from", "0", "--to", "1", "--ds", "0"][..], "--ds 0 must be positive"),
-        (&["--from", "0", "--to", "1", "--ds", "-1"][..], "--ds -1 must be positive"),
-        (&["--from", "0", "--to", "1", "--ds", "inf"][..], "--ds inf must be positive"),
+        (&["--from", "0", "--to", "1", "--ds", "0"][..], "--ds 0 must be from 1e-9 to 1"),
+        (&["--from", "0", "--to", "1", "--ds", "-1"][..], "--ds -1 must be from"),
+        (&["--from", "0", "--to", "1", "--ds", "inf"][..], "--ds inf must be from"),
+        (&["--from", "0", "--to", "1", "--ds", "3"][..], "longer steps pass over the curve's limit positions"),
         (&["--from", "0", "--to", "1", "--max-points", "0"][..], "--max-points 0 is out of range"),
         (&["--from", "0", "--to", "1", "--max-points", "10000001"][..], "at most 10000000"),
         (&["--from", "1", "--to", "1"][..], "`to` different from `from`"),

@@ -150,6 +150,8 @@ fn trace_options_are_validated_naming_the_field() {
         (TraceConfig::default().with_ds(0.0), "TraceConfig::ds"),
         (TraceConfig::default().with_ds(f64::NAN), "TraceConfig::ds"),
         (TraceConfig::default().with_ds(f64::INFINITY), "TraceConfig::ds"),
+        (TraceConfig::default().with_ds(1.5), "TraceConfig::ds"),
+        (TraceConfig::default().with_ds(1e-10), "TraceConfig::ds"),
         (TraceConfig::default().with_max_points(0), "TraceConfig::max_points"),
         (
             TraceConfig::default().with_newton(NewtonConfig::default().with_max_iterations(10_001)),

@@ -163,7 +163,10 @@ proptest! {
         let g = m.position(start, &m.guess(start));
         prop_assume!(g.is_ok());
         let g = g.unwrap().0;
-        let t = m.trace_curve(start, start + PI, &g, &TraceConfig::default()).unwrap();
+        // The default step and the longest allowed (with which the curve passes near its start
+        // on the other assembly mode, a step from it: not the curve closing).
+        for ds in [TraceConfig::default().ds, TraceConfig::MAX_DS] {
+        let t = m.trace_curve(start, start + PI, &g, &TraceConfig::default().with_ds(ds)).unwrap();
         on_the_curve(&m, &t, 1.0);
         prop_assert!(t.crossings.is_empty() && t.kinks.is_empty(), "{:?}", t);
         // It closes (its angles within whole turns: a crank-rocker driven by its rocker comes
@@ -178,5 +181,24 @@ proptest! {
         // Coupler and rocker lie in line only at limit positions: the mode changes there only.
         let changes = t.points.windows(2).filter(|w| (mode(&w[0].q) > 0.0) != (mode(&w[1].q) > 0.0)).count();
         prop_assert_eq!(changes, t.folds.len(), "folds at {:?}", t.folds.iter().map(|f| f.x[0]).collect::<Vec<_>>());
+        }
     }
+}
+
+/// A rocking crank traced with the longest step: after its first limit position the curve
+/// passes within a step of its start on the other assembly mode, the crank moving the other
+/// way. That is not the curve closing (it was taken for it, and the second limit position was
+/// never reached): the trace goes on through the second and closes where it started, the crank
+/// moving as it did.
+#[test]
+fn a_curve_closes_only_where_it_started_moving_as_it_started() {
+    let m = FourBar { a: 3.648, b: 3.23, c: 3.561, d: 3.293 };
+    let g = m.position(0.0, &m.guess(0.0)).unwrap().0;
+    let t = m.trace_curve(0.0, PI, &g, &TraceConfig::default().with_ds(TraceConfig::MAX_DS)).unwrap();
+    let limits = limit_angles(&m);
+    assert_eq!(limits.len(), 1, "one limit angle in [0, pi], met at plus and minus it: {limits:?}");
+    let mut folds: Vec<f64> = t.folds.iter().map(|f| f.x[0]).collect();
+    folds.sort_by(f64::total_cmp);
+    assert!(t.closed && folds.len() == 2, "closed {}, folds at {folds:?}", t.closed);
+    assert!((folds[0] + limits[0]).abs() <= tol::LOCATED && (folds[1] - limits[0]).abs() <= tol::LOCATED, "{folds:?}");
 }

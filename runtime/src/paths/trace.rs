@@ -30,7 +30,8 @@ pub struct TraceConfig {
     /// Arclength between points (default `0.01`), measured in scaled coordinates: angles in
     /// radians, lengths in units of the mechanism's size (the magnitude of the loops they
     /// appear in), so the spacing does not depend on the unit of length. `0.01` gives points
-    /// about 0.01 rad apart on a curve dominated by angles.
+    /// about 0.01 rad apart on a curve dominated by angles. From [`TraceConfig::MIN_DS`] to
+    /// [`TraceConfig::MAX_DS`].
     pub ds: f64,
     /// Most points returned (default `100_000`).
     pub max_points: usize,
@@ -46,6 +47,16 @@ impl Default for TraceConfig {
 }
 
 impl TraceConfig {
+    /// The shortest step allowed: a step is halved down to a millionth of itself near a limit
+    /// position or a kink, and below this the halvings reach the rounding of the coordinates.
+    pub const MIN_DS: f64 = 1e-9;
+
+    /// The longest step allowed, a radian of the scaled coordinates: longer steps pass over
+    /// the curve's features and back (a four-bar's rocking crank traced with steps of 3 listed
+    /// each of its limit positions two or three times), where every step up to this one was
+    /// seen to trace random four-bars as the default step does.
+    pub const MAX_DS: f64 = 1.0;
+
     /// Sets [`TraceConfig::ds`].
     pub fn with_ds(mut self, ds: f64) -> Self {
         self.ds = ds;
@@ -62,10 +73,11 @@ impl TraceConfig {
         self
     }
 
-    /// The first field outside its valid range (`ds` positive and finite, `max_points` at
-    /// least 1, and the Newton configuration's ranges, as `newton.<field>`).
+    /// The first field outside its valid range (`ds` from [`TraceConfig::MIN_DS`] to
+    /// [`TraceConfig::MAX_DS`], `max_points` at least 1, and the Newton configuration's ranges,
+    /// as `newton.<field>`).
     pub fn invalid_field(&self) -> Option<String> {
-        if !(self.ds > 0.0 && self.ds < f64::INFINITY) {
+        if !(Self::MIN_DS..=Self::MAX_DS).contains(&self.ds) {
             Some("ds".into())
         } else if self.max_points == 0 {
             Some("max_points".into())
@@ -195,7 +207,7 @@ pub fn trace_curve_of<K: Kernel>(
     q0.as_mut().copy_from_slice(k0.q());
     let metric = Metric::at(m, &path, &from, &q0);
     let start = CurvePoint { tangent: tangent_from_analogs(&k0, &path, &metric), q: q0, sigma: 0.0 };
-    let start_z = start.z(&metric);
+    let (start_z, start_dsigma) = (start.z(&metric), start.dsigma());
     // Per scaled coordinate, the whole turn of an angle unknown (0 for the others): the curve
     // has closed when it comes back to its start to within whole turns of those.
     let turns: Vec<f64> =
@@ -290,7 +302,11 @@ pub fn trace_curve_of<K: Kernel>(
         if p.sigma > path.len * (1.0 + 1e-12) || p.sigma < -path.len * (1.0 + 1e-12) {
             break;
         }
-        if walked > 3.0 * ds && back < 0.75 * ds {
+        // Back at the start, and the input moving as it did there: after an odd number of limit
+        // positions the curve can pass near its start on the other assembly mode (within a
+        // step of it where the two modes come close, or with a long step), the input moving the
+        // other way; that is not the curve closing.
+        if walked > 3.0 * ds && back < 0.75 * ds && p.dsigma() * start_dsigma >= 0.0 {
             out.closed = true;
             break;
         }
