@@ -6,7 +6,7 @@
 use crate::cam::{self, FollowerArgs, Found};
 use crate::cam_drawn;
 use crate::exit::usage;
-use crate::solve::{in_units, model_inputs};
+use crate::solve::{in_units, model_inputs, parse_inputs};
 use crate::sweep::range_too_long;
 use crate::{Failed, exit, samples};
 use kinloop_model::{Count, Model};
@@ -117,7 +117,7 @@ pub fn run(model: &mut Model, req: &Request) -> Result<(), Failed> {
     let failed = |e: &dyn std::fmt::Display| failed(&name, e);
     let Endpoints { from, to, guess } = endpoints(model, req)?;
     let cam = match req.cam {
-        Some(point) => Some(find_cam(model, req, point)?),
+        Some(point) => Some((find_cam(model, req, point)?, point)),
         None => None,
     };
     let kinds = model.input_kinds().to_vec();
@@ -143,7 +143,7 @@ pub fn run(model: &mut Model, req: &Request) -> Result<(), Failed> {
     }
     let drawing = noted_drawing(model);
     let drawing = match cam {
-        Some((found, point, columns)) => cam_drawn::with_cam(drawing, &found, point, columns),
+        Some((found, point)) => cam_drawn::with_cam(drawing, &found, point),
         None => drawing,
     };
     let text = match format {
@@ -167,26 +167,24 @@ pub fn run(model: &mut Model, req: &Request) -> Result<(), Failed> {
 }
 
 /// The cam of `--cam POINT` over one turn from `--from`, as `kinloop cam` finds it (its checks on
-/// standard error), with the point's name and output columns.
-fn find_cam<'a>(
-    model: &mut Model,
-    req: &Request<'a>,
-    point: &'a str,
-) -> Result<(Found, &'a str, (usize, usize)), Failed> {
-    cam::one_angle_input(model)?;
-    let columns = cam::point_columns(model, point, "--cam")?;
-    // The start as given (degrees with `--deg`), as `kinloop cam --start` takes it: one number,
-    // the model having one input (and `--from` read as its inputs before).
-    let start =
-        req.from.trim().parse::<f64>().map_err(|_| {
-            usage(format!("--cam turns the cam with the one input: --from {} is not one number", req.from))
-        })?;
-    let found = cam::find(
-        model,
-        &cam::Request { point, follower: req.follower, start, samples: cam_drawn::SAMPLES, deg: req.deg, plot: None },
-    )?;
+/// standard error).
+fn find_cam(model: &mut Model, req: &Request, point: &str) -> Result<Found, Failed> {
+    // The start as given (degrees with `--deg`), as `kinloop cam --start` takes it; a model of
+    // other than one input is refused by `find`.
+    let x = parse_inputs(req.from, model.inputs().len(), "--from")?;
+    let start = x.first().copied().unwrap_or(0.0);
+    let cam = cam::Request {
+        point,
+        point_option: "--cam",
+        follower: req.follower,
+        start,
+        samples: cam_drawn::SAMPLES,
+        deg: req.deg,
+        plot: None,
+    };
+    let found = cam::find(model, &cam)?;
     found.report();
-    Ok((found, point, columns))
+    Ok(found)
 }
 
 /// The samples of a sweep when `--samples` is not given.

@@ -71,6 +71,8 @@ impl FollowerArgs {
 pub struct Request<'a> {
     /// The follower's point: a `point` of the declaration (the roller's centre).
     pub point: &'a str,
+    /// The option that named the point, for the message where there is no such point.
+    pub point_option: &'static str,
     /// How the follower moves and what touches the cam.
     pub follower: &'a FollowerArgs,
     /// The cam shaft's angle at the first sample (in the units of `deg`).
@@ -95,6 +97,8 @@ pub struct Found {
     pub inputs: Vec<f64>,
     /// Angles in degrees.
     pub deg: bool,
+    /// The output columns of the follower's point (`NAME.x`, `NAME.y`).
+    pub columns: (usize, usize),
     /// The cam for the follower asked for.
     pub shape: Shape,
 }
@@ -160,7 +164,7 @@ pub fn find(model: &mut Model, req: &Request) -> Result<Found, Failed> {
     if !req.start.is_finite() {
         return Err(usage(format!("--start {} must be a finite number", Number(req.start))));
     }
-    let columns = point_columns(model, req.point, "--point")?;
+    let columns = point_columns(model, req.point, req.point_option)?;
     let follower = match (fa.guide.as_deref(), fa.rocker.as_deref()) {
         (Some(g), None) => Follower::Translating(direction(g, "--guide")?),
         (None, Some(r)) => Follower::Rocking(point(r, "--rocker")?),
@@ -233,11 +237,11 @@ pub fn find(model: &mut Model, req: &Request) -> Result<Found, Failed> {
         }
         None => Shape::Roller(cam_profile(&follower_samples, pivot, roller).map_err(refused)?),
     };
-    Ok(Found { pivot, turn, inputs, deg: req.deg, shape })
+    Ok(Found { pivot, turn, inputs, deg: req.deg, columns, shape })
 }
 
 /// Refuses a model whose inputs are not one angle: the cam turns with the one input.
-pub fn one_angle_input(model: &Model) -> Result<(), Failed> {
+fn one_angle_input(model: &Model) -> Result<(), Failed> {
     if model.inputs().len() != 1 || model.input_kinds()[0] != QuantityKind::Angle {
         return Err(usage(format!(
             "a cam turns with the input: {} must have one input, an angle (its inputs: {})",
@@ -312,7 +316,7 @@ impl Follower {
 }
 
 /// The output columns `NAME.x`, `NAME.y` of the point `name`, given to the option `option`.
-pub fn point_columns(model: &Model, name: &str, option: &str) -> Result<(usize, usize), Failed> {
+fn point_columns(model: &Model, name: &str, option: &str) -> Result<(usize, usize), Failed> {
     let outputs = model.outputs();
     let at = |c: &str| outputs.iter().position(|o| o == c);
     match (at(&format!("{name}.x")), at(&format!("{name}.y"))) {

@@ -10,10 +10,9 @@ use kinloop_viz::draw::{DefaultDrawing, Pt, Scalar, StateRef};
 /// Samples of the turn the drawn cam is found from: a corner every half degree.
 pub const SAMPLES: usize = 721;
 
-/// `drawing` with the cam of `found` added; `columns` are the output columns of the follower's
-/// point `point` (`NAME.x`, `NAME.y`).
-pub fn with_cam(drawing: DefaultDrawing, found: &Found, point: &str, columns: (usize, usize)) -> DefaultDrawing {
-    let (pivot, turn) = (found.pivot, found.turn);
+/// `drawing` with the cam of `found` added, `point` the follower's point.
+pub fn with_cam(drawing: DefaultDrawing, found: &Found, point: &str) -> DefaultDrawing {
+    let (pivot, turn, columns) = (found.pivot, found.turn, found.columns);
     let profile = found.profile().to_vec();
     // The profile's size, for the flat face's margins beyond its contacts.
     let size = profile.iter().fold(0.0f64, |r, p| r.max(p[0].hypot(p[1])));

@@ -157,9 +157,9 @@ enum Command {
     /// positions, where the input reverses, so a linkage whose input cannot turn fully (a
     /// non-Grashof four-bar) gives its closed curve. Writes the points (inputs, unknowns,
     /// outputs) as CSV with units, about `--ds` apart, and lists the limit positions, kinks and
-    /// crossings passed on standard error or in `--events`. Stops where the curve closes (its
-    /// angles within whole turns), where it leaves the inputs' segment from `from - (to - from)`
-    /// to `to`, or after `--max-points`.
+    /// crossings passed on standard error or in `--events`. Stops where the curve closes (back
+    /// at its start, its angles within whole turns, the input moving as it started), where it
+    /// leaves the inputs' segment from `from - (to - from)` to `to`, or after `--max-points`.
     Trace {
         #[command(flatten)]
         decl: Declaration,
@@ -470,7 +470,15 @@ fn run(cli: Cli) -> Result<(), Failed> {
         }
         Command::Cam { decl, point, follower, start, samples, deg, plot } => {
             let mut model = decl.solvable()?;
-            let req = cam::Request { point: &point, follower: &follower, start, samples, deg, plot: plot.as_deref() };
+            let req = cam::Request {
+                point: &point,
+                point_option: "--point",
+                follower: &follower,
+                start,
+                samples,
+                deg,
+                plot: plot.as_deref(),
+            };
             cam::run(&mut model, &req)
         }
         Command::Extremes { decl, from, to, samples, deg, columns, table } => {

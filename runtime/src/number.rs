@@ -49,6 +49,18 @@ impl fmt::Display for Number {
     }
 }
 
+/// The sign of `v`, `0` at zero and at NaN: the macro graph's `sign` (its constant folder's), and
+/// "no orientation to compare" where the paths compare signs.
+pub(crate) fn sign(v: f64) -> f64 {
+    if v > 0.0 {
+        1.0
+    } else if v < 0.0 {
+        -1.0
+    } else {
+        0.0
+    }
+}
+
 /// The largest power of two not above `m` (positive, finite): dividing by it is exact, so a
 /// computation at any scale can be made near 1 and scaled back.
 pub(crate) fn pow2_at_most(m: f64) -> f64 {

@@ -50,15 +50,7 @@ impl Func {
             Func::Abs => v.abs(),
             Func::Floor => v.floor(),
             // The sign as the macro's graph defines it: 0 at 0.
-            Func::Signum => {
-                if v > 0.0 {
-                    1.0
-                } else if v < 0.0 {
-                    -1.0
-                } else {
-                    0.0
-                }
-            }
+            Func::Signum => crate::number::sign(v),
         }
     }
 }

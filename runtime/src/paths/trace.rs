@@ -10,6 +10,7 @@ use crate::error::Error;
 use crate::events::{Event, EventKind};
 use crate::mechanism::Mechanism;
 use crate::mechanism::kernel::{Compiled, Kernel, Q, X, check_sizes, is_angle};
+use crate::number::sign;
 use crate::solvers::newton::NewtonConfig;
 use nalgebra::DVector;
 use std::f64::consts::TAU;
@@ -375,17 +376,6 @@ fn distance_in_turns(z: &DVector<f64>, z0: &DVector<f64>, turns: &[f64]) -> f64 
     let reduced =
         d.iter().zip(turns).map(|(&v, &t)| if t > 0.0 && t.is_finite() { v - t * (v / t).round() } else { v });
     reduced.map(|v| v * v).sum::<f64>().sqrt()
-}
-
-/// The sign of `v`: `0` for zero and NaN (no orientation to compare).
-fn sign(v: f64) -> f64 {
-    if v > 0.0 {
-        1.0
-    } else if v < 0.0 {
-        -1.0
-    } else {
-        0.0
-    }
 }
 
 /// Whether the step of length `step` (scaled coordinates) from `p` to `next` stays on the curve
