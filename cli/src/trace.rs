@@ -58,8 +58,8 @@ pub fn run(model: &mut Model, req: &Request) -> Result<(), Failed> {
     let opts = TraceConfig::default().with_ds(req.ds).with_max_points(req.max_points);
     let mut guess = vec![0.0; model.unknowns().len()];
     model.guess(&from, &mut guess).map_err(|e| failed(&e))?;
-    // The runtime checks the options and the path (`ds` positive, `to` apart from `from`): its
-    // refusal is a usage error, not a failed trace.
+    // The runtime checks the path (`to` apart from `from`) and the options (again, as the
+    // checks above): its refusal is a usage error, not a failed trace.
     let traced = model.trace_curve(&from, &to, &guess, &opts).map_err(|e| match e {
         Error::InvalidArgument(m) => exit::usage(format!("{name}: {m}")),
         e => failed(&in_units(e, &kinds[..ni], req.deg)),

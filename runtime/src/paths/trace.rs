@@ -135,7 +135,7 @@ pub struct TracedOf<Q, X> {
     pub crossings: Vec<Event>,
     /// The curve closed on itself: it came back to its first point, its angles to within whole
     /// turns (a crank-rocker driven by its rocker closes after one rocking, its crank a turn
-    /// on).
+    /// on), with the input moving as it did there (not the other assembly mode passing near it).
     pub closed: bool,
     /// The trace stopped at [`TraceConfig::max_points`], before the curve closed or left the
     /// segment: the curve goes on past its last point.
@@ -232,6 +232,8 @@ pub fn trace_curve_of<K: Kernel>(
     // the other curve: the trace's test that no step jumps.
     let orientation = |p: &CurvePoint<Q<K>>| sign(signed_det(m, &path.at_sigma(p.sigma), &p.q)) * sign(p.dsigma());
     let mut side = orientation(&start);
+    // Past either end of the segment from `from - (to - from)` to `to` (its rounding aside).
+    let left_path = |p: &CurvePoint<Q<K>>| p.sigma.abs() > path.len * (1.0 + 1e-12);
     let (ds, mut p, mut walked) = (opts.ds, start, 0.0);
     let floor = ds * 1e-6;
     let pivot = m.solver_config().singular_pivot;
@@ -276,7 +278,7 @@ pub fn trace_curve_of<K: Kernel>(
                 };
                 walked += (past.z(&metric) - p.z(&metric)).norm();
                 p = past;
-                if p.sigma > path.len * (1.0 + 1e-12) || p.sigma < -path.len * (1.0 + 1e-12) {
+                if left_path(&p) {
                     break;
                 }
                 match event.kind {
@@ -300,7 +302,7 @@ pub fn trace_curve_of<K: Kernel>(
         if o != 0.0 {
             side = o;
         }
-        if p.sigma > path.len * (1.0 + 1e-12) || p.sigma < -path.len * (1.0 + 1e-12) {
+        if left_path(&p) {
             break;
         }
         // Back at the start, and the input moving as it did there: after an odd number of limit
