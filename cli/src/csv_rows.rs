@@ -1,7 +1,6 @@
 //! A CSV table written row by row, as its rows are made: a long sweep keeps none of them.
 
 use kinloop_runtime::{Number, Table};
-use std::fmt::Write as _;
 use std::io::{self, Write};
 
 /// A CSV table being written: the header first, then each row as it comes, in the bytes
@@ -29,8 +28,7 @@ impl<W: Write> CsvRows<W> {
             if k > 0 {
                 self.line.push(',');
             }
-            // Writing into a `String` does not fail.
-            let _ = write!(self.line, "{}", Number(*v));
+            Number(*v).push_to(&mut self.line);
         }
         self.line.push('\n');
         self.out.write_all(self.line.as_bytes())

@@ -25,8 +25,10 @@ const SMALL: f64 = 1e-5;
 /// `1234567.875`), in exponent notation (`1e300`, `2.08e-17`, `-1.5e16`, `5e-324`) for
 /// `|v| >= 1e16` or `0 < |v| < 1e-5`; both the shortest digits that read back (`str::parse`)
 /// to the same bits. Zero, infinities and NaN are written as Rust writes them (`0`, `-0`, `inf`,
-/// `-inf`, `NaN`). Formatting flags (width, precision) are not applied: the digits are the
-/// number's own.
+/// `-inf`, `NaN`). Of the shortest texts the one closest to the value, and where the value lies
+/// exactly halfway between two, the one whose last digit is even (as Python's `repr`; Rust's
+/// own `{}` takes the larger). Formatting flags (width, precision) are not applied: the digits
+/// are the number's own.
 ///
 /// ```
 /// use kinloop_runtime::Number;
@@ -38,14 +40,49 @@ const SMALL: f64 = 1e-5;
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct Number(pub f64);
 
+impl Number {
+    /// Appends the number's text to `out`, as [`fmt::Display`] writes it, without going through
+    /// the formatting machinery: what a long table written row by row calls for each field.
+    ///
+    /// ```
+    /// use kinloop_runtime::Number;
+    /// let mut line = String::from("x,");
+    /// Number(-2.5).push_to(&mut line);
+    /// assert_eq!(line, "x,-2.5");
+    /// ```
+    pub fn push_to(self, out: &mut String) {
+        let mut digits = ryu::Buffer::new();
+        out.push_str(self.text(&mut digits));
+    }
+
+    /// The text, in `buffer` when the number is finite. Ryu's shortest digits, the closest to
+    /// the value of those that read back (what Rust's own `{}` and `{:e}` write, measured to the
+    /// bit in this module's tests), are laid out at the same cut as [`SMALL`] and [`LARGE`]
+    /// (positional for `1e-5 <= |v| < 1e16`, exponent notation beyond, its exponent without a
+    /// `+`): only an integer's `.0` (and zero's) is dropped, as Rust writes `150`, `-0`. About
+    /// four times faster than Rust's formatting, which spends most of a long CSV's time.
+    fn text(self, buffer: &mut ryu::Buffer) -> &str {
+        let v = self.0;
+        if !v.is_finite() {
+            return if v.is_nan() {
+                "NaN"
+            } else if v > 0.0 {
+                "inf"
+            } else {
+                "-inf"
+            };
+        }
+        let s = buffer.format_finite(v);
+        // Ryu changes notation where the shortest digits cross a power of ten, as the cut is.
+        debug_assert_eq!(s.contains('e'), v != 0.0 && !(SMALL..LARGE).contains(&v.abs()), "{s}");
+        s.strip_suffix(".0").unwrap_or(s)
+    }
+}
+
 impl fmt::Display for Number {
     fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
-        let a = self.0.abs();
-        if a.is_finite() && a != 0.0 && !(SMALL..LARGE).contains(&a) {
-            write!(f, "{:e}", self.0)
-        } else {
-            write!(f, "{}", self.0)
-        }
+        let mut digits = ryu::Buffer::new();
+        f.write_str(self.text(&mut digits))
     }
 }
 
@@ -93,11 +130,6 @@ pub(crate) fn norm_of(values: impl IntoIterator<Item = f64> + Clone) -> f64 {
     values.into_iter().map(|v| (v / unit) * (v / unit)).sum::<f64>().sqrt() * unit
 }
 
-/// `v` as [`Number`] writes it, as a `String`.
-pub(crate) fn number(v: f64) -> String {
-    Number(v).to_string()
-}
-
 #[cfg(test)]
 mod tests {
     use super::*;
@@ -114,6 +146,10 @@ mod tests {
         }
         assert!(norm_of([1.0, f64::NAN, 1e308]).is_nan() && norm_of([f64::NAN, f64::INFINITY]).is_nan());
         assert_eq!(norm_of([1.0, f64::NEG_INFINITY]), f64::INFINITY);
+    }
+
+    fn number(v: f64) -> String {
+        Number(v).to_string()
     }
 
     /// Reads `s` back and checks it is `v`, bit for bit (any NaN for a NaN).
@@ -134,9 +170,47 @@ mod tests {
             // Mantissa digits and an exponent of at most three digits and its sign: a double
             // needs at most 17 significant digits.
             assert!(s.len() <= 1 + 17 + 1 + 1 + 4, "{v:?} written `{s}`: too long");
+            // The digits Rust's own formatting writes: an implementation independent of ryu.
+            as_rust_writes(v, s, &format!("{v:e}"));
         } else {
-            assert_eq!(s, v.to_string(), "{v:?}: an ordinary number is written as before");
+            as_rust_writes(v, s, &v.to_string());
         }
+        let mut pushed = String::from("x");
+        Number(v).push_to(&mut pushed);
+        assert_eq!(pushed[1..], *s, "{v:?}: push_to writes what Display writes");
+    }
+
+    /// `ours` is what Rust writes, `rust`, or both are the shortest digits and `v` lies exactly
+    /// halfway between them: there ryu writes the even last digit (as Python's `repr` does),
+    /// Rust the larger one. The exact decimal value of `v` (Rust's formatting with enough
+    /// digits is exact: a double has at most 767 significant ones) decides the tie.
+    fn as_rust_writes(v: f64, ours: &str, rust: &str) {
+        if ours == rust {
+            return;
+        }
+        let split = |t: &str| t.split_once('e').map_or((t.to_string(), String::new()), |(m, e)| (m.into(), e.into()));
+        let ((m_ours, e_ours), (m_rust, e_rust)) = (split(ours), split(rust));
+        let n = m_ours.len();
+        assert!(
+            e_ours == e_rust && m_rust.len() == n && m_ours[..n - 1] == m_rust[..n - 1],
+            "{v:?} written `{ours}`, by Rust `{rust}`: not the same shortest digits"
+        );
+        let digit = |m: &str| m.as_bytes()[n - 1] - b'0';
+        let (d_ours, d_rust) = (digit(&m_ours), digit(&m_rust));
+        assert!(d_ours % 2 == 0 && d_ours.abs_diff(d_rust) == 1, "{v:?} written `{ours}`, by Rust `{rust}`: not a tie");
+        // The exact value's significant digits: the shorter texts' common ones, the lower last
+        // digit, then a 5 and nothing else.
+        let significant = |t: &str| {
+            let digits: String = t.split('e').next().unwrap_or("").chars().filter(char::is_ascii_digit).collect();
+            digits.trim_start_matches('0').to_string()
+        };
+        let exact = significant(&format!("{:.800e}", v.abs()));
+        let shortest = significant(&m_ours);
+        let below = format!("{}{}5", &shortest[..shortest.len() - 1], d_ours.min(d_rust));
+        assert!(
+            exact.starts_with(&below) && exact[below.len()..].bytes().all(|b| b == b'0'),
+            "{v:?} written `{ours}`, by Rust `{rust}`: its exact value {exact} is not halfway"
+        );
     }
 
     fn check(v: f64) {
@@ -160,6 +234,9 @@ mod tests {
         assert_eq!(number(1e-5), "0.00001");
         assert_eq!(number(9999999999999998.0), "9999999999999998");
         assert_eq!(number(0.1 + 0.2), "0.30000000000000004");
+        // Exactly halfway between two shortest texts: the even last digit (Rust's `{}` writes
+        // `...305.13`).
+        assert_eq!(number(-(153117458836305.0 + 0.125)), "-153117458836305.12");
         // The specials as Rust writes them, as today.
         assert_eq!(number(0.0), "0");
         assert_eq!(number(-0.0), "-0");

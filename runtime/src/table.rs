@@ -5,7 +5,7 @@
 //! [`Mechanism`](crate::Mechanism) trait, above this module.
 
 use crate::kin::Kin;
-use crate::number::number;
+use crate::number::Number;
 use crate::table_units;
 use std::io::{self, Write};
 use std::path::Path;
@@ -176,8 +176,15 @@ impl Table {
             .enumerate()
             .map(|(k, c)| table_units::header(c, self.units.get(k).map_or("", String::as_str)));
         out.write_record(header.collect::<io::Result<Vec<_>>>()?)?;
+        // One field buffer for the whole table: no allocation per number.
+        let mut field = String::new();
         for row in &self.rows {
-            out.write_record(row.iter().map(|&v| number(v)))?;
+            for &v in row {
+                field.clear();
+                Number(v).push_to(&mut field);
+                out.write_field(&field)?;
+            }
+            out.write_record(None::<&[u8]>)?;
         }
         out.flush()
     }
