@@ -7,7 +7,7 @@ use crate::solve::{factors, in_units, model_inputs, parse_inputs, units};
 use crate::{Failed, exit, output, progress, samples};
 use kinloop_model::Model;
 use kinloop_runtime::dims::KinState;
-use kinloop_runtime::{Error, Event, QuantityKind, Table};
+use kinloop_runtime::{Error, Event, Number, QuantityKind, Table};
 use std::io::Write;
 use std::path::Path;
 
@@ -188,7 +188,8 @@ pub(crate) fn write_events(
     file: Option<std::fs::File>,
 ) -> std::io::Result<()> {
     let kinds: Vec<QuantityKind> = model.quantities().iter().map(|(_, k)| *k).collect();
-    let angle = |k: QuantityKind, v: f64| if deg && k == QuantityKind::Angle { v.to_degrees() } else { v };
+    // Written as the table writes its numbers.
+    let angle = |k: QuantityKind, v: f64| Number(if deg && k == QuantityKind::Angle { v.to_degrees() } else { v });
     let ni = model.inputs().len();
     let Some(file) = file else {
         for e in events {
@@ -199,7 +200,7 @@ pub(crate) fn write_events(
                 .zip(&kinds)
                 .map(|((n, v), k)| format!("{n} = {}", angle(*k, *v)))
                 .collect();
-            eprintln!("event: {} at {} (fraction {} of the path)", e.kind, at.join(", "), e.tau);
+            eprintln!("event: {} at {} (fraction {} of the path)", e.kind, at.join(", "), Number(e.tau));
         }
         return Ok(());
     };
@@ -216,17 +217,17 @@ pub(crate) fn write_events(
     for e in events {
         let values: Vec<String> =
             e.x.iter().chain(&e.q).zip(&kinds[..ni + e.q.len()]).map(|(v, k)| angle(*k, *v).to_string()).collect();
-        writeln!(w, "{},{},{}", e.kind, e.tau, values.join(","))?;
+        writeln!(w, "{},{},{}", e.kind, Number(e.tau), values.join(","))?;
     }
     w.flush()
 }
 
 #[cfg(test)]
 mod tests {
-    use super::{CsvRows, Units, stream};
+    use super::{CsvRows, Units, stream, write_events};
     use kinloop_model::Model;
-    use kinloop_runtime::Table;
     use kinloop_runtime::dims::KinState;
+    use kinloop_runtime::{Event, EventKind, Table};
     use std::cell::Cell;
     use std::io::{self, Write};
     use std::rc::Rc;
@@ -313,5 +314,30 @@ mod tests {
         assert_eq!(result.expect_err("the second row does not fit").kind(), io::ErrorKind::BrokenPipe);
         assert_eq!(solved, 2, "the sweep went on past the row that failed");
         assert_eq!(recorder.bytes.len(), header_and_one_row);
+    }
+
+    /// The events' file writes its numbers as the table does: in exponent notation far from
+    /// ordinary magnitudes (not 300 zeros), `tau` too, angles in degrees with `--deg`.
+    #[test]
+    fn events_write_numbers_as_the_table_does() {
+        let model = Model::read("four_bar.kl", FOUR_BAR).expect("the declaration reads");
+        let event =
+            Event { kind: EventKind::LimitPosition, x: vec![1e-300], tau: 2.5e-17, q: vec![0.5, 1e300], block: None };
+        let path = std::env::temp_dir().join(format!("kinloop-events-{}.csv", std::process::id()));
+        for (deg, row) in [
+            (false, "limit position,2.5e-17,1e-300,0.5,1e300"),
+            (true, "limit position,2.5e-17,5.729577951308232e-299,28.64788975654116,5.729577951308233e301"),
+        ] {
+            write_events(
+                &model,
+                std::slice::from_ref(&event),
+                deg,
+                Some(std::fs::File::create(&path).expect("a file")),
+            )
+            .expect("written");
+            let text = std::fs::read_to_string(&path).expect("read back");
+            assert_eq!(text.lines().nth(1), Some(row), "{text}");
+        }
+        let _ = std::fs::remove_file(&path);
     }
 }
