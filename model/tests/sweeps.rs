@@ -309,3 +309,32 @@ fn a_failed_start_names_the_model() {
     assert!(c_at.block.is_some(), "{c_err:?}");
     eprintln!("compiled: {c_err}\nrun time: {r_err}");
 }
+
+/// Far out, where the input's doubles are a sixteenth of a radian apart (4e14) and more,
+/// a run-time model's sweep fails saying so. With samples 277 rad apart its diagnosis of the
+/// failed step followed the curve in steps the inputs' rounding kept rejecting and never ended
+/// (the command line's `kinloop sweep` hung). From 1e12 to 1e16, samples 0.28 and 277 rad
+/// apart, each sweep completes or says the input is too coarse.
+#[test]
+fn a_sweep_far_out_ends_and_says_the_input_is_coarse() {
+    let mut model = read(fx::SLIDER_CRANK_TEXT);
+    set(&mut model, &[("r", 1.0), ("l", 3.0), ("e", 0.4)]);
+    for from in [1e12, 1e13, 1e14, 4e14, 1e15, 1e16] {
+        for span in [1e2, 1e5] {
+            let mut guess = vec![0.0; 2];
+            model.guess(&[from], &mut guess).unwrap();
+            let mut sweep = model.sweep(&[from], &[from + span], 361, &guess).unwrap();
+            let mut failure = None;
+            while let Some(item) = sweep.next_ref() {
+                if let Err(e) = item {
+                    failure = Some(e.to_string());
+                    break;
+                }
+            }
+            if let Some(message) = failure {
+                let coarse = message.contains("input `phi` is a double") && message.contains("whole turns");
+                assert!(coarse, "{from} + {span}: {message}");
+            }
+        }
+    }
+}

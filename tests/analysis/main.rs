@@ -12,6 +12,7 @@ mod support;
 
 mod cam_profile;
 mod classical_synthesis;
+mod coarse_samples;
 mod flat_face;
 mod metrics_mechanisms;
 mod objectives;

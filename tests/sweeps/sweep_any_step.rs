@@ -618,6 +618,34 @@ fn a_sweep_where_the_inputs_doubles_are_too_coarse_says_so() {
     assert!(m.sweep(1e9, 1e9 + 1e3, 181, &g).unwrap().run().is_completed());
 }
 
+/// Between 1e12 and 1e16, where an input's doubles are from 1e-4 to 2 apart against samples
+/// 0.28 apart, a sweep either completes or fails saying the input is too coarse: never a hang
+/// (the diagnosis of a failed step followed the curve in steps that the inputs' rounding kept
+/// rejecting, some 1e14 of them), and never the blame on the solution curve's roughness.
+#[test]
+fn a_sweep_far_out_completes_or_says_the_input_is_coarse() {
+    let m = Slider { r: 1.0, l: 3.0, e: 0.4 };
+    let k = SliderCase { m, phi0: 0.0, side: -1.0, dir: 1.0, turns: 1, per_turn: 1 };
+    let n = SliderNewton { r: 1.0, l: 3.0, e: 0.4 };
+    for from in [1e12, 1e13, 1e14, 4e14, 1e15, 1e16] {
+        let (psi, x) = k.at(from).expect("the rod reaches the line");
+        let closed = m.sweep(from, from + 100.0, 361, &SliderUnknowns { psi, x }).unwrap().run();
+        let newton = n.sweep(from, from + 100.0, 361, &SliderNewtonUnknowns { psi, x }).unwrap().run();
+        for (path, stop) in [("closed form", &closed.stop), ("Newton", &newton.stop)] {
+            match stop {
+                SweepStop::Completed => {}
+                SweepStop::Failed(Error::Branch { message, .. }) => {
+                    assert!(
+                        message.contains("input `phi` is a double") && message.contains("whole turns"),
+                        "{from} ({path}): {message}"
+                    );
+                }
+                other => panic!("{from} ({path}): {other:?}"),
+            }
+        }
+    }
+}
+
 /// The cap is on the range's turns, checked before the first sample: just below it the sweep
 /// starts (its first sample is the start's), just above it the first item is the error.
 #[test]

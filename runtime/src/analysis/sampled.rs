@@ -11,7 +11,8 @@ use crate::error::Error;
 use crate::mechanism::Mechanism;
 use crate::mechanism::kernel::{Compiled, KinOf, Q, X, check_sizes};
 use crate::paths::config::SweepConfig;
-use crate::paths::sweep::SweepOf;
+use crate::paths::curve::{Metric, Path};
+use crate::paths::sweep::{MAX_INPUT_STEP, SweepOf};
 
 /// The straight path of a [`SampledOf`] in input space and its parameter `s`.
 #[derive(Clone, Debug)]
@@ -437,29 +438,67 @@ impl<K: Kernel> SampledOf<K> {
         move |s| self.jet_of(c, s)
     }
 
+    /// The path parameters where a search for extremes looks at a column: the samples and,
+    /// between two samples farther apart than a sweep's natural step ([`MAX_INPUT_STEP`] in the
+    /// inputs' units, as the sweep's own metric measures it), equally spaced points at most that
+    /// far apart. Each is a sample's index, or a parameter between samples. Samples a turn
+    /// apart have the same state at each and no sign change of an analog between them however
+    /// the quantity moves in between: only points the sweep itself would step to bracket its
+    /// extremes. Sampled at least that densely (the usual case), the samples alone.
+    fn search_grid(&self) -> Vec<Result<usize, f64>> {
+        let (first, last) = (self.s[0], self.s[self.s.len() - 1]);
+        // The path's length in the inputs' units, as the sweep measured it from its start.
+        let path = Path::new(self.line.from.clone(), self.line.to.clone());
+        let mut q = self.k.dims().q();
+        q.as_mut().copy_from_slice(self.states[0].q());
+        let per_param = Metric::at(&self.k, &path, &self.line.from, &q).input_len / (last - first);
+        let mut grid = vec![Ok(0)];
+        for (i, w) in self.s.windows(2).enumerate() {
+            let parts = ((w[1] - w[0]) * per_param / MAX_INPUT_STEP).ceil();
+            // (Not finite where the path's length overflows the inputs' units: the samples.)
+            if parts > 1.0 && parts.is_finite() {
+                let n = parts as usize;
+                grid.extend((1..n).map(|j| Err(w[0] + (w[1] - w[0]) * (j as f64 / n as f64))));
+            }
+            grid.push(Ok(i + 1));
+        }
+        grid
+    }
+
+    /// A column's jets at the points of [`SampledOf::search_grid`].
+    fn search_jets(&self, c: ColumnIndex) -> Result<Vec<Jet>, Error> {
+        let samples = self.jets_of(c);
+        self.search_grid().into_iter().map(|p| p.map_or_else(|s| self.jet_of(c, s), |i| Ok(samples[i]))).collect()
+    }
+
     /// The local extremes of a column (interior roots of its derivative along the path), in
-    /// increasing path parameter; see [`extremes()`](extremes::extremes).
+    /// increasing path parameter; see [`extremes()`](extremes::extremes). Between samples
+    /// farther apart than a sweep's natural step, the sign changes are looked for at points
+    /// that close, solved on the sweep's branch: samples a turn apart do not hide them.
     pub fn extremes(&self, c: impl ColumnOf<K>) -> Result<Vec<LocalExtreme>, Error> {
         let c = c.resolve(&self.k)?;
-        extremes::extremes(&self.jets_of(c), self.eval(c))
+        extremes::extremes(&self.search_jets(c)?, self.eval(c))
     }
 
     /// The global minimum and maximum of a column over the range (interior extremes, or samples: the ends among them),
-    /// e.g. the dead centres and stroke of a slider; see [`global_range`].
+    /// e.g. the dead centres and stroke of a slider; see [`global_range`]. The interior
+    /// extremes are looked for as [`SampledOf::extremes`] looks for them.
     pub fn range(&self, c: impl ColumnOf<K>) -> Result<GlobalRange, Error> {
         let c = c.resolve(&self.k)?;
-        global_range(&self.jets_of(c), self.eval(c))
+        global_range(&self.search_jets(c)?, self.eval(c))
     }
 
-    /// The dwells of a progressive column; see [`dwell`] for the definition.
+    /// The dwells of a progressive column; see [`dwell`] for the definition. Between samples
+    /// farther apart than a sweep's natural step, looked for as [`SampledOf::extremes`] looks.
     pub fn dwells(&self, c: impl ColumnOf<K>) -> Result<Vec<Dwell>, Error> {
         let c = c.resolve(&self.k)?;
-        dwell::dwells(&self.jets_of(c), self.eval(c))
+        dwell::dwells(&self.search_jets(c)?, self.eval(c))
     }
 
     /// The maximum of a derived quantity `f(state)` (e.g. the magnitude of an acceleration
-    /// analog) over the range: the best sample, refined by Brent's derivative-free search
-    /// between its neighbours. Returns `(s, f)`. For a minimum, maximise `-f`. A value of `f`
+    /// analog) over the range: the best sample (and point between samples farther apart than
+    /// a sweep's natural step, as [`SampledOf::extremes`] looks), refined by Brent's
+    /// derivative-free search between its neighbours. Returns `(s, f)`. For a minimum, maximise `-f`. A value of `f`
     /// not finite, at a sample or in the search, is an `InvalidArgument`.
     pub fn peak(&self, f: impl Fn(&KinOf<K>) -> f64) -> Result<(f64, f64), Error> {
         self.peak_by(|_, k| f(k))
@@ -473,18 +512,23 @@ impl<K: Kernel> SampledOf<K> {
     }
 
     fn peak_by(&self, f: impl Fn(f64, &KinOf<K>) -> f64) -> Result<(f64, f64), Error> {
-        let values: Vec<f64> = self.states.iter().zip(&self.s).map(|(k, &s)| f(s, k)).collect();
+        // The samples, and points between those farther apart than a sweep's natural step.
+        let points = self.search_grid().into_iter().map(|p| match p {
+            Ok(i) => Ok((self.s[i], f(self.s[i], &self.states[i]))),
+            Err(s) => self.at(s).map(|k| (s, f(s, &k))),
+        });
+        let (at, values): (Vec<f64>, Vec<f64>) = points.collect::<Result<Vec<_>, Error>>()?.into_iter().unzip();
         // As `maximize` refuses a value not finite: an infinite sample was returned as the peak,
         // and a NaN with its sign bit set, ordered below every number, was passed over.
         if let Some(j) = values.iter().position(|v| !v.is_finite()) {
-            return Err(Error::InvalidArgument(format!("the quantity is {} at the sample {}", values[j], self.s[j])));
+            return Err(Error::InvalidArgument(format!("the quantity is {} at the sample {}", values[j], at[j])));
         }
         let best = (0..values.len()).max_by(|&a, &b| values[a].total_cmp(&values[b])).unwrap_or(0);
-        let lo = self.s[best.saturating_sub(1)];
-        let hi = self.s[(best + 1).min(self.s.len() - 1)];
+        let lo = at[best.saturating_sub(1)];
+        let hi = at[(best + 1).min(at.len() - 1)];
         let (s, v) = maximize(lo, hi, |s| self.at(s).map(|k| f(s, &k)))?;
         // Brent returns an interior point; the sample itself may be better (at an end of the range).
-        Ok(if v >= values[best] { (s, v) } else { (self.s[best], values[best]) })
+        Ok(if v >= values[best] { (s, v) } else { (at[best], values[best]) })
     }
 
     /// Checks that a column returns to its starting value over the range (one period).
