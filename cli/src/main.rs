@@ -158,7 +158,8 @@ enum Command {
     /// non-Grashof four-bar) gives its closed curve. Writes the points (inputs, unknowns,
     /// outputs) as CSV with units, about `--ds` apart, and lists the limit positions, kinks and
     /// crossings passed on standard error or in `--events`. Stops where the curve closes (back
-    /// at its start, its angles within whole turns, the input moving as it started), where it
+    /// at its start, its angles within whole turns, a turning input's too, the input moving as it
+    /// started: a crank's curve closes after a turn), where it
     /// leaves the inputs' segment from `from - (to - from)` to `to`, or after `--max-points`.
     Trace {
         #[command(flatten)]

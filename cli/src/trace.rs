@@ -50,6 +50,12 @@ pub fn run(model: &mut Model, req: &Request) -> Result<(), Failed> {
     let ni = model.inputs().len();
     let from = model_inputs(req.from, &kinds[..ni], req.deg, "--from")?;
     let to = model_inputs(req.to, &kinds[..ni], req.deg, "--to")?;
+    if from == to {
+        return Err(exit::usage(format!(
+            "--from {} --to {}: the trace needs a direction to move in first: give --to different from --from",
+            req.from, req.to
+        )));
+    }
     let name = model.name().to_string();
     let failed = |e: &dyn std::fmt::Display| {
         eprintln!("error: {name}: {e}");

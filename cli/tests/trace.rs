@@ -99,7 +99,8 @@ fn bad_options_are_usage_errors_naming_them() {
         (&["--from", "0", "--to", "1", "--ds", "3"][..], "longer steps pass over the curve's limit positions"),
         (&["--from", "0", "--to", "1", "--max-points", "0"][..], "--max-points 0 is out of range"),
         (&["--from", "0", "--to", "1", "--max-points", "10000001"][..], "at most 10000000"),
-        (&["--from", "1", "--to", "1"][..], "`to` different from `from`"),
+        (&["--from", "1", "--to", "1"][..], "--from 1 --to 1: the trace needs a direction"),
+        (&["--from", "1", "--to", "1.0", "--deg"][..], "give --to different from --from"),
         (&["--from", "0,1", "--to", "1"][..], "gives 2 inputs"),
     ] {
         let out = kinloop(&[&["trace", four_bar.as_str(), "--params", params][..], extra].concat());

@@ -202,3 +202,45 @@ fn a_curve_closes_only_where_it_started_moving_as_it_started() {
     assert!(t.closed && folds.len() == 2, "closed {}, folds at {folds:?}", t.closed);
     assert!((folds[0] + limits[0]).abs() <= tol::LOCATED && (folds[1] - limits[0]).abs() <= tol::LOCATED, "{folds:?}");
 }
+
+/// A crank-rocker driven by its crank: its curve closes after one turn of the crank (the input's
+/// whole turns count, as the angles' do), traced towards three turns or exactly one; it passes
+/// no limit position, its crank goes round once and its angles come back to their start.
+#[test]
+fn a_cranks_curve_closes_after_one_turn() {
+    let m = FourBar { a: 1.0, b: 3.0, c: 2.5, d: 3.2 };
+    let g = m.position(0.3, &m.guess(0.3)).unwrap().0;
+    for to in [0.3 + 3.0 * TAU, 0.3 + TAU] {
+        let t = m.trace_curve(0.3, to, &g, &TraceConfig::default()).unwrap();
+        assert!(t.closed && !t.truncated && t.folds.is_empty(), "to {to}: closed {}", t.closed);
+        let last = t.points.last().unwrap();
+        // The last point listed is within a step (0.01 in the scaled coordinates) of closing.
+        assert!((0.3 + TAU - last.x[0]).abs() < 0.02, "to {to}: the last point at {}", last.x[0]);
+        assert!(t.points.iter().all(|p| p.input_rate > 0.0), "to {to}: the crank turned back");
+        let start: [f64; 2] = g.into();
+        for (u, (a, b)) in last.q.iter().zip(&start).enumerate() {
+            assert!((a - b).abs() < 0.02, "to {to}: unknown {u} at {a} against {b}");
+        }
+    }
+}
+
+/// Far out, where the crank angle's doubles are a hundredth of a radian apart and more (1e14 and
+/// on) against steps of 0.01, a trace completes or fails saying the input is too coarse, not
+/// that the curve bifurcates or ends.
+#[test]
+fn a_trace_far_out_completes_or_says_the_input_is_coarse() {
+    let m = FourBar { a: 1.0, b: 3.0, c: 2.5, d: 3.2 };
+    for from in [1e9, 1e12, 1e14, 1e15, 1e16] {
+        let g = m.position(from, &m.guess(from)).unwrap().0;
+        match m.trace_curve(from, from + PI, &g, &TraceConfig::default()) {
+            Ok(t) => assert!(!t.points.is_empty()),
+            Err(kinloop::Error::Branch { message, .. }) => {
+                assert!(
+                    message.contains("input `phi` is a double") && message.contains("whole turns"),
+                    "{from}: {message}"
+                )
+            }
+            Err(e) => panic!("{from}: {e}"),
+        }
+    }
+}

@@ -8,6 +8,7 @@ use super::trace_kink::{MAX_TURN, past_kink, turn};
 use crate::dims::{Dims, KinState, Store};
 use crate::error::Error;
 use crate::events::{Event, EventKind};
+use crate::kinds::QuantityKind;
 use crate::mechanism::Mechanism;
 use crate::mechanism::kernel::{Compiled, Kernel, Q, X, check_sizes, is_angle};
 use crate::number::sign;
@@ -135,7 +136,9 @@ pub struct TracedOf<Q, X> {
     pub crossings: Vec<Event>,
     /// The curve closed on itself: it came back to its first point, its angles to within whole
     /// turns (a crank-rocker driven by its rocker closes after one rocking, its crank a turn
-    /// on), with the input moving as it did there (not the other assembly mode passing near it).
+    /// on; driven by its crank, after a turn of the crank: where the path moves one angle
+    /// input, its whole turns count too), with the input moving as it did there (not the other
+    /// assembly mode passing near it).
     pub closed: bool,
     /// The trace stopped at [`TraceConfig::max_points`], before the curve closed or left the
     /// segment: the curve goes on past its last point.
@@ -209,10 +212,19 @@ pub fn trace_curve_of<K: Kernel>(
     let metric = Metric::at(m, &path, &from, &q0);
     let start = CurvePoint { tangent: tangent_from_analogs(&k0, &path, &metric), q: q0, sigma: 0.0 };
     let (start_z, start_dsigma) = (start.z(&metric), start.dsigma());
-    // Per scaled coordinate, the whole turn of an angle unknown (0 for the others): the curve
-    // has closed when it comes back to its start to within whole turns of those.
-    let turns: Vec<f64> =
-        (0..m.dims().n()).map(|u| if is_angle(m, u) { TAU / metric.unit[u] } else { 0.0 }).chain([0.0]).collect();
+    // Per scaled coordinate, the whole turn of an angle unknown, and of the path's coordinate
+    // where the path turns one angle input (0 for the others): the curve has closed when it
+    // comes back to its start to within whole turns of those. A crank's curve closes after a
+    // turn of the crank; where several inputs move, a turn of one is no turn of the others.
+    let moving: Vec<usize> = (0..m.dims().ni()).filter(|&i| path.delta[i] != 0.0).collect();
+    let input_turn = match moving[..] {
+        [i] if m.input_kind(i) == QuantityKind::Angle => TAU * (path.len / path.delta[i].abs()) / metric.sigma,
+        _ => 0.0,
+    };
+    let turns: Vec<f64> = (0..m.dims().n())
+        .map(|u| if is_angle(m, u) { TAU / metric.unit[u] } else { 0.0 })
+        .chain([input_turn])
+        .collect();
     let point =
         |p: &CurvePoint<Q<K>>| TracedPointOf { x: path.at_sigma(p.sigma), q: p.q.clone(), input_rate: p.dsigma() };
     let mut out = TracedOf {
@@ -270,11 +282,20 @@ pub fn trace_curve_of<K: Kernel>(
                     let event = event_at(EventKind::SingularCrossing, &path, &c, None);
                     (c, event)
                 } else {
-                    return Err(Error::Branch {
-                        message: "pseudo-arclength continuation cannot proceed (the curve bifurcates or ends here)"
-                            .into(),
-                        at: m.location(path.at_sigma(p.sigma).as_ref(), None),
-                    });
+                    let x = path.at_sigma(p.sigma);
+                    let message = match coarse_input(&path, &x, ds * metric.sigma) {
+                        Some((i, apart, step)) => format!(
+                            "pseudo-arclength continuation cannot proceed: input `{}` is a double {apart:e} apart \
+                             from the next here, coarser than a millionth of a step's length in it ({step:e}), so the \
+                             steps' inputs round away from the curve; reduce a periodic input by whole turns, or \
+                             take longer steps",
+                            m.input_name(i)
+                        ),
+                        None => {
+                            "pseudo-arclength continuation cannot proceed (the curve bifurcates or ends here)".into()
+                        }
+                    };
+                    return Err(Error::Branch { message, at: m.location(x.as_ref(), None) });
                 };
                 walked += (past.z(&metric) - p.z(&metric)).norm();
                 p = past;
@@ -302,15 +323,16 @@ pub fn trace_curve_of<K: Kernel>(
         if o != 0.0 {
             side = o;
         }
-        if left_path(&p) {
-            break;
-        }
         // Back at the start, and the input moving as it did there: after an odd number of limit
         // positions the curve can pass near its start on the other assembly mode (within a
         // step of it where the two modes come close, or with a long step), the input moving the
-        // other way; that is not the curve closing.
+        // other way; that is not the curve closing. Tested before leaving the segment: a crank
+        // traced over one turn closes at its end.
         if walked > 3.0 * ds && back < 0.75 * ds && p.dsigma() * start_dsigma >= 0.0 {
             out.closed = true;
+            break;
+        }
+        if left_path(&p) {
             break;
         }
         out.points.push(point(&p));
@@ -370,6 +392,20 @@ fn past_crossing<K: Kernel>(
 /// passes straight (see [`past_crossing`]): the Jacobian is singular there, and within the
 /// trace's smallest step of it the pivot is of that step's order, far below this.
 const CROSSING_PIVOT: f64 = 1e-6;
+
+/// The first input whose doubles at `x` are farther apart than a millionth of its change over a
+/// step of `arc` along the path (the path's coordinate, in the path's units), with that
+/// distance and that change: there the steps' inputs round by more than the corrector can
+/// follow (as a sweep's test of its samples' spacing, `SweepOf::coarse_input`), and the
+/// failure is the inputs', not the curve's.
+fn coarse_input<X: Store>(path: &Path<X>, x: &X, arc: f64) -> Option<(usize, f64, f64)> {
+    let x = x.as_ref();
+    (0..x.len()).find_map(|i| {
+        let apart = x[i].abs().next_up() - x[i].abs();
+        let step = (arc * path.delta[i] / path.len).abs();
+        (step > 0.0 && apart > 1e-6 * step).then_some((i, apart, step))
+    })
+}
 
 /// The distance between the scaled points `z` and `z0` with each coordinate's difference
 /// reduced by whole multiples of its turn in `turns` (where it is not 0).
