@@ -247,13 +247,14 @@ pub(crate) fn trace<K: Kernel>(
 }
 
 /// Most steps [`trace`] tries, accepted or not, before it gives up (`None`: the sweep reports
-/// its failure as it is). Its walks are short: the step grows by half from `ds0` to
-/// [`MAX_ARC_STEP`] and covers the reach (about a sweep's natural step), halving at a stall
-/// down to its floor, `1e-14` of the reach; none of the walks of the sweep, analysis
-/// and kinematics tests took 50 steps. Where the inputs' rounding rejects steps as fast as they
-/// grow (inputs near `4e14`, doubles a sixteenth apart), the floor alone did not bound them: a
-/// sweep of the command line ran minutes without end.
-const MAX_TRACE_STEPS: usize = 10_000;
+/// its failure as it is). Its walks are short: the reach is at most about two of its longest
+/// steps ([`MAX_ARC_STEP`]) past a growth by half from `ds0` (at least a billionth of a
+/// natural step: about 50 steps), and a stall halves the step at most about 50 times before its
+/// floor; none of the walks of the sweep, analysis and kinematics tests took 50 steps. Where
+/// the inputs' rounding rejects steps as fast as they grow (inputs near `4e14`, doubles a
+/// sixteenth apart), the floor alone did not bound them: a sweep of the command line ran
+/// minutes without end.
+const MAX_TRACE_STEPS: usize = 1000;
 
 /// Longest step of [`trace`] (scaled coordinates: a quarter radian of an angle, a quarter of the
 /// mechanism's size of a length), however far it may follow the curve: a longer step could pass

@@ -768,18 +768,13 @@ where
     ) -> Result<KinOf<K>, Error> {
         let path = self.path.clone();
         let newton = self.cfg.newton;
-        let weakest = k.health().weakest_block;
-        // Inputs rounded by more than the steps allow for: the failure is theirs, and the curve
-        // cannot be followed there either (its steps' inputs round as the sweep's do).
-        if let Some(e) = self.coarse_error(path.at_tau(tau_new).as_ref(), Some(weakest)) {
-            return Err(e);
-        }
         // A corner of the curve, not a failure: the sweep goes on past it.
         if matches!(outcome, Outcome::Far)
             && let Some(n) = self.past_kink(k, tau_new)
         {
             return Ok(n);
         }
+        let weakest = k.health().weakest_block;
         let m = &self.m;
         let block_of = |b: usize| m.block_info(b).map(|info| (b, info));
 
@@ -851,13 +846,13 @@ where
                 ),
                 at: self.location(x.as_ref(), Some(weakest)),
             },
-            _ => Error::Branch {
+            _ => self.coarse_error(x.as_ref(), Some(weakest)).unwrap_or_else(|| Error::Branch {
                 message: "the sweep cannot stay on its branch: however small the step, the solution jumps or its \
                           velocity analogs do (the solution curve is not smooth here, or steps land on another \
                           solution)"
                     .into(),
                 at: self.location(x.as_ref(), Some(weakest)),
-            },
+            }),
         })
     }
 
@@ -881,8 +876,8 @@ where
     /// The state past a kink of the solution curve between the last accepted state `k` and the
     /// state the smallest step solved at `tau_new` (the spare slot), with the kink recorded as an
     /// event and `tau` set there; `None` where the step is not across a kink (see [`kink`]): a
-    /// state near a singular position, with another determinant sign, or a distance its slopes
-    /// do not explain.
+    /// state near a singular position, with another determinant sign, past inputs that round,
+    /// or a distance its slopes do not explain.
     #[cold]
     fn past_kink(&mut self, k: &KinOf<K>, tau_new: f64) -> Option<KinOf<K>> {
         let n = self.spare();
@@ -891,8 +886,10 @@ where
         if !regular || !n.health().det_signs.same_for(&self.signs, self.m.block_count()) {
             return None;
         }
-        // (`diagnose`, the one caller, has ruled out inputs too coarse for the step.)
         let x = self.path.at_tau(tau_new);
+        if self.coarse_input(x.as_ref()).is_some() {
+            return None;
+        }
         // In the slopes' parameter (see `predict`): the input's step with one input.
         let dt = tau_new - self.tau;
         let step = if self.d.ni() == 1 { dt * self.path.delta[0] } else { dt };
