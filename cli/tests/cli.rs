@@ -595,3 +595,56 @@ fn each_command_has_its_own_description() {
         assert!(line(command).len() > command.len() + 20, "{command} has no description: {help}");
     }
 }
+
+/// A closed standard output (`kinloop ... >&-`) is exit 74 with a message, for every command
+/// that writes there and for the help and the version: std's writes to it succeed and write
+/// nothing, so without the check at start-up the whole output is lost with exit code 0. A
+/// command that writes to a file alone (`animate`) runs.
+#[cfg(unix)]
+#[test]
+fn a_closed_standard_output_is_exit_74() {
+    let four_bar = shipped("four_bar.kl");
+    let params = "a=1,b=3,c=2.5,d=3.2";
+    let targets = std::path::PathBuf::from(env!("CARGO_TARGET_TMPDIR")).join("closed_targets.csv");
+    std::fs::write(&targets, "0,90\n90,80\n180,100\n").expect("write the targets");
+    let targets = targets.display().to_string();
+    let coupler = shipped("coupler_four_bar.kl");
+    let engine = shipped("engine.kl");
+    let sweep = ["sweep", &four_bar, "--params", params, "--from", "0", "--to", "360", "--deg"];
+    let runs: [&[&str]; 13] = [
+        &sweep,
+        &["check", &four_bar],
+        &["solve", &four_bar, "--params", params, "--at", "0"],
+        &["trace", &four_bar, "--params", params, "--from", "0", "--to", "1"],
+        &["extremes", &four_bar, "--params", params, "--from", "0", "--to", "1"],
+        &["synth", &coupler, "--targets", &targets, "--function", "phi:gamma", "--vary", "a=0.8..1.4", "--deg"],
+        &["cam", &shipped("dwell_cam.kl"), "--point", "follower", "--guide", "0,1", "--samples", "37"],
+        &["dynamics", &engine, "--speed", "150", "--samples", "8"],
+        &["simulate", &engine, "--speed", "150", "--time", "0.01", "--samples", "3"],
+        &["--help"],
+        &["--version"],
+        &["help", "sweep"],
+        &["sweep", "--help"],
+    ];
+    // Through the shell, which closes descriptor 1 before it starts the binary.
+    let closed = |args: &[&str]| {
+        std::process::Command::new("sh")
+            .arg("-c")
+            .arg(r#"exec "$0" "$@" >&-"#)
+            .arg(env!("CARGO_BIN_EXE_kinloop"))
+            .args(args)
+            .output()
+            .expect("sh runs")
+    };
+    for args in runs {
+        let out = closed(args);
+        let err = String::from_utf8_lossy(&out.stderr);
+        assert_eq!(out.status.code(), Some(74), "{args:?}: {err}");
+        assert!(err.contains("error: cannot write") && err.contains("standard output is closed"), "{args:?}: {err}");
+    }
+    let svg = std::path::PathBuf::from(env!("CARGO_TARGET_TMPDIR")).join("closed_animate.svg");
+    let svg = svg.display().to_string();
+    let out = closed(&["animate", &four_bar, "--params", params, "--from", "0", "--to", "1", "--out", &svg]);
+    assert!(out.status.success(), "{}", String::from_utf8_lossy(&out.stderr));
+    assert!(std::fs::read_to_string(&svg).expect("the animation").contains("<svg"));
+}
