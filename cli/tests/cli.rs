@@ -648,3 +648,29 @@ fn a_closed_standard_output_is_exit_74() {
     assert!(out.status.success(), "{}", String::from_utf8_lossy(&out.stderr));
     assert!(std::fs::read_to_string(&svg).expect("the animation").contains("<svg"));
 }
+
+/// The analogs by an input whose kind is not inferred (a time) say the unit of their quantity,
+/// per the input's unit: with `--deg` an angle's are 57.3 times its radians', and the headers
+/// tell the two apart (they were both `d(psi)/d(t)`), in `solve` and in `sweep`.
+#[test]
+fn analogs_by_an_input_without_a_unit_say_their_quantitys() {
+    let path = std::path::PathBuf::from(env!("CARGO_TARGET_TMPDIR")).join("time_input.kl");
+    let text = "pub struct TimeDriven { params v=2.0, r=1.0, l=3.0; input t; unknowns psi=0, phi=0; let s = v*t; \
+                loop a: (s,0) + l@psi == r@phi; point p = r@phi; }";
+    std::fs::write(&path, text).expect("write the declaration");
+    let file = path.display().to_string();
+    let (rad, rows_rad) = csv(&kinloop(&["solve", &file, "--at", "-1.5"]));
+    let (deg, rows_deg) = csv(&kinloop(&["solve", &file, "--at", "-1.5", "--deg"]));
+    let at = |header: &[String], name: &str| header.iter().position(|h| h.starts_with(&format!("{name} ["))).unwrap();
+    let named = |header: &[String], name: &str| header[at(header, name)].clone();
+    assert_eq!(named(&rad, "t"), "t [unit of t]");
+    assert_eq!(named(&rad, "d(psi)/d(t)"), "d(psi)/d(t) [rad/unit of t]");
+    assert_eq!(named(&deg, "d(psi)/d(t)"), "d(psi)/d(t) [deg/unit of t]");
+    assert_eq!(named(&rad, "d2(phi)/d(t)^2"), "d2(phi)/d(t)^2 [rad/unit of t^2]");
+    assert_eq!(named(&deg, "d2(phi)/d(t)^2"), "d2(phi)/d(t)^2 [deg/unit of t^2]");
+    assert_eq!(named(&deg, "d(p.x)/d(t)"), "d(p.x)/d(t) [length unit/unit of t]");
+    let k = at(&rad, "d(psi)/d(t)");
+    assert!((rows_deg[0][k] - rows_rad[0][k].to_degrees()).abs() < 1e-12);
+    let (sweep, _) = csv(&kinloop(&["sweep", &file, "--from", "-1.5", "--to", "-1.25", "--samples", "3", "--deg"]));
+    assert_eq!(sweep, deg);
+}
