@@ -76,7 +76,7 @@ fn path_synthesis_recovers_the_four_bar_and_equals_the_library() {
     let names = ["a", "b", "c", "d", "e", "alpha"];
     assert_eq!(header[..3], ["rank", "start", "valid"]);
     assert_eq!(header[3..9], names);
-    assert_eq!(header[9..], ["max_error", "rms_error", "evaluations", "defects"]);
+    assert_eq!(header[9..], ["max_error [length unit]", "rms_error [length unit]", "evaluations", "defects"]);
     let best = &rows[0];
     assert_eq!((best[0].as_str(), best[2].as_str(), best[12].as_str()), ("1", "1", "\"\""));
     // Ten equations of a consistent system: met to rounding, the dimensions to 1e-8.
@@ -148,6 +148,35 @@ fn function_synthesis_in_degrees_writes_a_table() {
     for (got, want) in first[3..6].iter().zip([a, b, c]) {
         let got: f64 = got.parse().unwrap();
         assert!((got - want).abs() <= 1e-8 * want, "{got} vs {want}");
+    }
+}
+
+/// The errors of a function whose output is an angle are written in its unit: in degrees with
+/// `--deg`, as its targets are given (they were radians, unnamed, beside targets in degrees), the
+/// unit in the header.
+#[test]
+fn an_angle_outputs_errors_are_in_the_unit_of_its_targets() {
+    let rows: [(f64, f64); 3] = [(0.0, 90.0), (90.0, 80.0), (180.0, 100.0)];
+    let in_deg: Vec<String> = rows.iter().map(|(x, y)| format!("{x:?},{y:?}")).collect();
+    let in_rad: Vec<String> = rows.iter().map(|(x, y)| format!("{:?},{:?}", x.to_radians(), y.to_radians())).collect();
+    let run = |name: &str, rows: &[String], deg: &[&str]| {
+        let targets = file(name, &rows.join("\n"));
+        let args = ["synth", &shipped("coupler_four_bar.kl"), "--targets", &targets, "--function", "phi:gamma"];
+        let out = kinloop(&[&args[..], &["--vary", "a=0.8..1.4,b=2..3.5", "--starts", "8", "--csv"], deg].concat());
+        assert_eq!(out.status.code(), Some(0), "{}", String::from_utf8_lossy(&out.stderr));
+        csv(&out)
+    };
+    let (header_deg, deg) = run("synth_fn_deg.csv", &in_deg, &["--deg"]);
+    let (header_rad, rad) = run("synth_fn_rad.csv", &in_rad, &[]);
+    assert_eq!(header_deg[5..7], ["max_error [deg]", "rms_error [deg]"]);
+    assert_eq!(header_rad[5..7], ["max_error [rad]", "rms_error [rad]"]);
+    let number = |row: &[String], k: usize| row[k].parse::<f64>().expect("a number");
+    // The worst miss of the best candidate, 16.37 degrees (0.2858 rad).
+    assert!((number(&deg[0], 5) - 16.37).abs() < 0.01, "{:?}", deg[0]);
+    for (d, r) in deg.iter().zip(&rad) {
+        for k in [5, 6] {
+            assert!((number(d, k) - number(r, k).to_degrees()).abs() <= 1e-9 * number(d, k), "{d:?} vs {r:?}");
+        }
     }
 }
 
