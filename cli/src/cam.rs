@@ -316,7 +316,7 @@ impl Follower {
 }
 
 /// The output columns `NAME.x`, `NAME.y` of the point `name`, given to the option `option`.
-fn point_columns(model: &Model, name: &str, option: &str) -> Result<(usize, usize), Failed> {
+pub(crate) fn point_columns(model: &Model, name: &str, option: &str) -> Result<(usize, usize), Failed> {
     let outputs = model.outputs();
     let at = |c: &str| outputs.iter().position(|o| o == c);
     match (at(&format!("{name}.x")), at(&format!("{name}.y"))) {

@@ -540,6 +540,7 @@ fn run(cli: Cli) -> Result<(), Failed> {
                 jobs,
                 deg,
                 csv,
+                params: params.as_deref(),
             };
             synth::run(&mut model, &req)
         }

@@ -50,6 +50,9 @@ pub struct Request<'a> {
     pub deg: bool,
     /// CSV instead of a table.
     pub csv: bool,
+    /// The parameters given with `--params` (`name=value` separated by commas), already set in
+    /// the model: read here for the names, none of which may be a design variable.
+    pub params: Option<&'a str>,
 }
 
 /// Runs the search and writes its ranked candidates: success when one is valid, exit code 1
@@ -73,6 +76,7 @@ pub fn run(model: &mut Model, req: &Request) -> Result<(), Failed> {
         )));
     }
     let design = design(req.vary)?;
+    not_given_twice(&design, req.params)?;
     // The search sets the design variables at every evaluation, so one without a value needs
     // none of its own; the model's kernel, built before, needs one for every parameter: any
     // within the bounds does.
@@ -87,7 +91,7 @@ pub fn run(model: &mut Model, req: &Request) -> Result<(), Failed> {
     let rows = crate::targets::read(req.targets)?;
     let task = task(model, req, &rows)?;
     let name = model.name().to_string();
-    let problem = model.shared_synthesis_problem(&design, &task).map_err(|e| problem_error(&name, e))?;
+    let problem = model.shared_synthesis_problem(&design, &task).map_err(|e| problem_error(&name, e, req))?;
     let search = Search::default().with_starts(0..req.starts).with_seed(req.seed).with_keep(req.keep);
     let bar = progress::bar_if(req.starts >= progress::MIN_STARTS, &format!("{name}: searching"), req.starts);
     let tick = |_: usize, _: usize| bar.inc(1);
@@ -102,7 +106,7 @@ pub fn run(model: &mut Model, req: &Request) -> Result<(), Failed> {
         None => search.par_run_with_progress(&problem, tick),
     };
     bar.finish_and_clear();
-    let report = report.map_err(|e| problem_error(&name, e))?;
+    let report = report.map_err(|e| problem_error(&name, e, req))?;
     let units = Units::of(model, req);
     let text = if req.csv { csv(&report, &units) } else { table(&report, &units) };
     crate::output::text(&text, "the candidates")?;
@@ -116,12 +120,40 @@ pub fn run(model: &mut Model, req: &Request) -> Result<(), Failed> {
 }
 
 /// A problem the library refuses: a usage error (names, bounds, targets), or a failed solve.
-fn problem_error(name: &str, e: SynthesisError) -> Failed {
-    eprintln!("error: {name}: {e}");
+/// Too few targets is said in the command's terms (the library's message offers its Rust API).
+fn problem_error(name: &str, e: SynthesisError, req: &Request) -> Failed {
     match e {
-        SynthesisError::Kinematics(_) => Failed(exit::SOLVE_FAILED),
-        _ => Failed(exit::USAGE),
+        SynthesisError::Kinematics(_) => {
+            eprintln!("error: {name}: {e}");
+            Failed(exit::SOLVE_FAILED)
+        }
+        SynthesisError::TooFewTargets { residuals, variables } => exit::usage(format!(
+            "{name}: the targets in {} give {} for {} (the design variables of --vary, and an input per \
+             target of a path without inputs): the design is not determined; give more targets, or vary fewer \
+             parameters in --vary",
+            req.targets.display(),
+            Count(residuals, "equation"),
+            Count(variables, "unknown")
+        )),
+        e => exit::usage(format!("{name}: {e}")),
     }
+}
+
+/// Refuses a design variable also given a value with `--params`: the search sets it, so the
+/// value would be dropped without a word.
+fn not_given_twice(design: &Design, params: Option<&str>) -> Result<(), Failed> {
+    let given = params.into_iter().flat_map(|p| p.split(',')).filter_map(|item| item.split_once('='));
+    for (name, value) in given.map(|(n, v)| (n.trim(), v.trim())) {
+        if let Some(v) = design.variables().iter().find(|v| v.name == name) {
+            return Err(exit::usage(format!(
+                "`{name}` is given in --params ({name}={value}) and varied in --vary ({name}={}..{}): the search \
+                 sets a design variable, so its value would be ignored; leave it out of --params, or out of --vary \
+                 to keep it fixed",
+                v.lo, v.hi
+            )));
+        }
+    }
+    Ok(())
 }
 
 /// `lo..hi` as two finite numbers, lower first.
@@ -161,6 +193,8 @@ fn task(model: &Model, req: &Request, rows: &[Vec<f64>]) -> Result<Task, Failed>
     let width = rows[0].len();
     match (req.path, req.function) {
         (Some(point), None) => {
+            // Named here: the library would say that `POINT.x` is no column.
+            crate::cam::point_columns(model, point, "--path")?;
             let xy = |r: &Vec<f64>| [r[width - 2], r[width - 1]];
             match width {
                 2 => {

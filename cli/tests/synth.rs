@@ -202,7 +202,26 @@ fn usage_errors_and_no_candidate_have_their_exit_codes() {
     assert_eq!(o.status.code(), Some(2));
     let o = run(&["--path", "q", "--deg", "--vary", "a=1..2"]);
     assert_eq!(o.status.code(), Some(2));
-    assert!(stderr(&o).contains("`q.x` is no unknown or output column"), "{}", stderr(&o));
+    assert!(
+        stderr(&o).contains("--path q: CouplerFourBar has no point of that name (its points: p)"),
+        "{}",
+        stderr(&o)
+    );
+    // A design variable given a value too: the value would be ignored.
+    let o = run(&["--path", "p", "--deg", "--vary", "a=0.8..1.4", "--params", "e=1.5,a=1"]);
+    assert_eq!(o.status.code(), Some(2));
+    assert!(stderr(&o).contains("`a` is given in --params (a=1) and varied in --vary (a=0.8..1.4)"), "{}", stderr(&o));
+    assert!(o.stdout.is_empty());
+    // Fewer equations than unknowns: said in the command's terms, not the library's.
+    let one = file("synth_one.csv", "1,2\n");
+    let o = kinloop(&["synth", &four_bar, "--targets", &one, "--path", "p", "--vary", "a=0.8..1.4,b=2..3.5"]);
+    assert_eq!(o.status.code(), Some(2));
+    let err = stderr(&o);
+    assert!(
+        err.contains("give 2 equations for 3 unknowns") && err.contains("give more targets, or vary fewer"),
+        "{err}"
+    );
+    assert!(!err.contains("Design::"), "{err}");
     let o = run(&["--path", "p", "--deg", "--vary", "a=1..2", "--jobs", "0"]);
     assert_eq!(o.status.code(), Some(2));
     assert!(stderr(&o).contains("--jobs 0"), "{}", stderr(&o));
@@ -217,7 +236,7 @@ fn usage_errors_and_no_candidate_have_their_exit_codes() {
         "--vary",
         "a=1..2",
         "--params",
-        "a=1,b=3,c=2.5,d=3.2",
+        "b=3,c=2.5,d=3.2",
     ]);
     assert_eq!(o.status.code(), Some(2));
     assert!(stderr(&o).contains("#[kinloop(sensitivities)]"), "{}", stderr(&o));
