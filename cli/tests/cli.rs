@@ -356,6 +356,19 @@ fn a_parameter_given_twice_is_a_usage_error() {
     assert!(out.stdout.is_empty());
 }
 
+/// A value that underflows to 0 (`1e-400`) is refused as one that overflows is, not taken for
+/// 0 without a word; 0 written as such is taken.
+#[test]
+fn a_parameter_that_underflows_is_a_usage_error() {
+    let run =
+        |a: &str| kinloop(&["solve", &shipped("slider_crank.kl"), "--at", "0", "--params", &format!("r=1,l=3,e={a}")]);
+    let out = run("1e-400");
+    let err = String::from_utf8_lossy(&out.stderr);
+    assert_eq!(out.status.code(), Some(2), "{err}");
+    assert!(err.contains("`e` in --params, `1e-400`, is too small for a 64-bit float and would be 0"), "{err}");
+    assert!(run("0e-400").status.success());
+}
+
 /// A file far larger than a declaration (a table or a log named by mistake) is refused after
 /// the most a declaration may have, with a short message: not read whole, and not echoed.
 #[test]
