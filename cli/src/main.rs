@@ -555,7 +555,8 @@ fn load(file: &Path, params: Option<&str>) -> Result<Model, Failed> {
     let mut model = match Model::read(&file.display().to_string(), &text) {
         Ok(m) => m,
         Err(ReadError::Rejected(d)) => {
-            eprint!("{}", d.render(color));
+            // The macro's words about its invocation and its Rust types said for a file.
+            eprint!("{}", d.for_text().render(color));
             return Err(Failed(exit::DATA_ERR));
         }
         Err(e @ ReadError::Unsupported(_)) => {

@@ -687,3 +687,39 @@ fn analogs_by_an_input_without_a_unit_say_their_quantitys() {
     let (sweep, _) = csv(&kinloop(&["sweep", &file, "--from", "-1.5", "--to", "-1.25", "--samples", "3", "--deg"]));
     assert_eq!(sweep, deg);
 }
+
+/// The macro's messages that speak of its invocation or of the Rust it generates are said for
+/// a declaration read from a file, and a block too large for the run-time evaluator says what
+/// to write instead.
+#[test]
+fn messages_about_the_macro_are_said_for_a_file() {
+    let write = |name: &str, text: &str| {
+        let path = std::path::PathBuf::from(env!("CARGO_TARGET_TMPDIR")).join(name);
+        std::fs::write(&path, text).expect("write the declaration");
+        path.display().to_string()
+    };
+    let one = |name: &str| format!("pub struct {name} {{ input phi; unknowns x=0; eq e: x == phi; }}\n");
+    let check = |file: &str, code: i32| {
+        let out = kinloop(&["check", file]);
+        let err = String::from_utf8_lossy(&out.stderr).into_owned();
+        assert_eq!(out.status.code(), Some(code), "{err}");
+        err
+    };
+    let err = check(&write("two_structs.kl", &format!("{}{}", one("A"), one("B"))), 65);
+    assert!(err.contains("a `.kl` file) holds one mechanism: put each in a file of its own"), "{err}");
+    assert!(!err.contains("per `mechanism!`"), "{err}");
+    let err = check(&write("named_t.kl", &one("T")), 65);
+    assert!(err.contains("`mechanism!` uses it for the type parameter of the Rust types it generates"), "{err}");
+    assert!(!err.contains("NameInputs"), "{err}");
+    // Seventeen unknowns in one block (`dense` puts them there): one more than the evaluator's.
+    let unknowns: Vec<String> = (1..=17).map(|i| format!("x{i}=0")).collect();
+    let eqs: Vec<String> = (2..=17).map(|i| format!("eq e{i}: x{i} == x{} * x{} + phi;", i - 1, i - 1)).collect();
+    let big = format!(
+        "#[kinloop(dense)]\npub struct Big {{ input phi; unknowns {}; eq e1: x1 == phi; {} }}\n",
+        unknowns.join(", "),
+        eqs.join(" ")
+    );
+    let err = check(&write("seventeen.kl", &big), 69);
+    assert!(err.contains("block 0 has 17 unknowns") && err.contains("leave out `#[kinloop(dense)]`"), "{err}");
+    assert!(err.contains("compile the declaration with `kinloop::mechanism!`"), "{err}");
+}
