@@ -17,6 +17,7 @@ use kinloop_runtime::analysis::cam::{
 use kinloop_runtime::dims::KinState;
 use kinloop_runtime::{Error, Number, QuantityKind, Table};
 use kinloop_viz::plot::{self, Axis, Kind, Series};
+use std::io::Write;
 use std::path::Path;
 
 /// How the cam's follower moves and what touches the cam: the options `kinloop cam` and
@@ -130,8 +131,28 @@ impl Found {
 }
 
 /// Sweeps one turn of the cam shaft from `--start`, finds the cam by inversion and writes its
-/// table to standard output and its checks to standard error.
+/// table to standard output, its checks to standard error and its drawing to `--plot`.
 pub fn run(model: &mut Model, req: &Request) -> Result<(), Failed> {
+    // The plot's file created first, as `--events` and `--flywheel` are: a path that cannot be
+    // written stops before any output. Removed again if no drawing comes to be written into it.
+    let plot = match req.plot {
+        Some(path) => Some(std::fs::File::create(path).map_err(|e| {
+            eprintln!("error: cannot create the plot {}: {e}", path.display());
+            Failed(exit::CANT_CREATE)
+        })?),
+        None => None,
+    };
+    written(model, req, plot).inspect_err(|_| {
+        // Best effort: the error reported is the one that stopped the command.
+        if let Some(path) = req.plot {
+            let _ = std::fs::remove_file(path);
+        }
+    })
+}
+
+/// [`run`] once the plot's file (if any) is created: the cam found, its drawing made, then the
+/// table written and the drawing into `plot`.
+fn written(model: &mut Model, req: &Request, plot: Option<std::fs::File>) -> Result<(), Failed> {
     let found = find(model, req)?;
     found.report();
     let (table, curves) = match found.shape {
@@ -140,11 +161,17 @@ pub fn run(model: &mut Model, req: &Request) -> Result<(), Failed> {
             (table(&cam, &found.inputs, req.deg), vec![("pitch curve", cam.pitch), ("cam profile", cam.profile)])
         }
     };
+    let svg = match plot {
+        Some(file) => Some((file, draw(&curves, model.name())?)),
+        None => None,
+    };
     crate::output::table(&table, "the table")?;
-    match req.plot {
-        Some(path) => draw(&curves, model.name(), path),
-        None => Ok(()),
-    }
+    let Some((mut file, svg)) = svg else { return Ok(()) };
+    let path = req.plot.unwrap_or(Path::new("")).display();
+    file.write_all(svg.as_bytes()).and_then(|()| file.flush()).map_err(|e| {
+        eprintln!("error: cannot write the plot {path}: {e}");
+        Failed(exit::IO_ERR)
+    })
 }
 
 /// Sweeps one turn of the cam shaft from `req.start` and finds the cam by inversion of the
@@ -219,6 +246,18 @@ pub fn find(model: &mut Model, req: &Request) -> Result<Found, Failed> {
     let last = (req.samples - 1) as f64;
     let full = if req.deg { 360.0 } else { std::f64::consts::TAU };
     let inputs: Vec<f64> = (0..req.samples).map(|k| req.start + full * k as f64 / last).collect();
+    let points: Vec<[f64; 2]> = follower_samples.iter().map(|s| s.point[0]).collect();
+    let sample = |k: usize| format!("sample {k} (input {}{})", Number(inputs[k]), if req.deg { " deg" } else { "" });
+    let point_name = format!("the follower's point `{}`", req.point);
+    if let Follower::Rocking(a) = follower {
+        apart(&points, a, &format!("--rocker {}", fa.rocker.as_deref().unwrap_or_default()), &point_name, &sample)?;
+    }
+    let pivot_option = match fa.pivot.as_deref() {
+        Some(p) => format!("--pivot {p}"),
+        None => "the cam's pivot 0,0 (--pivot not given)".to_string(),
+    };
+    apart(&points, pivot, &pivot_option, &point_name, &sample)?;
+    follows(&points, &follower, fa, &point_name)?;
     let refused = |e: Error| {
         eprintln!("error: {name}: {e}");
         Failed(exit::SOLVE_FAILED)
@@ -315,8 +354,163 @@ impl Follower {
     }
 }
 
+/// The largest deviation of the follower's point from the motion the follower allows, as a
+/// fraction of the motion's size (the stroke along a guide, the distance from a rocker's pivot),
+/// that is still taken for that motion. The points are the sweep's: solved to 1e-12 of the
+/// terms of their loops (`NewtonConfig::residual_tol`), at worst to the 1e-9 that Newton accepts
+/// as the rounding floor near a limit position, so a point declared on its guide (or its arc)
+/// is off it by at most about 1e-9 of the mechanism's lengths. A cam's stroke is at least a
+/// thousandth of those lengths, so 1e-6 of the stroke is above that rounding, while a follower
+/// given wrong (a guide across the motion, a pivot it does not turn about) is off by a sizeable
+/// fraction of it; a guide given within a microradian of the motion passes.
+const MOTION_TOL: f64 = 1e-6;
+
+/// Refuses a `centre` (a rocker's pivot, the cam's pivot, given by `option`) at the follower's
+/// point at some sample (`sample` names it): a rocker's arm has no direction there, and the cam
+/// would have no radius. "At" is within [`MOTION_TOL`] of the point's largest distance from it.
+fn apart(
+    points: &[[f64; 2]],
+    centre: [f64; 2],
+    option: &str,
+    point: &str,
+    sample: &dyn Fn(usize) -> String,
+) -> Result<(), Failed> {
+    let distance = |p: &[f64; 2]| (p[0] - centre[0]).hypot(p[1] - centre[1]);
+    let reach = points.iter().map(distance).fold(0.0, f64::max);
+    let Some(k) = points.iter().position(|p| distance(p) <= MOTION_TOL * reach) else { return Ok(()) };
+    let what = match option.starts_with("--rocker") {
+        true => "the pivot of a rocking follower's arm is off the point's path: give the pivot the arm turns about",
+        false => "the cam turns about a pivot the point stays away from: give a --pivot inside the point's path",
+    };
+    Err(usage(format!(
+        "{option} is at {point} at {}: {what} (the point {})",
+        sample(k),
+        Motion::of(points).described()
+    )))
+}
+
+/// Refuses a follower whose motion is not the point's (within [`MOTION_TOL`]): a guide the
+/// point does not move along, a pivot it does not keep its distance from. The cam found would
+/// be for the motion declared, its pressure angles for the follower given: nonsense.
+fn follows(points: &[[f64; 2]], follower: &Follower, fa: &FollowerArgs, point: &str) -> Result<(), Failed> {
+    let p0 = points[0];
+    let (option, off, size) = match *follower {
+        Follower::Translating(g) => {
+            let n = g[0].hypot(g[1]);
+            let across = |p: &[f64; 2]| ((p[0] - p0[0]) * g[1] - (p[1] - p0[1]) * g[0]).abs() / n;
+            let stroke = points.iter().map(|p| (p[0] - p0[0]).hypot(p[1] - p0[1])).fold(0.0, f64::max);
+            let off = points.iter().map(across).fold(0.0, f64::max);
+            (format!("--guide {}", fa.guide.as_deref().unwrap_or_default()), off, stroke)
+        }
+        Follower::Rocking(a) => {
+            let radii: Vec<f64> = points.iter().map(|p| (p[0] - a[0]).hypot(p[1] - a[1])).collect();
+            let (lo, hi) = radii.iter().fold((f64::INFINITY, 0.0f64), |(lo, hi), &r| (lo.min(r), hi.max(r)));
+            (format!("--rocker {}", fa.rocker.as_deref().unwrap_or_default()), hi - lo, hi)
+        }
+    };
+    if off <= MOTION_TOL * size {
+        return Ok(());
+    }
+    let how = match follower {
+        Follower::Translating(_) => "does not move along this guide: it leaves the guide's line by",
+        Follower::Rocking(_) => "does not turn about this pivot: its distance from it varies by",
+    };
+    let motion = Motion::of(points);
+    Err(usage(format!(
+        "{option}: {point} {how} {} over {}: it {}; give {}",
+        Number(off),
+        match follower {
+            Follower::Translating(_) => format!("a stroke of {}", Number(size)),
+            Follower::Rocking(_) => format!("a distance of {}", Number(size)),
+        },
+        motion.described(),
+        motion.follower()
+    )))
+}
+
+/// How a point moves over the samples, within [`MOTION_TOL`]: what [`follows`] says where the
+/// follower given is not its motion.
+enum Motion {
+    /// It does not move.
+    Still,
+    /// Along a line, in the direction given (a unit vector).
+    Line([f64; 2]),
+    /// On an arc about the centre given, of the radius given.
+    Arc([f64; 2], f64),
+    /// Along a curve that is neither.
+    Curve,
+}
+
+impl Motion {
+    /// The motion of `points`: the line of the chord from the first to the farthest, or the
+    /// circle through those and the point farthest from that line.
+    fn of(points: &[[f64; 2]]) -> Motion {
+        let p0 = points[0];
+        let from = |p: &[f64; 2]| [p[0] - p0[0], p[1] - p0[1]];
+        let far = |f: &dyn Fn(&[f64; 2]) -> f64| {
+            points.iter().map(|p| (f(p), *p)).fold((0.0, p0), |best, c| if c.0 > best.0 { c } else { best })
+        };
+        let (stroke, pf) = far(&|p| from(p)[0].hypot(from(p)[1]));
+        if stroke == 0.0 {
+            return Motion::Still;
+        }
+        let u = [from(&pf)[0] / stroke, from(&pf)[1] / stroke];
+        let (off, pm) = far(&|p| (u[0] * from(p)[1] - u[1] * from(p)[0]).abs());
+        if off <= MOTION_TOL * stroke {
+            // The sign that makes the larger component positive: `0,1`, not `-0,-1`.
+            let s = if u[0].abs() > u[1].abs() { u[0].signum() } else { u[1].signum() };
+            return Motion::Line([s * u[0] + 0.0, s * u[1] + 0.0]);
+        }
+        // The circumcentre of p0, pf and pm, relative to p0.
+        let (b, c) = (from(&pf), from(&pm));
+        let d = 2.0 * (b[0] * c[1] - b[1] * c[0]);
+        let (bb, cc) = (b[0] * b[0] + b[1] * b[1], c[0] * c[0] + c[1] * c[1]);
+        let o = [(c[1] * bb - b[1] * cc) / d, (b[0] * cc - c[0] * bb) / d];
+        let r = o[0].hypot(o[1]);
+        let centre = [p0[0] + o[0], p0[1] + o[1]];
+        let off = points.iter().map(|p| ((p[0] - centre[0]).hypot(p[1] - centre[1]) - r).abs()).fold(0.0, f64::max);
+        if r.is_finite() && off <= MOTION_TOL * r { Motion::Arc(centre, r) } else { Motion::Curve }
+    }
+
+    /// The motion in words, after "the point".
+    fn described(&self) -> String {
+        match self {
+            Motion::Still => "does not move".into(),
+            Motion::Line(u) => format!("moves along the line of direction {}", pair(*u, 1.0)),
+            Motion::Arc(c, r) => format!("moves on an arc about {} of radius {}", pair(*c, *r), rounded(*r, *r)),
+            Motion::Curve => "moves along a curve that is neither a line nor an arc".into(),
+        }
+    }
+
+    /// The follower to give for the motion.
+    fn follower(&self) -> String {
+        match self {
+            Motion::Line(u) => format!("--guide {} (a translating follower)", pair(*u, 1.0)),
+            Motion::Arc(c, r) => format!("--rocker {} (a rocking follower)", pair(*c, *r)),
+            Motion::Still | Motion::Curve => {
+                "the point of a follower: one that moves along a line (--guide) or on an arc (--rocker)".into()
+            }
+        }
+    }
+}
+
+/// `x,y` rounded to [`rounded`] of `scale`.
+fn pair(v: [f64; 2], scale: f64) -> String {
+    format!("{},{}", rounded(v[0], scale), rounded(v[1], scale))
+}
+
+/// `v` with the digits that [`MOTION_TOL`] of `scale` tells apart and one more (nine
+/// significant of `scale`): `0,1` for a direction found as `[1e-17, 1]`, `-40,140` for a pivot
+/// found as `-39.99999999999997,140`; given back, it passes the check.
+fn rounded(v: f64, scale: f64) -> String {
+    let decimals = (8 - scale.abs().log10().floor() as i32).max(0) as usize;
+    let text = format!("{v:.decimals$}");
+    let text = if text.contains('.') { text.trim_end_matches('0').trim_end_matches('.') } else { &text };
+    if text == "-0" { "0".into() } else { text.into() }
+}
+
 /// The output columns `NAME.x`, `NAME.y` of the point `name`, given to the option `option`.
-fn point_columns(model: &Model, name: &str, option: &str) -> Result<(usize, usize), Failed> {
+pub(crate) fn point_columns(model: &Model, name: &str, option: &str) -> Result<(usize, usize), Failed> {
     let outputs = model.outputs();
     let at = |c: &str| outputs.iter().position(|o| o == c);
     match (at(&format!("{name}.x")), at(&format!("{name}.y"))) {
@@ -434,24 +628,17 @@ fn flat_table(cam: &FlatFaceProfile, inputs: &[f64], deg: bool) -> Table {
     t.with_units(&[("input", a), ("profile", length), ("radius", length), ("offset", length), ("pressure_angle", a)])
 }
 
-/// The named curves (the pitch curve and the profile, or the profile alone) drawn to `path`
-/// (SVG), the cam's pivot marked.
-fn draw(curves: &[(&str, Vec<[f64; 2]>)], name: &str, path: &Path) -> Result<(), Failed> {
+/// The named curves (the pitch curve and the profile, or the profile alone) drawn as SVG, the
+/// cam's pivot marked.
+fn draw(curves: &[(&str, Vec<[f64; 2]>)], name: &str) -> Result<String, Failed> {
     let length = Kind::length(QuantityKind::Length.unit());
     let curve = |points: &[[f64; 2]]| points.iter().map(|p| (p[0], p[1])).collect::<Vec<_>>();
     let series: Vec<Series> =
         curves.iter().map(|(label, points)| Series::new(label, length.clone(), curve(points))).collect();
     let title = format!("{name}: the cam by inversion of the follower's motion");
-    let svg =
-        plot::xy_chart_svg(&title, &Axis::new("x", length.clone()), &Axis::new("y", length), &series, &[(0.0, 0.0)])
-            .map_err(|e| {
-                eprintln!("error: {name}: cannot draw the cam: {e}");
-                Failed(exit::SOLVE_FAILED)
-            })?;
-    // Written as `animate --out` writes: into a folder that exists (a mistyped folder is an
-    // error, not created).
-    std::fs::write(path, svg).map_err(|e| {
-        eprintln!("error: cannot write the plot {}: {e}", path.display());
-        Failed(exit::CANT_CREATE)
-    })
+    plot::xy_chart_svg(&title, &Axis::new("x", length.clone()), &Axis::new("y", length), &series, &[(0.0, 0.0)])
+        .map_err(|e| {
+            eprintln!("error: {name}: cannot draw the cam: {e}");
+            Failed(exit::SOLVE_FAILED)
+        })
 }

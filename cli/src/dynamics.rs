@@ -135,7 +135,20 @@ fn cycle_and_flywheel(
         Failed(exit::SOLVE_FAILED)
     })?;
     let flywheel = cycle.flywheel(req.delta).map_err(|e| {
-        eprintln!("error: {name}: flywheel: {e}");
+        // Where the machine has no inertia about its input, its speed there does not follow
+        // from its energy and the sizing overflows: the runtime says "beyond the range of f64",
+        // where the cause is the machine's, as `simulate` says it.
+        match cycle.points.iter().find(|p| p.inertia == 0.0) {
+            Some(p) => eprintln!(
+                "error: {name}: flywheel: the machine has no inertia about its input at {} = {}{}: its reduced \
+                 moment of inertia J is 0 there (the mass matrix is not positive definite), so its speed does not \
+                 follow from its energy; give the bodies that move with the input mass or inertia",
+                model.inputs()[0],
+                Number(p.phi * angle),
+                if req.deg { " deg" } else { "" }
+            ),
+            None => eprintln!("error: {name}: flywheel: {e}"),
+        }
         Failed(exit::SOLVE_FAILED)
     })?;
     Ok((cycle, flywheel))

@@ -24,7 +24,8 @@
 //! Exit codes ([`exit`]): 0 success, 1 a solve failed (for `synth`: no valid candidate), 2 a usage error (a parameter without a value too), 65 the declaration is
 //! rejected (diagnostics on standard error), 66 the file cannot be read, 69 the declaration uses
 //! what the run-time evaluator does not evaluate yet, 73 the `--events` file (or the
-//! `animate --out`, `dynamics --flywheel` or `cam --plot` file) cannot be created, 74 an output cannot be written (the help and the version too).
+//! `animate --out`, `dynamics --flywheel` or `cam --plot` file) cannot be created, 74 an output cannot be written (the help and the version too; a closed standard output
+//! too, found before anything is done).
 
 // Std's `eprintln!` and `eprint!` panic where standard error cannot be written (its reader
 // gone: `kinloop sweep ... 2>&1 | head -1`), and the panic message is lost with it: exit code
@@ -415,15 +416,34 @@ enum Command {
     },
 }
 
+impl Command {
+    /// What the command writes to standard output (`None`: nothing, its output goes to a
+    /// file), as its failure to write names it.
+    fn output(&self) -> Option<&'static str> {
+        match self {
+            Command::Check { .. } => Some("the report"),
+            Command::Synth { .. } => Some("the candidates"),
+            Command::Extremes { .. } => Some("the extremes"),
+            Command::Animate { .. } => None,
+            _ => Some("the table"),
+        }
+    }
+}
+
 /// A failure with its exit code; the message is already written.
 pub struct Failed(pub u8);
 
 fn main() -> ExitCode {
+    // Found before `main`: output that would be lost is refused before anything is done.
+    let closed = output::stdout_closed();
     // Not `Cli::parse`: its help and version that cannot be written would succeed.
     let cli = match Cli::try_parse() {
         Ok(cli) => cli,
-        Err(e) => return ExitCode::from(output::parser_stop(&e)),
+        Err(e) => return ExitCode::from(output::parser_stop(&e, closed)),
     };
+    if let (true, Some(what)) = (closed, cli.command.output()) {
+        return ExitCode::from(output::failed(what, output::closed_error()).0);
+    }
     match run(cli) {
         Ok(()) => ExitCode::SUCCESS,
         Err(Failed(code)) => ExitCode::from(code),
@@ -521,6 +541,7 @@ fn run(cli: Cli) -> Result<(), Failed> {
                 jobs,
                 deg,
                 csv,
+                params: params.as_deref(),
             };
             synth::run(&mut model, &req)
         }
@@ -535,7 +556,8 @@ fn load(file: &Path, params: Option<&str>) -> Result<Model, Failed> {
     let mut model = match Model::read(&file.display().to_string(), &text) {
         Ok(m) => m,
         Err(ReadError::Rejected(d)) => {
-            eprint!("{}", d.render(color));
+            // The macro's words about its invocation and its Rust types said for a file.
+            eprint!("{}", d.for_text().render(color));
             return Err(Failed(exit::DATA_ERR));
         }
         Err(e @ ReadError::Unsupported(_)) => {

@@ -31,8 +31,13 @@ pub fn table(table: &Table, what: &str) -> Result<(), Failed> {
 /// cannot be written: clap's own `exit` lets that failure go and succeeds), a usage error on
 /// standard error ([`exit::USAGE`]; a failure to write that is let go, as every message on
 /// standard error is).
-pub fn parser_stop(e: &clap::Error) -> u8 {
-    let printed = e.print().and_then(|()| std::io::stdout().flush());
+/// `closed` is [`stdout_closed`] at start-up: std's writes to a closed standard output succeed
+/// and write nothing.
+pub fn parser_stop(e: &clap::Error, closed: bool) -> u8 {
+    let printed = match closed {
+        true => Err(closed_error()),
+        false => e.print().and_then(|()| std::io::stdout().flush()),
+    };
     match printed {
         Err(io) if !e.use_stderr() => {
             let what = if e.kind() == clap::error::ErrorKind::DisplayVersion { "the version" } else { "the help" };
@@ -40,4 +45,51 @@ pub fn parser_stop(e: &clap::Error) -> u8 {
         }
         _ => u8::try_from(e.exit_code()).unwrap_or(exit::USAGE),
     }
+}
+
+/// Whether standard output was closed when the process started (`kinloop ... >&-`: no file
+/// descriptor 1); found before `main` by [`find_closed_stdout`].
+#[cfg(target_os = "linux")]
+static STDOUT_CLOSED: std::sync::atomic::AtomicBool = std::sync::atomic::AtomicBool::new(false);
+
+// Std's start-up, before `main`, opens `/dev/null` (read-write) on a standard descriptor it finds
+// closed, so that a file opened later does not take its place: by `main` a closed standard
+// output is that `/dev/null`, its writes succeed and the whole output is lost with exit code 0,
+// and it cannot be told from a `/dev/null` given on purpose the same way (Python's
+// `subprocess.DEVNULL`, systemd's `StandardOutput=null`). So the descriptor is looked at
+// earlier: a function in `.init_array` runs before std's start-up (std captures the arguments
+// the same way).
+#[cfg(target_os = "linux")]
+#[used]
+#[unsafe(link_section = ".init_array")]
+static FIND_CLOSED_STDOUT: extern "C" fn() = find_closed_stdout;
+
+/// Records in [`STDOUT_CLOSED`] whether descriptor 1 is open, by its entry in `/proc/self/fd`
+/// (a `stat`, no descriptor opened); without `/proc` mounted it counts as open.
+#[cfg(target_os = "linux")]
+extern "C" fn find_closed_stdout() {
+    let listed = std::fs::symlink_metadata("/proc/self/fd").is_ok();
+    let missing = std::fs::symlink_metadata("/proc/self/fd/1").is_err_and(|e| e.kind() == std::io::ErrorKind::NotFound);
+    STDOUT_CLOSED.store(listed && missing, std::sync::atomic::Ordering::Relaxed);
+}
+
+/// Whether standard output was closed when `kinloop` started (`kinloop ... >&-`), where its
+/// output would be lost without an error (see [`FIND_CLOSED_STDOUT`]).
+#[cfg(target_os = "linux")]
+pub fn stdout_closed() -> bool {
+    STDOUT_CLOSED.load(std::sync::atomic::Ordering::Relaxed)
+}
+
+/// Whether standard output was closed when `kinloop` started: not known on this system (std's
+/// start-up has put `/dev/null` in its place by `main`), so taken as open.
+#[cfg(not(target_os = "linux"))]
+pub fn stdout_closed() -> bool {
+    false
+}
+
+/// The failure to write to a closed standard output, saying what to give instead.
+pub fn closed_error() -> std::io::Error {
+    std::io::Error::other(
+        "standard output is closed: give kinloop one to write to (a file, a pipe, or >/dev/null to discard it)",
+    )
 }

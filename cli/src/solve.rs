@@ -54,13 +54,26 @@ fn explain(model: &mut Model, x: &[f64], e: StepError, kinds: &[QuantityKind], d
 }
 
 /// The base quantities with their units: `deg` for angles where angles are written in
-/// degrees, the inferred unit otherwise.
+/// degrees, the inferred unit otherwise, and `unit of NAME` for an input whose kind is not
+/// inferred (a time).
 pub fn units(model: &Model, kinds: &[QuantityKind], deg: bool) -> Vec<(String, &'static str)> {
+    let ni = model.inputs().len();
+    let unit = |k: usize, name: &str, kind: QuantityKind| match kind {
+        QuantityKind::Angle if deg => "deg",
+        // The analogs by such an input are per unit of it: without one of its own they would
+        // have none, and an angle's in radians and in degrees (57.3 times the value) would be
+        // written alike. The unit is not known (kinloop does not guess a time's), so named as
+        // the input's, as a length's is `length unit`. Leaked: one short text per input, for
+        // the whole run.
+        QuantityKind::Other if k < ni => Box::leak(format!("unit of {name}").into_boxed_str()),
+        kind => kind.unit(),
+    };
     model
         .quantities()
         .iter()
         .zip(kinds)
-        .map(|((n, _), k)| (n.to_string(), if deg && *k == QuantityKind::Angle { "deg" } else { k.unit() }))
+        .enumerate()
+        .map(|(k, ((n, _), kind))| (n.to_string(), unit(k, n, *kind)))
         .collect()
 }
 

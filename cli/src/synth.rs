@@ -50,6 +50,9 @@ pub struct Request<'a> {
     pub deg: bool,
     /// CSV instead of a table.
     pub csv: bool,
+    /// The parameters given with `--params` (`name=value` separated by commas), already set in
+    /// the model: read here for the names, none of which may be a design variable.
+    pub params: Option<&'a str>,
 }
 
 /// Runs the search and writes its ranked candidates: success when one is valid, exit code 1
@@ -73,6 +76,7 @@ pub fn run(model: &mut Model, req: &Request) -> Result<(), Failed> {
         )));
     }
     let design = design(req.vary)?;
+    not_given_twice(&design, req.params)?;
     // The search sets the design variables at every evaluation, so one without a value needs
     // none of its own; the model's kernel, built before, needs one for every parameter: any
     // within the bounds does.
@@ -87,7 +91,7 @@ pub fn run(model: &mut Model, req: &Request) -> Result<(), Failed> {
     let rows = crate::targets::read(req.targets)?;
     let task = task(model, req, &rows)?;
     let name = model.name().to_string();
-    let problem = model.shared_synthesis_problem(&design, &task).map_err(|e| problem_error(&name, e))?;
+    let problem = model.shared_synthesis_problem(&design, &task).map_err(|e| problem_error(&name, e, req))?;
     let search = Search::default().with_starts(0..req.starts).with_seed(req.seed).with_keep(req.keep);
     let bar = progress::bar_if(req.starts >= progress::MIN_STARTS, &format!("{name}: searching"), req.starts);
     let tick = |_: usize, _: usize| bar.inc(1);
@@ -102,8 +106,9 @@ pub fn run(model: &mut Model, req: &Request) -> Result<(), Failed> {
         None => search.par_run_with_progress(&problem, tick),
     };
     bar.finish_and_clear();
-    let report = report.map_err(|e| problem_error(&name, e))?;
-    let text = if req.csv { csv(&report) } else { table(&report) };
+    let report = report.map_err(|e| problem_error(&name, e, req))?;
+    let units = Units::of(model, req);
+    let text = if req.csv { csv(&report, &units) } else { table(&report, &units) };
     crate::output::text(&text, "the candidates")?;
     eprintln!("{}", summary(&report));
     if report.best().is_some() {
@@ -115,12 +120,40 @@ pub fn run(model: &mut Model, req: &Request) -> Result<(), Failed> {
 }
 
 /// A problem the library refuses: a usage error (names, bounds, targets), or a failed solve.
-fn problem_error(name: &str, e: SynthesisError) -> Failed {
-    eprintln!("error: {name}: {e}");
+/// Too few targets is said in the command's terms (the library's message offers its Rust API).
+fn problem_error(name: &str, e: SynthesisError, req: &Request) -> Failed {
     match e {
-        SynthesisError::Kinematics(_) => Failed(exit::SOLVE_FAILED),
-        _ => Failed(exit::USAGE),
+        SynthesisError::Kinematics(_) => {
+            eprintln!("error: {name}: {e}");
+            Failed(exit::SOLVE_FAILED)
+        }
+        SynthesisError::TooFewTargets { residuals, variables } => exit::usage(format!(
+            "{name}: the targets in {} give {} for {} (the design variables of --vary, and an input per \
+             target of a path without inputs): the design is not determined; give more targets, or vary fewer \
+             parameters in --vary",
+            req.targets.display(),
+            Count(residuals, "equation"),
+            Count(variables, "unknown")
+        )),
+        e => exit::usage(format!("{name}: {e}")),
     }
+}
+
+/// Refuses a design variable also given a value with `--params`: the search sets it, so the
+/// value would be dropped without a word.
+fn not_given_twice(design: &Design, params: Option<&str>) -> Result<(), Failed> {
+    let given = params.into_iter().flat_map(|p| p.split(',')).filter_map(|item| item.split_once('='));
+    for (name, value) in given.map(|(n, v)| (n.trim(), v.trim())) {
+        if let Some(v) = design.variables().iter().find(|v| v.name == name) {
+            return Err(exit::usage(format!(
+                "`{name}` is given in --params ({name}={value}) and varied in --vary ({name}={}..{}): the search \
+                 sets a design variable, so its value would be ignored; leave it out of --params, or out of --vary \
+                 to keep it fixed",
+                v.lo, v.hi
+            )));
+        }
+    }
+    Ok(())
 }
 
 /// `lo..hi` as two finite numbers, lower first.
@@ -160,6 +193,8 @@ fn task(model: &Model, req: &Request, rows: &[Vec<f64>]) -> Result<Task, Failed>
     let width = rows[0].len();
     match (req.path, req.function) {
         (Some(point), None) => {
+            // Named here: the library would say that `POINT.x` is no column.
+            crate::cam::point_columns(model, point, "--path")?;
             let xy = |r: &Vec<f64>| [r[width - 2], r[width - 1]];
             match width {
                 2 => {
@@ -250,48 +285,87 @@ fn column_kind(model: &Model, name: &str) -> Option<QuantityKind> {
     unknowns.chain(outputs).find(|(n, _)| *n == name).map(|(_, k)| *k)
 }
 
-/// A defect in words, with where it happened.
-fn defect(d: &Defect) -> String {
+/// How the candidates' numbers are written: the errors in the unit of the targets (an angle
+/// output's in degrees with `--deg`, as its targets are given), the angles of the defects (an
+/// angle input's limit position, a transmission angle) in degrees with `--deg`.
+struct Units {
+    /// The factor from the library's errors (radians for an angle) to those written.
+    error: f64,
+    /// The unit of the errors, written in the header.
+    error_unit: &'static str,
+    /// The factor from the radians of an angle input to the value written (1 for an input of
+    /// another kind).
+    input: f64,
+    /// The factor from radians to the unit of angles written.
+    angle: f64,
+    /// That unit.
+    angle_unit: &'static str,
+}
+
+impl Units {
+    /// The units of the request's channel and `--deg`.
+    fn of(model: &Model, req: &Request) -> Units {
+        let (angle, angle_unit) = if req.deg { (180.0 / std::f64::consts::PI, "deg") } else { (1.0, "rad") };
+        let of = |kind: QuantityKind| if kind == QuantityKind::Angle { angle } else { 1.0 };
+        // A path's error is a distance; a function's is in the unit of its output.
+        let kind = match req.function {
+            Some(spec) => spec.split_once(':').and_then(|(_, o)| column_kind(model, o.trim())),
+            None => Some(QuantityKind::Length),
+        };
+        let kind = kind.unwrap_or(QuantityKind::Other);
+        let error_unit = if kind == QuantityKind::Angle { angle_unit } else { kind.unit() };
+        let input = model.input_kinds().first().map_or(1.0, |&k| of(k));
+        Units { error: of(kind), error_unit, input, angle, angle_unit }
+    }
+}
+
+/// A defect in words, with where it happened (its angles in the units written).
+fn defect(d: &Defect, u: &Units) -> String {
     match d {
         Defect::Order => "order".into(),
         Defect::Branch { target } => format!("branch at target {target}"),
-        Defect::Circuit { target, at } => format!("circuit before target {target} (limit at {at:.6})"),
+        Defect::Circuit { target, at } => format!("circuit before target {target} (limit at {:.6})", at * u.input),
         Defect::NoAssembly { target } => format!("no assembly before target {target}"),
         Defect::NoFullRotation => "no full rotation".into(),
-        Defect::Transmission { min } => format!("transmission angle {min:.6}"),
+        Defect::Transmission { min } => format!("transmission angle {:.6} {}", min * u.angle, u.angle_unit),
         Defect::LinkRatio { ratio } => format!("link ratio {ratio:.6}"),
         _ => format!("{d:?}"),
     }
 }
 
 /// The defects of a candidate, `;`-separated (empty for a valid one).
-fn defects(c: &Candidate) -> String {
-    c.defects.iter().map(defect).collect::<Vec<_>>().join("; ")
+fn defects(c: &Candidate, u: &Units) -> String {
+    c.defects.iter().map(|d| defect(d, u)).collect::<Vec<_>>().join("; ")
 }
 
-/// The columns: rank, start, valid, the design variables, the errors, evaluations, defects.
-fn header(report: &SynthesisReport) -> Vec<String> {
+/// The columns: rank, start, valid, the design variables, the errors (with their unit, as the
+/// other commands write units: `max_error [deg]`), evaluations, defects.
+fn header(report: &SynthesisReport, u: &Units) -> Vec<String> {
     let mut h: Vec<String> = ["rank", "start", "valid"].map(String::from).to_vec();
     h.extend(report.variables.iter().cloned());
-    h.extend(["max_error", "rms_error", "evaluations", "defects"].map(String::from));
+    let unit = if u.error_unit.is_empty() { String::new() } else { format!(" [{}]", u.error_unit) };
+    h.extend([format!("max_error{unit}"), format!("rms_error{unit}")]);
+    h.extend(["evaluations", "defects"].map(String::from));
     h
 }
 
-/// One candidate's cells (values in full precision: `{:?}` reads back to the same bits).
-fn cells(rank: usize, c: &Candidate) -> Vec<String> {
+/// One candidate's cells (values in full precision: `{:?}` reads back to the same bits; an
+/// error converted to degrees is within a rounding of the radians').
+fn cells(rank: usize, c: &Candidate, u: &Units) -> Vec<String> {
     let mut r = vec![rank.to_string(), c.start.to_string(), u8::from(c.is_valid()).to_string()];
     r.extend(c.values.iter().map(|v| format!("{v:?}")));
-    r.extend([format!("{:?}", c.max_error), format!("{:?}", c.rms_error), c.local.evaluations.to_string()]);
-    r.push(defects(c));
+    let (max, rms) = (c.max_error * u.error, c.rms_error * u.error);
+    r.extend([format!("{max:?}"), format!("{rms:?}"), c.local.evaluations.to_string()]);
+    r.push(defects(c, u));
     r
 }
 
 /// The candidates as CSV (the defects quoted).
-fn csv(report: &SynthesisReport) -> String {
-    let mut s = header(report).join(",");
+fn csv(report: &SynthesisReport, u: &Units) -> String {
+    let mut s = header(report, u).join(",");
     s.push('\n');
     for (k, c) in report.candidates.iter().enumerate() {
-        let mut r = cells(k + 1, c);
+        let mut r = cells(k + 1, c, u);
         let last = r.len() - 1;
         r[last] = format!("\"{}\"", r[last]);
         let _ = writeln!(s, "{}", r.join(","));
@@ -300,9 +374,9 @@ fn csv(report: &SynthesisReport) -> String {
 }
 
 /// The candidates as a table aligned in columns.
-fn table(report: &SynthesisReport) -> String {
-    let head = header(report);
-    let rows: Vec<Vec<String>> = report.candidates.iter().enumerate().map(|(k, c)| cells(k + 1, c)).collect();
+fn table(report: &SynthesisReport, u: &Units) -> String {
+    let head = header(report, u);
+    let rows: Vec<Vec<String>> = report.candidates.iter().enumerate().map(|(k, c)| cells(k + 1, c, u)).collect();
     let widths: Vec<usize> =
         (0..head.len()).map(|j| rows.iter().map(|r| r[j].len()).chain([head[j].len()]).max().unwrap_or(0)).collect();
     let mut s = String::new();

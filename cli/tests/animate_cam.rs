@@ -169,8 +169,16 @@ fn follower_options_without_a_cam_and_a_cam_of_no_one_input_are_usage_errors() {
     let path = out("refused.svg");
     let p = path.display().to_string();
     let (cam, five_bar) = (shipped("dwell_cam.kl"), shipped("five_bar.kl"));
-    let cases: [(&[&str], &str); 4] = [
+    let cases: [(&[&str], &str); 6] = [
         (&["animate", &cam, "--from", "0", "--to", "6", "--roller", "10"], "--roller describes the follower of a cam"),
+        (
+            &["animate", &cam, "--from", "0", "--to", "6", "--cam", "follower", "--guide", "1,0"],
+            "does not move along this guide: it leaves the guide's line by 20 over a stroke of 20",
+        ),
+        (
+            &["animate", &cam, "--from", "0", "--to", "6", "--cam", "follower", "--rocker", "0,60"],
+            "--rocker 0,60 is at the follower's point `follower` at sample 0",
+        ),
         (
             &["animate", &cam, "--from", "0", "--to", "6", "--cam", "rod"],
             "--cam rod: DwellCamRocker has no point of that name",

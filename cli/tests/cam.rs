@@ -237,16 +237,59 @@ fn bad_requests_are_usage_errors() {
         ([&base[..], &["--guide", "0,1", "--start", "1e300"]].concat(), "a turn of the cam from 1e300 is lost", 2),
         (vec!["cam", cam.as_str(), "--point", "nope", "--guide", "0,1"], "its points: follower, rocker_pin", 2),
         (vec!["cam", five_bar.as_str(), "--point", "p", "--guide", "0,1"], "must have one input, an angle", 2),
-        ([&base[..], &["--guide", "0,1", "--plot", plot.to_str().unwrap()]].concat(), "cannot write the plot", 73),
-        ([&base[..], &["--guide", "0,1", "--plot", missing.to_str().unwrap()]].concat(), "cannot write the plot", 73),
+        ([&base[..], &["--guide", "0,1", "--plot", plot.to_str().unwrap()]].concat(), "cannot create the plot", 73),
+        ([&base[..], &["--guide", "0,1", "--plot", missing.to_str().unwrap()]].concat(), "cannot create the plot", 73),
     ];
     for (args, says, code) in cases {
         let out = kinloop(&args);
         let err = stderr(&out);
         assert_eq!(out.status.code(), Some(code), "{args:?}: {err}");
         assert!(err.contains(says), "{args:?}: `{says}` missing: {err}");
+        // Refused before anything is written: a plot that cannot be created too.
+        assert!(out.stdout.is_empty(), "{args:?}: {err}");
     }
     assert!(!missing.parent().unwrap().exists());
+}
+
+/// A follower that is not the point's motion (a guide across it, a pivot it does not turn
+/// about) is a usage error saying how the point moves and what to give; so is a pivot (the
+/// rocker's or the cam's) at the point, naming the sample. The point moves along y (its pin) or
+/// on an arc about (-40, 140) (the rocker's pin). Nothing is written, no plot left.
+#[test]
+fn a_follower_that_is_not_the_points_motion_is_a_usage_error() {
+    let cam = shipped("dwell_cam.kl");
+    let plot = std::env::temp_dir().join(format!("kinloop-refused-cam-{}.svg", std::process::id()));
+    let follower = ["cam", cam.as_str(), "--point", "follower", "--deg", "--plot", plot.to_str().unwrap()];
+    let pin = ["cam", cam.as_str(), "--point", "rocker_pin", "--pivot", "-10,60"];
+    let cases: [(Vec<&str>, &str); 7] = [
+        (
+            [&follower[..], &["--guide", "1,0"]].concat(),
+            "--guide 1,0: the follower's point `follower` does not move along this guide: it leaves the guide's line \
+             by 20 over a stroke of 20: it moves along the line of direction 0,1; give --guide 0,1",
+        ),
+        ([&follower[..], &["--rocker", "100,0"]].concat(), "does not turn about this pivot"),
+        ([&follower[..], &["--rocker", "100,0"]].concat(), "give --guide 0,1 (a translating follower)"),
+        ([&pin[..], &["--guide", "0,1"]].concat(), "moves on an arc about -40,140 of radius 40; give --rocker -40,140"),
+        (
+            [&follower[..], &["--rocker", "0,60"]].concat(),
+            "--rocker 0,60 is at the follower's point `follower` at sample 0 (input 0 deg)",
+        ),
+        ([&follower[..], &["--guide", "0,1", "--pivot", "0,60"]].concat(), "--pivot 0,60 is at the follower's point"),
+        ([&follower[..], &["--guide", "0,1", "--pivot", "0,70", "--flat"]].concat(), "at sample 90 (input 90 deg)"),
+    ];
+    for (args, says) in cases {
+        let out = kinloop(&args);
+        let err = stderr(&out);
+        assert_eq!(out.status.code(), Some(2), "{args:?}: {err}");
+        assert!(err.contains(says), "{args:?}: `{says}` missing: {err}");
+        assert!(out.stdout.is_empty() && !plot.exists(), "{args:?}: {err}");
+    }
+    // What the messages say to give is taken.
+    for args in [[&pin[..], &["--rocker", "-40,140"]].concat(), [&follower[..], &["--guide", "0,1"]].concat()] {
+        let out = kinloop(&args);
+        assert!(out.status.success(), "{args:?}: {}", stderr(&out));
+    }
+    std::fs::remove_file(&plot).expect("the plot written");
 }
 
 #[test]

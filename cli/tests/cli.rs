@@ -356,6 +356,19 @@ fn a_parameter_given_twice_is_a_usage_error() {
     assert!(out.stdout.is_empty());
 }
 
+/// A value that underflows to 0 (`1e-400`) is refused as one that overflows is, not taken for
+/// 0 without a word; 0 written as such is taken.
+#[test]
+fn a_parameter_that_underflows_is_a_usage_error() {
+    let run =
+        |a: &str| kinloop(&["solve", &shipped("slider_crank.kl"), "--at", "0", "--params", &format!("r=1,l=3,e={a}")]);
+    let out = run("1e-400");
+    let err = String::from_utf8_lossy(&out.stderr);
+    assert_eq!(out.status.code(), Some(2), "{err}");
+    assert!(err.contains("`e` in --params, `1e-400`, is too small for a 64-bit float and would be 0"), "{err}");
+    assert!(run("0e-400").status.success());
+}
+
 /// A file far larger than a declaration (a table or a log named by mistake) is refused after
 /// the most a declaration may have, with a short message: not read whole, and not echoed.
 #[test]
@@ -594,4 +607,119 @@ fn each_command_has_its_own_description() {
     for command in ["check", "solve", "sweep", "dynamics", "simulate", "animate", "synth"] {
         assert!(line(command).len() > command.len() + 20, "{command} has no description: {help}");
     }
+}
+
+/// A closed standard output (`kinloop ... >&-`) is exit 74 with a message, for every command
+/// that writes there and for the help and the version: std's writes to it succeed and write
+/// nothing, so without the check at start-up the whole output is lost with exit code 0. A
+/// command that writes to a file alone (`animate`) runs.
+#[cfg(unix)]
+#[test]
+fn a_closed_standard_output_is_exit_74() {
+    let four_bar = shipped("four_bar.kl");
+    let params = "a=1,b=3,c=2.5,d=3.2";
+    let targets = std::path::PathBuf::from(env!("CARGO_TARGET_TMPDIR")).join("closed_targets.csv");
+    std::fs::write(&targets, "0,90\n90,80\n180,100\n").expect("write the targets");
+    let targets = targets.display().to_string();
+    let coupler = shipped("coupler_four_bar.kl");
+    let engine = shipped("engine.kl");
+    let sweep = ["sweep", &four_bar, "--params", params, "--from", "0", "--to", "360", "--deg"];
+    let runs: [&[&str]; 13] = [
+        &sweep,
+        &["check", &four_bar],
+        &["solve", &four_bar, "--params", params, "--at", "0"],
+        &["trace", &four_bar, "--params", params, "--from", "0", "--to", "1"],
+        &["extremes", &four_bar, "--params", params, "--from", "0", "--to", "1"],
+        &["synth", &coupler, "--targets", &targets, "--function", "phi:gamma", "--vary", "a=0.8..1.4", "--deg"],
+        &["cam", &shipped("dwell_cam.kl"), "--point", "follower", "--guide", "0,1", "--samples", "37"],
+        &["dynamics", &engine, "--speed", "150", "--samples", "8"],
+        &["simulate", &engine, "--speed", "150", "--time", "0.01", "--samples", "3"],
+        &["--help"],
+        &["--version"],
+        &["help", "sweep"],
+        &["sweep", "--help"],
+    ];
+    // Through the shell, which closes descriptor 1 before it starts the binary.
+    let closed = |args: &[&str]| {
+        std::process::Command::new("sh")
+            .arg("-c")
+            .arg(r#"exec "$0" "$@" >&-"#)
+            .arg(env!("CARGO_BIN_EXE_kinloop"))
+            .args(args)
+            .output()
+            .expect("sh runs")
+    };
+    for args in runs {
+        let out = closed(args);
+        let err = String::from_utf8_lossy(&out.stderr);
+        assert_eq!(out.status.code(), Some(74), "{args:?}: {err}");
+        assert!(err.contains("error: cannot write") && err.contains("standard output is closed"), "{args:?}: {err}");
+    }
+    let svg = std::path::PathBuf::from(env!("CARGO_TARGET_TMPDIR")).join("closed_animate.svg");
+    let svg = svg.display().to_string();
+    let out = closed(&["animate", &four_bar, "--params", params, "--from", "0", "--to", "1", "--out", &svg]);
+    assert!(out.status.success(), "{}", String::from_utf8_lossy(&out.stderr));
+    assert!(std::fs::read_to_string(&svg).expect("the animation").contains("<svg"));
+}
+
+/// The analogs by an input whose kind is not inferred (a time) say the unit of their quantity,
+/// per the input's unit: with `--deg` an angle's are 57.3 times its radians', and the headers
+/// tell the two apart (they were both `d(psi)/d(t)`), in `solve` and in `sweep`.
+#[test]
+fn analogs_by_an_input_without_a_unit_say_their_quantitys() {
+    let path = std::path::PathBuf::from(env!("CARGO_TARGET_TMPDIR")).join("time_input.kl");
+    let text = "pub struct TimeDriven { params v=2.0, r=1.0, l=3.0; input t; unknowns psi=0, phi=0; let s = v*t; \
+                loop a: (s,0) + l@psi == r@phi; point p = r@phi; }";
+    std::fs::write(&path, text).expect("write the declaration");
+    let file = path.display().to_string();
+    let (rad, rows_rad) = csv(&kinloop(&["solve", &file, "--at", "-1.5"]));
+    let (deg, rows_deg) = csv(&kinloop(&["solve", &file, "--at", "-1.5", "--deg"]));
+    let at = |header: &[String], name: &str| header.iter().position(|h| h.starts_with(&format!("{name} ["))).unwrap();
+    let named = |header: &[String], name: &str| header[at(header, name)].clone();
+    assert_eq!(named(&rad, "t"), "t [unit of t]");
+    assert_eq!(named(&rad, "d(psi)/d(t)"), "d(psi)/d(t) [rad/unit of t]");
+    assert_eq!(named(&deg, "d(psi)/d(t)"), "d(psi)/d(t) [deg/unit of t]");
+    assert_eq!(named(&rad, "d2(phi)/d(t)^2"), "d2(phi)/d(t)^2 [rad/unit of t^2]");
+    assert_eq!(named(&deg, "d2(phi)/d(t)^2"), "d2(phi)/d(t)^2 [deg/unit of t^2]");
+    assert_eq!(named(&deg, "d(p.x)/d(t)"), "d(p.x)/d(t) [length unit/unit of t]");
+    let k = at(&rad, "d(psi)/d(t)");
+    assert!((rows_deg[0][k] - rows_rad[0][k].to_degrees()).abs() < 1e-12);
+    let (sweep, _) = csv(&kinloop(&["sweep", &file, "--from", "-1.5", "--to", "-1.25", "--samples", "3", "--deg"]));
+    assert_eq!(sweep, deg);
+}
+
+/// The macro's messages that speak of its invocation or of the Rust it generates are said for
+/// a declaration read from a file, and a block too large for the run-time evaluator says what
+/// to write instead.
+#[test]
+fn messages_about_the_macro_are_said_for_a_file() {
+    let write = |name: &str, text: &str| {
+        let path = std::path::PathBuf::from(env!("CARGO_TARGET_TMPDIR")).join(name);
+        std::fs::write(&path, text).expect("write the declaration");
+        path.display().to_string()
+    };
+    let one = |name: &str| format!("pub struct {name} {{ input phi; unknowns x=0; eq e: x == phi; }}\n");
+    let check = |file: &str, code: i32| {
+        let out = kinloop(&["check", file]);
+        let err = String::from_utf8_lossy(&out.stderr).into_owned();
+        assert_eq!(out.status.code(), Some(code), "{err}");
+        err
+    };
+    let err = check(&write("two_structs.kl", &format!("{}{}", one("A"), one("B"))), 65);
+    assert!(err.contains("a `.kl` file) holds one mechanism: put each in a file of its own"), "{err}");
+    assert!(!err.contains("per `mechanism!`"), "{err}");
+    let err = check(&write("named_t.kl", &one("T")), 65);
+    assert!(err.contains("`mechanism!` uses it for the type parameter of the Rust types it generates"), "{err}");
+    assert!(!err.contains("NameInputs"), "{err}");
+    // Seventeen unknowns in one block (`dense` puts them there): one more than the evaluator's.
+    let unknowns: Vec<String> = (1..=17).map(|i| format!("x{i}=0")).collect();
+    let eqs: Vec<String> = (2..=17).map(|i| format!("eq e{i}: x{i} == x{} * x{} + phi;", i - 1, i - 1)).collect();
+    let big = format!(
+        "#[kinloop(dense)]\npub struct Big {{ input phi; unknowns {}; eq e1: x1 == phi; {} }}\n",
+        unknowns.join(", "),
+        eqs.join(" ")
+    );
+    let err = check(&write("seventeen.kl", &big), 69);
+    assert!(err.contains("block 0 has 17 unknowns") && err.contains("leave out `#[kinloop(dense)]`"), "{err}");
+    assert!(err.contains("compile the declaration with `kinloop::mechanism!`"), "{err}");
 }

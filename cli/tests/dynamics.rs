@@ -252,3 +252,21 @@ fn a_start_too_large_is_named_as_given() {
         assert!(!err.contains("e298"), "{err}");
     }
 }
+
+/// A machine without inertia about its input (a crank whose mass is at its pivot and has no
+/// moment of inertia, a massless piston) is told as such, as `simulate` tells it: the sizing
+/// said it was "beyond the range of f64" and to change the units.
+#[test]
+fn a_machine_without_inertia_says_so() {
+    let path = std::path::PathBuf::from(env!("CARGO_TARGET_TMPDIR")).join("sc_dyn.kl");
+    let text = "pub struct ScDyn { params r=1.0, l=3.0, m_p=2.0, j_c=0.5; input phi; unknowns beta=0, x=4; \
+                loop abc: r@phi + l@beta == (x,0); body crank: mass 1.0, com (0,0), inertia j_c, turns phi; \
+                body piston: mass m_p, com (x,0); }";
+    std::fs::write(&path, text).expect("write the declaration");
+    let out = kinloop(&["dynamics", path.to_str().unwrap(), "--params", "j_c=0,m_p=0", "--speed", "10", "--deg"]);
+    let err = String::from_utf8_lossy(&out.stderr);
+    assert_eq!(out.status.code(), Some(1), "{err}");
+    assert!(err.contains("the machine has no inertia about its input at phi = 0 deg"), "{err}");
+    assert!(err.contains("give the bodies that move with the input mass or inertia"), "{err}");
+    assert!(!err.contains("range of f64"), "{err}");
+}

@@ -76,7 +76,7 @@ fn path_synthesis_recovers_the_four_bar_and_equals_the_library() {
     let names = ["a", "b", "c", "d", "e", "alpha"];
     assert_eq!(header[..3], ["rank", "start", "valid"]);
     assert_eq!(header[3..9], names);
-    assert_eq!(header[9..], ["max_error", "rms_error", "evaluations", "defects"]);
+    assert_eq!(header[9..], ["max_error [length unit]", "rms_error [length unit]", "evaluations", "defects"]);
     let best = &rows[0];
     assert_eq!((best[0].as_str(), best[2].as_str(), best[12].as_str()), ("1", "1", "\"\""));
     // Ten equations of a consistent system: met to rounding, the dimensions to 1e-8.
@@ -151,6 +151,35 @@ fn function_synthesis_in_degrees_writes_a_table() {
     }
 }
 
+/// The errors of a function whose output is an angle are written in its unit: in degrees with
+/// `--deg`, as its targets are given (they were radians, unnamed, beside targets in degrees), the
+/// unit in the header.
+#[test]
+fn an_angle_outputs_errors_are_in_the_unit_of_its_targets() {
+    let rows: [(f64, f64); 3] = [(0.0, 90.0), (90.0, 80.0), (180.0, 100.0)];
+    let in_deg: Vec<String> = rows.iter().map(|(x, y)| format!("{x:?},{y:?}")).collect();
+    let in_rad: Vec<String> = rows.iter().map(|(x, y)| format!("{:?},{:?}", x.to_radians(), y.to_radians())).collect();
+    let run = |name: &str, rows: &[String], deg: &[&str]| {
+        let targets = file(name, &rows.join("\n"));
+        let args = ["synth", &shipped("coupler_four_bar.kl"), "--targets", &targets, "--function", "phi:gamma"];
+        let out = kinloop(&[&args[..], &["--vary", "a=0.8..1.4,b=2..3.5", "--starts", "8", "--csv"], deg].concat());
+        assert_eq!(out.status.code(), Some(0), "{}", String::from_utf8_lossy(&out.stderr));
+        csv(&out)
+    };
+    let (header_deg, deg) = run("synth_fn_deg.csv", &in_deg, &["--deg"]);
+    let (header_rad, rad) = run("synth_fn_rad.csv", &in_rad, &[]);
+    assert_eq!(header_deg[5..7], ["max_error [deg]", "rms_error [deg]"]);
+    assert_eq!(header_rad[5..7], ["max_error [rad]", "rms_error [rad]"]);
+    let number = |row: &[String], k: usize| row[k].parse::<f64>().expect("a number");
+    // The worst miss of the best candidate, 16.37 degrees (0.2858 rad).
+    assert!((number(&deg[0], 5) - 16.37).abs() < 0.01, "{:?}", deg[0]);
+    for (d, r) in deg.iter().zip(&rad) {
+        for k in [5, 6] {
+            assert!((number(d, k) - number(r, k).to_degrees()).abs() <= 1e-9 * number(d, k), "{d:?} vs {r:?}");
+        }
+    }
+}
+
 #[test]
 fn usage_errors_and_no_candidate_have_their_exit_codes() {
     let targets = timed_targets();
@@ -173,7 +202,26 @@ fn usage_errors_and_no_candidate_have_their_exit_codes() {
     assert_eq!(o.status.code(), Some(2));
     let o = run(&["--path", "q", "--deg", "--vary", "a=1..2"]);
     assert_eq!(o.status.code(), Some(2));
-    assert!(stderr(&o).contains("`q.x` is no unknown or output column"), "{}", stderr(&o));
+    assert!(
+        stderr(&o).contains("--path q: CouplerFourBar has no point of that name (its points: p)"),
+        "{}",
+        stderr(&o)
+    );
+    // A design variable given a value too: the value would be ignored.
+    let o = run(&["--path", "p", "--deg", "--vary", "a=0.8..1.4", "--params", "e=1.5,a=1"]);
+    assert_eq!(o.status.code(), Some(2));
+    assert!(stderr(&o).contains("`a` is given in --params (a=1) and varied in --vary (a=0.8..1.4)"), "{}", stderr(&o));
+    assert!(o.stdout.is_empty());
+    // Fewer equations than unknowns: said in the command's terms, not the library's.
+    let one = file("synth_one.csv", "1,2\n");
+    let o = kinloop(&["synth", &four_bar, "--targets", &one, "--path", "p", "--vary", "a=0.8..1.4,b=2..3.5"]);
+    assert_eq!(o.status.code(), Some(2));
+    let err = stderr(&o);
+    assert!(
+        err.contains("give 2 equations for 3 unknowns") && err.contains("give more targets, or vary fewer"),
+        "{err}"
+    );
+    assert!(!err.contains("Design::"), "{err}");
     let o = run(&["--path", "p", "--deg", "--vary", "a=1..2", "--jobs", "0"]);
     assert_eq!(o.status.code(), Some(2));
     assert!(stderr(&o).contains("--jobs 0"), "{}", stderr(&o));
@@ -188,7 +236,7 @@ fn usage_errors_and_no_candidate_have_their_exit_codes() {
         "--vary",
         "a=1..2",
         "--params",
-        "a=1,b=3,c=2.5,d=3.2",
+        "b=3,c=2.5,d=3.2",
     ]);
     assert_eq!(o.status.code(), Some(2));
     assert!(stderr(&o).contains("#[kinloop(sensitivities)]"), "{}", stderr(&o));

@@ -213,7 +213,13 @@ impl Model {
                 ));
             }
             if !sparse && n > MAX_DENSE {
-                return unsupported(format!("block {b} has {n} unknowns (at most {MAX_DENSE})"));
+                return unsupported(format!(
+                    "block {b} has {n} unknowns solved together by dense Newton, more than the {MAX_DENSE} \
+                     the run-time evaluator solves together: leave out `#[kinloop(dense)]` if the declaration has \
+                     it (it solves every unknown in one block), declare the loops so that at most {MAX_DENSE} \
+                     unknowns close together (`kinloop check` on a part of it shows the blocks), or compile the \
+                     declaration with `kinloop::mechanism!`, whose code has no such limit"
+                ));
             }
         }
         let find = |l: Leaf| g.find(Op::Leaf(l)).map(|n| n.0);

@@ -32,6 +32,32 @@ pub struct Diagnostic {
     pub column: usize,
 }
 
+/// The macro's message `message` said for a declaration read as text: the words about the
+/// macro's invocation and the Rust types it generates (which a `.kl` file has neither of) in
+/// terms of the text.
+fn for_text(message: String) -> String {
+    const SAID: [(&str, &str); 4] = [
+        (
+            "; declare one mechanism per `mechanism!`",
+            "; a declaration read as text (a `.kl` file) holds one mechanism: put each in a file of its own",
+        ),
+        (
+            "it is the type parameter of the generated types (`NameInputs<T>`, ...)",
+            "`mechanism!` uses it for the type parameter of the Rust types it generates, so the same declaration \
+             would not compile there",
+        ),
+        (
+            "that the generated code refers to",
+            "that the Rust code `mechanism!` generates refers to, so the same declaration would not compile there",
+        ),
+        (
+            "that the generated code uses",
+            "that the Rust code `mechanism!` generates uses, so the same declaration would not compile there",
+        ),
+    ];
+    SAID.iter().fold(message, |m, (macro_words, text_words)| m.replace(macro_words, text_words))
+}
+
 /// How serious a set of messages is.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub enum Level {
@@ -67,6 +93,20 @@ impl Diagnostics {
     pub(crate) fn from_syn(name: &str, text: &str, error: syn::Error) -> Diagnostics {
         let items = error.into_iter().map(|e| at_span(text, e.span(), e.to_string())).collect();
         Diagnostics { level: Level::Error, name: name.to_string(), text: text.to_string(), items }
+    }
+
+    /// The messages as said to the author of a declaration read as text (a `.kl` file): those
+    /// that speak of the macro's invocation (`one mechanism per mechanism!`) or of the Rust
+    /// types it generates (`NameInputs<T>`) in the terms of the text. [`Model::read`] gives the
+    /// macro's own words (the same as the compiler's for the same declaration); a program that
+    /// shows them to the author of a file calls this.
+    ///
+    /// [`Model::read`]: crate::Model::read
+    pub fn for_text(mut self) -> Diagnostics {
+        for item in &mut self.items {
+            item.message = for_text(std::mem::take(&mut item.message));
+        }
+        self
     }
 
     /// The warnings of an accepted declaration (`None` when there are none).
