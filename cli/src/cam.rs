@@ -360,9 +360,9 @@ impl Follower {
 /// terms of their loops (`NewtonConfig::residual_tol`), at worst to the 1e-9 that Newton accepts
 /// as the rounding floor near a limit position, so a point declared on its guide (or its arc)
 /// is off it by at most about 1e-9 of the mechanism's lengths. A cam's stroke is at least a
-/// thousandth of those lengths, so 1e-6 of the stroke is above that rounding, while a follower
-/// given wrong (a guide across the motion, a pivot it does not turn about) is off by a sizeable
-/// fraction of it; a guide given within a microradian of the motion passes.
+/// thousandth of those lengths, so 1e-6 of the stroke is above that rounding: what tells a
+/// pivot at the point, and the line or arc the point moves on (whose follower is then named to
+/// the digits that pass [`follows`]).
 const MOTION_TOL: f64 = 1e-6;
 
 /// Refuses a `centre` (a rocker's pivot, the cam's pivot, given by `option`) at the follower's
@@ -389,7 +389,15 @@ fn apart(
     )))
 }
 
-/// Refuses a follower whose motion is not the point's (within [`MOTION_TOL`]): a guide the
+/// The largest deviation of the follower's point from the follower given, as a fraction of the
+/// motion's size, that [`follows`] accepts. A follower a little off the point's motion (a guide
+/// typed to three or four digits, `0.7071,0.7071`; a pivot measured off a drawing) turns the
+/// contact's normal against the follower by about that fraction in radians: the pressure angle
+/// by at most a milliradian (0.06 degrees) here, below what a cam's design reads from it. A
+/// follower given wrong is off by a sizeable fraction of the motion.
+const FOLLOWER_TOL: f64 = 1e-3;
+
+/// Refuses a follower whose motion is not the point's (within [`FOLLOWER_TOL`]): a guide the
 /// point does not move along, a pivot it does not keep its distance from. The cam found would
 /// be for the motion declared, its pressure angles for the follower given: nonsense.
 fn follows(points: &[[f64; 2]], follower: &Follower, fa: &FollowerArgs, point: &str) -> Result<(), Failed> {
@@ -408,7 +416,7 @@ fn follows(points: &[[f64; 2]], follower: &Follower, fa: &FollowerArgs, point: &
             (format!("--rocker {}", fa.rocker.as_deref().unwrap_or_default()), hi - lo, hi)
         }
     };
-    if off <= MOTION_TOL * size {
+    if off <= FOLLOWER_TOL * size {
         return Ok(());
     }
     let how = match follower {

@@ -284,8 +284,15 @@ fn a_follower_that_is_not_the_points_motion_is_a_usage_error() {
         assert!(err.contains(says), "{args:?}: `{says}` missing: {err}");
         assert!(out.stdout.is_empty() && !plot.exists(), "{args:?}: {err}");
     }
-    // What the messages say to give is taken.
-    for args in [[&pin[..], &["--rocker", "-40,140"]].concat(), [&follower[..], &["--guide", "0,1"]].concat()] {
+    // What the messages say to give is taken, and so is a follower given to a few digits (a
+    // guide half a milliradian off, a pivot 0.01 off on an arm of 40).
+    let near = [
+        [&pin[..], &["--rocker", "-40,140"]].concat(),
+        [&follower[..], &["--guide", "0,1"]].concat(),
+        [&pin[..], &["--rocker", "-40.01,140"]].concat(),
+        [&follower[..], &["--guide", "0.0005,1"]].concat(),
+    ];
+    for args in near {
         let out = kinloop(&args);
         assert!(out.status.success(), "{args:?}: {}", stderr(&out));
     }
