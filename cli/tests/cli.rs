@@ -711,6 +711,11 @@ fn messages_about_the_macro_are_said_for_a_file() {
     let err = check(&write("named_t.kl", &one("T")), 65);
     assert!(err.contains("`mechanism!` uses it for the type parameter of the Rust types it generates"), "{err}");
     assert!(!err.contains("NameInputs"), "{err}");
+    for (name, says) in [("f64", "a primitive type that the Rust code"), ("kinloop", "a crate that the Rust code")] {
+        let err = check(&write(&format!("named_{name}.kl"), &one(name)), 65);
+        assert!(err.contains(says) && err.contains("would not compile there"), "{err}");
+        assert!(!err.contains("the generated code"), "{err}");
+    }
     // Seventeen unknowns in one block (`dense` puts them there): one more than the evaluator's.
     let unknowns: Vec<String> = (1..=17).map(|i| format!("x{i}=0")).collect();
     let eqs: Vec<String> = (2..=17).map(|i| format!("eq e{i}: x{i} == x{} * x{} + phi;", i - 1, i - 1)).collect();
