@@ -13,6 +13,7 @@ use crate::mechanism::kernel::{Compiled, KinOf, Q, X, check_sizes};
 use crate::paths::config::SweepConfig;
 use crate::paths::curve::{Metric, Path};
 use crate::paths::sweep::{MAX_INPUT_STEP, SweepOf};
+use std::borrow::Cow;
 
 /// The straight path of a [`SampledOf`] in input space and its parameter `s`.
 #[derive(Clone, Debug)]
@@ -81,6 +82,14 @@ impl<V: Store> Line<V> {
         }
         x
     }
+}
+
+/// The points where a search for extremes looks ([`SampledOf::search`]): the samples,
+/// borrowed, and the points solved between those farther apart than a sweep's natural step.
+struct Search<'a, K: Kernel> {
+    /// Path parameters, increasing.
+    s: Vec<f64>,
+    states: Vec<Cow<'a, KinOf<K>>>,
 }
 
 /// A compiled mechanism's [`SampledOf`]: the number of inputs `NI` comes last and defaults to
@@ -406,30 +415,39 @@ impl<K: Kernel> SampledOf<K> {
     /// The state at any path parameter `s` of the range (the input for one input), on the
     /// sweep's branch.
     pub fn at(&self, s: f64) -> Result<KinOf<K>, Error> {
+        self.at_near(s, &self.s, |j| &self.states[j])
+    }
+
+    /// The state at `s`, stepped there from the nearest of the states `state(j)` at the path
+    /// parameters `at` (increasing; the samples, or a search grid's points).
+    fn at_near<'a>(&self, s: f64, at: &[f64], state: impl Fn(usize) -> &'a KinOf<K>) -> Result<KinOf<K>, Error>
+    where
+        KinOf<K>: 'a,
+    {
         let (first, last) = (self.s[0], self.s[self.s.len() - 1]);
         let slack = 1e-9 * (last - first);
         if !(s >= first - slack && s <= last + slack) {
             return Err(Error::InvalidArgument(format!("{s} lies outside the sampled range [{first}, {last}]")));
         }
-        // The nearest sample.
-        let i = self.s.partition_point(|&v| v < s);
-        let j = match (i.checked_sub(1), self.s.get(i)) {
-            (Some(j), Some(&v)) if (s - self.s[j]).abs() <= (v - s).abs() => j,
+        // The nearest state.
+        let i = at.partition_point(|&v| v < s);
+        let j = match (i.checked_sub(1), at.get(i)) {
+            (Some(j), Some(&v)) if (s - at[j]).abs() <= (v - s).abs() => j,
             (_, Some(_)) => i,
             (Some(j), None) => j,
             (None, None) => unreachable!("a Sampled holds at least three states"),
         };
-        let near = &self.states[j];
+        let near = state(j);
         let x = self.line.point(s);
-        // The sample itself (its parameter may differ from `s` in the last bit).
-        if self.s[j] == s || near.x() == x.as_ref() {
+        // The state itself (its parameter may differ from `s` in the last bit).
+        if at[j] == s || near.x() == x.as_ref() {
             return Ok(near.clone());
         }
         let (mut from, mut guess) = (self.k.dims().x(), self.k.dims().q());
         from.as_mut().copy_from_slice(near.x());
         guess.as_mut().copy_from_slice(near.q());
         let mut step = SweepOf::<&K, KinOf<K>>::over(&self.k, from, x, 2, guess)?.with_config(self.cfg);
-        // The start (the sample itself), looked at in place: a refinement allocates nothing more.
+        // The start (the state itself), looked at in place: a refinement allocates nothing more.
         step.next_ref().transpose()?;
         step.next_kin().unwrap_or_else(|| Err(Error::InvalidArgument("empty refinement sweep".into())))
     }
@@ -438,37 +456,61 @@ impl<K: Kernel> SampledOf<K> {
         move |s| self.jet_of(c, s)
     }
 
-    /// The path parameters where a search for extremes looks at a column: the samples and,
-    /// between two samples farther apart than a sweep's natural step ([`MAX_INPUT_STEP`] in the
-    /// inputs' units, as the sweep's own metric measures it), equally spaced points at most that
-    /// far apart. Each is a sample's index, or a parameter between samples. Samples a turn
-    /// apart have the same state at each and no sign change of an analog between them however
-    /// the quantity moves in between: only points the sweep itself would step to bracket its
-    /// extremes. Sampled at least that densely (the usual case), the samples alone.
-    fn search_grid(&self) -> Vec<Result<usize, f64>> {
+    /// Where a search for extremes looks at a column: the samples and, between two samples
+    /// farther apart than a sweep's natural step ([`MAX_INPUT_STEP`] in the inputs' units, as
+    /// the sweep's own metric measures it), equally spaced points at most that far apart,
+    /// solved by one sweep through each such gap. Samples a turn apart have the same state at
+    /// each and no sign change of an analog between them however the quantity moves in
+    /// between: only points the sweep itself would step to bracket its extremes. Sampled at
+    /// least that densely (the usual case), the samples alone, borrowed.
+    fn search(&self) -> Result<Search<'_, K>, Error> {
         let (first, last) = (self.s[0], self.s[self.s.len() - 1]);
         // The path's length in the inputs' units, as the sweep measured it from its start.
         let path = Path::new(self.line.from.clone(), self.line.to.clone());
         let mut q = self.k.dims().q();
         q.as_mut().copy_from_slice(self.states[0].q());
         let per_param = Metric::at(&self.k, &path, &self.line.from, &q).input_len / (last - first);
-        let mut grid = vec![Ok(0)];
+        let mut grid = Search { s: vec![first], states: vec![Cow::Borrowed(&self.states[0])] };
         for (i, w) in self.s.windows(2).enumerate() {
             let parts = ((w[1] - w[0]) * per_param / MAX_INPUT_STEP).ceil();
             // (Not finite where the path's length overflows the inputs' units: the samples.)
             if parts > 1.0 && parts.is_finite() {
                 let n = parts as usize;
-                grid.extend((1..n).map(|j| Err(w[0] + (w[1] - w[0]) * (j as f64 / n as f64))));
+                let (start, end) = (&self.states[i], &self.states[i + 1]);
+                let (mut from, mut to, mut guess) = (self.k.dims().x(), self.k.dims().x(), self.k.dims().q());
+                from.as_mut().copy_from_slice(start.x());
+                to.as_mut().copy_from_slice(end.x());
+                guess.as_mut().copy_from_slice(start.q());
+                let mut gap = SweepOf::<&K, KinOf<K>>::over(&self.k, from, to, n + 1, guess)?.with_config(self.cfg);
+                // The gap's ends are the samples themselves.
+                gap.next_ref().transpose()?;
+                for j in 1..n {
+                    let state =
+                        gap.next_kin().unwrap_or_else(|| Err(Error::InvalidArgument("a gap's sweep ended".into())))?;
+                    grid.s.push(w[0] + (w[1] - w[0]) * (j as f64 / n as f64));
+                    grid.states.push(Cow::Owned(state));
+                }
             }
-            grid.push(Ok(i + 1));
+            grid.s.push(w[1]);
+            grid.states.push(Cow::Borrowed(&self.states[i + 1]));
         }
-        grid
+        Ok(grid)
     }
 
-    /// A column's jets at the points of [`SampledOf::search_grid`].
-    fn search_jets(&self, c: ColumnIndex) -> Result<Vec<Jet>, Error> {
-        let samples = self.jets_of(c);
-        self.search_grid().into_iter().map(|p| p.map_or_else(|s| self.jet_of(c, s), |i| Ok(samples[i]))).collect()
+    /// A column's jets at the points of `grid`, and its jet anywhere in the range stepped from
+    /// the nearest of them (a step no longer than the grid's spacing: the cost of a search stays
+    /// linear in the range).
+    fn search_jets<'a>(
+        &'a self,
+        c: ColumnIndex,
+        grid: &'a Search<'a, K>,
+    ) -> (Vec<Jet>, impl FnMut(f64) -> Result<Jet, Error> + 'a) {
+        let dir = self.line.dir.as_ref();
+        let jets = grid.s.iter().zip(&grid.states).map(|(&s, st)| jet_along(c, &**st, s, dir)).collect();
+        let eval = move |s: f64| {
+            self.at_near(s, &grid.s, |j| &grid.states[j]).map(|st| jet_along(c, &st, s, self.line.dir.as_ref()))
+        };
+        (jets, eval)
     }
 
     /// The local extremes of a column (interior roots of its derivative along the path), in
@@ -477,7 +519,9 @@ impl<K: Kernel> SampledOf<K> {
     /// that close, solved on the sweep's branch: samples a turn apart do not hide them.
     pub fn extremes(&self, c: impl ColumnOf<K>) -> Result<Vec<LocalExtreme>, Error> {
         let c = c.resolve(&self.k)?;
-        extremes::extremes(&self.search_jets(c)?, self.eval(c))
+        let grid = self.search()?;
+        let (jets, eval) = self.search_jets(c, &grid);
+        extremes::extremes(&jets, eval)
     }
 
     /// The global minimum and maximum of a column over the range (interior extremes, or samples: the ends among them),
@@ -485,14 +529,18 @@ impl<K: Kernel> SampledOf<K> {
     /// extremes are looked for as [`SampledOf::extremes`] looks for them.
     pub fn range(&self, c: impl ColumnOf<K>) -> Result<GlobalRange, Error> {
         let c = c.resolve(&self.k)?;
-        global_range(&self.search_jets(c)?, self.eval(c))
+        let grid = self.search()?;
+        let (jets, eval) = self.search_jets(c, &grid);
+        global_range(&jets, eval)
     }
 
     /// The dwells of a progressive column; see [`dwell`] for the definition. Between samples
     /// farther apart than a sweep's natural step, looked for as [`SampledOf::extremes`] looks.
     pub fn dwells(&self, c: impl ColumnOf<K>) -> Result<Vec<Dwell>, Error> {
         let c = c.resolve(&self.k)?;
-        dwell::dwells(&self.search_jets(c)?, self.eval(c))
+        let grid = self.search()?;
+        let (jets, eval) = self.search_jets(c, &grid);
+        dwell::dwells(&jets, eval)
     }
 
     /// The maximum of a derived quantity `f(state)` (e.g. the magnitude of an acceleration
@@ -513,11 +561,9 @@ impl<K: Kernel> SampledOf<K> {
 
     fn peak_by(&self, f: impl Fn(f64, &KinOf<K>) -> f64) -> Result<(f64, f64), Error> {
         // The samples, and points between those farther apart than a sweep's natural step.
-        let points = self.search_grid().into_iter().map(|p| match p {
-            Ok(i) => Ok((self.s[i], f(self.s[i], &self.states[i]))),
-            Err(s) => self.at(s).map(|k| (s, f(s, &k))),
-        });
-        let (at, values): (Vec<f64>, Vec<f64>) = points.collect::<Result<Vec<_>, Error>>()?.into_iter().unzip();
+        let grid = self.search()?;
+        let (at, values): (&[f64], Vec<f64>) =
+            (&grid.s, grid.s.iter().zip(&grid.states).map(|(&s, k)| f(s, k)).collect());
         // As `maximize` refuses a value not finite: an infinite sample was returned as the peak,
         // and a NaN with its sign bit set, ordered below every number, was passed over.
         if let Some(j) = values.iter().position(|v| !v.is_finite()) {
@@ -526,7 +572,7 @@ impl<K: Kernel> SampledOf<K> {
         let best = (0..values.len()).max_by(|&a, &b| values[a].total_cmp(&values[b])).unwrap_or(0);
         let lo = at[best.saturating_sub(1)];
         let hi = at[(best + 1).min(at.len() - 1)];
-        let (s, v) = maximize(lo, hi, |s| self.at(s).map(|k| f(s, &k)))?;
+        let (s, v) = maximize(lo, hi, |s| self.at_near(s, at, |j| &grid.states[j]).map(|k| f(s, &k)))?;
         // Brent returns an interior point; the sample itself may be better (at an end of the range).
         Ok(if v >= values[best] { (s, v) } else { (at[best], values[best]) })
     }
