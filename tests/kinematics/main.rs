@@ -17,6 +17,7 @@ mod degrees;
 mod drawing;
 mod extreme_scales;
 mod five_bar;
+mod later_equations;
 mod prop_linkages;
 mod quantity_kinds;
 mod reference_mpmath;

@@ -3,8 +3,11 @@
 
 use super::positions::Position;
 use super::solve::Solve;
+use super::sparse;
 use super::stages::Stages;
+use crate::front::syntax::Options;
 use crate::graph::dag::NodeId;
+use crate::graph::dag::{Graph, Leaf};
 use crate::structure::Block;
 
 /// Everything computed for one block of the decomposition.
@@ -62,5 +65,29 @@ impl BlockPlan {
             scale: Vec::new(),
             unit: Vec::new(),
         }
+    }
+
+    /// The solve of a [`Solve::Linear`] block whose factorisation cannot be made before the
+    /// block is solved: the largest magnitudes that equilibrate its columns (every entry of each
+    /// column, and its lever floors) are known before the block only if they depend on no
+    /// unknown of the block or of a later one (`solved[u]`: unknown `u` is solved before the
+    /// block). A later equation's entry in the column can: `y == sin(x)` puts `-cos x` in the
+    /// column of `x`. Such a block is solved by Newton instead (over a sparse factorisation where
+    /// `Solve::decide` would take one), which factorises its analogs after every position is
+    /// known; `None` where the linear solve stands (and for the other solves: a
+    /// [`Solve::Fixed`] coefficient is its own scale).
+    pub fn without_unknown_scales(&self, g: &mut Graph, solved: &[bool], options: &Options) -> Option<Solve> {
+        if !matches!(self.solve, Solve::Linear { .. }) {
+            return None;
+        }
+        let scales: Vec<NodeId> = self.col_scale.iter().chain(&self.lever_floor).flatten().copied().collect();
+        let unknown = g.leaves_of(&scales).into_iter().any(|l| matches!(l, Leaf::Unknown(u) if !solved[u as usize]));
+        if !unknown {
+            return None;
+        }
+        Some(match options.dense.is_none().then(|| sparse::analyse(g, &self.jac)).flatten() {
+            Some(sp) => Solve::NewtonSparse(Box::new(sp)),
+            None => Solve::Newton,
+        })
     }
 }

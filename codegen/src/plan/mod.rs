@@ -92,6 +92,17 @@ pub fn build(model: &mut Model, blocks: &[Block], with_sensitivities: bool) -> P
         (bp.scale, bp.unit) = mags.block(&mut g, bp);
         bp.lever_floor = mags.lever_floors(&mut g, bp);
     }
+    // A linear block whose column scales are not known before its solve is solved by Newton.
+    let mut solved = vec![false; n];
+    for bp in plans.iter_mut() {
+        if let Some(solve) = bp.without_unknown_scales(&mut g, &solved, &model.options) {
+            bp.solve = solve;
+            bp.turns = turns::turns(&g, bp);
+        }
+        for &u in &bp.unknowns {
+            solved[u] = true;
+        }
+    }
     let scale_full = residuals.iter().map(|&r| mags.of(&mut g, r)).collect();
     let mut unit_full = vec![g.one(); n];
     for bp in &plans {

@@ -135,6 +135,19 @@ mod tests {
     }
 
     #[test]
+    fn a_linear_block_whose_column_a_later_equation_scales_by_its_unknown_is_newton() {
+        // `-cos x` in the column of `x`: its scale is known only once `x` is solved.
+        let later = "eq e2: y == sin(x);";
+        let head = "pub struct S { params a = 1; input phi; unknowns x = 1, y = 0;";
+        assert_eq!(solves(&format!("{head} eq e1: (2 + phi * phi) * x == a * phi; {later} }}")), ["Newton", "fixed"]);
+        // By one division, the block needs no scale: it stays.
+        assert_eq!(solves(&format!("{head} eq e1: x == a * phi; {later} }}")), ["fixed", "fixed"]);
+        // A later entry free of `x` (`y == 2 x`): the linear solve stands.
+        let src = format!("{head} eq e1: (2 + phi * phi) * x == a * phi; eq e2: y == 2 * x; }}");
+        assert_eq!(solves(&src), ["linear", "fixed"]);
+    }
+
+    #[test]
     fn a_large_ring_is_sparse_newton_unless_dense() {
         let n = 9;
         let unknowns: Vec<String> = (0..n).map(|i| format!("u{i} = 0.6, v{i} = 1.9")).collect();

@@ -66,8 +66,11 @@ pub(super) fn plan_scopes(plan: &Plan, mode: Mode, sens: bool) -> Scopes {
         for (b, bp) in plan.blocks.iter().enumerate() {
             // Per block: what is computed before its solve, and inside its Newton evaluation.
             let (pre, newton) = match &bp.solve {
+                // The right-hand side: a constant coefficient needs no scale (a later equation's
+                // entry in its column may depend on the unknown, known only after the solve).
+                Solve::Fixed { rhs, .. } => (vec![*rhs], vec![]),
                 // The matrix, the right-hand side and the column magnitudes of the factorisation.
-                Solve::Fixed { .. } | Solve::Linear { .. } => {
+                Solve::Linear { .. } => {
                     let rhs = bp.solve.linear_rhs().unwrap_or_default().iter().copied();
                     let matrix = bp.jac.concat().into_iter().chain(rhs);
                     (matrix.chain(bp.col_scale.concat()).chain(bp.lever_floor.concat()).collect(), vec![])
