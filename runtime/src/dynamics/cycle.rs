@@ -292,7 +292,8 @@ impl Cycle {
     /// coefficients are found whenever they are representable.
     fn series(&self, f: impl Fn(&CyclePoint) -> f64, harmonics: usize) -> Result<Fourier, DynamicsError> {
         let samples = self.points.len();
-        if 2 * harmonics >= samples {
+        // (Saturating: a count near `usize::MAX` is too many, not an overflow.)
+        if harmonics.saturating_mul(2) >= samples {
             return Err(DynamicsError::TooManyHarmonics { harmonics, samples });
         }
         let v: Vec<f64> = self.points.iter().map(f).collect();

@@ -105,6 +105,10 @@ fn too_many_harmonics_say_so_with_the_numbers() {
     assert!(!text.contains("kinematics") && !text.contains("NaN"), "{text}");
     assert!(c.torque_harmonics(7).is_ok());
     assert!(matches!(c.shaking_harmonics(100), Err(DynamicsError::TooManyHarmonics { harmonics: 100, .. })));
+    for harmonics in [usize::MAX, usize::MAX / 2 + 1] {
+        assert!(matches!(c.torque_harmonics(harmonics), Err(DynamicsError::TooManyHarmonics { .. })));
+        assert!(matches!(c.shaking_harmonics(harmonics), Err(DynamicsError::TooManyHarmonics { .. })));
+    }
     assert!(matches!(Cycle { points: Vec::new() }.torque_harmonics(0), Err(DynamicsError::TooManyHarmonics { .. })));
     // Outside a simulation a kinematic failure names no time.
     let kin = DynamicsError::kin(crate::Error::InvalidArgument("x".into())).to_string();

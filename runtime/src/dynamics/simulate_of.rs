@@ -63,7 +63,8 @@ pub struct Trajectory {
 }
 
 impl Trajectory {
-    /// `[phi, omega]` at time `t` (clamped to the simulated interval), from the dense output.
+    /// `[phi, omega]` at time `t` (clamped to the simulated interval), from the dense output;
+    /// NaN at a time that is NaN.
     pub fn at(&self, t: f64) -> [f64; 2] {
         if self.steps.is_empty() {
             return self.end;
