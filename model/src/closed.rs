@@ -8,7 +8,7 @@
 //! they are made once, here, by the same rules on [`V`] (a constant folds, a register is
 //! computed as the emitted expression computes it), and what remains is a list of [`Op`]s:
 //! straight arithmetic over registers and calls of the runtime's functions (`dyad_roots`,
-//! `root_offset`, `polar_norm`, the flip rules, `unwrap_to_turn`, ...) as the emitted code calls
+//! `folded_root_offset`, `polar_norm`, the flip rules, `unwrap_to_turn`, ...) as the emitted code calls
 //! them, so the angles, sines and cosines are the compiled mechanism's to the last bit.
 //!
 //! Each form's arithmetic is one function below ([`Build::angle_equation`], [`Build::dyad`],
@@ -20,8 +20,8 @@ use kinloop_codegen::graph::dag::{self, Graph, Leaf, NodeId};
 use kinloop_codegen::plan::closed_form::{ClosedForm, constant_norm2};
 use kinloop_runtime::NewtonConfig;
 use kinloop_runtime::generated::{
-    BlockFailure, acos_on_side, asin_near, check_closed, check_guess, dyad_roots, half_turn_if, polar_norm,
-    reduce_turn, root_offset, sign_at_guess, unwrap_to_turn,
+    BlockFailure, acos_on_side, asin_near, check_closed, check_guess, dyad_roots, folded_root_offset, half_turn_if,
+    polar_norm, reduce_turn, sign_at_guess, unwrap_to_turn,
 };
 use std::collections::HashMap;
 use std::f64::consts::FRAC_PI_2;
@@ -85,11 +85,13 @@ enum Op {
         c: u32,
         flip: u32,
     },
-    /// `d = root_offset(d2, r2, c, flip)`.
+    /// `d = folded_root_offset(d2, r2, a, b, c, flip)`.
     RootOffset {
         d: u32,
         d2: u32,
         r2: u32,
+        a: u32,
+        b: u32,
         c: u32,
         flip: u32,
     },
@@ -169,7 +171,7 @@ impl Op {
             }
             Op::FlipSign { flip, a, b, bound, g } => vec![flip, a, b, bound, g],
             Op::DyadRoots { cq, sq, a, b, c, flip } => vec![cq, sq, a, b, c, flip],
-            Op::RootOffset { d, d2, r2, c, flip } => vec![d, d2, r2, c, flip],
+            Op::RootOffset { d, d2, r2, a, b, c, flip } => vec![d, d2, r2, a, b, c, flip],
             Op::PolarNorm { d, r2, e0, e1 } => vec![d, r2, e0, e1],
             Op::PolarSide { s, cq, sq, gs } => vec![s, cq, sq, gs],
             Op::Atan2 { d, s, c } => vec![d, s, c],
@@ -342,7 +344,9 @@ impl ClosedProg {
                         set(cq, c0);
                         set(sq, s0);
                     }
-                    Op::RootOffset { d, d2, r2, c, flip } => set(d, root_offset(v(d2), v(r2), v(c), flag(flip), cfg)?),
+                    Op::RootOffset { d, d2, r2, a, b, c, flip } => {
+                        set(d, folded_root_offset(v(d2), v(r2), v(a), v(b), v(c), flag(flip), cfg)?)
+                    }
                     Op::PolarNorm { d, r2, e0, e1 } => set(d, polar_norm(v(r2), v(e0), v(e1), cfg)?),
                     Op::PolarSide { s, cq, sq, gs } => {
                         if v(s) * v(gs) < 0.0 {
@@ -564,10 +568,10 @@ impl Build<'_> {
         let r2 = self.add(aa, bb);
         let cc = self.mul(c, c);
         let d2 = self.sub(r2, cc);
-        let (d2, r2r, cr) = (self.reg(d2), self.reg(r2), self.reg(c));
+        let (d2, r2r, ar, br, cr) = (self.reg(d2), self.reg(r2), self.reg(a), self.reg(b), self.reg(c));
         // In the emitter's order: the value free of the root ahead of it (`root` in
         // `codegen/src/emit/closed_form.rs`).
-        let root_offset = |this: &mut Self| this.op(|d| Op::RootOffset { d, d2, r2: r2r, c: cr, flip });
+        let root_offset = |this: &mut Self| this.op(|d| Op::RootOffset { d, d2, r2: r2r, a: ar, b: br, c: cr, flip });
         let (cq, sq) = if a.is_zero() {
             let ib = self.div(V::C(1.0), b);
             let sq = self.mul(c, ib);

@@ -333,3 +333,51 @@ fn a_dense_block_of_lengths_and_angles_solves_at_every_scale() {
     let swept = sweeps(rhombic_dense, [false, false, true, true]);
     assert!(swept <= SCALE_TOL, "rhombic drive dense sweeps differ by {swept:e}");
 }
+
+with_newton_twin! {
+    /// A rocker driven by a cylinder whose length is the input (an RRR dyad with the input as a
+    /// link, the frame's vector `(d, 0)`: a coefficient folded to zero).
+    pub struct Cylinder, CylinderNewton {
+        params c, d;
+        input s;
+        unknowns th = 1.5, ph = 2.0;
+        loop l: c @ th == (d, 0) + s @ ph;
+    }
+}
+
+/// A length input scales with the mechanism: at every scale, the cylinder's angles at `k`
+/// times its lengths, the analogs by the input `1 / k` and `1 / k²` times the scale-1 ones
+/// (each solve against its own at scale 1: from the declared guess Newton finds the other
+/// assembly mode at some inputs). The folded dyad computed `a²` of coefficients that are
+/// products of two lengths without rescaling: beyond `1e±77` it failed (not finite at 1e100, no
+/// assembly at 1e-100). The acceleration analogs by the input, about `1 / k²` rad per unit of
+/// length squared, are beyond `f64` below about `1e-154` and subnormal above about `1e154`:
+/// the scales from `1e-150` to `1e150`.
+#[test]
+fn a_length_input_solves_at_every_scale() {
+    let cfg = NewtonConfig::default();
+    let closed = |k: f64, x: f64| Cylinder { c: k, d: 2.0 * k }.kinematics_flat(&[x], &[1.5, 2.0], &cfg);
+    let newton = |k: f64, x: f64| CylinderNewton { c: k, d: 2.0 * k }.kinematics_flat(&[x], &[1.5, 2.0], &cfg);
+    let mut worst = [0.0f64; 2];
+    for k in scales().into_iter().filter(|&k| (1e-150..=1e150).contains(&k)) {
+        for (path, solve) in [("closed form", &closed as &dyn Fn(f64, f64) -> _), ("Newton", &newton)] {
+            for s0 in [1.2, 1.5, 2.0, 2.7] {
+                let base = solve(1.0, s0).unwrap();
+                let got = solve(k, s0 * k).unwrap_or_else(|e| panic!("{path} at size {k:e}, s = {s0}: {e}"));
+                for u in 0..2 {
+                    // Relative to the value where it exceeds 1 (the acceleration analogs reach 3.5).
+                    let rel = |g: f64, b: f64| (g - b).abs() / b.abs().max(1.0);
+                    let d = [
+                        rel(got.q[u], base.q[u]),
+                        rel(got.dq[u][0] * k, base.dq[u][0]),
+                        rel(got.d2q[u][0][0] * k * k, base.d2q[u][0][0]),
+                    ];
+                    let w = &mut worst[usize::from(path == "Newton")];
+                    *w = d.into_iter().fold(*w, |m, v| if v.is_nan() { f64::INFINITY } else { m.max(v) });
+                }
+            }
+        }
+    }
+    eprintln!("cylinder over scales: closed form {:.1e}, Newton {:.1e}", worst[0], worst[1]);
+    assert!(worst[0] <= SCALE_TOL && worst[1] <= SCALE_TOL, "{worst:?}");
+}

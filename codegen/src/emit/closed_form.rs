@@ -267,8 +267,9 @@ fn root(out: &mut TokenStream, a: &V, b: &V, c: &V, flip: &TokenStream, cx: &Con
     let r2 = bind(out, "__r2", add(&mul(a, a), &mul(b, b)));
     let d2 = sub(&r2, &mul(c, c));
     // Deferred, a root that does not exist is NaN; a zero radius gives `0 · ∞` below, NaN too.
-    let f = if cx.deferred { quote!(__mode.root_offset) } else { quote!(#rt::root_offset) };
-    let root_offset = quote!(let __d: f64 = #f(#d2, #r2, #c, #flip, __cfg).map_err(__fail)?;);
+    // Given the coefficients too: where their squares leave the range of `f64` it rescales.
+    let f = if cx.deferred { quote!(__mode.folded_root_offset) } else { quote!(#rt::folded_root_offset) };
+    let root_offset = quote!(let __d: f64 = #f(#d2, #r2, #a, #b, #c, #flip, __cfg).map_err(__fail)?;);
     let d = local("__d");
     let zero = |v: &V| matches!(v, V::C(z) if *z == 0.0);
     // With one coefficient zero the formulas divide by the other, not by its square: `b sin q

@@ -165,6 +165,72 @@ pub fn root_offset(d2: f64, r2: f64, c: f64, flip: bool, cfg: &NewtonConfig) -> 
     Ok(root_offset_deferred(d2, flip))
 }
 
+/// [`root_offset`] for an equation `a cos q + b sin q = c` whose `r2 = a² + b²` and `d2 = r2 -
+/// c²` the caller computed with a coefficient folded to a constant (the emitted `a cos q = c`,
+/// `b sin q = c` and dyads with a constant coefficient, and the run-time model's mirror of
+/// them). Where `r2` leaves the normal range (the coefficients are products of two lengths, so
+/// beyond sizes of about `1e±77`), the offset of the equation divided by the power of two
+/// nearest its largest coefficient (exact: the same roots), back in the coefficients' units,
+/// as [`dyad_roots`] rescales; the one extra test on the way is `r2`'s upper bound.
+///
+/// ```
+/// use kinloop_runtime::generated::folded_root_offset;
+/// use kinloop_runtime::NewtonConfig;
+/// let cfg = NewtonConfig::default();
+/// // 3e200 cos q = 1.5e200 (a product of lengths of 1e100): the offset sqrt(a² - c²).
+/// let (a, c) = (3e200, 1.5e200);
+/// let d = folded_root_offset(a * a - c * c, a * a, a, 0.0, c, false, &cfg).unwrap();
+/// assert!((d / a - 0.75f64.sqrt()).abs() < 1e-15);
+/// ```
+#[inline]
+#[allow(clippy::too_many_arguments)]
+pub fn folded_root_offset(
+    d2: f64,
+    r2: f64,
+    a: f64,
+    b: f64,
+    c: f64,
+    flip: bool,
+    cfg: &NewtonConfig,
+) -> Result<f64, BlockFailure> {
+    if !(d2 >= 0.0 && (f64::MIN_POSITIVE..=f64::MAX).contains(&r2)) {
+        return folded_off_range(d2, r2, a, b, c, flip, cfg);
+    }
+    Ok(root_offset_deferred(d2, flip))
+}
+
+/// [`folded_root_offset`] where its test fails: [`touching`] for a normal `r2`; otherwise the
+/// equation rescaled as [`dyad_roots_rescaled`] rescales it. Coefficients not finite, all zero
+/// or below [`SMALLEST_PRECISE_COEFFICIENT`] fail as the unscaled formulas do.
+#[cold]
+#[inline(never)]
+#[allow(clippy::too_many_arguments)]
+fn folded_off_range(
+    d2: f64,
+    r2: f64,
+    a: f64,
+    b: f64,
+    c: f64,
+    flip: bool,
+    cfg: &NewtonConfig,
+) -> Result<f64, BlockFailure> {
+    let big = a.abs().max(b.abs()).max(c.abs());
+    if (f64::MIN_POSITIVE..=f64::MAX).contains(&r2) || !(big.is_finite() && big >= SMALLEST_PRECISE_COEFFICIENT) {
+        return touching(d2, r2, c, cfg);
+    }
+    let k = reciprocal_power_of_two(big);
+    let (a, b, c) = (a * k, b * k, c * k);
+    let r2 = a * a + b * b;
+    match root_offset(r2 - c * c, r2, c, flip, cfg) {
+        Ok(d) => Ok(d / k),
+        // The residual back in the coefficients' units.
+        Err(BlockFailure::NoAssembly { row, iterations, evaluations, residual }) => {
+            Err(BlockFailure::NoAssembly { row, iterations, evaluations, residual: residual / k })
+        }
+        Err(other) => Err(other),
+    }
+}
+
 /// A negative `d2 = r2 - c²` that is the rounding of a limit position: the links fall short of
 /// `|c|` by `|c| - r ≈ -d2 / (2 |c|)`, which within `tol |c|` (`tol` the residual tolerance,
 /// at least `16 eps`) is a residual Newton accepts, so the offset is `0`, the position where

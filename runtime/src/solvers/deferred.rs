@@ -33,8 +33,8 @@
 //! the values its error needs kept alive.
 
 use super::closed::{
-    check_closed, dyad_roots, dyad_roots_deferred, largest_precise_angle, polar_norm, polar_norm_deferred, root_offset,
-    root_offset_deferred,
+    check_closed, dyad_roots, dyad_roots_deferred, folded_root_offset, largest_precise_angle, polar_norm,
+    polar_norm_deferred, root_offset, root_offset_deferred,
 };
 use super::newton::{BlockFailure, NewtonConfig};
 
@@ -82,6 +82,23 @@ impl<const CHECKED: bool> Checks<CHECKED> {
             // A subnormal `r2`, which the checked step refuses, leaves a NaN trace.
             Ok(root_offset_deferred(if r2 >= f64::MIN_POSITIVE { d2 } else { f64::NAN }, flip))
         }
+    }
+
+    /// [`folded_root_offset`], or deferred as [`Checks::root_offset`] (a coefficient's square
+    /// out of range leaves a trace that is not finite, and the checked step rescales).
+    #[inline(always)]
+    #[allow(clippy::too_many_arguments)]
+    pub fn folded_root_offset(
+        self,
+        d2: f64,
+        r2: f64,
+        a: f64,
+        b: f64,
+        c: f64,
+        flip: bool,
+        cfg: &NewtonConfig,
+    ) -> Result<f64, BlockFailure> {
+        if CHECKED { folded_root_offset(d2, r2, a, b, c, flip, cfg) } else { self.root_offset(d2, r2, c, flip, cfg) }
     }
 
     /// [`dyad_roots`], or deferred [`dyad_roots_deferred`].
