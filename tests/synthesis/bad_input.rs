@@ -91,6 +91,10 @@ fn settings_and_points_out_of_range() {
     assert!(matches!(problem.residuals(&[1.0, f64::NAN]), Err(SynthesisError::InvalidConfig(_))));
     let c = Constraints::default().with_transmission("beta", "gamma", 2.0);
     assert!(matches!(problem.clone().with_constraints(&c), Err(SynthesisError::InvalidConfig(_))));
+    // A transmission angle between a length and an angle is none: refused, naming the column.
+    let c = Constraints::default().with_transmission("p.x", "gamma", 0.5);
+    let r = problem.clone().with_constraints(&c);
+    assert!(matches!(&r, Err(SynthesisError::InvalidConfig(m)) if m.contains("`p.x` is a length")), "{:?}", r.err());
     let c = Constraints::default().with_link_ratio(&["a", "z"], 2.0);
     assert!(matches!(problem.clone().with_constraints(&c), Err(SynthesisError::UnknownVariable { .. })));
     assert!(matches!(problem.clone().with_guesses(vec![[0.0, 0.0]]), Err(SynthesisError::Mismatch(_))));

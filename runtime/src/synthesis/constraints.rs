@@ -79,7 +79,8 @@ impl Constraints {
     }
 
     /// Reports the transmission angle between the angle columns `coupler` and `follower` and
-    /// requires it to stay at least `min` radians.
+    /// requires it to stay at least `min` radians. A column inferred as a length or a pure
+    /// number is refused when the constraints are applied (`Problem::with_constraints`).
     pub fn with_transmission(mut self, coupler: &str, follower: &str, min: f64) -> Self {
         self.transmission =
             Some(TransmissionBound { coupler: coupler.to_string(), follower: follower.to_string(), min });

@@ -10,6 +10,7 @@ use super::task::{Channel, PlacementBounds, Task};
 use super::vars::{Bound, Design, check_bounds, param_index};
 use crate::analysis::ColumnIndex;
 use crate::dims::Dims;
+use crate::kinds::QuantityKind;
 use crate::mechanism::Sensitivities;
 use crate::mechanism::kernel::{CompiledSens, Kernel, Q, SensKernel, X};
 use crate::paths::config::SweepConfig;
@@ -178,6 +179,20 @@ impl<K: SensKernel> ProblemOf<K> {
         if let Some(t) = &constraints.transmission {
             let c = scalar_column(&self.base, &t.coupler)?;
             let f = scalar_column(&self.base, &t.follower)?;
+            // The angle between two links: a column inferred as a length (or a ratio) is none.
+            for (name, column) in [(&t.coupler, c), (&t.follower, f)] {
+                let kind = match column {
+                    ColumnIndex::Unknown(u) => self.base.unknown_kind(u),
+                    ColumnIndex::Output(o) => self.base.output_kind(o),
+                    ColumnIndex::Input(i) => self.base.input_kind(i),
+                };
+                if matches!(kind, QuantityKind::Length | QuantityKind::Dimensionless) {
+                    return Err(SynthesisError::InvalidConfig(format!(
+                        "the transmission angle is between two links' angle columns: `{name}` is a {}, not an angle",
+                        if kind == QuantityKind::Length { "length" } else { "pure number" }
+                    )));
+                }
+            }
             if !(t.min.is_finite() && (0.0..=std::f64::consts::FRAC_PI_2).contains(&t.min)) {
                 return Err(SynthesisError::InvalidConfig(format!(
                     "the smallest transmission angle {} must lie in [0, pi/2]",
