@@ -252,6 +252,14 @@ fn number(digits: &str, suffix: &str, span: Span) -> syn::Result<f64> {
     if !value.is_finite() {
         return Err(syn::Error::new(span, "number is too large for an f64 (the largest is about 1.8e308)"));
     }
+    // A mantissa that is not zero read as zero: below the smallest f64 (about 4.9e-324).
+    let mantissa = digits.split(['e', 'E']).next().unwrap_or_default();
+    if value == 0.0 && mantissa.contains(|c: char| ('1'..='9').contains(&c)) {
+        return Err(syn::Error::new(
+            span,
+            format!("`{digits}` is too small for an f64 (the smallest is about 4.9e-324): write `0` for zero"),
+        ));
+    }
     Ok(value)
 }
 
@@ -341,7 +349,13 @@ impl Parser {
             match op {
                 BinOp::Add => drop(input.parse::<Token![+]>()?),
                 BinOp::Sub => drop(input.parse::<Token![-]>()?),
-                BinOp::Mul => drop(input.parse::<Token![*]>()?),
+                BinOp::Mul => {
+                    input.parse::<Token![*]>()?;
+                    // `x ** 2`, as Python and Fortran write a power.
+                    if input.peek(Token![*]) {
+                        return Err(syn::Error::new(op_span, "`**` is not an operator: write `x ^ 2` for a power"));
+                    }
+                }
                 BinOp::Div => drop(input.parse::<Token![/]>()?),
                 BinOp::Pow => drop(input.parse::<Token![^]>()?),
                 BinOp::Polar => drop(input.parse::<Token![@]>()?),
