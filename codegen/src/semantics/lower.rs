@@ -15,6 +15,11 @@ pub struct Lowerer {
     pub(super) errors: Errors,
     pub(super) used_params: Vec<bool>,
     pub(super) used_inputs: Vec<bool>,
+    /// Set while a `loop` or `eq` is lowered: the unknowns named there are noted in
+    /// `written_in_equations`.
+    pub(super) in_equation: bool,
+    /// Whether each unknown is named in a `loop` or `eq` (where its terms may still cancel).
+    pub(super) written_in_equations: Vec<bool>,
 }
 
 /// Largest integer exponent turned into `powi`; larger ones stay `powf`. The bound keeps the
@@ -44,6 +49,8 @@ impl Lowerer {
             errors: Errors::default(),
             used_params: Vec::new(),
             used_inputs: Vec::new(),
+            in_equation: false,
+            written_in_equations: Vec::new(),
         }
     }
 

@@ -104,6 +104,9 @@ pub struct Model {
     pub used_params: Vec<bool>,
     /// Whether each input is used (an unused input is an error of the structure analysis).
     pub used_inputs: Vec<bool>,
+    /// Whether each unknown is named in a `loop` or `eq`: one that is, and is in none once the
+    /// terms are simplified, cancels there (`x - x`), which its error says.
+    pub written_in_equations: Vec<bool>,
     /// Bodies, loads and gravity (`body`, `force`, `torque`, `gravity`), if declared.
     pub dynamics: DynamicsModel,
     /// The node of each `let`, with the let's name (`v_x`, `v_y` for a vector `let v`), in
@@ -179,6 +182,7 @@ pub(crate) fn build(def: MechanismDef) -> Result<Model, syn::Error> {
     check_counts(&mut lw, &mut globals, &name);
     lw.used_params = vec![false; globals.params.len()];
     lw.used_inputs = vec![false; globals.inputs.len()];
+    lw.written_in_equations = vec![false; globals.unknowns.len()];
     for item in &items {
         match &item.kind {
             ItemKind::Let { name, .. } => lw.declare_later(name, "let"),
@@ -224,7 +228,7 @@ pub(crate) fn build(def: MechanismDef) -> Result<Model, syn::Error> {
     let drawing = if lw.errors.is_empty() { super::drawing::model(&mut lw, &items) } else { DrawingModel::default() };
     let unknowns =
         globals.unknowns.iter().zip(out.unknown_guess).map(|(d, value)| named(d, value, &globals.item_of)).collect();
-    let Lowerer { graph, errors, used_params, used_inputs, .. } = lw;
+    let Lowerer { graph, errors, used_params, used_inputs, written_in_equations, .. } = lw;
     let (equations, points, scalars, lets) = (out.equations, out.points, out.scalars, out.lets);
     errors.finish(Model {
         docs,
@@ -241,6 +245,7 @@ pub(crate) fn build(def: MechanismDef) -> Result<Model, syn::Error> {
         graph,
         used_params,
         used_inputs,
+        written_in_equations,
         dynamics,
         lets,
         drawing,
@@ -340,7 +345,9 @@ fn lower_item(lw: &mut Lowerer, g: &Globals, item: &Item, out: &mut Lowered) {
         ItemKind::Point { name, value } => lower_point(lw, item, name, value, out),
         ItemKind::Output { name, value } => lower_output(lw, item, name, value, out),
         ItemKind::Loop { name, lhs, rhs, eq } | ItemKind::Eq { name, lhs, rhs, eq } => {
-            lower_equation_item(lw, item, name, (lhs, rhs, *eq), out)
+            lw.in_equation = true;
+            lower_equation_item(lw, item, name, (lhs, rhs, *eq), out);
+            lw.in_equation = false;
         }
         ItemKind::Body(b) => out.dynamics.body(lw, b),
         ItemKind::Force { name, at, value } => out.dynamics.force(lw, name, at, value),

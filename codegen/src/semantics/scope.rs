@@ -101,7 +101,14 @@ impl Lowerer {
                 }
                 Some(Val::S(g.leaf(Leaf::Input(*i))))
             }
-            Some((Symbol::Unknown(i), _)) => Some(Val::S(g.leaf(Leaf::Unknown(*i)))),
+            Some((Symbol::Unknown(i), _)) => {
+                if self.in_equation
+                    && let Some(w) = self.written_in_equations.get_mut(*i as usize)
+                {
+                    *w = true;
+                }
+                Some(Val::S(g.leaf(Leaf::Unknown(*i))))
+            }
             Some((Symbol::Let(v), _)) => Some(*v),
             Some((Symbol::Poisoned, _)) => None,
             Some((Symbol::Later(what), span)) => {

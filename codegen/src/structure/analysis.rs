@@ -122,14 +122,20 @@ fn unknowns_in_no_equation(model: &Model, inc: &[BTreeSet<usize>], errors: &mut 
     let isolated: BTreeSet<usize> = (0..n_u).filter(|&u| !appears[u]).collect();
     for &u in &isolated {
         let unk = &model.unknowns[u].name;
-        errors.push(syn::Error::new(
-            unk.span(),
+        let message = if model.written_in_equations.get(u).copied().unwrap_or(false) {
+            format!(
+                "unknown `{unk}` is written in a `loop` or `eq`, but its terms there cancel (as in `{unk} - {unk}`), \
+                 so nothing determines it\n\
+                 help: check the equations it is written in; if nothing should determine it, remove it"
+            )
+        } else {
             format!(
                 "unknown `{unk}` appears in no `loop` or `eq`, so nothing determines it\n\
                  help: use it in a loop or equation, or remove it (a value computed from the others \
                  is a `let`, a `point` or an `output`)"
-            ),
-        ));
+            )
+        };
+        errors.push(syn::Error::new(unk.span(), message));
     }
     isolated
 }

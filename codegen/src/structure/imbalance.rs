@@ -164,7 +164,17 @@ fn under_part(model: &Model, dm: &Imbalance, explained: bool, msg: &mut String) 
             eq_names(&dm.under_equations)
         ));
     }
-    if explained {
+    let written = |u: &usize| model.written_in_equations.get(*u).copied().unwrap_or(false);
+    if explained && dm.under_unknowns.iter().all(written) {
+        // Written in equations, where their terms cancel: their own errors say so.
+        let one = dm.under_unknowns.len() == 1;
+        format!(
+            "check the equations {} {} written in: {} terms cancel there (see the errors below)",
+            u_names(&dm.under_unknowns),
+            if one { "is" } else { "are" },
+            if one { "its" } else { "their" }
+        )
+    } else if explained {
         // Only unknowns in no equation: their own errors say what to do.
         format!(
             "use {} in a loop or equation, or remove {} (see the errors below)",
