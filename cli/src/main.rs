@@ -453,7 +453,19 @@ fn main() -> ExitCode {
 fn run(cli: Cli) -> Result<(), Failed> {
     match cli.command {
         Command::Check { decl } => {
-            let model = decl.load()?;
+            let model = match decl.load() {
+                Ok(model) => model,
+                // Not evaluated at run time (said on standard error): its structure still says
+                // which block is too large.
+                Err(failed @ Failed(exit::UNAVAILABLE)) => {
+                    let text = read_text(&decl.file)?;
+                    if let Ok(structure) = Model::decomposition_of(&decl.file.display().to_string(), &text) {
+                        output::text(&format!("{structure}\n"), "the report")?;
+                    }
+                    return Err(failed);
+                }
+                Err(failed) => return Err(failed),
+            };
             // Written, not printed: `print!` panics where standard output cannot be written.
             output::text(&report::structure(&model), "the report")
         }

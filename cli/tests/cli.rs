@@ -726,5 +726,8 @@ fn messages_about_the_macro_are_said_for_a_file() {
     );
     let err = check(&write("seventeen.kl", &big), 69);
     assert!(err.contains("block 0 has 17 unknowns") && err.contains("leave out `#[kinloop(dense)]`"), "{err}");
+    // `check` still reports the structure that shows the block.
+    let out = kinloop(&["check", &write("seventeen.kl", &big)]);
+    assert!(String::from_utf8_lossy(&out.stdout).contains("block 0 (Newton, 17x17)"), "{out:?}");
     assert!(err.contains("compile the declaration with `kinloop::mechanism!`"), "{err}");
 }

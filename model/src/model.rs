@@ -193,6 +193,18 @@ impl Model {
         Ok(m)
     }
 
+    /// The decomposition of the declaration `text` (counts, mobility, the blocks in solve order
+    /// and how each is solved), as [`Model::decomposition`] gives it, also where the run-time
+    /// evaluator does not evaluate the declaration ([`ReadError::Unsupported`]): the structure
+    /// that says which block is too large. [`ReadError::Rejected`] for a declaration the macro
+    /// rejects.
+    pub fn decomposition_of(name: &str, text: &str) -> Result<String, ReadError> {
+        let tokens = source::tokens(name, text).map_err(ReadError::Rejected)?;
+        let planned = kinloop_codegen::plan_declaration(tokens)
+            .map_err(|e| ReadError::Rejected(Diagnostics::from_syn(name, text, e)))?;
+        Ok(kinloop_codegen::decomposition(&planned))
+    }
+
     /// The warnings of the declaration (unused parameters), as the macro gives them.
     pub fn warnings(&self) -> Option<&Diagnostics> {
         self.warnings.as_ref()
@@ -217,7 +229,7 @@ impl Model {
                     "block {b} has {n} unknowns solved together by dense Newton, more than the {MAX_DENSE} \
                      the run-time evaluator solves together: leave out `#[kinloop(dense)]` if the declaration has \
                      it (it solves every unknown in one block), declare the loops so that at most {MAX_DENSE} \
-                     unknowns close together (`kinloop check` on a part of it shows the blocks), or compile the \
+                     unknowns close together (`kinloop check` shows the blocks), or compile the \
                      declaration with `kinloop::mechanism!`, whose code has no such limit"
                 ));
             }
