@@ -253,16 +253,23 @@ fn a_start_too_large_is_named_as_given() {
     }
 }
 
+/// A slider-crank machine (the crank's moment of inertia `j_c`, the piston's mass `m_p`, no
+/// loads) written to `name` in the tests' directory.
+fn slider_crank_machine(name: &str) -> std::path::PathBuf {
+    let path = std::path::PathBuf::from(env!("CARGO_TARGET_TMPDIR")).join(name);
+    let text = "pub struct ScDyn { params r=1.0, l=3.0, m_p=2.0, j_c=0.5; input phi; unknowns beta=0, x=4; \
+                loop abc: r@phi + l@beta == (x,0); body crank: mass 1.0, com (0,0), inertia j_c, turns phi; \
+                body piston: mass m_p, com (x,0); }";
+    std::fs::write(&path, text).expect("write the declaration");
+    path
+}
+
 /// A machine without inertia about its input (a crank whose mass is at its pivot and has no
 /// moment of inertia, a massless piston) is told as such, as `simulate` tells it: the sizing
 /// said it was "beyond the range of f64" and to change the units.
 #[test]
 fn a_machine_without_inertia_says_so() {
-    let path = std::path::PathBuf::from(env!("CARGO_TARGET_TMPDIR")).join("sc_dyn.kl");
-    let text = "pub struct ScDyn { params r=1.0, l=3.0, m_p=2.0, j_c=0.5; input phi; unknowns beta=0, x=4; \
-                loop abc: r@phi + l@beta == (x,0); body crank: mass 1.0, com (0,0), inertia j_c, turns phi; \
-                body piston: mass m_p, com (x,0); }";
-    std::fs::write(&path, text).expect("write the declaration");
+    let path = slider_crank_machine("sc_dyn.kl");
     let out = kinloop(&["dynamics", path.to_str().unwrap(), "--params", "j_c=0,m_p=0", "--speed", "10", "--deg"]);
     let err = String::from_utf8_lossy(&out.stderr);
     assert_eq!(out.status.code(), Some(1), "{err}");
@@ -277,11 +284,7 @@ fn a_machine_without_inertia_says_so() {
 /// engine, whose loads dominate, gets no note where its two sizings agree.
 #[test]
 fn a_note_where_the_energy_method_neglects_what_matters() {
-    let path = std::path::PathBuf::from(env!("CARGO_TARGET_TMPDIR")).join("sc_dyn_note.kl");
-    let text = "pub struct ScDyn { params r=1.0, l=3.0, m_p=2.0, j_c=0.5; input phi; unknowns beta=0, x=4; \
-                loop abc: r@phi + l@beta == (x,0); body crank: mass 1.0, com (0,0), inertia j_c, turns phi; \
-                body piston: mass m_p, com (x,0); }";
-    std::fs::write(&path, text).expect("write the declaration");
+    let path = slider_crank_machine("sc_dyn_note.kl");
     let value = |err: &str, name: &str| -> f64 {
         let line = err.lines().find(|l| l.starts_with(&format!("flywheel: {name} = "))).expect(name);
         line.split(" = ").nth(1).and_then(|v| v.split(' ').next()).and_then(|v| v.parse().ok()).expect(name)
