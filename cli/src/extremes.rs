@@ -117,7 +117,11 @@ pub fn run(model: &mut Model, req: &Request) -> Result<(), Failed> {
     for (column, kind) in &columns {
         let range = sampled.range(column.as_str()).map_err(|e| {
             bar.finish_and_clear();
-            failed(&format!("the extremes of {column}: {}", in_units(e, &input_kinds, req.deg)))
+            match e {
+                // The samples too far apart to search between: more `--samples`.
+                Error::InvalidArgument(m) => exit::usage(format!("--samples {}: {m}", req.samples)),
+                e => failed(&format!("the extremes of {column}: {}", in_units(e, &input_kinds, req.deg))),
+            }
         })?;
         let inputs = |s: f64| -> Vec<f64> {
             let x = sampled.inputs_at(s);

@@ -304,3 +304,16 @@ fn a_range_too_short_for_its_samples_is_a_usage_error() {
         assert!(out.stdout.is_empty(), "{args:?}");
     }
 }
+
+/// Samples too far apart for the points between them to be searched (20,000 turns in three)
+/// are a usage error saying how many samples would do.
+#[test]
+fn samples_too_far_apart_are_a_usage_error() {
+    let slider = shipped("slider_crank.kl");
+    let args = ["extremes", &slider, "--params", "r=1,l=3,e=0.4", "--from", "0", "--to", "7200000", "--deg"];
+    let out = kinloop(&[&args[..], &["--samples", "3"]].concat());
+    let err = String::from_utf8_lossy(&out.stderr);
+    assert_eq!(out.status.code(), Some(2), "{err}");
+    assert!(err.contains("--samples 3: the samples are too far apart") && err.contains("give at least"), "{err}");
+    assert!(out.stdout.is_empty());
+}

@@ -54,3 +54,15 @@ fn a_peak_between_samples_a_turn_apart() {
     let best = speed(argmax(speed, TAU, 10_000));
     assert!((v - best).abs() < 1e-10, "{v} at {s} against {best}");
 }
+
+/// Samples so far apart that the points between them would not fit a search (20,000 turns
+/// in three samples): refused, saying how many samples would do, not a search that fills the
+/// memory.
+#[test]
+fn samples_too_far_apart_to_search_between_are_refused() {
+    let run = Sampled::sweep(&M, 0.0, 2e4 * TAU, 3, M.guess(0.0)).unwrap();
+    let e = run.range(SliderCrank::COL.x).unwrap_err();
+    let text = e.to_string();
+    assert!(text.contains("too far apart to search between") && text.contains("give at least"), "{text}");
+    assert!(text.contains(&kinloop::analysis::MAX_SEARCH_POINTS.to_string()), "{text}");
+}

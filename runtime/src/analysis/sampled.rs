@@ -84,6 +84,11 @@ impl<V: Store> Line<V> {
     }
 }
 
+/// The most points a search for extremes solves between samples ([`SampledOf::search`]): a
+/// sweep's natural steps over about 10,000 turns of an angle input. Each is a state kept while
+/// the search runs; farther apart, the samples are refused with the count that would do.
+pub const MAX_SEARCH_POINTS: usize = 1 << 18;
+
 /// The points where a search for extremes looks ([`SampledOf::search`]): the samples,
 /// borrowed, and the points solved between those farther apart than a sweep's natural step.
 struct Search<'a, K: Kernel> {
@@ -470,12 +475,29 @@ impl<K: Kernel> SampledOf<K> {
         let mut q = self.k.dims().q();
         q.as_mut().copy_from_slice(self.states[0].q());
         let per_param = Metric::at(&self.k, &path, &self.line.from, &q).input_len / (last - first);
+        // Per gap, the parts it is cut into (1: none; not finite where the path's length
+        // overflows the inputs' units: the samples alone).
+        let parts: Vec<usize> = self
+            .s
+            .windows(2)
+            .map(|w| {
+                let parts = ((w[1] - w[0]) * per_param / MAX_INPUT_STEP).ceil();
+                if parts > 1.0 && parts.is_finite() { parts.min(f64::from(u32::MAX)) as usize } else { 1 }
+            })
+            .collect();
+        let between: usize = parts.iter().map(|n| n - 1).sum();
+        if between > MAX_SEARCH_POINTS {
+            return Err(Error::InvalidArgument(format!(
+                "the samples are too far apart to search between: {between} points a sweep's natural step \
+                 apart would be solved between them, more than the {MAX_SEARCH_POINTS} a search keeps; give \
+                 at least {} samples, or a shorter range",
+                parts.iter().sum::<usize>() + 1
+            )));
+        }
         let mut grid = Search { s: vec![first], states: vec![Cow::Borrowed(&self.states[0])] };
         for (i, w) in self.s.windows(2).enumerate() {
-            let parts = ((w[1] - w[0]) * per_param / MAX_INPUT_STEP).ceil();
-            // (Not finite where the path's length overflows the inputs' units: the samples.)
-            if parts > 1.0 && parts.is_finite() {
-                let n = parts as usize;
+            if parts[i] > 1 {
+                let n = parts[i];
                 let (start, end) = (&self.states[i], &self.states[i + 1]);
                 let (mut from, mut to, mut guess) = (self.k.dims().x(), self.k.dims().x(), self.k.dims().q());
                 from.as_mut().copy_from_slice(start.x());
