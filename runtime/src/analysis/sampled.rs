@@ -84,9 +84,10 @@ impl<V: Store> Line<V> {
     }
 }
 
-/// The most points a search for extremes solves between samples ([`SampledOf::search`]): a
-/// sweep's natural steps over about 10,000 turns of an angle input. Each is a state kept while
-/// the search runs; farther apart, the samples are refused with the count that would do.
+/// The most points a search for extremes solves between samples farther apart than a sweep's
+/// natural step ([`SampledOf::extremes`], `range`, `dwells`, `peak`): the natural steps over
+/// about 10,000 turns of an angle input. Each is a state kept while the search runs; farther
+/// apart, the samples are refused with the count that would do.
 pub const MAX_SEARCH_POINTS: usize = 1 << 18;
 
 /// The points where a search for extremes looks ([`SampledOf::search`]): the samples,
