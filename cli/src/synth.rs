@@ -9,9 +9,9 @@
 
 use crate::{Failed, exit, params, progress};
 use kinloop_model::{Count, Model};
-use kinloop_runtime::QuantityKind;
 use kinloop_runtime::paths::sweep::MAX_TURNS;
 use kinloop_runtime::synthesis::{Candidate, Defect, Design, Search, SynthesisError, SynthesisReport, Task};
+use kinloop_runtime::{Number, QuantityKind};
 use std::f64::consts::TAU;
 use std::fmt::Write as _;
 use std::path::Path;
@@ -111,6 +111,9 @@ pub fn run(model: &mut Model, req: &Request) -> Result<(), Failed> {
     let text = if req.csv { csv(&report, &units) } else { table(&report, &units) };
     crate::output::text(&text, "the candidates")?;
     eprintln!("{}", summary(&report));
+    if let Some(note) = out_of_reach(&report, &rows, &units, req.path.is_some()) {
+        eprintln!("{note}");
+    }
     if report.best().is_some() {
         Ok(())
     } else {
@@ -385,6 +388,44 @@ fn table(report: &SynthesisReport, u: &Units) -> String {
         let _ = writeln!(s, "{}", line.join("  ").trim_end());
     }
     s
+}
+
+/// A note where the best valid candidate misses its targets by as much as they lie from their
+/// centre (the mean of a path's points, the middle of a function's values) or more: no better
+/// than a point that does not move, the optimum within the bounds of `--vary` of targets those
+/// designs cannot reach. `path`: the targets are points (their last two columns), otherwise
+/// values (their last column), in the unit the errors are written.
+fn out_of_reach(report: &SynthesisReport, rows: &[Vec<f64>], units: &Units, path: bool) -> Option<String> {
+    let best = report.best()?;
+    let width = rows.first()?.len();
+    let columns: Vec<usize> = if path { vec![width - 2, width - 1] } else { vec![width - 1] };
+    let n = rows.len() as f64;
+    let centre: Vec<f64> = columns
+        .iter()
+        .map(|&c| match path {
+            // Each term divided first: sums of targets near the largest f64 stay finite.
+            true => rows.iter().map(|r| r[c] / n).sum::<f64>(),
+            false => {
+                let (lo, hi) =
+                    rows.iter().fold((f64::INFINITY, f64::NEG_INFINITY), |(l, h), r| (l.min(r[c]), h.max(r[c])));
+                0.5 * lo + 0.5 * hi
+            }
+        })
+        .collect();
+    let reach = rows
+        .iter()
+        .map(|r| columns.iter().zip(&centre).fold(0.0f64, |d, (&c, m)| d.hypot(r[c] - m)))
+        .fold(0.0f64, f64::max);
+    let error = best.max_error * units.error;
+    (reach > 0.0 && error >= reach).then(|| {
+        format!(
+            "note: the best candidate misses its targets by {}, as much as they lie from their centre ({}) or \
+             more: no better than a point that does not move; the targets are likely out of reach of the \
+             designs --vary allows (widen its bounds, or vary more parameters)",
+            Number(error),
+            Number(reach)
+        )
+    })
 }
 
 /// What happened to the starts, in one line.

@@ -104,6 +104,8 @@ fn path_synthesis_recovers_the_four_bar_and_equals_the_library() {
         assert_eq!(row[1], c.start.to_string());
         assert_eq!(row[11], c.local.evaluations.to_string());
     }
+    // Met to rounding: no note that the targets are out of reach.
+    assert!(!String::from_utf8_lossy(&out.stderr).contains("out of reach"));
     // The search on all cores (above), one start after another, and on three threads: the same
     // output, byte for byte.
     for jobs in ["1", "3"] {
@@ -388,4 +390,23 @@ fn a_targets_file_that_is_not_text_says_where() {
     let err = String::from_utf8_lossy(&o.stderr);
     assert_eq!(o.status.code(), Some(66), "{err}");
     assert!(err.contains("not UTF-8 text") && err.contains("line 2, column 13"), "{err}");
+}
+
+/// Targets no design of the bounds can reach (a circle of radius 1000 about a four-bar of size
+/// 3): the best candidate, valid, misses them by as much as they lie from their centre, and a
+/// note says so (and, for a function in degrees, in degrees). Exit code 0: the candidate is valid.
+#[test]
+fn targets_out_of_reach_get_a_note() {
+    let four_bar = shipped("coupler_four_bar.kl");
+    let circle = file("synth_circle.csv", "1000,0\n0,1000\n-1000,0\n0,-1000\n");
+    let vary = "a=0.8..1.4,b=2..3.5";
+    let out = kinloop(&["synth", &four_bar, "--targets", &circle, "--path", "p", "--vary", vary, "--starts", "8"]);
+    let err = String::from_utf8_lossy(&out.stderr);
+    assert_eq!(out.status.code(), Some(0), "{err}");
+    assert!(err.contains("note: the best candidate misses its targets by 1000.") && err.contains("(1000)"), "{err}");
+    let function = file("synth_function.csv", "0,90\n90,80\n180,100\n");
+    let args = ["synth", &four_bar, "--targets", &function, "--function", "phi:gamma", "--vary", vary, "--deg"];
+    let out = kinloop(&[&args[..], &["--starts", "8"]].concat());
+    let err = String::from_utf8_lossy(&out.stderr);
+    assert!(err.contains("as much as they lie from their centre (10)"), "{err}");
 }
