@@ -135,13 +135,7 @@ impl Found {
 pub fn run(model: &mut Model, req: &Request) -> Result<(), Failed> {
     // The plot's file created first, as `--events` and `--flywheel` are: a path that cannot be
     // written stops before any output. Removed again if no drawing comes to be written into it.
-    let plot = match req.plot {
-        Some(path) => Some(std::fs::File::create(path).map_err(|e| {
-            eprintln!("error: cannot create the plot {}: {e}", path.display());
-            Failed(exit::CANT_CREATE)
-        })?),
-        None => None,
-    };
+    let plot = crate::output::created(req.plot, "the plot")?;
     written(model, req, plot).inspect_err(|_| {
         // Best effort: the error reported is the one that stopped the command.
         if let Some(path) = req.plot {

@@ -83,13 +83,7 @@ pub fn run(model: &mut Model, req: &Request) -> Result<(), Failed> {
     let about = parse_about(req.about)?;
     // Created before the cycle is computed (which may take minutes): a path that cannot be
     // written stops first. Removed again if no sizing comes to be written into it.
-    let file = match req.flywheel {
-        Some(path) => Some(std::fs::File::create(path).map_err(|e| {
-            eprintln!("error: cannot create the flywheel file {}: {e}", path.display());
-            Failed(exit::CANT_CREATE)
-        })?),
-        None => None,
-    };
+    let file = crate::output::created(req.flywheel, "the flywheel file")?;
     let (cycle, flywheel) = cycle_and_flywheel(model, req, about, &name).inspect_err(|_| {
         // Best effort: the error reported is the cycle's.
         if let Some(path) = req.flywheel {

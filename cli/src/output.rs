@@ -14,6 +14,18 @@ pub fn failed(what: &str, e: std::io::Error) -> Failed {
     Failed(exit::IO_ERR)
 }
 
+/// The file at `path` created (`None` where none was asked), before anything is computed: a path
+/// that cannot be written stops the command first. Its failure says `what` (`"the events
+/// file"`) and the path, [`exit::CANT_CREATE`].
+pub fn created(path: Option<&std::path::Path>, what: &str) -> Result<Option<std::fs::File>, Failed> {
+    let Some(path) = path else { return Ok(None) };
+    let file = std::fs::File::create(path).map_err(|e| {
+        eprintln!("error: cannot create {what} {}: {e}", path.display());
+        Failed(exit::CANT_CREATE)
+    })?;
+    Ok(Some(file))
+}
+
 /// Writes `text` (`what`: "the report") to standard output and flushes it.
 pub fn text(text: &str, what: &str) -> Result<(), Failed> {
     let mut out = std::io::stdout().lock();

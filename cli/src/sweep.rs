@@ -72,7 +72,7 @@ pub fn run(model: &mut Model, req: &Request) -> Result<(), Failed> {
     };
     // Created before the rest of the sweep runs: a path that cannot be written stops before
     // any output.
-    let events_file = events_file(req.events)?;
+    let events_file = output::created(req.events, "the events file")?;
     let bar = progress::bar(&format!("{name}: sweeping"), req.samples, req.samples);
     let header = Table::new(columns).with_units(&base.iter().map(|(n, u)| (n.as_str(), *u)).collect::<Vec<_>>());
     // Buffered: a row is a write of its own, where standard output would pass each line on by
@@ -165,17 +165,6 @@ pub(crate) fn range_too_long(name: &str, e: &Error, from: &str, to: &str, deg: b
          sweep follows: give --from and --to at most {max_turns:e} turns apart ({span} of an angle input); split a \
          longer range into several sweeps, or reduce a periodic input by whole turns"
     )))
-}
-
-/// The `--events` file created (`None` where none was asked), or the failure to create it
-/// ([`exit::CANT_CREATE`]).
-pub(crate) fn events_file(path: Option<&Path>) -> Result<Option<std::fs::File>, Failed> {
-    let Some(path) = path else { return Ok(None) };
-    let file = std::fs::File::create(path).map_err(|e| {
-        eprintln!("error: cannot create the events file {}: {e}", path.display());
-        Failed(exit::CANT_CREATE)
-    })?;
-    Ok(Some(file))
 }
 
 /// The events as CSV (`kind,tau,` the inputs and the unknowns, in the sweep's units, named

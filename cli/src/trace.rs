@@ -4,7 +4,7 @@
 //! listed on standard error, or written to `--events`.
 
 use crate::solve::{degrees, in_units, model_inputs, units};
-use crate::sweep::{events_file, write_events};
+use crate::sweep::write_events;
 use crate::{Failed, exit, output, samples};
 use kinloop_model::Model;
 use kinloop_runtime::dims::Heap;
@@ -71,7 +71,7 @@ pub fn run(model: &mut Model, req: &Request) -> Result<(), Failed> {
         e => failed(&in_units(e, &kinds[..ni], req.deg)),
     })?;
     // Created before anything is written: a path that cannot be written stops before any output.
-    let events_file = events_file(req.events)?;
+    let events_file = output::created(req.events, "the events file")?;
     let base = units(model, &kinds, req.deg);
     let mut table = Table::new(base.iter().map(|(n, _)| n.clone()).collect());
     // Angles in degrees as `solve` writes its inputs: the shortest decimal that reads back.

@@ -66,6 +66,20 @@ impl<X: Store> Path<X> {
     pub fn at_sigma(&self, sigma: f64) -> X {
         self.at_tau(sigma / self.len)
     }
+
+    /// The first input whose doubles at `x` are farther apart than a millionth of its change
+    /// over a step (`step(delta_i)`, from the path's change `delta_i` of it), with that distance
+    /// and that change: there the steps' inputs are rounded by much more than the predictions
+    /// and tolerances allow for (an input near `1e17` is a double 16 apart), and a failure is the
+    /// inputs', not the mechanism's. Looked at where a sweep or a trace has failed.
+    #[cold]
+    pub fn coarse_input(&self, x: &[f64], step: impl Fn(f64) -> f64) -> Option<(usize, f64, f64)> {
+        x.iter().zip(self.delta.as_ref()).enumerate().find_map(|(i, (&xi, &di))| {
+            let apart = xi.abs().next_up() - xi.abs();
+            let change = step(di).abs();
+            (change > 0.0 && apart > 1e-6 * change).then_some((i, apart, change))
+        })
+    }
 }
 
 /// A unit that is not positive and finite counts as one.

@@ -926,20 +926,11 @@ where
         Some(n)
     }
 
-    /// The first input whose doubles at `x` are farther apart than a millionth of the samples'
-    /// spacing in it, with that distance and the spacing: there the steps' inputs are rounded by
-    /// much more than the predictions and tolerances allow for (an input near `1e17` is a
-    /// double 16 apart), and the failure is the inputs', not the mechanism's. Only looked at
-    /// where a sweep has failed.
+    /// [`Path::coarse_input`] against the samples' spacing.
     #[cold]
     fn coarse_input(&self, x: &[f64]) -> Option<(usize, f64, f64)> {
         let intervals = self.samples.checked_sub(1).filter(|&n| n > 0)? as f64;
-        let delta = self.path.delta.as_ref();
-        x.iter().zip(delta).enumerate().find_map(|(i, (&xi, &di))| {
-            let apart = xi.abs().next_up() - xi.abs();
-            let spacing = (di / intervals).abs();
-            (spacing > 0.0 && apart > 1e-6 * spacing).then_some((i, apart, spacing))
-        })
+        self.path.coarse_input(x, |di| di / intervals)
     }
 }
 

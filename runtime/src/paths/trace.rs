@@ -283,7 +283,8 @@ pub fn trace_curve_of<K: Kernel>(
                     (c, event)
                 } else {
                     let x = path.at_sigma(p.sigma);
-                    let message = match coarse_input(&path, &x, ds * metric.sigma) {
+                    // Against a whole step's change of each input.
+                    let message = match path.coarse_input(x.as_ref(), |di| ds * metric.sigma * di / path.len) {
                         Some((i, apart, step)) => format!(
                             "pseudo-arclength continuation cannot proceed: input `{}` is a double {apart:e} apart \
                              from the next here, coarser than a millionth of a step's length in it ({step:e}), so the \
@@ -392,20 +393,6 @@ fn past_crossing<K: Kernel>(
 /// passes straight (see [`past_crossing`]): the Jacobian is singular there, and within the
 /// trace's smallest step of it the pivot is of that step's order, far below this.
 const CROSSING_PIVOT: f64 = 1e-6;
-
-/// The first input whose doubles at `x` are farther apart than a millionth of its change over a
-/// step of `arc` along the path (the path's coordinate, in the path's units), with that
-/// distance and that change: there the steps' inputs round by more than the corrector can
-/// follow (as a sweep's test of its samples' spacing, `SweepOf::coarse_input`), and the
-/// failure is the inputs', not the curve's.
-fn coarse_input<X: Store>(path: &Path<X>, x: &X, arc: f64) -> Option<(usize, f64, f64)> {
-    let x = x.as_ref();
-    (0..x.len()).find_map(|i| {
-        let apart = x[i].abs().next_up() - x[i].abs();
-        let step = (arc * path.delta[i] / path.len).abs();
-        (step > 0.0 && apart > 1e-6 * step).then_some((i, apart, step))
-    })
-}
 
 /// The distance between the scaled points `z` and `z0` with each coordinate's difference
 /// reduced by whole multiples of its turn in `turns` (where it is not 0).

@@ -200,8 +200,7 @@ pub fn folded_root_offset(
 }
 
 /// [`folded_root_offset`] where its test fails: [`touching`] for a normal `r2`; otherwise the
-/// equation rescaled as [`dyad_roots_rescaled`] rescales it. Coefficients not finite, all zero
-/// or below [`SMALLEST_PRECISE_COEFFICIENT`] fail as the unscaled formulas do.
+/// offset of the equation [`rescaled`], back in the coefficients' units.
 #[cold]
 #[inline(never)]
 #[allow(clippy::too_many_arguments)]
@@ -214,21 +213,11 @@ fn folded_off_range(
     flip: bool,
     cfg: &NewtonConfig,
 ) -> Result<f64, BlockFailure> {
-    let big = a.abs().max(b.abs()).max(c.abs());
-    if (f64::MIN_POSITIVE..=f64::MAX).contains(&r2) || !(big.is_finite() && big >= SMALLEST_PRECISE_COEFFICIENT) {
+    if (f64::MIN_POSITIVE..=f64::MAX).contains(&r2) {
         return touching(d2, r2, c, cfg);
     }
-    let k = reciprocal_power_of_two(big);
-    let (a, b, c) = (a * k, b * k, c * k);
-    let r2 = a * a + b * b;
-    match root_offset(r2 - c * c, r2, c, flip, cfg) {
-        Ok(d) => Ok(d / k),
-        // The residual back in the coefficients' units.
-        Err(BlockFailure::NoAssembly { row, iterations, evaluations, residual }) => {
-            Err(BlockFailure::NoAssembly { row, iterations, evaluations, residual: residual / k })
-        }
-        Err(other) => Err(other),
-    }
+    let (k, _, _, d) = rescaled(a, b, c, flip, cfg)?;
+    Ok(d / k)
 }
 
 /// A negative `d2 = r2 - c²` that is the rounding of a limit position: the links fall short of
@@ -279,18 +268,27 @@ pub fn dyad_roots(a: f64, b: f64, c: f64, flip: bool, cfg: &NewtonConfig) -> Res
 #[cold]
 #[inline(never)]
 fn dyad_roots_rescaled(a: f64, b: f64, c: f64, flip: bool, cfg: &NewtonConfig) -> Result<(f64, f64), BlockFailure> {
+    let (_, [a, b, c], r2, d) = rescaled(a, b, c, flip, cfg)?;
+    Ok(roots_of_offset(a, b, c, r2, d))
+}
+
+/// `a cos q + b sin q = c` divided by `k`, the power of two nearest its largest coefficient
+/// (exact: the same roots, squares of order one), and its root's offset there: `(k, [a, b, c]
+/// k, r2, d)`. Coefficients that are not finite, all zero, or below
+/// [`SMALLEST_PRECISE_COEFFICIENT`] are not divided (`k = 1`), and fail as the unscaled
+/// formulas do; a failure's residual is back in the coefficients' units.
+fn rescaled(a: f64, b: f64, c: f64, flip: bool, cfg: &NewtonConfig) -> Result<(f64, [f64; 3], f64, f64), BlockFailure> {
     let big = a.abs().max(b.abs()).max(c.abs());
     let k = if big.is_finite() && big >= SMALLEST_PRECISE_COEFFICIENT { reciprocal_power_of_two(big) } else { 1.0 };
     let (a, b, c) = (a * k, b * k, c * k);
     let r2 = a * a + b * b;
     let d = root_offset(r2 - c * c, r2, c, flip, cfg).map_err(|f| match f {
-        // The residual back in the coefficients' units.
         BlockFailure::NoAssembly { row, iterations, evaluations, residual } => {
             BlockFailure::NoAssembly { row, iterations, evaluations, residual: residual / k }
         }
         other => other,
     })?;
-    Ok(roots_of_offset(a, b, c, r2, d))
+    Ok((k, [a, b, c], r2, d))
 }
 
 /// `2^-1000`: a coefficient at least this large is a normal number with 22 binary orders of
