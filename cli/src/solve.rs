@@ -60,12 +60,10 @@ pub fn units(model: &Model, kinds: &[QuantityKind], deg: bool) -> Vec<(String, &
     let ni = model.inputs().len();
     let unit = |k: usize, name: &str, kind: QuantityKind| match kind {
         QuantityKind::Angle if deg => "deg",
-        // The analogs by such an input are per unit of it: without one of its own they would
-        // have none, and an angle's in radians and in degrees (57.3 times the value) would be
-        // written alike. The unit is not known (kinloop does not guess a time's), so named as
-        // the input's, as a length's is `length unit`. Leaked: one short text per input, for
-        // the whole run.
-        QuantityKind::Other if k < ni => Box::leak(format!("unit of {name}").into_boxed_str()),
+        // The library's unit for an input of no inferred kind (`unit of t`): without it the
+        // analogs by it would have none, and an angle's in radians and in degrees would be
+        // written alike. Leaked: one short text per input, for the whole run.
+        QuantityKind::Other if k < ni => Box::leak(kind.input_unit(name).into_owned().into_boxed_str()),
         kind => kind.unit(),
     };
     model

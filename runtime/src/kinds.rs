@@ -19,7 +19,8 @@ pub enum QuantityKind {
     Length,
     /// A pure number (a ratio of lengths, a sine).
     Dimensionless,
-    /// Not inferred: no unit is written.
+    /// Not inferred: no unit is written (an input of this kind is `unit of NAME`: see
+    /// [`QuantityKind::input_unit`]).
     Other,
 }
 
@@ -67,6 +68,24 @@ impl QuantityKind {
             QuantityKind::Length => LENGTH_UNIT,
             QuantityKind::Dimensionless => "1",
             QuantityKind::Other => "",
+        }
+    }
+
+    /// The unit written for an input named `name` of this kind: [`QuantityKind::unit`], but
+    /// `unit of NAME` for a kind not inferred (a time `t`: `unit of t`). The analogs by such an
+    /// input are per unit of it; without a unit of its own they would have none. kinloop does
+    /// not guess a time's unit, so it is named as the input's, as a length's is
+    /// [`LENGTH_UNIT`].
+    ///
+    /// ```
+    /// use kinloop_runtime::QuantityKind;
+    /// assert_eq!(QuantityKind::Other.input_unit("t"), "unit of t");
+    /// assert_eq!(QuantityKind::Angle.input_unit("phi"), "rad");
+    /// ```
+    pub fn input_unit(self, name: &str) -> std::borrow::Cow<'static, str> {
+        match self {
+            QuantityKind::Other => format!("unit of {name}").into(),
+            kind => kind.unit().into(),
         }
     }
 }

@@ -168,8 +168,12 @@ fn units_of_two_inputs_a_time_input_and_overrides() {
     let m = RollerEdger::default();
     let table = m.sweep(0.0, 1.0, 3, &m.guess(0.0)).unwrap().table().unwrap();
     let h = header(&table);
-    // No unit is claimed for a quantity kinloop cannot classify...
-    assert_eq!((h["t"].as_str(), h["d(phi1)/d(t)"].as_str(), h["phi1"].as_str()), ("", "", "rad"));
+    // No unit is guessed for an input kinloop cannot classify: it is named as the input's,
+    // so that the analogs by it say what they are per (as the command line writes them)...
+    assert_eq!(
+        (h["t"].as_str(), h["d(phi1)/d(t)"].as_str(), h["d2(phi1)/d(t)^2"].as_str(), h["phi1"].as_str()),
+        ("unit of t", "rad/unit of t", "rad/unit of t^2", "rad")
+    );
     // ... until the user states it; the inferred units stay.
     let h = header(&table.with_units(&[("t", "s")]));
     assert_eq!((h["t"].as_str(), h["d(phi1)/d(t)"].as_str(), h["d2(phi1)/d(t)^2"].as_str()), ("s", "rad/s", "rad/s^2"));

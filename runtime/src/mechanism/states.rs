@@ -10,6 +10,7 @@ use crate::dims::Dims;
 use crate::error::Error;
 use crate::events::Location;
 use crate::kin::{FlatMotion, Kin};
+use crate::kinds::QuantityKind;
 use crate::mechanism::Mechanism;
 use crate::mechanism::kernel::Kernel;
 use crate::table::Table;
@@ -48,15 +49,38 @@ impl Table {
     /// The table with the units of mechanism `M`'s columns as `mechanism!` inferred them
     /// ([`Mechanism::INPUT_KINDS`], [`Mechanism::UNKNOWN_KINDS`], [`Mechanism::OUTPUT_KINDS`]):
     /// angles in `rad`, lengths in [`LENGTH_UNIT`](crate::LENGTH_UNIT), their analogs the
-    /// quotients; columns of a kind not inferred get none.
+    /// quotients. An input of a kind not inferred (a time `t`) is in `unit of t`, so that the
+    /// analogs by it say what they are per (`d(psi)/d(t)` in `rad/unit of t`); other columns
+    /// of a kind not inferred get none.
+    ///
+    /// ```
+    /// use kinloop_runtime::{QuantityKind, Table};
+    /// let mut t = Table::new(vec!["t".into(), "psi".into(), "d(psi)/d(t)".into()]);
+    /// t.push(vec![0.5, 1.0, -0.25]);
+    /// let t = t.with_kinds(&[("t", QuantityKind::Other)], &[("psi", QuantityKind::Angle)]);
+    /// assert_eq!(t.unit("t"), Some("unit of t"));
+    /// assert_eq!(t.unit("d(psi)/d(t)"), Some("rad/unit of t"));
+    /// ```
     pub fn with_units_of<M, const N: usize, const NI: usize, const NO: usize>(self) -> Self
     where
         M: Mechanism<N, NI, NO>,
     {
-        let inputs = M::INPUTS.iter().zip(M::INPUT_KINDS);
-        let unknowns = M::UNKNOWNS.iter().zip(M::UNKNOWN_KINDS);
-        let outputs = M::OUTPUTS.iter().zip(M::OUTPUT_KINDS);
-        let base: Vec<(&str, &str)> = inputs.chain(unknowns).chain(outputs).map(|(n, k)| (*n, k.unit())).collect();
+        let inputs: Vec<_> = M::INPUTS.iter().copied().zip(M::INPUT_KINDS).collect();
+        let unknowns = M::UNKNOWNS.iter().copied().zip(M::UNKNOWN_KINDS);
+        let outputs = M::OUTPUTS.iter().copied().zip(M::OUTPUT_KINDS);
+        let rest: Vec<_> = unknowns.chain(outputs).collect();
+        self.with_kinds(&inputs, &rest)
+    }
+
+    /// The table with the units of quantities of known kinds: `inputs` and the `rest`
+    /// (unknowns and outputs), each `(name, kind)`, by the rule of [`Table::with_units_of`].
+    pub fn with_kinds(self, inputs: &[(&str, QuantityKind)], rest: &[(&str, QuantityKind)]) -> Self {
+        let units: Vec<(&str, std::borrow::Cow<str>)> = inputs
+            .iter()
+            .map(|(n, k)| (*n, k.input_unit(n)))
+            .chain(rest.iter().map(|(n, k)| (*n, k.unit().into())))
+            .collect();
+        let base: Vec<(&str, &str)> = units.iter().map(|(n, u)| (*n, u.as_ref())).collect();
         self.with_units(&base)
     }
 
@@ -82,11 +106,11 @@ impl Table {
     /// The table with the units of kernel `k`'s columns (see [`Table::with_units_of`]).
     pub fn with_kernel_units<K: Kernel>(self, k: &K) -> Self {
         let d = k.dims();
-        let inputs = (0..d.ni()).map(|i| (k.input_name(i), k.input_kind(i)));
+        let inputs: Vec<_> = (0..d.ni()).map(|i| (k.input_name(i), k.input_kind(i))).collect();
         let unknowns = (0..d.n()).map(|u| (k.unknown_name(u), k.unknown_kind(u)));
         let outputs = (0..d.no()).map(|o| (k.output_name(o), k.output_kind(o)));
-        let base: Vec<(&str, &str)> = inputs.chain(unknowns).chain(outputs).map(|(n, k)| (n, k.unit())).collect();
-        self.with_units(&base)
+        let rest: Vec<_> = unknowns.chain(outputs).collect();
+        self.with_kinds(&inputs, &rest)
     }
 
     /// A table of kinematic states of mechanism `M`, with the units inferred by `mechanism!` in
