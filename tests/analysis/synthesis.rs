@@ -36,7 +36,14 @@ fn gradient_synthesis_beats_derivative_free_and_meets_the_requirement() {
     assert_close!(phase, target[0], 1e-9, "{phase} {ratio} vs {target:?}");
     assert_close!(ratio, target[1], 1e-9, "{phase} {ratio} vs {target:?}");
 
+    // The derivative-free run reaches the same requirement, at many times the evaluations
+    // (README quotes 4 against 271: the bounds leave room for a change of either method's
+    // bookkeeping, not for the gradient's advantage to vanish).
     let nm = derivative_free_run(start, target).unwrap();
-    assert!(lm.evaluations < nm.evaluations, "gradient {} vs derivative-free {}", lm.evaluations, nm.evaluations);
+    assert!(nm.converged(), "{nm:?}");
+    let (phase, ratio) = closed_form(&drive(&nm.x));
+    assert_close!(phase, target[0], 1e-6, "{phase} {ratio} vs {target:?}");
+    assert_close!(ratio, target[1], 1e-6, "{phase} {ratio} vs {target:?}");
     assert!(lm.evaluations <= 10, "{}", lm.evaluations);
+    assert!(20 * lm.evaluations <= nm.evaluations, "gradient {} vs derivative-free {}", lm.evaluations, nm.evaluations);
 }
