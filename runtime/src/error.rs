@@ -170,8 +170,9 @@ pub enum Error {
     /// [`MAX_TURNS`](crate::paths::sweep::MAX_TURNS)). Split the range, or reduce a periodic
     /// input by whole turns.
     #[error(
-        "the sweep's range is {turns:e} turns of its inputs, more than the {max_turns:e} turns a \
-         sweep follows {at}; split the range, or reduce a periodic input by whole turns"
+        "the sweep's range is {turns:e} turns of its inputs (a turn: 2 pi of their units, radians \
+         for an angle), more than the {max_turns:e} turns a sweep follows {at}; split the range, or \
+         reduce a periodic input by whole turns"
     )]
     RangeTooLong {
         /// The range's length in turns (`2 pi` input units).
