@@ -202,7 +202,8 @@ fn write_flywheel(f: &Flywheel, req: &Request, angle: f64, file: Option<std::fs:
     let Some(file) = file else {
         for (name, unit, value) in rows {
             let unit = if unit.is_empty() { String::new() } else { format!(" {unit}") };
-            eprintln!("flywheel: {name} = {}{unit}", Number(value));
+            // `+ 0.0` writes a sum of zeros' negative zero (a machine without loads) as `0`.
+            eprintln!("flywheel: {name} = {}{unit}", Number(value + 0.0));
         }
         // The energy method neglects the variation of the mechanism's own inertia over the
         // cycle; where the two sizings differ by a tenth, that variation matters (with no
