@@ -419,13 +419,13 @@ macro_rules! __named_api {
             }
 
             /// Residuals of the scalar equations (named by `EQUATIONS`) at a position.
-            pub fn residual(&self, input: impl ::core::convert::Into<$inputs>, q: &$unknowns) -> [f64; $n] {
-                <Self as $crate::Named<$n, $ni, $no>>::residual(self, input, q)
+            pub fn residual(&self, input: impl ::core::convert::Into<$inputs>, unknowns: &$unknowns) -> [f64; $n] {
+                <Self as $crate::Named<$n, $ni, $no>>::residual(self, input, unknowns)
             }
 
             /// Output values at a position.
-            pub fn outputs(&self, input: impl ::core::convert::Into<$inputs>, q: &$unknowns) -> $outputs {
-                <Self as $crate::Named<$n, $ni, $no>>::outputs(self, input, q)
+            pub fn outputs(&self, input: impl ::core::convert::Into<$inputs>, unknowns: &$unknowns) -> $outputs {
+                <Self as $crate::Named<$n, $ni, $no>>::outputs(self, input, unknowns)
             }
 
             /// Solves the positions by Newton's method from `guess` (which picks the assembly
@@ -472,9 +472,9 @@ macro_rules! __named_api {
             pub fn kinematics_at(
                 &self,
                 input: impl ::core::convert::Into<$inputs>,
-                q: &$unknowns,
+                unknowns: &$unknowns,
             ) -> ::core::result::Result<$state, $crate::Error> {
-                <Self as $crate::Named<$n, $ni, $no>>::kinematics_at(self, input, q)
+                <Self as $crate::Named<$n, $ni, $no>>::kinematics_at(self, input, unknowns)
             }
 
             /// Full kinematics at `input`, starting from the declared initial guess.
@@ -577,26 +577,26 @@ macro_rules! __named_api {
                 omega: impl ::core::convert::Into<$inputs>,
                 eps: impl ::core::convert::Into<$inputs>,
             ) -> ::core::result::Result<$motion, $crate::Error> {
-                let w = ::core::convert::Into::<$inputs>::into(omega).into();
-                let e = ::core::convert::Into::<$inputs>::into(eps).into();
-                $crate::generated::motion::<$name, $n, $ni, $no>(&self.flat, w, e).map(|m| $motion {
-                    qdot: m.qdot.into(),
-                    qddot: m.qddot.into(),
-                    out_dot: m.out_dot.into(),
-                    out_ddot: m.out_ddot.into(),
+                let __omega = ::core::convert::Into::<$inputs>::into(omega).into();
+                let __eps = ::core::convert::Into::<$inputs>::into(eps).into();
+                $crate::generated::motion::<$name, $n, $ni, $no>(&self.flat, __omega, __eps).map(|__m| $motion {
+                    qdot: __m.qdot.into(),
+                    qddot: __m.qddot.into(),
+                    out_dot: __m.out_dot.into(),
+                    out_ddot: __m.out_ddot.into(),
                 })
             }
         }
 
         impl ::core::convert::From<$crate::nalgebra::SVector<f64, $n>> for $unknowns<f64> {
-            fn from(v: $crate::nalgebra::SVector<f64, $n>) -> Self {
-                <[f64; $n]>::from(v).into()
+            fn from(__v: $crate::nalgebra::SVector<f64, $n>) -> Self {
+                <[f64; $n]>::from(__v).into()
             }
         }
 
         impl ::core::convert::From<$unknowns<f64>> for $crate::nalgebra::SVector<f64, $n> {
-            fn from(v: $unknowns<f64>) -> Self {
-                <[f64; $n]>::from(v).into()
+            fn from(__v: $unknowns<f64>) -> Self {
+                <[f64; $n]>::from(__v).into()
             }
         }
     };
@@ -615,19 +615,19 @@ macro_rules! __columns {
      unknowns $($u:ident $us:literal $ui:literal),*;
      points $($p:ident $px:literal $py:literal $pi:literal),*;
      outputs $($o:ident $os:literal $oi:literal),*) => {
-        #[doc = concat!("The columns of [`", stringify!($name), "`] as typed handles for the analysis helpers \
-            (`kinloop::analysis::Sampled`): `", stringify!($name), "::COL.name`, `", stringify!($name), "::COL.point.x`.")]
+        #[doc = ::core::concat!("The columns of [`", ::core::stringify!($name), "`] as typed handles for the analysis helpers \
+            (`kinloop::analysis::Sampled`): `", ::core::stringify!($name), "::COL.name`, `", ::core::stringify!($name), "::COL.point.x`.")]
         #[derive(Clone, Copy, Debug)]
         #[allow(non_snake_case)]
         $vis struct $columns {
-            $(#[doc = concat!("Input `", $is, "`.")] pub $i: $crate::analysis::Column<$name>,)*
-            $(#[doc = concat!("Unknown `", $us, "`.")] pub $u: $crate::analysis::Column<$name>,)*
-            $(#[doc = concat!("Point `", $px, "`, `", $py, "`.")] pub $p: $crate::Vec2<$crate::analysis::Column<$name>>,)*
-            $(#[doc = concat!("Output `", $os, "`.")] pub $o: $crate::analysis::Column<$name>,)*
+            $(#[doc = ::core::concat!("Input `", $is, "`.")] pub $i: $crate::analysis::Column<$name>,)*
+            $(#[doc = ::core::concat!("Unknown `", $us, "`.")] pub $u: $crate::analysis::Column<$name>,)*
+            $(#[doc = ::core::concat!("Point `", $px, "`, `", $py, "`.")] pub $p: $crate::Vec2<$crate::analysis::Column<$name>>,)*
+            $(#[doc = ::core::concat!("Output `", $os, "`.")] pub $o: $crate::analysis::Column<$name>,)*
         }
         impl $name {
-            #[doc = concat!("Every column of [`", stringify!($name), "`] as a typed analysis handle (see [`",
-                stringify!($columns), "`]).")]
+            #[doc = ::core::concat!("Every column of [`", ::core::stringify!($name), "`] as a typed analysis handle (see [`",
+                ::core::stringify!($columns), "`]).")]
             pub const COL: $columns = {
                 use $crate::analysis::{Column as C, ColumnIndex as I};
                 $columns {
@@ -714,16 +714,16 @@ macro_rules! __array_conversions {
         }
         impl<T> ::core::convert::From<$ty<T>> for [T; $n] {
             #[inline]
-            fn from(v: $ty<T>) -> Self {
-                [$(v.$p.x, v.$p.y,)* $(v.$s,)*]
+            fn from(__v: $ty<T>) -> Self {
+                [$(__v.$p.x, __v.$p.y,)* $(__v.$s,)*]
             }
         }
         // By reference too, so that `&m.guess(x)` is the one way to pass a guess, whether the
         // callee takes the named unknowns or an array.
         impl<T: ::core::marker::Copy> ::core::convert::From<&$ty<T>> for [T; $n] {
             #[inline]
-            fn from(v: &$ty<T>) -> Self {
-                [$(v.$p.x, v.$p.y,)* $(v.$s,)*]
+            fn from(__v: &$ty<T>) -> Self {
+                [$(__v.$p.x, __v.$p.y,)* $(__v.$s,)*]
             }
         }
     };
@@ -749,8 +749,8 @@ macro_rules! __from_param_values {
     };
     ($n:literal; $($f:ident $i:tt),+) => {
         /// Builds the mechanism from parameter values in declaration order.
-        pub fn from_param_values(v: [f64; $n]) -> Self {
-            Self { $($f: v[$i]),+ }
+        pub fn from_param_values(__values: [f64; $n]) -> Self {
+            Self { $($f: __values[$i]),+ }
         }
     };
 }

@@ -66,15 +66,15 @@ pub fn types(vis: &Visibility, fields: &[Field], dims: &Dims, ni: usize, t: &Typ
             pub flat: #rt::Sens<#n, #ni_lit, #no, #np>,
         }
         impl ::core::convert::From<#rt::Sens<#n, #ni_lit, #no, #np>> for #sens {
-            fn from(s: #rt::Sens<#n, #ni_lit, #no, #np>) -> Self {
+            fn from(__s: #rt::Sens<#n, #ni_lit, #no, #np>) -> Self {
                 #sens {
-                    q: #unknowns::from(s.q.map(#params::from)),
-                    dq: #unknowns::from(s.dq.map(#conv_v)),
-                    d2q: #unknowns::from(s.d2q.map(#conv_a)),
-                    out: #outputs::from(s.out.map(#params::from)),
-                    dout: #outputs::from(s.dout.map(#conv_v)),
-                    d2out: #outputs::from(s.d2out.map(#conv_a)),
-                    flat: s,
+                    q: #unknowns::from(__s.q.map(#params::from)),
+                    dq: #unknowns::from(__s.dq.map(#conv_v)),
+                    d2q: #unknowns::from(__s.d2q.map(#conv_a)),
+                    out: #outputs::from(__s.out.map(#params::from)),
+                    dout: #outputs::from(__s.dout.map(#conv_v)),
+                    d2out: #outputs::from(__s.d2out.map(#conv_a)),
+                    flat: __s,
                 }
             }
         }
@@ -102,15 +102,15 @@ fn kernels(model: &Model, plan: &Plan, t: &Types) -> TokenStream {
             /// factorisations). Costs a few extra solves per block; `kinematics` does none of it.
             pub fn sensitivities(&self, #input, guess: &#unknowns) -> #ret { #named::sensitivities(self, input, guess) }
             /// [`Self::sensitivities`] at a position the caller already solved.
-            pub fn sensitivities_at(&self, #input, q: &#unknowns) -> #ret { #named::sensitivities_at(self, input, q) }
+            pub fn sensitivities_at(&self, #input, unknowns: &#unknowns) -> #ret { #named::sensitivities_at(self, input, unknowns) }
         }
         #lints
         impl #rt::Sensitivities<#n, #ni, #no, #np> for #name {
             fn params_flat(&self) -> [f64; #np] {
                 [#(self.#pnames),*]
             }
-            fn with_params_flat(&self, p: [f64; #np]) -> Self {
-                #name::from_param_values(p)
+            fn with_params_flat(&self, __p: [f64; #np]) -> Self {
+                #name::from_param_values(__p)
             }
             fn sensitivities_flat(&self, #x, __guess: &[f64; #n], #cfg) -> #flat { #fused }
             fn sensitivities_at_flat(&self, #x, __q: &[f64; #n], #cfg) -> #flat { #at }

@@ -108,9 +108,9 @@ pub fn steps_item(sp: &Sparse, m: &str, b: usize, rt: &TokenStream) -> TokenStre
             Some(e) => {
                 let (r, c) = sp.entries[e];
                 let (e, r, c) = (lit(e), lit(r), lit(c));
-                quote!(a[#s] = #rt::scaled(v[#e], r[#r], c[#c]);)
+                quote!(__a[#s] = #rt::scaled(__v[#e], __r[#r], __c[#c]);)
             }
-            None => quote!(a[#s] = 0.0;),
+            None => quote!(__a[#s] = 0.0;),
         }
     });
     // Elimination: per pivot its test, its reciprocal, then per row below it the multiplier
@@ -121,13 +121,13 @@ pub fn steps_item(sp: &Sparse, m: &str, b: usize, rt: &TokenStream) -> TokenStre
         let (l, u) = (sp.l_ptr[k] as usize..sp.l_ptr[k + 1] as usize, sp.u_ptr[k] as usize..sp.u_ptr[k + 1] as usize);
         let (d, kl) = (lit(sp.diag[k] as usize), lit(k));
         let lower: Vec<_> = sp.l_slot[l.clone()].iter().map(|&s| lit(s as usize)).collect();
-        elim.extend(quote!(let i = __p.pivot(a[#d], [#(a[#lower]),*]); d[#kl] = i;));
+        elim.extend(quote!(let __i = __p.pivot(__a[#d], [#(__a[#lower]),*]); __d[#kl] = __i;));
         for s in &lower {
             let ups = sp.u_slot[u.clone()].iter().zip(upd.by_ref()).map(|(&u, &t)| {
                 let (u, t) = (lit(u as usize), lit(t as usize));
-                quote!(a[#t] -= m * a[#u];)
+                quote!(__a[#t] -= __m * __a[#u];)
             });
-            elim.extend(quote!(let m = a[#s] * i; a[#s] = m; #(#ups)*));
+            elim.extend(quote!(let __m = __a[#s] * __i; __a[#s] = __m; #(#ups)*));
         }
     }
     // Substitution: forward through the columns of `L`, back through the rows of `U`.
@@ -138,7 +138,7 @@ pub fn steps_item(sp: &Sparse, m: &str, b: usize, rt: &TokenStream) -> TokenStre
             sp.l_slot[sp.l_ptr[k] as usize..sp.l_ptr[k + 1] as usize].iter().zip(&sp.l_row[sp.l_ptr[k] as usize..])
         {
             let (s, i) = (lit(s as usize), lit(i as usize));
-            subst.extend(quote!(z[#i] -= a[#s] * z[#kl];));
+            subst.extend(quote!(__z[#i] -= __a[#s] * __z[#kl];));
         }
     }
     for k in (0..sp.diag.len()).rev() {
@@ -149,13 +149,13 @@ pub fn steps_item(sp: &Sparse, m: &str, b: usize, rt: &TokenStream) -> TokenStre
             .zip(&sp.u_col[u])
             .map(|(&s, &j)| {
                 let (s, j) = (lit(s as usize), lit(j as usize));
-                quote!(- a[#s] * z[#j])
+                quote!(- __a[#s] * __z[#j])
             })
             .collect();
         subst.extend(if terms.is_empty() {
-            quote!(z[#kl] *= d[#kl];)
+            quote!(__z[#kl] *= __d[#kl];)
         } else {
-            quote!(z[#kl] = (z[#kl] #(#terms)*) * d[#kl];)
+            quote!(__z[#kl] = (__z[#kl] #(#terms)*) * __d[#kl];)
         });
     }
     quote! {
@@ -165,30 +165,30 @@ pub fn steps_item(sp: &Sparse, m: &str, b: usize, rt: &TokenStream) -> TokenStre
         impl #rt::SparseSteps<#n, #nlu> for #id {
             #[inline]
             fn load<const NNZ: usize>(
-                p: &#rt::SparsePattern,
-                v: &[f64; NNZ],
-                r: &[f64; #n],
-                c: &[f64; #n],
-                a: &mut [f64; #nlu],
+                __pattern: &#rt::SparsePattern,
+                __v: &[f64; NNZ],
+                __r: &[f64; #n],
+                __c: &[f64; #n],
+                __a: &mut [f64; #nlu],
             ) {
                 // The code below is this block's pattern's: paired with another, it would be wrong.
-                debug_assert!(::core::ptr::eq(p, &#pattern));
+                ::core::debug_assert!(::core::ptr::eq(__pattern, &#pattern));
                 #(#load)*
             }
             #[inline]
             fn eliminate(
                 _: &#rt::SparsePattern,
-                a: &mut [f64; #nlu],
-                d: &mut [f64; #n],
-                det: &mut f64,
-                negative: &mut bool,
+                __a: &mut [f64; #nlu],
+                __d: &mut [f64; #n],
+                __det: &mut f64,
+                __negative: &mut bool,
             ) -> ::core::option::Option<f64> {
-                let mut __p = #rt::Pivots::new(*det, *negative);
+                let mut __p = #rt::Pivots::new(*__det, *__negative);
                 #elim
-                __p.finish(det, negative)
+                __p.finish(__det, __negative)
             }
             #[inline]
-            fn substitute(_: &#rt::SparsePattern, a: &[f64; #nlu], d: &[f64; #n], z: &mut [f64; #n]) {
+            fn substitute(_: &#rt::SparsePattern, __a: &[f64; #nlu], __d: &[f64; #n], __z: &mut [f64; #n]) {
                 #subst
             }
         }

@@ -130,8 +130,8 @@ fn array_conversions(s: &Surface, t: &Types) -> TokenStream {
             let i = &one.name;
             quote! {
                 impl ::core::convert::From<f64> for #inputs<f64> {
-                    fn from(v: f64) -> Self {
-                        #inputs { #i: v }
+                    fn from(__v: f64) -> Self {
+                        #inputs { #i: __v }
                     }
                 }
             }
@@ -256,15 +256,16 @@ pub fn analog_conversions(
 ) -> (TokenStream, TokenStream) {
     let nil = lit(ni);
     match (ni, elem) {
-        (1, Some(e)) => (quote!(|r: [#flat; 1]| #e(r[0])), quote!(|r: [[#flat; 1]; 1]| #e(r[0][0]))),
-        (1, None) => (quote!(|r: [#flat; 1]| r[0]), quote!(|r: [[#flat; 1]; 1]| r[0][0])),
+        // One input: the array's element type is known to `map`, no annotation needed.
+        (1, Some(e)) => (quote!(|__r| #e(__r[0])), quote!(|__r| #e(__r[0][0]))),
+        (1, None) => (quote!(|__r| __r[0]), quote!(|__r| __r[0][0])),
         (_, Some(e)) => (
-            quote!(|r: [#flat; #nil]| #inputs::from(r.map(#e))),
-            quote!(|r: [[#flat; #nil]; #nil]| #inputs::from(r.map(|s| #inputs::from(s.map(#e))))),
+            quote!(|__r: [#flat; #nil]| #inputs::from(__r.map(#e))),
+            quote!(|__r: [[#flat; #nil]; #nil]| #inputs::from(__r.map(|__s| #inputs::from(__s.map(#e))))),
         ),
         (_, None) => (
             quote!(#inputs::<f64>::from),
-            quote!(|r: [[#flat; #nil]; #nil]| #inputs::from(r.map(#inputs::<f64>::from))),
+            quote!(|__r: [[#flat; #nil]; #nil]| #inputs::from(__r.map(#inputs::<f64>::from))),
         ),
     }
 }
@@ -329,24 +330,24 @@ fn state_struct(s: &Surface, t: &Types) -> TokenStream {
         }
         impl ::core::convert::From<#state> for #rt::Kin<#nl, #nil, #nol> {
             #[inline]
-            fn from(s: #state) -> Self {
-                s.flat
+            fn from(__s: #state) -> Self {
+                __s.flat
             }
         }
         impl ::core::convert::From<#rt::Kin<#nl, #nil, #nol>> for #state {
             #[inline]
-            fn from(k: #rt::Kin<#nl, #nil, #nol>) -> Self {
+            fn from(__k: #rt::Kin<#nl, #nil, #nol>) -> Self {
                 #state {
-                    input: #inputs::from(k.x),
-                    q: #unknowns::from(k.q),
-                    dq: #unknowns::from(k.dq.map(#conv_v)),
-                    d2q: #unknowns::from(k.d2q.map(#conv_a)),
-                    out: #outputs::from(k.out),
-                    dout: #outputs::from(k.dout.map(#conv_v)),
-                    d2out: #outputs::from(k.d2out.map(#conv_a)),
-                    report: k.report,
-                    health: k.health,
-                    flat: k,
+                    input: #inputs::from(__k.x),
+                    q: #unknowns::from(__k.q),
+                    dq: #unknowns::from(__k.dq.map(#conv_v)),
+                    d2q: #unknowns::from(__k.d2q.map(#conv_a)),
+                    out: #outputs::from(__k.out),
+                    dout: #outputs::from(__k.dout.map(#conv_v)),
+                    d2out: #outputs::from(__k.d2out.map(#conv_a)),
+                    report: __k.report,
+                    health: __k.health,
+                    flat: __k,
                 }
             }
         }

@@ -3,6 +3,7 @@
 //! the `let`s and `point`s they name), each term lowered to its two coordinates.
 
 use super::lower::Lowerer;
+use super::scope::key;
 use super::symbols::Val;
 use crate::front::expr::{BinOp, Expr};
 use crate::front::syntax::{Item, ItemKind};
@@ -70,16 +71,16 @@ pub(super) fn model(lw: &mut Lowerer, items: &[Item]) -> DrawingModel {
     for item in items {
         match &item.kind {
             ItemKind::Let { name, value } => {
-                defs.insert(name.to_string(), value);
+                defs.insert(key(name), value);
             }
             ItemKind::Point { name, value } => {
                 let terms = terms_of(lw, value, &defs);
                 if terms.len() > MAX_TERMS {
                     skipped.push(format!("point `{name}`"));
                 } else {
-                    points.push((name.to_string(), terms));
+                    points.push((key(name), terms));
                 }
-                defs.insert(name.to_string(), value);
+                defs.insert(key(name), value);
             }
             ItemKind::Loop { name, lhs, rhs, .. } => {
                 let (left, right) = (terms_of(lw, lhs, &defs), terms_of(lw, rhs, &defs));
@@ -87,10 +88,10 @@ pub(super) fn model(lw: &mut Lowerer, items: &[Item]) -> DrawingModel {
                 if left.len().max(right.len()) > MAX_TERMS || all > MAX_ALL_TERMS {
                     skipped.push(format!("loop `{name}`"));
                 } else {
-                    loops.push(Chain { name: name.to_string(), left, right });
+                    loops.push(Chain { name: key(name), left, right });
                 }
             }
-            ItemKind::Eq { name, .. } => equations.push(name.to_string()),
+            ItemKind::Eq { name, .. } => equations.push(key(name)),
             _ => {}
         }
     }
@@ -126,7 +127,7 @@ fn split(
             }
             Expr::Num { value, .. } if *value == 0.0 => return,
             Expr::Var(id) if expanded < MAX_EXPANSION => {
-                if let Some(def) = defs.get(&id.to_string()) {
+                if let Some(def) = defs.get(&key(id)) {
                     return split(lw, def, sign, defs, (expanded + 1, depth + 1), out);
                 }
             }

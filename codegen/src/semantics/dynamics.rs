@@ -7,6 +7,7 @@
 //! Anything else would need its own analogs, so the message asks to declare it as a `point`.
 
 use super::lower::Lowerer;
+use super::scope::key;
 use super::symbols::{Symbol, Val};
 use crate::front::expr::{Expr, SpanRange};
 use crate::front::syntax::BodyDef;
@@ -203,7 +204,7 @@ impl Pending {
             None => None,
         };
         if let (Some(on), Some(value)) = (angle, value) {
-            self.torques.push(TorqueModel { name: name.to_string(), on, value });
+            self.torques.push(TorqueModel { name: key(name), on, value });
         }
     }
 
@@ -263,13 +264,13 @@ impl Pending {
         let mut model = DynamicsModel { gravity: self.gravity, torques: self.torques, ..Default::default() };
         for b in self.bodies {
             if let Some(com) = coords(lw, &b.com, "a centre of mass") {
-                let (name, mass, inertia, turns) = (b.name.to_string(), b.mass, b.inertia, b.turns);
+                let (name, mass, inertia, turns) = (key(&b.name), b.mass, b.inertia, b.turns);
                 model.bodies.push(BodyModel { name, mass, inertia, com, turns });
             }
         }
         for (name, at, value) in self.forces {
             if let Some(at) = coords(lw, &at, "the point a force acts at") {
-                model.forces.push(ForceModel { name: name.to_string(), at, value });
+                model.forces.push(ForceModel { name: key(&name), at, value });
             }
         }
         model

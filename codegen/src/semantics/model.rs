@@ -133,10 +133,12 @@ impl Model {
     pub fn output_names(&self) -> Vec<String> {
         let mut v = Vec::new();
         for p in &self.points {
-            v.push(format!("{}.x", p.name));
-            v.push(format!("{}.y", p.name));
+            // Without `r#`, as the inputs' and unknowns' names: `r#fn` is the column `fn`.
+            let name = p.name.unraw();
+            v.push(format!("{name}.x"));
+            v.push(format!("{name}.y"));
         }
-        v.extend(self.scalars.iter().map(|s| s.name.to_string()));
+        v.extend(self.scalars.iter().map(|s| s.name.unraw().to_string()));
         v
     }
 }

@@ -37,22 +37,22 @@ pub struct StateByName<I, U, UV, UA, O, OV, OA> {
 macro_rules! __state_by_name {
     ($state:ident, $inputs:ident, $unknowns:ident, $outputs:ident, $n:literal, $ni:literal, $no:literal, one) => {
         $crate::__state_by_name!(@impl $state, $inputs, $unknowns, $outputs, $n, $ni, $no, f64, f64,
-            |v: f64| [v], |a: f64| [[a]]);
+            |__v: f64| [__v], |__a: f64| [[__a]]);
     };
     ($state:ident, $inputs:ident, $unknowns:ident, $outputs:ident, $n:literal, $ni:literal, $no:literal, many) => {
         $crate::__state_by_name!(@impl $state, $inputs, $unknowns, $outputs, $n, $ni, $no, $inputs<f64>,
             $inputs<$inputs<f64>>, <[f64; $ni]>::from,
-            |a: $inputs<$inputs<f64>>| <[$inputs<f64>; $ni]>::from(a).map(<[f64; $ni]>::from));
+            |__a: $inputs<$inputs<f64>>| <[$inputs<f64>; $ni]>::from(__a).map(<[f64; $ni]>::from));
     };
     (@impl $state:ident, $inputs:ident, $unknowns:ident, $outputs:ident, $n:literal, $ni:literal, $no:literal,
         $v:ty, $a:ty, $back_v:expr, $back_a:expr) => {
         impl ::core::convert::From<$state>
             for $crate::generated::StateByName<$inputs, $unknowns, $unknowns<$v>, $unknowns<$a>, $outputs, $outputs<$v>, $outputs<$a>>
         {
-            fn from(s: $state) -> Self {
+            fn from(__s: $state) -> Self {
                 $crate::generated::StateByName {
-                    input: s.input, q: s.q, dq: s.dq, d2q: s.d2q, out: s.out, dout: s.dout, d2out: s.d2out,
-                    report: s.report, health: s.health,
+                    input: __s.input, q: __s.q, dq: __s.dq, d2q: __s.d2q, out: __s.out, dout: __s.dout, d2out: __s.d2out,
+                    report: __s.report, health: __s.health,
                 }
             }
         }
@@ -60,18 +60,18 @@ macro_rules! __state_by_name {
             for $state
         {
             fn from(
-                s: $crate::generated::StateByName<$inputs, $unknowns, $unknowns<$v>, $unknowns<$a>, $outputs, $outputs<$v>, $outputs<$a>>,
+                __s: $crate::generated::StateByName<$inputs, $unknowns, $unknowns<$v>, $unknowns<$a>, $outputs, $outputs<$v>, $outputs<$a>>,
             ) -> Self {
                 $state::from($crate::Kin::<$n, $ni, $no> {
-                    x: s.input.into(),
-                    q: s.q.into(),
-                    dq: <[$v; $n]>::from(s.dq).map($back_v),
-                    d2q: <[$a; $n]>::from(s.d2q).map($back_a),
-                    out: s.out.into(),
-                    dout: <[$v; $no]>::from(s.dout).map($back_v),
-                    d2out: <[$a; $no]>::from(s.d2out).map($back_a),
-                    report: s.report,
-                    health: s.health,
+                    x: __s.input.into(),
+                    q: __s.q.into(),
+                    dq: <[$v; $n]>::from(__s.dq).map($back_v),
+                    d2q: <[$a; $n]>::from(__s.d2q).map($back_a),
+                    out: __s.out.into(),
+                    dout: <[$v; $no]>::from(__s.dout).map($back_v),
+                    d2out: <[$a; $no]>::from(__s.d2out).map($back_a),
+                    report: __s.report,
+                    health: __s.health,
                 })
             }
         }

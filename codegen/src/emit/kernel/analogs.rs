@@ -82,8 +82,8 @@ impl Kernel<'_> {
             let __j: [[f64; #n]; #n] = #j;
             #factor
             if #checked !(#lu.pivot_ratio() >= __cfg.singular_tol) {
-                let bad = #rt::first_bad_row(__j).or(#rt::first_bad_row(#rv));
-                return Err(#rt::singular(self, #bl, #lu.pivot_ratio(), __cfg, __x, bad));
+                let __r = #rt::first_bad_row(__j).or(#rt::first_bad_row(#rv));
+                return Err(#rt::singular(self, #bl, #lu.pivot_ratio(), __cfg, __x, __r));
             }
         }
     }
@@ -109,8 +109,8 @@ impl Kernel<'_> {
             #slot
             __j.factor_cols_into(&mut #lu, &[#(#scale),*]);
             if !(#lu.pivot_ratio() >= __cfg.singular_tol) {
-                let bad = __j.first_bad_row().or(#rt::first_bad_row(#rv));
-                return Err(#rt::singular(self, #bl, #lu.pivot_ratio(), __cfg, __x, bad));
+                let __r = __j.first_bad_row().or(#rt::first_bad_row(#rv));
+                return Err(#rt::singular(self, #bl, #lu.pivot_ratio(), __cfg, __x, __r));
             }
         }
     }

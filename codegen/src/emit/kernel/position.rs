@@ -149,7 +149,7 @@ impl Kernel<'_> {
         };
         // Deferred, an earlier block may have failed unchecked (its outputs NaN): the checked
         // kernel tells which failure it is.
-        let failure = quote!(return Err(#rt::block_failure(self, #bl, *e, __x, __guess, __cfg)));
+        let failure = quote!(return Err(#rt::block_failure(self, #bl, *__e, __x, __guess, __cfg)));
         let fail = if self.deferred {
             quote!({
                 if __CHECKED {
@@ -214,8 +214,8 @@ impl Kernel<'_> {
             #slot
             let #r = #newton(__z0, &mut #at, __cfg, #ev, #mags #lu_arg);
             let #s = match &#r {
-                Ok(s) => s,
-                Err(e) => #fail,
+                Ok(__s) => __s,
+                Err(__e) => #fail,
             };
             __report.absorb(#s);
             let [#(#qs),*] = #s.z;
