@@ -2,8 +2,7 @@
 
 use crate::{Failed, exit};
 use kinloop_model::{Count, Model, StepError};
-use kinloop_runtime::dims::Heap;
-use kinloop_runtime::{Error, Kernel, NewtonConfig, QuantityKind, SweepConfig, Table};
+use kinloop_runtime::{Error, NewtonConfig, QuantityKind, Table};
 
 /// Solves at every `--at` and writes the table to standard output.
 pub fn run(model: &mut Model, at: &[String], deg: bool) -> Result<(), Failed> {
@@ -35,22 +34,14 @@ pub fn run(model: &mut Model, at: &[String], deg: bool) -> Result<(), Failed> {
     crate::output::table(&table, "the table")
 }
 
-/// Why the solve of `model` at `x` failed with `e`, as the runtime says it (no assembly, a
-/// singular position, a value out of its domain, with the failed block's unknowns and
-/// equations): the same step again through the model's [`Kernel`], whose errors a sweep's
-/// are. A [`StepError`] is the evaluator's record of the failure, not an explanation. The
-/// inputs of kinds `kinds` are named in degrees where `deg` is set.
+/// Why the solve of `model` at `x` from the declared guess failed with `e`, as the runtime says
+/// it ([`Model::explain`]), the inputs of kinds `kinds` in degrees where `deg` is set.
 fn explain(model: &mut Model, x: &[f64], e: StepError, kinds: &[QuantityKind], deg: bool) -> String {
-    // A parameter without a value: no kernel, and the step's own message says so.
-    let Ok(kernel) = model.kernel(SweepConfig::default()) else {
+    let mut guess = vec![0.0; model.unknowns().len()];
+    if model.guess(x, &mut guess).is_err() {
         return e.to_string();
-    };
-    let x = Heap(x.into());
-    match kernel.kinematics(&x, &kernel.guess(&x), &NewtonConfig::default()) {
-        Err(explained) => in_units(explained, kinds, deg).to_string(),
-        // The same step on the same model fails alike: not reached.
-        Ok(_) => e.to_string(),
     }
+    in_units(model.explain(x, &guess, &NewtonConfig::default(), e), kinds, deg).to_string()
 }
 
 /// The base quantities with their units: `deg` for angles where angles are written in

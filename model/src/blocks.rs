@@ -24,6 +24,39 @@ pub enum StepFailure {
     },
 }
 
+impl std::fmt::Display for StepFailure {
+    /// What failed, by the block's row (the evaluator's record: [`Model::explain`] names the
+    /// equation).
+    ///
+    /// [`Model::explain`]: crate::Model::explain
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        match *self {
+            StepFailure::Singular { pivot_ratio } => {
+                write!(f, "singular position: the analogs' pivot ratio is {pivot_ratio:e}")
+            }
+            StepFailure::Block(BlockFailure::NonFinite { row, .. }) => {
+                write!(f, "a value of the block's row {row} left its functions' domain (not finite)")
+            }
+            StepFailure::Block(BlockFailure::NoConvergence { row, iterations, residual }) => write!(
+                f,
+                "no convergence after {iterations} iterations: the residual is {residual:e} in the block's row {row}"
+            ),
+            StepFailure::Block(BlockFailure::NoAssembly { row, residual, .. }) => {
+                write!(f, "the loops cannot close here: the residual stalls at {residual:e} in the block's row {row}")
+            }
+            StepFailure::Block(BlockFailure::Singular { pivot_ratio, tolerance, .. }) => {
+                write!(f, "singular position: pivot ratio {pivot_ratio:e} below {tolerance:e}")
+            }
+            StepFailure::Block(BlockFailure::InvalidConfig { field }) => {
+                write!(f, "solver configuration: `{field}` is out of range")
+            }
+            StepFailure::Block(BlockFailure::TooManyTurns { value }) => {
+                write!(f, "an angle of {value:e} rad is too many turns out to be solved precisely")
+            }
+        }
+    }
+}
+
 /// How a block's positions are solved at run time.
 #[derive(Clone)]
 pub(crate) enum How {

@@ -82,6 +82,45 @@ impl Model {
         Ok(ModelKernel { model: RefCell::new(self), jac: RefCell::new(Jacobian::default()), info })
     }
 
+    /// Why [`Model::kinematics`] at `x` from `guess` with `cfg` failed with `e`, as a compiled
+    /// mechanism says it: the same step again through the model's [`Kernel`], whose error names
+    /// the mechanism, the inputs, the failed block's unknowns and equations and what failed
+    /// (``the mechanism cannot be assembled in `Cyl` at s = 2.27 (block 0: unknowns th, psi;
+    /// equations c.x, c.y): ...``). A [`StepError`] is the evaluator's record of the failure,
+    /// by block and row; this is its explanation (the command line's).
+    ///
+    /// ```
+    /// use kinloop_model::Model;
+    /// // Not a Grashof crank: it cannot reach phi = 3.
+    /// let text = "pub struct FourBar {
+    ///     params a = 3, b = 2, c = 2.5, d = 4;
+    ///     input phi;
+    ///     unknowns beta = 0.5, gamma = 1.5;
+    ///     loop abcd: a @ phi + b @ beta == (d, 0) + c @ gamma;
+    /// }";
+    /// let mut m = Model::read("four_bar.kl", text).unwrap();
+    /// let e = m.solve(&[3.0]).unwrap_err();
+    /// let explained = m.explain(&[3.0], &[0.5, 1.5], &Default::default(), e).to_string();
+    /// assert!(explained.contains("cannot be assembled in `FourBar` at phi = 3"), "{explained}");
+    /// ```
+    pub fn explain(&mut self, x: &[f64], guess: &[f64], cfg: &NewtonConfig, e: StepError) -> Error {
+        // Values of the wrong count: the step's own error says so.
+        if x.len() != self.inputs().len() || guess.len() != self.unknowns().len() {
+            return Error::InvalidArgument(e.to_string());
+        }
+        // A parameter without a value: no kernel, and its error says so.
+        let kernel = match self.kernel(SweepConfig::default()) {
+            Ok(kernel) => kernel,
+            Err(no_kernel) => return no_kernel,
+        };
+        let (x, guess) = (Heap(x.into()), Heap(guess.into()));
+        match kernel.kinematics(&x, &guess, cfg) {
+            Err(explained) => explained,
+            // The same step on the same model fails alike: not reached.
+            Ok(_) => Error::InvalidArgument(e.to_string()),
+        }
+    }
+
     /// A lazy, branch-safe sweep of `samples` equally spaced inputs from `from` to `to` (both
     /// included) from `guess` at `from`, with the default solver configuration: the runtime's
     /// [`Sweep`](kinloop_runtime::Sweep) (events, `next_ref`, `table()`, `run`) over this

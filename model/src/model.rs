@@ -77,7 +77,9 @@ impl fmt::Display for StepError {
             StepError::UnsetParam(p) => write!(f, "parameter `{p}` has no value (it has no default: give one)"),
             StepError::Size { what, expected, given } => write!(f, "{given} {what} given, {expected} expected"),
             StepError::InvalidConfig(field) => write!(f, "solver configuration: `{field}` is out of range"),
-            StepError::Block { block, failure } => write!(f, "block {block}: {failure:?}"),
+            StepError::Block { block, failure } => {
+                write!(f, "block {block}: {failure} (`Model::explain` names its unknowns and equations)")
+            }
             StepError::NonFinite => write!(f, "a value of the state is not finite"),
         }
     }

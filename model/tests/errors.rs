@@ -232,3 +232,26 @@ fn a_non_finite_linear_block_names_its_equation() {
     let e = same_error(&compiled, &mut model, [0.0], [1.0]);
     assert!(matches!(e, Error::Singular { .. }), "{e:?}");
 }
+
+/// A failed step of the model's own API (`Model::kinematics`, `solve`) reads as a sentence by
+/// its block's row, and `Model::explain` gives the compiled mechanism's error for it, naming
+/// the equation: a non-Grashof four-bar at an input it cannot reach. It printed `block 0:
+/// Block(NoAssembly { row: 0, .. })`.
+#[test]
+fn a_step_error_reads_as_a_sentence_and_explains_as_the_compiled_error() {
+    let compiled = fx::FourBar { a: 3.0, b: 2.0, c: 2.5, d: 4.0 };
+    let mut model = read(fx::FOUR_BAR_TEXT);
+    set(&mut model, &[("a", 3.0), ("b", 2.0), ("c", 2.5), ("d", 4.0)]);
+    let (x, guess) = ([3.0], [0.5, 1.5]);
+    let e = model.kinematics(&x, &guess, &NewtonConfig::default()).map(|_| ()).unwrap_err();
+    let text = e.to_string();
+    assert!(!text.contains('{') && !text.contains("Block("), "{text}");
+    assert!(text.starts_with("block 0: ") && text.contains("`Model::explain`"), "{text}");
+    let explained = model.explain(&x, &guess, &NewtonConfig::default(), e);
+    let c_err = compiled.kinematics_flat(&x, &guess, &NewtonConfig::default()).unwrap_err();
+    same(&c_err, &explained);
+    assert!(explained.to_string().contains("cannot be assembled in `FourBar` at phi = 3"), "{explained}");
+    // Values of the wrong count: the step's own error, not a panic.
+    let e = model.kinematics(&[3.0, 1.0], &guess, &NewtonConfig::default()).map(|_| ()).unwrap_err();
+    assert!(matches!(model.explain(&[3.0, 1.0], &guess, &NewtonConfig::default(), e), Error::InvalidArgument(_)));
+}
