@@ -268,6 +268,13 @@ struct Parser {
 }
 
 /// At most 24 characters of `s`, for quoting source in messages.
+/// Names that start the next part of a declaration (an item, a body's field, a load's point or
+/// angle), not a factor: after a number they mean a missing `;` or `,`.
+const STARTS_A_PART: &[&str] = &[
+    "params", "param", "input", "inputs", "unknowns", "unknown", "let", "loop", "eq", "point", "output", "body",
+    "force", "torque", "gravity", "at", "on", "mass", "com", "inertia", "turns",
+];
+
 fn short(s: &str) -> String {
     if s.chars().count() <= 24 { s.to_string() } else { format!("{}...", s.chars().take(24).collect::<String>()) }
 }
@@ -331,6 +338,21 @@ impl Parser {
                 short(&lhs.show()),
                 short(&lhs.show())
             )));
+        }
+        // `2 pi`, `30 deg`: a number right before a name is a product without its `*` (or a
+        // value in degrees written the other way round). Not where the name starts the next
+        // part of the declaration: an item or a body's field after a missing `;` or `,`, or a
+        // name given its value (`params r = 1 l = 2` lacks its `,`).
+        if let (Expr::Num { .. }, Some((name, rest))) = (&lhs, cursor.ident())
+            && !rest.punct().is_some_and(|(p, _)| matches!(p.as_char(), '=' | ':'))
+            && !STARTS_A_PART.contains(&name.to_string().as_str())
+        {
+            let number = short(&lhs.show());
+            return Err(input.error(if name == "deg" {
+                format!("a value in degrees is written `deg({number})`: `deg` is a function")
+            } else {
+                format!("expected an operator between `{number}` and `{name}`: write `{number} * {name}` for a product")
+            }));
         }
         // Counts how many operators were chained at this level: a long chain `a + b + c + ...`
         // builds a left-deep tree, which must respect the depth bound too.

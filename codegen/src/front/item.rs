@@ -41,24 +41,30 @@ pub(super) fn parse_item(input: ParseStream, errors: &mut Errors) -> syn::Result
     let look = input.lookahead1();
     let kind = if look.peek(kw::params) || look.peek(kw::param) {
         skip_keyword(input)?;
-        ItemKind::Decls(DeclKind::Params, parse_decls(input, DeclKind::Params)?)
+        ItemKind::Decls(DeclKind::Params, parse_decls(input, DeclKind::Params, errors)?)
     } else if look.peek(kw::input) || look.peek(kw::inputs) {
         skip_keyword(input)?;
-        ItemKind::Decls(DeclKind::Inputs, parse_decls(input, DeclKind::Inputs)?)
+        ItemKind::Decls(DeclKind::Inputs, parse_decls(input, DeclKind::Inputs, errors)?)
     } else if look.peek(kw::unknowns) || look.peek(kw::unknown) {
         skip_keyword(input)?;
-        ItemKind::Decls(DeclKind::Unknowns, parse_decls(input, DeclKind::Unknowns)?)
+        ItemKind::Decls(DeclKind::Unknowns, parse_decls(input, DeclKind::Unknowns, errors)?)
     } else if look.peek(Token![let]) {
         input.parse::<Token![let]>()?;
         let (name, value) = parse_binding(input, "let")?;
         ItemKind::Let { name, value }
     } else if look.peek(kw::point) {
         input.parse::<kw::point>()?;
-        let (name, value) = parse_binding(input, "point")?;
+        let (name, value) = match named_value(input, "point", errors)? {
+            Named::Parsed(name, value) => (name, value),
+            Named::Broken(name, value) => return Ok(Item { docs, keyword, kind: ItemKind::Point { name, value } }),
+        };
         ItemKind::Point { name, value }
     } else if look.peek(kw::output) {
         input.parse::<kw::output>()?;
-        let (name, value) = parse_binding(input, "output")?;
+        let (name, value) = match named_value(input, "output", errors)? {
+            Named::Parsed(name, value) => (name, value),
+            Named::Broken(name, value) => return Ok(Item { docs, keyword, kind: ItemKind::Output { name, value } }),
+        };
         ItemKind::Output { name, value }
     } else if look.peek(Token![loop]) {
         input.parse::<Token![loop]>()?;
@@ -156,6 +162,8 @@ fn expect_semicolon(input: ParseStream, item: &Item) -> syn::Result<()> {
     if input.peek(Token![;]) {
         input.parse::<Token![;]>()?;
         Ok(())
+    } else if let Some(e) = not_in_the_language(input) {
+        Err(e)
     } else if input.peek(Token![=]) {
         Err(input.error("unexpected `=`: equations are written with `==`"))
     } else {
@@ -188,44 +196,26 @@ fn short(s: &str) -> String {
     if s.chars().count() <= 24 { s.to_string() } else { format!("{}...", s.chars().take(24).collect::<String>()) }
 }
 
-fn parse_decls(input: ParseStream, kind: DeclKind) -> syn::Result<Vec<Decl>> {
+/// Parses a list of names with their values. A mistake in one name's part is pushed to
+/// `errors` and the list goes on after the next `,`: the names that parsed, the broken one's
+/// included (its value a placeholder), keep their fields in the fallback types, so that the
+/// user's code that uses them adds no secondary errors (`no field named l`).
+fn parse_decls(input: ParseStream, kind: DeclKind, errors: &mut Errors) -> syn::Result<Vec<Decl>> {
     let mut decls = Vec::new();
     loop {
-        if let Some(e) = inner_attribute(input)? {
-            return Err(e);
-        }
-        let attrs = Attribute::parse_outer(input)?;
-        if let Some(bad) = attrs.iter().find(|a| !a.path().is_ident("doc")) {
-            return Err(syn::Error::new_spanned(bad, "only doc comments (`///`) are accepted before a name"));
-        }
-        if !input.peek(Ident) {
-            return Err(input.error(match kind {
-                DeclKind::Params => "expected a parameter name: `params a, b = 2.5;`",
-                DeclKind::Inputs => "expected an input name: `input phi;` or `inputs th1, th2;`",
-                DeclKind::Unknowns => "expected an unknown's name: `unknowns psi = 0.3, x;`",
-            }));
-        }
-        let name: Ident = input.parse()?;
-        let value = if input.peek(Token![=]) && !input.peek(Token![==]) {
-            let eq = input.parse::<Token![=]>()?;
-            if kind == DeclKind::Inputs {
-                return Err(syn::Error::new(
-                    eq.span,
-                    format!(
-                        "an input takes no value here: write `{name}` alone; its value is given when \
-                         the mechanism is solved (`m.solve({name})`)"
-                    ),
-                ));
+        let mut name = None;
+        match parse_decl(input, kind, &mut name) {
+            Ok(decl) => decls.push(decl),
+            Err(e) => {
+                errors.push(e);
+                if let Some(name) = name {
+                    // Never evaluated: a declaration with a syntax error is not lowered.
+                    let value = Expr::Num { value: 0.0, integer: Some(0), span: name.span() };
+                    decls.push(Decl { docs: Vec::new(), name, value: Some(value) });
+                }
+                skip_to_separator(input);
             }
-            Some(parse_expr(input)?)
-        } else if input.peek(Token![:]) {
-            return Err(input.error(format!(
-                "no type is needed: write `{name}` alone (every parameter, input and unknown is an `f64`)"
-            )));
-        } else {
-            None
-        };
-        decls.push(Decl { docs: attrs, name, value });
+        }
         if input.peek(Token![,]) {
             input.parse::<Token![,]>()?;
             if input.peek(Token![;]) {
@@ -236,6 +226,120 @@ fn parse_decls(input: ParseStream, kind: DeclKind) -> syn::Result<Vec<Decl>> {
         }
     }
     Ok(decls)
+}
+
+/// One name of a list with its value; `name` is set as soon as the name parsed.
+fn parse_decl(input: ParseStream, kind: DeclKind, name: &mut Option<Ident>) -> syn::Result<Decl> {
+    if let Some(e) = inner_attribute(input)? {
+        return Err(e);
+    }
+    let attrs = Attribute::parse_outer(input)?;
+    if let Some(bad) = attrs.iter().find(|a| !a.path().is_ident("doc")) {
+        return Err(syn::Error::new_spanned(bad, "only doc comments (`///`) are accepted before a name"));
+    }
+    if !input.peek(Ident) {
+        // A keyword where a name belongs (`input self;`): the list keeps a stand-in, so that
+        // the fallback types have as many inputs as written (`m.solve(0.5)` still converts).
+        if let Ok(word) = input.fork().call(<Ident as syn::ext::IdentExt>::parse_any) {
+            *name = Some(Ident::new(&format!("__kinloop_keyword_{word}"), word.span()));
+        }
+        return Err(input.error(match kind {
+            DeclKind::Params => "expected a parameter name: `params a, b = 2.5;`",
+            DeclKind::Inputs => "expected an input name: `input phi;` or `inputs th1, th2;`",
+            DeclKind::Unknowns => "expected an unknown's name: `unknowns psi = 0.3, x;`",
+        }));
+    }
+    let parsed: Ident = input.parse()?;
+    *name = Some(parsed.clone());
+    let name = parsed;
+    let value = if input.peek(Token![=]) && !input.peek(Token![==]) {
+        let eq = input.parse::<Token![=]>()?;
+        if kind == DeclKind::Inputs {
+            return Err(syn::Error::new(
+                eq.span,
+                format!(
+                    "an input takes no value here: write `{name}` alone; its value is given when \
+                     the mechanism is solved (`m.solve({name})`)"
+                ),
+            ));
+        }
+        Some(parse_expr(input)?)
+    } else if input.peek(Token![:]) {
+        return Err(input.error(format!(
+            "no type is needed: write `{name}` alone (every parameter, input and unknown is an `f64`)"
+        )));
+    } else {
+        None
+    };
+    // Anything else after the value ends the list: the item's `;` check says what is missing.
+    if let Some(e) = not_in_the_language(input) {
+        return Err(e);
+    }
+    Ok(Decl { docs: attrs, name, value })
+}
+
+/// The error for a token after a complete value that is Rust but not kinloop, saying what to
+/// write instead: `%`, comparisons, paths (`std::f64::consts::PI`), indexing, a second `==`.
+/// Without it the item's own message ("expected `;` at the end of this item") points before
+/// the token and names no replacement.
+fn not_in_the_language(input: ParseStream) -> Option<syn::Error> {
+    let message = if input.peek(Token![%]) {
+        "kinloop has no `%`: write `wrap(x, period)` for `x` reduced to `0 <= x < period`"
+    } else if input.peek(Token![==]) {
+        "an equation has one `==`: write each equality as its own `eq` or `loop`"
+    } else if input.peek(Token![<]) || input.peek(Token![>]) || input.peek(Token![!=]) {
+        "kinloop has no comparisons: a value that depends on one is written with `min`, `max`, \
+         `clamp` or `abs`"
+    } else if input.peek(Token![::]) {
+        "kinloop has no paths: write `pi` for `PI`, and functions by their own names (`sin(x)`, \
+         not `f64::sin(x)`)"
+    } else if input.peek(syn::token::Bracket) {
+        "kinloop has no indexing: name each value (`let`, `point`, `.x` and `.y` of a vector)"
+    } else {
+        return None;
+    };
+    Some(input.error(message))
+}
+
+/// Skips to the next top-level `,` or `;` of a list, leaving it (error recovery within a list).
+fn skip_to_separator(input: ParseStream) {
+    let _ = input.step(|cursor| {
+        let mut rest = *cursor;
+        while let Some((tt, next)) = rest.token_tree() {
+            if let proc_macro2::TokenTree::Punct(p) = &tt
+                && matches!(p.as_char(), ',' | ';')
+            {
+                break;
+            }
+            rest = next;
+        }
+        Ok(((), rest))
+    });
+}
+
+/// A `point` or `output` item's name and value, as [`parse_binding`] parses them.
+enum Named {
+    /// Both parsed; the item's `;` follows.
+    Parsed(Ident, Expr),
+    /// The name parsed, the value did not: its error is pushed, the item is skipped to just
+    /// after its `;`, and the value is a placeholder. The name keeps its column in the fallback
+    /// types (`s.out.p`), so the user's code that reads it adds no secondary error.
+    Broken(Ident, Expr),
+}
+
+fn named_value(input: ParseStream, what: &str, errors: &mut Errors) -> syn::Result<Named> {
+    let name = input.fork().parse::<Ident>().ok();
+    match (parse_binding(input, what), name) {
+        (Ok((name, value)), _) => Ok(Named::Parsed(name, value)),
+        (Err(e), Some(name)) => {
+            errors.push(e);
+            skip_item(input);
+            // Never evaluated: a declaration with a syntax error is not lowered.
+            let value = Expr::Num { value: 0.0, integer: Some(0), span: name.span() };
+            Ok(Named::Broken(name, value))
+        }
+        (Err(e), None) => Err(e),
+    }
 }
 
 fn parse_binding(input: ParseStream, what: &str) -> syn::Result<(Ident, Expr)> {
