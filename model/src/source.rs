@@ -230,6 +230,14 @@ pub fn tokens(name: &str, text: &str) -> Result<TokenStream, Diagnostics> {
         );
         return Err(Diagnostics::whole(name, text, message));
     }
+    if let Some(d) = foreign_white_space(text) {
+        return Err(Diagnostics {
+            level: Level::Error,
+            name: name.to_string(),
+            text: text.to_string(),
+            items: vec![d],
+        });
+    }
     text.parse::<TokenStream>().map_err(|e| {
         let mut d = at_span(text, e.span(), String::new());
         d.message = lex_message(&text[d.range.start..], &e);
@@ -238,6 +246,62 @@ pub fn tokens(name: &str, text: &str) -> Result<TokenStream, Diagnostics> {
         }
         Diagnostics { level: Level::Error, name: name.to_string(), text: text.to_string(), items: vec![d] }
     })
+}
+
+/// Rust's white space (`Pattern_White_Space`): the only characters between tokens the compiler
+/// accepts.
+fn rust_white_space(c: char) -> bool {
+    matches!(
+        c,
+        '\t' | '\n' | '\u{b}' | '\u{c}' | '\r' | ' ' | '\u{85}' | '\u{200e}' | '\u{200f}' | '\u{2028}' | '\u{2029}'
+    )
+}
+
+/// The first character outside comments that Unicode calls white space and Rust does not (a
+/// no-break space pasted from a web page, an em space): proc-macro2's lexer takes it for a
+/// space where the compiler refuses the same declaration in `mechanism!` ("unknown start of
+/// token"), and a `.kl` file is the same language as the macro's.
+fn foreign_white_space(text: &str) -> Option<Diagnostic> {
+    let mut chars = text.char_indices().peekable();
+    let (mut line, mut column) = (1, 1);
+    let advance = |c: char, line: &mut usize, column: &mut usize| {
+        if c == '\n' {
+            *line += 1;
+            *column = 1;
+        } else {
+            *column += 1;
+        }
+    };
+    // Block comments nest in Rust; a line comment runs to the end of its line.
+    let (mut depth, mut in_line_comment) = (0usize, false);
+    while let Some((at, c)) = chars.next() {
+        let next = chars.peek().map(|&(_, n)| n);
+        if in_line_comment {
+            in_line_comment = c != '\n';
+        } else if c == '/' && next == Some('*') {
+            depth += 1;
+            advance(c, &mut line, &mut column);
+            chars.next();
+            advance('*', &mut line, &mut column);
+            continue;
+        } else if depth > 0 && c == '*' && next == Some('/') {
+            depth -= 1;
+            advance(c, &mut line, &mut column);
+            chars.next();
+            advance('/', &mut line, &mut column);
+            continue;
+        } else if depth == 0 && c == '/' && next == Some('/') {
+            in_line_comment = true;
+        } else if depth == 0 && c.is_whitespace() && !rust_white_space(c) {
+            let message = format!(
+                "the character U+{:04X} is white space in Unicode but not in Rust: replace it with a plain space",
+                c as u32
+            );
+            return Some(Diagnostic { message, range: at..at + c.len_utf8(), line, column });
+        }
+        advance(c, &mut line, &mut column);
+    }
+    None
 }
 
 /// How many brackets open around a rejected closing one [`unclosed_before`] looks through for

@@ -210,6 +210,20 @@ fn texts_the_lexer_rejects_name_the_mistake() {
             5,
             20,
         ),
+        // White space in Unicode but not in Rust (a no-break space pasted from a web page, an
+        // em space): the compiler refuses them; inside a comment they are text.
+        (
+            format!("pub struct S {{\n{body}    eq e: x == a\u{a0}* phi; // a\u{a0}b /* c\u{2003} */\n}}\n"),
+            "the character U+00A0 is white space in Unicode but not in Rust: replace it with a plain space",
+            5,
+            17,
+        ),
+        (
+            format!("pub struct S {{\n{body}    /* é\u{a0} /* */ */ eq e: x ==\u{2003}a * phi;\n}}\n"),
+            "the character U+2003 is white space in Unicode but not in Rust: replace it with a plain space",
+            5,
+            30,
+        ),
     ];
     for (text, message, line, column) in cases {
         let Err(ReadError::Rejected(d)) = Model::read("lex.kl", &text) else { panic!("accepted: {text}") };
