@@ -30,6 +30,7 @@ fn descriptions_equal_the_compiled_ones() {
         (dense_text(fx::RHOMBIC_DRIVE_TEXT, "RhombicDrive", "RhombicDriveDense"), fx::RhombicDriveDense::DRAWING),
         (fx::SLIDER_CRANK_TEXT.to_string(), fx::SliderCrank::DRAWING),
         (fx::FIVE_BAR_TEXT.to_string(), fx::FiveBar::DRAWING),
+        (fx::SLOTTED_LEVER_TEXT.to_string(), fx::SlottedLever::DRAWING),
         (fx::CLASS_FOUR_TEXT.to_string(), fx::ClassFour::DRAWING),
         (dense_text(fx::CLASS_FOUR_TEXT, "ClassFour", "ClassFourDense"), fx::ClassFourDense::DRAWING),
         (fx::DISPLACER_ROD_DRIVE_TEXT.to_string(), fx::DisplacerRodDrive::DRAWING),
@@ -99,6 +100,10 @@ fn figures_equal_the_compiled_ones_byte_for_byte() {
     let mut m = read(fx::RHOMBIC_DRIVE_TEXT);
     let motion = same_figures(fx::RhombicDrive::default(), &mut m, [0.0], [TAU], 91, "x_c");
     assert_eq!(motion.poses.len(), 91);
+    // A turning guide, its length over the motion, and a point on its body.
+    let mut m = read(fx::SLOTTED_LEVER_TEXT);
+    let motion = same_figures(fx::SlottedLever::default(), &mut m, [0.0], [TAU], 61, "theta");
+    assert_eq!(motion.poses.len(), 61);
 }
 
 /// The five-bar over a grid of its two inputs: the same cells reached, the same poses, the same

@@ -7,7 +7,7 @@
 //! diff).
 
 use kinloop::Mechanism;
-use kinloop::drawing::Description;
+use kinloop::drawing::{Description, SegmentKind};
 use kinloop_fixtures::gear_lever::GearLever;
 use kinloop_fixtures::roller_edger::RollerEdger;
 use kinloop_fixtures::*;
@@ -193,6 +193,30 @@ fn textbook_linkages_joints_are_their_loop_points() {
     }
 }
 
+/// The slotted lever's rocker is one body: the tip, reached from the rocker's pivot by a
+/// vector turning with the slot, is a joint of a plate that holds the slot's turning guide,
+/// so the drawing draws the rocker rigid and the tip on it, without a note.
+#[test]
+fn a_slotted_levers_tip_is_on_its_rocker_with_the_guide() {
+    let m = SlottedLever::default();
+    let d = Description::of::<SlottedLever, 2, 1, 2>().expect("reads");
+    assert!(d.notes.is_empty(), "{:?}", d.notes);
+    let (pivot, tip) = (d.joint("slot.r1").unwrap(), d.joint("tip").unwrap());
+    let slot = d.segments.iter().position(|s| s.kind == SegmentKind::Slider { fixed_guide: false }).unwrap();
+    assert_eq!(d.segments[slot].from, pivot);
+    let rocker: Vec<_> = d.plates.iter().filter(|p| !p.guides.is_empty()).collect();
+    assert_eq!(rocker.len(), 1, "{d}");
+    assert_eq!(rocker[0].joints, [pivot, tip]);
+    assert_eq!(rocker[0].guides, [slot]);
+    for phi in [0.3, 1.7, 4.0] {
+        let s = m.solve(phi).unwrap().q;
+        let o = [0.0, -m.d];
+        let b = polar(m.r, phi);
+        let expected = [("origin", [0.0, 0.0]), ("slot.l1", b), ("slot.r1", o), ("tip", add(o, polar(m.l, s.theta)))];
+        check(&m, [phi], s.into(), &expected, &[(b, add(o, polar(s.s, s.theta)))]);
+    }
+}
+
 fn text<M: Mechanism<N, NI, NO>, const N: usize, const NI: usize, const NO: usize>(_: &M) -> String {
     format!("== {}\n{}", M::NAME, Description::of::<M, N, NI, NO>().expect("reads"))
 }
@@ -212,6 +236,7 @@ fn gallery_descriptions_are_pinned() {
         text(&FourBar { a: 1.0, b: 3.0, c: 2.5, d: 3.2 }),
         text(&SliderCrank { r: 1.0, l: 3.0, e: 0.2 }),
         text(&FiveBar::default()),
+        text(&SlottedLever::default()),
     ]
     .join("\n");
     let path = std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("tests/kinematics/drawing_descriptions.txt");

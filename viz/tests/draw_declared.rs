@@ -4,9 +4,12 @@
 //! gallery mechanism is drawn from its declaration without one.
 
 use kinloop::Mechanism;
+use kinloop_fixtures::cam_linkage::CamLinkage;
 use kinloop_fixtures::gear_lever::GearLever;
 use kinloop_fixtures::roller_edger::RollerEdger;
-use kinloop_fixtures::{ClassFour, DisplacerRodDrive, RhombicDrive, StirlingEngine, WorkingRodDrive};
+use kinloop_fixtures::{
+    ClassFour, DisplacerRodDrive, EngineMachine, RhombicDrive, SlottedLever, StirlingEngine, WorkingRodDrive,
+};
 use kinloop_viz::draw::{Animation, Canvas, Draw, DrawError, Motion};
 
 #[allow(dead_code)] // not every test uses every helper
@@ -222,4 +225,179 @@ fn every_gallery_mechanism_is_drawn_from_its_declaration_without_a_note() {
     draws_plainly(&RollerEdger::default(), 6.0);
     draws_plainly(&ClassFour::default(), tau);
     draws_plainly(&FourBar::default(), tau);
+}
+
+/// `x,y` or `x y` as a point.
+fn xy(t: &str) -> [f64; 2] {
+    let v: Vec<f64> = t.split([',', ' ']).filter(|c| !c.is_empty()).map(|c| c.parse().expect("a number")).collect();
+    [v[0], v[1]]
+}
+
+/// Every mechanism polyline of the SVG (traces left out) at each key frame: its points, read
+/// from its `<animate>` when it moves.
+fn polylines(svg: &str) -> Vec<Vec<Vec<[f64; 2]>>> {
+    let doc = roxmltree::Document::parse(svg).expect("well-formed SVG");
+    let pts = |t: &str| t.split(' ').map(xy).collect::<Vec<_>>();
+    doc.descendants()
+        .filter(|n| n.has_tag_name("polyline") && !n.attribute("class").is_some_and(|c| c.contains("trace")))
+        .map(|n| match n.children().find(|c| c.has_tag_name("animate")) {
+            Some(a) => a.attribute("values").unwrap().split(';').map(pts).collect(),
+            None => vec![pts(n.attribute("points").unwrap())],
+        })
+        .collect()
+}
+
+/// Where each slider block is at each key frame (the translation of the group around it).
+fn blocks(svg: &str) -> Vec<Vec<[f64; 2]>> {
+    let doc = roxmltree::Document::parse(svg).expect("well-formed SVG");
+    doc.descendants()
+        .filter(|n| n.has_tag_name("rect"))
+        .filter_map(|r| r.parent()?.parent())
+        .filter(|g| g.attribute("transform").is_some_and(|t| t.starts_with("translate(")))
+        .map(|g| match g.children().find(|c| c.has_tag_name("animateTransform")) {
+            Some(a) => a.attribute("values").unwrap().split(';').map(xy).collect(),
+            None => vec![xy(g.attribute("transform").unwrap().trim_start_matches("translate(").trim_end_matches(')'))],
+        })
+        .collect()
+}
+
+fn dist(a: [f64; 2], b: [f64; 2]) -> f64 {
+    (a[0] - b[0]).hypot(a[1] - b[1])
+}
+
+/// A slotted lever's rocker is drawn as a designer draws it: one rigid bar through its pivot,
+/// of one length over the whole turn, reaching past the block sliding on it at every pose and
+/// out to the rocker's tip (`l = 4` from the pivot, the block `s` from 1 to 3), not a bar from
+/// the pivot to the block that grows and shrinks. Lengths are compared in units of the crank
+/// (`r = 1`), read from the same picture: no scale is assumed.
+#[test]
+fn a_slotted_levers_rocker_is_one_rigid_bar_past_its_block_and_out_to_its_tip() {
+    let m = SlottedLever::default();
+    let x0 = [0.0];
+    let sweep = kinloop::Sweep::<SlottedLever, kinloop::Kin<2, 1, 2>, 2, 1, 2>::new(
+        &m,
+        x0,
+        [std::f64::consts::TAU],
+        61,
+        m.guess_flat(&x0),
+    );
+    let motion = Motion::record(&m, sweep.unwrap()).unwrap();
+    let d = m.drawing();
+    assert!(d.notes().is_empty(), "{:?}", d.notes());
+    let svg = d.animate(&motion, &Animation::default()).unwrap();
+    finite(&svg);
+    let bars: Vec<Vec<Vec<[f64; 2]>>> = polylines(&svg).into_iter().filter(|b| b[0].len() == 2).collect();
+    // The bars from a frame pivot: their first point never moves. The crank's pivot (the
+    // origin) is above the rocker's, at (0, -d).
+    let fixed: Vec<&Vec<Vec<[f64; 2]>>> = bars.iter().filter(|b| b.iter().all(|f| f[0] == b[0][0])).collect();
+    let top = fixed.iter().map(|b| b[0][0][1]).fold(f64::INFINITY, f64::min);
+    let bottom = fixed.iter().map(|b| b[0][0][1]).fold(f64::NEG_INFINITY, f64::max);
+    let crank: Vec<f64> = fixed.iter().find(|b| b[0][0][1] == top).unwrap().iter().map(|f| dist(f[0], f[1])).collect();
+    let unit = crank[0];
+    // Pixels are written to a tenth: a length within three halves of a tenth.
+    let px = 0.15 + 1e-9;
+    assert!(crank.iter().all(|c| (c - unit).abs() <= px), "the crank {crank:?}");
+    let rocker: Vec<&Vec<Vec<[f64; 2]>>> = fixed.iter().copied().filter(|b| b[0][0][1] == bottom).collect();
+    assert!(!rocker.is_empty(), "no bar from the rocker's pivot");
+    for bar in &rocker {
+        let len: Vec<f64> = bar.iter().map(|f| dist(f[0], f[1])).collect();
+        assert!(len.iter().all(|l| (l - len[0]).abs() <= px), "a rocker bar changes its length: {len:?}");
+    }
+    let guide = rocker.iter().max_by(|a, b| dist(a[0][0], a[0][1]).total_cmp(&dist(b[0][0], b[0][1]))).unwrap();
+    let length = dist(guide[0][0], guide[0][1]);
+    assert!((length / unit - m.l / m.r).abs() <= 2.0 * px / unit, "the rocker is {} cranks long", length / unit);
+    let block = blocks(&svg);
+    assert_eq!(block.len(), 1);
+    assert_eq!(block[0].len(), guide.len(), "key frames");
+    for (at, bar) in block[0].iter().zip(guide.iter()) {
+        let [o, e] = [bar[0], bar[1]];
+        let u = [(e[0] - o[0]) / length, (e[1] - o[1]) / length];
+        let along = (at[0] - o[0]) * u[0] + (at[1] - o[1]) * u[1];
+        let off = ((at[0] - o[0]) * u[1] - (at[1] - o[1]) * u[0]).abs();
+        assert!(off <= 2.0 * px, "the block {at:?} is off the rocker {bar:?}");
+        assert!(along > 0.0 && along < 0.8 * length, "the block {at:?} is not well inside the rocker {bar:?}");
+    }
+}
+
+/// The box `[x0, y0, x1, y1]` of every joint label of a static SVG (the text's width estimated
+/// as the drawings estimate it, 0.6 em a character) with the point it labels.
+fn label_boxes(svg: &str) -> Vec<(String, [f64; 4], [f64; 2])> {
+    let doc = roxmltree::Document::parse(svg).expect("well-formed SVG");
+    doc.descendants()
+        .filter(|n| n.attribute("class") == Some("joint-label"))
+        .map(|g| {
+            let at = xy(g.attribute("transform").unwrap().trim_start_matches("translate(").trim_end_matches(')'));
+            let t = g.children().find(|c| c.has_tag_name("text")).unwrap();
+            let text = t.text().unwrap().to_string();
+            let num = |a: &str| t.attribute(a).unwrap().parse::<f64>().unwrap();
+            let (font, w) = (num("font-size"), 0.6 * num("font-size") * text.chars().count() as f64);
+            let left = at[0]
+                + num("x")
+                + match t.attribute("text-anchor") {
+                    Some("end") => -w,
+                    Some("middle") => -0.5 * w,
+                    _ => 0.0,
+                };
+            let mid = at[1] + num("y") - 0.35 * font;
+            (text, [left, mid - 0.5 * font, left + w, mid + 0.5 * font], at)
+        })
+        .collect()
+}
+
+fn box_distance(b: [f64; 4], q: [f64; 2]) -> f64 {
+    (b[0] - q[0]).max(q[0] - b[2]).max(0.0).hypot((b[1] - q[1]).max(q[1] - b[3]).max(0.0))
+}
+
+/// Whether the segment from `a` to `b` comes within `w` pixels of the box `b`: sampled every
+/// tenth of a pixel.
+fn touches(a: [f64; 2], b: [f64; 2], bx: [f64; 4], w: f64) -> bool {
+    let n = (dist(a, b) * 10.0).ceil().max(1.0) as usize;
+    (0..=n).any(|k| {
+        let t = k as f64 / n as f64;
+        box_distance(bx, [a[0] + t * (b[0] - a[0]), a[1] + t * (b[1] - a[1])]) < w
+    })
+}
+
+/// `m`'s default drawing at the start of a turn: each joint label off every link (the half
+/// width of its stroke clear) and nearer its own joint than any other joint circle.
+fn labels_by_their_joints<M: Mechanism<N, NI, NO>, const N: usize, const NI: usize, const NO: usize>(m: &M) {
+    let x0 = [0.0; NI];
+    let to = [std::f64::consts::TAU; NI];
+    let sweep = kinloop::Sweep::<M, kinloop::Kin<N, NI, NO>, N, NI, NO>::new(m, x0, to, 37, m.guess_flat(&x0));
+    let motion = Motion::record(m, sweep.unwrap()).unwrap();
+    let svg = m.drawing().svg(&motion, 0).unwrap();
+    let bars: Vec<[[f64; 2]; 2]> =
+        polylines(&svg).iter().flat_map(|p| p[0].windows(2).map(|w| [w[0], w[1]]).collect::<Vec<_>>()).collect();
+    let doc = roxmltree::Document::parse(&svg).unwrap();
+    let polygons: Vec<Vec<[f64; 2]>> = doc
+        .descendants()
+        .filter(|n| n.has_tag_name("polygon"))
+        .filter_map(|n| n.attribute("points"))
+        .map(|t| t.split(' ').map(xy).collect())
+        .collect();
+    let edges = polygons.iter().flat_map(|p| (0..p.len()).map(|k| [p[k], p[(k + 1) % p.len()]]).collect::<Vec<_>>());
+    let bars: Vec<[[f64; 2]; 2]> = bars.into_iter().chain(edges).collect();
+    let dots = translated(&svg, "circle");
+    let labels = label_boxes(&svg);
+    assert!(!labels.is_empty(), "{}: no label", M::NAME);
+    for (text, b, at) in labels {
+        for [p, q] in &bars {
+            assert!(!touches(*p, *q, b, 2.0), "{}: label {text} {b:?} on the link {p:?}-{q:?}", M::NAME);
+        }
+        let own = box_distance(b, at);
+        for q in dots.iter().filter(|q| dist(**q, at) > 1.0) {
+            assert!(box_distance(b, *q) > own, "{}: label {text} {b:?} nearer {q:?} than its joint {at:?}", M::NAME);
+        }
+    }
+}
+
+/// A joint's label sits beside its own joint, in a free direction: not on the crank of the
+/// engine (where `s1`, its centre of mass, lies on it near the frame pivot, the label read as
+/// the pivot's), nor against the frame pivot next to the cam's centre.
+#[test]
+fn joint_labels_sit_off_the_links_nearer_their_own_joints_than_any_other() {
+    labels_by_their_joints(&EngineMachine::default());
+    labels_by_their_joints(&CamLinkage::default());
+    labels_by_their_joints(&SlottedLever::default());
+    labels_by_their_joints(&RhombicDrive::default());
 }

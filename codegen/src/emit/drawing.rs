@@ -33,7 +33,8 @@ type Turn = (bool, NodeId);
 enum Class {
     Ground,
     Link(Turn),
-    Slider { fixed: bool },
+    /// A prismatic pair: on a fixed guide (`None`), or on a guide turning with this turn.
+    Slider(Option<Turn>),
     Construction,
 }
 
@@ -130,14 +131,15 @@ fn classify(m: &Moving, t: &Term) -> Classified {
         let length_moves = lx.is_some_and(moves);
         let class = match (length_moves, moves(tx)) {
             (false, _) => Class::Link(turn(m, tx, !swapped)),
-            (true, turning) => Class::Slider { fixed: !turning },
+            (true, true) => Class::Slider(Some(turn(m, tx, !swapped))),
+            (true, false) => Class::Slider(None),
         };
         return Classified { class, angle: Some(Angle::Of(tx, swapped)) };
     }
     match (mx, my) {
-        (true, false) => Classified { class: Class::Slider { fixed: true }, angle: Some(Angle::Const(0.0)) },
+        (true, false) => Classified { class: Class::Slider(None), angle: Some(Angle::Const(0.0)) },
         (false, true) => {
-            Classified { class: Class::Slider { fixed: true }, angle: Some(Angle::Const(std::f64::consts::FRAC_PI_2)) }
+            Classified { class: Class::Slider(None), angle: Some(Angle::Const(std::f64::consts::FRAC_PI_2)) }
         }
         _ => Classified { class: Class::Construction, angle: None },
     }
@@ -425,6 +427,8 @@ pub fn description(model: &Model) -> String {
     let mut seen: HashMap<(usize, usize, NodeId, NodeId, bool), ()> = HashMap::new();
     let mut seg_lines = Vec::new();
     let mut links: Vec<(Turn, usize, usize)> = Vec::new();
+    // Turning guides: their turn, the joint they turn about, their segment.
+    let mut guides: Vec<(Turn, usize, usize)> = Vec::new();
     for (s, c) in steps.iter().zip(&classes) {
         let (a, b) = (joint(s.from), joint(s.to));
         if a == b || seen.insert((a, b, s.term.x, s.term.y, s.term.sign > 0.0), ()).is_some() {
@@ -436,8 +440,11 @@ pub fn description(model: &Model) -> String {
                 links.push((t, a, b));
                 "link"
             }
-            Class::Slider { fixed: true } => "slider-fixed",
-            Class::Slider { fixed: false } => "slider-turning",
+            Class::Slider(None) => "slider-fixed",
+            Class::Slider(Some(t)) => {
+                guides.push((t, a, seg_lines.len()));
+                "slider-turning"
+            }
             Class::Construction => {
                 notes.push(format!(
                     "`{}` is neither a link (`length @ angle` of constant length), a slider (one moving \
@@ -453,7 +460,17 @@ pub fn description(model: &Model) -> String {
     let mut plates = plates(&links);
     for (p, (at, hang)) in dm.points.iter().zip(&hangs) {
         let at = joint(*at);
-        let home = hang.and_then(|(b, t)| plates.iter().position(|(pt, js)| *pt == t && js.contains(&joint(b))));
+        let home = hang.and_then(|(b, t)| {
+            let b = joint(b);
+            plates.iter().position(|(pt, js)| *pt == t && js.contains(&b)).or_else(|| {
+                // Reached from a turning guide's joint by vectors turning with the guide (the tip
+                // of a slotted rocker): on the guide's body, a plate of its own so far.
+                (at != b && guides.iter().any(|&(gt, g, _)| gt == t && g == b)).then(|| {
+                    plates.push((t, vec![b]));
+                    plates.len() - 1
+                })
+            })
+        });
         match home {
             Some(i) => {
                 if !plates[i].1.contains(&at) {
@@ -488,6 +505,13 @@ pub fn description(model: &Model) -> String {
     for ((_, js), name) in plates.iter().zip(&plate_names) {
         let js: Vec<String> = js.iter().map(usize::to_string).collect();
         let _ = writeln!(out, "p {} {}", name.as_deref().unwrap_or("-"), js.join(" "));
+    }
+    // A turning guide is rigid with the plate that turns alike about its joint: the drawing
+    // makes the guide as long as that body reaches.
+    for &(t, g, s) in &guides {
+        if let Some(p) = plates.iter().position(|(pt, js)| *pt == t && js.contains(&g)) {
+            let _ = writeln!(out, "g {p} {s}");
+        }
     }
     for n in notes {
         let _ = writeln!(out, "n {n}");

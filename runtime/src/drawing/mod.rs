@@ -20,6 +20,11 @@
 //! * Links that turn with the same angle (up to a constant offset) and share a joint are one
 //!   [`Plate`]; a named point reached from a plate's joint by vectors turning with the plate
 //!   belongs to it; a plate whose angle a declared `body` turns with takes the body's name.
+//! * A slider's turning guide (a slotted rocker `s @ theta`) is rigid with what turns alike
+//!   about the joint it starts from: a plate of links there, or the named points reached from
+//!   that joint by vectors turning with the guide (the rocker's tip), which make a plate of
+//!   their own. That plate lists the guide ([`Plate::guides`]); a drawing draws the guide as
+//!   one bar reaching the block and the plate's joints.
 //!
 //! A mechanism read at run time (`kinloop_model::Model`) carries the same text, written by the
 //! same function of the macro's pipeline; [`Drawable`] is what a drawing reads from either kind
@@ -115,6 +120,9 @@ pub struct Plate {
     pub name: Option<String>,
     /// Its joints, at least two.
     pub joints: Vec<usize>,
+    /// The sliders on a turning guide (indices of [`Description::segments`]) whose guide is
+    /// part of this body: it turns with the plate about the segment's first joint.
+    pub guides: Vec<usize>,
 }
 
 /// The drawing a declaration describes (see the [module documentation](self)).
@@ -211,7 +219,11 @@ impl fmt::Display for Description {
         }
         for p in &self.plates {
             let names: Vec<&str> = p.joints.iter().map(|&j| self.joints[j].name.as_str()).collect();
-            writeln!(f, "plate {}: {}", p.name.as_deref().unwrap_or("-"), names.join(", "))?;
+            write!(f, "plate {}: {}", p.name.as_deref().unwrap_or("-"), names.join(", "))?;
+            for &s in &p.guides {
+                write!(f, "; the guide of {}", self.segments[s].term)?;
+            }
+            writeln!(f)?;
         }
         for n in &self.notes {
             writeln!(f, "note: {n}")?;

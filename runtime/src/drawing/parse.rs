@@ -9,6 +9,7 @@
 //! s <from> <to> <kind> <angle|-> <term> a segment: link, ground, slider-fixed,
 //!                                       slider-turning or construction
 //! p <name|-> <joint> <joint> ...        a plate
+//! g <plate> <segment>                   a slider's turning guide, part of a plate
 //! n <text>                              a note
 //! ```
 //!
@@ -50,6 +51,10 @@ impl Description {
                 "j" => d.joints.push(joint(rest, d.tape.len()).ok_or_else(|| bad(n, "a joint"))?),
                 "s" => d.segments.push(segment(rest, d.tape.len(), d.joints.len()).ok_or_else(|| bad(n, "a segment"))?),
                 "p" => d.plates.push(plate(rest, d.joints.len()).ok_or_else(|| bad(n, "a plate"))?),
+                "g" => {
+                    let (p, s) = guide(rest, &d).ok_or_else(|| bad(n, "a guide"))?;
+                    d.plates[p].guides.push(s);
+                }
                 "n" => d.notes.push(rest.to_string()),
                 _ => return Err(bad(n, &format!("unknown line `{tag}`"))),
             }
@@ -136,7 +141,15 @@ fn plate(rest: &str, joints: usize) -> Option<Plate> {
         n => Some(n.to_string()),
     };
     let joints = f.map(|j| index(j, joints)).collect::<Option<Vec<_>>>()?;
-    (joints.len() >= 2).then_some(Plate { name, joints })
+    (joints.len() >= 2).then_some(Plate { name, joints, guides: Vec::new() })
+}
+
+/// A plate and a slider on a turning guide that starts at one of the plate's joints.
+fn guide(rest: &str, d: &Description) -> Option<(usize, usize)> {
+    let (p, s) = rest.split_once(' ')?;
+    let (p, s) = (index(p, d.plates.len())?, index(s, d.segments.len())?);
+    let seg = &d.segments[s];
+    (seg.kind == SegmentKind::Slider { fixed_guide: false } && d.plates[p].joints.contains(&seg.from)).then_some((p, s))
 }
 
 #[cfg(test)]
@@ -186,6 +199,22 @@ j f m - 1 6";
         assert_eq!(inf.joints[0][0], f64::NEG_INFINITY);
     }
 
+    /// A `g` line puts a turning guide into a plate, which the words then name.
+    #[test]
+    fn a_guide_line_puts_a_turning_guide_into_a_plate() {
+        let text = "kinloop-drawing 1
+t c:0 c:1 q:0
+j o g - 0 0
+j b m - 1 0
+j tip m - 0 1
+s 0 1 slider-turning 2 slot: s @ theta
+p - 0 2
+g 0 0";
+        let d = Description::parse(text).unwrap();
+        assert_eq!(d.plates[0].guides, [0]);
+        assert!(d.to_string().contains("plate -: o, tip; the guide of slot: s @ theta\n"), "{d}");
+    }
+
     #[test]
     fn a_broken_description_is_an_error_not_a_panic() {
         for broken in [
@@ -198,6 +227,9 @@ j f m - 1 6";
             "kinloop-drawing 1\nt c:1\nj a g - 0 0\ns 0 1 link - t",
             "kinloop-drawing 1\nt c:1\nj a g - 0 0\ns 0 0 bar - t",
             "kinloop-drawing 1\nt c:1\nj a g - 0 0\np - 0",
+            "kinloop-drawing 1\nt c:1\nj a g - 0 0\nj b g - 0 0\ns 0 1 slider-turning 0 t\ng 0 0",
+            "kinloop-drawing 1\nt c:1\nj a g - 0 0\nj b g - 0 0\ns 0 1 slider-fixed 0 t\np - 0 1\ng 0 0",
+            "kinloop-drawing 1\nt c:1\nj a g - 0 0\nj b g - 0 0\nj c g - 0 0\ns 1 0 slider-turning 0 t\np - 0 2\ng 0 0",
             "kinloop-drawing 1\nz",
             "kinloop-drawing 1\nt frob:0",
             "kinloop-drawing 1\nt c:1 floor:1",

@@ -145,6 +145,12 @@ impl Placement {
                 Item::Link { through, closed } => Item::Link { through: through.into_iter().map(pt).collect(), closed },
                 Item::Pivot { at } => Item::Pivot { at: pt(at) },
                 Item::Slider { at, angle: a } => Item::Slider { at: pt(at), angle: angle(a) },
+                Item::Guide { from, angle: a, block, body } => Item::Guide {
+                    from: pt(from),
+                    angle: angle(a),
+                    block: pt(block),
+                    body: body.into_iter().map(pt).collect(),
+                },
                 Item::Gear { centre, radius, angle: a } => {
                     Item::Gear { centre: pt(centre), radius: radius * scale, angle: angle(a) }
                 }
@@ -177,6 +183,8 @@ enum Shape {
     Link(Vec<[f64; 2]>, bool),
     Pivot([f64; 2]),
     Slider([f64; 2], f64),
+    /// A turning guide's ends.
+    Guide([[f64; 2]; 2]),
     Gear([f64; 2], f64),
     /// An outline's corners where they are.
     Outline(Vec<[f64; 2]>),
@@ -306,9 +314,15 @@ where
     let at = |p: &Pt| finite(place.point(point(p, pose, &motion)?), &p.describe(), rank);
     let turn = c.placement.map_or(0.0, |p| p[2]);
     let scale = c.placement.map_or(1.0, |p| p[3]);
+    let spans = super::scene::guide_spans(&drawing, &motion)?;
     let mut shapes = Vec::new();
-    for item in &drawing.items {
+    for (k, item) in drawing.items.iter().enumerate() {
         shapes.push(match item {
+            Item::Guide { .. } => {
+                let span = spans[k].unwrap_or_default();
+                let ends = super::scene::guide_at(item, span, &motion, pose, 0)?.unwrap_or_default();
+                Shape::Guide([at(&Pt::Fixed(ends[0]))?, at(&Pt::Fixed(ends[1]))?])
+            }
             Item::Link { through, closed } => Shape::Link(through.iter().map(at).collect::<Result<_, _>>()?, *closed),
             Item::Pivot { at: p } => Shape::Pivot(at(p)?),
             Item::Slider { at: p, angle } => Shape::Slider(at(p)?, scalar(angle, pose) + turn),
@@ -469,6 +483,7 @@ where
         for s in &d.shapes {
             match s {
                 Shape::Link(pts, _) | Shape::Outline(pts) => pts.iter().for_each(&mut add),
+                Shape::Guide(pts) => pts.iter().for_each(&mut add),
                 Shape::Pivot(p) | Shape::Slider(p, _) | Shape::Joint(p) => add(p),
                 Shape::Gear(c, r) => {
                     add(&[c[0] - r, c[1] - r]);
@@ -576,6 +591,13 @@ where
                         map.pts(pts)
                     );
                     joints.extend(pts.iter().copied());
+                }
+                Shape::Guide(pts) => {
+                    let _ = write!(
+                        out,
+                        r#"<polyline class="link" points="{}" fill="none" stroke="{colour}" stroke-width="2.5" stroke-linecap="round"/>"#,
+                        map.pts(pts)
+                    );
                 }
                 Shape::Outline(pts) => {
                     let _ = write!(

@@ -19,7 +19,10 @@ use std::sync::Arc;
 /// * a fixed joint that a link or a turning guide starts or ends at is a pivot with hatching;
 ///   constant vectors between fixed joints (the frame) are not drawn;
 /// * a slider on a fixed guide is a block at the vector's end with its hatched guide; on a
-///   turning guide (a cylinder, a slotted rocker) the guide is a bar and the block slides on it;
+///   turning guide (a cylinder, a slotted rocker) the guide is one rigid bar ([`Item::Guide`])
+///   and the block slides on it: the bar keeps one length over the motion drawn, a tenth past
+///   the block's farthest place and out to the points of the body it is part of (a rocker's
+///   tip, see [`kinloop_runtime::drawing::Plate::guides`]);
 /// * a vector that is none of these is drawn as a bar between its ends, and a note of the
 ///   description says so: the drawing never guesses silently. [`DefaultDrawing::notes`] lists
 ///   the notes; [`DefaultDrawing::into_drawing`] carries them ([`Drawing::notes`]), and the
@@ -290,8 +293,20 @@ impl DefaultDrawing {
                     let angle = self.angle_of(s);
                     let angle = if fixed_guide { Scalar::Const(self.constant(&angle)) } else { angle };
                     if !fixed_guide {
+                        // The block of a guide turning about a frame point pivots there too (an
+                        // inverted slider-crank's rocking block).
                         pivot(seg.from, &mut pivots);
-                        items.push(Item::Link { through: vec![self.pt(seg.from), self.pt(seg.to)], closed: false });
+                        pivot(seg.to, &mut pivots);
+                        let body = d
+                            .plates
+                            .iter()
+                            .filter(|p| p.guides.contains(&s))
+                            .flat_map(|p| p.joints.iter().copied())
+                            .filter(|&j| j != seg.from && shown(j))
+                            .map(|j| self.pt(j))
+                            .collect();
+                        let (from, block) = (self.pt(seg.from), self.pt(seg.to));
+                        items.push(Item::Guide { from, angle: angle.clone(), block, body });
                     }
                     items.push(Item::Slider { at: self.pt(seg.to), angle });
                 }

@@ -94,6 +94,8 @@ pub use motion::{Marked, Motion, Pose};
 pub use spec::{Drawing, Item, Pt, Scalar, StateRef};
 pub use style::Style;
 pub use view::{Canvas, View};
+// A turning guide's length over a motion, for the interactive pages.
+pub(crate) use scene::{guide_at, guide_spans};
 
 // Interactive pages of a drawing (`kinloop::draw::html`), from the crate's `html` module.
 pub use crate::html::{HtmlConfig, HtmlError, Readout, html, html_grid, html_grid_of, html_of};

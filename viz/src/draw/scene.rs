@@ -24,6 +24,14 @@ pub(crate) enum Shape {
         angle: f64,
         fixed: bool,
     },
+    /// A turning guide: a bar from `at + span[0] u` to `at + span[1] u`, `u` the unit vector
+    /// of `angle`. Unlike the other shapes' angles, `angle` stays in radians in pixels (there
+    /// clockwise, the y axis down), so that one formula gives the ends in both.
+    Guide {
+        at: [f64; 2],
+        angle: f64,
+        span: [f64; 2],
+    },
     Gear {
         centre: [f64; 2],
         radius: f64,
@@ -51,6 +59,7 @@ impl Shape {
         match self {
             Shape::Link { pts, .. } => pts.iter().for_each(|p| add(*p)),
             Shape::Pivot { at } | Shape::Slider { at, .. } | Shape::Joint { at } => add(*at),
+            Shape::Guide { .. } => self.guide_ends().into_iter().for_each(add),
             Shape::Gear { centre: [x, y], radius: r, .. } | Shape::Outline { centre: [x, y], radius: r, .. } => {
                 add([x - r, y - r]);
                 add([x + r, y + r]);
@@ -68,6 +77,7 @@ impl Shape {
         let joint = style.joint_radius + 1.5;
         match self {
             Shape::Link { pts, .. } => pts.iter().for_each(|p| square(*p, joint.max(0.5 * style.link_width))),
+            Shape::Guide { .. } => self.guide_ends().into_iter().for_each(|p| square(p, 0.5 * style.link_width)),
             Shape::Joint { at } => square(*at, joint),
             Shape::Gear { centre, radius, .. } => square(*centre, radius + 3.0),
             Shape::Outline { centre, radius, .. } => square(*centre, radius + 1.5),
@@ -92,6 +102,14 @@ impl Shape {
         }
     }
 
+    /// A guide's ends (world units or pixels, as the shape).
+    pub(crate) fn guide_ends(&self) -> [[f64; 2]; 2] {
+        match self {
+            Shape::Guide { at, angle, span } => guide_ends(*at, *angle, *span),
+            _ => [[f64::NAN; 2]; 2],
+        }
+    }
+
     fn to_px(&self, v: &View) -> Shape {
         // Beyond about 3e306 radians the degrees overflow: there the angle is first reduced
         // to a turn (such an angle has no digits left below a turn anyway).
@@ -103,6 +121,9 @@ impl Shape {
             Shape::Link { pts, closed } => Shape::Link { pts: pts.iter().map(|p| v.px(*p)).collect(), closed: *closed },
             Shape::Pivot { at } => Shape::Pivot { at: v.px(*at) },
             Shape::Slider { at, angle, fixed } => Shape::Slider { at: v.px(*at), angle: deg(*angle), fixed: *fixed },
+            Shape::Guide { at, angle, span } => {
+                Shape::Guide { at: v.px(*at), angle: -angle, span: span.map(|t| t * v.scale) }
+            }
             Shape::Gear { centre, radius, angle, turning } => {
                 Shape::Gear { centre: v.px(*centre), radius: radius * v.scale, angle: deg(*angle), turning: *turning }
             }
@@ -116,6 +137,12 @@ impl Shape {
             Shape::Joint { at } => Shape::Joint { at: v.px(*at) },
         }
     }
+}
+
+/// The ends of a guide through `at` in direction `angle` (radians) over `span` along it.
+pub(crate) fn guide_ends(at: [f64; 2], angle: f64, span: [f64; 2]) -> [[f64; 2]; 2] {
+    let (s, c) = angle.sin_cos();
+    span.map(|t| [at[0] + t * c, at[1] + t * s])
 }
 
 /// A drawing's point, bound to a motion's output columns.
@@ -176,6 +203,8 @@ struct BoundItems<'d> {
     /// Each outline's corners, shared by its shapes at every pose, and its farthest corner's
     /// distance from its centre (`None` for the other items).
     outlines: Vec<Option<Corners>>,
+    /// Each guide's span along it over the whole motion (`None` for the other items).
+    spans: Vec<Option<[f64; 2]>>,
 }
 
 fn item_points(item: &Item) -> Vec<&Pt> {
@@ -183,6 +212,7 @@ fn item_points(item: &Item) -> Vec<&Pt> {
         Item::Link { through, .. } => through.iter().collect(),
         Item::Pivot { at } | Item::Slider { at, .. } | Item::Joint { at } => vec![at],
         Item::Gear { centre, .. } | Item::Outline { centre, .. } => vec![centre],
+        Item::Guide { from, block, body, .. } => [from, block].into_iter().chain(body).collect(),
     }
 }
 
@@ -195,7 +225,37 @@ impl<'d> BoundItems<'d> {
         }
         let traces = d.traces.iter().map(|p| Ok((p, bind(p, motion)?))).collect::<Result<_, DrawError>>()?;
         let outlines = d.items.iter().enumerate().map(|(k, item)| outline(k, item)).collect::<Result<_, _>>()?;
-        Ok(BoundItems { items, traces, outlines })
+        let mut bound = BoundItems { items, traces, outlines, spans: vec![None; d.items.len()] };
+        bound.spans = bound.guide_spans(motion)?;
+        Ok(bound)
+    }
+
+    /// Each guide's span over every pose of `motion`: what reaches farthest along it, at any
+    /// pose, sets its length at all (see [`Item::Guide`]).
+    fn guide_spans(&self, motion: &Motion) -> Result<Vec<Option<[f64; 2]>>, DrawError> {
+        let mut spans: Vec<Option<[f64; 2]>> = vec![None; self.items.len()];
+        for (i, pose) in motion.all_poses().enumerate() {
+            let e = Eval { state: state(pose), pose: i };
+            for (k, (item, bound)) in self.items.iter().enumerate() {
+                let Item::Guide { angle, .. } = item else { continue };
+                let pts = item_points(item);
+                let at = |j: usize| e.point(&bound[j], pts[j]);
+                let a = e.scalar(angle, || format!("angle of item {k} (guide)"))?;
+                let (from, u) = (at(0)?, [a.cos(), a.sin()]);
+                let along = |p: [f64; 2]| (p[0] - from[0]) * u[0] + (p[1] - from[1]) * u[1];
+                // The block a tenth past its farthest place, so that the guide shows beyond it
+                // there; the body's points (fixed on the guide) exactly.
+                let block = GUIDE_BEYOND * along(at(1)?);
+                let [mut lo, mut hi] = spans[k].unwrap_or([0.0, 0.0]);
+                (lo, hi) = (lo.min(block), hi.max(block));
+                for j in 2..pts.len() {
+                    let t = along(at(j)?);
+                    (lo, hi) = (lo.min(t), hi.max(t));
+                }
+                spans[k] = Some([lo, hi]);
+            }
+        }
+        Ok(spans)
     }
 
     fn shapes(&self, e: &Eval) -> Result<Vec<Shape>, DrawError> {
@@ -219,6 +279,11 @@ impl<'d> BoundItems<'d> {
                     let angle = e.scalar(angle, || format!("angle of item {k} (outline)"))?;
                     Shape::Outline { centre, angle, pts, scale: 1.0, radius }
                 }
+                Item::Guide { angle, .. } => Shape::Guide {
+                    at: p(0)?,
+                    angle: e.scalar(angle, || format!("angle of item {k} (guide)"))?,
+                    span: self.spans[k].unwrap_or_default(),
+                },
                 Item::Slider { angle, .. } => Shape::Slider {
                     at: p(0)?,
                     angle: e.scalar(angle, || format!("angle of item {k} (slider)"))?,
@@ -245,6 +310,38 @@ impl<'d> BoundItems<'d> {
         }
         Ok(shapes)
     }
+}
+
+/// How far a turning guide reaches past its block's farthest place, as a multiple of that
+/// distance from the guide's joint: the block then never sits at the guide's very end.
+const GUIDE_BEYOND: f64 = 1.1;
+
+/// A drawing's turning guides over a motion: each guide's span along it over every pose
+/// (`None` for the other items), for drawing the guide at any pose with [`guide_at`].
+///
+/// # Errors
+/// As the drawing's: a name that is not a point, a non-finite coordinate or angle.
+pub(crate) fn guide_spans(d: &Drawing, motion: &Motion) -> Result<Vec<Option<[f64; 2]>>, DrawError> {
+    Ok(BoundItems::new(d, motion)?.spans)
+}
+
+/// The ends of guide `item` of span `span` at pose `pose` (numbered `i` in errors), in the
+/// mechanism's units; `None` for another item.
+///
+/// # Errors
+/// As [`guide_spans`].
+pub(crate) fn guide_at(
+    item: &Item,
+    span: [f64; 2],
+    motion: &Motion,
+    pose: &Pose,
+    i: usize,
+) -> Result<Option<[[f64; 2]; 2]>, DrawError> {
+    let Item::Guide { from, angle, .. } = item else { return Ok(None) };
+    let e = Eval { state: state(pose), pose: i };
+    let at = e.point(&bind(from, motion)?, from)?;
+    let a = e.scalar(angle, || "angle of a guide".to_string())?;
+    Ok(Some(guide_ends(at, a, span)))
 }
 
 /// An outline's corners, shared by its shapes at every pose, and the farthest one's distance
@@ -371,7 +468,7 @@ impl Scene {
         let fitted = d.canvas.view(&pts, RESERVE)?;
         let mut scene = Scene::at(fitted, &world, &traced, &labelled, Vec::new(), motion.poses.len());
         near(d, &scene.frames, &scene.traced)?;
-        scene.labels = scene.place_labels(label_pts.into_iter().map(|(_, t)| t).collect());
+        scene.labels = scene.place_labels(label_pts.into_iter().map(|(_, t)| t).collect(), &d.style);
         if d.canvas.window.is_none() {
             // Cropped to everything drawn over the whole motion, plus the margin.
             let [x0, y0, x1, y1] = scene.ink(&d.style);
@@ -403,29 +500,54 @@ impl Scene {
         }
     }
 
-    /// Each label placed beside its point, away from the middle of the mechanism at the first
-    /// pose (so it sits outside the links rather than across them).
-    fn place_labels(&self, texts: Vec<String>) -> Vec<Label> {
-        let mut pts = Vec::new();
-        self.frames[0].iter().for_each(|s| s.extent(|p| pts.push(p)));
-        let n = pts.len().max(1) as f64;
-        let mid = pts.iter().fold([0.0, 0.0], |m, p| [m[0] + p[0] / n, m[1] + p[1] / n]);
+    /// Each label placed beside its own point at the first pose, in a free direction: off the
+    /// links, the guides and the pivot symbols, clear of the other joints and labels, nearer
+    /// its own point than any other joint, and as far as it can be from the links and guides
+    /// meeting at its point (the middle of the widest gap between them); among equally good
+    /// places, away from the middle of the mechanism (outside it rather than across it).
+    fn place_labels(&self, texts: Vec<String>, style: &Style) -> Vec<Label> {
+        let shapes = &self.frames[0];
+        let mut bars: Vec<[[f64; 2]; 2]> = Vec::new();
+        let mut boxes: Vec<[f64; 4]> = Vec::new();
+        let mut dots: Vec<[f64; 2]> = self.traced[0].clone();
+        for shape in shapes {
+            match shape {
+                Shape::Link { pts, closed } => {
+                    bars.extend(pts.windows(2).map(|w| [w[0], w[1]]));
+                    if *closed && pts.len() > 2 {
+                        bars.push([pts[pts.len() - 1], pts[0]]);
+                    }
+                    dots.extend(pts);
+                }
+                Shape::Guide { .. } => bars.push(shape.guide_ends()),
+                Shape::Pivot { at: [x, y] } => {
+                    // The triangle, ground line and hatching (see `Shape::ink`).
+                    boxes.push([x - 15.0, y + 2.0, x + 15.0, y + 21.0]);
+                    dots.push([*x, *y]);
+                }
+                Shape::Slider { .. } => {
+                    let mut b = [f64::INFINITY, f64::INFINITY, f64::NEG_INFINITY, f64::NEG_INFINITY];
+                    shape.ink(style, |[x, y]| b = [b[0].min(x), b[1].min(y), b[2].max(x), b[3].max(y)]);
+                    boxes.push(b);
+                }
+                Shape::Joint { at } => dots.push(*at),
+                Shape::Gear { .. } | Shape::Outline { .. } => {}
+            }
+        }
+        let mut all = Vec::new();
+        shapes.iter().for_each(|s| s.extent(|p| all.push(p)));
+        let n = all.len().max(1) as f64;
+        let mid = all.iter().fold([0.0, 0.0], |m, p| [m[0] + p[0] / n, m[1] + p[1] / n]);
+        let mut placed: Vec<[f64; 4]> = Vec::new();
         texts
             .into_iter()
             .zip(&self.labelled[0])
-            .map(|(text, p)| {
-                let (dx, dy) = (p[0] - mid[0], p[1] - mid[1]);
-                let r = dx.hypot(dy);
-                // At the middle itself (or a non-finite distance): above and to the right.
-                let [ux, uy] = if r > 1.0 && r.is_finite() { [dx / r, dy / r] } else { [0.6, -0.8] };
-                // Beside the joint (text starting or ending clear of its circle), or above or
-                // below it (the text's middle clear of it): `offset` is the text's centre line.
-                let (anchor, offset) = if ux.abs() > 0.35 {
-                    (if ux > 0.0 { "start" } else { "end" }, [LABEL_OFFSET * ux.signum(), LABEL_OFFSET * uy])
-                } else {
-                    ("middle", [0.0, (LABEL_OFFSET + 0.5 * FONT) * uy.signum()])
-                };
-                Label { text, offset, anchor }
+            .map(|(text, &p)| {
+                let label = best_label(text, p, mid, &bars, &boxes, &dots, &placed, style);
+                let mut b = [f64::INFINITY, f64::INFINITY, f64::NEG_INFINITY, f64::NEG_INFINITY];
+                label.ink(p, |[x, y]| b = [b[0].min(x), b[1].min(y), b[2].max(x), b[3].max(y)]);
+                placed.push(b);
+                label
             })
             .collect()
     }
@@ -471,6 +593,142 @@ impl Scene {
         }
         path
     }
+}
+
+/// Gap in pixels between a joint's centre and the nearest edge of its label.
+const LABEL_GAP: f64 = LABEL_OFFSET;
+
+/// Directions tried for a label, besides the middles of the gaps between the bars at its
+/// point: every 15 degrees.
+const LABEL_DIRECTIONS: usize = 24;
+
+/// The label `text` of the joint at `p` (pixels) placed in the best of the directions tried:
+/// the fewest links, guides, pivot symbols, blocks, other joints and labels `placed` under it
+/// and no other joint nearer to it than `p`; then the widest angle from the bars meeting at
+/// `p`; then the nearest to pointing away from `mid`.
+#[allow(clippy::too_many_arguments)]
+fn best_label(
+    text: String,
+    p: [f64; 2],
+    mid: [f64; 2],
+    bars: &[[[f64; 2]; 2]],
+    boxes: &[[f64; 4]],
+    dots: &[[f64; 2]],
+    placed: &[[f64; 4]],
+    style: &Style,
+) -> Label {
+    let (w, h) = (text_width(&text), FONT);
+    let near = |q: [f64; 2]| (q[0] - p[0]).hypot(q[1] - p[1]) <= 1.0;
+    // The directions of the bars leaving `p` (both ways along one passing through it).
+    let mut leaving: Vec<f64> = Vec::new();
+    for &[a, b] in bars {
+        let towards = |q: [f64; 2]| (q[1] - p[1]).atan2(q[0] - p[0]);
+        match (near(a), near(b)) {
+            (true, false) => leaving.push(towards(b)),
+            (false, true) => leaving.push(towards(a)),
+            (false, false) if segment_distance(p, a, b) <= 1.0 => leaving.extend([towards(a), towards(b)]),
+            _ => {}
+        }
+    }
+    leaving.sort_by(f64::total_cmp);
+    let mut tried: Vec<f64> =
+        (0..LABEL_DIRECTIONS).map(|k| std::f64::consts::TAU * k as f64 / LABEL_DIRECTIONS as f64).collect();
+    for (k, a) in leaving.iter().enumerate() {
+        let next = if k + 1 < leaving.len() { leaving[k + 1] } else { leaving[0] + std::f64::consts::TAU };
+        tried.push(0.5 * (a + next));
+    }
+    let away = (p[1] - mid[1]).atan2(p[0] - mid[0]);
+    // At the middle itself: above and to the right.
+    let away = if (p[0] - mid[0]).hypot(p[1] - mid[1]) > 1.0 { away } else { (-0.8f64).atan2(0.6) };
+    let width = 0.5 * style.link_width + 1.0;
+    let dot = style.joint_radius + 1.5;
+    let mut best: Option<(f64, [f64; 2])> = None;
+    for a in tried {
+        let u = [a.cos(), a.sin()];
+        let c = label_centre(u, w, h);
+        let b = [p[0] + c[0] - 0.5 * w, p[1] + c[1] - 0.5 * h, p[0] + c[0] + 0.5 * w, p[1] + c[1] + 0.5 * h];
+        let own = box_distance(b, p);
+        let mut cost = 0.0;
+        cost += 1000.0 * bars.iter().filter(|&&[s, e]| segment_box_distance(s, e, b) < width).count() as f64;
+        cost += 1000.0 * boxes.iter().filter(|o| overlap(b, **o)).count() as f64;
+        cost += 1000.0 * placed.iter().filter(|o| overlap(b, **o)).count() as f64;
+        for &q in dots.iter().filter(|q| !near(**q)) {
+            let d = box_distance(b, q);
+            if d < dot {
+                cost += 1000.0;
+            }
+            if d <= own {
+                cost += 1000.0;
+            }
+        }
+        let clear = leaving.iter().map(|l| angle_between(a, *l)).fold(std::f64::consts::PI, f64::min);
+        cost -= 100.0 * clear;
+        cost += 10.0 * angle_between(a, away);
+        if best.is_none_or(|(c, _)| cost < c) {
+            best = Some((cost, c));
+        }
+    }
+    let offset = best.map_or([LABEL_OFFSET, 0.0], |(_, c)| c);
+    Label { text, offset, anchor: "middle" }
+}
+
+/// The centre of a label `w` by `h` pixels in direction `u` from its joint: the nearest to the
+/// joint that keeps the label [`LABEL_GAP`] from the joint's centre.
+fn label_centre(u: [f64; 2], w: f64, h: f64) -> [f64; 2] {
+    let gap = |t: f64| ((t * u[0]).abs() - 0.5 * w).max(0.0).hypot(((t * u[1]).abs() - 0.5 * h).max(0.0));
+    let (mut lo, mut hi) = (0.0, LABEL_GAP + w + h);
+    for _ in 0..40 {
+        let t = 0.5 * (lo + hi);
+        if gap(t) < LABEL_GAP { lo = t } else { hi = t }
+    }
+    [hi * u[0], hi * u[1]]
+}
+
+/// The angle between directions `a` and `b` (radians), from 0 to pi.
+fn angle_between(a: f64, b: f64) -> f64 {
+    let d = (a - b).rem_euclid(std::f64::consts::TAU);
+    d.min(std::f64::consts::TAU - d)
+}
+
+/// Distance from `q` to the box `[x0, y0, x1, y1]` (0 inside).
+fn box_distance(b: [f64; 4], q: [f64; 2]) -> f64 {
+    let dx = (b[0] - q[0]).max(q[0] - b[2]).max(0.0);
+    let dy = (b[1] - q[1]).max(q[1] - b[3]).max(0.0);
+    dx.hypot(dy)
+}
+
+/// Boxes `a` and `b` overlap.
+fn overlap(a: [f64; 4], b: [f64; 4]) -> bool {
+    a[0] < b[2] && b[0] < a[2] && a[1] < b[3] && b[1] < a[3]
+}
+
+/// Distance from `q` to the segment from `a` to `b`.
+fn segment_distance(q: [f64; 2], a: [f64; 2], b: [f64; 2]) -> f64 {
+    let (dx, dy) = (b[0] - a[0], b[1] - a[1]);
+    let len = dx * dx + dy * dy;
+    let t = if len > 0.0 { (((q[0] - a[0]) * dx + (q[1] - a[1]) * dy) / len).clamp(0.0, 1.0) } else { 0.0 };
+    (q[0] - a[0] - t * dx).hypot(q[1] - a[1] - t * dy)
+}
+
+/// Distance from the segment from `a` to `b` to the box `[x0, y0, x1, y1]` (0 when it
+/// crosses it): the least of the corners' distances to the segment and the ends' to the box,
+/// unless the segment crosses the box.
+fn segment_box_distance(a: [f64; 2], b: [f64; 2], bx: [f64; 4]) -> f64 {
+    let corners = [[bx[0], bx[1]], [bx[2], bx[1]], [bx[2], bx[3]], [bx[0], bx[3]]];
+    let edges = [0, 1, 2, 3].map(|k| (corners[k], corners[(k + 1) % 4]));
+    if box_distance(bx, a) == 0.0 || box_distance(bx, b) == 0.0 || edges.iter().any(|&(c, d)| crosses(a, b, c, d)) {
+        return 0.0;
+    }
+    let from_corners = corners.iter().map(|c| segment_distance(*c, a, b)).fold(f64::INFINITY, f64::min);
+    from_corners.min(box_distance(bx, a)).min(box_distance(bx, b))
+}
+
+/// Segments `a`-`b` and `c`-`d` cross.
+fn crosses(a: [f64; 2], b: [f64; 2], c: [f64; 2], d: [f64; 2]) -> bool {
+    let side = |p: [f64; 2], q: [f64; 2], r: [f64; 2]| (q[0] - p[0]) * (r[1] - p[1]) - (q[1] - p[1]) * (r[0] - p[0]);
+    let (d1, d2) = (side(a, b, c), side(a, b, d));
+    let (d3, d4) = (side(c, d, a), side(c, d, b));
+    d1 * d2 < 0.0 && d3 * d4 < 0.0
 }
 
 /// Every pixel coordinate and size within [`FAR`] of the origin (a window can put points

@@ -30,6 +30,7 @@ pub(crate) fn item(out: &mut String, pen: &Pen, shapes: &[&Shape]) {
         Shape::Link { closed, .. } => link(out, pen, shapes, *closed),
         Shape::Pivot { .. } => pivot(out, pen, shapes),
         Shape::Slider { .. } => slider(out, pen, shapes),
+        Shape::Guide { .. } => link(out, pen, shapes, false),
         Shape::Gear { .. } => gear(out, pen, shapes),
         Shape::Outline { .. } => outline(out, pen, shapes),
         Shape::Joint { .. } => {}
@@ -41,6 +42,8 @@ fn link(out: &mut String, pen: &Pen, shapes: &[&Shape], closed: bool) {
         .iter()
         .map(|s| match s {
             Shape::Link { pts, .. } => points(pts),
+            // A turning guide is drawn as a bar, without joint circles at its ends.
+            Shape::Guide { .. } => points(&s.guide_ends()),
             _ => String::new(),
         })
         .collect();

@@ -138,6 +138,22 @@ pub enum Item {
         /// Direction of the guide (radians).
         angle: Scalar,
     },
+    /// A guide that turns (a slotted rocker, a cylinder): one bar from `from` along `angle`,
+    /// of the same length at every pose. It reaches, over the whole motion drawn, a tenth past
+    /// the farthest place of the block sliding on it and as far as every point of `body` (the
+    /// points rigid with it: a rocker's tip), each measured along the guide; it starts at
+    /// `from` unless the block or the body reach behind it. The block is drawn by a
+    /// [`Item::Slider`].
+    Guide {
+        /// The joint the guide turns about.
+        from: Pt,
+        /// Its direction (radians).
+        angle: Scalar,
+        /// The block sliding on it.
+        block: Pt,
+        /// Points of the body the guide is part of.
+        body: Vec<Pt>,
+    },
     /// A gear as its pitch circle of `radius` about `centre`, with a radius marking its turn
     /// `angle`.
     Gear {
@@ -228,6 +244,21 @@ impl Drawing {
     /// A slider block at `at` moving along direction `angle` (radians from the X axis).
     pub fn slider(mut self, at: impl Into<Pt>, angle: impl Into<Scalar>) -> Drawing {
         self.items.push(Item::Slider { at: at.into(), angle: angle.into() });
+        self
+    }
+
+    /// A turning guide from `from` along `angle`, long enough for `block` and `body` over the
+    /// whole motion (see [`Item::Guide`]): a slotted rocker, with the block on it added by
+    /// [`Drawing::slider`].
+    pub fn guide<P: Into<Pt>>(
+        mut self,
+        from: impl Into<Pt>,
+        angle: impl Into<Scalar>,
+        block: impl Into<Pt>,
+        body: impl IntoIterator<Item = P>,
+    ) -> Drawing {
+        let body = body.into_iter().map(Into::into).collect();
+        self.items.push(Item::Guide { from: from.into(), angle: angle.into(), block: block.into(), body });
         self
     }
 

@@ -163,6 +163,17 @@ fn items(out: &mut String, style: &Style, slots: &[Slot], f: &[i64], pen: &Pen, 
                 );
             }
             Slot::Joint => {}
+            Slot::Guide => {
+                let pts: Vec<String> = (0..2).map(|j| format!("{},{}", t(f[o + 2 * j]), t(f[o + 2 * j + 1]))).collect();
+                let _ = write!(
+                    out,
+                    r#"<polyline{} points="{}" fill="none" stroke="{}" stroke-width="{}" stroke-linecap="round"{dash}/>"#,
+                    mark(k),
+                    pts.join(" "),
+                    pen.ink,
+                    px(width)
+                );
+            }
         }
         o += slot.len();
     }

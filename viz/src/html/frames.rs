@@ -6,7 +6,7 @@
 //! page small and cannot hold a NaN.
 
 use super::HtmlError;
-use crate::draw::{Drawing, Item, Motion, Pose, Pt, Scalar, StateRef, View};
+use crate::draw::{Drawing, Item, Motion, Pose, Pt, Scalar, StateRef, View, guide_at, guide_spans};
 use std::f64::consts::TAU;
 
 /// Largest pixel coordinate written (as the drawings: beyond it a renderer loses precision).
@@ -28,6 +28,8 @@ pub(crate) enum Slot {
     Outline { corners: Vec<[f64; 2]> },
     /// A lone joint: 2 numbers.
     Joint,
+    /// A turning guide: a bar between its two ends, 4 numbers, with no joint circles.
+    Guide,
 }
 
 impl Slot {
@@ -36,6 +38,7 @@ impl Slot {
         match self {
             Slot::Link { n, .. } => 2 * n,
             Slot::Pivot | Slot::Joint => 2,
+            Slot::Guide => 4,
             Slot::Slider { .. } | Slot::Gear { .. } | Slot::Outline { .. } => 3,
         }
     }
@@ -109,12 +112,16 @@ fn item_points(item: &Item) -> Vec<&Pt> {
         Item::Link { through, .. } => through.iter().collect(),
         Item::Pivot { at } | Item::Slider { at, .. } | Item::Joint { at } => vec![at],
         Item::Gear { centre, .. } | Item::Outline { centre, .. } => vec![centre],
+        // Its ends, which its span over the whole motion places (`Eval::frame`).
+        Item::Guide { .. } => Vec::new(),
     }
 }
 
 struct Eval<'a> {
     motion: &'a Motion,
     view: View,
+    /// Each turning guide's span over the motion (as the drawings').
+    spans: Vec<Option<[f64; 2]>>,
 }
 
 impl Eval<'_> {
@@ -161,6 +168,12 @@ impl Eval<'_> {
                 Item::Slider { angle, .. } | Item::Gear { angle, .. } | Item::Outline { angle, .. } => {
                     out.push(self.angle(angle, i, k)?)
                 }
+                Item::Guide { .. } => {
+                    let span = self.spans[k].unwrap_or_default();
+                    for end in guide_at(item, span, self.motion, pose(self.motion, i), i)?.unwrap_or_default() {
+                        out.extend(self.point(&Pt::Fixed(end), i)?);
+                    }
+                }
                 _ => {}
             }
         }
@@ -185,7 +198,7 @@ impl Frames {
         // their fit of the picture to every pose.
         let fitted = d.view(motion)?;
         let view = view.unwrap_or(fitted);
-        let e = Eval { motion, view };
+        let e = Eval { motion, view, spans: guide_spans(d, motion)? };
         let mut slots = Vec::with_capacity(d.items.len());
         for item in &d.items {
             slots.push(match item {
@@ -199,6 +212,7 @@ impl Frames {
                     Slot::Outline { corners: points.iter().map(|p| [p[0] * view.scale, -p[1] * view.scale]).collect() }
                 }
                 Item::Joint { .. } => Slot::Joint,
+                Item::Guide { .. } => Slot::Guide,
             });
         }
         let traces_at = slots.iter().map(Slot::len).sum();
