@@ -197,7 +197,7 @@ fn items(out: &mut String, style: &Style, slots: &[Slot], f: &[i64], pen: &Pen, 
     }
 }
 
-/// The picture at frame `first`, with `events` labelled by `labels` (one per event).
+/// The picture at frame `first`, with the ghosts of `events` titled by `labels` (one per event).
 /// `joints`: the names of each item's joints, `traces`: of each traced point (`point` outputs);
 /// `marks`: fixed points (mechanism units) marked and numbered from 1 (a synthesis's targets).
 pub(crate) fn figure(
@@ -238,16 +238,14 @@ pub(crate) fn figure(
         }
         o += slot.len();
     }
-    for (j, (ev, label)) in fr.events.iter().zip(labels).enumerate() {
-        let _ = write!(s, r#"<g class="kl-event">"#);
+    // The events' labels are written in the page's list under the picture, each with the
+    // ghosts' colour as its key, not over the picture, where they would cover the mechanism
+    // (the picture is cropped to it, so any spot in it may be drawn on); a ghost has its label
+    // as its title (shown on hover, read by assistive technology).
+    for (ev, label) in fr.events.iter().zip(labels) {
+        let _ = write!(s, r#"<g class="kl-event"><title>{}</title>"#, escape(label));
         items(&mut s, style, &fr.slots, ev, &Pen { ink: &style.event, fill: "none", ghost: true }, None);
-        let _ = write!(
-            s,
-            r#"<text x="8" y="{}" font-family="sans-serif" font-size="12" fill="{}">{}</text></g>"#,
-            16 + 15 * j,
-            style.event,
-            escape(label)
-        );
+        s.push_str("</g>");
     }
     for (i, m) in marks.iter().enumerate() {
         let [x, y] = fr.view.px(*m);

@@ -14,7 +14,9 @@
 //! * a chart of each readout against the input (against the fraction of the path for several
 //!   inputs), whose cursor follows the slider;
 //! * the sweep's events (limit positions, singular crossings) marked on the slider's track and
-//!   on the charts, and the mechanism drawn there as a dashed ghost.
+//!   on the charts, listed under the picture (a click shows the mechanism there), and the
+//!   mechanism drawn there as a dashed ghost (no label over the picture, which would cover
+//!   the mechanism).
 //!
 //! With several inputs the motion is either a sweep along a straight path in input space
 //! ([`html`]: one slider moves along that path and every input has its readout), or a grid of
