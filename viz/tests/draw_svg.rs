@@ -518,3 +518,48 @@ fn a_readout_far_from_zero_tells_its_key_frames_apart() {
     texts.dedup();
     assert_eq!(texts.len(), 13, "{texts:?}");
 }
+
+#[test]
+fn the_input_turns_at_constant_speed_whatever_the_key_frames_picked() {
+    // 181 samples over a turn in 90 key frames: steps of 2 and 3 samples (4 and 6 degrees).
+    // Every animation is timed by the key frames' input: key frame k at phi_k / 2 pi of the
+    // pass, and the readout's text shown from halfway from the previous key frame to halfway
+    // to the next.
+    let m = FourBar::default();
+    let mo = motion(&m, TAU, 181);
+    let anim = Animation::default();
+    let d = four_bar_drawing(&m);
+    let svg = d.animate(&mo, &anim).unwrap();
+    let doc = checked(&svg).unwrap();
+    let keys = d.key_poses(&mo, &anim).unwrap();
+    assert_eq!(keys.len(), 90);
+    let want: Vec<f64> = keys.iter().map(|&k| mo.poses[k].x[0] / TAU).collect();
+    let steps: Vec<usize> = keys.windows(2).map(|w| w[1] - w[0]).collect();
+    assert!(steps.contains(&2) && steps.contains(&3), "uneven samples per key frame: {steps:?}");
+    let animations: Vec<_> =
+        doc.descendants().filter(|n| matches!(n.tag_name().name(), "animate" | "animateTransform")).collect();
+    let mut timed = 0;
+    for a in &animations {
+        if a.attribute("attributeName") == Some("visibility") {
+            continue;
+        }
+        let times: Vec<f64> =
+            a.attribute("keyTimes").expect("key times").split(';').map(|t| t.parse().unwrap()).collect();
+        assert_eq!(times.len(), want.len());
+        for (t, w) in times.iter().zip(&want) {
+            assert!((t - w).abs() <= 0.5e-5 + 1e-12, "key time {t} for phi at {w} of the turn");
+        }
+        timed += 1;
+    }
+    assert!(timed >= 5, "{timed} animations");
+    // The readout of key frame 24 (after a step of 3 samples): from halfway back to halfway on.
+    let readout: Vec<_> = doc
+        .descendants()
+        .filter(|n| n.tag_name().name() == "text" && n.parent().and_then(|p| p.attribute("class")) == Some("readout"))
+        .collect();
+    let k = 24;
+    let times = readout[k].children().find(|n| n.tag_name().name() == "animate").unwrap();
+    let times: Vec<f64> = times.attribute("keyTimes").unwrap().split(';').map(|t| t.parse().unwrap()).collect();
+    let (from, to) = ((want[k - 1] + want[k]) / 2.0, (want[k] + want[k + 1]) / 2.0);
+    assert!((times[1] - from).abs() <= 0.5e-5 + 1e-12 && (times[2] - to).abs() <= 0.5e-5 + 1e-12, "{times:?}");
+}
