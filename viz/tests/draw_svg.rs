@@ -563,3 +563,62 @@ fn the_input_turns_at_constant_speed_whatever_the_key_frames_picked() {
     let (from, to) = ((want[k - 1] + want[k]) / 2.0, (want[k] + want[k + 1]) / 2.0);
     assert!((times[1] - from).abs() <= 0.5e-5 + 1e-12 && (times[2] - to).abs() <= 0.5e-5 + 1e-12, "{times:?}");
 }
+
+/// The points of the SVG elements of class `class` (a polyline's `points`, a path's `d`).
+fn points_of(svg: &str, class: &str) -> Vec<[f64; 2]> {
+    let doc = roxmltree::Document::parse(svg).unwrap();
+    doc.descendants()
+        .filter(|n| n.attribute("class") == Some(class))
+        .flat_map(|n| {
+            let text = n.attribute("points").or(n.attribute("d")).unwrap_or("").replace(['M', 'L'], " ");
+            text.split_whitespace()
+                .map(|p| {
+                    let (x, y) = p.split_once(',').unwrap();
+                    [x.parse().unwrap(), y.parse().unwrap()]
+                })
+                .collect::<Vec<_>>()
+        })
+        .collect()
+}
+
+/// The picture of an interactive page (its `<svg id="kl-drawing">`).
+fn drawing_of(page: &str) -> String {
+    let at = page.find(r#"<svg xmlns="http://www.w3.org/2000/svg" id="kl-drawing""#).expect("a picture");
+    let end = at + page[at..].find("</svg>").expect("closed") + "</svg>".len();
+    page[at..end].to_string()
+}
+
+#[test]
+fn a_sweep_of_many_turns_writes_its_curve_about_once() {
+    // A hundred turns, sampled as one (every 5 degrees) and with samples drifting from turn to
+    // turn: the traced coupler curve is written about once, not a hundred times, and covers
+    // every point of the single turn's curve.
+    let m = FourBar::default();
+    let d = four_bar_drawing(&m);
+    let one = points_of(&d.svg(&motion(&m, TAU, 73), 0).unwrap(), "trace");
+    for samples in [7201, 7001] {
+        let mo = motion(&m, 100.0 * TAU, samples);
+        let html = kinloop_viz::draw::html(&m, &d, &mo, &kinloop_viz::draw::HtmlConfig::new("turns")).unwrap();
+        for (what, pts) in [
+            ("svg", points_of(&d.animate(&mo, &Animation::default()).unwrap(), "trace")),
+            ("page", points_of(&drawing_of(&html), "kl-trace")),
+        ] {
+            let bound = if samples == 7201 { one.len() + 2 } else { samples / 10 };
+            assert!(
+                pts.len() <= bound,
+                "{samples} samples, {what}: {} points against {} for one turn",
+                pts.len(),
+                one.len()
+            );
+            // Every point of the one turn's curve within a tenth of a pixel of a point written
+            // (the same samples: the curve looks the same).
+            if samples == 7201 {
+                for p in &one {
+                    let near =
+                        pts.iter().any(|q| (q[0] - p[0]).abs() <= 0.1 + 1e-9 && (q[1] - p[1]).abs() <= 0.1 + 1e-9);
+                    assert!(near, "{what}: {p:?} of the turn's curve is not drawn");
+                }
+            }
+        }
+    }
+}

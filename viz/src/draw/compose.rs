@@ -3,6 +3,7 @@
 use super::annotate::{FONT, LINE, readout, scale_bar, text_width};
 use super::error::DrawError;
 use super::motion::Motion;
+use super::retrace::unretraced;
 use super::scene::{Scene, Shape};
 use super::shapes::{Pen, dot, guide, item, joints};
 use super::spec::Drawing;
@@ -145,20 +146,32 @@ impl Layers<'_> {
         self.scene.frames[0].len()
     }
 
-    /// The traced paths over the whole motion, consecutive equal pixels merged. Animated
-    /// (`keys` and `timing`), each is drawn faint in full and again in full colour as far as
-    /// the traced point has come at each key frame (a dash as long as the path, shifted).
+    /// The traced paths over the whole motion, consecutive equal pixels merged and segments
+    /// that retrace ones already drawn left out (a sweep of many turns: one pass of the curve,
+    /// not one a turn; see [`unretraced`]). Animated (`keys` and `timing`), each is drawn faint
+    /// in full and again in full colour as far as the traced point has come at each key frame
+    /// (a dash as long as the path, shifted), over its first piece: the whole path unless it
+    /// retraces itself, and then its first pass.
     fn traces(&self, out: &mut String, anim: Option<(&[usize], Timing)>) {
         let path = self.scene.path(self.motion);
         for t in 0..self.d.traces.len() {
-            let (pts, along) = self.trace_points(&path, t);
+            let (pieces, along) = self.trace_points(&path, t);
             let (colour, width) = (self.d.style.trace(t), num(self.d.style.trace_width));
             let opacity = if anim.is_some() { r#" opacity="0.35""# } else { "" };
-            let _ = write!(
-                out,
-                r#"<polyline class="trace" points="{pts}" fill="none" stroke="{colour}" stroke-width="{width}" stroke-linejoin="round"{opacity}/>"#
-            );
-            let Some((keys, timing)) = anim else { continue };
+            let look =
+                format!(r#"fill="none" stroke="{colour}" stroke-width="{width}" stroke-linejoin="round"{opacity}"#);
+            match pieces.as_slice() {
+                [pts] => {
+                    let _ = write!(out, r#"<polyline class="trace" points="{pts}" {look}/>"#);
+                }
+                // A path that retraces itself, in pieces: one element (a polyline each would
+                // outweigh their few points).
+                _ => {
+                    let d: Vec<String> = pieces.iter().map(|pts| format!("M{}", pts.replace(' ', "L"))).collect();
+                    let _ = write!(out, r#"<path class="trace" d="{}" {look}/>"#, d.concat());
+                }
+            }
+            let (Some((keys, timing)), Some(pts)) = (anim, pieces.first()) else { continue };
             let dash = (along.iter().fold(0.0f64, |m, s| m.max(*s)) + 1.0).ceil();
             let offsets: Vec<String> = keys.iter().map(|&k| num(dash - along[k])).collect();
             let _ = write!(
@@ -172,25 +185,42 @@ impl Layers<'_> {
         }
     }
 
-    /// The points of trace `t` along `path` as written (rounded, consecutive equal ones
-    /// merged), and for every pose of the scene the length of that polyline up to it.
-    fn trace_points(&self, path: &[usize], t: usize) -> (String, Vec<f64>) {
-        let mut pts = String::new();
+    /// The pieces of trace `t` along `path` as written (rounded to a tenth of a pixel,
+    /// [`unretraced`]), and for every pose of the scene the length of the first piece up to
+    /// it (its whole length once the path has left it).
+    fn trace_points(&self, path: &[usize], t: usize) -> (Vec<String>, Vec<f64>) {
+        let rounded: Vec<[f64; 2]> = path.iter().map(|&i| self.scene.traced[i][t].map(round)).collect();
+        // Rounded coordinates are equal as numbers exactly when their bits are (no -0: `round`
+        // writes +0).
+        let (pieces, at) = unretraced(rounded.iter().map(|p| p.map(f64::to_bits)));
+        let as_f64 = |p: &[u64; 2]| p.map(f64::from_bits);
+        let mut first = vec![0.0];
+        if let Some(piece) = pieces.first() {
+            for w in piece.windows(2) {
+                let ([x0, y0], [x1, y1]) = (as_f64(&w[0]), as_f64(&w[1]));
+                first.push(first[first.len() - 1] + (x1 - x0).hypot(y1 - y0));
+            }
+        }
         let mut along = vec![0.0; self.scene.frames.len()];
-        let (mut length, mut prev) = (0.0, None::<[f64; 2]>);
-        for &i in path {
-            let [x, y] = self.scene.traced[i][t].map(round);
-            if prev != Some([x, y]) {
-                if let Some([px, py]) = prev {
-                    length += (x - px).hypot(y - py);
-                    pts.push(' ');
-                }
-                let _ = write!(pts, "{x},{y}");
-                prev = Some([x, y]);
+        let mut length = 0.0;
+        for (&i, at) in path.iter().zip(&at) {
+            if let Some((0, j)) = at {
+                length = first[*j];
             }
             along[i] = length;
         }
-        (pts, along)
+        let pieces = pieces
+            .iter()
+            .map(|piece| {
+                let mut pts = String::with_capacity(piece.len() * 12);
+                for (k, p) in piece.iter().enumerate() {
+                    let [x, y] = as_f64(p);
+                    let _ = write!(pts, "{}{x},{y}", if k > 0 { " " } else { "" });
+                }
+                pts
+            })
+            .collect();
+        (pieces, along)
     }
 
     /// Guides of sliders on fixed directions, over every pose.

@@ -43,7 +43,9 @@
 //! scale (`data-scale`, pixels per unit) and the pixel of the origin (`data-origin`) are
 //! attributes of its `<svg id="kl-drawing">`, so coordinates read from the page map back to
 //! the mechanism's units. At most [`HtmlConfig::max_frames`] poses are written (721 by
-//! default, about 30 to 60 kB for the gallery's mechanisms).
+//! default, about 30 to 60 kB for the gallery's mechanisms). The traced paths go through
+//! every pose, but a segment already drawn (between the same points, to a tenth of a pixel)
+//! is written once: a sweep of a thousand turns does not write its curve a thousand times.
 //!
 //! ```
 //! use kinloop_viz::draw::{Drawing, Motion, Pt};
@@ -115,7 +117,8 @@ fn joint_names(d: &Drawing) -> Vec<Vec<Option<String>>> {
 /// gives the names and quantity kinds of its columns (the readouts' units).
 ///
 /// With more poses than [`HtmlConfig::max_frames`], that many are written, evenly spread
-/// over the motion (the first and the last kept); the traced paths keep every pose.
+/// over the motion (the first and the last kept); the traced paths keep every pose (a segment
+/// that retraces one already drawn written once).
 ///
 /// Errors: the drawing's own ([`HtmlError::Draw`]: an unknown point, an empty motion, a
 /// non-finite coordinate), a readout naming no column of `M` ([`HtmlError::UnknownColumn`]),
