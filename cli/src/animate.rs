@@ -146,12 +146,22 @@ pub fn run(model: &mut Model, req: &Request) -> Result<(), Failed> {
         Some((found, point)) => cam_drawn::with_cam(drawing, &found, point),
         None => drawing,
     };
+    let mut anim = Animation::default();
+    if let Some(f) = req.frames {
+        anim.frames = f;
+    }
+    let frames = match format {
+        Format::Svg => anim.frames,
+        Format::Html => page_config(&name, req).max_frames,
+    };
+    let ends = motion.poses.first().zip(motion.poses.last()).map(|(a, b)| (&a.x[..], &b.x[..]));
+    if let Some((first, last)) = ends
+        && let Some(note) = aliasing(model.inputs(), &kinds, first, last, frames.min(motion.poses.len()))
+    {
+        eprintln!("note: {note}");
+    }
     let text = match format {
         Format::Svg => {
-            let mut anim = Animation::default();
-            if let Some(f) = req.frames {
-                anim.frames = f;
-            }
             anim.back_and_forth = motion.stopped;
             drawing.animate(&motion, &anim).map_err(|e| failed(&e))?
         }
@@ -323,6 +333,32 @@ fn write_out(out: &Path, text: &str) -> Result<(), Failed> {
     })
 }
 
+/// Frames of an angle input farther apart than this (a twentieth of a turn, 18 degrees) show
+/// a turning link jumping from frame to frame, and more than half a turn apart, standing still
+/// or turning backwards (aliasing).
+const ALIASING_STEP: f64 = std::f64::consts::TAU / 20.0;
+
+/// A note when `frames` frames evenly over the motion from inputs `first` to `last` are farther
+/// apart than [`ALIASING_STEP`] in an angle input: what the step is and what to do.
+fn aliasing(inputs: &[String], kinds: &[QuantityKind], first: &[f64], last: &[f64], frames: usize) -> Option<String> {
+    let gaps = (frames.max(2) - 1) as f64;
+    let (k, step) = (0..first.len().min(last.len()).min(kinds.len()))
+        .filter(|&k| kinds[k] == QuantityKind::Angle)
+        .map(|k| (k, (last[k] / 2.0 - first[k] / 2.0).abs() / gaps * 2.0))
+        .fold(None::<(usize, f64)>, |best, (k, s)| match best {
+            Some((_, b)) if b >= s => best,
+            _ => Some((k, s)),
+        })?;
+    (step > ALIASING_STEP).then(|| {
+        format!(
+            "the frames are {:.1} degrees of {} apart (more than a twentieth of a turn): the mechanism jumps from \
+             frame to frame, and may seem to stand still or turn backwards; give more --frames (and --samples), or a shorter range",
+            step.to_degrees(),
+            inputs.get(k).map_or("the input", String::as_str)
+        )
+    })
+}
+
 /// How the event `k` of `n` is listed: the last one of a sweep that stopped is where it
 /// stopped; the others were met and crossed.
 fn event_label(k: usize, n: usize, stopped: bool) -> &'static str {
@@ -331,7 +367,20 @@ fn event_label(k: usize, n: usize, stopped: bool) -> &'static str {
 
 #[cfg(test)]
 mod tests {
-    use super::{default_grid_values, event_label};
+    use super::{aliasing, default_grid_values, event_label};
+    use kinloop_runtime::QuantityKind;
+
+    #[test]
+    fn frames_more_than_a_twentieth_of_a_turn_apart_are_noted() {
+        let (inputs, angle) = (vec!["phi".to_string()], [QuantityKind::Angle]);
+        let turns = |n: f64| [n * std::f64::consts::TAU];
+        // A turn in 90 frames: 4 degrees apart. Ten turns: 40 degrees apart.
+        assert_eq!(aliasing(&inputs, &angle, &[0.0], &turns(1.0), 90), None);
+        let note = aliasing(&inputs, &angle, &[0.0], &turns(10.0), 91).expect("a note");
+        assert!(note.starts_with("the frames are 40.0 degrees of phi apart"), "{note}");
+        // A length input is no turn.
+        assert_eq!(aliasing(&inputs, &[QuantityKind::Length], &[0.0], &[1e6], 2), None);
+    }
 
     /// The default values per input: the largest `c` with `c^ni` cells within the page, by hand.
     #[test]

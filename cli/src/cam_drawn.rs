@@ -4,6 +4,8 @@
 //! shows the cam that makes the declared motion.
 
 use crate::cam::{Found, Shape};
+use kinloop_model::Count;
+use kinloop_runtime::Number;
 use kinloop_runtime::analysis::cam::FlatFace;
 use kinloop_viz::draw::{DefaultDrawing, Pt, Scalar, StateRef};
 
@@ -30,9 +32,10 @@ pub fn with_cam(drawing: DefaultDrawing, found: &Found, point: &str) -> DefaultD
             Touching::Face(*line, vec![[lo, 0.0], [hi, 0.0], [hi, thick], [lo, thick]])
         }
     };
+    let warning = warning(found);
     drawing.extend(move |d| {
         let d = d.pivot(pivot).outline(pivot, profile, Scalar::expr(move |s| turn * s.x[0]));
-        match touching {
+        let d = match touching {
             Touching::Roller(point, radius) => d.circle(point.as_str(), radius).note(format!(
                 "the cam's profile for a roller of radius {radius}, by inversion of the follower's motion"
             )),
@@ -47,8 +50,34 @@ pub fn with_cam(drawing: DefaultDrawing, found: &Found, point: &str) -> DefaultD
                 d.outline(origin, plate, angle)
                     .note("the cam's profile for the flat face, by inversion of the follower's motion")
             }
+        };
+        match warning {
+            Some(w) => d.note(w),
+            None => d,
         }
     })
+}
+
+/// The warning written into the drawing where the cam cannot make the motion (as the checks on
+/// standard error say): a roller larger than the pitch curve's curvature (the profile drawn
+/// crosses itself), or a flat face's profile that is not convex (the face's envelope folds).
+/// A drawing read without the command's standard error would show such a cam as if it worked.
+fn warning(found: &Found) -> Option<String> {
+    let unit = if found.deg { "°" } else { " rad" };
+    // Short, as a line under the picture (which is widened to its longest line): what and
+    // where, the rest is on standard error.
+    let (what, at, why) = match &found.shape {
+        Shape::Roller(cam) => ("UNDERCUT", cam.undercut(), "the profile crosses itself; use a smaller roller"),
+        Shape::Flat(cam, _) => ("NOT CONVEX", cam.not_convex(), "a flat face cannot follow the law"),
+    };
+    let (first, last) = (*at.first()?, *at.last()?);
+    let input = |k: usize| found.inputs.get(k).copied().unwrap_or(f64::NAN);
+    Some(format!(
+        "{what} at {} ({}{unit} to {}{unit}): {why}",
+        Count(at.len(), "sample"),
+        Number(input(first)),
+        Number(input(last))
+    ))
 }
 
 /// What touches the cam, as drawn.

@@ -355,3 +355,20 @@ fn show_with_an_svg_is_a_usage_error() {
         fails_without_output(&args, &path, 2, ".html");
     }
 }
+
+/// Ten turns in the default 90 key frames are 40 degrees a frame: the crank would seem to jump
+/// or turn backwards, and standard error says so; a turn says nothing.
+#[test]
+fn frames_far_apart_in_an_angle_are_noted() {
+    let run = |to: &str, name: &str| {
+        let path = out(name);
+        let p = path.display().to_string();
+        let args = ["animate", &shipped("four_bar.kl"), "--from", "0", "--to", to, "--deg", "--params", FOUR_BAR];
+        let o = kinloop(&args.into_iter().chain(["--out", p.as_str()]).collect::<Vec<_>>());
+        ok(&o);
+        String::from_utf8_lossy(&o.stderr).to_string()
+    };
+    let stderr = run("3600", "ten_turns.svg");
+    assert!(stderr.contains("note: the frames are 40.4 degrees of phi apart"), "{stderr}");
+    assert!(!run("360", "one_turn.svg").contains("note:"));
+}

@@ -200,3 +200,28 @@ fn follower_options_without_a_cam_and_a_cam_of_no_one_input_are_usage_errors() {
         assert!(!path.exists(), "{args:?} left {}", path.display());
     }
 }
+
+/// The notes written under an SVG's picture (`note: ...`).
+fn notes(svg: &str) -> Vec<String> {
+    let doc = roxmltree::Document::parse(svg).expect("well-formed SVG");
+    doc.descendants()
+        .filter(|n| n.attribute("class") == Some("note"))
+        .filter_map(|n| n.text().map(str::to_string))
+        .collect()
+}
+
+/// A roller larger than the pitch curve's curvature: the profile drawn crosses itself, and the
+/// drawing says so in its notes, as standard error does; a roller that fits has no such note.
+#[test]
+fn an_undercut_cam_is_marked_in_the_drawing() {
+    let (svg, stderr) = dwell_cam_svg("undercut.svg", &["--cam", "follower", "--guide", "0,1", "--roller", "100"]);
+    assert!(stderr.contains("cam: UNDERCUT at"), "{stderr}");
+    let written = notes(&svg);
+    assert!(
+        written.iter().any(|n| n.starts_with("note: UNDERCUT at ") && n.contains("the profile crosses itself")),
+        "{written:?}"
+    );
+    let (svg, _) = dwell_cam_svg("fits.svg", &["--cam", "follower", "--guide", "0,1", "--roller", "10"]);
+    let written = notes(&svg);
+    assert!(written.iter().all(|n| !n.contains("UNDERCUT")) && !written.is_empty(), "{written:?}");
+}

@@ -207,6 +207,13 @@ fn a_sweep_stopped_at_a_limit_position_ends_the_slider_there() {
     assert_eq!(motion.events[0].kind, EventKind::LimitPosition);
     let label = format!("limit position at phi = {:.2}°", limit.to_degrees());
     assert!(page.contains(&label), "the limit is labelled `{label}`");
+    // Labelled in the list under the picture and as the ghost's title, never written over the
+    // picture, where it would cover the mechanism.
+    let drawing = page.split(r#"<svg xmlns="http://www.w3.org/2000/svg" id="kl-drawing""#).nth(1).unwrap();
+    let drawing = drawing.split("</svg>").next().unwrap();
+    assert!(!drawing.contains("<text"), "no text over the picture");
+    assert!(drawing.contains(&format!(r#"<g class="kl-event"><title>{label}</title>"#)), "the ghost is titled");
+    assert!(page.contains(&format!(r#"<span class="kl-key kl-limit-position"></span>{label}</li>"#)), "listed");
     // Samples every 2 degrees below the limit, then the limit itself: the last pose.
     let samples = motion.poses.len();
     assert!(page.contains(&format!(r#"max="{samples}""#)), "the slider ends at the limit position");

@@ -518,3 +518,107 @@ fn a_readout_far_from_zero_tells_its_key_frames_apart() {
     texts.dedup();
     assert_eq!(texts.len(), 13, "{texts:?}");
 }
+
+#[test]
+fn the_input_turns_at_constant_speed_whatever_the_key_frames_picked() {
+    // 181 samples over a turn in 90 key frames: steps of 2 and 3 samples (4 and 6 degrees).
+    // Every animation is timed by the key frames' input: key frame k at phi_k / 2 pi of the
+    // pass, and the readout's text shown from halfway from the previous key frame to halfway
+    // to the next.
+    let m = FourBar::default();
+    let mo = motion(&m, TAU, 181);
+    let anim = Animation::default();
+    let d = four_bar_drawing(&m);
+    let svg = d.animate(&mo, &anim).unwrap();
+    let doc = checked(&svg).unwrap();
+    let keys = d.key_poses(&mo, &anim).unwrap();
+    assert_eq!(keys.len(), 90);
+    let want: Vec<f64> = keys.iter().map(|&k| mo.poses[k].x[0] / TAU).collect();
+    let steps: Vec<usize> = keys.windows(2).map(|w| w[1] - w[0]).collect();
+    assert!(steps.contains(&2) && steps.contains(&3), "uneven samples per key frame: {steps:?}");
+    let animations: Vec<_> =
+        doc.descendants().filter(|n| matches!(n.tag_name().name(), "animate" | "animateTransform")).collect();
+    let mut timed = 0;
+    for a in &animations {
+        if a.attribute("attributeName") == Some("visibility") {
+            continue;
+        }
+        let times: Vec<f64> =
+            a.attribute("keyTimes").expect("key times").split(';').map(|t| t.parse().unwrap()).collect();
+        assert_eq!(times.len(), want.len());
+        for (t, w) in times.iter().zip(&want) {
+            assert!((t - w).abs() <= 0.5e-5 + 1e-12, "key time {t} for phi at {w} of the turn");
+        }
+        timed += 1;
+    }
+    assert!(timed >= 5, "{timed} animations");
+    // The readout of key frame 24 (after a step of 3 samples): from halfway back to halfway on.
+    let readout: Vec<_> = doc
+        .descendants()
+        .filter(|n| n.tag_name().name() == "text" && n.parent().and_then(|p| p.attribute("class")) == Some("readout"))
+        .collect();
+    let k = 24;
+    let times = readout[k].children().find(|n| n.tag_name().name() == "animate").unwrap();
+    let times: Vec<f64> = times.attribute("keyTimes").unwrap().split(';').map(|t| t.parse().unwrap()).collect();
+    let (from, to) = ((want[k - 1] + want[k]) / 2.0, (want[k] + want[k + 1]) / 2.0);
+    assert!((times[1] - from).abs() <= 0.5e-5 + 1e-12 && (times[2] - to).abs() <= 0.5e-5 + 1e-12, "{times:?}");
+}
+
+/// The points of the SVG elements of class `class` (a polyline's `points`, a path's `d`).
+fn points_of(svg: &str, class: &str) -> Vec<[f64; 2]> {
+    let doc = roxmltree::Document::parse(svg).unwrap();
+    doc.descendants()
+        .filter(|n| n.attribute("class") == Some(class))
+        .flat_map(|n| {
+            let text = n.attribute("points").or(n.attribute("d")).unwrap_or("").replace(['M', 'L'], " ");
+            text.split_whitespace()
+                .map(|p| {
+                    let (x, y) = p.split_once(',').unwrap();
+                    [x.parse().unwrap(), y.parse().unwrap()]
+                })
+                .collect::<Vec<_>>()
+        })
+        .collect()
+}
+
+/// The picture of an interactive page (its `<svg id="kl-drawing">`).
+fn drawing_of(page: &str) -> String {
+    let at = page.find(r#"<svg xmlns="http://www.w3.org/2000/svg" id="kl-drawing""#).expect("a picture");
+    let end = at + page[at..].find("</svg>").expect("closed") + "</svg>".len();
+    page[at..end].to_string()
+}
+
+#[test]
+fn a_sweep_of_many_turns_writes_its_curve_about_once() {
+    // A hundred turns, sampled as one (every 5 degrees) and with samples drifting from turn to
+    // turn: the traced coupler curve is written about once, not a hundred times, and covers
+    // every point of the single turn's curve.
+    let m = FourBar::default();
+    let d = four_bar_drawing(&m);
+    let one = points_of(&d.svg(&motion(&m, TAU, 73), 0).unwrap(), "trace");
+    for samples in [7201, 7001] {
+        let mo = motion(&m, 100.0 * TAU, samples);
+        let html = kinloop_viz::draw::html(&m, &d, &mo, &kinloop_viz::draw::HtmlConfig::new("turns")).unwrap();
+        for (what, pts) in [
+            ("svg", points_of(&d.animate(&mo, &Animation::default()).unwrap(), "trace")),
+            ("page", points_of(&drawing_of(&html), "kl-trace")),
+        ] {
+            let bound = if samples == 7201 { one.len() + 2 } else { samples / 10 };
+            assert!(
+                pts.len() <= bound,
+                "{samples} samples, {what}: {} points against {} for one turn",
+                pts.len(),
+                one.len()
+            );
+            // Every point of the one turn's curve within a tenth of a pixel of a point written
+            // (the same samples: the curve looks the same).
+            if samples == 7201 {
+                for p in &one {
+                    let near =
+                        pts.iter().any(|q| (q[0] - p[0]).abs() <= 0.1 + 1e-9 && (q[1] - p[1]).abs() <= 0.1 + 1e-9);
+                    assert!(near, "{what}: {p:?} of the turn's curve is not drawn");
+                }
+            }
+        }
+    }
+}

@@ -217,3 +217,96 @@ fn awkward_values_read_the_same_in_rust_and_in_the_browser() {
         js_writes_rusts_texts(&bin, p, &format!("readouts_awkward_{k}"));
     }
 }
+
+/// The charts of `page`, each parsed as XML.
+fn charts(page: &str) -> Vec<String> {
+    page.split("<svg")
+        .filter(|s| s.contains(r#"class="kl-chart""#))
+        .map(|s| format!("<svg{}", s.split("</svg>").next().unwrap()) + "</svg>")
+        .collect()
+}
+
+/// Asserts that nothing of chart `svg` is drawn outside its plot area (gridlines, y ticks,
+/// the curve and the cursor's dot), and that its y tick labels (about 0.6 em a character of
+/// 11 px text, right-aligned) stay right of the y title's 19 px; returns the curve's points.
+fn assert_inside(svg: &str, what: &str) -> Vec<[f64; 2]> {
+    let doc = roxmltree::Document::parse(svg).expect("a chart parses as XML");
+    let class = |c: &'static str| doc.descendants().filter(move |n| n.attribute("class") == Some(c));
+    let f = |n: &roxmltree::Node, a: &str| n.attribute(a).unwrap().parse::<f64>().unwrap();
+    let area = class("kl-plot-area").next().expect("a plot area");
+    let (x0, y0) = (f(&area, "x"), f(&area, "y"));
+    let (x1, y1) = (x0 + f(&area, "width"), y0 + f(&area, "height"));
+    let inside = |x: f64, y: f64| x >= x0 - 0.05 && x <= x1 + 0.05 && y >= y0 - 0.05 && y <= y1 + 0.05;
+    for g in class("kl-grid") {
+        for (x, y) in [(f(&g, "x1"), f(&g, "y1")), (f(&g, "x2"), f(&g, "y2"))] {
+            assert!(inside(x, y), "{what}: gridline at ({x}, {y}) outside the plot area");
+        }
+    }
+    for t in class("kl-tick-y") {
+        let label = t.text().unwrap();
+        assert!(inside(x0, f(&t, "y") - 4.0), "{what}: tick {label} outside the plot area");
+        let left = f(&t, "x") - 0.6 * 11.0 * label.chars().count() as f64;
+        assert!(left >= 19.0, "{what}: tick label {label} reaches {left} px, over the y title");
+    }
+    let curve: Vec<[f64; 2]> = class("kl-curve")
+        .next()
+        .expect("a curve")
+        .attribute("points")
+        .unwrap()
+        .split(' ')
+        .map(|p| {
+            let (x, y) = p.split_once(',').unwrap();
+            [x.parse().unwrap(), y.parse().unwrap()]
+        })
+        .collect();
+    for [x, y] in &curve {
+        assert!(inside(*x, *y), "{what}: curve point ({x}, {y}) outside the plot area");
+    }
+    let dot = class("kl-cursor-dot").next().expect("a cursor");
+    assert!(inside(f(&dot, "cx"), f(&dot, "cy")), "{what}: cursor outside the plot area");
+    curve
+}
+
+/// Values that are constant up to rounding at frame `i`: `v` give or take a few ulps.
+fn noisy(v: f64, i: usize) -> f64 {
+    v + v.abs().max(f64::MIN_POSITIVE) * f64::EPSILON * [0.0, 3.0, -2.0, 5.0, -4.0][i % 5]
+}
+
+#[test]
+fn a_column_constant_up_to_rounding_reads_and_charts_as_constant() {
+    let frame = |s: &kinloop_viz::draw::StateRef| (s.x[0] / TAU * (POSES - 1) as f64).round() as usize;
+    let config = HtmlConfig::new("constant")
+        // A length through the loop, and an angle that is zero up to rounding (1e-14 degrees).
+        .with_readout(Readout::expr("rod", Kind::length("mm"), move |s| noisy(2.5, frame(s))))
+        .with_readout(Readout::expr("ang", Kind::Angle, move |s| [0.0, 1e-16, -1.1e-16, 2e-16][frame(s) % 4]))
+        .with_readout(Readout::expr("deg", Kind::Angle, move |s| noisy(9.594f64.to_radians(), frame(s))))
+        // Lengths of a nanometre that vary: drawn, at any scale.
+        .with_readout(Readout::expr("tiny", Kind::length("mm"), move |s| 1e-9 * (1.0 + 0.1 * s.x[0].sin())))
+        // Far from zero and varying by 4e-12 of themselves: drawn, labels that fit.
+        .with_readout(Readout::expr("far", Kind::length("mm"), move |s| 1000.0 + 4e-9 * s.x[0].sin()));
+    let p = page(&FourBar::default(), &config);
+    let channels = rust_texts(&p);
+    for (name, want) in [("rod", "2.5000"), ("ang", "0.00"), ("deg", "9.59")] {
+        let (_, first, values) = channels.iter().find(|c| c.0 == name).unwrap();
+        assert_eq!(first, want, "{name}");
+        assert!(values.iter().all(|v| v == want), "{name}: {values:?}");
+    }
+    let charts = charts(&p);
+    assert_eq!(charts.len(), 5);
+    for (k, svg) in charts.iter().enumerate() {
+        let curve = assert_inside(svg, &format!("chart {k}"));
+        let ys: Vec<f64> = curve.iter().map(|p| p[1]).collect();
+        let spread =
+            ys.iter().fold(f64::NEG_INFINITY, |a, b| a.max(*b)) - ys.iter().fold(f64::INFINITY, |a, b| a.min(*b));
+        if k < 3 {
+            assert_eq!(spread, 0.0, "chart {k} of a constant: a flat line");
+        } else {
+            assert!(spread > 50.0, "chart {k} of values that vary: a curve ({spread} px)");
+        }
+    }
+    // The far values' axis is labelled by differences from an offset above the plot area.
+    let doc = roxmltree::Document::parse(&charts[4]).unwrap();
+    let offset = doc.descendants().find(|n| n.attribute("class") == Some("kl-tick-offset")).expect("an offset");
+    let offset: f64 = offset.text().unwrap().parse().unwrap();
+    assert!((offset - 1000.0).abs() < 1e-8, "{offset}");
+}

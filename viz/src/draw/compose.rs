@@ -3,6 +3,7 @@
 use super::annotate::{FONT, LINE, readout, scale_bar, text_width};
 use super::error::DrawError;
 use super::motion::Motion;
+use super::retrace::unretraced;
 use super::scene::{Scene, Shape};
 use super::shapes::{Pen, dot, guide, item, joints};
 use super::spec::Drawing;
@@ -15,7 +16,9 @@ use std::fmt::Write;
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct Animation {
     /// Largest number of key frames taken from the motion (evenly spaced, always including the
-    /// first and the last pose; default 90).
+    /// first and the last pose; default 90). Each is shown at its distance along the motion in
+    /// input space, as a fraction of the pass (SMIL `keyTimes`): the inputs move at constant
+    /// speed, also where the motion's poses do not divide evenly into the key frames.
     pub frames: usize,
     /// Duration of one pass in seconds (default 4), from a millisecond to a billion seconds;
     /// written as given (`dur="0.25s"`).
@@ -70,6 +73,51 @@ fn spread(n: usize, count: usize) -> Vec<usize> {
     (0..count).map(|i| (i as f64 * (n - 1) as f64 / (count - 1) as f64).round() as usize).collect()
 }
 
+/// When each of the key frames `keys` (poses, along `path`) is shown, as a fraction of the
+/// pass: its distance along the path in input space over the whole path's, so that the inputs
+/// move at constant speed whatever the poses picked (181 samples in 90 key frames are steps of
+/// 2 and 3 samples); by the key frame's number where the inputs do not move.
+fn key_times(motion: &Motion, path: &[usize], keys: &[usize]) -> Vec<f64> {
+    let poses: Vec<&[f64]> = motion.all_poses().map(|p| &p.x[..]).collect();
+    let x = |i: usize| poses.get(i).copied().unwrap_or(&[]);
+    let mut along = vec![0.0f64; path.iter().max().map_or(0, |m| m + 1)];
+    let mut total = 0.0f64;
+    for w in path.windows(2) {
+        // Differences of halves: no overflow for any finite inputs.
+        let step = x(w[0]).iter().zip(x(w[1])).map(|(a, b)| b / 2.0 - a / 2.0).fold(0.0f64, f64::hypot);
+        total += step;
+        along[w[1]] = total;
+    }
+    let n = keys.len();
+    if !(total.is_finite() && total > 0.0) || n < 2 {
+        return (0..n).map(|k| k as f64 / (n.max(2) - 1) as f64).collect();
+    }
+    keys.iter().map(|&i| along[i] / total).collect()
+}
+
+/// `<animate>` and `<animateTransform>` elements of `body` through one value per key frame
+/// (`times.len()` values), without key times, given `times`: by default SMIL spaces the values
+/// evenly over the pass. Elements with key times of their own (the readout's) are left as
+/// they are.
+fn with_key_times(body: &str, times: &[f64]) -> String {
+    let written: Vec<String> = times.iter().map(|t| frac(*t)).collect();
+    let attr = format!(r#" keyTimes="{}""#, written.join(";"));
+    let mut out = String::with_capacity(body.len() + body.len() / 4);
+    let mut rest = body;
+    while let Some(at) = rest.find("<animate") {
+        let Some(len) = rest[at..].find("/>") else { break };
+        let tag = &rest[at..at + len];
+        out.push_str(&rest[..at + len]);
+        let values = tag.split(r#" values=""#).nth(1).and_then(|v| v.split('"').next());
+        if !tag.contains("keyTimes=") && values.is_some_and(|v| v.split(';').count() == times.len()) {
+            out.push_str(&attr);
+        }
+        rest = &rest[at + len..];
+    }
+    out.push_str(rest);
+    out
+}
+
 /// The shapes of item `k` at poses `keys`.
 fn at_keys<'s>(scene: &'s Scene, keys: &[usize], k: usize) -> Vec<&'s Shape> {
     keys.iter().map(|&i| &scene.frames[i][k]).collect()
@@ -98,20 +146,32 @@ impl Layers<'_> {
         self.scene.frames[0].len()
     }
 
-    /// The traced paths over the whole motion, consecutive equal pixels merged. Animated
-    /// (`keys` and `timing`), each is drawn faint in full and again in full colour as far as
-    /// the traced point has come at each key frame (a dash as long as the path, shifted).
+    /// The traced paths over the whole motion, consecutive equal pixels merged and segments
+    /// that retrace ones already drawn left out (a sweep of many turns: one pass of the curve,
+    /// not one a turn; see [`unretraced`]). Animated (`keys` and `timing`), each is drawn faint
+    /// in full and again in full colour as far as the traced point has come at each key frame
+    /// (a dash as long as the path, shifted), over its first piece: the whole path unless it
+    /// retraces itself, and then its first pass.
     fn traces(&self, out: &mut String, anim: Option<(&[usize], Timing)>) {
         let path = self.scene.path(self.motion);
         for t in 0..self.d.traces.len() {
-            let (pts, along) = self.trace_points(&path, t);
+            let (pieces, along) = self.trace_points(&path, t);
             let (colour, width) = (self.d.style.trace(t), num(self.d.style.trace_width));
             let opacity = if anim.is_some() { r#" opacity="0.35""# } else { "" };
-            let _ = write!(
-                out,
-                r#"<polyline class="trace" points="{pts}" fill="none" stroke="{colour}" stroke-width="{width}" stroke-linejoin="round"{opacity}/>"#
-            );
-            let Some((keys, timing)) = anim else { continue };
+            let look =
+                format!(r#"fill="none" stroke="{colour}" stroke-width="{width}" stroke-linejoin="round"{opacity}"#);
+            match pieces.as_slice() {
+                [pts] => {
+                    let _ = write!(out, r#"<polyline class="trace" points="{pts}" {look}/>"#);
+                }
+                // A path that retraces itself, in pieces: one element (a polyline each would
+                // outweigh their few points).
+                _ => {
+                    let d: Vec<String> = pieces.iter().map(|pts| format!("M{}", pts.replace(' ', "L"))).collect();
+                    let _ = write!(out, r#"<path class="trace" d="{}" {look}/>"#, d.concat());
+                }
+            }
+            let (Some((keys, timing)), Some(pts)) = (anim, pieces.first()) else { continue };
             let dash = (along.iter().fold(0.0f64, |m, s| m.max(*s)) + 1.0).ceil();
             let offsets: Vec<String> = keys.iter().map(|&k| num(dash - along[k])).collect();
             let _ = write!(
@@ -125,25 +185,42 @@ impl Layers<'_> {
         }
     }
 
-    /// The points of trace `t` along `path` as written (rounded, consecutive equal ones
-    /// merged), and for every pose of the scene the length of that polyline up to it.
-    fn trace_points(&self, path: &[usize], t: usize) -> (String, Vec<f64>) {
-        let mut pts = String::new();
+    /// The pieces of trace `t` along `path` as written (rounded to a tenth of a pixel,
+    /// [`unretraced`]), and for every pose of the scene the length of the first piece up to
+    /// it (its whole length once the path has left it).
+    fn trace_points(&self, path: &[usize], t: usize) -> (Vec<String>, Vec<f64>) {
+        let rounded: Vec<[f64; 2]> = path.iter().map(|&i| self.scene.traced[i][t].map(round)).collect();
+        // Rounded coordinates are equal as numbers exactly when their bits are (no -0: `round`
+        // writes +0).
+        let (pieces, at) = unretraced(rounded.iter().map(|p| p.map(f64::to_bits)));
+        let as_f64 = |p: &[u64; 2]| p.map(f64::from_bits);
+        let mut first = vec![0.0];
+        if let Some(piece) = pieces.first() {
+            for w in piece.windows(2) {
+                let ([x0, y0], [x1, y1]) = (as_f64(&w[0]), as_f64(&w[1]));
+                first.push(first[first.len() - 1] + (x1 - x0).hypot(y1 - y0));
+            }
+        }
         let mut along = vec![0.0; self.scene.frames.len()];
-        let (mut length, mut prev) = (0.0, None::<[f64; 2]>);
-        for &i in path {
-            let [x, y] = self.scene.traced[i][t].map(round);
-            if prev != Some([x, y]) {
-                if let Some([px, py]) = prev {
-                    length += (x - px).hypot(y - py);
-                    pts.push(' ');
-                }
-                let _ = write!(pts, "{x},{y}");
-                prev = Some([x, y]);
+        let mut length = 0.0;
+        for (&i, at) in path.iter().zip(&at) {
+            if let Some((0, j)) = at {
+                length = first[*j];
             }
             along[i] = length;
         }
-        (pts, along)
+        let pieces = pieces
+            .iter()
+            .map(|piece| {
+                let mut pts = String::with_capacity(piece.len() * 12);
+                for (k, p) in piece.iter().enumerate() {
+                    let [x, y] = as_f64(p);
+                    let _ = write!(pts, "{}{x},{y}", if k > 0 { " " } else { "" });
+                }
+                pts
+            })
+            .collect();
+        (pieces, along)
     }
 
     /// Guides of sliders on fixed directions, over every pose.
@@ -269,8 +346,8 @@ impl Layers<'_> {
     }
 
     /// The inputs at the poses `keys` (one: static; several: each key frame's text shown in
-    /// its turn, with `timing`).
-    fn readout(&self, out: &mut String, keys: &[usize], timing: Option<Timing>) {
+    /// its turn, with `timing`, at `times`: a fraction of the pass for each key frame).
+    fn readout(&self, out: &mut String, keys: &[usize], timing: Option<(Timing, &[f64])>) {
         if !self.d.annotate.readout || self.motion.inputs.is_empty() {
             return;
         }
@@ -280,11 +357,11 @@ impl Layers<'_> {
         for (k, &i) in keys.iter().enumerate() {
             let shown = if k == 0 { "visible" } else { "hidden" };
             let _ = write!(out, r#"<text x="{x}" y="{y}" visibility="{shown}">{}"#, escape(&self.readout_text(i)));
-            if let (Some(t), true) = (timing, n > 1) {
-                // Key frame k is shown at k / (n - 1) of the pass: its text from half a frame
-                // before to half a frame after.
-                let step = 1.0 / (n - 1) as f64;
-                let (from, to) = ((k as f64 - 0.5) * step, (k as f64 + 0.5) * step);
+            if let (Some((t, times)), true) = (timing, n > 1) {
+                // Key frame k is shown at times[k] of the pass: its text from halfway from the
+                // previous key frame to halfway to the next.
+                let (from, to) =
+                    ((times[k.saturating_sub(1)] + times[k]) / 2.0, (times[k] + times[(k + 1).min(n - 1)]) / 2.0);
                 let (values, times) = if k == 0 {
                     ("visible;hidden".to_string(), format!("0;{}", frac(to)))
                 } else if k + 1 == n {
@@ -472,10 +549,16 @@ impl Drawing {
     pub fn animate(&self, motion: &Motion, anim: &Animation) -> Result<String, DrawError> {
         anim.check()?;
         let l = self.layers(motion)?;
-        let mut keys = keys(&l.scene.path(motion), anim);
+        let path = l.scene.path(motion);
+        let mut keys = keys(&path, anim);
+        let mut times = key_times(motion, &path, &keys);
         if anim.back_and_forth && keys.len() > 1 {
             let back: Vec<usize> = keys.iter().rev().skip(1).copied().collect();
             keys.extend(back);
+            // Forward in the first half of the pass, back in the second.
+            let back: Vec<f64> = times.iter().rev().skip(1).map(|t| 1.0 - t / 2.0).collect();
+            times.iter_mut().for_each(|t| *t /= 2.0);
+            times.extend(back);
         }
         let pen = l.pen(Some(Timing { seconds: anim.seconds }));
         let mut body = String::new();
@@ -487,8 +570,8 @@ impl Drawing {
         let timing = Some(Timing { seconds: anim.seconds });
         l.labels(&mut body, &keys, timing);
         l.scale_bar(&mut body);
-        l.readout(&mut body, &keys, timing);
+        l.readout(&mut body, &keys, timing.map(|t| (t, &times[..])));
         l.notes(&mut body);
-        Ok(l.document(&body))
+        Ok(l.document(&with_key_times(&body, &times)))
     }
 }

@@ -75,6 +75,7 @@ mod hershey;
 mod motion;
 #[cfg(feature = "png")]
 pub mod png;
+pub(crate) mod retrace;
 mod scene;
 mod shapes;
 mod spec;

@@ -2,7 +2,7 @@
 
 use super::readouts::Channel;
 use crate::escape::escape;
-use crate::plot::ticks::Ticks;
+use crate::plot::ticks::{Ticks, decimal};
 use std::fmt::Write;
 
 /// Plot area insets in pixels: left (tick labels and the y title; more for wider labels, see
@@ -53,6 +53,31 @@ pub(crate) fn axis(lo: f64, hi: f64, degrees: bool) -> Axis {
     Axis { lo: t.lo * t.unit, hi: t.hi * t.unit, ticks }
 }
 
+/// Room above the plot area for the offset of an axis labelled by differences
+/// ([`offset_axis`]): a line of the charts' 11 px text.
+const OFFSET_ROOM: f64 = 14.0;
+
+/// [`axis`] of values in `[lo, hi]` labelled as differences from its lowest tick, and that
+/// tick's value written as the offset to add (`"+2.5000000000e0"`): for values whose labels
+/// would be too wide (many digits each, values far from zero that vary little).
+pub(crate) fn offset_axis(lo: f64, hi: f64, degrees: bool) -> (String, Axis) {
+    let t = Ticks::widened(lo, hi, degrees, INTERVALS);
+    let base = t.values.first().map_or(0, |&(_, k)| k);
+    // The offset with its own power of ten (`"+999.999999996"`, `"+1.000000002e7"`), exactly
+    // from its integer as the ticks' labels.
+    let value = base * t.mant as i128;
+    let digits = value.unsigned_abs().to_string().len() as i32;
+    let lead = t.exp + digits - 1;
+    let offset = if value == 0 || (-4..6).contains(&lead) {
+        decimal(value, t.exp)
+    } else {
+        format!("{}e{lead}", decimal(value, t.exp - lead))
+    };
+    let offset = if offset.starts_with('-') { offset } else { format!("+{offset}") };
+    let ticks = t.values.iter().map(|&(v, k)| (v * t.unit, t.difference_label(k, base))).collect();
+    (offset, Axis { lo: t.lo * t.unit, hi: t.hi * t.unit, ticks })
+}
+
 /// A chart's map from shown values to pixels: `px = a + b v` on each axis.
 #[derive(Clone, Copy, Debug)]
 pub(crate) struct Map {
@@ -78,11 +103,22 @@ pub(crate) fn chart(k: usize, x: Option<&Channel>, y: &Channel, events: &[f64], 
     let (x0, x1) = fold(&xs);
     let (y0, y1) = fold(&y.values);
     let xt = axis(x0, x1, x.is_some_and(|c| c.kind.is_angle()));
-    let yt = axis(y0, y1, y.kind.is_angle());
+    let mut yt = axis(y0, y1, y.kind.is_angle());
     let [w, h] = size;
-    let widest = yt.ticks.iter().map(|(_, label)| label_width(label)).fold(0.0, f64::max);
-    let l = LEFT.max((TITLE_ROOM + widest + LABEL_GAP).ceil()).min(w / 3.0);
-    let (l, r, t, b) = (l, w - RIGHT, TOP, h - BOTTOM);
+    let room =
+        |a: &Axis| TITLE_ROOM + a.ticks.iter().map(|(_, label)| label_width(label)).fold(0.0, f64::max) + LABEL_GAP;
+    // Labels of values far from zero that vary little (many digits each) wider than a third
+    // of the chart: labelled as differences from the lowest tick, written above the plot area.
+    let offset = if room(&yt) > w / 3.0 {
+        let (o, shifted) = offset_axis(y0, y1, y.kind.is_angle());
+        yt = shifted;
+        Some(o)
+    } else {
+        None
+    };
+    let l = LEFT.max(room(&yt).ceil()).min(w / 3.0);
+    let top = if offset.is_some() { TOP + OFFSET_ROOM } else { TOP };
+    let (l, r, t, b) = (l, w - RIGHT, top, h - BOTTOM);
     let bx = (r - l) / (xt.hi - xt.lo);
     let by = (b - t) / (yt.hi - yt.lo);
     let map = Map { x: [l - xt.lo * bx, bx], y: [b + yt.lo * by, -by] };
@@ -102,7 +138,8 @@ pub(crate) fn chart(k: usize, x: Option<&Channel>, y: &Channel, events: &[f64], 
         [a, b, ..] if fx(b.0) > fx(a.0) => ((widest_x + 6.0) / (fx(b.0) - fx(a.0))).ceil().clamp(1.0, 1e6) as usize,
         _ => 1,
     };
-    for (i, (v, label)) in xt.ticks.iter().enumerate() {
+    let inside_x = |p: f64| p >= l - 0.05 && p <= r + 0.05;
+    for (i, (v, label)) in xt.ticks.iter().filter(|(v, _)| inside_x(fx(*v))).enumerate() {
         let p = px(fx(*v));
         let _ =
             write!(s, r##"<line class="kl-grid" x1="{p}" y1="{}" x2="{p}" y2="{}" stroke="#e3e3e3"/>"##, px(t), px(b));
@@ -114,7 +151,19 @@ pub(crate) fn chart(k: usize, x: Option<&Channel>, y: &Channel, events: &[f64], 
             );
         }
     }
-    for (v, label) in &yt.ticks {
+    if let Some(o) = &offset {
+        let _ = write!(
+            s,
+            r#"<text class="kl-tick-offset" x="{}" y="{}" text-anchor="start">{}</text>"#,
+            px(l),
+            px(t - 5.0),
+            escape(o)
+        );
+    }
+    // Ticks are multiples of a step, within rounding of the axis' ends: one a rounding beyond
+    // them is not drawn, rather than drawn out of the plot area.
+    let inside_y = |p: f64| p >= t - 0.05 && p <= b + 0.05;
+    for (v, label) in yt.ticks.iter().filter(|(v, _)| inside_y(fy(*v))) {
         let p = px(fy(*v));
         let _ = write!(
             s,
@@ -156,7 +205,8 @@ pub(crate) fn chart(k: usize, x: Option<&Channel>, y: &Channel, events: &[f64], 
     let mut pts = String::new();
     let mut last = String::new();
     for (xv, yv) in xs.iter().zip(&y.values) {
-        let p = format!("{},{}", px(fx(*xv)), px(fy(*yv)));
+        // The axes cover the values: clamped, a point is moved by rounding at most.
+        let p = format!("{},{}", px(fx(*xv).clamp(l, r)), px(fy(*yv).clamp(t, b)));
         if p != last {
             if !pts.is_empty() {
                 pts.push(' ');
@@ -169,7 +219,7 @@ pub(crate) fn chart(k: usize, x: Option<&Channel>, y: &Channel, events: &[f64], 
         s,
         r##"<polyline class="kl-curve" points="{pts}" fill="none" stroke="#1f77b4" stroke-width="1.5" stroke-linejoin="round"/>"##
     );
-    let (cx, cy) = (px(fx(xs[0])), px(fy(y.values[0])));
+    let (cx, cy) = (px(fx(xs[0]).clamp(l, r)), px(fy(y.values[0]).clamp(t, b)));
     let _ = write!(
         s,
         r##"<line class="kl-cursor" x1="{cx}" y1="{}" x2="{cx}" y2="{}" stroke="#444"/><circle class="kl-cursor-dot" cx="{cx}" cy="{cy}" r="3.5" fill="#1f77b4" stroke="white"/></svg>"##,

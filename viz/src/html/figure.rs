@@ -208,7 +208,7 @@ fn items(out: &mut String, style: &Style, slots: &[Slot], f: &[i64], pen: &Pen, 
     }
 }
 
-/// The picture at frame `first`, with `events` labelled by `labels` (one per event).
+/// The picture at frame `first`, with the ghosts of `events` titled by `labels` (one per event).
 /// `joints`: the names of each item's joints, `traces`: of each traced point (`point` outputs);
 /// `marks`: fixed points (mechanism units) marked and numbered from 1 (a synthesis's targets).
 pub(crate) fn figure(
@@ -228,18 +228,32 @@ pub(crate) fn figure(
         r#"<svg xmlns="http://www.w3.org/2000/svg" id="kl-drawing" width="{w}" height="{h}" viewBox="0 0 {w} {h}" data-scale="{}" data-origin="{} {}" data-frame="{first}"><rect width="{w}" height="{h}" fill="white"/>"#,
         fr.view.scale, origin[0], origin[1]
     );
-    for (k, pieces) in fr.paths.iter().enumerate() {
+    for (k, runs) in fr.paths.iter().enumerate() {
         let colour = style.traces.get(k % style.traces.len().max(1)).map_or("#d95f02", String::as_str);
-        // The pieces of a grid's rows are many: thinner and fainter than a sweep's one path.
+        // The runs of a grid's rows are many: thinner and fainter than a sweep's one path.
         let (width, opacity) =
-            if pieces.len() > 1 { (px(0.6 * style.trace_width), "0.45") } else { (px(style.trace_width), "0.7") };
-        for path in pieces {
-            let pts: Vec<String> = path.iter().map(|p| format!("{},{}", t(p[0]), t(p[1]))).collect();
-            let _ = write!(
-                s,
-                r#"<polyline class="kl-trace" data-trace="{k}" points="{}" fill="none" stroke="{colour}" stroke-width="{width}" stroke-linejoin="round" opacity="{opacity}"/>"#,
-                pts.join(" "),
+            if runs.len() > 1 { (px(0.6 * style.trace_width), "0.45") } else { (px(style.trace_width), "0.7") };
+        for pieces in runs {
+            let pts =
+                |piece: &Vec<[i64; 2]>| piece.iter().map(|p| format!("{},{}", t(p[0]), t(p[1]))).collect::<Vec<_>>();
+            let look = format!(
+                r#"fill="none" stroke="{colour}" stroke-width="{width}" stroke-linejoin="round" opacity="{opacity}""#
             );
+            match pieces.as_slice() {
+                [piece] => {
+                    let _ = write!(
+                        s,
+                        r#"<polyline class="kl-trace" data-trace="{k}" points="{}" {look}/>"#,
+                        pts(piece).join(" ")
+                    );
+                }
+                // A path that retraces itself, in pieces: one element (a polyline each would
+                // outweigh their few points).
+                _ => {
+                    let d: Vec<String> = pieces.iter().map(|piece| format!("M{}", pts(piece).join("L"))).collect();
+                    let _ = write!(s, r#"<path class="kl-trace" data-trace="{k}" d="{}" {look}/>"#, d.concat());
+                }
+            }
         }
     }
     let mut o = 0;
@@ -249,16 +263,14 @@ pub(crate) fn figure(
         }
         o += slot.len();
     }
-    for (j, (ev, label)) in fr.events.iter().zip(labels).enumerate() {
-        let _ = write!(s, r#"<g class="kl-event">"#);
+    // The events' labels are written in the page's list under the picture, each with the
+    // ghosts' colour as its key, not over the picture, where they would cover the mechanism
+    // (the picture is cropped to it, so any spot in it may be drawn on); a ghost has its label
+    // as its title (shown on hover, read by assistive technology).
+    for (ev, label) in fr.events.iter().zip(labels) {
+        let _ = write!(s, r#"<g class="kl-event"><title>{}</title>"#, escape(label));
         items(&mut s, style, &fr.slots, ev, &Pen { ink: &style.event, fill: "none", ghost: true }, None);
-        let _ = write!(
-            s,
-            r#"<text x="8" y="{}" font-family="sans-serif" font-size="12" fill="{}">{}</text></g>"#,
-            16 + 15 * j,
-            style.event,
-            escape(label)
-        );
+        s.push_str("</g>");
     }
     for (i, m) in marks.iter().enumerate() {
         let [x, y] = fr.view.px(*m);

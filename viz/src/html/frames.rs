@@ -6,6 +6,7 @@
 //! page small and cannot hold a NaN.
 
 use super::HtmlError;
+use crate::draw::retrace::unretraced;
 use crate::draw::{Drawing, Item, Motion, Pose, Pt, Scalar, StateRef, View, guide_at, guide_spans};
 use std::f64::consts::TAU;
 
@@ -59,9 +60,11 @@ pub(crate) struct Frames {
     /// The same numbers at each event of the motion.
     pub events: Vec<Vec<i64>>,
     /// Every traced point along the whole path of the motion (all samples), in tenths of a
-    /// pixel, consecutive equal ones merged: per traced point, its pieces (one for a sweep;
-    /// on a grid, one per run of reachable cells along the first input).
-    pub paths: Vec<Vec<Vec<[i64; 2]>>>,
+    /// pixel, consecutive equal ones merged and segments that retrace ones already drawn left
+    /// out (`unretraced`): per traced point, its runs (one for a sweep; on a grid, one per run
+    /// of reachable cells along the first input), each in pieces (one unless it retraces
+    /// itself).
+    pub paths: Vec<Vec<Vec<Vec<[i64; 2]>>>>,
 }
 
 /// The poses along the motion: its samples, then the event where it stopped (as the drawings).
@@ -219,17 +222,13 @@ impl Frames {
         let frames = poses.iter().map(|&i| e.frame(d, i)).collect::<Result<Vec<_>, _>>()?;
         let events =
             (0..motion.events.len()).map(|j| e.frame(d, motion.poses.len() + j)).collect::<Result<Vec<_>, _>>()?;
-        let mut paths = vec![Vec::<Vec<[i64; 2]>>::new(); d.traces.len()];
+        let mut paths = vec![Vec::new(); d.traces.len()];
         for run in runs {
             for (t, p) in d.traces.iter().enumerate() {
-                let mut piece = Vec::<[i64; 2]>::new();
-                for &i in run {
-                    let xy = e.point(p, i)?;
-                    if piece.last() != Some(&xy) {
-                        piece.push(xy);
-                    }
-                }
-                paths[t].push(piece);
+                let points = run.iter().map(|&i| e.point(p, i)).collect::<Result<Vec<_>, _>>()?;
+                // Segments that retrace ones already drawn (a sweep of many turns) are left out.
+                let (pieces, _) = unretraced(points);
+                paths[t].push(pieces);
             }
         }
         Ok(Frames { view, slots, traces_at, poses, frames, events, paths })

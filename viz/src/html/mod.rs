@@ -14,7 +14,9 @@
 //! * a chart of each readout against the input (against the fraction of the path for several
 //!   inputs), whose cursor follows the slider;
 //! * the sweep's events (limit positions, singular crossings) marked on the slider's track and
-//!   on the charts, and the mechanism drawn there as a dashed ghost.
+//!   on the charts, listed under the picture (a click shows the mechanism there), and the
+//!   mechanism drawn there as a dashed ghost (no label over the picture, which would cover
+//!   the mechanism).
 //!
 //! With several inputs the motion is either a sweep along a straight path in input space
 //! ([`html`]: one slider moves along that path and every input has its readout), or a grid of
@@ -32,11 +34,18 @@
 //! zero that vary little, such as an input after many turns, more: at least three significant
 //! digits of their span), written as the charts' axes are labelled: with decimals for ordinary magnitudes (a largest value from
 //! about 1e-4 to 1e5: `"-0.0123"`), with a power of ten beyond (`"-5.661e-7"`, `"1.5896e9"`;
-//! zero `"0"`), never as a negative zero. The drawing's
+//! zero `"0"`), never as a negative zero. A readout whose values spread by no more than f64
+//! rounding (a thousand ulps of their magnitude, at least a turn for an angle: a length
+//! computed through the loop, an angle that is zero up to rounding) is shown as constant: one
+//! value, to five significant digits, and a flat chart. A chart's axis whose labels would be
+//! too wide (values far from zero that vary little) is labelled by differences from the offset
+//! written above it (`+999.999999996`). The drawing's
 //! scale (`data-scale`, pixels per unit) and the pixel of the origin (`data-origin`) are
 //! attributes of its `<svg id="kl-drawing">`, so coordinates read from the page map back to
 //! the mechanism's units. At most [`HtmlConfig::max_frames`] poses are written (721 by
-//! default, about 30 to 60 kB for the gallery's mechanisms).
+//! default, about 30 to 60 kB for the gallery's mechanisms). The traced paths go through
+//! every pose, but a segment already drawn (between the same points, to a tenth of a pixel)
+//! is written once: a sweep of a thousand turns does not write its curve a thousand times.
 //!
 //! ```
 //! use kinloop_viz::draw::{Drawing, Motion, Pt};
@@ -108,7 +117,8 @@ fn joint_names(d: &Drawing) -> Vec<Vec<Option<String>>> {
 /// gives the names and quantity kinds of its columns (the readouts' units).
 ///
 /// With more poses than [`HtmlConfig::max_frames`], that many are written, evenly spread
-/// over the motion (the first and the last kept); the traced paths keep every pose.
+/// over the motion (the first and the last kept); the traced paths keep every pose (a segment
+/// that retraces one already drawn written once).
 ///
 /// Errors: the drawing's own ([`HtmlError::Draw`]: an unknown point, an empty motion, a
 /// non-finite coordinate), a readout naming no column of `M` ([`HtmlError::UnknownColumn`]),

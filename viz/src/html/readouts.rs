@@ -14,6 +14,16 @@ use kinloop_runtime::drawing::Columns;
 /// The largest magnitude of a readout (shown units).
 const LARGEST: f64 = 1e100;
 
+/// A readout whose values spread by at most this fraction of their magnitude (see
+/// [`flattened`]) is constant up to rounding, and is shown as constant: one value, a flat
+/// chart. An f64 holds a value to half an ulp (1.1e-16 of it); a column the solver and the
+/// output expressions compute carries a few ulps from each operation and the last Newton step
+/// (a link's length through the loop, the same pose reached twice: spreads of some tens of
+/// ulps). A thousand ulps (2.2e-13 of the magnitude) is well above that noise, and below any
+/// variation a mechanism computed in f64 can claim: a spread any larger is drawn, at any scale
+/// (lengths of 1e-9 mm that vary by a tenth of themselves are a curve).
+const NOISE: f64 = 1e3 * f64::EPSILON;
+
 /// One readout, evaluated.
 pub(crate) struct Channel {
     /// What the page calls it.
@@ -85,6 +95,21 @@ fn column(c: &Columns, name: &str, unit: &str) -> Result<(Source, Kind), HtmlErr
     Err(HtmlError::UnknownColumn { name: name.to_string(), available })
 }
 
+/// `shown`, the values of a readout of kind `kind` (shown units), made one value (the middle of
+/// their range) when they spread by no more than rounding: [`NOISE`] of their magnitude, the
+/// largest value's, and at least a turn for an angle: an angle is computed to the ulps of the
+/// angles it is computed from, whatever its own size (an angle that is zero up to rounding
+/// reads 1e-14 degrees).
+fn flattened(kind: &Kind, shown: &mut [f64]) {
+    let (lo, hi) = shown.iter().fold((f64::INFINITY, f64::NEG_INFINITY), |(a, b), v| (a.min(*v), b.max(*v)));
+    let turn = if kind.is_angle() { 360.0 } else { 0.0 };
+    let magnitude = lo.abs().max(hi.abs()).max(turn);
+    // Halves: no overflow for any finite range.
+    if hi >= lo && hi / 2.0 - lo / 2.0 <= NOISE / 2.0 * magnitude {
+        shown.fill(lo / 2.0 + hi / 2.0);
+    }
+}
+
 /// The inputs' readouts (each replaced by a readout of the config naming it), then the
 /// config's other readouts, at the frames `poses` and at the motion's events.
 pub(crate) fn channels(
@@ -154,6 +179,7 @@ pub(crate) fn channels(
             }
             shown.push(v);
         }
+        flattened(&kind, &mut shown);
         let format = format_of(&kind, &shown);
         let mut values: Vec<f64> = shown.into_iter().map(|v| format.rounded(v)).collect();
         let at_events = values.split_off(poses.len());

@@ -221,6 +221,14 @@ impl Ticks {
             format!("{}e{e}", decimal(value, self.exp - e))
         }
     }
+
+    /// The label of tick `k` as its difference from tick `base` (`k >= base`), in the style
+    /// of [`Ticks::label`] for an axis from zero to the range's width: few digits where the
+    /// values themselves need many (far from zero, varying little).
+    pub fn difference_label(&self, k: i128, base: i128) -> String {
+        let width = Ticks { lo: 0.0, hi: self.hi - self.lo, ..self.clone() };
+        width.label(k - base)
+    }
 }
 
 #[cfg(test)]
