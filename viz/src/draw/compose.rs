@@ -95,29 +95,6 @@ fn key_times(motion: &Motion, path: &[usize], keys: &[usize]) -> Vec<f64> {
     keys.iter().map(|&i| along[i] / total).collect()
 }
 
-/// `<animate>` and `<animateTransform>` elements of `body` through one value per key frame
-/// (`times.len()` values), without key times, given `times`: by default SMIL spaces the values
-/// evenly over the pass. Elements with key times of their own (the readout's) are left as
-/// they are.
-fn with_key_times(body: &str, times: &[f64]) -> String {
-    let written: Vec<String> = times.iter().map(|t| frac(*t)).collect();
-    let attr = format!(r#" keyTimes="{}""#, written.join(";"));
-    let mut out = String::with_capacity(body.len() + body.len() / 4);
-    let mut rest = body;
-    while let Some(at) = rest.find("<animate") {
-        let Some(len) = rest[at..].find("/>") else { break };
-        let tag = &rest[at..at + len];
-        out.push_str(&rest[..at + len]);
-        let values = tag.split(r#" values=""#).nth(1).and_then(|v| v.split('"').next());
-        if !tag.contains("keyTimes=") && values.is_some_and(|v| v.split(';').count() == times.len()) {
-            out.push_str(&attr);
-        }
-        rest = &rest[at + len..];
-    }
-    out.push_str(rest);
-    out
-}
-
 /// The shapes of item `k` at poses `keys`.
 fn at_keys<'s>(scene: &'s Scene, keys: &[usize], k: usize) -> Vec<&'s Shape> {
     keys.iter().map(|&i| &scene.frames[i][k]).collect()
@@ -152,7 +129,7 @@ impl Layers<'_> {
     /// in full and again in full colour as far as the traced point has come at each key frame
     /// (a dash as long as the path, shifted), over its first piece: the whole path unless it
     /// retraces itself, and then its first pass.
-    fn traces(&self, out: &mut String, anim: Option<(&[usize], Timing)>) {
+    fn traces(&self, out: &mut String, anim: Option<(&[usize], Timing<'_>)>) {
         let path = self.scene.path(self.motion);
         for t in 0..self.d.traces.len() {
             let (pieces, along) = self.trace_points(&path, t);
@@ -347,7 +324,7 @@ impl Layers<'_> {
 
     /// The inputs at the poses `keys` (one: static; several: each key frame's text shown in
     /// its turn, with `timing`, at `times`: a fraction of the pass for each key frame).
-    fn readout(&self, out: &mut String, keys: &[usize], timing: Option<(Timing, &[f64])>) {
+    fn readout(&self, out: &mut String, keys: &[usize], timing: Option<(Timing<'_>, &[f64])>) {
         if !self.d.annotate.readout || self.motion.inputs.is_empty() {
             return;
         }
@@ -382,7 +359,7 @@ impl Layers<'_> {
 
     /// The labels of the joints, following them over the key frames; a white halo keeps a
     /// label legible where it crosses a link or a path.
-    fn labels(&self, out: &mut String, keys: &[usize], timing: Option<Timing>) {
+    fn labels(&self, out: &mut String, keys: &[usize], timing: Option<Timing<'_>>) {
         let ink = &self.d.style.ink;
         for (j, label) in self.scene.labels.iter().enumerate() {
             let values: Vec<String> = keys.iter().map(|&i| pair(self.scene.labelled[i][j])).collect();
@@ -407,7 +384,7 @@ impl Layers<'_> {
         )
     }
 
-    fn pen(&self, timing: Option<Timing>) -> Pen<'_> {
+    fn pen<'p>(&'p self, timing: Option<Timing<'p>>) -> Pen<'p> {
         let style = &self.d.style;
         Pen { style, ink: &style.ink, fill: &style.fill, ghost: false, dashed: false, timing }
     }
@@ -560,18 +537,20 @@ impl Drawing {
             times.iter_mut().for_each(|t| *t /= 2.0);
             times.extend(back);
         }
-        let pen = l.pen(Some(Timing { seconds: anim.seconds }));
+        let written: Vec<String> = times.iter().map(|t| frac(*t)).collect();
+        let key_times = written.join(";");
+        let timing = Some(Timing { seconds: anim.seconds, key_times: &key_times });
+        let pen = l.pen(timing);
         let mut body = String::new();
-        l.traces(&mut body, Some((&keys, Timing { seconds: anim.seconds })));
+        l.traces(&mut body, timing.map(|t| (&keys[..], t)));
         l.ground(&mut body);
         l.events(&mut body);
         l.mechanism(&mut body, &keys, &pen);
         l.trace_dots(&mut body, &keys, &pen);
-        let timing = Some(Timing { seconds: anim.seconds });
         l.labels(&mut body, &keys, timing);
         l.scale_bar(&mut body);
         l.readout(&mut body, &keys, timing.map(|t| (t, &times[..])));
         l.notes(&mut body);
-        Ok(l.document(&with_key_times(&body, &times)))
+        Ok(l.document(&body))
     }
 }

@@ -15,7 +15,7 @@ pub(crate) struct Pen<'a> {
     pub ghost: bool,
     /// Dashed strokes (poses at events).
     pub dashed: bool,
-    pub timing: Option<Timing>,
+    pub timing: Option<Timing<'a>>,
 }
 
 impl Pen<'_> {

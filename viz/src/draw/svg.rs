@@ -50,13 +50,24 @@ pub(crate) fn unwrap_degrees(a: &[f64]) -> Vec<f64> {
     out
 }
 
-/// How an animated attribute is played: the key frames' duration in seconds.
+/// How an animated attribute is played: the pass's duration in seconds, and when each key frame
+/// is shown (SMIL `keyTimes`, written `0;0.011;...;1`; empty: evenly over the pass).
 #[derive(Clone, Copy, Debug)]
-pub(crate) struct Timing {
+pub(crate) struct Timing<'a> {
     pub seconds: f64,
+    pub key_times: &'a str,
 }
 
-impl Timing {
+impl Timing<'_> {
+    /// The `keyTimes` attribute of an element through `values` key frames: the times when they
+    /// are one per key frame (every animated value is), else none (evenly spaced).
+    fn key_times(&self, values: usize) -> String {
+        if self.key_times.is_empty() || self.key_times.split(';').count() != values {
+            return String::new();
+        }
+        format!(r#" keyTimes="{}""#, self.key_times)
+    }
+
     /// The duration as a SMIL clock value's number of seconds: every digit of it (the
     /// shortest decimal that reads back to it; no exponent for the durations an animation
     /// accepts), not rounded as a coordinate is.
@@ -67,30 +78,32 @@ impl Timing {
 
 /// Writes `<animate>` of attribute `attr` through `values` (one per key frame), or nothing
 /// when every value is the same (the element then keeps its static attribute).
-pub(crate) fn animate(out: &mut String, attr: &str, values: &[String], t: Option<Timing>) {
+pub(crate) fn animate(out: &mut String, attr: &str, values: &[String], t: Option<Timing<'_>>) {
     let Some(t) = t else { return };
     if values.windows(2).all(|w| w[0] == w[1]) {
         return;
     }
     let _ = write!(
         out,
-        r#"<animate attributeName="{attr}" dur="{}s" repeatCount="indefinite" values="{}"/>"#,
+        r#"<animate attributeName="{attr}" dur="{}s" repeatCount="indefinite" values="{}"{}/>"#,
         t.dur(),
-        values.join(";")
+        values.join(";"),
+        t.key_times(values.len())
     );
 }
 
 /// Writes `<animateTransform>` of `kind` (`translate`, `rotate`) through `values`, or nothing
 /// when every value is the same.
-pub(crate) fn animate_transform(out: &mut String, kind: &str, values: &[String], t: Option<Timing>) {
+pub(crate) fn animate_transform(out: &mut String, kind: &str, values: &[String], t: Option<Timing<'_>>) {
     let Some(t) = t else { return };
     if values.windows(2).all(|w| w[0] == w[1]) {
         return;
     }
     let _ = write!(
         out,
-        r#"<animateTransform attributeName="transform" type="{kind}" dur="{}s" repeatCount="indefinite" values="{}"/>"#,
+        r#"<animateTransform attributeName="transform" type="{kind}" dur="{}s" repeatCount="indefinite" values="{}"{}/>"#,
         t.dur(),
-        values.join(";")
+        values.join(";"),
+        t.key_times(values.len())
     );
 }
