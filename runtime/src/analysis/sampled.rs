@@ -592,19 +592,34 @@ impl<K: Kernel> SampledOf<K> {
         if let Some(j) = values.iter().position(|v| !v.is_finite()) {
             return Err(Error::InvalidArgument(format!("the quantity is {} at the sample {}", values[j], at[j])));
         }
-        let best = (0..values.len()).max_by(|&a, &b| values[a].total_cmp(&values[b])).unwrap_or(0);
-        let lo = at[best.saturating_sub(1)];
-        let hi = at[(best + 1).min(at.len() - 1)];
-        let (s, v) = maximize(lo, hi, |s| self.at_near(s, at, |j| &grid.states[j]).map(|k| f(s, &k)))?;
-        // Brent returns an interior point; the sample itself may be better (at an end of the range).
-        Ok(if v >= values[best] { (s, v) } else { (at[best], values[best]) })
+        // Every local maximum of the samples is refined, not only the best sample: the peak
+        // may lie beside another one that ties with it or nearly (over a full turn the first
+        // and the last sample are equal, and the peak just after the first was missed where
+        // the last was refined).
+        let last = values.len() - 1;
+        let local = |j: usize| (j == 0 || values[j] >= values[j - 1]) && (j == last || values[j] >= values[j + 1]);
+        let mut best = (f64::NAN, f64::NEG_INFINITY);
+        for j in (0..values.len()).filter(|&j| local(j)) {
+            let (lo, hi) = (at[j.saturating_sub(1)], at[(j + 1).min(last)]);
+            let (s, v) = maximize(lo, hi, |s| self.at_near(s, at, |k| &grid.states[k]).map(|k| f(s, &k)))?;
+            // Brent returns an interior point; the sample itself may be better (at an end of
+            // the range).
+            let here = if v >= values[j] { (s, v) } else { (at[j], values[j]) };
+            if here.1 > best.1 {
+                best = here;
+            }
+        }
+        Ok(best)
     }
 
     /// Checks that a column returns to its starting value over the range (one period).
     fn periodic(&self, c: ColumnIndex) -> Result<Vec<Jet>, Error> {
         let jets = self.jets_of(c);
         let (a, b) = (jets[0].value, jets[jets.len() - 1].value);
-        let scale = jets.iter().map(|j| j.value.abs()).fold(1.0, f64::max);
+        // Relative to the column's own size, whatever its unit: a floor of one (as it was)
+        // let a sweep short of a turn pass as periodic once the mechanism was a micrometre
+        // across, and half a turn at 1e-12.
+        let scale = jets.iter().map(|j| j.value.abs()).fold(0.0, f64::max);
         if (a - b).abs() > 1e-9 * scale {
             return Err(Error::InvalidArgument(format!(
                 "`{}` is not periodic over the sweep ({a} at the start, {b} at the end): sweep exactly one cycle",
