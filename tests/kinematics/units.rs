@@ -457,3 +457,57 @@ fn limit_positions_and_reach_are_unit_free_with_a_length_unknown() {
     // Located to about sqrt(eps) in the input (the curve is flat there in phi).
     assert!((stops[3] - lim).abs() <= 1e-9 && (reaches[3].1 - lim).abs() <= 1e-9 && (reaches[3].0 + lim).abs() <= 1e-9);
 }
+
+kinloop::mechanism! {
+    /// A crank turned by a rack: the rack's travel `x` (a length) turns the pinion, and the
+    /// crank on it, by `x / rp`; the crank drives a slider.
+    pub struct RackCrank {
+        params rp = 0.5, rc = 1.0, l = 3.0;
+        input x;
+        unknowns psi = 0, xs = 4;
+        loop crank: rc @ (x / rp) + l @ psi == (xs, 0);
+    }
+}
+
+kinloop::mechanism! {
+    /// A four-bar that cannot turn fully, its crank turned by a rack (`x / rp`).
+    pub struct RackFourBar {
+        params rp = 0.5, a = 3.0, b = 2.0, c = 2.5, d = 4.0;
+        input x;
+        unknowns beta = 0.5, gamma = 1.5;
+        loop abcd: a @ (x / rp) + b @ beta == (d, 0) + c @ gamma;
+    }
+}
+
+/// A length input that enters a trigonometric argument scaled by a length (`x / rp`, a rack
+/// turning a pinion) is judged in its own unit, not as an angle: at every size, the slider's
+/// ten dead centres over five turns of the pinion (sampled a turn apart and more) and the
+/// four-bar's limit position by the law of cosines. Judged in radians of `x`, a mechanism a
+/// micrometre across found no extremes (its six samples looked closer than a sweep's step)
+/// and its four-bar's sweep failed with "cannot stay on its branch".
+#[test]
+fn a_length_input_in_a_trigonometric_argument_is_unit_free() {
+    let limit = (4.75f64 / 24.0).acos(); // |a e^(i th) - d| = b + c
+    for k in SCALES {
+        let m = RackCrank { rp: 0.5 * k, rc: k, l: 3.0 * k };
+        let from = 0.1 * k;
+        let run = kinloop::analysis::Sampled::sweep(&m, from, from + 5.0 * PI * k, 6, m.guess(from)).unwrap();
+        let range = run.range(RackCrank::COL.xs).unwrap();
+        assert!(
+            (range.min.value / k - 2.0).abs() < 1e-13 && (range.max.value / k - 4.0).abs() < 1e-13,
+            "{k}: {range:?}"
+        );
+        let extremes = run.extremes(RackCrank::COL.xs).unwrap();
+        assert_eq!(extremes.len(), 10, "{k}: {extremes:?}");
+        for e in &extremes {
+            // At the dead centres, the pinion at a multiple of pi.
+            let turns = e.x() / (0.5 * k) / PI;
+            assert!((turns - turns.round()).abs() < 1e-9, "{k}: {e:?}");
+        }
+        let m = RackFourBar { rp: 0.5 * k, a: 3.0 * k, b: 2.0 * k, c: 2.5 * k, d: 4.0 * k };
+        let to = 0.5 * k * PI / 2.0;
+        let stop = m.sweep(0.0, to, 11, &m.guess(0.0)).unwrap().run();
+        let kinloop::SweepStop::LimitPosition(event) = stop.stop else { panic!("{k}: {:?}", stop.stop) };
+        assert!((event.x[0] / (0.5 * k) - limit).abs() < EVENT_TOL, "{k}: {event:?}");
+    }
+}

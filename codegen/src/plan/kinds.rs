@@ -154,7 +154,7 @@ fn descend(
 
 /// Whether `n` is a pure number: a constant, a sine, cosine or tangent, or products, quotients,
 /// powers and floors of those (looked at to `depth` levels).
-fn pure_number(g: &Graph, n: NodeId, depth: u32) -> bool {
+pub(crate) fn pure_number(g: &Graph, n: NodeId, depth: u32) -> bool {
     if depth == 0 {
         return false;
     }

@@ -27,7 +27,11 @@
 //! happens to vanish, and it scales exactly with the unit of length.
 //!
 //! **Angles.** A leaf (unknown, input or parameter) is an angle when it appears in the argument
-//! of a trigonometric function anywhere in the equations; angles carry no unit.
+//! of a trigonometric function anywhere in the equations; angles carry no unit. Not where each
+//! of its appearances there is scaled by a factor that is not a pure number: a rack's travel
+//! `x` turning a pinion of radius `rp` by `x / rp`, a gear ratio `k phi`. Such a leaf's unit is
+//! the change that turns the argument by one radian (`|rp|`, `1 / |k|`): one radian of `x`
+//! would make every tolerance of a rack a micrometre long a million times too coarse.
 //!
 //! **Unknown units.** An angle unknown's unit is one radian. Any other unknown `q_j` takes the
 //! unit `M(f_r) / M(df_r/dq_j)` from the first row `r` of its block in which it appears: a
@@ -47,25 +51,92 @@
 //! loop's lengths is magnified in `th` there.
 
 use super::block_plan::BlockPlan;
+use super::kinds;
 use crate::graph::dag::{Func, Graph, Leaf, NodeId, Op};
 use std::collections::{HashMap, HashSet};
+
+/// The factors by which a leaf is scaled where it appears in a trigonometric argument: each a
+/// node and whether the leaf is divided by it (`x / rp`: `[(rp, true)]`).
+type Factors = Vec<(NodeId, bool)>;
 
 /// Builds the structural magnitudes of expressions of one graph.
 pub struct Magnitudes {
     angles: HashSet<Leaf>,
+    /// Leaves found in trigonometric arguments only scaled by factors that are not pure
+    /// numbers, with those factors (one list per appearance).
+    scaled: HashMap<Leaf, Vec<Factors>>,
     memo: HashMap<NodeId, NodeId>,
 }
 
 impl Magnitudes {
-    /// Classifies the leaves of `residuals` (angles: inside a trigonometric argument).
+    /// Classifies the leaves of `residuals` (angles: inside a trigonometric argument, see the
+    /// module documentation).
     pub fn new(g: &Graph, residuals: &[NodeId]) -> Self {
-        let mut args = Vec::new();
+        let mut stack: Vec<(NodeId, Factors)> = Vec::new();
         for n in g.reachable(residuals) {
             if let Op::Func(Func::Sin | Func::Cos | Func::Tan, a) = g.op(n) {
-                args.push(a);
+                stack.push((a, Vec::new()));
             }
         }
-        Magnitudes { angles: g.leaves_of(&args).into_iter().collect(), memo: HashMap::new() }
+        let (mut angles, mut scaled): (HashSet<Leaf>, HashMap<Leaf, Vec<Factors>>) = Default::default();
+        let mut seen: HashSet<(NodeId, Factors)> = HashSet::new();
+        while let Some((n, factors)) = stack.pop() {
+            if !seen.insert((n, factors.clone())) {
+                continue;
+            }
+            let scale = |by: NodeId, divides: bool| {
+                let mut f = factors.clone();
+                f.push((by, divides));
+                f
+            };
+            match g.op(n) {
+                Op::Leaf(l) if factors.is_empty() => _ = angles.insert(l),
+                Op::Leaf(l) => scaled.entry(l).or_default().push(factors),
+                Op::Add(a, b) | Op::Sub(a, b) => stack.extend([(a, factors.clone()), (b, factors)]),
+                Op::Neg(a) | Op::Func(Func::Abs | Func::Floor, a) => stack.push((a, factors)),
+                Op::Select(a, b, x, y) => stack.extend([a, b, x, y].map(|m| (m, factors.clone()))),
+                Op::Mul(a, b) if kinds::pure_number(g, a, 8) => stack.push((b, factors)),
+                Op::Mul(a, b) if kinds::pure_number(g, b, 8) => stack.push((a, factors)),
+                Op::Div(a, b) if kinds::pure_number(g, b, 8) => stack.push((a, factors)),
+                Op::Mul(a, b) => stack.extend([(a, scale(b, false)), (b, scale(a, false))]),
+                Op::Div(a, b) => {
+                    stack.push((a, scale(b, true)));
+                    // The divisor's leaves are angles, as everything in an argument was.
+                    angles.extend(g.leaves_of(&[b]));
+                }
+                // Anything else (a power, a root, an inverse function): every leaf in it an
+                // angle, as everything in an argument was.
+                _ if factors.is_empty() => angles.extend(g.leaves_of(&[n])),
+                _ => {}
+            }
+        }
+        // A leaf also found unscaled is an angle.
+        scaled.retain(|l, _| !angles.contains(l));
+        Magnitudes { angles, scaled, memo: HashMap::new() }
+    }
+
+    /// The unit of a leaf scaled in its trigonometric arguments (see the module documentation):
+    /// the smallest change of it that turns one of them by a radian.
+    fn scaled_unit(&mut self, g: &mut Graph, l: Leaf) -> Option<NodeId> {
+        let appearances = self.scaled.get(&l)?.clone();
+        let mut unit: Option<NodeId> = None;
+        for factors in appearances {
+            let mut u = g.one();
+            for (by, divides) in factors {
+                u = if divides {
+                    let size = g.func(Func::Abs, by);
+                    g.mul(u, size)
+                } else {
+                    let size = self.of(g, by);
+                    g.div(u, size)
+                };
+            }
+            unit = Some(match unit {
+                Some(v) => g.min(v, u),
+                None => u,
+            });
+        }
+        unit
     }
 
     /// Whether unknown `u` is an angle.
@@ -119,6 +190,9 @@ impl Magnitudes {
         if self.angles.contains(&Leaf::Input(i as u16)) {
             return g.one();
         }
+        if let Some(unit) = self.scaled_unit(g, Leaf::Input(i as u16)) {
+            return unit;
+        }
         match (0..residuals.len()).find(|&r| !g.is_zero(fx[r][i])) {
             Some(r) => {
                 let (f, d) = (self.of(g, residuals[r]), self.of(g, fx[r][i]));
@@ -133,6 +207,9 @@ impl Magnitudes {
         let scale: Vec<NodeId> = bp.f.iter().map(|&f| self.of(g, f)).collect();
         let unit = (0..bp.unknowns.len())
             .map(|c| {
+                if let Some(unit) = self.scaled_unit(g, Leaf::Unknown(bp.unknowns[c] as u16)) {
+                    return unit;
+                }
                 let row = (0..bp.f.len()).find(|&r| !g.is_zero(bp.jac[r][c]));
                 match row {
                     Some(r) if !self.is_angle_unknown(bp.unknowns[c]) => {
