@@ -308,6 +308,38 @@ mod tests {
         assert!((w[0] - 6.5e-6).abs() <= 4.0 * f64::EPSILON * 6.5e-6, "{w:?}");
     }
 
+    /// `rc cos(x / rp) + cos(2 phi) + cos(k y)`: `phi` (scaled by a number) is an angle, one
+    /// radian; `x` (over a parameter, a rack's travel) and `y` (times one, a gear ratio) are
+    /// not, their units the change that turns their argument by a radian, `|rp|` and `1 / |k|`;
+    /// `y` also found unscaled elsewhere would be an angle.
+    #[test]
+    fn a_leaf_scaled_in_its_argument_takes_the_unit_that_turns_it_a_radian() {
+        let mut g = Graph::new();
+        let (x, phi, y) = (g.leaf(Leaf::Input(0)), g.leaf(Leaf::Input(1)), g.leaf(Leaf::Input(2)));
+        let (rp, rc, k) = (g.leaf(Leaf::Param(0)), g.leaf(Leaf::Param(1)), g.leaf(Leaf::Param(2)));
+        let two = g.constant(2.0);
+        let args = [g.div(x, rp), g.mul(two, phi), g.mul(k, y)];
+        let [a, b, c] = args.map(|a| g.func(Func::Cos, a));
+        let ra = g.mul(rc, a);
+        let sum = g.add(ra, b);
+        let f = g.add(sum, c);
+        let mut mags = Magnitudes::new(&g, &[f]);
+        let fx: Vec<Vec<NodeId>> = vec![vec![f, f, f]];
+        let units: Vec<NodeId> = (0..3).map(|i| mags.input_unit(&mut g, &[f], &fx, i)).collect();
+        let v = g.eval(&units, &|leaf| match leaf {
+            Leaf::Param(0) => -0.25,
+            Leaf::Param(2) => 4.0,
+            _ => 1.0,
+        });
+        assert_eq!(v, [0.25, 1.0, 0.25]);
+        // `y` unscaled in another argument: an angle, one radian.
+        let cy = g.func(Func::Cos, y);
+        let f2 = g.add(f, cy);
+        let mut mags = Magnitudes::new(&g, &[f2]);
+        let unit = mags.input_unit(&mut g, &[f2], &[vec![f2, f2, f2]], 2);
+        assert!(g.is_one(unit));
+    }
+
     /// The slotted rocker `(0, h) + r @ phi - s @ th = 0` (unknowns `s`, `th`): the angle's
     /// column, whose lever `s` is an unknown, gets one floor (the Y projection's `|h| + |r|`;
     /// the X projection's `|r|` is a term of it), the length's column none. So does the angle
