@@ -194,6 +194,17 @@ fn angle_in(kind: QuantityKind, deg: bool, v: f64) -> f64 {
 fn task(model: &Model, req: &Request, rows: &[Vec<f64>]) -> Result<Task, Failed> {
     let (ni, input_kind) = (model.inputs().len(), model.input_kinds().first().copied());
     let width = rows[0].len();
+    // Only targets without inputs move along a range: given with targets that carry their
+    // inputs, it was ignored without a word.
+    if let Some(r) = req.range
+        && !(req.path.is_some() && width == 2)
+    {
+        return Err(exit::usage(format!(
+            "--range {r} applies to --path targets without inputs (rows `x,y`); {} gives the inputs in its rows: \
+             remove --range",
+            req.targets.display()
+        )));
+    }
     match (req.path, req.function) {
         (Some(point), None) => {
             // Named here: the library would say that `POINT.x` is no column.

@@ -305,6 +305,24 @@ fn an_empty_range_is_a_usage_error() {
     assert!(o.stdout.is_empty());
 }
 
+/// `--range` with targets that give their own inputs (`phi,x,y`) is a usage error: it was
+/// ignored without a word, the targets' inputs far outside it.
+#[test]
+fn a_range_with_timed_targets_is_a_usage_error() {
+    let targets = timed_targets();
+    let four_bar = shipped("coupler_four_bar.kl");
+    let args =
+        ["synth", &four_bar, "--targets", &targets, "--path", "p", "--deg", "--vary", "a=1..2", "--range", "0..90"];
+    let o = kinloop(&args);
+    let err = String::from_utf8_lossy(&o.stderr);
+    assert_eq!(o.status.code(), Some(2), "{err}");
+    assert!(
+        err.contains("--range 0..90 applies to --path targets without inputs") && err.contains("remove --range"),
+        "{err}"
+    );
+    assert!(o.stdout.is_empty());
+}
+
 /// `--jobs` beyond the threads a machine runs (a count typed with zeros too many) is a usage
 /// error naming the limit, checked before anything is read: not minutes spent starting
 /// threads.

@@ -29,6 +29,10 @@ const TURN_SAMPLES: usize = 73;
 /// between distinct assembly modes of a design that is not near singular.
 const SAME_POSITION: f64 = 1e-6;
 
+/// Two free inputs are one when they differ by this, relative to the inputs' span: far above
+/// the rounding of the solves that found them, far below the distance between targets.
+const SAME_INPUT: f64 = 1e-9;
+
 /// `size` is the unit of a length (the targets' size); `m` tells the unknowns' kinds.
 fn same_position<K: SensKernel>(m: &K, a: &[f64], b: &[f64], size: f64) -> bool {
     (0..a.len()).all(|u| match m.unknown_kind(u) {
@@ -43,10 +47,26 @@ fn same_position<K: SensKernel>(m: &K, a: &[f64], b: &[f64], size: f64) -> bool 
 /// An angle input is periodic in every declaration of a mechanism that turns by it (its sines
 /// and cosines); where it is not (a gear ratio that is no integer), the sweep to the unwrapped
 /// input does not reach the solved position, and the candidate has a branch defect instead.
+///
+/// Consecutive inputs within [`SAME_INPUT`] of the inputs' span (of a radian at least, for an
+/// angle) are one input: a target repeated is reached at one input whichever way the rounding
+/// of its two solves falls (two apart by 2e-16 passed, equal ones were an order defect). Inputs
+/// that are all one are no motion: an order defect.
 fn in_order(x: &[f64], angle: bool) -> Option<Vec<f64>> {
-    let monotone = |s: f64| x.windows(2).all(|w| s * (w[1] - w[0]) > 0.0);
+    let span = x.iter().map(|v| (v - x[0]).abs()).fold(0.0, f64::max);
+    let tol = SAME_INPUT * if angle { span.max(1.0) } else { span };
+    let mut x = x.to_vec();
+    for k in 1..x.len() {
+        if (x[k] - x[k - 1]).abs() <= tol {
+            x[k] = x[k - 1];
+        }
+    }
+    if x.windows(2).all(|w| w[0] == w[1]) {
+        return None;
+    }
+    let monotone = |s: f64| x.windows(2).all(|w| s * (w[1] - w[0]) >= 0.0);
     if monotone(1.0) || monotone(-1.0) {
-        return Some(x.to_vec());
+        return Some(x);
     }
     if !angle {
         return None;
@@ -56,7 +76,7 @@ fn in_order(x: &[f64], angle: bool) -> Option<Vec<f64>> {
         .filter_map(|&s| {
             let steps: Vec<f64> = x.windows(2).map(|w| (s * (w[1] - w[0])).rem_euclid(TAU)).collect();
             let total: f64 = steps.iter().sum();
-            (steps.iter().all(|&d| d > 0.0) && total < TAU).then_some((s, steps, total))
+            (total < TAU).then_some((s, steps, total))
         })
         .min_by(|a, b| a.2.total_cmp(&b.2))
         .map(|(s, steps, _)| {
@@ -268,5 +288,30 @@ impl<K: SensKernel> ProblemOf<K> {
             four_bar,
             local,
         }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::in_order;
+    use std::f64::consts::TAU;
+
+    /// A target repeated is one input whichever way the rounding falls; inputs all one, or out
+    /// of order by more than rounding, are an order defect; an angle may pass its zero.
+    #[test]
+    fn a_repeated_target_is_in_order_whichever_way_the_rounding_falls() {
+        for noise in [2e-16, 0.0, -2e-16] {
+            let x = [0.1, 0.5, 0.5 + noise, 0.9];
+            for angle in [false, true] {
+                assert_eq!(in_order(&x, angle), Some(vec![0.1, 0.5, 0.5, 0.9]), "{noise} {angle}");
+            }
+        }
+        assert_eq!(in_order(&[0.3, 0.3, 0.3], true), None);
+        assert_eq!(in_order(&[0.1, 0.5, 0.4999, 0.9], false), None);
+        // Past the zero of a turn, with a repeat there: unwrapped.
+        let x = [TAU - 0.2, TAU - 0.1, TAU - 0.1 + 1e-15, 0.1];
+        let got = in_order(&x, true).expect("in cyclic order");
+        assert_eq!(got[1], got[2]);
+        assert!((got[3] - (TAU + 0.1)).abs() < 1e-12, "{got:?}");
     }
 }
