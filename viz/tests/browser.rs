@@ -309,10 +309,18 @@ fn bad_data_is_an_error_and_pages_are_deterministic() {
     let point_nan = Drawing::new().link([Pt::fixed(0.0, 0.0), Pt::expr(|s| [s.x[0], f64::NAN])]);
     let err = html(&m, &point_nan, &motion, &HtmlConfig::new("x")).unwrap_err();
     assert!(matches!(err, HtmlError::Draw(_)), "{err}");
-    // Fewer frames than poses: evenly spread, the first and the last (the limit) kept.
+    // Fewer frames than poses: at most ten, in equal steps of the samples (the page plays
+    // them at one rate), the first and the last (the limit) kept.
     let few = HtmlConfig::new("x").with_max_frames(10);
     let page = html(&m, &drawing, &motion, &few).unwrap();
-    assert!(page.contains(r#"max="9""#), "ten frames");
+    let frames = page
+        .split(r#"max=""#)
+        .nth(1)
+        .and_then(|r| r.split('"').next())
+        .and_then(|v| v.parse::<usize>().ok())
+        .expect("the slider's last frame")
+        + 1;
+    assert!((3..=10).contains(&frames), "{frames} frames");
     let inputs = page
         .split(r#""ch":[{"#)
         .nth(1)
@@ -322,13 +330,16 @@ fn bad_data_is_an_error_and_pages_are_deterministic() {
     // Written as the readout shows them: to a hundredth of a degree.
     assert!(inputs.split(',').all(|t| browser_support::resolution(t) == 0.01), "{inputs}");
     let inputs: Vec<f64> = inputs.split(',').map(|v| v.parse().unwrap()).collect();
-    assert_eq!(inputs.len(), 10);
+    assert_eq!(inputs.len(), frames);
     assert_eq!(inputs[0], 0.0);
     assert!(
-        (inputs[9] - rocking_limit(&m).to_degrees()).abs() <= 0.005 + 1e-9,
+        (inputs[frames - 1] - rocking_limit(&m).to_degrees()).abs() <= 0.005 + 1e-9,
         "the last frame is the limit: {inputs:?}"
     );
     assert!(inputs.windows(2).all(|w| w[1] > w[0]), "in order: {inputs:?}");
+    // The samples are 2 degrees apart: every step but the one to the limit is the same.
+    let steps: Vec<f64> = inputs[..frames - 1].windows(2).map(|w| w[1] - w[0]).collect();
+    assert!(steps.iter().all(|d| (d - steps[0]).abs() <= 0.011), "equal steps: {inputs:?}");
     let label = format!("limit position at phi = {:.2}°", rocking_limit(&m).to_degrees());
     assert!(page.contains(&label));
     let err = html(&m, &drawing, &motion, &HtmlConfig::new("x").with_max_frames(1)).unwrap_err();

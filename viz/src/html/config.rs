@@ -91,8 +91,8 @@ pub struct HtmlConfig {
     /// Start playing when the page opens (default `true`; a page opened with a pose in its
     /// address, `page.html#i=40`, shows that pose and waits).
     pub autoplay: bool,
-    /// Largest number of poses written (evenly spread over the motion, first and last kept;
-    /// default 721). The size of the page grows with it. A grid's page
+    /// Largest number of poses written (in equal steps along the motion, first and last kept,
+    /// only the step to the last shorter; default 721). The size of the page grows with it. A grid's page
     /// ([`html_grid`](super::html_grid)) writes every cell: a grid of more cells is an error.
     pub max_frames: usize,
     /// Width and height of each chart in pixels (default 380 x 170).

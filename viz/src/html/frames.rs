@@ -76,13 +76,21 @@ pub(crate) fn path(motion: &Motion) -> Vec<usize> {
     path
 }
 
-/// `count` of `path` evenly spread, first and last kept.
+/// At most `count` of `path`, one every so many poses from the first, and the last: the page
+/// plays its frames at one rate, so equal steps along the path move the inputs at one speed
+/// (picked by rounding, 1000 poses in 721 frames were steps of one and two poses: the crank
+/// jerked ahead at every other frame). Only the step to the last may be shorter.
 pub(crate) fn spread(path: &[usize], count: usize) -> Vec<usize> {
     let n = path.len();
-    if count >= n {
+    if count >= n || count < 2 {
         return path.to_vec();
     }
-    (0..count).map(|i| path[(i as f64 * (n - 1) as f64 / (count - 1) as f64).round() as usize]).collect()
+    let step = (n - 1).div_ceil(count - 1);
+    let mut out: Vec<usize> = path.iter().step_by(step).copied().collect();
+    if out.last() != path.last() {
+        out.push(path[n - 1]);
+    }
+    out
 }
 
 /// Pose `i` of the motion: a sample, or an event after the samples.
@@ -261,4 +269,25 @@ pub(crate) fn event_positions(motion: &Motion, poses: &[usize]) -> Vec<f64> {
             best.1
         })
         .collect()
+}
+
+#[cfg(test)]
+mod tests {
+    use super::spread;
+
+    /// Equal steps along the path, at most the count asked, the first and last kept; only the
+    /// step to the last may be shorter.
+    #[test]
+    fn frames_are_equal_steps_along_the_path() {
+        for (n, count) in [(1000, 721), (181, 90), (12, 4), (11, 4), (10, 4), (5, 5), (5, 9), (3, 2)] {
+            let path: Vec<usize> = (0..n).collect();
+            let got = spread(&path, count);
+            assert!(got.len() <= count.max(2) && got.len() >= 2, "{n} {count}: {got:?}");
+            assert_eq!((got[0], got[got.len() - 1]), (0, n - 1), "{n} {count}");
+            let steps: Vec<usize> = got.windows(2).map(|w| w[1] - w[0]).collect();
+            let first = steps[0];
+            assert!(steps[..steps.len() - 1].iter().all(|&s| s == first), "{n} {count}: {steps:?}");
+            assert!(steps[steps.len() - 1] <= first && steps[steps.len() - 1] > 0, "{n} {count}: {steps:?}");
+        }
+    }
 }

@@ -116,8 +116,8 @@ fn joint_names(d: &Drawing) -> Vec<Vec<Option<String>>> {
 /// recorded with [`Motion::record`]): see the [module documentation](self). The mechanism
 /// gives the names and quantity kinds of its columns (the readouts' units).
 ///
-/// With more poses than [`HtmlConfig::max_frames`], that many are written, evenly spread
-/// over the motion (the first and the last kept); the traced paths keep every pose (a segment
+/// With more poses than [`HtmlConfig::max_frames`], at most that many are written, in equal
+/// steps along the motion (the first and the last kept); the traced paths keep every pose (a segment
 /// that retraces one already drawn written once).
 ///
 /// Errors: the drawing's own ([`HtmlError::Draw`]: an unknown point, an empty motion, a
