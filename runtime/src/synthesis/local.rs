@@ -132,15 +132,22 @@ impl<K: SensKernel> ProblemOf<K> {
             if evaluations >= cfg.max_evaluations {
                 break OptimizerStop::MaxEvaluations;
             }
-            // Normal equations J^T J and the gradient J^T r.
+            // Normal equations J^T J and the gradient J^T r, of the residuals in units of the
+            // targets' weighted size (by the power of two nearest it: exact, so the same steps
+            // bit for bit as unscaled): their squares neither underflow nor overflow whatever
+            // the weights. Weights of 1e-200 made them 0, and every start "converged" where it
+            // began.
+            let unit = 2f64.powi(-(self.scale.log2().round() as i32).clamp(-1000, 1000));
             let mut a = nalgebra::DMatrix::<f64>::zeros(n, n);
             let mut g = nalgebra::DVector::<f64>::zeros(n);
             for k in 0..rows {
                 let jk = &e.jac[k * n..(k + 1) * n];
+                let rk = e.r[k] * unit;
                 for i in 0..n {
-                    g[i] += jk[i] * e.r[k];
+                    let ji = jk[i] * unit;
+                    g[i] += ji * rk;
                     for j in 0..=i {
-                        a[(i, j)] += jk[i] * jk[j];
+                        a[(i, j)] += ji * jk[j] * unit;
                     }
                 }
             }

@@ -48,23 +48,26 @@ fn same_position<K: SensKernel>(m: &K, a: &[f64], b: &[f64], size: f64) -> bool 
 /// and cosines); where it is not (a gear ratio that is no integer), the sweep to the unwrapped
 /// input does not reach the solved position, and the candidate has a branch defect instead.
 ///
-/// Consecutive inputs within [`SAME_INPUT`] of the inputs' span (of a radian at least, for an
-/// angle) are one input: a target repeated is reached at one input whichever way the rounding
-/// of its two solves falls (two apart by 2e-16 passed, equal ones were an order defect). Inputs
-/// that are all one are no motion: an order defect.
-fn in_order(x: &[f64], angle: bool) -> Option<Vec<f64>> {
+/// `repeat[k]` says that target `k + 1` is target `k` again: its input may then equal the
+/// one before, and within [`SAME_INPUT`] of the inputs' span (of a radian at least, for an
+/// angle) it is that input, whichever way the rounding of the two solves falls (two apart by
+/// 2e-16 passed, equal ones were an order defect). Distinct targets are met at distinct inputs.
+/// Inputs that are all one are no motion: an order defect.
+fn in_order(x: &[f64], repeat: &[bool], angle: bool) -> Option<Vec<f64>> {
     let span = x.iter().map(|v| (v - x[0]).abs()).fold(0.0, f64::max);
     let tol = SAME_INPUT * if angle { span.max(1.0) } else { span };
     let mut x = x.to_vec();
     for k in 1..x.len() {
-        if (x[k] - x[k - 1]).abs() <= tol {
+        if repeat[k - 1] && (x[k] - x[k - 1]).abs() <= tol {
             x[k] = x[k - 1];
         }
     }
     if x.windows(2).all(|w| w[0] == w[1]) {
         return None;
     }
-    let monotone = |s: f64| x.windows(2).all(|w| s * (w[1] - w[0]) >= 0.0);
+    // A step forward: positive, or none at a repeated target.
+    let forward = |k: usize, d: f64| d > 0.0 || (d == 0.0 && repeat[k]);
+    let monotone = |s: f64| x.windows(2).enumerate().all(|(k, w)| forward(k, s * (w[1] - w[0])));
     if monotone(1.0) || monotone(-1.0) {
         return Some(x);
     }
@@ -76,7 +79,7 @@ fn in_order(x: &[f64], angle: bool) -> Option<Vec<f64>> {
         .filter_map(|&s| {
             let steps: Vec<f64> = x.windows(2).map(|w| (s * (w[1] - w[0])).rem_euclid(TAU)).collect();
             let total: f64 = steps.iter().sum();
-            (total < TAU).then_some((s, steps, total))
+            (steps.iter().enumerate().all(|(k, &d)| forward(k, d)) && total < TAU).then_some((s, steps, total))
         })
         .min_by(|a, b| a.2.total_cmp(&b.2))
         .map(|(s, steps, _)| {
@@ -178,7 +181,9 @@ impl<K: SensKernel> ProblemOf<K> {
         let mut defects = Vec::new();
         if matches!(self.inputs, Inputs::Free { .. }) && n > 1 {
             let free: Vec<f64> = inputs.iter().map(|x| x[0]).collect();
-            match in_order(&free, m.input_kind(0) == QuantityKind::Angle) {
+            let row = |k: usize| &self.targets[k * self.width..(k + 1) * self.width];
+            let repeat: Vec<bool> = (1..n).map(|k| row(k) == row(k - 1)).collect();
+            match in_order(&free, &repeat, m.input_kind(0) == QuantityKind::Angle) {
                 Some(x) => inputs = Cow::Owned(x.into_iter().map(|v| self.input_point(v)).collect()),
                 None => defects.push(Defect::Order),
             }
@@ -300,17 +305,20 @@ mod tests {
     /// of order by more than rounding, are an order defect; an angle may pass its zero.
     #[test]
     fn a_repeated_target_is_in_order_whichever_way_the_rounding_falls() {
+        let repeat = [false, true, false];
         for noise in [2e-16, 0.0, -2e-16] {
             let x = [0.1, 0.5, 0.5 + noise, 0.9];
             for angle in [false, true] {
-                assert_eq!(in_order(&x, angle), Some(vec![0.1, 0.5, 0.5, 0.9]), "{noise} {angle}");
+                assert_eq!(in_order(&x, &repeat, angle), Some(vec![0.1, 0.5, 0.5, 0.9]), "{noise} {angle}");
+                // Distinct targets at one input: an order defect, as it was.
+                assert_eq!(in_order(&x, &[false; 3], angle).is_some(), noise > 0.0, "{noise} {angle}");
             }
         }
-        assert_eq!(in_order(&[0.3, 0.3, 0.3], true), None);
-        assert_eq!(in_order(&[0.1, 0.5, 0.4999, 0.9], false), None);
+        assert_eq!(in_order(&[0.3, 0.3, 0.3], &[true; 2], true), None);
+        assert_eq!(in_order(&[0.1, 0.5, 0.4999, 0.9], &repeat, false), None);
         // Past the zero of a turn, with a repeat there: unwrapped.
         let x = [TAU - 0.2, TAU - 0.1, TAU - 0.1 + 1e-15, 0.1];
-        let got = in_order(&x, true).expect("in cyclic order");
+        let got = in_order(&x, &repeat, true).expect("in cyclic order");
         assert_eq!(got[1], got[2]);
         assert!((got[3] - (TAU + 0.1)).abs() < 1e-12, "{got:?}");
     }
