@@ -741,3 +741,43 @@ fn a_five_bar_driven_to_its_workspace_edge_stops_at_a_limit_position() {
         }
     }
 }
+
+/// Grashof-equal four-bars (`a + d = b + c`: a change point where the linkage folds flat)
+/// swept from beside the change point: a crossing, where one is reported, is at the change
+/// point, never at a regular position of the linkage. One was reported 0.24 rad away (0.41
+/// with 17 samples on the Newton path), the other 2.6 rad away, at positions far from
+/// singular; a failure is reported there instead of a wrong event.
+#[test]
+fn a_crossing_is_never_reported_at_a_regular_position() {
+    let cases = [
+        // a, b, c, d; from, guess; to; the change point.
+        (
+            [1.8865881561844515, 0.429512645174438, 0.35640231302663133, 1.8134778240366447],
+            -0.006625997834219799,
+            [2.820997111570791, 2.789671129493635],
+            2.7392291933418087,
+            0.0,
+        ),
+        (
+            [0.44759520305657996, 0.9404458508259474, 4.806100316405297, 5.298950964174664],
+            -1.8983990166648697,
+            [0.81649551020687, 3.0871432752117864],
+            -5.984188534079902,
+            -PI,
+        ),
+    ];
+    for ([a, b, c, d], from, guess, to, change) in cases {
+        for samples in [2, 3, 5, 17] {
+            let stops = [
+                FourBar { a, b, c, d }.sweep(from, to, samples, &guess.into()).unwrap().run().stop,
+                FourBarNewton { a, b, c, d }.sweep(from, to, samples, &guess.into()).unwrap().run().stop,
+            ];
+            for stop in stops {
+                if let SweepStop::SingularCrossing(ev) = &stop {
+                    // Located to the trace's precision at least (a root of the determinant).
+                    assert!((ev.x[0] - change).abs() < 1e-4, "{a} {b} {c} {d}, {samples} samples: {ev:?}");
+                }
+            }
+        }
+    }
+}

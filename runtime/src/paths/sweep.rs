@@ -49,6 +49,7 @@
 //! The iterator allocates nothing per step (events are rare and allocate).
 
 use super::config::{AtSingular, SweepConfig};
+use super::crossing;
 use super::curve::{self, CurvePoint, Metric, Path};
 use super::locate::{self, Found};
 use super::outcome::SweepResult;
@@ -811,7 +812,10 @@ where
                 self.events.push(ev);
                 return Err(Error::SweepStopped { kind: EventKind::LimitPosition, at });
             }
-            Some(Found::Crossing(at, past)) => {
+            // A crossing is a root of the determinant: where the located point is not one, the
+            // trace's sign change was not the crossing's, and the step's failure is reported
+            // instead of a wrong event.
+            Some(Found::Crossing(at, past)) if crossing::is_root(&self.m, &path, &metric, &start, &at) => {
                 // The block whose determinant sign differs on the far side.
                 let beyond = self.m.kinematics_at(&path.at_sigma(past.sigma), &past.q, &newton).ok();
                 let flipped =
