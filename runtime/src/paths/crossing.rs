@@ -98,12 +98,14 @@ pub(crate) fn refine<K: Kernel>(
 }
 
 /// Whether `at` is a root of the determinant seen from `from`, a regular point of the branch
-/// before it: the determinant in `from`'s fixed scalings is at most a thousandth of its value
-/// there. A crossing's located point is far closer to the root than that (its input to
-/// `1e-12` of the unit, or the trace's `sqrt` of the tolerance); a point where the trace's sign
-/// change was not the crossing's (a Grashof-equal four-bar's change point reported 0.24 rad
-/// away, at a regular position) is not. Unlike a pivot ratio, the fixed scalings see a
-/// one-entry row vanish (`s^2 == phi^2` at `s = 0`).
+/// before it, in `from`'s fixed scalings: the determinant there is at most half its value at
+/// `from`, or, where `from` is itself that near the crossing (a step that failed beside it),
+/// at most a thousandth of Hadamard's bound (the product of its columns' lengths: one for
+/// orthogonal columns, `|sin|` of their angle for two). A crossing's located point is far
+/// nearer its root (its input to `1e-12` of the unit, or the trace's `sqrt` of the tolerance);
+/// a point where the trace's sign change was not the crossing's (a Grashof-equal four-bar's
+/// change point reported 0.24 rad away, at a regular position) is neither. The comparison with
+/// `from` sees a one-entry column vanish (`s^2 == phi^2` at `s = 0`), which the bound does not.
 pub(crate) fn is_root<K: Kernel>(
     m: &K,
     path: &Path<X<K>>,
@@ -112,10 +114,15 @@ pub(crate) fn is_root<K: Kernel>(
     at: &CurvePoint<Q<K>>,
 ) -> bool {
     let scales = Scales::at(m, path, metric, from);
-    let (d_from, d_at) =
-        (scales.det(m, &path.at_sigma(from.sigma), &from.q), scales.det(m, &path.at_sigma(at.sigma), &at.q));
-    // Not comparable (a determinant not finite): taken as the trace found it.
-    !(d_from.is_finite() && d_at.is_finite()) || d_at.abs() <= 0.5 * d_from.abs()
+    let d_from = scales.matrix(m, &path.at_sigma(from.sigma), &from.q).lu().determinant();
+    let j_at = scales.matrix(m, &path.at_sigma(at.sigma), &at.q);
+    let d_at = j_at.clone().lu().determinant();
+    let bound: f64 = j_at.column_iter().map(|c| c.norm()).product();
+    // Not comparable (not finite): taken as the trace found it.
+    if !(d_from.is_finite() && d_at.is_finite() && bound.is_finite()) {
+        return true;
+    }
+    d_at.abs() <= 0.5 * d_from.abs() || d_at.abs() <= 1e-3 * bound
 }
 
 /// One position solved on the branch: its offset from the trace's estimate in spacings, and
@@ -211,11 +218,16 @@ impl Scales {
         Scales { rows: (0..n).map(|e| sane(jac.scale(e))).collect(), cols: (0..n).map(|u| metric.unit[u]).collect() }
     }
 
-    /// The determinant of the Jacobian at `(x, q)` in these scalings.
-    fn det<K: Kernel>(&self, m: &K, x: &X<K>, q: &Q<K>) -> f64 {
+    /// The Jacobian at `(x, q)` in these scalings.
+    fn matrix<K: Kernel>(&self, m: &K, x: &X<K>, q: &Q<K>) -> DMatrix<f64> {
         let n = self.rows.len();
         let jac = m.jacobian(x, q);
-        DMatrix::from_fn(n, n, |e, u| jac.j(e, u) * self.cols[u] / self.rows[e]).lu().determinant()
+        DMatrix::from_fn(n, n, |e, u| jac.j(e, u) * self.cols[u] / self.rows[e])
+    }
+
+    /// The determinant of the Jacobian at `(x, q)` in these scalings.
+    fn det<K: Kernel>(&self, m: &K, x: &X<K>, q: &Q<K>) -> f64 {
+        self.matrix(m, x, q).lu().determinant()
     }
 }
 
