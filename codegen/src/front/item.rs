@@ -209,9 +209,8 @@ fn parse_decls(input: ParseStream, kind: DeclKind, errors: &mut Errors) -> syn::
             Err(e) => {
                 errors.push(e);
                 if let Some(name) = name {
-                    // Never evaluated: a declaration with a syntax error is not lowered.
-                    let value = Expr::Num { value: 0.0, integer: Some(0), span: name.span() };
-                    decls.push(Decl { docs: Vec::new(), name, value: Some(value) });
+                    let value = Some(stand_in(&name));
+                    decls.push(Decl { docs: Vec::new(), name, value });
                 }
                 skip_to_separator(input);
             }
@@ -327,6 +326,12 @@ enum Named {
     Broken(Ident, Expr),
 }
 
+/// The value that stands in for `name`'s where it did not parse. Never evaluated: a
+/// declaration with a syntax error is not lowered; only its names make the fallback types.
+fn stand_in(name: &Ident) -> Expr {
+    Expr::Num { value: 0.0, integer: Some(0), span: name.span() }
+}
+
 fn named_value(input: ParseStream, what: &str, errors: &mut Errors) -> syn::Result<Named> {
     let name = input.fork().parse::<Ident>().ok();
     match (parse_binding(input, what), name) {
@@ -334,8 +339,7 @@ fn named_value(input: ParseStream, what: &str, errors: &mut Errors) -> syn::Resu
         (Err(e), Some(name)) => {
             errors.push(e);
             skip_item(input);
-            // Never evaluated: a declaration with a syntax error is not lowered.
-            let value = Expr::Num { value: 0.0, integer: Some(0), span: name.span() };
+            let value = stand_in(&name);
             Ok(Named::Broken(name, value))
         }
         (Err(e), None) => Err(e),
