@@ -282,7 +282,9 @@ pub(crate) fn tangent_from_analogs<S: KinState, Q: Store, X: Store>(
 }
 
 /// One pseudo-arclength step of length `ds` (scaled coordinates) from `p`: Euler predictor
-/// along the tangent, Newton corrector on `[f(q, sigma); t . (z - z_pred)] = 0`.
+/// along the tangent, Newton corrector on `[f(q, sigma); t . (z - z_pred)] = 0`. `None` where
+/// the corrector does not converge, or converges farther than [`MAX_STEP_REACH`] times `ds`
+/// from `p`: the corrector's plane met the solution set elsewhere, not the curve being followed.
 pub(crate) fn arc_step<K: Kernel>(
     m: &K,
     path: &Path<X<K>>,
@@ -294,6 +296,17 @@ pub(crate) fn arc_step<K: Kernel>(
     let n = m.dims().n();
     let z_pred = p.z(metric) + &p.tangent * ds;
     let mut z = z_pred.clone();
+    // Whether a converged point lies on the step: a step along a smooth curve ends within about
+    // `ds` of its start, give or take how loosely the tolerance pins a position: near a
+    // singular position a residual `tol` leaves it free along the nearly singular direction by
+    // about `sqrt(tol / k)` for the residual's curvature `k` there (a five-bar with both arms
+    // stretched at once: points 5e-6 apart at one input and the default `1e-12`). A thousand
+    // times `sqrt(tol)`, but at most a hundredth of the scaled unit (the mechanism's size):
+    // what is rejected lies radians or sizes away.
+    let start = p.z(metric);
+    let loose = (1e3 * cfg.residual_tol.max(f64::EPSILON).sqrt()).min(1e-2) + cfg.step_tol * (1.0 + start.amax());
+    let reach = MAX_STEP_REACH * ds.abs() + loose;
+    let on_step = |z: &DVector<f64>| (z - &start).norm() <= reach;
     // A point meeting the tolerance is corrected once more (free accuracy where Newton
     // converges quadratically, needed near singular points where the tolerance leaves the
     // position loose), then accepted the next time it meets the tolerance.
@@ -310,8 +323,10 @@ pub(crate) fn arc_step<K: Kernel>(
         g[n] = -p.tangent.dot(&(&z - &z_pred));
         // Both tests are dimensionless: `g[N]` is a distance in scaled coordinates.
         if res <= cfg.residual_tol && g[n].abs() <= cfg.residual_tol * (1.0 + ds.abs()) && corrected {
-            let tangent = tangent(m, path, metric, &q, sigma, &p.tangent)?;
-            return Some(CurvePoint { q, sigma, tangent });
+            return on_step(&z)
+                .then(|| tangent(m, path, metric, &q, sigma, &p.tangent))
+                .flatten()
+                .map(|tangent| CurvePoint { q, sigma, tangent });
         }
         corrected |= res <= cfg.residual_tol;
         let dz = a.lu().solve(&g)?;
@@ -324,13 +339,22 @@ pub(crate) fn arc_step<K: Kernel>(
             let jac = m.jacobian(&path.at_sigma(sigma), &q);
             // The step is at the rounding floor: accept a residual up to its floor.
             if residual_of(&jac, &f_sigma(&jac, path, n)) <= 1e3 * cfg.residual_tol.max(16.0 * f64::EPSILON) {
-                let tangent = tangent(m, path, metric, &q, sigma, &p.tangent)?;
-                return Some(CurvePoint { q, sigma, tangent });
+                return on_step(&z)
+                    .then(|| tangent(m, path, metric, &q, sigma, &p.tangent))
+                    .flatten()
+                    .map(|tangent| CurvePoint { q, sigma, tangent });
             }
         }
     }
     None
 }
+
+/// How far from its start, in multiples of its length, an [`arc_step`] may end. A step that
+/// follows a smooth curve ends within its length of its start (about `ds (1 + (k ds)^2 / 8)`
+/// for a curvature `k`); near a branch point the corrector's plane, nearly parallel to the
+/// curve's plane of the input, can meet the solution set radians away (a Grashof-equal
+/// four-bar's change point, whose crossing was then bracketed at a regular position).
+const MAX_STEP_REACH: f64 = 2.0;
 
 /// Illinois (modified regula falsi) root of `g` on `[a, b]` with `g(a) g(b) <= 0`.
 pub(crate) fn illinois(

@@ -229,13 +229,15 @@ pub(crate) fn trace<K: Kernel>(
             )
             .unwrap_or(0.5 * (lo + hi));
             let at = arc_step(m, path, metric, &base, s, cfg).unwrap_or_else(|| b.clone());
+            // Located again from the well-conditioned positions on both sides: the root search
+            // leaves a point as loose as the tolerance lets a nearly singular position be (a
+            // millionth of a radian), where a crossing's augmented Jacobian keeps its rank.
+            let at = refine(m, path, metric, &base, &at, cfg).unwrap_or(at);
             // Where a block folds, the input cannot pass, whatever the determinant of the whole
             // does beyond (several blocks folding at once make a branch point of the whole).
             if block_folds(m, path, &at) {
                 return Some(Found::Fold(at));
             }
-            // Located again from the well-conditioned positions on both sides.
-            let at = refine(m, path, metric, &base, &at, cfg).unwrap_or(at);
             return Some(Found::Crossing(at, b));
         }
         walked += ds;
