@@ -804,3 +804,31 @@ fn a_grashof_equal_change_point_is_located_as_a_crossing() {
         }
     }
 }
+
+/// A non-Grashof four-bar swept into its limit position (coupler and follower stretched in
+/// line, `cos phi = (a^2 + d^2 - (b + c)^2) / (2 a d)`) from an input whole turns out, up to
+/// [`MAX_TURNS`]: the limit is located to a few of the input's doubles (6e-11 apart at fifty
+/// thousand turns, 9e-10 at a million). Past twenty thousand turns the sweep failed ("the
+/// solution jumps"): the trace's steps rounded their inputs past the limit, where there is no
+/// solution, and the point it stalled at, a few doubles short, was not taken for the limit.
+#[test]
+fn a_limit_position_far_out_is_located_to_the_inputs_rounding() {
+    let (a, b, c, d): (f64, f64, f64, f64) =
+        (0.9655307274705947, 3.1609583135508634, 0.5447518279518688, 2.946605744405579);
+    let limit = -((a * a + d * d - (b + c) * (b + c)) / (2.0 * a * d)).acos();
+    let guess = [0.37682589361302377, 0.6082054356481038];
+    for turns in [0.0, 2e4, 5e4, 1e5, 1e6] {
+        let from = 5.20249359773527 + turns * TAU;
+        let want = limit + (turns + 1.0) * TAU;
+        let apart = want.next_up() - want;
+        let stops = [
+            FourBar { a, b, c, d }.sweep(from, from - 11.628, 5, &guess.into()).unwrap().run().stop,
+            FourBarNewton { a, b, c, d }.sweep(from, from - 11.628, 5, &guess.into()).unwrap().run().stop,
+        ];
+        for stop in stops {
+            let SweepStop::LimitPosition(ev) = &stop else { panic!("{turns} turns: {stop:?}") };
+            // The reference itself is rounded to `apart` (the sum of the turns and the limit).
+            assert!((ev.x[0] - want).abs() <= 8.0 * apart + 1e-15, "{turns} turns: {} vs {want}", ev.x[0]);
+        }
+    }
+}

@@ -806,7 +806,10 @@ where
             Some(Found::Fold(located) | Found::Crossing(located, _)) if !within(&located) => {}
             // A true limit position is singular; a reversal where the Jacobian is regular is a
             // kink of a non-smooth curve (e.g. through `abs`), reported below as a branch error.
-            Some(Found::Fold(fold)) if curve::pivot_at(&self.m, &path.at_sigma(fold.sigma), &fold.q) < 1e-6 => {
+            Some(Found::Fold(fold))
+                if curve::pivot_at(&self.m, &path.at_sigma(fold.sigma), &fold.q)
+                    < locate::fold_pivot(&path, &metric, fold.sigma) =>
+            {
                 let ev = curve::event_at(EventKind::LimitPosition, &path, &fold, block_of(weakest));
                 let at = self.location(&ev.x, Some(weakest));
                 self.events.push(ev);
