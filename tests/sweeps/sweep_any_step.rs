@@ -832,3 +832,27 @@ fn a_limit_position_far_out_is_located_to_the_inputs_rounding() {
         }
     }
 }
+
+/// A Grashof-equal four-bar (`a + d = b + c`: a change point at `phi = pi`) swept through its
+/// change point, told to continue, from inputs whole turns out up to [`MAX_TURNS`]: one crossing
+/// at the change point and every sample, on both assembly modes. From a hundred thousand turns
+/// the sweep stopped at the crossing (or failed beside it): the inputs' rounding (doubles 1e-10
+/// apart) alone left a residual above the tolerance on the continuation's plane, and its steps
+/// past the crossing failed.
+#[test]
+fn a_crossing_far_out_is_passed() {
+    let (a, b, c, d) = (0.2585449885976439, 0.3670223586789283, 3.5984812419122005, 3.706958611993485);
+    let guesses = [[0.7138314653808111, 3.0140097063632467], [-0.8268266775070381, -3.1270049184894737]];
+    let cfg = SweepConfig::default().with_at_singular(AtSingular::Continue);
+    for turns in [0.0, 5e4, 1e5, 1e6] {
+        let from = PI - 1.0 + turns * TAU;
+        let change = PI + turns * TAU;
+        for guess in guesses {
+            let run = FourBar { a, b, c, d }.sweep(from, from + 2.0, 30, &guess.into()).unwrap().with_config(cfg).run();
+            assert!(run.is_completed() && run.states.len() == 30, "{turns} turns: {:?}", run.stop);
+            let [ev] = &run.events[..] else { panic!("{turns} turns: {:?}", run.events) };
+            // Located to the trace's precision (see the Grashof-equal crossings above).
+            assert!(ev.kind == EventKind::SingularCrossing && (ev.x[0] - change).abs() < 1e-6, "{turns} turns: {ev:?}");
+        }
+    }
+}

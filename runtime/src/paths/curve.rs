@@ -173,10 +173,7 @@ fn residual_of<J: JacState>(jac: &J, fs: &[f64]) -> f64 {
     let n = fs.len();
     let (mut m, mut sum) = (0.0f64, -0.0f64);
     for r in 0..n {
-        let derivatives = (0..n).map(|u| jac.j(r, u).abs()).sum::<f64>() + fs[r].abs();
-        let scale = jac.scale(r);
-        // NaN in `scale` leaves `derivatives`.
-        let s = if scale > derivatives { scale } else { derivatives };
+        let s = row_scale(jac, fs, r);
         let a = jac.f(r).abs();
         let x = if a == 0.0 { 0.0 } else { a / s };
         m = if x > m { x } else { m };
@@ -184,6 +181,33 @@ fn residual_of<J: JacState>(jac: &J, fs: &[f64]) -> f64 {
     }
     if sum.is_nan() { f64::NAN } else { m }
 }
+
+/// The magnitude [`residual_of`] measures row `r` against: the larger of its generated
+/// magnitude and `sum_j |J_rj| + |fs_r|` (the latter where the former is NaN).
+fn row_scale<J: JacState>(jac: &J, fs: &[f64], r: usize) -> f64 {
+    let derivatives = (0..fs.len()).map(|u| jac.j(r, u).abs()).sum::<f64>() + fs[r].abs();
+    let scale = jac.scale(r);
+    // NaN in `scale` leaves `derivatives`.
+    if scale > derivatives { scale } else { derivatives }
+}
+
+/// The residual that the inputs' rounding alone leaves at a point, in [`residual_of`]'s
+/// scaling: each row's rate along the path times `rounding`, the distance between the path's
+/// neighbouring inputs there ([`Path::rounding`]). Far out along a path (a hundred thousand
+/// turns: doubles 1e-10 apart) it exceeds the default tolerance, and no point of the
+/// continuation's plane meets that: its steps failed past a crossing.
+fn rounding_residual<J: JacState>(jac: &J, fs: &[f64], rounding: f64) -> f64 {
+    (0..fs.len()).fold(0.0f64, |m, r| {
+        let s = row_scale(jac, fs, r);
+        if s > 0.0 { m.max(fs[r].abs() * rounding / s) } else { m }
+    })
+}
+
+/// The most that [`arc_step`] relaxes its residual tolerance to for the inputs' rounding (a
+/// million turns out, doubles 1e-9 apart, leave about 4e-11): where the inputs are coarser
+/// still (near 1e15, an eighth apart), a tolerance as loose as their rounding let the
+/// corrector settle anywhere near the curve, and its jitter read as limit positions.
+const ROUNDING_TOL_CAP: f64 = 1e-9;
 
 /// A point of the curve: positions and path coordinate, with its unit tangent.
 #[derive(Clone, Debug)]
@@ -327,21 +351,25 @@ pub(crate) fn arc_step<K: Kernel>(
     for _ in 0..cfg.max_iterations.max(8) {
         let (q, sigma) = unscale(&z, metric);
         let jac = m.jacobian(&path.at_sigma(sigma), &q);
-        // Each residual relative to its row's magnitude (see `system_residual`).
-        let res = residual_of(&jac, &f_sigma(&jac, path, n));
+        // Each residual relative to its row's magnitude (see `system_residual`), to the
+        // tolerance or, where the inputs are coarser, to what their rounding leaves.
+        let fs = f_sigma(&jac, path, n);
+        let res = residual_of(&jac, &fs);
         if !res.is_finite() {
             return None;
         }
+        let tol =
+            cfg.residual_tol.max((2.0 * rounding_residual(&jac, &fs, path.rounding(sigma))).min(ROUNDING_TOL_CAP));
         let (a, mut g) = bordered(&jac, path, metric, &p.tangent);
         g[n] = -p.tangent.dot(&(&z - &z_pred));
         // Both tests are dimensionless: `g[N]` is a distance in scaled coordinates.
-        if res <= cfg.residual_tol && g[n].abs() <= cfg.residual_tol * (1.0 + ds.abs()) && corrected {
+        if res <= tol && g[n].abs() <= cfg.residual_tol * (1.0 + ds.abs()) && corrected {
             return on_step(&z)
                 .then(|| tangent(m, path, metric, &q, sigma, &p.tangent))
                 .flatten()
                 .map(|tangent| CurvePoint { q, sigma, tangent });
         }
-        corrected |= res <= cfg.residual_tol;
+        corrected |= res <= tol;
         let dz = a.lu().solve(&g)?;
         if !dz.iter().all(|v| v.is_finite()) {
             return None;
