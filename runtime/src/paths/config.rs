@@ -66,6 +66,10 @@ pub struct SweepConfig {
     /// through the change point of a parallelogram or a kite four-bar has been seen to complete
     /// without a crossing event, its later samples on the other branch. Lower it only past a
     /// near-singular position the default refuses, over a range that holds no change point.
+    /// Below the default the residual tolerance cannot tell the two apart: a check that
+    /// followed the curve from the last position the default pins found the parallelogram's
+    /// crossing, and found crossings just as well beside a slide passing a billionth of its
+    /// size from its pivot, which has none.
     pub singular_pivot: f64,
 }
 
