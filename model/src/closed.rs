@@ -20,8 +20,8 @@ use kinloop_codegen::graph::dag::{self, Graph, Leaf, NodeId};
 use kinloop_codegen::plan::closed_form::{ClosedForm, constant_norm2};
 use kinloop_runtime::NewtonConfig;
 use kinloop_runtime::generated::{
-    BlockFailure, acos_on_side, asin_near, check_closed, check_guess, dyad_roots, folded_root_offset, half_turn_if,
-    polar_norm, reduce_turn, sign_at_guess, unwrap_to_turn,
+    BlockFailure, acos_on_side, asin_near, check_closed, check_guess, dyad_d2, dyad_of, dyad_roots, folded_root_offset,
+    half_turn_if, polar_norm, reduce_turn, sign_at_guess, unwrap_to_turn,
 };
 use std::collections::HashMap;
 use std::f64::consts::FRAC_PI_2;
@@ -84,6 +84,29 @@ enum Op {
         b: u32,
         c: u32,
         flip: u32,
+    },
+    /// `(cq, sq) = dyad_of([a, b, e0, e1, l0, l1], c, flip)`: a dyad's.
+    DyadRootsOf {
+        cq: u32,
+        sq: u32,
+        a: u32,
+        b: u32,
+        c: u32,
+        e0: u32,
+        e1: u32,
+        l0: u32,
+        l1: u32,
+        flip: u32,
+    },
+    /// `d = dyad_d2(d2, r2, [e0, e1, l0, l1])`: a dyad's `d2` with a coefficient folded.
+    DyadD2 {
+        d: u32,
+        d2: u32,
+        r2: u32,
+        e0: u32,
+        e1: u32,
+        l0: u32,
+        l1: u32,
     },
     /// `d = folded_root_offset(d2, r2, a, b, c, flip)`.
     RootOffset {
@@ -171,6 +194,8 @@ impl Op {
             }
             Op::FlipSign { flip, a, b, bound, g } => vec![flip, a, b, bound, g],
             Op::DyadRoots { cq, sq, a, b, c, flip } => vec![cq, sq, a, b, c, flip],
+            Op::DyadRootsOf { cq, sq, a, b, c, e0, e1, l0, l1, flip } => vec![cq, sq, a, b, c, e0, e1, l0, l1, flip],
+            Op::DyadD2 { d, d2, r2, e0, e1, l0, l1 } => vec![d, d2, r2, e0, e1, l0, l1],
             Op::RootOffset { d, d2, r2, a, b, c, flip } => vec![d, d2, r2, a, b, c, flip],
             Op::PolarNorm { d, r2, e0, e1 } => vec![d, r2, e0, e1],
             Op::PolarSide { s, cq, sq, gs } => vec![s, cq, sq, gs],
@@ -343,6 +368,15 @@ impl ClosedProg {
                         let (c0, s0) = dyad_roots(v(a), v(b), v(c), flag(flip), cfg)?;
                         set(cq, c0);
                         set(sq, s0);
+                    }
+                    Op::DyadRootsOf { cq, sq, a, b, c, e0, e1, l0, l1, flip } => {
+                        let dyad = [v(a), v(b), v(e0), v(e1), v(l0), v(l1)];
+                        let (c0, s0) = dyad_of(dyad, v(c), flag(flip), cfg)?;
+                        set(cq, c0);
+                        set(sq, s0);
+                    }
+                    Op::DyadD2 { d, d2, r2, e0, e1, l0, l1 } => {
+                        set(d, dyad_d2(v(d2), v(r2), [v(e0), v(e1), v(l0), v(l1)]))
                     }
                     Op::RootOffset { d, d2, r2, a, b, c, flip } => {
                         set(d, folded_root_offset(v(d2), v(r2), v(a), v(b), v(c), flag(flip), cfg)?)
@@ -555,19 +589,33 @@ impl Build<'_> {
 
     /// The root `(cos q, sin q)` of `a cos q + b sin q = c` on the side the register `flip`
     /// picks (the emitter's `root`).
-    fn root(&mut self, a: V, b: V, c: V, flip: u32) -> (V, V) {
+    fn root(&mut self, a: V, b: V, c: V, flip: u32, links: Option<([V; 2], [V; 2])>) -> (V, V) {
         if let (V::R(_), V::R(_), V::R(_)) = (a, b, c) {
             let (a, b, c) = (self.reg(a), self.reg(b), self.reg(c));
             let (cq, sq) = (self.extra.fresh(), self.extra.fresh());
             self.temps.insert(cq, None);
             self.temps.insert(sq, None);
-            self.ops.push(Op::DyadRoots { cq, sq, a, b, c, flip });
+            match links {
+                Some(([e0, e1], [l0, l1])) => {
+                    let (e0, e1, l0, l1) = (self.reg(e0), self.reg(e1), self.reg(l0), self.reg(l1));
+                    self.ops.push(Op::DyadRootsOf { cq, sq, a, b, c, e0, e1, l0, l1, flip });
+                }
+                None => self.ops.push(Op::DyadRoots { cq, sq, a, b, c, flip }),
+            }
             return (V::R(cq), V::R(sq));
         }
         let (aa, bb) = (self.mul(a, a), self.mul(b, b));
         let r2 = self.add(aa, bb);
         let cc = self.mul(c, c);
         let d2 = self.sub(r2, cc);
+        let d2 = match links {
+            Some(([e0, e1], [l0, l1])) => {
+                let (d2, r2) = (self.reg(d2), self.reg(r2));
+                let (e0, e1, l0, l1) = (self.reg(e0), self.reg(e1), self.reg(l0), self.reg(l1));
+                self.op(|d| Op::DyadD2 { d, d2, r2, e0, e1, l0, l1 })
+            }
+            None => d2,
+        };
         let (d2, r2r, ar, br, cr) = (self.reg(d2), self.reg(r2), self.reg(a), self.reg(b), self.reg(c));
         // In the emitter's order: the value free of the root ahead of it (`root` in
         // `codegen/src/emit/closed_form.rs`).
@@ -620,13 +668,13 @@ impl Build<'_> {
             let (r, right, flip) = (self.extra.fresh(), self.extra.fresh(), self.extra.fresh());
             let breg = self.reg(b);
             self.ops.push(Op::Side { r, right, flip, b: breg, g });
-            let (cq, sq) = self.root(a, b, c, flip);
+            let (cq, sq) = self.root(a, b, c, flip, None);
             let s = self.reg(sq);
             let q = self.op(|d| Op::AsinNear { d, s, right, r, g });
             return [q, cq, sq];
         }
         let flip = self.flip_at_guess(a, b, g);
-        let (cq, sq) = self.root(a, b, c, flip);
+        let (cq, sq) = self.root(a, b, c, flip, None);
         let (c, s) = (self.reg(cq), self.reg(sq));
         let q = if b.is_zero() {
             self.op(|d| Op::AcosUnwrap { d, c, s, g })
@@ -673,7 +721,7 @@ impl Build<'_> {
         let l1l0 = self.sub(l1, l0);
         let x = self.sub(l1l0, ee);
         let cc = self.mul(V::C(0.5), x);
-        let (cq, sq) = self.root(ca, cb, cc, flip);
+        let (cq, sq) = self.root(ca, cb, cc, flip, Some((e, [l0, l1])));
         let (cq, sq) = (V::R(self.place(cq, targets[2])), V::R(self.place(sq, targets[3])));
         let dx = self.dot(&[(a[0][0], cq), (a[0][1], sq)]);
         let vx = self.add(e[0], dx);
@@ -745,7 +793,7 @@ impl Build<'_> {
         let (x, y) = (self.mul(d[0], e[1]), self.mul(d[1], e[0]));
         let c = self.sub(x, y);
         let flip = self.flip_at_guess(a, b, g);
-        let (cq, sq) = self.root(a, b, c, flip);
+        let (cq, sq) = self.root(a, b, c, flip, None);
         let t = self.dot(&[(m[0][0], cq), (m[0][1], sq)]);
         let r0 = self.add(t, e[0]);
         let t = self.dot(&[(m[1][0], cq), (m[1][1], sq)]);

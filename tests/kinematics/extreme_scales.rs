@@ -381,3 +381,49 @@ fn a_length_input_solves_at_every_scale() {
     eprintln!("cylinder over scales: closed form {:.1e}, Newton {:.1e}", worst[0], worst[1]);
     assert!(worst[0] <= SCALE_TOL && worst[1] <= SCALE_TOL, "{worst:?}");
 }
+
+/// Links of very different lengths in one dyad: a parallelogram four-bar of crank and rocker 1
+/// on a coupler and frame of `k` (`a = c = 1`, `b = d = k`), whose rocker on its parallelogram
+/// branch turns with the crank, `gamma = phi` exactly, and whose coupler stays parallel to the
+/// frame. The closed form's rocker is that angle to the data's own rounding (the frame's end at
+/// `cos phi - k` is a double `eps k` apart, so `gamma` is known to about `eps k` of the unit
+/// link), as the Newton twin's is. It solved the long coupler's angle first from a near
+/// tangent circle intersection: `eps / sin` of the dyad's thin angle (`~1 / k`), which left the
+/// rocker 2.6e-10 rad off at `k = 2e3`, 2.9e-4 at `2e6` and radians off at `2e9` with a
+/// healthy pivot ratio, no error and a loop residual of 33 unit links.
+#[test]
+fn a_dyad_of_a_short_and_a_long_link_keeps_the_short_links_angle() {
+    for k in [2e3, 2e6, 2e9, 2e12] {
+        let m = FourBar { a: 1.0, b: k, c: 1.0, d: k };
+        let twin = FourBarNewton { a: 1.0, b: k, c: 1.0, d: k };
+        for phi in [-2.8, -1.1, 0.3, 1.7, 2.9] {
+            // The parallelogram branch: beta = 0, gamma = phi.
+            let closed = m.kinematics(phi, &FourBarUnknowns { beta: 0.0, gamma: phi }).unwrap();
+            let newton = twin.kinematics(phi, &FourBarNewtonUnknowns { beta: 0.0, gamma: phi }).unwrap();
+            // Four roundings of the frame's end, `eps k` each, over the unit link.
+            let known = 4.0 * f64::EPSILON * k;
+            for (path, q) in
+                [("closed form", [closed.q.beta, closed.q.gamma]), ("Newton", [newton.q.beta, newton.q.gamma])]
+            {
+                assert!(
+                    wrap(q[1] - phi).abs() <= known,
+                    "k {k:e}, phi {phi}, {path}: gamma {} (off {:e})",
+                    q[1],
+                    q[1] - phi
+                );
+                // The coupler's angle, its offset over its own length `k`.
+                assert!(wrap(q[0]).abs() <= known / k, "k {k:e}, phi {phi}, {path}: beta {}", q[0]);
+            }
+            // A regular position: its analogs are the parallelogram's (`dgamma/dphi = 1`).
+            assert!((closed.dq.gamma - 1.0).abs() <= 1e3 * known, "k {k:e}, phi {phi}: {:?}", closed.dq);
+        }
+        // A sweep's kernel (its checks deferred) solves the same dyad, between the change
+        // points at 0 and pi (the links in line).
+        let guess = FourBarUnknowns { beta: 0.0, gamma: 0.2 };
+        for st in m.sweep(0.2, 2.9, 23, &guess).unwrap() {
+            let st = st.unwrap();
+            let (phi, gamma) = (st.input.phi, st.q.gamma);
+            assert!(wrap(gamma - phi).abs() <= 4.0 * f64::EPSILON * k, "k {k:e}, sweep at {phi}: gamma {gamma}");
+        }
+    }
+}

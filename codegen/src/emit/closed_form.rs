@@ -256,16 +256,30 @@ fn lever_checks(form: &ClosedForm, cx: &Context) -> TokenStream {
 
 /// Binds `__cq`, `__sq`: the root of `a cos q + b sin q = c` with `h' = -d < 0`, or with
 /// `h' = d > 0` when `flip` holds. With no constant coefficient this is the runtime's
-/// `dyad_roots`; otherwise the same formulas with the constants folded.
-fn root(out: &mut TokenStream, a: &V, b: &V, c: &V, flip: &TokenStream, cx: &Context) {
+/// `dyad_roots` (`dyad_of` given a dyad's `links`, its centres' offset and its links' squared
+/// lengths `[e0, e1, l0², l1²]`, from which its `d2` is recomputed where `a² + b² - c²`
+/// cancels); otherwise the same formulas with the constants folded.
+fn root(out: &mut TokenStream, a: &V, b: &V, c: &V, flip: &TokenStream, links: Option<[&V; 4]>, cx: &Context) {
     let rt = cx.rt;
     if let (V::E(_), V::E(_), V::E(_)) = (a, b, c) {
-        let f = if cx.deferred { quote!(__mode.dyad_roots) } else { quote!(#rt::dyad_roots) };
-        out.extend(quote!(let (__cq, __sq) = #f(#a, #b, #c, #flip, __cfg).map_err(__fail)?;));
+        let call = match (links, cx.deferred) {
+            (Some([e0, e1, l0, l1]), deferred) => {
+                let f = if deferred { quote!(__mode.dyad_of) } else { quote!(#rt::dyad_of) };
+                out.extend(quote!(let __dyad: [f64; 6] = [#a, #b, #e0, #e1, #l0, #l1];));
+                quote!(#f(__dyad, #c, #flip, __cfg))
+            }
+            (None, true) => quote!(__mode.dyad_roots(#a, #b, #c, #flip, __cfg)),
+            (None, false) => quote!(#rt::dyad_roots(#a, #b, #c, #flip, __cfg)),
+        };
+        out.extend(quote!(let (__cq, __sq) = #call.map_err(__fail)?;));
         return;
     }
     let r2 = bind(out, "__r2", add(&mul(a, a), &mul(b, b)));
     let d2 = sub(&r2, &mul(c, c));
+    let d2 = match links {
+        Some([e0, e1, l0, l1]) => V::E(quote!(#rt::dyad_d2(#d2, #r2, [#e0, #e1, #l0, #l1]))),
+        None => d2,
+    };
     // Deferred, a root that does not exist is NaN; a zero radius gives `0 · ∞` below, NaN too.
     // Given the coefficients too: where their squares leave the range of `f64` it rescales.
     let f = if cx.deferred { quote!(__mode.folded_root_offset) } else { quote!(#rt::folded_root_offset) };
@@ -364,7 +378,7 @@ fn angle_equation(a: &V, b: &V, c: &V, u: usize, cx: &Context) -> TokenStream {
             let __right: bool = __r.abs() < ::core::f64::consts::FRAC_PI_2;
             let __flip: bool = (#b > 0.0) == __right;
         };
-        root(&mut out, a, b, c, &quote!(__flip), cx);
+        root(&mut out, a, b, c, &quote!(__flip), None, cx);
         // A sweep's cache advances it from its anchor, as every other closed-form angle: on the
         // rhombic drive that executed 62 fewer instructions a sample than libm's `asin` when it
         // was measured, though it waits for the cosine (the root's square root) where `asin`
@@ -376,7 +390,7 @@ fn angle_equation(a: &V, b: &V, c: &V, u: usize, cx: &Context) -> TokenStream {
     }
     let flip = flip_at_guess(a, b, g, cx);
     let mut out = quote!(let __flip: bool = #flip;);
-    root(&mut out, a, b, c, &quote!(__flip), cx);
+    root(&mut out, a, b, c, &quote!(__flip), None, cx);
     // `a cos q = c`: `acos` of the cosine on the sine's side (cheaper than `atan2`).
     let q = if zero(b) {
         let exact = on_turn(quote!(#rt::acos_on_side(__cq, __sq)), g, cx);
@@ -434,7 +448,7 @@ fn dyad(
     let l1 = bind(&mut out, "__l1", dot(&[(&b[0][0], &b[0][0]), (&b[1][0], &b[1][0])]));
     let ee = dot(&[(&e[0], &e[0]), (&e[1], &e[1])]);
     let cc = bind(&mut out, "__c", mul(&V::C(0.5), &sub(&sub(&l1, &l0), &ee)));
-    root(&mut out, &ca, &cb, &cc, &quote!(__flip), cx);
+    root(&mut out, &ca, &cb, &cc, &quote!(__flip), Some([&e[0], &e[1], &l0, &l1]), cx);
     let (cq, sq) = (local("__cq"), local("__sq"));
     let vx = bind(&mut out, "__vx", add(&e[0], &dot(&[(&a[0][0], &cq), (&a[0][1], &sq)])));
     let vy = bind(&mut out, "__vy", add(&e[1], &dot(&[(&a[1][0], &cq), (&a[1][1], &sq)])));
@@ -521,7 +535,7 @@ fn angle_slider(m: &[[NodeId; 2]; 2], d: &[NodeId; 2], e: &[NodeId; 2], u: usize
     let c = bind(&mut out, "__c", sub(&mul(&d[0], &e[1]), &mul(&d[1], &e[0])));
     let flip = flip_at_guess(&a, &b, &guess_of(u), cx);
     out.extend(quote!(let __flip: bool = #flip;));
-    root(&mut out, &a, &b, &c, &quote!(__flip), cx);
+    root(&mut out, &a, &b, &c, &quote!(__flip), None, cx);
     let (cq, sq) = (local("__cq"), local("__sq"));
     let r0 = add(&dot(&[(&m[0][0], &cq), (&m[0][1], &sq)]), &e[0]);
     let r1 = add(&dot(&[(&m[1][0], &cq), (&m[1][1], &sq)]), &e[1]);

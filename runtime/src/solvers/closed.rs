@@ -259,6 +259,95 @@ pub fn dyad_roots(a: f64, b: f64, c: f64, flip: bool, cfg: &NewtonConfig) -> Res
     Ok(roots_of_offset(a, b, c, r2, d))
 }
 
+/// [`dyad_roots`] for a dyad's circle intersection `|e + m0 c0| = |m1 c1|`: the root of `a cos q
+/// + b sin q = c` given `dyad = [a, b, e0, e1, l0², l1²]`, the coefficients (`(a, b) = m0ᵀ e`,
+/// `c = (l1² - l0² - |e|²) / 2`), the centres' offset `e` and the links' squared lengths: the
+/// same roots, with `d2` from the triangle of the lengths where `a² + b² - c²` cancels (see
+/// [`dyad_d2`]).
+///
+/// ```
+/// use kinloop_runtime::generated::{dyad_of, dyad_roots};
+/// use kinloop_runtime::NewtonConfig;
+/// let cfg = NewtonConfig::default();
+/// // The coupler of a parallelogram four-bar, crank and rocker 1 on a coupler and frame of 2e9,
+/// // at a crank angle of 0.3: `e` from the frame's pivot to the crank's end, `m0` the coupler
+/// // (2e9), `m1` the rocker. On the parallelogram branch the coupler lies along the frame.
+/// let (k, phi) = (2e9f64, 0.3f64);
+/// let e = [phi.cos() - k, phi.sin()];
+/// let (a, b) = (k * e[0], k * e[1]);
+/// let c = 0.5 * ((1.0 - k * k) - (e[0] * e[0] + e[1] * e[1]));
+/// let (_, sq) = dyad_of([a, b, e[0], e[1], k * k, 1.0], c, true, &cfg).unwrap();
+/// assert!(sq.abs() < 1e-15);
+/// // From the coefficients alone, the coupler's 2e9 turn by 1.7e-8 rad: 34 crank lengths.
+/// let (_, sq) = dyad_roots(a, b, c, true, &cfg).unwrap();
+/// assert!(sq.abs() > 1e-8);
+/// ```
+#[inline(always)]
+pub fn dyad_of(dyad: [f64; 6], c: f64, flip: bool, cfg: &NewtonConfig) -> Result<(f64, f64), BlockFailure> {
+    let [a, b, e0, e1, l0, l1] = dyad;
+    let r2 = a * a + b * b;
+    // Written so that a NaN takes the rescaled path too (which then fails as below).
+    if !(f64::MIN_POSITIVE..=f64::MAX).contains(&r2) {
+        return dyad_roots_rescaled(a, b, c, flip, cfg);
+    }
+    let d2 = r2 - c * c;
+    // `root_offset`'s test with `d2` against its cancellation instead of zero: one test.
+    let d = if d2 >= r2 * DYAD_CANCELLED && r2 >= f64::MIN_POSITIVE {
+        root_offset_deferred(d2, flip)
+    } else {
+        dyad_offset_cancelled(d2, r2, c, [e0, e1, l0, l1], flip, cfg)?
+    };
+    Ok(roots_of_offset(a, b, c, r2, d))
+}
+
+/// [`dyad_of`]'s root offset where `d2` is negative or cancelled: recomputed from the triangle
+/// ([`dyad_d2`]), then [`root_offset`]'s.
+#[cold]
+#[inline(never)]
+fn dyad_offset_cancelled(
+    d2: f64,
+    r2: f64,
+    c: f64,
+    links: [f64; 4],
+    flip: bool,
+    cfg: &NewtonConfig,
+) -> Result<f64, BlockFailure> {
+    root_offset(dyad_d2(d2, r2, links), r2, c, flip, cfg)
+}
+
+/// `d2 = r2 - c²` of a dyad's circle intersection, recomputed from the triangle of its lengths
+/// where the subtraction cancels (`|d2| < r2 / 2^20`), given its `links` `[e0, e1, l0², l1²]`
+/// (see [`dyad_of`]): `d2 = 4 A²` for the triangle of sides `l0`, `l1` and `|e|` (area `A`), by Kahan's stable form of Heron's formula. The direct
+/// `d2` carries an error of about `eps r2` (that of `c`, whose terms are the squares of the
+/// lengths), so the root's angle one of `eps / sin θ` for the triangle's angle `θ` between `e`
+/// and the first link: where the first link is much the longer (a link of 1 beside links of 2e9),
+/// `θ` is tiny however regular the position, and the short link's angle came out radians off
+/// (2.9e-4 rad at 2e6, 2.6e-10 at 2e3). From the lengths, the error is that of the data's own
+/// rounding. Near a limit position of the dyad (`θ` tiny as well) the same form is the more
+/// accurate. `d2` as it is where it is NaN or the subtraction kept its digits.
+#[inline(always)]
+pub fn dyad_d2(d2: f64, r2: f64, links: [f64; 4]) -> f64 {
+    // A NaN fails the test and keeps `d2`.
+    if d2.abs() < r2 * DYAD_CANCELLED { dyad_d2_stable(links) } else { d2 }
+}
+
+/// `|d2| / r2` below which [`dyad_d2`] recomputes: the direct form's angle is then off by more
+/// than about `500 eps`.
+const DYAD_CANCELLED: f64 = 1.0 / (1u64 << 20) as f64;
+
+/// `4 A²` for the triangle of sides `|e|`, `l0` and `l1` of `links` `[e0, e1, l0², l1²]`, by Kahan's ordering
+/// (sides `x >= y >= z`): `16 A² = (x + (y + z)) (z - (x - y)) (z + (x - y)) (x + (y - z))`,
+/// each factor a sum or a difference of values known to their rounding. Negative where the
+/// sides make no triangle (no root), as `r2 - c²` is.
+#[cold]
+#[inline(never)]
+fn dyad_d2_stable([e0, e1, l0, l1]: [f64; 4]) -> f64 {
+    let mut s = [l0.sqrt(), l1.sqrt(), e0.hypot(e1)];
+    s.sort_by(|p, q| q.total_cmp(p));
+    let [x, y, z] = s;
+    0.25 * ((x + (y + z)) * (z - (x - y)) * (z + (x - y)) * (x + (y - z)))
+}
+
 /// [`dyad_roots`] where `a² + b²` is not a normal number: the coefficients are products of two
 /// lengths, so `a² + b²` is a fourth power of the mechanism's size and leaves the range of
 /// `f64` at sizes beyond about `1e±77`. The equation is homogeneous in `(a, b, c)`: divided by
@@ -423,6 +512,19 @@ pub fn root_offset_deferred(d2: f64, flip: bool) -> f64 {
     if flip { -d2.sqrt() } else { d2.sqrt() }
 }
 
+/// [`dyad_of`] without its test: the same formulas, NaN where it fails.
+#[inline(always)]
+pub fn dyad_of_deferred(dyad: [f64; 6], c: f64, flip: bool) -> (f64, f64) {
+    let [a, b, ..] = dyad;
+    let r2 = a * a + b * b;
+    // Where the checked step rescales (`a² + b²` not normal), or recomputes a cancelled `d2`
+    // from the triangle, a NaN trace: the checked kernel then answers.
+    let r2 = if r2 >= f64::MIN_POSITIVE { r2 } else { f64::NAN };
+    let d2 = r2 - c * c;
+    let d2 = if d2 >= r2 * DYAD_CANCELLED { d2 } else { f64::NAN };
+    roots_of_offset(a, b, c, r2, root_offset_deferred(d2, flip))
+}
+
 /// [`dyad_roots`] without its test: the same formulas, NaN where it
 /// fails (a negative `d2`, or `r2 = 0`: `0 · ∞`).
 #[inline(always)]
@@ -456,6 +558,23 @@ mod tests {
     use super::*;
     use crate::solvers::turns::{reduce_turn, unwrap_to_turn};
     use core::f64::consts::TAU;
+
+    /// The triangle's `4 A²` is `r2 - c²` wherever the subtraction keeps its digits (sides of
+    /// every order, a reflection's sign of `e` included), and no triangle is a negative one.
+    #[test]
+    fn the_triangle_of_a_dyad_gives_its_d2() {
+        for (e, l0, l1) in [([3.0, 0.0], 4.0, 5.0), ([-1.2, 0.7], 2.5, 1.9), ([0.1, -0.2], 0.3, 0.25)] {
+            let ee: f64 = e[0] * e[0] + e[1] * e[1];
+            let r2 = l0 * l0 * ee;
+            let c = 0.5 * ((l1 * l1 - l0 * l0) - ee);
+            let direct = r2 - c * c;
+            let stable = dyad_d2_stable([e[0], e[1], l0 * l0, l1 * l1]);
+            assert!((stable - direct).abs() <= 1e-14 * r2, "{e:?} {l0} {l1}: {stable} vs {direct}");
+        }
+        // Sides 1, 1 and 3: no triangle, as `r2 - c² = 9 - 4.5^2` says.
+        let stable = dyad_d2_stable([3.0, 0.0, 1.0, 1.0]);
+        assert!(stable < 0.0 && (stable - 9.0 * (1.0 - 20.25 / 9.0)).abs() < 1e-12, "{stable}");
+    }
 
     /// The root satisfies the equation and has the requested sign of `h' = b cos q - a sin q`.
     #[test]

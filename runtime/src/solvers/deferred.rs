@@ -33,8 +33,8 @@
 //! the values its error needs kept alive.
 
 use super::closed::{
-    check_closed, dyad_roots, dyad_roots_deferred, folded_root_offset, largest_precise_angle, polar_norm,
-    polar_norm_deferred, root_offset, root_offset_deferred,
+    check_closed, dyad_of, dyad_of_deferred, dyad_roots, dyad_roots_deferred, folded_root_offset,
+    largest_precise_angle, polar_norm, polar_norm_deferred, root_offset, root_offset_deferred,
 };
 use super::newton::{BlockFailure, NewtonConfig};
 
@@ -112,6 +112,12 @@ impl<const CHECKED: bool> Checks<CHECKED> {
         cfg: &NewtonConfig,
     ) -> Result<(f64, f64), BlockFailure> {
         if CHECKED { dyad_roots(a, b, c, flip, cfg) } else { Ok(dyad_roots_deferred(a, b, c, flip)) }
+    }
+
+    /// [`dyad_of`], or deferred [`dyad_of_deferred`].
+    #[inline(always)]
+    pub fn dyad_of(self, dyad: [f64; 6], c: f64, flip: bool, cfg: &NewtonConfig) -> Result<(f64, f64), BlockFailure> {
+        if CHECKED { dyad_of(dyad, c, flip, cfg) } else { Ok(dyad_of_deferred(dyad, c, flip)) }
     }
 
     /// [`polar_norm`], or deferred [`polar_norm_deferred`].
