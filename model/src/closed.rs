@@ -588,15 +588,16 @@ impl Build<'_> {
     }
 
     /// The root `(cos q, sin q)` of `a cos q + b sin q = c` on the side the register `flip`
-    /// picks (the emitter's `root`).
-    fn root(&mut self, a: V, b: V, c: V, flip: u32, links: Option<([V; 2], [V; 2])>) -> (V, V) {
+    /// picks (the emitter's `root`); a dyad's `links` `[e0, e1, l0², l1²]` recompute its `d2`
+    /// where `a² + b² - c²` cancels (`dyad_of`, `dyad_d2`).
+    fn root(&mut self, a: V, b: V, c: V, flip: u32, links: Option<[V; 4]>) -> (V, V) {
         if let (V::R(_), V::R(_), V::R(_)) = (a, b, c) {
             let (a, b, c) = (self.reg(a), self.reg(b), self.reg(c));
             let (cq, sq) = (self.extra.fresh(), self.extra.fresh());
             self.temps.insert(cq, None);
             self.temps.insert(sq, None);
             match links {
-                Some(([e0, e1], [l0, l1])) => {
+                Some([e0, e1, l0, l1]) => {
                     let (e0, e1, l0, l1) = (self.reg(e0), self.reg(e1), self.reg(l0), self.reg(l1));
                     self.ops.push(Op::DyadRootsOf { cq, sq, a, b, c, e0, e1, l0, l1, flip });
                 }
@@ -609,7 +610,7 @@ impl Build<'_> {
         let cc = self.mul(c, c);
         let d2 = self.sub(r2, cc);
         let d2 = match links {
-            Some(([e0, e1], [l0, l1])) => {
+            Some([e0, e1, l0, l1]) => {
                 let (d2, r2) = (self.reg(d2), self.reg(r2));
                 let (e0, e1, l0, l1) = (self.reg(e0), self.reg(e1), self.reg(l0), self.reg(l1));
                 self.op(|d| Op::DyadD2 { d, d2, r2, e0, e1, l0, l1 })
@@ -721,7 +722,7 @@ impl Build<'_> {
         let l1l0 = self.sub(l1, l0);
         let x = self.sub(l1l0, ee);
         let cc = self.mul(V::C(0.5), x);
-        let (cq, sq) = self.root(ca, cb, cc, flip, Some((e, [l0, l1])));
+        let (cq, sq) = self.root(ca, cb, cc, flip, Some([e[0], e[1], l0, l1]));
         let (cq, sq) = (V::R(self.place(cq, targets[2])), V::R(self.place(sq, targets[3])));
         let dx = self.dot(&[(a[0][0], cq), (a[0][1], sq)]);
         let vx = self.add(e[0], dx);

@@ -181,8 +181,6 @@ pub(crate) fn trace<K: Kernel>(
     let mut det_a = det_at(&a);
     let mut ds = ds0.min(MAX_ARC_STEP);
     let mut walked = 0.0;
-    // Where the walk began, for the rate at which the input's advance slows along the curve.
-    let (s_first, dsigma_first) = (0.0, start.dsigma());
     for _ in 0..MAX_TRACE_STEPS {
         if walked >= max_arc {
             break;
@@ -195,8 +193,9 @@ pub(crate) fn trace<K: Kernel>(
         else {
             ds *= 0.5;
             if ds < 1e-14 * (1.0 + max_arc) {
-                return fold_at_rounding(m, path, metric, &a, (walked - s_first, dsigma_first - a.dsigma()))
-                    .map(Found::Fold);
+                // The rate at which the input's advance slowed over the walk.
+                let rate = (start.dsigma() - a.dsigma()) / walked;
+                return fold_at_rounding(m, path, metric, &a, rate).map(Found::Fold);
             }
             continue;
         };
@@ -255,19 +254,18 @@ pub(crate) fn trace<K: Kernel>(
 /// `None`. Far out along a path (inputs of fifty thousand turns, doubles 6e-11 apart) the
 /// curve cannot be followed closer to a limit position than a few of the inputs' rounding
 /// steps: a step's input rounds past the limit, where there is no solution. `a` counts as the
-/// limit position where the input's advance along the curve, slowing at the rate `slowing`
-/// (its fall `(walked, fall)` over the walk), would stop within four rounding steps: the input
-/// left to the limit is `dsigma^2 / (2 rate)` in arclength units, and the Jacobian there is
-/// singular to about its square root (see [`fold_pivot`]).
+/// limit position where the input's advance along the curve (`dsigma`, slowing by `rate` per
+/// unit of arclength over the walk) would stop within four rounding steps: the input left to
+/// the limit is `dsigma^2 / (2 rate)` in arclength units, and the Jacobian there is singular to
+/// about its square root (see [`fold_pivot`]).
 fn fold_at_rounding<K: Kernel>(
     m: &K,
     path: &Path<X<K>>,
     metric: &Metric<Q<K>>,
     a: &CurvePoint<Q<K>>,
-    (walked, fall): (f64, f64),
+    rate: f64,
 ) -> Option<CurvePoint<Q<K>>> {
     let dsigma = a.dsigma();
-    let rate = fall / walked;
     if !(dsigma > 0.0 && rate > 0.0 && rate.is_finite()) {
         return None;
     }
@@ -281,8 +279,9 @@ fn fold_at_rounding<K: Kernel>(
 /// (the Jacobian singular) rather than a kink (regular): `1e-6`, or where the inputs are coarse,
 /// ten times the square root of their rounding in the inputs' units: a limit position located
 /// to a distance `e` of the input leaves a pivot ratio of a few times `sqrt(e)` (the curve is a
-/// parabola there): `1e-6` for inputs up to about fifty radians (3e-6 at a hundred turns), `8e-5` at fifty thousand
-/// turns (where the limit located to four of the input's doubles left `1.9e-5`).
+/// parabola there): `1e-6` for inputs up to about fifty radians (3e-6 at a hundred turns),
+/// `8e-5` at fifty thousand turns (where the limit located to four of the input's doubles left
+/// `1.9e-5`).
 pub(crate) fn fold_pivot<X: Store, Q>(path: &Path<X>, metric: &Metric<Q>, sigma: f64) -> f64 {
     (10.0 * (path.rounding(sigma) / metric.sigma).sqrt()).max(1e-6)
 }

@@ -317,8 +317,8 @@ fn dyad_offset_cancelled(
 
 /// `d2 = r2 - c²` of a dyad's circle intersection, recomputed from the triangle of its lengths
 /// where the subtraction cancels (`|d2| < r2 / 2^20`), given its `links` `[e0, e1, l0², l1²]`
-/// (see [`dyad_of`]): `d2 = 4 A²` for the triangle of sides `l0`, `l1` and `|e|` (area `A`), by Kahan's stable form of Heron's formula. The direct
-/// `d2` carries an error of about `eps r2` (that of `c`, whose terms are the squares of the
+/// (see [`dyad_of`]): `d2 = 4 A²` for the triangle of sides `l0`, `l1` and `|e|` (area `A`),
+/// by Kahan's stable form of Heron's formula. The direct `d2` carries an error of about `eps r2` (that of `c`, whose terms are the squares of the
 /// lengths), so the root's angle one of `eps / sin θ` for the triangle's angle `θ` between `e`
 /// and the first link: where the first link is much the longer (a link of 1 beside links of 2e9),
 /// `θ` is tiny however regular the position, and the short link's angle came out radians off
@@ -335,8 +335,8 @@ pub fn dyad_d2(d2: f64, r2: f64, links: [f64; 4]) -> f64 {
 /// than about `500 eps`.
 const DYAD_CANCELLED: f64 = 1.0 / (1u64 << 20) as f64;
 
-/// `4 A²` for the triangle of sides `|e|`, `l0` and `l1` of `links` `[e0, e1, l0², l1²]`, by Kahan's ordering
-/// (sides `x >= y >= z`): `16 A² = (x + (y + z)) (z - (x - y)) (z + (x - y)) (x + (y - z))`,
+/// `4 A²` for the triangle of sides `|e|`, `l0` and `l1` of `links` `[e0, e1, l0², l1²]`, by
+/// Kahan's ordering (sides `x >= y >= z`): `16 A² = (x + (y + z)) (z - (x - y)) (z + (x - y)) (x + (y - z))`,
 /// each factor a sum or a difference of values known to their rounding. Negative where the
 /// sides make no triangle (no root), as `r2 - c²` is.
 #[cold]
