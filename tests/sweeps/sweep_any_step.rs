@@ -750,7 +750,11 @@ fn a_five_bar_driven_to_its_workspace_edge_stops_at_a_limit_position() {
 /// from the change point, 0.41 with 17 samples on the Newton path; 2.6 rad in the second
 /// case), and once such points were refused, the sweeps failed. In the third and fourth cases
 /// the located point, a millionth of a radian from the change point, kept the augmented
-/// Jacobian's rank and was taken for a limit position, so the sweeps failed too.
+/// Jacobian's rank and was taken for a limit position, so the sweeps failed too. In the fifth
+/// and sixth, the sweep's steps came within a ten-millionth of the change point before they
+/// failed, and the trace from there could not leave it (every step's tangent turned too
+/// sharply): the sweeps failed on the Newton path at every number of samples, until the trace
+/// was made once more from a well-conditioned position behind.
 #[test]
 fn a_grashof_equal_change_point_is_located_as_a_crossing() {
     let cases = [
@@ -781,6 +785,20 @@ fn a_grashof_equal_change_point_is_located_as_a_crossing() {
             -0.5624195727679497,
             [2.3717620189749606, 2.151011151974064],
             0.11964221182741286,
+            0.0,
+        ),
+        (
+            [4.57196510232205, 3.457058376158073, 0.233923075213138, 7.795100403266986],
+            0.12433719071611327,
+            [-0.11911200353516008, 0.7311557881043248],
+            -7.197413559923778,
+            0.0,
+        ),
+        (
+            [2.3405791865352605, 1.9129088438773618, 0.24679238273019408, 0.6744627253880926],
+            0.07829660567836338,
+            [-3.052795725282466, 3.0871275562823555],
+            -17.869347691339676,
             0.0,
         ),
     ];

@@ -149,6 +149,50 @@ fn straight_past<K: Kernel>(
     None
 }
 
+/// A point of the curve behind `start` (toward lower sigma, not before the path's start)
+/// where the Jacobian's pivot ratio is at least `pivot`, or `None`: where a sweep's last
+/// position lies within about a ten-millionth of a change point, the trace from it cannot leave
+/// it (each step's tangent at a position that close turns too sharply to be accepted), and one
+/// from a well-conditioned position behind it passes it. Solved at fixed input from the
+/// analogs' prediction, `1e-4` to `1e-1` of the input's unit back; a solution farther from the
+/// prediction than a tenth of the move is refused, as is one on the other side of a
+/// determinant's root: both can be the other branch crossing at the change point.
+pub(crate) fn backed_off<K: Kernel>(
+    m: &K,
+    path: &Path<X<K>>,
+    metric: &Metric<Q<K>>,
+    start: &CurvePoint<Q<K>>,
+    pivot: f64,
+    cfg: &NewtonConfig,
+) -> Option<CurvePoint<Q<K>>> {
+    let n = m.dims().n();
+    let det_start = signed_det(m, &path.at_sigma(start.sigma), &start.q);
+    let in_unit = |q: &Q<K>, r: &Q<K>| (0..n).map(|u| ((q[u] - r[u]) / metric.unit[u]).abs()).fold(0.0, f64::max);
+    for back in [1e-4, 1e-3, 1e-2, 1e-1] {
+        let sigma = (start.sigma - back * metric.sigma).max(0.0);
+        if sigma >= start.sigma {
+            return None;
+        }
+        let mut guess = start.q.clone();
+        for u in 0..n {
+            guess[u] += start.dq_dsigma(u, metric) * (sigma - start.sigma);
+        }
+        // From a prediction: a restart would find another branch.
+        let Ok(k) = m.kinematics_at(&path.at_sigma(sigma), &guess, &cfg.with_restarts(false)) else { continue };
+        let mut q = guess.clone();
+        q.as_mut().copy_from_slice(k.q());
+        let det = signed_det(m, &path.at_sigma(sigma), &q);
+        if k.health().min_pivot >= pivot
+            && in_unit(&q, &guess) <= 0.1 * in_unit(&guess, &start.q)
+            && (det > 0.0) == (det_start > 0.0)
+        {
+            let tangent = tangent_from_analogs(&k, path, metric);
+            return Some(CurvePoint { q, sigma, tangent });
+        }
+    }
+    None
+}
+
 /// What following the curve found.
 pub(crate) enum Found<Q> {
     /// A limit position: the input reverses here.

@@ -797,45 +797,60 @@ where
         // solution set elsewhere (near a change point within the rounding, crossings were
         // located radians outside the swept range): no event, and the step's failure is
         // reported as it is.
-        let within = |p: &CurvePoint<Q<K>>| {
+        let within = |p: &CurvePoint<Q<K>>, reach: f64| {
             let slack = 1e-12 * path.len;
             (-slack..=path.len + slack).contains(&p.sigma)
                 && (p.sigma - start.sigma).abs() <= (12.0 * reach + 0.25) * metric.sigma
         };
-        match locate::trace(&self.m, &path, &metric, &start, ds0, reach, &newton) {
-            Some(Found::Fold(located) | Found::Crossing(located, _)) if !within(&located) => {}
-            // A true limit position is singular; a reversal where the Jacobian is regular is a
-            // kink of a non-smooth curve (e.g. through `abs`), reported below as a branch error.
-            Some(Found::Fold(fold))
-                if curve::pivot_at(&self.m, &path.at_sigma(fold.sigma), &fold.q)
-                    < locate::fold_pivot(&path, &metric, fold.sigma) =>
-            {
-                let ev = curve::event_at(EventKind::LimitPosition, &path, &fold, block_of(weakest));
-                let at = self.location(&ev.x, Some(weakest));
-                self.events.push(ev);
-                return Err(Error::SweepStopped { kind: EventKind::LimitPosition, at });
-            }
-            // A crossing is a root of the determinant: where the located point is not one, the
-            // trace's sign change was not the crossing's, and the step's failure is reported
-            // instead of a wrong event.
-            Some(Found::Crossing(at, past)) if crossing::is_root(&self.m, &path, &metric, &start, &at) => {
-                // The block whose determinant sign differs on the far side.
-                let beyond = self.m.kinematics_at(&path.at_sigma(past.sigma), &past.q, &newton).ok();
-                let flipped =
-                    beyond.and_then(|n| n.health().det_signs.first_difference(&self.signs)).unwrap_or(weakest);
-                self.events.push(curve::event_at(EventKind::SingularCrossing, &path, &at, block_of(flipped)));
-                if self.cfg.at_singular == AtSingular::Continue
-                    && let Some(n) = self.resume_past(past, target, &metric)
+        // Traced from the last good point, then, where that finds nothing, once more from a
+        // well-conditioned point behind it (see `locate::backed_off`), its reach longer by the
+        // way back.
+        let mut from = Some((start.clone(), ds0, reach));
+        let mut backed = false;
+        while let Some((start_at, ds, reach)) = from.take() {
+            match locate::trace(&self.m, &path, &metric, &start_at, ds, reach, &newton) {
+                Some(Found::Fold(located) | Found::Crossing(located, _)) if !within(&located, reach) => {}
+                // A true limit position is singular; a reversal where the Jacobian is regular is a
+                // kink of a non-smooth curve (e.g. through `abs`), reported below as a branch error.
+                Some(Found::Fold(fold))
+                    if curve::pivot_at(&self.m, &path.at_sigma(fold.sigma), &fold.q)
+                        < locate::fold_pivot(&path, &metric, fold.sigma) =>
                 {
-                    return Ok(n);
+                    let ev = curve::event_at(EventKind::LimitPosition, &path, &fold, block_of(weakest));
+                    let at = self.location(&ev.x, Some(weakest));
+                    self.events.push(ev);
+                    return Err(Error::SweepStopped { kind: EventKind::LimitPosition, at });
                 }
-                let x = self.events[self.events.len() - 1].x.clone();
-                return Err(Error::SweepStopped {
-                    kind: EventKind::SingularCrossing,
-                    at: self.location(&x, Some(flipped)),
+                // A crossing is a root of the determinant: where the located point is not one, the
+                // trace's sign change was not the crossing's, and the step's failure is reported
+                // instead of a wrong event.
+                Some(Found::Crossing(at, past)) if crossing::is_root(&self.m, &path, &metric, &start_at, &at) => {
+                    // The block whose determinant sign differs on the far side.
+                    let beyond = self.m.kinematics_at(&path.at_sigma(past.sigma), &past.q, &newton).ok();
+                    let flipped =
+                        beyond.and_then(|n| n.health().det_signs.first_difference(&self.signs)).unwrap_or(weakest);
+                    self.events.push(curve::event_at(EventKind::SingularCrossing, &path, &at, block_of(flipped)));
+                    if self.cfg.at_singular == AtSingular::Continue
+                        && let Some(n) = self.resume_past(past, target, &metric)
+                    {
+                        return Ok(n);
+                    }
+                    let x = self.events[self.events.len() - 1].x.clone();
+                    return Err(Error::SweepStopped {
+                        kind: EventKind::SingularCrossing,
+                        at: self.location(&x, Some(flipped)),
+                    });
+                }
+                _ => {}
+            }
+            if !backed {
+                backed = true;
+                let pivot = 100.0 * self.cfg.singular_pivot;
+                from = locate::backed_off(&self.m, &path, &metric, &start, pivot, &newton).map(|b| {
+                    let back = (start.sigma - b.sigma) / metric.sigma;
+                    (b, 0.25 * back, reach + back)
                 });
             }
-            _ => {}
         }
 
         // Anything else: report the failure where it happened.
