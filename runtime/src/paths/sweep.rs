@@ -53,7 +53,7 @@ use super::crossing;
 use super::curve::{self, CurvePoint, Metric, Path};
 use super::locate::{self, Found};
 use super::outcome::SweepResult;
-use crate::dims::{Dims, KinState, Square};
+use crate::dims::{Dims, KinState, Square, Store};
 use crate::error::{Error, Quantity};
 use crate::events::{Event, EventKind, Location};
 use crate::kin::{DetSigns, Kin};
@@ -206,6 +206,23 @@ pub struct SweepOf<K: Kernel, S> {
     /// of this rather than one of each.
     stepping: bool,
     _s: PhantomData<fn() -> S>,
+}
+
+/// A crossing the trace located, and the point just past it on the smooth continuation.
+type CrossingPair<Q> = (CurvePoint<Q>, CurvePoint<Q>);
+
+/// Whether a point `p` the trace from `start` found lies where it can: on the swept path, and
+/// within the trace's `reach` of the start (see [`SweepOf::diagnose`]).
+fn found_within<Q, X: Store>(
+    path: &Path<X>,
+    metric: &Metric<Q>,
+    start: &CurvePoint<Q>,
+    p: &CurvePoint<Q>,
+    reach: f64,
+) -> bool {
+    let slack = 1e-12 * path.len;
+    (-slack..=path.len + slack).contains(&p.sigma)
+        && (p.sigma - start.sigma).abs() <= (12.0 * reach + 0.25) * metric.sigma
 }
 
 fn check_finite<K: Kernel>(what: &'static str, v: &[f64], m: &K) -> Result<(), Error> {
@@ -722,6 +739,43 @@ where
         Some(Ok(self.cur()))
     }
 
+    /// Where [`SweepOf::diagnose`] traces the curve once more from behind its start: a
+    /// well-conditioned point (see `locate::backed_off`), the trace's first step and its reach
+    /// longer by the way back.
+    fn behind(
+        &self,
+        path: &Path<X<K>>,
+        metric: &Metric<Q<K>>,
+        start: &CurvePoint<Q<K>>,
+        reach: f64,
+    ) -> Option<(CurvePoint<Q<K>>, f64, f64)> {
+        let pivot = 100.0 * self.cfg.singular_pivot;
+        let b = locate::backed_off(&self.m, path, metric, start, pivot, &self.cfg.newton)?;
+        let back = (start.sigma - b.sigma) / metric.sigma;
+        Some((b, 0.25 * back, reach + back))
+    }
+
+    /// A crossing located by the trace from behind `start` (see [`SweepOf::behind`]), with the
+    /// point past it, or `None` where that trace finds none within its reach.
+    fn crossing_from_behind(
+        &self,
+        path: &Path<X<K>>,
+        metric: &Metric<Q<K>>,
+        start: &CurvePoint<Q<K>>,
+        reach: f64,
+    ) -> Option<CrossingPair<Q<K>>> {
+        let (b, ds, reach) = self.behind(path, metric, start, reach)?;
+        match locate::trace(&self.m, path, metric, &b, ds, reach, &self.cfg.newton)? {
+            Found::Crossing(at, past)
+                if found_within(path, metric, start, &at, reach)
+                    && crossing::is_root(&self.m, path, metric, &b, &at) =>
+            {
+                Some((at, past))
+            }
+            _ => None,
+        }
+    }
+
     /// After a crossing: follows the curve from `p` until the Jacobian is well conditioned again
     /// (so the analogs can be trusted) without passing the sample at `target`; sets `tau` there.
     /// `p`'s tangent is in the scaled coordinates of `metric`.
@@ -797,14 +851,13 @@ where
         // solution set elsewhere (near a change point within the rounding, crossings were
         // located radians outside the swept range): no event, and the step's failure is
         // reported as it is.
-        let within = |p: &CurvePoint<Q<K>>, reach: f64| {
-            let slack = 1e-12 * path.len;
-            (-slack..=path.len + slack).contains(&p.sigma)
-                && (p.sigma - start.sigma).abs() <= (12.0 * reach + 0.25) * metric.sigma
-        };
+        let within = |p: &CurvePoint<Q<K>>, reach: f64| found_within(&path, &metric, &start, p, reach);
         // Traced from the last good point, then, where that finds nothing, once more from a
-        // well-conditioned point behind it (see `locate::backed_off`), its reach longer by the
-        // way back.
+        // well-conditioned point behind it (see `SweepOf::behind`): a sweep whose steps came
+        // within a ten-millionth of a change point failed there. A crossing found from a last
+        // good point that is itself nearly singular is located again from behind, where the
+        // trace's refinement can start (only a crossing: from behind, the curve's turn at a
+        // near-kite's change point was taken for a limit position).
         let mut from = Some((start.clone(), ds0, reach));
         let mut backed = false;
         while let Some((start_at, ds, reach)) = from.take() {
@@ -825,6 +878,14 @@ where
                 // trace's sign change was not the crossing's, and the step's failure is reported
                 // instead of a wrong event.
                 Some(Found::Crossing(at, past)) if crossing::is_root(&self.m, &path, &metric, &start_at, &at) => {
+                    // From a last good point itself near the crossing, the refinement cannot
+                    // start and the root stands a few millionths off: located again from behind.
+                    let near = k.health().min_pivot < 100.0 * self.cfg.singular_pivot;
+                    let (at, past) = if near && !backed {
+                        self.crossing_from_behind(&path, &metric, &start, reach).unwrap_or((at, past))
+                    } else {
+                        (at, past)
+                    };
                     // The block whose determinant sign differs on the far side.
                     let beyond = self.m.kinematics_at(&path.at_sigma(past.sigma), &past.q, &newton).ok();
                     let flipped =
@@ -845,11 +906,7 @@ where
             }
             if !backed {
                 backed = true;
-                let pivot = 100.0 * self.cfg.singular_pivot;
-                from = locate::backed_off(&self.m, &path, &metric, &start, pivot, &newton).map(|b| {
-                    let back = (start.sigma - b.sigma) / metric.sigma;
-                    (b, 0.25 * back, reach + back)
-                });
+                from = self.behind(&path, &metric, &start, reach);
             }
         }
 
