@@ -14,7 +14,7 @@
 //! the positions, from which the dyad's branch flag is taken at every sample as the kernel takes
 //! it from its guess.
 
-use kinloop::__gen::{Factor, Inverse2, dyad_roots_deferred, reduce_turn, unwrap_to_turn};
+use kinloop::__gen::{Factor, Inverse2, dyad_of_deferred, reduce_turn, unwrap_to_turn};
 use kinloop_fixtures::FourBar;
 
 use crate::hand_check::Branch;
@@ -76,7 +76,8 @@ impl<const TERMS: usize> FourBarLaneSketch<TERMS> {
         let t53 = a_cos_phi - d;
         let l1 = neg_c * neg_c;
         let cc = 0.5 * ((l1 - b * b) - (t53 * t53 + a_sin_phi * a_sin_phi));
-        let (cos_beta, sin_beta) = dyad_roots_deferred(b * t53, b * a_sin_phi, cc, flip);
+        let dyad = [b * t53, b * a_sin_phi, t53, a_sin_phi, b * b, l1];
+        let (cos_beta, sin_beta) = dyad_of_deferred(dyad, cc, flip);
         let vx = t53 + b * cos_beta;
         let vy = a_sin_phi + b * sin_beta;
         let il1 = -1.0 / l1;

@@ -21,7 +21,7 @@ use kinloop_codegen::plan::closed_form::{ClosedForm, constant_norm2};
 use kinloop_runtime::NewtonConfig;
 use kinloop_runtime::generated::{
     BlockFailure, acos_on_side, asin_near, check_closed, check_guess, dyad_d2, dyad_of, dyad_roots, folded_root_offset,
-    half_turn_if, polar_norm, reduce_turn, sign_at_guess, unwrap_to_turn,
+    half_turn_if, polar_norm, reduce_turn, root_offset_deferred, sign_at_guess, unwrap_to_turn,
 };
 use std::collections::HashMap;
 use std::f64::consts::FRAC_PI_2;
@@ -378,8 +378,16 @@ impl ClosedProg {
                     Op::DyadD2 { d, d2, r2, e0, e1, l0, l1 } => {
                         set(d, dyad_d2(v(d2), v(r2), [v(e0), v(e1), v(l0), v(l1)]))
                     }
+                    // `folded_root_offset`'s own test first: the coefficients, read only on
+                    // its cold path, are not loaded where it passes (the same value).
                     Op::RootOffset { d, d2, r2, a, b, c, flip } => {
-                        set(d, folded_root_offset(v(d2), v(r2), v(a), v(b), v(c), flag(flip), cfg)?)
+                        let (d2, r2) = (v(d2), v(r2));
+                        let offset = if d2 >= 0.0 && (f64::MIN_POSITIVE..=f64::MAX).contains(&r2) {
+                            root_offset_deferred(d2, flag(flip))
+                        } else {
+                            folded_root_offset(d2, r2, v(a), v(b), v(c), flag(flip), cfg)?
+                        };
+                        set(d, offset)
                     }
                     Op::PolarNorm { d, r2, e0, e1 } => set(d, polar_norm(v(r2), v(e0), v(e1), cfg)?),
                     Op::PolarSide { s, cq, sq, gs } => {
@@ -396,13 +404,13 @@ impl ClosedProg {
                     Op::Atan2Unwrap { d, s, c, g } => set(d, unwrap_to_turn(v(s).atan2(v(c)), v(g))),
                     Op::AcosUnwrap { d, c, s, g } => set(d, unwrap_to_turn(acos_on_side(v(c), v(s)), v(g))),
                     Op::AsinNear { d, s, right, r, g } => set(d, asin_near(v(s), flag(right), v(r), v(g))),
+                    // Only the values the block has read (three or four of six, mostly).
                     Op::Check { out, len, angles } => {
-                        let o = out.map(v);
                         let angles = angles as usize;
                         match len {
-                            3 => check_closed(&[o[0], o[1], o[2]], angles, cfg)?,
-                            4 => check_closed(&[o[0], o[1], o[2], o[3]], angles, cfg)?,
-                            _ => check_closed(&o, angles, cfg)?,
+                            3 => check_closed(&[v(out[0]), v(out[1]), v(out[2])], angles, cfg)?,
+                            4 => check_closed(&[v(out[0]), v(out[1]), v(out[2]), v(out[3])], angles, cfg)?,
+                            _ => check_closed(&out.map(v), angles, cfg)?,
                         }
                     }
                 }
