@@ -280,8 +280,12 @@ pub(crate) fn trace<K: Kernel>(
             // millionth of a radian), where a crossing's augmented Jacobian keeps its rank.
             let at = refine(m, path, metric, &base, &at, cfg).unwrap_or(at);
             // Where a block folds, the input cannot pass, whatever the determinant of the whole
-            // does beyond (several blocks folding at once make a branch point of the whole).
-            if block_folds(m, path, &at) {
+            // does beyond (several blocks folding at once make a branch point of the whole). A
+            // mechanism of one block has no such point: the input passed the sign change with
+            // the walk, so it is a crossing, however loosely located (two branches meeting at a
+            // small angle, as a near-kite's do, leave a located point a millionth of the input
+            // off that looks folded to the rank test).
+            if m.block_count() > 1 && block_folds(m, path, &at) {
                 return Some(Found::Fold(at));
             }
             return Some(Found::Crossing(at, b));
