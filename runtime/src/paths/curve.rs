@@ -240,6 +240,16 @@ impl<Q: Store> CurvePoint<Q> {
     pub fn dq_dsigma(&self, u: usize, metric: &Metric<Q>) -> f64 {
         self.tangent[u] * metric.unit[u] / (self.tangent[self.n()] * metric.sigma)
     }
+
+    /// The positions at `sigma` predicted along the tangent: the guess of a solve at fixed
+    /// input that is to stay on this branch.
+    pub fn predicted(&self, sigma: f64, metric: &Metric<Q>) -> Q {
+        let mut q = self.q.clone();
+        for u in 0..self.n() {
+            q[u] += self.dq_dsigma(u, metric) * (sigma - self.sigma);
+        }
+        q
+    }
 }
 
 /// The physical `(q, sigma)` of scaled coordinates `z`.

@@ -132,10 +132,7 @@ fn straight_past<K: Kernel>(
     let det_a = signed_det(m, &path.at_sigma(a.sigma), &a.q);
     for k in [1.0, 2.0, 4.0, 8.0] {
         let sigma = at.sigma + k * gap;
-        let mut guess = a.q.clone();
-        for u in 0..m.dims().n() {
-            guess[u] += a.dq_dsigma(u, metric) * (sigma - a.sigma);
-        }
+        let guess = a.predicted(sigma, metric);
         // From a prediction: a restart would find another branch.
         let Ok(n) = m.kinematics(&path.at_sigma(sigma), &guess, &cfg.with_restarts(false)) else { continue };
         let mut q = guess;
@@ -173,10 +170,7 @@ pub(crate) fn backed_off<K: Kernel>(
         if sigma >= start.sigma {
             return None;
         }
-        let mut guess = start.q.clone();
-        for u in 0..n {
-            guess[u] += start.dq_dsigma(u, metric) * (sigma - start.sigma);
-        }
+        let guess = start.predicted(sigma, metric);
         // From a prediction: a restart would find another branch.
         let Ok(k) = m.kinematics_at(&path.at_sigma(sigma), &guess, &cfg.with_restarts(false)) else { continue };
         let mut q = guess.clone();

@@ -749,10 +749,15 @@ where
         start: &CurvePoint<Q<K>>,
         reach: f64,
     ) -> Option<(CurvePoint<Q<K>>, f64, f64)> {
-        let pivot = 100.0 * self.cfg.singular_pivot;
-        let b = locate::backed_off(&self.m, path, metric, start, pivot, &self.cfg.newton)?;
+        let b = locate::backed_off(&self.m, path, metric, start, self.well_pinned(), &self.cfg.newton)?;
         let back = (start.sigma - b.sigma) / metric.sigma;
         Some((b, 0.25 * back, reach + back))
+    }
+
+    /// The pivot ratio from which a position counts as well pinned for the diagnosis: a
+    /// hundred times `singular_pivot`, where the trace's refinement of a crossing can start.
+    fn well_pinned(&self) -> f64 {
+        100.0 * self.cfg.singular_pivot
     }
 
     /// A crossing located by the trace from behind `start` (see [`SweepOf::behind`]), with the
@@ -795,10 +800,7 @@ where
             let next = curve::arc_step(&self.m, &path, metric, &p, ds, &newton)?;
             if next.sigma >= end {
                 // Land exactly on the sample, predicting along the curve's tangent.
-                let mut guess = p.q.clone();
-                for u in 0..self.d.n() {
-                    guess[u] += p.dq_dsigma(u, metric) * (end - p.sigma);
-                }
+                let guess = p.predicted(end, metric);
                 let k = self.m.kinematics(&path.at_tau(target), &guess, &newton).ok()?;
                 self.tau = target;
                 return Some(k);
@@ -880,7 +882,7 @@ where
                 Some(Found::Crossing(at, past)) if crossing::is_root(&self.m, &path, &metric, &start_at, &at) => {
                     // From a last good point itself near the crossing, the refinement cannot
                     // start and the root stands a few millionths off: located again from behind.
-                    let near = k.health().min_pivot < 100.0 * self.cfg.singular_pivot;
+                    let near = k.health().min_pivot < self.well_pinned();
                     let (at, past) = if near && !backed {
                         self.crossing_from_behind(&path, &metric, &start, reach).unwrap_or((at, past))
                     } else {

@@ -372,10 +372,7 @@ fn past_crossing<K: Kernel>(
     for k in [1.0, 2.0, 4.0, 8.0, 16.0, 32.0] {
         let arc = k * reach;
         let sigma = p.sigma + dir * arc * metric.sigma;
-        let mut guess = p.q.clone();
-        for u in 0..m.dims().n() {
-            guess[u] += p.dq_dsigma(u, metric) * (sigma - p.sigma);
-        }
+        let guess = p.predicted(sigma, metric);
         let Ok(solved) = m.kinematics(&path.at_sigma(sigma), &guess, &cfg) else { continue };
         let predicted = CurvePoint { q: guess.clone(), sigma, tangent: p.tangent.clone() }.z(metric);
         let mut q = guess;
