@@ -24,8 +24,7 @@ git rev-parse HEAD >"$out/commit"
 git status --porcelain | grep -q . && echo "run-all.sh: uncommitted changes: the run is of the working tree" >&2
 
 echo "run-all.sh: building" >&2
-cargo build --quiet --release -p kinloop-bench --bin closed_form_step --bin report
-cargo build --quiet --release -p kinloop-model --example step_count
+cargo build --quiet --release -p kinloop-bench --bin closed_form_step --bin report --bin step_count
 cargo bench --quiet --no-run -p kinloop-bench --bench step --bench expand
 cargo bench --quiet --no-run -p kinloop-model --bench step
 cargo test --quiet --no-run --test sweeps

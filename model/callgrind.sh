@@ -13,14 +13,14 @@ set -euo pipefail
 
 root="$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)"
 target="${CARGO_TARGET_DIR:-$root/target}"
-bin="$target/release/examples/step_count"
+bin="$target/release/step_count"
 if [ "$#" -gt 0 ]; then
   variants=("$@")
 else
   variants=(rhombic-compiled rhombic-runtime four-bar-compiled four-bar-runtime class-four-compiled class-four-runtime ring-compiled ring-runtime)
 fi
 command -v valgrind >/dev/null || { echo "callgrind.sh: valgrind is not installed" >&2; exit 1; }
-(cd "$root" && cargo build --quiet --release -p kinloop-model --example step_count) >&2
+(cd "$root" && cargo build --quiet --release -p kinloop-bench --bin step_count) >&2
 
 total() {
   valgrind --tool=callgrind --callgrind-out-file=/dev/null \

@@ -3,7 +3,7 @@
 //!
 //! Both steps run in the same harness: one point step per iteration along turns of 720 steps,
 //! each warm-started from the previous position, the sum of the outputs and the first analog
-//! returned (into `black_box`), as `examples/step_count.rs` does under callgrind.
+//! returned (into `black_box`), as `benches/src/bin/step_count.rs` does under callgrind.
 //!
 //! ```text
 //! cargo bench -p kinloop-model --bench step

@@ -3,7 +3,7 @@
 //! the harness that `model/callgrind.sh` runs under callgrind to count instructions per step.
 //!
 //! ```text
-//! cargo run --release -p kinloop-model --example step_count -- VARIANT STEPS
+//! cargo run --release -p kinloop-bench --bin step_count -- VARIANT STEPS
 //! ```
 //!
 //! `VARIANT` is `MECHANISM-compiled` or `MECHANISM-runtime` with `MECHANISM` one of
