@@ -853,6 +853,52 @@ fn a_near_kites_change_point_is_a_crossing_not_a_limit_position() {
     }
 }
 
+/// Near-kites (`a + c = b + d`, `a - d = b - c` a few ten-thousandths of `a`) swept at every
+/// density toward their change point at `phi = 0`, where the branches meet at a small angle and
+/// the angles swing a radian over a ten-thousandth of the input: a crossing there, on both
+/// paths. At 361 samples each failed ("passes within a pivot ratio of 1e-6 ... finds no limit
+/// position or crossing"): the trace from behind the last good position, given a reach longer
+/// by the input's way back only, stopped short of the crossing.
+#[test]
+fn a_near_kite_swept_finely_reaches_its_change_point() {
+    let kites: [([f64; 4], f64, f64, f64); 3] = [
+        (
+            [0.38653371229447564, 0.7319405531217669, 0.7318469166648388, 0.3864400758375475],
+            -1.0,
+            -0.03264782917706244,
+            3.903602885237219,
+        ),
+        (
+            [1.6571034075776032, 0.6392115822270543, 0.639002411351717, 1.6568942367022659],
+            -1.0,
+            -0.42775489435435343,
+            0.4835128231091035,
+        ),
+        (
+            [1.2836268024806032, 1.0137873603795924, 1.0136075261010908, 1.2834469682021017],
+            1.0,
+            1.0758659448866306,
+            -3.507944427536816,
+        ),
+    ];
+    for ([a, b, c, d], side, from, to) in kites {
+        let (cx, cy) = circles(a * from.cos(), a * from.sin(), b, d, 0.0, c, side).expect("the loop closes");
+        let guess = [(cy - a * from.sin()).atan2(cx - a * from.cos()), cy.atan2(cx - d)];
+        for samples in [2, 3, 5, 17, 361] {
+            let stops = [
+                FourBar { a, b, c, d }.sweep(from, to, samples, &guess.into()).unwrap().run().stop,
+                FourBarNewton { a, b, c, d }.sweep(from, to, samples, &guess.into()).unwrap().run().stop,
+            ];
+            for stop in stops {
+                let SweepStop::SingularCrossing(ev) = &stop else { panic!("a = {a}, {samples} samples: {stop:?}") };
+                // Within 1e-5, as in the test above: 1.04e-6 at worst (the first kite at 361
+                // samples), the others within 2.3e-10.
+                assert!(ev.x[0].abs() < 1e-5, "a = {a}, {samples} samples: {ev:?}");
+            }
+        }
+    }
+}
+
 /// A non-Grashof four-bar swept into its limit position (coupler and follower stretched in
 /// line, `cos phi = (a^2 + d^2 - (b + c)^2) / (2 a d)`) from an input whole turns out, up to
 /// [`MAX_TURNS`]: the limit is located to a few of the input's doubles (6e-11 apart at fifty

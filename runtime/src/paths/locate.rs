@@ -146,14 +146,17 @@ fn straight_past<K: Kernel>(
     None
 }
 
-/// A point of the curve behind `start` (toward lower sigma, not before the path's start)
-/// where the Jacobian's pivot ratio is at least `pivot`, or `None`: where a sweep's last
-/// position lies within about a ten-millionth of a change point, the trace from it cannot leave
-/// it (each step's tangent at a position that close turns too sharply to be accepted), and one
-/// from a well-conditioned position behind it passes it. Solved at fixed input from the
-/// analogs' prediction, `1e-4` to `1e-1` of the input's unit back; a solution farther from the
-/// prediction than a tenth of the move is refused, as is one on the other side of a
-/// determinant's root: both can be the other branch crossing at the change point.
+/// A point behind `start` (toward lower sigma, not before the path's start) on its tangent,
+/// where the Jacobian's pivot ratio is at least `pivot` and the determinant has `start`'s sign,
+/// or `None`: where a sweep's last position lies within about a ten-millionth of a change
+/// point, the trace from it cannot leave it (each step's tangent at a position that close turns
+/// too sharply to be accepted), and one from a well-conditioned point behind it passes it. The
+/// point is the tangent's prediction `1e-4` to `1e-1` of the input's unit back, not solved: the
+/// trace's first corrector brings it onto the curve. Solved at its input instead, it is a
+/// position of the curve wherever the closed form or Newton lands near the prediction, and
+/// where a slide passes within 1e-8 of its pivot (a pivot ratio no tolerance resolves) the trace
+/// from there took the mirrored branch for a crossing (and a crank pin's crossing through its
+/// cylinder's pivot was located 4.7e-13 off, not 1e-14): tried, not kept.
 pub(crate) fn backed_off<K: Kernel>(
     m: &K,
     path: &Path<X<K>>,
@@ -162,24 +165,18 @@ pub(crate) fn backed_off<K: Kernel>(
     pivot: f64,
     cfg: &NewtonConfig,
 ) -> Option<CurvePoint<Q<K>>> {
-    let n = m.dims().n();
     let det_start = signed_det(m, &path.at_sigma(start.sigma), &start.q);
-    let in_unit = |q: &Q<K>, r: &Q<K>| (0..n).map(|u| ((q[u] - r[u]) / metric.unit[u]).abs()).fold(0.0, f64::max);
     for back in [1e-4, 1e-3, 1e-2, 1e-1] {
         let sigma = (start.sigma - back * metric.sigma).max(0.0);
         if sigma >= start.sigma {
             return None;
         }
-        let guess = start.predicted(sigma, metric);
-        // From a prediction: a restart would find another branch.
-        let Ok(k) = m.kinematics_at(&path.at_sigma(sigma), &guess, &cfg.with_restarts(false)) else { continue };
-        let mut q = guess.clone();
-        q.as_mut().copy_from_slice(k.q());
+        let q = start.predicted(sigma, metric);
+        // The analogs at the prediction, for its tangent and pivot ratio.
+        let Ok(k) = m.kinematics_at(&path.at_sigma(sigma), &q, cfg) else { continue };
+        // On the other side of a determinant's root lies the other branch crossing there.
         let det = signed_det(m, &path.at_sigma(sigma), &q);
-        if k.health().min_pivot >= pivot
-            && in_unit(&q, &guess) <= 0.1 * in_unit(&guess, &start.q)
-            && (det > 0.0) == (det_start > 0.0)
-        {
+        if k.health().min_pivot >= pivot && (det > 0.0) == (det_start > 0.0) {
             let tangent = tangent_from_analogs(&k, path, metric);
             return Some(CurvePoint { q, sigma, tangent });
         }

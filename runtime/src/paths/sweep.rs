@@ -741,7 +741,7 @@ where
 
     /// Where [`SweepOf::diagnose`] traces the curve once more from behind its start: a
     /// well-conditioned point (see `locate::backed_off`), the trace's first step and its reach
-    /// longer by the way back.
+    /// (`reach` from `start`) longer by the way back in the input.
     fn behind(
         &self,
         path: &Path<X<K>>,
@@ -860,10 +860,12 @@ where
         // good point that is itself nearly singular is located again from behind, where the
         // trace's refinement can start (only a crossing: from behind, the curve's turn at a
         // near-kite's change point was taken for a limit position).
-        let mut from = Some((start.clone(), ds0, reach));
+        // Each trace: its start, first step, reach along the curve, and the reach in the input
+        // that bounds where what it finds may lie.
+        let mut from = Some((start.clone(), ds0, reach, reach));
         let mut backed = false;
-        while let Some((start_at, ds, reach)) = from.take() {
-            match locate::trace(&self.m, &path, &metric, &start_at, ds, reach, &newton) {
+        while let Some((start_at, ds, arc, reach)) = from.take() {
+            match locate::trace(&self.m, &path, &metric, &start_at, ds, arc, &newton) {
                 Some(Found::Fold(located) | Found::Crossing(located, _)) if !within(&located, reach) => {}
                 // A true limit position is singular; a reversal where the Jacobian is regular is a
                 // kink of a non-smooth curve (e.g. through `abs`), reported below as a branch error.
@@ -908,7 +910,18 @@ where
             }
             if !backed {
                 backed = true;
-                from = self.behind(&path, &metric, &start, reach);
+                // The trace from behind walks the way back to `start` before it goes on, and
+                // that way is measured along the curve (the chord between the two points), not
+                // in the input: where two branches meet at a small angle (a near-kite's change
+                // point) the angles swing a radian over a ten-thousandth of the input, and a
+                // reach longer only by the input's way back stopped short of the crossing (a
+                // sweep of 361 samples failed there in one near-kite of eighteen; now one of
+                // fifty). Only here: crossings located again from behind
+                // (`crossing_from_behind`) were located more loosely by the longer walk.
+                from = self.behind(&path, &metric, &start, reach).map(|(b, ds, reach_back)| {
+                    let way_back = (b.z(&metric) - start.z(&metric)).norm();
+                    (b, ds, reach + way_back, reach_back)
+                });
             }
         }
 
