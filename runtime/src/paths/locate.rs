@@ -146,17 +146,13 @@ fn straight_past<K: Kernel>(
     None
 }
 
-/// A point behind `start` (toward lower sigma, not before the path's start) on its tangent,
-/// where the Jacobian's pivot ratio is at least `pivot` and the determinant has `start`'s sign,
-/// or `None`: where a sweep's last position lies within about a ten-millionth of a change
-/// point, the trace from it cannot leave it (each step's tangent at a position that close turns
-/// too sharply to be accepted), and one from a well-conditioned point behind it passes it. The
-/// point is the tangent's prediction `1e-4` to `1e-1` of the input's unit back, not solved: the
-/// trace's first corrector brings it onto the curve. Solved at its input instead, it is a
-/// position of the curve wherever the closed form or Newton lands near the prediction, and
-/// where a slide passes within 1e-8 of its pivot (a pivot ratio no tolerance resolves) the trace
-/// from there took the mirrored branch for a crossing (and a crank pin's crossing through its
-/// cylinder's pivot was located 4.7e-13 off, not 1e-14): tried, not kept.
+/// A point of the curve behind `start` (toward lower sigma, not before the path's start) where
+/// the Jacobian's pivot ratio is at least `pivot` and the determinant has `start`'s sign, with
+/// its tangent oriented as `start`'s, or `None`: where a sweep's last position lies within about
+/// a ten-millionth of a change point, the trace from it cannot leave it (each step's tangent at
+/// a position that close turns too sharply to be accepted), and one from a well-conditioned
+/// point behind it passes it. The tangent's prediction where it can be trusted
+/// ([`predicted_behind`]), else the curve walked back ([`walked_behind`]).
 pub(crate) fn backed_off<K: Kernel>(
     m: &K,
     path: &Path<X<K>>,
@@ -166,12 +162,40 @@ pub(crate) fn backed_off<K: Kernel>(
     cfg: &NewtonConfig,
 ) -> Option<CurvePoint<Q<K>>> {
     let det_start = signed_det(m, &path.at_sigma(start.sigma), &start.q);
+    predicted_behind(m, path, metric, start, det_start, pivot, cfg)
+        .or_else(|| walked_behind(m, path, metric, start, det_start, pivot, cfg))
+}
+
+/// [`backed_off`]'s point on `start`'s tangent, `1e-4` to `1e-1` of the input's unit back, not
+/// solved: the trace's first corrector brings it onto the curve. Only while the prediction moves
+/// the positions by at most a step of the trace ([`MAX_ARC_STEP`]): near a near-kite's change
+/// point the angles swing a radian over a ten-thousandth of the input, and a tangent's
+/// prediction a thousandth back (eleven radians away) lay nowhere near the curve. Solved at its
+/// input instead, the point is a position of the curve wherever the closed form or Newton
+/// lands near the prediction, and where a slide passes within 1e-8 of its pivot (a pivot ratio
+/// no tolerance resolves) the trace from there took the mirrored branch for a crossing: tried,
+/// not kept.
+#[allow(clippy::too_many_arguments)]
+fn predicted_behind<K: Kernel>(
+    m: &K,
+    path: &Path<X<K>>,
+    metric: &Metric<Q<K>>,
+    start: &CurvePoint<Q<K>>,
+    det_start: f64,
+    pivot: f64,
+    cfg: &NewtonConfig,
+) -> Option<CurvePoint<Q<K>>> {
+    let n = m.dims().n();
     for back in [1e-4, 1e-3, 1e-2, 1e-1] {
         let sigma = (start.sigma - back * metric.sigma).max(0.0);
         if sigma >= start.sigma {
             return None;
         }
         let q = start.predicted(sigma, metric);
+        let moved = (0..n).map(|u| ((q[u] - start.q[u]) / metric.unit[u]).abs()).fold(0.0, f64::max);
+        if moved > MAX_ARC_STEP || moved.is_nan() {
+            return None;
+        }
         // The analogs at the prediction, for its tangent and pivot ratio.
         let Ok(k) = m.kinematics_at(&path.at_sigma(sigma), &q, cfg) else { continue };
         // On the other side of a determinant's root lies the other branch crossing there.
@@ -183,6 +207,58 @@ pub(crate) fn backed_off<K: Kernel>(
     }
     None
 }
+
+/// [`backed_off`]'s point found by following the curve backward from `start`, as [`trace`]
+/// follows it forward (steps from `1e-4` growing by half up to [`MAX_ARC_STEP`], each turning
+/// less than [`MIN_TURN_COS`] allows), at most [`WALK_BACK_ARC`] of arclength: the first point
+/// whose pivot ratio reaches `pivot`. A near-kite's branch stays nearly singular over the whole
+/// swing of its folded links (two and a half radians of arclength walked back before a pivot
+/// ratio of 1e-4). `None` where the walk meets a determinant's root or a limit position (the
+/// input turning forward again) first, or leaves the path.
+#[allow(clippy::too_many_arguments)]
+fn walked_behind<K: Kernel>(
+    m: &K,
+    path: &Path<X<K>>,
+    metric: &Metric<Q<K>>,
+    start: &CurvePoint<Q<K>>,
+    det_start: f64,
+    pivot: f64,
+    cfg: &NewtonConfig,
+) -> Option<CurvePoint<Q<K>>> {
+    let mut p = start.clone();
+    p.tangent = -p.tangent;
+    let (mut ds, mut walked) = (1e-4, 0.0);
+    for _ in 0..MAX_TRACE_STEPS {
+        if walked >= WALK_BACK_ARC {
+            break;
+        }
+        let Some(b) = arc_step(m, path, metric, &p, ds, cfg).filter(|b| p.tangent.dot(&b.tangent) >= MIN_TURN_COS)
+        else {
+            ds *= 0.5;
+            if ds < 1e-10 {
+                break;
+            }
+            continue;
+        };
+        walked += ds;
+        ds = (ds * 1.5).min(MAX_ARC_STEP);
+        let x = path.at_sigma(b.sigma);
+        // Backward, the input decreases along the reversed tangent.
+        if (signed_det(m, &x, &b.q) > 0.0) != (det_start > 0.0) || b.dsigma() >= 0.0 || b.sigma < 0.0 {
+            break;
+        }
+        if m.kinematics_at(&x, &b.q, cfg).is_ok_and(|k| k.health().min_pivot >= pivot) {
+            let mut behind = b;
+            behind.tangent = -behind.tangent;
+            return Some(behind);
+        }
+        p = b;
+    }
+    None
+}
+
+/// Longest walk of [`walked_behind`] (scaled coordinates): a whole turn of an angle.
+const WALK_BACK_ARC: f64 = std::f64::consts::TAU;
 
 /// What following the curve found.
 pub(crate) enum Found<Q> {

@@ -915,8 +915,8 @@ where
                 // in the input: where two branches meet at a small angle (a near-kite's change
                 // point) the angles swing a radian over a ten-thousandth of the input, and a
                 // reach longer only by the input's way back stopped short of the crossing (a
-                // sweep of 361 samples failed there in one near-kite of eighteen; now one of
-                // fifty). Only here: crossings located again from behind
+                // sweep of 361 samples failed there in one near-kite of eighteen; with this
+                // and the walk back of `locate::backed_off`, one of 250). Only here: crossings located again from behind
                 // (`crossing_from_behind`) were located more loosely by the longer walk.
                 from = self.behind(&path, &metric, &start, reach).map(|(b, ds, reach_back)| {
                     let way_back = (b.z(&metric) - start.z(&metric)).norm();
