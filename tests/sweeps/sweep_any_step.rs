@@ -834,10 +834,21 @@ fn a_grashof_equal_change_point_is_located_as_a_crossing() {
 /// whose walk passed the determinant's sign change with the input advancing has crossed.
 #[test]
 fn a_near_kites_change_point_is_a_crossing_not_a_limit_position() {
-    let (a, b, c, d): (f64, f64, f64, f64) =
-        (0.35135290199321223, 0.4050104344412304, 0.4046621949778911, 0.35100466252987284);
-    let (from, to): (f64, f64) = (-2.4300391395199767, 10.09681446048192);
-    let (cx, cy) = circles(a * from.cos(), a * from.sin(), b, d, 0.0, c, -1.0).expect("the loop closes");
+    near_kite_crosses_at_zero(
+        [0.35135290199321223, 0.4050104344412304, 0.4046621949778911, 0.35100466252987284],
+        -1.0,
+        -2.4300391395199767,
+        10.09681446048192,
+    );
+}
+
+/// Swept at every density, on both paths, from `from` (on the assembly mode `side` of
+/// [`circles`]) to `to`, the near-kite `[a, b, c, d]` stops at a crossing at its change point
+/// `phi = 0`: within 1e-5 (the branches' small angle leaves the crossing a few millionths off
+/// where the first trace locates it: 2.3e-6 at most over these tests' runs; from behind, at 361
+/// samples, within 1.2e-9).
+fn near_kite_crosses_at_zero([a, b, c, d]: [f64; 4], side: f64, from: f64, to: f64) {
+    let (cx, cy) = circles(a * from.cos(), a * from.sin(), b, d, 0.0, c, side).expect("the loop closes");
     let guess = [(cy - a * from.sin()).atan2(cx - a * from.cos()), cy.atan2(cx - d)];
     for samples in [2, 3, 5, 17, 361] {
         let stops = [
@@ -845,10 +856,8 @@ fn a_near_kites_change_point_is_a_crossing_not_a_limit_position() {
             FourBarNewton { a, b, c, d }.sweep(from, to, samples, &guess.into()).unwrap().run().stop,
         ];
         for stop in stops {
-            let SweepStop::SingularCrossing(ev) = &stop else { panic!("{samples} samples: {stop:?}") };
-            // Within 1e-5 of the change point at 0: the branches' small angle leaves the
-            // crossing a few millionths off (2.3e-6 at most over the probe's 10 runs).
-            assert!(ev.x[0].abs() < 1e-5, "{samples} samples: {ev:?}");
+            let SweepStop::SingularCrossing(ev) = &stop else { panic!("a = {a}, {samples} samples: {stop:?}") };
+            assert!(ev.x[0].abs() < 1e-5, "a = {a}, {samples} samples: {ev:?}");
         }
     }
 }
@@ -895,21 +904,8 @@ fn a_near_kite_swept_finely_reaches_its_change_point() {
             3.291132753932355,
         ),
     ];
-    for ([a, b, c, d], side, from, to) in kites {
-        let (cx, cy) = circles(a * from.cos(), a * from.sin(), b, d, 0.0, c, side).expect("the loop closes");
-        let guess = [(cy - a * from.sin()).atan2(cx - a * from.cos()), cy.atan2(cx - d)];
-        for samples in [2, 3, 5, 17, 361] {
-            let stops = [
-                FourBar { a, b, c, d }.sweep(from, to, samples, &guess.into()).unwrap().run().stop,
-                FourBarNewton { a, b, c, d }.sweep(from, to, samples, &guess.into()).unwrap().run().stop,
-            ];
-            for stop in stops {
-                let SweepStop::SingularCrossing(ev) = &stop else { panic!("a = {a}, {samples} samples: {stop:?}") };
-                // Within 1e-5, as in the test above: 1.9e-6 at worst (the last kite at two and
-                // three samples, located by the first trace); at 361 samples within 1.2e-9.
-                assert!(ev.x[0].abs() < 1e-5, "a = {a}, {samples} samples: {ev:?}");
-            }
-        }
+    for (p, side, from, to) in kites {
+        near_kite_crosses_at_zero(p, side, from, to);
     }
 }
 
