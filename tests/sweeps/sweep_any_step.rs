@@ -909,6 +909,73 @@ fn a_near_kite_swept_finely_reaches_its_change_point() {
     }
 }
 
+/// The same near-kites as the first loop of a Watt six-bar (its second loop regular), swept at
+/// every density from a position given, on both paths: a crossing at the change point (a whole
+/// turn of the input). At 361 samples each failed: the position behind was found by walking the
+/// curve back, and the trace from there, given the chord as its way back rather than the
+/// arclength walked, stopped short.
+#[test]
+fn a_watt_six_bar_on_a_near_kite_reaches_its_change_point() {
+    let cases: [([f64; 10], [f64; 4], f64, f64); 2] = [
+        (
+            [
+                0.30140600155191855,
+                1.428069822630659,
+                1.4280077695231583,
+                0.3013439484444178,
+                0.4035382784777865,
+                2.274787786331915,
+                1.0005774066397846,
+                2.3372543401752743,
+                -1.454106150696532,
+                -0.8307317924943303,
+            ],
+            [-1.734005464157227, -2.131349042200253, 2.171569326382288, 0.8230894064866132],
+            2.4176929267090896,
+            6.474450834044343,
+        ),
+        (
+            [
+                0.5591550265620233,
+                1.8774374206499014,
+                1.877377980508651,
+                0.5590955864207728,
+                1.1861241741484674,
+                2.8523669253937536,
+                0.91604335939235,
+                2.541424515529299,
+                1.6841451941265637,
+                1.6791850313263712,
+            ],
+            [-0.44203387464627103, -0.7873296160837004, 2.7299014834439794, -3.035768735143345],
+            -1.229695594009595,
+            0.22656776017716318,
+        ),
+    ];
+    for ([a, b, c, d, c2, alpha, e, f, gx, gy], guess, from, to) in cases {
+        for samples in [2, 3, 5, 17, 361] {
+            let stops = [
+                SixBar { a, b, c, d, c2, alpha, e, f, gx, gy }
+                    .sweep(from, to, samples, &guess.into())
+                    .unwrap()
+                    .run()
+                    .stop,
+                SixBarNewton { a, b, c, d, c2, alpha, e, f, gx, gy }
+                    .sweep(from, to, samples, &guess.into())
+                    .unwrap()
+                    .run()
+                    .stop,
+            ];
+            for stop in stops {
+                let SweepStop::SingularCrossing(ev) = &stop else { panic!("a = {a}, {samples} samples: {stop:?}") };
+                let off = ev.x[0] - (ev.x[0] / TAU).round() * TAU;
+                // Within 1e-5, as the four-bar near-kites: 1.7e-6 at worst.
+                assert!(off.abs() < 1e-5, "a = {a}, {samples} samples: {ev:?}");
+            }
+        }
+    }
+}
+
 /// A non-Grashof four-bar swept into its limit position (coupler and follower stretched in
 /// line, `cos phi = (a^2 + d^2 - (b + c)^2) / (2 a d)`) from an input whole turns out, up to
 /// [`MAX_TURNS`]: the limit is located to a few of the input's doubles (6e-11 apart at fifty

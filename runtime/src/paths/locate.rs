@@ -148,7 +148,8 @@ fn straight_past<K: Kernel>(
 
 /// A point of the curve behind `start` (toward lower sigma, not before the path's start) where
 /// the Jacobian's pivot ratio is at least `pivot` and the determinant has `start`'s sign, with
-/// its tangent oriented as `start`'s, or `None`: where a sweep's last position lies within about
+/// its tangent oriented as `start`'s and the way back to it along the curve (scaled
+/// arclength), or `None`: where a sweep's last position lies within about
 /// a ten-millionth of a change point, the trace from it cannot leave it (each step's tangent at
 /// a position that close turns too sharply to be accepted), and one from a well-conditioned
 /// point behind it passes it. The tangent's prediction where it can be trusted
@@ -160,9 +161,14 @@ pub(crate) fn backed_off<K: Kernel>(
     start: &CurvePoint<Q<K>>,
     pivot: f64,
     cfg: &NewtonConfig,
-) -> Option<CurvePoint<Q<K>>> {
+) -> Option<(CurvePoint<Q<K>>, f64)> {
     let det_start = signed_det(m, &path.at_sigma(start.sigma), &start.q);
     predicted_behind(m, path, metric, start, det_start, pivot, cfg)
+        .map(|b| {
+            // A straight way: the chord.
+            let way = (b.z(metric) - start.z(metric)).norm();
+            (b, way)
+        })
         .or_else(|| walked_behind(m, path, metric, start, det_start, pivot, cfg))
 }
 
@@ -213,8 +219,8 @@ fn predicted_behind<K: Kernel>(
 /// less than [`MIN_TURN_COS`] allows), at most [`WALK_BACK_ARC`] of arclength: the first point
 /// whose pivot ratio reaches `pivot`. A near-kite's branch stays nearly singular over the whole
 /// swing of its folded links (two and a half radians of arclength walked back before a pivot
-/// ratio of 1e-4). `None` where the walk meets a determinant's root or a limit position (the
-/// input turning forward again) first, or leaves the path.
+/// ratio of 1e-4), with the arclength walked. `None` where the walk meets a determinant's root
+/// or a limit position (the input turning forward again) first, or leaves the path.
 #[allow(clippy::too_many_arguments)]
 fn walked_behind<K: Kernel>(
     m: &K,
@@ -224,7 +230,7 @@ fn walked_behind<K: Kernel>(
     det_start: f64,
     pivot: f64,
     cfg: &NewtonConfig,
-) -> Option<CurvePoint<Q<K>>> {
+) -> Option<(CurvePoint<Q<K>>, f64)> {
     let mut p = start.clone();
     p.tangent = -p.tangent;
     let (mut ds, mut walked) = (1e-4, 0.0);
@@ -250,7 +256,7 @@ fn walked_behind<K: Kernel>(
         if m.kinematics_at(&x, &b.q, cfg).is_ok_and(|k| k.health().min_pivot >= pivot) {
             let mut behind = b;
             behind.tangent = -behind.tangent;
-            return Some(behind);
+            return Some((behind, walked));
         }
         p = b;
     }

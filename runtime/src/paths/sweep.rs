@@ -740,18 +740,19 @@ where
     }
 
     /// Where [`SweepOf::diagnose`] traces the curve once more from behind its start: a
-    /// well-conditioned point (see `locate::backed_off`), the trace's first step and its reach
-    /// (`reach` from `start`) longer by the way back in the input.
+    /// well-conditioned point (see `locate::backed_off`), the trace's first step, its reach
+    /// (`reach` from `start`) longer by the way back in the input, and the way back along the
+    /// curve.
     fn behind(
         &self,
         path: &Path<X<K>>,
         metric: &Metric<Q<K>>,
         start: &CurvePoint<Q<K>>,
         reach: f64,
-    ) -> Option<(CurvePoint<Q<K>>, f64, f64)> {
-        let b = locate::backed_off(&self.m, path, metric, start, self.well_pinned(), &self.cfg.newton)?;
+    ) -> Option<(CurvePoint<Q<K>>, f64, f64, f64)> {
+        let (b, way) = locate::backed_off(&self.m, path, metric, start, self.well_pinned(), &self.cfg.newton)?;
         let back = (start.sigma - b.sigma) / metric.sigma;
-        Some((b, 0.25 * back, reach + back))
+        Some((b, 0.25 * back, reach + back, way))
     }
 
     /// The pivot ratio from which a position counts as well pinned for the diagnosis: a
@@ -769,7 +770,7 @@ where
         start: &CurvePoint<Q<K>>,
         reach: f64,
     ) -> Option<CrossingPair<Q<K>>> {
-        let (b, ds, reach) = self.behind(path, metric, start, reach)?;
+        let (b, ds, reach, _) = self.behind(path, metric, start, reach)?;
         match locate::trace(&self.m, path, metric, &b, ds, reach, &self.cfg.newton)? {
             Found::Crossing(at, past)
                 if found_within(path, metric, start, &at, reach)
@@ -911,17 +912,17 @@ where
             if !backed {
                 backed = true;
                 // The trace from behind walks the way back to `start` before it goes on, and
-                // that way is measured along the curve (the chord between the two points), not
-                // in the input: where two branches meet at a small angle (a near-kite's change
-                // point) the angles swing a radian over a ten-thousandth of the input, and a
-                // reach longer only by the input's way back stopped short of the crossing (a
-                // sweep of 361 samples failed there in one near-kite of eighteen; with this
-                // and the walk back of `locate::backed_off`, one of 250). Only here: crossings located again from behind
+                // that way is measured along the curve (the arclength walked back, or the chord
+                // to a predicted point), not in the input: where two branches meet at a small
+                // angle (a near-kite's change point) the angles swing a radian over a
+                // ten-thousandth of the input, and a reach longer only by the input's way back
+                // stopped short of the crossing (a sweep of 361 samples failed there in one
+                // near-kite of eighteen; with this and the walk back of `locate::backed_off`,
+                // one of 250). Only here: crossings located again from behind
                 // (`crossing_from_behind`) were located more loosely by the longer walk.
-                from = self.behind(&path, &metric, &start, reach).map(|(b, ds, reach_back)| {
-                    let way_back = (b.z(&metric) - start.z(&metric)).norm();
-                    (b, ds, reach + way_back, reach_back)
-                });
+                from = self
+                    .behind(&path, &metric, &start, reach)
+                    .map(|(b, ds, reach_back, way_back)| (b, ds, reach + way_back, reach_back));
             }
         }
 
