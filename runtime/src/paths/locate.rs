@@ -215,8 +215,8 @@ fn predicted_behind<K: Kernel>(
 }
 
 /// [`backed_off`]'s point found by following the curve backward from `start`, as [`trace`]
-/// follows it forward (steps from `1e-4` growing by half up to [`MAX_ARC_STEP`], each turning
-/// less than [`MIN_TURN_COS`] allows), at most [`WALK_BACK_ARC`] of arclength: the first point
+/// follows it forward (steps from `1e-4` growing by half up to [`MAX_ARC_STEP`], each a
+/// [`step_along`]), at most [`WALK_BACK_ARC`] of arclength: the first point
 /// whose pivot ratio reaches `pivot`. A near-kite's branch stays nearly singular over the whole
 /// swing of its folded links (two and a half radians of arclength walked back before a pivot
 /// ratio of 1e-4), with the arclength walked. `None` where the walk meets a determinant's root
@@ -238,8 +238,7 @@ fn walked_behind<K: Kernel>(
         if walked >= WALK_BACK_ARC {
             break;
         }
-        let Some(b) = arc_step(m, path, metric, &p, ds, cfg).filter(|b| p.tangent.dot(&b.tangent) >= MIN_TURN_COS)
-        else {
+        let Some(b) = step_along(m, path, metric, &p, ds, cfg) else {
             ds *= 0.5;
             if ds < 1e-10 {
                 break;
@@ -261,6 +260,20 @@ fn walked_behind<K: Kernel>(
         p = b;
     }
     None
+}
+
+/// One continuation step of length `ds` from `a` along the curve being followed ([`arc_step`]),
+/// refused where its tangent turns farther from `a`'s than [`MIN_TURN_COS`] allows: such a step
+/// has left the curve (see [`trace`]).
+fn step_along<K: Kernel>(
+    m: &K,
+    path: &Path<X<K>>,
+    metric: &Metric<Q<K>>,
+    a: &CurvePoint<Q<K>>,
+    ds: f64,
+    cfg: &NewtonConfig,
+) -> Option<CurvePoint<Q<K>>> {
+    arc_step(m, path, metric, a, ds, cfg).filter(|b| a.tangent.dot(&b.tangent) >= MIN_TURN_COS)
 }
 
 /// Longest walk of [`walked_behind`] (scaled coordinates): a whole turn of an angle.
@@ -306,8 +319,7 @@ pub(crate) fn trace<K: Kernel>(
         // point (e.g. two coincident joints) the corrector can land on a crossing curve, along
         // which the input may not move at all. A smaller step stays on the curve; a larger one
         // later jumps the branch point onto the curve's smooth continuation.
-        let Some(b) = arc_step(m, path, metric, &a, ds, cfg).filter(|b| a.tangent.dot(&b.tangent) >= MIN_TURN_COS)
-        else {
+        let Some(b) = step_along(m, path, metric, &a, ds, cfg) else {
             ds *= 0.5;
             if ds < 1e-14 * (1.0 + max_arc) {
                 // The rate at which the input's advance slowed over the walk.
