@@ -288,8 +288,8 @@ pub(crate) enum Found<Q> {
     Crossing(CurvePoint<Q>, CurvePoint<Q>),
 }
 
-/// Follows the curve from `start` (tangent oriented with increasing sigma) for at most
-/// `max_arc` of arclength (`ds0` and `max_arc` in the scaled coordinates of `metric`) and
+/// Follows the curve from `start` (tangent oriented with increasing sigma) as far as `reach`
+/// lets it ([`Reach`]; `ds0` and the arclengths in the scaled coordinates of `metric`) and
 /// [`MAX_TRACE_STEPS`] steps, watching
 /// for a limit position (the tangent's sigma component changing sign) and for a sign change of
 /// the Jacobian determinant; locates the first one found (a crossing from the well-conditioned
@@ -300,9 +300,10 @@ pub(crate) fn trace<K: Kernel>(
     metric: &Metric<Q<K>>,
     start: &CurvePoint<Q<K>>,
     ds0: f64,
-    max_arc: f64,
+    reach: Reach,
     cfg: &NewtonConfig,
 ) -> Option<Found<Q<K>>> {
+    let max_arc = reach.arc;
     if !(ds0 > 0.0 && ds0.is_finite() && max_arc.is_finite()) {
         return None;
     }
@@ -312,7 +313,7 @@ pub(crate) fn trace<K: Kernel>(
     let mut ds = ds0.min(MAX_ARC_STEP);
     let mut walked = 0.0;
     for _ in 0..MAX_TRACE_STEPS {
-        if walked >= max_arc {
+        if walked >= max_arc && !reach.steep_short(start, &a, metric, walked) {
             break;
         }
         // A step whose tangent turns sharply has left the curve being followed: at a branch
@@ -382,6 +383,47 @@ pub(crate) fn trace<K: Kernel>(
     }
     None
 }
+
+/// How far [`trace`] walks along the curve: `arc` of arclength (scaled coordinates), and, where
+/// it is steep, possibly farther ([`Reach::steep`]).
+#[derive(Clone, Copy, Debug)]
+pub(crate) struct Reach {
+    arc: f64,
+    steep: bool,
+}
+
+impl Reach {
+    /// A walk of `arc` of arclength.
+    pub(crate) fn arc(arc: f64) -> Self {
+        Reach { arc, steep: false }
+    }
+
+    /// The same walk going on where the curve is steep (see [`Reach::steep_short`]).
+    pub(crate) fn steep(self) -> Self {
+        Reach { steep: true, ..self }
+    }
+
+    /// Whether a walk from `start` at `a` that has spent its arclength (`walked`) goes on: where
+    /// the curve is steep (the angles swing while the input barely moves, as on a near-kite's
+    /// branch beside its change point: a hundred-thousandth of the input per unit of
+    /// arclength), an arclength of a sample's step covers a millionth of the input, and the
+    /// trace stopped a few tenths of a millionth short of a crossing the sweep's last step came
+    /// within a millionth of. Such a walk goes on while its input has advanced less than a
+    /// sixteenth of its arclength (a curve steeper than sixteen units of an unknown per unit
+    /// of input all along), up to [`STEEP_ARC`] more.
+    fn steep_short<Q>(&self, start: &CurvePoint<Q>, a: &CurvePoint<Q>, metric: &Metric<Q>, walked: f64) -> bool {
+        let advanced = (a.sigma - start.sigma) / metric.sigma;
+        self.steep && walked < self.arc + STEEP_ARC && advanced < self.arc / 16.0
+    }
+}
+
+/// Longest arclength [`Reach::steep_short`] adds to a walk: two of its longest steps
+/// ([`MAX_ARC_STEP`]). The near-kites swept toward their change point needed 0.15 of it (a
+/// tenth left four of 29,980 sweeps failing). Farther, a walk reaches where a slide passes
+/// within a hundred-millionth of its size from its pivot (a pivot ratio no tolerance
+/// resolves), and took the mirrored branch there for a crossing: a whole turn more did, three
+/// radians did not.
+const STEEP_ARC: f64 = 2.0 * MAX_ARC_STEP;
 
 /// `a`, where the walk stalled, as a limit position located to the inputs' rounding, or
 /// `None`. Far out along a path (inputs of fifty thousand turns, doubles 6e-11 apart) the
