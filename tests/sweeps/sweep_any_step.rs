@@ -930,6 +930,45 @@ fn a_near_kite_swept_finely_reaches_its_change_point() {
     }
 }
 
+/// Near-kites whose sweeps' last good position lies within a pivot ratio of 1e-4 of the
+/// crossing, where the trace from it locates the crossing to the rounding (`1e-15`) and the one
+/// from behind, made to locate it again, lands on the near-folded branch beyond it, whose
+/// transmission angle stays a few ten-thousandths from zero (`|sin| = 1.8e-4` there): that
+/// location was taken, 2e-4 to 6.3e-4 of the input off (at one to five of the sample counts,
+/// on one path or both). The located point nearer the determinant's root is kept.
+#[test]
+fn a_near_kites_crossing_is_located_where_the_determinant_is_nearest_zero() {
+    let kites: [([f64; 4], f64, f64, f64); 4] = [
+        (
+            [0.42835446057025867, 1.4696451577555485, 1.4695981342045776, 0.42830743701928775],
+            1.0,
+            -2.111391029502477,
+            1.364919994542543,
+        ),
+        (
+            [0.4048185345144002, 1.4963549950263864, 1.4958028792325304, 0.40426641872054414],
+            1.0,
+            1.8814322755601554,
+            7.389501390700424,
+        ),
+        (
+            [0.7949472017224524, 2.7903049212142172, 2.7900713393505017, 0.7947136198587366],
+            -1.0,
+            2.794996301324839,
+            -1.7768097047623979,
+        ),
+        (
+            [0.8088501945537736, 2.727092271480933, 2.722444619953209, 0.8042025430260493],
+            1.0,
+            -2.331071255806005,
+            -7.1862024217469855,
+        ),
+    ];
+    for (p, side, from, to) in kites {
+        near_kite_crosses_at_zero(p, side, from, to);
+    }
+}
+
 /// The same near-kites as the first loop of a Watt six-bar (its second loop regular), swept at
 /// every density from a position given, on both paths: a crossing at the change point (a whole
 /// turn of the input). At 361 samples each failed: the position behind was found by walking the

@@ -125,6 +125,21 @@ pub(crate) fn is_root<K: Kernel>(
     d_at.abs() <= 0.5 * d_from.abs() || d_at.abs() <= 1e-3 * bound
 }
 
+/// Whether `b` is nearer a root of the determinant than `a`, both seen from `from` (a point of
+/// the branch before them) in `from`'s fixed scalings, as [`is_root`] sees them.
+pub(crate) fn nearer_root<K: Kernel>(
+    m: &K,
+    path: &Path<X<K>>,
+    metric: &Metric<Q<K>>,
+    from: &CurvePoint<Q<K>>,
+    b: &CurvePoint<Q<K>>,
+    a: &CurvePoint<Q<K>>,
+) -> bool {
+    let scales = Scales::at(m, path, metric, from);
+    let det = |p: &CurvePoint<Q<K>>| scales.det(m, &path.at_sigma(p.sigma), &p.q).abs();
+    det(b) <= det(a)
+}
+
 /// One position solved on the branch: its offset from the trace's estimate in spacings, and
 /// its unknowns (angles on the turn of the prediction).
 struct Sample<Q> {
