@@ -126,7 +126,8 @@ pub(crate) fn is_root<K: Kernel>(
 }
 
 /// Whether `b` is nearer a root of the determinant than `a`, both seen from `from` (a point of
-/// the branch before them) in `from`'s fixed scalings, as [`is_root`] sees them.
+/// the branch before them) in `from`'s fixed scalings, as [`is_root`] sees them; `false` where
+/// `b`'s is not finite.
 pub(crate) fn nearer_root<K: Kernel>(
     m: &K,
     path: &Path<X<K>>,

@@ -417,8 +417,8 @@ impl Reach {
     /// arclength), an arclength of a sample's step covers a millionth of the input, and the
     /// trace stopped a few tenths of a millionth short of a crossing the sweep's last step came
     /// within a millionth of. Such a walk goes on while its input has advanced less than a
-    /// sixteenth of its arclength (a curve steeper than sixteen units of an unknown per unit
-    /// of input all along), up to [`STEEP_ARC`] more.
+    /// sixteenth of its reach `arc` (scaled: the curve, on average, steeper than sixteen units
+    /// of an unknown per unit of input), by up to [`STEEP_ARC`] more.
     fn steep_short<Q>(&self, start: &CurvePoint<Q>, a: &CurvePoint<Q>, metric: &Metric<Q>, walked: f64) -> bool {
         let advanced = (a.sigma - start.sigma) / metric.sigma;
         self.steep && walked < self.arc + STEEP_ARC && advanced < self.arc / 16.0
