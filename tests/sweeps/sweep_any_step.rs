@@ -61,7 +61,7 @@ with_newton_twin! {
 
 /// Where circle (P, p) meets circle (Q, q), on the left of P -> Q for `side > 0` (`None` where
 /// they do not meet).
-fn circles(px: f64, py: f64, p: f64, qx: f64, qy: f64, q: f64, side: f64) -> Option<(f64, f64)> {
+pub(crate) fn circles(px: f64, py: f64, p: f64, qx: f64, qy: f64, q: f64, side: f64) -> Option<(f64, f64)> {
     let (ux, uy) = (qx - px, qy - py);
     let dist = ux.hypot(uy);
     let along = (p * p - q * q + dist * dist) / (2.0 * dist);
