@@ -941,7 +941,8 @@ fn near_kite_case() -> impl Strategy<Value = ([f64; 4], f64, f64, f64)> {
     let sweep = (0.1f64..(TAU - 0.1), any::<bool>(), any::<bool>(), 0.01f64..1.0);
     (shape, sweep).prop_map(|((a, ratio, log_eps), (from, left, up, past))| {
         let (b, eps) = (a * ratio, a * 10f64.powf(log_eps));
-        // Rounded so that `a + c = b + d` holds exactly: `a + (b - eps) = b + (a - eps)`.
+        // `a + c = b + d` up to the rounding of the lengths and sums (a few units in the last
+        // place): a change point within the rounding, which a sweep reports as a crossing.
         let (d, c) = (a - eps, b - eps);
         let to = if up { TAU + past } else { -past };
         ([a, b, c, d], if left { 1.0 } else { -1.0 }, from, to)
