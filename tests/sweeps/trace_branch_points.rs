@@ -290,3 +290,28 @@ fn a_folded_change_point_is_traced_through() {
         traced_through_a_folded_change_point(lengths, side, from);
     }
 }
+
+proptest! {
+    #![proptest_config(ProptestConfig {
+        cases: 48,
+        failure_persistence: None,
+        rng_seed: RngSeed::Fixed(3),
+        ..ProptestConfig::default()
+    })]
+
+    /// Random near-kite drag-links (as `near_kites_swept_at_any_density_cross_at_their_change_point`
+    /// sweeps them) traced over a turn through their change point (before the trace passed such
+    /// branch points, 704 of 1,000 stopped beside it; with the step over it from before it
+    /// limited to a step's length, 3 of 1,000, one of them among these cases).
+    #[test]
+    fn random_near_kites_are_traced_through_their_change_point(
+        a in 0.3f64..3.0,
+        ratio in 1.2f64..4.0,
+        log_eps in -4.0f64..-2.0,
+        left in any::<bool>(),
+        from in 0.1f64..(TAU - 0.1),
+    ) {
+        let (b, eps) = (a * ratio, a * 10f64.powf(log_eps));
+        traced_through_a_folded_change_point([a, b, b - eps, a - eps], if left { 1.0 } else { -1.0 }, from);
+    }
+}

@@ -459,7 +459,8 @@ fn past_crossing<K: Kernel>(
 
 /// The point past the branch point beside `p`, reached by one continuation step from `anchor`
 /// (a point before it, away from it, of orientation `side`) over the branch point: steps of
-/// twice to 256 times the distance from `anchor` to `p` (at most `ds`), the first that stays on
+/// twice to 256 times the distance from `anchor` to `p` (at most `ds`, but four times that
+/// distance at least: a near-kite's anchor lay up to 1.5 `ds` back), the first that stays on
 /// the curve (see [`stays_on_curve`]), lands ahead of `p` and has the other orientation. Beside
 /// a branch point the corrector's points wander with the rounding of a singular position (the
 /// input reverses back and forth within a few billionths), and neither a short step nor a solve
@@ -484,7 +485,7 @@ fn jumped_past<K: Kernel>(
         return None;
     }
     let mut step = 2.0 * gap;
-    while step <= (256.0 * gap).min(ds) {
+    while step <= (256.0 * gap).min(ds).max(4.0 * gap) {
         if let Some(n) = arc_step(m, path, metric, anchor, step, cfg)
             && stays_on_curve(anchor, &n, step, metric)
             && orientation(&n) * side < 0.0
