@@ -315,3 +315,36 @@ proptest! {
         traced_through_a_folded_change_point([a, b, b - eps, a - eps], if left { 1.0 } else { -1.0 }, from);
     }
 }
+
+/// Offset slider-cranks whose rod is as long as the crank and the offset together (`l = r + e`):
+/// at `phi = 3 pi / 2` crank and rod lie in line across the slide, a change point, where the
+/// rod's side of the crank (`cos psi`) changes. Traced over a turn through it, the trace
+/// stopped beside it ("cannot proceed"; 205 of 1,000 random such slider-cranks, none since).
+#[test]
+fn a_slider_crank_change_point_is_traced_through() {
+    use crate::sweep_any_step::{Slider, SliderUnknowns};
+    let cases: [(f64, f64, f64, f64, f64); 2] = [
+        (0.6733424979912712, 0.19179325193419622, 0.6975511910205574, -0.281970995489115, 1.347032012909056),
+        (0.539797774272353, 1.3612131446550568, 0.27235256809235286, 2.4475313508330236, -0.941319360734955),
+    ];
+    for (r, e, from, psi, x) in cases {
+        let m = Slider { r, l: r + e, e };
+        let at = format!("r = {r}, e = {e}");
+        let t = m
+            .trace_curve(from, from + TAU, &SliderUnknowns { psi, x }, &TraceConfig::default())
+            .unwrap_or_else(|err| panic!("{at}: {err}"));
+        for p in &t.points {
+            let res = m.residual(p.x[0], &p.q.into());
+            assert!(res.iter().all(|v| v.abs() <= 1e-10 * (m.r + m.l + m.e)), "{at} at {}: {res:?}", p.x[0]);
+        }
+        assert!(t.folds.is_empty() && t.kinks.is_empty(), "{at}: {t:?}");
+        assert_eq!(t.crossings.len(), 1, "{at}: {:?}", t.crossings);
+        let crossing = t.crossings[0].x[0];
+        assert!((crossing - 1.5 * PI).abs() <= 1e-6, "{at}: the crossing at {crossing}");
+        let first = t.points[0].q[0].cos().signum();
+        for p in t.points.iter().filter(|p| (p.x[0] - crossing).abs() > 1e-2) {
+            let expected = if p.x[0] < crossing { first } else { -first };
+            assert_eq!(p.q[0].cos().signum(), expected, "{at}: the rod's side at {}", p.x[0]);
+        }
+    }
+}
