@@ -492,8 +492,9 @@ pub(crate) fn pivot_at<K: Kernel>(m: &K, x: &X<K>, q: &Q<K>) -> f64 {
 /// Unlike the smallest pivot ([`pivot_at`]), which partial pivoting can leave many times the
 /// distance to singularity where a nearly zero row meets the rows of later blocks (a Watt
 /// six-bar's four-bar at its change point: a pivot ratio of 2e-6 a hundred-millionth of the
-/// input from it, a singular value ratio of 7e-8), it is of the order of that distance in any
-/// mechanism. An SVD: for the rare paths only.
+/// input from it, a singular value ratio of 3e-8), it measures that distance whatever the
+/// order of the elimination. An SVD: asked on the rare paths, and by a trace only where the
+/// pivot is already small.
 pub(crate) fn singular_ratio_at<K: Kernel>(m: &K, x: &X<K>, q: &Q<K>) -> f64 {
     let n = m.dims().n();
     let jac = m.jacobian(x, q);
