@@ -498,14 +498,23 @@ pub(crate) fn pivot_at<K: Kernel>(m: &K, x: &X<K>, q: &Q<K>) -> f64 {
 pub(crate) fn singular_ratio_at<K: Kernel>(m: &K, x: &X<K>, q: &Q<K>) -> f64 {
     let n = m.dims().n();
     let jac = m.jacobian(x, q);
-    let mut a = DMatrix::from_fn(n, n, |e, u| jac.j(e, u));
-    for c in 0..n {
+    let (lo, hi) = singular_range(DMatrix::from_fn(n, n, |e, u| jac.j(e, u)), &[]);
+    let ratio = lo / hi;
+    if ratio.is_finite() { ratio } else { 0.0 }
+}
+
+/// The smallest and largest singular values of `a` with its rows over `rows` (the equations'
+/// magnitudes; none where `rows` is empty) and each column over its largest entry.
+pub(crate) fn singular_range(mut a: DMatrix<f64>, rows: &[f64]) -> (f64, f64) {
+    for (e, &row) in rows.iter().enumerate() {
+        a.row_mut(e).unscale_mut(if row > 0.0 && row.is_finite() { row } else { 1.0 });
+    }
+    for c in 0..a.ncols() {
         let big = a.column(c).amax();
         if big > 0.0 {
             a.column_mut(c).unscale_mut(big);
         }
     }
     let sv = a.svd(false, false).singular_values;
-    let ratio = sv.min() / sv.max();
-    if ratio.is_finite() { ratio } else { 0.0 }
+    (sv.min(), sv.max())
 }

@@ -12,7 +12,8 @@
 
 use super::crossing::refine;
 use super::curve::{
-    CurvePoint, Metric, Path, arc_step, f_sigma, illinois, locate_fold, pivot_at, signed_det, tangent_from_analogs,
+    CurvePoint, Metric, Path, arc_step, f_sigma, illinois, locate_fold, pivot_at, signed_det, singular_range,
+    tangent_from_analogs,
 };
 use crate::dims::{Dims, JacState, KinState, Store};
 use crate::mechanism::kernel::{Kernel, Q, X};
@@ -51,22 +52,6 @@ fn augmented_full_rank<K: Kernel>(m: &K, path: &Path<X<K>>, p: &CurvePoint<Q<K>>
 
 /// Relative singular value below which the augmented Jacobian is rank deficient.
 const RANK_TOL: f64 = 1e-6;
-
-/// The smallest and largest singular values of `a` with its rows over `rows` (the equations'
-/// magnitudes) and each column over its largest entry.
-fn singular_range(mut a: DMatrix<f64>, rows: &[f64]) -> (f64, f64) {
-    for (e, &row) in rows.iter().enumerate() {
-        a.row_mut(e).unscale_mut(if row > 0.0 && row.is_finite() { row } else { 1.0 });
-    }
-    for c in 0..a.ncols() {
-        let big = a.column(c).amax();
-        if big > 0.0 {
-            a.column_mut(c).unscale_mut(big);
-        }
-    }
-    let sv = a.svd(false, false).singular_values;
-    (sv.min(), sv.max())
-}
 
 /// Whether one block of the decomposition is at a limit position of its own at `p`: the first
 /// block (in solve order) whose Jacobian is singular there has a full-rank Jacobian augmented by
