@@ -10,6 +10,7 @@
 #[path = "../support/mod.rs"]
 mod support;
 
+mod assur_groups;
 mod sweep_any_step;
 mod sweep_api;
 mod sweep_at;

@@ -2,8 +2,9 @@
 //! modes, tables.
 
 use kinloop::{AtSingular, Error, EventKind, NewtonConfig, Quantity, SweepConfig, SweepStop};
+use kinloop_fixtures::gear_lever::GearLever;
 use kinloop_fixtures::{FourBar, FourBarUnknowns};
-use std::f64::consts::PI;
+use std::f64::consts::{PI, TAU};
 
 use crate::support::{four_bar_joint, four_bar_limit, tol};
 
@@ -215,6 +216,32 @@ fn bad_sweep_arguments_are_errors() {
     let far = FourBar { a: 1.0, b: 1.0, c: 1.0, d: 9.0 };
     let first = far.sweep(0.0, 1.0, 3, &g).unwrap().next().unwrap();
     assert!(matches!(first, Err(Error::NoAssembly { .. })), "{first:?}");
+}
+
+/// A traced curve closes where it comes back through its start, not where it comes near it. A
+/// gear-lever drive whose gear ratio `u` is not whole does not repeat its motion after a turn of
+/// the crank (the planet turns by `(1 - u) 2 pi` about its pin, so the pin is elsewhere), and
+/// with steps of half a radian and more it was reported closed, the trace cut short, where it
+/// came within three quarters of a step of its start (59 of 60 random such drives at
+/// `ds = 1`); the whole ratio of the paper repeats after a turn and closes at every step.
+#[test]
+fn a_traced_curve_closes_where_it_passes_its_start_not_where_it_comes_near_it() {
+    let from = -PI / 3.0;
+    for ds in [0.01, 0.5, 1.0] {
+        let cfg = kinloop::TraceConfig::default().with_ds(ds);
+        let whole = GearLever::default();
+        let t = whole.trace_curve(from, from + 2.0 * TAU, &whole.guess(from), &cfg).unwrap();
+        assert!(t.closed && !t.truncated, "u = {}, ds = {ds}: {} points", whole.u, t.points.len());
+        let fractional = GearLever { u: 2.7, ..GearLever::default() };
+        let t = fractional.trace_curve(from, from + 2.0 * TAU, &fractional.guess(from), &cfg).unwrap();
+        // It follows its motion over both turns, to the end of the segment.
+        let last = t.points.last().unwrap().x[0];
+        assert!(
+            !t.closed && !t.truncated && last > from + 2.0 * TAU - 1.0,
+            "u = 2.7, ds = {ds}: closed {}, to {last}",
+            t.closed
+        );
+    }
 }
 
 #[test]

@@ -344,15 +344,10 @@ pub(crate) fn arc_step<K: Kernel>(
     let z_pred = p.z(metric) + &p.tangent * ds;
     let mut z = z_pred.clone();
     // Whether a converged point lies on the step: a step along a smooth curve ends within about
-    // `ds` of its start, give or take how loosely the tolerance pins a position: near a
-    // singular position a residual `tol` leaves it free along the nearly singular direction by
-    // about `sqrt(tol / k)` for the residual's curvature `k` there (a five-bar with both arms
-    // stretched at once: points 5e-6 apart at one input and the default `1e-12`). A thousand
-    // times `sqrt(tol)`, but at most a hundredth of the scaled unit (the mechanism's size):
-    // what is rejected lies radians or sizes away.
+    // `ds` of its start, give or take how loosely the tolerance pins a position
+    // (`loose_position`): what is rejected lies radians or sizes away.
     let start = p.z(metric);
-    let loose = (1e3 * cfg.residual_tol.max(f64::EPSILON).sqrt()).min(1e-2) + cfg.step_tol * (1.0 + start.amax());
-    let reach = MAX_STEP_REACH * ds.abs() + loose;
+    let reach = MAX_STEP_REACH * ds.abs() + loose_position(cfg, &start);
     let on_step = |z: &DVector<f64>| (z - &start).norm() <= reach;
     // A point meeting the tolerance is corrected once more (free accuracy where Newton
     // converges quadratically, needed near singular points where the tolerance leaves the
@@ -398,6 +393,16 @@ pub(crate) fn arc_step<K: Kernel>(
         }
     }
     None
+}
+
+/// How loosely the corrector's tolerance pins a curve point near `z` (scaled coordinates): near
+/// a singular position a residual `tol` leaves it free along the nearly singular direction by
+/// about `sqrt(tol / k)` for the residual's curvature `k` there (a five-bar with both arms
+/// stretched at once: points 5e-6 apart at one input and the default `1e-12`). A thousand
+/// times `sqrt(tol)`, but at most a hundredth of the scaled unit (the mechanism's size), and
+/// the step tolerance's share: what lies farther is radians or sizes away.
+pub(crate) fn loose_position(cfg: &NewtonConfig, z: &DVector<f64>) -> f64 {
+    (1e3 * cfg.residual_tol.max(f64::EPSILON).sqrt()).min(1e-2) + cfg.step_tol * (1.0 + z.amax())
 }
 
 /// How far from its start, in multiples of its length, an [`arc_step`] may end. A step that

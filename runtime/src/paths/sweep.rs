@@ -28,7 +28,13 @@
 //! [`Error::SweepStopped`] naming the input value (or, with [`AtSingular::Continue`], passes a
 //! crossing and goes on); past a kink it goes on. A step that cannot be made for any other
 //! reason (a jump in the solution, as `floor` makes) is an [`Error::Branch`]. It never continues
-//! silently on another branch.
+//! silently on another branch. A jump is seen where a step meets it: one smaller than the
+//! corrector's bound on a step ([`SweepConfig::corrector_rel`] of the step's predicted change)
+//! is stepped over, the more easily the longer the steps, each sample still a solution on the
+//! branch followed. Of 49 random cam rockers whose dwell law does not close over its turn (the
+//! follower jumps as the cam angle wraps) and whose sweeps of 4,000 steps a turn refused the
+//! jump, sweeps of two to eight samples a turn stepped over it in 54 of 196 (jumps of 2e-6 to
+//! 3e-2 of the lift).
 //!
 //! **Steps, whatever the samples.** The samples asked for are the output grid, never the step:
 //! a step is at most [`SweepConfig::max_step`] of the sample spacing, and also at most a quarter
