@@ -9,7 +9,8 @@
 //! can leave the branch it follows), down to `1e-11` rad of the crank, where it has met a limit
 //! position (the input cannot go on along the branch).
 
-use kinloop::{Event, EventKind, SweepStop, TraceConfig};
+use kinloop::paths::trace::trace_curve;
+use kinloop::{EventKind, Kin, Mechanism, Sweep, SweepStop, TraceConfig};
 use proptest::prelude::*;
 use proptest::test_runner::RngSeed;
 use std::f64::consts::{PI, TAU};
@@ -263,25 +264,24 @@ fn regular(g: &dyn Group, phi: f64, q: [f64; 4]) -> bool {
     eliminate(j, [0.0; 4]).1.abs() >= 0.05 * columns
 }
 
-/// A sweep's samples (input and unknowns), its stop and its events.
-type Swept = (Vec<(f64, [f64; 4])>, SweepStop, Vec<Event>);
-
 /// Sweeps case `k` with its samples and checks the sweep against the fine continuation; cases
 /// whose continuation meets a singular crossing, or whose samples lie within `1e-5` of its limit
 /// position, are left out.
-fn check_coarse_sweep<M: Group + std::fmt::Debug>(
-    k: &Case<M>,
-    sweep: impl Fn(f64, usize) -> Swept,
-) -> Result<(), TestCaseError> {
+fn check_coarse_sweep<M>(k: &Case<M>) -> Result<(), TestCaseError>
+where
+    M: Group + Mechanism<4, 1, 0> + std::fmt::Debug,
+{
     let n = k.per_turn * k.turns;
     let span = TAU * k.turns as f64;
     let targets: Vec<f64> = (1..n).map(|i| k.phi0 + k.dir * span * i as f64 / (n - 1) as f64).collect();
     let followed = follow(&k.m, k.phi0, k.q0, k.dir, &targets);
     prop_assume!(!followed.crossing);
     prop_assume!(followed.limit.is_none_or(|l| targets.iter().all(|t| (t - l).abs() > 1e-5)));
-    let (states, stop, events) = sweep(k.phi0 + k.dir * span, n);
+    let r = Sweep::<M, Kin<4, 1, 0>, 4, 1, 0>::new(&k.m, [k.phi0], [k.phi0 + k.dir * span], n, k.q0).unwrap().run();
+    let (states, stop, events) = (r.states, r.stop, r.events);
     prop_assert_eq!(states.len(), 1 + followed.at_targets.len(), "{:?}: {:?}", k, stop);
-    for ((phi, sq), (q, x)) in states[1..].iter().zip(followed.at_targets.iter().zip(&targets)) {
+    for (s, (q, x)) in states[1..].iter().zip(followed.at_targets.iter().zip(&targets)) {
+        let (phi, sq) = (s.x[0], s.q);
         let off = (0..4).map(|i| angle_apart(sq[i], q[i])).fold(0.0, f64::max);
         // Both within the Newton tolerance of one root: positions to about 1e-12 of a
         // well-conditioned group; 1e-8 admits the conditioning near a limit position.
@@ -317,24 +317,12 @@ proptest! {
 
     #[test]
     fn coarse_sweeps_of_class_four_groups_keep_their_branch_and_first_limit(k in class_four_case()) {
-        let [th1, th2, psi1, psi2] = k.q0;
-        let guess = ClassFourUnknowns { th1, th2, psi1, psi2 };
-        check_coarse_sweep(&k, |to, n| {
-            let r = k.m.sweep(k.phi0, to, n, &guess).unwrap().run();
-            let states = r.states.iter().map(|s| (s.input.phi, [s.q.th1, s.q.th2, s.q.psi1, s.q.psi2])).collect();
-            (states, r.stop, r.events)
-        })?;
+        check_coarse_sweep(&k)?;
     }
 
     #[test]
     fn coarse_sweeps_of_triads_keep_their_branch_and_first_limit(k in triad_case()) {
-        let [b1, t, b2, b3] = k.q0;
-        let guess = TriadUnknowns { b1, t, b2, b3 };
-        check_coarse_sweep(&k, |to, n| {
-            let r = k.m.sweep(k.phi0, to, n, &guess).unwrap().run();
-            let states = r.states.iter().map(|s| (s.input.phi, [s.q.b1, s.q.t, s.q.b2, s.q.b3])).collect();
-            (states, r.stop, r.events)
-        })?;
+        check_coarse_sweep(&k)?;
     }
 }
 
@@ -344,39 +332,38 @@ fn off_curve(g: &dyn Group, points: &[(f64, [f64; 4])]) -> f64 {
     points.iter().map(gap).fold(0.0, f64::max) / g.size()
 }
 
-/// A traced curve, its limit positions' inputs, whether it closed and whether it was cut short.
-type TracedGroup = (Vec<(f64, [f64; 4])>, Vec<f64>, bool, bool);
-
 /// Traces case `k`'s curve over two turns of the crank with steps `ds` and checks it against the
 /// fine continuation: every point on the curve, its first limit position the continuation's
 /// (where the continuation meets one), and the curve closed (a crank's curve closes after a
-/// turn, a rocking one after its limit positions).
-fn check_trace<M: Group + std::fmt::Debug>(k: &Case<M>, ds: f64, trace: impl Fn(f64, &TraceConfig) -> TracedGroup) {
+/// turn, a rocking one after its limit positions). A case whose continuation meets a singular
+/// crossing is left out.
+fn check_trace<M>(k: &Case<M>, ds: f64) -> Result<(), TestCaseError>
+where
+    M: Group + Mechanism<4, 1, 0> + std::fmt::Debug,
+{
     let to = k.phi0 + k.dir * 2.0 * TAU;
     let followed = follow(&k.m, k.phi0, k.q0, k.dir, &[to]);
-    assert!(!followed.crossing, "{k:?}: a singular crossing");
-    let (points, folds, closed, truncated) = trace(to, &TraceConfig::default().with_ds(ds));
+    prop_assume!(!followed.crossing);
+    let t = trace_curve(&k.m, [k.phi0], [to], k.q0, &TraceConfig::default().with_ds(ds)).unwrap();
+    let points: Vec<(f64, [f64; 4])> = t.points.iter().map(|p| (p.x[0], p.q)).collect();
+    let folds: Vec<f64> = t.folds.iter().map(|e| e.x[0]).collect();
     // Each point converged to the corrector's tolerance (1e-12 of the rows' magnitudes).
-    assert!(off_curve(&k.m, &points) <= 1e-9, "{k:?}: {:e}", off_curve(&k.m, &points));
-    assert!(closed && !truncated, "{k:?}: closed {closed}, truncated {truncated}, folds {folds:?}");
+    prop_assert!(off_curve(&k.m, &points) <= 1e-9, "{:?}: {:e}", k, off_curve(&k.m, &points));
+    prop_assert!(
+        t.closed && !t.truncated,
+        "{:?}: closed {}, truncated {}, folds {:?}",
+        k,
+        t.closed,
+        t.truncated,
+        folds
+    );
     match followed.limit {
-        Some(l) => assert!(folds.first().is_some_and(|f| (f - l).abs() <= 1e-6), "{k:?}: folds {folds:?}, {l}"),
-        None => assert!(folds.is_empty(), "{k:?}: folds {folds:?}"),
+        Some(l) => {
+            prop_assert!(folds.first().is_some_and(|f| (f - l).abs() <= 1e-6), "{:?}: folds {:?}, {}", k, folds, l)
+        }
+        None => prop_assert!(folds.is_empty(), "{:?}: folds {:?}", k, folds),
     }
-}
-
-fn trace_class_four(k: &Case<ClassFour>, to: f64, cfg: &TraceConfig) -> TracedGroup {
-    let [th1, th2, psi1, psi2] = k.q0;
-    let t = k.m.trace_curve(k.phi0, to, &ClassFourUnknowns { th1, th2, psi1, psi2 }, cfg).unwrap();
-    let folds = t.folds.iter().map(|e| e.x[0]).collect();
-    (t.points.iter().map(|p| (p.x[0], p.q)).collect(), folds, t.closed, t.truncated)
-}
-
-fn trace_triad(k: &Case<Triad>, to: f64, cfg: &TraceConfig) -> TracedGroup {
-    let [b1, t, b2, b3] = k.q0;
-    let t = k.m.trace_curve(k.phi0, to, &TriadUnknowns { b1, t, b2, b3 }, cfg).unwrap();
-    let folds = t.folds.iter().map(|e| e.x[0]).collect();
-    (t.points.iter().map(|p| (p.x[0], p.q)).collect(), folds, t.closed, t.truncated)
+    Ok(())
 }
 
 proptest! {
@@ -384,16 +371,12 @@ proptest! {
 
     #[test]
     fn traced_class_four_groups_meet_their_first_limit_and_close(k in class_four_case()) {
-        let to = k.phi0 + k.dir * 2.0 * TAU;
-        prop_assume!(!follow(&k.m, k.phi0, k.q0, k.dir, &[to]).crossing);
-        check_trace(&k, TraceConfig::default().ds, |to, cfg| trace_class_four(&k, to, cfg));
+        check_trace(&k, TraceConfig::default().ds)?;
     }
 
     #[test]
     fn traced_triads_meet_their_first_limit_and_close(k in triad_case()) {
-        let to = k.phi0 + k.dir * 2.0 * TAU;
-        prop_assume!(!follow(&k.m, k.phi0, k.q0, k.dir, &[to]).crossing);
-        check_trace(&k, TraceConfig::default().ds, |to, cfg| trace_triad(&k, to, cfg));
+        check_trace(&k, TraceConfig::default().ds)?;
     }
 }
 
@@ -421,7 +404,7 @@ fn a_long_step_that_ends_near_the_start_does_not_close_the_curve() {
     let q0 = [-0.5481395246444638, 2.608765821081434, -2.953272694327087, -1.7939579802200856];
     let m = ClassFour { oa, xb, yb, ac, ae, alpha_a, bd, bf, alpha_b, cd, ef };
     let k = Case { m, phi0: 2.627351651356295, q0, dir: 1.0, turns: 2, per_turn: 0 };
-    check_trace(&k, 0.5, |to, cfg| trace_class_four(&k, to, cfg));
+    check_trace(&k, 0.5).unwrap();
     let p = [
         1.0,
         3.9008586638906166,
@@ -439,5 +422,5 @@ fn a_long_step_that_ends_near_the_start_does_not_close_the_curve() {
     let q0 = [-0.8532238362674387, -0.8508495501445963, -1.5617166770811786, 1.9436586721074427];
     let m = Triad { oa, l1, p12, p13, gamma, l2, l3, bx, by, cx, cy };
     let k = Case { m, phi0: 2.3626527895128495, q0, dir: 1.0, turns: 2, per_turn: 0 };
-    check_trace(&k, 1.0, |to, cfg| trace_triad(&k, to, cfg));
+    check_trace(&k, 1.0).unwrap();
 }
