@@ -106,9 +106,12 @@ fn mutate(text: &str, rng: &mut Rng) -> String {
         // Two lines exchanged.
         5 => {
             let mut lines: Vec<&str> = text.lines().collect();
-            let (a, b) = (rng.below(lines.len()), rng.below(lines.len()));
-            lines.swap(a, b);
-            t = lines.join("\n");
+            // An earlier edit may have cut the text to nothing.
+            if !lines.is_empty() {
+                let (a, b) = (rng.below(lines.len()), rng.below(lines.len()));
+                lines.swap(a, b);
+                t = lines.join("\n");
+            }
         }
         // The text cut short.
         _ => t.truncate(at),
