@@ -130,8 +130,8 @@ fn cycle_and_flywheel(
     })?;
     let flywheel = cycle.flywheel(req.delta).map_err(|e| {
         // Where the machine has no inertia about its input, its speed there does not follow
-        // from its energy and the sizing overflows: the runtime says "beyond the range of f64",
-        // where the cause is the machine's, as `simulate` says it.
+        // from its energy: the runtime's singular mass, said in the machine's terms, as
+        // `simulate` says it (with its angle in the units given).
         match cycle.points.iter().find(|p| p.inertia == 0.0) {
             Some(p) => eprintln!(
                 "error: {name}: flywheel: the machine has no inertia about its input at {} = {}{}: its reduced \

@@ -52,8 +52,15 @@ impl Dwell {
     }
 }
 
+/// The largest net travel, relative to the output's range over the samples, that counts as none:
+/// far above the rounding of an output that returns to where it started (a few units in the
+/// last place of its values), far below the travel of any progressive output.
+pub const NO_TRAVEL: f64 = 1e-9;
+
 /// All dwells of a progressive output sampled at `samples` (jets in increasing `x`; `eval`
-/// computes the jet at any `x` of the range). See the [module documentation](self).
+/// computes the jet at any `x` of the range). See the [module documentation](self). An output
+/// whose net travel over the samples is at most [`NO_TRAVEL`] of its range (an oscillating one)
+/// is an [`Error::InvalidArgument`].
 ///
 /// ```
 /// use kinloop_runtime::analysis::{Jet, dwell::dwells};
@@ -71,10 +78,18 @@ pub fn dwells(samples: &[Jet], mut eval: impl FnMut(f64) -> Result<Jet, Error>) 
     check_increasing(samples)?;
     let (first, last) = (samples[0], samples[samples.len() - 1]);
     let travel = last.value - first.value;
-    if travel == 0.0 {
-        return Err(Error::InvalidArgument(
-            "dwells are defined for a progressive output: the output has no net travel over the range".into(),
-        ));
+    // Against the output's range over the samples: an oscillating output sampled over whole
+    // cycles ends where it started up to the rounding of its values, a travel whose sign (and so
+    // which extreme starts a reversal) the units decide (a crank-rocker's rocker over two turns:
+    // exactly 0 in metres, 4.4e-16 in inches, where a dwell of half a turn was reported).
+    let (lo, hi) =
+        samples.iter().fold((f64::INFINITY, f64::NEG_INFINITY), |(lo, hi), j| (lo.min(j.value), hi.max(j.value)));
+    if travel.abs() <= NO_TRAVEL * (hi - lo) {
+        return Err(Error::InvalidArgument(format!(
+            "dwells are defined for a progressive output: the output has no net travel over the range (it moves by \
+             {travel:e} from start to end, over a range of {:e})",
+            hi - lo
+        )));
     }
     // A reversal starts at a maximum for an increasing output, at a minimum for a decreasing one.
     let starts_reversal = if travel > 0.0 { Extreme::Max } else { Extreme::Min };
@@ -200,5 +215,22 @@ mod tests {
         assert!(dwells(&grid(f, 0.0, 4.0 * PI, 100), f).unwrap().is_empty());
         let c = |x: f64| Ok(Jet { x, value: x.cos(), d1: -x.sin(), d2: -x.cos() });
         assert!(matches!(dwells(&grid(c, 0.0, 2.0 * PI, 100), c), Err(Error::InvalidArgument(_))));
+    }
+    /// An oscillation sampled over whole cycles ends where it started up to rounding: no net
+    /// travel, whichever sign the rounding gives it (the units decide it), never a dwell.
+    #[test]
+    fn an_oscillation_has_no_travel_whatever_its_rounding() {
+        let f = |x: f64| Ok(Jet { x, value: x.sin(), d1: x.cos(), d2: -x.sin() });
+        for end in [2.0 * PI, 4.0 * PI, 6.0 * PI] {
+            let samples = grid(f, 0.0, end, 73);
+            let travel = samples[73].value - samples[0].value;
+            assert!(travel != 0.0, "the test needs a rounding travel: {travel:e}");
+            let e = dwells(&samples, f).unwrap_err();
+            assert!(e.to_string().contains("no net travel"), "{e}");
+        }
+        // A progressive output with a reversal keeps its dwell however small its travel beside
+        // its swing, down to a millionth.
+        let g = |x: f64| Ok(Jet { x, value: 1e-6 * x + x.sin(), d1: 1e-6 + x.cos(), d2: -x.sin() });
+        assert_eq!(dwells(&grid(g, 0.0, 6.0 * PI, 145), g).unwrap().len(), 1);
     }
 }

@@ -364,7 +364,10 @@ impl Cycle {
     /// bisection) so that the fluctuation is `delta`, both over the samples.
     ///
     /// `delta` lies in `[MIN_DELTA, 2)` ([`MIN_DELTA`]); outside it the error is
-    /// [`DynamicsError::BadValue`].
+    /// [`DynamicsError::BadValue`], as it is for a law whose speed is not positive at every
+    /// angle (a flywheel is sized for an input that keeps turning one way). A machine that needs
+    /// no flywheel but has no inertia about its input at an angle (its speed there does not
+    /// follow from its energy) is [`DynamicsError::SingularMass`] at that angle.
     pub fn flywheel(&self, delta: f64) -> Result<Flywheel, DynamicsError> {
         if !(MIN_DELTA..2.0).contains(&delta) {
             return Err(DynamicsError::BadValue {
@@ -390,11 +393,20 @@ impl Cycle {
                 });
             }
         }
+        // The energy method sizes a flywheel for an input that keeps turning one way: every speed
+        // of the law positive (then so is the mean). Tested speed by speed, not on the mean alone:
+        // a law that turns back had its flywheel sized, and one whose mean is zero passed or
+        // failed by the sign of the mean's rounding (a flywheel of 8e35 at 360 samples, an error
+        // at 720 or in other units).
+        if let Some(p) = self.points.iter().find(|p| p.omega <= 0.0) {
+            return Err(DynamicsError::BadValue {
+                what: "cycle speed",
+                value: p.omega,
+                why: "must be positive at every angle (the input turning one way)",
+            });
+        }
         let mean_torque = -mean(self.points.iter().map(|p| p.load));
         let omega_m = mean(self.points.iter().map(|p| p.omega));
-        if omega_m.is_nan() || omega_m <= 0.0 {
-            return Err(DynamicsError::BadValue { what: "mean speed", value: omega_m, why: "must be positive" });
-        }
         let work = self.work(mean_torque);
         let lo = work.iter().copied().fold(f64::INFINITY, f64::min);
         let energy_swing = work.iter().copied().fold(f64::NEG_INFINITY, f64::max) - lo;
@@ -403,6 +415,11 @@ impl Cycle {
             return Err(overflow("work of the loads over the cycle"));
         }
         let exact = self.exact_flywheel(&work, omega_m, delta).ok_or_else(|| overflow("exact flywheel inertia"))?;
+        // Without a flywheel, a machine without inertia about its input at an angle has no speed
+        // there that follows from its energy (reported as an overflow of the sizing, `0 / 0`).
+        if let Some(p) = self.points.iter().find(|p| exact + p.inertia == 0.0) {
+            return Err(DynamicsError::SingularMass { x: vec![p.phi], pivot: 0.0, names: Vec::new() });
+        }
         let (_, e0) = self.fluctuation(&work, exact, omega_m);
         let total_inertia = energy_swing / (delta * omega_m * omega_m);
         let mechanism_inertia = mean(self.points.iter().map(|p| p.inertia));

@@ -161,6 +161,47 @@ fn a_flywheel_beyond_f64_is_an_error() {
     assert!(matches!(Cycle { points: Vec::new() }.flywheel(0.1), Err(DynamicsError::BadValue { .. })));
 }
 
+/// A cycle of `n` points whose speed law is `omega(phi)`, loads `load(phi)`, inertia `j`.
+fn law_cycle(n: usize, omega: impl Fn(f64) -> f64, load: impl Fn(f64) -> f64, j: f64) -> Cycle {
+    let points = (0..n)
+        .map(|k| {
+            let phi = std::f64::consts::TAU * k as f64 / n as f64;
+            point(phi, 0.0, load(phi), omega(phi), j)
+        })
+        .collect();
+    Cycle { points }
+}
+
+#[test]
+fn a_speed_law_that_stops_or_turns_back_has_no_flywheel() {
+    // A mean speed of zero (its rounding either sign, by the samples and the units): an error
+    // every time, not a flywheel of 1e35 for one sign.
+    for n in [360, 720, 1000] {
+        for k in [1.0, 1e3, 1e-3] {
+            let c = law_cycle(n, |phi| phi.sin() / k, |phi| phi.cos(), 1.0);
+            let err = c.flywheel(0.05).unwrap_err();
+            assert!(matches!(err, DynamicsError::BadValue { what: "cycle speed", .. }), "{n} {k}: {err}");
+        }
+    }
+    // A positive mean of a law that turns back.
+    let c = law_cycle(360, |phi| 1.0 + 2.0 * phi.sin(), |phi| phi.cos(), 1.0);
+    assert!(matches!(c.flywheel(0.05), Err(DynamicsError::BadValue { what: "cycle speed", .. })));
+    // Every speed positive: sized.
+    let c = law_cycle(360, |phi| 10.0 + phi.sin(), |phi| phi.cos(), 1.0);
+    assert!(c.flywheel(0.05).is_ok());
+}
+
+#[test]
+fn a_machine_without_inertia_is_a_singular_mass_unless_a_flywheel_gives_it_one() {
+    // No work over the cycle and no inertia: no flywheel is needed, and the speed does not follow
+    // from the energy: a singular mass at the first angle, not an overflow of the sizing.
+    let err = law_cycle(36, |_| 10.0, |_| 0.0, 0.0).flywheel(0.05).unwrap_err();
+    assert!(matches!(&err, DynamicsError::SingularMass { x, .. } if x == &[0.0]), "{err}");
+    // Loads without inertia: the flywheel carries the whole swing, at a finite start speed.
+    let f = law_cycle(36, |_| 10.0, |phi| phi.cos(), 0.0).flywheel(0.05).unwrap();
+    assert!(f.exact > 0.0 && f.start_speed > 0.0 && f.start_speed.is_finite(), "{f:?}");
+}
+
 #[test]
 fn an_integration_that_cannot_move_a_huge_coordinate_is_an_error() {
     // y' = 1 from y = 1e300: every step's change is far below the spacing of f64 there
