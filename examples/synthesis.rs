@@ -361,7 +361,7 @@ fn six_bar_versus_four_bar() -> Result<(), Box<dyn std::error::Error>> {
     let clock = Instant::now();
     let mut best: Option<kinloop::synthesis::Candidate> = None;
     for guess in [[0.5, 1.5], [-0.5, -1.5]] {
-        let problem = Problem::new(PathFourBar::default(), &design, &task)?.with_guess(guess);
+        let problem = Problem::new(PathFourBar::default(), &design, &task)?.with_guess(guess)?;
         if let Some(c) = search.run(&problem)?.best()
             && best.as_ref().is_none_or(|b| sse(c) < sse(b))
         {

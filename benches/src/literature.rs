@@ -213,7 +213,7 @@ pub fn problem(case: &Case, guess: Option<[f64; 2]>, window: (f64, f64)) -> Resu
         Constraints::default()
     })?;
     Ok(match guess {
-        Some(g) => p.with_guess(g),
+        Some(g) => p.with_guess(g)?,
         None => p,
     })
 }

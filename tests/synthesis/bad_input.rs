@@ -33,10 +33,14 @@ fn names_that_are_not_the_mechanism_s() {
 
 #[test]
 fn bounds_that_hold_no_value() {
-    for (lo, hi) in [(2.0, 1.0), (f64::NAN, 1.0), (0.0, f64::INFINITY)] {
+    // Finite bounds whose width is not (the starts between them would be infinite).
+    for (lo, hi) in [(2.0, 1.0), (f64::NAN, 1.0), (0.0, f64::INFINITY), (-1e308, 1e308)] {
         let e = error(&Design::new().var("a", lo, hi), &three());
         assert!(matches!(&e, SynthesisError::BadBounds { name, .. } if name == "a"), "{e:?}");
     }
+    let placement = PlacementBounds::translation((-1e308, 1e308), (-1.0, 1.0));
+    let e = error(&design(), &Task::path("p", [[1.0, 2.0]; 9]).timed([0.0; 9]).with_placement(placement));
+    assert!(matches!(&e, SynthesisError::BadBounds { name, .. } if name == "dx"), "{e:?}");
     let e = error(&design(), &Task::path("p", [[1.0, 2.0]; 3]).untimed(1.0, 0.0));
     assert!(matches!(&e, SynthesisError::BadBounds { name, .. } if name == "input"), "{e:?}");
     // Free inputs within a range of one value: several targets cannot be met in order along one
@@ -145,8 +149,11 @@ fn timing_farther_apart_than_a_sweep_follows() {
         matches!(e, SynthesisError::InvalidConfig(_)) && m.contains("targets 1 and 2") && m.contains("`phi`"),
         "{m}"
     );
-    let e = error(&design(), &Task::path("p", [[1.0, 2.0]; 3]).untimed(-1e308, 1e308));
+    let e = error(&design(), &Task::path("p", [[1.0, 2.0]; 3]).untimed(-1e300, 1e300));
     assert!(matches!(&e, SynthesisError::InvalidConfig(m) if m.contains("turns of input `phi`")), "{e:?}");
+    // Farther apart than any double: the bounds themselves are refused.
+    let e = error(&design(), &Task::path("p", [[1.0, 2.0]; 3]).untimed(-1e308, 1e308));
+    assert!(matches!(&e, SynthesisError::BadBounds { name, .. } if name == "input"), "{e:?}");
     // A million turns less a little is followed.
     let far = std::f64::consts::TAU * 0.99e6;
     assert!(Problem::new(CouplerFourBar::default(), &design(), &three().timed([0.0, 0.5, far])).is_ok());

@@ -191,7 +191,7 @@ fn four_bar_path_on_the_other_assembly_mode() {
     let declared = Search::default().with_starts(0..8).run(&problem).unwrap();
     assert!(declared.best().is_none_or(|b| b.max_error > 1e-6), "{:?}", declared.best());
     // ... on the given mode they are.
-    let report = Search::default().with_starts(0..24).run(&problem.with_guess([beta, gamma])).unwrap();
+    let report = Search::default().with_starts(0..24).run(&problem.with_guess([beta, gamma]).unwrap()).unwrap();
     check_recovered(&report, &FOUR_BAR, 1.0);
 }
 

@@ -137,7 +137,7 @@ fn problem(case: &Case) -> Problem<LiteratureFourBar, 2, 1, 2, 10> {
         if case.full_rotation { Constraints::default().with_full_rotation() } else { Constraints::default() };
     let p = Problem::new(LiteratureFourBar::default(), &design, &task).unwrap().with_constraints(&constraints).unwrap();
     match case.guess {
-        Some(g) => p.with_guess(g),
+        Some(g) => p.with_guess(g).unwrap(),
         None => p,
     }
 }

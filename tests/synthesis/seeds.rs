@@ -39,7 +39,8 @@ fn freudenstein_s_log10_generator_seeds_a_function_generation_problem() {
     let design = Design::new().var("a", 0.5, 8.0).var("b", 0.5, 8.0).var("c", 0.5, 8.0);
     let problem = Problem::new(FunctionFourBar::default(), &design, &task)
         .unwrap()
-        .with_guess([four_bar.couplers[0], four_bar.outputs[0]]);
+        .with_guess([four_bar.couplers[0], four_bar.outputs[0]])
+        .unwrap();
     // The seed alone: already at the answer, the local solve stops at once.
     let report = Search::default().with_seeds(vec![seed.clone()]).with_starts(0..0).run(&problem).unwrap();
     assert_eq!(report.seeds, 1);

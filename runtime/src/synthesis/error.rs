@@ -28,7 +28,7 @@ pub enum SynthesisError {
     },
     /// A variable's (or the timing's, or the placement's) bounds hold no value: not finite, or
     /// the lower above the upper.
-    #[error("the bounds of `{name}` are [{lo}, {hi}]: they must be finite with lo <= hi")]
+    #[error("the bounds of `{name}` are [{lo}, {hi}]: they must be finite with lo <= hi, at most f64::MAX apart")]
     BadBounds {
         /// The variable.
         name: String,

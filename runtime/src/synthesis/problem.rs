@@ -233,10 +233,22 @@ impl<K: SensKernel> ProblemOf<K> {
     }
 
     /// The position at the first target that picks the assembly mode (by default the
-    /// mechanism's declared guess there).
-    pub fn with_guess(mut self, guess: <K::Dims as Dims>::Q) -> Self {
+    /// mechanism's declared guess there). A guess of another size than the unknowns, or not
+    /// finite, is refused here, as [`ProblemOf::with_guesses`] refuses one (accepted, every start
+    /// ended unassembled, with nothing said of the guess).
+    pub fn with_guess(mut self, guess: <K::Dims as Dims>::Q) -> Result<Self, SynthesisError> {
+        let n = self.base.dims().n();
+        if guess.as_ref().len() != n {
+            return Err(SynthesisError::Mismatch(format!(
+                "a guess of {} values for {n} unknowns",
+                guess.as_ref().len()
+            )));
+        }
+        if guess.as_ref().iter().any(|v| !v.is_finite()) {
+            return Err(SynthesisError::InvalidConfig("the guess is not finite".into()));
+        }
         self.guess = Guess::First(guess);
-        self
+        Ok(self)
     }
 
     /// A position at every target, to start the first evaluation of every local solve from

@@ -112,10 +112,13 @@ pub(crate) fn resolve_timing<D: Dims>(d: D, timing: &Timing, targets: usize) -> 
     }
 }
 
-/// The largest distance of the targets' lengths from their centroid (1 where none is a length
-/// or all coincide): what the residual tolerance is relative to.
+/// The largest distance of the targets' lengths from their centroid: what the residual
+/// tolerance is relative to. Where all coincide, the largest magnitude of a target's lengths
+/// (its distance from the origin, in the mechanism's units: a tolerance of 1 was 1e-14 of a
+/// millimetre in millimetres and of a metre in metres); 1 where none is a length (angles) or
+/// every one is 0.
 pub(crate) fn target_scale(channels: &[(Resolved, f64)], targets: &[f64], width: usize) -> f64 {
-    let mut scale: f64 = 0.0;
+    let (mut scale, mut magnitude): (f64, f64) = (0.0, 0.0);
     let mut at = 0;
     for (c, w) in channels {
         let cols: &[usize] = match c {
@@ -131,11 +134,44 @@ pub(crate) fn target_scale(channels: &[(Resolved, f64)], targets: &[f64], width:
         for k in 0..n {
             let d = crate::number::norm_of(cols.iter().zip(&means).map(|(&j, m)| targets[k * width + at + j] - m));
             scale = scale.max(w * d);
+            magnitude = magnitude.max(w * crate::number::norm_of(cols.iter().map(|&j| targets[k * width + at + j])));
         }
         at += match c {
             Resolved::Point(..) => 2,
             _ => 1,
         };
     }
-    if scale > 0.0 && scale.is_finite() { scale } else { 1.0 }
+    if scale > 0.0 && scale.is_finite() {
+        scale
+    } else if magnitude > 0.0 && magnitude.is_finite() {
+        magnitude
+    } else {
+        1.0
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// The tolerance's scale is a length of the targets in every case, so that a task in other
+    /// units is the same task: coinciding targets too (a function generator asked for the same
+    /// slider position twice), by their magnitude.
+    #[test]
+    fn the_targets_scale_follows_their_units() {
+        let point = [(Resolved::Point(ColumnIndex::Output(0), ColumnIndex::Output(1)), 1.0)];
+        let value = [(Resolved::Value(ColumnIndex::Unknown(2)), 1.0)];
+        for k in [1.0, 1e3, 1e-6, 1e-9] {
+            let apart = target_scale(&point, &[0.0, 0.0, 3.0 * k, 4.0 * k], 2);
+            assert!((apart / k - 2.5).abs() < 1e-15, "{k}: {apart}");
+            let together = target_scale(&value, &[3.4 * k, 3.4 * k], 1);
+            assert!((together / k - 3.4).abs() < 1e-15, "{k}: {together}");
+            let points = target_scale(&point, &[3.0 * k, 4.0 * k, 3.0 * k, 4.0 * k], 2);
+            assert!((points / k - 5.0).abs() < 1e-15, "{k}: {points}");
+        }
+        // Only angles, or every length 0: the radian.
+        let angle = [(Resolved::Angle { col: ColumnIndex::Unknown(0), rotates: false }, 1.0)];
+        assert_eq!(target_scale(&angle, &[0.3, 0.7], 1), 1.0);
+        assert_eq!(target_scale(&value, &[0.0, 0.0], 1), 1.0);
+    }
 }

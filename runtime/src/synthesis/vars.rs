@@ -111,7 +111,8 @@ pub(crate) fn param_index(mechanism: &str, params: &[String], name: &str) -> Res
 
 /// Bounds must be finite and ordered.
 pub(crate) fn check_bounds(name: &str, lo: f64, hi: f64) -> Result<(), SynthesisError> {
-    if lo.is_finite() && hi.is_finite() && lo <= hi {
+    // The width too: the starts are `lo + (hi - lo) t`, infinite for bounds of `±1e308`.
+    if lo.is_finite() && hi.is_finite() && lo <= hi && (hi - lo).is_finite() {
         Ok(())
     } else {
         Err(SynthesisError::BadBounds { name: name.to_string(), lo, hi })
