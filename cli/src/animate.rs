@@ -11,7 +11,7 @@ use crate::sweep::range_too_long;
 use crate::{Failed, exit, samples};
 use kinloop_model::{Count, Model};
 use kinloop_runtime::{Error, QuantityKind};
-use kinloop_viz::draw::{Animation, DefaultDrawing, DrawError};
+use kinloop_viz::draw::{Animation, DefaultDrawing, DrawError, MAX_GRID_CELLS};
 use kinloop_viz::html::{HtmlConfig, HtmlError, html_grid_of, html_of};
 use std::io::Write;
 use std::path::Path;
@@ -201,10 +201,13 @@ fn find_cam(model: &mut Model, req: &Request, point: &str) -> Result<Found, Fail
 const DEFAULT_SAMPLES: usize = 181;
 
 /// The values of each input of a grid of `ni` inputs when `--samples` is not given: the most
-/// whose grid fits the page's `max` poses (`c^ni <= max`: 26 x 26 or 8 x 8 x 8 of the default
-/// 721), at least 2 (a grid of two values per input that does not fit is refused as too many
-/// cells).
+/// whose grid fits the page's `max` poses and the grid's bound ([`MAX_GRID_CELLS`]: `c^ni <=
+/// min(max, MAX_GRID_CELLS)`: 26 x 26 or 8 x 8 x 8 of the default 721), at least 2 (a grid of
+/// two values per input that does not fit is refused as too many cells). Without the grid's
+/// bound, `--frames 200000` chose a grid the grid then refused, and a huge `--frames` counted up
+/// to its square root.
 fn default_grid_values(ni: usize, max: usize) -> usize {
+    let max = max.min(MAX_GRID_CELLS);
     let fits = |c: usize| (0..ni).try_fold(1usize, |p, _| p.checked_mul(c)).is_some_and(|cells| cells <= max);
     let mut c = 2;
     while fits(c + 1) {
@@ -392,6 +395,10 @@ mod tests {
         assert_eq!(default_grid_values(2, 99), 9);
         // Too few poses for two values per input: 2, refused by the cells' check.
         assert_eq!(default_grid_values(3, 7), 2);
+        // More poses than a grid holds: the grid's bound, 316^2 = 99,856 <= 100,000 < 317^2,
+        // 46^3 = 97,336 <= 100,000 < 47^3; a huge `--frames` as fast.
+        assert_eq!(default_grid_values(2, 200_000), 316);
+        assert_eq!(default_grid_values(3, usize::MAX), 46);
     }
 
     #[test]

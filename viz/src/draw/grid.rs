@@ -4,7 +4,7 @@
 
 use super::error::DrawError;
 use super::motion::{Motion, Pose};
-use kinloop_runtime::{Error, Kin, Mechanism, Sweep};
+use kinloop_runtime::{Error, Kin, Mechanism, Number, Sweep};
 
 /// Largest number of cells a grid may have: a page holds at most a few thousand poses, and a
 /// grid beyond this is a mistake in its counts rather than a wish.
@@ -249,15 +249,19 @@ impl GridMotion {
                 Err(Error::RangeTooLong { turns, max_turns, .. })
                 | Ok(Some(Err(Error::RangeTooLong { turns, max_turns, .. }))) => {
                     return Err(DrawError::InvalidSetting(format!(
-                        "the grid sweeps input `{name}` over its range {lo} to {hi} on each of its {lines} lines, \
-                         {turns:.3e} turns of the inputs in all, more than the {max_turns:e} turns a sweep follows: \
-                         give `{name}` a shorter range, or the other inputs fewer values"
+                        "the grid sweeps input `{name}` over its range {} to {} (the mechanism's units: radians of \
+                         an angle) on each of its {lines} lines, {turns:.3e} turns of the inputs in all, more than the {max_turns:e} turns a sweep follows: \
+                         give `{name}` a shorter range, or the other inputs fewer values",
+                        Number(lo),
+                        Number(hi)
                     )));
                 }
                 Err(e @ Error::InvalidArgument(_)) | Ok(Some(Err(e @ Error::InvalidArgument(_)))) => {
                     return Err(DrawError::InvalidSetting(format!(
-                        "the grid sweeps input `{name}` over its range {lo} to {hi} on each of its {lines} lines, \
-                         a length no sweep can measure ({e}): give `{name}` a shorter range"
+                        "the grid sweeps input `{name}` over its range {} to {} (the mechanism's units) on each of \
+                         its {lines} lines, a length no sweep can measure ({e}): give `{name}` a shorter range",
+                        Number(lo),
+                        Number(hi)
                     )));
                 }
                 _ => {}

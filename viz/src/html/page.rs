@@ -212,10 +212,9 @@ pub(crate) fn document(p: &Parts) -> Result<String, HtmlError> {
     }
     let about = match &p.grid {
         Some(g) => format!(
-            "{n} of {} cells of a grid of the inputs ({}), computed by kinloop: rows along {} by branch-safe sweeps, each row started from the previous row's first cell, so that one assembly mode is carried throughout; where the mechanism cannot be assembled on it, the page says so. Drag the sliders or use the arrow keys.",
+            "{n} of {} cells of a grid of the inputs ({}), computed by kinloop: from the first cell, each cell reached by a branch-safe sweep from a neighbour already solved, so that one assembly mode is carried throughout; where the mechanism cannot be assembled on it, the page says so. Drag the sliders or use the arrow keys.",
             g.cells.len(),
             g.counts.iter().map(usize::to_string).collect::<Vec<_>>().join(" x "),
-            escape(g.inputs.first().map_or("", String::as_str))
         ),
         None => {
             format!("{n} poses of a branch-safe sweep, computed by kinloop; drag the slider or use the arrow keys.")

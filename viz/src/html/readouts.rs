@@ -174,7 +174,8 @@ pub(crate) fn channels(
             // Charts divide by the range of the values: beyond this they could overflow.
             if v.abs() > LARGEST {
                 return Err(HtmlError::InvalidSetting(format!(
-                    "readout `{label}` is {v:e} at pose {i}: more than {LARGEST:e} cannot be charted"
+                    "readout `{label}` is {v:e} at pose {i}: a page charts values up to {LARGEST:e} in the units \
+                     shown; express the mechanism in larger units"
                 )));
             }
             shown.push(v);
