@@ -237,16 +237,7 @@ impl<K: SensKernel> ProblemOf<K> {
     /// finite, is refused here, as [`ProblemOf::with_guesses`] refuses one (accepted, every start
     /// ended unassembled, with nothing said of the guess).
     pub fn with_guess(mut self, guess: <K::Dims as Dims>::Q) -> Result<Self, SynthesisError> {
-        let n = self.base.dims().n();
-        if guess.as_ref().len() != n {
-            return Err(SynthesisError::Mismatch(format!(
-                "a guess of {} values for {n} unknowns",
-                guess.as_ref().len()
-            )));
-        }
-        if guess.as_ref().iter().any(|v| !v.is_finite()) {
-            return Err(SynthesisError::InvalidConfig("the guess is not finite".into()));
-        }
+        self.check_guess(&guess)?;
         self.guess = Guess::First(guess);
         Ok(self)
     }
@@ -257,15 +248,21 @@ impl<K: SensKernel> ProblemOf<K> {
         if guesses.len() != self.targets() {
             return Err(SynthesisError::Mismatch(format!("{} guesses for {} targets", guesses.len(), self.targets())));
         }
-        let n = self.base.dims().n();
-        if let Some(g) = guesses.iter().find(|g| g.as_ref().len() != n) {
-            return Err(SynthesisError::Mismatch(format!("a guess of {} values for {n} unknowns", g.as_ref().len())));
-        }
-        if guesses.iter().flat_map(|g| g.as_ref()).any(|v| !v.is_finite()) {
-            return Err(SynthesisError::InvalidConfig("a guess is not finite".into()));
-        }
+        guesses.iter().try_for_each(|g| self.check_guess(g))?;
         self.guess = Guess::Every(guesses);
         Ok(self)
+    }
+
+    /// A guess of the unknowns' size, every value finite.
+    fn check_guess(&self, guess: &<K::Dims as Dims>::Q) -> Result<(), SynthesisError> {
+        let (n, given) = (self.base.dims().n(), guess.as_ref().len());
+        if given != n {
+            return Err(SynthesisError::Mismatch(format!("a guess of {given} values for {n} unknowns")));
+        }
+        if guess.as_ref().iter().any(|v| !v.is_finite()) {
+            return Err(SynthesisError::InvalidConfig("a guess is not finite".into()));
+        }
+        Ok(())
     }
 
     /// The Newton configuration of every position solve (by default a residual tolerance of

@@ -250,8 +250,9 @@ impl GridMotion {
                 | Ok(Some(Err(Error::RangeTooLong { turns, max_turns, .. }))) => {
                     return Err(DrawError::InvalidSetting(format!(
                         "the grid sweeps input `{name}` over its range {} to {} (the mechanism's units: radians of \
-                         an angle) on each of its {lines} lines, {turns:.3e} turns of the inputs in all, more than the {max_turns:e} turns a sweep follows: \
-                         give `{name}` a shorter range, or the other inputs fewer values",
+                         an angle) on each of its {lines} lines, {turns:.3e} turns of the inputs in all, more than \
+                         the {max_turns:e} turns a sweep follows: give `{name}` a shorter range, or the other inputs \
+                         fewer values",
                         Number(lo),
                         Number(hi)
                     )));
