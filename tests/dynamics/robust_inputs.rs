@@ -276,3 +276,33 @@ proptest! {
         }
     }
 }
+
+/// Between the start angles whose turns sweep and those refused, no kinematic failure: the
+/// cycle refuses every start angle at which the sweep's steps would round (doubles more than a
+/// millionth of the samples' spacing apart) as a bad start angle, before sweeping.
+#[test]
+fn a_large_start_angle_runs_or_is_a_bad_value_never_a_kinematic_failure() {
+    let m = Machine::default();
+    let model = m.mass_model().unwrap();
+    let (mut ran, mut refused) = (0, 0);
+    for e in [6.0, 8.0, 9.0, 10.0, 12.0, 13.0, 14.0, 15.0, 15.5, 16.0] {
+        for samples in [8, 360, 10_000] {
+            let phi0 = 10f64.powf(e);
+            let cycle = InverseCycle::new(&m, &model, SpeedLaw::Constant(1.0))
+                .start(phi0)
+                .samples(samples)
+                .guess(m.guess_flat(&[phi0]))
+                .run();
+            match cycle {
+                Ok(c) => {
+                    ran += 1;
+                    assert!(c.points.iter().all(|p| p.torque.is_finite()), "{phi0} {samples}");
+                }
+                Err(DynamicsError::BadValue { what: "start angle", .. }) => refused += 1,
+                Err(e) => panic!("start {phi0}, {samples} samples: {e}"),
+            }
+        }
+    }
+    // The bound falls between 1e6 (every count runs) and 1e16 (none does).
+    assert!(ran >= 3 && refused >= 3, "{ran} ran, {refused} refused");
+}

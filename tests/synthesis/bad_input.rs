@@ -158,3 +158,30 @@ fn timing_farther_apart_than_a_sweep_follows() {
     let far = std::f64::consts::TAU * 0.99e6;
     assert!(Problem::new(CouplerFourBar::default(), &design(), &three().timed([0.0, 0.5, far])).is_ok());
 }
+
+kinloop::mechanism! {
+    /// A crank driven by its slider: the slider's position `s` is the input (a length).
+    #[kinloop(sensitivities)]
+    pub struct SliderDriven {
+        params r = 1.0, l = 3.0;
+        input s;
+        unknowns phi = 0.5, psi = 0;
+        loop oabo: r @ phi == (s, 0) + l @ psi;
+    }
+}
+
+#[test]
+fn a_full_rotation_of_a_length_input_is_refused() {
+    let design = Design::new().var("r", 0.5, 2.0);
+    let task = Task::function("phi", [(2.5, 1.0), (3.0, 0.8), (3.5, 0.5)]);
+    let problem = match Problem::new(SliderDriven::default(), &design, &task) {
+        Ok(p) => p,
+        Err(e) => panic!("{e}"),
+    };
+    let r = problem.with_constraints(&Constraints::default().with_full_rotation());
+    assert!(
+        matches!(&r, Err(SynthesisError::InvalidConfig(m)) if m.contains("`s` of `SliderDriven` is a length")),
+        "{:?}",
+        r.err()
+    );
+}

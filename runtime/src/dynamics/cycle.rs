@@ -159,7 +159,8 @@ where
     /// Runs the inverse dynamics over the turn.
     ///
     /// Errors: fewer than 8 samples, more than memory holds, a start angle so large that the
-    /// samples cannot be told apart, or a speed law that is not finite as
+    /// doubles near it are more than a millionth of the samples' spacing apart (the steps between
+    /// the samples could not be told apart), or a speed law that is not finite as
     /// [`DynamicsError::BadValue`]; a kinematic failure over the turn (a limit position: the
     /// input cannot turn) as [`DynamicsError::Kinematics`]; the model's own errors.
     pub fn run(self) -> Result<Cycle, DynamicsError> {
@@ -205,13 +206,18 @@ pub fn turn_states<K: Kernel>(
             why: "too many to hold in memory",
         });
     }
-    // The samples of the turn must be told apart: at a huge start angle the spacing of f64
-    // numbers exceeds the step between samples and they would all fall on a few angles.
-    if !(phi0.is_finite() && super::error::spacing(phi0.abs() + TAU) < TAU / samples as f64) {
+    // The samples of the turn must be told apart, and the sweep's steps between them solved: at
+    // a huge start angle the spacing of f64 numbers is no longer small against the step, the
+    // steps' inputs round away from where they are predicted, and the sweep fails on them. The
+    // bound is the sweep's own (beyond it the sweep's error would be the input's coarseness):
+    // refused here, the error names the start angle.
+    let step = TAU / samples as f64;
+    if !(phi0.is_finite() && super::error::spacing(phi0.abs() + TAU) <= crate::paths::curve::COARSE_INPUT * step) {
         return Err(DynamicsError::BadValue {
             what: "start angle",
             value: phi0,
-            why: "must be finite and small enough for the samples of a turn to be told apart (reduce it modulo a turn)",
+            why: "must be finite and small enough for the angles of a turn's samples, and of the steps between them, to \
+                  be told apart (reduce it modulo a turn)",
         });
     }
     let (mut from, mut to) = (d.x(), d.x());

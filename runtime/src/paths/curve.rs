@@ -80,8 +80,8 @@ impl<X: Store> Path<X> {
         })
     }
 
-    /// The first input whose doubles at `x` are farther apart than a millionth of its change
-    /// over a step (`step(delta_i)`, from the path's change `delta_i` of it), with that distance
+    /// The first input whose doubles at `x` are farther apart than [`COARSE_INPUT`] of its
+    /// change over a step (`step(delta_i)`, from the path's change `delta_i` of it), with that distance
     /// and that change: there the steps' inputs are rounded by much more than the predictions
     /// and tolerances allow for (an input near `1e17` is a double 16 apart), and a failure is the
     /// inputs', not the mechanism's. Looked at where a sweep or a trace has failed.
@@ -90,10 +90,15 @@ impl<X: Store> Path<X> {
         x.iter().zip(self.delta.as_ref()).enumerate().find_map(|(i, (&xi, &di))| {
             let apart = xi.abs().next_up() - xi.abs();
             let change = step(di).abs();
-            (change > 0.0 && apart > 1e-6 * change).then_some((i, apart, change))
+            (change > 0.0 && apart > COARSE_INPUT * change).then_some((i, apart, change))
         })
     }
 }
+
+/// The largest spacing of an input's doubles, as a fraction of its change over a step, at
+/// which a path's steps are solved: beyond it the steps' inputs round by more than the
+/// predictions and tolerances allow for, and a failure is blamed on the inputs.
+pub(crate) const COARSE_INPUT: f64 = 1e-6;
 
 /// A unit that is not positive and finite counts as one.
 fn sane(unit: f64) -> f64 {

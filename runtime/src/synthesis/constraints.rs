@@ -72,7 +72,8 @@ pub struct Constraints {
 }
 
 impl Constraints {
-    /// Requires [`Constraints::full_rotation`].
+    /// Requires [`Constraints::full_rotation`]. An input inferred as a length or a pure number
+    /// turns no turn: refused when the constraints are applied (`Problem::with_constraints`).
     pub fn with_full_rotation(mut self) -> Self {
         self.full_rotation = true;
         self

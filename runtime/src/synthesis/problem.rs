@@ -176,6 +176,19 @@ impl<K: SensKernel> ProblemOf<K> {
                 self.base.name()
             )));
         }
+        // A full rotation is a turn of an angle: a length or a ratio swept over 2 pi of its unit
+        // would be judged by a constraint that means nothing for it.
+        if constraints.full_rotation && ni == 1 {
+            let kind = self.base.input_kind(0);
+            if matches!(kind, QuantityKind::Length | QuantityKind::Dimensionless) {
+                return Err(SynthesisError::InvalidConfig(format!(
+                    "full rotation is a turn of an angle input: `{}` of `{}` is a {}",
+                    self.base.input_name(0),
+                    self.base.name(),
+                    if kind == QuantityKind::Length { "length" } else { "pure number" }
+                )));
+            }
+        }
         if let Some(t) = &constraints.transmission {
             let c = scalar_column(&self.base, &t.coupler)?;
             let f = scalar_column(&self.base, &t.follower)?;
