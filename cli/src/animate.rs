@@ -6,7 +6,7 @@
 use crate::cam::{self, FollowerArgs, Found};
 use crate::cam_drawn;
 use crate::exit::usage;
-use crate::solve::{in_units, model_inputs, parse_inputs};
+use crate::solve::{degrees, in_units, model_inputs, parse_inputs};
 use crate::sweep::range_too_long;
 use crate::{Failed, exit, samples};
 use kinloop_model::{Count, Model};
@@ -260,9 +260,16 @@ fn grid(model: &mut Model, req: &Request, format: Format) -> Result<(), Failed> 
     }
     let failed = |e: &dyn std::fmt::Display| failed(&name, e);
     let Endpoints { from, to, guess } = endpoints(model, req)?;
+    let kinds = model.input_kinds().to_vec();
     let grid = model.grid(&from, &to, &counts, &guess).map_err(|e| match e {
-        // The counts or ranges refused (no value of an input, equal ends, too many cells).
+        // The counts or ranges refused (no value of an input, equal ends, too many cells, a
+        // range no sweep follows: its ends as they were given).
         DrawError::InvalidSetting(_) | DrawError::Sweep(Error::InvalidArgument(_)) => usage(format!("{name}: {e}")),
+        e @ DrawError::GridRange { .. } => {
+            let is_angle = |i| kinds.get(i) == Some(&QuantityKind::Angle);
+            let e = if req.deg { e.in_degrees(is_angle, degrees) } else { e };
+            usage(format!("{name}: {e}"))
+        }
         e => failed(&e),
     })?;
     let unreached = grid.cells.iter().filter(|c| c.is_none()).count();

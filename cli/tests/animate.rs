@@ -238,6 +238,10 @@ fn a_grid_over_a_range_no_sweep_follows_is_a_usage_error() {
         let args = ["animate", &file, "--grid", "--from", "0,0.4", "--to", to, "--samples", "5", "--out", &p];
         fails_without_output(&args, &path, 2, "the grid sweeps input `th1` over its range 0 to");
     }
+    // In degrees as given with --deg, not in the radians the grid is computed in.
+    let args =
+        ["animate", &file, "--grid", "--deg", "--from", "0,20", "--to", "1e14,170", "--samples", "5", "--out", &p];
+    fails_without_output(&args, &path, 2, "the grid sweeps input `th1` over its range 0 to 100000000000000 (degrees)");
 }
 
 /// A three-input mechanism for the default grid: a two-link arm on a slider, its tip `(x, y)`.

@@ -142,8 +142,10 @@ fn ranges_no_sweep_follows_are_refused_not_unreached() {
     let g = m.guess_flat(&from);
     for (to, counts) in [([1e12, 1.0, 2.5], [3, 3, 3]), ([2e6, 1.0, 2.5], [3, 3, 3]), ([1.0, 1.0, 1e12], [2, 2, 2])] {
         let r = GridMotion::record(&m, from, to, counts, g);
-        let Err(DrawError::InvalidSetting(msg)) = &r else { panic!("to {to:?}: {r:?}") };
-        let name = if to[2] > 1e3 { "`s`" } else { "`th1`" };
+        let Err(e @ DrawError::GridRange { input, .. }) = &r else { panic!("to {to:?}: {r:?}") };
+        let (name, index) = if to[2] > 1e3 { ("`s`", 2) } else { ("`th1`", 0) };
+        assert_eq!(*input, index);
+        let msg = e.to_string();
         assert!(msg.contains(name) && msg.contains("turns a sweep follows"), "{msg}");
     }
     // Between cells 1.2e5 turns of `th1`, within what a sweep follows; on its 9 lines (3 values
@@ -151,8 +153,13 @@ fn ranges_no_sweep_follows_are_refused_not_unreached() {
     // unit is the radian).
     let to = [0.5 + std::f64::consts::TAU * 1.2e5, 1.0, 2.5];
     let r = GridMotion::record(&m, from, to, [2, 3, 3], g);
-    let Err(DrawError::InvalidSetting(msg)) = &r else { panic!("{r:?}") };
-    assert!(msg.contains("1.080e6 turns"), "{msg}");
+    let Err(e) = r else { panic!("{r:?}") };
+    let msg = e.to_string();
+    assert!(msg.contains("1.080e6 turns") && msg.contains("radians"), "{msg}");
+    // Written in degrees for a caller that reads angles so, where the input is an angle.
+    let deg = e.in_degrees(|i| i == 0, f64::to_degrees).to_string();
+    assert!(deg.contains("over its range 28.64788975654116 to ") && deg.contains("(degrees)"), "{deg}");
+    assert!(deg.contains("1.080e6 turns"), "{deg}");
 }
 
 /// The gallery's five-bar over a whole turn of each crank: where the links cannot span the

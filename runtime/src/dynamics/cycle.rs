@@ -210,9 +210,12 @@ pub fn turn_states<K: Kernel>(
     // a huge start angle the spacing of f64 numbers is no longer small against the step, the
     // steps' inputs round away from where they are predicted, and the sweep fails on them. The
     // bound is the sweep's own (beyond it the sweep's error would be the input's coarseness):
-    // refused here, the error names the start angle.
+    // refused here, the error names the start angle. A start within a turn of zero is never
+    // refused: the count of samples, not the start, makes a step that fine (billions a turn),
+    // and the sweep judges it.
     let step = TAU / samples as f64;
-    if !(phi0.is_finite() && super::error::spacing(phi0.abs() + TAU) <= crate::paths::curve::COARSE_INPUT * step) {
+    let bound = (crate::paths::curve::COARSE_INPUT * step).max(super::error::spacing(2.0 * TAU));
+    if !(phi0.is_finite() && super::error::spacing(phi0.abs() + TAU) <= bound) {
         return Err(DynamicsError::BadValue {
             what: "start angle",
             value: phi0,

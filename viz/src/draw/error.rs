@@ -1,5 +1,6 @@
 //! What can go wrong when drawing a mechanism.
 
+use kinloop_runtime::Number;
 use std::fmt;
 
 /// Why a drawing could not be made. Every mistake in a drawing description or its input is one
@@ -58,6 +59,28 @@ pub enum DrawError {
     },
     /// A setting outside its valid range (e.g. zero frames or a non-positive width).
     InvalidSetting(String),
+    /// A grid whose lines along one input travel farther in all than a sweep follows (or than a
+    /// sweep can measure): refused before any cell is swept.
+    GridRange {
+        /// The input's index among the mechanism's inputs.
+        input: usize,
+        /// The input's name.
+        name: String,
+        /// The first end of the input's range: in the mechanism's units (radians of an angle),
+        /// or in degrees where `degrees` is set.
+        lo: f64,
+        /// The last end of the input's range, in the units of `lo`.
+        hi: f64,
+        /// The grid's lines along the input (the cells of the other inputs), each the whole range.
+        lines: usize,
+        /// The turns of the inputs the lines travel in all; infinite where no sweep can measure
+        /// the length.
+        turns: f64,
+        /// The most turns a sweep follows.
+        max_turns: f64,
+        /// Whether `lo` and `hi` are written in degrees ([`DrawError::in_degrees`]).
+        degrees: bool,
+    },
     /// The sweep failed before it could be drawn (not a stop at a located event, which is
     /// drawn and marked).
     Sweep(kinloop_runtime::Error),
@@ -90,9 +113,42 @@ impl fmt::Display for DrawError {
                  express the mechanism in a smaller unit of length"
             ),
             DrawError::InvalidSetting(s) => write!(f, "invalid drawing setting: {s}"),
+            DrawError::GridRange { name, lo, hi, lines, turns, max_turns, degrees, .. } => {
+                let units = if *degrees { "degrees" } else { "the mechanism's units: radians of an angle" };
+                let (lo, hi) = (Number(*lo), Number(*hi));
+                write!(
+                    f,
+                    "the grid sweeps input `{name}` over its range {lo} to {hi} ({units}) on each of its {lines} lines, "
+                )?;
+                if turns.is_finite() {
+                    write!(
+                        f,
+                        "{turns:.3e} turns of the inputs in all, more than the {max_turns:e} turns a sweep follows: give \
+                         `{name}` a shorter range, or the other inputs fewer values"
+                    )
+                } else {
+                    write!(f, "a length no sweep can measure: give `{name}` a shorter range")
+                }
+            }
             DrawError::Sweep(e) => write!(f, "the sweep failed: {e}"),
             DrawError::Render(s) => write!(f, "cannot render the SVG: {s}"),
         }
+    }
+}
+
+impl DrawError {
+    /// This error with the values of inputs it names written in degrees, by `to_degrees` (as
+    /// [`f64::to_degrees`]), where `is_angle` says the input (by its index) is an angle: for a
+    /// caller that reads angles in degrees (the command line's `--deg`), so that its user reads
+    /// them as they were given. Other errors are returned as they are.
+    pub fn in_degrees(mut self, is_angle: impl Fn(usize) -> bool, to_degrees: impl Fn(f64) -> f64) -> Self {
+        if let DrawError::GridRange { input, lo, hi, degrees, .. } = &mut self
+            && !*degrees
+            && is_angle(*input)
+        {
+            (*lo, *hi, *degrees) = (to_degrees(*lo), to_degrees(*hi), true);
+        }
+        self
     }
 }
 

@@ -4,7 +4,8 @@
 
 use super::error::DrawError;
 use super::motion::{Motion, Pose};
-use kinloop_runtime::{Error, Kin, Mechanism, Number, Sweep};
+use kinloop_runtime::paths::sweep::MAX_TURNS;
+use kinloop_runtime::{Error, Kin, Mechanism, Sweep};
 
 /// Largest number of cells a grid may have: a page holds at most a few thousand poses, and a
 /// grid beyond this is a mistake in its counts rather than a wish.
@@ -225,10 +226,10 @@ impl GridMotion {
     }
 
     /// Refuses, before any neighbour is swept, a grid whose sweeps would travel along an input
-    /// farther in all than one sweep follows ([`MAX_TURNS`](kinloop_runtime::paths::sweep::MAX_TURNS) turns, in the sweep's own units of
-    /// the inputs): its lines along that input, each the input's whole range, measured by a
-    /// sweep of that length from the first cell, which refuses a range too long before it takes
-    /// a step. Without it a wide range made every cell a sweep of up to a million turns (hours),
+    /// farther in all than one sweep follows ([`MAX_TURNS`] turns, in the sweep's own units of
+    /// the inputs; [`DrawError::GridRange`]): its lines along that input, each the input's whole
+    /// range, measured by a sweep of that length from the first cell, which refuses a range too
+    /// long before it takes a step. Without it a wide range made every cell a sweep of up to a million turns (hours),
     /// or, beyond that, unreachable, as if the mechanism could not be assembled there.
     fn check_travel<F>(&self, sweep: &mut F, first: &Pose) -> Result<(), DrawError>
     where
@@ -245,25 +246,16 @@ impl GridMotion {
             let mut to = first.x.clone();
             to[a] += travel;
             let name = &self.motion.inputs[a];
+            let refused = |turns: f64, max_turns: f64| {
+                let name = name.clone();
+                Err(DrawError::GridRange { input: a, name, lo, hi, lines, turns, max_turns, degrees: false })
+            };
             match sweep(&first.x, &to, 1, &first.q) {
                 Err(Error::RangeTooLong { turns, max_turns, .. })
-                | Ok(Some(Err(Error::RangeTooLong { turns, max_turns, .. }))) => {
-                    return Err(DrawError::InvalidSetting(format!(
-                        "the grid sweeps input `{name}` over its range {} to {} (the mechanism's units: radians of \
-                         an angle) on each of its {lines} lines, {turns:.3e} turns of the inputs in all, more than \
-                         the {max_turns:e} turns a sweep follows: give `{name}` a shorter range, or the other inputs \
-                         fewer values",
-                        Number(lo),
-                        Number(hi)
-                    )));
-                }
-                Err(e @ Error::InvalidArgument(_)) | Ok(Some(Err(e @ Error::InvalidArgument(_)))) => {
-                    return Err(DrawError::InvalidSetting(format!(
-                        "the grid sweeps input `{name}` over its range {} to {} (the mechanism's units) on each of \
-                         its {lines} lines, a length no sweep can measure ({e}): give `{name}` a shorter range",
-                        Number(lo),
-                        Number(hi)
-                    )));
+                | Ok(Some(Err(Error::RangeTooLong { turns, max_turns, .. }))) => return refused(turns, max_turns),
+                // A length the sweep cannot measure (not finite in the sweep's units).
+                Err(Error::InvalidArgument(_)) | Ok(Some(Err(Error::InvalidArgument(_)))) => {
+                    return refused(f64::INFINITY, MAX_TURNS);
                 }
                 _ => {}
             }
