@@ -113,8 +113,9 @@ proptest! {
 
 /// A non-Grashof four-bar whose coupler and rocker are stretched within 8e-5 of their length at
 /// the start (found by the property test above): the input's limit, where `|BD| = b + c`, lies
-/// 0.0082 rad on, before the second sample. The report gives it, at its closed form, with the
-/// start as the range reached.
+/// 0.0082 rad on, before the second sample. The report gives it, at its closed form, as the end
+/// of the range reached, and the rocker's minimum on the way there (0.0056 rad on), which the
+/// closed form confirms: lower than the rocker a ten-thousandth of a radian either side.
 #[test]
 fn a_limit_before_the_second_sample_is_reported() {
     let (a, b, c, d) = (0.8866455380657977, 0.22395128782516954, 0.29708768544839576, 1.4076032175831328);
@@ -122,9 +123,39 @@ fn a_limit_before_the_second_sample_is_reported() {
     let guess = four_bar_angles(a, b, c, d, 0.0, 1.0).unwrap();
     let r = Limits::new(&m, 0.0, TAU).samples(361).guess(guess).columns(&[FourBar::COL.gamma]).run().unwrap();
     let limit = four_bar_limit(a, d, b + c);
-    assert_eq!(r.reached, (0.0, 0.0), "{r}");
+    assert_eq!(r.reached.0, 0.0, "{r}");
+    assert_close!(r.reached.1, limit, tol::LOCATED, "{r}");
     let limits: Vec<f64> = r.input_limits().map(|e| e.x[0]).collect();
     assert_eq!(limits.len(), 1, "{r}");
     assert_close!(limits[0], limit, tol::LOCATED, "{} against {limit}", limits[0]);
-    assert!(r.outputs[0].extremes.is_empty(), "{r}");
+    let [min] = r.outputs[0].extremes.as_slice() else { panic!("{r}") };
+    let gamma = |phi: f64| four_bar_angles(a, b, c, d, phi, 1.0).unwrap()[1];
+    assert_eq!(min.kind, kinloop::analysis::Extreme::Min, "{r}");
+    assert_close!(min.value(), gamma(min.x()), 1e-12, "{r}");
+    assert!(gamma(min.x() - 1e-4) > min.value() && gamma(min.x() + 1e-4) > min.value(), "{r}");
+}
+
+/// A non-Grashof four-bar (3, 2.5, 2, 4) whose crank stops at a limit position, 1.3716 rad on:
+/// the joint C's height has a maximum (C above the rocker's pivot, `pc.y = c`) at 1.0224 rad,
+/// between the limit and the last sample before it at coarse sampling. The range reached ends at
+/// the limit, and the maximum is located at its closed form, whatever the samples (with 5 and 9
+/// it was missed: the extremes were sought only up to the last sample).
+#[test]
+fn the_extremes_up_to_a_limit_position_do_not_depend_on_the_samples() {
+    let (a, b, c, d) = (3.0, 2.5, 2.0, 4.0);
+    let m = FourBar { a, b, c, d };
+    let limit = four_bar_limit(a, d, b + c);
+    // C = (d, c) at the maximum: |BC| = b gives 2 a d cos(phi) + 2 a c sin(phi) = a^2 + c^2 + d^2 - b^2.
+    let (p, q) = (2.0 * a * d, 2.0 * a * c);
+    let at_max = q.atan2(p) + ((a * a + c * c + d * d - b * b) / p.hypot(q)).acos();
+    let guess = four_bar_angles(a, b, c, d, 0.0, 1.0).unwrap();
+    for samples in [5, 9, 37, 361, 3601] {
+        let r = Limits::new(&m, 0.0, TAU).samples(samples).guess(guess).columns(&[FourBar::COL.pc.y]).run().unwrap();
+        assert_eq!(r.reached.0, 0.0);
+        assert_close!(r.reached.1, limit, tol::LOCATED, "{samples} samples: {r}");
+        let max: Vec<_> = r.outputs[0].extremes.iter().filter(|e| (e.x() - at_max).abs() < 1e-6).collect();
+        assert_eq!(max.len(), 1, "{samples} samples: {r}");
+        assert_close!(max[0].x(), at_max, tol::LOCATED, "{samples} samples: {r}");
+        assert_close!(max[0].value(), c, 1e-12, "{samples} samples: {r}");
+    }
 }

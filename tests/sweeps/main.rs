@@ -14,6 +14,7 @@ mod assur_groups;
 mod sweep_any_step;
 mod sweep_api;
 mod sweep_at;
+mod sweep_dense;
 mod sweep_drift;
 mod sweep_judged_length;
 mod sweep_kinks;

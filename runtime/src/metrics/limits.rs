@@ -32,7 +32,8 @@ pub struct OutputLimits {
 /// Dead centres and limit positions of one sweep.
 #[derive(Clone, Debug, PartialEq)]
 pub struct LimitReport {
-    /// The input range actually swept: `to` when the sweep went through, else where it stopped.
+    /// The input range actually swept: `to` when the sweep went through, the located limit
+    /// position of the input where one ended it, else the last sample before the sweep stopped.
     pub reached: (f64, f64),
     /// Events of the sweep: a limit position of the input ends it; singular crossings are
     /// passed (and listed).
@@ -136,9 +137,9 @@ impl<'a, M, const N: usize> Limits<'a, M, N> {
     /// crossings (the sweep's events) and the located extremes of the columns over the range
     /// reached. A limit position of the input ends the range; it is reported, not an error.
     ///
-    /// A limit position of the input before the second sample (a start within a sample's spacing
-    /// of it) is reported with no extremes: the range reached is the start alone. Errors: a start
-    /// that cannot be assembled, a column outside the mechanism.
+    /// A limit position of the input ends the range reached there (the extremes are located up to
+    /// it, whatever the samples: those between the last sample and the limit too). Errors: a
+    /// start that cannot be assembled, a column outside the mechanism.
     pub fn run<const NO: usize>(self) -> Result<LimitReport, Error>
     where
         M: Mechanism<N, 1, NO>,
@@ -180,6 +181,7 @@ pub fn limits_of<K: Kernel, C: ColumnOf<K>>(
     };
     let cfg = SweepConfig { at_singular: AtSingular::Continue, ..SweepConfig::default() };
     let (mut last, mut last_q, mut count) = (from, guess.clone(), 0usize);
+    let mut limit = None;
     let events = {
         let mut sweep =
             SweepOf::<&K, KinOf<K>>::over(&k, input(from), input(to), samples, guess.clone())?.with_config(cfg);
@@ -192,22 +194,52 @@ pub fn limits_of<K: Kernel, C: ColumnOf<K>>(
                     }
                     count += 1;
                 }
-                Err(Error::SweepStopped { kind: EventKind::LimitPosition, .. }) => break,
+                Err(Error::SweepStopped { kind: EventKind::LimitPosition, .. }) => {
+                    limit = sweep.events().last().map(|e| e.x[0]);
+                    break;
+                }
                 Err(e) => return Err(e),
             }
         }
         sweep.events().to_vec()
     };
+    // A limit position of the input ends the range there, not at the last sample before it:
+    // the extremes between that sample and the limit are the motion's too (with few samples a
+    // rocker's extreme there was missed, with many found: the report depended on the count).
+    // The range sampled again stops a millionth of that last interval short of the limit, where
+    // the positions still solve on the branch (at the limit the analogs are infinite); its last
+    // state is reached from the last sample by a sweep, on the branch.
+    let reached = limit.unwrap_or(last);
+    let (end, end_q) = match limit {
+        Some(x) if !columns.is_empty() => {
+            let end = x - 1e-6 * (x - last);
+            match SweepOf::<&K, KinOf<K>>::over(&k, input(last), input(end), 2, last_q.clone())
+                .map(|s| s.with_config(cfg).run())
+            {
+                Ok(run) if run.is_completed() => {
+                    let mut q = last_q.clone();
+                    if let Some(st) = run.states.last() {
+                        q.as_mut().copy_from_slice(st.q());
+                    }
+                    (end, q)
+                }
+                // Where even that fails, the range the sweep's samples reached.
+                _ => (last, last_q),
+            }
+        }
+        _ => (last, last_q),
+    };
+    let count = if end == last { count } else { count + 1 };
     // The samples over the reached range kept in memory to locate the extremes (at least three,
     // as a sampled range needs: the two reached and their midpoint). A range that is the start
     // alone has no interior extreme, and without columns there is nothing to locate. A range
     // swept downward is sampled upward from its far end (the state reached there the guess).
     let range = if count < 2 || columns.is_empty() {
         None
-    } else if from < last {
-        Some(SampledOf::input_with(k, input(from), input(last), count.max(3), guess, cfg)?)
+    } else if from < end {
+        Some(SampledOf::input_with(k, input(from), input(end), count.max(3), guess, cfg)?)
     } else {
-        Some(SampledOf::input_with(k, input(last), input(from), count.max(3), last_q, cfg)?)
+        Some(SampledOf::input_with(k, input(end), input(from), count.max(3), end_q, cfg)?)
     };
     let outputs = columns
         .into_iter()
@@ -219,7 +251,7 @@ pub fn limits_of<K: Kernel, C: ColumnOf<K>>(
             Ok(OutputLimits { column, extremes })
         })
         .collect::<Result<_, Error>>()?;
-    Ok(LimitReport { reached: (from, last), events, outputs })
+    Ok(LimitReport { reached: (from, reached), events, outputs })
 }
 
 #[cfg(test)]
@@ -257,9 +289,9 @@ mod tests {
     }
 
     /// A start a hundredth of a radian from the input's limit, with samples a tenth apart: the
-    /// limit (the rod stretched along the vertical, `sin phi = (e - l) / r`) is reported with
-    /// the start as the range reached and no extremes; a column outside the mechanism is still
-    /// an error there.
+    /// limit (the rod stretched along the vertical, `sin phi = (e - l) / r`) is reported, alone
+    /// (no kink beside it), and ends the range reached; the slider moves monotonically up to
+    /// it, no extreme. A column outside the mechanism is still an error there.
     #[test]
     fn a_limit_before_the_second_sample_is_reported() {
         let m = SliderCrank { r: 1.0, l: 1.2, e: 0.5 };
@@ -268,16 +300,48 @@ mod tests {
         let guess = [m.r * from.cos() + (m.l * m.l - (m.r * from.sin() - m.e).powi(2)).sqrt()];
         let r =
             Limits::new(&m, from, from - 1.0).samples(11).guess(guess).columns(&[SliderCrank::COL.x]).run().unwrap();
-        assert_eq!(r.reached, (from, from), "{r}");
+        assert_eq!(r.reached.0, from, "{r}");
+        assert!((r.reached.1 - limit).abs() < 1e-12, "{r}");
+        assert_eq!(r.events.len(), 1, "{r}");
         let limits: Vec<&Event> = r.input_limits().collect();
         assert_eq!(limits.len(), 1, "{r}");
-        assert!((limits[0].x[0] - limit).abs() < 1e-9, "{r}");
+        assert!((limits[0].x[0] - limit).abs() < 1e-12, "{r}");
         assert!(r.outputs[0].extremes.is_empty(), "{r}");
         let bad = Column::__generated(crate::analysis::ColumnIndex::Unknown(3), "bad");
         assert!(matches!(
             Limits::new(&m, from, from - 1.0).samples(11).guess(guess).columns(&[bad]).run(),
             Err(Error::InvalidArgument(_))
         ));
+    }
+
+    /// Beside a limit position the sweep records the limit alone, at every start and sample
+    /// count: within 1e-13 of it the slider's equation changes over a step by less than the
+    /// solver's tolerance, and its single unknown's pivot ratio is 1 whatever the position, so
+    /// steps there passed for corners of the curve (two or three kinks before the limit, at 3
+    /// and 11 samples from a start 0.01 to 0.05 before it).
+    #[test]
+    fn no_kink_is_recorded_beside_a_limit_position() {
+        let m = SliderCrank { r: 1.0, l: 1.2, e: 0.5 };
+        let limit = ((m.e - m.l) / m.r).asin();
+        for off in [0.001, 0.01, 0.02, 0.05] {
+            for samples in [3, 11, 101, 1001] {
+                let from = limit + off;
+                let guess = [m.r * from.cos() + (m.l * m.l - (m.r * from.sin() - m.e).powi(2)).sqrt()];
+                let mut sweep =
+                    crate::Sweep::<_, crate::Kin<1, 1, 1>, 1, 1, 1>::new(&m, [from], [from - 1.0], samples, guess)
+                        .unwrap();
+                while let Some(step) = sweep.next_ref() {
+                    if step.is_err() {
+                        break;
+                    }
+                }
+                let events: Vec<_> = sweep.events().iter().map(|e| (e.kind, e.x[0])).collect();
+                assert!(
+                    events.len() == 1 && events[0].0 == EventKind::LimitPosition && (events[0].1 - limit).abs() < 1e-12,
+                    "{off} from the limit, {samples} samples: {events:?}"
+                );
+            }
+        }
     }
 
     /// The same dead centres found sweeping the input downward over one turn: the range is

@@ -39,8 +39,9 @@ impl<X> Reach<X> {
 /// each (with the mechanism's [`Mechanism::solver_config`]), and answers in input values: a
 /// compiled mechanism's [`reachable_of`] (through [`Compiled`]).
 ///
-/// Errors: those of the sweeps, except the limit positions that end them (a singular crossing
-/// that the configuration stops at is an error).
+/// Errors: fewer than 2 samples or more than [`MAX_SAMPLES`](crate::analysis::MAX_SAMPLES)
+/// as [`Error::InvalidArgument`]; those of the sweeps, except the limit positions that end them
+/// (a singular crossing that the configuration stops at is an error).
 pub fn reachable<M, const N: usize, const NI: usize, const NO: usize>(
     m: &M,
     at: [f64; NI],
@@ -66,6 +67,12 @@ pub fn reachable_of<K: Kernel>(
     samples: usize,
 ) -> Result<Reach<X<K>>, Error> {
     check_sizes(m, "reachable", &[&at, &delta], &[&guess])?;
+    if samples < 2 {
+        return Err(Error::InvalidArgument(format!(
+            "reachable: {samples} samples a side asked for: a stretch needs at least 2 (its ends)"
+        )));
+    }
+    crate::analysis::check_sample_count("samples a side of `reachable`", samples).map_err(Error::InvalidArgument)?;
     let ni = m.dims().ni();
     // The end of a stretch: `x` copied into an input of the kernel's size.
     let input = |x: &[f64]| {
@@ -79,14 +86,25 @@ pub fn reachable_of<K: Kernel>(
         for i in 0..ni {
             to[i] += sign * delta[i];
         }
-        let run = SweepOf::<&K, KinOf<K>>::over(m, at.clone(), to, samples.max(2), guess.clone())?.run();
-        let last = run.states.last().map_or_else(|| at.clone(), |k| input(k.x()));
-        ends[side] = match run.stop {
-            SweepStop::Completed => (last, None),
-            SweepStop::LimitPosition(ev) => (input(&ev.x), Some(ev)),
-            _ => match run.into_result() {
-                Err(e) => return Err(e),
-                Ok(states) => (states.last().map_or_else(|| at.clone(), |k| input(k.x())), None),
+        // Only the last state is kept (a stretch is its end): no vector of every sample.
+        let mut sweep = SweepOf::<&K, KinOf<K>>::over(m, at.clone(), to, samples, guess.clone())?;
+        let mut last = at.clone();
+        let mut error = None;
+        while let Some(r) = sweep.next_ref() {
+            match r {
+                Ok(k) => last.as_mut().copy_from_slice(k.x()),
+                Err(e) => {
+                    error = Some(e);
+                    break;
+                }
+            }
+        }
+        ends[side] = match error {
+            None => (last, None),
+            // A limit position ends the stretch; any other stop is the error.
+            Some(e) => match SweepStop::from_error(&e, sweep.events().last()) {
+                SweepStop::LimitPosition(ev) => (input(&ev.x), Some(ev)),
+                _ => return Err(e),
             },
         };
     }

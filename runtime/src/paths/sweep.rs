@@ -721,7 +721,11 @@ where
                     // The next attempt takes its closed-form angles from libm, on the turns of
                     // its guess: an anchor may have put one a turn away.
                     self.trig.forget_anchors();
-                    if self.h < self.h_min {
+                    // Below the doubles' resolution at `tau` a step has no length: taken, it
+                    // would be accepted as it stands (the same state), double, fail again, and
+                    // never reach `h_min` where that is finer still (a fine sampling or many
+                    // halvings, the obstacle late in the range).
+                    if self.h < self.h_min || self.tau + self.h == self.tau {
                         // The step cannot be made however small: find out why.
                         let k = self.cur().clone();
                         match self.diagnose(&k, tau_new, target, outcome, solved.err()) {
@@ -1022,10 +1026,18 @@ where
         }
         // A state inside the step has one side's slopes at a corner, not a fold's between them
         // (see `kink`): probed at a third and two thirds, should one land on the corner itself.
+        // Each is solved from the positions interpolated between the step's ends, not from the
+        // last state's: within a hair of a limit position the equations change over the step by
+        // less than the solver's tolerance, a guess is taken as it stands, and from the last
+        // state's positions the state inside had the last state's slopes, one side's, as a
+        // corner's (a slider's single unknown, whose pivot ratio is always 1, recorded kinks
+        // within 1e-13 of its limit position before the limit itself).
         let n = n.clone();
         let mut g = self.d.q();
-        g.as_mut().copy_from_slice(k.q());
         for frac in [1.0 / 3.0, 2.0 / 3.0] {
+            for (gu, (&a, &b)) in g.as_mut().iter_mut().zip(k.q().iter().zip(n.q())) {
+                *gu = a + frac * (b - a);
+            }
             let inside = self.m.kinematics(&self.path.at_tau(self.tau + frac * dt), &g, &self.cfg.newton).ok()?;
             let (m, d, path, inv_unit) = (&self.m, self.d, &self.path, &self.inv_unit);
             let slope = |s: &KinOf<K>, u: usize| in_unit(m, inv_unit, u, slope_of(d, path, s.dq(u)));
