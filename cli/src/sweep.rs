@@ -152,7 +152,7 @@ fn stream<W: Write, E>(
 }
 
 /// The usage error of a range longer than a sweep follows ([`Error::RangeTooLong`], which a
-/// sweep finds before its first step): how far apart `--from` and `--to` may be, in the units
+/// sweep or a trace finds before its first step): how far apart `--from` and `--to` may be, in the units
 /// given. `None` for any other error.
 pub(crate) fn range_too_long(name: &str, e: &Error, from: &str, to: &str, deg: bool) -> Option<Failed> {
     let &Error::RangeTooLong { turns, max_turns, .. } = e else { return None };
@@ -162,8 +162,8 @@ pub(crate) fn range_too_long(name: &str, e: &Error, from: &str, to: &str, deg: b
     };
     Some(exit::usage(format!(
         "{name}: --from {from} --to {to} spans {turns:.3e} turns of the inputs, more than the {max_turns:e} turns a \
-         sweep follows: give --from and --to at most {max_turns:e} turns apart ({span} of an angle input); split a \
-         longer range into several sweeps, or reduce a periodic input by whole turns"
+         sweep or a trace follows: give --from and --to at most {max_turns:e} turns apart ({span} of an angle \
+         input); split a longer range, or reduce a periodic input by whole turns"
     )))
 }
 

@@ -4,7 +4,7 @@
 //! listed on standard error, or written to `--events`.
 
 use crate::solve::{degrees, in_units, model_inputs, units};
-use crate::sweep::write_events;
+use crate::sweep::{range_too_long, write_events};
 use crate::{Failed, exit, output, samples};
 use kinloop_model::Model;
 use kinloop_runtime::dims::Heap;
@@ -64,11 +64,13 @@ pub fn run(model: &mut Model, req: &Request) -> Result<(), Failed> {
     let opts = TraceConfig::default().with_ds(req.ds).with_max_points(req.max_points);
     let mut guess = vec![0.0; model.unknowns().len()];
     model.guess(&from, &mut guess).map_err(|e| failed(&e))?;
-    // The runtime checks the path (`to` apart from `from`) and the options (again, as the
-    // checks above): its refusal is a usage error, not a failed trace.
+    // The runtime checks the path (`to` apart from `from`, at most the turns a sweep follows)
+    // and the options (again, as the checks above): its refusal is a usage error, not a failed
+    // trace.
     let traced = model.trace_curve(&from, &to, &guess, &opts).map_err(|e| match e {
         Error::InvalidArgument(m) => exit::usage(format!("{name}: {m}")),
-        e => failed(&in_units(e, &kinds[..ni], req.deg)),
+        e => range_too_long(&name, &e, req.from, req.to, req.deg)
+            .unwrap_or_else(|| failed(&in_units(e, &kinds[..ni], req.deg))),
     })?;
     // Created before anything is written: a path that cannot be written stops before any output.
     let events_file = output::created(req.events, "the events file")?;

@@ -102,6 +102,8 @@ fn bad_options_are_usage_errors_naming_them() {
         (&["--from", "1", "--to", "1"][..], "--from 1 --to 1: the trace needs a direction"),
         (&["--from", "1", "--to", "1.0", "--deg"][..], "give --to different from --from"),
         (&["--from", "0,1", "--to", "1"][..], "gives 2 inputs"),
+        (&["--from", "0", "--to", "1e12"][..], "turns a sweep or a trace follows"),
+        (&["--from", "0", "--to", "1e12", "--deg"][..], "(360000000 deg of an angle input)"),
     ] {
         let out = kinloop(&[&["trace", four_bar.as_str(), "--params", params][..], extra].concat());
         let stderr = String::from_utf8_lossy(&out.stderr);

@@ -161,7 +161,7 @@ pub enum Error {
         /// Where.
         at: Box<Location>,
     },
-    /// A sweep's range is longer than a sweep follows: more than `max_turns` turns of its inputs
+    /// A sweep's or a trace's range is longer than a sweep follows: more than `max_turns` turns of its inputs
     /// (measured in the inputs' units: radians for an angle, the mechanism's size for a length).
     /// A sweep steps at most a fraction of a radian of its inputs at a time, whatever the number
     /// of samples asked for, so that no step passes a gap where the loops cannot close; a longer
@@ -170,9 +170,9 @@ pub enum Error {
     /// [`MAX_TURNS`](crate::paths::sweep::MAX_TURNS)). Split the range, or reduce a periodic
     /// input by whole turns.
     #[error(
-        "the sweep's range is {turns:e} turns of its inputs (a turn: 2 pi of their units, radians \
-         for an angle), more than the {max_turns:e} turns a sweep follows {at}; split the range, or \
-         reduce a periodic input by whole turns"
+        "the range is {turns:e} turns of its inputs (a turn: 2 pi of their units, radians for an \
+         angle), more than the {max_turns:e} turns a sweep or a trace follows {at}; split the range, \
+         or reduce a periodic input by whole turns"
     )]
     RangeTooLong {
         /// The range's length in turns (`2 pi` input units).

@@ -153,6 +153,8 @@ fn trace_options_are_validated_naming_the_field() {
         (TraceConfig::default().with_ds(1.5), "TraceConfig::ds"),
         (TraceConfig::default().with_ds(1e-10), "TraceConfig::ds"),
         (TraceConfig::default().with_max_points(0), "TraceConfig::max_points"),
+        (TraceConfig::default().with_max_points(kinloop::analysis::MAX_SAMPLES + 1), "TraceConfig::max_points"),
+        (TraceConfig::default().with_max_points(usize::MAX), "TraceConfig::max_points"),
         (
             TraceConfig::default().with_newton(NewtonConfig::default().with_max_iterations(10_001)),
             "newton.max_iterations",
@@ -161,6 +163,13 @@ fn trace_options_are_validated_naming_the_field() {
     for (opts, field) in cases {
         let e = m.trace_curve(0.0, PI, &g, &opts).unwrap_err();
         assert!(matches!(e, Error::InvalidArgument(_)) && e.to_string().contains(field), "{field}: {e}");
+    }
+    // A range no sweep follows is none a trace follows: refused before the first step (a trace
+    // over 1e12 rad walked for as many points as it was allowed), in any unit of the input.
+    let opts = TraceConfig::default().with_max_points(kinloop::analysis::MAX_SAMPLES);
+    for to in [1e12, -1e12, 1e300] {
+        let e = m.trace_curve(0.0, to, &g, &opts).unwrap_err();
+        assert!(matches!(e, Error::RangeTooLong { .. }) && e.to_string().contains("trace"), "{to}: {e}");
     }
     // A trace of few points stops there.
     let t = m.trace_curve(0.0, PI, &g, &TraceConfig::default().with_max_points(5)).unwrap();

@@ -200,6 +200,11 @@ fn assembly_modes_at_values_not_finite_are_errors() {
     assert!(matches!(&e, Err(Error::NonFinite { what: Quantity::Parameter, name, .. }) if name == "c"), "{e:?}");
     let e = kinloop::paths::modes::assembly_modes(&m, &[0.7], 8, &NewtonConfig::default().with_residual_tol(-1.0));
     assert!(matches!(&e, Err(Error::InvalidArgument(_))), "{e:?}");
+    // More starts than an analysis takes: refused before the first (u32::MAX ran for minutes).
+    for starts in [kinloop::analysis::MAX_SAMPLES + 1, u32::MAX as usize, usize::MAX] {
+        let e = kinloop::paths::modes::assembly_modes(&m, &[0.7], starts, &NewtonConfig::default());
+        assert!(matches!(&e, Err(Error::InvalidArgument(s)) if s.contains("starts")), "{starts}: {e:?}");
+    }
     // Where the links cannot close there is no mode, and no error.
     let far = FourBar { a: 1.0, b: 1.0, c: 1.0, d: 9.0 };
     assert_eq!(far.assembly_modes(0.0).unwrap().len(), 0);

@@ -112,7 +112,7 @@ impl<'a, M, const N: usize> Limits<'a, M, N> {
         Limits { m, from, to, samples: 361, guess: None, columns: &[] }
     }
 
-    /// Equally spaced inputs of the sweep (both ends included; at most
+    /// Equally spaced inputs of the sweep (both ends included; from 2 to
     /// [`MAX_SAMPLES`](crate::analysis::MAX_SAMPLES), else [`Limits::run`] is an error).
     pub fn samples(mut self, samples: usize) -> Self {
         self.samples = samples;
@@ -166,6 +166,12 @@ pub fn limits_of<K: Kernel, C: ColumnOf<K>>(
     // The samples are swept, then the range reached sampled again in memory: a count beyond the
     // limit of the latter is refused before the former, which would sweep it for nothing.
     crate::analysis::check_sample_count("samples", samples).map_err(Error::InvalidArgument)?;
+    // One sample is the start alone: the range would be neither swept nor searched.
+    if samples < 2 {
+        return Err(Error::InvalidArgument(format!(
+            "a limit search over a range needs at least 2 samples (its ends); {samples} asked for"
+        )));
+    }
     let d = k.dims();
     let columns = columns
         .iter()
@@ -269,6 +275,11 @@ mod tests {
         for samples in [crate::analysis::MAX_SAMPLES + 1, usize::MAX] {
             let r = Limits::new(&m, 0.0, TAU).samples(samples).guess([3.9]).run();
             assert!(matches!(&r, Err(Error::InvalidArgument(m)) if m.contains("at most")), "{samples}: {r:?}");
+        }
+        // One sample, or none, searches nothing (one gave the start alone, no event, `Ok`).
+        for samples in [0, 1] {
+            let r = Limits::new(&m, 0.0, TAU).samples(samples).guess([3.9]).run();
+            assert!(matches!(&r, Err(Error::InvalidArgument(m)) if m.contains("at least 2")), "{samples}: {r:?}");
         }
     }
 

@@ -27,7 +27,8 @@ fn turn_distance(a: f64, b: f64) -> f64 {
 ///
 /// Empty where no start solves (the links cannot close at `x`: no mode). Errors, not an empty
 /// list: an input or a parameter NaN or infinite ([`Error::NonFinite`], which every start
-/// would meet), an invalid `cfg` ([`Error::InvalidArgument`]).
+/// would meet), an invalid `cfg` or more `starts` than
+/// [`MAX_SAMPLES`](crate::analysis::MAX_SAMPLES) ([`Error::InvalidArgument`]).
 ///
 /// A compiled mechanism's [`assembly_modes_of`] (through [`Compiled`]).
 pub fn assembly_modes<M, const N: usize, const NI: usize, const NO: usize>(
@@ -53,6 +54,8 @@ pub fn assembly_modes_of<K: Kernel>(
 ) -> Result<Vec<KinOf<K>>, Error> {
     check_sizes(m, "assembly_modes", &[x], &[])?;
     cfg.validate()?;
+    // The starts are solved one after another: a count no analysis takes would run for hours.
+    crate::analysis::check_sample_count("starts", starts).map_err(Error::InvalidArgument)?;
     let n = m.dims().n();
     let g0 = m.guess(x);
     let mut found: Vec<KinOf<K>> = Vec::new();

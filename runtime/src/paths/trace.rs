@@ -5,6 +5,7 @@ use super::curve::{
     CurvePoint, Metric, Path, arc_step, event_at, locate_fold, loose_position, pivot_at, signed_det, singular_ratio_at,
     tangent_from_analogs,
 };
+use super::sweep::MAX_TURNS;
 use super::trace_kink::{MAX_TURN, past_kink, turn};
 use crate::dims::{Dims, KinState, Store};
 use crate::error::Error;
@@ -36,7 +37,8 @@ pub struct TraceConfig {
     /// about 0.01 rad apart on a curve dominated by angles. From [`TraceConfig::MIN_DS`] to
     /// [`TraceConfig::MAX_DS`].
     pub ds: f64,
-    /// Most points returned (default `100_000`).
+    /// Most points returned (default `100_000`; at most
+    /// [`MAX_SAMPLES`](crate::analysis::MAX_SAMPLES), the most an analysis holds).
     pub max_points: usize,
     /// The corrector's Newton configuration; `None` (default): the mechanism's
     /// ([`Mechanism::solver_config`]).
@@ -80,12 +82,13 @@ impl TraceConfig {
     }
 
     /// The first field outside its valid range (`ds` from [`TraceConfig::MIN_DS`] to
-    /// [`TraceConfig::MAX_DS`], `max_points` at least 1, and the Newton configuration's ranges,
-    /// as `newton.<field>`).
+    /// [`TraceConfig::MAX_DS`], `max_points` from 1 to
+    /// [`MAX_SAMPLES`](crate::analysis::MAX_SAMPLES), and the Newton configuration's ranges, as
+    /// `newton.<field>`).
     pub fn invalid_field(&self) -> Option<String> {
         if !(Self::MIN_DS..=Self::MAX_DS).contains(&self.ds) {
             Some("ds".into())
-        } else if self.max_points == 0 {
+        } else if !(1..=crate::analysis::MAX_SAMPLES).contains(&self.max_points) {
             Some("max_points".into())
         } else {
             self.newton.and_then(|n| n.invalid_field()).map(|f| format!("newton.{f}"))
@@ -222,6 +225,12 @@ pub fn trace_curve_of<K: Kernel>(
     let mut q0 = guess;
     q0.as_mut().copy_from_slice(k0.q());
     let metric = Metric::at(m, &path, &from, &q0);
+    // A range no sweep follows is none a trace follows either: refused before the first step,
+    // as a sweep refuses it (a trace over 1e12 rad walked for as many points as it was allowed).
+    let turns = metric.input_len / TAU;
+    if turns > MAX_TURNS || turns.is_nan() {
+        return Err(Error::RangeTooLong { turns, max_turns: MAX_TURNS, at: m.location(from.as_ref(), None) });
+    }
     let start = CurvePoint { tangent: tangent_from_analogs(&k0, &path, &metric), q: q0, sigma: 0.0 };
     let (start_z, start_dsigma) = (start.z(&metric), start.dsigma());
     // Per scaled coordinate, the whole turn of an angle unknown, and of the path's coordinate
