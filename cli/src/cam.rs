@@ -8,6 +8,7 @@
 
 use crate::cam_drawn::FaceLine;
 use crate::exit::usage;
+use crate::output::OutFile;
 use crate::solve::{in_units, point};
 use crate::{Failed, exit, samples};
 use kinloop_model::{Count, Model};
@@ -136,18 +137,21 @@ pub fn run(model: &mut Model, req: &Request) -> Result<(), Failed> {
     // The plot's file created first, as `--events` and `--flywheel` are: a path that cannot be
     // written stops before any output. Removed again if no drawing comes to be written into it.
     let plot = crate::output::created(req.plot, "the plot")?;
-    written(model, req, plot).inspect_err(|_| {
-        // Best effort: the error reported is the one that stopped the command.
-        if let Some(path) = req.plot {
-            let _ = std::fs::remove_file(path);
-        }
-    })
+    written(model, req, plot)
 }
 
 /// [`run`] once the plot's file (if any) is created: the cam found, its drawing made, then the
 /// table written and the drawing into `plot`.
-fn written(model: &mut Model, req: &Request, plot: Option<std::fs::File>) -> Result<(), Failed> {
-    let found = find(model, req)?;
+fn written(model: &mut Model, req: &Request, plot: Option<OutFile>) -> Result<(), Failed> {
+    let found = match find(model, req) {
+        Ok(found) => found,
+        Err(e) => {
+            if let Some(plot) = plot {
+                plot.abandon();
+            }
+            return Err(e);
+        }
+    };
     found.report();
     let (table, curves) = match found.shape {
         Shape::Flat(cam, _) => (flat_table(&cam, &found.inputs, req.deg), vec![("cam profile", cam.profile)]),
@@ -156,13 +160,25 @@ fn written(model: &mut Model, req: &Request, plot: Option<std::fs::File>) -> Res
         }
     };
     let svg = match plot {
-        Some(file) => Some((file, draw(&curves, model.name())?)),
+        Some(file) => match draw(&curves, model.name()) {
+            Ok(svg) => Some((file, svg)),
+            Err(e) => {
+                file.abandon();
+                return Err(e);
+            }
+        },
         None => None,
     };
-    crate::output::table(&table, "the table")?;
-    let Some((mut file, svg)) = svg else { return Ok(()) };
+    if let Err(e) = crate::output::table(&table, "the table") {
+        if let Some((file, _)) = svg {
+            file.abandon();
+        }
+        return Err(e);
+    }
+    let Some((file, svg)) = svg else { return Ok(()) };
     let path = req.plot.unwrap_or(Path::new("")).display();
-    file.write_all(svg.as_bytes()).and_then(|()| file.flush()).map_err(|e| {
+    let written = file.into_file().and_then(|mut file| file.write_all(svg.as_bytes()).and_then(|()| file.flush()));
+    written.map_err(|e| {
         eprintln!("error: cannot write the plot {path}: {e}");
         Failed(exit::IO_ERR)
     })

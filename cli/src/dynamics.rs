@@ -82,18 +82,28 @@ pub fn run(model: &mut Model, req: &Request) -> Result<(), Failed> {
     }
     let about = parse_about(req.about)?;
     // Created before the cycle is computed (which may take minutes): a path that cannot be
-    // written stops first. Removed again if no sizing comes to be written into it.
+    // written stops first. Removed again if the command made it and no sizing comes to be
+    // written into it.
     let file = crate::output::created(req.flywheel, "the flywheel file")?;
-    let (cycle, flywheel) = cycle_and_flywheel(model, req, about, &name).inspect_err(|_| {
-        // Best effort: the error reported is the cycle's.
-        if let Some(path) = req.flywheel {
-            let _ = std::fs::remove_file(path);
+    let (cycle, flywheel) = match cycle_and_flywheel(model, req, about, &name) {
+        Ok(found) => found,
+        Err(e) => {
+            if let Some(file) = file {
+                file.abandon();
+            }
+            return Err(e);
         }
-    })?;
+    };
     let angle = if req.deg { 180.0 / std::f64::consts::PI } else { 1.0 };
     let input = model.inputs()[0].clone();
     let table = cycle_table(&cycle, &input, req.deg);
-    crate::output::table(&table, "the table")?;
+    if let Err(e) = crate::output::table(&table, "the table") {
+        if let Some(file) = file {
+            file.abandon();
+        }
+        return Err(e);
+    }
+    let file = crate::output::ready(file, "the flywheel")?;
     write_flywheel(&flywheel, req, angle, file).map_err(|e| crate::output::failed("the flywheel", e))
 }
 

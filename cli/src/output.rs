@@ -14,16 +14,67 @@ pub fn failed(what: &str, e: std::io::Error) -> Failed {
     Failed(exit::IO_ERR)
 }
 
-/// The file at `path` created (`None` where none was asked), before anything is computed: a path
-/// that cannot be written stops the command first. Its failure says `what` (`"the events
-/// file"`) and the path, [`exit::CANT_CREATE`].
-pub fn created(path: Option<&std::path::Path>, what: &str) -> Result<Option<std::fs::File>, Failed> {
+/// A file named by an option (`--events`, `--plot`, `--flywheel`), opened before the work that
+/// fills it, so that a path that cannot be written stops the command first. What was at the
+/// path is not touched until there is something to write: a file that existed keeps its
+/// content if the command fails, and only a file the command made itself is removed again
+/// ([`OutFile::abandon`]). Removing the path given, whatever it was, deleted a user's file (and,
+/// run as root, a device: `--plot /dev/null`) on a typo in another option.
+pub struct OutFile {
+    file: std::fs::File,
+    path: std::path::PathBuf,
+    /// Nothing was at the path: the command made the file.
+    made: bool,
+}
+
+/// The file at `path` opened for writing (`None` where none was asked), before anything is
+/// computed: made where nothing is there, else opened as it is, without emptying it. Its
+/// failure says `what` (`"the events file"`) and the path, [`exit::CANT_CREATE`].
+pub fn created(path: Option<&std::path::Path>, what: &str) -> Result<Option<OutFile>, Failed> {
     let Some(path) = path else { return Ok(None) };
-    let file = std::fs::File::create(path).map_err(|e| {
+    let cannot = |e: std::io::Error| {
         eprintln!("error: cannot create {what} {}: {e}", path.display());
         Failed(exit::CANT_CREATE)
-    })?;
-    Ok(Some(file))
+    };
+    // Made new, or else opened as it is: one test of what is there, no window between them.
+    let opened = std::fs::OpenOptions::new().write(true).create_new(true).open(path);
+    let (file, made) = match opened {
+        Ok(file) => (file, true),
+        Err(e) if e.kind() == std::io::ErrorKind::AlreadyExists => {
+            (std::fs::OpenOptions::new().write(true).open(path).map_err(cannot)?, false)
+        }
+        Err(e) => return Err(cannot(e)),
+    };
+    Ok(Some(OutFile { file, path: path.to_path_buf(), made }))
+}
+
+impl OutFile {
+    /// The file to write into, emptied first where it is a regular file: what it held is
+    /// replaced only now that the command has something to write (a device, `/dev/null`, is
+    /// written as it is).
+    pub fn into_file(self) -> std::io::Result<std::fs::File> {
+        if self.file.metadata()?.is_file() {
+            self.file.set_len(0)?;
+        }
+        Ok(self.file)
+    }
+
+    /// The command failed before writing: the file removed where the command made it (best
+    /// effort: the error reported is the one that stopped the command); what was at the path
+    /// before is left as it was.
+    pub fn abandon(self) {
+        let OutFile { file, path, made } = self;
+        drop(file);
+        if made {
+            let _ = std::fs::remove_file(path);
+        }
+    }
+}
+
+/// `file` ready to be written (see [`OutFile::into_file`]), or where that fails, the failure
+/// to write `what`.
+pub fn ready(file: Option<OutFile>, what: &str) -> Result<Option<std::fs::File>, Failed> {
+    file.map(OutFile::into_file).transpose().map_err(|e| failed(what, e))
 }
 
 /// Writes `text` (`what`: "the report") to standard output and flushes it.

@@ -277,13 +277,19 @@ fn a_follower_that_is_not_the_points_motion_is_a_usage_error() {
         ([&follower[..], &["--guide", "0,1", "--pivot", "0,60"]].concat(), "--pivot 0,60 is at the follower's point"),
         ([&follower[..], &["--guide", "0,1", "--pivot", "0,70", "--flat"]].concat(), "at sample 90 (input 90 deg)"),
     ];
-    for (args, says) in cases {
-        let out = kinloop(&args);
+    for (args, says) in &cases {
+        let out = kinloop(args);
         let err = stderr(&out);
         assert_eq!(out.status.code(), Some(2), "{args:?}: {err}");
         assert!(err.contains(says), "{args:?}: `{says}` missing: {err}");
         assert!(out.stdout.is_empty() && !plot.exists(), "{args:?}: {err}");
     }
+    // A plot file that was there before is the user's: a failed command leaves it as it was.
+    std::fs::write(&plot, "kept").unwrap();
+    let out = kinloop(&cases[0].0);
+    assert_eq!(out.status.code(), Some(2), "{}", stderr(&out));
+    assert_eq!(std::fs::read_to_string(&plot).ok().as_deref(), Some("kept"), "the plot there before was touched");
+    std::fs::remove_file(&plot).unwrap();
     // What the messages say to give is taken, and so is a follower given to a few digits (a
     // guide half a milliradian off, a pivot 0.01 off on an arm of 40).
     let near = [

@@ -204,6 +204,19 @@ fn bad_requests_are_usage_errors_and_bad_values_failures() {
         code(&["dynamics", engine.as_str(), "--speed", "10", "--start", "1e20", "--flywheel", left.to_str().unwrap()]);
     assert_eq!(c, Some(2), "{e}");
     assert!(!left.exists(), "an empty flywheel file was left behind");
+    // A file that was there before is the user's: kept as it was, neither emptied nor removed
+    // (removing the path given deleted it, and as root a device given as the path).
+    std::fs::write(&left, "kept\n").unwrap();
+    let (c, e) =
+        code(&["dynamics", engine.as_str(), "--speed", "10", "--start", "1e20", "--flywheel", left.to_str().unwrap()]);
+    assert_eq!(c, Some(2), "{e}");
+    assert_eq!(std::fs::read_to_string(&left).ok().as_deref(), Some("kept\n"), "the file there before was touched");
+    // Written over where the command succeeds.
+    let (c, e) = code(&["dynamics", engine.as_str(), "--speed", "10", "--flywheel", left.to_str().unwrap()]);
+    assert_eq!(c, Some(0), "{e}");
+    let text = std::fs::read_to_string(&left).unwrap();
+    assert!(!text.contains("kept") && text.contains("exact_flywheel"), "{text}");
+    std::fs::remove_file(&left).unwrap();
     // The speed on its own (given twice, clap refuses the repetition before the check).
     for speed in ["-3", "0", "inf", "NaN"] {
         let (c, e) = code(&["dynamics", engine.as_str(), "--speed", speed]);
