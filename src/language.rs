@@ -76,8 +76,8 @@
 //!   gravity. The macro then generates `m.mass_model()`, the runtime's
 //!   [`dynamics::MassModel`](crate::dynamics::MassModel) for the reduced inertia, inverse dynamics, shaking forces, flywheel
 //!   and simulation. A negative literal mass or inertia, a mass that changes with the state,
-//!   `turns` or `on` a parameter or a length unknown, and a point with no analogs of its own
-//!   are compile errors; negative or non-finite values given at run time are typed errors.
+//!   `turns` or `on` a parameter or a length unknown, an `inertia` without `turns`, and a point
+//!   with no analogs of its own are compile errors; negative or non-finite values given at run time are typed errors.
 //!
 //! ```
 //! kinloop::mechanism! {

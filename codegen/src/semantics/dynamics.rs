@@ -152,6 +152,17 @@ impl Pending {
         }
         let mass = parameter_value(lw, &b.mass, "the mass");
         let inertia = match &b.inertia {
+            // A moment of inertia counts only through the angle the body turns with: without
+            // `turns` it would be dropped without a word (a forgotten `turns` gave dynamics
+            // without the body's rotation).
+            Some(e) if b.turns.is_none() => {
+                lw.errors.push(e.range().error(format!(
+                    "body `{}` has a moment of inertia but no `turns`: add `turns ANGLE` (the input or angle \
+                     unknown it rotates with), or remove `inertia` for a body that only slides",
+                    b.name
+                )));
+                None
+            }
             Some(e) => parameter_value(lw, e, "the moment of inertia"),
             None => Some(lw.graph.zero()),
         };
