@@ -109,3 +109,24 @@ fn fourier_refuses_a_range_short_of_a_turn_at_every_scale() {
         assert!((f.amplitude(1) / k - unit.amplitude(1)).abs() < 1e-12 * unit.amplitude(1), "{k}: {f:?}");
     }
 }
+
+/// A range of half a turn starting a ten-millionth of a radian before the slider's stretched dead
+/// centre: its minimum, at the dead centre, is an extreme inside the range at every sampling. A millionth of
+/// the samples' spacing (1.6 rad) from the start, it was taken for the start itself and dropped
+/// with 3 and 5 samples (found with 73).
+#[test]
+fn an_extreme_just_inside_the_range_is_kept_at_any_spacing() {
+    let (stretched, folded) = dead_centres(M.l, M.r, M.e);
+    // Crank and rod in line towards the slider at (-stretched, e).
+    let at = M.e.atan2(-stretched);
+    let from = at - 1e-7;
+    for samples in [3, 5, 73] {
+        let run = Sampled::sweep(&M, from, from + std::f64::consts::PI, samples, M.guess(from)).unwrap();
+        let extremes = run.extremes(SliderCrank::COL.x).unwrap();
+        // The minimum just inside the start, and the folded dead centre's maximum half a turn on.
+        let [min, max] = extremes.as_slice() else { panic!("{samples} samples: {extremes:?}") };
+        assert_eq!((min.kind, max.kind), (Extreme::Min, Extreme::Max), "{samples} samples");
+        assert!((min.x() - at).abs() < 1e-9 && (min.value() + stretched).abs() < 1e-13, "{samples}: {min:?}");
+        assert!((max.value() + folded).abs() < 1e-13, "{samples}: {max:?}");
+    }
+}

@@ -218,16 +218,27 @@ pub fn extremes(samples: &[Jet], mut eval: impl FnMut(f64) -> Result<Jet, Error>
     Ok(out)
 }
 
-/// `x` is one of the ends of the sampled range, to within rounding of the located root (a
-/// millionth of the first or last sample spacing).
+/// `x` is one of the ends of the sampled range: within a millionth of the first or last sample
+/// spacing of it, where the analog is zero but for its rounding (at most [`END_ROUNDING`] of the
+/// samples' largest). Both: a root located within that distance of an end whose analog is not
+/// that small is an extreme of its own (a range starting 1e-7 rad before a slider's dead centre,
+/// sampled 1.6 rad apart, lost its maximum to the position test alone).
 fn at_an_end(samples: &[Jet], x: f64) -> bool {
     let n = samples.len();
     if n < 2 {
         return true;
     }
-    let (first, last) = (samples[0].x, samples[n - 1].x);
-    (x - first).abs() <= 1e-6 * (samples[1].x - first) || (last - x).abs() <= 1e-6 * (last - samples[n - 2].x)
+    let (first, last) = (samples[0], samples[n - 1]);
+    let largest = samples.iter().fold(0.0f64, |m, j| m.max(j.d1.abs()));
+    let flat = |j: Jet| j.d1.abs() <= END_ROUNDING * largest;
+    ((x - first.x).abs() <= 1e-6 * (samples[1].x - first.x) && flat(first))
+        || ((last.x - x).abs() <= 1e-6 * (last.x - samples[n - 2].x) && flat(last))
 }
+
+/// The largest analog at an end of a sampled range, against the samples' largest, that counts as
+/// zero but for rounding (about 1e-16 of the terms it is computed from; a thousand-fold margin
+/// twice over): an extreme located there is the end itself, not one inside the range.
+const END_ROUNDING: f64 = 1e-9;
 
 /// The global minimum and maximum of a sampled quantity over its range, with its located local
 /// extremes: the smallest and largest of the interior extremes and the two ends of the range.
