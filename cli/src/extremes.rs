@@ -4,11 +4,11 @@
 //! velocity analog, refined between samples on the sweep's branch; otherwise an end of the
 //! range). Written as CSV with units, or as a readable table.
 
-use crate::solve::{in_units, model_inputs};
+use crate::solve::{degrees, in_units, model_inputs};
 use crate::sweep::range_too_long;
 use crate::{Failed, exit, progress, samples};
 use kinloop_model::Model;
-use kinloop_runtime::{Error, QuantityKind, SweepConfig};
+use kinloop_runtime::{Error, Number, QuantityKind, SweepConfig};
 
 /// What `kinloop extremes` was asked.
 pub struct Request<'a> {
@@ -43,7 +43,7 @@ fn unit(k: QuantityKind, deg: bool) -> &'static str {
 
 /// A value of kind `k` in the units written (degrees for an angle with `deg`).
 fn written(k: QuantityKind, deg: bool, v: f64) -> f64 {
-    if deg && k == QuantityKind::Angle { v.to_degrees() } else { v }
+    if deg && k == QuantityKind::Angle { degrees(v) } else { v }
 }
 
 /// Samples the range from the declared guess at `from`, locates each column's extremes and
@@ -197,11 +197,12 @@ fn cells(r: &Row, number: impl Fn(f64) -> String) -> Vec<String> {
     c
 }
 
-/// CSV: numbers in their shortest form that reads back exactly.
+/// CSV: numbers in their shortest form that reads back exactly, as the other commands write
+/// them (`1e-100`, where `f64`'s own formatting writes a hundred zeros).
 fn csv(rows: &[Row], inputs: &[String], units: &[&str]) -> String {
     let mut s = header(inputs, units).join(",") + "\n";
     for r in rows {
-        s += &(cells(r, |v| v.to_string()).join(",") + "\n");
+        s += &(cells(r, |v| Number(v).to_string()).join(",") + "\n");
     }
     s
 }

@@ -317,3 +317,31 @@ fn samples_too_far_apart_are_a_usage_error() {
     assert!(err.contains("--samples 3: the samples are too far apart") && err.contains("give at least"), "{err}");
     assert!(out.stdout.is_empty());
 }
+
+/// The CSV writes its numbers as the other commands do: a slider-crank a hundred orders of
+/// magnitude small in `e` notation (Rust's own formatting wrote a hundred zeros), and an end of
+/// the range in degrees as given (`60`, not `59.99999999999999`: the crank's 60 degrees in
+/// radians and back).
+#[test]
+fn numbers_are_written_short_and_degrees_as_given() {
+    let slider = shipped("slider_crank.kl");
+    let out = kinloop(&[
+        "extremes",
+        &slider,
+        "--params",
+        "r=1e-100,l=3e-100,e=0.4e-100",
+        "--from",
+        "0",
+        "--to",
+        "60",
+        "--deg",
+    ]);
+    assert!(out.status.success(), "{}", String::from_utf8_lossy(&out.stderr));
+    let text = String::from_utf8_lossy(&out.stdout);
+    assert!(!text.contains("0.0000"), "{text}");
+    // Over 0..60 degrees the slider only moves inwards: its extremes are the range's ends.
+    let x = text.lines().find(|l| l.starts_with("x,")).unwrap_or_else(|| panic!("{text}"));
+    let cells: Vec<&str> = x.split(',').collect();
+    assert!(cells[2].ends_with("e-100") && cells[4].ends_with("e-100"), "{x}");
+    assert_eq!((cells[3], cells[5]), ("60", "0"), "{x}");
+}

@@ -38,6 +38,9 @@ fn bounds_that_hold_no_value() {
         let e = error(&Design::new().var("a", lo, hi), &three());
         assert!(matches!(&e, SynthesisError::BadBounds { name, .. } if name == "a"), "{e:?}");
     }
+    // Written short, as every number of a message is (the bounds printed 309 digits each).
+    let e = error(&Design::new().var("a", -1e308, 1e308), &three()).to_string();
+    assert!(e.contains("[-1e308, 1e308]") && !e.contains("000000"), "{e}");
     let placement = PlacementBounds::translation((-1e308, 1e308), (-1.0, 1.0));
     let e = error(&design(), &Task::path("p", [[1.0, 2.0]; 9]).timed([0.0; 9]).with_placement(placement));
     assert!(matches!(&e, SynthesisError::BadBounds { name, .. } if name == "dx"), "{e:?}");

@@ -3,6 +3,7 @@
 //! unknowns) is refused when it is built, with a message that names what is wrong.
 
 use crate::error::Error;
+use crate::number::Number;
 use std::borrow::Cow;
 
 /// What is wrong with a synthesis problem or its search: a problem that is not well posed is
@@ -28,7 +29,12 @@ pub enum SynthesisError {
     },
     /// A variable's (or the timing's, or the placement's) bounds hold no value: not finite, or
     /// the lower above the upper.
-    #[error("the bounds of `{name}` are [{lo}, {hi}]: they must be finite with lo <= hi, at most f64::MAX apart")]
+    #[error(
+        "the bounds of `{name}` are [{}, {}]: they must be finite with lo <= hi, at most the largest double \
+         (1.7976931348623157e308) apart",
+        Number(*.lo),
+        Number(*.hi)
+    )]
     BadBounds {
         /// The variable.
         name: String,
