@@ -479,11 +479,13 @@ impl Motion {
             let s = if u[0].abs() > u[1].abs() { u[0].signum() } else { u[1].signum() };
             return Motion::Line([s * u[0] + 0.0, s * u[1] + 0.0]);
         }
-        // The circumcentre of p0, pf and pm, relative to p0.
-        let (b, c) = (from(&pf), from(&pm));
+        // The circumcentre of p0, pf and pm, relative to p0, in units of the stroke: the squares
+        // of the points' distances overflowed (or underflowed) for a mechanism of 1e150 (1e-110)
+        // units, and an arc read as "neither a line nor an arc".
+        let (b, c) = (from(&pf).map(|v| v / stroke), from(&pm).map(|v| v / stroke));
         let d = 2.0 * (b[0] * c[1] - b[1] * c[0]);
         let (bb, cc) = (b[0] * b[0] + b[1] * b[1], c[0] * c[0] + c[1] * c[1]);
-        let o = [(c[1] * bb - b[1] * cc) / d, (b[0] * cc - c[0] * bb) / d];
+        let o = [stroke * ((c[1] * bb - b[1] * cc) / d), stroke * ((b[0] * cc - c[0] * bb) / d)];
         let r = o[0].hypot(o[1]);
         let centre = [p0[0] + o[0], p0[1] + o[1]];
         let off = points.iter().map(|p| ((p[0] - centre[0]).hypot(p[1] - centre[1]) - r).abs()).fold(0.0, f64::max);
@@ -519,12 +521,24 @@ fn pair(v: [f64; 2], scale: f64) -> String {
 
 /// `v` with the digits that [`MOTION_TOL`] of `scale` tells apart and one more (nine
 /// significant of `scale`): `0,1` for a direction found as `[1e-17, 1]`, `-40,140` for a pivot
-/// found as `-39.99999999999997,140`; given back, it passes the check.
+/// found as `-39.99999999999997,140`; given back, it passes the check. Far from unit size (a
+/// `scale` beyond a thousandth to a billion) in `e` notation, as numbers are written elsewhere:
+/// positional notation wrote a hundred digits for a mechanism of 1e100 units.
 fn rounded(v: f64, scale: f64) -> String {
-    let decimals = (8 - scale.abs().log10().floor() as i32).max(0) as usize;
-    let text = format!("{v:.decimals$}");
-    let text = if text.contains('.') { text.trim_end_matches('0').trim_end_matches('.') } else { &text };
-    if text == "-0" { "0".into() } else { text.into() }
+    let magnitude = scale.abs().log10().floor();
+    if (-3.0..=9.0).contains(&magnitude) {
+        let decimals = (8.0 - magnitude).max(0.0) as usize;
+        let text = format!("{v:.decimals$}");
+        let text = if text.contains('.') { text.trim_end_matches('0').trim_end_matches('.') } else { &text };
+        return if text == "-0" { "0".into() } else { text.into() };
+    }
+    // The significant digits of `v` that nine of `scale` keep; none where `v` is below them.
+    let digits = 8.0 + if v == 0.0 { magnitude } else { v.abs().log10().floor() } - magnitude;
+    if digits.is_nan() || digits < 0.0 {
+        return "0".into();
+    }
+    let text = format!("{v:.*e}", digits.min(16.0) as usize);
+    text.parse::<f64>().map_or(text, |r| Number(r + 0.0).to_string())
 }
 
 /// The output columns `NAME.x`, `NAME.y` of the point `name`, given to the option `option`.

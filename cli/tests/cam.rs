@@ -290,6 +290,20 @@ fn a_follower_that_is_not_the_points_motion_is_a_usage_error() {
     assert_eq!(out.status.code(), Some(2), "{}", stderr(&out));
     assert_eq!(std::fs::read_to_string(&plot).ok().as_deref(), Some("kept"), "the plot there before was touched");
     std::fs::remove_file(&plot).unwrap();
+    // The same at any size: the rocker's pin moves on an arc in a mechanism of 1e151 or 1e-109
+    // units too (the circumcentre's squares overflowed and underflowed: "neither a line nor an
+    // arc"), the pivot is written short (not a hundred digits), and given back it is taken.
+    for (params, pivot) in [
+        ("lift=2e151,y0=6e151,l_rod=7e151,c=4e151,d_x=-4e151,d_y=1.4e152", "-4e151,1.4e152"),
+        ("lift=2e-109,y0=6e-109,l_rod=7e-109,c=4e-109,d_x=-4e-109,d_y=1.4e-108", "-4e-109,1.4e-108"),
+    ] {
+        let out = kinloop(&[&pin[..], &["--guide", "0,1", "--params", params]].concat());
+        let err = stderr(&out);
+        assert_eq!(out.status.code(), Some(2), "{pivot}: {err}");
+        assert!(err.contains(&format!("give --rocker {pivot} (a rocking follower)")), "{pivot}: {err}");
+        let out = kinloop(&[&pin[..], &["--rocker", pivot, "--params", params]].concat());
+        assert!(out.status.success(), "{pivot}: {}", stderr(&out));
+    }
     // What the messages say to give is taken, and so is a follower given to a few digits (a
     // guide half a milliradian off, a pivot 0.01 off on an arm of 40).
     let near = [
