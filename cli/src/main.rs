@@ -84,7 +84,8 @@ struct Cli {
 struct Declaration {
     /// The declaration (`.kl`).
     file: PathBuf,
-    /// Parameter values, `name=value` separated by commas (overriding the defaults).
+    /// Parameter values, `name=value` separated by commas (overriding the defaults), in the
+    /// declaration's units: an angle parameter in radians, with or without `--deg`.
     #[arg(long, value_name = "NAME=VALUE,...")]
     params: Option<String>,
 }
@@ -407,7 +408,8 @@ enum Command {
         #[arg(long)]
         deg: bool,
         /// Parameter values, `name=value` separated by commas (the fixed ones; overriding the
-        /// defaults).
+        /// defaults), in the declaration's units: an angle parameter in radians, with or without
+        /// `--deg`.
         #[arg(long, value_name = "NAME=VALUE,...")]
         params: Option<String>,
         /// CSV instead of a table.

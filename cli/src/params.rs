@@ -47,7 +47,7 @@ pub fn apply(model: &mut Model, list: &str) -> Result<(), Failed> {
 
 /// Whether the number `text` (one that parses) is written as zero: no digit but 0 before its
 /// exponent. `1e-400` is not, though it parses to 0 (it underflows), as `1e400` overflows.
-fn is_zero_text(text: &str) -> bool {
+pub(crate) fn is_zero_text(text: &str) -> bool {
     let mantissa = text.split(['e', 'E']).next().unwrap_or(text);
     !mantissa.chars().any(|c| c.is_ascii_digit() && c != '0')
 }

@@ -112,6 +112,14 @@ pub fn point(spec: &str, option: &str) -> Result<[f64; 2], Failed> {
 /// One list of inputs (of the option `option`): one number per input.
 pub fn parse_inputs(spec: &str, ni: usize, option: &str) -> Result<Vec<f64>, Failed> {
     let x: Result<Vec<f64>, _> = spec.split(',').map(|v| v.trim().parse::<f64>()).collect();
+    // A number too small for a double reads as 0: refused as it is in --params (`1e-400` was
+    // taken as 0 without a word).
+    if let Some(v) = spec.split(',').map(str::trim).find(|v| v.parse() == Ok(0.0) && !crate::params::is_zero_text(v)) {
+        return Err(exit::usage(format!(
+            "{option} {spec}: `{v}` is too small for a 64-bit float and would be 0: give 0 if 0 is meant, or express \
+             the model in other units"
+        )));
+    }
     match x {
         Ok(x) if x.len() == ni && x.iter().all(|v| v.is_finite()) => Ok(x),
         Ok(x) if x.len() != ni => {

@@ -109,6 +109,12 @@ fn errors_have_carets_and_exit_codes() {
     assert_eq!(wrong_param.status.code(), Some(2));
     let wrong_inputs = kinloop(&["solve", &shipped("rhombic_drive.kl"), "--at", "0,1"]);
     assert_eq!(wrong_inputs.status.code(), Some(2));
+    // A number too small for a double is refused as in --params, not read as 0.
+    let underflow = kinloop(&["solve", &shipped("rhombic_drive.kl"), "--at", "1e-400"]);
+    let err = String::from_utf8_lossy(&underflow.stderr);
+    assert_eq!(underflow.status.code(), Some(2), "{err}");
+    assert!(err.contains("`1e-400` is too small for a 64-bit float"), "{err}");
+    assert!(kinloop(&["solve", &shipped("rhombic_drive.kl"), "--at", "0e-400"]).status.success());
     // Out of reach: a crank longer than the rod leaves no assembly at some angle.
     let out_of_reach = kinloop(&["solve", &shipped("rhombic_drive.kl"), "--at", "1.5", "--params", "r_p=5"]);
     assert_eq!(out_of_reach.status.code(), Some(1), "{}", String::from_utf8_lossy(&out_of_reach.stdout));
