@@ -9,7 +9,7 @@
 use crate::cam_drawn::FaceLine;
 use crate::exit::usage;
 use crate::output::OutFile;
-use crate::solve::{in_units, point};
+use crate::solve::{point, solve_failed};
 use crate::{Failed, exit, samples};
 use kinloop_model::{Count, Model};
 use kinloop_runtime::analysis::cam::{
@@ -217,10 +217,7 @@ pub fn find(model: &mut Model, req: &Request) -> Result<Found, Failed> {
     let face = flat_face(fa, &follower, angle)?;
     let start = req.start / angle;
     let kinds = model.input_kinds().to_vec();
-    let failed = |e: Error| {
-        eprintln!("error: {name}: {}", in_units(e, &kinds, req.deg));
-        Failed(exit::SOLVE_FAILED)
-    };
+    let failed = |e: Error| solve_failed(&name, e, &kinds, req.deg);
     let mut guess = vec![0.0; model.unknowns().len()];
     model.guess(&[start], &mut guess).map_err(|e| {
         eprintln!("error: {name}: {e}");

@@ -4,7 +4,7 @@
 //! velocity analog, refined between samples on the sweep's branch; otherwise an end of the
 //! range). Written as CSV with units, or as a readable table.
 
-use crate::solve::{degrees, in_units, model_inputs};
+use crate::solve::{degrees, in_units, model_inputs, solve_failed};
 use crate::sweep::range_too_long;
 use crate::{Failed, exit, progress, samples};
 use kinloop_model::Model;
@@ -98,7 +98,7 @@ pub fn run(model: &mut Model, req: &Request) -> Result<(), Failed> {
         }
         match e {
             Error::InvalidArgument(_) => exit::usage(format!("{name}: {e}")),
-            e => failed(&in_units(e, &input_kinds, req.deg)),
+            e => solve_failed(&name, e, &input_kinds, req.deg),
         }
     })?;
     // Ends a few units in the last place apart: the samples' inputs round to the same numbers

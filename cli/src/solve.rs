@@ -85,7 +85,32 @@ pub fn in_units(mut e: Error, kinds: &[QuantityKind], deg: bool) -> Error {
             }
         }
     }
+    // An input's spacings as well as its value: the message compares them.
+    if let Error::InputTooCoarse { input, apart, step, .. } = &mut e
+        && deg
+        && kinds.get(*input) == Some(&QuantityKind::Angle)
+    {
+        (*apart, *step) = (apart.to_degrees(), step.to_degrees());
+    }
     e
+}
+
+/// A failed solve of the model `name` reported: its error in the units written ([`in_units`]),
+/// and the exit code its kind calls for ([`exit_code`]).
+pub fn solve_failed(name: &str, e: Error, kinds: &[QuantityKind], deg: bool) -> Failed {
+    let code = exit_code(&e);
+    eprintln!("error: {name}: {}", in_units(e, kinds, deg));
+    Failed(code)
+}
+
+/// The exit code of a failed solve's error `e`: a usage error ([`exit::USAGE`]) where the
+/// arguments stand in the way, not the mechanism (an input too coarse where the range lies: a
+/// range far out, to be reduced by whole turns), [`exit::SOLVE_FAILED`] otherwise.
+pub fn exit_code(e: &Error) -> u8 {
+    match e {
+        Error::InputTooCoarse { .. } | Error::RangeTooLong { .. } | Error::InvalidArgument(_) => exit::USAGE,
+        _ => exit::SOLVE_FAILED,
+    }
 }
 
 /// One list of inputs (of the option `option`) in the model's units: one number per input of

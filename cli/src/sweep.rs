@@ -3,7 +3,7 @@
 //! written to `--events`).
 
 use crate::csv_rows::CsvRows;
-use crate::solve::{factors, in_units, model_inputs, parse_inputs, units};
+use crate::solve::{factors, model_inputs, parse_inputs, solve_failed, units};
 use crate::{Failed, exit, output, progress, samples};
 use kinloop_model::Model;
 use kinloop_runtime::dims::KinState;
@@ -57,7 +57,7 @@ pub fn run(model: &mut Model, req: &Request) -> Result<(), Failed> {
     // several): its refusal is a usage error, not a failed solve.
     let mut sweep = model.sweep(&from, &to, req.samples, &guess).map_err(|e| match e {
         Error::InvalidArgument(_) => exit::usage(format!("{name}: {e}")),
-        e => failed(&in_units(e, &kinds[..ni], req.deg)),
+        e => solve_failed(&name, e, &kinds[..ni], req.deg),
     })?;
     let units = Units { factors, degrees, last: req.samples.saturating_sub(1).max(1) as f64 };
     // The first sample, before anything is created: a range longer than a sweep follows is
@@ -96,7 +96,7 @@ pub fn run(model: &mut Model, req: &Request) -> Result<(), Failed> {
     let events_file = output::ready(events_file, "the events")?;
     write_events(model, &events, req.deg, events_file).map_err(|e| output::failed("the events", e))?;
     match stop {
-        Some(e) => Err(failed(&in_units(e, &kinds[..ni], req.deg))),
+        Some(e) => Err(solve_failed(&name, e, &kinds[..ni], req.deg)),
         None => Ok(()),
     }
 }

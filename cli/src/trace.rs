@@ -3,7 +3,7 @@
 //! unknowns and the outputs at each point); the limit positions, kinks and crossings it passes
 //! listed on standard error, or written to `--events`.
 
-use crate::solve::{degrees, in_units, model_inputs, units};
+use crate::solve::{degrees, model_inputs, solve_failed, units};
 use crate::sweep::{range_too_long, write_events};
 use crate::{Failed, exit, output, samples};
 use kinloop_model::Model;
@@ -70,7 +70,7 @@ pub fn run(model: &mut Model, req: &Request) -> Result<(), Failed> {
     let traced = model.trace_curve(&from, &to, &guess, &opts).map_err(|e| match e {
         Error::InvalidArgument(m) => exit::usage(format!("{name}: {m}")),
         e => range_too_long(&name, &e, req.from, req.to, req.deg)
-            .unwrap_or_else(|| failed(&in_units(e, &kinds[..ni], req.deg))),
+            .unwrap_or_else(|| solve_failed(&name, e, &kinds[..ni], req.deg)),
     })?;
     // Created before anything is written: a path that cannot be written stops before any output.
     let events_file = output::created(req.events, "the events file")?;

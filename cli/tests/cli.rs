@@ -737,3 +737,22 @@ fn messages_about_the_macro_are_said_for_a_file() {
     assert!(String::from_utf8_lossy(&out.stdout).contains("block 0 (Newton, 17x17)"), "{out:?}");
     assert!(err.contains("compile the declaration with `kinloop::mechanism!`"), "{err}");
 }
+
+/// A sweep far out, where the input's doubles are coarser than its steps, is the arguments'
+/// mistake (exit code 2, as a range too long), and with `--deg` every number of the message is
+/// in degrees: the doubles' spacing (14.3 degrees), the samples' (5e5 degrees) and the input
+/// where it failed (it gave the spacings in radians beside the input in degrees).
+#[test]
+fn an_input_too_coarse_is_a_usage_error_in_the_units_given() {
+    let four_bar = shipped("four_bar.kl");
+    let args = ["sweep", &four_bar, "--params", "a=1,b=3,c=2.5,d=3.2", "--from", "1e17", "--to", "1.00000000001e17"];
+    let out = kinloop(&[&args[..], &["--samples", "3", "--deg"]].concat());
+    let err = String::from_utf8_lossy(&out.stderr);
+    assert_eq!(out.status.code(), Some(2), "{err}");
+    assert!(err.contains("is a double 14.32394487827058 apart") && err.contains("(499998.78189335205)"), "{err}");
+    let out = kinloop(&[&args[..], &["--samples", "3"]].concat());
+    let err = String::from_utf8_lossy(&out.stderr);
+    assert_eq!(out.status.code(), Some(2), "{err}");
+    // In radians the range lies farther out (1e17 rad): doubles 16 apart.
+    assert!(err.contains("is a double 16 apart"), "{err}");
+}

@@ -3,6 +3,7 @@
 //! equations.
 
 use crate::events::EventKind;
+use crate::number::Number;
 use std::borrow::Cow;
 use std::fmt;
 
@@ -139,6 +140,33 @@ pub enum Error {
         /// Where.
         at: Box<Location>,
     },
+    /// A sweep's or a trace's steps cannot be taken where an input's doubles are farther apart
+    /// than a millionth of the steps' change in it (an input near `1e17` is a double 16 apart):
+    /// the steps' inputs round away from where they are predicted. The arguments' fault (a range
+    /// far out, or too finely sampled for where it is), not the mechanism's.
+    #[error(
+        "the {walk} cannot take its steps: input `{name}` is a double {} apart from the next here, coarser than \
+         a millionth of {} in it ({}), so the steps' inputs round away from where they are predicted; reduce a \
+         periodic input by whole turns, or {} {at}",
+        Number(*.apart),
+        if *.walk == "sweep" { "the samples' spacing" } else { "a step's length" },
+        Number(*.step),
+        if *.walk == "sweep" { "sample a longer range" } else { "take longer steps" }
+    )]
+    InputTooCoarse {
+        /// What walks the path: `"sweep"` or `"trace"`.
+        walk: &'static str,
+        /// The input's index among the mechanism's inputs.
+        input: usize,
+        /// The input's name.
+        name: String,
+        /// The distance from its value to the next double, in its unit.
+        apart: f64,
+        /// Its change over a sample spacing (a sweep) or a step (a trace), in its unit.
+        step: f64,
+        /// Where.
+        at: Box<Location>,
+    },
     /// An angle's guess is so many turns out that on its turn the angle cannot be solved to the
     /// tolerance: the spacing of doubles there (about `|value| * 2.2e-16`) is coarser than the
     /// residual tolerance accepts. Solved on its guess's turn (as every angle is), it would be a
@@ -266,6 +294,7 @@ impl Error {
             | Error::Overflow { at, .. }
             | Error::SweepStopped { at, .. }
             | Error::Branch { at, .. }
+            | Error::InputTooCoarse { at, .. }
             | Error::TooManyTurns { at, .. }
             | Error::RangeTooLong { at, .. } => Some(at),
             Error::InvalidArgument(_) | Error::Dynamics(_) | Error::Figure(_) => None,
@@ -284,6 +313,7 @@ impl Error {
             | Error::Overflow { at, .. }
             | Error::SweepStopped { at, .. }
             | Error::Branch { at, .. }
+            | Error::InputTooCoarse { at, .. }
             | Error::TooManyTurns { at, .. }
             | Error::RangeTooLong { at, .. } => Some(at),
             Error::InvalidArgument(_) | Error::Dynamics(_) | Error::Figure(_) => None,

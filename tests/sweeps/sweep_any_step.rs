@@ -612,8 +612,12 @@ fn a_sweep_where_the_inputs_doubles_are_too_coarse_says_so() {
     let m = CRANK_ROCKER;
     let g = m.guess(0.0);
     let run = m.sweep(1e17, 1e17 + 1e3, 181, &g).unwrap().run();
-    let SweepStop::Failed(Error::Branch { message, .. }) = &run.stop else { panic!("{:?}", run.stop) };
-    assert!(message.contains("input `phi` is a double 1.6e1 apart"), "{message}");
+    let SweepStop::Failed(e @ Error::InputTooCoarse { input: 0, apart, .. }) = &run.stop else {
+        panic!("{:?}", run.stop)
+    };
+    assert_eq!(*apart, 16.0);
+    let message = e.to_string();
+    assert!(message.contains("input `phi` is a double 16 apart"), "{message}");
     assert!(message.contains("whole turns"), "{message}");
     assert!(m.sweep(1e9, 1e9 + 1e3, 181, &g).unwrap().run().is_completed());
 }
@@ -634,7 +638,8 @@ fn a_sweep_far_out_completes_or_says_the_input_is_coarse() {
         for (path, stop) in [("closed form", &closed.stop), ("Newton", &newton.stop)] {
             match stop {
                 SweepStop::Completed => {}
-                SweepStop::Failed(Error::Branch { message, .. }) => {
+                SweepStop::Failed(e @ Error::InputTooCoarse { .. }) => {
+                    let message = e.to_string();
                     assert!(
                         message.contains("input `phi` is a double") && message.contains("whole turns"),
                         "{from} ({path}): {message}"

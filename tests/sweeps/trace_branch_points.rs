@@ -234,7 +234,8 @@ fn a_trace_far_out_completes_or_says_the_input_is_coarse() {
         let g = m.position(from, &m.guess(from)).unwrap().0;
         match m.trace_curve(from, from + PI, &g, &TraceConfig::default()) {
             Ok(t) => assert!(!t.points.is_empty()),
-            Err(kinloop::Error::Branch { message, .. }) => {
+            Err(e @ kinloop::Error::InputTooCoarse { .. }) => {
+                let message = e.to_string();
                 assert!(
                     message.contains("input `phi` is a double") && message.contains("whole turns"),
                     "{from}: {message}"

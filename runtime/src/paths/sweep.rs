@@ -982,17 +982,9 @@ where
     /// [`SweepOf::coarse_input`]), naming the input; `None` where the inputs are fine.
     #[cold]
     fn coarse_error(&self, x: &[f64], block: Option<usize>) -> Option<Error> {
-        let (i, apart, spacing) = self.coarse_input(x)?;
-        Some(Error::Branch {
-            message: format!(
-                "the sweep cannot take its steps: input `{}` is a double {apart:e} apart from the next here, \
-                 coarser than a millionth of the samples' spacing in it ({spacing:e}), so the steps' inputs \
-                 round away from where they are predicted; reduce a periodic input by whole turns, or sample \
-                 a longer range",
-                self.m.input_name(i)
-            ),
-            at: self.location(x, block),
-        })
+        let (i, apart, step) = self.coarse_input(x)?;
+        let name = self.m.input_name(i).to_string();
+        Some(Error::InputTooCoarse { walk: "sweep", input: i, name, apart, step, at: self.location(x, block) })
     }
 
     /// The state past a kink of the solution curve between the last accepted state `k` and the

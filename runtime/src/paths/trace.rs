@@ -349,20 +349,19 @@ pub fn trace_curve_of<K: Kernel>(
                     (c, Some(event_at(EventKind::SingularCrossing, &path, &p, None)))
                 } else {
                     let x = path.at_sigma(p.sigma);
+                    let at = m.location(x.as_ref(), None);
                     // Against a whole step's change of each input.
-                    let message = match path.coarse_input(x.as_ref(), |di| ds * metric.sigma * di / path.len) {
-                        Some((i, apart, step)) => format!(
-                            "pseudo-arclength continuation cannot proceed: input `{}` is a double {apart:e} apart \
-                             from the next here, coarser than a millionth of a step's length in it ({step:e}), so the \
-                             steps' inputs round away from the curve; reduce a periodic input by whole turns, or \
-                             take longer steps",
-                            m.input_name(i)
-                        ),
-                        None => {
-                            "pseudo-arclength continuation cannot proceed (the curve bifurcates or ends here)".into()
+                    return Err(match path.coarse_input(x.as_ref(), |di| ds * metric.sigma * di / path.len) {
+                        Some((i, apart, step)) => {
+                            let name = m.input_name(i).to_string();
+                            Error::InputTooCoarse { walk: "trace", input: i, name, apart, step, at }
                         }
-                    };
-                    return Err(Error::Branch { message, at: m.location(x.as_ref(), None) });
+                        None => Error::Branch {
+                            message: "pseudo-arclength continuation cannot proceed (the curve bifurcates or ends here)"
+                                .into(),
+                            at,
+                        },
+                    });
                 };
                 walked += (past.z(&metric) - p.z(&metric)).norm();
                 p = past;
