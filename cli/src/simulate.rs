@@ -181,20 +181,24 @@ fn failure(name: &str, e: Error, deg: bool) -> Failed {
     };
     match dynamics {
         Some(&DynamicsError::TooManySteps { steps, t, t_end }) => return usage(budget_spent(name, steps, t, t_end)),
-        // The runtime names the state in the radians it integrates in: in degrees here where
-        // they were given so (the input angle, component 0, and its speed, 1).
-        Some(&DynamicsError::CannotAdvance { t, component, value, change, .. }) if deg => {
+        // The runtime names the state's component by its index, in the radians it integrates
+        // in: named here (the input angle, component 0, and its speed, 1), in degrees where they
+        // were given so.
+        Some(&DynamicsError::CannotAdvance { t, component, value, change, .. }) => {
             let what = if component == 0 { "the input angle" } else { "the input speed" };
+            let (value, change, unit) = match deg {
+                true => (degrees(value), change.to_degrees(), " deg"),
+                false => (value, change, ""),
+            };
             return usage(format!(
-                "{name}: the integration cannot advance at t = {}: a step changes {what} (= {} deg) by {:e} deg, \
+                "{name}: the integration cannot advance at t = {}: a step changes {what} (= {}{unit}) by {:e}{unit}, \
                  less than half the spacing of f64 numbers there, so the change is lost; start from a smaller value \
                  (an angle modulo a turn)",
                 Number(t),
-                Number(degrees(value)),
-                change.to_degrees()
+                Number(value),
+                change
             ));
         }
-        Some(DynamicsError::CannotAdvance { .. }) => return usage(format!("{name}: {e}")),
         _ => {}
     }
     eprintln!("error: {name}: {e}");

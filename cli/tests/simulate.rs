@@ -167,8 +167,8 @@ fn simulate_s_streamed_table_is_the_recorded_trajectory_s() {
     }
 }
 
-/// A start angle so large that no step can move it is named in the units given: in degrees
-/// with `--deg`, not in the radians the run is integrated in.
+/// A start angle so large that no step can move it is named as the input angle in the units
+/// given: in degrees with `--deg`, not in the radians the run is integrated in.
 #[test]
 fn a_start_no_step_can_move_is_named_as_given() {
     let engine = shipped("engine.kl");
@@ -184,5 +184,7 @@ fn a_start_no_step_can_move_is_named_as_given() {
         assert!(err.contains(&format!("(= {says})")) && err.contains("cannot advance"), "{err}");
         // 1e300 degrees are 1.745...e298 rad.
         assert!(!err.contains("e298"), "{err}");
+        // Named alike in either unit (without --deg it named "state component 0").
+        assert!(err.contains("changes the input angle") && !err.contains("component"), "{err}");
     }
 }
