@@ -64,12 +64,15 @@ pub struct Cycle {
 }
 
 /// The smallest coefficient of speed fluctuation [`Cycle::flywheel`] sizes a flywheel for.
-/// [`Flywheel::exact`] finds the speeds' fluctuation as the difference of the largest and the
-/// smallest speed, each rounded to about 1e-16 of the mean: at `delta` the flywheel is off by
-/// about `1e-16 / delta` of itself (measured on the engine of the command line's examples: 1e-4
-/// at `delta = 1e-12`; at `1e-300` it came out 13 orders of magnitude below the energy
-/// method's). From 1e-6 that is below the trapezoidal work's own error (about 1e-7), and far
-/// below any machine's: flywheels are sized for 0.002 (generators) to 0.2 (crushers).
+/// [`Flywheel::exact`] is a difference of energies over the samples (the kinetic energies at the
+/// fluctuation's extreme speeds less the work), each rounded to about 1e-16 of itself, divided by
+/// `delta`: at `delta` the flywheel is off by about `1e-16 / delta` of the inertia in the cycle,
+/// the flywheel's and the mechanism's (as it was when found by bisection on the fluctuation, a
+/// difference of the largest and the smallest speed: measured on the engine of the command
+/// line's examples, 1e-4 of the flywheel at `delta = 1e-12`; at `1e-300` it came out 13 orders
+/// of magnitude below the energy method's). From 1e-6 that is below the trapezoidal work's own
+/// error (about 1e-7), and far below any machine's: flywheels are sized for 0.002 (generators)
+/// to 0.2 (crushers).
 pub const MIN_DELTA: f64 = 1e-6;
 
 /// Sizing of a flywheel by the energy method; see [`Cycle::flywheel`].
@@ -369,8 +372,9 @@ impl Cycle {
     ///
     /// [`Flywheel::exact`] keeps the variable inertia: on a steady cycle the energy equation
     /// `1/2 (J_fly + J(phi)) omega(phi)^2 = E_0 + E(phi)` gives the speed at every angle; `E_0` is
-    /// set (by bisection) so that `(omega_max + omega_min) / 2 = omega_m`, and `J_fly` (by
-    /// bisection) so that the fluctuation is `delta`, both over the samples.
+    /// set so that `(omega_max + omega_min) / 2 = omega_m`, and `J_fly` so that the fluctuation
+    /// is `delta`, both over the samples (`J_fly` in closed form from the samples' energies and
+    /// inertias, `E_0` by a safeguarded Newton iteration: a few passes over the samples).
     ///
     /// `delta` lies in `[MIN_DELTA, 2)` ([`MIN_DELTA`]); outside it the error is
     /// [`DynamicsError::BadValue`], as it is for a law whose speed is not positive at every
@@ -423,13 +427,14 @@ impl Cycle {
         if !energy_swing.is_finite() {
             return Err(overflow("work of the loads over the cycle"));
         }
-        let exact = self.exact_flywheel(&work, omega_m, delta).ok_or_else(|| overflow("exact flywheel inertia"))?;
+        let (exact, levels) =
+            self.exact_flywheel(&work, omega_m, delta).ok_or_else(|| overflow("exact flywheel inertia"))?;
         // Without a flywheel, a machine without inertia about its input at an angle has no speed
         // there that follows from its energy (reported as an overflow of the sizing, `0 / 0`).
         if let Some(p) = self.points.iter().find(|p| exact + p.inertia == 0.0) {
             return Err(DynamicsError::SingularMass { x: vec![p.phi], pivot: 0.0, names: Vec::new() });
         }
-        let (_, e0) = self.fluctuation(&work, exact, omega_m);
+        let (e0, _) = self.energy_level(&work, exact, omega_m, levels);
         let total_inertia = energy_swing / (delta * omega_m * omega_m);
         let mechanism_inertia = mean(self.points.iter().map(|p| p.inertia));
         let f = Flywheel {
@@ -439,7 +444,8 @@ impl Cycle {
             mechanism_inertia,
             flywheel: (total_inertia - mechanism_inertia).max(0.0),
             exact,
-            start_speed: (2.0 * (e0 + work[0]) / (exact + self.points[0].inertia)).sqrt(),
+            // The level is reduced by omega_m^2 (see `exact_flywheel`), and so is this speed.
+            start_speed: omega_m * (2.0 * (e0 + work[0] / omega_m / omega_m) / (exact + self.points[0].inertia)).sqrt(),
         };
         let values = [f.mean_torque, f.total_inertia, f.mechanism_inertia, f.flywheel, f.exact, f.start_speed];
         if values.iter().all(|v| v.is_finite()) { Ok(f) } else { Err(overflow("flywheel sizing")) }
@@ -459,63 +465,122 @@ impl Cycle {
         work
     }
 
-    /// `(omega_max, omega_min)` over the samples for flywheel `j_fly` and energy level `e0`.
-    fn speed_range(&self, work: &[f64], j_fly: f64, e0: f64) -> (f64, f64) {
-        let (mut hi, mut lo) = (0.0f64, f64::INFINITY);
+    /// The smallest flywheel giving fluctuation `delta` (0 when the mechanism alone stays within
+    /// it), with the energy levels its steady cycle may have, both found in one pass over the
+    /// samples; `None` when no finite flywheel does (the energies overflow).
+    ///
+    /// Energies are taken reduced by `omega_m^2` (inertias then): `u = E / omega_m^2`, `e0 =
+    /// E_0 / omega_m^2`. The fluctuation falls as the flywheel grows, and with the mean speed
+    /// centred it is at most `delta` exactly when some level keeps every speed within `[omega_b,
+    /// omega_a] = omega_m (1 ∓ delta / 2)` (raising the level raises every speed, lowering it
+    /// lowers every speed: a fluctuation beyond `delta` has a speed outside the band at every
+    /// level). By the energy equation that is, at every sample,
+    /// `(J_fly + J) k_b <= e0 + u <= (J_fly + J) k_a` with `k = (omega / omega_m)^2 / 2`, so
+    /// `J_fly k_b + A <= e0 <= J_fly k_a + B` with `A = max (J k_b - u)`, `B = min (J k_a - u)`:
+    /// a level exists from `J_fly (k_a - k_b) = J_fly delta >= A - B` on. The flywheel is
+    /// `(A - B) / delta` (or 0), where the band of levels closes to the steady cycle's.
+    ///
+    /// This is the flywheel at which the fluctuation computed over the samples crosses `delta`
+    /// (what a bisection on it found, at a pass over the samples per step of the flywheel and of
+    /// the level: thousands). Its rounding: `A - B` cancels terms of the size of `J` and `u`
+    /// (`u` swings by about `J_total delta`), an error of about `eps (1 + J / (J_fly delta))`
+    /// of the flywheel, where the bisection's difference of the largest and smallest speed
+    /// lost `eps / delta` (see [`MIN_DELTA`]).
+    fn exact_flywheel(&self, work: &[f64], omega_m: f64, delta: f64) -> Option<(f64, [f64; 2])> {
+        let k_a = 0.5 * (1.0 + 0.5 * delta) * (1.0 + 0.5 * delta);
+        let k_b = 0.5 * (1.0 - 0.5 * delta) * (1.0 - 0.5 * delta);
+        let (mut a, mut b) = (f64::NEG_INFINITY, f64::INFINITY);
         for (p, w) in self.points.iter().zip(work) {
-            let omega = (2.0 * (e0 + w) / (j_fly + p.inertia)).max(0.0).sqrt();
-            hi = hi.max(omega);
-            lo = lo.min(omega);
+            // Divided twice, not by `omega_m^2`: the square may overflow where the energies do not.
+            let u = w / omega_m / omega_m;
+            a = a.max(p.inertia * k_b - u);
+            b = b.min(p.inertia * k_a - u);
         }
-        (hi, lo)
-    }
-
-    /// Fluctuation `(omega_max - omega_min) / omega_m` with flywheel `j_fly` at mean speed
-    /// `omega_m`, and the energy level `E_0` giving that mean speed (found by bisection: the mean
-    /// speed grows with it).
-    fn fluctuation(&self, work: &[f64], j_fly: f64, omega_m: f64) -> (f64, f64) {
-        let j_max = self.points.iter().map(|p| p.inertia).fold(0.0, f64::max) + j_fly;
-        let mut lo = -work.iter().copied().fold(f64::INFINITY, f64::min);
-        // At this level the slowest point already turns at omega_m or faster.
-        let mut hi = lo + 0.5 * j_max * omega_m * omega_m;
-        for _ in 0..80 {
-            let mid = 0.5 * (lo + hi);
-            let (a, b) = self.speed_range(work, j_fly, mid);
-            if 0.5 * (a + b) < omega_m { lo = mid } else { hi = mid }
-        }
-        let e0 = 0.5 * (lo + hi);
-        let (a, b) = self.speed_range(work, j_fly, e0);
-        ((a - b) / omega_m, e0)
-    }
-
-    /// The flywheel giving fluctuation `delta` (0 when the mechanism alone stays within it);
-    /// the fluctuation falls as the flywheel grows. `None` when no finite flywheel does (or
-    /// the fluctuation cannot be computed: the energies overflow).
-    fn exact_flywheel(&self, work: &[f64], omega_m: f64, delta: f64) -> Option<f64> {
-        let f0 = self.fluctuation(work, 0.0, omega_m).0;
-        if f0.is_nan() {
+        if !(a.is_finite() && b.is_finite()) {
             return None;
         }
-        if f0 <= delta {
-            return Some(0.0);
-        }
-        let mut hi = self.points.iter().map(|p| p.inertia).fold(0.0, f64::max).max(f64::MIN_POSITIVE);
-        while self.fluctuation(work, hi, omega_m).0 > delta && hi < f64::MAX / 4.0 {
-            hi *= 2.0;
-        }
-        // NaN (an overflow) is no flywheel either.
-        let reached = self.fluctuation(work, hi, omega_m).0;
-        if reached.is_nan() || reached > delta {
+        let fly = ((a - b) / delta).max(0.0);
+        if !fly.is_finite() {
             return None;
         }
-        let mut lo = 0.0;
-        for _ in 0..100 {
-            let mid = 0.5 * (lo + hi);
-            if self.fluctuation(work, mid, omega_m).0 > delta { lo = mid } else { hi = mid }
+        let levels = if fly > 0.0 {
+            // The band has closed (up to rounding): its middle is the steady cycle's level.
+            let mid = 0.5 * ((fly * k_b + a) + (fly * k_a + b));
+            [mid, mid]
+        } else {
+            [a, b]
+        };
+        if levels.iter().all(|e| e.is_finite()) { Some((fly, levels)) } else { None }
+    }
+
+    /// The reduced energy level `e0 = E_0 / omega_m^2` of the steady cycle with flywheel `j_fly`
+    /// (see [`Cycle::exact_flywheel`]), at which `(omega_max + omega_min) / 2 = omega_m`, within
+    /// `levels` (which hold it: the band of levels keeping the speeds within `delta`), and the
+    /// passes over the samples it took.
+    ///
+    /// The mean of the largest and the smallest speed grows with the level, and near it follows
+    /// the two samples that hold them: Newton's method on it (its slope from those two), kept
+    /// within a bracket that every pass narrows, and bisection when a step leaves the bracket or
+    /// does not halve it (where the samples holding the extremes change). It stops where a step
+    /// is below the rounding of the level's sums `e0 + u` (about `eps (|e0| + |u|)`: the speeds
+    /// computed there are the same to rounding), or when the bracket has no double inside, or
+    /// after [`MAX_LEVEL_PASSES`] (bisection alone reaches the rounding well before). Smooth
+    /// cycles take a handful of passes, where bisection to the doubles' resolution took 80.
+    fn energy_level(&self, work: &[f64], j_fly: f64, omega_m: f64, levels: [f64; 2]) -> (f64, usize) {
+        let [mut lo, mut hi] = levels;
+        if lo >= hi {
+            return (lo, 0);
         }
-        Some(0.5 * (lo + hi))
+        let mut e = 0.5 * (lo + hi);
+        // The last step and the one before it (the bracket's width before any).
+        let (mut step, mut step_before) = (hi - lo, hi - lo);
+        for pass in 1..=MAX_LEVEL_PASSES {
+            // One pass: the largest and smallest `(e0 + u) / (J_fly + J)` (half the squared speed
+            // relative to omega_m^2), and where they are.
+            let (mut top, mut bottom) = ((f64::NEG_INFINITY, 0), (f64::INFINITY, 0));
+            for (j, (p, w)) in self.points.iter().zip(work).enumerate() {
+                let r = (e + w / omega_m / omega_m) / (j_fly + p.inertia);
+                if r > top.0 {
+                    top = (r, j);
+                }
+                if r < bottom.0 {
+                    bottom = (r, j);
+                }
+            }
+            let speed = |r: f64| (2.0 * r).max(0.0).sqrt();
+            let (s_a, s_b) = (speed(top.0), speed(bottom.0));
+            let excess = 0.5 * (s_a + s_b) - 1.0;
+            if excess == 0.0 {
+                return (e, pass);
+            }
+            if excess < 0.0 {
+                lo = e
+            } else {
+                hi = e
+            }
+            // d omega / d e0 = 1 / ((J_fly + J) omega), relative to omega_m.
+            let slope_of = |s: f64, j: usize| 1.0 / ((j_fly + self.points[j].inertia) * s);
+            let slope = 0.5 * (slope_of(s_a, top.1) + slope_of(s_b, bottom.1));
+            let newton = e - excess / slope;
+            let u_of = |j: usize| (work[j] / omega_m / omega_m).abs();
+            let rounding = 4.0 * f64::EPSILON * (e.abs() + u_of(top.1).max(u_of(bottom.1)));
+            // Newton's step is taken inside the bracket and when it is at most half the step
+            // before the last (else Newton's method is not converging: it bisects).
+            let converging = newton > lo && newton < hi && 2.0 * (newton - e).abs() <= step_before;
+            let next = if converging { newton } else { 0.5 * (lo + hi) };
+            if (next - e).abs() <= rounding || next <= lo || next >= hi {
+                return (next.clamp(lo, hi), pass);
+            }
+            (step_before, step) = (step, (next - e).abs());
+            e = next;
+        }
+        (e, MAX_LEVEL_PASSES)
     }
 }
+
+/// The most passes over the samples [`Cycle::energy_level`] makes: bisection alone halves a
+/// bracket of the size of the energies to their rounding in about 60.
+const MAX_LEVEL_PASSES: usize = 100;
 
 /// The mean of `values`: the plain sum divided by the count, or, when that sum overflows,
 /// the sum of the values each divided by the count (the mean of finite values is always
@@ -525,3 +590,6 @@ fn mean(values: impl Iterator<Item = f64> + Clone) -> f64 {
     let plain = values.clone().sum::<f64>() / n;
     if plain.is_finite() || n == 0.0 { plain } else { values.map(|v| v / n).sum() }
 }
+
+#[cfg(test)]
+mod tests;
