@@ -50,7 +50,10 @@
 //! **Range.** A sweep follows at most [`MAX_TURNS`] turns of its inputs (the path's length in
 //! their units over `2 pi`): longer, its steps would number beyond use, and the doubles of inputs
 //! that large (`0.125` apart at `1e15`) could not resolve them. A longer range is refused up
-//! front: the sweep's first item is [`Error::RangeTooLong`], with the numbers.
+//! front: the sweep's first item is [`Error::RangeTooLong`], with the numbers. Within it, where
+//! an input's doubles are farther apart than a millionth of its change between samples (a range
+//! far out, finely sampled), a step that fails there is [`Error::InputTooCoarse`], naming the
+//! input: its steps' inputs round away from where they are predicted.
 //!
 //! The iterator allocates nothing per step (events are rare and allocate).
 
