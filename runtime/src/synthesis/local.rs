@@ -19,8 +19,9 @@ pub struct LocalConfig {
     /// (their largest distance from their centroid; default `1e-14`, rounding).
     pub tol: f64,
     /// Converged when an accepted step changes no unknown by more than `step_tol` times its
-    /// size (`|dz_i| <= step_tol (|z_i| + step_tol)`; default `1e-13`): a local minimum, whose
-    /// residual need not be zero.
+    /// size (`|dz_i| <= step_tol (|z_i| + step_tol w_i)`, `w_i` the width of its bounds, or its
+    /// magnitude where they are one value: free of the units of length and angle; default
+    /// `1e-13`): a local minimum, whose residual need not be zero.
     pub step_tol: f64,
     /// Initial damping, relative to the diagonal of `J^T J` (default `1e-3`).
     pub lambda: f64,
@@ -125,6 +126,21 @@ impl<K: SensKernel> ProblemOf<K> {
                 if w > 0.0 && w.is_finite() { w } else { lo[i].abs().max(hi[i].abs()).max(f64::MIN_POSITIVE) }
             })
             .collect();
+        // The unknowns every target shares (the design variables, then the placement's), by
+        // index into the shared block `at(i)` of `z`'s, and `shared(i)` back; the free inputs
+        // lie between them in `z`.
+        let (nv, nt) = (self.vars.len(), self.free_inputs());
+        let ng = n - nt;
+        let at = |i: usize| if i < nv { i } else { i + nt };
+        let shared = |i: usize| if i < nv { i } else { i - nt };
+        // The residuals' unit, the targets' weighted size, and each unknown's, its width, by the
+        // powers of two nearest them (exact: the same steps bit for bit as unscaled); `column`,
+        // the factor of an unknown's column of the Jacobian, is the two's quotient.
+        let exponent = |v: f64| (v.log2().round() as i32).clamp(-1000, 1000);
+        let unit = 2f64.powi(-exponent(self.scale));
+        let per: Vec<f64> = width.iter().map(|&w| 2f64.powi(exponent(w))).collect();
+        let column: Vec<f64> =
+            width.iter().map(|&w| 2f64.powi((exponent(w) - exponent(self.scale)).clamp(-1020, 1020))).collect();
         let stop = loop {
             if f <= cfg.tol * self.scale {
                 break OptimizerStop::Converged;
@@ -133,29 +149,49 @@ impl<K: SensKernel> ProblemOf<K> {
                 break OptimizerStop::MaxEvaluations;
             }
             // Normal equations J^T J and the gradient J^T r, of the residuals in units of the
-            // targets' weighted size (by the power of two nearest it: exact, so the same steps
-            // bit for bit as unscaled): their squares neither underflow nor overflow whatever
-            // the weights. Weights of 1e-200 made them 0, and every start "converged" where it
-            // began.
-            let unit = 2f64.powi(-(self.scale.log2().round() as i32).clamp(-1000, 1000));
-            let mut a = nalgebra::DMatrix::<f64>::zeros(n, n);
-            let mut g = nalgebra::DVector::<f64>::zeros(n);
+            // targets' weighted size and of the unknowns in units of their widths (`unit`,
+            // `per`): their squares neither underflow nor overflow whatever the weights and the
+            // units. Weights of 1e-200 made them 0, and every start "converged" where it began;
+            // lengths near 1e-200 made a length's column squared 1e400, and no step was found.
+            //
+            // A free input moves only its own target's residuals: J^T J is an arrow, the shared
+            // unknowns' block `a` (design variables, placement), each free input's diagonal entry
+            // `d` and its coupling `c` to the shared ones. Formed and solved densely it cost the
+            // cube of the targets (minutes for 1600 targets per start); the free inputs are
+            // eliminated instead (below), at a cost linear in the targets.
+            let mut a = nalgebra::DMatrix::<f64>::zeros(ng, ng);
+            let mut g = vec![0.0; n];
+            let mut d = vec![0.0; nt];
+            let mut c = vec![0.0; nt * ng];
+            let mut js = vec![0.0; ng];
             for k in 0..rows {
-                let jk = &e.jac[k * n..(k + 1) * n];
+                for (i, js) in js.iter_mut().enumerate() {
+                    *js = e.jac[k * ng + i] * column[at(i)];
+                }
                 let rk = e.r[k] * unit;
-                for i in 0..n {
-                    let ji = jk[i] * unit;
-                    g[i] += ji * rk;
+                for i in 0..ng {
+                    g[at(i)] += js[i] * rk;
                     for j in 0..=i {
-                        a[(i, j)] += ji * jk[j] * unit;
+                        a[(i, j)] += js[i] * js[j];
+                    }
+                }
+                if nt > 0 {
+                    let t = k / self.width;
+                    let jt = e.jin[k] * column[nv + t];
+                    g[nv + t] += jt * rk;
+                    d[t] += jt * jt;
+                    for (ct, &jj) in c[t * ng..(t + 1) * ng].iter_mut().zip(&js) {
+                        *ct += jt * jj;
                     }
                 }
             }
-            for i in 0..n {
+            for i in 0..ng {
                 for j in 0..i {
                     a[(j, i)] = a[(i, j)];
                 }
             }
+            // The diagonal of J^T J, by unknown.
+            let diag = |i: usize| if (nv..nv + nt).contains(&i) { d[i - nv] } else { a[(shared(i), shared(i))] };
             // Held: on a bound with the descent direction (-g) pointing out.
             let held: Vec<bool> =
                 (0..n).map(|i| (z[i] <= lo[i] && g[i] > 0.0) || (z[i] >= hi[i] && g[i] < 0.0)).collect();
@@ -165,29 +201,53 @@ impl<K: SensKernel> ProblemOf<K> {
             // steps came out too small to change it, and the solve stopped "converged" there.
             // So it is judged on the unknowns scaled by their widths: the largest change any one
             // makes over its range, `sqrt(a_ii) w_i`, a millionth of it over the unknown's own
-            // width, squared.
-            let reach = (0..n).filter(|&i| !held[i]).map(|i| a[(i, i)].sqrt() * width[i]).fold(0.0, f64::max);
-            let floor = |i: usize| (1e-6 * reach / width[i]).powi(2).min(f64::MAX);
+            // width, squared (the width in the unknown's unit `per`: `a` is in those units).
+            let reach = (0..n).filter(|&i| !held[i]).map(|i| diag(i).sqrt() * (width[i] / per[i])).fold(0.0, f64::max);
+            let floor = |i: usize| (1e-6 * reach / (width[i] / per[i])).powi(2).min(f64::MAX);
+            let damp = |i: usize, lambda: f64| lambda * diag(i).max(floor(i)).max(f64::MIN_POSITIVE);
+            // A held unknown is coupled to none: its coupling to the free inputs is zero.
+            for t in 0..nt {
+                for i in 0..ng {
+                    if held[nv + t] || held[at(i)] {
+                        c[t * ng + i] = 0.0;
+                    }
+                }
+            }
             let mut step = Step::Exhausted;
             while evaluations < cfg.max_evaluations && lambda <= 1e16 {
+                // The damped system, a held unknown's row and column those of the identity and
+                // its right-hand side zero.
                 let mut damped = a.clone();
-                let mut rhs = -g.clone();
-                for i in 0..n {
-                    if held[i] {
+                let mut rhs = nalgebra::DVector::<f64>::from_fn(ng, |i, _| -g[at(i)]);
+                for i in 0..ng {
+                    if held[at(i)] {
                         damped.row_mut(i).fill(0.0);
                         damped.column_mut(i).fill(0.0);
                         damped[(i, i)] = 1.0;
                         rhs[i] = 0.0;
                     } else {
-                        damped[(i, i)] += lambda * a[(i, i)].max(floor(i)).max(f64::MIN_POSITIVE);
+                        damped[(i, i)] += damp(at(i), lambda);
                     }
                 }
-                let Some(dz) = damped.cholesky().map(|c| c.solve(&rhs)) else {
+                let held_t = |t: usize| held[nv + t];
+                let dd: Vec<f64> = (0..nt).map(|t| if held_t(t) { 1.0 } else { d[t] + damp(nv + t, lambda) }).collect();
+                let rt: Vec<f64> = (0..nt).map(|t| if held_t(t) { 0.0 } else { -g[nv + t] }).collect();
+                let Some((dg, dt)) = arrow_solve(damped, rhs, &dd, &c, &rt) else {
                     lambda *= 10.0;
                     continue;
                 };
+                let dz: Vec<f64> = (0..n)
+                    .map(|i| match i.checked_sub(nv).filter(|&t| t < nt) {
+                        Some(t) => dt[t] * per[i],
+                        None => dg[shared(i)] * per[i],
+                    })
+                    .collect();
                 let trial: Vec<f64> = (0..n).map(|i| (z[i] + dz[i]).clamp(lo[i], hi[i])).collect();
-                let small = (0..n).all(|i| (trial[i] - z[i]).abs() <= cfg.step_tol * (z[i].abs() + cfg.step_tol));
+                // Relative to each unknown's size, and near zero to its width: an absolute floor
+                // of `step_tol` (in the unknown's units) took every step of a design of lengths
+                // near 1e-30 for a converged one, and the solve stopped at its first step.
+                let small =
+                    (0..n).all(|i| (trial[i] - z[i]).abs() <= cfg.step_tol * (z[i].abs() + cfg.step_tol * width[i]));
                 evaluations += 1;
                 match self.evaluate(&trial, Some(&e.qs)) {
                     Ok(et) if norm(&et.r) < f => {
@@ -216,6 +276,101 @@ impl<K: SensKernel> ProblemOf<K> {
         };
         let report = LocalReport { evaluations, iterations, stop, residual: f };
         Ok((z, e, report))
+    }
+}
+
+/// The solution `(x, y)` of the symmetric arrow system `[[a, c^T], [c, diag(d)]] (x, y) = (b, e)`
+/// (`a` the `m x m` block of the unknowns every target shares, its lower triangle read; `c`
+/// row-major `d.len() x m`, each free input's coupling to them; `d` the free inputs' diagonal):
+/// the free inputs eliminated, the Schur complement `a - c^T diag(d)^-1 c` solved by Cholesky
+/// for `x`, then `y = (e - c x) / d`. A cost linear in the free inputs where the dense system's
+/// was cubic. `None` where the system is not positive definite (a `d` not positive and finite,
+/// or the complement not positive definite), as the dense Cholesky would have failed.
+fn arrow_solve(
+    mut a: nalgebra::DMatrix<f64>,
+    mut b: nalgebra::DVector<f64>,
+    d: &[f64],
+    c: &[f64],
+    e: &[f64],
+) -> Option<(nalgebra::DVector<f64>, Vec<f64>)> {
+    let m = b.len();
+    for (t, &dt) in d.iter().enumerate() {
+        if !(dt.is_finite() && dt > 0.0) {
+            return None;
+        }
+        let ct = &c[t * m..(t + 1) * m];
+        for i in 0..m {
+            let ci = ct[i] / dt;
+            b[i] -= ci * e[t];
+            for j in 0..=i {
+                a[(i, j)] -= ci * ct[j];
+            }
+        }
+    }
+    for i in 0..m {
+        for j in 0..i {
+            a[(j, i)] = a[(i, j)];
+        }
+    }
+    let x = a.cholesky()?.solve(&b);
+    let y = d
+        .iter()
+        .enumerate()
+        .map(|(t, &dt)| (e[t] - c[t * m..(t + 1) * m].iter().zip(x.iter()).map(|(p, q)| p * q).sum::<f64>()) / dt)
+        .collect();
+    Some((x, y))
+}
+
+#[cfg(test)]
+mod tests {
+    use super::arrow_solve;
+    use nalgebra::{DMatrix, DVector};
+
+    /// The arrow system's solution is the dense system's: a random-looking positive definite
+    /// arrow (three shared unknowns, five free inputs), solved both ways.
+    #[test]
+    fn arrow_solve_matches_the_dense_solve() {
+        let (m, nt) = (3, 5);
+        let n = m + nt;
+        // J with rows touching the shared columns and one free input each, J^T J an arrow.
+        let rows = 2 * nt;
+        let mut j = DMatrix::<f64>::zeros(rows, n);
+        for r in 0..rows {
+            for i in 0..m {
+                j[(r, i)] = ((r * 7 + i * 3) as f64 * 0.37).sin();
+            }
+            j[(r, m + r / 2)] = 1.0 + ((r * 5) as f64 * 0.21).cos();
+        }
+        let mut full = j.transpose() * &j;
+        for i in 0..n {
+            full[(i, i)] += 1e-3 * full[(i, i)];
+        }
+        let rhs = DVector::<f64>::from_fn(n, |i, _| ((i * 11) as f64 * 0.13).cos());
+        let dense = full.clone().cholesky().unwrap().solve(&rhs);
+        let a = full.view((0, 0), (m, m)).into_owned();
+        let d: Vec<f64> = (0..nt).map(|t| full[(m + t, m + t)]).collect();
+        let c: Vec<f64> = (0..nt).flat_map(|t| (0..m).map(move |i| (t, i))).map(|(t, i)| full[(m + t, i)]).collect();
+        // The matrix is an arrow: no free input couples to another.
+        for s in 0..nt {
+            for t in 0..nt {
+                if s != t {
+                    assert_eq!(full[(m + s, m + t)], 0.0);
+                }
+            }
+        }
+        let b = rhs.rows(0, m).into_owned();
+        let e: Vec<f64> = (0..nt).map(|t| rhs[m + t]).collect();
+        let (x, y) = arrow_solve(a, b, &d, &c, &e).unwrap();
+        for i in 0..n {
+            let got = if i < m { x[i] } else { y[i - m] };
+            assert!((got - dense[i]).abs() <= 1e-12 * dense.amax(), "{i}: {got} vs {}", dense[i]);
+        }
+        // Not positive definite: refused, as the dense Cholesky refuses it.
+        let mut bad = d.clone();
+        bad[2] = -1.0;
+        assert!(
+            arrow_solve(full.view((0, 0), (m, m)).into_owned(), rhs.rows(0, m).into_owned(), &bad, &c, &e).is_none()
+        );
     }
 }
 

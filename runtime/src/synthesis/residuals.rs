@@ -11,12 +11,17 @@ use crate::error::Error;
 use crate::mechanism::kernel::{Q, SensKernel, SensState};
 use std::f64::consts::TAU;
 
-/// Residuals and Jacobian at one point of the search (row-major, `rows x cols`), with the
-/// positions solved at every target (the guesses of the next evaluation).
+/// Residuals and Jacobian at one point of the search, with the positions solved at every target
+/// (the guesses of the next evaluation). A free input moves only its own target's residuals, so
+/// the Jacobian is kept in two parts, both linear in the targets (a dense one was `rows x
+/// (targets + ...)`, quadratic): `jac`, row-major `rows x globals`, the columns of the unknowns
+/// every target shares (the design variables, then the placement's four); and `jin`, one value
+/// per row, its derivative by its own target's free input (empty with prescribed inputs).
 #[derive(Clone, Debug)]
 pub(crate) struct Eval<Q> {
     pub r: Vec<f64>,
     pub jac: Vec<f64>,
+    pub jin: Vec<f64>,
     pub qs: Vec<Q>,
 }
 
@@ -68,8 +73,21 @@ impl<K: SensKernel> ProblemOf<K> {
     pub fn residuals(&self, z: &[f64]) -> Result<Residuals, SynthesisError> {
         self.check_point(z)?;
         let e = self.evaluate(z, None)?;
-        let cols = self.dims();
-        Ok(Residuals { values: e.r, jacobian: e.jac.chunks(cols).map(<[f64]>::to_vec).collect() })
+        let (nv, nt, cols) = (self.vars.len(), self.free_inputs(), self.dims());
+        let globals = cols - nt;
+        let jacobian = (0..e.r.len())
+            .map(|k| {
+                let jk = &e.jac[k * globals..(k + 1) * globals];
+                let mut row = vec![0.0; cols];
+                row[..nv].copy_from_slice(&jk[..nv]);
+                row[nv + nt..].copy_from_slice(&jk[nv..]);
+                if nt > 0 {
+                    row[nv + k / self.width] = e.jin[k];
+                }
+                row
+            })
+            .collect();
+        Ok(Residuals { values: e.r, jacobian })
     }
 
     /// `z` has one finite value per unknown of the search.
@@ -169,10 +187,13 @@ impl<K: SensKernel> ProblemOf<K> {
     fn evaluate_with(&self, m: &K, z: &[f64], guesses: Option<&[Q<K>]>) -> Result<Eval<Q<K>>, Error> {
         let inputs = self.input_values(z);
         let (mut kin, mut sens) = (m.dims().kin(), m.sens());
-        let (nv, nt, cols) = (self.vars.len(), self.free_inputs(), self.dims());
+        // The shared columns (design variables, placement) and the free inputs' apart.
+        let (nv, nt) = (self.vars.len(), self.free_inputs());
+        let cols = self.dims() - nt;
         let n = inputs.len();
         let mut r = vec![0.0; n * self.width];
         let mut jac = vec![0.0; n * self.width * cols];
+        let mut jin = vec![0.0; if nt > 0 { n * self.width } else { 0 }];
         let mut qs: Vec<Q<K>> = Vec::with_capacity(n);
         let place = self.placement.map(|_| {
             let at = nv + nt;
@@ -220,11 +241,11 @@ impl<K: SensKernel> ProblemOf<K> {
                         }
                         if nt > 0 {
                             let (a, bb) = turn(by_input(&kin, cx), by_input(&kin, cy));
-                            jac[jx + nv + k] = w * a;
-                            jac[jy + nv + k] = w * bb;
+                            jin[row] = w * a;
+                            jin[row + 1] = w * bb;
                         }
                         if place.is_some() {
-                            let at = nv + nt;
+                            let at = nv;
                             jac[jx + at] = w;
                             jac[jy + at + 1] = w;
                             // d(s R p)/d angle = (-my, mx); d(s R p)/d s = R p = (mx, my) / s.
@@ -246,10 +267,10 @@ impl<K: SensKernel> ProblemOf<K> {
                             jac[j + i] = w * by_param(&sens, col, b.index);
                         }
                         if nt > 0 {
-                            jac[j + nv + k] = w * by_input(&kin, col);
+                            jin[row] = w * by_input(&kin, col);
                         }
                         if place.is_some() && rotates {
-                            jac[j + nv + nt + 2] = w;
+                            jac[j + nv + 2] = w;
                         }
                         row += 1;
                     }
@@ -260,13 +281,13 @@ impl<K: SensKernel> ProblemOf<K> {
                             jac[j + i] = w * by_param(&sens, col, b.index);
                         }
                         if nt > 0 {
-                            jac[j + nv + k] = w * by_input(&kin, col);
+                            jin[row] = w * by_input(&kin, col);
                         }
                         row += 1;
                     }
                 }
             }
         }
-        Ok(Eval { r, jac, qs })
+        Ok(Eval { r, jac, jin, qs })
     }
 }
