@@ -78,7 +78,8 @@
 //!
 //! `m.with_config(cfg)` gives the mechanism its own solver configuration (a [`SweepConfig`] or
 //! a [`NewtonConfig`], validated once): the [`Configured`] mechanism uses it in every solve,
-//! sweep, reachable range, assembly-mode search and trace (its methods are those of [`Named`]).
+//! sweep, sampled analysis, limit search, reachable range, assembly-mode search, trace, scan and
+//! inverse-dynamics cycle (its methods are those of [`Named`]).
 //!
 //! ```
 //! kinloop::mechanism! {

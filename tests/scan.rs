@@ -266,8 +266,16 @@ fn bad_arguments_fail_every_slot_without_panicking() {
     let (ms, _) = designs(5);
     assert!(scan(&ms[..0], &ScanConfig::new([0.0], [TAU], SAMPLES), init, fold).is_empty());
     assert!(par_scan(&ms[..0], &ScanConfig::new([0.0], [TAU], SAMPLES), init, fold).is_empty());
-    let cases =
-        [ScanConfig::new([0.0], [TAU], 0), ScanConfig::new([0.0], [0.0], 3), ScanConfig::new([f64::NAN], [TAU], 3)];
+    // Among them: one sample of a range to another end (the end was ignored), and more samples
+    // than an analysis takes (`usize::MAX` folded for years).
+    let cases = [
+        ScanConfig::new([0.0], [TAU], 0),
+        ScanConfig::new([0.0], [0.0], 3),
+        ScanConfig::new([f64::NAN], [TAU], 3),
+        ScanConfig::new([0.0], [TAU], 1),
+        ScanConfig::new([0.0], [TAU], kinloop::analysis::MAX_SAMPLES + 1),
+        ScanConfig::new([0.0], [TAU], usize::MAX),
+    ];
     for spec in cases {
         for results in [scan(&ms, &spec, init, fold), par_scan(&ms, &spec, init, fold)] {
             assert_eq!(results.len(), ms.len());

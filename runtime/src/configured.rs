@@ -9,9 +9,9 @@ use crate::paths::config::SweepConfig;
 use crate::solvers::newton::{NewtonConfig, SolveReport};
 use crate::trig::InputTrig;
 
-/// A mechanism that carries its solver configuration: every solve, sweep, reachable range,
-/// assembly-mode search and curve trace of it uses that configuration wherever no explicit one
-/// is given. Made by `m.with_config(cfg)` ([`Named::with_config`](crate::Named::with_config)), which validates the
+/// A mechanism that carries its solver configuration: every solve, sweep, sampled analysis,
+/// limit search, reachable range, assembly-mode search, curve trace, scan and inverse-dynamics
+/// cycle of it uses that configuration wherever no explicit one is given. Made by `m.with_config(cfg)` ([`Named::with_config`](crate::Named::with_config)), which validates the
 /// configuration once.
 ///
 /// It implements [`Mechanism`] and [`Named`](crate::Named) like the mechanism itself; its named methods are

@@ -85,8 +85,9 @@ fn too_many_harmonics_name_the_samples_not_a_kinematic_failure() {
     assert!(text.contains("12 harmonics asked of 24 samples per period: they resolve at most 11"), "{text}");
     assert!(!text.contains("kinematics") && !text.contains("NaN"), "{text}");
     assert_eq!(cycle.torque_harmonics(11).unwrap().a.len(), 11);
-    // A sample count no memory holds is refused before anything is allocated.
-    for samples in [usize::MAX, usize::MAX / 8] {
+    // A sample count beyond what an analysis takes is refused before anything is allocated
+    // (2^40 grew the turn's states until the process was killed).
+    for samples in [usize::MAX, usize::MAX / 8, 1 << 40, kinloop::analysis::MAX_SAMPLES + 1] {
         let err =
             InverseCycle::new(&m, &model, SpeedLaw::Constant(10.0)).samples(samples).guess(m.guess_flat(&[0.0])).run();
         assert!(matches!(err, Err(DynamicsError::BadValue { what: "samples", .. })), "{err:?}");

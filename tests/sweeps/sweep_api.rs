@@ -2,6 +2,7 @@
 //! `reachable` in input values and `trace_curve`'s options, checked against closed forms (the law
 //! of cosines for a four-bar's limit positions) and against the behaviour without them.
 
+use kinloop::dynamics::{Body, Coord, DynamicsError, InverseCycle, MassModel, Rotation, SpeedLaw};
 use kinloop::{AtSingular, Error, EventKind, Kin, Named, NewtonConfig, Sweep, SweepConfig, SweepStop, TraceConfig};
 use kinloop_fixtures::{FourBar, FourBarInputs, FourBarUnknowns};
 use std::f64::consts::PI;
@@ -103,6 +104,24 @@ fn the_mechanism_configuration_reaches_every_solve() {
     assert!(matches!(one.sweep_at([0.4, 0.6], &far).stop, SweepStop::Failed(Error::NoConvergence { .. })));
     assert!(one.assembly_modes(0.4).unwrap().is_empty());
     assert!(one.trace_curve(0.4, 1.0, &far, &TraceConfig::default()).is_err());
+    // The sampled analyses, the limit search and the inverse dynamics' turn too (they swept
+    // with the defaults whatever the mechanism carried).
+    let sampled = one.sampled(0.4, 1.0, 5, &far);
+    assert!(matches!(sampled, Err(Error::NoConvergence { .. })), "{:?}", sampled.err());
+    let limits = kinloop::metrics::Limits::new(&one, 0.4, 1.0).guess(far).run();
+    assert!(matches!(limits, Err(Error::NoConvergence { .. })), "{limits:?}");
+    let crank = Body {
+        name: "crank".into(),
+        mass: 1.0,
+        com: [Coord::Fixed(0.0), Coord::Fixed(0.0)],
+        inertia: 1.0,
+        rotation: Rotation::Input(0),
+    };
+    let model = MassModel::<2, 1, 0>::new().with_body(crank).unwrap();
+    let cycle = InverseCycle::new(&one, &model, SpeedLaw::Constant(1.0)).samples(16).guess(far).run();
+    let no_convergence = matches!(&cycle, Err(DynamicsError::Kinematics { source: Error::NoConvergence { .. }, .. }));
+    assert!(no_convergence, "{:?}", cycle.err());
+    assert!(InverseCycle::new(&m, &model, SpeedLaw::Constant(1.0)).samples(16).guess(far).run().is_ok());
     // An explicit configuration still wins over the mechanism's.
     assert!(one.kinematics_with(0.4, &far, &NewtonConfig::default()).is_ok());
     assert!(one.trace_curve(0.4, 1.0, &far, &TraceConfig::default().with_newton(NewtonConfig::default())).is_ok());

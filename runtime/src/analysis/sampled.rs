@@ -165,11 +165,14 @@ where
     /// At least 3 and at most [`MAX_SAMPLES`](super::MAX_SAMPLES) samples (every state is
     /// kept): others are an [`Error::InvalidArgument`], as a count whose states no memory holds.
     ///
+    /// The mechanism's solver configuration ([`Mechanism::solver_config`]: the defaults, or the
+    /// one a [`Configured`](crate::Configured) mechanism carries) sweeps and refines.
+    ///
     /// A declared mechanism's `m.sampled(from, to, samples, &m.guess(from))` is this call with
     /// the named unknowns; this form serves code generic over [`Mechanism`] and hand-written
     /// implementations, as [`Sweep::new`](crate::Sweep::new) does beside `m.sweep`.
     pub fn sweep(m: &'m M, from: f64, to: f64, samples: usize, guess: impl Into<[f64; N]>) -> Result<Self, Error> {
-        Self::sweep_with(m, from, to, samples, guess, SweepConfig::default())
+        Self::sweep_with(m, from, to, samples, guess, m.solver_config())
     }
 
     /// [`Sampled::sweep`] with a sweep configuration (also used for every refinement).
@@ -205,7 +208,7 @@ where
         samples: usize,
         guess: impl Into<[f64; N]>,
     ) -> Result<Self, Error> {
-        Self::path_with(m, from, to, samples, guess, SweepConfig::default())
+        Self::path_with(m, from, to, samples, guess, m.solver_config())
     }
 
     /// [`Sampled::path`] with a sweep configuration (also used for every refinement).
@@ -229,7 +232,7 @@ where
         samples: usize,
         guess: [f64; N],
     ) -> Result<Self, Error> {
-        SampledOf::over(Compiled(m), from, to, samples, guess, SweepConfig::default())
+        SampledOf::over(Compiled(m), from, to, samples, guess, m.solver_config())
     }
 
     /// The mechanism.

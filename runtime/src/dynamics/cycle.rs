@@ -9,7 +9,6 @@ use crate::analysis::fourier::{Fourier, fourier};
 use crate::dims::Dims;
 use crate::mechanism::Mechanism;
 use crate::mechanism::kernel::{Compiled, Kernel};
-use crate::paths::config::SweepConfig;
 use crate::paths::sweep::SweepOf;
 use std::f64::consts::TAU;
 
@@ -184,8 +183,9 @@ where
 /// The kinematic states of one turn of the input of a one-input mechanism `k` (any
 /// [`Kernel`]: a compiled one through [`Compiled`], a run-time model's): `samples` equally
 /// spaced angles of `[phi0, phi0 + 2 pi)`, swept from `guess` at `phi0` (the turn's end is
-/// swept too, so that a limit position anywhere on the turn is found), with the default
-/// [`SweepConfig`]. The states [`InverseCycle::run`] evaluates, with its errors; a mechanism
+/// swept too, so that a limit position anywhere on the turn is found), with the kernel's
+/// configuration ([`Kernel::solver_config`]: the defaults, or a
+/// [`Configured`](crate::Configured) mechanism's). The states [`InverseCycle::run`] evaluates, with its errors; a mechanism
 /// with other than one input is [`DynamicsError::SizeMismatch`].
 pub fn turn_states<K: Kernel>(
     k: K,
@@ -200,13 +200,14 @@ pub fn turn_states<K: Kernel>(
     if samples < 8 {
         return Err(DynamicsError::BadValue { what: "samples", value: samples as f64, why: "need at least 8" });
     }
-    // More points than an allocation can hold would panic in the allocator (a capacity
-    // overflow) rather than fail.
-    if samples > isize::MAX as usize / std::mem::size_of::<CyclePoint>() {
+    // More points than an analysis takes: the turn's states are all kept (a state and a point
+    // a sample), and 2^40 samples grew them until the process was killed; more than an
+    // allocation can hold would panic in the allocator (a capacity overflow).
+    if samples > crate::analysis::MAX_SAMPLES {
         return Err(DynamicsError::BadValue {
             what: "samples",
             value: samples as f64,
-            why: "too many to hold in memory",
+            why: "more than an analysis takes (`analysis::MAX_SAMPLES`)",
         });
     }
     // The samples of the turn must be told apart, and the sweep's steps between them solved: at
@@ -229,9 +230,10 @@ pub fn turn_states<K: Kernel>(
     let (mut from, mut to) = (d.x(), d.x());
     from[0] = phi0;
     to[0] = phi0 + TAU;
+    let cfg = k.solver_config();
     let mut sweep = SweepOf::<K, <K::Dims as Dims>::Kin>::over(k, from, to, samples + 1, guess)
         .map_err(DynamicsError::kin)?
-        .with_config(SweepConfig::default());
+        .with_config(cfg);
     let mut states = Vec::with_capacity(crate::mechanism::kernel::reserve_for(samples + 1));
     while let Some(state) = sweep.next_kin() {
         states.push(state.map_err(DynamicsError::kin)?);

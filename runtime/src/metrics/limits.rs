@@ -185,7 +185,8 @@ pub fn limits_of<K: Kernel, C: ColumnOf<K>>(
         x[0] = v;
         x
     };
-    let cfg = SweepConfig { at_singular: AtSingular::Continue, ..SweepConfig::default() };
+    // The kernel's configuration (a `Configured` mechanism's), passing singular crossings.
+    let cfg = SweepConfig { at_singular: AtSingular::Continue, ..k.solver_config() };
     let (mut last, mut last_q, mut count) = (from, guess.clone(), 0usize);
     let mut limit = None;
     let events = {

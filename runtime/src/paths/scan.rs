@@ -84,7 +84,9 @@ pub struct ScanConfig<M, const N: usize, const NI: usize> {
     pub from: [f64; NI],
     /// Inputs at the last sample.
     pub to: [f64; NI],
-    /// Number of samples (at least 1; at least 2 when `to` differs from `from`).
+    /// Number of samples (at least 1; at least 2 when `to` differs from `from`; at most
+    /// [`MAX_SAMPLES`](crate::analysis::MAX_SAMPLES): others make each design's result an
+    /// `Error::InvalidArgument`).
     pub samples: usize,
     /// The initial guess at `from`.
     pub start: ScanStart<M, N>,
@@ -146,6 +148,15 @@ where
     I: Fn(&M) -> A,
     F: Fn(A, &M, &Kin<N, NI, NO>) -> A,
 {
+    // One sample is the start alone: a range to another end would be ignored. A count beyond
+    // what an analysis takes would fold for years (`usize::MAX`).
+    if spec.samples < 2 && spec.from != spec.to {
+        return Err(Error::InvalidArgument(format!(
+            "a scan from {:?} to {:?} needs at least 2 samples (its ends); {} asked for",
+            spec.from, spec.to, spec.samples
+        )));
+    }
+    crate::analysis::check_sample_count("samples of a scan", spec.samples).map_err(Error::InvalidArgument)?;
     let guess = spec.start.guess::<NI, NO>(m, &spec.from);
     fold_sweep_of(
         Compiled(m),

@@ -11,6 +11,7 @@
 
 use super::{Minimum, OptimizerStop};
 use crate::error::Error;
+use crate::number::Number;
 
 /// Derivative-free minimiser: the Nelder–Mead simplex method with the dimension-adaptive
 /// coefficients of Gao and Han, restarts and evaluation counting. Infeasible points are marked
@@ -247,7 +248,9 @@ impl NelderMead {
     /// unconstrained variables `u` with `x = lo + (hi - lo) (1 + sin u) / 2` (the transformation
     /// of MINUIT): every trial point lies in the box, and a minimum on a face of the box is a
     /// smooth minimum in `u`. The initial simplex steps are `0.25` rad in `u` (a quarter of the
-    /// range near the centre). `x_tol` applies to `u`.
+    /// range near the centre). `x_tol` applies to `u`: a box resolves `x` to about `1e-16` of its
+    /// width, so a box far wider than the minimum's scale hides it (over `[-1e300, 1e300]` every
+    /// point near 0 maps to the same few doubles).
     ///
     /// Errors: `InvalidArgument`, before any evaluation, naming the coordinate and its bounds if
     /// a bound is not finite or `lo[i] > hi[i]` (a box that holds no point, or one the sine
@@ -276,10 +279,14 @@ impl NelderMead {
         check_start("NelderMead::minimize_boxed", &x0)?;
         // Checked here, naming the coordinate: `clamp` panicked with its own words for
         // `lo > hi` or a NaN, and infinite bounds made every trial point NaN.
-        if let Some(i) = (0..P).find(|&i| !(lo[i].is_finite() && hi[i].is_finite() && lo[i] <= hi[i])) {
+        // A width beyond the doubles (`-1e308 ..= 1e308`) made the start NaN, and the error
+        // blamed the start.
+        if let Some(i) = (0..P).find(|&i| !(lo[i] <= hi[i] && (hi[i] - lo[i]).is_finite())) {
             return Err(Error::InvalidArgument(format!(
-                "NelderMead::minimize_boxed: the box of coordinate {i}, [{}, {}], needs finite bounds with lo <= hi",
-                lo[i], hi[i]
+                "NelderMead::minimize_boxed: the box of coordinate {i}, [{}, {}], needs finite bounds with lo <= hi, \
+                 at most the largest double apart",
+                Number(lo[i]),
+                Number(hi[i])
             )));
         }
         let to_x = |u: &[f64; P]| {
@@ -385,6 +392,11 @@ mod tests {
             (
                 NelderMead::default().minimize_boxed(&mut f, [0.5, 0.5], [0.0, 0.0], [1.0, f64::NAN]),
                 "the box of coordinate 1, [0, NaN]",
+            ),
+            // Finite ends farther apart than a double holds: the box named, not the start.
+            (
+                NelderMead::default().minimize_boxed(&mut f, [0.5, 0.5], [-1e308, 0.0], [1e308, 1.0]),
+                "the box of coordinate 0, [-1e308, 1e308]",
             ),
         ];
         for (r, want) in bad {
