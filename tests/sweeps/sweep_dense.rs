@@ -6,16 +6,7 @@
 
 use super::sweep_kinks::Kinked;
 use kinloop::{AtSingular, EventKind, SweepConfig, SweepStop};
-
-kinloop::mechanism! {
-    /// Four-bar: crank `a` at the origin, coupler `b`, rocker `c` pivoted at (d, 0).
-    pub struct FourBar {
-        params a, b, c, d;
-        input phi;
-        unknowns beta = 0.5, gamma = 1.5;
-        loop abcd: a @ phi + b @ beta == (d, 0) + c @ gamma;
-    }
-}
+use kinloop_fixtures::FourBar;
 
 /// The crank angle of a non-Grashof four-bar's limit position where coupler and rocker stretch
 /// in line, the crank pin `b + c` from the rocker's pivot: `cos phi = (a^2 + d^2 - (b + c)^2) /

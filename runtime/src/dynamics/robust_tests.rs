@@ -285,14 +285,16 @@ fn shaking_and_centre_of_mass_are_typed_errors_or_finite() {
     assert!(matches!(d.checked_drive(&[0.0], &[1.0], &[1.0]), Err(DynamicsError::BadValue { .. })));
 }
 
-/// A turn of a huge sample count is not reserved up front: the sweep starts and fails at its
-/// first solve (a guess that is not a number) instead of the process aborting on an
-/// allocation of that many states.
+/// A turn of the largest sample count taken is not reserved up front: the sweep starts and
+/// fails at its first solve (a guess that is not a number) instead of the process aborting on
+/// an allocation of that many states. A larger count is refused before anything is allocated.
 #[test]
 fn a_huge_turn_is_not_reserved_up_front() {
     let m = crate::analysis::demo::SliderCrank { r: 1.0, l: 3.0, e: 0.5 };
-    let r = turn_states(crate::Compiled(&m), 0.0, 1 << 40, [f64::NAN]);
+    let r = turn_states(crate::Compiled(&m), 0.0, crate::analysis::MAX_SAMPLES, [f64::NAN]);
     assert!(matches!(r, Err(DynamicsError::Kinematics { .. })), "{r:?}");
+    let r = turn_states(crate::Compiled(&m), 0.0, 1 << 40, [f64::NAN]);
+    assert!(matches!(r, Err(DynamicsError::BadValue { what: "samples", .. })), "{r:?}");
 }
 
 /// `y'' = -w^2 y` from `y = 1, y' = 0`, as `[y, y' / w]`: `y = cos(w t)`, `y' / w = -sin(w t)`.
