@@ -196,6 +196,8 @@ pub fn extremes(samples: &[Jet], mut eval: impl FnMut(f64) -> Result<Jet, Error>
     // Walk from one sample with a non-zero analog to the next one; samples where the analog is
     // exactly zero in between are roots themselves.
     let Some(mut i) = samples.iter().position(|j| j.d1 != 0.0) else { return Ok(out) };
+    // The analogs' scale, against which an end's analog is zero but for rounding.
+    let largest = samples.iter().fold(0.0f64, |m, j| m.max(j.d1.abs()));
     while let Some(step) = samples[i + 1..].iter().position(|j| j.d1 != 0.0) {
         let k = i + 1 + step;
         let (a, b) = (samples[i], samples[k]);
@@ -209,7 +211,7 @@ pub fn extremes(samples: &[Jet], mut eval: impl FnMut(f64) -> Result<Jet, Error>
             };
             // Only interior extremes: a range that starts or ends at an extreme (its analog
             // rounded to a tiny non-zero value there) does not report that end.
-            if !at_an_end(samples, at.x) {
+            if !at_an_end(samples, largest, at.x) {
                 out.push(LocalExtreme { kind, at });
             }
         }
@@ -220,16 +222,15 @@ pub fn extremes(samples: &[Jet], mut eval: impl FnMut(f64) -> Result<Jet, Error>
 
 /// `x` is one of the ends of the sampled range: within a millionth of the first or last sample
 /// spacing of it, where the analog is zero but for its rounding (at most [`END_ROUNDING`] of the
-/// samples' largest). Both: a root located within that distance of an end whose analog is not
+/// samples' `largest` in magnitude). Both: a root located within that distance of an end whose analog is not
 /// that small is an extreme of its own (a range starting 1e-7 rad before a slider's dead centre,
 /// sampled 1.6 rad apart, lost its maximum to the position test alone).
-fn at_an_end(samples: &[Jet], x: f64) -> bool {
+fn at_an_end(samples: &[Jet], largest: f64, x: f64) -> bool {
     let n = samples.len();
     if n < 2 {
         return true;
     }
     let (first, last) = (samples[0], samples[n - 1]);
-    let largest = samples.iter().fold(0.0f64, |m, j| m.max(j.d1.abs()));
     let flat = |j: Jet| j.d1.abs() <= END_ROUNDING * largest;
     ((x - first.x).abs() <= 1e-6 * (samples[1].x - first.x) && flat(first))
         || ((last.x - x).abs() <= 1e-6 * (last.x - samples[n - 2].x) && flat(last))

@@ -292,12 +292,7 @@ where
         // The units at the start's guess (once per sweep: a sweep of a few samples, as every
         // stretch of `sweep_at` is, should not pay for more).
         let metric = Metric::at(&m, &path, &from, &guess);
-        let turns = if path.len > 0.0 { metric.input_len / std::f64::consts::TAU } else { 0.0 };
-        let too_long = (turns > MAX_TURNS || turns.is_nan()).then(|| Error::RangeTooLong {
-            turns,
-            max_turns: MAX_TURNS,
-            at: m.location(from.as_ref(), None),
-        });
+        let too_long = range_too_long(&metric, path.len, || m.location(from.as_ref(), None));
         let spacing = if samples > 1 { 1.0 / (samples - 1) as f64 } else { 1.0 };
         let mut delta2 = d.xx();
         for i in 0..d.ni() {
@@ -1057,6 +1052,14 @@ where
         let intervals = self.samples.checked_sub(1).filter(|&n| n > 0)? as f64;
         self.path.coarse_input(x, |di| di / intervals)
     }
+}
+
+/// [`Error::RangeTooLong`] where a path of length `len` (in the path's parameter) measured by
+/// `metric` is more than [`MAX_TURNS`] turns of its inputs, located `at`: a sweep and a trace
+/// follow no longer one.
+pub(crate) fn range_too_long<Q>(metric: &Metric<Q>, len: f64, at: impl FnOnce() -> Box<Location>) -> Option<Error> {
+    let turns = if len > 0.0 { metric.input_len / std::f64::consts::TAU } else { 0.0 };
+    (turns > MAX_TURNS || turns.is_nan()).then(|| Error::RangeTooLong { turns, max_turns: MAX_TURNS, at: at() })
 }
 
 /// Whether a judged unknown of `m` is not a closed-form angle ([`Kernel::closed_form_angle`]):

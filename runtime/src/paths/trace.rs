@@ -5,7 +5,7 @@ use super::curve::{
     CurvePoint, Metric, Path, arc_step, event_at, locate_fold, loose_position, pivot_at, signed_det, singular_ratio_at,
     tangent_from_analogs,
 };
-use super::sweep::MAX_TURNS;
+use super::sweep::range_too_long;
 use super::trace_kink::{MAX_TURN, past_kink, turn};
 use crate::dims::{Dims, KinState, Store};
 use crate::error::Error;
@@ -227,9 +227,8 @@ pub fn trace_curve_of<K: Kernel>(
     let metric = Metric::at(m, &path, &from, &q0);
     // A range no sweep follows is none a trace follows either: refused before the first step,
     // as a sweep refuses it (a trace over 1e12 rad walked for as many points as it was allowed).
-    let turns = metric.input_len / TAU;
-    if turns > MAX_TURNS || turns.is_nan() {
-        return Err(Error::RangeTooLong { turns, max_turns: MAX_TURNS, at: m.location(from.as_ref(), None) });
+    if let Some(e) = range_too_long(&metric, path.len, || m.location(from.as_ref(), None)) {
+        return Err(e);
     }
     let start = CurvePoint { tangent: tangent_from_analogs(&k0, &path, &metric), q: q0, sigma: 0.0 };
     let (start_z, start_dsigma) = (start.z(&metric), start.dsigma());
