@@ -15,7 +15,7 @@ use crate::model::Model;
 use kinloop_runtime::dims::{Heap, KinBuf, Sizes};
 use kinloop_runtime::dynamics::{
     AnalogState, Cycle, CyclePoint, DenseStep, Dynamics, DynamicsBuf, DynamicsError, MassModelBuf, RunConfig, Shaking,
-    SpeedLaw, Trajectory, simulate_steps_of, turn_states,
+    SpeedLaw, Trajectory, simulate_steps_of,
 };
 use kinloop_runtime::{Error, Source, SweepConfig};
 
@@ -59,8 +59,8 @@ impl ModelCycle<'_, '_> {
     }
 
     /// Runs the inverse dynamics over the turn: the runtime's sweep of the turn over the model
-    /// ([`turn_states`]), then at each state the mass model, the loads, the driving torque
-    /// and the shaking ([`Cycle::over_states`]). Errors: those of the compiled
+    /// ([`turn_states`](kinloop_runtime::dynamics::turn_states)), at each state as the sweep makes it the mass model, the loads, the
+    /// driving torque and the shaking ([`Cycle::over_turn`]: no state is kept). Errors: those of the compiled
     /// `InverseCycle::run` (as [`Error::Dynamics`] or the kinematic error), a guess of another
     /// length, a parameter without a value, a model without declared dynamics or with other
     /// than one input ([`Error::InvalidArgument`]).
@@ -68,21 +68,25 @@ impl ModelCycle<'_, '_> {
         let m = self.model;
         let mass = m.mass_model()?;
         let guess = start_guess(m, self.phi0, self.guess)?;
-        let states: Vec<KinBuf> =
-            turn_states(m.kernel(SweepConfig::default())?, self.phi0, self.samples, Heap(guess.into()))?;
-        let about = self.about;
-        let mut d = DynamicsBuf::zeros(1);
         // The mass model's errors carry the input's value; the model knows its name, as the
         // compiled cycle knows its mechanism's.
         let input_names = m.inputs().to_vec();
-        let (regs, prog) = m.dynamics_parts();
-        let cycle = Cycle::over_states(&states, self.law, |k, omega, eps| {
-            let loads = prog.loads(regs, k);
-            mass.dynamics_into(k, &[omega], loads, &mut d)?;
-            let shaking = mass.shaking(k, &[omega], &[eps], about)?;
-            CyclePoint::of(k.x[0], omega, eps, &d.mass, &d.gamma, &d.forces, shaking)
-        })
-        .map_err(|e| e.with_input_names(&input_names.iter().map(String::as_str).collect::<Vec<_>>()))?;
+        let kernel = m.kernel(SweepConfig::default())?;
+        let about = self.about;
+        let mut d = DynamicsBuf::zeros(1);
+        // The sweep borrows the kernel, and each state's loads are computed on the model it lends
+        // between two of the sweep's steps.
+        let cycle =
+            Cycle::over_turn(&kernel, self.phi0, self.samples, Heap(guess.into()), self.law, |k, omega, eps| {
+                kernel.lend(|m, _| {
+                    let (regs, prog) = m.dynamics_parts();
+                    let loads = prog.loads(regs, k);
+                    mass.dynamics_into(k, &[omega], loads, &mut d)
+                })?;
+                let shaking = mass.shaking(k, &[omega], &[eps], about)?;
+                CyclePoint::of(k.x[0], omega, eps, &d.mass, &d.gamma, &d.forces, shaking)
+            })
+            .map_err(|e| e.with_input_names(&input_names.iter().map(String::as_str).collect::<Vec<_>>()))?;
         Ok(cycle)
     }
 }

@@ -11,11 +11,14 @@
 use kinloop::Mechanism;
 use kinloop::NewtonConfig;
 use kinloop::dynamics::{
-    Cycle, CyclePoint, DenseStep, DynamicsError, InverseCycle, OdeConfig, RunConfig, Simulation, SpeedLaw, Trajectory,
+    Cycle, CyclePoint, DenseStep, DynamicsBuf, DynamicsError, InverseCycle, OdeConfig, RunConfig, Simulation, SpeedLaw,
+    Trajectory, turn_states,
 };
 use kinloop_fixtures as fx;
 use kinloop_model::Model;
 use kinloop_runtime::Error;
+use kinloop_runtime::SweepConfig;
+use kinloop_runtime::dims::Heap;
 use std::f64::consts::TAU;
 
 /// Agreement demanded of the run-time dynamics with the compiled, of each quantity's largest
@@ -230,6 +233,34 @@ fn bad_values_and_missing_items_are_typed_errors() {
 /// The gallery's Stirling engine (the rhombic drive's five bodies and its Schmidt-type gas
 /// force, an expression of both sliders through `let` bindings) with gas: its inverse cycle at
 /// a varying speed, run time against compiled.
+/// The run-time cycle evaluates each state as the sweep makes it (the loads computed on the
+/// model the sweep's kernel lends between two of its steps) and keeps none: its points are, bit
+/// for bit, those of the turn's states kept and evaluated after the sweep.
+#[test]
+fn the_engine_s_streamed_cycle_is_the_cycle_of_its_kept_states() {
+    let mut model = Model::read("engine.kl", fx::ENGINE_MACHINE_TEXT).unwrap();
+    let omega = |phi: f64| (150.0 * (1.0 + 0.1 * phi.sin()), 15.0 * phi.cos());
+    let law = SpeedLaw::Varying(&omega);
+    let about = [0.01, -0.02];
+    let streamed = model.inverse_cycle(law).samples(120).start(0.3).about(about).run().unwrap();
+    let mass = model.mass_model().unwrap();
+    let mut guess = vec![0.0; model.unknowns().len()];
+    model.guess(&[0.3], &mut guess).unwrap();
+    let kernel = model.kernel(SweepConfig::default()).unwrap();
+    let states = turn_states(kernel, 0.3, 120, Heap(guess.into())).unwrap();
+    let mut d = DynamicsBuf::zeros(1);
+    let kept = Cycle::over_states(&states, law, |k, omega, eps| {
+        let loads = model.load_values(k).unwrap();
+        mass.dynamics_into(k, &[omega], loads, &mut d)?;
+        let shaking = mass.shaking(k, &[omega], &[eps], about)?;
+        CyclePoint::of(k.x[0], omega, eps, &d.mass, &d.gamma, &d.forces, shaking)
+    })
+    .unwrap();
+    assert!(streamed.points.iter().all(|p| p.load != 0.0 && p.shaking.moment != 0.0));
+    let bits = |c: &Cycle| columns(c).into_iter().flat_map(|(_, v)| v).map(f64::to_bits).collect::<Vec<u64>>();
+    assert_eq!(bits(&streamed), bits(&kept));
+}
+
 #[test]
 fn the_stirling_engine_s_inverse_cycle_equals_the_compiled_one() {
     let gas = [

@@ -167,9 +167,8 @@ where
     /// input cannot turn) as [`DynamicsError::Kinematics`]; the model's own errors.
     pub fn run(self) -> Result<Cycle, DynamicsError> {
         let guess = self.guess.unwrap_or_else(|| self.m.guess_flat(&[self.phi0]));
-        let states = turn_states(Compiled(self.m), self.phi0, self.samples, guess)?;
         let (model, about) = (self.model, self.about);
-        Cycle::over_states(&states, self.law, |k, omega, eps| {
+        Cycle::over_turn(Compiled(self.m), self.phi0, self.samples, guess, self.law, |k, omega, eps| {
             let d = model.dynamics(k, &[omega])?;
             let shaking = model.shaking(k, &[omega], &[eps], about)?;
             let gamma = d.gamma.as_flattened().as_flattened();
@@ -185,14 +184,32 @@ where
 /// spaced angles of `[phi0, phi0 + 2 pi)`, swept from `guess` at `phi0` (the turn's end is
 /// swept too, so that a limit position anywhere on the turn is found), with the kernel's
 /// configuration ([`Kernel::solver_config`]: the defaults, or a
-/// [`Configured`](crate::Configured) mechanism's). The states [`InverseCycle::run`] evaluates, with its errors; a mechanism
-/// with other than one input is [`DynamicsError::SizeMismatch`].
+/// [`Configured`](crate::Configured) mechanism's). The states [`InverseCycle::run`] evaluates
+/// (it visits them as the sweep makes them, [`each_turn_state`], and keeps none), with its
+/// errors; a mechanism with other than one input is [`DynamicsError::SizeMismatch`].
 pub fn turn_states<K: Kernel>(
     k: K,
     phi0: f64,
     samples: usize,
     guess: <K::Dims as Dims>::Q,
 ) -> Result<Vec<<K::Dims as Dims>::Kin>, DynamicsError> {
+    let mut states = Vec::with_capacity(crate::mechanism::kernel::reserve_for(samples));
+    each_turn_state(k, phi0, samples, guess, |state| states.push(state.clone()))?;
+    Ok(states)
+}
+
+/// [`turn_states`] without keeping them: `visit` is given each of the turn's `samples` states
+/// in order, lent where the sweep keeps it, as the sweep makes it. The sweep goes on to the
+/// turn's end after the last state visited, and its errors are [`turn_states`]' (a kinematic
+/// failure after some states were visited is still an error: a turn that cannot be completed
+/// has no cycle).
+pub fn each_turn_state<K: Kernel>(
+    k: K,
+    phi0: f64,
+    samples: usize,
+    guess: <K::Dims as Dims>::Q,
+    mut visit: impl FnMut(&<K::Dims as Dims>::Kin),
+) -> Result<(), DynamicsError> {
     let d = k.dims();
     if d.ni() != 1 {
         return Err(DynamicsError::SizeMismatch { what: "inputs of a one-input cycle", expected: 1, given: d.ni() });
@@ -200,9 +217,9 @@ pub fn turn_states<K: Kernel>(
     if samples < 8 {
         return Err(DynamicsError::BadValue { what: "samples", value: samples as f64, why: "need at least 8" });
     }
-    // More points than an analysis takes: the turn's states are all kept (a state and a point
-    // a sample), and 2^40 samples grew them until the process was killed; more than an
-    // allocation can hold would panic in the allocator (a capacity overflow).
+    // More points than an analysis takes: a cycle keeps a point a sample, and 2^40 samples grew
+    // them until the process was killed; more than an allocation can hold would panic in the
+    // allocator (a capacity overflow).
     if samples > crate::analysis::MAX_SAMPLES {
         return Err(DynamicsError::BadValue {
             what: "samples",
@@ -234,12 +251,33 @@ pub fn turn_states<K: Kernel>(
     let mut sweep = SweepOf::<K, <K::Dims as Dims>::Kin>::over(k, from, to, samples + 1, guess)
         .map_err(DynamicsError::kin)?
         .with_config(cfg);
-    let mut states = Vec::with_capacity(crate::mechanism::kernel::reserve_for(samples + 1));
-    while let Some(state) = sweep.next_kin() {
-        states.push(state.map_err(DynamicsError::kin)?);
+    let mut visited = 0;
+    while let Some(state) = sweep.next_ref() {
+        let state = state.map_err(DynamicsError::kin)?;
+        // The turn's end (the first state of the next turn) is swept, not visited.
+        if visited < samples {
+            visit(state);
+            visited += 1;
+        }
     }
-    states.truncate(samples);
-    Ok(states)
+    Ok(())
+}
+
+/// The point of state `k` at the speed law's speed and acceleration there; a speed law that is
+/// not finite is [`DynamicsError::BadValue`].
+fn point_at<S: AnalogState>(
+    k: &S,
+    law: SpeedLaw<'_>,
+    point: &mut impl FnMut(&S, f64, f64) -> Result<CyclePoint, DynamicsError>,
+) -> Result<CyclePoint, DynamicsError> {
+    let phi = k.inputs()[0];
+    let (omega, eps) = law.at(phi);
+    for value in [omega, eps] {
+        if !value.is_finite() {
+            return Err(DynamicsError::BadValue { what: "speed law", value, why: "must be finite" });
+        }
+    }
+    point(k, omega, eps)
 }
 
 impl CyclePoint {
@@ -287,18 +325,37 @@ impl Cycle {
         law: SpeedLaw<'_>,
         mut point: impl FnMut(&S, f64, f64) -> Result<CyclePoint, DynamicsError>,
     ) -> Result<Cycle, DynamicsError> {
-        let mut points = Vec::with_capacity(states.len());
-        for k in states {
-            let phi = k.inputs()[0];
-            let (omega, eps) = law.at(phi);
-            for value in [omega, eps] {
-                if !value.is_finite() {
-                    return Err(DynamicsError::BadValue { what: "speed law", value, why: "must be finite" });
+        let points = states.iter().map(|k| point_at(k, law, &mut point)).collect::<Result<_, _>>()?;
+        Ok(Cycle { points })
+    }
+
+    /// [`Cycle::over_states`] of the states of one turn of `k` ([`turn_states`]' arguments),
+    /// each evaluated as the sweep makes it: none is kept, so the memory is the points'. The
+    /// errors are the same, in the same order of precedence: a kinematic failure anywhere on
+    /// the turn before the first error of `point` or of the speed law.
+    pub fn over_turn<K: Kernel>(
+        k: K,
+        phi0: f64,
+        samples: usize,
+        guess: <K::Dims as Dims>::Q,
+        law: SpeedLaw<'_>,
+        mut point: impl FnMut(&<K::Dims as Dims>::Kin, f64, f64) -> Result<CyclePoint, DynamicsError>,
+    ) -> Result<Cycle, DynamicsError> {
+        let mut points = Vec::with_capacity(crate::mechanism::kernel::reserve_for(samples));
+        let mut failed = None;
+        each_turn_state(k, phi0, samples, guess, |k| {
+            // After a point's error the turn is still swept: its kinematic errors come first.
+            if failed.is_none() {
+                match point_at(k, law, &mut point) {
+                    Ok(p) => points.push(p),
+                    Err(e) => failed = Some(e),
                 }
             }
-            points.push(point(k, omega, eps)?);
+        })?;
+        match failed {
+            Some(e) => Err(e),
+            None => Ok(Cycle { points }),
         }
-        Ok(Cycle { points })
     }
 
     /// The Fourier series of `f` over the cycle's points, computed on the values divided by a
@@ -595,3 +652,6 @@ fn mean(values: impl Iterator<Item = f64> + Clone) -> f64 {
 
 #[cfg(test)]
 mod tests;
+
+#[cfg(test)]
+mod streamed_tests;

@@ -13,9 +13,9 @@
 //! mechanism's [`Kin`](crate::Kin) or a run-time model's [`KinBuf`](crate::dims::KinBuf)), so a
 //! mechanism read at run time has the same dynamics: [`MassModelBuf`] holds its bodies and
 //! gravity with the sizes it learns when read (its loads' values computed by the model and
-//! given to each evaluation), and [`turn_states`] sweeps a turn of any
-//! [`Kernel`](crate::Kernel)'s input for [`Cycle::over_states`], the inverse cycle
-//! [`InverseCycle::run`] computes. The forward simulation is written once too
+//! given to each evaluation), and [`Cycle::over_turn`] sweeps a turn of any
+//! [`Kernel`](crate::Kernel)'s input and evaluates each state as the sweep makes it: the inverse
+//! cycle [`InverseCycle::run`] computes, keeping no state ([`turn_states`] keeps them). The forward simulation is written once too
 //! ([`simulate_of()`], over any [`Kernel`](crate::Kernel), its step written in place):
 //! [`Simulation::run`] is it over a compiled mechanism. [`simulate_steps_of()`] and
 //! [`Simulation::run_steps`] hand each accepted step (its [`DenseStep`]) to the caller as it is
@@ -62,7 +62,7 @@ mod terms;
 #[cfg(test)]
 mod robust_tests;
 
-pub use cycle::{Cycle, CyclePoint, Flywheel, InverseCycle, MIN_DELTA, SpeedLaw, turn_states};
+pub use cycle::{Cycle, CyclePoint, Flywheel, InverseCycle, MIN_DELTA, SpeedLaw, each_turn_state, turn_states};
 pub use error::DynamicsError;
 pub use eval::{Dynamics, Shaking};
 pub use model::{Body, Coord, ForceLaw, Load, MassModel, Point, Rotation, TorqueLaw};
