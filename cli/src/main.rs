@@ -430,6 +430,27 @@ impl Command {
             _ => Some("the table"),
         }
     }
+
+    /// The files the command reads, and the files it writes by name with the option naming
+    /// each.
+    fn files(&self) -> (Vec<&Path>, Vec<(&'static str, &Path)>) {
+        fn named<'a>(option: &'static str, path: &'a Option<PathBuf>) -> Vec<(&'static str, &'a Path)> {
+            path.iter().map(|p| (option, p.as_path())).collect()
+        }
+        match self {
+            Command::Sweep { decl, events, .. } | Command::Trace { decl, events, .. } => {
+                (vec![&decl.file], named("--events", events))
+            }
+            Command::Dynamics { decl, flywheel, .. } => (vec![&decl.file], named("--flywheel", flywheel)),
+            Command::Cam { decl, plot, .. } => (vec![&decl.file], named("--plot", plot)),
+            Command::Animate { decl, out, .. } => (vec![&decl.file], vec![("--out", out.as_path())]),
+            Command::Check { decl }
+            | Command::Solve { decl, .. }
+            | Command::Simulate { decl, .. }
+            | Command::Extremes { decl, .. } => (vec![&decl.file], Vec::new()),
+            Command::Synth { file, targets, .. } => (vec![file, targets], Vec::new()),
+        }
+    }
 }
 
 /// A failure with its exit code; the message is already written.
@@ -453,6 +474,8 @@ fn main() -> ExitCode {
 }
 
 fn run(cli: Cli) -> Result<(), Failed> {
+    let (read, written) = cli.command.files();
+    output::not_read(&read, &written)?;
     match cli.command {
         Command::Check { decl } => {
             let model = match decl.load() {

@@ -6,6 +6,7 @@
 use crate::{Failed, exit};
 use kinloop_runtime::Table;
 use std::io::Write;
+use std::path::Path;
 
 /// The failure of a write of `what` to standard output: its message on standard error,
 /// [`exit::IO_ERR`].
@@ -68,6 +69,43 @@ impl OutFile {
         if made {
             let _ = std::fs::remove_file(path);
         }
+    }
+}
+
+/// Refuses a file to write that is one the command reads (`kinloop dynamics engine.kl
+/// --flywheel engine.kl`, or the same file by another path or a link): the command would
+/// replace its own declaration with its output. A usage error ([`exit::USAGE`]) naming the
+/// option, before anything is read or written.
+pub fn not_read(read: &[&Path], written: &[(&str, &Path)]) -> Result<(), Failed> {
+    for &(option, out) in written {
+        if let Some(input) = read.iter().find(|input| same_file(input, out)) {
+            eprintln!(
+                "error: {option} {} is the file read, {}: writing it would replace it; name another file",
+                out.display(),
+                input.display()
+            );
+            return Err(Failed(exit::USAGE));
+        }
+    }
+    Ok(())
+}
+
+/// Whether `a` and `b` are the same regular file (the same device and inode where the system
+/// has them, else the same canonical path): `false` where either is missing or not a regular
+/// file (a device such as `/dev/null` may be read and written alike).
+fn same_file(a: &Path, b: &Path) -> bool {
+    let (Ok(ma), Ok(mb)) = (std::fs::metadata(a), std::fs::metadata(b)) else { return false };
+    if !(ma.is_file() && mb.is_file()) {
+        return false;
+    }
+    #[cfg(unix)]
+    {
+        use std::os::unix::fs::MetadataExt;
+        (ma.dev(), ma.ino()) == (mb.dev(), mb.ino())
+    }
+    #[cfg(not(unix))]
+    {
+        matches!((a.canonicalize(), b.canonicalize()), (Ok(x), Ok(y)) if x == y)
     }
 }
 

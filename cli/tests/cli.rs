@@ -7,6 +7,7 @@ mod common;
 use common::{csv, kinloop, shipped};
 use kinloop::Mechanism;
 use kinloop_fixtures as fx;
+use std::path::PathBuf;
 
 fn column(header: &[String], name: &str) -> usize {
     header.iter().position(|h| h == name).unwrap_or_else(|| panic!("no column {name} in {header:?}"))
@@ -755,4 +756,53 @@ fn an_input_too_coarse_is_a_usage_error_in_the_units_given() {
     assert_eq!(out.status.code(), Some(2), "{err}");
     // In radians the range lies farther out (1e17 rad): doubles 16 apart.
     assert!(err.contains("is a double 16 apart"), "{err}");
+}
+
+/// A file to write that is the declaration read (by its own path, a symbolic link or a hard
+/// link) is refused as a usage error before anything is written: `--flywheel engine.kl`
+/// replaced the declaration with the flywheel's CSV, and `--out`, `--plot` and `--events` did
+/// the same with their output.
+#[cfg(unix)]
+#[test]
+fn an_output_that_is_the_declaration_read_is_refused() {
+    let dir = PathBuf::from(env!("CARGO_TARGET_TMPDIR")).join(format!("own-output-{}", std::process::id()));
+    let _ = std::fs::remove_dir_all(&dir);
+    std::fs::create_dir_all(&dir).unwrap();
+    const FOUR_BAR: &str = "a=1,b=3,c=2.5,d=3.2";
+    let cases: [(&str, &[&str], &str); 5] = [
+        ("engine.kl", &["dynamics", "--speed", "150"], "--flywheel"),
+        ("dwell_cam.kl", &["cam", "--point", "follower", "--guide", "0,1"], "--plot"),
+        ("four_bar.kl", &["animate", "--from", "0", "--to", "1", "--samples", "5", "--params", FOUR_BAR], "--out"),
+        ("four_bar.kl", &["sweep", "--from", "0", "--to", "1", "--params", FOUR_BAR], "--events"),
+        ("four_bar.kl", &["trace", "--from", "0", "--to", "1", "--params", FOUR_BAR], "--events"),
+    ];
+    for (name, args, option) in cases {
+        let decl = dir.join(name);
+        std::fs::copy(shipped(name), &decl).unwrap();
+        let text = std::fs::read_to_string(&decl).unwrap();
+        let (soft, hard) = (dir.join(format!("soft-{name}")), dir.join(format!("hard-{name}")));
+        let _ = (std::fs::remove_file(&soft), std::fs::remove_file(&hard));
+        std::os::unix::fs::symlink(&decl, &soft).unwrap();
+        std::fs::hard_link(&decl, &hard).unwrap();
+        for target in [&decl, &soft, &hard] {
+            let mut full = vec![args[0], decl.to_str().unwrap()];
+            full.extend(&args[1..]);
+            full.extend([option, target.to_str().unwrap()]);
+            let out = kinloop(&full);
+            let e = String::from_utf8_lossy(&out.stderr);
+            assert_eq!(out.status.code(), Some(2), "{full:?}: {e}");
+            assert!(e.contains(&format!("{option} {} is the file read", target.display())), "{e}");
+            assert!(out.stdout.is_empty(), "{full:?} wrote output");
+            assert_eq!(std::fs::read_to_string(&decl).unwrap(), text, "{full:?} changed the declaration");
+        }
+        // Another file is written as before.
+        let other = dir.join(format!("out{option}.svg"));
+        let mut full = vec![args[0], decl.to_str().unwrap()];
+        full.extend(&args[1..]);
+        full.extend([option, other.to_str().unwrap()]);
+        let out = kinloop(&full);
+        assert_eq!(out.status.code(), Some(0), "{full:?}: {}", String::from_utf8_lossy(&out.stderr));
+        assert!(std::fs::metadata(&other).unwrap().len() > 0, "{full:?} wrote nothing");
+    }
+    std::fs::remove_dir_all(&dir).unwrap();
 }
