@@ -117,14 +117,23 @@ fn combine<const D: usize>(y: &[f64; D], h: f64, a: &[f64], k: &[[f64; D]; 7]) -
     out
 }
 
-/// Weighted RMS norm of `v` with scales `atol + rtol max(|y0|, |y1|)`.
-fn norm<const D: usize>(v: &[f64; D], y0: &[f64; D], y1: &[f64; D], cfg: &OdeConfig) -> f64 {
-    let mut s = 0.0;
-    for i in 0..D {
-        let sc = cfg.atol + cfg.rtol * y0[i].abs().max(y1[i].abs());
-        s += (v[i] / sc).powi(2);
+/// Weighted RMS norm of `v` with scales `atol + rtol max(|y0|, |y1|)`: finite wherever the
+/// norm is. Where the squares of the ratios overflow (a derivative beyond 1e154 of its
+/// tolerance's scale) or underflow, the same norm is taken of the ratios over the largest: an
+/// overflowing norm made the first step `0.01 / inf = 0`, a "singular motion" at the start of a
+/// motion that is merely fast.
+pub(super) fn norm<const D: usize>(v: &[f64; D], y0: &[f64; D], y1: &[f64; D], cfg: &OdeConfig) -> f64 {
+    let ratio = |i: usize| v[i] / (cfg.atol + cfg.rtol * y0[i].abs().max(y1[i].abs()));
+    let s: f64 = (0..D).map(|i| ratio(i).powi(2)).sum();
+    if s.is_nan() || (s.is_finite() && s >= f64::MIN_POSITIVE) {
+        return (s / D as f64).sqrt();
     }
-    (s / D as f64).sqrt()
+    let big = (0..D).fold(0.0f64, |m, i| m.max(ratio(i).abs()));
+    if !(big > 0.0 && big.is_finite()) {
+        return big;
+    }
+    let scaled: f64 = (0..D).map(|i| (ratio(i) / big).powi(2)).sum();
+    big * (scaled / D as f64).sqrt()
 }
 
 /// Integrates `y' = f(t, y)` from `(t0, y0)` to `t_end > t0`. After every accepted step,
@@ -157,6 +166,16 @@ pub fn dopri5<const D: usize>(
     let mut k = [[0.0; D]; 7];
     k[0] = f(t, &y)?;
     bad_start("derivative at the start", &k[0])?;
+    // A derivative whose ratio to its tolerance is beyond f64 has no step to start with (the
+    // first step would be `0.01 / inf = 0`, a "singular motion" at the start).
+    if norm(&k[0], &y, &y, cfg).is_infinite() {
+        let value = k[0].iter().fold(0.0f64, |m, v| m.max(v.abs()));
+        return Err(DynamicsError::BadValue {
+            what: "derivative at the start",
+            value,
+            why: "is beyond the range of f64 against the tolerances (express the model in other units)",
+        });
+    }
     let mut h = initial_step(&y, &k[0], t_end - t0, cfg);
     for _ in 0..cfg.max_steps {
         let last = t + h >= t_end;
@@ -242,6 +261,15 @@ fn check_config(t0: f64, t_end: f64, cfg: &OdeConfig) -> Result<(), DynamicsErro
     let bad = |what, value, why| Err(DynamicsError::BadValue { what, value, why });
     if !(t0.is_finite() && t_end.is_finite() && t_end > t0) {
         return bad("end time", t_end, "must be finite and after the start");
+    }
+    // A span no step can take (within the time's rounding at its ends) is no motion, not a
+    // singular one: every step would fall below the floor at once.
+    if t_end - t0 <= step_floor(t0, t_end) {
+        return bad(
+            "end time",
+            t_end,
+            "must be farther from the start than the rounding of the time there (8 units in the last place)",
+        );
     }
     if !(cfg.rtol > 0.0 && cfg.rtol.is_finite()) {
         return bad("relative tolerance", cfg.rtol, "must be positive and finite");

@@ -4,6 +4,7 @@
 use super::*;
 use crate::kin::{Health, Kin};
 use crate::{NewtonStop, SolveReport};
+use ode::norm;
 
 /// A crank of radius `r` turning with input 0, its centre of mass at the crank pin (the
 /// columns of a point `r @ phi` at phi = 0), as a hand-made state.
@@ -336,4 +337,43 @@ fn a_span_beyond_the_step_budget_says_what_to_do() {
     for what in ["budget of 500 steps", " of 1000000000000:", "`--time`", "`OdeConfig::max_steps`"] {
         assert!(message.contains(what), "`{what}` missing: {message}");
     }
+}
+
+/// A derivative beyond 1e154 of its tolerance's scale overflowed the squares of the error norm:
+/// the first step was `0.01 / inf = 0`, reported as a singular motion at the start. The norm is
+/// finite wherever it is: the motion is integrated (`y = 1e170 t` at t = 1e-160 here, exactly
+/// linear) or, where the state itself leaves f64, ends as before.
+#[test]
+fn a_fast_motion_is_not_singular_at_its_start() {
+    let cfg = OdeConfig::default();
+    let (t, y) = dopri5(|_, _| Ok([1e170]), 0.0, [0.0], 1e-160, &cfg, |_, _| Ok(false)).unwrap();
+    assert_eq!(t, 1e-160);
+    assert!((y[0] - 1e10).abs() <= 1e-12 * 1e10, "{y:?}");
+    // Two components of 1e200 and 1e-300 of their scales: the norm of the first.
+    let v = [1e200 * cfg.atol, 1e-300 * cfg.atol];
+    let n = norm(&v, &[0.0; 2], &[0.0; 2], &cfg);
+    assert!((n - 1e200 / 2f64.sqrt()).abs() <= 1e-15 * n, "{n:e}");
+    // Squares that underflow: 1e-170 of the scale is a norm of 1e-170, not 0.
+    let n = norm(&[1e-170 * cfg.atol], &[0.0], &[0.0], &cfg);
+    assert!((n - 1e-170).abs() <= 1e-15 * 1e-170, "{n:e}");
+    assert!(norm(&[f64::NAN, 1.0], &[0.0; 2], &[0.0; 2], &cfg).is_nan());
+    assert_eq!(norm(&[f64::INFINITY, 1.0], &[0.0; 2], &[0.0; 2], &cfg), f64::INFINITY);
+    assert_eq!(norm(&[0.0, 0.0], &[0.0; 2], &[0.0; 2], &cfg), 0.0);
+    // A derivative whose ratio to the absolute tolerance is beyond f64 has no first step.
+    let r = dopri5(|_, _| Ok([1e305]), 0.0, [0.0], 1.0, &cfg, |_, _| Ok(false));
+    assert!(matches!(r, Err(DynamicsError::BadValue { what: "derivative at the start", value: 1e305, .. })), "{r:?}");
+}
+
+/// A span shorter than the time's rounding (`--time 5e-324`) is refused as such, not reported
+/// as a singular motion at the start.
+#[test]
+fn a_span_below_the_time_s_rounding_is_refused() {
+    let cfg = OdeConfig::default();
+    for (t0, t_end) in [(0.0, 5e-324), (1.0, 1.0 + f64::EPSILON), (1e12, 1e12 + 1e-3)] {
+        let r = dopri5(oscillator(1.0), t0, [1.0, 0.0], t_end, &cfg, |_, _| Ok(false));
+        assert!(matches!(r, Err(DynamicsError::BadValue { what: "end time", .. })), "{t0} {t_end}: {r:?}");
+    }
+    // Just beyond the floor a step is taken.
+    let (t, _) = dopri5(oscillator(1.0), 0.0, [1.0, 0.0], 1e-300, &cfg, |_, _| Ok(false)).unwrap();
+    assert_eq!(t, 1e-300);
 }
