@@ -249,6 +249,12 @@ fn grid(model: &mut Model, req: &Request, format: Format) -> Result<(), Failed> 
             }
         }
     };
+    // A grid of no value of an input has no pose to draw (one value draws a grid fixed in
+    // that input).
+    if let Some(k) = counts.iter().position(|&c| c == 0) {
+        let input = &model.inputs()[k];
+        return Err(usage(format!("--samples: a grid needs at least one value of input `{input}`, not 0")));
+    }
     // The product saturates: a count too large for usize is more cells than any page.
     let cells = counts.iter().fold(1usize, |p, &c| p.saturating_mul(c));
     if cells > max {

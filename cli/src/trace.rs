@@ -3,6 +3,7 @@
 //! unknowns and the outputs at each point); the limit positions, kinks and crossings it passes
 //! listed on standard error, or written to `--events`.
 
+use crate::csv_rows::CsvRows;
 use crate::solve::{degrees, model_inputs, solve_failed, units};
 use crate::sweep::{range_too_long, write_events};
 use crate::{Failed, exit, output, samples};
@@ -75,18 +76,24 @@ pub fn run(model: &mut Model, req: &Request) -> Result<(), Failed> {
     // Created before anything is written: a path that cannot be written stops before any output.
     let events_file = output::created(req.events, "the events file")?;
     let base = units(model, &kinds, req.deg);
-    let mut table = Table::new(base.iter().map(|(n, _)| n.clone()).collect());
+    let header = Table::new(base.iter().map(|(n, _)| n.clone()).collect())
+        .with_units(&base.iter().map(|(n, u)| (n.as_str(), *u)).collect::<Vec<_>>());
     // Angles in degrees as `solve` writes its inputs: the shortest decimal that reads back.
     let angle = |k: QuantityKind, v: f64| if req.deg && k == QuantityKind::Angle { degrees(v) } else { v };
     let mut outputs = vec![0.0; model.outputs().len()];
+    // Written row by row (buffered), as a sweep's: the curve's points are not copied into a
+    // table first (at `--max-points` 10^7 that copy was a gigabyte).
+    let mut rows = CsvRows::new(std::io::BufWriter::new(std::io::stdout().lock()), &header)
+        .map_err(|e| output::failed("the table", e))?;
+    let mut row = Vec::with_capacity(kinds.len());
     for p in &traced.points {
         let (x, q): (&[f64], &[f64]) = (p.x.as_ref(), p.q.as_ref());
         model.outputs_at(x, q, &mut outputs).map_err(|e| failed(&e))?;
-        let row = x.iter().chain(q).chain(&outputs).zip(&kinds).map(|(v, k)| angle(*k, *v));
-        table.push(row.collect());
+        row.clear();
+        row.extend(x.iter().chain(q).chain(&outputs).zip(&kinds).map(|(v, k)| angle(*k, *v)));
+        rows.row(&row).map_err(|e| output::failed("the table", e))?;
     }
-    let table = table.with_units(&base.iter().map(|(n, u)| (n.as_str(), *u)).collect::<Vec<_>>());
-    output::table(&table, "the table")?;
+    rows.finish().map_err(|e| output::failed("the table", e))?;
     // In the order met along the curve: by the point nearest each (a limit position is located
     // between two points; a kink and a crossing are points).
     let mut events: Vec<Event> = traced.folds.iter().chain(&traced.kinks).chain(&traced.crossings).cloned().collect();

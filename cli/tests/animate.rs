@@ -185,6 +185,19 @@ fn exit_codes() {
     let mut g = with(&["--params", FOUR_BAR, "--out"]);
     g.push(&n);
     fails_without_output(&g, &nowhere, 73, "cannot create");
+    // A grid of no value of an input says which and which option.
+    let five = shipped("five_bar.kl");
+    let page = out("bad.html");
+    let h = page.display().to_string();
+    for (samples, input) in [("0", "th1"), ("3,0", "th2")] {
+        let args = ["animate", &five, "--grid", "--samples", samples, "--from", "0,0", "--to", "1,1", "--out", &h];
+        fails_without_output(
+            &args,
+            &page,
+            2,
+            &format!("--samples: a grid needs at least one value of input `{input}`"),
+        );
+    }
     // And the same arguments with a good output succeed.
     ok(&kinloop(&a));
     assert!(path.exists());
