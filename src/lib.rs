@@ -76,6 +76,15 @@
 //! (the path only passes close to one) it stops with [`Error::Branch`] saying so, and a lower
 //! value lets it pass.
 //!
+//! Beside a singular position the results lose accuracy as the smallest pivot ratio `p` falls:
+//! about `eps / p` in the positions, `eps / p^2` in the velocity analogs and `eps / p^3` in the
+//! acceleration analogs (`eps` = 2.2e-16). That is the position's own conditioning (the rounding
+//! of the data moves the solution by as much), not the solver's: a slider-crank of rod equal to
+//! its crank, 1e-6 rad before its change point (`p` = 1e-6), has its rod's velocity analog off
+//! by about 4e-5 and its acceleration analog by about 90, where the exact values are 1 and 0. A
+//! point solve accepts states down to [`NewtonConfig::singular_tol`] (1e-10): where analogs
+//! matter, read `state.health.min_pivot`.
+//!
 //! `m.with_config(cfg)` gives the mechanism its own solver configuration (a [`SweepConfig`] or
 //! a [`NewtonConfig`], validated once): the [`Configured`] mechanism uses it in every solve,
 //! sweep, sampled analysis, limit search, reachable range, assembly-mode search, trace, scan and
