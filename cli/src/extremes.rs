@@ -8,7 +8,7 @@ use crate::solve::{degrees, in_units, model_inputs, solve_failed};
 use crate::sweep::range_too_long;
 use crate::{Failed, exit, progress, samples};
 use kinloop_model::Model;
-use kinloop_runtime::{Error, Number, QuantityKind, SweepConfig};
+use kinloop_runtime::{Error, Number, QuantityKind};
 
 /// What `kinloop extremes` was asked.
 pub struct Request<'a> {
@@ -86,8 +86,8 @@ pub fn run(model: &mut Model, req: &Request) -> Result<(), Failed> {
     let mut guess = vec![0.0; model.unknowns().len()];
     model.guess(&from, &mut guess).map_err(|e| failed(&e))?;
     let bar = progress::bar(&format!("{name}: sampling"), req.samples.saturating_add(columns.len()), req.samples);
-    let sampled = model
-        .sampled_reporting(&from, &to, req.samples, &guess, SweepConfig::default(), |n| bar.set_position(n as u64));
+    let sampled =
+        model.sampled_reporting(&from, &to, req.samples, &guess, model.sweep_config(), |n| bar.set_position(n as u64));
     // The runtime checks the arguments (at least three samples, `to` apart from `from`, and
     // past it for one input; a range of at most the turns a sweep follows): its refusal is a
     // usage error, not a failed solve.

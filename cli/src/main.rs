@@ -90,6 +90,17 @@ struct Declaration {
     params: Option<String>,
 }
 
+/// How a command that sweeps keeps to its branch.
+#[derive(clap::Args)]
+struct Branch {
+    /// The smallest pivot ratio a sweep accepts (from 0 to below 1; default 1e-6): lower it for a
+    /// mechanism meant to pass this close to a singular position (a slide brushing its pivot), as
+    /// a sweep that stops there says. A lower value also lets a sweep pass a change point it
+    /// would otherwise locate: lower it only over a range that holds none
+    #[arg(long, value_name = "RATIO", allow_hyphen_values = true)]
+    singular_pivot: Option<f64>,
+}
+
 impl Declaration {
     /// The declaration read, checked and planned ([`load`]).
     fn load(&self) -> Result<Model, Failed> {
@@ -99,6 +110,18 @@ impl Declaration {
     /// The declaration read for a command that solves ([`solvable`]).
     fn solvable(&self) -> Result<Model, Failed> {
         solvable(&self.file, self.params.as_deref())
+    }
+
+    /// [`Declaration::solvable`] for a command that sweeps, its sweeps configured by `branch`.
+    fn solvable_on(&self, branch: &Branch) -> Result<Model, Failed> {
+        let mut model = self.solvable()?;
+        if let Some(ratio) = branch.singular_pivot {
+            let config = model.sweep_config().with_singular_pivot(ratio);
+            if model.set_sweep_config(config).is_err() {
+                return Err(exit::usage(format!("--singular-pivot {ratio} must be at least 0 and below 1")));
+            }
+        }
+        Ok(model)
     }
 }
 
@@ -137,6 +160,8 @@ enum Command {
     Sweep {
         #[command(flatten)]
         decl: Declaration,
+        #[command(flatten)]
+        branch: Branch,
         /// The inputs at the start, separated by commas (one value per input).
         #[arg(long, value_name = "X,...", allow_hyphen_values = true)]
         from: String,
@@ -166,6 +191,8 @@ enum Command {
     Trace {
         #[command(flatten)]
         decl: Declaration,
+        #[command(flatten)]
+        branch: Branch,
         /// The inputs at the start, separated by commas (one value per input).
         #[arg(long, value_name = "X,...", allow_hyphen_values = true)]
         from: String,
@@ -196,6 +223,8 @@ enum Command {
     Dynamics {
         #[command(flatten)]
         decl: Declaration,
+        #[command(flatten)]
+        branch: Branch,
         /// The constant input speed, in rad (or degrees with `--deg`) per time unit.
         #[arg(long, allow_hyphen_values = true)]
         speed: f64,
@@ -227,6 +256,8 @@ enum Command {
     Simulate {
         #[command(flatten)]
         decl: Declaration,
+        #[command(flatten)]
+        branch: Branch,
         /// The input speed at time 0, in rad (or degrees with `--deg`) per time unit.
         #[arg(long, default_value_t = 0.0, allow_hyphen_values = true)]
         speed: f64,
@@ -265,6 +296,8 @@ enum Command {
     Cam {
         #[command(flatten)]
         decl: Declaration,
+        #[command(flatten)]
+        branch: Branch,
         /// The follower's point: a `point` of the declaration (the roller's centre, or the knife
         /// edge).
         #[arg(long)]
@@ -293,6 +326,8 @@ enum Command {
     Extremes {
         #[command(flatten)]
         decl: Declaration,
+        #[command(flatten)]
+        branch: Branch,
         /// The inputs at the start, separated by commas (one value per input).
         #[arg(long, value_name = "X,...", allow_hyphen_values = true)]
         from: String,
@@ -321,6 +356,8 @@ enum Command {
     Animate {
         #[command(flatten)]
         decl: Declaration,
+        #[command(flatten)]
+        branch: Branch,
         /// The inputs at the start, separated by commas (one value per input).
         #[arg(long, value_name = "X,...", allow_hyphen_values = true)]
         from: String,
@@ -498,18 +535,18 @@ fn run(cli: Cli) -> Result<(), Failed> {
             let mut model = decl.solvable()?;
             solve::run(&mut model, &at, deg)
         }
-        Command::Sweep { decl, from, to, samples, deg, events } => {
-            let mut model = decl.solvable()?;
+        Command::Sweep { decl, branch, from, to, samples, deg, events } => {
+            let mut model = decl.solvable_on(&branch)?;
             let req = sweep::Request { from: &from, to: &to, samples, deg, events: events.as_deref() };
             sweep::run(&mut model, &req)
         }
-        Command::Trace { decl, from, to, ds, max_points, deg, events } => {
-            let mut model = decl.solvable()?;
+        Command::Trace { decl, branch, from, to, ds, max_points, deg, events } => {
+            let mut model = decl.solvable_on(&branch)?;
             let req = trace::Request { from: &from, to: &to, ds, max_points, deg, events: events.as_deref() };
             trace::run(&mut model, &req)
         }
-        Command::Dynamics { decl, speed, start, samples, delta, about, deg, flywheel } => {
-            let mut model = decl.solvable()?;
+        Command::Dynamics { decl, branch, speed, start, samples, delta, about, deg, flywheel } => {
+            let mut model = decl.solvable_on(&branch)?;
             let req = dynamics::Request {
                 speed,
                 start,
@@ -521,13 +558,13 @@ fn run(cli: Cli) -> Result<(), Failed> {
             };
             dynamics::run(&mut model, &req)
         }
-        Command::Simulate { decl, speed, start, time, torque, flywheel, samples, max_steps, deg } => {
-            let mut model = decl.solvable()?;
+        Command::Simulate { decl, branch, speed, start, time, torque, flywheel, samples, max_steps, deg } => {
+            let mut model = decl.solvable_on(&branch)?;
             let req = simulate::Request { start, speed, time, torque, flywheel, samples, deg, max_steps };
             simulate::run(&mut model, &req)
         }
-        Command::Cam { decl, point, follower, start, samples, deg, plot } => {
-            let mut model = decl.solvable()?;
+        Command::Cam { decl, branch, point, follower, start, samples, deg, plot } => {
+            let mut model = decl.solvable_on(&branch)?;
             let req = cam::Request {
                 point: &point,
                 point_option: "--point",
@@ -539,13 +576,13 @@ fn run(cli: Cli) -> Result<(), Failed> {
             };
             cam::run(&mut model, &req)
         }
-        Command::Extremes { decl, from, to, samples, deg, columns, table } => {
-            let mut model = decl.solvable()?;
+        Command::Extremes { decl, branch, from, to, samples, deg, columns, table } => {
+            let mut model = decl.solvable_on(&branch)?;
             let req = extremes::Request { from: &from, to: &to, samples, deg, columns: columns.as_deref(), table };
             extremes::run(&mut model, &req)
         }
-        Command::Animate { decl, from, to, samples, grid, deg, out, format, show, frames, cam, follower } => {
-            let mut model = decl.solvable()?;
+        Command::Animate { decl, branch, from, to, samples, grid, deg, out, format, show, frames, cam, follower } => {
+            let mut model = decl.solvable_on(&branch)?;
             let samples = samples.as_deref();
             let cam = cam.as_deref();
             let req = animate::Request {

@@ -99,7 +99,12 @@ pub fn in_units(mut e: Error, kinds: &[QuantityKind], deg: bool) -> Error {
 /// and the exit code its kind calls for ([`exit_code`]).
 pub fn solve_failed(name: &str, e: Error, kinds: &[QuantityKind], deg: bool) -> Failed {
     let code = exit_code(&e);
+    // The sweep's advice names the library's setting; the command line's option sets it.
+    let lower_pivot = matches!(&e, Error::Branch { message, .. } if message.contains("lower `singular_pivot`"));
     eprintln!("error: {name}: {}", in_units(e, kinds, deg));
+    if lower_pivot {
+        eprintln!("note: `--singular-pivot RATIO` lowers it on the command line");
+    }
     Failed(code)
 }
 

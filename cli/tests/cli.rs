@@ -806,3 +806,52 @@ fn an_output_that_is_the_declaration_read_is_refused() {
     }
     std::fs::remove_dir_all(&dir).unwrap();
 }
+
+/// `--singular-pivot` sets the smallest pivot ratio the commands that sweep accept: a slotted
+/// rocker whose slide passes 1e-8 of the crank's radius from the pivot stops a default sweep
+/// with the advice to lower it (and the option that does), and lowered, the sweep completes and
+/// `extremes` finds the slide's shortest length, `h - r`, where the crank points away from the
+/// pivot (`phi = 3 pi / 2`).
+#[test]
+fn singular_pivot_lets_a_slide_brush_its_pivot() {
+    let dir = PathBuf::from(env!("CARGO_TARGET_TMPDIR"));
+    let file = dir.join(format!("rocker-{}.kl", std::process::id()));
+    std::fs::write(
+        &file,
+        "pub struct SlottedRocker {
+            params h = 1.00000001, r = 1;
+            input phi;
+            unknowns s = 2, theta = 1.5;
+            loop slot: (0, h) + r @ phi == s @ theta;
+        }",
+    )
+    .unwrap();
+    let f = file.to_str().unwrap();
+    let sweep = ["sweep", f, "--from", "0", "--to", "6.283", "--samples", "73"];
+    let stopped = kinloop(&sweep);
+    let e = String::from_utf8_lossy(&stopped.stderr);
+    assert_eq!(stopped.status.code(), Some(1), "{e}");
+    assert!(e.contains("lower `singular_pivot`") && e.contains("`--singular-pivot RATIO` lowers it"), "{e}");
+    let (_, rows) = csv(&kinloop(&[&sweep[..], &["--singular-pivot", "1e-12"]].concat()));
+    assert_eq!(rows.len(), 73);
+    let out = kinloop(&["extremes", f, "--from", "0", "--to", "6.283", "--columns", "s", "--singular-pivot", "1e-12"]);
+    let text = String::from_utf8_lossy(&out.stdout);
+    assert!(out.status.success(), "{}", String::from_utf8_lossy(&out.stderr));
+    let row: Vec<&str> = text.lines().nth(1).unwrap().split(',').collect();
+    let (min, at): (f64, f64) = (row[2].parse().unwrap(), row[3].parse().unwrap());
+    assert!((min - 1e-8).abs() <= 1e-15, "{text}");
+    assert!((at - 1.5 * std::f64::consts::PI).abs() <= 1e-6, "{text}");
+    for bad in ["1", "-1e-9", "NaN"] {
+        let out = kinloop(&[&sweep[..], &["--singular-pivot", bad]].concat());
+        let e = String::from_utf8_lossy(&out.stderr);
+        assert_eq!(out.status.code(), Some(2), "{bad}: {e}");
+        assert!(
+            e.contains(&format!("--singular-pivot {} must be at least 0 and below 1", bad.parse::<f64>().unwrap())),
+            "{e}"
+        );
+    }
+    // Commands that do not sweep take no such option.
+    let out = kinloop(&["solve", f, "--at", "1", "--singular-pivot", "1e-12"]);
+    assert_eq!(out.status.code(), Some(2));
+    std::fs::remove_file(&file).unwrap();
+}

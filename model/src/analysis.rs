@@ -45,7 +45,7 @@ pub type ModelSampled<'a> = SampledOf<ModelKernel<'a>>;
 
 impl Model {
     /// Sweeps `samples` equally spaced points of the straight path from inputs `from` to `to`
-    /// (both included) from `guess` at `from`, with the default solver configuration, and keeps
+    /// (both included) from `guess` at `from`, with the model's solver configuration ([`Model::sweep_config`]), and keeps
     /// them for analysis by column: the runtime's [`SampledOf`] over this model, the same
     /// implementation a compiled mechanism's `m.sampled(..)` runs. The path parameter is the
     /// input when there is one (it must then increase), the fraction of the path otherwise.
@@ -71,7 +71,7 @@ impl Model {
         samples: usize,
         guess: &[f64],
     ) -> Result<ModelSampled<'_>, Error> {
-        self.sampled_with(from, to, samples, guess, SweepConfig::default())
+        self.sampled_with(from, to, samples, guess, self.sweep_config)
     }
 
     /// [`Model::sampled`] with the sweep configuration `config` (also used for every
@@ -116,7 +116,7 @@ impl Model {
         guess: &[f64],
         columns: &[&str],
     ) -> Result<LimitReport, Error> {
-        let k = self.kernel(SweepConfig::default())?;
+        let k = self.kernel(self.sweep_config)?;
         limits_of(k, from, to, samples, Heap(guess.into()), columns)
     }
 }

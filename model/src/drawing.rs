@@ -46,7 +46,7 @@ impl Model {
     /// [`DrawError::Sweep`] when the sweep cannot be made (an unset parameter, wrong sizes, no
     /// sample) or fails otherwise than at a located event.
     pub fn motion(&mut self, from: &[f64], to: &[f64], samples: usize, guess: &[f64]) -> Result<Motion, DrawError> {
-        self.motion_with(from, to, samples, guess, SweepConfig::default())
+        self.motion_with(from, to, samples, guess, self.sweep_config)
     }
 
     /// [`Model::motion`] with the solver configuration `config`.

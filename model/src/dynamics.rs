@@ -17,7 +17,7 @@ use kinloop_runtime::dynamics::{
     AnalogState, Cycle, CyclePoint, DenseStep, Dynamics, DynamicsBuf, DynamicsError, MassModelBuf, RunConfig, Shaking,
     SpeedLaw, Trajectory, simulate_steps_of,
 };
-use kinloop_runtime::{Error, Source, SweepConfig};
+use kinloop_runtime::{Error, Source};
 
 /// The inverse dynamics of a run-time model over a turn of its input, set up by name and run by
 /// [`ModelCycle::run`]: the compiled mechanism's
@@ -71,7 +71,7 @@ impl ModelCycle<'_, '_> {
         // The mass model's errors carry the input's value; the model knows its name, as the
         // compiled cycle knows its mechanism's.
         let input_names = m.inputs().to_vec();
-        let kernel = m.kernel(SweepConfig::default())?;
+        let kernel = m.kernel(m.sweep_config)?;
         let about = self.about;
         let mut d = DynamicsBuf::zeros(1);
         // The sweep borrows the kernel, and each state's loads are computed on the model it lends
@@ -258,7 +258,7 @@ impl<'a, D, S> ModelSimulation<'a, D, S> {
             mass.dynamics_into(k, &[omega], loads, &mut d)?;
             Ok(Dynamics { mass: [[d.mass[0]]], gamma: [[[d.gamma[0]]]], forces: [d.forces[0]] })
         };
-        let kernel = m.kernel(SweepConfig::default())?;
+        let kernel = m.kernel(m.sweep_config)?;
         let (start, cfg, mut stop) = (self.start, self.cfg, self.stop);
         let each = |s: &DenseStep<2>, y: &[f64; 2]| on_step(s, y) || stop(s.t1(), y);
         simulate_steps_of(kernel, reduced, self.drive, start, t_end, Heap(guess.into()), &cfg, each).map_err(

@@ -122,7 +122,8 @@
 //! libm's sines and cosines here where a compiled sweep rotates them, against a compiled
 //! mechanism stepping with libm's), and its own to the sweeps' rounding otherwise
 //! (`tests/paths.rs`, with the four-bar's and slider-crank's closed forms as independent checks).
-//! Each lends the model with the default solver configuration; the generic functions take
+//! Each lends the model with its solver configuration (`Model::sweep_config`, the defaults until
+//! `Model::set_sweep_config`); the generic functions take
 //! any kernel, `m.kernel(config)`.
 //!
 //! Synthesis is served too: the runtime's `synthesis` is written once over `SensKernel` (a

@@ -74,6 +74,40 @@ impl Info {
 }
 
 impl Model {
+    /// The solver configuration of the model's sweeps and analyses that take none: `sweep`,
+    /// `sampled`, `limits`, `trace_curve`, `reachable`, `sweep_at`, `assembly_modes`, `motion`,
+    /// `grid`, the inverse cycle and the simulation, synthesis problems (the `_with` variants and
+    /// `kernel` take their own). The defaults until [`Model::set_sweep_config`], as a compiled
+    /// mechanism has them until `with_config`.
+    pub fn sweep_config(&self) -> SweepConfig {
+        self.sweep_config
+    }
+
+    /// Sets [`Model::sweep_config`], e.g. a lower `singular_pivot` for a mechanism meant to pass
+    /// close to a singular position (a slide brushing its pivot). A configuration with a field
+    /// out of range is `Error::InvalidArgument` naming it, and the model keeps its own.
+    ///
+    /// ```
+    /// use kinloop_model::Model;
+    /// use kinloop_runtime::SweepConfig;
+    /// let text = "pub struct Rocker {
+    ///     params h = 1.00000001, r = 1;
+    ///     input phi;
+    ///     unknowns s = 2, theta = 1.5;
+    ///     loop slot: (0, h) + r @ phi == s @ theta;
+    /// }";
+    /// let mut m = Model::read("rocker.kl", text).unwrap();
+    /// m.set_sweep_config(SweepConfig::default().with_singular_pivot(1e-9)).unwrap();
+    /// assert_eq!(m.sweep_config().singular_pivot, 1e-9);
+    /// assert!(m.set_sweep_config(SweepConfig::default().with_singular_pivot(-1.0)).is_err());
+    /// assert_eq!(m.sweep_config().singular_pivot, 1e-9);
+    /// ```
+    pub fn set_sweep_config(&mut self, config: SweepConfig) -> Result<(), Error> {
+        config.validate()?;
+        self.sweep_config = config;
+        Ok(())
+    }
+
     /// This model as a [`Kernel`] with the solver configuration `config`, for the runtime's
     /// generic algorithms. Every parameter must have a value (`Error::InvalidArgument` names
     /// the first that has none).
@@ -109,7 +143,7 @@ impl Model {
             return Error::InvalidArgument(e.to_string());
         }
         // A parameter without a value: no kernel, and its error says so.
-        let kernel = match self.kernel(SweepConfig::default()) {
+        let kernel = match self.kernel(self.sweep_config) {
             Ok(kernel) => kernel,
             Err(no_kernel) => return no_kernel,
         };
@@ -122,7 +156,7 @@ impl Model {
     }
 
     /// A lazy, branch-safe sweep of `samples` equally spaced inputs from `from` to `to` (both
-    /// included) from `guess` at `from`, with the default solver configuration: the runtime's
+    /// included) from `guess` at `from`, with the model's solver configuration ([`Model::sweep_config`]): the runtime's
     /// [`Sweep`](kinloop_runtime::Sweep) (events, `next_ref`, `table()`, `run`) over this
     /// model. Its states are [`KinBuf`]s.
     ///
@@ -145,7 +179,7 @@ impl Model {
         samples: usize,
         guess: &[f64],
     ) -> Result<SweepOf<ModelKernel<'_>, KinBuf>, Error> {
-        self.sweep_with(from, to, samples, guess, SweepConfig::default())
+        self.sweep_with(from, to, samples, guess, self.sweep_config)
     }
 
     /// [`Model::sweep`] with the solver configuration `config`.

@@ -21,7 +21,7 @@ use kinloop_codegen::plan::kinds::{self, Kind};
 use kinloop_codegen::plan::solve::Solve;
 use kinloop_codegen::plan::{BlockPlan, Plan, pairs};
 use kinloop_runtime::generated::{Health, SolveReport};
-use kinloop_runtime::{BlockInfo, NewtonConfig, QuantityKind};
+use kinloop_runtime::{BlockInfo, NewtonConfig, QuantityKind, SweepConfig};
 use std::fmt;
 
 /// Why a text could not become a [`Model`].
@@ -171,6 +171,8 @@ pub struct Model {
     levers: Vec<Option<Levers>>,
     /// What the step's finiteness test adds up.
     finite: Finite,
+    /// The configuration of the sweeps and analyses that take none ([`Model::sweep_config`]).
+    pub(crate) sweep_config: SweepConfig,
 }
 
 fn kind(k: Kind) -> QuantityKind {
@@ -370,6 +372,7 @@ impl Model {
             });
         }
         let mut m = Model {
+            sweep_config: SweepConfig::default(),
             at,
             at_kin,
             sens,

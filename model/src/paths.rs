@@ -5,7 +5,7 @@
 //! (`sweep_at_of`), the assembly modes (`assembly_modes_of`) and scans over parameter sets
 //! (`fold_sweep_of`, one set's sweep).
 //!
-//! Each entry point lends the model with the default solver configuration; the generic
+//! Each entry point lends the model with its solver configuration (`Model::sweep_config`); the generic
 //! functions take a kernel of any configuration (`m.kernel(config)`).
 
 use crate::count::Count;
@@ -53,7 +53,7 @@ impl Model {
         guess: &[f64],
         opts: &TraceConfig,
     ) -> Result<ModelTraced, Error> {
-        let k = self.kernel(SweepConfig::default())?;
+        let k = self.kernel(self.sweep_config)?;
         trace_curve_of(&k, heap(from), heap(to), heap(guess), opts)
     }
 
@@ -69,7 +69,7 @@ impl Model {
         guess: &[f64],
         samples: usize,
     ) -> Result<Reach<Heap>, Error> {
-        let k = self.kernel(SweepConfig::default())?;
+        let k = self.kernel(self.sweep_config)?;
         reachable_of(&k, heap(at), heap(delta), heap(guess), samples)
     }
 
@@ -85,7 +85,7 @@ impl Model {
         inputs: impl IntoIterator<Item = I>,
         guess: &[f64],
     ) -> Result<SweepResult<KinBuf>, Error> {
-        let k = self.kernel(SweepConfig::default())?;
+        let k = self.kernel(self.sweep_config)?;
         Ok(sweep_at_of(&k, inputs.into_iter().map(|x| heap(x.as_ref())), heap(guess)))
     }
 
@@ -93,7 +93,7 @@ impl Model {
     /// 64 starts around it), sorted by their determinant signs: the runtime's `assembly_modes`
     /// over this model (see
     /// [`assembly_modes_of`]), with the
-    /// default solver configuration. `Error::InvalidArgument` for an `x` of another size than
+    /// model's solver configuration. `Error::InvalidArgument` for an `x` of another size than
     /// the model's inputs, `Error::NonFinite` for an input or a parameter not finite.
     pub fn assembly_modes(&mut self, x: &[f64]) -> Result<Vec<KinBuf>, Error> {
         if x.len() != self.inputs().len() {
@@ -104,7 +104,7 @@ impl Model {
                 x.len()
             )));
         }
-        let k = self.kernel(SweepConfig::default())?;
+        let k = self.kernel(self.sweep_config)?;
         let cfg = k.solver_config().newton;
         assembly_modes_of(&k, &heap(x), 64, &cfg)
     }

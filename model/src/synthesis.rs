@@ -13,8 +13,8 @@
 use crate::mechanism::ModelKernel;
 use crate::model::Model;
 use crate::shared::SharedModelKernel;
+use kinloop_runtime::Kernel;
 use kinloop_runtime::synthesis::{Design, ProblemOf, SynthesisError, Task};
-use kinloop_runtime::{Kernel, SweepConfig};
 
 /// A synthesis problem over a run-time model ([`Model::synthesis_problem`]): the runtime's
 /// `ProblemOf` over the model's kernel, solved by `kinloop_runtime::synthesis::Search` as a
@@ -33,7 +33,7 @@ pub type SharedModelProblem = ProblemOf<SharedModelKernel>;
 impl Model {
     /// The synthesis problem of varying `design` of this model (its other parameters keep their
     /// values) to do `task`: the compiled `Problem::new` over the model's kernel, with the
-    /// default solver configuration. The model must be declared with
+    /// model's solver configuration. The model must be declared with
     /// `#[kinloop(sensitivities)]` (`SynthesisError::Unsupported` otherwise) and have a value
     /// for every parameter; the names, bounds and targets are checked as for a compiled
     /// mechanism. The problem lends the model: a search sets its parameters for each
@@ -62,7 +62,7 @@ impl Model {
     /// ```
     pub fn synthesis_problem(&mut self, design: &Design, task: &Task) -> Result<ModelProblem<'_>, SynthesisError> {
         self.check_synthesis()?;
-        let kernel = self.kernel(SweepConfig::default())?;
+        let kernel = self.kernel(self.sweep_config)?;
         ProblemOf::over(kernel, design, task)
     }
 
@@ -95,7 +95,7 @@ impl Model {
     /// ```
     pub fn shared_synthesis_problem(&self, design: &Design, task: &Task) -> Result<SharedModelProblem, SynthesisError> {
         self.check_synthesis()?;
-        let kernel = self.shared_kernel(SweepConfig::default())?;
+        let kernel = self.shared_kernel(self.sweep_config)?;
         ProblemOf::over(kernel, design, task)
     }
 

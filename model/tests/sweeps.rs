@@ -338,3 +338,41 @@ fn a_sweep_far_out_ends_and_says_the_input_is_coarse() {
         }
     }
 }
+
+/// A model's own sweep configuration (`Model::set_sweep_config`) reaches the analyses that take
+/// none, as a compiled `Configured` mechanism's does: a slotted rocker whose slide passes 1e-8
+/// of the crank's radius from the rocker's pivot stops the default sweep (the smallest pivot
+/// ratio below `singular_pivot`, 1e-6) with a message to lower it; lowered, the sweep, the
+/// sampled analysis pass, on the rocker's closed form.
+#[test]
+fn a_model_s_sweep_configuration_reaches_its_sweeps_and_analyses() {
+    let text = "pub struct SlottedRocker {
+        params h, r;
+        input phi;
+        unknowns s = 1, theta = 0.5;
+        loop slot: (0, h) + r @ phi == s @ theta;
+    }";
+    for scale in [1e-3, 1.0, 1e3] {
+        let (h, r) = (scale * (1.0 + 1e-8), scale);
+        let mut m = Model::read("rocker.kl", text).unwrap();
+        assert!(m.set_param("h", h) && m.set_param("r", r));
+        let exact = |phi: f64| (h + r * phi.sin()).atan2(r * phi.cos());
+        let guess = [h + r, 0.5 * std::f64::consts::PI];
+        let guess = m.kinematics(&[0.0], &guess, &Default::default()).unwrap().q.clone();
+        let default = m.sweep(&[0.0], &[TAU], 73, &guess).unwrap().find_map(Result::err).expect("a stop");
+        assert!(default.to_string().contains("singular_pivot"), "{default}");
+        assert!(m.sampled(&[0.0], &[TAU], 73, &guess).is_err());
+        let config = m.sweep_config().with_singular_pivot(1e-12);
+        m.set_sweep_config(config).unwrap();
+        let turned =
+            |q: &[f64], phi: f64| (q[1] - exact(phi) + std::f64::consts::PI).rem_euclid(TAU) - std::f64::consts::PI;
+        for state in m.sweep(&[0.0], &[TAU], 73, &guess).unwrap() {
+            let state = state.unwrap();
+            assert!(turned(&state.q, state.x[0]).abs() < 1e-9 && state.q[0] > 0.0, "scale {scale:e} at {}", state.x[0]);
+        }
+        assert!(m.sampled(&[0.0], &[TAU], 73, &guess).is_ok());
+        // An invalid configuration is refused, and the model keeps its own.
+        assert!(m.set_sweep_config(config.with_singular_pivot(f64::NAN)).is_err());
+        assert_eq!(m.sweep_config().singular_pivot, 1e-12);
+    }
+}
