@@ -232,3 +232,41 @@ fn four_bar_rocker_limits_from_the_limit_position_geometry() {
     assert!((mu.min.angle - mu_min).abs() < 1e-12 && mu.min.x.abs() < 1e-10, "{mu:?}");
     assert!((mu.max.angle - PI / 2.0).abs() < 1e-12 && mu.dead_points.is_empty(), "{mu:?}");
 }
+
+/// A Grashof-equal four-bar (`a + d = b + c`) read at run time, through its change point at
+/// `phi = pi`: the limit report of every column succeeds, at the same numbers as the compiled
+/// mechanism's (the one search over two kernels), with the crossing and, for the joint's `x`,
+/// its minimum `d - c` at the crossing (the run-time report failed there as the compiled one
+/// did: a stop at the crossing with 73 samples, a branch error with 10 and with 5 up to 3.5).
+#[test]
+// The range short of a full turn (6.28) is the one the failure was found with, not `TAU`.
+#[allow(clippy::approx_constant)]
+fn limits_of_a_run_time_four_bar_pass_its_change_point() {
+    let (a, b, c, d) = (1.0, 2.0, 2.5, 3.5);
+    let mut m = read(fx::FOUR_BAR_TEXT);
+    set(&mut m, &[("a", a), ("b", b), ("c", c), ("d", d)]);
+    let compiled = fx::FourBar { a, b, c, d };
+    let guess = compiled.guess_flat(&[0.0]);
+    for (to, samples) in [(6.28, 73), (6.28, 10), (3.5, 5)] {
+        for name in ["beta", "gamma", "pc.x", "pc.y"] {
+            let what = format!("{name} to {to}, {samples} samples");
+            let r = m.limits(0.0, to, samples, &guess, &[name]).unwrap_or_else(|e| panic!("{what}: {e}"));
+            assert_eq!(r.events.len(), 1, "{what}: {r}");
+            assert!((r.events[0].x[0] - PI).abs() < 1e-9, "{what}: {r}");
+            let columns = [Column::<fx::FourBar>::named(name).unwrap()];
+            let cl = kinloop::metrics::Limits::new(&compiled, 0.0, to).samples(samples).guess(guess).columns(&columns);
+            let cl = cl.run().unwrap();
+            assert_eq!(r.reached, cl.reached, "{what}");
+            assert_eq!(r.outputs[0].extremes.len(), cl.outputs[0].extremes.len(), "{what}: {r} {cl}");
+            for (p, q) in r.outputs[0].extremes.iter().zip(&cl.outputs[0].extremes) {
+                assert!((p.x() - q.x()).abs() < 1e-9 && (p.value() - q.value()).abs() < 1e-12, "{what}: {r} {cl}");
+            }
+            if name == "pc.x" {
+                let at: Vec<_> = r.outputs[0].extremes.iter().filter(|e| e.kind == Extreme::Min).collect();
+                assert_eq!(at.len(), 1, "{what}: {r}");
+                assert_eq!(at[0].x(), r.events[0].x[0], "{what}: {r}");
+                assert!((at[0].value() - (d - c)).abs() < 1e-12, "{what}: {r}");
+            }
+        }
+    }
+}

@@ -14,6 +14,7 @@ mod cam_profile;
 mod classical_synthesis;
 mod coarse_samples;
 mod flat_face;
+mod limits_crossing;
 mod metrics_mechanisms;
 mod objectives;
 mod sampled_paths;

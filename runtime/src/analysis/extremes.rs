@@ -181,7 +181,30 @@ pub fn bracketed_root(
 /// assert!((found[1].x() - 5.0 * pi / 3.0).abs() < 1e-14);
 /// # Ok::<(), kinloop_runtime::Error>(())
 /// ```
-pub fn extremes(samples: &[Jet], mut eval: impl FnMut(f64) -> Result<Jet, Error>) -> Result<Vec<LocalExtreme>, Error> {
+pub fn extremes(samples: &[Jet], eval: impl FnMut(f64) -> Result<Jet, Error>) -> Result<Vec<LocalExtreme>, Error> {
+    extremes_across(samples, &[], eval)
+}
+
+/// A point between two samples where the quantity cannot be evaluated nearby: a singular
+/// crossing (change point) of the mechanism, between the samples `after` and `after + 1`, the
+/// nearest either side that a sweep reaches on its branch. Its jet `at` holds the quantity's
+/// value at the crossing (the positions there are continuous, the analogs not defined).
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub(crate) struct Corner {
+    pub(crate) after: usize,
+    pub(crate) at: Jet,
+}
+
+/// [`extremes`] with `corners` (in increasing `after`) between samples: a sign change of the
+/// velocity analog across a corner is an extreme at the corner itself (at a change point the
+/// motion is continuous and an extreme there is the crossing's position: a coupler point's
+/// coordinate whose analog changes sign there, as its derivative does on either branch), not
+/// refined by evaluations inside it, which fail.
+pub(crate) fn extremes_across(
+    samples: &[Jet],
+    corners: &[Corner],
+    mut eval: impl FnMut(f64) -> Result<Jet, Error>,
+) -> Result<Vec<LocalExtreme>, Error> {
     check_increasing(samples)?;
     let sign = |v: f64| {
         if v > 0.0 {
@@ -203,7 +226,10 @@ pub fn extremes(samples: &[Jet], mut eval: impl FnMut(f64) -> Result<Jet, Error>
         let (a, b) = (samples[i], samples[k]);
         if sign(a.d1) != sign(b.d1) {
             let kind = if a.d1 > 0.0 { Extreme::Max } else { Extreme::Min };
-            let at = if k == i + 1 {
+            let corner = corners.iter().find(|c| c.after >= i && c.after < k);
+            let at = if let Some(corner) = corner {
+                corner.at
+            } else if k == i + 1 {
                 bracketed_root(a, b, |j| (j.d1, j.d2), &mut eval)?
             } else {
                 // The analog is exactly zero at the samples between: take the middle one.
@@ -265,9 +291,19 @@ impl GlobalRange {
 /// analogs are exactly zero on every sample of a stretch (a dwell met only by samples), or jump
 /// (a kink), no sign change marks an extreme that a sample shows.
 pub fn global_range(samples: &[Jet], eval: impl FnMut(f64) -> Result<Jet, Error>) -> Result<GlobalRange, Error> {
-    let found = extremes(samples, eval)?;
+    global_range_across(samples, &[], eval)
+}
+
+/// [`global_range`] with `corners` between samples (see [`extremes_across`]): the values at the
+/// corners are candidates too.
+pub(crate) fn global_range_across(
+    samples: &[Jet],
+    corners: &[Corner],
+    eval: impl FnMut(f64) -> Result<Jet, Error>,
+) -> Result<GlobalRange, Error> {
+    let found = extremes_across(samples, corners, eval)?;
     let first = samples[0];
-    let candidates = found.iter().map(|e| e.at).chain(samples.iter().copied());
+    let candidates = found.iter().map(|e| e.at).chain(samples.iter().copied()).chain(corners.iter().map(|c| c.at));
     let mut min = first;
     let mut max = first;
     for c in candidates {

@@ -3,11 +3,12 @@
 //! mechanism's read at run time.
 
 use super::column::{ColumnOf, column_name, jet_along};
-use super::extremes::{self, GlobalRange, LocalExtreme, global_range, maximize};
+use super::extremes::{self, GlobalRange, LocalExtreme, maximize};
 use super::{ColumnIndex, Dwell, Fourier, Jet, Unbalance, dwell, fourier, unbalance};
 use crate::Kernel;
 use crate::dims::{Dims, KinState, Store};
 use crate::error::Error;
+use crate::events::EventKind;
 use crate::mechanism::Mechanism;
 use crate::mechanism::kernel::{Compiled, KinOf, Q, X, check_sizes};
 use crate::paths::config::SweepConfig;
@@ -96,6 +97,29 @@ struct Search<'a, K: Kernel> {
     /// Path parameters, increasing.
     s: Vec<f64>,
     states: Vec<Cow<'a, KinOf<K>>>,
+    /// The singular crossings between points of the grid, in increasing path parameter.
+    gaps: Vec<Gap<K>>,
+}
+
+/// A singular crossing (change point) the samples' sweep passed, between the grid points `at`
+/// and `at + 1` of a [`Search`]: the points nearest the crossing either side that a sweep still
+/// reaches on its branch (about its pivot band, [`SweepConfig::singular_pivot`], away), between
+/// which nothing is solved. No step lands closer: the residual tolerance no longer pins the
+/// branch there, and a column's analogs are not defined at the crossing itself.
+struct Gap<K: Kernel> {
+    at: usize,
+    /// The crossing's path parameter.
+    s: f64,
+    /// The state at the crossing (its positions located by the sweep, its analogs not to be
+    /// trusted), where the outputs can be evaluated there.
+    state: Option<KinOf<K>>,
+}
+
+/// A singular crossing the sweep of a [`SampledOf`] passed: its inputs and positions.
+#[derive(Clone, Debug)]
+struct Crossing<K: Kernel> {
+    x: X<K>,
+    q: Q<K>,
 }
 
 /// A compiled mechanism's [`SampledOf`]: the number of inputs `NI` comes last and defaults to
@@ -154,6 +178,8 @@ pub struct SampledOf<K: Kernel> {
     s: Vec<f64>,
     line: Line<X<K>>,
     cfg: SweepConfig,
+    /// The singular crossings the sweep passed (with [`AtSingular::Continue`](crate::AtSingular::Continue)), in order.
+    crossings: Vec<Crossing<K>>,
 }
 
 impl<'m, M, const N: usize, const NO: usize> Sampled<'m, M, N, NO, 1>
@@ -333,17 +359,29 @@ impl<K: Kernel> SampledOf<K> {
         states
             .try_reserve_exact(samples)
             .map_err(|e| Error::InvalidArgument(format!("{samples} samples: no room for their states ({e})")))?;
-        {
+        let crossings = {
             let mut sweep =
                 SweepOf::<&K, KinOf<K>>::over(&k, from.clone(), to.clone(), samples, guess)?.with_config(cfg);
             while let Some(state) = sweep.next_kin() {
                 states.push(state?);
                 progress(states.len());
             }
-        }
+            let d = k.dims();
+            sweep
+                .events()
+                .iter()
+                .filter(|e| e.kind == EventKind::SingularCrossing)
+                .map(|e| {
+                    let (mut x, mut q) = (d.x(), d.q());
+                    x.as_mut().copy_from_slice(&e.x);
+                    q.as_mut().copy_from_slice(&e.q);
+                    Crossing { x, q }
+                })
+                .collect()
+        };
         let line = Line::fraction(from, to);
         let s = states.iter().map(|st| line.param(st.x())).collect();
-        Ok(SampledOf { k, states, s, line, cfg })
+        Ok(SampledOf { k, states, s, line, cfg, crossings })
     }
 
     /// The same samples with input `input` (`Name::COL.th1`, or its name) as the path
@@ -498,7 +536,7 @@ impl<K: Kernel> SampledOf<K> {
                 parts.iter().sum::<usize>() + 1
             )));
         }
-        let mut grid = Search { s: vec![first], states: vec![Cow::Borrowed(&self.states[0])] };
+        let mut grid = Search { s: vec![first], states: vec![Cow::Borrowed(&self.states[0])], gaps: Vec::new() };
         for (i, w) in self.s.windows(2).enumerate() {
             if parts[i] > 1 {
                 let n = parts[i];
@@ -520,23 +558,114 @@ impl<K: Kernel> SampledOf<K> {
             grid.s.push(w[1]);
             grid.states.push(Cow::Borrowed(&self.states[i + 1]));
         }
+        let mut crossings: Vec<(f64, &Crossing<K>)> =
+            self.crossings.iter().map(|c| (self.line.param(c.x.as_ref()), c)).collect();
+        crossings.sort_by(|a, b| a.0.total_cmp(&b.0));
+        for (s, c) in crossings {
+            self.part_at(&mut grid, s, c);
+        }
         Ok(grid)
+    }
+
+    /// Parts the grid at the crossing `c` (path parameter `s`): the points nearest it either
+    /// side that a sweep reaches from the grid's neighbours of the crossing join the grid, and
+    /// the interval between them is a [`Gap`]. A crossing at a grid point or beyond its ends, or
+    /// within a gap already made, parts nothing.
+    fn part_at(&self, grid: &mut Search<'_, K>, s: f64, c: &Crossing<K>) {
+        let i = grid.s.partition_point(|&v| v <= s);
+        if i == 0 || i == grid.s.len() || grid.s[i - 1] == s || grid.gaps.iter().any(|g| g.at == i - 1) {
+            return;
+        }
+        let before = self.toward(&grid.states[i - 1], grid.s[i - 1], s);
+        let after = self.toward(&grid.states[i], grid.s[i], s);
+        let mut at = i - 1;
+        if let Some((v, state)) = before {
+            at = i;
+            grid.s.insert(at, v);
+            grid.states.insert(at, Cow::Owned(state));
+        }
+        if let Some((v, state)) = after {
+            grid.s.insert(at + 1, v);
+            grid.states.insert(at + 1, Cow::Owned(state));
+        }
+        // The outputs at the crossing's own positions: its pivot is at the rounding there, below
+        // any singular tolerance, and only the values are read.
+        let state = self.k.kinematics_at(&c.x, &c.q, &self.cfg.newton.with_singular_tol(0.0)).ok();
+        grid.gaps.push(Gap { at, s, state });
+    }
+
+    /// The state nearest the crossing at path parameter `to` that sweeps reach from `start` (at
+    /// `from`, on one side of it) on their branch: steps halving the distance left, until one
+    /// fails (within the crossing's pivot band, see [`SweepConfig::singular_pivot`]) or passes an
+    /// event (the crossing itself, located a little off). `None` where even the first fails.
+    /// About `log2` of the distance over the band's width steps (some twenty), at each crossing.
+    fn toward(&self, start: &KinOf<K>, from: f64, to: f64) -> Option<(f64, KinOf<K>)> {
+        let d = self.k.dims();
+        let mut reached: Option<(f64, KinOf<K>)> = None;
+        let mut gap = from - to;
+        // At most the doubles between `from` and `to`.
+        for _ in 0..64 {
+            gap *= 0.5;
+            let s = to + gap;
+            let cur = reached.as_ref().map_or(start, |r| &r.1);
+            if s == to || s == self.line.param(cur.x()) {
+                break;
+            }
+            let (mut x0, mut guess) = (d.x(), d.q());
+            x0.as_mut().copy_from_slice(cur.x());
+            guess.as_mut().copy_from_slice(cur.q());
+            let Ok(sweep) = SweepOf::<&K, KinOf<K>>::over(&self.k, x0, self.line.point(s), 2, guess) else { break };
+            let mut sweep = sweep.with_config(self.cfg);
+            if !matches!(sweep.next_ref(), Some(Ok(_))) {
+                break;
+            }
+            match sweep.next_kin() {
+                Some(Ok(state)) if sweep.events().is_empty() => reached = Some((s, state)),
+                _ => break,
+            }
+        }
+        reached
     }
 
     /// A column's jets at the points of `grid`, and its jet anywhere in the range stepped from
     /// the nearest of them (a step no longer than the grid's spacing: the cost of a search stays
     /// linear in the range).
+    ///
+    /// With them, the column at each crossing the grid is parted at ([`Gap`]), as
+    /// [`extremes::Corner`]s: its value from the state at the crossing (from the nearer side's
+    /// Taylor polynomial where that state's outputs cannot be evaluated, the side a pivot band
+    /// away), its analogs interpolated across the gap (the velocity analog linearly, the
+    /// acceleration analog as the velocity analog's difference quotient over it).
     fn search_jets<'a>(
         &'a self,
         c: ColumnIndex,
         grid: &'a Search<'a, K>,
-    ) -> (Vec<Jet>, impl FnMut(f64) -> Result<Jet, Error> + 'a) {
+    ) -> (Vec<Jet>, Vec<extremes::Corner>, impl FnMut(f64) -> Result<Jet, Error> + 'a) {
         let dir = self.line.dir.as_ref();
-        let jets = grid.s.iter().zip(&grid.states).map(|(&s, st)| jet_along(c, &**st, s, dir)).collect();
+        let jets: Vec<Jet> = grid.s.iter().zip(&grid.states).map(|(&s, st)| jet_along(c, &**st, s, dir)).collect();
+        let corners = grid
+            .gaps
+            .iter()
+            .map(|g| {
+                let (l, r) = (jets[g.at], jets[g.at + 1]);
+                let near = if g.s - l.x <= r.x - g.s { l } else { r };
+                let h = g.s - near.x;
+                let taylor = near.value + h * (near.d1 + 0.5 * h * near.d2);
+                let value = g
+                    .state
+                    .as_ref()
+                    .map(|st| jet_along(c, st, g.s, dir).value)
+                    .filter(|v| v.is_finite())
+                    .unwrap_or(taylor);
+                let slope = (r.d1 - l.d1) / (r.x - l.x);
+                let at = Jet { x: g.s, value, d1: l.d1 + slope * (g.s - l.x), d2: slope };
+                extremes::Corner { after: g.at, at }
+            })
+            .collect();
         let eval = move |s: f64| {
             self.at_near(s, &grid.s, |j| &grid.states[j]).map(|st| jet_along(c, &st, s, self.line.dir.as_ref()))
         };
-        (jets, eval)
+        (jets, corners, eval)
     }
 
     /// The local extremes of a column (interior roots of its derivative along the path), in
@@ -546,18 +675,18 @@ impl<K: Kernel> SampledOf<K> {
     pub fn extremes(&self, c: impl ColumnOf<K>) -> Result<Vec<LocalExtreme>, Error> {
         let c = c.resolve(&self.k)?;
         let grid = self.search()?;
-        let (jets, eval) = self.search_jets(c, &grid);
-        extremes::extremes(&jets, eval)
+        let (jets, corners, eval) = self.search_jets(c, &grid);
+        extremes::extremes_across(&jets, &corners, eval)
     }
 
     /// The global minimum and maximum of a column over the range (interior extremes, or samples: the ends among them),
-    /// e.g. the dead centres and stroke of a slider; see [`global_range`]. The interior
+    /// e.g. the dead centres and stroke of a slider; see [`global_range`](extremes::global_range). The interior
     /// extremes are looked for as [`SampledOf::extremes`] looks for them.
     pub fn range(&self, c: impl ColumnOf<K>) -> Result<GlobalRange, Error> {
         let c = c.resolve(&self.k)?;
         let grid = self.search()?;
-        let (jets, eval) = self.search_jets(c, &grid);
-        global_range(&jets, eval)
+        let (jets, corners, eval) = self.search_jets(c, &grid);
+        extremes::global_range_across(&jets, &corners, eval)
     }
 
     /// The dwells of a progressive column; see [`dwell`] for the definition. Between samples
@@ -565,7 +694,7 @@ impl<K: Kernel> SampledOf<K> {
     pub fn dwells(&self, c: impl ColumnOf<K>) -> Result<Vec<Dwell>, Error> {
         let c = c.resolve(&self.k)?;
         let grid = self.search()?;
-        let (jets, eval) = self.search_jets(c, &grid);
+        let (jets, _, eval) = self.search_jets(c, &grid);
         dwell::dwells(&jets, eval)
     }
 

@@ -803,6 +803,13 @@ where
         // In the continuation's scaled arclength (see `Metric`).
         let mut ds = 0.01 * self.scale() * path.len / metric.sigma;
         for _ in 0..200 {
+            // The point past the crossing may itself lie beyond the sample (it is up to eight of
+            // the trace's steps on): the sample is landed on, not passed. Resumed there, the
+            // sweep gave the state of the point past as the sample's (a refinement 1e-5 past a
+            // four-bar's change point returned the state 7e-4 past it, as if at 1e-5).
+            if p.sigma >= end {
+                return self.land_on(&p, target, metric);
+            }
             if let Ok(k) = self.m.kinematics_at(&path.at_sigma(p.sigma), &p.q, &newton)
                 && k.health().min_pivot >= self.cfg.singular_pivot * 100.0
             {
@@ -811,17 +818,22 @@ where
             }
             let next = curve::arc_step(&self.m, &path, metric, &p, ds, &newton)?;
             if next.sigma >= end {
-                // Land exactly on the sample, predicting along the curve's tangent.
-                let guess = p.predicted(end, metric);
-                let k = self.m.kinematics(&path.at_tau(target), &guess, &newton).ok()?;
-                self.tau = target;
-                return Some(k);
+                return self.land_on(&p, target, metric);
             }
             p = next;
             // Not beyond the natural step (see `MAX_INPUT_STEP`), in the scaled coordinates.
             ds = (ds * 1.5).min(MAX_INPUT_STEP);
         }
         None
+    }
+
+    /// The state at the sample `target`, solved from the point `p` of the curve beside it (its
+    /// prediction along the curve's tangent the guess); sets `tau` there.
+    fn land_on(&mut self, p: &CurvePoint<Q<K>>, target: f64, metric: &Metric<Q<K>>) -> Option<KinOf<K>> {
+        let guess = p.predicted(target * self.path.len, metric);
+        let k = self.m.kinematics(&self.path.at_tau(target), &guess, &self.cfg.newton).ok()?;
+        self.tau = target;
+        Some(k)
     }
 
     /// Explains a step that cannot be made: a kink, a limit position, a singular crossing, or

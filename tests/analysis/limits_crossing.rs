@@ -1,0 +1,199 @@
+//! The limit report and the sampled extremes across a singular crossing (change point): a
+//! Grashof-equal four-bar (`a + d = b + c`) whose coupler and rocker lie stretched along the
+//! frame at `phi = pi`, where the sweep passes from one assembly mode to the other. The joint's
+//! `x` has its minimum exactly there (C at `(d - c, 0)`, the nearest the rocker's circle comes
+//! to the crank's pivot), its analog changing sign at the crossing: a search refining that root
+//! stepped into the crossing's singular band and failed the whole report, for `pc.x` alone and
+//! at some sample counts only. Checked against the closed form on the branch the sweep follows,
+//! by brute force, at three length scales.
+
+use crate::support::{circle_point, tol};
+use kinloop::analysis::{Column, Extreme, LocalExtreme, Sampled};
+use kinloop::events::EventKind;
+use kinloop::metrics::Limits;
+use kinloop::{AtSingular, Mechanism, SweepConfig};
+use kinloop_fixtures::FourBar;
+use std::f64::consts::{PI, TAU};
+
+/// The sweep's range: short of a full turn (as the report that found the failure swept it), the
+/// crossing inside it; not `TAU`.
+#[allow(clippy::approx_constant)]
+const TO: f64 = 6.28;
+const COLUMNS: [&str; 4] = ["beta", "gamma", "pc.x", "pc.y"];
+
+/// The four-bar (1, 2, 2.5, 3.5) at scale `s`: `a + d = b + c`.
+fn four_bar(s: f64) -> FourBar {
+    FourBar { a: s, b: 2.0 * s, c: 2.5 * s, d: 3.5 * s }
+}
+
+/// The column `name` at `phi` by construction, independent of the library: C from the circles
+/// (B, b) and (D, c), B the crank's tip, on the left of B -> D before the crossing (the fixture's
+/// guess, C above the frame at `phi = 0`) and on its right after it: the sweep's smooth
+/// continuation through the change point, where the two modes meet (`|BD| = b + c`, C on the
+/// line B -> D), changes mode. Angles are wrapped to (-pi, pi]; see [`unwrap_near`].
+fn construction(m: &FourBar, phi: f64, name: &str) -> f64 {
+    let (bx, by) = (m.a * phi.cos(), m.a * phi.sin());
+    let side = if phi < PI { 1.0 } else { -1.0 };
+    // `circle_point` clamps the height to zero where rounding puts |BD| a hair beyond b + c.
+    let (cx, cy) = circle_point(bx, by, m.b, m.d, 0.0, m.c, side);
+    match name {
+        "beta" => (cy - by).atan2(cx - bx),
+        "gamma" => cy.atan2(cx - m.d),
+        "pc.x" => cx,
+        "pc.y" => cy,
+        _ => unreachable!("{name}"),
+    }
+}
+
+/// `v` moved by whole turns to lie within half a turn of `near` (angles only).
+fn unwrap_near(name: &str, v: f64, near: f64) -> f64 {
+    if name.starts_with("pc") { v } else { v + TAU * ((near - v) / TAU).round() }
+}
+
+/// The interior local extremes of the column over `[0, TO]`, by brute force: the closed form on
+/// a grid of 2^18 intervals (spacing 2.4e-5, far below the distance between extremes), every
+/// interior local extreme of the grid refined by a golden-section search over its two
+/// intervals. The search locates an extreme to about `sqrt(eps |f / f''|)` (some 2e-8 here:
+/// the values compared are equal within rounding over a wider interval than that), and its
+/// value to rounding.
+fn reference_extremes(m: &FourBar, name: &str) -> Vec<(Extreme, f64, f64)> {
+    let n = 1usize << 18;
+    let phi = |i: usize| TO * i as f64 / n as f64;
+    let mut values = Vec::with_capacity(n + 1);
+    for i in 0..=n {
+        let v = construction(m, phi(i), name);
+        let v = values.last().map_or(v, |&prev| unwrap_near(name, v, prev));
+        values.push(v);
+    }
+    let mut found = Vec::new();
+    for i in 1..n {
+        let (l, v, r) = (values[i - 1], values[i], values[i + 1]);
+        let kind = if v > l && v >= r {
+            Extreme::Max
+        } else if v < l && v <= r {
+            Extreme::Min
+        } else {
+            continue;
+        };
+        let sign = if kind == Extreme::Max { -1.0 } else { 1.0 };
+        let f = |x: f64| sign * unwrap_near(name, construction(m, x, name), v);
+        let (mut a, mut b) = (phi(i - 1), phi(i + 1));
+        let g = 0.5 * (5f64.sqrt() - 1.0);
+        for _ in 0..200 {
+            let (c, d) = (b - g * (b - a), a + g * (b - a));
+            if f(c) <= f(d) {
+                b = d;
+            } else {
+                a = c;
+            }
+        }
+        let x = 0.5 * (a + b);
+        found.push((kind, x, sign * f(x)));
+    }
+    found
+}
+
+/// What a length or an angle of the column is compared with: the link size for a length.
+fn size(m: &FourBar, name: &str) -> f64 {
+    if name.starts_with("pc") { m.a } else { 1.0 }
+}
+
+/// The located extremes against the brute-force ones: the same count and kinds, the values to a
+/// solve's rounding (`tol::SOLVE` of the column's size: an extreme's value is insensitive to its
+/// location, to second order), the locations to 1e-6 (the reference's golden-section resolution
+/// above, with a margin; the crossing's own location is checked to `tol::LOCATED` by the caller).
+fn check_extremes(what: &str, m: &FourBar, name: &str, found: &[LocalExtreme], reference: &[(Extreme, f64, f64)]) {
+    assert_eq!(found.len(), reference.len(), "{what}: {found:?} against {reference:?}");
+    for (e, &(kind, x, value)) in found.iter().zip(reference) {
+        assert_eq!(e.kind, kind, "{what}: {e:?} against {x} {value}");
+        assert!((e.x() - x).abs() < 1e-6, "{what}: {e:?} against {x} {value}");
+        // An angle column's extreme value is compared up to whole turns (the reference unwraps
+        // from its own start); the library's angles are continuous along the sweep.
+        let v = unwrap_near(name, value, e.value());
+        assert!((e.value() - v).abs() < tol::SOLVE * size(m, name), "{what}: {e:?} against {x} {value}");
+    }
+}
+
+/// The crossing: the sweep's events are the one singular crossing, located at `pi` to the
+/// event's documented precision (`tol::LOCATED`, 1e-9 of the input's unit).
+fn check_crossing(what: &str, events: &[kinloop::Event]) {
+    assert_eq!(events.len(), 1, "{what}: {events:?}");
+    assert_eq!(events[0].kind, EventKind::SingularCrossing, "{what}: {events:?}");
+    assert!((events[0].x[0] - PI).abs() < tol::LOCATED, "{what}: {events:?}");
+}
+
+/// The limit report of every column, at every sample count and length scale, succeeds: it lists
+/// the crossing at `pi`, and the extremes of each column as the construction has them, `pc.x`'s
+/// minimum `d - c` at the crossing among them (at 73 samples the report failed with a stop at a
+/// singular crossing 1e-6 before it, at 10 with a pivot-ratio branch error, for `pc.x` alone).
+#[test]
+fn limits_pass_a_change_point_for_every_column_and_sample_count() {
+    for scale in [1.0, 1e-3, 1e3] {
+        let m = four_bar(scale);
+        let guess = m.guess_flat(&[0.0]);
+        for name in COLUMNS {
+            let reference = reference_extremes(&m, name);
+            if name == "pc.x" {
+                // The reference has the minimum at the crossing (to its own resolution).
+                let (kind, x, value) = reference[1];
+                assert!(kind == Extreme::Min && (x - PI).abs() < 1e-7, "{reference:?}");
+                assert!((value - (m.d - m.c)).abs() < tol::ULPS * scale, "{reference:?}");
+            }
+            let columns = [Column::<FourBar>::named(name).unwrap()];
+            for samples in [5, 10, 73, 360] {
+                let what = format!("scale {scale}, {name}, {samples} samples");
+                let r = Limits::new(&m, 0.0, TO).samples(samples).guess(guess).columns(&columns).run();
+                let r = r.unwrap_or_else(|e| panic!("{what}: {e}"));
+                assert_eq!(r.reached, (0.0, TO), "{what}: {r}");
+                check_crossing(&what, &r.events);
+                check_extremes(&what, &m, name, &r.outputs[0].extremes, &reference);
+                if name == "pc.x" {
+                    // At the crossing's input, its value from the state there.
+                    let at = r.outputs[0].extremes[1];
+                    assert_eq!(at.x(), r.events[0].x[0], "{what}: {r}");
+                    assert!((at.value() - (m.d - m.c)).abs() < tol::SOLVE * scale, "{what}: {r}");
+                }
+            }
+        }
+    }
+}
+
+/// The sampled analyses behind the report find the same across the crossing: `extremes` and
+/// `range` of `pc.x` (the stroke of the joint from `d - c` at the crossing to its maxima), over a
+/// sweep configured to pass crossings.
+#[test]
+fn sampled_extremes_and_range_across_a_change_point() {
+    let cfg = SweepConfig::default().with_at_singular(AtSingular::Continue);
+    for scale in [1.0, 1e-3, 1e3] {
+        let m = four_bar(scale);
+        let reference = reference_extremes(&m, "pc.x");
+        for samples in [5, 10, 73, 360] {
+            let what = format!("scale {scale}, {samples} samples");
+            let run = Sampled::sweep_with(&m, 0.0, TO, samples, m.guess_flat(&[0.0]), cfg).unwrap();
+            let found = run.extremes(FourBar::COL.pc.x).unwrap_or_else(|e| panic!("{what}: {e}"));
+            check_extremes(&what, &m, "pc.x", &found, &reference);
+            assert!((found[1].x() - PI).abs() < tol::LOCATED, "{what}: {found:?}");
+            let range = run.range(FourBar::COL.pc.x).unwrap_or_else(|e| panic!("{what}: {e}"));
+            assert!((range.min.value - (m.d - m.c)).abs() < tol::SOLVE * scale, "{what}: {range:?}");
+            assert!((range.min.x - PI).abs() < tol::LOCATED, "{what}: {range:?}");
+            assert!((range.max.value - reference[0].2).abs() < tol::SOLVE * scale, "{what}: {range:?}");
+        }
+    }
+}
+
+/// A state asked for between the crossing and the point where the sweep resumes past it is the
+/// state at that input: it was the resumed state, 7e-4 rad past the crossing, whatever input
+/// within that was asked for (and the extremes' refinement there compared the wrong states).
+#[test]
+fn a_state_just_past_a_change_point_is_at_its_own_input() {
+    let cfg = SweepConfig::default().with_at_singular(AtSingular::Continue);
+    let m = four_bar(1.0);
+    let run = Sampled::sweep_with(&m, 0.0, TO, 73, m.guess_flat(&[0.0]), cfg).unwrap();
+    for off in [1e-3, 1e-4, 1e-5] {
+        let phi = PI + off;
+        let k = run.at(phi).unwrap();
+        assert_eq!(k.x[0], phi);
+        let x = construction(&m, phi, "pc.x");
+        assert!((FourBar::COL.pc.x.jet(&k).value - x).abs() < tol::SOLVE, "{off}: {k:?} against {x}");
+    }
+}
