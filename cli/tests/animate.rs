@@ -347,7 +347,7 @@ fn grid_usage_errors() {
     };
     run(grid(&[], &s), &svg, "interactive page");
     run(grid(&["--samples", "9,7,5"], &p), &path, "one per input (2)");
-    run(grid(&["--samples", "0"], &p), &path, "no value of input `th1`");
+    run(grid(&["--samples", "0"], &p), &path, "at least one value of input `th1`");
     // More cells than the page's poses.
     run(grid(&["--samples", "30"], &p), &path, "--frames");
     // Without --grid, a list of counts is not a sample count.

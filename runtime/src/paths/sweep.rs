@@ -807,9 +807,14 @@ where
             // the trace's steps on): the sample is landed on, not passed. Resumed there, the
             // sweep gave the state of the point past as the sample's (a refinement 1e-5 past a
             // four-bar's change point returned the state 7e-4 past it, as if at 1e-5).
-            if p.sigma >= end {
-                return self.land_on(&p, target, metric);
+            if p.sigma >= end
+                && let Some(k) = self.land_on(&p, target, metric)
+            {
+                return Some(k);
             }
+            // A sample at the crossing itself (within its band, where no solve pins the branch
+            // and the analogs are not defined) cannot be landed on: the first well-conditioned
+            // point past it stands for it, at its own input, as before.
             if let Ok(k) = self.m.kinematics_at(&path.at_sigma(p.sigma), &p.q, &newton)
                 && k.health().min_pivot >= self.cfg.singular_pivot * 100.0
             {
