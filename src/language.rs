@@ -70,8 +70,12 @@
 //!   body — its mass and moment of inertia about the centre of mass are expressions of the
 //!   parameters (`inertia` defaults to 0), its centre of mass `com` a declared `point` or
 //!   `(x, y)` of unknowns, outputs and constants (`com (x_c, 0)` for a slider), and `turns`
-//!   names the input or angle unknown it rotates with (none for a slider). `force name at p =
-//!   (fx, fy);` and `torque name on angle = scalar;` are loads: expressions of parameters,
+//!   names the input or angle unknown it rotates with (none for a slider). An angle is an
+//!   input or unknown that enters a sine or cosine as a whole multiple of itself (`l @ q`,
+//!   `l @ (q + gamma)`, `sin(2 * q)`; a length scaled into one, `sin(x / l)`, is not), or an
+//!   unknown that an `eq` sets to an angle (`eq e: th == atan2(y, x);`, or `asin`, `acos`,
+//!   `atan`, `angle(v)`, plus a constant). `force name at p = (fx, fy);` and
+//!   `torque name on angle = scalar;` are loads: expressions of parameters,
 //!   inputs and unknowns, evaluated by generated straight-line code; `gravity (0, -g);` sets
 //!   gravity. The macro then generates `m.mass_model()`, the runtime's
 //!   [`dynamics::MassModel`](crate::dynamics::MassModel) for the reduced inertia, inverse dynamics, shaking forces, flywheel

@@ -1,5 +1,7 @@
-//! The expression graph ([`dag`]: hash-consed nodes with local simplification) and its
-//! symbolic differentiation and substitution ([`diff`]).
+//! The expression graph ([`dag`]: hash-consed nodes with local simplification), its symbolic
+//! differentiation and substitution ([`diff`]), and how an expression depends on one leaf
+//! through whole multiples ([`multiples`]).
 
 pub mod dag;
 pub mod diff;
+pub mod multiples;

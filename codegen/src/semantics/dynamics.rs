@@ -12,8 +12,9 @@ use super::symbols::{Symbol, Val};
 use crate::front::expr::{Expr, SpanRange};
 use crate::front::syntax::BodyDef;
 use crate::graph::dag::{Func, Graph, Leaf, NodeId, Op};
+use crate::graph::multiples;
 use proc_macro2::Span;
-use std::collections::{HashMap, HashSet};
+use std::collections::HashMap;
 use syn::Ident;
 
 /// A coordinate of a point, read from the kinematic state.
@@ -240,22 +241,35 @@ impl Pending {
         }
     }
 
-    /// Resolves the points against the output columns and checks the angles.
-    pub(super) fn resolve(self, lw: &mut Lowerer, outputs: &[NodeId], kinematics: &[NodeId]) -> DynamicsModel {
+    /// Resolves the points against the output columns and checks the angles against the
+    /// equations' residuals and the output columns.
+    pub(super) fn resolve(self, lw: &mut Lowerer, outputs: &[NodeId], residuals: &[NodeId]) -> DynamicsModel {
         let columns: HashMap<NodeId, usize> = outputs.iter().enumerate().rev().map(|(c, &n)| (n, c)).collect();
-        let angles = angle_leaves(&lw.graph, kinematics);
+        // The kinematics' trigonometric arguments, found once (a walk of the whole graph, not
+        // taken for a mechanism that names no angle), and one verdict per angle however many
+        // bodies and torques name it.
+        let arguments = if self.angles.is_empty() {
+            Vec::new()
+        } else {
+            let kinematics: Vec<NodeId> = residuals.iter().chain(outputs).copied().collect();
+            multiples::trig_arguments(&lw.graph, &kinematics)
+        };
+        let mut verdicts: HashMap<Leaf, bool> = HashMap::new();
         for (id, a) in &self.angles {
             let leaf = match a {
                 AngleModel::Unknown(u) => Leaf::Unknown(*u as u16),
                 AngleModel::Input(i) => Leaf::Input(*i as u16),
                 AngleModel::None => continue,
             };
-            if !angles.contains(&leaf) {
+            let verdict = *verdicts.entry(leaf).or_insert_with(|| is_angle(&lw.graph, leaf, &arguments, residuals));
+            if !verdict {
                 lw.errors.push(syn::Error::new(
                     id.span(),
                     format!(
-                        "`{id}` is not an angle: it appears in no angle of the loops (the right of `@`, or \
-                         sin, cos, tan); a body that only slides has no `turns`, a torque acts on an angle"
+                        "`{id}` is not an angle: it is the angle of no `@`, sin, cos or tan of the mechanism \
+                         (as in `l @ {id}`, `sin(2 * {id} + gamma)`; not scaled, as in `sin({id} / l)`), and no \
+                         `eq` sets it to an angle (as `{id} == atan2(dy, dx)` does); a body that only slides \
+                         has no `turns`, a torque acts on an angle"
                     ),
                 ));
             }
@@ -355,14 +369,50 @@ fn coord(g: &Graph, columns: &HashMap<NodeId, usize>, n: NodeId) -> Option<Coord
     }
 }
 
-/// The inputs and unknowns that appear in the argument of a trigonometric function of the
-/// kinematics: the angles.
-fn angle_leaves(g: &Graph, kinematics: &[NodeId]) -> HashSet<Leaf> {
-    let mut out = HashSet::new();
-    for n in g.reachable(kinematics) {
-        if let Op::Func(Func::Sin | Func::Cos | Func::Tan, a) = g.op(n) {
-            out.extend(g.leaves_of(&[a]));
+/// Whether `leaf` is an angle of the kinematics: it enters a sine, cosine or tangent as a whole
+/// multiple of itself (`l @ q`, `l @ (q + gamma)`, `sin(2 * q)`), or an equation sets it to an
+/// angle (`eq e: th == atan2(y, x);`). Only so: a length may also appear in an argument, scaled
+/// (a rack's travel `sin(x / rp)`), and a body turning with it would turn by its metres.
+/// `arguments` are those of the kinematics' sines, cosines and tangents.
+fn is_angle(g: &Graph, leaf: Leaf, arguments: &[NodeId], residuals: &[NodeId]) -> bool {
+    multiples::in_whole_angle(g, leaf, arguments) || residuals.iter().any(|&r| sets_to_angle(g, leaf, r))
+}
+
+/// Whether residual `r` sets `leaf` to an angle: `leaf == f + c`, either side and either sign,
+/// with `f` one or more inverse trigonometric functions (`atan2`, `asin`, `acos`, `atan`,
+/// `angle(v)`, which is an `atan2`) and `c` terms free of the state (an offset such as `pi / 2`).
+/// The leaf must be a whole side: `x == l * atan(s)` makes `x` a length.
+fn sets_to_angle(g: &Graph, leaf: Leaf, r: NodeId) -> bool {
+    let Some(terms) = terms(g, r) else { return false };
+    let (mut own, mut angles) = (0, 0);
+    for t in terms {
+        match g.op(t) {
+            Op::Leaf(l) if l == leaf => own += 1,
+            Op::Func(Func::Asin | Func::Acos | Func::Atan, _) | Op::Atan2(..) => angles += 1,
+            _ if !depends_on_state(g, &[t]) => {}
+            _ => return false,
         }
     }
-    out
+    own == 1 && angles > 0
+}
+
+/// More terms than an equation setting an angle has (see [`terms`]).
+const MAX_TERMS: usize = 16;
+
+/// The terms of `r` read as a sum through `+`, `-` and negation, their signs dropped; `None`
+/// beyond [`MAX_TERMS`] (an equation that sets an angle has a few, and a sum that shares its
+/// terms would otherwise be walked once per path).
+fn terms(g: &Graph, r: NodeId) -> Option<Vec<NodeId>> {
+    let (mut stack, mut out) = (vec![r], Vec::new());
+    while let Some(n) = stack.pop() {
+        match g.op(n) {
+            Op::Add(a, b) | Op::Sub(a, b) => stack.extend([a, b]),
+            Op::Neg(a) => stack.push(a),
+            _ => out.push(n),
+        }
+        if stack.len() + out.len() > MAX_TERMS {
+            return None;
+        }
+    }
+    Some(out)
 }

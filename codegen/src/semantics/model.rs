@@ -216,16 +216,10 @@ pub(crate) fn build(def: MechanismDef) -> Result<Model, syn::Error> {
     if lw.graph.overflowed() {
         lw.errors.push(syn::Error::new(name.span(), "the mechanism's expressions are too large for kinloop"));
     }
-    let kinematics: Vec<NodeId> = out
-        .equations
-        .iter()
-        .map(|e| e.residual)
-        .chain(out.points.iter().flat_map(|p| [p.x, p.y]))
-        .chain(out.scalars.iter().map(|s| s.value))
-        .collect();
+    let residuals: Vec<NodeId> = out.equations.iter().map(|e| e.residual).collect();
     let columns: Vec<NodeId> =
         out.points.iter().flat_map(|p| [p.x, p.y]).chain(out.scalars.iter().map(|s| s.value)).collect();
-    let dynamics = std::mem::take(&mut out.dynamics).resolve(&mut lw, &columns, &kinematics);
+    let dynamics = std::mem::take(&mut out.dynamics).resolve(&mut lw, &columns, &residuals);
     // The drawing lowers the terms again: only a declaration without errors lowers cleanly.
     let drawing = if lw.errors.is_empty() { super::drawing::model(&mut lw, &items) } else { DrawingModel::default() };
     let unknowns =
