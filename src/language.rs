@@ -69,7 +69,8 @@
 //! * Machine dynamics: `body name: mass m, com p, inertia j, turns angle;` declares a rigid
 //!   body — its mass and moment of inertia about the centre of mass are expressions of the
 //!   parameters (`inertia` defaults to 0), its centre of mass `com` a declared `point` or
-//!   `(x, y)` of unknowns, outputs and constants (`com (x_c, 0)` for a slider), and `turns`
+//!   `(x, y)` of unknowns, outputs and constants (`com (x_c, 0)` for a slider; a point that
+//!   moves with an input is declared, `point p = (s, 0);`, and named, `com p`), and `turns`
 //!   names the input or angle unknown it rotates with (none for a slider). An angle is an
 //!   input or unknown that enters a sine or cosine as a whole multiple of itself (`l @ q`,
 //!   `l @ (q + gamma)`, `sin(2 * q)`; a length scaled into one, `sin(x / l)`, is not), or an

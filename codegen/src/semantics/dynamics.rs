@@ -279,8 +279,12 @@ impl Pending {
             if let [Some(x), Some(y)] = c {
                 return Some([x, y]);
             }
+            // The mass model reads no input (the runtime's `Coord` has no such coordinate): a
+            // point that moves with one is declared, and read as the output it then is.
+            let input = [p.x, p.y].into_iter().find_map(|n| input_name(lw, n));
+            let why = input.map(|i| format!(", and `{i}` is an input")).unwrap_or_default();
             lw.errors.push(p.range.error(format!(
-                "{what} must be a declared point, or `(x, y)` of unknowns, outputs and constants: \
+                "{what} must be a declared point, or `(x, y)` of unknowns, outputs and constants{why}: \
                  declare it with `point name = {};` and write its name here",
                 p.shown
             )));
@@ -355,6 +359,12 @@ fn angle(lw: &mut Lowerer, id: &Ident, clause: &str) -> Option<AngleModel> {
         format!("`{clause} {id}`: `{id}` is {what}; `{clause}` takes an input or an angle unknown"),
     ));
     None
+}
+
+/// The name of the input `n` is, if it is one.
+fn input_name(lw: &Lowerer, n: NodeId) -> Option<String> {
+    let Op::Leaf(Leaf::Input(i)) = lw.graph.op(n) else { return None };
+    lw.scope.symbols.iter().find(|(_, (s, _))| matches!(s, Symbol::Input(j) if *j == i)).map(|(k, _)| k.clone())
 }
 
 fn depends_on_state(g: &Graph, roots: &[NodeId]) -> bool {
