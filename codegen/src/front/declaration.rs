@@ -10,7 +10,7 @@
 //! The parser recovers at `;` after an error, so all syntax errors of a declaration are reported
 //! together.
 
-use super::item::{inner_attribute, parse_item, skip_item};
+use super::item::{inner_attribute, not_a_doc_comment, parse_item, skip_item};
 use super::syntax::{Errors, MechanismDef, Options};
 use super::{limits, names};
 use proc_macro2::{Span, TokenStream};
@@ -165,9 +165,12 @@ fn split_attributes(attrs: Vec<Attribute>, errors: &mut Errors) -> (Vec<Attribut
     let mut options = Options::default();
     for attr in attrs {
         if attr.path().is_ident("doc") {
-            docs.push(attr);
+            match not_a_doc_comment(&attr) {
+                Some(e) => errors.push(e),
+                None => docs.push(attr),
+            }
         } else if attr.path().is_ident("kinloop") {
-            if let Err(e) = attr.parse_nested_meta(|meta| parse_option(&meta, &mut options)) {
+            if let Err(e) = attr.parse_nested_meta(|meta| parse_option(&meta, &mut options, errors)) {
                 errors.push(e);
             }
         } else {
@@ -184,23 +187,43 @@ fn split_attributes(attrs: Vec<Attribute>, errors: &mut Errors) -> (Vec<Attribut
     (docs, options)
 }
 
-/// One option of `#[kinloop(...)]`, recorded with its span.
-fn parse_option(meta: &syn::meta::ParseNestedMeta, options: &mut Options) -> syn::Result<()> {
+/// One option of `#[kinloop(...)]`, recorded with its span. A value given to it (`dense = 1`,
+/// `dense(1)`) or an option given twice is reported and the rest still read: syn's own message
+/// for the first is a bare "expected `,`", and the second changed nothing without a word.
+fn parse_option(meta: &syn::meta::ParseNestedMeta, options: &mut Options, errors: &mut Errors) -> syn::Result<()> {
     let span = meta.path.get_ident().map_or(Span::call_site(), Ident::span);
-    if meta.path.is_ident("dense") {
-        options.dense = Some(span);
+    let (option, name) = if meta.path.is_ident("dense") {
+        (&mut options.dense, "dense")
     } else if meta.path.is_ident("sensitivities") {
-        options.sensitivities = Some(span);
+        (&mut options.sensitivities, "sensitivities")
     } else if meta.path.is_ident("newton") {
         // Closed-form hook: the option forcing Newton.
-        options.newton = Some(span);
+        (&mut options.newton, "newton")
     } else {
         return Err(meta.error(
             "unknown kinloop option; the supported options are `#[kinloop(dense)]`, \
              `#[kinloop(newton)]` and `#[kinloop(sensitivities)]`",
         ));
+    };
+    if let Some(value) = option_value(meta)? {
+        errors
+            .push(syn::Error::new_spanned(value, format!("kinloop options take no value: write `#[kinloop({name})]`")));
+    }
+    match option {
+        Some(_) => errors.push(syn::Error::new(span, format!("the option `{name}` is given twice; keep one"))),
+        None => *option = Some(span),
     }
     Ok(())
+}
+
+/// The tokens after an option's name up to the next `,` (a value: `= 1`, `(1)`), consumed;
+/// `None` when there are none.
+fn option_value(meta: &syn::meta::ParseNestedMeta) -> syn::Result<Option<TokenStream>> {
+    let mut value = TokenStream::new();
+    while !meta.input.is_empty() && !meta.input.peek(Token![,]) {
+        value.extend([meta.input.parse::<proc_macro2::TokenTree>()?]);
+    }
+    Ok((!value.is_empty()).then_some(value))
 }
 
 /// Parses `{ items }`, recovering at `;` after an item's error.

@@ -31,10 +31,12 @@ pub(super) fn parse_item(input: ParseStream, errors: &mut Errors) -> syn::Result
     }
     let mut docs = Vec::new();
     for attr in attrs {
-        if attr.path().is_ident("doc") {
-            docs.push(attr);
-        } else {
+        if !attr.path().is_ident("doc") {
             return Err(syn::Error::new_spanned(&attr, "only doc comments (`///`) are accepted before an item"));
+        }
+        match not_a_doc_comment(&attr) {
+            Some(e) => errors.push(e),
+            None => docs.push(attr),
         }
     }
     let keyword = input.span();
@@ -102,6 +104,21 @@ pub(super) fn parse_item(input: ParseStream, errors: &mut Errors) -> syn::Result
         }
     }
     Ok(item)
+}
+
+/// The error for a `doc` attribute that is not what a doc comment becomes, `#[doc = "text"]`:
+/// the docs pass to the generated items as written, and rustc refuses `#[doc = 1]` there with
+/// a message about code the user did not write. `None` for a doc comment.
+pub(super) fn not_a_doc_comment(attr: &Attribute) -> Option<syn::Error> {
+    if let syn::Meta::NameValue(nv) = &attr.meta
+        && let syn::Expr::Lit(syn::ExprLit { lit: syn::Lit::Str(_), .. }) = &nv.value
+    {
+        return None;
+    }
+    Some(syn::Error::new_spanned(
+        attr,
+        "this `doc` attribute is not a doc comment: write the documentation as a doc comment, `/// ...`",
+    ))
 }
 
 /// An inner doc comment (`//!`, which the compiler turns into `#![doc = ...]`) or inner
@@ -235,6 +252,9 @@ fn parse_decl(input: ParseStream, kind: DeclKind, name: &mut Option<Ident>) -> s
     let attrs = Attribute::parse_outer(input)?;
     if let Some(bad) = attrs.iter().find(|a| !a.path().is_ident("doc")) {
         return Err(syn::Error::new_spanned(bad, "only doc comments (`///`) are accepted before a name"));
+    }
+    if let Some(e) = attrs.iter().find_map(not_a_doc_comment) {
+        return Err(e);
     }
     if !input.peek(Ident) {
         // A keyword where a name belongs (`input self;`): the list keeps a stand-in, so that

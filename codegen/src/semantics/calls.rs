@@ -25,6 +25,10 @@ impl Lowerer {
                 ));
                 return None;
             }
+            if func == "pi" {
+                self.errors.push(pi_called(func, args));
+                return None;
+            }
             self.errors.push(unsupported(func));
             return None;
         };
@@ -77,6 +81,16 @@ impl Lowerer {
         let show = || format!("{func}({})", args.iter().map(Expr::show).collect::<Vec<_>>().join(", "));
         self.finite(range, &show, &vals, result)
     }
+}
+
+/// `pi()` or `pi(x)`: `pi` is the built-in constant, so this is neither an unsupported function
+/// (with a suggestion of a function named alike, `min`) nor a product of a declared name.
+fn pi_called(func: &Ident, args: &[Expr]) -> syn::Error {
+    let write = match args {
+        [x] => format!("`pi * ({})` for a product", x.show()),
+        _ => "`pi`".to_string(),
+    };
+    syn::Error::new(func.span(), format!("`pi` is a constant, not a function: write {write}"))
 }
 
 fn unsupported(func: &Ident) -> syn::Error {

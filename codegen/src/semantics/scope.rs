@@ -130,6 +130,15 @@ impl Lowerer {
 
     fn unknown_name(&mut self, id: &Ident) {
         let key = key(id);
+        // A built-in function without its call (`output o = sin;`): a declared name spelled
+        // alike (`d` for `deg`) is not what was meant.
+        if let Some(b) = super::builtins::lookup(&key) {
+            self.errors.push(syn::Error::new(
+                id.span(),
+                format!("`{key}` is a function, not a value: call it, `{}`", b.signature()),
+            ));
+            return;
+        }
         let names: Vec<String> = self
             .scope
             .symbols
