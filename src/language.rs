@@ -72,8 +72,9 @@
 //!   `(x, y)` of unknowns, outputs and constants (`com (x_c, 0)` for a slider; a point that
 //!   moves with an input is declared, `point p = (s, 0);`, and named, `com p`), and `turns`
 //!   names the input or angle unknown it rotates with (none for a slider). An angle is an
-//!   input or unknown that enters a sine or cosine as a whole multiple of itself (`l @ q`,
-//!   `l @ (q + gamma)`, `sin(2 * q)`; a length scaled into one, `sin(x / l)`, is not), or an
+//!   input or unknown that enters a sine or cosine as a multiple of itself by a constant
+//!   (`l @ q`, `l @ (q + gamma)`, `sin(2 * q)`, `l @ (q / 2)`; a length scaled into one,
+//!   `sin(x / l)`, is not), or an
 //!   unknown that an `eq` sets to an angle (`eq e: th == atan2(y, x);`, or `asin`, `acos`,
 //!   `atan`, `angle(v)`, plus a constant). `force name at p = (fx, fy);` and
 //!   `torque name on angle = scalar;` are loads: expressions of parameters,

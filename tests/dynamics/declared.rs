@@ -250,3 +250,32 @@ fn declared_dynamics_are_scale_free() {
     // only up to rounding (1e3 and 1e-3 are not exact binary scalings): a few ulps.
     assert!(worst < 1e-13, "relative difference {worst:e}");
 }
+
+kinloop::mechanism! {
+    #[doc(hidden)]
+    #[doc = concat!("A crank drawn ", "at half its angle: `q` turns as the input does.")]
+    pub struct HalfAngleCrank {
+        params r = 1.5;
+        input phi;
+        unknowns q = 0.5, x = 0.1;
+        loop l: r @ (q / 2) == (x, 0) + r @ (phi / 2);
+        body disc: mass 2, com (x, 0), inertia 3, turns q;
+    }
+}
+
+/// An angle that enters its loop as a half angle (`r @ (q / 2)`) is an angle for a body's
+/// `turns`, as a whole one is; and the struct takes Rust's other documentation attributes
+/// (`#[doc(hidden)]`, `#[doc = concat!(..)]`). Here `q = phi` and `x = 0`: the reduced inertia is
+/// the disc's own, 3, its mass not moving.
+#[test]
+fn a_body_turns_with_a_half_angle() {
+    let m = HalfAngleCrank::default();
+    let model = m.mass_model().unwrap();
+    assert_eq!(model.bodies()[0].rotation, Rotation::Unknown(0));
+    for phi in [0.3, 1.0, 2.5] {
+        let k = m.kinematics_flat(&[phi], &[phi + 0.01, 0.01], &NewtonConfig::default()).unwrap();
+        assert!((k.q[0] - phi).abs() < 1e-14 && k.q[1].abs() < 1e-14, "{:?}", k.q);
+        let d = model.dynamics(&k, &[1.0]).unwrap();
+        assert!((d.reduced_inertia() - 3.0).abs() < 1e-13, "{}", d.reduced_inertia());
+    }
+}

@@ -10,7 +10,7 @@
 //! The parser recovers at `;` after an error, so all syntax errors of a declaration are reported
 //! together.
 
-use super::item::{inner_attribute, not_a_doc_comment, parse_item, skip_item};
+use super::item::{inner_attribute, not_struct_doc, parse_item, skip_item};
 use super::syntax::{Errors, MechanismDef, Options};
 use super::{limits, names};
 use proc_macro2::{Span, TokenStream};
@@ -165,7 +165,7 @@ fn split_attributes(attrs: Vec<Attribute>, errors: &mut Errors) -> (Vec<Attribut
     let mut options = Options::default();
     for attr in attrs {
         if attr.path().is_ident("doc") {
-            match not_a_doc_comment(&attr) {
+            match not_struct_doc(&attr) {
                 Some(e) => errors.push(e),
                 None => docs.push(attr),
             }

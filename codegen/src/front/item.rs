@@ -121,6 +121,17 @@ pub(super) fn not_a_doc_comment(attr: &Attribute) -> Option<syn::Error> {
     ))
 }
 
+/// [`not_a_doc_comment`] for an attribute on the mechanism's struct, which passes to the
+/// generated struct as written: Rust's other documentation attributes are also taken there
+/// (`#[doc(hidden)]`, `#[doc = include_str!("..")]`).
+pub(super) fn not_struct_doc(attr: &Attribute) -> Option<syn::Error> {
+    match &attr.meta {
+        syn::Meta::List(_) => None,
+        syn::Meta::NameValue(nv) if matches!(nv.value, syn::Expr::Macro(_)) => None,
+        _ => not_a_doc_comment(attr),
+    }
+}
+
 /// An inner doc comment (`//!`, which the compiler turns into `#![doc = ...]`) or inner
 /// attribute (`#![...]`) at the front of `input`: consumed, and the error that says what to
 /// write instead. syn's own message for it ("expected square brackets") names neither.

@@ -17,13 +17,16 @@ pub enum Class {
     Free,
     /// `k q` plus a part free of `q`, for an integer `k`.
     Multiple(i64),
+    /// `c q` plus a part free of `q`, for a constant `c` that is not a whole number (a half
+    /// angle `q / 2`): an angle's argument, which does not repeat every turn of it.
+    Fraction,
     /// Unchanged when `q` moves by a whole turn.
     Periodic,
     /// Otherwise.
     Other,
 }
 
-use Class::{Free, Multiple, Other, Periodic};
+use Class::{Fraction, Free, Multiple, Other, Periodic};
 
 /// The arguments of the sines, cosines and tangents below `roots`, for [`in_whole_angle`]:
 /// found once, and each leaf then classified over them alone, not over the whole graph.
@@ -42,11 +45,13 @@ pub fn trig_arguments(g: &Graph, roots: &[NodeId]) -> Vec<NodeId> {
 }
 
 /// Whether `q` enters one of `arguments` (of sines, cosines and tangents: [`trig_arguments`])
-/// as a whole multiple of itself plus a part free of it (`q`, `q + gamma`, `-q`, `2 q`): as an
-/// angle enters a loop (`l @ q`). A length enters an argument scaled (`sin(x / l)`), never so.
+/// as a multiple of itself by a constant plus a part free of it (`q`, `q + gamma`, `-q`, `2 q`,
+/// a half angle `q / 2`): as an angle enters a loop (`l @ q`). A length enters an argument
+/// scaled by a length (`sin(x / l)`), never so; nor does a leaf scaled by a parameter (`k q`, as
+/// the planner's units take it: the change that turns the argument by a radian is `1 / |k|`).
 pub fn in_whole_angle(g: &Graph, q: Leaf, arguments: &[NodeId]) -> bool {
     let class = classify(g, q, arguments);
-    arguments.iter().any(|a| matches!(class.get(a), Some(Multiple(k)) if *k != 0))
+    arguments.iter().any(|a| matches!(class.get(a), Some(Multiple(k)) if *k != 0) || class.get(a) == Some(&Fraction))
 }
 
 /// The class of every node below `roots` with respect to leaf `q`.
@@ -75,8 +80,11 @@ pub fn classify(g: &Graph, q: Leaf, roots: &[NodeId]) -> HashMap<NodeId, Class> 
             Op::Neg(a) => scaled(of(a), -1),
             Op::Mul(a, b) => match (of(a), of(b), whole(g, a), whole(g, b)) {
                 (_, Multiple(k), Some(m), _) | (Multiple(k), _, _, Some(m)) => scaled(Multiple(k), m),
+                (_, Multiple(_) | Fraction, ..) if factor(g, a) => Fraction,
+                (Multiple(_) | Fraction, ..) if factor(g, b) => Fraction,
                 (x, y, ..) => combined(x, y),
             },
+            Op::Div(a, b) if matches!(of(a), Multiple(_) | Fraction) && factor(g, b) => Fraction,
             Op::Div(a, b) | Op::Powf(a, b) | Op::Atan2(a, b) => combined(of(a), of(b)),
             Op::Select(a, b, x, y) => combined(combined(of(a), of(b)), combined(of(x), of(y))),
             Op::Powi(a, _) => combined(of(a), Free),
@@ -94,10 +102,16 @@ fn whole(g: &Graph, n: NodeId) -> Option<i64> {
     g.as_const(n).filter(|v| v.fract() == 0.0 && v.abs() <= 1e6).map(|v| v as i64)
 }
 
+/// Whether `n` is a constant that scales a multiple into a [`Fraction`]: finite and not zero.
+fn factor(g: &Graph, n: NodeId) -> bool {
+    g.as_const(n).is_some_and(|v| v.is_finite() && v != 0.0)
+}
+
 /// `a + sign b` (`sign` is 1 or -1).
 fn sum(a: Class, b: Class, sign: i64) -> Class {
     match (a, b) {
         (Free, Free) => Free,
+        (Fraction, Free | Multiple(_) | Fraction) | (Free | Multiple(_), Fraction) => Fraction,
         (Multiple(k), Free) => Multiple(k),
         (Free, Multiple(k)) => scaled(Multiple(k), sign),
         (Multiple(j), Multiple(k)) => sign.checked_mul(k).and_then(|k| j.checked_add(k)).map_or(Other, Multiple),
@@ -110,6 +124,7 @@ fn sum(a: Class, b: Class, sign: i64) -> Class {
 fn scaled(a: Class, m: i64) -> Class {
     match a {
         Multiple(k) => k.checked_mul(m).map_or(Other, Multiple),
+        Fraction if m != 0 => Fraction,
         other => other,
     }
 }
@@ -168,6 +183,18 @@ mod tests {
             let k = g.constant(0.01);
             let t = g.mul(k, s);
             g.add(q, t)
+        }));
+        // A half angle, cos(q / 2 + p), and 1.5 q.
+        assert!(whole_angle(|g, q, p| {
+            let two = g.constant(2.0);
+            let h = g.div(q, two);
+            let a = g.add(h, p);
+            g.func(Func::Cos, a)
+        }));
+        assert!(whole_angle(|g, q, _| {
+            let k = g.constant(1.5);
+            let a = g.mul(q, k);
+            g.func(Func::Sin, a)
         }));
         // cos(p q), and q in the argument of no sine at all.
         assert!(!whole_angle(|g, q, p| {
