@@ -197,3 +197,25 @@ fn a_state_just_past_a_change_point_is_at_its_own_input() {
         assert!((FourBar::COL.pc.x.jet(&k).value - x).abs() < tol::SOLVE, "{off}: {k:?} against {x}");
     }
 }
+
+/// The dwells of every column across the change point: the search behind them is the extremes'
+/// (`pc.x`'s at the crossing itself), which failed the whole analysis for `pc.x` at every sample
+/// count. The same dwells whatever the count and the scale (each column's extremes checked
+/// against the construction above).
+#[test]
+fn sampled_dwells_across_a_change_point() {
+    let cfg = SweepConfig::default().with_at_singular(AtSingular::Continue);
+    for name in COLUMNS {
+        let mut counts = Vec::new();
+        for scale in [1.0, 1e-3, 1e3] {
+            let m = four_bar(scale);
+            for samples in [5, 10, 73, 360] {
+                let run = Sampled::sweep_with(&m, 0.0, TO, samples, m.guess_flat(&[0.0]), cfg).unwrap();
+                let c = Column::<FourBar>::named(name).unwrap();
+                let found = run.dwells(c).unwrap_or_else(|e| panic!("{name}, scale {scale}, {samples} samples: {e}"));
+                counts.push(found.len());
+            }
+        }
+        assert!(counts.iter().all(|&n| n == counts[0]), "{name}: {counts:?}");
+    }
+}

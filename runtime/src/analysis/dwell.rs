@@ -24,7 +24,7 @@
 //! swing in the limit; it is not reported by this definition.
 
 use super::Jet;
-use super::extremes::{Extreme, LocalExtreme, bracketed_root, check_increasing, extremes};
+use super::extremes::{Corner, Extreme, LocalExtreme, bracketed_root, check_increasing, extremes_across};
 use crate::error::Error;
 
 /// A dwell of a progressive output; see the [module documentation](self) for the definition.
@@ -74,7 +74,19 @@ pub const NO_TRAVEL: f64 = 1e-9;
 /// assert!((d[0].duration() - 4.0).abs() < 1e-12 && (d[0].swing() - 4.0).abs() < 1e-12);
 /// # Ok::<(), kinloop_runtime::Error>(())
 /// ```
-pub fn dwells(samples: &[Jet], mut eval: impl FnMut(f64) -> Result<Jet, Error>) -> Result<Vec<Dwell>, Error> {
+pub fn dwells(samples: &[Jet], eval: impl FnMut(f64) -> Result<Jet, Error>) -> Result<Vec<Dwell>, Error> {
+    dwells_across(samples, &[], eval)
+}
+
+/// [`dwells`] with `corners` between samples, where the output cannot be evaluated nearby (the
+/// singular crossings of a sampled range): its extremes found as
+/// [`extremes_across`](super::extremes::extremes_across) finds them, an extreme at a crossing
+/// taken there.
+pub(crate) fn dwells_across(
+    samples: &[Jet],
+    corners: &[Corner],
+    mut eval: impl FnMut(f64) -> Result<Jet, Error>,
+) -> Result<Vec<Dwell>, Error> {
     check_increasing(samples)?;
     let (first, last) = (samples[0], samples[samples.len() - 1]);
     let travel = last.value - first.value;
@@ -93,7 +105,7 @@ pub fn dwells(samples: &[Jet], mut eval: impl FnMut(f64) -> Result<Jet, Error>) 
     }
     // A reversal starts at a maximum for an increasing output, at a minimum for a decreasing one.
     let starts_reversal = if travel > 0.0 { Extreme::Max } else { Extreme::Min };
-    let ext = extremes(samples, &mut eval)?;
+    let ext = extremes_across(samples, corners, &mut eval)?;
     let mut out = Vec::new();
     for i in 0..ext.len().saturating_sub(1) {
         let (e1, e2) = (ext[i], ext[i + 1]);

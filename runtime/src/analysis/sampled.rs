@@ -694,8 +694,8 @@ impl<K: Kernel> SampledOf<K> {
     pub fn dwells(&self, c: impl ColumnOf<K>) -> Result<Vec<Dwell>, Error> {
         let c = c.resolve(&self.k)?;
         let grid = self.search()?;
-        let (jets, _, eval) = self.search_jets(c, &grid);
-        dwell::dwells(&jets, eval)
+        let (jets, corners, eval) = self.search_jets(c, &grid);
+        dwell::dwells_across(&jets, &corners, eval)
     }
 
     /// The maximum of a derived quantity `f(state)` (e.g. the magnitude of an acceleration
