@@ -420,9 +420,13 @@ impl Parser {
                     "expression has more than {MAX_DEPTH} chained `.x`/`.y`; a component of a scalar is an error anyway"
                 )));
             }
-            input.parse::<Token![.]>()?;
+            let dot = input.parse::<Token![.]>()?;
             let name: Ident = match input.parse() {
                 Ok(id) => id,
+                // `1.0.0`: Rust's lexer reads a number `1.0`, a `.` and a number `0`.
+                Err(_) if matches!(base, Expr::Num { .. }) && input.peek(syn::Lit) => {
+                    return Err(syn::Error::new(dot.span, "a number has one decimal point: remove this `.`"));
+                }
                 Err(_) => return Err(input.error("expected `x` or `y` after `.` (a vector component)")),
             };
             let component = match name.to_string().as_str() {
