@@ -286,7 +286,10 @@ fn check_counts(lw: &mut Lowerer, g: &mut Globals, name: &Ident) {
     if g.inputs.len() > MAX_INPUTS {
         lw.errors.push(syn::Error::new(
             g.inputs[MAX_INPUTS].name.span(),
-            format!("kinloop supports at most {MAX_INPUTS} inputs per mechanism"),
+            format!(
+                "kinloop supports at most {MAX_INPUTS} inputs per mechanism: declare the others as `params` (a parameter can \
+                 be set before each solve) or split the mechanism"
+            ),
         ));
         g.inputs.truncate(MAX_INPUTS);
     }
