@@ -169,16 +169,16 @@ pub(crate) fn f_sigma<J: JacState, X: Store>(jac: &J, path: &Path<X>, n: usize) 
 
 /// The scaled residual of a full system (continuation, event location): each residual relative
 /// to the larger of its generated row magnitude `scale` (see `Magnitudes`) and
-/// `sum_j |J_ij| + |fs_i|`, where `fs` holds the row's derivative along the input path; the
-/// largest of them (NaN when one is NaN). The second keeps the test attainable where every term
-/// of a row vanishes at a branch point (e.g. `s^2 - x^2` at the origin), where the
-/// continuation's absolute step test stops before a residual relative to the vanishing
-/// magnitude is reached.
-fn residual_of<J: JacState>(jac: &J, fs: &[f64]) -> f64 {
+/// `sum_j |J_ij| unit_j + |fs_i| unit_sigma`, where `fs` holds the row's derivative along the
+/// input path and the units are the continuation's (`metric`); the largest of them (NaN when
+/// one is NaN). The second keeps the test attainable where every term of a row vanishes at a
+/// branch point (e.g. `s^2 - x^2` at the origin), where the continuation's absolute step test
+/// stops before a residual relative to the vanishing magnitude is reached.
+fn residual_of<J: JacState, Q: Store>(jac: &J, fs: &[f64], metric: &Metric<Q>) -> f64 {
     let n = fs.len();
     let (mut m, mut sum) = (0.0f64, -0.0f64);
     for r in 0..n {
-        let s = row_scale(jac, fs, r);
+        let s = row_scale(jac, fs, metric, r);
         let a = jac.f(r).abs();
         let x = if a == 0.0 { 0.0 } else { a / s };
         m = if x > m { x } else { m };
@@ -188,9 +188,15 @@ fn residual_of<J: JacState>(jac: &J, fs: &[f64]) -> f64 {
 }
 
 /// The magnitude [`residual_of`] measures row `r` against: the larger of its generated
-/// magnitude and `sum_j |J_rj| + |fs_r|` (the latter where the former is NaN).
-fn row_scale<J: JacState>(jac: &J, fs: &[f64], r: usize) -> f64 {
-    let derivatives = (0..fs.len()).map(|u| jac.j(r, u).abs()).sum::<f64>() + fs[r].abs();
+/// magnitude and `sum_j |J_rj| unit_j + |fs_r| unit_sigma` (the latter where the former is
+/// NaN). The derivatives are taken per unit of the continuation's coordinates, as in the
+/// bordered system, so that both are in the row's unit: by a length unknown a loop's derivative
+/// is about one whatever the mechanism's size, and unscaled it outweighed the magnitude of a
+/// small mechanism's row (2e-10 links: every residual judged against 1, points 1e-8 off the
+/// curve).
+fn row_scale<J: JacState, Q: Store>(jac: &J, fs: &[f64], metric: &Metric<Q>, r: usize) -> f64 {
+    let derivatives =
+        (0..fs.len()).map(|u| (jac.j(r, u) * metric.unit[u]).abs()).sum::<f64>() + (fs[r] * metric.sigma).abs();
     let scale = jac.scale(r);
     // NaN in `scale` leaves `derivatives`.
     if scale > derivatives { scale } else { derivatives }
@@ -201,9 +207,9 @@ fn row_scale<J: JacState>(jac: &J, fs: &[f64], r: usize) -> f64 {
 /// neighbouring inputs there ([`Path::rounding`]). Far out along a path (a hundred thousand
 /// turns: doubles 1e-10 apart) it exceeds the default tolerance, and no point of the
 /// continuation's plane meets that: its steps failed past a crossing.
-fn rounding_residual<J: JacState>(jac: &J, fs: &[f64], rounding: f64) -> f64 {
+fn rounding_residual<J: JacState, Q: Store>(jac: &J, fs: &[f64], metric: &Metric<Q>, rounding: f64) -> f64 {
     (0..fs.len()).fold(0.0f64, |m, r| {
-        let s = row_scale(jac, fs, r);
+        let s = row_scale(jac, fs, metric, r);
         if s > 0.0 { m.max(fs[r].abs() * rounding / s) } else { m }
     })
 }
@@ -361,15 +367,16 @@ pub(crate) fn arc_step<K: Kernel>(
     for _ in 0..cfg.max_iterations.max(8) {
         let (q, sigma) = unscale(&z, metric);
         let jac = m.jacobian(&path.at_sigma(sigma), &q);
-        // Each residual relative to its row's magnitude (see `system_residual`), to the
+        // Each residual relative to its row's magnitude (see `residual_of`), to the
         // tolerance or, where the inputs are coarser, to what their rounding leaves.
         let fs = f_sigma(&jac, path, n);
-        let res = residual_of(&jac, &fs);
+        let res = residual_of(&jac, &fs, metric);
         if !res.is_finite() {
             return None;
         }
-        let tol =
-            cfg.residual_tol.max((2.0 * rounding_residual(&jac, &fs, path.rounding(sigma))).min(ROUNDING_TOL_CAP));
+        let tol = cfg
+            .residual_tol
+            .max((2.0 * rounding_residual(&jac, &fs, metric, path.rounding(sigma))).min(ROUNDING_TOL_CAP));
         let (a, mut g) = bordered(&jac, path, metric, &p.tangent);
         g[n] = -p.tangent.dot(&(&z - &z_pred));
         // Both tests are dimensionless: `g[N]` is a distance in scaled coordinates.
@@ -389,7 +396,7 @@ pub(crate) fn arc_step<K: Kernel>(
             let (q, sigma) = unscale(&z, metric);
             let jac = m.jacobian(&path.at_sigma(sigma), &q);
             // The step is at the rounding floor: accept a residual up to its floor.
-            if residual_of(&jac, &f_sigma(&jac, path, n)) <= 1e3 * cfg.residual_tol.max(16.0 * f64::EPSILON) {
+            if residual_of(&jac, &f_sigma(&jac, path, n), metric) <= 1e3 * cfg.residual_tol.max(16.0 * f64::EPSILON) {
                 return on_step(&z)
                     .then(|| tangent(m, path, metric, &q, sigma, &p.tangent))
                     .flatten()
