@@ -5,7 +5,7 @@
 //!
 //! ```text
 //! /// doc comment                            (kept on the generated struct)
-//! #[kinloop(dense)]                          optional: solve all unknowns as one dense block
+//! #[kinloop(dense)]                          optional: solve all unknowns as one block
 //! #[kinloop(newton)]                         optional: Newton even where a closed form exists
 //! #[kinloop(sensitivities)]                  optional: also generate parameter sensitivities
 //! pub struct Name {
@@ -198,7 +198,8 @@
 //! in either assembly mode; the closed forms keep the guess's. A guess millions
 //! of turns out, where doubles are too far apart for an angle to meet the tolerance, is
 //! [`Error::TooManyTurns`](crate::Error::TooManyTurns) on both paths.
-//! `#[kinloop(dense)]` solves all unknowns as one block with dense LU instead, `#[kinloop(newton)]` uses
+//! `#[kinloop(dense)]` solves all unknowns as one block with dense LU instead (still in closed
+//! form where that one block is an Assur group: add `newton` for Newton), `#[kinloop(newton)]` uses
 //! Newton for every nonlinear block (the results are the same; both exist to compare and to
 //! debug).
 //!

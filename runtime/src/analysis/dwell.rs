@@ -13,7 +13,7 @@
 //! and its **quality** the swing: the smaller, the better the output stands still.
 //!
 //! All four points are located precisely: `x1`, `x2` as roots of the velocity analog (see
-//! [`extremes`]), `x_in`, `x_out` as roots of `v - level` by a
+//! [`extremes`](super::extremes::extremes)), `x_in`, `x_out` as roots of `v - level` by a
 //! safeguarded Newton iteration using the velocity analog. Between consecutive extremes the
 //! output is monotonic, so each crossing is unique.
 //!
