@@ -651,6 +651,32 @@ fn a_sweep_far_out_completes_or_says_the_input_is_coarse() {
     }
 }
 
+/// A slider-crank whose crank turns fully (`l > r + e`) swept near 1e17, its samples as far
+/// apart as the doubles there (16): the failed step is the input's coarseness, said before any
+/// event is looked for. The diagnosis's trace, whose steps the inputs' rounding moves, took the
+/// offset crank for a limit position there (exit 1 on the command line, where the same range
+/// without the offset said the input was too coarse).
+#[test]
+fn a_coarse_input_is_no_limit_position() {
+    let m = Slider { r: 1.0, l: 3.0, e: 0.4 };
+    let k = SliderCase { m, phi0: 0.0, side: -1.0, dir: 1.0, turns: 1, per_turn: 1 };
+    let n = SliderNewton { r: 1.0, l: 3.0, e: 0.4 };
+    for (from, to, samples) in [(1e17, 1e17 + 64.0, 5), (1e17, 1e17 + 100.0, 361), (4e16, 4e16 + 32.0, 9)] {
+        let (psi, x) = k.at(from).expect("the rod reaches the line");
+        let closed = m.sweep(from, to, samples, &SliderUnknowns { psi, x }).unwrap().run();
+        let newton = n.sweep(from, to, samples, &SliderNewtonUnknowns { psi, x }).unwrap().run();
+        for (path, run) in [("closed form", &closed.stop), ("Newton", &newton.stop)] {
+            assert!(matches!(run, SweepStop::Failed(Error::InputTooCoarse { .. })), "{from} ({path}): {run:?}");
+        }
+        assert!(
+            closed.events.is_empty() && newton.events.is_empty(),
+            "{from}: {:?} {:?}",
+            closed.events,
+            newton.events
+        );
+    }
+}
+
 /// The cap is on the range's turns, checked before the first sample: just below it the sweep
 /// starts (its first sample is the start's), just above it the first item is the error.
 #[test]

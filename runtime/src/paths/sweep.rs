@@ -854,6 +854,12 @@ where
     ) -> Result<KinOf<K>, Error> {
         let path = self.path.clone();
         let newton = self.cfg.newton;
+        // Where the input's doubles are too coarse for the step, the diagnosis's traces are as
+        // coarse: their steps' inputs round away, and a turning crank near 1e17 was taken for a
+        // limit position. The failure is the input's, said before any event is looked for.
+        if let Some(e) = self.coarse_error(path.at_tau(tau_new).as_ref(), Some(k.health().weakest_block)) {
+            return Err(e);
+        }
         // A corner of the curve, not a failure: the sweep goes on past it.
         if matches!(outcome, Outcome::Far)
             && let Some(n) = self.past_kink(k, tau_new)
