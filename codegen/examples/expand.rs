@@ -6,6 +6,7 @@
 //! ```
 
 use proc_macro2::{TokenStream, TokenTree};
+use std::io::Write;
 use std::process::ExitCode;
 
 /// The bodies of the `mechanism!` invocations in `tokens`, at any depth, in order.
@@ -47,12 +48,23 @@ fn main() -> ExitCode {
     if found.is_empty() {
         found.push(tokens);
     }
+    let mut out = std::io::stdout().lock();
     for body in found {
         let expanded = kinloop_codegen::expand(body);
-        match syn::parse2::<syn::File>(expanded.clone()) {
-            Ok(file) => println!("{}", prettyplease::unparse(&file)),
+        let text = match syn::parse2::<syn::File>(expanded.clone()) {
+            Ok(file) => prettyplease::unparse(&file),
             // Not expected (the expansion is always items); shown unformatted rather than lost.
-            Err(_) => println!("{expanded}"),
+            Err(_) => expanded.to_string(),
+        };
+        // Written, not printed: `println!` panics where the reader is gone (`| head`).
+        if let Err(e) = writeln!(out, "{text}").and_then(|()| out.flush()) {
+            return match e.kind() {
+                std::io::ErrorKind::BrokenPipe => ExitCode::SUCCESS,
+                _ => {
+                    eprintln!("cannot write the expansion: {e}");
+                    ExitCode::FAILURE
+                }
+            };
         }
     }
     ExitCode::SUCCESS
