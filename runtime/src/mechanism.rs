@@ -255,7 +255,43 @@ where
     let whole = extreme_scale::Whole {
         kinds: M::UNKNOWN_KINDS,
         jacobian: |q: &[f64; N]| m.jacobian_flat(x, q),
-        kinematics_at: |q: &[f64; N]| m.kinematics_at_flat(x, q, cfg),
+        at: |q: &[f64; N], report: SolveReport| {
+            let mut kin = m.kinematics_at_flat(x, q, cfg)?;
+            kin.report = report;
+            Ok(kin)
+        },
+    };
+    extreme_scale::rescue(&whole, x, guess, cfg, error)
+}
+
+/// [`rescue`] of a sensitivity solve: the answer to the failure `error` of `m`'s
+/// `sensitivities_flat` kernel at input `x` from `guess`. Where [`rescue`] solves the position
+/// again (the same test, the same Newton over the whole system), the kinematics and the
+/// sensitivities at that position ([`Sensitivities::sensitivities_at_flat`], `error` where that
+/// fails); otherwise `error`. The macro's `sensitivities_flat` ends with it
+/// (`kinloop::__gen::rescue_sensitivities`).
+#[doc(hidden)]
+#[cold]
+#[inline(never)]
+#[allow(clippy::type_complexity)]
+pub fn rescue_sensitivities<M, const N: usize, const NI: usize, const NO: usize, const NP: usize>(
+    m: &M,
+    x: &[f64; NI],
+    guess: &[f64; N],
+    cfg: &NewtonConfig,
+    error: Error,
+) -> Result<(Kin<N, NI, NO>, Sens<N, NI, NO, NP>), Error>
+where
+    M: Sensitivities<N, NI, NO, NP>,
+{
+    let whole = extreme_scale::Whole {
+        kinds: M::UNKNOWN_KINDS,
+        jacobian: |q: &[f64; N]| m.jacobian_flat(x, q),
+        at: |q: &[f64; N], report: SolveReport| {
+            let (mut kin, sens) = m.sensitivities_at_flat(x, q, cfg)?;
+            kin.report = report;
+            Ok((kin, sens))
+        },
     };
     extreme_scale::rescue(&whole, x, guess, cfg, error)
 }

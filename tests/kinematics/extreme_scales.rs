@@ -10,7 +10,7 @@
 // The loops walk parallel fixed-size arrays (states, dimensions) by one index.
 #![allow(clippy::needless_range_loop)]
 
-use kinloop::{Kin, Mechanism, NewtonConfig, Sensitivities, Sweep};
+use kinloop::{Kin, Mechanism, NewtonConfig, Sens, Sensitivities, Sweep};
 
 use kinloop_fixtures::RhombicDriveDense;
 
@@ -466,5 +466,93 @@ fn a_traced_polar_pin_stays_on_its_curve_at_every_scale() {
         eprintln!("traced polar pin at {k:e}: angles {angle:.1e}, lengths {length:.1e}, inputs {input:.1e}");
         assert!(angle <= TRACE_TOL && length <= TRACE_TOL, "k={k:e}: angles {angle:e}, lengths {length:e} off");
         assert!(input <= TRACE_TOL, "k={k:e}: inputs {input:e} from scale 1's");
+    }
+}
+
+kinloop::mechanism! {
+    /// The four-bar with a coupler point and its parameter sensitivities (the benchmarks'
+    /// `FourBarSens`).
+    #[kinloop(sensitivities)]
+    pub struct FourBarSens {
+        params a, b, c, d;
+        input phi;
+        unknowns beta = 0.5, gamma = 1.5;
+        loop abcd: a @ phi + b @ beta == (d, 0) + c @ gamma;
+        point pc = a @ phi + b @ beta;
+    }
+}
+
+/// The four-bar with sensitivities at size `k` (link lengths 1, 3.5, 3, 4 times `k`).
+fn four_bar_sens(k: f64) -> FourBarSens {
+    FourBarSens { a: k, b: 3.5 * k, c: 3.0 * k, d: 4.0 * k }
+}
+
+/// Every sensitivity of the four-bar (2 angles, 1 input, 2 lengths out, 4 lengths as
+/// parameters), each times the power of `k` that makes it the one at scale 1: an angle's
+/// sensitivity to a length, and its analogs' (the input is an angle), scale as `1 / k`; a
+/// length's to a length as 1.
+fn unit_sensitivities(s: &Sens<2, 1, 2, 4>, k: f64) -> Vec<f64> {
+    let angles = s.q.iter().chain(s.dq.iter().map(|d| &d[0])).chain(s.d2q.iter().map(|d| &d[0][0]));
+    let lengths = s.out.iter().chain(s.dout.iter().map(|d| &d[0])).chain(s.d2out.iter().map(|d| &d[0][0]));
+    angles.flatten().map(|v| v * k).chain(lengths.flatten().copied()).collect()
+}
+
+/// The scales at which the closed form's squared lengths leave `f64` (beyond `1e±155`): the
+/// four-bar's compiled sensitivity solve failed at each, with a singular position at 1e-200,
+/// no assembly at 1e-160 (a residual of 7.4e-320) and an equation not finite at 1e200, where
+/// its `kinematics_flat`, `sensitivities_at_flat` and the run-time model all solved.
+const SENSITIVITY_SCALES: [f64; 5] = [1e-300, 1e-200, 1e-160, 1e200, 1e300];
+
+/// The compiled `sensitivities_flat` at sizes beyond the closed forms' is rescued as
+/// `kinematics_flat` is: the sensitivities at the position Newton over the whole system finds,
+/// equal to `sensitivities_at_flat` there and to the scale-1 ones scaled. Tolerance: the
+/// rescued position is the scale-1 one to `SCALE_TOL` (rad), and a sensitivity is a smooth
+/// function of the position whose derivatives are of the order of the sensitivities themselves
+/// away from a singular position (a few units here): `10 SCALE_TOL`, relative to the value
+/// where it exceeds 1.
+#[test]
+fn four_bar_sensitivities_solve_at_every_scale() {
+    let cfg = NewtonConfig::default();
+    let one = four_bar_sens(1.0);
+    let mut worst = 0.0f64;
+    for k in SENSITIVITY_SCALES {
+        let m = four_bar_sens(k);
+        for i in 0..12 {
+            let x = [0.3 + i as f64 * 0.5];
+            let (base_kin, base) = one.sensitivities_flat(&x, &one.guess_flat(&x), &cfg).unwrap();
+            let (kin, sens) = m
+                .sensitivities_flat(&x, &m.guess_flat(&x), &cfg)
+                .unwrap_or_else(|e| panic!("sensitivities at size {k:e}, phi {}: {e}", x[0]));
+            worst = worst.max(difference(&kin, &base_kin, [false, false], k));
+            for (g, b) in unit_sensitivities(&sens, k).into_iter().zip(unit_sensitivities(&base, 1.0)) {
+                let d = (g - b).abs() / b.abs().max(1.0);
+                worst = worst.max(if d.is_nan() { f64::INFINITY } else { d });
+            }
+            // The same as at the position it solved, and its kinematics `kinematics_flat`'s.
+            let (kin_at, at) = m.sensitivities_at_flat(&x, &kin.q, &cfg).unwrap();
+            let plain = m.kinematics_flat(&x, &m.guess_flat(&x), &cfg).unwrap();
+            assert_eq!((kin.q, kin.dq, kin.out), (plain.q, plain.dq, plain.out), "size {k:e}, phi {}", x[0]);
+            assert_eq!((kin.d2q, kin.d2out), (kin_at.d2q, kin_at.d2out), "size {k:e}, phi {}", x[0]);
+            assert_eq!(sens, at, "size {k:e}, phi {}", x[0]);
+        }
+    }
+    eprintln!("four-bar sensitivities over scales: {worst:.1e}");
+    assert!(worst <= 10.0 * SCALE_TOL, "{worst:e}");
+}
+
+/// A four-bar that cannot be assembled (its frame longer than the other three links together)
+/// fails at every scale: the rescue's Newton fails too, and `sensitivities_flat` reports the
+/// kernel's own error, as `kinematics_flat` does (no assembly at scale 1; beyond the closed
+/// forms' sizes whatever their overflow or underflow made of it).
+#[test]
+fn a_four_bar_that_cannot_be_assembled_keeps_its_error_in_a_sensitivity_solve() {
+    let cfg = NewtonConfig::default();
+    for k in [1.0].into_iter().chain(SENSITIVITY_SCALES) {
+        let m = FourBarSens { a: k, b: 1.5 * k, c: k, d: 4.0 * k };
+        let x = [1.7];
+        let sens = m.sensitivities_flat(&x, &m.guess_flat(&x), &cfg).unwrap_err();
+        let kin = m.kinematics_flat(&x, &m.guess_flat(&x), &cfg).unwrap_err();
+        assert_eq!(sens.to_string(), kin.to_string(), "size {k:e}");
+        assert!(k != 1.0 || matches!(sens, kinloop::Error::NoAssembly { .. }), "{sens}");
     }
 }

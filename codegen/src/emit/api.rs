@@ -164,20 +164,12 @@ fn mechanism_impl(model: &Model, plan: &Plan, t: &Types) -> TokenStream {
             }
         }
     } else {
-        let fused = solver_body(plan, &names, Mode::Fused, false);
         // The kernel's failure at an extreme size goes to the rescue (`extreme_scale`), as a
         // small mechanism's does through `kinematics_step_rescued`.
+        let fused = rescued(solver_body(plan, &names, Mode::Fused, false), &kin, quote!(#rt::rescue));
         quote! {
             #[inline]
-            fn kinematics_flat(&self, #x, #g, #cfg) -> #kin {
-                // A closure, so that the kernel's early returns land here.
-                #[allow(clippy::redundant_closure_call)]
-                let __solved = (|| -> #kin { #fused })();
-                match __solved {
-                    ::core::result::Result::Err(__e) => #rt::rescue(self, __x, __guess, __cfg, __e),
-                    __ok => __ok,
-                }
-            }
+            fn kinematics_flat(&self, #x, #g, #cfg) -> #kin { #fused }
         }
     };
     quote! {
@@ -196,6 +188,24 @@ fn mechanism_impl(model: &Model, plan: &Plan, t: &Types) -> TokenStream {
             }
             #fused_fns
             fn kinematics_at_flat(&self, #x, #q, #cfg) -> #kin { #at }
+        }
+    }
+}
+
+/// The checked kernel `body` (of a function of `__x`, `__guess` and `__cfg` returning `ret`, a
+/// `Result`) with its failure handed to `rescue` (`kinloop::__gen::rescue` or
+/// `rescue_sensitivities`: cold, out of line), which solves the position again where the
+/// mechanism's size is beyond the closed forms' (`extreme_scale`) and otherwise returns the
+/// kernel's error. What `kinematics_flat` of a mechanism too large for a sweep to inline and
+/// every `sensitivities_flat` are.
+pub(super) fn rescued(body: TokenStream, ret: &TokenStream, rescue: TokenStream) -> TokenStream {
+    quote! {
+        // A closure, so that the kernel's early returns land here.
+        #[allow(clippy::redundant_closure_call)]
+        let __solved = (|| -> #ret { #body })();
+        match __solved {
+            ::core::result::Result::Err(__e) => #rescue(self, __x, __guess, __cfg, __e),
+            __ok => __ok,
         }
     }
 }

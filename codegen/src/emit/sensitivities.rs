@@ -7,6 +7,7 @@
 //! Without the attribute, [`absent`] declares the two methods with a bound no type satisfies,
 //! so calling them is a compile error that says to add the attribute.
 
+use super::api::rescued;
 use super::dims::Dims;
 use super::kernel::{Mode, solver_body};
 use super::lints::kernel_lints;
@@ -86,7 +87,9 @@ fn kernels(model: &Model, plan: &Plan, t: &Types) -> TokenStream {
     let (rt, name, names) = (runtime(), &t.name, Names::new(model, plan));
     let Types { inputs, unknowns, state, sens, .. } = t;
     let Dims { n, ni, no, np } = Dims::of(plan);
-    let fused = solver_body(plan, &names, Mode::Fused, true);
+    // A failure at an extreme size is rescued as `kinematics_flat`'s is (see `api::rescued`).
+    let flat = quote!(::core::result::Result<(#rt::Kin<#n, #ni, #no>, #rt::Sens<#n, #ni, #no, #np>), #rt::Error>);
+    let fused = rescued(solver_body(plan, &names, Mode::Fused, true), &flat, quote!(#rt::rescue_sensitivities));
     let at = solver_body(plan, &names, Mode::At, true);
     let lints = kernel_lints();
     let pnames: Vec<_> = model.params.iter().map(|p| &p.name).collect();
@@ -94,7 +97,6 @@ fn kernels(model: &Model, plan: &Plan, t: &Types) -> TokenStream {
     let input = quote!(input: impl ::core::convert::Into<#inputs>);
     let ret = quote!(::core::result::Result<(#state, #sens), #rt::Error>);
     let (x, cfg) = (quote!(__x: &[f64; #ni]), quote!(__cfg: &#rt::NewtonConfig));
-    let flat = quote!(::core::result::Result<(#rt::Kin<#n, #ni, #no>, #rt::Sens<#n, #ni, #no, #np>), #rt::Error>);
     quote! {
         impl #name {
             /// Solves the kinematics from `guess` and the exact sensitivities of positions,

@@ -14,7 +14,8 @@
 //! [`Mechanism::jacobian_flat`](crate::Mechanism::jacobian_flat), from the same guess), and the
 //! analogs and outputs at that position by
 //! [`Mechanism::kinematics_at_flat`](crate::Mechanism::kinematics_at_flat), whose factorisations
-//! are scaled. Inside the range the kernel's own error stands: nothing changes for a mechanism
+//! are scaled (and for a sensitivity solve, the sensitivities too, by
+//! [`Sensitivities::sensitivities_at_flat`](crate::Sensitivities::sensitivities_at_flat)). Inside the range the kernel's own error stands: nothing changes for a mechanism
 //! of ordinary size, and the hot path pays nothing (this runs only after a failure).
 //!
 //! The mechanism is seen through those two functions only ([`Whole`]): the entry point that
@@ -22,7 +23,7 @@
 //! the mechanism's traits (which call it).
 
 use crate::error::Error;
-use crate::kin::{Jac, Kin};
+use crate::kin::Jac;
 use crate::kinds::QuantityKind;
 use crate::solvers::newton::{BlockEval, Magnitudes, NewtonConfig, SolveReport, newton};
 
@@ -47,27 +48,30 @@ pub fn outside_closed_form_sizes(scale: &[f64]) -> bool {
 /// What the rescue needs of a mechanism: the kinds of its unknowns (which are angles, whose
 /// equations repeat every turn), and at input `x`, the whole system's residuals and Jacobian at
 /// a position (`jacobian`: [`Mechanism::jacobian_flat`](crate::Mechanism::jacobian_flat)) and
-/// the analogs and outputs at a solved one (`kinematics_at`:
-/// [`Mechanism::kinematics_at_flat`](crate::Mechanism::kinematics_at_flat)).
+/// the result at a solved one with the report of its solve (`at`: the analogs and outputs of
+/// [`Mechanism::kinematics_at_flat`](crate::Mechanism::kinematics_at_flat), or those and the
+/// sensitivities of
+/// [`Sensitivities::sensitivities_at_flat`](crate::Sensitivities::sensitivities_at_flat)).
 pub(crate) struct Whole<J, A, const N: usize> {
     pub(crate) kinds: [QuantityKind; N],
     pub(crate) jacobian: J,
-    pub(crate) kinematics_at: A,
+    pub(crate) at: A,
 }
 
 /// The answer to a checked kernel's failure `error` at input `x` from `guess`, for the mechanism
-/// `m` describes: for a mechanism outside [`CLOSED_FORM_SIZES`], the kinematics solved by Newton over
-/// the whole system (and `error` where that fails too); otherwise `error`.
-pub(crate) fn rescue<J, A, const N: usize, const NI: usize, const NO: usize>(
+/// `m` describes: for a mechanism outside [`CLOSED_FORM_SIZES`], the position solved by Newton
+/// over the whole system and `m`'s result there (and `error` where either fails too); otherwise
+/// `error`.
+pub(crate) fn rescue<J, A, T, const N: usize, const NI: usize>(
     m: &Whole<J, A, N>,
     x: &[f64; NI],
     guess: &[f64; N],
     cfg: &NewtonConfig,
     error: Error,
-) -> Result<Kin<N, NI, NO>, Error>
+) -> Result<T, Error>
 where
     J: Fn(&[f64; N]) -> Jac<N, NI>,
-    A: Fn(&[f64; N]) -> Result<Kin<N, NI, NO>, Error>,
+    A: Fn(&[f64; N], SolveReport) -> Result<T, Error>,
 {
     if !guess.iter().chain(x.iter()).all(|v| v.is_finite()) {
         return Err(error);
@@ -95,19 +99,19 @@ where
     outside_closed_form_sizes(&jac.scale).then_some(jac)
 }
 
-/// [`rescue`]'s Newton over the whole system from `guess`, whose Jacobian is `jac`, and the
-/// analogs and outputs at the position it reaches.
+/// [`rescue`]'s Newton over the whole system from `guess`, whose Jacobian is `jac`, and `m`'s
+/// result at the position it reaches.
 #[inline(never)]
-fn solve_whole<J, A, const N: usize, const NI: usize, const NO: usize>(
+fn solve_whole<J, A, T, const N: usize, const NI: usize>(
     m: &Whole<J, A, N>,
     guess: &[f64; N],
     cfg: &NewtonConfig,
     error: Error,
     jac: &Jac<N, NI>,
-) -> Result<Kin<N, NI, NO>, Error>
+) -> Result<T, Error>
 where
     J: Fn(&[f64; N]) -> Jac<N, NI>,
-    A: Fn(&[f64; N]) -> Result<Kin<N, NI, NO>, Error>,
+    A: Fn(&[f64; N], SolveReport) -> Result<T, Error>,
 {
     let turns = m.kinds.map(|k| k == QuantityKind::Angle);
     let at = |q: &[f64; N], ev: &mut BlockEval<N, 0>| {
@@ -116,9 +120,7 @@ where
         ev.j = jq.j;
     };
     let Some((q, report)) = whole_position(guess, jac.scale, jac.unit, turns, cfg, at) else { return Err(error) };
-    let mut kin = (m.kinematics_at)(&q).map_err(|_| error)?;
-    kin.report = report;
-    Ok(kin)
+    (m.at)(&q, report).map_err(|_| error)
 }
 
 /// The position of a mechanism of `N` unknowns solved by Newton over the whole system from
