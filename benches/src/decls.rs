@@ -28,18 +28,7 @@ pub use kinloop_fixtures::class_four::{
     CLASS_FOUR_CORE_TEXT as CLASS_FOUR, ClassFourCore as ClassFour, ClassFourCoreUnknowns as ClassFourUnknowns,
 };
 
-kinloop::mechanism! {
-    /// The four-bar of the fixtures (`kinloop_fixtures::FourBar`) with its parameter
-    /// sensitivities: the cost of a sensitivity solve against a kinematic step.
-    #[kinloop(sensitivities)]
-    pub struct FourBarSens {
-        params a, b, c, d;
-        input phi;
-        unknowns beta = 0.5, gamma = 1.5;
-        loop abcd: a @ phi + b @ beta == (d, 0) + c @ gamma;
-        point pc = a @ phi + b @ beta;
-    }
-}
+pub use kinloop_fixtures::FourBarSens;
 
 /// The four-bar `m` declared with sensitivities.
 pub fn four_sens(m: &kinloop_fixtures::FourBar) -> FourBarSens {

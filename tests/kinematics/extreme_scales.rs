@@ -12,7 +12,7 @@
 
 use kinloop::{Kin, Mechanism, NewtonConfig, Sens, Sensitivities, Sweep};
 
-use kinloop_fixtures::RhombicDriveDense;
+use kinloop_fixtures::{FourBarSens, RhombicDriveDense};
 
 use crate::support::{gear_lever_explicit, tol, wrap};
 
@@ -466,19 +466,6 @@ fn a_traced_polar_pin_stays_on_its_curve_at_every_scale() {
         eprintln!("traced polar pin at {k:e}: angles {angle:.1e}, lengths {length:.1e}, inputs {input:.1e}");
         assert!(angle <= TRACE_TOL && length <= TRACE_TOL, "k={k:e}: angles {angle:e}, lengths {length:e} off");
         assert!(input <= TRACE_TOL, "k={k:e}: inputs {input:e} from scale 1's");
-    }
-}
-
-kinloop::mechanism! {
-    /// The four-bar with a coupler point and its parameter sensitivities (the benchmarks'
-    /// `FourBarSens`).
-    #[kinloop(sensitivities)]
-    pub struct FourBarSens {
-        params a, b, c, d;
-        input phi;
-        unknowns beta = 0.5, gamma = 1.5;
-        loop abcd: a @ phi + b @ beta == (d, 0) + c @ gamma;
-        point pc = a @ phi + b @ beta;
     }
 }
 
