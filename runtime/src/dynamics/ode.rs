@@ -166,9 +166,10 @@ pub fn dopri5<const D: usize>(
     let mut k = [[0.0; D]; 7];
     k[0] = f(t, &y)?;
     bad_start("derivative at the start", &k[0])?;
-    // A derivative whose ratio to its tolerance is beyond f64 has no step to start with (the
+    // The derivative's size in the tolerances: beyond f64 it leaves no step to start with (the
     // first step would be `0.01 / inf = 0`, a "singular motion" at the start).
-    if norm(&k[0], &y, &y, cfg).is_infinite() {
+    let d1 = norm(&k[0], &y, &y, cfg);
+    if d1.is_infinite() {
         let value = k[0].iter().fold(0.0f64, |m, v| m.max(v.abs()));
         return Err(DynamicsError::BadValue {
             what: "derivative at the start",
@@ -176,7 +177,7 @@ pub fn dopri5<const D: usize>(
             why: "is beyond the range of f64 against the tolerances (express the model in other units)",
         });
     }
-    let mut h = initial_step(&y, &k[0], t_end - t0, cfg);
+    let mut h = initial_step(&y, d1, t_end - t0, cfg);
     for _ in 0..cfg.max_steps {
         let last = t + h >= t_end;
         if last {
@@ -286,14 +287,14 @@ fn check_config(t0: f64, t_end: f64, cfg: &OdeConfig) -> Result<(), DynamicsErro
 /// A first step from the size of the state and of its derivative (Hairer's heuristic without
 /// the second trial evaluation): the time in which the state changes by a hundredth of its
 /// size, or, from a state at rest (zero, in the tolerances' units), by a hundredth of the
-/// absolute tolerance. A millionth of the span where the state does not change.
+/// absolute tolerance. A millionth of the span where the state does not change. `d1` is the
+/// derivative's [`norm`] at `y`.
 ///
 /// From rest the step is not a millionth of the span: over a long span that is a step of
 /// thousands of time units, whose stages ask for the motion far beyond where it can be
 /// evaluated (a crank turned a million times in one stage, its accelerations beyond f64).
-fn initial_step<const D: usize>(y: &[f64; D], f0: &[f64; D], span: f64, cfg: &OdeConfig) -> f64 {
+fn initial_step<const D: usize>(y: &[f64; D], d1: f64, span: f64, cfg: &OdeConfig) -> f64 {
     let d0 = norm(y, y, y, cfg);
-    let d1 = norm(f0, y, y, cfg);
     let h = if d1 < 1e-5 {
         1e-6 * span
     } else if d0 < 1e-5 {
