@@ -6,7 +6,7 @@
 use crate::cam::{self, FollowerArgs, Found};
 use crate::cam_drawn;
 use crate::exit::usage;
-use crate::solve::{degrees, in_units, model_inputs, parse_inputs};
+use crate::solve::{degrees, in_units, model_inputs, named, parse_inputs};
 use crate::sweep::range_too_long;
 use crate::{Failed, exit, samples};
 use kinloop_model::{Count, Model};
@@ -128,7 +128,10 @@ pub fn run(model: &mut Model, req: &Request) -> Result<(), Failed> {
         DrawError::Sweep(e @ Error::RangeTooLong { .. }) => {
             range_too_long(&name, &e, req.from, req.to, req.deg).unwrap_or_else(|| failed(&e))
         }
-        DrawError::Sweep(e) => failed(&DrawError::Sweep(in_units(e, &kinds, req.deg))),
+        DrawError::Sweep(e) => {
+            eprintln!("error: the sweep failed: {}", named(&name, &in_units(e, &kinds, req.deg)));
+            Failed(exit::SOLVE_FAILED)
+        }
         e => failed(&e),
     })?;
     for (k, e) in motion.events.iter().enumerate() {

@@ -8,7 +8,7 @@
 //! in the unit of the speed (`time unit`): with kg, m and s, torques in N m and forces in N.
 
 use crate::exit::usage;
-use crate::solve::{in_units, point};
+use crate::solve::{in_units, named, point};
 use crate::{Failed, exit, samples};
 use kinloop_model::Model;
 use kinloop_runtime::dynamics::{Cycle, DynamicsError, Flywheel, MIN_DELTA, SpeedLaw};
@@ -135,7 +135,7 @@ fn cycle_and_flywheel(
             Some(DynamicsError::BadValue { what: "samples", .. }) => return usage(format!("{name}: {e}")),
             _ => {}
         }
-        eprintln!("error: {name}: {}", in_units(e, model.input_kinds(), req.deg));
+        eprintln!("error: {}", named(name, &in_units(e, model.input_kinds(), req.deg)));
         Failed(exit::SOLVE_FAILED)
     })?;
     let flywheel = cycle.flywheel(req.delta).map_err(|e| {

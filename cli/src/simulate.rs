@@ -201,7 +201,7 @@ fn failure(name: &str, e: Error, deg: bool) -> Failed {
         }
         _ => {}
     }
-    eprintln!("error: {name}: {e}");
+    eprintln!("error: {}", crate::solve::named(name, &e));
     Failed(exit::SOLVE_FAILED)
 }
 

@@ -16,7 +16,7 @@ pub fn run(model: &mut Model, at: &[String], deg: bool) -> Result<(), Failed> {
         let row = match model.solve(&x) {
             Ok(state) => state.row(),
             Err(e) => {
-                eprintln!("error: {name} at {spec}: {}", explain(model, &x, e, &kinds[..ni], deg));
+                eprintln!("error: {}", explain(model, &x, e, &kinds[..ni], deg, &format!("{name} at {spec}")));
                 return Err(Failed(exit::SOLVE_FAILED));
             }
         };
@@ -35,13 +35,23 @@ pub fn run(model: &mut Model, at: &[String], deg: bool) -> Result<(), Failed> {
 }
 
 /// Why the solve of `model` at `x` from the declared guess failed with `e`, as the runtime says
-/// it ([`Model::explain`]), the inputs of kinds `kinds` in degrees where `deg` is set.
-fn explain(model: &mut Model, x: &[f64], e: StepError, kinds: &[QuantityKind], deg: bool) -> String {
+/// it ([`Model::explain`]), the inputs of kinds `kinds` in degrees where `deg` is set; `whence`
+/// (the mechanism and the inputs as given) leads it where the explanation does not name them.
+fn explain(model: &mut Model, x: &[f64], e: StepError, kinds: &[QuantityKind], deg: bool, whence: &str) -> String {
     let mut guess = vec![0.0; model.unknowns().len()];
     if model.guess(x, &mut guess).is_err() {
-        return e.to_string();
+        return format!("{whence}: {e}");
     }
-    in_units(model.explain(x, &guess, &NewtonConfig::default(), e), kinds, deg).to_string()
+    named(whence, &in_units(model.explain(x, &guess, &NewtonConfig::default(), e), kinds, deg))
+}
+
+/// The error `e` of the model `name` as a line says it: the error alone where its location
+/// names the mechanism and the inputs (``in `FourBar` at phi = 30``), `name: e` otherwise.
+pub fn named(name: &str, e: &Error) -> String {
+    match e.location() {
+        Some(_) => e.to_string(),
+        None => format!("{name}: {e}"),
+    }
 }
 
 /// The base quantities with their units: `deg` for angles where angles are written in
@@ -101,7 +111,7 @@ pub fn solve_failed(name: &str, e: Error, kinds: &[QuantityKind], deg: bool) -> 
     let code = exit_code(&e);
     // The sweep's advice names the library's setting; the command line's option sets it.
     let lower_pivot = matches!(&e, Error::Branch { message, .. } if message.contains("lower `singular_pivot`"));
-    eprintln!("error: {name}: {}", in_units(e, kinds, deg));
+    eprintln!("error: {}", named(name, &in_units(e, kinds, deg)));
     if lower_pivot {
         eprintln!("note: `--singular-pivot RATIO` lowers it on the command line");
     }
