@@ -20,6 +20,9 @@ pub struct Lowerer {
     pub(super) in_equation: bool,
     /// Whether each unknown is named in a `loop` or `eq` (where its terms may still cancel).
     pub(super) written_in_equations: Vec<bool>,
+    /// The unknowns named in the `loop` or `eq` being lowered, by index (where its terms may
+    /// still cancel): an equation left with no unknown says which it named.
+    pub(super) written_here: std::collections::BTreeSet<usize>,
 }
 
 /// Largest integer exponent turned into `powi`; larger ones stay `powf`. The bound keeps the
@@ -51,6 +54,7 @@ impl Lowerer {
             used_inputs: Vec::new(),
             in_equation: false,
             written_in_equations: Vec::new(),
+            written_here: Default::default(),
         }
     }
 

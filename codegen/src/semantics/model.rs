@@ -49,6 +49,9 @@ pub struct Equation {
     pub range: SpanRange,
     /// Node of the residual `lhs - rhs`: the equation holds where it is zero.
     pub residual: NodeId,
+    /// The unknowns its source names, by index: the residual may depend on fewer (their terms
+    /// cancel, as in `x - x` or `x * 0`).
+    pub written: Vec<usize>,
 }
 
 /// A `point` output: a named point of the mechanism, two output columns (`name.x`, `name.y`).
@@ -345,6 +348,7 @@ fn lower_item(lw: &mut Lowerer, g: &Globals, item: &Item, out: &mut Lowered) {
         ItemKind::Output { name, value } => lower_output(lw, item, name, value, out),
         ItemKind::Loop { name, lhs, rhs, eq } | ItemKind::Eq { name, lhs, rhs, eq } => {
             lw.in_equation = true;
+            lw.written_here.clear();
             lower_equation_item(lw, item, name, (lhs, rhs, *eq), out);
             lw.in_equation = false;
         }
@@ -403,8 +407,10 @@ fn lower_equation_item(lw: &mut Lowerer, item: &Item, name: &Ident, eq: (&Expr, 
     }
     let range = item.range();
     let (Some(l), Some(r)) = lw.lower_equation(lhs, rhs) else { return };
+    let written: Vec<usize> = lw.written_here.iter().copied().collect();
     let mut push = |eq_name: String, residual: NodeId| {
-        out.equations.push(Equation { name: eq_name, item: name.clone(), is_loop, range, residual })
+        let written = written.clone();
+        out.equations.push(Equation { name: eq_name, item: name.clone(), is_loop, range, residual, written })
     };
     match (is_loop, l, r) {
         (true, Val::V(lx, ly), Val::V(rx, ry)) => {

@@ -106,6 +106,7 @@ impl Lowerer {
                     && let Some(w) = self.written_in_equations.get_mut(*i as usize)
                 {
                     *w = true;
+                    self.written_here.insert(*i as usize);
                 }
                 Some(Val::S(g.leaf(Leaf::Unknown(*i))))
             }

@@ -66,18 +66,33 @@ fn equations_without_unknowns(model: &Model, inc: &[BTreeSet<usize>], errors: &m
             continue;
         }
         let both = eq.is_loop && (0..n_eq).filter(|&k| model.equations[k].item == eq.item).all(|k| empty.contains(&k));
-        let what = if !eq.is_loop {
-            format!("`eq {}` contains no unknown", eq.item)
-        } else if both {
-            format!("`loop {}` contains no unknown", eq.item)
+        let item = if eq.is_loop { format!("`loop {}`", eq.item) } else { format!("`eq {}`", eq.item) };
+        // The unknowns its source names, whose terms cancel: "only parameters and inputs" would
+        // contradict what the user reads in it. (A loop's projection may rightly lack the
+        // unknowns its other projection has: said so only where both are empty.)
+        let named: Vec<String> =
+            eq.written.iter().filter_map(|&u| model.unknowns.get(u)).map(|u| format!("`{}`", u.name)).collect();
+        let message = if !named.is_empty() && (!eq.is_loop || both) {
+            let them = if named.len() == 1 { "its terms cancel" } else { "their terms cancel" };
+            format!(
+                "{item} names {} but {them} (as in `x - x` or `x * 0`), so it contains no unknown and cannot \
+                 be solved for anything\n\
+                 help: write it so that an unknown remains in it, or remove it",
+                named.join(", ")
+            )
         } else {
-            let axis = if eq.name.ends_with(".x") { "x" } else { "y" };
-            format!("the {axis} projection of `loop {}` (`{}`) contains no unknown", eq.item, eq.name)
+            let what = if !eq.is_loop || both {
+                format!("{item} contains no unknown")
+            } else {
+                let axis = if eq.name.ends_with(".x") { "x" } else { "y" };
+                format!("the {axis} projection of `loop {}` (`{}`) contains no unknown", eq.item, eq.name)
+            };
+            format!(
+                "{what}: it only relates parameters and inputs, so it cannot be solved for anything\n\
+                 help: remove it, or declare the quantity it should determine with `unknowns`"
+            )
         };
-        errors.push(eq.range.error(format!(
-            "{what}: it only relates parameters and inputs, so it cannot be solved for anything\n\
-             help: remove it, or declare the quantity it should determine with `unknowns`"
-        )));
+        errors.push(eq.range.error(message));
     }
     empty
 }
