@@ -15,6 +15,7 @@ mod classical_synthesis;
 mod coarse_samples;
 mod flat_face;
 mod limits_crossing;
+mod limits_extreme_scales;
 mod metrics_mechanisms;
 mod objectives;
 mod sampled_paths;
