@@ -1,6 +1,7 @@
 //! kinloop against independent 50-digit references (tests/reference/generate.py, mpmath): a
 //! four-bar with a coupler point, an offset slider-crank, a two-loop Watt six-bar, a class IV
-//! group and a rhombic drive, over a whole crank turn, in point solves (from a guess 0.05 rad off) and in sweeps.
+//! group, a rhombic drive and a two-input five-bar, over a whole crank turn, in point solves
+//! (from a guess 0.05 rad off) and in sweeps.
 //!
 //! Tolerances: positions within 1e-14 (angles absolute, lengths relative to the largest link:
 //! a few ulps of the loop's magnitude), analogs within 1e-12 relative to the largest magnitude
@@ -70,8 +71,9 @@ kinloop::mechanism! {
     }
 }
 
-/// One reference row: `phi`, then `q`, `dq`, `d2q` (N each), then points, their first and
-/// second analogs (NO each).
+/// One reference row: the `NI` inputs, then `q` (N), `dq` (N times NI: by each input), `d2q` (N
+/// times the input pairs `(i, j)`, `i <= j`), then the points' columns, their first and second
+/// analogs (NO each, laid out alike).
 struct Reference {
     rows: Vec<Vec<f64>>,
 }
@@ -93,16 +95,54 @@ impl Reference {
     }
 }
 
+/// The columns of a row with `NI` inputs, `N` unknowns and `NO` point columns.
+#[derive(Clone, Copy)]
+struct Layout {
+    ni: usize,
+    n: usize,
+    no: usize,
+}
+
+impl Layout {
+    /// Input pairs `(i, j)` with `i <= j`.
+    fn pairs(&self) -> usize {
+        self.ni * (self.ni + 1) / 2
+    }
+
+    /// Index of the pair `(i, j)`, in either order, among `(0, 0), (0, 1), .., (1, 1), ..`.
+    fn pair(&self, i: usize, j: usize) -> usize {
+        let (i, j) = (i.min(j), i.max(j));
+        i * self.ni - i * (i.saturating_sub(1)) / 2 + (j - i)
+    }
+
+    /// Columns of the quantity `k` (an unknown below `n`, then the point columns): its position,
+    /// its first analog by input `i`, its second by inputs `i`, `j`.
+    fn position(&self, k: usize) -> usize {
+        if k < self.n { self.ni + k } else { self.ni + self.n * (1 + self.ni + self.pairs()) + (k - self.n) }
+    }
+
+    fn first(&self, k: usize, i: usize) -> usize {
+        let (count, at) = if k < self.n { (self.n, k) } else { (self.no, k - self.n) };
+        self.position(k) - at + count + at * self.ni + i
+    }
+
+    fn second(&self, k: usize, i: usize, j: usize) -> usize {
+        let (count, at) = if k < self.n { (self.n, k) } else { (self.no, k - self.n) };
+        self.position(k) - at + count * (1 + self.ni) + at * self.pairs() + self.pair(i, j)
+    }
+}
+
 /// Which unknowns are lengths (compared relative to `length`), the others angles (absolute).
-fn compare<const N: usize, const NO: usize>(
+fn compare<const N: usize, const NI: usize, const NO: usize>(
     name: &str,
     reference: &Reference,
     row: usize,
-    k: &Kin<N, 1, NO>,
+    k: &Kin<N, NI, NO>,
     lengths: &[usize],
     length: f64,
 ) {
     let r = &reference.rows[row];
+    let at = Layout { ni: NI, n: N, no: NO };
     let pos = |u: usize, got: f64, want: f64, is_length: bool| {
         let tol = if is_length { 1e-14 * length } else { 1e-14 };
         assert_close!(got, want, <= tol, "{name} row {row}: position {u} {got} vs {want} (tol {tol:e})");
@@ -112,18 +152,36 @@ fn compare<const N: usize, const NO: usize>(
         assert_close!(got, r[col], <= tol, "{name} row {row}: column {col} {got} vs {} (tol {tol:e})", r[col]);
     };
     for u in 0..N {
-        pos(u, k.q[u], r[1 + u], lengths.contains(&u));
-        analog(1 + N + u, k.dq[u][0]);
-        analog(1 + 2 * N + u, k.d2q[u][0][0]);
+        pos(u, k.q[u], r[at.position(u)], lengths.contains(&u));
+        for i in 0..NI {
+            analog(at.first(u, i), k.dq[u][i]);
+            for j in 0..NI {
+                analog(at.second(u, i, j), k.d2q[u][i][j]);
+            }
+        }
     }
     for o in 0..NO {
-        pos(N + o, k.out[o], r[1 + 3 * N + o], true);
-        analog(1 + 3 * N + NO + o, k.dout[o][0]);
-        analog(1 + 3 * N + 2 * NO + o, k.d2out[o][0][0]);
+        pos(N + o, k.out[o], r[at.position(N + o)], true);
+        for i in 0..NI {
+            analog(at.first(N + o, i), k.dout[o][i]);
+            for j in 0..NI {
+                analog(at.second(N + o, i, j), k.d2out[o][i][j]);
+            }
+        }
     }
 }
 
-fn check<M: Mechanism<N, 1, NO>, const N: usize, const NO: usize>(
+/// The first `NI` columns of `row`: its inputs.
+fn inputs<const NI: usize>(row: &[f64]) -> [f64; NI] {
+    row[..NI].try_into().expect("a row holds its inputs")
+}
+
+/// The unknowns of `row`.
+fn unknowns<const N: usize, const NI: usize>(row: &[f64]) -> [f64; N] {
+    row[NI..NI + N].try_into().expect("a row holds its unknowns")
+}
+
+fn check<M: Mechanism<N, NI, NO>, const N: usize, const NI: usize, const NO: usize>(
     name: &str,
     m: &M,
     text: &str,
@@ -134,24 +192,26 @@ fn check<M: Mechanism<N, 1, NO>, const N: usize, const NO: usize>(
     let cfg = NewtonConfig::default();
     // Point solves from a guess 0.05 off in every unknown.
     for (i, r) in reference.rows.iter().enumerate() {
-        let mut guess = [0.0; N];
-        for u in 0..N {
-            guess[u] = r[1 + u] + 0.05;
-        }
-        let k = m.kinematics_flat(&[r[0]], &guess, &cfg).unwrap_or_else(|e| panic!("{name} row {i}: {e}"));
+        let guess = unknowns::<N, NI>(r).map(|q| q + 0.05);
+        let k = m.kinematics_flat(&inputs(r), &guess, &cfg).unwrap_or_else(|e| panic!("{name} row {i}: {e}"));
         compare(name, &reference, i, &k, lengths, length);
     }
-    // A sweep through the same angles (its own predictor, its own step control).
+    // A sweep through the same inputs (its own predictor, its own step control).
     let first = &reference.rows[0];
     let last = &reference.rows[reference.rows.len() - 1];
-    let mut guess = [0.0; N];
-    guess.copy_from_slice(&first[1..1 + N]);
-    let sweep =
-        kinloop::Sweep::<M, Kin<N, 1, NO>, N, 1, NO>::new(m, [first[0]], [last[0]], reference.rows.len(), guess)
-            .unwrap();
+    let sweep = kinloop::Sweep::<M, Kin<N, NI, NO>, N, NI, NO>::new(
+        m,
+        inputs(first),
+        inputs(last),
+        reference.rows.len(),
+        unknowns::<N, NI>(first),
+    )
+    .unwrap();
     for (i, k) in sweep.enumerate() {
         let k = k.unwrap_or_else(|e| panic!("{name} sweep sample {i}: {e}"));
-        assert_close!(k.x[0], reference.rows[i][0], <= 4.0 * f64::EPSILON * 7.0, "{name} sample {i} at {:?}", k.x);
+        for (x, want) in k.x.iter().zip(&reference.rows[i]) {
+            assert_close!(*x, *want, <= 4.0 * f64::EPSILON * 7.0, "{name} sample {i} at {:?}", k.x);
+        }
         compare(name, &reference, i, &k, lengths, length);
     }
     fine_sweep(name, m, &reference, lengths, length);
@@ -164,7 +224,7 @@ const FINE: usize = 60;
 /// A sweep of `FINE` samples per reference row: at the reference rows it matches the reference
 /// as the coarse sweep does, and every sample matches a point solve at the same input (libm's
 /// sines and cosines) within the same tolerances: the rotated values cost no precision.
-fn fine_sweep<M: Mechanism<N, 1, NO>, const N: usize, const NO: usize>(
+fn fine_sweep<M: Mechanism<N, NI, NO>, const N: usize, const NI: usize, const NO: usize>(
     name: &str,
     m: &M,
     reference: &Reference,
@@ -172,11 +232,17 @@ fn fine_sweep<M: Mechanism<N, 1, NO>, const N: usize, const NO: usize>(
     length: f64,
 ) {
     let (first, last) = (&reference.rows[0], &reference.rows[reference.rows.len() - 1]);
-    let mut guess = [0.0; N];
-    guess.copy_from_slice(&first[1..1 + N]);
     let samples = (reference.rows.len() - 1) * FINE + 1;
-    let sweep = kinloop::Sweep::<M, Kin<N, 1, NO>, N, 1, NO>::new(m, [first[0]], [last[0]], samples, guess).unwrap();
+    let sweep = kinloop::Sweep::<M, Kin<N, NI, NO>, N, NI, NO>::new(
+        m,
+        inputs(first),
+        inputs(last),
+        samples,
+        unknowns::<N, NI>(first),
+    )
+    .unwrap();
     let cfg = NewtonConfig::default();
+    let at = Layout { ni: NI, n: N, no: NO };
     let mut worst = [0.0f64; 2];
     for (i, k) in sweep.enumerate() {
         let k = k.unwrap_or_else(|e| panic!("{name} fine sweep sample {i}: {e}"));
@@ -187,9 +253,14 @@ fn fine_sweep<M: Mechanism<N, 1, NO>, const N: usize, const NO: usize>(
         for u in 0..N {
             let scale = if lengths.contains(&u) { length } else { 1.0 };
             worst[0] = worst[0].max((k.q[u] - point.q[u]).abs() / scale);
-            let d_scale = reference.column_max(1 + N + u).max(reference.column_max(1 + 2 * N + u));
-            worst[1] = worst[1].max((k.dq[u][0] - point.dq[u][0]).abs() / d_scale);
-            worst[1] = worst[1].max((k.d2q[u][0][0] - point.d2q[u][0][0]).abs() / d_scale);
+            let columns = (0..NI).flat_map(|i| (0..NI).flat_map(move |j| [at.first(u, i), at.second(u, i, j)]));
+            let d_scale = columns.map(|c| reference.column_max(c)).fold(0.0, f64::max);
+            for i in 0..NI {
+                worst[1] = worst[1].max((k.dq[u][i] - point.dq[u][i]).abs() / d_scale);
+                for j in 0..NI {
+                    worst[1] = worst[1].max((k.d2q[u][i][j] - point.d2q[u][i][j]).abs() / d_scale);
+                }
+            }
         }
     }
     assert!(worst[0] <= 1e-14 && worst[1] <= 1e-12, "{name}: fine sweep vs point solves {worst:?}");
@@ -218,4 +289,24 @@ fn class_four_group_matches_the_50_digit_reference() {
 #[test]
 fn rhombic_drive_matches_the_50_digit_reference() {
     check("rhombic_drive", &RhombicDrive::default(), include_str!("../reference/rhombic_drive.csv"), &[1, 3], 3.5);
+}
+
+kinloop::mechanism! {
+    /// Five-bar driven by two cranks (the fixtures' `FiveBar`): crank `a` at the origin
+    /// (`th1`), crank `e` at `(d, 0)` (`th2`), links `b` from B and `c` from D meeting at C.
+    pub struct FiveBarC {
+        params a = 1.0, b = 2.5, c = 2.2, d = 1.5, e = 1.2;
+        inputs th1, th2;
+        unknowns phi2 = 1.0, phi3 = 2.0;
+        loop abcde: a @ th1 + b @ phi2 == (d, 0) + e @ th2 + c @ phi3;
+        point pc = a @ th1 + b @ phi2;
+    }
+}
+
+/// Two inputs: the positions, the first analogs by each crank and the second ones by each pair
+/// of cranks, the cross derivatives included (both orders against the reference's one column),
+/// along the line `th2 = th1 - pi + 0.3` over a turn.
+#[test]
+fn five_bar_matches_the_50_digit_reference() {
+    check("five_bar", &FiveBarC::default(), include_str!("../reference/five_bar.csv"), &[], 2.5);
 }

@@ -6,9 +6,16 @@ central differences at 50 digits (h = 1e-12: truncation ~h^2 = 1e-24, cancellati
 1e-26). Positions, velocity and acceleration analogs of the unknowns and of the points are written
 with 17 significant digits, one row per input value, continuing the branch from row to row.
 
-Run: python3 tests/reference/generate.py   (writes tests/reference/*.csv)
+The five-bar has two inputs: its rows hold both, its first analogs by each input (th1 then th2
+for each quantity) and its second analogs by the pairs (th1, th1), (th1, th2), (th2, th2), the
+cross one by the four-point stencil (f(+h, +h) - f(+h, -h) - f(-h, +h) + f(-h, -h)) / 4h^2
+(truncation ~h^2, cancellation ~1e-50/h^2, as above).
+
+Run: python3 tests/reference/generate.py [name ...]   (writes tests/reference/<name>.csv, every
+mechanism's without names)
 """
 import os
+import sys
 from mpmath import mp, mpf, cos, sin, pi, findroot, matrix
 
 mp.dps = 50
@@ -109,6 +116,31 @@ def rhombic_drive():
     return "rhombic_drive", loops, points, [pi, 3.5, 0, -3], [2 * pi * k / 24 for k in range(25)]
 
 
+def five_bar():
+    # Two cranks, a at the origin (th1) and e at (d, 0) (th2), links b from B and c from D
+    # meeting at C. The inputs run along the line th2 = th1 - pi + 0.3 over a turn, where the
+    # distance |BD| stays within [0.67, 3.68], away from |b - c| = 0.3 and b + c = 4.7 (the
+    # links folded or stretched): one branch all the way round, the one findroot reaches from
+    # the guess (1, 2) at the first inputs (C right of B -> D).
+    a, b, c, d, e_ = mpf(1), mpf("2.5"), mpf("2.2"), mpf("1.5"), mpf("1.2")
+
+    def loops(q, x):
+        phi2, phi3 = q
+        th1, th2 = x
+        return [
+            a * cos(th1) + b * cos(phi2) - d - e_ * cos(th2) - c * cos(phi3),
+            a * sin(th1) + b * sin(phi2) - e_ * sin(th2) - c * sin(phi3),
+        ]
+
+    def points(q, x):
+        phi2, _ = q
+        th1, _ = x
+        return [a * cos(th1) + b * cos(phi2), a * sin(th1) + b * sin(phi2)]
+
+    inputs = [[2 * pi * k / 24, 2 * pi * k / 24 - pi + mpf("0.3")] for k in range(25)]
+    return "five_bar", loops, points, [1.0, 2.0], inputs
+
+
 def solve(loops, phi, guess):
     q = findroot(lambda *q: loops(list(q), phi), [mpf(g) for g in guess], tol=mpf(10) ** -45, maxsteps=200)
     q = [q] if not isinstance(q, matrix) else [q[i] for i in range(len(guess))]
@@ -129,8 +161,37 @@ def row(loops, points, phi, guess):
     return q0, [phi] + q0 + dq + d2q + p0 + dp + d2p
 
 
+def row2(loops, points, x, guess):
+    """`row` for two inputs: analogs by each input and by each pair of inputs."""
+    q0 = solve(loops, x, guess)
+    p0 = points(q0, x)
+
+    def at(d1, d2):
+        y = [x[0] + d1 * H, x[1] + d2 * H]
+        q = solve(loops, y, q0)
+        return q + points(q, y)
+
+    f0 = q0 + p0
+    plus, minus = [at(1, 0), at(0, 1)], [at(-1, 0), at(0, -1)]
+    pp, pm, mp_, mm = at(1, 1), at(1, -1), at(-1, 1), at(-1, -1)
+    first = [[(plus[i][k] - minus[i][k]) / (2 * H) for i in range(2)] for k in range(len(f0))]
+    second = []
+    for k in range(len(f0)):
+        d11 = (plus[0][k] - 2 * f0[k] + minus[0][k]) / H**2
+        d12 = (pp[k] - pm[k] - mp_[k] + mm[k]) / (4 * H**2)
+        d22 = (plus[1][k] - 2 * f0[k] + minus[1][k]) / H**2
+        second.append([d11, d12, d22])
+    n = len(q0)
+    values = list(x) + q0 + sum(first[:n], []) + sum(second[:n], [])
+    values += p0 + sum(first[n:], []) + sum(second[n:], [])
+    return q0, values
+
+
 def main():
+    wanted = sys.argv[1:]
     for name, loops, points, guess, angles in [four_bar(), slider_crank(), watt_six_bar(), class_four(), rhombic_drive()]:
+        if wanted and name not in wanted:
+            continue
         n, npts = len(guess), len(points([mpf(g) for g in guess], mpf(0)))
         header = ["phi"] + [f"q{u}" for u in range(n)] + [f"dq{u}" for u in range(n)] + [f"d2q{u}" for u in range(n)]
         header += [f"p{k}" for k in range(npts)] + [f"dp{k}" for k in range(npts)] + [f"d2p{k}" for k in range(npts)]
@@ -138,6 +199,22 @@ def main():
         q = guess
         for phi in angles:
             q, values = row(loops, points, phi, q)
+            lines.append(",".join(mp.nstr(v, 17, min_fixed=0, max_fixed=0) for v in values))
+        with open(os.path.join(HERE, f"{name}.csv"), "w") as out:
+            out.write("\n".join(lines) + "\n")
+        print(name, len(lines) - 1, "rows")
+    for name, loops, points, guess, inputs in [five_bar()]:
+        if wanted and name not in wanted:
+            continue
+        n, npts = len(guess), len(points([mpf(g) for g in guess], inputs[0]))
+        pairs = ["11", "12", "22"]
+        header = ["th1", "th2"] + [f"q{u}" for u in range(n)] + [f"dq{u}_{i}" for u in range(n) for i in "12"]
+        header += [f"d2q{u}_{p}" for u in range(n) for p in pairs] + [f"p{k}" for k in range(npts)]
+        header += [f"dp{k}_{i}" for k in range(npts) for i in "12"] + [f"d2p{k}_{p}" for k in range(npts) for p in pairs]
+        lines = [",".join(header)]
+        q = guess
+        for x in inputs:
+            q, values = row2(loops, points, x, q)
             lines.append(",".join(mp.nstr(v, 17, min_fixed=0, max_fixed=0) for v in values))
         with open(os.path.join(HERE, f"{name}.csv"), "w") as out:
             out.write("\n".join(lines) + "\n")

@@ -2,7 +2,7 @@
 //! without kinloop), the reference constructions several tests need, named tolerances
 //! ([`tol`]), `assert_close!`, and the Newton configurations references are solved with.
 
-use kinloop::NewtonConfig;
+use kinloop::{Mechanism, NewtonConfig};
 use kinloop_fixtures::FiveBar;
 use std::f64::consts::{PI, TAU};
 
@@ -144,6 +144,56 @@ pub fn richardson(f: impl Fn(f64) -> f64, x: f64, h: f64) -> (f64, f64) {
 pub fn richardson_first(f: impl Fn(f64) -> f64, x: f64, h: f64) -> f64 {
     let d1 = |h: f64| (f(x + h) - f(x - h)) / (2.0 * h);
     (4.0 * d1(h / 2.0) - d1(h)) / 3.0
+}
+
+/// Every analog of `m` at the inputs `x` (solved from `q`) beside a reference of its own, as
+/// `(what, analog, reference)`: the central difference with one Richardson step
+/// ([`richardson_first`], steps `h` and `h / 2`) along input `i` of the positions and outputs
+/// for their first analogs by `x_i`, and of the velocity analogs by `x_j` for their second
+/// analogs by `x_i, x_j`, every ordered pair `(i, j)`, so each cross derivative is checked twice,
+/// from both inputs' analogs. A second analog is the first derivative of a velocity analog (exact
+/// at its position), so both references are good to [`tol::FD_FIRST`] relative: at `h = 1e-3`
+/// truncation ~h^4/480 |f^(5)| ~ 2e-15 |f^(5)|, and positions converged to rounding
+/// ([`newton_to_fine_step`], errors e ~ 1e-15) contribute ~e/h ~ 1e-12.
+pub fn analogs_against_differences<M, const N: usize, const NI: usize, const NO: usize>(
+    m: &M,
+    x: [f64; NI],
+    q: &[f64; N],
+    h: f64,
+) -> Vec<(String, f64, f64)>
+where
+    M: Mechanism<N, NI, NO>,
+{
+    let cfg = newton_to_fine_step();
+    let at = |x: [f64; NI]| m.kinematics_flat(&x, q, &cfg).unwrap_or_else(|e| panic!("{} at {x:?}: {e}", M::NAME));
+    let k = at(x);
+    let mut checks = Vec::new();
+    for i in 0..NI {
+        let along = |t: f64| {
+            let mut y = x;
+            y[i] = t;
+            at(y)
+        };
+        let by = |f: &dyn Fn(&kinloop::Kin<N, NI, NO>) -> f64| richardson_first(|t| f(&along(t)), x[i], h);
+        let xi = M::INPUTS[i];
+        for u in 0..N {
+            let name = M::UNKNOWNS[u];
+            checks.push((format!("d{name}/d{xi}"), k.dq[u][i], by(&|s| s.q[u])));
+            for j in 0..NI {
+                let what = format!("d2{name}/d{xi} d{}", M::INPUTS[j]);
+                checks.push((what, k.d2q[u][i][j], by(&|s| s.dq[u][j])));
+            }
+        }
+        for o in 0..NO {
+            let name = M::OUTPUTS[o];
+            checks.push((format!("d{name}/d{xi}"), k.dout[o][i], by(&|s| s.out[o])));
+            for j in 0..NI {
+                let what = format!("d2{name}/d{xi} d{}", M::INPUTS[j]);
+                checks.push((what, k.d2out[o][i][j], by(&|s| s.dout[o][j])));
+            }
+        }
+    }
+    checks
 }
 
 /// C from the circles (B, rb) and (D, rd), on side `side` of B -> D (+1 left, -1 right).

@@ -19,7 +19,10 @@ pub const SOLVE: f64 = 1e-12;
 /// A first derivative (velocity analog, gradient) against central differences of positions
 /// combined by one Richardson step (`support::richardson`) at h = 1e-3 to 1e-2: truncation
 /// ~h^4/480 |f^(5)| (~1e-10 at h = 1e-2), rounding ~e/h (~1e-10 for position errors e = 1e-13 at
-/// h = 1e-3, ~5e-11 for e = 5e-13 at h = 1e-2). 1e-9 leaves a factor of ten.
+/// h = 1e-3, ~5e-11 for e = 5e-13 at h = 1e-2). 1e-9 leaves a factor of ten. Also a second
+/// derivative against the same differences of the velocity analogs, its first derivative: the
+/// analogs are exact at their positions, so their errors are the positions' (times a Jacobian's
+/// condition), as small as e.
 pub const FD_FIRST: f64 = 1e-9;
 
 /// A second derivative (acceleration analog) against the same differences: rounding ~5e/h^2
