@@ -9,18 +9,26 @@
 //! (`kinloop::__gen::rescue`, the runtime's `extreme_scale`), and the analogs at it; the model
 //! does the same here, after a failed step only, with the runtime's own size test and
 //! whole-system solve (`outside_closed_form_sizes`, `whole_position`), so that both reach the
-//! same position to the bit.
+//! same position to the bit. Where that solve fails too, its failure is the step's, made the
+//! failure of the block holding the equation it names (`in_block`) as the compiled
+//! mechanism's is, so that both explain it alike: the error of the same mechanism at size 1
+//! (no assembly where a crank cannot close its loop), not the one the closed forms' squares
+//! out of range made of it.
 
 use crate::at::Jacobian;
+use crate::blocks::StepFailure;
 use crate::model::{Model, StepError};
-use kinloop_runtime::generated::{BlockEval, SolveReport, outside_closed_form_sizes, whole_position};
+use kinloop_runtime::generated::{
+    BlockEval, BlockFailure, SolveReport, in_block, outside_closed_form_sizes, whole_position,
+};
 use kinloop_runtime::{NewtonConfig, QuantityKind};
 
 impl Model {
     /// The answer to a step at `x` from `guess` that failed with `error`: for a mechanism
     /// outside the closed forms' sizes, its position solved by Newton over the whole system (of
     /// at most 16 unknowns, the dense sizes) and the analogs and outputs at it, in the state;
-    /// `error` otherwise, and where that fails too. Only after a failure: a step of ordinary
+    /// where Newton fails, its failure in the block holding the equation it names, and where
+    /// the analogs fail, theirs; `error` otherwise. Only after a failure: a step of ordinary
     /// size pays nothing.
     #[cold]
     #[inline(never)]
@@ -31,8 +39,11 @@ impl Model {
         cfg: &NewtonConfig,
         error: StepError,
     ) -> Result<(), StepError> {
+        // A value given that is not finite explains the failure at any size (its error names
+        // it), as the compiled mechanism's does.
         if !matches!(error, StepError::Block { .. } | StepError::NonFinite)
             || !guess.iter().chain(x).all(|v| v.is_finite())
+            || !self.param_values().iter().all(|v| v.is_some_and(f64::is_finite))
         {
             return Err(error);
         }
@@ -48,27 +59,41 @@ impl Model {
                 }
             };
         }
-        let Some((q, report)) = whole!(1 2 3 4 5 6 7 8 9 10 11 12 13 14 15 16) else {
-            return Err(error);
+        let (q, report) = match whole!(1 2 3 4 5 6 7 8 9 10 11 12 13 14 15 16) {
+            Some(Ok(solved)) => solved,
+            Some(Err(fail)) => return Err(self.whole_failure(fail)),
+            // More unknowns than the dense sizes: not solved again.
+            None => return Err(error),
         };
-        if self.kinematics_at(x, &q, cfg).is_err() {
-            return Err(error);
-        }
+        self.kinematics_at(x, &q, cfg)?;
         self.set_report(report);
         Ok(())
     }
 
+    /// The failure `fail` of Newton over the whole system (its row an index into the
+    /// equations) as the failure of the block holding that equation, with its row there: the
+    /// compiled mechanism's `whole_failure`, by the blocks' equations.
+    fn whole_failure(&self, fail: BlockFailure) -> StepError {
+        let (block, fail) = in_block(fail, |row| {
+            self.block_rows_cols
+                .iter()
+                .enumerate()
+                .find_map(|(b, (rows, _))| Some((b, rows.iter().position(|&r| r == row)?)))
+        });
+        StepError::Block { block, failure: StepFailure::Block(fail) }
+    }
+
     /// Newton over the whole system of `N` unknowns from `guess`, whose Jacobian is `jac`: the
     /// runtime's own (`whole_position`, the compiled step's), the residuals and Jacobian
-    /// evaluated by the model. The position and the solve's report, or `None` where Newton
-    /// fails.
+    /// evaluated by the model. The position and the solve's report, or Newton's failure; `None`
+    /// where the sizes are not `N` (not reached).
     fn solve_whole<const N: usize>(
         &mut self,
         x: &[f64],
         guess: &[f64],
         cfg: &NewtonConfig,
         jac: &Jacobian,
-    ) -> Option<(Vec<f64>, SolveReport)> {
+    ) -> Option<Result<(Vec<f64>, SolveReport), BlockFailure>> {
         if guess.len() != N || jac.f.len() != N || jac.scale.len() != N || jac.unit.len() != N {
             return None;
         }
@@ -85,7 +110,6 @@ impl Model {
         };
         let guess: [f64; N] = std::array::from_fn(|u| guess[u]);
         let (scale, unit) = (std::array::from_fn(|e| jac.scale[e]), std::array::from_fn(|u| jac.unit[u]));
-        let (q, report) = whole_position(&guess, scale, unit, turns, cfg, eval)?;
-        Some((q.to_vec(), report))
+        Some(whole_position(&guess, scale, unit, turns, cfg, eval).map(|(q, report)| (q.to_vec(), report)))
     }
 }

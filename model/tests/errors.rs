@@ -255,3 +255,61 @@ fn a_step_error_reads_as_a_sentence_and_explains_as_the_compiled_error() {
     let e = model.kinematics(&[3.0, 1.0], &guess, &NewtonConfig::default()).map(|_| ()).unwrap_err();
     assert!(matches!(model.explain(&[3.0, 1.0], &guess, &NewtonConfig::default(), e), Error::InvalidArgument(_)));
 }
+
+/// A four-bar whose crank is too long to close the loop at `phi = 3` (frame 3, crank 2, coupler
+/// 1.5, rocker 2, times `k`: the crank's end 4.98 from the rocker's pivot, beyond 3.5) fails as
+/// at size 1 at every size: no assembly, in its loop's block. Beyond the closed forms' sizes
+/// (`1e±144`) both the model and the compiled step solve the position again by Newton over the
+/// whole system, whose failure is the error; they reported the closed form's instead,
+/// distorted by its squares out of range (singular at `1e-300` and `1e-200`, an equation not
+/// finite at `1e200` and `1e300`). The model's own record and, through its kernels, the
+/// compiled mechanism's error field for field, for a step and a sensitivity solve.
+#[test]
+fn a_four_bar_whose_crank_cannot_close_fails_alike_at_every_scale() {
+    use kinloop::dims::Dims;
+    use kinloop::{SensKernel, Sensitivities};
+    use kinloop_model::StepFailure;
+    use kinloop_runtime::generated::BlockFailure;
+    let cfg = NewtonConfig::default();
+    let (x, guess) = ([3.0], [0.5, 1.5]);
+    for k in [1.0, 1e-300, 1e-200, 1e-160, 1e200, 1e300] {
+        let [a, b, c, d] = [2.0 * k, 1.5 * k, 2.0 * k, 3.0 * k];
+        let compiled = fx::FourBarSens { a, b, c, d };
+        let mut model = read(fx::FOUR_BAR_SENS_TEXT);
+        set(&mut model, &[("a", a), ("b", b), ("c", c), ("d", d)]);
+        let no_assembly = |e: &StepError| {
+            matches!(e, StepError::Block { block: 0, failure: StepFailure::Block(BlockFailure::NoAssembly { .. }) })
+        };
+        let e = model.kinematics(&x, &guess, &cfg).map(drop).unwrap_err();
+        assert!(no_assembly(&e), "size {k:e}: {e:?}");
+        let explained = model.explain(&x, &guess, &cfg, e);
+        assert!(matches!(explained, Error::NoAssembly { .. }), "size {k:e}: {explained:?}");
+        let e = model.sensitivities(&x, &guess, &cfg).map(drop).unwrap_err();
+        assert!(no_assembly(&e), "size {k:e}: {e:?}");
+        let e = same_error(&compiled, &mut model, x, guess);
+        same(&e, &explained);
+        let c_err = compiled.sensitivities_flat(&x, &guess, &cfg).unwrap_err();
+        let kernel = model.kernel(SweepConfig::default()).unwrap();
+        let (mut kin, mut sens) = (kernel.dims().kin(), kernel.sens());
+        let r_err = kernel.sensitivities_into(&Heap(x.into()), &Heap(guess.into()), &cfg, &mut kin, &mut sens);
+        same(&c_err, &r_err.unwrap_err());
+        same(&c_err, &e);
+    }
+}
+
+/// Beyond the closed forms' sizes, where the rescue solves the position but a value there is
+/// not finite, that value is the error, as at size 1: the four-bar whose output divides by its
+/// input, at 0, names its output `k`, compiled and at run time alike. The closed form's error
+/// stood instead (a singular position at `1e-300`, its equation not finite at `1e200`).
+#[test]
+fn a_non_finite_output_at_a_rescued_position_is_named_at_every_scale() {
+    for k in [1.0, 1e-300, 1e-200, 1e200, 1e300] {
+        let compiled = Reciprocal { a: k, b: 3.0 * k, c: 2.5 * k, d: 3.2 * k };
+        let mut model = read(RECIPROCAL_TEXT);
+        set(&mut model, &[("a", k), ("b", 3.0 * k), ("c", 2.5 * k), ("d", 3.2 * k)]);
+        let e = same_error(&compiled, &mut model, [0.0], compiled.guess_flat(&[0.0]));
+        assert!(matches!(e, Error::Domain { what: "output", .. }), "size {k:e}: {e:?}");
+        assert_eq!(name_of(&e), "k", "size {k:e}");
+        assert_eq!(e.location().map(|at| at.inputs.clone()), Some(vec![("phi".into(), 0.0)]), "size {k:e}");
+    }
+}

@@ -13,9 +13,9 @@ pub use crate::error::Error;
 pub use crate::events::BlockInfo;
 pub use crate::kin::{ByValue, Health, Jac, Kin, KinSink, Sens, first_non_finite_state};
 pub use crate::kinds::QuantityKind;
-pub use crate::mechanism::extreme_scale::{outside_closed_form_sizes, whole_position};
+pub use crate::mechanism::extreme_scale::{in_block, outside_closed_form_sizes, whole_position};
 pub use crate::mechanism::{Mechanism, Sensitivities};
-pub use crate::mechanism::{rescue, rescue_sensitivities};
+pub use crate::mechanism::{block_failure, rescue, rescue_sensitivities};
 pub use crate::named::{NamedSensitivities, SensitivitiesRequested};
 pub use crate::solvers::closed::*;
 pub use crate::solvers::deferred::*;
@@ -42,22 +42,8 @@ pub use std::borrow::Cow::Borrowed as Name;
 pub use serde;
 
 use crate::error::Quantity;
-use crate::events::Location;
 use crate::kin::FlatMotion;
-
-/// Where an error of mechanism `M` happened: its inputs `x` and, if any, the block.
-#[cold]
-#[inline(never)]
-fn location<M, const N: usize, const NI: usize, const NO: usize>(x: &[f64; NI], block: Option<usize>) -> Location
-where
-    M: Mechanism<N, NI, NO>,
-{
-    Location {
-        mechanism: Cow::Borrowed(M::NAME),
-        inputs: M::INPUTS.iter().map(|&n| Cow::Borrowed(n)).zip(x.iter().copied()).collect(),
-        block: block.and_then(|b| M::BLOCKS.get(b).map(|i| (b, i.clone()))),
-    }
-}
+use crate::mechanism::{bad_values, location};
 
 /// The first row holding a non-finite value (cold-path diagnosis of a failed factorisation).
 /// Given the rows, not a reference to them: a reference would keep the kernel's Jacobian and
@@ -65,53 +51,6 @@ where
 #[cold]
 pub fn first_bad_row<const M: usize, const R: usize>(rows: [[f64; M]; R]) -> Option<usize> {
     rows.iter().position(|r| r.iter().any(|v| !v.is_finite()))
-}
-
-/// The first non-finite parameter, input or guess of `m`, as an error: a bad value given by the
-/// caller explains a failure better than the failure itself.
-#[cold]
-#[inline(never)]
-fn bad_values<M, const N: usize, const NI: usize, const NO: usize>(
-    m: &M,
-    x: &[f64; NI],
-    guess: Option<&[f64; N]>,
-) -> Option<Error>
-where
-    M: Mechanism<N, NI, NO>,
-{
-    let (what, index, value) = first_bad_value(m.param_values(), x, guess.map(|g| &g[..]))?;
-    let names: &[&'static str] = match what {
-        Quantity::Parameter => M::PARAMS,
-        Quantity::Input => &M::INPUTS,
-        _ => &M::UNKNOWNS,
-    };
-    let name = Cow::Borrowed(names.get(index).copied().unwrap_or("?"));
-    Some(Error::NonFinite { what, name, value, at: Box::new(location::<M, N, NI, NO>(x, None)) })
-}
-
-/// The error for a block that failed (`fail`, with the configuration `cfg`), unless a bad
-/// value or an angle guessed too many turns out explains it.
-#[cold]
-#[inline(never)]
-pub fn block_failure<M, const N: usize, const NI: usize, const NO: usize>(
-    m: &M,
-    block: usize,
-    fail: BlockFailure,
-    x: &[f64; NI],
-    guess: &[f64; N],
-    cfg: &NewtonConfig,
-) -> Error
-where
-    M: Mechanism<N, NI, NO>,
-{
-    if let Some(e) = bad_values::<M, N, NI, NO>(m, x, Some(guess)) {
-        return e;
-    }
-    let at = location::<M, N, NI, NO>(x, Some(block));
-    match too_many_turns::<M, N, NI, NO>(block, fail, guess, cfg) {
-        Some((name, value)) => turns_error(Cow::Borrowed(name), value, at),
-        None => block_error(fail, at),
-    }
 }
 
 /// [`block_failure`] of block `block` at `x` from `guess` with `cfg`, as a function of the
@@ -146,64 +85,6 @@ where
 {
     // The configuration is not read: an invalid one explains nothing else.
     block_failure(m, block, BlockFailure::InvalidConfig { field }, x, guess, &NewtonConfig::default())
-}
-
-/// The angle of block `block` guessed too many turns out to be solved to the tolerance of
-/// `cfg` (see [`Error::TooManyTurns`]), and its value, when that explains the failure `fail`:
-/// a closed form's own finding (its root on the guess's turn), or any failure of Newton's from
-/// such a guess, whose residual stalls at the angle's rounding. The angle is the block's with
-/// the largest guess.
-fn too_many_turns<M, const N: usize, const NI: usize, const NO: usize>(
-    block: usize,
-    fail: BlockFailure,
-    guess: &[f64; N],
-    cfg: &NewtonConfig,
-) -> Option<(&'static str, f64)>
-where
-    M: Mechanism<N, NI, NO>,
-{
-    let unknowns = M::BLOCKS.get(block).map_or(&[][..], |info| &info.unknowns);
-    let unknowns = unknowns.iter().filter_map(|name| M::UNKNOWNS.iter().position(|u| u == name));
-    let (u, value) = turns_culprit(unknowns, &M::UNKNOWN_KINDS, fail, guess, cfg)?;
-    Some((u.map_or("?", |u| M::UNKNOWNS[u]), value))
-}
-
-/// Builds the error for a failed block at a known location: equations the location's block
-/// does not name are `?`. Public for a mechanism read at run time (`kinloop_model`), whose
-/// failed steps must be the compiled mechanism's variants.
-#[doc(hidden)]
-#[cold]
-#[inline(never)]
-pub fn block_error(fail: BlockFailure, at: Location) -> Error {
-    let equations = at.block.as_ref().map_or(&[][..], |(_, info)| &info.equations);
-    let name = |row: usize| equations.get(row).cloned().unwrap_or(Cow::Borrowed("?"));
-    match fail {
-        BlockFailure::NonFinite { row, .. } => Error::Domain { what: "equation", name: name(row), at: Box::new(at) },
-        BlockFailure::NoConvergence { row, iterations, residual } => {
-            Error::NoConvergence { iterations, residual, equation: name(row), at: Box::new(at) }
-        }
-        BlockFailure::NoAssembly { row, residual, .. } => {
-            Error::NoAssembly { residual, equation: name(row), at: Box::new(at) }
-        }
-        BlockFailure::Singular { pivot_ratio, tolerance, .. } => {
-            Error::Singular { pivot_ratio, tolerance, at: Box::new(at) }
-        }
-        BlockFailure::InvalidConfig { field } => Error::InvalidArgument(format!(
-            "NewtonConfig::{field} is out of its valid range (see its documentation), {at}"
-        )),
-        // Named by `block_failure`, which knows the guesses.
-        BlockFailure::TooManyTurns { value } => turns_error(Cow::Borrowed("?"), value, at),
-    }
-}
-
-/// [`Error::TooManyTurns`] of the angle `name` at `value`. Public for a mechanism read at run
-/// time (`kinloop_model`), which names the angle [`turns_culprit`] finds.
-#[cold]
-#[inline(never)]
-pub fn turns_error(name: Cow<'static, str>, value: f64, at: Location) -> Error {
-    // The distance to the next double away from zero.
-    let spacing = f64::from_bits(value.abs().to_bits() + 1) - value.abs();
-    Error::TooManyTurns { name, value, turns: value / core::f64::consts::TAU, spacing, at: Box::new(at) }
 }
 
 /// The error for a block whose factorisation failed: a bad value, an equation outside its
@@ -776,4 +657,4 @@ pub use par_sets::par_sets;
 
 // The name-agnostic cores of a failed step's diagnosis (see `diagnosis`).
 mod diagnosis;
-pub use diagnosis::{first_bad_value, turns_culprit};
+pub use diagnosis::{block_error, first_bad_value, turns_culprit, turns_error};

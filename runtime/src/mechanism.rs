@@ -4,11 +4,13 @@
 
 use crate::error::{Error, Quantity};
 use crate::events::{BlockInfo, Location};
+use crate::generated::{block_error, first_bad_value, turns_culprit, turns_error};
 use crate::kin::{ByValue, Jac, Kin, KinSink, Sens};
 use crate::kinds::QuantityKind;
 use crate::paths::config::SweepConfig;
-use crate::solvers::newton::{NewtonConfig, SolveReport};
+use crate::solvers::newton::{BlockFailure, NewtonConfig, SolveReport};
 use crate::trig::InputTrig;
+use std::borrow::Cow;
 
 pub(crate) mod extreme_scale;
 pub mod kernel;
@@ -235,8 +237,10 @@ pub trait Sensitivities<const N: usize, const NI: usize, const NO: usize, const 
 /// The answer to a checked kernel's failure `error` at input `x` from `guess`: for a mechanism
 /// whose lengths leave the sizes the closed forms compute exactly in
 /// ([`CLOSED_FORM_SIZES`](extreme_scale::CLOSED_FORM_SIZES)), the kinematics solved by Newton
-/// over the whole system from `m`'s Jacobian, and the analogs at that position (see
-/// `extreme_scale`; `error` where that fails too); otherwise `error`. The macro's
+/// over the whole system from `m`'s Jacobian, and the analogs at that position; where Newton
+/// fails too, its failure as the error of the block holding the equation it names, as the
+/// generated Newton solver's failure is (see `extreme_scale`: `error`, computed with squares
+/// out of range, is no longer the mechanism's); otherwise `error`. The macro's
 /// `kinematics_flat` of a mechanism of more unknowns than a sweep inlines ends with it
 /// (`kinloop::__gen::rescue`).
 #[doc(hidden)]
@@ -260,6 +264,7 @@ where
             kin.report = report;
             Ok(kin)
         },
+        fail: |fail| whole_failure(m, fail, x, guess, cfg),
     };
     extreme_scale::rescue(&whole, x, guess, cfg, error)
 }
@@ -267,9 +272,9 @@ where
 /// [`rescue`] of a sensitivity solve: the answer to the failure `error` of `m`'s
 /// `sensitivities_flat` kernel at input `x` from `guess`. Where [`rescue`] solves the position
 /// again (the same test, the same Newton over the whole system), the kinematics and the
-/// sensitivities at that position ([`Sensitivities::sensitivities_at_flat`], `error` where that
-/// fails); otherwise `error`. The macro's `sensitivities_flat` ends with it
-/// (`kinloop::__gen::rescue_sensitivities`).
+/// sensitivities at that position ([`Sensitivities::sensitivities_at_flat`]), or the error
+/// [`rescue`] gives where Newton fails (or that one's where it fails); otherwise `error`. The
+/// macro's `sensitivities_flat` ends with it (`kinloop::__gen::rescue_sensitivities`).
 #[doc(hidden)]
 #[cold]
 #[inline(never)]
@@ -292,6 +297,121 @@ where
             kin.report = report;
             Ok((kin, sens))
         },
+        fail: |fail| whole_failure(m, fail, x, guess, cfg),
     };
     extreme_scale::rescue(&whole, x, guess, cfg, error)
+}
+
+// The errors of a compiled mechanism's failed block, named by its constants: the generated
+// kernels' (through `kinloop::__gen`, which re-exports `block_failure`) and the rescue's where
+// Newton over the whole system fails. Here rather than in `generated`, which imports this
+// module: the rescue, which this trait's methods call, builds them too.
+
+/// Where an error of mechanism `M` happened: its inputs `x` and, if any, the block.
+#[cold]
+#[inline(never)]
+pub(crate) fn location<M, const N: usize, const NI: usize, const NO: usize>(
+    x: &[f64; NI],
+    block: Option<usize>,
+) -> Location
+where
+    M: Mechanism<N, NI, NO> + ?Sized,
+{
+    Location {
+        mechanism: Cow::Borrowed(M::NAME),
+        inputs: M::INPUTS.iter().map(|&n| Cow::Borrowed(n)).zip(x.iter().copied()).collect(),
+        block: block.and_then(|b| M::BLOCKS.get(b).map(|i| (b, i.clone()))),
+    }
+}
+
+/// The first non-finite parameter, input or guess of `m`, as an error: a bad value given by the
+/// caller explains a failure better than the failure itself.
+#[cold]
+#[inline(never)]
+pub(crate) fn bad_values<M, const N: usize, const NI: usize, const NO: usize>(
+    m: &M,
+    x: &[f64; NI],
+    guess: Option<&[f64; N]>,
+) -> Option<Error>
+where
+    M: Mechanism<N, NI, NO> + ?Sized,
+{
+    let (what, index, value) = first_bad_value(m.param_values(), x, guess.map(|g| &g[..]))?;
+    let names: &[&'static str] = match what {
+        Quantity::Parameter => M::PARAMS,
+        Quantity::Input => &M::INPUTS,
+        _ => &M::UNKNOWNS,
+    };
+    let name = Cow::Borrowed(names.get(index).copied().unwrap_or("?"));
+    Some(Error::NonFinite { what, name, value, at: Box::new(location::<M, N, NI, NO>(x, None)) })
+}
+
+/// The error for a block that failed (`fail`, with the configuration `cfg`), unless a bad
+/// value or an angle guessed too many turns out explains it.
+#[doc(hidden)]
+#[cold]
+#[inline(never)]
+pub fn block_failure<M, const N: usize, const NI: usize, const NO: usize>(
+    m: &M,
+    block: usize,
+    fail: BlockFailure,
+    x: &[f64; NI],
+    guess: &[f64; N],
+    cfg: &NewtonConfig,
+) -> Error
+where
+    M: Mechanism<N, NI, NO> + ?Sized,
+{
+    if let Some(e) = bad_values::<M, N, NI, NO>(m, x, Some(guess)) {
+        return e;
+    }
+    let at = location::<M, N, NI, NO>(x, Some(block));
+    match too_many_turns::<M, N, NI, NO>(block, fail, guess, cfg) {
+        Some((name, value)) => turns_error(Cow::Borrowed(name), value, at),
+        None => block_error(fail, at),
+    }
+}
+
+/// The angle of block `block` guessed too many turns out to be solved to the tolerance of
+/// `cfg` (see [`Error::TooManyTurns`]), and its value, when that explains the failure `fail`:
+/// a closed form's own finding (its root on the guess's turn), or any failure of Newton's from
+/// such a guess, whose residual stalls at the angle's rounding. The angle is the block's with
+/// the largest guess.
+fn too_many_turns<M, const N: usize, const NI: usize, const NO: usize>(
+    block: usize,
+    fail: BlockFailure,
+    guess: &[f64; N],
+    cfg: &NewtonConfig,
+) -> Option<(&'static str, f64)>
+where
+    M: Mechanism<N, NI, NO> + ?Sized,
+{
+    let unknowns = M::BLOCKS.get(block).map_or(&[][..], |info| &info.unknowns);
+    let unknowns = unknowns.iter().filter_map(|name| M::UNKNOWNS.iter().position(|u| u == name));
+    let (u, value) = turns_culprit(unknowns, &M::UNKNOWN_KINDS, fail, guess, cfg)?;
+    Some((u.map_or("?", |u| M::UNKNOWNS[u]), value))
+}
+
+/// The error for a failure `fail` of Newton over the whole system of `m` (its row an index
+/// into [`Mechanism::EQUATIONS`]; a mechanism too large for its closed forms solved again, see
+/// `extreme_scale`): [`block_failure`] of the block holding that equation, with its row there
+/// ([`in_block`](extreme_scale::in_block)), so that the error names the equation, its block
+/// and the inputs `x` as a block's own failure there would.
+#[cold]
+#[inline(never)]
+fn whole_failure<M, const N: usize, const NI: usize, const NO: usize>(
+    m: &M,
+    fail: BlockFailure,
+    x: &[f64; NI],
+    guess: &[f64; N],
+    cfg: &NewtonConfig,
+) -> Error
+where
+    M: Mechanism<N, NI, NO> + ?Sized,
+{
+    let (block, fail) = extreme_scale::in_block(fail, |row| {
+        let equation = M::EQUATIONS.get(row)?;
+        M::BLOCKS.iter().enumerate().find_map(|(b, info)| Some((b, info.equations.iter().position(|e| e == equation)?)))
+    });
+    block_failure(m, block, fail, x, guess, cfg)
 }

@@ -552,9 +552,10 @@ fn four_bar_sensitivities_solve_at_every_scale() {
 }
 
 /// A four-bar that cannot be assembled (its frame longer than the other three links together)
-/// fails at every scale: the rescue's Newton fails too, and `sensitivities_flat` reports the
-/// kernel's own error, as `kinematics_flat` does (no assembly at scale 1; beyond the closed
-/// forms' sizes whatever their overflow or underflow made of it).
+/// fails at every scale, and `sensitivities_flat` reports the error `kinematics_flat` does: no
+/// assembly at scale 1, and beyond the closed forms' sizes, where the rescue's Newton fails
+/// too, Newton's failure, no assembly as well (not what the closed forms' overflow or underflow
+/// made of it).
 #[test]
 fn a_four_bar_that_cannot_be_assembled_keeps_its_error_in_a_sensitivity_solve() {
     let cfg = NewtonConfig::default();
@@ -564,6 +565,67 @@ fn a_four_bar_that_cannot_be_assembled_keeps_its_error_in_a_sensitivity_solve() 
         let sens = m.sensitivities_flat(&x, &m.guess_flat(&x), &cfg).unwrap_err();
         let kin = m.kinematics_flat(&x, &m.guess_flat(&x), &cfg).unwrap_err();
         assert_eq!(sens.to_string(), kin.to_string(), "size {k:e}");
-        assert!(k != 1.0 || matches!(sens, kinloop::Error::NoAssembly { .. }), "{sens}");
+        assert!(matches!(sens, kinloop::Error::NoAssembly { .. }), "size {k:e}: {sens}");
+    }
+}
+
+/// The sizes beyond the closed forms' (`1e±144`) at which a four-bar that cannot close its loop
+/// was reported singular (`1e-300`, `1e-200`: the squared lengths subnormal or zero) or its
+/// equation not finite (`1e200`, `1e300`: overflowed), and at `1e-160` as no assembly with a
+/// residual of `1e-319`, the closed form's squares' units: every one the rescue's Newton over
+/// the whole system failed at too, and whose failure it did not report.
+const UNASSEMBLED_SCALES: [f64; 5] = [1e-300, 1e-200, 1e-160, 1e200, 1e300];
+
+/// A four-bar whose crank is too long to close the loop at some inputs (frame 3, crank 2,
+/// coupler 1.5, rocker 2, times `k`): at `phi = 3` the crank's end is 4.98 from the rocker's
+/// pivot, beyond the coupler and the rocker together (3.5); at `phi = 0.3` it assembles.
+fn crank_too_long(k: f64) -> [f64; 4] {
+    [2.0 * k, 1.5 * k, 2.0 * k, 3.0 * k]
+}
+
+/// The error of a four-bar that cannot close its loop at the input is the one it has at size
+/// 1, whatever its size: no assembly, in its loop's block, at the input it failed at. The
+/// closed form says so at size 1; the generated Newton solver (the twin) says so at every
+/// size, and so must the rescue where its own Newton over the whole system fails, for a point
+/// step and a sensitivity solve, and for the chain's kernel of its own. The variants are
+/// compared, not the messages: a residual is measured differently by a closed form and by
+/// Newton. Nor is the chain's block: Newton over its five loops at once stalls where their
+/// residuals balance, and names the loop whose residual is largest there, not necessarily the
+/// first one its blocks solve in turn.
+#[test]
+fn a_four_bar_whose_crank_cannot_close_fails_alike_at_every_scale() {
+    use kinloop::Error;
+    use std::mem::discriminant;
+    let cfg = NewtonConfig::default();
+    let x = [3.0];
+    let kind =
+        |e: &Error| (discriminant(e), e.location().map(|at| (at.inputs.clone(), at.block.as_ref().map(|b| b.0))));
+    let closed = |k: f64| {
+        let [a, b, c, d] = crank_too_long(k);
+        FourBar { a, b, c, d }.kinematics_flat(&x, &FourBar { a, b, c, d }.guess_flat(&x), &cfg)
+    };
+    let one = closed(1.0).unwrap_err();
+    assert!(matches!(one, Error::NoAssembly { .. }), "at size 1: {one:?}");
+    let want = kind(&one);
+    assert_eq!(want.1, Some((vec![("phi".into(), 3.0)], Some(0))), "{one:?}");
+    for k in [1.0].into_iter().chain(UNASSEMBLED_SCALES) {
+        let [a, b, c, d] = crank_too_long(k);
+        // Not a mechanism broken at every input: it assembles at 0.3 at this size.
+        assert!(closed(k).is_err() && FourBar { a, b, c, d }.kinematics_flat(&[0.3], &[0.5, 1.5], &cfg).is_ok());
+        let twin = FourBarNewton { a, b, c, d };
+        let sens = FourBarSens { a, b, c, d };
+        let chain = FourBarChain { a, b, c, d };
+        let got = [
+            ("closed form", closed(k).map(drop)),
+            ("Newton twin", twin.kinematics_flat(&x, &twin.guess_flat(&x), &cfg).map(drop)),
+            ("sensitivities", sens.sensitivities_flat(&x, &sens.guess_flat(&x), &cfg).map(drop)),
+            ("chain", chain.kinematics_flat(&x, &chain.guess_flat(&x), &cfg).map(drop)),
+        ];
+        for (path, e) in got {
+            let e = e.expect_err(path);
+            let (variant, at) = kind(&e);
+            let at = if path == "chain" { at.map(|(inputs, _)| (inputs, Some(0))) } else { at };
+            assert_eq!((variant, at), want, "{path} at size {k:e}: {e:?}");
+        }
     }
 }

@@ -1,13 +1,16 @@
 //! The name-agnostic cores of a failed step's diagnosis: which value given by the caller is not
 //! finite, and which angle was guessed too many turns out (which value of a state is not finite
-//! is the state's own, `kin::first_non_finite_state`). A compiled mechanism names what they find
-//! by its constants; a mechanism read at run time (`kinloop_model`) by the names it read, so
-//! that its errors are the compiled ones.
+//! is the state's own, `kin::first_non_finite_state`), and the error of a failed block at a
+//! known location. A compiled mechanism names what they find by its constants; a mechanism read
+//! at run time (`kinloop_model`) by the names it read, so that its errors are the compiled
+//! ones.
 
-use crate::error::Quantity;
+use crate::error::{Error, Quantity};
+use crate::events::Location;
 use crate::kinds::QuantityKind;
 use crate::solvers::closed::largest_precise_angle;
 use crate::solvers::newton::{BlockFailure, NewtonConfig};
+use std::borrow::Cow;
 
 /// The first non-finite parameter, input or guess, in that order, as its kind, index and
 /// value: a bad value given by the caller explains a failure better than the failure itself.
@@ -48,4 +51,42 @@ pub fn turns_culprit(
         (_, Some(u)) if guess[u].abs() > largest_precise_angle(cfg) => Some((Some(u), guess[u])),
         _ => None,
     }
+}
+
+/// Builds the error for a failed block at a known location: equations the location's block
+/// does not name are `?`. Public for a mechanism read at run time (`kinloop_model`), whose
+/// failed steps must be the compiled mechanism's variants.
+#[doc(hidden)]
+#[cold]
+#[inline(never)]
+pub fn block_error(fail: BlockFailure, at: Location) -> Error {
+    let equations = at.block.as_ref().map_or(&[][..], |(_, info)| &info.equations);
+    let name = |row: usize| equations.get(row).cloned().unwrap_or(Cow::Borrowed("?"));
+    match fail {
+        BlockFailure::NonFinite { row, .. } => Error::Domain { what: "equation", name: name(row), at: Box::new(at) },
+        BlockFailure::NoConvergence { row, iterations, residual } => {
+            Error::NoConvergence { iterations, residual, equation: name(row), at: Box::new(at) }
+        }
+        BlockFailure::NoAssembly { row, residual, .. } => {
+            Error::NoAssembly { residual, equation: name(row), at: Box::new(at) }
+        }
+        BlockFailure::Singular { pivot_ratio, tolerance, .. } => {
+            Error::Singular { pivot_ratio, tolerance, at: Box::new(at) }
+        }
+        BlockFailure::InvalidConfig { field } => Error::InvalidArgument(format!(
+            "NewtonConfig::{field} is out of its valid range (see its documentation), {at}"
+        )),
+        // Named by `block_failure` (`mechanism`), which knows the guesses.
+        BlockFailure::TooManyTurns { value } => turns_error(Cow::Borrowed("?"), value, at),
+    }
+}
+
+/// [`Error::TooManyTurns`] of the angle `name` at `value`. Public for a mechanism read at run
+/// time (`kinloop_model`), which names the angle [`turns_culprit`] finds.
+#[cold]
+#[inline(never)]
+pub fn turns_error(name: Cow<'static, str>, value: f64, at: Location) -> Error {
+    // The distance to the next double away from zero.
+    let spacing = f64::from_bits(value.abs().to_bits() + 1) - value.abs();
+    Error::TooManyTurns { name, value, turns: value / core::f64::consts::TAU, spacing, at: Box::new(at) }
 }

@@ -18,14 +18,29 @@
 //! [`Sensitivities::sensitivities_at_flat`](crate::Sensitivities::sensitivities_at_flat)). Inside the range the kernel's own error stands: nothing changes for a mechanism
 //! of ordinary size, and the hot path pays nothing (this runs only after a failure).
 //!
-//! The mechanism is seen through those two functions only ([`Whole`]): the entry point that
+//! **Its failure is the mechanism's.** Where Newton over the whole system fails too, the
+//! mechanism has no position there (or none Newton can reach from the guess), and the kernel's
+//! own error says the wrong thing: computed with squares out of range, it calls a four-bar
+//! whose crank cannot close the loop singular (at `1e-200`) or its equation not finite (at
+//! `1e200`), where the same four-bar at size 1 cannot be assembled. So the error is
+//! Newton's own failure, made the error of the block that holds the equation it names
+//! ([`in_block`]), as a failure of the generated Newton solver is: no assembly where the
+//! residual stalls at a minimum that is no root, a singular position where the root it reaches
+//! has a singular Jacobian, an equation not finite where it leaves its domain. Where the
+//! iterations run out while the residual still falls, Newton cannot tell a mechanism that does
+//! not assemble from one it did not reach, and says so (no convergence). Its tests are made in
+//! the magnitudes of the equations and unknowns, so this is the error of the same mechanism at
+//! every size. A caller's bad value or an invalid configuration explains the failure at any
+//! size: their error stands. Where Newton solves but the analogs at its position fail, theirs.
+//!
+//! The mechanism is seen through three functions only ([`Whole`]): the entry point that
 //! takes a mechanism, `mechanism::rescue`, hands them over, so that this module needs nothing of
 //! the mechanism's traits (which call it).
 
 use crate::error::Error;
 use crate::kin::Jac;
 use crate::kinds::QuantityKind;
-use crate::solvers::newton::{BlockEval, Magnitudes, NewtonConfig, SolveReport, newton};
+use crate::solvers::newton::{BlockEval, BlockFailure, Magnitudes, NewtonConfig, SolveReport, newton};
 
 /// The sizes (largest magnitude of an equation's terms: the sum of a loop's link lengths) at
 /// which every closed form computes exactly: `2^-480 .. 2^480`, about `1e-144 .. 1e144`. Their
@@ -51,19 +66,24 @@ pub fn outside_closed_form_sizes(scale: &[f64]) -> bool {
 /// the result at a solved one with the report of its solve (`at`: the analogs and outputs of
 /// [`Mechanism::kinematics_at_flat`](crate::Mechanism::kinematics_at_flat), or those and the
 /// sensitivities of
-/// [`Sensitivities::sensitivities_at_flat`](crate::Sensitivities::sensitivities_at_flat)).
-pub(crate) struct Whole<J, A, const N: usize> {
+/// [`Sensitivities::sensitivities_at_flat`](crate::Sensitivities::sensitivities_at_flat)), and
+/// the error of a failure of Newton over the whole system (`fail`: the generated solver's
+/// error of the block holding the equation it names, see [`in_block`]).
+pub(crate) struct Whole<J, A, F, const N: usize> {
     pub(crate) kinds: [QuantityKind; N],
     pub(crate) jacobian: J,
     pub(crate) at: A,
+    pub(crate) fail: F,
 }
 
 /// The answer to a checked kernel's failure `error` at input `x` from `guess`, for the mechanism
 /// `m` describes: for a mechanism outside [`CLOSED_FORM_SIZES`], the position solved by Newton
-/// over the whole system and `m`'s result there (and `error` where either fails too); otherwise
-/// `error`.
-pub(crate) fn rescue<J, A, T, const N: usize, const NI: usize>(
-    m: &Whole<J, A, N>,
+/// over the whole system and `m`'s result there, or where Newton fails, its failure as `m`'s
+/// error (where the result fails, the result's error); otherwise `error`. A value given that
+/// is not finite, or an invalid configuration, explains the failure at any size: `error`
+/// stands.
+pub(crate) fn rescue<J, A, F, T, const N: usize, const NI: usize>(
+    m: &Whole<J, A, F, N>,
     x: &[f64; NI],
     guess: &[f64; N],
     cfg: &NewtonConfig,
@@ -72,12 +92,16 @@ pub(crate) fn rescue<J, A, T, const N: usize, const NI: usize>(
 where
     J: Fn(&[f64; N]) -> Jac<N, NI>,
     A: Fn(&[f64; N], SolveReport) -> Result<T, Error>,
+    F: Fn(BlockFailure) -> Error,
 {
-    if !guess.iter().chain(x.iter()).all(|v| v.is_finite()) {
+    if !guess.iter().chain(x.iter()).all(|v| v.is_finite())
+        || matches!(error, Error::NonFinite { .. } | Error::InvalidArgument(_))
+        || cfg.invalid_field().is_some()
+    {
         return Err(error);
     }
     match jacobian_outside(m, guess) {
-        Some(jac) => solve_whole(m, guess, cfg, error, &jac),
+        Some(jac) => solve_whole(m, guess, cfg, &jac),
         None => Err(error),
     }
 }
@@ -88,8 +112,8 @@ where
 /// every value it made, so the common case (an ordinary size, nothing to rescue) must not
 /// share one with the whole-system solve.
 #[inline(never)]
-fn jacobian_outside<J, A, const N: usize, const NI: usize>(
-    m: &Whole<J, A, N>,
+fn jacobian_outside<J, A, F, const N: usize, const NI: usize>(
+    m: &Whole<J, A, F, N>,
     guess: &[f64; N],
 ) -> Option<Box<Jac<N, NI>>>
 where
@@ -100,18 +124,18 @@ where
 }
 
 /// [`rescue`]'s Newton over the whole system from `guess`, whose Jacobian is `jac`, and `m`'s
-/// result at the position it reaches.
+/// result at the position it reaches: where Newton fails, its failure as `m`'s error.
 #[inline(never)]
-fn solve_whole<J, A, T, const N: usize, const NI: usize>(
-    m: &Whole<J, A, N>,
+fn solve_whole<J, A, F, T, const N: usize, const NI: usize>(
+    m: &Whole<J, A, F, N>,
     guess: &[f64; N],
     cfg: &NewtonConfig,
-    error: Error,
     jac: &Jac<N, NI>,
 ) -> Result<T, Error>
 where
     J: Fn(&[f64; N]) -> Jac<N, NI>,
     A: Fn(&[f64; N], SolveReport) -> Result<T, Error>,
+    F: Fn(BlockFailure) -> Error,
 {
     let turns = m.kinds.map(|k| k == QuantityKind::Angle);
     let at = |q: &[f64; N], ev: &mut BlockEval<N, 0>| {
@@ -119,8 +143,38 @@ where
         ev.f = jq.f;
         ev.j = jq.j;
     };
-    let Some((q, report)) = whole_position(guess, jac.scale, jac.unit, turns, cfg, at) else { return Err(error) };
-    (m.at)(&q, report).map_err(|_| error)
+    let (q, report) = whole_position(guess, jac.scale, jac.unit, turns, cfg, at).map_err(&m.fail)?;
+    (m.at)(&q, report)
+}
+
+/// A failure `fail` of Newton over the whole system (its row an index into all the equations,
+/// in declaration order) as the failure of one block of the decomposition: the block and the
+/// failure with its row that equation's row in the block, where `block_of(row)` gives the
+/// block holding equation `row` and its row there. What the generated code and a run-time
+/// model make the block's error of, so that it names the equation and the block as a block's
+/// own failure does (the block 0 and the row as it is where no block holds it, not reached).
+#[doc(hidden)]
+pub fn in_block(fail: BlockFailure, block_of: impl Fn(usize) -> Option<(usize, usize)>) -> (usize, BlockFailure) {
+    let at = |row: usize| block_of(row).unwrap_or((0, row));
+    match fail {
+        BlockFailure::NonFinite { row, iterations } => {
+            let (b, row) = at(row);
+            (b, BlockFailure::NonFinite { row, iterations })
+        }
+        BlockFailure::NoConvergence { row, iterations, residual } => {
+            let (b, row) = at(row);
+            (b, BlockFailure::NoConvergence { row, iterations, residual })
+        }
+        BlockFailure::NoAssembly { row, iterations, evaluations, residual } => {
+            let (b, row) = at(row);
+            (b, BlockFailure::NoAssembly { row, iterations, evaluations, residual })
+        }
+        BlockFailure::Singular { row, iterations, residual, pivot_ratio, tolerance } => {
+            let (b, row) = at(row);
+            (b, BlockFailure::Singular { row, iterations, residual, pivot_ratio, tolerance })
+        }
+        other @ (BlockFailure::InvalidConfig { .. } | BlockFailure::TooManyTurns { .. }) => (0, other),
+    }
 }
 
 /// The position of a mechanism of `N` unknowns solved by Newton over the whole system from
@@ -130,8 +184,9 @@ where
 /// cannot be evaluated, which Newton refuses). The iteration runs in dimensionless unknowns
 /// `z = q / unit` (radians for an angle, fractions of its loop's size for a length), so that the
 /// columns of the Jacobian are of one magnitude, as a block of the generated Newton solver has
-/// them. The position and the solve's report, or `None` where Newton fails. What a compiled
-/// mechanism's [`rescue`] and a run-time model's solve, to the same bits.
+/// them. The position and the solve's report, or Newton's failure (its row an index into the
+/// whole system's equations). What a compiled mechanism's [`rescue`] and a run-time model's
+/// solve, to the same bits.
 #[doc(hidden)]
 pub fn whole_position<const N: usize>(
     guess: &[f64; N],
@@ -140,7 +195,7 @@ pub fn whole_position<const N: usize>(
     turns: [bool; N],
     cfg: &NewtonConfig,
     mut at: impl FnMut(&[f64; N], &mut BlockEval<N, 0>),
-) -> Option<([f64; N], SolveReport)> {
+) -> Result<([f64; N], SolveReport), BlockFailure> {
     let unit = unit.map(|u| if u > 0.0 && u.is_finite() { u } else { 1.0 });
     let mags = Magnitudes::new(scale, [1.0; N]).with_turns(turns);
     let q_of = |z: &[f64; N]| core::array::from_fn::<f64, N, _>(|u| z[u] * unit[u]);
@@ -156,8 +211,40 @@ pub fn whole_position<const N: usize>(
     let z0 = core::array::from_fn::<f64, N, _>(|u| guess[u] / unit[u]);
     let mut ev: BlockEval<N, 0> = BlockEval { f: [0.0; N], j: [[0.0; N]; N], keep: [] };
     eval(&z0, &mut ev);
-    let solved = newton(z0, &mut ev, cfg, eval, &mags).ok()?;
+    let solved = newton(z0, &mut ev, cfg, eval, &mags)?;
     let mut report = SolveReport::direct();
     report.absorb(&solved);
-    Some((q_of(&solved.z), report))
+    Ok((q_of(&solved.z), report))
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// A failure in row 3 of a system whose blocks hold rows `[0, 1]`, `[4]` and `[2, 3]` is
+    /// the third block's, in its row 1; a failure that names no row stays as it is.
+    #[test]
+    fn a_whole_systems_failure_is_its_equations_blocks() {
+        let blocks: [&[usize]; 3] = [&[0, 1], &[4], &[2, 3]];
+        let block_of = |row: usize| {
+            blocks.iter().enumerate().find_map(|(b, rows)| Some((b, rows.iter().position(|&r| r == row)?)))
+        };
+        let fail = BlockFailure::NoAssembly { row: 3, iterations: 7, evaluations: 9, residual: 0.25 };
+        assert_eq!(
+            in_block(fail, block_of),
+            (2, BlockFailure::NoAssembly { row: 1, iterations: 7, evaluations: 9, residual: 0.25 })
+        );
+        let fail = BlockFailure::NonFinite { row: 4, iterations: 2 };
+        assert_eq!(in_block(fail, block_of), (1, BlockFailure::NonFinite { row: 0, iterations: 2 }));
+        let fail =
+            BlockFailure::Singular { row: 1, iterations: 3, residual: 1e-12, pivot_ratio: 1e-13, tolerance: 1e-10 };
+        assert_eq!(in_block(fail, block_of).0, 0);
+        let fail = BlockFailure::NoConvergence { row: 2, iterations: 50, residual: 1e-3 };
+        assert_eq!(
+            in_block(fail, block_of),
+            (2, BlockFailure::NoConvergence { row: 0, iterations: 50, residual: 1e-3 })
+        );
+        let fail = BlockFailure::InvalidConfig { field: "max_iterations" };
+        assert_eq!(in_block(fail, block_of), (0, fail));
+    }
 }
