@@ -2,49 +2,65 @@
 //! validated up front, no unbounded loop, no false event, finiteness of every `Ok`, and the
 //! assembly mode of every block watched (beyond the 64th).
 
+use kinloop::paths::sweep::MAX_TURNS;
 use kinloop::{AtSingular, Error, EventKind, SweepConfig};
-use kinloop_fixtures::FourBar;
-use std::sync::mpsc;
-use std::time::Duration;
+use kinloop_fixtures::{FourBar, FourBarState};
+use std::f64::consts::TAU;
 
-use crate::support::tol;
+use crate::support::{four_bar_angles, tol};
 
 const CRANK_ROCKER: FourBar = FourBar { a: 1.0, b: 3.0, c: 2.5, d: 3.2 };
 
-/// Runs `f` on a thread and fails if it does not return within `secs` (a hang is a defect).
-fn within<T: Send + 'static>(secs: u64, f: impl FnOnce() -> T + Send + 'static) -> T {
-    let (tx, rx) = mpsc::channel();
-    std::thread::spawn(move || {
-        let _ = tx.send(f());
-    });
-    rx.recv_timeout(Duration::from_secs(secs)).expect("did not return in time")
+// The sweeps below run on the test's own thread: a range too long to follow is refused before
+// any step, so each returns at once, and a hang would be one of the test harness's to catch.
+
+/// The items of a sweep over `0..=to` of the crank-rocker in `samples` samples, and its events.
+fn sweep_to(to: f64, samples: usize) -> (Vec<Result<FourBarState, Error>>, Vec<EventKind>) {
+    let m = CRANK_ROCKER;
+    let mut s = m.sweep(0.0, to, samples, &m.guess(0.0)).unwrap();
+    let items: Vec<_> = s.by_ref().collect();
+    (items, s.events().iter().map(|e| e.kind).collect())
 }
 
-#[test]
-fn a_sweep_over_a_huge_range_returns() {
-    let n = within(120, || {
-        let m = CRANK_ROCKER;
-        let g = m.guess(0.0);
-        m.sweep(0.0, 1e300, 5, &g).map(|s| s.count()).unwrap_or(0)
-    });
-    assert!(n <= 5);
-}
-
-#[test]
-fn a_crank_rocker_has_no_limit_position_even_over_a_huge_range() {
-    let events = within(120, || {
-        let m = CRANK_ROCKER;
-        let g = m.guess(0.0);
-        let mut s = m.sweep(0.0, 1e15, 3, &g).unwrap();
-        let results: Vec<_> = s.by_ref().collect();
-        for r in &results {
-            if let Err(e) = r {
-                assert!(!matches!(e, Error::SweepStopped { kind: EventKind::LimitPosition, .. }), "{e}");
-            }
+/// Whether `items` is the one refusal of a range of `to` radians, `to / 2 pi` turns.
+fn refused_as_too_long(items: &[Result<FourBarState, Error>], to: f64) {
+    match items {
+        [Err(Error::RangeTooLong { turns, max_turns, .. })] => {
+            assert_close!(*turns, to / TAU, rel = tol::ULPS);
+            assert_eq!(*max_turns, MAX_TURNS);
         }
-        s.events().iter().map(|e| e.kind).collect::<Vec<_>>()
-    });
-    assert!(!events.contains(&EventKind::LimitPosition), "{events:?}");
+        other => panic!("{other:?}"),
+    }
+}
+
+#[test]
+fn a_sweep_over_a_huge_range_is_refused_as_too_long() {
+    // 1.6e299 turns: refused by the first `next`, and nothing after it.
+    let (items, events) = sweep_to(1e300, 5);
+    refused_as_too_long(&items, 1e300);
+    assert!(events.is_empty(), "{events:?}");
+}
+
+#[test]
+fn a_crank_rocker_has_no_limit_position_even_over_a_long_range() {
+    // 1.6e14 turns, beyond the most a sweep follows: refused, with no event.
+    let (items, events) = sweep_to(1e15, 3);
+    refused_as_too_long(&items, 1e15);
+    assert!(events.is_empty(), "{events:?}");
+    // Ten thousand turns and a bit, within it, in three samples (more than three million degrees
+    // apart): every sample on the assembly it started on (C left of B -> D, the closed form's
+    // side +1), where its closed form puts it, and no event on the way.
+    let to = TAU * (1e4 + 0.3);
+    let (items, events) = sweep_to(to, 3);
+    assert!(events.is_empty(), "{events:?}");
+    assert_eq!(items.len(), 3, "{items:?}");
+    let FourBar { a, b, c, d } = CRANK_ROCKER;
+    for st in items {
+        let st = st.unwrap();
+        let [beta, gamma] = four_bar_angles(a, b, c, d, st.input.phi, 1.0).unwrap();
+        assert_close!(st.q.beta, beta, tol::SOLVE, "beta at {}", st.input.phi);
+        assert_close!(st.q.gamma, gamma, tol::SOLVE, "gamma at {}", st.input.phi);
+    }
 }
 
 #[test]
@@ -61,7 +77,7 @@ fn invalid_sweep_configurations_are_named_up_front() {
         (d.with_max_halvings(0), "max_halvings"),
         (newton_inf, "newton.residual_tol"),
     ] {
-        let first = within(60, move || m.sweep(0.0, 1.0, 3, &g).unwrap().with_config(cfg).next());
+        let first = m.sweep(0.0, 1.0, 3, &g).unwrap().with_config(cfg).next();
         match first {
             Some(Err(Error::InvalidArgument(msg))) => assert!(msg.contains(field), "{msg}"),
             other => panic!("{field}: {other:?}"),
