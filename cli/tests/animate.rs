@@ -1,6 +1,7 @@
 //! `kinloop animate` end to end: the built binary on the shipped `.kl` files, its SVG read back
-//! as XML (frames counted, the crank's drawn angle against the input it was swept through),
-//! its HTML page's structure, and its exit codes.
+//! as XML (frames counted, the crank's drawn angle against the input it was swept through, a
+//! joint's drawn track and a limit position against their constructions), its HTML page's
+//! structure, and its exit codes.
 
 mod common;
 
@@ -47,9 +48,23 @@ fn point_animations(svg: &str) -> Vec<Vec<Vec<[f64; 2]>>> {
         .collect()
 }
 
+/// Joint C of the four-bar `a, b, c, d` (crank `a` at the origin at `phi`, coupler `b`, rocker
+/// `c` pivoted at `(d, 0)`) where the circles (B, b) and (D, c) meet, on the left of B -> D: the
+/// assembly mode of the declaration's guess (C above the frame at `phi = 0`).
+fn joint_c([a, b, c, d]: [f64; 4], phi: f64) -> [f64; 2] {
+    let (bx, by) = (a * phi.cos(), a * phi.sin());
+    let (ux, uy) = (d - bx, -by);
+    let dist = ux.hypot(uy);
+    let along = (b * b - c * c + dist * dist) / (2.0 * dist);
+    let h = (b * b - along * along).sqrt();
+    [bx + (along * ux - h * uy) / dist, by + (along * uy + h * ux) / dist]
+}
+
 /// A whole turn of the four-bar's crank in 37 samples: an SVG of 37 key frames, in which the
 /// crank (a bar from a fixed pixel) turns through the swept angles: at frame k its angle from
-/// the pivot is 10 k degrees, to the rounding of pixels written to a tenth.
+/// the pivot is 10 k degrees, to the rounding of pixels written to a tenth. The coupler's and
+/// rocker's joint C is drawn where the construction puts it ([`joint_c`]), mapped to pixels by
+/// the picture's scale read from the crank's drawn length and its pivot's pixel.
 #[test]
 fn an_svg_animation_of_a_turn() {
     let path = out("four_bar.svg");
@@ -78,7 +93,27 @@ fn an_svg_animation_of_a_turn() {
                 d.min(std::f64::consts::TAU - d) < 0.01
             })
     });
-    assert!(crank.is_some(), "no bar turns with the input: {anims:?}");
+    let crank = crank.unwrap_or_else(|| panic!("no bar turns with the input: {anims:?}"));
+    // The picture's map: `px = o + s (x, -y)` (Y up in the mechanism, down in the picture), `o`
+    // the crank's pivot's pixel and `s` pixels per unit, the crank's drawn length over `a = 1`.
+    let o = crank[0][0];
+    let s = crank.iter().map(|f| (f[1][0] - f[0][0]).hypot(f[1][1] - f[0][1])).sum::<f64>() / crank.len() as f64;
+    assert!(s > 50.0, "{s} pixels per unit: the mechanism spans most of a picture 480 pixels wide");
+    // Each coordinate is written to a tenth of a pixel (within 0.05): the crank's length within
+    // 0.15 pixel, so `s` within 0.15 pixel per unit, which moves C (at most `a + b = 4` units
+    // from the pivot) by 0.6 pixel; with the roundings of C's and the pivot's own pixels,
+    // within 0.75 pixel. One frame's step of the crank moves C by tens of pixels, the other
+    // assembly mode by hundreds.
+    let tracks = |f: &[Vec<[f64; 2]>], j: usize| {
+        f.iter().enumerate().all(|(k, frame)| {
+            let [cx, cy] = joint_c([1.0, 3.0, 2.5, 3.2], (10.0 * k as f64).to_radians());
+            let want = [o[0] + s * cx, o[1] - s * cy];
+            frame.get(j).is_some_and(|p| (p[0] - want[0]).hypot(p[1] - want[1]) <= 0.75)
+        })
+    };
+    let joint = anims.iter().filter(|a| (0..a[0].len()).any(|j| tracks(a, j))).count();
+    // The coupler's bar B-C and the rocker's C-D.
+    assert_eq!(joint, 2, "C drawn off its construction: {anims:?}");
 }
 
 /// The rhombic drive as an interactive page: one document, its figure well-formed SVG, a slider
@@ -115,7 +150,12 @@ fn an_interactive_page() {
 }
 
 /// `--format` names the format whatever the extension; a rocker stopping at its limit position
-/// is drawn there and plays back and forth (2 k - 1 key frames for k poses), exit 0.
+/// is drawn there and plays back and forth (2 k - 1 key frames for k poses), exit 0. The limit
+/// is where the law of cosines puts it: the crank's tip B and the rocker's pivot D are
+/// `|BD|^2 = a^2 + d^2 - 2 a d cos(phi)` apart, which grows with `phi` from `|d - a| = 1.7` at 0
+/// to `d + a = 4.7` at 180 degrees, and the loop closes while `|b - c| = 2 <= |BD| <= b + c = 4`:
+/// from 27.8 to 111.4 degrees. Swept up from 70 degrees, the crank stops where coupler and
+/// rocker lie stretched in line, `|BD| = b + c`, at `acos((a^2 + d^2 - (b + c)^2) / (2 a d))`.
 #[test]
 fn format_option_and_a_stop_at_a_limit_position() {
     let path = out("rocker.drawing");
@@ -125,7 +165,12 @@ fn format_option_and_a_stop_at_a_limit_position() {
     let o = kinloop(&args.into_iter().chain(["--params", params, "--out", &p, "--format", "svg"]).collect::<Vec<_>>());
     ok(&o);
     let stderr = String::from_utf8_lossy(&o.stderr);
-    assert!(stderr.contains("stopped at limit position at phi = "), "{stderr}");
+    let at = stderr.split_once("stopped at limit position at phi = ").and_then(|(_, rest)| rest.split_once(" deg"));
+    let at: f64 = at.and_then(|(v, _)| v.parse().ok()).unwrap_or_else(|| panic!("no limit's input: {stderr}"));
+    let (a, b, c, d): (f64, f64, f64, f64) = (1.5, 3.0, 1.0, 3.2);
+    let limit = ((a * a + d * d - (b + c).powi(2)) / (2.0 * a * d)).acos().to_degrees();
+    // An event is located to 1e-9 rad (the tests' `tol::LOCATED`): 5.7e-8 degrees.
+    assert!((at - limit).abs() <= 1e-9f64.to_degrees(), "stopped at {at} deg, the limit is at {limit} deg");
     let anims = point_animations(&std::fs::read_to_string(&path).expect("written"));
     let k = anims[0].len();
     assert!(k % 2 == 1 && k > 3 && k < 2 * 19 - 1, "{k} key frames");

@@ -21,6 +21,23 @@ use std::f64::consts::{PI, TAU};
 const TO: f64 = 6.28;
 const COLUMNS: [&str; 4] = ["beta", "gamma", "pc.x", "pc.y"];
 
+kinloop::mechanism! {
+    /// The fixtures' four-bar with two progressive outputs (advancing over the range, with one
+    /// reversal each, whose dwells lie across the change point): `dip`, the joint's `x` in units
+    /// of the crank (scale-free) plus `0.05 (phi - pi)^3`, whose reversal ends at the joint's
+    /// minimum at the crossing itself (the cubic's slope vanishes there); and `lag`, the
+    /// coupler's angle plus `0.3 phi`, whose reversal runs from before the crossing to after it.
+    pub struct FourBarDip {
+        params a, b, c, d;
+        input phi;
+        unknowns beta = 0.5, gamma = 1.5;
+        loop abcd: a @ phi + b @ beta == (d, 0) + c @ gamma;
+        point pc = a @ phi + b @ beta;
+        output dip = (a * cos(phi) + b * cos(beta)) / a + 0.05 * (phi - pi) * (phi - pi) * (phi - pi);
+        output lag = beta + 0.3 * phi;
+    }
+}
+
 /// The four-bar (1, 2, 2.5, 3.5) at scale `s`: `a + d = b + c`.
 fn four_bar(s: f64) -> FourBar {
     FourBar { a: s, b: 2.0 * s, c: 2.5 * s, d: 3.5 * s }
@@ -30,7 +47,8 @@ fn four_bar(s: f64) -> FourBar {
 /// (B, b) and (D, c), B the crank's tip, on the left of B -> D before the crossing (the fixture's
 /// guess, C above the frame at `phi = 0`) and on its right after it: the sweep's smooth
 /// continuation through the change point, where the two modes meet (`|BD| = b + c`, C on the
-/// line B -> D), changes mode. Angles are wrapped to (-pi, pi]; see [`unwrap_near`].
+/// line B -> D), changes mode; with the outputs of [`FourBarDip`]. Angles are wrapped to
+/// (-pi, pi]; see [`unwrap_near`].
 fn construction(m: &FourBar, phi: f64, name: &str) -> f64 {
     let (bx, by) = (m.a * phi.cos(), m.a * phi.sin());
     let side = if phi < PI { 1.0 } else { -1.0 };
@@ -41,13 +59,15 @@ fn construction(m: &FourBar, phi: f64, name: &str) -> f64 {
         "gamma" => cy.atan2(cx - m.d),
         "pc.x" => cx,
         "pc.y" => cy,
+        "dip" => cx / m.a + 0.05 * (phi - PI).powi(3),
+        "lag" => (cy - by).atan2(cx - bx) + 0.3 * phi,
         _ => unreachable!("{name}"),
     }
 }
 
 /// `v` moved by whole turns to lie within half a turn of `near` (angles only).
 fn unwrap_near(name: &str, v: f64, near: f64) -> f64 {
-    if name.starts_with("pc") { v } else { v + TAU * ((near - v) / TAU).round() }
+    if matches!(name, "beta" | "gamma" | "lag") { v + TAU * ((near - v) / TAU).round() } else { v }
 }
 
 /// The interior local extremes of the column over `[0, TO]`, by brute force: the closed form on
@@ -57,14 +77,9 @@ fn unwrap_near(name: &str, v: f64, near: f64) -> f64 {
 /// the values compared are equal within rounding over a wider interval than that), and its
 /// value to rounding.
 fn reference_extremes(m: &FourBar, name: &str) -> Vec<(Extreme, f64, f64)> {
-    let n = 1usize << 18;
+    let values = grid_values(m, name);
+    let n = values.len() - 1;
     let phi = |i: usize| TO * i as f64 / n as f64;
-    let mut values = Vec::with_capacity(n + 1);
-    for i in 0..=n {
-        let v = construction(m, phi(i), name);
-        let v = values.last().map_or(v, |&prev| unwrap_near(name, v, prev));
-        values.push(v);
-    }
     let mut found = Vec::new();
     for i in 1..n {
         let (l, v, r) = (values[i - 1], values[i], values[i + 1]);
@@ -91,6 +106,61 @@ fn reference_extremes(m: &FourBar, name: &str) -> Vec<(Extreme, f64, f64)> {
         found.push((kind, x, sign * f(x)));
     }
     found
+}
+
+/// The column by construction on the grid of [`reference_extremes`] (2^18 intervals over
+/// `[0, TO]`), angles unwrapped along it: continuous, as the library's columns are.
+fn grid_values(m: &FourBar, name: &str) -> Vec<f64> {
+    let n = 1usize << 18;
+    let mut values: Vec<f64> = Vec::with_capacity(n + 1);
+    for i in 0..=n {
+        let v = construction(m, TO * i as f64 / n as f64, name);
+        let v = values.last().map_or(v, |&prev| unwrap_near(name, v, prev));
+        values.push(v);
+    }
+    values
+}
+
+/// The dwells of the column over `[0, TO]` by the definition (`kinloop::analysis::dwell`),
+/// from the brute-force extremes and the construction: the output advances overall in the sign
+/// of `v(TO) - v(0)`; each pair of consecutive extremes moving against it (a maximum then a
+/// minimum for an advancing output) is a reversal, whose dwell runs from where the output
+/// enters the band, reaching the second extreme's value before the first extreme (after the
+/// extreme before it, or from 0), to where it leaves it, reaching the first extreme's value
+/// after the second (before the next, or by `TO`); a reversal whose band is not entered or
+/// left so is no dwell. Each end by bisection on the construction, to rounding.
+/// `(start, first extreme, second extreme, end)`, as inputs.
+fn reference_dwells(m: &FourBar, name: &str) -> Vec<[f64; 4]> {
+    let values = grid_values(m, name);
+    let (first, last) = (values[0], values[values.len() - 1]);
+    let reversal = if last > first { Extreme::Max } else { Extreme::Min };
+    let ext = reference_extremes(m, name);
+    // Where the column, monotonic on `[lo, hi]`, takes `level`, if it does.
+    let reach = |lo: f64, hi: f64, level: f64| {
+        let f = |x: f64| unwrap_near(name, construction(m, x, name), level) - level;
+        let (mut a, mut b) = (lo, hi);
+        if (f(a) >= 0.0) == (f(b) >= 0.0) {
+            return None;
+        }
+        for _ in 0..200 {
+            let mid = 0.5 * (a + b);
+            if (f(mid) >= 0.0) == (f(a) >= 0.0) { a = mid } else { b = mid }
+        }
+        Some(0.5 * (a + b))
+    };
+    let mut dwells = Vec::new();
+    for i in 0..ext.len().saturating_sub(1) {
+        let ((kind, x1, v1), (_, x2, v2)) = (ext[i], ext[i + 1]);
+        if kind != reversal {
+            continue;
+        }
+        let before = if i > 0 { ext[i - 1].1 } else { 0.0 };
+        let after = ext.get(i + 2).map_or(TO, |e| e.1);
+        if let (Some(start), Some(end)) = (reach(before, x1, v2), reach(x2, after, v1)) {
+            dwells.push([start, x1, x2, end]);
+        }
+    }
+    dwells
 }
 
 /// What a length or an angle of the column is compared with: the link size for a length.
@@ -200,22 +270,56 @@ fn a_state_just_past_a_change_point_is_at_its_own_input() {
 
 /// The dwells of every column across the change point: the search behind them is the extremes'
 /// (`pc.x`'s at the crossing itself), which failed the whole analysis for `pc.x` at every sample
-/// count. The same dwells whatever the count and the scale (each column's extremes checked
-/// against the construction above).
+/// count. Each column's dwells, at every count and scale, are the definition's from the
+/// construction ([`reference_dwells`]). The four columns of the four-bar have none: each
+/// swings and comes back (mirrored across the crossing) without a reversal entered from below
+/// it and left above it within the range. The progressive `dip` and `lag` have one each, over
+/// `[0.39, 4.39]` and `[0.88, 5.40]` (the brute force's, to the hundredth), `dip`'s second
+/// extreme the crossing itself: an analysis finding no dwell fails here. Compared: the same
+/// count; each extreme within 1e-6 (as in [`check_extremes`]); the ends, where the output enters
+/// and leaves the band, within `tol::LOCATED`: each a root of `v - level`, the level an
+/// extreme's value (to `tol::SOLVE` of the size), so placed within that over the slope there,
+/// which is checked to be at least a tenth of the size per radian.
 #[test]
 fn sampled_dwells_across_a_change_point() {
     let cfg = SweepConfig::default().with_at_singular(AtSingular::Continue);
-    for name in COLUMNS {
-        let mut counts = Vec::new();
+    let expected = |name: &str| match name {
+        "dip" => vec![[0.39, 1.27, PI, 4.39]],
+        "lag" => vec![[0.88, 1.98, 4.31, 5.40]],
+        _ => vec![],
+    };
+    for name in COLUMNS.into_iter().chain(["dip", "lag"]) {
         for scale in [1.0, 1e-3, 1e3] {
             let m = four_bar(scale);
+            let reference = reference_dwells(&m, name);
+            // The brute force against the figures written above.
+            let rough = expected(name);
+            assert_eq!(reference.len(), rough.len(), "{name}: {reference:?}");
+            for (r, e) in reference.iter().zip(&rough) {
+                assert!(r.iter().zip(e).all(|(r, e)| (r - e).abs() < 0.01), "{name}: {reference:?}");
+            }
+            let dip = FourBarDip { a: m.a, b: m.b, c: m.c, d: m.d };
             for samples in [5, 10, 73, 360] {
-                let run = Sampled::sweep_with(&m, 0.0, TO, samples, m.guess_flat(&[0.0]), cfg).unwrap();
-                let c = Column::<FourBar>::named(name).unwrap();
-                let found = run.dwells(c).unwrap_or_else(|e| panic!("{name}, scale {scale}, {samples} samples: {e}"));
-                counts.push(found.len());
+                let what = format!("{name}, scale {scale}, {samples} samples");
+                let run = Sampled::sweep_with(&dip, 0.0, TO, samples, dip.guess_flat(&[0.0]), cfg).unwrap();
+                let c = Column::<FourBarDip>::named(name).unwrap();
+                let found = run.dwells(c).unwrap_or_else(|e| panic!("{what}: {e}"));
+                assert_eq!(found.len(), reference.len(), "{what}: {found:?} against {reference:?}");
+                for (d, want) in found.iter().zip(&reference) {
+                    let size = size(&m, name);
+                    for (got, want) in [(d.first.x(), want[1]), (d.second.x(), want[2])] {
+                        assert!((got - want).abs() < 1e-6, "{what}: an extreme at {got} against {want}: {d:?}");
+                    }
+                    for (end, want) in [(d.start, want[0]), (d.end, want[3])] {
+                        assert!(end.d1.abs() > 0.1 * size, "{what}: slope at {end:?}");
+                        assert!(
+                            (end.x - want).abs() < tol::LOCATED,
+                            "{what}: an end at {} against {want}: {d:?}",
+                            end.x
+                        );
+                    }
+                }
             }
         }
-        assert!(counts.iter().all(|&n| n == counts[0]), "{name}: {counts:?}");
     }
 }

@@ -625,19 +625,33 @@ fn a_sweep_where_the_inputs_doubles_are_too_coarse_says_so() {
 /// Between 1e12 and 1e16, where an input's doubles are from 1e-4 to 2 apart against samples
 /// 0.28 apart, a sweep either completes or fails saying the input is too coarse: never a hang
 /// (the diagnosis of a failed step followed the curve in steps that the inputs' rounding kept
-/// rejecting, some 1e14 of them), and never the blame on the solution curve's roughness.
+/// rejecting, some 1e14 of them), and never the blame on the solution curve's roughness. Every
+/// state it gives (all 361 where it completes) is where the construction puts it at the
+/// state's own input (see `slider_state_at_its_input`).
 #[test]
 fn a_sweep_far_out_completes_or_says_the_input_is_coarse() {
     let m = Slider { r: 1.0, l: 3.0, e: 0.4 };
     let k = SliderCase { m, phi0: 0.0, side: -1.0, dir: 1.0, turns: 1, per_turn: 1 };
     let n = SliderNewton { r: 1.0, l: 3.0, e: 0.4 };
+    let mut completed = Vec::new();
     for from in [1e12, 1e13, 1e14, 4e14, 1e15, 1e16] {
         let (psi, x) = k.at(from).expect("the rod reaches the line");
         let closed = m.sweep(from, from + 100.0, 361, &SliderUnknowns { psi, x }).unwrap().run();
         let newton = n.sweep(from, from + 100.0, 361, &SliderNewtonUnknowns { psi, x }).unwrap().run();
-        for (path, stop) in [("closed form", &closed.stop), ("Newton", &newton.stop)] {
+        let states = [
+            closed.states.iter().map(|s| (s.input.phi, s.q.psi, s.q.x)).collect::<Vec<_>>(),
+            newton.states.iter().map(|s| (s.input.phi, s.q.psi, s.q.x)).collect(),
+        ];
+        for ((path, stop), states) in [("closed form", &closed.stop), ("Newton", &newton.stop)].into_iter().zip(&states)
+        {
+            for &state in states {
+                slider_state_at_its_input(&k, state, &format!("{from} ({path})"));
+            }
             match stop {
-                SweepStop::Completed => {}
+                SweepStop::Completed => {
+                    assert_eq!(states.len(), 361, "{from} ({path})");
+                    completed.push(from);
+                }
                 SweepStop::Failed(e @ Error::InputTooCoarse { .. }) => {
                     let message = e.to_string();
                     assert!(
@@ -649,6 +663,22 @@ fn a_sweep_far_out_completes_or_says_the_input_is_coarse() {
             }
         }
     }
+    // Where the doubles are at most 2e-3 apart, on both paths: the check above is not idle.
+    assert!(completed.starts_with(&[1e12, 1e12, 1e13, 1e13]), "completed from {completed:?}");
+}
+
+/// Checks a slider-crank state `(phi, psi, x)` against the construction at the state's own
+/// input `phi`: the rod's end `l @ psi` and the slider `x` within `1e-9` of the size (a solve's
+/// rounding, as in `check_slider`). A sweep solves each state at its input, a double whose sine
+/// and cosine are rounded alike at any size, so the input's spacing (2 near 1e16) needs no
+/// allowance here, unlike a point traced with the input among its unknowns (measured: 6e-15
+/// at most, from 1e12 to 1e16, on both paths).
+fn slider_state_at_its_input(k: &SliderCase, (phi, psi, x): (f64, f64, f64), what: &str) {
+    let size = k.size();
+    let (psi_c, x_c) = k.at(phi).expect("the rod reaches the line");
+    let (dx, dy) = (psi.cos() - psi_c.cos(), psi.sin() - psi_c.sin());
+    let worst = (k.m.l * dx.hypot(dy)).max((x - x_c).abs());
+    assert!(worst <= 1e-9 * size, "{what}: at {phi} (psi, x) = ({psi}, {x}), construction ({psi_c}, {x_c})");
 }
 
 /// A slider-crank whose crank turns fully (`l > r + e`) swept near 1e17, its samples as far
@@ -773,8 +803,9 @@ fn a_five_bar_driven_to_its_workspace_edge_stops_at_a_limit_position() {
     }
 }
 
-/// Grashof-equal four-bars (`a + b = c + d` or `a + d = b + c`: change points where the
-/// linkage folds flat and its two branches cross) swept through a change point stop there with
+/// Grashof-equal four-bars (`a + c = b + d` in the first, fourth and sixth cases, `a + d = b + c`
+/// in the second and third, `a + b = c + d` in the fifth: change points where the linkage folds
+/// flat and its two branches cross) swept through a change point stop there with
 /// a crossing, located to the trace's precision, on both solve paths and at any number of
 /// samples. Near the change point the continuation's corrector, on its plane across the curve,
 /// met the solution set radians away: a crossing was reported at a regular position (0.24 rad

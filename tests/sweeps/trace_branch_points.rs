@@ -22,7 +22,7 @@ use proptest::prelude::*;
 use proptest::test_runner::RngSeed;
 use std::f64::consts::{PI, TAU};
 
-use crate::support::tol;
+use crate::support::{four_bar_joint, tol};
 
 /// The four-bar `eps` from its change point, in the unit `unit`.
 fn near_change_point(eps: f64, unit: f64) -> FourBar {
@@ -226,14 +226,44 @@ fn a_cranks_curve_closes_after_one_turn() {
 
 /// Far out, where the crank angle's doubles are a hundredth of a radian apart and more (1e14 and
 /// on) against steps of 0.01, a trace completes or fails saying the input is too coarse, not
-/// that the curve bifurcates or ends.
+/// that the curve bifurcates or ends. A trace that completes has followed the crank-rocker's
+/// curve: from its start to the end of its segment, every point's joint C (through the
+/// coupler and through the rocker) where the construction puts it at the point's own input, on
+/// the start's assembly mode (the crank turns without a limit position, so the mode never
+/// changes).
 #[test]
 fn a_trace_far_out_completes_or_says_the_input_is_coarse() {
     let m = FourBar { a: 1.0, b: 3.0, c: 2.5, d: 3.2 };
+    let size = m.a + m.b + m.c + m.d;
+    let mut completed = Vec::new();
     for from in [1e9, 1e12, 1e14, 1e15, 1e16] {
         let g = m.position(from, &m.guess(from)).unwrap().0;
+        // The start's assembly mode: the side of B -> D that C lies on.
+        let side = mode(&g.into()).signum();
         match m.trace_curve(from, from + PI, &g, &TraceConfig::default()) {
-            Ok(t) => assert!(!t.points.is_empty()),
+            Ok(t) => {
+                let (first, last) = (t.points[0].x[0], t.points[t.points.len() - 1].x[0]);
+                // From the start to within a step (0.01 in the scaled coordinates) of the end.
+                assert!(first == from && (from + PI - last).abs() < 0.02, "{from}: traced {first} to {last}");
+                completed.push(from);
+                for p in &t.points {
+                    let phi = p.x[0];
+                    let (cx, cy) = four_bar_joint(m.a, m.b, m.c, m.d, phi, side).expect("a crank-rocker closes");
+                    let via_b = (m.a * phi.cos() + m.b * p.q[0].cos(), m.a * phi.sin() + m.b * p.q[0].sin());
+                    let via_d = (m.d + m.c * p.q[1].cos(), m.c * p.q[1].sin());
+                    // The corrector relaxes its residual for the inputs' rounding (to 1e-9 at
+                    // most): a point lies on the curve at an input within a few of its doubles'
+                    // spacing (`eps |phi|` each) of the one listed, which moves C by at most
+                    // `a / sin(mu)` times that, 1.4 `a` here (the transmission angle `mu` stays
+                    // above 46 degrees): the tolerance allows about three spacings (measured:
+                    // residuals of 1.4e-9 at 1e9 and 1.9e-9 at 1e12, 1e-15 near the origin).
+                    let tol = 1e-9 * size + 4.0 * f64::EPSILON * phi.abs() * m.a;
+                    for (x, y) in [via_b, via_d] {
+                        let off = (x - cx).hypot(y - cy);
+                        assert!(off <= tol, "{from}: at {phi} C = ({x}, {y}), construction ({cx}, {cy})");
+                    }
+                }
+            }
             Err(e @ kinloop::Error::InputTooCoarse { .. }) => {
                 let message = e.to_string();
                 assert!(
@@ -244,6 +274,8 @@ fn a_trace_far_out_completes_or_says_the_input_is_coarse() {
             Err(e) => panic!("{from}: {e}"),
         }
     }
+    // Where the doubles are at most 1.2e-4 apart: the check above is not idle.
+    assert!(completed.starts_with(&[1e9, 1e12]), "completed from {completed:?}");
 }
 
 /// Traces the Grashof-equal four-bar `[a, b, c, d]` (`a + c = b + d` to the rounding of the

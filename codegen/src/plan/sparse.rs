@@ -221,8 +221,40 @@ mod tests {
         let rows = ring(8);
         let e = eliminate(rows.clone(), &(0..16).collect::<Vec<_>>());
         let s = tables(&rows, &e);
-        // Slots are distinct per position, and all positions are in range.
+        // All slots are in range.
         assert!(s.slot.iter().chain(&s.upd).chain(&s.l_slot).chain(&s.u_slot).all(|&x| (x as usize) < s.nlu));
+        // Slots are distinct per position: every table's positions, in pivot coordinates, rebuilt
+        // from the permutations and the factors' patterns (the entries of the matrix; the
+        // diagonal; per pivot `k` its column of L, its row of U, and the updates, each row of
+        // that L column against each column of that U row, in that order): one slot is one
+        // position and one position one slot, and every slot is some position's.
+        let n = rows.len();
+        let (mut row_at, mut col_at) = (vec![0; n], vec![0; n]);
+        for k in 0..n {
+            (row_at[s.prow[k] as usize], col_at[s.pcol[k] as usize]) = (k, k);
+        }
+        let mut at: Vec<((usize, usize), u32)> = Vec::new();
+        at.extend(s.entries.iter().zip(&s.slot).map(|(&(r, c), &x)| ((row_at[r], col_at[c]), x)));
+        at.extend(s.diag.iter().enumerate().map(|(k, &x)| ((k, k), x)));
+        let mut upd = s.upd.iter();
+        for k in 0..n {
+            let l = s.l_ptr[k] as usize..s.l_ptr[k + 1] as usize;
+            let u = s.u_ptr[k] as usize..s.u_ptr[k + 1] as usize;
+            at.extend(l.clone().map(|t| ((s.l_row[t] as usize, k), s.l_slot[t])));
+            at.extend(u.clone().map(|t| ((k, s.u_col[t] as usize), s.u_slot[t])));
+            for i in l.map(|t| s.l_row[t] as usize) {
+                for j in u.clone().map(|t| s.u_col[t] as usize) {
+                    at.push(((i, j), *upd.next().expect("an update per pair")));
+                }
+            }
+        }
+        assert!(upd.next().is_none(), "an update for no pair");
+        let (mut slot_at, mut position_of) = (HashMap::new(), HashMap::new());
+        for (p, x) in at {
+            assert_eq!(*slot_at.entry(p).or_insert(x), x, "position {p:?} in two slots");
+            assert_eq!(*position_of.entry(x).or_insert(p), p, "slot {x} at two positions");
+        }
+        assert_eq!(position_of.len(), s.nlu, "a slot of no position");
         let mut prow = s.prow.clone();
         prow.sort_unstable();
         assert_eq!(prow, (0..16).collect::<Vec<u16>>());
