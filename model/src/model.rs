@@ -677,7 +677,9 @@ impl Model {
     /// analogs and no outputs (the compiled mechanism's `position_flat`). A closed form tests
     /// itself for a position its data do not determine (a lever short against its floor, a
     /// dyad on coincident centres), as there; a position where only the analogs are singular (a
-    /// limit position) is solved. No allocation.
+    /// limit position) is solved. A mechanism beyond the closed forms' sizes whose closed form
+    /// fails is solved again by Newton over the whole system, as by [`Model::kinematics`]. No
+    /// allocation outside that rescue.
     ///
     /// ```
     /// use kinloop_model::Model;
@@ -693,7 +695,14 @@ impl Model {
     /// assert_eq!(q, m.kinematics(&[0.5], &[0.6, 1.9], &NewtonConfig::default()).unwrap().q);
     /// ```
     pub fn positions(&mut self, x: &[f64], guess: &[f64], cfg: &NewtonConfig) -> Result<&[f64], StepError> {
-        self.solve_positions(x, guess, cfg, true)?;
+        if let Err(error) = self.solve_positions(x, guess, cfg, true) {
+            // A mechanism of extreme size is solved again, as the compiled `position_flat`
+            // solves it (the inputs were checked: the rescue runs after a block's failure).
+            let (q, report) = self.rescue_position(x, guess, cfg, error)?;
+            self.state.x.copy_from_slice(x);
+            self.state.q.copy_from_slice(&q);
+            self.set_report(report);
+        }
         Ok(&self.state.q)
     }
 

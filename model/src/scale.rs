@@ -39,6 +39,25 @@ impl Model {
         cfg: &NewtonConfig,
         error: StepError,
     ) -> Result<(), StepError> {
+        let (q, report) = self.rescue_position(x, guess, cfg, error)?;
+        self.kinematics_at(x, &q, cfg)?;
+        self.set_report(report);
+        Ok(())
+    }
+
+    /// [`Model::rescue`] of a solve of the positions alone (`Model::positions`, the compiled
+    /// `position_flat`'s `rescue_position`): the position Newton over the whole system reaches
+    /// and its report, with no analogs; where Newton fails, its failure in the block holding
+    /// the equation it names; `error` otherwise.
+    #[cold]
+    #[inline(never)]
+    pub(crate) fn rescue_position(
+        &mut self,
+        x: &[f64],
+        guess: &[f64],
+        cfg: &NewtonConfig,
+        error: StepError,
+    ) -> Result<(Vec<f64>, SolveReport), StepError> {
         // A value given that is not finite explains the failure at any size (its error names
         // it), as the compiled mechanism's does.
         if !matches!(error, StepError::Block { .. } | StepError::NonFinite)
@@ -59,15 +78,12 @@ impl Model {
                 }
             };
         }
-        let (q, report) = match whole!(1 2 3 4 5 6 7 8 9 10 11 12 13 14 15 16) {
-            Some(Ok(solved)) => solved,
-            Some(Err(fail)) => return Err(self.whole_failure(fail)),
+        match whole!(1 2 3 4 5 6 7 8 9 10 11 12 13 14 15 16) {
+            Some(Ok(solved)) => Ok(solved),
+            Some(Err(fail)) => Err(self.whole_failure(fail)),
             // More unknowns than the dense sizes: not solved again.
-            None => return Err(error),
-        };
-        self.kinematics_at(x, &q, cfg)?;
-        self.set_report(report);
-        Ok(())
+            None => Err(error),
+        }
     }
 
     /// The failure `fail` of Newton over the whole system (its row an index into the

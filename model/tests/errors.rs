@@ -313,3 +313,33 @@ fn a_non_finite_output_at_a_rescued_position_is_named_at_every_scale() {
         assert_eq!(e.location().map(|at| at.inputs.clone()), Some(vec![("phi".into(), 0.0)]), "size {k:e}");
     }
 }
+
+/// The positions alone (`Model::positions`, the compiled `position_flat`) of the four-bar whose
+/// crank cannot close its loop at `phi = 3`, at every size: no assembly in its loop's block
+/// there, explained as the compiled error field for field, and at `phi = 0.3`, where it
+/// assembles, the compiled positions to the bit. Beyond the closed forms' sizes both solve the
+/// positions again by Newton over the whole system; neither did (singular at `1e-300` and
+/// `1e-200`, an equation not finite at `1e200` and `1e300`, at both inputs).
+#[test]
+fn positions_alone_of_a_four_bar_whose_crank_cannot_close_fail_alike_at_every_scale() {
+    use kinloop_model::StepFailure;
+    use kinloop_runtime::generated::BlockFailure;
+    let cfg = NewtonConfig::default();
+    for k in [1.0, 1e-300, 1e-200, 1e200, 1e300] {
+        let [a, b, c, d] = [2.0 * k, 1.5 * k, 2.0 * k, 3.0 * k];
+        let compiled = fx::FourBarSens { a, b, c, d };
+        let mut model = read(fx::FOUR_BAR_SENS_TEXT);
+        set(&mut model, &[("a", a), ("b", b), ("c", c), ("d", d)]);
+        let (x, guess) = ([3.0], [0.5, 1.5]);
+        let e = model.positions(&x, &guess, &cfg).map(drop).unwrap_err();
+        let no_assembly =
+            matches!(e, StepError::Block { block: 0, failure: StepFailure::Block(BlockFailure::NoAssembly { .. }) });
+        assert!(no_assembly, "size {k:e}: {e:?}");
+        let explained = model.explain(&x, &guess, &cfg, e);
+        same(&compiled.position_flat(&x, &guess, &cfg).unwrap_err(), &explained);
+        let x = [0.3];
+        let q = model.positions(&x, &guess, &cfg).unwrap_or_else(|e| panic!("size {k:e}: {e:?}")).to_vec();
+        let (want, _) = compiled.position_flat(&x, &guess, &cfg).unwrap();
+        assert_eq!(q.iter().map(|v| v.to_bits()).collect::<Vec<_>>(), want.map(f64::to_bits), "size {k:e}");
+    }
+}

@@ -15,7 +15,7 @@ pub use crate::kin::{ByValue, Health, Jac, Kin, KinSink, Sens, first_non_finite_
 pub use crate::kinds::QuantityKind;
 pub use crate::mechanism::extreme_scale::{in_block, outside_closed_form_sizes, whole_position};
 pub use crate::mechanism::{Mechanism, Sensitivities};
-pub use crate::mechanism::{block_failure, rescue, rescue_sensitivities};
+pub use crate::mechanism::{block_failure, rescue, rescue_position, rescue_sensitivities};
 pub use crate::named::{NamedSensitivities, SensitivitiesRequested};
 pub use crate::solvers::closed::*;
 pub use crate::solvers::deferred::*;

@@ -83,7 +83,9 @@ pub trait Mechanism<const N: usize, const NI: usize, const NO: usize> {
     fn residual_flat(&self, x: &[f64; NI], q: &[f64; N]) -> [f64; N] {
         self.jacobian_flat(x, q).f
     }
-    /// Solves the positions from a guess.
+    /// Solves the positions from a guess. The generated one solves a mechanism whose lengths
+    /// leave the sizes the closed forms compute in (beyond about `1e±144`) again by Newton over
+    /// the whole system where its kernel fails, as [`Mechanism::kinematics_flat`] does.
     fn position_flat(
         &self,
         x: &[f64; NI],
@@ -264,6 +266,34 @@ where
             kin.report = report;
             Ok(kin)
         },
+        fail: |fail| whole_failure(m, fail, x, guess, cfg),
+    };
+    extreme_scale::rescue(&whole, x, guess, cfg, error)
+}
+
+/// [`rescue`] of a solve of the positions alone: the answer to the failure `error` of `m`'s
+/// `position_flat` kernel at input `x` from `guess`. Where [`rescue`] solves the position again
+/// (the same test, the same Newton over the whole system), that position and the solve's
+/// report: no analogs, whose failure is not the positions'. Where Newton fails, the error
+/// [`rescue`] gives; otherwise `error`. The macro's `position_flat` ends with it
+/// (`kinloop::__gen::rescue_position`).
+#[doc(hidden)]
+#[cold]
+#[inline(never)]
+pub fn rescue_position<M, const N: usize, const NI: usize, const NO: usize>(
+    m: &M,
+    x: &[f64; NI],
+    guess: &[f64; N],
+    cfg: &NewtonConfig,
+    error: Error,
+) -> Result<([f64; N], SolveReport), Error>
+where
+    M: Mechanism<N, NI, NO> + ?Sized,
+{
+    let whole = extreme_scale::Whole {
+        kinds: M::UNKNOWN_KINDS,
+        jacobian: |q: &[f64; N]| m.jacobian_flat(x, q),
+        at: |q: &[f64; N], report: SolveReport| Ok((*q, report)),
         fail: |fail| whole_failure(m, fail, x, guess, cfg),
     };
     extreme_scale::rescue(&whole, x, guess, cfg, error)

@@ -11,7 +11,7 @@ use crate::configured::Configured;
 use crate::error::Error;
 use crate::kin::{Kin, Sens};
 use crate::mechanism::kernel::Compiled;
-use crate::mechanism::{Mechanism, Sensitivities, rescue};
+use crate::mechanism::{Mechanism, Sensitivities};
 use crate::paths::config::SweepConfig;
 use crate::paths::modes::assembly_modes;
 use crate::paths::outcome::SweepResult;
@@ -78,12 +78,9 @@ pub trait Named<const N: usize, const NI: usize, const NO: usize>: Mechanism<N, 
         guess: &Self::Unknowns,
         cfg: &NewtonConfig,
     ) -> Result<(Self::Unknowns, SolveReport), Error> {
-        let (x, guess) = (input.into().into(), (*guess).into());
-        let (q, report) = match self.position_flat(&x, &guess, cfg) {
-            Ok(solved) => solved,
-            // A closed form outside the sizes it computes exactly: see `extreme_scale`.
-            Err(e) => rescue(self, &x, &guess, cfg, e).map(|k| (k.q, k.report))?,
-        };
+        // The generated `position_flat` solves a mechanism outside the closed forms' sizes
+        // again itself (`rescue_position`, see `extreme_scale`).
+        let (q, report) = self.position_flat(&input.into().into(), &(*guess).into(), cfg)?;
         Ok((q.into(), report))
     }
 

@@ -629,3 +629,106 @@ fn a_four_bar_whose_crank_cannot_close_fails_alike_at_every_scale() {
         }
     }
 }
+
+/// Positions alone (`position_flat`) of `at(k)` at 12 inputs of a turn from the declared guess,
+/// at each scale of `ks`: the largest difference from scale 1 (which must solve), in radians
+/// for angles and in fractions of the size `k` for lengths (`lengths[u]`), or the first error
+/// with its scale. Each position is also the one `kinematics_flat` and the named `position`
+/// solve there, to the bit (the same solve, with or without analogs).
+fn position_solves_at<M, const N: usize, const NO: usize>(at: impl Fn(f64) -> M, lengths: [bool; N], ks: &[f64]) -> f64
+where
+    M: kinloop::Named<N, 1, NO>,
+{
+    let cfg = NewtonConfig::default();
+    let one = at(1.0);
+    let mut worst = 0.0f64;
+    for &k in ks {
+        let m = at(k);
+        for i in 0..12 {
+            let x = [0.3 + i as f64 * 0.5];
+            let (base, _) = one.position_flat(&x, &one.guess_flat(&x), &cfg).unwrap();
+            let (q, _) = m
+                .position_flat(&x, &m.guess_flat(&x), &cfg)
+                .unwrap_or_else(|e| panic!("{} positions at size {k:e}, input {}: {e}", M::NAME, x[0]));
+            for u in 0..N {
+                let d = (q[u] / if lengths[u] { k } else { 1.0 } - base[u]).abs();
+                worst = worst.max(if d.is_nan() { f64::INFINITY } else { d });
+            }
+            let kin = m.kinematics_flat(&x, &m.guess_flat(&x), &cfg).unwrap();
+            assert_eq!(q, kin.q, "{} at size {k:e}, input {}", M::NAME, x[0]);
+            let named: [f64; N] = m.position(x, &m.guess_flat(&x).into()).unwrap().0.into();
+            assert_eq!(q, named, "{} at size {k:e}, input {}", M::NAME, x[0]);
+        }
+    }
+    worst
+}
+
+/// The sizes at which the positions alone were not rescued: the four-bar's `position_flat`
+/// failed at every input, singular at `1e-300` and `1e-200` (squared lengths subnormal or
+/// zero) and its equation not finite at `1e200` and `1e300` (overflowed), where
+/// `kinematics_flat` and the named `position` solved.
+const POSITION_SCALES: [f64; 4] = [1e-300, 1e-200, 1e200, 1e300];
+
+/// The compiled `position_flat` (the positions alone, what a synthesis objective without
+/// derivatives and a drawing's reference state solve) is rescued beyond the closed forms' sizes
+/// as `kinematics_flat` is: the four-bar's, the slider-crank's (a length among the unknowns)
+/// and the ten-unknown chain's positions at every size are the scale-1 ones, angles equal and
+/// lengths scaled, to [`SCALE_TOL`] (the scaled parameters' rounding through the mechanism's
+/// condition, as for the point solves).
+#[test]
+fn positions_alone_solve_at_every_scale() {
+    let four = position_solves_at(four_bar, [false, false], &POSITION_SCALES);
+    let slider = position_solves_at(slider_crank, [false, true], &POSITION_SCALES);
+    let chain = position_solves_at(chain, [false; 10], &POSITION_SCALES);
+    eprintln!("positions alone over scales: four-bar {four:.1e}, slider-crank {slider:.1e}, chain {chain:.1e}");
+    assert!(four <= SCALE_TOL && slider <= SCALE_TOL && chain <= SCALE_TOL, "{four:e} {slider:e} {chain:e}");
+    // A synthesis objective without derivatives solves through `position_flat`
+    // (`SensKernel::position_into`): the same positions and the outputs there.
+    use kinloop::SensKernel;
+    let cfg = NewtonConfig::default();
+    let one = kinloop::CompiledSens(four_bar_sens(1.0));
+    for k in POSITION_SCALES {
+        let m = kinloop::CompiledSens(four_bar_sens(k));
+        let x = [1.3];
+        let (mut q, mut out) = ([0.0; 2], [0.0; 2]);
+        let (mut q1, mut out1) = ([0.0; 2], [0.0; 2]);
+        one.position_into(&x, &one.0.guess_flat(&x), &cfg, &mut q1, &mut out1).unwrap();
+        m.position_into(&x, &m.0.guess_flat(&x), &cfg, &mut q, &mut out)
+            .unwrap_or_else(|e| panic!("position_into at size {k:e}: {e}"));
+        for u in 0..2 {
+            assert!((q[u] - q1[u]).abs() <= SCALE_TOL, "size {k:e}: {q:?} against {q1:?}");
+            assert!((out[u] / k - out1[u]).abs() <= SCALE_TOL * 5.0, "size {k:e}: {out:?} against {out1:?}");
+        }
+    }
+}
+
+/// A four-bar that cannot close its loop at the input fails in `position_flat` with the error it
+/// has at size 1, at every size: no assembly, in its loop's block, at that input; the same error
+/// as `kinematics_flat`'s (the same Newton over the whole system fails, whatever is computed
+/// after it). Before, the closed form's error stood: singular at `1e-300` and `1e-200`, the
+/// equation not finite at `1e200` and `1e300`. At an input where it assembles, the positions
+/// alone solve at every size.
+#[test]
+fn positions_alone_of_a_four_bar_that_cannot_close_fail_alike_at_every_scale() {
+    use kinloop::Error;
+    let cfg = NewtonConfig::default();
+    let one = {
+        let [a, b, c, d] = crank_too_long(1.0);
+        FourBar { a, b, c, d }
+    };
+    let base = one.position_flat(&[0.3], &one.guess_flat(&[0.3]), &cfg).unwrap().0;
+    for k in [1.0].into_iter().chain(POSITION_SCALES) {
+        let [a, b, c, d] = crank_too_long(k);
+        let m = FourBar { a, b, c, d };
+        let x = [3.0];
+        let e = m.position_flat(&x, &m.guess_flat(&x), &cfg).unwrap_err();
+        assert!(matches!(e, Error::NoAssembly { .. }), "size {k:e}: {e:?}");
+        let at = e.location().map(|at| (at.inputs.clone(), at.block.as_ref().map(|b| b.0)));
+        assert_eq!(at, Some((vec![("phi".into(), 3.0)], Some(0))), "size {k:e}: {e:?}");
+        let kin = m.kinematics_flat(&x, &m.guess_flat(&x), &cfg).unwrap_err();
+        assert_eq!(e.to_string(), kin.to_string(), "size {k:e}");
+        let (q, _) =
+            m.position_flat(&[0.3], &m.guess_flat(&[0.3]), &cfg).unwrap_or_else(|e| panic!("size {k:e}, phi 0.3: {e}"));
+        assert!((q[0] - base[0]).abs() <= SCALE_TOL && (q[1] - base[1]).abs() <= SCALE_TOL, "size {k:e}: {q:?}");
+    }
+}

@@ -123,7 +123,11 @@ const SWEEP_INLINE_MAX_UNKNOWNS: usize = 8;
 fn mechanism_impl(model: &Model, plan: &Plan, t: &Types) -> TokenStream {
     let (rt, name, names) = (runtime(), &t.name, Names::new(model, plan));
     let Dims { n, ni, no, .. } = Dims::of(plan);
-    let position = solver_body(plan, &names, Mode::Position, false);
+    // The positions alone, their failure at an extreme size rescued as `kinematics_flat`'s
+    // is (`extreme_scale`), with no analogs.
+    let position_ret = quote!(::core::result::Result<([f64; #n], #rt::SolveReport), #rt::Error>);
+    let position =
+        rescued(solver_body(plan, &names, Mode::Position, false), &position_ret, quote!(#rt::rescue_position));
     let at = solver_body(plan, &names, Mode::At, false);
     let outputs_body = straight_line(plan, &names, &plan.outputs, true);
     let guess = straight_line(plan, &names, &plan.guesses, false);
@@ -183,9 +187,7 @@ fn mechanism_impl(model: &Model, plan: &Plan, t: &Types) -> TokenStream {
             fn outputs_flat(&self, #x, #q) -> [f64; #no] { #outputs_body }
             fn jacobian_flat(&self, #x, #q) -> #rt::Jac<#n, #ni> { #jacobian }
             #[inline]
-            fn position_flat(&self, #x, #g, #cfg) -> ::core::result::Result<([f64; #n], #rt::SolveReport), #rt::Error> {
-                #position
-            }
+            fn position_flat(&self, #x, #g, #cfg) -> #position_ret { #position }
             #fused_fns
             fn kinematics_at_flat(&self, #x, #q, #cfg) -> #kin { #at }
         }
@@ -196,8 +198,8 @@ fn mechanism_impl(model: &Model, plan: &Plan, t: &Types) -> TokenStream {
 /// `Result`) with its failure handed to `rescue` (`kinloop::__gen::rescue` or
 /// `rescue_sensitivities`: cold, out of line), which solves the position again where the
 /// mechanism's size is beyond the closed forms' (`extreme_scale`) and otherwise returns the
-/// kernel's error. What `kinematics_flat` of a mechanism too large for a sweep to inline and
-/// every `sensitivities_flat` are.
+/// kernel's error. What `kinematics_flat` of a mechanism too large for a sweep to inline,
+/// every `sensitivities_flat` and every `position_flat` (`rescue_position`) are.
 pub(super) fn rescued(body: TokenStream, ret: &TokenStream, rescue: TokenStream) -> TokenStream {
     quote! {
         // A closure, so that the kernel's early returns land here.

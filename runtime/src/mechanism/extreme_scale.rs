@@ -15,8 +15,10 @@
 //! analogs and outputs at that position by
 //! [`Mechanism::kinematics_at_flat`](crate::Mechanism::kinematics_at_flat), whose factorisations
 //! are scaled (and for a sensitivity solve, the sensitivities too, by
-//! [`Sensitivities::sensitivities_at_flat`](crate::Sensitivities::sensitivities_at_flat)). Inside the range the kernel's own error stands: nothing changes for a mechanism
-//! of ordinary size, and the hot path pays nothing (this runs only after a failure).
+//! [`Sensitivities::sensitivities_at_flat`](crate::Sensitivities::sensitivities_at_flat); for a
+//! solve of the positions alone, [`Mechanism::position_flat`](crate::Mechanism::position_flat),
+//! nothing more). Inside the range the kernel's own error stands: nothing changes for a
+//! mechanism of ordinary size, and the hot path pays nothing (this runs only after a failure).
 //!
 //! **Its failure is the mechanism's.** Where Newton over the whole system fails too, the
 //! mechanism has no position there (or none Newton can reach from the guess), and the kernel's
