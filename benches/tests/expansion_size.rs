@@ -1,6 +1,8 @@
-//! The generated code stays lean: a four-bar with a coupler point expands to at most 600
+//! The generated code stays lean: a four-bar with a coupler point expands to at most 620
 //! formatted lines without parameter sensitivities, and grows linearly with the number of loops,
-//! in series and in a ring (one coupled sparse block).
+//! in series and in a ring (one coupled sparse block). (The bound was 600 until `position_flat`
+//! was rescued at extreme sizes as `kinematics_flat` is: the closure that hands its kernel's
+//! failure to the rescue, and the same kernel indented one level deeper, are 15 lines: 599 -> 614.)
 
 use kinloop_bench::expansion::{four_bar_chain, four_bar_ring, size};
 
@@ -16,10 +18,10 @@ const COUPLER_FOUR_BAR: &str = "
 ";
 
 #[test]
-fn a_four_bar_with_a_coupler_point_expands_to_at_most_600_lines() {
+fn a_four_bar_with_a_coupler_point_expands_to_at_most_620_lines() {
     let lean = size(COUPLER_FOUR_BAR);
     println!("four-bar with a coupler point: {} lines, {} token trees", lean.lines, lean.tokens);
-    assert!(lean.lines <= 600, "{} lines", lean.lines);
+    assert!(lean.lines <= 620, "{} lines", lean.lines);
     let with_sens = size(&COUPLER_FOUR_BAR.replace("/// Four-bar", "#[kinloop(sensitivities)]\n/// Four-bar"));
     println!("with sensitivities: {} lines", with_sens.lines);
     assert!(with_sens.lines > lean.lines, "sensitivities are generated only on request");

@@ -155,6 +155,10 @@ where
 /// The result of a kinematic kernel (a short name keeps the expansions short).
 pub type KinResult<const N: usize, const NI: usize, const NO: usize> = Result<Kin<N, NI, NO>, Error>;
 
+/// What a generated `position_flat` returns: the positions and the solve's report, or the
+/// error (an alias, so that the expansion says it on one line).
+pub type PositionResult<const N: usize> = Result<([f64; N], SolveReport), Error>;
+
 /// [`checked`] with the state built by `kin` where `sink` puts it: when `sum` is finite (the
 /// usual case) the state is built directly in the result or in the caller's slot, without the
 /// copy that passing a built state would make.

@@ -125,7 +125,7 @@ fn mechanism_impl(model: &Model, plan: &Plan, t: &Types) -> TokenStream {
     let Dims { n, ni, no, .. } = Dims::of(plan);
     // The positions alone, their failure at an extreme size rescued as `kinematics_flat`'s
     // is (`extreme_scale`), with no analogs.
-    let position_ret = quote!(::core::result::Result<([f64; #n], #rt::SolveReport), #rt::Error>);
+    let position_ret = quote!(#rt::PositionResult<#n>);
     let position =
         rescued(solver_body(plan, &names, Mode::Position, false), &position_ret, quote!(#rt::rescue_position));
     let at = solver_body(plan, &names, Mode::At, false);
