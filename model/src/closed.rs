@@ -20,8 +20,9 @@ use kinloop_codegen::graph::dag::{self, Graph, Leaf, NodeId};
 use kinloop_codegen::plan::closed_form::{ClosedForm, constant_norm2};
 use kinloop_runtime::NewtonConfig;
 use kinloop_runtime::generated::{
-    BlockFailure, acos_on_side, asin_near, check_closed, check_guess, dyad_d2, dyad_of, dyad_roots, folded_root_offset,
-    half_turn_if, polar_norm, reduce_turn, root_offset_deferred, sign_at_guess, unwrap_to_turn,
+    BlockFailure, acos_on_side, asin_near, check_closed, check_guess, dyad_d2, dyad_of, dyad_roots,
+    folded_dyad_root_offset, folded_root_offset, half_turn_if, polar_norm, reduce_turn, root_offset_deferred,
+    sign_at_guess, unwrap_to_turn,
 };
 use std::collections::HashMap;
 use std::f64::consts::FRAC_PI_2;
@@ -118,6 +119,20 @@ enum Op {
         c: u32,
         flip: u32,
     },
+    /// `d = folded_dyad_root_offset(d2, r2, a, b, c, [e0, e1, l0, l1], flip)`: a dyad's.
+    DyadRootOffset {
+        d: u32,
+        d2: u32,
+        r2: u32,
+        a: u32,
+        b: u32,
+        c: u32,
+        e0: u32,
+        e1: u32,
+        l0: u32,
+        l1: u32,
+        flip: u32,
+    },
     /// `d = polar_norm(r2, e0, e1)`.
     PolarNorm {
         d: u32,
@@ -197,6 +212,9 @@ impl Op {
             Op::DyadRootsOf { cq, sq, a, b, c, e0, e1, l0, l1, flip } => vec![cq, sq, a, b, c, e0, e1, l0, l1, flip],
             Op::DyadD2 { d, d2, r2, e0, e1, l0, l1 } => vec![d, d2, r2, e0, e1, l0, l1],
             Op::RootOffset { d, d2, r2, a, b, c, flip } => vec![d, d2, r2, a, b, c, flip],
+            Op::DyadRootOffset { d, d2, r2, a, b, c, e0, e1, l0, l1, flip } => {
+                vec![d, d2, r2, a, b, c, e0, e1, l0, l1, flip]
+            }
             Op::PolarNorm { d, r2, e0, e1 } => vec![d, r2, e0, e1],
             Op::PolarSide { s, cq, sq, gs } => vec![s, cq, sq, gs],
             Op::Atan2 { d, s, c } => vec![d, s, c],
@@ -386,6 +404,16 @@ impl ClosedProg {
                             root_offset_deferred(d2, flag(flip))
                         } else {
                             folded_root_offset(d2, r2, v(a), v(b), v(c), flag(flip), cfg)?
+                        };
+                        set(d, offset)
+                    }
+                    Op::DyadRootOffset { d, d2, r2, a, b, c, e0, e1, l0, l1, flip } => {
+                        let (d2, r2) = (v(d2), v(r2));
+                        let offset = if d2 >= 0.0 && (f64::MIN_POSITIVE..=f64::MAX).contains(&r2) {
+                            root_offset_deferred(d2, flag(flip))
+                        } else {
+                            let links = [v(e0), v(e1), v(l0), v(l1)];
+                            folded_dyad_root_offset(d2, r2, v(a), v(b), v(c), links, flag(flip), cfg)?
                         };
                         set(d, offset)
                     }
@@ -617,18 +645,24 @@ impl Build<'_> {
         let r2 = self.add(aa, bb);
         let cc = self.mul(c, c);
         let d2 = self.sub(r2, cc);
-        let d2 = match links {
+        let (d2, links) = match links {
             Some([e0, e1, l0, l1]) => {
                 let (d2, r2) = (self.reg(d2), self.reg(r2));
                 let (e0, e1, l0, l1) = (self.reg(e0), self.reg(e1), self.reg(l0), self.reg(l1));
-                self.op(|d| Op::DyadD2 { d, d2, r2, e0, e1, l0, l1 })
+                (self.op(|d| Op::DyadD2 { d, d2, r2, e0, e1, l0, l1 }), Some([e0, e1, l0, l1]))
             }
-            None => d2,
+            None => (d2, None),
         };
         let (d2, r2r, ar, br, cr) = (self.reg(d2), self.reg(r2), self.reg(a), self.reg(b), self.reg(c));
         // In the emitter's order: the value free of the root ahead of it (`root` in
-        // `codegen/src/emit/closed_form.rs`).
-        let root_offset = |this: &mut Self| this.op(|d| Op::RootOffset { d, d2, r2: r2r, a: ar, b: br, c: cr, flip });
+        // `codegen/src/emit/closed_form.rs`). A dyad's gives its links, for the residual of one
+        // that cannot be assembled.
+        let root_offset = |this: &mut Self| match links {
+            Some([e0, e1, l0, l1]) => {
+                this.op(|d| Op::DyadRootOffset { d, d2, r2: r2r, a: ar, b: br, c: cr, e0, e1, l0, l1, flip })
+            }
+            None => this.op(|d| Op::RootOffset { d, d2, r2: r2r, a: ar, b: br, c: cr, flip }),
+        };
         let (cq, sq) = if a.is_zero() {
             let ib = self.div(V::C(1.0), b);
             let sq = self.mul(c, ib);

@@ -343,3 +343,33 @@ fn positions_alone_of_a_four_bar_whose_crank_cannot_close_fail_alike_at_every_sc
         assert_eq!(q.iter().map(|v| v.to_bits()).collect::<Vec<_>>(), want.map(f64::to_bits), "size {k:e}");
     }
 }
+
+kinloop_fixtures::declare! {
+    /// A rocker driven by a cylinder whose length is the input: a dyad between two fixed pivots
+    /// on the x axis, its second coefficient folded to zero.
+    CYLINDER_TEXT => {
+        pub struct Cylinder {
+            params c = 1, d = 2;
+            input s;
+            unknowns th = 1.5, ph = 2.0;
+            loop l: c @ th == (d, 0) + s @ ph;
+        }
+    }
+}
+
+/// A dyad with a coefficient folded that cannot be assembled reports its links' gap over its
+/// size, compiled and at run time alike, at every size: the cylinder of rocker 1 on pivots 2
+/// apart, stretched to 4, is 1 too long, 1/7 of the dyad (`1 + 2 + 4`). The model reported the
+/// gap in its coefficients' units, products of two lengths (3.5 times the size squared), where
+/// the compiled mechanism reports it so.
+#[test]
+fn a_folded_dyad_that_cannot_close_reports_its_gap_alike_at_every_scale() {
+    for k in [1.0, 1e-100, 1e100] {
+        let compiled = Cylinder { c: k, d: 2.0 * k };
+        let mut model = read(CYLINDER_TEXT);
+        set(&mut model, &[("c", k), ("d", 2.0 * k)]);
+        let e = same_error(&compiled, &mut model, [4.0 * k], [1.5, 2.0]);
+        let Error::NoAssembly { residual, .. } = e else { panic!("size {k:e}: {e:?}") };
+        assert!((residual - 1.0 / 7.0).abs() <= 1e-15, "size {k:e}: {residual}");
+    }
+}

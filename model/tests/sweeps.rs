@@ -295,8 +295,8 @@ fn a_failed_start_names_the_model() {
     else {
         panic!("no assembly expected: {c_err:?}\n{r_err:?}")
     };
-    // The residual is where Newton's method stalls (a length of the order of the gap
-    // |b - c| - |AD| = 0.3): the same to a few rounding steps of that length.
+    // The residual is the closed form's gap |b - c| - |AD| = 0.3 over the dyad's size
+    // b + c + |AD| = 5.7: the same to a few rounding steps.
     assert!((c_res - r_res).abs() <= 1e-12 * c_res.abs().max(1.0), "{c_res:e} {r_res:e}");
     // Named alike, to the block: with the compiled residual, the run-time error reads as the
     // compiled one, character for character (the model's names owned, the compiled constants).

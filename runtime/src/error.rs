@@ -76,7 +76,10 @@ pub enum Error {
          equation `{equation}` (the links cannot reach; check the lengths or the input range)"
     )]
     NoAssembly {
-        /// The scaled residual where it stalled.
+        /// The residual where it stalled, relative to the magnitude of the equation's terms
+        /// (Newton's); for a closed form, the least residual of its equation relative to its
+        /// terms' magnitude there, a dyad's the gap of its links over the sum of its lengths.
+        /// A pure number: the same for the mechanism at every size.
         residual: f64,
         /// The equation with the largest residual.
         equation: Cow<'static, str>,

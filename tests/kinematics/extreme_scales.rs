@@ -732,3 +732,74 @@ fn positions_alone_of_a_four_bar_that_cannot_close_fail_alike_at_every_scale() {
         assert!((q[0] - base[0]).abs() <= SCALE_TOL && (q[1] - base[1]).abs() <= SCALE_TOL, "size {k:e}: {q:?}");
     }
 }
+
+/// The residual of an error, where it is no assembly.
+fn no_assembly_residual(e: &kinloop::Error) -> f64 {
+    match e {
+        kinloop::Error::NoAssembly { residual, .. } => *residual,
+        other => panic!("no assembly expected: {other:?}"),
+    }
+}
+
+/// A closed form that cannot be assembled reports a residual free of the units, as Newton's
+/// is (its residual over the magnitude of its equation's terms), so that the same mechanism
+/// reads the same at every size, close to what Newton says of it. A dyad (the four-bar whose
+/// crank cannot close at `phi = 3`; the cylinder whose rocker and stroke are too unequal for
+/// the pivots' distance, its second coefficient folded to zero): how far its links fall short
+/// of closing the triangle with their centres' distance `|AD|`, over the dyad's size
+/// `b + c + |AD|`. A slider's angle equation (the offset slider-crank whose rod cannot reach
+/// the line at `phi = -1`): `|c| - l` over `|c| + l`, `c` the offset the rod must span. Each
+/// to `SCALE_TOL` of the value derived here at size 1 (the lengths' rounding), at sizes 1,
+/// `1e-100` and `1e100`; each within 2 % of the Newton twin's at the same size, which is the
+/// same gap's component in its worst equation over that equation's magnitude (a frame's
+/// length or a direction's cosine apart: 0.3 % and 1.8 % here). The dyads reported the gap in
+/// the units of their coefficients, products of two lengths: 4.08 at size 1 and 4.08e200 at
+/// `1e100` ("the loop residual stalls at 4.08e200"), 3.5 times the size squared for the
+/// cylinder; the slider-crank its gap in lengths, 2.64 times the size.
+#[test]
+fn a_closed_form_that_cannot_be_assembled_reports_a_residual_free_of_its_size() {
+    let cfg = NewtonConfig::default();
+    // The four-bar: the crank's end `A = 2 (cos 3, sin 3)` and the rocker's pivot `D = (3, 0)`,
+    // coupler 1.5 and rocker 2.
+    let ad = (2.0 * 3f64.cos() - 3.0).hypot(2.0 * 3f64.sin());
+    let four_bar_gap = (ad - 3.5) / (ad + 3.5);
+    // The cylinder: pivots 2 apart, rocker 1, stroke 4: the stroke 1 too long.
+    let cylinder_gap = (4.0 - 1.0 - 2.0) / (4.0 + 1.0 + 2.0);
+    // The slider-crank: crank 1, rod 3.2, line at 5: `l sin psi = sin(-1) - 5`.
+    let offset = ((-1f64).sin() - 5.0).abs();
+    let slider_gap = (offset - 3.2) / (offset + 3.2);
+    for k in [1.0, 1e-100, 1e100] {
+        let [a, b, c, d] = crank_too_long(k);
+        let (m, twin) = (FourBar { a, b, c, d }, FourBarNewton { a, b, c, d });
+        let (cy, cy_twin) = (Cylinder { c: k, d: 2.0 * k }, CylinderNewton { c: k, d: 2.0 * k });
+        let sc = SliderCrank { r: k, l: 3.2 * k, e: 5.0 * k };
+        let sc_twin = SliderCrankNewton { r: k, l: 3.2 * k, e: 5.0 * k };
+        let cases = [
+            (
+                "four-bar",
+                m.kinematics_flat(&[3.0], &m.guess_flat(&[3.0]), &cfg).map(drop),
+                twin.kinematics_flat(&[3.0], &twin.guess_flat(&[3.0]), &cfg).map(drop),
+                four_bar_gap,
+            ),
+            (
+                "cylinder",
+                cy.kinematics_flat(&[4.0 * k], &[1.5, 2.0], &cfg).map(drop),
+                cy_twin.kinematics_flat(&[4.0 * k], &[1.5, 2.0], &cfg).map(drop),
+                cylinder_gap,
+            ),
+            (
+                "slider-crank",
+                sc.kinematics_flat(&[-1.0], &sc.guess_flat(&[-1.0]), &cfg).map(drop),
+                sc_twin.kinematics_flat(&[-1.0], &sc_twin.guess_flat(&[-1.0]), &cfg).map(drop),
+                slider_gap,
+            ),
+        ];
+        for (what, closed, newton, want) in cases {
+            let (closed, newton) = (closed.unwrap_err(), newton.unwrap_err());
+            let (got, by_newton) = (no_assembly_residual(&closed), no_assembly_residual(&newton));
+            eprintln!("{what} at size {k:e}: closed form {got:.6}, Newton {by_newton:.6}, gap {want:.6}");
+            assert!((got - want).abs() <= SCALE_TOL, "{what} at size {k:e}: {closed}");
+            assert!((got - by_newton).abs() <= 0.02 * by_newton, "{what} at size {k:e}: {closed}\n{newton}");
+        }
+    }
+}

@@ -258,7 +258,8 @@ fn lever_checks(form: &ClosedForm, cx: &Context) -> TokenStream {
 /// `h' = d > 0` when `flip` holds. With no constant coefficient this is the runtime's
 /// `dyad_roots` (`dyad_of` given a dyad's `links`, its centres' offset and its links' squared
 /// lengths `[e0, e1, l0², l1²]`, from which its `d2` is recomputed where `a² + b² - c²`
-/// cancels); otherwise the same formulas with the constants folded.
+/// cancels); otherwise the same formulas with the constants folded (a dyad's offset by
+/// `folded_dyad_root_offset`, given its links as `dyad_of` is).
 fn root(out: &mut TokenStream, a: &V, b: &V, c: &V, flip: &TokenStream, links: Option<[&V; 4]>, cx: &Context) {
     let rt = cx.rt;
     if let (V::E(_), V::E(_), V::E(_)) = (a, b, c) {
@@ -276,14 +277,22 @@ fn root(out: &mut TokenStream, a: &V, b: &V, c: &V, flip: &TokenStream, links: O
     }
     let r2 = bind(out, "__r2", add(&mul(a, a), &mul(b, b)));
     let d2 = sub(&r2, &mul(c, c));
-    let d2 = match links {
-        Some([e0, e1, l0, l1]) => V::E(quote!(#rt::dyad_d2(#d2, #r2, [#e0, #e1, #l0, #l1]))),
-        None => d2,
-    };
     // Deferred, a root that does not exist is NaN; a zero radius gives `0 · ∞` below, NaN too.
-    // Given the coefficients too: where their squares leave the range of `f64` it rescales.
-    let f = if cx.deferred { quote!(__mode.folded_root_offset) } else { quote!(#rt::folded_root_offset) };
-    let root_offset = quote!(let __d: f64 = #f(#d2, #r2, #a, #b, #c, #flip, __cfg).map_err(__fail)?;);
+    // Given the coefficients too: where their squares leave the range of `f64` it rescales. A
+    // dyad's gives its links too, for the residual of a dyad that cannot be assembled (the
+    // gap of its lengths, as `dyad_of`'s).
+    let root_offset = match links {
+        Some([e0, e1, l0, l1]) => {
+            let d2 = quote!(#rt::dyad_d2(#d2, #r2, [#e0, #e1, #l0, #l1]));
+            let f =
+                if cx.deferred { quote!(__mode.folded_dyad_root_offset) } else { quote!(#rt::folded_dyad_root_offset) };
+            quote!(let __d: f64 = #f(#d2, #r2, #a, #b, #c, [#e0, #e1, #l0, #l1], #flip, __cfg).map_err(__fail)?;)
+        }
+        None => {
+            let f = if cx.deferred { quote!(__mode.folded_root_offset) } else { quote!(#rt::folded_root_offset) };
+            quote!(let __d: f64 = #f(#d2, #r2, #a, #b, #c, #flip, __cfg).map_err(__fail)?;)
+        }
+    };
     let d = local("__d");
     let zero = |v: &V| matches!(v, V::C(z) if *z == 0.0);
     // With one coefficient zero the formulas divide by the other, not by its square: `b sin q

@@ -130,7 +130,7 @@ pub fn check_guess(guess_sum: f64) -> Result<(), BlockFailure> {
 /// Why `a cos q + b sin q = c` has no single root, given `d2 = a² + b² - c²` and `r2 = a² + b²`:
 /// a coefficient that is not finite; an equation that every angle satisfies (`a = b = c = 0`:
 /// coincident circles of equal radii, the position is not determined, a singular position as
-/// Newton reports it); or links that cannot reach (residual `|c| - r`).
+/// Newton reports it); or links that cannot reach, with the residual [`unreached`].
 #[cold]
 #[inline(never)]
 fn no_root(d2: f64, r2: f64, c: f64, cfg: &NewtonConfig) -> BlockFailure {
@@ -139,8 +139,50 @@ fn no_root(d2: f64, r2: f64, c: f64, cfg: &NewtonConfig) -> BlockFailure {
     } else if r2 == 0.0 && c == 0.0 {
         undetermined(cfg)
     } else {
-        BlockFailure::NoAssembly { row: 0, iterations: 0, evaluations: 0, residual: c.abs() - r2.sqrt() }
+        BlockFailure::NoAssembly { row: 0, iterations: 0, evaluations: 0, residual: unreached(r2.sqrt(), c) }
     }
+}
+
+/// The residual of `a cos q + b sin q = c` (`r = sqrt(a² + b²) < |c|`) where it is least, `|c|
+/// - r` at the angle of `(a, b)`, relative to the magnitude of its terms there, `|c| + r`: what
+/// Newton's failure reports too (the residual over the magnitude of the equation's terms), free
+/// of the units of the coefficients (lengths, or products of two for a dyad's), so that the
+/// same mechanism at another size reports the same number. Between 0 and 1 (1 where the left
+/// side vanishes: nothing can reach `c`).
+fn unreached(r: f64, c: f64) -> f64 {
+    (c.abs() - r) / (c.abs() + r)
+}
+
+/// A dyad's circle intersection's failure `fail`, with the residual of one that cannot be
+/// assembled ([`dyad_gap`]) in the dyad's lengths, `links` `[e0, e1, l0², l1²]`, rather than in
+/// its equation's coefficients (products of two lengths, see [`dyad_of`]).
+#[cold]
+#[inline(never)]
+fn dyad_failure(fail: BlockFailure, links: [f64; 4]) -> BlockFailure {
+    match fail {
+        BlockFailure::NoAssembly { row, iterations, evaluations, .. } => {
+            BlockFailure::NoAssembly { row, iterations, evaluations, residual: dyad_gap(links) }
+        }
+        other => other,
+    }
+}
+
+/// How far a dyad's two links (of lengths `l0`, `l1`) fall short of closing the triangle with
+/// their centres' offset `e`, given `links` `[e0, e1, l0², l1²]`, relative to the dyad's size
+/// `l0 + l1 + |e|`: the longest of the three less the other two, `2 max - (l0 + l1 + |e|)`,
+/// over that size. The loop's own gap (at its least, the loop misses closing by it), in
+/// proportion to its lengths as Newton's residual is: the same at every size, and close to
+/// Newton's on the same mechanism, whose residual is the gap's component in its worst
+/// equation over that equation's magnitude (the four-bar of crank 2, coupler 1.5, rocker 2 and
+/// frame 3 at an input of 3: the links 1.488 short of the centres 4.988 apart, 0.1753 here,
+/// 0.1749 by Newton). Zero where rounding makes the sides a triangle; NaN where a length is not
+/// finite.
+fn dyad_gap([e0, e1, l0_sq, l1_sq]: [f64; 4]) -> f64 {
+    let (l0, l1, e) = (l0_sq.sqrt(), l1_sq.sqrt(), e0.hypot(e1));
+    let size = l0 + l1 + e;
+    let gap = (2.0 * l0.max(l1).max(e) - size) / size;
+    // Written so that a NaN stays.
+    if gap < 0.0 { 0.0 } else { gap }
 }
 
 /// The failure of a block whose equations hold for every value of an angle: singular, with a
@@ -197,6 +239,45 @@ pub fn folded_root_offset(
         return folded_off_range(d2, r2, a, b, c, flip, cfg);
     }
     Ok(root_offset_deferred(d2, flip))
+}
+
+/// [`folded_root_offset`] of a dyad's circle intersection with a coefficient folded, given its
+/// `links` `[e0, e1, l0², l1²]` as [`dyad_of`] is (`d2` from [`dyad_d2`]): the same offset, and
+/// a failure's residual the dyad's gap ([`dyad_failure`]), as [`dyad_of`]'s.
+#[inline]
+#[allow(clippy::too_many_arguments)]
+pub fn folded_dyad_root_offset(
+    d2: f64,
+    r2: f64,
+    a: f64,
+    b: f64,
+    c: f64,
+    links: [f64; 4],
+    flip: bool,
+    cfg: &NewtonConfig,
+) -> Result<f64, BlockFailure> {
+    if !(d2 >= 0.0 && (f64::MIN_POSITIVE..=f64::MAX).contains(&r2)) {
+        return folded_dyad_off_range(d2, r2, a, b, c, links, flip, cfg);
+    }
+    Ok(root_offset_deferred(d2, flip))
+}
+
+/// [`folded_dyad_root_offset`] where its test fails: [`folded_off_range`], a failure's residual
+/// the dyad's gap.
+#[cold]
+#[inline(never)]
+#[allow(clippy::too_many_arguments)]
+fn folded_dyad_off_range(
+    d2: f64,
+    r2: f64,
+    a: f64,
+    b: f64,
+    c: f64,
+    links: [f64; 4],
+    flip: bool,
+    cfg: &NewtonConfig,
+) -> Result<f64, BlockFailure> {
+    folded_off_range(d2, r2, a, b, c, flip, cfg).map_err(|f| dyad_failure(f, links))
 }
 
 /// [`folded_root_offset`] where its test fails: [`touching`] for a normal `r2`; otherwise the
@@ -288,7 +369,7 @@ pub fn dyad_of(dyad: [f64; 6], c: f64, flip: bool, cfg: &NewtonConfig) -> Result
     let r2 = a * a + b * b;
     // Written so that a NaN takes the rescaled path too (which then fails as below).
     if !(f64::MIN_POSITIVE..=f64::MAX).contains(&r2) {
-        return dyad_roots_rescaled(a, b, c, flip, cfg);
+        return dyad_of_rescaled(a, b, c, [e0, e1, l0, l1], flip, cfg);
     }
     let d2 = r2 - c * c;
     // `root_offset`'s test with `d2` against its cancellation instead of zero: one test.
@@ -301,7 +382,8 @@ pub fn dyad_of(dyad: [f64; 6], c: f64, flip: bool, cfg: &NewtonConfig) -> Result
 }
 
 /// [`dyad_of`]'s root offset where `d2` is negative or cancelled: recomputed from the triangle
-/// ([`dyad_d2`]), then [`root_offset`]'s.
+/// ([`dyad_d2`]), then [`root_offset`]'s, a failure's residual the dyad's gap
+/// ([`dyad_failure`]).
 #[cold]
 #[inline(never)]
 fn dyad_offset_cancelled(
@@ -312,7 +394,22 @@ fn dyad_offset_cancelled(
     flip: bool,
     cfg: &NewtonConfig,
 ) -> Result<f64, BlockFailure> {
-    root_offset(dyad_d2(d2, r2, links), r2, c, flip, cfg)
+    root_offset(dyad_d2(d2, r2, links), r2, c, flip, cfg).map_err(|f| dyad_failure(f, links))
+}
+
+/// [`dyad_of`] where `a² + b²` is not a normal number: [`dyad_roots_rescaled`], a failure's
+/// residual the dyad's gap ([`dyad_failure`]).
+#[cold]
+#[inline(never)]
+fn dyad_of_rescaled(
+    a: f64,
+    b: f64,
+    c: f64,
+    links: [f64; 4],
+    flip: bool,
+    cfg: &NewtonConfig,
+) -> Result<(f64, f64), BlockFailure> {
+    dyad_roots_rescaled(a, b, c, flip, cfg).map_err(|f| dyad_failure(f, links))
 }
 
 /// `d2 = r2 - c²` of a dyad's circle intersection, recomputed from the triangle of its lengths
@@ -365,18 +462,14 @@ fn dyad_roots_rescaled(a: f64, b: f64, c: f64, flip: bool, cfg: &NewtonConfig) -
 /// (exact: the same roots, squares of order one), and its root's offset there: `(k, [a, b, c]
 /// k, r2, d)`. Coefficients that are not finite, all zero, or below
 /// [`SMALLEST_PRECISE_COEFFICIENT`] are not divided (`k = 1`), and fail as the unscaled
-/// formulas do; a failure's residual is back in the coefficients' units.
+/// formulas do; a failure's residual is relative ([`unreached`]), the same for the equation
+/// divided.
 fn rescaled(a: f64, b: f64, c: f64, flip: bool, cfg: &NewtonConfig) -> Result<(f64, [f64; 3], f64, f64), BlockFailure> {
     let big = a.abs().max(b.abs()).max(c.abs());
     let k = if big.is_finite() && big >= SMALLEST_PRECISE_COEFFICIENT { reciprocal_power_of_two(big) } else { 1.0 };
     let (a, b, c) = (a * k, b * k, c * k);
     let r2 = a * a + b * b;
-    let d = root_offset(r2 - c * c, r2, c, flip, cfg).map_err(|f| match f {
-        BlockFailure::NoAssembly { row, iterations, evaluations, residual } => {
-            BlockFailure::NoAssembly { row, iterations, evaluations, residual: residual / k }
-        }
-        other => other,
-    })?;
+    let d = root_offset(r2 - c * c, r2, c, flip, cfg)?;
     Ok((k, [a, b, c], r2, d))
 }
 
@@ -403,7 +496,8 @@ pub(crate) fn reciprocal_power_of_two(x: f64) -> f64 {
 /// `sqrt(1 / d2)`, the normalisation of the direction `(a, b)` with `d2 = a² + b²` of a polar
 /// length along offset `(e0, e1)`, or the failure when there is no direction: a zero offset
 /// (a zero length, whose angle every value satisfies: singular) or a direction that vanishes
-/// although the offset does not (it cannot be reached; the residual is the offset's size).
+/// although the offset does not (it cannot be reached: the relative residual 1, see
+/// [`unreached`]).
 #[inline]
 pub fn polar_norm(d2: f64, e0: f64, e1: f64, cfg: &NewtonConfig) -> Result<f64, BlockFailure> {
     let ir = polar_norm_deferred(d2);
@@ -588,22 +682,25 @@ mod tests {
         }
     }
 
+    /// No real root is no assembly, its residual relative: `cos q = 2` misses by 1 of 3 (`|c| -
+    /// r` over `|c| + r`), a direction that vanishes misses its whole offset.
     #[test]
     fn no_real_root_is_a_typed_failure() {
         let cfg = NewtonConfig::default();
         assert!(
-            matches!(dyad_roots(1.0, 0.0, 2.0, false, &cfg), Err(BlockFailure::NoAssembly { residual, .. }) if residual == 1.0)
+            matches!(dyad_roots(1.0, 0.0, 2.0, false, &cfg), Err(BlockFailure::NoAssembly { residual, .. }) if residual == 1.0 / 3.0)
         );
         assert!(matches!(dyad_roots(f64::NAN, 0.0, 0.0, false, &cfg), Err(BlockFailure::NonFinite { .. })));
         assert!(
-            matches!(polar_norm(0.0, 3.0, -4.0, &cfg), Err(BlockFailure::NoAssembly { residual, .. }) if residual == 4.0)
+            matches!(polar_norm(0.0, 3.0, -4.0, &cfg), Err(BlockFailure::NoAssembly { residual, .. }) if residual == 1.0)
         );
         // Concentric circles of different radii: `0 = c` with `c` non-zero cannot hold.
         assert!(matches!(dyad_roots(0.0, 0.0, 0.5, true, &cfg), Err(BlockFailure::NoAssembly { .. })));
     }
 
     /// A discriminant negative by rounding only is the limit position (the double root); one
-    /// negative beyond the residual tolerance is still no assembly, with the residual `|c| - r`.
+    /// negative beyond the residual tolerance is still no assembly, with the residual `|c| - r`
+    /// over `|c| + r`.
     #[test]
     fn a_limit_position_rounded_past_is_the_double_root() {
         let cfg = NewtonConfig::default();
@@ -621,7 +718,7 @@ mod tests {
         for cfg in [cfg, NewtonConfig { residual_tol: 0.0, ..cfg }] {
             match dyad_roots(0.0, short, 0.3, false, &cfg) {
                 Err(BlockFailure::NoAssembly { residual, .. }) => {
-                    assert!((residual - 3e-10).abs() < 1e-15, "{residual}")
+                    assert!((residual - 5e-10).abs() < 1e-15, "{residual}")
                 }
                 other => panic!("{other:?}"),
             }
@@ -631,6 +728,42 @@ mod tests {
         assert_eq!(dyad_roots(0.0, near, 0.3, false, &cfg).unwrap().0, 0.0);
         let exact = NewtonConfig { residual_tol: 0.0, ..cfg };
         assert!(matches!(dyad_roots(0.0, near, 0.3, false, &exact), Err(BlockFailure::NoAssembly { .. })));
+    }
+
+    /// A dyad that cannot be assembled reports how far its links fall short of closing the
+    /// triangle with their centres' offset, over the dyad's size (the three lengths' sum),
+    /// whichever path solves it: links 1.5 and 2 on centres 5 apart (1.5 short: 3/17), links
+    /// 1 and 4 on centres 2 apart (the long one 1 too long: 1/7); the same at every size, where
+    /// its coefficients' squares are in range and where they are not (`1e±100`: `a² + b²` is
+    /// a fourth power of the size, rescaled); and a coefficient folded (the second offset zero)
+    /// reports the same. In the coefficients' units, products of two lengths, the first
+    /// reported `|c| - r = 4.125` times the size squared.
+    #[test]
+    fn a_dyad_that_cannot_close_reports_its_gap_over_its_size() {
+        let cfg = NewtonConfig::default();
+        for ([e0, e1], l0, l1, want) in [([3.0, 4.0], 1.5, 2.0, 3.0 / 17.0), ([-2.0, 0.0], 1.0, 4.0, 1.0 / 7.0)] {
+            for k in [1.0, 2f64.powi(100), 2f64.powi(-100), 1e100, 1e-100] {
+                let (e0, e1, l0, l1) = (e0 * k, e1 * k, l0 * k, l1 * k);
+                // `|e + l0 c0| = l1`: `(a, b) = l0 e`, `c = (l1² - l0² - |e|²) / 2`.
+                let (a, b) = (l0 * e0, l0 * e1);
+                let c = 0.5 * ((l1 * l1 - l0 * l0) - (e0 * e0 + e1 * e1));
+                let links = [e0, e1, l0 * l0, l1 * l1];
+                let r2 = a * a + b * b;
+                let d2 = dyad_d2(r2 - c * c, r2, links);
+                let results = [
+                    dyad_of([a, b, e0, e1, l0 * l0, l1 * l1], c, false, &cfg).map(|(cq, _)| cq),
+                    folded_dyad_root_offset(d2, r2, a, b, c, links, false, &cfg),
+                ];
+                for got in results {
+                    match got {
+                        Err(BlockFailure::NoAssembly { residual, .. }) => {
+                            assert!((residual - want).abs() <= 1e-15, "size {k:e}: {residual} against {want}")
+                        }
+                        other => panic!("size {k:e}: {other:?}"),
+                    }
+                }
+            }
+        }
     }
 
     /// An equation every angle satisfies (`0 cos q + 0 sin q = 0`: coincident circles of equal

@@ -33,8 +33,8 @@
 //! the values its error needs kept alive.
 
 use super::closed::{
-    check_closed, dyad_of, dyad_of_deferred, dyad_roots, dyad_roots_deferred, folded_root_offset,
-    largest_precise_angle, polar_norm, polar_norm_deferred, root_offset, root_offset_deferred,
+    check_closed, dyad_of, dyad_of_deferred, dyad_roots, dyad_roots_deferred, folded_dyad_root_offset,
+    folded_root_offset, largest_precise_angle, polar_norm, polar_norm_deferred, root_offset, root_offset_deferred,
 };
 use super::newton::{BlockFailure, NewtonConfig};
 
@@ -99,6 +99,28 @@ impl<const CHECKED: bool> Checks<CHECKED> {
         cfg: &NewtonConfig,
     ) -> Result<f64, BlockFailure> {
         if CHECKED { folded_root_offset(d2, r2, a, b, c, flip, cfg) } else { self.root_offset(d2, r2, c, flip, cfg) }
+    }
+
+    /// [`folded_dyad_root_offset`], or deferred as [`Checks::root_offset`] (as
+    /// [`Checks::folded_root_offset`]).
+    #[inline(always)]
+    #[allow(clippy::too_many_arguments)]
+    pub fn folded_dyad_root_offset(
+        self,
+        d2: f64,
+        r2: f64,
+        a: f64,
+        b: f64,
+        c: f64,
+        links: [f64; 4],
+        flip: bool,
+        cfg: &NewtonConfig,
+    ) -> Result<f64, BlockFailure> {
+        if CHECKED {
+            folded_dyad_root_offset(d2, r2, a, b, c, links, flip, cfg)
+        } else {
+            self.root_offset(d2, r2, c, flip, cfg)
+        }
     }
 
     /// [`dyad_roots`], or deferred [`dyad_roots_deferred`].
