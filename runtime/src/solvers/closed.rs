@@ -243,7 +243,7 @@ pub fn folded_root_offset(
 
 /// [`folded_root_offset`] of a dyad's circle intersection with a coefficient folded, given its
 /// `links` `[e0, e1, l0², l1²]` as [`dyad_of`] is (`d2` from [`dyad_d2`]): the same offset, and
-/// a failure's residual the dyad's gap ([`dyad_failure`]), as [`dyad_of`]'s.
+/// a failure's residual the dyad's gap (`dyad_failure`), as [`dyad_of`]'s.
 #[inline]
 #[allow(clippy::too_many_arguments)]
 pub fn folded_dyad_root_offset(
@@ -497,7 +497,7 @@ pub(crate) fn reciprocal_power_of_two(x: f64) -> f64 {
 /// length along offset `(e0, e1)`, or the failure when there is no direction: a zero offset
 /// (a zero length, whose angle every value satisfies: singular) or a direction that vanishes
 /// although the offset does not (it cannot be reached: the relative residual 1, see
-/// [`unreached`]).
+/// `unreached`).
 #[inline]
 pub fn polar_norm(d2: f64, e0: f64, e1: f64, cfg: &NewtonConfig) -> Result<f64, BlockFailure> {
     let ir = polar_norm_deferred(d2);
