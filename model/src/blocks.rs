@@ -53,6 +53,10 @@ impl std::fmt::Display for StepFailure {
             StepFailure::Block(BlockFailure::TooManyTurns { value }) => {
                 write!(f, "an angle of {value:e} rad is too many turns out to be solved precisely")
             }
+            StepFailure::Block(BlockFailure::Underflow { row, magnitude, least }) => write!(
+                f,
+                "the terms of the block's row {row} are too small for f64: magnitude {magnitude:e}, below {least:e}"
+            ),
         }
     }
 }

@@ -552,3 +552,50 @@ fn a_mechanism_of_extreme_size_is_solved_as_the_compiled_one() {
         assert_eq!(table.rows.len(), 37, "{k:e}");
     }
 }
+
+declared! {
+    ROD_SQUARED_TEXT =>
+    /// The offset slider-crank by its rod's length squared alone: a Newton block of one length
+    /// whose equation's terms are squared lengths.
+    #[kinloop(newton)]
+    pub struct RodSquared {
+        params r = 1.0, l = 3.2, e = 0.4;
+        input phi;
+        unknowns x = l;
+        eq rod: (x - r * cos(phi)) ^ 2 + (r * sin(phi) - e) ^ 2 == l * l;
+    }
+}
+
+/// An equation whose terms are too small for `f64` fails the model's solve as it fails the
+/// compiled one: at sizes `1e-160` (a subnormal magnitude, `3e-319`), `1e-200` and `1e-300`
+/// (underflowed to zero) both refuse it with the same error (`Error::Underflow`, the same
+/// magnitude to the bit); at `1e-156` (a subnormal magnitude fine enough for the tolerance) and
+/// at size 1 both solve it, to the bit (the runtime's Newton on residuals and Jacobians that
+/// are the same to the bit). The compiled block accepted positions `4e-5` of the size off at
+/// `1e-160`, the model too, each with the other's error.
+#[test]
+fn an_equation_too_small_for_f64_fails_as_the_compiled_one() {
+    let cfg = NewtonConfig::default();
+    for k in [1.0, 1e-156, 1e-160, 1e-200, 1e-300] {
+        let compiled = RodSquared { r: k, l: 3.2 * k, e: 0.4 * k };
+        let mut model = common::read(ROD_SQUARED_TEXT);
+        common::set(&mut model, &[("r", k), ("l", 3.2 * k), ("e", 0.4 * k)]);
+        for x in [0.3, 1.8, 3.3, 4.8] {
+            let guess = compiled.guess_flat(&[x]);
+            let c = compiled.kinematics_flat(&[x], &guess, &cfg);
+            let m = model.kinematics(&[x], &guess, &cfg).map(|s| s.q.clone());
+            match (c, m) {
+                (Ok(c), Ok(m)) => {
+                    assert!(k >= 1e-156, "size {k:e}, phi {x}: solved");
+                    assert_eq!(c.q.map(f64::to_bits).to_vec(), m.iter().map(|v| v.to_bits()).collect::<Vec<_>>());
+                }
+                (Err(c), Err(m)) => {
+                    let m = model.explain(&[x], &guess, &cfg, m);
+                    assert!(matches!(c, kinloop::Error::Underflow { .. }), "size {k:e}, phi {x}: {c}");
+                    assert_eq!(c, m, "size {k:e}, phi {x}");
+                }
+                (c, m) => panic!("size {k:e}, phi {x}: compiled {:?}, run time {m:?}", c.map(|k| k.q)),
+            }
+        }
+    }
+}

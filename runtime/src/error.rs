@@ -114,6 +114,32 @@ pub enum Error {
         /// Where.
         at: Box<Location>,
     },
+    /// An equation's terms are too small for `f64`: the magnitude its residual is judged in
+    /// (the size of its terms, see `NewtonConfig::residual_tol`) is below `least`, or
+    /// underflowed to zero where its terms do not vanish. Below `2^-1022` doubles are
+    /// subnormal, `2^-1074` (4.9e-324) apart whatever their size, so a residual there is known
+    /// no finer than `4.9e-324 / magnitude` of its magnitude; below `least` that is coarser
+    /// than the residual tolerance (at least 16 eps), and a root judged there could be off by
+    /// far more than the tolerance says. Typical of an equation of squared lengths (a rod
+    /// length written `(x - a)^2 + ... == l^2`) with lengths below about `1e-156`: the
+    /// mechanism in a smaller unit (larger numbers) solves.
+    #[error(
+        "the terms of the equation `{equation}` are too small to be evaluated in f64 {at}: {}, where doubles \
+         are 4.9e-324 apart, too coarse to judge its residual to the tolerance; give the lengths in a smaller \
+         unit (larger numbers)",
+        underflow_cause(*magnitude, *least)
+    )]
+    Underflow {
+        /// The equation.
+        equation: Cow<'static, str>,
+        /// Its magnitude where the solve ended (`0` where it underflowed to zero).
+        magnitude: f64,
+        /// The smallest magnitude a residual can be judged in with the configuration's
+        /// residual tolerance: `2^-1074 / max(residual_tol, 16 eps)`, `4.9e-312` by default.
+        least: f64,
+        /// Where.
+        at: Box<Location>,
+    },
     /// A result overflowed although every value given was finite (e.g. accelerations for input
     /// speeds near the largest `f64`).
     #[error("the {what} `{name}` overflows {at}: the given speeds or accelerations are too large")]
@@ -295,6 +321,7 @@ impl Error {
             | Error::Singular { at, .. }
             | Error::Domain { at, .. }
             | Error::Overflow { at, .. }
+            | Error::Underflow { at, .. }
             | Error::SweepStopped { at, .. }
             | Error::Branch { at, .. }
             | Error::InputTooCoarse { at, .. }
@@ -314,6 +341,7 @@ impl Error {
             | Error::Singular { at, .. }
             | Error::Domain { at, .. }
             | Error::Overflow { at, .. }
+            | Error::Underflow { at, .. }
             | Error::SweepStopped { at, .. }
             | Error::Branch { at, .. }
             | Error::InputTooCoarse { at, .. }
@@ -321,6 +349,16 @@ impl Error {
             | Error::RangeTooLong { at, .. } => Some(at),
             Error::InvalidArgument(_) | Error::Dynamics(_) | Error::Figure(_) => None,
         }
+    }
+}
+
+/// The magnitude of an equation too small to be judged, as it is (a subnormal number, or zero
+/// where it underflowed), against the least one judged.
+fn underflow_cause(magnitude: f64, least: f64) -> String {
+    if magnitude == 0.0 {
+        format!("their magnitude underflows to zero (it must be at least {least:.2e})")
+    } else {
+        format!("their magnitude {magnitude:.2e} is below {least:.2e}")
     }
 }
 

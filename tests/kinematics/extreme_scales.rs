@@ -803,3 +803,131 @@ fn a_closed_form_that_cannot_be_assembled_reports_a_residual_free_of_its_size() 
         }
     }
 }
+
+with_newton_twin! {
+    /// The offset slider-crank of `units.rs`'s `RodLength`: the slider's position `x` from the
+    /// rod's length squared alone, a Newton block of one length whose equation's terms are
+    /// squared lengths. Its magnitude, `(|x| + |r|)^2 + (|r| + |e|)^2 + |l|^2`, is about
+    /// `39 k^2` at size `k`: subnormal below about `k = 1e-155`, zero below about `1e-162`.
+    pub struct RodSquared, RodSquaredNewton {
+        params r, l, e;
+        input phi;
+        unknowns x = l;
+        eq rod: (x - r * cos(phi)) ^ 2 + (r * sin(phi) - e) ^ 2 == l * l;
+    }
+}
+
+/// The rod-length slider-crank's links (crank, rod, offset) at size 1.
+const ROD: (f64, f64, f64) = (1.0, 3.2, 0.4);
+
+/// The slider's position at size 1 on the declared branch (the guess `x = l` lies beside the
+/// root ahead of the crank): `r cos phi + sqrt(l^2 - (r sin phi - e)^2)`.
+fn rod_closed_form(phi: f64) -> f64 {
+    let (r, l, e) = ROD;
+    r * phi.cos() + (l * l - (r * phi.sin() - e).powi(2)).sqrt()
+}
+
+/// How far a solved slider position may be from the closed form, in fractions of the size `k`.
+/// Newton accepts a residual of `residual_tol` of the magnitude `M` and evaluates it to its
+/// rounding, itself at most `residual_tol` of `M` wherever a solve may succeed: the true
+/// residual at the result is at most `2 residual_tol M`. The residual's derivative is
+/// `2 (x - r cos phi) = 2 sqrt(l^2 - (r sin phi - e)^2)`, at least `2 sqrt(l^2 - (r + e)^2) k`
+/// = `5.75 k`, and `M` at most `((r + l) + r)^2 + (r + e)^2 + l^2` = `39.3 k^2`: the position is
+/// off by at most `2 residual_tol 39.3 / 5.75`, `1.4e-11` of the size with the default
+/// tolerance, and the parameters' own rounding (1e-16). Where the magnitude is a normal number
+/// the residual is rounded to `eps`, and the final correction takes the position there
+/// ([`SCALE_TOL`], as `units.rs` finds at sizes from 1e-9 to 1e9).
+fn rod_tolerance(k: f64) -> f64 {
+    let (r, l, e) = ROD;
+    let most = (2.0 * r + l).powi(2) + (r + e).powi(2) + l * l;
+    let least_slope = 2.0 * (l * l - (r + e).powi(2)).sqrt();
+    let normal = most * k * k * f64::EPSILON >= f64::MIN_POSITIVE;
+    if normal { SCALE_TOL } else { 2.0 * NewtonConfig::default().residual_tol * most / least_slope + SCALE_TOL }
+}
+
+/// A Newton equation whose terms leave the range of `f64` (squared lengths of a mechanism of
+/// size `k`) is solved to its tolerance or refused, never answered wrong. The slider-crank by its
+/// rod's length squared, at 12 inputs of a turn, both as declared and `#[kinloop(newton)]`:
+/// at sizes 1 and `1e±150` (normal magnitudes) and `1e-156` (a subnormal magnitude, about
+/// `2e-311`, still fine enough: doubles `4.9e-324` apart are `2e-13` of it, below the residual
+/// tolerance) the closed form to [`rod_tolerance`]; at `1e-160` (a magnitude of `3e-319`,
+/// resolved to `1.6e-5` of itself), `1e-200` and `1e-300` (zero: every term underflowed) an
+/// [`kinloop::Error::Underflow`] naming the equation; at `1e300` (terms beyond `f64::MAX`) the
+/// equation is not finite. At `1e-160` Newton accepted positions `4e-5` of the size off, and
+/// at `1e-200` and below returned the guess unchanged (a residual of exactly zero, judged
+/// against the Jacobian's row sum), with no error.
+#[test]
+fn an_equation_of_squared_lengths_is_solved_to_its_tolerance_or_refused_at_every_scale() {
+    use kinloop::Error;
+    let (r, l, e) = ROD;
+    let cfg = NewtonConfig::default();
+    let solved = [1.0, 1e-150, 1e150, 1e-156];
+    let underflows = [1e-160, 1e-200, 1e-300];
+    for k in solved.into_iter().chain(underflows).chain([1e300]) {
+        let (plain, newton) =
+            (RodSquared { r: r * k, l: l * k, e: e * k }, RodSquaredNewton { r: r * k, l: l * k, e: e * k });
+        let tol = rod_tolerance(k);
+        let mut worst = 0.0f64;
+        for i in 0..12 {
+            let phi = 0.3 + i as f64 * 0.5;
+            for (path, got) in [
+                ("as declared", plain.kinematics_flat(&[phi], &plain.guess_flat(&[phi]), &cfg)),
+                ("Newton", newton.kinematics_flat(&[phi], &newton.guess_flat(&[phi]), &cfg)),
+            ] {
+                match got {
+                    Ok(s) => {
+                        let off = (s.q[0] / k - rod_closed_form(phi)).abs() / (r + l + e);
+                        assert!(off <= tol, "{path} at size {k:e}, phi {phi}: x / k = {}, {off:e} off", s.q[0] / k);
+                        assert!(solved.contains(&k), "{path} at size {k:e}, phi {phi}: solved, {off:e} off");
+                        worst = worst.max(off);
+                    }
+                    Err(err @ Error::Underflow { .. }) if underflows.contains(&k) => {
+                        let text = err.to_string();
+                        assert!(text.contains("`rod`") && text.contains("too small"), "{text}");
+                    }
+                    Err(Error::Domain { ref name, .. }) if k == 1e300 && name == "rod" => {}
+                    Err(err) => panic!("{path} at size {k:e}, phi {phi}: {err}"),
+                }
+            }
+        }
+        if solved.contains(&k) {
+            eprintln!("rod length squared at size {k:e}: largest difference from the closed form {worst:.1e}");
+        }
+    }
+}
+
+/// A sweep of the rod-length slider-crank at `1e-300` and `1e-160` stops at its first sample
+/// with [`kinloop::Error::Underflow`], locating no event: at `1e-300` it returned the guess at
+/// every sample (or, where the step failed, took the noise of the residual for a singular
+/// crossing). At size 1 the same sweep follows the closed form.
+#[test]
+fn a_sweep_of_an_equation_too_small_for_f64_is_refused() {
+    let (r, l, e) = ROD;
+    for k in [1.0, 1e-160, 1e-300] {
+        let m = RodSquaredNewton { r: r * k, l: l * k, e: e * k };
+        let mut s = Sweep::<RodSquaredNewton, Kin<1, 1, 0>, 1, 1, 0>::new(
+            &m,
+            [0.3],
+            [0.3 + std::f64::consts::TAU],
+            73,
+            m.guess_flat(&[0.3]),
+        )
+        .unwrap();
+        let states: Vec<_> = s.by_ref().collect();
+        assert!(s.events().is_empty(), "size {k:e}: events {:?}", s.events());
+        if k == 1.0 {
+            assert_eq!(states.len(), 73);
+            for st in states {
+                let st = st.unwrap();
+                let off = (st.q[0] - rod_closed_form(st.x[0])).abs() / (r + l + e);
+                assert!(off <= SCALE_TOL, "phi {}: {off:e} off", st.x[0]);
+            }
+        } else {
+            assert!(
+                matches!(states.as_slice(), [Err(kinloop::Error::Underflow { .. })]),
+                "size {k:e}: {:?}",
+                states.iter().take(3).collect::<Vec<_>>()
+            );
+        }
+    }
+}

@@ -23,3 +23,4 @@ mod newton_restarts;
 mod sin_cos_order;
 mod sparse_steps;
 mod step_cost;
+mod underflowed_magnitudes;

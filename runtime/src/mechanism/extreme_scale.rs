@@ -175,6 +175,10 @@ pub fn in_block(fail: BlockFailure, block_of: impl Fn(usize) -> Option<(usize, u
             let (b, row) = at(row);
             (b, BlockFailure::Singular { row, iterations, residual, pivot_ratio, tolerance })
         }
+        BlockFailure::Underflow { row, magnitude, least } => {
+            let (b, row) = at(row);
+            (b, BlockFailure::Underflow { row, magnitude, least })
+        }
         other @ (BlockFailure::InvalidConfig { .. } | BlockFailure::TooManyTurns { .. }) => (0, other),
     }
 }

@@ -7,7 +7,7 @@ use super::diagnose::{jacobian_non_finite, residual_non_finite};
 use super::kept_lu::LastStep;
 use super::norms::{beyond_half_turn, scaled_norms, scaled_residual, scaled_step, sum_sq_scaled};
 use super::report::{BlockFailure, NewtonStop, Solved};
-use super::scales::{BlockEval, MagnitudesOf, fallback_rows, magnitudes_at, rows_at};
+use super::scales::{BlockEval, Magnitudes, MagnitudesOf, fallback_rows, magnitudes_at, rows_at, unjudged};
 use super::state::Iter;
 use super::step::{MAX_UNCHECKED_CORRECTION, evaluated_correction};
 use super::trace::{SolvePath, note};
@@ -97,7 +97,19 @@ pub(super) fn iterate<const N: usize, const K: usize, J: BlockJacobian<N>>(
             let step = scaled_step(&dz, &it.z, &m.unit);
             let again = it.past_tolerance < LINEAR_EXTRA && it.iterations < cfg.max_iterations;
             if !(again && pivot > cfg.singular_tol && it.reached_linearly(step, cfg)) {
-                return it.finish(&dz, step, pivot, rho, s, NewtonStop::ResidualTolerance, cfg, &mut eval, mags, last);
+                return it.finish(
+                    &dz,
+                    step,
+                    pivot,
+                    rho,
+                    m,
+                    s,
+                    NewtonStop::ResidualTolerance,
+                    cfg,
+                    &mut eval,
+                    mags,
+                    last,
+                );
             }
             // Reached linearly, yet the Jacobian here is regular by the tolerance: perhaps a
             // root just inside a limit position (see `LINEAR_EXTRA`). A few more steps tell.
@@ -112,9 +124,14 @@ pub(super) fn iterate<const N: usize, const K: usize, J: BlockJacobian<N>>(
         let stagnant = rho >= 0.5 * it.prev_rho;
         if (step <= cfg.step_tol || stagnant) && rho <= floor {
             last.forget();
-            return it.finish(&dz, step, pivot, rho, s, NewtonStop::StepTolerance, cfg, &mut eval, mags, last);
+            return it.finish(&dz, step, pivot, rho, m, s, NewtonStop::StepTolerance, cfg, &mut eval, mags, last);
         }
         if it.iterations >= cfg.max_iterations {
+            // In magnitudes too small to judge the residual, the cap or a stall says nothing
+            // of the mechanism: the magnitudes are the failure (see `scales::unjudged`).
+            if let Some(fail) = unjudged(mags, m, it.ev, &it.z, cfg) {
+                return Err(fail);
+            }
             let capped = it.capped(rho, s, cfg);
             // A stall away from every root is solved again from restarts by the caller
             // (`restarts::iterate_restarting`).
@@ -132,7 +149,10 @@ pub(super) fn iterate<const N: usize, const K: usize, J: BlockJacobian<N>>(
                 // No step decreases a residual already at its rounding floor.
                 note(SolvePath::AtFloor);
                 last.forget();
-                return it.finish(&dz, step, pivot, rho, s, NewtonStop::StepTolerance, cfg, &mut eval, mags, last);
+                return it.finish(&dz, step, pivot, rho, m, s, NewtonStop::StepTolerance, cfg, &mut eval, mags, last);
+            }
+            if let Some(fail) = unjudged(mags, m, it.ev, &it.z, cfg) {
+                return Err(fail);
             }
             let stalled = it.stalled(rho, pivot, s, cfg);
             return Err(stalled);
@@ -146,8 +166,10 @@ pub(super) fn iterate<const N: usize, const K: usize, J: BlockJacobian<N>>(
 }
 
 impl<const N: usize, const K: usize, J: BlockJacobian<N>> Iter<'_, N, K, J> {
-    /// Ends a converged iteration: diagnoses linear convergence (a singular root), then applies
-    /// the last correction `dz`. A correction far below the tolerance is applied as it is; a
+    /// Ends a converged iteration judged in the magnitudes `m` (whose row scales, or the row
+    /// sums that replace invalid ones, are `s`): refuses magnitudes too small to judge it
+    /// (`scales::unjudged`), diagnoses linear convergence (a singular root), then applies the
+    /// last correction `dz`. A correction far below the tolerance is applied as it is; a
     /// larger one is checked by a new evaluation (so the Jacobian and kept values match the
     /// returned position) and undone if it made the residual worse. The iteration is borrowed,
     /// not moved into its end (its position is a kilobyte for a large block).
@@ -159,6 +181,7 @@ impl<const N: usize, const K: usize, J: BlockJacobian<N>> Iter<'_, N, K, J> {
         step: f64,
         pivot: f64,
         rho: f64,
+        m: &Magnitudes<N>,
         s: &[f64; N],
         termination: NewtonStop,
         cfg: &NewtonConfig,
@@ -170,6 +193,10 @@ impl<const N: usize, const K: usize, J: BlockJacobian<N>> Iter<'_, N, K, J> {
             && let Some(row) = jacobian_non_finite(self.ev)
         {
             return Err(BlockFailure::NonFinite { row, iterations: self.iterations });
+        }
+        // Met in magnitudes too small to judge it: no root (see `scales::unjudged`).
+        if let Some(fail) = unjudged(mags, m, self.ev, &self.z, cfg) {
+            return Err(fail);
         }
         if self.reached_linearly(step, cfg) && self.iterations > 0 {
             // Newton converges quadratically to a regular root; linearly (each step a fixed

@@ -45,7 +45,10 @@
 //! checked; the last Newton correction is applied (a prediction that already meets the
 //! tolerance is still corrected once); a root reached with linear convergence (the signature
 //! of a singular Jacobian at the root) is reported as singular, not returned as an inaccurate
-//! success.
+//! success. Nor is a root judged in magnitudes too small for `f64` to resolve its residual to
+//! the tolerance (subnormal ones, or zero where the terms underflowed: an equation of squared
+//! lengths below about `1e-156`): the solve fails with `BlockFailure::Underflow`
+//! (`scales::unjudged`), tested only where the magnitudes are degenerate.
 //!
 //! **One factorisation at the root.** The last correction is made at the evaluation the block
 //! returns, whose Jacobian the analogs factorise. [`newton_keeping_lu`] makes that correction
@@ -99,7 +102,7 @@ use crate::solvers::jacobian::BlockJacobian;
 use crate::solvers::lu::{Lu, RowScales};
 use kept_lu::{KeptLu, LastStep, RowSteps};
 use norms::{scaled_residual, scaled_step};
-use scales::{fallback_rows, magnitudes_at, rows_at};
+use scales::{fallback_rows, magnitudes_at, unjudged, unjudged_fixed};
 use step::{MAX_UNCHECKED_CORRECTION, evaluated_correction};
 use trace::{SolvePath, note};
 
@@ -242,13 +245,28 @@ fn newton_last<const N: usize, const K: usize, J: BlockJacobian<N>>(
 ) -> Result<Solved<N>, BlockFailure> {
     let (current, fallback);
     let m = magnitudes_at!(mags, ev, current);
-    let rows = rows_at!(m, ev, fallback);
+    // `rows_at!`, and in its branch for degenerate magnitudes (no branch more on the common
+    // path), magnitudes made once that are too small to judge a residual: no root can be told
+    // (see `scales::unjudged`). Those of each evaluation are judged where the solve ends.
+    let rows = if m.rows.degenerate {
+        if let Some(fail) = unjudged_fixed(mags, ev, &z0, cfg) {
+            return Err(fail);
+        }
+        fallback = fallback_rows(&m.rows.s, ev);
+        &fallback
+    } else {
+        &m.rows
+    };
     let rho = scaled_residual(&ev.f, rows);
     // NaN fails both tests; an out-of-range tolerance is diagnosed by `iterate`.
     if rho <= cfg.residual_tol
         && cfg.residual_tol <= 1e-3
         && let Some((z, dz, step)) = free_correction(ev, rows, &m.unit, rho, z0, cfg, last)
     {
+        // Met in magnitudes too small to judge it: no root (see `scales::unjudged`).
+        if let Some(fail) = unjudged(mags, m, ev, &z0, cfg) {
+            return Err(fail);
+        }
         if step > MAX_UNCHECKED_CORRECTION {
             last.forget();
             return Ok(checked_free_correction(z0, ev, rho, &dz, &mut eval, mags, last));

@@ -42,6 +42,10 @@ pub enum BlockFailure {
     /// code names the angle by its guess; it also reports Newton's failure from such a guess as
     /// this (see `block_failure`).
     TooManyTurns { value: f64 },
+    /// Row `row`'s magnitude (`magnitude`, the block's given one where the solve ended) is
+    /// below `least`, the smallest whose residual can be judged to the tolerance, or
+    /// underflowed to zero where the row's terms do not vanish (see `scales::unjudged`).
+    Underflow { row: usize, magnitude: f64, least: f64 },
 }
 
 /// Why a solve stopped successfully.

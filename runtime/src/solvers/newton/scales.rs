@@ -2,6 +2,8 @@
 //! the magnitudes its tests are made in ([`Magnitudes`]: the rows' magnitudes and the unknowns'
 //! units), made once for the solve or from each evaluation ([`MagnitudesOf`]).
 
+use super::config::NewtonConfig;
+use super::report::BlockFailure;
 use crate::solvers::jacobian::BlockJacobian;
 use crate::solvers::lu::{RowScales, all_positive_finite};
 
@@ -27,7 +29,10 @@ pub struct Magnitudes<const N: usize> {
     /// unit, generated for every equation. Residual `i` is judged relative to it. Where one is
     /// not positive and finite (`degenerate`: a hand-written block that has none, or a
     /// degenerate mechanism whose terms all vanish) the row sums `sum_j |J_ij|` of each
-    /// evaluation replace the invalid ones, which is right for angle unknowns only.
+    /// evaluation replace the invalid ones, which is right for angle unknowns only. A solve
+    /// that ends where one is too small to judge its residual (below
+    /// [`least_judged_magnitude`], or zero where the row's terms underflowed) fails instead
+    /// ([`unjudged`]).
     pub(super) rows: RowScales<N>,
     /// The unit of each unknown: one radian for an angle, the magnitude of the rows it appears
     /// in per unit of its Jacobian entry otherwise (a slider coordinate: its loop's lengths). A
@@ -141,6 +146,100 @@ pub(super) fn fallback_rows<const N: usize, const K: usize, J: BlockJacobian<N>>
     RowScales::new(s)
 }
 
+/// The spacing of doubles below `f64::MIN_POSITIVE` (`2^-1022`), whatever their size: the
+/// subnormal numbers are the multiples of the smallest one, `2^-1074`.
+const SUBNORMAL_SPACING: f64 = f64::from_bits(1);
+
+/// The smallest row magnitude whose residual a solve with `cfg` can judge. A residual is a sum
+/// of terms bounded by the magnitude `s`; each is rounded to `eps / 2` of itself or to half
+/// the subnormal spacing `2^-1074`, whichever is larger, so below `2^-1022` the residual is
+/// known only to about `2^-1074 / s` of the magnitude, however small the terms are. The test
+/// `|f| <= residual_tol s` means something only where that is at most the tolerance (with a
+/// floor of 16 eps: a tolerance of 0 iterates down to the rounding floor, which the iteration
+/// takes as 16 eps of the magnitude): `s >= 2^-1074 / max(residual_tol, 16 eps)`, `4.9e-312`
+/// by default, `1.4e-309` at the least. Every such bound is below `2^-1024`, under which the
+/// reciprocal of a magnitude overflows and [`RowScales`] marks it degenerate: a magnitude
+/// below it is always a degenerate one, and the test ([`unjudged`]) runs only for those.
+#[inline]
+pub(crate) fn least_judged_magnitude(cfg: &NewtonConfig) -> f64 {
+    SUBNORMAL_SPACING / cfg.residual_tol.max(16.0 * f64::EPSILON)
+}
+
+/// The failure of a solve that ends at the evaluation `ev` of `z`, judged in the magnitudes
+/// `m` of that evaluation (made from it by `mags`), when a row cannot be judged there
+/// ([`BlockFailure::Underflow`]): its magnitude is below [`least_judged_magnitude`], or
+/// underflowed to zero though its terms do not vanish. Tested where a solve returns, by a branch
+/// on the magnitudes' degenerate mark, which valid magnitudes do not take; magnitudes made once
+/// for the solve are tested once, at its start ([`unjudged_fixed`]), and not here: the test
+/// compiles to nothing for them.
+#[inline(always)]
+pub(super) fn unjudged<const N: usize, const K: usize, J: BlockJacobian<N>>(
+    mags: &impl MagnitudesOf<N, K, J>,
+    m: &Magnitudes<N>,
+    ev: &BlockEval<N, K, J>,
+    z: &[f64; N],
+    cfg: &NewtonConfig,
+) -> Option<BlockFailure> {
+    if mags.fixed().is_none() && m.rows.degenerate { unjudged_row(&m.rows.s, ev, z, cfg) } else { None }
+}
+
+/// [`unjudged`] of magnitudes made once for the solve, at its guess `z0` (evaluation `ev`):
+/// they do not depend on the unknowns (the unknowns of such a block are angles, which enter its
+/// terms through sines and cosines), so a magnitude too small to judge a residual at the guess
+/// is so at every iterate. Asked where the row equilibration found them degenerate.
+#[inline(always)]
+pub(super) fn unjudged_fixed<const N: usize, const K: usize, J: BlockJacobian<N>>(
+    mags: &impl MagnitudesOf<N, K, J>,
+    ev: &BlockEval<N, K, J>,
+    z0: &[f64; N],
+    cfg: &NewtonConfig,
+) -> Option<BlockFailure> {
+    match mags.fixed() {
+        Some(m) if m.rows.degenerate => unjudged_row(&m.rows.s, ev, z0, cfg),
+        _ => None,
+    }
+}
+
+/// [`unjudged`] of degenerate magnitudes `scale` (as given, before the row sums replace them).
+///
+/// A positive magnitude below the least is judged by its own value. A magnitude of zero is
+/// either a row whose terms all vanish (each term of the structural bound holds a length that is
+/// zero, or the bound is a function's value, as `|ln x|` at `x = 1`) or one whose terms
+/// underflowed (a product of lengths below about `1e-162`: `(1e-200)^2` is zero in `f64`). The
+/// Jacobian tells them apart. Where every term holds a zero factor, so does its derivative by
+/// an unknown, except by that factor itself, which is then a zero unknown: `J_rc z_c` is zero.
+/// Otherwise `|J_rc z_c|` is the size of the terms in `z_c` (a term of degree `d` in `z_c` is
+/// `z_c / d` times its derivative): where it is not zero but below the least magnitude the zero
+/// is their underflow. (`|ln x|` at `x = 1` has `|J z| = 1`: judged by the row sums, as
+/// before. A row whose unknowns with non-zero entries are all exactly zero, or whose Jacobian
+/// underflowed too, is not told from one whose terms vanish.) The product rounds monotonically,
+/// so its comparison with the least magnitude (a double) holds for the exact product.
+#[cold]
+#[inline(never)]
+fn unjudged_row<const N: usize, const K: usize, J: BlockJacobian<N>>(
+    scale: &[f64; N],
+    ev: &BlockEval<N, K, J>,
+    z: &[f64; N],
+    cfg: &NewtonConfig,
+) -> Option<BlockFailure> {
+    let least = least_judged_magnitude(cfg);
+    let nonzero = |v: f64| v != 0.0 && v.is_finite();
+    let mut dense = None;
+    (0..N)
+        .find(|&r| {
+            let given = scale[r];
+            if given > 0.0 {
+                given < least
+            } else if given == 0.0 {
+                let j = dense.get_or_insert_with(|| ev.j.to_dense());
+                (0..N).any(|c| nonzero(j[r][c]) && nonzero(z[c]) && (j[r][c] * z[c]).abs() < least)
+            } else {
+                false
+            }
+        })
+        .map(|row| BlockFailure::Underflow { row, magnitude: scale[row], least })
+}
+
 /// The units of the unknowns (see [`Magnitudes::unit`]): the generated ones when they are all
 /// valid (one branch for the set), otherwise `1` for each invalid one.
 #[inline(always)]
@@ -161,6 +260,75 @@ mod tests {
     use super::super::test_blocks::{circle, in_place, solve, varying};
     use super::*;
     use crate::solvers::newton::NewtonConfig;
+
+    /// A slider `x` at distance `c` from a pivot, by the square of that distance, `x^2 = c^2`,
+    /// as the generated code judges it: the magnitude `x^2 + c^2`, the unit of `x` that over
+    /// the derivative's magnitude `2 |x|`.
+    fn squared(c: f64) -> impl Fn(&[f64; 1]) -> BlockEval<1, 2> {
+        move |z: &[f64; 1]| {
+            let x = z[0];
+            let m = x * x + c * c;
+            varying([x * x - c * c], [[2.0 * x]], [m], [m / (2.0 * x.abs())])
+        }
+    }
+
+    /// Where the squares of the lengths are normal numbers the root is found to rounding; where
+    /// they are subnormal (`c = 1e-160`: a magnitude of `2e-320`, its residual known to `2e-4`
+    /// of it) or zero (`c = 1e-200`: `x^2` and `c^2` underflow, and the residual is exactly
+    /// zero at any `x` near `c`), the solve is refused, from guesses on either side. It returned
+    /// `x` `1e-5` off at `1e-160`, and the guess itself at `1e-200`.
+    #[test]
+    fn a_magnitude_too_small_to_judge_a_residual_is_refused() {
+        let cfg = NewtonConfig::default();
+        for g in [0.7, 1.3] {
+            let c = 1e-150;
+            let (s, _) = solve([g * c], &cfg, squared(c)).unwrap();
+            assert!((s.z[0] - c).abs() <= 2.0 * f64::EPSILON * c, "{:e}", s.z[0]);
+            for (c, zero) in [(1e-160, false), (1e-200, true)] {
+                let fail = solve([g * c], &cfg, squared(c)).map(|(s, _)| s.z).unwrap_err();
+                let BlockFailure::Underflow { row: 0, magnitude, least } = fail else { panic!("{c:e}: {fail:?}") };
+                assert_eq!((magnitude == 0.0, least), (zero, least_judged_magnitude(&cfg)), "{c:e}: {fail:?}");
+            }
+        }
+    }
+
+    /// The least magnitude judged is where the subnormal spacing is the residual tolerance (16
+    /// eps for a tolerance of 0): `x = 1/2` (a linear row, solved exactly) in a magnitude given
+    /// as that bound is solved, in one a double below it refused.
+    #[test]
+    fn the_least_magnitude_judged_is_the_tolerance_in_subnormal_spacings() {
+        for tol in [1e-12, 0.0, 1e-3] {
+            let cfg = NewtonConfig::default().with_residual_tol(tol);
+            let least = least_judged_magnitude(&cfg);
+            assert_eq!(least, f64::from_bits(1) / tol.max(16.0 * f64::EPSILON));
+            assert!(least < f64::MIN_POSITIVE / 4.0, "{least:e}: not always degenerate");
+            // `x = c` (exact in subnormal arithmetic), `c` a quarter of the magnitude.
+            let c = least / 4.0;
+            let row = |s: f64| move |z: &[f64; 1]| varying::<1, 2>([z[0] - c], [[1.0]], [s], [s]);
+            let below = f64::from_bits(least.to_bits() - 1);
+            for g in [c, 3.0 * c] {
+                let (solved, _) = solve([g], &cfg, row(least)).unwrap();
+                assert_eq!(solved.z, [c]);
+                let fail = solve([g], &cfg, row(below)).map(|(s, _)| s.z).unwrap_err();
+                assert_eq!(fail, BlockFailure::Underflow { row: 0, magnitude: below, least }, "{tol:e}");
+            }
+        }
+    }
+
+    /// A row whose magnitude is zero at the root without underflowing is judged by its row
+    /// sum, as before, and solved: `x = e` with `e = 0` (the magnitude `|x| + |e|`; its
+    /// non-zero Jacobian entry is at an unknown that is zero), and `ln x = 0` (the magnitude
+    /// `|ln x|`, a function's value; its derivative times `x` is 1).
+    #[test]
+    fn a_row_whose_magnitude_vanishes_at_the_root_is_solved() {
+        let cfg = NewtonConfig::default();
+        let vanishing = |z: &[f64; 1]| varying::<1, 2>([z[0]], [[1.0]], [z[0].abs()], [z[0].abs()]);
+        let (s, ev) = solve([0.5], &cfg, vanishing).unwrap();
+        assert_eq!((s.z, ev.keep[0]), ([0.0], 0.0));
+        let log = |z: &[f64; 1]| varying::<1, 2>([z[0].ln()], [[1.0 / z[0]]], [z[0].ln().abs()], [1.0]);
+        let (s, ev) = solve([1.0], &cfg, log).unwrap();
+        assert_eq!((s.z, ev.keep[0]), ([1.0], 0.0));
+    }
 
     /// Magnitudes made once for the solve (as the generated code makes those free of the
     /// unknowns) and the same magnitudes read from every evaluation give the same solve, bit
