@@ -3,7 +3,7 @@
 //! its residuals in the equations' magnitudes as a block's Newton does, and refuses those too
 //! small for `f64` to judge to the tolerance.
 
-use kinloop::__gen::{BlockEval, whole_position};
+use kinloop::__gen::{BlockEval, BlockFailure, whole_position};
 use kinloop::NewtonConfig;
 
 /// A slider `x` at distance `c` from a pivot by the square of that distance, `x^2 - c^2`, with
@@ -16,7 +16,7 @@ fn squared(c: f64, x: f64) -> (f64, f64, f64, f64) {
 
 /// At `c = 1e-150` the squares are normal and the root is found to rounding. At `1e-160` they
 /// are subnormal (the magnitude `2.7e-320`, its residual known to `2e-4` of it) and at `1e-200`
-/// zero: the solve fails (its `None`, for which the rescue reports the kernel's own error). It
+/// zero: the solve fails as `BlockFailure::Underflow` (the error the rescue reports). It
 /// returned `x` `1e-4` of itself off at `1e-160`, and the guess unchanged at `1e-200`.
 #[test]
 fn the_whole_system_solve_refuses_a_magnitude_too_small_to_judge() {
@@ -29,8 +29,8 @@ fn the_whole_system_solve_refuses_a_magnitude_too_small_to_judge() {
             (e.f, e.j) = ([f], [[j]]);
         };
         match whole_position(&g, [scale], [unit], [false], &cfg, at) {
-            Some((q, _)) => assert!(c == 1e-150 && (q[0] - c).abs() <= 2.0 * f64::EPSILON * c, "{c:e}: {q:?}"),
-            None => assert!(c < 1e-150, "{c:e}"),
+            Ok((q, _)) => assert!(c == 1e-150 && (q[0] - c).abs() <= 2.0 * f64::EPSILON * c, "{c:e}: {q:?}"),
+            Err(fail) => assert!(c < 1e-150 && matches!(fail, BlockFailure::Underflow { .. }), "{c:e}: {fail:?}"),
         }
     }
 }
