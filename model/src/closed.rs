@@ -119,20 +119,6 @@ enum Op {
         c: u32,
         flip: u32,
     },
-    /// `d = folded_dyad_root_offset(d2, r2, a, b, c, [e0, e1, l0, l1], flip)`: a dyad's.
-    DyadRootOffset {
-        d: u32,
-        d2: u32,
-        r2: u32,
-        a: u32,
-        b: u32,
-        c: u32,
-        e0: u32,
-        e1: u32,
-        l0: u32,
-        l1: u32,
-        flip: u32,
-    },
     /// `d = polar_norm(r2, e0, e1)`.
     PolarNorm {
         d: u32,
@@ -212,9 +198,6 @@ impl Op {
             Op::DyadRootsOf { cq, sq, a, b, c, e0, e1, l0, l1, flip } => vec![cq, sq, a, b, c, e0, e1, l0, l1, flip],
             Op::DyadD2 { d, d2, r2, e0, e1, l0, l1 } => vec![d, d2, r2, e0, e1, l0, l1],
             Op::RootOffset { d, d2, r2, a, b, c, flip } => vec![d, d2, r2, a, b, c, flip],
-            Op::DyadRootOffset { d, d2, r2, a, b, c, e0, e1, l0, l1, flip } => {
-                vec![d, d2, r2, a, b, c, e0, e1, l0, l1, flip]
-            }
             Op::PolarNorm { d, r2, e0, e1 } => vec![d, r2, e0, e1],
             Op::PolarSide { s, cq, sq, gs } => vec![s, cq, sq, gs],
             Op::Atan2 { d, s, c } => vec![d, s, c],
@@ -338,6 +321,37 @@ impl ClosedProg {
         }
     }
 
+    /// `RootOffset`'s cold path, where its test fails (registers at `p`: `d2`, the coefficients
+    /// `a`, `b`, `c`; `r2` its value): `folded_dyad_root_offset` for a dyad's root (its `d2`
+    /// written by a `DyadD2`, every register having one writer), with the residual of one that
+    /// cannot be assembled in its links' lengths; `folded_root_offset` for another. Out of line:
+    /// inlined, it took the run's loop 44 instructions a step more on a rhombic drive, which
+    /// never comes here.
+    ///
+    /// # Safety
+    /// Every register of the program is below the length of the registers at `p`.
+    #[cold]
+    #[inline(never)]
+    unsafe fn off_range(
+        &self,
+        p: *const f64,
+        [d2, a, b, c]: [u32; 4],
+        r2: f64,
+        flip: bool,
+        cfg: &NewtonConfig,
+    ) -> Result<f64, BlockFailure> {
+        // SAFETY: the caller's.
+        let v = |k: u32| unsafe { *p.add(k as usize) };
+        let links = self.ops.iter().find_map(|op| match *op {
+            Op::DyadD2 { d, e0, e1, l0, l1, .. } if d == d2 => Some([v(e0), v(e1), v(l0), v(l1)]),
+            _ => None,
+        });
+        match links {
+            Some(links) => folded_dyad_root_offset(v(d2), r2, v(a), v(b), v(c), links, flip, cfg),
+            None => folded_root_offset(v(d2), r2, v(a), v(b), v(c), flip, cfg),
+        }
+    }
+
     /// Solves the block from the coefficients in the registers `r` and the guesses: the
     /// solution's values are left in their registers.
     #[inline(always)]
@@ -398,22 +412,16 @@ impl ClosedProg {
                     }
                     // `folded_root_offset`'s own test first: the coefficients, read only on
                     // its cold path, are not loaded where it passes (the same value).
-                    Op::RootOffset { d, d2, r2, a, b, c, flip } => {
-                        let (d2, r2) = (v(d2), v(r2));
+                    // A dyad's (its `d2` made by `DyadD2`) with the residual of one that
+                    // cannot be assembled in its links' lengths: the links looked up on the
+                    // cold path, not carried by the operation (a larger `Op` costs every
+                    // operation of every step its copy).
+                    Op::RootOffset { d, d2: d2_reg, r2, a, b, c, flip } => {
+                        let (d2, r2) = (v(d2_reg), v(r2));
                         let offset = if d2 >= 0.0 && (f64::MIN_POSITIVE..=f64::MAX).contains(&r2) {
                             root_offset_deferred(d2, flag(flip))
                         } else {
-                            folded_root_offset(d2, r2, v(a), v(b), v(c), flag(flip), cfg)?
-                        };
-                        set(d, offset)
-                    }
-                    Op::DyadRootOffset { d, d2, r2, a, b, c, e0, e1, l0, l1, flip } => {
-                        let (d2, r2) = (v(d2), v(r2));
-                        let offset = if d2 >= 0.0 && (f64::MIN_POSITIVE..=f64::MAX).contains(&r2) {
-                            root_offset_deferred(d2, flag(flip))
-                        } else {
-                            let links = [v(e0), v(e1), v(l0), v(l1)];
-                            folded_dyad_root_offset(d2, r2, v(a), v(b), v(c), links, flag(flip), cfg)?
+                            self.off_range(p, [d2_reg, a, b, c], r2, flag(flip), cfg)?
                         };
                         set(d, offset)
                     }
@@ -645,24 +653,19 @@ impl Build<'_> {
         let r2 = self.add(aa, bb);
         let cc = self.mul(c, c);
         let d2 = self.sub(r2, cc);
-        let (d2, links) = match links {
+        let d2 = match links {
             Some([e0, e1, l0, l1]) => {
                 let (d2, r2) = (self.reg(d2), self.reg(r2));
                 let (e0, e1, l0, l1) = (self.reg(e0), self.reg(e1), self.reg(l0), self.reg(l1));
-                (self.op(|d| Op::DyadD2 { d, d2, r2, e0, e1, l0, l1 }), Some([e0, e1, l0, l1]))
+                self.op(|d| Op::DyadD2 { d, d2, r2, e0, e1, l0, l1 })
             }
-            None => (d2, None),
+            None => d2,
         };
         let (d2, r2r, ar, br, cr) = (self.reg(d2), self.reg(r2), self.reg(a), self.reg(b), self.reg(c));
         // In the emitter's order: the value free of the root ahead of it (`root` in
-        // `codegen/src/emit/closed_form.rs`). A dyad's gives its links, for the residual of one
-        // that cannot be assembled.
-        let root_offset = |this: &mut Self| match links {
-            Some([e0, e1, l0, l1]) => {
-                this.op(|d| Op::DyadRootOffset { d, d2, r2: r2r, a: ar, b: br, c: cr, e0, e1, l0, l1, flip })
-            }
-            None => this.op(|d| Op::RootOffset { d, d2, r2: r2r, a: ar, b: br, c: cr, flip }),
-        };
+        // `codegen/src/emit/closed_form.rs`). A dyad's `d2` comes from its `DyadD2`, where the
+        // run finds its links for the residual of one that cannot be assembled.
+        let root_offset = |this: &mut Self| this.op(|d| Op::RootOffset { d, d2, r2: r2r, a: ar, b: br, c: cr, flip });
         let (cq, sq) = if a.is_zero() {
             let ib = self.div(V::C(1.0), b);
             let sq = self.mul(c, ib);
