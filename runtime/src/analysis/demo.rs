@@ -35,6 +35,12 @@ impl SliderCrank {
         h: Column::__generated(ColumnIndex::Output(0), "h"),
     };
 
+    /// The magnitude `rod`'s residual is judged in: its terms are bounded by the squared sum of
+    /// the lengths, so `|f| / magnitude` is the same at every size of the mechanism.
+    fn magnitude(&self, q: f64) -> f64 {
+        (q.abs() + self.r.abs() + self.e.abs()).powi(2) + self.l * self.l
+    }
+
     fn at(&self, phi: f64) -> Box<Location> {
         Location::boxed("SliderCrank", &["phi"], &[phi], None)
     }
@@ -81,22 +87,26 @@ impl Mechanism<1, 1, 1> for SliderCrank {
         for iterations in 0..=cfg.max_iterations {
             let f = self.residual_flat(x, &[q])[0];
             let evaluations = iterations + 1;
-            if f.abs() <= cfg.residual_tol {
-                let report = SolveReport {
-                    iterations,
-                    evaluations,
-                    residual: f.abs(),
-                    termination: NewtonStop::ResidualTolerance,
-                };
+            let residual = f.abs() / self.magnitude(q);
+            let j = 2.0 * (q - self.r * x[0].cos());
+            if residual <= cfg.residual_tol {
+                // As the library's Newton does: the last correction, which quadratic
+                // convergence makes exact to rounding (the tolerance is relative to the
+                // equation's magnitude, about the squared size, so `f` alone may still move
+                // the root by `1e-12` of the size).
+                if j != 0.0 {
+                    q -= f / j;
+                }
+                let report =
+                    SolveReport { iterations, evaluations, residual, termination: NewtonStop::ResidualTolerance };
                 return Ok(([q], report));
             }
-            let j = 2.0 * (q - self.r * x[0].cos());
             if j == 0.0 || !f.is_finite() {
                 break;
             }
             q -= f / j;
         }
-        let residual = self.residual_flat(x, &[q])[0].abs();
+        let residual = self.residual_flat(x, &[q])[0].abs() / self.magnitude(q);
         Err(Error::NoAssembly { residual, equation: Cow::Borrowed("rod"), at: self.at(x[0]) })
     }
 
@@ -126,7 +136,7 @@ impl Mechanism<1, 1, 1> for SliderCrank {
             out: [w],
             dout: [[w1]],
             d2out: [[[w2]]],
-            report: SolveReport::given(self.residual_flat(x, q)[0].abs()),
+            report: SolveReport::given(self.residual_flat(x, q)[0].abs() / self.magnitude(q[0])),
             health: {
                 let mut h = Health { min_pivot: 1.0, ..Health::default() };
                 if w < 0.0 {
@@ -146,7 +156,7 @@ impl Mechanism<1, 1, 1> for SliderCrank {
         let w = q[0] - self.r * cs;
         let s = self.r * sn - self.e;
         // Terms of `w^2 + s^2 - l^2`, each bounded by the squared sum of the lengths.
-        let scale = [(q[0].abs() + self.r.abs() + self.e.abs()).powi(2) + self.l * self.l];
+        let scale = [self.magnitude(q[0])];
         Jac {
             f: self.residual_flat(x, q),
             j: [[2.0 * w]],
@@ -171,5 +181,33 @@ impl Mechanism<1, 1, 1> for SliderCrank {
             }
         }
         Ok(())
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// The solve judges its residual in the equation's magnitude, not in absolute units: in
+    /// micrometres (`1e-6` of the size) the residuals are `1e-12` of those at size 1, and an
+    /// absolute tolerance of `1e-12` stopped an iteration early, answering a position `5e-7` of
+    /// itself off. At every size the slider's position is the scale-1 one times the size, to a
+    /// few ulps (it is computed by the same iterations, scaled).
+    #[test]
+    fn positions_are_the_same_at_every_size() {
+        let cfg = NewtonConfig::default();
+        let at = |k: f64| {
+            let m = SliderCrank { r: k, l: 3.0 * k, e: 0.5 * k };
+            let x = [0.7];
+            m.position_flat(&x, &m.guess_flat(&x), &cfg).map(|(q, rep)| (q[0] / k, rep.residual))
+        };
+        let (one, _) = at(1.0).unwrap();
+        let closed = 0.7f64.cos() + (9.0 - (0.7f64.sin() - 0.5).powi(2)).sqrt();
+        assert!((one - closed).abs() <= 4.0 * f64::EPSILON * closed, "{one} against {closed}");
+        for k in [1e-6, 1e-3, 1e3, 1e6] {
+            let (q, residual) = at(k).unwrap();
+            assert!((q - one).abs() <= 4.0 * f64::EPSILON * one, "size {k:e}: {q} against {one}");
+            assert!(residual <= cfg.residual_tol, "size {k:e}: residual {residual:e}");
+        }
     }
 }
