@@ -414,13 +414,13 @@ fn lower_equation_item(lw: &mut Lowerer, item: &Item, name: &Ident, eq: (&Expr, 
     };
     match (is_loop, l, r) {
         (true, Val::V(lx, ly), Val::V(rx, ry)) => {
-            let fx = lw.graph.sub(lx, rx);
-            let fy = lw.graph.sub(ly, ry);
+            let fx = lw.graph.sides_difference(lx, rx);
+            let fy = lw.graph.sides_difference(ly, ry);
             push(format!("{key}.x"), fx);
             push(format!("{key}.y"), fy);
         }
         (false, Val::S(a), Val::S(b)) => {
-            let f = lw.graph.sub(a, b);
+            let f = lw.graph.sides_difference(a, b);
             push(key, f);
         }
         _ => lw.errors.push(equation_type_error(is_loop, name, (range, eq_span), l, r)),
