@@ -57,6 +57,9 @@ impl std::fmt::Display for StepFailure {
                 f,
                 "the terms of the block's row {row} are too small for f64: magnitude {magnitude:e}, below {least:e}"
             ),
+            StepFailure::Block(BlockFailure::Overflow { row }) => {
+                write!(f, "the terms of the block's row {row} are too large for f64: their magnitude overflows")
+            }
         }
     }
 }

@@ -599,3 +599,51 @@ fn an_equation_too_small_for_f64_fails_as_the_compiled_one() {
         }
     }
 }
+
+/// An equation whose terms are too large for `f64` fails the model's solve as it fails the
+/// compiled one, its state and its positions alone, and a sweep at its first sample: at sizes
+/// `3.5e153` (a magnitude beyond `f64::MAX`, where at some inputs the terms themselves are
+/// not), `1e160`, `1e200` and `1e300` (terms beyond `f64::MAX`, the residual `inf - inf`) both
+/// refuse it with the same error, `Error::Overflow` of the equation, whose step failure the
+/// model's own record says is too large for `f64`; at size 1 and `2e153` (the largest
+/// magnitude `1.6e308`) both solve it, to the bit. Both said the equation left its domain from
+/// `1e160`, and at `3.5e153` that the loops could not close.
+#[test]
+fn an_equation_too_large_for_f64_fails_as_the_compiled_one() {
+    let cfg = NewtonConfig::default();
+    let bits = |q: &[f64]| q.iter().map(|v| v.to_bits()).collect::<Vec<_>>();
+    for k in [1.0, 2e153, 3.5e153, 1e160, 1e200, 1e300] {
+        let compiled = RodSquared { r: k, l: 3.2 * k, e: 0.4 * k };
+        let mut model = common::read(ROD_SQUARED_TEXT);
+        common::set(&mut model, &[("r", k), ("l", 3.2 * k), ("e", 0.4 * k)]);
+        let refused = |c: &kinloop::Error, m: kinloop::Error, what: &str| {
+            assert!(k > 2e153, "size {k:e}, {what}: {c}");
+            assert!(matches!(c, kinloop::Error::Overflow { what: "equation", name, .. } if name == "rod"), "{c}");
+            assert_eq!(*c, m, "size {k:e}, {what}");
+        };
+        for x in [0.3, 1.8, 3.3, 4.8] {
+            let guess = compiled.guess_flat(&[x]);
+            match (compiled.kinematics_flat(&[x], &guess, &cfg), model.kinematics(&[x], &guess, &cfg)) {
+                (Ok(c), Ok(m)) => assert_eq!(bits(&c.q), bits(&m.q), "size {k:e}, phi {x}"),
+                (Err(c), Err(m)) => {
+                    assert!(m.to_string().contains("too large for f64"), "{m}");
+                    refused(&c, model.explain(&[x], &guess, &cfg, m), "state");
+                }
+                (c, m) => panic!("size {k:e}, phi {x}: compiled {:?}, run time {m:?}", c.map(|k| k.q)),
+            }
+            match (compiled.position_flat(&[x], &guess, &cfg), model.positions(&[x], &guess, &cfg).map(bits)) {
+                (Ok((c, _)), Ok(m)) => assert_eq!(bits(&c), m, "size {k:e}, phi {x}"),
+                (Err(c), Err(m)) => refused(&c, model.explain(&[x], &guess, &cfg, m), "positions"),
+                (c, m) => panic!("size {k:e}, phi {x}: compiled {:?}, run time {m:?}", c.map(|(q, _)| q)),
+            }
+        }
+        if k >= 1e160 {
+            let (from, to) = ([0.3], [0.3 + TAU]);
+            let guess = compiled.guess_flat(&from);
+            let c_sweep = kinloop::Sweep::<_, kinloop::Kin<1, 1, 0>, 1, 1, 0>::new(&compiled, from, to, 73, guess);
+            let c_first = c_sweep.unwrap().next().expect("a sample").unwrap_err();
+            let m_first = model.sweep(&from, &to, 73, &guess).unwrap().next().expect("a sample").unwrap_err();
+            refused(&c_first, m_first, "sweep");
+        }
+    }
+}

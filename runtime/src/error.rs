@@ -140,13 +140,22 @@ pub enum Error {
         /// Where.
         at: Box<Location>,
     },
-    /// A result overflowed although every value given was finite (e.g. accelerations for input
-    /// speeds near the largest `f64`).
-    #[error("the {what} `{name}` overflows {at}: the given speeds or accelerations are too large")]
+    /// A result overflowed although every value given was finite: accelerations for input
+    /// speeds near the largest `f64`, or (`what` is `"equation"`) the terms of an equation, too
+    /// large to be evaluated in `f64`, the counterpart of [`Error::Underflow`]. An equation's
+    /// magnitude (the size of its terms, see `NewtonConfig::residual_tol`) overflowed to
+    /// infinity, so its residual cannot be judged relative to it; where the residual overflowed
+    /// too (squared lengths each beyond `f64::MAX`, whose difference is `inf - inf`), the terms
+    /// in its unknowns do (an unknown times its derivative), which tells it from an expression
+    /// outside its domain ([`Error::Domain`]). Typical of an equation of squared lengths (a rod
+    /// length written `(x - a)^2 + ... == l^2`) with lengths beyond about `1e153`: the
+    /// mechanism in a larger unit (smaller numbers) solves.
+    #[error("the {what} `{name}` overflows {at}: {}", overflow_cause(what))]
     Overflow {
-        /// `"velocity"`, `"acceleration"`, `"output velocity"` or `"output acceleration"`.
+        /// `"equation"`, `"velocity"`, `"acceleration"`, `"output velocity"` or `"output
+        /// acceleration"`.
         what: &'static str,
-        /// Name of the unknown or output column.
+        /// Name of the equation, unknown or output column.
         name: Cow<'static, str>,
         /// Where.
         at: Box<Location>,
@@ -349,6 +358,18 @@ impl Error {
             | Error::RangeTooLong { at, .. } => Some(at),
             Error::InvalidArgument(_) | Error::Dynamics(_) | Error::Figure(_) => None,
         }
+    }
+}
+
+/// Why a result overflowed, by what it is: an equation's terms (see [`Error::Overflow`]), or a
+/// state's velocities and accelerations.
+fn overflow_cause(what: &str) -> &'static str {
+    if what == "equation" {
+        "its terms are too large to be evaluated in f64 (their magnitude is beyond 1.8e308, the largest \
+         double, as squared lengths beyond about 1.3e154 are), so its residual cannot be judged; give the \
+         lengths in a larger unit (smaller numbers)"
+    } else {
+        "the given speeds or accelerations are too large"
     }
 }
 

@@ -845,39 +845,59 @@ fn rod_tolerance(k: f64) -> f64 {
     if normal { SCALE_TOL } else { 2.0 * NewtonConfig::default().residual_tol * most / least_slope + SCALE_TOL }
 }
 
+/// Whether `err` is the refusal of an equation whose terms are too large for `f64`, naming the
+/// equation `name`, with a message that says so and what to do.
+fn is_overflow(err: &kinloop::Error, name: &str) -> bool {
+    let text = err.to_string();
+    let said = [format!("`{name}`").as_str(), "too large", "f64", "larger unit", "smaller numbers"]
+        .iter()
+        .all(|part| text.contains(part));
+    assert!(said, "{text}");
+    matches!(err, kinloop::Error::Overflow { what: "equation", name: n, .. } if n == name)
+}
+
 /// A Newton equation whose terms leave the range of `f64` (squared lengths of a mechanism of
 /// size `k`) is solved to its tolerance or refused, never answered wrong. The slider-crank by its
-/// rod's length squared, at 12 inputs of a turn, both as declared and `#[kinloop(newton)]`:
-/// at sizes 1 and `1e±150` (normal magnitudes) and `1e-156` (a subnormal magnitude, about
-/// `2e-311`, still fine enough: doubles `4.9e-324` apart are `2e-13` of it, below the residual
-/// tolerance) the closed form to [`rod_tolerance`]; at `1e-160` (a magnitude of `3e-319`,
-/// resolved to `1.6e-5` of itself), `1e-200` and `1e-300` (zero: every term underflowed) an
-/// [`kinloop::Error::Underflow`] naming the equation; at `1e300` (terms beyond `f64::MAX`) the
-/// equation is not finite. At `1e-160` Newton accepted positions `4e-5` of the size off, and
-/// at `1e-200` and below returned the guess unchanged (a residual of exactly zero, judged
-/// against the Jacobian's row sum), with no error.
+/// rod's length squared, at 12 inputs of a turn, both as declared and `#[kinloop(newton)]`, its
+/// state and its positions alone: at sizes 1, `1e±150` and `2e153` (normal magnitudes, the
+/// largest `1.6e308`) and `1e-156` (a subnormal magnitude, about `2e-311`, still fine enough:
+/// doubles `4.9e-324` apart are `2e-13` of it, below the residual tolerance) the closed form to
+/// [`rod_tolerance`]; at `1e-160` (a magnitude of `3e-319`, resolved to `1.6e-5` of itself),
+/// `1e-200` and `1e-300` (zero: every term underflowed) an [`kinloop::Error::Underflow`] naming
+/// the equation; at `3.5e153` (a magnitude beyond `f64::MAX`, `1.8e308`, about `4.8e308`,
+/// where at some inputs the terms themselves are not), `1e160`, `1e200` and `1e300` (terms
+/// beyond `f64::MAX`) an [`kinloop::Error::Overflow`] naming the equation. At `1e-160` Newton
+/// accepted positions `4e-5` of the size off, and at `1e-200` and below returned the guess
+/// unchanged (a residual of exactly zero, judged against the Jacobian's row sum), with no
+/// error; from `1e160` the equation was said to leave its domain (`inf - inf` is NaN), and at
+/// `3.5e153` the loops not to close (a residual `1e138` relative to a row sum that is a
+/// length).
 #[test]
 fn an_equation_of_squared_lengths_is_solved_to_its_tolerance_or_refused_at_every_scale() {
     use kinloop::Error;
     let (r, l, e) = ROD;
     let cfg = NewtonConfig::default();
-    let solved = [1.0, 1e-150, 1e150, 1e-156];
+    let solved = [1.0, 1e-150, 1e150, 2e153, 1e-156];
     let underflows = [1e-160, 1e-200, 1e-300];
-    for k in solved.into_iter().chain(underflows).chain([1e300]) {
+    let overflows = [3.5e153, 1e160, 1e200, 1e300];
+    for k in solved.into_iter().chain(underflows).chain(overflows) {
         let (plain, newton) =
             (RodSquared { r: r * k, l: l * k, e: e * k }, RodSquaredNewton { r: r * k, l: l * k, e: e * k });
         let tol = rod_tolerance(k);
         let mut worst = 0.0f64;
         for i in 0..12 {
             let phi = 0.3 + i as f64 * 0.5;
+            let (g_plain, g_newton) = (plain.guess_flat(&[phi]), newton.guess_flat(&[phi]));
             for (path, got) in [
-                ("as declared", plain.kinematics_flat(&[phi], &plain.guess_flat(&[phi]), &cfg)),
-                ("Newton", newton.kinematics_flat(&[phi], &newton.guess_flat(&[phi]), &cfg)),
+                ("as declared", plain.kinematics_flat(&[phi], &g_plain, &cfg).map(|s| s.q)),
+                ("Newton", newton.kinematics_flat(&[phi], &g_newton, &cfg).map(|s| s.q)),
+                ("as declared, positions", plain.position_flat(&[phi], &g_plain, &cfg).map(|(q, _)| q)),
+                ("Newton, positions", newton.position_flat(&[phi], &g_newton, &cfg).map(|(q, _)| q)),
             ] {
                 match got {
-                    Ok(s) => {
-                        let off = (s.q[0] / k - rod_closed_form(phi)).abs() / (r + l + e);
-                        assert!(off <= tol, "{path} at size {k:e}, phi {phi}: x / k = {}, {off:e} off", s.q[0] / k);
+                    Ok(q) => {
+                        let off = (q[0] / k - rod_closed_form(phi)).abs() / (r + l + e);
+                        assert!(off <= tol, "{path} at size {k:e}, phi {phi}: x / k = {}, {off:e} off", q[0] / k);
                         assert!(solved.contains(&k), "{path} at size {k:e}, phi {phi}: solved, {off:e} off");
                         worst = worst.max(off);
                     }
@@ -885,7 +905,7 @@ fn an_equation_of_squared_lengths_is_solved_to_its_tolerance_or_refused_at_every
                         let text = err.to_string();
                         assert!(text.contains("`rod`") && text.contains("too small"), "{text}");
                     }
-                    Err(Error::Domain { ref name, .. }) if k == 1e300 && name == "rod" => {}
+                    Err(err) if overflows.contains(&k) && is_overflow(&err, "rod") => {}
                     Err(err) => panic!("{path} at size {k:e}, phi {phi}: {err}"),
                 }
             }
@@ -896,14 +916,80 @@ fn an_equation_of_squared_lengths_is_solved_to_its_tolerance_or_refused_at_every
     }
 }
 
-/// A sweep of the rod-length slider-crank at `1e-300` and `1e-160` stops at its first sample
-/// with [`kinloop::Error::Underflow`], locating no event: at `1e-300` it returned the guess at
-/// every sample (or, where the step failed, took the noise of the residual for a singular
-/// crossing). At size 1 the same sweep follows the closed form.
+with_newton_twin! {
+    /// A four-bar's coupler pin `(bx, by)` from the squared lengths of its coupler and rocker
+    /// alone (crank `a` at angle `phi`, coupler `b`, rocker `c`, frame `d`): a Newton block of
+    /// two lengths whose equations' terms are squared lengths, about `57 k^2` at size `k`.
+    pub struct PinSquared, PinSquaredNewton {
+        params a, b, c, d;
+        input phi;
+        unknowns bx = d, by = b;
+        eq coupler: (bx - a * cos(phi)) ^ 2 + (by - a * sin(phi)) ^ 2 == b * b;
+        eq rocker: (bx - d) ^ 2 + by ^ 2 == c * c;
+    }
+}
+
+/// The coupler pin at size 1 (links 1, 3.5, 3, 4: a crank-rocker whose pin never folds onto a
+/// link, the coupler and rocker's angle between 33 and 114 degrees), the circles' intersection
+/// on the left of the crank pin to the rocker's pivot (where the guess lies).
+fn pin_closed_form(phi: f64) -> (f64, f64) {
+    let (a, b, c, d) = (1.0, 3.5, 3.0, 4.0);
+    let (ax, ay) = (a * phi.cos(), a * phi.sin());
+    let (ux, uy) = (d - ax, -ay);
+    let dist = ux.hypot(uy);
+    // Along the crank pin to the pivot, and across it to the left.
+    let along = (dist * dist + b * b - c * c) / (2.0 * dist);
+    let across = (b * b - along * along).sqrt();
+    (ax + (along * ux - across * uy) / dist, ay + (along * uy + across * ux) / dist)
+}
+
+/// The four-bar whose coupler pin is declared by squared lengths is solved to the closed form at
+/// sizes 1 and `1e150`, and refused with an [`kinloop::Error::Overflow`] naming its first
+/// equation beyond the sizes where their terms fit in `f64` (`1e160`, `1e200`, `1e300`), its
+/// state and its positions, as declared and `#[kinloop(newton)]`, at 12 inputs of a turn. It
+/// was said to leave its domain there.
 #[test]
-fn a_sweep_of_an_equation_too_small_for_f64_is_refused() {
+fn a_four_bar_of_squared_lengths_is_solved_or_refused_as_too_large() {
+    let cfg = NewtonConfig::default();
+    for k in [1.0, 1e150, 1e160, 1e200, 1e300] {
+        let (a, b, c, d) = (k, 3.5 * k, 3.0 * k, 4.0 * k);
+        let (plain, newton) = (PinSquared { a, b, c, d }, PinSquaredNewton { a, b, c, d });
+        for i in 0..12 {
+            let phi = 0.3 + i as f64 * 0.5;
+            let (g_plain, g_newton) = (plain.guess_flat(&[phi]), newton.guess_flat(&[phi]));
+            for (path, got) in [
+                ("as declared", plain.kinematics_flat(&[phi], &g_plain, &cfg).map(|s| s.q)),
+                ("Newton", newton.kinematics_flat(&[phi], &g_newton, &cfg).map(|s| s.q)),
+                ("as declared, positions", plain.position_flat(&[phi], &g_plain, &cfg).map(|(q, _)| q)),
+                ("Newton, positions", newton.position_flat(&[phi], &g_newton, &cfg).map(|(q, _)| q)),
+            ] {
+                match got {
+                    Ok(q) => {
+                        // In fractions of the size. The pin's transmission angle keeps the
+                        // block well conditioned: its position is its equations' rounding (a
+                        // few eps of the magnitude) over a slope of the size, as the slider's
+                        // ([`SCALE_TOL`]).
+                        let (x, y) = pin_closed_form(phi);
+                        let off = (q[0] / k - x).abs().max((q[1] / k - y).abs());
+                        assert!(k <= 1e150 && off <= SCALE_TOL, "{path} at size {k:e}, phi {phi}: {off:e} off");
+                    }
+                    Err(err) if k > 1e150 && is_overflow(&err, "coupler") => {}
+                    Err(err) => panic!("{path} at size {k:e}, phi {phi}: {err}"),
+                }
+            }
+        }
+    }
+}
+
+/// A sweep of the rod-length slider-crank at `1e-300` and `1e-160` stops at its first sample
+/// with [`kinloop::Error::Underflow`], at `1e160` and `1e300` with [`kinloop::Error::Overflow`],
+/// locating no event: at `1e-300` it returned the guess at every sample (or, where the step
+/// failed, took the noise of the residual for a singular crossing); at `1e160` and `1e300` it
+/// said the equation left its domain. At size 1 the same sweep follows the closed form.
+#[test]
+fn a_sweep_of_an_equation_out_of_the_range_of_f64_is_refused() {
     let (r, l, e) = ROD;
-    for k in [1.0, 1e-160, 1e-300] {
+    for k in [1.0, 1e-160, 1e-300, 1e160, 1e300] {
         let m = RodSquaredNewton { r: r * k, l: l * k, e: e * k };
         let mut s = Sweep::<RodSquaredNewton, Kin<1, 1, 0>, 1, 1, 0>::new(
             &m,
@@ -923,11 +1009,12 @@ fn a_sweep_of_an_equation_too_small_for_f64_is_refused() {
                 assert!(off <= SCALE_TOL, "phi {}: {off:e} off", st.x[0]);
             }
         } else {
-            assert!(
-                matches!(states.as_slice(), [Err(kinloop::Error::Underflow { .. })]),
-                "size {k:e}: {:?}",
-                states.iter().take(3).collect::<Vec<_>>()
-            );
+            let refused = match states.as_slice() {
+                [Err(kinloop::Error::Underflow { .. })] => k < 1.0,
+                [Err(err)] => k > 1.0 && is_overflow(err, "rod"),
+                _ => false,
+            };
+            assert!(refused, "size {k:e}: {:?}", states.iter().take(3).collect::<Vec<_>>());
         }
     }
 }

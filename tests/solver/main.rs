@@ -20,6 +20,7 @@ mod deferred_entry_bound;
 mod lever_singularity;
 mod mechanism_named_like_prelude;
 mod newton_restarts;
+mod overflowed_magnitudes;
 mod sin_cos_order;
 mod sparse_steps;
 mod step_cost;

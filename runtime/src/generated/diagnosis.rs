@@ -47,10 +47,14 @@ pub fn turns_culprit(
         .max_by(|&a, &b| guess[a].abs().total_cmp(&guess[b].abs()));
     match (fail, largest) {
         (BlockFailure::TooManyTurns { value }, u) => Some((u, value)),
-        // An equation too small for `f64` explains a failure whatever the guesses.
-        (BlockFailure::InvalidConfig { .. } | BlockFailure::NonFinite { .. } | BlockFailure::Underflow { .. }, _) => {
-            None
-        }
+        // An equation too small or too large for `f64` explains a failure whatever the guesses.
+        (
+            BlockFailure::InvalidConfig { .. }
+            | BlockFailure::NonFinite { .. }
+            | BlockFailure::Underflow { .. }
+            | BlockFailure::Overflow { .. },
+            _,
+        ) => None,
         (_, Some(u)) if guess[u].abs() > largest_precise_angle(cfg) => Some((Some(u), guess[u])),
         _ => None,
     }
@@ -82,6 +86,7 @@ pub fn block_error(fail: BlockFailure, at: Location) -> Error {
         BlockFailure::Underflow { row, magnitude, least } => {
             Error::Underflow { equation: name(row), magnitude, least, at: Box::new(at) }
         }
+        BlockFailure::Overflow { row } => Error::Overflow { what: "equation", name: name(row), at: Box::new(at) },
         // Named by `block_failure` (`mechanism`), which knows the guesses.
         BlockFailure::TooManyTurns { value } => turns_error(Cow::Borrowed("?"), value, at),
     }

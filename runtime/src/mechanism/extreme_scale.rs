@@ -179,6 +179,10 @@ pub fn in_block(fail: BlockFailure, block_of: impl Fn(usize) -> Option<(usize, u
             let (b, row) = at(row);
             (b, BlockFailure::Underflow { row, magnitude, least })
         }
+        BlockFailure::Overflow { row } => {
+            let (b, row) = at(row);
+            (b, BlockFailure::Overflow { row })
+        }
         other @ (BlockFailure::InvalidConfig { .. } | BlockFailure::TooManyTurns { .. }) => (0, other),
     }
 }

@@ -860,10 +860,10 @@ where
         if let Some(e) = self.coarse_error(path.at_tau(tau_new).as_ref(), Some(k.health().weakest_block)) {
             return Err(e);
         }
-        // An equation whose terms are too small for `f64` is judged nowhere near here: the
-        // diagnosis's traces would judge it as the step did, and take the noise of its
-        // residual for a crossing. Said as it is.
-        if let Some(e @ Error::Underflow { .. }) = failure {
+        // An equation whose terms are too small or too large for `f64` is judged nowhere near
+        // here: the diagnosis's traces would judge it as the step did, and take the noise of its
+        // residual for a crossing (or find no point to trace). Said as it is.
+        if let Some(e @ (Error::Underflow { .. } | Error::Overflow { what: "equation", .. })) = failure {
             return Err(e);
         }
         // A corner of the curve, not a failure: the sweep goes on past it.

@@ -1,10 +1,10 @@
-//! Why an iteration failed: a residual or Jacobian that is not finite, a root reached only
-//! linearly or where no step decreases the residual (singular), a stall away from every root (no
-//! assembly), or the iteration cap.
+//! Why an iteration failed: a residual or Jacobian that is not finite (or terms too large for
+//! `f64`), a root reached only linearly or where no step decreases the residual (singular), a
+//! stall away from every root (no assembly), or the iteration cap.
 
 use super::config::NewtonConfig;
 use super::report::BlockFailure;
-use super::scales::BlockEval;
+use super::scales::{BlockEval, Magnitudes, overflowed};
 use super::state::Iter;
 use crate::solvers::jacobian::BlockJacobian;
 
@@ -55,6 +55,28 @@ pub(super) fn jacobian_non_finite<const N: usize, const K: usize, J: BlockJacobi
 #[inline(never)]
 fn non_finite_row<const N: usize, const K: usize, J: BlockJacobian<N>>(ev: &BlockEval<N, K, J>) -> Option<usize> {
     (0..N).find(|&r| !ev.f[r].is_finite() || !ev.j.row_finite(r))
+}
+
+/// The failure of a block whose row `row` holds a residual or Jacobian entry that is not finite
+/// at the evaluation `ev` of `z`, after `iterations`, in that evaluation's magnitudes `m`: terms
+/// too large for `f64` where its magnitude overflowed with them ([`BlockFailure::Overflow`], see
+/// [`overflowed`]: squared lengths beyond about `1e154`, whose difference is `inf - inf`),
+/// otherwise an expression outside its domain ([`BlockFailure::NonFinite`]). Out of line: it is
+/// reached only where the residual or the Jacobian already failed its test.
+#[cold]
+#[inline(never)]
+pub(super) fn non_finite<const N: usize, const K: usize, J: BlockJacobian<N>>(
+    row: usize,
+    iterations: u32,
+    m: &Magnitudes<N>,
+    ev: &BlockEval<N, K, J>,
+    z: &[f64; N],
+) -> BlockFailure {
+    if overflowed(m.rows.s[row], row, ev, z) {
+        BlockFailure::Overflow { row }
+    } else {
+        BlockFailure::NonFinite { row, iterations }
+    }
 }
 
 impl<const N: usize, const K: usize, J: BlockJacobian<N>> Iter<'_, N, K, J> {

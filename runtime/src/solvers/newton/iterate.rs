@@ -3,7 +3,7 @@
 //! correction, a root reached only linearly, an angle carried turns away).
 
 use super::config::NewtonConfig;
-use super::diagnose::{jacobian_non_finite, residual_non_finite};
+use super::diagnose::{jacobian_non_finite, non_finite, residual_non_finite};
 use super::kept_lu::LastStep;
 use super::norms::{beyond_half_turn, scaled_norms, scaled_residual, scaled_step, sum_sq_scaled};
 use super::report::{BlockFailure, NewtonStop, Solved};
@@ -85,11 +85,12 @@ pub(super) fn iterate<const N: usize, const K: usize, J: BlockJacobian<N>>(
             None => scaled_norms(&it.ev.f, rows),
         };
         // A residual that is not finite makes the sum of squares infinite or NaN (which it
-        // reports as infinite); so does an overflow, for which the search finds no row.
+        // reports as infinite); so does an overflow, for which the search finds no row. Terms
+        // too large for `f64` are told from an expression outside its domain there.
         if !(phi < f64::INFINITY)
             && let Some(row) = residual_non_finite(it.ev)
         {
-            return Err(BlockFailure::NonFinite { row, iterations: it.iterations });
+            return Err(non_finite(row, it.iterations, m, it.ev, &it.z));
         }
         if rho <= cfg.residual_tol {
             // Converged: the last correction, from the factorisation `last` keeps.
@@ -127,8 +128,8 @@ pub(super) fn iterate<const N: usize, const K: usize, J: BlockJacobian<N>>(
             return it.finish(&dz, step, pivot, rho, m, s, NewtonStop::StepTolerance, cfg, &mut eval, mags, last);
         }
         if it.iterations >= cfg.max_iterations {
-            // In magnitudes too small to judge the residual, the cap or a stall says nothing
-            // of the mechanism: the magnitudes are the failure (see `scales::unjudged`).
+            // In magnitudes too small or too large to judge the residual, the cap or a stall says
+            // nothing of the mechanism: the magnitudes are the failure (see `scales::unjudged`).
             if let Some(fail) = unjudged(mags, m, it.ev, &it.z, cfg) {
                 return Err(fail);
             }
@@ -167,12 +168,12 @@ pub(super) fn iterate<const N: usize, const K: usize, J: BlockJacobian<N>>(
 
 impl<const N: usize, const K: usize, J: BlockJacobian<N>> Iter<'_, N, K, J> {
     /// Ends a converged iteration judged in the magnitudes `m` (whose row scales, or the row
-    /// sums that replace invalid ones, are `s`): refuses magnitudes too small to judge it
-    /// (`scales::unjudged`), diagnoses linear convergence (a singular root), then applies the
-    /// last correction `dz`. A correction far below the tolerance is applied as it is; a
-    /// larger one is checked by a new evaluation (so the Jacobian and kept values match the
-    /// returned position) and undone if it made the residual worse. The iteration is borrowed,
-    /// not moved into its end (its position is a kilobyte for a large block).
+    /// sums that replace invalid ones, are `s`): refuses magnitudes too small or too large to
+    /// judge it (`scales::unjudged`), diagnoses linear convergence (a singular root), then
+    /// applies the last correction `dz`. A correction far below the tolerance is applied as it
+    /// is; a larger one is checked by a new evaluation (so the Jacobian and kept values match
+    /// the returned position) and undone if it made the residual worse. The iteration is
+    /// borrowed, not moved into its end (its position is a kilobyte for a large block).
     #[allow(clippy::too_many_arguments)]
     #[inline(always)]
     pub(super) fn finish(
@@ -192,9 +193,9 @@ impl<const N: usize, const K: usize, J: BlockJacobian<N>> Iter<'_, N, K, J> {
         if !last.finite_jacobian()
             && let Some(row) = jacobian_non_finite(self.ev)
         {
-            return Err(BlockFailure::NonFinite { row, iterations: self.iterations });
+            return Err(non_finite(row, self.iterations, m, self.ev, &self.z));
         }
-        // Met in magnitudes too small to judge it: no root (see `scales::unjudged`).
+        // Met in magnitudes too small or too large to judge it: no root (see `scales::unjudged`).
         if let Some(fail) = unjudged(mags, m, self.ev, &self.z, cfg) {
             return Err(fail);
         }

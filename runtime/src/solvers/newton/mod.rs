@@ -48,7 +48,10 @@
 //! success. Nor is a root judged in magnitudes too small for `f64` to resolve its residual to
 //! the tolerance (subnormal ones, or zero where the terms underflowed: an equation of squared
 //! lengths below about `1e-156`): the solve fails with `BlockFailure::Underflow`
-//! (`scales::unjudged`), tested only where the magnitudes are degenerate.
+//! (`scales::unjudged`), tested only where the magnitudes are degenerate. Nor in magnitudes
+//! too large for `f64` (infinite where the terms overflowed: the same equation beyond about
+//! `1e154`): `BlockFailure::Overflow`, also where the residual itself overflowed, which is
+//! told there from an expression outside its domain (`scales::overflowed`).
 //!
 //! **One factorisation at the root.** The last correction is made at the evaluation the block
 //! returns, whose Jacobian the analogs factorise. [`newton_keeping_lu`] makes that correction
@@ -246,8 +249,9 @@ fn newton_last<const N: usize, const K: usize, J: BlockJacobian<N>>(
     let (current, fallback);
     let m = magnitudes_at!(mags, ev, current);
     // `rows_at!`, and in its branch for degenerate magnitudes (no branch more on the common
-    // path), magnitudes made once that are too small to judge a residual: no root can be told
-    // (see `scales::unjudged`). Those of each evaluation are judged where the solve ends.
+    // path), magnitudes made once that are too small or too large to judge a residual: no root
+    // can be told (see `scales::unjudged`). Those of each evaluation are judged where the solve
+    // ends.
     let rows = if m.rows.degenerate {
         if let Some(fail) = unjudged_fixed(mags, ev, &z0, cfg) {
             return Err(fail);
@@ -263,7 +267,7 @@ fn newton_last<const N: usize, const K: usize, J: BlockJacobian<N>>(
         && cfg.residual_tol <= 1e-3
         && let Some((z, dz, step)) = free_correction(ev, rows, &m.unit, rho, z0, cfg, last)
     {
-        // Met in magnitudes too small to judge it: no root (see `scales::unjudged`).
+        // Met in magnitudes too small or too large to judge it: no root (see `scales::unjudged`).
         if let Some(fail) = unjudged(mags, m, ev, &z0, cfg) {
             return Err(fail);
         }

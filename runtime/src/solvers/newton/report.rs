@@ -46,6 +46,10 @@ pub enum BlockFailure {
     /// below `least`, the smallest whose residual can be judged to the tolerance, or
     /// underflowed to zero where the row's terms do not vanish (see `scales::unjudged`).
     Underflow { row: usize, magnitude: f64, least: f64 },
+    /// Row `row`'s terms are too large for `f64`: its magnitude overflowed to infinity, with a
+    /// residual that is finite, or a Jacobian entry times its unknown that overflows (see
+    /// `scales::overflowed`).
+    Overflow { row: usize },
 }
 
 /// Why a solve stopped successfully.

@@ -40,7 +40,10 @@ fn iterations_of(fail: &BlockFailure) -> u32 {
         | BlockFailure::NoConvergence { iterations, .. }
         | BlockFailure::NoAssembly { iterations, .. }
         | BlockFailure::Singular { iterations, .. } => iterations,
-        BlockFailure::InvalidConfig { .. } | BlockFailure::TooManyTurns { .. } | BlockFailure::Underflow { .. } => 0,
+        BlockFailure::InvalidConfig { .. }
+        | BlockFailure::TooManyTurns { .. }
+        | BlockFailure::Underflow { .. }
+        | BlockFailure::Overflow { .. } => 0,
     }
 }
 

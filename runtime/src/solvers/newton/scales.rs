@@ -31,8 +31,8 @@ pub struct Magnitudes<const N: usize> {
     /// degenerate mechanism whose terms all vanish) the row sums `sum_j |J_ij|` of each
     /// evaluation replace the invalid ones, which is right for angle unknowns only. A solve
     /// that ends where one is too small to judge its residual (below
-    /// [`least_judged_magnitude`], or zero where the row's terms underflowed) fails instead
-    /// ([`unjudged`]).
+    /// [`least_judged_magnitude`], or zero where the row's terms underflowed) or too large
+    /// (infinite where the row's terms overflowed) fails instead ([`unjudged`]).
     pub(super) rows: RowScales<N>,
     /// The unit of each unknown: one radian for an angle, the magnitude of the rows it appears
     /// in per unit of its Jacobian entry otherwise (a slider coordinate: its loop's lengths). A
@@ -168,7 +168,11 @@ pub(crate) fn least_judged_magnitude(cfg: &NewtonConfig) -> f64 {
 /// The failure of a solve that ends at the evaluation `ev` of `z`, judged in the magnitudes
 /// `m` of that evaluation (made from it by `mags`), when a row cannot be judged there
 /// ([`BlockFailure::Underflow`]): its magnitude is below [`least_judged_magnitude`], or
-/// underflowed to zero though its terms do not vanish. Tested where a solve returns, by a branch
+/// underflowed to zero though its terms do not vanish; or ([`BlockFailure::Overflow`]) it
+/// overflowed to infinity with terms too large for `f64` ([`overflowed`]), where the row sums
+/// that replace it would judge a residual of squared lengths in lengths (the slider-crank by its
+/// rod's length squared at `3.5e153` times its size was said not to assemble at 4 of 12 inputs,
+/// and solved at 3, so judged). Tested where a solve returns, by a branch
 /// on the magnitudes' degenerate mark, which valid magnitudes do not take; magnitudes made once
 /// for the solve are tested once, at its start ([`unjudged_fixed`]), and not here: the test
 /// compiles to nothing for them.
@@ -185,8 +189,8 @@ pub(super) fn unjudged<const N: usize, const K: usize, J: BlockJacobian<N>>(
 
 /// [`unjudged`] of magnitudes made once for the solve, at its guess `z0` (evaluation `ev`):
 /// they do not depend on the unknowns (the unknowns of such a block are angles, which enter its
-/// terms through sines and cosines), so a magnitude too small to judge a residual at the guess
-/// is so at every iterate. Asked where the row equilibration found them degenerate.
+/// terms through sines and cosines), so a magnitude too small or too large to judge a residual
+/// at the guess is so at every iterate. Asked where the row equilibration found them degenerate.
 #[inline(always)]
 pub(super) fn unjudged_fixed<const N: usize, const K: usize, J: BlockJacobian<N>>(
     mags: &impl MagnitudesOf<N, K, J>,
@@ -200,7 +204,9 @@ pub(super) fn unjudged_fixed<const N: usize, const K: usize, J: BlockJacobian<N>
     }
 }
 
-/// [`unjudged`] of degenerate magnitudes `scale` (as given, before the row sums replace them).
+/// [`unjudged`] of degenerate magnitudes `scale` (as given, before the row sums replace them):
+/// the first row too small for `f64` ([`BlockFailure::Underflow`]) or too large
+/// ([`BlockFailure::Overflow`], see [`overflowed`]).
 ///
 /// A positive magnitude below the least is judged by its own value. A magnitude of zero is
 /// either a row whose terms all vanish (each term of the structural bound holds a length that is
@@ -225,19 +231,55 @@ fn unjudged_row<const N: usize, const K: usize, J: BlockJacobian<N>>(
     let least = least_judged_magnitude(cfg);
     let nonzero = |v: f64| v != 0.0 && v.is_finite();
     let mut dense = None;
-    (0..N)
-        .find(|&r| {
-            let given = scale[r];
-            if given > 0.0 {
-                given < least
-            } else if given == 0.0 {
-                let j = dense.get_or_insert_with(|| ev.j.to_dense());
-                (0..N).any(|c| nonzero(j[r][c]) && nonzero(z[c]) && (j[r][c] * z[c]).abs() < least)
-            } else {
-                false
-            }
-        })
-        .map(|row| BlockFailure::Underflow { row, magnitude: scale[row], least })
+    (0..N).find_map(|r| {
+        let given = scale[r];
+        let underflow = Some(BlockFailure::Underflow { row: r, magnitude: given, least });
+        if given == f64::INFINITY {
+            let j = dense.get_or_insert_with(|| ev.j.to_dense());
+            overflowed_in(&j[r], ev.f[r], z).then_some(BlockFailure::Overflow { row: r })
+        } else if given > 0.0 {
+            if given < least { underflow } else { None }
+        } else if given == 0.0 {
+            let j = dense.get_or_insert_with(|| ev.j.to_dense());
+            let under = (0..N).any(|c| nonzero(j[r][c]) && nonzero(z[c]) && (j[r][c] * z[c]).abs() < least);
+            if under { underflow } else { None }
+        } else {
+            None
+        }
+    })
+}
+
+/// Whether row `r` of the evaluation `ev` at `z`, whose magnitude (as given) is `scale`, holds
+/// terms too large for `f64` ([`BlockFailure::Overflow`]): its magnitude overflowed to
+/// infinity, and that is the size of its terms, not a division by zero.
+///
+/// The magnitude bounds every term (see [`Magnitudes::rows`]), so terms beyond `f64::MAX`
+/// (`1.8e308`: squared lengths beyond about `1.3e154`) make it infinite; so do a division by
+/// zero (`a / b` bounds its terms by `M(a) / |b|`) and a function's infinite value (`|ln 0|`).
+/// The residual tells them apart where it is finite: a term that is infinite makes it so, so
+/// its terms are finite and their bound overflowed, as sums and products of terms near
+/// `f64::MAX` do. Where it is not finite the Jacobian does, as in [`unjudged_row`]: `|J_rc
+/// z_c|` is the size of the terms in `z_c` (a term of degree `d` is `z_c / d` times its
+/// derivative), and a product of a finite entry and a finite unknown that overflows is terms
+/// beyond `f64::MAX / d`; a division by zero in the row's terms in `z_c` makes their derivative
+/// infinite instead (`x / b` at `b = 0`), and one in terms free of them leaves `J_rc z_c` of
+/// their ordinary size. (A row whose only terms beyond `f64::MAX` are free of the unknowns, or
+/// whose Jacobian overflowed too, as a row of squared lengths in angles does, is not told from
+/// one that left its domain: it stays that.)
+#[cold]
+#[inline(never)]
+pub(super) fn overflowed<const N: usize, const K: usize, J: BlockJacobian<N>>(
+    scale: f64,
+    r: usize,
+    ev: &BlockEval<N, K, J>,
+    z: &[f64; N],
+) -> bool {
+    scale == f64::INFINITY && overflowed_in(&ev.j.to_dense()[r], ev.f[r], z)
+}
+
+/// [`overflowed`] of a row whose magnitude is infinite, by its residual `f` and Jacobian row `j`.
+fn overflowed_in<const N: usize>(j: &[f64; N], f: f64, z: &[f64; N]) -> bool {
+    f.is_finite() || (0..N).any(|c| j[c].is_finite() && z[c].is_finite() && (j[c] * z[c]).abs() == f64::INFINITY)
 }
 
 /// The units of the unknowns (see [`Magnitudes::unit`]): the generated ones when they are all
@@ -292,6 +334,57 @@ mod tests {
         }
     }
 
+    /// Where the squares of the lengths overflow, the solve is refused as too large for `f64`,
+    /// from guesses on either side: at `c = 1e160` and `1e300` the squares are infinite and the
+    /// residual (`inf - inf`, or `inf - c^2` from below) is not finite, told from an expression
+    /// outside its domain by the term in `x`, `2 x^2`, which overflows too; at `c = 1.2e154`
+    /// from the guess below, the magnitude `x^2 + c^2` overflows while the residual does not
+    /// (`x^2 - c^2` = `-7.4e307`). Refused at every size as outside its domain before, and at
+    /// `1.2e154` the row sum `2 |x|` that replaced the magnitude judged a residual of squared
+    /// lengths in lengths. At `1e150` the root is found to rounding.
+    #[test]
+    fn a_magnitude_too_large_to_judge_a_residual_is_refused() {
+        let cfg = NewtonConfig::default();
+        for g in [0.7, 1.3] {
+            let c = 1e150;
+            let (s, _) = solve([g * c], &cfg, squared(c)).unwrap();
+            assert!((s.z[0] - c).abs() <= 2.0 * f64::EPSILON * c, "{:e}", s.z[0]);
+            for c in [1.2e154, 1e160, 1e300] {
+                let finite = squared(c)(&[g * c]).f[0].is_finite();
+                assert_eq!(finite, c == 1.2e154 && g < 1.0, "{c:e}, guess {g}");
+                let fail = solve([g * c], &cfg, squared(c)).map(|(s, _)| s.z).unwrap_err();
+                assert_eq!(fail, BlockFailure::Overflow { row: 0 }, "{c:e}, guess {g}");
+            }
+        }
+    }
+
+    /// A residual made infinite by a division by zero is an expression outside its domain, not
+    /// terms too large, though its magnitude (which bounds `a / b` by `|a| / |b|`) is infinite
+    /// too: `x^2 = a / b` at `b = 0` (the terms in `x`, `2 x^2`, of ordinary size) and `x^2 / b
+    /// = a` (their derivative `2 x / b` infinite). Nor is a magnitude that is NaN (`sqrt` of a
+    /// negative bound) one too large.
+    #[test]
+    fn a_division_by_zero_is_not_taken_for_terms_too_large() {
+        let cfg = NewtonConfig::default();
+        let (a, b) = (2.0f64, 0.0f64);
+        let over_rhs = |z: &[f64; 1]| {
+            let x = z[0];
+            varying::<1, 2>([x * x - a / b], [[2.0 * x]], [x * x + a.abs() / b.abs()], [1.0])
+        };
+        let over_lhs = |z: &[f64; 1]| {
+            let x = z[0];
+            varying::<1, 2>([x * x / b - a], [[2.0 * x / b]], [x * x / b.abs() + a.abs()], [1.0])
+        };
+        let nan = |z: &[f64; 1]| varying::<1, 2>([(z[0] - 3.0).sqrt()], [[1.0]], [f64::NAN], [1.0]);
+        for g in [0.5, 1.5] {
+            assert_eq!(over_rhs(&[g]).keep[0], f64::INFINITY);
+            let domain = BlockFailure::NonFinite { row: 0, iterations: 0 };
+            assert_eq!(solve([g], &cfg, over_rhs).map(|(s, _)| s.z).unwrap_err(), domain, "{g}");
+            assert_eq!(solve([g], &cfg, over_lhs).map(|(s, _)| s.z).unwrap_err(), domain, "{g}");
+            assert_eq!(solve([g], &cfg, nan).map(|(s, _)| s.z).unwrap_err(), domain, "{g}");
+        }
+    }
+
     /// The least magnitude judged is where the subnormal spacing is the residual tolerance (16
     /// eps for a tolerance of 0): `x = 1/2` (a linear row, solved exactly) in a magnitude given
     /// as that bound is solved, in one a double below it refused.
@@ -335,7 +428,9 @@ mod tests {
     /// for bit, and so does an invalid scale replaced by the row sums of each evaluation.
     #[test]
     fn magnitudes_made_once_are_those_of_every_evaluation() {
-        for scale in [[3.0, 0.25], [0.0, 2.0], [f64::NAN, f64::INFINITY]] {
+        // (An infinite scale is a magnitude too large, refused: see
+        // `a_magnitude_too_large_to_judge_a_residual_is_refused`.)
+        for scale in [[3.0, 0.25], [0.0, 2.0], [f64::NAN, -2.0]] {
             let eval = |z: &[f64; 2]| {
                 let ev = circle(z);
                 varying::<2, 4>(ev.f, ev.j, scale, [1.0, 0.0])
