@@ -19,7 +19,7 @@ use crate::at::Jacobian;
 use crate::blocks::StepFailure;
 use crate::model::{Model, StepError};
 use kinloop_runtime::generated::{
-    BlockEval, BlockFailure, SolveReport, in_block, outside_closed_form_sizes, whole_position,
+    AtLimit, BlockEval, BlockFailure, SolveReport, in_block, outside_closed_form_sizes, whole_position,
 };
 use kinloop_runtime::{NewtonConfig, QuantityKind};
 
@@ -39,7 +39,7 @@ impl Model {
         cfg: &NewtonConfig,
         error: StepError,
     ) -> Result<(), StepError> {
-        let (q, report) = self.rescue_position(x, guess, cfg, error)?;
+        let (q, report) = self.solve_rescued(x, guess, cfg, AtLimit::Singular, error)?;
         self.kinematics_at(x, &q, cfg)?;
         self.set_report(report);
         Ok(())
@@ -47,7 +47,8 @@ impl Model {
 
     /// [`Model::rescue`] of a solve of the positions alone (`Model::positions`, the compiled
     /// `position_flat`'s `rescue_position`): the position Newton over the whole system reaches
-    /// and its report, with no analogs; where Newton fails, its failure in the block holding
+    /// and its report, with no analogs (at a limit position too, as a closed form gives its
+    /// double root: `AtLimit::Position`); where Newton fails, its failure in the block holding
     /// the equation it names; `error` otherwise.
     #[cold]
     #[inline(never)]
@@ -56,6 +57,19 @@ impl Model {
         x: &[f64],
         guess: &[f64],
         cfg: &NewtonConfig,
+        error: StepError,
+    ) -> Result<(Vec<f64>, SolveReport), StepError> {
+        self.solve_rescued(x, guess, cfg, AtLimit::Position, error)
+    }
+
+    /// The position of [`Model::rescue`] and [`Model::rescue_position`], `at_limit` what a limit
+    /// position gives (see `whole_position`).
+    fn solve_rescued(
+        &mut self,
+        x: &[f64],
+        guess: &[f64],
+        cfg: &NewtonConfig,
+        at_limit: AtLimit,
         error: StepError,
     ) -> Result<(Vec<f64>, SolveReport), StepError> {
         // A value given that is not finite explains the failure at any size (its error names
@@ -73,7 +87,7 @@ impl Model {
         macro_rules! whole {
             ($($n:literal)*) => {
                 match self.unknowns().len() {
-                    $($n => self.solve_whole::<$n>(x, guess, cfg, &jac),)*
+                    $($n => self.solve_whole::<$n>(x, guess, cfg, at_limit, &jac),)*
                     _ => None,
                 }
             };
@@ -100,14 +114,15 @@ impl Model {
     }
 
     /// Newton over the whole system of `N` unknowns from `guess`, whose Jacobian is `jac`: the
-    /// runtime's own (`whole_position`, the compiled step's), the residuals and Jacobian
-    /// evaluated by the model. The position and the solve's report, or Newton's failure; `None`
-    /// where the sizes are not `N` (not reached).
+    /// runtime's own (`whole_position`, the compiled step's, with what a limit position gives,
+    /// `at_limit`), the residuals and Jacobian evaluated by the model. The position and the
+    /// solve's report, or Newton's failure; `None` where the sizes are not `N` (not reached).
     fn solve_whole<const N: usize>(
         &mut self,
         x: &[f64],
         guess: &[f64],
         cfg: &NewtonConfig,
+        at_limit: AtLimit,
         jac: &Jacobian,
     ) -> Option<Result<(Vec<f64>, SolveReport), BlockFailure>> {
         if guess.len() != N || jac.f.len() != N || jac.scale.len() != N || jac.unit.len() != N {
@@ -126,6 +141,6 @@ impl Model {
         };
         let guess: [f64; N] = std::array::from_fn(|u| guess[u]);
         let (scale, unit) = (std::array::from_fn(|e| jac.scale[e]), std::array::from_fn(|u| jac.unit[u]));
-        Some(whole_position(&guess, scale, unit, turns, cfg, eval).map(|(q, report)| (q.to_vec(), report)))
+        Some(whole_position(&guess, scale, unit, turns, cfg, at_limit, eval).map(|(q, report)| (q.to_vec(), report)))
     }
 }

@@ -647,3 +647,44 @@ fn an_equation_too_large_for_f64_fails_as_the_compiled_one() {
         }
     }
 }
+
+/// A four-bar driven by its rocker at the limit position of its input (crank 1 shortest, rocker
+/// 3 the input, coupler 3.5, frame 4: coupler and crank in line at `acos(4.75 / 24)`), and one
+/// and two units in the last place inside it, at sizes beyond the closed forms': the model's
+/// positions alone are the compiled `position_flat`'s to the bit, and its kinematics the
+/// compiled ones (the same state, or the same error: singular where the position is the
+/// double root). Both solve it by the runtime's one whole-system Newton, which reaches a double
+/// root only linearly: both failed as singular, where at size 1 the closed form gives the
+/// position (`tests/kinematics/limit_positions_extreme_scales.rs` checks it there against the
+/// construction and size 1).
+#[test]
+fn a_limit_position_of_extreme_size_is_solved_as_the_compiled_one() {
+    let cfg = NewtonConfig::default();
+    let [a, b, c, d] = [3.0f64, 3.5, 1.0, 4.0];
+    let limit = ((a * a + d * d - (b + c) * (b + c)) / (2.0 * a * d)).acos();
+    for k in [1.0, 1e-300, 1e-200, 1e-160, 1e160, 1e200, 1e300] {
+        let compiled = fx::FourBar { a: a * k, b: b * k, c: c * k, d: d * k };
+        let mut model = common::read(fx::FOUR_BAR_TEXT);
+        common::set(&mut model, &[("a", a * k), ("b", b * k), ("c", c * k), ("d", d * k)]);
+        for x in [limit, limit.next_down(), limit.next_down().next_down()] {
+            let guess = compiled.guess_flat(&[x]);
+            let got = model.positions(&[x], &guess, &cfg).unwrap_or_else(|e| panic!("size {k:e}, phi {x}: {e:?}"));
+            let got: Vec<u64> = got.iter().map(|v| v.to_bits()).collect();
+            let (want, _) = compiled
+                .position_flat(&[x], &guess, &cfg)
+                .unwrap_or_else(|e| panic!("compiled at size {k:e}, phi {x}: {e}"));
+            assert_eq!(got, want.map(f64::to_bits), "size {k:e}, phi {x}");
+            let c = compiled.kinematics_flat(&[x], &guess, &cfg);
+            let m = model.kinematics(&[x], &guess, &cfg).map(|s| (s.q.clone(), s.dq.clone()));
+            match (c, m) {
+                (Ok(c), Ok(m)) => assert_eq!((c.q.to_vec(), c.dq.concat()), m, "size {k:e}, phi {x}"),
+                (Err(c), Err(m)) => {
+                    let m = model.explain(&[x], &guess, &cfg, m);
+                    assert!(matches!(c, kinloop::Error::Singular { .. }), "size {k:e}, phi {x}: {c}");
+                    assert_eq!(c, m, "size {k:e}, phi {x}");
+                }
+                (c, m) => panic!("size {k:e}, phi {x}: compiled {:?}, run time {m:?}", c.map(|k| k.q)),
+            }
+        }
+    }
+}

@@ -260,6 +260,7 @@ where
 {
     let whole = extreme_scale::Whole {
         kinds: M::UNKNOWN_KINDS,
+        at_limit: extreme_scale::AtLimit::Singular,
         jacobian: |q: &[f64; N]| m.jacobian_flat(x, q),
         at: |q: &[f64; N], report: SolveReport| {
             let mut kin = m.kinematics_at_flat(x, q, cfg)?;
@@ -274,7 +275,10 @@ where
 /// [`rescue`] of a solve of the positions alone: the answer to the failure `error` of `m`'s
 /// `position_flat` kernel at input `x` from `guess`. Where [`rescue`] solves the position again
 /// (the same test, the same Newton over the whole system), that position and the solve's
-/// report: no analogs, whose failure is not the positions'. Where Newton fails, the error
+/// report: no analogs, whose failure is not the positions'. At a limit position of the input,
+/// where Newton reaches the root only linearly and [`rescue`] fails as singular, the position
+/// too, as the closed form gives its double root at size 1
+/// ([`AtLimit::Position`](extreme_scale::AtLimit::Position)). Where Newton fails, the error
 /// [`rescue`] gives; otherwise `error`. The macro's `position_flat` ends with it
 /// (`kinloop::__gen::rescue_position`).
 #[doc(hidden)]
@@ -292,6 +296,7 @@ where
 {
     let whole = extreme_scale::Whole {
         kinds: M::UNKNOWN_KINDS,
+        at_limit: extreme_scale::AtLimit::Position,
         jacobian: |q: &[f64; N]| m.jacobian_flat(x, q),
         at: |q: &[f64; N], report: SolveReport| Ok((*q, report)),
         fail: |fail| whole_failure(m, fail, x, guess, cfg),
@@ -321,6 +326,7 @@ where
 {
     let whole = extreme_scale::Whole {
         kinds: M::UNKNOWN_KINDS,
+        at_limit: extreme_scale::AtLimit::Singular,
         jacobian: |q: &[f64; N]| m.jacobian_flat(x, q),
         at: |q: &[f64; N], report: SolveReport| {
             let (mut kin, sens) = m.sensitivities_at_flat(x, q, cfg)?;

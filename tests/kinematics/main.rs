@@ -18,6 +18,7 @@ mod drawing;
 mod extreme_scales;
 mod five_bar;
 mod later_equations;
+mod limit_positions_extreme_scales;
 mod near_singular;
 mod prop_linkages;
 mod quantity_kinds;

@@ -20,20 +20,22 @@
 //! nothing more). Inside the range the kernel's own error stands: nothing changes for a
 //! mechanism of ordinary size, and the hot path pays nothing (this runs only after a failure).
 //!
-//! **Its failure is the mechanism's.** Where Newton over the whole system fails too, the
-//! mechanism has no position there (or none Newton can reach from the guess), and the kernel's
-//! own error says the wrong thing: computed with squares out of range, it calls a four-bar
-//! whose crank cannot close the loop singular (at `1e-200`) or its equation not finite (at
-//! `1e200`), where the same four-bar at size 1 cannot be assembled. So the error is
-//! Newton's own failure, made the error of the block that holds the equation it names
-//! ([`in_block`]), as a failure of the generated Newton solver is: no assembly where the
-//! residual stalls at a minimum that is no root, a singular position where the root it reaches
-//! has a singular Jacobian, an equation not finite where it leaves its domain. Where the
-//! iterations run out while the residual still falls, Newton cannot tell a mechanism that does
-//! not assemble from one it did not reach, and says so (no convergence). Its tests are made in
-//! the magnitudes of the equations and unknowns, so this is the error of the same mechanism at
-//! every size. A caller's bad value or an invalid configuration explains the failure at any
-//! size: their error stands. Where Newton solves but the analogs at its position fail, theirs.
+//! **Its failure is the mechanism's.** Where Newton over the whole system fails too, the mechanism
+//! has no position there (or none Newton can reach from the guess), and the kernel's own error says
+//! the wrong thing: computed with squares out of range, it calls a four-bar whose crank cannot
+//! close the loop singular (at `1e-200`) or its equation not finite (at `1e200`), where the same
+//! four-bar at size 1 cannot be assembled. So the error is Newton's own failure, made the error of
+//! the block that holds the equation it names ([`in_block`]), as a failure of the generated Newton
+//! solver is: no assembly where the residual stalls at a minimum that is no root, a singular
+//! position where the root it reaches has a singular Jacobian, an equation not finite where it
+//! leaves its domain. (Save for a solve of the positions alone at a limit position of the input, a
+//! root Newton reaches only linearly: the closed form gives its double root there at size 1, and so
+//! does the rescue, see [`whole_position`].) Where the iterations run out while the residual still
+//! falls, Newton cannot tell a mechanism that does not assemble from one it did not reach, and says
+//! so (no convergence). Its tests are made in the magnitudes of the equations and unknowns, so this
+//! is the error of the same mechanism at every size. A caller's bad value or an invalid
+//! configuration explains the failure at any size: their error stands. Where Newton solves but the
+//! analogs at its position fail, theirs.
 //!
 //! The mechanism is seen through three functions only ([`Whole`]): the entry point that
 //! takes a mechanism, `mechanism::rescue`, hands them over, so that this module needs nothing of
@@ -42,7 +44,10 @@
 use crate::error::Error;
 use crate::kin::Jac;
 use crate::kinds::QuantityKind;
-use crate::solvers::newton::{BlockEval, BlockFailure, Magnitudes, NewtonConfig, SolveReport, newton};
+use crate::solvers::newton::{
+    BlockEval, BlockFailure, Magnitudes, NewtonConfig, NewtonStop, SolveReport, Solved, newton,
+};
+use core::cell::Cell;
 
 /// The sizes (largest magnitude of an equation's terms: the sum of a loop's link lengths) at
 /// which every closed form computes exactly: `2^-480 .. 2^480`, about `1e-144 .. 1e144`. Their
@@ -70,9 +75,12 @@ pub fn outside_closed_form_sizes(scale: &[f64]) -> bool {
 /// sensitivities of
 /// [`Sensitivities::sensitivities_at_flat`](crate::Sensitivities::sensitivities_at_flat)), and
 /// the error of a failure of Newton over the whole system (`fail`: the generated solver's
-/// error of the block holding the equation it names, see [`in_block`]).
+/// error of the block holding the equation it names, see [`in_block`]), and what a limit
+/// position gives (`at_limit`: the position for a solve of the positions alone, the singular
+/// failure for one of the analogs, see [`AtLimit`]).
 pub(crate) struct Whole<J, A, F, const N: usize> {
     pub(crate) kinds: [QuantityKind; N],
+    pub(crate) at_limit: AtLimit,
     pub(crate) jacobian: J,
     pub(crate) at: A,
     pub(crate) fail: F,
@@ -145,7 +153,7 @@ where
         ev.f = jq.f;
         ev.j = jq.j;
     };
-    let (q, report) = whole_position(guess, jac.scale, jac.unit, turns, cfg, at).map_err(&m.fail)?;
+    let (q, report) = whole_position(guess, jac.scale, jac.unit, turns, cfg, m.at_limit, at).map_err(&m.fail)?;
     (m.at)(&q, report)
 }
 
@@ -187,6 +195,21 @@ pub fn in_block(fail: BlockFailure, block_of: impl Fn(usize) -> Option<(usize, u
     }
 }
 
+/// What Newton over the whole system gives at a limit position of the input (a root it reaches
+/// only linearly, where two assembly modes meet and the Jacobian is singular), where a closed
+/// form gives its double root: the position, for a solve of the positions alone (the compiled
+/// `position_flat`, the run-time model's `positions`), as the closed form does at size 1; or
+/// Newton's singular failure, for a solve of the analogs, as the closed form's analogs fail
+/// there (they are not determined: see [`whole_position`]).
+#[doc(hidden)]
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum AtLimit {
+    /// The position, to the rounding of the residual (see [`whole_position`]).
+    Position,
+    /// Newton's [`BlockFailure::Singular`].
+    Singular,
+}
+
 /// The position of a mechanism of `N` unknowns solved by Newton over the whole system from
 /// `guess`: `scale` its equations' magnitudes and `unit` its unknowns' units at the guess (a
 /// unit that is not finite and positive counts as one), `turns` which unknowns are angles, and
@@ -197,6 +220,21 @@ pub fn in_block(fail: BlockFailure, block_of: impl Fn(usize) -> Option<(usize, u
 /// them. The position and the solve's report, or Newton's failure (its row an index into the
 /// whole system's equations). What a compiled mechanism's [`rescue`] and a run-time model's
 /// solve, to the same bits.
+///
+/// **At a limit position.** Newton approaches a root where the Jacobian is singular (a limit
+/// position, where two assembly modes meet) only linearly, each step about half the last, and fails
+/// there as singular: on a four-bar driven by its rocker (rocker 3, coupler 3.5, crank 1, frame 4)
+/// the residual meets its tolerance `1e-6` rad from the root, and the steps past it (which tell a
+/// root just inside the limit from a singular one) leave its coupler `4e-8` to `6e-8` rad from it,
+/// its loop open by `4.5 eps` of its size. A closed form gives that position at size 1, its double
+/// root to about the square root of the rounding. So for [`AtLimit::Position`] the solve is made
+/// again from the evaluated position of least residual, with tolerances 0 and no restarts
+/// (`limit_position`): down to the rounding of the residual, where the position is known to about
+/// `sqrt(eps)` of the size. Where it converges (a root just inside the limit, told from its twin
+/// across the fold) that root, otherwise the position of least residual evaluated, where it meets
+/// the residual tolerance. For [`AtLimit::Singular`] the failure stands: the analogs at a position
+/// that close to the fold are not determined (they grow as one over its distance from it, known
+/// only to that distance's rounding), and the closed form's fail as singular there too.
 #[doc(hidden)]
 pub fn whole_position<const N: usize>(
     guess: &[f64; N],
@@ -204,11 +242,17 @@ pub fn whole_position<const N: usize>(
     unit: [f64; N],
     turns: [bool; N],
     cfg: &NewtonConfig,
+    at_limit: AtLimit,
     mut at: impl FnMut(&[f64; N], &mut BlockEval<N, 0>),
 ) -> Result<([f64; N], SolveReport), BlockFailure> {
     let unit = unit.map(|u| if u > 0.0 && u.is_finite() { u } else { 1.0 });
     let mags = Magnitudes::new(scale, [1.0; N]).with_turns(turns);
     let q_of = |z: &[f64; N]| core::array::from_fn::<f64, N, _>(|u| z[u] * unit[u]);
+    // The evaluated position of least scaled residual, `max_r |f_r| / scale_r` (a NaN never
+    // least), and the count of evaluations: what a limit position is solved again from and
+    // reported with (`limit_position`). Read only after a failure; they change no step.
+    let least = Cell::new((f64::INFINITY, [0.0; N]));
+    let evaluations = Cell::new(0u32);
     // Written over the solver's slot, as the generated blocks' evaluations are.
     let mut eval = |z: &[f64; N], ev: &mut BlockEval<N, 0>| {
         at(&q_of(z), ev);
@@ -217,14 +261,80 @@ pub fn whole_position<const N: usize>(
                 row[u] *= unit[u];
             }
         }
+        let rho = (0..N).fold(0.0f64, |m, r| m.max(ev.f[r].abs() / scale[r]));
+        // Written so that a NaN residual is never the least.
+        if rho < least.get().0 && ev.f.iter().all(|f| !f.is_nan()) {
+            least.set((rho, *z));
+        }
+        evaluations.set(evaluations.get() + 1);
     };
     let z0 = core::array::from_fn::<f64, N, _>(|u| guess[u] / unit[u]);
     let mut ev: BlockEval<N, 0> = BlockEval { f: [0.0; N], j: [[0.0; N]; N], keep: [] };
     eval(&z0, &mut ev);
-    let solved = newton(z0, &mut ev, cfg, eval, &mags)?;
+    let solved = match newton(z0, &mut ev, cfg, &mut eval, &mags) {
+        Ok(solved) => solved,
+        Err(fail @ BlockFailure::Singular { .. }) if at_limit == AtLimit::Position => {
+            limit_position(fail, &least, &evaluations, cfg, &mags, &mut eval)?
+        }
+        Err(fail) => return Err(fail),
+    };
     let mut report = SolveReport::direct();
     report.absorb(&solved);
     Ok((q_of(&solved.z), report))
+}
+
+/// [`whole_position`]'s positions where Newton's solve failed as singular (`fail`), at a limit
+/// position or beside one: solved again from the evaluated position of least residual
+/// (`least`; `evaluations` counts them, both updated by `eval`) with tolerances 0 and no
+/// restarts (a root reached from a turned guess would be another assembly mode), so that the
+/// iteration runs down to the rounding of the residual. Where it converges, the root (just
+/// inside the limit, told from its twin across the fold); where it fails too (the root is a
+/// double one to working accuracy), the position of least residual over both solves, if it
+/// meets `cfg`'s residual tolerance (as a closed form's double root within the tolerance of
+/// the limit is the position); otherwise `fail`.
+#[cold]
+#[inline(never)]
+fn limit_position<const N: usize>(
+    fail: BlockFailure,
+    least: &Cell<(f64, [f64; N])>,
+    evaluations: &Cell<u32>,
+    cfg: &NewtonConfig,
+    mags: &Magnitudes<N>,
+    eval: &mut impl FnMut(&[f64; N], &mut BlockEval<N, 0>),
+) -> Result<Solved<N>, BlockFailure> {
+    let iterations = |f: &BlockFailure| match *f {
+        BlockFailure::Singular { iterations, .. }
+        | BlockFailure::NoAssembly { iterations, .. }
+        | BlockFailure::NoConvergence { iterations, .. }
+        | BlockFailure::NonFinite { iterations, .. } => iterations,
+        _ => 0,
+    };
+    let (rho, z) = least.get();
+    if !rho.is_finite() {
+        return Err(fail);
+    }
+    let fine = cfg.with_residual_tol(0.0).with_step_tol(0.0).with_restarts(false);
+    let mut ev: BlockEval<N, 0> = BlockEval { f: [0.0; N], j: [[0.0; N]; N], keep: [] };
+    eval(&z, &mut ev);
+    let again = match newton(z, &mut ev, &fine, &mut *eval, mags) {
+        Ok(mut solved) => {
+            solved.iterations += iterations(&fail);
+            solved.evaluations = evaluations.get();
+            return Ok(solved);
+        }
+        Err(again) => again,
+    };
+    let (rho, z) = least.get();
+    if rho <= cfg.residual_tol {
+        return Ok(Solved {
+            z,
+            iterations: iterations(&fail) + iterations(&again),
+            evaluations: evaluations.get(),
+            residual: rho,
+            termination: NewtonStop::StepTolerance,
+        });
+    }
+    Err(fail)
 }
 
 #[cfg(test)]
@@ -256,5 +366,36 @@ mod tests {
         );
         let fail = BlockFailure::InvalidConfig { field: "max_iterations" };
         assert_eq!(in_block(fail, block_of), (0, fail));
+    }
+
+    /// `cos q = c`, a crank's end reaching a line at `c`: a limit position of `c` at 1, where
+    /// the two roots `±acos c` meet at 0. Its scale `|cos q| + |c|`, `q` an angle from 0.5.
+    fn reach(c: f64, at_limit: AtLimit) -> Result<([f64; 1], SolveReport), BlockFailure> {
+        let at = |q: &[f64; 1], ev: &mut BlockEval<1, 0>| {
+            ev.f = [q[0].cos() - c];
+            ev.j = [[-q[0].sin()]];
+        };
+        whole_position(&[0.5], [1.0 + c.abs()], [1.0], [true], &NewtonConfig::default(), at_limit, at)
+    }
+
+    /// At a limit position Newton reaches the double root only linearly and fails as singular;
+    /// for the positions alone it is the position, to the residual's rounding: `q^2 / 2` within
+    /// `3 eps` of the scale 2, `|q| <= sqrt(12 eps)`. Just inside (`c = 1 - 1e-13`, the roots
+    /// `9e-7` apart, within the residual tolerance of each other) the root itself, to its
+    /// rounding over the slope (`eps / sin q`), not a point between the two. Beyond by less than
+    /// the tolerance (`1e-14`) the fold, as a closed form's limit rounded past; beyond by more
+    /// (`1e-6`), no position.
+    #[test]
+    fn a_limit_position_is_the_position_of_the_positions_alone() {
+        for c in [1.0, 1.0 - 1e-13, 1.0 + 1e-14] {
+            let fail = reach(c, AtLimit::Singular).unwrap_err();
+            assert!(matches!(fail, BlockFailure::Singular { .. }), "c = {c}: {fail:?}");
+            let (q, report) = reach(c, AtLimit::Position).unwrap_or_else(|f| panic!("c = {c}: {f:?}"));
+            let root = c.min(1.0).acos();
+            let within = if c < 1.0 { 4.0 * f64::EPSILON / root.sin() } else { (12.0 * f64::EPSILON).sqrt() };
+            assert!((q[0] - root).abs() <= within, "c = {c}: {} against {root}", q[0]);
+            assert!(report.residual <= NewtonConfig::default().residual_tol, "c = {c}: {report:?}");
+        }
+        assert!(reach(1.0 + 1e-6, AtLimit::Position).is_err());
     }
 }
