@@ -19,7 +19,7 @@ use crate::at::Jacobian;
 use crate::blocks::StepFailure;
 use crate::model::{Model, StepError};
 use kinloop_runtime::generated::{
-    AtLimit, BlockEval, BlockFailure, SolveReport, in_block, outside_closed_form_sizes, whole_position,
+    AtLimit, BlockEval, BlockFailure, SolveReport, in_block, mode_blocks, outside_closed_form_sizes, whole_position,
 };
 use kinloop_runtime::{NewtonConfig, QuantityKind};
 
@@ -129,6 +129,8 @@ impl Model {
             return None;
         }
         let turns: [bool; N] = std::array::from_fn(|u| self.unknown_kinds()[u] == QuantityKind::Angle);
+        // The closed-form blocks whose assembly mode is kept, as the compiled rescue's.
+        let modes = mode_blocks(self.block_rows_cols.iter().cloned(), &self.closed_form_angles);
         let mut at = Jacobian::default();
         let eval = |q: &[f64; N], ev: &mut BlockEval<N, 0>| {
             // The sizes were checked: not reached. NaN where it were, which Newton refuses.
@@ -141,6 +143,9 @@ impl Model {
         };
         let guess: [f64; N] = std::array::from_fn(|u| guess[u]);
         let (scale, unit) = (std::array::from_fn(|e| jac.scale[e]), std::array::from_fn(|u| jac.unit[u]));
-        Some(whole_position(&guess, scale, unit, turns, cfg, at_limit, eval).map(|(q, report)| (q.to_vec(), report)))
+        Some(
+            whole_position(&guess, scale, unit, turns, cfg, at_limit, &modes, eval)
+                .map(|(q, report)| (q.to_vec(), report)),
+        )
     }
 }

@@ -260,6 +260,7 @@ where
 {
     let whole = extreme_scale::Whole {
         kinds: M::UNKNOWN_KINDS,
+        modes: mode_blocks::<M, N, NI, NO>(),
         at_limit: extreme_scale::AtLimit::Singular,
         jacobian: |q: &[f64; N]| m.jacobian_flat(x, q),
         at: |q: &[f64; N], report: SolveReport| {
@@ -296,6 +297,7 @@ where
 {
     let whole = extreme_scale::Whole {
         kinds: M::UNKNOWN_KINDS,
+        modes: mode_blocks::<M, N, NI, NO>(),
         at_limit: extreme_scale::AtLimit::Position,
         jacobian: |q: &[f64; N]| m.jacobian_flat(x, q),
         at: |q: &[f64; N], report: SolveReport| Ok((*q, report)),
@@ -326,6 +328,7 @@ where
 {
     let whole = extreme_scale::Whole {
         kinds: M::UNKNOWN_KINDS,
+        modes: mode_blocks::<M, N, NI, NO>(),
         at_limit: extreme_scale::AtLimit::Singular,
         jacobian: |q: &[f64; N]| m.jacobian_flat(x, q),
         at: |q: &[f64; N], report: SolveReport| {
@@ -426,6 +429,20 @@ where
     let unknowns = unknowns.iter().filter_map(|name| M::UNKNOWNS.iter().position(|u| u == name));
     let (u, value) = turns_culprit(unknowns, &M::UNKNOWN_KINDS, fail, guess, cfg)?;
     Some((u.map_or("?", |u| M::UNKNOWNS[u]), value))
+}
+
+/// The closed-form blocks of `M` whose assembly mode the rescue keeps
+/// ([`extreme_scale::mode_blocks`]), by their equations' and unknowns' names.
+fn mode_blocks<M, const N: usize, const NI: usize, const NO: usize>() -> Vec<extreme_scale::ModeBlock>
+where
+    M: Mechanism<N, NI, NO> + ?Sized,
+{
+    let blocks = M::BLOCKS.iter().map(|info| {
+        let rows = info.equations.iter().filter_map(|e| M::EQUATIONS.iter().position(|n| n == e)).collect();
+        let cols = info.unknowns.iter().filter_map(|u| M::UNKNOWNS.iter().position(|n| n == u)).collect();
+        (rows, cols)
+    });
+    extreme_scale::mode_blocks(blocks, &M::CLOSED_FORM_ANGLES)
 }
 
 /// The error for a failure `fail` of Newton over the whole system of `m` (its row an index

@@ -11,6 +11,7 @@
 #[path = "../support/mod.rs"]
 mod support;
 
+mod assembly_modes_extreme_scales;
 mod cam_linkage;
 mod constants_named_like_declared_names;
 mod degrees;

@@ -3,7 +3,7 @@
 //! refuses equations whose terms are too large for `f64` as a block's Newton does: their
 //! magnitude overflowed, and with it (or not) their residual.
 
-use kinloop::__gen::{BlockEval, BlockFailure, whole_position};
+use kinloop::__gen::{AtLimit, BlockEval, BlockFailure, whole_position};
 use kinloop::NewtonConfig;
 
 /// A slider `x` at distance `c` from a pivot by the square of that distance, `x^2 - c^2`, with
@@ -35,7 +35,7 @@ fn the_whole_system_solve_refuses_a_magnitude_too_large_for_f64() {
                 let (f, j, _, _) = squared(c, q[0]);
                 (e.f, e.j) = ([f], [[j]]);
             };
-            match whole_position(&x0, [scale], [unit], [false], &cfg, at) {
+            match whole_position(&x0, [scale], [unit], [false], &cfg, AtLimit::Singular, &[], at) {
                 Ok((q, _)) => assert!(c == 1e150 && (q[0] - c).abs() <= 2.0 * f64::EPSILON * c, "{c:e}: {q:?}"),
                 Err(fail) => assert!(c > 1e150 && fail == BlockFailure::Overflow { row: 0 }, "{c:e}, {g}: {fail:?}"),
             }

@@ -28,7 +28,7 @@ fn the_whole_system_solve_refuses_a_magnitude_too_small_to_judge() {
             let (f, j, _, _) = squared(c, q[0]);
             (e.f, e.j) = ([f], [[j]]);
         };
-        match whole_position(&g, [scale], [unit], [false], &cfg, AtLimit::Singular, at) {
+        match whole_position(&g, [scale], [unit], [false], &cfg, AtLimit::Singular, &[], at) {
             Ok((q, _)) => assert!(c == 1e-150 && (q[0] - c).abs() <= 2.0 * f64::EPSILON * c, "{c:e}: {q:?}"),
             Err(fail) => assert!(c < 1e-150 && matches!(fail, BlockFailure::Underflow { .. }), "{c:e}: {fail:?}"),
         }

@@ -37,6 +37,12 @@
 //! configuration explains the failure at any size: their error stands. Where Newton solves but the
 //! analogs at its position fail, theirs.
 //!
+//! **Its assembly mode is the closed forms'.** A closed form picks one of its two roots by the
+//! guess (the sign of its block's Jacobian determinant there); Newton goes wherever it
+//! converges, which for a four-bar driven by its rocker was the other assembly mode at about half
+//! its inputs. So each closed-form block's mode is checked after the solve and mirrored where it
+//! differs ([`ModeBlock`], see [`whole_position`]): the angles of size 1 at every size.
+//!
 //! The mechanism is seen through three functions only ([`Whole`]): the entry point that
 //! takes a mechanism, `mechanism::rescue`, hands them over, so that this module needs nothing of
 //! the mechanism's traits (which call it).
@@ -47,7 +53,9 @@ use crate::kinds::QuantityKind;
 use crate::solvers::newton::{
     BlockEval, BlockFailure, Magnitudes, NewtonConfig, NewtonStop, SolveReport, Solved, newton,
 };
+use crate::solvers::turns::unwrap_to_turn;
 use core::cell::Cell;
+use core::f64::consts::PI;
 
 /// The sizes (largest magnitude of an equation's terms: the sum of a loop's link lengths) at
 /// which every closed form computes exactly: `2^-480 .. 2^480`, about `1e-144 .. 1e144`. Their
@@ -80,6 +88,7 @@ pub fn outside_closed_form_sizes(scale: &[f64]) -> bool {
 /// failure for one of the analogs, see [`AtLimit`]).
 pub(crate) struct Whole<J, A, F, const N: usize> {
     pub(crate) kinds: [QuantityKind; N],
+    pub(crate) modes: Vec<ModeBlock>,
     pub(crate) at_limit: AtLimit,
     pub(crate) jacobian: J,
     pub(crate) at: A,
@@ -153,7 +162,8 @@ where
         ev.f = jq.f;
         ev.j = jq.j;
     };
-    let (q, report) = whole_position(guess, jac.scale, jac.unit, turns, cfg, m.at_limit, at).map_err(&m.fail)?;
+    let (q, report) =
+        whole_position(guess, jac.scale, jac.unit, turns, cfg, m.at_limit, &m.modes, at).map_err(&m.fail)?;
     (m.at)(&q, report)
 }
 
@@ -221,6 +231,10 @@ pub enum AtLimit {
 /// whole system's equations). What a compiled mechanism's [`rescue`] and a run-time model's
 /// solve, to the same bits.
 ///
+/// **Its assembly modes.** Each block of `modes` (closed-form blocks, in solve order: see
+/// [`mode_blocks`]) is left in the assembly mode its closed form picks from `guess` at any
+/// ordinary size, where Newton reached the other (see `keep_modes`).
+///
 /// **At a limit position.** Newton approaches a root where the Jacobian is singular (a limit
 /// position, where two assembly modes meet) only linearly, each step about half the last, and fails
 /// there as singular: on a four-bar driven by its rocker (rocker 3, coupler 3.5, crank 1, frame 4)
@@ -236,6 +250,7 @@ pub enum AtLimit {
 /// that close to the fold are not determined (they grow as one over its distance from it, known
 /// only to that distance's rounding), and the closed form's fail as singular there too.
 #[doc(hidden)]
+#[allow(clippy::too_many_arguments)]
 pub fn whole_position<const N: usize>(
     guess: &[f64; N],
     scale: [f64; N],
@@ -243,6 +258,7 @@ pub fn whole_position<const N: usize>(
     turns: [bool; N],
     cfg: &NewtonConfig,
     at_limit: AtLimit,
+    modes: &[ModeBlock],
     mut at: impl FnMut(&[f64; N], &mut BlockEval<N, 0>),
 ) -> Result<([f64; N], SolveReport), BlockFailure> {
     let unit = unit.map(|u| if u > 0.0 && u.is_finite() { u } else { 1.0 });
@@ -278,9 +294,200 @@ pub fn whole_position<const N: usize>(
         }
         Err(fail) => return Err(fail),
     };
+    let solved =
+        if modes.is_empty() { solved } else { keep_modes(solved, &z0, unit, scale, modes, cfg, &mags, &mut eval)? };
     let mut report = SolveReport::direct();
     report.absorb(&solved);
     Ok((q_of(&solved.z), report))
+}
+
+/// A closed-form block whose root [`whole_position`] keeps in the assembly mode the closed form
+/// picks from the guess: its equations (indices into the whole system's, in the block's order)
+/// and its unknowns, one angle (`a cos q + b sin q = c`) or a dyad's two angles (two links of
+/// fixed lengths closing a loop). Made by [`mode_blocks`].
+#[doc(hidden)]
+#[derive(Clone, Debug, PartialEq, Eq)]
+pub struct ModeBlock {
+    /// The block's equations, as rows of the whole system.
+    pub rows: Vec<usize>,
+    /// The block's unknowns, as columns of the whole system.
+    pub cols: Vec<usize>,
+}
+
+/// The blocks of a mechanism, in solve order, whose assembly mode [`whole_position`] keeps:
+/// `blocks` each block's rows and columns (of the whole system), `closed_form_angles` which
+/// unknowns closed forms give as angles (`Mechanism::CLOSED_FORM_ANGLES`). Those whose
+/// unknowns are all such angles, one or two of them, square: an angle equation or a dyad, whose
+/// closed forms pick their root by the sign of the block's Jacobian determinant at the guess
+/// (see `keep_modes`). What the compiled rescue and a run-time model both give
+/// [`whole_position`].
+#[doc(hidden)]
+pub fn mode_blocks(
+    blocks: impl IntoIterator<Item = (Vec<usize>, Vec<usize>)>,
+    closed_form_angles: &[bool],
+) -> Vec<ModeBlock> {
+    blocks
+        .into_iter()
+        .filter(|(rows, cols)| {
+            (1..=2).contains(&cols.len())
+                && rows.len() == cols.len()
+                && cols.iter().all(|&u| closed_form_angles.get(u).copied().unwrap_or(false))
+        })
+        .map(|(rows, cols)| ModeBlock { rows, cols })
+        .collect()
+}
+
+/// The sign of the determinant of `block`'s diagonal block of the Jacobian in `ev` (0 where it
+/// is zero or not a number): each row divided by its largest entry first, so that the products
+/// of lengths about `1e±200` neither overflow nor underflow (a positive factor keeps the sign).
+fn det_sign<const N: usize>(ev: &BlockEval<N, 0>, block: &ModeBlock) -> f64 {
+    let row = |r: usize| {
+        let v: [f64; 2] = core::array::from_fn(|i| block.cols.get(i).map_or(0.0, |&u| ev.j[r][u]));
+        let m = v[0].abs().max(v[1].abs());
+        if m > 0.0 { v.map(|x| x / m) } else { v }
+    };
+    let det = match block.rows[..] {
+        [r] => row(r)[0],
+        [r0, r1] => {
+            let (a, b) = (row(r0), row(r1));
+            a[0] * b[1] - a[1] * b[0]
+        }
+        _ => 0.0,
+    };
+    if det > 0.0 {
+        1.0
+    } else if det < 0.0 {
+        -1.0
+    } else {
+        0.0
+    }
+}
+
+/// [`whole_position`]'s `solved` with each closed-form block of `modes` (in solve order) in
+/// the assembly mode its closed form picks from the guess `z0` at size 1. A closed form's root
+/// is the one whose block Jacobian's determinant has the sign it has at the guess (the blocks
+/// before it solved): for `a cos q + b sin q = c` the root where `h' = b cos q - a sin q` has
+/// the sign of `h'` at the guess, for a dyad the one whose links' cross product has the sign of
+/// the guess's (`codegen/src/emit/closed_form.rs`); the determinant vanishes only at a limit
+/// position, where the two modes meet. Newton goes wherever it converges: a four-bar driven by
+/// its rocker, from its declared guess, reached the other mode at about half its inputs. So
+/// where a block's sign differs from the guess's, its other root is taken (the mirror image,
+/// found from the block's residuals alone: [`mirror`]) and Newton solved again from there: the
+/// blocks up to it are at their roots, and the whole Jacobian is block-triangular, so its steps
+/// solve the blocks after it and leave those. Where a sign is zero (a limit position), nothing
+/// changes.
+#[cold]
+#[inline(never)]
+#[allow(clippy::too_many_arguments)]
+fn keep_modes<const N: usize>(
+    mut solved: Solved<N>,
+    z0: &[f64; N],
+    unit: [f64; N],
+    scale: [f64; N],
+    modes: &[ModeBlock],
+    cfg: &NewtonConfig,
+    mags: &Magnitudes<N>,
+    eval: &mut impl FnMut(&[f64; N], &mut BlockEval<N, 0>),
+) -> Result<Solved<N>, BlockFailure> {
+    let mut ev: BlockEval<N, 0> = BlockEval { f: [0.0; N], j: [[0.0; N]; N], keep: [] };
+    for block in modes {
+        let z = solved.z;
+        let mut at_guess = z;
+        for &u in &block.cols {
+            at_guess[u] = z0[u];
+        }
+        eval(&at_guess, &mut ev);
+        let want = det_sign(&ev, block);
+        eval(&z, &mut ev);
+        let have = det_sign(&ev, block);
+        solved.evaluations += 2;
+        if want == 0.0 || have == 0.0 || want == have {
+            continue;
+        }
+        // `mirror`'s evaluations and the one at its image below.
+        solved.evaluations += 2 + block.cols.len() as u32;
+        let Some(mirrored) = mirror(&z, z0, unit, block, eval) else { continue };
+        eval(&mirrored, &mut ev);
+        // The whole system solved already (the block the last, or those after it unmoved): the
+        // mirror image itself. Newton's last correction, applied even at a root, is about the
+        // rounding of the residual over the determinant, which near a limit position is
+        // `1e-7` rad where the two modes are closer than that (measured on the four-bar driven
+        // by its rocker at its limit: its coupler moved by `6e-7` rad).
+        let rho = (0..N).fold(0.0f64, |m, r| m.max(ev.f[r].abs() / scale[r]));
+        if rho <= cfg.residual_tol {
+            solved = Solved { z: mirrored, residual: rho, ..solved };
+            continue;
+        }
+        let again = newton(mirrored, &mut ev, cfg, &mut *eval, mags)?;
+        solved = Solved {
+            iterations: solved.iterations + again.iterations,
+            evaluations: solved.evaluations + again.evaluations,
+            ..again
+        };
+    }
+    Ok(solved)
+}
+
+/// The other root of `block` at `z` (a root of the whole system, in units `unit`), with its
+/// angles on the turns of the guess `z0`, the other unknowns as they are: `None` where it is not
+/// finite. Both forms are linear in the sines and cosines of their angles, so the residuals at
+/// `z` and with an angle half a turn on give the block's terms without knowing its
+/// coefficients, in the equations' own magnitudes (no products of lengths, which leave `f64`
+/// at these sizes). One angle, `f(q) = A cos q + B sin q - C`: with `P = (f(q) - f(q + π)) / 2
+/// = A cos q + B sin q` and `Q = f'(q) = B cos q - A sin q`, `atan2(Q, P)` is the turn from `q`
+/// to the axis `atan2(B, A)` the two roots are symmetric about, so the other root is `q + 2
+/// atan2(Q, P)`. A dyad, `F = E + w0(q0) + w1(q1)` with `w_i` a link turning with its angle
+/// (`w_i = (F(q) - F(q_i + π)) / 2`, turning one way or the other, `ε_i` the sign of
+/// `w_i × dw_i/dq_i`): the other root is the mirror image across the line of `E`, each `w_i`
+/// reflected, each angle turned by `2 ε_i (angle(E) - angle(w_i))`.
+fn mirror<const N: usize>(
+    z: &[f64; N],
+    z0: &[f64; N],
+    unit: [f64; N],
+    block: &ModeBlock,
+    eval: &mut impl FnMut(&[f64; N], &mut BlockEval<N, 0>),
+) -> Option<[f64; N]> {
+    let mut ev: BlockEval<N, 0> = BlockEval { f: [0.0; N], j: [[0.0; N]; N], keep: [] };
+    eval(z, &mut ev);
+    let (f, j) = (ev.f, ev.j);
+    // The block's terms that turn with angle `u`: half the difference of the residuals at `z`
+    // and with `u` half a turn on (halved first, so that nothing overflows).
+    let mut turning = |u: usize| {
+        let mut half = *z;
+        half[u] += PI / unit[u];
+        eval(&half, &mut ev);
+        block.rows.iter().map(|&r| f[r] / 2.0 - ev.f[r] / 2.0).collect::<Vec<f64>>()
+    };
+    let mut out = *z;
+    match (&block.rows[..], &block.cols[..]) {
+        (&[r], &[u]) => {
+            let p = turning(u)[0];
+            let turn = 2.0 * (j[r][u] / unit[u]).atan2(p);
+            out[u] = z[u] + turn / unit[u];
+        }
+        (&[r0, r1], &[u0, u1]) => {
+            let w = [turning(u0), turning(u1)];
+            let e = [f[r0] - w[0][0] - w[1][0], f[r1] - w[0][1] - w[1][1]];
+            let to_e = e[1].atan2(e[0]);
+            for (i, &u) in [u0, u1].iter().enumerate() {
+                // The sign of `w × dw/dq` from the row-normalised values (see `det_sign`).
+                let m = w[i][0].abs().max(w[i][1].abs());
+                let d = [j[r0][u], j[r1][u]];
+                let n = d[0].abs().max(d[1].abs());
+                if !(m > 0.0 && n > 0.0) {
+                    return None;
+                }
+                let cross = (w[i][0] / m) * (d[1] / n) - (w[i][1] / m) * (d[0] / n);
+                let eps = if cross > 0.0 { 1.0 } else { -1.0 };
+                out[u] = z[u] + eps * 2.0 * (to_e - w[i][1].atan2(w[i][0])) / unit[u];
+            }
+        }
+        _ => return None,
+    }
+    for &u in &block.cols {
+        out[u] = unwrap_to_turn(out[u] * unit[u], z0[u] * unit[u]) / unit[u];
+    }
+    out.iter().all(|v| v.is_finite()).then_some(out)
 }
 
 /// [`whole_position`]'s positions where Newton's solve failed as singular (`fail`), at a limit
@@ -375,7 +582,7 @@ mod tests {
             ev.f = [q[0].cos() - c];
             ev.j = [[-q[0].sin()]];
         };
-        whole_position(&[0.5], [1.0 + c.abs()], [1.0], [true], &NewtonConfig::default(), at_limit, at)
+        whole_position(&[0.5], [1.0 + c.abs()], [1.0], [true], &NewtonConfig::default(), at_limit, &[], at)
     }
 
     /// At a limit position Newton reaches the double root only linearly and fails as singular;

@@ -1,0 +1,87 @@
+//! The assembly mode of a mechanism beyond the closed forms' sizes is the one size 1 gives from
+//! the same guess. At size 1 a closed form picks its root by the guess's side (the sign of its
+//! block's Jacobian determinant at the guess, see `codegen/src/emit/closed_form.rs`); beyond
+//! `1e±144` the rescue solves the position by Newton over the whole system
+//! (`runtime/src/mechanism/extreme_scale.rs`), which went wherever it converged: a four-bar
+//! driven by its rocker, from its declared guess, gave the other assembly mode than size 1 at
+//! inputs such as `-0.7`, `0.8` and `1.0` at `1e200` (at `0.8`, size 1 `(-0.598, 0.183)`, the
+//! rescue `(-1.092, 4.410)`), a silent wrong answer.
+
+use kinloop::{Mechanism, NewtonConfig};
+
+kinloop::mechanism! {
+    /// A four-bar driven by its rocker `a` (the input `phi`): coupler `b` at `beta`, crank `c`
+    /// at `gamma` about `D = (d, 0)`.
+    pub struct RockerDriven {
+        params a, b, c, d;
+        input phi;
+        unknowns beta = 0.5, gamma = 1.5;
+        loop abcd: a @ phi + b @ beta == (d, 0) + c @ gamma;
+    }
+}
+
+/// The sizes beyond the closed forms' (`1e±144`).
+const SIZES: [f64; 6] = [1e-300, 1e-200, 1e-160, 1e160, 1e200, 1e300];
+
+/// Rocker 3, coupler 3.5, crank 1, frame 4 at size 1: the rocker swings where
+/// `2.5 <= |BD| <= 4.5` (`B` its end), `cos phi` in `[19 / 96, 25 / 32]`, on either side of
+/// the frame.
+const ROCKER: [f64; 4] = [3.0, 3.5, 1.0, 4.0];
+
+fn at(k: f64) -> RockerDriven {
+    let [a, b, c, d] = ROCKER.map(|l| l * k);
+    RockerDriven { a, b, c, d }
+}
+
+/// 24 inputs over both of the rocker's ranges, `0.02` rad inside their limits: there the two
+/// assembly modes are more than `0.2` rad apart (the coupler turns by about
+/// `sqrt(slope * 0.02 / kappa)` from the fold), so a solve in the other mode is far outside
+/// the tolerance below.
+fn inputs() -> Vec<f64> {
+    let (lo, hi) = ((25.0f64 / 32.0).acos() + 0.02, (19.0f64 / 96.0).acos() - 0.02);
+    let n = 12;
+    let range: Vec<f64> = (0..n).map(|i| lo + (hi - lo) * i as f64 / (n - 1) as f64).collect();
+    range.iter().map(|x| -x).chain(range.iter().copied()).collect()
+}
+
+/// Two guesses: the declared one, and its mirror across the frame (`beta`, `gamma` negated,
+/// the crank's end below where the declared guess has it above), the other assembly mode at
+/// every input here (checked at size 1).
+fn guesses() -> [[f64; 2]; 2] {
+    let declared = at(1.0).guess_flat(&[0.0]);
+    [declared, declared.map(|q| -q)]
+}
+
+/// How far the angles at size `k` may be from size 1's: the lengths `ROCKER * k` are rounded
+/// to half an ulp (`k` is not a power of two), the closed form and Newton each leave their
+/// angles within a few ulps, and 0.02 rad inside a limit the angles move by at most about
+/// `1 / sqrt(0.02)` (the fold's square root) times a relative change of the lengths: a few
+/// `1e-15`. The other assembly mode is more than `0.2` rad away.
+const TOL: f64 = 1e-12;
+
+#[test]
+fn the_rescue_keeps_size_ones_assembly_mode() {
+    let cfg = NewtonConfig::default();
+    let one = at(1.0);
+    let mut wrong = Vec::new();
+    for x in inputs() {
+        let bases = guesses().map(|g| {
+            let (q, _) = one.position_flat(&[x], &g, &cfg).unwrap_or_else(|e| panic!("phi {x} at size 1: {e}"));
+            q
+        });
+        // The two guesses are the two modes at size 1, so both are compared.
+        assert!((bases[0][0] - bases[1][0]).abs() > 0.1, "phi {x}: both guesses give one mode at size 1: {bases:?}");
+        for (guess, base) in guesses().iter().zip(bases) {
+            for k in SIZES {
+                let m = at(k);
+                let (q, _) = m.position_flat(&[x], guess, &cfg).unwrap_or_else(|e| panic!("phi {x} at {k:e}: {e}"));
+                let kin = m.kinematics_flat(&[x], guess, &cfg).unwrap_or_else(|e| panic!("phi {x} at {k:e}: {e}"));
+                let off = (0..2).fold(0.0f64, |o, u| o.max((q[u] - base[u]).abs()).max((kin.q[u] - base[u]).abs()));
+                if off > TOL {
+                    wrong.push(format!("phi {x:.3} from {guess:?} at {k:e}: {q:?}, size 1 {base:?}"));
+                }
+            }
+        }
+    }
+    assert!(wrong.is_empty(), "{} solves in another mode than size 1's:\n{}", wrong.len(), wrong.join("\n"));
+}
