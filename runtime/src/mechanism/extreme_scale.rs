@@ -605,4 +605,29 @@ mod tests {
         }
         assert!(reach(1.0 + 1e-6, AtLimit::Position).is_err());
     }
+
+    /// `2 cos q + sin q = 1` times `1e200` (terms whose squares leave `f64`): roots `π/2` (where
+    /// `h' = cos q - 2 sin q < 0`) and `-atan(3/4)` (`h' > 0`). From guesses where `h' > 0` the
+    /// closed form's root is the second, from those where `h' < 0` the first, whichever Newton
+    /// reaches (`modes` names the block): from `0.44`, just short of the axis `atan(1/2)` where
+    /// `h'` changes sign, Newton alone reached `π/2`.
+    #[test]
+    fn an_angle_equation_keeps_the_guess_s_root() {
+        let k = 1e200;
+        let at = |q: &[f64; 1], ev: &mut BlockEval<1, 0>| {
+            ev.f = [2.0 * k * q[0].cos() + k * q[0].sin() - k];
+            ev.j = [[-2.0 * k * q[0].sin() + k * q[0].cos()]];
+        };
+        let modes = [ModeBlock { rows: vec![0], cols: vec![0] }];
+        let (up, down) = (core::f64::consts::FRAC_PI_2, -(0.75f64).atan());
+        for g in [-2.0, -1.0, 0.0, 0.3, 0.4, 0.44, 0.48, 0.52, 0.6, 1.0, 2.0, 3.0] {
+            let root = unwrap_to_turn(if f64::cos(g) - 2.0 * f64::sin(g) > 0.0 { down } else { up }, g);
+            let (q, _) =
+                whole_position(&[g], [4.0 * k], [1.0], [true], &NewtonConfig::default(), AtLimit::Singular, &modes, at)
+                    .unwrap_or_else(|f| panic!("from {g}: {f:?}"));
+            // On the guess's turn, as the closed form's, within a few ulps: the rounding of terms
+            // of magnitude 4 over `|h'| = sqrt(5)` at either root.
+            assert!((q[0] - root).abs() < 1e-14, "from {g}: {} against {root}", q[0]);
+        }
+    }
 }
