@@ -9,24 +9,11 @@
 
 use kinloop::{Mechanism, NewtonConfig};
 
-kinloop::mechanism! {
-    /// A four-bar driven by its rocker `a` (the input `phi`): coupler `b` at `beta`, crank `c`
-    /// at `gamma` about `D = (d, 0)`.
-    pub struct RockerDriven {
-        params a, b, c, d;
-        input phi;
-        unknowns beta = 0.5, gamma = 1.5;
-        loop abcd: a @ phi + b @ beta == (d, 0) + c @ gamma;
-    }
-}
-
-/// The sizes beyond the closed forms' (`1e±144`).
-const SIZES: [f64; 6] = [1e-300, 1e-200, 1e-160, 1e160, 1e200, 1e300];
-
-/// Rocker 3, coupler 3.5, crank 1, frame 4 at size 1: the rocker swings where
-/// `2.5 <= |BD| <= 4.5` (`B` its end), `cos phi` in `[19 / 96, 25 / 32]`, on either side of
-/// the frame.
-const ROCKER: [f64; 4] = [3.0, 3.5, 1.0, 4.0];
+// The rocker-driven four-bar, its lengths at size 1 (rocker 3, coupler 3.5, crank 1, frame 4:
+// the rocker swings where `2.5 <= |BD| <= 4.5`, `B` its end, `cos phi` in `[19 / 96, 25 / 32]`,
+// on either side of the frame) and the sizes beyond the closed forms', as the limit positions'
+// tests have them.
+use crate::limit_positions_extreme_scales::{ROCKER, RockerDriven, SIZES};
 
 fn at(k: f64) -> RockerDriven {
     let [a, b, c, d] = ROCKER.map(|l| l * k);

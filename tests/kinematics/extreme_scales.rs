@@ -845,6 +845,24 @@ fn rod_tolerance(k: f64) -> f64 {
     if normal { SCALE_TOL } else { 2.0 * NewtonConfig::default().residual_tol * most / least_slope + SCALE_TOL }
 }
 
+/// The positions of a mechanism as declared and of its Newton twin at input `phi` from their
+/// declared guesses, each by its state (`kinematics_flat`) and by its positions alone
+/// (`position_flat`), named for the assertions' messages.
+fn declared_and_newton<M: Mechanism<N, 1, NO>, T: Mechanism<N, 1, NO>, const N: usize, const NO: usize>(
+    plain: &M,
+    newton: &T,
+    phi: f64,
+    cfg: &NewtonConfig,
+) -> [(&'static str, Result<[f64; N], kinloop::Error>); 4] {
+    let (g_plain, g_newton) = (plain.guess_flat(&[phi]), newton.guess_flat(&[phi]));
+    [
+        ("as declared", plain.kinematics_flat(&[phi], &g_plain, cfg).map(|s| s.q)),
+        ("Newton", newton.kinematics_flat(&[phi], &g_newton, cfg).map(|s| s.q)),
+        ("as declared, positions", plain.position_flat(&[phi], &g_plain, cfg).map(|(q, _)| q)),
+        ("Newton, positions", newton.position_flat(&[phi], &g_newton, cfg).map(|(q, _)| q)),
+    ]
+}
+
 /// Whether `err` is the refusal of an equation whose terms are too large for `f64`, naming the
 /// equation `name`, with a message that says so and what to do.
 fn is_overflow(err: &kinloop::Error, name: &str) -> bool {
@@ -887,13 +905,7 @@ fn an_equation_of_squared_lengths_is_solved_to_its_tolerance_or_refused_at_every
         let mut worst = 0.0f64;
         for i in 0..12 {
             let phi = 0.3 + i as f64 * 0.5;
-            let (g_plain, g_newton) = (plain.guess_flat(&[phi]), newton.guess_flat(&[phi]));
-            for (path, got) in [
-                ("as declared", plain.kinematics_flat(&[phi], &g_plain, &cfg).map(|s| s.q)),
-                ("Newton", newton.kinematics_flat(&[phi], &g_newton, &cfg).map(|s| s.q)),
-                ("as declared, positions", plain.position_flat(&[phi], &g_plain, &cfg).map(|(q, _)| q)),
-                ("Newton, positions", newton.position_flat(&[phi], &g_newton, &cfg).map(|(q, _)| q)),
-            ] {
+            for (path, got) in declared_and_newton(&plain, &newton, phi, &cfg) {
                 match got {
                     Ok(q) => {
                         let off = (q[0] / k - rod_closed_form(phi)).abs() / (r + l + e);
@@ -956,13 +968,7 @@ fn a_four_bar_of_squared_lengths_is_solved_or_refused_as_too_large() {
         let (plain, newton) = (PinSquared { a, b, c, d }, PinSquaredNewton { a, b, c, d });
         for i in 0..12 {
             let phi = 0.3 + i as f64 * 0.5;
-            let (g_plain, g_newton) = (plain.guess_flat(&[phi]), newton.guess_flat(&[phi]));
-            for (path, got) in [
-                ("as declared", plain.kinematics_flat(&[phi], &g_plain, &cfg).map(|s| s.q)),
-                ("Newton", newton.kinematics_flat(&[phi], &g_newton, &cfg).map(|s| s.q)),
-                ("as declared, positions", plain.position_flat(&[phi], &g_plain, &cfg).map(|(q, _)| q)),
-                ("Newton, positions", newton.position_flat(&[phi], &g_newton, &cfg).map(|(q, _)| q)),
-            ] {
+            for (path, got) in declared_and_newton(&plain, &newton, phi, &cfg) {
                 match got {
                     Ok(q) => {
                         // In fractions of the size. The pin's transmission angle keeps the

@@ -44,12 +44,12 @@ kinloop::mechanism! {
 }
 
 /// The sizes beyond the closed forms' (`1e±144`).
-const SIZES: [f64; 6] = [1e-300, 1e-200, 1e-160, 1e160, 1e200, 1e300];
+pub(crate) const SIZES: [f64; 6] = [1e-300, 1e-200, 1e-160, 1e160, 1e200, 1e300];
 
 /// The rocker-driven four-bar at size 1: Grashof (`c + d = 5 <= a + b = 6.5`) with the crank
 /// `c` shortest, so the rocker `a` swings between the positions where coupler and crank lie in
 /// line, `|BD| = b + c` (stretched) and `|BD| = b - c` (folded), `B` the rocker's end.
-const ROCKER: [f64; 4] = [3.0, 3.5, 1.0, 4.0];
+pub(crate) const ROCKER: [f64; 4] = [3.0, 3.5, 1.0, 4.0];
 
 /// The offset slider-crank at size 1 (crank, rod, offset): the rod too short for the crank to
 /// turn (`l < r + e`).

@@ -277,7 +277,7 @@ pub fn whole_position<const N: usize>(
                 row[u] *= unit[u];
             }
         }
-        let rho = (0..N).fold(0.0f64, |m, r| m.max(ev.f[r].abs() / scale[r]));
+        let rho = scaled_residual(&ev.f, &scale);
         // Written so that a NaN residual is never the least.
         if rho < least.get().0 && ev.f.iter().all(|f| !f.is_nan()) {
             least.set((rho, *z));
@@ -285,7 +285,7 @@ pub fn whole_position<const N: usize>(
         evaluations.set(evaluations.get() + 1);
     };
     let z0 = core::array::from_fn::<f64, N, _>(|u| guess[u] / unit[u]);
-    let mut ev: BlockEval<N, 0> = BlockEval { f: [0.0; N], j: [[0.0; N]; N], keep: [] };
+    let mut ev = blank_evaluation::<N>();
     eval(&z0, &mut ev);
     let solved = match newton(z0, &mut ev, cfg, &mut eval, &mags) {
         Ok(solved) => solved,
@@ -389,7 +389,7 @@ fn keep_modes<const N: usize>(
     mags: &Magnitudes<N>,
     eval: &mut impl FnMut(&[f64; N], &mut BlockEval<N, 0>),
 ) -> Result<Solved<N>, BlockFailure> {
-    let mut ev: BlockEval<N, 0> = BlockEval { f: [0.0; N], j: [[0.0; N]; N], keep: [] };
+    let mut ev = blank_evaluation::<N>();
     for block in modes {
         let z = solved.z;
         let mut at_guess = z;
@@ -413,7 +413,7 @@ fn keep_modes<const N: usize>(
         // rounding of the residual over the determinant, which near a limit position is
         // `1e-7` rad where the two modes are closer than that (measured on the four-bar driven
         // by its rocker at its limit: its coupler moved by `6e-7` rad).
-        let rho = (0..N).fold(0.0f64, |m, r| m.max(ev.f[r].abs() / scale[r]));
+        let rho = scaled_residual(&ev.f, &scale);
         if rho <= cfg.residual_tol {
             solved = Solved { z: mirrored, residual: rho, ..solved };
             continue;
@@ -447,7 +447,7 @@ fn mirror<const N: usize>(
     block: &ModeBlock,
     eval: &mut impl FnMut(&[f64; N], &mut BlockEval<N, 0>),
 ) -> Option<[f64; N]> {
-    let mut ev: BlockEval<N, 0> = BlockEval { f: [0.0; N], j: [[0.0; N]; N], keep: [] };
+    let mut ev = blank_evaluation::<N>();
     eval(z, &mut ev);
     let (f, j) = (ev.f, ev.j);
     // The block's terms that turn with angle `u`: half the difference of the residuals at `z`
@@ -456,7 +456,8 @@ fn mirror<const N: usize>(
         let mut half = *z;
         half[u] += PI / unit[u];
         eval(&half, &mut ev);
-        block.rows.iter().map(|&r| f[r] / 2.0 - ev.f[r] / 2.0).collect::<Vec<f64>>()
+        let half_difference = |r: usize| f[r] / 2.0 - ev.f[r] / 2.0;
+        [half_difference(block.rows[0]), block.rows.get(1).map_or(0.0, |&r| half_difference(r))]
     };
     let mut out = *z;
     match (&block.rows[..], &block.cols[..]) {
@@ -521,7 +522,7 @@ fn limit_position<const N: usize>(
         return Err(fail);
     }
     let fine = cfg.with_residual_tol(0.0).with_step_tol(0.0).with_restarts(false);
-    let mut ev: BlockEval<N, 0> = BlockEval { f: [0.0; N], j: [[0.0; N]; N], keep: [] };
+    let mut ev = blank_evaluation::<N>();
     eval(&z, &mut ev);
     let again = match newton(z, &mut ev, &fine, &mut *eval, mags) {
         Ok(mut solved) => {
@@ -542,6 +543,16 @@ fn limit_position<const N: usize>(
         });
     }
     Err(fail)
+}
+
+/// An evaluation to be written by the caller's closure (its values are never read first).
+fn blank_evaluation<const N: usize>() -> BlockEval<N, 0> {
+    BlockEval { f: [0.0; N], j: [[0.0; N]; N], keep: [] }
+}
+
+/// The largest residual over its row's magnitude: the measure the rescue's tolerance applies to.
+fn scaled_residual<const N: usize>(f: &[f64; N], scale: &[f64; N]) -> f64 {
+    (0..N).fold(0.0f64, |m, r| m.max(f[r].abs() / scale[r]))
 }
 
 #[cfg(test)]
