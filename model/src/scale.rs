@@ -9,17 +9,18 @@
 //! (`kinloop::__gen::rescue`, the runtime's `extreme_scale`), and the analogs at it; the model
 //! does the same here, after a failed step only, with the runtime's own size test and
 //! whole-system solve (`outside_closed_form_sizes`, `whole_position`), so that both reach the
-//! same position to the bit. Where that solve fails too, its failure is the step's, made the
-//! failure of the block holding the equation it names (`in_block`) as the compiled
-//! mechanism's is, so that both explain it alike: the error of the same mechanism at size 1
-//! (no assembly where a crank cannot close its loop), not the one the closed forms' squares
-//! out of range made of it.
+//! same position to the bit (where Newton over the whole system fails, its blocks solved in
+//! turn, as the compiled mechanism's are). Where that solve fails too, its failure is the
+//! step's, made the failure of the block holding the equation it names (`in_block`) as the
+//! compiled mechanism's is, so that both explain it alike: the error of the same mechanism at
+//! size 1 (no assembly where a crank cannot close its loop), not the one the closed forms'
+//! squares out of range made of it.
 
 use crate::at::Jacobian;
 use crate::blocks::StepFailure;
 use crate::model::{Model, StepError};
 use kinloop_runtime::generated::{
-    AtLimit, BlockEval, BlockFailure, SolveReport, in_block, mode_blocks, outside_closed_form_sizes, whole_position,
+    AtLimit, BlockEval, BlockFailure, SolveReport, in_block, outside_closed_form_sizes, solve_blocks, whole_position,
 };
 use kinloop_runtime::{NewtonConfig, QuantityKind};
 
@@ -129,8 +130,9 @@ impl Model {
             return None;
         }
         let turns: [bool; N] = std::array::from_fn(|u| self.unknown_kinds()[u] == QuantityKind::Angle);
-        // The closed-form blocks whose assembly mode is kept, as the compiled rescue's.
-        let modes = mode_blocks(self.block_rows_cols.iter().cloned(), &self.closed_form_angles);
+        // The blocks in solve order, the closed forms' assembly modes kept, as the compiled
+        // rescue's.
+        let blocks = solve_blocks(self.block_rows_cols.iter().cloned(), &self.closed_form_angles);
         let mut at = Jacobian::default();
         let eval = |q: &[f64; N], ev: &mut BlockEval<N, 0>| {
             // The sizes were checked: not reached. NaN where it were, which Newton refuses.
@@ -144,7 +146,7 @@ impl Model {
         let guess: [f64; N] = std::array::from_fn(|u| guess[u]);
         let (scale, unit) = (std::array::from_fn(|e| jac.scale[e]), std::array::from_fn(|u| jac.unit[u]));
         Some(
-            whole_position(&guess, scale, unit, turns, cfg, at_limit, &modes, eval)
+            whole_position(&guess, scale, unit, turns, cfg, at_limit, &blocks, eval)
                 .map(|(q, report)| (q.to_vec(), report)),
         )
     }

@@ -554,6 +554,63 @@ fn a_mechanism_of_extreme_size_is_solved_as_the_compiled_one() {
 }
 
 declared! {
+    CHAIN_TEXT =>
+    /// Five four-bars, each driven by the last one's rocker: five closed-form blocks in turn.
+    pub struct Chain {
+        params a = 1.0, b = 3.5, c = 3.0, d = 4.0;
+        input phi;
+        unknowns b1 = 0.5, g1 = 1.5, b2 = 0.5, g2 = 1.5, b3 = 0.5, g3 = 1.5, b4 = 0.5, g4 = 1.5,
+            b5 = 0.5, g5 = 1.5;
+        loop l1: a @ phi + b @ b1 == (d, 0) + c @ g1;
+        loop l2: a @ g1 + b @ b2 == (d, 0) + c @ g2;
+        loop l3: a @ g2 + b @ b3 == (d, 0) + c @ g3;
+        loop l4: a @ g3 + b @ b4 == (d, 0) + c @ g4;
+        loop l5: a @ g4 + b @ b5 == (d, 0) + c @ g5;
+    }
+}
+
+/// A chain of five four-bars beyond the closed forms' sizes, where Newton over its ten unknowns
+/// at once fails from the declared guess at most inputs and the blocks are solved in turn: the
+/// model's position is the compiled one's to the bit where the compiled step solves, and where
+/// it fails, the model fails in the same block. Two chains: one whose rockers all swing through
+/// a whole turn of their cranks (crank 1, coupler 3.5, rocker 3, frame 4), one whose loops
+/// (crank 2, coupler 3, rocker 1.5, frame 2) cannot close at some inputs, in one block or
+/// another.
+#[test]
+fn a_chain_of_blocks_of_extreme_size_is_solved_in_turn_as_the_compiled_one() {
+    use kinloop_model::StepError;
+    let cfg = NewtonConfig::default();
+    let (mut solved, mut failed_later) = (0, 0);
+    for lengths in [[1.0, 3.5, 3.0, 4.0], [2.0, 3.0, 1.5, 2.0]] {
+        for k in [1e-300, 1e-200, 1e200, 1e300] {
+            let [a, b, c, d] = lengths.map(|l| l * k);
+            let compiled = Chain { a, b, c, d };
+            let mut model = read(CHAIN_TEXT);
+            common::set(&mut model, &[("a", a), ("b", b), ("c", c), ("d", d)]);
+            for i in 0..24 {
+                let x = [-3.0 + 0.25 * f64::from(i) + 0.01];
+                let guess = compiled.guess_flat(&x);
+                let c = compiled.kinematics_flat(&x, &guess, &cfg);
+                let m = model.kinematics(&x, &guess, &cfg);
+                match (c, m) {
+                    (Ok(c), Ok(m)) => {
+                        assert_eq!(c.q.to_vec(), m.q, "{lengths:?} at size {k:e}, phi {}", x[0]);
+                        solved += 1;
+                    }
+                    (Err(c), Err(StepError::Block { block, .. })) => {
+                        let want = c.location().and_then(|at| at.block.as_ref().map(|b| b.0));
+                        assert_eq!(want, Some(block), "{lengths:?} at size {k:e}, phi {}: {c}", x[0]);
+                        failed_later += usize::from(block > 0);
+                    }
+                    (c, m) => panic!("{lengths:?} at size {k:e}, phi {}: {c:?} against {m:?}", x[0]),
+                }
+            }
+        }
+    }
+    assert!(solved > 100 && failed_later > 20, "{solved} solved, {failed_later} failed after the first block");
+}
+
+declared! {
     ROD_SQUARED_TEXT =>
     /// The offset slider-crank by its rod's length squared alone: a Newton block of one length
     /// whose equation's terms are squared lengths.

@@ -260,7 +260,7 @@ where
 {
     let whole = extreme_scale::Whole {
         kinds: M::UNKNOWN_KINDS,
-        modes: mode_blocks::<M, N, NI, NO>(),
+        blocks: solve_blocks::<M, N, NI, NO>(),
         at_limit: extreme_scale::AtLimit::Singular,
         jacobian: |q: &[f64; N]| m.jacobian_flat(x, q),
         at: |q: &[f64; N], report: SolveReport| {
@@ -297,7 +297,7 @@ where
 {
     let whole = extreme_scale::Whole {
         kinds: M::UNKNOWN_KINDS,
-        modes: mode_blocks::<M, N, NI, NO>(),
+        blocks: solve_blocks::<M, N, NI, NO>(),
         at_limit: extreme_scale::AtLimit::Position,
         jacobian: |q: &[f64; N]| m.jacobian_flat(x, q),
         at: |q: &[f64; N], report: SolveReport| Ok((*q, report)),
@@ -328,7 +328,7 @@ where
 {
     let whole = extreme_scale::Whole {
         kinds: M::UNKNOWN_KINDS,
-        modes: mode_blocks::<M, N, NI, NO>(),
+        blocks: solve_blocks::<M, N, NI, NO>(),
         at_limit: extreme_scale::AtLimit::Singular,
         jacobian: |q: &[f64; N]| m.jacobian_flat(x, q),
         at: |q: &[f64; N], report: SolveReport| {
@@ -431,9 +431,10 @@ where
     Some((u.map_or("?", |u| M::UNKNOWNS[u]), value))
 }
 
-/// The closed-form blocks of `M` whose assembly mode the rescue keeps
-/// ([`extreme_scale::mode_blocks`]), by their equations' and unknowns' names.
-fn mode_blocks<M, const N: usize, const NI: usize, const NO: usize>() -> Vec<extreme_scale::ModeBlock>
+/// The blocks of `M` in solve order, as the rescue solves them in turn and keeps the closed
+/// forms' assembly modes ([`extreme_scale::solve_blocks`]), by their equations' and unknowns'
+/// names.
+fn solve_blocks<M, const N: usize, const NI: usize, const NO: usize>() -> Vec<extreme_scale::Block>
 where
     M: Mechanism<N, NI, NO> + ?Sized,
 {
@@ -442,7 +443,7 @@ where
         let cols = info.unknowns.iter().filter_map(|u| M::UNKNOWNS.iter().position(|n| n == u)).collect();
         (rows, cols)
     });
-    extreme_scale::mode_blocks(blocks, &M::CLOSED_FORM_ANGLES)
+    extreme_scale::solve_blocks(blocks, &M::CLOSED_FORM_ANGLES)
 }
 
 /// The error for a failure `fail` of Newton over the whole system of `m` (its row an index

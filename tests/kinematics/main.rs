@@ -13,6 +13,7 @@ mod support;
 
 mod assembly_modes_extreme_scales;
 mod cam_linkage;
+mod chained_blocks_extreme_scales;
 mod constants_named_like_declared_names;
 mod degrees;
 mod drawing;
