@@ -610,6 +610,30 @@ fn a_chain_of_blocks_of_extreme_size_is_solved_in_turn_as_the_compiled_one() {
     assert!(solved > 100 && failed_later > 20, "{solved} solved, {failed_later} failed after the first block");
 }
 
+/// The gear-lever's polar length beyond the closed forms' sizes, from guesses of either sign of
+/// its length: the model's positions alone are the compiled ones to the bit (both normalise the
+/// pin's direction with the runtime's `polar_norm`, which now refuses an overflowed square, and
+/// keep the closed form's root of the guess's sign in the rescue), and the length has the
+/// guess's sign as at size 1.
+#[test]
+fn a_polar_length_of_extreme_size_keeps_its_guess_s_sign_as_the_compiled_one() {
+    let cfg = NewtonConfig::default();
+    for k in [1e-300, 1e-200, 1e160, 1e200, 1e300] {
+        let compiled = fx::gear_lever::GearLever { l_c: 2.0 * k, l_p: 1.3 * k, u: 3.0 };
+        let mut model = read(fx::gear_lever::GEAR_LEVER_TEXT);
+        common::set(&mut model, &[("l_c", 2.0 * k), ("l_p", 1.3 * k)]);
+        for i in 0..12 {
+            let x = [-3.0 + 0.5 * f64::from(i) + 0.01];
+            for guess in [[3.3 * k, 0.0], [-3.3 * k, 0.0], [0.5 * k, 2.25], [-0.5 * k, -2.25]] {
+                let (c, _) = compiled.position_flat(&x, &guess, &cfg).unwrap_or_else(|e| panic!("{k:e} {x:?}: {e}"));
+                let m = model.positions(&x, &guess, &cfg).unwrap_or_else(|e| panic!("{k:e} {x:?}: {e:?}")).to_vec();
+                assert_eq!(c.to_vec(), m, "size {k:e}, alpha {}, from {guess:?}", x[0]);
+                assert_eq!(c[0] > 0.0, guess[0] > 0.0, "size {k:e}, alpha {}, from {guess:?}: {c:?}", x[0]);
+            }
+        }
+    }
+}
+
 declared! {
     ROD_SQUARED_TEXT =>
     /// The offset slider-crank by its rod's length squared alone: a Newton block of one length

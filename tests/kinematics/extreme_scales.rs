@@ -667,6 +667,20 @@ where
 /// `kinematics_flat` and the named `position` solved.
 const POSITION_SCALES: [f64; 4] = [1e-300, 1e-200, 1e200, 1e300];
 
+/// The positions alone of the gear-lever's polar length at every size are size 1's, and those
+/// of `kinematics_flat` to the bit: its closed form normalises the pin's direction by the
+/// square root of its squared length, which overflows from about `1.3e154` (at `1e155` the
+/// pin's coordinates are about `3e155`), and `position_flat` took the overflowed square for a
+/// direction of length 0: the length `-0.0` and an angle, its loop open by the pin's whole
+/// length, with no error, at `1e160`, `1e200` and `1e300` (`kinematics_flat`, whose analogs
+/// then fail, was rescued).
+#[test]
+fn positions_alone_of_a_polar_length_solve_at_every_scale() {
+    let polar = position_solves_at(polar_pin, [true, false], &[1e-300, 1e-200, 1e155, 1e160, 1e200, 1e300]);
+    eprintln!("positions alone over scales: polar pin {polar:.1e}");
+    assert!(polar <= POLAR_TOL, "{polar:e}");
+}
+
 /// The compiled `position_flat` (the positions alone, what a synthesis objective without
 /// derivatives and a drawing's reference state solve) is rescued beyond the closed forms' sizes
 /// as `kinematics_flat` is: the four-bar's, the slider-crank's (a length among the unknowns)

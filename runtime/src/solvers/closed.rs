@@ -495,15 +495,26 @@ pub(crate) fn reciprocal_power_of_two(x: f64) -> f64 {
 
 /// `sqrt(1 / d2)`, the normalisation of the direction `(a, b)` with `d2 = a² + b²` of a polar
 /// length along offset `(e0, e1)`, or the failure when there is no direction: a zero offset
-/// (a zero length, whose angle every value satisfies: singular) or a direction that vanishes
+/// (a zero length, whose angle every value satisfies: singular), a direction that vanishes
 /// although the offset does not (it cannot be reached: the relative residual 1, see
-/// `unreached`).
+/// `unreached`), or one whose square overflowed (`d2` infinite, its terms too large for `f64`:
+/// [`BlockFailure::Overflow`], which a mechanism beyond the closed forms' sizes answers by
+/// Newton, see `mechanism::extreme_scale`). Taken as a direction, an overflowed square gave the
+/// normalisation 0: a length 0, with no error.
 #[inline]
 pub fn polar_norm(d2: f64, e0: f64, e1: f64, cfg: &NewtonConfig) -> Result<f64, BlockFailure> {
     let ir = polar_norm_deferred(d2);
     // Written so that a NaN fails; infinite for a zero `d2`, and for one so small (an offset
-    // below about 1e-154 of the unit) that it has lost significant bits.
-    if ir <= f64::MAX { Ok(ir) } else { Err(no_root(d2, 0.0, e0.abs().max(e1.abs()), cfg)) }
+    // below about 1e-154 of the unit) that it has lost significant bits; zero for an infinite
+    // `d2`.
+    if ir <= f64::MAX && ir > 0.0 { Ok(ir) } else { Err(polar_failure(d2, e0, e1, cfg)) }
+}
+
+/// [`polar_norm`]'s failure for the squared direction `d2` of offset `(e0, e1)`.
+#[cold]
+#[inline(never)]
+fn polar_failure(d2: f64, e0: f64, e1: f64, cfg: &NewtonConfig) -> BlockFailure {
+    if d2 == f64::INFINITY { BlockFailure::Overflow { row: 0 } } else { no_root(d2, 0.0, e0.abs().max(e1.abs()), cfg) }
 }
 
 /// The test of a polar length's lever in a position-only solve: the length `|(e0, e1)|` against
