@@ -64,7 +64,10 @@ use crate::solvers::newton::{
 use core::cell::Cell;
 
 mod modes;
+mod system;
 use modes::keep_modes;
+pub use system::{AtLimit, Block};
+use system::{System, blank_evaluation, scaled_residual};
 
 /// The sizes (largest magnitude of an equation's terms: the sum of a loop's link lengths) at
 /// which every closed form computes exactly: `2^-480 .. 2^480`, about `1e-144 .. 1e144`. Their
@@ -212,21 +215,6 @@ fn with_row(fail: BlockFailure, mut to: impl FnMut(usize) -> usize) -> BlockFail
     }
 }
 
-/// What Newton over the whole system gives at a limit position of the input (a root it reaches
-/// only linearly, where two assembly modes meet and the Jacobian is singular), where a closed
-/// form gives its double root: the position, for a solve of the positions alone (the compiled
-/// `position_flat`, the run-time model's `positions`), as the closed form does at size 1; or
-/// Newton's singular failure, for a solve of the analogs, as the closed form's analogs fail
-/// there (they are not determined: see [`whole_position`]).
-#[doc(hidden)]
-#[derive(Clone, Copy, Debug, PartialEq, Eq)]
-pub enum AtLimit {
-    /// The position, to the rounding of the residual (see [`whole_position`]).
-    Position,
-    /// Newton's [`BlockFailure::Singular`].
-    Singular,
-}
-
 /// The position of a mechanism of `N` unknowns solved by Newton over the whole system from
 /// `guess`: `scale` its equations' magnitudes and `unit` its unknowns' units at the guess (a
 /// unit that is not finite and positive counts as one), `turns` which unknowns are angles, and
@@ -276,17 +264,6 @@ pub fn whole_position<const N: usize>(
         Some(solved) => solved,
         None => solve_all(guess, &system, blocks, &mut at),
     }
-}
-
-/// What every solve of [`whole_position`] shares, of the whole system or of one of its blocks:
-/// the equations' magnitudes, the unknowns' units (positive and finite) and which are angles,
-/// the configuration, and what a limit position gives.
-struct System<'a, const N: usize> {
-    scale: [f64; N],
-    unit: [f64; N],
-    turns: [bool; N],
-    cfg: &'a NewtonConfig,
-    at_limit: AtLimit,
 }
 
 /// [`whole_position`]'s Newton over all `N` unknowns of `system` at once, each closed-form
@@ -459,23 +436,6 @@ fn solve_block<const K: usize, const N: usize>(
     Ok(Walk { to, report })
 }
 
-/// A block of a mechanism's decomposition as [`whole_position`] sees it: its equations
-/// (indices into the whole system's, in the block's order), its unknowns, and whether it is a
-/// closed-form block whose root is kept in the assembly mode the closed form picks from the
-/// guess: one angle (`a cos q + b sin q = c`), a dyad's two angles (two links of fixed lengths
-/// closing a loop), or an angle and a length (a length along a turning direction, or a slider).
-/// Made by [`solve_blocks`].
-#[doc(hidden)]
-#[derive(Clone, Debug, PartialEq, Eq)]
-pub struct Block {
-    /// The block's equations, as rows of the whole system.
-    pub rows: Vec<usize>,
-    /// The block's unknowns, as columns of the whole system.
-    pub cols: Vec<usize>,
-    /// Whether its assembly mode is kept (see `keep_modes`).
-    pub closed_form: bool,
-}
-
 /// The blocks of a mechanism, in solve order, as [`whole_position`] takes them: `blocks` each
 /// block's rows and columns (of the whole system), `closed_form_angles` which unknowns closed
 /// forms give as angles (`Mechanism::CLOSED_FORM_ANGLES`). A square block of one or two
@@ -551,16 +511,6 @@ fn limit_position<const N: usize>(
         });
     }
     Err(fail)
-}
-
-/// An evaluation to be written by the caller's closure (its values are never read first).
-fn blank_evaluation<const N: usize>() -> BlockEval<N, 0> {
-    BlockEval { f: [0.0; N], j: [[0.0; N]; N], keep: [] }
-}
-
-/// The largest residual over its row's magnitude: the measure the rescue's tolerance applies to.
-fn scaled_residual<const N: usize>(f: &[f64; N], scale: &[f64; N]) -> f64 {
-    (0..N).fold(0.0f64, |m, r| m.max(f[r].abs() / scale[r]))
 }
 
 #[cfg(test)]

@@ -3,7 +3,7 @@
 //! determinant there), taken where Newton reached the other (`keep_modes`), the other root
 //! found from the block's residuals alone (`mirror`), in the equations' own magnitudes.
 
-use super::{Block, System, blank_evaluation, scaled_residual};
+use super::system::{Block, System, blank_evaluation, scaled_residual};
 use crate::solvers::newton::{BlockEval, BlockFailure, Magnitudes, Solved, newton};
 use crate::solvers::turns::unwrap_to_turn;
 use core::f64::consts::PI;
