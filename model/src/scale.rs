@@ -81,8 +81,12 @@ impl Model {
         {
             return Err(error);
         }
+        // Beyond the closed forms' sizes, or where one overflowed inside them (a square of four
+        // lengths), as the compiled mechanism's rescue.
+        let overflowed =
+            matches!(error, StepError::Block { failure: StepFailure::Block(BlockFailure::Overflow { .. }), .. });
         let mut jac = Jacobian::default();
-        if self.jacobian(x, guess, &mut jac).is_err() || !outside_closed_form_sizes(&jac.scale) {
+        if self.jacobian(x, guess, &mut jac).is_err() || !(overflowed || outside_closed_form_sizes(&jac.scale)) {
             return Err(error);
         }
         macro_rules! whole {

@@ -635,6 +635,43 @@ fn a_polar_length_of_extreme_size_keeps_its_guess_s_sign_as_the_compiled_one() {
 }
 
 declared! {
+    SCALED_POLAR_TEXT =>
+    /// The gear-lever's pin as a ratio `s` of a rod of length `l` and its angle: a closed form
+    /// whose squared direction is a product of four lengths.
+    pub struct ScaledPolar {
+        params l_c = 2.0, l_p = 1.3, u = 3.0, l = 2.5;
+        input alpha;
+        unknowns s = 1.0, phi = 0;
+        let pin = (l_c * sin(alpha), l_c * cos(alpha))
+                + (l_p * sin((1 - u) * alpha), l_p * cos((1 - u) * alpha));
+        loop oab: pin == s * (l * sin(phi), l * cos(phi));
+    }
+}
+
+/// Where that closed form's square overflows inside the closed forms' sizes (`1e80`, `1e100`)
+/// and beyond them (`1e200`), the model solves the position again by Newton as the compiled
+/// mechanism does: its positions alone and its kinematics the compiled ones, to the bit.
+#[test]
+fn a_closed_form_overflowed_inside_the_sizes_is_solved_as_the_compiled_one() {
+    let cfg = NewtonConfig::default();
+    for k in [1e80, 1e100, 1e200] {
+        let compiled = ScaledPolar { l_c: 2.0 * k, l_p: 1.3 * k, u: 3.0, l: 2.5 * k };
+        let mut model = read(SCALED_POLAR_TEXT);
+        common::set(&mut model, &[("l_c", 2.0 * k), ("l_p", 1.3 * k), ("l", 2.5 * k)]);
+        for i in 0..12 {
+            let x = [-3.0 + 0.5 * f64::from(i) + 0.01];
+            let guess = compiled.guess_flat(&x);
+            let (c, _) = compiled.position_flat(&x, &guess, &cfg).unwrap_or_else(|e| panic!("{k:e} {x:?}: {e}"));
+            let m = model.positions(&x, &guess, &cfg).unwrap_or_else(|e| panic!("{k:e} {x:?}: {e:?}")).to_vec();
+            assert_eq!(c.to_vec(), m, "positions at size {k:e}, alpha {}", x[0]);
+            let c = compiled.kinematics_flat(&x, &guess, &cfg).unwrap_or_else(|e| panic!("{k:e} {x:?}: {e}"));
+            let m = model.kinematics(&x, &guess, &cfg).unwrap_or_else(|e| panic!("{k:e} {x:?}: {e:?}"));
+            assert_eq!((c.q.to_vec(), c.dq.concat()), (m.q.clone(), m.dq.clone()), "size {k:e}, alpha {}", x[0]);
+        }
+    }
+}
+
+declared! {
     ROD_SQUARED_TEXT =>
     /// The offset slider-crank by its rod's length squared alone: a Newton block of one length
     /// whose equation's terms are squared lengths.

@@ -697,6 +697,39 @@ fn positions_alone_of_a_polar_length_solve_at_every_scale() {
     assert!(polar <= POLAR_TOL, "{polar:e}");
 }
 
+kinloop::mechanism! {
+    /// The gear-lever's pin read as a ratio `s` of a rod of length `l` and its angle `phi`: a
+    /// length along a turning direction whose direction carries a length, so that the closed
+    /// form's squared direction is a product of four lengths.
+    pub struct ScaledPolar {
+        params l_c, l_p, u, l;
+        input alpha;
+        unknowns s = 1.0, phi = 0;
+        let pin = (l_c * sin(alpha), l_c * cos(alpha))
+                + (l_p * sin((1 - u) * alpha), l_p * cos((1 - u) * alpha));
+        loop oab: pin == s * (l * sin(phi), l * cos(phi));
+    }
+}
+
+fn scaled_polar(k: f64) -> ScaledPolar {
+    ScaledPolar { l_c: 2.0 * k, l_p: 1.3 * k, u: 3.0, l: 2.5 * k }
+}
+
+/// A closed form whose squares are products of four lengths overflows from about `1e77` of its
+/// unit, inside the sizes the rescue is made for (`1e±144`): there its overflow is answered by
+/// Newton as beyond them, and the ratio and the angle are size 1's, the point solves and the
+/// positions alone, at every size up to `1e300`. From `1e77` to `1e140` both failed, said to
+/// leave the equation's domain (`Error::Domain`), a mechanism that is fine.
+#[test]
+fn a_closed_form_of_four_lengths_solves_where_its_squares_overflow() {
+    assert!(ScaledPolar::DECOMPOSITION.contains("closed form, length and angle"), "{}", ScaledPolar::DECOMPOSITION);
+    let ks = [1e60, 1e77, 1e80, 1e100, 1e140, 1e160, 1e300];
+    let solved = point_solves_at(scaled_polar, [false, false], &ks);
+    let alone = position_solves_at(scaled_polar, [false, false], &ks);
+    eprintln!("scaled polar over scales: point solves {solved:.1e}, positions alone {alone:.1e}");
+    assert!(solved <= POLAR_TOL && alone <= POLAR_TOL, "{solved:e} {alone:e}");
+}
+
 /// The compiled `position_flat` (the positions alone, what a synthesis objective without
 /// derivatives and a drawing's reference state solve) is rescued beyond the closed forms' sizes
 /// as `kinematics_flat` is: the four-bar's, the slider-crank's (a length among the unknowns)

@@ -9,7 +9,9 @@
 //! Newton's method judges every residual and step in the magnitudes of the equations and
 //! unknowns (see [`newton`](crate::solvers::newton)) and works at every representable size.
 //!
-//! So where a checked kernel fails for a mechanism outside [`CLOSED_FORM_SIZES`], the position
+//! So where a checked kernel fails for a mechanism outside [`CLOSED_FORM_SIZES`] (or fails as
+//! overflowed inside them: a closed form whose square is a product of four lengths, a length
+//! along a direction that is itself a length, overflows from about `1e77`), the position
 //! is solved again by Newton over the whole system (its residuals and Jacobian from
 //! [`Mechanism::jacobian_flat`](crate::Mechanism::jacobian_flat), from the same guess), and the
 //! analogs and outputs at that position by
@@ -17,8 +19,9 @@
 //! are scaled (and for a sensitivity solve, the sensitivities too, by
 //! [`Sensitivities::sensitivities_at_flat`](crate::Sensitivities::sensitivities_at_flat); for a
 //! solve of the positions alone, [`Mechanism::position_flat`](crate::Mechanism::position_flat),
-//! nothing more). Inside the range the kernel's own error stands: nothing changes for a
-//! mechanism of ordinary size, and the hot path pays nothing (this runs only after a failure).
+//! nothing more). Inside the range the kernel's own error stands, an overflow's save: nothing
+//! changes for a mechanism of ordinary size, and the hot path pays nothing (this runs only after
+//! a failure).
 //!
 //! **Its blocks in turn.** Newton over every unknown at once needs a guess close enough for all
 //! the blocks together; the generated solver and the closed forms solve one block at a time,
@@ -108,7 +111,8 @@ pub(crate) struct Whole<J, A, F, const N: usize> {
 }
 
 /// The answer to a checked kernel's failure `error` at input `x` from `guess`, for the mechanism
-/// `m` describes: for a mechanism outside [`CLOSED_FORM_SIZES`], the position solved by Newton
+/// `m` describes: for a mechanism outside [`CLOSED_FORM_SIZES`] (or an `error` of overflow at
+/// any size: see [`jacobian_to_rescue`]), the position solved by Newton
 /// over the whole system and `m`'s result there, or where Newton fails, its failure as `m`'s
 /// error (where the result fails, the result's error); otherwise `error`. A value given that
 /// is not finite, or an invalid configuration, explains the failure at any size: `error`
@@ -131,27 +135,31 @@ where
     {
         return Err(error);
     }
-    match jacobian_outside(m, guess) {
+    match jacobian_to_rescue(m, guess, matches!(error, Error::Overflow { .. })) {
         Some(jac) => solve_whole(m, guess, cfg, &jac),
         None => Err(error),
     }
 }
 
 /// The Jacobian at `guess` when its magnitudes put the mechanism outside
-/// [`CLOSED_FORM_SIZES`]. Its own function, the Jacobian moved to the heap: for a large
-/// mechanism it is big (512 KiB for 256 unknowns), and in an unoptimised build a frame keeps
-/// every value it made, so the common case (an ordinary size, nothing to rescue) must not
-/// share one with the whole-system solve.
+/// [`CLOSED_FORM_SIZES`], or whatever they are where the failure `overflowed`: a closed form
+/// whose squares are products of more than two lengths (a length along a direction that is
+/// itself a length, its square four lengths) overflows inside those sizes too, from about
+/// `1e77` of its unit, where Newton's equations, of the lengths' own magnitude, do not. Its own
+/// function, the Jacobian moved to the heap: for a large mechanism it is big (512 KiB for 256
+/// unknowns), and in an unoptimised build a frame keeps every value it made, so the common case
+/// (an ordinary size, nothing to rescue) must not share one with the whole-system solve.
 #[inline(never)]
-fn jacobian_outside<J, A, F, const N: usize, const NI: usize>(
+fn jacobian_to_rescue<J, A, F, const N: usize, const NI: usize>(
     m: &Whole<J, A, F, N>,
     guess: &[f64; N],
+    overflowed: bool,
 ) -> Option<Box<Jac<N, NI>>>
 where
     J: Fn(&[f64; N]) -> Jac<N, NI>,
 {
     let jac = Box::new((m.jacobian)(guess));
-    outside_closed_form_sizes(&jac.scale).then_some(jac)
+    (overflowed || outside_closed_form_sizes(&jac.scale)).then_some(jac)
 }
 
 /// [`rescue`]'s Newton over the whole system from `guess`, whose Jacobian is `jac`, and `m`'s
