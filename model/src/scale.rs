@@ -7,20 +7,19 @@
 //! rounded away) where the mechanism is fine. The compiled mechanism's checked step then solves
 //! the position again by Newton over the whole system in dimensionless unknowns
 //! (`kinloop::__gen::rescue`, the runtime's `extreme_scale`), and the analogs at it; the model
-//! does the same here, after a failed step only, with the runtime's own size test and
-//! whole-system solve (`outside_closed_form_sizes`, `whole_position`), so that both reach the
-//! same position to the bit (where Newton over the whole system fails, its blocks solved in
-//! turn, as the compiled mechanism's are). Where that solve fails too, its failure is the
-//! step's, made the failure of the block holding the equation it names (`in_block`) as the
-//! compiled mechanism's is, so that both explain it alike: the error of the same mechanism at
-//! size 1 (no assembly where a crank cannot close its loop), not the one the closed forms'
-//! squares out of range made of it.
+//! does the same here, after a failed step only, with the runtime's own test and solve
+//! (`to_rescue`: beyond the closed forms' sizes, or an overflow at any size; `whole_position`:
+//! the blocks in turn, as the compiled mechanism's), so that both reach the same position to the
+//! bit. Where that solve fails too, its failure is the step's, made the failure of the block
+//! holding the equation it names (`in_block`) as the compiled mechanism's is, so that both
+//! explain it alike: the error of the same mechanism at size 1 (no assembly where a crank cannot
+//! close its loop), not the one the closed forms' squares out of range made of it.
 
 use crate::at::Jacobian;
 use crate::blocks::StepFailure;
 use crate::model::{Model, StepError};
 use kinloop_runtime::generated::{
-    AtLimit, BlockEval, BlockFailure, SolveReport, in_block, outside_closed_form_sizes, solve_blocks, whole_position,
+    AtLimit, BlockEval, BlockFailure, SolveReport, in_block, solve_blocks, to_rescue, whole_position,
 };
 use kinloop_runtime::{NewtonConfig, QuantityKind};
 
@@ -81,12 +80,12 @@ impl Model {
         {
             return Err(error);
         }
-        // Beyond the closed forms' sizes, or where one overflowed inside them (a square of four
-        // lengths), as the compiled mechanism's rescue.
+        // Beyond the closed forms' sizes, or where one overflowed inside them, as the compiled
+        // mechanism's rescue.
         let overflowed =
             matches!(error, StepError::Block { failure: StepFailure::Block(BlockFailure::Overflow { .. }), .. });
         let mut jac = Jacobian::default();
-        if self.jacobian(x, guess, &mut jac).is_err() || !(overflowed || outside_closed_form_sizes(&jac.scale)) {
+        if self.jacobian(x, guess, &mut jac).is_err() || !to_rescue(&jac.scale, overflowed) {
             return Err(error);
         }
         macro_rules! whole {

@@ -81,13 +81,17 @@ pub const CLOSED_FORM_SIZES: (f64, f64) = (1.0 / TWO_480, TWO_480);
 /// `2^480`, exact.
 const TWO_480: f64 = (1u128 << 120) as f64 * (1u128 << 120) as f64 * (1u128 << 120) as f64 * (1u128 << 120) as f64;
 
-/// Whether equation magnitudes `scale` (the finite ones) put the mechanism outside
-/// [`CLOSED_FORM_SIZES`]: its largest beyond either end. A run-time model asks the same
-/// (`kinloop_runtime::generated::outside_closed_form_sizes`).
+/// Whether a failed solve is solved again by Newton ([`rescue`]): where the equation
+/// magnitudes `scale` (the finite ones) put the mechanism outside [`CLOSED_FORM_SIZES`], its
+/// largest beyond either end, or where the failure `overflowed`, at any size: a closed form whose
+/// squares are products of more than two lengths (a length along a direction that is itself a
+/// length, its square four lengths) overflows inside those sizes too, from about `1e77` of its
+/// unit, where Newton's equations, of the lengths' own magnitude, do not. A run-time model asks
+/// the same (`kinloop_runtime::generated::to_rescue`).
 #[doc(hidden)]
-pub fn outside_closed_form_sizes(scale: &[f64]) -> bool {
+pub fn to_rescue(scale: &[f64], overflowed: bool) -> bool {
     let size = scale.iter().fold(0.0f64, |s, v| if v.is_finite() { s.max(v.abs()) } else { s });
-    size > 0.0 && !(size >= CLOSED_FORM_SIZES.0 && size <= CLOSED_FORM_SIZES.1)
+    overflowed || (size > 0.0 && !(size >= CLOSED_FORM_SIZES.0 && size <= CLOSED_FORM_SIZES.1))
 }
 
 /// What the rescue needs of a mechanism: the kinds of its unknowns (which are angles, whose
@@ -112,7 +116,7 @@ pub(crate) struct Whole<J, A, F, const N: usize> {
 
 /// The answer to a checked kernel's failure `error` at input `x` from `guess`, for the mechanism
 /// `m` describes: for a mechanism outside [`CLOSED_FORM_SIZES`] (or an `error` of overflow at
-/// any size: see [`jacobian_to_rescue`]), the position solved by Newton
+/// any size: see [`to_rescue`]), the position solved by Newton
 /// over the whole system and `m`'s result there, or where Newton fails, its failure as `m`'s
 /// error (where the result fails, the result's error); otherwise `error`. A value given that
 /// is not finite, or an invalid configuration, explains the failure at any size: `error`
@@ -141,12 +145,9 @@ where
     }
 }
 
-/// The Jacobian at `guess` when its magnitudes put the mechanism outside
-/// [`CLOSED_FORM_SIZES`], or whatever they are where the failure `overflowed`: a closed form
-/// whose squares are products of more than two lengths (a length along a direction that is
-/// itself a length, its square four lengths) overflows inside those sizes too, from about
-/// `1e77` of its unit, where Newton's equations, of the lengths' own magnitude, do not. Its own
-/// function, the Jacobian moved to the heap: for a large mechanism it is big (512 KiB for 256
+/// The Jacobian at `guess` when the failure is to be rescued ([`to_rescue`]: its magnitudes
+/// outside [`CLOSED_FORM_SIZES`], or the failure `overflowed`). Its own function, the Jacobian
+/// moved to the heap: for a large mechanism it is big (512 KiB for 256
 /// unknowns), and in an unoptimised build a frame keeps every value it made, so the common case
 /// (an ordinary size, nothing to rescue) must not share one with the whole-system solve.
 #[inline(never)]
@@ -159,7 +160,7 @@ where
     J: Fn(&[f64; N]) -> Jac<N, NI>,
 {
     let jac = Box::new((m.jacobian)(guess));
-    (overflowed || outside_closed_form_sizes(&jac.scale)).then_some(jac)
+    to_rescue(&jac.scale, overflowed).then_some(jac)
 }
 
 /// [`rescue`]'s Newton over the whole system from `guess`, whose Jacobian is `jac`, and `m`'s
@@ -364,10 +365,7 @@ fn in_order<const N: usize>(
             Err(fail) => return Some(Err(fail)),
         };
         q = to;
-        report.iterations += solved.iterations;
-        report.evaluations += solved.evaluations;
-        report.residual = report.residual.max(solved.residual);
-        report.termination = report.termination.max(solved.termination);
+        report.merge(&solved);
     }
     Some(Ok((q, report)))
 }

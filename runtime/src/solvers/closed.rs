@@ -498,8 +498,8 @@ pub(crate) fn reciprocal_power_of_two(x: f64) -> f64 {
 /// (a zero length, whose angle every value satisfies: singular), a direction that vanishes
 /// although the offset does not (it cannot be reached: the relative residual 1, see
 /// `unreached`), or one whose square overflowed (`d2` infinite, its terms too large for `f64`:
-/// [`BlockFailure::Overflow`], which a mechanism beyond the closed forms' sizes answers by
-/// Newton, see `mechanism::extreme_scale`). Taken as a direction, an overflowed square gave the
+/// [`BlockFailure::Overflow`], which the rescue answers by Newton at any size, see
+/// `mechanism::extreme_scale`). Taken as a direction, an overflowed square gave the
 /// normalisation 0: a length 0, with no error.
 #[inline]
 pub fn polar_norm(d2: f64, e0: f64, e1: f64, cfg: &NewtonConfig) -> Result<f64, BlockFailure> {

@@ -95,6 +95,15 @@ impl SolveReport {
         SolveReport { iterations: 0, evaluations: 1, residual, termination: NewtonStop::Given }
     }
 
+    /// The report of two solves as one (a mechanism's blocks solved in turn): their iterations
+    /// and evaluations summed, the larger residual, the weaker stop.
+    pub(crate) fn merge(&mut self, other: &SolveReport) {
+        self.iterations += other.iterations;
+        self.evaluations += other.evaluations;
+        self.residual = self.residual.max(other.residual);
+        self.termination = self.termination.max(other.termination);
+    }
+
     #[doc(hidden)]
     #[inline]
     pub fn absorb<const N: usize>(&mut self, s: &Solved<N>) {
