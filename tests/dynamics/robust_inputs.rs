@@ -220,6 +220,13 @@ fn settings(calm: bool) -> impl Strategy<Value = Settings> {
     (m(0.1, 20.0, c), m(0.0, 20.0, c), m(0.0, 20.0, c), m(1e-3, 1.9, c), m(0.1, 2.0, c), m(0.0, 20.0, c))
 }
 
+/// The integration's budget of steps in [`exercise`]: it covers every ordinary machine. The
+/// slowest found over a grid of the ordinary ranges' corners (the crank and rod 0.1, the slider
+/// 10, a crank 2.5 of the rod's 3, 20 rad/s for 2 s, no flywheel) took 1255; a budget of 400
+/// failed a case drawn in CI (976 steps, see
+/// [`an_ordinary_machine_of_a_light_crank_and_a_heavy_slider_is_simulated`]).
+const SIMULATION_STEPS: usize = 4000;
+
 /// Runs every public dynamics entry on `m` (built from values all ordinary when `machine`) with
 /// hostile settings; panics on an `Ok` holding a number that is not finite, and on an error where
 /// every value was ordinary.
@@ -287,7 +294,7 @@ fn exercise(tally: &Tally, m: &Machine, model: &Model, machine: bool, v: Setting
     }
     let cfg = RunConfig::default()
         .with_flywheel(flywheel.0)
-        .with_ode(OdeConfig::default().with_tolerances(1e-6, 1e-6).with_max_steps(400));
+        .with_ode(OdeConfig::default().with_tolerances(1e-6, 1e-6).with_max_steps(SIMULATION_STEPS));
     let torque = delta.0;
     let drive = move |_: f64, _: f64, _: f64| torque;
     let start_guess = m.guess_flat(&[phi0.0]);
@@ -456,4 +463,30 @@ fn a_large_start_angle_runs_or_is_a_bad_value_never_a_kinematic_failure() {
     }
     // The bound falls between 1e6 (every count runs) and 1e16 (none does).
     assert!(ran >= 3 && refused >= 3, "{ran} ran, {refused} refused");
+}
+
+/// The ordinary machine CI drew whose simulation took more than the old budget of 400 steps:
+/// free-running (torque 1e-3, no flywheel, no gravity) at 18.8 rad/s for 1.77 s, a crank 2.31
+/// of the rod's 3, the crank and rod of mass and inertia 0.1 and the slider 9.96. Simulated
+/// within [`SIMULATION_STEPS`], in 976 steps.
+#[test]
+fn an_ordinary_machine_of_a_light_crank_and_a_heavy_slider_is_simulated() {
+    let m = Machine {
+        m1: 0.1,
+        j1: 0.1,
+        m2: 0.1,
+        j2: 0.1,
+        m3: 9.960378776896958,
+        g: 0.0,
+        r: 2.3107566662151595,
+        ..Machine::default()
+    };
+    let model = m.mass_model().unwrap();
+    let ode = OdeConfig::default().with_tolerances(1e-6, 1e-6).with_max_steps(SIMULATION_STEPS);
+    let cfg = RunConfig::default().with_flywheel(0.0).with_ode(ode);
+    let phi0 = 8.41837820635888;
+    let sim = Simulation::new(&m, &model).start(phi0, 18.816206127670185).guess(m.guess_flat(&[phi0]));
+    let run =
+        sim.drive(|_: f64, _: f64, _: f64| 1e-3).config(cfg).run(1.773034010756632).unwrap_or_else(|e| panic!("{e}"));
+    assert!(run.steps.len() > 400, "{} steps", run.steps.len());
 }
