@@ -238,14 +238,49 @@ pub fn tokens(name: &str, text: &str) -> Result<TokenStream, Diagnostics> {
             items: vec![d],
         });
     }
-    text.parse::<TokenStream>().map_err(|e| {
+    let lexed = text.parse::<TokenStream>().map_err(|e| {
         let mut d = at_span(text, e.span(), String::new());
         d.message = lex_message(&text[d.range.start..], &e);
         if let Some(open) = unclosed_before(text, &d) {
             d = open;
         }
         Diagnostics { level: Level::Error, name: name.to_string(), text: text.to_string(), items: vec![d] }
-    })
+    })?;
+    // An ASCII text (nearly every one) has nothing to normalise.
+    Ok(if text.is_ascii() { lexed } else { nfc_identifiers(lexed) })
+}
+
+/// `tokens` with every identifier in Unicode Normalization Form C, each at its own span, as
+/// the compiler reads identifiers: a name written with a precomposed letter (`é`, U+00E9) and
+/// the same name with a base letter and a combining mark (`e` U+0065, U+0301) are one name in
+/// a compiled declaration, so they are one name in a text read at run time too. proc-macro2's
+/// lexer, outside a compiler, keeps identifiers as written.
+fn nfc_identifiers(tokens: TokenStream) -> TokenStream {
+    use proc_macro2::{Group, Ident, TokenTree};
+    use unicode_normalization::{UnicodeNormalization, is_nfc};
+    tokens
+        .into_iter()
+        .map(|tree| match tree {
+            TokenTree::Ident(ident) => {
+                let written = ident.to_string();
+                if is_nfc(&written) {
+                    return TokenTree::Ident(ident);
+                }
+                // The normal form of an identifier is an identifier (XID is closed under NFC).
+                let normal = match written.strip_prefix("r#") {
+                    Some(raw) => Ident::new_raw(&raw.nfc().collect::<String>(), ident.span()),
+                    None => Ident::new(&written.nfc().collect::<String>(), ident.span()),
+                };
+                TokenTree::Ident(normal)
+            }
+            TokenTree::Group(group) => {
+                let mut normal = Group::new(group.delimiter(), nfc_identifiers(group.stream()));
+                normal.set_span(group.span());
+                TokenTree::Group(normal)
+            }
+            other => other,
+        })
+        .collect()
 }
 
 /// Rust's white space (`Pattern_White_Space`): the only characters between tokens the compiler

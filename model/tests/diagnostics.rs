@@ -260,3 +260,30 @@ fn a_long_line_is_shown_around_the_mistake() {
     };
     assert!(d.render(false).contains("eq e: x == a * phy; }"), "{}", d.render(false));
 }
+
+/// A name is read in Unicode Normalization Form C, as the compiler reads identifiers: written
+/// with a precomposed letter (`é`, U+00E9) in one place and with a base letter and a combining
+/// mark (`e`, U+0301) in another, it is one name. (The UI test `duplicate_name_in_normal_form`
+/// pins the compiler's reading: the two forms declared twice are one name declared twice, and
+/// the parity test above reads it at run time with the same message and place.)
+#[test]
+fn a_name_written_with_a_combining_mark_is_its_precomposed_name() {
+    let text = |declared: &str, used: &str| {
+        format!(
+            "pub struct S {{\n    params r = 1, {declared} = 3, e = 0.5;\n    input phi;\n    unknowns psi = 0, x = 4;\n    \
+             loop oab: r @ phi == (x, e) + {used} @ psi;\n}}\n"
+        )
+    };
+    let composed = "l\u{e9}";
+    let decomposed = "le\u{301}";
+    let mut reference = Model::read("composed.kl", &text(composed, composed)).unwrap();
+    for (declared, used) in [(composed, decomposed), (decomposed, composed), (decomposed, decomposed)] {
+        let mut m = Model::read("mixed.kl", &text(declared, used)).unwrap_or_else(|e| panic!("{declared} {used}: {e}"));
+        assert_eq!(m.params(), ["r", composed, "e"]);
+        let (got, want) = (m.solve(&[0.7]).unwrap().q.clone(), reference.solve(&[0.7]).unwrap().q.clone());
+        assert_eq!(got, want, "{declared} {used}");
+    }
+    // A raw identifier too.
+    let raw = text(composed, &format!("r#{decomposed}"));
+    assert_eq!(Model::read("raw.kl", &raw).unwrap().params(), ["r", composed, "e"]);
+}

@@ -108,6 +108,24 @@ fn fourier_refuses_a_range_short_of_a_turn_at_every_scale() {
         let unit = Sampled::sweep(&M, 0.0, TAU, 73, M.guess(0.0)).unwrap().fourier(SliderCrank::COL.x, 2).unwrap();
         assert!((f.amplitude(1) / k - unit.amplitude(1)).abs() < 1e-12 * unit.amplitude(1), "{k}: {f:?}");
     }
+    // The unit mechanism's coefficients against the construction's own: the trapezoidal rule over
+    // a period, exact to the rounding for a smooth periodic function (the slider's harmonics fall
+    // as (r / l)^k: those that alias onto the first two from 72 samples or 4096 weigh nothing).
+    let unit = Sampled::sweep(&M, 0.0, TAU, 73, M.guess(0.0)).unwrap().fourier(SliderCrank::COL.x, 2).unwrap();
+    let n = 4096;
+    let coefficient = |k: usize, of: fn(f64) -> f64| {
+        2.0 / n as f64
+            * (0..n).map(|j| TAU * j as f64 / n as f64).map(|p| construction(p).1 * of(k as f64 * p)).sum::<f64>()
+    };
+    for k in 1..=2 {
+        let (a, b) = (coefficient(k, f64::cos), coefficient(k, f64::sin));
+        assert!(
+            (unit.a[k - 1] - a).abs() < 1e-13 * M.l && (unit.b[k - 1] - b).abs() < 1e-13 * M.l,
+            "{k}: {unit:?} against ({a}, {b})"
+        );
+    }
+    let mean = (0..n).map(|j| construction(TAU * j as f64 / n as f64).1).sum::<f64>() / n as f64;
+    assert!((unit.a0 - mean).abs() < 1e-13 * M.l, "{unit:?} against {mean}");
 }
 
 /// A range of half a turn starting a ten-millionth of a radian before the slider's stretched dead

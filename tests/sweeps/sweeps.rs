@@ -8,6 +8,14 @@ use std::f64::consts::{PI, TAU};
 
 use crate::support::{four_bar_joint, four_bar_limit, tol};
 
+/// The side of the diagonal B -> D on which the four-bar's joint C = `(cx, cy)` lies at crank
+/// angle `phi` (+1 left, -1 right, as [`four_bar_joint`] takes it): its assembly mode, from the
+/// positions alone.
+fn joint_side(m: &FourBar, phi: f64, cx: f64, cy: f64) -> f64 {
+    let (bx, by) = (m.a * phi.cos(), m.a * phi.sin());
+    ((m.d - bx) * (cy - by) - (0.0 - by) * (cx - bx)).signum()
+}
+
 /// The crank angles where coupler and rocker are collinear: `|BD| = b + c` or `|b - c|`.
 pub(crate) fn limit_angles(m: &FourBar) -> Vec<f64> {
     [m.b + m.c, (m.b - m.c).abs()].into_iter().map(|r| four_bar_limit(m.a, m.d, r)).filter(|x| !x.is_nan()).collect()
@@ -107,7 +115,11 @@ fn change_point_crossing_is_located_and_never_silent() {
     let all: Vec<_> = sweep.by_ref().collect::<Result<_, _>>().unwrap();
     assert_eq!(all.len(), 66);
     assert_eq!(sweep.events().len(), 1);
-    // The smooth continuation through the change point changes the assembly mode.
+    // The smooth continuation through the change point changes the assembly mode: C lies on
+    // the other side of the diagonal B -> D (by the positions, as a designer would see it), and
+    // the state's determinant signs say so too.
+    let side = |s: &kinloop_fixtures::FourBarState| joint_side(&m, s.input.phi, s.out.pc.x, s.out.pc.y);
+    assert_eq!(side(&all[0]), -side(&all[65]));
     assert_ne!(all[0].health.det_signs, all[65].health.det_signs);
     for s in &all {
         assert!(m.residual(s.input, &s.q).iter().all(|r| r.abs() < 1e-10));
@@ -175,14 +187,25 @@ fn assembly_modes_of_a_four_bar_are_elbow_up_and_down() {
     assert_eq!(modes.len(), 2, "{modes:?}");
     let up = modes.iter().find(|s| s.out.pc.y > 0.0).expect("elbow up");
     let down = modes.iter().find(|s| s.out.pc.y < 0.0).expect("elbow down");
-    assert_ne!(up.health.det_signs, down.health.det_signs);
-    let (cx, cy) = four_bar_joint(m.a, m.b, m.c, m.d, 0.7, 1.0).unwrap();
-    let c = if cy > 0.0 { up } else { down };
-    assert_close!(c.out.pc.x, cx, 1e-10);
-    // A sweep started from either mode stays in it.
+    // The two intersections of the circles (B, b) and (D, c), one on each side of B -> D.
     for mode in [up, down] {
+        let side = joint_side(&m, 0.7, mode.out.pc.x, mode.out.pc.y);
+        let (cx, cy) = four_bar_joint(m.a, m.b, m.c, m.d, 0.7, side).unwrap();
+        assert_close!(mode.out.pc.x, cx, 1e-10);
+        assert_close!(mode.out.pc.y, cy, 1e-10);
+    }
+    assert_eq!(joint_side(&m, 0.7, up.out.pc.x, up.out.pc.y), -joint_side(&m, 0.7, down.out.pc.x, down.out.pc.y));
+    assert_ne!(up.health.det_signs, down.health.det_signs);
+    // A sweep started from either mode stays in it: C on the same side of B -> D at every
+    // sample, where the construction puts it (a crank-rocker never folds: the modes never meet).
+    for mode in [up, down] {
+        let side = joint_side(&m, 0.7, mode.out.pc.x, mode.out.pc.y);
         for s in m.sweep(0.7, 0.7 + 2.0 * PI, 37, &mode.q).unwrap() {
-            assert_eq!(s.unwrap().health.det_signs, mode.health.det_signs);
+            let s = s.unwrap();
+            let (cx, cy) = four_bar_joint(m.a, m.b, m.c, m.d, s.input.phi, side).unwrap();
+            assert_close!(s.out.pc.x, cx, 1e-10, "at {}", s.input.phi);
+            assert_close!(s.out.pc.y, cy, 1e-10, "at {}", s.input.phi);
+            assert_eq!(s.health.det_signs, mode.health.det_signs);
         }
     }
 }
