@@ -202,9 +202,14 @@ fn joints_that_coincide_only_numerically_are_two_joints_and_points_of_one_sum_on
     assert!(notes.contains("points `b` and `pin` are one joint"), "{notes}");
 }
 
-/// `m`'s default drawing animated over a sweep from 0 to `to`: no note, well-formed, finite.
-fn draws_plainly<M: Mechanism<N, NI, NO>, const N: usize, const NI: usize, const NO: usize>(m: &M, to: f64) {
+/// `m`'s default drawing animated over a sweep from 0 to `to`: no note, well-formed, finite; and
+/// at three poses of the sweep, every point the declaration names is drawn where its state puts
+/// it (a joint circle, or a frame pivot for a fixed point, at the pixel the documented window
+/// rule gives for the point's coordinates in the solved state). Returns how many points it checked.
+fn draws_plainly<M: Mechanism<N, NI, NO>, const N: usize, const NI: usize, const NO: usize>(m: &M, to: f64) -> usize {
     let x0 = [0.0; NI];
+    let sweep = kinloop::Sweep::<M, kinloop::Kin<N, NI, NO>, N, NI, NO>::new(m, x0, [to; NI], 61, m.guess_flat(&x0));
+    let states: Vec<kinloop::Kin<N, NI, NO>> = sweep.unwrap().map(|s| s.unwrap()).collect();
     let sweep = kinloop::Sweep::<M, kinloop::Kin<N, NI, NO>, N, NI, NO>::new(m, x0, [to; NI], 61, m.guess_flat(&x0));
     let motion = Motion::record(m, sweep.unwrap()).unwrap();
     let d = m.drawing();
@@ -212,19 +217,60 @@ fn draws_plainly<M: Mechanism<N, NI, NO>, const N: usize, const NI: usize, const
     let svg = d.animate(&motion, &Animation::default()).unwrap();
     finite(&svg);
     assert!(!translated(&svg, "circle").is_empty(), "{}: no joint drawn", M::NAME);
+
+    // The declared points: each pair of outputs `p.x`, `p.y`.
+    let points: Vec<(&str, usize, usize)> = (0..NO)
+        .filter_map(|o| {
+            let p = M::OUTPUTS[o].strip_suffix(".x")?;
+            let y = (0..NO).find(|&k| M::OUTPUTS[k].strip_suffix(".y") == Some(p))?;
+            Some((p, o, y))
+        })
+        .collect();
+    if points.is_empty() {
+        return 0;
+    }
+    // A window around every point of the whole motion, with a margin: the pixels follow from it.
+    let (mut lo, mut hi) = ([f64::INFINITY; 2], [f64::NEG_INFINITY; 2]);
+    for k in &states {
+        for &(_, x, y) in &points {
+            lo = [lo[0].min(k.out[x]), lo[1].min(k.out[y])];
+            hi = [hi[0].max(k.out[x]), hi[1].max(k.out[y])];
+        }
+    }
+    let pad = 0.25 * (hi[0] - lo[0]).max(hi[1] - lo[1]).max(1e-3);
+    let window = [lo[0] - pad, lo[1] - pad, hi[0] + pad, hi[1] + pad];
+    let d = d.with_canvas(Canvas { width: WIDTH, window: Some(window), ..Canvas::default() });
+    for pose in [0, 20, 40] {
+        let svg = d.svg(&motion, pose).unwrap();
+        let mut drawn = translated(&svg, "circle");
+        drawn.extend(translated(&svg, "g"));
+        for &(name, x, y) in &points {
+            let at = window_px(window, WIDTH, [states[pose].out[x], states[pose].out[y]]);
+            assert!(
+                drawn.iter().any(|c| near(*c, at)),
+                "{}: point `{name}` at {at:?} not drawn at pose {pose}",
+                M::NAME
+            );
+        }
+    }
+    points.len()
 }
 
 #[test]
 fn every_gallery_mechanism_is_drawn_from_its_declaration_without_a_note() {
     let tau = std::f64::consts::TAU;
-    draws_plainly(&RhombicDrive::default(), tau);
-    draws_plainly(&StirlingEngine::default(), tau);
-    draws_plainly(&DisplacerRodDrive::default(), tau);
-    draws_plainly(&WorkingRodDrive::default(), tau);
-    draws_plainly(&GearLever::default(), tau);
-    draws_plainly(&RollerEdger::default(), 6.0);
-    draws_plainly(&ClassFour::default(), tau);
-    draws_plainly(&FourBar::default(), tau);
+    let checked = [
+        draws_plainly(&RhombicDrive::default(), tau),
+        draws_plainly(&StirlingEngine::default(), tau),
+        draws_plainly(&DisplacerRodDrive::default(), tau),
+        draws_plainly(&WorkingRodDrive::default(), tau),
+        draws_plainly(&GearLever::default(), tau),
+        draws_plainly(&RollerEdger::default(), 6.0),
+        draws_plainly(&ClassFour::default(), tau),
+        draws_plainly(&FourBar::default(), tau),
+    ];
+    // Sixteen points over the gallery; the roller edger declares none.
+    assert!(checked.iter().sum::<usize>() >= 16, "{checked:?}");
 }
 
 /// `x,y` or `x y` as a point.
