@@ -44,6 +44,19 @@ kinloop_fixtures::declare! {
     }
 }
 
+kinloop_fixtures::declare! {
+    /// The four-bar with an output beyond the range of `f64` at every input: `exp(800 + phi)`.
+    GROWTH_TEXT => {
+        pub struct Growth {
+            params a = 1, b = 3, c = 2.5, d = 3.2;
+            input phi;
+            unknowns psi = 0.6, theta = 1.9;
+            loop abcd: a @ phi + b @ psi == (d, 0) + c @ theta;
+            output growth = exp(800 + phi);
+        }
+    }
+}
+
 /// The compiled step's error and the model's (through its `Kernel`, as every algorithm of the
 /// runtime calls it) at `x` from `guess`: equal, and returned.
 fn same_error<M, const N: usize, const NI: usize, const NO: usize>(
@@ -98,6 +111,19 @@ fn a_non_finite_output_is_named_as_the_compiled_one_names_it() {
     let e = same_error(&compiled, &mut model, [-0.5], compiled.guess_flat(&[-0.5]));
     assert!(matches!(e, Error::Domain { what: "output", .. }), "{e:?}");
     assert_eq!(name_of(&e), "root");
+}
+
+/// An output that overflows (finite operands, an infinite result) is reported as the domain
+/// errors are, and the message names the range of `f64` beside the domain.
+#[test]
+fn an_output_beyond_the_range_of_f64_is_named_with_its_cause() {
+    let compiled = Growth::default();
+    let mut model = read(GROWTH_TEXT);
+    let e = same_error(&compiled, &mut model, [0.0], compiled.guess_flat(&[0.0]));
+    assert!(matches!(e, Error::Domain { what: "output", .. }), "{e:?}");
+    assert_eq!(name_of(&e), "growth");
+    let message = e.to_string();
+    assert!(message.contains("the range of f64") && message.contains("exp of an argument above 709.78"), "{message}");
 }
 
 /// Whether the finiteness sum of `text`'s compiled kernel and of its run-time model (within

@@ -101,10 +101,13 @@ pub enum Error {
         at: Box<Location>,
     },
     /// An expression evaluated to NaN or infinity although every parameter and input is finite:
-    /// it left its domain (square root of a negative number, `asin` beyond ±1, division by zero).
+    /// it left its domain (square root of a negative number, `asin` beyond ±1, division by zero)
+    /// or its result left the range of `f64` (`exp` of an argument above 709.78, a product
+    /// beyond 1.8e308): the value alone, NaN or infinite, does not tell which.
     #[error(
-        "the {what} `{name}` is not finite {at}: an expression left its domain (e.g. sqrt of a \
-         negative number, asin/acos beyond ±1, or a division by zero)"
+        "the {what} `{name}` is not finite {at}: an expression left its domain or the range of \
+         f64 (e.g. sqrt of a negative number, asin/acos beyond ±1, a division by zero, or exp of \
+         an argument above 709.78)"
     )]
     Domain {
         /// `"equation"`, `"position"`, `"velocity analog"`, `"output"`, ...
