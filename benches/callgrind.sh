@@ -26,7 +26,7 @@ high=4000
 if [ "$#" -gt 0 ]; then
   variants=("$@")
 else
-  variants=(hand point sweep hand-sweep hand-sweep-checked
+  variants=(hand hand-libm-sum point sweep hand-sweep hand-sweep-checked
     four-bar-hand four-bar-point four-bar-sweep four-bar-hand-sweep four-bar-hand-sweep-checked
     gear-lever-hand gear-lever-point gear-lever-sweep gear-lever-hand-sweep gear-lever-hand-sweep-checked
     hand@20000 point@20000 sweep@20000 hand-sweep@20000 hand-sweep-checked@20000
@@ -88,7 +88,7 @@ for v in "${variants[@]}"; do
     hi=$((2 * lo))
   fi
   case "$name" in ring-* | series-*) lo=200 hi=400 ;; esac
-  case "$name" in hand | four-bar-hand | gear-lever-hand) check_lean_reference "$name" "$turn" ;; esac
+  case "$name" in hand | hand-libm-sum | four-bar-hand | gear-lever-hand) check_lean_reference "$name" "$turn" ;; esac
   a="$(total "$name" "$lo" "$turn")"
   b="$(total "$name" "$hi" "$turn")"
   if [ -z "$a" ] || [ -z "$b" ]; then

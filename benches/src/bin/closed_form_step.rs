@@ -1,6 +1,7 @@
 //! Kinematic steps for instruction counts under callgrind: `closed_form_step VARIANT STEPS [TURN]`
 //! runs `STEPS` steps of turns of `TURN` steps (default 720: 0.5 degree) with one of
-//! * rhombic drive: `hand` (the paper's closed form written by hand), `point` (kinloop's
+//! * rhombic drive: `hand` (the paper's closed form written by hand, `gamma`'s sine and cosine
+//!   precomputed), `hand-libm-sum` (the same with `sin_cos(phi1 + gamma)` from libm), `point` (kinloop's
 //!   `kinematics_flat` from the previous position: closed-form blocks), `newton` (the same with
 //!   `#[kinloop(newton)]`), `newton-taylor` (that, warm-started by the benchmarks' second-order
 //!   predictor), `sweep` (kinloop's own `Sweep`, each sample read where the sweep keeps it),
@@ -50,7 +51,7 @@ use kinloop_bench::hand_sweep::{
 use kinloop_bench::kinloop_variants::{Kinloop, KinloopSens};
 use kinloop_bench::lane_sketch::FourBarLaneSketch;
 use kinloop_bench::lean;
-use kinloop_bench::rhombic::{ClosedForm, PARAMS, initial_guess};
+use kinloop_bench::rhombic::{ClosedForm, ClosedFormLibmSum, PARAMS, initial_guess};
 use kinloop_bench::ring::{Ring, RingDense, Series};
 use kinloop_bench::sweep::{Stepper, WarmStart};
 use kinloop_fixtures::FourBar;
@@ -140,6 +141,7 @@ fn main() {
     let (c4, g4) = (class_four::PARAMS, class_four::INITIAL_GUESS);
     let acc = match variant {
         "hand" => steps_of(&ClosedForm::new(&PARAMS), g, steps),
+        "hand-libm-sum" => steps_of(&ClosedFormLibmSum(ClosedForm::new(&PARAMS)), g, steps),
         "hand-sweep" => hand_sweep_of(RhombicSweep::<RHOMBIC_TERMS>::new(&PARAMS, turn(), PERIOD), steps),
         "hand-sweep-checked" => {
             hand_sweep_of(Checked::new(RhombicSweep::<RHOMBIC_TERMS>::new(&PARAMS, turn(), PERIOD)), steps)

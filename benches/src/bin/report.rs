@@ -229,7 +229,13 @@ struct CountRow {
     target: Option<f64>,
 }
 
-const COUNT_ROWS: [CountRow; 31] = [
+const COUNT_ROWS: [CountRow; 32] = [
+    CountRow {
+        what: "rhombic drive, point step, against the hand closed form with libm's `sincos(phi1 + gamma)`",
+        variant: "point",
+        reference: "hand-libm-sum",
+        target: None,
+    },
     CountRow {
         what: "rhombic drive, kinloop's own `Sweep`, 20,000 steps a turn",
         variant: "sweep@20000",
