@@ -143,7 +143,8 @@ enum Command {
         #[command(flatten)]
         decl: Declaration,
         /// The inputs of one state, separated by commas (one value per input); repeat for more
-        /// states (each solved from the declared guess).
+        /// states (each solved from the declared guess; where one fails, the others are written
+        /// and the exit code is 1).
         #[arg(long, required = true, value_name = "X,...", allow_hyphen_values = true)]
         at: Vec<String>,
         /// Angles in degrees (inputs given and values written); otherwise radians.

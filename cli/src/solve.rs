@@ -4,20 +4,26 @@ use crate::{Failed, exit};
 use kinloop_model::{Count, Model, StepError};
 use kinloop_runtime::{Error, NewtonConfig, QuantityKind, Table};
 
-/// Solves at every `--at` and writes the table to standard output.
+/// Solves at every `--at` and writes the table of the states solved to standard output: a
+/// failed one is explained on standard error and left out, the others written (each is solved
+/// on its own from the declared guess), and the exit code is the failure's.
 pub fn run(model: &mut Model, at: &[String], deg: bool) -> Result<(), Failed> {
     let kinds: Vec<QuantityKind> = model.quantities().iter().map(|(_, k)| *k).collect();
     let ni = model.inputs().len();
     let factors = factors(model, &kinds, deg);
     let name = model.name().to_string();
     let mut table = Table::new(model.columns());
-    for spec in at {
-        let x = model_inputs(spec, &kinds[..ni], deg, "--at")?;
+    // Every `--at` read before any is solved: a mistyped one is the arguments' error, found
+    // before states are written.
+    let xs = at.iter().map(|spec| model_inputs(spec, &kinds[..ni], deg, "--at")).collect::<Result<Vec<_>, _>>()?;
+    let mut failed = false;
+    for (spec, x) in at.iter().zip(xs) {
         let row = match model.solve(&x) {
             Ok(state) => state.row(),
             Err(e) => {
                 eprintln!("error: {}", explain(model, &x, e, &kinds[..ni], deg, &format!("{name} at {spec}")));
-                return Err(Failed(exit::SOLVE_FAILED));
+                failed = true;
+                continue;
             }
         };
         let mut row: Vec<f64> = row.iter().zip(&factors).map(|(v, f)| v * f).collect();
@@ -29,9 +35,12 @@ pub fn run(model: &mut Model, at: &[String], deg: bool) -> Result<(), Failed> {
         }
         table.push(row);
     }
-    let base = units(model, &kinds, deg);
-    let table = table.with_units(&base.iter().map(|(n, u)| (n.as_str(), *u)).collect::<Vec<_>>());
-    crate::output::table(&table, "the table")
+    if !table.rows.is_empty() {
+        let base = units(model, &kinds, deg);
+        let table = table.with_units(&base.iter().map(|(n, u)| (n.as_str(), *u)).collect::<Vec<_>>());
+        crate::output::table(&table, "the table")?;
+    }
+    if failed { Err(Failed(exit::SOLVE_FAILED)) } else { Ok(()) }
 }
 
 /// Why the solve of `model` at `x` from the declared guess failed with `e`, as the runtime says

@@ -51,6 +51,9 @@ pub fn run(model: &mut Model, req: &Request) -> Result<(), Failed> {
         eprintln!("error: {name}: {e}");
         Failed(exit::SOLVE_FAILED)
     };
+    if let Some(usage) = samples_too_fine(model, req, &from, &to, &kinds[..ni]) {
+        return Err(usage);
+    }
     let mut guess = vec![0.0; model.unknowns().len()];
     model.guess(&from, &mut guess).map_err(|e| failed(&e))?;
     // The runtime checks the arguments (at least one sample, `to` apart from `from` for
@@ -150,6 +153,43 @@ fn stream<W: Write, E>(
         s += 1;
     }
     Ok(None)
+}
+
+/// The usage error of samples closer together than the inputs' doubles can place them: where
+/// even the input that resolves them best (of those that move) has doubles more than half its
+/// change between samples apart, at the end of the range farther from zero. There samples round
+/// to one input and the table repeats rows (100,000 samples over `1e12 .. 1e12 + 1`, doubles
+/// `1.2e-4` apart, were 8,193 distinct inputs), and the samples asked for cannot be written.
+/// Closer, each sample rounds by at most a quarter of the spacing: distinct, in order, and solved
+/// at the input its row writes. `None` for a single sample or inputs fine for the spacing.
+fn samples_too_fine(model: &Model, req: &Request, from: &[f64], to: &[f64], kinds: &[QuantityKind]) -> Option<Failed> {
+    let intervals = req.samples.checked_sub(1).filter(|&n| n > 0)? as f64;
+    let (i, apart, change) = from
+        .iter()
+        .zip(to)
+        .enumerate()
+        .filter_map(|(i, (&a, &b))| {
+            let far = a.abs().max(b.abs());
+            let change = ((b - a) / intervals).abs();
+            (change > 0.0 && change.is_finite()).then(|| (i, far.next_up() - far, change))
+        })
+        .min_by(|x, y| (x.1 / x.2).total_cmp(&(y.1 / y.2)))?;
+    if apart <= 0.5 * change {
+        return None;
+    }
+    let (apart, change, unit) = match (req.deg, kinds[i]) {
+        (true, QuantityKind::Angle) => (apart.to_degrees(), change.to_degrees(), " deg"),
+        _ => (apart, change, ""),
+    };
+    Some(exit::usage(format!(
+        "--from {} --to {}: {} samples are closer together than input `{}` can tell apart there (its doubles are \
+         {apart:e}{unit} apart, the samples {change:e}{unit}): samples would repeat; give fewer --samples or a longer \
+         range, or reduce a periodic input by whole turns",
+        req.from,
+        req.to,
+        req.samples,
+        model.inputs()[i]
+    )))
 }
 
 /// The usage error of a range longer than a sweep follows ([`Error::RangeTooLong`], which a

@@ -122,6 +122,30 @@ fn errors_have_carets_and_exit_codes() {
     std::fs::remove_dir_all(&dir).ok();
 }
 
+/// Samples closer together than the input's doubles can place them (100,000 over
+/// `1e12 .. 1e12 + 1`, doubles `1.2e-4` apart: the table repeated rows, 8,193 distinct inputs)
+/// are a usage error naming the input and both spacings, before any row; 10,000 over
+/// `1e9 .. 1e9 + 1` (doubles `1.2e-7` apart against `1e-4`) are swept, every input distinct.
+#[test]
+fn samples_finer_than_the_inputs_doubles_are_a_usage_error() {
+    let four_bar = shipped("four_bar.kl");
+    let params = "a=1,b=3,c=2.5,d=3.2";
+    let sweep = |from: &str, to: &str, samples: &str| {
+        kinloop(&["sweep", &four_bar, "--params", params, "--from", from, "--to", to, "--samples", samples])
+    };
+    let out = sweep("1e12", "1000000000001", "100000");
+    let err = String::from_utf8_lossy(&out.stderr);
+    assert_eq!(out.status.code(), Some(2), "{err}");
+    assert!(out.stdout.is_empty());
+    assert!(
+        err.contains("input `phi`") && err.contains("1.220703125e-4 apart") && err.contains("fewer --samples"),
+        "{err}"
+    );
+    let (_, rows) = csv(&sweep("1e9", "1000000001", "10000"));
+    assert_eq!(rows.len(), 10_000);
+    assert!(rows.windows(2).all(|w| w[1][0] > w[0][0]), "repeated inputs");
+}
+
 /// `sweep` writes the compiled mechanism's sweep: the runtime's one sweep over the model, the
 /// same states to the kernels' agreement (1e-15 of a column's magnitude in `kinloop-model`'s
 /// parity tests; 1e-13 here for the compiled sweep's rotated sines, a few ulps off libm's), in
@@ -248,6 +272,16 @@ fn solve_failures_are_explained() {
     assert!(err.contains("singular position") && err.contains("dead centre"), "{err}");
     assert!(!err.contains("Singular {"), "{err}");
     assert!(out.stdout.is_empty());
+    // A non-Grashof four-bar (limit positions at phi = ±2.3186): of three states, the one beyond
+    // its reach is explained, the two others written, in their order; exit code 1.
+    let params = "a=2,b=2.2,c=2.4,d=3";
+    let out = kinloop(&["solve", &four_bar, "--params", params, "--at", "0", "--at", "3.14159", "--at", "1"]);
+    let err = String::from_utf8_lossy(&out.stderr);
+    assert_eq!(out.status.code(), Some(1), "{err}");
+    assert!(err.contains("phi = 3.14159") && err.contains("cannot be assembled"), "{err}");
+    let text = String::from_utf8_lossy(&out.stdout);
+    let inputs: Vec<&str> = text.lines().skip(1).map(|l| l.split(',').next().unwrap_or("")).collect();
+    assert_eq!(inputs, ["0", "1"], "{text}");
 }
 
 /// Standard output that cannot be written (a full disk) is exit 74 with a message, for every

@@ -230,7 +230,7 @@ pub fn tokens(name: &str, text: &str) -> Result<TokenStream, Diagnostics> {
         );
         return Err(Diagnostics::whole(name, text, message));
     }
-    if let Some(d) = foreign_white_space(text) {
+    if let Some(d) = foreign_character(text) {
         return Err(Diagnostics {
             level: Level::Error,
             name: name.to_string(),
@@ -295,8 +295,10 @@ fn rust_white_space(c: char) -> bool {
 /// The first character outside comments that Unicode calls white space and Rust does not (a
 /// no-break space pasted from a web page, an em space): proc-macro2's lexer takes it for a
 /// space where the compiler refuses the same declaration in `mechanism!` ("unknown start of
-/// token"), and a `.kl` file is the same language as the macro's.
-fn foreign_white_space(text: &str) -> Option<Diagnostic> {
+/// token"), and a `.kl` file is the same language as the macro's. Or the first control
+/// character that is not Rust's white space (a NUL, a bell, an escape from a terminal): the
+/// lexer's own error names neither the character nor its place.
+fn foreign_character(text: &str) -> Option<Diagnostic> {
     let mut chars = text.char_indices().peekable();
     let (mut line, mut column) = (1, 1);
     let advance = |c: char, line: &mut usize, column: &mut usize| {
@@ -330,6 +332,13 @@ fn foreign_white_space(text: &str) -> Option<Diagnostic> {
         } else if depth == 0 && c.is_whitespace() && !rust_white_space(c) {
             let message = format!(
                 "the character U+{:04X} is white space in Unicode but not in Rust: replace it with a plain space",
+                c as u32
+            );
+            return Some(Diagnostic { message, range: at..at + c.len_utf8(), line, column });
+        } else if depth == 0 && c.is_control() && !rust_white_space(c) {
+            let message = format!(
+                "unknown start of token: {}: the control character U+{:04X} has no place in a declaration; remove it",
+                c.escape_default(),
                 c as u32
             );
             return Some(Diagnostic { message, range: at..at + c.len_utf8(), line, column });

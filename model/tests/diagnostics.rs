@@ -210,6 +210,13 @@ fn texts_the_lexer_rejects_name_the_mistake() {
             5,
             20,
         ),
+        // A control character (a bell typed into the file): named, at its place.
+        (
+            format!("pub struct S {{\n{body}    eq e: x == a *\u{7} phi;\n}}\n"),
+            "unknown start of token: \\u{7}: the control character U+0007 has no place in a declaration; remove it",
+            5,
+            19,
+        ),
         // White space in Unicode but not in Rust (a no-break space pasted from a web page, an
         // em space): the compiler refuses them; inside a comment they are text.
         (
