@@ -183,7 +183,8 @@ enum Command {
     /// Traces the whole solution curve through the declared initial guess at `--from` by
     /// pseudo-arclength continuation, first towards `--to`: unlike `sweep` it passes limit
     /// positions, where the input reverses, so a linkage whose input cannot turn fully (a
-    /// non-Grashof four-bar) gives its closed curve. Writes the points (inputs, unknowns,
+    /// non-Grashof four-bar) gives its closed curve; `--from` may be a limit position (where a
+    /// sweep stopped), listed as the first one passed. Writes the points (inputs, unknowns,
     /// outputs) as CSV with units, about `--ds` apart, and lists the limit positions, kinks and
     /// crossings passed on standard error or in `--events`. Stops where the curve closes (back
     /// at its start, its angles within whole turns, a turning input's too, the input moving as it

@@ -2,7 +2,7 @@
 
 use crate::{Failed, exit};
 use kinloop_model::{Count, Model, StepError};
-use kinloop_runtime::{Error, NewtonConfig, QuantityKind, Table};
+use kinloop_runtime::{Error, EventKind, NewtonConfig, QuantityKind, Table};
 
 /// Solves at every `--at` and writes the table of the states solved to standard output: a
 /// failed one is explained on standard error and left out, the others written (each is solved
@@ -120,9 +120,17 @@ pub fn solve_failed(name: &str, e: Error, kinds: &[QuantityKind], deg: bool) -> 
     let code = exit_code(&e);
     // The sweep's advice names the library's setting; the command line's option sets it.
     let lower_pivot = matches!(&e, Error::Branch { message, .. } if message.contains("lower `singular_pivot`"));
+    let at_limit = matches!(&e, Error::SweepStopped { kind: EventKind::LimitPosition, .. });
     eprintln!("error: {}", named(name, &in_units(e, kinds, deg)));
     if lower_pivot {
         eprintln!("note: `--singular-pivot RATIO` lowers it on the command line");
+    }
+    // The input turns back there: no sweep goes on, the curve does.
+    if at_limit {
+        eprintln!(
+            "note: the input cannot go on past a limit position; `kinloop trace` follows the curve through it (the \
+             input turning back), and can start from it"
+        );
     }
     Failed(code)
 }

@@ -70,8 +70,19 @@ pub fn run(model: &mut Model, req: &Request) -> Result<(), Failed> {
     // trace.
     let traced = model.trace_curve(&from, &to, &guess, &opts).map_err(|e| match e {
         Error::InvalidArgument(m) => exit::usage(format!("{name}: {m}")),
-        e => range_too_long(&name, &e, req.from, req.to, req.deg)
-            .unwrap_or_else(|| solve_failed(&name, e, &kinds[..ni], req.deg)),
+        e => range_too_long(&name, &e, req.from, req.to, req.deg).unwrap_or_else(|| {
+            // Only the start is solved as a point: the trace passes singular positions after it.
+            let singular_start = matches!(e, Error::Singular { .. });
+            let failed = solve_failed(&name, e, &kinds[..ni], req.deg);
+            if singular_start {
+                eprintln!(
+                    "note: a trace starts at a limit position, where one curve passes, but not where two curves \
+                     cross (a change point) or where the links cannot quite close: start it beside, on the curve \
+                     to follow"
+                );
+            }
+            failed
+        }),
     })?;
     // Created before anything is written: a path that cannot be written stops before any output.
     let events_file = output::created(req.events, "the events file")?;

@@ -88,6 +88,58 @@ fn a_crank_driven_by_its_rocker_closes_a_turn_on() {
     assert!((turned.abs() - 1.0).abs() < 0.01, "the crank turned {turned} turns");
 }
 
+/// Where a sweep stops at a limit position it says that `trace` goes on, and a trace started
+/// at the input it names (copied from its message, in degrees) starts there: it lists that
+/// limit position first, the other where the law of cosines puts it, and closes its curve.
+#[test]
+fn a_trace_starts_where_a_sweep_stopped_at_a_limit_position() {
+    let (a, b, c, d): (f64, f64, f64, f64) = (3.0, 2.0, 2.5, 4.0);
+    let params = format!("a={a},b={b},c={c},d={d}");
+    let four_bar = shipped("four_bar.kl");
+    let common = ["--deg", "--params", params.as_str()];
+    let swept = kinloop(&[&["sweep", four_bar.as_str(), "--from", "0", "--to", "180"][..], &common].concat());
+    let stderr = String::from_utf8_lossy(&swept.stderr);
+    assert_eq!(swept.status.code(), Some(1), "{stderr}");
+    assert!(stderr.contains("note: the input cannot go on past a limit position; `kinloop trace`"), "{stderr}");
+    let stop = stderr.lines().find(|l| l.starts_with("error: the sweep stopped at a limit position")).expect(&stderr);
+    let at = stop.split("phi = ").nth(1).and_then(|r| r.split(' ').next()).expect(stop);
+    let lim = stretched_limit(a, b, c, d).to_degrees();
+    assert!((at.parse::<f64>().unwrap() - lim).abs() <= 1e-9_f64.to_degrees(), "{at} against {lim}");
+    let traced = kinloop(&[&["trace", four_bar.as_str(), "--from", at, "--to", "-180"][..], &common].concat());
+    let stderr = String::from_utf8_lossy(&traced.stderr);
+    assert_eq!(traced.status.code(), Some(0), "{stderr}");
+    assert!(stderr.contains("the curve closed on itself"), "{stderr}");
+    let limits: Vec<&str> = stderr.lines().filter(|l| l.starts_with("event: limit position at phi = ")).collect();
+    assert_eq!(limits.len(), 2, "{stderr}");
+    assert!(limits[0].starts_with(&format!("event: limit position at phi = {at} (fraction 0 ")), "{stderr}");
+    let other: f64 = limits[1]["event: limit position at phi = ".len()..].split(' ').next().unwrap().parse().unwrap();
+    assert!((other + lim).abs() <= 1e-9_f64.to_degrees(), "{other} against {}", -lim);
+    let (_, rows) = csv(&traced);
+    assert_eq!(rows[0][0], at.parse::<f64>().unwrap());
+    for r in &rows {
+        let [phi, beta, gamma] = [r[0], r[1], r[2]].map(f64::to_radians);
+        let loop_x = a * phi.cos() + b * beta.cos() - d - c * gamma.cos();
+        let loop_y = a * phi.sin() + b * beta.sin() - c * gamma.sin();
+        assert!(loop_x.abs().max(loop_y.abs()) <= 1e-10 * d, "off the loop at {r:?}");
+    }
+}
+
+/// At a change point two curves cross: no trace starts there (which would it follow?). The
+/// error says where the start is singular and the note where a trace can start instead.
+#[test]
+fn no_trace_starts_at_a_change_point() {
+    // A parallelogram four-bar: at phi = 0 its links lie in line, a change point.
+    let out = kinloop(&["trace", &shipped("four_bar.kl"), "--from", "0", "--to", "1", "--params", "a=1,b=3,c=1,d=3"]);
+    let stderr = String::from_utf8_lossy(&out.stderr);
+    assert_eq!(out.status.code(), Some(1), "{stderr}");
+    assert!(stderr.contains("error: singular position in `FourBar` at phi = 0"), "{stderr}");
+    assert!(
+        stderr.contains("note: a trace starts at a limit position") && stderr.contains("start it beside"),
+        "{stderr}"
+    );
+    assert!(out.stdout.is_empty());
+}
+
 #[test]
 fn bad_options_are_usage_errors_naming_them() {
     let four_bar = shipped("four_bar.kl");

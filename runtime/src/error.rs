@@ -101,13 +101,14 @@ pub enum Error {
         at: Box<Location>,
     },
     /// An expression evaluated to NaN or infinity although every parameter and input is finite:
-    /// it left its domain (square root of a negative number, `asin` beyond ±1, division by zero)
+    /// it left its domain (square root of a negative number, `asin` beyond ±1, division by zero,
+    /// the derivative of `norm` or `atan2` at a zero vector)
     /// or its result left the range of `f64` (`exp` of an argument above 709.78, a product
     /// beyond 1.8e308): the value alone, NaN or infinite, does not tell which.
     #[error(
         "the {what} `{name}` is not finite {at}: an expression left its domain or the range of \
-         f64 (e.g. sqrt of a negative number, asin/acos beyond ±1, a division by zero, or exp of \
-         an argument above 709.78)"
+         f64 (e.g. sqrt of a negative number, asin/acos beyond ±1, a division by zero, the rate of a \
+         norm or of a vector's angle where the vector is zero, or exp of an argument above 709.78)"
     )]
     Domain {
         /// `"equation"`, `"position"`, `"velocity analog"`, `"output"`, ...

@@ -291,3 +291,38 @@ fn arclength_traces_the_whole_closed_curve_of_a_non_grashof_four_bar() {
         assert!(r.iter().all(|v| v.abs() < 1e-10));
     }
 }
+
+/// A trace started exactly at a limit position (the input a sweep that stopped there reports)
+/// starts there: the velocity analogs do not exist, but the curve's tangent does. It lists the
+/// start as a limit position once, the other one where the law of cosines puts it, and closes.
+#[test]
+fn a_trace_starts_at_a_limit_position_where_a_sweep_stopped() {
+    let m = FourBar { a: 3.0, b: 2.0, c: 2.5, d: 4.0 };
+    let lim = limit_angles(&m)[0];
+    let g = m.position(0.0, &m.guess(0.0)).unwrap().0;
+    let mut sweep = m.sweep(0.0, PI, 181, &g).unwrap();
+    let stop = sweep.by_ref().find_map(Result::err);
+    assert!(matches!(stop, Some(Error::SweepStopped { kind: EventKind::LimitPosition, .. })), "{stop:?}");
+    let event = sweep.events()[0].clone();
+    let at = event.x[0];
+    let q: [f64; 2] = event.q[..].try_into().unwrap();
+    let q = FourBarUnknowns::from(q);
+    // The analogs do not exist there: a point solve fails as singular.
+    assert!(matches!(m.kinematics(at, &q), Err(Error::Singular { .. })));
+    // Towards either side: the segment from `at - (to - at)` to `to` holds the whole curve.
+    for to in [-PI, 3.0 * at + 0.5] {
+        let cfg = kinloop::TraceConfig::default().with_ds(0.02);
+        let t = m.trace_curve(at, to, &q, &cfg).unwrap();
+        assert!(t.closed, "to {to}: the curve closes on itself");
+        let mut folds: Vec<f64> = t.folds.iter().map(|f| f.x[0]).collect();
+        assert_eq!(folds.len(), 2, "to {to}: {folds:?}");
+        assert_eq!(folds[0], at, "to {to}: the start is listed first");
+        folds.sort_by(f64::total_cmp);
+        assert_close!(folds[0], -lim, tol::LOCATED, "to {to}: {folds:?} vs +-{lim}");
+        assert_close!(folds[1], lim, tol::LOCATED, "to {to}: {folds:?} vs +-{lim}");
+        for p in &t.points {
+            let r = m.residual(p.x[0], &p.q.into());
+            assert!(r.iter().all(|v| v.abs() < 1e-10), "to {to}: {r:?}");
+        }
+    }
+}

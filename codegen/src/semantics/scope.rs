@@ -140,6 +140,18 @@ impl Lowerer {
             ));
             return;
         }
+        // Rust's and the CSV's spelling of a value that is not finite: a declaration's every
+        // number is finite (its unknowns' guesses, defaults, constants), so no name holds one.
+        if matches!(key.to_ascii_lowercase().as_str(), "nan" | "inf" | "infinity") {
+            self.errors.push(syn::Error::new(
+                id.span(),
+                format!(
+                    "`{key}` is not a value a declaration can hold: its numbers are all finite; write a finite \
+                     number here"
+                ),
+            ));
+            return;
+        }
         let names: Vec<String> = self
             .scope
             .symbols

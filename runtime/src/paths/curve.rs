@@ -319,6 +319,44 @@ pub(crate) fn tangent<K: Kernel>(
     (norm.is_finite() && norm > 0.0).then(|| t / norm)
 }
 
+/// The unit tangent (scaled coordinates) at `(q, sigma)` where the Jacobian in the unknowns may
+/// be singular but the curve is not (a limit position, where `[J, dF/dsigma]` keeps its full
+/// rank and the velocity analogs do not exist): the null vector of that matrix, by SVD, its
+/// path component made non-negative. With it, the ratio of that matrix's smallest singular
+/// value to its largest: about zero at a branch point, where two curves meet and no single
+/// tangent exists. `None` where the Jacobian is not finite.
+pub(crate) fn tangent_by_null_vector<K: Kernel>(
+    m: &K,
+    path: &Path<X<K>>,
+    metric: &Metric<Q<K>>,
+    q: &Q<K>,
+    sigma: f64,
+) -> Option<(DVector<f64>, f64)> {
+    let n = m.dims().n();
+    let jac = m.jacobian(&path.at_sigma(sigma), q);
+    // The bordered matrix with a zero last row: its right singular vector of the zero singular
+    // value that row adds spans the null space of `[J, dF/dsigma]` where that has rank `n`.
+    let (a, _) = bordered(&jac, path, metric, &DVector::zeros(n + 1));
+    if !a.iter().all(|v| v.is_finite()) {
+        return None;
+    }
+    let svd = a.svd(false, true);
+    let v_t = svd.v_t?;
+    let sv = &svd.singular_values;
+    let null = sv.imin();
+    let largest = sv.max();
+    // The rank of `[J, dF/dsigma]`: its smallest singular value, the padded matrix's second
+    // smallest.
+    let rest = (0..=n).filter(|&k| k != null).map(|k| sv[k]).fold(f64::INFINITY, f64::min);
+    let ratio = if largest > 0.0 { rest / largest } else { 0.0 };
+    let mut t: DVector<f64> = v_t.row(null).transpose();
+    if t[n] < 0.0 {
+        t.neg_mut();
+    }
+    let norm = t.norm();
+    (norm.is_finite() && norm > 0.0).then(|| (t / norm, ratio))
+}
+
 /// The tangent (scaled coordinates) at a regular point from the velocity analogs of `k`,
 /// oriented with increasing sigma.
 pub(crate) fn tangent_from_analogs<S: KinState, Q: Store, X: Store>(

@@ -3,7 +3,7 @@
 
 use super::curve::{
     CurvePoint, Metric, Path, arc_step, event_at, locate_fold, loose_position, pivot_at, signed_det, singular_ratio_at,
-    tangent_from_analogs,
+    tangent_by_null_vector, tangent_from_analogs,
 };
 use super::sweep::range_too_long;
 use super::trace_kink::{MAX_TURN, past_kink, turn};
@@ -176,7 +176,10 @@ pub type Traced<const N: usize, const NI: usize> = TracedOf<[f64; N], [f64; NI]>
 /// two come within less than a step of each other (a four-bar near a change point) it follows
 /// its own round its limit position however narrow the gap, and where two cross (at the change
 /// point) it goes on along the curve its tangent carries on and lists the crossing in
-/// [`TracedOf::crossings`]. Stops when the curve
+/// [`TracedOf::crossings`]. It may start at a limit position, where the velocity analogs do not
+/// exist (the input where a sweep stopped, [`Error::SweepStopped`]): its tangent there is the
+/// null vector of `[J, dF/dx]`, and the start is the first of [`TracedOf::folds`]; at a branch
+/// point, where two curves meet, the first solve's `Singular` error stands. Stops when the curve
 /// closes, leaves the segment between `from - (to - from)` and `to`, or after
 /// [`TraceConfig::max_points`] (then [`TracedOf::truncated`] says so). Arclength is measured in scaled coordinates (see
 /// [`TraceConfig::ds`]): the same points in any unit of length.
@@ -221,7 +224,17 @@ pub fn trace_curve_of<K: Kernel>(
             "trace_curve needs finite `from` and `to` with `to` different from `from`".into(),
         ));
     }
-    let k0 = m.kinematics(&from, &guess, &cfg)?;
+    // A start at a limit position (where a sweep that stopped there says it is) has positions
+    // but no velocity analogs: solved with no test of the pivot, its tangent is the null vector
+    // of `[J, dF/dsigma]`. Not at a branch point, where two curves meet: there the error stands.
+    let (k0, singular_start) = match m.kinematics(&from, &guess, &cfg) {
+        Ok(k0) => (k0, None),
+        Err(e @ Error::Singular { .. }) => match m.kinematics(&from, &guess, &cfg.with_singular_tol(0.0)) {
+            Ok(k0) => (k0, Some(e)),
+            Err(_) => return Err(e),
+        },
+        Err(e) => return Err(e),
+    };
     let mut q0 = guess;
     q0.as_mut().copy_from_slice(k0.q());
     let metric = Metric::at(m, &path, &from, &q0);
@@ -230,7 +243,15 @@ pub fn trace_curve_of<K: Kernel>(
     if let Some(e) = range_too_long(&metric, path.len, || m.location(from.as_ref(), None)) {
         return Err(e);
     }
-    let start = CurvePoint { tangent: tangent_from_analogs(&k0, &path, &metric), q: q0, sigma: 0.0 };
+    let tangent = match singular_start {
+        None => tangent_from_analogs(&k0, &path, &metric),
+        Some(e) => match tangent_by_null_vector(m, &path, &metric, &q0, 0.0) {
+            Some((t, ratio)) if ratio >= CROSSING_SINGULAR => t,
+            _ => return Err(e),
+        },
+    };
+    let singular_start = tangent[m.dims().n()].abs() < CROSSING_SINGULAR;
+    let start = CurvePoint { tangent, q: q0, sigma: 0.0 };
     let (start_z, start_dsigma) = (start.z(&metric), start.dsigma());
     // Per scaled coordinate, the whole turn of an angle unknown, and of the path's coordinate
     // where the path turns one angle input (0 for the others): the curve has closed when it
@@ -263,9 +284,11 @@ pub fn trace_curve_of<K: Kernel>(
     // continuation, and across the gap between two curves that come close, where a step lands on
     // the other curve: the trace's test that no step jumps.
     let orientation = |p: &CurvePoint<Q<K>>| sign(signed_det(m, &path.at_sigma(p.sigma), &p.q)) * sign(p.dsigma());
-    let mut side = orientation(&start);
+    // At a limit position both factors are the rounding's: the first step sets the orientation.
+    let mut side = if singular_start { 0.0 } else { orientation(&start) };
     // Past either end of the segment from `from - (to - from)` to `to` (its rounding aside).
     let left_path = |p: &CurvePoint<Q<K>>| p.sigma.abs() > path.len * (1.0 + 1e-12);
+    let start_fold = singular_start.then(|| event_at(EventKind::LimitPosition, &path, &start, None));
     let (ds, mut p, mut walked) = (opts.ds, start, 0.0);
     let floor = ds * 1e-6;
     let pivot = m.solver_config().singular_pivot;
@@ -280,6 +303,13 @@ pub fn trace_curve_of<K: Kernel>(
     let mut anchor: Option<(CurvePoint<Q<K>>, f64)> = None;
     // The arclength walked where each crossing and each limit position was listed.
     let (mut crossed_at, mut folded_at) = (Vec::new(), Vec::new());
+    // A start at a limit position is the first one listed; the step that leaves it (the input
+    // turning back from the rounding's direction) and the step that closes the curve on it
+    // (the input turning there again) do not list it twice.
+    if let Some(fold) = start_fold {
+        out.folds.push(fold);
+        folded_at.push(0.0);
+    }
     // How loosely the start is pinned, and whether the trace has been farther from it than four
     // times that (then a step that passes over the start closes the curve).
     let (close_slack, mut away) = (loose_position(&cfg, &start_z), false);
@@ -384,7 +414,8 @@ pub fn trace_curve_of<K: Kernel>(
             }
             continue;
         };
-        let fold = if (p.dsigma() > 0.0) != (next.dsigma() > 0.0) {
+        let leaving_start = singular_start && out.points.len() == 1;
+        let fold = if (p.dsigma() > 0.0) != (next.dsigma() > 0.0) && !leaving_start {
             locate_fold(m, &path, &metric, &p, step, next.dsigma(), &cfg)
         } else {
             None
@@ -420,7 +451,7 @@ pub fn trace_curve_of<K: Kernel>(
                 .then(|| start_on_step(&before, &p, &metric, &start_z, &turns, close_slack))
                 .flatten();
         if let Some(f) = fold
-            && closing.is_none_or(|at| along_step(&before, &p, &metric, &f.z(&metric)) < at)
+            && closing.is_none_or(|at| !singular_start && along_step(&before, &p, &metric, &f.z(&metric)) < at)
         {
             out.folds.push(event_at(EventKind::LimitPosition, &path, &f, None));
             folded_at.push(folded_walk);
