@@ -48,6 +48,7 @@ macro_rules! eprint {
 mod animate;
 mod cam;
 mod cam_drawn;
+mod count;
 mod csv_rows;
 mod dynamics;
 mod exit;
@@ -170,7 +171,7 @@ enum Command {
         #[arg(long, value_name = "X,...", allow_hyphen_values = true)]
         to: String,
         /// Samples, equally spaced, both ends included (at most 10000000).
-        #[arg(long, default_value_t = 361, allow_hyphen_values = true)]
+        #[arg(long, default_value_t = 361, allow_hyphen_values = true, value_parser = count::count)]
         samples: usize,
         /// Angles in degrees (inputs given and values written); otherwise radians.
         #[arg(long)]
@@ -206,7 +207,7 @@ enum Command {
         #[arg(long, default_value_t = 0.01, allow_hyphen_values = true)]
         ds: f64,
         /// The most points written (at least 1, at most 10000000).
-        #[arg(long, default_value_t = 100_000, allow_hyphen_values = true)]
+        #[arg(long, default_value_t = 100_000, allow_hyphen_values = true, value_parser = count::count)]
         max_points: usize,
         /// Angles in degrees (inputs given and values written); otherwise radians.
         #[arg(long)]
@@ -234,7 +235,7 @@ enum Command {
         #[arg(long, default_value_t = 0.0, allow_hyphen_values = true)]
         start: f64,
         /// Equally spaced angles per turn (at least 8, at most 10000000).
-        #[arg(long, default_value_t = 360, allow_hyphen_values = true)]
+        #[arg(long, default_value_t = 360, allow_hyphen_values = true, value_parser = count::count)]
         samples: usize,
         /// The coefficient of speed fluctuation `(omega_max - omega_min) / omega_mean` the
         /// flywheel is sized for (from 1e-6 to below 2).
@@ -276,13 +277,13 @@ enum Command {
         #[arg(long, default_value_t = 0.0, allow_hyphen_values = true)]
         flywheel: f64,
         /// Equally spaced times written, both ends included (at least 2, at most 10000000).
-        #[arg(long, default_value_t = 101, allow_hyphen_values = true)]
+        #[arg(long, default_value_t = 101, allow_hyphen_values = true, value_parser = count::count)]
         samples: usize,
         /// The integrator's step budget (at least 1): a `--time` that needs more steps stops
         /// with a usage error, so the budget bounds the time the run takes. No step is kept
         /// (each row is read from its step as the run passes it): the memory is that of the
         /// `--samples` rows, whatever the number of steps.
-        #[arg(long, value_name = "N", default_value_t = simulate::MAX_STEPS, allow_hyphen_values = true)]
+        #[arg(long, value_name = "N", default_value_t = simulate::MAX_STEPS, allow_hyphen_values = true, value_parser = count::count)]
         max_steps: usize,
         /// Angles in degrees (the start, the speed, the input written); otherwise radians.
         #[arg(long)]
@@ -311,7 +312,7 @@ enum Command {
         start: f64,
         /// Samples over the turn, equally spaced, both ends included (at least 3, at most
         /// 10000000).
-        #[arg(long, default_value_t = 361, allow_hyphen_values = true)]
+        #[arg(long, default_value_t = 361, allow_hyphen_values = true, value_parser = count::count)]
         samples: usize,
         /// Angles in degrees (given and written); otherwise radians.
         #[arg(long)]
@@ -337,7 +338,7 @@ enum Command {
         #[arg(long, value_name = "X,...", allow_hyphen_values = true)]
         to: String,
         /// Samples, equally spaced, both ends included (at least 3, at most 10000000).
-        #[arg(long, default_value_t = 361, allow_hyphen_values = true)]
+        #[arg(long, default_value_t = 361, allow_hyphen_values = true, value_parser = count::count)]
         samples: usize,
         /// Angles in degrees (inputs given and values written); otherwise radians.
         #[arg(long)]
@@ -390,7 +391,7 @@ enum Command {
         show: Vec<String>,
         /// The largest number of frames written: key frames of the SVG (default 90), poses of
         /// the page (default 721).
-        #[arg(long, allow_hyphen_values = true)]
+        #[arg(long, allow_hyphen_values = true, value_parser = count::count)]
         frames: Option<usize>,
         /// Draws the disc cam that moves this point of the declaration (a follower's roller
         /// centre, or its knife edge), turning with the one input: found by inversion of the
@@ -431,17 +432,17 @@ enum Command {
         #[arg(long, value_name = "LO..HI", allow_hyphen_values = true)]
         range: Option<String>,
         /// Halton starts of the local solve (at least 1, at most 1000000).
-        #[arg(long, default_value_t = 64, allow_hyphen_values = true)]
+        #[arg(long, default_value_t = 64, allow_hyphen_values = true, value_parser = count::count)]
         starts: usize,
         /// The seed of the starts' sequence.
         #[arg(long, default_value_t = 0, allow_hyphen_values = true)]
         seed: u64,
         /// The number of ranked candidates written.
-        #[arg(long, default_value_t = 10, allow_hyphen_values = true)]
+        #[arg(long, default_value_t = 10, allow_hyphen_values = true, value_parser = count::count)]
         keep: usize,
         /// Threads of the search (all cores by default, at most 1024); 1 runs the starts one after
         /// another. The candidates are the same whatever the number.
-        #[arg(long, value_name = "N", allow_hyphen_values = true)]
+        #[arg(long, value_name = "N", allow_hyphen_values = true, value_parser = count::count)]
         jobs: Option<usize>,
         /// Angles in degrees (inputs, angle outputs, the range); otherwise radians.
         #[arg(long)]

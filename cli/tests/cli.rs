@@ -241,6 +241,15 @@ fn sweep_arguments_the_runtime_refuses_are_usage_errors() {
     // One sample needs no range: the state at `from`.
     let one = kinloop(&["sweep", &four_bar, "--from", "0", "--to", "0", "--samples", "1", "--params", params]);
     assert_eq!(csv(&one).1.len(), 1);
+    // A count that is none says what to write (Rust's parser said `invalid digit found in string`).
+    for (samples, says) in
+        [("-3", "a count cannot be negative"), ("2.5", "a count is a whole number written in digits")]
+    {
+        let out = kinloop(&["sweep", &four_bar, "--from", "0", "--to", "1", "--samples", samples, "--params", params]);
+        let err = String::from_utf8_lossy(&out.stderr);
+        assert_eq!(out.status.code(), Some(2), "{err}");
+        assert!(err.contains(&format!("'{samples}' for '--samples <SAMPLES>': {says}")), "{err}");
+    }
     let bad_to = kinloop(&["sweep", &four_bar, "--from", "0", "--to", "x", "--params", params]);
     let err = String::from_utf8_lossy(&bad_to.stderr);
     assert_eq!(bad_to.status.code(), Some(2), "{err}");

@@ -328,6 +328,18 @@ impl Info {
         self.owned(m, st, &x.0, Some(&guess.0), cfg)
     }
 
+    /// `m`'s positions at `x` from `guess` (`Model::positions`), owned.
+    pub(crate) fn positions(&self, m: &mut Model, x: &Heap, guess: &Heap, cfg: &NewtonConfig) -> Result<Heap, Error> {
+        let mut out = self.sizes.q();
+        match m.positions(&x.0, &guess.0, cfg) {
+            Ok(q) => {
+                out.0.copy_from_slice(q);
+                Ok(out)
+            }
+            Err(e) => Err(self.error(m, e, &x.0, Some(&guess.0), cfg)),
+        }
+    }
+
     /// `m`'s kinematics at a given position `q`, owned.
     pub(crate) fn kinematics_at(&self, m: &mut Model, x: &Heap, q: &Heap, cfg: &NewtonConfig) -> Result<KinBuf, Error> {
         let st = m.kinematics_at(&x.0, &q.0, cfg).map(drop);
@@ -456,6 +468,14 @@ macro_rules! model_kernel_body {
             cfg: &kinloop_runtime::NewtonConfig,
         ) -> Result<kinloop_runtime::dims::KinBuf, kinloop_runtime::Error> {
             self.lend(|m, _| self.info().kinematics(m, x, guess, cfg))
+        }
+        fn positions(
+            &self,
+            x: &kinloop_runtime::dims::Heap,
+            guess: &kinloop_runtime::dims::Heap,
+            cfg: &kinloop_runtime::NewtonConfig,
+        ) -> Result<kinloop_runtime::dims::Heap, kinloop_runtime::Error> {
+            self.lend(|m, _| self.info().positions(m, x, guess, cfg))
         }
         fn kinematics_at(
             &self,

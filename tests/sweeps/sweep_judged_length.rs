@@ -179,6 +179,9 @@ impl<K: Kernel> Kernel for Counting<K> {
     fn kinematics(&self, x: &X<K>, guess: &Q<K>, cfg: &NewtonConfig) -> Result<KinOf<K>, Error> {
         self.k.kinematics(x, guess, cfg)
     }
+    fn positions(&self, x: &X<K>, guess: &Q<K>, cfg: &NewtonConfig) -> Result<Q<K>, Error> {
+        self.k.positions(x, guess, cfg)
+    }
     fn kinematics_at(&self, x: &X<K>, q: &Q<K>, cfg: &NewtonConfig) -> Result<KinOf<K>, Error> {
         self.k.kinematics_at(x, q, cfg)
     }

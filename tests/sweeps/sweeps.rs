@@ -326,3 +326,31 @@ fn a_trace_starts_at_a_limit_position_where_a_sweep_stopped() {
         }
     }
 }
+
+/// A slider-crank whose crank rocks (`r > l + |e|`): at its limit position the rod's closed
+/// form meets `asin(1)` exactly, the pivot ratio is 0 and no analog exists even unchecked; the
+/// trace starts there all the same, from the positions alone. Its curve (both rod angles, joined
+/// at the limits `r sin phi - e = +-l`) closes, with the start listed first.
+#[test]
+fn a_trace_starts_at_a_slider_cranks_limit_where_the_pivot_is_zero() {
+    let m = kinloop_fixtures::SliderCrank { r: 2.0, l: 1.5, e: 0.3 };
+    let g = m.position(0.0, &m.guess(0.0)).unwrap().0;
+    let mut sweep = m.sweep(0.0, 3.0, 40, &g).unwrap();
+    assert!(matches!(sweep.by_ref().find_map(Result::err), Some(Error::SweepStopped { .. })));
+    let event = sweep.events()[0].clone();
+    let (at, q) = (event.x[0], <[f64; 2]>::try_from(&event.q[..]).unwrap());
+    let upper = ((m.e + m.l) / m.r).asin();
+    let lower = ((m.e - m.l) / m.r).asin();
+    assert_close!(at, upper, tol::LOCATED);
+    let singular = m.kinematics_with(at, &q.into(), &NewtonConfig::default().with_singular_tol(0.0));
+    assert!(singular.is_err(), "{singular:?}");
+    let t = m.trace_curve(at, -3.0, &q.into(), &kinloop::TraceConfig::default().with_ds(0.02)).unwrap();
+    assert!(t.closed);
+    let folds: Vec<f64> = t.folds.iter().map(|f| f.x[0]).collect();
+    assert_eq!(folds.len(), 2, "{folds:?}");
+    assert_eq!(folds[0], at);
+    assert_close!(folds[1], lower, tol::LOCATED, "{folds:?}");
+    for p in &t.points {
+        assert!(m.residual(p.x[0], &p.q.into()).iter().all(|v| v.abs() < 1e-10), "{p:?}");
+    }
+}

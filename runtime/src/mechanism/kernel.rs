@@ -73,6 +73,14 @@ pub trait Kernel {
         guess: &<Self::Dims as Dims>::Q,
         cfg: &NewtonConfig,
     ) -> Result<<Self::Dims as Dims>::Kin, Error>;
+    /// Positions alone solved from `guess` ([`Mechanism::position_flat`]): where the velocity
+    /// analogs do not exist (a limit position) the positions still do.
+    fn positions(
+        &self,
+        x: &<Self::Dims as Dims>::X,
+        guess: &<Self::Dims as Dims>::Q,
+        cfg: &NewtonConfig,
+    ) -> Result<<Self::Dims as Dims>::Q, Error>;
     /// Analogs and outputs at a given position ([`Mechanism::kinematics_at_flat`]).
     fn kinematics_at(
         &self,
@@ -210,6 +218,9 @@ macro_rules! compiled_kernel_body {
         fn kinematics(&self, x: &[f64; NI], guess: &[f64; N], cfg: &NewtonConfig) -> Result<Kin<N, NI, NO>, Error> {
             self.0.kinematics_flat(x, guess, cfg)
         }
+        fn positions(&self, x: &[f64; NI], guess: &[f64; N], cfg: &NewtonConfig) -> Result<[f64; N], Error> {
+            self.0.position_flat(x, guess, cfg).map(|(q, _)| q)
+        }
         #[inline(always)]
         fn kinematics_at(&self, x: &[f64; NI], q: &[f64; N], cfg: &NewtonConfig) -> Result<Kin<N, NI, NO>, Error> {
             self.0.kinematics_at_flat(x, q, cfg)
@@ -301,6 +312,9 @@ impl<K: Kernel> Kernel for &K {
     #[inline(always)]
     fn kinematics(&self, x: &X<K>, guess: &Q<K>, cfg: &NewtonConfig) -> Result<KinOf<K>, Error> {
         (**self).kinematics(x, guess, cfg)
+    }
+    fn positions(&self, x: &X<K>, guess: &Q<K>, cfg: &NewtonConfig) -> Result<Q<K>, Error> {
+        (**self).positions(x, guess, cfg)
     }
     #[inline(always)]
     fn kinematics_at(&self, x: &X<K>, q: &Q<K>, cfg: &NewtonConfig) -> Result<KinOf<K>, Error> {

@@ -225,27 +225,31 @@ pub fn trace_curve_of<K: Kernel>(
         ));
     }
     // A start at a limit position (where a sweep that stopped there says it is) has positions
-    // but no velocity analogs: solved with no test of the pivot, its tangent is the null vector
-    // of `[J, dF/dsigma]`. Not at a branch point, where two curves meet: there the error stands.
-    let (k0, singular_start) = match m.kinematics(&from, &guess, &cfg) {
-        Ok(k0) => (k0, None),
-        Err(e @ Error::Singular { .. }) => match m.kinematics(&from, &guess, &cfg.with_singular_tol(0.0)) {
-            Ok(k0) => (k0, Some(e)),
+    // but no velocity analogs: solved alone, with no test of the pivot, its tangent is the null
+    // vector of `[J, dF/dsigma]`. Not at a branch point, where two curves meet: there the error
+    // stands.
+    // `analogs`: the start's state, or the error that says it has none.
+    let (q0, analogs) = match m.kinematics(&from, &guess, &cfg) {
+        Ok(k0) => {
+            let mut q0 = guess;
+            q0.as_mut().copy_from_slice(k0.q());
+            (q0, Ok(k0))
+        }
+        Err(e @ Error::Singular { .. }) => match m.positions(&from, &guess, &cfg.with_singular_tol(0.0)) {
+            Ok(q0) => (q0, Err(e)),
             Err(_) => return Err(e),
         },
         Err(e) => return Err(e),
     };
-    let mut q0 = guess;
-    q0.as_mut().copy_from_slice(k0.q());
     let metric = Metric::at(m, &path, &from, &q0);
     // A range no sweep follows is none a trace follows either: refused before the first step,
     // as a sweep refuses it (a trace over 1e12 rad walked for as many points as it was allowed).
     if let Some(e) = range_too_long(&metric, path.len, || m.location(from.as_ref(), None)) {
         return Err(e);
     }
-    let tangent = match singular_start {
-        None => tangent_from_analogs(&k0, &path, &metric),
-        Some(e) => match tangent_by_null_vector(m, &path, &metric, &q0, 0.0) {
+    let tangent = match analogs {
+        Ok(k0) => tangent_from_analogs(&k0, &path, &metric),
+        Err(e) => match tangent_by_null_vector(m, &path, &metric, &q0, 0.0) {
             Some((t, ratio)) if ratio >= CROSSING_SINGULAR => t,
             _ => return Err(e),
         },
