@@ -154,6 +154,35 @@ fn traced_curves_equal_the_compiled_ones_to_the_last_bit() {
     );
 }
 
+/// A trace started at a limit position, where no analog exists (a slider-crank whose crank
+/// rocks: its rod's `asin` meets 1 exactly, pivot ratio 0), from the positions alone: the
+/// run-time model's is the compiled one to the last bit, and the start is its first limit
+/// position, the other where `r sin phi - e = -l`.
+#[test]
+fn a_trace_from_a_limit_position_equals_the_compiled_one() {
+    let (r, l, e) = (2.0, 1.5, 0.3);
+    let compiled = fx::SliderCrank { r, l, e };
+    let mut model = read(fx::SLIDER_CRANK_TEXT);
+    set(&mut model, &[("r", r), ("l", l), ("e", e)]);
+    let at = ((e + l) / r).asin();
+    let guess = [std::f64::consts::FRAC_PI_2, r * at.cos()];
+    let unchecked = NewtonConfig::default().with_singular_tol(0.0);
+    assert!(compiled.kinematics_with(at, &guess.into(), &unchecked).is_err(), "no analog at the limit");
+    let opts = TraceConfig::default().with_ds(0.02);
+    let c = compiled.trace_curve(at, -3.0, &guess.into(), &opts).unwrap();
+    let t = model.trace_curve(&[at], &[-3.0], &guess, &opts).unwrap();
+    assert!(c.closed && t.closed, "closed: compiled {}, run time {}", c.closed, t.closed);
+    assert_eq!(c.points.len(), t.points.len());
+    for (a, b) in c.points.iter().zip(&t.points) {
+        assert_eq!((&a.x[..], &a.q[..], a.input_rate), (&b.x.0[..], &b.q.0[..], b.input_rate));
+    }
+    assert_eq!(strip(&c.folds), strip(&t.folds));
+    let folds: Vec<f64> = t.folds.iter().map(|f| f.x[0]).collect();
+    assert_eq!(folds.len(), 2, "{folds:?}");
+    assert_eq!(folds[0], at);
+    assert!((folds[1] - ((e - l) / r).asin()).abs() < FOLD_INPUT, "{folds:?}");
+}
+
 /// With two inputs the path runs through the input plane: the five-bar's trace is the compiled
 /// one, point by point.
 #[test]

@@ -392,6 +392,12 @@ fn bad_samples_and_faces_are_refused_naming_what_is_wrong() -> Result<(), Error>
     // A rocker whose point is its pivot has no arm (at sample 3, the mid-rise).
     let mid = good[3].point[0];
     refused(&good, o, FlatFace::Rocking { pivot: mid, offset: 5.0, tilt: 0.0 }, "at sample 3 the follower's point");
+    // An offset 1e300 beside an arm of about 60: the arm's square underflows in the offset's
+    // unit. Said as such, not as a point at the pivot (it was).
+    let far = FlatFace::Rocking { pivot: [0.0, 0.0], offset: 1e300, tilt: 0.0 };
+    let e = flat_face_profile(&good, o, far).unwrap_err().to_string();
+    assert!(e.contains("at sample 0 the arm from the rocker's pivot") && e.contains("too short"), "{e}");
+    assert!(!e.contains("is at the rocker's pivot"), "{e}");
     // A rocker swinging with the cam at sample 0: the face turns with it.
     let mut spun = vec![good[0]; 3];
     for (k, s) in spun.iter_mut().enumerate() {

@@ -178,8 +178,10 @@ pub type Traced<const N: usize, const NI: usize> = TracedOf<[f64; N], [f64; NI]>
 /// point) it goes on along the curve its tangent carries on and lists the crossing in
 /// [`TracedOf::crossings`]. It may start at a limit position, where the velocity analogs do not
 /// exist (the input where a sweep stopped, [`Error::SweepStopped`]): its tangent there is the
-/// null vector of `[J, dF/dx]`, and the start is the first of [`TracedOf::folds`]; at a branch
-/// point, where two curves meet, the first solve's `Singular` error stands. Stops when the curve
+/// null vector of `[J, dF/dx]`, and the start is the first of [`TracedOf::folds`]. The first
+/// solve's `Singular` error stands at a branch point, where two curves meet, and where the
+/// positions do not solve without their analogs either (a Newton block converges only linearly
+/// at a limit position, which it reports as singular). Stops when the curve
 /// closes, leaves the segment between `from - (to - from)` and `to`, or after
 /// [`TraceConfig::max_points`] (then [`TracedOf::truncated`] says so). Arclength is measured in scaled coordinates (see
 /// [`TraceConfig::ds`]): the same points in any unit of length.
@@ -227,8 +229,7 @@ pub fn trace_curve_of<K: Kernel>(
     // A start at a limit position (where a sweep that stopped there says it is) has positions
     // but no velocity analogs: solved alone, with no test of the pivot, its tangent is the null
     // vector of `[J, dF/dsigma]`. Not at a branch point, where two curves meet: there the error
-    // stands.
-    // `analogs`: the start's state, or the error that says it has none.
+    // stands. `analogs`: the start's state, or the error that says it has none.
     let (q0, analogs) = match m.kinematics(&from, &guess, &cfg) {
         Ok(k0) => {
             let mut q0 = guess;
@@ -254,6 +255,7 @@ pub fn trace_curve_of<K: Kernel>(
             _ => return Err(e),
         },
     };
+    // At a limit position, or within about the square of this of one (scaled): listed there.
     let singular_start = tangent[m.dims().n()].abs() < CROSSING_SINGULAR;
     let start = CurvePoint { tangent, q: q0, sigma: 0.0 };
     let (start_z, start_dsigma) = (start.z(&metric), start.dsigma());

@@ -211,11 +211,20 @@ pub fn flat_face_profile(
             }
             FlatFace::Rocking { pivot: a, offset, tilt } => {
                 let (arm, base) = (sub(p, a), sub(a, pivot));
+                if arm == [0.0, 0.0] {
+                    return bad(format!("at sample {k} the follower's point {p:?} is at the rocker's pivot"));
+                }
                 let unit = length_unit([arm, base, dp, d2p, [offset, 0.0]].iter().flatten());
                 let (arm, dp, d2p) = (per_unit(arm, unit), per_unit(dp, unit), per_unit(d2p, unit));
                 let l2 = dot(arm, arm);
+                // The arm's square underflows in the unit of the largest length: an offset (or a
+                // pivot) some 1e150 times the arm's length, beyond what `f64` relates to it.
                 if l2 == 0.0 {
-                    return bad(format!("at sample {k} the follower's point {p:?} is at the rocker's pivot"));
+                    return bad(format!(
+                        "at sample {k} the arm from the rocker's pivot to the follower's point {p:?} is too short \
+                         beside the face's offset {offset} and the pivots' distance (their ratio is beyond what f64 \
+                         computes with)"
+                    ));
                 }
                 // The arm's angle gamma = atan2(arm): gamma' = (arm x arm') / |arm|^2, and
                 // gamma'' = (arm x arm'') / |arm|^2 - 2 (arm . arm') (arm x arm') / |arm|^4.
