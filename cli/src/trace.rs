@@ -76,9 +76,8 @@ pub fn run(model: &mut Model, req: &Request) -> Result<(), Failed> {
             let failed = solve_failed(&name, e, &kinds[..ni], req.deg);
             if singular_start {
                 eprintln!(
-                    "note: a trace starts at a limit position whose positions solve (a closed form's), but not \
-                     where two curves cross (a change point) or where Newton's method reaches the position only \
-                     linearly: start it beside, on the curve to follow"
+                    "note: a trace starts at a limit position, but not where two curves cross (a change point): \
+                     start it beside, on the curve to follow"
                 );
             }
             failed

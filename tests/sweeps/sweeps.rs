@@ -354,3 +354,31 @@ fn a_trace_starts_at_a_slider_cranks_limit_where_the_pivot_is_zero() {
         assert!(m.residual(p.x[0], &p.q.into()).iter().all(|v| v.abs() < 1e-10), "{p:?}");
     }
 }
+
+/// The four-bar solved by Newton's method reaches its limit position only linearly: a point
+/// solve there fails as singular even unchecked, its positions known to about the square root of
+/// the rounding. The trace starts all the same, at the limit position located from a regular
+/// point beside it (the input it names is the closed form's to the rounding), and lists it
+/// first; at inputs a few ulps to either side of it too.
+#[test]
+fn a_trace_starts_at_a_newton_blocks_limit_position() {
+    use crate::sweep_api::NewtonFourBar;
+    let (a, b, c, d) = (3.0, 2.0, 2.5, 4.0);
+    let m = NewtonFourBar { a, b, c, d };
+    let lim = limit_angles(&FourBar { a, b, c, d })[0];
+    let g = m.guess(lim);
+    let unchecked = NewtonConfig::default().with_singular_tol(0.0);
+    assert!(matches!(m.position_with(lim, &g, &unchecked), Err(Error::Singular { .. })));
+    for at in [lim, lim.next_up().next_up(), lim.next_down().next_down()] {
+        let t = m.trace_curve(at, -PI, &g, &kinloop::TraceConfig::default().with_ds(0.02)).unwrap();
+        assert!(t.closed, "from {at}");
+        let folds: Vec<f64> = t.folds.iter().map(|f| f.x[0]).collect();
+        assert_eq!(folds.len(), 2, "from {at}: {folds:?}");
+        assert_close!(folds[0], lim, tol::LOCATED, "from {at}: {folds:?}");
+        assert_close!(folds[1], -lim, tol::LOCATED, "from {at}: {folds:?}");
+        assert_eq!(t.points[0].x[0], folds[0], "from {at}: the trace starts at the limit position");
+        for p in &t.points {
+            assert!(m.residual(p.x[0], &p.q.into()).iter().all(|v| v.abs() < 1e-10), "{p:?}");
+        }
+    }
+}

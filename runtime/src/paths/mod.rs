@@ -17,3 +17,4 @@ pub mod sweep;
 pub mod sweep_at;
 pub mod trace;
 mod trace_kink;
+mod trace_start;

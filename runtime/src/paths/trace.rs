@@ -3,10 +3,11 @@
 
 use super::curve::{
     CurvePoint, Metric, Path, arc_step, event_at, locate_fold, loose_position, pivot_at, signed_det, singular_ratio_at,
-    tangent_by_null_vector, tangent_from_analogs,
+    tangent_from_analogs,
 };
 use super::sweep::range_too_long;
 use super::trace_kink::{MAX_TURN, past_kink, turn};
+use super::trace_start;
 use crate::dims::{Dims, KinState, Store};
 use crate::error::Error;
 use crate::events::{Event, EventKind};
@@ -178,10 +179,10 @@ pub type Traced<const N: usize, const NI: usize> = TracedOf<[f64; N], [f64; NI]>
 /// point) it goes on along the curve its tangent carries on and lists the crossing in
 /// [`TracedOf::crossings`]. It may start at a limit position, where the velocity analogs do not
 /// exist (the input where a sweep stopped, [`Error::SweepStopped`]): its tangent there is the
-/// null vector of `[J, dF/dx]`, and the start is the first of [`TracedOf::folds`]. The first
-/// solve's `Singular` error stands at a branch point, where two curves meet, and where the
-/// positions do not solve without their analogs either (a Newton block converges only linearly
-/// at a limit position, which it reports as singular). Stops when the curve
+/// null vector of `[J, dF/dx]`, and the start is the first of [`TracedOf::folds`] (where a
+/// Newton block reaches it only linearly, the limit position is located from beside it, and the
+/// trace starts there, within the rounding of `from`). At a branch point, where two curves meet,
+/// the first solve's `Singular` error stands. Stops when the curve
 /// closes, leaves the segment between `from - (to - from)` and `to`, or after
 /// [`TraceConfig::max_points`] (then [`TracedOf::truncated`] says so). Arclength is measured in scaled coordinates (see
 /// [`TraceConfig::ds`]): the same points in any unit of length.
@@ -227,37 +228,19 @@ pub fn trace_curve_of<K: Kernel>(
         ));
     }
     // A start at a limit position (where a sweep that stopped there says it is) has positions
-    // but no velocity analogs: solved alone, with no test of the pivot, its tangent is the null
-    // vector of `[J, dF/dsigma]`. Not at a branch point, where two curves meet: there the error
-    // stands. `analogs`: the start's state, or the error that says it has none.
-    let (q0, analogs) = match m.kinematics(&from, &guess, &cfg) {
-        Ok(k0) => {
-            let mut q0 = guess;
-            q0.as_mut().copy_from_slice(k0.q());
-            (q0, Ok(k0))
-        }
-        Err(e @ Error::Singular { .. }) => match m.positions(&from, &guess, &cfg.with_singular_tol(0.0)) {
-            Ok(q0) => (q0, Err(e)),
-            Err(_) => return Err(e),
-        },
-        Err(e) => return Err(e),
-    };
-    let metric = Metric::at(m, &path, &from, &q0);
+    // but no velocity analogs: see `trace_start`.
+    let trace_start::Start { q, sigma, analogs } = trace_start::start(m, &path, &guess, &cfg)?;
+    let metric = Metric::at(m, &path, &from, &q);
     // A range no sweep follows is none a trace follows either: refused before the first step,
     // as a sweep refuses it (a trace over 1e12 rad walked for as many points as it was allowed).
     if let Some(e) = range_too_long(&metric, path.len, || m.location(from.as_ref(), None)) {
         return Err(e);
     }
-    let tangent = match analogs {
-        Ok(k0) => tangent_from_analogs(&k0, &path, &metric),
-        Err(e) => match tangent_by_null_vector(m, &path, &metric, &q0, 0.0) {
-            Some((t, ratio)) if ratio >= CROSSING_SINGULAR => t,
-            _ => return Err(e),
-        },
-    };
+    // Not at a branch point, where two curves meet: there the point solve's error stands.
+    let tangent = trace_start::tangent(m, &path, &metric, (&q, sigma), analogs, CROSSING_SINGULAR)?;
     // At a limit position, or within about the square of this of one (scaled): listed there.
     let singular_start = tangent[m.dims().n()].abs() < CROSSING_SINGULAR;
-    let start = CurvePoint { tangent, q: q0, sigma: 0.0 };
+    let start = CurvePoint { tangent, q, sigma };
     let (start_z, start_dsigma) = (start.z(&metric), start.dsigma());
     // Per scaled coordinate, the whole turn of an angle unknown, and of the path's coordinate
     // where the path turns one angle input (0 for the others): the curve has closed when it
