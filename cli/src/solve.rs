@@ -121,9 +121,14 @@ pub fn solve_failed(name: &str, e: Error, kinds: &[QuantityKind], deg: bool) -> 
     // The sweep's advice names the library's setting; the command line's option sets it.
     let lower_pivot = matches!(&e, Error::Branch { message, .. } if message.contains("lower `singular_pivot`"));
     let at_limit = matches!(&e, Error::SweepStopped { kind: EventKind::LimitPosition, .. });
+    let singular_start =
+        matches!(&e, Error::Branch { message, .. } if message.starts_with("the sweep starts at a singular"));
     eprintln!("error: {}", named(name, &in_units(e, kinds, deg)));
     if lower_pivot {
         eprintln!("note: `--singular-pivot RATIO` lowers it on the command line");
+    }
+    if singular_start {
+        eprintln!("note: `kinloop trace` traces the curve from a limit position (not from a change point)");
     }
     // The input turns back there: no sweep goes on, the curve does.
     if at_limit {

@@ -382,3 +382,22 @@ fn a_trace_starts_at_a_newton_blocks_limit_position() {
         }
     }
 }
+
+/// A sweep from a limit position (the end of a reachable range): its first state solves, with
+/// the rounding's analogs, but no step in the input leaves it on one branch (both assembly
+/// modes meet there). The error says so and what to do, at the start; it said the sweep could
+/// not stay on its branch, at an input a few ulps on.
+#[test]
+fn a_sweep_from_a_limit_position_says_it_starts_at_one() {
+    let m = FourBar { a: 3.0, b: 2.0, c: 2.5, d: 4.0 };
+    let g = m.position(0.0, &m.guess(0.0)).unwrap().0;
+    let reach = m.reachable(0.0, PI, &g, 91).unwrap();
+    let at = reach.to.phi;
+    let q = FourBarUnknowns::from(<[f64; 2]>::try_from(&reach.to_event.as_ref().unwrap().q[..]).unwrap());
+    let mut sweep = m.sweep(at, 0.0, 5, &q).unwrap();
+    let e = sweep.by_ref().find_map(Result::err).expect("an error");
+    let message = e.to_string();
+    assert!(matches!(e, Error::Branch { .. }), "{e:?}");
+    assert!(message.starts_with("the sweep starts at a singular position"), "{message}");
+    assert!(message.contains(&format!("phi = {at}")) && message.contains("trace_curve"), "{message}");
+}

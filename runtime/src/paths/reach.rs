@@ -13,7 +13,9 @@ use crate::mechanism::kernel::{Compiled, Kernel, KinOf, Q, X, check_sizes};
 /// values, with the limit positions that end it (`None` where the end of the searched range is
 /// reached first). `X` is the input type: `[f64; NI]` from [`reachable`], the generated
 /// `NameInputs` from [`Named::reachable`](crate::Named::reachable), the kernel's input vector
-/// from [`reachable_of`].
+/// from [`reachable_of`]. Where an end is a limit position the velocity analogs do not exist
+/// there: a sweep over the reach starts and ends inside it (a sweep from a limit position is an
+/// error that says so), and [`trace_curve`](crate::paths::trace::trace_curve) starts at one.
 #[derive(Clone, Debug, PartialEq)]
 #[non_exhaustive]
 pub struct Reach<X> {

@@ -995,6 +995,21 @@ where
                 ),
                 at: self.location(x.as_ref(), Some(weakest)),
             },
+            // From a first sample at a singular position (the end of a reachable range, where a
+            // sweep that stopped there put it): no step in the input leaves it on one branch,
+            // its analogs being the rounding's. Said as such, with what to do instead.
+            _ if self.tau == 0.0 && k.health().min_pivot < self.cfg.singular_pivot => Error::Branch {
+                message: format!(
+                    "the sweep starts at a singular position (a pivot ratio of {:.2e}, below \
+                     `SweepConfig::singular_pivot`, {:e}): a limit position or a change point, where the input \
+                     alone does not say which branch leads on and the analogs are the rounding's; start the sweep \
+                     inside the range (a reachable range ends at limit positions), or trace the curve from it \
+                     (`trace_curve`)",
+                    k.health().min_pivot,
+                    self.cfg.singular_pivot
+                ),
+                at: self.location(path.from.as_ref(), Some(weakest)),
+            },
             _ => self.coarse_error(x.as_ref(), Some(weakest)).unwrap_or_else(|| Error::Branch {
                 message: "the sweep cannot stay on its branch: however small the step, the solution jumps or its \
                           velocity analogs do (the solution curve is not smooth here, or steps land on another \
