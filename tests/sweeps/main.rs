@@ -21,4 +21,5 @@ mod sweep_judged_length;
 mod sweep_kinks;
 mod sweeps;
 mod trace_branch_points;
+mod trace_from_limits;
 mod trace_kinks;
