@@ -21,7 +21,16 @@ pub fn run(model: &mut Model, at: &[String], deg: bool) -> Result<(), Failed> {
         let row = match model.solve(&x) {
             Ok(state) => state.row(),
             Err(e) => {
-                eprintln!("error: {}", explain(model, &x, e, &kinds[..ni], deg, &format!("{name} at {spec}")));
+                let (why, singular) = explain(model, &x, e, &kinds[..ni], deg, &format!("{name} at {spec}"));
+                eprintln!("error: {why}");
+                // The positions of a limit position exist where its analogs do not.
+                if singular {
+                    let unit = if deg { " --deg" } else { "" };
+                    eprintln!(
+                        "note: at a limit position `kinloop trace --from {spec}{unit}` starts there and writes the \
+                         positions (not at a change point, where two branches cross)"
+                    );
+                }
                 failed = true;
                 continue;
             }
@@ -46,12 +55,22 @@ pub fn run(model: &mut Model, at: &[String], deg: bool) -> Result<(), Failed> {
 /// Why the solve of `model` at `x` from the declared guess failed with `e`, as the runtime says
 /// it ([`Model::explain`]), the inputs of kinds `kinds` in degrees where `deg` is set; `whence`
 /// (the mechanism and the inputs as given) leads it where the explanation does not name them.
-fn explain(model: &mut Model, x: &[f64], e: StepError, kinds: &[QuantityKind], deg: bool, whence: &str) -> String {
+/// With it, whether the failure is a singular position.
+fn explain(
+    model: &mut Model,
+    x: &[f64],
+    e: StepError,
+    kinds: &[QuantityKind],
+    deg: bool,
+    whence: &str,
+) -> (String, bool) {
     let mut guess = vec![0.0; model.unknowns().len()];
     if model.guess(x, &mut guess).is_err() {
-        return format!("{whence}: {e}");
+        return (format!("{whence}: {e}"), false);
     }
-    named(whence, &in_units(model.explain(x, &guess, &NewtonConfig::default(), e), kinds, deg))
+    let e = model.explain(x, &guess, &NewtonConfig::default(), e);
+    let singular = matches!(e, Error::Singular { .. });
+    (named(whence, &in_units(e, kinds, deg)), singular)
 }
 
 /// The error `e` of the model `name` as a line says it: the error alone where its location

@@ -279,6 +279,7 @@ fn solve_failures_are_explained() {
     let err = String::from_utf8_lossy(&out.stderr);
     assert_eq!(out.status.code(), Some(1), "{err}");
     assert!(err.contains("singular position") && err.contains("dead centre"), "{err}");
+    assert!(err.contains("note: at a limit position `kinloop trace --from 0` starts there"), "{err}");
     assert!(!err.contains("Singular {"), "{err}");
     assert!(out.stdout.is_empty());
     // A non-Grashof four-bar (limit positions at phi = ±2.3186): of three states, the one beyond
