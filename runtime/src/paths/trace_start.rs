@@ -93,6 +93,10 @@ fn limit_beside<K: Kernel>(m: &K, path: &Path<X<K>>, guess: &Q<K>, cfg: &NewtonC
         // rate along the curve there (the input's change is quadratic in the arclength); steps
         // up to eight times that find the input turned back.
         let reach = 2.0 * (sigma / metric.sigma).abs() / beside.dsigma().abs();
+        // Finite analogs leave the rate positive; the test keeps the doubling below finite.
+        if !(reach > 0.0 && reach.is_finite()) {
+            return None;
+        }
         let mut ds = 2.0 * reach;
         while ds <= 8.0 * reach {
             if let Some(past) = arc_step(m, path, &metric, &beside, ds, cfg)
