@@ -16,45 +16,40 @@ use kinloop_fixtures as fx;
 use kinloop_model::{Model, StepError};
 use std::borrow::Cow;
 
-kinloop_fixtures::declare! {
+/// The same four-bar with one output of its own (`$output`): the cases below differ in that
+/// output alone, the value whose failure each names.
+macro_rules! four_bar_with {
+    ($(#[$doc:meta])* $text:ident => $name:ident { $($output:tt)* }) => {
+        kinloop_fixtures::declare! {
+            $(#[$doc])*
+            $text => {
+                pub struct $name {
+                    params a = 1, b = 3, c = 2.5, d = 3.2;
+                    input phi;
+                    unknowns psi = 0.6, theta = 1.9;
+                    loop abcd: a @ phi + b @ psi == (d, 0) + c @ theta;
+                    $($output)*
+                }
+            }
+        }
+    };
+}
+
+four_bar_with! {
     /// A four-bar with an output that divides by the input: finite positions and analogs
     /// everywhere, a non-finite output at 0.
-    RECIPROCAL_TEXT => {
-        pub struct Reciprocal {
-            params a = 1, b = 3, c = 2.5, d = 3.2;
-            input phi;
-            unknowns psi = 0.6, theta = 1.9;
-            loop abcd: a @ phi + b @ psi == (d, 0) + c @ theta;
-            output k = c / phi;
-        }
-    }
+    RECIPROCAL_TEXT => Reciprocal { output k = c / phi; }
 }
 
-kinloop_fixtures::declare! {
+four_bar_with! {
     /// The four-bar with the square root of its input as an output: NaN below 0, and at 0 a
     /// finite output whose analog `1 / (2 sqrt(phi))` is not.
-    ROOT_TEXT => {
-        pub struct Root {
-            params a = 1, b = 3, c = 2.5, d = 3.2;
-            input phi;
-            unknowns psi = 0.6, theta = 1.9;
-            loop abcd: a @ phi + b @ psi == (d, 0) + c @ theta;
-            output root = sqrt(phi);
-        }
-    }
+    ROOT_TEXT => Root { output root = sqrt(phi); }
 }
 
-kinloop_fixtures::declare! {
+four_bar_with! {
     /// The four-bar with an output beyond the range of `f64` at every input: `exp(800 + phi)`.
-    GROWTH_TEXT => {
-        pub struct Growth {
-            params a = 1, b = 3, c = 2.5, d = 3.2;
-            input phi;
-            unknowns psi = 0.6, theta = 1.9;
-            loop abcd: a @ phi + b @ psi == (d, 0) + c @ theta;
-            output growth = exp(800 + phi);
-        }
-    }
+    GROWTH_TEXT => Growth { output growth = exp(800 + phi); }
 }
 
 /// The compiled step's error and the model's (through its `Kernel`, as every algorithm of the

@@ -7,7 +7,7 @@ use kinloop::{Error, Mechanism, NewtonConfig};
 use kinloop_fixtures::{ClassFour, ClassFourUnknowns};
 use std::f64::consts::PI;
 
-use crate::support::tol;
+use crate::support::{Xorshift, tol};
 
 /// The two loops of the group, written out here: `A + AC + CD - (B + BD)` and
 /// `A + AE + EF - (B + BF)`, each projected on X and Y.
@@ -52,15 +52,12 @@ fn triad_gaps(m: &Triad, phi: f64, [b1, t, b2, b3]: [f64; 4]) -> [f64; 4] {
     ]
 }
 
-/// Uniform numbers in `[-1, 1)` from a fixed seed (xorshift).
-struct Rng(u64);
+/// Uniform numbers in `[-1, 1)` from a fixed seed.
+struct Rng(Xorshift);
 
 impl Rng {
     fn next(&mut self) -> f64 {
-        self.0 ^= self.0 << 13;
-        self.0 ^= self.0 >> 7;
-        self.0 ^= self.0 << 17;
-        2.0 * ((self.0 >> 11) as f64 / (1u64 << 53) as f64) - 1.0
+        2.0 * self.0.unit() - 1.0
     }
 }
 
@@ -111,7 +108,9 @@ fn guesses_a_radian_off_assemble_where_the_iteration_alone_stalls() {
         (phi, states[states.len() - 1].q.into())
     });
     let (stalls_alone, solved) =
-        from_guesses_a_radian_off(&m, &refs, 250, &mut Rng(0x9e37_79b9_7f4a_7c15), |phi, q| loop_gaps(&m, phi, q));
+        from_guesses_a_radian_off(&m, &refs, 250, &mut Rng(Xorshift(0x9e37_79b9_7f4a_7c15)), |phi, q| {
+            loop_gaps(&m, phi, q)
+        });
     // The guesses do lead the iteration alone into folds (45 of them, about one in twenty), and
     // the restarts leave them.
     assert!(stalls_alone >= 20, "only {stalls_alone} stalls without restarts");
@@ -127,7 +126,9 @@ fn a_class_three_group_assembles_from_guesses_a_radian_off() {
         (phi, states[states.len() - 1].q.into())
     });
     let (stalls_alone, solved) =
-        from_guesses_a_radian_off(&m, &refs, 500, &mut Rng(0x2545_f491_4f6c_dd1d), |phi, q| triad_gaps(&m, phi, q));
+        from_guesses_a_radian_off(&m, &refs, 500, &mut Rng(Xorshift(0x2545_f491_4f6c_dd1d)), |phi, q| {
+            triad_gaps(&m, phi, q)
+        });
     // 55 of the guesses stall without restarts, one in twenty.
     assert!(stalls_alone >= 20, "only {stalls_alone} stalls without restarts");
     assert!(solved >= 985, "{solved} of 1000 solved");

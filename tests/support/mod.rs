@@ -75,6 +75,20 @@ macro_rules! assert_close {
     }};
 }
 
+/// Random numbers from a fixed seed (xorshift): the same cases at every run, with no
+/// dependency. `unit` is uniform in `[0, 1)`.
+pub struct Xorshift(pub u64);
+
+impl Xorshift {
+    /// The next number, uniform in `[0, 1)`.
+    pub fn unit(&mut self) -> f64 {
+        self.0 ^= self.0 << 13;
+        self.0 ^= self.0 >> 7;
+        self.0 ^= self.0 << 17;
+        (self.0 >> 11) as f64 / (1u64 << 53) as f64
+    }
+}
+
 /// A root of `f` in `[lo, hi]` by bisection; `f` must change sign there.
 pub fn bisect(f: impl Fn(f64) -> f64, mut lo: f64, mut hi: f64) -> f64 {
     let flo = f(lo);

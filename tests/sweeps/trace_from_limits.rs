@@ -15,20 +15,8 @@ use kinloop::{Error, EventKind, Named, TraceConfig};
 use kinloop_fixtures::{FourBar, SliderCrank};
 use std::f64::consts::{PI, TAU};
 
-use crate::support::{four_bar_limit, tol};
+use crate::support::{Xorshift, four_bar_limit, tol};
 use crate::sweep_api::NewtonFourBar;
-
-/// Random numbers in `[0, 1)` from a fixed seed (xorshift): the same cases at every run.
-struct Cases(u64);
-
-impl Cases {
-    fn next(&mut self) -> f64 {
-        self.0 ^= self.0 << 13;
-        self.0 ^= self.0 >> 7;
-        self.0 ^= self.0 << 17;
-        (self.0 >> 11) as f64 / (1u64 << 53) as f64
-    }
-}
 
 /// The limit position a sweep of a turn from `x0` stops at, with its positions; `None` where
 /// the sweep does not start or turns fully.
@@ -85,11 +73,11 @@ fn among(x: f64, limits: &[f64]) -> bool {
 
 #[test]
 fn traces_from_where_four_bar_sweeps_stopped_close_through_the_law_of_cosines_limits() {
-    let mut cases = Cases(12345);
+    let mut cases = Xorshift(12345);
     let mut traced = 0;
     while traced < 30 {
-        let [a, b, c, d] = [(); 4].map(|_| 0.5 + 3.0 * cases.next());
-        let x0 = TAU * cases.next() - PI;
+        let [a, b, c, d] = [(); 4].map(|_| 0.5 + 3.0 * cases.unit());
+        let x0 = TAU * cases.unit() - PI;
         let limits = [four_bar_limit(a, d, b + c), four_bar_limit(a, d, (b - c).abs())];
         let (closed_form, size) = (FourBar { a, b, c, d }, a.max(b).max(c).max(d));
         let Some((at, q)) = stopped_at(&closed_form, x0) else { continue };
@@ -106,11 +94,11 @@ fn traces_from_where_four_bar_sweeps_stopped_close_through_the_law_of_cosines_li
 
 #[test]
 fn traces_from_where_slider_crank_sweeps_stopped_close_through_their_limits() {
-    let mut cases = Cases(987);
+    let mut cases = Xorshift(987);
     let mut traced = 0;
     while traced < 30 {
-        let (r, l, e) = (0.5 + 3.0 * cases.next(), 0.5 + 3.0 * cases.next(), 2.0 * cases.next() - 1.0);
-        let x0 = TAU * cases.next() - PI;
+        let (r, l, e) = (0.5 + 3.0 * cases.unit(), 0.5 + 3.0 * cases.unit(), 2.0 * cases.unit() - 1.0);
+        let x0 = TAU * cases.unit() - PI;
         let m = SliderCrank { r, l, e };
         let Some((at, q)) = stopped_at(&m, x0) else { continue };
         traced += 1;
