@@ -25,7 +25,7 @@ use crate::hand_sweep::{ASIN, PERIOD, Rotation, asin_series};
 use crate::sweep::{Failed, next_input};
 
 /// Slots of a [`FixedStepTrig`]: of the inputs' arguments, of the parameter angles added to
-/// them, and of the unknown angles (a kernel's slot numbers; the benchmarks' mechanisms use
+/// them (asked as any argument), and of the unknown angles (a kernel's slot numbers; the benchmarks' mechanisms use
 /// fewer). A slot beyond them is computed by libm at every sample.
 const SLOTS: usize = 8;
 
@@ -42,9 +42,9 @@ pub fn series_range(terms: usize) -> f64 {
 
 /// A kernel's sines, cosines and closed-form angles along equally spaced inputs, as the hand
 /// sweep computes them (see the module documentation). Each argument's values are rotated by
-/// its step, which the lane's first two samples measure (libm computes both); an argument that
-/// is another plus a parameter angle comes by angle addition, with the parameter's values from
-/// libm at every libm sample. Each closed-form angle is the previous sample's plus `TERMS` terms
+/// its step, which the lane's first two samples measure (libm computes both); a parameter angle
+/// (whose values the kernel adds to an input's, `add_angles`) is libm's at its first call and
+/// kept, its argument never changing. Each closed-form angle is the previous sample's plus `TERMS` terms
 /// of `asin` of the cross product of the new sine and cosine with the previous, or libm's where
 /// that increment is too large for them.
 ///
@@ -71,8 +71,6 @@ pub struct FixedStepTrig<const TERMS: usize> {
     /// Each argument at the last call, and its sine and cosine.
     arg: [f64; SLOTS],
     sin_cos: [(f64, f64); SLOTS],
-    /// The sine and cosine of each parameter angle added to an argument.
-    offset: [(f64, f64); SLOTS],
     /// Each closed-form angle's sine, cosine and value at the last call.
     angle: [(f64, f64, f64); SLOTS],
     /// The largest increment's sine the series is used for.
@@ -90,7 +88,6 @@ impl<const TERMS: usize> FixedStepTrig<TERMS> {
             first_arg: [0.0; SLOTS],
             arg: [f64::NAN; SLOTS],
             sin_cos: [(0.0, 1.0); SLOTS],
-            offset: [(0.0, 1.0); SLOTS],
             angle: [(f64::NAN, f64::NAN, 0.0); SLOTS],
             series_range: series_range(TERMS),
         }
@@ -134,18 +131,6 @@ impl<const TERMS: usize> InputTrig for FixedStepTrig<TERMS> {
         };
         (self.arg[slot], self.sin_cos[slot]) = (arg, values);
         values
-    }
-
-    #[inline(always)]
-    fn sin_cos_sum(&mut self, slot: usize, arg: f64, (sa, ca): (f64, f64), b: f64) -> (f64, f64) {
-        if slot >= SLOTS {
-            return arg.sin_cos();
-        }
-        if self.sync {
-            self.offset[slot] = b.sin_cos();
-        }
-        let (sb, cb) = self.offset[slot];
-        (sa * cb + ca * sb, ca * cb - sa * sb)
     }
 
     #[inline(always)]

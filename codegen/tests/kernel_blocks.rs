@@ -6,7 +6,7 @@
 //! tests judge in once per solve: those whose magnitudes do not depend on their unknowns. And
 //! what a 2x2 block's explicit inverse (`Inverse2::in_cols`) is given besides its own entries:
 //! the entries of its columns beyond it (the rows of later blocks that hold its unknowns). And
-//! which sines and cosines a sweep's kernel has by angle addition (`InputTrig::sin_cos_sum`).
+//! which sines and cosines a sweep's kernel has by angle addition (`add_angles`).
 
 use proc_macro2::TokenStream;
 
@@ -160,9 +160,10 @@ fn trig_calls(kernel: &str) -> Vec<&str> {
 }
 
 /// An input angle plus a parameter angle or a constant: in a sweep's kernel its sine and cosine
-/// come by angle addition from the input's (`sin_cos_sum`, given the input's pair, asked first
-/// even where it is declared later) and the offset's, not by a rotation of their own. Without
-/// the input's own pair, or with an unknown in the sum, the argument keeps its rotation.
+/// come by angle addition (`add_angles`) from the input's pair (asked first even where it is
+/// declared later) and the offset's (a parameter's asked of the cache, which keeps it; a
+/// constant's a constant), not by a rotation of their own. Without the input's own pair, or
+/// with an unknown in the sum, the argument keeps its rotation.
 #[test]
 fn an_input_angle_plus_an_offset_comes_by_angle_addition() {
     let drive = |first: &str, second: &str| {
@@ -176,20 +177,33 @@ fn an_input_angle_plus_an_offset_comes_by_angle_addition() {
             }}"
         ))
     };
+    // The names a `let((s,c)):(f64,f64)=...` statement gives its pair.
+    let pair_of =
+        |call: &str| call[call.find("let(").expect("a pair") + 4..call.find("):(").expect("typed")].to_string();
     let by_gamma = "loop b: (0, e_p) + r_b @ (phi + gamma) == (x_f, 0.9) + l_b @ phi4;";
     let by_input = "loop a: (0, e_p) + r_p @ phi == (x_c, 0) + l_p @ phi2;";
     for (kernel, offset) in [
-        (drive(by_gamma, by_input), "self.gamma"),
-        (drive(&by_gamma.replace("phi + gamma", "gamma + phi"), by_input), "self.gamma"),
-        (drive(&by_gamma.replace("phi + gamma", "phi + 0.7"), by_input), "0.7f64"),
+        (drive(by_gamma, by_input), Some("self.gamma")),
+        (drive(&by_gamma.replace("phi + gamma", "gamma + phi"), by_input), Some("self.gamma")),
+        (drive(&by_gamma.replace("phi + gamma", "phi + 0.7"), by_input), None),
     ] {
         let calls = trig_calls(&kernel);
-        assert_eq!(calls.len(), 2, "{calls:?}");
-        let (input, sum) = (calls[0], calls[1]);
+        let input = calls[0];
         assert!(input.contains("__trig.sin_cos(") && input.ends_with("x_phi)"), "{input}");
-        // The input's pair, by the names it was just given.
-        let pair = &input[input.find("let(").expect("a pair") + 4..input.find("):(").expect("typed")];
-        assert!(sum.contains("__trig.sin_cos_sum(") && sum.contains(&format!(",({pair}),{offset})")), "{sum}");
+        let sum = kernel.split(';').find(|s| s.contains("add_angles(")).expect("a sum by angle addition");
+        assert!(sum.contains(&format!("add_angles(({}),(", pair_of(input))), "{sum}");
+        match offset {
+            Some(offset) => {
+                assert_eq!(calls.len(), 2, "{calls:?}");
+                assert!(calls[1].ends_with(&format!(",{offset})")), "{}", calls[1]);
+                assert!(sum.contains(&format!("),({})", pair_of(calls[1]))), "{sum}");
+            }
+            // The constant's sine and cosine, folded.
+            None => {
+                assert_eq!(calls.len(), 1, "{calls:?}");
+                assert!(sum.contains(&format!("{:?}f64", 0.7f64.sin())), "{sum}");
+            }
+        }
     }
     // Without the input's own pair, and with an unknown in the sum: rotations of their own.
     let alone = fused_kernel(
@@ -197,7 +211,7 @@ fn an_input_angle_plus_an_offset_comes_by_angle_addition() {
             unknowns phi4 = 3.1, x_f = 3.5;
             loop b: (0, e_p) + r_b @ (phi + gamma) == (x_f, 0.9) + l_b @ phi4; }",
     );
-    assert!(!alone.contains("sin_cos_sum") && trig_calls(&alone).len() == 1, "{:?}", trig_calls(&alone));
+    assert!(!alone.contains("add_angles") && trig_calls(&alone).len() == 1, "{:?}", trig_calls(&alone));
     let coupler = fused_kernel(concat!("#[kinloop(newton)]", watt_body!()));
-    assert!(!coupler.contains("sin_cos_sum"), "{:?}", trig_calls(&coupler));
+    assert!(!coupler.contains("add_angles"), "{:?}", trig_calls(&coupler));
 }

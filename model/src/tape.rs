@@ -25,7 +25,9 @@
 
 use crate::extra::Extra;
 use crate::near::NearSlots;
+use kinloop_codegen::graph::angle_sums::{AngleSum, angle_sum, sources};
 use kinloop_codegen::graph::dag::{Func, Graph, Leaf, NodeId, Op};
+use std::collections::HashSet;
 
 /// One operation: destination register first, then the operands' registers.
 ///
@@ -49,6 +51,15 @@ pub(crate) enum Ins {
     Cos(u32, u32),
     /// `(sin a, cos a)` into the first two registers.
     SinCos(u32, u32, u32),
+    /// `sin(a + b)` from `sin a`, `cos a`, `sin b`, `cos b` (`d, sin_a, cos_a, sin_b,
+    /// cos_b`): by angle addition, the emitted code's `add_angles` (see
+    /// `kinloop_codegen::graph::angle_sums`).
+    SinSum(u32, [u32; 4]),
+    /// `cos(a + b)` as [`Ins::SinSum`].
+    CosSum(u32, [u32; 4]),
+    /// `(sin(a + b), cos(a + b))` into the first two registers, from `sin a`, `cos a`, `sin b`,
+    /// `cos b`.
+    SinCosSum(u32, u32, [u32; 4]),
     /// `(sin a, cos a)` into the first two registers by a Newton block's rotation slot, whose
     /// [`WIDTH`](crate::near::WIDTH) registers start at the fourth (`crate::near`: rotated from
     /// the slot's previous argument, as the emitted block's `NearTrig`).
@@ -73,16 +84,19 @@ impl Ins {
     /// The registers the instruction writes, then those it reads (of a rotation slot's, the
     /// last: the registers a run needs are counted from the largest).
     fn registers(&self) -> impl Iterator<Item = u32> {
-        let (v, n): ([u32; 5], usize) = match *self {
-            Ins::Select(d, a, b, x, y) => ([d, a, b, x, y], 5),
-            Ins::NearSinCos(s, c, a, st) => ([s, c, a, st + crate::near::WIDTH as u32 - 1, 0], 4),
+        let (v, n): ([u32; 6], usize) = match *self {
+            Ins::SinCosSum(s, c, [sa, ca, sb, cb]) => ([s, c, sa, ca, sb, cb], 6),
+            Ins::Select(d, a, b, x, y) | Ins::SinSum(d, [a, b, x, y]) | Ins::CosSum(d, [a, b, x, y]) => {
+                ([d, a, b, x, y, 0], 5)
+            }
+            Ins::NearSinCos(s, c, a, st) => ([s, c, a, st + crate::near::WIDTH as u32 - 1, 0, 0], 4),
             Ins::Add(d, a, b)
             | Ins::Sub(d, a, b)
             | Ins::Mul(d, a, b)
             | Ins::Div(d, a, b)
             | Ins::Powf(d, a, b)
             | Ins::Atan2(d, a, b)
-            | Ins::SinCos(d, a, b) => ([d, a, b, 0, 0], 3),
+            | Ins::SinCos(d, a, b) => ([d, a, b, 0, 0, 0], 3),
             Ins::Neg(d, a)
             | Ins::Square(d, a)
             | Ins::Recip(d, a)
@@ -98,7 +112,7 @@ impl Ins {
             | Ins::Ln(d, a)
             | Ins::Abs(d, a)
             | Ins::Signum(d, a)
-            | Ins::Floor(d, a) => ([d, a, 0, 0, 0], 2),
+            | Ins::Floor(d, a) => ([d, a, 0, 0, 0, 0], 2),
         };
         v.into_iter().take(n)
     }
@@ -136,6 +150,9 @@ impl Ins {
             Ins::Sin(d, a) => f(unary::<SIN>, &[d, a]),
             Ins::Cos(d, a) => f(unary::<COS>, &[d, a]),
             Ins::SinCos(s, c, a) => f(sin_cos_step, &[s, c, a]),
+            Ins::SinSum(d, [sa, ca, sb, cb]) => f(sum_part_step::<0>, &[d, sa, ca, sb, cb]),
+            Ins::CosSum(d, [sa, ca, sb, cb]) => f(sum_part_step::<1>, &[d, sa, ca, sb, cb]),
+            Ins::SinCosSum(s, c, [sa, ca, sb, cb]) => f(sin_cos_sum_step, &[s, c, sa, ca, sb, cb]),
             Ins::NearSinCos(s, c, a, st) => f(near_sin_cos_step, &[s, c, a, st]),
             Ins::Tan(d, a) => f(unary::<TAN>, &[d, a]),
             Ins::Asin(d, a) => f(unary::<ASIN>, &[d, a]),
@@ -455,6 +472,38 @@ unsafe fn sin_cos_step(p: *mut f64, s: *const Step) {
     }
 }
 
+/// `r[d]` = part `K` (0 the sine, 1 the cosine) of `add_angles((r[sa], r[ca]), (r[sb], r[cb]))`.
+///
+/// # Safety
+/// As [`arith1`].
+unsafe fn sum_part_step<const K: usize>(p: *mut f64, s: *const Step) {
+    // SAFETY: the caller's.
+    unsafe {
+        let r = &(*s).r;
+        let v = |k: usize| *p.add(r[k] as usize);
+        let (sin, cos) = kinloop_runtime::generated::add_angles((v(1), v(2)), (v(3), v(4)));
+        *p.add(r[0] as usize) = if K == 0 { sin } else { cos };
+        next(p, s)
+    }
+}
+
+/// `(r[s], r[c]) = add_angles((r[sa], r[ca]), (r[sb], r[cb]))`: the sine and cosine of a sum
+/// of angles by angle addition, as the emitted code computes them.
+///
+/// # Safety
+/// As [`arith1`].
+unsafe fn sin_cos_sum_step(p: *mut f64, s: *const Step) {
+    // SAFETY: the caller's.
+    unsafe {
+        let r = &(*s).r;
+        let v = |k: usize| *p.add(r[k] as usize);
+        let (sin, cos) = kinloop_runtime::generated::add_angles((v(2), v(3)), (v(4), v(5)));
+        *p.add(r[0] as usize) = sin;
+        *p.add(r[1] as usize) = cos;
+        next(p, s)
+    }
+}
+
 /// `(r[s], r[c]) = (sin r[a], cos r[a])` by the rotation slot in the registers from `r[3]` on
 /// (`crate::near::sin_cos`).
 ///
@@ -521,7 +570,10 @@ impl Segment {
 
     /// A segment executing `ins` in order, consecutive arithmetic operations grouped by four.
     fn of(ins: Vec<Ins>) -> Segment {
-        let ops = ins.iter().map(|i| if matches!(i, Ins::SinCos(..) | Ins::NearSinCos(..)) { 2 } else { 1 }).sum();
+        let ops = ins
+            .iter()
+            .map(|i| if matches!(i, Ins::SinCos(..) | Ins::NearSinCos(..) | Ins::SinCosSum(..)) { 2 } else { 1 })
+            .sum();
         let needs = ins.iter().flat_map(Ins::registers).max().map_or(0, |m| m as usize + 1);
         // Chains of `CHAIN` steps, each followed by a `ret` (the last one shorter).
         let mut steps = Vec::new();
@@ -590,8 +642,24 @@ fn sin_cos(ins: Vec<Ins>) -> Vec<Ins> {
     let mut out: Vec<Ins> = Vec::with_capacity(ins.len());
     // Per argument register: the index in `out` of a lone sine or cosine of it.
     let mut lone: std::collections::HashMap<u32, usize> = std::collections::HashMap::new();
+    // Per sum (the registers of `sin a`, `cos a`, `sin b`, `cos b`): the index in `out` of a
+    // lone sine or cosine of it.
+    let mut lone_sum: std::collections::HashMap<[u32; 4], usize> = std::collections::HashMap::new();
     for i in ins {
         match i {
+            Ins::SinSum(_, parts) | Ins::CosSum(_, parts) => {
+                if let Some(k) = lone_sum.remove(&parts) {
+                    match (out[k], i) {
+                        (Ins::SinSum(s, _), Ins::CosSum(c, _)) | (Ins::CosSum(c, _), Ins::SinSum(s, _)) => {
+                            out[k] = Ins::SinCosSum(s, c, parts);
+                            continue;
+                        }
+                        _ => {}
+                    }
+                }
+                lone_sum.insert(parts, out.len());
+                out.push(i);
+            }
             Ins::Sin(_, a) | Ins::Cos(_, a) => {
                 if let Some(k) = lone.remove(&a) {
                     match (out[k], i) {
@@ -726,7 +794,8 @@ impl<'g> Builder<'g> {
             if only.is_none_or(|f| f(n)) {
                 order.push(n);
             }
-            stack.extend(self.g.op(n).operands());
+            // An angle sum's sine or cosine reads `sin a`, `cos a` and `b`, not the sum.
+            stack.extend(sources(self.g, n));
         }
         // A sine or cosine brings its partner of the same argument, when the graph has one that
         // no segment computed yet: the two are then one instruction (one libm call for both)
@@ -747,9 +816,15 @@ impl<'g> Builder<'g> {
             }
         }
         order.sort_unstable();
+        let order = sums_after_their_parts(self.g, order);
         for n in order {
             let d = n.0;
             let o = |x: NodeId| x.0;
+            if let Some(AngleSum { sin_a, cos_a, sin_b, cos_b, sine, .. }) = angle_sum(self.g, n) {
+                let parts = [o(sin_a), o(cos_a), o(sin_b), o(cos_b)];
+                out.push(if sine { Ins::SinSum(d, parts) } else { Ins::CosSum(d, parts) });
+                continue;
+            }
             out.push(match self.g.op(n) {
                 Op::Const(_) => continue,
                 Op::Leaf(l) => return Err(Unavailable(l)),
@@ -791,6 +866,28 @@ impl<'g> Builder<'g> {
         }
         Ok(out)
     }
+}
+
+/// `order` (nodes in increasing order) with each angle sum's `sin a`, `cos a`, `sin b` and
+/// `cos b` moved before the sum's sine or cosine where they came after it (as the emitter emits
+/// them): they read `a` and `b` alone, which come before the sum `a + b`.
+fn sums_after_their_parts(g: &Graph, order: Vec<NodeId>) -> Vec<NodeId> {
+    let pending: HashSet<NodeId> = order.iter().copied().collect();
+    let mut placed: HashSet<NodeId> = HashSet::new();
+    let mut out = Vec::with_capacity(order.len());
+    for n in order {
+        if let Some(sum) = angle_sum(g, n) {
+            for m in [sum.sin_a, sum.cos_a, sum.sin_b, sum.cos_b] {
+                if pending.contains(&m) && placed.insert(m) {
+                    out.push(m);
+                }
+            }
+        }
+        if placed.insert(n) {
+            out.push(n);
+        }
+    }
+    out
 }
 
 /// The registers of a graph with its constants written.

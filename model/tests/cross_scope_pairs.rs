@@ -130,9 +130,10 @@ fn the_expansion_pairs_across_scopes() {
     let phi = at(&k, "let(sin_phi,cos_phi):(f64,f64)=__trig.sin_cos(0,x_phi);");
     assert!(phi < block0 && block1 < at(&k, "letfx_lift_phi:f64=self.r*cos_phi;"), "{k}");
     // `phi + gamma`'s pair before block 1 (its sine's scope), its cosine the output `lead`, from
-    // `phi`'s pair by angle addition in a sweep.
-    let sum = at(&k, ",out_lead):(f64,f64)=__trig.sin_cos_sum(1,");
-    assert!(block0 < sum && sum < at(&k, "(sin_phi,cos_phi),self.gamma);") && sum < block1, "{k}");
+    // `phi`'s pair and `gamma`'s (asked of the cache, which keeps it) by angle addition.
+    let gamma = at(&k, "let(sin_gamma,cos_gamma):(f64,f64)=__trig.sin_cos(1,self.gamma);");
+    let sum = at(&k, ",out_lead):(f64,f64)=::kinloop::__gen::add_angles((sin_phi,cos_phi),(sin_gamma,cos_gamma));");
+    assert!(block0 < gamma && gamma < sum && sum < block1, "{k}");
 
     let k = step_kernel(TWO_STAGE_TEXT);
     let block1 = block_1_hands_out_drop(&k);
@@ -142,9 +143,8 @@ fn the_expansion_pairs_across_scopes() {
     assert!(block0 < at(&k, "__trig.angle(0,") && at(&k, "__trig.angle(0,") < at(&k, "self.k*cos_psi"));
     // `sin(phi + gamma)` in block 0, `sin(phi)` only in block 1's equation, `cos(phi)` only in the
     // output `lead`: `phi`'s pair moves before block 0, the sum's from it by angle addition.
-    let phi = at(&k, "let(sin_phi,out_lead):(f64,f64)=__trig.sin_cos(1,x_phi);");
-    let sum = at(&k, "=__trig.sin_cos_sum(0,");
-    assert!(sum < at(&k, "(sin_phi,out_lead),self.gamma);"), "{k}");
+    let phi = at(&k, "let(sin_phi,out_lead):(f64,f64)=__trig.sin_cos(0,x_phi);");
+    let sum = at(&k, "=::kinloop::__gen::add_angles((sin_phi,out_lead),(sin_gamma,cos_gamma));");
     let sin_phi_use = at(&k, "self.r*sin_phi");
     assert!(phi < sum && sum < block0 && block0 < sin_phi_use && sin_phi_use < block1, "{k}");
 }

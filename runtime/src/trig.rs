@@ -12,8 +12,10 @@
 //! computes the values afresh, so rounding errors never accumulate beyond a few units in the
 //! last place (measured in the tests below). An argument that is such an angle plus a parameter
 //! angle or a constant (`phi1 + gamma`) is not rotated a second time: its values come by angle
-//! addition from the angle's and the offset's, which the cache computes once
-//! ([`InputTrig::sin_cos_sum`]).
+//! addition from the angle's and the offset's ([`add_angles`]): every generated function computes
+//! such a sum so (the offset's sine and cosine are of its own slot, which a sweep's cache computes
+//! once, and which a caller's loop over the inputs computes once), and so does the run-time
+//! model, so that a point solve, a sweep's sample and the model agree on them.
 //!
 //! A closed-form block gets the sine and cosine of its unknown angle from its equation, and the
 //! angle itself from libm's `atan2`, `acos` or `asin`. In a sweep the cache gives it instead as
@@ -34,17 +36,6 @@ pub trait InputTrig {
     /// expression of the inputs and parameters at every call).
     fn sin_cos(&mut self, slot: usize, arg: f64) -> (f64, f64);
 
-    /// `(sin arg, cos arg)` for an argument `arg = a + b` whose part `b` is free of the inputs
-    /// (a parameter angle: `phi1 + gamma`), given `a`'s sine and cosine `sc_a` (just asked of
-    /// this cache); `slot` identifies the argument as for [`InputTrig::sin_cos`]. The default is
-    /// [`InputTrig::sin_cos`] of `arg`; a sweep's cache adds the angles instead, with `b`'s
-    /// values kept in `slot` (they do not change over a sweep).
-    #[inline(always)]
-    fn sin_cos_sum(&mut self, slot: usize, arg: f64, sc_a: (f64, f64), b: f64) -> (f64, f64) {
-        let _ = (sc_a, b);
-        self.sin_cos(slot, arg)
-    }
-
     /// The angle of a closed-form block's unknown `slot` (its index among the unknowns), whose
     /// sine `s` and cosine `c` the block has just computed: `exact()` (libm's `acos`, `asin` or
     /// `atan2`, moved to the turn of the unknown's guess), or that same angle obtained otherwise.
@@ -55,6 +46,17 @@ pub trait InputTrig {
         let _ = (slot, s, c);
         exact()
     }
+}
+
+/// `(sin(a + b), cos(a + b))` from `a`'s sine and cosine and `b`'s, as generated code computes
+/// the sine and cosine of a sum of an input angle and a parameter angle (`phi1 + gamma`):
+/// `sin(a + b) = sin a cos b + cos a sin b`, `cos(a + b) = cos a cos b - sin a sin b`. Given
+/// exact values, within 1.5 units in the last place of the exact sum's, closer than libm's of
+/// the rounded sum `a + b` (whose rounding moves the argument by up to half an ulp of it; see the
+/// tests).
+#[inline(always)]
+pub fn add_angles((sin_a, cos_a): (f64, f64), (sin_b, cos_b): (f64, f64)) -> (f64, f64) {
+    (sin_a * cos_b + cos_a * sin_b, cos_a * cos_b - sin_a * sin_b)
 }
 
 /// The standard library's `sin_cos`, for a kernel called without a cache.
@@ -157,7 +159,7 @@ impl NearSlot {
     fn sin_cos_stepped(&mut self, arg: f64, libm_age: impl FnOnce() -> u32, base: &mut StepBase) -> (f64, f64) {
         // `d == 0` but for two equal infinities (whose `d` is NaN, libm's NaN values, which the
         // slot then holds): the same values, one subtraction fewer for an argument that does
-        // not change (a parameter's, see `InputTrig::sin_cos_sum`).
+        // not change (a parameter angle's, added to an input's by [`add_angles`]).
         if arg == self.arg {
             return (self.sin, self.cos);
         }
@@ -439,17 +441,6 @@ impl InputTrig for Rotating {
         // 4 instructions a slot and step.)
         let exact = &self.exact;
         s.sin_cos_stepped(arg, || if *exact { RESYNC } else { 0 }, base)
-    }
-
-    /// By angle addition, `sin(a + b) = sin a cos b + cos a sin b` and
-    /// `cos(a + b) = cos a cos b - sin a sin b`, with `b`'s sine and cosine from the slot (libm's,
-    /// once per sweep: a constant argument is never rotated). Given exact values of `a`, within
-    /// 1.5 units in the last place of the exact sum's, closer than libm's of the rounded sum
-    /// `a + b` (see the tests).
-    #[inline(always)]
-    fn sin_cos_sum(&mut self, slot: usize, _arg: f64, (sin_a, cos_a): (f64, f64), b: f64) -> (f64, f64) {
-        let (sin_b, cos_b) = self.sin_cos(slot, b);
-        (sin_a * cos_b + cos_a * sin_b, cos_a * cos_b - sin_a * sin_b)
     }
 
     /// `q = q_a + asin(x)` from the slot's anchor `q_a`, with `x = sin(q - q_a) = s cos q_a -
@@ -876,27 +867,26 @@ mod tests {
         assert_eq!(Libm.angle(0, s, c, || 13.0), 13.0);
     }
 
-    /// A sum of angles `a + b` (`b` held in the slot): within 3.4e-16 (1.5 units in the last
-    /// place of 1; measured 2.2e-16) of the sine and cosine of the exact sum, which is `s + e` by
-    /// the two-sum of `a` and `b`, so `sin(s) + e cos(s)` to far below an ulp. Libm's values
+    /// A sum of angles `a + b` by [`add_angles`] from libm's values of each: within 3.4e-16 (1.5
+    /// units in the last place of 1; measured 2.2e-16) of the sine and cosine of the exact sum,
+    /// which is `s + e` by the two-sum of `a` and `b`, so `sin(s) + e cos(s)` to far below an
+    /// ulp. Libm's values
     /// of the rounded sum `s` are off by up to `|e|` (measured 8.9e-16 here): the angle addition
-    /// is closer. `Libm` gives `arg`'s own values.
+    /// is closer.
     #[test]
     fn sums_of_angles_are_within_two_ulps() {
         let mut rng = Rng(0x2545_f491_4f6c_dd1d);
         let (mut worst, mut worst_libm) = (0.0f64, 0.0f64);
-        for trial in 0..20_000 {
-            let mut cache = Rotating::default();
+        for _ in 0..20_000 {
             let b = 8.0 * (rng.uniform(0.0, 1.0) - 0.5);
             for _ in 0..3 {
                 let a = 20.0 * (rng.uniform(0.0, 1.0) - 0.5);
                 let s = a + b;
                 let e = (a - (s - (s - a))) + (b - (s - a));
                 let (rs, rc) = (s.sin() + e * s.cos(), s.cos() - e * s.sin());
-                let (ss, cs) = cache.sin_cos_sum(trial % SLOTS, s, a.sin_cos(), b);
+                let (ss, cs) = add_angles(a.sin_cos(), b.sin_cos());
                 worst = worst.max((ss - rs).abs()).max((cs - rc).abs());
                 worst_libm = worst_libm.max((s.sin() - rs).abs()).max((s.cos() - rc).abs());
-                assert_eq!(Libm.sin_cos_sum(0, s, (f64::NAN, f64::NAN), b), s.sin_cos());
             }
         }
         assert!(worst <= 3.4e-16, "worst deviation {worst:e} (libm of the rounded sum: {worst_libm:e})");

@@ -4,7 +4,7 @@
 //! and their error — the sum of the squared distances from the coupler point to the targets,
 //! the published measure — is recomputed here from a closed-form four-bar (circle
 //! intersection, plain trigonometry), not by the library. One start of the search, with the
-//! seed and index that found each design, reaches it again.
+//! seed and index that found each design, reaches its error again (`SEARCHED_AGAIN`).
 //!
 //! The full searches run in release: `cargo run --release -p kinloop-bench --bin literature`.
 //!
@@ -21,6 +21,13 @@ const RECOMPUTED: f64 = 1e-9;
 /// Where a design meets its targets exactly, both errors are rounding: squared distances of
 /// about `1e-13` of the mechanism's size (60), summed over the targets, stay below this.
 const ROUNDING_SQUARED: f64 = 1e-22;
+/// The search from the start that found a design reaches its error again to this, relative:
+/// it stops where its steps fall below `LocalConfig::step_tol` or at its evaluations' cap, and
+/// along the valley of a design that meets its targets to about 5e-4 the error is flat: two
+/// searches whose evaluations differ in their last bits (a change of the library's rounding:
+/// the crank arm at `th2 + th2s` by angle addition rather than libm of the rounded sum) stop
+/// at points of it whose errors differ by up to a few 1e-8 (measured 4.3e-8).
+const SEARCHED_AGAIN: f64 = 1e-6;
 
 kinloop::mechanism! {
     /// The four-bar in the literature's variables: crank pivot (x0, y0), frame `r1` at `th0`,
@@ -186,7 +193,7 @@ fn check(case: &Case) {
         .with_local(LocalConfig::default().with_max_evaluations(400));
     let best = search.run(&p).unwrap();
     let best = best.best().expect("the start's result is valid");
-    assert!(kinloop_error(best) <= case.error * (1.0 + RECOMPUTED) + ROUNDING_SQUARED, "{:e}", kinloop_error(best));
+    assert!(kinloop_error(best) <= case.error * (1.0 + SEARCHED_AGAIN) + ROUNDING_SQUARED, "{:e}", kinloop_error(best));
 }
 
 #[test]

@@ -12,6 +12,7 @@
 //! their node number.
 
 use super::schedule::Schedule;
+use crate::graph::angle_sums::angle_sum;
 use crate::graph::dag::{Func, Graph, Leaf, NodeId, Op};
 use crate::plan::Plan;
 use crate::semantics::model::Model;
@@ -106,8 +107,11 @@ impl Names {
     /// of it too (see [`Names::sweep_kernel`]).
     pub fn with_input_trig(&self, plan: &Plan) -> Names {
         let g = &plan.graph;
+        // A sum of angles computed by angle addition asks nothing of the cache.
         let sines = (0..g.len()).map(|k| NodeId(k as u32)).filter(|&n| match g.op(n) {
-            Op::Func(Func::Sin, a) => plan.level[a.index()] < 0 && !matches!(g.op(a), Op::Const(_)),
+            Op::Func(Func::Sin, a) => {
+                plan.level[a.index()] < 0 && !matches!(g.op(a), Op::Const(_)) && angle_sum(g, n).is_none()
+            }
             _ => false,
         });
         Names { trig_slots: sines.enumerate().map(|(slot, n)| (n, slot)).collect(), sweep_kernel: true, ..self.clone() }
@@ -297,29 +301,15 @@ impl Names {
         let mut done = HashSet::new();
         let mut out = TokenStream::new();
         for &n in nodes {
-            if let Some(&(sn, cn)) = sched.sin_cos.get(&n) {
-                if done.insert(sn) {
-                    if let Some(sum) = self.angle_sum(g, sched, (sn, cn), nodes, &mut done) {
-                        out.extend(sum);
-                        continue;
-                    }
-                    let (s, c) = (self.temp(sn), self.temp(cn));
-                    let arg = match g.op(sn) {
-                        Op::Func(_, a) => self.operand(g, a),
-                        _ => self.operand(g, sn),
-                    };
-                    out.extend(match (self.trig_slots.get(&sn), near) {
-                        (Some(&slot), _) => {
-                            let slot = Literal::usize_unsuffixed(slot);
-                            quote!(let (#s, #c): (f64, f64) = __trig.sin_cos(#slot, #arg);)
-                        }
-                        (None, Some((near, method))) => {
-                            let slot = Literal::usize_unsuffixed(slots);
-                            slots += 1;
-                            quote!(let (#s, #c): (f64, f64) = #near.#method(#slot, #arg);)
-                        }
-                        (None, None) => quote!(let (#s, #c): (f64, f64) = #arg.sin_cos();),
-                    });
+            if sched.sums.contains_key(&n) {
+                if let Some(sum) = self.angle_sum(g, sched, n, nodes, &mut done, (near, &mut slots)) {
+                    out.extend(sum);
+                }
+                continue;
+            }
+            if let Some(&pair) = sched.sin_cos.get(&n) {
+                if done.insert(pair.0) {
+                    out.extend(self.pair(g, pair, near, &mut slots));
                 }
                 continue;
             }
@@ -329,31 +319,76 @@ impl Names {
         (out, slots)
     }
 
-    /// In a sweep's kernel, the sine and cosine `(sn, cn)` of a sum of angles `a + b` with
-    /// `b` a parameter angle (`phi1 + gamma`, see [`Schedule::sums`]): by angle addition from
-    /// `a`'s values and `b`'s, which the cache holds unchanged over the sweep
-    /// (`InputTrig::sin_cos_sum`). Four products instead of a second rotation. `a`'s pair is
-    /// emitted first when it comes later in the same scope (the schedule put it no later).
+    /// `let (s, c) = ...;` of a sine and cosine `(sn, cn)` of one argument: asked of the sweep's
+    /// cache where it has a slot for them, of a Newton block's `near` cache (its next slot), or
+    /// libm's.
+    fn pair(
+        &self,
+        g: &Graph,
+        (sn, cn): (NodeId, NodeId),
+        near: Option<(&Ident, &Ident)>,
+        slots: &mut usize,
+    ) -> TokenStream {
+        let (s, c) = (self.temp(sn), self.temp(cn));
+        let arg = match g.op(sn) {
+            Op::Func(_, a) => self.operand(g, a),
+            _ => self.operand(g, sn),
+        };
+        match (self.trig_slots.get(&sn), near) {
+            (Some(&slot), _) => {
+                let slot = Literal::usize_unsuffixed(slot);
+                quote!(let (#s, #c): (f64, f64) = __trig.sin_cos(#slot, #arg);)
+            }
+            (None, Some((near, method))) => {
+                let slot = Literal::usize_unsuffixed(*slots);
+                *slots += 1;
+                quote!(let (#s, #c): (f64, f64) = #near.#method(#slot, #arg);)
+            }
+            (None, None) => quote!(let (#s, #c): (f64, f64) = #arg.sin_cos();),
+        }
+    }
+
+    /// The sine and cosine of a sum of angles `a + b` (`n` one of them, see
+    /// `graph::angle_sums`): by angle addition (`add_angles`) from `a`'s values and `b`'s, which
+    /// are nodes of their own (`b`'s, of the parameters alone, are computed once by a caller's
+    /// loop over the inputs, and kept by a sweep's cache). A sine or cosine without its partner
+    /// takes its part of the same pair of values. `a`'s and `b`'s pairs are emitted first when
+    /// they come later in the same scope (the schedule put them no later). `None` when `n`'s
+    /// pair is already emitted.
     fn angle_sum(
         &self,
         g: &Graph,
         sched: &Schedule,
-        (sn, cn): (NodeId, NodeId),
+        n: NodeId,
         nodes: &[NodeId],
         done: &mut HashSet<NodeId>,
+        (near, slots): (Option<(&Ident, &Ident)>, &mut usize),
     ) -> Option<TokenStream> {
-        let sum = sched.sums.get(&sn)?;
-        let (sa, ca) = sum.sin_cos_a;
-        let (&slot, &slot_a) = (self.trig_slots.get(&sn)?, self.trig_slots.get(&sa)?);
-        let (s, c, s_a, c_a) = (self.temp(sn), self.temp(cn), self.temp(sa), self.temp(ca));
-        let (a, b, arg) = (self.operand(g, sum.a), self.operand(g, sum.b), self.operand(g, sum.sum));
-        let mut out = TokenStream::new();
-        if nodes.contains(&sa) && done.insert(sa) {
-            let slot_a = Literal::usize_unsuffixed(slot_a);
-            out.extend(quote!(let (#s_a, #c_a): (f64, f64) = __trig.sin_cos(#slot_a, #a);));
+        let sum = sched.sums.get(&n)?;
+        let pair = sched.sin_cos.get(&n).copied();
+        if pair.is_some_and(|(sn, _)| !done.insert(sn)) {
+            return None;
         }
-        let slot = Literal::usize_unsuffixed(slot);
-        out.extend(quote!(let (#s, #c): (f64, f64) = __trig.sin_cos_sum(#slot, #arg, (#s_a, #c_a), #b);));
+        let mut out = TokenStream::new();
+        for (s, c) in [(sum.sin_a, sum.cos_a), (sum.sin_b, sum.cos_b)] {
+            // A constant `b`'s values are constants, never in `nodes`.
+            if nodes.contains(&s) && done.insert(s) {
+                out.extend(self.pair(g, (s, c), near, slots));
+            }
+        }
+        let [s_a, c_a, s_b, c_b] = [sum.sin_a, sum.cos_a, sum.sin_b, sum.cos_b].map(|m| self.operand(g, m));
+        let rt = super::runtime_path::runtime();
+        let values = quote!(#rt::add_angles((#s_a, #c_a), (#s_b, #c_b)));
+        out.extend(match pair {
+            Some((sn, cn)) => {
+                let (s, c) = (self.temp(sn), self.temp(cn));
+                quote!(let (#s, #c): (f64, f64) = #values;)
+            }
+            None => {
+                let (name, part) = (self.temp(n), Literal::usize_unsuffixed(usize::from(!sum.sine)));
+                quote!(let #name: f64 = #values.#part;)
+            }
+        });
         Some(out)
     }
 }

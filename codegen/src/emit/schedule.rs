@@ -6,7 +6,8 @@
 //! first scope that needs it; values computed inside a Newton closure that later scopes need are
 //! handed out through the evaluation's `keep` array instead of being recomputed.
 
-use crate::graph::dag::{Func, Graph, Leaf, NodeId, Op};
+use crate::graph::angle_sums::{AngleSum, angle_sum, sources};
+use crate::graph::dag::{Func, Graph, NodeId, Op};
 use std::collections::HashMap;
 
 /// Where a scope's code runs.
@@ -35,24 +36,9 @@ pub struct Schedule {
     /// A sine and the cosine of the same argument, both scheduled in the same scope: they are
     /// computed together by one `sin_cos()` (see [`schedule`]). Keyed by each of the two.
     pub sin_cos: HashMap<NodeId, (NodeId, NodeId)>,
-    /// Sums of angles: a sine's argument `a + b` free of the unknowns, with `b` a parameter
-    /// angle or a constant and `a`'s sine and cosine also computed, keyed by the sine.
-    /// `a`'s pair is scheduled no later than the sum's, so the sum's pair can be had from it by
-    /// angle addition (see `Names::angle_sum`).
+    /// Sines and cosines computed by angle addition (`graph::angle_sums`), keyed by each: their
+    /// `sin a` and `cos a` are scheduled no later than they are, and paired.
     pub sums: HashMap<NodeId, AngleSum>,
-}
-
-/// An argument `a + b` of a paired sine and cosine (see [`Schedule::sums`]).
-#[derive(Clone, Copy, Debug)]
-pub struct AngleSum {
-    /// The argument `a + b`.
-    pub sum: NodeId,
-    /// The part that varies (an input's angle).
-    pub a: NodeId,
-    /// The parameter angle (or constant).
-    pub b: NodeId,
-    /// `a`'s paired sine and cosine.
-    pub sin_cos_a: (NodeId, NodeId),
 }
 
 /// Places every node needed by `scopes` in the first scope that needs it (a node of a `Loop`
@@ -73,7 +59,9 @@ pub fn schedule(g: &Graph, level: &[i32], scopes: &[ScopeSpec]) -> Schedule {
                 _ => s,
             };
             assigned.insert(n, target);
-            stack.extend(g.op(n).operands());
+            // An angle sum's sine or cosine is computed from `sin a`, `cos a` and `b`, which
+            // land in its scope (or an earlier one), never later.
+            stack.extend(sources(g, n));
         }
     }
     // A sine and a cosine of the same argument are computed together (one `sin_cos`) in the
@@ -100,7 +88,7 @@ pub fn schedule(g: &Graph, level: &[i32], scopes: &[ScopeSpec]) -> Schedule {
         sin_cos.insert(sn, (sn, cn));
         sin_cos.insert(cn, (sn, cn));
     }
-    let sums = angle_sums(g, level, &sin_cos, &mut assigned);
+    let sums: HashMap<NodeId, AngleSum> = assigned.keys().filter_map(|&n| Some((n, angle_sum(g, n)?))).collect();
     let mut lets = vec![Vec::new(); scopes.len()];
     for (&n, &s) in &assigned {
         lets[s].push(n);
@@ -119,7 +107,7 @@ pub fn schedule(g: &Graph, level: &[i32], scopes: &[ScopeSpec]) -> Schedule {
         }
     };
     for (&m, &t) in &assigned {
-        for n in g.op(m).operands() {
+        for n in sources(g, m) {
             export(n, t);
         }
     }
@@ -132,40 +120,4 @@ pub fn schedule(g: &Graph, level: &[i32], scopes: &[ScopeSpec]) -> Schedule {
         e.sort_unstable();
     }
     Schedule { lets, exports, sin_cos, sums }
-}
-
-/// The paired arguments `a + b` free of the unknowns whose part `b` is a parameter angle and
-/// whose `a` has its own pair; each such `a`'s pair moves to the sum's scope when that is earlier.
-fn angle_sums(
-    g: &Graph,
-    level: &[i32],
-    sin_cos: &HashMap<NodeId, (NodeId, NodeId)>,
-    assigned: &mut HashMap<NodeId, usize>,
-) -> HashMap<NodeId, AngleSum> {
-    // Parameters and constants (`phi + gamma`, `phi + deg(30)`).
-    let parameter = |n: NodeId| g.leaves_of(&[n]).iter().all(|l| matches!(l, Leaf::Param(_)));
-    let mut sums = HashMap::new();
-    let mut sines: Vec<NodeId> = sin_cos.values().map(|&(sn, _)| sn).collect();
-    sines.sort_unstable();
-    sines.dedup();
-    for sn in sines {
-        let Op::Func(_, arg) = g.op(sn) else { continue };
-        let Op::Add(x, y) = g.op(arg) else { continue };
-        let (a, b) = match (parameter(x), parameter(y)) {
-            (false, true) => (x, y),
-            (true, false) => (y, x),
-            _ => continue,
-        };
-        let Some(&(sa, ca)) = g.find(Op::Func(Func::Sin, a)).and_then(|s| sin_cos.get(&s)) else { continue };
-        // Every paired node is scheduled; `get` rather than indexing keeps the macro panic-free.
-        let (Some(&at_a), Some(&at_sum)) = (assigned.get(&sa), assigned.get(&sn)) else { continue };
-        if level[arg.index()] >= 0 {
-            continue;
-        }
-        let first = at_a.min(at_sum);
-        assigned.insert(sa, first);
-        assigned.insert(ca, first);
-        sums.insert(sn, AngleSum { sum: arg, a, b, sin_cos_a: (sa, ca) });
-    }
-    sums
 }

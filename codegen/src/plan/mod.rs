@@ -123,6 +123,9 @@ pub fn build(model: &mut Model, blocks: &[Block], with_sensitivities: bool) -> P
         }
         out_sens = Some(sensitivities::outputs(&mut g, &seeds, &outputs, &out_first, &out_d2));
     }
+    // The sines and cosines of the parameter angles that sums of angles are computed from, last:
+    // no pass differentiates them.
+    crate::graph::angle_sums::provide(&mut g);
     let zero = g.zero();
     let guesses = model.unknowns.iter().map(|u| u.value.unwrap_or(zero)).collect();
     let level = levels(&g, &seeds.block_of);
