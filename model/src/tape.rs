@@ -870,22 +870,26 @@ impl<'g> Builder<'g> {
 
 /// `order` (nodes in increasing order) with each angle sum's `sin a`, `cos a`, `sin b` and
 /// `cos b` moved before the sum's sine or cosine where they came after it (as the emitter emits
-/// them): they read `a` and `b` alone, which come before the sum `a + b`.
+/// them), each by its own parts first where `a` is a sum itself: they read `a` and `b` alone,
+/// which come before the sum `a + b`.
 fn sums_after_their_parts(g: &Graph, order: Vec<NodeId>) -> Vec<NodeId> {
+    fn place(g: &Graph, m: NodeId, pending: &HashSet<NodeId>, placed: &mut HashSet<NodeId>, out: &mut Vec<NodeId>) {
+        if !pending.contains(&m) || placed.contains(&m) {
+            return;
+        }
+        if let Some(sum) = angle_sum(g, m) {
+            for part in [sum.sin_a, sum.cos_a, sum.sin_b, sum.cos_b] {
+                place(g, part, pending, placed, out);
+            }
+        }
+        placed.insert(m);
+        out.push(m);
+    }
     let pending: HashSet<NodeId> = order.iter().copied().collect();
     let mut placed: HashSet<NodeId> = HashSet::new();
     let mut out = Vec::with_capacity(order.len());
     for n in order {
-        if let Some(sum) = angle_sum(g, n) {
-            for m in [sum.sin_a, sum.cos_a, sum.sin_b, sum.cos_b] {
-                if pending.contains(&m) && placed.insert(m) {
-                    out.push(m);
-                }
-            }
-        }
-        if placed.insert(n) {
-            out.push(n);
-        }
+        place(g, n, &pending, &mut placed, &mut out);
     }
     out
 }

@@ -7,7 +7,8 @@
 //! last place off libm's), and the outputs, analogs and later blocks read the rotated values of
 //! the evaluation the solve returned; in a sweep's kernel an argument free of the unknowns is
 //! asked of the sweep's cache (`Rotating`; a sum `phi + gamma` by angle addition from `phi`'s
-//! pair). The declarations below put each half of a pair in a different scope ([`TwoStageNewton`]):
+//! pair and `gamma`'s, in every generated function; [`NestedSums`] holds sums within sums). The
+//! declarations below put each half of a pair in a different scope ([`TwoStageNewton`]):
 //!
 //! * `sin(psi)` only in block 0's equation, `cos(psi)` only in block 1's equation and in an
 //!   output: block 0's evaluation computes both (its Jacobian needs the cosine), block 1 and the
@@ -17,7 +18,7 @@
 //! * `sin(phi)` of the input only in block 0's equation, `cos(phi)` only in the analogs and an
 //!   output: one `sin_cos` before block 0;
 //! * `sin(phi + gamma)` only in block 1's equation, `cos(phi + gamma)` only in an output: one
-//!   pair before block 1, in a sweep's kernel from `phi`'s pair by angle addition.
+//!   pair before block 1, from `phi`'s pair and `gamma`'s by angle addition (`add_angles`).
 //!
 //! [`TwoStage`] swaps `phi` and `phi + gamma` (the sum's pair needed first, in block 0: `phi`'s
 //! pair moves there too, though neither of its halves is needed before block 1) and solves
@@ -75,6 +76,24 @@ declared! {
         output reach = r * cos(phi + gamma) + l * cos(psi);
         output drop = m * sin(s);
         output lead = cos(phi);
+    }
+}
+
+declared! {
+    NESTED_SUMS_TEXT =>
+    /// Sums of angles within sums: `phi + gamma + delta` by angle addition from
+    /// `phi + gamma`'s pair, itself from `phi`'s, each declared before the pair it is computed
+    /// from (so the parts' pairs come later in the graph's order and move ahead of it); block 0
+    /// by its closed form, block 1 by Newton.
+    pub struct NestedSums {
+        params r = 1.0, l = 3.0, e = 0.4, gamma = 0.3, delta = 0.2, k = 2.0, m = 0.5;
+        input phi;
+        unknowns psi = 0.1, s = 2.5;
+        eq lift: r * sin(phi + gamma + delta) + l * sin(psi) == e;
+        eq slide: s - m * cos(s) == k * cos(psi) + r * sin(phi + gamma);
+        output reach = r * cos(phi + gamma + delta) + l * cos(psi);
+        output drop = m * sin(s);
+        output lead = cos(phi + gamma) + sin(phi) * cos(phi);
     }
 }
 
@@ -219,6 +238,11 @@ fn point_steps_equal_the_compiled_ones_to_the_bit() {
     let n = point_steps(&TwoStage::default(), &mut read(TWO_STAGE_TEXT), 360, reach);
     assert!(n > 0, "no output with rotated values");
     eprintln!("closed form then Newton: {n} of 720 steps with outputs other than libm's");
+    // Sums within sums, each by angle addition, in the compiled code as in the model.
+    let (delta, code) = (0.2, step_kernel(NESTED_SUMS_TEXT));
+    assert_eq!(code.matches("add_angles(").count(), 2, "{code}");
+    let reach = |phi: f64, psi: f64| r * (phi + gamma + delta).cos() + l * psi.cos();
+    point_steps(&NestedSums::default(), &mut read(NESTED_SUMS_TEXT), 360, reach);
 }
 
 /// A coupled Newton block of four unknowns (the class IV group, `kinloop_fixtures`): its

@@ -353,8 +353,8 @@ impl Names {
     /// are nodes of their own (`b`'s, of the parameters alone, are computed once by a caller's
     /// loop over the inputs, and kept by a sweep's cache). A sine or cosine without its partner
     /// takes its part of the same pair of values. `a`'s and `b`'s pairs are emitted first when
-    /// they come later in the same scope (the schedule put them no later). `None` when `n`'s
-    /// pair is already emitted.
+    /// they come later in the same scope (the schedule put them no later), `a`'s by angle
+    /// addition too where `a` is such a sum. `None` when `n`'s pair is already emitted.
     fn angle_sum(
         &self,
         g: &Graph,
@@ -371,8 +371,14 @@ impl Names {
         }
         let mut out = TokenStream::new();
         for (s, c) in [(sum.sin_a, sum.cos_a), (sum.sin_b, sum.cos_b)] {
-            // A constant `b`'s values are constants, never in `nodes`.
-            if nodes.contains(&s) && done.insert(s) {
+            // A constant `b`'s values are constants, never in `nodes`; `a` may be a sum itself
+            // (`phi + gamma + delta` from `phi + gamma`), whose pair comes from its own parts.
+            if !nodes.contains(&s) {
+                continue;
+            }
+            if sched.sums.contains_key(&s) {
+                out.extend(self.angle_sum(g, sched, s, nodes, done, (near, &mut *slots)));
+            } else if done.insert(s) {
                 out.extend(self.pair(g, (s, c), near, slots));
             }
         }
