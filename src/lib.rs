@@ -73,8 +73,9 @@
 //! closer than [`NewtonConfig::singular_tol`] of the links is [`Error::Singular`]), on the
 //! closed-form path as on Newton's. A sweep does not accept a step below
 //! [`SweepConfig::singular_pivot`] (`1e-6`); where it finds no limit position or crossing there
-//! (the path only passes close to one) it stops with [`Error::Branch`] saying so, and a lower
-//! value lets it pass.
+//! (the path only passes close to one) it stops with [`Error::NearSingular`] saying so, and a
+//! lower value lets it pass; a sweep that starts at one (the end of a reachable range) stops
+//! with [`Error::SingularStart`].
 //!
 //! Beside a singular position the results lose accuracy as the smallest pivot ratio `p` falls:
 //! about `eps / p` in the positions, `eps / p^2` in the velocity analogs and `eps / p^3` in the

@@ -138,10 +138,9 @@ pub fn in_units(mut e: Error, kinds: &[QuantityKind], deg: bool) -> Error {
 pub fn solve_failed(name: &str, e: Error, kinds: &[QuantityKind], deg: bool) -> Failed {
     let code = exit_code(&e);
     // The sweep's advice names the library's setting; the command line's option sets it.
-    let lower_pivot = matches!(&e, Error::Branch { message, .. } if message.contains("lower `singular_pivot`"));
+    let lower_pivot = matches!(&e, Error::NearSingular { .. });
     let at_limit = matches!(&e, Error::SweepStopped { kind: EventKind::LimitPosition, .. });
-    let singular_start =
-        matches!(&e, Error::Branch { message, .. } if message.starts_with("the sweep starts at a singular"));
+    let singular_start = matches!(&e, Error::SingularStart { .. });
     eprintln!("error: {}", named(name, &in_units(e, kinds, deg)));
     if lower_pivot {
         eprintln!("note: `--singular-pivot RATIO` lowers it on the command line");

@@ -174,6 +174,43 @@ pub enum Error {
         /// Where (the located input value).
         at: Box<Location>,
     },
+    /// A sweep starts at a singular position (its first sample's smallest pivot ratio below
+    /// `SweepConfig::singular_pivot`): a limit position (the end of a reachable range, where a
+    /// sweep that stopped there put it) or a change point, where the input alone does not say
+    /// which branch leads on. Start inside the range, or trace the curve from there
+    /// (`trace_curve` starts at a limit position).
+    #[error(
+        "the sweep starts at a singular position (a pivot ratio of {pivot_ratio:.2e}, below \
+         `SweepConfig::singular_pivot`, {singular_pivot:e}): a limit position or a change point, where the input \
+         alone does not say which branch leads on and the analogs are the rounding's; start the sweep inside the \
+         range (a reachable range ends at limit positions), or trace the curve from it (`trace_curve`) {at}"
+    )]
+    SingularStart {
+        /// The first sample's smallest pivot ratio.
+        pivot_ratio: f64,
+        /// The configured `SweepConfig::singular_pivot`.
+        singular_pivot: f64,
+        /// Where (the sweep's start).
+        at: Box<Location>,
+    },
+    /// A sweep's steps pass so near a singular position (a pivot ratio below
+    /// `SweepConfig::singular_pivot`) that the residual tolerance no longer pins the branch, and
+    /// no limit position or crossing is found there. A mechanism meant to pass this close (a
+    /// slide brushing its pivot) sweeps with a lower `singular_pivot`.
+    #[error(
+        "the sweep passes within a pivot ratio of {pivot_ratio:.2e} of a singular position, below \
+         `SweepConfig::singular_pivot` ({singular_pivot:e}), where the residual tolerance no longer pins the branch, \
+         and finds no limit position or crossing there; if the mechanism is meant to pass this close (e.g. a \
+         slide brushing its pivot), lower `singular_pivot` {at}"
+    )]
+    NearSingular {
+        /// The smallest pivot ratio of the step that failed.
+        pivot_ratio: f64,
+        /// The configured `SweepConfig::singular_pivot`.
+        singular_pivot: f64,
+        /// Where.
+        at: Box<Location>,
+    },
     /// A sweep could not stay on its assembly branch (see the sweep's events).
     #[error("{message} {at}")]
     Branch {
@@ -337,6 +374,8 @@ impl Error {
             | Error::Underflow { at, .. }
             | Error::SweepStopped { at, .. }
             | Error::Branch { at, .. }
+            | Error::SingularStart { at, .. }
+            | Error::NearSingular { at, .. }
             | Error::InputTooCoarse { at, .. }
             | Error::TooManyTurns { at, .. }
             | Error::RangeTooLong { at, .. } => Some(at),
@@ -357,6 +396,8 @@ impl Error {
             | Error::Underflow { at, .. }
             | Error::SweepStopped { at, .. }
             | Error::Branch { at, .. }
+            | Error::SingularStart { at, .. }
+            | Error::NearSingular { at, .. }
             | Error::InputTooCoarse { at, .. }
             | Error::TooManyTurns { at, .. }
             | Error::RangeTooLong { at, .. } => Some(at),

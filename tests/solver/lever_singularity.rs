@@ -313,7 +313,7 @@ fn a_sweep_never_passes_a_slide_near_its_pivot_silently() {
             // By default: every sample right, or a stop that says how to pass.
             if let Err(e) = check(SweepConfig::default()) {
                 assert!(d < 1e-6, "scale {scale:e}, d {d:e}: {e}");
-                assert!(matches!(e, Error::Branch { .. }) && e.to_string().contains("singular_pivot"), "{e}");
+                assert!(matches!(e, Error::NearSingular { .. }) && e.to_string().contains("singular_pivot"), "{e}");
             }
             // Told that it may pass this close, it passes, on the right side of the pivot.
             check(SweepConfig::default().with_singular_pivot(1e-12)).unwrap();

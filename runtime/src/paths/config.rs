@@ -59,8 +59,9 @@ pub struct SweepConfig {
     /// ([`Health::min_pivot`](crate::Health::min_pivot)) is below this (default `1e-6`): so close
     /// to a singular position the residual tolerance no longer pins the branch. The sweep then locates the singular position by arclength
     /// continuation; where it finds none (the path only passes close to one, e.g. a slide within
-    /// a millionth of its loop's size from its pivot) it stops with [`Error::Branch`], and a lower
-    /// value lets it pass.
+    /// a millionth of its loop's size from its pivot) it stops with [`Error::NearSingular`], and a
+    /// lower value lets it pass. A sweep whose first sample is below it (a limit position, the
+    /// end of a reachable range) stops with [`Error::SingularStart`].
     ///
     /// A lower value also weakens what this test protects: a sweep run with `1e-9` (or `0`)
     /// through the change point of a parallelogram or a kite four-bar has been seen to complete

@@ -984,30 +984,17 @@ where
         let x = path.at_tau(tau_new);
         Err(match (outcome, failure) {
             (Outcome::Fail, Some(e)) => e,
-            (Outcome::Far, _) if self.spare().health().min_pivot < self.cfg.singular_pivot => Error::Branch {
-                message: format!(
-                    "the sweep passes within a pivot ratio of {:.2e} of a singular position, below \
-                     `SweepConfig::singular_pivot` ({:e}), where the residual tolerance no longer pins the \
-                     branch, and finds no limit position or crossing there; if the mechanism is meant to \
-                     pass this close (e.g. a slide brushing its pivot), lower `singular_pivot`",
-                    self.spare().health().min_pivot,
-                    self.cfg.singular_pivot
-                ),
+            (Outcome::Far, _) if self.spare().health().min_pivot < self.cfg.singular_pivot => Error::NearSingular {
+                pivot_ratio: self.spare().health().min_pivot,
+                singular_pivot: self.cfg.singular_pivot,
                 at: self.location(x.as_ref(), Some(weakest)),
             },
             // From a first sample at a singular position (the end of a reachable range, where a
             // sweep that stopped there put it): no step in the input leaves it on one branch,
             // its analogs being the rounding's. Said as such, with what to do instead.
-            _ if self.tau == 0.0 && k.health().min_pivot < self.cfg.singular_pivot => Error::Branch {
-                message: format!(
-                    "the sweep starts at a singular position (a pivot ratio of {:.2e}, below \
-                     `SweepConfig::singular_pivot`, {:e}): a limit position or a change point, where the input \
-                     alone does not say which branch leads on and the analogs are the rounding's; start the sweep \
-                     inside the range (a reachable range ends at limit positions), or trace the curve from it \
-                     (`trace_curve`)",
-                    k.health().min_pivot,
-                    self.cfg.singular_pivot
-                ),
+            _ if self.tau == 0.0 && k.health().min_pivot < self.cfg.singular_pivot => Error::SingularStart {
+                pivot_ratio: k.health().min_pivot,
+                singular_pivot: self.cfg.singular_pivot,
                 at: self.location(path.from.as_ref(), Some(weakest)),
             },
             _ => self.coarse_error(x.as_ref(), Some(weakest)).unwrap_or_else(|| Error::Branch {
