@@ -3,7 +3,8 @@
 //!
 //! Both steps run in the same harness: one point step per iteration along turns of 720 steps,
 //! each warm-started from the previous position, the sum of the outputs and the first analog
-//! returned (into `black_box`), as `benches/src/bin/step_count.rs` does under callgrind.
+//! into `black_box`, in a loop out of line as `benches/src/bin/step_count.rs` runs them under
+//! callgrind.
 //!
 //! ```text
 //! cargo bench -p kinloop-model --bench step
@@ -15,6 +16,7 @@ use kinloop_fixtures as fx;
 use kinloop_model::Model;
 use std::f64::consts::TAU;
 use std::hint::black_box;
+use std::time::{Duration, Instant};
 
 const TURN: usize = 720;
 
@@ -31,37 +33,56 @@ fn compiled<M: Mechanism<N, NI, NO>, const N: usize, const NI: usize, const NO: 
     // Opaque: the generated `kinematics_flat` is `#[inline]`, and a local constant configuration
     // would let the compiled kernel fold its tolerances where the run-time step reads them.
     let cfg = black_box(NewtonConfig::default());
-    let mut q = m.guess_flat(&[0.0; NI]);
-    let mut k = 0;
-    g.bench_function(format!("{name}/compiled"), |b| {
-        b.iter(|| {
-            let mut x = [0.0; NI];
-            x[0] = input(k);
-            k += 1;
-            let s = m.kinematics_flat(black_box(&x), &q, &cfg).expect("solve");
-            q = s.q;
-            s.out.iter().sum::<f64>() + s.dq[0][0]
-        })
-    });
+    let q0 = m.guess_flat(&[0.0; NI]);
+    g.bench_function(format!("{name}/compiled"), |b| b.iter_custom(|iters| compiled_steps(m, &cfg, q0, iters)));
+}
+
+/// `iters` compiled steps from input 0 and the time they took: the loop of
+/// `benches/src/bin/step_count.rs`, out of line with the mechanism borrowed shared, so that
+/// what depends on its parameters alone (the rhombic drive's sines and cosines of `gamma` and
+/// `psi_s1`) is computed once, as the run-time model computes it when its parameters are set.
+/// (In criterion's `iter` closure the mechanism was read again after every `black_box`, and
+/// the compiled step paid two `sincos` a step the model does not.)
+#[inline(never)]
+fn compiled_steps<M: Mechanism<N, NI, NO>, const N: usize, const NI: usize, const NO: usize>(
+    m: &M,
+    cfg: &NewtonConfig,
+    mut q: [f64; N],
+    iters: u64,
+) -> Duration {
+    let start = Instant::now();
+    for k in 0..iters as usize {
+        let mut x = [0.0; NI];
+        x[0] = input(k);
+        let s = m.kinematics_flat(black_box(&x), &q, cfg).expect("solve");
+        q = s.q;
+        black_box(s.out.iter().sum::<f64>() + s.dq[0][0]);
+    }
+    start.elapsed()
 }
 
 fn runtime(g: &mut BenchmarkGroup<'_, WallTime>, name: &str, m: &mut Model) {
     // Opaque, as for the compiled step: both read the configuration at run time.
     let cfg = black_box(NewtonConfig::default());
     let ni = m.inputs().len();
-    let mut q = vec![0.0; m.unknowns().len()];
-    m.guess(&vec![0.0; ni], &mut q).expect("guess");
-    let mut x = vec![0.0; ni];
-    let mut k = 0;
-    g.bench_function(format!("{name}/runtime"), |b| {
-        b.iter(|| {
-            x[0] = input(k);
-            k += 1;
-            let s = m.kinematics(black_box(&x), &q, &cfg).expect("solve");
-            q.copy_from_slice(&s.q);
-            s.out.iter().sum::<f64>() + s.dq[0]
-        })
-    });
+    let mut q0 = vec![0.0; m.unknowns().len()];
+    m.guess(&vec![0.0; ni], &mut q0).expect("guess");
+    g.bench_function(format!("{name}/runtime"), |b| b.iter_custom(|iters| runtime_steps(m, &cfg, &q0, iters)));
+}
+
+/// [`compiled_steps`] of a run-time model.
+#[inline(never)]
+fn runtime_steps(m: &mut Model, cfg: &NewtonConfig, q0: &[f64], iters: u64) -> Duration {
+    let mut q = q0.to_vec();
+    let mut x = vec![0.0; m.inputs().len()];
+    let start = Instant::now();
+    for k in 0..iters as usize {
+        x[0] = input(k);
+        let s = m.kinematics(black_box(&x), &q, cfg).expect("solve");
+        q.copy_from_slice(&s.q);
+        black_box(s.out.iter().sum::<f64>() + s.dq[0]);
+    }
+    start.elapsed()
 }
 
 fn model(text: &str, params: &[(&str, f64)]) -> Model {
