@@ -12,7 +12,7 @@
 //! `cargo bench -p kinloop-bench --bench dynamics`.
 
 use std::hint::black_box;
-use std::time::Duration;
+use std::time::{Duration, Instant};
 
 use criterion::{Criterion, criterion_group, criterion_main};
 use kinloop::dynamics::{Body, Coord, MassModel, Rotation};
@@ -58,24 +58,18 @@ fn bench(c: &mut Criterion) {
     let cfg = NewtonConfig::default();
     let mut g = c.benchmark_group("dynamics");
     g.measurement_time(Duration::from_secs(5));
-    let dphi = std::f64::consts::TAU / STEPS as f64;
-
-    let (mut i, mut q) = (0usize, drive.guess_flat(&[0.0]));
     g.bench_function("kinematics", |b| {
-        b.iter(|| {
-            i = (i + 1) % STEPS;
-            let k = drive.kinematics_flat(&[i as f64 * dphi], &q, &cfg).unwrap();
-            q = k.q;
-            black_box(&k);
+        b.iter_custom(|iters| {
+            steps(&drive, &cfg, iters, |k| {
+                black_box(k);
+            })
         })
     });
-    let (mut i, mut q) = (0usize, drive.guess_flat(&[0.0]));
     g.bench_function("kinematics_dynamics", |b| {
-        b.iter(|| {
-            i = (i + 1) % STEPS;
-            let k = drive.kinematics_flat(&[i as f64 * dphi], &q, &cfg).unwrap();
-            q = k.q;
-            black_box(model.dynamics(&k, &[1.0]).unwrap());
+        b.iter_custom(|iters| {
+            steps(&drive, &cfg, iters, |k| {
+                black_box(model.dynamics(k, &[1.0]).unwrap());
+            })
         })
     });
     let mut q = drive.guess_flat(&[0.0]);
@@ -94,6 +88,24 @@ fn bench(c: &mut Criterion) {
         })
     });
     g.finish();
+}
+
+/// `iters` kinematic steps along turns of [`STEPS`] angles, each warm-started from the previous
+/// one and handed to `then`, and the time they took. Out of line with the mechanism borrowed
+/// shared, as the lean harness's loops (`benches/benches/step.rs`, `lean_loop`): the sines and
+/// cosines of the drive's parameter angles (`gamma`, `psi_s1`) are computed once, where a loop
+/// in criterion's `iter` closure computes them at every step.
+#[inline(never)]
+fn steps(drive: &RhombicDrivePaper, cfg: &NewtonConfig, iters: u64, then: impl Fn(&Kin<4, 1, 7>)) -> Duration {
+    let dphi = std::f64::consts::TAU / STEPS as f64;
+    let mut q = drive.guess_flat(&[0.0]);
+    let start = Instant::now();
+    for n in 0..iters as usize {
+        let k = drive.kinematics_flat(&[(n % STEPS) as f64 * dphi], &q, cfg).unwrap();
+        q = k.q;
+        then(&k);
+    }
+    start.elapsed()
 }
 
 criterion_group!(benches, bench);

@@ -30,7 +30,7 @@ pub use crate::solvers::sparse_lu::{SparseJac, SparseLu, SparsePattern};
 pub use crate::solvers::sparse_lu_dyn::{PaddedJac, PaddedLu, PaddedWork, SparseTables};
 pub use crate::solvers::sparse_steps::{Pivots, SparseSteps, Tables, scaled};
 pub use crate::solvers::turns::*;
-pub use crate::trig::{InputTrig, Libm, NearSlot, NearTrig, add_angles};
+pub use crate::trig::{InputTrig, Libm, NearSlot, NearTrig, Preset, add_angles};
 pub use crate::vec2::Vec2;
 pub use std::borrow::Cow;
 /// A compiled mechanism's names in its block descriptions (`Name("beta")`, `Cow::Borrowed`: a

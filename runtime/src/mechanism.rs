@@ -132,6 +132,24 @@ pub trait Mechanism<const N: usize, const NI: usize, const NO: usize> {
             ok => ok,
         }
     }
+    /// [`Mechanism::kinematics_step_rescued`] with the sines and cosines of `trig` (a
+    /// [`Preset`](crate::trig::Preset) of the parameters' values the caller computed), left to
+    /// the compiler to inline: the macro's `kinematics_flat` of a small mechanism that asks
+    /// for a parameter's sine and cosine is this call after computing them.
+    #[doc(hidden)]
+    #[inline]
+    fn kinematics_step_rescued_with<T: InputTrig>(
+        &self,
+        x: &[f64; NI],
+        guess: &[f64; N],
+        cfg: &NewtonConfig,
+        trig: &mut T,
+    ) -> Result<Kin<N, NI, NO>, Error> {
+        match self.kinematics_step_flat(x, guess, cfg, trig) {
+            Err(e) => rescue(self, x, guess, cfg, e),
+            ok => ok,
+        }
+    }
     /// [`Mechanism::kinematics_step_flat`] with the state put where `sink` says: returned, or
     /// written into a state of the caller's (a sweep solves into its spare slot). The macro
     /// makes this the kernel itself, always inlined, for a small mechanism, so that a sweep's

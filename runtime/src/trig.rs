@@ -405,6 +405,32 @@ impl Rotating {
     }
 }
 
+/// libm's sines and cosines, but for the slots `slots`, whose values the caller computed:
+/// `kinematics_flat` of a mechanism whose kernel asks for the sine and cosine of a parameter
+/// (the fixed part of a sum such as `phi1 + gamma`) computes them before it calls the kernel,
+/// so that a caller's loop that borrows the mechanism computes them once even where the
+/// compiler keeps the kernel out of line (called from several places). The same values as the
+/// kernel's own call of libm, to the bit.
+#[derive(Clone, Copy, Debug)]
+pub struct Preset<const K: usize> {
+    /// The kernel's slots whose values are given.
+    pub slots: [usize; K],
+    /// Their `(sin, cos)`, in the order of `slots`.
+    pub values: [(f64, f64); K],
+}
+
+impl<const K: usize> InputTrig for Preset<K> {
+    #[inline(always)]
+    fn sin_cos(&mut self, slot: usize, arg: f64) -> (f64, f64) {
+        for k in 0..K {
+            if self.slots[k] == slot {
+                return self.values[k];
+            }
+        }
+        arg.sin_cos()
+    }
+}
+
 /// `(sin d, cos d - 1)` for `|d| <= MAX_ROTATION` (Taylor polynomials in Horner form; `cos d - 1`
 /// keeps the small part of the cosine exact in the rotation).
 #[inline(always)]
@@ -933,6 +959,16 @@ mod tests {
     }
 
     /// Slots are independent, and a repeated argument returns the stored values unchanged.
+    /// A preset slot gives the caller's values whatever the argument; every other slot libm's.
+    #[test]
+    fn preset_slots_give_their_values_and_others_libm() {
+        let mut t = Preset { slots: [1, 3], values: [0.7f64.sin_cos(), (0.25, 0.75)] };
+        assert_eq!(t.sin_cos(1, 0.7), 0.7f64.sin_cos());
+        assert_eq!(t.sin_cos(3, 0.1), (0.25, 0.75));
+        assert_eq!(t.sin_cos(0, 0.4), 0.4f64.sin_cos());
+        assert_eq!(t.sin_cos(2, -1.3), (-1.3f64).sin_cos());
+    }
+
     #[test]
     fn slots_are_independent_and_repeats_are_free() {
         let mut cache = Rotating::default();

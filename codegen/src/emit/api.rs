@@ -153,19 +153,41 @@ fn mechanism_impl(model: &Model, plan: &Plan, t: &Types) -> TokenStream {
     // end, where a failed one hands the step to the checked kernel, out of line
     // (`Mechanism::kinematics_step_checked`).
     let fused_fns = if plan.n <= SWEEP_INLINE_MAX_UNKNOWNS {
-        let fused = deferred_body(plan, &names.with_input_trig(plan));
+        let kernel_names = names.with_input_trig(plan);
+        let fused = deferred_body(plan, &kernel_names);
         // The sweep's kernel is given a configuration checked once per sweep.
         let check = closed_config_check(plan);
+        // The sines and cosines of parameters the kernel asks for (the fixed part of a sum such
+        // as `phi1 + gamma`) are computed here, before the call, so that a caller's loop that
+        // borrows the mechanism computes them once even where the compiler keeps the kernel out
+        // of line; the kernel gets them through `Preset`, the same values to the bit.
+        let preset = kernel_names.parameter_slots(&plan.graph);
+        let flat = if preset.is_empty() {
+            quote! {
+                #[inline]
+                fn kinematics_flat(&self, #x, #g, #cfg) -> #kin {
+                    #check
+                    self.kinematics_step_rescued(__x, __guess, __cfg)
+                }
+            }
+        } else {
+            let slots = preset.iter().map(|(slot, _)| proc_macro2::Literal::usize_unsuffixed(*slot));
+            let args = preset.iter().map(|(_, arg)| arg);
+            quote! {
+                #[inline(always)]
+                fn kinematics_flat(&self, #x, #g, #cfg) -> #kin {
+                    #check
+                    let mut __trig = #rt::Preset { slots: [#(#slots),*], values: [#((#args).sin_cos()),*] };
+                    self.kinematics_step_rescued_with(__x, __guess, __cfg, &mut __trig)
+                }
+            }
+        };
         quote! {
             #[inline(always)]
             fn kinematics_step_sink<T: #rt::InputTrig, S: #rt::KinSink<#n, #ni, #no>, const __CHECKED: bool>(
                 &self, #x, #g, #cfg, __trig: &mut T, __sink: S,
             ) -> ::core::result::Result<S::Out, #rt::Error> { #fused }
-            #[inline]
-            fn kinematics_flat(&self, #x, #g, #cfg) -> #kin {
-                #check
-                self.kinematics_step_rescued(__x, __guess, __cfg)
-            }
+            #flat
         }
     } else {
         // The kernel's failure at an extreme size goes to the rescue (`extreme_scale`), as a

@@ -117,6 +117,25 @@ impl Names {
         Names { trig_slots: sines.enumerate().map(|(slot, n)| (n, slot)).collect(), sweep_kernel: true, ..self.clone() }
     }
 
+    /// The slots of a sweep's kernel (see [`Names::with_input_trig`]) whose argument is a
+    /// parameter, with that parameter (`self.gamma`), in the order of the slots: the values
+    /// `kinematics_flat` computes before it calls the kernel (`Preset`), so that a caller's loop
+    /// computes them once even where the kernel is out of line.
+    pub fn parameter_slots(&self, g: &Graph) -> Vec<(usize, TokenStream)> {
+        let mut slots: Vec<(usize, TokenStream)> = self
+            .trig_slots
+            .iter()
+            .filter_map(|(&sn, &slot)| match g.op(sn) {
+                Op::Func(Func::Sin, a) if matches!(g.op(a), Op::Leaf(Leaf::Param(_))) => {
+                    Some((slot, self.operand(g, a)))
+                }
+                _ => None,
+            })
+            .collect();
+        slots.sort_by_key(|&(slot, _)| slot);
+        slots
+    }
+
     /// Names of a sweep's kernel (made by [`Names::with_input_trig`]): its closed-form blocks ask
     /// `__trig` for their angles, by the unknown's index.
     pub fn sweep_kernel(&self) -> bool {
