@@ -115,27 +115,11 @@ pub trait Mechanism<const N: usize, const NI: usize, const NO: usize> {
     ) -> Result<Kin<N, NI, NO>, Error> {
         self.kinematics_step_sink::<T, ByValue, true>(x, guess, cfg, trig, ByValue)
     }
-    /// [`Mechanism::kinematics_step_flat`] with libm's sines and cosines, and a failure of a
-    /// mechanism whose lengths leave the range the closed forms compute in (beyond about
-    /// `1e±144`) solved again by Newton over the whole system (see `extreme_scale`): what the
-    /// macro's `kinematics_flat` of a small mechanism is.
-    #[doc(hidden)]
-    #[inline(always)]
-    fn kinematics_step_rescued(
-        &self,
-        x: &[f64; NI],
-        guess: &[f64; N],
-        cfg: &NewtonConfig,
-    ) -> Result<Kin<N, NI, NO>, Error> {
-        match self.kinematics_step_flat(x, guess, cfg, &mut crate::trig::Libm) {
-            Err(e) => rescue(self, x, guess, cfg, e),
-            ok => ok,
-        }
-    }
-    /// [`Mechanism::kinematics_step_rescued`] with the sines and cosines of `trig` (a
-    /// [`Preset`](crate::trig::Preset) of the parameters' values the caller computed), left to
-    /// the compiler to inline: the macro's `kinematics_flat` of a small mechanism that asks
-    /// for a parameter's sine and cosine is this call after computing them.
+    /// [`Mechanism::kinematics_step_flat`] with the sines and cosines of `trig`, and a failure
+    /// of a mechanism whose lengths leave the range the closed forms compute in (beyond about
+    /// `1e±144`) solved again by Newton over the whole system (see `extreme_scale`), left to the
+    /// compiler to inline: the macro's `kinematics_flat` of a small mechanism is this call, with
+    /// libm's values, or a [`Preset`](crate::trig::Preset) of the parameters' it computed first.
     #[doc(hidden)]
     #[inline]
     fn kinematics_step_rescued_with<T: InputTrig>(

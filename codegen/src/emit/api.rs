@@ -148,7 +148,7 @@ fn mechanism_impl(model: &Model, plan: &Plan, t: &Types) -> TokenStream {
     // where the compiler chooses. A large one is not copied.
     // The sweep's kernel asks its cache for the sines and cosines free of the unknowns (it
     // advances them by rotation); `kinematics_flat` gives it libm (and a failure at an extreme
-    // size its rescue, `Mechanism::kinematics_step_rescued`). Its checks are switched by
+    // size its rescue, `Mechanism::kinematics_step_rescued_with`). Its checks are switched by
     // `__CHECKED`: `kinematics_flat` tests on the way; the sweep's step defers the tests to the
     // end, where a failed one hands the step to the checked kernel, out of line
     // (`Mechanism::kinematics_step_checked`).
@@ -161,25 +161,21 @@ fn mechanism_impl(model: &Model, plan: &Plan, t: &Types) -> TokenStream {
         // as `phi1 + gamma`) are computed here, before the call, so that a caller's loop that
         // borrows the mechanism computes them once even where the compiler keeps the kernel out
         // of line; the kernel gets them through `Preset`, the same values to the bit.
+        // (Without such values, libm's for every slot.) The kernel itself is left to the
+        // compiler to inline (`kinematics_step_rescued_with`).
         let preset = kernel_names.parameter_slots(&plan.graph);
-        let flat = if preset.is_empty() {
-            quote! {
-                #[inline]
-                fn kinematics_flat(&self, #x, #g, #cfg) -> #kin {
-                    #check
-                    self.kinematics_step_rescued(__x, __guess, __cfg)
-                }
-            }
+        let trig = if preset.is_empty() {
+            quote!(#rt::Libm)
         } else {
             let slots = preset.iter().map(|(slot, _)| proc_macro2::Literal::usize_unsuffixed(*slot));
             let args = preset.iter().map(|(_, arg)| arg);
-            quote! {
-                #[inline(always)]
-                fn kinematics_flat(&self, #x, #g, #cfg) -> #kin {
-                    #check
-                    let mut __trig = #rt::Preset { slots: [#(#slots),*], values: [#((#args).sin_cos()),*] };
-                    self.kinematics_step_rescued_with(__x, __guess, __cfg, &mut __trig)
-                }
+            quote!(#rt::Preset { slots: [#(#slots),*], values: [#((#args).sin_cos()),*] })
+        };
+        let flat = quote! {
+            #[inline(always)]
+            fn kinematics_flat(&self, #x, #g, #cfg) -> #kin {
+                #check
+                self.kinematics_step_rescued_with(__x, __guess, __cfg, &mut #trig)
             }
         };
         quote! {
@@ -191,7 +187,7 @@ fn mechanism_impl(model: &Model, plan: &Plan, t: &Types) -> TokenStream {
         }
     } else {
         // The kernel's failure at an extreme size goes to the rescue (`extreme_scale`), as a
-        // small mechanism's does through `kinematics_step_rescued`.
+        // small mechanism's does through `kinematics_step_rescued_with`.
         let fused = rescued(solver_body(plan, &names, Mode::Fused, false), &kin, quote!(#rt::rescue));
         quote! {
             #[inline]
