@@ -88,8 +88,9 @@ fn a_crank_driven_by_its_rocker_closes_a_turn_on() {
     assert!((turned.abs() - 1.0).abs() < 0.01, "the crank turned {turned} turns");
 }
 
-/// Where a sweep stops at a limit position it says that `trace` goes on, and a trace started
-/// at the input it names (copied from its message, in degrees) starts there: it lists that
+/// Where a sweep stops at a limit position it says that `trace` goes on; a sweep started at the
+/// input it names (copied from its message, in degrees) says that it starts at a singular
+/// position, and a trace started there starts there: it lists that
 /// limit position first, the other where the law of cosines puts it, and closes its curve.
 #[test]
 fn a_trace_starts_where_a_sweep_stopped_at_a_limit_position() {
@@ -105,6 +106,13 @@ fn a_trace_starts_where_a_sweep_stopped_at_a_limit_position() {
     let at = stop.split("phi = ").nth(1).and_then(|r| r.split(' ').next()).expect(stop);
     let lim = stretched_limit(a, b, c, d).to_degrees();
     assert!((at.parse::<f64>().unwrap() - lim).abs() <= 1e-9_f64.to_degrees(), "{at} against {lim}");
+    // A sweep from there cannot leave it on one branch: it says that it starts at a singular
+    // position, and names `trace`.
+    let again = kinloop(&[&["sweep", four_bar.as_str(), "--from", at, "--to", "0"][..], &common].concat());
+    let stderr = String::from_utf8_lossy(&again.stderr);
+    assert_eq!(again.status.code(), Some(1), "{stderr}");
+    assert!(stderr.contains("error: the sweep starts at a singular position"), "{stderr}");
+    assert!(stderr.contains("note: `kinloop trace` traces the curve from a limit position"), "{stderr}");
     let traced = kinloop(&[&["trace", four_bar.as_str(), "--from", at, "--to", "-180"][..], &common].concat());
     let stderr = String::from_utf8_lossy(&traced.stderr);
     assert_eq!(traced.status.code(), Some(0), "{stderr}");

@@ -404,3 +404,37 @@ fn a_sweep_from_a_limit_position_says_it_starts_at_one() {
     assert!(message.starts_with("the sweep starts at a singular position"), "{message}");
     assert!(message.contains(&format!("phi = {at}")) && message.contains("trace_curve"), "{message}");
 }
+
+/// A sweep from the limit position where a sweep stopped (its event's input and positions)
+/// says it starts at one, with what to do instead, as from the end of a reachable range: also
+/// where the first state does not solve even with the rounding's analogs (the slider-crank's
+/// pivot ratio is 0, below `NewtonConfig::singular_tol`), where the error was the point solve's
+/// `Singular`, which does not say that no sweep leaves the start on one branch.
+#[test]
+fn a_sweep_from_where_a_sweep_stopped_says_it_starts_at_a_limit_position() {
+    let slider = kinloop_fixtures::SliderCrank { r: 2.0, l: 1.5, e: 0.3 };
+    let four_bar = FourBar { a: 3.0, b: 2.0, c: 2.5, d: 4.0 };
+    // Each mechanism swept until it stops, then from its event.
+    let mut errors = Vec::new();
+    let g = slider.position(0.0, &slider.guess(0.0)).unwrap().0;
+    let mut sweep = slider.sweep(0.0, 3.0, 91, &g).unwrap();
+    assert!(matches!(sweep.by_ref().find_map(Result::err), Some(Error::SweepStopped { .. })));
+    let event = sweep.events()[0].clone();
+    let q = <[f64; 2]>::try_from(&event.q[..]).unwrap().into();
+    errors.push(("slider-crank", event.x[0], slider.sweep(event.x[0], 0.0, 5, &q).unwrap().find_map(Result::err)));
+    let g = four_bar.position(0.0, &four_bar.guess(0.0)).unwrap().0;
+    let mut sweep = four_bar.sweep(0.0, PI, 91, &g).unwrap();
+    assert!(matches!(sweep.by_ref().find_map(Result::err), Some(Error::SweepStopped { .. })));
+    let event = sweep.events()[0].clone();
+    let q = FourBarUnknowns::from(<[f64; 2]>::try_from(&event.q[..]).unwrap());
+    errors.push(("four-bar", event.x[0], four_bar.sweep(event.x[0], 0.0, 5, &q).unwrap().find_map(Result::err)));
+    for (name, at, e) in errors {
+        let e = e.expect("an error");
+        let message = e.to_string();
+        // The slider-crank's start does not solve (pivot ratio 0, the point solve's `Singular`);
+        // the four-bar's solves with the rounding's analogs (below `singular_pivot` only).
+        let bound = if name == "slider-crank" { NewtonConfig::default().singular_tol } else { 1e-6 };
+        assert!(matches!(e, Error::SingularStart { pivot_ratio, .. } if pivot_ratio < bound), "{name}: {e:?}");
+        assert!(message.contains(&format!("= {at}")) && message.contains("trace_curve"), "{name}: {message}");
+    }
+}

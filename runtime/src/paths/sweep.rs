@@ -596,7 +596,15 @@ where
             }
             Err(e) => {
                 self.stop();
-                Err(e)
+                Err(match e {
+                    // Where a sweep stopped (a limit position located to the rounding) the
+                    // pivot ratio is below even the point solve's tolerance: the same start as
+                    // the end of a reachable range, said as such (see `diagnose`).
+                    Error::Singular { pivot_ratio, at, .. } => {
+                        Error::SingularStart { pivot_ratio, singular_pivot: self.cfg.singular_pivot, at }
+                    }
+                    e => e,
+                })
             }
         }
     }
