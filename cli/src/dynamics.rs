@@ -12,7 +12,7 @@ use crate::solve::{in_units, named, point};
 use crate::{Failed, exit, samples};
 use kinloop_model::Model;
 use kinloop_runtime::dynamics::{Cycle, DynamicsError, Flywheel, MIN_DELTA, SpeedLaw};
-use kinloop_runtime::{Error, Number, QuantityKind, Table};
+use kinloop_runtime::{Error, EventKind, Number, QuantityKind, Table};
 use std::io::Write;
 use std::path::Path;
 
@@ -37,6 +37,28 @@ pub struct Request<'a> {
 const INERTIA: &str = "mass unit length unit^2";
 const TORQUE: &str = "mass unit length unit^2/time unit^2";
 const FORCE: &str = "mass unit length unit/time unit^2";
+
+/// What `dynamics` and `simulate` add where the motion meets a singular position: the error
+/// speaks of sweeps and of the library's names (start a sweep inside the range, trace the
+/// curve), where a machine turned by its crank cannot avoid the position.
+pub(crate) const LOCKED: &str = "note: a crank turning this machine meets a singular position (a limit position, \
+                                 where the linkage locks, or a change point, where two branches cross) that the \
+                                 motion cannot pass on one branch: check the lengths, or see the curve it moves on \
+                                 with `kinloop trace`";
+
+/// Whether `e` is the motion meeting a singular position: a sweep stopped or started there, or
+/// a solve singular there (in a simulation, inside its kinematic error).
+pub(crate) fn locks(e: &Error) -> bool {
+    match e {
+        Error::SweepStopped { kind, .. } => *kind != EventKind::Kink,
+        Error::SingularStart { .. } | Error::Singular { .. } => true,
+        Error::Dynamics(source) => match source.downcast_ref::<DynamicsError>() {
+            Some(DynamicsError::Kinematics { source, .. }) => locks(source),
+            _ => false,
+        },
+        _ => false,
+    }
+}
 
 /// The usage error of `kinloop COMMAND` (`dynamics`, `simulate`) on a model that is not a
 /// machine turned by a crank: without declared dynamics, or with other than one angle input.
@@ -135,7 +157,11 @@ fn cycle_and_flywheel(
             Some(DynamicsError::BadValue { what: "samples", .. }) => return usage(format!("{name}: {e}")),
             _ => {}
         }
+        let locked = locks(&e);
         eprintln!("error: {}", named(name, &in_units(e, model.input_kinds(), req.deg)));
+        if locked {
+            eprintln!("{LOCKED}");
+        }
         Failed(exit::SOLVE_FAILED)
     })?;
     let flywheel = cycle.flywheel(req.delta).map_err(|e| {

@@ -96,8 +96,9 @@ struct Declaration {
 struct Branch {
     /// The smallest pivot ratio a sweep accepts (from 0 to below 1; default 1e-6): lower it for a
     /// mechanism meant to pass this close to a singular position (a slide brushing its pivot), as
-    /// a sweep that stops there says. A lower value also lets a sweep pass a change point it
-    /// would otherwise locate: lower it only over a range that holds none
+    /// a sweep that stops there says. A lower value also weakens the test that finds change
+    /// points (where two branches cross): a sweep may then pass one unnoticed and go on on the
+    /// other branch, so lower it only over a range that holds none
     #[arg(long, value_name = "RATIO", allow_hyphen_values = true)]
     singular_pivot: Option<f64>,
 }

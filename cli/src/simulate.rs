@@ -15,7 +15,7 @@
 //! passed to the integrator, which stops when it is spent: it bounds the time a run takes,
 //! whatever `--time` asks for.
 
-use crate::dynamics::check_crank;
+use crate::dynamics::{LOCKED, check_crank, locks};
 use crate::exit::usage;
 use crate::solve::degrees;
 use crate::{Failed, exit, samples};
@@ -202,6 +202,9 @@ fn failure(name: &str, e: Error, deg: bool) -> Failed {
         _ => {}
     }
     eprintln!("error: {}", crate::solve::named(name, &e));
+    if locks(&e) {
+        eprintln!("{LOCKED}");
+    }
     Failed(exit::SOLVE_FAILED)
 }
 

@@ -17,9 +17,22 @@ pub fn run(model: &mut Model, at: &[String], deg: bool) -> Result<(), Failed> {
     // before states are written.
     let xs = at.iter().map(|spec| model_inputs(spec, &kinds[..ni], deg, "--at")).collect::<Result<Vec<_>, _>>()?;
     let mut failed = false;
+    // A state nearer a singular position than a sweep accepts is written with a note: its
+    // analogs are large and carry the rounding (a sweep would locate the position there).
+    let near = model.sweep_config().singular_pivot;
     for (spec, x) in at.iter().zip(xs) {
         let row = match model.solve(&x) {
-            Ok(state) => state.row(),
+            Ok(state) => {
+                let pivot = state.health.min_pivot;
+                if pivot < near {
+                    eprintln!(
+                        "note: {name} at {spec}: the smallest pivot ratio is {pivot:.2e}, below the {near:e} a sweep \
+                         accepts: a singular position (a limit position or a change point) is this near, and the \
+                         analogs there are large and carry the rounding"
+                    );
+                }
+                state.row()
+            }
             Err(e) => {
                 let (why, singular) = explain(model, &x, e, &kinds[..ni], deg, &format!("{name} at {spec}"));
                 eprintln!("error: {why}");
@@ -140,6 +153,7 @@ pub fn solve_failed(name: &str, e: Error, kinds: &[QuantityKind], deg: bool) -> 
     // The sweep's advice names the library's setting; the command line's option sets it.
     let lower_pivot = matches!(&e, Error::NearSingular { .. });
     let at_limit = matches!(&e, Error::SweepStopped { kind: EventKind::LimitPosition, .. });
+    let at_crossing = matches!(&e, Error::SweepStopped { kind: EventKind::SingularCrossing, .. });
     let singular_start = matches!(&e, Error::SingularStart { .. });
     eprintln!("error: {}", named(name, &in_units(e, kinds, deg)));
     if lower_pivot {
@@ -153,6 +167,14 @@ pub fn solve_failed(name: &str, e: Error, kinds: &[QuantityKind], deg: bool) -> 
         eprintln!(
             "note: the input cannot go on past a limit position; `kinloop trace` follows the curve through it (the \
              input turning back), and can start from it"
+        );
+    }
+    // Two branches cross there: a sweep cannot tell which one the mechanism takes, a trace
+    // keeps to the curve it is on.
+    if at_crossing {
+        eprintln!(
+            "note: two branches of the motion cross there (a change point), and the input alone does not say \
+             which one the mechanism follows on; `kinloop trace` keeps to the curve it is on through it"
         );
     }
     Failed(code)

@@ -263,6 +263,25 @@ fn sweep_arguments_the_runtime_refuses_are_usage_errors() {
     assert!(out.stdout.is_empty());
 }
 
+/// A state solved within a hair of a limit position (a non-Grashof four-bar's, where coupler
+/// and rocker stretch in line at phi = 78.58484225726951 deg; here a few ulps before it) is
+/// written with a note that its analogs are the rounding's (they are some 3e7 there); a state
+/// away from it gets none.
+#[test]
+fn a_state_near_a_singular_position_is_noted() {
+    let four_bar = shipped("four_bar.kl");
+    let params = "a=3,b=2,c=2.5,d=4";
+    let out = kinloop(&["solve", &four_bar, "--at", "78.5848422572695", "--at", "30", "--deg", "--params", params]);
+    let err = String::from_utf8_lossy(&out.stderr);
+    assert_eq!(out.status.code(), Some(0), "{err}");
+    let notes: Vec<&str> = err.lines().filter(|l| l.starts_with("note: ")).collect();
+    assert_eq!(notes.len(), 1, "{err}");
+    assert!(notes[0].starts_with("note: FourBar at 78.5848422572695: the smallest pivot ratio is "), "{err}");
+    assert!(notes[0].contains("below the 1e-6 a sweep accepts"), "{err}");
+    let text = String::from_utf8(out.stdout).expect("utf-8");
+    assert_eq!(text.lines().count(), 3, "{text}");
+}
+
 /// A solve that fails says why as a sweep's failure does (no assembly, a singular position,
 /// with the block's unknowns and equations), not as the evaluator's internal record of it.
 #[test]

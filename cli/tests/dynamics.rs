@@ -266,6 +266,32 @@ fn a_start_too_large_is_named_as_given() {
     }
 }
 
+/// A machine whose crank cannot turn (the engine with a rod shorter than its crank: at the
+/// start the rod stands at `asin(1)`, a limit position) fails, and a note says so in the
+/// machine's terms: the error speaks of sweeps (start inside the range, trace the curve), the
+/// note that a turning crank meets a position the linkage cannot pass; from another start
+/// angle the same; `simulate` says it too.
+#[test]
+fn a_crank_that_cannot_turn_says_so() {
+    let engine = shipped("engine.kl");
+    let note = "note: a crank turning this machine meets a singular position";
+    for start in ["0", "0.1"] {
+        let out = kinloop(&["dynamics", &engine, "--speed", "1", "--params", "l=0.01", "--start", start]);
+        let err = String::from_utf8_lossy(&out.stderr);
+        assert_eq!(out.status.code(), Some(1), "{err}");
+        assert!(err.contains(note) && err.contains("kinloop trace"), "--start {start}: {err}");
+    }
+    let args = ["simulate", &engine, "--speed", "150", "--torque", "2.5", "--flywheel", "0.05", "--time", "0.5"];
+    let out = kinloop(&[&args[..], &["--params", "l=0.01"]].concat());
+    let err = String::from_utf8_lossy(&out.stderr);
+    assert_eq!(out.status.code(), Some(1), "{err}");
+    assert!(err.contains(note), "{err}");
+    // The shipped engine turns: no note.
+    let out = kinloop(&["dynamics", &engine, "--speed", "150"]);
+    assert_eq!(out.status.code(), Some(0));
+    assert!(!String::from_utf8_lossy(&out.stderr).contains(note));
+}
+
 /// A slider-crank machine (the crank's moment of inertia `j_c`, the piston's mass `m_p`, no
 /// loads) written to `name` in the tests' directory.
 fn slider_crank_machine(name: &str) -> std::path::PathBuf {

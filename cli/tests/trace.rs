@@ -132,6 +132,26 @@ fn a_trace_starts_where_a_sweep_stopped_at_a_limit_position() {
     }
 }
 
+/// A sweep that stops at a change point (a parallelogram four-bar's links in line) says that
+/// two branches cross there, and that `trace` keeps to the curve it is on: the trace over the
+/// same range passes both change points and closes its curve.
+#[test]
+fn a_sweep_stopped_at_a_change_point_names_trace() {
+    let args = ["--from", "10", "--to", "370", "--deg", "--params", "a=1,b=3,c=1,d=3"];
+    let four_bar = shipped("four_bar.kl");
+    let swept = kinloop(&[&["sweep", four_bar.as_str(), "--samples", "37"][..], &args].concat());
+    let stderr = String::from_utf8_lossy(&swept.stderr);
+    assert_eq!(swept.status.code(), Some(1), "{stderr}");
+    assert!(stderr.contains("error: the sweep stopped at a singular crossing"), "{stderr}");
+    assert!(stderr.contains("note: two branches of the motion cross there (a change point)"), "{stderr}");
+    assert!(stderr.contains("`kinloop trace` keeps to the curve it is on"), "{stderr}");
+    let traced = kinloop(&[&["trace", four_bar.as_str()][..], &args].concat());
+    let stderr = String::from_utf8_lossy(&traced.stderr);
+    assert_eq!(traced.status.code(), Some(0), "{stderr}");
+    assert_eq!(stderr.lines().filter(|l| l.starts_with("event: singular crossing at phi = ")).count(), 2, "{stderr}");
+    assert!(stderr.contains("the curve closed on itself"), "{stderr}");
+}
+
 /// At a change point two curves cross: no trace starts there (which would it follow?). The
 /// error says where the start is singular and the note where a trace can start instead.
 #[test]

@@ -174,7 +174,7 @@ pub fn dopri5<const D: usize>(
         return Err(DynamicsError::BadValue {
             what: "derivative at the start",
             value,
-            why: "is beyond the range of f64 against the tolerances (express the model in other units)",
+            why: "is beyond the range of f64 against the tolerances: express the model in other units",
         });
     }
     let mut h = initial_step(&y, d1, t_end - t0, cfg);
