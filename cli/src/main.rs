@@ -68,6 +68,7 @@ mod trace;
 use clap::{Parser, Subcommand};
 use kinloop_model::source::MAX_SOURCE_BYTES;
 use kinloop_model::{Model, ReadError};
+use kinloop_runtime::AtSingular;
 use std::io::{IsTerminal, Read};
 use std::path::{Path, PathBuf};
 use std::process::ExitCode;
@@ -101,6 +102,10 @@ struct Branch {
     /// other branch, so lower it only over a range that holds none
     #[arg(long, value_name = "RATIO", allow_hyphen_values = true)]
     singular_pivot: Option<f64>,
+    /// At a singular crossing (a change point, where two branches cross) a sweep records it and
+    /// goes on along the smooth continuation of its curve, as a trace does, instead of stopping
+    #[arg(long)]
+    through_crossings: bool,
 }
 
 impl Declaration {
@@ -117,6 +122,11 @@ impl Declaration {
     /// [`Declaration::solvable`] for a command that sweeps, its sweeps configured by `branch`.
     fn solvable_on(&self, branch: &Branch) -> Result<Model, Failed> {
         let mut model = self.solvable()?;
+        if branch.through_crossings {
+            let config = model.sweep_config().with_at_singular(AtSingular::Continue);
+            // The configuration in force is valid, and the choice at a crossing is any.
+            let _ = model.set_sweep_config(config);
+        }
         if let Some(ratio) = branch.singular_pivot {
             let config = model.sweep_config().with_singular_pivot(ratio);
             if model.set_sweep_config(config).is_err() {

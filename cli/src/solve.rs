@@ -174,7 +174,8 @@ pub fn solve_failed(name: &str, e: Error, kinds: &[QuantityKind], deg: bool) -> 
     if at_crossing {
         eprintln!(
             "note: two branches of the motion cross there (a change point), and the input alone does not say \
-             which one the mechanism follows on; `kinloop trace` keeps to the curve it is on through it"
+             which one the mechanism follows on; `--through-crossings` goes on along the smooth continuation, \
+             and `kinloop trace` keeps to the curve it is on through it"
         );
     }
     Failed(code)

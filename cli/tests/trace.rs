@@ -133,8 +133,9 @@ fn a_trace_starts_where_a_sweep_stopped_at_a_limit_position() {
 }
 
 /// A sweep that stops at a change point (a parallelogram four-bar's links in line) says that
-/// two branches cross there, and that `trace` keeps to the curve it is on: the trace over the
-/// same range passes both change points and closes its curve.
+/// two branches cross there, that `--through-crossings` goes on and that `trace` keeps to the
+/// curve it is on: the sweep told to go on passes both change points (two of its samples lie
+/// on them), and the trace over the same range passes both and closes its curve.
 #[test]
 fn a_sweep_stopped_at_a_change_point_names_trace() {
     let args = ["--from", "10", "--to", "370", "--deg", "--params", "a=1,b=3,c=1,d=3"];
@@ -144,7 +145,28 @@ fn a_sweep_stopped_at_a_change_point_names_trace() {
     assert_eq!(swept.status.code(), Some(1), "{stderr}");
     assert!(stderr.contains("error: the sweep stopped at a singular crossing"), "{stderr}");
     assert!(stderr.contains("note: two branches of the motion cross there (a change point)"), "{stderr}");
+    assert!(stderr.contains("`--through-crossings` goes on along the smooth continuation"), "{stderr}");
     assert!(stderr.contains("`kinloop trace` keeps to the curve it is on"), "{stderr}");
+    // Told to go on, the sweep passes both; its samples at 180 and 360 degrees, on the change
+    // points, are the first well-conditioned states past them, each written at its own input.
+    let through =
+        kinloop(&[&["sweep", four_bar.as_str(), "--samples", "37", "--through-crossings"][..], &args].concat());
+    let stderr = String::from_utf8_lossy(&through.stderr);
+    assert_eq!(through.status.code(), Some(0), "{stderr}");
+    assert_eq!(stderr.lines().filter(|l| l.starts_with("event: singular crossing at phi = ")).count(), 2, "{stderr}");
+    let (_, rows) = csv(&through);
+    assert_eq!(rows.len(), 37);
+    for (n, r) in rows.iter().enumerate() {
+        let sample = 10.0 + 10.0 * n as f64;
+        let past = r[0] - sample;
+        if n == 17 || n == 35 {
+            assert!(past > 0.0 && past < 0.1, "{r:?}");
+        } else {
+            assert_eq!(r[0], sample, "{r:?}");
+        }
+        // The parallelogram's branch: the coupler parallel to the frame, the rocker with the crank.
+        assert!(r[1].abs() < 1e-9 && (r[2] - r[0]).abs() < 1e-9, "{r:?}");
+    }
     let traced = kinloop(&[&["trace", four_bar.as_str()][..], &args].concat());
     let stderr = String::from_utf8_lossy(&traced.stderr);
     assert_eq!(traced.status.code(), Some(0), "{stderr}");

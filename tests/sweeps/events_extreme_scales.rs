@@ -218,3 +218,35 @@ fn a_parallelograms_two_change_points_are_passed_at_every_scale() {
     }
     eprintln!("parallelogram's change points over sizes: {off:.1e} from pi and 2 pi");
 }
+
+/// The same parallelogram with its crank sampled every 10 degrees from 10: samples fall on both
+/// change points (180 and 360 degrees, to the rounding of the samples' inputs), where no state
+/// has analogs. Told to go on, the sweep gives each such sample as the first well-conditioned
+/// state past it, at that state's own input (within a tenth of a degree past the sample), and
+/// every other sample at its own input, all on the parallelogram branch; it stopped at the
+/// first of them.
+#[test]
+fn a_parallelogram_sampled_on_its_change_points_goes_on() {
+    let cfg = SweepConfig::default().with_at_singular(AtSingular::Continue);
+    let samples = 37;
+    let (from, to) = (10f64.to_radians(), 370f64.to_radians());
+    for k in [1e-3, 1.0, 1e3] {
+        let r = run(&four_bar([1.0, 3.0, 1.0, 3.0], k), (from, to), samples, [0.0, from], cfg);
+        assert!(r.is_completed(), "size {k}: {:?}", r.stop);
+        assert_eq!(r.states.len(), samples, "size {k}");
+        let kinds: Vec<EventKind> = r.events.iter().map(|e| e.kind).collect();
+        assert_eq!(kinds, [EventKind::SingularCrossing; 2], "size {k}: {:?}", r.events);
+        for (n, s) in r.states.iter().enumerate() {
+            let sample = from + (to - from) * n as f64 / (samples - 1) as f64;
+            let past = s.x[0] - sample;
+            if n == 17 || n == 35 {
+                // 180 and 360 degrees: past the change point, by less than a tenth of a degree.
+                assert!(past > 0.0 && past < 0.1f64.to_radians(), "size {k}, sample {n}: {s:?}");
+            } else {
+                assert!(past.abs() <= 4.0 * f64::EPSILON * sample, "size {k}, sample {n}: {s:?}");
+            }
+            let bound = tol::SOLVE / s.health.min_pivot;
+            assert!(wrap(s.q[0]).abs() <= bound && wrap(s.q[1] - s.x[0]).abs() <= bound, "size {k}: {s:?}");
+        }
+    }
+}

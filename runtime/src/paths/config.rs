@@ -14,7 +14,11 @@ use crate::solvers::newton::NewtonConfig;
 pub enum AtSingular {
     /// Record the event and stop with [`Error::SweepStopped`] (default).
     Stop,
-    /// Record the event and continue on the smooth continuation of the path.
+    /// Record the event and continue on the smooth continuation of the path. A sample at the
+    /// crossing itself (or so near it that the Jacobian's pivot ratio is below 100 times
+    /// [`SweepConfig::singular_pivot`], where its analogs are not defined) is the first
+    /// well-conditioned state past it, at that state's own input (`Kin::x`): a parallelogram
+    /// four-bar's crank sampled every 10 degrees gives at 180 degrees the state at about 180.07.
     Continue,
 }
 

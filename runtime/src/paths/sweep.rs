@@ -810,19 +810,24 @@ where
         let end = target * path.len;
         // In the continuation's scaled arclength (see `Metric`).
         let mut ds = 0.01 * self.scale() * path.len / metric.sigma;
+        // Whether the sample is still to be landed on: not once a landing failed.
+        let mut landing = true;
         for _ in 0..200 {
             // The point past the crossing may itself lie beyond the sample (it is up to eight of
             // the trace's steps on): the sample is landed on, not passed. Resumed there, the
             // sweep gave the state of the point past as the sample's (a refinement 1e-5 past a
             // four-bar's change point returned the state 7e-4 past it, as if at 1e-5).
-            if p.sigma >= end
-                && let Some(k) = self.land_on(&p, target, metric)
-            {
-                return Some(k);
+            if landing && p.sigma >= end {
+                if let Some(k) = self.land_on(&p, target, metric) {
+                    return Some(k);
+                }
+                landing = false;
             }
             // A sample at the crossing itself (within its band, where no solve pins the branch
             // and the analogs are not defined) cannot be landed on: the first well-conditioned
-            // point past it stands for it, at its own input, as before.
+            // point past it stands for it, at its own input, as before. Also where the curve's
+            // step passed it: a sample exactly at a parallelogram's change point (a crank at
+            // 180 degrees, sampled every 10) stopped the sweep.
             if let Ok(k) = self.m.kinematics_at(&path.at_sigma(p.sigma), &p.q, &newton)
                 && k.health().min_pivot >= self.cfg.singular_pivot * 100.0
             {
@@ -830,8 +835,11 @@ where
                 return Some(k);
             }
             let next = curve::arc_step(&self.m, &path, metric, &p, ds, &newton)?;
-            if next.sigma >= end {
-                return self.land_on(&p, target, metric);
+            if landing && next.sigma >= end {
+                if let Some(k) = self.land_on(&p, target, metric) {
+                    return Some(k);
+                }
+                landing = false;
             }
             p = next;
             // Not beyond the natural step (see `MAX_INPUT_STEP`), in the scaled coordinates.
