@@ -219,6 +219,21 @@ fn a_parallelograms_two_change_points_are_passed_at_every_scale() {
     eprintln!("parallelogram's change points over sizes: {off:.1e} from pi and 2 pi");
 }
 
+/// The same parallelogram swept into its change point with `singular_pivot` lowered to 1e-9
+/// (as to pass a slide brushing its pivot): its one event is the crossing. Within a hair of it
+/// the two branches lie closer than a corner's gap, and the sweep's steps hopping between them
+/// were taken for kinks (three, within 4e-9 degrees of it); a corner is now told only where the
+/// pivot ratio is at least the default's.
+#[test]
+fn a_lowered_singular_pivot_takes_no_branch_hop_for_a_kink() {
+    let cfg = SweepConfig::default().with_singular_pivot(1e-9);
+    let (from, to) = (10f64.to_radians(), 370f64.to_radians());
+    let r = run(&four_bar([1.0, 3.0, 1.0, 3.0], 1.0), (from, to), 37, [0.0, from], cfg);
+    let kinds: Vec<EventKind> = r.events.iter().map(|e| e.kind).collect();
+    assert_eq!(kinds, [EventKind::SingularCrossing], "{:?}", r.events);
+    assert!((r.events[0].x[0] - PI).abs() <= tol::LOCATED, "{:?}", r.events);
+}
+
 /// The same parallelogram with its crank sampled every 10 degrees from 10: samples fall on both
 /// change points (180 and 360 degrees, to the rounding of the samples' inputs), where no state
 /// has analogs. Told to go on, the sweep gives each such sample as the first well-conditioned

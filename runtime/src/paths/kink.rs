@@ -27,6 +27,15 @@
 /// would put a singular position between them, which the pivot test excludes).
 pub(crate) const KINK_GAP: f64 = 1e-8;
 
+/// The smallest pivot ratio at which a corner is told from a jump to another solution, whatever
+/// the configuration's `singular_pivot`: [`KINK_GAP`]'s argument (two solutions this close put
+/// a singular position between them) holds where positions below it are excluded. A
+/// configuration that lowers `singular_pivot` to pass near a singular position (a slide
+/// brushing its pivot) does not lower this: with it at `1e-9`, a sweep into a parallelogram
+/// four-bar's change point hopped between the two branches there and recorded each hop as a
+/// kink (three within `4e-9` degrees of it) before it located the crossing.
+pub(crate) const KINK_PIVOT: f64 = 1e-6;
+
 /// One judged unknown on the two sides of the smallest step the sweep can take, each in the
 /// unknown's unit: its change over the step and its slope before and after.
 #[derive(Clone, Copy, Debug, PartialEq)]

@@ -1040,7 +1040,7 @@ where
     #[cold]
     fn past_kink(&mut self, k: &KinOf<K>, tau_new: f64) -> Option<KinOf<K>> {
         let n = self.spare();
-        let pivot = self.cfg.singular_pivot;
+        let pivot = self.cfg.singular_pivot.max(kink::KINK_PIVOT);
         let regular = k.health().min_pivot >= pivot && n.health().min_pivot >= pivot;
         if !regular || !n.health().det_signs.same_for(&self.signs, self.m.block_count()) {
             return None;

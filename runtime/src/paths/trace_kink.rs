@@ -70,7 +70,8 @@ pub(crate) struct Passed<Q> {
 /// the module's documentation): a singular or nearly singular position at either end or
 /// inside, another assembly mode, an input that rounds to `p`'s, a step that cannot be solved,
 /// or slopes that are not one side's or the other's. `pivot` is the smallest pivot ratio of a
-/// regular position (the kernel's `SweepConfig::singular_pivot`).
+/// regular position (the kernel's `SweepConfig::singular_pivot`), here at least
+/// [`kink::KINK_PIVOT`].
 pub(crate) fn past_kink<K: Kernel>(
     m: &K,
     path: &Path<X<K>>,
@@ -101,6 +102,7 @@ pub(crate) fn past_kink<K: Kernel>(
     let after = solve(1.0, &guess)?;
     let signs = before.health().det_signs;
     let blocks = m.block_count();
+    let pivot = pivot.max(kink::KINK_PIVOT);
     let regular = |k: &KinOf<K>| k.health().min_pivot >= pivot && k.health().det_signs.same_for(&signs, blocks);
     if !regular(&before) || !regular(&after) {
         return None;
