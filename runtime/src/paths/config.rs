@@ -74,7 +74,9 @@ pub struct SweepConfig {
     /// Below the default the residual tolerance cannot tell the two apart: a check that
     /// followed the curve from the last position the default pins found the parallelogram's
     /// crossing, and found crossings just as well beside a slide passing a billionth of its
-    /// size from its pivot, which has none.
+    /// size from its pivot, which has none. A corner of the curve (a kink event) is told from a
+    /// jump to another solution only where the pivot ratio is at least the default's, whatever
+    /// this value: below it, two branches lie closer than a corner's two sides may.
     pub singular_pivot: f64,
 }
 
