@@ -176,10 +176,10 @@ pub enum Error {
     },
     /// A sweep starts at a singular position (its first sample's smallest pivot ratio below
     /// `SweepConfig::singular_pivot`, or below `NewtonConfig::singular_tol`, where the first
-    /// state does not solve: the point solve's [`Error::Singular`]): a limit position (the end of a reachable range, where a
-    /// sweep that stopped there put it) or a change point, where the input alone does not say
-    /// which branch leads on. Start inside the range, or trace the curve from there
-    /// (`trace_curve` starts at a limit position).
+    /// state does not solve: the point solve's [`Error::Singular`]): a limit position (the end
+    /// of a reachable range, where a sweep that stopped there put it) or a change point, where
+    /// the input alone does not say which branch leads on. Start inside the range, or trace the
+    /// curve from there (`trace_curve` starts at a limit position).
     #[error(
         "the sweep starts at a singular position (a pivot ratio of {pivot_ratio:.2e}, below \
          `SweepConfig::singular_pivot`, {singular_pivot:e}): a limit position or a change point, where the input \
