@@ -36,9 +36,10 @@ proptest! {
     ) {
         let mut m = Model::read("random.kl", &four_bar(a, b, c, d)).expect("a valid declaration");
         let cfg = NewtonConfig::default();
+        // The distance from the crank's joint B to the rocker's pivot D.
+        let bd = ((a * phi.cos() - d).powi(2) + (a * phi.sin()).powi(2)).sqrt();
         let Ok(s) = m.solve(&[phi]) else {
             // Out of reach at this angle: B is too far from or too near D.
-            let bd = ((a * phi.cos() - d).powi(2) + (a * phi.sin()).powi(2)).sqrt();
             prop_assert!(bd > b + c - 1e-9 || bd < (b - c).abs() + 1e-9, "no solution where the dyad reaches");
             return Ok(());
         };
@@ -48,7 +49,6 @@ proptest! {
         // of `H` exceeds `FD1` (a dyad 1.1e-4 of its length from stretched missed by 5e-6).
         // There the model's analogs are the compiled kernel's to the bit (`parity.rs`), whose
         // are checked near limit positions in `tests/kinematics`.
-        let bd = ((a * phi.cos() - d).powi(2) + (a * phi.sin()).powi(2)).sqrt();
         if (b + c - bd).min(bd - (b - c).abs()) < 1e-2 * (b + c) {
             return Ok(());
         }

@@ -958,7 +958,6 @@ mod tests {
         );
     }
 
-    /// Slots are independent, and a repeated argument returns the stored values unchanged.
     /// A preset slot gives the caller's values whatever the argument; every other slot libm's.
     #[test]
     fn preset_slots_give_their_values_and_others_libm() {
@@ -969,6 +968,7 @@ mod tests {
         assert_eq!(t.sin_cos(2, -1.3), (-1.3f64).sin_cos());
     }
 
+    /// Slots are independent, and a repeated argument returns the stored values unchanged.
     #[test]
     fn slots_are_independent_and_repeats_are_free() {
         let mut cache = Rotating::default();

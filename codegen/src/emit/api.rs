@@ -6,6 +6,7 @@ use super::dims::Dims;
 use super::evaluate::{jacobian_body, straight_line};
 use super::kernel::{Mode, closed_config_check, deferred_body, solver_body};
 use super::lints::kernel_lints;
+use super::literals::lit;
 use super::names::Names;
 use super::runtime_path::runtime;
 use super::type_names::Types;
@@ -167,7 +168,7 @@ fn mechanism_impl(model: &Model, plan: &Plan, t: &Types) -> TokenStream {
         let trig = if preset.is_empty() {
             quote!(#rt::Libm)
         } else {
-            let slots = preset.iter().map(|(slot, _)| proc_macro2::Literal::usize_unsuffixed(*slot));
+            let slots = preset.iter().map(|(slot, _)| lit(*slot));
             let args = preset.iter().map(|(_, arg)| arg);
             quote!(#rt::Preset { slots: [#(#slots),*], values: [#((#args).sin_cos()),*] })
         };
