@@ -60,6 +60,13 @@ pub(crate) fn locks(e: &Error) -> bool {
     }
 }
 
+/// The message of a body's mass or moment of inertia that is negative or not finite: the
+/// declaration's own numbers are checked when it is read, so the value comes from its
+/// parameters, which `--params` sets.
+pub(crate) fn bad_mass(name: &str, e: &Error) -> String {
+    format!("{}; check the parameters it is computed from (--params)", crate::solve::named(name, e))
+}
+
 /// The usage error of `kinloop COMMAND` (`dynamics`, `simulate`) on a model that is not a
 /// machine turned by a crank: without declared dynamics, or with other than one angle input.
 pub(crate) fn check_crank(model: &Model, command: &str) -> Result<(), Failed> {
@@ -140,9 +147,9 @@ fn cycle_and_flywheel(
     let (speed, start) = (req.speed / angle, req.start / angle);
     let cycle = model.inverse_cycle(SpeedLaw::Constant(speed)).start(start).samples(req.samples).about(about).run();
     // The runtime refuses a start angle too large for the samples of a turn to be told apart
-    // (or more samples than memory holds): bad arguments, a usage error. What remains is the
-    // model's (a parameter without a value, a limit position on the turn, a mass or load that
-    // is not finite).
+    // (or more samples than memory holds), and a body's mass or inertia that the parameters
+    // make negative or not finite: bad arguments, usage errors. What remains is the model's (a
+    // limit position on the turn, a load that is not finite).
     let cycle = cycle.map_err(|e| {
         let dynamics = match &e {
             Error::Dynamics(source) => source.downcast_ref::<DynamicsError>(),
@@ -155,6 +162,7 @@ fn cycle_and_flywheel(
                 return usage(format!("{name}: --start {}{unit}: the start angle {why}", Number(req.start)));
             }
             Some(DynamicsError::BadValue { what: "samples", .. }) => return usage(format!("{name}: {e}")),
+            Some(DynamicsError::BadMass { .. }) => return usage(bad_mass(name, &e)),
             _ => {}
         }
         let locked = locks(&e);

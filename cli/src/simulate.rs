@@ -15,7 +15,7 @@
 //! passed to the integrator, which stops when it is spent: it bounds the time a run takes,
 //! whatever `--time` asks for.
 
-use crate::dynamics::{LOCKED, check_crank, locks};
+use crate::dynamics::{LOCKED, bad_mass, check_crank, locks};
 use crate::exit::usage;
 use crate::solve::degrees;
 use crate::{Failed, exit, samples};
@@ -170,10 +170,10 @@ fn config(req: &Request) -> RunConfig {
     cfg.with_ode(ode).with_flywheel(req.flywheel)
 }
 
-/// A failed simulation: a start so far out that no step can move it, or a `--time` that needs
-/// more steps than `--max-steps`, is a bad argument (a usage error); the rest is the model's (a
-/// parameter without a value, a limit position or a singular motion reached, a load that is not
-/// finite).
+/// A failed simulation: a start so far out that no step can move it, a `--time` that needs
+/// more steps than `--max-steps`, or a body's mass or inertia made negative by the parameters,
+/// is a bad argument (a usage error); the rest is the model's (a limit position or a singular
+/// motion reached, a load that is not finite).
 fn failure(name: &str, e: Error, deg: bool) -> Failed {
     let dynamics = match &e {
         Error::Dynamics(source) => source.downcast_ref::<DynamicsError>(),
@@ -181,6 +181,10 @@ fn failure(name: &str, e: Error, deg: bool) -> Failed {
     };
     match dynamics {
         Some(&DynamicsError::TooManySteps { steps, t, t_end }) => return usage(budget_spent(name, steps, t, t_end)),
+        // A body's mass or inertia comes from the parameters given (the declaration's own
+        // numbers are checked when it is read): a bad argument, as a parameter that is not
+        // finite is.
+        Some(DynamicsError::BadMass { .. }) => return usage(bad_mass(name, &e)),
         // The runtime names the state's component by its index, in the radians it integrates
         // in: named here (the input angle, component 0, and its speed, 1), in degrees where they
         // were given so.

@@ -167,7 +167,7 @@ fn degrees_and_parameters() {
 }
 
 #[test]
-fn bad_requests_are_usage_errors_and_bad_values_failures() {
+fn bad_requests_and_bad_values_are_usage_errors() {
     let engine = shipped("engine.kl");
     let code = |args: &[&str]| {
         let out = kinloop(args);
@@ -241,10 +241,13 @@ fn bad_requests_are_usage_errors_and_bad_values_failures() {
     assert_eq!(c, Some(2), "{e}");
     assert!(e.contains("`m_p` has no value"), "{e}");
     std::fs::remove_dir_all(&dir).ok();
-    // A negative mass at run time: the runtime's error naming the body.
-    let (c, e) = code(&["dynamics", &engine, "--speed", "10", "--params", "m_rod=-2"]);
-    assert_eq!(c, Some(1), "{e}");
-    assert!(e.contains("`rod`"), "{e}");
+    // A negative mass or moment of inertia from the parameters given: a bad argument, as a
+    // parameter that is not finite is, the runtime's error naming the body and the option.
+    for (param, body) in [("m_rod=-2", "the mass of body `rod` is -2"), ("j_crank=-1e-3", "inertia of body `crank`")] {
+        let (c, e) = code(&["dynamics", &engine, "--speed", "10", "--params", param]);
+        assert_eq!(c, Some(2), "{e}");
+        assert!(e.contains(body) && e.contains("--params"), "{e}");
+    }
 }
 
 /// A start angle too large for the samples of a turn to be told apart is named as given, in

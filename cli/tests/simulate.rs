@@ -55,7 +55,8 @@ fn simulate_writes_the_compiled_engine_s_motion() {
     }
 }
 
-/// Arguments that cannot be used are usage errors (exit 2); a machine that cannot move on
+/// Arguments that cannot be used are usage errors (exit 2), parameters that make a body's mass
+/// negative among them; a machine that cannot move on
 /// (a rocker driven into its limit position) fails with exit 1 and says where.
 #[test]
 fn simulate_s_bad_arguments_and_failures_have_their_exit_codes() {
@@ -68,6 +69,13 @@ fn simulate_s_bad_arguments_and_failures_have_their_exit_codes() {
     ] {
         let out = kinloop(&[&["simulate", engine.as_str()][..], &bad].concat());
         assert_eq!(out.status.code(), Some(2), "{bad:?}: {}", String::from_utf8_lossy(&out.stderr));
+    }
+    // A body's mass or inertia made negative by the parameters given.
+    for param in ["m_rod=-2", "j_crank=-1e-3"] {
+        let out = kinloop(&["simulate", engine.as_str(), "--time", "1", "--params", param]);
+        let stderr = String::from_utf8_lossy(&out.stderr);
+        assert_eq!(out.status.code(), Some(2), "{param}: {stderr}");
+        assert!(stderr.contains("of body `") && stderr.contains("--params"), "{param}: {stderr}");
     }
     let out = kinloop(&["simulate", &shipped("four_bar.kl"), "--time", "1", "--params", "a=1,b=3,c=2.5,d=3.2"]);
     assert_eq!(out.status.code(), Some(2));
