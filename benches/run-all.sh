@@ -10,7 +10,8 @@
 #   benches/run-all.sh /tmp/run        # the files elsewhere
 #
 # The files: `commit` (what was measured), `callgrind.txt` (benches/callgrind.sh), `model.txt`
-# (model/callgrind.sh), `cputime-*.txt` (benches/cputime.sh), `criterion-*.txt` (cargo bench's
+# (model/callgrind.sh), `breakdown.txt` (benches/breakdown.sh: instructions by source file),
+# `cputime-*.txt` (benches/cputime.sh), `criterion-*.txt` (cargo bench's
 # output; the medians are in the target directory's `criterion/`), `tables.md` (the report
 # binary's tables from both), `drift.txt` (the sweeps' drift from the libm path).
 set -euo pipefail
@@ -32,6 +33,9 @@ cargo test --quiet --no-run --test sweeps
 echo "run-all.sh: instruction counts" >&2
 benches/callgrind.sh >"$out/callgrind.txt"
 model/callgrind.sh >"$out/model.txt"
+benches/breakdown.sh sweep four-bar-sweep gear-lever-sweep point four-bar-point gear-lever-point \
+  kernel-lane four-bar-kernel-lane gear-lever-kernel-lane four-bar-lane-sketch \
+  four-bar-hand-sweep-checked hand four-bar-hand gear-lever-hand ring-point >"$out/breakdown.txt"
 
 echo "run-all.sh: CPU time in paired rounds" >&2
 benches/cputime.sh 15 hand:point:20000000 four-bar-hand:four-bar-point:20000000 \
