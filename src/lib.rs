@@ -276,8 +276,10 @@
 //! a [`SweepResult`]: the states in order, why it stopped and the events met (`.into_result()?`
 //! for the states alone). [`Table`] collects states under named columns with their units in the
 //! CSV header, inferred by `mechanism!` (angles `phi [rad]`, lengths `x_c [length unit]`, the
-//! analogs their quotients `d(x_c)/d(phi) [length unit/rad]`; a column whose kind cannot be
-//! inferred, such as a time input, gets none: see [`QuantityKind`]); `with_length_unit("mm")`
+//! analogs their quotients `d(x_c)/d(phi) [length unit/rad]`; an input whose kind cannot be
+//! inferred, such as a time `t`, is in `unit of t` and the analogs by it per that unit,
+//! `d(psi)/d(t) [rad/unit of t]`, while an unknown or output of a kind not inferred gets no
+//! unit: see [`QuantityKind`]); `with_length_unit("mm")`
 //! names the unit of length and `with_units(&[("t", "s")])` sets any; `Table::read_csv` reads
 //! the table back.
 //! [`Vec2`] adds, subtracts, scales and converts to `nalgebra::Vector2` (and, with the feature

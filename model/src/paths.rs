@@ -94,7 +94,8 @@ impl Model {
     /// over this model (see
     /// [`assembly_modes_of`]), with the
     /// model's solver configuration. `Error::InvalidArgument` for an `x` of another size than
-    /// the model's inputs, `Error::NonFinite` for an input or a parameter not finite.
+    /// the model's inputs, `Error::NonFinite` for an input or a parameter not finite,
+    /// `Error::Singular` at a limit position (where the modes meet).
     pub fn assembly_modes(&mut self, x: &[f64]) -> Result<Vec<KinBuf>, Error> {
         if x.len() != self.inputs().len() {
             return Err(Error::InvalidArgument(format!(

@@ -444,7 +444,7 @@ macro_rules! __named_api {
             /// The distinct assembly modes at `input` (multi-start Newton; see
             /// [`Named::assembly_modes`](::kinloop::Named::assembly_modes)), e.g. to pick "elbow up" with
             /// `.into_iter().find(|s| ...)`. Empty where the links cannot close; an error for an
-            /// input or a parameter not finite.
+            /// input or a parameter not finite, and `Error::Singular` at a limit position.
             pub fn assembly_modes(
                 &self,
                 input: impl ::core::convert::Into<$inputs>,

@@ -184,7 +184,8 @@ pub trait Named<const N: usize, const NI: usize, const NO: usize>: Mechanism<N, 
     /// The distinct assembly modes at `input` (multi-start Newton; see
     /// [`assembly_modes`](crate::paths::modes::assembly_modes)), e.g. to pick "elbow up" with
     /// `.into_iter().find(|s| ...)`. Empty where the links cannot close; an error for an input
-    /// or a parameter not finite.
+    /// or a parameter not finite, and `Error::Singular` at a limit position (where the modes
+    /// meet).
     fn assembly_modes(&self, input: impl Into<Self::Inputs>) -> Result<Vec<Self::State>, Error> {
         let x: [f64; NI] = input.into().into();
         Ok(assembly_modes(self, &x, 64, &self.solver_config().newton)?.into_iter().map(Self::State::from).collect())

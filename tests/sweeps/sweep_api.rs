@@ -255,3 +255,32 @@ fn rejected_steps_leave_the_last_accepted_state() {
     let ry = m.a * phi.sin() + m.b * beta.sin() - m.c * gamma.sin();
     assert!(rx.abs().max(ry.abs()) < 1e-12 * m.d, "{rx:e} {ry:e}");
 }
+
+/// What a program holds prints with `{:?}`: a sweep, a sampled range, a mass model with its
+/// loads and a speed law (closures shown as elided), each naming what it is of.
+#[test]
+fn sweeps_sampled_ranges_mass_models_and_speed_laws_print_with_debug() {
+    let m = FourBar { a: 1.0, b: 3.0, c: 2.5, d: 3.0 };
+    let g = m.guess(0.0);
+    let sweep = format!("{:?}", m.sweep(0.0, 1.0, 5, &g).unwrap());
+    assert!(sweep.starts_with("SweepOf {") && sweep.contains("FourBar") && sweep.contains("samples: 5"), "{sweep}");
+    let sampled = format!("{:?}", m.sampled(0.0, 1.0, 5, &g).unwrap());
+    assert!(sampled.contains("FourBar") && sampled.contains("states: 5"), "{sampled}");
+    let crank = Body {
+        name: "crank".into(),
+        mass: 1.0,
+        com: [Coord::Fixed(0.0), Coord::Fixed(0.0)],
+        inertia: 1.0,
+        rotation: Rotation::Input(0),
+    };
+    let model = MassModel::<2, 1, 0>::new()
+        .with_body(crank)
+        .unwrap()
+        .with_torque("brake", Rotation::Input(0), |_: &Kin<2, 1, 0>, _: &[f64; 1]| -1.0)
+        .unwrap();
+    let model = format!("{model:?}");
+    assert!(model.contains("\"crank\"") && model.contains("Torque { name: \"brake\""), "{model}");
+    assert_eq!(format!("{:?}", SpeedLaw::Constant(2.0)), "Constant(2.0)");
+    let law = |phi: f64| (1.0 + 0.1 * phi.sin(), 0.1 * phi.cos());
+    assert_eq!(format!("{:?}", SpeedLaw::Varying(&law)), "Varying(..)");
+}

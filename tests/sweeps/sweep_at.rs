@@ -52,3 +52,25 @@ fn a_limit_position_between_inputs_is_a_typed_error() {
     // No inputs, no states.
     assert!(m.sweep_at(Vec::<f64>::new(), &g).into_result().unwrap().is_empty());
 }
+
+/// An input of the list that is not finite stops the run there as an input not finite, named
+/// as the input (not as the end `to` of a stretch, which the caller never gave), the states
+/// before it kept.
+#[test]
+fn an_input_of_the_list_not_finite_is_named_as_the_input() {
+    let m = FourBar { a: 1.0, b: 3.0, c: 2.5, d: 3.0 };
+    let g = m.guess(0.0);
+    for bad in [f64::NAN, f64::INFINITY] {
+        let run = m.sweep_at([0.0, 0.5, bad, 1.0], &g);
+        assert_eq!(run.states.len(), 2);
+        match &run.stop {
+            kinloop::SweepStop::Failed(kinloop::Error::NonFinite { what, name, value, .. }) => {
+                assert_eq!((*what, name.as_ref()), (kinloop::Quantity::Input, "phi"));
+                assert!(value.is_nan() == bad.is_nan(), "{value}");
+            }
+            other => panic!("{other:?}"),
+        }
+        let message = run.into_result().unwrap_err().to_string();
+        assert!(message.starts_with("input `phi` is not finite"), "{message}");
+    }
+}

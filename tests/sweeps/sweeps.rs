@@ -67,6 +67,23 @@ fn reachable_range_of_a_non_grashof_crank() {
     assert_eq!((flat.from, flat.to), ([lo], [hi]));
 }
 
+/// `reachable`'s own arguments are checked under their names: a zero `delta` (no direction to
+/// search) and `at` or `delta` not finite, which its sweeps would call their ranges' ends.
+#[test]
+fn reachable_names_a_zero_or_non_finite_delta_and_at() {
+    let m = FourBar { a: 3.0, b: 2.0, c: 2.5, d: 4.0 };
+    let g = m.position(0.0, &m.guess(0.0)).unwrap().0;
+    let zero = m.reachable(0.0, 0.0, &g, 5).unwrap_err();
+    assert!(matches!(&zero, Error::InvalidArgument(s) if s.contains("`delta` is zero")), "{zero}");
+    let at = m.reachable(f64::NAN, 1.0, &g, 5).unwrap_err();
+    assert!(matches!(&at, Error::NonFinite { what: Quantity::Input, name, .. } if name == "phi"), "{at}");
+    let delta = m.reachable(0.0, f64::INFINITY, &g, 5).unwrap_err();
+    assert!(
+        matches!(&delta, Error::NonFinite { what: Quantity::Range, name, .. } if name == "delta of phi"),
+        "{delta}"
+    );
+}
+
 #[test]
 fn near_change_point_four_bar_keeps_its_branch_over_ten_turns() {
     // s + l = 1 + 3 = 4 is just below p + q = 2 + 2.001: a crank-rocker that passes within
@@ -208,6 +225,27 @@ fn assembly_modes_of_a_four_bar_are_elbow_up_and_down() {
             assert_eq!(s.health.det_signs, mode.health.det_signs);
         }
     }
+}
+
+/// At a limit position the two modes meet in a singular position: the modes are the solve's
+/// `Singular` error there, not the empty list of inputs where the links cannot close. Beside it
+/// (inside the range) both modes are found; beyond it, none.
+#[test]
+fn assembly_modes_at_a_limit_position_are_singular_not_empty() {
+    // A double rocker: the crank cannot pass phi where |BD| = b + c.
+    let m = FourBar { a: 2.0, b: 1.0, c: 1.5, d: 3.0 };
+    let (a, b, c, d) = (m.a, m.b, m.c, m.d);
+    let limit = ((a * a + d * d - (b + c) * (b + c)) / (2.0 * a * d)).acos();
+    // The input within a few ulps of the limit where the point solve finds the position
+    // singular (rounding decides which of the neighbours reach it).
+    let at = (-4..=4)
+        .map(|k: i64| f64::from_bits((limit.to_bits() as i64 + k) as u64))
+        .find(|&x| matches!(m.kinematics(x, &m.guess(x)), Err(Error::Singular { .. })))
+        .expect("a singular position within 4 ulps of the limit");
+    let e = m.assembly_modes(at);
+    assert!(matches!(e, Err(Error::Singular { .. })), "{e:?}");
+    assert_eq!(m.assembly_modes(limit - 1e-3).unwrap().len(), 2);
+    assert!(m.assembly_modes(limit + 1e-3).unwrap().is_empty());
 }
 
 /// An input or a parameter not finite is an error naming it: every start failed on it, and the

@@ -182,6 +182,21 @@ pub struct SampledOf<K: Kernel> {
     crossings: Vec<Crossing<K>>,
 }
 
+/// The mechanism, the range, the number of states and of crossings, and the configuration (not
+/// the states themselves, which the accessors give).
+impl<K: Kernel> std::fmt::Debug for SampledOf<K> {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        f.debug_struct("SampledOf")
+            .field("mechanism", &self.k.name())
+            .field("from", &self.line.from.as_ref())
+            .field("to", &self.line.to.as_ref())
+            .field("states", &self.states.len())
+            .field("crossings", &self.crossings.len())
+            .field("cfg", &self.cfg)
+            .finish_non_exhaustive()
+    }
+}
+
 impl<'m, M, const N: usize, const NO: usize> Sampled<'m, M, N, NO, 1>
 where
     M: Mechanism<N, 1, NO>,

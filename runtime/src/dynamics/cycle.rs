@@ -21,6 +21,16 @@ pub enum SpeedLaw<'a> {
     Varying(&'a dyn Fn(f64) -> (f64, f64)),
 }
 
+/// A constant speed's value; a varying speed's law, a closure, is not shown.
+impl std::fmt::Debug for SpeedLaw<'_> {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        match self {
+            SpeedLaw::Constant(omega) => f.debug_tuple("Constant").field(omega).finish(),
+            SpeedLaw::Varying(_) => f.debug_tuple("Varying").finish_non_exhaustive(),
+        }
+    }
+}
+
 impl SpeedLaw<'_> {
     /// `(omega, eps)` at input angle `phi`.
     pub fn at(&self, phi: f64) -> (f64, f64) {

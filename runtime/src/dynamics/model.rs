@@ -74,6 +74,20 @@ pub enum Load<const N: usize, const NI: usize, const NO: usize> {
     },
 }
 
+/// The load's name and where it acts; its law, a closure, is not shown.
+impl<const N: usize, const NI: usize, const NO: usize> std::fmt::Debug for Load<N, NI, NO> {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        match self {
+            Load::Force { name, at, .. } => {
+                f.debug_struct("Force").field("name", name).field("at", at).finish_non_exhaustive()
+            }
+            Load::Torque { name, on, .. } => {
+                f.debug_struct("Torque").field("name", name).field("on", on).finish_non_exhaustive()
+            }
+        }
+    }
+}
+
 impl<const N: usize, const NI: usize, const NO: usize> Load<N, NI, NO> {
     /// The load's name.
     pub fn name(&self) -> &str {
@@ -86,6 +100,7 @@ impl<const N: usize, const NI: usize, const NO: usize> Load<N, NI, NO> {
 /// Bodies, loads and gravity of a mechanism with `N` unknowns, `NI` inputs and `NO` output
 /// columns. Every index is checked when the part is added; see
 /// [`dynamics`](crate::dynamics) for an example.
+#[derive(Debug)]
 pub struct MassModel<const N: usize, const NI: usize, const NO: usize> {
     pub(crate) bodies: Vec<Body>,
     pub(crate) loads: Vec<Load<N, NI, NO>>,

@@ -28,7 +28,9 @@ fn turn_distance(a: f64, b: f64) -> f64 {
 /// Empty where no start solves (the links cannot close at `x`: no mode). Errors, not an empty
 /// list: an input or a parameter NaN or infinite ([`Error::NonFinite`], which every start
 /// would meet), an invalid `cfg` or more `starts` than
-/// [`MAX_SAMPLES`](crate::analysis::MAX_SAMPLES) ([`Error::InvalidArgument`]).
+/// [`MAX_SAMPLES`](crate::analysis::MAX_SAMPLES) ([`Error::InvalidArgument`]), and
+/// [`Error::Singular`] where the only positions found are singular (`x` at a limit position,
+/// where two modes meet: the links close there, but in no mode a sweep can leave).
 ///
 /// A compiled mechanism's [`assembly_modes_of`] (through [`Compiled`]).
 pub fn assembly_modes<M, const N: usize, const NI: usize, const NO: usize>(
@@ -59,7 +61,9 @@ pub fn assembly_modes_of<K: Kernel>(
     let n = m.dims().n();
     let g0 = m.guess(x);
     let mut found: Vec<KinOf<K>> = Vec::new();
-    let try_start = |g: &Q<K>, found: &mut Vec<KinOf<K>>| -> Result<(), Error> {
+    // The first singular position a start reached: the answer where no start finds a mode.
+    let mut singular: Option<Error> = None;
+    let mut try_start = |g: &Q<K>, found: &mut Vec<KinOf<K>>| -> Result<(), Error> {
         match m.kinematics(x, g, cfg) {
             Ok(k) => {
                 let same = found.iter().any(|f| {
@@ -74,6 +78,10 @@ pub fn assembly_modes_of<K: Kernel>(
             // A value not finite (an input, a parameter, or the declared guess they give) fails
             // every start alike: the list would be empty as where the links cannot close.
             Err(e @ Error::NonFinite { .. }) => Err(e),
+            Err(e @ Error::Singular { .. }) => {
+                singular.get_or_insert(e);
+                Ok(())
+            }
             Err(_) => Ok(()),
         }
     };
@@ -103,6 +111,11 @@ pub fn assembly_modes_of<K: Kernel>(
             *v += (2.0 * frac - 1.0) * PI * (1.0 + 0.25 * v.abs());
         }
         try_start(&g, &mut found)?;
+    }
+    if found.is_empty()
+        && let Some(e) = singular
+    {
+        return Err(e);
     }
     found.sort_by(|a, b| a.health().det_signs.cmp(&b.health().det_signs).then(a.q()[0].total_cmp(&b.q()[0])));
     Ok(found)

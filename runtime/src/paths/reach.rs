@@ -4,7 +4,7 @@
 use super::outcome::SweepStop;
 use super::sweep::SweepOf;
 use crate::dims::{Dims, KinState};
-use crate::error::Error;
+use crate::error::{Error, Quantity};
 use crate::events::Event;
 use crate::mechanism::Mechanism;
 use crate::mechanism::kernel::{Compiled, Kernel, KinOf, Q, X, check_sizes};
@@ -41,9 +41,10 @@ impl<X> Reach<X> {
 /// each (with the mechanism's [`Mechanism::solver_config`]), and answers in input values: a
 /// compiled mechanism's [`reachable_of`] (through [`Compiled`]).
 ///
-/// Errors: fewer than 2 samples or more than [`MAX_SAMPLES`](crate::analysis::MAX_SAMPLES)
-/// as [`Error::InvalidArgument`]; those of the sweeps, except the limit positions that end them
-/// (a singular crossing that the configuration stops at is an error).
+/// Errors: fewer than 2 samples, more than [`MAX_SAMPLES`](crate::analysis::MAX_SAMPLES) or a
+/// `delta` of zeros as [`Error::InvalidArgument`]; `at` or `delta` not finite as
+/// [`Error::NonFinite`]; those of the sweeps, except the limit positions that end them (a
+/// singular crossing that the configuration stops at is an error).
 pub fn reachable<M, const N: usize, const NI: usize, const NO: usize>(
     m: &M,
     at: [f64; NI],
@@ -76,6 +77,23 @@ pub fn reachable_of<K: Kernel>(
     }
     crate::analysis::check_sample_count("samples a side of `reachable`", samples).map_err(Error::InvalidArgument)?;
     let ni = m.dims().ni();
+    // Checked here, under the caller's names: the sweeps would call them their ranges' ends.
+    for (what, values) in [(Quantity::Input, &at), (Quantity::Range, &delta)] {
+        if let Some((i, &value)) = values.as_ref().iter().enumerate().find(|(_, v)| !v.is_finite()) {
+            let name = match what {
+                Quantity::Input => m.input_name(i).to_string(),
+                _ => format!("delta of {}", m.input_name(i)),
+            };
+            return Err(Error::NonFinite { what, name: name.into(), value, at: m.location(at.as_ref(), None) });
+        }
+    }
+    if delta.as_ref().iter().all(|&d| d == 0.0) {
+        return Err(Error::InvalidArgument(
+            "reachable: `delta` is zero: give the step along which to search, each side of `at` (its direction and \
+             the distance to search)"
+                .into(),
+        ));
+    }
     // The end of a stretch: `x` copied into an input of the kernel's size.
     let input = |x: &[f64]| {
         let mut v = at.clone();

@@ -217,6 +217,23 @@ pub struct SweepOf<K: Kernel, S> {
     _s: PhantomData<fn() -> S>,
 }
 
+/// The mechanism, the range, the samples taken of those asked for, the events so far and the
+/// configuration (not the carried state of the steps).
+impl<K: Kernel, S> core::fmt::Debug for SweepOf<K, S> {
+    fn fmt(&self, f: &mut core::fmt::Formatter<'_>) -> core::fmt::Result {
+        f.debug_struct("SweepOf")
+            .field("mechanism", &self.m.name())
+            .field("from", &self.path.from.as_ref())
+            .field("delta", &self.path.delta.as_ref())
+            .field("samples", &self.samples)
+            .field("taken", &self.next)
+            .field("events", &self.events)
+            .field("done", &self.done)
+            .field("cfg", &self.cfg)
+            .finish_non_exhaustive()
+    }
+}
+
 /// A crossing the trace located, and the point just past it on the smooth continuation.
 type CrossingPair<Q> = (CurvePoint<Q>, CurvePoint<Q>);
 

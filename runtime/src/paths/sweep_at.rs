@@ -4,7 +4,7 @@
 use super::outcome::SweepResult;
 use super::sweep::SweepOf;
 use crate::dims::KinState;
-use crate::error::Error;
+use crate::error::{Error, Quantity};
 use crate::events::Event;
 use crate::mechanism::kernel::{Kernel, KinOf, Q, X, check_sizes};
 
@@ -14,7 +14,8 @@ use crate::mechanism::kernel::{Kernel, KinOf, Q, X, check_sizes};
 /// angles, a motion law). `guess` at the first input picks the assembly mode. The first error
 /// stops it; the result keeps the states before it, says why and where it stopped (a limit
 /// position between two inputs is located as in a sweep) and lists the events met
-/// ([`SweepResult::into_result`] for `?`).
+/// ([`SweepResult::into_result`] for `?`). An input of the list that is not finite stops it
+/// there with [`Error::NonFinite`] naming the input (the states before it kept).
 ///
 /// Over any [`Kernel`], with its configuration ([`Kernel::solver_config`]): a compiled
 /// mechanism's ([`Named::sweep_at`](crate::Named::sweep_at)) or one whose sizes are known at run
@@ -24,6 +25,17 @@ pub fn sweep_at_of<K: Kernel>(m: &K, inputs: impl IntoIterator<Item = X<K>>, gue
     let (mut states, mut events) = (Vec::new(), Vec::new());
     for x in inputs {
         if let Err(e) = check_sizes(m, "sweep_at", &[&x], &[&guess]) {
+            return SweepResult::new(states, Some(e), events);
+        }
+        // An input of the list not finite is named as an input (a stretch's sweep would call it
+        // its range's end `to`, which the caller never gave), where the list reaches it.
+        if let Some((i, &value)) = x.as_ref().iter().enumerate().find(|(_, v)| !v.is_finite()) {
+            let e = Error::NonFinite {
+                what: Quantity::Input,
+                name: m.input_name(i).to_string().into(),
+                value,
+                at: m.location(x.as_ref(), None),
+            };
             return SweepResult::new(states, Some(e), events);
         }
         // From the last state kept (none before the first input).
