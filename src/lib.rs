@@ -47,12 +47,12 @@
 //! the velocity analogs near theirs. The samples are only the output grid: the steps between
 //! them are bounded in the inputs' own scale (a quarter radian for an angle) and by how much the
 //! predicted slopes change, so two samples per turn follow the same branch to the same first
-//! limit as two thousand. A range of more than a million turns is refused up front
-//! ([`Error::RangeTooLong`]). When no step can be made it locates why — a **limit
-//! position** of the input (found by pseudo-arclength continuation where the input reverses) or
-//! a **singular crossing** (a change point where a determinant changes sign) — records an
-//! [`Event`] with the input value, and stops with [`Error::SweepStopped`] (or, with
-//! [`AtSingular::Continue`], passes a crossing). [`Sweep::run`] runs it to its end and returns a
+//! limit as two thousand. A range of more than a million turns is refused before any step is
+//! made: the sweep's first item is [`Error::RangeTooLong`]. When no step can be made it locates
+//! why — a **limit position** of the input (found by pseudo-arclength continuation where the
+//! input reverses) or a **singular crossing** (a change point where a determinant changes
+//! sign) — records an [`Event`] with the input value, and stops with [`Error::SweepStopped`]
+//! (or, with [`AtSingular::Continue`], passes a crossing). [`Sweep::run`] runs it to its end and returns a
 //! [`SweepResult`]: the states up to where it ended, the [`SweepStop`] (completed, a limit position
 //! or a singular crossing with its located [`Event`], or the error) and the events met.
 //! [`Sweep::table`] collects a sweep into a CSV-ready [`Table`]; `m.reachable(at, delta, &guess,

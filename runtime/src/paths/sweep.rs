@@ -97,9 +97,9 @@ pub const MAX_SLOPE_CHANGE: f64 = 0.25;
 
 /// Most turns (`2 pi` units of the inputs, see [`MAX_INPUT_STEP`]) a sweep follows: at most
 /// about 2.5e7 steps, and where the inputs reach `2 pi 1e6` their doubles are `1e-9` apart,
-/// fine against the steps. A longer range is refused up front ([`Error::RangeTooLong`]) rather
-/// than followed with steps that the doubles of its inputs, or of the path's fraction, can no
-/// longer resolve.
+/// fine against the steps. A longer range is refused before any step is made (the sweep's first
+/// item is [`Error::RangeTooLong`]) rather than followed with steps that the doubles of its
+/// inputs, or of the path's fraction, can no longer resolve.
 pub const MAX_TURNS: f64 = 1e6;
 
 /// The inputs' sines and cosines are advanced by rotation (a few units in the last place off
