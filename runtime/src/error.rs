@@ -72,8 +72,9 @@ pub enum Error {
     /// degenerates (links fully stretched or folded). Typical of link lengths that cannot
     /// assemble at this input.
     #[error(
-        "the mechanism cannot be assembled {at}: the loop residual stalls at {residual:e} in \
-         equation `{equation}` (the links cannot reach; check the lengths or the input range)"
+        "the mechanism cannot be assembled {at}: the loop residual stalls at {residual:e} of the \
+         equation's terms in equation `{equation}` (the links cannot reach; check the lengths or the \
+         input range)"
     )]
     NoAssembly {
         /// The residual where it stalled, relative to the magnitude of the equation's terms
