@@ -35,7 +35,7 @@ type Model = MassModel<2, 1, 4>;
 #[test]
 fn masses_whose_sum_overflows_are_a_typed_error() {
     let m = Machine { m1: 1e308, m2: 1e308, ..Machine::default() };
-    let err = m.mass_model().err().expect("the total mass overflows");
+    let err = m.mass_model().expect_err("the total mass overflows");
     assert!(matches!(err, DynamicsError::Overflow { what: "total mass", .. }), "{err}");
     // Each mass representable and their sum too, but m v^2 not: the dynamics say so.
     let m = Machine { m1: 1e308, m2: 0.0, m3: 0.0, j1: 0.0, ..Machine::default() };

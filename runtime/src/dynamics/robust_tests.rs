@@ -36,7 +36,7 @@ fn body(mass: f64, inertia: f64) -> Body {
 fn a_total_mass_beyond_f64_is_refused_when_the_body_is_added() {
     let one = MassModel::<0, 1, 2>::new().with_body(body(1e308, 0.0)).unwrap();
     assert_eq!(one.total_mass(), 1e308);
-    let err = one.with_body(body(1e308, 0.0)).err().expect("two bodies of 1e308 overflow");
+    let err = one.with_body(body(1e308, 0.0)).expect_err("two bodies of 1e308 overflow");
     assert!(matches!(err, DynamicsError::Overflow { what: "total mass", .. }), "{err}");
     assert!(err.to_string().contains("total mass is beyond the range of f64"), "{err}");
     assert!(!err.to_string().contains("at input"), "{err}");

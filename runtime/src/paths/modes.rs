@@ -4,6 +4,7 @@
 use crate::dims::{Dims, KinState};
 use crate::error::Error;
 use crate::kin::Kin;
+use crate::kinds::QuantityKind;
 use crate::mechanism::Mechanism;
 use crate::mechanism::kernel::{Compiled, Kernel, KinOf, Q, X, check_sizes};
 use crate::solvers::newton::NewtonConfig;
@@ -21,7 +22,8 @@ fn turn_distance(a: f64, b: f64) -> f64 {
 /// guess with every unknown negated, which reaches mirrored slider solutions).
 ///
 /// Two solutions are the same mode when their block determinant signs agree and every unknown
-/// agrees modulo whole turns. Modes are sorted by their determinant signs, so the order is
+/// agrees modulo whole turns. Each mode's angles are given on the declared guess's turn (within
+/// half a turn of its values). Modes are sorted by their determinant signs, so the order is
 /// stable. Pick one with a readable rule on the named state, e.g.
 /// `modes.into_iter().find(|s| s.out.c.y > 0.0)` ("elbow up").
 ///
@@ -61,6 +63,26 @@ pub fn assembly_modes_of<K: Kernel>(
     let n = m.dims().n();
     let g0 = m.guess(x);
     let mut found: Vec<KinOf<K>> = Vec::new();
+    // A mode's angles on the turn of the declared guess's (the nearest to it): a start a turn
+    // away solves the same mode a turn away, and the modes of a list should compare by their
+    // values. Solved again there (the closed forms put an angle on its guess's turn), so that
+    // every value of the state is the solve's own; the state as found if that fails.
+    let on_guess_turn = |k: KinOf<K>| -> KinOf<K> {
+        let mut q = g0.clone();
+        q.as_mut().copy_from_slice(k.q());
+        let mut moved = false;
+        for (u, v) in q.as_mut().iter_mut().enumerate() {
+            let turns = ((g0.as_ref()[u] - *v) / (2.0 * PI)).round();
+            if m.unknown_kind(u) == QuantityKind::Angle && turns != 0.0 && turns.is_finite() {
+                *v += turns * 2.0 * PI;
+                moved = true;
+            }
+        }
+        match moved.then(|| m.kinematics(x, &q, cfg)) {
+            Some(Ok(on_turn)) if on_turn.health().det_signs == k.health().det_signs => on_turn,
+            _ => k,
+        }
+    };
     // The first singular position a start reached: the answer where no start finds a mode.
     let mut singular: Option<Error> = None;
     let mut try_start = |g: &Q<K>, found: &mut Vec<KinOf<K>>| -> Result<(), Error> {
@@ -71,7 +93,7 @@ pub fn assembly_modes_of<K: Kernel>(
                         && (0..n).all(|u| turn_distance(f.q()[u], k.q()[u]) < 1e-7 * (1.0 + k.q()[u].abs()))
                 });
                 if !same {
-                    found.push(k);
+                    found.push(on_guess_turn(k));
                 }
                 Ok(())
             }

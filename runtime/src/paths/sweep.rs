@@ -1269,7 +1269,7 @@ mod tests {
     fn a_sweep_of_more_blocks_than_the_signs_track_is_refused() {
         let m = TooManyBlocks(SliderCrank { r: 1.0, l: 3.0, e: 0.5 });
         let g = m.guess_flat(&[0.0]);
-        let err = Sweep::<_, Kin<1, 1, 1>, 1, 1, 1>::new(&m, [0.0], [1.0], 3, g).err().expect("refused");
+        let err = Sweep::<_, Kin<1, 1, 1>, 1, 1, 1>::new(&m, [0.0], [1.0], 3, g).expect_err("refused");
         assert!(matches!(&err, Error::InvalidArgument(msg) if msg.contains("257 blocks")), "{err}");
         // The same mechanism with its real single block sweeps.
         assert!(Sweep::<_, Kin<1, 1, 1>, 1, 1, 1>::new(&m.0, [0.0], [1.0], 3, g).is_ok());
