@@ -221,8 +221,8 @@ fn contract(value: f64, g: impl Fn(usize) -> f64, h: impl Fn(usize, usize) -> f6
 /// for any kernel, a run-time model's included), or a [`ColumnIndex`].
 #[diagnostic::on_unimplemented(
     message = "`{Self}` is not a column of the mechanism `{K}` samples",
-    label = "a column of another mechanism",
-    note = "a column is a handle of the sampled mechanism (`Name::COL.field`), a name (`\"field\"`) or a `ColumnIndex`"
+    label = "not a column of the sampled mechanism",
+    note = "a column is a handle of the sampled mechanism (`Name::COL.field`), a name (`\"field\"`) or a `ColumnIndex`; `Column::named(..)` gives a `Result`: take its column with `?`"
 )]
 pub trait ColumnOf<K: Kernel>: Copy {
     /// The column's flat array and index in `k`; an [`Error::InvalidArgument`] for a column
