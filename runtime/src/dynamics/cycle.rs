@@ -95,10 +95,13 @@ pub struct Flywheel {
     pub total_inertia: f64,
     /// Mean reduced inertia of the mechanism itself over the cycle.
     pub mechanism_inertia: f64,
-    /// Inertia to add on the input shaft: `total - mechanism`, or 0 when the mechanism suffices.
+    /// Inertia to add on the input shaft by the classical energy method: `total - mechanism`, or
+    /// 0 when the mechanism suffices. The method treats the mechanism's inertia as its mean, so
+    /// where that varies over the turn by a sizeable part of the total, a machine with this
+    /// flywheel fluctuates by more than `delta`: [`Flywheel::exact`] is the one that meets it.
     pub flywheel: f64,
-    /// The inertia to add by the energy equation with the mechanism's variable inertia kept; see
-    /// [`Cycle::flywheel`].
+    /// The inertia to add by the energy equation with the mechanism's variable inertia kept (the
+    /// speed fluctuation is `delta` on the steady cycle); see [`Cycle::flywheel`].
     pub exact: f64,
     /// The input speed at the cycle's first angle on the steady cycle with the
     /// [`Flywheel::exact`] flywheel (a start for a simulation of that cycle).
