@@ -110,13 +110,7 @@ fn the_mechanism_configuration_reaches_every_solve() {
     assert!(matches!(sampled, Err(Error::NoConvergence { .. })), "{:?}", sampled.err());
     let limits = kinloop::metrics::Limits::new(&one, 0.4, 1.0).guess(far).run();
     assert!(matches!(limits, Err(Error::NoConvergence { .. })), "{limits:?}");
-    let crank = Body {
-        name: "crank".into(),
-        mass: 1.0,
-        com: [Coord::Fixed(0.0), Coord::Fixed(0.0)],
-        inertia: 1.0,
-        rotation: Rotation::Input(0),
-    };
+    let crank = crank_body();
     let model = MassModel::<2, 1, 0>::new().with_body(crank).unwrap();
     let cycle = InverseCycle::new(&one, &model, SpeedLaw::Constant(1.0)).samples(16).guess(far).run();
     let no_convergence = matches!(&cycle, Err(DynamicsError::Kinematics { source: Error::NoConvergence { .. }, .. }));
@@ -266,13 +260,7 @@ fn sweeps_sampled_ranges_mass_models_and_speed_laws_print_with_debug() {
     assert!(sweep.starts_with("SweepOf {") && sweep.contains("FourBar") && sweep.contains("samples: 5"), "{sweep}");
     let sampled = format!("{:?}", m.sampled(0.0, 1.0, 5, &g).unwrap());
     assert!(sampled.contains("FourBar") && sampled.contains("states: 5"), "{sampled}");
-    let crank = Body {
-        name: "crank".into(),
-        mass: 1.0,
-        com: [Coord::Fixed(0.0), Coord::Fixed(0.0)],
-        inertia: 1.0,
-        rotation: Rotation::Input(0),
-    };
+    let crank = crank_body();
     let model = MassModel::<2, 1, 0>::new()
         .with_body(crank)
         .unwrap()
@@ -283,4 +271,15 @@ fn sweeps_sampled_ranges_mass_models_and_speed_laws_print_with_debug() {
     assert_eq!(format!("{:?}", SpeedLaw::Constant(2.0)), "Constant(2.0)");
     let law = |phi: f64| (1.0 + 0.1 * phi.sin(), 0.1 * phi.cos());
     assert_eq!(format!("{:?}", SpeedLaw::Varying(&law)), "Varying(..)");
+}
+
+/// A crank of unit mass and inertia turning with the input, centred on its pivot.
+fn crank_body() -> Body {
+    Body {
+        name: "crank".into(),
+        mass: 1.0,
+        com: [Coord::Fixed(0.0), Coord::Fixed(0.0)],
+        inertia: 1.0,
+        rotation: Rotation::Input(0),
+    }
 }
