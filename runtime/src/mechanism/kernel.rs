@@ -4,7 +4,7 @@
 //! implementation (`kinloop-model`).
 
 use crate::dims::{Dims, Fixed};
-use crate::error::Error;
+use crate::error::{Error, Quantity};
 use crate::events::{BlockInfo, Location};
 use crate::kin::{Jac, Kin, Sens};
 use crate::kinds::QuantityKind;
@@ -359,6 +359,21 @@ pub(crate) fn check_sizes<K: Kernel>(m: &K, what: &str, xs: &[&X<K>], qs: &[&Q<K
         d.ni(),
         d.n()
     )))
+}
+
+/// The first of the inputs `x` given to an algorithm that is not finite, as
+/// `Error::NonFinite` of [`Quantity::Input`] naming the input: checked where the algorithm
+/// would otherwise meet it under another name (a sweep's range end `to`).
+pub(crate) fn check_inputs_finite<K: Kernel>(m: &K, x: &X<K>) -> Result<(), Error> {
+    match x.as_ref().iter().enumerate().find(|(_, v)| !v.is_finite()) {
+        Some((i, &value)) => Err(Error::NonFinite {
+            what: Quantity::Input,
+            name: m.input_name(i).to_string().into(),
+            value,
+            at: m.location(x.as_ref(), None),
+        }),
+        None => Ok(()),
+    }
 }
 
 /// The parameter sensitivities of a state as the generic synthesis reads them: [`Sens`] when

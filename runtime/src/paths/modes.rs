@@ -8,6 +8,7 @@ use crate::kinds::QuantityKind;
 use crate::mechanism::Mechanism;
 use crate::mechanism::kernel::{Compiled, Kernel, KinOf, Q, X, check_sizes};
 use crate::solvers::newton::NewtonConfig;
+use crate::solvers::turns::unwrap_to_turn;
 use std::f64::consts::PI;
 
 /// Distance between two angle-or-length values, treating differences of whole turns as equal
@@ -72,10 +73,10 @@ pub fn assembly_modes_of<K: Kernel>(
         q.as_mut().copy_from_slice(k.q());
         let mut moved = false;
         for (u, v) in q.as_mut().iter_mut().enumerate() {
-            let turns = ((g0.as_ref()[u] - *v) / (2.0 * PI)).round();
-            if m.unknown_kind(u) == QuantityKind::Angle && turns != 0.0 && turns.is_finite() {
-                *v += turns * 2.0 * PI;
-                moved = true;
+            if m.unknown_kind(u) == QuantityKind::Angle {
+                let on_turn = unwrap_to_turn(*v, g0.as_ref()[u]);
+                moved |= on_turn != *v;
+                *v = on_turn;
             }
         }
         match moved.then(|| m.kinematics(x, &q, cfg)) {

@@ -7,7 +7,7 @@ use crate::dims::{Dims, KinState};
 use crate::error::{Error, Quantity};
 use crate::events::Event;
 use crate::mechanism::Mechanism;
-use crate::mechanism::kernel::{Compiled, Kernel, KinOf, Q, X, check_sizes};
+use crate::mechanism::kernel::{Compiled, Kernel, KinOf, Q, X, check_inputs_finite, check_sizes};
 
 /// The reachable stretch of the input from a starting value on one assembly mode, in input
 /// values, with the limit positions that end it (`None` where the end of the searched range is
@@ -78,14 +78,10 @@ pub fn reachable_of<K: Kernel>(
     crate::analysis::check_sample_count("samples a side of `reachable`", samples).map_err(Error::InvalidArgument)?;
     let ni = m.dims().ni();
     // Checked here, under the caller's names: the sweeps would call them their ranges' ends.
-    for (what, values) in [(Quantity::Input, &at), (Quantity::Range, &delta)] {
-        if let Some((i, &value)) = values.as_ref().iter().enumerate().find(|(_, v)| !v.is_finite()) {
-            let name = match what {
-                Quantity::Input => m.input_name(i).to_string(),
-                _ => format!("delta of {}", m.input_name(i)),
-            };
-            return Err(Error::NonFinite { what, name: name.into(), value, at: m.location(at.as_ref(), None) });
-        }
+    check_inputs_finite(m, &at)?;
+    if let Some((i, &value)) = delta.as_ref().iter().enumerate().find(|(_, v)| !v.is_finite()) {
+        let name = format!("delta of {}", m.input_name(i)).into();
+        return Err(Error::NonFinite { what: Quantity::Range, name, value, at: m.location(at.as_ref(), None) });
     }
     if delta.as_ref().iter().all(|&d| d == 0.0) {
         return Err(Error::InvalidArgument(

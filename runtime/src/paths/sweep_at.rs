@@ -4,9 +4,9 @@
 use super::outcome::SweepResult;
 use super::sweep::SweepOf;
 use crate::dims::KinState;
-use crate::error::{Error, Quantity};
+use crate::error::Error;
 use crate::events::Event;
-use crate::mechanism::kernel::{Kernel, KinOf, Q, X, check_sizes};
+use crate::mechanism::kernel::{Kernel, KinOf, Q, X, check_inputs_finite, check_sizes};
 
 /// The states at `inputs`, in their order, followed along the path through them without
 /// jumping branches: each stretch between consecutive inputs is a [`Sweep`](crate::Sweep) with
@@ -29,13 +29,7 @@ pub fn sweep_at_of<K: Kernel>(m: &K, inputs: impl IntoIterator<Item = X<K>>, gue
         }
         // An input of the list not finite is named as an input (a stretch's sweep would call it
         // its range's end `to`, which the caller never gave), where the list reaches it.
-        if let Some((i, &value)) = x.as_ref().iter().enumerate().find(|(_, v)| !v.is_finite()) {
-            let e = Error::NonFinite {
-                what: Quantity::Input,
-                name: m.input_name(i).to_string().into(),
-                value,
-                at: m.location(x.as_ref(), None),
-            };
+        if let Err(e) = check_inputs_finite(m, &x) {
             return SweepResult::new(states, Some(e), events);
         }
         // From the last state kept (none before the first input).
