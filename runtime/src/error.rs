@@ -125,9 +125,11 @@ pub enum Error {
     /// subnormal, `2^-1074` (4.9e-324) apart whatever their size, so a residual there is known
     /// no finer than `4.9e-324 / magnitude` of its magnitude; below `least` that is coarser
     /// than the residual tolerance (at least 16 eps), and a root judged there could be off by
-    /// far more than the tolerance says. Typical of an equation of squared lengths (a rod
-    /// length written `(x - a)^2 + ... == l^2`) with lengths below about `1e-156`: the
-    /// mechanism in a smaller unit (larger numbers) solves.
+    /// far more than the tolerance says; or, where the equation's derivatives are subnormal too
+    /// (a mechanism whose lengths are below about `1e-308`), neither has a finite reciprocal
+    /// to judge it in. Typical of an equation of squared lengths (a rod length written
+    /// `(x - a)^2 + ... == l^2`) with lengths below about `1e-156`, and of any mechanism whose
+    /// lengths are subnormal: the mechanism in a smaller unit (larger numbers) solves.
     #[error(
         "the terms of the equation `{equation}` are too small to be evaluated in f64 {at}: {}, where doubles \
          are 4.9e-324 apart, too coarse to judge its residual to the tolerance; give the lengths in a smaller \
@@ -140,7 +142,10 @@ pub enum Error {
         /// Its magnitude where the solve ended (`0` where it underflowed to zero).
         magnitude: f64,
         /// The smallest magnitude a residual can be judged in with the configuration's
-        /// residual tolerance: `2^-1074 / max(residual_tol, 16 eps)`, `4.9e-312` by default.
+        /// residual tolerance, `2^-1074 / max(residual_tol, 16 eps)` (`4.9e-312` by default);
+        /// or `2^-1024` (`5.6e-309`), where a magnitude's reciprocal overflows, for an equation
+        /// whose derivatives are as small (its lengths subnormal): it can be equilibrated by
+        /// neither.
         least: f64,
         /// Where.
         at: Box<Location>,

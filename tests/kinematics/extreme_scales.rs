@@ -1085,3 +1085,44 @@ fn a_sweep_of_an_equation_out_of_the_range_of_f64_is_refused() {
         }
     }
 }
+
+/// A mechanism whose lengths are subnormal (below `2.2e-308`, with fewer bits than a double's)
+/// is refused as too small for `f64`, naming an equation and telling the user to take a smaller
+/// unit; nothing else. Its equations' magnitudes and their derivatives are both below
+/// `2^-1024`, where their reciprocals overflow, so no residual can be equilibrated: a four-bar
+/// of lengths about `1e-310` was said not to assemble (a residual of `0.117`, its positions and
+/// its state), and the rhombic drive's velocity analogs not to be finite (an expression outside
+/// its domain), where both solve in a smaller unit. Down to about `3e-309`, where the
+/// magnitudes are normal again, they solve with size 1's angles.
+#[test]
+fn a_mechanism_of_subnormal_lengths_is_refused_as_too_small() {
+    let cfg = NewtonConfig::default();
+    let too_small = |r: Result<(), kinloop::Error>, what: &str| match r {
+        Err(e @ kinloop::Error::Underflow { magnitude, least, .. }) => {
+            let text = e.to_string();
+            assert!(magnitude < least && text.contains("give the lengths in a smaller unit"), "{what}: {text}");
+        }
+        other => panic!("{what}: {other:?}"),
+    };
+    for x in [0.3, 2.0, -1.7] {
+        for k in [1e-310, 5e-310, 1e-315] {
+            let m = four_bar(k);
+            let g = m.guess_flat(&[x]);
+            too_small(m.position_flat(&[x], &g, &cfg).map(drop), &format!("four-bar positions at {k:e}, {x}"));
+            too_small(m.kinematics_flat(&[x], &g, &cfg).map(drop), &format!("four-bar state at {k:e}, {x}"));
+            let m = four_bar_newton(k);
+            too_small(m.kinematics_flat(&[x], &g, &cfg).map(drop), &format!("Newton four-bar at {k:e}, {x}"));
+            let m: RhombicDrive = rhombic_at(k);
+            let g = m.guess_flat(&[x]);
+            too_small(m.kinematics_flat(&[x], &g, &cfg).map(drop), &format!("rhombic drive at {k:e}, {x}"));
+            too_small(rhombic_dense(k).kinematics_flat(&[x], &g, &cfg).map(drop), &format!("dense at {k:e}, {x}"));
+        }
+        let one = four_bar(1.0).kinematics_flat(&[x], &four_bar(1.0).guess_flat(&[x]), &cfg).unwrap();
+        for k in [3e-309, 1e-308] {
+            let m = four_bar(k);
+            let q = m.kinematics_flat(&[x], &m.guess_flat(&[x]), &cfg).unwrap().q;
+            // The lengths keep 50 and 52 of their bits: the angles within a few ulps of theirs.
+            assert!((0..2).all(|u| (q[u] - one.q[u]).abs() <= 1e-13), "{k:e}, {x}: {q:?} against {:?}", one.q);
+        }
+    }
+}

@@ -160,10 +160,20 @@ const SUBNORMAL_SPACING: f64 = f64::from_bits(1);
 /// by default, `1.4e-309` at the least. Every such bound is below `2^-1024`, under which the
 /// reciprocal of a magnitude overflows and [`RowScales`] marks it degenerate: a magnitude
 /// below it is always a degenerate one, and the test ([`unjudged`]) runs only for those.
+///
+/// That holds where the row sums of the Jacobian, which replace a degenerate magnitude, are
+/// of normal size (the terms are squares of lengths of normal size, say). Where they are below
+/// `2^-1024` too ([`NO_RECIPROCAL`]: the terms are lengths that are themselves subnormal), the
+/// row can be equilibrated by neither, and its least magnitude is that bound: a four-bar of
+/// lengths about `1e-310` was said not to assemble, a rhombic drive's velocity analogs not to
+/// be finite, where the same mechanism in a smaller unit solves.
 #[inline]
 pub(crate) fn least_judged_magnitude(cfg: &NewtonConfig) -> f64 {
     SUBNORMAL_SPACING / cfg.residual_tol.max(16.0 * f64::EPSILON)
 }
+
+/// `2^-1024`: the largest double whose reciprocal overflows (a magnitude below it has none).
+pub(crate) const NO_RECIPROCAL: f64 = f64::MIN_POSITIVE / 4.0;
 
 /// The failure of a solve that ends at the evaluation `ev` of `z`, judged in the magnitudes
 /// `m` of that evaluation (made from it by `mags`), when a row cannot be judged there
@@ -238,7 +248,14 @@ fn unjudged_row<const N: usize, const K: usize, J: BlockJacobian<N>>(
             let j = dense.get_or_insert_with(|| ev.j.to_dense());
             overflowed_in(&j[r], ev.f[r], z).then_some(BlockFailure::Overflow { row: r })
         } else if given > 0.0 {
-            if given < least { underflow } else { None }
+            let sum = ev.j.row_abs_sum(r);
+            if given < least {
+                underflow
+            } else if given < NO_RECIPROCAL && sum > 0.0 && sum < NO_RECIPROCAL {
+                Some(BlockFailure::Underflow { row: r, magnitude: given, least: NO_RECIPROCAL })
+            } else {
+                None
+            }
         } else if given == 0.0 {
             let j = dense.get_or_insert_with(|| ev.j.to_dense());
             let under = (0..N).any(|c| nonzero(j[r][c]) && nonzero(z[c]) && (j[r][c] * z[c]).abs() < least);
@@ -331,6 +348,23 @@ mod tests {
                 let BlockFailure::Underflow { row: 0, magnitude, least } = fail else { panic!("{c:e}: {fail:?}") };
                 assert_eq!((magnitude == 0.0, least), (zero, least_judged_magnitude(&cfg)), "{c:e}: {fail:?}");
             }
+        }
+    }
+
+    /// A row whose magnitude and derivatives are both below `2^-1024` (a length `a` times an
+    /// angle's sine, `a` subnormal) is refused with that bound as its least magnitude: neither
+    /// has a finite reciprocal to judge it in. Where its derivative is of normal size (the same
+    /// magnitude, `x` a length), it is judged in the row sums and solved.
+    #[test]
+    fn a_row_whose_derivatives_are_subnormal_too_is_refused() {
+        let cfg = NewtonConfig::default();
+        for a in [1e-310, 2e-309] {
+            let angle = move |z: &[f64; 1]| varying::<1, 2>([a * z[0].sin() - 0.5 * a], [[a * z[0].cos()]], [a], [1.0]);
+            let fail = solve([0.4], &cfg, angle).map(|(s, _)| s.z).unwrap_err();
+            assert_eq!(fail, BlockFailure::Underflow { row: 0, magnitude: a, least: NO_RECIPROCAL }, "{a:e}");
+            let length = move |z: &[f64; 1]| varying::<1, 2>([z[0] - 0.5 * a], [[1.0]], [a], [a]);
+            let (s, _) = solve([0.4 * a], &cfg, length).unwrap();
+            assert_eq!(s.z, [0.5 * a]);
         }
     }
 
