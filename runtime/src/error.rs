@@ -312,14 +312,19 @@ pub enum Error {
 
 /// What a configuration's `validate` returns: `Ok` when `field` (its first one out of range, as
 /// its `invalid_field` finds it) is `None`, otherwise the `InvalidArgument` naming
-/// `owner::field` and showing the whole configuration `cfg`. One wording for every
-/// configuration of the solvers, sweeps and optimisers.
-pub(crate) fn check_fields(owner: &str, field: Option<impl fmt::Display>, cfg: &impl fmt::Debug) -> Result<(), Error> {
+/// `owner::field`, stating the field's valid range (`range`, in the words of its documentation)
+/// and showing the whole configuration `cfg`, the field's value among the others. One wording
+/// for every configuration of the solvers, sweeps and optimisers.
+pub(crate) fn check_fields(
+    owner: &str,
+    field: Option<(impl fmt::Display, &str)>,
+    cfg: &impl fmt::Debug,
+) -> Result<(), Error> {
     match field {
         None => Ok(()),
-        Some(field) => Err(Error::InvalidArgument(format!(
-            "{owner}::{field} is out of its valid range (see its documentation): {cfg:?}"
-        ))),
+        Some((field, range)) => {
+            Err(Error::InvalidArgument(format!("{owner}::{field} is out of its valid range, {range}: {cfg:?}")))
+        }
     }
 }
 

@@ -120,3 +120,32 @@ fn a_jump_in_the_solution_is_a_branch_error() {
 fn zero_samples_is_invalid_argument() {
     assert!(matches!(M.sweep(2.0, 3.0, 0, &M.guess(2.0)), Err(Error::InvalidArgument(_))));
 }
+
+/// A configuration out of range is named with the range it must lie in, through every way a
+/// program meets it: its `validate`, a point solve, a sweep, a trace and the optimisers.
+#[test]
+fn a_configuration_out_of_range_states_the_range() {
+    use kinloop::analysis::optimize::{LevenbergMarquardt, NelderMead};
+    use kinloop::{SweepConfig, TraceConfig};
+    let g = M.guess(2.0);
+    let said = |e: Error| e.to_string();
+    let newton = NewtonConfig::default().with_singular_tol(2.0);
+    let point = M.position_with(2.0, &g, &newton).unwrap_err();
+    assert!(said(point).contains("NewtonConfig::singular_tol is out of its valid range, [0, 1)"));
+    let sweep = SweepConfig::default().with_max_halvings(0);
+    let first = M.sweep(2.0, 3.0, 3, &g).unwrap().with_config(sweep).next().unwrap().unwrap_err();
+    assert!(said(first).contains("SweepConfig::max_halvings is out of its valid range, 1..=60"));
+    let sweep = SweepConfig::default().with_newton(newton);
+    let e = sweep.validate().unwrap_err();
+    assert!(said(e).contains("SweepConfig::newton.singular_tol is out of its valid range, [0, 1)"));
+    let e = M.trace_curve(2.0, 3.0, &g, &TraceConfig::default().with_ds(2.0)).unwrap_err();
+    assert!(said(e).contains("TraceConfig::ds is out of its valid range, [1e-9, 1]"));
+    let e = TraceConfig::default().with_newton(NewtonConfig::default().with_max_iterations(20_000)).validate();
+    assert!(
+        said(e.unwrap_err()).contains("TraceConfig::newton.max_iterations is out of its valid range, at most 10000")
+    );
+    let e = LevenbergMarquardt::default().with_lambda(0.0).validate().unwrap_err();
+    assert!(said(e).contains("LevenbergMarquardt::lambda is out of its valid range, positive and finite"));
+    let e = NelderMead::default().with_max_evaluations(0).validate().unwrap_err();
+    assert!(said(e).contains("NelderMead::max_evaluations is out of its valid range, at least 1"));
+}

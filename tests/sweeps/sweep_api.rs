@@ -253,7 +253,7 @@ fn rejected_steps_leave_the_last_accepted_state() {
 /// What a program holds prints with `{:?}`: a sweep, a sampled range, a mass model with its
 /// loads and a speed law (closures shown as elided), each naming what it is of.
 #[test]
-fn sweeps_sampled_ranges_mass_models_and_speed_laws_print_with_debug() {
+fn sweeps_sampled_ranges_mass_models_speed_laws_and_builders_print_with_debug() {
     let m = FourBar { a: 1.0, b: 3.0, c: 2.5, d: 3.0 };
     let g = m.guess(0.0);
     let sweep = format!("{:?}", m.sweep(0.0, 1.0, 5, &g).unwrap());
@@ -271,6 +271,13 @@ fn sweeps_sampled_ranges_mass_models_and_speed_laws_print_with_debug() {
     assert_eq!(format!("{:?}", SpeedLaw::Constant(2.0)), "Constant(2.0)");
     let law = |phi: f64| (1.0 + 0.1 * phi.sin(), 0.1 * phi.cos());
     assert_eq!(format!("{:?}", SpeedLaw::Varying(&law)), "Varying(..)");
+    let model = MassModel::<2, 1, 2>::new().with_body(crank_body()).unwrap();
+    let cycle = format!("{:?}", InverseCycle::new(&m, &model, SpeedLaw::Constant(2.0)).samples(90));
+    assert!(cycle.contains("FourBar") && cycle.contains("\"crank\"") && cycle.contains("samples: 90"), "{cycle}");
+    let run = format!("{:?}", kinloop::dynamics::Simulation::new(&m, &model).start(0.5, 2.0));
+    assert!(run.contains("FourBar") && run.contains("start: [0.5, 2.0]") && run.ends_with(", .. }"), "{run}");
+    let limits = format!("{:?}", kinloop::metrics::Limits::new(&m, 0.0, 1.0).samples(7).columns(&[FourBar::COL.gamma]));
+    assert!(limits.contains("FourBar") && limits.contains("samples: 7") && limits.contains("gamma"), "{limits}");
 }
 
 /// A crank of unit mass and inertia turning with the input, centred on its pivot.

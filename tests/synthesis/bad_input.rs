@@ -93,7 +93,22 @@ fn targets_that_are_missing_not_finite_or_too_few() {
 fn settings_and_points_out_of_range() {
     let problem = Problem::new(CouplerFourBar::default(), &design(), &three()).unwrap();
     let search = Search::default().with_local(LocalConfig::default().with_max_evaluations(0));
-    assert!(matches!(search.run(&problem), Err(SynthesisError::InvalidConfig(_))));
+    let e = search.run(&problem).unwrap_err();
+    assert!(
+        matches!(&e, SynthesisError::InvalidConfig(m) if m == "local.max_evaluations is 0: it must be at least 1"),
+        "{e:?}"
+    );
+    let search = Search::default().with_local(LocalConfig::default().with_tol(f64::NAN));
+    let e = search.run(&problem).unwrap_err();
+    assert!(
+        matches!(&e, SynthesisError::InvalidConfig(m) if m == "local.tol is NaN: it must be finite and not negative"),
+        "{e:?}"
+    );
+    let e = Search::default().with_distinct(-1.0).run(&problem).unwrap_err();
+    assert!(
+        matches!(&e, SynthesisError::InvalidConfig(m) if m == "distinct is -1: it must be finite and not negative"),
+        "{e:?}"
+    );
     assert!(matches!(problem.residuals(&[1.0]), Err(SynthesisError::Mismatch(_))));
     assert!(matches!(problem.residuals(&[1.0, f64::NAN]), Err(SynthesisError::InvalidConfig(_))));
     let c = Constraints::default().with_transmission("beta", "gamma", 2.0);

@@ -136,6 +136,21 @@ pub struct InverseCycle<'a, M, const N: usize, const NO: usize> {
     about: [f64; 2],
 }
 
+/// The mechanism by its type, the mass model, the speed law and the settings.
+impl<M, const N: usize, const NO: usize> std::fmt::Debug for InverseCycle<'_, M, N, NO> {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        f.debug_struct("InverseCycle")
+            .field("mechanism", &std::any::type_name::<M>())
+            .field("model", self.model)
+            .field("law", &self.law)
+            .field("start", &self.phi0)
+            .field("samples", &self.samples)
+            .field("guess", &self.guess)
+            .field("about", &self.about)
+            .finish()
+    }
+}
+
 impl<'a, M, const N: usize, const NO: usize> InverseCycle<'a, M, N, NO>
 where
     M: Mechanism<N, 1, NO>,

@@ -43,6 +43,20 @@ pub struct Simulation<'a, M, D, S, const N: usize, const NO: usize> {
     cfg: RunConfig,
 }
 
+/// The mechanism by its type, the mass model, the start, the guess and the settings; the
+/// drive and the stop, closures, elided.
+impl<M, D, S, const N: usize, const NO: usize> std::fmt::Debug for Simulation<'_, M, D, S, N, NO> {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        f.debug_struct("Simulation")
+            .field("mechanism", &std::any::type_name::<M>())
+            .field("model", self.model)
+            .field("start", &self.start)
+            .field("guess", &self.guess)
+            .field("config", &self.cfg)
+            .finish_non_exhaustive()
+    }
+}
+
 /// No driving torque.
 type NoDrive = fn(f64, f64, f64) -> f64;
 /// Never stop early.

@@ -81,7 +81,8 @@ pub fn block_error(fail: BlockFailure, at: Location) -> Error {
             Error::Singular { pivot_ratio, tolerance, at: Box::new(at) }
         }
         BlockFailure::InvalidConfig { field } => Error::InvalidArgument(format!(
-            "NewtonConfig::{field} is out of its valid range (see its documentation), {at}"
+            "NewtonConfig::{field} is out of its valid range, {}, {at}",
+            NewtonConfig::valid_range(field)
         )),
         BlockFailure::Underflow { row, magnitude, least } => {
             Error::Underflow { equation: name(row), magnitude, least, at: Box::new(at) }

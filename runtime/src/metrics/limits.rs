@@ -103,6 +103,20 @@ pub struct Limits<'a, M, const N: usize> {
     columns: &'a [Column<M>],
 }
 
+/// The mechanism by its type, the range, the samples, the guess and the columns.
+impl<M, const N: usize> fmt::Debug for Limits<'_, M, N> {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        f.debug_struct("Limits")
+            .field("mechanism", &std::any::type_name::<M>())
+            .field("from", &self.from)
+            .field("to", &self.to)
+            .field("samples", &self.samples)
+            .field("guess", &self.guess)
+            .field("columns", &self.columns)
+            .finish()
+    }
+}
+
 impl<'a, M, const N: usize> Limits<'a, M, N> {
     /// The limits of mechanism `m` over the input range from `from` to `to` (either direction).
     pub fn new<const NO: usize>(m: &'a M, from: f64, to: f64) -> Self

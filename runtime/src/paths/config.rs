@@ -167,8 +167,24 @@ impl SweepConfig {
     /// assert!(bad.validate().unwrap_err().to_string().contains("max_step"));
     /// ```
     pub fn validate(&self) -> Result<(), Error> {
-        let prefix = if self.newton.invalid_field().is_some() { "newton." } else { "" };
-        crate::error::check_fields("SweepConfig", self.invalid_field().map(|field| format!("{prefix}{field}")), self)
+        let field = match self.newton.invalid_field() {
+            Some(field) => Some((format!("newton.{field}"), NewtonConfig::valid_range(field))),
+            None => self.invalid_field().map(|field| (field.to_string(), Self::valid_range(field))),
+        };
+        crate::error::check_fields("SweepConfig", field, self)
+    }
+
+    /// The valid range of a field of its own [`SweepConfig::invalid_field`] names, in the words
+    /// its error states (those of [`SweepConfig::validate`]).
+    fn valid_range(field: &str) -> &'static str {
+        match field {
+            "max_step" => "[1e-6, 1]",
+            "max_halvings" => "1..=60",
+            "corrector_rel" => "positive and finite",
+            "corrector_abs" => "not negative and finite",
+            "singular_pivot" => "[0, 1)",
+            _ => "as its documentation states",
+        }
     }
 }
 

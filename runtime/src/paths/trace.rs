@@ -96,9 +96,18 @@ impl TraceConfig {
         }
     }
 
-    /// Checks every field: `Error::InvalidArgument` names the first one out of range.
+    /// Checks every field: `Error::InvalidArgument` names the first one out of range and states
+    /// its valid range.
     pub fn validate(&self) -> Result<(), Error> {
-        crate::error::check_fields("TraceConfig", self.invalid_field(), self)
+        let field = self.invalid_field().map(|field| {
+            let range = match field.strip_prefix("newton.") {
+                Some(newton) => NewtonConfig::valid_range(newton).to_string(),
+                None if field == "ds" => format!("[{:e}, {}]", Self::MIN_DS, Self::MAX_DS),
+                None => format!("1..={}", crate::analysis::MAX_SAMPLES),
+            };
+            (field, range)
+        });
+        crate::error::check_fields("TraceConfig", field.as_ref().map(|(f, r)| (f, r.as_str())), self)
     }
 }
 

@@ -55,16 +55,17 @@ impl LocalConfig {
         self
     }
 
-    /// The first field out of its range, by name.
-    pub(crate) fn invalid_field(&self) -> Option<&'static str> {
+    /// The first field out of its range: its name, its value and its valid range.
+    pub(crate) fn invalid_field(&self) -> Option<(&'static str, String, &'static str)> {
+        let not_negative = |v: f64| v.is_finite() && v >= 0.0;
         if self.max_evaluations == 0 {
-            Some("max_evaluations")
-        } else if !(self.tol.is_finite() && self.tol >= 0.0) {
-            Some("tol")
-        } else if !(self.step_tol.is_finite() && self.step_tol >= 0.0) {
-            Some("step_tol")
+            Some(("max_evaluations", "0".into(), "at least 1"))
+        } else if !not_negative(self.tol) {
+            Some(("tol", self.tol.to_string(), "finite and not negative"))
+        } else if !not_negative(self.step_tol) {
+            Some(("step_tol", self.step_tol.to_string(), "finite and not negative"))
         } else if !(self.lambda.is_finite() && self.lambda > 0.0) {
-            Some("lambda")
+            Some(("lambda", self.lambda.to_string(), "positive and finite"))
         } else {
             None
         }

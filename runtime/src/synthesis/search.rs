@@ -118,11 +118,14 @@ impl Search {
     }
 
     fn validate(&self) -> Result<(), SynthesisError> {
-        if let Some(field) = self.local.invalid_field() {
-            return Err(SynthesisError::InvalidConfig(format!("local.{field}")));
+        if let Some((field, value, range)) = self.local.invalid_field() {
+            return Err(SynthesisError::InvalidConfig(format!("local.{field} is {value}: it must be {range}")));
         }
         if !(self.distinct.is_finite() && self.distinct >= 0.0) {
-            return Err(SynthesisError::InvalidConfig("distinct".into()));
+            return Err(SynthesisError::InvalidConfig(format!(
+                "distinct is {}: it must be finite and not negative",
+                self.distinct
+            )));
         }
         // Every start's result is held until the report: more than a vector holds panicked in
         // the allocator (a capacity overflow) before the first start.

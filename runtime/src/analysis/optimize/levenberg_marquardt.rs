@@ -106,7 +106,12 @@ impl LevenbergMarquardt {
 
     /// Checks every field: `Error::InvalidArgument` names the first one out of range.
     pub fn validate(&self) -> Result<(), Error> {
-        crate::error::check_fields("LevenbergMarquardt", self.invalid_field(), self)
+        let range = |field| match field {
+            "tol" => "finite and not negative",
+            "max_evaluations" => "at least 1",
+            _ => "positive and finite",
+        };
+        crate::error::check_fields("LevenbergMarquardt", self.invalid_field().map(|f| (f, range(f))), self)
     }
 
     /// Minimises `|r(x)|^2` from `x0`; `f(x)` returns the residuals and their Jacobian

@@ -97,7 +97,8 @@ impl NelderMead {
 
     /// Checks every field: `Error::InvalidArgument` names the first one out of range.
     pub fn validate(&self) -> Result<(), Error> {
-        crate::error::check_fields("NelderMead", self.invalid_field(), self)
+        let range = |field| if field == "max_evaluations" { "at least 1" } else { "finite and not negative" };
+        crate::error::check_fields("NelderMead", self.invalid_field().map(|f| (f, range(f))), self)
     }
 
     /// Minimises `f` over `P` variables from `x0`, with an initial simplex of `x0` and the

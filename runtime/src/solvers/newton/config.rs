@@ -138,9 +138,29 @@ impl NewtonConfig {
         }
     }
 
-    /// Checks every field: `Error::InvalidArgument` names the first one out of range.
+    /// The valid range of a field [`NewtonConfig::invalid_field`] names, in the words its
+    /// error states (those of the field's documentation).
+    pub(crate) fn valid_range(field: &str) -> &'static str {
+        match field {
+            "residual_tol" | "step_tol" => "[0, 1e-3]",
+            "max_iterations" => "at most 10000",
+            "singular_tol" => "[0, 1)",
+            "min_damping" => "[1e-12, 1)",
+            _ => "as its documentation states",
+        }
+    }
+
+    /// Checks every field: `Error::InvalidArgument` names the first one out of range and states
+    /// its valid range.
+    ///
+    /// ```
+    /// use kinloop_runtime::NewtonConfig;
+    /// let e = NewtonConfig::default().with_singular_tol(1.5).validate().unwrap_err();
+    /// assert!(e.to_string().contains("NewtonConfig::singular_tol is out of its valid range, [0, 1)"));
+    /// ```
     pub fn validate(&self) -> Result<(), Error> {
-        crate::error::check_fields("NewtonConfig", self.invalid_field(), self)
+        let field = self.invalid_field();
+        crate::error::check_fields("NewtonConfig", field.map(|f| (f, Self::valid_range(f))), self)
     }
 }
 
@@ -162,6 +182,24 @@ mod tests {
             assert_eq!(cfg.invalid_field(), Some(field));
             let e = solve([1.0, 1.0], &cfg, circle).unwrap_err();
             assert_eq!(e, BlockFailure::InvalidConfig { field });
+        }
+    }
+
+    #[test]
+    fn every_field_s_error_states_its_documented_range() {
+        for (cfg, range) in [
+            (NewtonConfig::default().with_residual_tol(2e-3), "[0, 1e-3]"),
+            (NewtonConfig::default().with_step_tol(f64::NAN), "[0, 1e-3]"),
+            (NewtonConfig::default().with_max_iterations(10_001), "at most 10000"),
+            (NewtonConfig::default().with_singular_tol(1.0), "[0, 1)"),
+            (NewtonConfig::default().with_min_damping(1e-13), "[1e-12, 1)"),
+        ] {
+            let field = cfg.invalid_field().unwrap();
+            let message = cfg.validate().unwrap_err().to_string();
+            assert!(
+                message.contains(&format!("NewtonConfig::{field} is out of its valid range, {range}: ")),
+                "{message}"
+            );
         }
     }
 }
