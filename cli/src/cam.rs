@@ -134,6 +134,14 @@ impl Found {
 /// Sweeps one turn of the cam shaft from `--start`, finds the cam by inversion and writes its
 /// table to standard output, its checks to standard error and its drawing to `--plot`.
 pub fn run(model: &mut Model, req: &Request) -> Result<(), Failed> {
+    // The drawing is SVG: a name of another format's extension (`cam.png`) held SVG.
+    if let Some(ext) = req.plot.and_then(Path::extension).filter(|e| !e.eq_ignore_ascii_case("svg")) {
+        return Err(usage(format!(
+            "--plot {}: the drawing is SVG, not .{}: name it .svg",
+            req.plot.unwrap_or(Path::new("")).display(),
+            ext.to_string_lossy()
+        )));
+    }
     // The plot's file created first, as `--events` and `--flywheel` are: a path that cannot be
     // written stops before any output. Removed again if no drawing comes to be written into it.
     let plot = crate::output::created(req.plot, "the plot")?;

@@ -37,7 +37,8 @@ pub fn with_cam(drawing: DefaultDrawing, found: &Found, point: &str) -> DefaultD
         let d = d.pivot(pivot).outline(pivot, profile, Scalar::expr(move |s| turn * s.x[0]));
         let d = match touching {
             Touching::Roller(point, radius) => d.circle(point.as_str(), radius).note(format!(
-                "the cam's profile for a roller of radius {radius}, by inversion of the follower's motion"
+                "the cam's profile for a roller of radius {}, by inversion of the follower's motion",
+                Number(radius)
             )),
             Touching::KnifeEdge => d.note("the cam's profile for a knife edge, by inversion of the follower's motion"),
             Touching::Face(line, plate) => {
@@ -70,15 +71,36 @@ fn warning(found: &Found) -> Option<String> {
         Shape::Roller(cam) => ("UNDERCUT", cam.undercut(), "the profile crosses itself; use a smaller roller"),
         Shape::Flat(cam, _) => ("NOT CONVEX", cam.not_convex(), "a flat face cannot follow the law"),
     };
-    let (first, last) = (*at.first()?, *at.last()?);
+    if at.is_empty() {
+        return None;
+    }
     let input = |k: usize| found.inputs.get(k).copied().unwrap_or(f64::NAN);
-    Some(format!(
-        "{what} at {} ({}{unit} to {}{unit}): {why}",
-        Count(at.len(), "sample"),
-        Number(input(first)),
-        Number(input(last))
-    ))
+    // Each stretch of consecutive samples on its own: one span from the first to the last
+    // said the whole of it was bad where a three-lobed cam has three stretches apart.
+    let mut stretches: Vec<(usize, usize)> = Vec::new();
+    for &k in &at {
+        match stretches.last_mut() {
+            Some((_, last)) if *last + 1 == k => *last = k,
+            _ => stretches.push((k, k)),
+        }
+    }
+    let mut spans: Vec<String> = stretches
+        .iter()
+        .take(SHOWN_STRETCHES)
+        .map(|&(a, b)| match a == b {
+            true => format!("{}{unit}", Number(input(a))),
+            false => format!("{}{unit} to {}{unit}", Number(input(a)), Number(input(b))),
+        })
+        .collect();
+    if stretches.len() > SHOWN_STRETCHES {
+        spans.push(format!("and {} more", stretches.len() - SHOWN_STRETCHES));
+    }
+    Some(format!("{what} at {} ({}): {why}", Count(at.len(), "sample"), spans.join(", ")))
 }
+
+/// The stretches of bad samples a drawing's warning lists (the rest counted): a line under the
+/// picture, which is widened to its longest line.
+const SHOWN_STRETCHES: usize = 3;
 
 /// What touches the cam, as drawn.
 enum Touching {

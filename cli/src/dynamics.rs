@@ -109,6 +109,9 @@ pub fn run(model: &mut Model, req: &Request) -> Result<(), Failed> {
     if !req.start.is_finite() {
         return Err(usage(format!("--start {} must be a finite number", Number(req.start))));
     }
+    if req.deg {
+        crate::solve::radians_of(req.start, "--start")?;
+    }
     let about = parse_about(req.about)?;
     // Created before the cycle is computed (which may take minutes): a path that cannot be
     // written stops first. Removed again if the command made it and no sizing comes to be

@@ -197,7 +197,8 @@ enum Command {
     /// positions, where the input reverses, so a linkage whose input cannot turn fully (a
     /// non-Grashof four-bar) gives its closed curve; `--from` may be a limit position (where a
     /// sweep stopped), listed as the first one passed. Writes the points (inputs, unknowns,
-    /// outputs) as CSV with units, about `--ds` apart, and lists the limit positions, kinks and
+    /// outputs) as CSV with units, about `--ds` apart (closer where the curve turns by more than
+    /// a tenth of a radian over `--ds`), and lists the limit positions, kinks and
     /// crossings passed on standard error or in `--events`. Stops where the curve closes (back
     /// at its start, its angles within whole turns, a turning input's too, the input moving as it
     /// started: a crank's curve closes after a turn), where it

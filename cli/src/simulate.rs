@@ -62,6 +62,9 @@ pub fn run(model: &mut Model, req: &Request) -> Result<(), Failed> {
             return Err(usage(format!("{option} {value} must be a finite number")));
         }
     }
+    if req.deg {
+        crate::solve::radians_of(req.start, "--start")?;
+    }
     if !(req.time.is_finite() && req.time > 0.0) {
         return Err(usage(format!("--time {} must be a positive number", Number(req.time))));
     }

@@ -2,7 +2,7 @@
 
 use crate::{Failed, exit};
 use kinloop_model::{Count, Model, StepError};
-use kinloop_runtime::{Error, EventKind, NewtonConfig, QuantityKind, Table};
+use kinloop_runtime::{Error, EventKind, NewtonConfig, Number, QuantityKind, Table};
 
 /// Solves at every `--at` and writes the table of the states solved to standard output: a
 /// failed one is explained on standard error and left out, the others written (each is solved
@@ -192,15 +192,38 @@ pub fn exit_code(e: &Error) -> u8 {
 }
 
 /// One list of inputs (of the option `option`) in the model's units: one number per input of
-/// kind `kinds`, angles given in degrees where `deg` is set and turned into radians.
+/// kind `kinds`, angles given in degrees where `deg` is set and turned into radians. An angle
+/// so many turns out that its conversion rounds it by more than a solve's precision (beyond
+/// [`NewtonConfig::largest_precise_angle`]: `1e17` degrees, 280 degrees on its turn, came out
+/// 275.6, where doubles are 0.25 rad apart) is refused.
 pub fn model_inputs(spec: &str, kinds: &[QuantityKind], deg: bool, option: &str) -> Result<Vec<f64>, Failed> {
     let mut x = parse_inputs(spec, kinds.len(), option)?;
     for (v, k) in x.iter_mut().zip(kinds) {
         if deg && *k == QuantityKind::Angle {
-            *v = v.to_radians();
+            *v = radians_of(*v, &format!("{option} {spec}"))?;
         }
     }
     Ok(x)
+}
+
+/// An angle `v` given in degrees (by the option and value `given`) in radians, or the usage
+/// error of one so many turns out that the conversion rounds it by more than a solve's
+/// precision (beyond [`NewtonConfig::largest_precise_angle`]).
+pub fn radians_of(v: f64, given: &str) -> Result<f64, Failed> {
+    let radians = v.to_radians();
+    let largest = NewtonConfig::default().largest_precise_angle();
+    if radians.abs() > largest {
+        return Err(exit::usage(format!(
+            "{given}: {} degrees are too many turns out to convert to radians to a solve's precision (the doubles of \
+             the radians there are {} degrees apart; angles up to {:.3e} degrees convert precisely): give it whole \
+             turns nearer (e.g. {} for a mechanism that repeats every turn)",
+            Number(v),
+            Number((radians.abs().next_up() - radians.abs()).to_degrees()),
+            degrees(largest),
+            Number(v.rem_euclid(360.0)),
+        )));
+    }
+    Ok(radians)
 }
 
 /// A point `x,y` of two finite numbers, given to the option `option` (`--about`, `--pivot`).

@@ -35,6 +35,15 @@ pub fn run(model: &mut Model, req: &Request) -> Result<(), Failed> {
     let ni = model.inputs().len();
     let from = model_inputs(req.from, &kinds[..ni], req.deg, "--from")?;
     let to = model_inputs(req.to, &kinds[..ni], req.deg, "--to")?;
+    // Both ends are rows: one sample cannot be two different inputs (it wrote the row at
+    // `--from` alone, `--to` unread).
+    if req.samples == 1 && from != to {
+        return Err(exit::usage(format!(
+            "--samples 1 writes one row, and the table's rows include both ends (--from {} and --to {}): give at \
+             least 2 samples, or --to equal to --from",
+            req.from, req.to
+        )));
+    }
     // The angle inputs in degrees as given, whose samples the table writes.
     let degrees: Vec<Option<(f64, f64)>> = match req.deg {
         true => {

@@ -298,8 +298,17 @@ fn a_grid_over_a_range_no_sweep_follows_is_a_usage_error() {
     }
     // In degrees as given with --deg, not in the radians the grid is computed in.
     let args =
+        ["animate", &file, "--grid", "--deg", "--from", "0,20", "--to", "2.5e8,170", "--samples", "5", "--out", &p];
+    fails_without_output(&args, &path, 2, "the grid sweeps input `th1` over its range 0 to 250000000 (degrees)");
+    // Farther, degrees no longer convert to radians to a solve's precision: refused as given.
+    let args =
         ["animate", &file, "--grid", "--deg", "--from", "0,20", "--to", "1e14,170", "--samples", "5", "--out", &p];
-    fails_without_output(&args, &path, 2, "the grid sweeps input `th1` over its range 0 to 100000000000000 (degrees)");
+    fails_without_output(
+        &args,
+        &path,
+        2,
+        "--to 1e14,170: 100000000000000 degrees are too many turns out to convert to radians",
+    );
 }
 
 /// A three-input mechanism for the default grid: a two-link arm on a slider, its tip `(x, y)`.

@@ -225,3 +225,40 @@ fn an_undercut_cam_is_marked_in_the_drawing() {
     let written = notes(&svg);
     assert!(written.iter().all(|n| !n.contains("UNDERCUT")) && !written.is_empty(), "{written:?}");
 }
+
+/// A three-lobed cam (`s = h / 2 (1 - cos 3 phi)`) under a roller of 30: the pitch curve's
+/// radius of curvature is 24 at 60, 180 and 300 degrees and about 46 between (polar formula
+/// `(r^2 + r'^2)^(3/2) / (r^2 + 2 r'^2 - r r'')`, `r = 40 + s`), so it is undercut in three
+/// stretches apart, and the drawing's note lists each (it said "44° to 316°", the whole turn
+/// but the ends). The roller's radius is written short in any unit (`1e-200` was written with
+/// all its 200 digits, widening the picture to hold them).
+#[test]
+fn an_undercut_in_stretches_is_noted_stretch_by_stretch_in_any_unit() {
+    let decl = out("three_lobes.kl");
+    std::fs::write(
+        &decl,
+        "pub struct ThreeLobes {\n    params rb = 40, h = 20, e = 0;\n    input phi;\n    \
+         let s = h / 2 * (1 - cos(3 * phi));\n    point follower = (e, rb + s);\n}\n",
+    )
+    .expect("the declaration is written");
+    let decl = decl.display().to_string();
+    let svg = |name: &str, extra: &[&str]| {
+        let path = out(name);
+        let p = path.display().to_string();
+        let args = ["animate", &decl, "--from", "0", "--to", "360", "--deg", "--cam", "follower", "--guide", "0,1"];
+        let o = kinloop(&args.into_iter().chain(extra.iter().copied()).chain(["--out", &p]).collect::<Vec<_>>());
+        assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
+        std::fs::read_to_string(&path).expect("the SVG is written")
+    };
+    let written = notes(&svg("three_lobes.svg", &["--roller", "30"]));
+    assert!(
+        written.iter().any(|n| n.starts_with("note: UNDERCUT at 195 samples (44° to 76°, 164° to 196°, 284° to 316°)")),
+        "{written:?}"
+    );
+    let tiny = svg("three_lobes_tiny.svg", &["--roller", "1e-200", "--params", "rb=4e-200,h=2e-200,e=0"]);
+    let written = notes(&tiny);
+    assert!(written.iter().any(|n| n.contains("roller of radius 1e-200,")), "{written:?}");
+    let width =
+        |s: &str| roxmltree::Document::parse(s).expect("SVG").root_element().attribute("width").map(str::to_string);
+    assert_eq!(width(&tiny), width(&svg("three_lobes_mm.svg", &["--roller", "10"])));
+}

@@ -340,3 +340,25 @@ fn the_plot_draws_the_pitch_curve_and_the_profile() {
     assert!(svg.starts_with("<svg") || svg.starts_with("<?xml"), "{}", &svg[..60.min(svg.len())]);
     assert!(svg.contains("pitch curve") && svg.contains("cam profile"));
 }
+
+/// The plot is SVG: a name with another format's extension is a usage error, nothing created
+/// (`--plot cam.png` held SVG, exit 0); `.SVG` is SVG too.
+#[test]
+fn a_plot_named_for_another_format_is_refused() {
+    let dir = std::env::temp_dir();
+    let cam = |name: &str| {
+        let path = dir.join(format!("kinloop-cam-{}-{name}", std::process::id()));
+        let _ = std::fs::remove_file(&path);
+        let args = ["cam", &shipped("dwell_cam.kl"), "--point", "follower", "--guide", "0,1", "--roller", "10"];
+        let out = kinloop(&args.into_iter().chain(["--plot", path.to_str().unwrap()]).collect::<Vec<_>>());
+        let created = path.exists();
+        let _ = std::fs::remove_file(&path);
+        (out, created)
+    };
+    let (out, created) = cam("plot.png");
+    assert_eq!(out.status.code(), Some(2), "{}", stderr(&out));
+    assert!(stderr(&out).contains("the drawing is SVG, not .png: name it .svg"), "{}", stderr(&out));
+    assert!(out.stdout.is_empty() && !created);
+    let (out, created) = cam("plot.SVG");
+    assert!(out.status.success() && created, "{}", stderr(&out));
+}

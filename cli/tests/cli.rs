@@ -241,6 +241,12 @@ fn sweep_arguments_the_runtime_refuses_are_usage_errors() {
     // One sample needs no range: the state at `from`.
     let one = kinloop(&["sweep", &four_bar, "--from", "0", "--to", "0", "--samples", "1", "--params", params]);
     assert_eq!(csv(&one).1.len(), 1);
+    // One sample over a range cannot include both ends: it wrote the row at `from` alone.
+    let one = kinloop(&["sweep", &four_bar, "--from", "0", "--to", "1", "--samples", "1", "--params", params]);
+    let err = String::from_utf8_lossy(&one.stderr);
+    assert_eq!(one.status.code(), Some(2), "{err}");
+    assert!(err.contains("--samples 1 writes one row") && err.contains("--to 1"), "{err}");
+    assert!(one.stdout.is_empty());
     // A count that is none says what to write (Rust's parser said `invalid digit found in string`).
     for (samples, says) in
         [("-3", "a count cannot be negative"), ("2.5", "a count is a whole number written in digits")]
@@ -417,6 +423,37 @@ fn with_deg_inputs_are_named_in_degrees() {
     assert!(e.contains("from < to") && e.contains("90") && !e.contains("1.57"), "{e}");
 }
 
+/// An angle in degrees so many turns out that its radians are rounded by more than a solve's
+/// precision is refused as given (`1e17` degrees, 280 on its turn, was solved at 275.6 and
+/// written without a word): by `solve`, `sweep` and `extremes`. Within the bound, the angle a
+/// turn's multiple out is solved as its turn's (to the conversion's rounding, `|x| eps`).
+#[test]
+fn degrees_too_many_turns_out_to_convert_are_refused() {
+    let four_bar = shipped("four_bar.kl");
+    let params = "a=1,b=3,c=2.5,d=3.2";
+    for args in [
+        vec!["solve", &four_bar, "--params", params, "--at", "1e17", "--deg"],
+        vec!["sweep", &four_bar, "--params", params, "--from", "1e17", "--to", "1.0000000000000001e17", "--deg"],
+        vec!["extremes", &four_bar, "--params", params, "--from", "0", "--to", "-3e8", "--deg"],
+    ] {
+        let out = kinloop(&args);
+        let err = String::from_utf8_lossy(&out.stderr);
+        assert_eq!(out.status.code(), Some(2), "{args:?}: {err}");
+        assert!(err.contains("degrees are too many turns out to convert to radians"), "{args:?}: {err}");
+        assert!(out.stdout.is_empty(), "{args:?}");
+    }
+    let out = kinloop(&["solve", &four_bar, "--params", params, "--at", "1e17", "--deg"]);
+    assert!(String::from_utf8_lossy(&out.stderr).contains("e.g. 280 for a mechanism that repeats every turn"));
+    // 2.5e8 degrees is 694,444 turns and 160 degrees: within the bound (4.4e6 rad), solved there
+    // to the conversion's rounding (4.4e6 eps, 1e-9 rad), amplified by the rocker's analog.
+    let (_, far) = csv(&kinloop(&["solve", &four_bar, "--params", params, "--at", "2.5e8", "--deg"]));
+    let (_, near) = csv(&kinloop(&["solve", &four_bar, "--params", params, "--at", "160", "--deg"]));
+    assert_eq!(far[0][0], 2.5e8);
+    for (a, b) in far[0][1..].iter().zip(&near[0][1..]) {
+        assert!((a - b).abs() < 1e-6 * (1.0 + b.abs()), "{far:?} against {near:?}");
+    }
+}
+
 /// A parameter given twice in `--params` is a usage error naming it, not the last value
 /// silently.
 #[test]
@@ -476,13 +513,15 @@ fn a_range_of_too_many_turns_is_a_usage_error() {
     let params = "a=1,b=3,c=2.5,d=3.2";
     let out_file = std::env::temp_dir().join(format!("kinloop-cli-turns-{}.svg", std::process::id()));
     let out_file = out_file.display().to_string();
-    for (command, to, deg, span) in [
-        ("sweep", "1e7", false, "6283185.3"),
-        ("sweep", "4e8", true, "360000000 deg"),
-        ("extremes", "1e7", false, "6283185.3"),
-        ("animate", "1e7", false, "6283185.3"),
+    // In degrees, from a turn's multiple to its opposite: a range from 0 this long is beyond
+    // the degrees that convert to radians precisely (`degrees_too_many_turns_out_to_convert_are_refused`).
+    for (command, from, to, deg, span) in [
+        ("sweep", "0", "1e7", false, "6283185.3"),
+        ("sweep", "-2.5e8", "2.5e8", true, "360000000 deg"),
+        ("extremes", "0", "1e7", false, "6283185.3"),
+        ("animate", "0", "1e7", false, "6283185.3"),
     ] {
-        let mut args = vec![command, four_bar.as_str(), "--from", "0", "--to", to, "--params", params];
+        let mut args = vec![command, four_bar.as_str(), "--from", from, "--to", to, "--params", params];
         if deg {
             args.push("--deg");
         }
@@ -492,7 +531,7 @@ fn a_range_of_too_many_turns_is_a_usage_error() {
         let out = kinloop(&args);
         let err = String::from_utf8_lossy(&out.stderr);
         assert_eq!(out.status.code(), Some(2), "{command} --to {to}: {err}");
-        for what in [&format!("--from 0 --to {to}"), "turns", "at most 1e6 turns apart", span] {
+        for what in [&format!("--from {from} --to {to}"), "turns", "at most 1e6 turns apart", span] {
             assert!(err.contains(what), "{command} --to {to}: `{what}` missing: {err}");
         }
         assert!(out.stdout.is_empty(), "{command}: {}", String::from_utf8_lossy(&out.stdout));
@@ -805,9 +844,8 @@ fn messages_about_the_macro_are_said_for_a_file() {
 }
 
 /// A sweep far out, where the input's doubles are coarser than its steps, is the arguments'
-/// mistake (exit code 2, as a range too long), and with `--deg` every number of the message is
-/// in degrees: the doubles' spacing (14.3 degrees), the samples' (5e5 degrees) and the input
-/// where it failed (it gave the spacings in radians beside the input in degrees).
+/// mistake (exit code 2, as a range too long). With `--deg` the degrees as given are refused
+/// before: so far out they do not convert to radians to a solve's precision.
 #[test]
 fn an_input_too_coarse_is_a_usage_error_in_the_units_given() {
     let four_bar = shipped("four_bar.kl");
@@ -815,7 +853,7 @@ fn an_input_too_coarse_is_a_usage_error_in_the_units_given() {
     let out = kinloop(&[&args[..], &["--samples", "3", "--deg"]].concat());
     let err = String::from_utf8_lossy(&out.stderr);
     assert_eq!(out.status.code(), Some(2), "{err}");
-    assert!(err.contains("is a double 14.32394487827058 apart") && err.contains("(499998.78189335205)"), "{err}");
+    assert!(err.contains("--from 1e17: 1e17 degrees are too many turns out") && !err.contains("e15"), "{err}");
     let out = kinloop(&[&args[..], &["--samples", "3"]].concat());
     let err = String::from_utf8_lossy(&out.stderr);
     assert_eq!(out.status.code(), Some(2), "{err}");

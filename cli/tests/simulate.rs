@@ -176,23 +176,31 @@ fn simulate_s_streamed_table_is_the_recorded_trajectory_s() {
 }
 
 /// A start angle so large that no step can move it is named as the input angle in the units
-/// given: in degrees with `--deg`, not in the radians the run is integrated in.
+/// given (without `--deg` it named "state component 0"). In degrees such a start is refused
+/// before, as given: that far out degrees do not convert to radians precisely (where they do,
+/// up to 2.6e8 degrees, a step moves the angle).
 #[test]
 fn a_start_no_step_can_move_is_named_as_given() {
     let engine = shipped("engine.kl");
     let base = ["simulate", engine.as_str(), "--speed", "150", "--torque", "2.5", "--flywheel", "0.05"];
-    for (deg, says) in [(true, "1e300 deg"), (false, "1e300")] {
-        let mut args = [&base[..], &["--time", "0.1", "--start", "1e300"]].concat();
+    let run = |start: &str, deg: bool| {
+        let mut args = [&base[..], &["--time", "0.1", "--start", start]].concat();
         if deg {
             args.push("--deg");
         }
         let out = kinloop(&args);
-        let err = String::from_utf8_lossy(&out.stderr);
-        assert_eq!(out.status.code(), Some(2), "{err}");
-        assert!(err.contains(&format!("(= {says})")) && err.contains("cannot advance"), "{err}");
-        // 1e300 degrees are 1.745...e298 rad.
-        assert!(!err.contains("e298"), "{err}");
-        // Named alike in either unit (without --deg it named "state component 0").
-        assert!(err.contains("changes the input angle") && !err.contains("component"), "{err}");
+        (out.status.code(), String::from_utf8_lossy(&out.stderr).into_owned())
+    };
+    let (code, err) = run("1e300", false);
+    assert_eq!(code, Some(2), "{err}");
+    assert!(err.contains("(= 1e300)") && err.contains("cannot advance"), "{err}");
+    assert!(err.contains("changes the input angle") && !err.contains("component"), "{err}");
+    for start in ["1e300", "1e17"] {
+        let (code, err) = run(start, true);
+        assert_eq!(code, Some(2), "{err}");
+        assert!(err.contains(&format!("--start: {start} degrees are too many turns out")), "{err}");
+        // In degrees as given, not in radians (1e300 degrees are 1.745...e298 rad).
+        assert!(!err.contains("e298") && !err.contains("e15"), "{err}");
     }
+    assert_eq!(run("2.5e8", true).0, Some(0));
 }

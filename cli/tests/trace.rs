@@ -205,7 +205,10 @@ fn bad_options_are_usage_errors_naming_them() {
         (&["--from", "1", "--to", "1.0", "--deg"][..], "give --to different from --from"),
         (&["--from", "0,1", "--to", "1"][..], "gives 2 inputs"),
         (&["--from", "0", "--to", "1e12"][..], "turns a sweep or a trace follows"),
-        (&["--from", "0", "--to", "1e12", "--deg"][..], "(360000000 deg of an angle input)"),
+        // From 694,444 turns back (where this rocker assembles, as at 0): 1.39e6 turns
+        // in degrees that still convert to radians precisely; 1e12 degrees do not.
+        (&["--from", "-249999840", "--to", "2.5e8", "--deg"][..], "(360000000 deg of an angle input)"),
+        (&["--from", "0", "--to", "1e12", "--deg"][..], "--to 1e12: 1000000000000 degrees are too many turns out"),
     ] {
         let out = kinloop(&[&["trace", four_bar.as_str(), "--params", params][..], extra].concat());
         let stderr = String::from_utf8_lossy(&out.stderr);

@@ -77,6 +77,11 @@ impl AtProg {
         }
     }
 
+    /// The number of residuals (the declared equations).
+    pub(crate) fn residuals(&self) -> usize {
+        self.residual_regs.len()
+    }
+
     pub(crate) fn residual(&self, r: &mut [f64], q: &[f64], out: &mut [f64]) {
         self.load(r, q);
         self.residual.run(r);

@@ -142,6 +142,13 @@ impl Model {
         if x.len() != self.inputs().len() || guess.len() != self.unknowns().len() {
             return Error::InvalidArgument(e.to_string());
         }
+        // A position given to `kinematics_at` not finite: no step from a guess to run again.
+        if let StepError::NonFinitePosition { .. } = e {
+            return match Info::of(self, self.sweep_config) {
+                Ok(info) => info.error(self, e, x, None, cfg),
+                Err(no_info) => no_info,
+            };
+        }
         // A parameter without a value: no kernel, and its error says so.
         let kernel = match self.kernel(self.sweep_config) {
             Ok(kernel) => kernel,
@@ -249,6 +256,14 @@ impl Info {
             }
             StepError::InvalidConfig(field) => {
                 block_error(BlockFailure::InvalidConfig { field }, *self.location(x, None))
+            }
+            StepError::NonFinitePosition { unknown, value } => {
+                self.bad_values(m, x, None).unwrap_or_else(|| Error::NonFinite {
+                    what: Quantity::Position,
+                    name: Cow::Owned(unknown),
+                    value,
+                    at: self.location(x, None),
+                })
             }
         }
     }

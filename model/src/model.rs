@@ -69,6 +69,13 @@ pub enum StepError {
     },
     /// A value of the state is not finite (a parameter or input outside the functions' domains).
     NonFinite,
+    /// An unknown of a position given to [`Model::kinematics_at`] is not finite.
+    NonFinitePosition {
+        /// The unknown's name.
+        unknown: String,
+        /// The value given.
+        value: f64,
+    },
 }
 
 impl fmt::Display for StepError {
@@ -81,6 +88,9 @@ impl fmt::Display for StepError {
                 write!(f, "block {block}: {failure} (`Model::explain` names its unknowns and equations)")
             }
             StepError::NonFinite => write!(f, "a value of the state is not finite"),
+            StepError::NonFinitePosition { unknown, value } => {
+                write!(f, "the given position of `{unknown}` is not finite ({value})")
+            }
         }
     }
 }
@@ -719,6 +729,9 @@ impl Model {
     /// compiled mechanism's `residual_flat`).
     pub fn residual(&mut self, x: &[f64], q: &[f64], out: &mut [f64]) -> Result<(), StepError> {
         self.check_at(x, q)?;
+        if out.len() != self.at.residuals() {
+            return Err(StepError::Size { what: "residual places", expected: self.at.residuals(), given: out.len() });
+        }
         self.at.residual(&mut self.regs, q, out);
         Ok(())
     }
@@ -726,6 +739,9 @@ impl Model {
     /// The output columns at `(x, q)` into `out` (the compiled mechanism's `outputs_flat`).
     pub fn outputs_at(&mut self, x: &[f64], q: &[f64], out: &mut [f64]) -> Result<(), StepError> {
         self.check_at(x, q)?;
+        if out.len() != self.outputs.len() {
+            return Err(StepError::Size { what: "output places", expected: self.outputs.len(), given: out.len() });
+        }
         self.at.outputs(&mut self.regs, q, out);
         Ok(())
     }
@@ -806,6 +822,11 @@ impl Model {
     /// Jacobian is factorised from the graph. No allocation.
     pub fn kinematics_at(&mut self, x: &[f64], q: &[f64], cfg: &NewtonConfig) -> Result<&State, StepError> {
         self.check_at(x, q)?;
+        // The caller's position, not a solve's: a value not finite there is the caller's to
+        // mend, where the step would call it a singular Jacobian or an equation not finite.
+        if let Some(u) = q.iter().position(|v| !v.is_finite()) {
+            return Err(StepError::NonFinitePosition { unknown: self.unknowns[u].clone(), value: q[u] });
+        }
         for (u, reg) in self.at.unknown_regs.iter().enumerate() {
             if let Some(reg) = reg {
                 self.regs[*reg as usize] = q[u];

@@ -227,6 +227,54 @@ fn a_non_finite_parameter_is_named_first() {
     assert_eq!(name_of(&e), "b");
 }
 
+/// A position given to `kinematics_at` with an unknown not finite: the model's own record
+/// names the unknown (it said "singular position: pivot ratio 0"), `explain` calls it the
+/// given position (it said "initial guess"), and the model's kernel and the compiled one give
+/// the same error naming it.
+#[test]
+fn a_given_position_not_finite_is_named_alike() {
+    let compiled = fx::FourBar { a: 1.0, b: 3.0, c: 2.5, d: 3.2 };
+    let mut model = read(fx::FOUR_BAR_TEXT);
+    set(&mut model, &[("a", 1.0), ("b", 3.0), ("c", 2.5), ("d", 3.2)]);
+    let cfg = NewtonConfig::default();
+    for (q, unknown) in [([f64::NAN, 1.5], "beta"), ([0.5, f64::INFINITY], "gamma")] {
+        let e = model.kinematics_at(&[0.5], &q, &cfg).map(drop).unwrap_err();
+        assert!(matches!(&e, StepError::NonFinitePosition { unknown: u, .. } if u == unknown), "{e:?}");
+        assert!(e.to_string().starts_with(&format!("the given position of `{unknown}` is not finite")), "{e}");
+        let explained = model.explain(&[0.5], &q, &cfg, e);
+        assert!(matches!(&explained, Error::NonFinite { what: Quantity::Position, .. }), "{explained:?}");
+        let c_err = kinloop_runtime::Compiled(&compiled).kinematics_at(&[0.5], &q, &cfg).unwrap_err();
+        same(&c_err, &explained);
+        let k = model.kernel(SweepConfig::default()).unwrap();
+        same(&c_err, &k.kinematics_at(&Heap([0.5].into()), &Heap(q.into()), &cfg).unwrap_err());
+        assert_eq!(name_of(&c_err), unknown);
+    }
+}
+
+/// The evaluations at a given position write into the caller's buffer only when it has one
+/// place per value: a short one was filled in part, a long one kept what its extra places held,
+/// and both returned `Ok`.
+#[test]
+fn an_evaluation_into_a_buffer_of_the_wrong_length_is_refused() {
+    let mut model = read(fx::FOUR_BAR_TEXT);
+    set(&mut model, &[("a", 1.0), ("b", 3.0), ("c", 2.5), ("d", 3.2)]);
+    let (x, q) = ([0.5], [0.5, 1.5]);
+    for len in [1, 3] {
+        let mut out = vec![7.0; len];
+        let e = model.residual(&x, &q, &mut out).unwrap_err();
+        assert_eq!(e, StepError::Size { what: "residual places", expected: 2, given: len });
+        assert_eq!(e.to_string(), format!("{len} residual places given, 2 expected"));
+        assert!(model.outputs_at(&x, &q, &mut out).is_err());
+        assert_eq!(out, vec![7.0; len], "nothing written");
+    }
+    let (mut residuals, mut outputs) = ([0.0; 2], [0.0; 2]);
+    model.residual(&x, &q, &mut residuals).unwrap();
+    model.outputs_at(&x, &q, &mut outputs).unwrap();
+    let compiled = fx::FourBar { a: 1.0, b: 3.0, c: 2.5, d: 3.2 };
+    assert_eq!(residuals, compiled.residual_flat(&x, &q));
+    assert_eq!(outputs, compiled.outputs_flat(&x, &q));
+}
+
 kinloop_fixtures::declare! {
     /// A slider solved by one linear equation whose coefficient is `sqrt(phi)`: NaN below 0.
     LINEAR_TEXT => {

@@ -23,6 +23,8 @@ pub enum Quantity {
     Motion,
     /// A sweep's range or step.
     Range,
+    /// An unknown of a position given to `kinematics_at` (not solved: the caller's).
+    Position,
 }
 
 impl fmt::Display for Quantity {
@@ -33,6 +35,7 @@ impl fmt::Display for Quantity {
             Quantity::Guess => "initial guess of",
             Quantity::Motion => "input speed or acceleration",
             Quantity::Range => "sweep range value",
+            Quantity::Position => "given position of",
         })
     }
 }
@@ -41,7 +44,7 @@ impl fmt::Display for Quantity {
 #[derive(Clone, Debug, PartialEq, thiserror::Error)]
 #[non_exhaustive]
 pub enum Error {
-    /// A parameter, input or guess is NaN or infinite.
+    /// A parameter, input, guess or given position is NaN or infinite.
     #[error("{what} `{name}` is not finite ({value}) {at}")]
     NonFinite {
         /// Which kind of value.

@@ -184,7 +184,9 @@ pub trait Mechanism<const N: usize, const NI: usize, const NO: usize> {
         };
         Ok(sink.put(|| kin))
     }
-    /// Analogs and outputs at a given (already solved) position.
+    /// Analogs and outputs at a given (already solved) position. Where the position holds a
+    /// value not finite, the kernel's error is its own finding (a singular Jacobian, an equation
+    /// not finite); `Named::kinematics_at` and the `Compiled` kernel name the unknown instead.
     fn kinematics_at_flat(&self, x: &[f64; NI], q: &[f64; N], cfg: &NewtonConfig) -> Result<Kin<N, NI, NO>, Error>;
     /// Output values at `(x, q)`.
     fn outputs_flat(&self, x: &[f64; NI], q: &[f64; N]) -> [f64; NO];
@@ -385,6 +387,31 @@ where
     };
     let name = Cow::Borrowed(names.get(index).copied().unwrap_or("?"));
     Some(Error::NonFinite { what, name, value, at: Box::new(location::<M, N, NI, NO>(x, None)) })
+}
+
+/// The error of a step at a position `q` the caller gave (`kinematics_at`), `e` the kernel's:
+/// where an unknown of `q` is not finite, that unknown named ([`Quantity::Position`]), which the
+/// kernel's own error (a singular Jacobian, an equation not finite) would not say. A parameter
+/// or input not finite is named first, as the kernel names it.
+#[cold]
+#[inline(never)]
+pub(crate) fn given_position<M, const N: usize, const NI: usize, const NO: usize>(
+    x: &[f64; NI],
+    q: &[f64; N],
+    e: Error,
+) -> Error
+where
+    M: Mechanism<N, NI, NO> + ?Sized,
+{
+    match (&e, q.iter().position(|v| !v.is_finite())) {
+        (Error::NonFinite { what: Quantity::Parameter | Quantity::Input, .. }, _) | (_, None) => e,
+        (_, Some(u)) => Error::NonFinite {
+            what: Quantity::Position,
+            name: Cow::Borrowed(M::UNKNOWNS.get(u).copied().unwrap_or("?")),
+            value: q[u],
+            at: Box::new(location::<M, N, NI, NO>(x, None)),
+        },
+    }
 }
 
 /// The error for a block that failed (`fail`, with the configuration `cfg`), unless a bad

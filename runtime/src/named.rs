@@ -11,7 +11,7 @@ use crate::configured::Configured;
 use crate::error::Error;
 use crate::kin::{Kin, Sens};
 use crate::mechanism::kernel::Compiled;
-use crate::mechanism::{Mechanism, Sensitivities};
+use crate::mechanism::{Mechanism, Sensitivities, given_position};
 use crate::paths::config::SweepConfig;
 use crate::paths::modes::assembly_modes;
 use crate::paths::outcome::SweepResult;
@@ -102,7 +102,11 @@ pub trait Named<const N: usize, const NI: usize, const NO: usize>: Mechanism<N, 
 
     /// Analogs and outputs at a position the caller already solved.
     fn kinematics_at(&self, input: impl Into<Self::Inputs>, q: &Self::Unknowns) -> Result<Self::State, Error> {
-        self.kinematics_at_flat(&input.into().into(), &(*q).into(), &self.solver_config().newton).map(Self::State::from)
+        let (x, q) = (input.into().into(), (*q).into());
+        match self.kinematics_at_flat(&x, &q, &self.solver_config().newton) {
+            Ok(k) => Ok(k.into()),
+            Err(e) => Err(given_position::<Self, N, NI, NO>(&x, &q, e)),
+        }
     }
 
     /// Full kinematics at `input`, starting from the declared initial guess.
@@ -230,8 +234,11 @@ pub trait NamedSensitivities<const N: usize, const NI: usize, const NO: usize, c
         input: impl Into<Self::Inputs>,
         q: &Self::Unknowns,
     ) -> Result<(Self::State, Self::Sens), Error> {
-        let (k, s) = self.sensitivities_at_flat(&input.into().into(), &(*q).into(), &self.solver_config().newton)?;
-        Ok((k.into(), s.into()))
+        let (x, q) = (input.into().into(), (*q).into());
+        match self.sensitivities_at_flat(&x, &q, &self.solver_config().newton) {
+            Ok((k, s)) => Ok((k.into(), s.into())),
+            Err(e) => Err(given_position::<Self, N, NI, NO>(&x, &q, e)),
+        }
     }
 }
 

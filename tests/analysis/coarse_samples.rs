@@ -148,3 +148,47 @@ fn an_extreme_just_inside_the_range_is_kept_at_any_spacing() {
         assert!((max.value() + folded).abs() < 1e-13, "{samples}: {max:?}");
     }
 }
+
+/// The quick-return ratio of an offset slider-crank from a turn of three and four samples: both
+/// dead centres lie between two samples, and are looked for there as `extremes` looks (the
+/// samples alone found "0 maxima and 0 minima" with three). Against the closed form: the crank
+/// turns `pi + theta` for one stroke and `pi - theta` for the other, `theta = asin(e / (l - r))
+/// - asin(e / (l + r))` (the angle between the two collinear positions of crank and rod).
+#[test]
+fn a_time_ratio_from_a_turn_of_few_samples() {
+    let m = SliderCrank { r: 1.0, l: 3.0, e: 0.8 };
+    let theta = (m.e / (m.l - m.r)).asin() - (m.e / (m.l + m.r)).asin();
+    let ratio = (std::f64::consts::PI + theta) / (std::f64::consts::PI - theta);
+    for samples in [3, 4, 181] {
+        let turn = Sampled::sweep(&m, 2.8, 2.8 + TAU, samples, m.guess(2.8)).unwrap();
+        let t = turn.time_ratio(SliderCrank::COL.x).unwrap();
+        // The dead centres are roots of the velocity analog located to rounding; the ratio
+        // carries a few ulps of the crank's angle over the strokes' (about 3 rad).
+        assert!((t.ratio() - ratio).abs() < 1e-12, "{samples} samples: {} against {ratio}", t.ratio());
+    }
+}
+
+/// The transmission angle of a crank-rocker from a turn of three and four samples: its largest,
+/// a right angle where `cos mu` changes sign between two samples, and its smallest at
+/// `phi = 0` (law of cosines: `cos mu = (b^2 + c^2 - a^2 - d^2 + 2 a d cos phi) / (2 b c)`,
+/// from -0.16 to 0.69 over the turn). The samples alone gave 1.534 and 1.551 for pi / 2.
+#[test]
+fn a_transmission_angle_from_a_turn_of_few_samples() {
+    use kinloop_fixtures::FourBar;
+    let m = FourBar { a: 1.0, b: 3.0, c: 2.5, d: 3.2 };
+    let cos_mu =
+        |phi: f64| (m.b * m.b + m.c * m.c - m.a * m.a - m.d * m.d + 2.0 * m.a * m.d * phi.cos()) / (2.0 * m.b * m.c);
+    // From 2.1: `cos mu` vanishes at 2.248 and 4.035, both within the first sample spacing
+    // of three or four samples a turn, where its sign does not change.
+    let guess = m.position(2.1, &m.guess(2.1)).unwrap().0;
+    for samples in [3, 4, 181] {
+        let turn = Sampled::sweep(&m, 2.1, 2.1 + TAU, samples, guess).unwrap();
+        let mu = turn.transmission(FourBar::COL.beta, FourBar::COL.gamma).unwrap();
+        assert!((mu.max.angle - std::f64::consts::FRAC_PI_2).abs() < 1e-14, "{samples} samples: {mu:?}");
+        assert!((cos_mu(mu.max.x)).abs() < 1e-13, "{samples} samples: {mu:?}");
+        // The smallest at phi = 0, one turn on (2 pi); compared in cosines (acos is
+        // ill-conditioned near its ends).
+        assert!((mu.min.angle.cos() - cos_mu(0.0)).abs() < 1e-13, "{samples} samples: {mu:?}");
+        assert!((mu.min.x - TAU).abs() < 1e-7, "{samples} samples: {mu:?}");
+    }
+}

@@ -7,7 +7,7 @@ use crate::support::newton_to_fine_step;
 use kinloop::Mechanism;
 use kinloop::dynamics::{Body, Coord, MassModel, Rotation};
 
-pub use kinloop_fixtures::{RhombicDrive, StirlingEngine};
+pub use kinloop_fixtures::{FourBar, RhombicDrive, StirlingEngine};
 
 /// Index of a named output column or unknown of a mechanism.
 pub fn index(names: &[&str], name: &str) -> usize {

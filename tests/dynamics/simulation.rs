@@ -1,10 +1,10 @@
 //! Forward dynamics: the Dormand–Prince integrator against closed-form solutions, energy
 //! conservation of the free rhombic drive over 100 turns, the flywheel's speed fluctuation
 //! reproduced by simulation, the run-up from rest under a motor characteristic, and a typed
-//! stop at a limit position; the steps handed over as they are made (`run_steps`) are the
-//! recorded trajectory's, bit for bit.
+//! stop at a limit position (but not at one a step's trial state was only thrown past); the
+//! steps handed over as they are made (`run_steps`) are the recorded trajectory's, bit for bit.
 
-use crate::fixtures::{RhombicDrive, SliderCrank, rhombic_bodies, rhombic_model};
+use crate::fixtures::{FourBar, RhombicDrive, SliderCrank, rhombic_bodies, rhombic_model};
 use kinloop::Mechanism;
 use kinloop::dynamics::{
     Body, Coord, DenseStep, DynamicsError, InverseCycle, MassModel, OdeConfig, Rotation, RunConfig, Simulation,
@@ -218,10 +218,9 @@ kinloop::mechanism! {
     }
 }
 
-#[test]
-fn running_into_a_limit_position_is_a_typed_error() {
-    let m = Rocker::default();
-    let model = MassModel::new()
+/// The input link and the coupler of [`Rocker`] (its centre of mass at the coupler's middle).
+fn rocker_model() -> MassModel<2, 1, 2> {
+    MassModel::new()
         .with_body(Body {
             name: "input".into(),
             mass: 0.0,
@@ -238,11 +237,21 @@ fn running_into_a_limit_position_is_a_typed_error() {
                 rotation: Rotation::Unknown(0),
             })
         })
-        .unwrap();
+        .unwrap()
+}
+
+/// [`Rocker`]'s limit position at positive input: where |BD| = b + c (law of cosines).
+fn rocker_limit() -> f64 {
+    ((9.0 + 16.0 - 4.5f64 * 4.5) / 24.0).acos()
+}
+
+#[test]
+fn running_into_a_limit_position_is_a_typed_error() {
+    let m = Rocker::default();
+    let model = rocker_model();
     let g = m.position_flat(&[0.0], &m.guess_flat(&[0.0]), &Default::default()).unwrap().0;
     let err = Simulation::new(&m, &model).start(0.0, 1.0).guess(g).drive(|_, _, _| 1.0).run(100.0).unwrap_err();
-    // The limit position is where |BD| = b + c (law of cosines).
-    let limit = ((9.0 + 16.0 - 4.5f64 * 4.5) / 24.0).acos();
+    let limit = rocker_limit();
     // Approaching it, J grows like K / (limit - phi) (the rod's angle analog like
     // 1 / sqrt(limit - phi)): with the energy E bounded (E ~ 2 here: the start's 1/2 J w^2 plus
     // the drive's work over 1.4 rad), the speed falls like sqrt(2 E (limit - phi) / K) and
@@ -272,6 +281,92 @@ fn running_into_a_limit_position_is_a_typed_error() {
         }
         other => panic!("expected a singular motion or position, got {other}"),
     }
+}
+
+/// A crank on a unit torsion spring (drive `-phi`) swinging well inside the limit positions of
+/// a non-Grashof four-bar (±1.3716 rad). Its speed at 0 puts the kinetic energy there,
+/// `1/2 J(0) omega0^2`, at the spring's `1/2 0.5^2`: energy conservation bounds the swing to
+/// 0.5 rad (tolerances of 1e-6 and 1e-10 keep it within 0.5000).
+fn spring_four_bar() -> (FourBar, MassModel<2, 1, 2>, f64) {
+    let m = FourBar { a: 3.0, b: 2.0, c: 2.5, d: 4.0 };
+    let body =
+        |name: &str, mass, com, inertia, rotation| Body { name: name.to_owned().into(), mass, com, inertia, rotation };
+    let model = MassModel::new()
+        .with_body(body("crank", 0.0, [Coord::Fixed(0.0); 2], 0.1, Rotation::Input(0)))
+        .and_then(|md| {
+            md.with_body(body("coupler", 2.0, [Coord::Output(0), Coord::Output(1)], 0.5, Rotation::Unknown(0)))
+        })
+        .and_then(|md| {
+            md.with_body(body("rocker", 0.0, [Coord::Fixed(4.0), Coord::Fixed(0.0)], 0.7, Rotation::Unknown(1)))
+        })
+        .unwrap();
+    let k = m.kinematics_flat(&[0.0], &m.guess_flat(&[0.0]), &Default::default()).unwrap();
+    let j0 = model.dynamics(&k, &[0.0]).unwrap().reduced_inertia();
+    (m, model, 0.5 / j0.sqrt())
+}
+
+/// A step too large for the motion throws its trial states past the limit positions: a
+/// rejected step, not an error. At tolerances of 1e-3 the steps of the spring four-bar grow to
+/// several time units, and the end of one from phi = 0.19 landed at phi = 3.63: the run ended at
+/// t = 9.85 with the mechanism said not to assemble there, a position the motion never nears.
+#[test]
+fn a_step_thrown_past_a_limit_position_is_retried_not_an_error() {
+    let (m, model, omega0) = spring_four_bar();
+    let cfg = RunConfig::default().with_ode(OdeConfig::default().with_tolerances(1e-3, 1e-3));
+    let run = Simulation::new(&m, &model)
+        .start(0.0, omega0)
+        .guess(m.guess_flat(&[0.0]))
+        .drive(|_, phi, _| -phi)
+        .config(cfg)
+        .run(60.0)
+        .unwrap();
+    assert_eq!(run.t_end, 60.0);
+    let swing = run.steps.iter().flat_map(|s| (0..=8).map(move |k| s.at(s.t0 + s.h * k as f64 / 8.0)[0].abs()));
+    let swing = swing.fold(0.0, f64::max);
+    // Two periods (about 28 time units each), through the steps that threw their trials past
+    // the limits. What bounds the swing is the energy, `1/2 phi^2` at the swing's ends: 1/8 at
+    // the start, but at this tolerance the integration gains some with each swing (measured:
+    // swings of 0.500, 0.532, 0.556 and 0.576, the last an energy a third above the start's).
+    // 0.7 allows an energy of 0.245, twice the start's, and stays 0.67 rad short of the limits;
+    // below 0.45 a fifth of the energy would be lost, which this integration does not do.
+    assert!(swing > 0.45 && swing < 0.7, "swing {swing}");
+}
+
+/// A step's trial state that fails where the motion is heading is no step too large: the
+/// motion arrives there. Without a drive the kinetic energy `1/2 J w^2` of the coasting rocker
+/// stays what it was at the start, so its input's speed `w` cannot fall to zero before `J`
+/// grows without bound, at the limit position: the input turns one way up to the limit, and the
+/// run ends there with a typed error. At a loose tolerance the steps near the limit throw their
+/// trials past it; retried with smaller steps whatever they were, those trials let the
+/// integration turn the input round within its tolerance of the limit, on the branch it came on,
+/// and coast back (measured: turned round 1e-4 short of the limit at t = 16.4, the run Ok at
+/// t = 100).
+#[test]
+fn a_loose_tolerance_does_not_carry_a_rocker_back_from_its_limit_position() {
+    let m = Rocker::default();
+    let model = rocker_model();
+    let g = m.position_flat(&[0.0], &m.guess_flat(&[0.0]), &Default::default()).unwrap().0;
+    let cfg = RunConfig::default().with_ode(OdeConfig::default().with_tolerances(1e-3, 1e-3));
+    let mut speeds = Vec::new();
+    let err = Simulation::new(&m, &model)
+        .start(0.0, 0.05)
+        .guess(g)
+        .config(cfg)
+        .run_steps(100.0, |_, &[_, omega]| {
+            speeds.push(omega);
+            false
+        })
+        .unwrap_err();
+    assert!(speeds.iter().all(|&omega| omega > 0.0), "the input turned round: {speeds:?}");
+    // Where the mechanism cannot be assembled: at or past the limit (the located input is the
+    // failing trial's, which this tolerance puts up to a step's turn of the crank beyond it).
+    let limit = rocker_limit();
+    let at = match &err {
+        DynamicsError::SingularMotion { x, .. } => x[0],
+        DynamicsError::Kinematics { source, .. } => source.location().map(|l| l.inputs[0].1).unwrap_or(f64::NAN),
+        other => panic!("expected a singular motion or position, got {other}"),
+    };
+    assert!(at > limit - 1e-9, "{err}");
 }
 
 /// A simulation over a span far longer than it can step through: it starts as a short one

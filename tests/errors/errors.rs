@@ -54,6 +54,42 @@ fn non_finite_parameter_input_guess_and_motion() {
     assert!(matches!(M.sweep(0.0, f64::NAN, 3, &M.guess(0.0)), Err(Error::NonFinite { what: Quantity::Range, .. })));
 }
 
+/// A position given to `kinematics_at` (the caller's, not a solve's) with an unknown not
+/// finite names that unknown: the step alone would call it a singular Jacobian or an equation
+/// not finite. A parameter not finite is still named first.
+#[test]
+fn a_given_position_not_finite_is_named() {
+    let four_bar = FourBar { a: 1.0, b: 3.0, c: 2.5, d: 3.2 };
+    let sens = kinloop_fixtures::FourBarSens { a: 1.0, b: 3.0, c: 2.5, d: 3.2 };
+    let q = four_bar.solve(0.5).unwrap().q;
+    let expect = |r: Result<(), Error>, unknown: &str| match r {
+        Err(Error::NonFinite { what: Quantity::Position, ref name, .. }) if name == unknown => {
+            let message = r.unwrap_err().to_string();
+            assert!(message.starts_with(&format!("given position of `{unknown}` is not finite")), "{message}");
+        }
+        other => panic!("{unknown}: {other:?}"),
+    };
+    for bad in [f64::NAN, f64::INFINITY, f64::NEG_INFINITY] {
+        // Closed forms (the four-bar's dyad) and Newton (the slider-driven crank), each unknown.
+        let g = kinloop_fixtures::FourBarUnknowns { beta: bad, ..q };
+        expect(four_bar.kinematics_at(0.5, &g).map(drop), "beta");
+        expect(
+            sens.sensitivities_at(0.5, &kinloop_fixtures::FourBarSensUnknowns { beta: bad, gamma: q.gamma }).map(drop),
+            "beta",
+        );
+        let g = kinloop_fixtures::FourBarUnknowns { gamma: bad, ..q };
+        expect(four_bar.kinematics_at(0.5, &g).map(drop), "gamma");
+        let p = M.solve(3.5).unwrap().q;
+        expect(M.kinematics_at(3.5, &SliderDrivenUnknowns { psi: bad, ..p }).map(drop), "psi");
+        expect(M.kinematics_at(3.5, &SliderDrivenUnknowns { phi: bad, ..p }).map(drop), "phi");
+        let nan_param = SliderDriven { l: f64::NAN, ..M };
+        match nan_param.kinematics_at(3.5, &SliderDrivenUnknowns { phi: bad, ..p }) {
+            Err(Error::NonFinite { what: Quantity::Parameter, name, .. }) if name == "l" => {}
+            other => panic!("{other:?}"),
+        }
+    }
+}
+
 #[test]
 fn impossible_assembly_is_no_assembly() {
     // The slider beyond the reach of crank and rod: the loop cannot close.

@@ -74,3 +74,34 @@ fn an_input_of_the_list_not_finite_is_named_as_the_input() {
         assert!(message.starts_with("input `phi` is not finite"), "{message}");
     }
 }
+
+/// Every state of `sweep_at` is at the input asked for, bit for bit, however far apart the
+/// inputs lie: a stretch's sweep ends at `from + 1 * (to - from)`, which from `1e6` to `1e-10`
+/// is `1.164e-10` (the state there was returned for `1e-10`; from `1e4`, `1.0004e-10`), and
+/// `1e-300` came out 0. The
+/// states there against the closed form. (A `Sweep`'s own last sample keeps that rounding, as
+/// documented: a test of it costs every sample five instructions.)
+#[test]
+fn every_state_is_at_the_input_asked_for() {
+    let m = FourBar { a: 1.0, b: 3.0, c: 2.5, d: 3.2 };
+    let inputs = [1e4, 1e-10, 0.1, 0.7, 1e4 + 0.3, -3.3, 1e-300, 1e4, 1e4];
+    let g = m.position(inputs[0], &m.guess(inputs[0])).unwrap().0;
+    let side = |phi: f64, y: f64| (four_bar_joint(m.a, m.b, m.c, m.d, phi, 1.0).unwrap().1 - y).abs() < 1e-9;
+    let side = if side(inputs[0], m.solve(inputs[0]).unwrap().out.pc.y) { 1.0 } else { -1.0 };
+    let states = m.sweep_at(inputs, &g).into_result().unwrap();
+    assert_eq!(states.len(), inputs.len());
+    for (s, &phi) in states.iter().zip(&inputs) {
+        assert_eq!(s.input.phi, phi);
+        let (cx, cy) = four_bar_joint(m.a, m.b, m.c, m.d, phi, side).unwrap();
+        // Lengths of order 3 at angles up to 1e4 rad, whose doubles are 1.8e-12 apart.
+        assert_close!(s.out.pc.x, cx, 1e-11, "phi = {phi}");
+        assert_close!(s.out.pc.y, cy, 1e-11, "phi = {phi}");
+    }
+    // Ranges whose end `from + (to - from)` rounds off `to` (each of these does).
+    for (from, to) in [(5.2755, -4.8986), (-9.4911, 0.8282), (1e4, 0.7), (0.3, 1e-300)] {
+        assert_ne!(from + (to - from), to);
+        let g = m.position(from, &m.guess(from)).unwrap().0;
+        let states = m.sweep_at([from, to], &g).into_result().unwrap();
+        assert_eq!(states[1].input.phi, to, "{from} to {to}");
+    }
+}

@@ -203,3 +203,33 @@ fn a_full_rotation_of_a_length_input_is_refused() {
         r.err()
     );
 }
+
+/// An angle channel on a length (the slider's position) is refused: compared modulo a turn, a
+/// slider 2 pi off its targets met them, with an error depending on the unit of length. A
+/// value channel on it is the slider's position.
+#[test]
+fn an_angle_channel_on_a_length_is_refused() {
+    use super::mechanisms::{SLIDER, Slider, slider_x};
+    use kinloop::synthesis::Channel;
+    let phis = [0.0, 0.7, 1.4, 2.1];
+    let targets: Vec<Vec<f64>> = phis.iter().map(|&phi| vec![slider_x(SLIDER, phi) + std::f64::consts::TAU]).collect();
+    let r = Design::new().var("r", 0.5, 2.0);
+    let task = Task::new(vec![Channel::Angle("x".into())], targets.clone()).timed(phis);
+    let e = Problem::new(Slider::default(), &r, &task).unwrap_err();
+    assert!(matches!(&e, SynthesisError::Mismatch(m) if m.starts_with("`x` is a length, not an angle")), "{e:?}");
+    let task = Task::new(vec![Channel::Value("x".into())], targets).timed(phis);
+    assert!(Problem::new(Slider::default(), &r, &task).is_ok());
+    // A motion task's angle on a point's coordinate likewise.
+    let poses = [[1.0, 2.0, 0.1], [1.5, 2.2, 0.2], [2.0, 2.1, 0.3]];
+    let e = error(&design(), &Task::motion("p", "p.x", poses).timed([0.0, 0.5, 1.0]));
+    assert!(matches!(&e, SynthesisError::Mismatch(m) if m.starts_with("`p.x` is a length")), "{e:?}");
+}
+
+/// A search keeping no candidate is refused: it dropped every candidate found and returned
+/// `Ok` with none.
+#[test]
+fn a_search_that_keeps_none_is_refused() {
+    let p = Problem::new(CouplerFourBar::default(), &design(), &three()).unwrap();
+    let e = Search::default().with_starts(0..2).with_keep(0).run(&p).unwrap_err();
+    assert_eq!(e, SynthesisError::InvalidConfig("keep is 0: it must be at least 1".into()));
+}

@@ -47,6 +47,19 @@ fn targets_on_two_assembly_modes_are_a_branch_defect() {
     assert_eq!(c.defects, [Defect::Branch { target: 1 }]);
 }
 
+/// Two targets at one crank angle, met on the two assembly modes: no sweep between them, and
+/// their positions tell. It was valid (each target met on its own mode, nothing compared); on
+/// one mode, valid.
+#[test]
+fn targets_at_one_input_on_two_assembly_modes_are_a_branch_defect() {
+    let problem = exact(FOUR_BAR, &[0.3, 0.3, 1.2, 2.0, 2.8], &[1.0, -1.0, -1.0, -1.0, -1.0], true);
+    let c = verify(&problem, &[FOUR_BAR[4]]);
+    assert_eq!(c.defects, [Defect::Branch { target: 1 }]);
+    let problem = exact(FOUR_BAR, &[0.3, 0.3, 1.2, 2.0, 2.8], &[-1.0; 5], true);
+    let c = verify(&problem, &[FOUR_BAR[4]]);
+    assert!(c.is_valid(), "{c:?}");
+}
+
 #[test]
 fn a_limit_position_between_targets_is_a_circuit_defect() {
     // The crank must pass its limit position theta to go from 2.0 to 2 pi - 2.0 upwards.

@@ -689,9 +689,34 @@ impl<K: Kernel> SampledOf<K> {
     /// that close, solved on the sweep's branch: samples a turn apart do not hide them.
     pub fn extremes(&self, c: impl ColumnOf<K>) -> Result<Vec<LocalExtreme>, Error> {
         let c = c.resolve(&self.k)?;
+        self.searched(c, |jets, corners, eval| extremes::extremes_across(jets, corners, eval))
+    }
+
+    /// Column `c` as a search between the samples sees it ([`SampledOf::extremes`]), handed to
+    /// `f`: its jets at the search's points, the crossings among them, and its jet anywhere in
+    /// the range. What every analysis that locates an event of a column between samples looks
+    /// at: the samples alone miss two events within one spacing (a turn in three samples).
+    pub(crate) fn searched<R>(
+        &self,
+        c: ColumnIndex,
+        f: impl FnOnce(&[Jet], &[extremes::Corner], &mut dyn FnMut(f64) -> Result<Jet, Error>) -> Result<R, Error>,
+    ) -> Result<R, Error> {
         let grid = self.search()?;
-        let (jets, corners, eval) = self.search_jets(c, &grid);
-        extremes::extremes_across(&jets, &corners, eval)
+        let (jets, corners, mut eval) = self.search_jets(c, &grid);
+        f(&jets, &corners, &mut eval)
+    }
+
+    /// The states at the points a search between the samples looks at ([`SampledOf::searched`]),
+    /// with their path parameters, handed to `f` with the state anywhere in the range: for an
+    /// analysis of several columns at once (the transmission angle's two).
+    pub(crate) fn searched_states<R>(
+        &self,
+        f: impl FnOnce(&[f64], &[&KinOf<K>], &mut dyn FnMut(f64) -> Result<KinOf<K>, Error>) -> Result<R, Error>,
+    ) -> Result<R, Error> {
+        let grid = self.search()?;
+        let states: Vec<&KinOf<K>> = grid.states.iter().map(|st| &**st).collect();
+        let mut at = |s: f64| self.at_near(s, &grid.s, |j| &grid.states[j]);
+        f(&grid.s, &states, &mut at)
     }
 
     /// The global minimum and maximum of a column over the range (interior extremes, or samples: the ends among them),
@@ -699,18 +724,14 @@ impl<K: Kernel> SampledOf<K> {
     /// extremes are looked for as [`SampledOf::extremes`] looks for them.
     pub fn range(&self, c: impl ColumnOf<K>) -> Result<GlobalRange, Error> {
         let c = c.resolve(&self.k)?;
-        let grid = self.search()?;
-        let (jets, corners, eval) = self.search_jets(c, &grid);
-        extremes::global_range_across(&jets, &corners, eval)
+        self.searched(c, |jets, corners, eval| extremes::global_range_across(jets, corners, eval))
     }
 
     /// The dwells of a progressive column; see [`dwell`] for the definition. Between samples
     /// farther apart than a sweep's natural step, looked for as [`SampledOf::extremes`] looks.
     pub fn dwells(&self, c: impl ColumnOf<K>) -> Result<Vec<Dwell>, Error> {
         let c = c.resolve(&self.k)?;
-        let grid = self.search()?;
-        let (jets, corners, eval) = self.search_jets(c, &grid);
-        dwell::dwells_across(&jets, &corners, eval)
+        self.searched(c, |jets, corners, eval| dwell::dwells_across(jets, corners, eval))
     }
 
     /// The maximum of a derived quantity `f(state)` (e.g. the magnitude of an acceleration

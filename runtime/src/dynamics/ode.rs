@@ -138,7 +138,10 @@ pub(super) fn norm<const D: usize>(v: &[f64; D], y0: &[f64; D], y1: &[f64; D], c
 
 /// Integrates `y' = f(t, y)` from `(t0, y0)` to `t_end > t0`. After every accepted step,
 /// `on_step(step, y_end)` is called; it returns `true` to stop there. Returns the time and the
-/// state reached. An error of `f` or `on_step` stops the integration and is returned; a step
+/// state reached. An error of `f` or `on_step` stops the integration and is returned, except
+/// where `f` fails at a stage or end of a step that the step threw far off the motion (every
+/// component far from the tangent at the accepted state: a step too large for the motion),
+/// which rejects the step for a smaller one, as a state that is not finite does. A step
 /// that cannot change a component of the state by a change larger than the absolute tolerance
 /// (the component's value is too large to register it) is [`DynamicsError::CannotAdvance`].
 /// A step that collapses below the resolution of the time where it is (a few units in the last
@@ -186,11 +189,27 @@ pub fn dopri5<const D: usize>(
         if h <= step_floor(t0, t) {
             return Err(DynamicsError::StepTooSmall { t, h });
         }
-        k[1] = f(t + C[0] * h, &combine(&y, h, &A2, &k))?;
-        k[2] = f(t + C[1] * h, &combine(&y, h, &A3, &k))?;
-        k[3] = f(t + C[2] * h, &combine(&y, h, &A4, &k))?;
-        k[4] = f(t + C[3] * h, &combine(&y, h, &A5, &k))?;
-        k[5] = f(t + C[4] * h, &combine(&y, h, &A6, &k))?;
+        // The stages and the step's end are trial states: where one fails that the step threw
+        // off the motion (see `thrown_off`), the step was too large, and a smaller one may keep
+        // inside the range where `f` holds; any other failure is the motion's own.
+        let mut failed = None;
+        for (s, a) in [&A2[..], &A3, &A4, &A5, &A6].into_iter().enumerate() {
+            let trial = combine(&y, h, a, &k);
+            match f(t + C[s] * h, &trial) {
+                Ok(ks) => k[s + 1] = ks,
+                Err(e) => {
+                    failed = Some((trial, C[s] * h, e));
+                    break;
+                }
+            }
+        }
+        if let Some((trial, dt, e)) = failed {
+            if thrown_off(&trial, &y, dt, &k[0], cfg) {
+                h *= 0.2;
+                continue;
+            }
+            return Err(e);
+        }
         let y1 = combine(&y, h, &B, &k);
         // A state that overflows is no step (the error norm can miss it: an infinite state
         // makes its own scale infinite); a smaller one may stay finite.
@@ -199,7 +218,14 @@ pub fn dopri5<const D: usize>(
             continue;
         }
         let t1 = if last { t_end } else { t + h };
-        k[6] = f(t1, &y1)?;
+        k[6] = match f(t1, &y1) {
+            Ok(k6) => k6,
+            Err(_) if thrown_off(&y1, &y, h, &k[0], cfg) => {
+                h *= 0.2;
+                continue;
+            }
+            Err(e) => return Err(e),
+        };
         let err = norm(&combine(&[0.0; D], h, &E, &k), &y, &y1, cfg);
         if !err.is_finite() {
             h *= 0.2;
@@ -227,6 +253,29 @@ pub fn dopri5<const D: usize>(
         h = (h * grow).min(cfg.h_max);
     }
     Err(DynamicsError::TooManySteps { steps: cfg.max_steps, t, t_end })
+}
+
+/// Whether a trial state `trial`, `dt` after the accepted state `y` whose derivative is `dy`,
+/// was thrown off the motion by a step too large for it: every component departs from the
+/// tangent `y + dt dy` by more than the tangent's own change (and the tolerance). The step's
+/// higher-order terms then outweigh its first-order one, a step far larger than the error
+/// control accepts, and the trial says nothing of where the motion goes (a crank thrown to
+/// 3.6 rad from 0.19 in a step, moving at 0.05 rad per time unit). A component between the
+/// accepted value and twice the tangent's change may be the motion arriving where the
+/// evaluation fails (a crank decelerating into its limit position, or a position one unit in
+/// the last place short of it): retried with smaller steps, such a motion is integrated past,
+/// or stuck at, its limit instead of stopping there. Which components a failure depends on is
+/// not known (a kinematic solve on the position alone, whatever the speed), so one such
+/// component keeps the failure (and a state of no components has no motion to be thrown off).
+/// A departure that is not finite is thrown off.
+fn thrown_off<const D: usize>(trial: &[f64; D], y: &[f64; D], dt: f64, dy: &[f64; D], cfg: &OdeConfig) -> bool {
+    D > 0
+        && (0..D).all(|i| {
+            let tangent = dt * dy[i];
+            let tol = cfg.atol + cfg.rtol * trial[i].abs().max(y[i].abs());
+            let departure = (trial[i] - y[i] - tangent).abs();
+            departure.is_nan() || departure > tangent.abs() + tol
+        })
 }
 
 /// The smallest step that still moves the time at `t` of an integration started at `t0`:

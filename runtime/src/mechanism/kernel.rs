@@ -8,7 +8,7 @@ use crate::error::{Error, Quantity};
 use crate::events::{BlockInfo, Location};
 use crate::kin::{Jac, Kin, Sens};
 use crate::kinds::QuantityKind;
-use crate::mechanism::{Mechanism, Sensitivities};
+use crate::mechanism::{Mechanism, Sensitivities, given_position};
 use crate::paths::config::SweepConfig;
 use crate::solvers::newton::NewtonConfig;
 use crate::trig::InputTrig;
@@ -223,7 +223,7 @@ macro_rules! compiled_kernel_body {
         }
         #[inline(always)]
         fn kinematics_at(&self, x: &[f64; NI], q: &[f64; N], cfg: &NewtonConfig) -> Result<Kin<N, NI, NO>, Error> {
-            self.0.kinematics_at_flat(x, q, cfg)
+            self.0.kinematics_at_flat(x, q, cfg).map_err(|e| given_position::<M, N, NI, NO>(x, q, e))
         }
         #[inline(always)]
         fn jacobian(&self, x: &[f64; NI], q: &[f64; N]) -> Jac<N, NI> {
@@ -552,7 +552,7 @@ where
         kin: &mut Kin<N, NI, NO>,
         sens: &mut Sens<N, NI, NO, NP>,
     ) -> Result<(), Error> {
-        (*kin, *sens) = self.0.sensitivities_at_flat(x, q, cfg)?;
+        (*kin, *sens) = self.0.sensitivities_at_flat(x, q, cfg).map_err(|e| given_position::<M, N, NI, NO>(x, q, e))?;
         Ok(())
     }
     #[inline]

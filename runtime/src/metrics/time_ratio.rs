@@ -3,7 +3,8 @@
 //! angle spent while it falls back.
 
 use crate::Kernel;
-use crate::analysis::{ColumnOf, Extreme, Jet, SampledOf, extremes};
+use crate::analysis::extremes::{Corner, extremes_across};
+use crate::analysis::{ColumnOf, Extreme, Jet, SampledOf};
 use crate::error::Error;
 
 /// The strokes of an output over one input turn, from its located extremes.
@@ -55,7 +56,16 @@ impl TimeRatio {
 /// # Ok::<(), kinloop_runtime::Error>(())
 /// ```
 pub fn time_ratio(samples: &[Jet], eval: impl FnMut(f64) -> Result<Jet, Error>) -> Result<TimeRatio, Error> {
-    let mut found = extremes(samples, eval)?;
+    time_ratio_across(samples, &[], eval)
+}
+
+/// [`time_ratio`] with `corners` between samples (see `extremes_across`).
+fn time_ratio_across(
+    samples: &[Jet],
+    corners: &[Corner],
+    eval: impl FnMut(f64) -> Result<Jet, Error>,
+) -> Result<TimeRatio, Error> {
+    let mut found = extremes_across(samples, corners, eval)?;
     let n = samples.len();
     let (first, last) = (samples[0], samples[n - 1]);
     // Over less (or more) than a period the seam below is no seam: it made an extreme of the
@@ -94,10 +104,12 @@ pub fn time_ratio(samples: &[Jet], eval: impl FnMut(f64) -> Result<Jet, Error>) 
 
 impl<K: Kernel> SampledOf<K> {
     /// The time (quick-return) ratio ([`time_ratio()`]) of a column (`Name::COL.psi`, or its
-    /// name) of a sweep over one full input turn (one period of the path parameter).
+    /// name) of a sweep over one full input turn (one period of the path parameter). Its
+    /// extremes are looked for between the samples as [`SampledOf::extremes`] looks for them:
+    /// a turn of few samples gives the ratio of many.
     pub fn time_ratio(&self, column: impl ColumnOf<K>) -> Result<TimeRatio, Error> {
         let c = column.resolve(self.kernel())?;
-        time_ratio(&self.jets(c)?, |x| self.jet_at(c, x))
+        self.searched(c, |jets, corners, eval| time_ratio_across(jets, corners, eval))
     }
 }
 

@@ -191,3 +191,20 @@ impl SweepConfig {
 /// Smallest valid [`SweepConfig::max_step`]: below it a sample would take more than a million
 /// steps, beyond any use (the sample spacing is the user's to choose instead).
 const MIN_MAX_STEP: f64 = 1e-6;
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// The range an error states is the one `invalid_field` tests: `max_step`'s written out
+    /// is its bound's constant.
+    #[test]
+    fn the_ranges_stated_are_the_ranges_tested() {
+        assert_eq!(SweepConfig::valid_range("max_step"), format!("[{MIN_MAX_STEP:e}, 1]"));
+        let at = |max_step: f64| SweepConfig::default().with_max_step(max_step).invalid_field();
+        assert_eq!(at(MIN_MAX_STEP), None);
+        assert_eq!(at(1.0), None);
+        assert_eq!(at(MIN_MAX_STEP.next_down()), Some("max_step"));
+        assert_eq!(at(1f64.next_up()), Some("max_step"));
+    }
+}

@@ -23,6 +23,9 @@ use nalgebra::{DMatrix, DVector};
 #[derive(Clone, Copy, Debug)]
 pub(crate) struct Path<X> {
     pub from: X,
+    /// The end, kept as given: the input at `tau = 1` (`from + (to - from)` may round away
+    /// from it, far away where `|from|` is much larger than `|to|`).
+    pub to: X,
     /// `to - from`.
     pub delta: X,
     /// `|to - from|` (Euclidean).
@@ -43,17 +46,23 @@ impl<X: Store> Path<X> {
         } else {
             big
         };
-        Path { from, delta, len }
+        Path { from, to, delta, len }
     }
 
-    /// Input at fraction `tau` of the path.
+    /// Input at fraction `tau` of the path: exactly `from` at 0 and `to` at 1.
     pub fn at_tau(&self, tau: f64) -> X {
+        if tau == 1.0 {
+            return self.to.clone();
+        }
         let mut x = self.from.clone();
         self.at_tau_into(tau, &mut x);
         x
     }
 
-    /// Input at fraction `tau` of the path, into `x` (a sweep's step: no allocation).
+    /// Input at fraction `tau` of the path, into `x` (a sweep's step: no allocation): `from +
+    /// tau (to - from)`, which at `tau = 1` may round off `to` (a sweep's last sample, see
+    /// [`SweepOf::new`](crate::SweepOf)): a test of `tau` here costs every sweep sample five
+    /// instructions or more, measured.
     #[inline(always)]
     pub fn at_tau_into(&self, tau: f64, x: &mut X) {
         let ni = x.as_ref().len();

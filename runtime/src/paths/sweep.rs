@@ -268,7 +268,12 @@ where
     /// A sweep of `samples` equally spaced inputs from `from` to `to` (both included), starting
     /// from `guess` at `from` (the guess picks the assembly mode), with the mechanism's solver
     /// configuration ([`Mechanism::solver_config`]: the defaults, or the one a
-    /// [`Configured`](crate::Configured) mechanism carries).
+    /// [`Configured`](crate::Configured) mechanism carries). The last sample is at
+    /// `from + 1 (to - from)`, which may round a unit in the last place off `to`, or more where
+    /// `|from|` is far larger than `|to|` (`sweep_at` lands on its inputs exactly). One sample
+    /// is the state at `from` alone, with the range to `to` checked as a longer sweep's is (a
+    /// range too long for a sweep is refused before any step: a program's test of a range it
+    /// means to sweep).
     pub fn new(m: &'m M, from: [f64; NI], to: [f64; NI], samples: usize, guess: [f64; N]) -> Result<Self, Error> {
         SweepOf::over(Compiled(m), from, to, samples, guess)
     }

@@ -3,6 +3,7 @@
 
 use super::outcome::SweepResult;
 use super::sweep::SweepOf;
+use crate::dims::Dims;
 use crate::dims::KinState;
 use crate::error::Error;
 use crate::events::Event;
@@ -40,7 +41,10 @@ pub fn sweep_at_of<K: Kernel>(m: &K, inputs: impl IntoIterator<Item = X<K>>, gue
                 let (mut from, mut q) = (x.clone(), guess.clone());
                 from.as_mut().copy_from_slice(p.x());
                 q.as_mut().copy_from_slice(p.q());
-                SweepOf::<&K, KinOf<K>>::over(m, from, x, 2, q).map_err(|e| (e, Vec::new())).and_then(stretch_end)
+                SweepOf::<&K, KinOf<K>>::over(m, from, x.clone(), 2, q)
+                    .map_err(|e| (e, Vec::new()))
+                    .and_then(stretch_end)
+                    .map(|(k, met)| (at_input(m, k, &x), met))
             }
             None => SweepOf::<&K, KinOf<K>>::over(m, x.clone(), x, 1, guess.clone())
                 .map_err(|e| (e, Vec::new()))
@@ -58,6 +62,19 @@ pub fn sweep_at_of<K: Kernel>(m: &K, inputs: impl IntoIterator<Item = X<K>>, gue
         }
     }
     SweepResult::new(states, None, events)
+}
+
+/// The state `k` a stretch's sweep ended on, at the input `x` asked for itself: the sweep's
+/// end `from + 1 (x - from)` may round off `x`, far off where `|from|` is much larger (from
+/// `1e6` to `1e-10`, the state at `1.164e-10`). Solved again at `x` from `k`, a step of that
+/// rounding; where that fails (no solve so near can), `k`.
+fn at_input<K: Kernel>(m: &K, k: KinOf<K>, x: &X<K>) -> KinOf<K> {
+    if k.x() == x.as_ref() {
+        return k;
+    }
+    let mut guess = m.dims().q();
+    guess.as_mut().copy_from_slice(k.q());
+    m.kinematics(x, &guess, &m.solver_config().newton).unwrap_or(k)
 }
 
 /// The last state of a sweep run to its end, with the events it met; its error otherwise.

@@ -36,7 +36,8 @@ pub struct TraceConfig {
     /// radians, lengths in units of the mechanism's size (the magnitude of the loops they
     /// appear in), so the spacing does not depend on the unit of length. `0.01` gives points
     /// about 0.01 rad apart on a curve dominated by angles. From [`TraceConfig::MIN_DS`] to
-    /// [`TraceConfig::MAX_DS`].
+    /// [`TraceConfig::MAX_DS`]. The longest step: where the curve's tangent would turn by more
+    /// than a tenth of a radian over it, steps are shorter (see [`TracedOf::points`]).
     pub ds: f64,
     /// Most points returned (default `100_000`; at most
     /// [`MAX_SAMPLES`](crate::analysis::MAX_SAMPLES), the most an analysis holds).
@@ -133,8 +134,11 @@ pub type TracedPoint<const N: usize, const NI: usize> = TracedPointOf<[f64; N], 
 /// positions in `Q` and inputs in `X` (see [`TracedPointOf`]).
 #[derive(Clone, Debug, PartialEq)]
 pub struct TracedOf<Q, X> {
-    /// Points along the curve, about `ds` apart (closer where the curve turns sharply, see
-    /// [`TracedOf::kinks`] for the corners, each of which is a point too).
+    /// Points along the curve, about `ds` apart where its tangent turns by less than a tenth
+    /// of a radian over `ds`; closer where it turns more, a step at most a tenth of the
+    /// curve's radius of curvature (in scaled coordinates: a four-bar's curve, of radius about
+    /// one, is traced in steps of about 0.06 at `ds` of 1). See [`TracedOf::kinks`] for the
+    /// corners, each of which is a point too.
     pub points: Vec<TracedPointOf<Q, X>>,
     /// The limit positions passed (where the input reversed), located precisely. Two limit
     /// positions closer together along the curve than a step (the input reverses and resumes

@@ -572,12 +572,11 @@ fn short_lever(e0: f64, e1: f64, floor_sq: f64, cfg: &NewtonConfig) -> BlockFail
     BlockFailure::Singular { row: 0, iterations: 0, residual: 0.0, pivot_ratio, tolerance: cfg.singular_tol }
 }
 
-/// The magnitude beyond which an angle cannot be solved to the tolerance of `cfg` on its turn:
-/// its rounding there (`|q| eps`) exceeds the precision Newton's residual floor accepts (1000
-/// times the tolerance, at least 16 eps). About 4.5e6 rad (700,000 turns) by default.
+/// The magnitude beyond which an angle cannot be solved to the tolerance of `cfg` on its turn
+/// ([`NewtonConfig::largest_precise_angle`]).
 #[inline]
 pub fn largest_precise_angle(cfg: &NewtonConfig) -> f64 {
-    1000.0 * cfg.residual_tol.max(16.0 * f64::EPSILON) / f64::EPSILON
+    cfg.largest_precise_angle()
 }
 
 /// The checks of a closed-form solution `out` whose first `angles` entries are angles: every

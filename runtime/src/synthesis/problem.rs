@@ -5,7 +5,7 @@
 
 use super::constraints::Constraints;
 use super::error::SynthesisError;
-use super::resolve::{Inputs, Resolved, resolve_channel, resolve_timing, scalar_column, target_scale};
+use super::resolve::{Inputs, Resolved, column_kind, resolve_channel, resolve_timing, scalar_column, target_scale};
 use super::task::{Channel, PlacementBounds, Task};
 use super::vars::{Bound, Design, check_bounds, param_index};
 use crate::analysis::ColumnIndex;
@@ -194,11 +194,7 @@ impl<K: SensKernel> ProblemOf<K> {
             let f = scalar_column(&self.base, &t.follower)?;
             // The angle between two links: a column inferred as a length (or a ratio) is none.
             for (name, column) in [(&t.coupler, c), (&t.follower, f)] {
-                let kind = match column {
-                    ColumnIndex::Unknown(u) => self.base.unknown_kind(u),
-                    ColumnIndex::Output(o) => self.base.output_kind(o),
-                    ColumnIndex::Input(i) => self.base.input_kind(i),
-                };
+                let kind = column_kind(&self.base, column);
                 if matches!(kind, QuantityKind::Length | QuantityKind::Dimensionless) {
                     return Err(SynthesisError::InvalidConfig(format!(
                         "the transmission angle is between two links' angle columns: `{name}` is a {}, not an angle",

@@ -34,17 +34,37 @@ pub(crate) fn resolve_channel<K: Kernel>(m: &K, c: &Channel) -> Result<Resolved,
         Channel::Point(name) => {
             Resolved::Point(scalar_column(m, &format!("{name}.x"))?, scalar_column(m, &format!("{name}.y"))?)
         }
-        Channel::Angle(name) => Resolved::Angle { col: scalar_column(m, name)?, rotates: true },
+        Channel::Angle(name) => {
+            let col = scalar_column(m, name)?;
+            // Compared modulo a turn: a length's error would be taken modulo 2 pi of its unit
+            // (a slider 2 pi off met its target), and depend on the unit of length.
+            if let kind @ (QuantityKind::Length | QuantityKind::Dimensionless) = column_kind(m, col) {
+                return Err(SynthesisError::Mismatch(format!(
+                    "`{name}` is a {}, not an angle: an angle channel is compared modulo a turn; give it as a value \
+                     (`Channel::Value`)",
+                    if kind == QuantityKind::Length { "length" } else { "pure number" }
+                )));
+            }
+            Resolved::Angle { col, rotates: true }
+        }
         Channel::Value(name) => {
             let col = scalar_column(m, name)?;
-            let kind = match col {
-                ColumnIndex::Unknown(u) => m.unknown_kind(u),
-                ColumnIndex::Output(o) => m.output_kind(o),
-                ColumnIndex::Input(i) => m.input_kind(i),
-            };
-            if kind == QuantityKind::Angle { Resolved::Angle { col, rotates: false } } else { Resolved::Value(col) }
+            if column_kind(m, col) == QuantityKind::Angle {
+                Resolved::Angle { col, rotates: false }
+            } else {
+                Resolved::Value(col)
+            }
         }
     })
+}
+
+/// The kind of column `col` of `m`.
+pub(crate) fn column_kind<K: Kernel>(m: &K, col: ColumnIndex) -> QuantityKind {
+    match col {
+        ColumnIndex::Unknown(u) => m.unknown_kind(u),
+        ColumnIndex::Output(o) => m.output_kind(o),
+        ColumnIndex::Input(i) => m.input_kind(i),
+    }
 }
 
 /// An unknown or output column by name (the analysis's lookup; an input is no target column).

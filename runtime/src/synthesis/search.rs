@@ -45,7 +45,7 @@ pub struct Search {
     pub seeds: Vec<Vec<f64>>,
     /// The local solve from each start.
     pub local: LocalConfig,
-    /// How many candidates the report keeps, best first (default `10`).
+    /// How many candidates the report keeps, best first (default `10`; at least 1).
     pub keep: usize,
     /// Two candidates are one design when every design variable agrees to this, relative to
     /// its range (default `1e-6`); the report keeps the better.
@@ -126,6 +126,10 @@ impl Search {
                 "distinct is {}: it must be finite and not negative",
                 self.distinct
             )));
+        }
+        // None kept is no answer: every candidate found would be dropped, with `Ok`.
+        if self.keep == 0 {
+            return Err(SynthesisError::InvalidConfig("keep is 0: it must be at least 1".into()));
         }
         // Every start's result is held until the report: more than a vector holds panicked in
         // the allocator (a capacity overflow) before the first start.

@@ -192,8 +192,14 @@ impl<K: SensKernel> ProblemOf<K> {
         // each stretch swept (each a straight path of the inputs).
         let mut runs: Vec<Vec<KinOf<K>>> = Vec::new();
         for k in 1..n {
+            // No motion between two targets at one input: the same position, or two assembly
+            // modes at once (each target met on its own, no sweep to tell).
             if inputs[k].as_ref() == inputs[k - 1].as_ref() {
-                continue;
+                if same_position(m, e.qs[k - 1].as_ref(), e.qs[k].as_ref(), self.scale) {
+                    continue;
+                }
+                defects.push(Defect::Branch { target: k });
+                break;
             }
             let run = SweepOf::<&K, KinOf<K>>::over(
                 m,

@@ -101,6 +101,23 @@ impl NewtonConfig {
         self
     }
 
+    /// The magnitude (in radians) beyond which an angle cannot be solved to this
+    /// configuration's tolerance: the spacing of doubles there (`|angle| * 2.2e-16`) exceeds
+    /// the precision the residual floor accepts (1000 times [`NewtonConfig::residual_tol`], at
+    /// least 16 eps). About 4.5e6 rad (700,000 turns) by default. A guess beyond it is
+    /// [`Error::TooManyTurns`](crate::Error::TooManyTurns); a program that converts an angle
+    /// to radians (from degrees) loses as much in the conversion there.
+    ///
+    /// ```
+    /// use kinloop_runtime::NewtonConfig;
+    /// let largest = NewtonConfig::default().largest_precise_angle();
+    /// assert!(largest > 4e6 && largest < 5e6);
+    /// ```
+    #[inline]
+    pub fn largest_precise_angle(&self) -> f64 {
+        1000.0 * self.residual_tol.max(16.0 * f64::EPSILON) / f64::EPSILON
+    }
+
     /// The first field outside its valid range (NaN is outside every range).
     #[inline]
     pub fn invalid_field(&self) -> Option<&'static str> {

@@ -173,7 +173,7 @@ pub(crate) fn least_judged_magnitude(cfg: &NewtonConfig) -> f64 {
 }
 
 /// `2^-1024`: the largest double whose reciprocal overflows (a magnitude below it has none).
-pub(crate) const NO_RECIPROCAL: f64 = f64::MIN_POSITIVE / 4.0;
+const NO_RECIPROCAL: f64 = f64::MIN_POSITIVE / 4.0;
 
 /// The failure of a solve that ends at the evaluation `ev` of `z`, judged in the magnitudes
 /// `m` of that evaluation (made from it by `mags`), when a row cannot be judged there
@@ -247,15 +247,16 @@ fn unjudged_row<const N: usize, const K: usize, J: BlockJacobian<N>>(
         if given == f64::INFINITY {
             let j = dense.get_or_insert_with(|| ev.j.to_dense());
             overflowed_in(&j[r], ev.f[r], z).then_some(BlockFailure::Overflow { row: r })
-        } else if given > 0.0 {
+        } else if given > 0.0 && given < least {
+            underflow
+        } else if given > 0.0 && given < NO_RECIPROCAL {
+            // Judged in its row sums, unless they have no reciprocal either (see `NO_RECIPROCAL`).
             let sum = ev.j.row_abs_sum(r);
-            if given < least {
-                underflow
-            } else if given < NO_RECIPROCAL && sum > 0.0 && sum < NO_RECIPROCAL {
-                Some(BlockFailure::Underflow { row: r, magnitude: given, least: NO_RECIPROCAL })
-            } else {
-                None
-            }
+            (sum > 0.0 && sum < NO_RECIPROCAL).then_some(BlockFailure::Underflow {
+                row: r,
+                magnitude: given,
+                least: NO_RECIPROCAL,
+            })
         } else if given == 0.0 {
             let j = dense.get_or_insert_with(|| ev.j.to_dense());
             let under = (0..N).any(|c| nonzero(j[r][c]) && nonzero(z[c]) && (j[r][c] * z[c]).abs() < least);
@@ -428,7 +429,7 @@ mod tests {
             let cfg = NewtonConfig::default().with_residual_tol(tol);
             let least = least_judged_magnitude(&cfg);
             assert_eq!(least, f64::from_bits(1) / tol.max(16.0 * f64::EPSILON));
-            assert!(least < f64::MIN_POSITIVE / 4.0, "{least:e}: not always degenerate");
+            assert!(least < NO_RECIPROCAL, "{least:e}: not always degenerate");
             // `x = c` (exact in subnormal arithmetic), `c` a quarter of the magnitude.
             let c = least / 4.0;
             let row = |s: f64| move |z: &[f64; 1]| varying::<1, 2>([z[0] - c], [[1.0]], [s], [s]);

@@ -213,6 +213,18 @@ pub fn burmester_points(poses: &[Pose], config: &BurmesterConfig) -> Result<Burm
             dyads.push(dyad);
         }
     }
+    // A crank that hardly turns has its pivots about the size over its rotation away: near the
+    // largest doubles they lie beyond them (NaN and infinite pivots were returned as `Ok`).
+    let beyond = dyads.iter().flat_map(|d| [d.center, d.circle]).find(|p| !(p.x.is_finite() && p.y.is_finite()));
+    if let Some(p) = beyond {
+        let value = if p.x.is_finite() { p.y } else { p.x };
+        return Err(ClassicalError::NonFinite {
+            what: "a Burmester pair's pivot (beyond the range of doubles at this size: give the poses' points in a \
+                   larger unit)"
+                .into(),
+            value,
+        });
+    }
     dyads.sort_by(|a, b| a.center.x.total_cmp(&b.center.x));
     let max_deviation = max_deviation(dyads.iter(), poses, size);
     Ok(BurmesterPoints { dyads, size, max_deviation })

@@ -44,8 +44,16 @@ impl Compatibility {
         let d4 = zi * dj - zj * di;
         let d1 = -(d2 + d3 + d4);
         let largest = [d1, d2, d3, d4].iter().map(|c| c.norm()).fold(0.0, f64::max);
-        if largest.is_nan() || largest <= 0.0 || d3.norm() <= ZERO_MINOR * largest || d4.norm() <= ZERO_MINOR * largest
-        {
+        // A minor is zero against the size of its terms, not against the other minors: where
+        // every pose turns about one point (`d_j = s z_j`) all minors are the rounding of their
+        // terms, and compared with each other they were zero or not by chance (the same poses
+        // gave an error, 1 dyad or 809 by the size they were written in).
+        let terms = |a: Complex<f64>, b: Complex<f64>, c: Complex<f64>, e: Complex<f64>| {
+            a.norm() * b.norm() + c.norm() * e.norm()
+        };
+        let size = terms(zj, dk, zk, dj).max(terms(zi, dk, zk, di)).max(terms(zi, dj, zj, di));
+        let zero = |c: Complex<f64>| c.norm() <= ZERO_MINOR * size.max(largest);
+        if !(size.is_finite() && largest > 0.0) || zero(d3) || zero(d4) {
             return Err(ClassicalError::Degenerate(format!(
                 "poses 0, {}, {} and {} have a pole in common (a point of the body that stays in place between \
                  two pairs of them), a special case the center-point curve's construction does not cover",

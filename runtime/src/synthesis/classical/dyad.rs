@@ -117,6 +117,13 @@ pub(crate) fn check_poses(poses: &[Pose], needed: usize, method: &'static str) -
             }
         }
     }
+    if !size.is_finite() {
+        return Err(ClassicalError::Degenerate(
+            "the poses lie farther apart than a double holds (the distance between two overflows): give their \
+             points in a larger unit"
+                .into(),
+        ));
+    }
     if size == 0.0 {
         return Err(ClassicalError::Degenerate(
             "every pose has the same point: the body only turns about it, which any crank pivoted there does".into(),

@@ -299,3 +299,40 @@ fn burmester_points_next_to_the_degenerate_rotations_are_found() {
         }
     }
 }
+
+/// Five poses of a body turning about one point (the origin: every pole is there) are
+/// degenerate at every size, and found so whatever the size: the minors of the compatibility
+/// condition were compared with one another, all rounding, and the same poses gave an error, 1
+/// dyad, 3 or 809 by the size they were written in. Beyond the range of doubles (the distance
+/// between two poses overflows) the error says so, where it said "a pole in common".
+#[test]
+fn poses_turning_about_one_point_are_degenerate_at_every_size() {
+    let cfg = BurmesterConfig::default();
+    for size in [1e-300, 1e-9, 1.0, 3.0, 1e9, 1e100, 1e200, 1e300, 5e307] {
+        let poses: Vec<Pose> = (0..5)
+            .map(|k| {
+                let a = 0.3 * k as f64;
+                Pose::new(size * a.cos(), size * a.sin(), a)
+            })
+            .collect();
+        let e = burmester_points(&poses, &cfg).unwrap_err();
+        assert!(matches!(&e, ClassicalError::Degenerate(why) if why.contains("a pole in common")), "{size:e}: {e:?}");
+    }
+    let on_line = |size: f64| (0..5).map(move |k| Pose::new(size * (0.3 * k as f64).cos(), 0.0, 0.3 * k as f64));
+    let poses: Vec<Pose> = on_line(f64::MAX).map(|p| Pose { point: Vec2::new(-p.point.x, 0.0), ..p }).collect();
+    let far = [poses[0], poses[1], poses[2], poses[3], Pose { point: Vec2::new(f64::MAX, 0.0), ..poses[4] }];
+    let e = burmester_points(&far, &cfg).unwrap_err();
+    assert!(
+        matches!(&e, ClassicalError::Degenerate(why) if why.contains("farther apart than a double holds")),
+        "{e:?}"
+    );
+    // Within doubles, a pair whose crank hardly turns has its pivots beyond them: refused, not
+    // returned with NaN pivots. At size 1 its pivots are finite, and every pair found.
+    let e = burmester_points(&on_line(f64::MAX).collect::<Vec<_>>(), &cfg).unwrap_err();
+    assert!(
+        matches!(&e, ClassicalError::NonFinite { what, .. } if what.contains("beyond the range of doubles")),
+        "{e:?}"
+    );
+    let found = burmester_points(&on_line(1.0).collect::<Vec<_>>(), &cfg).unwrap();
+    assert!(found.dyads.iter().all(|d| d.center.x.is_finite() && d.circle.y.is_finite()), "{found:?}");
+}
