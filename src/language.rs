@@ -117,10 +117,10 @@
 //! mechanism's name — counts, mobility `W = unknowns + inputs - equations`, the over- and
 //! under-determined parts (Dulmage–Mendelsohn) with their equations and unknowns, and what to add
 //! or remove — plus a short error at each loop and unknown involved. An unknown in no equation,
-//! an equation without unknowns and an input that is never used are errors; a parameter that is
-//! never used is a warning (name it `_mass` to keep it on purpose). After an error the macro
-//! still defines the parameter struct, the named types and the methods (never run: the crate
-//! does not compile), so code using them adds no secondary errors.
+//! an equation without unknowns and an input that no equation or output depends on are errors; a
+//! parameter that is never used is a warning (name it `_mass` to keep it on purpose). After an
+//! error the macro still defines the parameter struct, the named types and the methods (never
+//! run: the crate does not compile), so code using them adds no secondary errors.
 //!
 //! # What is generated
 //!

@@ -53,8 +53,10 @@ fn a_form_spelled_like_a_leaf_is_not_a_name() {
     assert!(code.contains("let th_l: f64 = x_th * self.l;"), "{code}");
 }
 
-/// A `let` names the temporary that holds its value (a vector's components `_x`, `_y`), unless
-/// its name reads as one the generator gives (here `t2`, an anonymous temporary's spelling).
+/// A `let` names the temporary that holds its value (a vector's components `_x`, `_y`), after
+/// `let_`: the name alone may read as one the generator gives (here `t2`, an anonymous
+/// temporary's spelling), or be a constant of the user's module, which would make the binding a
+/// pattern.
 #[test]
 fn a_let_names_the_temporary_it_produced() {
     let code = expanded(
@@ -65,8 +67,8 @@ fn a_let_names_the_temporary_it_produced() {
             loop abcd: crank_pin + b @ beta == (d, 0) + c @ gamma;
             output spread = reach + t2; }",
     );
-    assert!(code.contains("let crank_pin_x: f64 = "), "{code}");
-    assert!(code.contains("let crank_pin_y: f64 = "), "{code}");
-    assert!(code.contains("let reach: f64 = "), "{code}");
-    assert!(!code.contains("let t2: f64 = reach * reach"), "{code}");
+    assert!(code.contains("let let_crank_pin_x: f64 = "), "{code}");
+    assert!(code.contains("let let_crank_pin_y: f64 = "), "{code}");
+    assert!(code.contains("let let_reach: f64 = "), "{code}");
+    assert!(code.contains("let let_t2: f64 = let_reach * let_reach;"), "{code}");
 }

@@ -1,7 +1,8 @@
 //! Constants of the module around `mechanism!` named like the declaration's parameters,
-//! input, unknowns, points and outputs: the generated code sets the parameter fields by name
-//! (`Default`, `from_param_values`) instead of binding the names to locals, which such a
-//! constant would turn into a pattern the compiler rejects.
+//! input, unknowns, `let`s, points and outputs: the generated code sets the parameter fields by
+//! name (`Default`, `from_param_values`) and names a `let`'s local after it with `let_` before,
+//! instead of binding the names to locals, which such a constant would turn into a pattern the
+//! compiler rejects.
 
 #![allow(non_upper_case_globals, non_snake_case, dead_code)]
 
@@ -13,6 +14,7 @@ const X: f64 = 0.0;
 const P: f64 = 0.0;
 const W: f64 = 0.0;
 const C: f64 = 0.0;
+const D: f64 = 0.0;
 
 kinloop::mechanism! {
     #[kinloop(sensitivities)]
@@ -21,10 +23,12 @@ kinloop::mechanism! {
         input PHI;
         unknowns PSI = 0, X = 4;
         let C = R @ PHI;
+        let D = X / 2;
         loop oabc: C + L @ PSI == (X, 0);
         point P = C;
-        output W = X * 2;
+        output W = 4 * D;
         body rod: mass R, com P, turns PSI;
+        force push at P = (D, 0);
     }
 }
 

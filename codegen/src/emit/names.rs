@@ -7,9 +7,10 @@
 //! (`dq0_1`). Temporaries that are a declared quantity are named after it: the residual of
 //! `loop abcd` on X is `r_abcd_x`, its derivative by `beta` `j_abcd_x_beta`, by input `phi`
 //! `fx_abcd_x_phi`, the x coordinate of `point p` `out_p_x`, its analogs `dout_p_x_phi` and
-//! `d2out_p_x_phi_phi`. Other temporaries, and derivatives that other values are computed from,
-//! are named by their form where it is short (`cos_phi`, `a_cos_phi`); the rest are `t` and
-//! their node number.
+//! `d2out_p_x_phi_phi`, the value of `let e` `let_e` (a constant `e` of the module around the
+//! macro would turn a local named `e` into a pattern). Other temporaries, and derivatives that
+//! other values are computed from, are named by their form where it is short (`cos_phi`,
+//! `a_cos_phi`); the rest are `t` and their node number.
 
 use super::schedule::Schedule;
 use crate::graph::angle_sums::angle_sum;
@@ -464,9 +465,10 @@ fn roles(model: &Model, plan: &Plan) -> HashMap<NodeId, Ident> {
             give(*n, name, &mut roles);
         }
     }
-    // A `let`'s value is named after it, unless its name reads as a name of another kind.
-    for (n, name) in model.lets.iter().filter(|(_, name)| !reads_as_generated(name)) {
-        give(*n, name, &mut roles);
+    // A `let`'s value is named after it, prefixed so that it reads as no name of another kind
+    // and no constant of the user's module (`const e: f64`) makes its binding a pattern.
+    for (n, name) in &model.lets {
+        give(*n, &format!("let_{name}"), &mut roles);
     }
     for (k, form) in forms.iter().enumerate() {
         if let Some(form) = form {
@@ -478,16 +480,6 @@ fn roles(model: &Model, plan: &Plan) -> HashMap<NodeId, Ident> {
         give(*n, name, &mut roles);
     }
     roles
-}
-
-/// Whether a `let`'s name would read as (or be) a name the generator gives: a leaf's local
-/// (`x_phi`, `q_beta`, its analogs and sensitivities), an anonymous temporary (`t12`), a
-/// declared quantity's (`r_abcd_x`, `out_p_x`, ...) or a hidden local (`__cfg`).
-fn reads_as_generated(name: &str) -> bool {
-    const PREFIXES: [&str; 13] =
-        ["x_", "q_", "dq", "d2q", "sq_", "sdq", "sd2q", "r_", "j_", "fx_", "out_", "dout_", "d2out_"];
-    let anonymous = name.strip_prefix('t').is_some_and(|d| !d.is_empty() && d.bytes().all(|b| b.is_ascii_digit()));
-    name.starts_with("__") || anonymous || PREFIXES.iter().any(|p| name.starts_with(p))
 }
 
 /// Per node, the name of its form where it is short: a function of a declared name

@@ -67,6 +67,12 @@ pub(super) fn parse_body(input: ParseStream) -> syn::Result<BodyDef> {
             }
         }
         if !input.peek(Token![,]) {
+            // `mass m com p`: the next clause without its `,` (not a missing `com`).
+            if let Ok(next) = input.fork().parse::<Ident>()
+                && matches!(next.to_string().as_str(), "mass" | "com" | "inertia" | "turns")
+            {
+                return Err(input.error(format!("expected `,` before `{next}`: {BODY}")));
+            }
             break;
         }
         input.parse::<Token![,]>()?;

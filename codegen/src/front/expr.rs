@@ -279,6 +279,15 @@ fn short(s: &str) -> String {
     if s.chars().count() <= 24 { s.to_string() } else { format!("{}...", s.chars().take(24).collect::<String>()) }
 }
 
+/// After "write `f * x` for a product" where the left side is a name: the call it may have
+/// meant, `sin phi` for `sin(phi)`.
+fn call_hint(lhs: &Expr, next: &str) -> String {
+    match lhs {
+        Expr::Var(f) => format!(", or `{f}({next})` to call a function"),
+        _ => String::new(),
+    }
+}
+
 /// Binding power of an infix operator at the front of `input`, if one is there.
 fn peek_infix(input: ParseStream) -> Option<(BinOp, u8)> {
     if input.peek(Token![==]) || input.peek(Token![=>]) {
@@ -334,24 +343,35 @@ impl Parser {
             let next = input.cursor().token_tree().map(|(tt, _)| tt.to_string()).unwrap_or_default();
             let next: String = next.chars().take(24).collect();
             return Err(input.error(format!(
-                "expected an operator between `{}` and `{next}`: write `{} * {next}` for a product",
+                "expected an operator between `{}` and `{next}`: write `{} * {next}` for a product{}",
                 short(&lhs.show()),
-                short(&lhs.show())
+                short(&lhs.show()),
+                call_hint(&lhs, &next)
             )));
         }
         // `2 pi`, `30 deg`: a number right before a name is a product without its `*` (or a
-        // value in degrees written the other way round). Not where the name starts the next
-        // part of the declaration: an item or a body's field after a missing `;` or `,`, or a
-        // name given its value (`params r = 1 l = 2` lacks its `,`).
-        if let (Expr::Num { .. }, Some((name, rest))) = (&lhs, cursor.ident())
-            && !rest.punct().is_some_and(|(p, _)| matches!(p.as_char(), '=' | ':'))
+        // value in degrees written the other way round); `sin phi`, a name right before a name
+        // (not a keyword: `x as f64` is another mistake), is a call or a product. Not where the
+        // name starts the next part of the declaration: an item or a body's field after a
+        // missing `;` or `,`, or a name given its value (`params r = 1 l = 2` lacks its `,`).
+        if let (Expr::Num { .. } | Expr::Var(_), Some((name, rest))) = (&lhs, cursor.ident())
+            && (matches!(lhs, Expr::Num { .. }) || input.peek(Ident))
+            && !rest.punct().is_some_and(|(p, next)| match p.as_char() {
+                ':' => true,
+                // `name = value`, not `name == value`.
+                '=' => next.punct().is_none_or(|(q, _)| q.as_char() != '='),
+                _ => false,
+            })
             && !STARTS_A_PART.contains(&name.to_string().as_str())
         {
-            let number = short(&lhs.show());
+            let left = short(&lhs.show());
             return Err(input.error(if name == "deg" {
-                format!("a value in degrees is written `deg({number})`: `deg` is a function")
+                format!("a value in degrees is written `deg({left})`: `deg` is a function")
             } else {
-                format!("expected an operator between `{number}` and `{name}`: write `{number} * {name}` for a product")
+                format!(
+                    "expected an operator between `{left}` and `{name}`: write `{left} * {name}` for a product{}",
+                    call_hint(&lhs, &name.to_string())
+                )
             }));
         }
         // Counts how many operators were chained at this level: a long chain `a + b + c + ...`

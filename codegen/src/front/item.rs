@@ -248,6 +248,16 @@ fn parse_decls(input: ParseStream, kind: DeclKind, errors: &mut Errors) -> syn::
             if input.peek(Token![;]) {
                 break;
             }
+        } else if let Ok(next) = input.fork().parse::<Ident>()
+            && !at_item_start(input)
+        {
+            // `params a b = 2.5`: the next name without its `,`, not the item's end.
+            let list = match kind {
+                DeclKind::Params => "params a, b = 2.5;",
+                DeclKind::Inputs => "inputs th1, th2;",
+                DeclKind::Unknowns => "unknowns psi = 0.3, x;",
+            };
+            errors.push(input.error(format!("expected `,` before `{next}`: names are separated by commas, `{list}`")));
         } else {
             break;
         }
@@ -282,16 +292,26 @@ fn parse_decl(input: ParseStream, kind: DeclKind, name: &mut Option<Ident>) -> s
     let parsed: Ident = input.parse()?;
     *name = Some(parsed.clone());
     let name = parsed;
-    let value = if input.peek(Token![=]) && !input.peek(Token![==]) {
-        let eq = input.parse::<Token![=]>()?;
+    // `x == 1` for `x = 1`: the `==` of an equation where a value is given.
+    let double = input.peek(Token![==]);
+    let value = if input.peek(Token![=]) {
+        let eq = if double {
+            let t = input.parse::<Token![==]>()?;
+            SpanRange { start: t.spans[0], end: t.spans[1] }
+        } else {
+            SpanRange::single(input.parse::<Token![=]>()?.span)
+        };
         if kind == DeclKind::Inputs {
-            return Err(syn::Error::new(
-                eq.span,
-                format!(
-                    "an input takes no value here: write `{name}` alone; its value is given when \
-                     the mechanism is solved (`m.solve({name})`)"
-                ),
-            ));
+            return Err(eq.error(format!(
+                "an input takes no value here: write `{name}` alone; its value is given when \
+                 the mechanism is solved (`m.solve({name})`)"
+            )));
+        }
+        if double {
+            let what = if kind == DeclKind::Params { "a default value" } else { "an initial guess" };
+            return Err(eq.error(format!(
+                "{what} is given with one `=`: write `{name} = ...` (`==` belongs in a `loop` or `eq`)"
+            )));
         }
         Some(parse_expr(input)?)
     } else if input.peek(Token![:]) {

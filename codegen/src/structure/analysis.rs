@@ -15,6 +15,7 @@
 //! * An unused parameter is a warning (see [`warnings`]).
 
 use crate::front::syntax::Errors;
+use crate::graph::dag::{Leaf, NodeId};
 use crate::semantics::model::Model;
 use crate::structure::diag::Warning;
 use crate::structure::{self, Block};
@@ -155,19 +156,30 @@ fn unknowns_in_no_equation(model: &Model, inc: &[BTreeSet<usize>], errors: &mut 
     isolated
 }
 
-/// Inputs nothing depends on.
+/// Inputs nothing depends on: named nowhere, or named only where no equation or output depends
+/// on them (an initial guess, a `let` that nothing uses, terms that cancel).
 fn unused_inputs(model: &Model, errors: &mut Errors) {
-    for (i, used) in model.used_inputs.iter().enumerate() {
-        if !used {
-            let inp = &model.inputs[i].name;
-            errors.push(syn::Error::new(
-                inp.span(),
-                format!(
-                    "input `{inp}` is never used, so nothing moves with it\n\
-                     help: use it in a loop, an equation or a `let`, or remove it"
-                ),
-            ));
+    let mut roots: Vec<NodeId> = model.equations.iter().map(|e| e.residual).collect();
+    roots.extend(model.output_nodes());
+    let moved = model.graph.leaves_of(&roots);
+    for (i, named) in model.used_inputs.iter().enumerate() {
+        if moved.contains(&Leaf::Input(i as u16)) {
+            continue;
         }
+        let inp = &model.inputs[i].name;
+        let message = if *named {
+            format!(
+                "input `{inp}` moves nothing: no loop, equation or output depends on it (it is named only in \
+                 an initial guess or a `let` that nothing uses, or its terms cancel, as in `{inp} - {inp}`)\n\
+                 help: use it in a loop, an equation or an output, or remove it"
+            )
+        } else {
+            format!(
+                "input `{inp}` is never used, so nothing moves with it\n\
+                 help: use it in a loop, an equation or a `let`, or remove it"
+            )
+        };
+        errors.push(syn::Error::new(inp.span(), message));
     }
 }
 
