@@ -68,13 +68,20 @@ fn reachable_range_of_a_non_grashof_crank() {
 }
 
 /// `reachable`'s own arguments are checked under their names: a zero `delta` (no direction to
-/// search) and `at` or `delta` not finite, which its sweeps would call their ranges' ends.
+/// search), one that rounds away at `at`, and `at` or `delta` not finite, which its sweeps would
+/// call their ranges' ends.
 #[test]
 fn reachable_names_a_zero_or_non_finite_delta_and_at() {
     let m = FourBar { a: 3.0, b: 2.0, c: 2.5, d: 4.0 };
     let g = m.position(0.0, &m.guess(0.0)).unwrap().0;
     let zero = m.reachable(0.0, 0.0, &g, 5).unwrap_err();
     assert!(matches!(&zero, Error::InvalidArgument(s) if s.contains("`delta` is zero")), "{zero}");
+    // At 1e6 doubles are 1.16e-10 apart: a `delta` of 1e-11 moves neither end.
+    let tiny = m.reachable(1e6, 1e-11, &g, 5).unwrap_err();
+    assert!(
+        matches!(&tiny, Error::InvalidArgument(s) if s.starts_with("reachable: `at - delta` rounds to `at`")),
+        "{tiny}"
+    );
     let at = m.reachable(f64::NAN, 1.0, &g, 5).unwrap_err();
     assert!(matches!(&at, Error::NonFinite { what: Quantity::Input, name, .. } if name == "phi"), "{at}");
     let delta = m.reachable(0.0, f64::INFINITY, &g, 5).unwrap_err();

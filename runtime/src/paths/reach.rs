@@ -41,8 +41,9 @@ impl<X> Reach<X> {
 /// each (with the mechanism's [`Mechanism::solver_config`]), and answers in input values: a
 /// compiled mechanism's [`reachable_of`] (through [`Compiled`]).
 ///
-/// Errors: fewer than 2 samples, more than [`MAX_SAMPLES`](crate::analysis::MAX_SAMPLES) or a
-/// `delta` of zeros as [`Error::InvalidArgument`]; `at` or `delta` not finite as
+/// Errors: fewer than 2 samples, more than [`MAX_SAMPLES`](crate::analysis::MAX_SAMPLES), a
+/// `delta` of zeros or one too small to move `at` (below the spacing of doubles there) as
+/// [`Error::InvalidArgument`]; `at` or `delta` not finite as
 /// [`Error::NonFinite`]; those of the sweeps, except the limit positions that end them (a
 /// singular crossing that the configuration stops at is an error).
 pub fn reachable<M, const N: usize, const NI: usize, const NO: usize>(
@@ -101,6 +102,15 @@ pub fn reachable_of<K: Kernel>(
         let mut to = at.clone();
         for i in 0..ni {
             to[i] += sign * delta[i];
+        }
+        // A `delta` below the spacing of doubles at `at` moves no input: the sweep would say
+        // its `to` equals its `from`, of a range the caller never gave.
+        if to.as_ref() == at.as_ref() {
+            return Err(Error::InvalidArgument(format!(
+                "reachable: `at {} delta` rounds to `at`: `delta` is below the spacing of doubles at `at`; give \
+                 a larger `delta` (the distance to search each side)",
+                if sign < 0.0 { "-" } else { "+" }
+            )));
         }
         // Only the last state is kept (a stretch is its end): no vector of every sample.
         let mut sweep = SweepOf::<&K, KinOf<K>>::over(m, at.clone(), to, samples, guess.clone())?;
