@@ -15,7 +15,7 @@ pub struct SynthesisReport {
     /// Their bounds, in the same order.
     pub bounds: Vec<(f64, f64)>,
     /// The best distinct candidates: valid ones (no defect) first, each group by increasing
-    /// RMS error, ties by start index.
+    /// RMS error, ties by origin (seeds, then Halton starts, then islands) and then by index.
     pub candidates: Vec<Candidate>,
     /// The starts run (Halton indices, or with differential evolution islands).
     pub starts: Range<usize>,

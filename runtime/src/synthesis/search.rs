@@ -131,9 +131,11 @@ impl Search {
         if self.keep == 0 {
             return Err(SynthesisError::InvalidConfig("keep is 0: it must be at least 1".into()));
         }
-        // Every start's result is held until the report: more than a vector holds panicked in
-        // the allocator (a capacity overflow) before the first start.
-        let most = isize::MAX as usize / std::mem::size_of::<Found>();
+        // Every start is listed as a job, and its result held until the report: more than
+        // either vector holds panicked in the allocator (a capacity overflow) before the first
+        // start. The larger entry bounds both.
+        let entry = std::mem::size_of::<Found>().max(std::mem::size_of::<Job>());
+        let most = isize::MAX as usize / entry;
         if self.starts.len().saturating_add(self.seeds.len()) > most {
             return Err(SynthesisError::InvalidConfig(format!(
                 "starts {:?}: {} starts, more than a report can hold ({most})",
@@ -427,6 +429,14 @@ impl SynthesisReport {
     /// The reports of two parts of one search (disjoint start ranges of the same problem,
     /// `search` the settings both ran with but for the range) as one: ranked again, duplicates
     /// removed, cut to [`Search::keep`].
+    ///
+    /// The counts, the start range and the best candidate are always the whole search's. The
+    /// list of candidates can differ from it: a duplicate is one within
+    /// [`Search::distinct`] of a candidate ranked before it, and that does not chain (A near
+    /// B and B near C, A not near C): where B and C ran in one part and A in the other, that
+    /// part kept B alone, so the merge keeps A alone where the whole keeps A and C. Run the
+    /// parts with `distinct` 0 and every candidate kept (`with_keep(usize::MAX)`), then merge
+    /// with the search's own settings: that gives the whole search's report exactly.
     pub fn merge(mut self, other: SynthesisReport, search: &Search) -> SynthesisReport {
         let mut all = std::mem::take(&mut self.candidates);
         all.extend(other.candidates);
@@ -472,4 +482,70 @@ fn distinct(mut all: Vec<Candidate>, bounds: &[(f64, f64)], search: &Search) -> 
         }
     }
     out
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::analysis::optimize::OptimizerStop;
+    use crate::synthesis::LocalReport;
+
+    /// A valid candidate of one design variable in `0 ..= 1`, ranked by `rms`.
+    fn candidate(start: usize, value: f64, rms: f64) -> Candidate {
+        Candidate {
+            start,
+            origin: Origin::Halton,
+            values: vec![value],
+            params: vec![value],
+            inputs: vec![],
+            placement: None,
+            positions: vec![],
+            errors: vec![rms],
+            max_error: rms,
+            rms_error: rms,
+            defects: vec![],
+            min_transmission: None,
+            four_bar: None,
+            local: LocalReport { evaluations: 1, iterations: 1, stop: OptimizerStop::Converged, residual: rms },
+        }
+    }
+
+    fn report(starts: Range<usize>, candidates: Vec<Candidate>, search: &Search) -> SynthesisReport {
+        let bounds = vec![(0.0, 1.0)];
+        let candidates = distinct(candidates, &bounds, search);
+        SynthesisReport {
+            variables: vec!["a".into()],
+            bounds,
+            candidates,
+            starts,
+            seeds: 0,
+            unassembled: 0,
+            converged: 0,
+            valid: 0,
+            rejected: Rejections::default(),
+            evaluations: 0,
+        }
+    }
+
+    /// A near B, B near C, A not near C: the whole keeps A and C (B is A's duplicate), the part
+    /// holding B and C keeps B alone (C is B's), and their merge A alone. Parts that drop no
+    /// candidate (`distinct` 0, every one kept) merge into the whole's list.
+    #[test]
+    fn a_merge_of_parts_that_dropped_duplicates_can_miss_one_the_whole_keeps() {
+        let search = Search::default().with_distinct(0.15).with_keep(10);
+        let (a, b, c) = (candidate(0, 0.0, 1.0), candidate(1, 0.1, 2.0), candidate(2, 0.2, 3.0));
+        let whole = report(0..3, vec![a.clone(), b.clone(), c.clone()], &search);
+        assert_eq!(whole.candidates, [a.clone(), c.clone()]);
+
+        let first = report(0..1, vec![a.clone()], &search);
+        let second = report(1..3, vec![b.clone(), c.clone()], &search);
+        let merged = first.merge(second, &search);
+        assert_eq!(merged.candidates, std::slice::from_ref(&a));
+        assert_eq!((merged.best(), merged.starts.clone()), (whole.best(), whole.starts.clone()));
+
+        let all = search.clone().with_distinct(0.0).with_keep(usize::MAX);
+        let first = report(0..1, vec![a], &all);
+        let second = report(1..3, vec![b, c], &all);
+        assert_eq!(first.merge(second, &search), whole);
+    }
 }

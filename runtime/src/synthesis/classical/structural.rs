@@ -31,7 +31,7 @@ pub struct StructuralError {
 
 /// The structural error of `generator` against `f` over the range of `map`, from `samples`
 /// evenly spaced arguments: at each the linkage is analysed by intersecting circles (on the
-/// closure of its first precision point) and its output angle compared with `map.psi(f(x))`.
+/// generator's [`closure`](FunctionGenerator::closure)) and its output angle compared with `map.psi(f(x))`.
 /// A sample where the linkage cannot be assembled counts as an infinite error: a design that
 /// does not move over the whole range never reports a small one (see
 /// [`StructuralError::unassembled`]).
@@ -73,7 +73,7 @@ pub fn structural_error(
         .map_err(|why| ClassicalError::BadRange { what: "number of samples", why })?;
     let (mut max, mut at_x, mut sum_sq, mut unassembled) = (0.0f64, map.x0, 0.0, 0usize);
     for i in 0..samples {
-        let x = map.x0 + (map.x1 - map.x0) * i as f64 / (samples - 1) as f64;
+        let x = sample(map.x0, map.x1, i, samples);
         let y = f(x);
         if !y.is_finite() {
             return Err(ClassicalError::NonFinite { what: format!("f({x})"), value: y });
@@ -96,6 +96,16 @@ pub fn structural_error(
     let rms = if unassembled > 0 { f64::INFINITY } else { (sum_sq / samples as f64).sqrt() };
     let max_y = max * ((map.y1 - map.y0) / map.dpsi).abs();
     Ok(StructuralError { max, at_x, max_y, rms, samples, unassembled })
+}
+
+/// The `i`-th of `n` evenly spaced arguments over `x0 ..= x1`, measured from the nearer end:
+/// from `x0` alone the last one, `x0 + (x1 - x0) * 1`, can round past `x1` (over `-1.2 ..= 1`
+/// it is `1.0000000000000002`), where a function such as `sqrt(1 - x)` is not defined. Ends far
+/// apart near the largest f64 overflow `x1 - x0`: the span is halved then, which is exact there.
+fn sample(x0: f64, x1: f64, i: usize, n: usize) -> f64 {
+    let (span, factor) = if (x1 - x0).is_finite() { (x1 - x0, 1.0) } else { (0.5 * x1 - 0.5 * x0, 2.0) };
+    let last = (n - 1) as f64;
+    if 2 * i < n { x0 + span * (factor * i as f64 / last) } else { x1 - span * (factor * (n - 1 - i) as f64 / last) }
 }
 
 #[cfg(test)]
@@ -195,5 +205,26 @@ mod tests {
         assert!(matches!(structural_error(&g, &map(), |x| x, 1), Err(ClassicalError::BadRange { .. })));
         let bad = |x: f64| if x > 0.5 { f64::NAN } else { x };
         assert!(matches!(structural_error(&g, &map(), bad, 11), Err(ClassicalError::NonFinite { .. })));
+    }
+
+    /// The last sample is the end of the range: from the start alone, `-1.2 + 2.2 * 1` is
+    /// `1.0000000000000002`, where `sqrt(1 - x)` (defined over the whole range `FunctionMap`
+    /// accepted) is NaN and the error was `NonFinite`.
+    #[test]
+    fn the_last_sample_is_the_end_of_the_range() {
+        let f = |x: f64| (1.0 - x).sqrt();
+        let map = FunctionMap::new(f, -1.2, 1.0, 0.5, 2.5, 1.0, 1.0).unwrap();
+        let g = generator(0.5, 0.7, 0.5);
+        for samples in [2, 3, 5, 201] {
+            let r = structural_error(&g, &map, f, samples);
+            assert!(r.is_ok(), "{samples} samples: {r:?}");
+        }
+        let x: Vec<f64> = (0..5).map(|i| sample(-1.2, 1.0, i, 5)).collect();
+        assert_eq!((x[0], x[4]), (-1.2, 1.0));
+        assert!(x.windows(2).all(|w| w[0] < w[1]), "{x:?}");
+        // Ends whose difference overflows: every sample finite, in order, the ends exact.
+        let x: Vec<f64> = (0..7).map(|i| sample(-1e308, 1e308, i, 7)).collect();
+        assert_eq!((x[0], x[3], x[6]), (-1e308, 0.0, 1e308));
+        assert!(x.windows(2).all(|w| w[0] < w[1]), "{x:?}");
     }
 }
