@@ -89,6 +89,15 @@ fn reachable_names_a_zero_or_non_finite_delta_and_at() {
         matches!(&delta, Error::NonFinite { what: Quantity::Range, name, .. } if name == "delta of phi"),
         "{delta}"
     );
+    // Both finite, `at + delta` beyond the largest double: named as `delta`'s, not as a range
+    // infinitely many turns long.
+    let over = m.reachable(1e308, 1e308, &g, 5).unwrap_err();
+    assert!(
+        matches!(&over, Error::InvalidArgument(s) if s.starts_with("reachable: `at + delta` of phi overflows")),
+        "{over}"
+    );
+    let over = m.reachable(-1e308, 1e308, &g, 5).unwrap_err();
+    assert!(matches!(&over, Error::InvalidArgument(s) if s.contains("`at - delta` of phi overflows")), "{over}");
 }
 
 #[test]

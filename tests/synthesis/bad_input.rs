@@ -128,6 +128,9 @@ fn settings_and_points_out_of_range() {
         Search::default().with_starts(1..usize::MAX),
         // Fits a vector of the report's entries, not one of the jobs listed first.
         Search::default().with_starts(0..jobs_only),
+        // Inverted: it ran nothing, with `Ok`.
+        #[allow(clippy::reversed_empty_ranges)]
+        Search::default().with_starts(10..2),
     ] {
         let r = search.run(&problem);
         assert!(matches!(&r, Err(SynthesisError::InvalidConfig(m)) if m.contains("starts")), "{r:?}");

@@ -42,8 +42,8 @@ impl<X> Reach<X> {
 /// compiled mechanism's [`reachable_of`] (through [`Compiled`]).
 ///
 /// Errors: fewer than 2 samples, more than [`MAX_SAMPLES`](crate::analysis::MAX_SAMPLES), a
-/// `delta` of zeros or one too small to move `at` (below the spacing of doubles there) as
-/// [`Error::InvalidArgument`]; `at` or `delta` not finite as
+/// `delta` of zeros, one too small to move `at` (below the spacing of doubles there) or so
+/// large that `at ± delta` overflows as [`Error::InvalidArgument`]; `at` or `delta` not finite as
 /// [`Error::NonFinite`]; those of the sweeps, except the limit positions that end them (a
 /// singular crossing that the configuration stops at is an error).
 pub fn reachable<M, const N: usize, const NI: usize, const NO: usize>(
@@ -90,6 +90,21 @@ pub fn reachable_of<K: Kernel>(
              the distance to search)"
                 .into(),
         ));
+    }
+    // Both finite, `at ± delta` can still overflow (`1e308 + 1e308`): the sweep would call its
+    // range infinitely many turns long, of a range the caller never gave. Checked for both
+    // sides before either is swept.
+    for (i, sign) in (0..ni).flat_map(|i| [(i, -1.0), (i, 1.0)]) {
+        if !(at[i] + sign * delta[i]).is_finite() {
+            return Err(Error::InvalidArgument(format!(
+                "reachable: `at {s} delta` of {name} overflows ({at} {s} {delta} is beyond the largest double); \
+                 give a smaller `delta` (the distance to search each side)",
+                s = if sign < 0.0 { "-" } else { "+" },
+                name = m.input_name(i),
+                at = at[i],
+                delta = delta[i],
+            )));
+        }
     }
     // The end of a stretch: `x` copied into an input of the kernel's size.
     let input = |x: &[f64]| {

@@ -32,7 +32,7 @@ use std::ops::Range;
 #[non_exhaustive]
 pub struct Search {
     /// The indices of the starts to run (default `0..64`): Halton points, or with
-    /// [`Global::DifferentialEvolution`] islands.
+    /// [`Global::DifferentialEvolution`] islands. An inverted range (`10..2`) is an error.
     pub starts: Range<usize>,
     /// The seed of the Halton sequence's shift and of the evolution's random numbers (default
     /// `0`).
@@ -130,6 +130,13 @@ impl Search {
         // None kept is no answer: every candidate found would be dropped, with `Ok`.
         if self.keep == 0 {
             return Err(SynthesisError::InvalidConfig("keep is 0: it must be at least 1".into()));
+        }
+        // An inverted range ran nothing, with `Ok`, and merged into a range it never covered.
+        if self.starts.start > self.starts.end {
+            return Err(SynthesisError::InvalidConfig(format!(
+                "starts {:?} is inverted: write the first index first ({}..{})",
+                self.starts, self.starts.end, self.starts.start
+            )));
         }
         // Every start is listed as a job, and its result held until the report: more than
         // either vector holds panicked in the allocator (a capacity overflow) before the first
@@ -343,6 +350,8 @@ impl Search {
 
     /// [`Search::par_run`], calling `progress(done, total)` from the worker threads after each
     /// seed, start or island (`done` counts those finished, in whatever order they finish).
+    /// Each `done` from 1 to `total` is passed once, but two threads' calls can arrive in
+    /// either order (`6` before `5`): a progress bar should show the largest `done` seen.
     #[cfg(feature = "rayon")]
     pub fn par_run_with_progress<K>(
         &self,
