@@ -326,6 +326,14 @@ impl Parser {
     fn expr(&mut self, input: ParseStream, min_bp: u8) -> syn::Result<Expr> {
         self.enter(input)?;
         let mut lhs = self.prefix(input)?;
+        // `x as f64`: every value is already an f64, and a cast ended the expression, which
+        // the item then reported as a missing `;`.
+        if input.peek(Token![as]) {
+            return Err(input.error(format!(
+                "casts are not part of the language: every value is an f64, write `{}` alone",
+                short(&lhs.show())
+            )));
+        }
         // `h (1 - cos(phi))`, `2(r + h)`: a parenthesised value or a number right after a
         // value, which nothing in the language allows, is a product without its `*`.
         // (On the raw tokens: syn's `peek(LitInt)` also takes `- 15` for a negative literal.)

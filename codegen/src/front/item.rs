@@ -314,6 +314,10 @@ fn parse_decl(input: ParseStream, kind: DeclKind, name: &mut Option<Ident>) -> s
             )));
         }
         Some(parse_expr(input)?)
+    } else if input.peek(Token![:]) && input.peek2(Token![=]) {
+        // `r := 1` is `:` then `=` to the tokenizer: an assignment of another language, not a
+        // type.
+        return Err(input.error(format!("a value is given with `=`, not `:=`: write `{name} = ...`")));
     } else if input.peek(Token![:]) {
         return Err(input.error(format!(
             "no type is needed: write `{name}` alone (every parameter, input and unknown is an `f64`)"
@@ -402,6 +406,10 @@ fn parse_binding(input: ParseStream, what: &str) -> syn::Result<(Ident, Expr)> {
         return Err(input.error(format!("expected a name: `{what} name = expression;`")));
     }
     let name: Ident = input.parse()?;
+    // `point p := ...` is `:` then `=` to the tokenizer: an assignment, not a type.
+    if input.peek(Token![:]) && input.peek2(Token![=]) {
+        return Err(input.error(format!("a value is given with `=`, not `:=`: write `{what} {name} = expression;`")));
+    }
     if input.peek(Token![:]) {
         return Err(input.error(format!("no type is needed: write `{what} {name} = expression;`")));
     }
