@@ -467,6 +467,12 @@ enum Command {
         /// CSV instead of a table.
         #[arg(long)]
         csv: bool,
+        /// The largest error accepted at any target, in the unit the errors are written (a
+        /// path's in its length unit, a function's in its output's: degrees for an angle with
+        /// `--deg`): a candidate that misses a target by more is not valid (defect `miss`).
+        /// Without it the best fit is valid however far it misses.
+        #[arg(long, value_name = "ERROR", allow_hyphen_values = true)]
+        max_error: Option<f64>,
     },
 }
 
@@ -615,7 +621,22 @@ fn run(cli: Cli) -> Result<(), Failed> {
             };
             animate::run(&mut model, &req)
         }
-        Command::Synth { file, targets, path, function, vary, range, starts, seed, keep, jobs, deg, params, csv } => {
+        Command::Synth {
+            file,
+            targets,
+            path,
+            function,
+            vary,
+            range,
+            starts,
+            seed,
+            keep,
+            jobs,
+            deg,
+            params,
+            csv,
+            max_error,
+        } => {
             // Not yet complete: the design variables need no value of their own.
             let mut model = load(&file, params.as_deref())?;
             let req = synth::Request {
@@ -631,6 +652,7 @@ fn run(cli: Cli) -> Result<(), Failed> {
                 deg,
                 csv,
                 params: params.as_deref(),
+                max_error,
             };
             synth::run(&mut model, &req)
         }

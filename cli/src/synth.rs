@@ -10,7 +10,9 @@
 use crate::{Failed, exit, params, progress};
 use kinloop_model::{Count, Model};
 use kinloop_runtime::paths::sweep::MAX_TURNS;
-use kinloop_runtime::synthesis::{Candidate, Defect, Design, Search, SynthesisError, SynthesisReport, Task};
+use kinloop_runtime::synthesis::{
+    Candidate, Constraints, Defect, Design, Search, SynthesisError, SynthesisReport, Task,
+};
 use kinloop_runtime::{Number, QuantityKind};
 use std::f64::consts::TAU;
 use std::fmt::Write as _;
@@ -53,6 +55,9 @@ pub struct Request<'a> {
     /// The parameters given with `--params` (`name=value` separated by commas), already set in
     /// the model: read here for the names, none of which may be a design variable.
     pub params: Option<&'a str>,
+    /// The largest error accepted at a target (`--max-error`), in the unit the errors are
+    /// written.
+    pub max_error: Option<f64>,
 }
 
 /// Runs the search and writes its ranked candidates: success when one is valid, exit code 1
@@ -92,6 +97,18 @@ pub fn run(model: &mut Model, req: &Request) -> Result<(), Failed> {
     let task = task(model, req, &rows)?;
     let name = model.name().to_string();
     let problem = model.shared_synthesis_problem(&design, &task).map_err(|e| problem_error(&name, e, req))?;
+    let problem = match req.max_error {
+        Some(max) => {
+            if !(max.is_finite() && max > 0.0) {
+                return Err(exit::usage(format!("--max-error {max} must be a finite number above 0")));
+            }
+            // In the library's units: an angle's error in radians.
+            let max = max / Units::of(model, req).error;
+            let c = Constraints::default().with_max_error(max);
+            problem.with_constraints(&c).map_err(|e| problem_error(&name, e, req))?
+        }
+        None => problem,
+    };
     let search = Search::default().with_starts(0..req.starts).with_seed(req.seed).with_keep(req.keep);
     let bar = progress::bar_if(req.starts >= progress::MIN_STARTS, &format!("{name}: searching"), req.starts);
     let tick = |_: usize, _: usize| bar.inc(1);
@@ -343,6 +360,7 @@ fn defect(d: &Defect, u: &Units) -> String {
         Defect::NoFullRotation => "no full rotation".into(),
         Defect::Transmission { min } => format!("transmission angle {:.6} {}", min * u.angle, u.angle_unit),
         Defect::LinkRatio { ratio } => format!("link ratio {ratio:.6}"),
+        Defect::Miss { target, error } => format!("miss at target {target} (error {})", Number(error * u.error)),
         _ => format!("{d:?}"),
     }
 }
@@ -443,7 +461,7 @@ fn out_of_reach(report: &SynthesisReport, rows: &[Vec<f64>], units: &Units, path
 fn summary(r: &SynthesisReport) -> String {
     format!(
         "{}: {} valid, {} converged, {} could not be assembled, {} rejected (order {}, branch {}, circuit {}, \
-         no assembly {}), {}",
+         no assembly {}, miss {}), {}",
         Count(r.starts.len() + r.seeds, "start"),
         r.valid,
         r.converged,
@@ -453,6 +471,7 @@ fn summary(r: &SynthesisReport) -> String {
         r.rejected.branch,
         r.rejected.circuit,
         r.rejected.no_assembly,
+        r.rejected.miss,
         Count(r.evaluations, "evaluation")
     )
 }

@@ -483,3 +483,57 @@ fn prescribed_inputs_give_the_same_design_at_any_unit_of_length() {
         assert!(best[7].parse::<usize>().unwrap() > 2, "{s:e}: {} evaluations", best[7]);
     }
 }
+
+/// `--max-error`, in the unit the errors are written (degrees for an angle output with
+/// `--deg`): a candidate that misses a target by more has the defect `miss`, counted in the
+/// summary, and with none valid the exit code is 1; a bound above the best fit's error leaves
+/// it valid; a bound not above 0 is a usage error.
+#[test]
+fn max_error_in_the_unit_of_the_errors_rejects_a_far_fit() {
+    let [a, b, c, d, ..] = TRUTH;
+    let rows: Vec<String> = (0..6)
+        .map(|k| {
+            let phi = 0.5 + 0.8 * k as f64;
+            let [x, y] = coupler_point([a, b, c, d, b, 0.0], phi);
+            // One target moved off the function by a degree: no design meets them all.
+            let moved = if k == 3 { 1.0 } else { 0.0 };
+            format!("{:?},{:?}", phi.to_degrees(), y.atan2(x - d).to_degrees() + moved)
+        })
+        .collect();
+    let targets = file("synth_max_error.csv", &rows.join("\n"));
+    let file = shipped("coupler_four_bar.kl");
+    let run = |extra: &[&str]| {
+        let args = ["synth", &file, "--targets", &targets, "--function", "phi:gamma", "--deg", "--csv"];
+        let search = ["--vary", "a=0.77..1.43,b=1.96..3.64,c=1.61..2.99", "--params", "d=3.2", "--starts", "6"];
+        kinloop(&[&args[..], &search, extra].concat())
+    };
+    let free = run(&[]);
+    assert_eq!(free.status.code(), Some(0), "{}", String::from_utf8_lossy(&free.stderr));
+    let (header, rows) = csv(&free);
+    assert_eq!(header[6], "max_error [deg]");
+    let error: f64 = rows[0][6].parse().unwrap();
+    assert!(error > 0.05 && error < 1.0, "the best fit misses by part of the degree: {error}");
+
+    let half = format!("{:?}", 0.5 * error);
+    let tight = run(&["--max-error", &half]);
+    assert_eq!(tight.status.code(), Some(1), "{}", String::from_utf8_lossy(&tight.stderr));
+    let (_, rows) = csv(&tight);
+    assert_eq!(rows[0][2], "0");
+    assert!(rows[0][9].contains("miss at target"), "{:?}", rows[0]);
+    let summary = String::from_utf8_lossy(&tight.stderr);
+    // Every candidate verified is rejected, each for its miss: "N rejected (... miss N)".
+    let count = |after: &str| summary.split(after).nth(1).and_then(|r| r.split(|c: char| !c.is_ascii_digit()).next());
+    let rejected = summary.split(" rejected").next().and_then(|s| s.rsplit(' ').next());
+    assert!(summary.contains(" 0 valid") && rejected.is_some() && rejected == count("miss "), "{summary}");
+
+    let double = format!("{:?}", 2.0 * error);
+    let loose = run(&["--max-error", &double]);
+    assert_eq!(loose.status.code(), Some(0), "{}", String::from_utf8_lossy(&loose.stderr));
+    assert_eq!(loose.stdout, free.stdout);
+
+    for bad in ["0", "-1", "nan", "inf"] {
+        let o = run(&["--max-error", bad]);
+        assert_eq!(o.status.code(), Some(2), "{bad}");
+        assert!(String::from_utf8_lossy(&o.stderr).contains("--max-error"), "{bad}");
+    }
+}

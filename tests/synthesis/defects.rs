@@ -195,3 +195,47 @@ fn targets_near_the_largest_f64_have_finite_errors() {
         assert!((cand.rms_error / (far.abs() * (4.0f64 / 3.0).sqrt()) - 1.0).abs() < 1e-15, "{cand:?}");
     }
 }
+
+/// A target moved off the design's coupler curve: the best fit misses it, valid without a
+/// bound (the motion has no defect); with `max_error` below its error the first target missed
+/// by more is a `Miss` (after the motion's defects), counted in the rejections; a bound that
+/// is not finite and positive is refused.
+#[test]
+fn a_target_missed_by_more_than_max_error_is_a_miss() {
+    let phis = [0.0, 1.0, 2.0, 3.0];
+    let mut poses: Vec<([f64; 2], [f64; 2])> = phis.iter().map(|&x| four_bar_pose(FOUR_BAR, x, 1.0)).collect();
+    poses[2].0[0] += 0.1;
+    let task = Task::path("p", poses.iter().map(|(t, _)| *t)).timed(phis.to_vec());
+    let [a, b, c, d, e, alpha] = FOUR_BAR;
+    let m = CouplerFourBar { a, b, c, d, e, alpha };
+    let problem = Problem::new(m, &Design::new().var("e", 0.5 * e, 2.0 * e), &task)
+        .unwrap()
+        .with_guesses(poses.iter().map(|(_, q)| *q).collect())
+        .unwrap();
+    let free = Search::default().refine(&problem, &[e]).unwrap();
+    assert!(free.is_valid() && free.max_error > 0.01, "{free:?}");
+
+    let bound = 0.5 * free.max_error;
+    let bounded = problem.clone().with_constraints(&Constraints::default().with_max_error(bound)).unwrap();
+    let cand = Search::default().refine(&bounded, &[e]).unwrap();
+    // The same fit, judged against the bound.
+    assert_eq!((&cand.values, &cand.errors), (&free.values, &free.errors));
+    let target = cand.errors.iter().position(|&x| x > bound).unwrap();
+    assert_eq!(cand.defects, [Defect::Miss { target, error: cand.errors[target] }]);
+    let report = Search::default().with_starts(0..4).run(&bounded).unwrap();
+    assert_eq!(report.valid, 0);
+    assert_eq!(report.rejected.miss, report.converged);
+    assert_eq!(report.rejected.total(), report.rejected.miss);
+
+    let loose = problem.clone().with_constraints(&Constraints::default().with_max_error(2.0 * free.max_error)).unwrap();
+    assert!(Search::default().refine(&loose, &[e]).unwrap().is_valid());
+
+    for bad in [0.0, -1.0, f64::NAN, f64::INFINITY] {
+        let r = problem.clone().with_constraints(&Constraints::default().with_max_error(bad));
+        assert!(
+            matches!(&r, Err(kinloop::synthesis::SynthesisError::InvalidConfig(m)) if m.starts_with("max_error is")),
+            "{bad}: {:?}",
+            r.err()
+        );
+    }
+}

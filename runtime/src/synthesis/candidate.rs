@@ -76,6 +76,14 @@ pub enum Defect {
         /// The smallest transmission angle found (radians).
         min: f64,
     },
+    /// Target `target` is met with an error above
+    /// [`Constraints::max_error`](super::Constraints::max_error): the first such target.
+    Miss {
+        /// The first target missed by more than the bound.
+        target: usize,
+        /// Its error (see [`Candidate::errors`]).
+        error: f64,
+    },
     /// The longest of the bounded links is more than the bound times the shortest.
     LinkRatio {
         /// The ratio found.

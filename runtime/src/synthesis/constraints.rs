@@ -1,6 +1,7 @@
 //! Optional requirements every candidate is checked against after its local solve, beyond
-//! meeting the targets on one assembly mode in order (which is always checked): the input turns
-//! fully, a smallest transmission angle, a largest ratio of link lengths.
+//! meeting the targets on one assembly mode in order (which is always checked): the targets met
+//! within a bound, the input turns fully, a smallest transmission angle, a largest ratio of
+//! link lengths.
 
 /// The transmission angle to report (and bound from below): the acute angle between the lines
 /// of a coupler and the follower it drives, each given by an angle column.
@@ -50,8 +51,10 @@ pub struct FourBarNames {
 ///     .with_full_rotation()
 ///     .with_transmission("beta", "gamma", 30f64.to_radians())
 ///     .with_link_ratio(&["a", "b", "c", "d"], 6.0)
-///     .with_four_bar("d", "a", "b", "c");
+///     .with_four_bar("d", "a", "b", "c")
+///     .with_max_error(1e-3);
 /// assert!(c.full_rotation);
+/// assert_eq!(c.max_error, Some(1e-3));
 /// ```
 #[derive(Clone, Debug, Default, PartialEq)]
 #[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
@@ -69,6 +72,12 @@ pub struct Constraints {
     /// The four links of a four-bar, to report every candidate's Grashof class and smallest
     /// transmission angle (reported, not required).
     pub four_bar: Option<FourBarNames>,
+    /// The largest error accepted at any target, in the units of
+    /// [`Candidate::errors`](super::Candidate::errors) (a point's distance from its target in
+    /// the mechanism's length unit, an angle's difference in radians, each times its weight).
+    /// Without it a candidate that misses its targets far, but meets them on one assembly
+    /// mode in order, is valid: the least-squares optimum of designs that cannot reach them.
+    pub max_error: Option<f64>,
 }
 
 impl Constraints {
@@ -91,6 +100,14 @@ impl Constraints {
     /// Requires the longest of the parameters `links` to be at most `max` times the shortest.
     pub fn with_link_ratio(mut self, links: &[&str], max: f64) -> Self {
         self.link_ratio = Some(LinkRatioBound { links: links.iter().map(|s| s.to_string()).collect(), max });
+        self
+    }
+
+    /// Requires every target to be met within `max` ([`Constraints::max_error`]): a candidate
+    /// that misses one by more has [`Defect::Miss`](super::Defect::Miss). Finite and positive,
+    /// or refused when the constraints are applied (`Problem::with_constraints`).
+    pub fn with_max_error(mut self, max: f64) -> Self {
+        self.max_error = Some(max);
         self
     }
 

@@ -38,6 +38,8 @@ pub(crate) struct Checks {
     pub link_ratio: Option<(Vec<usize>, f64)>,
     /// Parameter indices of ground, input, coupler and output.
     pub four_bar: Option<[usize; 4]>,
+    /// The largest error accepted at a target.
+    pub max_error: Option<f64>,
 }
 
 /// A synthesis problem over a compiled mechanism type `M` (declared with
@@ -226,6 +228,14 @@ impl<K: SensKernel> ProblemOf<K> {
                 ));
             }
             checks.link_ratio = Some((idx, r.max));
+        }
+        if let Some(max) = constraints.max_error {
+            if !(max.is_finite() && max > 0.0) {
+                return Err(SynthesisError::InvalidConfig(format!(
+                    "max_error is {max}: it must be finite and positive (the largest error accepted at a target)"
+                )));
+            }
+            checks.max_error = Some(max);
         }
         if let Some(f) = &constraints.four_bar {
             let mut idx = [0; 4];

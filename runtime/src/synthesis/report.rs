@@ -62,6 +62,8 @@ pub struct Rejections {
     pub transmission: usize,
     /// [`Defect::LinkRatio`].
     pub link_ratio: usize,
+    /// [`Defect::Miss`].
+    pub miss: usize,
 }
 
 impl Rejections {
@@ -75,6 +77,7 @@ impl Rejections {
             Defect::NoFullRotation => &mut self.full_rotation,
             Defect::Transmission { .. } => &mut self.transmission,
             Defect::LinkRatio { .. } => &mut self.link_ratio,
+            Defect::Miss { .. } => &mut self.miss,
         } += 1;
     }
 
@@ -87,6 +90,7 @@ impl Rejections {
         self.full_rotation += other.full_rotation;
         self.transmission += other.transmission;
         self.link_ratio += other.link_ratio;
+        self.miss += other.miss;
     }
 
     /// All rejected candidates.
@@ -98,6 +102,7 @@ impl Rejections {
             + self.full_rotation
             + self.transmission
             + self.link_ratio
+            + self.miss
     }
 }
 

@@ -276,6 +276,14 @@ impl<K: SensKernel> ProblemOf<K> {
             self.checks.four_bar.and_then(|[d, a, b, c]| four_bar_class([d, a, b, c].map(|i| params[i].abs())));
         let errors: Vec<f64> = e.r.chunks(self.width).map(|c| crate::number::norm_of(c.iter().copied())).collect();
         let max_error = errors.iter().copied().fold(0.0, f64::max);
+        // Last among the checks: the motion's defects say more of a design than its distance
+        // from the targets, and the rejections count each candidate by its first.
+        if let Some(max) = self.checks.max_error
+            // A NaN error is a miss too.
+            && let Some(target) = errors.iter().position(|e| e.is_nan() || *e > max)
+        {
+            defects.push(Defect::Miss { target, error: errors[target] });
+        }
         // The root mean square as a norm over `sqrt(n)` (the squares of errors near the
         // largest `f64` overflow).
         let rms_error = crate::number::norm_of(errors.iter().copied()) / (n as f64).sqrt();
