@@ -285,6 +285,13 @@ fn bad_arguments_fail_every_slot_without_panicking() {
             );
         }
     }
+    // An end not finite is named as such, with one sample too (a NaN end differs from itself:
+    // it was said to need 2 samples).
+    for spec in [ScanConfig::new([f64::NAN], [f64::NAN], 1), ScanConfig::new([0.0], [f64::INFINITY], 1)] {
+        for results in [scan(&ms, &spec, init, fold), par_scan(&ms, &spec, init, fold)] {
+            assert!(results.iter().all(|r| matches!(r, Err(Error::NonFinite { .. }))), "{spec:?}: {results:?}");
+        }
+    }
     // One sample: the start position alone.
     let one = scan(&ms, &ScanConfig::new([0.5], [0.5], 1), init, fold);
     assert!(one.iter().all(|r| r.as_ref().unwrap().samples == 1));

@@ -260,7 +260,9 @@ pub struct ParamScanConfig {
     pub from: Vec<f64>,
     /// Inputs at the last sample.
     pub to: Vec<f64>,
-    /// Number of samples (at least 1; at least 2 when `to` differs from `from`).
+    /// Number of samples (at least 1; at least 2 when `to` differs from `from`; at most
+    /// `kinloop_runtime::analysis::MAX_SAMPLES`: others make each set's result an
+    /// `Error::InvalidArgument`).
     pub samples: usize,
     /// The initial guess at `from` (default: each set's declared guess there).
     pub start: ParamScanStart,

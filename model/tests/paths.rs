@@ -577,6 +577,20 @@ fn scan_arguments_that_do_not_fit_are_errors() {
     assert!(matches!(&r[0], Err(kinloop::Error::InvalidArgument(_))), "{:?}", r[0]);
     let r = model.scan(&["r"], &[[f64::NAN]], &spec, |_| 0, |n, _, _| n + 1);
     assert!(r[0].is_err(), "a parameter that is not finite: {:?}", r[0]);
+    // As the compiled scan: one sample of a range to another end (the end was ignored, the
+    // start alone folded), more samples than an analysis takes (`usize::MAX` folded for
+    // years), an end not finite named as such with one sample too.
+    let invalid = |e: &kinloop::Error, what: &str| matches!(e, kinloop::Error::InvalidArgument(m) if m.contains(what));
+    for (spec, what) in [
+        (ParamScanConfig::new(&[0.0], &[TAU], 1), "at least 2 samples"),
+        (ParamScanConfig::new(&[0.0], &[TAU], kinloop::analysis::MAX_SAMPLES + 1), "at most"),
+        (ParamScanConfig::new(&[0.0], &[TAU], usize::MAX), "at most"),
+    ] {
+        let r = model.scan(&["r"], &[[1.0]], &spec, |_| 0, |n, _, _| n + 1);
+        assert!(invalid(r[0].as_ref().unwrap_err(), what), "{} samples: {:?}", spec.samples, r[0]);
+    }
+    let r = model.scan(&["r"], &[[1.0]], &ParamScanConfig::new(&[f64::NAN], &[f64::NAN], 1), |_| 0, |n, _, _| n + 1);
+    assert!(matches!(&r[0], Err(kinloop::Error::NonFinite { .. })), "{:?}", r[0]);
 }
 
 // ---------------------------------------------------------------------------------------------

@@ -148,15 +148,8 @@ where
     I: Fn(&M) -> A,
     F: Fn(A, &M, &Kin<N, NI, NO>) -> A,
 {
-    // One sample is the start alone: a range to another end would be ignored. A count beyond
-    // what an analysis takes would fold for years (`usize::MAX`).
-    if spec.samples < 2 && spec.from != spec.to {
-        return Err(Error::InvalidArgument(format!(
-            "a scan from {:?} to {:?} needs at least 2 samples (its ends); {} asked for",
-            spec.from, spec.to, spec.samples
-        )));
-    }
-    crate::analysis::check_sample_count("samples of a scan", spec.samples).map_err(Error::InvalidArgument)?;
+    // Before the guess, which may be the user's function of the mechanism.
+    check_samples(&spec.from, &spec.to, spec.samples)?;
     let guess = spec.start.guess::<NI, NO>(m, &spec.from);
     fold_sweep_of(
         Compiled(m),
@@ -170,13 +163,29 @@ where
     )
 }
 
+/// The sample count of a scan's sweeps. One sample is the start alone: a range to another end
+/// would be ignored. A count beyond what an analysis takes would fold for years
+/// (`usize::MAX`). Ends not finite are left to the sweep, which names them: a NaN end differs
+/// from itself, and was said to need 2 samples.
+fn check_samples(from: &[f64], to: &[f64], samples: usize) -> Result<(), Error> {
+    let finite = from.iter().chain(to).all(|v| v.is_finite());
+    if samples < 2 && finite && from != to {
+        return Err(Error::InvalidArgument(format!(
+            "a scan from {from:?} to {to:?} needs at least 2 samples (its ends); {samples} asked for"
+        )));
+    }
+    crate::analysis::check_sample_count("samples of a scan", samples).map_err(Error::InvalidArgument)
+}
+
 /// One set of a scan over any [`Kernel`] (a compiled mechanism's, or a run-time model's with
 /// one parameter set: `kinloop_model::Model::scan`): the sweep of `samples` inputs from `from`
 /// to `to` from `guess` at `from`, with `config` (or the kernel's own,
 /// [`Kernel::solver_config`]), its states folded in order into the accumulator, which starts
 /// as `init()` once the sweep is made (`acc = fold(acc, &state)`, each state lent where the
 /// sweep keeps it). The sweep's error,
-/// where it fails at any sample, rather than the fold of the samples before it.
+/// where it fails at any sample, rather than the fold of the samples before it; an
+/// [`Error::InvalidArgument`] before the sweep for one sample with `to` not `from` (the range
+/// would be ignored) or more than [`MAX_SAMPLES`](crate::analysis::MAX_SAMPLES).
 #[allow(clippy::too_many_arguments)]
 pub fn fold_sweep_of<K: Kernel, A>(
     m: K,
@@ -188,6 +197,7 @@ pub fn fold_sweep_of<K: Kernel, A>(
     init: impl FnOnce() -> A,
     mut fold: impl FnMut(A, &KinOf<K>) -> A,
 ) -> Result<A, Error> {
+    check_samples(from.as_ref(), to.as_ref(), samples)?;
     let mut sweep = SweepOf::<K, KinOf<K>>::over(m, from, to, samples, guess)?;
     if let Some(config) = config {
         sweep = sweep.with_config(config);
