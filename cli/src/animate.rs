@@ -252,8 +252,8 @@ fn grid(model: &mut Model, req: &Request, format: Format) -> Result<(), Failed> 
             }
         }
     };
-    // A grid of no value of an input has no pose to draw (one value draws a grid fixed in
-    // that input).
+    // A grid of no value of an input has no pose to draw (one value, with `--from` and `--to`
+    // equal there, draws a grid fixed in that input).
     if let Some(k) = counts.iter().position(|&c| c == 0) {
         let input = &model.inputs()[k];
         return Err(usage(format!("--samples: a grid needs at least one value of input `{input}`, not 0")));

@@ -402,6 +402,9 @@ fn grid_usage_errors() {
     run(grid(&[], &s), &svg, "interactive page");
     run(grid(&["--samples", "9,7,5"], &p), &path, "one per input (2)");
     run(grid(&["--samples", "0"], &p), &path, "at least one value of input `th1`");
+    // One value of an input from 0 to 3: the range would be ignored (the page showed `th1` at
+    // 0 alone, with success).
+    run(grid(&["--samples", "1,7"], &p), &path, "one value of input `th1` from 0 to 3");
     // More cells than the page's poses.
     run(grid(&["--samples", "30"], &p), &path, "--frames");
     // Without --grid, a list of counts is not a sample count.

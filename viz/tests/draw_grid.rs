@@ -112,8 +112,14 @@ fn bad_grids_are_errors() {
     assert!(setting(bad([0.5, f64::NAN, 2.0], [1.0, 1.0, 2.5], [3, 3, 3])), "NaN");
     assert!(setting(bad([0.5, 0.0, 2.0], [1.0, 1.0, 2.5], [100, 100, 100])), "more than {MAX_GRID_CELLS} cells");
     assert!(setting(bad([0.5, 0.0, 2.0], [1.0, 1.0, 2.5], [usize::MAX, 2, 2])), "overflowing count");
-    // One value on an axis is a slice: allowed.
+    // One value on an axis is a slice: allowed, with the same value at both ends; with another
+    // end the range would be ignored.
     assert_eq!(bad([0.5, 0.0, 2.0], [1.0, 1.0, 2.0], [3, 3, 1]).unwrap().cells.len(), 9);
+    let ignored = bad([0.5, 0.0, 2.0], [1.0, 1.0, 2.5], [3, 3, 1]);
+    assert!(
+        matches!(&ignored, Err(DrawError::InvalidSetting(m)) if m.contains("one value of input `s`")),
+        "{ignored:?}"
+    );
     // Not assembled at the first cell (the frame longer than every link together).
     let far = GridMotion::record(&m, [0.5, 0.0, 9.0], [1.0, 1.0, 9.5], [3, 3, 3], g);
     assert!(matches!(far, Err(DrawError::Sweep(_))), "{far:?}");

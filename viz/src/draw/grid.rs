@@ -79,7 +79,8 @@ impl GridMotion {
     ///
     /// # Errors
     /// [`DrawError::InvalidSetting`] for a count of zero, a count above one with `from` equal
-    /// to `to`, non-finite ends, more than [`MAX_GRID_CELLS`] cells, or a range along an input
+    /// to `to`, a count of one with `from` not `to` (one value is `from` alone), non-finite
+    /// ends, more than [`MAX_GRID_CELLS`] cells, or a range along an input
     /// that the grid's sweeps, over all its lines along that input, would follow for more than
     /// the [`MAX_TURNS`](kinloop_runtime::paths::sweep::MAX_TURNS) turns of one sweep;
     /// [`DrawError::Sweep`] when the mechanism cannot be assembled at the first cell, or when a
@@ -152,6 +153,15 @@ impl GridMotion {
                 return Err(DrawError::InvalidSetting(format!(
                     "{} values of input `{name}` from {} to the same value",
                     counts[k], from[k]
+                )));
+            }
+            // One value is `from` alone: a range to another end would be ignored, as a sweep
+            // of one sample refuses it.
+            if counts[k] == 1 && from[k] != to[k] {
+                return Err(DrawError::InvalidSetting(format!(
+                    "one value of input `{name}` from {} to {}: the range would be ignored; give 2 values or \
+                     more, or the same value at both ends for a grid fixed in `{name}`",
+                    from[k], to[k]
                 )));
             }
         }
