@@ -110,3 +110,45 @@ fn a_polar_length_keeps_the_sign_of_its_guess() {
     }
     assert!(wrong.is_empty(), "{} solves in another root than size 1's:\n{}", wrong.len(), wrong.join("\n"));
 }
+
+kinloop::mechanism! {
+    /// An ellipse `x^2 + 4 y^2 = 4 r^2` and a circle of radius `rho` about `(t, 0)`: four
+    /// intersections, solved by Newton in one block of two lengths.
+    pub struct EllipseCircle {
+        params r = 1, rho = 1.6;
+        input t;
+        unknowns x = 1.5 * r, y = 0.5 * r;
+        eq ellipse: x * x + 4 * y * y == 4 * r * r;
+        eq circle: (x - t) * (x - t) + y * y == rho * rho;
+    }
+}
+
+/// The assembly modes of a Newton block of lengths are the same four at every size, against
+/// the closed form (`3 x^2 - 8 t x + 4 t^2 - 4 rho^2 + 4 r^2 = 0`, `y = ±sqrt(rho^2 - (x -
+/// t)^2)`): measured in absolute terms, the test of two modes being one took the four for two
+/// at size 1e-9 (every length within 1e-7 of the others), and the starts spread a few units
+/// of length around the guess whatever the mechanism's size.
+#[test]
+fn a_newton_block_of_lengths_has_its_four_modes_at_every_size() {
+    let (r, rho, t) = (1.0f64, 1.6f64, 0.3f64);
+    let disc = (64.0 * t * t - 12.0 * (4.0 * t * t - 4.0 * rho * rho + 4.0 * r * r)).sqrt();
+    let exact: Vec<[f64; 2]> = [(8.0 * t + disc) / 6.0, (8.0 * t - disc) / 6.0]
+        .into_iter()
+        .flat_map(|x: f64| {
+            let y = (rho * rho - (x - t) * (x - t)).sqrt();
+            [[x, y], [x, -y]]
+        })
+        .collect();
+    for k in [1e-100, 1e-9, 1e-6, 1.0, 1e6, 1e100] {
+        let m = EllipseCircle { r: r * k, rho: rho * k };
+        let modes = m.assembly_modes(t * k).unwrap_or_else(|e| panic!("size {k:e}: {e}"));
+        let found: Vec<[f64; 2]> = modes.iter().map(|s| [s.q.x / k, s.q.y / k]).collect();
+        assert_eq!(found.len(), 4, "size {k:e}: {found:?}");
+        for e in &exact {
+            assert!(
+                found.iter().any(|f| (f[0] - e[0]).abs() < 1e-12 && (f[1] - e[1]).abs() < 1e-12),
+                "size {k:e}: {e:?} not among {found:?}"
+            );
+        }
+    }
+}

@@ -1,7 +1,7 @@
 //! Assembly modes: the distinct solutions of the position equations at one input, over any
 //! [`Kernel`] ([`assembly_modes_of`]).
 
-use crate::dims::{Dims, KinState};
+use crate::dims::{Dims, JacState, KinState};
 use crate::error::Error;
 use crate::kin::Kin;
 use crate::kinds::QuantityKind;
@@ -11,19 +11,22 @@ use crate::solvers::newton::NewtonConfig;
 use crate::solvers::turns::unwrap_to_turn;
 use std::f64::consts::PI;
 
-/// Distance between two angle-or-length values, treating differences of whole turns as equal
-/// (an angle and the same angle plus 2 pi are one configuration).
+/// Distance between two angles, treating differences of whole turns as equal (an angle and the
+/// same angle plus 2 pi are one configuration).
 fn turn_distance(a: f64, b: f64) -> f64 {
     let d = (a - b).rem_euclid(2.0 * PI);
     d.min(2.0 * PI - d)
 }
 
 /// Finds the distinct assembly modes at input `x` by multi-start Newton: the declared guess,
-/// then `starts` deterministic quasi-random starts spread over a full turn around it (and the
-/// guess with every unknown negated, which reaches mirrored slider solutions).
+/// then `starts` deterministic quasi-random starts spread around it, an angle over a full turn,
+/// another unknown (a length) over as many of its units (the size of the loops it closes, at
+/// the guess) (and the guess with every unknown negated, which reaches mirrored slider
+/// solutions).
 ///
-/// Two solutions are the same mode when their block determinant signs agree and every unknown
-/// agrees modulo whole turns. Each mode's angles are given on the declared guess's turn (within
+/// Two solutions are the same mode when their block determinant signs agree, every angle
+/// agrees modulo whole turns and every other unknown within `1e-7` of its unit (relative to its
+/// value where that is larger): the same modes whatever the unit of length. Each mode's angles are given on the declared guess's turn (within
 /// half a turn of its values). Modes are sorted by their determinant signs, so the order is
 /// stable. Pick one with a readable rule on the named state, e.g.
 /// `modes.into_iter().find(|s| s.out.c.y > 0.0)` ("elbow up").
@@ -63,6 +66,23 @@ pub fn assembly_modes_of<K: Kernel>(
     crate::analysis::check_sample_count("starts", starts).map_err(Error::InvalidArgument)?;
     let n = m.dims().n();
     let g0 = m.guess(x);
+    // Each unknown's unit: a radian for an angle; for another (a length) its generated unit at
+    // the guess, the size of the loops it closes (one where that is not positive and finite).
+    // The starts' spread and the test of two modes being one are measured in it: in absolute
+    // terms a mechanism of lengths 1e-9 had its four modes taken for two (every length within
+    // 1e-7 of the others), and lengths differing by whole multiples of 2 pi for one.
+    let jac = m.jacobian(x, &g0);
+    let angle: Vec<bool> = (0..n).map(|u| m.unknown_kind(u) == QuantityKind::Angle).collect();
+    let unit: Vec<f64> = (0..n)
+        .map(|u| {
+            let w = jac.unit(u);
+            if angle[u] || !(w > 0.0 && w < f64::INFINITY) { 1.0 } else { w }
+        })
+        .collect();
+    let same_value = |u: usize, a: f64, b: f64| {
+        let d = if angle[u] { turn_distance(a, b) } else { (a - b).abs() };
+        d < 1e-7 * (unit[u] + b.abs())
+    };
     let mut found: Vec<KinOf<K>> = Vec::new();
     // A mode's angles on the turn of the declared guess's (the nearest to it): a start a turn
     // away solves the same mode a turn away, and the modes of a list should compare by their
@@ -90,8 +110,7 @@ pub fn assembly_modes_of<K: Kernel>(
         match m.kinematics(x, g, cfg) {
             Ok(k) => {
                 let same = found.iter().any(|f| {
-                    f.health().det_signs == k.health().det_signs
-                        && (0..n).all(|u| turn_distance(f.q()[u], k.q()[u]) < 1e-7 * (1.0 + k.q()[u].abs()))
+                    f.health().det_signs == k.health().det_signs && (0..n).all(|u| same_value(u, f.q()[u], k.q()[u]))
                 });
                 if !same {
                     found.push(on_guess_turn(k));
@@ -131,7 +150,7 @@ pub fn assembly_modes_of<K: Kernel>(
         for (u, v) in g.as_mut().iter_mut().enumerate() {
             let a = alpha[u % 8] + 0.01 * (u / 8) as f64;
             let frac = (k as f64 * a).fract();
-            *v += (2.0 * frac - 1.0) * PI * (1.0 + 0.25 * v.abs());
+            *v += (2.0 * frac - 1.0) * PI * (unit[u] + 0.25 * v.abs());
         }
         try_start(&g, &mut found)?;
     }
