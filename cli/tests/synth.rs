@@ -116,18 +116,26 @@ fn path_synthesis_recovers_the_four_bar_and_equals_the_library() {
     }
 }
 
-#[test]
-fn function_synthesis_in_degrees_writes_a_table() {
-    // The rocker angle gamma of the four-bar (a, b, c; d fixed) at six crank angles, closed form.
+/// Function targets `phi,gamma` in degrees, in the file `name`: the rocker angle gamma of the
+/// four-bar (a, b, c; d fixed) at six crank angles, closed form, the fourth moved by `moved`
+/// degrees.
+fn function_targets(name: &str, moved: f64) -> String {
     let [a, b, c, d, ..] = TRUTH;
     let rows: Vec<String> = (0..6)
         .map(|k| {
             let phi = 0.5 + 0.8 * k as f64;
             let [x, y] = coupler_point([a, b, c, d, b, 0.0], phi);
-            format!("{:?},{:?}", phi.to_degrees(), y.atan2(x - d).to_degrees())
+            let moved = if k == 3 { moved } else { 0.0 };
+            format!("{:?},{:?}", phi.to_degrees(), y.atan2(x - d).to_degrees() + moved)
         })
         .collect();
-    let targets = file("synth_function.csv", &rows.join("\n"));
+    file(name, &rows.join("\n"))
+}
+
+#[test]
+fn function_synthesis_in_degrees_writes_a_table() {
+    let [a, b, c, ..] = TRUTH;
+    let targets = function_targets("synth_function.csv", 0.0);
     let out = kinloop(&[
         "synth",
         &shipped("coupler_four_bar.kl"),
@@ -490,17 +498,8 @@ fn prescribed_inputs_give_the_same_design_at_any_unit_of_length() {
 /// it valid; a bound not above 0 is a usage error.
 #[test]
 fn max_error_in_the_unit_of_the_errors_rejects_a_far_fit() {
-    let [a, b, c, d, ..] = TRUTH;
-    let rows: Vec<String> = (0..6)
-        .map(|k| {
-            let phi = 0.5 + 0.8 * k as f64;
-            let [x, y] = coupler_point([a, b, c, d, b, 0.0], phi);
-            // One target moved off the function by a degree: no design meets them all.
-            let moved = if k == 3 { 1.0 } else { 0.0 };
-            format!("{:?},{:?}", phi.to_degrees(), y.atan2(x - d).to_degrees() + moved)
-        })
-        .collect();
-    let targets = file("synth_max_error.csv", &rows.join("\n"));
+    // One target moved off the function by a degree: no design meets them all.
+    let targets = function_targets("synth_max_error.csv", 1.0);
     let file = shipped("coupler_four_bar.kl");
     let run = |extra: &[&str]| {
         let args = ["synth", &file, "--targets", &targets, "--function", "phi:gamma", "--deg", "--csv"];
