@@ -591,6 +591,9 @@ fn scan_arguments_that_do_not_fit_are_errors() {
     }
     let r = model.scan(&["r"], &[[1.0]], &ParamScanConfig::new(&[f64::NAN], &[f64::NAN], 1), |_| 0, |n, _, _| n + 1);
     assert!(matches!(&r[0], Err(kinloop::Error::NonFinite { .. })), "{:?}", r[0]);
+    // Ends of another size: named as such, with one sample too.
+    let r = model.scan(&["r"], &[[1.0]], &ParamScanConfig::new(&[0.0, 1.0], &[TAU], 1), |_| 0, |n, _, _| n + 1);
+    assert!(matches!(&r[0], Err(kinloop::Error::InvalidArgument(m)) if !m.contains("samples")), "{:?}", r[0]);
 }
 
 // ---------------------------------------------------------------------------------------------

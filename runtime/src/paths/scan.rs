@@ -165,11 +165,11 @@ where
 
 /// The sample count of a scan's sweeps. One sample is the start alone: a range to another end
 /// would be ignored. A count beyond what an analysis takes would fold for years
-/// (`usize::MAX`). Ends not finite are left to the sweep, which names them: a NaN end differs
-/// from itself, and was said to need 2 samples.
+/// (`usize::MAX`). Ends not finite, or of another size than each other, are left to the sweep,
+/// which names them: a NaN end differs from itself, and was said to need 2 samples.
 fn check_samples(from: &[f64], to: &[f64], samples: usize) -> Result<(), Error> {
-    let finite = from.iter().chain(to).all(|v| v.is_finite());
-    if samples < 2 && finite && from != to {
+    let comparable = from.len() == to.len() && from.iter().chain(to).all(|v| v.is_finite());
+    if samples < 2 && comparable && from != to {
         return Err(Error::InvalidArgument(format!(
             "a scan from {from:?} to {to:?} needs at least 2 samples (its ends); {samples} asked for"
         )));
