@@ -29,8 +29,8 @@ pub type ModelTraced = TracedOf<Heap, Heap>;
 impl Model {
     /// The whole solution curve through `guess` at `from`, first towards `to`, through limit
     /// positions: the runtime's `trace_curve` over this model (see
-    /// [`trace_curve_of`]), with the default
-    /// solver configuration (or [`TraceConfig::newton`]).
+    /// [`trace_curve_of`]), with the model's solver configuration ([`Model::sweep_config`]; or
+    /// [`TraceConfig::newton`]).
     ///
     /// ```
     /// use kinloop_model::Model;
@@ -60,8 +60,7 @@ impl Model {
     /// How far the input can move from `at` towards `at + delta` and `at - delta` on the
     /// assembly mode of `guess` before a limit position, in input values, sweeping both ways
     /// with `samples` samples each: the runtime's `reachable` over this model (see
-    /// [`reachable_of`]), with the default solver
-    /// configuration.
+    /// [`reachable_of`]), with the model's solver configuration ([`Model::sweep_config`]).
     pub fn reachable(
         &mut self,
         at: &[f64],
@@ -76,8 +75,8 @@ impl Model {
     /// The states at the given inputs, in their order, followed along the path through them
     /// without jumping branches (each stretch between consecutive inputs a sweep of its own):
     /// the runtime's `sweep_at` over this model (see
-    /// [`sweep_at_of`]), with the default solver
-    /// configuration. The result keeps the states before a stop, says why and where it stopped
+    /// [`sweep_at_of`]), with the model's solver configuration ([`Model::sweep_config`]). The
+    /// result keeps the states before a stop, says why and where it stopped
     /// and lists the events met; the error here is that of lending the model (a parameter
     /// without a value).
     pub fn sweep_at<I: AsRef<[f64]>>(
