@@ -14,6 +14,7 @@
 //! README's).
 
 use kinloop::Table;
+use kinloop::analysis::Sampled;
 use kinloop::analysis::cam::CamProfile;
 use kinloop::plot::{self, Axis, Kind, Panel, Series};
 pub use kinloop_examples::dwell_cam::{ROLLER, cam, peak_pressure, turn};
@@ -223,6 +224,21 @@ fn report_dwells(m: &DwellCamRocker) -> Result<()> {
         );
         assert!(c.still && c.analogs == [0.0; 4], "the {} dwell is not exactly still: {c:?}", d.name);
     }
+    // The same dwells found from the motion alone: the follower's rests over a turn from the
+    // middle of the rise (where it moves), each end located between 73 samples to where the
+    // law switches (within 1e-8 rad: the 3-4-5 law's velocity rounds to zero that close).
+    let from = m.phi0 + 0.5 * m.rise;
+    let sampled = Sampled::sweep(m, from, from + TAU, 73, m.guess(from))?;
+    let rests = sampled.rests(DwellCamRocker::COL.follower.y)?;
+    let found: Vec<String> =
+        rests.iter().map(|r| format!("{:.6}°-{:.6}°", r.start.x.to_degrees(), r.end.x.to_degrees())).collect();
+    println!("  located from the motion (Sampled::rests, 73 samples): {}", found.join(", "));
+    let law = [(m.phi0 + m.rise, m.phi1), (m.phi1 + m.fall, TAU + m.phi0)];
+    assert!(
+        rests.len() == 2
+            && rests.iter().zip(law).all(|(r, (a, b))| (r.start.x - a).abs() < 1e-7 && (r.end.x - b).abs() < 1e-7),
+        "the rests found are not the law's dwells: {rests:?}"
+    );
     Ok(())
 }
 

@@ -18,5 +18,6 @@ mod limits_crossing;
 mod limits_extreme_scales;
 mod metrics_mechanisms;
 mod objectives;
+mod rests;
 mod sampled_paths;
 mod synthesis;

@@ -52,6 +52,7 @@ pub mod extremes;
 pub mod fourier;
 pub mod objective;
 pub mod optimize;
+pub mod rest;
 mod sampled;
 pub mod unbalance;
 
@@ -62,6 +63,7 @@ pub use dwell::{Dwell, dwells};
 pub use extremes::{Extreme, GlobalRange, LocalExtreme, bracketed_root, extremes, global_range, maximize};
 pub use fourier::{Fourier, fourier};
 pub use optimize::{LevenbergMarquardt, Minimum, NelderMead, OptimizerStop};
+pub use rest::{Rest, rests};
 pub use unbalance::{Unbalance, unbalance};
 
 use crate::error::Error;

@@ -4,7 +4,7 @@
 
 use super::column::{ColumnOf, column_name, jet_along};
 use super::extremes::{self, GlobalRange, LocalExtreme, maximize};
-use super::{ColumnIndex, Dwell, Fourier, Jet, Unbalance, dwell, fourier, unbalance};
+use super::{ColumnIndex, Dwell, Fourier, Jet, Rest, Unbalance, dwell, fourier, rest, unbalance};
 use crate::Kernel;
 use crate::dims::{Dims, KinState, Store};
 use crate::error::Error;
@@ -732,6 +732,18 @@ impl<K: Kernel> SampledOf<K> {
     pub fn dwells(&self, c: impl ColumnOf<K>) -> Result<Vec<Dwell>, Error> {
         let c = c.resolve(&self.k)?;
         self.searched(c, |jets, corners, eval| dwell::dwells_across(jets, corners, eval))
+    }
+
+    /// The rests of a column: where it stands exactly still (its velocity analog exactly zero
+    /// over a stretch, as a cam follower's in the dwells of its law); see [`rest`] for the
+    /// definition. Each end is located between the samples by bisection, to the spacing of the
+    /// input's doubles; a rest reaching an end of the range is cut there.
+    ///
+    /// Unlike [`SampledOf::dwells`], for any output: a cam follower that rises, dwells, returns
+    /// and dwells has no net travel, so no dwell by that definition, but two rests a turn.
+    pub fn rests(&self, c: impl ColumnOf<K>) -> Result<Vec<Rest>, Error> {
+        let c = c.resolve(&self.k)?;
+        self.searched(c, |jets, _, eval| rest::rests(jets, eval))
     }
 
     /// The maximum of a derived quantity `f(state)` (e.g. the magnitude of an acceleration

@@ -1,0 +1,202 @@
+//! Rests of an output: the stretches of the input over which it stands exactly still, as the
+//! follower of a cam law with dwells does (its segments clamped, its velocity analog exactly
+//! zero between them), or a motion declared piecewise.
+//!
+//! **Definition.** A *rest* is a stretch `[start, end]` of the input, of positive length, over
+//! which the output's velocity analog is exactly zero. This is not the [dwell](super::dwell) of
+//! a progressive output, which swings back within a band: an output that comes to rest without
+//! reversing has no dwell by that definition, and an oscillating output (a cam follower that
+//! rises, dwells, returns and dwells) has no net travel to define one. A velocity analog that
+//! only touches zero (an extreme, a limit of the output) is an instant, not a rest.
+//!
+//! **Location.** Two or more consecutive samples at rest mark a rest; each end between a sample
+//! at rest and a moving one is found by bisection on "at rest" to the spacing of the doubles of
+//! the input there, so the ends of a clamped law's segments come out where the law switches, to
+//! its rounding. A single sample at rest is not a rest: where a velocity analog only touches or
+//! crosses zero, its rounding can leave it exactly zero over a few units in the last place (or,
+//! where it touches zero, over about `sqrt(eps)` of the input), an instant that two samples
+//! cannot both fall in. So a rest is seen where it holds two samples: sample more finely than
+//! half the shortest rest. A rest reaching an end of the sampled range is cut there (it may go
+//! on beyond it): start the range where the output moves to see every rest of a cycle whole.
+//!
+//! Exact zeros are what a law with clamped segments gives: the derivative of a clamp at its
+//! bound is zero, and every analog computed from zero velocities alone (a linkage the output
+//! drives, its points and angles) is exactly zero too, in any unit. Where a law leaves a rest
+//! smoothly (a 3-4-5 law's velocity vanishes as the square of the distance from its switch),
+//! its computed velocity rounds to zero a little before the switch, where the output moves by
+//! far less than the rounding of its value: the end is located there (for the 3-4-5 law within
+//! about `sqrt(eps / 10)` of the segment's length, 1e-8 rad of a rise over 120 degrees).
+
+use super::Jet;
+use super::extremes::check_increasing;
+use crate::error::Error;
+
+/// A rest of an output: where it stands exactly still; see the [module documentation](self).
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Rest {
+    /// The first input at rest (the start of the sampled range where the rest reaches it).
+    pub start: Jet,
+    /// The last input at rest (the end of the sampled range where the rest reaches it).
+    pub end: Jet,
+}
+
+impl Rest {
+    /// Duration in input units: `end.x - start.x`.
+    pub fn duration(&self) -> f64 {
+        self.end.x - self.start.x
+    }
+
+    /// Where the output stands during the rest (its value at the start).
+    pub fn value(&self) -> f64 {
+        self.start.value
+    }
+}
+
+/// Whether the output stands still at `j`: its velocity analog exactly zero (either sign).
+fn at_rest(j: &Jet) -> bool {
+    j.d1 == 0.0
+}
+
+/// All rests of an output sampled at `samples` (jets in increasing `x`; `eval` computes the
+/// jet at any `x` of the range, for the ends between samples). See the
+/// [module documentation](self).
+///
+/// ```
+/// use kinloop_runtime::analysis::{Jet, rest::rests};
+/// // Still up to x = 1, rising as (x - 1)^3 to 1 at x = 2, still up to x = 3, then falling.
+/// let f = |x: f64| {
+///     let (value, d1) = match x {
+///         x if x < 1.0 => (0.0, 0.0),
+///         x if x < 2.0 => ((x - 1.0).powi(3), 3.0 * (x - 1.0).powi(2)),
+///         x if x < 3.0 => (1.0, 0.0),
+///         x => (1.0 - (x - 3.0).powi(3), -3.0 * (x - 3.0).powi(2)),
+///     };
+///     Ok(Jet { x, value, d1, d2: 0.0 })
+/// };
+/// let samples: Vec<Jet> = (0..=12).map(|i| f(0.5 + 0.3 * i as f64)).collect::<Result<_, _>>()?;
+/// let r = rests(&samples, f)?;
+/// assert_eq!(r.len(), 2);
+/// assert_eq!((r[0].start.x, r[0].end.x), (0.5, 1.0)); // cut at the start of the range
+/// assert_eq!((r[1].start.x, r[1].end.x, r[1].value()), (2.0, 3.0, 1.0));
+/// # Ok::<(), kinloop_runtime::Error>(())
+/// ```
+///
+/// Errors: fewer than two samples, samples not in strictly increasing `x` or not finite, and
+/// `eval`'s.
+pub fn rests(samples: &[Jet], mut eval: impl FnMut(f64) -> Result<Jet, Error>) -> Result<Vec<Rest>, Error> {
+    check_increasing(samples)?;
+    let mut out = Vec::new();
+    let mut i = 0;
+    while i < samples.len() {
+        if !at_rest(&samples[i]) {
+            i += 1;
+            continue;
+        }
+        // A run of samples at rest, `i ..= k`.
+        let mut k = i;
+        while k + 1 < samples.len() && at_rest(&samples[k + 1]) {
+            k += 1;
+        }
+        // One sample at rest: an instant (see the module documentation).
+        if k == i {
+            i += 1;
+            continue;
+        }
+        let start = if i == 0 { samples[0] } else { edge(samples[i - 1].x, samples[i], &mut eval)? };
+        let end = if k + 1 == samples.len() { samples[k] } else { edge(samples[k + 1].x, samples[k], &mut eval)? };
+        out.push(Rest { start, end });
+        i = k + 1;
+    }
+    Ok(out)
+}
+
+/// The end of a rest between the moving input `moving` and the jet `still` at rest: the input at
+/// rest nearest to `moving`, by bisection on "at rest" until the two are adjacent doubles (at
+/// most about 64 halvings where the two are of one sign, a few more across zero).
+fn edge(moving: f64, still: Jet, eval: &mut impl FnMut(f64) -> Result<Jet, Error>) -> Result<Jet, Error> {
+    let (mut moving, mut still) = (moving, still);
+    loop {
+        // Halves of each: no overflow for ends near the largest doubles.
+        let mid = 0.5 * moving + 0.5 * still.x;
+        if mid == moving || mid == still.x {
+            return Ok(still);
+        }
+        let j = eval(mid)?;
+        if !(j.value.is_finite() && j.d1.is_finite()) {
+            return Err(Error::InvalidArgument(format!("non-finite value at x = {mid} while locating a rest")));
+        }
+        if at_rest(&j) {
+            still = j;
+        } else {
+            moving = mid;
+        }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// Still on `[1, 2]` and `[3, 3.5]`, moving as a cubic between, a velocity analog touching
+    /// zero at 2.5 (an inflection at rest for an instant) and at the sample 4.
+    fn jet(x: f64) -> Result<Jet, Error> {
+        let (value, d1) = match x {
+            x if x < 1.0 => (-(1.0 - x).powi(3), 3.0 * (1.0 - x).powi(2)),
+            x if x <= 2.0 => (0.0, 0.0),
+            x if x < 3.0 => ((x - 2.5).powi(3) + 0.125, 3.0 * (x - 2.5).powi(2)),
+            x if x <= 3.5 => (0.25, 0.0),
+            x => (0.25 + (x - 3.5) * (x - 4.0).powi(2), (x - 4.0).powi(2) + 2.0 * (x - 3.5) * (x - 4.0)),
+        };
+        Ok(Jet { x, value, d1, d2: 0.0 })
+    }
+
+    #[test]
+    fn rests_are_located_to_the_doubles_and_instants_are_not_rests() {
+        // Samples at 0, 0.1, ..., 5: 2.5 is a sample where the analog touches zero.
+        let samples: Vec<Jet> = (0..=50).map(|i| jet(0.1 * i as f64)).collect::<Result<_, _>>().unwrap();
+        let r = rests(&samples, jet).unwrap();
+        let ends: Vec<(f64, f64)> = r.iter().map(|r| (r.start.x, r.end.x)).collect();
+        assert_eq!(ends, [(1.0, 2.0), (3.0, 3.5)], "{r:?}");
+        assert_eq!(r.iter().map(Rest::value).collect::<Vec<_>>(), [0.0, 0.25]);
+        assert_eq!(r[1].duration(), 0.5);
+    }
+
+    /// A velocity analog crossing zero at a sample, rounded to exactly zero over a few units in
+    /// the last place around it: an instant, not a rest.
+    #[test]
+    fn a_velocity_rounded_to_zero_for_an_instant_is_no_rest() {
+        let f = |x: f64| {
+            let d1 = if (x - 2.5).abs() < 4e-15 { 0.0 } else { x - 2.5 };
+            Ok(Jet { x, value: 0.5 * (x - 2.5) * (x - 2.5), d1, d2: 1.0 })
+        };
+        for from in [2.5, 0.0] {
+            let samples: Vec<Jet> = (0..=10).map(|i| f(from + 0.25 * f64::from(i)).unwrap()).collect();
+            assert_eq!(rests(&samples, f).unwrap(), [], "from {from}");
+        }
+    }
+
+    #[test]
+    fn a_rest_at_an_end_of_the_range_is_cut_there() {
+        let samples: Vec<Jet> = (0..=10).map(|i| jet(1.5 + 0.25 * i as f64)).collect::<Result<_, _>>().unwrap();
+        let r = rests(&samples, jet).unwrap();
+        assert_eq!((r[0].start.x, r[0].end.x), (1.5, 2.0));
+        // An output at rest over the whole range: one rest, the range.
+        let flat = |x: f64| Ok(Jet { x, value: 7.0, d1: 0.0, d2: 0.0 });
+        let samples: Vec<Jet> = (0..5).map(|i| flat(f64::from(i)).unwrap()).collect();
+        let r = rests(&samples, flat).unwrap();
+        assert_eq!(r.len(), 1);
+        assert_eq!((r[0].start.x, r[0].end.x, r[0].value()), (0.0, 4.0, 7.0));
+    }
+
+    #[test]
+    fn bad_samples_and_failed_evaluations_are_errors() {
+        assert!(rests(&[], jet).is_err());
+        let a = jet(1.5).unwrap();
+        assert!(rests(&[a, a], jet).is_err(), "not increasing");
+        let samples: Vec<Jet> = (0..=10).map(|i| jet(0.5 * i as f64)).collect::<Result<_, _>>().unwrap();
+        let fails = |_: f64| Err(Error::InvalidArgument("no state".into()));
+        assert!(matches!(rests(&samples, fails), Err(Error::InvalidArgument(m)) if m == "no state"));
+        let nan = |x: f64| Ok(Jet { x, value: f64::NAN, d1: f64::NAN, d2: 0.0 });
+        assert!(rests(&samples, nan).is_err());
+    }
+}
