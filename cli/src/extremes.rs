@@ -114,6 +114,7 @@ pub fn run(model: &mut Model, req: &Request) -> Result<(), Failed> {
     }
     bar.set_message(format!("{name}: locating extremes"));
     let mut rows = Vec::with_capacity(columns.len());
+    let mut notes = Vec::new();
     for (column, kind) in &columns {
         let range = sampled.range(column.as_str()).map_err(|e| {
             bar.finish_and_clear();
@@ -127,6 +128,9 @@ pub fn run(model: &mut Model, req: &Request) -> Result<(), Failed> {
             let x = sampled.inputs_at(s);
             x.0.iter().zip(&input_kinds).map(|(v, k)| written(*k, req.deg, *v)).collect()
         };
+        if let Some(note) = rests_note(&sampled, column, *kind, &input_names, &input_kinds, req.deg) {
+            notes.push(note);
+        }
         rows.push(Row {
             name: column.clone(),
             unit: unit(*kind, req.deg),
@@ -141,7 +145,73 @@ pub fn run(model: &mut Model, req: &Request) -> Result<(), Failed> {
     let input_units: Vec<&str> = input_kinds.iter().map(|k| unit(*k, req.deg)).collect();
     let text =
         if req.table { table(&rows, &input_names, &input_units) } else { csv(&rows, &input_names, &input_units) };
-    crate::output::text(&text, "the extremes")
+    crate::output::text(&text, "the extremes")?;
+    for note in notes {
+        eprintln!("{note}");
+    }
+    Ok(())
+}
+
+/// `v` rounded to 6 significant digits, for a note: a rest's ends are located where the
+/// velocity analog rounds to zero, which a law leaving the rest smoothly does a little before it
+/// switches (a 3-4-5 law's end at 149.9999995 degrees, not 150).
+fn six_digits(v: f64) -> f64 {
+    if v == 0.0 || !v.is_finite() {
+        return v;
+    }
+    let scale = 10f64.powi(5 - v.abs().log10().floor() as i32);
+    // Beyond the doubles' range (a subnormal's scale overflows): as it is.
+    let rounded = (v * scale).round() / scale;
+    if rounded.is_finite() && scale.is_finite() && scale > 0.0 { rounded } else { v }
+}
+
+/// Where `column` stands exactly still over stretches of the range (a cam follower's dwells),
+/// a note naming them: an extreme reached over a whole stretch is written at one point of it
+/// (the follower's lowest position "at 344 degrees", inside a dwell from 300 to 390), which
+/// reads as if it were reached there alone. `None` where it has no rest, or rests over the
+/// whole range (a constant), or the rests cannot be located.
+fn rests_note(
+    sampled: &kinloop_model::ModelSampled<'_>,
+    column: &str,
+    kind: QuantityKind,
+    input_names: &[String],
+    input_kinds: &[QuantityKind],
+    deg: bool,
+) -> Option<String> {
+    let rests = sampled.rests(column).ok()?;
+    let s = sampled.path_values();
+    let whole = |r: &kinloop_runtime::analysis::Rest| r.start.x == s[0] && r.end.x == s[s.len() - 1];
+    if rests.is_empty() || rests.iter().any(whole) {
+        return None;
+    }
+    let at = |x: f64| -> String {
+        let inputs = sampled.inputs_at(x);
+        let parts: Vec<String> = input_names
+            .iter()
+            .zip(input_kinds)
+            .zip(inputs.0.iter())
+            .map(|((n, k), v)| {
+                let u = unit(*k, deg);
+                let u = if u.is_empty() { String::new() } else { format!(" {u}") };
+                format!("{n} = {}{u}", Number(six_digits(written(*k, deg, *v))))
+            })
+            .collect();
+        parts.join(", ")
+    };
+    let u = unit(kind, deg);
+    let u = if u.is_empty() { String::new() } else { format!(" {u}") };
+    let stretches: Vec<String> = rests
+        .iter()
+        .map(|r| {
+            let value = Number(six_digits(written(kind, deg, r.value())));
+            format!("at {value}{u} from {} to {}", at(r.start.x), at(r.end.x))
+        })
+        .collect();
+    Some(format!(
+        "note: {column} stands still {} (6 significant digits); an extreme reached over such a stretch is written \
+         at one point of it",
+        stretches.join(", and ")
+    ))
 }
 
 /// The columns named in `list` (unknowns or outputs), in its order; at least one.

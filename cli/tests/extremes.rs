@@ -345,3 +345,19 @@ fn numbers_are_written_short_and_degrees_as_given() {
     assert!(cells[2].ends_with("e-100") && cells[4].ends_with("e-100"), "{x}");
     assert_eq!((cells[3], cells[5]), ("60", "0"), "{x}");
 }
+
+/// The dwell cam's follower stands still over each dwell of its law, where its extremes are
+/// reached over the whole stretch: the table writes one point of it (the lowest position "at
+/// 344 degrees", inside the dwell from 300 to 390), and a note names the stretches, at the
+/// law's ends (the rise's end located within 1e-8 rad, written to 6 digits).
+#[test]
+fn a_column_standing_still_has_its_rests_noted() {
+    let out = kinloop(&["extremes", &shipped("dwell_cam.kl"), "--from", "90", "--to", "450", "--deg"]);
+    assert!(out.status.success(), "{}", String::from_utf8_lossy(&out.stderr));
+    let err = String::from_utf8_lossy(&out.stderr);
+    let follower = "note: follower.y stands still at 80 length unit from phi = 150 deg to phi = 200 deg, and at 60 \
+                    length unit from phi = 300 deg to phi = 390 deg (6 significant digits)";
+    assert!(err.contains(follower), "{err}");
+    // Every column the cam moves rests with it; `follower.x`, constant, has no note.
+    assert!(err.lines().filter(|l| l.starts_with("note: ")).count() == 5 && !err.contains("follower.x"), "{err}");
+}
