@@ -337,7 +337,8 @@ enum Command {
     /// writes the smallest and largest value of each unknown and output with the inputs where
     /// it happens: an interior extreme located as a root of the velocity analog between
     /// samples, on the sweep's branch; otherwise an end of the range. CSV with units, or a
-    /// table. A sweep that stops (a limit position) fails.
+    /// table. A sweep that stops (a limit position) fails. A column that stands exactly still
+    /// over stretches (a cam follower's dwells) has them noted on standard error.
     Extremes {
         #[command(flatten)]
         decl: Declaration,
