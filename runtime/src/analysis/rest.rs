@@ -32,6 +32,8 @@ use super::extremes::check_increasing;
 use crate::error::Error;
 
 /// A rest of an output: where it stands exactly still; see the [module documentation](self).
+/// Its jets' `x` are the input, or along a path through several inputs the path's parameter
+/// (`SampledOf::inputs_at` gives the inputs there), as the samples' are.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct Rest {
     /// The first input at rest (the start of the sampled range where the rest reaches it).
