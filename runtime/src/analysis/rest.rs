@@ -9,15 +9,16 @@
 //! rises, dwells, returns and dwells) has no net travel to define one. A velocity analog that
 //! only touches zero (an extreme, a limit of the output) is an instant, not a rest.
 //!
-//! **Location.** Two or more consecutive samples at rest mark a rest; each end between a sample
-//! at rest and a moving one is found by bisection on "at rest" to the spacing of the doubles of
-//! the input there, so the ends of a clamped law's segments come out where the law switches, to
-//! its rounding. A single sample at rest is not a rest: where a velocity analog only touches or
-//! crosses zero, its rounding can leave it exactly zero over a few units in the last place (or,
-//! where it touches zero, over about `sqrt(eps)` of the input), an instant that two samples
-//! cannot both fall in. So a rest is seen where it holds two samples: sample more finely than
-//! half the shortest rest. A rest reaching an end of the sampled range is cut there (it may go
-//! on beyond it): start the range where the output moves to see every rest of a cycle whole.
+//! **Location.** Two or more consecutive samples at rest, with the midpoint between each two at
+//! rest too, mark a rest; each end between a sample at rest and a moving input is found by
+//! bisection on "at rest" to the spacing of the doubles of the input there, so the ends of a
+//! clamped law's segments come out where the law switches, to its rounding. A single sample at
+//! rest is not a rest: where a velocity analog only touches or crosses zero, its rounding can
+//! leave it exactly zero over a few units in the last place (or, where it touches zero, over
+//! about `sqrt(eps)` of the input), an instant that two samples cannot both fall in. So a rest
+//! is seen where it holds two samples: sample more finely than half the shortest rest. A rest
+//! reaching an end of the sampled range is cut there (it may go on beyond it): start the range
+//! where the output moves to see every rest of a cycle whole.
 //!
 //! Exact zeros are what a law with clamped segments gives: the derivative of a clamp at its
 //! bound is zero, and every analog computed from zero velocities alone (a linkage the output
@@ -87,26 +88,41 @@ fn at_rest(j: &Jet) -> bool {
 /// `eval`'s.
 pub fn rests(samples: &[Jet], mut eval: impl FnMut(f64) -> Result<Jet, Error>) -> Result<Vec<Rest>, Error> {
     check_increasing(samples)?;
+    let n = samples.len();
     let mut out = Vec::new();
+    // The nearest input known to move before sample `i` (NaN: none, the start of the range).
+    let mut moving_before = f64::NAN;
     let mut i = 0;
-    while i < samples.len() {
+    while i < n {
         if !at_rest(&samples[i]) {
+            moving_before = samples[i].x;
             i += 1;
             continue;
         }
-        // A run of samples at rest, `i ..= k`.
-        let mut k = i;
-        while k + 1 < samples.len() && at_rest(&samples[k + 1]) {
+        // A run of samples at rest, `i ..= k`, each two joined by a midpoint at rest too: two
+        // samples where the velocity only crosses zero (a symmetric mechanism's, exactly) with
+        // motion between them are no rest. `moving_after`: the nearest input known to move
+        // after the run (NaN: none, the end of the range).
+        let (mut k, mut moving_after) = (i, f64::NAN);
+        while k + 1 < n {
+            if !at_rest(&samples[k + 1]) {
+                moving_after = samples[k + 1].x;
+                break;
+            }
+            let mid = 0.5 * samples[k].x + 0.5 * samples[k + 1].x;
+            if !at_rest(&evaluated(mid, &mut eval)?) {
+                moving_after = mid;
+                break;
+            }
             k += 1;
         }
         // One sample at rest: an instant (see the module documentation).
-        if k == i {
-            i += 1;
-            continue;
+        if k > i {
+            let start = if moving_before.is_nan() { samples[i] } else { edge(moving_before, samples[i], &mut eval)? };
+            let end = if moving_after.is_nan() { samples[k] } else { edge(moving_after, samples[k], &mut eval)? };
+            out.push(Rest { start, end });
         }
-        let start = if i == 0 { samples[0] } else { edge(samples[i - 1].x, samples[i], &mut eval)? };
-        let end = if k + 1 == samples.len() { samples[k] } else { edge(samples[k + 1].x, samples[k], &mut eval)? };
-        out.push(Rest { start, end });
+        moving_before = moving_after;
         i = k + 1;
     }
     Ok(out)
@@ -123,16 +139,22 @@ fn edge(moving: f64, still: Jet, eval: &mut impl FnMut(f64) -> Result<Jet, Error
         if mid == moving || mid == still.x {
             return Ok(still);
         }
-        let j = eval(mid)?;
-        if !(j.value.is_finite() && j.d1.is_finite()) {
-            return Err(Error::InvalidArgument(format!("non-finite value at x = {mid} while locating a rest")));
-        }
+        let j = evaluated(mid, eval)?;
         if at_rest(&j) {
             still = j;
         } else {
             moving = mid;
         }
     }
+}
+
+/// The jet at `x`, an error where it is not finite.
+fn evaluated(x: f64, eval: &mut impl FnMut(f64) -> Result<Jet, Error>) -> Result<Jet, Error> {
+    let j = eval(x)?;
+    if !(j.value.is_finite() && j.d1.is_finite()) {
+        return Err(Error::InvalidArgument(format!("non-finite value at x = {x} while locating a rest")));
+    }
+    Ok(j)
 }
 
 #[cfg(test)]
@@ -175,6 +197,16 @@ mod tests {
             let samples: Vec<Jet> = (0..=10).map(|i| f(from + 0.25 * f64::from(i)).unwrap()).collect();
             assert_eq!(rests(&samples, f).unwrap(), [], "from {from}");
         }
+    }
+
+    /// A velocity exactly zero at two consecutive samples, `(x - 1) (x - 2)` at 1 and 2, with
+    /// the output moving between them: no rest.
+    #[test]
+    fn two_samples_at_rest_with_motion_between_are_no_rest() {
+        let f =
+            |x: f64| Ok(Jet { x, value: x * x * x / 3.0 - 1.5 * x * x + 2.0 * x, d1: (x - 1.0) * (x - 2.0), d2: 0.0 });
+        let samples: Vec<Jet> = (0..4).map(|i| f(f64::from(i)).unwrap()).collect();
+        assert_eq!(rests(&samples, f).unwrap(), []);
     }
 
     #[test]
