@@ -248,7 +248,7 @@ fn write_flywheel(f: &Flywheel, req: &Request, angle: f64, file: Option<std::fs:
     ];
     let Some(file) = file else {
         for (name, unit, value) in rows {
-            let unit = if unit.is_empty() { String::new() } else { format!(" {unit}") };
+            let unit = crate::output::unit_suffix(unit);
             // `+ 0.0` writes a sum of zeros' negative zero (a machine without loads) as `0`.
             eprintln!("flywheel: {name} = {}{unit}", Number(value + 0.0));
         }

@@ -4,6 +4,7 @@
 //! velocity analog, refined between samples on the sweep's branch; otherwise an end of the
 //! range). Written as CSV with units, or as a readable table.
 
+use crate::output::unit_suffix;
 use crate::solve::{degrees, in_units, model_inputs, solve_failed};
 use crate::sweep::range_too_long;
 use crate::{Failed, exit, progress, samples};
@@ -191,15 +192,12 @@ fn rests_note(
             .zip(input_kinds)
             .zip(inputs.0.iter())
             .map(|((n, k), v)| {
-                let u = unit(*k, deg);
-                let u = if u.is_empty() { String::new() } else { format!(" {u}") };
-                format!("{n} = {}{u}", Number(six_digits(written(*k, deg, *v))))
+                format!("{n} = {}{}", Number(six_digits(written(*k, deg, *v))), unit_suffix(unit(*k, deg)))
             })
             .collect();
         parts.join(", ")
     };
-    let u = unit(kind, deg);
-    let u = if u.is_empty() { String::new() } else { format!(" {u}") };
+    let u = unit_suffix(unit(kind, deg));
     let stretches: Vec<String> = rests
         .iter()
         .map(|r| {

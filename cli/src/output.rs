@@ -194,3 +194,8 @@ pub fn closed_error() -> std::io::Error {
         "standard output is closed: give kinloop one to write to (a file, a pipe, or >/dev/null to discard it)",
     )
 }
+
+/// A unit written after a number in a message: ` deg`, or nothing for a quantity without one.
+pub fn unit_suffix(unit: &str) -> String {
+    if unit.is_empty() { String::new() } else { format!(" {unit}") }
+}

@@ -110,7 +110,7 @@ impl<X: Store> Path<X> {
 pub(crate) const COARSE_INPUT: f64 = 1e-6;
 
 /// A unit that is not positive and finite counts as one.
-fn sane(unit: f64) -> f64 {
+pub(crate) fn sane(unit: f64) -> f64 {
     if unit > 0.0 && unit < f64::INFINITY { unit } else { 1.0 }
 }
 

@@ -7,6 +7,7 @@ use crate::kin::Kin;
 use crate::kinds::QuantityKind;
 use crate::mechanism::Mechanism;
 use crate::mechanism::kernel::{Compiled, Kernel, KinOf, Q, X, check_sizes};
+use crate::paths::curve::sane;
 use crate::solvers::newton::NewtonConfig;
 use crate::solvers::turns::unwrap_to_turn;
 use std::f64::consts::PI;
@@ -73,12 +74,7 @@ pub fn assembly_modes_of<K: Kernel>(
     // 1e-7 of the others), and lengths differing by whole multiples of 2 pi for one.
     let jac = m.jacobian(x, &g0);
     let angle: Vec<bool> = (0..n).map(|u| m.unknown_kind(u) == QuantityKind::Angle).collect();
-    let unit: Vec<f64> = (0..n)
-        .map(|u| {
-            let w = jac.unit(u);
-            if angle[u] || !(w > 0.0 && w < f64::INFINITY) { 1.0 } else { w }
-        })
-        .collect();
+    let unit: Vec<f64> = (0..n).map(|u| if angle[u] { 1.0 } else { sane(jac.unit(u)) }).collect();
     let same_value = |u: usize, a: f64, b: f64| {
         let d = if angle[u] { turn_distance(a, b) } else { (a - b).abs() };
         d < 1e-7 * (unit[u] + b.abs())

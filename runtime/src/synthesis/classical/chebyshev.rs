@@ -8,6 +8,14 @@
 
 use super::error::{ClassicalError, finite};
 
+/// `x1 - x0` as `(span, factor)` with `span * factor` the difference: ends far apart near the
+/// largest f64 (`-1e308` to `1e308`) overflow `x1 - x0`, so the span is halved then, which is
+/// exact there, and the factor 2. A point measured from the nearer end takes a fraction of at
+/// most a half times the factor, so no product overflows.
+pub(super) fn span_of(x0: f64, x1: f64) -> (f64, f64) {
+    if (x1 - x0).is_finite() { (x1 - x0, 1.0) } else { (0.5 * x1 - 0.5 * x0, 2.0) }
+}
+
 /// `n` precision points over `[x0, x1]` at Chebyshev spacing, in increasing order when
 /// `x0 < x1`:
 ///
@@ -46,10 +54,7 @@ pub fn chebyshev_points(n: usize, x0: f64, x1: f64) -> Result<Vec<f64>, Classica
     if x0 == x1 {
         return Err(ClassicalError::BadRange { what: "range", why: format!("it is empty ({x0} to {x1})") });
     }
-    // Ends far apart near the largest f64 (`-1e308` to `1e308`) overflow `x1 - x0`, which made
-    // the points infinite: the span is halved then, which is exact there, and its factors
-    // doubled (at most 1 from the nearer end, so no product overflows).
-    let (span, factor) = if (x1 - x0).is_finite() { (x1 - x0, 1.0) } else { (0.5 * x1 - 0.5 * x0, 2.0) };
+    let (span, factor) = span_of(x0, x1);
     // From the midpoint (`mid - half cos(theta)`) the midpoint's own rounding moved every point:
     // over `[1, 1 + eps]` the two points came out `1 - eps / 2`, outside the range, and `1`.
     let x: Vec<f64> = (1..=n)

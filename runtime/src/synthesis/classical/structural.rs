@@ -1,6 +1,7 @@
 //! The structural error of a function generator: how far the linkage's output is from the
 //! function between (and beyond) its precision points.
 
+use super::chebyshev::span_of;
 use super::error::ClassicalError;
 use super::freudenstein::FunctionGenerator;
 use super::function_map::FunctionMap;
@@ -101,9 +102,9 @@ pub fn structural_error(
 /// The `i`-th of `n` evenly spaced arguments over `x0 ..= x1`, measured from the nearer end:
 /// from `x0` alone the last one, `x0 + (x1 - x0) * 1`, can round past `x1` (over `-1.2 ..= 1`
 /// it is `1.0000000000000002`), where a function such as `sqrt(1 - x)` is not defined. Ends far
-/// apart near the largest f64 overflow `x1 - x0`: the span is halved then, which is exact there.
+/// apart near the largest f64 overflow `x1 - x0`: see [`span_of`].
 fn sample(x0: f64, x1: f64, i: usize, n: usize) -> f64 {
-    let (span, factor) = if (x1 - x0).is_finite() { (x1 - x0, 1.0) } else { (0.5 * x1 - 0.5 * x0, 2.0) };
+    let (span, factor) = span_of(x0, x1);
     let last = (n - 1) as f64;
     if 2 * i < n { x0 + span * (factor * i as f64 / last) } else { x1 - span * (factor * (n - 1 - i) as f64 / last) }
 }
