@@ -141,7 +141,9 @@ pub(super) fn norm<const D: usize>(v: &[f64; D], y0: &[f64; D], y1: &[f64; D], c
 /// state reached. An error of `f` or `on_step` stops the integration and is returned, except
 /// where `f` fails at a stage or end of a step that the step threw far off the motion (every
 /// component far from the tangent at the accepted state: a step too large for the motion),
-/// which rejects the step for a smaller one, as a state that is not finite does. A step
+/// which rejects the step for a smaller one, as a state that is not finite does (every
+/// component is judged: see [`dopri5_judged`] for an evaluation known to depend on some
+/// components only). A step
 /// that cannot change a component of the state by a change larger than the absolute tolerance
 /// (the component's value is too large to register it) is [`DynamicsError::CannotAdvance`].
 /// A step that collapses below the resolution of the time where it is (a few units in the last
@@ -150,7 +152,26 @@ pub(super) fn norm<const D: usize>(v: &[f64; D], y0: &[f64; D], y1: &[f64; D], c
 /// time or tolerance out of range, or a state or derivative at the start that is not finite,
 /// is [`DynamicsError::BadValue`].
 pub fn dopri5<const D: usize>(
+    f: impl FnMut(f64, &[f64; D]) -> Result<[f64; D], DynamicsError>,
+    t0: f64,
+    y0: [f64; D],
+    t_end: f64,
+    cfg: &OdeConfig,
+    on_step: impl FnMut(&DenseStep<D>, &[f64; D]) -> Result<bool, DynamicsError>,
+) -> Result<(f64, [f64; D]), DynamicsError> {
+    dopri5_judged(f, |_| [true; D], t0, y0, t_end, cfg, on_step)
+}
+
+/// [`dopri5`], where a failed evaluation is judged thrown off the motion on the components
+/// `depends(error)` marks alone: those the evaluation that failed with `error` depends on. A
+/// simulation's kinematic solve depends on the position, not on the speed: a trial position
+/// far from its tangent was thrown off by a step too large, whatever the trial speed (judged
+/// on both, a step of a loose tolerance that threw the position of a swinging crank past its
+/// limit, away from where it was heading, ended the run there with the mechanism said not to
+/// assemble, at a position the motion never nears).
+pub(crate) fn dopri5_judged<const D: usize>(
     mut f: impl FnMut(f64, &[f64; D]) -> Result<[f64; D], DynamicsError>,
+    depends: impl Fn(&DynamicsError) -> [bool; D],
     t0: f64,
     y0: [f64; D],
     t_end: f64,
@@ -204,7 +225,7 @@ pub fn dopri5<const D: usize>(
             }
         }
         if let Some((trial, dt, e)) = failed {
-            if thrown_off(&trial, &y, dt, &k[0], cfg) {
+            if thrown_off(&trial, &y, dt, &k[0], cfg, depends(&e)) {
                 h *= 0.2;
                 continue;
             }
@@ -220,7 +241,7 @@ pub fn dopri5<const D: usize>(
         let t1 = if last { t_end } else { t + h };
         k[6] = match f(t1, &y1) {
             Ok(k6) => k6,
-            Err(_) if thrown_off(&y1, &y, h, &k[0], cfg) => {
+            Err(e) if thrown_off(&y1, &y, h, &k[0], cfg, depends(&e)) => {
                 h *= 0.2;
                 continue;
             }
@@ -265,12 +286,19 @@ pub fn dopri5<const D: usize>(
 /// evaluation fails (a crank decelerating into its limit position, or a position one unit in
 /// the last place short of it): retried with smaller steps, such a motion is integrated past,
 /// or stuck at, its limit instead of stopping there. Which components a failure depends on is
-/// not known (a kinematic solve on the position alone, whatever the speed), so one such
-/// component keeps the failure (and a state of no components has no motion to be thrown off).
-/// A departure that is not finite is thrown off.
-fn thrown_off<const D: usize>(trial: &[f64; D], y: &[f64; D], dt: f64, dy: &[f64; D], cfg: &OdeConfig) -> bool {
-    D > 0
-        && (0..D).all(|i| {
+/// not known in general, so one such component of those `judged` (the components the failure
+/// may depend on; see [`dopri5_judged`]) keeps the failure (and a state of no judged components
+/// has no motion to be thrown off). A departure that is not finite is thrown off.
+fn thrown_off<const D: usize>(
+    trial: &[f64; D],
+    y: &[f64; D],
+    dt: f64,
+    dy: &[f64; D],
+    cfg: &OdeConfig,
+    judged: [bool; D],
+) -> bool {
+    judged.contains(&true)
+        && (0..D).filter(|&i| judged[i]).all(|i| {
             let tangent = dt * dy[i];
             let tol = cfg.atol + cfg.rtol * trial[i].abs().max(y[i].abs());
             let departure = (trial[i] - y[i] - tangent).abs();

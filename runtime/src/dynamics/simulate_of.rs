@@ -9,7 +9,7 @@
 
 use super::error::DynamicsError;
 use super::eval::Dynamics;
-use super::ode::{DenseStep, OdeConfig, dopri5};
+use super::ode::{DenseStep, OdeConfig, dopri5_judged};
 use crate::dims::{Dims, KinState};
 use crate::mechanism::kernel::Kernel;
 use crate::solvers::newton::NewtonConfig;
@@ -76,9 +76,11 @@ impl Trajectory {
 }
 
 /// Simulates the one-input machine `m` for `t_end` time units from `start = [phi0, omega0]`:
-/// `(J + J_fly) phi'' + 1/2 J' phi'^2 = M_drive + Q` by [`dopri5`], the kinematics solved at
-/// every evaluation (the first from `guess`, every later one warm-started from the last
-/// position, without restarts, so that the machine stays on its assembly branch), and records
+/// `(J + J_fly) phi'' + 1/2 J' phi'^2 = M_drive + Q` by [`dopri5`](super::ode::dopri5), the
+/// kinematics solved at every evaluation (the first from `guess`, every later one warm-started
+/// from the last position, without restarts, so that the machine stays on its assembly
+/// branch; a trial state of a step that fails the kinematic solve is judged thrown off the
+/// motion by its angle alone, see `dopri5_judged`), and records
 /// the motion: [`simulate_steps_of`] with every accepted step pushed into the [`Trajectory`].
 ///
 /// `reduced(state, omega)` gives the one-input dynamics at a solved state and input speed (the
@@ -112,7 +114,7 @@ pub fn simulate_of<K: Kernel>(
 /// `on_step(step, [phi, omega])` as it is made (its dense output, which gives the state
 /// anywhere in `step.t0 ..= step.t1()`, and the state at its end), and `on_step` returning
 /// `true` ends the run there. Returns the time and the state `[phi, omega]` reached (`t_end`
-/// unless `on_step` ended the run early), as [`dopri5`] does.
+/// unless `on_step` ended the run early), as [`dopri5`](super::ode::dopri5) does.
 ///
 /// The steps are those [`simulate_of`] records, bit for bit (it is this function with each
 /// step pushed into its trajectory), so a consumer that samples them as they pass sees what
@@ -240,7 +242,10 @@ pub fn simulate_steps_of<K: Kernel>(
         Ok([omega, eps[0]])
     };
     let mut reached = start;
-    let run = dopri5(rhs, 0.0, start, t_end, &cfg.ode, |s, y| {
+    // A kinematic solve depends on the input's angle alone; any other failure (a load's law,
+    // the drive) may depend on the speed as well.
+    let depends = |e: &DynamicsError| [true, !matches!(e, DynamicsError::Kinematics { .. })];
+    let run = dopri5_judged(rhs, depends, 0.0, start, t_end, &cfg.ode, |s, y| {
         reached = *y;
         Ok(on_step(s, y))
     });
