@@ -141,11 +141,11 @@ pub(super) fn norm<const D: usize>(v: &[f64; D], y0: &[f64; D], y1: &[f64; D], c
 /// state reached. An error of `f` or `on_step` stops the integration and is returned, except
 /// where `f` fails at a stage or end of a step that the step threw far off the motion (every
 /// component far from the tangent at the accepted state: a step too large for the motion),
-/// which rejects the step for a smaller one, as a state that is not finite does (every
-/// component is judged: see [`dopri5_judged`] for an evaluation known to depend on some
-/// components only). A step
-/// that cannot change a component of the state by a change larger than the absolute tolerance
-/// (the component's value is too large to register it) is [`DynamicsError::CannotAdvance`].
+/// which rejects the step for a smaller one, as a state that is not finite does (here every
+/// component is judged; a simulation judges a failed kinematic solve on the input's angle
+/// alone, on which the solve depends). A step that cannot change a component of the state by a
+/// change larger than the absolute tolerance (the component's value is too large to register
+/// it) is [`DynamicsError::CannotAdvance`].
 /// A step that collapses below the resolution of the time where it is (a few units in the last
 /// place of `t`, whatever the span) is [`DynamicsError::StepTooSmall`]; a span that needs more
 /// than [`OdeConfig::max_steps`] steps is [`DynamicsError::TooManySteps`]. A start time, end
