@@ -119,7 +119,11 @@ where
     /// Simulates for `t_end` time units from the start.
     ///
     /// Errors: a kinematic failure (limit or singular position, no assembly) as
-    /// [`DynamicsError::Kinematics`] with the time; a step that collapses (approaching a limit
+    /// [`DynamicsError::Kinematics`] with the time, at a trial state of the integrator's step
+    /// (the motion heading there: a trial angle thrown far from where the motion heads is
+    /// retried with a smaller step; at a loose tolerance, whose steps are long, one thrown not as
+    /// far can stop a motion short of the failure, which tighter tolerances or
+    /// [`OdeConfig::h_max`](super::OdeConfig::h_max) avoid); a step that collapses (approaching a limit
     /// position, where the reduced inertia grows without bound) as
     /// [`DynamicsError::SingularMotion`] with the input reached; a reduced inertia that is not positive as
     /// [`DynamicsError::SingularMass`]; a drive or load that is not finite as
