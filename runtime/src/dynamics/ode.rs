@@ -143,9 +143,13 @@ pub(super) fn norm<const D: usize>(v: &[f64; D], y0: &[f64; D], y1: &[f64; D], c
 /// component far from the tangent at the accepted state: a step too large for the motion),
 /// which rejects the step for a smaller one, as a state that is not finite does (here every
 /// component is judged; a simulation judges a failed kinematic solve on the input's angle
-/// alone, on which the solve depends). A step that cannot change a component of the state by a
-/// change larger than the absolute tolerance (the component's value is too large to register
-/// it) is [`DynamicsError::CannotAdvance`].
+/// alone, on which the solve depends). A step longer than the last one accepted (the error
+/// control's guess, grown from that step's estimate) whose stage or end fails is first retried
+/// at the last accepted length, before the failure is judged: a grown step's trial can land
+/// past a position the motion never reaches, not far enough from its tangent to count as thrown
+/// off. A step that cannot change a component of the state by a change larger than the
+/// absolute tolerance (the component's value is too large to register it) is
+/// [`DynamicsError::CannotAdvance`].
 /// A step that collapses below the resolution of the time where it is (a few units in the last
 /// place of `t`, whatever the span) is [`DynamicsError::StepTooSmall`]; a span that needs more
 /// than [`OdeConfig::max_steps`] steps is [`DynamicsError::TooManySteps`]. A start time, end
@@ -202,6 +206,8 @@ pub(crate) fn dopri5_judged<const D: usize>(
         });
     }
     let mut h = initial_step(&y, d1, t_end - t0, cfg);
+    // The last accepted step's length (none yet): a longer step is the error control's guess.
+    let mut accepted_h = f64::INFINITY;
     for _ in 0..cfg.max_steps {
         let last = t + h >= t_end;
         if last {
@@ -225,6 +231,11 @@ pub(crate) fn dopri5_judged<const D: usize>(
             }
         }
         if let Some((trial, dt, e)) = failed {
+            // A grown step is retried at the length the error control accepted last.
+            if h > accepted_h {
+                h = accepted_h;
+                continue;
+            }
             if thrown_off(&trial, &y, dt, &k[0], cfg, depends(&e)) {
                 h *= 0.2;
                 continue;
@@ -241,6 +252,10 @@ pub(crate) fn dopri5_judged<const D: usize>(
         let t1 = if last { t_end } else { t + h };
         k[6] = match f(t1, &y1) {
             Ok(k6) => k6,
+            Err(_) if h > accepted_h => {
+                h = accepted_h;
+                continue;
+            }
             Err(e) if thrown_off(&y1, &y, h, &k[0], cfg, depends(&e)) => {
                 h *= 0.2;
                 continue;
@@ -271,6 +286,7 @@ pub(crate) fn dopri5_judged<const D: usize>(
         if on_step(&step, &y)? || last {
             return Ok((t, y));
         }
+        accepted_h = h;
         h = (h * grow).min(cfg.h_max);
     }
     Err(DynamicsError::TooManySteps { steps: cfg.max_steps, t, t_end })
