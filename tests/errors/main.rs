@@ -11,6 +11,7 @@
 mod support;
 
 mod assert_close;
+mod auto_traits;
 mod errors;
 mod newton_near_limits;
 mod no_silent_wrong_answer;
