@@ -305,24 +305,31 @@ fn spring_four_bar() -> (FourBar, MassModel<2, 1, 2>, f64) {
     (m, model, 0.5 / j0.sqrt())
 }
 
+/// The spring four-bar's swing (the largest `|phi|`, its steps sampled at eighths) over `t_end`
+/// time units, from `phi = 0` at its start speed, at tolerances `tol`; the run must reach
+/// `t_end`.
+fn spring_swing(tol: f64, t_end: f64) -> f64 {
+    let (m, model, omega0) = spring_four_bar();
+    let cfg = RunConfig::default().with_ode(OdeConfig::default().with_tolerances(tol, tol));
+    let run = Simulation::new(&m, &model)
+        .start(0.0, omega0)
+        .guess(m.guess_flat(&[0.0]))
+        .drive(|_, phi, _| -phi)
+        .config(cfg)
+        .run(t_end)
+        .unwrap();
+    assert_eq!(run.t_end, t_end);
+    let swing = run.steps.iter().flat_map(|s| (0..=8).map(move |k| s.at(s.t0 + s.h * k as f64 / 8.0)[0].abs()));
+    swing.fold(0.0, f64::max)
+}
+
 /// A step too large for the motion throws its trial states past the limit positions: a
 /// rejected step, not an error. At tolerances of 1e-3 the steps of the spring four-bar grow to
 /// several time units, and the end of one from phi = 0.19 landed at phi = 3.63: the run ended at
 /// t = 9.85 with the mechanism said not to assemble there, a position the motion never nears.
 #[test]
 fn a_step_thrown_past_a_limit_position_is_retried_not_an_error() {
-    let (m, model, omega0) = spring_four_bar();
-    let cfg = RunConfig::default().with_ode(OdeConfig::default().with_tolerances(1e-3, 1e-3));
-    let run = Simulation::new(&m, &model)
-        .start(0.0, omega0)
-        .guess(m.guess_flat(&[0.0]))
-        .drive(|_, phi, _| -phi)
-        .config(cfg)
-        .run(60.0)
-        .unwrap();
-    assert_eq!(run.t_end, 60.0);
-    let swing = run.steps.iter().flat_map(|s| (0..=8).map(move |k| s.at(s.t0 + s.h * k as f64 / 8.0)[0].abs()));
-    let swing = swing.fold(0.0, f64::max);
+    let swing = spring_swing(1e-3, 60.0);
     // Two periods (about 28 time units each), through the steps that threw their trials past
     // the limits. What bounds the swing is the energy, `1/2 phi^2` at the swing's ends: 1/8 at
     // the start, but at this tolerance the integration gains some with each swing (measured:
@@ -339,18 +346,7 @@ fn a_step_thrown_past_a_limit_position_is_retried_not_an_error() {
 /// not to assemble at an angle the swing (0.71 rad at most) never nears.
 #[test]
 fn a_trial_angle_thrown_off_is_retried_whatever_its_speed() {
-    let (m, model, omega0) = spring_four_bar();
-    let cfg = RunConfig::default().with_ode(OdeConfig::default().with_tolerances(3e-4, 3e-4));
-    let run = Simulation::new(&m, &model)
-        .start(0.0, omega0)
-        .guess(m.guess_flat(&[0.0]))
-        .drive(|_, phi, _| -phi)
-        .config(cfg)
-        .run(300.0)
-        .unwrap();
-    assert_eq!(run.t_end, 300.0);
-    let swing = run.steps.iter().flat_map(|s| (0..=8).map(move |k| s.at(s.t0 + s.h * k as f64 / 8.0)[0].abs()));
-    let swing = swing.fold(0.0, f64::max);
+    let swing = spring_swing(3e-4, 300.0);
     // The energy bounds the swing to 0.5 rad; at this tolerance the integration gains some over
     // ten periods (measured: 0.71), far short of the limits at 1.37.
     assert!(swing > 0.45 && swing < 0.8, "swing {swing}");
@@ -364,18 +360,7 @@ fn a_trial_angle_thrown_off_is_retried_whatever_its_speed() {
 /// assemble, where the swing (0.54 rad at most) never goes.
 #[test]
 fn a_grown_step_whose_trial_fails_is_retried_at_the_last_accepted_length() {
-    let (m, model, omega0) = spring_four_bar();
-    let cfg = RunConfig::default().with_ode(OdeConfig::default().with_tolerances(3e-3, 3e-3));
-    let run = Simulation::new(&m, &model)
-        .start(0.0, omega0)
-        .guess(m.guess_flat(&[0.0]))
-        .drive(|_, phi, _| -phi)
-        .config(cfg)
-        .run(200.0)
-        .unwrap();
-    assert_eq!(run.t_end, 200.0);
-    let swing = run.steps.iter().flat_map(|s| (0..=8).map(move |k| s.at(s.t0 + s.h * k as f64 / 8.0)[0].abs()));
-    let swing = swing.fold(0.0, f64::max);
+    let swing = spring_swing(3e-3, 200.0);
     // The energy bounds the swing to 0.5 rad (measured: 0.54 at this tolerance).
     assert!(swing > 0.45 && swing < 0.8, "swing {swing}");
 }
