@@ -45,3 +45,24 @@ fn a_split_search_merges_into_the_whole() {
     let second = search.clone().with_starts(10..24).run(&problem).unwrap();
     assert_eq!(first.merge(second, &search), whole);
 }
+
+/// A search of many more starts than it keeps holds its candidates as keys (their values,
+/// error, validity, first defect and evaluations; see the search's `held` module) and solves
+/// again the starts it keeps: its report is the one of a search that held every candidate
+/// whole. That one is made here by the exact recipe of `SynthesisReport::merge`: parts with
+/// `distinct` 0 keeping every candidate (which hold them whole), merged with the search's own
+/// settings.
+#[test]
+fn a_search_that_holds_keys_reports_what_one_holding_whole_candidates_does() {
+    let problem = problem();
+    let search = search().with_keep(4).with_distinct(1e-3);
+    let starts = 4100;
+    let held_as_keys = search.clone().with_starts(0..starts).par_run(&problem).unwrap();
+    let every = search.clone().with_distinct(0.0).with_keep(usize::MAX);
+    let first = every.clone().with_starts(0..starts / 2).par_run(&problem).unwrap();
+    let second = every.clone().with_starts(starts / 2..starts).par_run(&problem).unwrap();
+    let whole = first.merge(second, &search);
+    assert_eq!(held_as_keys, whole);
+    assert_eq!(held_as_keys.candidates.len(), 4);
+    assert_eq!(held_as_keys.unassembled + held_as_keys.valid + held_as_keys.rejected.total(), starts);
+}

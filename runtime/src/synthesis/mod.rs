@@ -27,6 +27,7 @@ mod constraints;
 mod error;
 mod evolution;
 mod halton;
+mod held;
 mod local;
 mod problem;
 mod report;

@@ -9,6 +9,7 @@ use super::candidate::{Candidate, Origin};
 use super::error::SynthesisError;
 use super::evolution::{DeConfig, Global, IslandRng, best, evolve};
 use super::halton::Halton;
+use super::held::{Held, KEYS_FROM, distinct, whole_or_start};
 use super::local::LocalConfig;
 use super::problem::ProblemOf;
 use super::report::{Rejections, SynthesisReport};
@@ -32,7 +33,11 @@ use std::ops::Range;
 #[non_exhaustive]
 pub struct Search {
     /// The indices of the starts to run (default `0..64`): Halton points, or with
-    /// [`Global::DifferentialEvolution`] islands. An inverted range (`10..2`) is an error.
+    /// [`Global::DifferentialEvolution`] islands. An inverted range (`10..2`) is an error. A
+    /// search holds what it found from every start until its report: of more than 4096 Halton
+    /// starts (and 64 times [`Search::keep`]), a few hundred bytes a start, and it solves the
+    /// starts its report keeps again (the same candidates, to the bit); of fewer, each start's
+    /// whole candidate (about 2 KB for a four-bar through eight points).
     pub starts: Range<usize>,
     /// The seed of the Halton sequence's shift and of the evolution's random numbers (default
     /// `0`).
@@ -76,7 +81,10 @@ enum Job {
 
 /// The candidates of one job (`None`: could not be assembled) and the evaluations its global
 /// stage made beyond their local solves.
-type Found = (Vec<Option<Candidate>>, usize);
+type Solved = (Vec<Option<Candidate>>, usize);
+
+/// [`Solved`] as the search holds it until its report (see [`Held`]).
+type Found = (Vec<Option<Held>>, usize);
 
 impl Search {
     /// Sets [`Search::starts`].
@@ -229,7 +237,7 @@ impl Search {
     /// solves of its best members. `batch` evaluates the residual norms of a generation's
     /// trial vectors (one after the other, or on all cores), `inf` where one cannot be
     /// assembled.
-    fn job<K>(&self, problem: &ProblemOf<K>, job: Job, batch: impl Fn(&[Vec<f64>]) -> Vec<f64>) -> Found
+    fn job<K>(&self, problem: &ProblemOf<K>, job: Job, batch: impl Fn(&[Vec<f64>]) -> Vec<f64>) -> Solved
     where
         K: SensKernel,
     {
@@ -259,7 +267,7 @@ impl Search {
         island: usize,
         de: &DeConfig,
         batch: impl Fn(&[Vec<f64>]) -> Vec<f64>,
-    ) -> Found
+    ) -> Solved
     where
         K: SensKernel,
     {
@@ -323,16 +331,17 @@ impl Search {
         let jobs = self.jobs();
         let total = jobs.len();
         let batch = |zs: &[Vec<f64>]| zs.iter().map(|z| Self::norm(problem, z)).collect();
+        let keys = self.holds_keys();
         let found: Vec<Found> = jobs
             .into_iter()
             .enumerate()
             .map(|(k, job)| {
-                let f = self.job(problem, job, batch);
+                let f = Self::hold(self.job(problem, job, batch), keys);
                 progress(k + 1, total);
                 f
             })
             .collect();
-        Ok(self.report(problem, found))
+        self.report(problem, found)
     }
 
     /// [`Search::run`] on all cores (rayon's global pool, or the pool it is called in): the
@@ -369,20 +378,33 @@ impl Search {
         let (total, done) = (jobs.len(), AtomicUsize::new(0));
         // `collect` keeps the order of the indices, whatever order they finish in.
         let batch = |zs: &[Vec<f64>]| zs.par_iter().map(|z| Self::norm(problem, z)).collect();
+        let keys = self.holds_keys();
         let found: Vec<Found> = jobs
             .into_par_iter()
             .map(|job| {
-                let f = self.job(problem, job, batch);
+                let f = Self::hold(self.job(problem, job, batch), keys);
                 progress(done.fetch_add(1, Ordering::Relaxed) + 1, total);
                 f
             })
             .collect();
-        Ok(self.report(problem, found))
+        self.report(problem, found)
+    }
+
+    /// Whether this search holds its Halton starts' candidates as keys until its report (see
+    /// [`Held`]): a search of many starts, many more than it keeps.
+    fn holds_keys(&self) -> bool {
+        self.starts.len() > KEYS_FROM.max(self.keep.saturating_mul(64))
+    }
+
+    /// A job's candidates as the search holds them: as keys where `keys` is set (see [`Held`]).
+    fn hold((candidates, evaluations): Solved, keys: bool) -> Found {
+        (candidates.into_iter().map(|c| c.map(|c| Held::of(c, keys))).collect(), evaluations)
     }
 
     /// Counts, ranks and removes duplicates (in job order, so that the result does not depend
-    /// on how the jobs were run).
-    fn report<K>(&self, problem: &ProblemOf<K>, found: Vec<Found>) -> SynthesisReport
+    /// on how the jobs were run); the starts kept that were held as keys are solved again for
+    /// their whole candidates.
+    fn report<K>(&self, problem: &ProblemOf<K>, found: Vec<Found>) -> Result<SynthesisReport, SynthesisError>
     where
         K: SensKernel,
     {
@@ -406,17 +428,31 @@ impl Search {
                     report.unassembled += 1;
                     continue;
                 };
-                report.evaluations += c.local.evaluations;
-                report.converged += usize::from(c.local.stop == crate::analysis::optimize::OptimizerStop::Converged);
-                match c.defects.first() {
+                let (local_evaluations, converged) = c.local();
+                report.evaluations += local_evaluations;
+                report.converged += usize::from(converged);
+                match c.first_defect() {
                     None => report.valid += 1,
                     Some(d) => report.rejected.count(d),
                 }
                 all.push(c);
             }
         }
-        report.candidates = distinct(all, &report.bounds, self);
-        report
+        let kept = distinct(all, &report.bounds, self.distinct, self.keep);
+        report.candidates = kept
+            .into_iter()
+            .map(|h| {
+                whole_or_start(h).or_else(|i| {
+                    self.solve(problem, self.start(problem, i), Origin::Halton, i).ok_or_else(|| {
+                        SynthesisError::Mismatch(format!(
+                            "start {i}, solved again for the report, gave no design where it gave one before: \
+                             the problem's solves are not deterministic"
+                        ))
+                    })
+                })
+            })
+            .collect::<Result<_, _>>()?;
+        Ok(report)
     }
 
     /// Runs the local solve from `z0` (the search's unknowns, see [`ProblemOf`]; clamped into
@@ -449,7 +485,7 @@ impl SynthesisReport {
     pub fn merge(mut self, other: SynthesisReport, search: &Search) -> SynthesisReport {
         let mut all = std::mem::take(&mut self.candidates);
         all.extend(other.candidates);
-        self.candidates = distinct(all, &self.bounds, search);
+        self.candidates = distinct(all, &self.bounds, search.distinct, search.keep);
         self.starts = self.starts.start.min(other.starts.start)..self.starts.end.max(other.starts.end);
         self.seeds += other.seeds;
         self.unassembled += other.unassembled;
@@ -459,38 +495,6 @@ impl SynthesisReport {
         self.evaluations += other.evaluations;
         self
     }
-}
-
-/// Valid first, then by RMS error, then by origin (seeds first) and start.
-fn rank(c: &mut [Candidate]) {
-    c.sort_by(|a, b| {
-        b.is_valid()
-            .cmp(&a.is_valid())
-            .then(a.rms_error.total_cmp(&b.rms_error))
-            .then(a.origin.cmp(&b.origin))
-            .then(a.start.cmp(&b.start))
-    });
-}
-
-/// The candidates ranked, without duplicates (a candidate of the same validity whose every
-/// value is within `distinct` of the range of one ranked before it), at most `keep`.
-fn distinct(mut all: Vec<Candidate>, bounds: &[(f64, f64)], search: &Search) -> Vec<Candidate> {
-    rank(&mut all);
-    let span: Vec<f64> = bounds.iter().map(|(lo, hi)| (hi - lo).max(f64::MIN_POSITIVE)).collect();
-    let mut out: Vec<Candidate> = Vec::new();
-    for c in all {
-        if out.len() >= search.keep {
-            break;
-        }
-        let same = |o: &Candidate| {
-            o.is_valid() == c.is_valid()
-                && o.values.iter().zip(&c.values).zip(&span).all(|((a, b), s)| (a - b).abs() <= search.distinct * s)
-        };
-        if !out.iter().any(same) {
-            out.push(c);
-        }
-    }
-    out
 }
 
 #[cfg(test)]
@@ -521,7 +525,7 @@ mod tests {
 
     fn report(starts: Range<usize>, candidates: Vec<Candidate>, search: &Search) -> SynthesisReport {
         let bounds = vec![(0.0, 1.0)];
-        let candidates = distinct(candidates, &bounds, search);
+        let candidates = distinct(candidates, &bounds, search.distinct, search.keep);
         SynthesisReport {
             variables: vec!["a".into()],
             bounds,
