@@ -122,12 +122,13 @@ fn settings_and_points_out_of_range() {
     assert!(matches!(problem.clone().with_guesses(vec![[0.0, 0.0]]), Err(SynthesisError::Mismatch(_))));
     // More starts than a report holds: an error before the first, not a capacity-overflow
     // panic.
-    let jobs_only = isize::MAX as usize / 32;
+    let results_only = isize::MAX as usize / 32;
     for search in [
         Search::default().with_starts(0..usize::MAX),
         Search::default().with_starts(1..usize::MAX),
-        // Fits a vector of the report's entries, not one of the jobs listed first.
-        Search::default().with_starts(0..jobs_only),
+        // Fits a vector of the jobs' results (32 bytes an entry), not one of the candidates
+        // held from them.
+        Search::default().with_starts(0..results_only),
         // Inverted: it ran nothing, with `Ok`.
         #[allow(clippy::reversed_empty_ranges)]
         Search::default().with_starts(10..2),

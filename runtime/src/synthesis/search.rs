@@ -146,10 +146,10 @@ impl Search {
                 self.starts, self.starts.end, self.starts.start
             )));
         }
-        // Every start is listed as a job, and its result held until the report: more than
-        // either vector holds panicked in the allocator (a capacity overflow) before the first
-        // start. The larger entry bounds both.
-        let entry = std::mem::size_of::<Found>().max(std::mem::size_of::<Job>());
+        // Every start's result is held until the report, in a vector of the jobs' results and
+        // then of their candidates: more than either holds panicked in the allocator (a capacity
+        // overflow). The larger entry bounds both.
+        let entry = std::mem::size_of::<Found>().max(std::mem::size_of::<Held>());
         let most = isize::MAX as usize / entry;
         if self.starts.len().saturating_add(self.seeds.len()) > most {
             return Err(SynthesisError::InvalidConfig(format!(
@@ -181,14 +181,25 @@ impl Search {
         Ok(())
     }
 
-    /// The jobs of this search, in the order their candidates are reported.
-    fn jobs(&self) -> Vec<Job> {
+    /// The number of jobs of this search: its seeds (with the part whose starts begin at 0)
+    /// and its starts.
+    fn job_count(&self) -> usize {
         let seeds = if self.starts.start == 0 { self.seeds.len() } else { 0 };
-        let global = self.starts.clone().map(|i| match self.global {
+        seeds + self.starts.len()
+    }
+
+    /// Job `k` of this search, in the order their candidates are reported: the seeds, then the
+    /// starts (or islands). Made as it is run, so that a search of many starts lists none.
+    fn job_at(&self, k: usize) -> Job {
+        let seeds = self.job_count() - self.starts.len();
+        if k < seeds {
+            return Job::Seed(k);
+        }
+        let i = self.starts.start + (k - seeds);
+        match self.global {
             Global::Halton => Job::Start(i),
             Global::DifferentialEvolution(de) => Job::Island(i, de),
-        });
-        (0..seeds).map(Job::Seed).chain(global).collect()
+        }
     }
 
     /// The starting point `index` of the search: the design variables (and placement) from the
@@ -328,15 +339,12 @@ impl Search {
         K: SensKernel,
     {
         self.validate_for(problem)?;
-        let jobs = self.jobs();
-        let total = jobs.len();
+        let total = self.job_count();
         let batch = |zs: &[Vec<f64>]| zs.iter().map(|z| Self::norm(problem, z)).collect();
         let keys = self.holds_keys();
-        let found: Vec<Found> = jobs
-            .into_iter()
-            .enumerate()
-            .map(|(k, job)| {
-                let f = Self::hold(self.job(problem, job, batch), keys);
+        let found: Vec<Found> = (0..total)
+            .map(|k| {
+                let f = Self::hold(self.job(problem, self.job_at(k), batch), keys);
                 progress(k + 1, total);
                 f
             })
@@ -374,15 +382,14 @@ impl Search {
         use rayon::prelude::*;
         use std::sync::atomic::{AtomicUsize, Ordering};
         self.validate_for(problem)?;
-        let jobs = self.jobs();
-        let (total, done) = (jobs.len(), AtomicUsize::new(0));
+        let (total, done) = (self.job_count(), AtomicUsize::new(0));
         // `collect` keeps the order of the indices, whatever order they finish in.
         let batch = |zs: &[Vec<f64>]| zs.par_iter().map(|z| Self::norm(problem, z)).collect();
         let keys = self.holds_keys();
-        let found: Vec<Found> = jobs
+        let found: Vec<Found> = (0..total)
             .into_par_iter()
-            .map(|job| {
-                let f = Self::hold(self.job(problem, job, batch), keys);
+            .map(|k| {
+                let f = Self::hold(self.job(problem, self.job_at(k), batch), keys);
                 progress(done.fetch_add(1, Ordering::Relaxed) + 1, total);
                 f
             })
