@@ -11,7 +11,7 @@
 //! index alone, so the same start gives the same candidate, to the bit. Measured on the
 //! README's search (a four-bar's two link lengths through eight points), `kinloop synth` with
 //! 20,000 starts took 17 MB where it took 47 MB holding whole candidates, and 200,000 starts take
-//! 97 MB (whole candidates, at 2 KB a start, would take about 400 MB).
+//! 88 MB (whole candidates, at 2 KB a start, would take about 400 MB).
 
 use super::candidate::{Candidate, Defect, Origin};
 use crate::analysis::optimize::OptimizerStop;
