@@ -116,10 +116,6 @@ pub fn run(model: &mut Model, req: &Request) -> Result<(), Failed> {
     let name = model.name().to_string();
     let failed = |e: &dyn std::fmt::Display| failed(&name, e);
     let Endpoints { from, to, guess } = endpoints(model, req)?;
-    let cam = match req.cam {
-        Some(point) => Some((find_cam(model, req, point)?, point)),
-        None => None,
-    };
     let kinds = model.input_kinds().to_vec();
     let motion = model.motion(&from, &to, samples, &guess).map_err(|e| match e {
         // The runtime's refusal of the arguments (`to` equal to `from`, a range of more turns
@@ -144,6 +140,12 @@ pub fn run(model: &mut Model, req: &Request) -> Result<(), Failed> {
         let what = event_label(k, motion.events.len(), motion.stopped);
         eprintln!("{what} {} at {}", e.kind, at.join(", "));
     }
+    // The cam after the motion: its report (a turn's pressure angle, curvature, undercut) is
+    // not written ahead of a range the animation refuses.
+    let cam = match req.cam {
+        Some(point) => Some((find_cam(model, req, point)?, point)),
+        None => None,
+    };
     let drawing = noted_drawing(model);
     let drawing = match cam {
         Some((found, point)) => cam_drawn::with_cam(drawing, &found, point),

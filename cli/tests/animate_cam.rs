@@ -201,6 +201,24 @@ fn follower_options_without_a_cam_and_a_cam_of_no_one_input_are_usage_errors() {
     }
 }
 
+/// A range the animation refuses is refused before the cam is found: the cam's report (its
+/// largest pressure angle, its sharpest point, its undercut) was written first, then the error,
+/// as though the animation had gone ahead.
+#[test]
+fn a_refused_range_is_refused_before_the_cams_report() {
+    let path = out("refused_range.svg");
+    let p = path.display().to_string();
+    let cam = shipped("dwell_cam.kl");
+    let args =
+        ["animate", &cam, "--from", "0", "--to", "0", "--deg", "--cam", "follower", "--guide", "0,1", "--out", &p];
+    let o = kinloop(&args);
+    let stderr = String::from_utf8_lossy(&o.stderr);
+    assert_eq!(o.status.code(), Some(2), "{stderr}");
+    assert!(stderr.contains("needs `to` different from `from`"), "{stderr}");
+    assert!(!stderr.contains("cam:"), "{stderr}");
+    assert!(!path.exists());
+}
+
 /// The notes written under an SVG's picture (`note: ...`).
 fn notes(svg: &str) -> Vec<String> {
     let doc = roxmltree::Document::parse(svg).expect("well-formed SVG");
