@@ -16,7 +16,7 @@
 use super::candidate::{Candidate, Defect, Origin};
 use crate::analysis::optimize::OptimizerStop;
 
-/// A search holds keys, not whole candidates, from this many Halton starts on (and from 64
+/// A search holds keys, not whole candidates, past this many Halton starts (and past 64
 /// times its `keep`, so that the starts solved again stay a small part of the search's work).
 pub(super) const KEYS_FROM: usize = 4096;
 
