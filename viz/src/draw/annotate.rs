@@ -74,7 +74,13 @@ pub(crate) fn input_value(
             // Every pose's value in one format: that of the input's largest magnitude.
             let most = Some(largest.to_degrees()).filter(|m| m.is_finite()).unwrap_or(0.0).max(deg.abs());
             if most < ANGLE_DIGITS {
-                format!("{deg:.decimals$}°")
+                // A small negative angle rounds to zero: written "0.0°", never "-0.0°".
+                let text = format!("{deg:.decimals$}");
+                let text = match text.strip_prefix('-') {
+                    Some(zero) if zero.bytes().all(|b| b == b'0' || b == b'.') => zero.to_string(),
+                    _ => text,
+                };
+                format!("{text}°")
             } else {
                 // As a page's readout: five significant digits and a power of ten, not every
                 // digit of a huge angle.
@@ -163,6 +169,12 @@ mod tests {
         assert_eq!(input_value(length, 25.0, (30.0, 0.0), Some("m"), 1), "25.000 m");
         assert_eq!(input_value(length, 250_000.0, (300_000.0, 0.0), Some("mm"), 1), "2.5000e5 mm");
         assert_eq!(input_value(length, -0.0, (3.0, 0.0), Some("mm"), 1), "0.0000 mm");
+        // An angle just below zero reads as zero, as every other readout does.
+        let angle = Some(&QuantityKind::Angle);
+        assert_eq!(input_value(angle, -1e-4, (0.1, 0.2), None, 1), "0.0°");
+        assert_eq!(input_value(angle, -4e-5, (0.1, 0.2), None, 2), "0.00°");
+        assert_eq!(input_value(angle, -0.0, (0.1, 0.2), None, 1), "0.0°");
+        assert_eq!(input_value(angle, -1e-3, (0.1, 0.2), None, 1), "-0.1°");
         // A value beyond the largest given (an event's, located between poses) keeps its digits.
         assert_eq!(input_value(None, 123.456, (2.0, 0.0), None, 1), "123.46");
     }
