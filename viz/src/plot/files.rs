@@ -53,8 +53,32 @@ pub fn decimate(points: &[(f64, f64)], max: usize) -> Vec<(f64, f64)> {
     }
     let stride = (points.len() - 1).div_ceil(max - 1);
     let mut out: Vec<(f64, f64)> = points.iter().step_by(stride).copied().collect();
-    if out.last() != points.last() {
+    // By index, not by value: a last point that is not finite (a sweep that stopped) never
+    // equals itself, and would be written twice, one point over `max`.
+    if !(points.len() - 1).is_multiple_of(stride) {
         out.push(points[points.len() - 1]);
     }
     out
+}
+
+#[cfg(test)]
+mod tests {
+    use super::decimate;
+
+    #[test]
+    fn a_curve_ending_in_a_gap_keeps_at_most_max_points() {
+        // A sweep that stopped: its last point is not finite, and equals no point, not even
+        // itself.
+        let mut pts: Vec<(f64, f64)> = (0..9).map(|i| (i as f64, 1.0)).collect();
+        pts.push((f64::NAN, f64::NAN));
+        let d = decimate(&pts, 4);
+        assert_eq!(d.len(), 4, "{d:?}");
+        assert_eq!(d[..3], [(0.0, 1.0), (3.0, 1.0), (6.0, 1.0)]);
+        assert!(d[3].0.is_nan() && d[3].1.is_nan());
+        // Also where the stride does not reach the last point.
+        pts.push((f64::NAN, 0.0));
+        let d = decimate(&pts, 4);
+        assert_eq!(d.len(), 4, "{d:?}");
+        assert!(d[3].0.is_nan());
+    }
 }
