@@ -64,7 +64,11 @@ pub fn bar_chart_svg(title: &str, x: &Axis, panels: &[Panel]) -> Result<String, 
     let spacing = xs.windows(2).map(|w| w[1] / u - w[0] / u).filter(|d| *d > 0.0).fold(f64::INFINITY, f64::min);
     let spacing = if spacing.is_finite() { spacing } else { (first / u).abs().max(1.0 / u) };
     let (lo, hi) = (first / u - 0.5 * spacing, last / u + 0.5 * spacing);
-    let whole = xs.len() <= MAX_WHOLE_TICKS && xs.iter().all(|v| v.fract() == 0.0 && v.abs() < 1e15);
+    // Whole numbers are ticked one by one only where the axis holds few of them: two bars
+    // at orders 0 and a million are no million ticks (each a grid line and a label).
+    let whole = xs.len() <= MAX_WHOLE_TICKS
+        && xs.iter().all(|v| v.fract() == 0.0 && v.abs() < 1e15)
+        && (hi - lo) * u <= 2.0 * MAX_WHOLE_TICKS as f64;
     let xt = if whole && !x.kind.is_angle() {
         Ticks::whole(lo * u, hi * u)
     } else {
@@ -115,4 +119,28 @@ pub fn bar_chart_svg(title: &str, x: &Axis, panels: &[Panel]) -> Result<String, 
         svg.close();
     }
     Ok(svg.finish())
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::plot::{Kind, Series};
+
+    fn ticks(xs: &[f64]) -> usize {
+        let points = xs.iter().map(|&x| (x, 1.0)).collect();
+        let panel = Panel::new(Axis::length("y", "mm")).with(Series::new("s", Kind::length("mm"), points));
+        let svg = bar_chart_svg("", &Axis::new("order", Kind::Dimensionless), &[panel]).unwrap();
+        svg.matches(r#"class="tick""#).count()
+    }
+
+    #[test]
+    fn whole_abscissae_far_apart_get_a_few_ticks_not_one_each() {
+        // Orders 1 to 24: each ticked (and the value axis' ticks).
+        let orders: Vec<f64> = (1..=24).map(f64::from).collect();
+        let values = ticks(&[1.0]) - 1;
+        assert_eq!(ticks(&orders) - values, 24);
+        // Two bars a million apart: a readable axis, not a tick at every whole number.
+        assert!(ticks(&[0.0, 1e6]) < 40, "{}", ticks(&[0.0, 1e6]));
+        assert!(ticks(&[3.0, 1e12]) < 40);
+    }
 }
