@@ -1,7 +1,7 @@
 //! Hostile inputs to the interactive pages: what the drawings refuse or bound, the pages
 //! refuse or bound too (a page's size follows its frames, not the reach of a window).
 
-use kinloop_viz::draw::{Canvas, Drawing, HtmlConfig, Motion, Pt, html};
+use kinloop_viz::draw::{Canvas, DefaultDrawing, Drawing, HtmlConfig, HtmlError, Motion, Pt, html};
 use std::f64::consts::TAU;
 
 #[allow(dead_code)] // not every test uses every helper
@@ -102,5 +102,20 @@ fn a_charts_x_labels_stand_apart() {
     let half = |l: &str| 0.5 * 0.6 * 11.0 * l.chars().count() as f64;
     for w in labels.windows(2) {
         assert!(w[0].0 + half(&w[0].1) < w[1].0 - half(&w[1].1), "{:?} and {:?} overlap", w[0], w[1]);
+    }
+}
+
+#[test]
+fn a_duration_a_page_cannot_play_is_refused_as_an_animations_is() {
+    // A subnormal duration made the page's script divide the time played into infinity and
+    // fail on every frame; a duration an animated SVG refuses is refused here too.
+    let (m, motion) = motion();
+    let drawing = DefaultDrawing::new(&m).into_drawing();
+    for seconds in [5e-324, 1e-300, 1e-4, 0.0, -1.0, 1e10, f64::INFINITY, f64::NAN] {
+        let page = html(&m, &drawing, &motion, &HtmlConfig::new("x").with_seconds(seconds));
+        assert!(matches!(page, Err(HtmlError::InvalidSetting(_))), "{seconds:e}");
+    }
+    for seconds in [1e-3, 6.0, 1e9] {
+        assert!(html(&m, &drawing, &motion, &HtmlConfig::new("x").with_seconds(seconds)).is_ok(), "{seconds:e}");
     }
 }

@@ -36,8 +36,8 @@ impl Default for Animation {
 
 /// The shortest and longest durations of a pass, in seconds: below a millisecond no frame is
 /// seen; beyond a billion seconds (thirty years) nothing moves.
-const MIN_SECONDS: f64 = 1e-3;
-const MAX_SECONDS: f64 = 1e9;
+pub(crate) const MIN_SECONDS: f64 = 1e-3;
+pub(crate) const MAX_SECONDS: f64 = 1e9;
 
 impl Animation {
     fn check(&self) -> Result<(), DrawError> {

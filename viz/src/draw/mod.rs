@@ -88,6 +88,7 @@ mod view;
 pub use annotate::Annotate;
 pub use candidates::{CandidatesConfig, candidate_page, candidates};
 pub use compose::Animation;
+pub(crate) use compose::{MAX_SECONDS, MIN_SECONDS};
 pub use declared::{DefaultDrawing, Draw};
 pub use error::DrawError;
 pub use grid::{GridMotion, MAX_GRID_CELLS};

@@ -1,7 +1,7 @@
 //! What an interactive page shows: its title, the readouts (and their charts), how it plays.
 
 use super::HtmlError;
-use crate::draw::Scalar;
+use crate::draw::{MAX_SECONDS, MIN_SECONDS, Scalar};
 use crate::plot::Kind;
 use kinloop_runtime::ColumnKey;
 
@@ -83,7 +83,8 @@ pub struct HtmlConfig {
     /// The unit of the mechanism's lengths, written after length readouts (default
     /// `"length unit"`, as in tables).
     pub length_unit: String,
-    /// Duration of one pass of the motion when playing, in seconds (default 6).
+    /// Duration of one pass of the motion when playing, in seconds (default 6), from a
+    /// millisecond to a billion seconds, as an animation's.
     pub seconds: f64,
     /// Play forward then backward (a motion that stops at a limit position, where the real
     /// mechanism turns back), rather than starting again (a full turn). Default `false`.
@@ -175,8 +176,10 @@ impl HtmlConfig {
         if self.max_frames < 2 {
             return bad(format!("a page needs at least 2 frames, not {}", self.max_frames));
         }
-        if !(self.seconds.is_finite() && self.seconds > 0.0) {
-            return bad(format!("duration {} s must be positive", self.seconds));
+        // As an animated SVG's: the page's script divides the time played by the duration,
+        // and a duration of a few subnormal seconds makes that infinite (no pose to show).
+        if !(MIN_SECONDS..=MAX_SECONDS).contains(&self.seconds) {
+            return bad(format!("duration {} s must be from {MIN_SECONDS} s to {MAX_SECONDS:e} s", self.seconds));
         }
         let [w, h] = self.chart_size;
         if !(w.is_finite() && h.is_finite() && (120.0..=4000.0).contains(&w) && (80.0..=4000.0).contains(&h)) {
