@@ -446,3 +446,22 @@ fn frames_far_apart_in_an_angle_are_noted() {
     assert!(stderr.contains("note: the frames are 40.4 degrees of phi apart"), "{stderr}");
     assert!(!run("360", "one_turn.svg").contains("note:"));
 }
+
+/// A write that fails part way (here a file size limit of 10 KiB, its signal ignored so that the
+/// write fails with `EFBIG`) leaves no SVG cut short behind: exit code 74 and no file.
+#[cfg(target_os = "linux")]
+#[test]
+fn a_write_that_fails_part_way_leaves_no_file() {
+    let svg = out("cut_short.svg");
+    let path = svg.to_str().unwrap().to_string();
+    let fb = shipped("four_bar.kl");
+    let script = r#"trap '' XFSZ; ulimit -f 10; exec "$0" "$@""#;
+    let o = std::process::Command::new("sh")
+        .args(["-c", script, env!("CARGO_BIN_EXE_kinloop")])
+        .args(["animate", &fb, "--from", "0", "--to", "360", "--deg", "--params", FOUR_BAR, "--out", &path])
+        .output()
+        .expect("sh runs");
+    assert_eq!(o.status.code(), Some(74), "{}", String::from_utf8_lossy(&o.stderr));
+    assert!(String::from_utf8_lossy(&o.stderr).contains("cannot write"));
+    assert!(!svg.exists(), "a file of {:?} bytes was left", std::fs::metadata(&svg).map(|m| m.len()));
+}
