@@ -27,8 +27,8 @@ fn turn_distance(a: f64, b: f64) -> f64 {
 ///
 /// Two solutions are the same mode when their block determinant signs agree, every angle
 /// agrees modulo whole turns and every other unknown within `1e-7` of its unit (relative to its
-/// value where that is larger): the same modes whatever the unit of length. Each mode's angles are given on the declared guess's turn (within
-/// half a turn of its values). Modes are sorted by their determinant signs, so the order is
+/// value where that is larger): the same modes whatever the unit of length. Each mode's angles
+/// are given on the declared guess's turn (within half a turn of its values). Modes are sorted by their determinant signs, so the order is
 /// stable. Pick one with a readable rule on the named state, e.g.
 /// `modes.into_iter().find(|s| s.out.c.y > 0.0)` ("elbow up").
 ///

@@ -55,7 +55,8 @@ impl Ranked for Candidate {
 /// What a large search holds of a Halton start's candidate (see the module documentation).
 #[derive(Clone, Debug)]
 pub(super) struct Key {
-    start: usize,
+    /// The Halton start's index: solved again, it gives the whole candidate.
+    pub(super) start: usize,
     values: Vec<f64>,
     rms_error: f64,
     /// The first defect (`None`: valid), as the counts of rejections read it.
@@ -169,12 +170,4 @@ pub(super) fn distinct<T: Ranked>(mut all: Vec<T>, bounds: &[(f64, f64)], distin
         }
     }
     out
-}
-
-/// The whole candidate, or `Err(start)`: the Halton start to solve again for it.
-pub(super) fn whole_or_start(h: Held) -> Result<Candidate, usize> {
-    match h {
-        Held::Whole(c) => Ok(*c),
-        Held::Key(k) => Err(k.start),
-    }
 }

@@ -9,7 +9,7 @@ use super::candidate::{Candidate, Origin};
 use super::error::SynthesisError;
 use super::evolution::{DeConfig, Global, IslandRng, best, evolve};
 use super::halton::Halton;
-use super::held::{Held, KEYS_FROM, distinct, whole_or_start};
+use super::held::{Held, KEYS_FROM, distinct};
 use super::local::LocalConfig;
 use super::problem::ProblemOf;
 use super::report::{Rejections, SynthesisReport};
@@ -448,15 +448,17 @@ impl Search {
         let kept = distinct(all, &report.bounds, self.distinct, self.keep);
         report.candidates = kept
             .into_iter()
-            .map(|h| {
-                whole_or_start(h).or_else(|i| {
-                    self.solve(problem, self.start(problem, i), Origin::Halton, i).ok_or_else(|| {
+            .map(|h| match h {
+                Held::Whole(c) => Ok(*c),
+                Held::Key(k) => {
+                    self.solve(problem, self.start(problem, k.start), Origin::Halton, k.start).ok_or_else(|| {
                         SynthesisError::Mismatch(format!(
-                            "start {i}, solved again for the report, gave no design where it gave one before: \
-                             the problem's solves are not deterministic"
+                            "start {}, solved again for the report, gave no design where it gave one before: the \
+                             problem's solves are not deterministic",
+                            k.start
                         ))
                     })
-                })
+                }
             })
             .collect::<Result<_, _>>()?;
         Ok(report)
