@@ -184,12 +184,8 @@ fn written(model: &mut Model, req: &Request, plot: Option<OutFile>) -> Result<()
         return Err(e);
     }
     let Some((file, svg)) = svg else { return Ok(()) };
-    let path = req.plot.unwrap_or(Path::new("")).display();
-    let written = file.into_file().and_then(|mut file| file.write_all(svg.as_bytes()).and_then(|()| file.flush()));
-    written.map_err(|e| {
-        eprintln!("error: cannot write the plot {path}: {e}");
-        Failed(exit::IO_ERR)
-    })
+    let what = format!("the plot {}", req.plot.unwrap_or(Path::new("")).display());
+    file.write(&what, |mut file| file.write_all(svg.as_bytes()).and_then(|()| file.flush()))
 }
 
 /// Sweeps one turn of the cam shaft from `req.start` and finds the cam by inversion of the

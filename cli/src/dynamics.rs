@@ -135,8 +135,7 @@ pub fn run(model: &mut Model, req: &Request) -> Result<(), Failed> {
         }
         return Err(e);
     }
-    let file = crate::output::ready(file, "the flywheel")?;
-    write_flywheel(&flywheel, req, angle, file).map_err(|e| crate::output::failed("the flywheel", e))
+    crate::output::write_into(file, "the flywheel", |file| write_flywheel(&flywheel, req, angle, file))
 }
 
 /// The inverse cycle at the request's speed and the flywheel sized over it.

@@ -20,7 +20,8 @@ pub fn failed(what: &str, e: std::io::Error) -> Failed {
 /// path is not touched until there is something to write: a file that existed keeps its
 /// content if the command fails, and only a file the command made itself is removed again
 /// ([`OutFile::abandon`]). Removing the path given, whatever it was, deleted a user's file (and,
-/// run as root, a device: `--plot /dev/null`) on a typo in another option.
+/// run as root, a device: `--plot /dev/null`) on a typo in another option. Once the writing
+/// has begun, a write that fails removes a regular file whoever made it ([`OutFile::write`]).
 pub struct OutFile {
     file: std::fs::File,
     path: std::path::PathBuf,
@@ -58,6 +59,21 @@ impl OutFile {
             self.file.set_len(0)?;
         }
         Ok(self.file)
+    }
+
+    /// Writes `what` (`"the events"`) into the file with `write`, the file made ready first
+    /// ([`OutFile::into_file`]). A write that fails part way (a full disk, a file size limit)
+    /// removes the file where it is a regular file, rather than leave it cut short: what it
+    /// held was replaced when the writing began, and a table cut short reads as a shorter one.
+    pub fn write(self, what: &str, write: impl FnOnce(std::fs::File) -> std::io::Result<()>) -> Result<(), Failed> {
+        let path = self.path.clone();
+        let regular = self.file.metadata().is_ok_and(|m| m.is_file());
+        self.into_file().and_then(write).map_err(|e| {
+            if regular {
+                let _ = std::fs::remove_file(&path);
+            }
+            failed(what, e)
+        })
     }
 
     /// The command failed before writing: the file removed where the command made it (best
@@ -109,10 +125,17 @@ fn same_file(a: &Path, b: &Path) -> bool {
     }
 }
 
-/// `file` ready to be written (see [`OutFile::into_file`]), or where that fails, the failure
-/// to write `what`.
-pub fn ready(file: Option<OutFile>, what: &str) -> Result<Option<std::fs::File>, Failed> {
-    file.map(OutFile::into_file).transpose().map_err(|e| failed(what, e))
+/// Writes `what` (`"the events"`) with `write`: into `file` where one was asked
+/// ([`OutFile::write`]), else `write` is given `None` (it writes to standard error).
+pub fn write_into(
+    file: Option<OutFile>,
+    what: &str,
+    write: impl FnOnce(Option<std::fs::File>) -> std::io::Result<()>,
+) -> Result<(), Failed> {
+    match file {
+        Some(file) => file.write(what, |file| write(Some(file))),
+        None => write(None).map_err(|e| failed(what, e)),
+    }
 }
 
 /// Writes `text` (`what`: "the report") to standard output and flushes it.

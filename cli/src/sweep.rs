@@ -105,8 +105,7 @@ pub fn run(model: &mut Model, req: &Request) -> Result<(), Failed> {
     let stop = streamed.map_err(|e| output::failed("the table", e))?;
     let events = sweep.events().to_vec();
     drop(sweep);
-    let events_file = output::ready(events_file, "the events")?;
-    write_events(model, &events, req.deg, events_file).map_err(|e| output::failed("the events", e))?;
+    output::write_into(events_file, "the events", |file| write_events(model, &events, req.deg, file))?;
     match stop {
         Some(e) => Err(solve_failed(&name, e, &kinds[..ni], req.deg)),
         None => Ok(()),

@@ -115,8 +115,7 @@ pub fn run(model: &mut Model, req: &Request) -> Result<(), Failed> {
         (0..traced.points.len()).min_by(|&i, &j| gap(&traced.points[i]).total_cmp(&gap(&traced.points[j])))
     };
     events.sort_by_key(|e| nearest(e).unwrap_or(usize::MAX));
-    let events_file = output::ready(events_file, "the events")?;
-    write_events(model, &events, req.deg, events_file).map_err(|e| output::failed("the events", e))?;
+    output::write_into(events_file, "the events", |file| write_events(model, &events, req.deg, file))?;
     let points = traced.points.len();
     if traced.closed {
         eprintln!("{name}: the curve closed on itself after {points} points");

@@ -375,6 +375,55 @@ fn standard_output_that_cannot_be_written_is_exit_74() {
     }
 }
 
+/// A file named by `--events`, `--flywheel` or `--plot` whose write fails part way (here a
+/// file size limit, its signal ignored so that the write fails with `EFBIG`) is removed rather
+/// than left cut short, whether the command made it or it was there before (its content was
+/// replaced when the writing began): exit code 74, the failure named, no file.
+#[cfg(target_os = "linux")]
+#[test]
+fn a_file_written_part_way_is_removed() {
+    let dir = std::env::temp_dir().join(format!("kinloop-cli-cut-short-{}", std::process::id()));
+    std::fs::create_dir_all(&dir).expect("temp dir");
+    let path = |name: &str| dir.join(name).display().to_string();
+    let (events, flywheel, there, plot) =
+        (path("events.csv"), path("flywheel.csv"), path("there.csv"), path("cam.svg"));
+    std::fs::write(&there, "what was there\n").expect("a file to replace");
+    // Blocks of the shell's `ulimit -f`: none for the short files, one for the drawing, so that
+    // it is cut inside its text.
+    let (engine, four_bar, cam) = (shipped("engine.kl"), shipped("four_bar.kl"), shipped("dwell_cam.kl"));
+    let sweep = ["sweep", &four_bar, "--params", "a=1.5,b=3,c=1,d=3.2", "--from", "1.2", "--to", "7.4"];
+    let runs: [(Vec<&str>, &str, &str, u32); 4] = [
+        ([&sweep[..], &["--events", &events]].concat(), &events, "the events", 0),
+        (
+            vec!["dynamics", &engine, "--speed", "150", "--samples", "8", "--flywheel", &flywheel],
+            &flywheel,
+            "the flywheel",
+            0,
+        ),
+        (
+            vec!["dynamics", &engine, "--speed", "150", "--samples", "8", "--flywheel", &there],
+            &there,
+            "the flywheel",
+            0,
+        ),
+        (vec!["cam", &cam, "--point", "follower", "--guide", "0,1", "--plot", &plot], &plot, "the plot", 1),
+    ];
+    for (args, file, what, blocks) in runs {
+        let script = format!(r#"trap '' XFSZ; ulimit -f {blocks}; exec "$0" "$@""#);
+        let o = std::process::Command::new("sh")
+            .args(["-c", &script, env!("CARGO_BIN_EXE_kinloop")])
+            .args(&args)
+            .output()
+            .expect("sh runs");
+        let err = String::from_utf8_lossy(&o.stderr);
+        assert_eq!(o.status.code(), Some(74), "{args:?}: {err}");
+        assert!(err.contains(&format!("error: cannot write {what}")) && !err.contains("panicked"), "{args:?}: {err}");
+        let left = std::fs::metadata(file).map(|m| m.len());
+        assert!(left.is_err(), "{args:?}: a file of {left:?} bytes was left");
+    }
+    let _ = std::fs::remove_dir_all(&dir);
+}
+
 /// A count of one is named in the singular: one input given where a mechanism has two.
 #[test]
 fn one_input_is_named_in_the_singular() {
