@@ -129,6 +129,9 @@ fn settings_and_points_out_of_range() {
         // Fits a vector of the jobs' results (32 bytes an entry), not one of the candidates
         // held from them.
         Search::default().with_starts(0..results_only),
+        // Fits both, not memory (3.2e18 bytes of results): an error before the first, not an
+        // abort in the allocator.
+        Search::default().with_starts(0..10usize.pow(17)),
         // Inverted: it ran nothing, with `Ok`.
         #[allow(clippy::reversed_empty_ranges)]
         Search::default().with_starts(10..2),

@@ -342,13 +342,12 @@ impl Search {
         let total = self.job_count();
         let batch = |zs: &[Vec<f64>]| zs.iter().map(|z| Self::norm(problem, z)).collect();
         let keys = self.holds_keys();
-        let found: Vec<Found> = (0..total)
-            .map(|k| {
-                let f = Self::hold(self.job(problem, self.job_at(k), batch), keys);
-                progress(k + 1, total);
-                f
-            })
-            .collect();
+        let mut found = self.results_room(total)?;
+        found.extend((0..total).map(|k| {
+            let f = Self::hold(self.job(problem, self.job_at(k), batch), keys);
+            progress(k + 1, total);
+            f
+        }));
         self.report(problem, found)
     }
 
@@ -386,15 +385,30 @@ impl Search {
         // `collect` keeps the order of the indices, whatever order they finish in.
         let batch = |zs: &[Vec<f64>]| zs.par_iter().map(|z| Self::norm(problem, z)).collect();
         let keys = self.holds_keys();
-        let found: Vec<Found> = (0..total)
-            .into_par_iter()
-            .map(|k| {
-                let f = Self::hold(self.job(problem, self.job_at(k), batch), keys);
-                progress(done.fetch_add(1, Ordering::Relaxed) + 1, total);
-                f
-            })
-            .collect();
+        let mut found = self.results_room(total)?;
+        found.par_extend((0..total).into_par_iter().map(|k| {
+            let f = Self::hold(self.job(problem, self.job_at(k), batch), keys);
+            progress(done.fetch_add(1, Ordering::Relaxed) + 1, total);
+            f
+        }));
         self.report(problem, found)
+    }
+
+    /// An empty vector with room for the results of `total` jobs, taken before the first runs:
+    /// a search of more starts than memory can hold the results of is refused with an error,
+    /// where the allocator would abort the program. (The size check of [`Search::validate`]
+    /// bounds what a vector can address; this, what the system gives.)
+    fn results_room(&self, total: usize) -> Result<Vec<Found>, SynthesisError> {
+        let mut found = Vec::new();
+        found.try_reserve_exact(total).map_err(|_| {
+            SynthesisError::InvalidConfig(format!(
+                "starts {:?}: {} starts, more than memory holds the results of ({} bytes a start at least)",
+                self.starts,
+                self.starts.len(),
+                std::mem::size_of::<Found>()
+            ))
+        })?;
+        Ok(found)
     }
 
     /// Whether this search holds its Halton starts' candidates as keys until its report (see
