@@ -30,6 +30,29 @@ fn verify(problem: &Problem<CouplerFourBar, 2, 1, 3, 6>, z: &[f64]) -> kinloop::
     c
 }
 
+/// A refinement reads only the local solve's settings: it is not refused for a start range,
+/// `keep` or `distinct` it never uses (it was, as a search with them is), and gives the same
+/// candidate; a local setting out of range still is refused.
+#[test]
+fn a_refinement_reads_only_the_local_settings() {
+    use kinloop::synthesis::{LocalConfig, SynthesisError};
+    let problem = exact(FOUR_BAR, &[0.0, 1.0, 2.0, 3.0], &[1.0; 4], true);
+    let z = [1.1 * FOUR_BAR[4]];
+    let plain = Search::default().refine(&problem, &z).unwrap();
+    #[allow(clippy::reversed_empty_ranges)]
+    let unused = [
+        Search::default().with_starts(10..2),
+        Search::default().with_keep(0),
+        Search::default().with_distinct(f64::NAN),
+    ];
+    for search in unused {
+        let c = search.refine(&problem, &z).unwrap_or_else(|e| panic!("{search:?}: {e}"));
+        assert_eq!((&c.values, &c.errors), (&plain.values, &plain.errors));
+    }
+    let e = Search::default().with_local(LocalConfig::default().with_tol(-1.0)).refine(&problem, &z).unwrap_err();
+    assert!(matches!(&e, SynthesisError::InvalidConfig(m) if m.starts_with("local.tol")), "{e:?}");
+}
+
 #[test]
 fn a_valid_design_has_no_defect() {
     let problem = exact(FOUR_BAR, &[0.0, 1.0, 2.0, 3.0], &[1.0; 4], true);

@@ -125,10 +125,19 @@ impl Search {
         self
     }
 
-    fn validate(&self) -> Result<(), SynthesisError> {
-        if let Some((field, value, range)) = self.local.invalid_field() {
-            return Err(SynthesisError::InvalidConfig(format!("local.{field} is {value}: it must be {range}")));
+    /// The local solve's settings, the only ones [`Search::refine`] uses: a refinement is not
+    /// refused for a start range or `keep` it never reads.
+    fn validate_local(&self) -> Result<(), SynthesisError> {
+        match self.local.invalid_field() {
+            Some((field, value, range)) => {
+                Err(SynthesisError::InvalidConfig(format!("local.{field} is {value}: it must be {range}")))
+            }
+            None => Ok(()),
         }
+    }
+
+    fn validate(&self) -> Result<(), SynthesisError> {
+        self.validate_local()?;
         if !(self.distinct.is_finite() && self.distinct >= 0.0) {
             return Err(SynthesisError::InvalidConfig(format!(
                 "distinct is {}: it must be finite and not negative",
@@ -481,12 +490,13 @@ impl Search {
     /// Runs the local solve from `z0` (the search's unknowns, see [`ProblemOf`]; clamped into
     /// their bounds) and verifies its result: e.g. from a classical closed-form design, or to
     /// polish a candidate with other settings. An error where the design cannot be assembled
-    /// at every target at `z0`.
+    /// at every target at `z0`. Of the search's settings it reads (and checks) only
+    /// [`Search::local`].
     pub fn refine<K>(&self, problem: &ProblemOf<K>, z0: &[f64]) -> Result<Candidate, SynthesisError>
     where
         K: SensKernel,
     {
-        self.validate()?;
+        self.validate_local()?;
         problem.check_point(z0)?;
         let (z, e, report) = problem.local(Self::clamped(problem, z0), &self.local)?;
         Ok(problem.verify(Origin::Refine, usize::MAX, z, e, report)?)
