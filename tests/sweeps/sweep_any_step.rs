@@ -352,7 +352,11 @@ impl SixBarCase {
     fn first_limit(&self, span: f64) -> Option<f64> {
         let k = &self.four;
         let four_bar = k.first_limit().filter(|t| *t < span);
-        let end = four_bar.unwrap_or(span);
+        // Searched short of the four-bar's limit by a hair: at the limit itself, as rounded, the
+        // four-bar may not close (`reach` is NaN), and a crossing in the last cell of the grid,
+        // where the rocker turns fastest, was missed (the sweep found the dyad's limit, the
+        // construction only the four-bar's, 5.6e-4 rad after it).
+        let end = four_bar.map_or(span, |t| t - 1e-12 * (1.0 + t));
         let at = |t: f64| k.phi0 + k.dir * t;
         [self.m.e + self.m.f, (self.m.e - self.m.f).abs()]
             .into_iter()
