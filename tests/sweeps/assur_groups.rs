@@ -4,10 +4,12 @@
 //! meets it, and a traced curve closed only where it comes back through its start.
 //!
 //! The continuation is independent of the library: Newton on the loop equations written out
-//! here, with a central-difference Jacobian, from a linear prediction in steps of at most a
-//! four-thousandth of a turn, each step halved until it moves the unknowns by little (no step
-//! can leave the branch it follows), down to `1e-11` rad of the crank, where it has met a limit
-//! position (the input cannot go on along the branch).
+//! here, with a central-difference Jacobian, from a prediction along the tangent in steps of at
+//! most a four-thousandth of a turn, each step halved until it moves the unknowns by little and
+//! its prediction's error is at most a tenth of that (no step can leave the branch it follows,
+//! nor pass an S of two limit positions a few millionths of a radian apart), down to `1e-11`
+//! rad of the crank, where it has met a limit position (the input cannot go on along the
+//! branch).
 
 use kinloop::paths::trace::trace_curve;
 use kinloop::{EventKind, Kin, Mechanism, Sweep, SweepStop, TraceConfig};
@@ -105,6 +107,14 @@ fn jacobian(g: &dyn Group, phi: f64, q: [f64; 4]) -> [[f64; 4]; 4] {
     j
 }
 
+/// The branch's slope `dq/dphi` at `(phi, q)`, `-J^-1 dF/dphi`, both by central differences
+/// (`None` where the Jacobian is singular).
+fn tangent(g: &dyn Group, phi: f64, q: [f64; 4]) -> Option<[f64; 4]> {
+    let (up, down) = (g.gaps(phi + 1e-7, q), g.gaps(phi - 1e-7, q));
+    let d_phi: [f64; 4] = std::array::from_fn(|r| (up[r] - down[r]) / 2e-7);
+    eliminate(jacobian(g, phi, q), d_phi).0.map(|x| x.map(|v| -v))
+}
+
 /// `a` eliminated with partial pivoting: the solution of `a x = b` (`None` if a pivot is 0) and
 /// the determinant.
 fn eliminate(mut a: [[f64; 4]; 4], mut b: [f64; 4]) -> (Option<[f64; 4]>, f64) {
@@ -167,18 +177,31 @@ struct Followed {
 fn follow(g: &dyn Group, phi0: f64, q0: [f64; 4], dir: f64, targets: &[f64]) -> Followed {
     let det = |phi: f64, q: [f64; 4]| eliminate(jacobian(g, phi, q), [0.0; 4]).1;
     let (sign0, longest) = (det(phi0, q0).signum(), TAU / 4000.0);
-    let (mut phi, mut q, mut slope, mut h) = (phi0, q0, [0.0; 4], longest);
+    let (mut phi, mut q, mut h) = (phi0, q0, longest);
+    // Zero where the Jacobian is singular: no step is then near its prediction.
+    let mut slope = tangent(g, phi, q).unwrap_or([0.0; 4]);
     let mut flipped = None;
     let mut out = Followed { at_targets: Vec::new(), limit: None, crossing: false };
     for &target in targets {
         while (target - phi) * dir > 0.0 {
             let next = if (target - phi).abs() <= h { target } else { phi + dir * h };
             let predicted: [f64; 4] = std::array::from_fn(|i| q[i] + slope[i] * (next - phi));
-            let near = |r: &[f64; 4]| (0..4).all(|i| (r[i] - predicted[i]).abs() < 0.02 && (r[i] - q[i]).abs() < 0.1);
+            // Near the tangent's prediction, by at most a tenth of the step's change: a curve
+            // can turn back and forth within a few millionths of a radian of the crank (an S of
+            // two limit positions), and a step of a four-thousandth of a turn, corrected a
+            // little off its prediction, went from one end of the S to the other, on the same
+            // sign of the determinant, past the first limit position. The tangent's error is of
+            // the order of the step: near a limit position the steps shrink with the distance
+            // to it, where a secant's error (the previous step's) would not.
+            let near = |r: &[f64; 4]| {
+                let off = (0..4).map(|i| (r[i] - predicted[i]).abs()).fold(0.0, f64::max);
+                let moved = (0..4).map(|i| (r[i] - q[i]).abs()).fold(0.0, f64::max);
+                off < 0.02 && moved < 0.1 && off <= 0.1 * moved + 1e-12
+            };
             match newton(g, next, predicted).filter(near) {
                 Some(r) => {
-                    slope = std::array::from_fn(|i| (r[i] - q[i]) / (next - phi));
                     (phi, q) = (next, r);
+                    slope = tangent(g, phi, q).unwrap_or([0.0; 4]);
                     if flipped.is_none() && det(phi, q).signum() != sign0 {
                         flipped = Some(phi);
                     }
