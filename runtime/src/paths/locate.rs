@@ -345,7 +345,16 @@ pub(crate) fn trace<K: Kernel>(
                 1e-15 * (1.0 + ds),
             )
             .unwrap_or(0.5 * (lo + hi));
-            let at = arc_step(m, path, metric, &base, s, cfg).unwrap_or_else(|| b.clone());
+            // Where the corrector fails at the root itself, the nearer of the bracket's ends it
+            // solved (by the determinant), not the step's far end: that stood a step beyond the
+            // crossing (a near-kite's located 6.3e-4 of the input off, from behind).
+            let at = arc_step(m, path, metric, &base, s, cfg).unwrap_or_else(|| {
+                [lo, hi]
+                    .into_iter()
+                    .filter_map(|s| arc_step(m, path, metric, &base, s, cfg))
+                    .min_by(|p, r| det_at(p).abs().total_cmp(&det_at(r).abs()))
+                    .unwrap_or_else(|| b.clone())
+            });
             // Located again from the well-conditioned positions on both sides: the root search
             // leaves a point as loose as the tolerance lets a nearly singular position be (a
             // millionth of a radian), where a crossing's augmented Jacobian keeps its rank.
