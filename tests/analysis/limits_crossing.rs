@@ -13,7 +13,7 @@ use kinloop::events::EventKind;
 use kinloop::metrics::Limits;
 use kinloop::{AtSingular, Mechanism, SweepConfig};
 use kinloop_fixtures::FourBar;
-use std::f64::consts::{PI, TAU};
+use std::f64::consts::{FRAC_PI_2, PI, TAU};
 
 /// The sweep's range: short of a full turn (as the report that found the failure swept it), the
 /// crossing inside it; not `TAU`.
@@ -247,6 +247,32 @@ fn sampled_extremes_and_range_across_a_change_point() {
             assert!((range.min.value - (m.d - m.c)).abs() < tol::SOLVE * scale, "{what}: {range:?}");
             assert!((range.min.x - PI).abs() < tol::LOCATED, "{what}: {range:?}");
             assert!((range.max.value - reference[0].2).abs() < tol::SOLVE * scale, "{what}: {range:?}");
+        }
+    }
+}
+
+/// The transmission angle across the change point, against the law of cosines: coupler and
+/// rocker lie stretched on one line at the crossing, a dead point (angle 0) there, and the
+/// angle is largest, pi/2, where `cos mu = (b^2 + c^2 - a^2 - d^2 + 2 a d cos phi) / (2 b c)`
+/// vanishes, `cos phi = 3/7`. The search located the dead point by stepping into the crossing's
+/// singular band, and failed the whole analysis at every sample count and scale.
+#[test]
+fn transmission_angle_across_a_change_point() {
+    let cfg = SweepConfig::default().with_at_singular(AtSingular::Continue);
+    let peak = (3.0f64 / 7.0).acos();
+    for scale in [1.0, 1e-3, 1e3] {
+        let m = four_bar(scale);
+        for samples in [10, 73, 360] {
+            let what = format!("scale {scale}, {samples} samples");
+            let run = Sampled::sweep_with(&m, 0.0, TO, samples, m.guess_flat(&[0.0]), cfg).unwrap();
+            let mu = run.transmission(FourBar::COL.beta, FourBar::COL.gamma).unwrap_or_else(|e| panic!("{what}: {e}"));
+            assert!(mu.dead_points.len() == 1 && (mu.dead_points[0] - PI).abs() < tol::LOCATED, "{what}: {mu:?}");
+            assert!(mu.min.angle < tol::SOLVE && (mu.min.x - PI).abs() < tol::LOCATED, "{what}: {mu:?}");
+            assert!((mu.max.angle - FRAC_PI_2).abs() < tol::SOLVE, "{what}: {mu:?}");
+            assert!(
+                (mu.max.x - peak).abs() < tol::LOCATED || (mu.max.x - (TAU - peak)).abs() < tol::LOCATED,
+                "{what}: {mu:?}"
+            );
         }
     }
 }

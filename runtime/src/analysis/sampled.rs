@@ -656,6 +656,16 @@ impl<K: Kernel> SampledOf<K> {
         c: ColumnIndex,
         grid: &'a Search<'a, K>,
     ) -> (Vec<Jet>, Vec<extremes::Corner>, impl FnMut(f64) -> Result<Jet, Error> + 'a) {
+        let (jets, corners) = self.grid_jets(c, grid);
+        let eval = move |s: f64| {
+            self.at_near(s, &grid.s, |j| &grid.states[j]).map(|st| jet_along(c, &st, s, self.line.dir.as_ref()))
+        };
+        (jets, corners, eval)
+    }
+
+    /// A column's jets at the points of `grid` and its corners at the crossings the grid is
+    /// parted at (see [`SampledOf::search_jets`]).
+    fn grid_jets(&self, c: ColumnIndex, grid: &Search<'_, K>) -> (Vec<Jet>, Vec<extremes::Corner>) {
         let dir = self.line.dir.as_ref();
         let jets: Vec<Jet> = grid.s.iter().zip(&grid.states).map(|(&s, st)| jet_along(c, &**st, s, dir)).collect();
         let corners = grid
@@ -677,10 +687,7 @@ impl<K: Kernel> SampledOf<K> {
                 extremes::Corner { after: g.at, at }
             })
             .collect();
-        let eval = move |s: f64| {
-            self.at_near(s, &grid.s, |j| &grid.states[j]).map(|st| jet_along(c, &st, s, self.line.dir.as_ref()))
-        };
-        (jets, corners, eval)
+        (jets, corners)
     }
 
     /// The local extremes of a column (interior roots of its derivative along the path), in
@@ -706,17 +713,27 @@ impl<K: Kernel> SampledOf<K> {
         f(&jets, &corners, &mut eval)
     }
 
-    /// The states at the points a search between the samples looks at ([`SampledOf::searched`]),
-    /// with their path parameters, handed to `f` with the state anywhere in the range: for an
-    /// analysis of several columns at once (the transmission angle's two).
-    pub(crate) fn searched_states<R>(
+    /// Two columns as a search between the samples sees them ([`SampledOf::searched`]), handed
+    /// to `f`: each one's jets at the search's points and its corners at the crossings among
+    /// them, and both jets anywhere in the range (from one state): for an analysis of two
+    /// columns at once (the transmission angle's coupler and follower).
+    pub(crate) fn searched_pair<R>(
         &self,
-        f: impl FnOnce(&[f64], &[&KinOf<K>], &mut dyn FnMut(f64) -> Result<KinOf<K>, Error>) -> Result<R, Error>,
+        a: ColumnIndex,
+        b: ColumnIndex,
+        f: impl FnOnce(
+            [(&[Jet], &[extremes::Corner]); 2],
+            &mut dyn FnMut(f64) -> Result<(Jet, Jet), Error>,
+        ) -> Result<R, Error>,
     ) -> Result<R, Error> {
         let grid = self.search()?;
-        let states: Vec<&KinOf<K>> = grid.states.iter().map(|st| &**st).collect();
-        let mut at = |s: f64| self.at_near(s, &grid.s, |j| &grid.states[j]);
-        f(&grid.s, &states, &mut at)
+        let ((ja, ca), (jb, cb)) = (self.grid_jets(a, &grid), self.grid_jets(b, &grid));
+        let dir = self.line.dir.as_ref();
+        let mut at = |s: f64| {
+            self.at_near(s, &grid.s, |j| &grid.states[j])
+                .map(|st| (jet_along(a, &st, s, dir), jet_along(b, &st, s, dir)))
+        };
+        f([(&ja, &ca), (&jb, &cb)], &mut at)
     }
 
     /// The global minimum and maximum of a column over the range (interior extremes, or samples: the ends among them),

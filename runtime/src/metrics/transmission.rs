@@ -3,10 +3,9 @@
 //! designers keep its minimum above about 40 degrees.
 
 use crate::Kernel;
-use crate::analysis::column::jet_along;
-use crate::analysis::{ColumnOf, Jet, SampledOf, bracketed_root, extremes};
+use crate::analysis::extremes::{Corner, extremes_across};
+use crate::analysis::{ColumnOf, Jet, SampledOf, bracketed_root};
 use crate::error::Error;
-use crate::mechanism::kernel::KinOf;
 use crate::paths::sweep::MAX_TURNS;
 use std::f64::consts::{FRAC_PI_2, PI};
 
@@ -70,15 +69,35 @@ fn difference(c: &Jet, f: &Jet) -> Jet {
 pub fn transmission_range(
     coupler: &[Jet],
     follower: &[Jet],
+    eval: impl FnMut(f64) -> Result<(Jet, Jet), Error>,
+) -> Result<TransmissionRange, Error> {
+    transmission_range_across(coupler, follower, [&[], &[]], eval)
+}
+
+/// [`transmission_range`] with the coupler's and the follower's `corners` (the singular
+/// crossings between samples, see `extremes_across`, at the same places for both): an extreme
+/// of the relative angle across a corner is at the corner, as is a multiple of `pi/2` it crosses
+/// there (at a change point coupler and follower may lie flat, a dead point, at the crossing
+/// itself), located without evaluating inside it, where the mechanism cannot be solved.
+fn transmission_range_across(
+    coupler: &[Jet],
+    follower: &[Jet],
+    corners: [&[Corner]; 2],
     mut eval: impl FnMut(f64) -> Result<(Jet, Jet), Error>,
 ) -> Result<TransmissionRange, Error> {
     if coupler.len() != follower.len() || coupler.iter().zip(follower).any(|(c, f)| c.x != f.x) {
         return Err(Error::InvalidArgument("coupler and follower must be sampled at the same inputs".into()));
     }
     let d: Vec<Jet> = coupler.iter().zip(follower).map(|(c, f)| difference(c, f)).collect();
+    let corners: Vec<Corner> = corners[0]
+        .iter()
+        .zip(corners[1])
+        .map(|(c, f)| Corner { after: c.after, at: difference(&c.at, &f.at) })
+        .collect();
     let mut eval_d = |x: f64| eval(x).map(|(c, f)| difference(&c, &f));
     let mut candidates: Vec<Jet> = d.clone();
-    candidates.extend(extremes(&d, &mut eval_d)?.into_iter().map(|e| e.at));
+    candidates.extend(extremes_across(&d, &corners, &mut eval_d)?.into_iter().map(|e| e.at));
+    candidates.extend(corners.iter().map(|c| c.at));
     let mut dead_points = Vec::new();
     // A sample exactly on a multiple of pi/2 (a dead point only when the multiple is even).
     for j in &d {
@@ -88,13 +107,17 @@ pub fn transmission_range(
         }
     }
     check_turns(&d)?;
-    for w in d.windows(2) {
+    for (i, w) in d.windows(2).enumerate() {
         let (lo, hi) = (w[0].value.min(w[1].value), w[0].value.max(w[1].value));
+        let corner = corners.iter().find(|c| c.after == i);
         // Multiples of pi/2 strictly inside the interval's values.
         let mut k = (lo / FRAC_PI_2).floor() + 1.0;
         while k * FRAC_PI_2 < hi {
             let level = k * FRAC_PI_2;
-            let root = bracketed_root(w[0], w[1], |j| (j.value - level, j.d1), &mut eval_d)?;
+            let root = match corner {
+                Some(c) => c.at,
+                None => bracketed_root(w[0], w[1], |j| (j.value - level, j.d1), &mut eval_d)?,
+            };
             if k.rem_euclid(2.0) == 0.0 {
                 dead_points.push(root.x);
             }
@@ -149,14 +172,12 @@ impl<K: Kernel> SampledOf<K> {
         follower: impl ColumnOf<K>,
     ) -> Result<TransmissionRange, Error> {
         let (coupler, follower) = (coupler.resolve(self.kernel())?, follower.resolve(self.kernel())?);
-        let dir = self.direction();
-        let jets = |c, k: &KinOf<K>, x| jet_along(c, k, x, dir.as_ref());
         // Between the samples as `extremes` looks: the samples alone missed a maximum between
-        // two of them (a turn in four samples gave 1.551 for pi / 2).
-        self.searched_states(|s, states, at| {
-            let cj: Vec<Jet> = s.iter().zip(states).map(|(&x, k)| jets(coupler, k, x)).collect();
-            let fj: Vec<Jet> = s.iter().zip(states).map(|(&x, k)| jets(follower, k, x)).collect();
-            transmission_range(&cj, &fj, |x| at(x).map(|k| (jets(coupler, &k, x), jets(follower, &k, x))))
+        // two of them (a turn in four samples gave 1.551 for pi / 2); across the singular
+        // crossings the sweep passed as `extremes` does too (the search stepped into a change
+        // point's singular band and failed).
+        self.searched_pair(coupler, follower, |[(cj, cc), (fj, fc)], at| {
+            transmission_range_across(cj, fj, [cc, fc], at)
         })
     }
 }
