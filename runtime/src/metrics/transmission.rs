@@ -13,7 +13,8 @@ use std::f64::consts::{FRAC_PI_2, PI};
 /// the line of the follower (at angle `follower`), both in radians from any common reference.
 ///
 /// Lines, not directions: the transmission angle does not change when a link is measured from
-/// its other end (an angle plus `pi`).
+/// its other end (an angle plus `pi`). NaN where an angle, or their difference, is not finite:
+/// no line to measure from.
 ///
 /// ```
 /// use kinloop_runtime::metrics::transmission_angle;
@@ -24,6 +25,10 @@ use std::f64::consts::{FRAC_PI_2, PI};
 /// ```
 pub fn transmission_angle(coupler: f64, follower: f64) -> f64 {
     let d = (follower - coupler).rem_euclid(PI);
+    // `max` takes the number beside a NaN: an angle not finite read as 0, a dead point.
+    if d.is_nan() {
+        return f64::NAN;
+    }
     d.min(PI - d).max(0.0)
 }
 
@@ -266,6 +271,19 @@ mod tests {
             let r = transmission_range(&[zero(0.0), zero(1.0)], &[f(0.0), f(1.0)], |x| Ok((zero(x), f(x))));
             assert!(matches!(&r, Err(Error::InvalidArgument(m)) if m.contains("relative angle")), "{r:?}");
         }
+    }
+
+    /// An angle that is not finite has no line: the transmission angle is NaN, not 0 (a dead
+    /// point, the worst a design can have), which it read as.
+    #[test]
+    fn an_angle_not_finite_has_no_transmission_angle() {
+        for v in [f64::NAN, f64::INFINITY, f64::NEG_INFINITY] {
+            assert!(transmission_angle(v, 0.3).is_nan(), "{v}");
+            assert!(transmission_angle(0.3, v).is_nan(), "{v}");
+        }
+        // Finite angles whose difference overflows: no line either.
+        assert!(transmission_angle(-f64::MAX, f64::MAX).is_nan());
+        assert_eq!(transmission_angle(-0.0, 0.0), 0.0);
     }
 
     #[test]
