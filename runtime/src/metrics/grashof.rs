@@ -141,7 +141,11 @@ pub fn grashof(links: FourBarLinks) -> Result<Grashof, Error> {
     let input_turns = le((b - c).abs(), (d - a).abs()) && le(d + a, b + c);
     let output_turns = le((a - b).abs(), (d - c).abs()) && le(d + c, a + b);
     let grashof_or_equal = excess <= tol;
-    let coupler_turns = grashof_or_equal && (shortest == Link::Coupler || shortest == Link::Ground);
+    // The coupler turns relative to the ground when either is a shortest link: on a tie (only at
+    // a change point) not only the first of them, which `shortest` names (the kite of input and
+    // coupler 1, ground and output 3, whose shortest is the input, folds with its coupler
+    // turning about the ground pivot).
+    let coupler_turns = grashof_or_equal && (b <= short + tol || d <= short + tol);
     let class = if excess.abs() <= tol {
         GrashofClass::ChangePoint
     } else if excess > 0.0 {
@@ -161,7 +165,7 @@ pub fn grashof(links: FourBarLinks) -> Result<Grashof, Error> {
 mod tests {
     use super::*;
     use crate::test_rng::Rng;
-    use std::f64::consts::TAU;
+    use std::f64::consts::{PI, TAU};
 
     /// Brute force, independent of the Grashof inequalities: the input turns fully when the
     /// loop closes at every input angle of a fine grid (the dyad coupler-output spans the
@@ -269,6 +273,45 @@ mod tests {
             let err = grashof(links(0.6 * (1.0 + 1e-9))).unwrap_err();
             assert!(err.to_string().contains("cannot close"), "{scale:e}: {err}");
         }
+    }
+
+    /// A kite whose input and coupler are both the shortest (1, ground and output 3): a change
+    /// point whose coupler turns fully about the ground, folded onto the input's pivot (turning
+    /// with the input, half a turn from it) or opened (its mirror image in the line from the
+    /// input's tip to the output's pivot, turning the other way). The shortest is named the
+    /// input (the first on a tie), and the coupler was said not to turn.
+    #[test]
+    fn a_coupler_tied_for_the_shortest_link_turns() {
+        for scale in [1e-6, 1.0, 1e3] {
+            let g = grashof(FourBarLinks { ground: 3.0 * scale, input: scale, coupler: scale, output: 3.0 * scale })
+                .unwrap();
+            assert_eq!((g.class, g.shortest), (GrashofClass::ChangePoint, Link::Input), "{g:?}");
+            assert!(g.input_turns && g.coupler_turns && !g.output_turns, "{g:?}");
+        }
+        // The coupler's angle on the opened kite, by construction: C the mirror image of the
+        // input's pivot A = (0, 0) in the line from B (the input's tip) to D = (3, 0). Over one
+        // turn of the input it turns once the other way.
+        let (mut turned, mut last) = (0.0, None::<f64>);
+        for i in 0..=3600 {
+            let phi = 1e-3 + TAU * f64::from(i) / 3600.0;
+            let (bx, by) = (phi.cos(), phi.sin());
+            let (ux, uy) = ((3.0 - bx) / (3.0 - bx).hypot(by), -by / (3.0 - bx).hypot(by));
+            // A - B mirrored in the line through B along u.
+            let (vx, vy) = (-bx, -by);
+            let along = vx * ux + vy * uy;
+            let beta = (2.0 * along * uy - vy).atan2(2.0 * along * ux - vx);
+            if let Some(prev) = last {
+                turned += (beta - prev + PI).rem_euclid(TAU) - PI;
+            }
+            last = Some(beta);
+        }
+        assert!((turned + TAU).abs() < 1e-9, "{turned}");
+        // Tied with the ground or the output, the coupler turned already (the ground or the
+        // coupler named the shortest); tied with neither, a parallelogram's does not.
+        let kite = grashof(FourBarLinks { ground: 3.0, input: 3.0, coupler: 1.0, output: 1.0 }).unwrap();
+        assert!(kite.coupler_turns, "{kite:?}");
+        let parallelogram = grashof(FourBarLinks { ground: 3.0, input: 1.0, coupler: 3.0, output: 1.0 }).unwrap();
+        assert!(!parallelogram.coupler_turns, "{parallelogram:?}");
     }
 
     #[test]
