@@ -35,6 +35,11 @@ pub struct Unbalance {
 /// repeats the first; `n > 2 removed` samples per period); `eval` computes the jet anywhere in
 /// the period.
 ///
+/// Errors (`InvalidArgument`): samples not equally spaced, or whose last value does not repeat
+/// the first (to `1e-9` of the largest magnitude, as [`Sampled::unbalance`](crate::analysis::Sampled::unbalance)
+/// tests a column: not one period); too many harmonics `removed` for the samples (see
+/// [`fourier`]).
+///
 /// ```
 /// use kinloop_runtime::analysis::{Jet, unbalance::unbalance};
 /// use std::f64::consts::TAU;
@@ -64,6 +69,15 @@ pub fn unbalance(
         samples.iter().enumerate().all(|(j, s)| (s.x - (x0 + period * j as f64 / n as f64)).abs() <= 1e-9 * period);
     if !spacing_ok {
         return Err(Error::InvalidArgument("residual needs equally spaced samples over one period".into()));
+    }
+    // Over part of a period (or more) the harmonics are of another quantity, which repeats the
+    // samples of the range: the residual of half a turn of a cosine was 1.125, as `Ok`.
+    let scale = samples.iter().fold(0.0f64, |m, s| m.max(s.value.abs()));
+    if (samples[n].value - samples[0].value).abs() > 1e-9 * scale {
+        return Err(Error::InvalidArgument(format!(
+            "residual needs samples over one period: the quantity is {} at the start and {} at the end",
+            samples[0].value, samples[n].value
+        )));
     }
     let values: Vec<f64> = samples[..n].iter().map(|s| s.value).collect();
     let f = fourier(&values, x0, period, removed)?;
@@ -135,6 +149,10 @@ mod tests {
         assert!((unbalance(&s, f, 1).unwrap().max_abs - 0.1).abs() < 2e-3);
         assert!((unbalance(&s, f, 2).unwrap().max_abs - 0.001).abs() < 1e-15);
         assert!(unbalance(&s, f, 3).unwrap().max_abs < 1e-14);
+        // Samples over part of a period are refused: half a turn gave a residual of 1.15, as `Ok`.
+        let half: Vec<Jet> = (0..=20).map(|j| f(TAU * j as f64 / 40.0).unwrap()).collect();
+        let r = unbalance(&half, f, 1);
+        assert!(matches!(&r, Err(Error::InvalidArgument(m)) if m.contains("one period")), "{r:?}");
         // Unequal spacing is refused.
         let mut bad = s.clone();
         bad[3].x += 0.01;
