@@ -98,8 +98,12 @@ pub fn fourier(values: &[f64], x0: f64, period: f64, harmonics: usize) -> Result
             n.div_ceil(2)
         )));
     }
-    if !(period.is_finite() && period > 0.0 && x0.is_finite()) {
+    if !(period.is_finite() && period > 0.0) {
         return Err(Error::InvalidArgument(format!("the period must be positive and finite, got {period}")));
+    }
+    // (A start not finite was refused as a period not finite, naming the good period.)
+    if !x0.is_finite() {
+        return Err(Error::InvalidArgument(format!("the start of the period must be finite, got {x0}")));
     }
     if let Some(j) = values.iter().position(|v| !v.is_finite()) {
         return Err(Error::InvalidArgument(format!("sample {j} is not finite")));
@@ -216,6 +220,11 @@ mod tests {
         assert!(fourier(&[1.0; 8], 0.0, 1.0, 3).is_ok());
         assert!(fourier(&[1.0; 8], 0.0, 0.0, 1).is_err());
         assert!(fourier(&[1.0, f64::NAN, 1.0, 1.0, 1.0], 0.0, 1.0, 1).is_err());
+        // A start not finite is named as such, not as the (good) period.
+        for x0 in [f64::NAN, f64::INFINITY] {
+            let r = fourier(&[1.0; 8], x0, 1.0, 1);
+            assert!(matches!(&r, Err(Error::InvalidArgument(m)) if m.contains("start of the period")), "{r:?}");
+        }
     }
 
     /// A count of harmonics whose double overflows is an error, not an overflow panic (a debug
