@@ -118,6 +118,18 @@ pub(crate) fn dwells_across(
         let after = if i + 2 < ext.len() { ext[i + 2].at } else { last };
         let Some(start) = crossing(samples, before, e1.at, e2.value(), &mut eval)? else { continue };
         let Some(end) = crossing(samples, e2.at, after, e1.value(), &mut eval)? else { continue };
+        // The band is not visited before the output enters it, nor after it leaves: a
+        // neighbouring reversal whose swing reaches into it (bands overlapping, as they do where
+        // the swing exceeds the advance per cycle) re-enters it, and no dwell is reported (the
+        // stretches beside the extremes alone were looked at: overlapping dwells were reported).
+        let s = travel.signum();
+        let earlier = ext[..i].iter().map(LocalExtreme::value).chain([first.value]);
+        let later = ext[i + 2..].iter().map(LocalExtreme::value).chain([last.value]);
+        if earlier.into_iter().any(|v| s * (v - e2.value()) >= 0.0)
+            || later.into_iter().any(|v| s * (v - e1.value()) <= 0.0)
+        {
+            continue;
+        }
         out.push(Dwell { start, first: e1, second: e2, end });
     }
     Ok(out)
@@ -151,7 +163,7 @@ fn crossing(
 #[cfg(test)]
 mod tests {
     use super::*;
-    use std::f64::consts::PI;
+    use std::f64::consts::{PI, TAU};
 
     fn grid(f: impl Fn(f64) -> Result<Jet, Error>, a: f64, b: f64, n: usize) -> Vec<Jet> {
         (0..=n).map(|i| f(a + (b - a) * i as f64 / n as f64).unwrap()).collect()
@@ -212,6 +224,33 @@ mod tests {
         }
     }
 
+    /// `v = x + a sin 3x`: a reversal every third of a turn, from the maximum where
+    /// `3x = acos(-1 / (3a))` to the minimum where `3x = 2 pi - acos(-1 / (3a))`. Where its swing
+    /// exceeds the advance per reversal, `2 pi / 3`, each band overlaps its neighbours': the
+    /// output re-enters it from them, and by the definition no dwell is reported. At `a = 2`
+    /// four were, each running into the next (the first from 2.03 to 4.25, the second from
+    /// 4.12); at `a = 1` the bands are apart and every whole reversal is a dwell.
+    #[test]
+    fn bands_re_entered_from_a_neighbouring_reversal_are_no_dwells() {
+        for (a, dwells_expected) in [(1.0f64, 6), (2.0, 0)] {
+            let t = (-1.0 / (3.0 * a)).acos();
+            let v = |x: f64| x + a * (3.0 * x).sin();
+            let swing = v(t / 3.0) - v((TAU - t) / 3.0);
+            assert_eq!(swing > TAU / 3.0, dwells_expected == 0, "a = {a}: swing {swing}");
+            let f = move |x: f64| {
+                Ok(Jet { x, value: v(x), d1: 1.0 + 3.0 * a * (3.0 * x).cos(), d2: -9.0 * a * (3.0 * x).sin() })
+            };
+            let d = dwells(&grid(f, 0.0, 4.0 * PI, 400), f).unwrap();
+            assert_eq!(d.len(), dwells_expected, "a = {a}: {d:?}");
+            for w in d.windows(2) {
+                assert!(w[0].end.x < w[1].start.x, "a = {a}: {w:?}");
+            }
+            for d in &d {
+                assert!((d.swing() - swing).abs() < 1e-13, "a = {a}: {d:?}");
+            }
+        }
+    }
+
     #[test]
     fn a_dwell_cut_by_the_range_is_not_reported() {
         // Starting inside the first band: only the second dwell is whole.
@@ -240,9 +279,10 @@ mod tests {
             let e = dwells(&samples, f).unwrap_err();
             assert!(e.to_string().contains("no net travel"), "{e}");
         }
-        // A progressive output with a reversal keeps its dwell however small its travel beside
-        // its swing, down to a millionth.
+        // A progressive output is one however small its travel beside its swing, down to a
+        // millionth: not refused. (Its reversals, each swinging over nearly all of its range,
+        // re-enter each other's bands: none is a dwell.)
         let g = |x: f64| Ok(Jet { x, value: 1e-6 * x + x.sin(), d1: 1e-6 + x.cos(), d2: -x.sin() });
-        assert_eq!(dwells(&grid(g, 0.0, 6.0 * PI, 145), g).unwrap().len(), 1);
+        assert_eq!(dwells(&grid(g, 0.0, 6.0 * PI, 145), g).unwrap(), []);
     }
 }
