@@ -340,6 +340,9 @@ pub(crate) fn check_increasing(samples: &[Jet]) -> Result<(), Error> {
 /// peak of a quantity whose derivative is not available, starting from the best sample and its
 /// neighbours.
 ///
+/// Errors (`InvalidArgument`): not `a < b`, or a width `b - a` not finite; a value of `f` not
+/// finite at any point tried; and those of `f`.
+///
 /// ```
 /// use kinloop_runtime::analysis::extremes::maximize;
 /// let (x, v) = maximize(0.0, 3.0, |x| Ok(x * (2.0 - x)))?;
@@ -361,6 +364,11 @@ pub fn maximize(a: f64, b: f64, mut f: impl FnMut(f64) -> Result<f64, Error>) ->
     let mut x = a + golden * (b - a);
     let (mut w, mut v) = (x, x);
     let mut fx = -f(x)?;
+    // Every value is checked, the first too: a NaN there, never replaced (no comparison with it
+    // holds), was returned as the maximum.
+    if !fx.is_finite() {
+        return Err(Error::InvalidArgument(format!("maximize: non-finite value at x = {x}")));
+    }
     let (mut fw, mut fv) = (fx, fx);
     let (mut d, mut e) = (0.0f64, 0.0f64);
     for _ in 0..200 {
@@ -555,6 +563,17 @@ mod tests {
         let s = vec![poly(1.0).unwrap(), poly(0.5).unwrap()];
         assert!(extremes(&s, poly).is_err());
         assert!(extremes(&s[..1], poly).is_err());
+    }
+
+    /// A value not finite at the first point tried is an error, as at any other: it was
+    /// returned as the maximum, `Ok((0.38, NaN))`, of a parabola NaN at that point alone.
+    #[test]
+    fn maximize_refuses_a_first_value_not_finite() {
+        let first = 0.5 * (3.0 - 5f64.sqrt());
+        for bad in [f64::NAN, f64::INFINITY] {
+            let r = maximize(0.0, 1.0, |x| Ok(if x == first { bad } else { x * (1.0 - x) }));
+            assert!(matches!(&r, Err(Error::InvalidArgument(m)) if m.contains("non-finite")), "{bad}: {r:?}");
+        }
     }
 
     #[test]
