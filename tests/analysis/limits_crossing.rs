@@ -38,6 +38,20 @@ kinloop::mechanism! {
     }
 }
 
+kinloop::mechanism! {
+    /// The fixtures' four-bar with two outputs of the crank's angle alone that stand still over
+    /// stretches: `still` from 0 to 2, from 3 to 4 (across the change point at `pi`) and from 5
+    /// on; `until` up to the crossing itself, moving after it.
+    pub struct FourBarStill {
+        params a, b, c, d;
+        input phi;
+        unknowns beta = 0.5, gamma = 1.5;
+        loop abcd: a @ phi + b @ beta == (d, 0) + c @ gamma;
+        output still = clamp(phi - 2, 0, 1) + clamp(phi - 4, 0, 1);
+        output until = clamp(phi - pi, 0, 1);
+    }
+}
+
 /// The four-bar (1, 2, 2.5, 3.5) at scale `s`: `a + d = b + c`.
 fn four_bar(s: f64) -> FourBar {
     FourBar { a: s, b: 2.0 * s, c: 2.5 * s, d: 3.5 * s }
@@ -273,6 +287,33 @@ fn transmission_angle_across_a_change_point() {
                 (mu.max.x - peak).abs() < tol::LOCATED || (mu.max.x - (TAU - peak)).abs() < tol::LOCATED,
                 "{what}: {mu:?}"
             );
+        }
+    }
+}
+
+/// The rests of outputs standing still across the change point and up to it: `still` rests
+/// from 0 to 2, 3 to 4 and 5 to the end, the switches of its clamps located to the doubles;
+/// `until` up to the crossing at `pi`, located there to the width of the crossing's band (the
+/// search steps no closer), and from `pi + 1`. The search for a rest across the crossing evaluated the output
+/// inside that band, and failed (at 10 and 73 samples).
+#[test]
+fn rests_across_a_change_point() {
+    let cfg = SweepConfig::default().with_at_singular(AtSingular::Continue);
+    for scale in [1.0, 1e-3, 1e3] {
+        let m = FourBarStill { a: scale, b: 2.0 * scale, c: 2.5 * scale, d: 3.5 * scale };
+        for samples in [5, 10, 73, 360] {
+            let what = format!("scale {scale}, {samples} samples");
+            let run = Sampled::sweep_with(&m, 0.0, TO, samples, m.guess_flat(&[0.0]), cfg).unwrap();
+            let still = run.rests(FourBarStill::COL.still).unwrap_or_else(|e| panic!("{what}: {e}"));
+            let ends: Vec<(f64, f64)> = still.iter().map(|r| (r.start.x, r.end.x)).collect();
+            assert_eq!(ends.len(), 3, "{what}: {ends:?}");
+            for ((start, end), (a, b)) in ends.iter().zip([(0.0, 2.0), (3.0, 4.0), (5.0, TO)]) {
+                assert!((start - a).abs() < tol::ULPS && (end - b).abs() < tol::ULPS, "{what}: {ends:?}");
+            }
+            let until = run.rests(FourBarStill::COL.until).unwrap_or_else(|e| panic!("{what}: {e}"));
+            assert!(until.len() == 2 && until[0].start.x == 0.0, "{what}: {until:?}");
+            assert!(until[0].end.x <= PI && PI - until[0].end.x < 1e-5, "{what}: {until:?}");
+            assert!((until[1].start.x - (PI + 1.0)).abs() < tol::ULPS && until[1].end.x == TO, "{what}: {until:?}");
         }
     }
 }

@@ -29,7 +29,7 @@
 //! about `sqrt(eps / 10)` of the segment's length, 1e-8 rad of a rise over 120 degrees).
 
 use super::Jet;
-use super::extremes::check_increasing;
+use super::extremes::{Corner, check_increasing};
 use crate::error::Error;
 
 /// A rest of an output: where it stands exactly still; see the [module documentation](self).
@@ -86,8 +86,22 @@ fn at_rest(j: &Jet) -> bool {
 ///
 /// Errors: fewer than two samples, samples not in strictly increasing `x` or not finite, and
 /// `eval`'s.
-pub fn rests(samples: &[Jet], mut eval: impl FnMut(f64) -> Result<Jet, Error>) -> Result<Vec<Rest>, Error> {
+pub fn rests(samples: &[Jet], eval: impl FnMut(f64) -> Result<Jet, Error>) -> Result<Vec<Rest>, Error> {
+    rests_across(samples, &[], eval)
+}
+
+/// [`rests`] with `corners` between samples, where the output cannot be evaluated nearby (the
+/// singular crossings of a sampled range, see `extremes_across`): the midpoint between the two
+/// samples about a corner is the corner itself (at rest where both samples are, its analog
+/// interpolated), and an end of a rest that lies between them is located there to their
+/// distance (the crossing's band, about a millionth of a radian), not within it.
+pub(crate) fn rests_across(
+    samples: &[Jet],
+    corners: &[Corner],
+    mut eval: impl FnMut(f64) -> Result<Jet, Error>,
+) -> Result<Vec<Rest>, Error> {
     check_increasing(samples)?;
+    let gaps: Vec<(f64, f64)> = corners.iter().map(|c| (samples[c.after].x, samples[c.after + 1].x)).collect();
     let n = samples.len();
     let mut out = Vec::new();
     // The nearest input known to move before sample `i` (NaN: none, the start of the range).
@@ -109,17 +123,22 @@ pub fn rests(samples: &[Jet], mut eval: impl FnMut(f64) -> Result<Jet, Error>) -
                 moving_after = samples[k + 1].x;
                 break;
             }
-            let mid = 0.5 * samples[k].x + 0.5 * samples[k + 1].x;
-            if !at_rest(&evaluated(mid, &mut eval)?) {
-                moving_after = mid;
+            let mid = match corners.iter().find(|c| c.after == k) {
+                Some(c) => c.at,
+                None => evaluated(0.5 * samples[k].x + 0.5 * samples[k + 1].x, &mut eval)?,
+            };
+            if !at_rest(&mid) {
+                moving_after = mid.x;
                 break;
             }
             k += 1;
         }
         // One sample at rest: an instant (see the module documentation).
         if k > i {
-            let start = if moving_before.is_nan() { samples[i] } else { edge(moving_before, samples[i], &mut eval)? };
-            let end = if moving_after.is_nan() { samples[k] } else { edge(moving_after, samples[k], &mut eval)? };
+            let start =
+                if moving_before.is_nan() { samples[i] } else { edge(moving_before, samples[i], &gaps, &mut eval)? };
+            let end =
+                if moving_after.is_nan() { samples[k] } else { edge(moving_after, samples[k], &gaps, &mut eval)? };
             out.push(Rest { start, end });
         }
         moving_before = moving_after;
@@ -130,13 +149,19 @@ pub fn rests(samples: &[Jet], mut eval: impl FnMut(f64) -> Result<Jet, Error>) -
 
 /// The end of a rest between the moving input `moving` and the jet `still` at rest: the input at
 /// rest nearest to `moving`, by bisection on "at rest" until the two are adjacent doubles (at
-/// most about 64 halvings where the two are of one sign, a few more across zero).
-fn edge(moving: f64, still: Jet, eval: &mut impl FnMut(f64) -> Result<Jet, Error>) -> Result<Jet, Error> {
+/// most about 64 halvings where the two are of one sign, a few more across zero), or a midpoint
+/// falls within one of the `gaps` (open intervals where nothing can be evaluated).
+fn edge(
+    moving: f64,
+    still: Jet,
+    gaps: &[(f64, f64)],
+    eval: &mut impl FnMut(f64) -> Result<Jet, Error>,
+) -> Result<Jet, Error> {
     let (mut moving, mut still) = (moving, still);
     loop {
         // Halves of each: no overflow for ends near the largest doubles.
         let mid = 0.5 * moving + 0.5 * still.x;
-        if mid == moving || mid == still.x {
+        if mid == moving || mid == still.x || gaps.iter().any(|&(a, b)| mid > a && mid < b) {
             return Ok(still);
         }
         let j = evaluated(mid, eval)?;

@@ -754,13 +754,15 @@ impl<K: Kernel> SampledOf<K> {
     /// The rests of a column: where it stands exactly still (its velocity analog exactly zero
     /// over a stretch, as a cam follower's in the dwells of its law); see [`rest`] for the
     /// definition. Each end is located between the samples by bisection, to the spacing of the
-    /// input's doubles; a rest reaching an end of the range is cut there.
+    /// input's doubles (an end at a singular crossing the sweep passed, to the width of the
+    /// crossing's band, where nothing is solved); a rest reaching an end of the range is cut
+    /// there. A rest may run across a crossing.
     ///
     /// Unlike [`SampledOf::dwells`], for any output: a cam follower that rises, dwells, returns
     /// and dwells has no net travel, so no dwell by that definition, but two rests a turn.
     pub fn rests(&self, c: impl ColumnOf<K>) -> Result<Vec<Rest>, Error> {
         let c = c.resolve(&self.k)?;
-        self.searched(c, |jets, _, eval| rest::rests(jets, eval))
+        self.searched(c, |jets, corners, eval| rest::rests_across(jets, corners, eval))
     }
 
     /// The maximum of a derived quantity `f(state)` (e.g. the magnitude of an acceleration
