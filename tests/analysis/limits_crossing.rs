@@ -318,6 +318,35 @@ fn rests_across_a_change_point() {
     }
 }
 
+/// The peaks of the joint's `x` across the change point: its least value, `d - c` at the
+/// crossing itself (as `-x`'s peak, located to the width of the crossing's band, where nothing
+/// is solved), and its largest acceleration analog `|x''|`, against a brute force on the
+/// construction (central differences on a grid of 2^15 intervals: its peak to some 1e-8). The
+/// refinement between a sample and its neighbour beyond the crossing stepped into the band and
+/// failed: for the least `x` at every sample count, for `|x''|` at 10.
+#[test]
+fn peaks_across_a_change_point() {
+    let cfg = SweepConfig::default().with_at_singular(AtSingular::Continue);
+    for scale in [1.0, 1e-3, 1e3] {
+        let m = four_bar(scale);
+        let x = |phi: f64| construction(&m, phi, "pc.x");
+        let (n, h) = (1 << 15, 1e-4);
+        let brute = (0..=n)
+            .map(|i| TO * f64::from(i) / f64::from(n))
+            .filter(|phi| (phi - PI).abs() > 1e-2 && *phi > h && *phi < TO - h)
+            .map(|phi| ((x(phi + h) - 2.0 * x(phi) + x(phi - h)) / (h * h)).abs())
+            .fold(0.0, f64::max);
+        for samples in [5, 10, 73, 360] {
+            let what = format!("scale {scale}, {samples} samples");
+            let run = Sampled::sweep_with(&m, 0.0, TO, samples, m.guess_flat(&[0.0]), cfg).unwrap();
+            let (at, least) = run.peak_of(FourBar::COL.pc.x, |j| -j.value).unwrap_or_else(|e| panic!("{what}: {e}"));
+            assert!((at - PI).abs() < 1e-5 && (-least - (m.d - m.c)).abs() < 1e-9 * scale, "{what}: {at} {least}");
+            let (_, peak) = run.peak_of(FourBar::COL.pc.x, |j| j.d2.abs()).unwrap_or_else(|e| panic!("{what}: {e}"));
+            assert!((peak - brute).abs() < 1e-6 * scale, "{what}: {peak} against {brute}");
+        }
+    }
+}
+
 /// A state asked for between the crossing and the point where the sweep resumes past it is the
 /// state at that input: it was the resumed state, 7e-4 rad past the crossing, whatever input
 /// within that was asked for (and the extremes' refinement there compared the wrong states).

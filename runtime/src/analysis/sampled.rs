@@ -769,7 +769,9 @@ impl<K: Kernel> SampledOf<K> {
     /// analog) over the range: the best sample (and point between samples farther apart than
     /// a sweep's natural step, as [`SampledOf::extremes`] looks), refined by Brent's
     /// derivative-free search between its neighbours. Returns `(s, f)`. For a minimum, maximise `-f`. A value of `f`
-    /// not finite, at a sample or in the search, is an `InvalidArgument`.
+    /// not finite, at a sample or in the search, is an `InvalidArgument`. Beside a singular
+    /// crossing the sweep passed nothing is solved within the crossing's band: a peak at the
+    /// crossing is located to the band's width, at its nearer side.
     pub fn peak(&self, f: impl Fn(&KinOf<K>) -> f64) -> Result<(f64, f64), Error> {
         self.peak_by(|_, k| f(k))
     }
@@ -798,8 +800,19 @@ impl<K: Kernel> SampledOf<K> {
         let last = values.len() - 1;
         let local = |j: usize| (j == 0 || values[j] >= values[j - 1]) && (j == last || values[j] >= values[j + 1]);
         let mut best = (f64::NAN, f64::NEG_INFINITY);
+        // Nothing is solved across a singular crossing's gap (within its band, where the search
+        // failed): a neighbour beyond one is not searched towards, so that a peak at the crossing
+        // is located to the gap's width, at its nearer side.
+        let gap_after = |i: usize| grid.gaps.iter().any(|g| g.at == i);
         for j in (0..values.len()).filter(|&j| local(j)) {
-            let (lo, hi) = (at[j.saturating_sub(1)], at[(j + 1).min(last)]);
+            let lo = if j == 0 || gap_after(j - 1) { at[j] } else { at[j - 1] };
+            let hi = if j == last || gap_after(j) { at[j] } else { at[j + 1] };
+            if lo == hi {
+                if values[j] > best.1 {
+                    best = (at[j], values[j]);
+                }
+                continue;
+            }
             let (s, v) = maximize(lo, hi, |s| self.at_near(s, at, |k| &grid.states[k]).map(|k| f(s, &k)))?;
             // Brent returns an interior point; the sample itself may be better (at an end of
             // the range).
